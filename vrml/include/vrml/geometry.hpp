@@ -1,0 +1,64 @@
+// Tessellation of VRML97 geometry nodes into triangle, line and point arrays (clause 6:
+// Box 6.4, Cone 6.11, Cylinder 6.15, ElevationGrid 6.18, Extrusion 6.19,
+// IndexedFaceSet 6.23, IndexedLineSet 6.24, PointSet 6.36, Sphere 6.43; Text 6.47 gives an
+// empty mesh for now). Pure computation in the node's local coordinates (metres).
+#pragma once
+
+#include "vrml/diagnostic.hpp"
+#include "vrml/node.hpp"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace gs::vrml {
+
+/// Axis-aligned bounding box; empty when min > max.
+struct Bounds {
+  glm::vec3 min{1e30f};
+  glm::vec3 max{-1e30f};
+  bool empty() const { return min.x > max.x; }
+  void extend(const glm::vec3& p) {
+    min = glm::min(min, p);
+    max = glm::max(max, p);
+  }
+  void extend(const Bounds& b) {
+    if (!b.empty()) { extend(b.min); extend(b.max); }
+  }
+  glm::vec3 center() const { return (min + max) * 0.5f; }
+  glm::vec3 size() const { return empty() ? glm::vec3(0.0f) : max - min; }
+};
+
+enum class Primitive : std::uint8_t { triangles, lines, points };
+
+/// Unindexed-or-indexed vertex arrays ready for a GPU buffer. Every array that is not
+/// empty has one entry per vertex. Triangles are counter-clockwise seen from the front
+/// (the side normals point to), whatever the node's `ccw` said.
+struct Mesh {
+  Primitive primitive = Primitive::triangles;
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;    // unit length; empty for lines and points
+  std::vector<glm::vec4> colors;     // RGBA in [0,1]; empty when the node has no Color
+  std::vector<glm::vec2> texCoords;  // empty for lines and points
+  std::vector<std::uint32_t> indices;  // 3 per triangle, 2 per line segment, 1 per point
+  bool solid = true;  // back faces may be culled (the node's `solid` field)
+  Bounds bounds;      // of positions
+
+  std::size_t triangleCount() const {
+    return primitive == Primitive::triangles ? indices.size() / 3 : 0;
+  }
+};
+
+/// Builds the mesh of a geometry node. Unknown or non-geometry nodes and geometry with
+/// no usable data give an empty mesh. Out-of-range indices are skipped and reported once
+/// per node as a warning in `diag` (when not null) at the node's location; the result
+/// never reads outside the node's arrays. IndexedFaceSet polygons that are not convex
+/// (or when convex is FALSE) are triangulated by ear clipping in their best-fit plane;
+/// normals follow creaseAngle (radians) when the file gives none.
+Mesh tessellate(const Node& geometry, Diagnostics* diag = nullptr);
+
+/// Number of segments used around the circumference of Cone, Cylinder and Sphere.
+inline constexpr int kRoundSegments = 32;
+
+}  // namespace gs::vrml

@@ -1,0 +1,90 @@
+// Node types and node instances (ISO/IEC 14772-1:1997, clauses 4.5 "Nodes" and 6
+// "Node reference"). The built-in types come from one declarative table
+// (node_table.hpp); PROTO and EXTERNPROTO declarations create further NodeTypes.
+#pragma once
+
+#include "vrml/diagnostic.hpp"
+#include "vrml/field.hpp"
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace gs::vrml {
+
+/// One interface declaration of a node type: `exposedField SFVec3f translation 0 0 0`.
+struct FieldSpec {
+  std::string name;
+  FieldType type = FieldType::SFBool;
+  AccessType access = AccessType::field;
+  FieldValue defaultValue;  // meaningful for field and exposedField only
+};
+
+struct ProtoDefinition;  // proto.hpp
+
+/// A node type: a built-in VRML97 node, one of our extension nodes, or a PROTO /
+/// EXTERNPROTO declared in a file.
+struct NodeType {
+  std::string name;
+  std::vector<FieldSpec> fields;  // every field, exposedField, eventIn and eventOut
+  bool builtIn = false;           // from the node table
+  bool extension = false;         // a GhostSpace extension node (docs/vrml-extensions.md)
+  bool script = false;            // Script: user-declared interface allowed (clause 6.40)
+  /// For PROTO / EXTERNPROTO types: the definition; null for built-ins.
+  std::shared_ptr<const ProtoDefinition> proto;
+
+  /// Index into `fields` of the interface member called `name`, also accepting the
+  /// exposedField aliases `set_name` and `name_changed` (clause 4.10.3); -1 if none.
+  int findField(std::string_view name) const;
+  /// Index of the member called exactly `name` (no aliases); -1 if none.
+  int findExact(std::string_view name) const;
+};
+
+/// One node instance in a scene graph. Field values are indexed like `type->fields`.
+/// A PROTO instance is expanded when parsed: the Node in the graph is a copy of the
+/// PROTO's first implementation node with IS fields substituted, and `protoName` keeps
+/// the PROTO's name. An instance of an EXTERNPROTO that could not be resolved keeps its
+/// declared interface as `type` and is not rendered (`unresolved` is true).
+class Node {
+ public:
+  explicit Node(std::shared_ptr<const NodeType> type);
+
+  const NodeType& type() const { return *type_; }
+  const std::shared_ptr<const NodeType>& typePtr() const { return type_; }
+  /// The VRML97 type name, e.g. "Transform".
+  const std::string& typeName() const { return type_->name; }
+
+  /// Value of the field or exposedField `name`; nullptr when the type has no such field.
+  const FieldValue* field(std::string_view name) const;
+  FieldValue* field(std::string_view name);
+  /// Value at index `i` of type().fields (0 <= i < fields().size()).
+  const FieldValue& fieldAt(std::size_t i) const { return values_[i]; }
+  FieldValue& fieldAt(std::size_t i) { return values_[i]; }
+  std::size_t fieldCount() const { return values_.size(); }
+
+  /// Convenience typed getters for renderers: the value of field `name` when it exists
+  /// and has type T, else `fallback`.
+  template <FieldType T, class V>
+  V get(std::string_view name, V fallback) const {
+    const FieldValue* f = field(name);
+    if (f == nullptr || f->type() != T) return fallback;
+    return f->get<T>();
+  }
+  /// The SFNode field `name` (nullptr when absent or NULL).
+  NodePtr sfnode(std::string_view name) const;
+  /// The MFNode field `name` (empty when absent).
+  const std::vector<NodePtr>& mfnode(std::string_view name) const;
+
+  std::string defName;        // DEF name, empty when none
+  std::string protoName;      // PROTO this node expands, empty for plain nodes
+  bool unresolved = false;    // instance of an EXTERNPROTO that could not be loaded
+  SourceLocation location;    // where the node's type name appeared
+
+ private:
+  std::shared_ptr<const NodeType> type_;
+  std::vector<FieldValue> values_;
+};
+
+}  // namespace gs::vrml

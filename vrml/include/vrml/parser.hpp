@@ -1,0 +1,53 @@
+// The VRML97 reader: classic UTF-8 encoding (ISO/IEC 14772-1:1997 clause 5 and annex A
+// grammar), gzip read transparently. Safe for untrusted input: every error is a
+// Diagnostic with file:line:column, nesting and allocation are bounded.
+#pragma once
+
+#include "vrml/scene.hpp"
+
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <string_view>
+
+namespace gs::vrml {
+
+/// Limits that keep hostile input from exhausting the machine.
+struct ParseLimits {
+  int maxNesting = 256;                        // nested nodes / PROTO instances
+  std::size_t maxInputBytes = 1ull << 31;      // after gzip decompression, bytes
+  int maxExternProtoDepth = 8;                 // EXTERNPROTO files loading others
+};
+
+/// Loads the bytes behind a URL (already resolved against the base URL). Returns false
+/// and sets `error` when it cannot. The parser uses it for EXTERNPROTO; the default
+/// loader reads local files only.
+using UrlLoader = std::function<bool(const std::string& url, std::string& bytes, std::string& error)>;
+
+struct ParseOptions {
+  ParseLimits limits;
+  /// Used for EXTERNPROTO URLs; when empty, local files are read (relative to the
+  /// directory of the parsed file).
+  UrlLoader loader;
+  /// Called with each completed top-level node as soon as it is parsed (for progressive
+  /// display); may be empty.
+  std::function<void(const NodePtr&)> onRootNode;
+};
+
+/// Parses a VRML97 text (or gzip of one) held in memory. `url` names it in diagnostics
+/// and is the base for relative URLs. Never throws for bad content: a fatal syntax error
+/// ends the parse with an error Diagnostic and the nodes read before it are kept;
+/// recoverable problems (unknown node or field, unresolved EXTERNPROTO) are diagnosed and
+/// skipped. A "#VRML V1.0 ascii" header gives the error "VRML 1.0 is not supported".
+Scene parseVrml(std::string_view bytes, const std::string& url, const ParseOptions& options = {});
+
+/// Reads `path` (gzip or not) and parses it as parseVrml does. A file that cannot be
+/// read gives a Scene with one error diagnostic naming the path and the reason.
+Scene loadVrmlFile(const std::string& path, const ParseOptions& options = {});
+
+/// Decompresses `bytes` when they start with the gzip magic (1f 8b), else returns them.
+/// Throws ParseError ("file: corrupt gzip data: ...") on a damaged stream and when the
+/// result would exceed `maxBytes`.
+std::string gunzipIfCompressed(std::string_view bytes, const std::string& url, std::size_t maxBytes);
+
+}  // namespace gs::vrml

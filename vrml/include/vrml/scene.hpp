@@ -1,0 +1,35 @@
+// A parsed VRML97 world: root nodes, routes, PROTO declarations and diagnostics
+// (clause 4.4 "Scene graph structure").
+#pragma once
+
+#include "vrml/diagnostic.hpp"
+#include "vrml/node.hpp"
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace gs::vrml {
+
+/// ROUTE fromNode.eventOut TO toNode.eventIn (clause 4.10.2), checked when parsed:
+/// both nodes exist, the source is an eventOut or exposedField, the destination an
+/// eventIn or exposedField, and the types are equal. Executed by a later stage.
+struct Route {
+  NodePtr fromNode;
+  std::string fromField;  // as written in the file
+  NodePtr toNode;
+  std::string toField;
+  SourceLocation location;
+};
+
+/// A world read from one file or URL.
+struct Scene {
+  std::string url;                 // where it was read from, as given
+  std::vector<NodePtr> rootNodes;  // in file order, PROTO instances expanded
+  std::vector<Route> routes;
+  std::vector<std::shared_ptr<const NodeType>> protos;  // PROTO/EXTERNPROTO of the file
+  Diagnostics diagnostics;
+};
+
+}  // namespace gs::vrml
