@@ -1,0 +1,58 @@
+#include "process.hpp"
+
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace gs::test {
+
+namespace {
+std::string slurp(const std::filesystem::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::ostringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+}  // namespace
+
+ProcessResult runGhostspace(const std::vector<std::string>& args,
+                            const std::vector<std::string>& env) {
+  static int counter = 0;
+  const auto dir = std::filesystem::temp_directory_path();
+  const std::string stem = "gs_proc_" + std::to_string(::getpid()) + "_" + std::to_string(counter++);
+  const auto outPath = dir / (stem + ".out");
+  const auto errPath = dir / (stem + ".err");
+
+  std::vector<std::string> argvStore{GS_EXECUTABLE};
+  argvStore.insert(argvStore.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& a : argvStore) argv.push_back(a.data());
+  argv.push_back(nullptr);
+
+  ProcessResult r;
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const int o = ::open(outPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int e = ::open(errPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ::dup2(o, 1);
+    ::dup2(e, 2);
+    for (const auto& kv : env) ::putenv(const_cast<char*>(kv.c_str()));
+    ::execv(argv[0], argv.data());
+    ::_exit(127);
+  }
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(outPath);
+  r.err = slurp(errPath);
+  std::filesystem::remove(outPath);
+  std::filesystem::remove(errPath);
+  return r;
+}
+
+}  // namespace gs::test

@@ -1,0 +1,79 @@
+// End-to-end tests of the command line: the real binary, its exit codes and messages.
+#include "process.hpp"
+#include "test_support.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+
+using gs::test::runGhostspace;
+
+TEST_CASE("--help describes the options and exits 0", "[app][cli]") {
+  auto r = runGhostspace({"--help"});
+  CHECK(r.exitCode == 0);
+  CHECK(r.out.find("--snapshot") != std::string::npos);
+  CHECK(r.out.find("--size") != std::string::npos);
+  CHECK(r.out.find("info") != std::string::npos);
+}
+
+TEST_CASE("--version prints the version", "[app][cli]") {
+  auto r = runGhostspace({"--version"});
+  CHECK(r.exitCode == 0);
+  CHECK(r.out.rfind("ghostspace ", 0) == 0);
+}
+
+TEST_CASE("an unknown option is an error that names it", "[app][cli]") {
+  auto r = runGhostspace({"--frobnicate", "x.wrl"});
+  CHECK(r.exitCode == 2);
+  CHECK(r.err.find("--frobnicate") != std::string::npos);
+}
+
+TEST_CASE("--size must be WxH", "[app][cli]") {
+  auto r = runGhostspace({"--snapshot", "/tmp/x.png", "--size", "800by600", "a.wrl"});
+  CHECK(r.exitCode == 2);
+  CHECK(r.err.find("800by600") != std::string::npos);
+}
+
+TEST_CASE("--snapshot of a missing file fails with one line naming it", "[app][cli]") {
+  auto out = std::filesystem::temp_directory_path() / "gs_missing.png";
+  std::filesystem::remove(out);
+  auto r = runGhostspace({"--snapshot", out.string(), "/nonexistent/world.wrl"});
+  CHECK(r.exitCode == 1);
+  CHECK(r.err.find("/nonexistent/world.wrl") != std::string::npos);
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  CHECK_FALSE(std::filesystem::exists(out));
+}
+
+TEST_CASE("--snapshot of a VRML 1.0 file says it is not supported", "[app][cli]") {
+  auto in = std::filesystem::temp_directory_path() / "gs_v1.wrl";
+  {
+    std::ofstream f(in);
+    f << "#VRML V1.0 ascii\nSeparator { Cube {} }\n";
+  }
+  auto r = runGhostspace({"--snapshot", "/tmp/gs_v1.png", in.string()});
+  CHECK(r.exitCode == 1);
+  CHECK(r.err.find("VRML 1.0 is not supported") != std::string::npos);
+}
+
+TEST_CASE("info prints counts, triangles, bounds and timing", "[app][cli]") {
+  auto world = gs::test::sourceDir() / "assets/worlds/welcome.wrl";
+  auto r = runGhostspace({"info", world.string()});
+  CHECK(r.exitCode == 0);
+  CHECK(r.out.find("Transform") != std::string::npos);
+  CHECK(r.out.find("triangles") != std::string::npos);
+  CHECK(r.out.find("bounding box") != std::string::npos);
+  CHECK(r.out.find("parse") != std::string::npos);
+}
+
+TEST_CASE("--snapshot writes a PNG of the bundled scene", "[app][cli][snapshot]") {
+  auto world = gs::test::sourceDir() / "assets/worlds/welcome.wrl";
+  auto out = std::filesystem::temp_directory_path() / "gs_welcome_test.png";
+  std::filesystem::remove(out);
+  auto r = runGhostspace({"--snapshot", out.string(), "--size", "160x120", world.string()});
+  INFO(r.err);
+  CHECK(r.exitCode == 0);
+  REQUIRE(std::filesystem::exists(out));
+  CHECK(std::filesystem::file_size(out) > 100);
+}
