@@ -6,9 +6,13 @@
 
 namespace gs::test {
 
-std::filesystem::path sourceDir() { return GS_SOURCE_DIR; }
+std::filesystem::path sourceDir() {
+  return GS_SOURCE_DIR;
+}
 
-std::filesystem::path corpusDir() { return GS_CORPUS_DIR; }
+std::filesystem::path corpusDir() {
+  return GS_CORPUS_DIR;
+}
 
 bool haveCorpus(const std::string& sub) {
   const auto dir = corpusDir() / sub;

@@ -54,14 +54,14 @@ Parsed parseArguments(int argc, char** argv) {
                  "Render INPUT off-screen (no display needed) from its bound Viewpoint and "
                  "write a PNG to this path")
       ->type_name("OUT.png");
-  cli.add_option("--size", size, "Image or window size in pixels, e.g. 800x600")
-      ->type_name("WxH");
+  cli.add_option("--size", size, "Image or window size in pixels, e.g. 800x600")->type_name("WxH");
   cli.add_option("--frames", o.frames, "Close the window after this many frames (testing)")
       ->check(CLI::NonNegativeNumber);
   cli.add_option("INPUT", o.inputs, "VRML97 worlds to open (.wrl, .wrl.gz, .wrz)");
 
-  CLI::App* info = cli.add_subcommand("info", "Print what was read from INPUT: node counts, "
-                                              "triangles, bounding box, diagnostics, parse time");
+  CLI::App* info = cli.add_subcommand("info",
+                                      "Print what was read from INPUT: node counts, "
+                                      "triangles, bounding box, diagnostics, parse time");
   std::vector<std::string> infoInputs;
   info->add_option("INPUT", infoInputs, "VRML97 world")->required();
 
@@ -111,9 +111,12 @@ int run(int argc, char** argv) {
   if (p.exitCode >= 0) return p.exitCode;
   try {
     switch (p.options.command) {
-      case Command::info: return runInfo(p.options);
-      case Command::snapshot: return runSnapshot(p.options);
-      case Command::window: return runWindow(p.options);
+      case Command::info:
+        return runInfo(p.options);
+      case Command::snapshot:
+        return runSnapshot(p.options);
+      case Command::window:
+        return runWindow(p.options);
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "ghostspace: %s\n", e.what());

@@ -24,7 +24,8 @@ ProcessResult runGhostspace(const std::vector<std::string>& args,
                             const std::vector<std::string>& env) {
   static int counter = 0;
   const auto dir = std::filesystem::temp_directory_path();
-  const std::string stem = "gs_proc_" + std::to_string(::getpid()) + "_" + std::to_string(counter++);
+  const std::string stem =
+      "gs_proc_" + std::to_string(::getpid()) + "_" + std::to_string(counter++);
   const auto outPath = dir / (stem + ".out");
   const auto errPath = dir / (stem + ".err");
 

@@ -14,7 +14,7 @@ struct Options {
   std::string snapshotPath;         // --snapshot OUT.png
   int width = 800;                  // --size WxH, pixels
   int height = 600;
-  int frames = 0;                   // --frames N: window closes after N frames (0 = never)
+  int frames = 0;  // --frames N: window closes after N frames (0 = never)
 };
 
 /// Parses "WxH" (e.g. "800x600") into pixels; each side 1..16384. Returns false when the

@@ -1,0 +1,57 @@
+// `ghostspace info INPUT`: what was read, how big it is, how long parsing took.
+#include "app/commands.hpp"
+#include "app/world.hpp"
+#include "render/traversal.hpp"
+
+#include <cstdio>
+
+namespace gs::app {
+
+int runInfo(const Options& options) {
+  int status = 0;
+  for (const std::string& input : options.inputs) {
+    const LoadedWorld w = loadWorld(input);
+    if (!w.readable) {
+      for (const auto& d : w.scene->diagnostics.items)
+        std::fprintf(stderr, "ghostspace: %s\n", d.format().c_str());
+      status = 1;
+      continue;
+    }
+    std::printf("%s\n", input.c_str());
+    std::printf("  bytes: %zu\n", w.bytes);
+    std::printf("  parse time: %.3f ms (%.1f MB/s)\n", w.parseSeconds * 1e3,
+                w.parseSeconds > 0 ? static_cast<double>(w.bytes) / 1e6 / w.parseSeconds : 0.0);
+    std::printf("  root nodes: %zu, routes: %zu, PROTO/EXTERNPROTO: %zu\n",
+                w.scene->rootNodes.size(), w.scene->routes.size(), w.scene->protos.size());
+    std::printf("  nodes by type:\n");
+    for (const auto& [type, count] : countNodesByType(*w.scene))
+      std::printf("    %-24s %zu\n", type.c_str(), count);
+
+    render::SceneTraversal traversal(w.scene);
+    render::TraversalFrame frame;
+    traversal.collect(traversal.boundViewpointCamera(), frame);
+    std::size_t triangles = 0;
+    for (const auto& s : frame.shapes) triangles += traversal.mesh(*s.geometry).triangleCount();
+    std::printf("  shapes drawn: %zu, triangles: %zu\n", frame.shapes.size(), triangles);
+    const vrml::Bounds& b = traversal.worldBounds();
+    if (b.empty()) {
+      std::printf("  bounding box: empty\n");
+    } else {
+      std::printf("  bounding box: min (%g %g %g) max (%g %g %g) size (%g %g %g)\n", b.min.x,
+                  b.min.y, b.min.z, b.max.x, b.max.y, b.max.z, b.size().x, b.size().y, b.size().z);
+    }
+    std::printf("  viewpoints: %zu\n", traversal.viewpoints().size());
+    for (const auto& vp : traversal.viewpoints())
+      std::printf("    \"%s\"\n", vp.description.c_str());
+    const auto& diags = w.scene->diagnostics;
+    const auto& tdiags = traversal.diagnostics();
+    std::printf("  diagnostics: %zu errors, %zu warnings\n",
+                diags.errorCount() + tdiags.errorCount(),
+                diags.warningCount() + tdiags.warningCount());
+    for (const auto* list : {&diags, &tdiags})
+      for (const auto& d : list->items) std::printf("    %s\n", d.format().c_str());
+  }
+  return status;
+}
+
+}  // namespace gs::app

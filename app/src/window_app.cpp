@@ -1,0 +1,95 @@
+// `ghostspace [INPUT...]`: the GLFW window, its Dear ImGui menu and panels, EXAMINE
+// navigation. Rendering goes through the same render::SceneRenderer as --snapshot.
+#include "app/commands.hpp"
+#include "app/window_state.hpp"
+#include "render/context.hpp"
+
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+#include <imgui_impl_opengl3.h>
+
+#include <cstdio>
+#include <exception>
+
+namespace gs::app {
+
+namespace {
+
+/// ImGui's lifetime, bound to one window.
+struct ImGuiSession {
+  explicit ImGuiSession(GLFWwindow* window) {
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini beside the user's files
+    ImGui::StyleColorsDark();
+    ImGui_ImplGlfw_InitForOpenGL(window, true);
+    ImGui_ImplOpenGL3_Init("#version 330 core");
+  }
+  ~ImGuiSession() {
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+  }
+  ImGuiSession(const ImGuiSession&) = delete;
+  ImGuiSession& operator=(const ImGuiSession&) = delete;
+};
+
+/// Mouse input not taken by ImGui drives the EXAMINE navigator: left drag orbits, right
+/// drag or shift + left drag pans, middle drag and the wheel dolly.
+void navigate(WindowState& state, int viewportHeight) {
+  const ImGuiIO& io = ImGui::GetIO();
+  if (io.WantCaptureMouse) return;
+  const float dx = io.MouseDelta.x, dy = io.MouseDelta.y;
+  const bool moved = dx != 0.0f || dy != 0.0f;
+  if (io.MouseDown[0] && moved) {
+    if (io.KeyShift)
+      state.navigator.pan(dx, dy, viewportHeight);
+    else
+      state.navigator.orbit(dx, dy, viewportHeight);
+  } else if (io.MouseDown[1] && moved) {
+    state.navigator.pan(dx, dy, viewportHeight);
+  } else if (io.MouseDown[2] && moved) {
+    state.navigator.dolly(-dy / 20.0f);
+  }
+  if (io.MouseWheel != 0.0f) state.navigator.dolly(io.MouseWheel);
+}
+
+}  // namespace
+
+int runWindow(const Options& options) {
+  std::unique_ptr<render::WindowContext> context;
+  try {
+    context = render::createWindowContext("GhostSpace", options.width, options.height);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "ghostspace: %s\n", e.what());
+    return 1;
+  }
+  ImGuiSession imgui(context->glfwHandle());
+  WindowState state;
+  for (const std::string& input : options.inputs) state.open(input);
+
+  int frame = 0;
+  GLFWwindow* window = context->glfwHandle();
+  while (!glfwWindowShouldClose(window) && !state.quitRequested) {
+    glfwWaitEventsTimeout(1.0 / 60.0);
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+
+    const int width = context->width(), height = context->height();
+    const int menuHeight = drawMenuBar(state, static_cast<float>(width) / std::max(1, height));
+    drawPanels(state);
+    navigate(state, std::max(1, height - menuHeight));
+
+    context->makeCurrent();
+    state.drawScene(0, 0, width, std::max(1, height - menuHeight));
+    ImGui::Render();
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    context->swapBuffers();
+    if (options.frames > 0 && ++frame >= options.frames) break;
+  }
+  return 0;
+}
+
+}  // namespace gs::app

@@ -1,0 +1,164 @@
+// The Dear ImGui menu bar, open-file dialog and log panel of the window.
+#include "app/window_state.hpp"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <cstring>
+#include <filesystem>
+
+namespace gs::app {
+
+namespace {
+
+bool isWorldFile(const std::filesystem::path& p) {
+  const std::string name = p.filename().string();
+  for (const char* ext : {".wrl", ".wrl.gz", ".wrz", ".WRL"})
+    if (name.size() > std::strlen(ext) && name.ends_with(ext)) return true;
+  return false;
+}
+
+void drawOpenDialog(WindowState& state) {
+  if (!state.showOpenDialog) return;
+  ImGui::SetNextWindowSize(ImVec2(520, 380), ImGuiCond_FirstUseEver);
+  if (!ImGui::Begin("Open world", &state.showOpenDialog)) {
+    ImGui::End();
+    return;
+  }
+  ImGui::TextUnformatted("Path of a VRML97 world (.wrl, .wrl.gz, .wrz):");
+  const bool entered = ImGui::InputText("##path", state.openPath, sizeof state.openPath,
+                                        ImGuiInputTextFlags_EnterReturnsTrue);
+  ImGui::SameLine();
+  if (ImGui::Button("Open") || entered) {
+    std::error_code ec;
+    const std::filesystem::path p(state.openPath);
+    if (std::filesystem::is_directory(p, ec)) {
+      // A folder: list it below.
+    } else {
+      state.open(state.openPath);
+      state.showOpenDialog = false;
+    }
+  }
+  // A plain browser of the folder typed (or the current folder).
+  std::error_code ec;
+  std::filesystem::path dir(state.openPath);
+  if (!std::filesystem::is_directory(dir, ec)) dir = dir.parent_path();
+  if (dir.empty()) dir = std::filesystem::current_path(ec);
+  ImGui::Separator();
+  ImGui::Text("%s", dir.string().c_str());
+  ImGui::BeginChild("files");
+  if (ImGui::Selectable("..")) {
+    std::snprintf(state.openPath, sizeof state.openPath, "%s/", dir.parent_path().string().c_str());
+  }
+  std::vector<std::filesystem::directory_entry> entries;
+  for (std::filesystem::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+    entries.push_back(*it);
+  std::sort(entries.begin(), entries.end());
+  for (const auto& e : entries) {
+    const bool folder = e.is_directory(ec);
+    if (!folder && !isWorldFile(e.path())) continue;
+    const std::string label = e.path().filename().string() + (folder ? "/" : "");
+    if (ImGui::Selectable(label.c_str())) {
+      std::snprintf(state.openPath, sizeof state.openPath, "%s%s", e.path().string().c_str(),
+                    folder ? "/" : "");
+      if (!folder) {
+        state.open(e.path().string());
+        state.showOpenDialog = false;
+      }
+    }
+  }
+  ImGui::EndChild();
+  ImGui::End();
+}
+
+void drawLog(WindowState& state) {
+  if (!state.showLog) return;
+  ImGui::SetNextWindowSize(ImVec2(640, 200), ImGuiCond_FirstUseEver);
+  if (!ImGui::Begin("Log", &state.showLog)) {
+    ImGui::End();
+    return;
+  }
+  if (ImGui::Button("Clear")) state.log.clear();
+  ImGui::Separator();
+  ImGui::BeginChild("lines");
+  for (const LogLine& line : state.log) {
+    if (line.error) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.45f, 0.4f, 1.0f));
+    ImGui::TextUnformatted(line.text.c_str());
+    if (line.error) ImGui::PopStyleColor();
+  }
+  if (ImGui::GetScrollY() >= ImGui::GetScrollMaxY()) ImGui::SetScrollHereY(1.0f);
+  ImGui::EndChild();
+  ImGui::End();
+}
+
+}  // namespace
+
+int drawMenuBar(WindowState& state, float aspect) {
+  state.lastAspect = aspect;
+  int height = 0;
+  if (!ImGui::BeginMainMenuBar()) return 0;
+  if (ImGui::BeginMenu("File")) {
+    if (ImGui::MenuItem("Open...", "Ctrl+O")) state.showOpenDialog = true;
+    if (ImGui::BeginMenu("Recent", !state.recent.empty())) {
+      for (const std::string& path : std::vector<std::string>(state.recent))
+        if (ImGui::MenuItem(path.c_str())) state.open(path);
+      ImGui::EndMenu();
+    }
+    if (ImGui::BeginMenu("Worlds", state.worlds.size() > 1)) {
+      for (std::size_t i = 0; i < state.worlds.size(); ++i)
+        if (ImGui::MenuItem(state.worlds[i].scene->url.c_str(), nullptr, i == state.current))
+          state.show(i);
+      ImGui::EndMenu();
+    }
+    ImGui::Separator();
+    if (ImGui::MenuItem("Quit", "Ctrl+Q")) state.quitRequested = true;
+    ImGui::EndMenu();
+  }
+  if (ImGui::BeginMenu("View")) {
+    if (ImGui::MenuItem("Reset view", "R", false, state.renderer != nullptr)) state.resetView();
+    if (ImGui::MenuItem("Fit to scene", "F", false, state.renderer != nullptr)) state.fitToScene();
+    if (state.renderer) {
+      bool headlight = state.renderer->headlight();
+      if (ImGui::MenuItem("Headlight", nullptr, &headlight))
+        state.renderer->setHeadlight(headlight);
+    }
+    ImGui::MenuItem("Log", nullptr, &state.showLog);
+    ImGui::EndMenu();
+  }
+  const bool haveViewpoints = state.renderer && !state.renderer->viewpoints().empty();
+  if (ImGui::BeginMenu("Viewpoints", haveViewpoints)) {
+    const auto& vps = state.renderer->viewpoints();
+    for (std::size_t i = 0; i < vps.size(); ++i) {
+      ImGui::PushID(static_cast<int>(i));
+      if (ImGui::MenuItem(vps[i].description.c_str())) state.jumpToViewpoint(i);
+      ImGui::PopID();
+    }
+    ImGui::EndMenu();
+  }
+  if (state.renderer) {
+    const auto& st = state.renderer->statistics();
+    ImGui::Separator();
+    ImGui::Text("%zu shapes, %zu triangles, %.1f ms", st.shapes, st.triangles,
+                1000.0f / std::max(1.0f, ImGui::GetIO().Framerate));
+  }
+  height = static_cast<int>(ImGui::GetWindowSize().y);
+  ImGui::EndMainMenuBar();
+
+  // Keyboard shortcuts when ImGui is not typing (ImGui 1.86 indexes keys by GLFW key code,
+  // which for letters is the upper-case ASCII code).
+  const ImGuiIO& io = ImGui::GetIO();
+  if (!io.WantCaptureKeyboard) {
+    if (io.KeyCtrl && ImGui::IsKeyPressed('O')) state.showOpenDialog = true;
+    if (io.KeyCtrl && ImGui::IsKeyPressed('Q')) state.quitRequested = true;
+    if (!io.KeyCtrl && ImGui::IsKeyPressed('R')) state.resetView();
+    if (!io.KeyCtrl && ImGui::IsKeyPressed('F')) state.fitToScene();
+  }
+  return height;
+}
+
+void drawPanels(WindowState& state) {
+  drawOpenDialog(state);
+  drawLog(state);
+}
+
+}  // namespace gs::app

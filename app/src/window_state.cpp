@@ -1,0 +1,74 @@
+#include "app/window_state.hpp"
+
+#include <glad/gl.h>
+
+#include <algorithm>
+
+namespace gs::app {
+
+void WindowState::open(const std::string& path) {
+  LoadedWorld w = loadWorld(path);
+  for (const auto& d : w.scene->diagnostics.items) {
+    log.push_back({d.severity == vrml::Severity::error, d.format()});
+    if (d.severity == vrml::Severity::error) showLog = true;
+  }
+  log.push_back({false, "opened " + path + " (" + std::to_string(w.bytes) + " bytes, " +
+                            std::to_string(static_cast<int>(w.parseSeconds * 1000)) + " ms)"});
+  recent.erase(std::remove(recent.begin(), recent.end(), path), recent.end());
+  recent.insert(recent.begin(), path);
+  if (recent.size() > 10) recent.resize(10);
+  worlds.push_back(std::move(w));
+  show(worlds.size() - 1);
+}
+
+void WindowState::show(std::size_t index) {
+  if (index >= worlds.size()) return;
+  current = index;
+  renderer = std::make_unique<render::SceneRenderer>(worlds[index].scene);
+  renderDiagnosticsLogged = 0;
+  resetView();
+}
+
+void WindowState::resetView() {
+  if (!renderer) return;
+  render::Camera camera = renderer->boundViewpointCamera();
+  const vrml::Bounds& b = renderer->bounds();
+  // Orbit around the point of the view axis nearest the scene's centre.
+  glm::vec3 center = camera.position + camera.forward() * 10.0f;
+  if (!b.empty()) {
+    const float along = glm::dot(b.center() - camera.position, camera.forward());
+    center = camera.position + camera.forward() * std::max(along, 1e-3f);
+  }
+  navigator.setSceneBounds(b, renderer->navigation().nearClip());
+  navigator.setHome(camera, center);
+}
+
+void WindowState::fitToScene() {
+  if (!renderer) return;
+  const render::Camera fitted = renderer->fitToScene(lastAspect, navigator.camera());
+  navigator.setHome(fitted, renderer->bounds().center());
+}
+
+void WindowState::jumpToViewpoint(std::size_t index) {
+  if (!renderer || index >= renderer->viewpoints().size()) return;
+  navigator.setCamera(renderer->viewpointCamera(index));
+}
+
+void WindowState::drawScene(int x, int y, int width, int height) {
+  lastAspect = static_cast<float>(width) / static_cast<float>(std::max(1, height));
+  if (renderer) {
+    renderer->draw(navigator.camera(), x, y, width, height);
+    // Diagnostics found while drawing (textures, Inlines) go to the log once.
+    const auto& items = renderer->diagnostics().items;
+    for (; renderDiagnosticsLogged < items.size(); ++renderDiagnosticsLogged) {
+      const auto& d = items[renderDiagnosticsLogged];
+      log.push_back({d.severity == vrml::Severity::error, d.format()});
+    }
+    return;
+  }
+  glViewport(x, y, width, height);
+  glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+}
+
+}  // namespace gs::app

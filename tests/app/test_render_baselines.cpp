@@ -1,0 +1,81 @@
+// Render tests: the real binary renders worlds with --snapshot at a fixed size; each image
+// is compared with a baseline PNG in tests/render/baselines under the metric of
+// docs/rendering-tests.md (render::compareImages): a pixel differs when any RGB channel
+// differs by more than 16 of 255; a test passes when at most kMaxFractionDiffering of the
+// pixels differ. A missing baseline writes the rendered image to the build folder and
+// fails, so that a new baseline is made only by looking at it and copying it in.
+#include "process.hpp"
+#include "render/image.hpp"
+#include "test_support.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double kMaxFractionDiffering = 0.01;  // 1% of pixels
+constexpr int kChannelTolerance = 16;
+
+struct RenderCase {
+  const char* name;   // baseline file stem
+  const char* world;  // relative to the corpus (corpus = true) or the source folder
+  bool corpus;
+};
+
+const RenderCase kCases[] = {
+    {"welcome", "assets/worlds/welcome.wrl", false},
+    {"castle_specular_demo", "vrml/castle/lights_materials/specular_demo.wrl", true},
+    {"castle_transparent_materials", "vrml/castle/lights_materials/transparent_materials.wrl",
+     true},
+    {"castle_directional_light_scope", "vrml/castle/lights_materials/directional_light_scope.wrl",
+     true},
+    {"castle_cones", "vrml/castle/vrml_2/cones.wrl", true},
+    {"castle_extrusion_concave_cap", "vrml/castle/vrml_2/extrusion_concave_cap.wrl", true},
+    {"castle_texture_test", "vrml/castle/vrml_2/subdir1/subdir2/texture_test.wrl", true},
+    {"castle_texture_transform_2",
+     "vrml/castle/vrml_engine_doc_simple_examples/texture_transform_2.wrl", true},
+    {"castle_indexed_line_set", "vrml/castle/vrml_2/indexed_line_set.wrl", true},
+    {"castle_creaseangle", "vrml/castle/vrml_engine_doc_simple_examples/creaseangle.wrl", true},
+    {"castle_teapot", "vrml/castle/vrml_2/teapot.wrl", true},
+    {"kicad_cp_elec_5x3", "vrml/kicad/Capacitor_SMD__CP_Elec_5x3.wrl", true},
+};
+
+void checkAgainstBaseline(const RenderCase& c) {
+  const fs::path world =
+      c.corpus ? gs::test::corpusDir() / c.world : gs::test::sourceDir() / c.world;
+  if (c.corpus && !gs::test::haveCorpus("vrml")) return;
+  const fs::path actualDir = fs::path(GS_BINARY_DIR) / "render-actual";
+  fs::create_directories(actualDir);
+  const fs::path actual = actualDir / (std::string(c.name) + ".png");
+  auto r =
+      gs::test::runGhostspace({"--snapshot", actual.string(), "--size", "300x300", world.string()});
+  INFO("stderr: " << r.err);
+  REQUIRE(r.exitCode == 0);
+
+  const fs::path baseline =
+      gs::test::sourceDir() / "tests/render/baselines" / (std::string(c.name) + ".png");
+  if (!fs::exists(baseline)) {
+    FAIL("no baseline " << baseline.string() << "; the rendered image is " << actual.string()
+                        << ": look at it, and copy it there if it is right");
+  }
+  const auto a = gs::render::readPng(actual.string());
+  const auto b = gs::render::readPng(baseline.string());
+  const auto d = gs::render::compareImages(a, b, kChannelTolerance);
+  INFO(c.name << ": " << d.fractionDiffering * 100 << "% of pixels differ, mean abs "
+              << d.meanAbsolute << ", PSNR " << d.psnr << " dB; actual " << actual.string());
+  CHECK(d.fractionDiffering <= kMaxFractionDiffering);
+}
+
+}  // namespace
+
+TEST_CASE("snapshots match their baselines", "[app][render][baseline]") {
+  for (const auto& c : kCases) {
+    SECTION(c.name) {
+      checkAgainstBaseline(c);
+    }
+  }
+}
