@@ -28,6 +28,7 @@ struct RenderCase {
 
 const RenderCase kCases[] = {
     {"welcome", "assets/worlds/welcome.wrl", false},
+    {"features", "assets/worlds/features.wrl", false},
     {"castle_specular_demo", "vrml/castle/lights_materials/specular_demo.wrl", true},
     {"castle_transparent_materials", "vrml/castle/lights_materials/transparent_materials.wrl",
      true},
