@@ -9,6 +9,7 @@
 
 #include <glm/glm.hpp>
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -24,7 +25,10 @@ struct Bounds {
     max = glm::max(max, p);
   }
   void extend(const Bounds& b) {
-    if (!b.empty()) { extend(b.min); extend(b.max); }
+    if (!b.empty()) {
+      extend(b.min);
+      extend(b.max);
+    }
   }
   glm::vec3 center() const { return (min + max) * 0.5f; }
   glm::vec3 size() const { return empty() ? glm::vec3(0.0f) : max - min; }
@@ -38,12 +42,12 @@ enum class Primitive : std::uint8_t { triangles, lines, points };
 struct Mesh {
   Primitive primitive = Primitive::triangles;
   std::vector<glm::vec3> positions;
-  std::vector<glm::vec3> normals;    // unit length; empty for lines and points
-  std::vector<glm::vec4> colors;     // RGBA in [0,1]; empty when the node has no Color
-  std::vector<glm::vec2> texCoords;  // empty for lines and points
+  std::vector<glm::vec3> normals;      // unit length; empty for lines and points
+  std::vector<glm::vec4> colors;       // RGBA in [0,1]; empty when the node has no Color
+  std::vector<glm::vec2> texCoords;    // empty for lines and points
   std::vector<std::uint32_t> indices;  // 3 per triangle, 2 per line segment, 1 per point
-  bool solid = true;  // back faces may be culled (the node's `solid` field)
-  Bounds bounds;      // of positions
+  bool solid = true;                   // back faces may be culled (the node's `solid` field)
+  Bounds bounds;                       // of positions
 
   std::size_t triangleCount() const {
     return primitive == Primitive::triangles ? indices.size() / 3 : 0;
@@ -56,9 +60,29 @@ struct Mesh {
 /// never reads outside the node's arrays. IndexedFaceSet polygons that are not convex
 /// (or when convex is FALSE) are triangulated by ear clipping in their best-fit plane;
 /// normals follow creaseAngle (radians) when the file gives none.
+///
+/// Details a caller may rely on:
+/// - The result is indexed; a vertex is shared between triangles exactly when its position,
+///   normal, colour and texture coordinate are all equal.
+/// - Box, Cone, Cylinder and Sphere: kRoundSegments around the Y axis (Sphere: half as
+///   many latitude bands), flat caps, smooth sides, texture coordinates as clause 6 says;
+///   always solid.
+/// - IndexedLineSet gives Primitive::lines (a polyline breaks at a bad index), PointSet
+///   Primitive::points; both without normals or texture coordinates, solid = false.
+/// - Degenerate polygons (fewer than 3 distinct points, zero area) are dropped silently;
+///   ElevationGrid uses only the complete rows its height array holds; Extrusion caps are
+///   made whenever beginCap / endCap ask for them (also on closed spines) and its grid is
+///   limited to kMaxExtrusionPoints.
+/// - Text gives an empty mesh (text is drawn elsewhere).
+/// Safe for untrusted nodes: time and memory stay proportional to the node's arrays.
 Mesh tessellate(const Node& geometry, Diagnostics* diag = nullptr);
 
 /// Number of segments used around the circumference of Cone, Cylinder and Sphere.
 inline constexpr int kRoundSegments = 32;
+
+/// Most grid points (spine points x crossSection points) an Extrusion is tessellated with;
+/// beyond it the spine is cut short (with a warning), so that a small file cannot ask for
+/// gigabytes.
+inline constexpr std::size_t kMaxExtrusionPoints = std::size_t{1} << 20;
 
 }  // namespace gs::vrml

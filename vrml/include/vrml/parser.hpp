@@ -17,6 +17,7 @@ struct ParseLimits {
   int maxNesting = 256;                        // nested nodes / PROTO instances
   std::size_t maxInputBytes = 1ull << 31;      // after gzip decompression, bytes
   int maxExternProtoDepth = 8;                 // EXTERNPROTO files loading others
+  std::size_t maxNodes = 4'000'000;            // nodes created, PROTO expansions included
 };
 
 /// Loads the bytes behind a URL (already resolved against the base URL). Returns false

@@ -29,6 +29,9 @@ struct Scene {
   std::vector<NodePtr> rootNodes;  // in file order, PROTO instances expanded
   std::vector<Route> routes;
   std::vector<std::shared_ptr<const NodeType>> protos;  // PROTO/EXTERNPROTO of the file
+  /// Nodes that belong to the world but are not rendered: the second and later nodes of
+  /// each PROTO instance's body (clause 4.8.3), kept alive for ROUTEs and Scripts.
+  std::vector<NodePtr> hiddenNodes;
   Diagnostics diagnostics;
 };
 

@@ -1,0 +1,103 @@
+// Cameras and navigation maths: pure computation, no OpenGL and no GLFW, so it is
+// unit-testable. Units: metres, radians, pixels. Matrices are glm's, column-major,
+// OpenGL conventions (right-handed eye space looking down -Z, clip z in -1..1).
+#pragma once
+
+#include "vrml/geometry.hpp"
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+namespace gs::render {
+
+/// A viewer: where it is, where it looks, and its lens (VRML97 Viewpoint semantics).
+/// The default orientation looks along -Z with +Y up, as VRML97's default Viewpoint.
+struct Camera {
+  glm::vec3 position{0.0f, 0.0f, 10.0f};          // world coordinates, metres
+  glm::quat orientation{1.0f, 0.0f, 0.0f, 0.0f};  // rotates -Z (view) and +Y (up)
+  float fieldOfView = 0.785398f;  // radians, across the smaller viewport side (6.53)
+  float nearClip = 0.125f;        // metres, > 0
+  float farClip = 1000.0f;        // metres, > nearClip
+
+  /// Unit vector the camera looks along (orientation applied to -Z).
+  glm::vec3 forward() const { return orientation * glm::vec3(0.0f, 0.0f, -1.0f); }
+  /// Unit up vector (orientation applied to +Y).
+  glm::vec3 up() const { return orientation * glm::vec3(0.0f, 1.0f, 0.0f); }
+  /// Unit right vector (orientation applied to +X).
+  glm::vec3 right() const { return orientation * glm::vec3(1.0f, 0.0f, 0.0f); }
+};
+
+/// World-to-eye matrix of `camera`.
+glm::mat4 viewMatrix(const Camera& camera);
+
+/// Perspective projection for a viewport of `aspect` = width / height. The field of view
+/// spans the smaller viewport side (VRML97 6.53): vertical when aspect >= 1, horizontal
+/// otherwise. Clamps the field of view to 0.001..3.1 radians.
+glm::mat4 projectionMatrix(const Camera& camera, float aspect);
+
+/// Vertical field of view (radians) that projectionMatrix uses for `aspect`.
+float verticalFieldOfView(float fieldOfView, float aspect);
+
+/// A camera with the orientation and field of view of `direction`, moved back along its
+/// view direction, looking at the box centre, just far enough (plus a 5% margin) that all
+/// eight corners of `bounds` (world coordinates) are inside the view of a viewport of
+/// aspect `aspect`; near and far planes are set around the box (see fitClipPlanes). An
+/// empty box returns `direction` unchanged.
+Camera fitCamera(const vrml::Bounds& bounds, float aspect, const Camera& direction);
+
+/// Sets `camera`'s near and far planes to enclose the sphere around `bounds` seen from
+/// the camera's position: far just beyond the sphere's far side, near the sphere's near
+/// side (at least far / 10000, so the depth buffer keeps precision; at most `maxNear`
+/// when positive, e.g. NavigationInfo avatarSize[0] / 2). An empty box leaves the
+/// camera unchanged.
+void fitClipPlanes(Camera& camera, const vrml::Bounds& bounds, float maxNear = 0.0f);
+
+/// The EXAMINE navigation of VRML97 (NavigationInfo type "EXAMINE"): the camera orbits a
+/// centre point, pans in its view plane and dollies towards the centre. Inputs are mouse
+/// motions in pixels; no window library is involved.
+class ExamineNavigator {
+ public:
+  /// Radians of orbit per pixel of mouse motion is pi / viewport height (dragging across
+  /// the whole height turns the view by half a turn).
+  ExamineNavigator() = default;
+
+  /// Starts from `camera` orbiting around `center` (world coordinates) and remembers both
+  /// as the home that reset() returns to.
+  void setHome(const Camera& camera, const glm::vec3& center);
+  /// Returns to the camera and centre given to setHome().
+  void reset();
+  /// Replaces the camera (e.g. when the user picks a Viewpoint) keeping the orbit centre's
+  /// distance along the new view direction (the centre moves in front of the camera).
+  void setCamera(const Camera& camera);
+  /// When not empty, near and far planes follow these world bounds after each motion
+  /// (fitClipPlanes with `maxNear`).
+  void setSceneBounds(const vrml::Bounds& bounds, float maxNear = 0.0f);
+
+  /// Orbits for a mouse drag of (dx, dy) pixels (x to the right, y downwards) in a viewport
+  /// `viewportHeight` pixels high: horizontal motion turns around the world +Y axis
+  /// through the centre, vertical motion around the camera's right axis (the scene follows
+  /// the mouse).
+  void orbit(float dx, float dy, int viewportHeight);
+  /// Pans for a drag of (dx, dy) pixels: camera and centre move in the view plane so that
+  /// points at the centre's depth follow the mouse.
+  void pan(float dx, float dy, int viewportHeight);
+  /// Dollies towards the centre: `steps` > 0 (a mouse wheel notch each) moves closer by
+  /// 10% of the distance per step, < 0 moves away. The distance stays >= 1e-4 metres.
+  void dolly(float steps);
+
+  const Camera& camera() const { return camera_; }
+  const glm::vec3& center() const { return center_; }
+  /// Distance from the camera to the orbit centre, metres.
+  float distance() const { return glm::length(center_ - camera_.position); }
+
+ private:
+  void updateClip();
+  Camera camera_;
+  glm::vec3 center_{0.0f};
+  Camera homeCamera_;
+  glm::vec3 homeCenter_{0.0f};
+  vrml::Bounds bounds_;
+  float maxNear_ = 0.0f;
+};
+
+}  // namespace gs::render

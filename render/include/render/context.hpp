@@ -1,0 +1,108 @@
+// OpenGL contexts: an off-screen one (OSMesa, rendering on the CPU) and a window one
+// (GLFW). After creation both are used the same way: every GL entry point is a function
+// pointer loaded by glad through the context's own GetProcAddress (GUIDE.md section 5:
+// libGL and libOSMesa both export gl*, so a direct call could reach the wrong library).
+#pragma once
+
+#include <glad/gl.h>
+
+#include <memory>
+#include <string>
+
+struct GLFWwindow;
+
+namespace gs::render {
+
+/// A current-able OpenGL 3.3 (or later) core-profile context with a drawing surface.
+class GlContext {
+ public:
+  virtual ~GlContext() = default;
+  GlContext(const GlContext&) = delete;
+  GlContext& operator=(const GlContext&) = delete;
+
+  /// Makes the context current on the calling thread, (re)loads the GL function pointers
+  /// when another context was the last one loaded, and binds the context's drawing
+  /// framebuffer (the off-screen FBO, or the window's default framebuffer 0).
+  /// Throws std::runtime_error when the platform refuses.
+  virtual void makeCurrent() = 0;
+  /// Width of the drawing surface in pixels (a window's framebuffer, not its screen size).
+  virtual int width() const = 0;
+  /// Height of the drawing surface in pixels.
+  virtual int height() const = 0;
+  /// Presents the back buffer of a window; a no-op off-screen.
+  virtual void swapBuffers() = 0;
+  /// The platform's GetProcAddress in glad's form (OSMesaGetProcAddress or
+  /// glfwGetProcAddress), for loaders of other libraries (e.g. an ImGui backend).
+  virtual GLADloadfunc getProcAddress() const = 0;
+  /// The framebuffer object that makeCurrent() binds for drawing: the off-screen FBO, or 0
+  /// for a window. Code that binds other framebuffers rebinds this one afterwards.
+  virtual GLuint drawFramebuffer() const = 0;
+
+ protected:
+  GlContext() = default;
+};
+
+/// An off-screen context of `width` x `height` pixels (each 1..16384) made with OSMesa
+/// (OpenGL 3.3 core requested; llvmpipe gives 4.5). Drawing goes to a framebuffer object
+/// of that size with an RGBA8 colour and a 24-bit depth (+8 stencil) buffer. The context
+/// is current and its FBO bound when this returns. Throws std::runtime_error ("cannot
+/// create an OSMesa context: ...") when OSMesa or the FBO cannot be created.
+std::unique_ptr<GlContext> createOffscreenContext(int width, int height);
+
+/// A context owned by a GLFW window.
+class WindowContext : public GlContext {
+ public:
+  /// The GLFW window, for input callbacks and the ImGui GLFW backend.
+  virtual GLFWwindow* glfwHandle() const = 0;
+};
+
+/// Opens a visible window titled `title` with a client area of `width` x `height` screen
+/// coordinates and an OpenGL 3.3 core forward-compatible context, initializing GLFW on
+/// first use (terminated when the last window context is destroyed). The context is
+/// current and its functions loaded when this returns; vsync is on. Throws
+/// std::runtime_error ("cannot open a window: ...", e.g. when there is no display: set
+/// DISPLAY or run under Xvfb, or use createOffscreenContext).
+std::unique_ptr<WindowContext> createWindowContext(const std::string& title, int width, int height);
+
+/// Loads every GL entry point through `getProcAddress` for the context current on this
+/// thread (the window path calls it after glfwMakeContextCurrent with glfwGetProcAddress;
+/// GlContext::makeCurrent does it for you). Throws std::runtime_error when the context is
+/// older than OpenGL 3.3 or the loader finds no functions.
+void loadGlFunctions(GLADloadfunc getProcAddress);
+
+/// Strings describing the current context (GL_VENDOR, GL_RENDERER, GL_VERSION,
+/// GL_SHADING_LANGUAGE_VERSION); empty strings when a query fails.
+struct GlInfo {
+  std::string vendor, renderer, version, shadingLanguageVersion;
+};
+/// Queries GlInfo from the current context (functions must be loaded).
+GlInfo glInfo();
+
+/// A framebuffer object with an RGBA8 colour and a depth24/stencil8 renderbuffer: the
+/// off-screen context draws into one, and a window can render a screenshot of any size
+/// into one. Needs a current context for its whole life (the destructor frees the GL
+/// objects in the context current then).
+class Framebuffer {
+ public:
+  /// Creates the FBO of `width` x `height` pixels (1..16384 each); does not bind it.
+  /// Throws std::runtime_error when the size is invalid or the FBO is incomplete.
+  Framebuffer(int width, int height);
+  ~Framebuffer();
+  Framebuffer(const Framebuffer&) = delete;
+  Framebuffer& operator=(const Framebuffer&) = delete;
+
+  /// Binds the FBO for drawing and reading and sets the viewport to its full size.
+  void bind() const;
+  /// Reallocates the renderbuffers at a new size (contents are undefined afterwards).
+  void resize(int width, int height);
+  GLuint id() const { return fbo_; }
+  int width() const { return width_; }
+  int height() const { return height_; }
+
+ private:
+  void allocate();
+  GLuint fbo_ = 0, color_ = 0, depth_ = 0;
+  int width_ = 0, height_ = 0;
+};
+
+}  // namespace gs::render

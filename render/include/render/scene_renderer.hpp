@@ -1,0 +1,105 @@
+// Draws one VRML97 scene with OpenGL 3.3 core: Background, opaque shapes, then
+// transparent shapes sorted back to front, lit per fragment by the VRML97 lighting model
+// (clause 4.14) with textures, fog, scoped DirectionalLights, PointLights, SpotLights
+// and the headlight. The same code draws into a window or an off-screen framebuffer.
+#pragma once
+
+#include "render/camera.hpp"
+#include "render/traversal.hpp"
+#include "vrml/parser.hpp"
+#include "vrml/scene.hpp"
+
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+namespace gs::render {
+
+struct SceneRendererOptions {
+  /// Reads URLs that are not local files (or local files that cannot be opened) for
+  /// ImageTexture and, when traversal.inlineLoader is empty, for Inline. Empty: local files
+  /// only.
+  vrml::UrlLoader loader;
+  TraversalOptions traversal;
+  /// Diameter of PointSet points in pixels.
+  float pointSize = 2.0f;
+};
+
+/// What the last draw() did.
+struct DrawStatistics {
+  std::size_t shapes = 0;       // Shape nodes drawn (instances)
+  std::size_t triangles = 0;    // triangles submitted
+  std::size_t transparent = 0;  // shapes drawn in the blended pass
+};
+
+/// Holds the GPU resources of one scene. CPU work (traversal, viewpoints, bounds) needs
+/// no OpenGL context; draw() needs the context current in which all draws of this
+/// renderer happen, and the GL objects are created on the first draw. Destroy the
+/// renderer (or call releaseGpuResources()) while that context is still current.
+class SceneRenderer {
+ public:
+  /// Finds the bindable nodes and viewpoints; loads nothing else yet.
+  explicit SceneRenderer(std::shared_ptr<const vrml::Scene> scene,
+                         SceneRendererOptions options = {});
+  ~SceneRenderer();
+  SceneRenderer(const SceneRenderer&) = delete;
+  SceneRenderer& operator=(const SceneRenderer&) = delete;
+
+  /// Draws the scene seen by `camera` into the rectangle (x, y, width, height) of the
+  /// current framebuffer (pixels, lower-left origin as glViewport): the Background fills
+  /// the rectangle and its depth is cleared; pixels outside it are untouched. Throws
+  /// std::runtime_error when a shader fails to compile (a broken driver). Problems with
+  /// the content (missing textures or Inlines) are diagnostics, never exceptions.
+  void draw(const Camera& camera, int x, int y, int width, int height);
+
+  /// Every Viewpoint of the main file, depth-first (for a viewpoint menu).
+  const std::vector<ViewpointInfo>& viewpoints() const { return traversal_.viewpoints(); }
+  /// Camera of the bound (first) Viewpoint or the VRML97 default, with clip planes from
+  /// NavigationInfo and the scene bounds (SceneTraversal::viewpointCamera).
+  Camera boundViewpointCamera() { return traversal_.boundViewpointCamera(); }
+  /// The camera to start with in a viewport of aspect width / height: the bound
+  /// Viewpoint's when the file has one; otherwise the VRML97 default orientation and field
+  /// of view moved back to frame the whole scene (as castle-model-viewer and most browsers
+  /// do, since the default position 0 0 10 often shows nothing useful).
+  Camera initialCamera(float aspect);
+  /// Camera of viewpoints()[index] with clip planes as boundViewpointCamera().
+  Camera viewpointCamera(std::size_t index) { return traversal_.viewpointCamera(index); }
+  /// World bounding box of the scene as drawn from the bound Viewpoint (loads Inlines and
+  /// tessellates all geometry the first time).
+  const vrml::Bounds& bounds() { return traversal_.worldBounds(); }
+  /// A camera looking along `direction`'s view direction that frames the whole scene in a
+  /// viewport of aspect width / height (fitCamera on bounds()).
+  Camera fitToScene(float aspect, const Camera& direction) {
+    return fitCamera(bounds(), aspect, direction);
+  }
+  /// The bound NavigationInfo (type, headlight, speed, avatarSize, visibilityLimit).
+  const NavigationSettings& navigation() const { return traversal_.navigation(); }
+
+  /// Whether the headlight is on; starts as NavigationInfo.headlight.
+  bool headlight() const { return headlight_; }
+  void setHeadlight(bool on) { headlight_ = on; }
+
+  /// Counts of the last draw().
+  const DrawStatistics& statistics() const { return statistics_; }
+  /// Triangles drawn by the last draw().
+  std::size_t trianglesDrawn() const { return statistics_.triangles; }
+
+  /// Problems met while loading Inlines and textures or tessellating, each once.
+  const vrml::Diagnostics& diagnostics() const { return traversal_.diagnostics(); }
+  /// The CPU traversal (for tests and tools).
+  SceneTraversal& traversal() { return traversal_; }
+
+  /// Frees every GL object (the renderer's context must be current); the next draw()
+  /// creates them again.
+  void releaseGpuResources();
+
+ private:
+  struct Gpu;
+  SceneRendererOptions options_;
+  SceneTraversal traversal_;
+  std::unique_ptr<Gpu> gpu_;
+  bool headlight_ = true;
+  DrawStatistics statistics_;
+};
+
+}  // namespace gs::render

@@ -1,0 +1,241 @@
+// Scene-graph traversal on the CPU (no OpenGL): which shapes are drawn this frame, with
+// which world matrix and which lights; the bound Viewpoint, NavigationInfo, Background
+// and Fog; Inline loading; the tessellation cache; the scene's bounding box.
+// References are to ISO/IEC 14772-1:1997 (VRML97). Units: metres, radians; matrices are
+// glm's, column-major.
+#pragma once
+
+#include "render/camera.hpp"
+#include "vrml/diagnostic.hpp"
+#include "vrml/geometry.hpp"
+#include "vrml/node.hpp"
+#include "vrml/scene.hpp"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <set>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace gs::render {
+
+enum class LightType : std::uint8_t { directional, point, spot };
+
+/// A light in world coordinates (clause 4.14.4 and 6.16 DirectionalLight, 6.35
+/// PointLight, 6.45 SpotLight).
+struct LightInstance {
+  LightType type = LightType::directional;
+  glm::vec3 color{1.0f};
+  float intensity = 1.0f;
+  float ambientIntensity = 0.0f;
+  glm::vec3 location{0.0f};                 // point and spot lights
+  glm::vec3 direction{0.0f, 0.0f, -1.0f};   // unit; directional and spot lights
+  glm::vec3 attenuation{1.0f, 0.0f, 0.0f};  // constant, linear, quadratic
+  float radius = 100.0f;                    // metres, world (scaled by the light's transform)
+  float beamWidth = 1.570796f;              // radians
+  float cutOffAngle = 0.785398f;            // radians
+};
+
+/// One Shape to draw: its nodes, world matrix and scoped lights.
+struct ShapeInstance {
+  const vrml::Node* shape = nullptr;
+  const vrml::Node* appearance = nullptr;  // may be null (unlit white)
+  const vrml::Node* geometry = nullptr;    // never null
+  glm::mat4 model{1.0f};                   // local to world
+  /// Range in TraversalFrame::scopedLights of the DirectionalLights that light it.
+  std::uint32_t scopedLightBegin = 0;
+  std::uint32_t scopedLightCount = 0;
+  /// URL of the file the shape comes from (the base for texture URLs); never null.
+  const std::string* baseUrl = nullptr;
+};
+
+/// What one traversal collects. Reused from frame to frame: clear() keeps capacity.
+struct TraversalFrame {
+  std::vector<ShapeInstance> shapes;
+  std::vector<LightInstance> lights;        // every light met, world coordinates
+  std::vector<std::uint32_t> scopedLights;  // indices into lights (ShapeInstance ranges)
+  std::vector<std::uint32_t> globalLights;  // point and spot lights, indices into lights
+  void clear() {
+    shapes.clear();
+    lights.clear();
+    scopedLights.clear();
+    globalLights.clear();
+  }
+};
+
+/// A Viewpoint of the scene (clause 6.53) in world coordinates.
+struct ViewpointInfo {
+  std::string description;  // the node's description, or "Viewpoint N" if empty
+  Camera camera;            // position, orientation, fieldOfView; clip planes unset
+  const vrml::Node* node = nullptr;
+};
+
+/// The bound NavigationInfo (clause 6.29), or its defaults when the scene has none.
+struct NavigationSettings {
+  std::vector<std::string> type{"WALK", "ANY"};
+  bool headlight = true;
+  float speed = 1.0f;                                 // metres per second
+  std::vector<float> avatarSize{0.25f, 1.6f, 0.75f};  // metres
+  float visibilityLimit = 0.0f;                       // metres, 0 = infinite
+  const vrml::Node* node = nullptr;
+  /// Near clip plane per clause 6.29: avatarSize[0] / 2 (0.125 when unset).
+  float nearClip() const;
+};
+
+/// The bound Background (clause 6.5): sky and ground gradients (textures are not used).
+struct BackgroundSettings {
+  std::vector<glm::vec3> skyColor{glm::vec3(0.0f)};
+  std::vector<float> skyAngle;  // radians from the zenith, increasing
+  std::vector<glm::vec3> groundColor;
+  std::vector<float> groundAngle;  // radians from the nadir, increasing
+  glm::mat3 rotation{1.0f};        // world rotation of the Background's coordinate system
+  const vrml::Node* node = nullptr;
+};
+
+/// The bound Fog (clause 6.19).
+struct FogSettings {
+  glm::vec3 color{1.0f};
+  bool exponential = false;      // fogType "EXPONENTIAL", else "LINEAR"
+  float visibilityRange = 0.0f;  // world metres (scaled by the Fog's transform); 0 = no fog
+  const vrml::Node* node = nullptr;
+};
+
+/// How a traversal reads Inline files and tessellates geometry.
+struct TraversalOptions {
+  /// Loads the world at an already resolved URL (Inline, clause 6.25). Empty: local files
+  /// (plain paths and file:// URLs) with vrml::loadVrmlFile; other schemes fail with a
+  /// diagnostic.
+  std::function<vrml::Scene(const std::string& url)> inlineLoader;
+  /// Tessellates a geometry node. Empty: vrml::tessellate.
+  std::function<vrml::Mesh(const vrml::Node& geometry, vrml::Diagnostics* diag)> tessellator;
+  /// Nesting limit for Inline files inlining others.
+  int maxInlineDepth = 16;
+};
+
+/// Walks one scene. Not thread-safe; the scene must not change while this object lives
+/// (its results are cached per node).
+class SceneTraversal {
+ public:
+  /// Finds the bindable nodes (first Viewpoint, NavigationInfo, Background, Fog in
+  /// depth-first file order, with their world transforms; bindable nodes inside Inline
+  /// files are not bound, as the Inline file is only geometry to its parent) and lists
+  /// every Viewpoint. Loads nothing yet.
+  explicit SceneTraversal(std::shared_ptr<const vrml::Scene> scene, TraversalOptions options = {});
+
+  const vrml::Scene& scene() const { return *scene_; }
+  /// Every Viewpoint of the main file in depth-first order (the first is bound).
+  const std::vector<ViewpointInfo>& viewpoints() const { return viewpoints_; }
+  const NavigationSettings& navigation() const { return navigation_; }
+  const BackgroundSettings& background() const { return background_; }
+  const FogSettings& fog() const { return fog_; }
+
+  /// Camera of viewpoint `index` (of viewpoints()), or of the VRML97 default Viewpoint
+  /// (position 0 0 10, looking along -Z, fieldOfView 0.785398) when `index` is out of
+  /// range, with clip planes: near = NavigationInfo avatarSize[0] / 2 (lowered when the
+  /// scene is closer than that), far = visibilityLimit, or just beyond the scene's
+  /// bounding sphere when that is 0. Computes worldBounds() (loading Inlines).
+  Camera viewpointCamera(std::size_t index);
+  /// viewpointCamera(0): the bound Viewpoint, or the default one.
+  Camera boundViewpointCamera() { return viewpointCamera(0); }
+
+  /// Collects the shapes and lights to draw for a viewer at `viewer` (which selects LOD
+  /// levels and orients Billboards) into `frame` (cleared first). Inline files are loaded
+  /// the first time they are met; problems become diagnostics.
+  void collect(const Camera& viewer, TraversalFrame& frame);
+
+  /// The tessellation of `geometry`, computed once and cached (per node).
+  const vrml::Mesh& mesh(const vrml::Node& geometry);
+  /// Frees the cached arrays of `geometry`'s mesh (e.g. after a GPU upload) but keeps its
+  /// bounds; a later mesh() call tessellates again.
+  void dropMeshArrays(const vrml::Node& geometry);
+  /// Bounds of `geometry`'s mesh in its local coordinates.
+  const vrml::Bounds& meshBounds(const vrml::Node& geometry);
+
+  /// World bounding box of what is drawn from the bound Viewpoint (the chosen Switch
+  /// children and LOD levels, Inlines included), computed once.
+  const vrml::Bounds& worldBounds();
+
+  /// Problems met while traversing (Inline load failures and their own diagnostics,
+  /// tessellation warnings), each reported once.
+  const vrml::Diagnostics& diagnostics() const { return diagnostics_; }
+  /// Adds a diagnostic unless an identical one (same place and message) was reported.
+  void report(vrml::Severity severity, const vrml::SourceLocation& where,
+              const std::string& message);
+
+ private:
+  /// A loaded Inline world, shared by every Inline node naming the same resolved URL.
+  struct InlineScene {
+    std::string url;                           // resolved; the base for URLs inside it
+    std::shared_ptr<const vrml::Scene> scene;  // null when loading failed
+  };
+  struct Walk;
+  struct CachedMesh {
+    vrml::Mesh mesh;
+    bool arraysDropped = false;
+  };
+  void findBindables();
+  const InlineScene* inlineScene(const vrml::Node& inlineNode, const std::string& baseUrl);
+  CachedMesh& cachedMesh(const vrml::Node& geometry);
+
+  std::shared_ptr<const vrml::Scene> scene_;
+  TraversalOptions options_;
+  std::string mainUrl_;  // the scene's url made absolute when it is a local path
+  std::vector<ViewpointInfo> viewpoints_;
+  NavigationSettings navigation_;
+  BackgroundSettings background_;
+  FogSettings fog_;
+  std::unordered_map<const vrml::Node*, CachedMesh> meshes_;
+  std::map<std::string, std::shared_ptr<InlineScene>> inlinesByUrl_;
+  std::unordered_map<const vrml::Node*, std::shared_ptr<InlineScene>> inlinesByNode_;
+  vrml::Bounds worldBounds_;
+  bool haveWorldBounds_ = false;
+  vrml::Diagnostics diagnostics_;
+  std::set<std::string> reported_;
+  TraversalFrame scratch_;
+  std::vector<std::uint32_t> scopeScratch_;       // reused by collect()
+  std::vector<const std::string*> chainScratch_;  // reused by collect()
+};
+
+// ---- Node maths, exposed for tests ----
+
+/// The matrix of a Transform node (clause 6.52): T x C x R x SR x S x -SR x -C, from its
+/// translation, center, rotation, scale and scaleOrientation fields.
+glm::mat4 transformMatrix(const vrml::Node& transform);
+
+/// A rotation matrix from an SFRotation (axis x, y, z and angle); identity for a zero axis.
+glm::mat4 rotationMatrix(const vrml::Rotation& rotation);
+
+/// The LOD level (clause 6.26) for a viewer at `distance` metres from the LOD's center:
+/// level 0 below range[0], level i when range[i-1] <= distance < range[i], the last level
+/// beyond; clamped to levelCount - 1. An empty range selects level 0. Returns -1 when
+/// levelCount is 0.
+int selectLodLevel(const std::vector<float>& range, float distance, std::size_t levelCount);
+
+/// The rotation a Billboard (clause 6.6) applies to its children, in its own coordinate
+/// system: `viewer` is the viewer's position there and `viewerUp` its up vector. A
+/// non-zero `axisOfRotation` turns the local Z axis towards the viewer around that axis;
+/// a zero axis aligns local Z with the direction to the viewer and local Y with viewerUp.
+/// Identity when the viewer lies on the axis.
+glm::mat4 billboardRotation(const glm::vec3& axisOfRotation, const glm::vec3& viewer,
+                            const glm::vec3& viewerUp);
+
+/// The texture-coordinate matrix of a TextureTransform (clause 6.49):
+/// Tc' = -C x S x R x C x T x Tc, as a 3x3 homogeneous 2D matrix.
+glm::mat3 textureTransformMatrix(const vrml::Node& textureTransform);
+
+/// Resolves `reference` against `base` (a file path or URL) as an RFC 3986 relative
+/// reference would: absolute URLs (with a scheme) and absolute paths are returned as they
+/// are (a path starting with '/' keeps base's scheme and host), relative ones are joined
+/// to base's directory and "." / ".." segments removed.
+std::string resolveUrl(const std::string& base, const std::string& reference);
+
+/// The local file path of `url`: the path of a file:// URL (percent-decoded), the url
+/// itself when it has no scheme, empty for other schemes (http:, https:, ...).
+std::string localPathOfUrl(const std::string& url);
+
+}  // namespace gs::render

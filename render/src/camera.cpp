@@ -1,0 +1,72 @@
+// Camera matrices and framing.
+#include "render/camera.hpp"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace gs::render {
+
+glm::mat4 viewMatrix(const Camera& camera) {
+  const glm::mat4 rotation = glm::mat4_cast(glm::conjugate(glm::normalize(camera.orientation)));
+  return glm::translate(rotation, -camera.position);
+}
+
+float verticalFieldOfView(float fieldOfView, float aspect) {
+  const float fov = std::clamp(fieldOfView, 0.001f, 3.1f);
+  if (!(aspect > 0.0f)) return fov;
+  if (aspect >= 1.0f) return fov;
+  // The field of view spans the width: convert to the vertical one.
+  return 2.0f * std::atan(std::tan(fov * 0.5f) / aspect);
+}
+
+glm::mat4 projectionMatrix(const Camera& camera, float aspect) {
+  if (!(aspect > 0.0f)) aspect = 1.0f;
+  const float nearClip = std::max(camera.nearClip, 1e-6f);
+  const float farClip = std::max(camera.farClip, nearClip * 1.001f);
+  return glm::perspective(verticalFieldOfView(camera.fieldOfView, aspect), aspect, nearClip,
+                          farClip);
+}
+
+void fitClipPlanes(Camera& camera, const vrml::Bounds& bounds, float maxNear) {
+  if (bounds.empty()) return;
+  const float radius = std::max(glm::length(bounds.size()) * 0.5f, 1e-4f);
+  const float distance = glm::length(bounds.center() - camera.position);
+  const float farClip = (distance + radius) * 1.05f;
+  float nearClip = std::max((distance - radius) * 0.95f, farClip / 10000.0f);
+  if (maxNear > 0.0f) nearClip = std::min(nearClip, maxNear);
+  camera.nearClip = nearClip;
+  camera.farClip = std::max(farClip, nearClip * 2.0f);
+}
+
+Camera fitCamera(const vrml::Bounds& bounds, float aspect, const Camera& direction) {
+  Camera camera = direction;
+  if (bounds.empty()) return camera;
+  if (!(aspect > 0.0f)) aspect = 1.0f;
+  camera.orientation = glm::normalize(camera.orientation);
+  const float tanV = std::tan(verticalFieldOfView(camera.fieldOfView, aspect) * 0.5f);
+  const float tanH = tanV * aspect;
+  const glm::vec3 center = bounds.center();
+  const glm::vec3 right = camera.right(), up = camera.up(), forward = camera.forward();
+  // The smallest distance back from the centre at which every corner of the box lies
+  // inside the view frustum: for a corner at (x, y) across and z along the view from the
+  // centre, |x| <= (d + z) tanH and |y| <= (d + z) tanV.
+  float distance = 0.0f;
+  for (int i = 0; i < 8; ++i) {
+    const glm::vec3 corner((i & 1) ? bounds.max.x : bounds.min.x,
+                           (i & 2) ? bounds.max.y : bounds.min.y,
+                           (i & 4) ? bounds.max.z : bounds.min.z);
+    const glm::vec3 p = corner - center;
+    const float x = std::abs(glm::dot(p, right)), y = std::abs(glm::dot(p, up));
+    const float z = glm::dot(p, forward);
+    distance = std::max({distance, x / tanH - z, y / tanV - z});
+  }
+  const float radius = std::max(glm::length(bounds.size()) * 0.5f, 1e-4f);
+  distance = std::max(distance * 1.05f, radius * 1e-3f);  // a 5% margin
+  camera.position = center - forward * distance;
+  fitClipPlanes(camera, bounds);
+  return camera;
+}
+
+}  // namespace gs::render

@@ -1,0 +1,31 @@
+// Private to render/: GLSL program compilation and the shader sources.
+#pragma once
+
+#include <glad/gl.h>
+
+#include <string>
+
+namespace gs::render::detail {
+
+/// Compiles and links a vertex + fragment program. Throws std::runtime_error with the
+/// compiler's log (prefixed by `name`) on failure.
+GLuint buildProgram(const char* name, const char* vertexSource, const char* fragmentSource);
+
+/// Location of uniform `name` in `program` (-1 when the compiler dropped it).
+inline GLint uniform(GLuint program, const char* name) {
+  return glGetUniformLocation(program, name);
+}
+
+/// The lit/unlit surface program (VRML97 lighting, clause 4.14), shaders.cpp.
+extern const char* const kSurfaceVertexShader;
+extern const char* const kSurfaceFragmentShader;
+/// The full-screen Background gradient program.
+extern const char* const kBackgroundVertexShader;
+extern const char* const kBackgroundFragmentShader;
+
+/// Maximum number of lights per shape in the surface program.
+inline constexpr int kMaxLights = 8;
+/// Maximum number of sky or ground colours in the background program.
+inline constexpr int kMaxBackgroundColors = 16;
+
+}  // namespace gs::render::detail

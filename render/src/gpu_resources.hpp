@@ -1,0 +1,76 @@
+// Private to render/: GPU-side objects of a SceneRenderer (meshes, textures, background).
+// All need the renderer's context current.
+#pragma once
+
+#include <glad/gl.h>
+
+#include "render/traversal.hpp"
+#include "vrml/geometry.hpp"
+#include "vrml/parser.hpp"
+
+#include <string>
+#include <unordered_map>
+
+namespace gs::render::detail {
+
+/// One tessellated geometry in GPU buffers (a VAO, a vertex buffer holding the attribute
+/// arrays one after another, an index buffer).
+struct GpuMesh {
+  GLuint vao = 0, vertexBuffer = 0, indexBuffer = 0;
+  GLsizei count = 0;  // indices (or vertices when unindexed)
+  bool indexed = false;
+  vrml::Primitive primitive = vrml::Primitive::triangles;
+  bool hasNormals = false, hasColors = false, hasTexCoords = false;
+  bool solid = true;
+  std::size_t triangles = 0;
+  vrml::Bounds bounds;
+
+  /// Uploads `mesh` (attribute locations: 0 position, 1 normal, 2 colour, 3 texCoord).
+  void upload(const vrml::Mesh& mesh);
+  /// Issues the draw call (the program and uniforms must be set).
+  void draw() const;
+  void release();
+};
+
+/// A texture ready for sampling.
+struct GpuTexture {
+  GLuint id = 0;
+  int components = 0;     // 1..4 as VRML97 counts them; 0 = no usable texture
+  bool hasAlpha = false;  // some texel is not fully opaque
+};
+
+/// ImageTexture and PixelTexture nodes turned into GL textures once each (clause 6.22,
+/// 6.33); MovieTexture and unsupported images become "no texture" with a warning.
+class TextureCache {
+ public:
+  /// The texture of `node` (an ImageTexture or PixelTexture), loading it on first use;
+  /// URLs resolve against `baseUrl`. Failures are reported to `traversal` once and give a
+  /// texture with 0 components.
+  const GpuTexture& get(const vrml::Node& node, const std::string& baseUrl,
+                        SceneTraversal& traversal, const vrml::UrlLoader& loader);
+  void release();
+
+ private:
+  std::unordered_map<const vrml::Node*, GpuTexture> textures_;
+};
+
+/// Decodes an SFImage (PixelTexture) to RGBA rows bottom to top as GL expects them.
+/// Returns false for inconsistent images.
+bool decodeSFImage(const vrml::SFImage& image, std::vector<std::uint8_t>& rgba, bool& hasAlpha);
+
+/// The full-screen Background gradient.
+class BackgroundPass {
+ public:
+  /// Fills the current viewport: a clear for a single sky colour and no ground, the
+  /// gradient program otherwise. Leaves depth writes and the depth buffer untouched.
+  void draw(const BackgroundSettings& background, const glm::mat4& view,
+            const glm::mat4& projection);
+  void release();
+
+ private:
+  GLuint program_ = 0, vao_ = 0;
+  GLint locInverse_ = -1, locWorldToBackground_ = -1, locSkyCount_ = -1, locSkyColor_ = -1,
+        locSkyAngle_ = -1, locGroundCount_ = -1, locGroundColor_ = -1, locGroundAngle_ = -1;
+};
+
+}  // namespace gs::render::detail

@@ -1,0 +1,93 @@
+// Uploading tessellated meshes to GPU buffers.
+#include "gpu_resources.hpp"
+
+#include <cstdint>
+
+namespace gs::render::detail {
+
+void GpuMesh::upload(const vrml::Mesh& mesh) {
+  release();
+  const std::size_t n = mesh.positions.size();
+  primitive = mesh.primitive;
+  solid = mesh.solid;
+  bounds = mesh.bounds;
+  triangles = mesh.triangleCount();
+  hasNormals = mesh.primitive == vrml::Primitive::triangles && mesh.normals.size() == n;
+  hasColors = mesh.colors.size() == n && n > 0;
+  hasTexCoords = mesh.texCoords.size() == n && n > 0;
+  indexed = !mesh.indices.empty();
+  count = static_cast<GLsizei>(indexed ? mesh.indices.size() : n);
+  if (!indexed && primitive == vrml::Primitive::triangles) triangles = n / 3;
+  bool indicesValid = true;
+  for (std::uint32_t i : mesh.indices)
+    if (i >= n) {
+      indicesValid = false;
+      break;
+    }
+  if (n == 0 || count == 0 || !indicesValid) {
+    count = 0;
+    triangles = 0;
+    return;
+  }
+
+  const std::size_t positionBytes = n * sizeof(glm::vec3);
+  const std::size_t normalBytes = hasNormals ? n * sizeof(glm::vec3) : 0;
+  const std::size_t colorBytes = hasColors ? n * sizeof(glm::vec4) : 0;
+  const std::size_t texBytes = hasTexCoords ? n * sizeof(glm::vec2) : 0;
+  const std::size_t total = positionBytes + normalBytes + colorBytes + texBytes;
+
+  glGenVertexArrays(1, &vao);
+  glBindVertexArray(vao);
+  glGenBuffers(1, &vertexBuffer);
+  glBindBuffer(GL_ARRAY_BUFFER, vertexBuffer);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(total), nullptr, GL_STATIC_DRAW);
+  std::size_t offset = 0;
+  auto attribute = [&](GLuint location, GLint size, const void* data, std::size_t bytes) {
+    glBufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes),
+                    data);
+    glEnableVertexAttribArray(location);
+    glVertexAttribPointer(location, size, GL_FLOAT, GL_FALSE, 0,
+                          reinterpret_cast<const void*>(offset));
+    offset += bytes;
+  };
+  attribute(0, 3, mesh.positions.data(), positionBytes);
+  if (hasNormals) attribute(1, 3, mesh.normals.data(), normalBytes);
+  if (hasColors) attribute(2, 4, mesh.colors.data(), colorBytes);
+  if (hasTexCoords) attribute(3, 2, mesh.texCoords.data(), texBytes);
+  if (indexed) {
+    glGenBuffers(1, &indexBuffer);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indexBuffer);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER,
+                 static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(std::uint32_t)),
+                 mesh.indices.data(), GL_STATIC_DRAW);
+  }
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+}
+
+void GpuMesh::draw() const {
+  if (count == 0) return;
+  // Arrays a mesh lacks read the generic attribute values (not VAO state: set each time).
+  if (!hasNormals) glVertexAttrib3f(1, 0.0f, 0.0f, 1.0f);
+  if (!hasColors) glVertexAttrib4f(2, 1.0f, 1.0f, 1.0f, 1.0f);
+  if (!hasTexCoords) glVertexAttrib2f(3, 0.0f, 0.0f);
+  const GLenum mode = primitive == vrml::Primitive::triangles ? GL_TRIANGLES
+                      : primitive == vrml::Primitive::lines   ? GL_LINES
+                                                              : GL_POINTS;
+  glBindVertexArray(vao);
+  if (indexed)
+    glDrawElements(mode, count, GL_UNSIGNED_INT, nullptr);
+  else
+    glDrawArrays(mode, 0, count);
+  glBindVertexArray(0);
+}
+
+void GpuMesh::release() {
+  if (vao != 0) glDeleteVertexArrays(1, &vao);
+  if (vertexBuffer != 0) glDeleteBuffers(1, &vertexBuffer);
+  if (indexBuffer != 0) glDeleteBuffers(1, &indexBuffer);
+  vao = vertexBuffer = indexBuffer = 0;
+  count = 0;
+}
+
+}  // namespace gs::render::detail

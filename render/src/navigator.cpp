@@ -1,0 +1,75 @@
+// The EXAMINE navigator: orbit, pan and dolly around a centre point.
+#include "render/camera.hpp"
+
+#include <glm/gtc/quaternion.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace gs::render {
+
+namespace {
+constexpr float kPi = 3.14159265358979f;
+constexpr float kMinDistance = 1e-4f;
+}  // namespace
+
+void ExamineNavigator::setHome(const Camera& camera, const glm::vec3& center) {
+  homeCamera_ = camera;
+  homeCenter_ = center;
+  reset();
+}
+
+void ExamineNavigator::reset() {
+  camera_ = homeCamera_;
+  center_ = homeCenter_;
+  updateClip();
+}
+
+void ExamineNavigator::setCamera(const Camera& camera) {
+  const float d = std::max(distance(), kMinDistance);
+  camera_ = camera;
+  center_ = camera_.position + camera_.forward() * d;
+  updateClip();
+}
+
+void ExamineNavigator::setSceneBounds(const vrml::Bounds& bounds, float maxNear) {
+  bounds_ = bounds;
+  maxNear_ = maxNear;
+  updateClip();
+}
+
+void ExamineNavigator::orbit(float dx, float dy, int viewportHeight) {
+  const float perPixel = kPi / float(std::max(viewportHeight, 1));
+  // Dragging right turns the scene right: the camera turns left around the centre.
+  const glm::quat yaw = glm::angleAxis(-dx * perPixel, glm::vec3(0.0f, 1.0f, 0.0f));
+  const glm::quat pitch = glm::angleAxis(-dy * perPixel, camera_.right());
+  const glm::quat turn = glm::normalize(yaw * pitch);
+  camera_.position = center_ + turn * (camera_.position - center_);
+  camera_.orientation = glm::normalize(turn * camera_.orientation);
+  updateClip();
+}
+
+void ExamineNavigator::pan(float dx, float dy, int viewportHeight) {
+  const float d = std::max(distance(), kMinDistance);
+  // World size of one pixel at the centre's depth.
+  const float vfov = std::clamp(camera_.fieldOfView, 0.001f, 3.1f);
+  const float perPixel = 2.0f * d * std::tan(vfov * 0.5f) / float(std::max(viewportHeight, 1));
+  const glm::vec3 offset = (-dx * camera_.right() + dy * camera_.up()) * perPixel;
+  camera_.position += offset;
+  center_ += offset;
+  updateClip();
+}
+
+void ExamineNavigator::dolly(float steps) {
+  const float d = std::max(distance(), kMinDistance);
+  const float next = std::max(d * std::pow(0.9f, steps), kMinDistance);
+  const glm::vec3 towards = (center_ - camera_.position) / d;
+  camera_.position = center_ - towards * next;
+  updateClip();
+}
+
+void ExamineNavigator::updateClip() {
+  if (!bounds_.empty()) fitClipPlanes(camera_, bounds_, maxNear_);
+}
+
+}  // namespace gs::render

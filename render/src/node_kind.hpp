@@ -1,0 +1,39 @@
+// Private to render/: the node types the renderer knows, looked up once per NodeType.
+#pragma once
+
+#include "vrml/node.hpp"
+
+#include <cstdint>
+
+namespace gs::render::detail {
+
+enum class NodeKind : std::uint8_t {
+  other,  // not rendered (sensors, interpolators, Script, unknown types...)
+  Anchor,
+  Billboard,
+  Collision,
+  Group,
+  Transform,
+  Switch,
+  LOD,
+  Inline,
+  Shape,
+  DirectionalLight,
+  PointLight,
+  SpotLight,
+  Viewpoint,
+  NavigationInfo,
+  Background,
+  Fog,
+};
+
+/// The kind of `node`: `other` for unresolved EXTERNPROTO instances and unknown types.
+NodeKind nodeKind(const vrml::Node& node);
+
+/// True for the grouping nodes whose `children` field is traversed.
+inline bool hasChildren(NodeKind k) {
+  return k == NodeKind::Anchor || k == NodeKind::Billboard || k == NodeKind::Collision ||
+         k == NodeKind::Group || k == NodeKind::Transform;
+}
+
+}  // namespace gs::render::detail

@@ -1,0 +1,355 @@
+// SceneRenderer: per-frame drawing of a traversed scene.
+#include "render/scene_renderer.hpp"
+
+#include "gl_program.hpp"
+#include "gpu_resources.hpp"
+#include "node_access.hpp"
+
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <algorithm>
+#include <array>
+#include <unordered_map>
+
+namespace gs::render {
+
+using namespace detail;
+
+namespace {
+
+/// An Appearance node's values, read once (clause 6.3 Appearance, 6.27 Material).
+struct Shading {
+  bool hasMaterial = false;
+  glm::vec3 diffuseColor{0.8f};
+  float ambientIntensity = 0.2f;
+  glm::vec3 specularColor{0.0f};
+  glm::vec3 emissiveColor{0.0f};
+  float shininess = 0.2f;
+  float transparency = 0.0f;
+  const vrml::Node* texture = nullptr;
+  glm::mat3 textureMatrix{1.0f};
+};
+
+Shading readShading(const vrml::Node* appearance) {
+  Shading s;
+  if (appearance == nullptr) return s;
+  if (const vrml::NodePtr m = appearance->sfnode("material"); m && !m->unresolved) {
+    s.hasMaterial = true;
+    s.diffuseColor = glm::clamp(sfColor(*m, "diffuseColor", glm::vec3(0.8f)), 0.0f, 1.0f);
+    s.ambientIntensity = std::clamp(sfFloat(*m, "ambientIntensity", 0.2f), 0.0f, 1.0f);
+    s.specularColor = glm::clamp(sfColor(*m, "specularColor", glm::vec3(0.0f)), 0.0f, 1.0f);
+    s.emissiveColor = glm::clamp(sfColor(*m, "emissiveColor", glm::vec3(0.0f)), 0.0f, 1.0f);
+    s.shininess = std::clamp(sfFloat(*m, "shininess", 0.2f), 0.0f, 1.0f);
+    s.transparency = std::clamp(sfFloat(*m, "transparency", 0.0f), 0.0f, 1.0f);
+  }
+  if (const vrml::NodePtr t = appearance->sfnode("texture"); t && !t->unresolved)
+    s.texture = t.get();
+  if (const vrml::NodePtr tt = appearance->sfnode("textureTransform"); tt && !tt->unresolved)
+    s.textureMatrix = textureTransformMatrix(*tt);
+  return s;
+}
+
+struct SurfaceUniforms {
+  GLint modelView, projection, normalMatrix, textureMatrix, pointSize;
+  GLint lit, hasColor, textureComponents, texture;
+  GLint diffuseColor, ambientIntensity, specularColor, emissiveColor, shininess, transparency,
+      unlitColor;
+  GLint lightCount, lightType, lightColor, lightIntensity, lightAmbientIntensity, lightPosition,
+      lightDirection, lightAttenuation, lightRadius, lightBeamWidth, lightCutOffAngle;
+  GLint fogType, fogColor, fogVisibilityRange;
+
+  void find(GLuint p) {
+    modelView = uniform(p, "u_modelView");
+    projection = uniform(p, "u_projection");
+    normalMatrix = uniform(p, "u_normalMatrix");
+    textureMatrix = uniform(p, "u_textureMatrix");
+    pointSize = uniform(p, "u_pointSize");
+    lit = uniform(p, "u_lit");
+    hasColor = uniform(p, "u_hasColor");
+    textureComponents = uniform(p, "u_textureComponents");
+    texture = uniform(p, "u_texture");
+    diffuseColor = uniform(p, "u_diffuseColor");
+    ambientIntensity = uniform(p, "u_ambientIntensity");
+    specularColor = uniform(p, "u_specularColor");
+    emissiveColor = uniform(p, "u_emissiveColor");
+    shininess = uniform(p, "u_shininess");
+    transparency = uniform(p, "u_transparency");
+    unlitColor = uniform(p, "u_unlitColor");
+    lightCount = uniform(p, "u_lightCount");
+    lightType = uniform(p, "u_lightType");
+    lightColor = uniform(p, "u_lightColor");
+    lightIntensity = uniform(p, "u_lightIntensity");
+    lightAmbientIntensity = uniform(p, "u_lightAmbientIntensity");
+    lightPosition = uniform(p, "u_lightPosition");
+    lightDirection = uniform(p, "u_lightDirection");
+    lightAttenuation = uniform(p, "u_lightAttenuation");
+    lightRadius = uniform(p, "u_lightRadius");
+    lightBeamWidth = uniform(p, "u_lightBeamWidth");
+    lightCutOffAngle = uniform(p, "u_lightCutOffAngle");
+    fogType = uniform(p, "u_fogType");
+    fogColor = uniform(p, "u_fogColor");
+    fogVisibilityRange = uniform(p, "u_fogVisibilityRange");
+  }
+};
+
+struct DrawItem {
+  const ShapeInstance* shape;
+  const GpuMesh* mesh;
+  const Shading* shading;
+  const GpuTexture* texture;  // null: untextured
+  float depth;                // along the view direction, for sorting
+};
+
+/// Uniform arrays of the lights of one shape.
+struct LightArrays {
+  int count = 0;
+  std::array<GLint, kMaxLights> type{};
+  std::array<glm::vec3, kMaxLights> color{}, position{}, direction{}, attenuation{};
+  std::array<float, kMaxLights> intensity{}, ambient{}, radius{}, beamWidth{}, cutOff{};
+
+  void add(const LightInstance& l) {  // l in eye coordinates
+    if (count >= kMaxLights) return;
+    const auto i = static_cast<std::size_t>(count++);
+    type[i] = static_cast<GLint>(l.type);
+    color[i] = l.color;
+    position[i] = l.location;
+    direction[i] = l.direction;
+    attenuation[i] = l.attenuation;
+    intensity[i] = l.intensity;
+    ambient[i] = l.ambientIntensity;
+    radius[i] = l.radius;
+    beamWidth[i] = l.beamWidth;
+    cutOff[i] = l.cutOffAngle;
+  }
+  void upload(const SurfaceUniforms& u) const {
+    glUniform1i(u.lightCount, count);
+    if (count == 0) return;
+    glUniform1iv(u.lightType, count, type.data());
+    glUniform3fv(u.lightColor, count, glm::value_ptr(color[0]));
+    glUniform3fv(u.lightPosition, count, glm::value_ptr(position[0]));
+    glUniform3fv(u.lightDirection, count, glm::value_ptr(direction[0]));
+    glUniform3fv(u.lightAttenuation, count, glm::value_ptr(attenuation[0]));
+    glUniform1fv(u.lightIntensity, count, intensity.data());
+    glUniform1fv(u.lightAmbientIntensity, count, ambient.data());
+    glUniform1fv(u.lightRadius, count, radius.data());
+    glUniform1fv(u.lightBeamWidth, count, beamWidth.data());
+    glUniform1fv(u.lightCutOffAngle, count, cutOff.data());
+  }
+};
+
+}  // namespace
+
+struct SceneRenderer::Gpu {
+  GLuint program = 0;
+  SurfaceUniforms u{};
+  std::unordered_map<const vrml::Node*, GpuMesh> meshes;
+  std::unordered_map<const vrml::Node*, Shading> shadings;
+  TextureCache textures;
+  BackgroundPass background;
+  // Reused from frame to frame.
+  TraversalFrame frame;
+  std::vector<LightInstance> eyeLights;
+  std::vector<DrawItem> opaque, transparent;
+
+  void release() {
+    for (auto& [node, mesh] : meshes) mesh.release();
+    meshes.clear();
+    textures.release();
+    background.release();
+    if (program != 0) glDeleteProgram(program);
+    program = 0;
+  }
+};
+
+SceneRenderer::SceneRenderer(std::shared_ptr<const vrml::Scene> scene, SceneRendererOptions options)
+    : options_(std::move(options)),
+      traversal_(std::move(scene),
+                 [this] {
+                   TraversalOptions t = options_.traversal;
+                   if (!t.inlineLoader && options_.loader) {
+                     vrml::UrlLoader loader = options_.loader;
+                     t.inlineLoader = [loader](const std::string& url) {
+                       const std::string path = localPathOfUrl(url);
+                       if (!path.empty()) {
+                         vrml::Scene local = vrml::loadVrmlFile(path);
+                         if (!local.rootNodes.empty() || !local.diagnostics.hasErrors())
+                           return local;
+                       }
+                       std::string bytes, error;
+                       if (!loader(url, bytes, error)) {
+                         vrml::Scene failed;
+                         failed.url = url;
+                         failed.diagnostics.error({url, 0, 0}, "cannot read " + url + ": " + error);
+                         return failed;
+                       }
+                       vrml::ParseOptions parse;
+                       parse.loader = loader;
+                       return vrml::parseVrml(bytes, url, parse);
+                     };
+                   }
+                   return t;
+                 }()),
+      gpu_(std::make_unique<Gpu>()),
+      headlight_(traversal_.navigation().headlight) {}
+
+SceneRenderer::~SceneRenderer() {
+  // Without loaded GL functions there is nothing to free (and no way to).
+  if (glad_glDeleteProgram != nullptr) gpu_->release();
+}
+
+Camera SceneRenderer::initialCamera(float aspect) {
+  if (!viewpoints().empty() || bounds().empty()) return boundViewpointCamera();
+  Camera camera = fitCamera(bounds(), aspect, Camera{});
+  if (navigation().visibilityLimit > 0.0f)
+    camera.farClip = std::max(navigation().visibilityLimit, camera.nearClip * 2.0f);
+  return camera;
+}
+
+void SceneRenderer::releaseGpuResources() {
+  gpu_->release();
+  gpu_->shadings.clear();
+}
+
+void SceneRenderer::draw(const Camera& camera, int x, int y, int width, int height) {
+  Gpu& g = *gpu_;
+  statistics_ = {};
+  if (width <= 0 || height <= 0) return;
+  if (g.program == 0) {
+    g.program = buildProgram("surface", kSurfaceVertexShader, kSurfaceFragmentShader);
+    g.u.find(g.program);
+  }
+  traversal_.collect(camera, g.frame);
+
+  const float aspect = float(width) / float(height);
+  const glm::mat4 view = viewMatrix(camera);
+  const glm::mat4 projection = projectionMatrix(camera, aspect);
+
+  glViewport(x, y, width, height);
+  glScissor(x, y, width, height);
+  glEnable(GL_SCISSOR_TEST);
+  glDepthMask(GL_TRUE);
+  glClearDepth(1.0);
+  glClear(GL_DEPTH_BUFFER_BIT);
+  g.background.draw(traversal_.background(), view, projection);
+
+  // Lights in eye coordinates.
+  g.eyeLights.resize(g.frame.lights.size());
+  const glm::mat3 viewRotation(view);
+  for (std::size_t i = 0; i < g.frame.lights.size(); ++i) {
+    LightInstance l = g.frame.lights[i];
+    l.location = glm::vec3(view * glm::vec4(l.location, 1.0f));
+    l.direction = glm::normalize(viewRotation * l.direction);
+    g.eyeLights[i] = l;
+  }
+  LightInstance headlight;  // directional along the view direction, intensity 1, ambient 0
+  headlight.direction = glm::vec3(0.0f, 0.0f, -1.0f);
+
+  // Sort shapes into the opaque and transparent passes.
+  g.opaque.clear();
+  g.transparent.clear();
+  const glm::vec3 forward = camera.forward();
+  for (const ShapeInstance& s : g.frame.shapes) {
+    auto [meshIt, newMesh] = g.meshes.try_emplace(s.geometry);
+    if (newMesh) {
+      meshIt->second.upload(traversal_.mesh(*s.geometry));
+      traversal_.dropMeshArrays(*s.geometry);
+    }
+    const GpuMesh& mesh = meshIt->second;
+    if (mesh.count == 0) continue;
+    auto [shadeIt, newShade] = g.shadings.try_emplace(s.appearance);
+    if (newShade) shadeIt->second = readShading(s.appearance);
+    const Shading& shading = shadeIt->second;
+    const GpuTexture* texture = nullptr;
+    if (shading.texture != nullptr && mesh.primitive == vrml::Primitive::triangles) {
+      texture = &g.textures.get(*shading.texture, *s.baseUrl, traversal_, options_.loader);
+      if (texture->components == 0) texture = nullptr;
+    }
+    const glm::vec3 center = glm::vec3(s.model * glm::vec4(mesh.bounds.center(), 1.0f));
+    const DrawItem item{&s, &mesh, &shading, texture, glm::dot(center - camera.position, forward)};
+    const bool blended = shading.transparency > 0.0f || (texture != nullptr && texture->hasAlpha);
+    (blended ? g.transparent : g.opaque).push_back(item);
+  }
+  std::sort(g.transparent.begin(), g.transparent.end(),
+            [](const DrawItem& a, const DrawItem& b) { return a.depth > b.depth; });
+
+  // Per-frame uniforms.
+  glUseProgram(g.program);
+  glUniformMatrix4fv(g.u.projection, 1, GL_FALSE, glm::value_ptr(projection));
+  glUniform1f(g.u.pointSize, options_.pointSize);
+  glUniform1i(g.u.texture, 0);
+  const FogSettings& fog = traversal_.fog();
+  glUniform1i(g.u.fogType, fog.visibilityRange > 0.0f ? (fog.exponential ? 2 : 1) : 0);
+  glUniform3fv(g.u.fogColor, 1, glm::value_ptr(fog.color));
+  glUniform1f(g.u.fogVisibilityRange, fog.visibilityRange);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glEnable(GL_PROGRAM_POINT_SIZE);
+  glFrontFace(GL_CCW);
+  glCullFace(GL_BACK);
+  glActiveTexture(GL_TEXTURE0);
+
+  const ShapeInstance* lastLightsOf = nullptr;
+  auto drawItem = [&](const DrawItem& d) {
+    const ShapeInstance& s = *d.shape;
+    const GpuMesh& mesh = *d.mesh;
+    const Shading& sh = *d.shading;
+    const bool triangles = mesh.primitive == vrml::Primitive::triangles;
+    const bool lit = triangles && sh.hasMaterial;
+    const glm::mat4 modelView = view * s.model;
+    const glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(modelView));
+    glUniformMatrix4fv(g.u.modelView, 1, GL_FALSE, glm::value_ptr(modelView));
+    glUniformMatrix3fv(g.u.normalMatrix, 1, GL_FALSE, glm::value_ptr(normalMatrix));
+    glUniformMatrix3fv(g.u.textureMatrix, 1, GL_FALSE, glm::value_ptr(sh.textureMatrix));
+    glUniform1i(g.u.lit, lit ? 1 : 0);
+    glUniform1i(g.u.hasColor, mesh.hasColors ? 1 : 0);
+    glUniform1i(g.u.textureComponents, d.texture != nullptr ? d.texture->components : 0);
+    if (d.texture != nullptr) glBindTexture(GL_TEXTURE_2D, d.texture->id);
+    glUniform3fv(g.u.diffuseColor, 1, glm::value_ptr(sh.diffuseColor));
+    glUniform1f(g.u.ambientIntensity, sh.ambientIntensity);
+    glUniform3fv(g.u.specularColor, 1, glm::value_ptr(sh.specularColor));
+    glUniform3fv(g.u.emissiveColor, 1, glm::value_ptr(sh.emissiveColor));
+    glUniform1f(g.u.shininess, sh.shininess);
+    glUniform1f(g.u.transparency, sh.transparency);
+    // Lines and points are unlit: emissiveColor with a Material, else white (6.24, 6.36).
+    const glm::vec3 unlit = (!triangles && sh.hasMaterial) ? sh.emissiveColor : glm::vec3(1.0f);
+    glUniform3fv(g.u.unlitColor, 1, glm::value_ptr(unlit));
+    if (lit && (lastLightsOf == nullptr || lastLightsOf->scopedLightBegin != s.scopedLightBegin ||
+                lastLightsOf->scopedLightCount != s.scopedLightCount)) {
+      LightArrays lights;
+      if (headlight_) lights.add(headlight);
+      for (std::uint32_t i = 0; i < s.scopedLightCount; ++i)
+        lights.add(g.eyeLights[g.frame.scopedLights[s.scopedLightBegin + i]]);
+      for (std::uint32_t index : g.frame.globalLights) lights.add(g.eyeLights[index]);
+      lights.upload(g.u);
+      lastLightsOf = &s;
+    }
+    if (triangles && mesh.solid)
+      glEnable(GL_CULL_FACE);
+    else
+      glDisable(GL_CULL_FACE);
+    mesh.draw();
+    statistics_.shapes += 1;
+    statistics_.triangles += mesh.triangles;
+  };
+
+  glDisable(GL_BLEND);
+  for (const DrawItem& d : g.opaque) drawItem(d);
+  if (!g.transparent.empty()) {
+    glEnable(GL_BLEND);
+    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    glDepthMask(GL_FALSE);
+    for (const DrawItem& d : g.transparent) drawItem(d);
+    statistics_.transparent = g.transparent.size();
+  }
+
+  // Leave the state as other code (ImGui, the app) expects it.
+  glDepthMask(GL_TRUE);
+  glDisable(GL_BLEND);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_SCISSOR_TEST);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  glUseProgram(0);
+}
+
+}  // namespace gs::render

@@ -1,0 +1,211 @@
+// GLSL 3.30 core sources. The surface program implements the VRML97 lighting model
+// (ISO/IEC 14772-1:1997 clause 4.14.4) per fragment, in eye coordinates:
+//
+//   I = I_F (1 - f0) + f0 (O_E + sum_i on_i attenuation_i spot_i I_Lrgb,i
+//                            (ambient_i + diffuse_i + specular_i))
+//   ambient_i  = I_ia O_D O_a
+//   diffuse_i  = I_i O_D (N . L)
+//   specular_i = I_i O_S (N . (L + V) / |L + V|) ^ (shininess 128)
+//   attenuation_i = 1 / max(c1 + c2 d_L + c3 d_L^2, 1)  (1 for directional lights)
+//   spot_i = 0 beyond cutOffAngle, 1 within beamWidth, linear in between
+//
+// with textures and colours modulating O_D and the alpha per clause 4.14.3 (table 4.5):
+// 1- and 2-component textures multiply the diffuse (or Color) colour by their intensity,
+// 3- and 4-component ones replace it; 2- and 4-component textures give the alpha,
+// otherwise alpha = 1 - transparency. Unlit shapes (no Material, lines, points) take
+// u_unlitColor (white, or emissiveColor for lines and points) with the same texture and
+// colour rules. Fog (clause 6.19): f0 = (r - d) / r (LINEAR) or exp(-d / (r - d))
+// (EXPONENTIAL), 0 beyond the visibility range r, d the distance to the viewer.
+#include "gl_program.hpp"
+
+namespace gs::render::detail {
+
+const char* const kSurfaceVertexShader = R"glsl(#version 330 core
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec3 a_normal;
+layout(location = 2) in vec4 a_color;
+layout(location = 3) in vec2 a_texCoord;
+
+uniform mat4 u_modelView;
+uniform mat4 u_projection;
+uniform mat3 u_normalMatrix;
+uniform mat3 u_textureMatrix;
+uniform float u_pointSize;
+
+out vec3 v_position;  // eye coordinates
+out vec3 v_normal;    // eye coordinates, not normalized
+out vec3 v_color;
+out vec2 v_texCoord;
+
+void main() {
+  vec4 eye = u_modelView * vec4(a_position, 1.0);
+  v_position = eye.xyz;
+  v_normal = u_normalMatrix * a_normal;
+  v_color = a_color.rgb;
+  v_texCoord = (u_textureMatrix * vec3(a_texCoord, 1.0)).xy;
+  gl_PointSize = u_pointSize;
+  gl_Position = u_projection * eye;
+}
+)glsl";
+
+const char* const kSurfaceFragmentShader = R"glsl(#version 330 core
+const int kMaxLights = 8;
+const int kDirectional = 0;
+const int kPoint = 1;
+const int kSpot = 2;
+
+in vec3 v_position;
+in vec3 v_normal;
+in vec3 v_color;
+in vec2 v_texCoord;
+
+uniform bool u_lit;
+uniform bool u_hasColor;
+uniform int u_textureComponents;  // 0: no texture
+uniform sampler2D u_texture;
+
+uniform vec3 u_diffuseColor;
+uniform float u_ambientIntensity;
+uniform vec3 u_specularColor;
+uniform vec3 u_emissiveColor;
+uniform float u_shininess;
+uniform float u_transparency;
+uniform vec3 u_unlitColor;
+
+uniform int u_lightCount;
+uniform int u_lightType[kMaxLights];
+uniform vec3 u_lightColor[kMaxLights];
+uniform float u_lightIntensity[kMaxLights];
+uniform float u_lightAmbientIntensity[kMaxLights];
+uniform vec3 u_lightPosition[kMaxLights];   // eye coordinates
+uniform vec3 u_lightDirection[kMaxLights];  // eye coordinates, unit
+uniform vec3 u_lightAttenuation[kMaxLights];
+uniform float u_lightRadius[kMaxLights];
+uniform float u_lightBeamWidth[kMaxLights];
+uniform float u_lightCutOffAngle[kMaxLights];
+
+uniform int u_fogType;  // 0 none, 1 LINEAR, 2 EXPONENTIAL
+uniform vec3 u_fogColor;
+uniform float u_fogVisibilityRange;
+
+out vec4 fragColor;
+
+void main() {
+  vec3 diffuse = u_lit ? u_diffuseColor : u_unlitColor;
+  float alpha = 1.0 - u_transparency;
+  if (u_hasColor) diffuse = v_color;
+  if (u_textureComponents > 0) {
+    vec4 t = texture(u_texture, v_texCoord);
+    if (u_textureComponents <= 2) diffuse *= t.r;
+    else diffuse = t.rgb;
+    if (u_textureComponents == 2 || u_textureComponents == 4) alpha = t.a;
+  }
+
+  vec3 color = diffuse;
+  if (u_lit) {
+    vec3 n = normalize(v_normal);
+    if (!gl_FrontFacing) n = -n;  // two-sided lighting (solid FALSE)
+    vec3 v = normalize(-v_position);
+    color = u_emissiveColor;
+    for (int i = 0; i < kMaxLights; ++i) {
+      if (i >= u_lightCount) break;
+      vec3 l;
+      float attenuation = 1.0;
+      float spot = 1.0;
+      if (u_lightType[i] == kDirectional) {
+        l = -u_lightDirection[i];
+      } else {
+        vec3 toLight = u_lightPosition[i] - v_position;
+        float d = length(toLight);
+        if (d > u_lightRadius[i]) continue;
+        l = d > 0.0 ? toLight / d : vec3(0.0, 0.0, 1.0);
+        vec3 a = u_lightAttenuation[i];
+        attenuation = 1.0 / max(a.x + a.y * d + a.z * d * d, 1.0);
+        if (u_lightType[i] == kSpot) {
+          float angle = acos(clamp(dot(-l, u_lightDirection[i]), -1.0, 1.0));
+          float cutOff = u_lightCutOffAngle[i];
+          float beam = u_lightBeamWidth[i];
+          if (angle >= cutOff) continue;
+          if (angle > beam) spot = (angle - cutOff) / (beam - cutOff);
+        }
+      }
+      float nDotL = max(dot(n, l), 0.0);
+      vec3 ambient = u_lightAmbientIntensity[i] * diffuse * u_ambientIntensity;
+      vec3 lambert = u_lightIntensity[i] * diffuse * nDotL;
+      vec3 specular = vec3(0.0);
+      if (nDotL > 0.0) {
+        vec3 h = normalize(l + v);
+        float exponent = max(u_shininess * 128.0, 1e-3);
+        specular = u_lightIntensity[i] * u_specularColor * pow(max(dot(n, h), 1e-6), exponent);
+      }
+      color += attenuation * spot * u_lightColor[i] * (ambient + lambert + specular);
+    }
+  }
+
+  if (u_fogType != 0 && u_fogVisibilityRange > 0.0) {
+    float d = length(v_position);
+    float r = u_fogVisibilityRange;
+    float f0 = 0.0;
+    if (d < r) f0 = u_fogType == 1 ? (r - d) / r : exp(-d / (r - d));
+    color = mix(u_fogColor, color, clamp(f0, 0.0, 1.0));
+  }
+  fragColor = vec4(clamp(color, 0.0, 1.0), clamp(alpha, 0.0, 1.0));
+}
+)glsl";
+
+// A full-screen triangle; the fragment shader turns each pixel into a view direction.
+const char* const kBackgroundVertexShader = R"glsl(#version 330 core
+out vec2 v_ndc;
+void main() {
+  vec2 p = vec2(gl_VertexID == 1 ? 3.0 : -1.0, gl_VertexID == 2 ? 3.0 : -1.0);
+  v_ndc = p;
+  gl_Position = vec4(p, 0.0, 1.0);
+}
+)glsl";
+
+// Background (clause 6.5): skyColor[0] at the zenith, skyColor[i] at skyAngle[i - 1]
+// from it, linear in angle in between, the last colour beyond; ground colours likewise
+// from the nadir up to the last groundAngle, drawn over the sky.
+const char* const kBackgroundFragmentShader = R"glsl(#version 330 core
+const int kMaxColors = 16;
+in vec2 v_ndc;
+uniform mat4 u_inverseViewProjection;  // of the rotation-only view
+uniform mat3 u_worldToBackground;
+uniform int u_skyCount;
+uniform vec3 u_skyColor[kMaxColors];
+uniform float u_skyAngle[kMaxColors];
+uniform int u_groundCount;
+uniform vec3 u_groundColor[kMaxColors];
+uniform float u_groundAngle[kMaxColors];
+out vec4 fragColor;
+
+vec3 gradient(float angle, int count, vec3 colors[kMaxColors], float angles[kMaxColors]) {
+  vec3 c = colors[0];
+  float previous = 0.0;
+  for (int i = 0; i + 1 < kMaxColors; ++i) {
+    if (i + 1 >= count) return colors[i];
+    if (angle <= angles[i]) {
+      float span = angles[i] - previous;
+      float t = span > 0.0 ? clamp((angle - previous) / span, 0.0, 1.0) : 1.0;
+      return mix(colors[i], colors[i + 1], t);
+    }
+    previous = angles[i];
+  }
+  return c;
+}
+
+void main() {
+  vec4 p = u_inverseViewProjection * vec4(v_ndc, 1.0, 1.0);
+  vec3 direction = normalize(u_worldToBackground * (p.xyz / p.w));
+  float fromZenith = acos(clamp(direction.y, -1.0, 1.0));
+  vec3 color = gradient(fromZenith, u_skyCount, u_skyColor, u_skyAngle);
+  if (u_groundCount > 1) {
+    float fromNadir = 3.14159265 - fromZenith;
+    if (fromNadir <= u_groundAngle[u_groundCount - 2])
+      color = gradient(fromNadir, u_groundCount, u_groundColor, u_groundAngle);
+  }
+  fragColor = vec4(color, 1.0);
+}
+)glsl";
+
+}  // namespace gs::render::detail

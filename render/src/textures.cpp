@@ -1,0 +1,163 @@
+// ImageTexture and PixelTexture to GL textures (clauses 6.22, 6.33), with mipmaps and the
+// repeatS / repeatT wrap modes.
+#include "gpu_resources.hpp"
+#include "node_access.hpp"
+#include "render/image.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+
+namespace gs::render::detail {
+namespace {
+
+bool readLocalFile(const std::string& path, std::string& bytes, std::string& error) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    error = "no such file or not readable";
+    return false;
+  }
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  bytes = buffer.str();
+  return true;
+}
+
+GLuint uploadRgba(const std::uint8_t* rowsBottomUp, int width, int height, bool repeatS,
+                  bool repeatT) {
+  GLuint id = 0;
+  glGenTextures(1, &id);
+  glBindTexture(GL_TEXTURE_2D, id);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+               rowsBottomUp);
+  glGenerateMipmap(GL_TEXTURE_2D);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, repeatS ? GL_REPEAT : GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, repeatT ? GL_REPEAT : GL_CLAMP_TO_EDGE);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  return id;
+}
+
+bool anyTranslucent(const std::vector<std::uint8_t>& rgba) {
+  for (std::size_t i = 3; i < rgba.size(); i += 4)
+    if (rgba[i] != 255) return true;
+  return false;
+}
+
+}  // namespace
+
+bool decodeSFImage(const vrml::SFImage& image, std::vector<std::uint8_t>& rgba, bool& hasAlpha) {
+  hasAlpha = false;
+  if (image.width <= 0 || image.height <= 0 || image.components < 1 || image.components > 4 ||
+      image.width > 16384 || image.height > 16384 ||
+      image.pixels.size() != static_cast<std::size_t>(image.width) * image.height)
+    return false;
+  rgba.resize(image.pixels.size() * 4);
+  for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+    const std::uint32_t p = image.pixels[i];
+    std::uint8_t r, g, b, a = 255;
+    switch (image.components) {
+      case 1:
+        r = g = b = static_cast<std::uint8_t>(p & 0xFF);
+        break;
+      case 2:
+        r = g = b = static_cast<std::uint8_t>((p >> 8) & 0xFF);
+        a = static_cast<std::uint8_t>(p & 0xFF);
+        break;
+      case 3:
+        r = static_cast<std::uint8_t>((p >> 16) & 0xFF);
+        g = static_cast<std::uint8_t>((p >> 8) & 0xFF);
+        b = static_cast<std::uint8_t>(p & 0xFF);
+        break;
+      default:
+        r = static_cast<std::uint8_t>((p >> 24) & 0xFF);
+        g = static_cast<std::uint8_t>((p >> 16) & 0xFF);
+        b = static_cast<std::uint8_t>((p >> 8) & 0xFF);
+        a = static_cast<std::uint8_t>(p & 0xFF);
+        break;
+    }
+    rgba[i * 4] = r;
+    rgba[i * 4 + 1] = g;
+    rgba[i * 4 + 2] = b;
+    rgba[i * 4 + 3] = a;
+    if (a != 255) hasAlpha = true;
+  }
+  return true;
+}
+
+const GpuTexture& TextureCache::get(const vrml::Node& node, const std::string& baseUrl,
+                                    SceneTraversal& traversal, const vrml::UrlLoader& loader) {
+  if (auto it = textures_.find(&node); it != textures_.end()) return it->second;
+  GpuTexture texture;
+  const bool repeatS = sfBool(node, "repeatS", true), repeatT = sfBool(node, "repeatT", true);
+  if (node.typeName() == "PixelTexture") {
+    std::vector<std::uint8_t> rgba;
+    static const vrml::SFImage kEmpty;
+    const vrml::SFImage& image = fieldRef<vrml::FieldType::SFImage>(node, "image", kEmpty);
+    bool hasAlpha = false;
+    if (image.width == 0 || image.height == 0) {
+      // An empty PixelTexture means no texture (clause 6.33).
+    } else if (decodeSFImage(image, rgba, hasAlpha)) {
+      texture.id = uploadRgba(rgba.data(), image.width, image.height, repeatS, repeatT);
+      texture.components = image.components;
+      texture.hasAlpha = hasAlpha;
+    } else {
+      traversal.report(vrml::Severity::warning, node.location,
+                       "PixelTexture image is inconsistent: drawn untextured");
+    }
+  } else if (node.typeName() == "ImageTexture") {
+    std::string failures;
+    for (const std::string& reference : mfString(node, "url")) {
+      if (reference.empty()) continue;
+      const std::string url = resolveUrl(baseUrl, reference);
+      std::string bytes, error;
+      bool ok = false;
+      const std::string path = localPathOfUrl(url);
+      if (!path.empty()) ok = readLocalFile(path, bytes, error);
+      if (!ok && loader)
+        ok = loader(url, bytes, error);
+      else if (!ok && path.empty())
+        error = "only local files can be read without a network loader";
+      if (ok) {
+        try {
+          int components = 0;
+          Image image = decodeImage(bytes, url, &components);
+          // GL wants the bottom row first; VRML's (0, 0) is the image's lower-left corner.
+          const std::size_t row = static_cast<std::size_t>(image.width) * 4;
+          std::vector<std::uint8_t> flipped(image.rgba.size());
+          for (int y = 0; y < image.height; ++y)
+            std::copy_n(image.rgba.data() + static_cast<std::size_t>(y) * row, row,
+                        flipped.data() + static_cast<std::size_t>(image.height - 1 - y) * row);
+          texture.id = uploadRgba(flipped.data(), image.width, image.height, repeatS, repeatT);
+          texture.components = std::clamp(components, 1, 4);
+          texture.hasAlpha = anyTranslucent(image.rgba);
+          if (texture.hasAlpha && texture.components == 3) texture.components = 4;  // e.g. GIF
+          if (texture.hasAlpha && texture.components == 1) texture.components = 2;
+          break;
+        } catch (const std::exception& e) {
+          error = e.what();
+        }
+      }
+      failures += (failures.empty() ? "" : "; ") + url + ": " + error;
+    }
+    if (texture.components == 0)
+      traversal.report(vrml::Severity::warning, node.location,
+                       failures.empty()
+                           ? std::string("ImageTexture has no url: drawn untextured")
+                           : "cannot load ImageTexture (" + failures + "): drawn untextured");
+  } else {
+    traversal.report(vrml::Severity::warning, node.location,
+                     node.typeName() + " is not supported yet: drawn untextured");
+  }
+  return textures_.emplace(&node, texture).first->second;
+}
+
+void TextureCache::release() {
+  for (auto& [node, texture] : textures_)
+    if (texture.id != 0) glDeleteTextures(1, &texture.id);
+  textures_.clear();
+}
+
+}  // namespace gs::render::detail

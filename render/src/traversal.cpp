@@ -1,0 +1,261 @@
+// Per-frame scene-graph traversal: shapes with world matrices and scoped lights.
+#include "render/traversal.hpp"
+
+#include "node_access.hpp"
+#include "node_kind.hpp"
+
+#include <glm/gtc/matrix_inverse.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace gs::render {
+
+using detail::NodeKind;
+using detail::nodeKind;
+
+/// State of one collect() walk.
+struct SceneTraversal::Walk {
+  SceneTraversal& self;
+  TraversalFrame& frame;
+  glm::vec3 viewerPosition;
+  glm::vec3 viewerUp;
+  std::vector<std::uint32_t>& scope;             // active DirectionalLights
+  std::vector<const std::string*>& inlineChain;  // URLs being traversed (recursion guard)
+  bool scopeChanged = true;
+  std::uint32_t lastScopeBegin = 0;
+
+  void nodes(const std::vector<vrml::NodePtr>& list, const glm::mat4& m,
+             const std::string* baseUrl) {
+    // DirectionalLights light their siblings and the siblings' descendants (clause 6.16).
+    const std::size_t scopeSize = scope.size();
+    for (const vrml::NodePtr& n : list)
+      if (n && nodeKind(*n) == NodeKind::DirectionalLight) directionalLight(*n, m);
+    for (const vrml::NodePtr& n : list)
+      if (n) node(*n, m, baseUrl);
+    if (scope.size() != scopeSize) {
+      scope.resize(scopeSize);
+      scopeChanged = true;
+    }
+  }
+
+  void directionalLight(const vrml::Node& n, const glm::mat4& m) {
+    using namespace detail;
+    if (!sfBool(n, "on", true)) return;
+    LightInstance light;
+    light.type = LightType::directional;
+    light.color = sfColor(n, "color", glm::vec3(1.0f));
+    light.intensity = std::clamp(sfFloat(n, "intensity", 1.0f), 0.0f, 1.0f);
+    light.ambientIntensity = std::clamp(sfFloat(n, "ambientIntensity", 0.0f), 0.0f, 1.0f);
+    const glm::vec3 d = glm::mat3(m) * sfVec3(n, "direction", glm::vec3(0, 0, -1));
+    if (glm::length(d) < 1e-12f) return;
+    light.direction = glm::normalize(d);
+    scope.push_back(static_cast<std::uint32_t>(frame.lights.size()));
+    frame.lights.push_back(light);
+    scopeChanged = true;
+  }
+
+  void pointOrSpotLight(const vrml::Node& n, const glm::mat4& m, bool spot) {
+    using namespace detail;
+    if (!sfBool(n, "on", true)) return;
+    LightInstance light;
+    light.type = spot ? LightType::spot : LightType::point;
+    light.color = sfColor(n, "color", glm::vec3(1.0f));
+    light.intensity = std::clamp(sfFloat(n, "intensity", 1.0f), 0.0f, 1.0f);
+    light.ambientIntensity = std::clamp(sfFloat(n, "ambientIntensity", 0.0f), 0.0f, 1.0f);
+    light.location = glm::vec3(m * glm::vec4(sfVec3(n, "location", glm::vec3(0.0f)), 1.0f));
+    light.attenuation = glm::max(sfVec3(n, "attenuation", glm::vec3(1, 0, 0)), glm::vec3(0.0f));
+    light.radius = std::max(sfFloat(n, "radius", 100.0f), 0.0f) * meanScale(m);
+    if (spot) {
+      const glm::vec3 d = glm::mat3(m) * sfVec3(n, "direction", glm::vec3(0, 0, -1));
+      light.direction = glm::length(d) > 1e-12f ? glm::normalize(d) : glm::vec3(0, 0, -1);
+      light.beamWidth = sfFloat(n, "beamWidth", 1.570796f);
+      light.cutOffAngle = sfFloat(n, "cutOffAngle", 0.785398f);
+    }
+    frame.globalLights.push_back(static_cast<std::uint32_t>(frame.lights.size()));
+    frame.lights.push_back(light);
+  }
+
+  void shape(const vrml::Node& n, const glm::mat4& m, const std::string* baseUrl) {
+    const vrml::NodePtr geometry = n.sfnode("geometry");
+    if (!geometry || geometry->unresolved) return;
+    ShapeInstance s;
+    s.shape = &n;
+    const vrml::NodePtr appearance = n.sfnode("appearance");
+    s.appearance = appearance && !appearance->unresolved ? appearance.get() : nullptr;
+    s.geometry = geometry.get();
+    s.model = m;
+    s.baseUrl = baseUrl;
+    if (scopeChanged) {
+      lastScopeBegin = static_cast<std::uint32_t>(frame.scopedLights.size());
+      frame.scopedLights.insert(frame.scopedLights.end(), scope.begin(), scope.end());
+      scopeChanged = false;
+    }
+    s.scopedLightBegin = lastScopeBegin;
+    s.scopedLightCount = static_cast<std::uint32_t>(scope.size());
+    frame.shapes.push_back(s);
+  }
+
+  void node(const vrml::Node& n, const glm::mat4& m, const std::string* baseUrl) {
+    using namespace detail;
+    switch (nodeKind(n)) {
+      case NodeKind::Anchor:
+      case NodeKind::Collision:  // the proxy is for collisions only: not drawn
+      case NodeKind::Group:
+        nodes(n.mfnode("children"), m, baseUrl);
+        break;
+      case NodeKind::Transform:
+        nodes(n.mfnode("children"), m * transformMatrix(n), baseUrl);
+        break;
+      case NodeKind::Billboard: {
+        const glm::mat4 inverse = glm::inverse(m);
+        const glm::vec3 viewer = glm::vec3(inverse * glm::vec4(viewerPosition, 1.0f));
+        const glm::vec3 up = glm::mat3(inverse) * viewerUp;
+        const glm::vec3 axis = sfVec3(n, "axisOfRotation", glm::vec3(0, 1, 0));
+        nodes(n.mfnode("children"), m * billboardRotation(axis, viewer, up), baseUrl);
+        break;
+      }
+      case NodeKind::Switch: {
+        const auto& choice = n.mfnode("choice");
+        const int which = sfInt(n, "whichChoice", -1);
+        if (which >= 0 && static_cast<std::size_t>(which) < choice.size() &&
+            choice[static_cast<std::size_t>(which)])
+          node(*choice[static_cast<std::size_t>(which)], m, baseUrl);
+        break;
+      }
+      case NodeKind::LOD: {
+        const auto& level = n.mfnode("level");
+        const glm::vec3 center = sfVec3(n, "center", glm::vec3(0.0f));
+        const glm::vec3 viewer = glm::vec3(glm::inverse(m) * glm::vec4(viewerPosition, 1.0f));
+        const int chosen =
+            selectLodLevel(mfFloat(n, "range"), glm::length(viewer - center), level.size());
+        if (chosen >= 0 && level[static_cast<std::size_t>(chosen)])
+          node(*level[static_cast<std::size_t>(chosen)], m, baseUrl);
+        break;
+      }
+      case NodeKind::Inline: {
+        const InlineScene* inl = self.inlineScene(n, *baseUrl);
+        if (inl == nullptr || !inl->scene) break;
+        if (static_cast<int>(inlineChain.size()) >= self.options_.maxInlineDepth) {
+          self.report(vrml::Severity::error, n.location,
+                      "Inline nesting deeper than " + std::to_string(self.options_.maxInlineDepth) +
+                          " files at " + inl->url + ": not drawn");
+          break;
+        }
+        for (const std::string* url : inlineChain) {
+          if (*url == inl->url) {
+            self.report(vrml::Severity::error, n.location,
+                        "Inline " + inl->url + " includes itself: the recursion is not drawn");
+            return;
+          }
+        }
+        inlineChain.push_back(&inl->url);
+        nodes(inl->scene->rootNodes, m, &inl->url);
+        inlineChain.pop_back();
+        break;
+      }
+      case NodeKind::Shape:
+        shape(n, m, baseUrl);
+        break;
+      case NodeKind::PointLight:
+        pointOrSpotLight(n, m, false);
+        break;
+      case NodeKind::SpotLight:
+        pointOrSpotLight(n, m, true);
+        break;
+      default:  // DirectionalLight was handled with its siblings; others draw nothing
+        break;
+    }
+  }
+};
+
+void SceneTraversal::collect(const Camera& viewer, TraversalFrame& frame) {
+  frame.clear();
+  scopeScratch_.clear();
+  chainScratch_.clear();
+  Walk walk{*this, frame, viewer.position, viewer.up(), scopeScratch_, chainScratch_, true, 0};
+  walk.inlineChain.push_back(&mainUrl_);
+  walk.nodes(scene_->rootNodes, glm::mat4(1.0f), &mainUrl_);
+}
+
+const vrml::Bounds& SceneTraversal::worldBounds() {
+  if (haveWorldBounds_) return worldBounds_;
+  haveWorldBounds_ = true;  // set first: meshBounds() below cannot recurse into here
+  Camera viewer = viewpoints_.empty() ? Camera{} : viewpoints_.front().camera;
+  collect(viewer, scratch_);
+  vrml::Bounds bounds;
+  for (const ShapeInstance& s : scratch_.shapes) {
+    const vrml::Bounds& local = meshBounds(*s.geometry);
+    if (local.empty()) continue;
+    for (int corner = 0; corner < 8; ++corner) {
+      const glm::vec3 p((corner & 1) ? local.max.x : local.min.x,
+                        (corner & 2) ? local.max.y : local.min.y,
+                        (corner & 4) ? local.max.z : local.min.z);
+      bounds.extend(glm::vec3(s.model * glm::vec4(p, 1.0f)));
+    }
+  }
+  worldBounds_ = bounds;
+  scratch_ = TraversalFrame{};
+  return worldBounds_;
+}
+
+Camera SceneTraversal::viewpointCamera(std::size_t index) {
+  Camera camera = index < viewpoints_.size() ? viewpoints_[index].camera : Camera{};
+  const vrml::Bounds& bounds = worldBounds();
+  const float nearClip = navigation_.nearClip();
+  camera.nearClip = nearClip;
+  camera.farClip = std::max(nearClip * 2.0f, 1000.0f);
+  fitClipPlanes(camera, bounds, nearClip);
+  if (navigation_.visibilityLimit > 0.0f)
+    camera.farClip = std::max(navigation_.visibilityLimit, camera.nearClip * 2.0f);
+  return camera;
+}
+
+float NavigationSettings::nearClip() const {
+  const float avatar = avatarSize.empty() ? 0.25f : avatarSize[0];
+  return avatar > 0.0f ? avatar * 0.5f : 0.125f;
+}
+
+SceneTraversal::CachedMesh& SceneTraversal::cachedMesh(const vrml::Node& geometry) {
+  auto [it, inserted] = meshes_.try_emplace(&geometry);
+  if (inserted || it->second.arraysDropped) {
+    vrml::Diagnostics diag;
+    it->second.mesh = options_.tessellator ? options_.tessellator(geometry, &diag)
+                                           : vrml::tessellate(geometry, &diag);
+    it->second.arraysDropped = false;
+    for (const vrml::Diagnostic& d : diag.items) report(d.severity, d.location, d.message);
+  }
+  return it->second;
+}
+
+const vrml::Mesh& SceneTraversal::mesh(const vrml::Node& geometry) {
+  return cachedMesh(geometry).mesh;
+}
+
+const vrml::Bounds& SceneTraversal::meshBounds(const vrml::Node& geometry) {
+  auto it = meshes_.find(&geometry);
+  if (it != meshes_.end()) return it->second.mesh.bounds;
+  return cachedMesh(geometry).mesh.bounds;
+}
+
+void SceneTraversal::dropMeshArrays(const vrml::Node& geometry) {
+  auto it = meshes_.find(&geometry);
+  if (it == meshes_.end()) return;
+  vrml::Mesh& m = it->second.mesh;
+  m.positions = {};
+  m.normals = {};
+  m.colors = {};
+  m.texCoords = {};
+  m.indices = {};
+  it->second.arraysDropped = true;
+}
+
+void SceneTraversal::report(vrml::Severity severity, const vrml::SourceLocation& where,
+                            const std::string& message) {
+  vrml::Diagnostic d{severity, where, message};
+  std::string key = d.format();
+  if (!reported_.insert(std::move(key)).second) return;
+  diagnostics_.items.push_back(std::move(d));
+}
+
+}  // namespace gs::render

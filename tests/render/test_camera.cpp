@@ -1,0 +1,118 @@
+// Camera matrices, framing and the EXAMINE navigator: pure maths, no context.
+#include "render/camera.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cmath>
+
+using gs::render::Camera;
+using gs::render::ExamineNavigator;
+
+namespace {
+glm::vec3 project(const Camera& c, float aspect, glm::vec3 p) {
+  const glm::vec4 clip =
+      gs::render::projectionMatrix(c, aspect) * gs::render::viewMatrix(c) * glm::vec4(p, 1.0f);
+  return glm::vec3(clip) / clip.w;
+}
+bool near(glm::vec3 a, glm::vec3 b, float eps = 1e-4f) {
+  return glm::length(a - b) < eps;
+}
+}  // namespace
+
+TEST_CASE("the default camera is VRML97's default Viewpoint", "[render][camera]") {
+  Camera c;
+  CHECK(near(c.position, {0, 0, 10}));
+  CHECK(near(c.forward(), {0, 0, -1}));
+  CHECK(near(c.up(), {0, 1, 0}));
+  CHECK(c.fieldOfView == Approx(0.785398f));
+  // The origin projects to the centre of the viewport.
+  CHECK(near(project(c, 1.0f, {0, 0, 0}) * glm::vec3(1, 1, 0), {0, 0, 0}));
+}
+
+TEST_CASE("the field of view spans the smaller viewport side", "[render][camera]") {
+  Camera c;
+  c.position = {0, 0, 0};
+  const float edge = std::tan(c.fieldOfView * 0.5f);  // at distance 1
+  // Landscape: a point at the vertical edge of the field of view maps to y = 1.
+  CHECK(project(c, 2.0f, {0, edge, -1}).y == Approx(1.0f).margin(1e-4));
+  // Portrait: the horizontal extent is the field of view.
+  CHECK(project(c, 0.5f, {edge, 0, -1}).x == Approx(1.0f).margin(1e-4));
+  CHECK(gs::render::verticalFieldOfView(c.fieldOfView, 0.5f) > c.fieldOfView);
+}
+
+TEST_CASE("fitCamera frames the whole box and keeps the view direction", "[render][camera]") {
+  gs::vrml::Bounds b;
+  b.extend(glm::vec3(-3, -1, -2));
+  b.extend(glm::vec3(5, 2, 1));
+  Camera dir;
+  dir.orientation = glm::angleAxis(0.6f, glm::normalize(glm::vec3(1, 1, 0)));
+  for (float aspect : {0.5f, 1.0f, 2.0f}) {
+    const Camera c = gs::render::fitCamera(b, aspect, dir);
+    CHECK(near(c.forward(), dir.forward()));
+    CHECK(c.nearClip > 0.0f);
+    CHECK(c.farClip > c.nearClip);
+    for (int i = 0; i < 8; ++i) {
+      const glm::vec3 corner((i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y,
+                             (i & 4) ? b.max.z : b.min.z);
+      const glm::vec3 ndc = project(c, aspect, corner);
+      CHECK(std::abs(ndc.x) <= 1.0f);
+      CHECK(std::abs(ndc.y) <= 1.0f);
+      CHECK(std::abs(ndc.z) <= 1.0f);  // between the clip planes
+    }
+    // The box centre is in the middle of the view.
+    const glm::vec3 centre = project(c, aspect, b.center());
+    CHECK(std::abs(centre.x) < 1e-4f);
+    CHECK(std::abs(centre.y) < 1e-4f);
+  }
+  // An empty box changes nothing.
+  const Camera same = gs::render::fitCamera(gs::vrml::Bounds{}, 1.0f, dir);
+  CHECK(near(same.position, dir.position));
+}
+
+TEST_CASE("EXAMINE orbit keeps the distance and turns around the centre", "[render][camera]") {
+  ExamineNavigator nav;
+  Camera start;
+  nav.setHome(start, glm::vec3(0.0f));
+  // Half the viewport height turns a quarter turn: the camera ends on the -X or +X axis.
+  nav.orbit(100.0f, 0.0f, 200);
+  CHECK(nav.distance() == Approx(10.0f));
+  CHECK(std::abs(nav.camera().position.x) == Approx(10.0f).margin(1e-3));
+  CHECK(near(nav.camera().forward(), -glm::normalize(nav.camera().position), 1e-4f));
+  // Dragging right moves the scene right: the camera goes to the left (-X).
+  CHECK(nav.camera().position.x < 0.0f);
+  nav.orbit(0.0f, 50.0f, 200);  // pitch: still looking at the centre
+  CHECK(nav.distance() == Approx(10.0f));
+  CHECK(near(nav.camera().forward(), -glm::normalize(nav.camera().position), 1e-4f));
+  nav.reset();
+  CHECK(near(nav.camera().position, start.position));
+}
+
+TEST_CASE("EXAMINE pan and dolly", "[render][camera]") {
+  ExamineNavigator nav;
+  nav.setHome(Camera{}, glm::vec3(0.0f));
+  nav.pan(10.0f, 0.0f, 100);
+  // The scene follows the mouse: camera and centre move left together.
+  CHECK(nav.camera().position.x < 0.0f);
+  CHECK(nav.center().x == Approx(nav.camera().position.x));
+  CHECK(nav.distance() == Approx(10.0f));
+  nav.dolly(1.0f);
+  CHECK(nav.distance() == Approx(9.0f));
+  nav.dolly(-2.0f);
+  CHECK(nav.distance() == Approx(9.0f / 0.81f));
+  for (int i = 0; i < 1000; ++i) nav.dolly(10.0f);
+  CHECK(nav.distance() > 0.0f);
+}
+
+TEST_CASE("the navigator keeps clip planes around the scene", "[render][camera]") {
+  ExamineNavigator nav;
+  gs::vrml::Bounds b;
+  b.extend(glm::vec3(-1));
+  b.extend(glm::vec3(1));
+  nav.setHome(Camera{}, glm::vec3(0.0f));
+  nav.setSceneBounds(b);
+  for (int i = 0; i < 30; ++i) nav.dolly(-1.0f);  // far away
+  CHECK(nav.camera().farClip > nav.distance() + 1.0f);
+  CHECK(nav.camera().nearClip < nav.distance() - 1.7f);
+}

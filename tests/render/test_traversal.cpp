@@ -1,0 +1,268 @@
+// Scene traversal on the CPU: node maths, grouping nodes, LOD, lights, bindables, Inline.
+#include "render/traversal.hpp"
+#include "render_test_util.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+using namespace gs::test;
+using gs::render::Camera;
+using gs::render::SceneTraversal;
+using gs::render::TraversalFrame;
+
+namespace {
+bool near(glm::vec3 a, glm::vec3 b, float eps = 1e-4f) {
+  return glm::length(a - b) < eps;
+}
+glm::vec3 apply(const glm::mat4& m, glm::vec3 p) {
+  return glm::vec3(m * glm::vec4(p, 1.0f));
+}
+NodePtr box() {
+  return makeNode("TestBox", {{"size", sfVec3(2, 2, 2)}});
+}
+NodePtr shape(NodePtr g = box()) {
+  return makeNode("Shape", {{"geometry", sfNode(g)}});
+}
+gs::render::TraversalOptions options() {
+  gs::render::TraversalOptions o;
+  o.tessellator = &testTessellate;
+  return o;
+}
+constexpr float kHalfPi = 1.5707963f;
+}  // namespace
+
+TEST_CASE("Transform follows clause 6.52's order", "[render][traversal]") {
+  auto t = makeNode("Transform", {{"translation", sfVec3(1, 2, 3)},
+                                  {"rotation", sfRotation(0, 0, 1, kHalfPi)},
+                                  {"scale", sfVec3(2, 1, 1)},
+                                  {"center", sfVec3(1, 0, 0)}});
+  const glm::mat4 m = gs::render::transformMatrix(*t);
+  // The centre stays put under rotation and scale, then translates.
+  CHECK(near(apply(m, {1, 0, 0}), {2, 2, 3}));
+  // (2,0,0): 1 from the centre along X, scaled to 2, rotated to +Y, back by the centre.
+  CHECK(near(apply(m, {2, 0, 0}), {1 + 1, 2 + 2, 3}));
+  // scaleOrientation rotates the axes of the scale.
+  auto so = makeNode("Transform", {{"scale", sfVec3(2, 1, 1)},
+                                   {"scaleOrientation", sfRotation(0, 0, 1, kHalfPi)}});
+  const glm::mat4 s = gs::render::transformMatrix(*so);
+  CHECK(near(apply(s, {0, 1, 0}), {0, 2, 0}));
+  CHECK(near(apply(s, {1, 0, 0}), {1, 0, 0}));
+  // Missing fields read as their defaults: identity.
+  CHECK(gs::render::transformMatrix(*makeNode("Transform")) == glm::mat4(1.0f));
+}
+
+TEST_CASE("LOD level selection per clause 6.26", "[render][traversal]") {
+  using gs::render::selectLodLevel;
+  const std::vector<float> range{10.0f, 20.0f};
+  CHECK(selectLodLevel(range, 5.0f, 3) == 0);
+  CHECK(selectLodLevel(range, 10.0f, 3) == 1);
+  CHECK(selectLodLevel(range, 15.0f, 3) == 1);
+  CHECK(selectLodLevel(range, 25.0f, 3) == 2);
+  CHECK(selectLodLevel(range, 25.0f, 2) == 1);  // fewer levels than ranges + 1
+  CHECK(selectLodLevel({}, 100.0f, 3) == 0);
+  CHECK(selectLodLevel(range, 5.0f, 0) == -1);
+}
+
+TEST_CASE("Billboard rotations turn local Z towards the viewer", "[render][traversal]") {
+  using gs::render::billboardRotation;
+  // Around +Y, viewer on +X: local +Z turns to +X.
+  glm::mat4 r = billboardRotation({0, 1, 0}, {5, 3, 0}, {0, 1, 0});
+  CHECK(near(glm::mat3(r) * glm::vec3(0, 0, 1), {1, 0, 0}));
+  CHECK(near(glm::mat3(r) * glm::vec3(0, 1, 0), {0, 1, 0}));
+  // Viewer on the axis: no rotation.
+  CHECK(billboardRotation({0, 1, 0}, {0, 5, 0}, {0, 0, 1}) == glm::mat4(1.0f));
+  // Screen-aligned: Z to the viewer, Y to the viewer's up.
+  r = billboardRotation({0, 0, 0}, {0, 0, -5}, {1, 0, 0});
+  CHECK(near(glm::mat3(r) * glm::vec3(0, 0, 1), {0, 0, -1}));
+  CHECK(near(glm::mat3(r) * glm::vec3(0, 1, 0), {1, 0, 0}));
+}
+
+TEST_CASE("TextureTransform order is -C S R C T", "[render][traversal]") {
+  auto tt = makeNode(
+      "TextureTransform",
+      {{"translation", sfVec2(0.5f, 0)}, {"scale", sfVec2(2, 2)}, {"center", sfVec2(0.5f, 0.5f)}});
+  const glm::mat3 m = gs::render::textureTransformMatrix(*tt);
+  // (0,0): translate to (0.5,0), +C (1,0.5), rotate, scale (2,1), -C: (1.5,0.5)
+  const glm::vec3 p = m * glm::vec3(0, 0, 1);
+  CHECK(p.x == Approx(1.5f));
+  CHECK(p.y == Approx(0.5f));
+  auto rot = makeNode("TextureTransform", {{"rotation", sfFloat(kHalfPi)}});
+  const glm::vec3 q = gs::render::textureTransformMatrix(*rot) * glm::vec3(1, 0, 1);
+  CHECK(q.x == Approx(0.0f).margin(1e-6));
+  CHECK(q.y == Approx(1.0f));
+}
+
+TEST_CASE("URLs resolve against the file that names them", "[render][traversal]") {
+  using gs::render::resolveUrl;
+  CHECK(resolveUrl("/a/b/world.wrl", "tex.png") == "/a/b/tex.png");
+  CHECK(resolveUrl("/a/b/world.wrl", "../c/./x.wrl") == "/a/c/x.wrl");
+  CHECK(resolveUrl("/a/b/world.wrl", "/abs/x.wrl") == "/abs/x.wrl");
+  CHECK(resolveUrl("world.wrl", "sub/x.wrl") == "sub/x.wrl");
+  CHECK(resolveUrl("dir/world.wrl", "../../x.wrl") == "../x.wrl");
+  CHECK(resolveUrl("http://h.org/w/world.wrl", "t/x.png") == "http://h.org/w/t/x.png");
+  CHECK(resolveUrl("http://h.org/w/world.wrl", "/x.png") == "http://h.org/x.png");
+  CHECK(resolveUrl("http://h.org/w/world.wrl", "https://o.org/y.png") == "https://o.org/y.png");
+  CHECK(resolveUrl("file:///a/b/w.wrl", "c.wrl") == "file:///a/b/c.wrl");
+  using gs::render::localPathOfUrl;
+  CHECK(localPathOfUrl("/a/b.wrl") == "/a/b.wrl");
+  CHECK(localPathOfUrl("file:///a/my%20b.wrl") == "/a/my b.wrl");
+  CHECK(localPathOfUrl("http://h.org/x.wrl").empty());
+}
+
+TEST_CASE("traversal applies transforms and chooses Switch and LOD children",
+          "[render][traversal]") {
+  auto inner = shape();
+  auto far = shape(makeNode("TestBox", {{"size", sfVec3(1, 1, 1)}}));
+  auto root = makeNode(
+      "Transform",
+      {{"translation", sfVec3(10, 0, 0)},
+       {"children",
+        mfNode({makeNode("Group", {{"children", mfNode({inner})}}),
+                makeNode("Switch", {{"whichChoice", sfInt(1)},
+                                    {"choice", mfNode({shape(), shape(), shape()})}}),
+                makeNode("Switch", {{"whichChoice", sfInt(-1)}, {"choice", mfNode({shape()})}}),
+                makeNode("LOD", {{"range", mfFloat({20.0f})},
+                                 {"center", sfVec3(0, 0, 0)},
+                                 {"level", mfNode({shape(), far})}})})}});
+  auto unresolved = shape();
+  unresolved->unresolved = true;
+  auto unknown = makeNode("SomethingElse", {{"children", mfNode({shape()})}});
+  SceneTraversal t(makeScene({root, unresolved, unknown}), options());
+  TraversalFrame frame;
+  Camera viewer;  // at (0,0,10): 14.1 m from the LOD centre (10,0,0)
+  t.collect(viewer, frame);
+  REQUIRE(frame.shapes.size() == 3);  // Group child, Switch choice 1, LOD level 0
+  CHECK(frame.shapes[0].shape == inner.get());
+  CHECK(near(apply(frame.shapes[0].model, {0, 0, 0}), {10, 0, 0}));
+  viewer.position = {10, 0, 30};
+  t.collect(viewer, frame);
+  REQUIRE(frame.shapes.size() == 3);
+  CHECK(frame.shapes[2].shape == far.get());
+
+  const auto& b = t.worldBounds();
+  CHECK(near(b.min, {9, -1, -1}));
+  CHECK(near(b.max, {11, 1, 1}));
+}
+
+TEST_CASE("DirectionalLight lights only its siblings; point lights are global",
+          "[render][traversal]") {
+  auto lit = shape();
+  auto unlit = shape();
+  auto light = makeNode("DirectionalLight", {{"direction", sfVec3(0, -1, 0)}});
+  auto off = makeNode("DirectionalLight", {{"on", sfBool(false)}});
+  auto point = makeNode("PointLight", {{"location", sfVec3(1, 0, 0)}, {"radius", sfFloat(5)}});
+  auto group =
+      makeNode("Transform", {{"rotation", sfRotation(0, 0, 1, kHalfPi)},
+                             {"scale", sfVec3(2, 2, 2)},
+                             {"children", mfNode({makeNode("Group", {{"children", mfNode({lit})}}),
+                                                  light, off, point})}});
+  SceneTraversal t(makeScene({group, unlit}), options());
+  TraversalFrame frame;
+  t.collect(Camera{}, frame);
+  REQUIRE(frame.shapes.size() == 2);
+  const auto& a = frame.shapes[0];
+  REQUIRE(a.scopedLightCount == 1);
+  const auto& l = frame.lights[frame.scopedLights[a.scopedLightBegin]];
+  CHECK(l.type == gs::render::LightType::directional);
+  CHECK(near(l.direction, {1, 0, 0}));  // rotated by the Transform
+  CHECK(frame.shapes[1].scopedLightCount == 0);
+  REQUIRE(frame.globalLights.size() == 1);
+  const auto& p = frame.lights[frame.globalLights[0]];
+  CHECK(p.type == gs::render::LightType::point);
+  CHECK(near(p.location, {0, 2, 0}));
+  CHECK(p.radius == Approx(10.0f));  // scaled with the Transform
+}
+
+TEST_CASE("the first Viewpoint, NavigationInfo, Background and Fog are bound",
+          "[render][traversal]") {
+  SECTION("defaults") {
+    SceneTraversal t(makeScene({shape()}), options());
+    CHECK(t.viewpoints().empty());
+    const Camera c = t.boundViewpointCamera();
+    CHECK(near(c.position, {0, 0, 10}));
+    CHECK(c.fieldOfView == Approx(0.785398f));
+    CHECK(c.nearClip == Approx(0.125f));
+    CHECK(c.farClip > 11.0f);
+    CHECK(t.navigation().headlight);
+    CHECK(t.fog().visibilityRange == 0.0f);
+    CHECK(t.background().skyColor.size() == 1);
+  }
+  SECTION("inside Transforms") {
+    auto vp1 = makeNode("Viewpoint", {{"position", sfVec3(0, 0, 5)},
+                                      {"orientation", sfRotation(0, 1, 0, kHalfPi)},
+                                      {"description", sfString("first")}});
+    auto vp2 = makeNode("Viewpoint", {{"position", sfVec3(1, 1, 1)}});
+    auto nav = makeNode("NavigationInfo", {{"headlight", sfBool(false)},
+                                           {"avatarSize", mfFloat({1.0f, 1.6f, 0.75f})},
+                                           {"type", mfString({"EXAMINE"})}});
+    auto fog = makeNode("Fog", {{"fogType", sfString("EXPONENTIAL")},
+                                {"visibilityRange", sfFloat(50)},
+                                {"color", sfColor(1, 0, 0)}});
+    auto root = makeNode("Transform", {{"translation", sfVec3(0, 10, 0)},
+                                       {"scale", sfVec3(2, 2, 2)},
+                                       {"children", mfNode({vp1, nav, fog, shape()})}});
+    SceneTraversal t(makeScene({root, vp2, makeNode("NavigationInfo")}), options());
+    REQUIRE(t.viewpoints().size() == 2);
+    CHECK(t.viewpoints()[0].description == "first");
+    CHECK(t.viewpoints()[1].description == "Viewpoint 2");
+    const Camera c = t.boundViewpointCamera();
+    CHECK(near(c.position, {0, 10, 10}));
+    CHECK(near(c.forward(), {-1, 0, 0}));
+    CHECK(c.nearClip == Approx(0.5f));
+    CHECK_FALSE(t.navigation().headlight);
+    CHECK(t.navigation().type == std::vector<std::string>{"EXAMINE"});
+    CHECK(t.fog().exponential);
+    CHECK(t.fog().visibilityRange == Approx(100.0f));
+  }
+}
+
+TEST_CASE("Inline loads once, resolves relative URLs and survives failures",
+          "[render][traversal]") {
+  std::vector<std::string> loads;
+  gs::render::TraversalOptions o = options();
+  o.inlineLoader = [&](const std::string& url) {
+    loads.push_back(url);
+    gs::vrml::Scene s;
+    s.url = url;
+    if (url == "/w/sub/a.wrl")
+      s.rootNodes = {makeNode("Inline", {{"url", mfString({"../b.wrl"})}}), shape()};
+    else if (url == "/w/b.wrl")
+      s.rootNodes = {shape(), makeNode("Inline", {{"url", mfString({"sub/a.wrl"})}})};
+    else
+      s.diagnostics.error({url, 0, 0}, "cannot read " + url + ": no such file");
+    return s;
+  };
+  auto root = makeNode("Inline", {{"url", mfString({"missing.wrl", "sub/a.wrl"})}});
+  SceneTraversal t(
+      makeScene({root, makeNode("Inline", {{"url", mfString({"gone.wrl"})}})}, "/w/main.wrl"), o);
+  TraversalFrame frame;
+  t.collect(Camera{}, frame);
+  // a.wrl's shape and b.wrl's shape; b.wrl inlining a.wrl again is a recursion: cut.
+  CHECK(frame.shapes.size() == 2);
+  CHECK(*frame.shapes[0].baseUrl == "/w/b.wrl");
+  CHECK(*frame.shapes[1].baseUrl == "/w/sub/a.wrl");
+  t.collect(Camera{}, frame);
+  CHECK(loads ==
+        std::vector<std::string>{"/w/missing.wrl", "/w/sub/a.wrl", "/w/b.wrl", "/w/gone.wrl"});
+  bool recursion = false, missing = false;
+  for (const auto& d : t.diagnostics().items) {
+    if (d.message.find("includes itself") != std::string::npos) recursion = true;
+    if (d.message.find("gone.wrl") != std::string::npos) missing = true;
+  }
+  CHECK(recursion);
+  CHECK(missing);
+}
+
+TEST_CASE("the default Inline loader reads local files only", "[render][traversal]") {
+  gs::render::TraversalOptions o = options();
+  SceneTraversal t(
+      makeScene({makeNode("Inline", {{"url", mfString({"http://example.org/x.wrl"})}})}), o);
+  TraversalFrame frame;
+  t.collect(Camera{}, frame);
+  CHECK(frame.shapes.empty());
+  REQUIRE(t.diagnostics().items.size() == 1);
+  CHECK(t.diagnostics().items[0].message.find("only local files") != std::string::npos);
+}

@@ -1,0 +1,136 @@
+// Whole worlds through the real parser and tessellator, rendered off-screen at 64x64:
+// ImageTexture files, Inline with relative URLs, Fog, PointLight radius.
+#include "render/context.hpp"
+#include "render/image.hpp"
+#include "render/scene_renderer.hpp"
+#include "vrml/parser.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+namespace fs = std::filesystem;
+using gs::render::Image;
+
+namespace {
+
+constexpr int kSize = 64;
+
+fs::path worldDir() {
+  const fs::path dir = fs::temp_directory_path() / "gs_render_worlds";
+  fs::create_directories(dir / "sub");
+  return dir;
+}
+
+void writeText(const fs::path& p, const std::string& text) {
+  std::ofstream(p) << text;
+}
+
+struct Rendered {
+  Image image;
+  gs::vrml::Diagnostics diagnostics;
+};
+
+Rendered renderFile(const fs::path& file) {
+  static auto context = gs::render::createOffscreenContext(kSize, kSize);
+  context->makeCurrent();
+  auto scene = std::make_shared<gs::vrml::Scene>(gs::vrml::loadVrmlFile(file.string()));
+  for (const auto& d : scene->diagnostics.items) WARN(d.format());
+  gs::render::SceneRenderer r(scene);
+  r.draw(r.initialCamera(1.0f), 0, 0, kSize, kSize);
+  Rendered out{gs::render::readPixels(0, 0, kSize, kSize), r.diagnostics()};
+  if (const char* dir = std::getenv("GS_RENDER_TEST_DUMP"))
+    gs::render::writePng((fs::path(dir) / (file.stem().string() + ".png")).string(), out.image);
+  return out;
+}
+
+bool close(const std::uint8_t* p, int r, int g, int b, int tolerance) {
+  return std::abs(p[0] - r) <= tolerance && std::abs(p[1] - g) <= tolerance &&
+         std::abs(p[2] - b) <= tolerance;
+}
+
+}  // namespace
+
+TEST_CASE("ImageTexture reads a PNG relative to the world", "[render][offscreen][world]") {
+  const fs::path dir = worldDir();
+  gs::render::writePng((dir / "sub" / "green.png").string(), Image(2, 2, 0, 255, 0));
+  writeText(dir / "textured.wrl", R"(#VRML V2.0 utf8
+Viewpoint { position 0 0 3 }
+Shape {
+  appearance Appearance { texture ImageTexture { url [ "missing.png" "sub/green.png" ] } }
+  geometry Box { size 4 4 1 }
+}
+)");
+  const Rendered r = renderFile(dir / "textured.wrl");
+  CHECK(close(r.image.pixel(32, 32), 0, 255, 0, 4));
+  CHECK(r.diagnostics.items.empty());  // the second URL worked
+
+  writeText(dir / "untextured.wrl", R"(#VRML V2.0 utf8
+Viewpoint { position 0 0 3 }
+Shape {
+  appearance Appearance { texture ImageTexture { url "nowhere.png" } }
+  geometry Box { size 4 4 1 }
+}
+)");
+  const Rendered missing = renderFile(dir / "untextured.wrl");
+  CHECK(close(missing.image.pixel(32, 32), 255, 255, 255, 4));  // unlit white
+  REQUIRE(missing.diagnostics.items.size() == 1);
+  CHECK(missing.diagnostics.items[0].message.find("nowhere.png") != std::string::npos);
+}
+
+TEST_CASE("Inline resolves URLs against the inlined file", "[render][offscreen][world]") {
+  const fs::path dir = worldDir();
+  writeText(dir / "sub" / "part.wrl", R"(#VRML V2.0 utf8
+Inline { url "../part2.wrl" }
+)");
+  writeText(dir / "part2.wrl", R"(#VRML V2.0 utf8
+Shape {
+  appearance Appearance { material Material { emissiveColor 1 0 0 diffuseColor 0 0 0 } }
+  geometry Box { }
+}
+)");
+  writeText(dir / "inliner.wrl", R"(#VRML V2.0 utf8
+NavigationInfo { headlight FALSE }
+Transform { translation 0 0 -1 children Inline { url "sub/part.wrl" } }
+)");
+  const Rendered r = renderFile(dir / "inliner.wrl");
+  CHECK(close(r.image.pixel(32, 32), 255, 0, 0, 3));
+  CHECK(close(r.image.pixel(0, 0), 0, 0, 0, 3));
+}
+
+TEST_CASE("LINEAR fog blends towards the fog colour with distance", "[render][offscreen][world]") {
+  const fs::path dir = worldDir();
+  // The box's front face is 9 m from the viewer: f0 = (20 - 9) / 20 = 0.55.
+  writeText(dir / "fog.wrl", R"(#VRML V2.0 utf8
+Viewpoint { position 0 0 10 }
+Fog { color 0 0 0 fogType "LINEAR" visibilityRange 20 }
+Shape {
+  appearance Appearance { material Material { emissiveColor 1 1 1 diffuseColor 0 0 0 } }
+  geometry Box { }
+}
+)");
+  const Rendered r = renderFile(dir / "fog.wrl");
+  INFO("centre " << int(r.image.pixel(32, 32)[0]));
+  CHECK(close(r.image.pixel(32, 32), 140, 140, 140, 4));
+}
+
+TEST_CASE("a PointLight lights only within its radius", "[render][offscreen][world]") {
+  const fs::path dir = worldDir();
+  writeText(dir / "pointlight.wrl", R"(#VRML V2.0 utf8
+NavigationInfo { headlight FALSE }
+Viewpoint { position 0 0 5 }
+PointLight { location 0 0 1 radius 1.5 }
+Shape {
+  appearance Appearance { material Material { diffuseColor 1 1 1 ambientIntensity 0 } }
+  geometry IndexedFaceSet {
+    coord Coordinate { point [ -4 -4 0, 4 -4 0, 4 4 0, -4 4 0 ] }
+    coordIndex [ 0 1 2 3 -1 ]
+  }
+}
+)");
+  const Rendered r = renderFile(dir / "pointlight.wrl");
+  CHECK(close(r.image.pixel(32, 32), 255, 255, 255, 4));  // straight below the light
+  CHECK(close(r.image.pixel(4, 4), 0, 0, 0, 2));          // beyond the radius
+}

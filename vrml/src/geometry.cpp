@@ -1,0 +1,177 @@
+// tessellate(): dispatch on the geometry node's type, plus the shared helpers of
+// geometry_internal.hpp (problem log, field helpers, mesh builder).
+#include "vrml/geometry.hpp"
+
+#include "geometry_internal.hpp"
+
+#include <cmath>
+#include <cstring>
+
+namespace gs::vrml {
+
+namespace geometry_detail {
+
+bool finite(const glm::vec2& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y);
+}
+bool finite(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+glm::vec4 rgba(const glm::vec3& c) {
+  auto clamp01 = [](float x) { return x > 0.0f ? (x < 1.0f ? x : 1.0f) : 0.0f; };  // NaN -> 0
+  return {clamp01(c.r), clamp01(c.g), clamp01(c.b), 1.0f};
+}
+
+void ProblemLog::add(const std::string& message) {
+  if (count_++ == 0) first_ = message;
+}
+
+void ProblemLog::flush() {
+  if (flushed_ || count_ == 0 || diag_ == nullptr) return;
+  flushed_ = true;
+  std::string msg = node_.typeName() + ": " + first_;
+  if (count_ > 1) msg += " (and " + std::to_string(count_ - 1) + " more problems in this node)";
+  diag_->warning(node_.location, std::move(msg));
+}
+
+MeshBuilder::MeshBuilder(Primitive primitive, bool normals, bool colors, bool texCoords)
+    : normals_(normals), colors_(colors), texCoords_(texCoords) {
+  mesh_.primitive = primitive;
+}
+
+namespace {
+
+std::uint64_t mix(std::uint64_t h, const void* data, std::size_t bytes) {
+  std::uint32_t w[4];
+  std::memcpy(w, data, bytes);
+  for (std::size_t i = 0; i < bytes / 4; ++i) {
+    h = (h ^ w[i]) * 0x9E3779B97F4A7C15ull;
+    h ^= h >> 32;
+  }
+  return h;
+}
+
+std::uint64_t finalMix(std::uint64_t h) {
+  h ^= h >> 33;
+  h *= 0xff51afd7ed558ccdull;
+  h ^= h >> 33;
+  return h;
+}
+
+}  // namespace
+
+std::uint64_t MeshBuilder::hashOf(const Vertex& v) const {
+  std::uint64_t h = mix(0x1234567ull, &v.position, sizeof v.position);
+  if (normals_) h = mix(h, &v.normal, sizeof v.normal);
+  if (colors_) h = mix(h, &v.color, sizeof v.color);
+  if (texCoords_) h = mix(h, &v.texCoord, sizeof v.texCoord);
+  return finalMix(h);
+}
+
+std::uint64_t MeshBuilder::hashOfStored(std::uint32_t i) const {
+  std::uint64_t h = mix(0x1234567ull, &mesh_.positions[i], sizeof(glm::vec3));
+  if (normals_) h = mix(h, &mesh_.normals[i], sizeof(glm::vec3));
+  if (colors_) h = mix(h, &mesh_.colors[i], sizeof(glm::vec4));
+  if (texCoords_) h = mix(h, &mesh_.texCoords[i], sizeof(glm::vec2));
+  return finalMix(h);
+}
+
+bool MeshBuilder::sameAsStored(std::uint32_t i, const Vertex& v) const {
+  return std::memcmp(&mesh_.positions[i], &v.position, sizeof v.position) == 0 &&
+         (!normals_ || std::memcmp(&mesh_.normals[i], &v.normal, sizeof v.normal) == 0) &&
+         (!colors_ || std::memcmp(&mesh_.colors[i], &v.color, sizeof v.color) == 0) &&
+         (!texCoords_ || std::memcmp(&mesh_.texCoords[i], &v.texCoord, sizeof v.texCoord) == 0);
+}
+
+void MeshBuilder::grow(std::size_t minSlots) {
+  std::size_t size = 64;
+  while (size < minSlots) size *= 2;
+  if (size <= slots_.size()) return;
+  slots_.assign(size, 0);
+  const std::size_t mask = size - 1;
+  const auto n = static_cast<std::uint32_t>(mesh_.positions.size());
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const std::uint64_t h = hashOfStored(i);
+    std::size_t at = static_cast<std::size_t>(h) & mask;
+    while (slots_[at] != 0) at = (at + 1) & mask;
+    slots_[at] = (h & 0xffffffff00000000ull) | (std::uint64_t{i} + 1);
+  }
+}
+
+std::uint32_t MeshBuilder::push(const Vertex& v) {
+  const auto i = static_cast<std::uint32_t>(mesh_.positions.size());
+  mesh_.positions.push_back(v.position);
+  if (normals_) mesh_.normals.push_back(v.normal);
+  if (colors_) mesh_.colors.push_back(v.color);
+  if (texCoords_) mesh_.texCoords.push_back(v.texCoord);
+  return i;
+}
+
+std::uint32_t MeshBuilder::add(const Vertex& v) {
+  if (2 * (mesh_.positions.size() + 1) > slots_.size()) grow(4 * (mesh_.positions.size() + 1));
+  const std::uint64_t h = hashOf(v);
+  const std::size_t mask = slots_.size() - 1;
+  for (std::size_t at = static_cast<std::size_t>(h) & mask;; at = (at + 1) & mask) {
+    const std::uint64_t slot = slots_[at];
+    if (slot == 0) {
+      const std::uint32_t i = push(v);
+      slots_[at] = (h & 0xffffffff00000000ull) | (std::uint64_t{i} + 1);
+      return i;
+    }
+    const auto i = static_cast<std::uint32_t>((slot & 0xffffffffull) - 1);
+    if ((slot >> 32) == (h >> 32) && sameAsStored(i, v)) return i;
+  }
+}
+
+void MeshBuilder::reserve(std::size_t vertices, std::size_t indices) {
+  mesh_.positions.reserve(vertices);
+  if (normals_) mesh_.normals.reserve(vertices);
+  if (colors_) mesh_.colors.reserve(vertices);
+  if (texCoords_) mesh_.texCoords.reserve(vertices);
+  mesh_.indices.reserve(indices);
+  grow(2 * vertices + 2);
+}
+
+Mesh MeshBuilder::finish(bool solid) {
+  Mesh m = std::move(mesh_);
+  mesh_ = Mesh{};
+  mesh_.primitive = m.primitive;
+  slots_.clear();
+  m.solid = solid;
+  for (const glm::vec3& p : m.positions) m.bounds.extend(p);
+  return m;
+}
+
+}  // namespace geometry_detail
+
+Mesh tessellate(const Node& geometry, Diagnostics* diag) {
+  using namespace geometry_detail;
+  if (geometry.unresolved) return {};
+  ProblemLog log(geometry, diag);
+  const std::string& t = geometry.typeName();
+  Mesh m;
+  if (t == "Box")
+    m = tessellateBox(geometry, log);
+  else if (t == "Cone")
+    m = tessellateCone(geometry, log);
+  else if (t == "Cylinder")
+    m = tessellateCylinder(geometry, log);
+  else if (t == "Sphere")
+    m = tessellateSphere(geometry, log);
+  else if (t == "IndexedFaceSet")
+    m = tessellateIndexedFaceSet(geometry, log);
+  else if (t == "IndexedLineSet")
+    m = tessellateIndexedLineSet(geometry, log);
+  else if (t == "PointSet")
+    m = tessellatePointSet(geometry, log);
+  else if (t == "ElevationGrid")
+    m = tessellateElevationGrid(geometry, log);
+  else if (t == "Extrusion")
+    m = tessellateExtrusion(geometry, log);
+  // Text (6.47) and every non-geometry node: an empty mesh.
+  log.flush();
+  return m;
+}
+
+}  // namespace gs::vrml

@@ -1,0 +1,331 @@
+// ElevationGrid (6.18) and Extrusion (6.19): both become a polygon soup of quadrilaterals
+// over a grid of shared points (plus the Extrusion's caps) and go through
+// buildPolygonMesh, so creaseAngle, ccw and degenerate quads behave as in IndexedFaceSet.
+#include "geometry_internal.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+namespace gs::vrml::geometry_detail {
+
+namespace {
+
+constexpr glm::vec4 kWhite(1.0f);
+
+/// Appends one face of corners (point ids) when all its points are finite; returns false
+/// (adding nothing) otherwise.
+bool addFace(PolygonSoup& soup, std::initializer_list<std::uint32_t> ids) {
+  for (std::uint32_t id : ids)
+    if (!finite(soup.points[id])) return false;
+  soup.corners.insert(soup.corners.end(), ids);
+  soup.endFace();
+  return true;
+}
+
+bool positiveSpacing(float v, const char* name, ProblemLog& log) {
+  if (std::isfinite(v) && v > 0.0f) return true;
+  log.add(std::string(name) + " must be > 0, got " + std::to_string(v) + "; not drawn");
+  return false;
+}
+
+}  // namespace
+
+Mesh tessellateElevationGrid(const Node& node, ProblemLog& log) {
+  const std::int32_t xDim = node.get<FieldType::SFInt32>("xDimension", 0);
+  const std::int32_t zDim = node.get<FieldType::SFInt32>("zDimension", 0);
+  const float xSpacing = node.get<FieldType::SFFloat>("xSpacing", 1.0f);
+  const float zSpacing = node.get<FieldType::SFFloat>("zSpacing", 1.0f);
+  const auto& height = fieldOr<FieldType::MFFloat>(node, "height");
+  if (xDim < 0 || zDim < 0) log.add("xDimension and zDimension must be >= 0");
+  if (xDim < 2 || zDim < 2) return {};
+  if (!positiveSpacing(xSpacing, "xSpacing", log) || !positiveSpacing(zSpacing, "zSpacing", log))
+    return {};
+
+  // Use only the rows the height array really has (never trust xDimension * zDimension).
+  const auto nx = static_cast<std::size_t>(xDim);
+  std::size_t nz = static_cast<std::size_t>(zDim);
+  if (static_cast<std::uint64_t>(xDim) * static_cast<std::uint64_t>(zDim) > height.size()) {
+    log.add("height has " + std::to_string(height.size()) + " values but xDimension * " +
+            "zDimension = " + std::to_string(static_cast<std::int64_t>(xDim) * zDim) +
+            "; only complete rows are used");
+    nz = height.size() / nx;
+    if (nz < 2) return {};
+  }
+
+  std::vector<glm::vec3> points(nx * nz);
+  for (std::size_t j = 0; j < nz; ++j)
+    for (std::size_t i = 0; i < nx; ++i)
+      points[i + j * nx] = {xSpacing * static_cast<float>(i), height[i + j * nx],
+                            zSpacing * static_cast<float>(j)};
+
+  PolygonSoup soup;
+  soup.points = points;
+  soup.ccw = node.get<FieldType::SFBool>("ccw", true);
+  soup.solid = node.get<FieldType::SFBool>("solid", true);
+  soup.creaseAngle = node.get<FieldType::SFFloat>("creaseAngle", 0.0f);
+  const auto& colors = childArray<FieldType::MFColor>(node, "color", "color");
+  const auto& normals = childArray<FieldType::MFVec3f>(node, "normal", "vector");
+  const auto& texPoints = childArray<FieldType::MFVec2f>(node, "texCoord", "point");
+  const bool haveColor = node.sfnode("color") != nullptr;
+  const bool haveNormal = node.sfnode("normal") != nullptr;
+  const bool haveTex = node.sfnode("texCoord") != nullptr;
+  const bool colorPerVertex = node.get<FieldType::SFBool>("colorPerVertex", true);
+  const bool normalPerVertex = node.get<FieldType::SFBool>("normalPerVertex", true);
+  const std::size_t quads = (nx - 1) * (nz - 1);
+  if (haveColor && colors.size() < (colorPerVertex ? nx * nz : quads))
+    log.add("Color has " + std::to_string(colors.size()) + " colours, fewer than the grid needs");
+  if (haveNormal && normals.size() < (normalPerVertex ? nx * nz : quads))
+    log.add("Normal has " + std::to_string(normals.size()) + " vectors, fewer than the grid needs");
+  if (haveTex && texPoints.size() < nx * nz)
+    log.add("TextureCoordinate has " + std::to_string(texPoints.size()) +
+            " points, fewer than the grid needs");
+
+  soup.corners.reserve(4 * quads);
+  soup.faceStart.reserve(quads + 1);
+  const glm::vec3 kNoNormal(std::numeric_limits<float>::quiet_NaN());
+  bool skipped = false;
+  for (std::size_t j = 0; j + 1 < nz; ++j) {
+    for (std::size_t i = 0; i + 1 < nx; ++i) {
+      // Counterclockwise seen from +Y: normals point up when ccw is TRUE.
+      const std::size_t ci[4] = {i, i, i + 1, i + 1}, cj[4] = {j, j + 1, j + 1, j};
+      const auto id = [&](int c) { return static_cast<std::uint32_t>(ci[c] + cj[c] * nx); };
+      if (!addFace(soup, {id(0), id(1), id(2), id(3)})) {
+        skipped = true;
+        continue;
+      }
+      const std::size_t q = i + j * (nx - 1);
+      for (int c = 0; c < 4; ++c) {
+        const std::size_t v = id(c);
+        if (haveColor) {
+          const std::size_t k = colorPerVertex ? v : q;
+          soup.colors.push_back(k < colors.size() ? rgba(colors[k]) : kWhite);
+        }
+        if (haveNormal) {
+          const std::size_t k = normalPerVertex ? v : q;
+          soup.normals.push_back(k < normals.size() ? normals[k] : kNoNormal);
+        }
+        if (haveTex)
+          soup.texCoords.push_back(v < texPoints.size() && finite(texPoints[v]) ? texPoints[v]
+                                                                                : glm::vec2(0.0f));
+        else
+          soup.texCoords.emplace_back(static_cast<float>(ci[c]) / static_cast<float>(nx - 1),
+                                      static_cast<float>(cj[c]) / static_cast<float>(nz - 1));
+      }
+    }
+  }
+  if (skipped) log.add("height has values that are not finite numbers; their quads are skipped");
+  return buildPolygonMesh(soup);
+}
+
+// ---------------------------------------------------------------------------------------
+// Extrusion
+
+namespace {
+
+bool isZero(const glm::dvec3& v) {
+  return glm::dot(v, v) < 1e-24;
+}
+
+/// Rotation matrix of `angle` radians about `axis` (identity when the axis is zero).
+glm::dmat3 rotation(glm::dvec3 axis, double angle) {
+  const double len = glm::length(axis);
+  if (!(len > 0.0) || !std::isfinite(len) || !std::isfinite(angle)) return glm::dmat3(1.0);
+  axis /= len;
+  const double c = std::cos(angle), s = std::sin(angle), t = 1.0 - c;
+  const double x = axis.x, y = axis.y, z = axis.z;
+  // Column-major: m[col][row].
+  return glm::dmat3(t * x * x + c, t * x * y + s * z, t * x * z - s * y,  //
+                    t * x * y - s * z, t * y * y + c, t * y * z + s * x,  //
+                    t * x * z + s * y, t * y * z - s * x, t * z * z + c);
+}
+
+/// The rotation taking +Y onto the unit vector `y`, applied to +Z (clause 6.19: the SCP of
+/// an entirely collinear spine). Turning +Y onto -Y is done about the X axis.
+glm::dvec3 collinearZ(const glm::dvec3& y) {
+  const glm::dvec3 axis = glm::cross(glm::dvec3(0, 1, 0), y);
+  const double angle = std::acos(std::clamp(y.y, -1.0, 1.0));
+  if (isZero(axis)) return y.y > 0.0 ? glm::dvec3(0, 0, 1) : glm::dvec3(0, 0, -1);
+  return rotation(axis, angle) * glm::dvec3(0, 0, 1);
+}
+
+/// The spine-aligned cross-section planes (clause 6.19): per spine point the X, Y and Z
+/// axes, each unit length and right-handed.
+std::vector<glm::dmat3> spineFrames(const std::vector<glm::dvec3>& spine, bool closed) {
+  const std::size_t n = spine.size();
+  std::vector<glm::dvec3> ys(n), zs(n);
+  std::vector<bool> zDefined(n, false);
+  glm::dvec3 firstY(0, 1, 0);
+  for (std::size_t i = 1; i < n; ++i) {
+    if (!isZero(spine[i] - spine[i - 1])) {
+      firstY = glm::normalize(spine[i] - spine[i - 1]);
+      break;
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    glm::dvec3 y, z(0.0);
+    const bool end = (i == 0 || i == n - 1);
+    if (end && closed) {
+      y = spine[1] - spine[n - 2];
+      z = glm::cross(spine[1] - spine[0], spine[n - 2] - spine[0]);
+    } else if (i == 0) {
+      y = spine[1] - spine[0];
+    } else if (i == n - 1) {
+      y = spine[n - 1] - spine[n - 2];
+    } else {
+      y = spine[i + 1] - spine[i - 1];
+      z = glm::cross(spine[i + 1] - spine[i], spine[i - 1] - spine[i]);
+    }
+    ys[i] = !isZero(y) ? glm::normalize(y) : (i == 0 ? firstY : ys[i - 1]);
+    zDefined[i] = !isZero(z);
+    if (zDefined[i]) zs[i] = glm::normalize(z);
+  }
+  // Undefined Z: the first defined one before any, else the previous; none at all means
+  // the whole spine is collinear.
+  const auto first = std::find(zDefined.begin(), zDefined.end(), true);
+  const glm::dvec3 z0 = first != zDefined.end()
+                            ? zs[static_cast<std::size_t>(first - zDefined.begin())]
+                            : collinearZ(firstY);
+  std::vector<glm::dmat3> frames(n);
+  glm::dvec3 prevZ = z0;
+  for (std::size_t i = 0; i < n; ++i) {
+    glm::dvec3 z = zDefined[i] ? zs[i] : prevZ;
+    if (i > 0 && glm::dot(z, prevZ) < 0.0) z = -z;  // keep Z from flipping along the spine
+    prevZ = z;
+    const glm::dvec3 y = ys[i];
+    glm::dvec3 zz = z - glm::dot(z, y) * y;  // make exactly perpendicular to Y
+    if (isZero(zz))
+      zz = glm::cross(std::abs(y.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0), y);
+    zz = glm::normalize(zz);
+    frames[i] = glm::dmat3(glm::cross(y, zz), y, zz);
+  }
+  return frames;
+}
+
+/// Cumulative length along a polyline, normalized to [0, 1] (uniform when it has none).
+template <class V>
+std::vector<float> arcLength(const std::vector<V>& p, std::size_t n) {
+  std::vector<double> d(n, 0.0);
+  for (std::size_t i = 1; i < n; ++i) {
+    using D = glm::vec<V::length(), double>;
+    d[i] = d[i - 1] + glm::length(D(p[i]) - D(p[i - 1]));
+  }
+  std::vector<float> out(n);
+  for (std::size_t i = 0; i < n; ++i)
+    out[i] = d[n - 1] > 0.0 ? static_cast<float>(d[i] / d[n - 1])
+                            : static_cast<float>(i) / static_cast<float>(n - 1);
+  return out;
+}
+
+}  // namespace
+
+Mesh tessellateExtrusion(const Node& node, ProblemLog& log) {
+  // The clause 6.19 defaults, for nodes whose type lacks a field (the node table has them).
+  static const std::vector<glm::vec3> kSpine = {{0, 0, 0}, {0, 1, 0}};
+  static const std::vector<glm::vec2> kSquare = {{1, 1}, {1, -1}, {-1, -1}, {-1, 1}, {1, 1}};
+  static const std::vector<glm::vec2> kScale = {{1, 1}};
+  static const std::vector<Rotation> kOrientation = {{0, 0, 1, 0}};
+  const auto& spineIn = fieldOr<FieldType::MFVec3f>(node, "spine", kSpine);
+  const auto& cs = fieldOr<FieldType::MFVec2f>(node, "crossSection", kSquare);
+  const auto& scale = fieldOr<FieldType::MFVec2f>(node, "scale", kScale);
+  const auto& orientation = fieldOr<FieldType::MFRotation>(node, "orientation", kOrientation);
+  std::size_t ns = spineIn.size();
+  const std::size_t nc = cs.size();
+  if (ns < 2 || nc < 2) return {};
+  for (const glm::vec3& p : spineIn)
+    if (!finite(p)) return log.add("spine has a value that is not a finite number"), Mesh{};
+  for (const glm::vec2& p : cs)
+    if (!finite(p)) return log.add("crossSection has a value that is not a finite number"), Mesh{};
+  if (ns * nc > kMaxExtrusionPoints) {
+    log.add(std::to_string(ns) + " spine x " + std::to_string(nc) +
+            " crossSection points is too many; the spine is cut short");
+    ns = kMaxExtrusionPoints / nc;
+    if (ns < 2) return {};
+  }
+  if (scale.size() != 1 && scale.size() < ns)
+    log.add("scale has " + std::to_string(scale.size()) + " values for " + std::to_string(ns) +
+            " spine points; the first is used throughout");
+  if (orientation.size() != 1 && orientation.size() < ns)
+    log.add("orientation has " + std::to_string(orientation.size()) + " values for " +
+            std::to_string(ns) + " spine points; the first is used throughout");
+
+  std::vector<glm::dvec3> spine(spineIn.begin(), spineIn.begin() + static_cast<std::ptrdiff_t>(ns));
+  const bool spineClosed = ns > 2 && spine.front() == spine.back();
+  const bool csClosed = nc > 2 && cs.front() == cs.back();
+  const std::vector<glm::dmat3> frames = spineFrames(spine, spineClosed);
+
+  // Grid points: ring i (spine point), column j (cross-section point). A closed
+  // cross-section's last column is its first; a closed spine's last ring is its first
+  // when the two rings coincide. Shared points let creaseAngle smooth across the seams.
+  const std::size_t cols = csClosed ? nc - 1 : nc;
+  std::vector<glm::vec3> ring(cols);
+  std::vector<glm::vec3> points;
+  points.reserve(ns * cols);
+  for (std::size_t i = 0; i < ns; ++i) {
+    const glm::vec2 sc = scale.size() >= ns ? scale[i] : (scale.empty() ? glm::vec2(1) : scale[0]);
+    const Rotation r = orientation.size() >= ns
+                           ? orientation[i]
+                           : (orientation.empty() ? Rotation(0, 0, 1, 0) : orientation[0]);
+    const glm::dmat3 m = frames[i] * rotation(glm::dvec3(r), double{r.w});
+    for (std::size_t j = 0; j < cols; ++j) {
+      const glm::dvec3 local(double{sc.x} * cs[j].x, 0.0, double{sc.y} * cs[j].y);
+      ring[j] = glm::vec3(spine[i] + m * local);
+    }
+    if (i == ns - 1 && spineClosed && std::equal(ring.begin(), ring.end(), points.begin())) break;
+    points.insert(points.end(), ring.begin(), ring.end());
+  }
+  const std::size_t rings = points.size() / cols;
+  auto id = [&](std::size_t i, std::size_t j) {
+    return static_cast<std::uint32_t>((i % rings) * cols + (j % cols));
+  };
+
+  PolygonSoup soup;
+  soup.points = points;
+  soup.ccw = node.get<FieldType::SFBool>("ccw", true);
+  soup.convex = node.get<FieldType::SFBool>("convex", true);
+  soup.solid = node.get<FieldType::SFBool>("solid", true);
+  soup.creaseAngle = node.get<FieldType::SFFloat>("creaseAngle", 0.0f);
+  const std::vector<float> s = arcLength(cs, nc), t = arcLength(spine, ns);
+  bool skipped = false;
+  soup.corners.reserve(4 * (ns - 1) * (nc - 1) + 2 * cols);
+  // Sides: with the crossSection counterclockwise seen from +Y (as the default square
+  // is) and ccw TRUE, the quads face outwards.
+  for (std::size_t i = 0; i + 1 < ns; ++i) {
+    for (std::size_t j = 0; j + 1 < nc; ++j) {
+      if (!addFace(soup, {id(i, j), id(i, j + 1), id(i + 1, j + 1), id(i + 1, j)})) {
+        skipped = true;
+        continue;
+      }
+      soup.texCoords.insert(
+          soup.texCoords.end(),
+          {{s[j], t[i]}, {s[j + 1], t[i]}, {s[j + 1], t[i + 1]}, {s[j], t[i + 1]}});
+    }
+  }
+  // Caps: the crossSection polygon at the first ring (reversed, facing backwards) and
+  // at the last ring. Texture: the crossSection's bounding box scaled uniformly so that
+  // its larger side spans 0..1, S along X and T along Z.
+  glm::vec2 lo = cs[0], hi = cs[0];
+  for (std::size_t j = 0; j < cols; ++j) lo = glm::min(lo, cs[j]), hi = glm::max(hi, cs[j]);
+  const float big = std::max(hi.x - lo.x, hi.y - lo.y);
+  auto cap = [&](std::size_t i, bool reversed) {
+    std::vector<std::uint32_t> ids(cols);
+    for (std::size_t k = 0; k < cols; ++k) ids[k] = id(i, reversed ? cols - 1 - k : k);
+    for (std::uint32_t p : ids)
+      if (!finite(points[p])) return void(skipped = true);
+    soup.corners.insert(soup.corners.end(), ids.begin(), ids.end());
+    soup.endFace();
+    for (std::size_t k = 0; k < cols; ++k) {
+      const glm::vec2 c = cs[reversed ? cols - 1 - k : k];
+      soup.texCoords.push_back(big > 0.0f ? (c - lo) / big : glm::vec2(0.0f));
+    }
+  };
+  if (cols >= 3) {
+    if (node.get<FieldType::SFBool>("beginCap", true)) cap(0, true);
+    if (node.get<FieldType::SFBool>("endCap", true)) cap(ns - 1, false);
+  }
+  if (skipped) log.add("spine, scale or orientation give points that are not finite numbers");
+  return buildPolygonMesh(soup);
+}
+
+}  // namespace gs::vrml::geometry_detail

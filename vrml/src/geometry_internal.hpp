@@ -1,0 +1,204 @@
+// Private helpers shared by the tessellation sources (geometry*.cpp): field access,
+// per-node problem reporting, a deduplicating mesh builder, the polygon-soup pipeline
+// (IndexedFaceSet, ElevationGrid and Extrusion all go through it), ear clipping and
+// crease-angle normals. Not part of the public interface.
+#pragma once
+
+#include "vrml/geometry.hpp"
+
+#include <glm/glm.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <type_traits>
+#include <vector>
+
+namespace gs::vrml::geometry_detail {
+
+// ---------------------------------------------------------------------------------------
+// Field access
+
+/// The value of field `name` of `node` when it exists with type T, else a static empty
+/// (default) value of that type. Returns a reference: no copy of big arrays.
+template <FieldType T>
+const auto& fieldOr(const Node& node, std::string_view name) {
+  using V = std::remove_cvref_t<decltype(std::declval<const FieldValue&>().get<T>())>;
+  static const V kEmpty{};
+  const FieldValue* f = node.field(name);
+  if (f == nullptr || f->type() != T) return kEmpty;
+  return f->get<T>();
+}
+
+/// As above, with `absent` returned when the node's type has no field `name` (a field
+/// that exists with another type still gives the empty value).
+template <FieldType T, class V>
+const V& fieldOr(const Node& node, std::string_view name, const V& absent) {
+  if (node.field(name) == nullptr) return absent;
+  return fieldOr<T>(node, name);
+}
+
+/// The array field `arrayName` of the SFNode child `childName` (e.g. coord.point); empty
+/// when the child is NULL or lacks the field.
+template <FieldType T>
+const auto& childArray(const Node& node, std::string_view childName, std::string_view arrayName) {
+  using V = std::remove_cvref_t<decltype(std::declval<const FieldValue&>().get<T>())>;
+  static const V kEmpty{};
+  const NodePtr child = node.sfnode(childName);
+  if (child == nullptr) return kEmpty;
+  return fieldOr<T>(*child, arrayName);
+}
+
+bool finite(const glm::vec2& v);
+bool finite(const glm::vec3& v);
+/// Colour with components clamped to [0, 1] (NaN becomes 0) and alpha 1.
+glm::vec4 rgba(const glm::vec3& c);
+
+// ---------------------------------------------------------------------------------------
+// Problems
+
+/// Collects what was wrong with one node's data and reports it as a single warning (the
+/// first problem, plus a count of the others) at the node's location.
+class ProblemLog {
+ public:
+  ProblemLog(const Node& node, Diagnostics* diag) : node_(node), diag_(diag) {}
+  /// Records one problem; only the first message is kept verbatim.
+  void add(const std::string& message);
+  /// As add, but calls `makeMessage()` only for the first problem (cheap in loops).
+  template <class F>
+  void addLazy(F&& makeMessage) {
+    if (count_++ == 0) first_ = makeMessage();
+  }
+  /// Emits the warning, if any problem was recorded (once).
+  void flush();
+  std::size_t count() const { return count_; }
+
+ private:
+  const Node& node_;
+  Diagnostics* diag_;
+  std::string first_;
+  std::size_t count_ = 0;
+  bool flushed_ = false;
+};
+
+// ---------------------------------------------------------------------------------------
+// Mesh building
+
+/// One output vertex; attributes a mesh does not carry are left zero.
+struct Vertex {
+  glm::vec3 position{0.0f};
+  glm::vec3 normal{0.0f};
+  glm::vec4 color{0.0f};
+  glm::vec2 texCoord{0.0f};
+};
+
+/// Accumulates vertices and indices into a Mesh. `add` merges vertices whose attributes
+/// are bit-for-bit equal, so vertices are split exactly where normals, colours or texture
+/// coordinates differ.
+class MeshBuilder {
+ public:
+  MeshBuilder(Primitive primitive, bool normals, bool colors, bool texCoords);
+  /// Index of a vertex equal to `v`, appending it when new.
+  std::uint32_t add(const Vertex& v);
+  /// Appends `v` without looking for an equal vertex.
+  std::uint32_t push(const Vertex& v);
+  /// True when stored vertex `i` has exactly the attributes of `v`.
+  bool sameAsStored(std::uint32_t i, const Vertex& v) const;
+  void index(std::uint32_t i) { mesh_.indices.push_back(i); }
+  void triangle(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    mesh_.indices.insert(mesh_.indices.end(), {a, b, c});
+  }
+  void reserve(std::size_t vertices, std::size_t indices);
+  /// The finished mesh with bounds computed; the builder is left empty.
+  Mesh finish(bool solid);
+
+ private:
+  /// 64-bit hash of the attributes this mesh carries (bit patterns, so -0 != +0).
+  std::uint64_t hashOf(const Vertex& v) const;
+  std::uint64_t hashOfStored(std::uint32_t i) const;
+  void grow(std::size_t minSlots);
+
+  Mesh mesh_;
+  bool normals_, colors_, texCoords_;
+  /// Open-addressing table: (high 32 bits of the hash << 32) | (vertex index + 1); 0 = empty.
+  std::vector<std::uint64_t> slots_;
+};
+
+// ---------------------------------------------------------------------------------------
+// Polygons (geometry_polygon.cpp)
+
+/// Newell's normal of the closed polygon `pts` (not normalized: its length is twice the
+/// polygon's area, its direction the one about which the polygon turns counterclockwise).
+glm::dvec3 newellNormal(std::span<const glm::vec3> pts);
+
+/// Triangulates the polygon `pts` (in order, implicitly closed) in the plane through it
+/// with unit normal `normal` (normally its Newell normal). Appends triangles to `out` as
+/// index triples into `pts`, each counterclockwise about `normal` and of non-zero area.
+/// When `assumeConvex` is true and the polygon really is convex (checked) every vertex is
+/// kept and no containment test is made; otherwise the polygon is ear-clipped, which
+/// handles concave polygons, collinear vertices and repeated positions. The triangles of
+/// a simple polygon cover exactly its area; self-intersecting input gives a best effort.
+void triangulatePolygon(std::span<const glm::vec3> pts, const glm::dvec3& normal, bool assumeConvex,
+                        std::vector<std::uint32_t>& out);
+
+// ---------------------------------------------------------------------------------------
+// Normals (geometry_normals.cpp)
+
+/// Inputs of crease-angle smoothing, one entry per polygon corner.
+struct CornerSet {
+  std::span<const std::uint32_t> point;   // shared point index of the corner (< pointCount)
+  std::span<const std::uint32_t> face;    // face of the corner
+  std::span<const float> weight;          // its weight (the polygon's angle at the corner)
+  std::span<const glm::vec3> faceNormal;  // unit normal of each face
+  std::size_t pointCount = 0;
+};
+
+/// Vertex normals per corner (clause 6.23, creaseAngle): the weighted sum of the normals
+/// of the faces around the corner's point whose angle to the corner's own face normal is
+/// at most `creaseAngle` radians, normalized. 0 gives flat faces. Time is linear in the
+/// number of corners times a bounded number of normal clusters per point.
+std::vector<glm::vec3> creaseNormals(const CornerSet& corners, float creaseAngle);
+
+// ---------------------------------------------------------------------------------------
+// Polygon soup: the common path of IndexedFaceSet, ElevationGrid and Extrusion
+
+/// Polygons over shared points with optional per-corner attributes.
+struct PolygonSoup {
+  std::span<const glm::vec3> points;        // positions (may be the node's own array)
+  std::vector<std::uint32_t> corners;       // point index of each corner, faces concatenated
+  std::vector<std::uint32_t> faceStart{0};  // face f is corners [faceStart[f], faceStart[f+1])
+  /// Per corner, or empty. A non-finite or zero normal means "generate this one".
+  std::vector<glm::vec3> normals;
+  std::vector<glm::vec4> colors;     // per corner, or empty
+  std::vector<glm::vec2> texCoords;  // per corner, or empty
+  float creaseAngle = 0.0f;
+  bool ccw = true;
+  bool convex = true;
+  bool solid = true;
+
+  std::size_t faceCount() const { return faceStart.size() - 1; }
+  void endFace() { faceStart.push_back(static_cast<std::uint32_t>(corners.size())); }
+};
+
+/// Triangulates the soup: reverses faces when ccw is FALSE, drops repeated consecutive
+/// points and degenerate faces (fewer than 3 distinct points or zero area), ear-clips,
+/// generates missing normals (Newell face normals smoothed by creaseAngle) and emits an
+/// indexed triangle mesh. Corners must reference valid, finite points.
+Mesh buildPolygonMesh(const PolygonSoup& soup);
+
+// ---------------------------------------------------------------------------------------
+// Node tessellators (one per geometry node type)
+
+Mesh tessellateBox(const Node& node, ProblemLog& log);
+Mesh tessellateCone(const Node& node, ProblemLog& log);
+Mesh tessellateCylinder(const Node& node, ProblemLog& log);
+Mesh tessellateSphere(const Node& node, ProblemLog& log);
+Mesh tessellateIndexedFaceSet(const Node& node, ProblemLog& log);
+Mesh tessellateIndexedLineSet(const Node& node, ProblemLog& log);
+Mesh tessellatePointSet(const Node& node, ProblemLog& log);
+Mesh tessellateElevationGrid(const Node& node, ProblemLog& log);
+Mesh tessellateExtrusion(const Node& node, ProblemLog& log);
+
+}  // namespace gs::vrml::geometry_detail

@@ -1,0 +1,289 @@
+// The VRML97 lexer (ISO/IEC 14772-1:1997 clause 5.1 and annex A.2, classic UTF-8
+// encoding). Internal to gs_vrml. It works in place over a std::string_view: no per-token
+// allocation, and line and column are computed only when a diagnostic asks for them.
+#pragma once
+
+#include "vrml/diagnostic.hpp"
+
+#include <array>
+#include <bit>
+#include <cstring>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace gs::vrml::parsing {
+
+/// Character classes of annex A.2 (bit set per byte value).
+enum CharClass : std::uint8_t {
+  kSpace = 1,    // whitespace (any byte <= 0x20) and ','
+  kIdFirst = 2,  // may start an identifier
+  kIdRest = 4,   // may continue an identifier
+  kDigit = 8,
+};
+constexpr std::array<std::uint8_t, 256> makeCharClass() {
+  std::array<std::uint8_t, 256> t{};
+  for (int c = 0; c < 256; ++c) {
+    std::uint8_t v = 0;
+    if (c <= 0x20 || c == ',') v |= kSpace;
+    if (c >= '0' && c <= '9') v |= kDigit;
+    // IdRestChars excludes 0x0-0x20, " # ' , . [ \ ] { } and 0x7f.
+    const bool rest = c > 0x20 && c != '"' && c != '#' && c != '\'' && c != ',' && c != '.' &&
+                      c != '[' && c != '\\' && c != ']' && c != '{' && c != '}' && c != 0x7f;
+    if (rest) v |= kIdRest;
+    // IdFirstChar additionally excludes digits, + and -.
+    if (rest && !(c >= '0' && c <= '9') && c != '+' && c != '-') v |= kIdFirst;
+    t[static_cast<std::size_t>(c)] = v;
+  }
+  return t;
+}
+inline constexpr std::array<std::uint8_t, 256> kCharClass = makeCharClass();
+
+inline bool isSpace(char c) { return (kCharClass[static_cast<unsigned char>(c)] & kSpace) != 0; }
+inline bool isIdFirst(char c) {
+  return (kCharClass[static_cast<unsigned char>(c)] & kIdFirst) != 0;
+}
+inline bool isIdRest(char c) { return (kCharClass[static_cast<unsigned char>(c)] & kIdRest) != 0; }
+inline bool isDigit(char c) { return c >= '0' && c <= '9'; }
+
+enum class Tok : std::uint8_t {
+  end,       // end of input
+  id,        // identifier or keyword (DEF, USE, PROTO, TRUE, ...)
+  number,    // starts with a digit, '+', '-', or '.' followed by a digit
+  string,    // starts with '"'
+  lbrace,    // {
+  rbrace,    // }
+  lbracket,  // [
+  rbracket,  // ]
+  period,    // . (only meaningful in ROUTE)
+  other,     // a byte that cannot start any token
+};
+
+/// One token: where it starts and its text (for numbers and strings, the raw word).
+struct Token {
+  Tok kind = Tok::end;
+  std::size_t offset = 0;
+  std::string_view text;
+  bool unterminated = false;  // a string token without its closing quote
+};
+
+/// Thrown for errors: the derived class tells the parser whether it may resynchronise.
+struct RecoverableError : ParseError {
+  using ParseError::ParseError;
+};
+
+class Lexer {
+ public:
+  /// `text` must outlive the lexer; `file` names it in diagnostics. Lexing starts at
+  /// byte `start` (after the header line).
+  Lexer(std::string_view text, std::string file, std::size_t start = 0);
+
+  /// Skips whitespace, commas and `#` comments.
+  void skipSpace() {
+    while (p_ < end_) {
+      const char c = *p_;
+      if (isSpace(c)) {
+        ++p_;
+      } else if (c == '#') {
+        skipComment();
+      } else {
+        break;
+      }
+    }
+  }
+  /// The next byte after skipping space; '\0' at the end of input.
+  char peekChar() {
+    skipSpace();
+    return p_ < end_ ? *p_ : '\0';
+  }
+  bool atEnd() {
+    skipSpace();
+    return p_ >= end_;
+  }
+  /// Consumes `c` when it is the next byte after space; returns whether it did.
+  bool accept(char c) {
+    if (peekChar() == c) {
+      ++p_;
+      return true;
+    }
+    return false;
+  }
+
+  /// Consumes the identifier `word` when it is the next token; returns whether it did.
+  bool acceptKeyword(std::string_view word) {
+    skipSpace();
+    if (static_cast<std::size_t>(end_ - p_) < word.size() ||
+        std::string_view(p_, word.size()) != word ||
+        (p_ + word.size() < end_ && isIdRest(p_[word.size()])))
+      return false;
+    p_ += word.size();
+    return true;
+  }
+  /// The next token, not consumed.
+  Token peek();
+  /// The next token, consumed.
+  Token next() {
+    Token t = peek();
+    consume(t);
+    return t;
+  }
+  /// Moves past `t`, which must be the token peek() returned last.
+  void consume(const Token& t) { p_ = text_.data() + t.offset + t.text.size(); }
+
+  /// Reads an identifier or fails with "expected <what>, got '...'".
+  std::string_view expectId(const char* what);
+  /// Consumes `c` or fails with "expected 'c', got '...'".
+  void expect(char c);
+
+  /// Numbers (annex A.2 sfint32Value / sffloatValue). Each skips space first and fails
+  /// with a RecoverableError naming what was expected when no number of the kind is
+  /// there. Short plain decimals (the bulk of real files) take an inline fast path that
+  /// gives the same correctly rounded result as the general one.
+  float readFloat() {
+    skipSpace();
+    return floatHere();
+  }
+  /// Reads numbers up to the closing ']' (consumed), appending them to `out`.
+  void readFloatsUntilBracket(std::vector<float>& out) {
+    while (separatorThen() != ']') out.push_back(floatHere());
+    ++p_;
+  }
+  void readInt32sUntilBracket(std::vector<std::int32_t>& out) {
+    while (separatorThen() != ']') out.push_back(int32Here());
+    ++p_;
+  }
+  double readDouble();
+  /// Decimal or 0x hexadecimal; values up to 0xFFFFFFFF wrap to negative int32 as
+  /// SFImage pixels need. A float where an integer is needed is an error.
+  std::int32_t readInt32() {
+    skipSpace();
+    return int32Here();
+  }
+  /// A quoted string with \" and \\ escapes (clause 5.9), appended to nothing: `out` is
+  /// replaced. Fails at the opening quote when the string is not terminated.
+  void readString(std::string& out);
+  /// True when the next token starts a number.
+  bool atNumber() {
+    const char c = peekChar();
+    return isDigit(c) || c == '-' || c == '+' || c == '.';
+  }
+
+  /// Skips one value or node in balanced form: a token, or a {...} / [...] group.
+  void skipBalanced();
+
+  std::size_t offset() const { return static_cast<std::size_t>(p_ - text_.data()); }
+  std::size_t remaining() const { return static_cast<std::size_t>(end_ - p_); }
+  void setOffset(std::size_t o) { p_ = text_.data() + o; }
+  std::string_view text() const { return text_; }
+  const std::string& file() const { return file_; }
+
+  /// Line and column (from 1, column in bytes) of byte `offset`; cached, so asking in
+  /// increasing order costs O(distance).
+  SourceLocation locationAt(std::size_t offset);
+  /// A printable excerpt of the token at `offset` for messages ("end of file" at end).
+  std::string describeAt(std::size_t offset) const;
+
+  [[noreturn]] void fatal(std::size_t offset, std::string message);
+  [[noreturn]] void fail(std::size_t offset, std::string message);
+  /// fail() with "expected <what>, got '<token at offset>'".
+  [[noreturn]] void failExpected(std::size_t offset, std::string_view what);
+
+ private:
+  // Skips space and returns the next byte; at the end of input fails (fatal).
+  char separatorThen() {
+    while (true) {
+      if (p_ >= end_) failExpected(offset(), "a number or ']'");
+      const char c = *p_;
+      if (static_cast<unsigned char>(c) > ',') return c;  // digits, '-', '.', ']'
+      if (isSpace(c)) ++p_;
+      else if (c == '#') skipComment();
+      else return c;
+    }
+  }
+  // SWAR digit scanning (little-endian): the number of leading ASCII digits in the 8
+  // bytes at q (8 means all), and their value. The test is exact up to and including the
+  // first non-digit, which is all that is used.
+  static unsigned digitRun(const char* q, std::uint64_t& w) {
+    std::memcpy(&w, q, 8);
+    constexpr std::uint64_t kHigh = 0xF0F0F0F0F0F0F0F0ull, kZeros = 0x3030303030303030ull;
+    const std::uint64_t nonDigit =
+        ((w & kHigh) ^ kZeros) | (((w + 0x0606060606060606ull) & kHigh) ^ kZeros);
+    return nonDigit == 0 ? 8u : static_cast<unsigned>(std::countr_zero(nonDigit)) / 8;
+  }
+  static std::uint32_t digitValue(std::uint64_t w, unsigned k) {  // 1 <= k <= 8
+    w <<= 8 * (8 - k);  // the k digits become the low-order end of an 8-digit number
+    w = (w & 0x0F0F0F0F0F0F0F0Full) * 2561 >> 8;
+    w = (w & 0x00FF00FF00FF00FFull) * 6553601 >> 16;
+    return static_cast<std::uint32_t>((w & 0x0000FFFF0000FFFFull) * 42949672960001ull >> 32);
+  }
+  // A float at p_ (no space skipping). Short plain decimals (the bulk of real files)
+  // take this inline path, which gives the same correctly rounded result as fast_float:
+  // at most 8 digits and m < 2^24, so the mantissa m is exact in a float, as is 10^k for
+  // k <= 8, and m / 10^k is one correctly rounded division.
+  float floatHere() {
+    if constexpr (std::endian::native != std::endian::little) return readFloatSlow();
+    if (end_ - p_ < 24) return readFloatSlow();  // near the end: the checked path
+    const char* q = p_;
+    const bool negative = *q == '-';
+    q += negative ? 1 : 0;
+    std::uint64_t w = 0;
+    const unsigned intDigits = digitRun(q, w);
+    if (intDigits == 8) return readFloatSlow();
+    std::uint32_t m = intDigits == 0 ? 0 : digitValue(w, intDigits);
+    q += intDigits;
+    unsigned fraction = 0;
+    if (*q == '.') {
+      ++q;
+      fraction = digitRun(q, w);
+      if (fraction == 8) return readFloatSlow();
+      if (fraction > 0) {
+        static constexpr std::uint32_t kScale[] = {1,      10,      100,      1000,
+                                                   10000,  100000,  1000000,  10000000};
+        m = m * kScale[fraction] + digitValue(w, fraction);
+        q += fraction;
+      }
+    }
+    const unsigned digits = intDigits + fraction;
+    if (digits == 0 || digits > 8 || m >= (1u << 24) || *q == 'e' || *q == 'E')
+      return readFloatSlow();
+    static constexpr float kPow10[] = {1e0f, 1e1f, 1e2f, 1e3f, 1e4f, 1e5f, 1e6f, 1e7f, 1e8f};
+    const float v = static_cast<float>(m) / kPow10[fraction];
+    p_ = q;
+    return negative ? -v : v;
+  }
+  // An int32 at p_: short decimals inline, the rest (hex, long, errors) out of line.
+  std::int32_t int32Here() {
+    if constexpr (std::endian::native != std::endian::little) return readInt32Slow();
+    if (end_ - p_ < 16) return readInt32Slow();
+    const char* q = p_;
+    const bool negative = *q == '-';
+    q += negative ? 1 : 0;
+    std::uint64_t w = 0;
+    const unsigned n = digitRun(q, w);
+    const char c = q[n];
+    if (n == 0 || n == 8 || c == 'x' || c == 'X' || c == '.' || c == 'e' || c == 'E')
+      return readInt32Slow();
+    const std::uint32_t v = digitValue(w, n);
+    p_ = q + n;
+    return negative ? -static_cast<std::int32_t>(v) : static_cast<std::int32_t>(v);
+  }
+  void skipComment();
+  float readFloatSlow();
+  std::int32_t readInt32Slow();
+  Token scan(const char* p) const;
+  [[noreturn]] void badNumber(std::size_t offset, std::string_view what);
+
+  std::string_view text_;
+  std::string file_;
+  const char* p_;
+  const char* end_;
+  // Cache of the last locationAt() answer.
+  std::size_t cacheOffset_ = 0;
+  int cacheLine_ = 1;
+  std::size_t cacheLineStart_ = 0;
+  int loneCr_ = -1;  // whether the text has a CR not followed by LF (-1: not yet known)
+};
+
+}  // namespace gs::vrml::parsing

@@ -1,0 +1,570 @@
+// Statements and nodes (annex A.3 "Nodes" grammar: vrmlScene, statements, nodeStatement,
+// node, nodeBody, scriptBody), DEF/USE (clause 4.6.2), error recovery, and the public
+// entry points parseVrml() and loadVrmlFile().
+#include "parser_impl.hpp"
+
+#include <algorithm>
+
+namespace gs::vrml::parsing {
+
+namespace {
+
+constexpr std::size_t kMaxDiagnostics = 1000;
+
+bool isAccessKeyword(std::string_view s) {
+  return s == "eventIn" || s == "eventOut" || s == "field" || s == "exposedField";
+}
+
+bool isStatementKeyword(std::string_view s) {
+  return s == "PROTO" || s == "EXTERNPROTO" || s == "ROUTE";
+}
+
+}  // namespace
+
+Parser::Parser(std::string_view text, std::string file, std::size_t start, Context& ctx,
+               Diagnostics& diag, int externDepth)
+    : lex_(text, std::move(file), start), ctx_(ctx), diag_(diag), externDepth_(externDepth) {}
+
+void Parser::report(Severity s, std::size_t offset, std::string message) {
+  if (diag_.items.size() >= kMaxDiagnostics) {
+    giveUp_ = true;
+    return;
+  }
+  diag_.items.push_back({s, lex_.locationAt(offset), std::move(message)});
+  if (diag_.items.size() == kMaxDiagnostics) {
+    diag_.items.push_back({Severity::error, lex_.locationAt(offset),
+                           "too many diagnostics: giving up on this file"});
+    giveUp_ = true;
+  }
+}
+
+void Parser::report(const ParseError& e) {
+  if (diag_.items.size() >= kMaxDiagnostics) {
+    giveUp_ = true;
+    return;
+  }
+  diag_.items.push_back(e.diagnostic);
+}
+
+void Parser::countNode(std::size_t offset) {
+  if (++ctx_.nodeCount > ctx_.options.limits.maxNodes)
+    lex_.fatal(offset, "more than " + std::to_string(ctx_.options.limits.maxNodes) +
+                           " nodes (ParseLimits::maxNodes)");
+}
+
+void Parser::enter(std::size_t offset) {
+  if (++recursion_ > ctx_.options.limits.maxNesting)
+    lex_.fatal(offset, "nodes nested deeper than " +
+                           std::to_string(ctx_.options.limits.maxNesting) +
+                           " levels (ParseLimits::maxNesting)");
+}
+
+void Parser::parseScene(Scene& scene) {
+  Scope top;
+  top.routes = &scene.routes;
+  top.hidden = &scene.hiddenNodes;
+  top.declared = &scene.protos;
+  top.checkRoots = externDepth_ == 0;
+  try {
+    parseStatements(top, &scene.rootNodes, 0, false, nullptr);
+  } catch (const ParseError& e) {
+    if (!giveUp_) report(e);
+  }
+}
+
+// statements ::= statement*; statement ::= nodeStatement | protoStatement | routeStatement
+void Parser::parseStatements(Scope& scope, std::vector<NodePtr>* nodes, int depth,
+                             bool untilBrace, int* height) {
+  const std::size_t open = lex_.offset();
+  while (true) {
+    if (giveUp_) throw ParseError(Diagnostic{Severity::error, {}, "giving up"});
+    const Token t = lex_.peek();
+    if (t.kind == Tok::end) {
+      if (untilBrace)
+        lex_.fatal(t.offset, "unexpected end of file: missing '}' for the PROTO body opened at " +
+                                 std::to_string(lex_.locationAt(open).line) + ":" +
+                                 std::to_string(lex_.locationAt(open).column));
+      return;
+    }
+    if (untilBrace && t.kind == Tok::rbrace) {
+      lex_.consume(t);
+      return;
+    }
+    try {
+      if (t.kind != Tok::id) lex_.failExpected(t.offset, "a node, PROTO, EXTERNPROTO or ROUTE");
+      if (t.text == "PROTO") {
+        parseProto(scope);
+      } else if (t.text == "EXTERNPROTO") {
+        parseExternProto(scope);
+      } else if (t.text == "ROUTE") {
+        parseRoute(scope);
+      } else {
+        int h = 0;
+        NodePtr n = parseNodeStatement(scope, depth, h, false);
+        if (n) {
+          if (height != nullptr) *height = std::max(*height, h);
+          if (scope.checkRoots) checkNodeClass(nullptr, {}, n, t.offset);
+          nodes->push_back(n);
+          if (scope.checkRoots && ctx_.options.onRootNode) ctx_.options.onRootNode(n);
+        }
+      }
+    } catch (const RecoverableError& e) {
+      report(e);
+      if (lex_.offset() <= t.offset) {
+        lex_.setOffset(t.offset);
+        lex_.skipBalanced();
+      }
+    }
+  }
+}
+
+// nodeStatement ::= node | DEF nodeNameId node | USE nodeNameId (and NULL for SFNode)
+NodePtr Parser::parseNodeStatement(Scope& scope, int depth, int& height, bool allowNull) {
+  const Token t = lex_.peek();
+  if (t.kind != Tok::id) lex_.failExpected(t.offset, "a node");
+  if (t.text == "NULL") {
+    lex_.consume(t);
+    if (!allowNull) lex_.fail(t.offset, "NULL is not allowed here");
+    height = 0;
+    return nullptr;
+  }
+  if (t.text == "USE") {
+    lex_.consume(t);
+    const Token nt = lex_.peek();
+    const std::string_view name = lex_.expectId("a DEF name after USE");
+    const DefEntry* found = findDef(scope, name);
+    if (found == nullptr)
+      lex_.fail(nt.offset, "USE of unknown DEF name '" + std::string(name) + "'");
+    const DefEntry& e = *found;
+    if (e.open) {
+      // A back reference to a node still being read: allowed from a Script's fields
+      // (clause 6.40), a cycle anywhere else. Stored without ownership so the cycle
+      // does not keep the nodes alive.
+      if (!e.node->type().script)
+        lex_.fail(nt.offset, "USE '" + std::string(name) +
+                                 "' inside its own definition would make a cycle");
+      height = 0;
+      return NodePtr(NodePtr(), e.node.get());
+    }
+    height = e.height;
+    return e.node;
+  }
+  if (t.text == "DEF") {
+    lex_.consume(t);
+    const std::string_view defName = lex_.expectId("a DEF name");
+    return parseNode(scope, lex_.peek(), depth, height, defName);
+  }
+  return parseNode(scope, t, depth, height, {});
+}
+
+DefEntry* Parser::findDef(Scope& scope, std::string_view name) {
+  for (Scope* s = &scope; s != nullptr; s = s->defParent) {
+    auto it = s->defs.find(name);
+    if (it != s->defs.end()) return &it->second;
+  }
+  return nullptr;
+}
+
+std::shared_ptr<const NodeType> Parser::lookupType(Scope& scope, std::string_view name,
+                                                   bool& defining) {
+  for (Scope* s = &scope; s != nullptr; s = s->parent) {
+    auto it = s->protos.find(name);
+    if (it != s->protos.end()) {
+      if (!it->second) defining = true;
+      return it->second;
+    }
+  }
+  return builtInNodeType(name);
+}
+
+// node ::= nodeTypeId { nodeBody } | Script { scriptBody }
+NodePtr Parser::parseNode(Scope& scope, const Token& t, int depth, int& height,
+                          std::string_view defName) {
+  if (t.kind != Tok::id) lex_.failExpected(t.offset, "a node type name");
+  if (tableMode_) lex_.fatal(t.offset, "nodes are not allowed in the node table");
+  lex_.consume(t);
+  bool defining = false;
+  std::shared_ptr<const NodeType> type = lookupType(scope, t.text, defining);
+  if (!type) {
+    report(Severity::error, t.offset,
+           defining ? "PROTO '" + std::string(t.text) + "' is used inside its own definition"
+                    : "unknown node type '" + std::string(t.text) + "'");
+    if (lex_.peekChar() == '{') lex_.skipBalanced();
+    height = 0;
+    return nullptr;
+  }
+  struct Guard {
+    int& r;
+    ~Guard() { --r; }
+  };
+  enter(t.offset);
+  Guard guard{recursion_};
+  if (depth >= ctx_.options.limits.maxNesting)
+    lex_.fatal(t.offset, "nodes nested deeper than " +
+                             std::to_string(ctx_.options.limits.maxNesting) +
+                             " levels (ParseLimits::maxNesting)");
+
+  if (type->proto) {
+    InstanceValues inst;
+    inst.type = type;
+    inst.values.reserve(type->fields.size());
+    for (const FieldSpec& f : type->fields) inst.values.push_back(f.defaultValue);
+    inst.given.assign(type->fields.size(), 0);
+    parseNodeBody(scope, nullptr, &inst, depth, inst.valueHeight);
+    std::shared_ptr<const std::vector<IsConnection>> links;
+    NodePtr n = instantiate(scope, inst, t.offset, depth, height, links);
+    if (n && !defName.empty()) {
+      n->defName = defName;
+      scope.defs[std::string(defName)] = DefEntry{n, type, links, height, false};
+    }
+    return n;
+  }
+
+  countNode(t.offset);
+  auto node = std::make_shared<Node>(std::move(type));
+  node->location = lex_.locationAt(t.offset);
+  if (!defName.empty()) {
+    node->defName = defName;
+    scope.defs[std::string(defName)] = DefEntry{node, node->typePtr(), nullptr, 1, true};
+  }
+  int h = 0;
+  parseNodeBody(scope, node, nullptr, depth, h);
+  height = h + 1;
+  if (!defName.empty()) {
+    auto it = scope.defs.find(defName);
+    if (it != scope.defs.end() && it->second.node == node) {
+      it->second.open = false;
+      it->second.height = height;
+      it->second.declared = node->typePtr();
+    }
+  }
+  if (node->type().builtIn && node->typeName() == "Inline") checkInline(*node, t.offset);
+  return node;
+}
+
+// nodeBody ::= nodeBodyElement*; nodeBodyElement ::= fieldId fieldValue | fieldId IS id |
+// eventInId IS id | eventOutId IS id | routeStatement | protoStatement
+void Parser::parseNodeBody(Scope& scope, const NodePtr& node, InstanceValues* inst, int depth,
+                           int& height) {
+  if (lex_.peekChar() != '{') lex_.failExpected(lex_.offset(), "'{'");
+  const std::size_t open = lex_.offset();
+  lex_.setOffset(open + 1);
+  while (true) {
+    if (giveUp_) throw ParseError(Diagnostic{Severity::error, {}, "giving up"});
+    const NodeType& ty = node ? node->type() : *inst->type;
+    const Token t = lex_.peek();
+    if (t.kind == Tok::rbrace) {
+      lex_.consume(t);
+      return;
+    }
+    if (t.kind == Tok::end) {
+      const SourceLocation at = lex_.locationAt(open);
+      lex_.fatal(t.offset, "unexpected end of file: missing '}' for the " + ty.name +
+                               " node opened at " + std::to_string(at.line) + ":" +
+                               std::to_string(at.column));
+    }
+    try {
+      if (t.kind != Tok::id) lex_.failExpected(t.offset, "a field name or '}'");
+      if (isStatementKeyword(t.text)) {
+        if (t.text == "PROTO") parseProto(scope);
+        else if (t.text == "EXTERNPROTO") parseExternProto(scope);
+        else parseRoute(scope);
+        continue;
+      }
+      lex_.consume(t);
+      if (node && ty.script && isAccessKeyword(t.text)) {
+        parseScriptDeclaration(scope, node, t, depth, height);
+        continue;
+      }
+      int i = ty.findExact(t.text);
+      AccessType access = AccessType::field;
+      if (i >= 0) {
+        access = ty.fields[static_cast<std::size_t>(i)].access;
+      } else if ((i = ty.findField(t.text)) >= 0) {
+        access = t.text.starts_with("set_") ? AccessType::eventIn : AccessType::eventOut;
+      } else {
+        report(Severity::error, t.offset,
+               "unknown field '" + std::string(t.text) + "' in " + ty.name);
+        skipUnknownValue(ty);
+        continue;
+      }
+      if (lex_.peekChar() == 'I' && lex_.acceptKeyword("IS")) {
+        parseIs(scope, ty, i, access, t.text, t.offset, node, inst);
+        continue;
+      }
+      if (access == AccessType::eventIn || access == AccessType::eventOut) {
+        report(Severity::error, t.offset,
+               "cannot give a value to " + std::string(accessTypeName(access)) + " '" +
+                   std::string(t.text) + "' of " + ty.name);
+        skipUnknownValue(ty);
+        continue;
+      }
+      const auto ui = static_cast<std::size_t>(i);
+      const FieldSpec& spec = ty.fields[ui];
+      FieldValue& dst = node ? node->fieldAt(ui) : inst->values[ui];
+      const bool check = node && ty.builtIn && !ty.extension && !ty.script;
+      int h = 0;
+      parseValue(spec.type, dst, scope, depth, h, check ? &ty : nullptr, spec.name);
+      height = std::max(height, h);
+      if (inst != nullptr) inst->given[ui] = 1;
+    } catch (const RecoverableError& e) {
+      report(e);
+      resync(node ? &node->type() : inst->type.get());
+      if (lex_.offset() <= t.offset) {
+        lex_.setOffset(t.offset);
+        lex_.skipBalanced();
+      }
+    }
+  }
+}
+
+// scriptBodyElement ::= nodeBodyElement | restrictedInterfaceDeclaration |
+// eventIn fieldType eventInId IS eventInId | eventOut ... | field fieldType fieldId IS fieldId
+void Parser::parseScriptDeclaration(Scope& scope, const NodePtr& node, const Token& keyword,
+                                    int depth, int& height) {
+  AccessType a = AccessType::field;
+  if (keyword.text == "eventIn") a = AccessType::eventIn;
+  else if (keyword.text == "eventOut") a = AccessType::eventOut;
+  else if (keyword.text == "exposedField") a = AccessType::exposedField;
+  const Token tt = lex_.peek();
+  const std::string_view typeName = lex_.expectId("a field type");
+  FieldType ft = FieldType::SFBool;
+  if (!fieldTypeFromName(typeName, ft))
+    lex_.fail(tt.offset, "unknown field type '" + std::string(typeName) + "'");
+  const Token nt = lex_.peek();
+  const std::string name(lex_.expectId("a field name"));
+  const Token after = lex_.peek();
+  const bool isRef = after.kind == Tok::id && after.text == "IS";
+  const bool hasValue = !isRef && (a == AccessType::field || a == AccessType::exposedField);
+  std::string problem;
+  if (a == AccessType::exposedField)
+    problem = "exposedField is not allowed in a Script node (clause 6.40)";
+  else if (node->type().findField(name) >= 0)
+    problem = "'" + name + "' is already declared in this Script node";
+  if (!problem.empty()) {
+    report(Severity::error, a == AccessType::exposedField ? keyword.offset : nt.offset, problem);
+    if (isRef) {
+      lex_.consume(after);
+      lex_.expectId("an interface name after IS");
+    } else if (hasValue) {
+      skipUnknownValue(node->type());
+    }
+    return;
+  }
+  auto type = std::make_shared<NodeType>(node->type());
+  type->fields.push_back(FieldSpec{name, ft, a, FieldValue(ft)});
+  retype(*node, type);
+  const int index = static_cast<int>(type->fields.size()) - 1;
+  if (isRef) {
+    lex_.consume(after);
+    parseIs(scope, *type, index, a, name, nt.offset, node, nullptr);
+    return;
+  }
+  if (hasValue) {
+    int h = 0;
+    parseValue(ft, node->fieldAt(static_cast<std::size_t>(index)), scope, depth, h);
+    height = std::max(height, h);
+  }
+}
+
+void Parser::retype(Node& node, std::shared_ptr<const NodeType> type) {
+  Node fresh(std::move(type));
+  const std::size_t n = std::min(node.fieldCount(), fresh.fieldCount());
+  for (std::size_t i = 0; i < n; ++i) fresh.fieldAt(i) = std::move(node.fieldAt(i));
+  fresh.defName = std::move(node.defName);
+  fresh.protoName = std::move(node.protoName);
+  fresh.unresolved = node.unresolved;
+  fresh.location = std::move(node.location);
+  node = std::move(fresh);  // same address: USE back references stay valid
+}
+
+// `member IS interfaceMember` (clause 4.8.3): only inside a PROTO body, same type, and
+// access types compatible per table 4.4 (an exposedField connects to anything, other
+// members only to their own kind).
+void Parser::parseIs(Scope& scope, const NodeType& type, int index, AccessType access,
+                     std::string_view asWritten, std::size_t offset, const NodePtr& node,
+                     InstanceValues* inst) {
+  const Token nt = lex_.peek();
+  const std::string_view name = lex_.expectId("an interface name after IS");
+  if (scope.proto == nullptr) {
+    report(Severity::error, offset,
+           "IS statement outside a PROTO body: '" + std::string(asWritten) + " IS " +
+               std::string(name) + "'");
+    return;
+  }
+  const NodeType& iface = *scope.proto->type;
+  const int j = iface.findExact(name);
+  if (j < 0) {
+    report(Severity::error, nt.offset,
+           "'" + std::string(name) + "' is not in the interface of PROTO '" + iface.name + "'");
+    return;
+  }
+  const FieldSpec& outer = iface.fields[static_cast<std::size_t>(j)];
+  const FieldSpec& inner = type.fields[static_cast<std::size_t>(index)];
+  if (outer.type != inner.type) {
+    report(Severity::error, nt.offset,
+           "IS type mismatch: '" + std::string(asWritten) + "' of " + type.name + " is " +
+               std::string(fieldTypeName(inner.type)) + " but '" + outer.name + "' of PROTO " +
+               iface.name + " is " + std::string(fieldTypeName(outer.type)));
+    return;
+  }
+  // Leniency: a field connected to an eventIn of the interface is accepted without a
+  // diagnostic (castle's prototypes/proto_other.wrl; Coin3D and castle read it too); it
+  // carries no value.
+  const bool lenient = access == AccessType::field && outer.access == AccessType::eventIn;
+  if (access != AccessType::exposedField && access != outer.access && !lenient) {
+    report(Severity::error, nt.offset,
+           "IS access mismatch: " + std::string(accessTypeName(access)) + " '" +
+               std::string(asWritten) + "' of " + type.name + " cannot be connected to " +
+               std::string(accessTypeName(outer.access)) + " '" + outer.name +
+               "' (clause 4.8.3)");
+    return;
+  }
+  if (node) scope.proto->def->connections.push_back(IsConnection{node, index, access, j});
+  else inst->isRefs.push_back(IsConnection{nullptr, index, access, j});
+}
+
+// After an unknown field or a value that may not be given: skip what follows. A '[' list
+// or a `Type { ... }` node is skipped whole; anything else token by token up to the next
+// field of this node or its '}'.
+void Parser::skipUnknownValue(const NodeType& type) {
+  const Token t = lex_.peek();
+  if (t.kind == Tok::lbracket || t.kind == Tok::lbrace) {
+    lex_.skipBalanced();
+    return;
+  }
+  if (t.kind == Tok::id && type.findField(t.text) < 0 && !isStatementKeyword(t.text)) {
+    lex_.consume(t);
+    if (lex_.peek().kind == Tok::lbrace) {
+      lex_.skipBalanced();
+      return;
+    }
+    lex_.setOffset(t.offset);
+  }
+  resync(&type);
+}
+
+void Parser::resync(const NodeType* type) {
+  while (true) {
+    const Token t = lex_.peek();
+    if (t.kind == Tok::end || t.kind == Tok::rbrace) return;
+    if (t.kind == Tok::id) {
+      if (isStatementKeyword(t.text)) return;
+      if (type != nullptr &&
+          (type->findField(t.text) >= 0 || (type->script && isAccessKeyword(t.text))))
+        return;
+    }
+    lex_.skipBalanced();
+  }
+}
+
+void Parser::checkNodeClass(const NodeType* parent, std::string_view field,
+                            const NodePtr& child, std::size_t offset) {
+  std::string expected;
+  if (nodeClassAllowed(parent, field, child->type(), expected)) return;
+  if (parent == nullptr)
+    report(Severity::warning, offset,
+           child->typeName() + " node is not allowed at the root of a scene (expected " +
+               expected + ")");
+  else
+    report(Severity::warning, offset,
+           child->typeName() + " node is not allowed in '" + std::string(field) + "' of " +
+               parent->name + " (expected " + expected + ")");
+}
+
+void Parser::checkInline(const Node& node, std::size_t offset) {
+  const FieldValue* url = node.field("url");
+  if (url == nullptr || url->type() != FieldType::MFString) return;
+  for (const std::string& u : url->get<FieldType::MFString>()) {
+    if (urlNamesFile(lex_.file(), u)) {
+      report(Severity::error, offset,
+             "Inline url '" + u + "' names the file that contains it (endless recursion)");
+      return;
+    }
+  }
+}
+
+std::vector<FieldSpec> Parser::parseInterfaceText(std::string_view name) {
+  tableMode_ = true;
+  Scope scope;
+  NodeType type;
+  type.name = name;
+  while (!lex_.atEnd()) {
+    const std::size_t before = diag_.items.size();
+    parseInterfaceDeclaration(scope, type, true, false);
+    if (diag_.items.size() != before) throw ParseError(diag_.items.back());
+  }
+  return std::move(type.fields);
+}
+
+void parseInto(std::string_view bytes, const std::string& url, Context& ctx, int externDepth,
+               Scene& scene) {
+  const ParseLimits& limits = ctx.options.limits;
+  std::string inflated;
+  try {
+    if (isGzip(bytes)) {
+      gunzipInto(bytes, url, limits.maxInputBytes, inflated);
+      bytes = inflated;
+    }
+  } catch (const ParseError& e) {
+    scene.diagnostics.items.push_back(e.diagnostic);
+    return;
+  }
+  if (bytes.size() > limits.maxInputBytes) {
+    scene.diagnostics.error({url, 0, 0}, "input of " + std::to_string(bytes.size()) +
+                                             " bytes exceeds ParseLimits::maxInputBytes");
+    return;
+  }
+  // Header (clause 4.2.2): "#VRML V2.0 utf8" on the first line. A UTF-8 byte order mark
+  // before it is tolerated.
+  std::size_t start = bytes.starts_with("\xEF\xBB\xBF") ? 3 : 0;
+  const std::size_t eol = bytes.find_first_of("\r\n", start);
+  const std::string_view line =
+      bytes.substr(start, eol == std::string_view::npos ? std::string_view::npos : eol - start);
+  if (!line.starts_with("#VRML V2.0 utf8")) {
+    std::string msg;
+    if (line.starts_with("#VRML V1.0")) {
+      msg = "VRML 1.0 is not supported";
+    } else {
+      std::string got;
+      for (char c : line.substr(0, 40))
+        got += (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? '?' : c;
+      if (line.size() > 40) got += "...";
+      msg = "expected '#VRML V2.0 utf8' header, got '" + got + "'";
+    }
+    scene.diagnostics.error({url, 1, 1}, std::move(msg));
+    return;
+  }
+  Parser parser(bytes, url, eol == std::string_view::npos ? bytes.size() : eol, ctx,
+                scene.diagnostics, externDepth);
+  parser.parseScene(scene);
+}
+
+}  // namespace gs::vrml::parsing
+
+namespace gs::vrml {
+
+Scene parseVrml(std::string_view bytes, const std::string& url, const ParseOptions& options) {
+  Scene scene;
+  scene.url = url;
+  parsing::Context ctx(options);
+  try {
+    parsing::parseInto(bytes, url, ctx, 0, scene);
+  } catch (const std::bad_alloc&) {
+    scene.diagnostics.error({url, 0, 0}, "out of memory");
+  }
+  return scene;
+}
+
+Scene loadVrmlFile(const std::string& path, const ParseOptions& options) {
+  std::string bytes, error;
+  if (!parsing::readFile(path, options.limits.maxInputBytes, bytes, error)) {
+    Scene scene;
+    scene.url = path;
+    scene.diagnostics.error({path, 0, 0}, error);
+    return scene;
+  }
+  return parseVrml(bytes, path, options);
+}
+
+}  // namespace gs::vrml

@@ -1,0 +1,216 @@
+// The VRML97 parser's internals (annex A grammar): scopes, DEF entries and the Parser
+// class whose members are spread over parser.cpp (statements and nodes),
+// value_parser.cpp (the 20 field types), proto.cpp (PROTO, EXTERNPROTO, instances) and
+// route.cpp (ROUTE). Internal to gs_vrml.
+#pragma once
+
+#include "lexer.hpp"
+#include "vrml/node.hpp"
+#include "vrml/node_table.hpp"
+#include "vrml/parser.hpp"
+#include "vrml/proto.hpp"
+#include "vrml/scene.hpp"
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+namespace gs::vrml::parsing {
+
+struct StringHash {
+  using is_transparent = void;
+  std::size_t operator()(std::string_view s) const { return std::hash<std::string_view>{}(s); }
+};
+template <class V>
+using NameMap = std::unordered_map<std::string, V, StringHash, std::equal_to<>>;
+
+/// What a DEF name stands for (clause 4.6.2).
+struct DefEntry {
+  NodePtr node;
+  /// The type the file named: for PROTO instances the PROTO type, whose interface ROUTEs
+  /// use; for other nodes node->typePtr().
+  std::shared_ptr<const NodeType> declared;
+  /// For PROTO instances: what each interface member is connected to (for ROUTEs).
+  std::shared_ptr<const std::vector<IsConnection>> links;
+  int height = 1;     // nesting levels of the node's tree
+  bool open = false;  // its body is being parsed: a USE now makes a back reference
+};
+
+/// The PROTO whose body is being parsed (IS statements refer to its interface).
+struct ProtoBuilder {
+  std::shared_ptr<NodeType> type;
+  std::shared_ptr<ProtoDefinition> def;
+};
+
+/// A name scope (clause 4.4.7): DEF names do not cross PROTO bodies or PROTO field
+/// defaults; PROTO names are looked up through `parent` too.
+struct Scope {
+  Scope* parent = nullptr;
+  /// Where DEF names not found here are looked up: the declaring scope for a PROTO
+  /// field default (it may USE nodes of the file, castle's proto_nodes.wrl), null for
+  /// a PROTO body (its own name space, clause 4.8.3).
+  Scope* defParent = nullptr;
+  NameMap<DefEntry> defs;
+  /// PROTO / EXTERNPROTO types; null while the PROTO of that name is being defined.
+  NameMap<std::shared_ptr<const NodeType>> protos;
+  ProtoBuilder* proto = nullptr;                     // non-null inside a PROTO body
+  std::vector<Route>* routes = nullptr;              // where ROUTEs go
+  std::vector<NodePtr>* hidden = nullptr;            // where hidden instance nodes go
+  std::vector<std::shared_ptr<const NodeType>>* declared = nullptr;  // Scene::protos
+  bool checkRoots = false;  // root nodes are checked against the children node class
+};
+
+/// An EXTERNPROTO file loaded during this parse (cached by resolved URL).
+struct ExternFile {
+  bool loading = true;  // being parsed: a reference now is recursive
+  std::vector<std::shared_ptr<const NodeType>> protos;
+  std::string error;
+};
+
+/// State shared by the parse of a file and the EXTERNPROTO files it loads.
+struct Context {
+  explicit Context(const ParseOptions& o) : options(o) {}
+  const ParseOptions& options;
+  std::size_t nodeCount = 0;
+  NameMap<std::shared_ptr<ExternFile>> externFiles;
+};
+
+/// Values given to a PROTO instance before it is expanded.
+struct InstanceValues {
+  std::shared_ptr<const NodeType> type;  // the PROTO / EXTERNPROTO type
+  std::vector<FieldValue> values;        // per interface member
+  std::vector<char> given;               // value written in the file
+  std::vector<IsConnection> isRefs;      // nodeField: instance member, protoField: outer
+  int valueHeight = 0;                   // tallest node tree among the values
+};
+
+class Parser {
+ public:
+  /// `text` is the whole file; parsing starts at byte `start` (after the header).
+  Parser(std::string_view text, std::string file, std::size_t start, Context& ctx,
+         Diagnostics& diag, int externDepth);
+
+  /// Parses statements up to the end of input into `scene` (clause 4.4 / A.3
+  /// vrmlScene). Reports fatal errors as diagnostics and stops there.
+  void parseScene(Scene& scene);
+
+  /// Parses the node table's interface text of node `name` (table mode: no nodes).
+  /// Throws ParseError on any problem.
+  std::vector<FieldSpec> parseInterfaceText(std::string_view name);
+
+ private:
+  // parser.cpp: statements and nodes
+  void parseStatements(Scope& scope, std::vector<NodePtr>* nodes, int depth, bool untilBrace,
+                       int* height);
+  NodePtr parseNodeStatement(Scope& scope, int depth, int& height, bool allowNull);
+  /// `t` is the node type name token, peeked and not consumed.
+  NodePtr parseNode(Scope& scope, const Token& t, int depth, int& height,
+                    std::string_view defName);
+  void parseNodeBody(Scope& scope, const NodePtr& node, InstanceValues* inst, int depth,
+                     int& height);
+  void parseScriptDeclaration(Scope& scope, const NodePtr& node, const Token& keyword,
+                              int depth, int& height);
+  void parseIs(Scope& scope, const NodeType& type, int index, AccessType access,
+               std::string_view asWritten, std::size_t offset, const NodePtr& node,
+               InstanceValues* inst);
+  void skipUnknownValue(const NodeType& type);
+  void resync(const NodeType* type);
+  std::shared_ptr<const NodeType> lookupType(Scope& scope, std::string_view name, bool& defining);
+  void retype(Node& node, std::shared_ptr<const NodeType> type);
+  void countNode(std::size_t offset);
+  void enter(std::size_t offset);
+  void checkNodeClass(const NodeType* parent, std::string_view field, const NodePtr& child,
+                      std::size_t offset);
+  void checkInline(const Node& node, std::size_t offset);
+
+  // value_parser.cpp: field values (clause 5)
+  void parseValue(FieldType t, FieldValue& out, Scope& scope, int depth, int& height,
+                  const NodeType* parent = nullptr, std::string_view field = {});
+  NodePtr parseSFNode(Scope& scope, int depth, int& height, const NodeType* parent,
+                      std::string_view field);
+  bool readBool();
+  glm::vec2 readVec2();
+  glm::vec3 readVec3();
+  glm::vec4 readRotation();
+  void readImage(SFImage& image);
+  template <class T, class F>
+  void readList(std::vector<T>& v, F&& one);
+  template <class T>
+  void readFloatList(std::vector<T>& v, std::size_t arity, FieldType type);
+  void readInt32List(std::vector<std::int32_t>& v);
+
+  // proto.cpp: PROTO, EXTERNPROTO and instances (clauses 4.8, 4.9)
+  void parseProto(Scope& scope);
+  void parseExternProto(Scope& scope);
+  void parseInterface(Scope& scope, NodeType& type, bool withValues, bool external);
+  bool parseInterfaceDeclaration(Scope& scope, NodeType& type, bool withValues,
+                                 bool external);
+  void resolveExternProto(ProtoDefinition& def, const NodeType& declared, std::size_t offset);
+  bool loadExternFile(const std::string& url, std::shared_ptr<ExternFile>& out,
+                      std::string& reason);
+  NodePtr instantiate(Scope& scope, InstanceValues& inst, std::size_t offset, int depth,
+                      int& height, std::shared_ptr<const std::vector<IsConnection>>& links);
+  NodePtr copyTree(const NodePtr& n, std::unordered_map<const Node*, NodePtr>& memo,
+                   std::vector<NodePtr>& keep);
+
+  // route.cpp: ROUTE (clause 4.10)
+  void parseRoute(Scope& scope);
+  void parseRouteStatement(Scope& scope);
+  static DefEntry* findDef(Scope& scope, std::string_view name);
+
+  // diagnostics
+  void report(Severity s, std::size_t offset, std::string message);
+  void report(const ParseError& e);
+
+  Lexer lex_;
+  Context& ctx_;
+  Diagnostics& diag_;
+  int externDepth_ = 0;
+  int recursion_ = 0;       // parseNode frames on the stack (bounded by maxNesting)
+  bool tableMode_ = false;  // parsing the node table: no nodes allowed
+  bool giveUp_ = false;     // too many diagnostics
+  std::vector<float> floatScratch_;        // MF number lists are read here first
+  std::vector<std::int32_t> intScratch_;
+};
+
+/// Nesting levels of the tree under `n` (1 for a leaf), following owning pointers only.
+int treeHeight(const NodePtr& n, std::unordered_map<const Node*, int>& memo);
+
+/// Whether a node of type `child` may be the value of `field` of built-in `parent`
+/// (null: at the root of a scene). Unknown or extension types are always allowed. On
+/// false, `expected` names the node class expected ("a children node", "Material").
+bool nodeClassAllowed(const NodeType* parent, std::string_view field, const NodeType& child,
+                      std::string& expected);
+
+/// Decompresses gzip data (1f 8b ...) into `out`; throws ParseError naming `url`.
+void gunzipInto(std::string_view bytes, const std::string& url, std::size_t maxBytes,
+                std::string& out);
+
+/// Whether `bytes` start with the gzip magic.
+inline bool isGzip(std::string_view bytes) {
+  return bytes.size() >= 2 && static_cast<unsigned char>(bytes[0]) == 0x1f &&
+         static_cast<unsigned char>(bytes[1]) == 0x8b;
+}
+
+/// Parses `bytes` (a whole file, gzip or not) into `scene` with shared context `ctx`.
+void parseInto(std::string_view bytes, const std::string& url, Context& ctx, int externDepth,
+               Scene& scene);
+
+/// Whether `url` (relative to the file `base`) names the local file `base` itself.
+bool urlNamesFile(const std::string& base, const std::string& url);
+
+/// `url` resolved against the URL or path `base` (RFC 3986 style for the common cases:
+/// absolute URLs and paths are kept, relative ones join base's directory).
+std::string resolveUrl(const std::string& base, const std::string& url);
+
+/// Whether `url` starts with a URL scheme such as "http:" (one letter is a drive).
+bool hasScheme(std::string_view url);
+
+/// Reads a whole local file; false with `error` set when it cannot.
+bool readFile(const std::string& path, std::size_t maxBytes, std::string& bytes,
+              std::string& error);
+
+}  // namespace gs::vrml::parsing

@@ -1,0 +1,219 @@
+// Field values of the 20 VRML97 field types (clause 5, annex A.4 grammar).
+#include "parser_impl.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <type_traits>
+
+namespace gs::vrml::parsing {
+
+namespace {
+template <FieldType T>
+constexpr std::size_t idx() {
+  return static_cast<std::size_t>(T);
+}
+}  // namespace
+
+bool Parser::readBool() {
+  const Token t = lex_.peek();
+  if (t.kind == Tok::id) {
+    if (t.text == "TRUE") {
+      lex_.consume(t);
+      return true;
+    }
+    if (t.text == "FALSE") {
+      lex_.consume(t);
+      return false;
+    }
+  }
+  lex_.failExpected(t.offset, "TRUE or FALSE");
+}
+
+glm::vec2 Parser::readVec2() {
+  const float x = lex_.readFloat();
+  const float y = lex_.readFloat();
+  return {x, y};
+}
+
+glm::vec3 Parser::readVec3() {
+  const float x = lex_.readFloat();
+  const float y = lex_.readFloat();
+  const float z = lex_.readFloat();
+  return {x, y, z};
+}
+
+glm::vec4 Parser::readRotation() {
+  const float x = lex_.readFloat();
+  const float y = lex_.readFloat();
+  const float z = lex_.readFloat();
+  const float a = lex_.readFloat();
+  return {x, y, z, a};
+}
+
+void Parser::readImage(SFImage& image) {
+  const std::size_t start = lex_.offset();
+  const std::int32_t w = lex_.readInt32();
+  const std::int32_t h = lex_.readInt32();
+  const std::int32_t c = lex_.readInt32();
+  if (w < 0 || h < 0 || c < 0 || c > 4)
+    lex_.fail(start, "invalid SFImage size " + std::to_string(w) + " x " + std::to_string(h) +
+                         " with " + std::to_string(c) + " components");
+  const std::uint64_t n = static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h);
+  // Each pixel takes at least two bytes ("0 "): never reserve more than the input holds.
+  if (n > (lex_.remaining() + 1) / 2)
+    lex_.fail(start, "SFImage of " + std::to_string(w) + " x " + std::to_string(h) + " needs " +
+                         std::to_string(n) + " pixels but only " +
+                         std::to_string(lex_.remaining()) + " bytes of input remain");
+  image.width = w;
+  image.height = h;
+  image.components = c;
+  image.pixels.clear();
+  image.pixels.reserve(static_cast<std::size_t>(n));
+  for (std::uint64_t i = 0; i < n; ++i)
+    image.pixels.push_back(static_cast<std::uint32_t>(lex_.readInt32()));
+}
+
+// An MF value: one element, or `[ elements ]` (clause 5.1).
+template <class T, class F>
+void Parser::readList(std::vector<T>& v, F&& one) {
+  v.clear();
+  if (!lex_.accept('[')) {
+    v.push_back(one());
+    return;
+  }
+  while (lex_.peekChar() != ']') v.push_back(one());
+  lex_.setOffset(lex_.offset() + 1);
+}
+
+// An MF value whose elements are `arity` floats (MFFloat, MFVec2f, MFVec3f, MFColor,
+// MFRotation). The numbers go to a scratch buffer that lives as long as the parser, and
+// the result is allocated once at its exact size.
+template <class T>
+void Parser::readFloatList(std::vector<T>& v, std::size_t arity, FieldType type) {
+  static_assert(sizeof(T) % sizeof(float) == 0 && alignof(T) == alignof(float));
+  v.clear();
+  if (!lex_.accept('[')) {
+    T one{};
+    if constexpr (std::is_same_v<T, float>) {
+      one = lex_.readFloat();
+    } else {
+      for (glm::length_t i = 0; i < static_cast<glm::length_t>(arity); ++i) one[i] = lex_.readFloat();
+    }
+    v.push_back(one);
+    return;
+  }
+  floatScratch_.clear();
+  lex_.readFloatsUntilBracket(floatScratch_);
+  const std::size_t n = floatScratch_.size();
+  if (n % arity != 0)
+    lex_.fail(lex_.offset() - 1, "expected a number, got ']' (" +
+                                     std::string(fieldTypeName(type)) + " values take " +
+                                     std::to_string(arity) + " numbers each)");
+  v.resize(n / arity);
+  if (n != 0) std::memcpy(static_cast<void*>(v.data()), floatScratch_.data(), n * sizeof(float));
+}
+
+void Parser::readInt32List(std::vector<std::int32_t>& v) {
+  v.clear();
+  if (!lex_.accept('[')) {
+    v.push_back(lex_.readInt32());
+    return;
+  }
+  intScratch_.clear();
+  lex_.readInt32sUntilBracket(intScratch_);
+  v.assign(intScratch_.begin(), intScratch_.end());
+}
+
+NodePtr Parser::parseSFNode(Scope& scope, int depth, int& height, const NodeType* parent,
+                            std::string_view field) {
+  const std::size_t offset = lex_.offset();
+  int h = 0;
+  NodePtr n = parseNodeStatement(scope, depth + 1, h, true);
+  if (n) {
+    height = std::max(height, h);
+    if (parent != nullptr) checkNodeClass(parent, field, n, offset);
+  }
+  return n;
+}
+
+void Parser::parseValue(FieldType t, FieldValue& out, Scope& scope, int depth, int& height,
+                        const NodeType* parent, std::string_view field) {
+  auto& st = out.storage();
+  switch (t) {
+    case FieldType::SFBool: st.emplace<idx<FieldType::SFBool>()>(readBool()); return;
+    case FieldType::SFColor: st.emplace<idx<FieldType::SFColor>()>(readVec3()); return;
+    case FieldType::SFFloat: st.emplace<idx<FieldType::SFFloat>()>(lex_.readFloat()); return;
+    case FieldType::SFImage: {
+      SFImage image;
+      readImage(image);
+      st.emplace<idx<FieldType::SFImage>()>(std::move(image));
+      return;
+    }
+    case FieldType::SFInt32: st.emplace<idx<FieldType::SFInt32>()>(lex_.readInt32()); return;
+    case FieldType::SFNode: {
+      NodePtr n = parseSFNode(scope, depth, height, parent, field);
+      st.emplace<idx<FieldType::SFNode>()>(std::move(n));
+      return;
+    }
+    case FieldType::SFRotation:
+      st.emplace<idx<FieldType::SFRotation>()>(readRotation());
+      return;
+    case FieldType::SFString: {
+      std::string s;
+      lex_.readString(s);
+      st.emplace<idx<FieldType::SFString>()>(std::move(s));
+      return;
+    }
+    case FieldType::SFTime: st.emplace<idx<FieldType::SFTime>()>(lex_.readDouble()); return;
+    case FieldType::SFVec2f: st.emplace<idx<FieldType::SFVec2f>()>(readVec2()); return;
+    case FieldType::SFVec3f: st.emplace<idx<FieldType::SFVec3f>()>(readVec3()); return;
+    case FieldType::MFColor:
+      readFloatList(st.emplace<idx<FieldType::MFColor>()>(), 3, t);
+      return;
+    case FieldType::MFFloat:
+      readFloatList(st.emplace<idx<FieldType::MFFloat>()>(), 1, t);
+      return;
+    case FieldType::MFInt32:
+      readInt32List(st.emplace<idx<FieldType::MFInt32>()>());
+      return;
+    case FieldType::MFNode: {
+      auto& v = st.emplace<idx<FieldType::MFNode>()>();
+      if (!lex_.accept('[')) {
+        // A single node; NULL is read leniently as an empty list.
+        NodePtr n = parseSFNode(scope, depth, height, parent, field);
+        if (n) v.push_back(std::move(n));
+        return;
+      }
+      while (lex_.peekChar() != ']') {
+        if (lex_.atEnd()) lex_.failExpected(lex_.offset(), "a node or ']'");
+        NodePtr n = parseSFNode(scope, depth, height, parent, field);
+        if (n) v.push_back(std::move(n));
+      }
+      lex_.setOffset(lex_.offset() + 1);
+      return;
+    }
+    case FieldType::MFRotation:
+      readFloatList(st.emplace<idx<FieldType::MFRotation>()>(), 4, t);
+      return;
+    case FieldType::MFString:
+      readList(
+          st.emplace<idx<FieldType::MFString>()>(),
+          [this] {
+            std::string s;
+            lex_.readString(s);
+            return s;
+          });
+      return;
+    case FieldType::MFTime:
+      readList(st.emplace<idx<FieldType::MFTime>()>(), [this] { return lex_.readDouble(); });
+      return;
+    case FieldType::MFVec2f:
+      readFloatList(st.emplace<idx<FieldType::MFVec2f>()>(), 2, t);
+      return;
+    case FieldType::MFVec3f:
+      readFloatList(st.emplace<idx<FieldType::MFVec3f>()>(), 3, t);
+      return;
+  }
+}
+
+}  // namespace gs::vrml::parsing
