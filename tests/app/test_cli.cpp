@@ -10,7 +10,7 @@
 
 using gs::test::runGhostspace;
 
-TEST_CASE("--help describes the options and exits 0", "[app][cli]") {
+TEST_CASE("the help option describes the options and exits 0", "[app][cli]") {
   auto r = runGhostspace({"--help"});
   CHECK(r.exitCode == 0);
   CHECK(r.out.find("--snapshot") != std::string::npos);
@@ -18,7 +18,7 @@ TEST_CASE("--help describes the options and exits 0", "[app][cli]") {
   CHECK(r.out.find("info") != std::string::npos);
 }
 
-TEST_CASE("--version prints the version", "[app][cli]") {
+TEST_CASE("the version option prints the version", "[app][cli]") {
   auto r = runGhostspace({"--version"});
   CHECK(r.exitCode == 0);
   CHECK(r.out.rfind("ghostspace ", 0) == 0);
@@ -30,13 +30,13 @@ TEST_CASE("an unknown option is an error that names it", "[app][cli]") {
   CHECK(r.err.find("--frobnicate") != std::string::npos);
 }
 
-TEST_CASE("--size must be WxH", "[app][cli]") {
+TEST_CASE("the size option must be WxH", "[app][cli]") {
   auto r = runGhostspace({"--snapshot", "/tmp/x.png", "--size", "800by600", "a.wrl"});
   CHECK(r.exitCode == 2);
   CHECK(r.err.find("800by600") != std::string::npos);
 }
 
-TEST_CASE("--snapshot of a missing file fails with one line naming it", "[app][cli]") {
+TEST_CASE("snapshot of a missing file fails with one line naming it", "[app][cli]") {
   auto out = std::filesystem::temp_directory_path() / "gs_missing.png";
   std::filesystem::remove(out);
   auto r = runGhostspace({"--snapshot", out.string(), "/nonexistent/world.wrl"});
@@ -46,7 +46,7 @@ TEST_CASE("--snapshot of a missing file fails with one line naming it", "[app][c
   CHECK_FALSE(std::filesystem::exists(out));
 }
 
-TEST_CASE("--snapshot of a VRML 1.0 file says it is not supported", "[app][cli]") {
+TEST_CASE("snapshot of a VRML 1.0 file says it is not supported", "[app][cli]") {
   auto in = std::filesystem::temp_directory_path() / "gs_v1.wrl";
   {
     std::ofstream f(in);
@@ -67,7 +67,7 @@ TEST_CASE("info prints counts, triangles, bounds and timing", "[app][cli]") {
   CHECK(r.out.find("parse") != std::string::npos);
 }
 
-TEST_CASE("--snapshot writes a PNG of the bundled scene", "[app][cli][snapshot]") {
+TEST_CASE("snapshot writes a PNG of the bundled scene", "[app][cli][snapshot]") {
   auto world = gs::test::sourceDir() / "assets/worlds/welcome.wrl";
   auto out = std::filesystem::temp_directory_path() / "gs_welcome_test.png";
   std::filesystem::remove(out);
