@@ -13,7 +13,8 @@
 namespace gs::render {
 namespace {
 
-int gWindowCount = 0;  // GLFW is initialized while this is > 0
+int gWindowCount = 0;           // live window contexts
+bool gGlfwInitialized = false;  // GLFW stays initialized until terminateWindowSystem()
 
 GLADapiproc glfwGetProc(const char* name) {
   return reinterpret_cast<GLADapiproc>(glfwGetProcAddress(name));
@@ -32,11 +33,14 @@ class GlfwContext final : public WindowContext {
     if (width < 1 || height < 1)
       throw std::runtime_error("cannot open a window: invalid size " + std::to_string(width) + "x" +
                                std::to_string(height));
-    if (gWindowCount == 0 && glfwInit() != GLFW_TRUE)
-      throw std::runtime_error("cannot open a window: GLFW initialization failed (" +
-                               glfwLastError() +
-                               "); is there a display? Set DISPLAY, run under Xvfb, or use "
-                               "the off-screen mode");
+    if (!gGlfwInitialized) {
+      if (glfwInit() != GLFW_TRUE)
+        throw std::runtime_error("cannot open a window: GLFW initialization failed (" +
+                                 glfwLastError() +
+                                 "); is there a display? Set DISPLAY, run under Xvfb, or use "
+                                 "the off-screen mode");
+      gGlfwInitialized = true;
+    }
     ++gWindowCount;
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
@@ -97,13 +101,18 @@ class GlfwContext final : public WindowContext {
   GLFWwindow* glfwHandle() const override { return window_; }
 
  private:
-  static void release() {
-    if (--gWindowCount == 0) glfwTerminate();
-  }
+  static void release() { --gWindowCount; }
   GLFWwindow* window_ = nullptr;
 };
 
 }  // namespace
+
+bool terminateWindowSystem() {
+  if (gWindowCount > 0) return false;
+  if (gGlfwInitialized) glfwTerminate();
+  gGlfwInitialized = false;
+  return true;
+}
 
 std::unique_ptr<WindowContext> createWindowContext(const std::string& title, int width,
                                                    int height) {

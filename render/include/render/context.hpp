@@ -58,11 +58,17 @@ class WindowContext : public GlContext {
 
 /// Opens a visible window titled `title` with a client area of `width` x `height` screen
 /// coordinates and an OpenGL 3.3 core forward-compatible context, initializing GLFW on
-/// first use (terminated when the last window context is destroyed). The context is
+/// first use (it stays initialized until terminateWindowSystem()). The context is
 /// current and its functions loaded when this returns; vsync is on. Throws
 /// std::runtime_error ("cannot open a window: ...", e.g. when there is no display: set
 /// DISPLAY or run under Xvfb, or use createOffscreenContext).
 std::unique_ptr<WindowContext> createWindowContext(const std::string& title, int width, int height);
+
+/// Terminates GLFW when no window context is alive (returns false and does nothing
+/// otherwise). Optional: the process may simply exit. Terminating unloads Mesa's GLX
+/// driver, whose own allocations LeakSanitizer then reports as leaks from an unloaded
+/// module, so sanitizer runs should leave GLFW initialized.
+bool terminateWindowSystem();
 
 /// Loads every GL entry point through `getProcAddress` for the context current on this
 /// thread (the window path calls it after glfwMakeContextCurrent with glfwGetProcAddress;
