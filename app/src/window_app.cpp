@@ -9,6 +9,7 @@
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <exception>
 
@@ -67,6 +68,7 @@ int runWindow(const Options& options) {
   }
   ImGuiSession imgui(context->glfwHandle());
   WindowState state;
+  state.lastAspect = static_cast<float>(context->width()) / std::max(1, context->height());
   for (const std::string& input : options.inputs) state.open(input);
 
   int frame = 0;

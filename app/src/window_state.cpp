@@ -31,7 +31,9 @@ void WindowState::show(std::size_t index) {
 
 void WindowState::resetView() {
   if (!renderer) return;
-  render::Camera camera = renderer->boundViewpointCamera();
+  // The bound Viewpoint; a world without one is framed whole (a KiCad part, say, lies
+  // far from the VRML97 default viewpoint's view), as other browsers do.
+  render::Camera camera = renderer->initialCamera(lastAspect);
   const vrml::Bounds& b = renderer->bounds();
   // Orbit around the point of the view axis nearest the scene's centre.
   glm::vec3 center = camera.position + camera.forward() * 10.0f;
