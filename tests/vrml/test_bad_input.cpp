@@ -103,9 +103,15 @@ TEST_CASE("bad input: random bytes and random mutations", "[bad_input]") {
     for (int e = 0; e < edits; ++e) {
       const std::size_t at = 16 + rng() % (w.size() - 16);
       switch (rng() % 3) {
-        case 0: w[at] = alphabet[pick(rng)]; break;
-        case 1: w.erase(at, 1 + rng() % 8); break;
-        default: w.insert(at, 1, alphabet[pick(rng)]); break;
+        case 0:
+          w[at] = alphabet[pick(rng)];
+          break;
+        case 1:
+          w.erase(at, 1 + rng() % 8);
+          break;
+        default:
+          w.insert(at, 1, alphabet[pick(rng)]);
+          break;
       }
     }
     Scene s;
@@ -153,8 +159,7 @@ TEST_CASE("bad input: 100,000 nested nodes give a nesting error, no stack overfl
   CHECK(four.diagnostics.errorCount() == 1);
 }
 
-TEST_CASE("bad input: counts larger than the data are refused before allocating",
-          "[bad_input]") {
+TEST_CASE("bad input: counts larger than the data are refused before allocating", "[bad_input]") {
   Scene img = parse("PixelTexture { image 100000 100000 4 0xFF 0xFF }");
   REQUIRE(img.diagnostics.errorCount() == 1);
   CHECK(gs::test::firstError(img).find(

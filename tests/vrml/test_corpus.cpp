@@ -131,8 +131,7 @@ TEST_CASE("corpus: OpenVRML good cases load without errors", "[corpus]") {
 
 TEST_CASE("corpus: OpenVRML bad cases give an error with its place", "[corpus]") {
   if (!gs::test::haveCorpus("vrml/openvrml/bad")) return;
-  const auto files =
-      gs::test::filesWithSuffix(gs::test::corpusDir() / "vrml/openvrml/bad", ".wrl");
+  const auto files = gs::test::filesWithSuffix(gs::test::corpusDir() / "vrml/openvrml/bad", ".wrl");
   CHECK(files.size() == 12);
   for (const fs::path& f : files) {
     const Scene s = loadVrmlFile(f.string());

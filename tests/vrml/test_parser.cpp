@@ -14,8 +14,8 @@
 #include <string>
 
 using namespace gs::vrml;
-using gs::test::parse;
 using gs::test::firstError;
+using gs::test::parse;
 
 TEST_CASE("header: V2.0 utf8 accepted, V1.0 and others refused", "[parser]") {
   CHECK(parseVrml("#VRML V2.0 utf8\n", "a.wrl").diagnostics.items.empty());
@@ -124,8 +124,7 @@ TEST_CASE("all 20 field types through Script declarations", "[parser]") {
   CHECK(n.get<FieldType::SFTime>("t", 0.0) == 0.5);
   CHECK(n.get<FieldType::SFVec2f>("v2", glm::vec2(0)) == glm::vec2(1, 2));
   CHECK(n.get<FieldType::SFVec3f>("v3", glm::vec3(0)) == glm::vec3(1, 2, 3));
-  CHECK(n.field("mc")->get<FieldType::MFColor>() ==
-        std::vector<glm::vec3>{{1, 0, 0}, {0, 1, 0}});
+  CHECK(n.field("mc")->get<FieldType::MFColor>() == std::vector<glm::vec3>{{1, 0, 0}, {0, 1, 0}});
   CHECK(n.field("mf")->get<FieldType::MFFloat>() == std::vector<float>{1, 2.5f, -3});
   CHECK(n.field("mi")->get<FieldType::MFInt32>() == std::vector<std::int32_t>{1, -2, 31, 4});
   REQUIRE(n.mfnode("mn").size() == 2);
@@ -135,8 +134,7 @@ TEST_CASE("all 20 field types through Script declarations", "[parser]") {
   CHECK(n.field("ms")->get<FieldType::MFString>() == std::vector<std::string>{"a", "b\"c"});
   CHECK(n.field("mt")->get<FieldType::MFTime>() == std::vector<double>{1, 2});
   CHECK(n.field("m2")->get<FieldType::MFVec2f>() == std::vector<glm::vec2>{{0, 0}, {1, 1}});
-  CHECK(n.field("m3")->get<FieldType::MFVec3f>() ==
-        std::vector<glm::vec3>{{0, 0, 0}, {1, 1, 1}});
+  CHECK(n.field("m3")->get<FieldType::MFVec3f>() == std::vector<glm::vec3>{{0, 0, 0}, {1, 1, 1}});
   const int go = n.type().findExact("go");
   REQUIRE(go >= 0);
   CHECK(n.type().fields[static_cast<std::size_t>(go)].access == AccessType::eventIn);
@@ -170,10 +168,23 @@ TEST_CASE("MF values with and without brackets, empty lists", "[parser]") {
 
 TEST_CASE("numbers: exact float rounding on the fast and slow paths", "[parser][lexer]") {
   // Values chosen to cross the inline parser's limits (8 digits, 2^24, exponents).
-  const std::vector<std::string> texts = {
-      "0",          "-0.5",       "18.860",     "0.1",        "16777215",   "16777217",
-      "0.12345678", "123456789",  "1.5e3",      "-2E-2",      "3.",         ".25",
-      "0.5500000119209289",       "1e-45",      "3.4028235e38", "00012.500", "-7.547"};
+  const std::vector<std::string> texts = {"0",
+                                          "-0.5",
+                                          "18.860",
+                                          "0.1",
+                                          "16777215",
+                                          "16777217",
+                                          "0.12345678",
+                                          "123456789",
+                                          "1.5e3",
+                                          "-2E-2",
+                                          "3.",
+                                          ".25",
+                                          "0.5500000119209289",
+                                          "1e-45",
+                                          "3.4028235e38",
+                                          "00012.500",
+                                          "-7.547"};
   for (const std::string& t : texts) {
     Scene s = parse("Coordinate { point [ " + t + " 0 0 ] } Sphere { radius " + t + " }");
     INFO(t);
@@ -224,8 +235,7 @@ TEST_CASE("identifiers: VRML97 id characters, comments and commas", "[parser][le
   CHECK(s.rootNodes[2] == s.rootNodes[0]);
 }
 
-TEST_CASE("DEF/USE share one node; USE of an unknown name is an error with place",
-          "[parser]") {
+TEST_CASE("DEF/USE share one node; USE of an unknown name is an error with place", "[parser]") {
   Scene s = parse(R"(
 DEF M Material { diffuseColor 1 0 0 }
 Shape { appearance Appearance { material USE M } }
@@ -251,8 +261,7 @@ Shape { appearance Appearance { material USE Nope } }
   CHECK(r.rootNodes[2]->mfnode("children")[0]->typeName() == "Transform");
 }
 
-TEST_CASE("unknown field: error with file:line:column, value skipped, parse goes on",
-          "[parser]") {
+TEST_CASE("unknown field: error with file:line:column, value skipped, parse goes on", "[parser]") {
   Scene s = parse(R"(
 Shape {
   appearance Appearance {
@@ -316,8 +325,8 @@ TEST_CASE("value errors are recovered at the next field", "[parser]") {
 
   Scene c = parse("Coordinate { point [ 1 2 3 4 ] }");
   REQUIRE(c.diagnostics.errorCount() == 1);
-  CHECK(c.diagnostics.items[0].message ==
-        "expected a number, got ']' (MFVec3f values take 3 numbers each)");
+  CHECK(c.diagnostics.items[0].message == "expected a number, got ']'");
+  CHECK(c.diagnostics.items[0].location.column == 30);
 }
 
 TEST_CASE("Script: exposedField refused, duplicate names, IS outside PROTO", "[parser]") {
@@ -373,8 +382,8 @@ TEST_CASE("nodes where the spec does not allow them are read with a warning", "[
 
 TEST_CASE("diagnostic columns with tabs, CR LF and CR line ends", "[parser]") {
   for (const std::string nl : {"\n", "\r\n", "\r"}) {
-    Scene s = parseVrml("#VRML V2.0 utf8" + nl + "Group {" + nl + "\tfoo 1" + nl + "}" + nl,
-                        "t.wrl");
+    Scene s =
+        parseVrml("#VRML V2.0 utf8" + nl + "Group {" + nl + "\tfoo 1" + nl + "}" + nl, "t.wrl");
     INFO(nl.size());
     REQUIRE(s.diagnostics.items.size() == 1);
     CHECK(s.diagnostics.items[0].location.line == 3);
@@ -386,8 +395,8 @@ TEST_CASE("node locations and onRootNode", "[parser]") {
   std::vector<std::string> seen;
   ParseOptions o;
   o.onRootNode = [&](const NodePtr& n) { seen.push_back(n->typeName()); };
-  Scene s = parseVrml("#VRML V2.0 utf8\nGroup {}\n  Transform { children Shape {} }\n",
-                      "loc.wrl", o);
+  Scene s =
+      parseVrml("#VRML V2.0 utf8\nGroup {}\n  Transform { children Shape {} }\n", "loc.wrl", o);
   CHECK(seen == std::vector<std::string>{"Group", "Transform"});
   CHECK(s.rootNodes[1]->location.file == "loc.wrl");
   CHECK(s.rootNodes[1]->location.line == 3);
@@ -430,8 +439,7 @@ TEST_CASE("gzip input is read transparently, concatenated members too", "[parser
 TEST_CASE("loadVrmlFile names the file and reports what cannot be read", "[parser]") {
   Scene missing = loadVrmlFile("/nonexistent/dir/x.wrl");
   REQUIRE(missing.diagnostics.items.size() == 1);
-  CHECK(missing.diagnostics.items[0].message.find("/nonexistent/dir/x.wrl") !=
-        std::string::npos);
+  CHECK(missing.diagnostics.items[0].message.find("/nonexistent/dir/x.wrl") != std::string::npos);
   const std::string path = (gs::test::sourceDir() / "tests/data/vrml/extern_lib.wrl").string();
   Scene lib = loadVrmlFile(path);
   CHECK(lib.url == path);

@@ -12,7 +12,9 @@ using gs::test::parse;
 
 namespace {
 
-std::string dataDir() { return (gs::test::sourceDir() / "tests/data/vrml").string(); }
+std::string dataDir() {
+  return (gs::test::sourceDir() / "tests/data/vrml").string();
+}
 
 Diagnostic onlyDiagnostic(const Scene& s) {
   REQUIRE(s.diagnostics.items.size() == 1);
@@ -50,16 +52,23 @@ Ball { }
   CHECK(a.location.line == 15);
   auto shape = [](const Node& t) { return t.mfnode("children").at(0); };
   CHECK(shape(a)->sfnode("geometry")->get<FieldType::SFFloat>("radius", 0.0f) == 2.0f);
-  CHECK(shape(a)->sfnode("appearance")->sfnode("material")->get<FieldType::SFColor>(
-            "diffuseColor", glm::vec3(9)) == glm::vec3(0, 0, 1));
+  CHECK(shape(a)
+            ->sfnode("appearance")
+            ->sfnode("material")
+            ->get<FieldType::SFColor>("diffuseColor", glm::vec3(9)) == glm::vec3(0, 0, 1));
   const Node& b = *s.rootNodes[1];
   CHECK(shape(b)->sfnode("geometry")->get<FieldType::SFFloat>("radius", 0.0f) == 1.0f);
-  CHECK(shape(b)->sfnode("appearance")->sfnode("material")->get<FieldType::SFColor>(
-            "diffuseColor", glm::vec3(9)) == glm::vec3(1));
+  CHECK(shape(b)
+            ->sfnode("appearance")
+            ->sfnode("material")
+            ->get<FieldType::SFColor>("diffuseColor", glm::vec3(9)) == glm::vec3(1));
   // Each instance is its own copy; the template is untouched.
   CHECK(shape(a) != shape(b));
-  CHECK(s.protos[0]->proto->body[0]->mfnode("children")[0]->sfnode("geometry")->get<
-            FieldType::SFFloat>("radius", 0.0f) == 1.0f);
+  CHECK(s.protos[0]
+            ->proto->body[0]
+            ->mfnode("children")[0]
+            ->sfnode("geometry")
+            ->get<FieldType::SFFloat>("radius", 0.0f) == 1.0f);
 }
 
 TEST_CASE("PROTO: DEF/USE sharing inside the copy, hidden body nodes, body ROUTEs",
@@ -109,8 +118,9 @@ Outer { c 0.5 0.5 0.5 }
   REQUIRE(s.diagnostics.items.empty());
   REQUIRE(s.rootNodes.size() == 4);
   auto color = [](const NodePtr& shape) {
-    return shape->sfnode("appearance")->sfnode("material")->get<FieldType::SFColor>(
-        "diffuseColor", glm::vec3(9));
+    return shape->sfnode("appearance")
+        ->sfnode("material")
+        ->get<FieldType::SFColor>("diffuseColor", glm::vec3(9));
   };
   CHECK(s.rootNodes[0]->typeName() == "Shape");
   CHECK(color(s.rootNodes[0]) == glm::vec3(1, 1, 0));
@@ -139,8 +149,9 @@ PROTO Sees [] { Group { children USE Outside } }
   CHECK(s.rootNodes.size() == 2);
   CHECK(s.rootNodes[1]->mfnode("children").size() == 2);
   // A PROTO declared inside a node of the file is visible after it (same scope).
-  Scene v = parse("Transform { PROTO Red [] { Material {} } } Shape { appearance Appearance { "
-                  "material Red {} } }");
+  Scene v = parse(
+      "Transform { PROTO Red [] { Material {} } } Shape { appearance Appearance { "
+      "material Red {} } }");
   CHECK(v.diagnostics.items.empty());
 }
 
@@ -185,8 +196,8 @@ TEST_CASE("PROTO checks: IS types and access, interface conflicts, eventIn value
     CHECK(d.message.find("IS access mismatch") == 0);
   }
   SECTION("IS access: an eventOut cannot be connected to an eventIn") {
-    const Diagnostic d = onlyDiagnostic(
-        parse("PROTO P [ eventIn SFBool e ] { TimeSensor { isActive IS e } }"));
+    const Diagnostic d =
+        onlyDiagnostic(parse("PROTO P [ eventIn SFBool e ] { TimeSensor { isActive IS e } }"));
     CHECK(d.message.find("IS access mismatch") == 0);
   }
   SECTION("IS to a name not in the interface") {
@@ -298,17 +309,20 @@ ROUTE TS.nothing TO T.set_scale
   CHECK(d[1].message == "ROUTE type mismatch: TS.loop is SFBool but T.set_translation is SFVec3f");
   CHECK(d[1].location.line == 7);
   CHECK(d[1].location.column == 20);
-  CHECK(d[2].message == "ROUTE destination 'bboxCenter' of Transform is a field; it must be an "
-                        "eventIn or exposedField");
-  CHECK(d[3].message == "ROUTE destination 'isActive' of TimeSensor is an eventOut; it must be "
-                        "an eventIn or exposedField");
-  CHECK(d[4].message == "ROUTE source 'addChildren' of Transform is an eventIn; it must be an "
-                        "eventOut or exposedField");
+  CHECK(d[2].message ==
+        "ROUTE destination 'bboxCenter' of Transform is a field; it must be an "
+        "eventIn or exposedField");
+  CHECK(d[3].message ==
+        "ROUTE destination 'isActive' of TimeSensor is an eventOut; it must be "
+        "an eventIn or exposedField");
+  CHECK(d[4].message ==
+        "ROUTE source 'addChildren' of Transform is an eventIn; it must be an "
+        "eventOut or exposedField");
   CHECK(d[4].location.column == 9);
-  CHECK(d[5].message == "ROUTE source 'bboxSize' of Transform is a field; it must be an "
-                        "eventOut or exposedField");
-  CHECK(d[6].message ==
-        "ROUTE type mismatch: TS.isActive is SFBool but S.whichChoice is SFInt32");
+  CHECK(d[5].message ==
+        "ROUTE source 'bboxSize' of Transform is a field; it must be an "
+        "eventOut or exposedField");
+  CHECK(d[6].message == "ROUTE type mismatch: TS.isActive is SFBool but S.whichChoice is SFInt32");
   CHECK(d[7].message == "ROUTE to unknown DEF name 'Nobody'");
   CHECK(d[8].message == "TimeSensor has no eventOut 'nothing' for a ROUTE source");
   CHECK(d[8].location.line == 14);
@@ -342,8 +356,9 @@ First {}
   CHECK(box.typeName() == "Shape");
   CHECK(box.protoName == "Box2");
   CHECK(!box.unresolved);
-  CHECK(box.sfnode("appearance")->sfnode("material")->get<FieldType::SFColor>(
-            "diffuseColor", glm::vec3(9)) == glm::vec3(0, 1, 0));
+  CHECK(box.sfnode("appearance")
+            ->sfnode("material")
+            ->get<FieldType::SFColor>("diffuseColor", glm::vec3(9)) == glm::vec3(0, 1, 0));
   // Not given: the default of the PROTO in the library.
   CHECK(box.sfnode("geometry")->get<FieldType::SFVec3f>("size", glm::vec3(0)) == glm::vec3(2));
   CHECK(box.sfnode("geometry")->location.file == dataDir() + "/extern_lib.wrl");

@@ -7,9 +7,9 @@
 
 #include <array>
 #include <bit>
-#include <cstring>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -41,12 +41,18 @@ constexpr std::array<std::uint8_t, 256> makeCharClass() {
 }
 inline constexpr std::array<std::uint8_t, 256> kCharClass = makeCharClass();
 
-inline bool isSpace(char c) { return (kCharClass[static_cast<unsigned char>(c)] & kSpace) != 0; }
+inline bool isSpace(char c) {
+  return (kCharClass[static_cast<unsigned char>(c)] & kSpace) != 0;
+}
 inline bool isIdFirst(char c) {
   return (kCharClass[static_cast<unsigned char>(c)] & kIdFirst) != 0;
 }
-inline bool isIdRest(char c) { return (kCharClass[static_cast<unsigned char>(c)] & kIdRest) != 0; }
-inline bool isDigit(char c) { return c >= '0' && c <= '9'; }
+inline bool isIdRest(char c) {
+  return (kCharClass[static_cast<unsigned char>(c)] & kIdRest) != 0;
+}
+inline bool isDigit(char c) {
+  return c >= '0' && c <= '9';
+}
 
 enum class Tok : std::uint8_t {
   end,       // end of input
@@ -145,9 +151,20 @@ class Lexer {
     skipSpace();
     return floatHere();
   }
-  /// Reads numbers up to the closing ']' (consumed), appending them to `out`.
-  void readFloatsUntilBracket(std::vector<float>& out) {
-    while (separatorThen() != ']') out.push_back(floatHere());
+  /// Reads numbers up to the closing ']' (consumed), appending them to `out` in groups
+  /// of N (a float, or a glm vector of N floats). A group cut short by ']' is an error.
+  template <int N, class T>
+  void readFloatsUntilBracket(std::vector<T>& out) {
+    while (separatorThen() != ']') {
+      if constexpr (N == 1) {
+        out.push_back(floatHere());
+      } else {
+        T v;
+        v[0] = floatHere();
+        for (int i = 1; i < N; ++i) v[i] = readFloat();
+        out.push_back(v);
+      }
+    }
     ++p_;
   }
   void readInt32sUntilBracket(std::vector<std::int32_t>& out) {
@@ -197,56 +214,43 @@ class Lexer {
       if (p_ >= end_) failExpected(offset(), "a number or ']'");
       const char c = *p_;
       if (static_cast<unsigned char>(c) > ',') return c;  // digits, '-', '.', ']'
-      if (isSpace(c)) ++p_;
-      else if (c == '#') skipComment();
-      else return c;
+      if (isSpace(c))
+        ++p_;
+      else if (c == '#')
+        skipComment();
+      else
+        return c;
     }
-  }
-  // SWAR digit scanning (little-endian): the number of leading ASCII digits in the 8
-  // bytes at q (8 means all), and their value. The test is exact up to and including the
-  // first non-digit, which is all that is used.
-  static unsigned digitRun(const char* q, std::uint64_t& w) {
-    std::memcpy(&w, q, 8);
-    constexpr std::uint64_t kHigh = 0xF0F0F0F0F0F0F0F0ull, kZeros = 0x3030303030303030ull;
-    const std::uint64_t nonDigit =
-        ((w & kHigh) ^ kZeros) | (((w + 0x0606060606060606ull) & kHigh) ^ kZeros);
-    return nonDigit == 0 ? 8u : static_cast<unsigned>(std::countr_zero(nonDigit)) / 8;
-  }
-  static std::uint32_t digitValue(std::uint64_t w, unsigned k) {  // 1 <= k <= 8
-    w <<= 8 * (8 - k);  // the k digits become the low-order end of an 8-digit number
-    w = (w & 0x0F0F0F0F0F0F0F0Full) * 2561 >> 8;
-    w = (w & 0x00FF00FF00FF00FFull) * 6553601 >> 16;
-    return static_cast<std::uint32_t>((w & 0x0000FFFF0000FFFFull) * 42949672960001ull >> 32);
   }
   // A float at p_ (no space skipping). Short plain decimals (the bulk of real files)
   // take this inline path, which gives the same correctly rounded result as fast_float:
-  // at most 8 digits and m < 2^24, so the mantissa m is exact in a float, as is 10^k for
-  // k <= 8, and m / 10^k is one correctly rounded division.
+  // with at most 8 digits and m < 2^24 the mantissa m is exact in a float, as is 10^k
+  // for k <= 8, so m / 10^k is one correctly rounded division. Plain loops beat SWAR
+  // digit tricks here (measured on the KiCad corpus: the digit counts are predictable).
   float floatHere() {
-    if constexpr (std::endian::native != std::endian::little) return readFloatSlow();
     if (end_ - p_ < 24) return readFloatSlow();  // near the end: the checked path
-    const char* q = p_;
+    const char* q = p_;  // 24 bytes remain: the loops below read at most 12 without checks
     const bool negative = *q == '-';
     q += negative ? 1 : 0;
-    std::uint64_t w = 0;
-    const unsigned intDigits = digitRun(q, w);
-    if (intDigits == 8) return readFloatSlow();
-    std::uint32_t m = intDigits == 0 ? 0 : digitValue(w, intDigits);
-    q += intDigits;
-    unsigned fraction = 0;
+    std::uint32_t m = 0;
+    unsigned d = 0;
+    int digits = 0;
+    while ((d = static_cast<unsigned char>(*q) - unsigned('0')) <= 9 && digits < 9) {
+      m = m * 10 + d;
+      ++q;
+      ++digits;
+    }
+    int fraction = 0;
     if (*q == '.') {
       ++q;
-      fraction = digitRun(q, w);
-      if (fraction == 8) return readFloatSlow();
-      if (fraction > 0) {
-        static constexpr std::uint32_t kScale[] = {1,      10,      100,      1000,
-                                                   10000,  100000,  1000000,  10000000};
-        m = m * kScale[fraction] + digitValue(w, fraction);
-        q += fraction;
+      while ((d = static_cast<unsigned char>(*q) - unsigned('0')) <= 9 && digits < 9) {
+        m = m * 10 + d;
+        ++q;
+        ++digits;
+        ++fraction;
       }
     }
-    const unsigned digits = intDigits + fraction;
-    if (digits == 0 || digits > 8 || m >= (1u << 24) || *q == 'e' || *q == 'E')
+    if (digits == 0 || digits > 8 || d <= 9 || m >= (1u << 24) || *q == 'e' || *q == 'E')
       return readFloatSlow();
     static constexpr float kPow10[] = {1e0f, 1e1f, 1e2f, 1e3f, 1e4f, 1e5f, 1e6f, 1e7f, 1e8f};
     const float v = static_cast<float>(m) / kPow10[fraction];
@@ -255,18 +259,26 @@ class Lexer {
   }
   // An int32 at p_: short decimals inline, the rest (hex, long, errors) out of line.
   std::int32_t int32Here() {
-    if constexpr (std::endian::native != std::endian::little) return readInt32Slow();
     if (end_ - p_ < 16) return readInt32Slow();
-    const char* q = p_;
+    const char* q = p_;  // 16 bytes remain: the loop below reads at most 11 without checks
+    if (q[0] == '-' && q[1] == '1' && static_cast<unsigned char>(q[2] - '0') > 9 && q[2] != 'x' &&
+        q[2] != 'X' && q[2] != '.' && q[2] != 'e' && q[2] != 'E') {
+      p_ = q + 2;  // -1 ends every face of an index list
+      return -1;
+    }
     const bool negative = *q == '-';
     q += negative ? 1 : 0;
-    std::uint64_t w = 0;
-    const unsigned n = digitRun(q, w);
-    const char c = q[n];
-    if (n == 0 || n == 8 || c == 'x' || c == 'X' || c == '.' || c == 'e' || c == 'E')
+    const char* first = q;
+    std::uint32_t v = 0;
+    unsigned d = 0;
+    while ((d = static_cast<unsigned char>(*q) - unsigned('0')) <= 9 && q - first < 9) {
+      v = v * 10 + d;
+      ++q;
+    }
+    const char c = *q;
+    if (q == first || d <= 9 || c == 'x' || c == 'X' || c == '.' || c == 'e' || c == 'E')
       return readInt32Slow();
-    const std::uint32_t v = digitValue(w, n);
-    p_ = q + n;
+    p_ = q;
     return negative ? -static_cast<std::int32_t>(v) : static_cast<std::int32_t>(v);
   }
   void skipComment();
@@ -283,6 +295,15 @@ class Lexer {
   std::size_t cacheOffset_ = 0;
   int cacheLine_ = 1;
   std::size_t cacheLineStart_ = 0;
+  // Positions the cache passed, every kMarkSpacing bytes or more, so that a question
+  // about an earlier offset restarts close to it instead of at the start of the text.
+  struct Mark {
+    std::size_t offset;
+    int line;
+    std::size_t lineStart;
+  };
+  static constexpr std::size_t kMarkSpacing = 1 << 16;
+  std::vector<Mark> marks_;
   int loneCr_ = -1;  // whether the text has a CR not followed by LF (-1: not yet known)
 };
 

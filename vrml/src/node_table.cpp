@@ -5,8 +5,8 @@
 
 #include "parser_impl.hpp"
 
-#include <stdexcept>
 #include <cstdint>
+#include <stdexcept>
 #include <vector>
 
 namespace gs::vrml {

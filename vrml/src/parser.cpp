@@ -4,6 +4,7 @@
 #include "parser_impl.hpp"
 
 #include <algorithm>
+#include <cstring>
 
 namespace gs::vrml::parsing {
 
@@ -13,6 +14,18 @@ constexpr std::size_t kMaxDiagnostics = 1000;
 
 bool isAccessKeyword(std::string_view s) {
   return s == "eventIn" || s == "eventOut" || s == "field" || s == "exposedField";
+}
+
+// NodeType::findExact for the hot path: most names differ in length or first byte.
+int findMember(const NodeType& type, std::string_view name) {
+  const std::size_t n = type.fields.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::string& f = type.fields[i].name;
+    if (f.size() == name.size() && f[0] == name[0] &&
+        std::memcmp(f.data(), name.data(), name.size()) == 0)
+      return static_cast<int>(i);
+  }
+  return -1;
 }
 
 bool isStatementKeyword(std::string_view s) {
@@ -32,8 +45,8 @@ void Parser::report(Severity s, std::size_t offset, std::string message) {
   }
   diag_.items.push_back({s, lex_.locationAt(offset), std::move(message)});
   if (diag_.items.size() == kMaxDiagnostics) {
-    diag_.items.push_back({Severity::error, lex_.locationAt(offset),
-                           "too many diagnostics: giving up on this file"});
+    diag_.items.push_back(
+        {Severity::error, lex_.locationAt(offset), "too many diagnostics: giving up on this file"});
     giveUp_ = true;
   }
 }
@@ -73,8 +86,8 @@ void Parser::parseScene(Scene& scene) {
 }
 
 // statements ::= statement*; statement ::= nodeStatement | protoStatement | routeStatement
-void Parser::parseStatements(Scope& scope, std::vector<NodePtr>* nodes, int depth,
-                             bool untilBrace, int* height) {
+void Parser::parseStatements(Scope& scope, std::vector<NodePtr>* nodes, int depth, bool untilBrace,
+                             int* height) {
   const std::size_t open = lex_.offset();
   while (true) {
     if (giveUp_) throw ParseError(Diagnostic{Severity::error, {}, "giving up"});
@@ -141,8 +154,8 @@ NodePtr Parser::parseNodeStatement(Scope& scope, int depth, int& height, bool al
       // (clause 6.40), a cycle anywhere else. Stored without ownership so the cycle
       // does not keep the nodes alive.
       if (!e.node->type().script)
-        lex_.fail(nt.offset, "USE '" + std::string(name) +
-                                 "' inside its own definition would make a cycle");
+        lex_.fail(nt.offset,
+                  "USE '" + std::string(name) + "' inside its own definition would make a cycle");
       height = 0;
       return NodePtr(NodePtr(), e.node.get());
     }
@@ -167,14 +180,24 @@ DefEntry* Parser::findDef(Scope& scope, std::string_view name) {
 
 std::shared_ptr<const NodeType> Parser::lookupType(Scope& scope, std::string_view name,
                                                    bool& defining) {
-  for (Scope* s = &scope; s != nullptr; s = s->parent) {
+  for (Scope* s = protosDeclared_ ? &scope : nullptr; s != nullptr; s = s->parent) {
     auto it = s->protos.find(name);
     if (it != s->protos.end()) {
       if (!it->second) defining = true;
       return it->second;
     }
   }
-  return builtInNodeType(name);
+  // A small cache in front of the built-in table: a file uses few node types, and they
+  // differ in length, first or last byte.
+  TypeCacheEntry& e =
+      typeCache_[(name.size() + static_cast<unsigned char>(name.front()) * 5u +
+                  static_cast<unsigned char>(name.back()) * 3u +
+                  static_cast<unsigned char>(name[name.size() / 2]) * 11u) &
+                 (typeCache_.size() - 1)];
+  if (e.type && e.type->name == name) return e.type;
+  std::shared_ptr<const NodeType> t = builtInNodeType(name);
+  if (t) e.type = t;
+  return t;
 }
 
 // node ::= nodeTypeId { nodeBody } | Script { scriptBody }
@@ -207,6 +230,7 @@ NodePtr Parser::parseNode(Scope& scope, const Token& t, int depth, int& height,
   if (type->proto) {
     InstanceValues inst;
     inst.type = type;
+    inst.location = lex_.locationAt(t.offset);
     inst.values.reserve(type->fields.size());
     for (const FieldSpec& f : type->fields) inst.values.push_back(f.defaultValue);
     inst.given.assign(type->fields.size(), 0);
@@ -227,17 +251,28 @@ NodePtr Parser::parseNode(Scope& scope, const Token& t, int depth, int& height,
     node->defName = defName;
     scope.defs[std::string(defName)] = DefEntry{node, node->typePtr(), nullptr, 1, true};
   }
+  // Close the DEF entry however the body ends (a body cut short by an error still
+  // leaves a node that later USEs may share).
+  // (It holds the Node by address: `return node` moves the NodePtr out before this runs.)
+  struct Closer {
+    Scope& scope;
+    std::string_view name;
+    const Node* node;
+    int& height;
+    ~Closer() {
+      if (name.empty()) return;
+      auto it = scope.defs.find(name);
+      if (it != scope.defs.end() && it->second.node.get() == node) {
+        it->second.open = false;
+        it->second.height = height;
+        it->second.declared = node->typePtr();
+      }
+    }
+  } closer{scope, defName, node.get(), height};
+  height = 1;
   int h = 0;
   parseNodeBody(scope, node, nullptr, depth, h);
   height = h + 1;
-  if (!defName.empty()) {
-    auto it = scope.defs.find(defName);
-    if (it != scope.defs.end() && it->second.node == node) {
-      it->second.open = false;
-      it->second.height = height;
-      it->second.declared = node->typePtr();
-    }
-  }
   if (node->type().builtIn && node->typeName() == "Inline") checkInline(*node, t.offset);
   return node;
 }
@@ -266,9 +301,12 @@ void Parser::parseNodeBody(Scope& scope, const NodePtr& node, InstanceValues* in
     try {
       if (t.kind != Tok::id) lex_.failExpected(t.offset, "a field name or '}'");
       if (isStatementKeyword(t.text)) {
-        if (t.text == "PROTO") parseProto(scope);
-        else if (t.text == "EXTERNPROTO") parseExternProto(scope);
-        else parseRoute(scope);
+        if (t.text == "PROTO")
+          parseProto(scope);
+        else if (t.text == "EXTERNPROTO")
+          parseExternProto(scope);
+        else
+          parseRoute(scope);
         continue;
       }
       lex_.consume(t);
@@ -276,7 +314,7 @@ void Parser::parseNodeBody(Scope& scope, const NodePtr& node, InstanceValues* in
         parseScriptDeclaration(scope, node, t, depth, height);
         continue;
       }
-      int i = ty.findExact(t.text);
+      int i = findMember(ty, t.text);
       AccessType access = AccessType::field;
       if (i >= 0) {
         access = ty.fields[static_cast<std::size_t>(i)].access;
@@ -323,9 +361,12 @@ void Parser::parseNodeBody(Scope& scope, const NodePtr& node, InstanceValues* in
 void Parser::parseScriptDeclaration(Scope& scope, const NodePtr& node, const Token& keyword,
                                     int depth, int& height) {
   AccessType a = AccessType::field;
-  if (keyword.text == "eventIn") a = AccessType::eventIn;
-  else if (keyword.text == "eventOut") a = AccessType::eventOut;
-  else if (keyword.text == "exposedField") a = AccessType::exposedField;
+  if (keyword.text == "eventIn")
+    a = AccessType::eventIn;
+  else if (keyword.text == "eventOut")
+    a = AccessType::eventOut;
+  else if (keyword.text == "exposedField")
+    a = AccessType::exposedField;
   const Token tt = lex_.peek();
   const std::string_view typeName = lex_.expectId("a field type");
   FieldType ft = FieldType::SFBool;
@@ -416,12 +457,13 @@ void Parser::parseIs(Scope& scope, const NodeType& type, int index, AccessType a
     report(Severity::error, nt.offset,
            "IS access mismatch: " + std::string(accessTypeName(access)) + " '" +
                std::string(asWritten) + "' of " + type.name + " cannot be connected to " +
-               std::string(accessTypeName(outer.access)) + " '" + outer.name +
-               "' (clause 4.8.3)");
+               std::string(accessTypeName(outer.access)) + " '" + outer.name + "' (clause 4.8.3)");
     return;
   }
-  if (node) scope.proto->def->connections.push_back(IsConnection{node, index, access, j});
-  else inst->isRefs.push_back(IsConnection{nullptr, index, access, j});
+  if (node)
+    scope.proto->def->connections.push_back(IsConnection{node, index, access, j});
+  else
+    inst->isRefs.push_back(IsConnection{nullptr, index, access, j});
 }
 
 // After an unknown field or a value that may not be given: skip what follows. A '[' list
@@ -458,14 +500,14 @@ void Parser::resync(const NodeType* type) {
   }
 }
 
-void Parser::checkNodeClass(const NodeType* parent, std::string_view field,
-                            const NodePtr& child, std::size_t offset) {
+void Parser::checkNodeClass(const NodeType* parent, std::string_view field, const NodePtr& child,
+                            std::size_t offset) {
   std::string expected;
   if (nodeClassAllowed(parent, field, child->type(), expected)) return;
   if (parent == nullptr)
     report(Severity::warning, offset,
-           child->typeName() + " node is not allowed at the root of a scene (expected " +
-               expected + ")");
+           child->typeName() + " node is not allowed at the root of a scene (expected " + expected +
+               ")");
   else
     report(Severity::warning, offset,
            child->typeName() + " node is not allowed in '" + std::string(field) + "' of " +

@@ -123,19 +123,32 @@ NodeClass classOf(const NodeType& t) {
 
 const char* describe(NodeClass c) {
   switch (c) {
-    case NodeClass::any: return "any node";
-    case NodeClass::children: return "a children node";
-    case NodeClass::geometry: return "a geometry node";
-    case NodeClass::appearance: return "Appearance";
-    case NodeClass::material: return "Material";
-    case NodeClass::texture: return "a texture node";
-    case NodeClass::textureTransform: return "TextureTransform";
-    case NodeClass::coordinate: return "Coordinate";
-    case NodeClass::color: return "Color";
-    case NodeClass::normal: return "Normal";
-    case NodeClass::texCoord: return "TextureCoordinate";
-    case NodeClass::fontStyle: return "FontStyle";
-    case NodeClass::audioClip: return "AudioClip or MovieTexture";
+    case NodeClass::any:
+      return "any node";
+    case NodeClass::children:
+      return "a children node";
+    case NodeClass::geometry:
+      return "a geometry node";
+    case NodeClass::appearance:
+      return "Appearance";
+    case NodeClass::material:
+      return "Material";
+    case NodeClass::texture:
+      return "a texture node";
+    case NodeClass::textureTransform:
+      return "TextureTransform";
+    case NodeClass::coordinate:
+      return "Coordinate";
+    case NodeClass::color:
+      return "Color";
+    case NodeClass::normal:
+      return "Normal";
+    case NodeClass::texCoord:
+      return "TextureCoordinate";
+    case NodeClass::fontStyle:
+      return "FontStyle";
+    case NodeClass::audioClip:
+      return "AudioClip or MovieTexture";
   }
   return "?";
 }

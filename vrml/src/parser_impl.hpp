@@ -11,6 +11,7 @@
 #include "vrml/proto.hpp"
 #include "vrml/scene.hpp"
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <string>
@@ -56,9 +57,9 @@ struct Scope {
   NameMap<DefEntry> defs;
   /// PROTO / EXTERNPROTO types; null while the PROTO of that name is being defined.
   NameMap<std::shared_ptr<const NodeType>> protos;
-  ProtoBuilder* proto = nullptr;                     // non-null inside a PROTO body
-  std::vector<Route>* routes = nullptr;              // where ROUTEs go
-  std::vector<NodePtr>* hidden = nullptr;            // where hidden instance nodes go
+  ProtoBuilder* proto = nullptr;           // non-null inside a PROTO body
+  std::vector<Route>* routes = nullptr;    // where ROUTEs go
+  std::vector<NodePtr>* hidden = nullptr;  // where hidden instance nodes go
   std::vector<std::shared_ptr<const NodeType>>* declared = nullptr;  // Scene::protos
   bool checkRoots = false;  // root nodes are checked against the children node class
 };
@@ -85,6 +86,7 @@ struct InstanceValues {
   std::vector<char> given;               // value written in the file
   std::vector<IsConnection> isRefs;      // nodeField: instance member, protoField: outer
   int valueHeight = 0;                   // tallest node tree among the values
+  SourceLocation location;               // of the type name (taken before the body)
 };
 
 class Parser {
@@ -107,12 +109,11 @@ class Parser {
                        int* height);
   NodePtr parseNodeStatement(Scope& scope, int depth, int& height, bool allowNull);
   /// `t` is the node type name token, peeked and not consumed.
-  NodePtr parseNode(Scope& scope, const Token& t, int depth, int& height,
-                    std::string_view defName);
+  NodePtr parseNode(Scope& scope, const Token& t, int depth, int& height, std::string_view defName);
   void parseNodeBody(Scope& scope, const NodePtr& node, InstanceValues* inst, int depth,
                      int& height);
-  void parseScriptDeclaration(Scope& scope, const NodePtr& node, const Token& keyword,
-                              int depth, int& height);
+  void parseScriptDeclaration(Scope& scope, const NodePtr& node, const Token& keyword, int depth,
+                              int& height);
   void parseIs(Scope& scope, const NodeType& type, int index, AccessType access,
                std::string_view asWritten, std::size_t offset, const NodePtr& node,
                InstanceValues* inst);
@@ -138,16 +139,15 @@ class Parser {
   void readImage(SFImage& image);
   template <class T, class F>
   void readList(std::vector<T>& v, F&& one);
-  template <class T>
-  void readFloatList(std::vector<T>& v, std::size_t arity, FieldType type);
+  template <int N, class T>
+  void readFloatList(std::vector<T>& v, std::vector<T>& scratch);
   void readInt32List(std::vector<std::int32_t>& v);
 
   // proto.cpp: PROTO, EXTERNPROTO and instances (clauses 4.8, 4.9)
   void parseProto(Scope& scope);
   void parseExternProto(Scope& scope);
   void parseInterface(Scope& scope, NodeType& type, bool withValues, bool external);
-  bool parseInterfaceDeclaration(Scope& scope, NodeType& type, bool withValues,
-                                 bool external);
+  bool parseInterfaceDeclaration(Scope& scope, NodeType& type, bool withValues, bool external);
   void resolveExternProto(ProtoDefinition& def, const NodeType& declared, std::size_t offset);
   bool loadExternFile(const std::string& url, std::shared_ptr<ExternFile>& out,
                       std::string& reason);
@@ -169,10 +169,19 @@ class Parser {
   Context& ctx_;
   Diagnostics& diag_;
   int externDepth_ = 0;
-  int recursion_ = 0;       // parseNode frames on the stack (bounded by maxNesting)
-  bool tableMode_ = false;  // parsing the node table: no nodes allowed
-  bool giveUp_ = false;     // too many diagnostics
-  std::vector<float> floatScratch_;        // MF number lists are read here first
+  int recursion_ = 0;            // parseNode frames on the stack (bounded by maxNesting)
+  bool tableMode_ = false;       // parsing the node table: no nodes allowed
+  bool giveUp_ = false;          // too many diagnostics
+  bool protosDeclared_ = false;  // no PROTO seen yet: node types are all built-in
+  struct TypeCacheEntry {
+    std::shared_ptr<const NodeType> type;
+  };
+  std::array<TypeCacheEntry, 64> typeCache_{};  // recent built-in types (lookupType)
+  // MF number lists are read into these first (they keep their capacity between lists).
+  std::vector<float> floatScratch_;
+  std::vector<glm::vec2> vec2Scratch_;
+  std::vector<glm::vec3> vec3Scratch_;
+  std::vector<glm::vec4> vec4Scratch_;
   std::vector<std::int32_t> intScratch_;
 };
 

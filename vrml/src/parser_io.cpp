@@ -62,7 +62,8 @@ void gunzipInto(std::string_view bytes, const std::string& url, std::size_t maxB
     const int rc = inflate(&zs, Z_NO_FLUSH);
     out.resize(old + (grow - zs.avail_out));
     if (out.size() > maxBytes)
-      throw ParseError(Diagnostic{Severity::error, {url, 0, 0},
+      throw ParseError(Diagnostic{Severity::error,
+                                  {url, 0, 0},
                                   "decompressed data exceeds " + std::to_string(maxBytes) +
                                       " bytes (ParseLimits::maxInputBytes)"});
     if (rc == Z_STREAM_END) {
@@ -77,8 +78,10 @@ void gunzipInto(std::string_view bytes, const std::string& url, std::size_t maxB
 bool readFile(const std::string& path, std::size_t maxBytes, std::string& bytes,
               std::string& error) {
   std::string p = path;
-  if (p.starts_with("file://")) p = p.substr(7);
-  else if (p.starts_with("file:")) p = p.substr(5);
+  if (p.starts_with("file://"))
+    p = p.substr(7);
+  else if (p.starts_with("file:"))
+    p = p.substr(5);
   std::FILE* f = std::fopen(p.c_str(), "rb");
   if (f == nullptr) {
     error = "cannot open '" + path + "': " + std::strerror(errno);

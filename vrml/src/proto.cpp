@@ -8,7 +8,9 @@ namespace gs::vrml::parsing {
 
 namespace {
 
-bool carriesValue(AccessType a) { return a == AccessType::field || a == AccessType::exposedField; }
+bool carriesValue(AccessType a) {
+  return a == AccessType::field || a == AccessType::exposedField;
+}
 
 bool startsWithNoCase(std::string_view s, std::string_view prefix) {
   if (s.size() < prefix.size()) return false;
@@ -34,11 +36,16 @@ bool Parser::parseInterfaceDeclaration(Scope& scope, NodeType& type, bool withVa
                                        bool external) {
   const Token at = lex_.peek();
   AccessType a = AccessType::field;
-  if (at.kind == Tok::id && at.text == "eventIn") a = AccessType::eventIn;
-  else if (at.kind == Tok::id && at.text == "eventOut") a = AccessType::eventOut;
-  else if (at.kind == Tok::id && at.text == "field") a = AccessType::field;
-  else if (at.kind == Tok::id && at.text == "exposedField") a = AccessType::exposedField;
-  else lex_.failExpected(at.offset, "eventIn, eventOut, field or exposedField");
+  if (at.kind == Tok::id && at.text == "eventIn")
+    a = AccessType::eventIn;
+  else if (at.kind == Tok::id && at.text == "eventOut")
+    a = AccessType::eventOut;
+  else if (at.kind == Tok::id && at.text == "field")
+    a = AccessType::field;
+  else if (at.kind == Tok::id && at.text == "exposedField")
+    a = AccessType::exposedField;
+  else
+    lex_.failExpected(at.offset, "eventIn, eventOut, field or exposedField");
   lex_.consume(at);
   const Token tt = lex_.peek();
   const std::string_view typeName = lex_.expectId("a field type");
@@ -69,19 +76,19 @@ bool Parser::parseInterfaceDeclaration(Scope& scope, NodeType& type, bool withVa
     problem = "'" + name + "' is declared twice in " + std::string(kind) + " " + type.name;
   } else if (a == AccessType::eventIn && name.starts_with("set_") &&
              conflictsWith(std::string_view(name).substr(4), AccessType::exposedField)) {
-    problem = "eventIn '" + name + "' conflicts with exposedField '" + name.substr(4) +
-              "' of " + std::string(kind) + " " + type.name + " (clause 4.7)";
+    problem = "eventIn '" + name + "' conflicts with exposedField '" + name.substr(4) + "' of " +
+              std::string(kind) + " " + type.name + " (clause 4.7)";
   } else if (a == AccessType::eventOut && name.ends_with("_changed") &&
              conflictsWith(std::string_view(name).substr(0, name.size() - 8),
                            AccessType::exposedField)) {
     problem = "eventOut '" + name + "' conflicts with exposedField '" +
-              name.substr(0, name.size() - 8) + "' of " + std::string(kind) + " " +
-              type.name + " (clause 4.7)";
+              name.substr(0, name.size() - 8) + "' of " + std::string(kind) + " " + type.name +
+              " (clause 4.7)";
   } else if (a == AccessType::exposedField &&
              (conflictsWith("set_" + name, AccessType::eventIn) ||
               conflictsWith(name + "_changed", AccessType::eventOut))) {
-    problem = "exposedField '" + name + "' conflicts with an event of " + std::string(kind) +
-              " " + type.name + " (clause 4.7)";
+    problem = "exposedField '" + name + "' conflicts with an event of " + std::string(kind) + " " +
+              type.name + " (clause 4.7)";
   }
   if (!problem.empty()) {
     report(Severity::error, nt.offset, std::move(problem));
@@ -131,6 +138,7 @@ void Parser::parseProto(Scope& scope) {
   if (scope.protos.find(name) != scope.protos.end())
     report(Severity::warning, nt.offset, "PROTO '" + name + "' redefines an earlier one");
   scope.protos[name] = nullptr;  // being defined: an instance in its own body is an error
+  protosDeclared_ = true;
   Scope body;
   body.parent = &scope;
   ProtoBuilder builder{type, def};
@@ -170,6 +178,7 @@ void Parser::parseExternProto(Scope& scope) {
   resolveExternProto(*def, *type, kw.offset);
   type->proto = def;
   scope.protos[name] = type;
+  protosDeclared_ = true;
   if (scope.declared != nullptr) scope.declared->push_back(type);
 }
 
@@ -235,9 +244,9 @@ void Parser::resolveExternProto(ProtoDefinition& def, const NodeType& declared,
   }
   std::string list;
   for (const std::string& url : def.urls) list += (list.empty() ? "\"" : ", \"") + url + "\"";
-  report(Severity::warning, offset,
-         "EXTERNPROTO '" + declared.name + "' could not be resolved from [" + list +
-             "]: " + reasons);
+  report(
+      Severity::warning, offset,
+      "EXTERNPROTO '" + declared.name + "' could not be resolved from [" + list + "]: " + reasons);
 }
 
 bool Parser::loadExternFile(const std::string& url, std::shared_ptr<ExternFile>& out,
@@ -327,14 +336,12 @@ int treeHeight(const NodePtr& n, std::unordered_map<const Node*, int>& memo) {
 // the copy of the first body node. IS statements on the instance itself (inside another
 // PROTO body) become connections of that PROTO.
 NodePtr Parser::instantiate(Scope& scope, InstanceValues& inst, std::size_t offset, int depth,
-                            int& height,
-                            std::shared_ptr<const std::vector<IsConnection>>& links) {
+                            int& height, std::shared_ptr<const std::vector<IsConnection>>& links) {
   const std::shared_ptr<const NodeType>& declared = inst.type;
   const ProtoDefinition& decl = *declared->proto;
   const std::size_t maxNesting = static_cast<std::size_t>(ctx_.options.limits.maxNesting);
   auto tooDeep = [&](int h) {
-    if (static_cast<std::size_t>(depth) + static_cast<std::size_t>(h) <= maxNesting)
-      return false;
+    if (static_cast<std::size_t>(depth) + static_cast<std::size_t>(h) <= maxNesting) return false;
     report(Severity::error, offset,
            "PROTO instance '" + declared->name + "' nests deeper than " +
                std::to_string(maxNesting) + " levels (ParseLimits::maxNesting)");
@@ -346,12 +353,12 @@ NodePtr Parser::instantiate(Scope& scope, InstanceValues& inst, std::size_t offs
     auto node = std::make_shared<Node>(declared);
     node->unresolved = true;
     node->protoName = declared->name;
-    node->location = lex_.locationAt(offset);
+    node->location = inst.location;
     for (std::size_t i = 0; i < inst.values.size(); ++i)
       if (inst.given[i]) node->fieldAt(i) = std::move(inst.values[i]);
     for (std::size_t i = 0; i < declared->fields.size(); ++i)
-      l->push_back(IsConnection{node, static_cast<int>(i), declared->fields[i].access,
-                                static_cast<int>(i)});
+      l->push_back(
+          IsConnection{node, static_cast<int>(i), declared->fields[i].access, static_cast<int>(i)});
     for (const IsConnection& r : inst.isRefs)
       scope.proto->def->connections.push_back(
           IsConnection{node, r.nodeField, r.nodeAccess, r.protoField});
@@ -410,8 +417,8 @@ NodePtr Parser::instantiate(Scope& scope, InstanceValues& inst, std::size_t offs
       auto from = memo.find(r.fromNode.get());
       auto to = memo.find(r.toNode.get());
       if (from != memo.end() && to != memo.end())
-        scope.routes->push_back(Route{from->second, r.fromField, to->second, r.toField,
-                                      r.location});
+        scope.routes->push_back(
+            Route{from->second, r.fromField, to->second, r.toField, r.location});
     }
   }
   if (scope.hidden != nullptr) {
@@ -420,7 +427,7 @@ NodePtr Parser::instantiate(Scope& scope, InstanceValues& inst, std::size_t offs
   }
   NodePtr result = copies.front();
   result->protoName = declared->name;
-  result->location = lex_.locationAt(offset);
+  result->location = inst.location;
   std::unordered_map<const Node*, int> heights;
   height = treeHeight(result, heights);
   if (tooDeep(height)) return nullptr;

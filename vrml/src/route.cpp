@@ -8,7 +8,7 @@ namespace {
 
 /// One end of a route resolved against a node's interface.
 struct End {
-  int index = -1;                     // into the interface
+  int index = -1;                         // into the interface
   AccessType access = AccessType::field;  // as named
 };
 
@@ -25,7 +25,10 @@ End resolveEnd(const NodeType& type, std::string_view name, bool out, std::strin
     const AccessType a = type.fields[static_cast<std::size_t>(i)].access;
     if (a == want || a == AccessType::exposedField) return End{i, a};
     problem = "ROUTE " + std::string(role) + " '" + std::string(name) + "' of " + type.name +
-              " is " + (a == AccessType::field ? "a field" : out ? "an eventIn" : "an eventOut") +
+              " is " +
+              (a == AccessType::field ? "a field"
+               : out                  ? "an eventIn"
+                                      : "an eventOut") +
               "; it must be " + wantName;
     return e;
   }
@@ -45,7 +48,9 @@ End resolveEnd(const NodeType& type, std::string_view name, bool out, std::strin
   return e;
 }
 
-bool canSend(AccessType a) { return a == AccessType::eventOut || a == AccessType::exposedField; }
+bool canSend(AccessType a) {
+  return a == AccessType::eventOut || a == AccessType::exposedField;
+}
 bool canReceive(AccessType a) {
   return a == AccessType::eventIn || a == AccessType::exposedField;
 }
@@ -62,11 +67,10 @@ void Parser::parseRoute(Scope& scope) {
     bool afterPeriod = false;
     while (true) {
       const Token t = lex_.peek();
-      const bool take =
-          t.kind == Tok::period ||
-          (t.kind == Tok::id && (afterPeriod || t.text == "TO" ||
-                                 (t.offset + t.text.size() < lex_.text().size() &&
-                                  lex_.text()[t.offset + t.text.size()] == '.')));
+      const bool take = t.kind == Tok::period ||
+                        (t.kind == Tok::id && (afterPeriod || t.text == "TO" ||
+                                               (t.offset + t.text.size() < lex_.text().size() &&
+                                                lex_.text()[t.offset + t.text.size()] == '.')));
       if (!take) break;
       afterPeriod = t.kind == Tok::period;
       lex_.consume(t);
@@ -119,8 +123,8 @@ void Parser::parseRouteStatement(Scope& scope) {
   const FieldType dt = b.declared->fields[static_cast<std::size_t>(dst.index)].type;
   if (st != dt) {
     report(Severity::error, toFieldTok.offset,
-           "ROUTE type mismatch: " + std::string(fromName) + "." + std::string(fromField) +
-               " is " + std::string(fieldTypeName(st)) + " but " + std::string(toName) + "." +
+           "ROUTE type mismatch: " + std::string(fromName) + "." + std::string(fromField) + " is " +
+               std::string(fieldTypeName(st)) + " but " + std::string(toName) + "." +
                std::string(toField) + " is " + std::string(fieldTypeName(dt)));
     return;
   }
@@ -132,8 +136,7 @@ void Parser::parseRouteStatement(Scope& scope) {
     NodePtr node;
     std::string field;
   };
-  auto endpoints = [](const DefEntry& e, const End& end, std::string_view asWritten,
-                      bool sending) {
+  auto endpoints = [](const DefEntry& e, const End& end, std::string_view asWritten, bool sending) {
     std::vector<Endpoint> out;
     if (!e.links) {
       out.push_back(Endpoint{e.node, std::string(asWritten)});
@@ -150,7 +153,8 @@ void Parser::parseRouteStatement(Scope& scope) {
   const std::vector<Endpoint> froms = endpoints(a, src, fromField, true);
   const std::vector<Endpoint> tos = endpoints(b, dst, toField, false);
   for (const Endpoint& f : froms)
-    for (const Endpoint& t : tos) scope.routes->push_back(Route{f.node, f.field, t.node, t.field, where});
+    for (const Endpoint& t : tos)
+      scope.routes->push_back(Route{f.node, f.field, t.node, t.field, where});
 }
 
 }  // namespace gs::vrml::parsing

@@ -2,8 +2,6 @@
 #include "parser_impl.hpp"
 
 #include <algorithm>
-#include <cstring>
-#include <type_traits>
 
 namespace gs::vrml::parsing {
 
@@ -85,32 +83,25 @@ void Parser::readList(std::vector<T>& v, F&& one) {
   lex_.setOffset(lex_.offset() + 1);
 }
 
-// An MF value whose elements are `arity` floats (MFFloat, MFVec2f, MFVec3f, MFColor,
-// MFRotation). The numbers go to a scratch buffer that lives as long as the parser, and
-// the result is allocated once at its exact size.
-template <class T>
-void Parser::readFloatList(std::vector<T>& v, std::size_t arity, FieldType type) {
-  static_assert(sizeof(T) % sizeof(float) == 0 && alignof(T) == alignof(float));
+// An MF value whose elements are N floats (MFFloat, MFVec2f, MFVec3f, MFColor,
+// MFRotation). The elements go to a scratch buffer that lives as long as the parser, and
+// the result is allocated once, at its exact size.
+template <int N, class T>
+void Parser::readFloatList(std::vector<T>& v, std::vector<T>& scratch) {
   v.clear();
   if (!lex_.accept('[')) {
-    T one{};
-    if constexpr (std::is_same_v<T, float>) {
-      one = lex_.readFloat();
+    if constexpr (N == 1) {
+      v.push_back(lex_.readFloat());
     } else {
-      for (glm::length_t i = 0; i < static_cast<glm::length_t>(arity); ++i) one[i] = lex_.readFloat();
+      T one;
+      for (int i = 0; i < N; ++i) one[i] = lex_.readFloat();
+      v.push_back(one);
     }
-    v.push_back(one);
     return;
   }
-  floatScratch_.clear();
-  lex_.readFloatsUntilBracket(floatScratch_);
-  const std::size_t n = floatScratch_.size();
-  if (n % arity != 0)
-    lex_.fail(lex_.offset() - 1, "expected a number, got ']' (" +
-                                     std::string(fieldTypeName(type)) + " values take " +
-                                     std::to_string(arity) + " numbers each)");
-  v.resize(n / arity);
-  if (n != 0) std::memcpy(static_cast<void*>(v.data()), floatScratch_.data(), n * sizeof(float));
+  scratch.clear();
+  lex_.readFloatsUntilBracket<N>(scratch);
+  v.assign(scratch.begin(), scratch.end());
 }
 
 void Parser::readInt32List(std::vector<std::int32_t>& v) {
@@ -140,16 +131,24 @@ void Parser::parseValue(FieldType t, FieldValue& out, Scope& scope, int depth, i
                         const NodeType* parent, std::string_view field) {
   auto& st = out.storage();
   switch (t) {
-    case FieldType::SFBool: st.emplace<idx<FieldType::SFBool>()>(readBool()); return;
-    case FieldType::SFColor: st.emplace<idx<FieldType::SFColor>()>(readVec3()); return;
-    case FieldType::SFFloat: st.emplace<idx<FieldType::SFFloat>()>(lex_.readFloat()); return;
+    case FieldType::SFBool:
+      st.emplace<idx<FieldType::SFBool>()>(readBool());
+      return;
+    case FieldType::SFColor:
+      st.emplace<idx<FieldType::SFColor>()>(readVec3());
+      return;
+    case FieldType::SFFloat:
+      st.emplace<idx<FieldType::SFFloat>()>(lex_.readFloat());
+      return;
     case FieldType::SFImage: {
       SFImage image;
       readImage(image);
       st.emplace<idx<FieldType::SFImage>()>(std::move(image));
       return;
     }
-    case FieldType::SFInt32: st.emplace<idx<FieldType::SFInt32>()>(lex_.readInt32()); return;
+    case FieldType::SFInt32:
+      st.emplace<idx<FieldType::SFInt32>()>(lex_.readInt32());
+      return;
     case FieldType::SFNode: {
       NodePtr n = parseSFNode(scope, depth, height, parent, field);
       st.emplace<idx<FieldType::SFNode>()>(std::move(n));
@@ -164,14 +163,20 @@ void Parser::parseValue(FieldType t, FieldValue& out, Scope& scope, int depth, i
       st.emplace<idx<FieldType::SFString>()>(std::move(s));
       return;
     }
-    case FieldType::SFTime: st.emplace<idx<FieldType::SFTime>()>(lex_.readDouble()); return;
-    case FieldType::SFVec2f: st.emplace<idx<FieldType::SFVec2f>()>(readVec2()); return;
-    case FieldType::SFVec3f: st.emplace<idx<FieldType::SFVec3f>()>(readVec3()); return;
+    case FieldType::SFTime:
+      st.emplace<idx<FieldType::SFTime>()>(lex_.readDouble());
+      return;
+    case FieldType::SFVec2f:
+      st.emplace<idx<FieldType::SFVec2f>()>(readVec2());
+      return;
+    case FieldType::SFVec3f:
+      st.emplace<idx<FieldType::SFVec3f>()>(readVec3());
+      return;
     case FieldType::MFColor:
-      readFloatList(st.emplace<idx<FieldType::MFColor>()>(), 3, t);
+      readFloatList<3>(st.emplace<idx<FieldType::MFColor>()>(), vec3Scratch_);
       return;
     case FieldType::MFFloat:
-      readFloatList(st.emplace<idx<FieldType::MFFloat>()>(), 1, t);
+      readFloatList<1>(st.emplace<idx<FieldType::MFFloat>()>(), floatScratch_);
       return;
     case FieldType::MFInt32:
       readInt32List(st.emplace<idx<FieldType::MFInt32>()>());
@@ -193,25 +198,23 @@ void Parser::parseValue(FieldType t, FieldValue& out, Scope& scope, int depth, i
       return;
     }
     case FieldType::MFRotation:
-      readFloatList(st.emplace<idx<FieldType::MFRotation>()>(), 4, t);
+      readFloatList<4>(st.emplace<idx<FieldType::MFRotation>()>(), vec4Scratch_);
       return;
     case FieldType::MFString:
-      readList(
-          st.emplace<idx<FieldType::MFString>()>(),
-          [this] {
-            std::string s;
-            lex_.readString(s);
-            return s;
-          });
+      readList(st.emplace<idx<FieldType::MFString>()>(), [this] {
+        std::string s;
+        lex_.readString(s);
+        return s;
+      });
       return;
     case FieldType::MFTime:
       readList(st.emplace<idx<FieldType::MFTime>()>(), [this] { return lex_.readDouble(); });
       return;
     case FieldType::MFVec2f:
-      readFloatList(st.emplace<idx<FieldType::MFVec2f>()>(), 2, t);
+      readFloatList<2>(st.emplace<idx<FieldType::MFVec2f>()>(), vec2Scratch_);
       return;
     case FieldType::MFVec3f:
-      readFloatList(st.emplace<idx<FieldType::MFVec3f>()>(), 3, t);
+      readFloatList<3>(st.emplace<idx<FieldType::MFVec3f>()>(), vec3Scratch_);
       return;
   }
 }

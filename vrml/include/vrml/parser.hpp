@@ -40,6 +40,13 @@ struct ParseOptions {
 /// ends the parse with an error Diagnostic and the nodes read before it are kept;
 /// recoverable problems (unknown node or field, unresolved EXTERNPROTO) are diagnosed and
 /// skipped. A "#VRML V1.0 ascii" header gives the error "VRML 1.0 is not supported".
+///
+/// PROTO instances are expanded (see Node and proto.hpp); ROUTEs to their interfaces are
+/// flattened (see Route). A Script field that USEs the Script itself, or a Script it is
+/// nested in (allowed by clause 6.40, a cycle anywhere else), holds a non-owning NodePtr
+/// (use_count() == 0) so that the cycle does not leak; it is valid while that Script lives.
+/// Nodes nested deeper than ParseLimits::maxNesting, more than ParseLimits::maxNodes
+/// nodes, or input larger than ParseLimits::maxInputBytes end the parse with an error.
 Scene parseVrml(std::string_view bytes, const std::string& url, const ParseOptions& options = {});
 
 /// Reads `path` (gzip or not) and parses it as parseVrml does. A file that cannot be

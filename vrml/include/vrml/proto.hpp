@@ -21,10 +21,11 @@ namespace gs::vrml {
 /// instances are flattened when the body is parsed, so `node` is always a node of a
 /// built-in type, a Script, or an unresolved EXTERNPROTO instance.
 struct IsConnection {
-  NodePtr node;                            // a node of ProtoDefinition::body (or hidden)
-  int nodeField = -1;                      // index into node->type().fields
-  AccessType nodeAccess = AccessType::field;  // as named: `set_x` is an eventIn, `x_changed` an eventOut
-  int protoField = -1;                     // index into the PROTO NodeType's fields
+  NodePtr node;        // a node of ProtoDefinition::body (or hidden)
+  int nodeField = -1;  // index into node->type().fields
+  AccessType nodeAccess =
+      AccessType::field;  // as named: `set_x` is an eventIn, `x_changed` an eventOut
+  int protoField = -1;    // index into the PROTO NodeType's fields
 };
 
 /// The implementation of a PROTO, or the declaration of an EXTERNPROTO.
@@ -38,18 +39,18 @@ struct IsConnection {
 /// the PROTO they named once loaded (instances then expand that PROTO), or null when none
 /// could be loaded (instances are then Nodes of the declared interface, `unresolved`).
 struct ProtoDefinition {
-  std::string name;          // as declared
-  SourceLocation location;   // of the PROTO / EXTERNPROTO keyword
-  std::vector<NodePtr> body;      // implementation nodes, in order (PROTO only)
-  std::vector<NodePtr> hidden;    // non-first body nodes of PROTO instances inside the body
+  std::string name;             // as declared
+  SourceLocation location;      // of the PROTO / EXTERNPROTO keyword
+  std::vector<NodePtr> body;    // implementation nodes, in order (PROTO only)
+  std::vector<NodePtr> hidden;  // non-first body nodes of PROTO instances inside the body
   std::vector<IsConnection> connections;
-  std::vector<Route> routes;      // ROUTEs of the body, between body nodes
-  int height = 0;                 // nesting levels of the deepest body node tree
+  std::vector<Route> routes;  // ROUTEs of the body, between body nodes
+  int height = 0;             // nesting levels of the deepest body node tree
 
   bool external = false;
-  std::vector<std::string> urls;              // EXTERNPROTO URL list as written
-  std::shared_ptr<const NodeType> resolved;   // EXTERNPROTO target PROTO, or null
-  std::string resolvedUrl;                    // the URL that resolved, empty if none
+  std::vector<std::string> urls;             // EXTERNPROTO URL list as written
+  std::shared_ptr<const NodeType> resolved;  // EXTERNPROTO target PROTO, or null
+  std::string resolvedUrl;                   // the URL that resolved, empty if none
 };
 
 }  // namespace gs::vrml

@@ -15,9 +15,13 @@ namespace gs::vrml {
 /// ROUTE fromNode.eventOut TO toNode.eventIn (clause 4.10.2), checked when parsed:
 /// both nodes exist, the source is an eventOut or exposedField, the destination an
 /// eventIn or exposedField, and the types are equal. Executed by a later stage.
+/// A ROUTE to or from a PROTO instance's interface is stored once per body member that
+/// member is connected to by IS (clause 4.8.3), naming that member; one whose member is
+/// connected to nothing is checked and then dropped. ROUTEs inside a PROTO body are
+/// stored for each instance, between the instance's copies of the body nodes.
 struct Route {
   NodePtr fromNode;
-  std::string fromField;  // as written in the file
+  std::string fromField;  // as written in the file (or the IS-connected body member)
   NodePtr toNode;
   std::string toField;
   SourceLocation location;
