@@ -11,6 +11,7 @@ namespace gs::vrml::parsing {
 namespace {
 
 constexpr std::size_t kMaxDiagnostics = 1000;
+constexpr std::size_t kMaxScriptMembers = 4096;
 
 bool isAccessKeyword(std::string_view s) {
   return s == "eventIn" || s == "eventOut" || s == "field" || s == "exposedField";
@@ -38,22 +39,21 @@ Parser::Parser(std::string_view text, std::string file, std::size_t start, Conte
                Diagnostics& diag, int externDepth)
     : lex_(text, std::move(file), start), ctx_(ctx), diag_(diag), externDepth_(externDepth) {}
 
+// At most kMaxDiagnostics are kept (the rest are counted and summarised at the end);
+// that many errors end the parse, since the input is then most likely not VRML at all.
 void Parser::report(Severity s, std::size_t offset, std::string message) {
+  if (s == Severity::error && ++errors_ >= kMaxDiagnostics) giveUp_ = true;
   if (diag_.items.size() >= kMaxDiagnostics) {
-    giveUp_ = true;
+    ++suppressed_;
     return;
   }
   diag_.items.push_back({s, lex_.locationAt(offset), std::move(message)});
-  if (diag_.items.size() == kMaxDiagnostics) {
-    diag_.items.push_back(
-        {Severity::error, lex_.locationAt(offset), "too many diagnostics: giving up on this file"});
-    giveUp_ = true;
-  }
 }
 
 void Parser::report(const ParseError& e) {
+  if (++errors_ >= kMaxDiagnostics) giveUp_ = true;
   if (diag_.items.size() >= kMaxDiagnostics) {
-    giveUp_ = true;
+    ++suppressed_;
     return;
   }
   diag_.items.push_back(e.diagnostic);
@@ -83,6 +83,13 @@ void Parser::parseScene(Scene& scene) {
   } catch (const ParseError& e) {
     if (!giveUp_) report(e);
   }
+  if (giveUp_)
+    diag_.items.push_back({Severity::error, lex_.locationAt(lex_.offset()),
+                           "too many errors: giving up on this file"});
+  if (suppressed_ > 0)
+    diag_.items.push_back({Severity::warning,
+                           {lex_.file(), 0, 0},
+                           std::to_string(suppressed_) + " more diagnostics not shown"});
 }
 
 // statements ::= statement*; statement ::= nodeStatement | protoStatement | routeStatement
@@ -189,11 +196,10 @@ std::shared_ptr<const NodeType> Parser::lookupType(Scope& scope, std::string_vie
   }
   // A small cache in front of the built-in table: a file uses few node types, and they
   // differ in length, first or last byte.
-  TypeCacheEntry& e =
-      typeCache_[(name.size() + static_cast<unsigned char>(name.front()) * 5u +
-                  static_cast<unsigned char>(name.back()) * 3u +
-                  static_cast<unsigned char>(name[name.size() / 2]) * 11u) &
-                 (typeCache_.size() - 1)];
+  TypeCacheEntry& e = typeCache_[(name.size() + static_cast<unsigned char>(name.front()) * 5u +
+                                  static_cast<unsigned char>(name.back()) * 3u +
+                                  static_cast<unsigned char>(name[name.size() / 2]) * 11u) &
+                                 (typeCache_.size() - 1)];
   if (e.type && e.type->name == name) return e.type;
   std::shared_ptr<const NodeType> t = builtInNodeType(name);
   if (t) e.type = t;
@@ -284,12 +290,18 @@ void Parser::parseNodeBody(Scope& scope, const NodePtr& node, InstanceValues* in
   if (lex_.peekChar() != '{') lex_.failExpected(lex_.offset(), "'{'");
   const std::size_t open = lex_.offset();
   lex_.setOffset(open + 1);
+  // The members a Script node declares (clause 6.40); made only for Script nodes.
+  std::unique_ptr<ScriptBuild> scriptBuild;
+  if (node && node->type().script) scriptBuild = std::make_unique<ScriptBuild>();
+  static ScriptBuild noScript;  // never written: only Script nodes declare members
+  ScriptBuild& script = scriptBuild ? *scriptBuild : noScript;
   while (true) {
     if (giveUp_) throw ParseError(Diagnostic{Severity::error, {}, "giving up"});
-    const NodeType& ty = node ? node->type() : *inst->type;
+    const NodeType& ty = script.type ? *script.type : node ? node->type() : *inst->type;
     const Token t = lex_.peek();
     if (t.kind == Tok::rbrace) {
       lex_.consume(t);
+      if (script.type) retype(*node, script.type, script.values);
       return;
     }
     if (t.kind == Tok::end) {
@@ -311,10 +323,18 @@ void Parser::parseNodeBody(Scope& scope, const NodePtr& node, InstanceValues* in
       }
       lex_.consume(t);
       if (node && ty.script && isAccessKeyword(t.text)) {
-        parseScriptDeclaration(scope, node, t, depth, height);
+        parseScriptDeclaration(scope, node, t, depth, height, script);
         continue;
       }
-      int i = findMember(ty, t.text);
+      int i = -1;
+      if (inst != nullptr) {
+        i = memberIndex(inst->type, t.text);
+      } else if (script.type) {
+        auto it = script.names.find(t.text);
+        i = it != script.names.end() ? it->second : findMember(node->type(), t.text);
+      } else {
+        i = findMember(ty, t.text);
+      }
       AccessType access = AccessType::field;
       if (i >= 0) {
         access = ty.fields[static_cast<std::size_t>(i)].access;
@@ -339,7 +359,9 @@ void Parser::parseNodeBody(Scope& scope, const NodePtr& node, InstanceValues* in
       }
       const auto ui = static_cast<std::size_t>(i);
       const FieldSpec& spec = ty.fields[ui];
-      FieldValue& dst = node ? node->fieldAt(ui) : inst->values[ui];
+      FieldValue& dst = inst != nullptr           ? inst->values[ui]
+                        : ui < node->fieldCount() ? node->fieldAt(ui)
+                                                  : script.values[ui - node->fieldCount()];
       const bool check = node && ty.builtIn && !ty.extension && !ty.script;
       int h = 0;
       parseValue(spec.type, dst, scope, depth, h, check ? &ty : nullptr, spec.name);
@@ -347,7 +369,7 @@ void Parser::parseNodeBody(Scope& scope, const NodePtr& node, InstanceValues* in
       if (inst != nullptr) inst->given[ui] = 1;
     } catch (const RecoverableError& e) {
       report(e);
-      resync(node ? &node->type() : inst->type.get());
+      resync(script.type ? script.type.get() : node ? &node->type() : inst->type.get());
       if (lex_.offset() <= t.offset) {
         lex_.setOffset(t.offset);
         lex_.skipBalanced();
@@ -359,7 +381,7 @@ void Parser::parseNodeBody(Scope& scope, const NodePtr& node, InstanceValues* in
 // scriptBodyElement ::= nodeBodyElement | restrictedInterfaceDeclaration |
 // eventIn fieldType eventInId IS eventInId | eventOut ... | field fieldType fieldId IS fieldId
 void Parser::parseScriptDeclaration(Scope& scope, const NodePtr& node, const Token& keyword,
-                                    int depth, int& height) {
+                                    int depth, int& height, ScriptBuild& script) {
   AccessType a = AccessType::field;
   if (keyword.text == "eventIn")
     a = AccessType::eventIn;
@@ -377,46 +399,70 @@ void Parser::parseScriptDeclaration(Scope& scope, const NodePtr& node, const Tok
   const Token after = lex_.peek();
   const bool isRef = after.kind == Tok::id && after.text == "IS";
   const bool hasValue = !isRef && (a == AccessType::field || a == AccessType::exposedField);
+  const NodeType& base = node->type();  // the built-in Script type until the body ends
   std::string problem;
   if (a == AccessType::exposedField)
     problem = "exposedField is not allowed in a Script node (clause 6.40)";
-  else if (node->type().findField(name) >= 0)
+  else if (script.names.count(name) != 0 || base.findField(name) >= 0)
     problem = "'" + name + "' is already declared in this Script node";
+  else if (script.names.size() >= kMaxScriptMembers)
+    problem =
+        "more than " + std::to_string(kMaxScriptMembers) + " fields and events in one Script node";
   if (!problem.empty()) {
     report(Severity::error, a == AccessType::exposedField ? keyword.offset : nt.offset, problem);
     if (isRef) {
       lex_.consume(after);
       lex_.expectId("an interface name after IS");
     } else if (hasValue) {
-      skipUnknownValue(node->type());
+      skipUnknownValue(script.type ? *script.type : base);
     }
     return;
   }
-  auto type = std::make_shared<NodeType>(node->type());
-  type->fields.push_back(FieldSpec{name, ft, a, FieldValue(ft)});
-  retype(*node, type);
-  const int index = static_cast<int>(type->fields.size()) - 1;
+  // The per-instance type is built here and given to the node when its body ends
+  // (parseNodeBody), so many declarations cost linear time.
+  if (!script.type) script.type = std::make_shared<NodeType>(base);
+  script.type->fields.push_back(FieldSpec{name, ft, a, FieldValue(ft)});
+  script.values.emplace_back(ft);
+  const int index = static_cast<int>(script.type->fields.size()) - 1;
+  script.names.emplace(name, index);
   if (isRef) {
     lex_.consume(after);
-    parseIs(scope, *type, index, a, name, nt.offset, node, nullptr);
+    parseIs(scope, *script.type, index, a, name, nt.offset, node, nullptr);
     return;
   }
   if (hasValue) {
     int h = 0;
-    parseValue(ft, node->fieldAt(static_cast<std::size_t>(index)), scope, depth, h);
+    parseValue(ft, script.values.back(), scope, depth, h);
     height = std::max(height, h);
   }
 }
 
-void Parser::retype(Node& node, std::shared_ptr<const NodeType> type) {
+void Parser::retype(Node& node, std::shared_ptr<const NodeType> type,
+                    std::vector<FieldValue>& extra) {
   Node fresh(std::move(type));
-  const std::size_t n = std::min(node.fieldCount(), fresh.fieldCount());
+  const std::size_t n = node.fieldCount();
   for (std::size_t i = 0; i < n; ++i) fresh.fieldAt(i) = std::move(node.fieldAt(i));
+  for (std::size_t k = 0; k < extra.size() && n + k < fresh.fieldCount(); ++k)
+    fresh.fieldAt(n + k) = std::move(extra[k]);
   fresh.defName = std::move(node.defName);
   fresh.protoName = std::move(node.protoName);
   fresh.unresolved = node.unresolved;
   fresh.location = std::move(node.location);
   node = std::move(fresh);  // same address: USE back references stay valid
+}
+
+int Parser::memberIndex(const std::shared_ptr<const NodeType>& type, std::string_view name) {
+  if (type->fields.size() <= 16) return findMember(*type, name);
+  auto it = bigIndex_.find(type.get());
+  if (it == bigIndex_.end()) {
+    MemberIndex index;
+    index.keep = type;  // keeps the address from being reused during the parse
+    for (std::size_t i = 0; i < type->fields.size(); ++i)
+      index.names.try_emplace(type->fields[i].name, static_cast<int>(i));
+    it = bigIndex_.emplace(type.get(), std::move(index)).first;
+  }
+  auto f = it->second.names.find(name);
+  return f == it->second.names.end() ? -1 : f->second;
 }
 
 // `member IS interfaceMember` (clause 4.8.3): only inside a PROTO body, same type, and
@@ -531,9 +577,10 @@ std::vector<FieldSpec> Parser::parseInterfaceText(std::string_view name) {
   Scope scope;
   NodeType type;
   type.name = name;
+  NameMap<int> names;
   while (!lex_.atEnd()) {
     const std::size_t before = diag_.items.size();
-    parseInterfaceDeclaration(scope, type, true, false);
+    parseInterfaceDeclaration(scope, type, true, false, names);
     if (diag_.items.size() != before) throw ParseError(diag_.items.back());
   }
   return std::move(type.fields);

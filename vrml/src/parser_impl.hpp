@@ -14,6 +14,7 @@
 #include <array>
 #include <functional>
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -79,6 +80,20 @@ struct Context {
   NameMap<std::shared_ptr<ExternFile>> externFiles;
 };
 
+/// The members a Script node declares in its body (clause 6.40), gathered into one
+/// per-instance NodeType that the node receives when its body ends.
+struct ScriptBuild {
+  std::shared_ptr<NodeType> type;  // built-in Script members, then the declared ones
+  std::vector<FieldValue> values;  // values of the declared members, in order
+  NameMap<int> names;              // declared member name -> index in type->fields
+};
+
+/// A hashed member index of a NodeType with many members (PROTOs), kept for the parse.
+struct MemberIndex {
+  std::shared_ptr<const NodeType> keep;
+  NameMap<int> names;
+};
+
 /// Values given to a PROTO instance before it is expanded.
 struct InstanceValues {
   std::shared_ptr<const NodeType> type;  // the PROTO / EXTERNPROTO type
@@ -113,14 +128,16 @@ class Parser {
   void parseNodeBody(Scope& scope, const NodePtr& node, InstanceValues* inst, int depth,
                      int& height);
   void parseScriptDeclaration(Scope& scope, const NodePtr& node, const Token& keyword, int depth,
-                              int& height);
+                              int& height, ScriptBuild& script);
+  /// Index of the member called exactly `name`, hashed for types with many members.
+  int memberIndex(const std::shared_ptr<const NodeType>& type, std::string_view name);
   void parseIs(Scope& scope, const NodeType& type, int index, AccessType access,
                std::string_view asWritten, std::size_t offset, const NodePtr& node,
                InstanceValues* inst);
   void skipUnknownValue(const NodeType& type);
   void resync(const NodeType* type);
   std::shared_ptr<const NodeType> lookupType(Scope& scope, std::string_view name, bool& defining);
-  void retype(Node& node, std::shared_ptr<const NodeType> type);
+  void retype(Node& node, std::shared_ptr<const NodeType> type, std::vector<FieldValue>& extra);
   void countNode(std::size_t offset);
   void enter(std::size_t offset);
   void checkNodeClass(const NodeType* parent, std::string_view field, const NodePtr& child,
@@ -147,7 +164,8 @@ class Parser {
   void parseProto(Scope& scope);
   void parseExternProto(Scope& scope);
   void parseInterface(Scope& scope, NodeType& type, bool withValues, bool external);
-  bool parseInterfaceDeclaration(Scope& scope, NodeType& type, bool withValues, bool external);
+  bool parseInterfaceDeclaration(Scope& scope, NodeType& type, bool withValues, bool external,
+                                 NameMap<int>& names);
   void resolveExternProto(ProtoDefinition& def, const NodeType& declared, std::size_t offset);
   bool loadExternFile(const std::string& url, std::shared_ptr<ExternFile>& out,
                       std::string& reason);
@@ -171,12 +189,15 @@ class Parser {
   int externDepth_ = 0;
   int recursion_ = 0;            // parseNode frames on the stack (bounded by maxNesting)
   bool tableMode_ = false;       // parsing the node table: no nodes allowed
-  bool giveUp_ = false;          // too many diagnostics
+  bool giveUp_ = false;          // too many errors: stop
+  std::size_t errors_ = 0;       // errors reported by this parser
+  std::size_t suppressed_ = 0;   // diagnostics not stored (over the limit)
   bool protosDeclared_ = false;  // no PROTO seen yet: node types are all built-in
   struct TypeCacheEntry {
     std::shared_ptr<const NodeType> type;
   };
-  std::array<TypeCacheEntry, 64> typeCache_{};  // recent built-in types (lookupType)
+  std::array<TypeCacheEntry, 64> typeCache_{};                 // recent built-in types (lookupType)
+  std::unordered_map<const NodeType*, MemberIndex> bigIndex_;  // memberIndex()
   // MF number lists are read into these first (they keep their capacity between lists).
   std::vector<float> floatScratch_;
   std::vector<glm::vec2> vec2Scratch_;
@@ -184,6 +205,16 @@ class Parser {
   std::vector<glm::vec4> vec4Scratch_;
   std::vector<std::int32_t> intScratch_;
 };
+
+/// Orders IsConnections by interface member (protoField), for equal_range.
+struct ConnectionOrder {
+  bool operator()(const IsConnection& a, int m) const { return a.protoField < m; }
+  bool operator()(int m, const IsConnection& a) const { return m < a.protoField; }
+};
+
+/// The connections of interface member `member` in `links` (sorted by protoField, as
+/// instantiate() leaves them).
+std::span<const IsConnection> connectionsOf(const std::vector<IsConnection>& links, int member);
 
 /// Nesting levels of the tree under `n` (1 for a leaf), following owning pointers only.
 int treeHeight(const NodePtr& n, std::unordered_map<const Node*, int>& memo);

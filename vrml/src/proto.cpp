@@ -32,8 +32,8 @@ struct RecursionGuard {
 // interfaceDeclaration ::= eventIn fieldType eventInId | eventOut fieldType eventOutId |
 //   field fieldType fieldId fieldValue | exposedField fieldType fieldId fieldValue
 // (EXTERNPROTO: no values). Returns false when the declaration was reported and dropped.
-bool Parser::parseInterfaceDeclaration(Scope& scope, NodeType& type, bool withValues,
-                                       bool external) {
+bool Parser::parseInterfaceDeclaration(Scope& scope, NodeType& type, bool withValues, bool external,
+                                       NameMap<int>& names) {
   const Token at = lex_.peek();
   AccessType a = AccessType::field;
   if (at.kind == Tok::id && at.text == "eventIn")
@@ -68,11 +68,12 @@ bool Parser::parseInterfaceDeclaration(Scope& scope, NodeType& type, bool withVa
   const std::string& name = spec.name;
   std::string problem;
   auto conflictsWith = [&](std::string_view other, AccessType otherAccess) {
-    const int k = type.findExact(other);
-    return k >= 0 && type.fields[static_cast<std::size_t>(k)].access == otherAccess;
+    auto it = names.find(other);
+    return it != names.end() &&
+           type.fields[static_cast<std::size_t>(it->second)].access == otherAccess;
   };
   const std::string_view kind = external ? "EXTERNPROTO" : "PROTO";
-  if (type.findExact(name) >= 0) {
+  if (names.find(name) != names.end()) {
     problem = "'" + name + "' is declared twice in " + std::string(kind) + " " + type.name;
   } else if (a == AccessType::eventIn && name.starts_with("set_") &&
              conflictsWith(std::string_view(name).substr(4), AccessType::exposedField)) {
@@ -94,6 +95,7 @@ bool Parser::parseInterfaceDeclaration(Scope& scope, NodeType& type, bool withVa
     report(Severity::error, nt.offset, std::move(problem));
     return false;
   }
+  names.emplace(name, static_cast<int>(type.fields.size()));
   type.fields.push_back(std::move(spec));
   return true;
 }
@@ -101,12 +103,13 @@ bool Parser::parseInterfaceDeclaration(Scope& scope, NodeType& type, bool withVa
 // [ interfaceDeclarations ]: a bad declaration is reported and skipped up to the next
 // access keyword or the closing ']'.
 void Parser::parseInterface(Scope& scope, NodeType& type, bool withValues, bool external) {
+  NameMap<int> names;  // declared so far: duplicate and conflict checks in constant time
   lex_.expect('[');
   while (!lex_.accept(']')) {
     if (lex_.atEnd()) lex_.failExpected(lex_.offset(), "an interface declaration or ']'");
     const std::size_t before = lex_.offset();
     try {
-      parseInterfaceDeclaration(scope, type, withValues, external);
+      parseInterfaceDeclaration(scope, type, withValues, external, names);
     } catch (const RecoverableError& e) {
       report(e);
       if (lex_.offset() == before) lex_.skipBalanced();
@@ -230,10 +233,14 @@ void Parser::resolveExternProto(ProtoDefinition& def, const NodeType& declared,
                                        : "the file declares no PROTO '" + protoName + "'");
       continue;
     }
-    for (const FieldSpec& m : declared.fields) {
-      const int k = target->findExact(m.name);
-      if (k < 0 || target->fields[static_cast<std::size_t>(k)].type != m.type ||
-          target->fields[static_cast<std::size_t>(k)].access != m.access)
+    def.memberMap.assign(declared.fields.size(), -1);
+    for (std::size_t i = 0; i < declared.fields.size(); ++i) {
+      const FieldSpec& m = declared.fields[i];
+      const int k = memberIndex(target, m.name);
+      if (k >= 0 && target->fields[static_cast<std::size_t>(k)].type == m.type &&
+          target->fields[static_cast<std::size_t>(k)].access == m.access)
+        def.memberMap[i] = k;
+      else
         report(Severity::warning, offset,
                "EXTERNPROTO '" + declared.name + "' member '" + m.name +
                    "' does not match the interface of PROTO '" + target->name + "' in " + url);
@@ -315,6 +322,11 @@ NodePtr Parser::copyTree(const NodePtr& n, std::unordered_map<const Node*, NodeP
   return c;
 }
 
+std::span<const IsConnection> connectionsOf(const std::vector<IsConnection>& links, int member) {
+  auto range = std::equal_range(links.begin(), links.end(), member, ConnectionOrder{});
+  return {range.first, range.second};
+}
+
 int treeHeight(const NodePtr& n, std::unordered_map<const Node*, int>& memo) {
   if (!n || n.use_count() == 0) return 0;
   if (auto it = memo.find(n.get()); it != memo.end()) return it->second;
@@ -377,12 +389,7 @@ NodePtr Parser::instantiate(Scope& scope, InstanceValues& inst, std::size_t offs
   std::vector<int> toImpl(declared->fields.size());
   std::vector<int> toDeclared(impl.fields.size(), -1);
   for (std::size_t i = 0; i < declared->fields.size(); ++i) {
-    int k = static_cast<int>(i);
-    if (&impl != declared.get()) {
-      k = impl.findExact(declared->fields[i].name);
-      if (k >= 0 && impl.fields[static_cast<std::size_t>(k)].type != declared->fields[i].type)
-        k = -1;
-    }
+    const int k = decl.external ? decl.memberMap[i] : static_cast<int>(i);
     toImpl[i] = k;
     if (k >= 0) toDeclared[static_cast<std::size_t>(k)] = static_cast<int>(i);
   }
@@ -407,11 +414,14 @@ NodePtr Parser::instantiate(Scope& scope, InstanceValues& inst, std::size_t offs
     if (toDeclared[member] >= 0)
       l->push_back(IsConnection{it->second, c.nodeField, c.nodeAccess, toDeclared[member]});
   }
+  // Sorted by interface member: IS refs here and ROUTEs later find theirs by bisection.
+  std::stable_sort(l->begin(), l->end(), [](const IsConnection& a, const IsConnection& b) {
+    return a.protoField < b.protoField;
+  });
   for (const IsConnection& r : inst.isRefs)
-    for (const IsConnection& c : *l)
-      if (c.protoField == r.nodeField)
-        scope.proto->def->connections.push_back(
-            IsConnection{c.node, c.nodeField, c.nodeAccess, r.protoField});
+    for (const IsConnection& c : connectionsOf(*l, r.nodeField))
+      scope.proto->def->connections.push_back(
+          IsConnection{c.node, c.nodeField, c.nodeAccess, r.protoField});
   if (scope.routes != nullptr) {
     for (const Route& r : def.routes) {
       auto from = memo.find(r.fromNode.get());

@@ -15,12 +15,15 @@ struct End {
 // Finds the eventOut (out = true) or eventIn named `name`: the member itself, the
 // exposedField aliases `x_changed` / `set_x` (clause 4.10.3), or leniently an
 // eventOut `name_changed` / eventIn `set_name`. Empty `problem` on success.
-End resolveEnd(const NodeType& type, std::string_view name, bool out, std::string& problem) {
+// `exact(n)` is the index of the member called exactly n, or -1.
+template <class Exact>
+End resolveEnd(const NodeType& type, Exact&& exact, std::string_view name, bool out,
+               std::string& problem) {
   const AccessType want = out ? AccessType::eventOut : AccessType::eventIn;
   const char* role = out ? "source" : "destination";
   const char* wantName = out ? "an eventOut or exposedField" : "an eventIn or exposedField";
   End e;
-  int i = type.findExact(name);
+  int i = exact(name);
   if (i >= 0) {
     const AccessType a = type.fields[static_cast<std::size_t>(i)].access;
     if (a == want || a == AccessType::exposedField) return End{i, a};
@@ -32,16 +35,21 @@ End resolveEnd(const NodeType& type, std::string_view name, bool out, std::strin
               "; it must be " + wantName;
     return e;
   }
-  i = type.findField(name);
+  // exposedField aliases (NodeType::findField, through the hashed lookup).
+  const bool isIn = name.starts_with("set_");
+  const std::string_view base = isIn                         ? name.substr(4)
+                                : name.ends_with("_changed") ? name.substr(0, name.size() - 8)
+                                                             : std::string_view();
+  i = base.empty() ? -1 : exact(base);
+  if (i >= 0 && type.fields[static_cast<std::size_t>(i)].access != AccessType::exposedField) i = -1;
   if (i >= 0) {
-    const bool isIn = name.starts_with("set_");
     if (isIn != out) return End{i, want};
     problem = "ROUTE " + std::string(role) + " '" + std::string(name) + "' of " + type.name +
               " is " + (isIn ? "an eventIn" : "an eventOut") + "; it must be " + wantName;
     return e;
   }
   const std::string alt = out ? std::string(name) + "_changed" : "set_" + std::string(name);
-  i = type.findExact(alt);
+  i = exact(alt);
   if (i >= 0 && type.fields[static_cast<std::size_t>(i)].access == want) return End{i, want};
   problem = std::string(type.name) + " has no " + (out ? "eventOut" : "eventIn") + " '" +
             std::string(name) + "' for a ROUTE " + role;
@@ -109,12 +117,16 @@ void Parser::parseRouteStatement(Scope& scope) {
   const DefEntry& a = *from;
   const DefEntry& b = *to;
   std::string problem;
-  const End src = resolveEnd(*a.declared, fromField, true, problem);
+  const End src = resolveEnd(
+      *a.declared, [&](std::string_view n) { return memberIndex(a.declared, n); }, fromField, true,
+      problem);
   if (src.index < 0) {
     report(Severity::error, fromFieldTok.offset, problem);
     return;
   }
-  const End dst = resolveEnd(*b.declared, toField, false, problem);
+  const End dst = resolveEnd(
+      *b.declared, [&](std::string_view n) { return memberIndex(b.declared, n); }, toField, false,
+      problem);
   if (dst.index < 0) {
     report(Severity::error, toFieldTok.offset, problem);
     return;
@@ -142,8 +154,7 @@ void Parser::parseRouteStatement(Scope& scope) {
       out.push_back(Endpoint{e.node, std::string(asWritten)});
       return out;
     }
-    for (const IsConnection& c : *e.links) {
-      if (c.protoField != end.index) continue;
+    for (const IsConnection& c : connectionsOf(*e.links, end.index)) {
       if (sending ? !canSend(c.nodeAccess) : !canReceive(c.nodeAccess)) continue;
       out.push_back(
           Endpoint{c.node, c.node->type().fields[static_cast<std::size_t>(c.nodeField)].name});

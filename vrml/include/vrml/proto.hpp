@@ -51,6 +51,9 @@ struct ProtoDefinition {
   std::vector<std::string> urls;             // EXTERNPROTO URL list as written
   std::shared_ptr<const NodeType> resolved;  // EXTERNPROTO target PROTO, or null
   std::string resolvedUrl;                   // the URL that resolved, empty if none
+  /// For a resolved EXTERNPROTO: for each declared member, the index of the member of the
+  /// same name, type and access in `resolved`, or -1 (values given to it are ignored).
+  std::vector<int> memberMap;
 };
 
 }  // namespace gs::vrml
