@@ -24,8 +24,8 @@ class Xvfb {
     display_ = ":" + std::to_string(90 + ::getpid() % 800);
     pid_ = ::fork();
     if (pid_ == 0) {
-      ::execl("/usr/bin/Xvfb", "Xvfb", display_.c_str(), "-screen", "0", "640x480x24",
-              "-nolisten", "tcp", static_cast<char*>(nullptr));
+      ::execl("/usr/bin/Xvfb", "Xvfb", display_.c_str(), "-screen", "0", "640x480x24", "-nolisten",
+              "tcp", static_cast<char*>(nullptr));
       ::_exit(127);
     }
     // Wait for the server's socket.

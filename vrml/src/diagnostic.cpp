@@ -23,13 +23,18 @@ void Diagnostics::error(SourceLocation loc, std::string message) {
   items.push_back({Severity::error, std::move(loc), std::move(message)});
 }
 
-bool Diagnostics::hasErrors() const { return errorCount() > 0; }
-
-std::size_t Diagnostics::errorCount() const {
-  return static_cast<std::size_t>(std::count_if(
-      items.begin(), items.end(), [](const Diagnostic& d) { return d.severity == Severity::error; }));
+bool Diagnostics::hasErrors() const {
+  return errorCount() > 0;
 }
 
-std::size_t Diagnostics::warningCount() const { return items.size() - errorCount(); }
+std::size_t Diagnostics::errorCount() const {
+  return static_cast<std::size_t>(
+      std::count_if(items.begin(), items.end(),
+                    [](const Diagnostic& d) { return d.severity == Severity::error; }));
+}
+
+std::size_t Diagnostics::warningCount() const {
+  return items.size() - errorCount();
+}
 
 }  // namespace gs::vrml

@@ -6,9 +6,9 @@ namespace gs::vrml {
 
 namespace {
 constexpr std::array<std::string_view, kFieldTypeCount> kFieldTypeNames = {
-    "SFBool",  "SFColor",  "SFFloat",    "SFImage",  "SFInt32", "SFNode",  "SFRotation",
-    "SFString", "SFTime",  "SFVec2f",    "SFVec3f",  "MFColor", "MFFloat", "MFInt32",
-    "MFNode",  "MFRotation", "MFString", "MFTime",   "MFVec2f", "MFVec3f"};
+    "SFBool",   "SFColor",    "SFFloat",  "SFImage", "SFInt32", "SFNode",  "SFRotation",
+    "SFString", "SFTime",     "SFVec2f",  "SFVec3f", "MFColor", "MFFloat", "MFInt32",
+    "MFNode",   "MFRotation", "MFString", "MFTime",  "MFVec2f", "MFVec3f"};
 
 template <std::size_t... I>
 FieldValue::Storage makeDefault(std::size_t index, std::index_sequence<I...>) {
@@ -35,10 +35,14 @@ bool fieldTypeFromName(std::string_view name, FieldType& out) {
 
 std::string_view accessTypeName(AccessType a) {
   switch (a) {
-    case AccessType::field: return "field";
-    case AccessType::exposedField: return "exposedField";
-    case AccessType::eventIn: return "eventIn";
-    case AccessType::eventOut: return "eventOut";
+    case AccessType::field:
+      return "field";
+    case AccessType::exposedField:
+      return "exposedField";
+    case AccessType::eventIn:
+      return "eventIn";
+    case AccessType::eventOut:
+      return "eventOut";
   }
   return "?";
 }

@@ -13,11 +13,14 @@ int NodeType::findField(std::string_view n) const {
   // exposedField aliases: set_x is the eventIn of x, x_changed its eventOut (4.10.3).
   constexpr std::string_view kSet = "set_", kChanged = "_changed";
   std::string_view base;
-  if (n.starts_with(kSet)) base = n.substr(kSet.size());
-  else if (n.ends_with(kChanged)) base = n.substr(0, n.size() - kChanged.size());
+  if (n.starts_with(kSet))
+    base = n.substr(kSet.size());
+  else if (n.ends_with(kChanged))
+    base = n.substr(0, n.size() - kChanged.size());
   if (base.empty()) return -1;
   int i = findExact(base);
-  return (i >= 0 && fields[static_cast<std::size_t>(i)].access == AccessType::exposedField) ? i : -1;
+  return (i >= 0 && fields[static_cast<std::size_t>(i)].access == AccessType::exposedField) ? i
+                                                                                            : -1;
 }
 
 Node::Node(std::shared_ptr<const NodeType> type) : type_(std::move(type)) {

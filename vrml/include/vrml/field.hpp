@@ -52,7 +52,9 @@ bool fieldTypeFromName(std::string_view name, FieldType& out);
 /// Spelling of an access type as VRML97 writes it ("exposedField").
 std::string_view accessTypeName(AccessType a);
 /// True for the MF* types.
-constexpr bool isMultiValued(FieldType t) { return t >= FieldType::MFColor; }
+constexpr bool isMultiValued(FieldType t) {
+  return t >= FieldType::MFColor;
+}
 
 /// SFImage (clause 5.5): width, height, number of components (0..4) and one packed pixel
 /// per entry, rows bottom to top, each pixel 0xRRGGBBAA-style packed as the file wrote it
@@ -74,26 +76,26 @@ using Rotation = glm::vec4;
 /// are in [0, 1]; times are seconds since 1970-01-01 UTC; angles are radians).
 class FieldValue {
  public:
-  using Storage = std::variant<bool,                      // SFBool
-                               glm::vec3,                 // SFColor
-                               float,                     // SFFloat
-                               SFImage,                   // SFImage
-                               std::int32_t,              // SFInt32
-                               NodePtr,                   // SFNode (nullptr = NULL)
-                               Rotation,                  // SFRotation
-                               std::string,               // SFString
-                               double,                    // SFTime
-                               glm::vec2,                 // SFVec2f
-                               glm::vec3,                 // SFVec3f
-                               std::vector<glm::vec3>,    // MFColor
-                               std::vector<float>,        // MFFloat
-                               std::vector<std::int32_t>, // MFInt32
-                               std::vector<NodePtr>,      // MFNode
-                               std::vector<Rotation>,     // MFRotation
-                               std::vector<std::string>,  // MFString
-                               std::vector<double>,       // MFTime
-                               std::vector<glm::vec2>,    // MFVec2f
-                               std::vector<glm::vec3>>;   // MFVec3f
+  using Storage = std::variant<bool,                       // SFBool
+                               glm::vec3,                  // SFColor
+                               float,                      // SFFloat
+                               SFImage,                    // SFImage
+                               std::int32_t,               // SFInt32
+                               NodePtr,                    // SFNode (nullptr = NULL)
+                               Rotation,                   // SFRotation
+                               std::string,                // SFString
+                               double,                     // SFTime
+                               glm::vec2,                  // SFVec2f
+                               glm::vec3,                  // SFVec3f
+                               std::vector<glm::vec3>,     // MFColor
+                               std::vector<float>,         // MFFloat
+                               std::vector<std::int32_t>,  // MFInt32
+                               std::vector<NodePtr>,       // MFNode
+                               std::vector<Rotation>,      // MFRotation
+                               std::vector<std::string>,   // MFString
+                               std::vector<double>,        // MFTime
+                               std::vector<glm::vec2>,     // MFVec2f
+                               std::vector<glm::vec3>>;    // MFVec3f
 
   /// A default-constructed value of type `t` (FALSE, 0, empty, NULL).
   explicit FieldValue(FieldType t = FieldType::SFBool);

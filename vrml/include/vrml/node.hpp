@@ -77,10 +77,10 @@ class Node {
   /// The MFNode field `name` (empty when absent).
   const std::vector<NodePtr>& mfnode(std::string_view name) const;
 
-  std::string defName;        // DEF name, empty when none
-  std::string protoName;      // PROTO this node expands, empty for plain nodes
-  bool unresolved = false;    // instance of an EXTERNPROTO that could not be loaded
-  SourceLocation location;    // where the node's type name appeared
+  std::string defName;      // DEF name, empty when none
+  std::string protoName;    // PROTO this node expands, empty for plain nodes
+  bool unresolved = false;  // instance of an EXTERNPROTO that could not be loaded
+  SourceLocation location;  // where the node's type name appeared
 
  private:
   std::shared_ptr<const NodeType> type_;

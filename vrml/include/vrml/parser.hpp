@@ -14,16 +14,17 @@ namespace gs::vrml {
 
 /// Limits that keep hostile input from exhausting the machine.
 struct ParseLimits {
-  int maxNesting = 256;                        // nested nodes / PROTO instances
-  std::size_t maxInputBytes = 1ull << 31;      // after gzip decompression, bytes
-  int maxExternProtoDepth = 8;                 // EXTERNPROTO files loading others
-  std::size_t maxNodes = 4'000'000;            // nodes created, PROTO expansions included
+  int maxNesting = 256;                    // nested nodes / PROTO instances
+  std::size_t maxInputBytes = 1ull << 31;  // after gzip decompression, bytes
+  int maxExternProtoDepth = 8;             // EXTERNPROTO files loading others
+  std::size_t maxNodes = 4'000'000;        // nodes created, PROTO expansions included
 };
 
 /// Loads the bytes behind a URL (already resolved against the base URL). Returns false
 /// and sets `error` when it cannot. The parser uses it for EXTERNPROTO; the default
 /// loader reads local files only.
-using UrlLoader = std::function<bool(const std::string& url, std::string& bytes, std::string& error)>;
+using UrlLoader =
+    std::function<bool(const std::string& url, std::string& bytes, std::string& error)>;
 
 struct ParseOptions {
   ParseLimits limits;
@@ -56,6 +57,7 @@ Scene loadVrmlFile(const std::string& path, const ParseOptions& options = {});
 /// Decompresses `bytes` when they start with the gzip magic (1f 8b), else returns them.
 /// Throws ParseError ("file: corrupt gzip data: ...") on a damaged stream and when the
 /// result would exceed `maxBytes`.
-std::string gunzipIfCompressed(std::string_view bytes, const std::string& url, std::size_t maxBytes);
+std::string gunzipIfCompressed(std::string_view bytes, const std::string& url,
+                               std::size_t maxBytes);
 
 }  // namespace gs::vrml
