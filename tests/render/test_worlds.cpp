@@ -134,3 +134,16 @@ Shape {
   CHECK(close(r.image.pixel(32, 32), 255, 255, 255, 4));  // straight below the light
   CHECK(close(r.image.pixel(4, 4), 0, 0, 0, 2));          // beyond the radius
 }
+
+TEST_CASE("a node other than Material in Appearance.material leaves the shape unlit white",
+          "[render][offscreen][world]") {
+  const fs::path dir = worldDir();
+  writeText(dir / "not_a_material.wrl", R"(#VRML V2.0 utf8
+NavigationInfo { headlight FALSE }
+Viewpoint { position 0 0 3 }
+Shape { appearance Appearance { material Box { } } geometry Box { size 4 4 0.1 } }
+)");
+  const Rendered r = renderFile(dir / "not_a_material.wrl");
+  // Unlit white (clause 4.14.1), not a Material's default grey without lights (black).
+  CHECK(close(r.image.pixel(kSize / 2, kSize / 2), 255, 255, 255, 8));
+}
