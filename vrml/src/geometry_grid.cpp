@@ -60,11 +60,7 @@ Mesh tessellateElevationGrid(const Node& node, ProblemLog& log) {
       points[i + j * nx] = {xSpacing * static_cast<float>(i), height[i + j * nx],
                             zSpacing * static_cast<float>(j)};
 
-  PolygonSoup soup;
-  soup.points = points;
-  soup.ccw = node.get<FieldType::SFBool>("ccw", true);
-  soup.solid = node.get<FieldType::SFBool>("solid", true);
-  soup.creaseAngle = node.get<FieldType::SFFloat>("creaseAngle", 0.0f);
+  PolygonSoup soup = polygonSoupOf(node, points);
   const auto& colors = childArray<FieldType::MFColor>(node, "color", "color");
   const auto& normals = childArray<FieldType::MFVec3f>(node, "normal", "vector");
   const auto& texPoints = childArray<FieldType::MFVec2f>(node, "texCoord", "point");
@@ -280,12 +276,7 @@ Mesh tessellateExtrusion(const Node& node, ProblemLog& log) {
     return static_cast<std::uint32_t>((i % rings) * cols + (j % cols));
   };
 
-  PolygonSoup soup;
-  soup.points = points;
-  soup.ccw = node.get<FieldType::SFBool>("ccw", true);
-  soup.convex = node.get<FieldType::SFBool>("convex", true);
-  soup.solid = node.get<FieldType::SFBool>("solid", true);
-  soup.creaseAngle = node.get<FieldType::SFFloat>("creaseAngle", 0.0f);
+  PolygonSoup soup = polygonSoupOf(node, points);
   const std::vector<float> s = arcLength(cs, nc), t = arcLength(spine, ns);
   bool skipped = false;
   soup.corners.reserve(4 * (ns - 1) * (nc - 1) + 2 * cols);

@@ -84,12 +84,7 @@ Mesh tessellateIndexedFaceSet(const Node& node, ProblemLog& log) {
   const bool haveNormal = node.sfnode("normal") != nullptr;
   const bool haveTex = node.sfnode("texCoord") != nullptr;
 
-  PolygonSoup soup;
-  soup.points = points;
-  soup.ccw = node.get<FieldType::SFBool>("ccw", true);
-  soup.convex = node.get<FieldType::SFBool>("convex", true);
-  soup.solid = node.get<FieldType::SFBool>("solid", true);
-  soup.creaseAngle = node.get<FieldType::SFFloat>("creaseAngle", 0.0f);
+  PolygonSoup soup = polygonSoupOf(node, points);
   soup.corners.reserve(coordIndex.size());
   if (haveColor) soup.colors.reserve(coordIndex.size());
   if (haveNormal) soup.normals.reserve(coordIndex.size());

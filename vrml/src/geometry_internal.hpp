@@ -182,6 +182,11 @@ struct PolygonSoup {
   void endFace() { faceStart.push_back(static_cast<std::uint32_t>(corners.size())); }
 };
 
+/// A soup over `points` with the node's ccw, convex, solid and creaseAngle fields
+/// (IndexedFaceSet 6.23, ElevationGrid 6.18, Extrusion 6.19; an absent field keeps its
+/// VRML97 default: TRUE, TRUE, TRUE, 0 radians).
+PolygonSoup polygonSoupOf(const Node& node, std::span<const glm::vec3> points);
+
 /// Triangulates the soup: reverses faces when ccw is FALSE, drops repeated consecutive
 /// points and degenerate faces (fewer than 3 distinct points or zero area), ear-clips,
 /// generates missing normals (Newell face normals smoothed by creaseAngle) and emits an

@@ -32,6 +32,16 @@ bool usableNormal(const glm::vec3& n) {
 
 }  // namespace
 
+PolygonSoup polygonSoupOf(const Node& node, std::span<const glm::vec3> points) {
+  PolygonSoup soup;
+  soup.points = points;
+  soup.ccw = node.get<FieldType::SFBool>("ccw", true);
+  soup.convex = node.get<FieldType::SFBool>("convex", true);
+  soup.solid = node.get<FieldType::SFBool>("solid", true);
+  soup.creaseAngle = node.get<FieldType::SFFloat>("creaseAngle", 0.0f);
+  return soup;
+}
+
 Mesh buildPolygonMesh(const PolygonSoup& s) {
   const std::size_t faces = s.faceCount();
   const bool haveColors = !s.colors.empty();

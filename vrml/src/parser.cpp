@@ -378,6 +378,16 @@ void Parser::parseNodeBody(Scope& scope, const NodePtr& node, InstanceValues* in
   }
 }
 
+// fieldType ::= MFColor | MFFloat | ... | SFVec3f (the 20 names of clause 5).
+FieldType Parser::parseFieldTypeName() {
+  const Token tt = lex_.peek();
+  const std::string_view typeName = lex_.expectId("a field type");
+  FieldType ft = FieldType::SFBool;
+  if (!fieldTypeFromName(typeName, ft))
+    lex_.fail(tt.offset, "unknown field type '" + std::string(typeName) + "'");
+  return ft;
+}
+
 // scriptBodyElement ::= nodeBodyElement | restrictedInterfaceDeclaration |
 // eventIn fieldType eventInId IS eventInId | eventOut ... | field fieldType fieldId IS fieldId
 void Parser::parseScriptDeclaration(Scope& scope, const NodePtr& node, const Token& keyword,
@@ -389,11 +399,7 @@ void Parser::parseScriptDeclaration(Scope& scope, const NodePtr& node, const Tok
     a = AccessType::eventOut;
   else if (keyword.text == "exposedField")
     a = AccessType::exposedField;
-  const Token tt = lex_.peek();
-  const std::string_view typeName = lex_.expectId("a field type");
-  FieldType ft = FieldType::SFBool;
-  if (!fieldTypeFromName(typeName, ft))
-    lex_.fail(tt.offset, "unknown field type '" + std::string(typeName) + "'");
+  const FieldType ft = parseFieldTypeName();
   const Token nt = lex_.peek();
   const std::string name(lex_.expectId("a field name"));
   const Token after = lex_.peek();

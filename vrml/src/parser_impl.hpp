@@ -127,6 +127,8 @@ class Parser {
   NodePtr parseNode(Scope& scope, const Token& t, int depth, int& height, std::string_view defName);
   void parseNodeBody(Scope& scope, const NodePtr& node, InstanceValues* inst, int depth,
                      int& height);
+  /// Reads a field type name; throws ParseError "unknown field type 'X'" at its place.
+  FieldType parseFieldTypeName();
   void parseScriptDeclaration(Scope& scope, const NodePtr& node, const Token& keyword, int depth,
                               int& height, ScriptBuild& script);
   /// Index of the member called exactly `name`, hashed for types with many members.

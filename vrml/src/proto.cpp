@@ -47,11 +47,7 @@ bool Parser::parseInterfaceDeclaration(Scope& scope, NodeType& type, bool withVa
   else
     lex_.failExpected(at.offset, "eventIn, eventOut, field or exposedField");
   lex_.consume(at);
-  const Token tt = lex_.peek();
-  const std::string_view typeName = lex_.expectId("a field type");
-  FieldType ft = FieldType::SFBool;
-  if (!fieldTypeFromName(typeName, ft))
-    lex_.fail(tt.offset, "unknown field type '" + std::string(typeName) + "'");
+  const FieldType ft = parseFieldTypeName();
   const Token nt = lex_.peek();
   FieldSpec spec{std::string(lex_.expectId("a field or event name")), ft, a, FieldValue(ft)};
   if (withValues && carriesValue(a)) {
