@@ -11,7 +11,18 @@
 namespace gs::qnv {
 
 /// The sample type a volume file declared; samples are converted to float on reading.
-enum class ScalarType { int8, uint8, int16, uint16, int32, uint32, int64, uint64, float32, float64 };
+enum class ScalarType {
+  int8,
+  uint8,
+  int16,
+  uint16,
+  int32,
+  uint32,
+  int64,
+  uint64,
+  float32,
+  float64
+};
 
 /// Bytes per sample of `type` (1..8).
 std::size_t scalarBytes(ScalarType type);

@@ -1,0 +1,87 @@
+// The surface and volume encoders (Nagasawa, "Beyond VRML", sections 2, 2.1 and 3.2):
+// triangles or voxels in, quantized normal vectors out, sorted largest first so every
+// prefix of the stream is the best picture of its size.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "qnv/mesh.hpp"
+#include "qnv/stream.hpp"
+#include "qnv/volume.hpp"
+
+namespace gs::qnv {
+
+/// Called with the fraction done (0..1) at a few points of a long encode.
+using ProgressCallback = std::function<void(double)>;
+
+/// Which vectors to keep, largest magnitude first. `count` (> 0) wins over `fraction`;
+/// the fraction is of all input elements (triangles, or voxels of the whole grid, as in
+/// the paper's figure 2), in (0, 1]. Elements of zero magnitude are never kept.
+struct Selection {
+  double fraction = 1.0;
+  std::uint64_t count = 0;
+  /// The number of elements to keep out of `elements` (before dropping zeros).
+  std::uint64_t keepOf(std::uint64_t elements) const;
+};
+
+/// What an encode saw, for reports: elements read, elements with a magnitude > 0 (and,
+/// for volumes, inside the value window), vectors kept.
+struct EncodeSummary {
+  std::uint64_t elements = 0;
+  std::uint64_t candidates = 0;
+  std::uint64_t kept = 0;
+};
+
+struct SurfaceEncodeOptions {
+  Selection selection;
+  MagnitudeMapping mapping = MagnitudeMapping::logarithmic;
+  OpacityProfile profile;
+  ProgressCallback progress;
+};
+
+/// One vector per triangle of `mesh` (section 2.1): position = centroid, direction = unit
+/// normal of (b - a) x (c - a) (counter-clockwise front), A = triangle area (square
+/// units), C = the triangle's colour (face, mean vertex, or base colour) in a palette
+/// of at most 256 colours (exact when the mesh has no more, else median cut).
+/// Degenerate triangles (zero or non-finite area) are dropped. The bounding box is that
+/// of the kept centroids; the magnitude range that of the kept areas.
+EncodedVectors encodeSurface(const TriangleMesh& mesh, const SurfaceEncodeOptions& options,
+                             EncodeSummary* summary = nullptr);
+
+struct VolumeEncodeOptions {
+  Selection selection;
+  /// Only voxels whose value lies in [first, second] are kept (e.g. bone in CT). The
+  /// transfer function domain is the window, else the volume's value range.
+  std::optional<std::pair<float, float>> valueWindow;
+  MagnitudeMapping mapping = MagnitudeMapping::logarithmic;
+  OpacityProfile profile;
+  /// The transfer function: palette entry c colours values in the c-th of 256 equal
+  /// slices of the domain. Empty: defaultTransferFunction().
+  std::optional<std::array<Rgba8, kPaletteSize>> palette;
+  ProgressCallback progress;
+};
+
+/// One vector per voxel (section 3.2): position = voxel centre (origin + index *
+/// spacing), direction = the gradient by central differences divided by twice the
+/// spacing (one-sided at the border), pointing towards higher values; A = gradient
+/// magnitude (value units per length unit); C = the voxel value's palette slice.
+/// Voxels with a zero gradient are dropped. Bounds: the voxel centres of the grid.
+EncodedVectors encodeVolume(const Volume& volume, const VolumeEncodeOptions& options,
+                            EncodeSummary* summary = nullptr);
+
+/// A ramp for CT: entry c (t = c / 255) goes from dark red (soft tissue) to white
+/// (bone), with opacity 255 * t.
+std::array<Rgba8, kPaletteSize> defaultTransferFunction();
+
+/// Builds a palette of at most 256 colours for `colors` and writes each colour's palette
+/// index to `indices` (same length). Exact when there are at most 256 distinct colours,
+/// else a count-weighted median cut in RGBA. Unused entries are opaque black.
+std::array<Rgba8, kPaletteSize> buildPalette(std::span<const Rgba8> colors,
+                                             std::vector<std::uint8_t>& indices);
+
+}  // namespace gs::qnv

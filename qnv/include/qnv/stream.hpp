@@ -1,0 +1,121 @@
+// The .qnv stream: a versioned header, then packets that each decode on their own
+// (Nagasawa, "Beyond VRML", section 3.6: records are packed into independent network
+// cells so a lost cell costs only its own vectors). Byte layout in docs/qnv-format.md.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "qnv/mesh.hpp"
+#include "qnv/record.hpp"
+
+namespace gs::qnv {
+
+/// What the vectors sample (paper section 2.1).
+enum class StreamKind : std::uint8_t {
+  surface = 1,  // one vector per triangle: A = triangle area
+  volume = 2,   // one vector per voxel: A = gradient magnitude
+};
+
+/// How a packet's records are stored.
+enum class PacketEncoding : std::uint8_t {
+  plain = 0,    // count little-endian 64-bit records, in stream order
+  compact = 1,  // the same records, spatially sorted, delta-coded and zstd-compressed
+};
+
+/// The Gaussian opacity profile alpha(u, x_k) ~ exp(-|u - x_k|^2 / A) of section 3.1, as
+/// the renderer applies it: sigma is the Gaussian's standard deviation in units of the
+/// splat radius (0 < sigma <= 4); opacityScale multiplies the peak opacity (0 < s <= 64).
+struct OpacityProfile {
+  float sigma = 0.5f;
+  float opacityScale = 1.0f;
+};
+
+/// 8-byte file signature: 0x89 "QNV" CR LF 0x1A LF (catches text-mode transfers, as PNG).
+inline constexpr std::array<std::uint8_t, 8> kMagic = {0x89, 'Q', 'N', 'V', '\r', '\n', 0x1a, '\n'};
+/// The only version this build writes and reads.
+inline constexpr std::uint16_t kFormatVersion = 1;
+/// Bytes of the version-1 header, palette and header CRC included.
+inline constexpr std::size_t kHeaderBytes = 1132;
+/// Bytes of each packet's own header: sync "QP", count, sequence, payload bytes,
+/// encoding, reserved, CRC-32.
+inline constexpr std::size_t kPacketHeaderBytes = 16;
+/// Record payload capacity of a packet (plain encoding): a multiple of 8 in this range.
+/// 48 is the paper's ATM cell (6 records); the default 1376 (172 records) makes
+/// 1392-byte packets that fit a 1400-byte datagram.
+inline constexpr std::uint32_t kMinPacketBytes = 8;
+inline constexpr std::uint32_t kMaxPacketBytes = 65528;
+inline constexpr std::uint32_t kDefaultPacketBytes = 1376;
+/// Streams claiming more vectors than this (2^36) are rejected as impossible.
+inline constexpr std::uint64_t kMaxVectorCount = std::uint64_t{1} << 36;
+
+/// Everything a decoder needs before the first packet.
+struct StreamHeader {
+  StreamKind kind = StreamKind::surface;
+  PacketEncoding encoding = PacketEncoding::plain;  // of the packets written after it
+  std::uint32_t packetBytes = kDefaultPacketBytes;  // record bytes per full packet
+  std::uint64_t vectorCount = 0;                    // records in the whole stream
+  glm::vec3 boundsMin{0, 0, 0};                     // position quantization box (world units)
+  glm::vec3 boundsMax{0, 0, 0};
+  MagnitudeMapping mapping = MagnitudeMapping::logarithmic;
+  float magnitudeMin = 1.0f;  // A code 0 .. 32767 spans [magnitudeMin, magnitudeMax]
+  float magnitudeMax = 1.0f;
+  OpacityProfile profile;
+  glm::vec3 voxelSpacing{0, 0, 0};  // volumes: sample distance per axis; surfaces: 0
+  glm::uvec3 volumeDims{0, 0, 0};   // volumes: samples per axis; surfaces: 0
+  float valueMin = 0.0f;            // volumes: palette entry c holds values from
+  float valueMax = 0.0f;            //   valueMin + c * (valueMax - valueMin) / 256 upwards
+  std::array<Rgba8, kPaletteSize> palette{};
+
+  /// Records in one full packet (packetBytes / 8).
+  std::uint32_t recordsPerPacket() const { return packetBytes / 8; }
+  /// Packets in the whole stream: ceil(vectorCount / recordsPerPacket()).
+  std::uint64_t packetCount() const;
+};
+
+/// The kHeaderBytes bytes of `header` (little-endian, CRC-32 last).
+std::string serializeHeader(const StreamHeader& header);
+
+/// Parses and checks a header from the first kHeaderBytes of `bytes`. Returns nullopt
+/// and sets `error` to a sentence naming `name` on: too few bytes, a wrong signature
+/// ("not a QNV stream"), an unknown version ("QNV version 7 is newer than this build
+/// reads (1)"), a header CRC mismatch, or an impossible value (kind, packet size,
+/// vector count above kMaxVectorCount, non-finite or inverted bounds, magnitude range).
+std::optional<StreamHeader> parseHeader(std::string_view bytes, const std::string& name,
+                                        std::string& error);
+
+/// A set of records with the header that gives them meaning, as the encoders produce it.
+/// records are in stream order: by A code, largest first.
+struct EncodedVectors {
+  StreamHeader header;
+  std::vector<std::uint64_t> records;
+};
+
+/// How writeStream packs the records.
+struct WriteOptions {
+  std::uint32_t packetBytes = kDefaultPacketBytes;  // multiple of 8 in [8, 65528]
+  PacketEncoding encoding = PacketEncoding::plain;
+};
+
+/// The whole .qnv file: header (vectorCount, packetBytes and encoding set from the
+/// arguments), then packets 0, 1, ... each holding the next recordsPerPacket() records
+/// (the last one fewer). Throws InputError on a packetBytes outside the range.
+std::string writeStream(const EncodedVectors& vectors, const WriteOptions& options = {});
+
+/// Appends one packet (header + payload) for `records` with sequence number `sequence`.
+/// `records.size()` must be 1..packetBytes/8 of the stream it belongs to.
+void appendPacket(std::string& out, std::uint32_t sequence, std::span<const std::uint64_t> records,
+                  PacketEncoding encoding);
+
+/// CRC-32 (ISO-HDLC, as zlib and PNG) of `bytes`, continuing from `crc` (0 to start).
+std::uint32_t crc32(std::string_view bytes, std::uint32_t crc = 0);
+
+}  // namespace gs::qnv

@@ -1,0 +1,67 @@
+#include "byte_order.hpp"
+#include "compact_payload.hpp"
+#include "qnv/error.hpp"
+#include "qnv/stream.hpp"
+
+namespace gs::qnv {
+
+using detail::appendLe;
+
+void appendPacket(std::string& out, std::uint32_t sequence, std::span<const std::uint64_t> records,
+                  PacketEncoding encoding) {
+  const std::size_t start = out.size();
+  out.append("QP");
+  appendLe<std::uint16_t>(out, static_cast<std::uint16_t>(records.size()));
+  appendLe<std::uint32_t>(out, sequence);
+  appendLe<std::uint16_t>(out, 0);  // payload bytes, patched below
+  appendLe<std::uint8_t>(out, static_cast<std::uint8_t>(encoding));
+  appendLe<std::uint8_t>(out, 0);
+  appendLe<std::uint32_t>(out, 0);  // CRC, patched below
+  const std::size_t payloadStart = out.size();
+  if (encoding == PacketEncoding::compact) {
+    detail::appendCompactPayload(out, records);
+    // Incompressible records (or a zstd failure) fall back to plain for this packet, so
+    // a payload never exceeds the plain size the decoder bounds it by.
+    if (out.size() - payloadStart > records.size() * 8 || out.size() == payloadStart) {
+      out.resize(payloadStart);
+      out[start + 10] = static_cast<char>(PacketEncoding::plain);
+      encoding = PacketEncoding::plain;
+    }
+  }
+  if (encoding == PacketEncoding::plain)
+    for (std::uint64_t r : records) appendLe<std::uint64_t>(out, r);
+  const std::size_t payloadBytes = out.size() - payloadStart;
+  std::string patch;
+  appendLe<std::uint16_t>(patch, static_cast<std::uint16_t>(payloadBytes));
+  out.replace(start + 8, 2, patch);
+  const std::string_view covered(out.data() + start + 2, 10);
+  std::uint32_t crc = crc32(covered);
+  crc = crc32(std::string_view(out.data() + payloadStart, payloadBytes), crc);
+  patch.clear();
+  appendLe<std::uint32_t>(patch, crc);
+  out.replace(start + 12, 4, patch);
+}
+
+std::string writeStream(const EncodedVectors& vectors, const WriteOptions& options) {
+  if (options.packetBytes < kMinPacketBytes || options.packetBytes > kMaxPacketBytes ||
+      options.packetBytes % 8 != 0)
+    throw InputError("packet size " + std::to_string(options.packetBytes) +
+                     " bytes is not a multiple of 8 between " + std::to_string(kMinPacketBytes) +
+                     " and " + std::to_string(kMaxPacketBytes));
+  StreamHeader header = vectors.header;
+  header.packetBytes = options.packetBytes;
+  header.encoding = options.encoding;
+  header.vectorCount = vectors.records.size();
+  std::string out = serializeHeader(header);
+  const std::size_t per = header.recordsPerPacket();
+  out.reserve(out.size() + vectors.records.size() * 8 +
+              (vectors.records.size() / per + 1) * kPacketHeaderBytes);
+  const std::span<const std::uint64_t> all(vectors.records);
+  std::uint32_t sequence = 0;
+  for (std::size_t first = 0; first < all.size(); first += per, ++sequence)
+    appendPacket(out, sequence, all.subspan(first, std::min(per, all.size() - first)),
+                 options.encoding);
+  return out;
+}
+
+}  // namespace gs::qnv

@@ -1,0 +1,112 @@
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <glm/geometric.hpp>
+
+#include "ordering.hpp"
+#include "qnv/encoder.hpp"
+#include "qnv/error.hpp"
+
+namespace gs::qnv {
+
+namespace {
+
+Rgba8 triangleColor(const TriangleMesh& mesh, std::size_t t) {
+  if (!mesh.faceColors.empty()) return mesh.faceColors[t];
+  if (!mesh.vertexColors.empty()) {
+    unsigned sum[4] = {0, 0, 0, 0};
+    for (int k = 0; k < 3; ++k) {
+      const Rgba8& c = mesh.vertexColors[mesh.indices[3 * t + k]];
+      for (int ch = 0; ch < 4; ++ch) sum[ch] += c[ch];
+    }
+    return Rgba8((sum[0] + 1) / 3, (sum[1] + 1) / 3, (sum[2] + 1) / 3, (sum[3] + 1) / 3);
+  }
+  return mesh.baseColor;
+}
+
+void report(const ProgressCallback& progress, double done) {
+  if (progress) progress(done);
+}
+
+}  // namespace
+
+EncodedVectors encodeSurface(const TriangleMesh& mesh, const SurfaceEncodeOptions& options,
+                             EncodeSummary* summary) {
+  const std::size_t triangles = mesh.triangleCount();
+  if (triangles > std::numeric_limits<std::uint32_t>::max())
+    throw InputError("too many triangles to encode (" + std::to_string(triangles) + ")");
+  for (std::uint32_t index : mesh.indices)
+    if (index >= mesh.positions.size())
+      throw InputError("triangle index " + std::to_string(index) + " is beyond the " +
+                       std::to_string(mesh.positions.size()) + " vertices");
+
+  std::vector<detail::Candidate> candidates;
+  candidates.reserve(triangles);
+  std::vector<glm::vec3> cross(triangles);
+  for (std::size_t t = 0; t < triangles; ++t) {
+    const glm::vec3& a = mesh.positions[mesh.indices[3 * t]];
+    const glm::vec3& b = mesh.positions[mesh.indices[3 * t + 1]];
+    const glm::vec3& c = mesh.positions[mesh.indices[3 * t + 2]];
+    cross[t] = glm::cross(b - a, c - a);
+    const float area = 0.5f * glm::length(cross[t]);
+    if (area > 0.0f && std::isfinite(area) &&
+        std::isfinite(a.x + a.y + a.z + b.x + b.y + b.z + c.x + c.y + c.z))
+      candidates.push_back({area, static_cast<std::uint32_t>(t)});
+  }
+  report(options.progress, 0.3);
+  const std::uint64_t candidateCount = candidates.size();
+  detail::keepLargest(candidates, options.selection.keepOf(triangles));
+  // Source order inside the kept set keeps the encoder's output deterministic.
+  std::sort(
+      candidates.begin(), candidates.end(),
+      [](const detail::Candidate& x, const detail::Candidate& y) { return x.index < y.index; });
+
+  EncodedVectors out;
+  StreamHeader& h = out.header;
+  h.kind = StreamKind::surface;
+  h.mapping = options.mapping;
+  h.profile = options.profile;
+  std::vector<glm::vec3> centroid(candidates.size());
+  std::vector<Rgba8> colors(candidates.size());
+  glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
+  float aMin = std::numeric_limits<float>::max(), aMax = 0.0f;
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    const std::size_t t = candidates[i].index;
+    centroid[i] = (mesh.positions[mesh.indices[3 * t]] + mesh.positions[mesh.indices[3 * t + 1]] +
+                   mesh.positions[mesh.indices[3 * t + 2]]) /
+                  3.0f;
+    lo = glm::min(lo, centroid[i]);
+    hi = glm::max(hi, centroid[i]);
+    aMin = std::min(aMin, candidates[i].magnitude);
+    aMax = std::max(aMax, candidates[i].magnitude);
+    colors[i] = triangleColor(mesh, t);
+  }
+  if (candidates.empty()) lo = hi = glm::vec3(0.0f), aMin = aMax = 1.0f;
+  h.boundsMin = lo;
+  h.boundsMax = hi;
+  h.magnitudeMin = aMin;
+  h.magnitudeMax = aMax;
+  std::vector<std::uint8_t> colorIndex;
+  h.palette = buildPalette(colors, colorIndex);
+  report(options.progress, 0.6);
+
+  out.records.resize(candidates.size());
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    RecordFields f;
+    f.x = quantizeCoordinate(centroid[i].x, lo.x, hi.x);
+    f.y = quantizeCoordinate(centroid[i].y, lo.y, hi.y);
+    f.z = quantizeCoordinate(centroid[i].z, lo.z, hi.z);
+    quantizeDirection(cross[candidates[i].index], f.theta, f.phi);
+    f.a = quantizeMagnitude(candidates[i].magnitude, h.mapping, aMin, aMax);
+    f.c = colorIndex[i];
+    out.records[i] = packRecord(f);
+  }
+  detail::sortLargestFirst(out.records);
+  h.vectorCount = out.records.size();
+  if (summary) *summary = {triangles, candidateCount, out.records.size()};
+  report(options.progress, 1.0);
+  return out;
+}
+
+}  // namespace gs::qnv
