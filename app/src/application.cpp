@@ -48,7 +48,9 @@ Parsed parseArguments(int argc, char** argv) {
       "Examples:\n"
       "  ghostspace world.wrl                          open a window\n"
       "  ghostspace --snapshot out.png --size 640x480 world.wrl\n"
-      "  ghostspace info world.wrl                     print what was read");
+      "  ghostspace info world.wrl                     print what was read\n"
+      "  ghostspace encode CThead.nhdr --fraction 0.091 -o head.qnv\n"
+      "  ghostspace info head.qnv                      header, packets, magnitude histogram");
   std::string size;
   cli.add_option("--snapshot", o.snapshotPath,
                  "Render INPUT off-screen (no display needed) from its bound Viewpoint and "
@@ -63,7 +65,45 @@ Parsed parseArguments(int argc, char** argv) {
                                       "Print what was read from INPUT: node counts, "
                                       "triangles, bounding box, diagnostics, parse time");
   std::vector<std::string> infoInputs;
-  info->add_option("INPUT", infoInputs, "VRML97 world")->required();
+  info->add_option("INPUT", infoInputs, "VRML97 world or .qnv stream")->required();
+
+  EncodeOptions& enc = o.encode;
+  CLI::App* encode = cli.add_subcommand(
+      "encode",
+      "Encode INPUT as a QNV stream (docs/qnv-format.md): a VRML97 world, a mesh (.ply, .obj, "
+      ".gltf, .glb) or a volume (.nrrd, .nhdr, .nii, .nii.gz, or raw with --raw-dims)");
+  std::string encodeInput;
+  encode->add_option("INPUT", encodeInput, "World, mesh or volume")->required();
+  encode->add_option("-o,--output", enc.output, "The .qnv file to write")
+      ->type_name("OUT.qnv")
+      ->required();
+  auto* fraction = encode
+                       ->add_option("--fraction", enc.fraction,
+                                    "Keep the largest F of all triangles or voxels (0 < F <= 1)")
+                       ->type_name("F");
+  encode->add_option("--count", enc.count, "Keep the N largest vectors")
+      ->type_name("N")
+      ->excludes(fraction);
+  encode
+      ->add_option(
+          "--packet-bytes", enc.packetBytes,
+          "Record bytes per packet, a multiple of 8 (48 = the paper's ATM cell; default 1376 "
+          "fits a 1400-byte datagram)")
+      ->type_name("B");
+  encode->add_flag("--compact", enc.compact,
+                   "zstd-compress each packet (spatially sorted, delta-coded)");
+  encode->add_option("--window", enc.valueWindow, "Volumes: keep voxels with values in LO..HI")
+      ->type_name("LO:HI");
+  encode->add_option("--magnitude", enc.magnitude,
+                     "Magnitude quantization: log (default) or linear");
+  encode->add_option("--raw-dims", enc.rawDims, "INPUT is raw voxels of this size")
+      ->type_name("X,Y,Z");
+  encode->add_option("--raw-type", enc.rawType, "Raw sample type: uint8 int16 float32 ...");
+  encode->add_option("--raw-spacing", enc.rawSpacing, "Raw voxel spacing")->type_name("SX,SY,SZ");
+  encode->add_flag("--raw-big-endian", enc.rawBigEndian, "Raw samples are big-endian");
+  encode->add_option("--raw-skip", enc.rawHeaderBytes, "Bytes to skip before the raw samples");
+  bool noProgress = false;
+  encode->add_flag("--no-progress", noProgress, "No progress bar on the terminal");
 
   try {
     cli.parse(argc, argv);
@@ -90,7 +130,11 @@ Parsed parseArguments(int argc, char** argv) {
     r.exitCode = 2;
     return r;
   }
-  if (info->parsed()) {
+  enc.progress = !noProgress;
+  if (encode->parsed()) {
+    o.command = Command::encode;
+    o.inputs = {encodeInput};
+  } else if (info->parsed()) {
     o.command = Command::info;
     o.inputs = infoInputs;
   } else if (!o.snapshotPath.empty()) {
@@ -117,6 +161,8 @@ int run(int argc, char** argv) {
         return runSnapshot(p.options);
       case Command::window:
         return runWindow(p.options);
+      case Command::encode:
+        return runEncode(p.options);
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "ghostspace: %s\n", e.what());

@@ -3,6 +3,7 @@
 #include "app/world.hpp"
 #include "render/traversal.hpp"
 
+#include <algorithm>
 #include <cstdio>
 
 namespace gs::app {
@@ -10,6 +11,10 @@ namespace gs::app {
 int runInfo(const Options& options) {
   int status = 0;
   for (const std::string& input : options.inputs) {
+    if (isQnvFile(input)) {
+      status = std::max(status, runQnvInfo(input));
+      continue;
+    }
     const LoadedWorld w = loadWorld(input);
     if (!w.readable) {
       for (const auto& d : w.scene->diagnostics.items)

@@ -3,12 +3,28 @@
 
 #include "app/options.hpp"
 
+#include <string>
+
 namespace gs::app {
 
 /// `ghostspace info INPUT`: prints node counts by type, triangles, bounding box,
 /// diagnostics and parse time to stdout. 0 when the input was read (even with
-/// diagnostics), 1 when it could not be read at all.
+/// diagnostics), 1 when it could not be read at all. A .qnv INPUT goes to runQnvInfo.
 int runInfo(const Options& options);
+
+/// `ghostspace info FILE.qnv`: the stream header, vector and packet counts, bytes per
+/// vector, a magnitude histogram, and damaged or missing packets. 0 when the header was
+/// readable (even with packets lost), 1 otherwise.
+int runQnvInfo(const std::string& path);
+
+/// True when `path` ends with .qnv (any case) or its first bytes are the QNV signature.
+bool isQnvFile(const std::string& path);
+
+/// `ghostspace encode INPUT -o OUT.qnv`: a VRML97 world, mesh (PLY, OBJ, glTF/GLB) or
+/// volume (NRRD, NIfTI-1, raw) to a .qnv stream (docs/qnv-format.md). Prints what was
+/// kept and the sizes; 0 on success, 1 with one line on stderr when the input cannot be
+/// read or the output written, 2 on bad options.
+int runEncode(const Options& options);
 
 /// `ghostspace --snapshot OUT.png [--size WxH] INPUT`: renders off-screen through OSMesa
 /// from the bound Viewpoint and writes a PNG. 0 on success; 1 with one line on stderr

@@ -1,12 +1,30 @@
 // The ghostspace command line (see README.md, "Command line").
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
 namespace gs::app {
 
-enum class Command { window, snapshot, info };
+enum class Command { window, snapshot, info, encode };
+
+/// `ghostspace encode` (README.md, "Encoding QNV streams").
+struct EncodeOptions {
+  std::string output;                // -o OUT.qnv
+  double fraction = 1.0;             // --fraction F: keep the largest F of all elements
+  std::uint64_t count = 0;           // --count N: keep the N largest (wins over F)
+  std::uint32_t packetBytes = 1376;  // --packet-bytes B: record bytes per packet
+  bool compact = false;              // --compact: zstd-compressed packets
+  std::string valueWindow;           // --window LO:HI: volume values kept
+  std::string magnitude = "log";     // --magnitude log|linear
+  std::string rawDims;               // --raw-dims X,Y,Z: INPUT is raw voxels
+  std::string rawType = "uint8";     // --raw-type int16 ...
+  std::string rawSpacing = "1,1,1";  // --raw-spacing SX,SY,SZ
+  bool rawBigEndian = false;         // --raw-big-endian
+  std::uint64_t rawHeaderBytes = 0;  // --raw-skip BYTES
+  bool progress = true;              // --no-progress turns the terminal bar off
+};
 
 struct Options {
   Command command = Command::window;
@@ -15,6 +33,7 @@ struct Options {
   int width = 800;                  // --size WxH, pixels
   int height = 600;
   int frames = 0;  // --frames N: window closes after N frames (0 = never)
+  EncodeOptions encode;
 };
 
 /// Parses "WxH" (e.g. "800x600") into pixels; each side 1..16384. Returns false when the
