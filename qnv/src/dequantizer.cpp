@@ -30,14 +30,41 @@ DecodedVector Dequantizer::decodeOne(std::uint64_t r) const {
   return v;
 }
 
+namespace {
+
+// The hot loop, written on plain pointers and component stores: returning a
+// DecodedVector by value through glm constructors ran at a third of this speed.
+template <typename Load>
+void decodeLoop(const Load& load, std::size_t count, DecodedVector* out, const float* ax,
+                const float* ay, const float* az, const glm::vec3* direction,
+                const float* magnitude, const std::uint32_t* color) {
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::uint64_t r = load(i);
+    DecodedVector& v = out[i];
+    v.position.x = ax[r >> 54];
+    v.position.y = ay[(r >> 44) & 1023u];
+    v.position.z = az[(r >> 34) & 1023u];
+    v.magnitude = magnitude[(r >> 8) & 32767u];
+    const glm::vec3& n = direction[(r >> 23) & 2047u];
+    v.normal.x = n.x;
+    v.normal.y = n.y;
+    v.normal.z = n.z;
+    v.rgba = color[r & 255u];
+  }
+}
+
+}  // namespace
+
 void Dequantizer::decode(const std::uint64_t* records, std::size_t count,
                          DecodedVector* out) const {
-  for (std::size_t i = 0; i < count; ++i) out[i] = decodeOne(records[i]);
+  decodeLoop([records](std::size_t i) { return records[i]; }, count, out, axis_[0].data(),
+             axis_[1].data(), axis_[2].data(), direction_.data(), magnitude_.data(), color_.data());
 }
 
 void Dequantizer::decodeBytes(const char* bytes, std::size_t count, DecodedVector* out) const {
-  for (std::size_t i = 0; i < count; ++i)
-    out[i] = decodeOne(detail::loadLe<std::uint64_t>(bytes + 8 * i));
+  decodeLoop([bytes](std::size_t i) { return detail::loadLe<std::uint64_t>(bytes + 8 * i); }, count,
+             out, axis_[0].data(), axis_[1].data(), axis_[2].data(), direction_.data(),
+             magnitude_.data(), color_.data());
 }
 
 }  // namespace gs::qnv

@@ -35,6 +35,19 @@ void StreamDecoder::compactBuffer() {
 bool StreamDecoder::feed(std::string_view chunk, const Sink& sink) {
   if (!error_.empty()) return false;
   stats_.bytesFed += chunk.size();
+  if (header_ && offset_ == buffer_.size()) {
+    // Nothing pending: parse the chunk where it lies and keep only its unfinished tail.
+    bufferBase_ += buffer_.size();
+    buffer_.clear();
+    offset_ = 0;
+    view_ = chunk;
+    parsePackets(sink);
+    buffer_.assign(chunk.substr(offset_));
+    bufferBase_ += offset_;
+    offset_ = 0;
+    view_ = buffer_;
+    return true;
+  }
   buffer_.append(chunk);
   if (!header_) {
     const std::string_view have(buffer_.data() + offset_, buffer_.size() - offset_);
@@ -59,6 +72,7 @@ bool StreamDecoder::feed(std::string_view chunk, const Sink& sink) {
     dequantizer_.emplace(*header_);
     offset_ += kHeaderBytes;
   }
+  view_ = buffer_;
   parsePackets(sink);
   compactBuffer();
   return true;
@@ -72,7 +86,7 @@ bool StreamDecoder::parsePackets(const Sink& sink) {
     if (!resyncing_) {
       resyncing_ = true;
       if (complete()) {
-        warn(std::to_string(buffer_.size() - offset_) +
+        warn(std::to_string(view_.size() - offset_) +
              " bytes of trailing garbage after the last packet at byte " +
              std::to_string(bufferBase_ + offset_));
       } else {
@@ -84,15 +98,14 @@ bool StreamDecoder::parsePackets(const Sink& sink) {
     ++offset_;
     ++stats_.bytesSkipped;
   };
-  while (buffer_.size() - offset_ >= kPacketHeaderBytes) {
-    const char* p = buffer_.data() + offset_;
+  while (view_.size() - offset_ >= kPacketHeaderBytes) {
+    const char* p = view_.data() + offset_;
     if (p[0] != 'Q' || p[1] != 'P') {
       skipDamaged("no packet sync");
       // Jump to the next possible sync byte.
-      const void* q = std::memchr(buffer_.data() + offset_, 'Q', buffer_.size() - offset_);
+      const void* q = std::memchr(view_.data() + offset_, 'Q', view_.size() - offset_);
       const std::size_t next =
-          q ? static_cast<std::size_t>(static_cast<const char*>(q) - buffer_.data())
-            : buffer_.size();
+          q ? static_cast<std::size_t>(static_cast<const char*>(q) - view_.data()) : view_.size();
       stats_.bytesSkipped += next - offset_;
       offset_ = next;
       continue;
@@ -112,7 +125,7 @@ bool StreamDecoder::parsePackets(const Sink& sink) {
       continue;
     }
     const std::size_t packetBytes = kPacketHeaderBytes + payloadBytes;
-    if (buffer_.size() - offset_ < packetBytes) {
+    if (view_.size() - offset_ < packetBytes) {
       if (!finished_) break;  // wait for the rest of the packet
       skipDamaged("incomplete packet");
       continue;
@@ -162,6 +175,7 @@ bool StreamDecoder::finish(const Sink& sink) {
   const DecoderStats before = stats_;
   const std::size_t warningsBefore = warnings_.size();
   const std::size_t offsetBefore = offset_;
+  view_ = buffer_;
   parsePackets(sink);
   if (stats_.packetsDecoded == before.packetsDecoded) {
     stats_ = before;

@@ -1,7 +1,7 @@
 #include <cmath>
 #include <cstring>
 
-#include <zlib.h>
+#include <libdeflate.h>
 
 #include "byte_order.hpp"
 #include "qnv/stream.hpp"
@@ -26,16 +26,7 @@ bool finite3(const glm::vec3& v) {
 }  // namespace
 
 std::uint32_t crc32(std::string_view bytes, std::uint32_t crc) {
-  uLong c = crc;
-  const auto* p = reinterpret_cast<const Bytef*>(bytes.data());
-  std::size_t left = bytes.size();
-  while (left > 0) {
-    const uInt n = left > (1u << 30) ? (1u << 30) : static_cast<uInt>(left);
-    c = ::crc32(c, p, n);
-    p += n;
-    left -= n;
-  }
-  return static_cast<std::uint32_t>(c);
+  return libdeflate_crc32(crc, bytes.data(), bytes.size());
 }
 
 std::uint64_t StreamHeader::packetCount() const {

@@ -91,6 +91,7 @@ EncodedVectors encodeSurface(const TriangleMesh& mesh, const SurfaceEncodeOption
   h.palette = buildPalette(colors, colorIndex);
   report(options.progress, 0.6);
 
+  const MagnitudeQuantizer quantizeA(h.mapping, aMin, aMax);
   out.records.resize(candidates.size());
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     RecordFields f;
@@ -98,7 +99,7 @@ EncodedVectors encodeSurface(const TriangleMesh& mesh, const SurfaceEncodeOption
     f.y = quantizeCoordinate(centroid[i].y, lo.y, hi.y);
     f.z = quantizeCoordinate(centroid[i].z, lo.z, hi.z);
     quantizeDirection(cross[candidates[i].index], f.theta, f.phi);
-    f.a = quantizeMagnitude(candidates[i].magnitude, h.mapping, aMin, aMax);
+    f.a = quantizeA(candidates[i].magnitude);
     f.c = colorIndex[i];
     out.records[i] = packRecord(f);
   }

@@ -94,6 +94,7 @@ EncodedVectors encodeVolume(const Volume& volume, const VolumeEncodeOptions& opt
   h.magnitudeMax = aMax;
 
   const float valueScale = windowHi > windowLo ? kPaletteSize / (windowHi - windowLo) : 0.0f;
+  const MagnitudeQuantizer quantizeA(h.mapping, aMin, aMax);
   out.records.resize(candidates.size());
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     const std::size_t index = candidates[i].index;
@@ -110,7 +111,7 @@ EncodedVectors encodeVolume(const Volume& volume, const VolumeEncodeOptions& opt
     f.y = quantizeCoordinate(p.y, h.boundsMin.y, h.boundsMax.y);
     f.z = quantizeCoordinate(p.z, h.boundsMin.z, h.boundsMax.z);
     quantizeDirection(gradient, f.theta, f.phi);
-    f.a = quantizeMagnitude(candidates[i].magnitude, h.mapping, aMin, aMax);
+    f.a = quantizeA(candidates[i].magnitude);
     const float slice = (*s - windowLo) * valueScale;
     f.c = static_cast<std::uint8_t>(std::clamp(slice, 0.0f, static_cast<float>(kPaletteSize - 1)));
     out.records[i] = packRecord(f);

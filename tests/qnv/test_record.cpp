@@ -88,3 +88,21 @@ TEST_CASE("logarithmic magnitudes keep a bounded relative error", "[qnv][record]
       quantizeMagnitude(small, MagnitudeMapping::linear, lo, hi), MagnitudeMapping::linear, lo, hi);
   CHECK(std::abs(linear - small) / small > 1.0);
 }
+
+TEST_CASE("direction cells match the acos and atan2 definition", "[qnv][record]") {
+  std::mt19937 rng(9);
+  std::normal_distribution<float> n(0.0f, 1.0f);
+  int differ = 0;
+  for (int i = 0; i < 100000; ++i) {
+    const glm::vec3 d(n(rng), n(rng), n(rng));
+    const double len = std::sqrt(double{d.x} * d.x + double{d.y} * d.y + double{d.z} * d.z);
+    const int t = std::min(31, static_cast<int>(std::acos(d.z / len) / std::numbers::pi * 32));
+    double phi = std::atan2(double{d.y}, double{d.x});
+    if (phi < 0) phi += 2 * std::numbers::pi;
+    const int p = static_cast<int>(phi / (2 * std::numbers::pi) * 64) % 64;
+    std::uint8_t qt = 0, qp = 0;
+    quantizeDirection(d, qt, qp);
+    differ += (qt != t || qp != p);
+  }
+  CHECK(differ <= 2);  // only a rounding exactly on a cell boundary may differ
+}

@@ -108,7 +108,8 @@ class StreamDecoder {
   void compactBuffer();
 
   std::string name_;
-  std::string buffer_;
+  std::string buffer_;            // bytes kept between feeds (an unfinished packet)
+  std::string_view view_;         // what parsePackets reads: buffer_, or a chunk in place
   std::size_t offset_ = 0;        // first unconsumed byte of buffer_
   std::uint64_t bufferBase_ = 0;  // stream offset of buffer_[0]
   std::optional<StreamHeader> header_;

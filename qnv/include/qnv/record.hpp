@@ -92,6 +92,17 @@ enum class MagnitudeMapping : std::uint8_t {
 /// Quantizes magnitude `a` (> 0) for the range [lo, hi] (0 < lo <= hi). Values outside
 /// the range clamp to code 0 or 32767.
 std::uint16_t quantizeMagnitude(float a, MagnitudeMapping mapping, float lo, float hi);
+/// quantizeMagnitude with the range's logarithm computed once, for encoders.
+class MagnitudeQuantizer {
+ public:
+  MagnitudeQuantizer(MagnitudeMapping mapping, float lo, float hi);
+  std::uint16_t operator()(float a) const;
+
+ private:
+  MagnitudeMapping mapping_;
+  double lo_, scale_;  // code = floor((f(a) - lo_) * scale_), f = ln or identity
+};
+
 /// Cell centre of code q (geometric centre for the logarithmic mapping).
 float reconstructMagnitude(std::uint32_t q, MagnitudeMapping mapping, float lo, float hi);
 

@@ -115,7 +115,8 @@ std::string writeStream(const EncodedVectors& vectors, const WriteOptions& optio
 void appendPacket(std::string& out, std::uint32_t sequence, std::span<const std::uint64_t> records,
                   PacketEncoding encoding);
 
-/// CRC-32 (ISO-HDLC, as zlib and PNG) of `bytes`, continuing from `crc` (0 to start).
+/// CRC-32 (ISO-HDLC, as zlib and PNG) of `bytes`, continuing from `crc` (0 to start);
+/// computed by libdeflate (about 9 GB/s with PCLMUL).
 std::uint32_t crc32(std::string_view bytes, std::uint32_t crc = 0);
 
 }  // namespace gs::qnv

@@ -1,0 +1,172 @@
+// `ghostspace encode`: any supported input to a .qnv stream.
+#include <charconv>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+
+#include "app/commands.hpp"
+#include "app/mesh_input.hpp"
+#include "app/progress_bar.hpp"
+#include "app/volume_input.hpp"
+#include "app/world.hpp"
+#include "app/world_mesh.hpp"
+#include "qnv/encoder.hpp"
+#include "qnv/error.hpp"
+#include "qnv/volume_readers.hpp"
+
+namespace gs::app {
+
+namespace {
+
+/// Splits "a,b,c" (or "a:b", "AxBxC") and parses each part as T; false on any junk.
+template <typename T>
+bool parseList(const std::string& text, std::size_t n, const char* separators, T* out) {
+  std::size_t at = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t end = i + 1 < n ? text.find_first_of(separators, at) : text.size();
+    if (end == std::string::npos) return false;
+    const char* b = text.data() + at;
+    const char* e = text.data() + end;
+    auto [p, ec] = std::from_chars(b, e, out[i]);
+    if (ec != std::errc() || p != e) return false;
+    at = end + 1;
+  }
+  return true;
+}
+
+struct Settings {
+  qnv::Selection selection;
+  qnv::MagnitudeMapping mapping = qnv::MagnitudeMapping::logarithmic;
+  std::optional<std::pair<float, float>> window;
+  std::optional<qnv::RawLayout> raw;
+  qnv::WriteOptions write;
+};
+
+/// Checks the encode options; returns an empty string or the usage error.
+std::string parseSettings(const EncodeOptions& e, Settings& s) {
+  if (e.output.empty()) return "encode: -o OUT.qnv is required";
+  if (!(e.fraction > 0.0 && e.fraction <= 1.0))
+    return "encode: --fraction must be in (0, 1], got " + std::to_string(e.fraction);
+  s.selection.fraction = e.fraction;
+  s.selection.count = e.count;
+  if (e.magnitude == "linear")
+    s.mapping = qnv::MagnitudeMapping::linear;
+  else if (e.magnitude != "log")
+    return "encode: --magnitude: expected log or linear, got '" + e.magnitude + "'";
+  if (!e.valueWindow.empty()) {
+    float w[2];
+    if (!parseList(e.valueWindow, 2, ":,", w) || !(w[0] <= w[1]))
+      return "encode: --window: expected LO:HI with LO <= HI, got '" + e.valueWindow + "'";
+    s.window = std::make_pair(w[0], w[1]);
+  }
+  if (!e.rawDims.empty()) {
+    qnv::RawLayout layout;
+    unsigned dims[3];
+    if (!parseList(e.rawDims, 3, ",x", dims))
+      return "encode: --raw-dims: expected X,Y,Z, got '" + e.rawDims + "'";
+    layout.dims = glm::uvec3(dims[0], dims[1], dims[2]);
+    float spacing[3];
+    if (!parseList(e.rawSpacing, 3, ",x", spacing))
+      return "encode: --raw-spacing: expected SX,SY,SZ, got '" + e.rawSpacing + "'";
+    layout.spacing = glm::vec3(spacing[0], spacing[1], spacing[2]);
+    try {
+      layout.type = qnv::parseScalarType(e.rawType);
+    } catch (const qnv::InputError& error) {
+      return std::string("encode: --raw-type: ") + error.what();
+    }
+    layout.bigEndian = e.rawBigEndian;
+    layout.headerBytes = static_cast<std::size_t>(e.rawHeaderBytes);
+    s.raw = layout;
+  }
+  if (e.packetBytes < qnv::kMinPacketBytes || e.packetBytes > qnv::kMaxPacketBytes ||
+      e.packetBytes % 8 != 0)
+    return "encode: --packet-bytes must be a multiple of 8 from 8 to 65528, got " +
+           std::to_string(e.packetBytes);
+  s.write.packetBytes = e.packetBytes;
+  s.write.encoding = e.compact ? qnv::PacketEncoding::compact : qnv::PacketEncoding::plain;
+  return {};
+}
+
+std::string withCommas(std::uint64_t n) {
+  std::string s = std::to_string(n);
+  for (int i = static_cast<int>(s.size()) - 3; i > 0; i -= 3)
+    s.insert(static_cast<std::size_t>(i), ",");
+  return s;
+}
+
+}  // namespace
+
+int runEncode(const Options& options) {
+  Settings s;
+  if (const std::string usage = parseSettings(options.encode, s); !usage.empty()) {
+    std::fprintf(stderr, "ghostspace: %s\n", usage.c_str());
+    return 2;
+  }
+  const std::string& input = options.inputs.front();
+  ProgressBar bar("encoding", stderr, options.encode.progress);
+  const auto progress = [&bar](double f) { bar.update(f); };
+  const auto t0 = std::chrono::steady_clock::now();
+  qnv::EncodedVectors vectors;
+  qnv::EncodeSummary summary;
+  const char* elements = "triangles";
+  try {
+    if (s.raw || isVolumeFile(input)) {
+      const qnv::Volume volume = s.raw ? loadRawVolumeFile(input, *s.raw) : loadVolumeFile(input);
+      qnv::VolumeEncodeOptions v;
+      v.selection = s.selection;
+      v.mapping = s.mapping;
+      v.valueWindow = s.window;
+      v.progress = progress;
+      vectors = qnv::encodeVolume(volume, v, &summary);
+      elements = "voxels";
+    } else {
+      qnv::TriangleMesh mesh;
+      if (isMeshFile(input)) {
+        mesh = loadMeshFile(input);
+      } else {
+        const LoadedWorld world = loadWorld(input);
+        for (const vrml::Diagnostic& d : world.scene->diagnostics.items)
+          std::fprintf(stderr, "%s\n", d.format().c_str());
+        if (!world.readable) return 1;
+        mesh = worldTriangles(world.scene);
+      }
+      qnv::SurfaceEncodeOptions v;
+      v.selection = s.selection;
+      v.mapping = s.mapping;
+      v.progress = progress;
+      vectors = qnv::encodeSurface(mesh, v, &summary);
+    }
+  } catch (const qnv::InputError& error) {
+    std::fprintf(stderr, "ghostspace: %s\n", error.what());
+    return 1;
+  }
+  const std::string bytes = qnv::writeStream(vectors, s.write);
+  bar.finish();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::ofstream out(options.encode.output, std::ios::binary | std::ios::trunc);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  out.close();
+  if (!out) {
+    std::fprintf(stderr, "ghostspace: cannot write '%s'\n", options.encode.output.c_str());
+    return 1;
+  }
+  const double bitsPerVector = summary.kept
+                                   ? 8.0 * static_cast<double>(bytes.size() - qnv::kHeaderBytes) /
+                                         static_cast<double>(summary.kept)
+                                   : 0.0;
+  std::printf("%s: %s %s, %s with a non-zero magnitude, kept %s (%.2f%%)\n", input.c_str(),
+              withCommas(summary.elements).c_str(), elements,
+              withCommas(summary.candidates).c_str(), withCommas(summary.kept).c_str(),
+              summary.elements ? 100.0 * static_cast<double>(summary.kept) /
+                                     static_cast<double>(summary.elements)
+                               : 0.0);
+  const std::uint64_t perPacket = s.write.packetBytes / 8;
+  std::printf(
+      "%s: %s bytes, %.1f bits per vector (packets and header included), %s packets; %.3f s\n",
+      options.encode.output.c_str(), withCommas(bytes.size()).c_str(), bitsPerVector,
+      withCommas((summary.kept + perPacket - 1) / perPacket).c_str(), seconds);
+  return 0;
+}
+
+}  // namespace gs::app

@@ -1,0 +1,133 @@
+// Volume files from disk: file reading, gzip and detached NRRD data files around the
+// parsers of qnv/volume_readers.hpp.
+#include "app/volume_input.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdint>
+#include <filesystem>
+#include <string_view>
+
+#include "net/file_source.hpp"
+#include "qnv/error.hpp"
+#include "vrml/diagnostic.hpp"
+#include "vrml/parser.hpp"
+
+namespace gs::app {
+
+namespace {
+
+// The largest volume (kMaxVoxels float64 samples) plus room for a header.
+constexpr std::size_t kMaxFileBytes = qnv::kMaxVoxels * 8 + (std::size_t{64} << 20);
+// Decompressed bytes allowed beyond what a header describes (trailing padding).
+constexpr std::size_t kGzipSlack = std::size_t{1} << 20;
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+bool endsWith(const std::string& s, std::string_view suffix) {
+  return s.size() >= suffix.size() &&
+         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+bool isGzip(std::string_view bytes) {
+  return bytes.size() >= 2 && static_cast<unsigned char>(bytes[0]) == 0x1f &&
+         static_cast<unsigned char>(bytes[1]) == 0x8b;
+}
+
+std::string readOrThrow(const std::string& path) {
+  std::string bytes, error;
+  if (!net::readFile(path, bytes, error, kMaxFileBytes)) throw qnv::InputError(error);
+  return bytes;
+}
+
+// gunzipIfCompressed with its ParseError turned into an InputError naming `path`.
+std::string gunzip(std::string_view bytes, const std::string& path, std::size_t maxBytes) {
+  try {
+    return vrml::gunzipIfCompressed(bytes, path, maxBytes);
+  } catch (const vrml::ParseError& e) {
+    std::string why = e.diagnostic.message;
+    if (why.starts_with("decompressed data exceeds"))
+      why = "decompressed data exceed " + std::to_string(maxBytes) +
+            " bytes, more than the volume needs";
+    throw qnv::InputError(path + ": " + why);
+  }
+}
+
+// The detached data file `dataFile` of the header at `headerPath`, which must lie in the
+// header's folder or below it.
+std::string resolveDataFile(const std::string& headerPath, const std::string& dataFile) {
+  const std::filesystem::path rel(dataFile);
+  if (rel.is_absolute() || rel.has_root_path())
+    throw qnv::InputError(headerPath + ": data file '" + dataFile +
+                          "' is an absolute path; only files beside the header are read");
+  for (const auto& part : rel)
+    if (part == "..")
+      throw qnv::InputError(headerPath + ": data file '" + dataFile +
+                            "' leaves the header's folder ('..'); only files beside the "
+                            "header are read");
+  std::filesystem::path dir = std::filesystem::path(headerPath).parent_path();
+  if (dir.empty()) dir = ".";
+  return (dir / rel).string();
+}
+
+qnv::Volume loadNrrd(const std::string& path, const std::string& bytes) {
+  const qnv::NrrdHeader h = qnv::parseNrrdHeader(bytes, path);
+  std::string dataName = path;
+  std::string fileBytes;
+  std::string_view data;
+  if (h.dataFile.empty()) {
+    data = std::string_view(bytes).substr(std::min(h.dataOffset, bytes.size()));
+  } else {
+    dataName = resolveDataFile(path, h.dataFile);
+    fileBytes = readOrThrow(dataName);
+    data = fileBytes;
+  }
+  if (h.encoding != qnv::NrrdHeader::Encoding::gzip) return qnv::decodeNrrdData(h, data, dataName);
+
+  // teem skips lines in the compressed bytes and bytes in the decompressed ones.
+  data = qnv::skipNrrdLines(data, h.lineSkip, dataName);
+  if (!isGzip(data))
+    throw qnv::InputError(dataName +
+                          ": the NRRD header says 'encoding: gzip' but the data are not gzip");
+  const std::size_t skip =
+      h.byteSkip > 0 ? std::min(static_cast<std::size_t>(h.byteSkip), kMaxFileBytes) : 0;
+  const std::string inflated = gunzip(data, dataName, h.dataBytes() + skip + kGzipSlack);
+  return qnv::decodeNrrdData(h, inflated, dataName);
+}
+
+}  // namespace
+
+bool isVolumeFile(const std::string& path) {
+  const std::string p = lower(path);
+  return endsWith(p, ".nrrd") || endsWith(p, ".nhdr") || endsWith(p, ".nii") ||
+         endsWith(p, ".nii.gz");
+}
+
+qnv::Volume loadVolumeFile(const std::string& path) {
+  const std::string bytes = readOrThrow(path);
+  const std::string p = lower(path);
+  if (std::string_view(bytes).starts_with("NRRD") || endsWith(p, ".nrrd") || endsWith(p, ".nhdr"))
+    return loadNrrd(path, bytes);
+  if (!isGzip(bytes)) return qnv::readNifti(bytes, path);
+  return qnv::readNifti(gunzip(bytes, path, kMaxFileBytes), path);
+}
+
+qnv::Volume loadRawVolumeFile(const std::string& path, const qnv::RawLayout& layout) {
+  std::string bytes = readOrThrow(path);
+  if (endsWith(lower(path), ".gz")) {
+    // Bound the decompressed size by the layout (dims beyond the limits fail in decodeRaw).
+    const glm::uvec3 d = layout.dims;
+    const std::uint64_t xy = std::uint64_t{d.x} * d.y;
+    const bool fits = xy <= qnv::kMaxVoxels && xy * d.z <= qnv::kMaxVoxels;
+    const std::size_t need =
+        fits ? static_cast<std::size_t>(xy * d.z) * qnv::scalarBytes(layout.type) : 0;
+    const std::size_t header = std::min(layout.headerBytes, kMaxFileBytes);
+    bytes = gunzip(bytes, path, need + header + kGzipSlack);
+  }
+  return qnv::decodeRaw(bytes, layout, path);
+}
+
+}  // namespace gs::app

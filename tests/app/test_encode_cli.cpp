@@ -1,0 +1,106 @@
+// `ghostspace encode` and `ghostspace info FILE.qnv` end to end.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "process.hpp"
+#include "qnv/decoder.hpp"
+#include "test_support.hpp"
+
+using gs::test::runGhostspace;
+
+namespace {
+
+std::filesystem::path scratch(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / "gs_test_encode";
+  std::filesystem::create_directories(dir);
+  return dir / name;
+}
+
+std::string readAll(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::uint64_t decodedVectors(const std::string& bytes) {
+  gs::qnv::StreamDecoder d("out.qnv");
+  std::uint64_t n = 0;
+  const auto sink = [&](std::uint64_t, std::span<const gs::qnv::DecodedVector> v) {
+    n += v.size();
+  };
+  d.feed(bytes, sink);
+  REQUIRE(d.finish(sink));
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("encode turns a VRML world into a stream that info describes", "[app][encode]") {
+  const auto world = gs::test::sourceDir() / "assets/worlds/welcome.wrl";
+  const auto out = scratch("welcome.qnv");
+  auto r = runGhostspace({"encode", world.string(), "-o", out.string()});
+  REQUIRE(r.exitCode == 0);
+  CHECK_THAT(r.out, Catch::Contains("triangles"));
+  CHECK_THAT(r.out, Catch::Contains("bits per vector"));
+  const std::string bytes = readAll(out);
+  const std::uint64_t all = decodedVectors(bytes);
+  CHECK(all > 100);
+
+  auto info = runGhostspace({"info", out.string()});
+  REQUIRE(info.exitCode == 0);
+  CHECK_THAT(info.out, Catch::Contains("surface stream"));
+  CHECK_THAT(info.out, Catch::Contains("magnitude histogram"));
+  CHECK_THAT(info.out, Catch::Contains("0 damaged, 0 missing"));
+
+  // Half of the triangles, in packets of the paper's 48-byte cell, compact.
+  auto half = runGhostspace({"encode", world.string(), "-o", out.string(), "--fraction", "0.5",
+                             "--packet-bytes", "48", "--compact"});
+  REQUIRE(half.exitCode == 0);
+  const std::uint64_t some = decodedVectors(readAll(out));
+  CHECK(some < all);
+  CHECK(some > all / 3);
+
+  // A cut-off copy: info reports what arrived and what did not.
+  const std::string cut = bytes.substr(0, bytes.size() * 2 / 3);
+  std::ofstream(scratch("cut.qnv"), std::ios::binary) << cut;
+  auto cutInfo = runGhostspace({"info", scratch("cut.qnv").string()});
+  CHECK(cutInfo.exitCode == 0);
+  CHECK_THAT(cutInfo.out, Catch::Contains("stream ends after"));
+}
+
+TEST_CASE("encode rejects bad options and unreadable inputs with a reason", "[app][encode]") {
+  const auto world = (gs::test::sourceDir() / "assets/worlds/welcome.wrl").string();
+  auto noOutput = runGhostspace({"encode", world});
+  CHECK(noOutput.exitCode == 2);
+  auto badPacket =
+      runGhostspace({"encode", world, "-o", scratch("x.qnv").string(), "--packet-bytes", "50"});
+  CHECK(badPacket.exitCode == 2);
+  CHECK_THAT(badPacket.err, Catch::Contains("multiple of 8"));
+  auto badFraction =
+      runGhostspace({"encode", world, "-o", scratch("x.qnv").string(), "--fraction", "1.5"});
+  CHECK(badFraction.exitCode == 2);
+  auto missing =
+      runGhostspace({"encode", "/nonexistent/none.wrl", "-o", scratch("x.qnv").string()});
+  CHECK(missing.exitCode == 1);
+  CHECK_THAT(missing.err, Catch::Contains("/nonexistent/none.wrl"));
+  auto notQnv = runGhostspace({"info", scratch("not.qnv").string()});
+  CHECK(notQnv.exitCode == 1);
+}
+
+TEST_CASE("encode keeps the paper's top 9.1% of CThead's voxels", "[app][encode][corpus]") {
+  if (!gs::test::haveCorpus("volume/cthead")) return;
+  const auto out = scratch("head.qnv");
+  auto r = runGhostspace({"encode", (gs::test::corpusDir() / "volume/cthead/CThead.nhdr").string(),
+                          "-o", out.string(), "--fraction", "0.091"});
+  REQUIRE(r.exitCode == 0);
+  // 256 * 256 * 113 = 7,405,568 voxels; 9.1% of them is 673,907.
+  CHECK_THAT(r.out, Catch::Contains("7,405,568 voxels"));
+  CHECK_THAT(r.out, Catch::Contains("kept 673,907"));
+  CHECK(decodedVectors(readAll(out)) == 673907);
+  auto info = runGhostspace({"info", out.string()});
+  CHECK_THAT(info.out, Catch::Contains("256 x 256 x 113 voxels, spacing 1 1 2"));
+}
