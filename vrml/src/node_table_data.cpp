@@ -378,6 +378,31 @@ eventOut SFBool isActive)"},
 
     NodeTableEntry{"WorldInfo", R"(field MFString info []
 field SFString title "")"},
+
+    // GhostSpace extensions (docs/vrml-extensions.md).
+    NodeTableEntry{"OutlineGroup", R"(eventIn MFNode addChildren
+eventIn MFNode removeChildren
+exposedField MFNode children []
+exposedField SFNode appearance NULL
+field SFInt32 groupId -1
+field MFVec3f outline []
+field MFInt32 outlineLengths []
+field SFVec3f bboxCenter 0 0 0
+field SFVec3f bboxSize -1 -1 -1)",
+                   true},
+
+    NodeTableEntry{"QuantizedNormalVectors", R"(exposedField MFString url []
+exposedField SFFloat fraction 1
+exposedField SFInt32 count -1
+exposedField SFFloat opacityScale 1
+exposedField SFString mode ""
+field MFVec3f position []
+field MFVec3f direction []
+field MFFloat magnitude []
+field MFColor color []
+field SFVec3f bboxCenter 0 0 0
+field SFVec3f bboxSize -1 -1 -1)",
+                   true},
 };
 
 constexpr std::size_t countVrml97Entries() {
