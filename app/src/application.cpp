@@ -59,7 +59,19 @@ Parsed parseArguments(int argc, char** argv) {
   cli.add_option("--size", size, "Image or window size in pixels, e.g. 800x600")->type_name("WxH");
   cli.add_option("--frames", o.frames, "Close the window after this many frames (testing)")
       ->check(CLI::NonNegativeNumber);
-  cli.add_option("INPUT", o.inputs, "VRML97 worlds to open (.wrl, .wrl.gz, .wrz)");
+  cli.add_option("--lod", o.lod,
+                 "Level of detail: the fraction of every QNV stream drawn, largest vectors "
+                 "first (0 < F <= 1)")
+      ->type_name("F")
+      ->check(CLI::Range(1e-9, 1.0));
+  cli.add_option("--mode", o.mode,
+                 "polygons (default), splats (polygons drawn as QNV splats) or outlines "
+                 "(OutlineGroup outlines only)")
+      ->check(CLI::IsMember({"polygons", "splats", "outlines"}));
+  cli.add_flag("--fit", o.fit, "Frame the whole scene instead of using the bound Viewpoint");
+  cli.add_option("INPUT", o.inputs,
+                 "Worlds to open: VRML97 (.wrl, .wrl.gz, .wrz), QNV streams (.qnv), meshes "
+                 "(.ply, .obj, .gltf, .glb) or volumes (.nrrd, .nhdr, .nii, .nii.gz)");
 
   CLI::App* info = cli.add_subcommand("info",
                                       "Print what was read from INPUT: node counts, "
@@ -102,6 +114,9 @@ Parsed parseArguments(int argc, char** argv) {
   encode->add_option("--raw-spacing", enc.rawSpacing, "Raw voxel spacing")->type_name("SX,SY,SZ");
   encode->add_flag("--raw-big-endian", enc.rawBigEndian, "Raw samples are big-endian");
   encode->add_option("--raw-skip", enc.rawHeaderBytes, "Bytes to skip before the raw samples");
+  encode->add_flag("--outline", enc.outline,
+                   "Write OUT as a VRML97 world of outline groups, outlines first "
+                   "(docs/vrml-extensions.md) instead of a .qnv stream");
   bool noProgress = false;
   encode->add_flag("--no-progress", noProgress, "No progress bar on the terminal");
 

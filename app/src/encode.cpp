@@ -6,10 +6,11 @@
 
 #include "app/commands.hpp"
 #include "app/mesh_input.hpp"
+#include "app/outline_world.hpp"
 #include "app/progress_bar.hpp"
 #include "app/volume_input.hpp"
 #include "app/world.hpp"
-#include "app/world_mesh.hpp"
+#include "render/world_triangles.hpp"
 #include "qnv/encoder.hpp"
 #include "qnv/error.hpp"
 #include "qnv/volume_readers.hpp"
@@ -97,6 +98,7 @@ std::string withCommas(std::uint64_t n) {
 }  // namespace
 
 int runEncode(const Options& options) {
+  if (options.encode.outline) return runEncodeOutline(options);  // app/outline_world.hpp
   Settings s;
   if (const std::string usage = parseSettings(options.encode, s); !usage.empty()) {
     std::fprintf(stderr, "ghostspace: %s\n", usage.c_str());
@@ -128,7 +130,7 @@ int runEncode(const Options& options) {
         for (const vrml::Diagnostic& d : world.scene->diagnostics.items)
           std::fprintf(stderr, "%s\n", d.format().c_str());
         if (!world.readable) return 1;
-        mesh = worldTriangles(world.scene);
+        mesh = render::worldTriangles(world.scene);
       }
       qnv::SurfaceEncodeOptions v;
       v.selection = s.selection;

@@ -1,6 +1,7 @@
 // `ghostspace --snapshot OUT.png [--size WxH] INPUT`: off-screen rendering through OSMesa,
 // the same SceneRenderer the window uses.
 #include "app/commands.hpp"
+#include "app/splat_inputs.hpp"
 #include "app/world.hpp"
 #include "render/context.hpp"
 #include "render/image.hpp"
@@ -25,6 +26,16 @@ void printDiagnostics(const vrml::Diagnostics& d) {
 
 }  // namespace
 
+render::SceneRendererOptions rendererOptions(const Options& options) {
+  render::SceneRendererOptions r;
+  r.splatLoader = splatLoader();
+  r.lod = options.lod;
+  r.traversal.mode = options.mode == "splats"     ? render::RenderMode::splats
+                     : options.mode == "outlines" ? render::RenderMode::outlines
+                                                  : render::RenderMode::polygons;
+  return r;
+}
+
 int runSnapshot(const Options& options) {
   const LoadedWorld w = loadWorld(options.inputs.front());
   const vrml::Diagnostic* error = firstError(w.scene->diagnostics);
@@ -37,8 +48,11 @@ int runSnapshot(const Options& options) {
   printDiagnostics(w.scene->diagnostics);
 
   auto context = render::createOffscreenContext(options.width, options.height);
-  render::SceneRenderer renderer(w.scene);
+  render::SceneRenderer renderer(w.scene, rendererOptions(options));
   render::Camera camera = renderer.boundViewpointCamera();
+  // A stream, mesh or volume has no Viewpoint of its own: frame it whole.
+  if (options.fit || isSplatInput(options.inputs.front()))
+    camera = renderer.fitToScene(static_cast<float>(options.width) / static_cast<float>(options.height), camera);
   render::fitClipPlanes(camera, renderer.bounds(), renderer.navigation().nearClip());
   renderer.draw(camera, 0, 0, options.width, options.height);
   const render::Image image = render::readPixels(0, 0, options.width, options.height);

@@ -1,9 +1,11 @@
 #include "app/world.hpp"
 
+#include "app/splat_inputs.hpp"
 #include "net/file_source.hpp"
 #include "vrml/parser.hpp"
 
 #include <chrono>
+#include <filesystem>
 #include <unordered_set>
 #include <vector>
 
@@ -20,7 +22,11 @@ LoadedWorld loadWorld(const std::string& path) {
   } else {
     w.readable = true;
     w.bytes = bytes.size();
-    w.scene = std::make_shared<vrml::Scene>(vrml::parseVrml(bytes, path));
+    // A stream, mesh or volume opens as a world holding one QNV node that names it.
+    const std::string text = isSplatInput(path)
+        ? splatWorldText(std::filesystem::path(path).filename().string())  // relative to itself
+        : std::string();
+    w.scene = std::make_shared<vrml::Scene>(vrml::parseVrml(text.empty() ? bytes : text, path));
   }
   w.parseSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return w;

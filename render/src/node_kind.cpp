@@ -24,6 +24,8 @@ NodeKind nodeKind(const vrml::Node& node) {
       {"NavigationInfo", NodeKind::NavigationInfo},
       {"Background", NodeKind::Background},
       {"Fog", NodeKind::Fog},
+      {"OutlineGroup", NodeKind::OutlineGroup},
+      {"QuantizedNormalVectors", NodeKind::QuantizedNormalVectors},
   };
   const auto it = kByName.find(node.typeName());
   return it == kByName.end() ? NodeKind::other : it->second;

@@ -25,6 +25,8 @@ enum class NodeKind : std::uint8_t {
   NavigationInfo,
   Background,
   Fog,
+  OutlineGroup,            // GhostSpace extensions (docs/vrml-extensions.md)
+  QuantizedNormalVectors,
 };
 
 /// The kind of `node`: `other` for unresolved EXTERNPROTO instances and unknown types.
@@ -33,7 +35,7 @@ NodeKind nodeKind(const vrml::Node& node);
 /// True for the grouping nodes whose `children` field is traversed.
 inline bool hasChildren(NodeKind k) {
   return k == NodeKind::Anchor || k == NodeKind::Billboard || k == NodeKind::Collision ||
-         k == NodeKind::Group || k == NodeKind::Transform;
+         k == NodeKind::Group || k == NodeKind::Transform || k == NodeKind::OutlineGroup;
 }
 
 }  // namespace gs::render::detail

@@ -1,6 +1,8 @@
 // SceneRenderer: per-frame drawing of a traversed scene.
 #include "render/scene_renderer.hpp"
 
+#include "scene_splats.hpp"
+
 #include "gl_program.hpp"
 #include "gpu_resources.hpp"
 #include "node_access.hpp"
@@ -193,12 +195,28 @@ SceneRenderer::SceneRenderer(std::shared_ptr<const vrml::Scene> scene, SceneRend
                    return t;
                  }()),
       gpu_(std::make_unique<Gpu>()),
+      splats_(std::make_unique<detail::SceneSplats>(traversal_.sharedScene(), options_.splatLoader, options_.lod,
+                                                    options_.traversal.mode)),
       headlight_(traversal_.navigation().headlight) {}
 
 SceneRenderer::~SceneRenderer() {
   // Without loaded GL functions there is nothing to free (and no way to).
-  if (glad_glDeleteProgram != nullptr) gpu_->release();
+  if (glad_glDeleteProgram != nullptr) {
+    gpu_->release();
+    splats_->release();
+  }
 }
+
+const vrml::Bounds& SceneRenderer::bounds() {
+  if (!haveBounds_) {
+    bounds_ = traversal_.worldBounds();
+    bounds_.extend(splats_->bounds(traversal_));
+    haveBounds_ = true;
+  }
+  return bounds_;
+}
+
+void SceneRenderer::setLod(double lod) { splats_->setLod(lod); }
 
 Camera SceneRenderer::initialCamera(float aspect) {
   if (!viewpoints().empty() || bounds().empty()) return boundViewpointCamera();
@@ -210,6 +228,7 @@ Camera SceneRenderer::initialCamera(float aspect) {
 
 void SceneRenderer::releaseGpuResources() {
   gpu_->release();
+  splats_->release();
   gpu_->shadings.clear();
 }
 
@@ -335,6 +354,10 @@ void SceneRenderer::draw(const Camera& camera, int x, int y, int width, int heig
     statistics_.triangles += mesh.triangles;
   };
 
+  if (splats_->mode() == RenderMode::splats) {
+    g.opaque.clear();  // the polygons are drawn as splats below
+    g.transparent.clear();
+  }
   glDisable(GL_BLEND);
   for (const DrawItem& d : g.opaque) drawItem(d);
   if (!g.transparent.empty()) {
@@ -343,6 +366,13 @@ void SceneRenderer::draw(const Camera& camera, int x, int y, int width, int heig
     glDepthMask(GL_FALSE);
     for (const DrawItem& d : g.transparent) drawItem(d);
     statistics_.transparent = g.transparent.size();
+  }
+
+  if (!g.frame.splats.empty() || splats_->mode() == RenderMode::splats) {
+    glDisable(GL_SCISSOR_TEST);
+    statistics_.splats = splats_->draw(g.frame, traversal_, camera, aspect, headlight_);
+    glEnable(GL_SCISSOR_TEST);
+    glUseProgram(g.program);
   }
 
   // Leave the state as other code (ImGui, the app) expects it.

@@ -24,6 +24,8 @@ struct SceneTraversal::Walk {
   std::vector<const std::string*>& inlineChain;  // URLs being traversed (recursion guard)
   bool scopeChanged = true;
   std::uint32_t lastScopeBegin = 0;
+  /// groupIds with children in the file being walked (SceneTraversal::filledGroups).
+  const std::unordered_set<std::int32_t>* filled = nullptr;
 
   void nodes(const std::vector<vrml::NodePtr>& list, const glm::mat4& m,
              const std::string* baseUrl) {
@@ -79,11 +81,30 @@ struct SceneTraversal::Walk {
   void shape(const vrml::Node& n, const glm::mat4& m, const std::string* baseUrl) {
     const vrml::NodePtr geometry = n.sfnode("geometry");
     if (!geometry || geometry->unresolved) return;
+    addShape(n, *geometry, m, baseUrl);
+  }
+
+  /// An OutlineGroup (docs/vrml-extensions.md): children as a Group (not in outlines
+  /// mode), and its outline as a shape whose geometry is the node itself while shown.
+  void outlineGroup(const vrml::Node& n, const glm::mat4& m, const std::string* baseUrl) {
+    const RenderMode mode = self.options_.mode;
+    if (mode != RenderMode::outlines) nodes(n.mfnode("children"), m, baseUrl);
+    const auto& outline = detail::fieldRef<vrml::FieldType::MFVec3f>(n, "outline", kNoPoints);
+    if (outline.empty()) return;
+    const int id = detail::sfInt(n, "groupId", -1);
+    if (mode != RenderMode::outlines && id >= 0 && filled != nullptr && filled->contains(id))
+      return;  // the group's polygons have arrived: they replace the outline
+    addShape(n, n, m, baseUrl);
+  }
+  static inline const std::vector<glm::vec3> kNoPoints{};
+
+  void addShape(const vrml::Node& n, const vrml::Node& geometry, const glm::mat4& m,
+                const std::string* baseUrl) {
     ShapeInstance s;
     s.shape = &n;
     const vrml::NodePtr appearance = n.sfnode("appearance");
     s.appearance = appearance && !appearance->unresolved ? appearance.get() : nullptr;
-    s.geometry = geometry.get();
+    s.geometry = &geometry;
     s.model = m;
     s.baseUrl = baseUrl;
     if (scopeChanged) {
@@ -150,12 +171,21 @@ struct SceneTraversal::Walk {
           }
         }
         inlineChain.push_back(&inl->url);
+        const auto* outerFilled = filled;
+        filled = &self.filledGroups(*inl->scene);
         nodes(inl->scene->rootNodes, m, &inl->url);
+        filled = outerFilled;
         inlineChain.pop_back();
         break;
       }
       case NodeKind::Shape:
         shape(n, m, baseUrl);
+        break;
+      case NodeKind::QuantizedNormalVectors:
+        frame.splats.push_back({&n, m, baseUrl});
+        break;
+      case NodeKind::OutlineGroup:
+        outlineGroup(n, m, baseUrl);
         break;
       case NodeKind::PointLight:
         pointOrSpotLight(n, m, false);
@@ -173,9 +203,40 @@ void SceneTraversal::collect(const Camera& viewer, TraversalFrame& frame) {
   frame.clear();
   scopeScratch_.clear();
   chainScratch_.clear();
-  Walk walk{*this, frame, viewer.position, viewer.up(), scopeScratch_, chainScratch_, true, 0};
+  Walk walk{*this, frame, viewer.position, viewer.up(), scopeScratch_, chainScratch_, true, 0,
+            nullptr};
   walk.inlineChain.push_back(&mainUrl_);
+  walk.filled = &filledGroups(*scene_);
   walk.nodes(scene_->rootNodes, glm::mat4(1.0f), &mainUrl_);
+}
+
+const std::unordered_set<std::int32_t>& SceneTraversal::filledGroups(const vrml::Scene& scene) {
+  auto [it, inserted] = filledGroups_.try_emplace(&scene);
+  if (!inserted) return it->second;
+  // Every node reachable from the root nodes, shared (DEF/USE) nodes visited once.
+  std::unordered_set<const vrml::Node*> seen;
+  std::vector<const vrml::Node*> stack;
+  for (const vrml::NodePtr& n : scene.rootNodes)
+    if (n) stack.push_back(n.get());
+  while (!stack.empty()) {
+    const vrml::Node* n = stack.back();
+    stack.pop_back();
+    if (!seen.insert(n).second) continue;
+    if (nodeKind(*n) == NodeKind::OutlineGroup && !n->mfnode("children").empty()) {
+      const int id = detail::sfInt(*n, "groupId", -1);
+      if (id >= 0) it->second.insert(id);
+    }
+    for (std::size_t i = 0; i < n->fieldCount(); ++i) {
+      const vrml::FieldValue& f = n->fieldAt(i);
+      if (f.type() == vrml::FieldType::SFNode) {
+        if (const vrml::NodePtr& c = f.get<vrml::FieldType::SFNode>()) stack.push_back(c.get());
+      } else if (f.type() == vrml::FieldType::MFNode) {
+        for (const vrml::NodePtr& c : f.get<vrml::FieldType::MFNode>())
+          if (c) stack.push_back(c.get());
+      }
+    }
+  }
+  return it->second;
 }
 
 const vrml::Bounds& SceneTraversal::worldBounds() {

@@ -16,7 +16,7 @@
 #include "app/mesh_input.hpp"
 #include "app/volume_input.hpp"
 #include "app/world.hpp"
-#include "app/world_mesh.hpp"
+#include "render/world_triangles.hpp"
 #include "net/file_source.hpp"
 #include "qnv/decoder.hpp"
 #include "qnv/encoder.hpp"
@@ -204,7 +204,7 @@ int main(int argc, char** argv) {
     t0 = Clock::now();
     qnv::TriangleMesh mesh = p.extension() == ".ply"
                                  ? gs::app::loadMeshFile(p.string())
-                                 : gs::app::worldTriangles(gs::app::loadWorld(p.string()).scene);
+                                 : gs::render::worldTriangles(gs::app::loadWorld(p.string()).scene);
     const qnv::EncodedVectors e = qnv::encodeSurface(mesh, {}, &summary);
     const double seconds = since(t0);
     const std::size_t sizes[5] = {

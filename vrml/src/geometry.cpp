@@ -169,6 +169,10 @@ Mesh tessellate(const Node& geometry, Diagnostics* diag) {
     m = tessellateElevationGrid(geometry, log);
   else if (t == "Extrusion")
     m = tessellateExtrusion(geometry, log);
+  else if (t == "OutlineGroup")  // GhostSpace extension: its outline (outline_geometry.cpp)
+    m = triangulateOutline(fieldOr<FieldType::MFVec3f>(geometry, "outline"),
+                           fieldOr<FieldType::MFInt32>(geometry, "outlineLengths"), diag,
+                           geometry.location);
   // Text (6.47) and every non-geometry node: an empty mesh.
   log.flush();
   return m;

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "app/options.hpp"
+#include "render/scene_renderer.hpp"
 
 #include <string>
 
@@ -34,5 +35,9 @@ int runSnapshot(const Options& options);
 /// `ghostspace [INPUT...]`: the GLFW window with its Dear ImGui menu. Returns when the
 /// window is closed; 1 when no window can be created (e.g. no display).
 int runWindow(const Options& options);
+
+/// The renderer options the command line asks for: --lod, --mode, and the application's
+/// splat loader (app/splat_inputs.hpp).
+render::SceneRendererOptions rendererOptions(const Options& options);
 
 }  // namespace gs::app

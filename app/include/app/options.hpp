@@ -24,6 +24,7 @@ struct EncodeOptions {
   bool rawBigEndian = false;         // --raw-big-endian
   std::uint64_t rawHeaderBytes = 0;  // --raw-skip BYTES
   bool progress = true;              // --no-progress turns the terminal bar off
+  bool outline = false;              // --outline: OUT is a .wrl of outline groups
 };
 
 struct Options {
@@ -33,6 +34,9 @@ struct Options {
   int width = 800;                  // --size WxH, pixels
   int height = 600;
   int frames = 0;  // --frames N: window closes after N frames (0 = never)
+  double lod = 1.0;                 // --lod F: fraction of each QNV stream drawn, (0, 1]
+  std::string mode = "polygons";    // --mode polygons|splats|outlines
+  bool fit = false;                 // --fit: frame the whole scene, not the Viewpoint
   EncodeOptions encode;
 };
 

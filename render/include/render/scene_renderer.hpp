@@ -5,6 +5,7 @@
 #pragma once
 
 #include "render/camera.hpp"
+#include "render/splat_source.hpp"
 #include "render/traversal.hpp"
 #include "vrml/parser.hpp"
 #include "vrml/scene.hpp"
@@ -15,6 +16,10 @@
 
 namespace gs::render {
 
+namespace detail {
+class SceneSplats;
+}
+
 struct SceneRendererOptions {
   /// Reads URLs that are not local files (or local files that cannot be opened) for
   /// ImageTexture and, when traversal.inlineLoader is empty, for Inline. Empty: local files
@@ -23,6 +28,12 @@ struct SceneRendererOptions {
   TraversalOptions traversal;
   /// Diameter of PointSet points in pixels.
   float pointSize = 2.0f;
+  /// Loads the vectors of QuantizedNormalVectors urls. Empty: local .qnv files.
+  SplatLoader splatLoader;
+  /// Level of detail: the fraction of every QNV stream drawn (times the node's own
+  /// fraction or count), 0..1. traversal.mode = RenderMode::splats draws the polygon
+  /// world as splats.
+  double lod = 1.0;
 };
 
 /// What the last draw() did.
@@ -30,6 +41,7 @@ struct DrawStatistics {
   std::size_t shapes = 0;       // Shape nodes drawn (instances)
   std::size_t triangles = 0;    // triangles submitted
   std::size_t transparent = 0;  // shapes drawn in the blended pass
+  std::size_t splats = 0;       // QNV vectors drawn
 };
 
 /// Holds the GPU resources of one scene. CPU work (traversal, viewpoints, bounds) needs
@@ -64,9 +76,11 @@ class SceneRenderer {
   Camera initialCamera(float aspect);
   /// Camera of viewpoints()[index] with clip planes as boundViewpointCamera().
   Camera viewpointCamera(std::size_t index) { return traversal_.viewpointCamera(index); }
-  /// World bounding box of the scene as drawn from the bound Viewpoint (loads Inlines and
-  /// tessellates all geometry the first time).
-  const vrml::Bounds& bounds() { return traversal_.worldBounds(); }
+  /// World bounding box of the scene as drawn from the bound Viewpoint (loads Inlines,
+  /// tessellates all geometry and loads QNV streams the first time).
+  const vrml::Bounds& bounds();
+  /// Changes the level of detail of every QNV stream (SceneRendererOptions::lod).
+  void setLod(double lod);
   /// A camera looking along `direction`'s view direction that frames the whole scene in a
   /// viewport of aspect width / height (fitCamera on bounds()).
   Camera fitToScene(float aspect, const Camera& direction) {
@@ -98,6 +112,9 @@ class SceneRenderer {
   SceneRendererOptions options_;
   SceneTraversal traversal_;
   std::unique_ptr<Gpu> gpu_;
+  std::unique_ptr<detail::SceneSplats> splats_;
+  vrml::Bounds bounds_;
+  bool haveBounds_ = false;
   bool headlight_ = true;
   DrawStatistics statistics_;
 };

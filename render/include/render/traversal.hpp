@@ -20,6 +20,7 @@
 #include <set>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 namespace gs::render {
@@ -54,14 +55,23 @@ struct ShapeInstance {
   const std::string* baseUrl = nullptr;
 };
 
+/// One QuantizedNormalVectors node to draw as splats (docs/vrml-extensions.md).
+struct SplatInstance {
+  const vrml::Node* node = nullptr;
+  glm::mat4 model{1.0f};                // local to world
+  const std::string* baseUrl = nullptr;  // the base for its url; never null
+};
+
 /// What one traversal collects. Reused from frame to frame: clear() keeps capacity.
 struct TraversalFrame {
   std::vector<ShapeInstance> shapes;
+  std::vector<SplatInstance> splats;
   std::vector<LightInstance> lights;        // every light met, world coordinates
   std::vector<std::uint32_t> scopedLights;  // indices into lights (ShapeInstance ranges)
   std::vector<std::uint32_t> globalLights;  // point and spot lights, indices into lights
   void clear() {
     shapes.clear();
+    splats.clear();
     lights.clear();
     scopedLights.clear();
     globalLights.clear();
@@ -105,6 +115,20 @@ struct FogSettings {
   const vrml::Node* node = nullptr;
 };
 
+/// What a traversal draws of the polygon-group extension (OutlineGroup, paper section
+/// 1.1; docs/vrml-extensions.md).
+enum class RenderMode : std::uint8_t {
+  /// Polygons as they arrive: an OutlineGroup's outline is drawn only while no
+  /// OutlineGroup of the same groupId (>= 0) in the same file has children; groupId -1
+  /// draws outline and children as given.
+  polygons,
+  /// Only outlines: the children of OutlineGroups are skipped (Shapes outside any
+  /// OutlineGroup are still drawn) and every outline is drawn.
+  outlines,
+  /// QNV splats; for OutlineGroups the same as polygons for now.
+  splats,
+};
+
 /// How a traversal reads Inline files and tessellates geometry.
 struct TraversalOptions {
   /// Loads the world at an already resolved URL (Inline, clause 6.25). Empty: local files
@@ -115,6 +139,8 @@ struct TraversalOptions {
   std::function<vrml::Mesh(const vrml::Node& geometry, vrml::Diagnostics* diag)> tessellator;
   /// Nesting limit for Inline files inlining others.
   int maxInlineDepth = 16;
+  /// What to draw of OutlineGroups.
+  RenderMode mode = RenderMode::polygons;
 };
 
 /// Walks one scene. Not thread-safe; the scene must not change while this object lives
@@ -128,6 +154,7 @@ class SceneTraversal {
   explicit SceneTraversal(std::shared_ptr<const vrml::Scene> scene, TraversalOptions options = {});
 
   const vrml::Scene& scene() const { return *scene_; }
+  const std::shared_ptr<const vrml::Scene>& sharedScene() const { return scene_; }
   /// Every Viewpoint of the main file in depth-first order (the first is bound).
   const std::vector<ViewpointInfo>& viewpoints() const { return viewpoints_; }
   const NavigationSettings& navigation() const { return navigation_; }
@@ -181,6 +208,9 @@ class SceneTraversal {
   void findBindables();
   const InlineScene* inlineScene(const vrml::Node& inlineNode, const std::string& baseUrl);
   CachedMesh& cachedMesh(const vrml::Node& geometry);
+  /// The groupIds (>= 0) of the OutlineGroups of `scene` that have children, computed
+  /// once per scene (every node reachable from its root nodes).
+  const std::unordered_set<std::int32_t>& filledGroups(const vrml::Scene& scene);
 
   std::shared_ptr<const vrml::Scene> scene_;
   TraversalOptions options_;
@@ -190,6 +220,7 @@ class SceneTraversal {
   BackgroundSettings background_;
   FogSettings fog_;
   std::unordered_map<const vrml::Node*, CachedMesh> meshes_;
+  std::unordered_map<const vrml::Scene*, std::unordered_set<std::int32_t>> filledGroups_;
   std::map<std::string, std::shared_ptr<InlineScene>> inlinesByUrl_;
   std::unordered_map<const vrml::Node*, std::shared_ptr<InlineScene>> inlinesByNode_;
   vrml::Bounds worldBounds_;

@@ -77,6 +77,21 @@ struct Mesh {
 /// Safe for untrusted nodes: time and memory stay proportional to the node's arrays.
 Mesh tessellate(const Node& geometry, Diagnostics* diag = nullptr);
 
+/// The filled polygon of an outline (the GhostSpace OutlineGroup extension node,
+/// docs/vrml-extensions.md; tessellate() of an OutlineGroup node calls this with its
+/// `outline` and `outlineLengths` fields). `points` holds closed loops concatenated;
+/// `loopLengths` the number of points of each loop (empty: one loop of all points; a
+/// negative length counts as 0; lengths past the end of `points` are cut short and
+/// reported as a warning in `diag`, when not null, at `where`). The first loop is the
+/// outer boundary, later loops are holes: each hole is joined to the outer loop by a
+/// bridge and the result ear-clipped in the outer loop's best-fit plane (the same ear
+/// clipping as IndexedFaceSet). The mesh is flat-shaded with the plane's normal (Newell
+/// normal of the outer loop), not solid (two-sided), indexed into `points`' positions;
+/// degenerate loops give an empty mesh. Time O(h x n) for h holes and n points.
+Mesh triangulateOutline(const std::vector<glm::vec3>& points,
+                        const std::vector<std::int32_t>& loopLengths, Diagnostics* diag = nullptr,
+                        const SourceLocation& where = {});
+
 /// Number of segments used around the circumference of Cone, Cylinder and Sphere.
 inline constexpr int kRoundSegments = 32;
 

@@ -6,7 +6,7 @@
 #include "qnv/mesh.hpp"
 #include "vrml/scene.hpp"
 
-namespace gs::app {
+namespace gs::render {
 
 /// Every triangle drawn from the bound Viewpoint (the chosen Switch children and LOD
 /// levels, Inlines included: render::SceneTraversal), in world coordinates (each Shape's
@@ -15,4 +15,4 @@ namespace gs::app {
 /// Shape without Material (clause 6.3: unlit). Lines and points are skipped.
 qnv::TriangleMesh worldTriangles(std::shared_ptr<const vrml::Scene> scene);
 
-}  // namespace gs::app
+}  // namespace gs::render

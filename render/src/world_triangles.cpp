@@ -1,4 +1,4 @@
-#include "app/world_mesh.hpp"
+#include "render/world_triangles.hpp"
 
 #include <algorithm>
 
@@ -7,7 +7,7 @@
 
 #include "render/traversal.hpp"
 
-namespace gs::app {
+namespace gs::render {
 
 namespace {
 
@@ -29,11 +29,11 @@ glm::vec4 materialColor(const vrml::Node* appearance) {
 }  // namespace
 
 qnv::TriangleMesh worldTriangles(std::shared_ptr<const vrml::Scene> scene) {
-  render::SceneTraversal traversal(std::move(scene));
-  render::TraversalFrame frame;
+  SceneTraversal traversal(std::move(scene));
+  TraversalFrame frame;
   traversal.collect(traversal.boundViewpointCamera(), frame);
   qnv::TriangleMesh out;
-  for (const render::ShapeInstance& shape : frame.shapes) {
+  for (const ShapeInstance& shape : frame.shapes) {
     const vrml::Mesh& mesh = traversal.mesh(*shape.geometry);
     if (mesh.primitive != vrml::Primitive::triangles || mesh.indices.empty()) continue;
     const std::uint32_t base = static_cast<std::uint32_t>(out.positions.size());
@@ -66,4 +66,4 @@ qnv::TriangleMesh worldTriangles(std::shared_ptr<const vrml::Scene> scene) {
   return out;
 }
 
-}  // namespace gs::app
+}  // namespace gs::render

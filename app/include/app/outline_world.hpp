@@ -1,0 +1,66 @@
+// A VRML97 world rewritten as outline groups (paper section 1.1, figure 1): every outline
+// first, then the polygons group by group, largest first, so that a browser reading the
+// file front to back can draw every group's outline early and replace each by its
+// polygons as they arrive. The OutlineGroup node is documented in docs/vrml-extensions.md.
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <string>
+
+#include "qnv/outline_encoder.hpp"
+#include "vrml/scene.hpp"
+
+namespace gs::app {
+
+/// Figures of one writeOutlineWorld call.
+struct OutlineWorldSummary {
+  std::size_t groups = 0;
+  std::size_t triangles = 0;         // triangles written (input triangles less dropped)
+  std::size_t droppedTriangles = 0;  // zero-area triangles (no group)
+  std::size_t outlineVertices = 0;   // points of all outlines
+  std::size_t appearances = 0;       // distinct Appearance nodes written
+  std::size_t bytes = 0;             // of the whole text
+  /// Bytes before the first polygon: the header, bindable nodes, lights and every
+  /// outline. A prefix of this length is a complete world showing only the outlines.
+  std::size_t outlineBytes = 0;
+};
+
+/// Flattens `scene` as worldTriangles does (app/world_mesh.hpp: every triangle drawn from
+/// the bound Viewpoint, Inlines included, in world coordinates, counter-clockwise front,
+/// mirroring transforms undone), groups it with qnv::encodeOutlineGroups and writes a
+/// VRML97 text world (UTF-8):
+///
+/// - `#VRML V2.0 utf8` and a comment with the figures;
+/// - the bound NavigationInfo (type, headlight, speed, avatarSize, visibilityLimit),
+///   Background (skyColor, skyAngle, groundColor, groundAngle), Fog, and every Viewpoint
+///   (position, orientation, fieldOfView, description) in world coordinates; every light
+///   met, in world coordinates, at the top level;
+/// - one `OutlineGroup { groupId k appearance ... outline [...] outlineLengths [...] }`
+///   per group in area order; each distinct Appearance is DEF'd (`DEF A0 Appearance`) at
+///   its first use, which is in this outline section, and USE'd after;
+/// - one `OutlineGroup { groupId k children [ Shape { ... IndexedFaceSet } ] }` per group
+///   in the same order, with the group's own coordinates (`solid` as the source
+///   geometry's; `ccw` TRUE; a Normal node when the source was smooth-shaded).
+///
+/// Appearance keeps the Material's diffuseColor, specularColor, emissiveColor,
+/// ambientIntensity, shininess and transparency (a Shape without Material stays unlit).
+/// Dropped: textures and texture coordinates, per-vertex and per-face Color, lines and
+/// points (IndexedLineSet, PointSet), Text, sensors, interpolators, Scripts and ROUTEs,
+/// Switch choices and LOD levels not drawn from the bound Viewpoint, the Background's
+/// textures and rotation, and the scoping of DirectionalLights (written at the top
+/// level, they light everything). Numbers are written as the shortest text that reads
+/// back to the same 32-bit float.
+std::string writeOutlineWorld(std::shared_ptr<const vrml::Scene> scene,
+                              const qnv::OutlineOptions& options = {},
+                              OutlineWorldSummary* summary = nullptr);
+
+struct Options;  // app/options.hpp
+
+/// `ghostspace encode INPUT -o OUT.wrl --outline`: loads the world INPUT, writes
+/// writeOutlineWorld's text to OUT and prints groups, triangles, outline vertices, input
+/// and output bytes and the outline prefix bytes on stdout. Diagnostics of INPUT go to
+/// stderr. Returns the exit code: 0, 1 when INPUT cannot be read or OUT written.
+int runEncodeOutline(const Options& options);
+
+}  // namespace gs::app

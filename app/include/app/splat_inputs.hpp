@@ -1,0 +1,25 @@
+// Files shown as QNV splats: .qnv streams, and meshes and volumes encoded on the fly
+// (paper sections 2.1 and 3.2), each opened as a world holding one QuantizedNormalVectors
+// node (docs/vrml-extensions.md).
+#pragma once
+
+#include <string>
+
+#include "render/splat_source.hpp"
+
+namespace gs::app {
+
+/// True for inputs that open as a QNV world: .qnv streams (by name or signature),
+/// meshes (isMeshFile) and volumes (isVolumeFile).
+bool isSplatInput(const std::string& path);
+
+/// The VRML97 text of a world holding one QuantizedNormalVectors node whose url is
+/// `path` (a world named after the file itself uses its file name, which resolves to it) (quotes and backslashes escaped), with EXAMINE navigation.
+std::string splatWorldText(const std::string& path);
+
+/// The application's SplatLoader: a local .qnv file decoded whole, or a mesh or volume
+/// file encoded with every vector kept (the level of detail then picks the prefix).
+/// Only local files (paths and file:// URLs); errors name the file and the reason.
+render::SplatLoader splatLoader();
+
+}  // namespace gs::app

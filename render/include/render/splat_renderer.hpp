@@ -1,0 +1,77 @@
+// The splat pass (Nagasawa, "Beyond VRML", sections 3.1 and 3.5): every decoded QNV
+// vector becomes a square patch perpendicular to its normal, textured with the Gaussian
+// opacity profile of render/splat_model.hpp, shaded flat by the lights, and composited in
+// view-depth order as equation (1) says. OpenGL 3.3 core; the same code draws into a
+// window or an OSMesa framebuffer.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "qnv/decoder.hpp"
+#include "render/camera.hpp"
+#include "render/splat_model.hpp"
+#include "vrml/geometry.hpp"
+
+namespace gs::render {
+
+/// One stream's vectors, ready to draw: in stream order (largest first), so the first N
+/// are the level of detail N. Positions and normals are in the coordinates of the node
+/// that shows them (world coordinates for a .qnv opened directly).
+struct SplatSet {
+  std::vector<qnv::DecodedVector> vectors;
+  SplatStyle style;
+  vrml::Bounds bounds;  // of the positions, grown by the largest splat extent
+  /// Bounds of `vectors` positions; call after filling vectors.
+  void computeBounds();
+};
+
+/// Compositing direction. Both give the same image up to 8-bit rounding:
+/// backToFront blends each splat over the framebuffer (C = a c + (1 - a) C);
+/// frontToBack accumulates under an off-screen layer (C += T a c, T *= 1 - a) that is
+/// then composited over the framebuffer.
+enum class SplatBlend { backToFront, frontToBack };
+
+/// What the last draw() did.
+struct SplatStatistics {
+  std::size_t splats = 0;    // vectors drawn
+  bool sorted = false;       // whether the view moved and the depth sort ran
+  double sortSeconds = 0.0;  // CPU time of that sort
+};
+
+/// GPU resources for drawing splat sets. Create, draw and destroy with the same context
+/// current. Keeps the last uploaded set (compared by address and size) and the last
+/// depth order, re-sorting only when the view or the count changed; no allocation per
+/// frame once a set and a count have been drawn.
+class SplatRenderer {
+ public:
+  SplatRenderer();
+  ~SplatRenderer();
+  SplatRenderer(const SplatRenderer&) = delete;
+  SplatRenderer& operator=(const SplatRenderer&) = delete;
+
+  /// Draws the first `count` vectors of `set` (clamped to its size), placed by `model`
+  /// (local to world), seen by `camera` in a viewport of aspect width / height, lit by
+  /// `lights` (world directions; at most 8 are used). Depth-tested against what is in the
+  /// framebuffer, without writing depth. The viewport must already be set. Throws
+  /// std::runtime_error when a shader fails to compile.
+  void draw(const SplatSet& set, std::size_t count, const glm::mat4& model, const Camera& camera,
+            float aspect, std::span<const SplatLight> lights,
+            SplatBlend blend = SplatBlend::backToFront);
+
+  const SplatStatistics& statistics() const { return statistics_; }
+  /// Frees every GL object (context current).
+  void release();
+
+ private:
+  struct Gpu;
+  std::unique_ptr<Gpu> gpu_;
+  SplatStatistics statistics_;
+};
+
+}  // namespace gs::render

@@ -1,0 +1,129 @@
+#include "scene_splats.hpp"
+
+#include <cmath>
+
+
+namespace gs::render::detail {
+
+SceneSplats::SceneSplats(std::shared_ptr<const vrml::Scene> scene, SplatLoader loader, double lod,
+                         RenderMode mode)
+    : scene_(std::move(scene)), loader_(std::move(loader)), lod_(lod), mode_(mode) {
+  if (!loader_)
+    loader_ = [](const std::string& url, std::string& error) -> std::shared_ptr<const SplatSet> {
+      const std::string path = localPathOfUrl(url);
+      if (path.empty()) {
+        error = "cannot read " + url + ": only local files are supported here";
+        return nullptr;
+      }
+      return loadQnvFile(path, error);
+    };
+}
+
+std::shared_ptr<const SplatSet> SceneSplats::setOf(const vrml::Node& node,
+                                                   const std::string& baseUrl,
+                                                   SceneTraversal& traversal) {
+  if (auto it = sets_.find(&node); it != sets_.end()) return it->second;
+  std::shared_ptr<const SplatSet> set = inlineSplatSet(node);
+  if (!set) {
+    const auto urls = node.get<vrml::FieldType::MFString>("url", std::vector<std::string>{});
+    std::string errors;
+    for (const std::string& url : urls) {
+      const std::string resolved = resolveUrl(baseUrl, url);
+      if (auto it = byUrl_.find(resolved); it != byUrl_.end()) {
+        set = it->second;
+        break;
+      }
+      std::string error;
+      set = loader_(resolved, error);
+      if (set) {
+        byUrl_[resolved] = set;
+        break;
+      }
+      errors += (errors.empty() ? "" : "; ") + error;
+    }
+    if (!set && !urls.empty())
+      traversal.report(vrml::Severity::error, node.location,
+                       "QuantizedNormalVectors: no url could be loaded: " + errors);
+  }
+  if (set) {
+    // A mode field overrides the stream's kind (how the vectors are splatted).
+    const std::string mode = node.get<vrml::FieldType::SFString>("mode", std::string());
+    const float opacity = node.get<vrml::FieldType::SFFloat>("opacityScale", 1.0f);
+    if (!mode.empty() || opacity != 1.0f) {
+      auto copy = std::make_shared<SplatSet>(*set);
+      if (mode == "SURFACE") copy->style.kind = qnv::StreamKind::surface;
+      if (mode == "VOLUME") copy->style.kind = qnv::StreamKind::volume;
+      copy->style.opacityScale *= std::max(opacity, 0.0f);
+      set = copy;
+    }
+  }
+  sets_[&node] = set;
+  return set;
+}
+
+std::size_t SceneSplats::drawCount(const vrml::Node* node, const SplatSet& set) const {
+  const double size = static_cast<double>(set.vectors.size());
+  double n = size;
+  if (node != nullptr) {
+    const int count = node->get<vrml::FieldType::SFInt32>("count", -1);
+    const float fraction = node->get<vrml::FieldType::SFFloat>("fraction", 1.0f);
+    n = count >= 0 ? std::min<double>(count, size) : std::clamp<double>(fraction, 0.0, 1.0) * size;
+  }
+  const double wanted = n * std::clamp(lod_, 0.0, 1.0);
+  if (wanted <= 0.0) return 0;
+  return std::clamp<std::size_t>(static_cast<std::size_t>(std::llround(wanted)), 1, set.vectors.size());
+}
+
+vrml::Bounds SceneSplats::bounds(SceneTraversal& traversal) {
+  vrml::Bounds b;
+  TraversalFrame frame;
+  traversal.collect(traversal.boundViewpointCamera(), frame);
+  for (const SplatInstance& s : frame.splats) {
+    const auto set = setOf(*s.node, *s.baseUrl, traversal);
+    if (!set || set->bounds.empty()) continue;
+    for (int corner = 0; corner < 8; ++corner) {
+      const glm::vec3 p((corner & 1) ? set->bounds.max.x : set->bounds.min.x,
+                        (corner & 2) ? set->bounds.max.y : set->bounds.min.y,
+                        (corner & 4) ? set->bounds.max.z : set->bounds.min.z);
+      b.extend(glm::vec3(s.model * glm::vec4(p, 1.0f)));
+    }
+  }
+  return b;
+}
+
+std::size_t SceneSplats::draw(const TraversalFrame& frame, SceneTraversal& traversal,
+                              const Camera& camera, float aspect, bool headlight) {
+  SplatLight lights[8];
+  std::size_t lightCount = 0;
+  if (headlight) lights[lightCount++] = {camera.forward(), glm::vec3(1.0f)};
+  for (const LightInstance& l : frame.lights)
+    if (l.type == LightType::directional && lightCount < 8)
+      lights[lightCount++] = {l.direction, l.color * l.intensity};
+  const std::span<const SplatLight> lit(lights, lightCount);
+  std::size_t drawn = 0;
+  auto drawSet = [&](const SplatSet& set, std::size_t count, const glm::mat4& model) {
+    auto& renderer = renderers_[&set];
+    if (!renderer) renderer = std::make_unique<SplatRenderer>();
+    renderer->draw(set, count, model, camera, aspect, lit);
+    drawn += renderer->statistics().splats;
+  };
+  if (mode_ == RenderMode::splats) {
+    if (!worldBuilt_) {
+      world_ = worldSplatSet(scene_);
+      worldBuilt_ = true;
+    }
+    if (world_) drawSet(*world_, drawCount(nullptr, *world_), glm::mat4(1.0f));
+  }
+  for (const SplatInstance& s : frame.splats) {
+    const auto set = setOf(*s.node, *s.baseUrl, traversal);
+    if (set) drawSet(*set, drawCount(s.node, *set), s.model);
+  }
+  return drawn;
+}
+
+void SceneSplats::release() {
+  for (auto& [set, renderer] : renderers_) renderer->release();
+  renderers_.clear();
+}
+
+}  // namespace gs::render::detail

@@ -1,0 +1,55 @@
+// Private to render/: the splat part of a SceneRenderer. QuantizedNormalVectors nodes
+// (docs/vrml-extensions.md) load their vectors once through a SplatLoader and draw the
+// prefix their level of detail asks for; in RenderMode::splats the polygon world itself
+// is drawn as splats (its triangles through the QNV surface encoder).
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <unordered_map>
+
+#include "render/splat_renderer.hpp"
+#include "render/splat_source.hpp"
+#include "render/traversal.hpp"
+
+namespace gs::render::detail {
+
+class SceneSplats {
+ public:
+  SceneSplats(std::shared_ptr<const vrml::Scene> scene, SplatLoader loader, double lod,
+              RenderMode mode);
+
+  /// The vectors of a QuantizedNormalVectors node: inline ones, or its first url that
+  /// loads (resolved against `baseUrl`). Loaded on first use; failures are reported to
+  /// `traversal` once. Null when there is nothing to draw.
+  std::shared_ptr<const SplatSet> setOf(const vrml::Node& node, const std::string& baseUrl,
+                                        SceneTraversal& traversal);
+  /// The vectors drawn of `set` for `node`: its count field (>= 0) or fraction of the
+  /// set, times the level of detail given to the renderer, rounded; at least 1 of a
+  /// non-empty set when the product is positive.
+  std::size_t drawCount(const vrml::Node* node, const SplatSet& set) const;
+  /// World bounds of every QNV node of the scene (loads them) and, in splats mode, of the
+  /// polygon world.
+  vrml::Bounds bounds(SceneTraversal& traversal);
+  /// Draws the frame's QNV nodes (and the world's splats in splats mode) over what is in
+  /// the framebuffer. Returns the number of splats drawn.
+  std::size_t draw(const TraversalFrame& frame, SceneTraversal& traversal, const Camera& camera,
+                   float aspect, bool headlight);
+  RenderMode mode() const { return mode_; }
+  void setLod(double lod) { lod_ = lod; }
+  void release();
+
+ private:
+  std::shared_ptr<const vrml::Scene> scene_;
+  SplatLoader loader_;
+  double lod_;
+  RenderMode mode_;
+  std::unordered_map<const vrml::Node*, std::shared_ptr<const SplatSet>> sets_;
+  std::map<std::string, std::shared_ptr<const SplatSet>> byUrl_;
+  std::shared_ptr<const SplatSet> world_;
+  bool worldBuilt_ = false;
+  std::unordered_map<const SplatSet*, std::unique_ptr<SplatRenderer>> renderers_;
+};
+
+}  // namespace gs::render::detail
