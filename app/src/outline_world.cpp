@@ -99,14 +99,20 @@ class Writer {
 };
 
 /// The Appearance of a Shape as text, without DEF: the key of its appearance class.
-std::string appearanceText(const vrml::Node* appearance) {
+/// `color`, when given, is a Color node's colour: it replaces diffuseColor (clause 4.14:
+/// lit colour = Color), or is an emissive colour for an unlit Shape.
+std::string appearanceText(const vrml::Node* appearance, const glm::vec3* color = nullptr) {
   Writer w;
   w << "Appearance {";
   const vrml::NodePtr m = appearance ? appearance->sfnode("material") : nullptr;
-  if (m && !m->unresolved && m->typeName() == "Material") {
+  if (!(m && !m->unresolved && m->typeName() == "Material") && color) {
+    w << " material Material { diffuseColor 0 0 0 emissiveColor ";
+    w.vec(*color) << " }";
+  } else if (m && !m->unresolved && m->typeName() == "Material") {
     using vrml::FieldType;
     w << " material Material { diffuseColor ";
-    w.vec(m->get<FieldType::SFColor>("diffuseColor", glm::vec3(0.8f))) << " specularColor ";
+    w.vec(color ? *color : m->get<FieldType::SFColor>("diffuseColor", glm::vec3(0.8f)))
+        << " specularColor ";
     w.vec(m->get<FieldType::SFColor>("specularColor", glm::vec3(0.0f))) << " emissiveColor ";
     w.vec(m->get<FieldType::SFColor>("emissiveColor", glm::vec3(0.0f))) << " ambientIntensity ";
     w.num(m->get<FieldType::SFFloat>("ambientIntensity", 0.2f)) << " shininess ";
@@ -130,11 +136,15 @@ Flattened flatten(render::SceneTraversal& traversal, const render::TraversalFram
   for (const render::ShapeInstance& shape : frame.shapes) {
     const vrml::Mesh& mesh = traversal.mesh(*shape.geometry);
     if (mesh.primitive != vrml::Primitive::triangles || mesh.indices.empty()) continue;
-    std::string key = appearanceText(shape.appearance);
-    const auto [it, inserted] =
-        appearanceIndex.try_emplace(std::move(key), static_cast<std::uint32_t>(f.appearances.size()));
-    if (inserted) f.appearances.push_back(it->first);
-    const std::uint32_t material = it->second * 2 + (mesh.solid ? 1u : 0u);
+    auto materialOf = [&](const glm::vec3* color) {
+      std::string key = appearanceText(shape.appearance, color);
+      const auto [it, inserted] = appearanceIndex.try_emplace(
+          std::move(key), static_cast<std::uint32_t>(f.appearances.size()));
+      if (inserted) f.appearances.push_back(it->first);
+      return it->second * 2 + (mesh.solid ? 1u : 0u);
+    };
+    const bool colored = mesh.colors.size() == mesh.positions.size();
+    const std::uint32_t material = colored ? 0u : materialOf(nullptr);
     const auto base = static_cast<std::uint32_t>(f.soup.positions.size());
     const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(shape.model)));
     for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
@@ -149,7 +159,15 @@ Flattened flatten(render::SceneTraversal& traversal, const render::TraversalFram
       f.soup.indices.push_back(base + mesh.indices[i]);
       f.soup.indices.push_back(base + mesh.indices[mirrored ? i + 2 : i + 1]);
       f.soup.indices.push_back(base + mesh.indices[mirrored ? i + 1 : i + 2]);
-      f.soup.material.push_back(material);
+      if (colored) {  // the triangle's mean Color (per-vertex shading is lost)
+        const glm::vec3 c =
+            (glm::vec3(mesh.colors[mesh.indices[i]]) + glm::vec3(mesh.colors[mesh.indices[i + 1]]) +
+             glm::vec3(mesh.colors[mesh.indices[i + 2]])) /
+            3.0f;
+        f.soup.material.push_back(materialOf(&c));
+      } else {
+        f.soup.material.push_back(material);
+      }
     }
   }
   f.solid.resize(2 * f.appearances.size());
@@ -173,7 +191,8 @@ bool needsNormals(const qnv::PolygonGroup& g) {
   return false;
 }
 
-void writeBindables(Writer& w, const render::SceneTraversal& t, const render::TraversalFrame& frame) {
+void writeBindables(Writer& w, const render::SceneTraversal& t,
+                    const render::TraversalFrame& frame) {
   if (t.navigation().node) {
     const render::NavigationSettings& n = t.navigation();
     w << "NavigationInfo { type [";
@@ -252,8 +271,7 @@ std::string writeOutlineWorld(std::shared_ptr<const vrml::Scene> scene,
   traversal.collect(traversal.boundViewpointCamera(), frame);
   const Flattened flat = flatten(traversal, frame);
   qnv::OutlineSummary os;
-  const std::vector<qnv::PolygonGroup> groups =
-      qnv::encodeOutlineGroups(flat.soup, options, &os);
+  const std::vector<qnv::PolygonGroup> groups = qnv::encodeOutlineGroups(flat.soup, options, &os);
 
   OutlineWorldSummary sum;
   sum.groups = groups.size();
@@ -280,8 +298,8 @@ std::string writeOutlineWorld(std::shared_ptr<const vrml::Scene> scene,
   };
   for (std::size_t k = 0; k < groups.size(); ++k) {
     const qnv::PolygonGroup& g = groups[k];
-    w << "OutlineGroup { groupId " << std::to_string(k) << " appearance "
-      << appearance(g.material) << "\n  ";
+    w << "OutlineGroup { groupId " << std::to_string(k) << " appearance " << appearance(g.material)
+      << "\n  ";
     w.vectors("outline", g.outline, "    ");
     if (g.outlineLengths.size() > 1) {
       w << "\n  outlineLengths [";
@@ -344,14 +362,14 @@ int runEncodeOutline(const Options& options) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::printf("%s: %zu bytes, %zu triangles (%zu zero-area dropped)\n", input.c_str(), world.bytes,
               sum.triangles + sum.droppedTriangles, sum.droppedTriangles);
-  std::printf("%s: %zu bytes, %zu groups, %zu triangles, %zu outline vertices, %zu appearances; "
-              "outlines in the first %zu bytes (%.1f%%); %.3f s\n",
-              output.c_str(), sum.bytes, sum.groups, sum.triangles, sum.outlineVertices,
-              sum.appearances, sum.outlineBytes,
-              sum.bytes ? 100.0 * static_cast<double>(sum.outlineBytes) /
-                              static_cast<double>(sum.bytes)
-                        : 0.0,
-              seconds);
+  std::printf(
+      "%s: %zu bytes, %zu groups, %zu triangles, %zu outline vertices, %zu appearances; "
+      "outlines in the first %zu bytes (%.1f%%); %.3f s\n",
+      output.c_str(), sum.bytes, sum.groups, sum.triangles, sum.outlineVertices, sum.appearances,
+      sum.outlineBytes,
+      sum.bytes ? 100.0 * static_cast<double>(sum.outlineBytes) / static_cast<double>(sum.bytes)
+                : 0.0,
+      seconds);
   return 0;
 }
 

@@ -1,5 +1,8 @@
 #include "app/splat_inputs.hpp"
 
+#include <cstdio>
+#include <filesystem>
+
 #include "app/commands.hpp"
 #include "app/mesh_input.hpp"
 #include "app/volume_input.hpp"
@@ -22,6 +25,49 @@ std::string splatWorldText(const std::string& path) {
   return "#VRML V2.0 utf8\n# " + std::string("A QNV world made by ghostspace for one file.\n") +
          "NavigationInfo { type [\"EXAMINE\", \"ANY\"] }\n" +
          "QuantizedNormalVectors { url \"" + escaped + "\" }\n";
+}
+
+namespace {
+
+void appendFloat(std::string& out, float v) {
+  char buffer[32];
+  const int n = std::snprintf(buffer, sizeof buffer, "%.9g ", static_cast<double>(v));
+  out.append(buffer, static_cast<std::size_t>(n));
+}
+
+std::string meshWorldText(const qnv::TriangleMesh& mesh) {
+  std::string out = "#VRML V2.0 utf8\n# A mesh file opened by ghostspace.\n";
+  out += "NavigationInfo { type [\"EXAMINE\", \"ANY\"] }\nShape {\n";
+  const glm::vec3 base = glm::vec3(mesh.baseColor) / 255.0f;
+  out += "  appearance Appearance { material Material { diffuseColor ";
+  for (int i = 0; i < 3; ++i) appendFloat(out, base[i]);
+  out += "} }\n  geometry IndexedFaceSet {\n    solid FALSE creaseAngle 0.5\n    coord Coordinate { point [\n";
+  for (const glm::vec3& p : mesh.positions) {
+    for (int i = 0; i < 3; ++i) appendFloat(out, p[i]);
+    out += ",\n";
+  }
+  out += "    ] }\n";
+  if (!mesh.vertexColors.empty()) {
+    out += "    color Color { color [\n";
+    for (const qnv::Rgba8& c : mesh.vertexColors) {
+      for (int i = 0; i < 3; ++i) appendFloat(out, static_cast<float>(c[i]) / 255.0f);
+      out += ",\n";
+    }
+    out += "    ] }\n";
+  }
+  out += "    coordIndex [\n";
+  for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3)
+    out += std::to_string(mesh.indices[t]) + " " + std::to_string(mesh.indices[t + 1]) + " " +
+           std::to_string(mesh.indices[t + 2]) + " -1\n";
+  out += "    ]\n  }\n}\n";
+  return out;
+}
+
+}  // namespace
+
+std::string worldTextFor(const std::string& path) {
+  if (isMeshFile(path)) return meshWorldText(loadMeshFile(path));
+  return splatWorldText(std::filesystem::path(path).filename().string());  // resolves to itself
 }
 
 render::SplatLoader splatLoader() {

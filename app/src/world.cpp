@@ -2,6 +2,7 @@
 
 #include "app/splat_inputs.hpp"
 #include "net/file_source.hpp"
+#include "qnv/error.hpp"
 #include "vrml/parser.hpp"
 
 #include <chrono>
@@ -22,11 +23,19 @@ LoadedWorld loadWorld(const std::string& path) {
   } else {
     w.readable = true;
     w.bytes = bytes.size();
-    // A stream, mesh or volume opens as a world holding one QNV node that names it.
-    const std::string text = isSplatInput(path)
-        ? splatWorldText(std::filesystem::path(path).filename().string())  // relative to itself
-        : std::string();
-    w.scene = std::make_shared<vrml::Scene>(vrml::parseVrml(text.empty() ? bytes : text, path));
+    // A stream, mesh or volume opens as a world made for it (app/splat_inputs.hpp).
+    std::string text;
+    if (isSplatInput(path)) {
+      try {
+        text = worldTextFor(path);
+      } catch (const qnv::InputError& e) {
+        w.readable = false;
+        w.scene = std::make_shared<vrml::Scene>();
+        w.scene->url = path;
+        w.scene->diagnostics.error({path, 0, 0}, e.what());
+      }
+    }
+    if (w.readable) w.scene = std::make_shared<vrml::Scene>(vrml::parseVrml(text.empty() ? bytes : text, path));
   }
   w.parseSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return w;

@@ -35,15 +35,14 @@ void check(const PolygonSoup& soup) {
   const std::size_t n = soup.positions.size();
   for (std::size_t i = 0; i < soup.indices.size(); ++i)
     if (soup.indices[i] >= n)
-      throw InputError("outline encoder: index " + std::to_string(soup.indices[i]) +
-                       " (entry " + std::to_string(i) + ") is outside the " +
-                       std::to_string(n) + " positions");
+      throw InputError("outline encoder: index " + std::to_string(soup.indices[i]) + " (entry " +
+                       std::to_string(i) + ") is outside the " + std::to_string(n) + " positions");
   if (!soup.material.empty() && soup.material.size() != soup.triangleCount())
     throw InputError("outline encoder: " + std::to_string(soup.material.size()) +
                      " material ids for " + std::to_string(soup.triangleCount()) + " triangles");
   if (!soup.normals.empty() && soup.normals.size() != n)
-    throw InputError("outline encoder: " + std::to_string(soup.normals.size()) +
-                     " normals for " + std::to_string(n) + " positions");
+    throw InputError("outline encoder: " + std::to_string(soup.normals.size()) + " normals for " +
+                     std::to_string(n) + " positions");
 }
 
 /// Welded id of every vertex: equal (finite) positions share an id; a non-finite
@@ -194,7 +193,8 @@ std::vector<PolygonGroup> encodeOutlineGroups(const PolygonSoup& soup,
       ++sum.droppedTriangles;
       continue;
     }
-    const glm::dvec3 cr = glm::cross(glm::dvec3(p1) - glm::dvec3(p0), glm::dvec3(p2) - glm::dvec3(p0));
+    const glm::dvec3 cr =
+        glm::cross(glm::dvec3(p1) - glm::dvec3(p0), glm::dvec3(p2) - glm::dvec3(p0));
     const double len = glm::length(cr);
     if (!(len > 0.0) || !std::isfinite(len)) {
       ++sum.droppedTriangles;
@@ -242,8 +242,8 @@ std::vector<PolygonGroup> encodeOutlineGroups(const PolygonSoup& soup,
     if (tris[t].valid) seeds.push_back(t);
   std::stable_sort(seeds.begin(), seeds.end(),
                    [&](std::uint32_t a, std::uint32_t b) { return tris[a].area > tris[b].area; });
-  const double maxAngle = std::isfinite(options.maxAngle) ? std::max(0.0, double{options.maxAngle})
-                                                          : std::numbers::pi;
+  const double maxAngle =
+      std::isfinite(options.maxAngle) ? std::max(0.0, double{options.maxAngle}) : std::numbers::pi;
   const double minCos = maxAngle >= std::numbers::pi ? -2.0 : std::cos(maxAngle) - 1e-9;
   auto materialOf = [&](std::uint32_t t) {
     return soup.material.empty() ? std::uint32_t{0} : soup.material[t];

@@ -42,7 +42,7 @@ bool prepare(const qnv::DecodedVector& vector, const SplatStyle& style,
     return false;
   }
   out.half = kSplatExtent * out.profile.spread;
-  out.color = shadeSplat(n, glm::vec3(rgba), lights);
+  out.color = shadeSplat(n, glm::vec3(rgba), lights, style.ambient);
   glm::vec3 t, b;
   splatAxes(n, t, b);
   const glm::mat3 rotation(view);

@@ -26,6 +26,7 @@ uniform float u_sigma;
 uniform float u_opacityScale;
 uniform float u_voxelSize;
 uniform float u_magnitudeMax;
+uniform float u_ambient;
 uniform int u_lightCount;
 uniform vec3 u_lightDirection[8];
 uniform vec3 u_lightColor[8];
@@ -62,7 +63,7 @@ void main() {
   vec3 p = a.xyz + (corner.x * t + corner.y * bt) * spread;
   gl_Position = u_projection * u_view * u_model * vec4(p, 1.0);
   vec3 wn = normalize(u_normalMatrix * n);
-  vec3 light = vec3(0.2);
+  vec3 light = vec3(u_ambient);
   for (int k = 0; k < u_lightCount; ++k)
     light += abs(dot(wn, u_lightDirection[k])) * u_lightColor[k];
   v_color = min(c.rgb * light, vec3(1.0));
@@ -117,7 +118,7 @@ struct SplatRenderer::Gpu {
   int layerWidth = 0, layerHeight = 0;
   struct {
     GLint vectors, model, view, projection, normalMatrix, surface, sigma, opacityScale, voxelSize,
-        magnitudeMax, lightCount, lightDirection, lightColor;
+        magnitudeMax, ambient, lightCount, lightDirection, lightColor;
   } u{};
   const qnv::DecodedVector* uploadedData = nullptr;
   std::size_t uploadedSize = 0;
@@ -141,6 +142,7 @@ struct SplatRenderer::Gpu {
     u.opacityScale = detail::uniform(program, "u_opacityScale");
     u.voxelSize = detail::uniform(program, "u_voxelSize");
     u.magnitudeMax = detail::uniform(program, "u_magnitudeMax");
+    u.ambient = detail::uniform(program, "u_ambient");
     u.lightCount = detail::uniform(program, "u_lightCount");
     u.lightDirection = detail::uniform(program, "u_lightDirection");
     u.lightColor = detail::uniform(program, "u_lightColor");
@@ -266,6 +268,7 @@ void SplatRenderer::draw(const SplatSet& set, std::size_t count, const glm::mat4
   glUniform1f(g.u.opacityScale, s.opacityScale);
   glUniform1f(g.u.voxelSize, s.voxelSize);
   glUniform1f(g.u.magnitudeMax, s.magnitudeMax);
+  glUniform1f(g.u.ambient, s.ambient);
   const int lightCount = static_cast<int>(std::min<std::size_t>(lights.size(), kMaxSplatLights));
   glm::vec3 directions[kMaxSplatLights], colors[kMaxSplatLights];
   for (int i = 0; i < lightCount; ++i) {

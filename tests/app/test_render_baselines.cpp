@@ -4,8 +4,7 @@
 // differs by more than 16 of 255; a test passes when at most kMaxFractionDiffering of the
 // pixels differ. A missing baseline writes the rendered image to the build folder and
 // fails, so that a new baseline is made only by looking at it and copying it in.
-#include "process.hpp"
-#include "render/image.hpp"
+#include "baseline.hpp"
 #include "test_support.hpp"
 
 #include <catch2/catch.hpp>
@@ -16,9 +15,6 @@
 namespace fs = std::filesystem;
 
 namespace {
-
-constexpr double kMaxFractionDiffering = 0.01;  // 1% of pixels
-constexpr int kChannelTolerance = 16;
 
 struct RenderCase {
   const char* name;   // baseline file stem
@@ -45,29 +41,10 @@ const RenderCase kCases[] = {
 };
 
 void checkAgainstBaseline(const RenderCase& c) {
+  if (c.corpus && !gs::test::haveCorpus("vrml")) return;
   const fs::path world =
       c.corpus ? gs::test::corpusDir() / c.world : gs::test::sourceDir() / c.world;
-  if (c.corpus && !gs::test::haveCorpus("vrml")) return;
-  const fs::path actualDir = fs::path(GS_BINARY_DIR) / "render-actual";
-  fs::create_directories(actualDir);
-  const fs::path actual = actualDir / (std::string(c.name) + ".png");
-  auto r =
-      gs::test::runGhostspace({"--snapshot", actual.string(), "--size", "300x300", world.string()});
-  INFO("stderr: " << r.err);
-  REQUIRE(r.exitCode == 0);
-
-  const fs::path baseline =
-      gs::test::sourceDir() / "tests/render/baselines" / (std::string(c.name) + ".png");
-  if (!fs::exists(baseline)) {
-    FAIL("no baseline " << baseline.string() << "; the rendered image is " << actual.string()
-                        << ": look at it, and copy it there if it is right");
-  }
-  const auto a = gs::render::readPng(actual.string());
-  const auto b = gs::render::readPng(baseline.string());
-  const auto d = gs::render::compareImages(a, b, kChannelTolerance);
-  INFO(c.name << ": " << d.fractionDiffering * 100 << "% of pixels differ, mean abs "
-              << d.meanAbsolute << ", PSNR " << d.psnr << " dB; actual " << actual.string());
-  CHECK(d.fractionDiffering <= kMaxFractionDiffering);
+  gs::test::checkBaseline(c.name, {"--size", "300x300", world.string()});
 }
 
 }  // namespace

@@ -59,8 +59,7 @@ PolygonSoup uvSphere(int slices, int stacks) {
 
 }  // namespace
 
-TEST_CASE("a flat square of two triangles is one group with one 4-point loop",
-          "[qnv][outline]") {
+TEST_CASE("a flat square of two triangles is one group with one 4-point loop", "[qnv][outline]") {
   PolygonSoup s;
   addQuad(s, {0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0});
   const auto groups = encodeOutlineGroups(s);
@@ -105,7 +104,7 @@ TEST_CASE("a square with a square hole has an outer loop and a hole", "[qnv][out
   CHECK(g.area == Approx(8.0));
   REQUIRE(g.outlineLengths.size() == 2);
   CHECK(g.outlineLengths[0] == 12);  // outer: every grid point of the 3x3 border
-  CHECK(g.outlineLengths[1] == 4);  // the hole
+  CHECK(g.outlineLengths[1] == 4);   // the hole
   // The outer loop encloses the hole: all of its points lie on the 3x3 border.
   for (std::size_t i = 0; i < 12; ++i) {
     const glm::vec3 p = g.outline[i];
@@ -124,9 +123,9 @@ TEST_CASE("a tessellated sphere gives many groups at 10 degrees", "[qnv][outline
     area += g.area;
     // every triangle of a group is within 10 degrees of its seed normal
     for (std::size_t i = 0; i < g.indices.size(); i += 3) {
-      const glm::vec3 n = glm::normalize(
-          glm::cross(g.positions[g.indices[i + 1]] - g.positions[g.indices[i]],
-                     g.positions[g.indices[i + 2]] - g.positions[g.indices[i]]));
+      const glm::vec3 n =
+          glm::normalize(glm::cross(g.positions[g.indices[i + 1]] - g.positions[g.indices[i]],
+                                    g.positions[g.indices[i + 2]] - g.positions[g.indices[i]]));
       CHECK(glm::dot(n, g.normal) >= std::cos(0.1746f));
     }
   }
@@ -143,8 +142,7 @@ TEST_CASE("a tessellated sphere gives many groups at 10 degrees", "[qnv][outline
   CHECK(one[0].outline.empty());
 }
 
-TEST_CASE("groups are sorted by area, largest first, and keep their material",
-          "[qnv][outline]") {
+TEST_CASE("groups are sorted by area, largest first, and keep their material", "[qnv][outline]") {
   PolygonSoup s;
   addQuad(s, {0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, 0);
   addQuad(s, {5, 0, 0}, {8, 0, 0}, {8, 3, 0}, {5, 3, 0}, 1);
@@ -163,10 +161,9 @@ TEST_CASE("non-manifold and degenerate input neither crashes nor loops", "[qnv][
   PolygonSoup s;
   // Five triangles on one edge (0,0,0)-(1,0,0), a repeated triangle, a zero-area one,
   // a non-finite one and inconsistent winding.
-  s.positions = {{0, 0, 0}, {1, 0, 0}, {0.5f, 1, 0}, {0.5f, -1, 0}, {0.5f, 0, 1},
-                 {0.5f, 0, -1}, {0.5f, 1, 0.1f}, {2, 0, 0}, {NAN, 0, 0}};
-  s.indices = {0, 1, 2, 1, 0, 3, 0, 1, 4, 1, 0, 5, 0, 1, 6, 0, 1, 2,
-               0, 1, 7, 0, 1, 8, 2, 1, 0};
+  s.positions = {{0, 0, 0},     {1, 0, 0},       {0.5f, 1, 0}, {0.5f, -1, 0}, {0.5f, 0, 1},
+                 {0.5f, 0, -1}, {0.5f, 1, 0.1f}, {2, 0, 0},    {NAN, 0, 0}};
+  s.indices = {0, 1, 2, 1, 0, 3, 0, 1, 4, 1, 0, 5, 0, 1, 6, 0, 1, 2, 0, 1, 7, 0, 1, 8, 2, 1, 0};
   const auto groups = encodeOutlineGroups(s);
   OutlineSummary sum;
   (void)encodeOutlineGroups(s, {}, &sum);

@@ -29,7 +29,8 @@ const std::string kOutline0 =
     "  outline [ 0 0 0, 2 0 0, 2 2 0, 0 2 0 ] }\n";
 const std::string kPolygons0 =
     "OutlineGroup { groupId 0 children [ Shape { geometry IndexedFaceSet {\n"
-    "  coord Coordinate { point [ 0 0 0, 2 0 0, 2 2 0, 0 2 0 ] } coordIndex [ 0 1 2 3 -1 ] } } ] }\n";
+    "  coord Coordinate { point [ 0 0 0, 2 0 0, 2 2 0, 0 2 0 ] } coordIndex [ 0 1 2 3 -1 ] } } ] "
+    "}\n";
 const std::string kPlainShape =
     "Shape { geometry IndexedFaceSet { coord Coordinate { point [ 5 0 0, 6 0 0, 6 1 0 ] }"
     " coordIndex [ 0 1 2 -1 ] } }\n";
@@ -128,12 +129,34 @@ TEST_CASE("an outline with a hole is tessellated around the hole", "[render][out
   const gs::vrml::Mesh two = gs::vrml::triangulateOutline(pts, {4, 4, 4});
   double area2 = 0.0;
   for (std::size_t i = 0; i < two.indices.size(); i += 3)
-    area2 += 0.5 * static_cast<double>(glm::cross(two.positions[two.indices[i + 1]] -
-                                                      two.positions[two.indices[i]],
-                                                  two.positions[two.indices[i + 2]] -
-                                                      two.positions[two.indices[i]])
-                                           .z);
+    area2 += 0.5 * static_cast<double>(
+                       glm::cross(two.positions[two.indices[i + 1]] - two.positions[two.indices[i]],
+                                  two.positions[two.indices[i + 2]] - two.positions[two.indices[i]])
+                           .z);
   CHECK(area2 == Approx(40.0 - 8.0));
   (void)gs::vrml::triangulateOutline(pts, {4, 40}, &diag);
   CHECK(diag.warningCount() == 1);
+}
+
+TEST_CASE("the extension fallback PROTOs and a world declaring them parse cleanly",
+          "[render][outline]") {
+  const std::string dir = std::string(GS_SOURCE_DIR) + "/assets/worlds/";
+  const gs::vrml::Scene protos = gs::vrml::loadVrmlFile(dir + "ghostspace-extensions.wrl");
+  CHECK(protos.diagnostics.items.empty());
+  CHECK(protos.protos.size() == 2);
+  const std::string world =
+      kHeader +
+      "EXTERNPROTO OutlineGroup [ eventIn MFNode addChildren eventIn MFNode removeChildren\n"
+      "  exposedField MFNode children exposedField SFNode appearance field SFInt32 groupId\n"
+      "  field MFVec3f outline field MFInt32 outlineLengths field SFVec3f bboxCenter\n"
+      "  field SFVec3f bboxSize ]\n"
+      "  [ \"urn:ghostspace:OutlineGroup\" \"ghostspace-extensions.wrl#OutlineGroup\" ]\n"
+      "OutlineGroup { groupId 0 children [ Shape { geometry Box {} } ] }\n";
+  const auto scene =
+      std::make_shared<gs::vrml::Scene>(gs::vrml::parseVrml(world, dir + "uses-extensions.wrl"));
+  CHECK(scene->diagnostics.items.empty());
+  SceneTraversal t(scene);
+  TraversalFrame frame;
+  t.collect(t.boundViewpointCamera(), frame);
+  CHECK(frame.shapes.size() == 1);  // the fallback Group shows the polygons
 }

@@ -88,9 +88,8 @@ class Bridger {
     const glm::dvec2 a = p_[ring_[at]];
     if (a == m) return true;
     const glm::dvec2 prev = p_[ring_[(at + n - 1) % n]], next = p_[ring_[(at + 1) % n]];
-    const bool inside = area2(prev, a, next) > 0
-                            ? area2(a, m, next) <= 0 && area2(a, prev, m) <= 0
-                            : area2(a, m, prev) > 0 || area2(a, next, m) > 0;
+    const bool inside = area2(prev, a, next) > 0 ? area2(a, m, next) <= 0 && area2(a, prev, m) <= 0
+                                                 : area2(a, m, prev) > 0 || area2(a, next, m) > 0;
     if (!inside) return false;
     auto blocked = [&](const std::vector<std::uint32_t>& loop) {
       for (std::size_t i = 0; i < loop.size(); ++i) {

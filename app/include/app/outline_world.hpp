@@ -45,7 +45,10 @@ struct OutlineWorldSummary {
 ///
 /// Appearance keeps the Material's diffuseColor, specularColor, emissiveColor,
 /// ambientIntensity, shininess and transparency (a Shape without Material stays unlit).
-/// Dropped: textures and texture coordinates, per-vertex and per-face Color, lines and
+/// A Color node becomes one Appearance per distinct triangle colour (the mean of its
+/// corners: diffuseColor, or emissiveColor when unlit), so smooth per-vertex colour
+/// gradients turn flat per triangle.
+/// Dropped: textures and texture coordinates, lines and
 /// points (IndexedLineSet, PointSet), Text, sensors, interpolators, Scripts and ROUTEs,
 /// Switch choices and LOD levels not drawn from the bound Viewpoint, the Background's
 /// textures and rotation, and the scoping of DirectionalLights (written at the top

@@ -9,9 +9,15 @@
 
 namespace gs::app {
 
-/// True for inputs that open as a QNV world: .qnv streams (by name or signature),
-/// meshes (isMeshFile) and volumes (isVolumeFile).
+/// True for inputs that are not VRML97 worlds and have no Viewpoint of their own: .qnv
+/// streams (by name or signature), meshes (isMeshFile) and volumes (isVolumeFile).
 bool isSplatInput(const std::string& path);
+
+/// The VRML97 world an input that is not a VRML97 file opens as: a mesh becomes one
+/// Shape with an IndexedFaceSet (drawn as polygons, or as splats with --mode splats);
+/// a .qnv stream or a volume becomes one QuantizedNormalVectors node naming the file.
+/// Throws qnv::InputError when a mesh cannot be read.
+std::string worldTextFor(const std::string& path);
 
 /// The VRML97 text of a world holding one QuantizedNormalVectors node whose url is
 /// `path` (a world named after the file itself uses its file name, which resolves to it) (quotes and backslashes escaped), with EXAMINE navigation.

@@ -74,11 +74,11 @@ struct PolygonGroup {
 
 /// Counts of an encoding run.
 struct OutlineSummary {
-  std::size_t triangles = 0;          // triangles in the input
-  std::size_t droppedTriangles = 0;   // zero-area or non-finite triangles, in no group
-  std::size_t weldedVertices = 0;     // distinct positions after welding
-  std::size_t nonManifoldEdges = 0;   // edges used by 3 or more triangles
-  std::size_t outlineVertices = 0;    // sum of the groups' outline.size()
+  std::size_t triangles = 0;         // triangles in the input
+  std::size_t droppedTriangles = 0;  // zero-area or non-finite triangles, in no group
+  std::size_t weldedVertices = 0;    // distinct positions after welding
+  std::size_t nonManifoldEdges = 0;  // edges used by 3 or more triangles
+  std::size_t outlineVertices = 0;   // sum of the groups' outline.size()
 };
 
 /// Cuts `soup` into outline groups.

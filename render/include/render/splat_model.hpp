@@ -17,10 +17,14 @@ namespace gs::render {
 /// Per-stream parameters of the splat model.
 struct SplatStyle {
   qnv::StreamKind kind = qnv::StreamKind::surface;
-  float sigma = 0.5f;         // profile sigma from the stream header (see spread())
+  float sigma = 0.5f;         // profile sigma from the stream header (see splatProfile)
   float opacityScale = 1.0f;  // header opacity scale times the node's opacityScale
   float voxelSize = 1.0f;     // volumes: the largest voxel spacing (world units)
   float magnitudeMax = 1.0f;  // volumes: the stream's largest magnitude
+  /// Light every splat receives whatever its orientation: 0 for surfaces, as the VRML97
+  /// headlight (ambientIntensity 0) lights polygons; 0.2 for volumes, whose gradients
+  /// have no outside.
+  float ambient = 0.0f;
 
   /// From a stream header; `opacityScale` multiplies the header's.
   static SplatStyle fromHeader(const qnv::StreamHeader& h, float opacityScale = 1.0f) {
@@ -30,6 +34,7 @@ struct SplatStyle {
     s.opacityScale = h.profile.opacityScale * opacityScale;
     s.voxelSize = std::max({h.voxelSpacing.x, h.voxelSpacing.y, h.voxelSpacing.z, 1e-6f});
     s.magnitudeMax = std::max(h.magnitudeMax, 1e-30f);
+    s.ambient = h.kind == qnv::StreamKind::volume ? 0.2f : 0.0f;
     return s;
   }
 };
@@ -80,11 +85,11 @@ struct SplatLight {
 };
 
 /// Flat shading of one splat, two-sided (a volume gradient has no outside; a surface
-/// splat is seen from either side): rgb * (ambient + sum of |n . L| * light).
-/// Ambient is 0.2, as the VRML97 Material default ambientIntensity.
+/// splat is seen from either side): rgb * (ambient + sum of |n . L| * light), clamped
+/// to 1. `ambient` is SplatStyle::ambient.
 inline glm::vec3 shadeSplat(const glm::vec3& normal, const glm::vec3& rgb,
-                            std::span<const SplatLight> lights) {
-  glm::vec3 light(0.2f);
+                            std::span<const SplatLight> lights, float ambient = 0.2f) {
+  glm::vec3 light(ambient);
   for (const SplatLight& l : lights) light += std::abs(glm::dot(normal, l.direction)) * l.color;
   return glm::min(rgb * light, glm::vec3(1.0f));
 }

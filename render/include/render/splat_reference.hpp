@@ -12,8 +12,8 @@
 // - Splat k of vector k: centre x_k = position, unit normal n_k = normalize(normal) (a
 //   zero normal draws nothing), axes t_k, b_k = splatAxes(n_k); profile =
 //   splatProfile(style, magnitude, transferAlpha) with transferAlpha =
-//   unpackRgba(rgba).a; colour c_k = shadeSplat(n_k, unpackRgba(rgba).rgb, lights),
-//   flat over the splat.
+//   unpackRgba(rgba).a; colour c_k = shadeSplat(n_k, unpackRgba(rgba).rgb, lights,
+//   style.ambient), flat over the splat.
 // - alpha_k(u) = profile.alphaAt(r), r = |p - x_k|, where p is the intersection of the
 //   ray of pixel u with the plane through x_k perpendicular to n_k. alpha_k(u) = 0 when
 //   the ray is parallel to the plane, when p is behind the eye or outside the clip range
