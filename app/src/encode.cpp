@@ -10,10 +10,10 @@
 #include "app/progress_bar.hpp"
 #include "app/volume_input.hpp"
 #include "app/world.hpp"
-#include "render/world_triangles.hpp"
 #include "qnv/encoder.hpp"
 #include "qnv/error.hpp"
 #include "qnv/volume_readers.hpp"
+#include "render/world_triangles.hpp"
 
 namespace gs::app {
 

@@ -52,7 +52,8 @@ int runSnapshot(const Options& options) {
   render::Camera camera = renderer.boundViewpointCamera();
   // A stream, mesh or volume has no Viewpoint of its own: frame it whole.
   if (options.fit || isSplatInput(options.inputs.front()))
-    camera = renderer.fitToScene(static_cast<float>(options.width) / static_cast<float>(options.height), camera);
+    camera = renderer.fitToScene(
+        static_cast<float>(options.width) / static_cast<float>(options.height), camera);
   render::fitClipPlanes(camera, renderer.bounds(), renderer.navigation().nearClip());
   renderer.draw(camera, 0, 0, options.width, options.height);
   const render::Image image = render::readPixels(0, 0, options.width, options.height);

@@ -23,8 +23,8 @@ std::string splatWorldText(const std::string& path) {
     escaped.push_back(c);
   }
   return "#VRML V2.0 utf8\n# " + std::string("A QNV world made by ghostspace for one file.\n") +
-         "NavigationInfo { type [\"EXAMINE\", \"ANY\"] }\n" +
-         "QuantizedNormalVectors { url \"" + escaped + "\" }\n";
+         "NavigationInfo { type [\"EXAMINE\", \"ANY\"] }\n" + "QuantizedNormalVectors { url \"" +
+         escaped + "\" }\n";
 }
 
 namespace {
@@ -41,7 +41,9 @@ std::string meshWorldText(const qnv::TriangleMesh& mesh) {
   const glm::vec3 base = glm::vec3(mesh.baseColor) / 255.0f;
   out += "  appearance Appearance { material Material { diffuseColor ";
   for (int i = 0; i < 3; ++i) appendFloat(out, base[i]);
-  out += "} }\n  geometry IndexedFaceSet {\n    solid FALSE creaseAngle 0.5\n    coord Coordinate { point [\n";
+  out +=
+      "} }\n  geometry IndexedFaceSet {\n    solid FALSE creaseAngle 0.5\n    coord Coordinate { "
+      "point [\n";
   for (const glm::vec3& p : mesh.positions) {
     for (int i = 0; i < 3; ++i) appendFloat(out, p[i]);
     out += ",\n";
@@ -78,8 +80,10 @@ render::SplatLoader splatLoader() {
       return nullptr;
     }
     try {
-      if (isVolumeFile(path)) return render::splatSetFromEncoded(qnv::encodeVolume(loadVolumeFile(path), {}));
-      if (isMeshFile(path)) return render::splatSetFromEncoded(qnv::encodeSurface(loadMeshFile(path), {}));
+      if (isVolumeFile(path))
+        return render::splatSetFromEncoded(qnv::encodeVolume(loadVolumeFile(path), {}));
+      if (isMeshFile(path))
+        return render::splatSetFromEncoded(qnv::encodeSurface(loadMeshFile(path), {}));
     } catch (const qnv::InputError& e) {
       error = e.what();
       return nullptr;

@@ -69,6 +69,7 @@ int runWindow(const Options& options) {
   ImGuiSession imgui(context->glfwHandle());
   WindowState state;
   state.lastAspect = static_cast<float>(context->width()) / std::max(1, context->height());
+  state.rendererOptions = rendererOptions(options);
   for (const std::string& input : options.inputs) state.open(input);
 
   int frame = 0;

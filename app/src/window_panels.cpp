@@ -122,6 +122,19 @@ int drawMenuBar(WindowState& state, float aspect) {
       if (ImGui::MenuItem("Headlight", nullptr, &headlight))
         state.renderer->setHeadlight(headlight);
     }
+    ImGui::Separator();
+    const render::RenderMode mode = state.rendererOptions.traversal.mode;
+    if (ImGui::MenuItem("Polygons", nullptr, mode == render::RenderMode::polygons))
+      state.setMode(render::RenderMode::polygons);
+    if (ImGui::MenuItem("Splats (QNV)", nullptr, mode == render::RenderMode::splats))
+      state.setMode(render::RenderMode::splats);
+    if (ImGui::MenuItem("Outlines only", nullptr, mode == render::RenderMode::outlines))
+      state.setMode(render::RenderMode::outlines);
+    float lod = static_cast<float>(state.rendererOptions.lod);
+    if (ImGui::SliderFloat("Level of detail", &lod, 0.001f, 1.0f, "%.3f",
+                           ImGuiSliderFlags_Logarithmic))
+      state.setLod(lod);
+    ImGui::Separator();
     ImGui::MenuItem("Log", nullptr, &state.showLog);
     ImGui::EndMenu();
   }
@@ -138,8 +151,8 @@ int drawMenuBar(WindowState& state, float aspect) {
   if (state.renderer) {
     const auto& st = state.renderer->statistics();
     ImGui::Separator();
-    ImGui::Text("%zu shapes, %zu triangles, %.1f ms", st.shapes, st.triangles,
-                1000.0f / std::max(1.0f, ImGui::GetIO().Framerate));
+    ImGui::Text("%zu shapes, %zu triangles, %zu splats, %.1f ms", st.shapes, st.triangles,
+                st.splats, 1000.0f / std::max(1.0f, ImGui::GetIO().Framerate));
   }
   height = static_cast<int>(ImGui::GetWindowSize().y);
   ImGui::EndMainMenuBar();

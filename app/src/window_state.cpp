@@ -24,7 +24,7 @@ void WindowState::open(const std::string& path) {
 void WindowState::show(std::size_t index) {
   if (index >= worlds.size()) return;
   current = index;
-  renderer = std::make_unique<render::SceneRenderer>(worlds[index].scene);
+  renderer = std::make_unique<render::SceneRenderer>(worlds[index].scene, rendererOptions);
   renderDiagnosticsLogged = 0;
   resetView();
 }
@@ -49,6 +49,20 @@ void WindowState::fitToScene() {
   if (!renderer) return;
   const render::Camera fitted = renderer->fitToScene(lastAspect, navigator.camera());
   navigator.setHome(fitted, renderer->bounds().center());
+}
+
+void WindowState::setMode(render::RenderMode mode) {
+  rendererOptions.traversal.mode = mode;
+  if (!renderer) return;
+  const render::Camera camera = navigator.camera();
+  renderer.reset();  // its GL objects go while the context is current
+  renderer = std::make_unique<render::SceneRenderer>(worlds[current].scene, rendererOptions);
+  navigator.setCamera(camera);
+}
+
+void WindowState::setLod(double lod) {
+  rendererOptions.lod = lod;
+  if (renderer) renderer->setLod(lod);
 }
 
 void WindowState::jumpToViewpoint(std::size_t index) {

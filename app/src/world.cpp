@@ -35,7 +35,8 @@ LoadedWorld loadWorld(const std::string& path) {
         w.scene->diagnostics.error({path, 0, 0}, e.what());
       }
     }
-    if (w.readable) w.scene = std::make_shared<vrml::Scene>(vrml::parseVrml(text.empty() ? bytes : text, path));
+    if (w.readable)
+      w.scene = std::make_shared<vrml::Scene>(vrml::parseVrml(text.empty() ? bytes : text, path));
   }
   w.parseSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return w;

@@ -25,7 +25,7 @@ enum class NodeKind : std::uint8_t {
   NavigationInfo,
   Background,
   Fog,
-  OutlineGroup,            // GhostSpace extensions (docs/vrml-extensions.md)
+  OutlineGroup,  // GhostSpace extensions (docs/vrml-extensions.md)
   QuantizedNormalVectors,
 };
 

@@ -195,8 +195,8 @@ SceneRenderer::SceneRenderer(std::shared_ptr<const vrml::Scene> scene, SceneRend
                    return t;
                  }()),
       gpu_(std::make_unique<Gpu>()),
-      splats_(std::make_unique<detail::SceneSplats>(traversal_.sharedScene(), options_.splatLoader, options_.lod,
-                                                    options_.traversal.mode)),
+      splats_(std::make_unique<detail::SceneSplats>(traversal_.sharedScene(), options_.splatLoader,
+                                                    options_.lod, options_.traversal.mode)),
       headlight_(traversal_.navigation().headlight) {}
 
 SceneRenderer::~SceneRenderer() {
@@ -216,7 +216,9 @@ const vrml::Bounds& SceneRenderer::bounds() {
   return bounds_;
 }
 
-void SceneRenderer::setLod(double lod) { splats_->setLod(lod); }
+void SceneRenderer::setLod(double lod) {
+  splats_->setLod(lod);
+}
 
 Camera SceneRenderer::initialCamera(float aspect) {
   if (!viewpoints().empty() || bounds().empty()) return boundViewpointCamera();

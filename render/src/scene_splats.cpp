@@ -2,7 +2,6 @@
 
 #include <cmath>
 
-
 namespace gs::render::detail {
 
 SceneSplats::SceneSplats(std::shared_ptr<const vrml::Scene> scene, SplatLoader loader, double lod,
@@ -71,7 +70,8 @@ std::size_t SceneSplats::drawCount(const vrml::Node* node, const SplatSet& set) 
   }
   const double wanted = n * std::clamp(lod_, 0.0, 1.0);
   if (wanted <= 0.0) return 0;
-  return std::clamp<std::size_t>(static_cast<std::size_t>(std::llround(wanted)), 1, set.vectors.size());
+  return std::clamp<std::size_t>(static_cast<std::size_t>(std::llround(wanted)), 1,
+                                 set.vectors.size());
 }
 
 vrml::Bounds SceneSplats::bounds(SceneTraversal& traversal) {

@@ -201,7 +201,9 @@ struct SplatRenderer::Gpu {
 
 SplatRenderer::SplatRenderer() = default;
 
-SplatRenderer::~SplatRenderer() { release(); }
+SplatRenderer::~SplatRenderer() {
+  release();
+}
 
 void SplatRenderer::release() {
   if (gpu_) gpu_->destroy();

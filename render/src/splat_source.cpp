@@ -64,7 +64,8 @@ std::shared_ptr<SplatSet> inlineSplatSet(const vrml::Node& node) {
     const glm::vec3 d = i < directions.size() ? directions[i] : glm::vec3(0, 0, 1);
     v.normal = glm::length(d) > 0.0f ? glm::normalize(d) : glm::vec3(0, 0, 1);
     v.magnitude = i < magnitudes.size() ? std::max(magnitudes[i], 0.0f) : 1.0f;
-    const glm::vec3 c = glm::clamp(i < colors.size() ? colors[i] : glm::vec3(1.0f), 0.0f, 1.0f) * 255.0f + 0.5f;
+    const glm::vec3 c =
+        glm::clamp(i < colors.size() ? colors[i] : glm::vec3(1.0f), 0.0f, 1.0f) * 255.0f + 0.5f;
     v.rgba = static_cast<std::uint32_t>(c.r) | (static_cast<std::uint32_t>(c.g) << 8) |
              (static_cast<std::uint32_t>(c.b) << 16) | (255u << 24);
     largest = std::max(largest, v.magnitude);

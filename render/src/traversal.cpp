@@ -203,8 +203,8 @@ void SceneTraversal::collect(const Camera& viewer, TraversalFrame& frame) {
   frame.clear();
   scopeScratch_.clear();
   chainScratch_.clear();
-  Walk walk{*this, frame, viewer.position, viewer.up(), scopeScratch_, chainScratch_, true, 0,
-            nullptr};
+  Walk walk{*this, frame, viewer.position, viewer.up(), scopeScratch_, chainScratch_,
+            true,  0,     nullptr};
   walk.inlineChain.push_back(&mainUrl_);
   walk.filled = &filledGroups(*scene_);
   walk.nodes(scene_->rootNodes, glm::mat4(1.0f), &mainUrl_);

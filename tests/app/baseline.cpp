@@ -25,8 +25,7 @@ std::string snapshot(const std::string& name, const std::vector<std::string>& ar
 }
 
 double fractionDiffering(const std::string& a, const std::string& b, int tolerance) {
-  return render::compareImages(render::readPng(a), render::readPng(b), tolerance)
-      .fractionDiffering;
+  return render::compareImages(render::readPng(a), render::readPng(b), tolerance).fractionDiffering;
 }
 
 void checkBaseline(const std::string& name, const std::vector<std::string>& args) {

@@ -26,7 +26,8 @@ std::string ctheadStream() {
   if (!fs::exists(out)) {
     fs::create_directories(out.parent_path());
     const auto r = gs::test::runGhostspace(
-        {"encode", (gs::test::corpusDir() / "volume/cthead/CThead.nhdr").string(), "-o", out.string()});
+        {"encode", (gs::test::corpusDir() / "volume/cthead/CThead.nhdr").string(), "-o",
+         out.string()});
     REQUIRE(r.exitCode == 0);
   }
   return out.string();
@@ -34,25 +35,35 @@ std::string ctheadStream() {
 
 }  // namespace
 
-TEST_CASE("CThead as QNV at the paper's fractions matches its baselines", "[app][render][splat][corpus]") {
+TEST_CASE("CThead as QNV at the paper's fractions matches its baselines",
+          "[app][render][splat][corpus]") {
   if (!gs::test::haveCorpus("volume/cthead")) return;
   const std::string stream = ctheadStream();
-  for (const auto& [name, fraction] : {std::pair{"cthead_qnv_1_2", 0.012}, std::pair{"cthead_qnv_3_5", 0.035},
-                                       std::pair{"cthead_qnv_9_1", 0.091}}) {
-    SECTION(name) { checkBaseline(name, {"--size", "200x200", "--lod", ctheadLod(fraction), stream}); }
+  for (const auto& [name, fraction] :
+       {std::pair{"cthead_qnv_1_2", 0.012}, std::pair{"cthead_qnv_3_5", 0.035},
+        std::pair{"cthead_qnv_9_1", 0.091}}) {
+    SECTION(name) {
+      checkBaseline(name, {"--size", "200x200", "--lod", ctheadLod(fraction), stream});
+    }
   }
-  SECTION("cthead_qnv_all") { checkBaseline("cthead_qnv_all", {"--size", "200x200", stream}); }
+  SECTION("cthead_qnv_all") {
+    checkBaseline("cthead_qnv_all", {"--size", "200x200", stream});
+  }
 }
 
-TEST_CASE("the top 9.1% of CThead's vectors look like all of them", "[app][render][splat][corpus]") {
+TEST_CASE("the top 9.1% of CThead's vectors look like all of them",
+          "[app][render][splat][corpus]") {
   if (!gs::test::haveCorpus("volume/cthead")) return;
   const std::string stream = ctheadStream();
-  const std::string top = gs::test::snapshot("cthead_top_9_1", {"--size", "200x200", "--lod", ctheadLod(0.091), stream});
+  const std::string top = gs::test::snapshot(
+      "cthead_top_9_1", {"--size", "200x200", "--lod", ctheadLod(0.091), stream});
   const std::string all = gs::test::snapshot("cthead_top_all", {"--size", "200x200", stream});
-  const std::string few = gs::test::snapshot("cthead_top_1_2", {"--size", "200x200", "--lod", ctheadLod(0.012), stream});
+  const std::string few = gs::test::snapshot(
+      "cthead_top_1_2", {"--size", "200x200", "--lod", ctheadLod(0.012), stream});
   const double topVsAll = gs::test::fractionDiffering(top, all);
   const double fewVsAll = gs::test::fractionDiffering(few, all);
-  WARN("CThead 9.1% against 100%: " << topVsAll * 100 << "% of pixels differ; 1.2%: " << fewVsAll * 100);
+  WARN("CThead 9.1% against 100%: " << topVsAll * 100
+                                    << "% of pixels differ; 1.2%: " << fewVsAll * 100);
   CHECK(topVsAll < fewVsAll);  // more vectors, closer to the whole picture
 }
 
@@ -61,8 +72,8 @@ TEST_CASE("a volume snapshots straight from its NRRD file", "[app][render][splat
   const std::string direct = gs::test::snapshot(
       "cthead_direct", {"--size", "200x200", "--lod", ctheadLod(0.091),
                         (gs::test::corpusDir() / "volume/cthead/CThead.nhdr").string()});
-  const std::string viaStream =
-      gs::test::snapshot("cthead_via_stream", {"--size", "200x200", "--lod", ctheadLod(0.091), ctheadStream()});
+  const std::string viaStream = gs::test::snapshot(
+      "cthead_via_stream", {"--size", "200x200", "--lod", ctheadLod(0.091), ctheadStream()});
   CHECK(gs::test::fractionDiffering(direct, viaStream) <= gs::test::kMaxFractionDiffering);
 }
 
@@ -74,17 +85,19 @@ TEST_CASE("the bunny as splats looks like the bunny as polygons", "[app][render]
   // Flat-shaded splats against smooth-shaded polygons: the shapes agree, the shading
   // differs by a few levels over most of the body (docs/rendering-tests.md).
   const std::string polygons = gs::test::snapshot("bunny_polygons", {"--size", "200x200", bunny});
-  const std::string splats = gs::test::snapshot("bunny_splats", {"--size", "200x200", "--mode", "splats", bunny});
+  const std::string splats =
+      gs::test::snapshot("bunny_splats", {"--size", "200x200", "--mode", "splats", bunny});
   const double at16 = gs::test::fractionDiffering(polygons, splats, 16);
   const double at48 = gs::test::fractionDiffering(polygons, splats, 48);
   WARN("bunny splats against polygons: " << at16 * 100 << "% of pixels differ by more than 16/255, "
-                                          << at48 * 100 << "% by more than 48/255");
+                                         << at48 * 100 << "% by more than 48/255");
   CHECK(at48 <= 0.05);
 }
 
 TEST_CASE("a KiCad world as polygons and as splats", "[app][render][splat][corpus]") {
   if (!gs::test::haveCorpus("vrml/kicad")) return;
-  const std::string world = (gs::test::corpusDir() / "vrml/kicad/Capacitor_SMD__CP_Elec_5x3.wrl").string();
+  const std::string world =
+      (gs::test::corpusDir() / "vrml/kicad/Capacitor_SMD__CP_Elec_5x3.wrl").string();
   checkBaseline("kicad_cp_elec_polygons", {"--size", "200x200", "--fit", world});
   checkBaseline("kicad_cp_elec_splats", {"--size", "200x200", "--fit", "--mode", "splats", world});
 }

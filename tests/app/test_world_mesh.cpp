@@ -3,8 +3,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "render/world_triangles.hpp"
 #include "qnv/encoder.hpp"
+#include "render/world_triangles.hpp"
 #include "vrml/parser.hpp"
 
 namespace {

@@ -33,10 +33,10 @@ struct Options {
   std::string snapshotPath;         // --snapshot OUT.png
   int width = 800;                  // --size WxH, pixels
   int height = 600;
-  int frames = 0;  // --frames N: window closes after N frames (0 = never)
-  double lod = 1.0;                 // --lod F: fraction of each QNV stream drawn, (0, 1]
-  std::string mode = "polygons";    // --mode polygons|splats|outlines
-  bool fit = false;                 // --fit: frame the whole scene, not the Viewpoint
+  int frames = 0;                 // --frames N: window closes after N frames (0 = never)
+  double lod = 1.0;               // --lod F: fraction of each QNV stream drawn, (0, 1]
+  std::string mode = "polygons";  // --mode polygons|splats|outlines
+  bool fit = false;               // --fit: frame the whole scene, not the Viewpoint
   EncodeOptions encode;
 };
 

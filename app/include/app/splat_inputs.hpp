@@ -20,7 +20,8 @@ bool isSplatInput(const std::string& path);
 std::string worldTextFor(const std::string& path);
 
 /// The VRML97 text of a world holding one QuantizedNormalVectors node whose url is
-/// `path` (a world named after the file itself uses its file name, which resolves to it) (quotes and backslashes escaped), with EXAMINE navigation.
+/// `path` (a world named after the file itself uses its file name, which resolves to it) (quotes
+/// and backslashes escaped), with EXAMINE navigation.
 std::string splatWorldText(const std::string& path);
 
 /// The application's SplatLoader: a local .qnv file decoded whole, or a mesh or volume

@@ -31,6 +31,8 @@ struct WindowState {
   char openPath[1024] = {};
   float lastAspect = 1.0f;
   std::size_t renderDiagnosticsLogged = 0;  // renderer diagnostics already in the log
+  /// How worlds are drawn: splat loader, level of detail (--lod), mode (--mode).
+  render::SceneRendererOptions rendererOptions;
 
   /// Loads `path` and shows it; a failure is logged (and the log shown), never thrown.
   void open(const std::string& path);
@@ -40,6 +42,10 @@ struct WindowState {
   void resetView();
   /// Frames the whole scene keeping the view direction.
   void fitToScene();
+  /// Draws every world in `mode` (a new renderer for the current world; the view stays).
+  void setMode(render::RenderMode mode);
+  /// Sets the level of detail (fraction of every QNV stream drawn, 0..1).
+  void setLod(double lod);
   /// Jumps to Viewpoint `index` of the current world.
   void jumpToViewpoint(std::size_t index);
   /// Renders the current world (or only the clear colour) into the viewport rectangle

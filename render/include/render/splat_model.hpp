@@ -3,6 +3,7 @@
 // equation (1) so both draw exactly the same splats. Units: world units (metres), radians.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <span>
@@ -88,7 +89,7 @@ struct SplatLight {
 /// splat is seen from either side): rgb * (ambient + sum of |n . L| * light), clamped
 /// to 1. `ambient` is SplatStyle::ambient.
 inline glm::vec3 shadeSplat(const glm::vec3& normal, const glm::vec3& rgb,
-                            std::span<const SplatLight> lights, float ambient = 0.2f) {
+                            std::span<const SplatLight> lights, float ambient) {
   glm::vec3 light(ambient);
   for (const SplatLight& l : lights) light += std::abs(glm::dot(normal, l.direction)) * l.color;
   return glm::min(rgb * light, glm::vec3(1.0f));

@@ -58,7 +58,7 @@ struct ShapeInstance {
 /// One QuantizedNormalVectors node to draw as splats (docs/vrml-extensions.md).
 struct SplatInstance {
   const vrml::Node* node = nullptr;
-  glm::mat4 model{1.0f};                // local to world
+  glm::mat4 model{1.0f};                 // local to world
   const std::string* baseUrl = nullptr;  // the base for its url; never null
 };
 
