@@ -25,7 +25,9 @@ GLuint compile(const char* name, GLenum stage, const char* source) {
     const std::string log = shaderLog(shader);
     glDeleteShader(shader);
     throw std::runtime_error(std::string("cannot compile the ") + name +
-                             (stage == GL_VERTEX_SHADER ? " vertex" : " fragment") +
+                             (stage == GL_VERTEX_SHADER     ? " vertex"
+                              : stage == GL_GEOMETRY_SHADER ? " geometry"
+                                                            : " fragment") +
                              " shader: " + log);
   }
   return shader;
@@ -33,21 +35,26 @@ GLuint compile(const char* name, GLenum stage, const char* source) {
 
 }  // namespace
 
-GLuint buildProgram(const char* name, const char* vertexSource, const char* fragmentSource) {
+GLuint buildProgram(const char* name, const char* vertexSource, const char* fragmentSource,
+                    const char* geometrySource) {
   const GLuint vs = compile(name, GL_VERTEX_SHADER, vertexSource);
-  GLuint fs = 0;
+  GLuint fs = 0, gs = 0;
   try {
     fs = compile(name, GL_FRAGMENT_SHADER, fragmentSource);
+    if (geometrySource != nullptr) gs = compile(name, GL_GEOMETRY_SHADER, geometrySource);
   } catch (...) {
     glDeleteShader(vs);
+    if (fs != 0) glDeleteShader(fs);
     throw;
   }
   const GLuint program = glCreateProgram();
   glAttachShader(program, vs);
   glAttachShader(program, fs);
+  if (gs != 0) glAttachShader(program, gs);
   glLinkProgram(program);
   glDeleteShader(vs);
   glDeleteShader(fs);
+  if (gs != 0) glDeleteShader(gs);
   GLint ok = GL_FALSE;
   glGetProgramiv(program, GL_LINK_STATUS, &ok);
   if (ok != GL_TRUE) {

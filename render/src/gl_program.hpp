@@ -7,9 +7,11 @@
 
 namespace gs::render::detail {
 
-/// Compiles and links a vertex + fragment program. Throws std::runtime_error with the
-/// compiler's log (prefixed by `name`) on failure.
-GLuint buildProgram(const char* name, const char* vertexSource, const char* fragmentSource);
+/// Compiles and links a vertex + fragment program, with a geometry stage when
+/// `geometrySource` is not null. Throws std::runtime_error with the compiler's log
+/// (prefixed by `name`) on failure.
+GLuint buildProgram(const char* name, const char* vertexSource, const char* fragmentSource,
+                    const char* geometrySource = nullptr);
 
 /// Location of uniform `name` in `program` (-1 when the compiler dropped it).
 inline GLint uniform(GLuint program, const char* name) {

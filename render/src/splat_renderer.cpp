@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstddef>
 #include <stdexcept>
 
 #include "gl_program.hpp"
@@ -15,11 +16,10 @@ namespace {
 
 // The splat model of splat_model.hpp in GLSL: keep the two in step.
 const char* const kSplatVertexShader = R"glsl(#version 330 core
-layout(location = 0) in uint a_index;
-uniform samplerBuffer u_vectors;  // two RGBA32F texels per qnv::DecodedVector
+layout(location = 0) in vec4 a_positionMagnitude;
+layout(location = 1) in vec3 a_normal;
+layout(location = 2) in uint a_rgba;
 uniform mat4 u_model;
-uniform mat4 u_view;
-uniform mat4 u_projection;
 uniform mat3 u_normalMatrix;
 uniform int u_surface;
 uniform float u_sigma;
@@ -30,19 +30,19 @@ uniform float u_ambient;
 uniform int u_lightCount;
 uniform vec3 u_lightDirection[8];
 uniform vec3 u_lightColor[8];
-out vec2 v_local;  // patch coordinates in units of the Gaussian's spread
-flat out vec3 v_color;
-flat out float v_peak;
+out vec3 g_center;  // model coordinates
+out vec3 g_tangent;
+out vec3 g_bitangent;
+out float g_spread;
+out float g_peak;
+out vec3 g_color;
 
 void main() {
-  int i = int(a_index) * 2;
-  vec4 a = texelFetch(u_vectors, i);
-  vec4 b = texelFetch(u_vectors, i + 1);
-  uint rgba = floatBitsToUint(b.w);
+  uint rgba = a_rgba;
   vec4 c = vec4(float(rgba & 255u), float((rgba >> 8) & 255u), float((rgba >> 16) & 255u),
                 float(rgba >> 24)) / 255.0;
-  float magnitude = a.w;
-  vec3 n = b.xyz;
+  float magnitude = a_positionMagnitude.w;
+  vec3 n = a_normal;
   float spread;
   float peak;
   if (u_surface == 1) {
@@ -54,21 +54,47 @@ void main() {
     spread = 2.0 * u_sigma * u_voxelSize;
     peak = u_opacityScale * c.a * sqrt(clamp(magnitude / u_magnitudeMax, 0.0, 1.0));
   }
-  peak = clamp(peak, 0.0, 1.0);
+  g_peak = clamp(peak, 0.0, 1.0);
+  g_spread = spread;
   vec3 helper = abs(n.z) < 0.9 ? vec3(0.0, 0.0, 1.0) : vec3(1.0, 0.0, 0.0);
-  vec3 t = normalize(cross(helper, n));
-  vec3 bt = cross(n, t);
-  vec2 corner = vec2((gl_VertexID & 1) == 0 ? -3.0 : 3.0, (gl_VertexID & 2) == 0 ? -3.0 : 3.0);
-  v_local = corner;
-  vec3 p = a.xyz + (corner.x * t + corner.y * bt) * spread;
-  gl_Position = u_projection * u_view * u_model * vec4(p, 1.0);
+  g_tangent = normalize(cross(helper, n));
+  g_bitangent = cross(n, g_tangent);
+  g_center = a_positionMagnitude.xyz;
   vec3 wn = normalize(u_normalMatrix * n);
   vec3 light = vec3(u_ambient);
   for (int k = 0; k < u_lightCount; ++k)
     light += abs(dot(wn, u_lightDirection[k])) * u_lightColor[k];
-  v_color = min(c.rgb * light, vec3(1.0));
-  v_peak = peak;
-  if (!(peak > 0.0) || !(spread > 0.0)) gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // culled
+  g_color = min(c.rgb * light, vec3(1.0));
+}
+)glsl";
+
+// Expands each point into the square patch of its splat.
+const char* const kSplatGeometryShader = R"glsl(#version 330 core
+layout(points) in;
+layout(triangle_strip, max_vertices = 4) out;
+uniform mat4 u_modelViewProjection;
+in vec3 g_center[];
+in vec3 g_tangent[];
+in vec3 g_bitangent[];
+in float g_spread[];
+in float g_peak[];
+in vec3 g_color[];
+out vec2 v_local;  // patch coordinates in units of the Gaussian's spread
+flat out vec3 v_color;
+flat out float v_peak;
+
+void main() {
+  if (!(g_peak[0] > 0.0) || !(g_spread[0] > 0.0)) return;
+  for (int i = 0; i < 4; ++i) {
+    vec2 corner = vec2((i & 1) == 0 ? -3.0 : 3.0, (i & 2) == 0 ? -3.0 : 3.0);
+    vec3 p = g_center[0] + (corner.x * g_tangent[0] + corner.y * g_bitangent[0]) * g_spread[0];
+    gl_Position = u_modelViewProjection * vec4(p, 1.0);
+    v_local = corner;
+    v_color = g_color[0];
+    v_peak = g_peak[0];
+    EmitVertex();
+  }
+  EndPrimitive();
 }
 )glsl";
 
@@ -113,11 +139,11 @@ void SplatSet::computeBounds() {
 
 struct SplatRenderer::Gpu {
   GLuint program = 0, layerProgram = 0;
-  GLuint vao = 0, orderBuffer = 0, vectorBuffer = 0, vectorTexture = 0;
+  GLuint vao = 0, orderBuffer = 0, vectorBuffer = 0;
   GLuint layerFbo = 0, layerTexture = 0;
   int layerWidth = 0, layerHeight = 0;
   struct {
-    GLint vectors, model, view, projection, normalMatrix, surface, sigma, opacityScale, voxelSize,
+    GLint model, modelViewProjection, normalMatrix, surface, sigma, opacityScale, voxelSize,
         magnitudeMax, ambient, lightCount, lightDirection, lightColor;
   } u{};
   const qnv::DecodedVector* uploadedData = nullptr;
@@ -130,12 +156,11 @@ struct SplatRenderer::Gpu {
   std::vector<std::uint32_t> order;
 
   void create() {
-    program = detail::buildProgram("splat", kSplatVertexShader, kSplatFragmentShader);
+    program = detail::buildProgram("splat", kSplatVertexShader, kSplatFragmentShader,
+                                   kSplatGeometryShader);
     layerProgram = detail::buildProgram("splat layer", kLayerVertexShader, kLayerFragmentShader);
-    u.vectors = detail::uniform(program, "u_vectors");
     u.model = detail::uniform(program, "u_model");
-    u.view = detail::uniform(program, "u_view");
-    u.projection = detail::uniform(program, "u_projection");
+    u.modelViewProjection = detail::uniform(program, "u_modelViewProjection");
     u.normalMatrix = detail::uniform(program, "u_normalMatrix");
     u.surface = detail::uniform(program, "u_surface");
     u.sigma = detail::uniform(program, "u_sigma");
@@ -149,12 +174,20 @@ struct SplatRenderer::Gpu {
     glGenVertexArrays(1, &vao);
     glGenBuffers(1, &orderBuffer);
     glGenBuffers(1, &vectorBuffer);
-    glGenTextures(1, &vectorTexture);
+    // One point per vector (attributes straight from qnv::DecodedVector), drawn in depth
+    // order through an index buffer; the geometry shader makes the patch.
     glBindVertexArray(vao);
-    glBindBuffer(GL_ARRAY_BUFFER, orderBuffer);
+    glBindBuffer(GL_ARRAY_BUFFER, vectorBuffer);
+    constexpr GLsizei kStride = sizeof(qnv::DecodedVector);
     glEnableVertexAttribArray(0);
-    glVertexAttribIPointer(0, 1, GL_UNSIGNED_INT, 0, nullptr);
-    glVertexAttribDivisor(0, 1);
+    glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, kStride, nullptr);
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, kStride,
+                          reinterpret_cast<const void*>(offsetof(qnv::DecodedVector, normal)));
+    glEnableVertexAttribArray(2);
+    glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, kStride,
+                           reinterpret_cast<const void*>(offsetof(qnv::DecodedVector, rgba)));
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, orderBuffer);  // recorded in the VAO
     glBindVertexArray(0);
   }
 
@@ -164,19 +197,16 @@ struct SplatRenderer::Gpu {
     glDeleteVertexArrays(1, &vao);
     glDeleteBuffers(1, &orderBuffer);
     glDeleteBuffers(1, &vectorBuffer);
-    glDeleteTextures(1, &vectorTexture);
     glDeleteFramebuffers(1, &layerFbo);
     glDeleteTextures(1, &layerTexture);
   }
 
   void upload(const SplatSet& set) {
     if (uploadedData == set.vectors.data() && uploadedSize == set.vectors.size()) return;
-    glBindBuffer(GL_TEXTURE_BUFFER, vectorBuffer);
-    glBufferData(GL_TEXTURE_BUFFER,
+    glBindBuffer(GL_ARRAY_BUFFER, vectorBuffer);
+    glBufferData(GL_ARRAY_BUFFER,
                  static_cast<GLsizeiptr>(set.vectors.size() * sizeof(qnv::DecodedVector)),
                  set.vectors.data(), GL_STATIC_DRAW);
-    glBindTexture(GL_TEXTURE_BUFFER, vectorTexture);
-    glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, vectorBuffer);
     uploadedData = set.vectors.data();
     uploadedSize = set.vectors.size();
     sortedCount = 0;  // force a sort
@@ -236,14 +266,15 @@ void SplatRenderer::draw(const SplatSet& set, std::size_t count, const glm::mat4
     statistics_.sortSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     statistics_.sorted = true;
-    glBindBuffer(GL_ARRAY_BUFFER, g.orderBuffer);
+    glBindVertexArray(g.vao);
     const auto bytes = static_cast<GLsizeiptr>(count * sizeof(std::uint32_t));
     if (g.orderCapacity < count) {
-      glBufferData(GL_ARRAY_BUFFER, bytes, g.order.data(), GL_STREAM_DRAW);
+      glBufferData(GL_ELEMENT_ARRAY_BUFFER, bytes, g.order.data(), GL_STREAM_DRAW);
       g.orderCapacity = count;
     } else {
-      glBufferSubData(GL_ARRAY_BUFFER, 0, bytes, g.order.data());
+      glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, 0, bytes, g.order.data());
     }
+    glBindVertexArray(0);
     g.sortedCount = count;
     g.sortedView = modelView;
     g.sortedBlend = blend;
@@ -255,13 +286,9 @@ void SplatRenderer::draw(const SplatSet& set, std::size_t count, const glm::mat4
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previousFramebuffer);
 
   glUseProgram(g.program);
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_BUFFER, g.vectorTexture);
-  glUniform1i(g.u.vectors, 0);
   glUniformMatrix4fv(g.u.model, 1, GL_FALSE, &model[0][0]);
-  glUniformMatrix4fv(g.u.view, 1, GL_FALSE, &view[0][0]);
-  const glm::mat4 projection = projectionMatrix(camera, aspect);
-  glUniformMatrix4fv(g.u.projection, 1, GL_FALSE, &projection[0][0]);
+  const glm::mat4 modelViewProjection = projectionMatrix(camera, aspect) * modelView;
+  glUniformMatrix4fv(g.u.modelViewProjection, 1, GL_FALSE, &modelViewProjection[0][0]);
   const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(model)));
   glUniformMatrix3fv(g.u.normalMatrix, 1, GL_FALSE, &normalMatrix[0][0]);
   const SplatStyle& s = set.style;
@@ -301,11 +328,12 @@ void SplatRenderer::draw(const SplatSet& set, std::size_t count, const glm::mat4
     glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
   }
   glBindVertexArray(g.vao);
-  glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(count));
+  glDrawElements(GL_POINTS, static_cast<GLsizei>(count), GL_UNSIGNED_INT, nullptr);
   if (blend == SplatBlend::frontToBack) {
     glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(previousFramebuffer));
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
     glUseProgram(g.layerProgram);
+    glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, g.layerTexture);
     glUniform1i(detail::uniform(g.layerProgram, "u_layer"), 0);
     glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
