@@ -1,5 +1,6 @@
 // PROTO and EXTERNPROTO declarations and the expansion of their instances (clauses 4.8
 // and 4.9; annex A.3 protoStatement, externproto).
+#include "vrml/node_table.hpp"
 #include "parser_impl.hpp"
 
 #include <algorithm>
@@ -174,6 +175,18 @@ void Parser::parseExternProto(Scope& scope) {
   int h = 0;
   parseValue(FieldType::MFString, urls, scope, 0, h);
   def->urls = std::move(urls.get<FieldType::MFString>());
+  // "urn:ghostspace:NAME" names one of this browser's own extension nodes
+  // (docs/vrml-extensions.md): use the built-in node, not the fallback PROTO.
+  for (const std::string& url : def->urls) {
+    constexpr std::string_view kUrn = "urn:ghostspace:";
+    if (!startsWithNoCase(url, kUrn)) continue;
+    const auto builtIn = builtInNodeType(std::string_view(url).substr(kUrn.size()));
+    if (builtIn && builtIn->extension) {
+      scope.protos[name] = builtIn;
+      protosDeclared_ = true;
+      return;
+    }
+  }
   resolveExternProto(*def, *type, kw.offset);
   type->proto = def;
   scope.protos[name] = type;
