@@ -101,8 +101,10 @@ TEST_CASE("a KiCad world as polygons and as splats", "[app][render][splat][corpu
   checkBaseline("kicad_cp_elec_polygons", {"--size", "200x200", "--fit", world});
   checkBaseline("kicad_cp_elec_splats", {"--size", "200x200", "--fit", "--mode", "splats", world});
   // Outlines only: the world written outlines-first (section 1.1), drawn without polygons.
-  const fs::path outlined = fs::path(GS_BINARY_DIR) / "render-actual" / "kicad_cp_elec_outlined.wrl";
+  const fs::path outlined =
+      fs::path(GS_BINARY_DIR) / "render-actual" / "kicad_cp_elec_outlined.wrl";
   const auto r = gs::test::runGhostspace({"encode", "--outline", world, "-o", outlined.string()});
   REQUIRE(r.exitCode == 0);
-  checkBaseline("kicad_cp_elec_outlines", {"--size", "200x200", "--fit", "--mode", "outlines", outlined.string()});
+  checkBaseline("kicad_cp_elec_outlines",
+                {"--size", "200x200", "--fit", "--mode", "outlines", outlined.string()});
 }

@@ -16,10 +16,10 @@
 #include "app/mesh_input.hpp"
 #include "app/volume_input.hpp"
 #include "app/world.hpp"
-#include "render/world_triangles.hpp"
 #include "net/file_source.hpp"
 #include "qnv/decoder.hpp"
 #include "qnv/encoder.hpp"
+#include "render/world_triangles.hpp"
 
 #include <glm/geometric.hpp>
 

@@ -64,8 +64,8 @@ Image drawGpu(const SplatSet& set, std::size_t count, std::span<const SplatLight
 TEST_CASE("the OpenGL splat pass matches the CPU reference of equation (1)", "[splat][gpu]") {
   const SplatSet set = shell(3000);
   const SplatLight lights[] = {{glm::normalize(glm::vec3(-0.3f, -0.5f, -1.0f)), glm::vec3(0.8f)}};
-  const Image reference = renderSplatsReference(set.vectors, set.style, lights, camera(), kSize,
-                                                kSize, kBackground);
+  const Image reference =
+      renderSplatsReference(set.vectors, set.style, lights, camera(), kSize, kSize, kBackground);
   const Image gpu = drawGpu(set, set.vectors.size(), lights, SplatBlend::backToFront);
   const ImageDifference d = compareImages(gpu, reference, 8);
   INFO("differing " << d.fractionDiffering << ", mean " << d.meanAbsolute);
@@ -83,8 +83,8 @@ TEST_CASE("the level of detail draws a prefix of the stream", "[splat][gpu]") {
   const SplatSet set = shell(3000);
   const SplatLight lights[] = {{glm::vec3(0, 0, -1), glm::vec3(1.0f)}};
   const Image some = drawGpu(set, 300, lights, SplatBlend::backToFront);
-  const Image reference =
-      renderSplatsReference(set.vectors, set.style, lights, camera(), kSize, kSize, kBackground, 300);
+  const Image reference = renderSplatsReference(set.vectors, set.style, lights, camera(), kSize,
+                                                kSize, kBackground, 300);
   CHECK(compareImages(some, reference, 8).fractionDiffering <= 0.01);
   const Image all = drawGpu(set, set.vectors.size(), lights, SplatBlend::backToFront);
   CHECK(compareImages(some, all, 16).fractionDiffering > 0.05);
@@ -100,12 +100,13 @@ TEST_CASE("a wrong depth order would fail the comparison", "[splat][gpu]") {
   set.computeBounds();
   const SplatLight lights[] = {{glm::vec3(0, 0, -1), glm::vec3(1.0f)}};
   const Image gpu = drawGpu(set, 2, lights, SplatBlend::backToFront);
-  const Image right = renderSplatsReference(set.vectors, set.style, lights, camera(), kSize, kSize, kBackground);
+  const Image right =
+      renderSplatsReference(set.vectors, set.style, lights, camera(), kSize, kSize, kBackground);
   const std::uint32_t wrongOrder[] = {1, 0};  // blue composited as if it were nearest
-  const Image wrong = splatColorsToImage(
-      compositeSplats(set.vectors, wrongOrder, SplatCompositing::frontToBack, set.style, lights,
-                      camera(), kSize, kSize, kBackground),
-      kSize, kSize);
+  const Image wrong =
+      splatColorsToImage(compositeSplats(set.vectors, wrongOrder, SplatCompositing::frontToBack,
+                                         set.style, lights, camera(), kSize, kSize, kBackground),
+                         kSize, kSize);
   CHECK(compareImages(gpu, right, 8).fractionDiffering <= 0.01);
   CHECK(compareImages(gpu, wrong, 8).fractionDiffering > 0.02);
 }

@@ -1,7 +1,7 @@
 // PROTO and EXTERNPROTO declarations and the expansion of their instances (clauses 4.8
 // and 4.9; annex A.3 protoStatement, externproto).
-#include "vrml/node_table.hpp"
 #include "parser_impl.hpp"
+#include "vrml/node_table.hpp"
 
 #include <algorithm>
 
