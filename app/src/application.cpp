@@ -27,12 +27,40 @@ bool parseSize(const std::string& text, int& width, int& height) {
   return parseSide(s, s + x, width) && parseSide(s + x + 1, s + text.size(), height);
 }
 
+bool parseSnapshotAt(const std::string& text, std::uint64_t& bytes, double& seconds) {
+  bytes = 0;
+  seconds = 0.0;
+  if (text.empty()) return false;
+  if (text.back() == 's') {
+    const char* b = text.data();
+    const char* e = b + text.size() - 1;
+    auto [p, ec] = std::from_chars(b, e, seconds);
+    return ec == std::errc() && p == e && seconds > 0.0 && seconds < 1e6;
+  }
+  std::uint64_t scale = 1;
+  std::size_t n = text.size();
+  if (text.back() == 'k' || text.back() == 'K') {
+    scale = 1024;
+    --n;
+  } else if (text.back() == 'M') {
+    scale = 1024 * 1024;
+    --n;
+  }
+  std::uint64_t value = 0;
+  auto [p, ec] = std::from_chars(text.data(), text.data() + n, value);
+  if (ec != std::errc() || p != text.data() + n || value == 0 || value > (UINT64_MAX / scale))
+    return false;
+  bytes = value * scale;
+  return true;
+}
+
 namespace {
 
 constexpr const char* kDescription =
     "GhostSpace " GS_VERSION
     ": an extended VRML97 browser for remote visualization of large 3D data.\n"
-    "Opens VRML97 worlds (.wrl, .wrl.gz, .wrz) in a window, or renders them headless.";
+    "Opens VRML97 worlds (.wrl, .wrl.gz, .wrz) and QNV streams from files or http(s) URLs in a\n"
+    "window, showing them while they arrive, or renders them headless.";
 
 struct Parsed {
   Options options;
@@ -49,6 +77,8 @@ Parsed parseArguments(int argc, char** argv) {
       "  ghostspace world.wrl                          open a window\n"
       "  ghostspace --snapshot out.png --size 640x480 world.wrl\n"
       "  ghostspace info world.wrl                     print what was read\n"
+      "  ghostspace http://host/world.wrl               stream a world into a window\n"
+      "  ghostspace --snapshot part.png --max-rate 1250000 --snapshot-at 2s http://host/head.qnv\n"
       "  ghostspace encode CThead.nhdr --fraction 0.091 -o head.qnv\n"
       "  ghostspace info head.qnv                      header, packets, magnitude histogram");
   std::string size;
@@ -69,9 +99,22 @@ Parsed parseArguments(int argc, char** argv) {
                  "(OutlineGroup outlines only)")
       ->check(CLI::IsMember({"polygons", "splats", "outlines"}));
   cli.add_flag("--fit", o.fit, "Frame the whole scene instead of using the bound Viewpoint");
+  cli.add_option("--max-rate", o.maxRate,
+                 "Deliver at most this many bytes per second per transfer (emulates a slow "
+                 "link; files and URLs alike)")
+      ->type_name("BYTES_PER_S")
+      ->check(CLI::NonNegativeNumber);
+  std::string snapshotAt;
+  cli.add_option("--snapshot-at", snapshotAt,
+                 "With --snapshot: render what arrived after this many bytes (e.g. 200000, "
+                 "512k, 2M) or seconds (e.g. 2.5s) instead of waiting for the whole input")
+      ->type_name("BYTES|Ts");
+  bool noProgressBar = false;
+  cli.add_flag("--no-progress", noProgressBar, "No progress bar on the terminal");
   cli.add_option("INPUT", o.inputs,
-                 "Worlds to open: VRML97 (.wrl, .wrl.gz, .wrz), QNV streams (.qnv), meshes "
-                 "(.ply, .obj, .gltf, .glb) or volumes (.nrrd, .nhdr, .nii, .nii.gz)");
+                 "Worlds to open, files or http(s):// URLs: VRML97 (.wrl, .wrl.gz, .wrz), QNV "
+                 "streams (.qnv), and local meshes (.ply, .obj, .gltf, .glb) or volumes "
+                 "(.nrrd, .nhdr, .nii, .nii.gz)");
 
   CLI::App* info = cli.add_subcommand("info",
                                       "Print what was read from INPUT: node counts, "
@@ -146,6 +189,15 @@ Parsed parseArguments(int argc, char** argv) {
     return r;
   }
   enc.progress = !noProgress;
+  o.progress = !noProgressBar;
+  if (!snapshotAt.empty() && !parseSnapshotAt(snapshotAt, o.snapshotAtBytes, o.snapshotAtSeconds)) {
+    std::fprintf(stderr,
+                 "ghostspace: --snapshot-at: expected a byte count (200000, 512k, 2M) or "
+                 "seconds (2.5s), got '%s'\n",
+                 snapshotAt.c_str());
+    r.exitCode = 2;
+    return r;
+  }
   if (encode->parsed()) {
     o.command = Command::encode;
     o.inputs = {encodeInput};

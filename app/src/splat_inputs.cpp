@@ -73,7 +73,8 @@ std::string worldTextFor(const std::string& path) {
 }
 
 render::SplatLoader splatLoader() {
-  return [](const std::string& url, std::string& error) -> std::shared_ptr<const render::SplatSet> {
+  return [](const std::string& url, const std::string&,
+            std::string& error) -> std::shared_ptr<const render::SplatSet> {
     const std::string path = render::localPathOfUrl(url);
     if (path.empty()) {
       error = "cannot read " + url + ": only local files are supported here";

@@ -54,6 +54,8 @@ void navigate(WindowState& state, int viewportHeight) {
     state.navigator.dolly(-dy / 20.0f);
   }
   if (io.MouseWheel != 0.0f) state.navigator.dolly(io.MouseWheel);
+  if (moved && (io.MouseDown[0] || io.MouseDown[1] || io.MouseDown[2])) state.autoFrame = false;
+  if (io.MouseWheel != 0.0f) state.autoFrame = false;
 }
 
 }  // namespace
@@ -70,6 +72,7 @@ int runWindow(const Options& options) {
   WindowState state;
   state.lastAspect = static_cast<float>(context->width()) / std::max(1, context->height());
   state.rendererOptions = rendererOptions(options);
+  state.session = std::make_unique<StreamingSession>(loaderOptions(options));
   for (const std::string& input : options.inputs) state.open(input);
 
   int frame = 0;
@@ -82,6 +85,7 @@ int runWindow(const Options& options) {
 
     const int width = context->width(), height = context->height();
     const int menuHeight = drawMenuBar(state, static_cast<float>(width) / std::max(1, height));
+    state.update();
     drawPanels(state);
     navigate(state, std::max(1, height - menuHeight));
 

@@ -25,7 +25,7 @@ void drawOpenDialog(WindowState& state) {
     ImGui::End();
     return;
   }
-  ImGui::TextUnformatted("Path of a VRML97 world (.wrl, .wrl.gz, .wrz):");
+  ImGui::TextUnformatted("Path or http(s):// URL of a world (.wrl, .wrl.gz, .wrz, .qnv, ...):");
   const bool entered = ImGui::InputText("##path", state.openPath, sizeof state.openPath,
                                         ImGuiInputTextFlags_EnterReturnsTrue);
   ImGui::SameLine();
@@ -93,6 +93,51 @@ void drawLog(WindowState& state) {
 
 }  // namespace
 
+/// Every stream of the session: state, bytes, vectors, packets lost, rate, error.
+static void drawStreams(WindowState& state) {
+  if (!state.showStreams) return;
+  ImGui::SetNextWindowSize(ImVec2(640, 220), ImGuiCond_FirstUseEver);
+  if (!ImGui::Begin("Streams", &state.showStreams)) {
+    ImGui::End();
+    return;
+  }
+  const auto streams = state.session->loader().progress();
+  if (ImGui::BeginTable("streams", 6, ImGuiTableFlags_Borders | ImGuiTableFlags_Resizable)) {
+    for (const char* h : {"URL", "state", "bytes", "kB/s", "vectors", "lost"})
+      ImGui::TableSetupColumn(h);
+    ImGui::TableHeadersRow();
+    for (const net::StreamProgress& p : streams) {
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(p.url.c_str());
+      if (!p.error.empty() && ImGui::IsItemHovered()) ImGui::SetTooltip("%s", p.error.c_str());
+      ImGui::TableNextColumn();
+      ImGui::Text("%s %.0f%%", net::toString(p.state), p.fraction() * 100.0);
+      ImGui::TableNextColumn();
+      if (p.expectedBytes >= 0)
+        ImGui::Text("%llu / %lld", static_cast<unsigned long long>(p.bytes),
+                    static_cast<long long>(p.expectedBytes));
+      else
+        ImGui::Text("%llu", static_cast<unsigned long long>(p.bytes));
+      ImGui::TableNextColumn();
+      ImGui::Text("%.0f", p.bytesPerSecond / 1e3);
+      ImGui::TableNextColumn();
+      if (p.kind == net::StreamKind::qnv)
+        ImGui::Text("%llu / %llu", static_cast<unsigned long long>(p.vectors),
+                    static_cast<unsigned long long>(p.expectedVectors));
+      else
+        ImGui::Text("%llu nodes", static_cast<unsigned long long>(p.rootNodes));
+      ImGui::TableNextColumn();
+      ImGui::Text("%llu", static_cast<unsigned long long>(p.packetsLost));
+    }
+    ImGui::EndTable();
+  }
+  const net::FetchBudget& budget = state.session->loader().budget();
+  ImGui::Text("%u requests, %.1f MB in all", budget.requests(),
+              static_cast<double>(budget.totalBytes()) / 1e6);
+  ImGui::End();
+}
+
 int drawMenuBar(WindowState& state, float aspect) {
   state.lastAspect = aspect;
   int height = 0;
@@ -135,6 +180,7 @@ int drawMenuBar(WindowState& state, float aspect) {
                            ImGuiSliderFlags_Logarithmic))
       state.setLod(lod);
     ImGui::Separator();
+    ImGui::MenuItem("Streams", nullptr, &state.showStreams);
     ImGui::MenuItem("Log", nullptr, &state.showLog);
     ImGui::EndMenu();
   }
@@ -154,6 +200,20 @@ int drawMenuBar(WindowState& state, float aspect) {
     ImGui::Text("%zu shapes, %zu triangles, %zu splats, %.1f ms", st.shapes, st.triangles,
                 st.splats, 1000.0f / std::max(1.0f, ImGui::GetIO().Framerate));
   }
+  // While anything streams: how far, in one line (the Streams panel has the details).
+  if (!state.session->settled()) {
+    std::uint64_t bytes = 0;
+    double fraction = 0.0, rate = 0.0;
+    const auto streams = state.session->loader().progress();
+    for (const net::StreamProgress& p : streams) {
+      bytes += p.bytes;
+      fraction += p.fraction() / static_cast<double>(streams.size());
+      rate += p.bytesPerSecond;
+    }
+    ImGui::Separator();
+    ImGui::Text("loading %.0f%%, %.1f MB at %.0f kB/s", fraction * 100.0,
+                static_cast<double>(bytes) / 1e6, rate / 1e3);
+  }
   height = static_cast<int>(ImGui::GetWindowSize().y);
   ImGui::EndMainMenuBar();
 
@@ -171,6 +231,7 @@ int drawMenuBar(WindowState& state, float aspect) {
 
 void drawPanels(WindowState& state) {
   drawOpenDialog(state);
+  drawStreams(state);
   drawLog(state);
 }
 

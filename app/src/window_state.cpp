@@ -7,25 +7,44 @@
 namespace gs::app {
 
 void WindowState::open(const std::string& path) {
-  LoadedWorld w = loadWorld(path);
-  for (const auto& d : w.scene->diagnostics.items) {
-    log.push_back({d.severity == vrml::Severity::error, d.format()});
-    if (d.severity == vrml::Severity::error) showLog = true;
+  std::string error;
+  auto scene = session->open(path, error);
+  if (!scene) {
+    log.push_back({true, error});
+    showLog = true;
+    return;
   }
-  log.push_back({false, "opened " + path + " (" + std::to_string(w.bytes) + " bytes, " +
-                            std::to_string(static_cast<int>(w.parseSeconds * 1000)) + " ms)"});
+  log.push_back({false, "opening " + path});
   recent.erase(std::remove(recent.begin(), recent.end(), path), recent.end());
   recent.insert(recent.begin(), path);
   if (recent.size() > 10) recent.resize(10);
+  LoadedWorld w;
+  w.scene = std::const_pointer_cast<vrml::Scene>(scene);
+  w.readable = true;
   worlds.push_back(std::move(w));
   show(worlds.size() - 1);
+}
+
+void WindowState::update() {
+  if (session->pump() && renderer) {
+    renderer->sceneChanged();
+    if (autoFrame) resetView();
+  }
+  std::vector<std::pair<bool, std::string>> messages;
+  session->drainMessages(messages);
+  for (auto& [error, text] : messages) {
+    log.push_back({error, std::move(text)});
+    if (error) showLog = true;
+  }
 }
 
 void WindowState::show(std::size_t index) {
   if (index >= worlds.size()) return;
   current = index;
-  renderer = std::make_unique<render::SceneRenderer>(worlds[index].scene, rendererOptions);
+  renderer = std::make_unique<render::SceneRenderer>(worlds[index].scene,
+                                                     session->rendererOptions(rendererOptions));
   renderDiagnosticsLogged = 0;
+  autoFrame = true;
   resetView();
 }
 
@@ -47,6 +66,7 @@ void WindowState::resetView() {
 
 void WindowState::fitToScene() {
   if (!renderer) return;
+  autoFrame = false;
   const render::Camera fitted = renderer->fitToScene(lastAspect, navigator.camera());
   navigator.setHome(fitted, renderer->bounds().center());
 }
@@ -56,7 +76,8 @@ void WindowState::setMode(render::RenderMode mode) {
   if (!renderer) return;
   const render::Camera camera = navigator.camera();
   renderer.reset();  // its GL objects go while the context is current
-  renderer = std::make_unique<render::SceneRenderer>(worlds[current].scene, rendererOptions);
+  renderer = std::make_unique<render::SceneRenderer>(worlds[current].scene,
+                                                     session->rendererOptions(rendererOptions));
   navigator.setCamera(camera);
 }
 
@@ -67,6 +88,7 @@ void WindowState::setLod(double lod) {
 
 void WindowState::jumpToViewpoint(std::size_t index) {
   if (!renderer || index >= renderer->viewpoints().size()) return;
+  autoFrame = false;
   navigator.setCamera(renderer->viewpointCamera(index));
 }
 

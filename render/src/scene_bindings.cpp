@@ -2,6 +2,7 @@
 // and Inline loading with URL resolution and caching.
 #include "node_access.hpp"
 #include "node_kind.hpp"
+#include "net/transfer.hpp"
 #include "render/traversal.hpp"
 #include "vrml/parser.hpp"
 
@@ -68,6 +69,16 @@ SceneTraversal::SceneTraversal(std::shared_ptr<const vrml::Scene> scene, Travers
     if (!ec) mainUrl_ = absolute.lexically_normal().string();
   }
   findBindables();
+}
+
+void SceneTraversal::sceneChanged() {
+  viewpoints_.clear();
+  navigation_ = NavigationSettings{};
+  background_ = BackgroundSettings{};
+  fog_ = FogSettings{};
+  findBindables();
+  haveWorldBounds_ = false;
+  filledGroups_.clear();
 }
 
 void SceneTraversal::findBindables() {
@@ -150,6 +161,21 @@ const SceneTraversal::InlineScene* SceneTraversal::inlineScene(const vrml::Node&
     entry->url = url;
     vrml::Scene loaded;
     std::string reason;
+    if (!net::mayReference(baseUrl, url, reason)) {
+      failures += (failures.empty() ? "" : "; ") + reason;  // a remote world, a local file
+      continue;
+    }
+    if (options_.inlineSource) {
+      // Progressive: the scene grows in place while it loads (sceneChanged()).
+      entry->scene = options_.inlineSource(url, baseUrl, reason);
+      inlinesByUrl_[url] = entry;
+      if (entry->scene) {
+        result = entry;
+        break;
+      }
+      failures += (failures.empty() ? "" : "; ") + url + ": " + reason;
+      continue;
+    }
     if (options_.inlineLoader) {
       loaded = options_.inlineLoader(url);
     } else {

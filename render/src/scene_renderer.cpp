@@ -216,6 +216,12 @@ const vrml::Bounds& SceneRenderer::bounds() {
   return bounds_;
 }
 
+void SceneRenderer::sceneChanged() {
+  traversal_.sceneChanged();
+  splats_->sceneChanged();
+  haveBounds_ = false;
+}
+
 void SceneRenderer::setLod(double lod) {
   splats_->setLod(lod);
 }

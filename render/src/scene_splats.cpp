@@ -8,7 +8,8 @@ SceneSplats::SceneSplats(std::shared_ptr<const vrml::Scene> scene, SplatLoader l
                          RenderMode mode)
     : scene_(std::move(scene)), loader_(std::move(loader)), lod_(lod), mode_(mode) {
   if (!loader_)
-    loader_ = [](const std::string& url, std::string& error) -> std::shared_ptr<const SplatSet> {
+    loader_ = [](const std::string& url, const std::string&,
+                 std::string& error) -> std::shared_ptr<const SplatSet> {
       const std::string path = localPathOfUrl(url);
       if (path.empty()) {
         error = "cannot read " + url + ": only local files are supported here";
@@ -21,6 +22,12 @@ SceneSplats::SceneSplats(std::shared_ptr<const vrml::Scene> scene, SplatLoader l
 std::shared_ptr<const SplatSet> SceneSplats::setOf(const vrml::Node& node,
                                                    const std::string& baseUrl,
                                                    SceneTraversal& traversal) {
+  return nodeSet(node, baseUrl, traversal).set;
+}
+
+const SceneSplats::NodeSet& SceneSplats::nodeSet(const vrml::Node& node,
+                                                 const std::string& baseUrl,
+                                                 SceneTraversal& traversal) {
   if (auto it = sets_.find(&node); it != sets_.end()) return it->second;
   std::shared_ptr<const SplatSet> set = inlineSplatSet(node);
   if (!set) {
@@ -33,7 +40,7 @@ std::shared_ptr<const SplatSet> SceneSplats::setOf(const vrml::Node& node,
         break;
       }
       std::string error;
-      set = loader_(resolved, error);
+      set = loader_(resolved, baseUrl, error);
       if (set) {
         byUrl_[resolved] = set;
         break;
@@ -44,24 +51,25 @@ std::shared_ptr<const SplatSet> SceneSplats::setOf(const vrml::Node& node,
       traversal.report(vrml::Severity::error, node.location,
                        "QuantizedNormalVectors: no url could be loaded: " + errors);
   }
+  NodeSet entry;
+  entry.set = set;
   if (set) {
     // A mode field overrides the stream's kind (how the vectors are splatted).
     const std::string mode = node.get<vrml::FieldType::SFString>("mode", std::string());
     const float opacity = node.get<vrml::FieldType::SFFloat>("opacityScale", 1.0f);
     if (!mode.empty() || opacity != 1.0f) {
-      auto copy = std::make_shared<SplatSet>(*set);
-      if (mode == "SURFACE") copy->style.kind = qnv::StreamKind::surface;
-      if (mode == "VOLUME") copy->style.kind = qnv::StreamKind::volume;
-      copy->style.opacityScale *= std::max(opacity, 0.0f);
-      set = copy;
+      entry.ownStyle = true;
+      entry.style = set->style;
+      if (mode == "SURFACE") entry.style.kind = qnv::StreamKind::surface;
+      if (mode == "VOLUME") entry.style.kind = qnv::StreamKind::volume;
+      entry.style.opacityScale *= std::max(opacity, 0.0f);
     }
   }
-  sets_[&node] = set;
-  return set;
+  return sets_[&node] = entry;
 }
 
 std::size_t SceneSplats::drawCount(const vrml::Node* node, const SplatSet& set) const {
-  const double size = static_cast<double>(set.vectors.size());
+  const double size = static_cast<double>(set.total());
   double n = size;
   if (node != nullptr) {
     const int count = node->get<vrml::FieldType::SFInt32>("count", -1);
@@ -69,9 +77,11 @@ std::size_t SceneSplats::drawCount(const vrml::Node* node, const SplatSet& set) 
     n = count >= 0 ? std::min<double>(count, size) : std::clamp<double>(fraction, 0.0, 1.0) * size;
   }
   const double wanted = n * std::clamp(lod_, 0.0, 1.0);
-  if (wanted <= 0.0) return 0;
-  return std::clamp<std::size_t>(static_cast<std::size_t>(std::llround(wanted)), 1,
-                                 set.vectors.size());
+  if (wanted <= 0.0 || size <= 0.0) return 0;
+  const auto prefix = std::clamp<std::uint64_t>(static_cast<std::uint64_t>(std::llround(wanted)),
+                                                1, set.total());
+  set.wantedVectors = std::max(set.wantedVectors, prefix);
+  return static_cast<std::size_t>(std::min<std::uint64_t>(prefix, set.vectors.size()));
 }
 
 vrml::Bounds SceneSplats::bounds(SceneTraversal& traversal) {
@@ -101,22 +111,26 @@ std::size_t SceneSplats::draw(const TraversalFrame& frame, SceneTraversal& trave
       lights[lightCount++] = {l.direction, l.color * l.intensity};
   const std::span<const SplatLight> lit(lights, lightCount);
   std::size_t drawn = 0;
-  auto drawSet = [&](const SplatSet& set, std::size_t count, const glm::mat4& model) {
+  auto drawSet = [&](const SplatSet& set, std::size_t count, const glm::mat4& model,
+                     const SplatStyle* style) {
     auto& renderer = renderers_[&set];
     if (!renderer) renderer = std::make_unique<SplatRenderer>();
-    renderer->draw(set, count, model, camera, aspect, lit);
+    renderer->draw(set, count, model, camera, aspect, lit, SplatBlend::backToFront, style);
     drawn += renderer->statistics().splats;
   };
   if (mode_ == RenderMode::splats) {
     if (!worldBuilt_) {
+      if (world_) renderers_.erase(world_.get());  // its address may be reused
       world_ = worldSplatSet(scene_);
       worldBuilt_ = true;
     }
-    if (world_) drawSet(*world_, drawCount(nullptr, *world_), glm::mat4(1.0f));
+    if (world_) drawSet(*world_, drawCount(nullptr, *world_), glm::mat4(1.0f), nullptr);
   }
   for (const SplatInstance& s : frame.splats) {
-    const auto set = setOf(*s.node, *s.baseUrl, traversal);
-    if (set) drawSet(*set, drawCount(s.node, *set), s.model);
+    const NodeSet& entry = nodeSet(*s.node, *s.baseUrl, traversal);
+    if (entry.set)
+      drawSet(*entry.set, drawCount(s.node, *entry.set), s.model,
+              entry.ownStyle ? &entry.style : nullptr);
   }
   return drawn;
 }

@@ -26,8 +26,9 @@ class SceneSplats {
   std::shared_ptr<const SplatSet> setOf(const vrml::Node& node, const std::string& baseUrl,
                                         SceneTraversal& traversal);
   /// The vectors drawn of `set` for `node`: its count field (>= 0) or fraction of the
-  /// set, times the level of detail given to the renderer, rounded; at least 1 of a
-  /// non-empty set when the product is positive.
+  /// set's total() (the whole stream, even while it arrives), times the level of detail
+  /// given to the renderer, rounded, at least 1 when the product is positive; then
+  /// clamped to the vectors present. Records the prefix wanted in set.wantedVectors.
   std::size_t drawCount(const vrml::Node* node, const SplatSet& set) const;
   /// World bounds of every QNV node of the scene (loads them) and, in splats mode, of the
   /// polygon world.
@@ -37,6 +38,8 @@ class SceneSplats {
   std::size_t draw(const TraversalFrame& frame, SceneTraversal& traversal, const Camera& camera,
                    float aspect, bool headlight);
   RenderMode mode() const { return mode_; }
+  /// The scene grew (progressive loading): the splats-mode world set is built again.
+  void sceneChanged() { worldBuilt_ = false; }
   void setLod(double lod) { lod_ = lod; }
   void release();
 
@@ -45,7 +48,16 @@ class SceneSplats {
   SplatLoader loader_;
   double lod_;
   RenderMode mode_;
-  std::unordered_map<const vrml::Node*, std::shared_ptr<const SplatSet>> sets_;
+  /// A node's set and the style it is drawn with (the node's mode and opacityScale over
+  /// the stream's own; the set itself is shared and may still grow).
+  struct NodeSet {
+    std::shared_ptr<const SplatSet> set;
+    SplatStyle style;
+    bool ownStyle = false;
+  };
+  const NodeSet& nodeSet(const vrml::Node& node, const std::string& baseUrl,
+                         SceneTraversal& traversal);
+  std::unordered_map<const vrml::Node*, NodeSet> sets_;
   std::map<std::string, std::shared_ptr<const SplatSet>> byUrl_;
   std::shared_ptr<const SplatSet> world_;
   bool worldBuilt_ = false;

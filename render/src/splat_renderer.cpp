@@ -148,6 +148,7 @@ struct SplatRenderer::Gpu {
   } u{};
   const qnv::DecodedVector* uploadedData = nullptr;
   std::size_t uploadedSize = 0;
+  std::size_t bufferCapacity = 0;  // vectors the GL buffer holds
   std::size_t orderCapacity = 0;
   glm::mat4 sortedView{0.0f};
   std::size_t sortedCount = 0;
@@ -202,13 +203,23 @@ struct SplatRenderer::Gpu {
   }
 
   void upload(const SplatSet& set) {
-    if (uploadedData == set.vectors.data() && uploadedSize == set.vectors.size()) return;
+    const qnv::DecodedVector* data = set.vectors.data();
+    const std::size_t size = set.vectors.size();
+    if (uploadedData == data && uploadedSize == size) return;
+    constexpr std::size_t kBytes = sizeof(qnv::DecodedVector);
     glBindBuffer(GL_ARRAY_BUFFER, vectorBuffer);
-    glBufferData(GL_ARRAY_BUFFER,
-                 static_cast<GLsizeiptr>(set.vectors.size() * sizeof(qnv::DecodedVector)),
-                 set.vectors.data(), GL_STATIC_DRAW);
-    uploadedData = set.vectors.data();
-    uploadedSize = set.vectors.size();
+    if (uploadedData == data && size > uploadedSize && size <= bufferCapacity) {
+      // A growing set (SplatSet): only the new tail goes to the GPU.
+      glBufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(uploadedSize * kBytes),
+                      static_cast<GLsizeiptr>((size - uploadedSize) * kBytes), data + uploadedSize);
+    } else {
+      bufferCapacity = std::max(size, set.vectors.capacity());
+      glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(bufferCapacity * kBytes), nullptr,
+                   GL_STATIC_DRAW);
+      glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(size * kBytes), data);
+    }
+    uploadedData = data;
+    uploadedSize = size;
     sortedCount = 0;  // force a sort
   }
 
@@ -242,7 +253,7 @@ void SplatRenderer::release() {
 
 void SplatRenderer::draw(const SplatSet& set, std::size_t count, const glm::mat4& model,
                          const Camera& camera, float aspect, std::span<const SplatLight> lights,
-                         SplatBlend blend) {
+                         SplatBlend blend, const SplatStyle* style) {
   statistics_ = {};
   count = std::min(count, set.vectors.size());
   if (count == 0) return;
@@ -291,7 +302,7 @@ void SplatRenderer::draw(const SplatSet& set, std::size_t count, const glm::mat4
   glUniformMatrix4fv(g.u.modelViewProjection, 1, GL_FALSE, &modelViewProjection[0][0]);
   const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(model)));
   glUniformMatrix3fv(g.u.normalMatrix, 1, GL_FALSE, &normalMatrix[0][0]);
-  const SplatStyle& s = set.style;
+  const SplatStyle& s = style != nullptr ? *style : set.style;
   glUniform1i(g.u.surface, s.kind == qnv::StreamKind::surface ? 1 : 0);
   glUniform1f(g.u.sigma, s.sigma);
   glUniform1f(g.u.opacityScale, s.opacityScale);

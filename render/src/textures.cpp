@@ -2,6 +2,7 @@
 // repeatS / repeatT wrap modes.
 #include "gpu_resources.hpp"
 #include "node_access.hpp"
+#include "net/transfer.hpp"
 #include "render/image.hpp"
 
 #include <algorithm>
@@ -115,11 +116,15 @@ const GpuTexture& TextureCache::get(const vrml::Node& node, const std::string& b
       std::string bytes, error;
       bool ok = false;
       const std::string path = localPathOfUrl(url);
-      if (!path.empty()) ok = readLocalFile(path, bytes, error);
-      if (!ok && loader)
-        ok = loader(url, bytes, error);
-      else if (!ok && path.empty())
-        error = "only local files can be read without a network loader";
+      if (!net::mayReference(baseUrl, url, error)) {
+        // A world from the network never reads local files.
+      } else {
+        if (!path.empty()) ok = readLocalFile(path, bytes, error);
+        if (!ok && loader)
+          ok = loader(url, bytes, error);
+        else if (!ok && path.empty())
+          error = "only local files can be read without a network loader";
+      }
       if (ok) {
         try {
           int components = 0;

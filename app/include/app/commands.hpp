@@ -2,6 +2,7 @@
 #pragma once
 
 #include "app/options.hpp"
+#include "net/loader.hpp"
 #include "render/scene_renderer.hpp"
 
 #include <string>
@@ -39,5 +40,8 @@ int runWindow(const Options& options);
 /// The renderer options the command line asks for: --lod, --mode, and the application's
 /// splat loader (app/splat_inputs.hpp).
 render::SceneRendererOptions rendererOptions(const Options& options);
+
+/// The loader options the command line asks for: --max-rate, --snapshot-at BYTES.
+net::LoaderOptions loaderOptions(const Options& options);
 
 }  // namespace gs::app

@@ -37,8 +37,17 @@ struct Options {
   double lod = 1.0;               // --lod F: fraction of each QNV stream drawn, (0, 1]
   std::string mode = "polygons";  // --mode polygons|splats|outlines
   bool fit = false;               // --fit: frame the whole scene, not the Viewpoint
+  double maxRate = 0.0;           // --max-rate BYTES_PER_S: emulate a slow link (0: off)
+  /// --snapshot-at BYTES | SECONDSs: render after only part of the input arrived.
+  std::uint64_t snapshotAtBytes = 0;  // 0: not set
+  double snapshotAtSeconds = 0.0;     // 0: not set
+  bool progress = true;               // --no-progress: no progress bar on the terminal
   EncodeOptions encode;
 };
+
+/// Parses --snapshot-at: "123456" (bytes; suffixes k, M for 1024, 1048576) or "2.5s"
+/// (seconds). Returns false when malformed, negative or zero.
+bool parseSnapshotAt(const std::string& text, std::uint64_t& bytes, double& seconds);
 
 /// Parses "WxH" (e.g. "800x600") into pixels; each side 1..16384. Returns false when the
 /// text is malformed or out of range.

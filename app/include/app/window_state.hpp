@@ -2,6 +2,7 @@
 // navigator, the log of diagnostics. The ImGui panels read and change it.
 #pragma once
 
+#include "app/streaming_session.hpp"
 #include "app/world.hpp"
 #include "render/camera.hpp"
 #include "render/scene_renderer.hpp"
@@ -33,9 +34,19 @@ struct WindowState {
   std::size_t renderDiagnosticsLogged = 0;  // renderer diagnostics already in the log
   /// How worlds are drawn: splat loader, level of detail (--lod), mode (--mode).
   render::SceneRendererOptions rendererOptions;
+  /// Streams every world opened (files and URLs) while the window keeps drawing.
+  std::unique_ptr<StreamingSession> session = std::make_unique<StreamingSession>();
+  /// False once the user moved the camera: until then the view is framed again as the
+  /// world arrives.
+  bool autoFrame = true;
+  bool showStreams = false;
 
-  /// Loads `path` and shows it; a failure is logged (and the log shown), never thrown.
+  /// Starts loading `path` (a file or an http(s) URL) and shows it as it arrives; a
+  /// failure is logged (and the log shown), never thrown.
   void open(const std::string& path);
+  /// Once per frame: moves arrived bytes into the worlds and streams, redraws what grew,
+  /// logs messages.
+  void update();
   /// Shows worlds[index]: new renderer, navigator at its bound Viewpoint.
   void show(std::size_t index);
   /// Returns the navigator to the bound Viewpoint of the current world.
@@ -56,7 +67,7 @@ struct WindowState {
 /// Draws the main menu bar (File, View, Viewpoints, Help) and acts on it; returns its
 /// height in pixels. `aspect` is the scene viewport's width / height.
 int drawMenuBar(WindowState& state, float aspect);
-/// Draws the open-file dialog and the log panel when they are shown.
+/// Draws the open-file dialog, the stream panel and the log panel when they are shown.
 void drawPanels(WindowState& state);
 
 }  // namespace gs::app

@@ -79,6 +79,10 @@ class SceneRenderer {
   /// World bounding box of the scene as drawn from the bound Viewpoint (loads Inlines,
   /// tessellates all geometry and loads QNV streams the first time).
   const vrml::Bounds& bounds();
+  /// The scene, an Inline scene or a QNV set grew (progressive loading, see
+  /// SceneTraversal): bindable nodes are found again and the bounds recomputed on the
+  /// next bounds(); tessellations and GPU meshes already made are kept.
+  void sceneChanged();
   /// Changes the level of detail of every QNV stream (SceneRendererOptions::lod).
   void setLod(double lod);
   /// A camera looking along `direction`'s view direction that frames the whole scene in a

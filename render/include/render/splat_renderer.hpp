@@ -23,10 +23,21 @@ namespace gs::render {
 /// One stream's vectors, ready to draw: in stream order (largest first), so the first N
 /// are the level of detail N. Positions and normals are in the coordinates of the node
 /// that shows them (world coordinates for a .qnv opened directly).
+/// A set may grow while its stream arrives (progressive loading): vectors are only
+/// appended (or placed past the end), never changed once present, so a renderer uploads
+/// only the new tail.
 struct SplatSet {
   std::vector<qnv::DecodedVector> vectors;
   SplatStyle style;
   vrml::Bounds bounds;  // of the positions, grown by the largest splat extent
+  /// Vectors in the whole stream while it is still arriving (the header's count); 0 when
+  /// `vectors` is all of it. Levels of detail are fractions of total().
+  std::uint64_t expectedVectors = 0;
+  /// The longest prefix any view asked to draw so far (set while drawing); a progressive
+  /// loader fetches up to it (HTTP range requests).
+  mutable std::uint64_t wantedVectors = 0;
+  /// Vectors of the whole stream: expectedVectors, or vectors.size() when that is 0.
+  std::uint64_t total() const { return expectedVectors > 0 ? expectedVectors : vectors.size(); }
   /// Bounds of `vectors` positions; call after filling vectors.
   void computeBounds();
 };
@@ -58,11 +69,12 @@ class SplatRenderer {
   /// Draws the first `count` vectors of `set` (clamped to its size), placed by `model`
   /// (local to world), seen by `camera` in a viewport of aspect width / height, lit by
   /// `lights` (world directions; at most 8 are used). Depth-tested against what is in the
-  /// framebuffer, without writing depth. The viewport must already be set. Throws
+  /// framebuffer, without writing depth. The viewport must already be set. `style`
+  /// (may be null) replaces set.style (a QNV node's mode and opacityScale). Throws
   /// std::runtime_error when a shader fails to compile.
   void draw(const SplatSet& set, std::size_t count, const glm::mat4& model, const Camera& camera,
             float aspect, std::span<const SplatLight> lights,
-            SplatBlend blend = SplatBlend::backToFront);
+            SplatBlend blend = SplatBlend::backToFront, const SplatStyle* style = nullptr);
 
   const SplatStatistics& statistics() const { return statistics_; }
   /// Frees every GL object (context current).

@@ -15,10 +15,11 @@
 namespace gs::render {
 
 /// Loads the vectors behind a QuantizedNormalVectors url (already resolved against the
-/// world's base URL). Returns null and sets `error` ("head.qnv: not a QNV stream") when
-/// nothing can be shown.
-using SplatLoader =
-    std::function<std::shared_ptr<const SplatSet>(const std::string& url, std::string& error)>;
+/// world's base URL `referrer`, the URL of the content that names it). Returns null and
+/// sets `error` ("head.qnv: not a QNV stream") when nothing can be shown. The set
+/// returned may still grow (progressive loading, see SplatSet).
+using SplatLoader = std::function<std::shared_ptr<const SplatSet>(
+    const std::string& url, const std::string& referrer, std::string& error)>;
 
 /// A local .qnv file decoded whole with qnv::StreamDecoder: damaged packets are skipped
 /// (their vectors are missing), a cut-off file gives the vectors that arrived. Null with

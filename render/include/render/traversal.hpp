@@ -135,6 +135,14 @@ struct TraversalOptions {
   /// (plain paths and file:// URLs) with vrml::loadVrmlFile; other schemes fail with a
   /// diagnostic.
   std::function<vrml::Scene(const std::string& url)> inlineLoader;
+  /// Progressive Inline worlds (wins over inlineLoader): the scene at an already
+  /// resolved `url` named by content from `referrer`, which may still be loading and
+  /// grows in place (call SceneTraversal::sceneChanged() after it grew). Null with
+  /// `error` set when the URL is refused or cannot be loaded.
+  std::function<std::shared_ptr<const vrml::Scene>(const std::string& url,
+                                                   const std::string& referrer,
+                                                   std::string& error)>
+      inlineSource;
   /// Tessellates a geometry node. Empty: vrml::tessellate.
   std::function<vrml::Mesh(const vrml::Node& geometry, vrml::Diagnostics* diag)> tessellator;
   /// Nesting limit for Inline files inlining others.
@@ -143,8 +151,9 @@ struct TraversalOptions {
   RenderMode mode = RenderMode::polygons;
 };
 
-/// Walks one scene. Not thread-safe; the scene must not change while this object lives
-/// (its results are cached per node).
+/// Walks one scene. Not thread-safe. Results are cached per node: the scene (and its
+/// Inline scenes) may only grow by root nodes appended between calls (progressive
+/// loading), each time followed by sceneChanged().
 class SceneTraversal {
  public:
   /// Finds the bindable nodes (first Viewpoint, NavigationInfo, Background, Fog in
@@ -157,6 +166,9 @@ class SceneTraversal {
   const std::shared_ptr<const vrml::Scene>& sharedScene() const { return scene_; }
   /// Every Viewpoint of the main file in depth-first order (the first is bound).
   const std::vector<ViewpointInfo>& viewpoints() const { return viewpoints_; }
+  /// The scene or an Inline scene gained root nodes: finds the bindable nodes again and
+  /// forgets the world bounds (tessellations and loaded Inlines are kept).
+  void sceneChanged();
   const NavigationSettings& navigation() const { return navigation_; }
   const BackgroundSettings& background() const { return background_; }
   const FogSettings& fog() const { return fog_; }

@@ -1,0 +1,80 @@
+// The progressive loader of one session (a window or a snapshot): every world and QNV
+// stream it opens, loaded in parallel on background transfers and consumed when pumped,
+// under shared limits (docs/progressive-loading.md). A URL opened twice is loaded once
+// and serves every caller.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "net/progress.hpp"
+#include "net/streams.hpp"
+#include "net/transfer.hpp"
+
+namespace gs::net {
+
+struct LoaderOptions {
+  /// Bytes per second for each transfer at most (0: unlimited); --max-rate.
+  double maxRate = 0.0;
+  /// Bytes given to parsers and decoders in all, then every stream stops (0: no cap);
+  /// --snapshot-at BYTES.
+  std::uint64_t stopAfterBytes = 0;
+  /// Limits on what content may make the loader fetch: bytes over all transfers, number
+  /// of requests (range requests and resumes count), bytes of one resource.
+  std::uint64_t maxTotalBytes = std::uint64_t{8} << 30;
+  std::uint32_t maxRequests = 4096;
+  std::uint64_t maxResourceBytes = std::uint64_t{4} << 30;
+  double connectTimeout = 10.0;  // seconds
+  double stallTimeout = 20.0;    // seconds
+};
+
+class Loader {
+ public:
+  explicit Loader(LoaderOptions options = {});
+  ~Loader();
+
+  /// The world at `url` (a path, file:// or http(s):// URL already resolved), opened
+  /// when first asked. `referrer` is the URL of the content that references it (empty for
+  /// the user's own input): content from the network may not open local files. Null with
+  /// `error` when refused.
+  std::shared_ptr<WorldStream> world(const std::string& url, const std::string& referrer,
+                                     std::string& error);
+  /// The QNV stream at `url`, as world(). `sink` receives its vectors; it is used only
+  /// by the call that opens the stream.
+  std::shared_ptr<QnvStream> qnv(const std::string& url, const std::string& referrer,
+                                 QnvStream::Sink sink, std::string& error);
+  /// Reads a whole small resource (EXTERNPROTO file, texture) and waits for it: at most
+  /// `timeout` seconds. False with `error` naming the URL when refused or failed.
+  bool fetchWhole(const std::string& url, const std::string& referrer, std::string& bytes,
+                  std::string& error, double timeout = 30.0);
+
+  /// Pumps every stream. Returns true when anything changed (scene grew, vectors or a
+  /// header arrived, a stream ended).
+  bool pump();
+  /// Blocks until bytes may be waiting or `seconds` passed (for loops without a window).
+  void wait(double seconds);
+  /// Whether every stream is settled (nothing arriving without a new request).
+  bool settled() const;
+  /// Every stream in the order opened.
+  std::vector<StreamProgress> progress() const;
+  /// Ends every stream now (StreamState::stopped with `why`).
+  void stopAll(const std::string& why);
+  const LoaderOptions& options() const { return options_; }
+  const FetchBudget& budget() const { return *budget_; }
+
+ private:
+  FetchRequest requestFor(const std::string& url, const std::string& referrer,
+                          std::string& error) const;
+  LoaderOptions options_;
+  std::shared_ptr<FetchBudget> budget_;
+  Allowance allowance_;
+  bool capReached_ = false;
+  std::map<std::string, std::shared_ptr<WorldStream>> worlds_;
+  std::map<std::string, std::shared_ptr<QnvStream>> qnvs_;
+  std::vector<std::string> order_;  // "w:" or "q:" + url, in opening order
+};
+
+}  // namespace gs::net

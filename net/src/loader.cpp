@@ -1,0 +1,133 @@
+#include "net/loader.hpp"
+
+#include <chrono>
+#include <thread>
+
+namespace gs::net {
+
+Loader::Loader(LoaderOptions options)
+    : options_(options),
+      budget_(std::make_shared<FetchBudget>(options.maxTotalBytes, options.maxRequests)) {
+  if (options_.stopAfterBytes > 0) allowance_.remaining = options_.stopAfterBytes;
+}
+
+Loader::~Loader() = default;
+
+FetchRequest Loader::requestFor(const std::string& url, const std::string& referrer,
+                                std::string& error) const {
+  FetchRequest r;
+  r.url = url;
+  if (!referrer.empty() && !mayReference(referrer, url, error)) {
+    r.url.clear();
+    return r;
+  }
+  // Content from the network never reads local files; the user's own input may.
+  r.allowLocal = referrer.empty() || !isHttpUrl(referrer);
+  r.maxBytes = options_.maxResourceBytes;
+  r.connectTimeout = options_.connectTimeout;
+  r.stallTimeout = options_.stallTimeout;
+  r.maxRate = options_.maxRate;
+  r.budget = budget_;
+  return r;
+}
+
+std::shared_ptr<WorldStream> Loader::world(const std::string& url, const std::string& referrer,
+                                           std::string& error) {
+  if (auto it = worlds_.find(url); it != worlds_.end()) return it->second;
+  FetchRequest r = requestFor(url, referrer, error);
+  if (r.url.empty()) return nullptr;
+  vrml::ParseOptions parse;
+  // EXTERNPROTO files are small: fetched whole, under the same rules, as the world
+  // that names them is parsed.
+  parse.loader = [this, url](const std::string& proto, std::string& bytes, std::string& why) {
+    return fetchWhole(proto, url, bytes, why);
+  };
+  auto stream = std::make_shared<WorldStream>(std::move(r), std::move(parse));
+  if (capReached_) stream->stop("stopped: the byte cap was reached before it started");
+  worlds_[url] = stream;
+  order_.push_back("w:" + url);
+  return stream;
+}
+
+std::shared_ptr<QnvStream> Loader::qnv(const std::string& url, const std::string& referrer,
+                                       QnvStream::Sink sink, std::string& error) {
+  if (auto it = qnvs_.find(url); it != qnvs_.end()) return it->second;
+  FetchRequest r = requestFor(url, referrer, error);
+  if (r.url.empty()) return nullptr;
+  auto stream = std::make_shared<QnvStream>(std::move(r), std::move(sink));
+  if (capReached_) stream->stop("stopped: the byte cap was reached before it started");
+  qnvs_[url] = stream;
+  order_.push_back("q:" + url);
+  return stream;
+}
+
+bool Loader::fetchWhole(const std::string& url, const std::string& referrer, std::string& bytes,
+                        std::string& error, double timeout) {
+  FetchRequest r = requestFor(url, referrer, error);
+  if (r.url.empty()) return false;
+  r.maxBytes = std::min<std::uint64_t>(r.maxBytes, std::uint64_t{256} << 20);
+  auto transfer = startTransfer(std::move(r));
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout);
+  bytes.clear();
+  for (;;) {
+    transfer->take(bytes);
+    const TransferStatus s = transfer->status();
+    if (s.finished() && s.received <= bytes.size()) {
+      if (s.state == TransferState::done) return true;
+      error = s.error.empty() ? url + ": cancelled" : s.error;
+      return false;
+    }
+    if (std::chrono::steady_clock::now() > deadline) {
+      transfer->cancel();
+      error = url + ": not complete after " + std::to_string(static_cast<int>(timeout)) + " s";
+      return false;
+    }
+    transfer->wait(0.05);
+  }
+}
+
+bool Loader::pump() {
+  bool changed = false;
+  for (auto& [url, w] : worlds_) changed |= w->pump(allowance_);
+  for (auto& [url, q] : qnvs_) changed |= q->pump(allowance_);
+  if (!capReached_ && options_.stopAfterBytes > 0 && allowance_.remaining == 0) {
+    capReached_ = true;
+    stopAll("stopped after " + std::to_string(options_.stopAfterBytes) + " bytes (--snapshot-at)");
+    changed = true;
+  }
+  return changed;
+}
+
+void Loader::wait(double seconds) {
+  // Transfers deliver on their own threads; a short sleep bounds the latency.
+  std::this_thread::sleep_for(std::chrono::duration<double>(std::min(seconds, 0.01)));
+}
+
+bool Loader::settled() const {
+  for (const auto& [url, w] : worlds_)
+    if (!w->progress().settled()) return false;
+  for (const auto& [url, q] : qnvs_)
+    if (!q->progress().settled()) return false;
+  return true;
+}
+
+std::vector<StreamProgress> Loader::progress() const {
+  std::vector<StreamProgress> out;
+  for (const std::string& key : order_) {
+    const std::string url = key.substr(2);
+    if (key[0] == 'w')
+      out.push_back(worlds_.at(url)->progress());
+    else
+      out.push_back(qnvs_.at(url)->progress());
+  }
+  return out;
+}
+
+void Loader::stopAll(const std::string& why) {
+  for (auto& [url, w] : worlds_)
+    if (!w->progress().settled()) w->stop(why);
+  for (auto& [url, q] : qnvs_)
+    if (!q->progress().settled() || q->progress().state == StreamState::idle) q->stop(why);
+}
+
+}  // namespace gs::net

@@ -1,0 +1,63 @@
+#include "net/streams.hpp"
+
+#include <algorithm>
+
+namespace gs::net {
+
+WorldStream::WorldStream(FetchRequest request, vrml::ParseOptions parse)
+    : parser_(std::make_shared<vrml::StreamingParser>(request.url, std::move(parse))) {
+  progress_.url = request.url;
+  progress_.kind = StreamKind::world;
+  scene_ = std::shared_ptr<const vrml::Scene>(parser_, &parser_->scene());
+  transfer_ = startTransfer(std::move(request));
+}
+
+WorldStream::~WorldStream() = default;
+
+bool WorldStream::pump(Allowance& allowance) {
+  if (!transfer_) return false;
+  chunk_.clear();
+  transfer_->take(chunk_);
+  bool changed = false;
+  if (!chunk_.empty()) {
+    const std::size_t n =
+        static_cast<std::size_t>(std::min<std::uint64_t>(chunk_.size(), allowance.remaining));
+    allowance.remaining -= n;
+    progress_.bytes += n;
+    progress_.state = StreamState::loading;
+    changed = parser_->feed(std::string_view(chunk_).substr(0, n)) > 0;
+    progress_.rootNodes = parser_->scene().rootNodes.size();
+    if (n < chunk_.size() || allowance.remaining == 0) {
+      stop("stopped after " + std::to_string(progress_.bytes) + " bytes");
+      return true;
+    }
+  }
+  const TransferStatus s = transfer_->status();
+  progress_.bytesPerSecond = s.bytesPerSecond;
+  progress_.expectedBytes = s.resourceSize >= 0 ? s.resourceSize : s.expected;
+  if (!s.finished() || s.received > progress_.bytes) return changed;  // more to take
+  if (s.state == TransferState::done) {
+    end(StreamState::done, {});
+  } else if (s.state == TransferState::cancelled) {
+    end(StreamState::stopped, progress_.url + ": cancelled");
+  } else {
+    end(StreamState::failed, s.error);
+  }
+  return true;
+}
+
+void WorldStream::stop(const std::string& why) {
+  if (!transfer_) return;
+  transfer_->cancel();
+  end(StreamState::stopped, why);
+}
+
+void WorldStream::end(StreamState state, const std::string& message) {
+  transfer_.reset();
+  parser_->finish();
+  progress_.rootNodes = parser_->scene().rootNodes.size();
+  progress_.state = state;
+  progress_.error = message;
+}
+
+}  // namespace gs::net

@@ -1,0 +1,56 @@
+// The VRML97 reader for bytes that arrive over time (Nagasawa, "Beyond VRML", section
+// 1.2: a world written outlines first is shown while it loads). Each completed top-level
+// statement (node, PROTO, EXTERNPROTO, ROUTE) joins the scene as soon as its last byte
+// has arrived, so the scene grows in file order; the result after finish() is the Scene
+// that parseVrml() gives for the whole text.
+#pragma once
+
+#include "vrml/parser.hpp"
+#include "vrml/scene.hpp"
+
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <string_view>
+
+namespace gs::vrml {
+
+class StreamingParser {
+ public:
+  /// `url` names the text in diagnostics and is the base of relative URLs, as for
+  /// parseVrml(). `options` (limits, EXTERNPROTO loader, onRootNode) as parseVrml().
+  explicit StreamingParser(std::string url, ParseOptions options = {});
+  ~StreamingParser();
+  StreamingParser(const StreamingParser&) = delete;
+  StreamingParser& operator=(const StreamingParser&) = delete;
+
+  /// Adds the next bytes of the file (any split, gzip compressed or not: the first two
+  /// bytes decide) and parses every top-level statement now complete. Cost: amortized
+  /// linear in the input; a statement cut by the end of the bytes so far is retried only
+  /// once the unparsed text has grown by half. Returns the number of root nodes added.
+  /// Never throws for bad content (diagnostics as parseVrml; a corrupt gzip stream or a
+  /// fatal syntax error ends parsing and later bytes are ignored).
+  std::size_t feed(std::string_view bytes);
+
+  /// No more bytes will come: parses what is left. A last statement cut short is
+  /// reported as parseVrml() reports the same truncated text ("unexpected end of
+  /// file ..."). Returns the number of root nodes added.
+  std::size_t finish();
+
+  /// The scene parsed so far. Valid until the next feed() or finish().
+  const Scene& scene() const;
+  /// Moves the scene out (after finish()).
+  Scene takeScene();
+
+  /// Text bytes (after gunzip) received / consumed by complete statements.
+  std::size_t textBytes() const;
+  std::size_t parsedBytes() const;
+  /// Whether parsing stopped for good (finish() called, or a fatal error).
+  bool done() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace gs::vrml
