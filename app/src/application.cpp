@@ -109,6 +109,10 @@ Parsed parseArguments(int argc, char** argv) {
                  "With --snapshot: render what arrived after this many bytes (e.g. 200000, "
                  "512k, 2M) or seconds (e.g. 2.5s) instead of waiting for the whole input")
       ->type_name("BYTES|Ts");
+  cli.add_option("--stall-timeout", o.stallTimeout,
+                 "Seconds without a byte after which a transfer fails (default 20)")
+      ->type_name("S")
+      ->check(CLI::Range(0.05, 3600.0));
   bool noProgressBar = false;
   cli.add_flag("--no-progress", noProgressBar, "No progress bar on the terminal");
   cli.add_option("INPUT", o.inputs,
@@ -160,6 +164,12 @@ Parsed parseArguments(int argc, char** argv) {
   encode->add_flag("--outline", enc.outline,
                    "Write OUT as a VRML97 world of outline groups, outlines first "
                    "(docs/vrml-extensions.md) instead of a .qnv stream");
+  encode
+      ->add_option("--max-angle", enc.maxAngle,
+                   "With --outline: largest angle in degrees between a triangle's normal and "
+                   "its group's (default 30)")
+      ->type_name("DEG")
+      ->check(CLI::Range(0.0, 180.0));
   bool noProgress = false;
   encode->add_flag("--no-progress", noProgress, "No progress bar on the terminal");
 

@@ -317,11 +317,10 @@ std::string writeOutlineWorld(std::shared_ptr<const vrml::Scene> scene,
       << (solid ? "TRUE" : "FALSE") << "\n    coord Coordinate { ";
     w.vectors("point", g.positions, "      ");
     w << " }\n";
-    if (needsNormals(g)) {
-      w << "    normal Normal { ";
-      w.vectors("vector", g.normals, "      ", true);
-      w << " }\n";
-    }
+    // A smooth-shaded source: the browser smooths the group's own faces (creaseAngle
+    // 0.5 rad, as KiCad and most exporters write) instead of a Normal node per vertex,
+    // which would double the bytes of the group.
+    if (needsNormals(g)) w << "    creaseAngle 0.5\n";
     w << "    coordIndex [";
     for (std::size_t i = 0; i < g.indices.size(); i += 3) {
       w << ((i / 3) % 8 == 0 ? "\n      " : " ");
@@ -346,7 +345,9 @@ int runEncodeOutline(const Options& options) {
   OutlineWorldSummary sum;
   std::string text;
   try {
-    text = writeOutlineWorld(world.scene, qnv::OutlineOptions{}, &sum);
+    qnv::OutlineOptions grouping;
+    grouping.maxAngle = static_cast<float>(options.encode.maxAngle * 3.14159265358979 / 180.0);
+    text = writeOutlineWorld(world.scene, grouping, &sum);
   } catch (const qnv::InputError& error) {
     std::fprintf(stderr, "ghostspace: %s\n", error.what());
     return 1;

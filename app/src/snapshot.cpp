@@ -10,6 +10,7 @@
 #include "render/image.hpp"
 #include "render/scene_renderer.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 
@@ -29,6 +30,8 @@ net::LoaderOptions loaderOptions(const Options& options) {
   net::LoaderOptions o;
   o.maxRate = options.maxRate;
   o.stopAfterBytes = options.snapshotAtBytes;
+  o.stallTimeout = options.stallTimeout;
+  o.connectTimeout = std::min(10.0, std::max(1.0, options.stallTimeout));
   return o;
 }
 

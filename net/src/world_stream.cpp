@@ -54,7 +54,8 @@ void WorldStream::stop(const std::string& why) {
 
 void WorldStream::end(StreamState state, const std::string& message) {
   transfer_.reset();
-  parser_->finish();
+  // A transfer that failed before its first byte has no text to diagnose.
+  if (progress_.bytes > 0 || state == StreamState::done) parser_->finish();
   progress_.rootNodes = parser_->scene().rootNodes.size();
   progress_.state = state;
   progress_.error = message;

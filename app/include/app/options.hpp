@@ -25,6 +25,7 @@ struct EncodeOptions {
   std::uint64_t rawHeaderBytes = 0;  // --raw-skip BYTES
   bool progress = true;              // --no-progress turns the terminal bar off
   bool outline = false;              // --outline: OUT is a .wrl of outline groups
+  double maxAngle = 30.0;            // --max-angle DEG: outline groups' normal spread
 };
 
 struct Options {
@@ -42,6 +43,7 @@ struct Options {
   std::uint64_t snapshotAtBytes = 0;  // 0: not set
   double snapshotAtSeconds = 0.0;     // 0: not set
   bool progress = true;               // --no-progress: no progress bar on the terminal
+  double stallTimeout = 20.0;         // --stall-timeout S: a transfer silent this long fails
   EncodeOptions encode;
 };
 

@@ -41,7 +41,7 @@ struct OutlineWorldSummary {
 ///   its first use, which is in this outline section, and USE'd after;
 /// - one `OutlineGroup { groupId k children [ Shape { ... IndexedFaceSet } ] }` per group
 ///   in the same order, with the group's own coordinates (`solid` as the source
-///   geometry's; `ccw` TRUE; a Normal node when the source was smooth-shaded).
+///   geometry's; `ccw` TRUE; `creaseAngle 0.5` when the source was smooth-shaded).
 ///
 /// Appearance keeps the Material's diffuseColor, specularColor, emissiveColor,
 /// ambientIntensity, shininess and transparency (a Shape without Material stays unlit).

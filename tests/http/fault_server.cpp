@@ -1,0 +1,251 @@
+#include "http/fault_server.hpp"
+
+#include <arpa/inet.h>
+#include <linux/sockios.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/ioctl.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <cstdio>
+#include <limits>
+
+namespace gs::test {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr std::size_t kNoCut = std::numeric_limits<std::size_t>::max();
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+}  // namespace
+
+FaultServer::FaultServer(std::string body, Behaviour behaviour, std::size_t cutAfter)
+    : body_(std::move(body)), behaviour_(behaviour), cutAfter_(cutAfter) {
+  const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  if (fd < 0) return;
+  const int one = 1;
+  ::setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  socklen_t len = sizeof a;
+  if (::bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0 || ::listen(fd, 16) != 0 ||
+      ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &len) != 0) {
+    ::close(fd);
+    return;
+  }
+  listenFd_ = fd;
+  port_ = ntohs(a.sin_port);
+  thread_ = std::thread([this] { loop(); });
+}
+
+FaultServer::~FaultServer() {
+  stop_ = true;
+  if (thread_.joinable()) thread_.join();
+  if (listenFd_ >= 0) ::close(listenFd_);
+}
+
+std::string FaultServer::url(const std::string& path) const {
+  return "http://127.0.0.1:" + std::to_string(port_) + path;
+}
+
+std::vector<FaultServer::Request> FaultServer::requests() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return requests_;
+}
+
+void FaultServer::loop() {
+  int connection = 0;
+  while (!stop_) {
+    pollfd p{listenFd_, POLLIN, 0};
+    if (::poll(&p, 1, 20) <= 0) continue;
+    const int fd = ::accept4(listenFd_, nullptr, nullptr, SOCK_CLOEXEC);
+    if (fd < 0) continue;
+    handle(fd, connection++);
+  }
+}
+
+bool FaultServer::readRequest(int fd, Request& request) {
+  std::string in;
+  const auto deadline = Clock::now() + std::chrono::seconds(5);
+  while (in.find("\r\n\r\n") == std::string::npos) {
+    if (stop_ || Clock::now() > deadline || in.size() > 65536) return false;
+    pollfd p{fd, POLLIN, 0};
+    if (::poll(&p, 1, 20) <= 0) continue;
+    char buf[4096];
+    const ssize_t n = ::recv(fd, buf, sizeof buf, 0);
+    if (n <= 0) return false;
+    in.append(buf, static_cast<std::size_t>(n));
+  }
+  // "GET /path HTTP/1.1", then headers.
+  const auto sp1 = in.find(' '), sp2 = in.find(' ', sp1 + 1);
+  if (sp1 == std::string::npos || sp2 == std::string::npos) return false;
+  request.path = in.substr(sp1 + 1, sp2 - sp1 - 1);
+  std::size_t pos = in.find("\r\n");
+  while (pos != std::string::npos && pos + 2 < in.size()) {
+    const auto next = in.find("\r\n", pos + 2);
+    const std::string line = in.substr(pos + 2, next - pos - 2);
+    const auto colon = line.find(':');
+    if (colon != std::string::npos && lower(line.substr(0, colon)) == "range") {
+      const auto b = line.find_first_not_of(' ', colon + 1);
+      request.range = b == std::string::npos ? "" : line.substr(b);
+    }
+    pos = next;
+  }
+  std::lock_guard<std::mutex> lock(mutex_);
+  requests_.push_back(request);
+  return true;
+}
+
+bool FaultServer::sendAll(int fd, const std::string& bytes) {
+  std::size_t sent = 0;
+  while (sent < bytes.size()) {
+    if (stop_) return false;
+    pollfd p{fd, POLLOUT, 0};
+    if (::poll(&p, 1, 20) <= 0) continue;
+    const ssize_t n = ::send(fd, bytes.data() + sent, bytes.size() - sent, MSG_NOSIGNAL);
+    if (n <= 0) return false;
+    sent += static_cast<std::size_t>(n);
+  }
+  return true;
+}
+
+void FaultServer::respond(int fd, int status, const std::string& reason, const std::string& headers,
+                          const std::string& content) {
+  sendAll(fd,
+          "HTTP/1.1 " + std::to_string(status) + " " + reason +
+              "\r\nContent-Type: text/plain\r\nContent-Length: " + std::to_string(content.size()) +
+              "\r\nConnection: close\r\n" + headers + "\r\n" + content);
+  closeNormally(fd);
+}
+
+// 200 or 206 (honouring "bytes=a-" and "bytes=a-b"); after `cut` body bytes the connection
+// is reset instead of finished.
+void FaultServer::serve(int fd, const Request& request, bool honourRange, std::size_t cut) {
+  std::size_t first = 0, last = body_.empty() ? 0 : body_.size() - 1;
+  bool ranged = false;
+  if (honourRange && !request.range.empty()) {
+    unsigned long long a = 0, b = 0;
+    const int n = std::sscanf(request.range.c_str(), "bytes=%llu-%llu", &a, &b);
+    if (n >= 1) {
+      if (a >= body_.size()) {
+        respond(fd, 416, "Range Not Satisfiable",
+                "Content-Range: bytes */" + std::to_string(body_.size()) + "\r\n", "");
+        return;
+      }
+      ranged = true;
+      first = static_cast<std::size_t>(a);
+      if (n == 2) last = std::min(last, static_cast<std::size_t>(b));
+    }
+  }
+  const std::string content = body_.empty() ? "" : body_.substr(first, last - first + 1);
+  std::string head = ranged ? "HTTP/1.1 206 Partial Content\r\n" : "HTTP/1.1 200 OK\r\n";
+  head += "Content-Type: application/octet-stream\r\nContent-Length: " +
+          std::to_string(content.size()) + "\r\nConnection: close\r\n";
+  if (ranged)
+    head += "Content-Range: bytes " + std::to_string(first) + "-" + std::to_string(last) + "/" +
+            std::to_string(body_.size()) + "\r\n";
+  head += "\r\n";
+  if (cut == kNoCut) {
+    sendAll(fd, head + content);
+    closeNormally(fd);
+    return;
+  }
+  sendAll(fd, head + content.substr(0, std::min(cut, content.size())));
+  closeWithReset(fd);
+}
+
+void FaultServer::handle(int fd, int connection) {
+  Request request;
+  if (!readRequest(fd, request)) {
+    ::close(fd);
+    return;
+  }
+  switch (behaviour_) {
+    case Behaviour::serve:
+      serve(fd, request, true, kNoCut);
+      break;
+    case Behaviour::ignoreRanges:
+      serve(fd, request, false, kNoCut);
+      break;
+    case Behaviour::resetMidway:
+      serve(fd, request, true, cutAfter_);
+      break;
+    case Behaviour::resetOnceThenServe:
+      serve(fd, request, true, connection == 0 ? cutAfter_ : kNoCut);
+      break;
+    case Behaviour::stall: {
+      const std::string head =
+          "HTTP/1.1 200 OK\r\nContent-Type: application/octet-stream\r\n"
+          "Content-Length: " +
+          std::to_string(body_.size()) + "\r\nConnection: close\r\n\r\n";
+      sendAll(fd, head + body_.substr(0, std::min(cutAfter_, body_.size())));
+      while (!stop_) {
+        pollfd p{fd, POLLIN, 0};
+        ::poll(&p, 1, 20);  // the client may close meanwhile: wait for the end anyway
+      }
+      ::close(fd);
+      break;
+    }
+    case Behaviour::notFound:
+      respond(fd, 404, "Not Found", "", "not found\n");
+      break;
+    case Behaviour::serverError:
+      respond(fd, 500, "Internal Server Error", "", "server error\n");
+      break;
+    case Behaviour::wrongLengthShort:
+      sendAll(fd,
+              "HTTP/1.1 200 OK\r\nContent-Type: application/octet-stream\r\n"
+              "Content-Length: " +
+                  std::to_string(body_.size() + kMissing) + "\r\nConnection: close\r\n\r\n" +
+                  body_);
+      closeNormally(fd);
+      break;
+    case Behaviour::redirect:
+      if (request.path == "/target")
+        serve(fd, request, true, kNoCut);
+      else
+        respond(fd, 302, "Found", "Location: " + url("/target") + "\r\n", "moved\n");
+      break;
+    case Behaviour::redirectToFile:
+      respond(fd, 302, "Found", "Location: file:///etc/passwd\r\n", "moved\n");
+      break;
+  }
+}
+
+// FIN, then wait (briefly) for the client to close, so that no unread byte turns the
+// close into a reset.
+void FaultServer::closeNormally(int fd) {
+  ::shutdown(fd, SHUT_WR);
+  const auto deadline = Clock::now() + std::chrono::milliseconds(500);
+  while (!stop_ && Clock::now() < deadline) {
+    pollfd p{fd, POLLIN, 0};
+    if (::poll(&p, 1, 20) <= 0) continue;
+    char buf[1024];
+    if (::recv(fd, buf, sizeof buf, 0) <= 0) break;
+  }
+  ::close(fd);
+}
+
+// Waits until the client acknowledged every byte sent (so the reset cannot discard them),
+// then closes with SO_LINGER 0: the kernel sends RST instead of FIN.
+void FaultServer::closeWithReset(int fd) {
+  const auto deadline = Clock::now() + std::chrono::seconds(2);
+  int queued = 1;
+  while (!stop_ && Clock::now() < deadline && ::ioctl(fd, SIOCOUTQ, &queued) == 0 && queued > 0)
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  const linger l{1, 0};
+  ::setsockopt(fd, SOL_SOCKET, SO_LINGER, &l, sizeof l);
+  ::close(fd);
+}
+
+}  // namespace gs::test
