@@ -12,6 +12,7 @@
 // file and HTTP transfers alike. "Close" means at most 5% of pixels differ by more than
 // 48/255 in a channel from the final image, seen by the same camera (render::compareImages).
 #include <chrono>
+#include <cstdlib>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -66,13 +67,20 @@ struct Frame {
   render::Image image;
 };
 
+bool blank(const render::Image& image) {
+  for (std::size_t i = 4; i < image.rgba.size(); ++i)
+    if (image.rgba[i] != image.rgba[i % 4]) return false;
+  return true;
+}
+
 /// Streams `input` at `rate` bytes/s into an off-screen renderer, drawing with `camera`
 /// (null: the final camera is not known yet; the scene is framed as it stands) at most
 /// 5 times a second. Returns every frame drawn; the last one is the complete picture.
 std::vector<Frame> stream(const std::string& input, double rate, const render::Camera* camera,
-                          double lod, render::Camera* finalCamera) {
+                          double lod, render::Camera* finalCamera, std::uint64_t stopAfter = 0) {
   net::LoaderOptions lo;
   lo.maxRate = rate;
+  lo.stopAfterBytes = stopAfter;
   app::StreamingSession session(lo);
   std::string error;
   auto scene = session.open(input, error);
@@ -101,7 +109,10 @@ std::vector<Frame> stream(const std::string& input, double rate, const render::C
     }
     const bool settled = session.settled();
     drew = false;
-    if (dirty && (settled || Clock::now() - last > std::chrono::milliseconds(200))) {
+    // Until something shows, draw whenever anything arrived (the first frame's time);
+    // then at most 5 frames a second.
+    const bool showing = !frames.empty() && !blank(frames.back().image);
+    if (dirty && (settled || !showing || Clock::now() - last > std::chrono::milliseconds(200))) {
       renderer.draw(cameraNow(), 0, 0, kWidth, kHeight);
       std::uint64_t bytes = 0;
       for (const auto& p : session.loader().progress()) bytes += p.bytes;
@@ -118,12 +129,6 @@ std::vector<Frame> stream(const std::string& input, double rate, const render::C
   return frames;
 }
 
-bool blank(const render::Image& image) {
-  for (std::size_t i = 4; i < image.rgba.size(); ++i)
-    if (image.rgba[i] != image.rgba[i % 4]) return false;
-  return true;
-}
-
 /// Streams `input` once at full speed for the final picture and camera, then at `rate`,
 /// and prints the times.
 void measure(const char* label, const std::string& input, double rate, double plainBytes,
@@ -136,7 +141,12 @@ void measure(const char* label, const std::string& input, double rate, double pl
   if (frames.empty()) return;
   double first = -1.0, close = -1.0;
   std::uint64_t closeBytes = 0;
+  const bool verbose = std::getenv("GS_BENCH_VERBOSE") != nullptr;
   for (const Frame& f : frames) {
+    if (verbose)
+      std::printf("  %6.2f s %9llu B %s %.3f\n", f.seconds, static_cast<unsigned long long>(f.bytes),
+                  blank(f.image) ? "blank" : "     ",
+                  render::compareImages(f.image, final, kTolerance).fractionDiffering);
     if (first < 0.0 && !blank(f.image)) first = f.seconds;
     if (close < 0.0 &&
         render::compareImages(f.image, final, kTolerance).fractionDiffering <= kClose) {
@@ -145,12 +155,24 @@ void measure(const char* label, const std::string& input, double rate, double pl
     }
   }
   const double plain = plainBytes / rate;
-  const double size = static_cast<double>(fs::file_size(input));
+  const auto size = static_cast<std::uint64_t>(fs::file_size(input));
+  // The smallest prefix whose complete picture is close (binary search to 1/256 of the
+  // file, no rate limit): its link time does not depend on how fast llvmpipe draws.
+  std::uint64_t lo = 0, hi = size;
+  while (hi - lo > std::max<std::uint64_t>(size / 256, 1024)) {
+    const std::uint64_t mid = lo + (hi - lo) / 2;
+    const auto part = stream(input, 0.0, &camera, lod, nullptr, mid);
+    const bool ok = !part.empty() &&
+                    render::compareImages(part.back().image, final, kTolerance).fractionDiffering <=
+                        kClose;
+    (ok ? hi : lo) = mid;
+  }
   std::printf(
-      "%-34s %9.0f B  whole %6.2f s  first frame %6.2f s  close %6.2f s (%9llu B)  "
-      "close / plain %.2f\n",
-      label, size, frames.back().seconds, first, close,
-      static_cast<unsigned long long>(closeBytes), close / plain);
+      "%-30s %9llu B  whole %6.2f s  first frame %5.2f s  close %5.2f s (%8llu B)  close "
+      "prefix %8llu B = %5.2f s link  link / plain %.2f\n",
+      label, static_cast<unsigned long long>(size), frames.back().seconds, first, close,
+      static_cast<unsigned long long>(closeBytes), static_cast<unsigned long long>(hi), hi / rate,
+      hi / rate / plain);
 }
 
 }  // namespace
