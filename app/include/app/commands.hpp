@@ -28,9 +28,11 @@ bool isQnvFile(const std::string& path);
 /// read or the output written, 2 on bad options.
 int runEncode(const Options& options);
 
-/// `ghostspace --snapshot OUT.png [--size WxH] INPUT`: renders off-screen through OSMesa
-/// from the bound Viewpoint and writes a PNG. 0 on success; 1 with one line on stderr
-/// when the input cannot be read or the image cannot be written.
+/// `ghostspace --snapshot OUT.png [--size WxH] INPUT`: streams INPUT (a file or an
+/// http(s) URL, docs/progressive-loading.md), renders off-screen through OSMesa from the
+/// bound Viewpoint once everything asked for arrived (or at --snapshot-at) and writes a
+/// PNG. 0 on success; 3 when the PNG shows an incomplete input (a transfer failed);
+/// 1 with the reason on stderr when nothing can be shown or the image cannot be written.
 int runSnapshot(const Options& options);
 
 /// `ghostspace [INPUT...]`: the GLFW window with its Dear ImGui menu. Returns when the
