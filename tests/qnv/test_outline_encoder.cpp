@@ -114,7 +114,9 @@ TEST_CASE("a square with a square hole has an outer loop and a hole", "[qnv][out
 
 TEST_CASE("a tessellated sphere gives many groups at 10 degrees", "[qnv][outline]") {
   const PolygonSoup s = uvSphere(24, 12);
-  const auto groups = encodeOutlineGroups(s);
+  OutlineOptions tenDegrees;
+  tenDegrees.maxAngle = 0.17453293f;
+  const auto groups = encodeOutlineGroups(s, tenDegrees);
   CHECK(groups.size() > 50);
   std::size_t triangles = 0;
   double area = 0.0;
@@ -131,7 +133,7 @@ TEST_CASE("a tessellated sphere gives many groups at 10 degrees", "[qnv][outline
   }
   // The poles' degenerate triangles (two equal positions) are dropped.
   OutlineSummary sum;
-  (void)encodeOutlineGroups(s, {}, &sum);
+  (void)encodeOutlineGroups(s, tenDegrees, &sum);
   CHECK(triangles + sum.droppedTriangles == s.triangleCount());
   CHECK(area == Approx(4.0 * std::numbers::pi).epsilon(0.05));
   // With no angle limit the sphere is one closed group: no boundary at all.
