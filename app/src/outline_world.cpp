@@ -2,6 +2,7 @@
 // and written back as VRML97 text, outlines first (paper section 1.1).
 #include "app/outline_world.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <map>
@@ -52,13 +53,13 @@ class Writer {
     num(v.y) << " ";
     return num(v.z);
   }
-  /// A unit vector with 5 significant digits (enough for shading, smaller files).
-  Writer& unit(const glm::vec3& v) {
+  /// A unit vector with `digits` significant digits (enough for shading, smaller files).
+  Writer& unit(const glm::vec3& v, int digits = 5) {
     for (int i = 0; i < 3; ++i) {
       float c = std::isfinite(v[i]) ? v[i] : 0.0f;
       if (c == 0.0f) c = 0.0f;
       char buf[32];
-      const auto r = std::to_chars(buf, buf + sizeof buf, c, std::chars_format::general, 5);
+      const auto r = std::to_chars(buf, buf + sizeof buf, c, std::chars_format::general, digits);
       if (i) text.push_back(' ');
       text.append(buf, r.ptr);
     }
@@ -317,10 +318,28 @@ std::string writeOutlineWorld(std::shared_ptr<const vrml::Scene> scene,
       << (solid ? "TRUE" : "FALSE") << "\n    coord Coordinate { ";
     w.vectors("point", g.positions, "      ");
     w << " }\n";
-    // A smooth-shaded source: the browser smooths the group's own faces (creaseAngle
-    // 0.5 rad, as KiCad and most exporters write) instead of a Normal node per vertex,
-    // which would double the bytes of the group.
-    if (needsNormals(g)) w << "    creaseAngle 0.5\n";
+    if (needsNormals(g)) {
+      // The source's shading normals. One normal shared by the whole group (a flat face
+      // whose triangles disagree in winding) is written once with an index per face;
+      // otherwise one per vertex, to 3 significant digits (shading needs no more).
+      const glm::vec3 first = g.normals.front();
+      const bool shared = std::all_of(g.normals.begin(), g.normals.end(), [&](const glm::vec3& n) {
+        return glm::dot(n, first) >= 0.99999f;
+      });
+      w << "    normal Normal { vector [ ";
+      if (shared) {
+        w.unit(first, 3);
+        w << " ] }\n    normalPerVertex FALSE normalIndex [";
+        for (std::size_t i = 0; i < g.indices.size(); i += 3) w << ((i / 3) % 32 == 0 ? "\n      0" : " 0");
+        w << " ]\n";
+      } else {
+        for (std::size_t i = 0; i < g.normals.size(); ++i) {
+          w << (i % 8 == 0 ? "\n      " : ", ");
+          w.unit(g.normals[i], 3);
+        }
+        w << " ] }\n";
+      }
+    }
     w << "    coordIndex [";
     for (std::size_t i = 0; i < g.indices.size(); i += 3) {
       w << ((i / 3) % 8 == 0 ? "\n      " : " ");

@@ -220,6 +220,8 @@ void SceneRenderer::sceneChanged() {
   traversal_.sceneChanged();
   splats_->sceneChanged();
   haveBounds_ = false;
+  // The NavigationInfo may have arrived just now.
+  if (!headlightSet_) headlight_ = traversal_.navigation().headlight;
 }
 
 void SceneRenderer::setLod(double lod) {

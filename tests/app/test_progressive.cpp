@@ -266,7 +266,7 @@ TEST_CASE("content from the network never reads local files", "[app][http]") {
   CHECK(covered("evil") == 0.0);
 }
 
-TEST_CASE("--snapshot-at renders the state after part of the bytes", "[app]") {
+TEST_CASE("snapshot-at renders the state after part of the bytes", "[app]") {
   const std::string world = boxesWorld(6);
   const fs::path path = outDir() / "boxes6_at.wrl";
   std::ofstream(path, std::ios::binary) << world;

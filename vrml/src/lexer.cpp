@@ -40,10 +40,12 @@ Token Lexer::scan(const char* p) const {
     case '"': {
       t.kind = Tok::string;
       while (q < end_ && *q != '"') q += (*q == '\\' && q + 1 < end_) ? 2 : 1;
-      if (q < end_)
+      if (q < end_) {
         ++q;  // closing quote
-      else
+      } else {
         t.unterminated = true;
+        hitEnd_ = true;
+      }
       if (q > end_) q = end_;
       break;
     }
@@ -165,11 +167,17 @@ void Lexer::readString(std::string& out) {
   const char* run = q;
   while (true) {
     while (q < end_ && *q != '"' && *q != '\\') ++q;
-    if (q >= end_) fatal(start, "unterminated string");
+    if (q >= end_) {
+      hitEnd_ = true;
+      fatal(start, "unterminated string");
+    }
     out.append(run, static_cast<std::size_t>(q - run));
     if (*q == '"') break;
     // Backslash: the next byte is taken literally (\" and \\ per clause 5.9).
-    if (q + 1 >= end_) fatal(start, "unterminated string");
+    if (q + 1 >= end_) {
+      hitEnd_ = true;
+      fatal(start, "unterminated string");
+    }
     out.push_back(q[1]);
     q += 2;
     run = q;
@@ -222,16 +230,9 @@ SourceLocation Lexer::locationAt(std::size_t off) {
       cacheLineStart_ = it->lineStart;
     }
   }
-  if (loneCr_ < 0) {
-    loneCr_ = 0;
-    for (std::size_t i = text_.find('\r'); i != std::string_view::npos; i = text_.find('\r', i + 1))
-      if (i + 1 >= text_.size() || text_[i + 1] != '\n') {
-        loneCr_ = 1;
-        break;
-      }
-  }
+  if (!loneCr_ && crChecked_ < text_.size()) checkLoneCr();
   const char* base = text_.data();
-  if (loneCr_ == 0) {
+  if (!loneCr_) {
     // LF or CR LF line ends: jump from newline to newline with memchr.
     const char* p = base + cacheOffset_;
     const char* stop = base + off;
@@ -255,6 +256,44 @@ SourceLocation Lexer::locationAt(std::size_t off) {
   if (off >= (marks_.empty() ? 0 : marks_.back().offset) + kMarkSpacing)
     marks_.push_back(Mark{off, cacheLine_, cacheLineStart_});
   return SourceLocation{file_, cacheLine_, static_cast<int>(off - cacheLineStart_ + 1)};
+}
+
+void Lexer::checkLoneCr() {
+  for (std::size_t i = text_.find('\r', crChecked_); i != std::string_view::npos;
+       i = text_.find('\r', i + 1)) {
+    if (i + 1 >= text_.size() && growing_) {
+      crChecked_ = i;  // an LF may follow in the next bytes
+      return;
+    }
+    if (i + 1 >= text_.size() || text_[i + 1] != '\n') {
+      loneCr_ = true;
+      return;
+    }
+  }
+  crChecked_ = text_.size();
+}
+
+void Lexer::extend(std::string_view text, bool final) {
+  const std::size_t o = offset();
+  const std::size_t old = text_.size();
+  text_ = text;
+  p_ = text.data() + std::min(o, text.size());
+  end_ = text.data() + text.size();
+  growing_ = !final;
+  // A line count cached at the old end may have taken a last CR for a line end of its
+  // own while its LF had not arrived: go back to a mark before it.
+  if (cacheOffset_ >= old && old > 0) {
+    while (!marks_.empty() && marks_.back().offset >= old) marks_.pop_back();
+    if (marks_.empty()) {
+      cacheOffset_ = 0;
+      cacheLine_ = 1;
+      cacheLineStart_ = 0;
+    } else {
+      cacheOffset_ = marks_.back().offset;
+      cacheLine_ = marks_.back().line;
+      cacheLineStart_ = marks_.back().lineStart;
+    }
+  }
 }
 
 std::string Lexer::describeAt(std::size_t off) const {
@@ -293,7 +332,10 @@ void Lexer::failExpected(std::size_t off, std::string_view what) {
   msg += what;
   msg += ", got ";
   msg += describeAt(off);
-  if (off >= text_.size()) fatal(off, std::move(msg));
+  if (off >= text_.size()) {
+    hitEnd_ = true;
+    fatal(off, std::move(msg));
+  }
   fail(off, std::move(msg));
 }
 

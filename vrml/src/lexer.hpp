@@ -1,6 +1,8 @@
 // The VRML97 lexer (ISO/IEC 14772-1:1997 clause 5.1 and annex A.2, classic UTF-8
 // encoding). Internal to gs_vrml. It works in place over a std::string_view: no per-token
 // allocation, and line and column are computed only when a diagnostic asks for them.
+// For StreamingParser the text may grow (extend()); the lexer then records whether it
+// looked at the end of the text (hitEnd()), where more bytes could change what it read.
 #pragma once
 
 #include "vrml/diagnostic.hpp"
@@ -88,7 +90,11 @@ class Lexer {
 
   /// Skips whitespace, commas and `#` comments.
   void skipSpace() {
-    while (p_ < end_) {
+    while (true) {
+      if (p_ >= end_) {
+        hitEnd_ = true;
+        return;
+      }
       const char c = *p_;
       if (isSpace(c)) {
         ++p_;
@@ -190,6 +196,35 @@ class Lexer {
   /// Skips one value or node in balanced form: a token, or a {...} / [...] group.
   void skipBalanced();
 
+  /// The text grew: `text` starts with the bytes of the old text (it may live elsewhere now,
+  /// after a reallocation). Keeps the offset and the line bookkeeping. `final`: the text
+  /// will not grow again (a CR at its end is then a line end of its own). While it may
+  /// grow, the caller ends it where a token ends (whitespace or a bracket last), so that
+  /// only a string, a comment or the wait for a next token can run into its end.
+  void extend(std::string_view text, bool final);
+  /// Whether the lexer looked at the end of the text since clearHitEnd(): reached it while
+  /// skipping space or a comment, scanning a string, or failing for want of input.
+  bool hitEnd() const { return hitEnd_; }
+  void clearHitEnd() { hitEnd_ = false; }
+  /// Records that a decision depended on how much text is left (see remaining()).
+  void markEnd() { hitEnd_ = true; }
+  /// Where lexing stands, with the line cache (restored when a statement is undone).
+  struct Position {
+    std::size_t offset;
+    std::size_t cacheOffset;
+    int cacheLine;
+    std::size_t cacheLineStart;
+  };
+  Position position() const {
+    return Position{offset(), cacheOffset_, cacheLine_, cacheLineStart_};
+  }
+  void restore(const Position& p) {
+    setOffset(p.offset);
+    cacheOffset_ = p.cacheOffset;
+    cacheLine_ = p.cacheLine;
+    cacheLineStart_ = p.cacheLineStart;
+  }
+
   std::size_t offset() const { return static_cast<std::size_t>(p_ - text_.data()); }
   std::size_t remaining() const { return static_cast<std::size_t>(end_ - p_); }
   void setOffset(std::size_t o) { p_ = text_.data() + o; }
@@ -211,7 +246,10 @@ class Lexer {
   // Skips space and returns the next byte; at the end of input fails (fatal).
   char separatorThen() {
     while (true) {
-      if (p_ >= end_) failExpected(offset(), "a number or ']'");
+      if (p_ >= end_) {
+        hitEnd_ = true;
+        failExpected(offset(), "a number or ']'");
+      }
       const char c = *p_;
       if (static_cast<unsigned char>(c) > ',') return c;  // digits, '-', '.', ']'
       if (isSpace(c))
@@ -304,7 +342,13 @@ class Lexer {
   };
   static constexpr std::size_t kMarkSpacing = 1 << 16;
   std::vector<Mark> marks_;
-  int loneCr_ = -1;  // whether the text has a CR not followed by LF (-1: not yet known)
+  // Whether the text has a CR not followed by LF; bytes before crChecked_ have been
+  // looked at (a CR last in a text that may grow is left for later).
+  bool loneCr_ = false;
+  std::size_t crChecked_ = 0;
+  void checkLoneCr();
+  bool growing_ = false;         // extend() may add text
+  mutable bool hitEnd_ = false;  // see hitEnd(); scan() (const) sets it too
 };
 
 }  // namespace gs::vrml::parsing

@@ -81,8 +81,14 @@ void Parser::parseScene(Scene& scene) {
   try {
     parseStatements(top, &scene.rootNodes, 0, false, nullptr);
   } catch (const ParseError& e) {
-    if (!giveUp_) report(e);
+    endScene(&e);
+    return;
   }
+  endScene(nullptr);
+}
+
+void Parser::endScene(const ParseError* fatal) {
+  if (fatal != nullptr && !giveUp_) report(*fatal);
   if (giveUp_)
     diag_.items.push_back({Severity::error, lex_.locationAt(lex_.offset()),
                            "too many errors: giving up on this file"});
@@ -110,30 +116,43 @@ void Parser::parseStatements(Scope& scope, std::vector<NodePtr>* nodes, int dept
       lex_.consume(t);
       return;
     }
-    try {
-      if (t.kind != Tok::id) lex_.failExpected(t.offset, "a node, PROTO, EXTERNPROTO or ROUTE");
-      if (t.text == "PROTO") {
-        parseProto(scope);
-      } else if (t.text == "EXTERNPROTO") {
-        parseExternProto(scope);
-      } else if (t.text == "ROUTE") {
-        parseRoute(scope);
-      } else {
-        int h = 0;
-        NodePtr n = parseNodeStatement(scope, depth, h, false);
-        if (n) {
-          if (height != nullptr) *height = std::max(*height, h);
-          if (scope.checkRoots) checkNodeClass(nullptr, {}, n, t.offset);
-          nodes->push_back(n);
-          if (scope.checkRoots && ctx_.options.onRootNode) ctx_.options.onRootNode(n);
-        }
+    parseStatement(scope, nodes, depth, height, t);
+  }
+}
+
+bool Parser::parseTopStatement(Scope& top, std::vector<NodePtr>& roots) {
+  if (giveUp_) throw ParseError(Diagnostic{Severity::error, {}, "giving up"});
+  const Token t = lex_.peek();
+  if (t.kind == Tok::end) return false;
+  parseStatement(top, &roots, 0, nullptr, t);
+  return true;
+}
+
+void Parser::parseStatement(Scope& scope, std::vector<NodePtr>* nodes, int depth, int* height,
+                            const Token& t) {
+  try {
+    if (t.kind != Tok::id) lex_.failExpected(t.offset, "a node, PROTO, EXTERNPROTO or ROUTE");
+    if (t.text == "PROTO") {
+      parseProto(scope);
+    } else if (t.text == "EXTERNPROTO") {
+      parseExternProto(scope);
+    } else if (t.text == "ROUTE") {
+      parseRoute(scope);
+    } else {
+      int h = 0;
+      NodePtr n = parseNodeStatement(scope, depth, h, false);
+      if (n) {
+        if (height != nullptr) *height = std::max(*height, h);
+        if (scope.checkRoots) checkNodeClass(nullptr, {}, n, t.offset);
+        nodes->push_back(n);
+        if (scope.checkRoots && ctx_.options.onRootNode) ctx_.options.onRootNode(n);
       }
-    } catch (const RecoverableError& e) {
-      report(e);
-      if (lex_.offset() <= t.offset) {
-        lex_.setOffset(t.offset);
-        lex_.skipBalanced();
-      }
+    }
+  } catch (const RecoverableError& e) {
+    report(e);
+    if (lex_.offset() <= t.offset) {
+      lex_.setOffset(t.offset);
+      lex_.skipBalanced();
     }
   }
 }
@@ -175,6 +194,35 @@ NodePtr Parser::parseNodeStatement(Scope& scope, int depth, int& height, bool al
     return parseNode(scope, lex_.peek(), depth, height, defName);
   }
   return parseNode(scope, t, depth, height, {});
+}
+
+void Parser::define(Scope& scope, std::string_view name, DefEntry e) {
+  if (scope.undo == nullptr) {
+    scope.defs[std::string(name)] = std::move(e);
+    return;
+  }
+  auto [it, added] = scope.defs.try_emplace(std::string(name));
+  scope.undo->defs.emplace_back(it->first,
+                                added ? std::nullopt : std::optional<DefEntry>(it->second));
+  it->second = std::move(e);
+}
+
+void Parser::setProto(Scope& scope, const std::string& name, std::shared_ptr<const NodeType> type) {
+  if (scope.undo == nullptr) {
+    scope.protos[name] = std::move(type);
+    return;
+  }
+  auto [it, added] = scope.protos.try_emplace(name);
+  scope.undo->protos.emplace_back(
+      name, added ? std::nullopt : std::optional<std::shared_ptr<const NodeType>>(it->second));
+  it->second = std::move(type);
+}
+
+void Parser::eraseProto(Scope& scope, const std::string& name) {
+  auto it = scope.protos.find(name);
+  if (it == scope.protos.end()) return;
+  if (scope.undo != nullptr) scope.undo->protos.emplace_back(name, it->second);
+  scope.protos.erase(it);
 }
 
 DefEntry* Parser::findDef(Scope& scope, std::string_view name) {
@@ -245,7 +293,7 @@ NodePtr Parser::parseNode(Scope& scope, const Token& t, int depth, int& height,
     NodePtr n = instantiate(scope, inst, t.offset, depth, height, links);
     if (n && !defName.empty()) {
       n->defName = defName;
-      scope.defs[std::string(defName)] = DefEntry{n, type, links, height, false};
+      define(scope, defName, DefEntry{n, type, links, height, false});
     }
     return n;
   }
@@ -255,7 +303,7 @@ NodePtr Parser::parseNode(Scope& scope, const Token& t, int depth, int& height,
   node->location = lex_.locationAt(t.offset);
   if (!defName.empty()) {
     node->defName = defName;
-    scope.defs[std::string(defName)] = DefEntry{node, node->typePtr(), nullptr, 1, true};
+    define(scope, defName, DefEntry{node, node->typePtr(), nullptr, 1, true});
   }
   // Close the DEF entry however the body ends (a body cut short by an error still
   // leaves a node that later USEs may share).

@@ -14,6 +14,7 @@
 #include <array>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -47,6 +48,14 @@ struct ProtoBuilder {
   std::shared_ptr<ProtoDefinition> def;
 };
 
+/// What a statement changed in a scope's names, so that StreamingParser can undo a
+/// statement cut short by the end of the bytes so far: each name with the entry it had
+/// before (none: it was not there), in order.
+struct ScopeUndo {
+  std::vector<std::pair<std::string, std::optional<DefEntry>>> defs;
+  std::vector<std::pair<std::string, std::optional<std::shared_ptr<const NodeType>>>> protos;
+};
+
 /// A name scope (clause 4.4.7): DEF names do not cross PROTO bodies or PROTO field
 /// defaults; PROTO names are looked up through `parent` too.
 struct Scope {
@@ -62,7 +71,8 @@ struct Scope {
   std::vector<Route>* routes = nullptr;    // where ROUTEs go
   std::vector<NodePtr>* hidden = nullptr;  // where hidden instance nodes go
   std::vector<std::shared_ptr<const NodeType>>* declared = nullptr;  // Scene::protos
-  bool checkRoots = false;  // root nodes are checked against the children node class
+  bool checkRoots = false;    // root nodes are checked against the children node class
+  ScopeUndo* undo = nullptr;  // when set, changes to defs and protos are logged there
 };
 
 /// An EXTERNPROTO file loaded during this parse (cached by resolved URL).
@@ -70,6 +80,12 @@ struct ExternFile {
   bool loading = true;  // being parsed: a reference now is recursive
   std::vector<std::shared_ptr<const NodeType>> protos;
   std::string error;
+  // For StreamingParser, which may undo the statement that loaded the file: what its
+  // parse added (diagnostics, nodes counted), added again by the next reference when
+  // `replay` is set.
+  std::vector<Diagnostic> diagnostics;
+  std::size_t nodes = 0;
+  bool replay = false;
 };
 
 /// State shared by the parse of a file and the EXTERNPROTO files it loads.
@@ -78,6 +94,8 @@ struct Context {
   const ParseOptions& options;
   std::size_t nodeCount = 0;
   NameMap<std::shared_ptr<ExternFile>> externFiles;
+  /// When set (StreamingParser), the files the top-level file loads, in order.
+  std::vector<std::shared_ptr<ExternFile>>* loaded = nullptr;
 };
 
 /// The members a Script node declares in its body (clause 6.40), gathered into one
@@ -118,10 +136,48 @@ class Parser {
   /// Throws ParseError on any problem.
   std::vector<FieldSpec> parseInterfaceText(std::string_view name);
 
+  // For StreamingParser: the top-level statements one at a time, over a text that grows.
+  /// Parses the next statement of `top` (set up as parseScene sets its top scope) into
+  /// `roots`; false when only space is left. A fatal error throws ParseError.
+  bool parseTopStatement(Scope& top, std::vector<NodePtr>& roots);
+  /// What parseScene does after the statements: reports `fatal` (null when the text
+  /// ended) unless giving up, then the give-up and suppressed-diagnostics summaries.
+  void endScene(const ParseError* fatal);
+  /// The text grew (Lexer::extend).
+  void extendText(std::string_view text, bool final) { lex_.extend(text, final); }
+  Lexer& lexer() { return lex_; }
+  /// The parser's own state that a statement changes.
+  struct State {
+    Lexer::Position position;
+    std::size_t errors;
+    std::size_t suppressed;
+    bool giveUp;
+    bool protosDeclared;
+  };
+  State state() const {
+    return State{lex_.position(), errors_, suppressed_, giveUp_, protosDeclared_};
+  }
+  void restore(const State& s) {
+    lex_.restore(s.position);
+    errors_ = s.errors;
+    suppressed_ = s.suppressed;
+    giveUp_ = s.giveUp;
+    protosDeclared_ = s.protosDeclared;
+    recursion_ = 0;
+  }
+
  private:
   // parser.cpp: statements and nodes
   void parseStatements(Scope& scope, std::vector<NodePtr>* nodes, int depth, bool untilBrace,
                        int* height);
+  /// One statement of parseStatements, starting at `t` (peeked: an id or other token).
+  void parseStatement(Scope& scope, std::vector<NodePtr>* nodes, int depth, int* height,
+                      const Token& t);
+  /// scope.defs[name] = e, logged in scope.undo when set.
+  void define(Scope& scope, std::string_view name, DefEntry e);
+  /// scope.protos[name] = type (null: being defined) or erased, logged in scope.undo.
+  void setProto(Scope& scope, const std::string& name, std::shared_ptr<const NodeType> type);
+  void eraseProto(Scope& scope, const std::string& name);
   NodePtr parseNodeStatement(Scope& scope, int depth, int& height, bool allowNull);
   /// `t` is the node type name token, peeked and not consumed.
   NodePtr parseNode(Scope& scope, const Token& t, int depth, int& height, std::string_view defName);

@@ -137,7 +137,7 @@ void Parser::parseProto(Scope& scope) {
   parseInterface(scope, *type, true, false);
   if (scope.protos.find(name) != scope.protos.end())
     report(Severity::warning, nt.offset, "PROTO '" + name + "' redefines an earlier one");
-  scope.protos[name] = nullptr;  // being defined: an instance in its own body is an error
+  setProto(scope, name, nullptr);  // being defined: an instance in its own body is an error
   protosDeclared_ = true;
   Scope body;
   body.parent = &scope;
@@ -150,13 +150,13 @@ void Parser::parseProto(Scope& scope) {
     lex_.setOffset(lex_.offset() + 1);
     parseStatements(body, &def->body, 0, true, &def->height);
   } catch (const RecoverableError&) {
-    scope.protos.erase(name);
+    eraseProto(scope, name);
     throw;
   }
   if (def->body.empty())
     report(Severity::error, nt.offset, "PROTO '" + name + "' has no node in its body");
   type->proto = def;
-  scope.protos[name] = type;
+  setProto(scope, name, type);
   if (scope.declared != nullptr) scope.declared->push_back(type);
 }
 
@@ -182,14 +182,14 @@ void Parser::parseExternProto(Scope& scope) {
     if (!startsWithNoCase(url, kUrn)) continue;
     const auto builtIn = builtInNodeType(std::string_view(url).substr(kUrn.size()));
     if (builtIn && builtIn->extension) {
-      scope.protos[name] = builtIn;
+      setProto(scope, name, builtIn);
       protosDeclared_ = true;
       return;
     }
   }
   resolveExternProto(*def, *type, kw.offset);
   type->proto = def;
-  scope.protos[name] = type;
+  setProto(scope, name, type);
   protosDeclared_ = true;
   if (scope.declared != nullptr) scope.declared->push_back(type);
 }
@@ -277,6 +277,16 @@ bool Parser::loadExternFile(const std::string& url, std::shared_ptr<ExternFile>&
       return false;
     }
     out = it->second;
+    if (out->replay) {
+      // Loaded by a statement that StreamingParser undid: report as that load did.
+      out->replay = false;
+      ctx_.nodeCount += out->nodes;
+      for (const Diagnostic& d : out->diagnostics) {
+        if (diag_.items.size() >= 1000) break;
+        diag_.items.push_back(d);
+      }
+      if (ctx_.loaded != nullptr && externDepth_ == 0) ctx_.loaded->push_back(out);
+    }
     return true;
   }
   auto f = std::make_shared<ExternFile>();
@@ -294,8 +304,15 @@ bool Parser::loadExternFile(const std::string& url, std::shared_ptr<ExternFile>&
   }
   f->loading = true;
   Scene sub;
+  const std::size_t nodesBefore = ctx_.nodeCount;
   parseInto(bytes, url, ctx_, externDepth_ + 1, sub);
   f->loading = false;
+  const bool log = ctx_.loaded != nullptr && externDepth_ == 0;
+  if (log) {
+    f->nodes = ctx_.nodeCount - nodesBefore;
+    f->diagnostics = sub.diagnostics.items;
+    ctx_.loaded->push_back(f);
+  }
   for (Diagnostic& d : sub.diagnostics.items) {
     if (diag_.items.size() >= 1000) break;
     diag_.items.push_back(std::move(d));

@@ -58,10 +58,12 @@ void Parser::readImage(SFImage& image) {
                          " with " + std::to_string(c) + " components");
   const std::uint64_t n = static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h);
   // Each pixel takes at least two bytes ("0 "): never reserve more than the input holds.
-  if (n > (lex_.remaining() + 1) / 2)
+  if (n > (lex_.remaining() + 1) / 2) {
+    lex_.markEnd();  // more text might hold the pixels
     lex_.fail(start, "SFImage of " + std::to_string(w) + " x " + std::to_string(h) + " needs " +
                          std::to_string(n) + " pixels but only " +
                          std::to_string(lex_.remaining()) + " bytes of input remain");
+  }
   image.width = w;
   image.height = h;
   image.components = c;

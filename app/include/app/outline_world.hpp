@@ -41,7 +41,9 @@ struct OutlineWorldSummary {
 ///   its first use, which is in this outline section, and USE'd after;
 /// - one `OutlineGroup { groupId k children [ Shape { ... IndexedFaceSet } ] }` per group
 ///   in the same order, with the group's own coordinates (`solid` as the source
-///   geometry's; `ccw` TRUE; `creaseAngle 0.5` when the source was smooth-shaded).
+///   geometry's; `ccw` TRUE; when the source's shading normals differ from the flat
+///   ones, a Normal node: one normal and an index per face when the group shares one,
+///   else one per vertex to 3 significant digits).
 ///
 /// Appearance keeps the Material's diffuseColor, specularColor, emissiveColor,
 /// ambientIntensity, shininess and transparency (a Shape without Material stays unlit).

@@ -95,7 +95,10 @@ class SceneRenderer {
 
   /// Whether the headlight is on; starts as NavigationInfo.headlight.
   bool headlight() const { return headlight_; }
-  void setHeadlight(bool on) { headlight_ = on; }
+  void setHeadlight(bool on) {
+    headlight_ = on;
+    headlightSet_ = true;
+  }
 
   /// Counts of the last draw().
   const DrawStatistics& statistics() const { return statistics_; }
@@ -120,6 +123,7 @@ class SceneRenderer {
   vrml::Bounds bounds_;
   bool haveBounds_ = false;
   bool headlight_ = true;
+  bool headlightSet_ = false;  // setHeadlight() was called: NavigationInfo no longer decides
   DrawStatistics statistics_;
 };
 
