@@ -330,7 +330,8 @@ std::string writeOutlineWorld(std::shared_ptr<const vrml::Scene> scene,
       if (shared) {
         w.unit(first, 3);
         w << " ] }\n    normalPerVertex FALSE normalIndex [";
-        for (std::size_t i = 0; i < g.indices.size(); i += 3) w << ((i / 3) % 32 == 0 ? "\n      0" : " 0");
+        for (std::size_t i = 0; i < g.indices.size(); i += 3)
+          w << ((i / 3) % 32 == 0 ? "\n      0" : " 0");
         w << " ]\n";
       } else {
         for (std::size_t i = 0; i < g.normals.size(); ++i) {

@@ -25,7 +25,8 @@ std::string urlPath(const std::string& url) {
 bool endsWithNoCase(const std::string& s, const std::string& suffix) {
   if (s.size() < suffix.size()) return false;
   return std::equal(suffix.rbegin(), suffix.rend(), s.rbegin(), [](char a, char b) {
-    return std::tolower(static_cast<unsigned char>(a)) == std::tolower(static_cast<unsigned char>(b));
+    return std::tolower(static_cast<unsigned char>(a)) ==
+           std::tolower(static_cast<unsigned char>(b));
   });
 }
 
@@ -44,15 +45,15 @@ std::shared_ptr<const vrml::Scene> StreamingSession::open(const std::string& inp
   const bool remote = isUrlInput(input);
   const std::string path = remote ? urlPath(input) : render::localPathOfUrl(input);
   if (remote && endsWithNoCase(path, ".qnv")) {
-    auto scene =
-        std::make_shared<vrml::Scene>(vrml::parseVrml(splatWorldText(input), input));
+    auto scene = std::make_shared<vrml::Scene>(vrml::parseVrml(splatWorldText(input), input));
     localScenes_.push_back(scene);
     return scene;
   }
   if (remote) {
     if (isMeshFile(path) || isVolumeFile(path)) {
-      error = input + ": meshes and volumes are read from local files; encode them to .qnv "
-                      "(ghostspace encode) to stream them";
+      error = input +
+              ": meshes and volumes are read from local files; encode them to .qnv "
+              "(ghostspace encode) to stream them";
       return nullptr;
     }
     auto stream = loader_.world(input, "", error);
@@ -157,8 +158,7 @@ void StreamingSession::drainMessages(std::vector<std::pair<bool, std::string>>& 
     const std::string state = net::toString(p.state);
     if (endShown_[p.url] == state) continue;
     endShown_[p.url] = state;
-    if (!p.error.empty())
-      out.push_back({p.state == net::StreamState::failed, p.error});
+    if (!p.error.empty()) out.push_back({p.state == net::StreamState::failed, p.error});
   }
   std::vector<const vrml::Scene*> scenes;
   for (const auto& s : localScenes_) scenes.push_back(s.get());

@@ -1,8 +1,8 @@
 // SceneTraversal set-up: the bindable nodes (Viewpoint, NavigationInfo, Background, Fog)
 // and Inline loading with URL resolution and caching.
+#include "net/transfer.hpp"
 #include "node_access.hpp"
 #include "node_kind.hpp"
-#include "net/transfer.hpp"
 #include "render/traversal.hpp"
 #include "vrml/parser.hpp"
 

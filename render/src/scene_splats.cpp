@@ -25,8 +25,7 @@ std::shared_ptr<const SplatSet> SceneSplats::setOf(const vrml::Node& node,
   return nodeSet(node, baseUrl, traversal).set;
 }
 
-const SceneSplats::NodeSet& SceneSplats::nodeSet(const vrml::Node& node,
-                                                 const std::string& baseUrl,
+const SceneSplats::NodeSet& SceneSplats::nodeSet(const vrml::Node& node, const std::string& baseUrl,
                                                  SceneTraversal& traversal) {
   if (auto it = sets_.find(&node); it != sets_.end()) return it->second;
   std::shared_ptr<const SplatSet> set = inlineSplatSet(node);
@@ -78,8 +77,8 @@ std::size_t SceneSplats::drawCount(const vrml::Node* node, const SplatSet& set) 
   }
   const double wanted = n * std::clamp(lod_, 0.0, 1.0);
   if (wanted <= 0.0 || size <= 0.0) return 0;
-  const auto prefix = std::clamp<std::uint64_t>(static_cast<std::uint64_t>(std::llround(wanted)),
-                                                1, set.total());
+  const auto prefix =
+      std::clamp<std::uint64_t>(static_cast<std::uint64_t>(std::llround(wanted)), 1, set.total());
   set.wantedVectors = std::max(set.wantedVectors, prefix);
   return static_cast<std::size_t>(std::min<std::uint64_t>(prefix, set.vectors.size()));
 }

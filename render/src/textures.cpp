@@ -1,8 +1,8 @@
 // ImageTexture and PixelTexture to GL textures (clauses 6.22, 6.33), with mipmaps and the
 // repeatS / repeatT wrap modes.
 #include "gpu_resources.hpp"
-#include "node_access.hpp"
 #include "net/transfer.hpp"
+#include "node_access.hpp"
 #include "render/image.hpp"
 
 #include <algorithm>

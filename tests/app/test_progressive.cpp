@@ -40,9 +40,8 @@ fs::path outDir() {
 /// Runs a snapshot of `input` into outDir()/name.png; returns the process result.
 gs::test::ProcessResult shoot(const std::string& name, const std::string& input,
                               std::vector<std::string> extra = {}) {
-  std::vector<std::string> args = {"--snapshot", (outDir() / (name + ".png")).string(),
-                                   "--size",     "200x150",
-                                   "--no-progress"};
+  std::vector<std::string> args = {"--snapshot", (outDir() / (name + ".png")).string(), "--size",
+                                   "200x150", "--no-progress"};
   args.insert(args.end(), extra.begin(), extra.end());
   args.push_back(input);
   return runGhostspace(args);
@@ -85,8 +84,8 @@ std::string ballVolume(int n) {
       for (int x = 0; x < n; ++x) {
         const double dx = x - n / 2.0, dy = y - n / 2.0, dz = z - n / 2.0;
         const double r = std::sqrt(dx * dx + dy * dy + dz * dz) / (n / 2.0);
-        v[(static_cast<std::size_t>(z) * n + y) * n + x] =
-            static_cast<char>(static_cast<unsigned char>(std::clamp(255.0 * (1.2 - r), 0.0, 255.0)));
+        v[(static_cast<std::size_t>(z) * n + y) * n + x] = static_cast<char>(
+            static_cast<unsigned char>(std::clamp(255.0 * (1.2 - r), 0.0, 255.0)));
       }
   return v;
 }
@@ -95,8 +94,8 @@ std::string ballVolume(int n) {
 std::string ballStream(const std::string& name) {
   const fs::path raw = outDir() / "ball.raw", qnv = outDir() / name;
   std::ofstream(raw, std::ios::binary) << ballVolume(48);
-  const auto r = runGhostspace({"encode", raw.string(), "--raw-dims", "48,48,48", "-o",
-                                qnv.string(), "--no-progress"});
+  const auto r = runGhostspace(
+      {"encode", raw.string(), "--raw-dims", "48,48,48", "-o", qnv.string(), "--no-progress"});
   REQUIRE(r.exitCode == 0);
   return readBytes(qnv);
 }
@@ -257,8 +256,10 @@ TEST_CASE("content from the network never reads local files", "[app][http]") {
   if (!nginx.ok()) return;
   const fs::path local = outDir() / "secret.wrl";
   std::ofstream(local, std::ios::binary) << boxesWorld(2);
-  nginx.writeFile("evil.wrl", "#VRML V2.0 utf8\nViewpoint { position 0 0 30 }\n"
-                              "Inline { url \"file://" + local.string() + "\" }\n");
+  nginx.writeFile("evil.wrl",
+                  "#VRML V2.0 utf8\nViewpoint { position 0 0 30 }\n"
+                  "Inline { url \"file://" +
+                      local.string() + "\" }\n");
   const auto r = shoot("evil", nginx.url("/evil.wrl"));
   INFO(r.err);
   CHECK(r.exitCode == 0);

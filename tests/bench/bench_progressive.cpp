@@ -11,20 +11,20 @@
 // transfer layer's rate limit (FetchRequest::maxRate, the --max-rate option), which paces
 // file and HTTP transfers alike. "Close" means at most 5% of pixels differ by more than
 // 48/255 in a channel from the final image, seen by the same camera (render::compareImages).
+#include <zlib.h>
 #include <chrono>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <zlib.h>
 
-#include "app/outline_world.hpp"
-#include "app/streaming_session.hpp"
-#include "app/world.hpp"
 #include "app/commands.hpp"
 #include "app/options.hpp"
+#include "app/outline_world.hpp"
+#include "app/streaming_session.hpp"
 #include "app/volume_input.hpp"
+#include "app/world.hpp"
 #include "qnv/encoder.hpp"
 #include "qnv/stream.hpp"
 #include "render/context.hpp"
@@ -144,8 +144,8 @@ void measure(const char* label, const std::string& input, double rate, double pl
   const bool verbose = std::getenv("GS_BENCH_VERBOSE") != nullptr;
   for (const Frame& f : frames) {
     if (verbose)
-      std::printf("  %6.2f s %9llu B %s %.3f\n", f.seconds, static_cast<unsigned long long>(f.bytes),
-                  blank(f.image) ? "blank" : "     ",
+      std::printf("  %6.2f s %9llu B %s %.3f\n", f.seconds,
+                  static_cast<unsigned long long>(f.bytes), blank(f.image) ? "blank" : "     ",
                   render::compareImages(f.image, final, kTolerance).fractionDiffering);
     if (first < 0.0 && !blank(f.image)) first = f.seconds;
     if (close < 0.0 &&
@@ -162,9 +162,9 @@ void measure(const char* label, const std::string& input, double rate, double pl
   while (hi - lo > std::max<std::uint64_t>(size / 256, 1024)) {
     const std::uint64_t mid = lo + (hi - lo) / 2;
     const auto part = stream(input, 0.0, &camera, lod, nullptr, mid);
-    const bool ok = !part.empty() &&
-                    render::compareImages(part.back().image, final, kTolerance).fractionDiffering <=
-                        kClose;
+    const bool ok =
+        !part.empty() &&
+        render::compareImages(part.back().image, final, kTolerance).fractionDiffering <= kClose;
     (ok ? hi : lo) = mid;
   }
   std::printf(
@@ -182,7 +182,8 @@ int main(int argc, char** argv) {
   const fs::path corpus = fs::path(GS_CORPUS_DIR);
   const fs::path cthead = corpus / "volume/cthead/CThead.nhdr";
   const fs::path kicad =
-      corpus / "vrml/kicad/Connector_Dsub__DSUB-62-HD_Male_Horizontal_P2.41x1.98mm_EdgePinOffset9.40mm.wrl";
+      corpus /
+      "vrml/kicad/Connector_Dsub__DSUB-62-HD_Male_Horizontal_P2.41x1.98mm_EdgePinOffset9.40mm.wrl";
   if (!fs::exists(cthead) || !fs::exists(kicad)) {
     std::printf("skipped: %s not found\n", corpus.string().c_str());
     return 0;
@@ -217,9 +218,10 @@ int main(int argc, char** argv) {
     writeFile(dir / "outline.wrl", outlined);
     writeFile(dir / "outline.wrl.gz", gzip(outlined));
     const double plainBytes = static_cast<double>(plain.size());
-    std::printf("DSUB-62 plain .wrl %.0f bytes: %.2f s at this rate; outline world %zu groups, "
-                "outlines in the first %zu bytes\n",
-                plainBytes, plainBytes / rate, summary.groups, summary.outlineBytes);
+    std::printf(
+        "DSUB-62 plain .wrl %.0f bytes: %.2f s at this rate; outline world %zu groups, "
+        "outlines in the first %zu bytes\n",
+        plainBytes, plainBytes / rate, summary.groups, summary.outlineBytes);
     measure("DSUB-62 plain .wrl", (dir / "plain.wrl").string(), rate, plainBytes);
     measure("DSUB-62 plain .wrl.gz", (dir / "plain.wrl.gz").string(), rate, plainBytes);
     measure("DSUB-62 outline-first .wrl", (dir / "outline.wrl").string(), rate, plainBytes);

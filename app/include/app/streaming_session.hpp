@@ -61,8 +61,8 @@ class StreamingSession {
   };
   std::map<std::string, QnvEntry> qnv_;
   std::vector<std::shared_ptr<net::WorldStream>> worlds_;  // every world streamed
-  std::map<std::string, std::size_t> diagnosticsShown_;   // per world url
-  std::map<std::string, std::string> endShown_;           // url -> state shown
+  std::map<std::string, std::size_t> diagnosticsShown_;    // per world url
+  std::map<std::string, std::string> endShown_;            // url -> state shown
   std::vector<std::shared_ptr<const vrml::Scene>> localScenes_;
 };
 

@@ -89,9 +89,9 @@ class QnvStream {
   qnv::StreamDecoder decoder_;
   std::unique_ptr<Transfer> transfer_;
   StreamProgress progress_;
-  std::uint64_t fed_ = 0;          // bytes given to the decoder (from offset 0)
-  std::uint64_t requestedEnd_ = 0;   // end of the bytes asked for so far
-  std::uint64_t transferOffset_ = 0; // first byte of the current transfer
+  std::uint64_t fed_ = 0;             // bytes given to the decoder (from offset 0)
+  std::uint64_t requestedEnd_ = 0;    // end of the bytes asked for so far
+  std::uint64_t transferOffset_ = 0;  // first byte of the current transfer
   std::int64_t resourceSize_ = -1;
   bool rangesIgnored_ = false;
   std::string chunk_;

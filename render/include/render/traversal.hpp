@@ -140,8 +140,7 @@ struct TraversalOptions {
   /// grows in place (call SceneTraversal::sceneChanged() after it grew). Null with
   /// `error` set when the URL is refused or cannot be loaded.
   std::function<std::shared_ptr<const vrml::Scene>(const std::string& url,
-                                                   const std::string& referrer,
-                                                   std::string& error)>
+                                                   const std::string& referrer, std::string& error)>
       inlineSource;
   /// Tessellates a geometry node. Empty: vrml::tessellate.
   std::function<vrml::Mesh(const vrml::Node& geometry, vrml::Diagnostics* diag)> tessellator;
