@@ -124,8 +124,11 @@ render::SceneRendererOptions StreamingSession::rendererOptions(render::SceneRend
   base.splatLoader = [this](const std::string& url, const std::string& referrer,
                             std::string& error) { return splatSet(url, referrer, error); };
   base.loader = [this](const std::string& url, std::string& bytes, std::string& error) {
-    // Textures: the renderer has already refused local files for remote worlds.
-    return loader_.fetchWhole(url, "", bytes, error);
+    // Textures load in the background while the scene draws untextured; the renderer
+    // has already refused local files for remote worlds.
+    if (loader_.fetchInBackground(url, "", bytes, error)) return true;
+    if (error.empty()) error = render::kLoadPending;
+    return false;
   };
   return base;
 }

@@ -4,6 +4,7 @@
 #include "net/transfer.hpp"
 #include "node_access.hpp"
 #include "render/image.hpp"
+#include "render/scene_renderer.hpp"
 
 #include <algorithm>
 #include <fstream>
@@ -110,6 +111,7 @@ const GpuTexture& TextureCache::get(const vrml::Node& node, const std::string& b
     }
   } else if (node.typeName() == "ImageTexture") {
     std::string failures;
+    bool pending = false;
     for (const std::string& reference : mfString(node, "url")) {
       if (reference.empty()) continue;
       const std::string url = resolveUrl(baseUrl, reference);
@@ -120,9 +122,13 @@ const GpuTexture& TextureCache::get(const vrml::Node& node, const std::string& b
         // A world from the network never reads local files.
       } else {
         if (!path.empty()) ok = readLocalFile(path, bytes, error);
-        if (!ok && loader)
+        if (!ok && loader) {
           ok = loader(url, bytes, error);
-        else if (!ok && path.empty())
+          if (!ok && error == kLoadPending) {
+            pending = true;  // on its way: try the next url meanwhile
+            continue;
+          }
+        } else if (!ok && path.empty())
           error = "only local files can be read without a network loader";
       }
       if (ok) {
@@ -146,6 +152,10 @@ const GpuTexture& TextureCache::get(const vrml::Node& node, const std::string& b
         }
       }
       failures += (failures.empty() ? "" : "; ") + url + ": " + error;
+    }
+    if (texture.components == 0 && pending) {
+      static const GpuTexture kNone;  // untextured until the bytes arrive
+      return kNone;
     }
     if (texture.components == 0)
       traversal.report(vrml::Severity::warning, node.location,

@@ -51,8 +51,15 @@ class Loader {
   bool fetchWhole(const std::string& url, const std::string& referrer, std::string& bytes,
                   std::string& error, double timeout = 30.0);
 
+  /// Fetches a whole small resource (a texture) without blocking: the first call starts
+  /// the transfer. Returns true with `bytes` once it arrived (later calls return the same
+  /// bytes at once); false with `error` empty while it is on its way, or set to the reason
+  /// (naming the URL) when it failed or was refused.
+  bool fetchInBackground(const std::string& url, const std::string& referrer, std::string& bytes,
+                         std::string& error);
+
   /// Pumps every stream. Returns true when anything changed (scene grew, vectors or a
-  /// header arrived, a stream ended).
+  /// header arrived, a stream ended, a background fetch completed).
   bool pump();
   /// Blocks until bytes may be waiting or `seconds` passed (for loops without a window).
   void wait(double seconds);
@@ -75,6 +82,13 @@ class Loader {
   std::map<std::string, std::shared_ptr<WorldStream>> worlds_;
   std::map<std::string, std::shared_ptr<QnvStream>> qnvs_;
   std::vector<std::string> order_;  // "w:" or "q:" + url, in opening order
+  struct Fetch {
+    std::unique_ptr<Transfer> transfer;  // null once ended
+    std::string bytes;
+    std::string error;
+    bool done = false;
+  };
+  std::map<std::string, Fetch> fetches_;
 };
 
 }  // namespace gs::net

@@ -20,10 +20,15 @@ namespace detail {
 class SceneSplats;
 }
 
+/// What a SceneRendererOptions::loader sets as its error when the bytes are still on
+/// their way (it returns false): the texture is drawn untextured for now, without a
+/// diagnostic, and asked for again at a later draw.
+inline const std::string kLoadPending = "(loading)";
+
 struct SceneRendererOptions {
   /// Reads URLs that are not local files (or local files that cannot be opened) for
   /// ImageTexture and, when traversal.inlineLoader is empty, for Inline. Empty: local files
-  /// only.
+  /// only. May answer kLoadPending (loading in the background).
   vrml::UrlLoader loader;
   TraversalOptions traversal;
   /// Diameter of PointSet points in pixels.
