@@ -88,10 +88,10 @@ std::shared_ptr<const vrml::Scene> StreamingSession::open(const std::string& inp
 std::shared_ptr<const render::SplatSet> StreamingSession::splatSet(const std::string& url,
                                                                    const std::string& referrer,
                                                                    std::string& error) {
+  if (!net::mayReference(referrer, url, error)) return nullptr;  // before any cache
   if (auto it = qnv_.find(url); it != qnv_.end()) return it->second.set;
   const std::string path = render::localPathOfUrl(url);
   if (!path.empty() && (isMeshFile(path) || isVolumeFile(path))) {
-    if (!net::mayReference(referrer, url, error)) return nullptr;
     return splatLoader()(url, referrer, error);  // encoded whole, here and now
   }
   QnvEntry entry;
@@ -101,6 +101,7 @@ std::shared_ptr<const render::SplatSet> StreamingSession::splatSet(const std::st
   // packet leaves zero-magnitude, transparent vectors.
   auto sink = [set](std::uint64_t first, std::span<const qnv::DecodedVector> v) {
     const std::size_t end = static_cast<std::size_t>(first) + v.size();
+    if (first < set->vectors.size()) ++set->revision;  // a gap filled late
     if (set->vectors.size() < end)
       set->vectors.resize(end, qnv::DecodedVector{{}, 0.0f, {0, 0, 1}, 0});
     std::copy(v.begin(), v.end(), set->vectors.begin() + static_cast<std::ptrdiff_t>(first));
@@ -146,10 +147,8 @@ bool StreamingSession::pump() {
     set.bounds = vrml::Bounds{};
     set.bounds.extend(header->boundsMin);
     set.bounds.extend(header->boundsMax);
-    // Room for the whole stream up front (bounded), so that growing never moves the
-    // vectors and the renderer uploads only each new tail.
-    set.vectors.reserve(static_cast<std::size_t>(
-        std::min<std::uint64_t>(header->vectorCount, std::uint64_t{1} << 25)));
+    // (The vectors grow geometrically as packets arrive; nothing is reserved from the
+    // header's count, which is untrusted.)
     changed = true;
   }
   return changed;

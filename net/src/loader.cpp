@@ -33,14 +33,22 @@ FetchRequest Loader::requestFor(const std::string& url, const std::string& refer
 
 std::shared_ptr<WorldStream> Loader::world(const std::string& url, const std::string& referrer,
                                            std::string& error) {
-  if (auto it = worlds_.find(url); it != worlds_.end()) return it->second;
-  FetchRequest r = requestFor(url, referrer, error);
+  FetchRequest r = requestFor(url, referrer, error);  // the rules first, then the cache
   if (r.url.empty()) return nullptr;
+  if (auto it = worlds_.find(url); it != worlds_.end()) {
+    // The user opening again what failed or was cut gets a fresh try.
+    const StreamState state = it->second->progress().state;
+    if (!referrer.empty() || (state != StreamState::failed && state != StreamState::stopped) ||
+        capReached_)
+      return it->second;
+    worlds_.erase(it);
+    std::erase(order_, "w:" + url);
+  }
   vrml::ParseOptions parse;
   // EXTERNPROTO files are small: fetched whole, under the same rules, as the world
   // that names them is parsed.
   parse.loader = [this, url](const std::string& proto, std::string& bytes, std::string& why) {
-    return fetchWhole(proto, url, bytes, why);
+    return fetchWhole(proto, url, bytes, why, 10.0);
   };
   auto stream = std::make_shared<WorldStream>(std::move(r), std::move(parse));
   if (capReached_) stream->stop("stopped: the byte cap was reached before it started");
@@ -51,9 +59,9 @@ std::shared_ptr<WorldStream> Loader::world(const std::string& url, const std::st
 
 std::shared_ptr<QnvStream> Loader::qnv(const std::string& url, const std::string& referrer,
                                        QnvStream::Sink sink, std::string& error) {
-  if (auto it = qnvs_.find(url); it != qnvs_.end()) return it->second;
-  FetchRequest r = requestFor(url, referrer, error);
+  FetchRequest r = requestFor(url, referrer, error);  // the rules first, then the cache
   if (r.url.empty()) return nullptr;
+  if (auto it = qnvs_.find(url); it != qnvs_.end()) return it->second;
   auto stream = std::make_shared<QnvStream>(std::move(r), std::move(sink));
   if (capReached_) stream->stop("stopped: the byte cap was reached before it started");
   qnvs_[url] = stream;
@@ -88,6 +96,7 @@ bool Loader::fetchWhole(const std::string& url, const std::string& referrer, std
 
 bool Loader::fetchInBackground(const std::string& url, const std::string& referrer,
                                std::string& bytes, std::string& error) {
+  if (!referrer.empty() && !mayReference(referrer, url, error)) return false;
   auto it = fetches_.find(url);
   if (it == fetches_.end()) {
     Fetch f;

@@ -9,6 +9,19 @@ QnvStream::QnvStream(FetchRequest request, Sink sink, std::uint64_t firstSliceBy
     : request_(std::move(request)), sink_(std::move(sink)), decoder_(request_.url) {
   progress_.url = request_.url;
   progress_.kind = StreamKind::qnv;
+  // A packet's place is its sequence number times the records per packet, both from the
+  // stream: accept it only near what the bytes received can hold (a record is at least
+  // 2 bytes even compressed), so that a hostile stream cannot make the consumer allocate
+  // for billions of vectors.
+  guarded_ = [this](std::uint64_t first, std::span<const qnv::DecodedVector> v) {
+    const std::uint64_t limit = (fed_ + chunkBytes_) / 2 + 65536;
+    if (first + v.size() > limit) {
+      ++packetsDropped_;
+      return;
+    }
+    coveredEnd_ = std::max<std::uint64_t>(coveredEnd_, first + v.size());
+    sink_(first, v);
+  };
   startTransfer(0, qnv::kHeaderBytes + firstSliceBytes);
 }
 
@@ -62,7 +75,9 @@ bool QnvStream::pump(Allowance& allowance) {
       allowance.remaining -= n;
       const bool hadHeader = decoder_.header().has_value();
       const std::uint64_t before = decoder_.stats().vectorsDecoded;
-      const bool usable = decoder_.feed(std::string_view(chunk_).substr(0, n), sink_);
+      chunkBytes_ = n;
+      const bool usable = decoder_.feed(std::string_view(chunk_).substr(0, n), guarded_);
+      chunkBytes_ = 0;
       fed_ += n;
       progress_.bytes = fed_;
       progress_.state = StreamState::loading;
@@ -85,7 +100,7 @@ bool QnvStream::pump(Allowance& allowance) {
     progress_.expectedBytes = resourceSize_;
     if (!s.finished() || s.received > fed_ - transferOffset_) return changed;  // bytes to take
     if (s.state == TransferState::failed) {
-      decoder_.finish(sink_);
+      decoder_.finish(guarded_);
       progress_.vectors = decoder_.stats().vectorsDecoded;
       end(StreamState::failed, s.error);
       return true;
@@ -105,14 +120,15 @@ bool QnvStream::pump(Allowance& allowance) {
   const std::uint64_t total = h ? h->vectorCount : 0;
   progress_.expectedVectors = total;
   progress_.vectors = decoder_.stats().vectorsDecoded;
-  progress_.packetsLost = decoder_.stats().packetsCorrupt + decoder_.stats().packetsMissing;
+  progress_.packetsLost =
+      decoder_.stats().packetsCorrupt + decoder_.stats().packetsMissing + packetsDropped_;
   const bool atEnd = (resourceSize_ >= 0 && fed_ >= static_cast<std::uint64_t>(resourceSize_)) ||
                      requestedEnd_ == UINT64_MAX ||
                      (h && fed_ >= bytesFor(total) && h->encoding == qnv::PacketEncoding::plain);
   if (!h) {
     // The first slice ended without a complete header.
     if (atEnd || fed_ < requestedEnd_) {
-      decoder_.finish(sink_);
+      decoder_.finish(guarded_);
       end(StreamState::failed,
           decoder_.error().empty() ? progress_.url + ": no QNV header" : decoder_.error());
       return true;
@@ -121,28 +137,33 @@ bool QnvStream::pump(Allowance& allowance) {
     return changed;
   }
   if (atEnd) {
-    const bool whole = decoder_.finish(sink_);
+    const bool whole = decoder_.finish(guarded_);
     progress_.vectors = decoder_.stats().vectorsDecoded;
-    progress_.packetsLost = decoder_.stats().packetsCorrupt + decoder_.stats().packetsMissing;
+    progress_.packetsLost =
+        decoder_.stats().packetsCorrupt + decoder_.stats().packetsMissing + packetsDropped_;
     std::string message;
     if (!whole && !decoder_.warnings().empty()) message = decoder_.warnings().back();
     end(StreamState::done, message);
     return true;
   }
   const std::uint64_t wanted = std::min(progress_.wantedVectors, total);
-  const std::uint64_t have = progress_.vectors + progress_.packetsLost * h->recordsPerPacket();
-  if (have >= wanted) {
+  // Arrived: vectors up to the highest placed; for plain packets, the bytes that hold the
+  // prefix (whatever of them was damaged is lost, not fetched again).
+  const bool plain = h->encoding == qnv::PacketEncoding::plain;
+  if (coveredEnd_ >= wanted || (plain && fed_ >= bytesFor(wanted))) {
     progress_.state = StreamState::idle;
     return changed;
   }
-  const std::uint64_t target = std::max(bytesFor(wanted), fed_ + 1);
+  // At least 64 KiB more per request: a damaged stretch never turns into a storm of
+  // tiny range requests.
+  const std::uint64_t target = std::max(bytesFor(wanted), fed_ + 65536);
   startTransfer(fed_, target - fed_);
   return true;
 }
 
 void QnvStream::stop(const std::string& why) {
   if (transfer_) transfer_->cancel();
-  decoder_.finish(sink_);
+  decoder_.finish(guarded_);
   progress_.vectors = decoder_.stats().vectorsDecoded;
   end(StreamState::stopped, why);
 }

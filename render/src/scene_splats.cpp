@@ -122,6 +122,7 @@ std::size_t SceneSplats::draw(const TraversalFrame& frame, SceneTraversal& trave
       if (world_) renderers_.erase(world_.get());  // its address may be reused
       world_ = worldSplatSet(scene_);
       worldBuilt_ = true;
+      worldRoots_ = scene_->rootNodes.size();
     }
     if (world_) drawSet(*world_, drawCount(nullptr, *world_), glm::mat4(1.0f), nullptr);
   }

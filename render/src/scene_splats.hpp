@@ -38,8 +38,11 @@ class SceneSplats {
   std::size_t draw(const TraversalFrame& frame, SceneTraversal& traversal, const Camera& camera,
                    float aspect, bool headlight);
   RenderMode mode() const { return mode_; }
-  /// The scene grew (progressive loading): the splats-mode world set is built again.
-  void sceneChanged() { worldBuilt_ = false; }
+  /// The scene grew (progressive loading): the splats-mode world set is built again when
+  /// root nodes were added.
+  void sceneChanged() {
+    if (scene_->rootNodes.size() != worldRoots_) worldBuilt_ = false;
+  }
   void setLod(double lod) { lod_ = lod; }
   void release();
 
@@ -61,6 +64,7 @@ class SceneSplats {
   std::map<std::string, std::shared_ptr<const SplatSet>> byUrl_;
   std::shared_ptr<const SplatSet> world_;
   bool worldBuilt_ = false;
+  std::size_t worldRoots_ = 0;  // root nodes of the scene when world_ was built
   std::unordered_map<const SplatSet*, std::unique_ptr<SplatRenderer>> renderers_;
 };
 

@@ -149,6 +149,7 @@ struct SplatRenderer::Gpu {
   const qnv::DecodedVector* uploadedData = nullptr;
   std::size_t uploadedSize = 0;
   std::size_t bufferCapacity = 0;  // vectors the GL buffer holds
+  std::uint64_t uploadedRevision = 0;
   std::size_t orderCapacity = 0;
   glm::mat4 sortedView{0.0f};
   std::size_t sortedCount = 0;
@@ -205,10 +206,11 @@ struct SplatRenderer::Gpu {
   void upload(const SplatSet& set) {
     const qnv::DecodedVector* data = set.vectors.data();
     const std::size_t size = set.vectors.size();
-    if (uploadedData == data && uploadedSize == size) return;
+    if (uploadedData == data && uploadedSize == size && uploadedRevision == set.revision) return;
     constexpr std::size_t kBytes = sizeof(qnv::DecodedVector);
     glBindBuffer(GL_ARRAY_BUFFER, vectorBuffer);
-    if (uploadedData == data && size > uploadedSize && size <= bufferCapacity) {
+    if (uploadedData == data && size > uploadedSize && size <= bufferCapacity &&
+        uploadedRevision == set.revision) {
       // A growing set (SplatSet): only the new tail goes to the GPU.
       glBufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(uploadedSize * kBytes),
                       static_cast<GLsizeiptr>((size - uploadedSize) * kBytes), data + uploadedSize);
@@ -220,6 +222,7 @@ struct SplatRenderer::Gpu {
     }
     uploadedData = data;
     uploadedSize = size;
+    uploadedRevision = set.revision;
     sortedCount = 0;  // force a sort
   }
 

@@ -125,8 +125,8 @@ const GpuTexture& TextureCache::get(const vrml::Node& node, const std::string& b
         if (!ok && loader) {
           ok = loader(url, bytes, error);
           if (!ok && error == kLoadPending) {
-            pending = true;  // on its way: try the next url meanwhile
-            continue;
+            pending = true;  // on its way: the next url only if this one fails
+            break;
           }
         } else if (!ok && path.empty())
           error = "only local files can be read without a network loader";

@@ -73,7 +73,8 @@ TEST_CASE("a QNV stream fetches the wanted prefix by ranges, and more when asked
   stream.want(total / 10);
   REQUIRE(settle(stream, allowance));
   CHECK(received >= total / 10);
-  CHECK(received < total / 10 + 2 * 6 + 4096 / 8);  // whole packets, plus the first slice
+  // Whole packets, and at least 64 KiB per request (1024 packets of 6 vectors).
+  CHECK(received <= std::max<std::uint64_t>(total / 10 + 6, (4096 + 65536) / 64 * 6));
   const std::uint64_t tenth = stream.progress().bytes;
   CHECK(tenth < bytes.size() / 5);
 
@@ -177,4 +178,33 @@ TEST_CASE("the loader refuses local files named by remote content", "[net][strea
   auto b = loader.world("/nonexistent/a.wrl", "", error);
   CHECK(a == b);
   CHECK(loader.progress().size() == 1);
+}
+
+TEST_CASE("a hostile packet sequence number does not size the consumer's arrays",
+          "[net][streams]") {
+  // A valid header claiming 2^32 vectors of 8-record packets, then one good packet placed
+  // near the end of that count: its vectors would sit at index ~4 billion.
+  qnv::StreamHeader h;
+  h.packetBytes = 64;
+  h.vectorCount = std::uint64_t{1} << 32;
+  h.boundsMax = {1, 1, 1};
+  std::string bytes = qnv::serializeHeader(h);
+  const std::vector<std::uint64_t> records(8, 0x123456789abcdefull);
+  qnv::appendPacket(bytes, 0, records, qnv::PacketEncoding::plain);
+  qnv::appendPacket(bytes, 0x1fffffff, records, qnv::PacketEncoding::plain);
+  FaultServer server(bytes, FaultServer::Behaviour::serve);
+  REQUIRE(server.ok());
+  std::uint64_t highest = 0, received = 0;
+  net::FetchRequest r;
+  r.url = server.url("/evil.qnv");
+  net::QnvStream stream(r, [&](std::uint64_t first, std::span<const qnv::DecodedVector> v) {
+    highest = std::max<std::uint64_t>(highest, first + v.size());
+    received += v.size();
+  });
+  stream.want(UINT64_MAX);
+  net::Allowance allowance;
+  REQUIRE(settle(stream, allowance));
+  CHECK(received == 8);  // the first packet only
+  CHECK(highest == 8);
+  CHECK(stream.progress().packetsLost >= 1);
 }

@@ -94,6 +94,14 @@ class QnvStream {
   std::uint64_t transferOffset_ = 0;  // first byte of the current transfer
   std::int64_t resourceSize_ = -1;
   bool rangesIgnored_ = false;
+  /// End (exclusive) of the highest vector index delivered to the sink.
+  std::uint64_t coveredEnd_ = 0;
+  std::uint64_t chunkBytes_ = 0;  // bytes of the chunk being fed
+  /// Packets dropped because their place lay far beyond the bytes received (a hostile
+  /// sequence number must not size the consumer's arrays).
+  std::uint64_t packetsDropped_ = 0;
+  /// sink_ behind the guard above; used for every feed() and finish().
+  Sink guarded_;
   std::string chunk_;
 };
 

@@ -36,6 +36,9 @@ struct SplatSet {
   /// The longest prefix any view asked to draw so far (set while drawing); a progressive
   /// loader fetches up to it (HTTP range requests).
   mutable std::uint64_t wantedVectors = 0;
+  /// Bumped whenever vectors already present change (a late packet filling a gap): the
+  /// renderer then uploads the whole set again instead of only the new tail.
+  std::uint64_t revision = 0;
   /// Vectors of the whole stream: expectedVectors, or vectors.size() when that is 0.
   std::uint64_t total() const { return expectedVectors > 0 ? expectedVectors : vectors.size(); }
   /// Bounds of `vectors` positions; call after filling vectors.
