@@ -20,6 +20,11 @@ bool WorldStream::pump(Allowance& allowance) {
   transfer_->take(chunk_);
   bool changed = false;
   if (!chunk_.empty()) {
+    if (progress_.bytes == 0) {
+      // Relative URLs inside resolve against where the bytes came from, after redirects.
+      const std::string effective = transfer_->status().effectiveUrl;
+      if (!effective.empty() && effective != progress_.url) parser_->rebase(effective);
+    }
     const std::size_t n =
         static_cast<std::size_t>(std::min<std::uint64_t>(chunk_.size(), allowance.remaining));
     allowance.remaining -= n;

@@ -72,6 +72,8 @@ SceneTraversal::SceneTraversal(std::shared_ptr<const vrml::Scene> scene, Travers
 }
 
 void SceneTraversal::sceneChanged() {
+  // The main scene's URL may have moved (an HTTP redirect) before its first node.
+  if (localPathOfUrl(scene_->url).empty() && !scene_->url.empty()) mainUrl_ = scene_->url;
   viewpoints_.clear();
   navigation_ = NavigationSettings{};
   background_ = BackgroundSettings{};

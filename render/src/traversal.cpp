@@ -173,7 +173,8 @@ struct SceneTraversal::Walk {
         inlineChain.push_back(&inl->url);
         const auto* outerFilled = filled;
         filled = &self.filledGroups(*inl->scene);
-        nodes(inl->scene->rootNodes, m, &inl->url);
+        // URLs inside resolve against where the file really came from (after redirects).
+        nodes(inl->scene->rootNodes, m, inl->scene->url.empty() ? &inl->url : &inl->scene->url);
         filled = outerFilled;
         inlineChain.pop_back();
         break;

@@ -282,3 +282,20 @@ TEST_CASE("snapshot-at renders the state after part of the bytes", "[app]") {
   CHECK(part < all * 0.6);
   CHECK(shoot("bad_at", path.string(), {"--snapshot-at", "12x"}).exitCode == 2);
 }
+
+TEST_CASE("relative URLs resolve after redirects", "[app][http]") {
+  // The fault server redirects every path to its own /target, which serves a world
+  // inlining "part.wrl": that must be fetched as /part.wrl (relative to /target), not as
+  // /w/part.wrl (relative to the URL first asked).
+  FaultServer::Request seen;
+  {
+    FaultServer server("#VRML V2.0 utf8\nInline { url \"part.wrl\" }\n",
+                       FaultServer::Behaviour::redirect);
+    REQUIRE(server.ok());
+    shoot("redirect", server.url("/w/start.wrl"));
+    const auto requests = server.requests();
+    REQUIRE(requests.size() >= 3);
+    seen = requests[2];
+  }
+  CHECK(seen.path == "/part.wrl");
+}

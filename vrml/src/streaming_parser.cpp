@@ -389,6 +389,14 @@ std::size_t StreamingParser::Impl::guarded(std::string_view bytes, bool final) {
 StreamingParser::StreamingParser(std::string url, ParseOptions options)
     : impl_(std::make_unique<Impl>(std::move(url), std::move(options))) {}
 
+bool StreamingParser::rebase(std::string url) {
+  Impl& m = *impl_;
+  if (!m.text.empty() || !m.head.empty() || m.gunzip || m.parser) return false;
+  m.url = std::move(url);
+  m.scene.url = m.url;
+  return true;
+}
+
 StreamingParser::~StreamingParser() = default;
 
 std::size_t StreamingParser::feed(std::string_view bytes) {

@@ -24,6 +24,11 @@ class StreamingParser {
   StreamingParser(const StreamingParser&) = delete;
   StreamingParser& operator=(const StreamingParser&) = delete;
 
+  /// Changes the URL that names the text and is the base of its relative URLs (an HTTP
+  /// redirect moved it). Only before the first feed(); returns false (nothing changed)
+  /// after.
+  bool rebase(std::string url);
+
   /// Adds the next bytes of the file (any split, gzip compressed or not: the first two
   /// bytes decide) and parses every top-level statement now complete. Cost: amortized
   /// linear in the input; a statement cut by the end of the bytes so far is retried only
