@@ -1,10 +1,12 @@
 #include "app/application.hpp"
 
 #include "app/commands.hpp"
+#include "app/layout.hpp"
 #include "app/options.hpp"
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <charconv>
 #include <cstdio>
 #include <exception>
@@ -25,6 +27,11 @@ bool parseSize(const std::string& text, int& width, int& height) {
   };
   const char* s = text.data();
   return parseSide(s, s + x, width) && parseSide(s + x + 1, s + text.size(), height);
+}
+
+double viewportLod(const Options& options, std::size_t index) {
+  if (options.lods.empty()) return options.lod;
+  return options.lods[std::min(index, options.lods.size() - 1)];
 }
 
 bool parseSnapshotAt(const std::string& text, std::uint64_t& bytes, double& seconds) {
@@ -89,11 +96,15 @@ Parsed parseArguments(int argc, char** argv) {
   cli.add_option("--size", size, "Image or window size in pixels, e.g. 800x600")->type_name("WxH");
   cli.add_option("--frames", o.frames, "Close the window after this many frames (testing)")
       ->check(CLI::NonNegativeNumber);
-  cli.add_option("--lod", o.lod,
+  std::string lodText;
+  cli.add_option("--lod", lodText,
                  "Level of detail: the fraction of every QNV stream drawn, largest vectors "
-                 "first (0 < F <= 1)")
-      ->type_name("F")
-      ->check(CLI::Range(1e-9, 1.0));
+                 "first (0 < F <= 1); a list F1,F2,... gives one per viewport")
+      ->type_name("F[,F...]");
+  cli.add_option("--layout", o.layout,
+                 "Viewports: 1x1 (default), 2x1 (two side by side) or 2x2; the INPUTs fill "
+                 "them in order (one INPUT fills them all)")
+      ->check(CLI::IsMember({"1x1", "2x1", "2x2"}));
   cli.add_option("--mode", o.mode,
                  "polygons (default), splats (polygons drawn as QNV splats) or outlines "
                  "(OutlineGroup outlines only)")
@@ -199,6 +210,29 @@ Parsed parseArguments(int argc, char** argv) {
     return r;
   }
   enc.progress = !noProgress;
+  if (!lodText.empty()) {
+    // "F" or "F1,F2,...": each 0 < F <= 1.
+    std::size_t at = 0;
+    for (;;) {
+      const std::size_t comma = lodText.find(',', at);
+      const std::string item = lodText.substr(at, comma == std::string::npos ? comma : comma - at);
+      double f = 0.0;
+      auto [p, ec] = std::from_chars(item.data(), item.data() + item.size(), f);
+      if (item.empty() || ec != std::errc() || p != item.data() + item.size() || !(f > 0.0) ||
+          f > 1.0) {
+        std::fprintf(stderr,
+                     "ghostspace: --lod: expected fractions 0 < F <= 1 such as 0.1 or "
+                     "0.1,1, got '%s'\n",
+                     lodText.c_str());
+        r.exitCode = 2;
+        return r;
+      }
+      o.lods.push_back(f);
+      if (comma == std::string::npos) break;
+      at = comma + 1;
+    }
+    o.lod = o.lods.front();
+  }
   o.progress = !noProgressBar;
   if (!snapshotAt.empty() && !parseSnapshotAt(snapshotAt, o.snapshotAtBytes, o.snapshotAtSeconds)) {
     std::fprintf(stderr,
@@ -216,9 +250,11 @@ Parsed parseArguments(int argc, char** argv) {
     o.inputs = infoInputs;
   } else if (!o.snapshotPath.empty()) {
     o.command = Command::snapshot;
-    if (o.inputs.size() != 1) {
-      std::fprintf(stderr, "ghostspace: --snapshot needs exactly one INPUT, got %zu\n",
-                   o.inputs.size());
+    const std::size_t cells = static_cast<std::size_t>(layoutCells(o.layout));
+    if (o.inputs.empty() || o.inputs.size() > cells) {
+      std::fprintf(stderr,
+                   "ghostspace: --snapshot needs 1 to %zu INPUTs for --layout %s, got %zu\n", cells,
+                   o.layout.c_str(), o.inputs.size());
       r.exitCode = 2;
     }
   }

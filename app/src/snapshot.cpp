@@ -3,10 +3,13 @@
 // docs/progressive-loading.md); the picture is taken when everything asked for arrived,
 // or at --snapshot-at.
 #include "app/commands.hpp"
+#include "app/layout.hpp"
 #include "app/progress_bar.hpp"
 #include "app/splat_inputs.hpp"
 #include "app/streaming_session.hpp"
 #include "render/context.hpp"
+
+#include <glad/gl.h>
 #include "render/image.hpp"
 #include "render/scene_renderer.hpp"
 
@@ -56,26 +59,54 @@ double loadFraction(const net::Loader& loader) {
 }  // namespace
 
 int runSnapshot(const Options& options) {
-  const std::string& input = options.inputs.front();
   StreamingSession session(loaderOptions(options));
-  std::string error;
-  const auto scene = session.open(input, error);
-  if (!scene) {
-    std::fprintf(stderr, "ghostspace: %s\n", error.c_str());
-    return 1;
+  // One viewport per layout cell; the INPUTs fill them in order and a single INPUT fills
+  // them all. A world named twice is loaded once (the session shares its streams).
+  const int cells = layoutCells(options.layout);
+  std::vector<std::shared_ptr<const vrml::Scene>> scenes;
+  for (const std::string& input : options.inputs) {
+    std::string error;
+    auto scene = session.open(input, error);
+    if (!scene) {
+      std::fprintf(stderr, "ghostspace: %s\n", error.c_str());
+      return 1;
+    }
+    scenes.push_back(scene);
   }
   auto context = render::createOffscreenContext(options.width, options.height);
-  render::SceneRenderer renderer(scene, session.rendererOptions(rendererOptions(options)));
-  const float aspect = static_cast<float>(options.width) / static_cast<float>(options.height);
-  // A stream, mesh or volume has no Viewpoint of its own: frame it whole.
-  const bool fit = options.fit || isSplatInput(input);
-  auto camera = [&] {
-    render::Camera c = renderer.boundViewpointCamera();
-    if (fit) c = renderer.fitToScene(aspect, c);
-    render::fitClipPlanes(c, renderer.bounds(), renderer.navigation().nearClip());
+  struct View {
+    std::string input;
+    std::shared_ptr<const vrml::Scene> scene;
+    std::unique_ptr<render::SceneRenderer> renderer;
+    ViewportRect rect;
+  };
+  std::vector<View> views;
+  for (int i = 0; i < cells && (scenes.size() == 1 || i < static_cast<int>(scenes.size())); ++i) {
+    View v;
+    const std::size_t k = scenes.size() == 1 ? 0 : static_cast<std::size_t>(i);
+    v.input = options.inputs[k];
+    v.scene = scenes[k];
+    render::SceneRendererOptions ro = rendererOptions(options);
+    ro.lod = viewportLod(options, static_cast<std::size_t>(i));
+    v.renderer = std::make_unique<render::SceneRenderer>(v.scene, session.rendererOptions(ro));
+    v.rect = layoutRect(options.layout, i, options.width, options.height);
+    views.push_back(std::move(v));
+  }
+  auto camera = [&](View& v) {
+    const float aspect = static_cast<float>(v.rect.width) / static_cast<float>(v.rect.height);
+    render::Camera c = v.renderer->boundViewpointCamera();
+    // A stream, mesh or volume has no Viewpoint of its own: frame it whole.
+    if (options.fit || isSplatInput(v.input)) c = v.renderer->fitToScene(aspect, c);
+    render::fitClipPlanes(c, v.renderer->bounds(), v.renderer->navigation().nearClip());
     return c;
   };
-  auto draw = [&] { renderer.draw(camera(), 0, 0, options.width, options.height); };
+  auto draw = [&] {
+    glViewport(0, 0, options.width, options.height);
+    glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    for (View& v : views)
+      v.renderer->draw(camera(v), v.rect.x, v.rect.y, v.rect.width, v.rect.height);
+  };
 
   // Load. Drawing is what asks for Inline worlds and QNV prefixes (the level of detail),
   // so the scene is drawn (at most 4 times a second) whenever it changed, and the load
@@ -84,9 +115,12 @@ int runSnapshot(const Options& options) {
   const auto t0 = Clock::now();
   auto lastDraw = t0;
   bool needDraw = true, drewSincePump = false;
+  auto changed = [&] {
+    for (View& v : views) v.renderer->sceneChanged();
+  };
   for (;;) {
     if (session.pump()) {
-      renderer.sceneChanged();
+      changed();
       needDraw = true;
     }
     drewSincePump = false;
@@ -94,7 +128,7 @@ int runSnapshot(const Options& options) {
       session.loader().stopAll("stopped after " + std::to_string(options.snapshotAtSeconds) +
                                " s (--snapshot-at)");
       session.pump();
-      renderer.sceneChanged();
+      changed();
       break;
     }
     const bool settled = session.settled();
@@ -118,15 +152,14 @@ int runSnapshot(const Options& options) {
   for (const net::StreamProgress& p : session.loader().progress())
     failed |= p.state == net::StreamState::failed;
   for (const auto& [isError, text] : messages) std::fprintf(stderr, "%s\n", text.c_str());
-  for (const auto& d : renderer.diagnostics().items)
-    std::fprintf(stderr, "%s\n", d.format().c_str());
+  for (const View& v : views)
+    for (const auto& d : v.renderer->diagnostics().items)
+      std::fprintf(stderr, "%s\n", d.format().c_str());
   bool anyError = failed;
   for (const auto& m : messages) anyError |= m.first;
-  if (scene->rootNodes.empty() && anyError) {
-    // Nothing to show: the reason was printed above.
-    if (messages.empty()) std::fprintf(stderr, "ghostspace: %s: nothing to show\n", input.c_str());
-    return 1;
-  }
+  bool anyNodes = false;
+  for (const auto& scene : scenes) anyNodes |= !scene->rootNodes.empty();
+  if (!anyNodes && anyError) return 1;  // nothing to show: the reason was printed above
   render::writePng(options.snapshotPath, image);
   return failed ? 3 : 0;
 }

@@ -36,6 +36,8 @@ struct Options {
   int height = 600;
   int frames = 0;                 // --frames N: window closes after N frames (0 = never)
   double lod = 1.0;               // --lod F: fraction of each QNV stream drawn, (0, 1]
+  std::vector<double> lods;       // --lod F1,F2,...: per viewport (the last one repeats)
+  std::string layout = "1x1";     // --layout 1x1|2x1|2x2: viewports in the window or image
   std::string mode = "polygons";  // --mode polygons|splats|outlines
   bool fit = false;               // --fit: frame the whole scene, not the Viewpoint
   double maxRate = 0.0;           // --max-rate BYTES_PER_S: emulate a slow link (0: off)
@@ -46,6 +48,10 @@ struct Options {
   double stallTimeout = 20.0;         // --stall-timeout S: a transfer silent this long fails
   EncodeOptions encode;
 };
+
+/// The level of detail of viewport `index`: lods[index], the last of lods past its end,
+/// or lod when lods is empty.
+double viewportLod(const Options& options, std::size_t index);
 
 /// Parses --snapshot-at: "123456" (bytes; suffixes k, M for 1024, 1048576) or "2.5s"
 /// (seconds). Returns false when malformed, negative or zero.
