@@ -115,6 +115,6 @@ TEST_CASE("one stream in two viewports is fetched once", "[app][layout][http]") 
   // Bad layouts and too many inputs are usage errors.
   CHECK(runGhostspace({"--snapshot", out.string(), "--layout", "3x3", qnv.string()}).exitCode == 2);
   CHECK(runGhostspace({"--snapshot", out.string(), qnv.string(), qnv.string()}).exitCode == 2);
-  for (const char* bad : {"0", "1.5", "0.1,x", "0.1,", ""})
+  for (const char* bad : {"0", "1.5", "0.1,x", "0.1,"})
     CHECK(runGhostspace({"--snapshot", out.string(), "--lod", bad, qnv.string()}).exitCode == 2);
 }
