@@ -109,6 +109,10 @@ Parsed parseArguments(int argc, char** argv) {
                  "polygons (default), splats (polygons drawn as QNV splats) or outlines "
                  "(OutlineGroup outlines only)")
       ->check(CLI::IsMember({"polygons", "splats", "outlines"}));
+  cli.add_option("--script", o.script,
+                 "Window: run the UI actions of FILE between frames (layout, open, viewport, "
+                 "lod, mode, wait-loaded, frames, screenshot, quit; see app/window_script.hpp)")
+      ->type_name("FILE");
   cli.add_flag("--fit", o.fit, "Frame the whole scene instead of using the bound Viewpoint");
   cli.add_option("--max-rate", o.maxRate,
                  "Deliver at most this many bytes per second per transfer (emulates a slow "

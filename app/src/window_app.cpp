@@ -1,6 +1,7 @@
 // `ghostspace [INPUT...]`: the GLFW window, its Dear ImGui menu and panels, EXAMINE
 // navigation. Rendering goes through the same render::SceneRenderer as --snapshot.
 #include "app/commands.hpp"
+#include "app/window_script.hpp"
 #include "app/window_state.hpp"
 #include "render/context.hpp"
 
@@ -38,24 +39,33 @@ struct ImGuiSession {
 
 /// Mouse input not taken by ImGui drives the EXAMINE navigator: left drag orbits, right
 /// drag or shift + left drag pans, middle drag and the wheel dolly.
-void navigate(WindowState& state, int viewportHeight) {
+void navigate(WindowState& state, int menuHeight, int viewportHeight) {
   const ImGuiIO& io = ImGui::GetIO();
   if (io.WantCaptureMouse) return;
+  // A click picks the viewport the menus and the mouse act on.
+  if (io.MouseClicked[0] || io.MouseClicked[1] || io.MouseClicked[2] || io.MouseWheel != 0.0f) {
+    const std::size_t under =
+        state.viewportAt(io.MousePos.x, io.MousePos.y - menuHeight, viewportHeight);
+    if (under != Viewport::kNone) state.active = under;
+  }
+  render::ExamineNavigator& navigator = state.view().navigator;
+  viewportHeight = std::max(1, state.view().rect.height);
   const float dx = io.MouseDelta.x, dy = io.MouseDelta.y;
   const bool moved = dx != 0.0f || dy != 0.0f;
   if (io.MouseDown[0] && moved) {
     if (io.KeyShift)
-      state.navigator.pan(dx, dy, viewportHeight);
+      navigator.pan(dx, dy, viewportHeight);
     else
-      state.navigator.orbit(dx, dy, viewportHeight);
+      navigator.orbit(dx, dy, viewportHeight);
   } else if (io.MouseDown[1] && moved) {
-    state.navigator.pan(dx, dy, viewportHeight);
+    navigator.pan(dx, dy, viewportHeight);
   } else if (io.MouseDown[2] && moved) {
-    state.navigator.dolly(-dy / 20.0f);
+    navigator.dolly(-dy / 20.0f);
   }
-  if (io.MouseWheel != 0.0f) state.navigator.dolly(io.MouseWheel);
-  if (moved && (io.MouseDown[0] || io.MouseDown[1] || io.MouseDown[2])) state.autoFrame = false;
-  if (io.MouseWheel != 0.0f) state.autoFrame = false;
+  if (io.MouseWheel != 0.0f) navigator.dolly(io.MouseWheel);
+  if (moved && (io.MouseDown[0] || io.MouseDown[1] || io.MouseDown[2]))
+    state.view().autoFrame = false;
+  if (io.MouseWheel != 0.0f) state.view().autoFrame = false;
 }
 
 }  // namespace
@@ -73,7 +83,16 @@ int runWindow(const Options& options) {
   state.lastAspect = static_cast<float>(context->width()) / std::max(1, context->height());
   state.rendererOptions = rendererOptions(options);
   state.session = std::make_unique<StreamingSession>(loaderOptions(options));
-  for (const std::string& input : options.inputs) state.open(input);
+  state.setLayout(options.layout);
+  state.openInputs(options.inputs, options.lods);
+  WindowScript script;
+  if (!options.script.empty()) {
+    std::string error;
+    if (!script.load(options.script, error)) {
+      std::fprintf(stderr, "ghostspace: %s\n", error.c_str());
+      return 2;
+    }
+  }
 
   int frame = 0;
   GLFWwindow* window = context->glfwHandle();
@@ -87,10 +106,12 @@ int runWindow(const Options& options) {
     const int menuHeight = drawMenuBar(state, static_cast<float>(width) / std::max(1, height));
     state.update();
     drawPanels(state);
-    navigate(state, std::max(1, height - menuHeight));
+    navigate(state, menuHeight, std::max(1, height - menuHeight));
 
     context->makeCurrent();
     state.drawScene(0, 0, width, std::max(1, height - menuHeight));
+    if (!script.empty() && !script.step(state, width, std::max(1, height - menuHeight)))
+      state.quitRequested = true;
     ImGui::Render();
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     context->swapBuffers();

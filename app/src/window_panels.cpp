@@ -139,7 +139,7 @@ static void drawStreams(WindowState& state) {
 }
 
 int drawMenuBar(WindowState& state, float aspect) {
-  state.lastAspect = aspect;
+  (void)aspect;  // the active viewport's aspect is kept by drawScene()
   int height = 0;
   if (!ImGui::BeginMainMenuBar()) return 0;
   if (ImGui::BeginMenu("File")) {
@@ -151,8 +151,8 @@ int drawMenuBar(WindowState& state, float aspect) {
     }
     if (ImGui::BeginMenu("Worlds", state.worlds.size() > 1)) {
       for (std::size_t i = 0; i < state.worlds.size(); ++i)
-        if (ImGui::MenuItem(state.worlds[i].scene->url.c_str(), nullptr, i == state.current))
-          state.show(i);
+        if (ImGui::MenuItem(state.worlds[i].scene->url.c_str(), nullptr, i == state.view().world))
+          state.show(i, state.active);
       ImGui::EndMenu();
     }
     ImGui::Separator();
@@ -160,33 +160,42 @@ int drawMenuBar(WindowState& state, float aspect) {
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("View")) {
-    if (ImGui::MenuItem("Reset view", "R", false, state.renderer != nullptr)) state.resetView();
-    if (ImGui::MenuItem("Fit to scene", "F", false, state.renderer != nullptr)) state.fitToScene();
-    if (state.renderer) {
-      bool headlight = state.renderer->headlight();
+    if (ImGui::MenuItem("Reset view", "R", false, state.view().renderer != nullptr))
+      state.resetView();
+    if (ImGui::MenuItem("Fit to scene", "F", false, state.view().renderer != nullptr))
+      state.fitToScene();
+    if (state.view().renderer) {
+      bool headlight = state.view().renderer->headlight();
       if (ImGui::MenuItem("Headlight", nullptr, &headlight))
-        state.renderer->setHeadlight(headlight);
+        state.view().renderer->setHeadlight(headlight);
     }
     ImGui::Separator();
-    const render::RenderMode mode = state.rendererOptions.traversal.mode;
+    const render::RenderMode mode = state.view().options.traversal.mode;
     if (ImGui::MenuItem("Polygons", nullptr, mode == render::RenderMode::polygons))
       state.setMode(render::RenderMode::polygons);
     if (ImGui::MenuItem("Splats (QNV)", nullptr, mode == render::RenderMode::splats))
       state.setMode(render::RenderMode::splats);
     if (ImGui::MenuItem("Outlines only", nullptr, mode == render::RenderMode::outlines))
       state.setMode(render::RenderMode::outlines);
-    float lod = static_cast<float>(state.rendererOptions.lod);
+    float lod = static_cast<float>(state.view().options.lod);
     if (ImGui::SliderFloat("Level of detail", &lod, 0.001f, 1.0f, "%.3f",
                            ImGuiSliderFlags_Logarithmic))
       state.setLod(lod);
+    ImGui::Separator();
+    ImGui::Separator();
+    for (const char* layout : {"1x1", "2x1", "2x2"}) {
+      const std::string label = std::string("Layout ") + layout;
+      if (ImGui::MenuItem(label.c_str(), nullptr, state.layout == layout)) state.setLayout(layout);
+    }
     ImGui::Separator();
     ImGui::MenuItem("Streams", nullptr, &state.showStreams);
     ImGui::MenuItem("Log", nullptr, &state.showLog);
     ImGui::EndMenu();
   }
-  const bool haveViewpoints = state.renderer && !state.renderer->viewpoints().empty();
+  const auto& renderer = state.view().renderer;
+  const bool haveViewpoints = renderer && !renderer->viewpoints().empty();
   if (ImGui::BeginMenu("Viewpoints", haveViewpoints)) {
-    const auto& vps = state.renderer->viewpoints();
+    const auto& vps = renderer->viewpoints();
     for (std::size_t i = 0; i < vps.size(); ++i) {
       ImGui::PushID(static_cast<int>(i));
       if (ImGui::MenuItem(vps[i].description.c_str())) state.jumpToViewpoint(i);
@@ -194,8 +203,8 @@ int drawMenuBar(WindowState& state, float aspect) {
     }
     ImGui::EndMenu();
   }
-  if (state.renderer) {
-    const auto& st = state.renderer->statistics();
+  if (renderer) {
+    const auto& st = renderer->statistics();
     ImGui::Separator();
     ImGui::Text("%zu shapes, %zu triangles, %zu splats, %.1f ms", st.shapes, st.triangles,
                 st.splats, 1000.0f / std::max(1.0f, ImGui::GetIO().Framerate));

@@ -6,13 +6,29 @@
 
 namespace gs::app {
 
-void WindowState::open(const std::string& path) {
+WindowState::WindowState() : viewports(1) {}
+
+void WindowState::setLayout(const std::string& name) {
+  const int cells = layoutCells(name);
+  if (cells == 0) return;
+  layout = name;
+  const std::size_t world = view().world;
+  const std::size_t before = viewports.size();
+  viewports.resize(static_cast<std::size_t>(cells));  // the renderers of cells removed go
+  for (std::size_t i = before; i < viewports.size(); ++i)
+    if (world != Viewport::kNone) show(world, i);
+  active = std::min(active, viewports.size() - 1);
+}
+
+std::size_t WindowState::load(const std::string& path) {
+  for (std::size_t i = 0; i < worlds.size(); ++i)
+    if (worlds[i].scene->url == path) return i;  // shared, not loaded twice
   std::string error;
   auto scene = session->open(path, error);
   if (!scene) {
     log.push_back({true, error});
     showLog = true;
-    return;
+    return Viewport::kNone;
   }
   log.push_back({false, "opening " + path});
   recent.erase(std::remove(recent.begin(), recent.end(), path), recent.end());
@@ -22,13 +38,71 @@ void WindowState::open(const std::string& path) {
   w.scene = std::const_pointer_cast<vrml::Scene>(scene);
   w.readable = true;
   worlds.push_back(std::move(w));
-  show(worlds.size() - 1);
+  return worlds.size() - 1;
+}
+
+void WindowState::open(const std::string& path) {
+  const std::size_t world = load(path);
+  if (world != Viewport::kNone) show(world, active);
+}
+
+void WindowState::openInNewViewport(const std::string& path) {
+  const std::size_t world = load(path);
+  if (world == Viewport::kNone) return;
+  auto empty = [&] {
+    for (std::size_t i = 0; i < viewports.size(); ++i)
+      if (viewports[i].world == Viewport::kNone) return i;
+    return Viewport::kNone;
+  };
+  std::size_t target = empty();
+  if (target == Viewport::kNone && layout != "2x2") {
+    const std::size_t before = viewports.size();
+    layout = layout == "1x1" ? "2x1" : "2x2";
+    viewports.resize(static_cast<std::size_t>(layoutCells(layout)));
+    target = before;
+  }
+  if (target == Viewport::kNone) target = active;
+  show(world, target);
+  active = target;
+}
+
+void WindowState::openInputs(const std::vector<std::string>& inputs,
+                             const std::vector<double>& lods) {
+  std::vector<std::size_t> loaded;
+  for (const std::string& input : inputs) loaded.push_back(load(input));
+  for (std::size_t i = 0; i < viewports.size(); ++i) {
+    if (inputs.size() != 1 && i >= inputs.size()) break;
+    const std::size_t world = loaded[inputs.size() == 1 ? 0 : i];
+    if (world == Viewport::kNone) continue;
+    viewports[i].options = rendererOptions;
+    if (!lods.empty()) viewports[i].options.lod = lods[std::min(i, lods.size() - 1)];
+    viewports[i].world = world;  // options set: show() keeps them
+    show(world, i);
+  }
+}
+
+void WindowState::show(std::size_t world, std::size_t index) {
+  if (world >= worlds.size() || index >= viewports.size()) return;
+  Viewport& v = viewports[index];
+  if (v.world == Viewport::kNone) {
+    v.options = rendererOptions;
+  }
+  v.world = world;
+  v.renderer.reset();  // its GL objects go while the context is current
+  v.renderer = std::make_unique<render::SceneRenderer>(worlds[world].scene,
+                                                       session->rendererOptions(v.options));
+  v.autoFrame = true;
+  v.diagnosticsLogged = 0;
+  home(v);
 }
 
 void WindowState::update() {
-  if (session->pump() && renderer) {
-    renderer->sceneChanged();
-    if (autoFrame) resetView();
+  if (session->pump()) {
+    for (Viewport& v : viewports) {
+      if (!v.renderer) continue;
+      v.renderer->sceneChanged();
+      if (v.autoFrame) home(v);
+    }
   }
   std::vector<std::pair<bool, std::string>> messages;
   session->drainMessages(messages);
@@ -36,77 +110,97 @@ void WindowState::update() {
     log.push_back({error, std::move(text)});
     if (error) showLog = true;
   }
+  // Problems found while drawing (textures, Inlines), each once.
+  for (Viewport& v : viewports) {
+    if (!v.renderer) continue;
+    const auto& items = v.renderer->diagnostics().items;
+    for (; v.diagnosticsLogged < items.size(); ++v.diagnosticsLogged) {
+      const auto& d = items[v.diagnosticsLogged];
+      log.push_back({d.severity == vrml::Severity::error, d.format()});
+    }
+  }
 }
 
-void WindowState::show(std::size_t index) {
-  if (index >= worlds.size()) return;
-  current = index;
-  renderer = std::make_unique<render::SceneRenderer>(worlds[index].scene,
-                                                     session->rendererOptions(rendererOptions));
-  renderDiagnosticsLogged = 0;
-  autoFrame = true;
-  resetView();
-}
-
-void WindowState::resetView() {
-  if (!renderer) return;
+void WindowState::home(Viewport& v) {
+  if (!v.renderer) return;
+  const float aspect = static_cast<float>(v.rect.width) / static_cast<float>(v.rect.height);
   // The bound Viewpoint; a world without one is framed whole (a KiCad part, say, lies
   // far from the VRML97 default viewpoint's view), as other browsers do.
-  render::Camera camera = renderer->initialCamera(lastAspect);
-  const vrml::Bounds& b = renderer->bounds();
+  render::Camera camera = v.renderer->initialCamera(aspect > 0.0f ? aspect : lastAspect);
+  const vrml::Bounds& b = v.renderer->bounds();
   // Orbit around the point of the view axis nearest the scene's centre.
   glm::vec3 center = camera.position + camera.forward() * 10.0f;
   if (!b.empty()) {
     const float along = glm::dot(b.center() - camera.position, camera.forward());
     center = camera.position + camera.forward() * std::max(along, 1e-3f);
   }
-  navigator.setSceneBounds(b, renderer->navigation().nearClip());
-  navigator.setHome(camera, center);
+  v.navigator.setSceneBounds(b, v.renderer->navigation().nearClip());
+  v.navigator.setHome(camera, center);
+}
+
+void WindowState::resetView() {
+  view().autoFrame = true;
+  home(view());
 }
 
 void WindowState::fitToScene() {
-  if (!renderer) return;
-  autoFrame = false;
-  const render::Camera fitted = renderer->fitToScene(lastAspect, navigator.camera());
-  navigator.setHome(fitted, renderer->bounds().center());
+  Viewport& v = view();
+  if (!v.renderer) return;
+  v.autoFrame = false;
+  const render::Camera fitted = v.renderer->fitToScene(lastAspect, v.navigator.camera());
+  v.navigator.setHome(fitted, v.renderer->bounds().center());
 }
 
 void WindowState::setMode(render::RenderMode mode) {
-  rendererOptions.traversal.mode = mode;
-  if (!renderer) return;
-  const render::Camera camera = navigator.camera();
-  renderer.reset();  // its GL objects go while the context is current
-  renderer = std::make_unique<render::SceneRenderer>(worlds[current].scene,
-                                                     session->rendererOptions(rendererOptions));
-  navigator.setCamera(camera);
+  Viewport& v = view();
+  v.options.traversal.mode = mode;
+  rendererOptions.traversal.mode = mode;  // for viewports made later
+  if (!v.renderer) return;
+  const render::Camera camera = v.navigator.camera();
+  v.renderer.reset();
+  v.renderer = std::make_unique<render::SceneRenderer>(worlds[v.world].scene,
+                                                       session->rendererOptions(v.options));
+  v.navigator.setCamera(camera);
 }
 
 void WindowState::setLod(double lod) {
-  rendererOptions.lod = lod;
-  if (renderer) renderer->setLod(lod);
+  Viewport& v = view();
+  v.options.lod = lod;
+  if (v.renderer) v.renderer->setLod(lod);
 }
 
 void WindowState::jumpToViewpoint(std::size_t index) {
-  if (!renderer || index >= renderer->viewpoints().size()) return;
-  autoFrame = false;
-  navigator.setCamera(renderer->viewpointCamera(index));
+  Viewport& v = view();
+  if (!v.renderer || index >= v.renderer->viewpoints().size()) return;
+  v.autoFrame = false;
+  v.navigator.setCamera(v.renderer->viewpointCamera(index));
+}
+
+std::size_t WindowState::viewportAt(float x, float y, int height) const {
+  const float fromBottom = static_cast<float>(height) - y;
+  for (std::size_t i = 0; i < viewports.size(); ++i) {
+    const ViewportRect& r = viewports[i].rect;
+    if (x >= static_cast<float>(r.x) && x < static_cast<float>(r.x + r.width) &&
+        fromBottom >= static_cast<float>(r.y) && fromBottom < static_cast<float>(r.y + r.height))
+      return i;
+  }
+  return Viewport::kNone;
 }
 
 void WindowState::drawScene(int x, int y, int width, int height) {
-  lastAspect = static_cast<float>(width) / static_cast<float>(std::max(1, height));
-  if (renderer) {
-    renderer->draw(navigator.camera(), x, y, width, height);
-    // Diagnostics found while drawing (textures, Inlines) go to the log once.
-    const auto& items = renderer->diagnostics().items;
-    for (; renderDiagnosticsLogged < items.size(); ++renderDiagnosticsLogged) {
-      const auto& d = items[renderDiagnosticsLogged];
-      log.push_back({d.severity == vrml::Severity::error, d.format()});
-    }
-    return;
-  }
   glViewport(x, y, width, height);
   glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  for (std::size_t i = 0; i < viewports.size(); ++i) {
+    Viewport& v = viewports[i];
+    v.rect = layoutRect(layout, static_cast<int>(i), width, height);
+    v.rect.x += x;
+    v.rect.y += y;
+    if (i == active)
+      lastAspect = static_cast<float>(v.rect.width) / static_cast<float>(v.rect.height);
+    if (v.renderer)
+      v.renderer->draw(v.navigator.camera(), v.rect.x, v.rect.y, v.rect.width, v.rect.height);
+  }
 }
 
 }  // namespace gs::app

@@ -72,8 +72,8 @@ TEST_CASE("two worlds side by side at their own levels of detail", "[app][layout
                           "--lod", "1,0.2", "--no-progress", welcome.string(), qnv.string()});
   INFO(r.err);
   REQUIRE(r.exitCode == 0);
-  REQUIRE(runGhostspace({"--snapshot", a.string(), "--size", "160x120", "--no-progress",
-                         welcome.string()})
+  REQUIRE(runGhostspace(
+              {"--snapshot", a.string(), "--size", "160x120", "--no-progress", welcome.string()})
               .exitCode == 0);
   REQUIRE(runGhostspace({"--snapshot", b.string(), "--size", "160x120", "--lod", "0.2",
                          "--no-progress", qnv.string()})
@@ -83,8 +83,8 @@ TEST_CASE("two worlds side by side at their own levels of detail", "[app][layout
   CHECK(differing(crop(image, 160, 0, 160, 120), gs::render::readPng(b.string())) == 0.0);
   // The other level of detail looks different: the viewports are really independent.
   const fs::path full = outDir() / "b_full.png";
-  REQUIRE(runGhostspace({"--snapshot", full.string(), "--size", "160x120", "--no-progress",
-                         qnv.string()})
+  REQUIRE(runGhostspace(
+              {"--snapshot", full.string(), "--size", "160x120", "--no-progress", qnv.string()})
               .exitCode == 0);
   CHECK(differing(crop(image, 160, 0, 160, 120), gs::render::readPng(full.string())) > 0.01);
 }
@@ -99,8 +99,8 @@ TEST_CASE("one stream in two viewports is fetched once", "[app][layout][http]") 
   const std::string bytes = readBytes(qnv);
   nginx.writeFile("s.qnv", bytes);
   const fs::path out = outDir() / "shared.png";
-  const auto r = runGhostspace({"--snapshot", out.string(), "--size", "200x100", "--layout",
-                                "2x1", "--lod", "0.3,1", "--no-progress", nginx.url("/s.qnv")});
+  const auto r = runGhostspace({"--snapshot", out.string(), "--size", "200x100", "--layout", "2x1",
+                                "--lod", "0.3,1", "--no-progress", nginx.url("/s.qnv")});
   INFO(r.err);
   REQUIRE(r.exitCode == 0);
   std::uint64_t sent = 0;

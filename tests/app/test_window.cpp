@@ -1,6 +1,8 @@
 // The real window under Xvfb: it opens, draws a few frames through GLFW + ImGui and the
 // same SceneRenderer as --snapshot, and closes cleanly. Skips when Xvfb is absent.
+#include "http/nginx_server.hpp"
 #include "process.hpp"
+#include "render/image.hpp"
 #include "test_support.hpp"
 
 #include <catch2/catch.hpp>
@@ -9,8 +11,12 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <thread>
 
@@ -79,4 +85,109 @@ TEST_CASE("a load error is reported in the window, which keeps running", "[app][
   auto r = gs::test::runGhostspace({"--frames", "3", "/nonexistent/world.wrl"},
                                    {"DISPLAY=" + x.display()});
   CHECK(r.exitCode == 0);
+}
+
+namespace {
+
+std::string fileBytes(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+gs::render::Image half(const gs::render::Image& image, bool right) {
+  const int w = image.width / 2;
+  gs::render::Image out(w, image.height);
+  for (int row = 0; row < image.height; ++row)
+    std::copy_n(
+        image.rgba.begin() +
+            (static_cast<std::ptrdiff_t>(row) * image.width + (right ? image.width - w : 0)) * 4,
+        w * 4, out.rgba.begin() + static_cast<std::ptrdiff_t>(row) * w * 4);
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("two viewports at their own levels of detail; a scripted LOD change fetches more",
+          "[app][window][http]") {
+  Xvfb x;
+  if (!x.running()) {
+    WARN("SKIPPED: /usr/bin/Xvfb is absent (install xvfb)");
+    return;
+  }
+  gs::test::NginxServer nginx;
+  if (!nginx.ok()) return;
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(GS_BINARY_DIR) / "window-actual";
+  fs::create_directories(dir);
+  // A 40^3 ball with a soft edge: about 30,000 vectors, several times the first slice.
+  const fs::path raw = dir / "ball.raw", qnv = dir / "ball.qnv";
+  {
+    std::string v(40 * 40 * 40, '\0');
+    for (int i = 0; i < 40 * 40 * 40; ++i) {
+      const double dx = i % 40 - 20.0, dy = i / 40 % 40 - 20.0, dz = i / 1600 - 20.0;
+      v[static_cast<std::size_t>(i)] = static_cast<char>(static_cast<unsigned char>(
+          std::clamp(255.0 - 10.0 * std::sqrt(dx * dx + dy * dy + dz * dz), 0.0, 255.0)));
+    }
+    std::ofstream(raw, std::ios::binary) << v;
+  }
+  REQUIRE(gs::test::runGhostspace({"encode", raw.string(), "--raw-dims", "40,40,40", "-o",
+                                   qnv.string(), "--no-progress", "--packet-bytes", "48"})
+              .exitCode == 0);
+  const std::string bytes = fileBytes(qnv);
+  nginx.writeFile("ball.qnv", bytes);
+  const fs::path script = dir / "lod.script", before = dir / "before.png",
+                 after = dir / "after.png", right = dir / "right.png";
+  std::ofstream(script) << "wait-loaded\nscreenshot " << before.string()
+                        << "\nviewport 1\nlod 1\nwait-loaded\nscreenshot " << after.string()
+                        << "\nscreenshot-viewport " << right.string() << "\nquit\n";
+  const auto world = gs::test::sourceDir() / "assets/worlds/welcome.wrl";
+  auto r =
+      gs::test::runGhostspace({"--size", "400x220", "--layout", "2x1", "--lod", "1,0.05",
+                               "--script", script.string(), world.string(), nginx.url("/ball.qnv")},
+                              {"DISPLAY=" + x.display()});
+  INFO(r.err);
+  REQUIRE(r.exitCode == 0);
+  const auto a = gs::render::readPng(before.string()), b = gs::render::readPng(after.string());
+  // The left viewport did not change; the right one did, with its level of detail.
+  CHECK(gs::render::compareImages(half(a, false), half(b, false), 0).fractionDiffering == 0.0);
+  CHECK(gs::render::compareImages(half(a, true), half(b, true), 16).fractionDiffering > 0.01);
+  // The right viewport at full detail looks as a snapshot of the stream does.
+  const auto rightImage = gs::render::readPng(right.string());
+  const fs::path snap = dir / "snapshot.png";
+  REQUIRE(gs::test::runGhostspace(
+              {"--snapshot", snap.string(), "--size",
+               std::to_string(rightImage.width) + "x" + std::to_string(rightImage.height),
+               "--no-progress", qnv.string()})
+              .exitCode == 0);
+  CHECK(gs::render::compareImages(rightImage, gs::render::readPng(snap.string()), 16)
+            .fractionDiffering < 0.02);
+  // Fetched once: range requests only, each byte once, several requests as LOD grew.
+  std::uint64_t sent = 0;
+  const auto log = nginx.accessLog(2);
+  for (const std::string& line : log) {
+    INFO(line);
+    CHECK(line.find(" 206 ") != std::string::npos);
+    std::istringstream fields(line);
+    std::string method, uri, status;
+    std::uint64_t n = 0;
+    fields >> method >> uri >> status >> n;
+    sent += n;
+  }
+  CHECK(log.size() >= 2);
+  CHECK(sent == bytes.size());
+}
+
+TEST_CASE("a bad window script is a usage error naming its line", "[app][window]") {
+  Xvfb x;
+  if (!x.running()) {
+    WARN("SKIPPED: /usr/bin/Xvfb is absent (install xvfb)");
+    return;
+  }
+  const auto path = std::filesystem::path(GS_BINARY_DIR) / "bad.script";
+  std::ofstream(path) << "frames 2\nlod 7\n";
+  auto r = gs::test::runGhostspace({"--script", path.string()}, {"DISPLAY=" + x.display()});
+  CHECK(r.exitCode == 2);
+  CHECK(r.err.find("bad.script:2: expected lod F") != std::string::npos);
 }

@@ -1,12 +1,15 @@
-// State of the window application: the worlds opened, the one shown, its renderer and
-// navigator, the log of diagnostics. The ImGui panels read and change it.
+// State of the window application: the worlds opened, the viewports that show them (each
+// with its own renderer, camera, level of detail and mode), the log of diagnostics. The
+// ImGui panels read and change it.
 #pragma once
 
+#include "app/layout.hpp"
 #include "app/streaming_session.hpp"
 #include "app/world.hpp"
 #include "render/camera.hpp"
 #include "render/scene_renderer.hpp"
 
+#include <cstddef>
 #include <memory>
 #include <string>
 #include <vector>
@@ -19,53 +22,89 @@ struct LogLine {
   std::string text;
 };
 
-struct WindowState {
-  std::vector<LoadedWorld> worlds;                  // every world opened, in order
-  std::size_t current = 0;                          // index into worlds of the one shown
-  std::unique_ptr<render::SceneRenderer> renderer;  // for worlds[current]; null if none
+/// One cell of the layout. Worlds are shared: two viewports showing the same world
+/// share its scene and its streams (loaded once), each with its own renderer.
+struct Viewport {
+  static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
+  std::size_t world = kNone;                        // index into WindowState::worlds
+  std::unique_ptr<render::SceneRenderer> renderer;  // null while empty
   render::ExamineNavigator navigator;
+  render::SceneRendererOptions options;  // level of detail, mode, loaders
+  /// False once the user moved this camera: until then it is framed again as the world
+  /// arrives.
+  bool autoFrame = true;
+  ViewportRect rect;                  // where it was last drawn (pixels, lower-left origin)
+  std::size_t diagnosticsLogged = 0;  // renderer diagnostics already in the log
+};
+
+struct WindowState {
+  std::vector<LoadedWorld> worlds;  // every world opened, in order
+  std::string layout = "1x1";       // 1x1, 2x1 or 2x2
+  std::vector<Viewport> viewports;  // layoutCells(layout) of them
+  std::size_t active = 0;           // the viewport the menus and the mouse act on
   std::vector<LogLine> log;
-  std::vector<std::string> recent;  // paths opened, most recent first
+  std::vector<std::string> recent;  // paths and URLs opened, most recent first
   bool showLog = false;
   bool showOpenDialog = false;
+  bool showStreams = false;
   bool quitRequested = false;
   char openPath[1024] = {};
-  float lastAspect = 1.0f;
-  std::size_t renderDiagnosticsLogged = 0;  // renderer diagnostics already in the log
-  /// How worlds are drawn: splat loader, level of detail (--lod), mode (--mode).
+  float lastAspect = 1.0f;  // of the active viewport
+  /// How new viewports draw: splat loader, level of detail (--lod), mode (--mode).
   render::SceneRendererOptions rendererOptions;
   /// Streams every world opened (files and URLs) while the window keeps drawing.
   std::unique_ptr<StreamingSession> session = std::make_unique<StreamingSession>();
-  /// False once the user moved the camera: until then the view is framed again as the
-  /// world arrives.
-  bool autoFrame = true;
-  bool showStreams = false;
 
-  /// Starts loading `path` (a file or an http(s) URL) and shows it as it arrives; a
-  /// failure is logged (and the log shown), never thrown.
+  WindowState();
+
+  /// The active viewport (there is always at least one).
+  Viewport& view() { return viewports[active]; }
+  const Viewport& view() const { return viewports[active]; }
+
+  /// Switches to `layout` ("1x1", "2x1", "2x2"; anything else is ignored). New cells show
+  /// the active viewport's world; cells removed are freed.
+  void setLayout(const std::string& layout);
+  /// Starts loading `path` (a file or an http(s) URL) and shows it in the active
+  /// viewport as it arrives; a failure is logged (and the log shown), never thrown.
   void open(const std::string& path);
+  /// As open(), but in the first empty viewport, growing the layout (1x1, 2x1, 2x2) when
+  /// none is empty; with four full viewports, the active one (the web-browser helper).
+  void openInNewViewport(const std::string& path);
+  /// Fills the viewports in order with `inputs` (a single input fills them all); viewport
+  /// i draws at level of detail lods[i] (the last one repeats; none: rendererOptions.lod).
+  void openInputs(const std::vector<std::string>& inputs, const std::vector<double>& lods);
+  /// Shows worlds[world] in viewports[viewport]: new renderer, camera at its bound
+  /// Viewpoint.
+  void show(std::size_t world, std::size_t viewport);
   /// Once per frame: moves arrived bytes into the worlds and streams, redraws what grew,
   /// logs messages.
   void update();
-  /// Shows worlds[index]: new renderer, navigator at its bound Viewpoint.
-  void show(std::size_t index);
-  /// Returns the navigator to the bound Viewpoint of the current world.
+  /// Returns the active viewport's camera to its world's bound Viewpoint.
   void resetView();
-  /// Frames the whole scene keeping the view direction.
+  /// Frames the active viewport's whole scene keeping the view direction.
   void fitToScene();
-  /// Draws every world in `mode` (a new renderer for the current world; the view stays).
+  /// Draws the active viewport in `mode` (a new renderer; the view stays).
   void setMode(render::RenderMode mode);
-  /// Sets the level of detail (fraction of every QNV stream drawn, 0..1).
+  /// Sets the active viewport's level of detail (fraction of every QNV stream, 0..1).
   void setLod(double lod);
-  /// Jumps to Viewpoint `index` of the current world.
+  /// Jumps the active viewport to Viewpoint `index` of its world.
   void jumpToViewpoint(std::size_t index);
-  /// Renders the current world (or only the clear colour) into the viewport rectangle
-  /// (pixels, origin bottom left) of the current framebuffer.
+  /// The viewport under the point (x, y) in pixels from the top left of the scene area of
+  /// height `height`, or Viewport::kNone.
+  std::size_t viewportAt(float x, float y, int height) const;
+  /// Renders every viewport into its cell of the rectangle (pixels, origin bottom left)
+  /// of the current framebuffer; empty cells are cleared to black.
   void drawScene(int x, int y, int width, int height);
+
+ private:
+  /// Opens `path` in the session (once per path) and returns its index in worlds, or
+  /// Viewport::kNone after logging why not.
+  std::size_t load(const std::string& path);
+  void home(Viewport& v);
 };
 
 /// Draws the main menu bar (File, View, Viewpoints, Help) and acts on it; returns its
-/// height in pixels. `aspect` is the scene viewport's width / height.
+/// height in pixels. `aspect` is the active viewport's width / height.
 int drawMenuBar(WindowState& state, float aspect);
 /// Draws the open-file dialog, the stream panel and the log panel when they are shown.
 void drawPanels(WindowState& state);

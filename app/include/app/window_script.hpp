@@ -1,0 +1,53 @@
+// Scripted input for the window (--script FILE), for tests and demonstrations: the same
+// actions the menus perform, one per line, run between frames.
+//
+//   # comment
+//   layout 2x1              View > Layout
+//   open PATH_OR_URL        File > Open (into the active viewport)
+//   viewport I              click viewport I (0-based: left to right, top to bottom)
+//   lod F                   the active viewport's level of detail slider (0 < F <= 1)
+//   mode polygons|splats|outlines
+//   wait-loaded             until nothing is arriving (at most 60 s, then logged)
+//   frames N                draw N frames
+//   screenshot OUT.png      the whole scene area (without the menus) as PNG
+//   screenshot-viewport OUT.png   the active viewport only
+//   quit
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "app/window_state.hpp"
+
+namespace gs::app {
+
+class WindowScript {
+ public:
+  /// Reads and checks the whole script. Returns false with `error` set to
+  /// "FILE:LINE: expected ..., got ..." (or why the file cannot be read).
+  bool load(const std::string& path, std::string& error);
+
+  /// Runs commands after a frame's scene was drawn into the scene area (width x height
+  /// pixels at the bottom left of the current framebuffer, before the menus are drawn),
+  /// until one waits for more frames. Returns false once the script asked to quit or
+  /// ended with `quit`. Failures (a screenshot that cannot be written) go to the log.
+  bool step(WindowState& state, int width, int height);
+
+  bool empty() const { return commands_.empty(); }
+
+ private:
+  struct Command {
+    std::string verb;
+    std::string argument;
+    int line = 0;
+  };
+  std::vector<Command> commands_;
+  std::size_t next_ = 0;
+  int framesLeft_ = 0;
+  int settledFrames_ = 0;
+  int waitedFrames_ = 0;
+  double waitStart_ = -1.0;
+};
+
+}  // namespace gs::app

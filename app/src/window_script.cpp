@@ -1,0 +1,123 @@
+#include "app/window_script.hpp"
+
+#include <charconv>
+#include <chrono>
+#include <fstream>
+#include <sstream>
+
+#include "render/image.hpp"
+
+namespace gs::app {
+
+namespace {
+
+double now() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+bool parseNumber(const std::string& text, double& value) {
+  auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  return ec == std::errc() && p == text.data() + text.size();
+}
+
+}  // namespace
+
+bool WindowScript::load(const std::string& path, std::string& error) {
+  std::ifstream in(path);
+  if (!in) {
+    error = "cannot read script '" + path + "'";
+    return false;
+  }
+  std::string text;
+  int line = 0;
+  while (std::getline(in, text)) {
+    ++line;
+    std::istringstream words(text);
+    Command c;
+    c.line = line;
+    if (!(words >> c.verb) || c.verb.starts_with("#")) continue;
+    std::getline(words >> std::ws, c.argument);
+    auto fail = [&](const std::string& expected) {
+      error = path + ":" + std::to_string(line) + ": expected " + expected + ", got '" + text + "'";
+      return false;
+    };
+    double number = 0.0;
+    if (c.verb == "layout") {
+      if (layoutCells(c.argument) == 0) return fail("layout 1x1, 2x1 or 2x2");
+    } else if (c.verb == "viewport") {
+      if (!parseNumber(c.argument, number) || number < 0 || number > 3)
+        return fail("viewport 0..3");
+    } else if (c.verb == "lod") {
+      if (!parseNumber(c.argument, number) || !(number > 0.0) || number > 1.0)
+        return fail("lod F with 0 < F <= 1");
+    } else if (c.verb == "mode") {
+      if (c.argument != "polygons" && c.argument != "splats" && c.argument != "outlines")
+        return fail("mode polygons, splats or outlines");
+    } else if (c.verb == "frames") {
+      if (!parseNumber(c.argument, number) || number < 1 || number > 1e6)
+        return fail("frames N with N >= 1");
+    } else if (c.verb == "open" || c.verb == "screenshot" || c.verb == "screenshot-viewport") {
+      if (c.argument.empty()) return fail(c.verb + " followed by a path");
+    } else if (c.verb != "wait-loaded" && c.verb != "quit") {
+      return fail(
+          "a command (layout, open, viewport, lod, mode, wait-loaded, frames, "
+          "screenshot, screenshot-viewport, quit)");
+    }
+    commands_.push_back(std::move(c));
+  }
+  return true;
+}
+
+bool WindowScript::step(WindowState& state, int width, int height) {
+  if (framesLeft_ > 0 && --framesLeft_ > 0) return true;
+  while (next_ < commands_.size()) {
+    const Command& c = commands_[next_];
+    double number = 0.0;
+    parseNumber(c.argument, number);
+    if (c.verb == "wait-loaded") {
+      // Settled for two frames running: the frame after a change has drawn (and so asked
+      // for what its level of detail needs) and nothing new started.
+      if (waitStart_ < 0.0) waitStart_ = now();
+      settledFrames_ = state.session->settled() ? settledFrames_ + 1 : 0;
+      if (settledFrames_ < 3 && now() - waitStart_ < 60.0) return true;
+      if (settledFrames_ < 3)
+        state.log.push_back(
+            {true, "script line " + std::to_string(c.line) + ": still loading after 60 s"});
+      waitStart_ = -1.0;
+      settledFrames_ = 0;
+    } else if (c.verb == "frames") {
+      framesLeft_ = static_cast<int>(number);
+      ++next_;
+      return true;
+    } else if (c.verb == "layout") {
+      state.setLayout(c.argument);
+    } else if (c.verb == "open") {
+      state.open(c.argument);
+    } else if (c.verb == "viewport") {
+      const auto index = static_cast<std::size_t>(number);
+      if (index < state.viewports.size()) state.active = index;
+    } else if (c.verb == "lod") {
+      state.setLod(number);
+    } else if (c.verb == "mode") {
+      state.setMode(c.argument == "splats"     ? render::RenderMode::splats
+                    : c.argument == "outlines" ? render::RenderMode::outlines
+                                               : render::RenderMode::polygons);
+    } else if (c.verb == "screenshot" || c.verb == "screenshot-viewport") {
+      ViewportRect r{0, 0, width, height};
+      if (c.verb == "screenshot-viewport") r = state.view().rect;
+      try {
+        render::writePng(c.argument, render::readPixels(r.x, r.y, r.width, r.height));
+        state.log.push_back({false, "screenshot " + c.argument});
+      } catch (const std::exception& e) {
+        state.log.push_back({true, std::string("screenshot: ") + e.what()});
+      }
+    } else if (c.verb == "quit") {
+      ++next_;
+      return false;
+    }
+    ++next_;
+  }
+  return true;
+}
+
+}  // namespace gs::app
