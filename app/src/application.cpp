@@ -113,6 +113,9 @@ Parsed parseArguments(int argc, char** argv) {
                  "Window: run the UI actions of FILE between frames (layout, open, viewport, "
                  "lod, mode, wait-loaded, frames, screenshot, quit; see app/window_script.hpp)")
       ->type_name("FILE");
+  cli.add_flag("--new-instance", o.newInstance,
+               "Open a window of its own even when one is running (by default the INPUTs go "
+               "to the running window, each in a new viewport)");
   cli.add_flag("--fit", o.fit, "Frame the whole scene instead of using the bound Viewpoint");
   cli.add_option("--max-rate", o.maxRate,
                  "Deliver at most this many bytes per second per transfer (emulates a slow "

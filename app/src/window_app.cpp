@@ -1,6 +1,7 @@
 // `ghostspace [INPUT...]`: the GLFW window, its Dear ImGui menu and panels, EXAMINE
 // navigation. Rendering goes through the same render::SceneRenderer as --snapshot.
 #include "app/commands.hpp"
+#include "app/single_instance.hpp"
 #include "app/window_script.hpp"
 #include "app/window_state.hpp"
 #include "render/context.hpp"
@@ -71,6 +72,12 @@ void navigate(WindowState& state, int menuHeight, int viewportHeight) {
 }  // namespace
 
 int runWindow(const Options& options) {
+  // The web-browser helper's second launch: the running window opens the inputs.
+  if (!options.newInstance && !options.inputs.empty() && options.script.empty() &&
+      handToRunningInstance(options.inputs)) {
+    std::printf("ghostspace: opened %zu input(s) in the running window\n", options.inputs.size());
+    return 0;
+  }
   std::unique_ptr<render::WindowContext> context;
   try {
     context = render::createWindowContext("GhostSpace", options.width, options.height);
@@ -94,6 +101,9 @@ int runWindow(const Options& options) {
     }
   }
 
+  std::unique_ptr<InstanceServer> instances;
+  if (!options.newInstance) instances = std::make_unique<InstanceServer>();
+
   int frame = 0;
   GLFWwindow* window = context->glfwHandle();
   while (!glfwWindowShouldClose(window) && !state.quitRequested) {
@@ -104,6 +114,8 @@ int runWindow(const Options& options) {
 
     const int width = context->width(), height = context->height();
     const int menuHeight = drawMenuBar(state, static_cast<float>(width) / std::max(1, height));
+    if (instances)
+      for (const std::string& input : instances->poll()) state.openInNewViewport(input);
     state.update();
     drawPanels(state);
     navigate(state, menuHeight, std::max(1, height - menuHeight));

@@ -56,6 +56,9 @@ bool WindowScript::load(const std::string& path, std::string& error) {
     } else if (c.verb == "frames") {
       if (!parseNumber(c.argument, number) || number < 1 || number > 1e6)
         return fail("frames N with N >= 1");
+    } else if (c.verb == "wait-viewports") {
+      if (!parseNumber(c.argument, number) || number < 1 || number > 4)
+        return fail("wait-viewports N with 1 <= N <= 4");
     } else if (c.verb == "open" || c.verb == "screenshot" || c.verb == "screenshot-viewport") {
       if (c.argument.empty()) return fail(c.verb + " followed by a path");
     } else if (c.verb != "wait-loaded" && c.verb != "quit") {
@@ -85,6 +88,15 @@ bool WindowScript::step(WindowState& state, int width, int height) {
             {true, "script line " + std::to_string(c.line) + ": still loading after 60 s"});
       waitStart_ = -1.0;
       settledFrames_ = 0;
+    } else if (c.verb == "wait-viewports") {
+      if (waitStart_ < 0.0) waitStart_ = now();
+      std::size_t shown = 0;
+      for (const Viewport& v : state.viewports) shown += v.world != Viewport::kNone ? 1 : 0;
+      if (shown < static_cast<std::size_t>(number) && now() - waitStart_ < 60.0) return true;
+      if (shown < static_cast<std::size_t>(number))
+        state.log.push_back({true, "script line " + std::to_string(c.line) +
+                                       ": fewer viewports than asked after 60 s"});
+      waitStart_ = -1.0;
     } else if (c.verb == "frames") {
       framesLeft_ = static_cast<int>(number);
       ++next_;

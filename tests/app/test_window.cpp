@@ -191,3 +191,49 @@ TEST_CASE("a bad window script is a usage error naming its line", "[app][window]
   CHECK(r.exitCode == 2);
   CHECK(r.err.find("bad.script:2: expected lod F") != std::string::npos);
 }
+
+TEST_CASE("a second launch hands its file to the running window", "[app][window][helper]") {
+  Xvfb x;
+  if (!x.running()) {
+    WARN("SKIPPED: /usr/bin/Xvfb is absent (install xvfb)");
+    return;
+  }
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(GS_BINARY_DIR) / "window-actual";
+  const fs::path runtime = dir / ("xdg-helper-" + std::to_string(::getpid()));
+  fs::create_directories(runtime);
+  fs::permissions(runtime, fs::perms::owner_all, fs::perm_options::replace);
+  const fs::path script = dir / "helper.script", shot = dir / "helper.png";
+  // The first window waits (at most 60 s) until a second viewport shows a world.
+  std::ofstream(script) << "wait-viewports 2\nwait-loaded\nscreenshot " << shot.string()
+                        << "\nquit\n";
+  const auto welcome = gs::test::sourceDir() / "assets/worlds/welcome.wrl";
+  const auto part = gs::test::sourceDir() / "assets/meshes/tetra.glb";
+  const std::vector<std::string> env = {"DISPLAY=" + x.display(),
+                                        "XDG_RUNTIME_DIR=" + runtime.string()};
+  gs::test::ProcessResult first;
+  std::thread window([&] {
+    first = gs::test::runGhostspace(
+        {"--size", "400x220", "--script", script.string(), welcome.string()}, env);
+  });
+  // The first window's socket appears once it is up.
+  const fs::path socket = runtime / "ghostspace.sock";
+  for (int i = 0; i < 400 && !fs::exists(socket); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  CHECK(fs::exists(socket));
+  const auto second = gs::test::runGhostspace({part.string()}, env);
+  window.join();
+  INFO(first.err);
+  CHECK(second.exitCode == 0);
+  CHECK(second.out.find("running window") != std::string::npos);
+  REQUIRE(first.exitCode == 0);
+  // The window grew to two viewports: the welcome world left, the green tetrahedron
+  // (its material) right.
+  const auto image = gs::render::readPng(shot.string());
+  const auto right = half(image, true);
+  std::size_t green = 0;
+  for (std::size_t i = 0; i < right.rgba.size(); i += 4)
+    green += right.rgba[i + 1] > 150 && right.rgba[i] < 100 && right.rgba[i + 2] < 100 ? 1 : 0;
+  CHECK(green > right.rgba.size() / 4 / 50);
+  fs::remove_all(runtime);
+}

@@ -39,6 +39,7 @@ struct Options {
   std::vector<double> lods;       // --lod F1,F2,...: per viewport (the last one repeats)
   std::string layout = "1x1";     // --layout 1x1|2x1|2x2: viewports in the window or image
   std::string script;             // --script FILE: UI actions for the window (window_script.hpp)
+  bool newInstance = false;       // --new-instance: do not hand INPUTs to a running window
   std::string mode = "polygons";  // --mode polygons|splats|outlines
   bool fit = false;               // --fit: frame the whole scene, not the Viewpoint
   double maxRate = 0.0;           // --max-rate BYTES_PER_S: emulate a slow link (0: off)

@@ -8,6 +8,8 @@
 //   lod F                   the active viewport's level of detail slider (0 < F <= 1)
 //   mode polygons|splats|outlines
 //   wait-loaded             until nothing is arriving (at most 60 s, then logged)
+//   wait-viewports N        until N viewports show a world (e.g. sent by another launch;
+//                           at most 60 s)
 //   frames N                draw N frames
 //   screenshot OUT.png      the whole scene area (without the menus) as PNG
 //   screenshot-viewport OUT.png   the active viewport only
