@@ -53,17 +53,42 @@ void navigate(WindowState& state, int menuHeight, int viewportHeight) {
   viewportHeight = std::max(1, state.view().rect.height);
   const float dx = io.MouseDelta.x, dy = io.MouseDelta.y;
   const bool moved = dx != 0.0f || dy != 0.0f;
+  const bool examine = navigator.mode() == render::NavigationMode::examine;
   if (io.MouseDown[0] && moved) {
     if (io.KeyShift)
       navigator.pan(dx, dy, viewportHeight);
-    else
+    else if (examine)
       navigator.orbit(dx, dy, viewportHeight);
+    else
+      navigator.look(dx, dy, viewportHeight);
   } else if (io.MouseDown[1] && moved) {
     navigator.pan(dx, dy, viewportHeight);
   } else if (io.MouseDown[2] && moved) {
     navigator.dolly(-dy / 20.0f);
   }
-  if (io.MouseWheel != 0.0f) navigator.dolly(io.MouseWheel);
+  const auto& renderer = state.view().renderer;
+  const float speed = renderer ? std::max(renderer->navigation().speed, 1e-3f) : 1.0f;
+  if (io.MouseWheel != 0.0f) {
+    if (examine)
+      navigator.dolly(io.MouseWheel);
+    else
+      navigator.move(io.MouseWheel * speed * 0.5f, 0.0f, 0.0f);
+  }
+  // WALK and FLY: W/S or the arrows move forward and back, A/D sideways, Q/E down and up,
+  // at NavigationInfo.speed metres per second.
+  if (!examine && !io.WantCaptureKeyboard) {
+    auto down = [](int key) { return ImGui::IsKeyDown(key); };
+    const float step = speed * io.DeltaTime;
+    const float f = (down('W') || down(GLFW_KEY_UP) ? 1.0f : 0.0f) -
+                    (down('S') || down(GLFW_KEY_DOWN) ? 1.0f : 0.0f);
+    const float r = (down('D') || down(GLFW_KEY_RIGHT) ? 1.0f : 0.0f) -
+                    (down('A') || down(GLFW_KEY_LEFT) ? 1.0f : 0.0f);
+    const float u = (down('E') ? 1.0f : 0.0f) - (down('Q') ? 1.0f : 0.0f);
+    if (f != 0.0f || r != 0.0f || u != 0.0f) {
+      navigator.move(f * step, r * step, u * step);
+      state.view().autoFrame = false;
+    }
+  }
   if (moved && (io.MouseDown[0] || io.MouseDown[1] || io.MouseDown[2]))
     state.view().autoFrame = false;
   if (io.MouseWheel != 0.0f) state.view().autoFrame = false;

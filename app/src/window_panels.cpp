@@ -183,6 +183,15 @@ int drawMenuBar(WindowState& state, float aspect) {
       state.setLod(lod);
     ImGui::Separator();
     ImGui::Separator();
+    const render::NavigationMode nav = state.view().navigator.mode();
+    if (ImGui::MenuItem("Examine", nullptr, nav == render::NavigationMode::examine))
+      state.setNavigation(render::NavigationMode::examine);
+    if (ImGui::MenuItem("Walk", nullptr, nav == render::NavigationMode::walk))
+      state.setNavigation(render::NavigationMode::walk);
+    if (ImGui::MenuItem("Fly", nullptr, nav == render::NavigationMode::fly))
+      state.setNavigation(render::NavigationMode::fly);
+    ImGui::MenuItem("Link this viewport's camera", nullptr, &state.view().linked);
+    ImGui::Separator();
     for (const char* layout : {"1x1", "2x1", "2x2"}) {
       const std::string label = std::string("Layout ") + layout;
       if (ImGui::MenuItem(label.c_str(), nullptr, state.layout == layout)) state.setLayout(layout);

@@ -3,6 +3,9 @@
 #include <glad/gl.h>
 
 #include <algorithm>
+#include <chrono>
+
+#include <glm/gtc/quaternion.hpp>
 
 namespace gs::app {
 
@@ -121,8 +124,28 @@ void WindowState::update() {
   }
 }
 
+namespace {
+
+double secondsNow() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+}  // namespace
+
+void WindowState::setNavigation(render::NavigationMode mode) {
+  view().navigator.setMode(mode);
+  view().navigationChosen = true;
+}
+
 void WindowState::home(Viewport& v) {
   if (!v.renderer) return;
+  // A world's NavigationInfo chooses the navigation; without one, EXAMINE (as most
+  // browsers do for a model) rather than VRML97's default WALK.
+  const render::NavigationSettings& nav = v.renderer->navigation();
+  if (!v.navigationChosen)
+    v.navigator.setMode(nav.node != nullptr
+                            ? render::navigationModeOf(nav.type, render::NavigationMode::examine)
+                            : render::NavigationMode::examine);
   const float aspect = static_cast<float>(v.rect.width) / static_cast<float>(v.rect.height);
   // The bound Viewpoint; a world without one is framed whole (a KiCad part, say, lies
   // far from the VRML97 default viewpoint's view), as other browsers do.
@@ -173,7 +196,9 @@ void WindowState::jumpToViewpoint(std::size_t index) {
   Viewport& v = view();
   if (!v.renderer || index >= v.renderer->viewpoints().size()) return;
   v.autoFrame = false;
-  v.navigator.setCamera(v.renderer->viewpointCamera(index));
+  v.transition.from = v.navigator.camera();
+  v.transition.to = v.renderer->viewpointCamera(index);
+  v.transition.start = secondsNow();
 }
 
 std::size_t WindowState::viewportAt(float x, float y, int height) const {
@@ -191,6 +216,26 @@ void WindowState::drawScene(int x, int y, int width, int height) {
   glViewport(x, y, width, height);
   glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  const double now = secondsNow();
+  for (Viewport& v : viewports) {
+    if (v.transition.start < 0.0) continue;
+    // Smoothstep from the old camera to the Viewpoint's.
+    const double t = std::clamp((now - v.transition.start) / 1.0, 0.0, 1.0);
+    const float s = static_cast<float>(t * t * (3.0 - 2.0 * t));
+    render::Camera c = v.transition.to;
+    c.position = glm::mix(v.transition.from.position, v.transition.to.position, s);
+    c.orientation = glm::slerp(v.transition.from.orientation, v.transition.to.orientation, s);
+    c.fieldOfView = glm::mix(v.transition.from.fieldOfView, v.transition.to.fieldOfView, s);
+    v.navigator.setCamera(c);
+    if (t >= 1.0) v.transition.start = -1.0;
+  }
+  // Linked viewports follow the active one's camera.
+  if (view().linked)
+    for (Viewport& v : viewports)
+      if (&v != &view() && v.linked && v.renderer) {
+        v.navigator.setCamera(view().navigator.camera());
+        v.autoFrame = false;
+      }
   for (std::size_t i = 0; i < viewports.size(); ++i) {
     Viewport& v = viewports[i];
     v.rect = layoutRect(layout, static_cast<int>(i), width, height);

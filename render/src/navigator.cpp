@@ -68,6 +68,56 @@ void ExamineNavigator::dolly(float steps) {
   updateClip();
 }
 
+NavigationMode navigationModeOf(const std::vector<std::string>& types, NavigationMode fallback) {
+  for (const std::string& t : types) {
+    if (t == "EXAMINE") return NavigationMode::examine;
+    if (t == "WALK") return NavigationMode::walk;
+    if (t == "FLY") return NavigationMode::fly;
+  }
+  return fallback;
+}
+
+void ExamineNavigator::look(float dx, float dy, int viewportHeight) {
+  const float perPixel = kPi / float(std::max(viewportHeight, 1));
+  const float d = std::max(distance(), kMinDistance);
+  float pitchAngle = -dy * perPixel;
+  if (mode_ == NavigationMode::walk) {
+    // Keep the view within 85 degrees of the horizon.
+    const float current = std::asin(std::clamp(camera_.forward().y, -1.0f, 1.0f));
+    const float limit = 85.0f * kPi / 180.0f;
+    pitchAngle = std::clamp(current + pitchAngle, -limit, limit) - current;
+  }
+  const glm::quat yaw = glm::angleAxis(-dx * perPixel, glm::vec3(0.0f, 1.0f, 0.0f));
+  const glm::quat pitch = glm::angleAxis(pitchAngle, camera_.right());
+  camera_.orientation = glm::normalize(yaw * pitch * camera_.orientation);
+  center_ = camera_.position + camera_.forward() * d;
+  updateClip();
+}
+
+void ExamineNavigator::move(float forward, float right, float up) {
+  if (mode_ == NavigationMode::examine) {
+    const float d = std::max(distance(), kMinDistance);
+    if (forward != 0.0f) dolly(std::log(std::max(d - forward, kMinDistance) / d) / std::log(0.9f));
+    const glm::vec3 offset = right * camera_.right() + up * camera_.up();
+    camera_.position += offset;
+    center_ += offset;
+    updateClip();
+    return;
+  }
+  glm::vec3 ahead = camera_.forward();
+  glm::vec3 side = camera_.right();
+  if (mode_ == NavigationMode::walk) {
+    ahead.y = 0.0f;
+    side.y = 0.0f;
+    ahead = glm::length(ahead) > 1e-6f ? glm::normalize(ahead) : glm::vec3(0.0f);
+    side = glm::length(side) > 1e-6f ? glm::normalize(side) : glm::vec3(0.0f);
+  }
+  const glm::vec3 offset = forward * ahead + right * side + glm::vec3(0.0f, up, 0.0f);
+  camera_.position += offset;
+  center_ += offset;
+  updateClip();
+}
+
 void ExamineNavigator::updateClip() {
   if (!bounds_.empty()) fitClipPlanes(camera_, bounds_, maxNear_);
 }

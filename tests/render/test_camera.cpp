@@ -116,3 +116,37 @@ TEST_CASE("the navigator keeps clip planes around the scene", "[render][camera]"
   CHECK(nav.camera().farClip > nav.distance() + 1.0f);
   CHECK(nav.camera().nearClip < nav.distance() - 1.7f);
 }
+
+TEST_CASE("WALK and FLY navigation: look and move", "[render][navigation]") {
+  using gs::render::NavigationMode;
+  CHECK(gs::render::navigationModeOf({"ANY", "FLY", "WALK"}, NavigationMode::examine) ==
+        NavigationMode::fly);
+  CHECK(gs::render::navigationModeOf({"NONE", "ANY"}, NavigationMode::walk) ==
+        NavigationMode::walk);
+  gs::render::Camera start;  // at 0 0 10 looking along -Z
+  start.position = {0.0f, 1.6f, 10.0f};
+  gs::render::ExamineNavigator nav;
+  nav.setHome(start, glm::vec3(0.0f, 1.6f, 0.0f));
+  nav.setMode(NavigationMode::walk);
+  // Looking down 45 degrees, then walking 2 m: the eye height stays.
+  nav.look(0.0f, 150.0f, 600);  // pi / 600 per pixel: 45 degrees
+  CHECK(nav.camera().forward().y == Approx(-std::sqrt(0.5f)).margin(1e-4));
+  nav.move(2.0f, 0.0f, 0.0f);
+  CHECK(nav.camera().position.y == Approx(1.6f));
+  CHECK(nav.camera().position.z == Approx(8.0f).margin(1e-4));
+  // Walking never looks more than 85 degrees down.
+  nav.look(0.0f, 1000.0f, 600);
+  CHECK(std::asin(-nav.camera().forward().y) == Approx(85.0 * 3.14159265 / 180.0).margin(1e-3));
+  // Flying goes where it looks.
+  nav.setMode(NavigationMode::fly);
+  nav.setCamera(start);
+  nav.look(0.0f, 150.0f, 600);
+  nav.move(2.0f, 0.0f, 0.0f);
+  CHECK(nav.camera().position.y == Approx(1.6f - std::sqrt(2.0f)).margin(1e-4));
+  // A drag to the left by half the height turns the view a quarter turn: it faces -X.
+  nav.setCamera(start);
+  nav.look(-300.0f, 0.0f, 600);
+  CHECK(nav.camera().forward().x == Approx(-1.0f).margin(1e-4));
+  nav.move(0.0f, 1.0f, 0.5f);  // sideways and up
+  CHECK(nav.camera().position.y == Approx(2.1f).margin(1e-4));
+}

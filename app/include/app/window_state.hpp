@@ -35,6 +35,15 @@ struct Viewport {
   bool autoFrame = true;
   ViewportRect rect;                  // where it was last drawn (pixels, lower-left origin)
   std::size_t diagnosticsLogged = 0;  // renderer diagnostics already in the log
+  /// Whether the navigation type was chosen (from the menu); else NavigationInfo decides.
+  bool navigationChosen = false;
+  /// Linked viewports follow the camera of the active one when it is linked too.
+  bool linked = false;
+  /// An animated move to a Viewpoint (1 s, position and orientation interpolated).
+  struct Transition {
+    render::Camera from, to;
+    double start = -1.0;  // seconds (steady clock); < 0: none
+  } transition;
 };
 
 struct WindowState {
@@ -87,8 +96,12 @@ struct WindowState {
   void setMode(render::RenderMode mode);
   /// Sets the active viewport's level of detail (fraction of every QNV stream, 0..1).
   void setLod(double lod);
-  /// Jumps the active viewport to Viewpoint `index` of its world.
+  /// Moves the active viewport to Viewpoint `index` of its world, animated over 1 s
+  /// (VRML97 clause 6.53: jump TRUE viewpoints may be reached by a transition).
   void jumpToViewpoint(std::size_t index);
+  /// Sets the active viewport's navigation type (EXAMINE, WALK, FLY), overriding its
+  /// NavigationInfo.
+  void setNavigation(render::NavigationMode mode);
   /// The viewport under the point (x, y) in pixels from the top left of the scene area of
   /// height `height`, or Viewport::kNone.
   std::size_t viewportAt(float x, float y, int height) const;

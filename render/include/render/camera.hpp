@@ -5,6 +5,9 @@
 
 #include "vrml/geometry.hpp"
 
+#include <string>
+#include <vector>
+
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
@@ -52,9 +55,21 @@ Camera fitCamera(const vrml::Bounds& bounds, float aspect, const Camera& directi
 /// camera unchanged.
 void fitClipPlanes(Camera& camera, const vrml::Bounds& bounds, float maxNear = 0.0f);
 
-/// The EXAMINE navigation of VRML97 (NavigationInfo type "EXAMINE"): the camera orbits a
-/// centre point, pans in its view plane and dollies towards the centre. Inputs are mouse
-/// motions in pixels; no window library is involved.
+/// The navigation types of NavigationInfo (clause 6.29).
+enum class NavigationMode {
+  examine,  // orbit around a centre, pan, dolly
+  walk,     // look around; move on the horizontal plane (no gravity or collision yet)
+  fly,      // look around; move along the view direction
+};
+
+/// The first of NavigationInfo's `type` strings this browser supports ("EXAMINE",
+/// "WALK", "FLY"; "ANY" and unknown ones are skipped); `fallback` when none is.
+NavigationMode navigationModeOf(const std::vector<std::string>& types, NavigationMode fallback);
+
+/// The navigation of VRML97 NavigationInfo: EXAMINE (the camera orbits a centre point,
+/// pans in its view plane and dollies towards the centre), WALK and FLY (the camera looks
+/// around from where it stands and moves). Inputs are mouse motions in pixels and
+/// distances in metres; no window library is involved.
 class ExamineNavigator {
  public:
   /// Radians of orbit per pixel of mouse motion is pi / viewport height (dragging across
@@ -85,6 +100,18 @@ class ExamineNavigator {
   /// 10% of the distance per step, < 0 moves away. The distance stays >= 1e-4 metres.
   void dolly(float steps);
 
+  /// WALK and FLY: turns the view for a drag of (dx, dy) pixels, pi / viewportHeight
+  /// radians per pixel: yaw around the world +Y axis, pitch around the camera's right axis
+  /// (kept within +-85 degrees of the horizon when walking). The orbit centre moves along.
+  void look(float dx, float dy, int viewportHeight);
+  /// WALK and FLY: moves by `forward` metres along the view direction (WALK: its
+  /// horizontal part, so the eye height stays), `right` metres sideways and `up` metres
+  /// along world +Y. EXAMINE: forward dollies (positive: closer) and right/up pan.
+  void move(float forward, float right, float up);
+
+  NavigationMode mode() const { return mode_; }
+  void setMode(NavigationMode mode) { mode_ = mode; }
+
   const Camera& camera() const { return camera_; }
   const glm::vec3& center() const { return center_; }
   /// Distance from the camera to the orbit centre, metres.
@@ -98,6 +125,7 @@ class ExamineNavigator {
   glm::vec3 homeCenter_{0.0f};
   vrml::Bounds bounds_;
   float maxNear_ = 0.0f;
+  NavigationMode mode_ = NavigationMode::examine;
 };
 
 }  // namespace gs::render
