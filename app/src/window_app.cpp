@@ -147,6 +147,7 @@ int runWindow(const Options& options) {
 
     context->makeCurrent();
     state.drawScene(0, 0, width, std::max(1, height - menuHeight));
+    state.saveScreenshot(width, std::max(1, height - menuHeight));
     if (!script.empty() && !script.step(state, width, std::max(1, height - menuHeight)))
       state.quitRequested = true;
     ImGui::Render();

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <ctime>
 #include <filesystem>
 
 namespace gs::app {
@@ -156,6 +157,22 @@ int drawMenuBar(WindowState& state, float aspect) {
       ImGui::EndMenu();
     }
     ImGui::Separator();
+    // Screenshots go to the current folder, named by the time.
+    auto stamp = [] {
+      char name[64];
+      const std::time_t t = std::time(nullptr);
+      std::strftime(name, sizeof name, "ghostspace-%Y%m%d-%H%M%S.png", std::localtime(&t));
+      return std::string(name);
+    };
+    if (ImGui::MenuItem("Save screenshot of the window")) {
+      state.screenshotPath = stamp();
+      state.screenshotViewportOnly = false;
+    }
+    if (ImGui::MenuItem("Save screenshot of this viewport")) {
+      state.screenshotPath = stamp();
+      state.screenshotViewportOnly = true;
+    }
+    ImGui::Separator();
     if (ImGui::MenuItem("Quit", "Ctrl+Q")) state.quitRequested = true;
     ImGui::EndMenu();
   }
@@ -181,6 +198,7 @@ int drawMenuBar(WindowState& state, float aspect) {
     if (ImGui::SliderFloat("Level of detail", &lod, 0.001f, 1.0f, "%.3f",
                            ImGuiSliderFlags_Logarithmic))
       state.setLod(lod);
+    ImGui::MenuItem("Automatic level of detail (30 frames/s)", nullptr, &state.view().autoLod);
     ImGui::Separator();
     ImGui::Separator();
     const render::NavigationMode nav = state.view().navigator.mode();

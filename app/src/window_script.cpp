@@ -59,7 +59,13 @@ bool WindowScript::load(const std::string& path, std::string& error) {
     } else if (c.verb == "wait-viewports") {
       if (!parseNumber(c.argument, number) || number < 1 || number > 4)
         return fail("wait-viewports N with 1 <= N <= 4");
-    } else if (c.verb == "open" || c.verb == "screenshot" || c.verb == "screenshot-viewport") {
+    } else if (c.verb == "auto-lod") {
+      if (c.argument != "on" && c.argument != "off") return fail("auto-lod on or off");
+    } else if (c.verb == "frame-target") {
+      if (!parseNumber(c.argument, number) || !(number > 0.0) || number > 10000)
+        return fail("frame-target MS with 0 < MS <= 10000");
+    } else if (c.verb == "open" || c.verb == "screenshot" || c.verb == "screenshot-viewport" ||
+               c.verb == "status") {
       if (c.argument.empty()) return fail(c.verb + " followed by a path");
     } else if (c.verb != "wait-loaded" && c.verb != "quit") {
       return fail(
@@ -123,6 +129,22 @@ bool WindowScript::step(WindowState& state, int width, int height) {
       } catch (const std::exception& e) {
         state.log.push_back({true, std::string("screenshot: ") + e.what()});
       }
+    } else if (c.verb == "auto-lod") {
+      state.view().autoLod = c.argument == "on";
+    } else if (c.verb == "frame-target") {
+      state.frameTarget = number / 1000.0;
+    } else if (c.verb == "status") {
+      std::ofstream out(c.argument);
+      for (std::size_t i = 0; i < state.viewports.size(); ++i) {
+        const Viewport& v = state.viewports[i];
+        const char* modes[] = {"polygons", "outlines", "splats"};
+        const char* navs[] = {"EXAMINE", "WALK", "FLY"};
+        out << i << " " << (v.world < state.worlds.size() ? state.worlds[v.world].scene->url : "-")
+            << " " << v.options.lod << " " << modes[static_cast<int>(v.options.traversal.mode)]
+            << " " << navs[static_cast<int>(v.navigator.mode())] << " "
+            << (v.renderer ? v.renderer->statistics().splats : 0) << "\n";
+      }
+      if (!out) state.log.push_back({true, "status: cannot write " + c.argument});
     } else if (c.verb == "quit") {
       ++next_;
       return false;

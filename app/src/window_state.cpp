@@ -4,6 +4,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <ctime>
+
+#include "render/image.hpp"
 
 #include <glm/gtc/quaternion.hpp>
 
@@ -201,6 +205,20 @@ void WindowState::jumpToViewpoint(std::size_t index) {
   v.transition.start = secondsNow();
 }
 
+void WindowState::saveScreenshot(int width, int height) {
+  if (screenshotPath.empty()) return;
+  ViewportRect r{0, 0, width, height};
+  if (screenshotViewportOnly) r = view().rect;
+  try {
+    render::writePng(screenshotPath, render::readPixels(r.x, r.y, r.width, r.height));
+    log.push_back({false, "screenshot saved to " + screenshotPath});
+  } catch (const std::exception& e) {
+    log.push_back({true, std::string("screenshot: ") + e.what()});
+    showLog = true;
+  }
+  screenshotPath.clear();
+}
+
 std::size_t WindowState::viewportAt(float x, float y, int height) const {
   const float fromBottom = static_cast<float>(height) - y;
   for (std::size_t i = 0; i < viewports.size(); ++i) {
@@ -243,8 +261,19 @@ void WindowState::drawScene(int x, int y, int width, int height) {
     v.rect.y += y;
     if (i == active)
       lastAspect = static_cast<float>(v.rect.width) / static_cast<float>(v.rect.height);
-    if (v.renderer)
-      v.renderer->draw(v.navigator.camera(), v.rect.x, v.rect.y, v.rect.width, v.rect.height);
+    if (!v.renderer) continue;
+    const double t0 = secondsNow();
+    v.renderer->draw(v.navigator.camera(), v.rect.x, v.rect.y, v.rect.width, v.rect.height);
+    if (v.autoLod && v.renderer->statistics().splats > 0) {
+      // Hold the frame-time target: move the fraction by the ratio of target to time
+      // taken (damped, at most x2 or /2 a frame). Timing waits for the GPU.
+      glFinish();
+      const double taken = std::max(secondsNow() - t0, 1e-4);
+      const double target = frameTarget / static_cast<double>(viewports.size());
+      const double ratio = std::clamp(std::sqrt(target / taken), 0.5, 2.0);
+      v.options.lod = std::clamp(v.options.lod * ratio, 1e-4, 1.0);
+      v.renderer->setLod(v.options.lod);
+    }
   }
 }
 

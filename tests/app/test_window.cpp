@@ -237,3 +237,46 @@ TEST_CASE("a second launch hands its file to the running window", "[app][window]
   CHECK(green > right.rgba.size() / 4 / 50);
   fs::remove_all(runtime);
 }
+
+TEST_CASE("the automatic level of detail lowers the fraction to hold the frame time",
+          "[app][window]") {
+  Xvfb x;
+  if (!x.running()) {
+    WARN("SKIPPED: /usr/bin/Xvfb is absent (install xvfb)");
+    return;
+  }
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(GS_BINARY_DIR) / "window-actual";
+  fs::create_directories(dir);
+  const fs::path qnv = dir / "auto.qnv";
+  REQUIRE(gs::test::runGhostspace({"encode",
+                                   (gs::test::sourceDir() / "assets/volumes/sphere.nrrd").string(),
+                                   "-o", qnv.string(), "--no-progress"})
+              .exitCode == 0);
+  const fs::path script = dir / "auto.script", before = dir / "auto-before.txt",
+                 after = dir / "auto-after.txt";
+  // A frame-time target of 0.01 ms cannot be met: the level of detail must fall.
+  std::ofstream(script) << "layout 2x1\nwait-loaded\nstatus " << before.string()
+                        << "\nviewport 1\nauto-lod on\nframe-target 0.01\nframes 15\nstatus "
+                        << after.string() << "\nquit\n";
+  auto r = gs::test::runGhostspace(
+      {"--size", "300x200", "--script", script.string(), "--new-instance", qnv.string()},
+      {"DISPLAY=" + x.display()});
+  INFO(r.err);
+  REQUIRE(r.exitCode == 0);
+  auto lodOf = [](const fs::path& status, int viewport) {
+    std::ifstream in(status);
+    int index = -1;
+    std::string url, mode, navigation;
+    double lod = -1.0;
+    std::size_t splats = 0;
+    while (in >> index >> url >> lod >> mode >> navigation >> splats)
+      if (index == viewport) return lod;
+    return -1.0;
+  };
+  CHECK(lodOf(before, 0) == 1.0);
+  CHECK(lodOf(before, 1) == 1.0);
+  CHECK(lodOf(after, 0) == 1.0);  // not automatic
+  CHECK(lodOf(after, 1) < 0.01);  // 15 frames of at most halving each
+  CHECK(lodOf(after, 1) > 0.0);
+}

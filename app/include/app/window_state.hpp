@@ -39,6 +39,9 @@ struct Viewport {
   bool navigationChosen = false;
   /// Linked viewports follow the camera of the active one when it is linked too.
   bool linked = false;
+  /// Automatic level of detail: the fraction moves each frame so that drawing this
+  /// viewport takes about WindowState::frameTarget / viewports seconds.
+  bool autoLod = false;
   /// An animated move to a Viewpoint (1 s, position and orientation interpolated).
   struct Transition {
     render::Camera from, to;
@@ -58,7 +61,11 @@ struct WindowState {
   bool showStreams = false;
   bool quitRequested = false;
   char openPath[1024] = {};
-  float lastAspect = 1.0f;  // of the active viewport
+  float lastAspect = 1.0f;          // of the active viewport
+  double frameTarget = 1.0 / 30.0;  // seconds per frame the automatic levels of detail aim at
+  /// A screenshot asked for from the menu: written after the next scene draw.
+  std::string screenshotPath;
+  bool screenshotViewportOnly = false;
   /// How new viewports draw: splat loader, level of detail (--lod), mode (--mode).
   render::SceneRendererOptions rendererOptions;
   /// Streams every world opened (files and URLs) while the window keeps drawing.
@@ -105,6 +112,9 @@ struct WindowState {
   /// The viewport under the point (x, y) in pixels from the top left of the scene area of
   /// height `height`, or Viewport::kNone.
   std::size_t viewportAt(float x, float y, int height) const;
+  /// Writes the screenshot asked for (screenshotPath) from the scene just drawn into the
+  /// rectangle of drawScene(); logs where it went or why not.
+  void saveScreenshot(int width, int height);
   /// Renders every viewport into its cell of the rectangle (pixels, origin bottom left)
   /// of the current framebuffer; empty cells are cleared to black.
   void drawScene(int x, int y, int width, int height);
