@@ -199,6 +199,10 @@ int drawMenuBar(WindowState& state, float aspect) {
                            ImGuiSliderFlags_Logarithmic))
       state.setLod(lod);
     ImGui::MenuItem("Automatic level of detail (30 frames/s)", nullptr, &state.view().autoLod);
+    int budget = static_cast<int>(std::min<std::uint64_t>(state.view().vectorBudget, 1u << 30));
+    if (ImGui::InputInt("Vector budget (0: none)", &budget, 10000, 100000,
+                        ImGuiInputTextFlags_EnterReturnsTrue))
+      state.setVectorBudget(static_cast<std::uint64_t>(std::max(budget, 0)));
     ImGui::Separator();
     ImGui::Separator();
     const render::NavigationMode nav = state.view().navigator.mode();

@@ -61,6 +61,9 @@ bool WindowScript::load(const std::string& path, std::string& error) {
         return fail("wait-viewports N with 1 <= N <= 4");
     } else if (c.verb == "auto-lod") {
       if (c.argument != "on" && c.argument != "off") return fail("auto-lod on or off");
+    } else if (c.verb == "budget") {
+      if (!parseNumber(c.argument, number) || number < 0 || number > 1e12)
+        return fail("budget N (vectors per frame, 0: none)");
     } else if (c.verb == "frame-target") {
       if (!parseNumber(c.argument, number) || !(number > 0.0) || number > 10000)
         return fail("frame-target MS with 0 < MS <= 10000");
@@ -131,6 +134,8 @@ bool WindowScript::step(WindowState& state, int width, int height) {
       }
     } else if (c.verb == "auto-lod") {
       state.view().autoLod = c.argument == "on";
+    } else if (c.verb == "budget") {
+      state.setVectorBudget(static_cast<std::uint64_t>(number));
     } else if (c.verb == "frame-target") {
       state.frameTarget = number / 1000.0;
     } else if (c.verb == "status") {

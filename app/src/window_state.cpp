@@ -98,6 +98,7 @@ void WindowState::show(std::size_t world, std::size_t index) {
   v.renderer.reset();  // its GL objects go while the context is current
   v.renderer = std::make_unique<render::SceneRenderer>(worlds[world].scene,
                                                        session->rendererOptions(v.options));
+  v.renderer->setVectorBudget(v.vectorBudget);
   v.autoFrame = true;
   v.diagnosticsLogged = 0;
   home(v);
@@ -187,6 +188,7 @@ void WindowState::setMode(render::RenderMode mode) {
   v.renderer.reset();
   v.renderer = std::make_unique<render::SceneRenderer>(worlds[v.world].scene,
                                                        session->rendererOptions(v.options));
+  v.renderer->setVectorBudget(v.vectorBudget);
   v.navigator.setCamera(camera);
 }
 
@@ -194,6 +196,12 @@ void WindowState::setLod(double lod) {
   Viewport& v = view();
   v.options.lod = lod;
   if (v.renderer) v.renderer->setLod(lod);
+}
+
+void WindowState::setVectorBudget(std::uint64_t vectors) {
+  Viewport& v = view();
+  v.vectorBudget = vectors;
+  if (v.renderer) v.renderer->setVectorBudget(vectors);
 }
 
 void WindowState::jumpToViewpoint(std::size_t index) {

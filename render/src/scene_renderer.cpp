@@ -224,6 +224,10 @@ void SceneRenderer::sceneChanged() {
   if (!headlightSet_) headlight_ = traversal_.navigation().headlight;
 }
 
+void SceneRenderer::setVectorBudget(std::uint64_t vectors) {
+  splats_->setVectorBudget(vectors);
+}
+
 void SceneRenderer::setLod(double lod) {
   splats_->setLod(lod);
 }

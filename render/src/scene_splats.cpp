@@ -6,7 +6,7 @@ namespace gs::render::detail {
 
 SceneSplats::SceneSplats(std::shared_ptr<const vrml::Scene> scene, SplatLoader loader, double lod,
                          RenderMode mode)
-    : scene_(std::move(scene)), loader_(std::move(loader)), lod_(lod), mode_(mode) {
+    : scene_(std::move(scene)), loader_(std::move(loader)), lod_(lod), drawLod_(lod), mode_(mode) {
   if (!loader_)
     loader_ = [](const std::string& url, const std::string&,
                  std::string& error) -> std::shared_ptr<const SplatSet> {
@@ -75,7 +75,7 @@ std::size_t SceneSplats::drawCount(const vrml::Node* node, const SplatSet& set) 
     const float fraction = node->get<vrml::FieldType::SFFloat>("fraction", 1.0f);
     n = count >= 0 ? std::min<double>(count, size) : std::clamp<double>(fraction, 0.0, 1.0) * size;
   }
-  const double wanted = n * std::clamp(lod_, 0.0, 1.0);
+  const double wanted = n * std::clamp(drawLod_, 0.0, 1.0);
   if (wanted <= 0.0 || size <= 0.0) return 0;
   const auto prefix =
       std::clamp<std::uint64_t>(static_cast<std::uint64_t>(std::llround(wanted)), 1, set.total());
@@ -110,6 +110,16 @@ std::size_t SceneSplats::draw(const TraversalFrame& frame, SceneTraversal& trave
       lights[lightCount++] = {l.direction, l.color * l.intensity};
   const std::span<const SplatLight> lit(lights, lightCount);
   std::size_t drawn = 0;
+  // The vector budget: the same fraction of every stream, small enough to fit.
+  drawLod_ = lod_;
+  if (budget_ > 0) {
+    double total = 0.0;
+    for (const SplatInstance& s : frame.splats)
+      if (const NodeSet& e = nodeSet(*s.node, *s.baseUrl, traversal); e.set)
+        total += static_cast<double>(e.set->total());
+    if (mode_ == RenderMode::splats && world_) total += static_cast<double>(world_->total());
+    if (total > 0.0) drawLod_ = std::min(lod_, static_cast<double>(budget_) / total);
+  }
   auto drawSet = [&](const SplatSet& set, std::size_t count, const glm::mat4& model,
                      const SplatStyle* style) {
     auto& renderer = renderers_[&set];

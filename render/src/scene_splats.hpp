@@ -44,12 +44,17 @@ class SceneSplats {
     if (scene_->rootNodes.size() != worldRoots_) worldBuilt_ = false;
   }
   void setLod(double lod) { lod_ = lod; }
+  /// At most this many vectors drawn in all per frame (0: no budget): the level of detail
+  /// is lowered to fit (min(lod, budget / vectors of every stream drawn)).
+  void setVectorBudget(std::uint64_t budget) { budget_ = budget; }
   void release();
 
  private:
   std::shared_ptr<const vrml::Scene> scene_;
   SplatLoader loader_;
   double lod_;
+  std::uint64_t budget_ = 0;
+  double drawLod_ = 1.0;  // lod_ lowered to the vector budget for the frame being drawn
   RenderMode mode_;
   /// A node's set and the style it is drawn with (the node's mode and opacityScale over
   /// the stream's own; the set itself is shared and may still grow).

@@ -254,11 +254,12 @@ TEST_CASE("the automatic level of detail lowers the fraction to hold the frame t
                                    "-o", qnv.string(), "--no-progress"})
               .exitCode == 0);
   const fs::path script = dir / "auto.script", before = dir / "auto-before.txt",
-                 after = dir / "auto-after.txt";
+                 after = dir / "auto-after.txt", budget = dir / "auto-budget.txt";
   // A frame-time target of 0.01 ms cannot be met: the level of detail must fall.
   std::ofstream(script) << "layout 2x1\nwait-loaded\nstatus " << before.string()
                         << "\nviewport 1\nauto-lod on\nframe-target 0.01\nframes 15\nstatus "
-                        << after.string() << "\nquit\n";
+                        << after.string() << "\nviewport 0\nbudget 100\nframes 2\nstatus "
+                        << budget.string() << "\nquit\n";
   auto r = gs::test::runGhostspace(
       {"--size", "300x200", "--script", script.string(), "--new-instance", qnv.string()},
       {"DISPLAY=" + x.display()});
@@ -279,4 +280,16 @@ TEST_CASE("the automatic level of detail lowers the fraction to hold the frame t
   CHECK(lodOf(after, 0) == 1.0);  // not automatic
   CHECK(lodOf(after, 1) < 0.01);  // 15 frames of at most halving each
   CHECK(lodOf(after, 1) > 0.0);
+  // A vector budget of 100 draws at most 100 vectors, and about that many.
+  std::ifstream in(budget);
+  int index = -1;
+  std::string url, mode, navigation;
+  double lod = -1.0;
+  std::size_t splats = 0;
+  REQUIRE(in >> index >> url >> lod >> mode >> navigation >> splats);
+  CHECK(index == 0);
+  CHECK(splats <= 100);
+  CHECK(splats >= 90);
+  CHECK(mode == "polygons");
+  CHECK(navigation == "EXAMINE");
 }

@@ -14,6 +14,7 @@
 //   screenshot OUT.png      the whole scene area (without the menus) as PNG
 //   screenshot-viewport OUT.png   the active viewport only
 //   auto-lod on|off         the active viewport's automatic level of detail
+//   budget N                the active viewport's vector budget (vectors per frame; 0: none)
 //   frame-target MS         the frame time automatic levels of detail aim at
 //   status OUT.txt          one line per viewport: index, world URL, level of detail,
 //                           mode, navigation, splats drawn (for tests)

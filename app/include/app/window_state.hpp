@@ -42,6 +42,8 @@ struct Viewport {
   /// Automatic level of detail: the fraction moves each frame so that drawing this
   /// viewport takes about WindowState::frameTarget / viewports seconds.
   bool autoLod = false;
+  /// At most this many QNV vectors drawn per frame (0: no budget).
+  std::uint64_t vectorBudget = 0;
   /// An animated move to a Viewpoint (1 s, position and orientation interpolated).
   struct Transition {
     render::Camera from, to;
@@ -103,6 +105,8 @@ struct WindowState {
   void setMode(render::RenderMode mode);
   /// Sets the active viewport's level of detail (fraction of every QNV stream, 0..1).
   void setLod(double lod);
+  /// Sets the active viewport's vector budget (vectors per frame in all; 0: none).
+  void setVectorBudget(std::uint64_t vectors);
   /// Moves the active viewport to Viewpoint `index` of its world, animated over 1 s
   /// (VRML97 clause 6.53: jump TRUE viewpoints may be reached by a transition).
   void jumpToViewpoint(std::size_t index);

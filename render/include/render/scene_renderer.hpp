@@ -88,6 +88,10 @@ class SceneRenderer {
   /// SceneTraversal): bindable nodes are found again and the bounds recomputed on the
   /// next bounds(); tessellations and GPU meshes already made are kept.
   void sceneChanged();
+  /// At most `vectors` QNV vectors drawn per frame in all (0: no budget): every stream's
+  /// level of detail is lowered by the same factor to fit (SceneRendererOptions::lod stays
+  /// the upper bound).
+  void setVectorBudget(std::uint64_t vectors);
   /// Changes the level of detail of every QNV stream (SceneRendererOptions::lod).
   void setLod(double lod);
   /// A camera looking along `direction`'s view direction that frames the whole scene in a
