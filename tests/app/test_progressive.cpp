@@ -92,7 +92,7 @@ std::string ballVolume(int n) {
 
 /// Encodes ballVolume(48) into outDir()/name (about 110,000 vectors, 0.9 MB).
 std::string ballStream(const std::string& name) {
-  const fs::path raw = outDir() / "ball.raw", qnv = outDir() / name;
+  const fs::path raw = outDir() / (name + ".raw"), qnv = outDir() / name;  // one per test
   std::ofstream(raw, std::ios::binary) << ballVolume(48);
   const auto r = runGhostspace(
       {"encode", raw.string(), "--raw-dims", "48,48,48", "-o", qnv.string(), "--no-progress"});
@@ -205,9 +205,9 @@ TEST_CASE("a transfer reset mid-stream resumes with a range", "[app][http]") {
   const auto requests = server.requests();
   REQUIRE(requests.size() >= 2);
   CHECK(requests[1].range == "bytes=" + std::to_string(cut) + "-");
-  std::ofstream(outDir() / "boxes6.wrl", std::ios::binary) << world;
-  REQUIRE(shoot("boxes6", (outDir() / "boxes6.wrl").string()).exitCode == 0);
-  CHECK(differing("boxes6", "boxes_reset", 0) == 0.0);
+  std::ofstream(outDir() / "boxes6_reset.wrl", std::ios::binary) << world;
+  REQUIRE(shoot("boxes6_reset_local", (outDir() / "boxes6_reset.wrl").string()).exitCode == 0);
+  CHECK(differing("boxes6_reset_local", "boxes_reset", 0) == 0.0);
 }
 
 TEST_CASE("a world cut mid-transfer shows what arrived and says why", "[app][http]") {

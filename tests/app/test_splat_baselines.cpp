@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <string>
 
+#include <unistd.h>
+
 #include "baseline.hpp"
 #include "process.hpp"
 #include "test_support.hpp"
@@ -24,11 +26,15 @@ std::string ctheadLod(double fractionOfVoxels) {
 std::string ctheadStream() {
   const fs::path out = fs::path(GS_BINARY_DIR) / "render-actual" / "cthead_all.qnv";
   if (!fs::exists(out)) {
+    // Tests running side by side may both encode it: each writes its own file and renames
+    // it into place, so that no test ever reads a half-written stream.
     fs::create_directories(out.parent_path());
+    const fs::path mine = out.string() + "." + std::to_string(::getpid());
     const auto r = gs::test::runGhostspace(
         {"encode", (gs::test::corpusDir() / "volume/cthead/CThead.nhdr").string(), "-o",
-         out.string()});
+         mine.string(), "--no-progress"});
     REQUIRE(r.exitCode == 0);
+    fs::rename(mine, out);
   }
   return out.string();
 }
