@@ -103,15 +103,7 @@ TEST_CASE("one stream in two viewports is fetched once", "[app][layout][http]") 
                                 "--lod", "0.3,1", "--no-progress", nginx.url("/s.qnv")});
   INFO(r.err);
   REQUIRE(r.exitCode == 0);
-  std::uint64_t sent = 0;
-  for (const std::string& line : nginx.accessLog(1)) {
-    std::istringstream fields(line);
-    std::string method, uri, status;
-    std::uint64_t n = 0;
-    fields >> method >> uri >> status >> n;
-    sent += n;
-  }
-  CHECK(sent == bytes.size());
+  CHECK(gs::test::NginxServer::bodyBytes(nginx.accessLog(1)) == bytes.size());
   // Bad layouts and too many inputs are usage errors.
   CHECK(runGhostspace({"--snapshot", out.string(), "--layout", "3x3", qnv.string()}).exitCode == 2);
   CHECK(runGhostspace({"--snapshot", out.string(), qnv.string(), qnv.string()}).exitCode == 2);

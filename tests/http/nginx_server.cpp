@@ -213,4 +213,16 @@ void NginxServer::writeFile(const std::string& relative, const std::string& byte
   out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
 }
 
+std::uint64_t NginxServer::bodyBytes(const std::vector<std::string>& accessLog) {
+  std::uint64_t sent = 0;
+  for (const std::string& line : accessLog) {
+    std::istringstream fields(line);
+    std::string method, uri, status;
+    std::uint64_t n = 0;
+    fields >> method >> uri >> status >> n;
+    sent += n;
+  }
+  return sent;
+}
+
 }  // namespace gs::test

@@ -6,6 +6,7 @@
 
 #include <sys/types.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -44,6 +45,8 @@ class NginxServer {
   /// "-"). nginx writes a line just after a response ends, so this waits (up to 2 s)
   /// until there are at least `minLines` lines.
   std::vector<std::string> accessLog(std::size_t minLines = 0) const;
+  /// The body bytes sent over all requests of `accessLog()` lines (their 4th field).
+  static std::uint64_t bodyBytes(const std::vector<std::string>& accessLog);
   /// Writes `bytes` to root()/`relative` (folders created as needed).
   void writeFile(const std::string& relative, const std::string& bytes) const;
 
