@@ -38,8 +38,10 @@ struct ImGuiSession {
   ImGuiSession& operator=(const ImGuiSession&) = delete;
 };
 
-/// Mouse input not taken by ImGui drives the EXAMINE navigator: left drag orbits, right
-/// drag or shift + left drag pans, middle drag and the wheel dolly.
+/// Mouse and keys not taken by ImGui drive the active viewport's navigator (a click picks
+/// it). EXAMINE: left drag orbits, right drag or shift + left drag pans, middle drag and
+/// the wheel dolly. WALK and FLY: left drag looks around, the wheel and W/S/A/D, the
+/// arrows and Q/E move at NavigationInfo.speed.
 void navigate(WindowState& state, int menuHeight, int viewportHeight) {
   const ImGuiIO& io = ImGui::GetIO();
   if (io.WantCaptureMouse) return;

@@ -55,14 +55,18 @@ class Xvfb {
   std::string display_;
 };
 
+/// True (after a WARN naming the package) when no Xvfb runs: the test then skips.
+bool skipWithoutXvfb(const Xvfb& x) {
+  if (x.running()) return false;
+  WARN("SKIPPED: /usr/bin/Xvfb is absent (install xvfb)");
+  return true;
+}
+
 }  // namespace
 
 TEST_CASE("the window opens a world, draws frames and closes", "[app][window]") {
   Xvfb x;
-  if (!x.running()) {
-    WARN("SKIPPED: /usr/bin/Xvfb is absent (install xvfb)");
-    return;
-  }
+  if (skipWithoutXvfb(x)) return;
   const auto world = gs::test::sourceDir() / "assets/worlds/welcome.wrl";
   auto r = gs::test::runGhostspace({"--frames", "5", "--size", "320x240", world.string()},
                                    {"DISPLAY=" + x.display()});
@@ -78,10 +82,7 @@ TEST_CASE("without a display the window fails with a clear message", "[app][wind
 
 TEST_CASE("a load error is reported in the window, which keeps running", "[app][window]") {
   Xvfb x;
-  if (!x.running()) {
-    WARN("SKIPPED: /usr/bin/Xvfb is absent (install xvfb)");
-    return;
-  }
+  if (skipWithoutXvfb(x)) return;
   auto r = gs::test::runGhostspace({"--frames", "3", "/nonexistent/world.wrl"},
                                    {"DISPLAY=" + x.display()});
   CHECK(r.exitCode == 0);
@@ -112,10 +113,7 @@ gs::render::Image half(const gs::render::Image& image, bool right) {
 TEST_CASE("two viewports at their own levels of detail; a scripted LOD change fetches more",
           "[app][window][http]") {
   Xvfb x;
-  if (!x.running()) {
-    WARN("SKIPPED: /usr/bin/Xvfb is absent (install xvfb)");
-    return;
-  }
+  if (skipWithoutXvfb(x)) return;
   gs::test::NginxServer nginx;
   if (!nginx.ok()) return;
   namespace fs = std::filesystem;
@@ -175,10 +173,7 @@ TEST_CASE("two viewports at their own levels of detail; a scripted LOD change fe
 
 TEST_CASE("a bad window script is a usage error naming its line", "[app][window]") {
   Xvfb x;
-  if (!x.running()) {
-    WARN("SKIPPED: /usr/bin/Xvfb is absent (install xvfb)");
-    return;
-  }
+  if (skipWithoutXvfb(x)) return;
   const auto path = std::filesystem::path(GS_BINARY_DIR) / "bad.script";
   std::ofstream(path) << "frames 2\nlod 7\n";
   auto r = gs::test::runGhostspace({"--script", path.string()}, {"DISPLAY=" + x.display()});
@@ -188,10 +183,7 @@ TEST_CASE("a bad window script is a usage error naming its line", "[app][window]
 
 TEST_CASE("a second launch hands its file to the running window", "[app][window][helper]") {
   Xvfb x;
-  if (!x.running()) {
-    WARN("SKIPPED: /usr/bin/Xvfb is absent (install xvfb)");
-    return;
-  }
+  if (skipWithoutXvfb(x)) return;
   namespace fs = std::filesystem;
   const fs::path dir = fs::path(GS_BINARY_DIR) / "window-actual";
   const fs::path runtime = dir / ("xdg-helper-" + std::to_string(::getpid()));
@@ -235,10 +227,7 @@ TEST_CASE("a second launch hands its file to the running window", "[app][window]
 TEST_CASE("the automatic level of detail lowers the fraction to hold the frame time",
           "[app][window]") {
   Xvfb x;
-  if (!x.running()) {
-    WARN("SKIPPED: /usr/bin/Xvfb is absent (install xvfb)");
-    return;
-  }
+  if (skipWithoutXvfb(x)) return;
   namespace fs = std::filesystem;
   const fs::path dir = fs::path(GS_BINARY_DIR) / "window-actual";
   fs::create_directories(dir);
