@@ -6,6 +6,7 @@
 #include "vrml/diagnostic.hpp"
 #include "vrml/field.hpp"
 
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -64,6 +65,19 @@ class Node {
   FieldValue& fieldAt(std::size_t i) { return values_[i]; }
   std::size_t fieldCount() const { return values_.size(); }
 
+  /// Writes `value` into field `i` (0 <= i < fieldCount(); same type as the field) and
+  /// bumps revision(). The execution model (runtime/) writes fields only through this, so
+  /// caches keyed by node (tessellations, GPU buffers) can tell that a node changed.
+  void setField(std::size_t i, FieldValue value) {
+    values_[i] = std::move(value);
+    ++revision_;
+  }
+  /// Counts the writes made through setField() (and markChanged()) since construction;
+  /// 0 for a node as parsed. A cache that stored revision() r is stale iff r differs.
+  std::uint64_t revision() const { return revision_; }
+  /// Bumps revision() after a write made through fieldAt() (e.g. one element of an MF).
+  void markChanged() { ++revision_; }
+
   /// Convenience typed getters for renderers: the value of field `name` when it exists
   /// and has type T, else `fallback`.
   template <FieldType T, class V>
@@ -85,6 +99,7 @@ class Node {
  private:
   std::shared_ptr<const NodeType> type_;
   std::vector<FieldValue> values_;
+  std::uint64_t revision_ = 0;
 };
 
 }  // namespace gs::vrml

@@ -1,0 +1,144 @@
+// The VRML97 execution model (ISO/IEC 14772-1:1997 clauses 4.10 "Event processing", 4.11
+// "Time", 4.6.10 "Bindable children nodes", 4.12 "Scripting"): the route table, the event
+// cascade, the clock, the four bindable stacks, TimeSensors and interpolators, and the
+// Script host. Depends on vrml/ only; the renderer reads node fields (and their
+// revisions, vrml::Node::revision) and the bound nodes, the application advances the
+// clock once a frame. Not thread-safe: use it on the thread that draws.
+#pragma once
+
+#include "runtime/clock.hpp"
+#include "runtime/script_host.hpp"
+#include "vrml/diagnostic.hpp"
+#include "vrml/node.hpp"
+#include "vrml/scene.hpp"
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace gs::runtime {
+
+/// One event as it leaves an eventOut (what --trace-events writes).
+struct TraceEvent {
+  double timestamp = 0.0;  // seconds (SFTime)
+  const vrml::Node* node = nullptr;
+  int field = -1;  // index into node->type().fields
+  const vrml::FieldValue* value = nullptr;
+};
+
+/// The four bindable node types of 4.6.10, each with its own stack.
+enum class BindableKind { Viewpoint, NavigationInfo, Background, Fog };
+inline constexpr int kBindableKindCount = 4;
+
+struct ExecutionOptions {
+  /// Called for every event sent (after loop breaking), in order. Empty: no tracing.
+  std::function<void(const TraceEvent&)> trace;
+  /// Makes Script instances; empty: Scripts do not run (a warning names each Script).
+  ScriptFactory scripts;
+  ScriptLimits scriptLimits;
+  /// Browser.loadURL and Anchor requests (url list, parameter list); empty: ignored.
+  std::function<void(const std::vector<std::string>&, const std::vector<std::string>&)> loadUrl;
+  /// Text fetch for Script urls (ScriptContext::fetchText); empty: local files only... none.
+  std::function<bool(const std::string& url, std::string& text, std::string& error)> fetchText;
+  /// Limit on events handled in one timestamp; past it the cascade stops with a
+  /// diagnostic (a guard against routes that multiply events).
+  std::size_t maxEventsPerCascade = 1'000'000;
+};
+
+/// Counters for benchmarks and tests.
+struct ExecutionStatistics {
+  std::uint64_t eventsSent = 0;       // eventOuts that passed loop breaking
+  std::uint64_t eventsDelivered = 0;  // eventIns handled
+  std::uint64_t eventsDropped = 0;    // stopped by the one-event-per-eventOut-per-timestamp rule
+  std::uint64_t cascades = 0;         // timestamps processed
+};
+
+class ExecutionModel final : public ScriptContext {
+ public:
+  /// Loads `scene` at SFTime `loadTime` (seconds): builds the route table from
+  /// scene.routes, finds the time-dependent nodes, sensors and Scripts of every node
+  /// reachable from the root and hidden nodes, binds the first Viewpoint, NavigationInfo,
+  /// Background and Fog in file order (isBound TRUE, bindTime), calls every Script's
+  /// initialize(), and evaluates the TimeSensors at loadTime (4.10.3's initial events).
+  ExecutionModel(std::shared_ptr<const vrml::Scene> scene, double loadTime,
+                 ExecutionOptions options = {});
+  ~ExecutionModel() override;
+  ExecutionModel(const ExecutionModel&) = delete;
+  ExecutionModel& operator=(const ExecutionModel&) = delete;
+
+  /// The scene gained root nodes or routes (progressive loading): takes the new ones in
+  /// as the constructor took the first (new bindable nodes join their stacks' bottom;
+  /// the first of a kind is bound when none is).
+  void sceneGrew();
+  /// Adds the nodes and routes of an Inline's scene (clause 6.25): its routes and
+  /// sensors run; its bindable nodes are not bound (the renderer's rule too).
+  void addInlineScene(std::shared_ptr<const vrml::Scene> scene);
+
+  /// Moves the clock to `time` (ignored when earlier) and runs one cascade: every
+  /// enabled TimeSensor is evaluated, then the events they send, the events queued by
+  /// sendEvent() and the Scripts' eventsProcessed() run to completion.
+  void advanceTo(double time);
+  /// advanceTo(now() + duration) in steps of at most `step` seconds (> 0): how the
+  /// headless path moves time deterministically.
+  void advanceBy(double duration, double step);
+  double now() const override { return clock_.now(); }
+
+  /// Sends `value` to eventIn (or exposedField) `field` of `node` from outside the
+  /// graph (the user interface, a test): processed at the next advanceTo, or now with
+  /// processEvents(). False (with a diagnostic) when the field cannot take an event of
+  /// that type.
+  bool postEvent(vrml::Node& node, int field, vrml::FieldValue value);
+  /// Runs the events posted since the last cascade as a new timestamp at now().
+  void processEvents();
+
+  /// The top of a bindable stack (4.6.10), or null when the stack is empty.
+  vrml::Node* bound(BindableKind kind) const;
+  /// Counts changes of any bindable stack's top: a renderer rereads bound nodes when it
+  /// differs from what it saw.
+  std::uint64_t bindingRevision() const { return bindingRevision_; }
+  /// Every node of a stack, bottom first (for tests).
+  std::vector<vrml::Node*> bindStack(BindableKind kind) const;
+
+  const vrml::Diagnostics& diagnostics() const { return diagnostics_; }
+  const ExecutionStatistics& statistics() const { return stats_; }
+  /// Whether anything in the world may still change without input: an active
+  /// TimeSensor, a Script with pending work.
+  bool animating() const;
+
+  // ---- ScriptContext ----
+  void emitScriptEvent(vrml::Node& script, int field, vrml::FieldValue value) override;
+  void sendEvent(vrml::Node& node, int field, vrml::FieldValue value) override;
+  double frameRate() const override { return frameRate_; }
+  void setFrameRate(double fps) { frameRate_ = fps; }
+  std::string worldUrl() const override;
+  bool addRoute(const vrml::NodePtr& from, const std::string& eventOut, const vrml::NodePtr& to,
+                const std::string& eventIn) override;
+  bool deleteRoute(const vrml::NodePtr& from, const std::string& eventOut,
+                   const vrml::NodePtr& to, const std::string& eventIn) override;
+  std::vector<vrml::NodePtr> createVrmlFromString(const std::string& text) override;
+  void loadUrl(const std::vector<std::string>& url,
+               const std::vector<std::string>& parameter) override;
+  bool fetchText(const std::string& url, std::string& text, std::string& error) override;
+  void replaceWorld(const std::vector<vrml::NodePtr>& nodes) override;
+  void setDescription(const std::string& text) override;
+  void print(const std::string& text) override;
+  void scriptDiagnostic(vrml::Severity severity, const vrml::SourceLocation& where,
+                        const std::string& message) override;
+
+  /// Implementation state (runtime/src/); public so its parts can be split over files.
+  struct State;
+
+ private:
+  std::unique_ptr<State> s_;
+  Clock clock_;
+  ExecutionOptions options_;
+  ExecutionStatistics stats_;
+  vrml::Diagnostics diagnostics_;
+  std::uint64_t bindingRevision_ = 0;
+  double frameRate_ = 0.0;
+  friend struct State;
+};
+
+}  // namespace gs::runtime

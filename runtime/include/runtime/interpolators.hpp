@@ -1,0 +1,49 @@
+// The six VRML97 interpolators (clause 4.6.8 "Interpolator nodes"; 6.10
+// ColorInterpolator, 6.15 CoordinateInterpolator, 6.31 NormalInterpolator, 6.32
+// OrientationInterpolator, 6.37 PositionInterpolator, 6.39 ScalarInterpolator) as pure
+// functions of key, keyValue and fraction. Keys are non-decreasing; a fraction below the
+// first key gives the first value, above the last the last value; two equal keys make a
+// step (the value jumps at that key, the later value winning at the key itself).
+#pragma once
+
+#include "vrml/field.hpp"
+
+#include <glm/glm.hpp>
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace gs::runtime {
+
+/// Where `fraction` falls among `key`: value = mix(keyValue[index], keyValue[index + 1], t)
+/// with t in [0, 1]; index + 1 == key.size() (t = 0) past the last key. `key` must not be
+/// empty.
+struct KeySpan {
+  std::size_t index = 0;
+  float t = 0.0f;
+};
+KeySpan findKeySpan(const std::vector<float>& key, float fraction);
+
+/// Spherical linear interpolation of two rotations (axis, angle in radians) along the
+/// shorter arc (6.32); the result's axis is unit length. A zero axis is the identity.
+vrml::Rotation slerpRotation(const vrml::Rotation& a, const vrml::Rotation& b, float t);
+
+/// Interpolation on the unit sphere of two normals (6.31): the result is unit length.
+glm::vec3 slerpNormal(const glm::vec3& a, const glm::vec3& b, float t);
+
+/// The kinds of interpolator, by VRML97 type name.
+enum class InterpolatorKind { Color, Coordinate, Normal, Orientation, Position, Scalar };
+
+/// value_changed of an interpolator of `kind` for `fraction`, given its key and keyValue
+/// fields (keyValue of the type 6.x declares: MFColor, MFVec3f, MFRotation or MFFloat).
+/// Colours are interpolated linearly in RGB (castle-model-viewer and X_ITE do too; the
+/// standard's HSV is a browser choice). Returns nothing, with `problem` set, when the
+/// counts disagree (key empty, keyValue not key.size() values, or for Coordinate and
+/// Normal not a whole multiple of key.size()).
+std::optional<vrml::FieldValue> interpolate(InterpolatorKind kind, const std::vector<float>& key,
+                                            const vrml::FieldValue& keyValue, float fraction,
+                                            std::string& problem);
+
+}  // namespace gs::runtime

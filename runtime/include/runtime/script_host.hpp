@@ -1,0 +1,94 @@
+// The boundary between the execution model and a scripting language (clause 4.12
+// "Scripting"; annex C, ECMAScript). The execution model calls a ScriptInstance for each
+// Script node; the instance calls back through ScriptContext. Nothing here knows a
+// language: runtime/script_ecmascript.hpp implements it with Duktape.
+#pragma once
+
+#include "vrml/diagnostic.hpp"
+#include "vrml/field.hpp"
+#include "vrml/node.hpp"
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace gs::runtime {
+
+/// Limits that keep a Script (untrusted content) from stopping the browser.
+struct ScriptLimits {
+  double callSeconds = 0.5;                      // wall time of one call (initialize, an eventIn...)
+  std::size_t heapBytes = 64u * 1024u * 1024u;  // memory of one Script's heap
+};
+
+/// What a running Script may ask of the browser (annex C.6 "Browser object" and the
+/// eventOuts of its own node). Implemented by ExecutionModel.
+class ScriptContext {
+ public:
+  virtual ~ScriptContext() = default;
+  /// Sends eventOut `field` (an index into the Script node's type().fields, an eventOut
+  /// or exposedField) with `value` at the current timestamp; the value is also stored as
+  /// the field's last value. Wrong index or type: ignored with a diagnostic.
+  virtual void emitScriptEvent(vrml::Node& script, int field, vrml::FieldValue value) = 0;
+  /// Writes eventIn or exposedField `field` of another node directly (directOutput TRUE,
+  /// 4.12.4): delivered as an event at the current timestamp.
+  virtual void sendEvent(vrml::Node& node, int field, vrml::FieldValue value) = 0;
+  /// The current SFTime in seconds.
+  virtual double now() const = 0;
+  /// Frames per second the window reaches (0 headless).
+  virtual double frameRate() const = 0;
+  /// URL of the world (Browser.getWorldURL).
+  virtual std::string worldUrl() const = 0;
+  /// Browser.addRoute / deleteRoute: field names as a ROUTE writes them. False (with a
+  /// diagnostic) when the names do not resolve or the types differ.
+  virtual bool addRoute(const vrml::NodePtr& from, const std::string& eventOut,
+                        const vrml::NodePtr& to, const std::string& eventIn) = 0;
+  virtual bool deleteRoute(const vrml::NodePtr& from, const std::string& eventOut,
+                           const vrml::NodePtr& to, const std::string& eventIn) = 0;
+  /// Browser.createVrmlFromString: the root nodes of `text` parsed as a VRML97 file
+  /// (relative URLs against the world's URL); parse errors become diagnostics.
+  virtual std::vector<vrml::NodePtr> createVrmlFromString(const std::string& text) = 0;
+  /// Browser.loadURL(url, parameter) and Anchor activation: the browser follows the
+  /// loader's rules (4.12.10.3, 6.2); nothing happens at once.
+  virtual void loadUrl(const std::vector<std::string>& url,
+                       const std::vector<std::string>& parameter) = 0;
+  /// The text at `url` (a Script's url entry that is not inline source), resolved
+  /// against the world's URL under the loader's rules (remote content may name only
+  /// http(s) URLs). False with `error` ("cannot read 'URL': why") when it cannot be read.
+  virtual bool fetchText(const std::string& url, std::string& text, std::string& error) = 0;
+  /// Browser.replaceWorld(nodes).
+  virtual void replaceWorld(const std::vector<vrml::NodePtr>& nodes) = 0;
+  /// Browser.setDescription(text).
+  virtual void setDescription(const std::string& text) = 0;
+  /// print() / Browser.print: a line for the console (stderr).
+  virtual void print(const std::string& text) = 0;
+  /// A problem of the Script (error, limit reached); `where` names the world's file:line
+  /// of the Script node; `message` the Script's own line where known.
+  virtual void scriptDiagnostic(vrml::Severity severity, const vrml::SourceLocation& where,
+                                const std::string& message) = 0;
+};
+
+/// One running Script node. Calls arrive on the drawing thread, in event order.
+class ScriptInstance {
+ public:
+  virtual ~ScriptInstance() = default;
+  /// initialize() (4.12.3), once, before any eventIn.
+  virtual void initialize(double timestamp) = 0;
+  /// The eventIn (or exposedField) `field` of the Script node received `value`: calls the
+  /// function of that name with (value, timestamp) (C.4.2).
+  virtual void eventIn(int field, const vrml::FieldValue& value, double timestamp) = 0;
+  /// eventsProcessed() after a cascade that delivered events to this Script (4.12.6).
+  virtual void eventsProcessed(double timestamp) = 0;
+  /// shutdown() when the world is unloaded (4.12.3).
+  virtual void shutdown(double timestamp) = 0;
+  /// Whether the Script was stopped (an error or a limit): no more calls are made.
+  virtual bool stopped() const = 0;
+};
+
+/// Makes the instance for a Script node from the first of its url entries it can run
+/// (`javascript:` / `ecmascript:` / `vrmlscript:` inline, or a file or URL read with
+/// ScriptContext::fetchText). Null (with a diagnostic through `ctx`) when none can run.
+using ScriptFactory = std::function<std::unique_ptr<ScriptInstance>(
+    vrml::Node& script, ScriptContext& ctx, const ScriptLimits& limits)>;
+
+}  // namespace gs::runtime
