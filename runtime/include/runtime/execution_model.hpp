@@ -115,8 +115,8 @@ class ExecutionModel final : public ScriptContext {
   std::string worldUrl() const override;
   bool addRoute(const vrml::NodePtr& from, const std::string& eventOut, const vrml::NodePtr& to,
                 const std::string& eventIn) override;
-  bool deleteRoute(const vrml::NodePtr& from, const std::string& eventOut,
-                   const vrml::NodePtr& to, const std::string& eventIn) override;
+  bool deleteRoute(const vrml::NodePtr& from, const std::string& eventOut, const vrml::NodePtr& to,
+                   const std::string& eventIn) override;
   std::vector<vrml::NodePtr> createVrmlFromString(const std::string& text) override;
   void loadUrl(const std::vector<std::string>& url,
                const std::vector<std::string>& parameter) override;

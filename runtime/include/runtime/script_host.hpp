@@ -17,7 +17,7 @@ namespace gs::runtime {
 
 /// Limits that keep a Script (untrusted content) from stopping the browser.
 struct ScriptLimits {
-  double callSeconds = 0.5;                      // wall time of one call (initialize, an eventIn...)
+  double callSeconds = 0.5;                     // wall time of one call (initialize, an eventIn...)
   std::size_t heapBytes = 64u * 1024u * 1024u;  // memory of one Script's heap
 };
 

@@ -1,0 +1,351 @@
+// The route table and the event cascade (clause 4.10), the clock's ticks (4.11) and the
+// ScriptContext services. Node-specific behaviour is in node_roles.cpp.
+#include "execution_state.hpp"
+
+#include "vrml/parser.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+namespace gs::runtime {
+
+using vrml::AccessType;
+using vrml::FieldType;
+
+// ---- registration ----
+
+NodeState& ExecutionModel::State::reach(vrml::Node& node, bool bindables) {
+  auto [it, inserted] = nodes.try_emplace(&node);
+  if (!inserted) return *it->second;
+  it->second = std::make_unique<NodeState>();
+  NodeState& ns = *it->second;
+  ns.node = &node;
+  const std::size_t n = node.fieldCount();
+  ns.routesOut.resize(n);
+  ns.lastSent.assign(n, 0);
+  classify(ns);
+  if (ns.role == NodeRole::bindable && bindables)
+    candidates[static_cast<std::size_t>(ns.bindable)].push_back(&ns);
+  // Children and other node-valued fields, depth first in file order.
+  for (std::size_t i = 0; i < n; ++i) {
+    const vrml::FieldValue& v = node.fieldAt(i);
+    if (v.type() == FieldType::SFNode) {
+      if (const vrml::NodePtr& c = v.get<FieldType::SFNode>()) reach(*c, bindables);
+    } else if (v.type() == FieldType::MFNode) {
+      for (const vrml::NodePtr& c : v.get<FieldType::MFNode>())
+        if (c) reach(*c, bindables);
+    }
+  }
+  return ns;
+}
+
+bool ExecutionModel::State::connect(vrml::Node& from, int fromField, vrml::Node& to, int toField) {
+  NodeState& a = reach(from, false);
+  NodeState& b = reach(to, false);
+  if (fromField < 0 || static_cast<std::size_t>(fromField) >= a.routesOut.size()) return false;
+  std::vector<RouteTarget>& out = a.routesOut[static_cast<std::size_t>(fromField)];
+  const RouteTarget t{&b, toField};
+  for (const RouteTarget& r : out)
+    if (r == t) return true;  // 4.10.2: a duplicate ROUTE is ignored
+  out.push_back(t);
+  return true;
+}
+
+void ExecutionModel::State::takeScene(const vrml::Scene& s, std::size_t& roots, std::size_t& hidden,
+                                      std::size_t& routes, bool bindables) {
+  for (; roots < s.rootNodes.size(); ++roots)
+    if (s.rootNodes[roots]) reach(*s.rootNodes[roots], bindables);
+  for (; hidden < s.hiddenNodes.size(); ++hidden)
+    if (s.hiddenNodes[hidden]) reach(*s.hiddenNodes[hidden], false);
+  for (; routes < s.routes.size(); ++routes) {
+    const vrml::Route& r = s.routes[routes];
+    if (!r.fromNode || !r.toNode) continue;
+    const int from = r.fromNode->type().findField(r.fromField);
+    const int to = r.toNode->type().findField(r.toField);
+    if (from < 0 || to < 0) continue;  // the parser reported it
+    connect(*r.fromNode, from, *r.toNode, to);
+  }
+}
+
+// ---- events ----
+
+void ExecutionModel::State::emit(NodeState& from, int field, const vrml::FieldValue& value) {
+  std::uint64_t& last = from.lastSent[static_cast<std::size_t>(field)];
+  ExecutionStatistics& st = model.stats_;
+  if (last == stamp) {  // 4.10.3: one event per eventOut per timestamp ends loops
+    ++st.eventsDropped;
+    return;
+  }
+  last = stamp;
+  ++st.eventsSent;
+  if (model.options_.trace) model.options_.trace({model.now(), from.node, field, &value});
+  for (const RouteTarget& r : from.routesOut[static_cast<std::size_t>(field)])
+    queue.push_back({r.to, r.field, value});
+}
+
+void ExecutionModel::State::emitOwn(NodeState& from, int field, vrml::FieldValue value) {
+  if (field < 0) return;
+  emit(from, field, value);
+  from.node->setField(static_cast<std::size_t>(field), std::move(value));
+}
+
+void ExecutionModel::State::runCascade() {
+  for (;;) {
+    while (!queue.empty()) {
+      if (++eventsThisCascade > model.options_.maxEventsPerCascade) {
+        if (!cascadeOverflow)
+          model.diagnostics_.error({}, "more than " +
+                                           std::to_string(model.options_.maxEventsPerCascade) +
+                                           " events at one timestamp: the cascade was cut "
+                                           "(limit maxEventsPerCascade)");
+        cascadeOverflow = true;
+        queue.clear();
+        break;
+      }
+      PendingEvent e = std::move(queue.front());
+      queue.pop_front();
+      ++model.stats_.eventsDelivered;
+      deliver(*e.to, e.field, std::move(e.value));
+    }
+    // 4.12.6: eventsProcessed() after the events of this timestamp reached a Script.
+    bool more = false;
+    for (NodeState* s : scripts) {
+      if (!s->scriptHadEvents) continue;
+      s->scriptHadEvents = false;
+      if (s->script && !s->script->stopped()) s->script->eventsProcessed(model.now());
+      more = true;
+    }
+    if (!more || queue.empty()) break;
+  }
+}
+
+void ExecutionModel::State::initializeScripts() {
+  while (!newScripts.empty()) {
+    std::vector<NodeState*> batch;
+    batch.swap(newScripts);
+    for (NodeState* s : batch) {
+      scripts.push_back(s);
+      if (s->script) s->script->initialize(model.now());
+    }
+    runCascade();
+  }
+}
+
+// ---- ExecutionModel ----
+
+ExecutionModel::ExecutionModel(std::shared_ptr<const vrml::Scene> scene, double loadTime,
+                               ExecutionOptions options)
+    : s_(std::make_unique<State>(*this)), clock_(loadTime), options_(std::move(options)) {
+  s_->scene = std::move(scene);
+  s_->stamp = 1;
+  if (s_->scene) s_->takeScene(*s_->scene, s_->rootsSeen, s_->hiddenSeen, s_->routesSeen, true);
+  s_->bindFirstCandidates();
+  s_->runCascade();
+  s_->initializeScripts();
+  for (NodeState* t : s_->timeSensors) s_->evaluateTimeSensor(*t);
+  s_->runCascade();
+  ++stats_.cascades;
+}
+
+ExecutionModel::~ExecutionModel() {
+  for (NodeState* s : s_->scripts)
+    if (s->script && !s->script->stopped()) s->script->shutdown(now());
+}
+
+void ExecutionModel::sceneGrew() {
+  if (!s_->scene) return;
+  ++s_->stamp;
+  s_->takeScene(*s_->scene, s_->rootsSeen, s_->hiddenSeen, s_->routesSeen, true);
+  s_->bindFirstCandidates();
+  s_->runCascade();
+  s_->initializeScripts();
+}
+
+void ExecutionModel::addInlineScene(std::shared_ptr<const vrml::Scene> scene) {
+  if (!scene) return;
+  for (const auto& known : s_->inlineScenes)
+    if (known == scene) return;
+  s_->inlineScenes.push_back(scene);
+  std::size_t roots = 0, hidden = 0, routes = 0;
+  s_->takeScene(*scene, roots, hidden, routes, false);
+  s_->initializeScripts();
+}
+
+void ExecutionModel::advanceTo(double time) {
+  if (time < now()) return;
+  clock_.set(time);
+  ++s_->stamp;
+  ++stats_.cascades;
+  s_->eventsThisCascade = 0;
+  s_->cascadeOverflow = false;
+  for (NodeState* t : s_->timeSensors) s_->evaluateTimeSensor(*t);
+  for (PendingEvent& e : s_->posted) s_->queue.push_back(std::move(e));
+  s_->posted.clear();
+  s_->runCascade();
+}
+
+void ExecutionModel::advanceBy(double duration, double step) {
+  if (!(step > 0.0)) step = 1.0 / 60.0;
+  const double end = now() + duration;
+  // Steps counted, not accumulated, so N steps of S land on the same times everywhere.
+  const double start = now();
+  const auto count = static_cast<long long>(std::ceil(duration / step - 1e-9));
+  for (long long i = 1; i < count; ++i) advanceTo(start + static_cast<double>(i) * step);
+  advanceTo(end);
+}
+
+bool ExecutionModel::postEvent(vrml::Node& node, int field, vrml::FieldValue value) {
+  const auto& fields = node.type().fields;
+  if (field < 0 || static_cast<std::size_t>(field) >= fields.size() ||
+      fields[static_cast<std::size_t>(field)].type != value.type()) {
+    diagnostics_.error(node.location,
+                       "event of the wrong type or to a missing field of " + node.typeName());
+    return false;
+  }
+  s_->posted.push_back({&s_->reach(node, false), field, std::move(value)});
+  return true;
+}
+
+void ExecutionModel::processEvents() {
+  ++s_->stamp;
+  ++stats_.cascades;
+  s_->eventsThisCascade = 0;
+  for (PendingEvent& e : s_->posted) s_->queue.push_back(std::move(e));
+  s_->posted.clear();
+  s_->runCascade();
+}
+
+vrml::Node* ExecutionModel::bound(BindableKind kind) const {
+  const auto& stack = s_->stacks[static_cast<std::size_t>(kind)];
+  return stack.empty() ? nullptr : stack.back()->node;
+}
+
+std::vector<vrml::Node*> ExecutionModel::bindStack(BindableKind kind) const {
+  std::vector<vrml::Node*> out;
+  for (NodeState* n : s_->stacks[static_cast<std::size_t>(kind)]) out.push_back(n->node);
+  return out;
+}
+
+bool ExecutionModel::animating() const {
+  for (const NodeState* t : s_->timeSensors)
+    if (t->time.active) return true;
+  return !s_->posted.empty();
+}
+
+// ---- ScriptContext ----
+
+void ExecutionModel::emitScriptEvent(vrml::Node& script, int field, vrml::FieldValue value) {
+  const auto& fields = script.type().fields;
+  if (field < 0 || static_cast<std::size_t>(field) >= fields.size() ||
+      fields[static_cast<std::size_t>(field)].type != value.type() ||
+      (fields[static_cast<std::size_t>(field)].access != AccessType::eventOut &&
+       fields[static_cast<std::size_t>(field)].access != AccessType::exposedField)) {
+    diagnostics_.error(script.location, "a Script sent an event on a field it does not have");
+    return;
+  }
+  s_->emitOwn(s_->reach(script, false), field, std::move(value));
+}
+
+void ExecutionModel::sendEvent(vrml::Node& node, int field, vrml::FieldValue value) {
+  const auto& fields = node.type().fields;
+  if (field < 0 || static_cast<std::size_t>(field) >= fields.size() ||
+      fields[static_cast<std::size_t>(field)].type != value.type())
+    return;
+  s_->queue.push_back({&s_->reach(node, false), field, std::move(value)});
+}
+
+std::string ExecutionModel::worldUrl() const {
+  return s_->scene ? s_->scene->url : std::string();
+}
+
+namespace {
+
+/// Resolves a route end as a ROUTE statement names it; -1 when the node has no such
+/// eventOut (out) or eventIn.
+int routeEnd(const vrml::Node& node, const std::string& name, bool out) {
+  const int i = node.type().findField(name);
+  if (i < 0) return -1;
+  const AccessType a = node.type().fields[static_cast<std::size_t>(i)].access;
+  if (a == AccessType::exposedField) return i;
+  return (a == (out ? AccessType::eventOut : AccessType::eventIn)) ? i : -1;
+}
+
+}  // namespace
+
+bool ExecutionModel::addRoute(const vrml::NodePtr& from, const std::string& eventOut,
+                              const vrml::NodePtr& to, const std::string& eventIn) {
+  if (!from || !to) return false;
+  const int a = routeEnd(*from, eventOut, true), b = routeEnd(*to, eventIn, false);
+  if (a < 0 || b < 0 ||
+      from->type().fields[static_cast<std::size_t>(a)].type !=
+          to->type().fields[static_cast<std::size_t>(b)].type) {
+    diagnostics_.error(from->location, "addRoute " + from->typeName() + "." + eventOut + " TO " +
+                                           to->typeName() + "." + eventIn +
+                                           ": no such events or their types differ");
+    return false;
+  }
+  s_->reach(*from, false).keepAlive = from;
+  s_->reach(*to, false).keepAlive = to;
+  return s_->connect(*from, a, *to, b);
+}
+
+bool ExecutionModel::deleteRoute(const vrml::NodePtr& from, const std::string& eventOut,
+                                 const vrml::NodePtr& to, const std::string& eventIn) {
+  if (!from || !to) return false;
+  const int a = routeEnd(*from, eventOut, true), b = routeEnd(*to, eventIn, false);
+  auto it = s_->nodes.find(from.get());
+  auto jt = s_->nodes.find(to.get());
+  if (a < 0 || b < 0 || it == s_->nodes.end() || jt == s_->nodes.end()) return false;
+  auto& out = it->second->routesOut[static_cast<std::size_t>(a)];
+  const RouteTarget t{jt->second.get(), b};
+  for (auto r = out.begin(); r != out.end(); ++r)
+    if (*r == t) {
+      out.erase(r);
+      return true;
+    }
+  return false;
+}
+
+std::vector<vrml::NodePtr> ExecutionModel::createVrmlFromString(const std::string& text) {
+  std::string bytes = text;
+  if (!bytes.starts_with("#VRML")) bytes = "#VRML V2.0 utf8\n" + bytes;
+  vrml::Scene made = vrml::parseVrml(bytes, worldUrl());
+  for (vrml::Diagnostic& d : made.diagnostics.items) diagnostics_.items.push_back(std::move(d));
+  std::size_t roots = 0, hidden = 0, routes = 0;
+  s_->takeScene(made, roots, hidden, routes, false);
+  for (const vrml::NodePtr& n : made.rootNodes)
+    if (n) s_->reach(*n, false).keepAlive = n;
+  for (const vrml::NodePtr& n : made.hiddenNodes)
+    if (n) s_->reach(*n, false).keepAlive = n;
+  return made.rootNodes;
+}
+
+void ExecutionModel::loadUrl(const std::vector<std::string>& url,
+                             const std::vector<std::string>& parameter) {
+  if (options_.loadUrl) options_.loadUrl(url, parameter);
+}
+
+bool ExecutionModel::fetchText(const std::string& url, std::string& text, std::string& error) {
+  if (options_.fetchText) return options_.fetchText(url, text, error);
+  error = "cannot read '" + url + "': no loader for Script files";
+  return false;
+}
+
+void ExecutionModel::replaceWorld(const std::vector<vrml::NodePtr>&) {
+  diagnostics_.warning({}, "Browser.replaceWorld is not supported yet; the call was ignored");
+}
+
+void ExecutionModel::setDescription(const std::string& text) {
+  std::fprintf(stderr, "%s\n", text.c_str());
+}
+
+void ExecutionModel::print(const std::string& text) {
+  std::fprintf(stderr, "%s\n", text.c_str());
+}
+
+void ExecutionModel::scriptDiagnostic(vrml::Severity severity, const vrml::SourceLocation& where,
+                                      const std::string& message) {
+  diagnostics_.items.push_back({severity, where, message});
+}
+
+}  // namespace gs::runtime

@@ -1,0 +1,111 @@
+// Private to runtime/: the state behind ExecutionModel, shared by its source files.
+#pragma once
+
+#include "runtime/execution_model.hpp"
+#include "runtime/interpolators.hpp"
+#include "runtime/time_dependent.hpp"
+
+#include <array>
+#include <deque>
+#include <memory>
+#include <unordered_map>
+#include <vector>
+
+namespace gs::runtime {
+
+/// What the execution model does with events a node receives.
+enum class NodeRole : std::uint8_t {
+  plain,         // exposedFields store and echo; set_x eventIns write field x
+  timeSensor,    // 6.50
+  interpolator,  // 4.6.8
+  bindable,      // 4.6.10
+  script,        // 4.12
+  grouping,      // addChildren / removeChildren (6.21, 6.52, ...)
+};
+
+struct NodeState;
+
+/// One route from an eventOut, resolved: the receiving node and its field index.
+struct RouteTarget {
+  NodeState* to = nullptr;
+  int field = -1;
+  bool operator==(const RouteTarget&) const = default;
+};
+
+/// Field indices of a TimeSensor (6.50), -1 when absent.
+struct TimeSensorFields {
+  int cycleInterval = -1, enabled = -1, loop = -1, startTime = -1, stopTime = -1;
+  int cycleTime = -1, fraction = -1, isActive = -1, time = -1;
+};
+
+/// The execution model's record of one node.
+struct NodeState {
+  vrml::Node* node = nullptr;
+  vrml::NodePtr keepAlive;  // nodes made at run time (createVrmlFromString)
+  NodeRole role = NodeRole::plain;
+  InterpolatorKind interpolator = InterpolatorKind::Scalar;
+  BindableKind bindable = BindableKind::Viewpoint;
+  /// Per field index: routes leaving it, and the stamp of the last event it sent.
+  std::vector<std::vector<RouteTarget>> routesOut;
+  std::vector<std::uint64_t> lastSent;
+  // Field indices used by the role (from the node table, found once).
+  int setFraction = -1, key = -1, keyValue = -1, valueChanged = -1;  // interpolators
+  int setBind = -1, isBound = -1, bindTime = -1;                     // bindables
+  int addChildren = -1, removeChildren = -1, children = -1;          // grouping
+  TimeSensorFields timeFields;
+  TimeState time;
+  std::unique_ptr<ScriptInstance> script;
+  bool scriptHadEvents = false;
+  bool problemReported = false;
+};
+
+/// An event waiting to be delivered to eventIn `field` of `to`.
+struct PendingEvent {
+  NodeState* to = nullptr;
+  int field = -1;
+  vrml::FieldValue value;
+};
+
+struct ExecutionModel::State {
+  ExecutionModel& model;
+  std::shared_ptr<const vrml::Scene> scene;
+  std::vector<std::shared_ptr<const vrml::Scene>> inlineScenes;
+  std::unordered_map<const vrml::Node*, std::unique_ptr<NodeState>> nodes;
+  std::vector<NodeState*> timeSensors;
+  std::vector<NodeState*> scripts;
+  std::vector<NodeState*> newScripts;  // registered, initialize() not yet called
+  std::array<std::vector<NodeState*>, kBindableKindCount> stacks;      // bottom first
+  std::array<std::vector<NodeState*>, kBindableKindCount> candidates;  // file order
+  std::deque<PendingEvent> queue;
+  std::vector<PendingEvent> posted;
+  std::uint64_t stamp = 0;
+  std::size_t eventsThisCascade = 0;
+  bool cascadeOverflow = false;
+  std::size_t rootsSeen = 0, hiddenSeen = 0, routesSeen = 0;
+
+  explicit State(ExecutionModel& m) : model(m) {}
+
+  // ---- graph (execution_model.cpp) ----
+  /// The state of `node`, registering it (and every node reachable from its SFNode and
+  /// MFNode fields) when new. `bindables`: whether bindable nodes join the candidates.
+  NodeState& reach(vrml::Node& node, bool bindables);
+  void takeScene(const vrml::Scene& s, std::size_t& roots, std::size_t& hidden, std::size_t& routes,
+                 bool bindables);
+  bool connect(vrml::Node& from, int fromField, vrml::Node& to, int toField);
+
+  // ---- events (execution_model.cpp) ----
+  void emit(NodeState& from, int field, const vrml::FieldValue& value);
+  void emitOwn(NodeState& from, int field, vrml::FieldValue value);
+  void runCascade();
+  void initializeScripts();
+
+  // ---- node roles (node_roles.cpp) ----
+  void classify(NodeState& ns);
+  void deliver(NodeState& ns, int field, vrml::FieldValue value);
+  void evaluateTimeSensor(NodeState& ns);
+  void bind(NodeState& ns, bool on);
+  void bindFirstCandidates();
+  void report(vrml::Severity severity, const vrml::Node& node, const std::string& message);
+};
+
+}  // namespace gs::runtime

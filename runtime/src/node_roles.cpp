@@ -1,0 +1,257 @@
+// What nodes do with the events they receive: exposedFields (4.10.3 / 5.1), TimeSensor
+// (6.50), the interpolators (4.6.8), the bindable stacks (4.6.10), grouping nodes'
+// addChildren / removeChildren (6.21 Group, 6.52 Transform ...), Scripts (4.12).
+#include "execution_state.hpp"
+
+#include <algorithm>
+#include <string_view>
+
+namespace gs::runtime {
+
+using vrml::AccessType;
+using vrml::FieldType;
+
+namespace {
+
+struct NamedInterpolator {
+  std::string_view name;
+  InterpolatorKind kind;
+};
+constexpr NamedInterpolator kInterpolators[] = {
+    {"ColorInterpolator", InterpolatorKind::Color},
+    {"CoordinateInterpolator", InterpolatorKind::Coordinate},
+    {"NormalInterpolator", InterpolatorKind::Normal},
+    {"OrientationInterpolator", InterpolatorKind::Orientation},
+    {"PositionInterpolator", InterpolatorKind::Position},
+    {"ScalarInterpolator", InterpolatorKind::Scalar},
+};
+
+struct NamedBindable {
+  std::string_view name;
+  BindableKind kind;
+};
+constexpr NamedBindable kBindables[] = {
+    {"Viewpoint", BindableKind::Viewpoint},
+    {"NavigationInfo", BindableKind::NavigationInfo},
+    {"Background", BindableKind::Background},
+    {"Fog", BindableKind::Fog},
+};
+
+constexpr std::string_view kGroupingNodes[] = {"Anchor", "Billboard", "Collision", "Group",
+                                               "Transform"};
+
+template <FieldType T, class V>
+V value(const vrml::Node& n, int field, V fallback) {
+  if (field < 0) return fallback;
+  const vrml::FieldValue& f = n.fieldAt(static_cast<std::size_t>(field));
+  return f.type() == T ? f.get<T>() : fallback;
+}
+
+TimeFields timeFieldsOf(const vrml::Node& n, const TimeSensorFields& f) {
+  TimeFields t;
+  t.cycleInterval = value<FieldType::SFTime>(n, f.cycleInterval, 1.0);
+  t.enabled = value<FieldType::SFBool>(n, f.enabled, true);
+  t.loop = value<FieldType::SFBool>(n, f.loop, false);
+  t.startTime = value<FieldType::SFTime>(n, f.startTime, 0.0);
+  t.stopTime = value<FieldType::SFTime>(n, f.stopTime, 0.0);
+  return t;
+}
+
+}  // namespace
+
+void ExecutionModel::State::classify(NodeState& ns) {
+  const vrml::NodeType& type = ns.node->type();
+  auto idx = [&](std::string_view name) { return type.findExact(name); };
+  if (type.script) {
+    ns.role = NodeRole::script;
+    if (model.options_.scripts) {
+      ns.script = model.options_.scripts(*ns.node, model, model.options_.scriptLimits);
+    } else {
+      model.diagnostics_.warning(ns.node->location,
+                                 "Script not run: this build runs no scripting language");
+    }
+    newScripts.push_back(&ns);
+    return;
+  }
+  const std::string& name = type.name;
+  if (name == "TimeSensor") {
+    ns.role = NodeRole::timeSensor;
+    TimeSensorFields& f = ns.timeFields;
+    f.cycleInterval = idx("cycleInterval");
+    f.enabled = idx("enabled");
+    f.loop = idx("loop");
+    f.startTime = idx("startTime");
+    f.stopTime = idx("stopTime");
+    f.cycleTime = idx("cycleTime");
+    f.fraction = idx("fraction_changed");
+    f.isActive = idx("isActive");
+    f.time = idx("time");
+    timeSensors.push_back(&ns);
+    return;
+  }
+  for (const NamedInterpolator& i : kInterpolators)
+    if (name == i.name) {
+      ns.role = NodeRole::interpolator;
+      ns.interpolator = i.kind;
+      ns.setFraction = idx("set_fraction");
+      ns.key = idx("key");
+      ns.keyValue = idx("keyValue");
+      ns.valueChanged = idx("value_changed");
+      return;
+    }
+  for (const NamedBindable& b : kBindables)
+    if (name == b.name) {
+      ns.role = NodeRole::bindable;
+      ns.bindable = b.kind;
+      ns.setBind = idx("set_bind");
+      ns.isBound = idx("isBound");
+      ns.bindTime = idx("bindTime");
+      return;
+    }
+  for (std::string_view g : kGroupingNodes)
+    if (name == g) {
+      ns.role = NodeRole::grouping;
+      ns.addChildren = idx("addChildren");
+      ns.removeChildren = idx("removeChildren");
+      ns.children = idx("children");
+      return;
+    }
+}
+
+void ExecutionModel::State::report(vrml::Severity severity, const vrml::Node& node,
+                                   const std::string& message) {
+  model.diagnostics_.items.push_back(
+      {severity, node.location,
+       node.typeName() + (node.defName.empty() ? "" : " " + node.defName) + ": " + message});
+}
+
+void ExecutionModel::State::evaluateTimeSensor(NodeState& ns) {
+  const TimeSensorFields& f = ns.timeFields;
+  const TimeFields fields = timeFieldsOf(*ns.node, f);
+  const double now = model.now();
+  const TimeStep step = evaluateTime(ns.time, fields, now);
+  using vrml::FieldValue;
+  // Order of 6.50: isActive TRUE, cycleTime, fraction_changed, time; isActive FALSE last.
+  if (step.activated) emitOwn(ns, f.isActive, FieldValue::make<FieldType::SFBool>(true));
+  if (step.newCycle) emitOwn(ns, f.cycleTime, FieldValue::make<FieldType::SFTime>(step.cycleTime));
+  if (step.output) {
+    emitOwn(ns, f.fraction,
+            FieldValue::make<FieldType::SFFloat>(static_cast<float>(step.fraction)));
+    emitOwn(ns, f.time, FieldValue::make<FieldType::SFTime>(now));
+  }
+  if (step.deactivated) emitOwn(ns, f.isActive, FieldValue::make<FieldType::SFBool>(false));
+}
+
+void ExecutionModel::State::bind(NodeState& ns, bool on) {
+  auto& stack = stacks[static_cast<std::size_t>(ns.bindable)];
+  using vrml::FieldValue;
+  const auto sendBound = [&](NodeState& n, bool bound) {
+    emitOwn(n, n.isBound, FieldValue::make<FieldType::SFBool>(bound));
+    if (bound) emitOwn(n, n.bindTime, FieldValue::make<FieldType::SFTime>(model.now()));
+  };
+  const auto pos = std::find(stack.begin(), stack.end(), &ns);
+  if (on) {
+    if (!stack.empty() && stack.back() == &ns) return;  // already bound: no events
+    if (!stack.empty()) sendBound(*stack.back(), false);
+    if (pos != stack.end()) stack.erase(pos);
+    stack.push_back(&ns);
+    sendBound(ns, true);
+  } else {
+    if (pos == stack.end()) return;
+    const bool wasTop = (pos + 1 == stack.end());
+    stack.erase(pos);
+    if (!wasTop) return;
+    sendBound(ns, false);
+    if (!stack.empty()) sendBound(*stack.back(), true);
+  }
+  ++model.bindingRevision_;
+}
+
+void ExecutionModel::State::bindFirstCandidates() {
+  for (std::size_t k = 0; k < kBindableKindCount; ++k)
+    if (stacks[k].empty() && !candidates[k].empty()) bind(*candidates[k].front(), true);
+}
+
+void ExecutionModel::State::deliver(NodeState& ns, int field, vrml::FieldValue value) {
+  vrml::Node& node = *ns.node;
+  if (field < 0 || static_cast<std::size_t>(field) >= node.fieldCount()) return;
+  const vrml::FieldSpec& spec = node.type().fields[static_cast<std::size_t>(field)];
+  if (spec.type != value.type()) return;
+  switch (ns.role) {
+    case NodeRole::timeSensor: {
+      const TimeSensorFields& f = ns.timeFields;
+      const TimeFields now = timeFieldsOf(node, f);
+      // 6.50: startTime and cycleInterval are ignored while active; so is a stopTime
+      // at or before startTime.
+      if (ns.time.active && (field == f.startTime || field == f.cycleInterval)) return;
+      if (field == f.stopTime && ignoresStopTime(ns.time, now, value.get<FieldType::SFTime>()))
+        return;
+      emitOwn(ns, field, std::move(value));
+      evaluateTimeSensor(ns);
+      return;
+    }
+    case NodeRole::interpolator:
+      if (field == ns.setFraction) {
+        if (ns.key < 0 || ns.keyValue < 0 || ns.valueChanged < 0) return;
+        std::string problem;
+        const auto out =
+            interpolate(ns.interpolator,
+                        node.fieldAt(static_cast<std::size_t>(ns.key)).get<FieldType::MFFloat>(),
+                        node.fieldAt(static_cast<std::size_t>(ns.keyValue)),
+                        value.get<FieldType::SFFloat>(), problem);
+        if (!out) {
+          if (!ns.problemReported) report(vrml::Severity::error, node, problem + "; no output");
+          ns.problemReported = true;
+          return;
+        }
+        emitOwn(ns, ns.valueChanged, *out);
+        return;
+      }
+      break;
+    case NodeRole::bindable:
+      if (field == ns.setBind) {
+        bind(ns, value.get<FieldType::SFBool>());
+        return;
+      }
+      break;
+    case NodeRole::grouping:
+      if ((field == ns.addChildren || field == ns.removeChildren) && ns.children >= 0) {
+        auto children =
+            node.fieldAt(static_cast<std::size_t>(ns.children)).get<FieldType::MFNode>();
+        for (const vrml::NodePtr& c : value.get<FieldType::MFNode>()) {
+          if (!c) continue;
+          const auto it = std::find(children.begin(), children.end(), c);
+          if (field == ns.addChildren && it == children.end()) {
+            children.push_back(c);
+            reach(*c, false);
+          } else if (field == ns.removeChildren && it != children.end()) {
+            children.erase(it);
+          }
+        }
+        emitOwn(ns, ns.children, vrml::FieldValue::make<FieldType::MFNode>(std::move(children)));
+        return;
+      }
+      break;
+    case NodeRole::script:
+      node.setField(static_cast<std::size_t>(field), value);
+      if (ns.script && !ns.script->stopped()) {
+        ns.scriptHadEvents = true;
+        ns.script->eventIn(field, value, model.now());
+      }
+      return;
+    case NodeRole::plain:
+      break;
+  }
+  if (spec.access == AccessType::exposedField) {
+    emitOwn(ns, field, std::move(value));
+    return;
+  }
+  if (spec.access == AccessType::eventIn && spec.name.starts_with("set_")) {
+    // set_coordIndex and the like write the field of the same name (6.23 ...).
+    const int target = node.type().findExact(std::string_view(spec.name).substr(4));
+    if (target >= 0 && node.type().fields[static_cast<std::size_t>(target)].type == value.type())
+      node.setField(static_cast<std::size_t>(target), std::move(value));
+  }
+}
+
+}  // namespace gs::runtime

@@ -1,0 +1,47 @@
+// Test helpers for the execution model: a world from VRML text and a recorded trace.
+#pragma once
+
+#include "runtime/execution_model.hpp"
+#include "runtime/trace.hpp"
+#include "vrml/parser.hpp"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace gs::test {
+
+/// A world parsed from `body` (the header is added) and run from `loadTime`, recording
+/// every event as "NODE.field=value" (trace names, runtime/trace.hpp).
+struct RunningWorld {
+  std::shared_ptr<vrml::Scene> scene;
+  std::vector<std::string> events;
+  std::unique_ptr<runtime::ExecutionModel> model;
+
+  explicit RunningWorld(const std::string& body, double loadTime = 0.0,
+                        runtime::ExecutionOptions options = {}) {
+    scene = std::make_shared<vrml::Scene>(vrml::parseVrml("#VRML V2.0 utf8\n" + body, "test.wrl"));
+    options.trace = [this](const runtime::TraceEvent& e) {
+      const auto& spec = e.node->type().fields[static_cast<std::size_t>(e.field)];
+      std::string name = spec.name;
+      if (spec.access == vrml::AccessType::exposedField) name += "_changed";
+      events.push_back(runtime::traceNodeName(*e.node) + "." + name + "=" +
+                       runtime::fieldValueText(*e.value));
+    };
+    model = std::make_unique<runtime::ExecutionModel>(scene, loadTime, std::move(options));
+  }
+  /// The node DEFed as `name` among the roots and their descendants.
+  vrml::Node& node(const std::string& name) const;
+  /// Field index of `field` in `n` (aliases accepted); fails the test when missing.
+  static int field(const vrml::Node& n, const std::string& field);
+  /// Posts `value` to `name.field` and processes it as one timestamp.
+  void send(const std::string& name, const std::string& fieldName, vrml::FieldValue value);
+  /// Events recorded since the last call, then forgotten.
+  std::vector<std::string> take() {
+    std::vector<std::string> out;
+    out.swap(events);
+    return out;
+  }
+};
+
+}  // namespace gs::test
