@@ -131,6 +131,19 @@ Parsed parseArguments(int argc, char** argv) {
                  "Seconds without a byte after which a transfer fails (default 20)")
       ->type_name("S")
       ->check(CLI::Range(0.05, 3600.0));
+  std::string timeText;
+  cli.add_option("--time", timeText,
+                 "SFTime (seconds since 1970) the world is loaded and shown at; T0:DT:N with "
+                 "--snapshot writes N frames DT seconds apart (OUT-0000.png ...). Default: the "
+                 "wall clock in a window, 0 for --snapshot")
+      ->type_name("T|T0:DT:N");
+  cli.add_option("--time-step", o.time.step,
+                 "Fixed step of the event cascade between times, seconds (default 1/60)")
+      ->type_name("S")
+      ->check(CLI::PositiveNumber);
+  cli.add_option("--trace-events", o.time.traceFile,
+                 "Write every event as a JSON line (time, node, field, value) to FILE")
+      ->type_name("FILE");
   bool noProgressBar = false;
   cli.add_flag("--no-progress", noProgressBar, "No progress bar on the terminal");
   cli.add_option("INPUT", o.inputs,
@@ -241,6 +254,14 @@ Parsed parseArguments(int argc, char** argv) {
     o.lod = o.lods.front();
   }
   o.progress = !noProgressBar;
+  if (!timeText.empty() && !parseTimeOption(timeText, o.time)) {
+    std::fprintf(stderr,
+                 "ghostspace: --time: expected seconds T >= 0 or T0:DT:N (DT > 0, N >= 1), "
+                 "got '%s'\n",
+                 timeText.c_str());
+    r.exitCode = 2;
+    return r;
+  }
   if (!snapshotAt.empty() && !parseSnapshotAt(snapshotAt, o.snapshotAtBytes, o.snapshotAtSeconds)) {
     std::fprintf(stderr,
                  "ghostspace: --snapshot-at: expected a byte count (200000, 512k, 2M) or "

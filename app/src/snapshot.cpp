@@ -7,6 +7,7 @@
 #include "app/progress_bar.hpp"
 #include "app/splat_inputs.hpp"
 #include "app/streaming_session.hpp"
+#include "app/world_runtime.hpp"
 #include "render/context.hpp"
 
 #include <glad/gl.h>
@@ -144,10 +145,26 @@ int runSnapshot(const Options& options) {
   }
   bar.finish();
 
-  draw();
-  const render::Image image = render::readPixels(0, 0, options.width, options.height);
+  // Life (docs/runtime.md): each world is loaded at --time T (0 by default) and moved
+  // through T0 + i * DT at the fixed --time-step, so a frame's pixels depend on the
+  // command alone.
+  WorldRuntimes runtimes(options.time);
+  const TimeOptions& time = options.time;
+  for (View& v : views) runtimes.of(v.scene, time.start);
+  render::Image image;
+  for (int frame = 0; frame < time.frames; ++frame) {
+    if (frame > 0) runtimes.advanceTo(time.start + time.interval * frame);
+    for (View& v : views) v.renderer->traversal().setBoundNodes(runtimes.bound(v.scene.get()));
+    draw();
+    image = render::readPixels(0, 0, options.width, options.height);
+    if (time.frames > 1)
+      render::writePng(framePath(options.snapshotPath, frame, time.frames), image);
+  }
   std::vector<std::pair<bool, std::string>> messages;
   session.drainMessages(messages);
+  std::vector<std::string> runtimeMessages;
+  runtimes.drainMessages(runtimeMessages);
+  for (std::string& m : runtimeMessages) messages.emplace_back(false, std::move(m));
   bool failed = false;
   for (const net::StreamProgress& p : session.loader().progress())
     failed |= p.state == net::StreamState::failed;
@@ -160,7 +177,7 @@ int runSnapshot(const Options& options) {
   bool anyNodes = false;
   for (const auto& scene : scenes) anyNodes |= !scene->rootNodes.empty();
   if (!anyNodes && anyError) return 1;  // nothing to show: the reason was printed above
-  render::writePng(options.snapshotPath, image);
+  if (time.frames <= 1) render::writePng(options.snapshotPath, image);
   return failed ? 3 : 0;
 }
 

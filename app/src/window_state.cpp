@@ -1,4 +1,5 @@
 #include "app/window_state.hpp"
+#include "runtime/clock.hpp"
 
 #include <glad/gl.h>
 
@@ -118,6 +119,7 @@ void WindowState::update() {
     log.push_back({error, std::move(text)});
     if (error) showLog = true;
   }
+  updateRuntimes();
   // Problems found while drawing (textures, Inlines), each once.
   for (Viewport& v : viewports) {
     if (!v.renderer) continue;
@@ -140,6 +142,44 @@ double secondsNow() {
 void WindowState::setNavigation(render::NavigationMode mode) {
   view().navigator.setMode(mode);
   view().navigationChosen = true;
+}
+
+void WindowState::updateRuntimes() {
+  if (!runtimes) {
+    runtimes = std::make_unique<WorldRuntimes>(time);
+    clockOffset = time.set ? time.start - runtime::wallClockSeconds() : 0.0;
+  }
+  const double now = runtime::wallClockSeconds() + clockOffset;
+  for (const LoadedWorld& w : worlds) runtimes->of(w.scene, now);
+  runtimes->scenesGrew();
+  runtimes->advanceTo(now);
+  for (Viewport& v : viewports) {
+    if (!v.renderer || v.world >= worlds.size()) continue;
+    const vrml::Scene* scene = worlds[v.world].scene.get();
+    v.renderer->traversal().setBoundNodes(runtimes->bound(scene));
+    const runtime::ExecutionModel& model = runtimes->of(worlds[v.world].scene, now);
+    const vrml::Node* vp = model.bound(runtime::BindableKind::Viewpoint);
+    const std::uint64_t revision = vp ? vrml::revisionWithFields(*vp) : 0;
+    if (model.bindingRevision() != v.bindingSeen || vp != v.viewpointSeen ||
+        revision != v.viewpointRevisionSeen) {
+      // A newly bound or animated Viewpoint takes the camera (4.6.10, 6.53).
+      const bool first = v.viewpointSeen == nullptr && v.bindingSeen == 0;
+      v.bindingSeen = model.bindingRevision();
+      v.viewpointSeen = vp;
+      v.viewpointRevisionSeen = revision;
+      if (!first && vp != nullptr) {
+        v.transition.start = -1.0;
+        v.navigator.setCamera(v.renderer->boundViewpointCamera());
+        v.autoFrame = false;
+      }
+    }
+  }
+  std::vector<std::string> lines;
+  runtimes->drainMessages(lines);
+  for (std::string& line : lines) {
+    log.push_back({true, std::move(line)});
+    showLog = true;
+  }
 }
 
 void WindowState::home(Viewport& v) {

@@ -24,6 +24,7 @@ struct GpuMesh {
   bool solid = true;
   std::size_t triangles = 0;
   vrml::Bounds bounds;
+  std::uint64_t revision = 0;  // vrml::revisionWithFields of the geometry uploaded
 
   /// Uploads `mesh` (attribute locations: 0 position, 1 normal, 2 colour, 3 texCoord).
   void upload(const vrml::Mesh& mesh);

@@ -104,7 +104,7 @@ void SceneTraversal::findBindables() {
         break;
       }
       case NodeKind::NavigationInfo:
-        if (haveNavigation) break;
+        if (runtimeBound_ ? &n != runtimeBound_->navigationInfo : haveNavigation) break;
         haveNavigation = true;
         navigation_.node = &n;
         if (const auto* f = n.field("type"); f && f->type() == vrml::FieldType::MFString)
@@ -116,7 +116,7 @@ void SceneTraversal::findBindables() {
         navigation_.visibilityLimit = sfFloat(n, "visibilityLimit", 0.0f);
         break;
       case NodeKind::Background:
-        if (haveBackground) break;
+        if (runtimeBound_ ? &n != runtimeBound_->background : haveBackground) break;
         haveBackground = true;
         background_.node = &n;
         background_.skyColor = colorsOr(mfColor(n, "skyColor"), glm::vec3(0.0f));
@@ -126,7 +126,7 @@ void SceneTraversal::findBindables() {
         background_.rotation = rotationPart(m);
         break;
       case NodeKind::Fog: {
-        if (haveFog) break;
+        if (runtimeBound_ ? &n != runtimeBound_->fog : haveFog) break;
         haveFog = true;
         fog_.node = &n;
         fog_.color = sfColor(n, "color", glm::vec3(1.0f));
@@ -139,6 +139,26 @@ void SceneTraversal::findBindables() {
     }
   };
   forEachBindable(scene_->rootNodes, glm::mat4(1.0f), 0, visit);
+  boundViewpoint_ = 0;
+  if (runtimeBound_) {
+    boundViewpoint_ = viewpoints_.size();  // none bound: the default Viewpoint
+    for (std::size_t i = 0; i < viewpoints_.size(); ++i)
+      if (viewpoints_[i].node == runtimeBound_->viewpoint) boundViewpoint_ = i;
+  }
+}
+
+void SceneTraversal::setBoundNodes(const BoundNodes& bound) {
+  std::uint64_t revision = 0;
+  for (const vrml::Node* n : {bound.viewpoint, bound.navigationInfo, bound.background, bound.fog})
+    if (n) revision += vrml::revisionWithFields(*n);
+  if (runtimeBound_ && *runtimeBound_ == bound && revision == boundRevision_) return;
+  runtimeBound_ = bound;
+  boundRevision_ = revision;
+  viewpoints_.clear();
+  navigation_ = NavigationSettings{};
+  background_ = BackgroundSettings{};
+  fog_ = FogSettings{};
+  findBindables();
 }
 
 const SceneTraversal::InlineScene* SceneTraversal::inlineScene(const vrml::Node& inlineNode,

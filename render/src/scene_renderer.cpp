@@ -31,6 +31,7 @@ struct Shading {
   float transparency = 0.0f;
   const vrml::Node* texture = nullptr;
   glm::mat3 textureMatrix{1.0f};
+  std::uint64_t revision = 0;  // vrml::revisionWithFields of the Appearance read
 };
 
 Shading readShading(const vrml::Node* appearance) {
@@ -286,14 +287,23 @@ void SceneRenderer::draw(const Camera& camera, int x, int y, int width, int heig
   const glm::vec3 forward = camera.forward();
   for (const ShapeInstance& s : g.frame.shapes) {
     auto [meshIt, newMesh] = g.meshes.try_emplace(s.geometry);
-    if (newMesh) {
+    // The change contract (docs/runtime.md): a geometry whose fields or Coordinate /
+    // Normal / Color / TextureCoordinate changed is tessellated and uploaded again.
+    const std::uint64_t meshRevision = vrml::revisionWithFields(*s.geometry);
+    if (newMesh || meshIt->second.revision != meshRevision) {
+      if (!newMesh) meshIt->second.release();
       meshIt->second.upload(traversal_.mesh(*s.geometry));
+      meshIt->second.revision = meshRevision;
       traversal_.dropMeshArrays(*s.geometry);
     }
     const GpuMesh& mesh = meshIt->second;
     if (mesh.count == 0) continue;
     auto [shadeIt, newShade] = g.shadings.try_emplace(s.appearance);
-    if (newShade) shadeIt->second = readShading(s.appearance);
+    const std::uint64_t shadeRevision = s.appearance ? vrml::revisionWithFields(*s.appearance) : 0;
+    if (newShade || shadeIt->second.revision != shadeRevision) {
+      shadeIt->second = readShading(s.appearance);
+      shadeIt->second.revision = shadeRevision;
+    }
     const Shading& shading = shadeIt->second;
     const GpuTexture* texture = nullptr;
     if (shading.texture != nullptr && mesh.primitive == vrml::Primitive::triangles) {

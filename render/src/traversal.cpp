@@ -280,7 +280,10 @@ float NavigationSettings::nearClip() const {
 
 SceneTraversal::CachedMesh& SceneTraversal::cachedMesh(const vrml::Node& geometry) {
   auto [it, inserted] = meshes_.try_emplace(&geometry);
-  if (inserted || it->second.arraysDropped) {
+  const std::uint64_t revision = vrml::revisionWithFields(geometry);
+  if (inserted || it->second.arraysDropped || it->second.revision != revision) {
+    ++tessellations_;
+    it->second.revision = revision;
     vrml::Diagnostics diag;
     it->second.mesh = options_.tessellator ? options_.tessellator(geometry, &diag)
                                            : vrml::tessellate(geometry, &diag);
@@ -296,7 +299,8 @@ const vrml::Mesh& SceneTraversal::mesh(const vrml::Node& geometry) {
 
 const vrml::Bounds& SceneTraversal::meshBounds(const vrml::Node& geometry) {
   auto it = meshes_.find(&geometry);
-  if (it != meshes_.end()) return it->second.mesh.bounds;
+  if (it != meshes_.end() && it->second.revision == vrml::revisionWithFields(geometry))
+    return it->second.mesh.bounds;
   return cachedMesh(geometry).mesh.bounds;
 }
 

@@ -49,4 +49,14 @@ const std::vector<NodePtr>& Node::mfnode(std::string_view name) const {
   return (f != nullptr && f->type() == FieldType::MFNode) ? f->get<FieldType::MFNode>() : kEmpty;
 }
 
+std::uint64_t revisionWithFields(const Node& node) {
+  std::uint64_t r = node.revision();
+  for (std::size_t i = 0; i < node.fieldCount(); ++i) {
+    const FieldValue& v = node.fieldAt(i);
+    if (v.type() == FieldType::SFNode)
+      if (const NodePtr& c = v.get<FieldType::SFNode>()) r += c->revision();
+  }
+  return r;
+}
+
 }  // namespace gs::vrml

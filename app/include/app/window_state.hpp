@@ -6,6 +6,7 @@
 #include "app/layout.hpp"
 #include "app/streaming_session.hpp"
 #include "app/world.hpp"
+#include "app/world_runtime.hpp"
 #include "render/camera.hpp"
 #include "render/scene_renderer.hpp"
 
@@ -44,6 +45,11 @@ struct Viewport {
   bool autoLod = false;
   /// At most this many QNV vectors drawn per frame (0: no budget).
   std::uint64_t vectorBudget = 0;
+  /// What the viewport last saw of its world's execution model: a change of the bound
+  /// Viewpoint (or of its fields) moves the camera there (4.6.10, 6.53).
+  std::uint64_t bindingSeen = 0;
+  std::uint64_t viewpointRevisionSeen = 0;
+  const vrml::Node* viewpointSeen = nullptr;
   /// An animated move to a Viewpoint (1 s, position and orientation interpolated).
   struct Transition {
     render::Camera from, to;
@@ -70,6 +76,12 @@ struct WindowState {
   bool screenshotViewportOnly = false;
   /// How new viewports draw: splat loader, level of detail (--lod), mode (--mode).
   render::SceneRendererOptions rendererOptions;
+  /// --time, --time-step, --trace-events: the window's clock starts at time.start when
+  /// time.set, else at the wall clock (docs/runtime.md).
+  TimeOptions time;
+  /// The execution model of every world opened, made on the first update().
+  std::unique_ptr<WorldRuntimes> runtimes;
+  double clockOffset = 0.0;  // world time = wallClockSeconds() + clockOffset
   /// Streams every world opened (files and URLs) while the window keeps drawing.
   std::unique_ptr<StreamingSession> session = std::make_unique<StreamingSession>();
 
@@ -128,6 +140,9 @@ struct WindowState {
   /// Viewport::kNone after logging why not.
   std::size_t load(const std::string& path);
   void home(Viewport& v);
+  /// Once per frame from update(): every world's execution model to the window's clock,
+  /// bound nodes to the renderers, a newly bound Viewpoint to the camera.
+  void updateRuntimes();
 };
 
 /// Draws the main menu bar (File, View, Viewpoints, Help) and acts on it; returns its

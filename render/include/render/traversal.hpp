@@ -17,6 +17,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
 #include <unordered_map>
@@ -150,6 +151,16 @@ struct TraversalOptions {
   RenderMode mode = RenderMode::polygons;
 };
 
+/// The nodes on top of the four bindable stacks (clause 4.6.10), as the execution model
+/// (runtime::ExecutionModel::bound) says; null: that stack is empty (defaults apply).
+struct BoundNodes {
+  const vrml::Node* viewpoint = nullptr;
+  const vrml::Node* navigationInfo = nullptr;
+  const vrml::Node* background = nullptr;
+  const vrml::Node* fog = nullptr;
+  bool operator==(const BoundNodes&) const = default;
+};
+
 /// Walks one scene. Not thread-safe. Results are cached per node: the scene (and its
 /// Inline scenes) may only grow by root nodes appended between calls (progressive
 /// loading), each time followed by sceneChanged().
@@ -178,8 +189,21 @@ class SceneTraversal {
   /// scene is closer than that), far = visibilityLimit, or just beyond the scene's
   /// bounding sphere when that is 0. Computes worldBounds() (loading Inlines).
   Camera viewpointCamera(std::size_t index);
-  /// viewpointCamera(0): the bound Viewpoint, or the default one.
-  Camera boundViewpointCamera() { return viewpointCamera(0); }
+  /// The camera of the bound Viewpoint (the first one until setBoundNodes() says
+  /// otherwise), or the default one.
+  Camera boundViewpointCamera() { return viewpointCamera(boundViewpoint_); }
+  /// Index in viewpoints() of the bound Viewpoint; out of range when none is bound.
+  std::size_t boundViewpointIndex() const { return boundViewpoint_; }
+
+  /// From now on the bound nodes are those the execution model names (instead of the
+  /// first of each type in file order); the settings are read again when the nodes or
+  /// their fields (vrml::Node::revision) changed since the last call. Cheap when nothing
+  /// changed: call it every frame.
+  void setBoundNodes(const BoundNodes& bound);
+
+  /// How many tessellations collect() and mesh() made (a changed geometry is
+  /// tessellated again; an animated Transform is not): for benchmarks and tests.
+  std::uint64_t tessellationCount() const { return tessellations_; }
 
   /// Collects the shapes and lights to draw for a viewer at `viewer` (which selects LOD
   /// levels and orients Billboards) into `frame` (cleared first). Inline files are loaded
@@ -215,6 +239,7 @@ class SceneTraversal {
   struct CachedMesh {
     vrml::Mesh mesh;
     bool arraysDropped = false;
+    std::uint64_t revision = 0;  // vrml::revisionWithFields of the geometry
   };
   void findBindables();
   const InlineScene* inlineScene(const vrml::Node& inlineNode, const std::string& baseUrl);
@@ -234,6 +259,10 @@ class SceneTraversal {
   std::unordered_map<const vrml::Scene*, std::unordered_set<std::int32_t>> filledGroups_;
   std::map<std::string, std::shared_ptr<InlineScene>> inlinesByUrl_;
   std::unordered_map<const vrml::Node*, std::shared_ptr<InlineScene>> inlinesByNode_;
+  std::size_t boundViewpoint_ = 0;
+  std::optional<BoundNodes> runtimeBound_;  // set: the execution model decides
+  std::uint64_t boundRevision_ = 0;
+  std::uint64_t tessellations_ = 0;
   vrml::Bounds worldBounds_;
   bool haveWorldBounds_ = false;
   vrml::Diagnostics diagnostics_;

@@ -102,4 +102,9 @@ class Node {
   std::uint64_t revision_ = 0;
 };
 
+/// revision() of `node` plus those of the nodes in its SFNode fields (one level): what a
+/// cache of a geometry (its Coordinate, Normal, Color, TextureCoordinate) or an
+/// Appearance (its Material, texture, TextureTransform) compares to know it is stale.
+std::uint64_t revisionWithFields(const Node& node);
+
 }  // namespace gs::vrml

@@ -1,0 +1,68 @@
+// The execution model of each world a session shows (docs/runtime.md): one
+// runtime::ExecutionModel per scene, shared by every viewport that shows it, moved by one
+// clock: the wall clock in a window, the virtual clock of --time for --snapshot.
+#pragma once
+
+#include "render/traversal.hpp"
+#include "runtime/execution_model.hpp"
+#include "vrml/scene.hpp"
+
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace gs::app {
+
+/// --time, --time-step and --trace-events (README.md, "Animation and time").
+struct TimeOptions {
+  bool set = false;          // --time was given
+  double start = 0.0;        // T or T0: SFTime seconds (since 1970-01-01 UTC)
+  double interval = 0.0;     // DT of T0:DT:N, seconds between frames
+  int frames = 1;            // N of T0:DT:N; 1 for a single time
+  double step = 1.0 / 60.0;  // --time-step S: the cascade's fixed step, seconds, > 0
+  std::string traceFile;     // --trace-events FILE: one JSON line per event
+};
+
+/// Parses --time "T" or "T0:DT:N" (T0 >= 0, DT > 0, 1 <= N <= 100000). False when
+/// malformed; the fields are then unchanged.
+bool parseTimeOption(const std::string& text, TimeOptions& out);
+
+/// The file a frame of a --time T0:DT:N strip goes to: `path` with "-NNNN" (frame index,
+/// four digits) before its extension ("out.png" -> "out-0003.png"); `path` itself when
+/// frames == 1.
+std::string framePath(const std::string& path, int frame, int frames);
+
+class WorldRuntimes {
+ public:
+  /// Traces go to `options.traceFile` when set (an error opening it throws
+  /// std::runtime_error naming the file).
+  explicit WorldRuntimes(const TimeOptions& options);
+  ~WorldRuntimes();
+  WorldRuntimes(const WorldRuntimes&) = delete;
+  WorldRuntimes& operator=(const WorldRuntimes&) = delete;
+
+  /// The execution model of `scene`, made (loaded at `time`, seconds) on first use.
+  runtime::ExecutionModel& of(const std::shared_ptr<const vrml::Scene>& scene, double time);
+  /// Every world's clock to `time` (seconds) in steps of at most the --time-step.
+  void advanceTo(double time);
+  /// Tells every world that its scene grew (progressive loading).
+  void scenesGrew();
+  /// The nodes bound in `scene`'s execution model; nothing bound when it has none.
+  render::BoundNodes bound(const vrml::Scene* scene) const;
+  /// Diagnostics of every world not returned before, formatted, appended to `out`.
+  void drainMessages(std::vector<std::string>& out);
+
+ private:
+  TimeOptions options_;
+  std::FILE* trace_ = nullptr;
+  struct Entry {
+    std::shared_ptr<const vrml::Scene> scene;
+    std::unique_ptr<runtime::ExecutionModel> model;
+    std::size_t diagnosticsShown = 0;
+  };
+  std::map<const vrml::Scene*, Entry> worlds_;
+};
+
+}  // namespace gs::app

@@ -1,0 +1,118 @@
+#include "app/world_runtime.hpp"
+
+#include "runtime/trace.hpp"
+
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+
+namespace gs::app {
+
+namespace {
+
+bool parseNumber(std::string_view text, double& out) {
+  if (text.empty()) return false;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), out);
+  return ec == std::errc() && end == text.data() + text.size() && std::isfinite(out);
+}
+
+}  // namespace
+
+bool parseTimeOption(const std::string& text, TimeOptions& out) {
+  const std::size_t a = text.find(':');
+  TimeOptions t = out;
+  if (a == std::string::npos) {
+    if (!parseNumber(text, t.start) || t.start < 0.0) return false;
+    t.interval = 0.0;
+    t.frames = 1;
+  } else {
+    const std::size_t b = text.find(':', a + 1);
+    if (b == std::string::npos) return false;
+    double n = 0.0;
+    if (!parseNumber(std::string_view(text).substr(0, a), t.start) ||
+        !parseNumber(std::string_view(text).substr(a + 1, b - a - 1), t.interval) ||
+        !parseNumber(std::string_view(text).substr(b + 1), n))
+      return false;
+    if (t.start < 0.0 || !(t.interval > 0.0) || n < 1.0 || n > 100000.0 || n != std::floor(n))
+      return false;
+    t.frames = static_cast<int>(n);
+  }
+  t.set = true;
+  out = t;
+  return true;
+}
+
+std::string framePath(const std::string& path, int frame, int frames) {
+  if (frames <= 1) return path;
+  char suffix[16];
+  std::snprintf(suffix, sizeof suffix, "-%04d", frame);
+  const std::size_t slash = path.find_last_of('/');
+  const std::size_t dot = path.find_last_of('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return path + suffix;
+  return path.substr(0, dot) + suffix + path.substr(dot);
+}
+
+WorldRuntimes::WorldRuntimes(const TimeOptions& options) : options_(options) {
+  if (!options_.traceFile.empty()) {
+    trace_ = std::fopen(options_.traceFile.c_str(), "w");
+    if (trace_ == nullptr)
+      throw std::runtime_error("cannot write '" + options_.traceFile +
+                               "': " + std::strerror(errno));
+  }
+}
+
+WorldRuntimes::~WorldRuntimes() {
+  worlds_.clear();  // Scripts' shutdown() may still trace
+  if (trace_ != nullptr) std::fclose(trace_);
+}
+
+runtime::ExecutionModel& WorldRuntimes::of(const std::shared_ptr<const vrml::Scene>& scene,
+                                           double time) {
+  Entry& e = worlds_[scene.get()];
+  if (!e.model) {
+    e.scene = scene;
+    runtime::ExecutionOptions o;
+    if (trace_ != nullptr)
+      o.trace = [f = trace_](const runtime::TraceEvent& ev) {
+        const std::string line = runtime::traceJson(ev);
+        std::fprintf(f, "%s\n", line.c_str());
+      };
+    e.model = std::make_unique<runtime::ExecutionModel>(scene, time, std::move(o));
+  }
+  return *e.model;
+}
+
+void WorldRuntimes::advanceTo(double time) {
+  for (auto& [key, e] : worlds_) {
+    const double now = e.model->now();
+    if (time > now) e.model->advanceBy(time - now, options_.step);
+  }
+}
+
+void WorldRuntimes::scenesGrew() {
+  for (auto& [key, e] : worlds_) e.model->sceneGrew();
+}
+
+render::BoundNodes WorldRuntimes::bound(const vrml::Scene* scene) const {
+  render::BoundNodes b;
+  const auto it = worlds_.find(scene);
+  if (it == worlds_.end()) return b;
+  const runtime::ExecutionModel& m = *it->second.model;
+  b.viewpoint = m.bound(runtime::BindableKind::Viewpoint);
+  b.navigationInfo = m.bound(runtime::BindableKind::NavigationInfo);
+  b.background = m.bound(runtime::BindableKind::Background);
+  b.fog = m.bound(runtime::BindableKind::Fog);
+  return b;
+}
+
+void WorldRuntimes::drainMessages(std::vector<std::string>& out) {
+  for (auto& [key, e] : worlds_) {
+    const auto& items = e.model->diagnostics().items;
+    for (; e.diagnosticsShown < items.size(); ++e.diagnosticsShown)
+      out.push_back(items[e.diagnosticsShown].format());
+  }
+}
+
+}  // namespace gs::app
