@@ -153,7 +153,11 @@ int runSnapshot(const Options& options) {
   for (View& v : views) runtimes.of(v.scene, time.start);
   render::Image image;
   for (int frame = 0; frame < time.frames; ++frame) {
-    if (frame > 0) runtimes.advanceTo(time.start + time.interval * frame);
+    for (View& v : views) {
+      const float aspect = static_cast<float>(v.rect.width) / static_cast<float>(v.rect.height);
+      runtimes.setViewer(v.scene.get(), viewerPose(camera(v), aspect));
+    }
+    runtimes.advanceTo(time.start + time.interval * frame);
     for (View& v : views) v.renderer->traversal().setBoundNodes(runtimes.bound(v.scene.get()));
     draw();
     image = render::readPixels(0, 0, options.width, options.height);

@@ -152,6 +152,17 @@ void WindowState::updateRuntimes() {
   const double now = runtime::wallClockSeconds() + clockOffset;
   for (const LoadedWorld& w : worlds) runtimes->of(w.scene, now);
   runtimes->scenesGrew();
+  // The sensors see each world from its viewports' cameras, the active viewport last.
+  for (std::size_t i = 0; i <= viewports.size(); ++i) {
+    const std::size_t k = i < viewports.size() ? i : active;
+    if (k >= viewports.size() || (i < viewports.size() && i == active)) continue;
+    const Viewport& v = viewports[k];
+    if (!v.renderer || v.world >= worlds.size()) continue;
+    const float aspect = v.rect.height > 0
+                             ? static_cast<float>(v.rect.width) / static_cast<float>(v.rect.height)
+                             : lastAspect;
+    runtimes->setViewer(worlds[v.world].scene.get(), viewerPose(v.navigator.camera(), aspect));
+  }
   runtimes->advanceTo(now);
   for (Viewport& v : viewports) {
     if (!v.renderer || v.world >= worlds.size()) continue;

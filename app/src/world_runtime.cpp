@@ -20,6 +20,17 @@ bool parseNumber(std::string_view text, double& out) {
 
 }  // namespace
 
+runtime::ViewerPose viewerPose(const render::Camera& camera, float aspect) {
+  runtime::ViewerPose v;
+  v.position = camera.position;
+  v.orientation = camera.orientation;
+  v.fieldOfView = camera.fieldOfView;
+  v.aspect = aspect > 0.0f ? aspect : 1.0f;
+  v.nearClip = camera.nearClip;
+  v.farClip = camera.farClip;
+  return v;
+}
+
 bool parseTimeOption(const std::string& text, TimeOptions& out) {
   const std::size_t a = text.find(':');
   TimeOptions t = out;
@@ -89,6 +100,11 @@ void WorldRuntimes::advanceTo(double time) {
     const double now = e.model->now();
     if (time > now) e.model->advanceBy(time - now, options_.step);
   }
+}
+
+void WorldRuntimes::setViewer(const vrml::Scene* scene, const runtime::ViewerPose& viewer) {
+  const auto it = worlds_.find(scene);
+  if (it != worlds_.end()) it->second.model->setViewer(viewer);
 }
 
 void WorldRuntimes::scenesGrew() {

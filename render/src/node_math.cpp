@@ -42,27 +42,6 @@ float meanScale(const glm::mat4& m) {
 
 using namespace detail;
 
-glm::mat4 rotationMatrix(const vrml::Rotation& rotation) {
-  const glm::vec3 axis(rotation);
-  const float len = glm::length(axis);
-  if (!(len > 0.0f) || rotation.w == 0.0f) return glm::mat4(1.0f);
-  return glm::rotate(glm::mat4(1.0f), rotation.w, axis / len);
-}
-
-glm::mat4 transformMatrix(const vrml::Node& t) {
-  const glm::vec3 translation = sfVec3(t, "translation", glm::vec3(0.0f));
-  const glm::vec3 center = sfVec3(t, "center", glm::vec3(0.0f));
-  const glm::vec3 scale = sfVec3(t, "scale", glm::vec3(1.0f));
-  const glm::mat4 r = rotationMatrix(sfRotation(t, "rotation", vrml::Rotation(0, 0, 1, 0)));
-  const glm::mat4 sr =
-      rotationMatrix(sfRotation(t, "scaleOrientation", vrml::Rotation(0, 0, 1, 0)));
-  glm::mat4 m = glm::translate(glm::mat4(1.0f), translation + center);
-  m = m * r * sr;
-  m = glm::scale(m, scale);
-  m = m * glm::transpose(sr);  // -SR: the inverse of a rotation is its transpose
-  return glm::translate(m, -center);
-}
-
 int selectLodLevel(const std::vector<float>& range, float distance, std::size_t levelCount) {
   if (levelCount == 0) return -1;
   std::size_t level = 0;

@@ -179,6 +179,7 @@ void ExecutionModel::advanceTo(double time) {
   s_->eventsThisCascade = 0;
   s_->cascadeOverflow = false;
   for (NodeState* t : s_->timeSensors) s_->evaluateTimeSensor(*t);
+  s_->evaluateEnvironmentSensors();
   for (PendingEvent& e : s_->posted) s_->queue.push_back(std::move(e));
   s_->posted.clear();
   s_->runCascade();
@@ -213,6 +214,10 @@ void ExecutionModel::processEvents() {
   for (PendingEvent& e : s_->posted) s_->queue.push_back(std::move(e));
   s_->posted.clear();
   s_->runCascade();
+}
+
+void ExecutionModel::setViewer(const ViewerPose& viewer) {
+  s_->viewer = viewer;
 }
 
 vrml::Node* ExecutionModel::bound(BindableKind kind) const {

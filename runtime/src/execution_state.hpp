@@ -8,6 +8,7 @@
 #include <array>
 #include <deque>
 #include <memory>
+#include <optional>
 #include <unordered_map>
 #include <vector>
 
@@ -21,6 +22,8 @@ enum class NodeRole : std::uint8_t {
   bindable,      // 4.6.10
   script,        // 4.12
   grouping,      // addChildren / removeChildren (6.21, 6.52, ...)
+  proximity,     // ProximitySensor (6.38)
+  visibility,    // VisibilitySensor (6.52)
 };
 
 struct NodeState;
@@ -54,6 +57,9 @@ struct NodeState {
   int addChildren = -1, removeChildren = -1, children = -1;          // grouping
   TimeSensorFields timeFields;
   TimeState time;
+  bool sensorActive = false;  // ProximitySensor / VisibilitySensor: the viewer is inside / sees it
+  glm::vec3 lastPosition{0.0f};
+  vrml::Rotation lastOrientation{0.0f};
   std::unique_ptr<ScriptInstance> script;
   bool scriptHadEvents = false;
   bool problemReported = false;
@@ -73,6 +79,8 @@ struct ExecutionModel::State {
   std::unordered_map<const vrml::Node*, std::unique_ptr<NodeState>> nodes;
   std::vector<NodeState*> timeSensors;
   std::vector<NodeState*> scripts;
+  std::size_t environmentSensors = 0;  // ProximitySensors and VisibilitySensors met
+  std::optional<ViewerPose> viewer;
   std::vector<NodeState*> newScripts;  // registered, initialize() not yet called
   std::array<std::vector<NodeState*>, kBindableKindCount> stacks;      // bottom first
   std::array<std::vector<NodeState*>, kBindableKindCount> candidates;  // file order
@@ -105,6 +113,9 @@ struct ExecutionModel::State {
   void evaluateTimeSensor(NodeState& ns);
   void bind(NodeState& ns, bool on);
   void bindFirstCandidates();
+  // ---- environmental sensors (environment_sensors.cpp) ----
+  void evaluateEnvironmentSensors();
+
   void report(vrml::Severity severity, const vrml::Node& node, const std::string& message);
 };
 

@@ -108,6 +108,11 @@ void ExecutionModel::State::classify(NodeState& ns) {
       ns.bindTime = idx("bindTime");
       return;
     }
+  if (name == "ProximitySensor" || name == "VisibilitySensor") {
+    ns.role = name == "ProximitySensor" ? NodeRole::proximity : NodeRole::visibility;
+    ++environmentSensors;
+    return;
+  }
   for (std::string_view g : kGroupingNodes)
     if (name == g) {
       ns.role = NodeRole::grouping;
@@ -240,6 +245,8 @@ void ExecutionModel::State::deliver(NodeState& ns, int field, vrml::FieldValue v
       }
       return;
     case NodeRole::plain:
+    case NodeRole::proximity:
+    case NodeRole::visibility:
       break;
   }
   if (spec.access == AccessType::exposedField) {

@@ -25,6 +25,10 @@ struct TimeOptions {
   std::string traceFile;     // --trace-events FILE: one JSON line per event
 };
 
+/// The viewer pose the execution model's sensors see for a camera drawn at `aspect`
+/// (width / height).
+runtime::ViewerPose viewerPose(const render::Camera& camera, float aspect);
+
 /// Parses --time "T" or "T0:DT:N" (T0 >= 0, DT > 0, 1 <= N <= 100000). False when
 /// malformed; the fields are then unchanged.
 bool parseTimeOption(const std::string& text, TimeOptions& out);
@@ -47,6 +51,9 @@ class WorldRuntimes {
   runtime::ExecutionModel& of(const std::shared_ptr<const vrml::Scene>& scene, double time);
   /// Every world's clock to `time` (seconds) in steps of at most the --time-step.
   void advanceTo(double time);
+  /// The viewer of `scene`'s world (ProximitySensor, VisibilitySensor); ignored when the
+  /// world has no execution model yet.
+  void setViewer(const vrml::Scene* scene, const runtime::ViewerPose& viewer);
   /// Tells every world that its scene grew (progressive loading).
   void scenesGrew();
   /// The nodes bound in `scene`'s execution model; nothing bound when it has none.

@@ -10,6 +10,7 @@
 #include "vrml/geometry.hpp"
 #include "vrml/node.hpp"
 #include "vrml/scene.hpp"
+#include "vrml/transform.hpp"
 
 #include <glm/glm.hpp>
 
@@ -274,12 +275,9 @@ class SceneTraversal {
 
 // ---- Node maths, exposed for tests ----
 
-/// The matrix of a Transform node (clause 6.52): T x C x R x SR x S x -SR x -C, from its
-/// translation, center, rotation, scale and scaleOrientation fields.
-glm::mat4 transformMatrix(const vrml::Node& transform);
-
-/// A rotation matrix from an SFRotation (axis x, y, z and angle); identity for a zero axis.
-glm::mat4 rotationMatrix(const vrml::Rotation& rotation);
+/// Transform matrices (6.52) and SFRotation matrices: vrml/transform.hpp.
+using vrml::rotationMatrix;
+using vrml::transformMatrix;
 
 /// The LOD level (clause 6.26) for a viewer at `distance` metres from the LOD's center:
 /// level 0 below range[0], level i when range[i-1] <= distance < range[i], the last level

@@ -8,6 +8,7 @@
 
 #include "runtime/clock.hpp"
 #include "runtime/script_host.hpp"
+#include "runtime/viewer.hpp"
 #include "vrml/diagnostic.hpp"
 #include "vrml/node.hpp"
 #include "vrml/scene.hpp"
@@ -92,6 +93,11 @@ class ExecutionModel final : public ScriptContext {
   bool postEvent(vrml::Node& node, int field, vrml::FieldValue value);
   /// Runs the events posted since the last cascade as a new timestamp at now().
   void processEvents();
+
+  /// Where the viewer is now: ProximitySensors (6.38) and VisibilitySensors (6.52) compare
+  /// it with their boxes at the next advanceTo(). Until the first call there is no viewer
+  /// and these sensors stay inactive.
+  void setViewer(const ViewerPose& viewer);
 
   /// The top of a bindable stack (4.6.10), or null when the stack is empty.
   vrml::Node* bound(BindableKind kind) const;

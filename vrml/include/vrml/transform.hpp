@@ -1,0 +1,22 @@
+// The coordinate systems of grouping nodes as matrices (clause 4.4.5 "Standard units and
+// coordinate system", 6.52 Transform). Units: metres and radians; glm's column-major
+// matrices, local to parent.
+#pragma once
+
+#include "vrml/field.hpp"
+#include "vrml/node.hpp"
+
+#include <glm/glm.hpp>
+
+namespace gs::vrml {
+
+/// A rotation matrix from an SFRotation (axis x, y, z, any length, and angle in radians);
+/// identity for a zero axis or angle.
+glm::mat4 rotationMatrix(const Rotation& rotation);
+
+/// The matrix of a Transform node (6.52): T x C x R x SR x S x -SR x -C, from its
+/// translation, center, rotation, scale and scaleOrientation fields (defaults for
+/// fields it lacks).
+glm::mat4 transformMatrix(const Node& transform);
+
+}  // namespace gs::vrml

@@ -1,0 +1,29 @@
+#include "vrml/transform.hpp"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace gs::vrml {
+
+glm::mat4 rotationMatrix(const Rotation& rotation) {
+  const glm::vec3 axis(rotation);
+  const float len = glm::length(axis);
+  if (!(len > 0.0f) || rotation.w == 0.0f) return glm::mat4(1.0f);
+  return glm::rotate(glm::mat4(1.0f), rotation.w, axis / len);
+}
+
+glm::mat4 transformMatrix(const Node& t) {
+  const glm::vec3 translation = t.get<FieldType::SFVec3f>("translation", glm::vec3(0.0f));
+  const glm::vec3 center = t.get<FieldType::SFVec3f>("center", glm::vec3(0.0f));
+  const glm::vec3 scale = t.get<FieldType::SFVec3f>("scale", glm::vec3(1.0f));
+  const glm::mat4 r =
+      rotationMatrix(t.get<FieldType::SFRotation>("rotation", Rotation(0, 0, 1, 0)));
+  const glm::mat4 sr =
+      rotationMatrix(t.get<FieldType::SFRotation>("scaleOrientation", Rotation(0, 0, 1, 0)));
+  glm::mat4 m = glm::translate(glm::mat4(1.0f), translation + center);
+  m = m * r * sr;
+  m = glm::scale(m, scale);
+  m = m * glm::transpose(sr);  // -SR: the inverse of a rotation is its transpose
+  return glm::translate(m, -center);
+}
+
+}  // namespace gs::vrml
