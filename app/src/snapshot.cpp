@@ -150,7 +150,10 @@ int runSnapshot(const Options& options) {
   // command alone.
   WorldRuntimes runtimes(options.time);
   const TimeOptions& time = options.time;
-  for (View& v : views) runtimes.of(v.scene, time.start);
+  for (View& v : views) {
+    runtimes.of(v.scene, time.start);
+    runtimes.addInlines(v.scene.get(), v.renderer->traversal());
+  }
   render::Image image;
   for (int frame = 0; frame < time.frames; ++frame) {
     for (View& v : views) {

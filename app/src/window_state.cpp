@@ -168,6 +168,7 @@ void WindowState::updateRuntimes() {
     if (!v.renderer || v.world >= worlds.size()) continue;
     const vrml::Scene* scene = worlds[v.world].scene.get();
     v.renderer->traversal().setBoundNodes(runtimes->bound(scene));
+    runtimes->addInlines(scene, v.renderer->traversal());
     const runtime::ExecutionModel& model = runtimes->of(worlds[v.world].scene, now);
     const vrml::Node* vp = model.bound(runtime::BindableKind::Viewpoint);
     const std::uint64_t revision = vp ? vrml::revisionWithFields(*vp) : 0;

@@ -102,6 +102,13 @@ void WorldRuntimes::advanceTo(double time) {
   }
 }
 
+void WorldRuntimes::addInlines(const vrml::Scene* scene, const render::SceneTraversal& traversal) {
+  const auto it = worlds_.find(scene);
+  if (it == worlds_.end()) return;
+  // Each scene is taken once (addInlineScene ignores the ones it has).
+  for (const auto& s : traversal.inlineScenes()) it->second.model->addInlineScene(s);
+}
+
 void WorldRuntimes::setViewer(const vrml::Scene* scene, const runtime::ViewerPose& viewer) {
   const auto it = worlds_.find(scene);
   if (it != worlds_.end()) it->second.model->setViewer(viewer);

@@ -192,6 +192,7 @@ const SceneTraversal::InlineScene* SceneTraversal::inlineScene(const vrml::Node&
       entry->scene = options_.inlineSource(url, baseUrl, reason);
       inlinesByUrl_[url] = entry;
       if (entry->scene) {
+        inlineScenesLoaded_.push_back(entry->scene);
         result = entry;
         break;
       }
@@ -221,6 +222,7 @@ const SceneTraversal::InlineScene* SceneTraversal::inlineScene(const vrml::Node&
         report(d.severity, d.location, d.message);
       if (loaded.url.empty()) loaded.url = url;
       entry->scene = std::make_shared<const vrml::Scene>(std::move(loaded));
+      inlineScenesLoaded_.push_back(entry->scene);
       inlinesByUrl_[url] = entry;
       result = entry;
       break;

@@ -153,9 +153,10 @@ ExecutionModel::~ExecutionModel() {
 }
 
 void ExecutionModel::sceneGrew() {
-  if (!s_->scene) return;
   ++s_->stamp;
-  s_->takeScene(*s_->scene, s_->rootsSeen, s_->hiddenSeen, s_->routesSeen, true);
+  if (s_->scene) s_->takeScene(*s_->scene, s_->rootsSeen, s_->hiddenSeen, s_->routesSeen, true);
+  for (State::InlineCursor& c : s_->inlineScenes)
+    s_->takeScene(*c.scene, c.roots, c.hidden, c.routes, false);
   s_->bindFirstCandidates();
   s_->runCascade();
   s_->initializeScripts();
@@ -163,12 +164,17 @@ void ExecutionModel::sceneGrew() {
 
 void ExecutionModel::addInlineScene(std::shared_ptr<const vrml::Scene> scene) {
   if (!scene) return;
-  for (const auto& known : s_->inlineScenes)
-    if (known == scene) return;
-  s_->inlineScenes.push_back(scene);
-  std::size_t roots = 0, hidden = 0, routes = 0;
-  s_->takeScene(*scene, roots, hidden, routes, false);
+  if (!s_->inlineSceneSet.insert(scene.get()).second) return;
+  State::InlineCursor& c = s_->inlineScenes.emplace_back();
+  c.scene = std::move(scene);
+  const std::size_t firstSensor = s_->timeSensors.size();
+  ++s_->stamp;
+  s_->takeScene(*c.scene, c.roots, c.hidden, c.routes, false);
   s_->initializeScripts();
+  // The Inline's world starts now: its TimeSensors as at load (4.10.3's initial events).
+  for (std::size_t i = firstSensor; i < s_->timeSensors.size(); ++i)
+    s_->evaluateTimeSensor(*s_->timeSensors[i]);
+  s_->runCascade();
 }
 
 void ExecutionModel::advanceTo(double time) {

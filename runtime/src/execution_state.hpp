@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 namespace gs::runtime {
@@ -75,7 +76,13 @@ struct PendingEvent {
 struct ExecutionModel::State {
   ExecutionModel& model;
   std::shared_ptr<const vrml::Scene> scene;
-  std::vector<std::shared_ptr<const vrml::Scene>> inlineScenes;
+  /// An Inline's scene and how much of it was taken in (it may still be growing).
+  struct InlineCursor {
+    std::shared_ptr<const vrml::Scene> scene;
+    std::size_t roots = 0, hidden = 0, routes = 0;
+  };
+  std::vector<InlineCursor> inlineScenes;
+  std::unordered_set<const vrml::Scene*> inlineSceneSet;
   std::unordered_map<const vrml::Node*, std::unique_ptr<NodeState>> nodes;
   std::vector<NodeState*> timeSensors;
   std::vector<NodeState*> scripts;

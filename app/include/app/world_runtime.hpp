@@ -51,6 +51,9 @@ class WorldRuntimes {
   runtime::ExecutionModel& of(const std::shared_ptr<const vrml::Scene>& scene, double time);
   /// Every world's clock to `time` (seconds) in steps of at most the --time-step.
   void advanceTo(double time);
+  /// The Inline worlds `traversal` (a renderer of `scene`) loaded since the last call
+  /// join `scene`'s execution model (their routes and sensors run).
+  void addInlines(const vrml::Scene* scene, const render::SceneTraversal& traversal);
   /// The viewer of `scene`'s world (ProximitySensor, VisibilitySensor); ignored when the
   /// world has no execution model yet.
   void setViewer(const vrml::Scene* scene, const runtime::ViewerPose& viewer);

@@ -202,6 +202,12 @@ class SceneTraversal {
   /// changed: call it every frame.
   void setBoundNodes(const BoundNodes& bound);
 
+  /// The Inline worlds loaded so far (each once, in load order): the execution model
+  /// runs their routes and sensors (runtime::ExecutionModel::addInlineScene).
+  const std::vector<std::shared_ptr<const vrml::Scene>>& inlineScenes() const {
+    return inlineScenesLoaded_;
+  }
+
   /// How many tessellations collect() and mesh() made (a changed geometry is
   /// tessellated again; an animated Transform is not): for benchmarks and tests.
   std::uint64_t tessellationCount() const { return tessellations_; }
@@ -260,6 +266,7 @@ class SceneTraversal {
   std::unordered_map<const vrml::Scene*, std::unordered_set<std::int32_t>> filledGroups_;
   std::map<std::string, std::shared_ptr<InlineScene>> inlinesByUrl_;
   std::unordered_map<const vrml::Node*, std::shared_ptr<InlineScene>> inlinesByNode_;
+  std::vector<std::shared_ptr<const vrml::Scene>> inlineScenesLoaded_;
   std::size_t boundViewpoint_ = 0;
   std::optional<BoundNodes> runtimeBound_;  // set: the execution model decides
   std::uint64_t boundRevision_ = 0;

@@ -69,12 +69,14 @@ class ExecutionModel final : public ScriptContext {
   ExecutionModel(const ExecutionModel&) = delete;
   ExecutionModel& operator=(const ExecutionModel&) = delete;
 
-  /// The scene gained root nodes or routes (progressive loading): takes the new ones in
+  /// The scene (or an Inline scene) gained root nodes or routes (progressive loading):
+  /// takes the new ones in
   /// as the constructor took the first (new bindable nodes join their stacks' bottom;
   /// the first of a kind is bound when none is).
   void sceneGrew();
-  /// Adds the nodes and routes of an Inline's scene (clause 6.25): its routes and
-  /// sensors run; its bindable nodes are not bound (the renderer's rule too).
+  /// Adds the nodes and routes of an Inline's scene (clause 6.25; once per scene): its
+  /// routes and sensors run; its bindable nodes are not bound (the renderer's rule too).
+  /// An Inline scene that is still streaming is taken in further by sceneGrew().
   void addInlineScene(std::shared_ptr<const vrml::Scene> scene);
 
   /// Moves the clock to `time` (ignored when earlier) and runs one cascade: every
