@@ -7,6 +7,7 @@
 #pragma once
 
 #include "runtime/clock.hpp"
+#include "runtime/pointer.hpp"
 #include "runtime/script_host.hpp"
 #include "vrml/diagnostic.hpp"
 #include "vrml/node.hpp"
@@ -92,6 +93,16 @@ class ExecutionModel final : public ScriptContext {
   bool postEvent(vrml::Node& node, int field, vrml::FieldValue value);
   /// Runs the events posted since the last cascade as a new timestamp at now().
   void processEvents();
+
+  /// The pointing device moved, or its button went down or up (4.6.7, runtime/pointer.hpp):
+  /// one new timestamp at now() for TouchSensor, PlaneSensor, SphereSensor,
+  /// CylinderSensor and Anchor (a click binds `#Name` Viewpoints or calls
+  /// ExecutionOptions::loadUrl). Returns true while a sensor or Anchor holds the pointer
+  /// (pressed on one): the application then does not navigate with this drag.
+  bool pointer(const PointerEvent& event);
+  /// Whether a sensor or an Anchor is under the pointer (or holds it), and the Anchor's
+  /// description, as of the last pointer() call.
+  PointerHint pointerHint() const;
 
   /// The top of a bindable stack (4.6.10), or null when the stack is empty.
   vrml::Node* bound(BindableKind kind) const;
