@@ -50,13 +50,18 @@ bool WindowState::pointerInput(float x, float y, bool buttonDown, int height) {
     return false;
   }
   Viewport& v = viewports[index];
+  runtime::ExecutionModel& model = runtimes->of(worlds[v.world].scene, now);
+  if (!model.wantsPointer()) {  // nothing to sense: no picking
+    pointerHint = {};
+    pointerHeld = false;
+    return false;
+  }
   // Pixels inside the viewport from its top left (rect has its origin at the bottom left).
   const float vx = x - static_cast<float>(v.rect.x);
   const float vy = y - (static_cast<float>(height) - static_cast<float>(v.rect.y + v.rect.height));
   const runtime::PointerEvent event =
       pointerEventAt(v.renderer->traversal(), v.navigator.camera(), v.rect.width, v.rect.height, vx,
                      vy, buttonDown);
-  runtime::ExecutionModel& model = runtimes->of(worlds[v.world].scene, now);
   pointerHeld = model.pointer(event);
   pointerHint = model.pointerHint();
   return pointerHeld;

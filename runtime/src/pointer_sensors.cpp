@@ -162,7 +162,9 @@ struct PointerState {
   glm::vec3 lastOrigin{0.0f}, lastDirection{0.0f};
   std::vector<NodeState*> over;  // TouchSensors whose isOver is TRUE
   std::vector<ActiveSensor> active;
-  std::vector<Sensor> under;  // what the last pointer() found under the pointer
+  std::vector<Sensor> under;     // what the last pointer() found under the pointer
+  std::size_t nodesScanned = 0;  // wantsPointer(): the node count at the last scan
+  bool sensorsSeen = false;
 };
 
 void PointerStateDeleter::operator()(PointerState* p) const {
@@ -436,6 +438,25 @@ PointerHint ExecutionModel::pointerHint() const {
   for (const ActiveSensor& a : p.active) describe(a.sensor);
   for (const Sensor& u : p.under) describe(u);
   return hint;
+}
+
+bool ExecutionModel::wantsPointer() const {
+  State& s = *s_;
+  if (!s.pointer) s.pointer.reset(new PointerState);
+  PointerState& p = *s.pointer;
+  if (!p.active.empty()) return true;
+  if (p.nodesScanned != s.nodes.size()) {  // nodes are only ever added
+    p.nodesScanned = s.nodes.size();
+    p.sensorsSeen = false;
+    for (const auto& [node, ns] : s.nodes) {
+      SensorKind kind;
+      if (sensorKindOf(*node, kind) || node->typeName() == "Inline") {
+        p.sensorsSeen = true;
+        break;
+      }
+    }
+  }
+  return p.sensorsSeen;
 }
 
 void ExecutionModel::State::requestUrl(const std::vector<std::string>& url,

@@ -303,3 +303,12 @@ DEF G2 Group { children [ DEF TS TouchSensor {} DEF SH2 Shape { geometry Box {} 
                             "TS.hitPoint_changed=1 0 1", "TS.hitNormal_changed=0 0 1",
                             "TS.hitTexCoord_changed=0 0"});
 }
+
+TEST_CASE("pointer: worlds without sensors need no picking", "[runtime][pointer]") {
+  RunningWorld plain("Group { children Shape { geometry Box {} } }");
+  CHECK_FALSE(plain.model->wantsPointer());
+  RunningWorld touch("Group { children [ TouchSensor {} Shape { geometry Box {} } ] }");
+  CHECK(touch.model->wantsPointer());
+  RunningWorld anchor("Anchor { url \"x.wrl\" }");
+  CHECK(anchor.model->wantsPointer());
+}

@@ -103,6 +103,10 @@ class ExecutionModel final : public ScriptContext {
   /// Whether a sensor or an Anchor is under the pointer (or holds it), and the Anchor's
   /// description, as of the last pointer() call.
   PointerHint pointerHint() const;
+  /// Whether pointer() can matter: the world has a pointing-device sensor, an Anchor or an
+  /// Inline (whose sensors are found when picked), or a sensor holds the pointer. The
+  /// application skips picking when false.
+  bool wantsPointer() const;
 
   /// The top of a bindable stack (4.6.10), or null when the stack is empty.
   vrml::Node* bound(BindableKind kind) const;
