@@ -44,7 +44,19 @@ struct ImGuiSession {
 /// arrows and Q/E move at NavigationInfo.speed.
 void navigate(WindowState& state, int menuHeight, int viewportHeight) {
   const ImGuiIO& io = ImGui::GetIO();
+  // The pointing-device sensors see the mouse first (4.6.7, window_pointer.cpp): a press
+  // on a sensor or an Anchor holds the pointer, and that drag does not navigate.
+  const bool pointerChanged = io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f ||
+                              io.MouseClicked[0] || io.MouseReleased[0];
+  if (ImGui::IsMousePosValid() && pointerChanged && (!io.WantCaptureMouse || state.pointerHeld))
+    state.pointerInput(io.MousePos.x, io.MousePos.y - static_cast<float>(menuHeight),
+                       io.MouseDown[0], viewportHeight);
   if (io.WantCaptureMouse) return;
+  if (state.pointerHint.clickable) {
+    ImGui::SetMouseCursor(ImGuiMouseCursor_Hand);  // GLFW_HAND_CURSOR through the backend
+    if (!state.pointerHint.description.empty())
+      ImGui::SetTooltip("%s", state.pointerHint.description.c_str());
+  }
   // A click picks the viewport the menus and the mouse act on.
   if (io.MouseClicked[0] || io.MouseClicked[1] || io.MouseClicked[2] || io.MouseWheel != 0.0f) {
     const std::size_t under =
@@ -56,7 +68,7 @@ void navigate(WindowState& state, int menuHeight, int viewportHeight) {
   const float dx = io.MouseDelta.x, dy = io.MouseDelta.y;
   const bool moved = dx != 0.0f || dy != 0.0f;
   const bool examine = navigator.mode() == render::NavigationMode::examine;
-  if (io.MouseDown[0] && moved) {
+  if (io.MouseDown[0] && moved && !state.pointerHeld) {
     if (io.KeyShift)
       navigator.pan(dx, dy, viewportHeight);
     else if (examine)
@@ -91,7 +103,7 @@ void navigate(WindowState& state, int menuHeight, int viewportHeight) {
       state.view().autoFrame = false;
     }
   }
-  if (moved && (io.MouseDown[0] || io.MouseDown[1] || io.MouseDown[2]))
+  if (moved && ((io.MouseDown[0] && !state.pointerHeld) || io.MouseDown[1] || io.MouseDown[2]))
     state.view().autoFrame = false;
   if (io.MouseWheel != 0.0f) state.view().autoFrame = false;
 }

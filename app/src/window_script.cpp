@@ -7,6 +7,9 @@
 
 #include "render/image.hpp"
 
+#include <algorithm>
+#include <vector>
+
 namespace gs::app {
 
 namespace {
@@ -18,6 +21,24 @@ double now() {
 bool parseNumber(const std::string& text, double& value) {
   auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
   return ec == std::errc() && p == text.data() + text.size();
+}
+
+/// The numbers of `text` separated by spaces; false when one is not a number.
+bool parseNumbers(const std::string& text, std::vector<double>& out) {
+  std::istringstream words(text);
+  std::string word;
+  out.clear();
+  while (words >> word) {
+    double v = 0.0;
+    if (!parseNumber(word, v)) return false;
+    out.push_back(v);
+  }
+  return true;
+}
+
+bool isInteraction(const std::string& verb) {
+  return verb == "time" || verb == "advance" || verb == "pointer" || verb == "press" ||
+         verb == "release" || verb == "click" || verb == "drag" || verb == "key";
 }
 
 }  // namespace
@@ -70,10 +91,25 @@ bool WindowScript::load(const std::string& path, std::string& error) {
     } else if (c.verb == "open" || c.verb == "screenshot" || c.verb == "screenshot-viewport" ||
                c.verb == "status") {
       if (c.argument.empty()) return fail(c.verb + " followed by a path");
+    } else if (isInteraction(c.verb)) {
+      std::vector<double> n;
+      const bool numbers = parseNumbers(c.argument, n);
+      if ((c.verb == "time" || c.verb == "advance") &&
+          (!numbers || n.size() != 1 || n[0] < 0.0 || n[0] > 1e12))
+        return fail(c.verb + " S with S >= 0 seconds");
+      if ((c.verb == "pointer" || c.verb == "click") && (!numbers || n.size() != 2))
+        return fail(c.verb + " X Y (pixels)");
+      if (c.verb == "drag" && (!numbers || (n.size() != 4 && n.size() != 5) ||
+                               (n.size() == 5 && (n[4] < 1 || n[4] > 10000))))
+        return fail("drag X1 Y1 X2 Y2 [STEPS] with 1 <= STEPS <= 10000");
+      if ((c.verb == "press" || c.verb == "release") && !c.argument.empty())
+        return fail(c.verb + " without arguments");
+      if (c.verb == "key" && c.argument.empty()) return fail("key K");
     } else if (c.verb != "wait-loaded" && c.verb != "quit") {
       return fail(
           "a command (layout, open, viewport, lod, mode, wait-loaded, frames, "
-          "screenshot, screenshot-viewport, quit)");
+          "screenshot, screenshot-viewport, time, advance, pointer, press, release, click, "
+          "drag, key, quit)");
     }
     commands_.push_back(std::move(c));
   }
@@ -86,6 +122,11 @@ bool WindowScript::step(WindowState& state, int width, int height) {
     const Command& c = commands_[next_];
     double number = 0.0;
     parseNumber(c.argument, number);
+    if (isInteraction(c.verb)) {
+      interact(state, c, height);
+      ++next_;
+      return true;  // drawn once before the next command, so screenshots show it
+    }
     if (c.verb == "wait-loaded") {
       // Settled for two frames running: the frame after a change has drawn (and so asked
       // for what its level of detail needs) and nothing new started.
@@ -155,6 +196,60 @@ bool WindowScript::step(WindowState& state, int width, int height) {
       return false;
     }
     ++next_;
+  }
+  return true;
+}
+
+bool WindowScript::interact(WindowState& state, const Command& c, int height) {
+  std::vector<double> n;
+  parseNumbers(c.argument, n);
+  auto to = [&](double x, double y) {
+    pointerX_ = static_cast<float>(x);
+    pointerY_ = static_cast<float>(y);
+    state.pointerInput(pointerX_, pointerY_, buttonDown_, height);
+  };
+  auto button = [&](bool down) {
+    buttonDown_ = down;
+    state.pointerInput(pointerX_, pointerY_, buttonDown_, height);
+  };
+  if (c.verb == "time") {
+    state.setWorldTime(n[0]);
+  } else if (c.verb == "advance") {
+    state.setWorldTime(state.worldTime() + n[0]);
+  } else if (c.verb == "pointer") {
+    to(n[0], n[1]);
+  } else if (c.verb == "press") {
+    button(true);
+  } else if (c.verb == "release") {
+    button(false);
+  } else if (c.verb == "click") {
+    to(n[0], n[1]);
+    button(true);
+    button(false);
+  } else if (c.verb == "drag") {
+    const int steps = n.size() == 5 ? static_cast<int>(n[4]) : 10;
+    to(n[0], n[1]);
+    button(true);
+    const bool held = state.pointerHeld;
+    for (int i = 1; i <= steps; ++i) {
+      const double f = static_cast<double>(i) / steps;
+      const float x0 = pointerX_, y0 = pointerY_;
+      to(n[0] + (n[2] - n[0]) * f, n[1] + (n[3] - n[1]) * f);
+      if (!held && state.view().renderer) {  // no sensor holds it: the drag navigates
+        Viewport& v = state.view();
+        const int h = std::max(1, v.rect.height);
+        if (v.navigator.mode() == render::NavigationMode::examine)
+          v.navigator.orbit(pointerX_ - x0, pointerY_ - y0, h);
+        else
+          v.navigator.look(pointerX_ - x0, pointerY_ - y0, h);
+        v.autoFrame = false;
+      }
+    }
+    button(false);
+  } else if (c.verb == "key") {
+    state.log.push_back({false, "key " + c.argument + " (no key sensor in VRML97: ignored)"});
+  } else {
+    return false;
   }
   return true;
 }

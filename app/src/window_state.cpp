@@ -120,6 +120,7 @@ void WindowState::update() {
     if (error) showLog = true;
   }
   updateRuntimes();
+  followLinks();
   // Problems found while drawing (textures, Inlines), each once.
   for (Viewport& v : viewports) {
     if (!v.renderer) continue;
@@ -148,8 +149,13 @@ void WindowState::updateRuntimes() {
   if (!runtimes) {
     runtimes = std::make_unique<WorldRuntimes>(time);
     clockOffset = time.set ? time.start - runtime::wallClockSeconds() : 0.0;
+    runtimes->setLinkHandler([this](const vrml::Scene& scene, const std::vector<std::string>& url,
+                                    const std::vector<std::string>& parameter) {
+      links.push_back(
+          {&scene, pointerViewport < viewports.size() ? pointerViewport : active, url, parameter});
+    });
   }
-  const double now = runtime::wallClockSeconds() + clockOffset;
+  const double now = worldTime();
   for (const LoadedWorld& w : worlds) runtimes->of(w.scene, now);
   runtimes->scenesGrew();
   // The sensors see each world from its viewports' cameras, the active viewport last.

@@ -90,6 +90,19 @@ runtime::ExecutionModel& WorldRuntimes::of(const std::shared_ptr<const vrml::Sce
         const std::string line = runtime::traceJson(ev);
         std::fprintf(f, "%s\n", line.c_str());
       };
+    o.loadUrl = [this, s = scene.get()](const std::vector<std::string>& url,
+                                        const std::vector<std::string>& parameter) {
+      if (link_) {
+        link_(*s, url, parameter);
+        return;
+      }
+      // Headless: the request is reported, never followed (README.md, "Links").
+      std::string line = "ghostspace: link requested by " + s->url + ":";
+      for (const std::string& u : url) line += " \"" + u + "\"";
+      if (!parameter.empty()) line += " parameter";
+      for (const std::string& p : parameter) line += " \"" + p + "\"";
+      std::fprintf(stderr, "%s\n", line.c_str());
+    };
     e.model = std::make_unique<runtime::ExecutionModel>(scene, time, std::move(o));
   }
   return *e.model;

@@ -26,6 +26,16 @@ struct SceneTraversal::Walk {
   std::uint32_t lastScopeBegin = 0;
   /// groupIds with children in the file being walked (SceneTraversal::filledGroups).
   const std::unordered_set<std::int32_t>* filled = nullptr;
+  /// The grouping nodes above the current one when frame.recordPaths (picking).
+  std::vector<PathStep> path{};
+
+  /// The children of a grouping node, in the coordinate system `m`.
+  void group(const vrml::Node* n, const std::vector<vrml::NodePtr>& children, const glm::mat4& m,
+             const std::string* baseUrl, const std::vector<vrml::NodePtr>* sensorSiblings) {
+    if (frame.recordPaths) path.push_back({n, m, sensorSiblings});
+    nodes(children, m, baseUrl);
+    if (frame.recordPaths) path.pop_back();
+  }
 
   void nodes(const std::vector<vrml::NodePtr>& list, const glm::mat4& m,
              const std::string* baseUrl) {
@@ -88,7 +98,7 @@ struct SceneTraversal::Walk {
   /// mode), and its outline as a shape whose geometry is the node itself while shown.
   void outlineGroup(const vrml::Node& n, const glm::mat4& m, const std::string* baseUrl) {
     const RenderMode mode = self.options_.mode;
-    if (mode != RenderMode::outlines) nodes(n.mfnode("children"), m, baseUrl);
+    if (mode != RenderMode::outlines) group(&n, n.mfnode("children"), m, baseUrl, nullptr);
     const auto& outline = detail::fieldRef<vrml::FieldType::MFVec3f>(n, "outline", kNoPoints);
     if (outline.empty()) return;
     const int id = detail::sfInt(n, "groupId", -1);
@@ -114,6 +124,12 @@ struct SceneTraversal::Walk {
     }
     s.scopedLightBegin = lastScopeBegin;
     s.scopedLightCount = static_cast<std::uint32_t>(scope.size());
+    if (frame.recordPaths) {
+      s.pathBegin = static_cast<std::uint32_t>(frame.paths.size());
+      frame.paths.insert(frame.paths.end(), path.begin(), path.end());
+      frame.paths.push_back({&n, m, nullptr});
+      s.pathCount = static_cast<std::uint32_t>(frame.paths.size()) - s.pathBegin;
+    }
     frame.shapes.push_back(s);
   }
 
@@ -123,17 +139,17 @@ struct SceneTraversal::Walk {
       case NodeKind::Anchor:
       case NodeKind::Collision:  // the proxy is for collisions only: not drawn
       case NodeKind::Group:
-        nodes(n.mfnode("children"), m, baseUrl);
+        group(&n, n.mfnode("children"), m, baseUrl, nullptr);
         break;
       case NodeKind::Transform:
-        nodes(n.mfnode("children"), m * transformMatrix(n), baseUrl);
+        group(&n, n.mfnode("children"), m * transformMatrix(n), baseUrl, nullptr);
         break;
       case NodeKind::Billboard: {
         const glm::mat4 inverse = glm::inverse(m);
         const glm::vec3 viewer = glm::vec3(inverse * glm::vec4(viewerPosition, 1.0f));
         const glm::vec3 up = glm::mat3(inverse) * viewerUp;
         const glm::vec3 axis = sfVec3(n, "axisOfRotation", glm::vec3(0, 1, 0));
-        nodes(n.mfnode("children"), m * billboardRotation(axis, viewer, up), baseUrl);
+        group(&n, n.mfnode("children"), m * billboardRotation(axis, viewer, up), baseUrl, nullptr);
         break;
       }
       case NodeKind::Switch: {
@@ -174,7 +190,8 @@ struct SceneTraversal::Walk {
         const auto* outerFilled = filled;
         filled = &self.filledGroups(*inl->scene);
         // URLs inside resolve against where the file really came from (after redirects).
-        nodes(inl->scene->rootNodes, m, inl->scene->url.empty() ? &inl->url : &inl->scene->url);
+        group(&n, inl->scene->rootNodes, m, inl->scene->url.empty() ? &inl->url : &inl->scene->url,
+              &inl->scene->rootNodes);
         filled = outerFilled;
         inlineChain.pop_back();
         break;
@@ -208,7 +225,7 @@ void SceneTraversal::collect(const Camera& viewer, TraversalFrame& frame) {
             true,  0,     nullptr};
   walk.inlineChain.push_back(&mainUrl_);
   walk.filled = &filledGroups(*scene_);
-  walk.nodes(scene_->rootNodes, glm::mat4(1.0f), &mainUrl_);
+  walk.group(nullptr, scene_->rootNodes, glm::mat4(1.0f), &mainUrl_, &scene_->rootNodes);
 }
 
 const std::unordered_set<std::int32_t>& SceneTraversal::filledGroups(const vrml::Scene& scene) {

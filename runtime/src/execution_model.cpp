@@ -333,7 +333,7 @@ std::vector<vrml::NodePtr> ExecutionModel::createVrmlFromString(const std::strin
 
 void ExecutionModel::loadUrl(const std::vector<std::string>& url,
                              const std::vector<std::string>& parameter) {
-  if (options_.loadUrl) options_.loadUrl(url, parameter);
+  s_->requestUrl(url, parameter);  // `#Name` binds a Viewpoint (pointer_sensors.cpp)
 }
 
 bool ExecutionModel::fetchText(const std::string& url, std::string& text, std::string& error) {

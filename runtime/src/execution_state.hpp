@@ -73,6 +73,12 @@ struct PendingEvent {
   vrml::FieldValue value;
 };
 
+/// Pointing-device sensors' state (pointer_sensors.cpp).
+struct PointerState;
+struct PointerStateDeleter {
+  void operator()(PointerState* p) const;
+};
+
 struct ExecutionModel::State {
   ExecutionModel& model;
   std::shared_ptr<const vrml::Scene> scene;
@@ -97,6 +103,7 @@ struct ExecutionModel::State {
   std::size_t eventsThisCascade = 0;
   bool cascadeOverflow = false;
   std::size_t rootsSeen = 0, hiddenSeen = 0, routesSeen = 0;
+  std::unique_ptr<PointerState, PointerStateDeleter> pointer;
 
   explicit State(ExecutionModel& m) : model(m) {}
 
@@ -124,6 +131,11 @@ struct ExecutionModel::State {
   void evaluateEnvironmentSensors();
 
   void report(vrml::Severity severity, const vrml::Node& node, const std::string& message);
+
+  // ---- pointing-device sensors and Anchors (pointer_sensors.cpp) ----
+  /// A url of Anchor or Browser.loadURL: `#Name` binds the Viewpoint DEFed Name (4.6.7,
+  /// 6.2); anything else goes to ExecutionOptions::loadUrl.
+  void requestUrl(const std::vector<std::string>& url, const std::vector<std::string>& parameter);
 };
 
 }  // namespace gs::runtime

@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -275,4 +276,116 @@ TEST_CASE("the automatic level of detail lowers the fraction to hold the frame t
   CHECK(splats >= 90);
   CHECK(mode == "polygons");
   CHECK(navigation == "EXAMINE");
+}
+
+TEST_CASE("a scripted click on a TouchSensor starts an animation; a drag moves a PlaneSensor",
+          "[app][window][pointer]") {
+  Xvfb x;
+  if (skipWithoutXvfb(x)) return;
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(GS_BINARY_DIR) / "window-pointer";
+  fs::create_directories(dir);
+  const fs::path world = dir / "touch.wrl", script = dir / "touch.script",
+                 trace = dir / "touch.jsonl", before = dir / "before.png",
+                 after = dir / "after.png";
+  // A click turns the red box blue over half a second (touchTime starts the TimeSensor);
+  // the small box beside it follows a PlaneSensor.
+  std::ofstream(world) << R"(#VRML V2.0 utf8
+Viewpoint { position 0 0 5 }
+NavigationInfo { type "EXAMINE" }
+Group { children [
+  DEF TS TouchSensor {}
+  Shape { appearance Appearance { material DEF M Material { diffuseColor 1 0 0 } }
+          geometry Box { size 2 2 2 } }
+] }
+Group { children [
+  DEF PS PlaneSensor {}
+  DEF MOVED Transform { translation 2.5 0 0 children
+    Shape { appearance Appearance { material Material { diffuseColor 0 1 0 } }
+            geometry Box { size 0.5 0.5 0.5 } } }
+] }
+DEF CLOCK TimeSensor { cycleInterval 0.5 }
+DEF CI ColorInterpolator { key [ 0 1 ] keyValue [ 1 0 0, 0 0 1 ] }
+ROUTE TS.touchTime TO CLOCK.set_startTime
+ROUTE CLOCK.fraction_changed TO CI.set_fraction
+ROUTE CI.value_changed TO M.set_diffuseColor
+ROUTE PS.translation_changed TO MOVED.set_translation
+)";
+  // 320 x 240 window: the scene area below the menu bar is about 320 x 220; the big box
+  // covers its centre, the small one lies right of it.
+  std::ofstream(script) << "wait-loaded\ntime 110\nscreenshot " << before.string()
+                        << "\nclick 160 110\nadvance 1\nframes 2\nscreenshot " << after.string()
+                        << "\ndrag 160 110 200 110 4\nkey a\nquit\n";
+  auto r = gs::test::runGhostspace(
+      {"--size", "320x240", "--new-instance", "--time", "100", "--trace-events", trace.string(),
+       "--script", script.string(), world.string()},
+      {"DISPLAY=" + x.display()});
+  INFO(r.err);
+  REQUIRE(r.exitCode == 0);
+  const std::string events = fileBytes(trace);
+  INFO(events);
+  for (const char* line :
+       {R"({"time":110.000,"node":"TS","field":"isOver","value":"TRUE"})",
+        R"({"time":110.000,"node":"TS","field":"isActive","value":"TRUE"})",
+        R"({"time":110.000,"node":"TS","field":"isActive","value":"FALSE"})",
+        R"({"time":110.000,"node":"TS","field":"touchTime","value":"110.000"})",
+        R"({"time":110.500,"node":"M","field":"diffuseColor_changed","value":"0 0 1"})"})
+    CHECK(events.find(line) != std::string::npos);
+  // The drag began on the big box: it held the TouchSensor, not the PlaneSensor (the
+  // lowest sensors under the pointer), and did not navigate.
+  CHECK(events.find(R"("node":"PS")") == std::string::npos);
+  const auto a = gs::render::readPng(before.string()), b = gs::render::readPng(after.string());
+  auto pixel = [](const gs::render::Image& im, int px, int py) {
+    const auto* p = &im.rgba[(static_cast<std::size_t>(py) * im.width + px) * 4];
+    return std::array<int, 3>{p[0], p[1], p[2]};
+  };
+  const auto redish = pixel(a, a.width / 2, a.height / 2);
+  const auto blueish = pixel(b, b.width / 2, b.height / 2);
+  CHECK(redish[0] > 128);
+  CHECK(redish[2] < 32);
+  CHECK(blueish[0] < 32);
+  CHECK(blueish[2] > 128);
+}
+
+TEST_CASE("a scripted drag on a PlaneSensor moves its Transform", "[app][window][pointer]") {
+  Xvfb x;
+  if (skipWithoutXvfb(x)) return;
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(GS_BINARY_DIR) / "window-pointer";
+  fs::create_directories(dir);
+  const fs::path world = dir / "drag.wrl", script = dir / "drag.script", trace = dir / "drag.jsonl";
+  std::ofstream(world) << R"(#VRML V2.0 utf8
+Viewpoint { position 0 0 5 }
+Group { children [
+  DEF PS PlaneSensor { maxPosition 10 0 }
+  DEF MOVED Transform { children Shape { geometry Box { size 2 2 2 } } }
+] }
+ROUTE PS.translation_changed TO MOVED.set_translation
+)";
+  std::ofstream(script) << "wait-loaded\ntime 50\ndrag 160 110 200 110 2\nquit\n";
+  auto r = gs::test::runGhostspace(
+      {"--size", "320x240", "--new-instance", "--time", "40", "--trace-events", trace.string(),
+       "--script", script.string(), world.string()},
+      {"DISPLAY=" + x.display()});
+  INFO(r.err);
+  REQUIRE(r.exitCode == 0);
+  const std::string events = fileBytes(trace);
+  INFO(events);
+  CHECK(events.find(R"({"time":50.000,"node":"PS","field":"isActive","value":"TRUE"})") !=
+        std::string::npos);
+  CHECK(events.find(R"({"time":50.000,"node":"PS","field":"isActive","value":"FALSE"})") !=
+        std::string::npos);
+  // 40 pixels to the right at the box's front (z = 1, 4 m from the eye): a positive x
+  // translation with y clamped to 0 (minPosition 0 0, maxPosition 10 0).
+  const std::size_t at = events.rfind(R"("node":"MOVED","field":"translation_changed","value":")");
+  REQUIRE(at != std::string::npos);
+  const std::string value = events.substr(at + 54, events.find('"', at + 54) - at - 54);
+  std::istringstream v(value);
+  float tx = 0, ty = 1, tz = 1;
+  v >> tx >> ty >> tz;
+  CHECK(tx > 0.3f);
+  CHECK(tx < 1.0f);
+  CHECK(ty == 0.0f);
+  CHECK(tz == 0.0f);
+  CHECK(events.find(R"("node":"PS","field":"offset_changed")") != std::string::npos);
 }

@@ -18,6 +18,16 @@
 //   frame-target MS         the frame time automatic levels of detail aim at
 //   status OUT.txt          one line per viewport: index, world URL, level of detail,
 //                           mode, navigation, splats drawn (for tests)
+//   time T                  the worlds' clock to SFTime T (seconds); from then on the
+//                           clock is virtual (no longer the wall clock)
+//   advance S               the virtual clock S seconds on (cascades at --time-step)
+//   pointer X Y             the mouse to pixel X Y (from the top left of the scene area)
+//   press / release         the left button down / up where the mouse is
+//   click X Y               pointer X Y, press, release
+//   drag X1 Y1 X2 Y2 [N]    press at X1 Y1, N moves (default 10) to X2 Y2, release; a drag
+//                           that no sensor holds navigates
+//   key K                   a key (logged: VRML97 has no key sensor)
+//   Each of these commands is followed by one frame drawn before the next command.
 //   quit
 #pragma once
 
@@ -55,6 +65,11 @@ class WindowScript {
   int settledFrames_ = 0;
   int waitedFrames_ = 0;
   double waitStart_ = -1.0;
+  float pointerX_ = 0.0f, pointerY_ = 0.0f;  // the scripted mouse
+  bool buttonDown_ = false;
+  /// Runs an interaction command (time, advance, pointer, press, release, click, drag,
+  /// key); false when `verb` is not one.
+  bool interact(WindowState& state, const Command& c, int height);
 };
 
 }  // namespace gs::app

@@ -9,6 +9,7 @@
 #include "app/world_runtime.hpp"
 #include "render/camera.hpp"
 #include "render/scene_renderer.hpp"
+#include "runtime/pointer.hpp"
 
 #include <cstddef>
 #include <memory>
@@ -82,6 +83,22 @@ struct WindowState {
   /// The execution model of every world opened, made on the first update().
   std::unique_ptr<WorldRuntimes> runtimes;
   double clockOffset = 0.0;  // world time = wallClockSeconds() + clockOffset
+  /// Set by a script's `time` / `advance`: the window's clock is virtual from then on
+  /// (virtualTime), no longer the wall clock.
+  bool virtualClock = false;
+  double virtualTime = 0.0;
+  /// The pointing device (window_pointer.cpp): what is under it for the cursor and the
+  /// tooltip; whether a sensor or Anchor holds it (the drag does not navigate); the
+  /// viewport it was last in; the links clicked, followed in update().
+  runtime::PointerHint pointerHint;
+  bool pointerHeld = false;
+  std::size_t pointerViewport = static_cast<std::size_t>(-1);
+  struct LinkRequest {
+    const vrml::Scene* scene = nullptr;
+    std::size_t viewport = 0;
+    std::vector<std::string> url, parameter;
+  };
+  std::vector<LinkRequest> links;
   /// Streams every world opened (files and URLs) while the window keeps drawing.
   std::unique_ptr<StreamingSession> session = std::make_unique<StreamingSession>();
 
@@ -125,6 +142,20 @@ struct WindowState {
   /// Sets the active viewport's navigation type (EXAMINE, WALK, FLY), overriding its
   /// NavigationInfo.
   void setNavigation(render::NavigationMode mode);
+  /// The pointing device at (x, y), pixels from the top left of the scene area of height
+  /// `height`, with its left button up or down: picks in the viewport under it (the one
+  /// it was pressed in while a sensor holds it) and tells that world's execution model.
+  /// Returns pointerHeld.
+  bool pointerInput(float x, float y, bool buttonDown, int height);
+  /// The world time of the window's clock (seconds): virtualTime or the wall clock.
+  double worldTime() const;
+  /// Makes the clock virtual at `time` (ignored when earlier than now) and runs every
+  /// world's execution model to it (a script's `time` and `advance`).
+  void setWorldTime(double time);
+  /// Follows the links clicked (Anchor, Browser.loadURL): worlds replace the world of the
+  /// viewport (or open in a new one), other documents go to xdg-open (pointer_input.hpp
+  /// decideLink says what is allowed).
+  void followLinks();
   /// The viewport under the point (x, y) in pixels from the top left of the scene area of
   /// height `height`, or Viewport::kNone.
   std::size_t viewportAt(float x, float y, int height) const;

@@ -8,6 +8,7 @@
 #include "vrml/scene.hpp"
 
 #include <cstdio>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -59,6 +60,13 @@ class WorldRuntimes {
   void setViewer(const vrml::Scene* scene, const runtime::ViewerPose& viewer);
   /// Tells every world that its scene grew (progressive loading).
   void scenesGrew();
+  /// Where Anchor clicks and Browser.loadURL go (after `#Name` links, which the runtime
+  /// binds itself): the scene that asked, its url list and parameter list. Unset (the
+  /// headless default): each request is written to stderr. Set it before of().
+  using LinkHandler =
+      std::function<void(const vrml::Scene& scene, const std::vector<std::string>& url,
+                         const std::vector<std::string>& parameter)>;
+  void setLinkHandler(LinkHandler handler) { link_ = std::move(handler); }
   /// The nodes bound in `scene`'s execution model; nothing bound when it has none.
   render::BoundNodes bound(const vrml::Scene* scene) const;
   /// Diagnostics of every world not returned before, formatted, appended to `out`.
@@ -67,6 +75,7 @@ class WorldRuntimes {
  private:
   TimeOptions options_;
   std::FILE* trace_ = nullptr;
+  LinkHandler link_;
   struct Entry {
     std::shared_ptr<const vrml::Scene> scene;
     std::unique_ptr<runtime::ExecutionModel> model;

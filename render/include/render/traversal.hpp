@@ -44,6 +44,18 @@ struct LightInstance {
   float cutOffAngle = 0.785398f;            // radians
 };
 
+/// One grouping node on the way from the root to a Shape (recorded when
+/// TraversalFrame::recordPaths is set; render/picking.hpp).
+struct PathStep {
+  /// Anchor, Billboard, Collision, Group, Transform, Inline, OutlineGroup, or the Shape
+  /// last; null for the root of the main scene.
+  const vrml::Node* node = nullptr;
+  glm::mat4 localToWorld{1.0f};  // the coordinate system of the node's children
+  /// The children among which its sibling sensors are: null for the node's `children`
+  /// field, the root nodes of the scene for the root or an Inline.
+  const std::vector<vrml::NodePtr>* children = nullptr;
+};
+
 /// One Shape to draw: its nodes, world matrix and scoped lights.
 struct ShapeInstance {
   const vrml::Node* shape = nullptr;
@@ -55,6 +67,10 @@ struct ShapeInstance {
   std::uint32_t scopedLightCount = 0;
   /// URL of the file the shape comes from (the base for texture URLs); never null.
   const std::string* baseUrl = nullptr;
+  /// Range in TraversalFrame::paths of its path, the root first and the Shape last
+  /// (only when TraversalFrame::recordPaths is set).
+  std::uint32_t pathBegin = 0;
+  std::uint32_t pathCount = 0;
 };
 
 /// One QuantizedNormalVectors node to draw as splats (docs/vrml-extensions.md).
@@ -71,7 +87,11 @@ struct TraversalFrame {
   std::vector<LightInstance> lights;        // every light met, world coordinates
   std::vector<std::uint32_t> scopedLights;  // indices into lights (ShapeInstance ranges)
   std::vector<std::uint32_t> globalLights;  // point and spot lights, indices into lights
+  /// Set by the caller: collect() records each Shape's path of grouping nodes (picking).
+  bool recordPaths = false;
+  std::vector<PathStep> paths;  // ShapeInstance::pathBegin ranges
   void clear() {
+    paths.clear();
     shapes.clear();
     splats.clear();
     lights.clear();

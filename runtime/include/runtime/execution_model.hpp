@@ -7,6 +7,7 @@
 #pragma once
 
 #include "runtime/clock.hpp"
+#include "runtime/pointer.hpp"
 #include "runtime/script_host.hpp"
 #include "runtime/viewer.hpp"
 #include "vrml/diagnostic.hpp"
@@ -100,6 +101,20 @@ class ExecutionModel final : public ScriptContext {
   /// it with their boxes at the next advanceTo(). Until the first call there is no viewer
   /// and these sensors stay inactive.
   void setViewer(const ViewerPose& viewer);
+
+  /// The pointing device moved, or its button went down or up (4.6.7, runtime/pointer.hpp):
+  /// one new timestamp at now() for TouchSensor, PlaneSensor, SphereSensor,
+  /// CylinderSensor and Anchor (a click binds `#Name` Viewpoints or calls
+  /// ExecutionOptions::loadUrl). Returns true while a sensor or Anchor holds the pointer
+  /// (pressed on one): the application then does not navigate with this drag.
+  bool pointer(const PointerEvent& event);
+  /// Whether a sensor or an Anchor is under the pointer (or holds it), and the Anchor's
+  /// description, as of the last pointer() call.
+  PointerHint pointerHint() const;
+  /// Whether pointer() can matter: the world has a pointing-device sensor, an Anchor or an
+  /// Inline (whose sensors are found when picked), or a sensor holds the pointer. The
+  /// application skips picking when false.
+  bool wantsPointer() const;
 
   /// The top of a bindable stack (4.6.10), or null when the stack is empty.
   vrml::Node* bound(BindableKind kind) const;

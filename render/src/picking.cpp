@@ -1,0 +1,114 @@
+// CPU picking: rays against the tessellations of the shapes collect() draws.
+#include "render/picking.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace gs::render {
+
+Ray rayThroughPixel(const Camera& camera, int width, int height, float x, float y) {
+  const float w = static_cast<float>(std::max(width, 1));
+  const float h = static_cast<float>(std::max(height, 1));
+  const float aspect = w / h;
+  const float tanHalf = std::tan(verticalFieldOfView(camera.fieldOfView, aspect) * 0.5f);
+  const float ndcX = 2.0f * x / w - 1.0f;
+  const float ndcY = 1.0f - 2.0f * y / h;
+  const glm::vec3 eye(ndcX * tanHalf * aspect, ndcY * tanHalf, -1.0f);
+  return {camera.position, glm::normalize(camera.orientation * eye)};
+}
+
+bool intersectTriangle(const glm::vec3& origin, const glm::vec3& direction, const glm::vec3& a,
+                       const glm::vec3& b, const glm::vec3& c, float& t, float& u, float& v,
+                       float minT) {
+  const glm::vec3 e1 = b - a, e2 = c - a;
+  const glm::vec3 p = glm::cross(direction, e2);
+  const float det = glm::dot(e1, p);
+  if (std::abs(det) < 1e-20f) return false;  // parallel or degenerate
+  const float inv = 1.0f / det;
+  const glm::vec3 s = origin - a;
+  u = glm::dot(s, p) * inv;
+  if (u < 0.0f || u > 1.0f) return false;
+  const glm::vec3 q = glm::cross(s, e1);
+  v = glm::dot(direction, q) * inv;
+  if (v < 0.0f || u + v > 1.0f) return false;
+  t = glm::dot(e2, q) * inv;
+  return t > minT;
+}
+
+namespace {
+
+/// Slab test of a ray against a box; false when it misses or the box lies behind.
+bool hitsBox(const glm::vec3& o, const glm::vec3& d, const vrml::Bounds& box, float maxT) {
+  float lo = 0.0f, hi = maxT;
+  for (int i = 0; i < 3; ++i) {
+    if (std::abs(d[i]) < 1e-30f) {
+      if (o[i] < box.min[i] || o[i] > box.max[i]) return false;
+      continue;
+    }
+    float t0 = (box.min[i] - o[i]) / d[i], t1 = (box.max[i] - o[i]) / d[i];
+    if (t0 > t1) std::swap(t0, t1);
+    lo = std::max(lo, t0);
+    hi = std::min(hi, t1);
+    if (lo > hi) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::optional<PickHit> pick(SceneTraversal& traversal, const Camera& viewer, const Ray& ray) {
+  TraversalFrame frame;
+  frame.recordPaths = true;
+  traversal.collect(viewer, frame);
+  std::optional<PickHit> best;
+  float bestT = std::numeric_limits<float>::infinity();
+  for (const ShapeInstance& s : frame.shapes) {
+    const float det = glm::determinant(glm::mat3(s.model));
+    if (!std::isfinite(det) || std::abs(det) < 1e-30f) continue;  // scaled flat: invisible
+    const glm::mat4 inverse = glm::inverse(s.model);
+    // The same parameter t in local and world coordinates (an affine map).
+    const glm::vec3 o = glm::vec3(inverse * glm::vec4(ray.origin, 1.0f));
+    const glm::vec3 d = glm::mat3(inverse) * ray.direction;
+    const vrml::Bounds& bounds = traversal.meshBounds(*s.geometry);
+    if (bounds.empty() || !hitsBox(o, d, bounds, bestT)) continue;
+    const vrml::Mesh& mesh = traversal.mesh(*s.geometry);
+    if (mesh.primitive != vrml::Primitive::triangles) continue;
+    const std::size_t count = mesh.indices.size() / 3;
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::uint32_t ia = mesh.indices[3 * i], ib = mesh.indices[3 * i + 1],
+                          ic = mesh.indices[3 * i + 2];
+      if (ia >= mesh.positions.size() || ib >= mesh.positions.size() || ic >= mesh.positions.size())
+        continue;
+      float t = 0.0f, u = 0.0f, v = 0.0f;
+      if (!intersectTriangle(o, d, mesh.positions[ia], mesh.positions[ib], mesh.positions[ic], t, u,
+                             v, 1e-7f) ||
+          t >= bestT)
+        continue;
+      bestT = t;
+      PickHit hit;
+      hit.shape = s.shape;
+      hit.geometry = s.geometry;
+      hit.triangle = static_cast<std::uint32_t>(i);
+      hit.point = ray.origin + t * ray.direction;
+      hit.distance = t * glm::length(ray.direction);
+      const float w = 1.0f - u - v;
+      glm::vec3 n;
+      if (mesh.normals.size() == mesh.positions.size())
+        n = w * mesh.normals[ia] + u * mesh.normals[ib] + v * mesh.normals[ic];
+      else
+        n = glm::cross(mesh.positions[ib] - mesh.positions[ia],
+                       mesh.positions[ic] - mesh.positions[ia]);
+      n = glm::transpose(glm::mat3(inverse)) * n;
+      hit.normal = glm::length(n) > 1e-30f ? glm::normalize(n) : glm::vec3(0.0f, 0.0f, 1.0f);
+      if (mesh.texCoords.size() == mesh.positions.size())
+        hit.texCoord = w * mesh.texCoords[ia] + u * mesh.texCoords[ib] + v * mesh.texCoords[ic];
+      hit.path.assign(frame.paths.begin() + s.pathBegin,
+                      frame.paths.begin() + s.pathBegin + s.pathCount);
+      best = std::move(hit);
+    }
+  }
+  return best;
+}
+
+}  // namespace gs::render

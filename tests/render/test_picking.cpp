@@ -1,0 +1,152 @@
+// CPU picking (render/picking.hpp): the nearest triangle, the path of grouping nodes with
+// their matrices, misses, rays through pixels.
+#include "render/picking.hpp"
+#include "vrml/parser.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <memory>
+
+using gs::render::Camera;
+using gs::render::pick;
+using gs::render::Ray;
+using gs::render::SceneTraversal;
+
+namespace {
+
+bool near(glm::vec3 a, glm::vec3 b, float eps = 1e-5f) {
+  return glm::length(a - b) < eps;
+}
+
+bool nearMatrix(const glm::mat4& a, const glm::mat4& b) {
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (std::abs(a[c][r] - b[c][r]) > 1e-5f) return false;
+  return true;
+}
+
+std::shared_ptr<gs::vrml::Scene> world(const std::string& body) {
+  return std::make_shared<gs::vrml::Scene>(
+      gs::vrml::parseVrml("#VRML V2.0 utf8\n" + body, "picking.wrl"));
+}
+
+const gs::vrml::Node* def(const gs::vrml::Scene& s, const std::string& name) {
+  std::function<const gs::vrml::Node*(const gs::vrml::NodePtr&)> find =
+      [&](const gs::vrml::NodePtr& n) -> const gs::vrml::Node* {
+    if (!n) return nullptr;
+    if (n->defName == name) return n.get();
+    for (std::size_t i = 0; i < n->fieldCount(); ++i) {
+      const auto& v = n->fieldAt(i);
+      if (v.type() == gs::vrml::FieldType::SFNode)
+        if (const auto* f = find(v.get<gs::vrml::FieldType::SFNode>())) return f;
+      if (v.type() == gs::vrml::FieldType::MFNode)
+        for (const auto& c : v.get<gs::vrml::FieldType::MFNode>())
+          if (const auto* f = find(c)) return f;
+    }
+    return nullptr;
+  };
+  for (const auto& n : s.rootNodes)
+    if (const auto* f = find(n)) return f;
+  return nullptr;
+}
+
+constexpr const char* kWorld = R"(
+DEF ROOT Transform { translation 0 0 -5 children [
+  DEF NEAR Transform { translation 0 0 2 children [
+    DEF TS TouchSensor {}
+    DEF SN Shape { geometry Box { size 1 1 1 } }
+  ] }
+  DEF FAR Group { children DEF SF Shape { geometry Box { size 4 4 1 } } }
+] }
+)";
+
+}  // namespace
+
+TEST_CASE("picking: the nearest triangle, with its path and matrices", "[render][picking]") {
+  auto scene = world(kWorld);
+  SceneTraversal traversal(scene);
+  const Camera viewer;  // at 0 0 10 looking along -Z
+  const auto hit = pick(traversal, viewer, Ray{{0.1f, 0.2f, 10.0f}, {0.0f, 0.0f, -1.0f}});
+  REQUIRE(hit);
+  CHECK(hit->shape == def(*scene, "SN"));
+  CHECK(near(hit->point, {0.1f, 0.2f, -2.5f}));
+  CHECK(near(hit->normal, {0.0f, 0.0f, 1.0f}));
+  CHECK(hit->distance == Approx(12.5f));
+  CHECK(near(glm::vec3(hit->texCoord, 0.0f), {0.6f, 0.7f, 0.0f}));  // 6.4: front face s, t
+  REQUIRE(hit->path.size() == 4);
+  CHECK(hit->path[0].node == nullptr);
+  CHECK(hit->path[0].children == &scene->rootNodes);
+  CHECK(nearMatrix(hit->path[0].localToWorld, glm::mat4(1.0f)));
+  CHECK(hit->path[1].node == def(*scene, "ROOT"));
+  CHECK(nearMatrix(hit->path[1].localToWorld, glm::translate(glm::mat4(1.0f), {0, 0, -5})));
+  CHECK(hit->path[2].node == def(*scene, "NEAR"));
+  CHECK(nearMatrix(hit->path[2].localToWorld, glm::translate(glm::mat4(1.0f), {0, 0, -3})));
+  CHECK(hit->path[3].node == def(*scene, "SN"));
+  CHECK(nearMatrix(hit->path[3].localToWorld, glm::translate(glm::mat4(1.0f), {0, 0, -3})));
+}
+
+TEST_CASE("picking: beside the near box the far one; misses", "[render][picking]") {
+  auto scene = world(kWorld);
+  SceneTraversal traversal(scene);
+  const Camera viewer;
+  const auto far = pick(traversal, viewer, Ray{{1.5f, 0.0f, 10.0f}, {0.0f, 0.0f, -2.0f}});
+  REQUIRE(far);
+  CHECK(far->shape == def(*scene, "SF"));
+  CHECK(near(far->point, {1.5f, 0.0f, -4.5f}));
+  CHECK(far->distance == Approx(14.5f));  // world units, whatever the direction's length
+  REQUIRE(far->path.size() == 4);
+  CHECK(far->path[2].node == def(*scene, "FAR"));
+  CHECK(!pick(traversal, viewer, Ray{{5.0f, 0.0f, 10.0f}, {0.0f, 0.0f, -1.0f}}));
+  CHECK(!pick(traversal, viewer, Ray{{0.0f, 0.0f, 10.0f}, {0.0f, 0.0f, 1.0f}}));  // behind
+  // From inside the far box, the near box's back face is hit first along +Z.
+  const auto inside = pick(traversal, viewer, Ray{{0.0f, 0.0f, -5.0f}, {0.0f, 0.0f, 1.0f}});
+  REQUIRE(inside);
+  CHECK(inside->shape == def(*scene, "SF"));
+  CHECK(near(inside->point, {0.0f, 0.0f, -4.5f}));
+}
+
+TEST_CASE("picking: only the chosen Switch child; rotated and scaled transforms",
+          "[render][picking]") {
+  auto scene = world(R"(
+DEF SW Switch { whichChoice 1 choice [
+  Shape { geometry Box {} }
+  DEF T Transform { rotation 0 1 0 1.5707963 scale 2 2 2 children
+    DEF S Shape { geometry Sphere { radius 0.5 } } }
+] }
+)");
+  SceneTraversal traversal(scene);
+  const auto hit = pick(traversal, Camera{}, Ray{{0.0f, 0.0f, 10.0f}, {0.0f, 0.0f, -1.0f}});
+  REQUIRE(hit);
+  CHECK(hit->shape == def(*scene, "S"));
+  CHECK(hit->point.z == Approx(1.0f).margin(2e-2));  // the tessellated sphere, radius 1
+  CHECK(near(hit->normal, {0.0f, 0.0f, 1.0f}, 2e-2f));
+  REQUIRE(hit->path.size() == 3);  // the root, T (no entry for the Switch), S
+  CHECK(hit->path[1].node == def(*scene, "T"));
+  const glm::vec3 x = glm::vec3(hit->path[1].localToWorld * glm::vec4(1, 0, 0, 0));
+  CHECK(near(x, {0.0f, 0.0f, -2.0f}, 1e-5f));
+}
+
+TEST_CASE("picking: the ray through a pixel", "[render][picking]") {
+  Camera c;  // 0 0 10, fieldOfView 0.785398
+  const Ray centre = gs::render::rayThroughPixel(c, 200, 100, 100.0f, 50.0f);
+  CHECK(near(centre.origin, {0.0f, 0.0f, 10.0f}));
+  CHECK(near(centre.direction, {0.0f, 0.0f, -1.0f}));
+  // The top edge's centre: half the vertical field of view up (aspect 2: vertical fov).
+  const Ray top = gs::render::rayThroughPixel(c, 200, 100, 100.0f, 0.0f);
+  CHECK(std::atan2(top.direction.y, -top.direction.z) == Approx(0.785398f / 2.0f));
+  const Ray right = gs::render::rayThroughPixel(c, 200, 100, 200.0f, 50.0f);
+  CHECK(right.direction.x / -right.direction.z == Approx(2.0f * std::tan(0.785398f / 2.0f)));
+}
+
+TEST_CASE("picking: Moller-Trumbore", "[render][picking]") {
+  float t = 0, u = 0, v = 0;
+  CHECK(gs::render::intersectTriangle({0.25f, 0.25f, 1}, {0, 0, -1}, {0, 0, 0}, {1, 0, 0},
+                                      {0, 1, 0}, t, u, v));
+  CHECK(t == Approx(1.0f));
+  CHECK(u == Approx(0.25f));
+  CHECK(v == Approx(0.25f));
+  CHECK(!gs::render::intersectTriangle({0.75f, 0.75f, 1}, {0, 0, -1}, {0, 0, 0}, {1, 0, 0},
+                                       {0, 1, 0}, t, u, v));
+}
