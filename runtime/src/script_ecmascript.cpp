@@ -149,6 +149,7 @@ struct EsScript::Call {
   bool found = true;
   std::vector<std::pair<int, vrml::FieldValue>>* out = nullptr;  // collect step
   std::string* message = nullptr;                                // describe step
+  int line = 0;                                                  // its line, 0: unknown
 };
 
 EsScript::EsScript(vrml::Node& node, ScriptContext& ctx, const ScriptLimits& limits)
@@ -440,7 +441,8 @@ duk_ret_t EsScript::callTrampoline(duk_context* c, void* udata) {
     const char* text = duk_safe_to_lstring(c, -1, &len);
     std::string msg(text ? text : "?", std::min<duk_size_t>(len, 400));
     if (len > 400) msg += "...";
-    *call.message = line > 0 ? "line " + std::to_string(line) + ": " + msg : msg;
+    *call.message = msg;
+    call.line = line;
     return 0;
   }
   if (call.fn == nullptr) {  // the Script's global code
@@ -486,7 +488,10 @@ void EsScript::reportError(const char* what) {
   if (duk_safe_call(duk_, callTrampoline, &call, 1, 1) != DUK_EXEC_SUCCESS)
     message = "an error that cannot be described";
   duk_pop(duk_);
-  std::string text = name() + " (" + sourceName_ + " " + message + ") in " + what;
+  // "Script 'S': TypeError: ... (javascript: line 3, in eventIn 'go')"
+  std::string from = sourceName_.ends_with(":") ? sourceName_ : "'" + sourceName_ + "'";
+  if (call.line > 0) from += " line " + std::to_string(call.line);
+  std::string text = name() + ": " + message + " (" + from + ", in " + what + ")";
   if (errorCount_ == kMaxReportedErrors) text += " (further errors of this Script are not shown)";
   ctx_.scriptDiagnostic(vrml::Severity::error, node_.location, text);
 }

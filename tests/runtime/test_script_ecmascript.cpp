@@ -390,9 +390,12 @@ DEF S Script {
   CHECK(d.severity == vrml::Severity::error);
   CHECK(d.location.file == "worlds/bad.wrl");
   CHECK(d.location.line == 3);
-  CHECK_THAT(d.message, Catch::Contains("Script 'S'") && Catch::Contains("line 3") &&
-                            Catch::Contains("TypeError") && Catch::Contains("fraction_changed") &&
-                            Catch::Contains("eventIn 'go'"));
+  CHECK(d.message ==
+        "Script 'S': TypeError: fraction_changed of TimeSensor is eventOut: it cannot be "
+        "written (javascript: line 3, in eventIn 'go')");
+  CHECK(d.format() ==
+        "worlds/bad.wrl:3:7: error: Script 'S': TypeError: fraction_changed of TimeSensor is "
+        "eventOut: it cannot be written (javascript: line 3, in eventIn 'go')");
   CHECK(ctx.sent.empty());
   CHECK_FALSE(w.instance->stopped());
 }
