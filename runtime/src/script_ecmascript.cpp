@@ -58,9 +58,10 @@ std::size_t blockSize(void* ptr) {
 bool mayGrow(HeapGuard& g, std::size_t grow) {
   // Checking the clock in the allocator stops long native loops (a huge join, a
   // quadratic string build) where Duktape's interrupt does not run.
-  if (g.active &&
-      (g.timedOut || ((++g.allocTick & 63u) == 0 || grow > 65536) ? g.pastDeadline() : false))
-    return false;
+  if (g.active) {
+    bool check = g.timedOut || (++g.allocTick & 63u) == 0 || grow > 65536;
+    if (check && g.pastDeadline()) return false;
+  }
   if (grow > g.cap || g.used > g.cap - grow) {
     g.overCap = true;
     return false;
@@ -117,6 +118,26 @@ std::string mib(std::size_t bytes) {
 }
 
 constexpr int kMaxReportedErrors = 20;
+
+// The prelude compiled once per process (a heap loads bytecode several times faster than
+// it compiles the source); empty if that failed (each heap then compiles the source).
+const std::string& preludeBytecode() {
+  static const std::string bytecode = [] {
+    std::string out;
+    duk_context* c = duk_create_heap(nullptr, nullptr, nullptr, nullptr, esFatal);
+    if (c == nullptr) return out;
+    duk_push_string(c, "prelude");
+    if (duk_pcompile_string_filename(c, 0, gs::runtime::es::kPrelude) == 0) {
+      duk_dump_function(c);
+      duk_size_t size = 0;
+      const void* data = duk_get_buffer(c, -1, &size);
+      if (data != nullptr) out.assign(static_cast<const char*>(data), size);
+    }
+    duk_destroy_heap(c);
+    return out;
+  }();
+  return bytecode;
+}
 
 }  // namespace
 
@@ -258,7 +279,7 @@ duk_ret_t EsScript::fieldSetter(duk_context* c) {
 
 void EsScript::installFields(duk_context* c) {
   const vrml::NodeType& type = node_.type();
-  duk_push_array(c);
+  duk_push_bare_array(c);
   fieldStore_ = duk_get_heapptr(c, -1);
   duk_push_heap_stash(c);
   duk_dup(c, -2);
@@ -313,15 +334,22 @@ bool EsScript::load() {
       duk_push_heap_stash(c);
       duk_push_pointer(c, &s);
       duk_put_prop_string(c, -2, "gsSelf");
-      duk_push_array(c);
+      duk_push_bare_array(c);
       duk_put_prop_string(c, -2, "gsKeep");
       duk_pop(c);
       duk_push_global_object(c);
       duk_del_prop_string(c, -1, "Duktape");  // GC control, finalizers, internals
       duk_pop(c);
       s.installNodeHooks(c);
-      duk_push_string(c, "prelude");
-      duk_compile_string_filename(c, 0, kPrelude);
+      const std::string& bytecode = preludeBytecode();
+      if (bytecode.empty()) {
+        duk_push_string(c, "prelude");
+        duk_compile_string_filename(c, 0, kPrelude);
+      } else {
+        void* buf = duk_push_fixed_buffer(c, bytecode.size());
+        std::memcpy(buf, bytecode.data(), bytecode.size());
+        duk_load_function(c);
+      }
       duk_call(c, 0);
       duk_pop(c);
       s.capturePrototypes(c);

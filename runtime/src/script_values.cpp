@@ -106,7 +106,7 @@ void EsScript::capturePrototypes(duk_context* c) {
     duk_pop(c);
   }
   duk_put_prop_string(c, -2, "gsProtos");
-  duk_push_object(c);
+  duk_push_bare_object(c);
   nodeCache_ = duk_get_heapptr(c, -1);
   duk_put_prop_string(c, -2, "gsNodes");
   duk_pop(c);
@@ -115,37 +115,40 @@ void EsScript::capturePrototypes(duk_context* c) {
 // ---- FieldValue -> ECMAScript ----
 
 void EsScript::pushValue(duk_context* c, const FieldValue& v) {
-  auto object = [&](FieldType t) {
-    duk_push_object(c);
+  // Objects are filled while they have no prototype (no inherited setter that a Script
+  // put on a prototype runs), then given their class.
+  auto finish = [&](FieldType t) {
     pushProto(c, t);
     duk_set_prototype(c, -2);
   };
   auto vec3 = [&](FieldType t, const glm::vec3& x, const char* a, const char* b, const char* d) {
-    object(t);
+    duk_push_bare_object(c);
     putNumber(c, a, x.x);
     putNumber(c, b, x.y);
     putNumber(c, d, x.z);
+    finish(t);
   };
   auto vec2 = [&](const glm::vec2& x) {
-    object(FieldType::SFVec2f);
+    duk_push_bare_object(c);
     putNumber(c, "x", x.x);
     putNumber(c, "y", x.y);
+    finish(FieldType::SFVec2f);
   };
   auto rotation = [&](const vrml::Rotation& r) {
-    object(FieldType::SFRotation);
+    duk_push_bare_object(c);
     putNumber(c, "x", r.x);
     putNumber(c, "y", r.y);
     putNumber(c, "z", r.z);
     putNumber(c, "angle", r.w);
+    finish(FieldType::SFRotation);
   };
   auto array = [&](FieldType t, std::size_t n, auto&& each) {
-    duk_push_array(c);
-    pushProto(c, t);
-    duk_set_prototype(c, -2);
+    duk_push_bare_array(c);
     for (std::size_t i = 0; i < n; ++i) {
       each(i);
       duk_put_prop_index(c, -2, static_cast<duk_uarridx_t>(i));
     }
+    finish(t);
   };
   switch (v.type()) {
     case FieldType::SFBool:
@@ -159,13 +162,14 @@ void EsScript::pushValue(duk_context* c, const FieldValue& v) {
       break;
     case FieldType::SFImage: {
       const vrml::SFImage& img = v.get<FieldType::SFImage>();
-      object(FieldType::SFImage);
+      duk_push_bare_object(c);
       putNumber(c, "x", img.width);
       putNumber(c, "y", img.height);
       putNumber(c, "comp", img.components);
       array(FieldType::MFInt32, img.pixels.size(),
             [&](std::size_t i) { duk_push_number(c, img.pixels[i]); });
       duk_put_prop_string(c, -2, "array");
+      finish(FieldType::SFImage);
       break;
     }
     case FieldType::SFInt32:
@@ -494,9 +498,7 @@ void EsScript::pushNode(duk_context* c, const vrml::NodePtr& n) {
     return;
   }
   auto id = static_cast<std::uint32_t>(nodes_.size());
-  duk_push_object(c);
-  pushProto(c, FieldType::SFNode);
-  duk_set_prototype(c, -2);
+  duk_push_bare_object(c);
   duk_push_uint(c, id);
   duk_put_prop_string(c, -2, kNodeIdKey);
   const vrml::NodeType& type = n->type();
@@ -516,6 +518,8 @@ void EsScript::pushNode(duk_context* c, const vrml::NodePtr& n) {
       define(spec.name + "_changed", i);
     }
   }
+  pushProto(c, FieldType::SFNode);
+  duk_set_prototype(c, -2);
   duk_push_heapptr(c, nodeCache_);
   duk_dup(c, -2);
   duk_put_prop_index(c, -2, id);

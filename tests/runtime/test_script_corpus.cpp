@@ -8,9 +8,9 @@
 
 using namespace gs;
 using namespace gs::test;
+using Catch::Detail::Approx;
 using vrml::FieldType;
 using vrml::FieldValue;
-using Catch::Detail::Approx;
 
 namespace {
 
@@ -155,8 +155,8 @@ TEST_CASE("FreeWRL Javascript_tests: MF types and routes", "[script][corpus]") {
     s.w.instance->initialize(0.0);
     CHECK(s.one<FieldType::MFColor>("newOrit") ==
           std::vector<glm::vec3>{{0, 0, 0}, {0, 0.5f, 0.5f}, {0, 1, 1}});
-    s.in("leftBoxChanged", FieldValue::make<FieldType::MFColor>(
-                               std::vector<glm::vec3>{{0, 0.5f, 0.25f}, {1, 1, 1}}));
+    s.in("leftBoxChanged",
+         FieldValue::make<FieldType::MFColor>(std::vector<glm::vec3>{{0, 0.5f, 0.25f}, {1, 1, 1}}));
     CHECK(s.one<FieldType::MFColor>("rightOrit") ==
           std::vector<glm::vec3>{{0.25f, 0.5f, 0}, {1, 1, 0}});
   }
@@ -164,8 +164,7 @@ TEST_CASE("FreeWRL Javascript_tests: MF types and routes", "[script][corpus]") {
     CorpusScript s("MFRotation.wrl");
     s.in("leftBoxChanged",
          FieldValue::make<FieldType::MFRotation>(std::vector<vrml::Rotation>{{1, 0, 0, 1}}));
-    CHECK(s.one<FieldType::MFRotation>("rightOrit") ==
-          std::vector<vrml::Rotation>{{1, 0, 1, 1}});
+    CHECK(s.one<FieldType::MFRotation>("rightOrit") == std::vector<vrml::Rotation>{{1, 0, 1, 1}});
     for (int i = 0; i < 200; ++i) s.w.instance->eventsProcessed(i);
     auto orit = s.one<FieldType::MFRotation>("newOrit");
     REQUIRE(orit.size() == 3);
@@ -179,9 +178,9 @@ TEST_CASE("FreeWRL Javascript_tests: MF types and routes", "[script][corpus]") {
   SECTION("addDelRoute: deleteRoute then addRoute") {
     CorpusScript s("addDelRoute.wrl");
     for (int i = 0; i < 400; ++i) s.w.instance->eventsProcessed(i);
-    CHECK(s.ctx.routes == std::vector<std::string>{
-                              "delete Clock.fraction_changed ColumnPath.set_fraction",
-                              "add Clock.fraction_changed ColumnPath.set_fraction"});
+    CHECK(s.ctx.routes ==
+          std::vector<std::string>{"delete Clock.fraction_changed ColumnPath.set_fraction",
+                                   "add Clock.fraction_changed ColumnPath.set_fraction"});
     CHECK(s.ctx.diagnostics.empty());
   }
 }

@@ -200,3 +200,33 @@ TEST_CASE("hostile Script: endless global code and a tiny memory limit", "[scrip
     CHECK_THAT(ctx.diagnostics.back().message, Catch::Contains("not shown"));
   }
 }
+
+TEST_CASE("hostile Script: setters on Object.prototype do not reach the host's objects",
+          "[script][hostile]") {
+  FakeScriptContext ctx;
+  std::string world = R"(#VRML V2.0 utf8
+DEF T Transform {}
+DEF S Script {
+  field SFNode t USE T
+  eventIn SFVec3f p
+  eventOut SFFloat out
+  eventOut SFBool same
+  url "javascript:
+    function initialize() {
+      var trap = { set: function (v) { throw new Error('trap'); }, get: function () { return 99; } };
+      Object.defineProperty(Object.prototype, 'x', trap);
+      Object.defineProperty(Object.prototype, '0', trap);
+      Object.defineProperty(Array.prototype, '0', trap);
+    }
+    function p(v, ts) { out = v.x + v[1]; same = t === t; }"
+}
+)";
+  ScriptWorld w = loadScript(ctx, world, smallLimits());
+  REQUIRE(w.instance);
+  w.instance->initialize(0.0);
+  w.instance->eventIn(w.field("p"), FieldValue::make<FieldType::SFVec3f>(glm::vec3(1, 2, 3)), 1.0);
+  INFO(ctx.diagnosticText());
+  CHECK(ctx.diagnostics.empty());
+  CHECK(ctx.emittedFor(*w.script, "out").at(0).get<FieldType::SFFloat>() == 3.0f);
+  CHECK(ctx.emittedFor(*w.script, "same").at(0).get<FieldType::SFBool>());
+}
