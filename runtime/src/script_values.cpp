@@ -381,14 +381,17 @@ bool EsScript::toMF(duk_context* c, duk_idx_t idx, FieldType t, FieldValue& out,
   if (duk_is_null_or_undefined(c, idx)) return true;  // empty
   bool list = duk_is_array(c, idx) != 0;
   duk_size_t n = list ? duk_get_length(c, idx) : 1;
-  std::size_t maxElements = std::max<std::size_t>(1024, limits_.heapBytes / 8);
-  if (n > maxElements) {
-    why = std::string(vrml::fieldTypeName(t)) + " of " + std::to_string(n) +
-          " values is larger than the Script's limit of " + std::to_string(maxElements);
-    return false;
-  }
   auto fill = [&](auto& vec, auto tag) {
     constexpr FieldType ST = decltype(tag)::value;
+    // The value lives outside the Script's heap: at most as many bytes as the heap's limit
+    // (a Script's array of holes costs it almost nothing).
+    using Element = typename std::decay_t<decltype(vec)>::value_type;
+    std::size_t maxElements = std::max<std::size_t>(1024, limits_.heapBytes / sizeof(Element));
+    if (n > maxElements) {
+      why = std::string(vrml::fieldTypeName(t)) + " of " + std::to_string(n) +
+            " values is larger than the Script's limit of " + std::to_string(maxElements);
+      return false;
+    }
     vec.reserve(n);
     FieldValue e;
     for (duk_size_t i = 0; i < n; ++i) {

@@ -513,3 +513,31 @@ TEST_CASE("Script: exposedField-like use and eventIns without a function", "[scr
   CHECK(ctx.printed.size() == 1);
   CHECK(ctx.diagnostics.size() == 2);
 }
+
+TEST_CASE("Script: Browser.createVrmlFromURL sends the nodes to the node's eventIn", "[script]") {
+  FakeScriptContext ctx;
+  ctx.files["part.wrl"] = "#VRML V2.0 utf8\nBox { size 2 2 2 }\n";
+  std::string world = R"(#VRML V2.0 utf8
+DEF G Group {}
+DEF S Script {
+  field SFNode g USE G
+  url "javascript:
+    function initialize() {
+      Browser.createVrmlFromURL(new MFString('missing.wrl', 'part.wrl'), g, 'addChildren');
+    }"
+}
+)";
+  ScriptWorld w = loadScript(ctx, world);
+  REQUIRE(w.instance);
+  w.instance->initialize(0.0);
+  INFO(ctx.diagnosticText());
+  REQUIRE(ctx.sent.size() == 1);
+  CHECK(ctx.sent[0].node == w.scene.rootNodes[0].get());
+  CHECK(ctx.sent[0].field == w.scene.rootNodes[0]->type().findExact("addChildren"));
+  const auto& nodes = ctx.sent[0].value.get<FieldType::MFNode>();
+  REQUIRE(nodes.size() == 1);
+  CHECK(nodes[0]->typeName() == "Box");
+  REQUIRE(ctx.diagnostics.size() == 1);
+  CHECK(ctx.diagnostics[0].severity == vrml::Severity::warning);
+  CHECK_THAT(ctx.diagnostics[0].message, Catch::Contains("missing.wrl"));
+}
