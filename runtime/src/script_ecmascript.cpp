@@ -4,6 +4,7 @@
 // allocator, native stack depth through DUK_USE_NATIVE_STACK_CHECK; cmake/Duktape.cmake).
 #include "script_ecmascript_internal.hpp"
 
+#include <pthread.h>
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -16,26 +17,55 @@ using gs::runtime::es::HeapGuard;
 
 // ---- Native stack: deep C recursion inside Duktape ends with a RangeError ----
 
-// Stack address where the outermost call into Duktape on this thread started.
-thread_local const char* tStackBase = nullptr;
+// Duktape limits its C recursion by depth (1000 native calls), not by bytes: getters
+// calling getters overflow an 8 MiB stack long before that (sanitizer builds sooner).
+// DUK_USE_NATIVE_STACK_CHECK calls gs_duk_native_stack_check at each recursion point; it
+// fails below tStackLimit: `kStackBudget` bytes under the outermost entry into Duktape on
+// this thread, and never closer than `kStackReserve` to the end of the thread's stack.
 #if defined(__SANITIZE_ADDRESS__)
-constexpr std::ptrdiff_t kStackBudget = 3 << 20;  // sanitizer frames are several times larger
+constexpr std::uintptr_t kStackBudget = 3u << 20;  // sanitizer frames are several times larger
+constexpr std::uintptr_t kStackReserve = 1u << 20;
 #else
-constexpr std::ptrdiff_t kStackBudget = 1 << 20;
+constexpr std::uintptr_t kStackBudget = 1u << 20;
+constexpr std::uintptr_t kStackReserve = 256u << 10;
 #endif
+thread_local std::uintptr_t tStackLimit = 0;  // 0: not inside Duktape
 
-const char* stackHere() {
-  return static_cast<const char*>(__builtin_frame_address(0));
+std::uintptr_t stackHere() {
+  return reinterpret_cast<std::uintptr_t>(__builtin_frame_address(0));
+}
+
+// The lowest address of this thread's stack (0 if unknown).
+std::uintptr_t threadStackLow() {
+  thread_local std::uintptr_t low = [] {
+    std::uintptr_t result = 0;
+    pthread_attr_t attr;
+    if (pthread_getattr_np(pthread_self(), &attr) == 0) {
+      void* addr = nullptr;
+      std::size_t size = 0;
+      if (pthread_attr_getstack(&attr, &addr, &size) == 0)
+        result = reinterpret_cast<std::uintptr_t>(addr);
+      pthread_attr_destroy(&attr);
+    }
+    return result;
+  }();
+  return low;
 }
 
 /// Marks the outermost entry into Duktape on this thread.
 class StackScope {
  public:
-  StackScope() : outer_(tStackBase == nullptr) {
-    if (outer_) tStackBase = stackHere();
+  StackScope() : outer_(tStackLimit == 0) {
+    if (!outer_) return;
+    std::uintptr_t here = stackHere();
+    std::uintptr_t limit = here > kStackBudget ? here - kStackBudget : 1;
+    std::uintptr_t low = threadStackLow();
+    if (low != 0 && low < here && limit < low + kStackReserve)
+      limit = std::min(here, low + kStackReserve);
+    tStackLimit = limit;
   }
   ~StackScope() {
-    if (outer_) tStackBase = nullptr;
+    if (outer_) tStackLimit = 0;
   }
   StackScope(const StackScope&) = delete;
   StackScope& operator=(const StackScope&) = delete;
@@ -148,7 +178,7 @@ int gs_duk_exec_timeout_check(void* udata) {
 }
 
 int gs_duk_native_stack_check(void) {
-  return (tStackBase != nullptr && tStackBase - stackHere() > kStackBudget) ? 1 : 0;
+  return (tStackLimit != 0 && stackHere() < tStackLimit) ? 1 : 0;
 }
 
 namespace gs::runtime {

@@ -5,6 +5,8 @@
 
 #include <chrono>
 
+#include <pthread.h>
+
 using namespace gs;
 using namespace gs::test;
 using vrml::FieldType;
@@ -229,4 +231,59 @@ DEF S Script {
   CHECK(ctx.diagnostics.empty());
   CHECK(ctx.emittedFor(*w.script, "out").at(0).get<FieldType::SFFloat>() == 3.0f);
   CHECK(ctx.emittedFor(*w.script, "same").at(0).get<FieldType::SFBool>());
+}
+
+namespace {
+
+struct ThreadRun {
+  std::vector<vrml::Diagnostic> diagnostics;
+  std::vector<std::string> printed;
+  bool made = false;
+};
+
+void* runOnSmallStack(void* arg) {
+  auto& r = *static_cast<ThreadRun*>(arg);
+  FakeScriptContext ctx;
+  vrml::Scene scene = vrml::parseVrml(
+      scriptWorld(
+          "eventIn SFFloat go",
+          "function go(v) {\n"
+          "  var o = {}; Object.defineProperty(o, 'a', { get: function () { return this.a; } });\n"
+          "  try { o.a; } catch (e) { print('caught ' + e.name); }\n"
+          "  print('still running');\n"
+          "  o.a;\n"
+          "}"),
+      "thread.wrl");
+  vrml::NodePtr script = findScript(scene.rootNodes);
+  if (script) {
+    runtime::ScriptLimits limits;
+    limits.callSeconds = 5;
+    auto instance = runtime::ecmascriptFactory()(*script, ctx, limits);
+    if (instance) {
+      r.made = true;
+      instance->eventIn(script->type().findExact("go"), FieldValue::make<FieldType::SFFloat>(1.0f),
+                        1.0);
+    }
+  }
+  r.diagnostics = ctx.diagnostics;
+  r.printed = ctx.printed;
+  return nullptr;
+}
+
+}  // namespace
+
+TEST_CASE("hostile Script: C recursion on a thread with a small stack", "[script][hostile]") {
+  ThreadRun r;
+  pthread_attr_t attr;
+  REQUIRE(pthread_attr_init(&attr) == 0);
+  REQUIRE(pthread_attr_setstacksize(&attr, 2u << 20) == 0);
+  pthread_t thread;
+  REQUIRE(pthread_create(&thread, &attr, runOnSmallStack, &r) == 0);
+  pthread_join(thread, nullptr);
+  pthread_attr_destroy(&attr);
+  REQUIRE(r.made);
+  CHECK(r.printed == std::vector<std::string>{"caught RangeError", "still running"});
+  REQUIRE(r.diagnostics.size() == 1);
+  CHECK_THAT(r.diagnostics[0].message,
+             Catch::Contains("RangeError") && Catch::Contains("line 3"));  // the getter's line
 }
