@@ -6,6 +6,7 @@
 
 #include <pthread.h>
 #include <algorithm>
+#include <cassert>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -538,7 +539,10 @@ duk_ret_t EsScript::callTrampoline(duk_context* c, void* udata) {
 
 void EsScript::reportError(const char* what) {
   // The error is at the stack top.
-  if (++errorCount_ > kMaxReportedErrors) return;
+  if (++errorCount_ > kMaxReportedErrors) {
+    duk_pop(duk_);
+    return;
+  }
   std::string message;
   Call call;
   call.self = this;
@@ -600,7 +604,10 @@ bool EsScript::run(const char* fn, const vrml::FieldValue* arg, double timestamp
       duk_pop(duk_);
   }
   --depth_;
-  if (outer) guard_->active = false;
+  if (outer) {
+    guard_->active = false;
+    assert(duk_get_top(duk_) == 0 && "a call left values on the Duktape stack");
+  }
   if (guard_->timedOut) {
     char buf[64];
     std::snprintf(buf, sizeof buf, "%g s", limits_.callSeconds);
