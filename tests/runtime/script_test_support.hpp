@@ -7,6 +7,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -37,8 +38,12 @@ struct FakeScriptContext : runtime::ScriptContext {
     script.setField(static_cast<std::size_t>(field), value);
     emitted.push_back({&script, field, std::move(value)});
   }
+  /// Called by sendEvent when set (a browser that delivers events at once).
+  std::function<void(vrml::Node&, int, const vrml::FieldValue&)> onSend;
+
   void sendEvent(vrml::Node& node, int field, vrml::FieldValue value) override {
-    sent.push_back({&node, field, std::move(value)});
+    sent.push_back({&node, field, value});
+    if (onSend) onSend(node, field, value);
   }
   double now() const override { return time; }
   double frameRate() const override { return fps; }

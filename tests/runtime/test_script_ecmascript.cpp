@@ -541,3 +541,29 @@ DEF S Script {
   CHECK(ctx.diagnostics[0].severity == vrml::Severity::warning);
   CHECK_THAT(ctx.diagnostics[0].message, Catch::Contains("missing.wrl"));
 }
+
+TEST_CASE("Script: an event sent to itself during a call re-enters it safely", "[script]") {
+  FakeScriptContext ctx;
+  std::string world = R"(#VRML V2.0 utf8
+DEF S Script {
+  field SFNode self USE S
+  eventIn SFFloat a
+  eventIn SFFloat b
+  eventOut SFFloat outA
+  eventOut SFFloat outB
+  url "javascript:
+    function a(v, t) { self.b = v + 1; outA = v; }
+    function b(v, t) { outB = v * 10; }"
+}
+)";
+  ScriptWorld w = loadScript(ctx, world);
+  REQUIRE(w.instance);
+  ctx.onSend = [&](vrml::Node& node, int field, const FieldValue& v) {
+    if (&node == w.script.get()) w.instance->eventIn(field, v, 1.0);
+  };
+  w.instance->eventIn(w.field("a"), sfFloat(1.0f), 1.0);
+  INFO(ctx.diagnosticText());
+  CHECK(ctx.diagnostics.empty());
+  CHECK(ctx.emittedFor(*w.script, "outA").at(0).get<FieldType::SFFloat>() == 1.0f);
+  CHECK(ctx.emittedFor(*w.script, "outB").at(0).get<FieldType::SFFloat>() == 20.0f);
+}
