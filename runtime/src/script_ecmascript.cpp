@@ -206,6 +206,7 @@ struct EsScript::Call {
 
 EsScript::EsScript(vrml::Node& node, ScriptContext& ctx, const ScriptLimits& limits)
     : node_(node), ctx_(ctx), limits_(limits), guard_(std::make_unique<HeapGuard>()) {
+  guard_->self = this;
   std::size_t n = node_.fieldCount();
   dirty_.assign(n, 0);
   touched_.assign(n, 0);
@@ -229,11 +230,9 @@ void EsScript::destroyHeap() {
 }
 
 EsScript& EsScript::of(duk_context* c) {
-  duk_push_heap_stash(c);
-  duk_get_prop_string(c, -1, "gsSelf");
-  auto* self = static_cast<EsScript*>(duk_get_pointer(c, -1));
-  duk_pop_2(c);
-  return *self;
+  duk_memory_functions funcs;
+  duk_get_memory_functions(c, &funcs);
+  return *static_cast<HeapGuard*>(funcs.udata)->self;
 }
 
 std::string EsScript::name() const {
@@ -363,8 +362,6 @@ bool EsScript::load() {
     static duk_ret_t run(duk_context* c, void* udata) {
       EsScript& s = *static_cast<Setup*>(udata)->self;
       duk_push_heap_stash(c);
-      duk_push_pointer(c, &s);
-      duk_put_prop_string(c, -2, "gsSelf");
       duk_push_bare_array(c);
       duk_put_prop_string(c, -2, "gsKeep");
       duk_pop(c);

@@ -22,11 +22,14 @@ extern const char* const kPrelude;
 
 /// Per-heap accounting shared with Duktape's allocator and interrupt hooks (the heap's
 /// udata).
+class EsScript;
+
 struct HeapGuard {
-  std::size_t used = 0;  // bytes allocated by the heap (block headers included)
-  std::size_t cap = 0;   // ScriptLimits::heapBytes
-  bool overCap = false;  // an allocation was refused for the cap
-  bool active = false;   // a call is running: the deadline applies
+  EsScript* self = nullptr;  // the instance owning the heap (EsScript::of)
+  std::size_t used = 0;      // bytes allocated by the heap (block headers included)
+  std::size_t cap = 0;       // ScriptLimits::heapBytes
+  bool overCap = false;      // an allocation was refused for the cap
+  bool active = false;       // a call is running: the deadline applies
   bool timedOut = false;
   std::chrono::steady_clock::time_point deadline;
   unsigned allocTick = 0;
