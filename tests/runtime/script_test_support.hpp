@@ -130,10 +130,18 @@ inline vrml::NodePtr findScript(const std::vector<vrml::NodePtr>& nodes) {
   return nullptr;
 }
 
+/// Limits for tests that do not test the time limit: a call may take long on a loaded
+/// machine under the sanitizers.
+inline runtime::ScriptLimits relaxedLimits() {
+  runtime::ScriptLimits l;
+  l.callSeconds = 30;
+  return l;
+}
+
 /// Parses `vrml` (a whole file, header included) named `url` and makes the instance of
 /// its Script with `limits`.
 inline ScriptWorld loadScript(FakeScriptContext& ctx, const std::string& vrml,
-                              runtime::ScriptLimits limits = {},
+                              runtime::ScriptLimits limits = relaxedLimits(),
                               const std::string& url = "test.wrl") {
   ScriptWorld w;
   w.scene = vrml::parseVrml(vrml, url);
