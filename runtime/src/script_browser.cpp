@@ -1,0 +1,229 @@
+// The Browser object of annex C.6.1 (ISO/IEC 14772-1) and the global print(): thin
+// calls into ScriptContext, with their arguments converted to VRML values.
+#include "script_ecmascript_internal.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+#ifndef GS_VERSION
+#define GS_VERSION "0"
+#endif
+
+namespace gs::runtime::es {
+
+using vrml::FieldType;
+using vrml::FieldValue;
+
+namespace {
+
+constexpr std::size_t kMaxPrint = 16384;  // bytes of one print() line
+
+std::string stringArg(duk_context* c, duk_idx_t idx) {
+  duk_size_t len = 0;
+  const char* s = duk_to_lstring(c, idx, &len);
+  return std::string(s, len);
+}
+
+duk_ret_t print(duk_context* c) {
+  EsScript& self = EsScript::of(c);
+  std::string line;
+  duk_idx_t n = duk_get_top(c);
+  for (duk_idx_t i = 0; i < n && line.size() < kMaxPrint; ++i) {
+    if (i > 0) line += ' ';
+    line += stringArg(c, i);
+  }
+  if (line.size() > kMaxPrint) {
+    line.resize(kMaxPrint);
+    line += "...";
+  }
+  self.context().print(line);
+  return 0;
+}
+
+duk_ret_t getName(duk_context* c) {
+  duk_push_string(c, "GhostSpace");
+  return 1;
+}
+
+duk_ret_t getVersion(duk_context* c) {
+  duk_push_string(c, GS_VERSION);
+  return 1;
+}
+
+duk_ret_t getCurrentTime(duk_context* c) {
+  duk_push_number(c, EsScript::of(c).context().now());
+  return 1;
+}
+
+duk_ret_t getCurrentFrameRate(duk_context* c) {
+  duk_push_number(c, EsScript::of(c).context().frameRate());
+  return 1;
+}
+
+duk_ret_t getCurrentSpeed(duk_context* c) {
+  duk_push_number(c, 0.0);  // the viewer's speed is not known to the runtime
+  return 1;
+}
+
+duk_ret_t getWorldURL(duk_context* c) {
+  std::string url = EsScript::of(c).context().worldUrl();
+  duk_push_lstring(c, url.data(), url.size());
+  return 1;
+}
+
+std::vector<vrml::NodePtr> nodesArg(EsScript& self, duk_context* c, duk_idx_t idx,
+                                    const char* what) {
+  FieldValue v = self.requireValue(c, idx, FieldType::MFNode, what);
+  return std::move(v.get<FieldType::MFNode>());
+}
+
+std::vector<std::string> stringsArg(EsScript& self, duk_context* c, duk_idx_t idx,
+                                    const char* what) {
+  FieldValue v = self.requireValue(c, idx, FieldType::MFString, what);
+  return std::move(v.get<FieldType::MFString>());
+}
+
+duk_ret_t replaceWorld(duk_context* c) {
+  EsScript& self = EsScript::of(c);
+  self.context().replaceWorld(nodesArg(self, c, 0, "Browser.replaceWorld"));
+  return 0;
+}
+
+// Longest text for createVrmlFromString / createVrmlFromURL: the nodes it makes live
+// outside the Script's heap, so the text is bounded by the heap's limit.
+std::size_t maxVrmlText(std::size_t heapBytes) {
+  return std::max<std::size_t>(65536, heapBytes / 64);
+}
+
+duk_ret_t createVrmlFromString(duk_context* c) {
+  EsScript& self = EsScript::of(c);
+  std::string text = stringArg(c, 0);
+  std::size_t max = maxVrmlText(self.limits().heapBytes);
+  if (text.size() > max)
+    GS_DUK_ERROR(c, DUK_ERR_RANGE_ERROR,
+                 "Browser.createVrmlFromString: the text is longer than %lu bytes",
+                 static_cast<unsigned long>(max));
+  FieldValue nodes = FieldValue::make<FieldType::MFNode>(self.context().createVrmlFromString(text));
+  self.pushValue(c, nodes);
+  return 1;
+}
+
+// createVrmlFromURL(url, node, event): reads the first url entry that can be read, parses
+// it and sends its root nodes to eventIn `event` of `node` (C.6.1; the standard lets this
+// happen later; here it happens during the call, as an event at the current timestamp).
+duk_ret_t createVrmlFromURL(duk_context* c) {
+  EsScript& self = EsScript::of(c);
+  std::vector<std::string> urls = stringsArg(self, c, 0, "Browser.createVrmlFromURL url");
+  FieldValue target = self.requireValue(c, 1, FieldType::SFNode, "Browser.createVrmlFromURL node");
+  std::string event = stringArg(c, 2);
+  vrml::NodePtr node = target.get<FieldType::SFNode>();
+  if (!node) GS_DUK_ERROR(c, DUK_ERR_TYPE_ERROR, "Browser.createVrmlFromURL: node is NULL");
+  int field = node->type().findField(event);
+  if (field < 0 || node->type().fields[static_cast<std::size_t>(field)].type != FieldType::MFNode ||
+      node->type().fields[static_cast<std::size_t>(field)].access == vrml::AccessType::field ||
+      node->type().fields[static_cast<std::size_t>(field)].access == vrml::AccessType::eventOut)
+    GS_DUK_ERROR(c, DUK_ERR_TYPE_ERROR, "Browser.createVrmlFromURL: %s has no MFNode eventIn '%s'",
+                 node->typeName().c_str(), event.c_str());
+  for (const std::string& url : urls) {
+    std::string text, error;
+    // Reading does not count against the call's time budget.
+    auto start = std::chrono::steady_clock::now();
+    bool ok = self.context().fetchText(url, text, error);
+    self.extendDeadline(std::chrono::steady_clock::now() - start);
+    if (!ok) {
+      self.warn("Browser.createVrmlFromURL: " +
+                (error.empty() ? "cannot read '" + url + "'" : error));
+      continue;
+    }
+    if (text.size() > maxVrmlText(self.limits().heapBytes)) {
+      self.warn("Browser.createVrmlFromURL: '" + url + "' is too large for a Script");
+      continue;
+    }
+    self.context().sendEvent(
+        *node, field,
+        FieldValue::make<FieldType::MFNode>(self.context().createVrmlFromString(text)));
+    return 0;
+  }
+  return 0;
+}
+
+duk_ret_t route(duk_context* c, bool add) {
+  EsScript& self = EsScript::of(c);
+  const char* what = add ? "Browser.addRoute" : "Browser.deleteRoute";
+  FieldValue from = self.requireValue(c, 0, FieldType::SFNode, what);
+  std::string eventOut = stringArg(c, 1);
+  FieldValue to = self.requireValue(c, 2, FieldType::SFNode, what);
+  std::string eventIn = stringArg(c, 3);
+  const vrml::NodePtr& a = from.get<FieldType::SFNode>();
+  const vrml::NodePtr& b = to.get<FieldType::SFNode>();
+  if (!a || !b) GS_DUK_ERROR(c, DUK_ERR_TYPE_ERROR, "%s: a node is NULL", what);
+  bool ok = add ? self.context().addRoute(a, eventOut, b, eventIn)
+                : self.context().deleteRoute(a, eventOut, b, eventIn);
+  duk_push_boolean(c, ok);
+  return 1;
+}
+
+duk_ret_t addRoute(duk_context* c) {
+  return route(c, true);
+}
+duk_ret_t deleteRoute(duk_context* c) {
+  return route(c, false);
+}
+
+duk_ret_t loadURL(duk_context* c) {
+  EsScript& self = EsScript::of(c);
+  std::vector<std::string> url = stringsArg(self, c, 0, "Browser.loadURL url");
+  std::vector<std::string> parameter;
+  if (!duk_is_undefined(c, 1)) parameter = stringsArg(self, c, 1, "Browser.loadURL parameter");
+  self.context().loadUrl(url, parameter);
+  return 0;
+}
+
+duk_ret_t setDescription(duk_context* c) {
+  EsScript& self = EsScript::of(c);
+  self.context().setDescription(stringArg(c, 0));
+  return 0;
+}
+
+}  // namespace
+
+void EsScript::installBrowser(duk_context* c) {
+  struct Entry {
+    const char* name;
+    duk_c_function fn;
+    duk_idx_t nargs;
+  };
+  static constexpr Entry kBrowser[] = {
+      {"getName", getName, 0},
+      {"getVersion", getVersion, 0},
+      {"getCurrentTime", getCurrentTime, 0},
+      {"getCurrentFrameRate", getCurrentFrameRate, 0},
+      {"getCurrentSpeed", getCurrentSpeed, 0},
+      {"getWorldURL", getWorldURL, 0},
+      {"replaceWorld", replaceWorld, 1},
+      {"createVrmlFromString", createVrmlFromString, 1},
+      {"createVrmlFromURL", createVrmlFromURL, 3},
+      {"addRoute", addRoute, 4},
+      {"deleteRoute", deleteRoute, 4},
+      {"loadURL", loadURL, 2},
+      {"setDescription", setDescription, 1},
+      {"print", print, DUK_VARARGS},
+  };
+  duk_push_global_object(c);
+  duk_push_object(c);
+  for (const Entry& e : kBrowser) {
+    duk_push_c_function(c, e.fn, e.nargs);
+    duk_put_prop_string(c, -2, e.name);
+  }
+  duk_put_prop_string(c, -2, "Browser");
+  // print(), and addRoute / deleteRoute without "Browser." as FreeWRL's tests use them.
+  duk_push_c_function(c, print, DUK_VARARGS);
+  duk_put_prop_string(c, -2, "print");
+  duk_push_c_function(c, addRoute, 4);
+  duk_put_prop_string(c, -2, "addRoute");
+  duk_push_c_function(c, deleteRoute, 4);
+  duk_put_prop_string(c, -2, "deleteRoute");
+  duk_pop(c);
+}
+
+}  // namespace gs::runtime::es

@@ -1,0 +1,154 @@
+// Internals of the ECMAScript Script host (runtime/script_ecmascript.hpp), shared by
+// script_ecmascript.cpp (instance, calls, limits), script_values.cpp (SF/MF values and
+// SFNode objects), script_browser.cpp (Browser object, print) and script_prelude.cpp.
+#pragma once
+
+#include "runtime/script_ecmascript.hpp"
+
+#include <duktape.h>
+
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace gs::runtime::es {
+
+/// The SF/MF classes and VrmlMatrix in ECMAScript (script_prelude.cpp).
+extern const char* const kPrelude;
+
+/// Per-heap accounting shared with Duktape's allocator and interrupt hooks (the heap's
+/// udata).
+class EsScript;
+
+struct HeapGuard {
+  EsScript* self = nullptr;  // the instance owning the heap (EsScript::of)
+  std::size_t used = 0;      // bytes allocated by the heap (block headers included)
+  std::size_t cap = 0;       // ScriptLimits::heapBytes
+  bool overCap = false;      // an allocation was refused for the cap
+  bool active = false;       // a call is running: the deadline applies
+  bool timedOut = false;
+  std::chrono::steady_clock::time_point deadline;
+  unsigned allocTick = 0;
+  /// True (and timedOut set) once the running call is past its deadline.
+  bool pastDeadline();
+};
+
+class EsScript final : public ScriptInstance {
+ public:
+  EsScript(vrml::Node& node, ScriptContext& ctx, const ScriptLimits& limits);
+  ~EsScript() override;
+  EsScript(const EsScript&) = delete;
+  EsScript& operator=(const EsScript&) = delete;
+
+  /// Creates the heap, installs the globals and runs the first url entry that compiles.
+  /// False (after diagnostics) when no entry could run.
+  bool load();
+
+  void initialize(double timestamp) override;
+  void eventIn(int field, const vrml::FieldValue& value, double timestamp) override;
+  void eventsProcessed(double timestamp) override;
+  void shutdown(double timestamp) override;
+  bool stopped() const override { return stopped_; }
+
+  // ---- for the native functions ----
+  static EsScript& of(duk_context* c);
+  ScriptContext& context() { return ctx_; }
+  const ScriptLimits& limits() const { return limits_; }
+  /// Moves the running call's deadline by `d` (time spent waiting for the browser).
+  void extendDeadline(std::chrono::steady_clock::duration d) { guard_->deadline += d; }
+  vrml::Node& node() { return node_; }
+  duk_context* heap() { return duk_; }
+  /// Throws a RangeError when the running call is past its deadline (long native loops).
+  void checkDeadline(duk_context* c);
+  /// "Script 'NAME'" for messages.
+  std::string name() const;
+  void warn(const std::string& message);
+
+  // ---- values (script_values.cpp) ----
+  /// Pushes `v` as an ECMAScript value (numbers, strings, booleans, SF/MF objects).
+  void pushValue(duk_context* c, const vrml::FieldValue& v);
+  /// Converts the value at `idx` to type `t`; false with `why` when it cannot.
+  bool toValue(duk_context* c, duk_idx_t idx, vrml::FieldType t, vrml::FieldValue& out,
+               std::string& why);
+  /// Like toValue, but throws a TypeError naming `what` when it cannot.
+  vrml::FieldValue requireValue(duk_context* c, duk_idx_t idx, vrml::FieldType t, const char* what);
+  /// Pushes the SFNode object of `n` (one object per node; null for a null pointer).
+  void pushNode(duk_context* c, const vrml::NodePtr& n);
+  /// The node of the SFNode object at `idx`; null (and `isNode` false) if it is none.
+  vrml::NodePtr nodeAt(duk_context* c, duk_idx_t idx, bool* isNode = nullptr);
+  /// Installs the SFNode hooks the prelude uses (__gsNodeFromString, __gsNodeName).
+  void installNodeHooks(duk_context* c);
+  /// After the prelude ran: remembers the prototypes of the SF/MF classes.
+  void capturePrototypes(duk_context* c);
+
+  // ---- Browser object and print (script_browser.cpp) ----
+  void installBrowser(duk_context* c);
+
+ private:
+  struct Call;
+  friend struct Call;
+  static duk_ret_t callTrampoline(duk_context* c, void* udata);
+
+  void installFields(duk_context* c);
+  /// Runs `fn` (a function name, or null for the global code in `source_`) with `arg`
+  /// and `timestamp` under the limits, then sends the eventOuts it assigned. False when
+  /// there was no such function.
+  bool run(const char* fn, const vrml::FieldValue* arg, double timestamp, const char* what,
+           bool sendEvents, const char* fallback = nullptr, int storeField = -1);
+  /// Reports the error on the stack top (then pops it).
+  void reportError(const char* what);
+  /// Stops the Script after a limit: a diagnostic, and the heap is freed when no call is
+  /// running.
+  void stop(const std::string& why);
+  void destroyHeap();
+
+  static duk_ret_t fieldGetter(duk_context* c);
+  static duk_ret_t fieldSetter(duk_context* c);
+  static duk_ret_t nodeFieldGetter(duk_context* c);
+  static duk_ret_t nodeFieldSetter(duk_context* c);
+  void pushAccessor(duk_context* c, std::vector<void*>& cache, std::size_t index, duk_c_function fn,
+                    duk_idx_t nargs);
+  void pushProto(duk_context* c, vrml::FieldType t);
+  bool toMF(duk_context* c, duk_idx_t idx, vrml::FieldType t, vrml::FieldValue& out,
+            std::string& why);
+
+  vrml::Node& node_;
+  ScriptContext& ctx_;
+  ScriptLimits limits_;
+  std::unique_ptr<HeapGuard> guard_;
+  duk_context* duk_ = nullptr;
+  bool stopped_ = false;
+  bool loadFailed_ = false;               // the url entry being loaded did not compile
+  int errorCount_ = 0;                    // errors reported (past a few, no more are)
+  int depth_ = 0;                         // nested calls (a native sending an event that re-enters)
+  std::string source_;                    // the Script's code
+  std::string sourceName_;                // "javascript:" or the URL it came from
+  std::vector<void*> protos_;             // heap pointers of the SF/MF prototypes, by FieldType
+  void* fieldStore_ = nullptr;            // array holding the Script's field values, by index
+  void* nodeCache_ = nullptr;             // object: node id -> its SFNode object
+  std::vector<char> dirty_;               // eventOut assigned in this call
+  std::vector<char> touched_;             // eventOut read in this call (may be changed in place)
+  std::vector<int> changed_;              // indexes dirty or touched in this call
+  std::vector<vrml::FieldValue> last_;    // value each eventOut had when last sent/seen
+  std::vector<void*> getters_, setters_;  // Script field accessors (by index)
+  std::vector<void*> nodeGetters_, nodeSetters_;  // SFNode field accessors (by index)
+  std::vector<vrml::NodePtr> nodes_;              // SFNode objects' nodes, by id
+  std::unordered_map<const vrml::Node*, std::uint32_t> nodeIds_;
+  std::vector<char> warnedMissing_;  // eventIn without a function: warned once
+};
+
+/// Throws an ECMAScript error from a native function, blamed on the Script's line that
+/// called it (duk_error would blame the C++ source line: DUK_ERRCODE_FLAG_NOBLAME_FILELINE,
+/// internal to duktape.c, is 1 << 24).
+inline constexpr duk_errcode_t kNoBlameFileLine = 1L << 24;
+#define GS_DUK_ERROR(c, code, ...) \
+  duk_error_raw((c), (code) | ::gs::runtime::es::kNoBlameFileLine, nullptr, 0, __VA_ARGS__)
+
+/// Hidden property of an SFNode object holding its node id.
+inline constexpr const char* kNodeIdKey = DUK_HIDDEN_SYMBOL("gsNode");
+
+}  // namespace gs::runtime::es
