@@ -144,6 +144,17 @@ Parsed parseArguments(int argc, char** argv) {
   cli.add_option("--trace-events", o.time.traceFile,
                  "Write every event as a JSON line (time, node, field, value) to FILE")
       ->type_name("FILE");
+  bool noScripts = false;
+  cli.add_flag("--no-scripts", noScripts, "Script nodes do not run");
+  cli.add_option("--script-time-limit", o.time.scriptLimits.callSeconds,
+                 "Seconds one Script call may run before the Script is stopped (default 0.5)")
+      ->type_name("S")
+      ->check(CLI::PositiveNumber);
+  double scriptMegabytes = static_cast<double>(o.time.scriptLimits.heapBytes) / 1048576.0;
+  cli.add_option("--script-memory-limit", scriptMegabytes,
+                 "Megabytes one Script's heap may use before it is stopped (default 64)")
+      ->type_name("MB")
+      ->check(CLI::Range(1.0, 65536.0));
   bool noProgressBar = false;
   cli.add_flag("--no-progress", noProgressBar, "No progress bar on the terminal");
   cli.add_option("INPUT", o.inputs,
@@ -254,6 +265,8 @@ Parsed parseArguments(int argc, char** argv) {
     o.lod = o.lods.front();
   }
   o.progress = !noProgressBar;
+  o.time.scripts = !noScripts;
+  o.time.scriptLimits.heapBytes = static_cast<std::size_t>(scriptMegabytes * 1048576.0);
   if (!timeText.empty() && !parseTimeOption(timeText, o.time)) {
     std::fprintf(stderr,
                  "ghostspace: --time: expected seconds T >= 0 or T0:DT:N (DT > 0, N >= 1), "

@@ -148,8 +148,12 @@ int runSnapshot(const Options& options) {
   // Life (docs/runtime.md): each world is loaded at --time T (0 by default) and moved
   // through T0 + i * DT at the fixed --time-step, so a frame's pixels depend on the
   // command alone.
-  WorldRuntimes runtimes(options.time);
-  const TimeOptions& time = options.time;
+  WorldRuntimes runtimes(options.time,
+                         [&session](const std::string& url, const std::string& referrer,
+                                    std::string& bytes, std::string& error) {
+                           return session.loader().fetchWhole(url, referrer, bytes, error, 10.0);
+                         });
+  const RuntimeOptions& time = options.time;
   for (View& v : views) {
     runtimes.of(v.scene, time.start);
     runtimes.addInlines(v.scene.get(), v.renderer->traversal());

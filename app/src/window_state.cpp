@@ -147,7 +147,11 @@ void WindowState::setNavigation(render::NavigationMode mode) {
 
 void WindowState::updateRuntimes() {
   if (!runtimes) {
-    runtimes = std::make_unique<WorldRuntimes>(time);
+    runtimes = std::make_unique<WorldRuntimes>(
+        time, [this](const std::string& url, const std::string& referrer, std::string& bytes,
+                     std::string& error) {
+          return session->loader().fetchWhole(url, referrer, bytes, error, 10.0);
+        });
     clockOffset = time.set ? time.start - runtime::wallClockSeconds() : 0.0;
     runtimes->setLinkHandler([this](const vrml::Scene& scene, const std::vector<std::string>& url,
                                     const std::vector<std::string>& parameter) {

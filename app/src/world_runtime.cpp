@@ -1,5 +1,6 @@
 #include "app/world_runtime.hpp"
 
+#include "runtime/script_ecmascript.hpp"
 #include "runtime/trace.hpp"
 
 #include <cerrno>
@@ -31,9 +32,9 @@ runtime::ViewerPose viewerPose(const render::Camera& camera, float aspect) {
   return v;
 }
 
-bool parseTimeOption(const std::string& text, TimeOptions& out) {
+bool parseTimeOption(const std::string& text, RuntimeOptions& out) {
   const std::size_t a = text.find(':');
-  TimeOptions t = out;
+  RuntimeOptions t = out;
   if (a == std::string::npos) {
     if (!parseNumber(text, t.start) || t.start < 0.0) return false;
     t.interval = 0.0;
@@ -65,7 +66,8 @@ std::string framePath(const std::string& path, int frame, int frames) {
   return path.substr(0, dot) + suffix + path.substr(dot);
 }
 
-WorldRuntimes::WorldRuntimes(const TimeOptions& options) : options_(options) {
+WorldRuntimes::WorldRuntimes(const RuntimeOptions& options, FetchWhole fetch)
+    : options_(options), fetch_(std::move(fetch)) {
   if (!options_.traceFile.empty()) {
     trace_ = std::fopen(options_.traceFile.c_str(), "w");
     if (trace_ == nullptr)
@@ -103,6 +105,14 @@ runtime::ExecutionModel& WorldRuntimes::of(const std::shared_ptr<const vrml::Sce
       for (const std::string& p : parameter) line += " \"" + p + "\"";
       std::fprintf(stderr, "%s\n", line.c_str());
     };
+    if (options_.scripts) o.scripts = runtime::ecmascriptFactory();
+    o.scriptLimits = options_.scriptLimits;
+    if (fetch_)
+      o.fetchText = [fetch = fetch_, world = scene.get()](const std::string& url, std::string& text,
+                                                          std::string& error) {
+        // Relative to the world's URL (after redirects), under the loader's rules.
+        return fetch(render::resolveUrl(world->url, url), world->url, text, error);
+      };
     e.model = std::make_unique<runtime::ExecutionModel>(scene, time, std::move(o));
   }
   return *e.model;

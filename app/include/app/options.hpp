@@ -50,7 +50,7 @@ struct Options {
   double snapshotAtSeconds = 0.0;     // 0: not set
   bool progress = true;               // --no-progress: no progress bar on the terminal
   double stallTimeout = 20.0;         // --stall-timeout S: a transfer silent this long fails
-  TimeOptions time;                   // --time, --time-step, --trace-events
+  RuntimeOptions time;                // --time, --time-step, --trace-events
   EncodeOptions encode;
 };
 

@@ -79,7 +79,7 @@ struct WindowState {
   render::SceneRendererOptions rendererOptions;
   /// --time, --time-step, --trace-events: the window's clock starts at time.start when
   /// time.set, else at the wall clock (docs/runtime.md).
-  TimeOptions time;
+  RuntimeOptions time;
   /// The execution model of every world opened, made on the first update().
   std::unique_ptr<WorldRuntimes> runtimes;
   double clockOffset = 0.0;  // world time = wallClockSeconds() + clockOffset

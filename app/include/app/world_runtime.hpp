@@ -16,15 +16,24 @@
 
 namespace gs::app {
 
-/// --time, --time-step and --trace-events (README.md, "Animation and time").
-struct TimeOptions {
+/// --time, --time-step, --trace-events and the Script limits (README.md, "Animation,
+/// interaction and Scripts").
+struct RuntimeOptions {
   bool set = false;          // --time was given
   double start = 0.0;        // T or T0: SFTime seconds (since 1970-01-01 UTC)
   double interval = 0.0;     // DT of T0:DT:N, seconds between frames
   int frames = 1;            // N of T0:DT:N; 1 for a single time
   double step = 1.0 / 60.0;  // --time-step S: the cascade's fixed step, seconds, > 0
   std::string traceFile;     // --trace-events FILE: one JSON line per event
+  bool scripts = true;       // --no-scripts: Script nodes do not run
+  /// --script-time-limit S (seconds of one Script call) and --script-memory-limit MB.
+  runtime::ScriptLimits scriptLimits;
 };
+
+/// Reads a whole small resource (a Script's .js file) named by content at `referrer`
+/// under the loader's rules (net::Loader::fetchWhole). False with `error` naming the URL.
+using FetchWhole = std::function<bool(const std::string& url, const std::string& referrer,
+                                      std::string& bytes, std::string& error)>;
 
 /// The viewer pose the execution model's sensors see for a camera drawn at `aspect`
 /// (width / height).
@@ -32,7 +41,7 @@ runtime::ViewerPose viewerPose(const render::Camera& camera, float aspect);
 
 /// Parses --time "T" or "T0:DT:N" (T0 >= 0, DT > 0, 1 <= N <= 100000). False when
 /// malformed; the fields are then unchanged.
-bool parseTimeOption(const std::string& text, TimeOptions& out);
+bool parseTimeOption(const std::string& text, RuntimeOptions& out);
 
 /// The file a frame of a --time T0:DT:N strip goes to: `path` with "-NNNN" (frame index,
 /// four digits) before its extension ("out.png" -> "out-0003.png"); `path` itself when
@@ -43,7 +52,8 @@ class WorldRuntimes {
  public:
   /// Traces go to `options.traceFile` when set (an error opening it throws
   /// std::runtime_error naming the file).
-  explicit WorldRuntimes(const TimeOptions& options);
+  /// Script files are read through `fetch` (empty: Scripts may only be inline).
+  explicit WorldRuntimes(const RuntimeOptions& options, FetchWhole fetch = {});
   ~WorldRuntimes();
   WorldRuntimes(const WorldRuntimes&) = delete;
   WorldRuntimes& operator=(const WorldRuntimes&) = delete;
@@ -73,7 +83,8 @@ class WorldRuntimes {
   void drainMessages(std::vector<std::string>& out);
 
  private:
-  TimeOptions options_;
+  RuntimeOptions options_;
+  FetchWhole fetch_;
   std::FILE* trace_ = nullptr;
   LinkHandler link_;
   struct Entry {

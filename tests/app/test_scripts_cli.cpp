@@ -1,0 +1,81 @@
+// Scripts through the command line (docs/runtime-scripts.md): a Script's events reach the
+// world; a hostile Script (an endless loop, a ROUTE back to itself) ends with a diagnostic
+// naming the world's file:line while the picture is still written.
+#include "process.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace fs = std::filesystem;
+using gs::test::runGhostspace;
+
+namespace {
+
+fs::path writeWorld(const std::string& name, const std::string& text) {
+  const fs::path dir = fs::path(GS_BINARY_DIR) / "scripts-cli";
+  fs::create_directories(dir);
+  std::ofstream(dir / name) << text;
+  return dir / name;
+}
+
+std::string readText(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace
+
+TEST_CASE("a Script's initialize() moves a Transform", "[app][script]") {
+  const fs::path world = writeWorld("ok.wrl", R"(#VRML V2.0 utf8
+DEF X Transform { children Shape { geometry Box {} } }
+DEF S Script {
+  eventOut SFVec3f where
+  url "javascript: function initialize() { where = new SFVec3f(1, 2, 3); }"
+}
+ROUTE S.where TO X.set_translation
+)");
+  const fs::path trace = world.parent_path() / "ok.jsonl";
+  auto r = runGhostspace({"--snapshot", (world.parent_path() / "ok.png").string(), "--size",
+                          "32x32", "--trace-events", trace.string(), world.string()});
+  REQUIRE(r.exitCode == 0);
+  CHECK(readText(trace) ==
+        "{\"time\":0.000,\"node\":\"S\",\"field\":\"where\",\"value\":\"1 2 3\"}\n"
+        "{\"time\":0.000,\"node\":\"X\",\"field\":\"translation_changed\",\"value\":\"1 2 3\"}\n");
+  // --no-scripts: nothing runs.
+  auto off =
+      runGhostspace({"--snapshot", (world.parent_path() / "off.png").string(), "--size", "32x32",
+                     "--no-scripts", "--trace-events", trace.string(), world.string()});
+  REQUIRE(off.exitCode == 0);
+  CHECK(readText(trace).empty());
+}
+
+TEST_CASE("hostile Scripts end with a diagnostic; the world is still drawn", "[app][script]") {
+  const fs::path world = writeWorld("hang.wrl", R"(#VRML V2.0 utf8
+Shape { geometry Box {} }
+DEF S Script {
+  eventOut SFVec3f where
+  url "javascript: function initialize() { while (true) {} }"
+}
+DEF L Script {
+  eventIn SFFloat ping
+  eventOut SFFloat pong
+  url "javascript: function ping(v) { pong = v + 1; }"
+}
+ROUTE L.pong TO L.ping
+DEF T TimeSensor { loop TRUE }
+ROUTE T.fraction_changed TO L.ping
+)");
+  const fs::path png = world.parent_path() / "hang.png";
+  fs::remove(png);
+  auto r = runGhostspace({"--snapshot", png.string(), "--size", "32x32", "--time", "0:0.5:1",
+                          "--script-time-limit", "0.2", world.string()});
+  CHECK(r.exitCode == 0);
+  CHECK(fs::exists(png));
+  CHECK(r.err.find("hang.wrl:3:7:") != std::string::npos);
+  CHECK(r.err.find("time limit") != std::string::npos);
+}
