@@ -28,7 +28,7 @@ fs::path scratch(const std::string& name) {
 
 }  // namespace
 
-TEST_CASE("--time renders the animation as it stands at T", "[app][time][baseline]") {
+TEST_CASE("time: --time renders the animation as it stands at T", "[app][time][baseline]") {
   // fraction 0.125: the box a quarter of the way, purple-red, the face a quarter morphed.
   gs::test::checkBaseline("animation_t0.5",
                           {"--size", "300x300", "--time", "0.5", animationWorld()});
@@ -43,7 +43,7 @@ TEST_CASE("--time renders the animation as it stands at T", "[app][time][baselin
   CHECK(gs::test::fractionDiffering(a, b) > 0.02);
 }
 
-TEST_CASE("--trace-events writes the cascade of the world and its Inline", "[app][time]") {
+TEST_CASE("time: --trace-events writes the cascade of the world and its Inline", "[app][time]") {
   const fs::path trace = scratch("trace.jsonl");
   const fs::path png = scratch("trace.png");
   auto r = runGhostspace({"--snapshot", png.string(), "--size", "64x64", "--time", "1",
@@ -62,7 +62,7 @@ TEST_CASE("--trace-events writes the cascade of the world and its Inline", "[app
   CHECK(t.find(R"("node":"Spinner","field":"rotation_changed")") != std::string::npos);
 }
 
-TEST_CASE("--time T0:DT:N writes N frames; bad values are refused", "[app][time]") {
+TEST_CASE("time: --time T0:DT:N writes N frames; bad values are refused", "[app][time]") {
   const fs::path png = scratch("strip.png");
   for (int i = 0; i < 3; ++i) fs::remove(scratch("strip-000" + std::to_string(i) + ".png"));
   auto r = runGhostspace(
