@@ -67,6 +67,23 @@ TEST_CASE("info prints counts, triangles, bounds and timing", "[app][cli]") {
   CHECK(r.out.find("parse") != std::string::npos);
 }
 
+TEST_CASE("info exits 1 for a world with errors unless --exit-zero", "[app][cli]") {
+  gs::test::TempDir dir("info");
+  const std::string bad = dir.write(
+      "bad.wrl", "#VRML V2.0 utf8\nShape { geometry Box { size 1 1 1 } }\nNoSuchNode { }\n");
+  const auto strict = runGhostspace({"info", bad});
+  CHECK(strict.exitCode == 1);
+  CHECK(strict.out.find("1 errors") != std::string::npos);
+  CHECK(strict.out.find("NoSuchNode") != std::string::npos);
+  const auto lenient = runGhostspace({"info", "--exit-zero", bad});
+  CHECK(lenient.exitCode == 0);
+  CHECK(lenient.out.find("NoSuchNode") != std::string::npos);  // the same report
+  // A clean world gives 0; one world with errors among several gives 1.
+  const auto good = gs::test::sourceDir() / "assets/worlds/welcome.wrl";
+  CHECK(runGhostspace({"info", good.string()}).exitCode == 0);
+  CHECK(runGhostspace({"info", good.string(), bad}).exitCode == 1);
+}
+
 TEST_CASE("snapshot writes a PNG of the bundled scene", "[app][cli][snapshot]") {
   auto world = gs::test::sourceDir() / "assets/worlds/welcome.wrl";
   auto out = std::filesystem::temp_directory_path() / "gs_welcome_test.png";

@@ -4,10 +4,10 @@
 #pragma once
 
 #include "app/layout.hpp"
-#include "app/streaming_session.hpp"
-#include "app/world.hpp"
 #include "render/camera.hpp"
 #include "render/scene_renderer.hpp"
+#include "session/streaming_session.hpp"
+#include "session/world.hpp"
 
 #include <cstddef>
 #include <memory>
@@ -52,8 +52,8 @@ struct Viewport {
 };
 
 struct WindowState {
-  std::vector<LoadedWorld> worlds;  // every world opened, in order
-  std::string layout = "1x1";       // 1x1, 2x1 or 2x2
+  std::vector<gs::session::LoadedWorld> worlds;  // every world opened, in order
+  Layout layout = Layout::single;
   std::vector<Viewport> viewports;  // layoutCells(layout) of them
   std::size_t active = 0;           // the viewport the menus and the mouse act on
   std::vector<LogLine> log;
@@ -71,7 +71,8 @@ struct WindowState {
   /// How new viewports draw: splat loader, level of detail (--lod), mode (--mode).
   render::SceneRendererOptions rendererOptions;
   /// Streams every world opened (files and URLs) while the window keeps drawing.
-  std::unique_ptr<StreamingSession> session = std::make_unique<StreamingSession>();
+  std::unique_ptr<gs::session::StreamingSession> session =
+      std::make_unique<gs::session::StreamingSession>();
 
   WindowState();
 
@@ -79,9 +80,9 @@ struct WindowState {
   Viewport& view() { return viewports[active]; }
   const Viewport& view() const { return viewports[active]; }
 
-  /// Switches to `layout` ("1x1", "2x1", "2x2"; anything else is ignored). New cells show
+  /// Switches to `layout` (app/layout.hpp). New cells show
   /// the active viewport's world; cells removed are freed.
-  void setLayout(const std::string& layout);
+  void setLayout(Layout layout);
   /// Starts loading `path` (a file or an http(s) URL) and shows it in the active
   /// viewport as it arrives; a failure is logged (and the log shown), never thrown.
   void open(const std::string& path);

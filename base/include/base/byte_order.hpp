@@ -1,0 +1,48 @@
+// Little-endian load and store helpers for binary layouts: the .qnv stream and the
+// binary formats the readers of formats/ take (PLY, GLB, NIfTI-1, raw volumes).
+#pragma once
+
+#include <bit>
+#include <cstdint>
+#include <cstring>
+#include <string>
+
+namespace gs::base {
+
+template <typename T>
+T byteSwap(T v) {
+  if constexpr (sizeof(T) == 1)
+    return v;
+  else if constexpr (sizeof(T) == 2)
+    return static_cast<T>(__builtin_bswap16(v));
+  else if constexpr (sizeof(T) == 4)
+    return static_cast<T>(__builtin_bswap32(v));
+  else
+    return static_cast<T>(__builtin_bswap64(v));
+}
+
+template <typename T>
+T loadLe(const char* p) {
+  T v;
+  std::memcpy(&v, p, sizeof v);
+  if constexpr (std::endian::native == std::endian::big) v = byteSwap(v);
+  return v;
+}
+
+inline float loadFloatLe(const char* p) {
+  return std::bit_cast<float>(loadLe<std::uint32_t>(p));
+}
+
+template <typename T>
+void appendLe(std::string& out, T v) {
+  if constexpr (std::endian::native == std::endian::big) v = byteSwap(v);
+  char b[sizeof v];
+  std::memcpy(b, &v, sizeof v);
+  out.append(b, sizeof v);
+}
+
+inline void appendFloatLe(std::string& out, float v) {
+  appendLe(out, std::bit_cast<std::uint32_t>(v));
+}
+
+}  // namespace gs::base
