@@ -9,6 +9,7 @@
 
 namespace gs::base {
 
+/// `v` (an unsigned integer of 1, 2, 4 or 8 bytes) with its bytes in reverse order.
 template <typename T>
 T byteSwap(T v) {
   if constexpr (sizeof(T) == 1)
@@ -21,6 +22,7 @@ T byteSwap(T v) {
     return static_cast<T>(__builtin_bswap64(v));
 }
 
+/// The little-endian T stored at `p` (sizeof(T) bytes, any alignment).
 template <typename T>
 T loadLe(const char* p) {
   T v;
@@ -29,10 +31,12 @@ T loadLe(const char* p) {
   return v;
 }
 
+/// The little-endian IEEE 754 binary32 stored at `p`.
 inline float loadFloatLe(const char* p) {
   return std::bit_cast<float>(loadLe<std::uint32_t>(p));
 }
 
+/// Appends `v` to `out` in little-endian order (sizeof(T) bytes).
 template <typename T>
 void appendLe(std::string& out, T v) {
   if constexpr (std::endian::native == std::endian::big) v = byteSwap(v);
@@ -41,6 +45,7 @@ void appendLe(std::string& out, T v) {
   out.append(b, sizeof v);
 }
 
+/// Appends `v` to `out` as a little-endian IEEE 754 binary32.
 inline void appendFloatLe(std::string& out, float v) {
   appendLe(out, std::bit_cast<std::uint32_t>(v));
 }
