@@ -1,4 +1,5 @@
-// Shared helpers for the test suites: where the project and the corpus are.
+// Shared helpers for the test suites: where the project and the corpus are, temporary
+// folders, gzip data.
 #pragma once
 
 #include <filesystem>
@@ -17,5 +18,25 @@ bool haveCorpus(const std::string& sub);
 /// Every regular file under `dir` whose name ends with `suffix`, sorted.
 std::vector<std::filesystem::path> filesWithSuffix(const std::filesystem::path& dir,
                                                    const std::string& suffix);
+
+/// The bytes of the file at `path`; empty when it cannot be read.
+std::string readBytes(const std::filesystem::path& path);
+
+/// `text` compressed as one gzip member (RFC 1952, zlib level 6).
+std::string gzip(const std::string& text);
+
+/// A fresh folder under the system's temporary folder ("gs-TAG-XXXXXX", made by mkdtemp),
+/// removed with everything in it on destruction.
+class TempDir {
+ public:
+  explicit TempDir(const std::string& tag = "test");
+  ~TempDir();
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  /// Writes `bytes` to path / `name` (folders made as needed); returns the full path.
+  std::string write(const std::string& name, const std::string& bytes) const;
+
+  std::filesystem::path path;
+};
 
 }  // namespace gs::test

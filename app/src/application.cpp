@@ -101,14 +101,18 @@ Parsed parseArguments(int argc, char** argv) {
                  "Level of detail: the fraction of every QNV stream drawn, largest vectors "
                  "first (0 < F <= 1); a list F1,F2,... gives one per viewport")
       ->type_name("F[,F...]");
-  cli.add_option("--layout", o.layout,
+  std::vector<std::string> layoutNames, modeNames;
+  for (const LayoutInfo& l : kLayouts) layoutNames.emplace_back(l.name);
+  for (const render::RenderModeInfo& m : render::kRenderModes) modeNames.emplace_back(m.name);
+  std::string layoutText(layoutName(o.layout)), modeText(render::renderModeName(o.mode));
+  cli.add_option("--layout", layoutText,
                  "Viewports: 1x1 (default), 2x1 (two side by side) or 2x2; the INPUTs fill "
                  "them in order (one INPUT fills them all)")
-      ->check(CLI::IsMember({"1x1", "2x1", "2x2"}));
-  cli.add_option("--mode", o.mode,
+      ->check(CLI::IsMember(layoutNames));
+  cli.add_option("--mode", modeText,
                  "polygons (default), splats (polygons drawn as QNV splats) or outlines "
                  "(OutlineGroup outlines only)")
-      ->check(CLI::IsMember({"polygons", "splats", "outlines"}));
+      ->check(CLI::IsMember(modeNames));
   cli.add_option("--script", o.script,
                  "Window: run the UI actions of FILE between frames (layout, open, viewport, "
                  "lod, mode, wait-loaded, frames, screenshot, quit; see app/window_script.hpp)")
@@ -167,6 +171,9 @@ Parsed parseArguments(int argc, char** argv) {
                                       "triangles, bounding box, diagnostics, parse time");
   std::vector<std::string> infoInputs;
   info->add_option("INPUT", infoInputs, "VRML97 world or .qnv stream")->required();
+  info->add_flag("--exit-zero", o.infoExitZero,
+                 "Exit 0 when every INPUT was read, even when a world has errors (by default "
+                 "a world with errors makes the exit status 1)");
 
   EncodeOptions& enc = o.encode;
   CLI::App* encode = cli.add_subcommand(
@@ -234,6 +241,8 @@ Parsed parseArguments(int argc, char** argv) {
     r.exitCode = 2;
     return r;
   }
+  o.layout = layoutFromName(layoutText).value_or(Layout::single);  // checked by IsMember
+  o.mode = render::renderModeFromName(modeText).value_or(render::RenderMode::polygons);
   if (!size.empty() && !parseSize(size, o.width, o.height)) {
     std::fprintf(stderr, "ghostspace: --size: expected WxH such as 800x600, got '%s'\n",
                  size.c_str());
@@ -295,7 +304,7 @@ Parsed parseArguments(int argc, char** argv) {
     if (o.inputs.empty() || o.inputs.size() > cells) {
       std::fprintf(stderr,
                    "ghostspace: --snapshot needs 1 to %zu INPUTs for --layout %s, got %zu\n", cells,
-                   o.layout.c_str(), o.inputs.size());
+                   std::string(layoutName(o.layout)).c_str(), o.inputs.size());
       r.exitCode = 2;
     }
   }

@@ -5,15 +5,15 @@
 #include <fstream>
 
 #include "app/commands.hpp"
-#include "app/mesh_input.hpp"
-#include "app/outline_world.hpp"
 #include "app/progress_bar.hpp"
-#include "app/volume_input.hpp"
-#include "app/world.hpp"
+#include "formats/input_kind.hpp"
+#include "formats/volume_readers.hpp"
 #include "qnv/encoder.hpp"
 #include "qnv/error.hpp"
-#include "qnv/volume_readers.hpp"
 #include "render/world_triangles.hpp"
+#include "session/mesh_input.hpp"
+#include "session/volume_input.hpp"
+#include "session/world.hpp"
 
 namespace gs::app {
 
@@ -39,7 +39,7 @@ struct Settings {
   qnv::Selection selection;
   qnv::MagnitudeMapping mapping = qnv::MagnitudeMapping::logarithmic;
   std::optional<std::pair<float, float>> window;
-  std::optional<qnv::RawLayout> raw;
+  std::optional<formats::RawLayout> raw;
   qnv::WriteOptions write;
 };
 
@@ -61,7 +61,7 @@ std::string parseSettings(const EncodeOptions& e, Settings& s) {
     s.window = std::make_pair(w[0], w[1]);
   }
   if (!e.rawDims.empty()) {
-    qnv::RawLayout layout;
+    formats::RawLayout layout;
     unsigned dims[3];
     if (!parseList(e.rawDims, 3, ",x", dims))
       return "encode: --raw-dims: expected X,Y,Z, got '" + e.rawDims + "'";
@@ -71,7 +71,7 @@ std::string parseSettings(const EncodeOptions& e, Settings& s) {
       return "encode: --raw-spacing: expected SX,SY,SZ, got '" + e.rawSpacing + "'";
     layout.spacing = glm::vec3(spacing[0], spacing[1], spacing[2]);
     try {
-      layout.type = qnv::parseScalarType(e.rawType);
+      layout.type = formats::parseScalarType(e.rawType);
     } catch (const qnv::InputError& error) {
       return std::string("encode: --raw-type: ") + error.what();
     }
@@ -98,7 +98,7 @@ std::string withCommas(std::uint64_t n) {
 }  // namespace
 
 int runEncode(const Options& options) {
-  if (options.encode.outline) return runEncodeOutline(options);  // app/outline_world.hpp
+  if (options.encode.outline) return runEncodeOutline(options);  // encode_outline.cpp
   Settings s;
   if (const std::string usage = parseSettings(options.encode, s); !usage.empty()) {
     std::fprintf(stderr, "ghostspace: %s\n", usage.c_str());
@@ -112,8 +112,10 @@ int runEncode(const Options& options) {
   qnv::EncodeSummary summary;
   const char* elements = "triangles";
   try {
-    if (s.raw || isVolumeFile(input)) {
-      const qnv::Volume volume = s.raw ? loadRawVolumeFile(input, *s.raw) : loadVolumeFile(input);
+    const formats::InputKind kind = formats::classifyFile(input);
+    if (s.raw || formats::isVolume(kind)) {
+      const qnv::Volume volume =
+          s.raw ? session::loadRawVolumeFile(input, *s.raw) : session::loadVolumeFile(input);
       qnv::VolumeEncodeOptions v;
       v.selection = s.selection;
       v.mapping = s.mapping;
@@ -123,10 +125,10 @@ int runEncode(const Options& options) {
       elements = "voxels";
     } else {
       qnv::TriangleMesh mesh;
-      if (isMeshFile(input)) {
-        mesh = loadMeshFile(input);
+      if (formats::isMesh(kind)) {
+        mesh = session::loadMeshFile(input);
       } else {
-        const LoadedWorld world = loadWorld(input);
+        const session::LoadedWorld world = session::loadWorld(input);
         for (const vrml::Diagnostic& d : world.scene->diagnostics.items)
           std::fprintf(stderr, "%s\n", d.format().c_str());
         if (!world.readable) return 1;

@@ -1,7 +1,8 @@
 // `ghostspace info INPUT`: what was read, how big it is, how long parsing took.
 #include "app/commands.hpp"
-#include "app/world.hpp"
+#include "formats/input_kind.hpp"
 #include "render/traversal.hpp"
+#include "session/world.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -11,11 +12,11 @@ namespace gs::app {
 int runInfo(const Options& options) {
   int status = 0;
   for (const std::string& input : options.inputs) {
-    if (isQnvFile(input)) {
+    if (formats::classifyFile(input) == formats::InputKind::qnv) {
       status = std::max(status, runQnvInfo(input));
       continue;
     }
-    const LoadedWorld w = loadWorld(input);
+    const session::LoadedWorld w = session::loadWorld(input);
     if (!w.readable) {
       for (const auto& d : w.scene->diagnostics.items)
         std::fprintf(stderr, "ghostspace: %s\n", d.format().c_str());
@@ -29,7 +30,7 @@ int runInfo(const Options& options) {
     std::printf("  root nodes: %zu, routes: %zu, PROTO/EXTERNPROTO: %zu\n",
                 w.scene->rootNodes.size(), w.scene->routes.size(), w.scene->protos.size());
     std::printf("  nodes by type:\n");
-    for (const auto& [type, count] : countNodesByType(*w.scene))
+    for (const auto& [type, count] : session::countNodesByType(*w.scene))
       std::printf("    %-24s %zu\n", type.c_str(), count);
 
     render::SceneTraversal traversal(w.scene);
@@ -55,6 +56,7 @@ int runInfo(const Options& options) {
                 diags.warningCount() + tdiags.warningCount());
     for (const auto* list : {&diags, &tdiags})
       for (const auto& d : list->items) std::printf("    %s\n", d.format().c_str());
+    if (diags.errorCount() + tdiags.errorCount() > 0 && !options.infoExitZero) status = 1;
   }
   return status;
 }

@@ -4,16 +4,30 @@
 
 namespace gs::app {
 
-int layoutCells(const std::string& layout) {
-  if (layout == "1x1") return 1;
-  if (layout == "2x1") return 2;
-  if (layout == "2x2") return 4;
-  return 0;
+const LayoutInfo& layoutInfo(Layout layout) {
+  for (const LayoutInfo& info : kLayouts)
+    if (info.layout == layout) return info;
+  return kLayouts.front();
 }
 
-ViewportRect layoutRect(const std::string& layout, int index, int width, int height) {
-  const int columns = layout == "1x1" ? 1 : 2;
-  const int rows = layout == "2x2" ? 2 : 1;
+std::string_view layoutName(Layout layout) {
+  return layoutInfo(layout).name;
+}
+
+std::optional<Layout> layoutFromName(std::string_view name) {
+  for (const LayoutInfo& info : kLayouts)
+    if (info.name == name) return info.layout;
+  return std::nullopt;
+}
+
+int layoutCells(Layout layout) {
+  const LayoutInfo& info = layoutInfo(layout);
+  return info.columns * info.rows;
+}
+
+ViewportRect layoutRect(Layout layout, int index, int width, int height) {
+  const int columns = layoutInfo(layout).columns;
+  const int rows = layoutInfo(layout).rows;
   const int column = index % columns, row = index / columns;  // row 0 is the top
   const int cellWidth = width / columns, cellHeight = height / rows;
   ViewportRect r;

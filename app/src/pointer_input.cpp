@@ -1,4 +1,5 @@
 #include "app/pointer_input.hpp"
+#include "base/url.hpp"
 
 #include "render/traversal.hpp"
 
@@ -97,7 +98,7 @@ LinkDecision decideLink(const std::string& worldUrl, const std::vector<std::stri
     const std::string scheme = schemeOf(u);
     // Only web and file references are resolved; anything else stays as written.
     d.url = (scheme.empty() || scheme == "http" || scheme == "https" || scheme == "file")
-                ? render::resolveUrl(worldUrl, u)
+                ? base::resolveUrl(worldUrl, u)
                 : u;
     const std::string resolvedScheme = schemeOf(d.url);
     const std::string path = pathOf(d.url);

@@ -23,19 +23,6 @@ const char* kindName(qnv::StreamKind kind) {
 
 }  // namespace
 
-bool isQnvFile(const std::string& path) {
-  if (path.size() >= 4) {
-    std::string ext = path.substr(path.size() - 4);
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    if (ext == ".qnv") return true;
-  }
-  std::ifstream in(path, std::ios::binary);
-  char magic[qnv::kMagic.size()] = {};
-  in.read(magic, sizeof magic);
-  return in.gcount() == static_cast<std::streamsize>(sizeof magic) &&
-         std::memcmp(magic, qnv::kMagic.data(), sizeof magic) == 0;
-}
-
 int runQnvInfo(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) {

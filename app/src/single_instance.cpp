@@ -11,7 +11,7 @@
 #include <cstring>
 #include <filesystem>
 
-#include "net/transfer.hpp"
+#include "base/url.hpp"
 
 namespace gs::app {
 
@@ -54,7 +54,7 @@ bool handToRunningInstance(const std::vector<std::string>& inputs) {
   std::string message;
   for (const std::string& input : inputs) {
     std::string item = input;
-    if (!net::isHttpUrl(item)) {
+    if (!base::isHttpUrl(item)) {
       std::error_code ec;
       const auto absolute = std::filesystem::absolute(item, ec);
       if (!ec) item = absolute.lexically_normal().string();

@@ -5,10 +5,10 @@
 #include "app/commands.hpp"
 #include "app/layout.hpp"
 #include "app/progress_bar.hpp"
-#include "app/splat_inputs.hpp"
-#include "app/streaming_session.hpp"
 #include "app/world_runtime.hpp"
 #include "render/context.hpp"
+#include "session/splat_inputs.hpp"
+#include "session/streaming_session.hpp"
 
 #include <glad/gl.h>
 #include "render/image.hpp"
@@ -22,11 +22,9 @@ namespace gs::app {
 
 render::SceneRendererOptions rendererOptions(const Options& options) {
   render::SceneRendererOptions r;
-  r.splatLoader = splatLoader();
+  r.splatLoader = session::splatLoader();
   r.lod = options.lod;
-  r.traversal.mode = options.mode == "splats"     ? render::RenderMode::splats
-                     : options.mode == "outlines" ? render::RenderMode::outlines
-                                                  : render::RenderMode::polygons;
+  r.traversal.mode = options.mode;
   return r;
 }
 
@@ -60,7 +58,7 @@ double loadFraction(const net::Loader& loader) {
 }  // namespace
 
 int runSnapshot(const Options& options) {
-  StreamingSession session(loaderOptions(options));
+  session::StreamingSession session(loaderOptions(options));
   // One viewport per layout cell; the INPUTs fill them in order and a single INPUT fills
   // them all. A world named twice is loaded once (the session shares its streams).
   const int cells = layoutCells(options.layout);
@@ -97,7 +95,7 @@ int runSnapshot(const Options& options) {
     const float aspect = static_cast<float>(v.rect.width) / static_cast<float>(v.rect.height);
     render::Camera c = v.renderer->boundViewpointCamera();
     // A stream, mesh or volume has no Viewpoint of its own: frame it whole.
-    if (options.fit || isSplatInput(v.input)) c = v.renderer->fitToScene(aspect, c);
+    if (options.fit || session::isSplatInput(v.input)) c = v.renderer->fitToScene(aspect, c);
     render::fitClipPlanes(c, v.renderer->bounds(), v.renderer->navigation().nearClip());
     return c;
   };

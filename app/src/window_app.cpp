@@ -129,7 +129,7 @@ int runWindow(const Options& options) {
   state.lastAspect = static_cast<float>(context->width()) / std::max(1, context->height());
   state.rendererOptions = rendererOptions(options);
   state.time = options.time;
-  state.session = std::make_unique<StreamingSession>(loaderOptions(options));
+  state.session = std::make_unique<session::StreamingSession>(loaderOptions(options));
   state.setLayout(options.layout);
   state.openInputs(options.inputs, options.lods);
   WindowScript script;

@@ -1,5 +1,6 @@
 // The Dear ImGui menu bar, open-file dialog and log panel of the window.
 #include "app/window_state.hpp"
+#include "formats/input_kind.hpp"
 
 #include <imgui.h>
 
@@ -12,11 +13,9 @@ namespace gs::app {
 
 namespace {
 
+// Files the open dialog lists: VRML97 worlds by name (.wrl, .wrl.gz, .wrz, any case).
 bool isWorldFile(const std::filesystem::path& p) {
-  const std::string name = p.filename().string();
-  for (const char* ext : {".wrl", ".wrl.gz", ".wrz", ".WRL"})
-    if (name.size() > std::strlen(ext) && name.ends_with(ext)) return true;
-  return false;
+  return formats::kindFromName(p.filename().string()) == formats::InputKind::world;
 }
 
 void drawOpenDialog(WindowState& state) {
@@ -214,9 +213,10 @@ int drawMenuBar(WindowState& state, float aspect) {
       state.setNavigation(render::NavigationMode::fly);
     ImGui::MenuItem("Link this viewport's camera", nullptr, &state.view().linked);
     ImGui::Separator();
-    for (const char* layout : {"1x1", "2x1", "2x2"}) {
-      const std::string label = std::string("Layout ") + layout;
-      if (ImGui::MenuItem(label.c_str(), nullptr, state.layout == layout)) state.setLayout(layout);
+    for (const LayoutInfo& l : kLayouts) {
+      const std::string label = "Layout " + std::string(l.name);
+      if (ImGui::MenuItem(label.c_str(), nullptr, state.layout == l.layout))
+        state.setLayout(l.layout);
     }
     ImGui::Separator();
     ImGui::MenuItem("Streams", nullptr, &state.showStreams);

@@ -64,7 +64,7 @@ bool WindowScript::load(const std::string& path, std::string& error) {
     };
     double number = 0.0;
     if (c.verb == "layout") {
-      if (layoutCells(c.argument) == 0) return fail("layout 1x1, 2x1 or 2x2");
+      if (!layoutFromName(c.argument)) return fail("layout 1x1, 2x1 or 2x2");
     } else if (c.verb == "viewport") {
       if (!parseNumber(c.argument, number) || number < 0 || number > 3)
         return fail("viewport 0..3");
@@ -72,8 +72,7 @@ bool WindowScript::load(const std::string& path, std::string& error) {
       if (!parseNumber(c.argument, number) || !(number > 0.0) || number > 1.0)
         return fail("lod F with 0 < F <= 1");
     } else if (c.verb == "mode") {
-      if (c.argument != "polygons" && c.argument != "splats" && c.argument != "outlines")
-        return fail("mode polygons, splats or outlines");
+      if (!render::renderModeFromName(c.argument)) return fail("mode polygons, splats or outlines");
     } else if (c.verb == "frames") {
       if (!parseNumber(c.argument, number) || number < 1 || number > 1e6)
         return fail("frames N with N >= 1");
@@ -152,7 +151,7 @@ bool WindowScript::step(WindowState& state, int width, int height) {
       ++next_;
       return true;
     } else if (c.verb == "layout") {
-      state.setLayout(c.argument);
+      state.setLayout(*layoutFromName(c.argument));
     } else if (c.verb == "open") {
       state.open(c.argument);
     } else if (c.verb == "viewport") {
@@ -161,9 +160,7 @@ bool WindowScript::step(WindowState& state, int width, int height) {
     } else if (c.verb == "lod") {
       state.setLod(number);
     } else if (c.verb == "mode") {
-      state.setMode(c.argument == "splats"     ? render::RenderMode::splats
-                    : c.argument == "outlines" ? render::RenderMode::outlines
-                                               : render::RenderMode::polygons);
+      state.setMode(*render::renderModeFromName(c.argument));
     } else if (c.verb == "screenshot" || c.verb == "screenshot-viewport") {
       ViewportRect r{0, 0, width, height};
       if (c.verb == "screenshot-viewport") r = state.view().rect;
@@ -183,10 +180,9 @@ bool WindowScript::step(WindowState& state, int width, int height) {
       std::ofstream out(c.argument);
       for (std::size_t i = 0; i < state.viewports.size(); ++i) {
         const Viewport& v = state.viewports[i];
-        const char* modes[] = {"polygons", "outlines", "splats"};
         const char* navs[] = {"EXAMINE", "WALK", "FLY"};
         out << i << " " << (v.world < state.worlds.size() ? state.worlds[v.world].scene->url : "-")
-            << " " << v.options.lod << " " << modes[static_cast<int>(v.options.traversal.mode)]
+            << " " << v.options.lod << " " << render::renderModeName(v.options.traversal.mode)
             << " " << navs[static_cast<int>(v.navigator.mode())] << " "
             << (v.renderer ? v.renderer->statistics().splats : 0) << "\n";
       }

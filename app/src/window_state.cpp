@@ -16,10 +16,9 @@ namespace gs::app {
 
 WindowState::WindowState() : viewports(1) {}
 
-void WindowState::setLayout(const std::string& name) {
-  const int cells = layoutCells(name);
-  if (cells == 0) return;
-  layout = name;
+void WindowState::setLayout(Layout next) {
+  const int cells = layoutCells(next);
+  layout = next;
   const std::size_t world = view().world;
   const std::size_t before = viewports.size();
   viewports.resize(static_cast<std::size_t>(cells));  // the renderers of cells removed go
@@ -42,7 +41,7 @@ std::size_t WindowState::load(const std::string& path) {
   recent.erase(std::remove(recent.begin(), recent.end(), path), recent.end());
   recent.insert(recent.begin(), path);
   if (recent.size() > 10) recent.resize(10);
-  LoadedWorld w;
+  session::LoadedWorld w;
   w.scene = std::const_pointer_cast<vrml::Scene>(scene);
   w.readable = true;
   worlds.push_back(std::move(w));
@@ -63,9 +62,9 @@ void WindowState::openInNewViewport(const std::string& path) {
     return Viewport::kNone;
   };
   std::size_t target = empty();
-  if (target == Viewport::kNone && layout != "2x2") {
+  if (target == Viewport::kNone && layout != Layout::quad) {
     const std::size_t before = viewports.size();
-    layout = layout == "1x1" ? "2x1" : "2x2";
+    layout = layout == Layout::single ? Layout::sideBySide : Layout::quad;
     viewports.resize(static_cast<std::size_t>(layoutCells(layout)));
     target = before;
   }
@@ -160,7 +159,7 @@ void WindowState::updateRuntimes() {
     });
   }
   const double now = worldTime();
-  for (const LoadedWorld& w : worlds) runtimes->of(w.scene, now);
+  for (const session::LoadedWorld& w : worlds) runtimes->of(w.scene, now);
   runtimes->scenesGrew();
   // The sensors see each world from its viewports' cameras, the active viewport last.
   for (std::size_t i = 0; i <= viewports.size(); ++i) {

@@ -1,4 +1,5 @@
 #include "app/world_runtime.hpp"
+#include "base/url.hpp"
 
 #include "runtime/script_ecmascript.hpp"
 #include "runtime/trace.hpp"
@@ -111,7 +112,7 @@ runtime::ExecutionModel& WorldRuntimes::of(const std::shared_ptr<const vrml::Sce
       o.fetchText = [fetch = fetch_, world = scene.get()](const std::string& url, std::string& text,
                                                           std::string& error) {
         // Relative to the world's URL (after redirects), under the loader's rules.
-        return fetch(render::resolveUrl(world->url, url), world->url, text, error);
+        return fetch(base::resolveUrl(world->url, url), world->url, text, error);
       };
     e.model = std::make_unique<runtime::ExecutionModel>(scene, time, std::move(o));
   }

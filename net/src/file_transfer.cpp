@@ -3,6 +3,9 @@
 // slow link on local files).
 #include "buffered_transfer.hpp"
 
+#include "base/text.hpp"
+#include "base/url.hpp"
+
 #include <sys/stat.h>
 
 #include <algorithm>
@@ -17,48 +20,22 @@ namespace {
 
 constexpr std::size_t kChunk = std::size_t{64} << 10;
 
-int hexValue(char c) {
-  if (c >= '0' && c <= '9') return c - '0';
-  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-  return -1;
-}
-
-// "%20" -> " "; a '%' not followed by two hex digits stays as it is.
-std::string percentDecode(const std::string& s) {
-  std::string out;
-  out.reserve(s.size());
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    if (s[i] == '%' && i + 2 < s.size() && hexValue(s[i + 1]) >= 0 && hexValue(s[i + 2]) >= 0) {
-      out += static_cast<char>(hexValue(s[i + 1]) * 16 + hexValue(s[i + 2]));
-      i += 2;
-    } else {
-      out += s[i];
-    }
-  }
-  return out;
-}
-
 // The local path of a path or file:// URL; false with `error` for a file URL naming
 // another host.
 bool localPath(const std::string& url, std::string& path, std::string& error) {
   constexpr std::size_t kPrefix = 7;  // "file://"
-  if (url.size() < kPrefix ||
-      !std::equal(url.begin(), url.begin() + kPrefix, "file://", [](char a, char b) {
-        return std::tolower(static_cast<unsigned char>(a)) == b;
-      })) {
+  if (!base::startsWithNoCase(url, "file://")) {
     path = url;
     return true;
   }
   const std::string rest = url.substr(kPrefix);
   const std::size_t slash = rest.find('/');
-  std::string host = rest.substr(0, slash);
-  for (char& c : host) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string host = base::toLower(rest.substr(0, slash));
   if (!host.empty() && host != "localhost") {
     error = url + ": file URLs naming another host ('" + host + "') are not supported";
     return false;
   }
-  path = percentDecode(slash == std::string::npos ? std::string("/") : rest.substr(slash));
+  path = base::percentDecode(slash == std::string::npos ? std::string("/") : rest.substr(slash));
   return true;
 }
 

@@ -6,6 +6,8 @@
 
 #include <curl/curl.h>
 
+#include "base/text.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -18,11 +20,6 @@ namespace gs::net::detail {
 namespace {
 
 std::once_flag curlInitOnce;
-
-std::string lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
 
 std::string trim(const std::string& s) {
   const auto b = s.find_first_not_of(" \t\r\n");
@@ -352,14 +349,14 @@ std::size_t HttpTransfer::onHeader(char* p, std::size_t size, std::size_t n, voi
   }
   const auto colon = line.find(':');
   if (colon == std::string::npos) return size * n;
-  const std::string name = lower(trim(line.substr(0, colon)));
+  const std::string name = base::toLower(trim(line.substr(0, colon)));
   const std::string value = trim(line.substr(colon + 1));
   if (name == "content-length") {
     char* end = nullptr;
     const long long v = std::strtoll(value.c_str(), &end, 10);
     if (end != value.c_str() && v >= 0) a.contentLength = v;
   } else if (name == "content-encoding") {
-    const std::string v = lower(value);
+    const std::string v = base::toLower(value);
     a.encoded = !v.empty() && v != "identity";
   } else if (name == "content-range") {
     // "bytes 100-1099/5000" or "bytes 100-1099/*".

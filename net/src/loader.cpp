@@ -1,5 +1,7 @@
 #include "net/loader.hpp"
 
+#include "base/url.hpp"
+
 #include <chrono>
 #include <thread>
 
@@ -17,12 +19,12 @@ FetchRequest Loader::requestFor(const std::string& url, const std::string& refer
                                 std::string& error) const {
   FetchRequest r;
   r.url = url;
-  if (!referrer.empty() && !mayReference(referrer, url, error)) {
+  if (!referrer.empty() && !base::mayReference(referrer, url, error)) {
     r.url.clear();
     return r;
   }
   // Content from the network never reads local files; the user's own input may.
-  r.allowLocal = referrer.empty() || !isHttpUrl(referrer);
+  r.allowLocal = referrer.empty() || !base::isHttpUrl(referrer);
   r.maxBytes = options_.maxResourceBytes;
   r.connectTimeout = options_.connectTimeout;
   r.stallTimeout = options_.stallTimeout;
@@ -42,7 +44,7 @@ std::shared_ptr<WorldStream> Loader::world(const std::string& url, const std::st
         capReached_)
       return it->second;
     worlds_.erase(it);
-    std::erase(order_, "w:" + url);
+    std::erase(order_, StreamKey{StreamKey::Kind::world, url});
   }
   vrml::ParseOptions parse;
   // EXTERNPROTO files are small: fetched whole, under the same rules, as the world
@@ -53,7 +55,7 @@ std::shared_ptr<WorldStream> Loader::world(const std::string& url, const std::st
   auto stream = std::make_shared<WorldStream>(std::move(r), std::move(parse));
   if (capReached_) stream->stop("stopped: the byte cap was reached before it started");
   worlds_[url] = stream;
-  order_.push_back("w:" + url);
+  order_.push_back({StreamKey::Kind::world, url});
   return stream;
 }
 
@@ -65,7 +67,7 @@ std::shared_ptr<QnvStream> Loader::qnv(const std::string& url, const std::string
   auto stream = std::make_shared<QnvStream>(std::move(r), std::move(sink));
   if (capReached_) stream->stop("stopped: the byte cap was reached before it started");
   qnvs_[url] = stream;
-  order_.push_back("q:" + url);
+  order_.push_back({StreamKey::Kind::qnv, url});
   return stream;
 }
 
@@ -96,7 +98,7 @@ bool Loader::fetchWhole(const std::string& url, const std::string& referrer, std
 
 bool Loader::fetchInBackground(const std::string& url, const std::string& referrer,
                                std::string& bytes, std::string& error) {
-  if (!referrer.empty() && !mayReference(referrer, url, error)) return false;
+  if (!referrer.empty() && !base::mayReference(referrer, url, error)) return false;
   auto it = fetches_.find(url);
   if (it == fetches_.end()) {
     Fetch f;
@@ -155,12 +157,11 @@ bool Loader::settled() const {
 
 std::vector<StreamProgress> Loader::progress() const {
   std::vector<StreamProgress> out;
-  for (const std::string& key : order_) {
-    const std::string url = key.substr(2);
-    if (key[0] == 'w')
-      out.push_back(worlds_.at(url)->progress());
+  for (const StreamKey& key : order_) {
+    if (key.kind == StreamKey::Kind::world)
+      out.push_back(worlds_.at(key.url)->progress());
     else
-      out.push_back(qnvs_.at(url)->progress());
+      out.push_back(qnvs_.at(key.url)->progress());
   }
   return out;
 }

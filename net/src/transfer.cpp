@@ -2,6 +2,8 @@
 
 #include "buffered_transfer.hpp"
 
+#include "base/url.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
@@ -20,46 +22,12 @@ bool FetchBudget::addBytes(std::uint64_t n) {
   return total_.fetch_add(n) + n <= maxTotalBytes_;
 }
 
-namespace {
-
-bool startsWithNoCase(const std::string& s, const char* prefix) {
-  std::size_t i = 0;
-  for (; prefix[i] != '\0'; ++i) {
-    if (i >= s.size()) return false;
-    if (std::tolower(static_cast<unsigned char>(s[i])) != prefix[i]) return false;
-  }
-  return true;
-}
-
-// The scheme of "scheme://..." (lower case), or "" when `url` has none (a local path).
-std::string schemeOf(const std::string& url) {
-  std::size_t i = 0;
-  if (url.empty() || !std::isalpha(static_cast<unsigned char>(url[0]))) return {};
-  while (i < url.size() && (std::isalnum(static_cast<unsigned char>(url[i])) || url[i] == '+' ||
-                            url[i] == '-' || url[i] == '.'))
-    ++i;
-  if (url.compare(i, 3, "://") != 0) return {};
-  std::string scheme = url.substr(0, i);
-  for (char& c : scheme) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return scheme;
-}
-
-}  // namespace
-
-bool isHttpUrl(const std::string& url) {
-  return startsWithNoCase(url, "http://") || startsWithNoCase(url, "https://");
-}
-
-bool mayReference(const std::string& baseUrl, const std::string& resolvedUrl, std::string& error) {
-  if (!isHttpUrl(baseUrl) || isHttpUrl(resolvedUrl)) return true;
-  error = baseUrl + " may not reference '" + resolvedUrl +
-          "': content from the network may only reference http(s) URLs";
-  return false;
-}
-
 std::unique_ptr<Transfer> startTransfer(FetchRequest request) {
-  if (isHttpUrl(request.url)) return detail::startHttpTransfer(std::move(request));
-  const std::string scheme = schemeOf(request.url);
+  if (base::isHttpUrl(request.url)) return detail::startHttpTransfer(std::move(request));
+  // Only "scheme://..." names a scheme here; anything else is a local path.
+  const std::size_t n = base::schemeLength(request.url);
+  const std::string scheme =
+      n > 0 && request.url.compare(n, 3, "://") == 0 ? base::schemeOf(request.url) : "";
   if (scheme.empty() || scheme == "file") return detail::startFileTransfer(std::move(request));
   return detail::failedTransfer(request.url, request.url + ": unsupported URL scheme '" + scheme +
                                                  "' (only http, https and file are read)");

@@ -1,4 +1,4 @@
-#include "byte_order.hpp"
+#include "base/byte_order.hpp"
 #include "qnv/decoder.hpp"
 
 namespace gs::qnv {
@@ -62,7 +62,7 @@ void Dequantizer::decode(const std::uint64_t* records, std::size_t count,
 }
 
 void Dequantizer::decodeBytes(const char* bytes, std::size_t count, DecodedVector* out) const {
-  decodeLoop([bytes](std::size_t i) { return detail::loadLe<std::uint64_t>(bytes + 8 * i); }, count,
+  decodeLoop([bytes](std::size_t i) { return base::loadLe<std::uint64_t>(bytes + 8 * i); }, count,
              out, axis_[0].data(), axis_[1].data(), axis_[2].data(), direction_.data(),
              magnitude_.data(), color_.data());
 }

@@ -1,13 +1,13 @@
 #include <algorithm>
 #include <cstring>
 
-#include "byte_order.hpp"
+#include "base/byte_order.hpp"
 #include "compact_payload.hpp"
 #include "qnv/decoder.hpp"
 
 namespace gs::qnv {
 
-using detail::loadLe;
+using base::loadLe;
 
 namespace {
 constexpr std::size_t kMaxWarnings = 100;

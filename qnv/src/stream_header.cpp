@@ -3,15 +3,15 @@
 
 #include <libdeflate.h>
 
-#include "byte_order.hpp"
+#include "base/byte_order.hpp"
 #include "qnv/stream.hpp"
 
 namespace gs::qnv {
 
-using detail::appendFloatLe;
-using detail::appendLe;
-using detail::loadFloatLe;
-using detail::loadLe;
+using base::appendFloatLe;
+using base::appendLe;
+using base::loadFloatLe;
+using base::loadLe;
 
 namespace {
 

@@ -1,11 +1,11 @@
-#include "byte_order.hpp"
+#include "base/byte_order.hpp"
 #include "compact_payload.hpp"
 #include "qnv/error.hpp"
 #include "qnv/stream.hpp"
 
 namespace gs::qnv {
 
-using detail::appendLe;
+using base::appendLe;
 
 void appendPacket(std::string& out, std::uint32_t sequence, std::span<const std::uint64_t> records,
                   PacketEncoding encoding) {

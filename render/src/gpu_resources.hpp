@@ -4,6 +4,7 @@
 
 #include <glad/gl.h>
 
+#include "render/scene_renderer.hpp"
 #include "render/traversal.hpp"
 #include "vrml/geometry.hpp"
 #include "vrml/parser.hpp"
@@ -48,7 +49,7 @@ class TextureCache {
   /// URLs resolve against `baseUrl`. Failures are reported to `traversal` once and give a
   /// texture with 0 components.
   const GpuTexture& get(const vrml::Node& node, const std::string& baseUrl,
-                        SceneTraversal& traversal, const vrml::UrlLoader& loader);
+                        SceneTraversal& traversal, const ResourceLoader& loader);
   void release();
 
  private:

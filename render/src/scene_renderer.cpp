@@ -1,6 +1,8 @@
 // SceneRenderer: per-frame drawing of a traversed scene.
 #include "render/scene_renderer.hpp"
 
+#include "base/url.hpp"
+
 #include "scene_splats.hpp"
 
 #include "gl_program.hpp"
@@ -173,9 +175,16 @@ SceneRenderer::SceneRenderer(std::shared_ptr<const vrml::Scene> scene, SceneRend
                  [this] {
                    TraversalOptions t = options_.traversal;
                    if (!t.inlineLoader && options_.loader) {
-                     vrml::UrlLoader loader = options_.loader;
+                     // Whole files for Inline and EXTERNPROTO: pending counts as failed.
+                     const vrml::UrlLoader loader = [l = options_.loader](const std::string& url,
+                                                                          std::string& bytes,
+                                                                          std::string& error) {
+                       const LoadStatus status = l(url, bytes, error);
+                       if (status == LoadStatus::pending && error.empty()) error = "still loading";
+                       return status == LoadStatus::loaded;
+                     };
                      t.inlineLoader = [loader](const std::string& url) {
-                       const std::string path = localPathOfUrl(url);
+                       const std::string path = base::localPathOfUrl(url);
                        if (!path.empty()) {
                          vrml::Scene local = vrml::loadVrmlFile(path);
                          if (!local.rootNodes.empty() || !local.diagnostics.hasErrors())

@@ -1,5 +1,7 @@
 #include "scene_splats.hpp"
 
+#include "base/url.hpp"
+
 #include <cmath>
 
 namespace gs::render::detail {
@@ -10,7 +12,7 @@ SceneSplats::SceneSplats(std::shared_ptr<const vrml::Scene> scene, SplatLoader l
   if (!loader_)
     loader_ = [](const std::string& url, const std::string&,
                  std::string& error) -> std::shared_ptr<const SplatSet> {
-      const std::string path = localPathOfUrl(url);
+      const std::string path = base::localPathOfUrl(url);
       if (path.empty()) {
         error = "cannot read " + url + ": only local files are supported here";
         return nullptr;
@@ -33,7 +35,7 @@ const SceneSplats::NodeSet& SceneSplats::nodeSet(const vrml::Node& node, const s
     const auto urls = node.get<vrml::FieldType::MFString>("url", std::vector<std::string>{});
     std::string errors;
     for (const std::string& url : urls) {
-      const std::string resolved = resolveUrl(baseUrl, url);
+      const std::string resolved = base::resolveUrl(baseUrl, url);
       if (auto it = byUrl_.find(resolved); it != byUrl_.end()) {
         set = it->second;
         break;

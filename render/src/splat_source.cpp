@@ -2,7 +2,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "net/file_source.hpp"
+#include "base/file.hpp"
 #include "render/world_triangles.hpp"
 
 namespace gs::render {
@@ -23,7 +23,7 @@ std::shared_ptr<SplatSet> makeSet(const qnv::StreamHeader& header,
 std::shared_ptr<const SplatSet> loadQnvFile(const std::string& path, std::string& error,
                                             std::vector<std::string>* warnings) {
   std::string bytes;
-  if (!net::readFile(path, bytes, error)) return nullptr;
+  if (!base::readFile(path, bytes, error)) return nullptr;
   qnv::StreamDecoder decoder(path);
   std::vector<qnv::DecodedVector> vectors;
   const auto sink = [&](std::uint64_t first, std::span<const qnv::DecodedVector> v) {

@@ -1,29 +1,16 @@
 // ImageTexture and PixelTexture to GL textures (clauses 6.22, 6.33), with mipmaps and the
 // repeatS / repeatT wrap modes.
+#include "base/file.hpp"
+#include "base/url.hpp"
 #include "gpu_resources.hpp"
-#include "net/transfer.hpp"
 #include "node_access.hpp"
 #include "render/image.hpp"
 #include "render/scene_renderer.hpp"
 
 #include <algorithm>
-#include <fstream>
-#include <sstream>
 
 namespace gs::render::detail {
 namespace {
-
-bool readLocalFile(const std::string& path, std::string& bytes, std::string& error) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    error = "no such file or not readable";
-    return false;
-  }
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  bytes = buffer.str();
-  return true;
-}
 
 GLuint uploadRgba(const std::uint8_t* rowsBottomUp, int width, int height, bool repeatS,
                   bool repeatT) {
@@ -90,7 +77,7 @@ bool decodeSFImage(const vrml::SFImage& image, std::vector<std::uint8_t>& rgba, 
 }
 
 const GpuTexture& TextureCache::get(const vrml::Node& node, const std::string& baseUrl,
-                                    SceneTraversal& traversal, const vrml::UrlLoader& loader) {
+                                    SceneTraversal& traversal, const ResourceLoader& loader) {
   if (auto it = textures_.find(&node); it != textures_.end()) return it->second;
   GpuTexture texture;
   const bool repeatS = sfBool(node, "repeatS", true), repeatT = sfBool(node, "repeatT", true);
@@ -114,17 +101,18 @@ const GpuTexture& TextureCache::get(const vrml::Node& node, const std::string& b
     bool pending = false;
     for (const std::string& reference : mfString(node, "url")) {
       if (reference.empty()) continue;
-      const std::string url = resolveUrl(baseUrl, reference);
+      const std::string url = base::resolveUrl(baseUrl, reference);
       std::string bytes, error;
       bool ok = false;
-      const std::string path = localPathOfUrl(url);
-      if (!net::mayReference(baseUrl, url, error)) {
+      const std::string path = base::localPathOfUrl(url);
+      if (!base::mayReference(baseUrl, url, error)) {
         // A world from the network never reads local files.
       } else {
-        if (!path.empty()) ok = readLocalFile(path, bytes, error);
+        if (!path.empty()) ok = base::readFile(path, bytes, error);
         if (!ok && loader) {
-          ok = loader(url, bytes, error);
-          if (!ok && error == kLoadPending) {
+          const LoadStatus status = loader(url, bytes, error);
+          ok = status == LoadStatus::loaded;
+          if (status == LoadStatus::pending) {
             pending = true;  // on its way: the next url only if this one fails
             break;
           }

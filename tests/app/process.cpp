@@ -1,5 +1,7 @@
 #include "process.hpp"
 
+#include "test_support.hpp"
+
 #include <fcntl.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -11,15 +13,6 @@
 #include <sstream>
 
 namespace gs::test {
-
-namespace {
-std::string slurp(const std::filesystem::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-}  // namespace
 
 ProcessResult runGhostspace(const std::vector<std::string>& args,
                             const std::vector<std::string>& env) {
@@ -58,8 +51,8 @@ ProcessResult runGhostspace(const std::vector<std::string>& args,
   std::error_code ignored;
   std::filesystem::remove_all(runtimeDir, ignored);
   r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = slurp(outPath);
-  r.err = slurp(errPath);
+  r.out = readBytes(outPath);
+  r.err = readBytes(errPath);
   std::filesystem::remove(outPath);
   std::filesystem::remove(errPath);
   return r;

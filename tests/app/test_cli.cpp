@@ -5,8 +5,11 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <vector>
 
 using gs::test::runGhostspace;
 
@@ -65,6 +68,49 @@ TEST_CASE("info prints counts, triangles, bounds and timing", "[app][cli]") {
   CHECK(r.out.find("triangles") != std::string::npos);
   CHECK(r.out.find("bounding box") != std::string::npos);
   CHECK(r.out.find("parse") != std::string::npos);
+}
+
+TEST_CASE("README.md names every option --help lists", "[app][cli]") {
+  // The command line (CLI11) is where options are declared; the README's table must not
+  // fall behind it.
+  const std::string readme = gs::test::readBytes(gs::test::sourceDir() / "README.md");
+  REQUIRE_FALSE(readme.empty());
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"--help"}, {"info", "--help"}, {"encode", "--help"}}) {
+    const auto r = runGhostspace(args);
+    REQUIRE(r.exitCode == 0);
+    std::size_t at = 0, found = 0;
+    while ((at = r.out.find("--", at)) != std::string::npos) {
+      std::size_t end = at + 2;
+      while (end < r.out.size() &&
+             (std::isalnum(static_cast<unsigned char>(r.out[end])) || r.out[end] == '-'))
+        ++end;
+      const std::string option = r.out.substr(at, end - at);
+      at = end;
+      if (option.size() < 4 || !std::isalpha(static_cast<unsigned char>(option[2]))) continue;
+      ++found;
+      INFO(args.front() << ": " << option);
+      CHECK(readme.find(option) != std::string::npos);
+    }
+    CHECK(found > 0);
+  }
+}
+
+TEST_CASE("info exits 1 for a world with errors unless --exit-zero", "[app][cli]") {
+  gs::test::TempDir dir("info");
+  const std::string bad = dir.write(
+      "bad.wrl", "#VRML V2.0 utf8\nShape { geometry Box { size 1 1 1 } }\nNoSuchNode { }\n");
+  const auto strict = runGhostspace({"info", bad});
+  CHECK(strict.exitCode == 1);
+  CHECK(strict.out.find("1 errors") != std::string::npos);
+  CHECK(strict.out.find("NoSuchNode") != std::string::npos);
+  const auto lenient = runGhostspace({"info", "--exit-zero", bad});
+  CHECK(lenient.exitCode == 0);
+  CHECK(lenient.out.find("NoSuchNode") != std::string::npos);  // the same report
+  // A clean world gives 0; one world with errors among several gives 1.
+  const auto good = gs::test::sourceDir() / "assets/worlds/welcome.wrl";
+  CHECK(runGhostspace({"info", good.string()}).exitCode == 0);
+  CHECK(runGhostspace({"info", good.string(), bad}).exitCode == 1);
 }
 
 TEST_CASE("snapshot writes a PNG of the bundled scene", "[app][cli][snapshot]") {

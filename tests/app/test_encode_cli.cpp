@@ -19,13 +19,6 @@ std::filesystem::path scratch(const std::string& name) {
   return dir / name;
 }
 
-std::string readAll(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 std::uint64_t decodedVectors(const std::string& bytes) {
   gs::qnv::StreamDecoder d("out.qnv");
   std::uint64_t n = 0;
@@ -46,7 +39,7 @@ TEST_CASE("encode turns a VRML world into a stream that info describes", "[app][
   REQUIRE(r.exitCode == 0);
   CHECK_THAT(r.out, Catch::Contains("triangles"));
   CHECK_THAT(r.out, Catch::Contains("bits per vector"));
-  const std::string bytes = readAll(out);
+  const std::string bytes = gs::test::readBytes(out);
   const std::uint64_t all = decodedVectors(bytes);
   CHECK(all > 100);
 
@@ -60,7 +53,7 @@ TEST_CASE("encode turns a VRML world into a stream that info describes", "[app][
   auto half = runGhostspace({"encode", world.string(), "-o", out.string(), "--fraction", "0.5",
                              "--packet-bytes", "48", "--compact"});
   REQUIRE(half.exitCode == 0);
-  const std::uint64_t some = decodedVectors(readAll(out));
+  const std::uint64_t some = decodedVectors(gs::test::readBytes(out));
   CHECK(some < all);
   CHECK(some > all / 3);
 
@@ -100,7 +93,7 @@ TEST_CASE("encode keeps the paper's top 9.1% of CThead's voxels", "[app][encode]
   // 256 * 256 * 113 = 7,405,568 voxels; 9.1% of them is 673,907.
   CHECK_THAT(r.out, Catch::Contains("7,405,568 voxels"));
   CHECK_THAT(r.out, Catch::Contains("kept 673,907"));
-  CHECK(decodedVectors(readAll(out)) == 673907);
+  CHECK(decodedVectors(gs::test::readBytes(out)) == 673907);
   auto info = runGhostspace({"info", out.string()});
   CHECK_THAT(info.out, Catch::Contains("256 x 256 x 113 voxels, spacing 1 1 2"));
 }

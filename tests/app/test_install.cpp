@@ -3,6 +3,8 @@
 // by update-mime-database into a model/x-qnv type) and the icon.
 #include <catch2/catch.hpp>
 
+#include "test_support.hpp"
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -25,13 +27,6 @@ std::string quoted(const fs::path& p) {
   return "'" + p.string() + "'";
 }
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 }  // namespace
 
 TEST_CASE("cmake --install writes the helper-application files", "[app][install]") {
@@ -48,7 +43,7 @@ TEST_CASE("cmake --install writes the helper-application files", "[app][install]
   REQUIRE(fs::exists(mime));
   CHECK(fs::exists(icon));
 
-  const std::string entry = slurp(desktop);
+  const std::string entry = gs::test::readBytes(desktop);
   CHECK(entry.find("Exec=ghostspace %U") != std::string::npos);
   for (const char* type : {"model/vrml", "x-world/x-vrml", "model/x-qnv"})
     CHECK(entry.find(type) != std::string::npos);
@@ -69,9 +64,10 @@ TEST_CASE("cmake --install writes the helper-application files", "[app][install]
             0);
     const fs::path compiled = prefix / "share/mime/model/x-qnv.xml";
     CHECK(fs::exists(compiled));
-    const std::string globs = slurp(prefix / "share/mime/globs2");
+    const std::string globs = gs::test::readBytes(prefix / "share/mime/globs2");
     CHECK(globs.find("model/x-qnv:*.qnv") != std::string::npos);
-    CHECK(slurp(prefix / "share/mime/magic").find("model/x-qnv") != std::string::npos);
+    CHECK(gs::test::readBytes(prefix / "share/mime/magic").find("model/x-qnv") !=
+          std::string::npos);
   }
   fs::remove_all(prefix);
 }

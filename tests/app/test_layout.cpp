@@ -37,26 +37,25 @@ double differing(const gs::render::Image& a, const gs::render::Image& b) {
   return gs::render::compareImages(a, b, 2).fractionDiffering;
 }
 
-std::string readBytes(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 }  // namespace
 
 TEST_CASE("layout rectangles tile the framebuffer", "[app][layout]") {
+  using gs::app::Layout;
+  using gs::app::layoutCells;
+  using gs::app::layoutFromName;
   using gs::app::layoutRect;
-  CHECK(gs::app::layoutCells("1x1") == 1);
-  CHECK(gs::app::layoutCells("2x1") == 2);
-  CHECK(gs::app::layoutCells("2x2") == 4);
-  CHECK(gs::app::layoutCells("3x3") == 0);
-  const auto left = layoutRect("2x1", 0, 641, 480), right = layoutRect("2x1", 1, 641, 480);
+  CHECK(layoutCells(*layoutFromName("1x1")) == 1);
+  CHECK(layoutCells(*layoutFromName("2x1")) == 2);
+  CHECK(layoutCells(*layoutFromName("2x2")) == 4);
+  CHECK_FALSE(layoutFromName("3x3"));
+  for (const auto& info : gs::app::kLayouts) CHECK(layoutFromName(info.name) == info.layout);
+  const auto left = layoutRect(Layout::sideBySide, 0, 641, 480),
+             right = layoutRect(Layout::sideBySide, 1, 641, 480);
   CHECK((left.x == 0 && left.width == 320 && left.y == 0 && left.height == 480));
   CHECK((right.x == 320 && right.width == 321));
   // 2x2: index 0 is the top left, so it has the highest y (lower-left origin).
-  const auto topLeft = layoutRect("2x2", 0, 640, 481), bottomRight = layoutRect("2x2", 3, 640, 481);
+  const auto topLeft = layoutRect(Layout::quad, 0, 640, 481),
+             bottomRight = layoutRect(Layout::quad, 3, 640, 481);
   CHECK((topLeft.x == 0 && topLeft.y == 241 && topLeft.height == 240));
   CHECK((bottomRight.x == 320 && bottomRight.y == 0 && bottomRight.height == 241));
 }
@@ -96,7 +95,7 @@ TEST_CASE("one stream in two viewports is fetched once", "[app][layout][http]") 
   REQUIRE(runGhostspace({"encode", (gs::test::sourceDir() / "assets/volumes/sphere.nrrd").string(),
                          "-o", qnv.string(), "--no-progress"})
               .exitCode == 0);
-  const std::string bytes = readBytes(qnv);
+  const std::string bytes = gs::test::readBytes(qnv);
   nginx.writeFile("s.qnv", bytes);
   const fs::path out = outDir() / "shared.png";
   const auto r = runGhostspace({"--snapshot", out.string(), "--size", "200x100", "--layout", "2x1",

@@ -1,6 +1,6 @@
 // `ghostspace encode --outline`: the outline-group world writer (paper section 1.1), end to
 // end with the real binary: reparse, triangle counts, outlines first, same picture.
-#include "app/outline_world.hpp"
+#include "outline/outline_world.hpp"
 #include "process.hpp"
 #include "render/image.hpp"
 #include "render/traversal.hpp"
@@ -17,13 +17,6 @@ using gs::test::runGhostspace;
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string readAll(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
 
 /// Triangles drawn from the bound viewpoint (outline shapes counted apart).
 struct Counts {
@@ -62,7 +55,7 @@ fs::path encodeAndCheck(const fs::path& input, const std::string& tag) {
   REQUIRE(r.exitCode == 0);
   CHECK(r.out.find("groups") != std::string::npos);
   CHECK(r.out.find("outline vertices") != std::string::npos);
-  const std::string text = readAll(out);
+  const std::string text = gs::test::readBytes(out);
   REQUIRE(text.rfind("#VRML V2.0 utf8", 0) == 0);
 
   auto reparsed = std::make_shared<gs::vrml::Scene>(gs::vrml::parseVrml(text, out.string()));
@@ -94,7 +87,7 @@ TEST_CASE("encode --outline rewrites the welcome world outlines first", "[app][o
   WARN("welcome.wrl: differing pixels, outline world vs input (texture dropped): " << diff);
   CHECK(diff <= 0.10);
   // Without its one texture the world must render the same.
-  std::string text = readAll(in);
+  std::string text = gs::test::readBytes(in);
   const auto at = text.find("texture ImageTexture");
   REQUIRE(at != std::string::npos);
   text.erase(at, text.find('}', at) + 1 - at);
@@ -121,7 +114,7 @@ TEST_CASE("encode --outline on a KiCad world: same picture, outline-only prefix"
   CHECK(diff <= 0.01);
 
   // The prefix before the first polygon is a world of outlines only.
-  const std::string text = readAll(out);
+  const std::string text = gs::test::readBytes(out);
   const std::size_t prefixBytes = text.find("OutlineGroup { groupId 0 children");
   REQUIRE(prefixBytes != std::string::npos);
   const fs::path prefix = fs::temp_directory_path() / "gs_outline_kicad_prefix.wrl";
@@ -152,8 +145,8 @@ TEST_CASE("writeOutlineWorld keeps the viewpoint and background", "[app][outline
       "  Shape { appearance Appearance { material Material { diffuseColor 1 0 0 } }\n"
       "          geometry Box {} } ] }\n";
   auto scene = std::make_shared<gs::vrml::Scene>(gs::vrml::parseVrml(text, "/tmp/vp.wrl"));
-  gs::app::OutlineWorldSummary sum;
-  const std::string out = gs::app::writeOutlineWorld(scene, {}, &sum);
+  gs::outline::OutlineWorldSummary sum;
+  const std::string out = gs::outline::writeOutlineWorld(scene, {}, &sum);
   CHECK(sum.groups == 6);
   CHECK(sum.triangles == 12);
   CHECK(sum.appearances == 1);

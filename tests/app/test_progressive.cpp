@@ -24,13 +24,6 @@ using gs::test::runGhostspace;
 
 namespace {
 
-std::string readBytes(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 fs::path outDir() {
   const fs::path d = fs::path(GS_BINARY_DIR) / "progressive-actual";
   fs::create_directories(d);
@@ -97,7 +90,7 @@ std::string ballStream(const std::string& name) {
   const auto r = runGhostspace(
       {"encode", raw.string(), "--raw-dims", "48,48,48", "-o", qnv.string(), "--no-progress"});
   REQUIRE(r.exitCode == 0);
-  return readBytes(qnv);
+  return gs::test::readBytes(qnv);
 }
 
 fs::path worldsDir() {
@@ -111,7 +104,7 @@ TEST_CASE("a world, its Inline and textures load over HTTP as from files", "[app
   if (!nginx.ok()) return;
   for (const auto& e : fs::recursive_directory_iterator(worldsDir()))
     if (e.is_regular_file())
-      nginx.writeFile(fs::relative(e.path(), worldsDir()).string(), readBytes(e.path()));
+      nginx.writeFile(fs::relative(e.path(), worldsDir()).string(), gs::test::readBytes(e.path()));
   const auto local = shoot("features_local", (worldsDir() / "features.wrl").string());
   REQUIRE(local.exitCode == 0);
   const auto remote = shoot("features_http", nginx.url("/features.wrl"));
@@ -136,7 +129,7 @@ TEST_CASE("gzip worlds stream: .wrl.gz bytes and gzip Content-Encoding", "[app][
     std::ofstream(outDir() / "boxes.wrl", std::ios::binary) << world;
     REQUIRE(std::system(("gzip -kf '" + (outDir() / "boxes.wrl").string() + "'").c_str()) == 0);
   }
-  nginx.writeFile("boxes.wrl.gz", readBytes(gz));
+  nginx.writeFile("boxes.wrl.gz", gs::test::readBytes(gz));
   REQUIRE(shoot("boxes_local", (outDir() / "boxes.wrl").string()).exitCode == 0);
   REQUIRE(shoot("boxes_gzfile", nginx.url("/boxes.wrl.gz")).exitCode == 0);
   REQUIRE(shoot("boxes_encoded", nginx.url("/gz/boxes.wrl")).exitCode == 0);
@@ -179,7 +172,7 @@ TEST_CASE("a QNV stream over HTTP fetches only the prefix its level of detail dr
 TEST_CASE("a server that ignores ranges still gives the whole QNV picture", "[app][http][qnv]") {
   const fs::path qnv = outDir() / "ball_ir.qnv";
   ballStream("ball_ir.qnv");
-  FaultServer server(readBytes(qnv), FaultServer::Behaviour::ignoreRanges);
+  FaultServer server(gs::test::readBytes(qnv), FaultServer::Behaviour::ignoreRanges);
   REQUIRE(server.ok());
   REQUIRE(shoot("sphere_ir_local", qnv.string()).exitCode == 0);
   const auto r = shoot("sphere_ir_http", server.url("/sphere.qnv"));

@@ -21,15 +21,15 @@
 
 #include "app/commands.hpp"
 #include "app/options.hpp"
-#include "app/outline_world.hpp"
-#include "app/streaming_session.hpp"
-#include "app/volume_input.hpp"
-#include "app/world.hpp"
+#include "outline/outline_world.hpp"
 #include "qnv/encoder.hpp"
 #include "qnv/stream.hpp"
 #include "render/context.hpp"
 #include "render/image.hpp"
 #include "render/scene_renderer.hpp"
+#include "session/streaming_session.hpp"
+#include "session/volume_input.hpp"
+#include "session/world.hpp"
 
 namespace fs = std::filesystem;
 using namespace gs;
@@ -81,7 +81,7 @@ std::vector<Frame> stream(const std::string& input, double rate, const render::C
   net::LoaderOptions lo;
   lo.maxRate = rate;
   lo.stopAfterBytes = stopAfter;
-  app::StreamingSession session(lo);
+  session::StreamingSession session(lo);
   std::string error;
   auto scene = session.open(input, error);
   std::vector<Frame> frames;
@@ -196,7 +196,7 @@ int main(int argc, char** argv) {
 
   // CThead: its top 9.1% as a .qnv (the paper's figure 2); "plain" is the raw volume.
   {
-    const auto volume = app::loadVolumeFile(cthead.string());
+    const auto volume = session::loadVolumeFile(cthead.string());
     qnv::VolumeEncodeOptions opt;
     opt.selection.fraction = 0.091;
     writeFile(dir / "cthead.qnv", qnv::writeStream(qnv::encodeVolume(volume, opt)));
@@ -210,9 +210,9 @@ int main(int argc, char** argv) {
     std::stringstream s;
     s << in.rdbuf();
     const std::string plain = s.str();
-    const app::LoadedWorld world = app::loadWorld(kicad.string());
-    app::OutlineWorldSummary summary;
-    const std::string outlined = app::writeOutlineWorld(world.scene, {}, &summary);
+    const session::LoadedWorld world = session::loadWorld(kicad.string());
+    outline::OutlineWorldSummary summary;
+    const std::string outlined = outline::writeOutlineWorld(world.scene, {}, &summary);
     writeFile(dir / "plain.wrl", plain);
     writeFile(dir / "plain.wrl.gz", gzip(plain));
     writeFile(dir / "outline.wrl", outlined);

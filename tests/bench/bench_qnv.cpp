@@ -13,13 +13,13 @@
 
 #include <zlib.h>
 
-#include "app/mesh_input.hpp"
-#include "app/volume_input.hpp"
-#include "app/world.hpp"
-#include "net/file_source.hpp"
+#include "base/file.hpp"
 #include "qnv/decoder.hpp"
 #include "qnv/encoder.hpp"
 #include "render/world_triangles.hpp"
+#include "session/mesh_input.hpp"
+#include "session/volume_input.hpp"
+#include "session/world.hpp"
 
 #include <glm/geometric.hpp>
 
@@ -129,7 +129,7 @@ int main(int argc, char** argv) {
   }
   std::printf("== CThead (%s) ==\n", cthead.string().c_str());
   auto t0 = Clock::now();
-  const qnv::Volume volume = gs::app::loadVolumeFile(cthead.string());
+  const qnv::Volume volume = gs::session::loadVolumeFile(cthead.string());
   std::printf("read and convert: %.3f s (%zu voxels)\n", since(t0), volume.voxelCount());
   qnv::EncodeSummary summary;
   double best = 1e9;
@@ -196,15 +196,16 @@ int main(int argc, char** argv) {
   std::size_t totals[5] = {0, 0, 0, 0, 0};
   for (const auto& p : surfaces) {
     std::string bytes, error;
-    if (!gs::net::readFile(p.string(), bytes, error)) {
+    if (!gs::base::readFile(p.string(), bytes, error)) {
       std::printf("  %-44s (missing: %s)\n", p.filename().string().substr(0, 44).c_str(),
                   error.c_str());
       continue;
     }
     t0 = Clock::now();
-    qnv::TriangleMesh mesh = p.extension() == ".ply"
-                                 ? gs::app::loadMeshFile(p.string())
-                                 : gs::render::worldTriangles(gs::app::loadWorld(p.string()).scene);
+    qnv::TriangleMesh mesh =
+        p.extension() == ".ply"
+            ? gs::session::loadMeshFile(p.string())
+            : gs::render::worldTriangles(gs::session::loadWorld(p.string()).scene);
     const qnv::EncodedVectors e = qnv::encodeSurface(mesh, {}, &summary);
     const double seconds = since(t0);
     const std::size_t sizes[5] = {

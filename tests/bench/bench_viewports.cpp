@@ -15,12 +15,12 @@
 #include "app/commands.hpp"
 #include "app/layout.hpp"
 #include "app/options.hpp"
-#include "app/streaming_session.hpp"
-#include "app/volume_input.hpp"
 #include "qnv/encoder.hpp"
 #include "qnv/stream.hpp"
 #include "render/context.hpp"
 #include "render/scene_renderer.hpp"
+#include "session/streaming_session.hpp"
+#include "session/volume_input.hpp"
 
 namespace fs = std::filesystem;
 using namespace gs;
@@ -41,12 +41,12 @@ int main(int argc, char** argv) {
   const fs::path qnv = fs::temp_directory_path() / "gs_bench_viewports.qnv";
   {
     const std::string bytes =
-        qnv::writeStream(qnv::encodeVolume(app::loadVolumeFile(cthead.string()), {}));
+        qnv::writeStream(qnv::encodeVolume(session::loadVolumeFile(cthead.string()), {}));
     std::ofstream(qnv, std::ios::binary)
         .write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
   }
   auto context = render::createOffscreenContext(width, height);
-  app::StreamingSession session;
+  session::StreamingSession session;
   std::string error;
   auto scene = session.open(qnv.string(), error);
   if (!scene) {
@@ -60,7 +60,7 @@ int main(int argc, char** argv) {
     render::SceneRendererOptions o = app::rendererOptions(app::Options{});
     o.lod = lods[i];
     views[i] = std::make_unique<render::SceneRenderer>(scene, session.rendererOptions(o));
-    rects[i] = app::layoutRect("2x2", i, width, height);
+    rects[i] = app::layoutRect(app::Layout::quad, i, width, height);
   }
   // Load the whole stream (one session: read once for all four viewports). Drawing is
   // what asks for the prefix each level of detail needs.

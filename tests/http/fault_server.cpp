@@ -1,5 +1,7 @@
 #include "http/fault_server.hpp"
 
+#include "base/text.hpp"
+
 #include <arpa/inet.h>
 #include <linux/sockios.h>
 #include <netinet/in.h>
@@ -19,11 +21,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 constexpr std::size_t kNoCut = std::numeric_limits<std::size_t>::max();
-
-std::string lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
 
 }  // namespace
 
@@ -94,7 +91,7 @@ bool FaultServer::readRequest(int fd, Request& request) {
     const auto next = in.find("\r\n", pos + 2);
     const std::string line = in.substr(pos + 2, next - pos - 2);
     const auto colon = line.find(':');
-    if (colon != std::string::npos && lower(line.substr(0, colon)) == "range") {
+    if (colon != std::string::npos && gs::base::equalsNoCase(line.substr(0, colon), "range")) {
       const auto b = line.find_first_not_of(' ', colon + 1);
       request.range = b == std::string::npos ? "" : line.substr(b);
     }

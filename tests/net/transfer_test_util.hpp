@@ -3,6 +3,7 @@
 #pragma once
 
 #include "net/transfer.hpp"
+#include "test_support.hpp"
 
 #include <chrono>
 #include <cstdint>
@@ -72,31 +73,5 @@ inline std::string vrmlText(std::size_t n) {
     s += "  " + std::to_string(i) + " " + std::to_string(i * 7 % 101) + " 0.5,\n";
   return s + "] } } }\n";
 }
-
-/// A fresh folder under the system's temporary folder, removed on destruction.
-class TempDir {
- public:
-  TempDir() {
-    std::string tmpl = (std::filesystem::temp_directory_path() / "gs-net-XXXXXX").string();
-    if (::mkdtemp(tmpl.data())) path_ = tmpl;
-  }
-  ~TempDir() {
-    std::error_code ec;
-    if (!path_.empty()) std::filesystem::remove_all(path_, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  const std::filesystem::path& path() const { return path_; }
-  /// Writes `bytes` to path()/`name` and returns the full path.
-  std::string write(const std::string& name, const std::string& bytes) const {
-    const auto p = path_ / name;
-    std::ofstream out(p, std::ios::binary);
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    return p.string();
-  }
-
- private:
-  std::filesystem::path path_;
-};
 
 }  // namespace gs::test

@@ -29,13 +29,6 @@ std::string goldenPath() {
   return (gs::test::sourceDir() / "tests/qnv/golden/three_triangles.qnv").string();
 }
 
-std::string readAll(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 std::uint64_t word(const std::string& bytes, std::size_t at) {
   std::uint64_t v = 0;
   for (int i = 7; i >= 0; --i) v = (v << 8) | static_cast<unsigned char>(bytes[at + i]);
@@ -48,13 +41,13 @@ TEST_CASE("the encoder reproduces the golden stream byte for byte", "[qnv][golde
   const std::string stream =
       writeStream(encodeSurface(goldenMesh(), {}), {16, PacketEncoding::plain});
   if (std::getenv("GS_WRITE_GOLDEN")) std::ofstream(goldenPath(), std::ios::binary) << stream;
-  const std::string golden = readAll(goldenPath());
+  const std::string golden = gs::test::readBytes(goldenPath());
   REQUIRE(golden.size() == 1132 + 2 * 16 + 3 * 8);
   CHECK(stream == golden);
 }
 
 TEST_CASE("the golden stream holds the hand-computed fields", "[qnv][golden]") {
-  const std::string g = readAll(goldenPath());
+  const std::string g = gs::test::readBytes(goldenPath());
   REQUIRE(g.size() == 1188);
   CHECK(g.compare(0, 8, "\x89QNV\r\n\x1a\n") == 0);
   CHECK(g[8] == 1);    // version 1, little-endian u16
@@ -81,9 +74,10 @@ TEST_CASE("the golden stream decodes to the triangles' centroids, normals and ar
           "[qnv][golden]") {
   StreamDecoder decoder("three_triangles.qnv");
   std::vector<DecodedVector> v;
-  REQUIRE(decoder.feed(readAll(goldenPath()), [&](std::uint64_t, std::span<const DecodedVector> s) {
-    v.insert(v.end(), s.begin(), s.end());
-  }));
+  REQUIRE(decoder.feed(gs::test::readBytes(goldenPath()),
+                       [&](std::uint64_t, std::span<const DecodedVector> s) {
+                         v.insert(v.end(), s.begin(), s.end());
+                       }));
   REQUIRE(decoder.finish());
   REQUIRE(v.size() == 3);
   const float half = 3.0f / 1024 / 2;

@@ -3,6 +3,8 @@
 
 #include <catch2/catch.hpp>
 
+#include "test_support.hpp"
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -13,12 +15,6 @@ using gs::render::Image;
 namespace {
 std::filesystem::path tempPath(const std::string& name) {
   return std::filesystem::temp_directory_path() / ("gs_render_test_" + name);
-}
-std::string readBytes(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 Image gradient(int w, int h) {
   Image img(w, h);
@@ -44,7 +40,8 @@ TEST_CASE("PNG write then read is exact", "[render][image]") {
   CHECK(back.rgba == img.rgba);
   // stb_image decodes the same file to the same pixels.
   int components = 0;
-  const Image decoded = gs::render::decodeImage(readBytes(path), "roundtrip", &components);
+  const Image decoded =
+      gs::render::decodeImage(gs::test::readBytes(path), "roundtrip", &components);
   CHECK(components == 4);
   CHECK(decoded.rgba == img.rgba);
   std::filesystem::remove(path);
@@ -60,7 +57,7 @@ TEST_CASE("PNG errors name the file and the reason", "[render][image]") {
   // A truncated PNG: libpng's longjmp becomes an exception.
   const auto good = tempPath("good.png");
   gs::render::writePng(good.string(), gradient(64, 64));
-  const std::string bytes = readBytes(good);
+  const std::string bytes = gs::test::readBytes(good);
   const auto truncated = tempPath("truncated.png");
   std::ofstream(truncated, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
   CHECK_THROWS_WITH(gs::render::readPng(truncated.string()), Catch::Contains(truncated.string()));

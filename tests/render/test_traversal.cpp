@@ -1,6 +1,7 @@
 // Scene traversal on the CPU: node maths, grouping nodes, LOD, lights, bindables, Inline.
 #include "render/traversal.hpp"
 #include "render_test_util.hpp"
+#include "vrml/parser.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -95,21 +96,32 @@ TEST_CASE("TextureTransform order is -C S R C T", "[render][traversal]") {
   CHECK(q.y == Approx(1.0f));
 }
 
-TEST_CASE("URLs resolve against the file that names them", "[render][traversal]") {
-  using gs::render::resolveUrl;
-  CHECK(resolveUrl("/a/b/world.wrl", "tex.png") == "/a/b/tex.png");
-  CHECK(resolveUrl("/a/b/world.wrl", "../c/./x.wrl") == "/a/c/x.wrl");
-  CHECK(resolveUrl("/a/b/world.wrl", "/abs/x.wrl") == "/abs/x.wrl");
-  CHECK(resolveUrl("world.wrl", "sub/x.wrl") == "sub/x.wrl");
-  CHECK(resolveUrl("dir/world.wrl", "../../x.wrl") == "../x.wrl");
-  CHECK(resolveUrl("http://h.org/w/world.wrl", "t/x.png") == "http://h.org/w/t/x.png");
-  CHECK(resolveUrl("http://h.org/w/world.wrl", "/x.png") == "http://h.org/x.png");
-  CHECK(resolveUrl("http://h.org/w/world.wrl", "https://o.org/y.png") == "https://o.org/y.png");
-  CHECK(resolveUrl("file:///a/b/w.wrl", "c.wrl") == "file:///a/b/c.wrl");
-  using gs::render::localPathOfUrl;
-  CHECK(localPathOfUrl("/a/b.wrl") == "/a/b.wrl");
-  CHECK(localPathOfUrl("file:///a/my%20b.wrl") == "/a/my b.wrl");
-  CHECK(localPathOfUrl("http://h.org/x.wrl").empty());
+TEST_CASE("the parser and the renderer resolve a URL the same way", "[render][traversal][url]") {
+  // One resolver (base/url.hpp): an EXTERNPROTO and an Inline naming the same reference
+  // from the same world reach their loaders as the same URL.
+  const std::string world = "http://h.org/w/sub/world.wrl";
+  const std::string text =
+      "#VRML V2.0 utf8\nEXTERNPROTO P [] \"../protos/./p.wrl\"\n"
+      "Inline { url \"../protos/./p.wrl\" }\n";
+  std::string parserUrl;
+  gs::vrml::ParseOptions parse;
+  parse.loader = [&](const std::string& url, std::string&, std::string& error) {
+    parserUrl = url;
+    error = "not served here";
+    return false;
+  };
+  auto scene = std::make_shared<const gs::vrml::Scene>(gs::vrml::parseVrml(text, world, parse));
+  std::string rendererUrl;
+  gs::render::TraversalOptions options;
+  options.inlineLoader = [&](const std::string& url) {
+    rendererUrl = url;
+    return gs::vrml::Scene{};
+  };
+  gs::render::SceneTraversal traversal(scene, options);
+  gs::render::TraversalFrame frame;
+  traversal.collect(traversal.boundViewpointCamera(), frame);
+  CHECK(parserUrl == "http://h.org/w/protos/p.wrl");
+  CHECK(rendererUrl == parserUrl);
 }
 
 TEST_CASE("traversal applies transforms and chooses Switch and LOD children",

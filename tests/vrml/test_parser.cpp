@@ -8,8 +8,6 @@
 
 #include <catch2/catch.hpp>
 
-#include <zlib.h>
-
 #include <cmath>
 #include <string>
 
@@ -406,19 +404,7 @@ TEST_CASE("node locations and onRootNode", "[parser]") {
 }
 
 TEST_CASE("gzip input is read transparently, concatenated members too", "[parser]") {
-  auto gz = [](const std::string& text) {
-    z_stream zs{};
-    REQUIRE(deflateInit2(&zs, 9, Z_DEFLATED, 16 + MAX_WBITS, 8, Z_DEFAULT_STRATEGY) == Z_OK);
-    std::string out(compressBound(static_cast<uLong>(text.size())) + 64, '\0');
-    zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(text.data()));
-    zs.avail_in = static_cast<uInt>(text.size());
-    zs.next_out = reinterpret_cast<Bytef*>(out.data());
-    zs.avail_out = static_cast<uInt>(out.size());
-    REQUIRE(deflate(&zs, Z_FINISH) == Z_STREAM_END);
-    out.resize(zs.total_out);
-    deflateEnd(&zs);
-    return out;
-  };
+  const auto gz = gs::test::gzip;
   const std::string a = gz("#VRML V2.0 utf8\nGroup {}\n");
   Scene s = parseVrml(a, "g.wrl.gz");
   CHECK(s.diagnostics.items.empty());

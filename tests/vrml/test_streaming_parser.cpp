@@ -6,7 +6,6 @@
 #include "vrml/parser.hpp"
 #include "vrml/streaming_parser.hpp"
 
-#include <zlib.h>
 #include <catch2/catch.hpp>
 
 #include <chrono>
@@ -21,6 +20,7 @@
 #include <vector>
 
 using namespace gs::vrml;
+using gs::test::gzip;
 namespace fs = std::filesystem;
 
 namespace {
@@ -30,20 +30,6 @@ std::string readAll(const fs::path& p) {
   std::ostringstream s;
   s << in.rdbuf();
   return s.str();
-}
-
-std::string gzip(const std::string& text) {
-  z_stream zs{};
-  REQUIRE(deflateInit2(&zs, 6, Z_DEFLATED, 16 + MAX_WBITS, 8, Z_DEFAULT_STRATEGY) == Z_OK);
-  std::string out(deflateBound(&zs, static_cast<uLong>(text.size())) + 64, '\0');
-  zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(text.data()));
-  zs.avail_in = static_cast<uInt>(text.size());
-  zs.next_out = reinterpret_cast<Bytef*>(out.data());
-  zs.avail_out = static_cast<uInt>(out.size());
-  REQUIRE(deflate(&zs, Z_FINISH) == Z_STREAM_END);
-  out.resize(zs.total_out);
-  deflateEnd(&zs);
-  return out;
 }
 
 // ---- structural comparison -------------------------------------------------------------

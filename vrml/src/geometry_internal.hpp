@@ -8,6 +8,7 @@
 
 #include <glm/glm.hpp>
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -205,5 +206,13 @@ Mesh tessellateIndexedLineSet(const Node& node, ProblemLog& log);
 Mesh tessellatePointSet(const Node& node, ProblemLog& log);
 Mesh tessellateElevationGrid(const Node& node, ProblemLog& log);
 Mesh tessellateExtrusion(const Node& node, ProblemLog& log);
+
+/// An orthonormal basis (u, v) of the plane normal to the unit vector `n`, with
+/// u x v = n: counter-clockwise in the (u, v) plane is counter-clockwise about n.
+inline void planeBasis(const glm::dvec3& n, glm::dvec3& u, glm::dvec3& v) {
+  u = std::abs(n.x) < 0.9 ? glm::cross(n, glm::dvec3(1, 0, 0)) : glm::cross(n, glm::dvec3(0, 1, 0));
+  u = glm::normalize(u);
+  v = glm::cross(n, u);
+}
 
 }  // namespace gs::vrml::geometry_detail

@@ -226,12 +226,8 @@ void triangulatePolygon(std::span<const glm::vec3> pts, const glm::dvec3& normal
   const double len = glm::length(normal);
   if (!(len > 0.0) || !std::isfinite(len)) return;
   const glm::dvec3 n = normal / len;
-  // An orthonormal basis (u, v) of the plane with u x v = n, so counterclockwise in 2D is
-  // counterclockwise about n.
-  glm::dvec3 u =
-      std::abs(n.x) < 0.9 ? glm::cross(n, glm::dvec3(1, 0, 0)) : glm::cross(n, glm::dvec3(0, 1, 0));
-  u = glm::normalize(u);
-  const glm::dvec3 v = glm::cross(n, u);
+  glm::dvec3 u, v;
+  planeBasis(n, u, v);
   const glm::dvec3 o(pts[0]);
 
   // Project, dropping consecutive repeated points (and a closing repeat of the first).

@@ -14,6 +14,7 @@ namespace gs::vrml {
 namespace {
 
 using geometry_detail::newellNormal;
+using geometry_detail::planeBasis;
 using geometry_detail::triangulatePolygon;
 
 double area2(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) {
@@ -151,11 +152,9 @@ Mesh triangulateOutline(const std::vector<glm::vec3>& points,
   if (!(len > 0.0) || !std::isfinite(len)) return {};
   const glm::dvec3 n = normal / len;
 
-  // Project into the plane (u x v = n: counter-clockwise in 2D is counter-clockwise about n).
-  glm::dvec3 u =
-      std::abs(n.x) < 0.9 ? glm::cross(n, glm::dvec3(1, 0, 0)) : glm::cross(n, glm::dvec3(0, 1, 0));
-  u = glm::normalize(u);
-  const glm::dvec3 v = glm::cross(n, u);
+  // Project into the plane.
+  glm::dvec3 u, v;
+  planeBasis(n, u, v);
   const glm::dvec3 o(outerPts[0]);
   std::vector<glm::dvec2> p(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {

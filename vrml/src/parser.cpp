@@ -645,7 +645,7 @@ void parseInto(std::string_view bytes, const std::string& url, Context& ctx, int
   const ParseLimits& limits = ctx.options.limits;
   std::string inflated;
   try {
-    if (isGzip(bytes)) {
+    if (base::isGzip(bytes)) {
       gunzipInto(bytes, url, limits.maxInputBytes, inflated);
       bytes = inflated;
     }

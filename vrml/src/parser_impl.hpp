@@ -4,6 +4,7 @@
 // route.cpp (ROUTE). Internal to gs_vrml.
 #pragma once
 
+#include "base/gzip.hpp"
 #include "lexer.hpp"
 #include "vrml/node.hpp"
 #include "vrml/node_table.hpp"
@@ -283,15 +284,10 @@ int treeHeight(const NodePtr& n, std::unordered_map<const Node*, int>& memo);
 bool nodeClassAllowed(const NodeType* parent, std::string_view field, const NodeType& child,
                       std::string& expected);
 
-/// Decompresses gzip data (1f 8b ...) into `out`; throws ParseError naming `url`.
+/// Decompresses gzip data (1f 8b ...) into `out` (base::gunzip); throws ParseError naming
+/// `url` with base::GzipError's reason.
 void gunzipInto(std::string_view bytes, const std::string& url, std::size_t maxBytes,
                 std::string& out);
-
-/// Whether `bytes` start with the gzip magic.
-inline bool isGzip(std::string_view bytes) {
-  return bytes.size() >= 2 && static_cast<unsigned char>(bytes[0]) == 0x1f &&
-         static_cast<unsigned char>(bytes[1]) == 0x8b;
-}
 
 /// Parses `bytes` (a whole file, gzip or not) into `scene` with shared context `ctx`.
 void parseInto(std::string_view bytes, const std::string& url, Context& ctx, int externDepth,
@@ -300,14 +296,8 @@ void parseInto(std::string_view bytes, const std::string& url, Context& ctx, int
 /// Whether `url` (relative to the file `base`) names the local file `base` itself.
 bool urlNamesFile(const std::string& base, const std::string& url);
 
-/// `url` resolved against the URL or path `base` (RFC 3986 style for the common cases:
-/// absolute URLs and paths are kept, relative ones join base's directory).
-std::string resolveUrl(const std::string& base, const std::string& url);
-
-/// Whether `url` starts with a URL scheme such as "http:" (one letter is a drive).
-bool hasScheme(std::string_view url);
-
-/// Reads a whole local file; false with `error` set when it cannot.
+/// Reads the whole local file named by the path or file: URL `url` (base::readFile);
+/// false with `error` set when it cannot.
 bool readFile(const std::string& path, std::size_t maxBytes, std::string& bytes,
               std::string& error);
 

@@ -3,6 +3,9 @@
 #include "parser_impl.hpp"
 #include "vrml/node_table.hpp"
 
+#include "base/text.hpp"
+#include "base/url.hpp"
+
 #include <algorithm>
 
 namespace gs::vrml::parsing {
@@ -11,16 +14,6 @@ namespace {
 
 bool carriesValue(AccessType a) {
   return a == AccessType::field || a == AccessType::exposedField;
-}
-
-bool startsWithNoCase(std::string_view s, std::string_view prefix) {
-  if (s.size() < prefix.size()) return false;
-  for (std::size_t i = 0; i < prefix.size(); ++i) {
-    char c = s[i];
-    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
-    if (c != prefix[i]) return false;
-  }
-  return true;
 }
 
 struct RecursionGuard {
@@ -179,7 +172,7 @@ void Parser::parseExternProto(Scope& scope) {
   // (docs/vrml-extensions.md): use the built-in node, not the fallback PROTO.
   for (const std::string& url : def->urls) {
     constexpr std::string_view kUrn = "urn:ghostspace:";
-    if (!startsWithNoCase(url, kUrn)) continue;
+    if (!base::startsWithNoCase(url, kUrn)) continue;
     const auto builtIn = builtInNodeType(std::string_view(url).substr(kUrn.size()));
     if (builtIn && builtIn->extension) {
       setProto(scope, name, builtIn);
@@ -206,7 +199,7 @@ void Parser::resolveExternProto(ProtoDefinition& def, const NodeType& declared,
     const std::size_t hash = url.find('#');
     const std::string file = url.substr(0, hash);
     const std::string protoName = hash == std::string::npos ? "" : url.substr(hash + 1);
-    if (startsWithNoCase(url, "urn:")) {
+    if (base::startsWithNoCase(url, "urn:")) {
       addReason(url, "urn: names are not resolved");
       continue;
     }
@@ -214,8 +207,9 @@ void Parser::resolveExternProto(ProtoDefinition& def, const NodeType& declared,
       addReason(url, "a reference to this file's own PROTO is not supported");
       continue;
     }
-    const std::string resolved = resolveUrl(lex_.file(), file);
-    if (!ctx_.options.loader && hasScheme(resolved) && !startsWithNoCase(resolved, "file:")) {
+    const std::string resolved = base::resolveUrl(lex_.file(), file);
+    if (!ctx_.options.loader && base::hasScheme(resolved) &&
+        !base::startsWithNoCase(resolved, "file:")) {
       addReason(url, "remote URLs are not loaded");
       continue;
     }

@@ -218,7 +218,7 @@ void StreamingParser::Impl::append(std::string_view bytes) {
     }
     std::string first = head;
     first.append(bytes.substr(0, 2 - first.size()));
-    kind = parsing::isGzip(first) ? Kind::gzip : Kind::plain;
+    kind = base::isGzip(first) ? Kind::gzip : Kind::plain;
     if (kind == Kind::gzip) gunzip = std::make_unique<Gunzip>(url, user.limits.maxInputBytes);
     if (!head.empty()) {
       const std::string h = std::move(head);

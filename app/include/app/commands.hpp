@@ -9,9 +9,12 @@
 
 namespace gs::app {
 
-/// `ghostspace info INPUT`: prints node counts by type, triangles, bounding box,
-/// diagnostics and parse time to stdout. 0 when the input was read (even with
-/// diagnostics), 1 when it could not be read at all. A .qnv INPUT goes to runQnvInfo.
+/// `ghostspace info INPUT...`: prints node counts by type, triangles, bounding box,
+/// diagnostics and parse time to stdout, for scripts that validate worlds (as xmllint or
+/// gltf-validator do). Returns 1 when an INPUT could not be read at all or a world has
+/// errors (parser or renderer diagnostics of severity error; warnings do not count), 0
+/// otherwise; with options.infoExitZero (--exit-zero) errors in a world that was read
+/// give 0. A .qnv INPUT (formats::classifyFile) goes to runQnvInfo.
 int runInfo(const Options& options);
 
 /// `ghostspace info FILE.qnv`: the stream header, vector and packet counts, bytes per
@@ -19,8 +22,12 @@ int runInfo(const Options& options);
 /// readable (even with packets lost), 1 otherwise.
 int runQnvInfo(const std::string& path);
 
-/// True when `path` ends with .qnv (any case) or its first bytes are the QNV signature.
-bool isQnvFile(const std::string& path);
+/// `ghostspace encode INPUT -o OUT.wrl --outline`: loads the world INPUT, writes
+/// outline::writeOutlineWorld's text to OUT and prints groups, triangles, outline
+/// vertices, input and output bytes and the outline prefix bytes on stdout. Diagnostics
+/// of INPUT go to stderr. Returns the exit code: 0, 1 when INPUT cannot be read or OUT
+/// written.
+int runEncodeOutline(const Options& options);
 
 /// `ghostspace encode INPUT -o OUT.qnv`: a VRML97 world, mesh (PLY, OBJ, glTF/GLB) or
 /// volume (NRRD, NIfTI-1, raw) to a .qnv stream (docs/qnv-format.md). Prints what was
@@ -40,7 +47,7 @@ int runSnapshot(const Options& options);
 int runWindow(const Options& options);
 
 /// The renderer options the command line asks for: --lod, --mode, and the application's
-/// splat loader (app/splat_inputs.hpp).
+/// splat loader (session/splat_inputs.hpp).
 render::SceneRendererOptions rendererOptions(const Options& options);
 
 /// The loader options the command line asks for: --max-rate, --snapshot-at BYTES.

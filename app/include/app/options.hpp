@@ -7,6 +7,9 @@
 #include <string>
 #include <vector>
 
+#include "app/layout.hpp"
+#include "render/traversal.hpp"
+
 namespace gs::app {
 
 enum class Command { window, snapshot, info, encode };
@@ -32,25 +35,26 @@ struct EncodeOptions {
 
 struct Options {
   Command command = Command::window;
-  std::vector<std::string> inputs;  // files (later: URLs), in order
+  std::vector<std::string> inputs;  // paths, file: or http(s) URLs, in order
   std::string snapshotPath;         // --snapshot OUT.png
   int width = 800;                  // --size WxH, pixels
   int height = 600;
-  int frames = 0;                 // --frames N: window closes after N frames (0 = never)
-  double lod = 1.0;               // --lod F: fraction of each QNV stream drawn, (0, 1]
-  std::vector<double> lods;       // --lod F1,F2,...: per viewport (the last one repeats)
-  std::string layout = "1x1";     // --layout 1x1|2x1|2x2: viewports in the window or image
-  std::string script;             // --script FILE: UI actions for the window (window_script.hpp)
-  bool newInstance = false;       // --new-instance: do not hand INPUTs to a running window
-  std::string mode = "polygons";  // --mode polygons|splats|outlines
-  bool fit = false;               // --fit: frame the whole scene, not the Viewpoint
-  double maxRate = 0.0;           // --max-rate BYTES_PER_S: emulate a slow link (0: off)
+  int frames = 0;                  // --frames N: window closes after N frames (0 = never)
+  double lod = 1.0;                // --lod F: fraction of each QNV stream drawn, (0, 1]
+  std::vector<double> lods;        // --lod F1,F2,...: per viewport (the last one repeats)
+  Layout layout = Layout::single;  // --layout 1x1|2x1|2x2: viewports in the window or image
+  std::string script;              // --script FILE: UI actions for the window (window_script.hpp)
+  bool newInstance = false;        // --new-instance: do not hand INPUTs to a running window
+  render::RenderMode mode = render::RenderMode::polygons;  // --mode polygons|splats|outlines
+  bool fit = false;      // --fit: frame the whole scene, not the Viewpoint
+  double maxRate = 0.0;  // --max-rate BYTES_PER_S: emulate a slow link (0: off)
   /// --snapshot-at BYTES | SECONDSs: render after only part of the input arrived.
   std::uint64_t snapshotAtBytes = 0;  // 0: not set
   double snapshotAtSeconds = 0.0;     // 0: not set
   bool progress = true;               // --no-progress: no progress bar on the terminal
   double stallTimeout = 20.0;         // --stall-timeout S: a transfer silent this long fails
   RuntimeOptions time;                // --time, --time-step, --trace-events
+  bool infoExitZero = false;          // info --exit-zero: worlds with errors exit 0
   EncodeOptions encode;
 };
 

@@ -4,12 +4,12 @@
 #pragma once
 
 #include "app/layout.hpp"
-#include "app/streaming_session.hpp"
-#include "app/world.hpp"
 #include "app/world_runtime.hpp"
 #include "render/camera.hpp"
 #include "render/scene_renderer.hpp"
 #include "runtime/pointer.hpp"
+#include "session/streaming_session.hpp"
+#include "session/world.hpp"
 
 #include <cstddef>
 #include <memory>
@@ -59,8 +59,8 @@ struct Viewport {
 };
 
 struct WindowState {
-  std::vector<LoadedWorld> worlds;  // every world opened, in order
-  std::string layout = "1x1";       // 1x1, 2x1 or 2x2
+  std::vector<gs::session::LoadedWorld> worlds;  // every world opened, in order
+  Layout layout = Layout::single;
   std::vector<Viewport> viewports;  // layoutCells(layout) of them
   std::size_t active = 0;           // the viewport the menus and the mouse act on
   std::vector<LogLine> log;
@@ -100,7 +100,8 @@ struct WindowState {
   };
   std::vector<LinkRequest> links;
   /// Streams every world opened (files and URLs) while the window keeps drawing.
-  std::unique_ptr<StreamingSession> session = std::make_unique<StreamingSession>();
+  std::unique_ptr<gs::session::StreamingSession> session =
+      std::make_unique<gs::session::StreamingSession>();
 
   WindowState();
 
@@ -108,9 +109,9 @@ struct WindowState {
   Viewport& view() { return viewports[active]; }
   const Viewport& view() const { return viewports[active]; }
 
-  /// Switches to `layout` ("1x1", "2x1", "2x2"; anything else is ignored). New cells show
+  /// Switches to `layout` (app/layout.hpp). New cells show
   /// the active viewport's world; cells removed are freed.
-  void setLayout(const std::string& layout);
+  void setLayout(Layout layout);
   /// Starts loading `path` (a file or an http(s) URL) and shows it in the active
   /// viewport as it arrives; a failure is logged (and the log shown), never thrown.
   void open(const std::string& path);

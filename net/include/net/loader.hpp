@@ -81,7 +81,13 @@ class Loader {
   bool capReached_ = false;
   std::map<std::string, std::shared_ptr<WorldStream>> worlds_;
   std::map<std::string, std::shared_ptr<QnvStream>> qnvs_;
-  std::vector<std::string> order_;  // "w:" or "q:" + url, in opening order
+  /// One stream the loader opened: which map holds it, under which URL.
+  struct StreamKey {
+    enum class Kind { world, qnv } kind;
+    std::string url;
+    bool operator==(const StreamKey&) const = default;
+  };
+  std::vector<StreamKey> order_;  // every stream, in opening order
   struct Fetch {
     std::unique_ptr<Transfer> transfer;  // null once ended
     std::string bytes;

@@ -120,12 +120,4 @@ class Transfer {
 /// already when this returns. A file URL is percent-decoded; a plain path is not.
 std::unique_ptr<Transfer> startTransfer(FetchRequest request);
 
-/// Whether `url` starts with http:// or https:// (case-insensitive scheme).
-bool isHttpUrl(const std::string& url);
-
-/// Whether content read from `baseUrl` may reference `resolvedUrl`: always for local
-/// content; for content from http(s) only http(s) URLs (section "Safety" of
-/// docs/progressive-loading.md). False sets `error` to a message naming both.
-bool mayReference(const std::string& baseUrl, const std::string& resolvedUrl, std::string& error);
-
 }  // namespace gs::net

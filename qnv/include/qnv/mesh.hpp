@@ -1,5 +1,6 @@
 // A triangle mesh as the surface encoder consumes it (paper section 2.1: one vector per
-// triangle). Readers for PLY, OBJ and glTF produce it; app/ builds it from VRML worlds.
+// triangle). The readers of formats/ (PLY, OBJ, glTF) produce it; render::worldTriangles
+// builds it from VRML worlds.
 #pragma once
 
 #include <cstdint>

@@ -1,5 +1,5 @@
 // A scalar volume as the volume encoder consumes it (paper section 3.2: one gradient
-// vector per voxel). Readers for NRRD, NIfTI-1 and raw produce it.
+// vector per voxel). The readers of formats/ (NRRD, NIfTI-1, raw) produce it.
 #pragma once
 
 #include <cstddef>

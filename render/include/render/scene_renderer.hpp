@@ -20,16 +20,23 @@ namespace detail {
 class SceneSplats;
 }
 
-/// What a SceneRendererOptions::loader sets as its error when the bytes are still on
-/// their way (it returns false): the texture is drawn untextured for now, without a
-/// diagnostic, and asked for again at a later draw.
-inline const std::string kLoadPending = "(loading)";
+/// What a ResourceLoader answers.
+enum class LoadStatus {
+  loaded,   // the bytes are in `bytes`
+  failed,   // `error` says why
+  pending,  // on their way: a texture is drawn untextured for now, without a diagnostic,
+            // and asked for again at a later draw
+};
+
+/// Reads the bytes behind an already resolved URL (ImageTexture, Inline, EXTERNPROTO).
+using ResourceLoader =
+    std::function<LoadStatus(const std::string& url, std::string& bytes, std::string& error)>;
 
 struct SceneRendererOptions {
   /// Reads URLs that are not local files (or local files that cannot be opened) for
   /// ImageTexture and, when traversal.inlineLoader is empty, for Inline. Empty: local files
-  /// only. May answer kLoadPending (loading in the background).
-  vrml::UrlLoader loader;
+  /// only. May answer LoadStatus::pending (loading in the background).
+  ResourceLoader loader;
   TraversalOptions traversal;
   /// Diameter of PointSet points in pixels.
   float pointSize = 2.0f;

@@ -14,6 +14,7 @@
 
 #include <glm/glm.hpp>
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -21,6 +22,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <string_view>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
@@ -150,6 +152,33 @@ enum class RenderMode : std::uint8_t {
   /// QNV splats; for OutlineGroups the same as polygons for now.
   splats,
 };
+
+/// One row of the render-mode table: the mode's name on the command line (--mode), in
+/// window scripts and in status files.
+struct RenderModeInfo {
+  RenderMode mode;
+  std::string_view name;
+};
+
+inline constexpr std::array<RenderModeInfo, 3> kRenderModes = {{
+    {RenderMode::polygons, "polygons"},
+    {RenderMode::splats, "splats"},
+    {RenderMode::outlines, "outlines"},
+}};
+
+/// The name of `mode` ("polygons", "splats", "outlines").
+constexpr std::string_view renderModeName(RenderMode mode) {
+  for (const RenderModeInfo& info : kRenderModes)
+    if (info.mode == mode) return info.name;
+  return "polygons";
+}
+
+/// The mode named `name` (exactly as in kRenderModes), or nullopt.
+constexpr std::optional<RenderMode> renderModeFromName(std::string_view name) {
+  for (const RenderModeInfo& info : kRenderModes)
+    if (info.name == name) return info.mode;
+  return std::nullopt;
+}
 
 /// How a traversal reads Inline files and tessellates geometry.
 struct TraversalOptions {
@@ -323,15 +352,5 @@ glm::mat4 billboardRotation(const glm::vec3& axisOfRotation, const glm::vec3& vi
 /// The texture-coordinate matrix of a TextureTransform (clause 6.49):
 /// Tc' = -C x S x R x C x T x Tc, as a 3x3 homogeneous 2D matrix.
 glm::mat3 textureTransformMatrix(const vrml::Node& textureTransform);
-
-/// Resolves `reference` against `base` (a file path or URL) as an RFC 3986 relative
-/// reference would: absolute URLs (with a scheme) and absolute paths are returned as they
-/// are (a path starting with '/' keeps base's scheme and host), relative ones are joined
-/// to base's directory and "." / ".." segments removed.
-std::string resolveUrl(const std::string& base, const std::string& reference);
-
-/// The local file path of `url`: the path of a file:// URL (percent-decoded), the url
-/// itself when it has no scheme, empty for other schemes (http:, https:, ...).
-std::string localPathOfUrl(const std::string& url);
 
 }  // namespace gs::render

@@ -1,0 +1,57 @@
+// The one input classifier: what a file or URL holds, decided the same way by the
+// command line, the window's open dialog, the session and the mesh and volume loaders.
+// Content wins over the name: recognised leading bytes ("magic") decide when present,
+// so a file without an extension, or with one that lies, opens as what it is; the name
+// (extension, any case, URL query and fragment ignored) decides otherwise.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+namespace gs::formats {
+
+enum class InputKind {
+  unknown,  // nothing recognised (the caller decides; the session parses it as VRML97)
+  world,    // VRML97: .wrl, .wrl.gz, .wrz; content "#VRML V2.0"
+  qnv,      // QNV stream: .qnv; content the QNV signature (docs/qnv-format.md)
+  ply,      // .ply[.gz]; content "ply" + line end
+  obj,      // Wavefront OBJ: .obj[.gz] (no magic)
+  gltf,     // .gltf[.gz], .glb[.gz]; content "glTF" (GLB)
+  nrrd,     // .nrrd, .nhdr; content "NRRD0001".."NRRD0005"
+  nifti,    // .nii, .nii.gz; content "n+1\0" or "ni1\0" at byte 344
+};
+
+/// The kind the name says: `name` is a path or URL; its extension (case-insensitive,
+/// after removing "?query" and "#fragment") decides. unknown when none matches.
+InputKind kindFromName(std::string_view name);
+
+/// The kind the leading bytes `head` say (at least 352 bytes are needed to see NIfTI-1;
+/// fewer are fine for the others). gzip data are inflated (their first bytes only) and
+/// the result sniffed. unknown when nothing is recognised.
+InputKind kindFromContent(std::string_view head);
+
+/// kindFromContent(head), else kindFromName(name).
+InputKind classifyInput(std::string_view name, std::string_view head);
+
+/// classifyInput for the local file `path` (its first bytes are read; a file that cannot
+/// be read is classified by name alone). Never throws.
+InputKind classifyFile(const std::string& path);
+
+/// How many leading bytes kindFromContent wants.
+inline constexpr std::size_t kSniffBytes = 512;
+
+/// PLY, OBJ and glTF.
+constexpr bool isMesh(InputKind k) {
+  return k == InputKind::ply || k == InputKind::obj || k == InputKind::gltf;
+}
+/// NRRD and NIfTI-1.
+constexpr bool isVolume(InputKind k) {
+  return k == InputKind::nrrd || k == InputKind::nifti;
+}
+/// Inputs shown as QNV splats or as a world made for them (no Viewpoint of their own):
+/// QNV streams, meshes and volumes.
+constexpr bool isSplatKind(InputKind k) {
+  return k == InputKind::qnv || isMesh(k) || isVolume(k);
+}
+
+}  // namespace gs::formats

@@ -1,0 +1,86 @@
+#include "formats/input_kind.hpp"
+
+#include <array>
+#include <fstream>
+
+#include "base/gzip.hpp"
+#include "base/text.hpp"
+#include "base/url.hpp"
+#include "qnv/stream.hpp"
+
+namespace gs::formats {
+
+namespace {
+
+struct Suffix {
+  std::string_view text;
+  InputKind kind;
+};
+
+// Longest first where one suffix ends another (".nii.gz" before ".gz" handling).
+constexpr std::array kSuffixes = {
+    Suffix{".wrl", InputKind::world}, Suffix{".wrl.gz", InputKind::world},
+    Suffix{".wrz", InputKind::world}, Suffix{".qnv", InputKind::qnv},
+    Suffix{".ply", InputKind::ply},   Suffix{".ply.gz", InputKind::ply},
+    Suffix{".obj", InputKind::obj},   Suffix{".obj.gz", InputKind::obj},
+    Suffix{".gltf", InputKind::gltf}, Suffix{".gltf.gz", InputKind::gltf},
+    Suffix{".glb", InputKind::gltf},  Suffix{".glb.gz", InputKind::gltf},
+    Suffix{".nrrd", InputKind::nrrd}, Suffix{".nhdr", InputKind::nrrd},
+    Suffix{".nii", InputKind::nifti}, Suffix{".nii.gz", InputKind::nifti},
+};
+
+bool lineEndAt(std::string_view s, std::size_t i) {
+  return i < s.size() && (s[i] == '\n' || s[i] == '\r');
+}
+
+InputKind sniffPlain(std::string_view head) {
+  if (head.starts_with("#VRML V2.0")) return InputKind::world;
+  const auto& magic = qnv::kMagic;
+  if (head.size() >= magic.size() &&
+      std::equal(magic.begin(), magic.end(), head.begin(),
+                 [](std::uint8_t m, char c) { return m == static_cast<std::uint8_t>(c); }))
+    return InputKind::qnv;
+  if (head.starts_with("ply") && lineEndAt(head, 3)) return InputKind::ply;
+  if (head.starts_with("glTF")) return InputKind::gltf;
+  if (head.size() >= 8 && head.starts_with("NRRD000") && head[7] >= '1' && head[7] <= '5')
+    return InputKind::nrrd;
+  if (head.size() >= 348) {
+    const std::string_view m = head.substr(344, 4);
+    if (m == std::string_view("n+1\0", 4) || m == std::string_view("ni1\0", 4))
+      return InputKind::nifti;
+  }
+  return InputKind::unknown;
+}
+
+}  // namespace
+
+InputKind kindFromName(std::string_view name) {
+  name = base::withoutQueryOrFragment(name);
+  for (const Suffix& s : kSuffixes)
+    if (name.size() > s.text.size() && base::endsWithNoCase(name, s.text)) return s.kind;
+  return InputKind::unknown;
+}
+
+InputKind kindFromContent(std::string_view head) {
+  if (base::isGzip(head)) return sniffPlain(base::gunzipPrefix(head, kSniffBytes));
+  return sniffPlain(head);
+}
+
+InputKind classifyInput(std::string_view name, std::string_view head) {
+  const InputKind k = kindFromContent(head);
+  return k != InputKind::unknown ? k : kindFromName(name);
+}
+
+InputKind classifyFile(const std::string& path) {
+  std::string head(kSniffBytes, '\0');
+  std::ifstream in(path, std::ios::binary);
+  if (in) {
+    in.read(head.data(), static_cast<std::streamsize>(head.size()));
+    head.resize(static_cast<std::size_t>(in.gcount()));
+  } else {
+    head.clear();
+  }
+  return classifyInput(path, head);
+}
+
+}  // namespace gs::formats

@@ -1,0 +1,91 @@
+// SceneTraversal's Inline loader (clause 6.25): each url resolved against the world
+// that holds the Inline (base/url.hpp), checked against what that world may reference,
+// streamed through TraversalOptions::inlineSource, read through inlineLoader or from a
+// local file; results and failures cached by URL and by node.
+#include "base/url.hpp"
+#include "node_access.hpp"
+#include "render/traversal.hpp"
+#include "vrml/parser.hpp"
+
+namespace gs::render {
+
+const SceneTraversal::InlineScene* SceneTraversal::inlineScene(const vrml::Node& inlineNode,
+                                                               const std::string& baseUrl) {
+  if (auto it = inlinesByNode_.find(&inlineNode); it != inlinesByNode_.end())
+    return it->second.get();
+  const std::vector<std::string>& urls = detail::mfString(inlineNode, "url");
+  std::shared_ptr<InlineScene> result;
+  std::string failures;
+  for (const std::string& reference : urls) {
+    if (reference.empty()) continue;
+    const std::string url = base::resolveUrl(baseUrl, reference);
+    if (auto it = inlinesByUrl_.find(url); it != inlinesByUrl_.end()) {
+      if (it->second->scene) {
+        result = it->second;
+        break;
+      }
+      failures += (failures.empty() ? "" : "; ") + url + ": failed before";
+      continue;
+    }
+    auto entry = std::make_shared<InlineScene>();
+    entry->url = url;
+    vrml::Scene loaded;
+    std::string reason;
+    if (!base::mayReference(baseUrl, url, reason)) {
+      failures += (failures.empty() ? "" : "; ") + reason;  // a remote world, a local file
+      continue;
+    }
+    if (options_.inlineSource) {
+      // Progressive: the scene grows in place while it loads (sceneChanged()).
+      entry->scene = options_.inlineSource(url, baseUrl, reason);
+      inlinesByUrl_[url] = entry;
+      if (entry->scene) {
+        inlineScenesLoaded_.push_back(entry->scene);
+        result = entry;
+        break;
+      }
+      failures += (failures.empty() ? "" : "; ") + url + ": " + reason;
+      continue;
+    }
+    if (options_.inlineLoader) {
+      loaded = options_.inlineLoader(url);
+    } else {
+      const std::string path = base::localPathOfUrl(url);
+      if (path.empty()) {
+        reason = "only local files can be inlined without a network loader";
+      } else {
+        loaded = vrml::loadVrmlFile(path);
+      }
+    }
+    if (reason.empty() && loaded.rootNodes.empty() && loaded.diagnostics.hasErrors()) {
+      const auto& items = loaded.diagnostics.items;
+      for (const auto& d : items)
+        if (d.severity == vrml::Severity::error) {
+          reason = d.message;
+          break;
+        }
+    }
+    if (reason.empty()) {
+      for (const vrml::Diagnostic& d : loaded.diagnostics.items)
+        report(d.severity, d.location, d.message);
+      if (loaded.url.empty()) loaded.url = url;
+      entry->scene = std::make_shared<const vrml::Scene>(std::move(loaded));
+      inlineScenesLoaded_.push_back(entry->scene);
+      inlinesByUrl_[url] = entry;
+      result = entry;
+      break;
+    }
+    inlinesByUrl_[url] = entry;  // remember the failure
+    failures += (failures.empty() ? "" : "; ") + url + ": " + reason;
+  }
+  if (!result) {
+    report(vrml::Severity::warning, inlineNode.location,
+           urls.empty() ? std::string("Inline has no url: nothing drawn")
+                        : "cannot load Inline (" + failures + "): nothing drawn");
+    result = std::make_shared<InlineScene>();
+  }
+  inlinesByNode_[&inlineNode] = result;
+  return result.get();
+}
+
+}  // namespace gs::render

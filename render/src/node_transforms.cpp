@@ -1,0 +1,64 @@
+// The matrices of the grouping and texture nodes: LOD level choice (6.26), Billboard
+// (6.6) and TextureTransform (6.51); Transform matrices are in vrml/transform.hpp.
+#include "node_access.hpp"
+#include "render/traversal.hpp"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace gs::render {
+
+using namespace detail;
+
+int selectLodLevel(const std::vector<float>& range, float distance, std::size_t levelCount) {
+  if (levelCount == 0) return -1;
+  std::size_t level = 0;
+  while (level < range.size() && distance >= range[level]) ++level;
+  return static_cast<int>(std::min(level, levelCount - 1));
+}
+
+glm::mat4 billboardRotation(const glm::vec3& axisOfRotation, const glm::vec3& viewer,
+                            const glm::vec3& viewerUp) {
+  const float axisLength = glm::length(axisOfRotation);
+  if (axisLength < 1e-9f) {
+    // Viewer-aligned: Z towards the viewer, Y along the viewer's up vector.
+    if (glm::length(viewer) < 1e-9f) return glm::mat4(1.0f);
+    const glm::vec3 z = glm::normalize(viewer);
+    glm::vec3 x = glm::cross(viewerUp, z);
+    if (glm::length(x) < 1e-9f) return glm::mat4(1.0f);
+    x = glm::normalize(x);
+    const glm::vec3 y = glm::cross(z, x);
+    return glm::mat4(glm::mat3(x, y, z));
+  }
+  const glm::vec3 axis = axisOfRotation / axisLength;
+  // The viewer direction and the local Z axis, both projected on the plane normal to axis.
+  const glm::vec3 toViewer = viewer - glm::dot(viewer, axis) * axis;
+  const glm::vec3 localZ = glm::vec3(0, 0, 1) - axis.z * axis;
+  if (glm::length(toViewer) < 1e-9f || glm::length(localZ) < 1e-9f) return glm::mat4(1.0f);
+  const glm::vec3 to = glm::normalize(toViewer), from = glm::normalize(localZ);
+  const float angle = std::atan2(glm::dot(glm::cross(from, to), axis), glm::dot(from, to));
+  return glm::rotate(glm::mat4(1.0f), angle, axis);
+}
+
+glm::mat3 textureTransformMatrix(const vrml::Node& tt) {
+  const glm::vec2 c = sfVec2(tt, "center", glm::vec2(0.0f));
+  const glm::vec2 s = sfVec2(tt, "scale", glm::vec2(1.0f));
+  const glm::vec2 t = sfVec2(tt, "translation", glm::vec2(0.0f));
+  const float a = sfFloat(tt, "rotation", 0.0f);
+  auto translate = [](glm::vec2 v) {
+    glm::mat3 m(1.0f);
+    m[2] = glm::vec3(v, 1.0f);
+    return m;
+  };
+  glm::mat3 rot(1.0f);
+  rot[0] = glm::vec3(std::cos(a), std::sin(a), 0.0f);
+  rot[1] = glm::vec3(-std::sin(a), std::cos(a), 0.0f);
+  glm::mat3 scale(1.0f);
+  scale[0][0] = s.x;
+  scale[1][1] = s.y;
+  return translate(-c) * scale * rot * translate(c) * translate(t);
+}
+
+}  // namespace gs::render

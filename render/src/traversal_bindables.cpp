@@ -1,0 +1,163 @@
+// SceneTraversal set-up: the main URL and the bindable nodes (Viewpoint, NavigationInfo,
+// Background, Fog; clauses 4.6.10, 6.29, 6.5, 6.19, 6.53).
+#include "base/url.hpp"
+#include "node_access.hpp"
+#include "node_kind.hpp"
+#include "render/traversal.hpp"
+
+#include <filesystem>
+
+namespace gs::render {
+
+using detail::NodeKind;
+using detail::nodeKind;
+
+namespace {
+
+// Depth-first search for bindable nodes through every child list (all Switch choices and
+// LOD levels: binding does not depend on what is drawn), not into Inline files.
+template <class Visit>
+void forEachBindable(const std::vector<vrml::NodePtr>& list, const glm::mat4& m, int depth,
+                     Visit& visit) {
+  if (depth > 1000) return;
+  for (const vrml::NodePtr& n : list) {
+    if (!n) continue;
+    const NodeKind kind = nodeKind(*n);
+    switch (kind) {
+      case NodeKind::Transform:
+        forEachBindable(n->mfnode("children"), m * transformMatrix(*n), depth + 1, visit);
+        break;
+      case NodeKind::Anchor:
+      case NodeKind::Billboard:  // its rotation depends on the viewer: ignored here
+      case NodeKind::Collision:
+      case NodeKind::Group:
+        forEachBindable(n->mfnode("children"), m, depth + 1, visit);
+        break;
+      case NodeKind::Switch:
+        forEachBindable(n->mfnode("choice"), m, depth + 1, visit);
+        break;
+      case NodeKind::LOD:
+        forEachBindable(n->mfnode("level"), m, depth + 1, visit);
+        break;
+      case NodeKind::Viewpoint:
+      case NodeKind::NavigationInfo:
+      case NodeKind::Background:
+      case NodeKind::Fog:
+        visit(*n, kind, m);
+        break;
+      default:
+        break;
+    }
+  }
+}
+
+std::vector<glm::vec3> colorsOr(const std::vector<glm::vec3>& colors, glm::vec3 fallback) {
+  return colors.empty() ? std::vector<glm::vec3>{fallback} : colors;
+}
+
+}  // namespace
+
+SceneTraversal::SceneTraversal(std::shared_ptr<const vrml::Scene> scene, TraversalOptions options)
+    : scene_(std::move(scene)), options_(std::move(options)) {
+  if (!scene_) scene_ = std::make_shared<const vrml::Scene>();
+  mainUrl_ = scene_->url;
+  const std::string path = base::localPathOfUrl(mainUrl_);
+  if (!path.empty() && path == mainUrl_) {
+    std::error_code ec;
+    const auto absolute = std::filesystem::absolute(path, ec);
+    if (!ec) mainUrl_ = absolute.lexically_normal().string();
+  }
+  findBindables();
+}
+
+void SceneTraversal::sceneChanged() {
+  // The main scene's URL may have moved (an HTTP redirect) before its first node.
+  if (base::localPathOfUrl(scene_->url).empty() && !scene_->url.empty()) mainUrl_ = scene_->url;
+  viewpoints_.clear();
+  navigation_ = NavigationSettings{};
+  background_ = BackgroundSettings{};
+  fog_ = FogSettings{};
+  findBindables();
+  haveWorldBounds_ = false;
+  filledGroups_.clear();
+}
+
+void SceneTraversal::findBindables() {
+  using namespace detail;
+  bool haveNavigation = false, haveBackground = false, haveFog = false;
+  auto visit = [&](const vrml::Node& n, NodeKind kind, const glm::mat4& m) {
+    switch (kind) {
+      case NodeKind::Viewpoint: {
+        ViewpointInfo info;
+        info.node = &n;
+        info.description = sfString(n, "description");
+        if (info.description.empty())
+          info.description = "Viewpoint " + std::to_string(viewpoints_.size() + 1);
+        info.camera.position =
+            glm::vec3(m * glm::vec4(sfVec3(n, "position", glm::vec3(0, 0, 10)), 1.0f));
+        const glm::quat local = glm::quat_cast(
+            glm::mat3(rotationMatrix(sfRotation(n, "orientation", vrml::Rotation(0, 0, 1, 0)))));
+        info.camera.orientation = glm::normalize(glm::quat_cast(rotationPart(m)) * local);
+        info.camera.fieldOfView = sfFloat(n, "fieldOfView", 0.785398f);
+        viewpoints_.push_back(std::move(info));
+        break;
+      }
+      case NodeKind::NavigationInfo:
+        if (runtimeBound_ ? &n != runtimeBound_->navigationInfo : haveNavigation) break;
+        haveNavigation = true;
+        navigation_.node = &n;
+        if (const auto* f = n.field("type"); f && f->type() == vrml::FieldType::MFString)
+          navigation_.type = f->get<vrml::FieldType::MFString>();
+        navigation_.headlight = sfBool(n, "headlight", true);
+        navigation_.speed = sfFloat(n, "speed", 1.0f);
+        if (const auto* f = n.field("avatarSize"); f && f->type() == vrml::FieldType::MFFloat)
+          navigation_.avatarSize = f->get<vrml::FieldType::MFFloat>();
+        navigation_.visibilityLimit = sfFloat(n, "visibilityLimit", 0.0f);
+        break;
+      case NodeKind::Background:
+        if (runtimeBound_ ? &n != runtimeBound_->background : haveBackground) break;
+        haveBackground = true;
+        background_.node = &n;
+        background_.skyColor = colorsOr(mfColor(n, "skyColor"), glm::vec3(0.0f));
+        background_.skyAngle = mfFloat(n, "skyAngle");
+        background_.groundColor = mfColor(n, "groundColor");
+        background_.groundAngle = mfFloat(n, "groundAngle");
+        background_.rotation = rotationPart(m);
+        break;
+      case NodeKind::Fog: {
+        if (runtimeBound_ ? &n != runtimeBound_->fog : haveFog) break;
+        haveFog = true;
+        fog_.node = &n;
+        fog_.color = sfColor(n, "color", glm::vec3(1.0f));
+        fog_.exponential = sfString(n, "fogType") == "EXPONENTIAL";
+        fog_.visibilityRange = std::max(sfFloat(n, "visibilityRange", 0.0f), 0.0f) * meanScale(m);
+        break;
+      }
+      default:
+        break;
+    }
+  };
+  forEachBindable(scene_->rootNodes, glm::mat4(1.0f), 0, visit);
+  boundViewpoint_ = 0;
+  if (runtimeBound_) {
+    boundViewpoint_ = viewpoints_.size();  // none bound: the default Viewpoint
+    for (std::size_t i = 0; i < viewpoints_.size(); ++i)
+      if (viewpoints_[i].node == runtimeBound_->viewpoint) boundViewpoint_ = i;
+  }
+}
+
+void SceneTraversal::setBoundNodes(const BoundNodes& bound) {
+  std::uint64_t revision = 0;
+  for (const vrml::Node* n : {bound.viewpoint, bound.navigationInfo, bound.background, bound.fog})
+    if (n) revision += vrml::revisionWithFields(*n);
+  if (runtimeBound_ && *runtimeBound_ == bound && revision == boundRevision_) return;
+  runtimeBound_ = bound;
+  boundRevision_ = revision;
+  viewpoints_.clear();
+  navigation_ = NavigationSettings{};
+  background_ = BackgroundSettings{};
+  fog_ = FogSettings{};
+  findBindables();
+}
+
+}  // namespace gs::render

@@ -1,0 +1,33 @@
+// Files shown as QNV splats: .qnv streams, and meshes and volumes encoded on the fly
+// (paper sections 2.1 and 3.2), each opened as a world holding one QuantizedNormalVectors
+// node (docs/vrml-extensions.md).
+#pragma once
+
+#include <string>
+
+#include "render/splat_source.hpp"
+
+namespace gs::session {
+
+/// True for local inputs that are not VRML97 worlds and have no Viewpoint of their own:
+/// QNV streams, meshes and volumes, as formats::classifyFile decides (content first,
+/// then name).
+bool isSplatInput(const std::string& path);
+
+/// The VRML97 world an input that is not a VRML97 file opens as: a mesh becomes one
+/// Shape with an IndexedFaceSet (drawn as polygons, or as splats with --mode splats);
+/// a .qnv stream or a volume becomes one QuantizedNormalVectors node naming the file.
+/// Throws qnv::InputError when a mesh cannot be read.
+std::string worldTextFor(const std::string& path);
+
+/// The VRML97 text of a world holding one QuantizedNormalVectors node whose url is
+/// `path` (a world named after the file itself uses its file name, which resolves to it) (quotes
+/// and backslashes escaped), with EXAMINE navigation.
+std::string splatWorldText(const std::string& path);
+
+/// The application's SplatLoader: a local .qnv file decoded whole, or a mesh or volume
+/// file encoded with every vector kept (the level of detail then picks the prefix).
+/// Only local files (paths and file:// URLs); errors name the file and the reason.
+render::SplatLoader splatLoader();
+
+}  // namespace gs::session

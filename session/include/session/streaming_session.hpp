@@ -1,0 +1,70 @@
+// The progressive loading of one session (window or snapshot), docs/progressive-loading.md:
+// a net::Loader wired to the renderers. Worlds (.wrl, .wrl.gz) grow node by node, Inline
+// worlds load in parallel and grow the same way, QNV streams fill their splat sets
+// packet by packet and fetch (by HTTP range requests) only the prefix the views draw.
+// Everything runs on the thread that draws; transfers run on their own threads.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "net/loader.hpp"
+#include "render/scene_renderer.hpp"
+#include "vrml/scene.hpp"
+
+namespace gs::session {
+
+class StreamingSession {
+ public:
+  explicit StreamingSession(net::LoaderOptions options = {});
+  ~StreamingSession();
+  StreamingSession(const StreamingSession&) = delete;
+  StreamingSession& operator=(const StreamingSession&) = delete;
+
+  /// Opens the user's input: a VRML97 world (path or http(s):// URL; streamed), a .qnv
+  /// stream (path or URL; a world of one QuantizedNormalVectors node that streams it), or
+  /// a local mesh or volume (read and encoded now, session/splat_inputs.hpp); local inputs
+  /// are classified by formats::classifyFile, URLs by their name. The scene
+  /// returned grows as pump() runs. Returns null with `error` ("cannot open 'x': ...")
+  /// when nothing can be shown at all.
+  std::shared_ptr<const vrml::Scene> open(const std::string& input, std::string& error);
+
+  /// `base` with its loaders wired to this session: Inline worlds and QNV urls stream
+  /// through the loader (content from the network may reference only http(s) URLs);
+  /// textures and EXTERNPROTOs are fetched whole.
+  render::SceneRendererOptions rendererOptions(render::SceneRendererOptions base);
+
+  /// Tells each QNV stream the prefix its views asked for (SplatSet::wantedVectors),
+  /// then moves what arrived into parsers and decoders. Returns true when a scene or a
+  /// splat set changed: call SceneRenderer::sceneChanged() on the renderers.
+  bool pump();
+  /// Whether nothing is arriving and nothing more was asked for.
+  bool settled() const { return loader_.settled(); }
+  net::Loader& loader() { return loader_; }
+  const net::Loader& loader() const { return loader_; }
+
+  /// Problems to show the user, each once: stream failures and stops (naming the URL),
+  /// the parse diagnostics of every world streamed, decoder warnings. Appends the lines
+  /// not returned before to `out` (error = true for failures and errors).
+  void drainMessages(std::vector<std::pair<bool, std::string>>& out);
+
+ private:
+  std::shared_ptr<const render::SplatSet> splatSet(const std::string& url,
+                                                   const std::string& referrer, std::string& error);
+  net::Loader loader_;
+  struct QnvEntry {
+    std::shared_ptr<net::QnvStream> stream;
+    std::shared_ptr<render::SplatSet> set;
+    bool haveHeader = false;
+    std::size_t warningsShown = 0;
+  };
+  std::map<std::string, QnvEntry> qnv_;
+  std::vector<std::shared_ptr<net::WorldStream>> worlds_;  // every world streamed
+  std::map<std::string, std::size_t> diagnosticsShown_;    // per world url
+  std::map<std::string, std::string> endShown_;            // url -> state shown
+  std::vector<std::shared_ptr<const vrml::Scene>> localScenes_;
+};
+
+}  // namespace gs::session

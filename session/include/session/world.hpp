@@ -1,0 +1,30 @@
+// Loading a whole world from a local file, timed: `ghostspace info`, `encode` and the
+// inputs that are not VRML97 (meshes, volumes, .qnv files). Worlds from http(s) URLs
+// stream through StreamingSession instead (session/streaming_session.hpp).
+#pragma once
+
+#include "vrml/scene.hpp"
+
+#include <map>
+#include <memory>
+#include <string>
+
+namespace gs::session {
+
+struct LoadedWorld {
+  std::shared_ptr<vrml::Scene> scene;  // never null; diagnostics say what went wrong
+  double parseSeconds = 0.0;           // reading + decompressing + parsing, wall clock
+  std::size_t bytes = 0;               // size of the file as stored (before gunzip)
+  bool readable = false;               // false when the file could not be read at all
+};
+
+/// Reads and parses the VRML97 world at the local path `path` (gzip or not); a mesh,
+/// volume or .qnv file opens as the world splat_inputs.hpp makes for it. Never throws
+/// for bad content: problems are in scene->diagnostics.
+LoadedWorld loadWorld(const std::string& path);
+
+/// Distinct nodes reachable from the scene's roots through SFNode/MFNode fields, counted
+/// by type name (a USEd node counts once).
+std::map<std::string, std::size_t> countNodesByType(const vrml::Scene& scene);
+
+}  // namespace gs::session

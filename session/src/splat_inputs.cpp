@@ -1,0 +1,97 @@
+#include "session/splat_inputs.hpp"
+
+#include <cstdio>
+#include <filesystem>
+
+#include "base/url.hpp"
+#include "formats/input_kind.hpp"
+#include "qnv/encoder.hpp"
+#include "qnv/error.hpp"
+#include "session/mesh_input.hpp"
+#include "session/volume_input.hpp"
+
+namespace gs::session {
+
+bool isSplatInput(const std::string& path) {
+  return formats::isSplatKind(formats::classifyFile(path));
+}
+
+std::string splatWorldText(const std::string& path) {
+  std::string escaped;
+  for (char c : path) {
+    if (c == '"' || c == '\\') escaped.push_back('\\');
+    escaped.push_back(c);
+  }
+  return "#VRML V2.0 utf8\n# " + std::string("A QNV world made by ghostspace for one file.\n") +
+         "NavigationInfo { type [\"EXAMINE\", \"ANY\"] }\n" + "QuantizedNormalVectors { url \"" +
+         escaped + "\" }\n";
+}
+
+namespace {
+
+void appendFloat(std::string& out, float v) {
+  char buffer[32];
+  const int n = std::snprintf(buffer, sizeof buffer, "%.9g ", static_cast<double>(v));
+  out.append(buffer, static_cast<std::size_t>(n));
+}
+
+std::string meshWorldText(const qnv::TriangleMesh& mesh) {
+  std::string out = "#VRML V2.0 utf8\n# A mesh file opened by ghostspace.\n";
+  out += "NavigationInfo { type [\"EXAMINE\", \"ANY\"] }\nShape {\n";
+  const glm::vec3 base = glm::vec3(mesh.baseColor) / 255.0f;
+  out += "  appearance Appearance { material Material { diffuseColor ";
+  for (int i = 0; i < 3; ++i) appendFloat(out, base[i]);
+  out +=
+      "} }\n  geometry IndexedFaceSet {\n    solid FALSE creaseAngle 0.5\n    coord Coordinate { "
+      "point [\n";
+  for (const glm::vec3& p : mesh.positions) {
+    for (int i = 0; i < 3; ++i) appendFloat(out, p[i]);
+    out += ",\n";
+  }
+  out += "    ] }\n";
+  if (!mesh.vertexColors.empty()) {
+    out += "    color Color { color [\n";
+    for (const qnv::Rgba8& c : mesh.vertexColors) {
+      for (int i = 0; i < 3; ++i) appendFloat(out, static_cast<float>(c[i]) / 255.0f);
+      out += ",\n";
+    }
+    out += "    ] }\n";
+  }
+  out += "    coordIndex [\n";
+  for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3)
+    out += std::to_string(mesh.indices[t]) + " " + std::to_string(mesh.indices[t + 1]) + " " +
+           std::to_string(mesh.indices[t + 2]) + " -1\n";
+  out += "    ]\n  }\n}\n";
+  return out;
+}
+
+}  // namespace
+
+std::string worldTextFor(const std::string& path) {
+  if (formats::isMesh(formats::classifyFile(path))) return meshWorldText(loadMeshFile(path));
+  return splatWorldText(std::filesystem::path(path).filename().string());  // resolves to itself
+}
+
+render::SplatLoader splatLoader() {
+  return [](const std::string& url, const std::string&,
+            std::string& error) -> std::shared_ptr<const render::SplatSet> {
+    const std::string path = base::localPathOfUrl(url);
+    if (path.empty()) {
+      error = "cannot read " + url + ": only local files are supported here";
+      return nullptr;
+    }
+    try {
+      const formats::InputKind kind = formats::classifyFile(path);
+      if (formats::isVolume(kind))
+        return render::splatSetFromEncoded(qnv::encodeVolume(loadVolumeFile(path), {}));
+      if (formats::isMesh(kind))
+        return render::splatSetFromEncoded(qnv::encodeSurface(loadMeshFile(path), {}));
+    } catch (const qnv::InputError& e) {
+      error = e.what();
+      return nullptr;
+    }
+    return render::loadQnvFile(path, error);
+  };
+}
+
+}  // namespace gs::session

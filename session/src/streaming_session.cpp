@@ -1,0 +1,163 @@
+#include "session/streaming_session.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+
+#include "base/url.hpp"
+#include "formats/input_kind.hpp"
+#include "session/splat_inputs.hpp"
+#include "session/world.hpp"
+#include "vrml/parser.hpp"
+
+namespace gs::session {
+
+StreamingSession::StreamingSession(net::LoaderOptions options) : loader_(options) {}
+
+StreamingSession::~StreamingSession() = default;
+
+std::shared_ptr<const vrml::Scene> StreamingSession::open(const std::string& input,
+                                                          std::string& error) {
+  const bool remote = base::isHttpUrl(input);
+  if (remote) {
+    // Nothing has arrived yet: the name decides (a world when it says nothing).
+    const formats::InputKind kind = formats::kindFromName(input);
+    if (kind == formats::InputKind::qnv) {
+      auto scene = std::make_shared<vrml::Scene>(vrml::parseVrml(splatWorldText(input), input));
+      localScenes_.push_back(scene);
+      return scene;
+    }
+    if (formats::isMesh(kind) || formats::isVolume(kind)) {
+      error = input +
+              ": meshes and volumes are read from local files; encode them to .qnv "
+              "(ghostspace encode) to stream them";
+      return nullptr;
+    }
+    auto stream = loader_.world(input, "", error);
+    if (!stream) return nullptr;
+    worlds_.push_back(stream);
+    return stream->scene();
+  }
+  const std::string path = base::localPathOfUrl(input);
+  if (path.empty()) {
+    error = "cannot open '" + input + "': only local files and http(s) URLs can be opened";
+    return nullptr;
+  }
+  if (std::ifstream probe(path, std::ios::binary); !probe) {
+    error = "cannot open '" + path + "': " + std::strerror(errno);
+    return nullptr;
+  }
+  if (isSplatInput(path)) {
+    // Read (and for meshes and volumes, encoded) here; a .qnv world streams the file.
+    LoadedWorld w = loadWorld(path);
+    if (!w.readable) {
+      for (const auto& d : w.scene->diagnostics.items) error = d.format();
+      return nullptr;
+    }
+    localScenes_.push_back(w.scene);
+    return w.scene;
+  }
+  auto stream = loader_.world(path, "", error);
+  if (!stream) return nullptr;
+  worlds_.push_back(stream);
+  return stream->scene();
+}
+
+std::shared_ptr<const render::SplatSet> StreamingSession::splatSet(const std::string& url,
+                                                                   const std::string& referrer,
+                                                                   std::string& error) {
+  if (!base::mayReference(referrer, url, error)) return nullptr;  // before any cache
+  if (auto it = qnv_.find(url); it != qnv_.end()) return it->second.set;
+  const std::string path = base::localPathOfUrl(url);
+  const formats::InputKind kind =
+      path.empty() ? formats::InputKind::unknown : formats::classifyFile(path);
+  if (formats::isMesh(kind) || formats::isVolume(kind)) {
+    return splatLoader()(url, referrer, error);  // encoded whole, here and now
+  }
+  QnvEntry entry;
+  entry.set = std::make_shared<render::SplatSet>();
+  render::SplatSet* set = entry.set.get();
+  // Each packet's vectors go to their place in stream order (largest first); a lost
+  // packet leaves zero-magnitude, transparent vectors.
+  auto sink = [set](std::uint64_t first, std::span<const qnv::DecodedVector> v) {
+    const std::size_t end = static_cast<std::size_t>(first) + v.size();
+    if (first < set->vectors.size()) ++set->revision;  // a gap filled late
+    if (set->vectors.size() < end)
+      set->vectors.resize(end, qnv::DecodedVector{{}, 0.0f, {0, 0, 1}, 0});
+    std::copy(v.begin(), v.end(), set->vectors.begin() + static_cast<std::ptrdiff_t>(first));
+  };
+  entry.stream = loader_.qnv(url, referrer, std::move(sink), error);
+  if (!entry.stream) return nullptr;
+  auto result = entry.set;
+  qnv_[url] = std::move(entry);
+  return result;
+}
+
+render::SceneRendererOptions StreamingSession::rendererOptions(render::SceneRendererOptions base) {
+  base.traversal.inlineSource = [this](const std::string& url, const std::string& referrer,
+                                       std::string& error) -> std::shared_ptr<const vrml::Scene> {
+    auto stream = loader_.world(url, referrer, error);
+    if (!stream) return nullptr;
+    if (std::find(worlds_.begin(), worlds_.end(), stream) == worlds_.end())
+      worlds_.push_back(stream);
+    return stream->scene();
+  };
+  base.splatLoader = [this](const std::string& url, const std::string& referrer,
+                            std::string& error) { return splatSet(url, referrer, error); };
+  base.loader = [this](const std::string& url, std::string& bytes, std::string& error) {
+    // Textures load in the background while the scene draws untextured; the renderer
+    // has already refused local files for remote worlds.
+    if (loader_.fetchInBackground(url, "", bytes, error)) return render::LoadStatus::loaded;
+    return error.empty() ? render::LoadStatus::pending : render::LoadStatus::failed;
+  };
+  return base;
+}
+
+bool StreamingSession::pump() {
+  for (auto& [url, e] : qnv_) e.stream->want(e.set->wantedVectors);
+  bool changed = loader_.pump();
+  for (auto& [url, e] : qnv_) {
+    const auto& header = e.stream->header();
+    if (e.haveHeader || !header) continue;
+    e.haveHeader = true;
+    render::SplatSet& set = *e.set;
+    set.style = render::SplatStyle::fromHeader(*header);
+    set.expectedVectors = header->vectorCount;
+    set.bounds = vrml::Bounds{};
+    set.bounds.extend(header->boundsMin);
+    set.bounds.extend(header->boundsMax);
+    // (The vectors grow geometrically as packets arrive; nothing is reserved from the
+    // header's count, which is untrusted.)
+    changed = true;
+  }
+  return changed;
+}
+
+void StreamingSession::drainMessages(std::vector<std::pair<bool, std::string>>& out) {
+  for (const net::StreamProgress& p : loader_.progress()) {
+    if (!p.settled() || p.state == net::StreamState::idle) continue;
+    const std::string state = net::toString(p.state);
+    if (endShown_[p.url] == state) continue;
+    endShown_[p.url] = state;
+    if (!p.error.empty()) out.push_back({p.state == net::StreamState::failed, p.error});
+  }
+  std::vector<const vrml::Scene*> scenes;
+  for (const auto& s : localScenes_) scenes.push_back(s.get());
+  for (const auto& w : worlds_) scenes.push_back(w->scene().get());
+  for (const vrml::Scene* world : scenes) {
+    const vrml::Scene& scene = *world;
+    std::size_t& shown = diagnosticsShown_[scene.url];
+    for (; shown < scene.diagnostics.items.size(); ++shown) {
+      const auto& d = scene.diagnostics.items[shown];
+      out.push_back({d.severity == vrml::Severity::error, d.format()});
+    }
+  }
+  for (auto& [url, e] : qnv_) {
+    const auto& warnings = e.stream->warnings();
+    for (; e.warningsShown < warnings.size(); ++e.warningsShown)
+      out.push_back({false, warnings[e.warningsShown]});
+  }
+}
+
+}  // namespace gs::session

@@ -1,0 +1,69 @@
+#include "session/world.hpp"
+
+#include "base/file.hpp"
+#include "qnv/error.hpp"
+#include "session/splat_inputs.hpp"
+#include "vrml/parser.hpp"
+
+#include <chrono>
+#include <filesystem>
+#include <unordered_set>
+#include <vector>
+
+namespace gs::session {
+
+LoadedWorld loadWorld(const std::string& path) {
+  LoadedWorld w;
+  const auto t0 = std::chrono::steady_clock::now();
+  std::string bytes, error;
+  if (!base::readFile(path, bytes, error)) {
+    w.scene = std::make_shared<vrml::Scene>();
+    w.scene->url = path;
+    w.scene->diagnostics.error({path, 0, 0}, error);
+  } else {
+    w.readable = true;
+    w.bytes = bytes.size();
+    // A stream, mesh or volume opens as a world made for it (session/splat_inputs.hpp).
+    std::string text;
+    if (isSplatInput(path)) {
+      try {
+        text = worldTextFor(path);
+      } catch (const qnv::InputError& e) {
+        w.readable = false;
+        w.scene = std::make_shared<vrml::Scene>();
+        w.scene->url = path;
+        w.scene->diagnostics.error({path, 0, 0}, e.what());
+      }
+    }
+    if (w.readable)
+      w.scene = std::make_shared<vrml::Scene>(vrml::parseVrml(text.empty() ? bytes : text, path));
+  }
+  w.parseSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return w;
+}
+
+std::map<std::string, std::size_t> countNodesByType(const vrml::Scene& scene) {
+  std::map<std::string, std::size_t> counts;
+  std::unordered_set<const vrml::Node*> seen;
+  std::vector<const vrml::Node*> stack;
+  for (const auto& n : scene.rootNodes)
+    if (n) stack.push_back(n.get());
+  while (!stack.empty()) {
+    const vrml::Node* n = stack.back();
+    stack.pop_back();
+    if (!seen.insert(n).second) continue;
+    ++counts[n->typeName()];
+    for (std::size_t i = 0; i < n->fieldCount(); ++i) {
+      const vrml::FieldValue& v = n->fieldAt(i);
+      if (v.type() == vrml::FieldType::SFNode) {
+        if (const auto& c = v.get<vrml::FieldType::SFNode>()) stack.push_back(c.get());
+      } else if (v.type() == vrml::FieldType::MFNode) {
+        for (const auto& c : v.get<vrml::FieldType::MFNode>())
+          if (c) stack.push_back(c.get());
+      }
+    }
+  }
+  return counts;
+}
+
+}  // namespace gs::session

@@ -1,0 +1,64 @@
+// formats/input_kind.hpp: one classifier for every input, content first, then the name.
+#include <catch2/catch.hpp>
+
+#include <string>
+
+#include "formats/input_kind.hpp"
+#include "qnv/stream.hpp"
+#include "test_support.hpp"
+
+using gs::formats::classifyFile;
+using gs::formats::classifyInput;
+using gs::formats::InputKind;
+using gs::formats::kindFromContent;
+using gs::formats::kindFromName;
+
+TEST_CASE("kindFromName: extensions in any case, URLs without query", "[formats][kind]") {
+  CHECK(kindFromName("a.wrl") == InputKind::world);
+  CHECK(kindFromName("a.WRL") == InputKind::world);
+  CHECK(kindFromName("dir/a.Wrl") == InputKind::world);
+  CHECK(kindFromName("a.wrl.gz") == InputKind::world);
+  CHECK(kindFromName("a.WRZ") == InputKind::world);
+  CHECK(kindFromName("http://h/a.wrl?x=1#vp") == InputKind::world);
+  CHECK(kindFromName("http://h/s.QNV") == InputKind::qnv);
+  CHECK(kindFromName("m.ply.GZ") == InputKind::ply);
+  CHECK(kindFromName("m.obj") == InputKind::obj);
+  CHECK(kindFromName("m.glb") == InputKind::gltf);
+  CHECK(kindFromName("m.gltf.gz") == InputKind::gltf);
+  CHECK(kindFromName("v.NHDR") == InputKind::nrrd);
+  CHECK(kindFromName("v.nii.gz") == InputKind::nifti);
+  for (const char* no : {"", "wrl", ".wrl", "a.gz", "a.nrrd.bz2", "a.stl", "http://h/dir/"})
+    CHECK(kindFromName(no) == InputKind::unknown);
+}
+
+TEST_CASE("kindFromContent: magic bytes, also inside gzip", "[formats][kind]") {
+  CHECK(kindFromContent("#VRML V2.0 utf8\nGroup {}\n") == InputKind::world);
+  CHECK(kindFromContent(gs::test::gzip("#VRML V2.0 utf8\nGroup {}\n")) == InputKind::world);
+  const std::string qnvMagic(gs::qnv::kMagic.begin(), gs::qnv::kMagic.end());
+  CHECK(kindFromContent(qnvMagic + "rest") == InputKind::qnv);
+  CHECK(kindFromContent("ply\nformat ascii 1.0\n") == InputKind::ply);
+  CHECK(kindFromContent("ply\r\nformat ascii 1.0\n") == InputKind::ply);
+  CHECK(kindFromContent(gs::test::gzip("ply\nformat ascii 1.0\n")) == InputKind::ply);
+  CHECK(kindFromContent("glTF\x02\0\0\0") == InputKind::gltf);
+  CHECK(kindFromContent("NRRD0004\ntype: uint8\n") == InputKind::nrrd);
+  std::string nifti(352, '\0');
+  nifti.replace(344, 4, std::string("n+1\0", 4));
+  CHECK(kindFromContent(nifti) == InputKind::nifti);
+  CHECK(kindFromContent(gs::test::gzip(nifti)) == InputKind::nifti);
+  for (const std::string no : {"", "plywood", "#VRML V1.0 ascii", "NRRD0009", "hello"})
+    CHECK(kindFromContent(no) == InputKind::unknown);
+  CHECK(kindFromContent(gs::test::gzip("hello")) == InputKind::unknown);
+  CHECK(kindFromContent(std::string("\x1f\x8b", 2)) == InputKind::unknown);  // cut gzip
+}
+
+TEST_CASE("classify: content wins over a missing or lying extension", "[formats][kind]") {
+  CHECK(classifyInput("bunny", "ply\nformat ascii 1.0\n") == InputKind::ply);
+  CHECK(classifyInput("world.qnv", "#VRML V2.0 utf8\n") == InputKind::world);
+  CHECK(classifyInput("mesh.obj", "v 0 0 0\n") == InputKind::obj);  // no magic: the name
+  gs::test::TempDir dir("kind");
+  CHECK(classifyFile(dir.write("noext", "#VRML V2.0 utf8\n")) == InputKind::world);
+  CHECK(classifyFile(dir.write("head", "NRRD0005\ntype: uint8\n")) == InputKind::nrrd);
+  CHECK(classifyFile(dir.write("x.Wrl", "")) == InputKind::world);
+  CHECK(classifyFile((dir.path / "missing.ply").string()) == InputKind::ply);
+  CHECK(classifyFile((dir.path / "missing").string()) == InputKind::unknown);
+}
