@@ -276,7 +276,7 @@ Parsed parseArguments(int argc, char** argv) {
   o.progress = !noProgressBar;
   o.time.scripts = !noScripts;
   o.time.scriptLimits.heapBytes = static_cast<std::size_t>(scriptMegabytes * 1048576.0);
-  if (!timeText.empty() && !parseTimeOption(timeText, o.time)) {
+  if (!timeText.empty() && !session::parseTimeOption(timeText, o.time)) {
     std::fprintf(stderr,
                  "ghostspace: --time: expected seconds T >= 0 or T0:DT:N (DT > 0, N >= 1), "
                  "got '%s'\n",

@@ -146,7 +146,7 @@ void WindowState::setNavigation(render::NavigationMode mode) {
 
 void WindowState::updateRuntimes() {
   if (!runtimes) {
-    runtimes = std::make_unique<WorldRuntimes>(
+    runtimes = std::make_unique<session::WorldRuntimes>(
         time, [this](const std::string& url, const std::string& referrer, std::string& bytes,
                      std::string& error) {
           return session->loader().fetchWhole(url, referrer, bytes, error, 10.0);
@@ -170,7 +170,8 @@ void WindowState::updateRuntimes() {
     const float aspect = v.rect.height > 0
                              ? static_cast<float>(v.rect.width) / static_cast<float>(v.rect.height)
                              : lastAspect;
-    runtimes->setViewer(worlds[v.world].scene.get(), viewerPose(v.navigator.camera(), aspect));
+    runtimes->setViewer(worlds[v.world].scene.get(),
+                        session::viewerPose(v.navigator.camera(), aspect));
   }
   runtimes->advanceTo(now);
   for (Viewport& v : viewports) {

@@ -1,7 +1,7 @@
 // The ghostspace command line (see README.md, "Command line").
 #pragma once
 
-#include "app/world_runtime.hpp"
+#include "session/world_runtime.hpp"
 
 #include <cstdint>
 #include <string>
@@ -53,7 +53,7 @@ struct Options {
   double snapshotAtSeconds = 0.0;     // 0: not set
   bool progress = true;               // --no-progress: no progress bar on the terminal
   double stallTimeout = 20.0;         // --stall-timeout S: a transfer silent this long fails
-  RuntimeOptions time;                // --time, --time-step, --trace-events
+  session::RuntimeOptions time;       // --time, --time-step, --trace-events
   bool infoExitZero = false;          // info --exit-zero: worlds with errors exit 0
   EncodeOptions encode;
 };

@@ -4,12 +4,12 @@
 #pragma once
 
 #include "app/layout.hpp"
-#include "app/world_runtime.hpp"
 #include "render/camera.hpp"
 #include "render/scene_renderer.hpp"
 #include "runtime/pointer.hpp"
 #include "session/streaming_session.hpp"
 #include "session/world.hpp"
+#include "session/world_runtime.hpp"
 
 #include <cstddef>
 #include <memory>
@@ -79,9 +79,9 @@ struct WindowState {
   render::SceneRendererOptions rendererOptions;
   /// --time, --time-step, --trace-events: the window's clock starts at time.start when
   /// time.set, else at the wall clock (docs/runtime.md).
-  RuntimeOptions time;
+  session::RuntimeOptions time;
   /// The execution model of every world opened, made on the first update().
-  std::unique_ptr<WorldRuntimes> runtimes;
+  std::unique_ptr<session::WorldRuntimes> runtimes;
   double clockOffset = 0.0;  // world time = wallClockSeconds() + clockOffset
   /// Set by a script's `time` / `advance`: the window's clock is virtual from then on
   /// (virtualTime), no longer the wall clock.

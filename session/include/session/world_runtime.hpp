@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-namespace gs::app {
+namespace gs::session {
 
 /// --time, --time-step, --trace-events and the Script limits (README.md, "Animation,
 /// interaction and Scripts").
@@ -95,4 +95,4 @@ class WorldRuntimes {
   std::map<const vrml::Scene*, Entry> worlds_;
 };
 
-}  // namespace gs::app
+}  // namespace gs::session
