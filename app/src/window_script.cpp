@@ -68,6 +68,9 @@ bool WindowScript::load(const std::string& path, std::string& error) {
     } else if (c.verb == "viewport") {
       if (!parseNumber(c.argument, number) || number < 0 || number > 3)
         return fail("viewport 0..3");
+    } else if (c.verb == "viewpoint") {
+      if (!parseNumber(c.argument, number) || number < 0 || number > 1e6)
+        return fail("viewpoint N (index in the Viewpoints menu, from 0)");
     } else if (c.verb == "lod") {
       if (!parseNumber(c.argument, number) || !(number > 0.0) || number > 1.0)
         return fail("lod F with 0 < F <= 1");
@@ -157,6 +160,8 @@ bool WindowScript::step(WindowState& state, int width, int height) {
     } else if (c.verb == "viewport") {
       const auto index = static_cast<std::size_t>(number);
       if (index < state.viewports.size()) state.active = index;
+    } else if (c.verb == "viewpoint") {
+      state.jumpToViewpoint(static_cast<std::size_t>(number));
     } else if (c.verb == "lod") {
       state.setLod(number);
     } else if (c.verb == "mode") {

@@ -186,13 +186,21 @@ void WindowState::updateRuntimes() {
         revision != v.viewpointRevisionSeen) {
       // A newly bound or animated Viewpoint takes the camera (4.6.10, 6.53).
       const bool first = v.viewpointSeen == nullptr && v.bindingSeen == 0;
+      const bool newlyBound = vp != v.viewpointSeen;
       v.bindingSeen = model.bindingRevision();
       v.viewpointSeen = vp;
       v.viewpointRevisionSeen = revision;
       if (!first && vp != nullptr) {
-        v.transition.start = -1.0;
-        v.navigator.setCamera(v.renderer->boundViewpointCamera());
         v.autoFrame = false;
+        if (newlyBound) {
+          // A Viewpoint bound from the menu, an Anchor or a Script: an animated move.
+          v.transition.from = v.navigator.camera();
+          v.transition.to = v.renderer->boundViewpointCamera();
+          v.transition.start = secondsNow();
+        } else {  // the bound Viewpoint itself moves (a route into its fields)
+          v.transition.start = -1.0;
+          v.navigator.setCamera(v.renderer->boundViewpointCamera());
+        }
       }
     }
   }
@@ -270,6 +278,18 @@ void WindowState::jumpToViewpoint(std::size_t index) {
   Viewport& v = view();
   if (!v.renderer || index >= v.renderer->viewpoints().size()) return;
   v.autoFrame = false;
+  // The Viewpoints menu binds through the stack (4.6.10): isBound and bindTime go out and
+  // updateRuntimes() moves the camera.
+  if (auto* node = const_cast<vrml::Node*>(v.renderer->viewpoints()[index].node);
+      node != nullptr && runtimes && v.world < worlds.size()) {
+    runtime::ExecutionModel& model = runtimes->of(worlds[v.world].scene, worldTime());
+    const int setBind = node->type().findField("set_bind");
+    if (setBind >= 0 &&
+        model.postEvent(*node, setBind, vrml::FieldValue::make<vrml::FieldType::SFBool>(true))) {
+      model.processEvents();
+      return;
+    }
+  }
   v.transition.from = v.navigator.camera();
   v.transition.to = v.renderer->viewpointCamera(index);
   v.transition.start = secondsNow();

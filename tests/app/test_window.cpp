@@ -389,3 +389,38 @@ ROUTE PS.translation_changed TO MOVED.set_translation
   CHECK(tz == 0.0f);
   CHECK(events.find(R"("node":"PS","field":"offset_changed")") != std::string::npos);
 }
+
+TEST_CASE("the Viewpoints menu binds through the stack", "[app][window][bind]") {
+  Xvfb x;
+  if (skipWithoutXvfb(x)) return;
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(GS_BINARY_DIR) / "window-bind";
+  fs::create_directories(dir);
+  const fs::path world = dir / "two.wrl", script = dir / "two.script", trace = dir / "two.jsonl";
+  std::ofstream(world) << R"(#VRML V2.0 utf8
+DEF FRONT Viewpoint { position 0 0 5 description "front" }
+DEF SIDE Viewpoint { position 5 0 0 orientation 0 1 0 1.5708 description "side" }
+Shape { geometry Box {} }
+)";
+  std::ofstream(script) << "wait-loaded\ntime 50\nviewpoint 1\nframes 2\nviewpoint 0\nframes 2\n"
+                           "quit\n";
+  auto r = gs::test::runGhostspace(
+      {"--size", "200x150", "--new-instance", "--time", "40", "--trace-events", trace.string(),
+       "--script", script.string(), world.string()},
+      {"DISPLAY=" + x.display()});
+  INFO(r.err);
+  REQUIRE(r.exitCode == 0);
+  const std::string events = fileBytes(trace);
+  INFO(events);
+  const auto at = [&](const char* line) { return events.find(line); };
+  const auto sideBound = at(R"({"time":50.000,"node":"SIDE","field":"isBound","value":"TRUE"})");
+  const auto frontUnbound =
+      at(R"({"time":50.000,"node":"FRONT","field":"isBound","value":"FALSE"})");
+  const auto frontBound =
+      events.find(R"({"time":50.000,"node":"FRONT","field":"isBound","value":"TRUE"})", sideBound);
+  CHECK(at(R"({"time":40.000,"node":"FRONT","field":"isBound","value":"TRUE"})") !=
+        std::string::npos);
+  CHECK(frontUnbound != std::string::npos);
+  REQUIRE(sideBound != std::string::npos);
+  CHECK(frontBound != std::string::npos);
+}
