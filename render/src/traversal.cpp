@@ -133,11 +133,27 @@ struct SceneTraversal::Walk {
     frame.shapes.push_back(s);
   }
 
+  /// A Collision (6.8) when collecting collision geometry: nothing with collide FALSE,
+  /// else its proxy when it has one, else its children.
+  void collision(const vrml::Node& n, const glm::mat4& m, const std::string* baseUrl) {
+    if (!detail::sfBool(n, "collide", true)) return;
+    const vrml::NodePtr proxy = n.sfnode("proxy");
+    if (!proxy || proxy->unresolved) return group(&n, n.mfnode("children"), m, baseUrl, nullptr);
+    if (frame.recordPaths) path.push_back({&n, m, nullptr});
+    node(*proxy, m, baseUrl);
+    if (frame.recordPaths) path.pop_back();
+  }
+
   void node(const vrml::Node& n, const glm::mat4& m, const std::string* baseUrl) {
     using namespace detail;
     switch (nodeKind(n)) {
-      case NodeKind::Anchor:
       case NodeKind::Collision:  // the proxy is for collisions only: not drawn
+        if (frame.collisionGeometry) {
+          collision(n, m, baseUrl);
+          break;
+        }
+        [[fallthrough]];
+      case NodeKind::Anchor:
       case NodeKind::Group:
         group(&n, n.mfnode("children"), m, baseUrl, nullptr);
         break;

@@ -91,6 +91,10 @@ struct TraversalFrame {
   std::vector<std::uint32_t> globalLights;  // point and spot lights, indices into lights
   /// Set by the caller: collect() records each Shape's path of grouping nodes (picking).
   bool recordPaths = false;
+  /// Set by the caller: collect() gathers what the avatar collides with (clause 6.8)
+  /// instead of what is drawn: the children of a Collision with collide FALSE are
+  /// skipped, and a Collision's proxy (not drawn otherwise) replaces its children.
+  bool collisionGeometry = false;
   std::vector<PathStep> paths;  // ShapeInstance::pathBegin ranges
   void clear() {
     paths.clear();
