@@ -1,0 +1,178 @@
+// A small static-model rANS coder and an LSB-first bit stream, private to qnv/src, for
+// the entropy packet encoding (docs/qnv-format.md, "Entropy payload"). rANS after
+// J. Duda, "Asymmetric numeral systems" (2013), in the byte-renormalized 32-bit form of
+// F. Giesen's ryg_rans: state x in [2^23, 2^31), a symbol of frequency f out of 2^P
+// (P <= 12) costs log2(2^P / f) bits. The encoder runs backwards over the symbols, the
+// decoder forwards. Every reader is bounds-checked: reading past the end yields zeros
+// and sets a flag the caller checks, so no input makes it read out of bounds.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace gs::qnv::detail {
+
+inline constexpr std::uint32_t kRansLow = 1u << 23;  // lower bound of the normalized state
+inline constexpr int kMaxProbBits = 12;              // frequencies sum to 2^P, P <= 12
+
+/// Appends bits LSB first; finish() flushes the last partial byte.
+class BitWriter {
+ public:
+  explicit BitWriter(std::string& out) : out_(out) {}
+  /// Writes the low `n` bits of `v` (0 <= n <= 32).
+  void put(std::uint32_t v, int n) {
+    if (n == 0) return;
+    acc_ |= std::uint64_t{v & (n == 32 ? 0xffffffffu : ((1u << n) - 1))} << fill_;
+    fill_ += n;
+    while (fill_ >= 8) {
+      out_.push_back(static_cast<char>(acc_ & 0xffu));
+      acc_ >>= 8;
+      fill_ -= 8;
+    }
+  }
+  /// Elias gamma code of v >= 1: (bit length - 1) zeros, then v's bits from the top.
+  void gamma(std::uint32_t v) {
+    int n = 31 - __builtin_clz(v);
+    put(0, n);
+    for (int i = n; i >= 0; --i) put((v >> i) & 1u, 1);
+  }
+  void finish() {
+    if (fill_ > 0) out_.push_back(static_cast<char>(acc_ & 0xffu));
+    acc_ = 0;
+    fill_ = 0;
+  }
+
+ private:
+  std::string& out_;
+  std::uint64_t acc_ = 0;
+  int fill_ = 0;
+};
+
+/// Reads what BitWriter wrote. Past the end it reads zeros and sets overrun().
+class BitReader {
+ public:
+  BitReader(const unsigned char* begin, const unsigned char* end)
+      : begin_(begin), p_(begin), end_(end) {
+    refill();
+  }
+  /// Reads `n` bits (0 <= n <= 32).
+  std::uint32_t get(int n) {
+    if (n == 0) return 0;
+    if (fill_ < n) refill();
+    if (fill_ < n) {  // only past the end
+      overrun_ = true;
+      fill_ = 64;
+    }
+    const std::uint32_t v = static_cast<std::uint32_t>(acc_ & ((std::uint64_t{1} << n) - 1));
+    acc_ >>= n;
+    fill_ -= n;
+    return v;
+  }
+  /// Elias gamma, at most 31 leading zeros; more sets the overrun flag and returns 1.
+  std::uint32_t gamma() {
+    int n = 0;
+    while (get(1) == 0) {
+      if (++n > 31 || overrun_) {
+        overrun_ = true;
+        return 1;
+      }
+    }
+    std::uint32_t v = 1;
+    for (int i = 0; i < n; ++i) v = (v << 1) | get(1);
+    return v;
+  }
+  bool overrun() const { return overrun_; }
+  /// Bits handed out so far.
+  std::size_t bitsConsumed() const {
+    return static_cast<std::size_t>(p_ - begin_) * 8 - static_cast<std::size_t>(fill_);
+  }
+  /// Bytes not yet touched by the reader (whole bytes still in the accumulator excluded).
+  std::size_t bytesLeft() const { return static_cast<std::size_t>(end_ - p_); }
+
+ private:
+  void refill() {
+    while (fill_ <= 56) {
+      if (p_ == end_) {
+        if (fill_ < 0) fill_ = 0;
+        return;
+      }
+      acc_ |= std::uint64_t{*p_++} << fill_;
+      fill_ += 8;
+    }
+  }
+  const unsigned char* begin_;
+  const unsigned char* p_;
+  const unsigned char* end_;
+  std::uint64_t acc_ = 0;
+  int fill_ = 0;
+  bool overrun_ = false;
+};
+
+/// A static model: normalized frequencies over an alphabet of up to 256 symbols that sum
+/// to 2^probBits, with the cumulative starts the encoder needs and the slot table the
+/// decoder needs.
+struct RansModel {
+  int probBits = 0;
+  std::vector<std::uint16_t> freq;   // per symbol
+  std::vector<std::uint16_t> start;  // per symbol, cumulative
+  // Decoder: for each of the 2^probBits slots, the symbol (bits 0..7), its frequency
+  // minus one (bits 8..19) and the slot's offset from the symbol's start (bits 20..31).
+  std::vector<std::uint32_t> slots;
+
+  /// Fills start and slots from freq (which must sum to 2^probBits).
+  void build();
+};
+
+/// Appends rANS-coded symbols into a byte buffer, back to front.
+class RansEncoder {
+ public:
+  /// Pushes `symbol` of `model`; call for the symbols in reverse decoding order.
+  void put(const RansModel& model, unsigned symbol) {
+    const std::uint32_t f = model.freq[symbol];
+    const std::uint32_t maxState = ((kRansLow >> model.probBits) << 8) * f;
+    while (x_ >= maxState) {
+      bytes_.push_back(static_cast<unsigned char>(x_ & 0xffu));
+      x_ >>= 8;
+    }
+    x_ = ((x_ / f) << model.probBits) + (x_ % f) + model.start[symbol];
+  }
+  /// Appends the final state (4 bytes) and the reversed byte buffer to `out`.
+  void finish(std::string& out);
+
+ private:
+  std::uint32_t x_ = kRansLow;
+  std::vector<unsigned char> bytes_;
+};
+
+/// Decodes what RansEncoder wrote, bounds-checked.
+class RansDecoder {
+ public:
+  RansDecoder(const unsigned char* begin, const unsigned char* end);
+  unsigned get(const RansModel& model) {
+    const std::uint32_t mask = (1u << model.probBits) - 1;
+    const std::uint32_t e = model.slots[x_ & mask];
+    x_ = (((e >> 8) & 0xfffu) + 1) * (x_ >> model.probBits) + (e >> 20);
+    while (x_ < kRansLow) {
+      if (p_ == end_) {
+        overrun_ = true;
+        x_ = kRansLow;
+        break;
+      }
+      x_ = (x_ << 8) | *p_++;
+    }
+    return e & 0xffu;
+  }
+  /// True when every byte was consumed and the state came back to its start value, as
+  /// after a faithful decode.
+  bool finishedCleanly() const { return !overrun_ && p_ == end_ && x_ == kRansLow; }
+
+ private:
+  const unsigned char* p_;
+  const unsigned char* end_;
+  std::uint32_t x_ = 0;
+  bool overrun_ = false;
+};
+
+}  // namespace gs::qnv::detail
