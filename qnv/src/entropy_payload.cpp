@@ -39,6 +39,9 @@ int gammaBits(std::uint32_t v) { return 2 * (bitLength(v) - 1) + 1; }
 // The four modelled fields and their alphabets.
 enum Field { kGap = 0, kTheta = 1, kPhi = 2, kColor = 3, kFields = 4 };
 constexpr std::array<int, kFields> kAlphabetBits = {5, 6, 6, 8};
+// The rANS state each field uses: two interleaved states halve the decoder's chain of
+// dependent multiplications.
+constexpr std::array<int, kFields> kLane = {0, 1, 0, 1};
 // Table modes: 0 constant symbol, 1..12 rANS with 2^mode total frequency, 13 raw bits.
 constexpr int kModeConstant = 0;
 constexpr int kModeRaw = 13;
@@ -268,7 +271,7 @@ void appendEntropyPayload(std::string& out, std::span<const std::uint64_t> recor
   for (std::size_t i = n; i-- > 0;)
     for (int k = kFields; k-- > 0;)
       if (coders[k].mode != kModeRaw && coders[k].mode != kModeConstant)
-        rans.put(coders[k].model, symbols[i][k]);
+        rans.put(coders[k].model, symbols[i][k], kLane[k]);
   std::string ransBytes;
   rans.finish(ransBytes);
 
@@ -337,35 +340,39 @@ bool decodeEntropyPayload(std::string_view payload, std::size_t count, const Pos
     const FieldCoder& c = coders[k];
     if (c.mode == kModeConstant) return c.constant;
     if (c.mode == kModeRaw) return bits.get(kAlphabetBits[k]);
-    return rans.get(c.model);
+    return rans.get(c.model, kLane[k]);
   };
-  std::uint32_t code = 0, theta = 0, phi = 0;
+  // Range errors are gathered in `bad` and checked once at the end; indices are clamped
+  // so that nothing is read out of bounds meanwhile.
+  std::uint64_t code = 0;
+  std::uint32_t theta = 0, phi = 0;
+  bool bad = false;
   for (std::size_t i = 0; i < count; ++i) {
-    const std::uint32_t token = field(kGap);
-    if (token > 30) return false;
+    const std::uint32_t token = field(kGap);  // 0..31
     const std::uint32_t gap =
         token < 2 ? token : ((1u << (token - 1)) | bits.get(static_cast<int>(token) - 1));
-    if (gap >= (1u << 30) - code) return false;
     code += gap;
+    bad |= code >= (1u << 30);
+    const auto m = static_cast<std::uint32_t>(code);
     theta = (theta + field(kTheta)) & 63u;
     phi = (phi + field(kPhi)) & 63u;
     const std::uint32_t a = aMin + bits.get(aBits);
     const std::uint32_t c = field(kColor);
-    std::uint32_t x = compact3(code), y = compact3(code >> 1), z = compact3(code >> 2);
-    if (theta >= kThetaSteps || a >= kMagnitudeSteps || x >= limit[0] || y >= limit[1] ||
-        z >= limit[2])
-      return false;
+    std::uint32_t x = compact3(m), y = compact3(m >> 1), z = compact3(m >> 2);
+    bad |= theta >= kThetaSteps || a >= kMagnitudeSteps || x >= limit[0] || y >= limit[1] ||
+           z >= limit[2];
     if (useGrid) {
-      x = grid.cellOf[0][x];
-      y = grid.cellOf[1][y];
-      z = grid.cellOf[2][z];
+      x = grid.cellOf[0][std::min<std::size_t>(x, limit[0] - 1)];
+      y = grid.cellOf[1][std::min<std::size_t>(y, limit[1] - 1)];
+      z = grid.cellOf[2][std::min<std::size_t>(z, limit[2] - 1)];
     }
     out[i] = (std::uint64_t{x} << 54) | (std::uint64_t{y} << 44) | (std::uint64_t{z} << 34) |
              (std::uint64_t{theta} << 29) | (std::uint64_t{phi} << 23) | (std::uint64_t{a} << 8) |
              c;
   }
   const std::size_t bitBytes = static_cast<std::size_t>(end - bitsBegin);
-  return !bits.overrun() && (bits.bitsConsumed() + 7) / 8 == bitBytes && rans.finishedCleanly();
+  return !bad && !bits.overrun() && (bits.bitsConsumed() + 7) / 8 == bitBytes &&
+         rans.finishedCleanly();
 }
 
 }  // namespace gs::qnv::detail

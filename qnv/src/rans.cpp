@@ -17,28 +17,31 @@ void RansModel::build() {
 }
 
 void RansEncoder::finish(std::string& out) {
-  for (int i = 0; i < 4; ++i) bytes_.push_back(static_cast<unsigned char>(x_ >> (8 * i)));
+  for (int lane = 1; lane >= 0; --lane)
+    for (int i = 0; i < 4; ++i) bytes_.push_back(static_cast<unsigned char>(x_[lane] >> (8 * i)));
   // bytes_ holds the renormalization bytes first-written first, then the state's bytes
   // low first: reversed, the decoder reads the state (high byte first) and then the
   // renormalization bytes in the order it needs them.
   out.append(bytes_.rbegin(), bytes_.rend());
   bytes_.clear();
-  x_ = kRansLow;
+  x_[0] = x_[1] = kRansLow;
 }
 
 RansDecoder::RansDecoder(const unsigned char* begin, const unsigned char* end)
     : p_(begin), end_(end) {
-  for (int i = 0; i < 4; ++i) {
-    if (p_ == end_) {
-      overrun_ = true;
-      x_ = kRansLow;
-      return;
+  for (std::uint32_t& x : x_) {
+    for (int i = 0; i < 4; ++i) {
+      if (p_ == end_) {
+        overrun_ = true;
+        x_[0] = x_[1] = kRansLow;
+        return;
+      }
+      x = (x << 8) | *p_++;
     }
-    x_ = (x_ << 8) | *p_++;
-  }
-  if (x_ < kRansLow) {  // a state the encoder never leaves behind
-    overrun_ = true;
-    x_ = kRansLow;
+    if (x < kRansLow) {  // a state the encoder never leaves behind
+      overrun_ = true;
+      x = kRansLow;
+    }
   }
 }
 

@@ -8,7 +8,9 @@
 #pragma once
 
 #include <cstddef>
+#include <bit>
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -93,6 +95,15 @@ class BitReader {
 
  private:
   void refill() {
+    if (end_ - p_ >= 8) {  // the fast path: one unaligned little-endian load
+      std::uint64_t word;
+      std::memcpy(&word, p_, 8);
+      if constexpr (std::endian::native == std::endian::big) word = __builtin_bswap64(word);
+      acc_ |= word << fill_;
+      p_ += (63 - fill_) >> 3;
+      fill_ |= 56;
+      return;
+    }
     while (fill_ <= 56) {
       if (p_ == end_) {
         if (fill_ < 0) fill_ = 0;
@@ -125,24 +136,28 @@ struct RansModel {
   void build();
 };
 
-/// Appends rANS-coded symbols into a byte buffer, back to front.
+/// Appends rANS-coded symbols into a byte buffer, back to front. Two states ("lanes")
+/// share the buffer, so that a decoder can work on two symbols at once.
 class RansEncoder {
  public:
-  /// Pushes `symbol` of `model`; call for the symbols in reverse decoding order.
-  void put(const RansModel& model, unsigned symbol) {
+  /// Pushes `symbol` of `model` on `lane` (0 or 1); call for the symbols in reverse
+  /// decoding order.
+  void put(const RansModel& model, unsigned symbol, int lane) {
+    std::uint32_t& x = x_[lane];
     const std::uint32_t f = model.freq[symbol];
     const std::uint32_t maxState = ((kRansLow >> model.probBits) << 8) * f;
-    while (x_ >= maxState) {
-      bytes_.push_back(static_cast<unsigned char>(x_ & 0xffu));
-      x_ >>= 8;
+    while (x >= maxState) {
+      bytes_.push_back(static_cast<unsigned char>(x & 0xffu));
+      x >>= 8;
     }
-    x_ = ((x_ / f) << model.probBits) + (x_ % f) + model.start[symbol];
+    x = ((x / f) << model.probBits) + (x % f) + model.start[symbol];
   }
-  /// Appends the final state (4 bytes) and the reversed byte buffer to `out`.
+  /// Appends the final states (4 bytes each, lane 0 first) and the reversed byte
+  /// buffer to `out`.
   void finish(std::string& out);
 
  private:
-  std::uint32_t x_ = kRansLow;
+  std::uint32_t x_[2] = {kRansLow, kRansLow};
   std::vector<unsigned char> bytes_;
 };
 
@@ -150,28 +165,32 @@ class RansEncoder {
 class RansDecoder {
  public:
   RansDecoder(const unsigned char* begin, const unsigned char* end);
-  unsigned get(const RansModel& model) {
+  /// The next symbol of `model` on `lane` (0 or 1).
+  unsigned get(const RansModel& model, int lane) {
+    std::uint32_t& x = x_[lane];
     const std::uint32_t mask = (1u << model.probBits) - 1;
-    const std::uint32_t e = model.slots[x_ & mask];
-    x_ = (((e >> 8) & 0xfffu) + 1) * (x_ >> model.probBits) + (e >> 20);
-    while (x_ < kRansLow) {
+    const std::uint32_t e = model.slots[x & mask];
+    x = (((e >> 8) & 0xfffu) + 1) * (x >> model.probBits) + (e >> 20);
+    while (x < kRansLow) {
       if (p_ == end_) {
         overrun_ = true;
-        x_ = kRansLow;
+        x = kRansLow;
         break;
       }
-      x_ = (x_ << 8) | *p_++;
+      x = (x << 8) | *p_++;
     }
     return e & 0xffu;
   }
-  /// True when every byte was consumed and the state came back to its start value, as
-  /// after a faithful decode.
-  bool finishedCleanly() const { return !overrun_ && p_ == end_ && x_ == kRansLow; }
+  /// True when every byte was consumed and both states came back to their start value,
+  /// as after a faithful decode.
+  bool finishedCleanly() const {
+    return !overrun_ && p_ == end_ && x_[0] == kRansLow && x_[1] == kRansLow;
+  }
 
  private:
   const unsigned char* p_;
   const unsigned char* end_;
-  std::uint32_t x_ = 0;
+  std::uint32_t x_[2] = {0, 0};
   bool overrun_ = false;
 };
 
