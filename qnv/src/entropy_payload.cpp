@@ -33,8 +33,12 @@ std::uint32_t compact3(std::uint32_t v) {
   return v;
 }
 
-int bitLength(std::uint32_t v) { return v ? 32 - __builtin_clz(v) : 0; }
-int gammaBits(std::uint32_t v) { return 2 * (bitLength(v) - 1) + 1; }
+int bitLength(std::uint32_t v) {
+  return v ? 32 - __builtin_clz(v) : 0;
+}
+int gammaBits(std::uint32_t v) {
+  return 2 * (bitLength(v) - 1) + 1;
+}
 
 // The four modelled fields and their alphabets.
 enum Field { kGap = 0, kTheta = 1, kPhi = 2, kColor = 3, kFields = 4 };
@@ -300,7 +304,8 @@ void appendEntropyPayload(std::string& out, std::span<const std::uint64_t> recor
       tables = 8.0 * static_cast<double>(scratch.size());
     }
     report->tables += tables;
-    const double total = 8.0 * static_cast<double>(kPreambleBytes + ransBytes.size() + bitBytes.size());
+    const double total =
+        8.0 * static_cast<double>(kPreambleBytes + ransBytes.size() + bitBytes.size());
     report->framing += total - (fieldBits[kGap] + gapExtra + fieldBits[kTheta] + fieldBits[kPhi] +
                                 static_cast<double>(n) * aBits + fieldBits[kColor] + tables);
   }
@@ -332,10 +337,9 @@ bool decodeEntropyPayload(std::string_view payload, std::size_t count, const Pos
     if (!readTable(bits, coders[k], kAlphabetBits[k])) return false;
   RansDecoder rans(ransBegin, bitsBegin);
   const bool useGrid = flags & kFlagGrid;
-  const std::array<std::size_t, 3> limit = {
-      useGrid ? grid.cellOf[0].size() : kPositionSteps,
-      useGrid ? grid.cellOf[1].size() : kPositionSteps,
-      useGrid ? grid.cellOf[2].size() : kPositionSteps};
+  const std::array<std::size_t, 3> limit = {useGrid ? grid.cellOf[0].size() : kPositionSteps,
+                                            useGrid ? grid.cellOf[1].size() : kPositionSteps,
+                                            useGrid ? grid.cellOf[2].size() : kPositionSteps};
   auto field = [&](int k) -> std::uint32_t {
     const FieldCoder& c = coders[k];
     if (c.mode == kModeConstant) return c.constant;

@@ -11,7 +11,8 @@ void RansModel::build() {
   for (std::size_t s = 0; s < freq.size(); ++s) {
     start[s] = static_cast<std::uint16_t>(at);
     for (std::uint32_t k = 0; k < freq[s]; ++k)
-      slots[at + k] = static_cast<std::uint32_t>(s) | ((std::uint32_t{freq[s]} - 1) << 8) | (k << 20);
+      slots[at + k] =
+          static_cast<std::uint32_t>(s) | ((std::uint32_t{freq[s]} - 1) << 8) | (k << 20);
     at += freq[s];
   }
 }

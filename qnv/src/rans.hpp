@@ -7,8 +7,8 @@
 // and sets a flag the caller checks, so no input makes it read out of bounds.
 #pragma once
 
-#include <cstddef>
 #include <bit>
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <string>

@@ -7,9 +7,9 @@
 //   ghostspace encode CThead.nhdr --fraction 0.091 -o head.qnv
 //   bench_qnv_coding head.qnv bunny.qnv
 #include <algorithm>
-#include <ctime>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -97,11 +97,10 @@ int main(int argc, char** argv) {
     if (!readRecords(argv[i], e)) return 1;
     const double n = static_cast<double>(e.records.size());
     std::printf("== %s: %zu vectors ==\n", argv[i], e.records.size());
-    std::printf("%8s %-8s %10s %9s %12s\n", "packet", "coding", "bytes", "bits/vec",
-                "decode M/s");
+    std::printf("%8s %-8s %10s %9s %12s\n", "packet", "coding", "bytes", "bits/vec", "decode M/s");
     for (std::uint32_t packet : {1376u, 16384u, 65528u}) {
-      for (auto coding :
-           {qnv::PacketEncoding::plain, qnv::PacketEncoding::compact, qnv::PacketEncoding::entropy}) {
+      for (auto coding : {qnv::PacketEncoding::plain, qnv::PacketEncoding::compact,
+                          qnv::PacketEncoding::entropy}) {
         const std::string s = qnv::writeStream(e, {packet, coding});
         const char* name = coding == qnv::PacketEncoding::plain     ? "plain"
                            : coding == qnv::PacketEncoding::compact ? "compact"

@@ -35,10 +35,9 @@ Volume blobVolume(std::uint32_t n) {
       for (std::uint32_t x = 0; x < v.dims.x; ++x) {
         const float dx = x - n * 0.4f, dy = y - n * 0.45f, dz = 2.0f * z - n * 0.5f;
         const float ex = x - n * 0.65f, ey = y - n * 0.5f, ez = 2.0f * z - n * 0.4f;
-        v.samples[i++] = 1000.0f / (1.0f + std::exp(std::sqrt(dx * dx + dy * dy + dz * dz) -
-                                                     n * 0.3f)) +
-                         600.0f / (1.0f + std::exp(0.5f * (std::sqrt(ex * ex + ey * ey + ez * ez) -
-                                                           n * 0.2f)));
+        v.samples[i++] =
+            1000.0f / (1.0f + std::exp(std::sqrt(dx * dx + dy * dy + dz * dz) - n * 0.3f)) +
+            600.0f / (1.0f + std::exp(0.5f * (std::sqrt(ex * ex + ey * ey + ez * ez) - n * 0.2f)));
       }
   return v;
 }
@@ -172,7 +171,7 @@ TEST_CASE("entropy packets hold any records, off the grid and at the field limit
   EncodedVectors e = volumeVectors();  // a volume header: grid mode where it fits
   std::vector<std::vector<std::uint64_t>> cases;
   cases.emplace_back();
-  for (int i = 0; i < 3000; ++i) cases.back().push_back(rng());  // incompressible: plain
+  for (int i = 0; i < 3000; ++i) cases.back().push_back(rng());             // incompressible: plain
   cases.push_back(std::vector<std::uint64_t>(500, 0x123456789abcdef0ull));  // one record
   cases.push_back({~std::uint64_t{0}, 0, packRecord({1023, 1023, 1023, 31, 63, 32767, 255}),
                    packRecord({0, 0, 0, 0, 0, 0, 0}), packRecord({1023, 0, 1023, 31, 0, 0, 255})});
@@ -237,14 +236,14 @@ TEST_CASE("a cut or damaged entropy payload under a valid CRC is rejected, never
           "[qnv][entropy]") {
   const std::string s = writeStream(smallVectors(), {512, PacketEncoding::entropy});
   const std::size_t at = packetStarts(s)[3];
-  const std::size_t payload = static_cast<unsigned char>(s[at + 8]) +
-                              256u * static_cast<unsigned char>(s[at + 9]);
+  const std::size_t payload =
+      static_cast<unsigned char>(s[at + 8]) + 256u * static_cast<unsigned char>(s[at + 9]);
   const std::size_t total = decode(s, 1 << 16).vectors;
   const std::size_t lost = static_cast<unsigned char>(s[at + 2]);
   // Every shorter payload, resealed with a matching size and CRC: the packet is dropped.
   for (std::size_t cut = 0; cut < payload; ++cut) {
-    std::string t = s.substr(0, at + kPacketHeaderBytes + cut) +
-                    s.substr(at + kPacketHeaderBytes + payload);
+    std::string t =
+        s.substr(0, at + kPacketHeaderBytes + cut) + s.substr(at + kPacketHeaderBytes + payload);
     resealPacket(t, at, cut);
     const Packets p = decode(t, 1 << 16);
     INFO("payload cut to " << cut << " of " << payload << " bytes");
@@ -270,8 +269,8 @@ TEST_CASE("unknown packet encodings are rejected", "[qnv][entropy]") {
   std::string s = writeStream(smallVectors(), {512, PacketEncoding::entropy});
   const std::size_t at = packetStarts(s)[0];
   s[at + 10] = 3;  // an encoding this build does not know
-  const std::size_t payload = static_cast<unsigned char>(s[at + 8]) +
-                              256u * static_cast<unsigned char>(s[at + 9]);
+  const std::size_t payload =
+      static_cast<unsigned char>(s[at + 8]) + 256u * static_cast<unsigned char>(s[at + 9]);
   resealPacket(s, at, payload);
   const Packets p = decode(s, 1 << 16);
   CHECK(p.stats.packetsCorrupt == 1);

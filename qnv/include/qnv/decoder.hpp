@@ -78,8 +78,8 @@ class StreamDecoder {
  public:
   /// Receives each good packet's vectors as soon as it completes. `firstIndex` is the
   /// stream position of the packet's first record (sequence * recordsPerPacket), so
-  /// vectors with a lower index are larger. Compact packets yield their records in
-  /// spatial order. The span is valid only during the call.
+  /// vectors with a lower index are larger. Compact and entropy packets yield their
+  /// records in spatial (Morton) order. The span is valid only during the call.
   using Sink = std::function<void(std::uint64_t firstIndex, std::span<const DecodedVector>)>;
 
   /// `name` (a path or URL) prefixes every message.
