@@ -353,8 +353,8 @@ bool decodeEntropyPayload(std::string_view payload, std::size_t count, const Pos
   bool bad = false;
   for (std::size_t i = 0; i < count; ++i) {
     const std::uint32_t token = field(kGap);  // 0..31
-    const std::uint32_t gap =
-        token < 2 ? token : ((1u << (token - 1)) | bits.get(static_cast<int>(token) - 1));
+    const std::uint32_t extra = bits.get(static_cast<int>(std::max(token, 1u)) - 1);
+    const std::uint32_t gap = token < 2 ? token : ((1u << (token - 1)) | extra);
     code += gap;
     bad |= code >= (1u << 30);
     const auto m = static_cast<std::uint32_t>(code);

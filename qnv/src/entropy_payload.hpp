@@ -1,5 +1,5 @@
 // The entropy packet encoding (PacketEncoding::entropy), private to qnv/src; the bytes
-// are pinned in docs/qnv-format.md ("Entropy payload"). A packet's records are sorted by
+// are pinned in docs/qnv-format.md ("Compact coding"). A packet's records are sorted by
 // the Morton code of their positions (on the volume's voxel grid when the header has
 // one), the Morton gaps, direction deltas and colours are coded with small per-packet
 // static rANS models, the magnitude codes as fixed-width offsets from the packet's

@@ -1,10 +1,10 @@
 // A small static-model rANS coder and an LSB-first bit stream, private to qnv/src, for
-// the entropy packet encoding (docs/qnv-format.md, "Entropy payload"). rANS after
-// J. Duda, "Asymmetric numeral systems" (2013), in the byte-renormalized 32-bit form of
-// F. Giesen's ryg_rans: state x in [2^23, 2^31), a symbol of frequency f out of 2^P
-// (P <= 12) costs log2(2^P / f) bits. The encoder runs backwards over the symbols, the
-// decoder forwards. Every reader is bounds-checked: reading past the end yields zeros
-// and sets a flag the caller checks, so no input makes it read out of bounds.
+// the entropy packet encoding (docs/qnv-format.md, "Compact coding"). rANS after
+// J. Duda, "Asymmetric numeral systems" (2013), in the 32-bit form with 16-bit
+// renormalization of F. Giesen's ryg_rans: state x in [2^16, 2^32), a symbol of frequency f out of
+// 2^P (P <= 12) costs log2(2^P / f) bits. The encoder runs backwards over the symbols, the decoder
+// forwards. Every reader is bounds-checked: reading past the end yields zeros and sets a flag the
+// caller checks, so no input makes it read out of bounds.
 #pragma once
 
 #include <bit>
@@ -16,7 +16,7 @@
 
 namespace gs::qnv::detail {
 
-inline constexpr std::uint32_t kRansLow = 1u << 23;  // lower bound of the normalized state
+inline constexpr std::uint32_t kRansLow = 1u << 16;  // lower bound of the normalized state
 inline constexpr int kMaxProbBits = 12;              // frequencies sum to 2^P, P <= 12
 
 /// Appends bits LSB first; finish() flushes the last partial byte.
@@ -61,7 +61,6 @@ class BitReader {
   }
   /// Reads `n` bits (0 <= n <= 32).
   std::uint32_t get(int n) {
-    if (n == 0) return 0;
     if (fill_ < n) refill();
     if (fill_ < n) {  // only past the end
       overrun_ = true;
@@ -145,10 +144,11 @@ class RansEncoder {
   void put(const RansModel& model, unsigned symbol, int lane) {
     std::uint32_t& x = x_[lane];
     const std::uint32_t f = model.freq[symbol];
-    const std::uint32_t maxState = ((kRansLow >> model.probBits) << 8) * f;
-    while (x >= maxState) {
-      bytes_.push_back(static_cast<unsigned char>(x & 0xffu));
-      x >>= 8;
+    const std::uint64_t maxState = std::uint64_t{(kRansLow >> model.probBits) << 16} * f;
+    if (x >= maxState) {  // at most one 16-bit word, read back little-endian
+      bytes_.push_back(static_cast<unsigned char>(x >> 8));
+      bytes_.push_back(static_cast<unsigned char>(x));
+      x >>= 16;
     }
     x = ((x / f) << model.probBits) + (x % f) + model.start[symbol];
   }
@@ -171,14 +171,16 @@ class RansDecoder {
     const std::uint32_t mask = (1u << model.probBits) - 1;
     const std::uint32_t e = model.slots[x & mask];
     x = (((e >> 8) & 0xfffu) + 1) * (x >> model.probBits) + (e >> 20);
-    while (x < kRansLow) {
-      if (p_ == end_) {
-        overrun_ = true;
-        x = kRansLow;
-        break;
-      }
-      x = (x << 8) | *p_++;
-    }
+    // Renormalize without a branch: x >= 2^(16 - probBits) here, so one 16-bit word
+    // always brings it back to [2^16, 2^32). Past the end, zeros are read instead.
+    static constexpr unsigned char kZeros[2] = {0, 0};
+    const bool need = x < kRansLow;
+    const bool have = end_ - p_ >= 2;
+    const unsigned char* src = have ? p_ : kZeros;
+    const std::uint32_t word = src[0] | (std::uint32_t{src[1]} << 8);
+    x = need ? (x << 16) | word : x;
+    p_ += (need && have) ? 2 : 0;
+    overrun_ |= need && !have;
     return e & 0xffu;
   }
   /// True when every byte was consumed and both states came back to their start value,
