@@ -200,6 +200,12 @@ Parsed parseArguments(int argc, char** argv) {
       ->type_name("B");
   encode->add_flag("--compact", enc.compact,
                    "zstd-compress each packet (spatially sorted, delta-coded)");
+  encode
+      ->add_option("--coding", enc.coding,
+                   "Packet coding: plain (64-bit records), compact (zstd) or entropy (rANS, "
+                   "smallest; docs/qnv-format.md)")
+      ->check(CLI::IsMember({"plain", "compact", "entropy"}))
+      ->type_name("NAME");
   encode->add_option("--window", enc.valueWindow, "Volumes: keep voxels with values in LO..HI")
       ->type_name("LO:HI");
   encode->add_option("--magnitude", enc.magnitude,

@@ -21,6 +21,7 @@ struct EncodeOptions {
   std::uint64_t count = 0;           // --count N: keep the N largest (wins over F)
   std::uint32_t packetBytes = 1376;  // --packet-bytes B: record bytes per packet
   bool compact = false;              // --compact: zstd-compressed packets
+  std::string coding;                // --coding plain|compact|entropy (wins over --compact)
   std::string valueWindow;           // --window LO:HI: volume values kept
   std::string magnitude = "log";     // --magnitude log|linear
   std::string rawDims;               // --raw-dims X,Y,Z: INPUT is raw voxels
