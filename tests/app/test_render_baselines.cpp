@@ -25,6 +25,7 @@ struct RenderCase {
 const RenderCase kCases[] = {
     {"welcome", "assets/worlds/welcome.wrl", false},
     {"features", "assets/worlds/features.wrl", false},
+    {"text", "assets/worlds/text.wrl", false},
     {"castle_specular_demo", "vrml/castle/lights_materials/specular_demo.wrl", true},
     {"castle_transparent_materials", "vrml/castle/lights_materials/transparent_materials.wrl",
      true},
@@ -34,6 +35,7 @@ const RenderCase kCases[] = {
     {"castle_cones", "vrml/castle/vrml_2/cones.wrl", true},
     {"castle_backface_culling", "vrml/castle/vrml_2/backface_culling.wrl", true},
     {"castle_proto_nested", "vrml/castle/prototypes/proto_nested.wrl", true},
+    {"castle_proto_nested_expand", "vrml/castle/prototypes/proto_nested_expand.wrl", true},
     {"castle_indexed_line_set", "vrml/castle/vrml_2/indexed_line_set.wrl", true},
     {"castle_creaseangle", "vrml/castle/vrml_engine_doc_simple_examples/creaseangle.wrl", true},
     {"castle_teapot", "vrml/castle/vrml_2/teapot.wrl", true},
