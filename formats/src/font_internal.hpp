@@ -30,7 +30,7 @@ GlyphOutline decomposeGlyph(const Face& face, std::uint32_t glyph);
 
 /// Decodes UTF-8; invalid sequences (bad bytes, overlong forms, surrogates, values past
 /// U+10FFFF, truncated sequences) become U+FFFD and set `bad`.
-std::vector<char32_t> decodeUtf8(const std::string& text, bool& bad);
+std::vector<std::uint32_t> decodeUtf8(const std::string& text, bool& bad);
 
 }  // namespace gs::formats::detail
 
@@ -43,7 +43,7 @@ struct FontLibrary::Impl {
   std::vector<detail::Face> faces;
   std::map<std::string, std::uint32_t> faceByKey;  // "path|index|bold|oblique"
   std::unordered_map<std::uint64_t, GlyphOutline> outlines;
-  std::map<std::pair<std::uint32_t, char32_t>, std::uint32_t> fallbackByChar;
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> fallbackByChar;
   std::map<std::string, std::uint32_t> resolved;  // family|style|language -> face
 
   /// Opens (or finds) a face; kNoFace when FreeType cannot read it.
@@ -53,7 +53,7 @@ struct FontLibrary::Impl {
   std::uint32_t matchFamily(const std::string& family, bool bold, bool italic,
                             const std::string& language, bool& exact);
   /// The face that has character `c` when `primary` lacks it (kNoFace: none has it).
-  std::uint32_t faceForChar(std::uint32_t primary, char32_t c);
+  std::uint32_t faceForChar(std::uint32_t primary, std::uint32_t c);
   std::uint32_t resolveLocked(const std::vector<std::string>& family, const std::string& style,
                               const std::string& language, std::vector<std::string>& warnings);
   const GlyphOutline& outlineLocked(GlyphKey key);

@@ -29,9 +29,9 @@ struct Shaped {
   float scale = 1.0f;  // size / unitsPerEm of its face
 };
 
-bool isRightToLeft(const std::vector<char32_t>& text) {
+bool isRightToLeft(const std::vector<std::uint32_t>& text) {
   hb_unicode_funcs_t* uf = hb_unicode_funcs_get_default();
-  for (char32_t c : text) {
+  for (std::uint32_t c : text) {
     const hb_script_t s = hb_unicode_script(uf, c);
     if (s == HB_SCRIPT_COMMON || s == HB_SCRIPT_INHERITED || s == HB_SCRIPT_UNKNOWN) continue;
     return hb_script_get_horizontal_direction(s) == HB_DIRECTION_RTL;
@@ -69,7 +69,7 @@ TextLayout FontLibrary::layout(const std::vector<std::string>& strings, const Te
   out.textureUnit = size;
   out.lines.resize(strings.size());
   if (primary == kNoFace) return out;
-  const FaceInfo& pinfo = impl_->faces[primary].info;
+  const FaceInfo pinfo = impl_->faces[primary].info;  // a copy: faces grows below
   out.faceDescription = pinfo.family + " " + pinfo.style + " (" + pinfo.path + ")";
   const float pscale = size / pinfo.unitsPerEm;
   const float ascent = pinfo.ascender * pscale, descent = pinfo.descender * pscale;
@@ -82,35 +82,57 @@ TextLayout FontLibrary::layout(const std::vector<std::string>& strings, const Te
   hb_buffer_t* buffer = hb_buffer_create();
   for (std::size_t l = 0; l < strings.size(); ++l) {
     bool bad = false;
-    std::vector<char32_t> text = detail::decodeUtf8(strings[l], bad);
+    std::vector<std::uint32_t> text = detail::decodeUtf8(strings[l], bad);
     if (bad) warnOnce("Text: invalid UTF-8 replaced by U+FFFD");
     if (text.size() > kMaxLineCharacters) {
       text.resize(kMaxLineCharacters);
       warnOnce("Text: line longer than " + std::to_string(kMaxLineCharacters) +
                " characters cut short");
     }
-    for (char32_t& c : text)
+    for (std::uint32_t& c : text)
       if (c < 0x20 || c == 0x7F) c = 0x20;  // tabs, newlines and controls: blanks
+    // The line's direction: its first strong character's, or right-to-left when asked.
     hb_direction_t dir = HB_DIRECTION_TTB;
     if (style.horizontal)
       dir = (!style.leftToRight || isRightToLeft(text)) ? HB_DIRECTION_RTL : HB_DIRECTION_LTR;
-    // Runs of characters drawn from one face (the primary one, or a fallback per char).
-    std::vector<std::pair<std::size_t, std::uint32_t>> runs;  // (start, face)
+    // Runs of one face (the primary one, or a fallback per character) and one script
+    // (blanks and punctuation join the run they are in).
+    struct Run {
+      std::size_t start;
+      std::uint32_t face;
+      hb_script_t script;
+    };
+    std::vector<Run> runs;
+    hb_unicode_funcs_t* uf = hb_unicode_funcs_get_default();
     for (std::size_t i = 0; i < text.size(); ++i) {
       std::uint32_t f = impl_->faceForChar(primary, text[i]);
       if (f == kNoFace) f = primary;  // drawn as the primary face's .notdef box
-      if (runs.empty() || runs.back().second != f) runs.emplace_back(i, f);
+      hb_script_t script = hb_unicode_script(uf, text[i]);
+      const bool weak = script == HB_SCRIPT_COMMON || script == HB_SCRIPT_INHERITED ||
+                        script == HB_SCRIPT_UNKNOWN;
+      if (!runs.empty() && runs.back().face == f &&
+          (weak || runs.back().script == script || runs.back().script == HB_SCRIPT_COMMON)) {
+        if (!weak) runs.back().script = script;
+        continue;
+      }
+      runs.push_back({i, f, weak ? HB_SCRIPT_COMMON : script});
     }
     std::vector<std::vector<Shaped>> runGlyphs;
     for (std::size_t r = 0; r < runs.size(); ++r) {
-      const std::size_t begin = runs[r].first;
-      const std::size_t end = r + 1 < runs.size() ? runs[r + 1].first : text.size();
-      const detail::Face& face = impl_->faces[runs[r].second];
+      const std::size_t begin = runs[r].start;
+      const std::size_t end = r + 1 < runs.size() ? runs[r + 1].start : text.size();
+      const detail::Face& face = impl_->faces[runs[r].face];
+      // A run reads in its script's direction inside a line of the other direction
+      // (a simplified bidi: no nesting); leftToRight FALSE makes every run right to left.
+      hb_direction_t runDir = dir;
+      if (style.horizontal && style.leftToRight && runs[r].script != HB_SCRIPT_COMMON)
+        runDir = hb_script_get_horizontal_direction(runs[r].script);
+      if (runDir == HB_DIRECTION_INVALID) runDir = dir;
       hb_buffer_clear_contents(buffer);
-      hb_buffer_add_utf32(buffer, reinterpret_cast<const std::uint32_t*>(text.data()),
-                          static_cast<int>(text.size()), static_cast<unsigned>(begin),
-                          static_cast<int>(end - begin));
-      hb_buffer_set_direction(buffer, dir);
+      hb_buffer_add_utf32(buffer, text.data(), static_cast<int>(text.size()),
+                          static_cast<unsigned>(begin), static_cast<int>(end - begin));
+      hb_buffer_set_direction(buffer, runDir);
+      if (runs[r].script != HB_SCRIPT_COMMON) hb_buffer_set_script(buffer, runs[r].script);
       if (language != HB_LANGUAGE_INVALID) hb_buffer_set_language(buffer, language);
       hb_buffer_guess_segment_properties(buffer);
       hb_shape(face.hb, buffer, nullptr, 0);
@@ -120,7 +142,7 @@ TextLayout FontLibrary::layout(const std::vector<std::string>& strings, const Te
       const float s = size / face.info.unitsPerEm;
       std::vector<Shaped>& run = runGlyphs.emplace_back();
       for (unsigned g = 0; g < count; ++g)
-        run.push_back({{runs[r].second, info[g].codepoint},
+        run.push_back({{runs[r].face, info[g].codepoint},
                        {pos[g].x_advance * s, pos[g].y_advance * s},
                        {pos[g].x_offset * s, pos[g].y_offset * s},
                        s});

@@ -129,7 +129,7 @@ std::uint32_t FontLibrary::Impl::matchFamily(const std::string& family, bool bol
   return face;
 }
 
-std::uint32_t FontLibrary::Impl::faceForChar(std::uint32_t primary, char32_t c) {
+std::uint32_t FontLibrary::Impl::faceForChar(std::uint32_t primary, std::uint32_t c) {
   if (primary >= faces.size()) return kNoFace;
   if (FT_Get_Char_Index(faces[primary].ft, c) != 0) return primary;
   const auto key = std::make_pair(primary, c);

@@ -169,15 +169,15 @@ GlyphOutline decomposeGlyph(const Face& face, std::uint32_t glyph) {
   return result;
 }
 
-std::vector<char32_t> decodeUtf8(const std::string& text, bool& bad) {
-  std::vector<char32_t> out;
+std::vector<std::uint32_t> decodeUtf8(const std::string& text, bool& bad) {
+  std::vector<std::uint32_t> out;
   out.reserve(text.size());
   const auto* s = reinterpret_cast<const unsigned char*>(text.data());
   const std::size_t n = text.size();
   for (std::size_t i = 0; i < n;) {
     const unsigned char b = s[i];
     int extra = 0;
-    char32_t c = 0, min = 0;
+    std::uint32_t c = 0, min = 0;
     if (b < 0x80) {
       out.push_back(b);
       ++i;

@@ -262,6 +262,20 @@ TEST_CASE("Cyrillic and Arabic shape to real glyphs", "[formats][font]") {
   CHECK(ar.lines[0].box.min.x == Approx(0.0f).margin(1e-6));  // BEGIN, leftToRight TRUE
 }
 
+TEST_CASE("A Latin word and an Arabic word on one line each keep their direction",
+          "[formats][font]") {
+  TextStyle s = sans();
+  const TextLayout word = fonts().layout({"مرحبا"}, s);
+  const TextLayout mixed = fonts().layout({"ab مرحبا"}, s);
+  REQUIRE(mixed.glyphs.size() == 3 + word.glyphs.size());
+  // The line starts with Latin (left to right); the Arabic run is shaped as Arabic
+  // (joined forms, right to left) exactly as alone.
+  const std::uint32_t a = fonts().layout({"a"}, s).glyphs.at(0).key.glyph;
+  CHECK(mixed.glyphs[0].key.glyph == a);
+  for (std::size_t i = 0; i < word.glyphs.size(); ++i)
+    CHECK(mixed.glyphs[3 + i].key.glyph == word.glyphs[i].key.glyph);
+}
+
 TEST_CASE("Invalid UTF-8 becomes U+FFFD with a warning", "[formats][font]") {
   const TextLayout l = fonts().layout({"A\xFF"
                                        "B\xC3",
