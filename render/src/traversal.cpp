@@ -3,6 +3,7 @@
 
 #include "node_access.hpp"
 #include "node_kind.hpp"
+#include "render/text_mesh.hpp"
 
 #include <glm/gtc/matrix_inverse.hpp>
 
@@ -349,7 +350,7 @@ SceneTraversal::CachedMesh& SceneTraversal::cachedMesh(const vrml::Node& geometr
     it->second.revision = revision;
     vrml::Diagnostics diag;
     it->second.mesh = options_.tessellator ? options_.tessellator(geometry, &diag)
-                                           : vrml::tessellate(geometry, &diag);
+                                           : tessellateGeometry(geometry, &diag);
     it->second.arraysDropped = false;
     for (const vrml::Diagnostic& d : diag.items) report(d.severity, d.location, d.message);
   }

@@ -41,8 +41,8 @@ Ray rayThroughPixel(const Camera& camera, int width, int height, float x, float 
 /// The nearest triangle of the shapes drawn for `viewer` (SceneTraversal::collect: the
 /// chosen Switch children and LOD levels, Billboards turned to the viewer, Inlines) that
 /// `ray` meets in front of its origin (Moller-Trumbore, both sides of every triangle).
-/// Lines, points and Text are not picked. Tessellates the shapes whose bounds the ray
-/// meets when their arrays were dropped (SceneTraversal::mesh).
+/// Lines and points are not picked; Text is (its glyph triangles). Tessellates the shapes whose
+/// bounds the ray meets when their arrays were dropped (SceneTraversal::mesh).
 std::optional<PickHit> pick(SceneTraversal& traversal, const Camera& viewer, const Ray& ray);
 
 /// As pick(), among the shapes of a frame already collected (SceneTraversal::collect;

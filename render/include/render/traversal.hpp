@@ -199,7 +199,8 @@ struct TraversalOptions {
   std::function<std::shared_ptr<const vrml::Scene>(const std::string& url,
                                                    const std::string& referrer, std::string& error)>
       inlineSource;
-  /// Tessellates a geometry node. Empty: vrml::tessellate.
+  /// Tessellates a geometry node. Empty: render::tessellateGeometry (vrml::tessellate, and
+  /// Text through render/text_mesh.hpp).
   std::function<vrml::Mesh(const vrml::Node& geometry, vrml::Diagnostics* diag)> tessellator;
   /// Nesting limit for Inline files inlining others.
   int maxInlineDepth = 16;
