@@ -27,11 +27,12 @@ namespace {
 class Xvfb {
  public:
   Xvfb() {
-    if (!std::filesystem::exists("/usr/bin/Xvfb")) return;
+    program_ = gs::test::fixtureProgram("GS_XVFB", "/usr/bin/Xvfb");
+    if (::access(program_.c_str(), X_OK) != 0) return;
     display_ = ":" + std::to_string(90 + ::getpid() % 800);
     pid_ = ::fork();
     if (pid_ == 0) {
-      ::execl("/usr/bin/Xvfb", "Xvfb", display_.c_str(), "-screen", "0", "640x480x24", "-nolisten",
+      ::execl(program_.c_str(), "Xvfb", display_.c_str(), "-screen", "0", "640x480x24", "-nolisten",
               "tcp", static_cast<char*>(nullptr));
       ::_exit(127);
     }
@@ -50,16 +51,18 @@ class Xvfb {
   Xvfb& operator=(const Xvfb&) = delete;
   bool running() const { return pid_ > 0; }
   const std::string& display() const { return display_; }
+  const std::string& program() const { return program_; }
 
  private:
   pid_t pid_ = -1;
+  std::string program_;
   std::string display_;
 };
 
-/// True (after a WARN naming the package) when no Xvfb runs: the test then skips.
+/// True (after test::missingFixture() named it) when no Xvfb runs: the test then returns.
 bool skipWithoutXvfb(const Xvfb& x) {
   if (x.running()) return false;
-  WARN("SKIPPED: /usr/bin/Xvfb is absent (install xvfb)");
+  gs::test::missingFixture("Xvfb: " + x.program() + " is absent (install xvfb)");
   return true;
 }
 
