@@ -1,8 +1,8 @@
-// Texture decoding with stb_image (PNG, JPEG, GIF) and the image comparison metric.
+// Texture decoding (PNG and GIF with stb_image, JPEG with libjpeg-turbo) and the image
+// comparison metric.
 // This is the only translation unit that defines STB_IMAGE_IMPLEMENTATION.
 #define STB_IMAGE_IMPLEMENTATION
 #define STBI_ONLY_PNG
-#define STBI_ONLY_JPEG
 #define STBI_ONLY_GIF
 #define STBI_NO_STDIO
 #define STBI_MAX_DIMENSIONS 16384
@@ -21,6 +21,7 @@
 #pragma GCC diagnostic pop
 #endif
 
+#include "image_jpeg.hpp"
 #include "render/image.hpp"
 
 #include <cmath>
@@ -37,9 +38,25 @@ Image decodeImage(std::string_view bytes, const std::string& name, int* componen
   if (bytes.empty()) throw std::runtime_error("cannot decode " + name + ": no data");
   if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
     throw std::runtime_error("cannot decode " + name + ": file too large");
+  int w = 0, h = 0, n = 0;
+  if (detail::looksLikeJpeg(bytes)) {
+    // libjpeg-turbo, not stb_image (see image_jpeg.hpp).
+    Image image;
+    std::string error;
+    if (!detail::decodeJpeg(bytes, kMaxImageSide, image.rgba, w, h, n, error)) {
+      if (error == "size")
+        throw std::runtime_error("cannot decode " + name + ": size " + std::to_string(w) + "x" +
+                                 std::to_string(h) + " exceeds the limit of " +
+                                 std::to_string(kMaxImageSide) + " pixels per side");
+      throw std::runtime_error("cannot decode " + name + ": " + error);
+    }
+    image.width = w;
+    image.height = h;
+    if (components != nullptr) *components = n;
+    return image;
+  }
   const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
   const int size = static_cast<int>(bytes.size());
-  int w = 0, h = 0, n = 0;
   if (!stbi_info_from_memory(data, size, &w, &h, &n))
     throw std::runtime_error("cannot decode " + name + ": " + stbi_failure_reason() +
                              " (PNG, JPEG and GIF are supported)");

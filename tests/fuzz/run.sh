@@ -43,8 +43,8 @@ seeds_of() {
     fuzz_vrml_parse | fuzz_vrml_stream)
       s=("$here/seeds/vrml" "$top/assets/worlds" "$corpus_root/vrml/openvrml/bad") ;;
     fuzz_vrml_proto) s=("$here/seeds/proto" "$here/seeds/vrml") ;;
-    fuzz_qnv_stream) s=("$build/seeds/qnv") ;;
-    fuzz_qnv_compact) s=("$build/seeds/compact") ;;
+    fuzz_qnv_stream) s=("$here/seeds/qnv" "$build/seeds/qnv") ;;
+    fuzz_qnv_compact) s=("$here/seeds/compact" "$build/seeds/compact") ;;
     fuzz_ply | fuzz_obj | fuzz_gltf) s=("$here/seeds/mesh") ;;
     fuzz_nrrd | fuzz_nifti) s=("$here/seeds/volume") ;;
     fuzz_image) s=("$here/seeds/image" "$top/assets/worlds/textures") ;;

@@ -1,5 +1,6 @@
 // 8-bit RGBA images: reading the framebuffer, PNG files (libpng), texture decoding
-// (stb_image: PNG, JPEG, GIF) and the image comparison used by the baseline tests.
+// (stb_image: PNG, GIF; libjpeg-turbo: JPEG) and the image comparison used by the
+// baseline tests.
 #pragma once
 
 #include <cstdint>
@@ -45,7 +46,9 @@ void writePng(const std::string& path, const Image& image);
 /// larger than kMaxImageSide).
 Image readPng(const std::string& path);
 
-/// Decodes a PNG, JPEG or GIF (first frame) held in memory to 8-bit RGBA with stb_image;
+/// Decodes a PNG, JPEG or GIF (first frame) held in memory to 8-bit RGBA (PNG and GIF with
+/// stb_image, JPEG with libjpeg-turbo: stb_image's JPEG decoder writes out of bounds on
+/// corrupt Huffman tables, docs/fuzzing.md);
 /// `components` receives the number of channels the file had (1 grey, 2 grey+alpha,
 /// 3 RGB, 4 RGBA) when not null. `name` names the data in error messages. Throws
 /// std::runtime_error for undecodable data and for images larger than kMaxImageSide.

@@ -1,0 +1,38 @@
+// render::decodeImage on JPEG through libjpeg-turbo, and the inputs that fuzz_image found
+// (tests/data/regressions/image, docs/fuzzing.md).
+#include <catch2/catch.hpp>
+
+#include <stdexcept>
+
+#include "render/image.hpp"
+#include "test_support.hpp"
+
+using gs::test::readBytes;
+using gs::test::sourceDir;
+
+TEST_CASE("decodeImage reads a JPEG texture with libjpeg-turbo", "[render][image]") {
+  const std::string bytes = readBytes(sourceDir() / "tests/fuzz/seeds/image/MTimage004.jpg");
+  REQUIRE(!bytes.empty());
+  int components = 0;
+  const gs::render::Image image = gs::render::decodeImage(bytes, "MTimage004.jpg", &components);
+  CHECK(image.width > 0);
+  CHECK(image.height > 0);
+  CHECK(image.rgba.size() == static_cast<std::size_t>(image.width) * image.height * 4);
+  CHECK((components == 1 || components == 3));
+  // Every alpha is opaque.
+  bool opaque = true;
+  for (std::size_t i = 3; i < image.rgba.size(); i += 4) opaque = opaque && image.rgba[i] == 255;
+  CHECK(opaque);
+  // A truncated copy is an error naming the input, not a crash.
+  CHECK_THROWS_WITH(gs::render::decodeImage(bytes.substr(0, 40), "cut.jpg"),
+                    Catch::Contains("cut.jpg"));
+}
+
+TEST_CASE("regression: a JPEG Huffman table counting more than 256 codes is refused",
+          "[render][image][regression]") {
+  // stb_image v2.27 wrote past h->size[257] for this file (fuzz_image, UBSan).
+  const std::string bytes =
+      readBytes(sourceDir() / "tests/data/regressions/image/jpeg_dht_counts_over_256.jpg");
+  REQUIRE(bytes.size() == 786);
+  CHECK_THROWS_AS(gs::render::decodeImage(bytes, "dht.jpg"), std::runtime_error);
+}
