@@ -24,6 +24,7 @@
 #include "image_jpeg.hpp"
 #include "render/image.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -39,11 +40,21 @@ Image decodeImage(std::string_view bytes, const std::string& name, int* componen
   if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
     throw std::runtime_error("cannot decode " + name + ": file too large");
   int w = 0, h = 0, n = 0;
+  const std::size_t maxPixels =
+      std::max(kImagePixelsAlwaysAllowed, bytes.size() * kMaxImagePixelsPerByte);
+  const auto tooManyPixels = [&] {
+    return std::runtime_error("cannot decode " + name + ": " + std::to_string(w) + "x" +
+                              std::to_string(h) + " pixels is more than " +
+                              std::to_string(bytes.size()) + " bytes can hold (limit " +
+                              std::to_string(kMaxImagePixelsPerByte) +
+                              " pixels per byte, render::kMaxImagePixelsPerByte)");
+  };
   if (detail::looksLikeJpeg(bytes)) {
     // libjpeg-turbo, not stb_image (see image_jpeg.hpp).
     Image image;
     std::string error;
-    if (!detail::decodeJpeg(bytes, kMaxImageSide, image.rgba, w, h, n, error)) {
+    if (!detail::decodeJpeg(bytes, kMaxImageSide, maxPixels, image.rgba, w, h, n, error)) {
+      if (error == "pixels") throw tooManyPixels();
       if (error == "size")
         throw std::runtime_error("cannot decode " + name + ": size " + std::to_string(w) + "x" +
                                  std::to_string(h) + " exceeds the limit of " +
@@ -64,6 +75,7 @@ Image decodeImage(std::string_view bytes, const std::string& name, int* componen
     throw std::runtime_error("cannot decode " + name + ": size " + std::to_string(w) + "x" +
                              std::to_string(h) + " exceeds the limit of " +
                              std::to_string(kMaxImageSide) + " pixels per side");
+  if (static_cast<std::size_t>(w) * static_cast<std::size_t>(h) > maxPixels) throw tooManyPixels();
   stbi_uc* pixels = stbi_load_from_memory(data, size, &w, &h, &n, 4);
   if (pixels == nullptr)
     throw std::runtime_error("cannot decode " + name + ": " + stbi_failure_reason());

@@ -15,10 +15,12 @@ namespace gs::render::detail {
 bool looksLikeJpeg(std::string_view bytes);
 
 /// Decodes a baseline or progressive JPEG (grayscale, YCbCr/RGB) into RGBA8 rows, top row
-/// first. Images wider or taller than `maxSide` are refused before any pixel is decoded.
-/// Returns false with `error` set (libjpeg's message, or the size) on any failure;
+/// first. Images wider or taller than `maxSide` (error "size") or with more than
+/// `maxPixels` pixels (error "pixels") are refused before any pixel is decoded.
+/// Returns false with `error` set (libjpeg's message otherwise) on any failure;
 /// `components` becomes 1 for grayscale, else 3.
-bool decodeJpeg(std::string_view bytes, int maxSide, std::vector<std::uint8_t>& rgba, int& width,
-                int& height, int& components, std::string& error);
+bool decodeJpeg(std::string_view bytes, int maxSide, std::size_t maxPixels,
+                std::vector<std::uint8_t>& rgba, int& width, int& height, int& components,
+                std::string& error);
 
 }  // namespace gs::render::detail

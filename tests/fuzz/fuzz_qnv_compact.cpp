@@ -1,6 +1,7 @@
 // The compact packet payload (zstd, varint Morton deltas, byte planes) decoded alone: the
 // first two bytes give the record count (1..8191), the rest is the payload.
 #include <memory>
+#include <vector>
 
 #include "compact_payload.hpp"
 #include "fuzz_support.hpp"

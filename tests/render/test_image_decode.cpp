@@ -36,3 +36,15 @@ TEST_CASE("regression: a JPEG Huffman table counting more than 256 codes is refu
   REQUIRE(bytes.size() == 786);
   CHECK_THROWS_AS(gs::render::decodeImage(bytes, "dht.jpg"), std::runtime_error);
 }
+
+TEST_CASE("regression: a 12-byte GIF claiming 16247 x 16247 pixels is refused at once",
+          "[render][image][regression]") {
+  // stb_image allocated and cleared 2.3 GB for it before reading a pixel (fuzz_image:
+  // time-out after 14 s, 1.6 GB resident).
+  const std::string bytes =
+      readBytes(sourceDir() / "tests/data/regressions/image/gif_12_bytes_claims_16247x16247.gif");
+  REQUIRE(bytes.size() == 12);
+  CHECK_THROWS_WITH(gs::render::decodeImage(bytes, "big.gif"),
+                    Catch::Contains("16247x16247 pixels is more than 12 bytes can hold") &&
+                        Catch::Contains("kMaxImagePixelsPerByte"));
+}

@@ -3,6 +3,7 @@
 // baseline tests.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -30,6 +31,13 @@ struct Image {
 
 /// Largest accepted side of a decoded image, in pixels.
 inline constexpr int kMaxImageSide = 16384;
+/// Pixels a decoded image may have per byte of its file (beyond the first 4 Mi pixels,
+/// always allowed): a header may claim any size, and the decoders allocate what it claims
+/// before reading the data. PNG (deflate, at most 1032:1, 8 pixels a byte at 1 bit),
+/// JPEG (a 64-pixel block in a few bits) and GIF (LZW, at most about 11,000 pixels a
+/// byte) files stay under it; a 12-byte GIF claiming 16247 x 16247 does not.
+inline constexpr std::size_t kMaxImagePixelsPerByte = 16384;
+inline constexpr std::size_t kImagePixelsAlwaysAllowed = std::size_t{1} << 22;
 
 /// Reads the rectangle (x, y, w, h) of the current read framebuffer (x, y = its lower-left
 /// corner in GL window coordinates, pixels) and returns it with rows top to bottom.
@@ -51,7 +59,8 @@ Image readPng(const std::string& path);
 /// corrupt Huffman tables, docs/fuzzing.md);
 /// `components` receives the number of channels the file had (1 grey, 2 grey+alpha,
 /// 3 RGB, 4 RGBA) when not null. `name` names the data in error messages. Throws
-/// std::runtime_error for undecodable data and for images larger than kMaxImageSide.
+/// std::runtime_error for undecodable data, for images larger than kMaxImageSide and for
+/// images with more pixels than kMaxImagePixelsPerByte per byte of `bytes` allow.
 /// Safe for untrusted input.
 Image decodeImage(std::string_view bytes, const std::string& name = "image",
                   int* components = nullptr);
