@@ -48,3 +48,26 @@ TEST_CASE("regression: a 12-byte GIF claiming 16247 x 16247 pixels is refused at
                     Catch::Contains("16247x16247 pixels is more than 12 bytes can hold") &&
                         Catch::Contains("kMaxImagePixelsPerByte"));
 }
+
+TEST_CASE("regression: a PNG whose first IDAT chunk is empty", "[render][image][regression]") {
+  // stb_image passed a null pointer to memcpy for it (fuzz_image, UBSan). libpng reads it
+  // or refuses it with a message; either way no undefined behaviour.
+  const std::string bytes =
+      readBytes(sourceDir() / "tests/data/regressions/image/png_empty_first_idat.png");
+  REQUIRE(!bytes.empty());
+  try {
+    const gs::render::Image image = gs::render::decodeImage(bytes, "idat.png");
+    CHECK(image.rgba.size() == static_cast<std::size_t>(image.width) * image.height * 4);
+  } catch (const std::runtime_error& e) {
+    CHECK_THAT(e.what(), Catch::Contains("idat.png"));
+  }
+}
+
+TEST_CASE("decodeImage reads a grey + alpha PNG with libpng", "[render][image]") {
+  const std::string bytes = readBytes(sourceDir() / "tests/fuzz/seeds/image/palmsh.png");
+  int components = 0;
+  const gs::render::Image image = gs::render::decodeImage(bytes, "palmsh.png", &components);
+  CHECK(image.width == 128);
+  CHECK(image.height == 128);
+  CHECK(components == 2);
+}

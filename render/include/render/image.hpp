@@ -1,5 +1,5 @@
 // 8-bit RGBA images: reading the framebuffer, PNG files (libpng), texture decoding
-// (stb_image: PNG, GIF; libjpeg-turbo: JPEG) and the image comparison used by the
+// (libpng: PNG; libjpeg-turbo: JPEG; stb_image: GIF) and the image comparison used by the
 // baseline tests.
 #pragma once
 
@@ -54,9 +54,9 @@ void writePng(const std::string& path, const Image& image);
 /// larger than kMaxImageSide).
 Image readPng(const std::string& path);
 
-/// Decodes a PNG, JPEG or GIF (first frame) held in memory to 8-bit RGBA (PNG and GIF with
-/// stb_image, JPEG with libjpeg-turbo: stb_image's JPEG decoder writes out of bounds on
-/// corrupt Huffman tables, docs/fuzzing.md);
+/// Decodes a PNG, JPEG or GIF (first frame) held in memory to 8-bit RGBA (PNG with libpng,
+/// JPEG with libjpeg-turbo, GIF with stb_image: stb_image 2.27's PNG and JPEG decoders
+/// fail under UBSan on corrupt files, tests/data/regressions/image);
 /// `components` receives the number of channels the file had (1 grey, 2 grey+alpha,
 /// 3 RGB, 4 RGBA) when not null. `name` names the data in error messages. Throws
 /// std::runtime_error for undecodable data, for images larger than kMaxImageSide and for
