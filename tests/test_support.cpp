@@ -5,7 +5,9 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cstdlib>
 #include <fstream>
+#include <iostream>
 #include <iterator>
 
 namespace gs::test {
@@ -18,10 +20,34 @@ std::filesystem::path corpusDir() {
   return GS_CORPUS_DIR;
 }
 
+bool fixturesRequired() {
+  const char* ci = std::getenv("CI");
+  if (ci != nullptr) {
+    const std::string v = ci;
+    if (!v.empty() && v != "0" && v != "false") return true;
+  }
+  const char* all = std::getenv("GS_REQUIRE_ALL");
+  return all != nullptr && std::string(all) == "1";
+}
+
+void missingFixture(const std::string& reason) {
+  if (fixturesRequired()) {
+    FAIL_CHECK("missing fixture: " << reason << " (CI or GS_REQUIRE_ALL=1 requires every fixture)");
+    return;
+  }
+  WARN("SKIPPED: " << reason);
+  std::cout << "GS_SKIP: " << reason << std::endl;
+}
+
+std::string fixtureProgram(const char* envName, const char* defaultPath) {
+  const char* v = std::getenv(envName);
+  return v != nullptr && *v != '\0' ? std::string(v) : std::string(defaultPath);
+}
+
 bool haveCorpus(const std::string& sub) {
   const auto dir = corpusDir() / sub;
   if (std::filesystem::is_directory(dir)) return true;
-  WARN("SKIPPED: corpus folder " << dir.string() << " is absent");
+  missingFixture("corpus folder " + dir.string() + " is absent (see README: ../shared/corpus)");
   return false;
 }
 

@@ -12,8 +12,25 @@ namespace gs::test {
 std::filesystem::path sourceDir();
 /// ../shared/corpus beside the project; may not exist.
 std::filesystem::path corpusDir();
-/// True when the corpus folder `sub` (e.g. "vrml/kicad") exists; otherwise calls
-/// Catch's WARN with a message naming it, so the caller can `return` (skip).
+/// True when every fixture must be present: the environment sets CI (to anything but
+/// "", "0" or "false"; CI systems set CI=true) or GS_REQUIRE_ALL=1.
+bool fixturesRequired();
+
+/// Reports that a fixture a test needs (nginx, Xvfb, the corpus, a tool) is missing;
+/// `reason` names it and how to get it. When fixturesRequired(), the running test fails
+/// with "missing fixture: REASON" (a non-aborting Catch failure). Otherwise the test is
+/// skipped: a line "GS_SKIP: REASON" goes to stdout, which ctest's
+/// SKIP_REGULAR_EXPRESSION (set on every discovered test) reports as "Skipped", not
+/// "Passed". Either way the caller then returns.
+void missingFixture(const std::string& reason);
+
+/// The program of a fixture: the environment variable `envName` when set (so a test of
+/// the rule above can point it at a missing file, e.g. GS_NGINX=/nonexistent), else
+/// `defaultPath`.
+std::string fixtureProgram(const char* envName, const char* defaultPath);
+
+/// True when the corpus folder `sub` (e.g. "vrml/kicad") exists; otherwise reports it with
+/// missingFixture() so the caller can `return`.
 bool haveCorpus(const std::string& sub);
 /// Every regular file under `dir` whose name ends with `suffix`, sorted.
 std::vector<std::filesystem::path> filesWithSuffix(const std::filesystem::path& dir,

@@ -122,13 +122,19 @@ std::vector<std::string> InstanceServer::poll() {
       message.append(buffer, static_cast<std::size_t>(n));
     }
     ::close(client);
-    std::size_t at = 0;
-    while (at < message.size()) {
-      const std::size_t eol = message.find('\n', at);
-      if (eol == std::string::npos) break;  // an unterminated last line is dropped
-      if (eol > at) inputs.push_back(message.substr(at, eol - at));
-      at = eol + 1;
-    }
+    for (auto& input : parseInstanceMessage(message)) inputs.push_back(std::move(input));
+  }
+  return inputs;
+}
+
+std::vector<std::string> parseInstanceMessage(std::string_view message) {
+  std::vector<std::string> inputs;
+  std::size_t at = 0;
+  while (at < message.size()) {
+    const std::size_t eol = message.find('\n', at);
+    if (eol == std::string_view::npos) break;  // an unterminated last line is dropped
+    if (eol > at) inputs.emplace_back(message.substr(at, eol - at));
+    at = eol + 1;
   }
   return inputs;
 }

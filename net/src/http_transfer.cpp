@@ -3,6 +3,7 @@
 // requests (and servers that ignore them), stall detection, rate limiting, and resuming
 // a transfer the network cut with a Range from the first missing byte.
 #include "buffered_transfer.hpp"
+#include "http_response.hpp"
 
 #include <curl/curl.h>
 
@@ -13,6 +14,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <mutex>
 #include <thread>
 
@@ -20,12 +22,6 @@ namespace gs::net::detail {
 namespace {
 
 std::once_flag curlInitOnce;
-
-std::string trim(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t\r\n");
-  if (b == std::string::npos) return {};
-  return s.substr(b, s.find_last_not_of(" \t\r\n") - b + 1);
-}
 
 // Network failures after which asking for the rest can work.
 bool resumable(CURLcode rc) {
@@ -63,11 +59,7 @@ class HttpTransfer final : public BufferedTransfer {
     bool ranged = false;     // sent a Range header
     bool connected = false;  // the stall clock runs only once connected
     bool decided = false;    // the final response's headers were checked
-    long code = 0;           // from the last status line
-    std::string reason;      // its reason phrase
-    std::int64_t contentLength = -1;
-    bool encoded = false;  // Content-Encoding other than identity
-    std::int64_t rangeStart = -1, rangeEnd = -1, rangeTotal = -1;
+    ResponseHead head;       // of the last response (redirects and 1xx replace it)
     std::uint64_t drop = 0;  // bytes still to drop before delivering (range ignored)
     Clock::time_point lastData;
   };
@@ -235,34 +227,23 @@ bool HttpTransfer::decide(CURL* h) {
   update([&](TransferStatus& s) { s.httpStatus = code; });
   if (code < 200 || code >= 300) {
     std::string message = request_.url + ": HTTP " + std::to_string(code);
-    if (code == a.code && !a.reason.empty()) message += " " + a.reason;
+    if (code == a.head.code && !a.head.reason.empty()) message += " " + a.head.reason;
     fail(message);
     return false;
   }
-  std::int64_t resourceSize = a.encoded ? -1 : a.contentLength;
-  std::int64_t left = -1;  // bytes of this response still to deliver
-  bool rangeIgnored = false;
-  if (a.ranged && code == 206) {
-    if (a.rangeStart >= 0 && static_cast<std::uint64_t>(a.rangeStart) != a.from) {
-      fail(request_.url + ": asked for bytes from " + std::to_string(a.from) +
-           " but the server sent bytes from " + std::to_string(a.rangeStart));
-      return false;
-    }
-    resourceSize = a.rangeTotal;
-    if (a.rangeEnd >= a.rangeStart && a.rangeStart >= 0)
-      left = a.rangeEnd - a.rangeStart + 1;
-    else if (!a.encoded)
-      left = a.contentLength;
-  } else {
-    if (a.ranged) {
-      rangeIgnored = true;
-      a.drop = a.from;
-    }
-    if (resourceSize >= 0)
-      left = std::max<std::int64_t>(0, resourceSize - static_cast<std::int64_t>(a.drop));
+  const BodyPlan plan = planBody(a.head, code, a.ranged, a.from);
+  if (!plan.error.empty()) {
+    fail(request_.url + ": " + plan.error);
+    return false;
   }
+  const std::int64_t resourceSize = plan.resourceSize;
+  const std::int64_t left = plan.left;  // bytes of this response still to deliver
+  const bool rangeIgnored = plan.rangeIgnored;
+  if (rangeIgnored) a.drop = plan.drop;
   if (left >= 0) {
-    expected_ = static_cast<std::int64_t>(done_) + left;
+    // Saturating: a server may claim a length near 2^63.
+    const auto room = std::numeric_limits<std::int64_t>::max() - static_cast<std::int64_t>(done_);
+    expected_ = static_cast<std::int64_t>(done_) + std::min(left, room);
     if (request_.length > 0)
       expected_ = std::min(expected_, static_cast<std::int64_t>(request_.length));
   } else if (resumes_ == 0) {
@@ -332,42 +313,7 @@ std::size_t HttpTransfer::onHeader(char* p, std::size_t size, std::size_t n, voi
   auto* t = static_cast<HttpTransfer*>(self);
   Attempt& a = t->attempt_;
   a.lastData = Clock::now();
-  const std::string line = trim(std::string(p, size * n));
-  if (line.rfind("HTTP/", 0) == 0) {
-    // A new response (after a redirect or a 1xx): forget the previous one's headers.
-    a.code = 0;
-    a.reason.clear();
-    a.contentLength = a.rangeStart = a.rangeEnd = a.rangeTotal = -1;
-    a.encoded = false;
-    const auto sp = line.find(' ');
-    if (sp != std::string::npos) {
-      a.code = std::strtol(line.c_str() + sp + 1, nullptr, 10);
-      const auto sp2 = line.find(' ', sp + 1);
-      if (sp2 != std::string::npos) a.reason = trim(line.substr(sp2 + 1));
-    }
-    return size * n;
-  }
-  const auto colon = line.find(':');
-  if (colon == std::string::npos) return size * n;
-  const std::string name = base::toLower(trim(line.substr(0, colon)));
-  const std::string value = trim(line.substr(colon + 1));
-  if (name == "content-length") {
-    char* end = nullptr;
-    const long long v = std::strtoll(value.c_str(), &end, 10);
-    if (end != value.c_str() && v >= 0) a.contentLength = v;
-  } else if (name == "content-encoding") {
-    const std::string v = base::toLower(value);
-    a.encoded = !v.empty() && v != "identity";
-  } else if (name == "content-range") {
-    // "bytes 100-1099/5000" or "bytes 100-1099/*".
-    long long first = -1, last = -1;
-    char totalText[32] = {};
-    if (std::sscanf(value.c_str(), "bytes %lld-%lld/%31s", &first, &last, totalText) == 3) {
-      a.rangeStart = first;
-      a.rangeEnd = last;
-      if (totalText[0] != '*') a.rangeTotal = std::strtoll(totalText, nullptr, 10);
-    }
-  }
+  readHeaderLine(std::string_view(p, size * n), a.head);
   return size * n;
 }
 

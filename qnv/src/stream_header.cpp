@@ -114,7 +114,9 @@ std::optional<StreamHeader> parseHeader(std::string_view bytes, const std::strin
   if (h.packetBytes < kMinPacketBytes || h.packetBytes > kMaxPacketBytes || h.packetBytes % 8)
     return fail("impossible packet size " + std::to_string(h.packetBytes) + " bytes");
   if (h.vectorCount > kMaxVectorCount)
-    return fail("impossible vector count " + std::to_string(h.vectorCount));
+    return fail("impossible vector count " + std::to_string(h.vectorCount) +
+                " (more than the limit of " + std::to_string(kMaxVectorCount) +
+                ", qnv::kMaxVectorCount)");
   if (!finite3(h.boundsMin) || !finite3(h.boundsMax) || h.boundsMin.x > h.boundsMax.x ||
       h.boundsMin.y > h.boundsMax.y || h.boundsMin.z > h.boundsMax.z)
     return fail("impossible bounding box");

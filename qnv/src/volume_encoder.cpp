@@ -30,7 +30,11 @@ EncodedVectors encodeVolume(const Volume& volume, const VolumeEncodeOptions& opt
                             EncodeSummary* summary) {
   const glm::uvec3 d = volume.dims;
   const std::size_t voxels = volume.voxelCount();
-  if (d.x == 0 || d.y == 0 || d.z == 0 || volume.samples.size() != voxels || voxels > kMaxVoxels)
+  if (voxels > kMaxVoxels)
+    throw InputError("volume of " + std::to_string(d.x) + "x" + std::to_string(d.y) + "x" +
+                     std::to_string(d.z) + " voxels is more than the limit of " +
+                     std::to_string(kMaxVoxels) + " voxels (qnv::kMaxVoxels)");
+  if (d.x == 0 || d.y == 0 || d.z == 0 || volume.samples.size() != voxels)
     throw InputError("volume of " + std::to_string(d.x) + "x" + std::to_string(d.y) + "x" +
                      std::to_string(d.z) + " voxels holds " +
                      std::to_string(volume.samples.size()) + " samples");

@@ -1,14 +1,15 @@
-// Texture decoding (PNG and JPEG with stb_image, GIF with giflib) and the image
-// comparison metric. This is the only translation unit that defines
-// STB_IMAGE_IMPLEMENTATION.
+// Texture decoding (PNG with libpng, JPEG with libjpeg-turbo, GIF with giflib;
+// stb_image only for what none of them claims) and the image
+// comparison metric.
+// This is the only translation unit that defines STB_IMAGE_IMPLEMENTATION.
 #define STB_IMAGE_IMPLEMENTATION
-#define STBI_ONLY_PNG
-#define STBI_ONLY_JPEG
+#define STBI_ONLY_GIF
 #define STBI_NO_STDIO
 #define STBI_MAX_DIMENSIONS 16384
 #if defined(__GNUC__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wshadow"
+#pragma GCC diagnostic ignored "-Wunused-parameter"
 #pragma GCC diagnostic ignored "-Wcast-align"
 #pragma GCC diagnostic ignored "-Wnull-dereference"
 #pragma GCC diagnostic ignored "-Wunused-function"
@@ -21,11 +22,16 @@
 #pragma GCC diagnostic pop
 #endif
 
+#include <png.h>
 #include "image_gif.hpp"
+
+#include "image_jpeg.hpp"
 #include "render/image.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <limits>
@@ -39,9 +45,67 @@ Image decodeImage(std::string_view bytes, const std::string& name, int* componen
   if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
     throw std::runtime_error("cannot decode " + name + ": file too large");
   if (detail::looksLikeGif(bytes)) return detail::decodeGif(bytes, name, components);
+  int w = 0, h = 0, n = 0;
+  const std::size_t maxPixels =
+      std::max(kImagePixelsAlwaysAllowed, bytes.size() * kMaxImagePixelsPerByte);
+  const auto tooManyPixels = [&] {
+    return std::runtime_error("cannot decode " + name + ": " + std::to_string(w) + "x" +
+                              std::to_string(h) + " pixels is more than " +
+                              std::to_string(bytes.size()) + " bytes can hold (limit " +
+                              std::to_string(kMaxImagePixelsPerByte) +
+                              " pixels per byte, render::kMaxImagePixelsPerByte)");
+  };
+  if (detail::looksLikeJpeg(bytes)) {
+    // libjpeg-turbo, not stb_image (see image_jpeg.hpp).
+    Image image;
+    std::string error;
+    if (!detail::decodeJpeg(bytes, kMaxImageSide, maxPixels, image.rgba, w, h, n, error)) {
+      if (error == "pixels") throw tooManyPixels();
+      if (error == "size")
+        throw std::runtime_error("cannot decode " + name + ": size " + std::to_string(w) + "x" +
+                                 std::to_string(h) + " exceeds the limit of " +
+                                 std::to_string(kMaxImageSide) + " pixels per side");
+      throw std::runtime_error("cannot decode " + name + ": " + error);
+    }
+    image.width = w;
+    image.height = h;
+    if (components != nullptr) *components = n;
+    return image;
+  }
+  if (bytes.size() >= 8 && std::memcmp(bytes.data(), "\x89PNG\r\n\x1a\n", 8) == 0) {
+    // libpng's simplified API, not stb_image: stb_image 2.27 passes a null pointer to
+    // memcpy for an empty first IDAT chunk (fuzz_image, UBSan).
+    png_image png{};
+    png.version = PNG_IMAGE_VERSION;
+    if (!png_image_begin_read_from_memory(&png, bytes.data(), bytes.size()))
+      throw std::runtime_error("cannot decode " + name + ": " + png.message);
+    w = static_cast<int>(png.width);
+    h = static_cast<int>(png.height);
+    n = ((png.format & PNG_FORMAT_FLAG_COLOR) ? 3 : 1) +
+        ((png.format & PNG_FORMAT_FLAG_ALPHA) ? 1 : 0);
+    if (png.width > static_cast<unsigned>(kMaxImageSide) ||
+        png.height > static_cast<unsigned>(kMaxImageSide)) {
+      png_image_free(&png);
+      throw std::runtime_error("cannot decode " + name + ": size " + std::to_string(w) + "x" +
+                               std::to_string(h) + " exceeds the limit of " +
+                               std::to_string(kMaxImageSide) + " pixels per side");
+    }
+    if (static_cast<std::size_t>(w) * static_cast<std::size_t>(h) > maxPixels) {
+      png_image_free(&png);
+      throw tooManyPixels();
+    }
+    png.format = PNG_FORMAT_RGBA;
+    Image image;
+    image.rgba.resize(PNG_IMAGE_SIZE(png));
+    if (!png_image_finish_read(&png, nullptr, image.rgba.data(), 0, nullptr))
+      throw std::runtime_error("cannot decode " + name + ": " + png.message);
+    image.width = w;
+    image.height = h;
+    if (components != nullptr) *components = n;
+    return image;
+  }
   const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
   const int size = static_cast<int>(bytes.size());
-  int w = 0, h = 0, n = 0;
   if (!stbi_info_from_memory(data, size, &w, &h, &n))
     throw std::runtime_error("cannot decode " + name + ": " + stbi_failure_reason() +
                              " (PNG, JPEG and GIF are supported)");
@@ -49,6 +113,7 @@ Image decodeImage(std::string_view bytes, const std::string& name, int* componen
     throw std::runtime_error("cannot decode " + name + ": size " + std::to_string(w) + "x" +
                              std::to_string(h) + " exceeds the limit of " +
                              std::to_string(kMaxImageSide) + " pixels per side");
+  if (static_cast<std::size_t>(w) * static_cast<std::size_t>(h) > maxPixels) throw tooManyPixels();
   stbi_uc* pixels = stbi_load_from_memory(data, size, &w, &h, &n, 4);
   if (pixels == nullptr)
     throw std::runtime_error("cannot decode " + name + ": " + stbi_failure_reason());

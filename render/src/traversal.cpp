@@ -193,7 +193,8 @@ struct SceneTraversal::Walk {
         if (static_cast<int>(inlineChain.size()) >= self.options_.maxInlineDepth) {
           self.report(vrml::Severity::error, n.location,
                       "Inline nesting deeper than " + std::to_string(self.options_.maxInlineDepth) +
-                          " files at " + inl->url + ": not drawn");
+                          " files (RendererOptions::maxInlineDepth) at " + inl->url +
+                          ": not drawn");
           break;
         }
         for (const std::string* url : inlineChain) {

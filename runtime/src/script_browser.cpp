@@ -34,7 +34,7 @@ duk_ret_t print(duk_context* c) {
   }
   if (line.size() > kMaxPrint) {
     line.resize(kMaxPrint);
-    line += "...";
+    line += "... (print() output cut at " + std::to_string(kMaxPrint) + " bytes)";
   }
   self.context().print(line);
   return 0;

@@ -608,9 +608,11 @@ bool EsScript::run(const char* fn, const vrml::FieldValue* arg, double timestamp
   if (guard_->timedOut) {
     char buf[64];
     std::snprintf(buf, sizeof buf, "%g s", limits_.callSeconds);
-    stop(std::string(what) + " ran longer than the time limit of " + buf);
+    stop(std::string(what) + " ran longer than the time limit of " + buf +
+         " (ScriptLimits::callSeconds, --script-time-limit)");
   } else if (guard_->overCap) {
-    stop(std::string(what) + " needed more memory than the limit of " + mib(limits_.heapBytes));
+    stop(std::string(what) + " needed more memory than the limit of " + mib(limits_.heapBytes) +
+         " (ScriptLimits::heapBytes, --script-memory-limit)");
   }
   if (stopped_) {
     if (depth_ == 0) destroyHeap();

@@ -24,14 +24,10 @@
 
 namespace {
 
+using gs::test::skipWithoutXvfb;
 using gs::test::Xvfb;
 
-/// True (after a WARN naming the package) when no Xvfb runs: the test then skips.
-bool skipWithoutXvfb(const Xvfb& x) {
-  if (x.running()) return false;
-  WARN("SKIPPED: /usr/bin/Xvfb is absent (install xvfb)");
-  return true;
-}
+/// True (after test::missingFixture() named it) when no Xvfb runs: the test then returns.
 
 }  // namespace
 

@@ -44,10 +44,7 @@ std::string worldOf(const fs::path& status) {
 TEST_CASE("a scripted walk stops at a Collision's wall, sends collideTime and falls off a ledge",
           "[app][window][collision]") {
   gs::test::Xvfb x;
-  if (!x.running()) {
-    WARN("SKIPPED: /usr/bin/Xvfb is absent (install xvfb)");
-    return;
-  }
+  if (gs::test::skipWithoutXvfb(x)) return;
   const fs::path dir = fs::path(GS_BINARY_DIR) / "window-navigation";
   fs::create_directories(dir);
   const fs::path world = dir / "walls.wrl", script = dir / "walk.script",
@@ -109,10 +106,7 @@ Transform { translation 5 0.5 0 children Shape { geometry Box { size 4 1 4 } } }
 
 TEST_CASE("Anchor links keep a Back / Forward history in their viewport", "[app][window][links]") {
   gs::test::Xvfb x;
-  if (!x.running()) {
-    WARN("SKIPPED: /usr/bin/Xvfb is absent (install xvfb)");
-    return;
-  }
+  if (gs::test::skipWithoutXvfb(x)) return;
   const fs::path dir = fs::path(GS_BINARY_DIR) / "window-history";
   fs::create_directories(dir);
   const fs::path a = dir / "a.wrl", b = dir / "b.wrl", script = dir / "history.script";

@@ -10,17 +10,20 @@
 #include <string>
 #include <thread>
 
+#include "test_support.hpp"
+
 namespace gs::test {
 
 /// An Xvfb server on a private display number for the life of the object.
 class Xvfb {
  public:
   Xvfb() {
-    if (!std::filesystem::exists("/usr/bin/Xvfb")) return;
+    program_ = fixtureProgram("GS_XVFB", "/usr/bin/Xvfb");
+    if (::access(program_.c_str(), X_OK) != 0) return;
     display_ = ":" + std::to_string(90 + ::getpid() % 800);
     pid_ = ::fork();
     if (pid_ == 0) {
-      ::execl("/usr/bin/Xvfb", "Xvfb", display_.c_str(), "-screen", "0", "640x480x24", "-nolisten",
+      ::execl(program_.c_str(), "Xvfb", display_.c_str(), "-screen", "0", "640x480x24", "-nolisten",
               "tcp", static_cast<char*>(nullptr));
       ::_exit(127);
     }
@@ -39,10 +42,20 @@ class Xvfb {
   Xvfb& operator=(const Xvfb&) = delete;
   bool running() const { return pid_ > 0; }
   const std::string& display() const { return display_; }
+  const std::string& program() const { return program_; }
 
  private:
   pid_t pid_ = -1;
+  std::string program_;
   std::string display_;
 };
+
+/// True (after missingFixture(): a failure under CI, a ctest skip otherwise) when `x` could
+/// not start, so the caller can `return`.
+inline bool skipWithoutXvfb(const Xvfb& x) {
+  if (x.running()) return false;
+  missingFixture("Xvfb: " + x.program() + " is absent (install xvfb)");
+  return true;
+}
 
 }  // namespace gs::test

@@ -1,5 +1,7 @@
 #include "http/nginx_server.hpp"
 
+#include "test_support.hpp"
+
 #include <catch2/catch.hpp>
 
 #include <arpa/inet.h>
@@ -19,7 +21,10 @@
 namespace gs::test {
 namespace {
 
-constexpr const char* kNginx = "/usr/sbin/nginx";
+/// nginx itself: GS_NGINX when set (tests of the missing-fixture rule point it elsewhere).
+std::string nginxProgram() {
+  return fixtureProgram("GS_NGINX", "/usr/sbin/nginx");
+}
 
 sockaddr_in loopback(int port) {
   sockaddr_in a{};
@@ -96,13 +101,14 @@ std::string config(const std::filesystem::path& dir, int port) {
 
 NginxServer::NginxServer() {
   std::string why;
-  if (::access(kNginx, X_OK) != 0) {
-    WARN("SKIPPED: " << kNginx << " is absent (install nginx-light)");
+  const std::string nginx = nginxProgram();
+  if (::access(nginx.c_str(), X_OK) != 0) {
+    missingFixture("nginx: " + nginx + " is absent (install nginx-light)");
     return;
   }
   std::string tmpl = (std::filesystem::temp_directory_path() / "gs-nginx-XXXXXX").string();
   if (!::mkdtemp(tmpl.data())) {
-    WARN("SKIPPED: cannot make a temporary folder for nginx");
+    missingFixture("nginx: cannot make a temporary folder for it");
     return;
   }
   dir_ = tmpl;
@@ -111,7 +117,7 @@ NginxServer::NginxServer() {
   for (int tries = 0; tries < 3; ++tries) {
     if (start(why)) return;
   }
-  WARN("SKIPPED: nginx did not start: " << why);
+  missingFixture("nginx did not start: " + why);
 }
 
 NginxServer::~NginxServer() {
@@ -141,6 +147,7 @@ bool NginxServer::start(std::string& why) {
                              const_cast<char*>(prefix.c_str()),   const_cast<char*>("-c"),
                              const_cast<char*>(confText.c_str()), const_cast<char*>("-e"),
                              const_cast<char*>(errorLog.c_str()), nullptr};
+  const std::string program = nginxProgram();
   const pid_t pid = ::fork();
   if (pid < 0) {
     why = "fork failed";
@@ -153,7 +160,7 @@ bool NginxServer::start(std::string& why) {
       ::dup2(fd, 2);
       ::close(fd);
     }
-    ::execv(kNginx, argv.data());
+    ::execv(program.c_str(), argv.data());
     ::_exit(127);
   }
   pid_ = pid;

@@ -1,6 +1,6 @@
 // A real HTTP server for tests: nginx (Debian's nginx-light) in the foreground on
 // 127.0.0.1 and a free port, serving a temporary root folder that the test fills. Self-
-// contained (POSIX, the standard library and Catch2's WARN) so that any test suite can
+// contained (POSIX, the standard library, Catch2 and test_support) so that any test suite can
 // compile this file in.
 #pragma once
 
@@ -24,15 +24,16 @@ namespace gs::test {
 /// application/octet-stream. Range requests work on every static file (206).
 class NginxServer {
  public:
-  /// Starts nginx and waits (up to about 5 s) until its port accepts connections. When
-  /// /usr/sbin/nginx is missing or does not start, ok() is false and a Catch WARN says why;
-  /// tests then return early (skip).
+  /// Starts nginx (/usr/sbin/nginx, or $GS_NGINX) and waits (up to about 5 s) until its
+  /// port accepts connections. When nginx is missing or does not start, ok() is false and
+  /// test::missingFixture() names nginx and why (a failure under CI, else a ctest skip);
+  /// tests then return early.
   NginxServer();
   ~NginxServer();
   NginxServer(const NginxServer&) = delete;
   NginxServer& operator=(const NginxServer&) = delete;
 
-  /// Whether nginx runs (if not, see the WARN it left).
+  /// Whether nginx runs (if not, see the missing-fixture report it left).
   bool ok() const { return pid_ > 0; }
   /// The folder served at "/": write files there before fetching them.
   std::filesystem::path root() const { return dir_ / "root"; }

@@ -5,6 +5,7 @@
 #include "render/image.hpp"
 #include "render/scene_renderer.hpp"
 #include "render_test_util.hpp"
+#include "test_support.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -29,7 +30,7 @@ void drawRedBox(gs::render::GlContext& c) {
 TEST_CASE("window and off-screen contexts draw in one process", "[render][window]") {
   const char* display = std::getenv("DISPLAY");
   if (display == nullptr || *display == '\0') {
-    WARN("SKIPPED: no DISPLAY for a GLFW window (run the tests under xvfb-run)");
+    gs::test::missingFixture("no DISPLAY for a GLFW window (run the tests under xvfb-run)");
     return;
   }
   auto window = gs::render::createWindowContext("GhostSpace test", 64, 64);

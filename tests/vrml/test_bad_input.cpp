@@ -234,7 +234,7 @@ TEST_CASE("bad input: too many errors stop the parse", "[bad_input]") {
   for (int i = 0; i < 5000; ++i) t += "Group { nope 1 }\n";
   Scene s = parse(t);
   CHECK(s.diagnostics.items.size() == 1001);
-  CHECK(s.diagnostics.items.back().message == "too many errors: giving up on this file");
+  CHECK(s.diagnostics.items.back().message == "too many errors (1000): giving up on this file");
   CHECK(s.rootNodes.size() < 1001);
 }
 

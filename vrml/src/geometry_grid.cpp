@@ -235,7 +235,9 @@ Mesh tessellateExtrusion(const Node& node, ProblemLog& log) {
     if (!finite(p)) return log.add("crossSection has a value that is not a finite number"), Mesh{};
   if (ns * nc > kMaxExtrusionPoints) {
     log.add(std::to_string(ns) + " spine x " + std::to_string(nc) +
-            " crossSection points is too many; the spine is cut short");
+            " crossSection points is more than the limit of " +
+            std::to_string(kMaxExtrusionPoints) +
+            " (vrml::kMaxExtrusionPoints); the spine is cut short");
     ns = kMaxExtrusionPoints / nc;
     if (ns < 2) return {};
   }

@@ -90,12 +90,14 @@ void Parser::parseScene(Scene& scene) {
 void Parser::endScene(const ParseError* fatal) {
   if (fatal != nullptr && !giveUp_) report(*fatal);
   if (giveUp_)
-    diag_.items.push_back({Severity::error, lex_.locationAt(lex_.offset()),
-                           "too many errors: giving up on this file"});
+    diag_.items.push_back(
+        {Severity::error, lex_.locationAt(lex_.offset()),
+         "too many errors (" + std::to_string(kMaxDiagnostics) + "): giving up on this file"});
   if (suppressed_ > 0)
     diag_.items.push_back({Severity::warning,
                            {lex_.file(), 0, 0},
-                           std::to_string(suppressed_) + " more diagnostics not shown"});
+                           std::to_string(suppressed_) + " more diagnostics not shown (at most " +
+                               std::to_string(kMaxDiagnostics) + " are kept)"});
 }
 
 // statements ::= statement*; statement ::= nodeStatement | protoStatement | routeStatement

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace gs::app {
@@ -16,6 +17,12 @@ std::string instanceSocketPath();
 /// Sends `inputs` (local paths made absolute, URLs as they are) to a running window.
 /// Returns false when none listens (no socket, or a stale one) or the send failed.
 bool handToRunningInstance(const std::vector<std::string>& inputs);
+
+/// The inputs of one message received on the socket (at most 64 KiB of bytes from any
+/// local process of the user): one input per "\n"-terminated line; empty lines and an
+/// unterminated last line are dropped. Any bytes are accepted (fuzzed:
+/// tests/fuzz/fuzz_instance_message.cpp).
+std::vector<std::string> parseInstanceMessage(std::string_view message);
 
 /// The listening side, owned by the window: created on construction (a stale socket file
 /// of a dead instance is replaced), removed on destruction. Never blocks.

@@ -1,7 +1,9 @@
 // 8-bit RGBA images: reading the framebuffer, PNG files (libpng), texture decoding
-// (stb_image: PNG, JPEG; giflib: GIF) and the image comparison used by the baseline tests.
+// (libpng: PNG; libjpeg-turbo: JPEG; giflib: GIF) and the image comparison used by the
+// baseline tests.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -29,6 +31,13 @@ struct Image {
 
 /// Largest accepted side of a decoded image, in pixels.
 inline constexpr int kMaxImageSide = 16384;
+/// Pixels a decoded image may have per byte of its file (beyond the first 4 Mi pixels,
+/// always allowed): a header may claim any size, and the decoders allocate what it claims
+/// before reading the data. PNG (deflate, at most 1032:1, 8 pixels a byte at 1 bit),
+/// JPEG (a 64-pixel block in a few bits) and GIF (LZW, at most about 11,000 pixels a
+/// byte) files stay under it; a 12-byte GIF claiming 16247 x 16247 does not.
+inline constexpr std::size_t kMaxImagePixelsPerByte = 16384;
+inline constexpr std::size_t kImagePixelsAlwaysAllowed = std::size_t{1} << 22;
 
 /// Reads the rectangle (x, y, w, h) of the current read framebuffer (x, y = its lower-left
 /// corner in GL window coordinates, pixels) and returns it with rows top to bottom.
@@ -45,13 +54,16 @@ void writePng(const std::string& path, const Image& image);
 /// larger than kMaxImageSide).
 Image readPng(const std::string& path);
 
-/// Decodes a PNG, JPEG (stb_image) or GIF (giflib: first image, transparent index as
-/// alpha 0) held in memory to 8-bit RGBA, grey images with R = G = B; `components`
-/// receives the number of channels the file had when not null: 1 grey, 2 grey+alpha,
-/// 3 RGB, 4 RGBA (ISO/IEC 14772-1 5.5 SFImage, 6.22 ImageTexture: a PNG's tRNS chunk
-/// counts as alpha; a GIF is 3, or 4 when it has transparent pixels; JPEG 1 or 3). `name` names the
-/// data in error messages. Throws std::runtime_error for undecodable data and for images larger
-/// than kMaxImageSide. Safe for untrusted input.
+/// Decodes a PNG, JPEG or GIF held in memory to 8-bit RGBA (PNG with libpng, JPEG with
+/// libjpeg-turbo: stb_image 2.27's PNG and JPEG decoders fail under UBSan on corrupt files,
+/// tests/data/regressions/image; GIF with giflib: first image, transparent index as alpha
+/// 0, 3 components or 4 with transparent pixels); grey images have R = G = B; a PNG's tRNS
+/// chunk counts as alpha (ISO/IEC 14772-1 5.5, 6.22);
+/// `components` receives the number of channels the file had (1 grey, 2 grey+alpha,
+/// 3 RGB, 4 RGBA) when not null. `name` names the data in error messages. Throws
+/// std::runtime_error for undecodable data, for images larger than kMaxImageSide and for
+/// images with more pixels than kMaxImagePixelsPerByte per byte of `bytes` allow.
+/// Safe for untrusted input.
 Image decodeImage(std::string_view bytes, const std::string& name = "image",
                   int* components = nullptr);
 

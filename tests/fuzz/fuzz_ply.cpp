@@ -1,0 +1,9 @@
+// formats::readPly on any bytes.
+#include "formats/mesh_readers.hpp"
+#include "fuzz_support.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  gs::fuzz::expectingErrors(
+      [&] { (void)gs::formats::readPly(gs::fuzz::view(data, size), "fuzz.ply"); });
+  return 0;
+}

@@ -1,0 +1,58 @@
+// Writes seed inputs for the QNV fuzz targets into the folder given as the one argument:
+// a small volume stream in plain and compact packets (and one with packets damaged), and
+// compact payloads prefixed with their record count as fuzz_qnv_compact reads them.
+// Generated rather than committed so that they follow the format of this build.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include "compact_payload.hpp"
+#include "qnv/encoder.hpp"
+#include "qnv/stream.hpp"
+
+namespace {
+
+void write(const std::string& path, const std::string& bytes) {
+  std::ofstream out(path, std::ios::binary);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    std::fprintf(stderr, "usage: make_qnv_seeds FOLDER\n");
+    return 2;
+  }
+  const std::string dir = argv[1];
+  gs::qnv::Volume v;
+  v.dims = {8, 8, 8};
+  v.samples.resize(v.voxelCount());
+  for (std::uint32_t z = 0; z < 8; ++z)
+    for (std::uint32_t y = 0; y < 8; ++y)
+      for (std::uint32_t x = 0; x < 8; ++x)
+        v.samples[x + 8 * (y + 8 * z)] =
+            std::max(0.0f, 255.0f - 40.0f * std::hypot(x - 3.5f, y - 3.5f, z - 3.5f));
+  const gs::qnv::EncodedVectors e = gs::qnv::encodeVolume(v, {});
+  gs::qnv::WriteOptions w;
+  w.packetBytes = 48;
+  const std::string plain = gs::qnv::writeStream(e, w);
+  write(dir + "/ball_plain.qnv", plain);
+  std::string damaged = plain;
+  if (damaged.size() > gs::qnv::kHeaderBytes + 100) damaged[gs::qnv::kHeaderBytes + 70] ^= 0x20;
+  write(dir + "/ball_damaged.qnv", damaged);
+  w.packetBytes = 512;
+  w.encoding = gs::qnv::PacketEncoding::compact;
+  write(dir + "/ball_compact.qnv", gs::qnv::writeStream(e, w));
+  for (std::size_t count : {std::size_t{1}, std::size_t{7}, std::size_t{64}}) {
+    if (count > e.records.size()) break;
+    std::string payload;
+    payload += static_cast<char>((count - 1) & 0xff);
+    payload += static_cast<char>((count - 1) >> 8);
+    gs::qnv::detail::appendCompactPayload(payload, {e.records.data(), count});
+    write(dir + "/compact_" + std::to_string(count) + ".bin", payload);
+  }
+  return 0;
+}

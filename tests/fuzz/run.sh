@@ -1,0 +1,122 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets (clang, ASan + UBSan, into build-fuzz/) and runs each for
+# SECONDS seconds, seeded from tests/fuzz/seeds, assets/ and ../shared/corpus (when
+# present). See docs/fuzzing.md.
+#
+#   tests/fuzz/run.sh SECONDS [TARGET...]      e.g. tests/fuzz/run.sh 15, or 600 fuzz_ply
+#
+# Environment: GS_FUZZ_JOBS=N runs N targets at once (default 1); GS_FUZZ_BUILD=DIR
+# (default build-fuzz). The growing corpora stay in DIR/corpus/TARGET, logs in
+# DIR/logs/TARGET.log and any crashing input in DIR/artifacts/TARGET/. Exits 1 when a
+# target found a crash, leak or time-out (its input is printed), 0 otherwise.
+set -euo pipefail
+top=$(cd "$(dirname "$0")/../.." && pwd)
+here="$top/tests/fuzz"
+seconds=${1:?usage: run.sh SECONDS [TARGET...]}
+shift
+build=${GS_FUZZ_BUILD:-$top/build-fuzz}
+jobs=${GS_FUZZ_JOBS:-1}
+all=(fuzz_vrml_parse fuzz_vrml_stream fuzz_vrml_proto fuzz_qnv_stream fuzz_qnv_compact
+     fuzz_ply fuzz_obj fuzz_gltf fuzz_nrrd fuzz_nifti fuzz_image fuzz_http_response
+     fuzz_instance_message fuzz_script)
+targets=("$@")
+[ ${#targets[@]} -gt 0 ] || targets=("${all[@]}")
+
+launcher=()
+command -v ccache > /dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+# -O1 with line tables: what libFuzzer recommends, and quicker to build than -O2.
+cmake -S "$top" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGS_FUZZ=ON -DGS_BUILD_TESTS=OFF \
+  -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ "${launcher[@]}" \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only" \
+  -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only" > /dev/null
+cmake --build "$build" -j"$(nproc)" --target fuzz_all
+
+corpus_root="$top/../shared/corpus"
+mkdir -p "$build/seeds/qnv" "$build/seeds/compact" "$build/logs"
+"$build/fuzz/make_qnv_seeds" "$build/seeds/qnv"
+mv -f "$build/seeds/qnv"/compact_*.bin "$build/seeds/compact/"
+
+# Seed folders (those that exist), dictionary and input size cap of each target.
+seeds_of() {
+  local s=()
+  case "$1" in
+    fuzz_vrml_parse | fuzz_vrml_stream)
+      s=("$here/seeds/vrml" "$top/assets/worlds" "$corpus_root/vrml/openvrml/bad") ;;
+    fuzz_vrml_proto) s=("$here/seeds/proto" "$here/seeds/vrml") ;;
+    fuzz_qnv_stream) s=("$here/seeds/qnv" "$build/seeds/qnv") ;;
+    fuzz_qnv_compact) s=("$here/seeds/compact" "$build/seeds/compact") ;;
+    fuzz_ply | fuzz_obj | fuzz_gltf) s=("$here/seeds/mesh") ;;
+    fuzz_nrrd | fuzz_nifti) s=("$here/seeds/volume") ;;
+    fuzz_image) s=("$here/seeds/image" "$top/assets/worlds/textures") ;;
+    fuzz_http_response) s=("$here/seeds/http") ;;
+    fuzz_instance_message) s=("$here/seeds/instance") ;;
+    fuzz_script) s=("$here/seeds/script") ;;
+  esac
+  for d in "${s[@]}"; do [ -d "$d" ] && echo "$d"; done
+  return 0
+}
+dict_of() {
+  case "$1" in
+    fuzz_vrml_*) echo "$here/dict/vrml.dict" ;;
+    fuzz_nrrd | fuzz_nifti) echo "$here/dict/nrrd.dict" ;;
+    fuzz_script) echo "$here/dict/script.dict" ;;
+    fuzz_http_response) echo "$here/dict/http.dict" ;;
+  esac
+}
+max_len_of() {
+  case "$1" in
+    fuzz_qnv_stream | fuzz_image | fuzz_gltf | fuzz_nifti) echo 200000 ;;
+    *) echo 65536 ;;
+  esac
+}
+
+run_one() {
+  local t=$1
+  local work="$build/corpus/$t" art="$build/artifacts/$t/"
+  mkdir -p "$work" "$art"
+  local args=(-max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1
+              -max_len="$(max_len_of "$t")" -artifact_prefix="$art")
+  local dict
+  dict=$(dict_of "$t")
+  [ -n "$dict" ] && args+=(-dict="$dict")
+  mapfile -t seeds < <(seeds_of "$t")
+  if "$build/fuzz/$t" "${args[@]}" "$work" "${seeds[@]}" > "$build/logs/$t.log" 2>&1; then
+    echo "ok"
+  else
+    echo "FAILED"
+  fi
+}
+
+export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:allocator_may_return_null=1}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+results="$build/logs/results.txt"
+: > "$results"
+running=0
+for t in "${targets[@]}"; do
+  (echo "$t $(run_one "$t")" >> "$results") &
+  running=$((running + 1))
+  if [ "$running" -ge "$jobs" ]; then
+    wait -n || true
+    running=$((running - 1))
+  fi
+done
+wait
+
+# One line per target: executions, executions per second, coverage, corpus, result.
+status=0
+printf '%-22s %12s %9s %7s %7s  %s\n' target executions exec/s cov corpus result
+for t in "${targets[@]}"; do
+  log="$build/logs/$t.log"
+  result=$(awk -v t="$t" '$1 == t {print $2}' "$results")
+  execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
+  rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)
+  cov=$(grep -o 'cov: [0-9]*' "$log" | tail -1 | cut -d' ' -f2)
+  corp=$(grep -o 'corp: [0-9]*' "$log" | tail -1 | cut -d' ' -f2)
+  printf '%-22s %12s %9s %7s %7s  %s\n' "$t" "${execs:--}" "${rate:--}" "${cov:--}" "${corp:--}" \
+    "${result:-FAILED}"
+  if [ "$result" != ok ]; then
+    status=1
+    grep -m3 -E 'ERROR|SUMMARY|Test unit written' "$log" | sed 's/^/    /' || true
+  fi
+done
+exit $status
