@@ -63,8 +63,8 @@ void ExecutionModel::State::evaluateMedia(NodeState& ns) {
   f.stopTime = fieldOr<FieldType::SFTime>(n, m.stopTime, 0.0);
   f.loop = fieldOr<FieldType::SFBool>(n, m.loop, false);
   // No known duration, speed 0 or a pitch <= 0 (6.3: undefined): a node that never starts.
-  const bool playable = duration > 0.0 && std::isfinite(st.rate) &&
-                        (st.movie ? st.rate != 0.0 : st.rate > 0.0);
+  const bool playable =
+      duration > 0.0 && std::isfinite(st.rate) && (st.movie ? st.rate != 0.0 : st.rate > 0.0);
   f.cycleInterval = playable ? duration / std::fabs(st.rate) : 0.0;
   const TimeStep step = evaluateTime(m.time, f, model.now());
   if (step.activated) emitOwn(ns, m.isActive, FieldValue::make<FieldType::SFBool>(true));

@@ -124,8 +124,7 @@ ROUTE A.isActive TO T.set_enabled)");
   CHECK(mediaTimeOf(w, "A") == Approx(1.0));
 }
 
-TEST_CASE("AudioClip: an unreadable clip reports duration -1 and never plays",
-          "[runtime][media]") {
+TEST_CASE("AudioClip: an unreadable clip reports duration -1 and never plays", "[runtime][media]") {
   RunningWorld w("DEF A AudioClip { loop TRUE }");
   w.model->setMediaDuration(w.node("A"), -1.0);
   CHECK(w.take() == Events{"A.duration_changed=-1.000"});
