@@ -37,6 +37,12 @@ MoviePlayer::Status MoviePlayer::status() const {
   return status_;
 }
 
+MoviePlayer::Status MoviePlayer::waitOpened() {
+  std::unique_lock lock(mutex_);
+  ready_.wait(lock, [&] { return status_ != Status::opening; });
+  return status_;
+}
+
 std::string MoviePlayer::error() const {
   std::lock_guard lock(mutex_);
   return error_;

@@ -83,6 +83,8 @@ class MoviePlayer {
 
   enum class Status { opening, ready, failed };
   Status status() const;
+  /// Waits until the movie is open (ready) or failed, and says which.
+  Status waitOpened();
   /// Why opening or decoding failed (status failed).
   std::string error() const;
   /// Seconds, once ready (0 before).
