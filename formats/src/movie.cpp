@@ -69,7 +69,8 @@ struct MovieDecoder::Impl {
   AVFormatContext* format = nullptr;
   AVCodecContext* codec = nullptr;
   SwsContext* sws = nullptr;
-  AVFrame* frame = nullptr;
+  AVFrame* frame = nullptr;  // the decoder's output (emptied by a failed receive)
+  AVFrame* shown = nullptr;  // the last frame decoded: frame `decoded`
   AVPacket* packet = nullptr;
   int stream = -1;
   int width = 0, height = 0;
@@ -82,6 +83,7 @@ struct MovieDecoder::Impl {
   ~Impl() {
     sws_freeContext(sws);
     av_frame_free(&frame);
+    av_frame_free(&shown);
     av_packet_free(&packet);
     avcodec_free_context(&codec);
     avformat_close_input(&format);
@@ -111,6 +113,8 @@ struct MovieDecoder::Impl {
       const int r = avcodec_receive_frame(codec, frame);
       if (r == 0) {
         ++decoded;
+        av_frame_unref(shown);
+        av_frame_move_ref(shown, frame);
         return true;
       }
       if (r == AVERROR_EOF) {
@@ -201,6 +205,7 @@ std::unique_ptr<MovieDecoder> MovieDecoder::open(std::string bytes, const std::s
   if (rate.num <= 0 || rate.den <= 0) rate = st->r_frame_rate;
   if (rate.num > 0 && rate.den > 0 && av_q2d(rate) <= 1000.0) d->frameDuration = 1.0 / av_q2d(rate);
   d->frame = av_frame_alloc();
+  d->shown = av_frame_alloc();
   d->packet = av_packet_alloc();
   // Count the frames: one packet per frame once libavformat has parsed the stream.
   while (av_read_frame(d->format, d->packet) >= 0) {
@@ -254,12 +259,12 @@ bool MovieDecoder::decodeFrame(std::int64_t index, VideoFrame& out, std::string&
     if (error.empty()) error = d.name + ": no frame could be decoded";
     return false;
   }
-  const int w = d.frame->width, h = d.frame->height;
+  const int w = d.shown->width, h = d.shown->height;
   if (w != d.width || h != d.height || w <= 0 || h <= 0) {
     error = d.name + ": the frame size changed inside the stream";
     return false;
   }
-  d.sws = sws_getCachedContext(d.sws, w, h, static_cast<AVPixelFormat>(d.frame->format), w, h,
+  d.sws = sws_getCachedContext(d.sws, w, h, static_cast<AVPixelFormat>(d.shown->format), w, h,
                                AV_PIX_FMT_RGBA, SWS_BILINEAR, nullptr, nullptr, nullptr);
   if (d.sws == nullptr) {
     error = d.name + ": cannot convert the frame's pixel format";
@@ -272,7 +277,7 @@ bool MovieDecoder::decodeFrame(std::int64_t index, VideoFrame& out, std::string&
   out.rgba.resize(static_cast<std::size_t>(w) * h * 4);
   std::uint8_t* planes[4] = {out.rgba.data(), nullptr, nullptr, nullptr};
   int strides[4] = {w * 4, 0, 0, 0};
-  sws_scale(d.sws, d.frame->data, d.frame->linesize, 0, h, planes, strides);
+  sws_scale(d.sws, d.shown->data, d.shown->linesize, 0, h, planes, strides);
   return true;
 }
 

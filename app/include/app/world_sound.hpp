@@ -26,8 +26,8 @@ class WorldSounds {
               WorldRuntimes& runtimes, double now);
 
  private:
+  std::string note_;  // before output_: the output's constructor writes it
   std::unique_ptr<audio::AudioOutput> output_;
-  std::string note_;
   FetchWhole fetch_;
   std::map<const vrml::Scene*, std::unique_ptr<audio::SoundScene>> scenes_;
   std::map<const vrml::Scene*, std::size_t> shown_;  // diagnostics printed
