@@ -1,9 +1,9 @@
 // Private to runtime/: the state behind ExecutionModel, shared by its source files.
 #pragma once
 
+#include "media_nodes.hpp"
 #include "runtime/execution_model.hpp"
 #include "runtime/interpolators.hpp"
-#include "media_nodes.hpp"
 #include "runtime/time_dependent.hpp"
 
 #include <array>
