@@ -200,6 +200,12 @@ Parsed parseArguments(int argc, char** argv) {
       ->type_name("B");
   encode->add_flag("--compact", enc.compact,
                    "zstd-compress each packet (spatially sorted, delta-coded)");
+  encode
+      ->add_option("--coding", enc.coding,
+                   "Packet coding: plain (64-bit records), compact (zstd) or entropy (rANS, "
+                   "smallest; docs/qnv-format.md)")
+      ->check(CLI::IsMember({"plain", "compact", "entropy"}))
+      ->type_name("NAME");
   encode->add_option("--window", enc.valueWindow, "Volumes: keep voxels with values in LO..HI")
       ->type_name("LO:HI");
   encode->add_option("--magnitude", enc.magnitude,
@@ -276,7 +282,7 @@ Parsed parseArguments(int argc, char** argv) {
   o.progress = !noProgressBar;
   o.time.scripts = !noScripts;
   o.time.scriptLimits.heapBytes = static_cast<std::size_t>(scriptMegabytes * 1048576.0);
-  if (!timeText.empty() && !parseTimeOption(timeText, o.time)) {
+  if (!timeText.empty() && !session::parseTimeOption(timeText, o.time)) {
     std::fprintf(stderr,
                  "ghostspace: --time: expected seconds T >= 0 or T0:DT:N (DT > 0, N >= 1), "
                  "got '%s'\n",

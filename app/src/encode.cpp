@@ -85,6 +85,9 @@ std::string parseSettings(const EncodeOptions& e, Settings& s) {
            std::to_string(e.packetBytes);
   s.write.packetBytes = e.packetBytes;
   s.write.encoding = e.compact ? qnv::PacketEncoding::compact : qnv::PacketEncoding::plain;
+  if (e.coding == "plain") s.write.encoding = qnv::PacketEncoding::plain;
+  if (e.coding == "compact") s.write.encoding = qnv::PacketEncoding::compact;
+  if (e.coding == "entropy") s.write.encoding = qnv::PacketEncoding::entropy;
   return {};
 }
 

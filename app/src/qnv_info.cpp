@@ -63,7 +63,9 @@ int runQnvInfo(const std::string& path) {
   std::printf("  vectors     %llu in %llu packets of up to %u records (%s)\n",
               static_cast<unsigned long long>(h.vectorCount),
               static_cast<unsigned long long>(h.packetCount()), h.recordsPerPacket(),
-              h.encoding == qnv::PacketEncoding::compact ? "compact" : "plain");
+              h.encoding == qnv::PacketEncoding::compact   ? "compact"
+              : h.encoding == qnv::PacketEncoding::entropy ? "entropy"
+                                                           : "plain");
   std::printf("  bytes       %llu (%.2f bits per vector, header included)\n",
               static_cast<unsigned long long>(st.bytesFed),
               h.vectorCount

@@ -5,10 +5,10 @@
 #include "app/commands.hpp"
 #include "app/layout.hpp"
 #include "app/progress_bar.hpp"
-#include "app/world_runtime.hpp"
 #include "render/context.hpp"
 #include "session/splat_inputs.hpp"
 #include "session/streaming_session.hpp"
+#include "session/world_runtime.hpp"
 
 #include <glad/gl.h>
 #include "render/image.hpp"
@@ -146,12 +146,12 @@ int runSnapshot(const Options& options) {
   // Life (docs/runtime.md): each world is loaded at --time T (0 by default) and moved
   // through T0 + i * DT at the fixed --time-step, so a frame's pixels depend on the
   // command alone.
-  WorldRuntimes runtimes(options.time,
-                         [&session](const std::string& url, const std::string& referrer,
-                                    std::string& bytes, std::string& error) {
-                           return session.loader().fetchWhole(url, referrer, bytes, error, 10.0);
-                         });
-  const RuntimeOptions& time = options.time;
+  session::WorldRuntimes runtimes(
+      options.time, [&session](const std::string& url, const std::string& referrer,
+                               std::string& bytes, std::string& error) {
+        return session.loader().fetchWhole(url, referrer, bytes, error, 10.0);
+      });
+  const session::RuntimeOptions& time = options.time;
   for (View& v : views) {
     runtimes.of(v.scene, time.start);
     runtimes.addInlines(v.scene.get(), v.renderer->traversal());
@@ -163,7 +163,7 @@ int runSnapshot(const Options& options) {
   for (int frame = 0; frame < time.frames; ++frame) {
     for (View& v : views) {
       const float aspect = static_cast<float>(v.rect.width) / static_cast<float>(v.rect.height);
-      runtimes.setViewer(v.scene.get(), viewerPose(camera(v), aspect));
+      runtimes.setViewer(v.scene.get(), session::viewerPose(camera(v), aspect));
     }
     runtimes.advanceTo(time.start + time.interval * frame);
     for (View& v : views)
@@ -172,7 +172,7 @@ int runSnapshot(const Options& options) {
     draw();
     image = render::readPixels(0, 0, options.width, options.height);
     if (time.frames > 1)
-      render::writePng(framePath(options.snapshotPath, frame, time.frames), image);
+      render::writePng(session::framePath(options.snapshotPath, frame, time.frames), image);
   }
   std::vector<std::pair<bool, std::string>> messages;
   session.drainMessages(messages);

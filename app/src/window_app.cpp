@@ -4,6 +4,7 @@
 #include "app/single_instance.hpp"
 #include "app/window_script.hpp"
 #include "app/window_state.hpp"
+#include "render/collision.hpp"
 #include "render/context.hpp"
 
 #include <GLFW/glfw3.h>
@@ -41,7 +42,15 @@ struct ImGuiSession {
 /// Mouse and keys not taken by ImGui drive the active viewport's navigator (a click picks
 /// it). EXAMINE: left drag orbits, right drag or shift + left drag pans, middle drag and
 /// the wheel dolly. WALK and FLY: left drag looks around, the wheel and W/S/A/D, the
-/// arrows and Q/E move at NavigationInfo.speed.
+/// arrows and Q/E move at NavigationInfo.speed, stopped by walls (WALK: on the ground).
+/// Alt+Left / Alt+Right: Back and Forward.
+/// How far a walking avatar may drop at once (avatarSize[2]): going down a step follows
+/// the terrain at once; deeper falls continue under gravity (applyGravity).
+float avatarStep(const WindowState& state) {
+  const auto& renderer = state.view().renderer;
+  return renderer ? render::Avatar::of(renderer->navigation()).stepHeight : 0.75f;
+}
+
 void navigate(WindowState& state, int menuHeight, int viewportHeight) {
   const ImGuiIO& io = ImGui::GetIO();
   // The pointing-device sensors see the mouse first (4.6.7, window_pointer.cpp): a press
@@ -85,12 +94,17 @@ void navigate(WindowState& state, int menuHeight, int viewportHeight) {
   if (io.MouseWheel != 0.0f) {
     if (examine)
       navigator.dolly(io.MouseWheel);
-    else
-      navigator.move(io.MouseWheel * speed * 0.5f, 0.0f, 0.0f);
+    else  // stopped by walls, on the ground (window_navigation.cpp)
+      state.moveViewer(io.MouseWheel * speed * 0.5f, 0.0f, 0.0f, avatarStep(state));
+  }
+  // Alt+Left / Alt+Right: Back and Forward through the worlds links opened here.
+  if (io.KeyAlt && !io.WantCaptureKeyboard) {
+    if (ImGui::IsKeyPressed(GLFW_KEY_LEFT, false)) state.goBack();
+    if (ImGui::IsKeyPressed(GLFW_KEY_RIGHT, false)) state.goForward();
   }
   // WALK and FLY: W/S or the arrows move forward and back, A/D sideways, Q/E down and up,
   // at NavigationInfo.speed metres per second.
-  if (!examine && !io.WantCaptureKeyboard) {
+  if (!examine && !io.WantCaptureKeyboard && !io.KeyAlt) {
     auto down = [](int key) { return ImGui::IsKeyDown(key); };
     const float step = speed * io.DeltaTime;
     const float f = (down('W') || down(GLFW_KEY_UP) ? 1.0f : 0.0f) -
@@ -99,10 +113,10 @@ void navigate(WindowState& state, int menuHeight, int viewportHeight) {
                     (down('A') || down(GLFW_KEY_LEFT) ? 1.0f : 0.0f);
     const float u = (down('E') ? 1.0f : 0.0f) - (down('Q') ? 1.0f : 0.0f);
     if (f != 0.0f || r != 0.0f || u != 0.0f) {
-      navigator.move(f * step, r * step, u * step);
-      state.view().autoFrame = false;
+      state.moveViewer(f * step, r * step, u * step, avatarStep(state));
     }
   }
+  state.applyGravity(io.DeltaTime);  // WALK: falls continue between moves
   if (moved && ((io.MouseDown[0] && !state.pointerHeld) || io.MouseDown[1] || io.MouseDown[2]))
     state.view().autoFrame = false;
   if (io.MouseWheel != 0.0f) state.view().autoFrame = false;

@@ -155,6 +155,10 @@ int drawMenuBar(WindowState& state, float aspect) {
           state.show(i, state.active);
       ImGui::EndMenu();
     }
+    // Back and Forward through the worlds Anchor links opened in this viewport.
+    if (ImGui::MenuItem("Back", "Alt+Left", false, !state.view().back.empty())) state.goBack();
+    if (ImGui::MenuItem("Forward", "Alt+Right", false, !state.view().forward.empty()))
+      state.goForward();
     ImGui::Separator();
     // Screenshots go to the current folder, named by the time.
     auto stamp = [] {

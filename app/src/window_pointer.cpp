@@ -88,8 +88,8 @@ void WindowState::followLinks() {
       }
       case LinkAction::openWorld: {
         const std::size_t world = load(d.url);
-        if (world != Viewport::kNone)
-          show(world, r.viewport < viewports.size() ? r.viewport : active);
+        if (world != Viewport::kNone)  // Back returns to the world it replaces
+          showLinked(world, r.viewport < viewports.size() ? r.viewport : active);
         break;
       }
       case LinkAction::openWorldInNewViewport:

@@ -68,6 +68,9 @@ bool WindowScript::load(const std::string& path, std::string& error) {
     } else if (c.verb == "viewport") {
       if (!parseNumber(c.argument, number) || number < 0 || number > 3)
         return fail("viewport 0..3");
+    } else if (c.verb == "viewpoint") {
+      if (!parseNumber(c.argument, number) || number < 0 || number > 1e6)
+        return fail("viewpoint N (index in the Viewpoints menu, from 0)");
     } else if (c.verb == "lod") {
       if (!parseNumber(c.argument, number) || !(number > 0.0) || number > 1.0)
         return fail("lod F with 0 < F <= 1");
@@ -104,11 +107,13 @@ bool WindowScript::load(const std::string& path, std::string& error) {
       if ((c.verb == "press" || c.verb == "release") && !c.argument.empty())
         return fail(c.verb + " without arguments");
       if (c.verb == "key" && c.argument.empty()) return fail("key K");
+    } else if (isNavigation(c.verb)) {
+      if (const std::string expected = checkNavigation(c); !expected.empty()) return fail(expected);
     } else if (c.verb != "wait-loaded" && c.verb != "quit") {
       return fail(
           "a command (layout, open, viewport, lod, mode, wait-loaded, frames, "
           "screenshot, screenshot-viewport, time, advance, pointer, press, release, click, "
-          "drag, key, quit)");
+          "drag, key, navigation, walk, back, forward, camera, quit)");
     }
     commands_.push_back(std::move(c));
   }
@@ -125,6 +130,11 @@ bool WindowScript::step(WindowState& state, int width, int height) {
       interact(state, c, height);
       ++next_;
       return true;  // drawn once before the next command, so screenshots show it
+    }
+    if (isNavigation(c.verb)) {
+      navigate(state, c);
+      ++next_;
+      return true;
     }
     if (c.verb == "wait-loaded") {
       // Settled for two frames running: the frame after a change has drawn (and so asked
@@ -157,6 +167,8 @@ bool WindowScript::step(WindowState& state, int width, int height) {
     } else if (c.verb == "viewport") {
       const auto index = static_cast<std::size_t>(number);
       if (index < state.viewports.size()) state.active = index;
+    } else if (c.verb == "viewpoint") {
+      state.jumpToViewpoint(static_cast<std::size_t>(number));
     } else if (c.verb == "lod") {
       state.setLod(number);
     } else if (c.verb == "mode") {

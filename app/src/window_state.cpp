@@ -146,7 +146,7 @@ void WindowState::setNavigation(render::NavigationMode mode) {
 
 void WindowState::updateRuntimes() {
   if (!runtimes) {
-    runtimes = std::make_unique<WorldRuntimes>(
+    runtimes = std::make_unique<session::WorldRuntimes>(
         time, [this](const std::string& url, const std::string& referrer, std::string& bytes,
                      std::string& error) {
           return session->loader().fetchWhole(url, referrer, bytes, error, 10.0);
@@ -176,7 +176,8 @@ void WindowState::updateRuntimes() {
     const float aspect = v.rect.height > 0
                              ? static_cast<float>(v.rect.width) / static_cast<float>(v.rect.height)
                              : lastAspect;
-    runtimes->setViewer(worlds[v.world].scene.get(), viewerPose(v.navigator.camera(), aspect));
+    runtimes->setViewer(worlds[v.world].scene.get(),
+                        session::viewerPose(v.navigator.camera(), aspect));
   }
   runtimes->advanceTo(now);
   for (Viewport& v : viewports) {
@@ -193,13 +194,21 @@ void WindowState::updateRuntimes() {
         revision != v.viewpointRevisionSeen) {
       // A newly bound or animated Viewpoint takes the camera (4.6.10, 6.53).
       const bool first = v.viewpointSeen == nullptr && v.bindingSeen == 0;
+      const bool newlyBound = vp != v.viewpointSeen;
       v.bindingSeen = model.bindingRevision();
       v.viewpointSeen = vp;
       v.viewpointRevisionSeen = revision;
       if (!first && vp != nullptr) {
-        v.transition.start = -1.0;
-        v.navigator.setCamera(v.renderer->boundViewpointCamera());
         v.autoFrame = false;
+        if (newlyBound) {
+          // A Viewpoint bound from the menu, an Anchor or a Script: an animated move.
+          v.transition.from = v.navigator.camera();
+          v.transition.to = v.renderer->boundViewpointCamera();
+          v.transition.start = secondsNow();
+        } else {  // the bound Viewpoint itself moves (a route into its fields)
+          v.transition.start = -1.0;
+          v.navigator.setCamera(v.renderer->boundViewpointCamera());
+        }
       }
     }
   }
@@ -280,6 +289,18 @@ void WindowState::jumpToViewpoint(std::size_t index) {
   Viewport& v = view();
   if (!v.renderer || index >= v.renderer->viewpoints().size()) return;
   v.autoFrame = false;
+  // The Viewpoints menu binds through the stack (4.6.10): isBound and bindTime go out and
+  // updateRuntimes() moves the camera.
+  if (auto* node = const_cast<vrml::Node*>(v.renderer->viewpoints()[index].node);
+      node != nullptr && runtimes && v.world < worlds.size()) {
+    runtime::ExecutionModel& model = runtimes->of(worlds[v.world].scene, worldTime());
+    const int setBind = node->type().findField("set_bind");
+    if (setBind >= 0 &&
+        model.postEvent(*node, setBind, vrml::FieldValue::make<vrml::FieldType::SFBool>(true))) {
+      model.processEvents();
+      return;
+    }
+  }
   v.transition.from = v.navigator.camera();
   v.transition.to = v.renderer->viewpointCamera(index);
   v.transition.start = secondsNow();

@@ -4,11 +4,12 @@
 
 namespace gs::app {
 
-WorldSounds::WorldSounds(bool enabled, FetchWhole fetch)
+WorldSounds::WorldSounds(bool enabled, session::FetchWhole fetch)
     : output_(audio::openAudioOutput(enabled, note_)), fetch_(std::move(fetch)) {}
 
 void WorldSounds::update(const std::shared_ptr<const vrml::Scene>& scene,
-                         const render::Camera& camera, WorldRuntimes& runtimes, double now) {
+                         const render::Camera& camera, session::WorldRuntimes& runtimes,
+                         double now) {
   if (!scene) return;
   auto& s = scenes_[scene.get()];
   if (!s) {

@@ -3,6 +3,7 @@
 
 #include "base/byte_order.hpp"
 #include "compact_payload.hpp"
+#include "entropy_payload.hpp"
 #include "qnv/decoder.hpp"
 
 namespace gs::qnv {
@@ -70,6 +71,7 @@ bool StreamDecoder::feed(std::string_view chunk, const Sink& sink) {
       return false;
     }
     dequantizer_.emplace(*header_);
+    grid_ = std::make_shared<const detail::PositionGrid>(detail::PositionGrid::forHeader(*header_));
     offset_ += kHeaderBytes;
   }
   view_ = buffer_;
@@ -114,9 +116,9 @@ bool StreamDecoder::parsePackets(const Sink& sink) {
     const auto sequence = loadLe<std::uint32_t>(p + 4);
     const auto payloadBytes = loadLe<std::uint16_t>(p + 8);
     const auto encoding = static_cast<std::uint8_t>(p[10]);
-    const bool plausible = count >= 1 && count <= capacity && encoding <= 1 && p[11] == 0 &&
+    const bool plausible = count >= 1 && count <= capacity && encoding <= 2 && p[11] == 0 &&
                            payloadBytes <= std::size_t{count} * 8 &&
-                           (encoding == 1 || payloadBytes == std::size_t{count} * 8) &&
+                           (encoding != 0 || payloadBytes == std::size_t{count} * 8) &&
                            sequence < packetCount &&
                            std::uint64_t{sequence} * capacity + count <= h.vectorCount &&
                            (count == capacity || sequence + 1 == packetCount);
@@ -137,10 +139,11 @@ bool StreamDecoder::parsePackets(const Sink& sink) {
       continue;
     }
     scratch_.resize(count);
-    if (encoding == 1) {
+    if (encoding != 0) {
       records_.resize(count);
-      if (!detail::decodeCompactPayload(payload, count, records_.data())) {
-        skipDamaged("undecodable compact payload");
+      if (encoding == 1 ? !detail::decodeCompactPayload(payload, count, records_.data())
+                        : !detail::decodeEntropyPayload(payload, count, *grid_, records_.data())) {
+        skipDamaged(encoding == 1 ? "undecodable compact payload" : "undecodable entropy payload");
         continue;
       }
       dequantizer_->decode(records_.data(), count, scratch_.data());

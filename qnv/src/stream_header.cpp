@@ -107,7 +107,7 @@ std::optional<StreamHeader> parseHeader(std::string_view bytes, const std::strin
       h.palette[i][c] = static_cast<std::uint8_t>(p[kPaletteOffset + 4 * i + c]);
 
   if (kind != 1 && kind != 2) return fail("unknown stream kind " + std::to_string(kind));
-  if (encoding > 1) return fail("unknown packet encoding " + std::to_string(encoding));
+  if (encoding > 2) return fail("unknown packet encoding " + std::to_string(encoding));
   if (headerBytes != kHeaderBytes)
     return fail("header size " + std::to_string(headerBytes) + " is not " +
                 std::to_string(kHeaderBytes));

@@ -1,5 +1,7 @@
 #include "base/byte_order.hpp"
 #include "compact_payload.hpp"
+#include "entropy_payload.hpp"
+#include "qnv/coding.hpp"
 #include "qnv/error.hpp"
 #include "qnv/stream.hpp"
 
@@ -7,8 +9,11 @@ namespace gs::qnv {
 
 using base::appendLe;
 
-void appendPacket(std::string& out, std::uint32_t sequence, std::span<const std::uint64_t> records,
-                  PacketEncoding encoding) {
+namespace {
+
+void appendPacketOnGrid(std::string& out, std::uint32_t sequence,
+                        std::span<const std::uint64_t> records, PacketEncoding encoding,
+                        const detail::PositionGrid& grid) {
   const std::size_t start = out.size();
   out.append("QP");
   appendLe<std::uint16_t>(out, static_cast<std::uint16_t>(records.size()));
@@ -18,8 +23,11 @@ void appendPacket(std::string& out, std::uint32_t sequence, std::span<const std:
   appendLe<std::uint8_t>(out, 0);
   appendLe<std::uint32_t>(out, 0);  // CRC, patched below
   const std::size_t payloadStart = out.size();
-  if (encoding == PacketEncoding::compact) {
-    detail::appendCompactPayload(out, records);
+  if (encoding == PacketEncoding::compact || encoding == PacketEncoding::entropy) {
+    if (encoding == PacketEncoding::compact)
+      detail::appendCompactPayload(out, records);
+    else
+      detail::appendEntropyPayload(out, records, grid);
     // Incompressible records (or a zstd failure) fall back to plain for this packet, so
     // a payload never exceeds the plain size the decoder bounds it by.
     if (out.size() - payloadStart > records.size() * 8 || out.size() == payloadStart) {
@@ -42,6 +50,14 @@ void appendPacket(std::string& out, std::uint32_t sequence, std::span<const std:
   out.replace(start + 12, 4, patch);
 }
 
+}  // namespace
+
+void appendPacket(std::string& out, std::uint32_t sequence, std::span<const std::uint64_t> records,
+                  PacketEncoding encoding, const StreamHeader* header) {
+  appendPacketOnGrid(out, sequence, records, encoding,
+                     header ? detail::PositionGrid::forHeader(*header) : detail::PositionGrid{});
+}
+
 std::string writeStream(const EncodedVectors& vectors, const WriteOptions& options) {
   if (options.packetBytes < kMinPacketBytes || options.packetBytes > kMaxPacketBytes ||
       options.packetBytes % 8 != 0)
@@ -57,10 +73,36 @@ std::string writeStream(const EncodedVectors& vectors, const WriteOptions& optio
   out.reserve(out.size() + vectors.records.size() * 8 +
               (vectors.records.size() / per + 1) * kPacketHeaderBytes);
   const std::span<const std::uint64_t> all(vectors.records);
+  const detail::PositionGrid grid = detail::PositionGrid::forHeader(header);
   std::uint32_t sequence = 0;
   for (std::size_t first = 0; first < all.size(); first += per, ++sequence)
-    appendPacket(out, sequence, all.subspan(first, std::min(per, all.size() - first)),
-                 options.encoding);
+    appendPacketOnGrid(out, sequence, all.subspan(first, std::min(per, all.size() - first)),
+                       options.encoding, grid);
+  return out;
+}
+
+CodingBits entropyCodingBits(const EncodedVectors& vectors, std::uint32_t packetBytes) {
+  if (packetBytes < kMinPacketBytes || packetBytes > kMaxPacketBytes || packetBytes % 8 != 0)
+    throw InputError("packet size " + std::to_string(packetBytes) + " bytes is out of range");
+  const detail::PositionGrid grid = detail::PositionGrid::forHeader(vectors.header);
+  detail::EntropyFieldBits bits;
+  const std::size_t per = packetBytes / 8;
+  std::string scratch;
+  const std::span<const std::uint64_t> all(vectors.records);
+  for (std::size_t first = 0; first < all.size(); first += per) {
+    scratch.clear();
+    detail::appendEntropyPayload(scratch, all.subspan(first, std::min(per, all.size() - first)),
+                                 grid, &bits);
+    bits.framing += 8.0 * kPacketHeaderBytes;
+  }
+  CodingBits out;
+  out.position = bits.position;
+  out.direction = bits.direction;
+  out.magnitude = bits.magnitude;
+  out.color = bits.color;
+  out.tables = bits.tables;
+  out.framing = bits.framing;
+  out.vectors = all.size();
   return out;
 }
 

@@ -1,14 +1,55 @@
-// The Background pass: sky and ground colour gradients (clause 6.5) as a full-screen
-// triangle, or a plain clear for a single sky colour.
+// The Background pass (clause 6.5): sky and ground colour gradients as a full-screen
+// triangle (or a plain clear for a single sky colour), then the panorama cube.
 #include "gl_program.hpp"
 #include "gpu_resources.hpp"
+#include "node_access.hpp"
+
+#include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
 
 namespace gs::render::detail {
+namespace {
+
+/// One face of the panorama cube in the Background's coordinate system: the centre of
+/// the face of the cube [-1, 1]^3 and the directions of the image's +s (right) and +t
+/// (up) as a viewer inside sees it. Clause 6.5: front, back, left and right are seen
+/// upright with +Y up; the top looking up +Y with +Z up; the bottom looking down -Y with
+/// -Z up (castle-model-viewer agrees: docs/background-and-images.md).
+struct Face {
+  const char* field;
+  glm::vec3 center, right, up;
+};
+
+constexpr Face kFaceTable[BackgroundPass::kFaces] = {
+    {"backUrl", {0, 0, 1}, {-1, 0, 0}, {0, 1, 0}},
+    {"bottomUrl", {0, -1, 0}, {1, 0, 0}, {0, 0, -1}},
+    {"frontUrl", {0, 0, -1}, {1, 0, 0}, {0, 1, 0}},
+    {"leftUrl", {-1, 0, 0}, {0, 0, -1}, {0, 1, 0}},
+    {"rightUrl", {1, 0, 0}, {0, 0, 1}, {0, 1, 0}},
+    {"topUrl", {0, 1, 0}, {1, 0, 0}, {0, 0, 1}},
+};
+
+}  // namespace
 
 void BackgroundPass::draw(const BackgroundSettings& background, const glm::mat4& view,
-                          const glm::mat4& projection) {
+                          const glm::mat4& projection, SceneTraversal& traversal,
+                          const ResourceLoader& loader) {
+  const glm::mat4 rotationOnly = glm::mat4(glm::mat3(view));
+  GLboolean depthTest = glIsEnabled(GL_DEPTH_TEST);
+  glDisable(GL_DEPTH_TEST);
+  glDepthMask(GL_FALSE);
+  glDisable(GL_CULL_FACE);
+  drawGradient(background, rotationOnly, projection);
+  if (background.node != nullptr)
+    drawPanorama(background, rotationOnly, projection, traversal, loader);
+  glDisable(GL_BLEND);
+  glDepthMask(GL_TRUE);
+  if (depthTest) glEnable(GL_DEPTH_TEST);
+}
+
+void BackgroundPass::drawGradient(const BackgroundSettings& background,
+                                  const glm::mat4& rotationOnly, const glm::mat4& projection) {
   const int skyCount =
       std::min<int>(static_cast<int>(background.skyColor.size()), kMaxBackgroundColors);
   const int skyAngles = std::min<int>(static_cast<int>(background.skyAngle.size()), skyCount - 1);
@@ -34,7 +75,6 @@ void BackgroundPass::draw(const BackgroundSettings& background, const glm::mat4&
     locGroundColor_ = uniform(program_, "u_groundColor");
     locGroundAngle_ = uniform(program_, "u_groundAngle");
   }
-  const glm::mat4 rotationOnly = glm::mat4(glm::mat3(view));
   const glm::mat4 inverse = glm::inverse(projection * rotationOnly);
   const glm::mat3 worldToBackground = glm::transpose(background.rotation);
   glUseProgram(program_);
@@ -49,22 +89,90 @@ void BackgroundPass::draw(const BackgroundSettings& background, const glm::mat4&
     glUniform3fv(locGroundColor_, groundAngles + 1, &background.groundColor[0].x);
     glUniform1fv(locGroundAngle_, groundAngles, background.groundAngle.data());
   }
-  GLboolean depthTest = glIsEnabled(GL_DEPTH_TEST);
-  glDisable(GL_DEPTH_TEST);
-  glDepthMask(GL_FALSE);
   glDisable(GL_BLEND);
-  glDisable(GL_CULL_FACE);
   glBindVertexArray(vao_);
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glBindVertexArray(0);
-  glDepthMask(GL_TRUE);
-  if (depthTest) glEnable(GL_DEPTH_TEST);
+}
+
+void BackgroundPass::drawPanorama(const BackgroundSettings& background,
+                                  const glm::mat4& rotationOnly, const glm::mat4& projection,
+                                  SceneTraversal& traversal, const ResourceLoader& loader) {
+  const vrml::Node& node = *background.node;
+  const std::uint64_t revision = vrml::revisionWithFields(node);
+  if (&node != facesNode_ || revision != facesRevision_) {
+    releaseFaces();
+    facesNode_ = &node;
+    facesRevision_ = revision;
+  }
+  bool any = false;
+  for (int f = 0; f < kFaces; ++f) {
+    const auto i = static_cast<std::size_t>(f);
+    if (!faceDone_[i]) {
+      const std::vector<std::string>& urls = mfString(node, kFaceTable[i].field);
+      if (urls.empty()) {
+        faceDone_[i] = true;
+        continue;
+      }
+      LoadedImage loaded = loadFirstImage(urls, background.baseUrl, loader);
+      if (loaded.pending) continue;  // the colours show until it arrives
+      faceDone_[i] = true;
+      if (loaded.components > 0)
+        faces_[i] = uploadImage(loaded, false, false);
+      else
+        traversal.report(vrml::Severity::warning, node.location,
+                         "cannot load Background " + std::string(kFaceTable[i].field) + " (" +
+                             loaded.failures + "): the colours show there");
+    }
+    any = any || faces_[i].id != 0;
+  }
+  if (!any) return;
+  if (faceProgram_ == 0) {
+    faceProgram_ =
+        buildProgram("Background panorama", kPanoramaVertexShader, kPanoramaFragmentShader);
+    locFaceMatrix_ = uniform(faceProgram_, "u_matrix");
+    locFaceCenter_ = uniform(faceProgram_, "u_center");
+    locFaceRight_ = uniform(faceProgram_, "u_right");
+    locFaceUp_ = uniform(faceProgram_, "u_up");
+    locFaceTexture_ = uniform(faceProgram_, "u_texture");
+  }
+  if (vao_ == 0) glGenVertexArrays(1, &vao_);
+  // Background coordinates -> clip: the Background's rotation, then the view's rotation.
+  const glm::mat4 matrix = projection * rotationOnly * glm::mat4(background.rotation);
+  glUseProgram(faceProgram_);
+  glUniformMatrix4fv(locFaceMatrix_, 1, GL_FALSE, glm::value_ptr(matrix));
+  glUniform1i(locFaceTexture_, 0);
+  glActiveTexture(GL_TEXTURE0);
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+  glBindVertexArray(vao_);
+  for (int f = 0; f < kFaces; ++f) {
+    const auto i = static_cast<std::size_t>(f);
+    if (faces_[i].id == 0) continue;
+    glUniform3fv(locFaceCenter_, 1, glm::value_ptr(kFaceTable[i].center));
+    glUniform3fv(locFaceRight_, 1, glm::value_ptr(kFaceTable[i].right));
+    glUniform3fv(locFaceUp_, 1, glm::value_ptr(kFaceTable[i].up));
+    glBindTexture(GL_TEXTURE_2D, faces_[i].id);
+    glDrawArrays(GL_TRIANGLES, 0, 6);
+  }
+  glBindVertexArray(0);
+  glBindTexture(GL_TEXTURE_2D, 0);
+}
+
+void BackgroundPass::releaseFaces() {
+  for (GpuTexture& t : faces_)
+    if (t.id != 0) glDeleteTextures(1, &t.id);
+  faces_ = {};
+  faceDone_ = {};
+  facesNode_ = nullptr;
 }
 
 void BackgroundPass::release() {
   if (program_ != 0) glDeleteProgram(program_);
   if (vao_ != 0) glDeleteVertexArrays(1, &vao_);
-  program_ = vao_ = 0;
+  if (faceProgram_ != 0) glDeleteProgram(faceProgram_);
+  program_ = vao_ = faceProgram_ = 0;
+  releaseFaces();
 }
 
 }  // namespace gs::render::detail

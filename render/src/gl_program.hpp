@@ -24,6 +24,8 @@ extern const char* const kSurfaceFragmentShader;
 /// The full-screen Background gradient program.
 extern const char* const kBackgroundVertexShader;
 extern const char* const kBackgroundFragmentShader;
+extern const char* const kPanoramaVertexShader;
+extern const char* const kPanoramaFragmentShader;
 
 /// Maximum number of lights per shape in the surface program.
 inline constexpr int kMaxLights = 8;

@@ -5,11 +5,13 @@
 #include <glad/gl.h>
 
 #include "formats/movie.hpp"
+#include "render/image.hpp"
 #include "render/scene_renderer.hpp"
 #include "render/traversal.hpp"
 #include "vrml/geometry.hpp"
 #include "vrml/parser.hpp"
 
+#include <array>
 #include <memory>
 #include <string>
 #include <unordered_map>
@@ -92,23 +94,66 @@ class TextureCache {
   std::unordered_map<const vrml::Node*, GpuTexture> textures_;
 };
 
+/// The first image of a URL list that could be read and decoded (ImageTexture.url,
+/// Background.frontUrl ...; clause 4.5.4: later URLs only when earlier ones fail).
+struct LoadedImage {
+  Image image;            // rows top to bottom
+  int components = 0;     // 1..4 (clause 5.5); 0 when no URL worked
+  bool hasAlpha = false;  // some pixel is not fully opaque
+  bool pending = false;   // a URL is still loading: ask again at a later draw
+  std::string url;        // the URL decoded
+  std::string failures;   // "url: why; ..." for the URLs that failed
+};
+
+/// Reads `urls` (resolved against `baseUrl`) in order through local files and `loader`
+/// under base::mayReference until one decodes. An RGB or grey file with transparent pixels
+/// (PNG tRNS, GIF) counts as RGBA or grey+alpha. Never throws for bad content.
+LoadedImage loadFirstImage(const std::vector<std::string>& urls, const std::string& baseUrl,
+                           const ResourceLoader& loader);
+
+/// Uploads a loaded image as a mipmapped RGBA texture, bottom row first.
+GpuTexture uploadImage(const LoadedImage& loaded, bool repeatS, bool repeatT);
+
 /// Decodes an SFImage (PixelTexture) to RGBA rows bottom to top as GL expects them.
 /// Returns false for inconsistent images.
 bool decodeSFImage(const vrml::SFImage& image, std::vector<std::uint8_t>& rgba, bool& hasAlpha);
 
-/// The full-screen Background gradient.
+/// The Background (clause 6.5): the sky and ground colours as a full-screen gradient, then
+/// the six panorama images on a cube around the viewer, blended over the colours by their
+/// alpha. Images load through the renderer's ResourceLoader like ImageTextures: a face
+/// whose image is still on its way is left out (the colours show) and asked for again at
+/// the next draw; a face whose URLs all fail is reported once and left out.
 class BackgroundPass {
  public:
-  /// Fills the current viewport: a clear for a single sky colour and no ground, the
-  /// gradient program otherwise. Leaves depth writes and the depth buffer untouched.
+  /// Fills the current viewport. Only the view's rotation matters (the Background is at
+  /// infinity): `view` is the camera's view matrix, `projection` its projection. Leaves
+  /// depth writes and the depth buffer untouched.
   void draw(const BackgroundSettings& background, const glm::mat4& view,
-            const glm::mat4& projection);
+            const glm::mat4& projection, SceneTraversal& traversal, const ResourceLoader& loader);
   void release();
 
+  /// The faces in the order of their fields: back, bottom, front, left, right, top.
+  static constexpr int kFaces = 6;
+
  private:
+  void drawGradient(const BackgroundSettings& background, const glm::mat4& rotationOnly,
+                    const glm::mat4& projection);
+  void drawPanorama(const BackgroundSettings& background, const glm::mat4& rotationOnly,
+                    const glm::mat4& projection, SceneTraversal& traversal,
+                    const ResourceLoader& loader);
+  void releaseFaces();
+
   GLuint program_ = 0, vao_ = 0;
   GLint locInverse_ = -1, locWorldToBackground_ = -1, locSkyCount_ = -1, locSkyColor_ = -1,
         locSkyAngle_ = -1, locGroundCount_ = -1, locGroundColor_ = -1, locGroundAngle_ = -1;
+  GLuint faceProgram_ = 0;
+  GLint locFaceMatrix_ = -1, locFaceCenter_ = -1, locFaceRight_ = -1, locFaceUp_ = -1,
+        locFaceTexture_ = -1;
+  // The panorama of one Background node (the bound one), reloaded when its fields change.
+  const vrml::Node* facesNode_ = nullptr;
+  std::uint64_t facesRevision_ = 0;
+  std::array<GpuTexture, kFaces> faces_{};
+  std::array<bool, kFaces> faceDone_{};  // loaded or failed: not asked for again
 };
 
 }  // namespace gs::render::detail

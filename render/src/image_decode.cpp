@@ -1,9 +1,9 @@
-// Texture decoding with stb_image (PNG, JPEG, GIF) and the image comparison metric.
-// This is the only translation unit that defines STB_IMAGE_IMPLEMENTATION.
+// Texture decoding (PNG and JPEG with stb_image, GIF with giflib) and the image
+// comparison metric. This is the only translation unit that defines
+// STB_IMAGE_IMPLEMENTATION.
 #define STB_IMAGE_IMPLEMENTATION
 #define STBI_ONLY_PNG
 #define STBI_ONLY_JPEG
-#define STBI_ONLY_GIF
 #define STBI_NO_STDIO
 #define STBI_MAX_DIMENSIONS 16384
 #if defined(__GNUC__)
@@ -21,6 +21,7 @@
 #pragma GCC diagnostic pop
 #endif
 
+#include "image_gif.hpp"
 #include "render/image.hpp"
 
 #include <cmath>
@@ -37,6 +38,7 @@ Image decodeImage(std::string_view bytes, const std::string& name, int* componen
   if (bytes.empty()) throw std::runtime_error("cannot decode " + name + ": no data");
   if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
     throw std::runtime_error("cannot decode " + name + ": file too large");
+  if (detail::looksLikeGif(bytes)) return detail::decodeGif(bytes, name, components);
   const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
   const int size = static_cast<int>(bytes.size());
   int w = 0, h = 0, n = 0;

@@ -104,6 +104,13 @@ void ExamineNavigator::move(float forward, float right, float up) {
     updateClip();
     return;
   }
+  const glm::vec3 offset = motion(forward, right, up);
+  camera_.position += offset;
+  center_ += offset;
+  updateClip();
+}
+
+glm::vec3 ExamineNavigator::motion(float forward, float right, float up) const {
   glm::vec3 ahead = camera_.forward();
   glm::vec3 side = camera_.right();
   if (mode_ == NavigationMode::walk) {
@@ -112,10 +119,7 @@ void ExamineNavigator::move(float forward, float right, float up) {
     ahead = glm::length(ahead) > 1e-6f ? glm::normalize(ahead) : glm::vec3(0.0f);
     side = glm::length(side) > 1e-6f ? glm::normalize(side) : glm::vec3(0.0f);
   }
-  const glm::vec3 offset = forward * ahead + right * side + glm::vec3(0.0f, up, 0.0f);
-  camera_.position += offset;
-  center_ += offset;
-  updateClip();
+  return forward * ahead + right * side + glm::vec3(0.0f, up, 0.0f);
 }
 
 void ExamineNavigator::updateClip() {

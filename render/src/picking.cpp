@@ -61,8 +61,13 @@ std::optional<PickHit> pick(SceneTraversal& traversal, const Camera& viewer, con
   TraversalFrame frame;
   frame.recordPaths = true;
   traversal.collect(viewer, frame);
+  return pickInFrame(traversal, frame, ray);
+}
+
+std::optional<PickHit> pickInFrame(SceneTraversal& traversal, const TraversalFrame& frame,
+                                   const Ray& ray, float maxT) {
   std::optional<PickHit> best;
-  float bestT = std::numeric_limits<float>::infinity();
+  float bestT = maxT;
   for (const ShapeInstance& s : frame.shapes) {
     const float det = glm::determinant(glm::mat3(s.model));
     if (!std::isfinite(det) || std::abs(det) < 1e-30f) continue;  // scaled flat: invisible
@@ -103,8 +108,9 @@ std::optional<PickHit> pick(SceneTraversal& traversal, const Camera& viewer, con
       hit.normal = glm::length(n) > 1e-30f ? glm::normalize(n) : glm::vec3(0.0f, 0.0f, 1.0f);
       if (mesh.texCoords.size() == mesh.positions.size())
         hit.texCoord = w * mesh.texCoords[ia] + u * mesh.texCoords[ib] + v * mesh.texCoords[ic];
-      hit.path.assign(frame.paths.begin() + s.pathBegin,
-                      frame.paths.begin() + s.pathBegin + s.pathCount);
+      if (s.pathCount > 0)
+        hit.path.assign(frame.paths.begin() + s.pathBegin,
+                        frame.paths.begin() + s.pathBegin + s.pathCount);
       best = std::move(hit);
     }
   }

@@ -276,7 +276,7 @@ void SceneRenderer::draw(const Camera& camera, int x, int y, int width, int heig
   glDepthMask(GL_TRUE);
   glClearDepth(1.0);
   glClear(GL_DEPTH_BUFFER_BIT);
-  g.background.draw(traversal_.background(), view, projection);
+  g.background.draw(traversal_.background(), view, projection, traversal_, options_.loader);
 
   // Lights in eye coordinates.
   g.eyeLights.resize(g.frame.lights.size());

@@ -208,4 +208,34 @@ void main() {
 }
 )glsl";
 
+// Background panorama (clause 6.5): one face of the cube [-1, 1]^3 around the viewer as
+// two triangles made from gl_VertexID; z = w puts it on the far plane, so no clip plane
+// cuts the cube whatever the near distance. Texels blend over the sky by their alpha
+// (1- and 3-component images are opaque; grey images draw grey).
+const char* const kPanoramaVertexShader = R"glsl(#version 330 core
+uniform mat4 u_matrix;  // Background coordinates to clip coordinates, rotation only
+uniform vec3 u_center;
+uniform vec3 u_right;
+uniform vec3 u_up;
+out vec2 v_texCoord;
+void main() {
+  const vec2 corners[6] = vec2[6](vec2(0, 0), vec2(1, 0), vec2(1, 1),
+                                  vec2(0, 0), vec2(1, 1), vec2(0, 1));
+  vec2 st = corners[gl_VertexID];
+  v_texCoord = st;
+  vec3 p = u_center + (2.0 * st.x - 1.0) * u_right + (2.0 * st.y - 1.0) * u_up;
+  vec4 clip = u_matrix * vec4(p, 1.0);
+  gl_Position = vec4(clip.xy, clip.w * 0.99999, clip.w);
+}
+)glsl";
+
+const char* const kPanoramaFragmentShader = R"glsl(#version 330 core
+in vec2 v_texCoord;
+uniform sampler2D u_texture;
+out vec4 fragColor;
+void main() {
+  fragColor = texture(u_texture, v_texCoord);
+}
+)glsl";
+
 }  // namespace gs::render::detail

@@ -37,6 +37,66 @@ bool anyTranslucent(const std::vector<std::uint8_t>& rgba) {
 
 }  // namespace
 
+LoadedImage loadFirstImage(const std::vector<std::string>& urls, const std::string& baseUrl,
+                           const ResourceLoader& loader) {
+  LoadedImage out;
+  for (const std::string& reference : urls) {
+    if (reference.empty()) continue;
+    const std::string url = base::resolveUrl(baseUrl, reference);
+    std::string bytes, error;
+    bool ok = false;
+    const std::string path = base::localPathOfUrl(url);
+    if (!base::mayReference(baseUrl, url, error)) {
+      // A world from the network never reads local files.
+    } else {
+      if (!path.empty()) ok = base::readFile(path, bytes, error);
+      if (!ok && loader) {
+        const LoadStatus status = loader(url, bytes, error);
+        ok = status == LoadStatus::loaded;
+        if (status == LoadStatus::pending) {
+          out.pending = true;  // on its way: the next url only if this one fails
+          return out;
+        }
+      } else if (!ok && path.empty())
+        error = "only local files can be read without a network loader";
+    }
+    if (ok) {
+      try {
+        int components = 0;
+        out.image = decodeImage(bytes, url, &components);
+        out.components = std::clamp(components, 1, 4);
+        // A palette or tRNS transparency makes an RGB or grey file RGBA or grey+alpha.
+        if (anyTranslucent(out.image.rgba)) {
+          out.hasAlpha = true;
+          if (out.components == 3) out.components = 4;
+          if (out.components == 1) out.components = 2;
+        }
+        out.url = url;
+        return out;
+      } catch (const std::exception& e) {
+        error = e.what();
+      }
+    }
+    out.failures += (out.failures.empty() ? "" : "; ") + url + ": " + error;
+  }
+  return out;
+}
+
+GpuTexture uploadImage(const LoadedImage& loaded, bool repeatS, bool repeatT) {
+  GpuTexture texture;
+  const Image& image = loaded.image;
+  // GL wants the bottom row first; VRML's (0, 0) is the image's lower-left corner.
+  const std::size_t row = static_cast<std::size_t>(image.width) * 4;
+  std::vector<std::uint8_t> flipped(image.rgba.size());
+  for (int y = 0; y < image.height; ++y)
+    std::copy_n(image.rgba.data() + static_cast<std::size_t>(y) * row, row,
+                flipped.data() + static_cast<std::size_t>(image.height - 1 - y) * row);
+  texture.id = uploadRgba(flipped.data(), image.width, image.height, repeatS, repeatT);
+  texture.components = loaded.components;
+  texture.hasAlpha = loaded.hasAlpha;
+  return texture;
+}
+
 bool decodeSFImage(const vrml::SFImage& image, std::vector<std::uint8_t>& rgba, bool& hasAlpha) {
   hasAlpha = false;
   if (image.width <= 0 || image.height <= 0 || image.components < 1 || image.components > 4 ||
@@ -98,59 +158,19 @@ const GpuTexture& TextureCache::get(const vrml::Node& node, const std::string& b
                        "PixelTexture image is inconsistent: drawn untextured");
     }
   } else if (node.typeName() == "ImageTexture") {
-    std::string failures;
-    bool pending = false;
-    for (const std::string& reference : mfString(node, "url")) {
-      if (reference.empty()) continue;
-      const std::string url = base::resolveUrl(baseUrl, reference);
-      std::string bytes, error;
-      bool ok = false;
-      const std::string path = base::localPathOfUrl(url);
-      if (!base::mayReference(baseUrl, url, error)) {
-        // A world from the network never reads local files.
-      } else {
-        if (!path.empty()) ok = base::readFile(path, bytes, error);
-        if (!ok && loader) {
-          const LoadStatus status = loader(url, bytes, error);
-          ok = status == LoadStatus::loaded;
-          if (status == LoadStatus::pending) {
-            pending = true;  // on its way: the next url only if this one fails
-            break;
-          }
-        } else if (!ok && path.empty())
-          error = "only local files can be read without a network loader";
-      }
-      if (ok) {
-        try {
-          int components = 0;
-          Image image = decodeImage(bytes, url, &components);
-          // GL wants the bottom row first; VRML's (0, 0) is the image's lower-left corner.
-          const std::size_t row = static_cast<std::size_t>(image.width) * 4;
-          std::vector<std::uint8_t> flipped(image.rgba.size());
-          for (int y = 0; y < image.height; ++y)
-            std::copy_n(image.rgba.data() + static_cast<std::size_t>(y) * row, row,
-                        flipped.data() + static_cast<std::size_t>(image.height - 1 - y) * row);
-          texture.id = uploadRgba(flipped.data(), image.width, image.height, repeatS, repeatT);
-          texture.components = std::clamp(components, 1, 4);
-          texture.hasAlpha = anyTranslucent(image.rgba);
-          if (texture.hasAlpha && texture.components == 3) texture.components = 4;  // e.g. GIF
-          if (texture.hasAlpha && texture.components == 1) texture.components = 2;
-          break;
-        } catch (const std::exception& e) {
-          error = e.what();
-        }
-      }
-      failures += (failures.empty() ? "" : "; ") + url + ": " + error;
-    }
-    if (texture.components == 0 && pending) {
+    LoadedImage loaded = loadFirstImage(mfString(node, "url"), baseUrl, loader);
+    if (loaded.pending) {
       static const GpuTexture kNone;  // untextured until the bytes arrive
       return kNone;
     }
-    if (texture.components == 0)
-      traversal.report(vrml::Severity::warning, node.location,
-                       failures.empty()
-                           ? std::string("ImageTexture has no url: drawn untextured")
-                           : "cannot load ImageTexture (" + failures + "): drawn untextured");
+    if (loaded.components > 0)
+      texture = uploadImage(loaded, repeatS, repeatT);
+    else
+      traversal.report(
+          vrml::Severity::warning, node.location,
+          loaded.failures.empty()
+              ? std::string("ImageTexture has no url: drawn untextured")
+              : "cannot load ImageTexture (" + loaded.failures + "): drawn untextured");
   } else {
     traversal.report(vrml::Severity::warning, node.location,
                      node.typeName() + " is not supported yet: drawn untextured");

@@ -133,11 +133,27 @@ struct SceneTraversal::Walk {
     frame.shapes.push_back(s);
   }
 
+  /// A Collision (6.8) when collecting collision geometry: nothing with collide FALSE,
+  /// else its proxy when it has one, else its children.
+  void collision(const vrml::Node& n, const glm::mat4& m, const std::string* baseUrl) {
+    if (!detail::sfBool(n, "collide", true)) return;
+    const vrml::NodePtr proxy = n.sfnode("proxy");
+    if (!proxy || proxy->unresolved) return group(&n, n.mfnode("children"), m, baseUrl, nullptr);
+    if (frame.recordPaths) path.push_back({&n, m, nullptr});
+    node(*proxy, m, baseUrl);
+    if (frame.recordPaths) path.pop_back();
+  }
+
   void node(const vrml::Node& n, const glm::mat4& m, const std::string* baseUrl) {
     using namespace detail;
     switch (nodeKind(n)) {
-      case NodeKind::Anchor:
       case NodeKind::Collision:  // the proxy is for collisions only: not drawn
+        if (frame.collisionGeometry) {
+          collision(n, m, baseUrl);
+          break;
+        }
+        [[fallthrough]];
+      case NodeKind::Anchor:
       case NodeKind::Group:
         group(&n, n.mfnode("children"), m, baseUrl, nullptr);
         break;
@@ -257,6 +273,23 @@ const std::unordered_set<std::int32_t>& SceneTraversal::filledGroups(const vrml:
   return it->second;
 }
 
+namespace {
+
+/// True when `m` maps each axis onto an axis (scale, mirror, axis swap): then the box of
+/// a transformed box is exact.
+bool axisAligned(const glm::mat3& m) {
+  for (int c = 0; c < 3; ++c) {
+    int nonZero = 0;
+    const float big = std::max({std::abs(m[c].x), std::abs(m[c].y), std::abs(m[c].z)});
+    for (int r = 0; r < 3; ++r)
+      if (std::abs(m[c][r]) > big * 1e-6f) ++nonZero;
+    if (nonZero > 1) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 const vrml::Bounds& SceneTraversal::worldBounds() {
   if (haveWorldBounds_) return worldBounds_;
   haveWorldBounds_ = true;  // set first: meshBounds() below cannot recurse into here
@@ -266,6 +299,19 @@ const vrml::Bounds& SceneTraversal::worldBounds() {
   for (const ShapeInstance& s : scratch_.shapes) {
     const vrml::Bounds& local = meshBounds(*s.geometry);
     if (local.empty()) continue;
+    if (!axisAligned(glm::mat3(s.model))) {
+      // Rotated: the box of the transformed points, not of the transformed box.
+      auto it = meshes_.find(s.geometry);  // meshBounds() made the entry, revision current
+      const bool wasDropped = it != meshes_.end() && it->second.arraysDropped;
+      const bool kept = wasDropped && !it->second.boundsPositions.empty();
+      CachedMesh& cached = kept ? it->second : cachedMesh(*s.geometry);  // may tessellate again
+      cached.rotatedUse = true;
+      const std::vector<glm::vec3>& points =
+          cached.arraysDropped ? cached.boundsPositions : cached.mesh.positions;
+      for (const glm::vec3& p : points) bounds.extend(glm::vec3(s.model * glm::vec4(p, 1.0f)));
+      if (!kept && wasDropped) dropMeshArrays(*s.geometry);  // keep only the positions
+      continue;
+    }
     for (int corner = 0; corner < 8; ++corner) {
       const glm::vec3 p((corner & 1) ? local.max.x : local.min.x,
                         (corner & 2) ? local.max.y : local.min.y,
@@ -325,6 +371,7 @@ void SceneTraversal::dropMeshArrays(const vrml::Node& geometry) {
   auto it = meshes_.find(&geometry);
   if (it == meshes_.end()) return;
   vrml::Mesh& m = it->second.mesh;
+  if (it->second.rotatedUse) it->second.boundsPositions = std::move(m.positions);
   m.positions = {};
   m.normals = {};
   m.colors = {};

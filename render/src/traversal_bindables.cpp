@@ -123,6 +123,7 @@ void SceneTraversal::findBindables() {
         background_.groundColor = mfColor(n, "groundColor");
         background_.groundAngle = mfFloat(n, "groundAngle");
         background_.rotation = rotationPart(m);
+        background_.baseUrl = mainUrl_;
         break;
       case NodeKind::Fog: {
         if (runtimeBound_ ? &n != runtimeBound_->fog : haveFog) break;

@@ -113,12 +113,11 @@ float angleAroundY(const glm::vec3& p) {
   return std::atan2(-p.z, p.x);
 }
 
-/// The ray's intersections with the infinite cylinder x^2 + z^2 = r^2 (nearest t >= 0).
-bool hitCylinder(const glm::vec3& o, const glm::vec3& d, float r, glm::vec3& out) {
-  const double a = double(d.x) * d.x + double(d.z) * d.z;
+/// The nearest point o + t d with t >= 0 where a t^2 + b t + c = 0 (a ray meeting a
+/// quadric); false when there is none.
+bool nearestForwardRoot(const glm::vec3& o, const glm::vec3& d, double a, double b, double c,
+                        glm::vec3& out) {
   if (a < 1e-18) return false;
-  const double b = 2.0 * (double(o.x) * d.x + double(o.z) * d.z);
-  const double c = double(o.x) * o.x + double(o.z) * o.z - double(r) * r;
   const double disc = b * b - 4.0 * a * c;
   if (disc < 0.0) return false;
   const double q = std::sqrt(disc);
@@ -129,19 +128,17 @@ bool hitCylinder(const glm::vec3& o, const glm::vec3& d, float r, glm::vec3& out
   return true;
 }
 
+/// The ray's intersections with the infinite cylinder x^2 + z^2 = r^2 (nearest t >= 0).
+bool hitCylinder(const glm::vec3& o, const glm::vec3& d, float r, glm::vec3& out) {
+  return nearestForwardRoot(o, d, double(d.x) * d.x + double(d.z) * d.z,
+                            2.0 * (double(o.x) * d.x + double(o.z) * d.z),
+                            double(o.x) * o.x + double(o.z) * o.z - double(r) * r, out);
+}
+
+/// The ray's intersections with the sphere |p| = r (nearest t >= 0).
 bool hitSphere(const glm::vec3& o, const glm::vec3& d, float r, glm::vec3& out) {
-  const double a = glm::dot(d, d);
-  if (a < 1e-18) return false;
-  const double b = 2.0 * glm::dot(o, d);
-  const double c = double(glm::dot(o, o)) - double(r) * r;
-  const double disc = b * b - 4.0 * a * c;
-  if (disc < 0.0) return false;
-  const double q = std::sqrt(disc);
-  double t = (-b - q) / (2.0 * a);
-  if (t < 0.0) t = (-b + q) / (2.0 * a);
-  if (t < 0.0) return false;
-  out = glm::vec3(glm::dvec3(o) + t * glm::dvec3(d));
-  return true;
+  return nearestForwardRoot(o, d, glm::dot(d, d), 2.0 * glm::dot(o, d),
+                            double(glm::dot(o, o)) - double(r) * r, out);
 }
 
 /// The plane axis . p = value (axis 1: y, 2: z).

@@ -57,6 +57,20 @@ TEST_CASE("encode turns a VRML world into a stream that info describes", "[app][
   CHECK(some < all);
   CHECK(some > all / 3);
 
+  // Every triangle again, entropy-coded: the same count in fewer bytes.
+  auto entropy =
+      runGhostspace({"encode", world.string(), "-o", out.string(), "--coding", "entropy"});
+  REQUIRE(entropy.exitCode == 0);
+  const std::string small = gs::test::readBytes(out);
+  CHECK(small.size() < bytes.size());
+  CHECK(decodedVectors(small) == all);
+  auto entropyInfo = runGhostspace({"info", out.string()});
+  CHECK_THAT(entropyInfo.out, Catch::Contains("(entropy)"));
+  CHECK_THAT(entropyInfo.out, Catch::Contains("0 damaged, 0 missing"));
+  auto badCoding =
+      runGhostspace({"encode", world.string(), "-o", out.string(), "--coding", "lzma"});
+  CHECK(badCoding.exitCode != 0);
+
   // A cut-off copy: info reports what arrived and what did not.
   const std::string cut = bytes.substr(0, bytes.size() * 2 / 3);
   std::ofstream(scratch("cut.qnv"), std::ios::binary) << cut;

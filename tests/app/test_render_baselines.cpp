@@ -25,6 +25,9 @@ struct RenderCase {
 const RenderCase kCases[] = {
     {"welcome", "assets/worlds/welcome.wrl", false},
     {"features", "assets/worlds/features.wrl", false},
+    {"media_background", "assets/worlds/media/background.wrl", false},
+    {"media_textures", "assets/worlds/media/textures.wrl", false},
+    {"media_texture_transform", "assets/worlds/media/texture_transform.wrl", false},
     {"castle_specular_demo", "vrml/castle/lights_materials/specular_demo.wrl", true},
     {"castle_transparent_materials", "vrml/castle/lights_materials/transparent_materials.wrl",
      true},

@@ -4,6 +4,7 @@
 #include "process.hpp"
 #include "render/image.hpp"
 #include "test_support.hpp"
+#include "xvfb.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -23,38 +24,7 @@
 
 namespace {
 
-/// An Xvfb server on a private display number for the life of the object.
-class Xvfb {
- public:
-  Xvfb() {
-    if (!std::filesystem::exists("/usr/bin/Xvfb")) return;
-    display_ = ":" + std::to_string(90 + ::getpid() % 800);
-    pid_ = ::fork();
-    if (pid_ == 0) {
-      ::execl("/usr/bin/Xvfb", "Xvfb", display_.c_str(), "-screen", "0", "640x480x24", "-nolisten",
-              "tcp", static_cast<char*>(nullptr));
-      ::_exit(127);
-    }
-    // Wait for the server's socket.
-    const std::string socket = "/tmp/.X11-unix/X" + display_.substr(1);
-    for (int i = 0; i < 100 && !std::filesystem::exists(socket); ++i)
-      std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  }
-  ~Xvfb() {
-    if (pid_ > 0) {
-      ::kill(pid_, SIGTERM);
-      ::waitpid(pid_, nullptr, 0);
-    }
-  }
-  Xvfb(const Xvfb&) = delete;
-  Xvfb& operator=(const Xvfb&) = delete;
-  bool running() const { return pid_ > 0; }
-  const std::string& display() const { return display_; }
-
- private:
-  pid_t pid_ = -1;
-  std::string display_;
-};
+using gs::test::Xvfb;
 
 /// True (after a WARN naming the package) when no Xvfb runs: the test then skips.
 bool skipWithoutXvfb(const Xvfb& x) {
@@ -388,4 +358,39 @@ ROUTE PS.translation_changed TO MOVED.set_translation
   CHECK(ty == 0.0f);
   CHECK(tz == 0.0f);
   CHECK(events.find(R"("node":"PS","field":"offset_changed")") != std::string::npos);
+}
+
+TEST_CASE("the Viewpoints menu binds through the stack", "[app][window][bind]") {
+  Xvfb x;
+  if (skipWithoutXvfb(x)) return;
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(GS_BINARY_DIR) / "window-bind";
+  fs::create_directories(dir);
+  const fs::path world = dir / "two.wrl", script = dir / "two.script", trace = dir / "two.jsonl";
+  std::ofstream(world) << R"(#VRML V2.0 utf8
+DEF FRONT Viewpoint { position 0 0 5 description "front" }
+DEF SIDE Viewpoint { position 5 0 0 orientation 0 1 0 1.5708 description "side" }
+Shape { geometry Box {} }
+)";
+  std::ofstream(script) << "wait-loaded\ntime 50\nviewpoint 1\nframes 2\nviewpoint 0\nframes 2\n"
+                           "quit\n";
+  auto r = gs::test::runGhostspace(
+      {"--size", "200x150", "--new-instance", "--time", "40", "--trace-events", trace.string(),
+       "--script", script.string(), world.string()},
+      {"DISPLAY=" + x.display()});
+  INFO(r.err);
+  REQUIRE(r.exitCode == 0);
+  const std::string events = fileBytes(trace);
+  INFO(events);
+  const auto at = [&](const char* line) { return events.find(line); };
+  const auto sideBound = at(R"({"time":50.000,"node":"SIDE","field":"isBound","value":"TRUE"})");
+  const auto frontUnbound =
+      at(R"({"time":50.000,"node":"FRONT","field":"isBound","value":"FALSE"})");
+  const auto frontBound =
+      events.find(R"({"time":50.000,"node":"FRONT","field":"isBound","value":"TRUE"})", sideBound);
+  CHECK(at(R"({"time":40.000,"node":"FRONT","field":"isBound","value":"TRUE"})") !=
+        std::string::npos);
+  CHECK(frontUnbound != std::string::npos);
+  REQUIRE(sideBound != std::string::npos);
+  CHECK(frontBound != std::string::npos);
 }

@@ -23,50 +23,17 @@
 #include <exception>
 #include <string>
 
+#include "image_metrics.hpp"
 #include "render/image.hpp"
 
 namespace {
 
+using gs::bench::foregroundFraction;
+using gs::bench::formatPsnr;
+using gs::bench::maskedDifference;
+
 using gs::render::Image;
 using gs::render::ImageDifference;
-
-bool sameColour(const std::uint8_t* a, const std::uint8_t* b, int tolerance) {
-  for (int c = 0; c < 3; ++c)
-    if (std::abs(int(a[c]) - int(b[c])) > tolerance) return false;
-  return true;
-}
-
-/// Fraction of the pixels of `image` that differ from its top-left pixel by more than 2
-/// per channel.
-double foregroundFraction(const Image& image) {
-  const std::uint8_t* corner = image.pixel(0, 0);
-  std::size_t count = 0;
-  for (int y = 0; y < image.height; ++y)
-    for (int x = 0; x < image.width; ++x)
-      if (!sameColour(image.pixel(x, y), corner, 2)) ++count;
-  return double(count) / (double(image.width) * image.height);
-}
-
-/// compareImages(ours, reference) after making equal every pixel that is background in
-/// both images (each image's own corner colour, 2 per channel of tolerance).
-ImageDifference maskedDifference(const Image& ours, const Image& reference, int tolerance) {
-  Image masked = ours;
-  const std::uint8_t* ourBackground = ours.pixel(0, 0);
-  const std::uint8_t* referenceBackground = reference.pixel(0, 0);
-  for (int y = 0; y < ours.height; ++y)
-    for (int x = 0; x < ours.width; ++x)
-      if (sameColour(ours.pixel(x, y), ourBackground, 2) &&
-          sameColour(reference.pixel(x, y), referenceBackground, 2))
-        std::memcpy(masked.pixel(x, y), reference.pixel(x, y), 4);
-  return gs::render::compareImages(masked, reference, tolerance);
-}
-
-std::string formatPsnr(double psnr) {
-  if (!std::isfinite(psnr)) return "inf";
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.1f", psnr);
-  return buffer;
-}
 
 int usage() {
   std::fprintf(stderr, "usage: compare_png [--tolerance N] [--markdown] OURS.png REFERENCE.png\n");

@@ -18,6 +18,7 @@
 // printed: the fraction of foreground (non-background) pixels in the reference and in ours.
 // --out DIR writes our images as DIR/NAME_{snap,fit,castle}.png (NAME: the
 // world's path below CASTLE_DIR with '/' turned into '__').
+#include "image_metrics.hpp"
 #include "render/context.hpp"
 #include "render/image.hpp"
 #include "render/scene_renderer.hpp"
@@ -39,6 +40,10 @@ using gs::render::Image;
 using gs::render::ImageDifference;
 
 namespace {
+
+using gs::bench::foregroundFraction;
+using gs::bench::formatPsnr;
+using gs::bench::maskedDifference;
 
 constexpr int kWidth = 1600, kHeight = 900, kTolerance = 16;
 
@@ -68,37 +73,6 @@ gs::render::Camera castleWholeSceneCamera(const gs::vrml::Bounds& bounds) {
   return camera;
 }
 
-bool sameColour(const std::uint8_t* a, const std::uint8_t* b, int tolerance) {
-  for (int c = 0; c < 3; ++c)
-    if (std::abs(int(a[c]) - int(b[c])) > tolerance) return false;
-  return true;
-}
-
-/// Fraction of pixels of `image` that differ from its top-left pixel by more than 2 per
-/// channel (the background is taken to be the corner's colour).
-double foregroundFraction(const Image& image) {
-  const std::uint8_t* corner = image.pixel(0, 0);
-  std::size_t count = 0;
-  for (int y = 0; y < image.height; ++y)
-    for (int x = 0; x < image.width; ++x)
-      if (!sameColour(image.pixel(x, y), corner, 2)) ++count;
-  return double(count) / (double(image.width) * image.height);
-}
-
-/// compareImages(ours, reference) after making every pixel that is background in both
-/// images (each image's own corner colour, 2 per channel of tolerance) equal.
-ImageDifference maskedDifference(const Image& ours, const Image& reference) {
-  Image masked = ours;
-  const std::uint8_t* ourBackground = ours.pixel(0, 0);
-  const std::uint8_t* referenceBackground = reference.pixel(0, 0);
-  for (int y = 0; y < ours.height; ++y)
-    for (int x = 0; x < ours.width; ++x)
-      if (sameColour(ours.pixel(x, y), ourBackground, 2) &&
-          sameColour(reference.pixel(x, y), referenceBackground, 2))
-        std::memcpy(masked.pixel(x, y), reference.pixel(x, y), 4);
-  return gs::render::compareImages(masked, reference, kTolerance);
-}
-
 VariantResult renderVariant(gs::render::SceneRenderer& renderer, const gs::render::Camera& camera,
                             const Image& reference, const std::string& outPath) {
   renderer.draw(camera, 0, 0, kWidth, kHeight);
@@ -106,16 +80,9 @@ VariantResult renderVariant(gs::render::SceneRenderer& renderer, const gs::rende
   if (!outPath.empty()) gs::render::writePng(outPath, ours);
   VariantResult r;
   r.raw = gs::render::compareImages(ours, reference, kTolerance);
-  r.masked = maskedDifference(ours, reference);
+  r.masked = maskedDifference(ours, reference, kTolerance);
   r.foreground = foregroundFraction(ours);
   return r;
-}
-
-std::string formatPsnr(double psnr) {
-  if (std::isinf(psnr)) return "inf";
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.1f", psnr);
-  return buffer;
 }
 
 double median(std::vector<double> values) {

@@ -1,6 +1,8 @@
 // Every corpus world with ROUTEs runs 10 simulated seconds (600 cascades at 60 Hz) without
 // a crash, a hang or a leak (the ASan+UBSan build checks the last two), and the castle
 // OrientationInterpolator world turns its box as the interpolator says.
+#include "base/file.hpp"
+#include "runtime/script_ecmascript.hpp"
 #include "runtime_fixture.hpp"
 #include "test_support.hpp"
 
@@ -22,7 +24,14 @@ TEST_CASE("runtime: animated corpus worlds run 10 simulated seconds", "[runtime]
     if (scene->routes.empty()) continue;
     ++animated;
     INFO(path.string());
-    runtime::ExecutionModel model(scene, 1000.0);
+    // Scripts run too (ECMAScript through Duktape, with their files read from disk).
+    runtime::ExecutionOptions options;
+    options.scripts = runtime::ecmascriptFactory();
+    options.fetchText = [&path](const std::string& url, std::string& text, std::string& error) {
+      const auto file = path.parent_path() / url;
+      return base::readFile(file.string(), text, error, 1u << 20);
+    };
+    runtime::ExecutionModel model(scene, 1000.0, std::move(options));
     model.advanceBy(10.0, 1.0 / 60.0);
     CHECK(model.now() == Approx(1010.0));
     CHECK(model.statistics().cascades >= 600);

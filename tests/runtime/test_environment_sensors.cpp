@@ -23,8 +23,8 @@ Transform { translation 10 0 0 children DEF PS ProximitySensor { size 2 2 2 } }
   v.position = {10.0f, 0.25f, 0.0f};
   w.model->setViewer(v);
   w.model->advanceTo(3.0);
-  CHECK(w.take() == std::vector<std::string>{"PS.position_changed=0 0.25 0",
-                                             "PS.orientation_changed=0 0 1 0"});
+  CHECK(w.take() ==
+        std::vector<std::string>{"PS.position_changed=0 0.25 0", "PS.orientation_changed=0 0 1 0"});
   v.position = {0.0f, 0.0f, 0.0f};
   w.model->setViewer(v);
   w.model->advanceTo(4.0);

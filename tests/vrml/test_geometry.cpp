@@ -237,12 +237,13 @@ TEST_CASE("Cone: counts, area, outward normals", "[geometry]") {
   const float r = 1.0f, h = 2.0f;
   const Mesh m = mesh("Cone { }");
   checkMesh(m);
-  CHECK(m.triangleCount() == 2 * kRoundSegments);
+  constexpr int side = (2 * (kConeStacks - 1) + 1) * kRoundSegments;
+  CHECK(m.triangleCount() == side + kRoundSegments);
   CHECK(area(m) == Approx(kPi * r * (r + std::sqrt(r * r + h * h))).epsilon(0.01));
   checkOutward(m, glm::dvec3(0.0, -0.5, 0.0));
   CHECK(m.bounds.min.y == -1.0f);
   CHECK(m.bounds.max.y == 1.0f);
-  CHECK(mesh("Cone { bottom FALSE }").triangleCount() == kRoundSegments);
+  CHECK(mesh("Cone { bottom FALSE }").triangleCount() == side);
   CHECK(mesh("Cone { side FALSE bottomRadius 3 }").bounds.max.x == Approx(3.0f));
 }
 

@@ -141,8 +141,11 @@ glm::dvec3 newellNormal(std::span<const glm::vec3> pts);
 /// kept and no containment test is made; otherwise the polygon is ear-clipped, which
 /// handles concave polygons, collinear vertices and repeated positions. The triangles of
 /// a simple polygon cover exactly its area; self-intersecting input gives a best effort.
+/// A convex polygon is split as a fan from pts[fanApex] (the polygon's first vertex as the
+/// file gives it; other browsers and OpenGL's GL_POLYGON split it so): triangles
+/// (apex, apex+1, apex+2), (apex, apex+2, apex+3), ...; ear clipping starts there too.
 void triangulatePolygon(std::span<const glm::vec3> pts, const glm::dvec3& normal, bool assumeConvex,
-                        std::vector<std::uint32_t>& out);
+                        std::vector<std::uint32_t>& out, std::size_t fanApex = 0);
 
 // ---------------------------------------------------------------------------------------
 // Normals (geometry_normals.cpp)

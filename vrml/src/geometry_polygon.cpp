@@ -111,10 +111,10 @@ class EarClipper {
     return std::abs(turn - 2.0 * std::numbers::pi) < 1e-3;
   }
 
-  /// Convex polygon: clip strictly convex vertices in turn (a fan that keeps collinear
-  /// vertices), with no containment test.
-  void clipConvex(std::vector<std::uint32_t>& out) {
-    std::uint32_t cur = 0, stall = 0;
+  /// Convex polygon: clip strictly convex vertices in turn starting after `apex` (a fan
+  /// around the apex that keeps collinear vertices), with no containment test.
+  void clipConvex(std::vector<std::uint32_t>& out, std::uint32_t apex) {
+    std::uint32_t cur = next_[apex], stall = 0;
     while (remaining_ >= 3) {
       const std::uint32_t a = prev_[cur], c = next_[cur];
       if (area2(p_[a], p_[cur], p_[c]) > eps_) {
@@ -133,9 +133,9 @@ class EarClipper {
   /// on their boundary; when a whole round finds none, pass 1 tolerates vertices on the
   /// boundary; when that fails too the largest convex corner is cut regardless
   /// (self-intersecting input), and the loop stops when no corner has positive area.
-  void clipGeneral(std::vector<std::uint32_t>& out) {
+  void clipGeneral(std::vector<std::uint32_t>& out, std::uint32_t apex) {
     if (p_.size() > 64) buildGrid();
-    std::uint32_t cur = 0, stall = 0;
+    std::uint32_t cur = next_[apex], stall = 0;
     int pass = 0;
     while (remaining_ > 3) {
       const std::uint32_t a = prev_[cur], c = next_[cur];
@@ -221,7 +221,7 @@ class EarClipper {
 }  // namespace
 
 void triangulatePolygon(std::span<const glm::vec3> pts, const glm::dvec3& normal, bool assumeConvex,
-                        std::vector<std::uint32_t>& out) {
+                        std::vector<std::uint32_t>& out, std::size_t fanApex) {
   if (pts.size() < 3 || pts.size() > 0x7fffffffu) return;
   const double len = glm::length(normal);
   if (!(len > 0.0) || !std::isfinite(len)) return;
@@ -254,13 +254,18 @@ void triangulatePolygon(std::span<const glm::vec3> pts, const glm::dvec3& normal
   if (!(extent > 0.0) || !std::isfinite(extent)) return;
   const double eps = extent * extent * 1e-12;
 
+  // The apex among the kept points: the first kept one at or after pts[fanApex].
+  const auto apex =
+      static_cast<std::uint32_t>(std::lower_bound(original.begin(), original.end(), fanApex) -
+                                 original.begin()) %
+      static_cast<std::uint32_t>(original.size());
   std::vector<std::uint32_t> local;
   local.reserve(3 * (p.size() - 2));
   EarClipper clipper(std::move(p), eps);
   if (assumeConvex && clipper.convex())
-    clipper.clipConvex(local);
+    clipper.clipConvex(local, apex);
   else
-    clipper.clipGeneral(local);
+    clipper.clipGeneral(local, apex);
   for (std::uint32_t k : local) out.push_back(original[k]);
 }
 

@@ -7,7 +7,9 @@
 // asks of the side textures of Cone, Cylinder and Sphere (seam in the X=0 plane, -Z half).
 #include "geometry_internal.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <numbers>
 
 namespace gs::vrml::geometry_detail {
@@ -120,26 +122,38 @@ Mesh tessellateCone(const Node& node, ProblemLog& log) {
   if (!positive(r, "bottomRadius", log) || !positive(height, "height", log)) return {};
   const float y = height * 0.5f;
   MeshBuilder b(Primitive::triangles, true, false, true);
-  b.reserve(3 * (kSegments + 1) + 1, 6 * kSegments);
+  b.reserve((kConeStacks + 1) * (kSegments + 1) + 1, 6 * kSegments * (kConeStacks + 1));
   if (node.get<FieldType::SFBool>("side", true)) {
     // Smooth side normal at angle a: perpendicular to the slant line, outward and up.
     auto sideNormal = [&](double k) {
       const glm::vec3 d = around(k, kSegments);
       return glm::normalize(d * height + glm::vec3(0.0f, r, 0.0f));
     };
-    std::uint32_t rim[kSegments + 1];
-    for (int k = 0; k <= kSegments; ++k) {
-      const glm::vec3 d = around(k % kSegments, kSegments);
-      rim[k] = b.push({d * r - glm::vec3(0.0f, y, 0.0f),
-                       sideNormal(k % kSegments),
-                       {},
-                       {static_cast<float>(k) / kSegments, 0.0f}});
+    // kConeStacks rings up the side, each vertex with the normal of its angle alone, so
+    // the normal varies smoothly around the cone (castle-model-viewer also uses stacks);
+    // only the top stack meets the apex, with one apex vertex per slice carrying the
+    // normal and s of the slice's middle.
+    std::uint32_t ring[kSegments + 1], next[kSegments + 1];
+    for (int j = 0; j < kConeStacks; ++j) {
+      const float f = static_cast<float>(j) / kConeStacks;
+      for (int k = 0; k <= kSegments; ++k) {
+        const glm::vec3 d = around(k % kSegments, kSegments);
+        next[k] = b.push({d * (r * (1.0f - f)) + glm::vec3(0.0f, -y + height * f, 0.0f),
+                          sideNormal(k % kSegments),
+                          {},
+                          {static_cast<float>(k) / kSegments, f}});
+      }
+      if (j > 0)
+        for (int k = 0; k < kSegments; ++k) {
+          b.triangle(ring[k], ring[k + 1], next[k + 1]);
+          b.triangle(ring[k], next[k + 1], next[k]);
+        }
+      std::copy(std::begin(next), std::end(next), std::begin(ring));
     }
-    // One apex vertex per segment, with the normal and s of the segment's middle.
     for (int k = 0; k < kSegments; ++k) {
       const float s = (static_cast<float>(k) + 0.5f) / kSegments;
       const std::uint32_t apex = b.push({{0.0f, y, 0.0f}, sideNormal(k + 0.5), {}, {s, 1.0f}});
-      b.triangle(rim[k], rim[k + 1], apex);
+      b.triangle(ring[k], ring[k + 1], apex);
     }
   }
   if (node.get<FieldType::SFBool>("bottom", true)) disc(b, r, -y, false);

@@ -90,8 +90,8 @@ Mesh buildPolygonMesh(const PolygonSoup& s) {
     local.clear();
     if (poly.size() == 3)
       local = {0, 1, 2};  // counterclockwise about its own Newell normal
-    else
-      triangulatePolygon(poly, unit, s.convex, local);
+    else                  // the fan starts at the face's first corner, reversed or not (ccw FALSE)
+      triangulatePolygon(poly, unit, s.convex, local, s.ccw ? 0 : poly.size() - 1);
     if (local.empty()) continue;
     const auto base = static_cast<std::uint32_t>(kept.size());
     for (std::size_t k = 0; k < poly.size(); ++k) {

@@ -225,7 +225,8 @@ class Parser {
   void parseInterface(Scope& scope, NodeType& type, bool withValues, bool external);
   bool parseInterfaceDeclaration(Scope& scope, NodeType& type, bool withValues, bool external,
                                  NameMap<int>& names);
-  void resolveExternProto(ProtoDefinition& def, const NodeType& declared, std::size_t offset);
+  void resolveExternProto(Scope& scope, ProtoDefinition& def, const NodeType& declared,
+                          std::size_t offset);
   bool loadExternFile(const std::string& url, std::shared_ptr<ExternFile>& out,
                       std::string& reason);
   NodePtr instantiate(Scope& scope, InstanceValues& inst, std::size_t offset, int depth,

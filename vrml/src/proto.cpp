@@ -180,14 +180,14 @@ void Parser::parseExternProto(Scope& scope) {
       return;
     }
   }
-  resolveExternProto(*def, *type, kw.offset);
+  resolveExternProto(scope, *def, *type, kw.offset);
   type->proto = def;
   setProto(scope, name, type);
   protosDeclared_ = true;
   if (scope.declared != nullptr) scope.declared->push_back(type);
 }
 
-void Parser::resolveExternProto(ProtoDefinition& def, const NodeType& declared,
+void Parser::resolveExternProto(Scope& scope, ProtoDefinition& def, const NodeType& declared,
                                 std::size_t offset) {
   std::string reasons;
   auto addReason = [&](const std::string& url, const std::string& why) {
@@ -203,38 +203,48 @@ void Parser::resolveExternProto(ProtoDefinition& def, const NodeType& declared,
       addReason(url, "urn: names are not resolved");
       continue;
     }
-    if (file.empty()) {
-      addReason(url, "a reference to this file's own PROTO is not supported");
-      continue;
-    }
-    const std::string resolved = base::resolveUrl(lex_.file(), file);
-    if (!ctx_.options.loader && base::hasScheme(resolved) &&
-        !base::startsWithNoCase(resolved, "file:")) {
-      addReason(url, "remote URLs are not loaded");
-      continue;
-    }
-    if (externDepth_ + 1 > ctx_.options.limits.maxExternProtoDepth) {
-      addReason(url, "EXTERNPROTO files nested deeper than " +
-                         std::to_string(ctx_.options.limits.maxExternProtoDepth) +
-                         " (ParseLimits::maxExternProtoDepth)");
-      continue;
-    }
-    std::shared_ptr<ExternFile> f;
-    std::string reason;
-    if (!loadExternFile(resolved, f, reason)) {
-      addReason(url, reason);
-      continue;
-    }
     std::shared_ptr<const NodeType> target;
-    for (const auto& p : f->protos)
-      if (protoName.empty() || p->name == protoName) target = p;  // the last of that name
-    if (protoName.empty() && !f->protos.empty()) target = f->protos.front();
-    // Follow EXTERNPROTOs of that file to the PROTO they name.
-    while (target && target->proto && target->proto->external) target = target->proto->resolved;
-    if (!target) {
-      addReason(url, protoName.empty() ? "the file declares no PROTO"
-                                       : "the file declares no PROTO '" + protoName + "'");
-      continue;
+    if (file.empty()) {
+      // "#Name": a PROTO of this file declared before the EXTERNPROTO (clause 4.9.3), seen
+      // from the EXTERNPROTO's scope.
+      for (Scope* s = &scope; s != nullptr && !target && !protoName.empty(); s = s->parent)
+        if (auto it = s->protos.find(protoName); it != s->protos.end()) target = it->second;
+      while (target && target->proto && target->proto->external) target = target->proto->resolved;
+      if (!target) {
+        addReason(url, protoName.empty() ? "no PROTO named"
+                                         : "this file declares no PROTO '" + protoName +
+                                               "' before the EXTERNPROTO");
+        continue;
+      }
+    } else {
+      const std::string resolved = base::resolveUrl(lex_.file(), file);
+      if (!ctx_.options.loader && base::hasScheme(resolved) &&
+          !base::startsWithNoCase(resolved, "file:")) {
+        addReason(url, "remote URLs are not loaded");
+        continue;
+      }
+      if (externDepth_ + 1 > ctx_.options.limits.maxExternProtoDepth) {
+        addReason(url, "EXTERNPROTO files nested deeper than " +
+                           std::to_string(ctx_.options.limits.maxExternProtoDepth) +
+                           " (ParseLimits::maxExternProtoDepth)");
+        continue;
+      }
+      std::shared_ptr<ExternFile> f;
+      std::string reason;
+      if (!loadExternFile(resolved, f, reason)) {
+        addReason(url, reason);
+        continue;
+      }
+      for (const auto& p : f->protos)
+        if (protoName.empty() || p->name == protoName) target = p;  // the last of that name
+      if (protoName.empty() && !f->protos.empty()) target = f->protos.front();
+      // Follow EXTERNPROTOs of that file to the PROTO they name.
+      while (target && target->proto && target->proto->external) target = target->proto->resolved;
+      if (!target) {
+        addReason(url, protoName.empty() ? "the file declares no PROTO"
+                                         : "the file declares no PROTO '" + protoName + "'");
+        continue;
+      }
     }
     def.memberMap.assign(declared.fields.size(), -1);
     for (std::size_t i = 0; i < declared.fields.size(); ++i) {

@@ -1,7 +1,7 @@
 // The ghostspace command line (see README.md, "Command line").
 #pragma once
 
-#include "app/world_runtime.hpp"
+#include "session/world_runtime.hpp"
 
 #include <cstdint>
 #include <string>
@@ -21,6 +21,7 @@ struct EncodeOptions {
   std::uint64_t count = 0;           // --count N: keep the N largest (wins over F)
   std::uint32_t packetBytes = 1376;  // --packet-bytes B: record bytes per packet
   bool compact = false;              // --compact: zstd-compressed packets
+  std::string coding;                // --coding plain|compact|entropy (wins over --compact)
   std::string valueWindow;           // --window LO:HI: volume values kept
   std::string magnitude = "log";     // --magnitude log|linear
   std::string rawDims;               // --raw-dims X,Y,Z: INPUT is raw voxels
@@ -53,7 +54,7 @@ struct Options {
   double snapshotAtSeconds = 0.0;     // 0: not set
   bool progress = true;               // --no-progress: no progress bar on the terminal
   double stallTimeout = 20.0;         // --stall-timeout S: a transfer silent this long fails
-  RuntimeOptions time;                // --time, --time-step, --trace-events
+  session::RuntimeOptions time;       // --time, --time-step, --trace-events
   bool infoExitZero = false;          // info --exit-zero: worlds with errors exit 0
   EncodeOptions encode;
 };

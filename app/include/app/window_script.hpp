@@ -7,6 +7,7 @@
 //   viewport I              click viewport I (0-based: left to right, top to bottom)
 //   lod F                   the active viewport's level of detail slider (0 < F <= 1)
 //   mode polygons|splats|outlines
+//   viewpoint N             Viewpoints > N (from 0): binds that Viewpoint (4.6.10)
 //   wait-loaded             until nothing is arriving (at most 60 s, then logged)
 //   wait-viewports N        until N viewports show a world (e.g. sent by another launch;
 //                           at most 60 s)
@@ -27,6 +28,12 @@
 //   drag X1 Y1 X2 Y2 [N]    press at X1 Y1, N moves (default 10) to X2 Y2, release; a drag
 //                           that no sensor holds navigates
 //   key K                   a key (logged: VRML97 has no key sensor)
+//   navigation EXAMINE|WALK|FLY   the active viewport's navigation type (View menu)
+//   walk F R U [N]          WALK and FLY: the active viewport's camera F metres forward, R
+//                           right, U up in N steps (default 1) as the keys move it: stopped
+//                           by walls (collideTime sent), WALK on the ground at once
+//   back / forward          Back / Forward (Alt+Left / Alt+Right) in the active viewport
+//   camera OUT.txt          the active viewport's camera position "X Y Z" (metres)
 //   Each of these commands is followed by one frame drawn before the next command.
 //   quit
 #pragma once
@@ -70,6 +77,12 @@ class WindowScript {
   /// Runs an interaction command (time, advance, pointer, press, release, click, drag,
   /// key); false when `verb` is not one.
   bool interact(WindowState& state, const Command& c, int height);
+  /// Navigation commands (navigation, walk, back, forward, camera;
+  /// window_script_navigation.cpp): whether `verb` is one; what its arguments should have
+  /// been ("" when they are right); running one.
+  static bool isNavigation(const std::string& verb);
+  static std::string checkNavigation(const Command& c);
+  void navigate(WindowState& state, const Command& c);
 };
 
 }  // namespace gs::app

@@ -4,13 +4,13 @@
 #pragma once
 
 #include "app/layout.hpp"
-#include "app/world_runtime.hpp"
 #include "app/world_sound.hpp"
 #include "render/camera.hpp"
 #include "render/scene_renderer.hpp"
 #include "runtime/pointer.hpp"
 #include "session/streaming_session.hpp"
 #include "session/world.hpp"
+#include "session/world_runtime.hpp"
 
 #include <cstddef>
 #include <memory>
@@ -57,6 +57,16 @@ struct Viewport {
     render::Camera from, to;
     double start = -1.0;  // seconds (steady clock); < 0: none
   } transition;
+  /// WALK gravity (window_navigation.cpp): where the avatar last stood on the ground, and
+  /// how fast it falls (metres per second).
+  struct Gravity {
+    bool settled = false;
+    glm::vec3 at{0.0f};
+    float speed = 0.0f;
+  } gravity;
+  /// The worlds (indices into WindowState::worlds) shown here before the current one
+  /// (Back) and after it (Forward), as Anchor links replaced them; most recent last.
+  std::vector<std::size_t> back, forward;
 };
 
 struct WindowState {
@@ -80,9 +90,9 @@ struct WindowState {
   render::SceneRendererOptions rendererOptions;
   /// --time, --time-step, --trace-events: the window's clock starts at time.start when
   /// time.set, else at the wall clock (docs/runtime.md).
-  RuntimeOptions time;
+  session::RuntimeOptions time;
   /// The execution model of every world opened, made on the first update().
-  std::unique_ptr<WorldRuntimes> runtimes;
+  std::unique_ptr<session::WorldRuntimes> runtimes;
   /// The active viewport's Sounds (docs/media.md), made with runtimes.
   std::unique_ptr<WorldSounds> sounds;
   double clockOffset = 0.0;  // world time = wallClockSeconds() + clockOffset
@@ -146,6 +156,22 @@ struct WindowState {
   /// Sets the active viewport's navigation type (EXAMINE, WALK, FLY), overriding its
   /// NavigationInfo.
   void setNavigation(render::NavigationMode mode);
+  /// WALK and FLY (window_navigation.cpp): moves the active viewport's camera `forward`,
+  /// `right` and `up` metres as ExamineNavigator::move, but stopped by walls, and, in
+  /// WALK, on the ground (render::walkStep; falls of at most `maxFall` metres at once);
+  /// the Collision nodes met send collideTime. EXAMINE: ExamineNavigator::move.
+  void moveViewer(float forward, float right, float up, float maxFall);
+  /// Once a frame: WALK viewports whose avatar is above the ground fall towards it
+  /// (9.81 m/s^2 over `seconds` since the last frame).
+  void applyGravity(float seconds);
+  /// Shows worlds[world] in viewports[viewport] as a link does: the world shown there
+  /// before goes to its Back history, and its Forward history is dropped.
+  void showLinked(std::size_t world, std::size_t viewport);
+  /// Back / Forward (Alt+Left / Alt+Right) in the active viewport's history; false when
+  /// there is nothing to go to.
+  bool goBack();
+  bool goForward();
+
   /// The pointing device at (x, y), pixels from the top left of the scene area of height
   /// `height`, with its left button up or down: picks in the viewport under it (the one
   /// it was pressed in while a sensor holds it) and tells that world's execution model.

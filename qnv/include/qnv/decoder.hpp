@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -21,6 +22,10 @@
 #include "qnv/stream.hpp"
 
 namespace gs::qnv {
+
+namespace detail {
+struct PositionGrid;
+}
 
 /// One decoded vector, 32 bytes, laid out for a GPU vertex buffer: position (world
 /// units, the cell centre), magnitude A (area in square units for surfaces, gradient
@@ -73,8 +78,8 @@ class StreamDecoder {
  public:
   /// Receives each good packet's vectors as soon as it completes. `firstIndex` is the
   /// stream position of the packet's first record (sequence * recordsPerPacket), so
-  /// vectors with a lower index are larger. Compact packets yield their records in
-  /// spatial order. The span is valid only during the call.
+  /// vectors with a lower index are larger. Compact and entropy packets yield their
+  /// records in spatial (Morton) order. The span is valid only during the call.
   using Sink = std::function<void(std::uint64_t firstIndex, std::span<const DecodedVector>)>;
 
   /// `name` (a path or URL) prefixes every message.
@@ -114,6 +119,7 @@ class StreamDecoder {
   std::uint64_t bufferBase_ = 0;  // stream offset of buffer_[0]
   std::optional<StreamHeader> header_;
   std::optional<Dequantizer> dequantizer_;
+  std::shared_ptr<const detail::PositionGrid> grid_;  // entropy packets' voxel grid
   DecoderStats stats_;
   std::string error_;
   std::vector<std::string> warnings_;

@@ -29,6 +29,7 @@ enum class StreamKind : std::uint8_t {
 enum class PacketEncoding : std::uint8_t {
   plain = 0,    // count little-endian 64-bit records, in stream order
   compact = 1,  // the same records, spatially sorted, delta-coded and zstd-compressed
+  entropy = 2,  // the same records, spatially sorted, coded with per-packet rANS models
 };
 
 /// The Gaussian opacity profile alpha(u, x_k) ~ exp(-|u - x_k|^2 / A) of section 3.1, as
@@ -111,9 +112,11 @@ struct WriteOptions {
 std::string writeStream(const EncodedVectors& vectors, const WriteOptions& options = {});
 
 /// Appends one packet (header + payload) for `records` with sequence number `sequence`.
-/// `records.size()` must be 1..packetBytes/8 of the stream it belongs to.
+/// `records.size()` must be 1..packetBytes/8 of the stream it belongs to. `header`, when
+/// given, is the stream's: entropy packets of a volume then code positions on its voxel
+/// grid (smaller); without it they code all 1024 cells per axis (still valid).
 void appendPacket(std::string& out, std::uint32_t sequence, std::span<const std::uint64_t> records,
-                  PacketEncoding encoding);
+                  PacketEncoding encoding, const StreamHeader* header = nullptr);
 
 /// CRC-32 (ISO-HDLC, as zlib and PNG) of `bytes`, continuing from `crc` (0 to start);
 /// computed by libdeflate (about 9 GB/s with PCLMUL).

@@ -58,8 +58,8 @@ void fitClipPlanes(Camera& camera, const vrml::Bounds& bounds, float maxNear = 0
 /// The navigation types of NavigationInfo (clause 6.29).
 enum class NavigationMode {
   examine,  // orbit around a centre, pan, dolly
-  walk,     // look around; move on the horizontal plane (no gravity or collision yet)
-  fly,      // look around; move along the view direction
+  walk,     // look around; move on the horizontal plane (gravity and walls: collision.hpp)
+  fly,      // look around; move along the view direction (walls: collision.hpp)
 };
 
 /// The first of NavigationInfo's `type` strings this browser supports ("EXAMINE",
@@ -108,6 +108,9 @@ class ExamineNavigator {
   /// horizontal part, so the eye height stays), `right` metres sideways and `up` metres
   /// along world +Y. EXAMINE: forward dollies (positive: closer) and right/up pan.
   void move(float forward, float right, float up);
+  /// WALK and FLY: the world offset (metres) move() would apply, for a caller that
+  /// checks it against the world first (render/collision.hpp walkStep).
+  glm::vec3 motion(float forward, float right, float up) const;
 
   NavigationMode mode() const { return mode_; }
   void setMode(NavigationMode mode) { mode_ = mode; }

@@ -1,5 +1,5 @@
 // 8-bit RGBA images: reading the framebuffer, PNG files (libpng), texture decoding
-// (stb_image: PNG, JPEG, GIF) and the image comparison used by the baseline tests.
+// (stb_image: PNG, JPEG; giflib: GIF) and the image comparison used by the baseline tests.
 #pragma once
 
 #include <cstdint>
@@ -45,11 +45,13 @@ void writePng(const std::string& path, const Image& image);
 /// larger than kMaxImageSide).
 Image readPng(const std::string& path);
 
-/// Decodes a PNG, JPEG or GIF (first frame) held in memory to 8-bit RGBA with stb_image;
-/// `components` receives the number of channels the file had (1 grey, 2 grey+alpha,
-/// 3 RGB, 4 RGBA) when not null. `name` names the data in error messages. Throws
-/// std::runtime_error for undecodable data and for images larger than kMaxImageSide.
-/// Safe for untrusted input.
+/// Decodes a PNG, JPEG (stb_image) or GIF (giflib: first image, transparent index as
+/// alpha 0) held in memory to 8-bit RGBA, grey images with R = G = B; `components`
+/// receives the number of channels the file had when not null: 1 grey, 2 grey+alpha,
+/// 3 RGB, 4 RGBA (ISO/IEC 14772-1 5.5 SFImage, 6.22 ImageTexture: a PNG's tRNS chunk
+/// counts as alpha; a GIF is 3, or 4 when it has transparent pixels; JPEG 1 or 3). `name` names the
+/// data in error messages. Throws std::runtime_error for undecodable data and for images larger
+/// than kMaxImageSide. Safe for untrusted input.
 Image decodeImage(std::string_view bytes, const std::string& name = "image",
                   int* components = nullptr);
 

@@ -9,6 +9,7 @@
 
 #include <glm/glm.hpp>
 
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -43,6 +44,14 @@ Ray rayThroughPixel(const Camera& camera, int width, int height, float x, float 
 /// Lines, points and Text are not picked. Tessellates the shapes whose bounds the ray
 /// meets when their arrays were dropped (SceneTraversal::mesh).
 std::optional<PickHit> pick(SceneTraversal& traversal, const Camera& viewer, const Ray& ray);
+
+/// As pick(), among the shapes of a frame already collected (SceneTraversal::collect;
+/// with TraversalFrame::recordPaths for the paths, TraversalFrame::collisionGeometry for
+/// what the avatar collides with), nearer than `maxT` (in units of ray.direction). Lets
+/// one collect serve several rays.
+std::optional<PickHit> pickInFrame(SceneTraversal& traversal, const TraversalFrame& frame,
+                                   const Ray& ray,
+                                   float maxT = std::numeric_limits<float>::infinity());
 
 /// Möller-Trumbore: the distance t along `direction` at which the ray meets the triangle
 /// (a, b, c), with barycentric (u, v) of b and c; false when it misses or t <= `minT`.

@@ -91,6 +91,10 @@ struct TraversalFrame {
   std::vector<std::uint32_t> globalLights;  // point and spot lights, indices into lights
   /// Set by the caller: collect() records each Shape's path of grouping nodes (picking).
   bool recordPaths = false;
+  /// Set by the caller: collect() gathers what the avatar collides with (clause 6.8)
+  /// instead of what is drawn: the children of a Collision with collide FALSE are
+  /// skipped, and a Collision's proxy (not drawn otherwise) replaces its children.
+  bool collisionGeometry = false;
   std::vector<PathStep> paths;  // ShapeInstance::pathBegin ranges
   void clear() {
     paths.clear();
@@ -121,7 +125,8 @@ struct NavigationSettings {
   float nearClip() const;
 };
 
-/// The bound Background (clause 6.5): sky and ground gradients (textures are not used).
+/// The bound Background (clause 6.5): sky and ground gradients; the panorama URLs are
+/// read from `node` (backUrl ...) and resolved against `baseUrl`.
 struct BackgroundSettings {
   std::vector<glm::vec3> skyColor{glm::vec3(0.0f)};
   std::vector<float> skyAngle;  // radians from the zenith, increasing
@@ -129,6 +134,7 @@ struct BackgroundSettings {
   std::vector<float> groundAngle;  // radians from the nadir, increasing
   glm::mat3 rotation{1.0f};        // world rotation of the Background's coordinate system
   const vrml::Node* node = nullptr;
+  std::string baseUrl;  // URL of the file holding the node
 };
 
 /// The bound Fog (clause 6.19).
@@ -275,7 +281,10 @@ class SceneTraversal {
   const vrml::Bounds& meshBounds(const vrml::Node& geometry);
 
   /// World bounding box of what is drawn from the bound Viewpoint (the chosen Switch
-  /// children and LOD levels, Inlines included), computed once.
+  /// children and LOD levels, Inlines included), computed once. Exact: a shape whose
+  /// transform only scales, translates or swaps axes contributes its local box's 8
+  /// corners; any other (rotated, sheared) shape its transformed mesh points, which are
+  /// kept for that purpose when dropMeshArrays() drops the rest (or tessellated again).
   const vrml::Bounds& worldBounds();
 
   /// Problems met while traversing (Inline load failures and their own diagnostics,
@@ -295,7 +304,9 @@ class SceneTraversal {
   struct CachedMesh {
     vrml::Mesh mesh;
     bool arraysDropped = false;
-    std::uint64_t revision = 0;  // vrml::revisionWithFields of the geometry
+    bool rotatedUse = false;                 // worldBounds() needed its points
+    std::vector<glm::vec3> boundsPositions;  // the positions kept by dropMeshArrays()
+    std::uint64_t revision = 0;              // vrml::revisionWithFields of the geometry
   };
   void findBindables();
   const InlineScene* inlineScene(const vrml::Node& inlineNode, const std::string& baseUrl);

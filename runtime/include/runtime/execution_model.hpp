@@ -118,6 +118,11 @@ class ExecutionModel final : public ScriptContext {
   /// application skips picking when false.
   bool wantsPointer() const;
 
+  /// The avatar collided with the children (or proxy) of `collisionNodes` (Collision,
+  /// 6.8; render::walkStep says which): one new timestamp at now() in which each sends
+  /// collideTime = now(). Nodes that are not Collision nodes are ignored.
+  void collided(const std::vector<vrml::Node*>& collisionNodes);
+
   /// The top of a bindable stack (4.6.10), or null when the stack is empty.
   vrml::Node* bound(BindableKind kind) const;
   /// Counts changes of any bindable stack's top: a renderer rereads bound nodes when it

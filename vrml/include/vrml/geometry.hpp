@@ -65,8 +65,8 @@ struct Mesh {
 /// - The result is indexed; a vertex is shared between triangles exactly when its position,
 ///   normal, colour and texture coordinate are all equal.
 /// - Box, Cone, Cylinder and Sphere: kRoundSegments around the Y axis (Sphere: half as
-///   many latitude bands), flat caps, smooth sides, texture coordinates as clause 6 says;
-///   always solid.
+///   many latitude bands, Cone kConeStacks stacks), flat caps, smooth sides, texture coordinates as
+///   clause 6 says; always solid.
 /// - IndexedLineSet gives Primitive::lines (a polyline breaks at a bad index), PointSet
 ///   Primitive::points; both without normals or texture coordinates, solid = false.
 /// - Degenerate polygons (fewer than 3 distinct points, zero area) are dropped silently;
@@ -94,6 +94,11 @@ Mesh triangulateOutline(const std::vector<glm::vec3>& points,
 
 /// Number of segments used around the circumference of Cone, Cylinder and Sphere.
 inline constexpr int kRoundSegments = 32;
+
+/// Number of stacks (rings up the side) of a Cone: 2 * (kConeStacks - 1) + 1 triangles per
+/// segment, so that the side normal, which depends only on the angle, varies smoothly
+/// (a Cylinder needs one stack: per-pixel lighting interpolates its normals exactly).
+inline constexpr int kConeStacks = 8;
 
 /// Most grid points (spine points x crossSection points) an Extrusion is tessellated with;
 /// beyond it the spine is cut short (with a warning), so that a small file cannot ask for

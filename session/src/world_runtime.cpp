@@ -1,4 +1,4 @@
-#include "app/world_runtime.hpp"
+#include "session/world_runtime.hpp"
 #include "base/url.hpp"
 
 #include "runtime/script_ecmascript.hpp"
@@ -10,7 +10,7 @@
 #include <cstring>
 #include <stdexcept>
 
-namespace gs::app {
+namespace gs::session {
 
 namespace {
 
@@ -177,4 +177,4 @@ void WorldRuntimes::drainMessages(std::vector<std::string>& out) {
   }
 }
 
-}  // namespace gs::app
+}  // namespace gs::session

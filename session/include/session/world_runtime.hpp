@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-namespace gs::app {
+namespace gs::session {
 
 /// --time, --time-step, --trace-events and the Script limits (README.md, "Animation,
 /// interaction and Scripts").
@@ -102,4 +102,4 @@ class WorldRuntimes {
   std::map<const vrml::Scene*, Entry> worlds_;
 };
 
-}  // namespace gs::app
+}  // namespace gs::session

@@ -1,0 +1,80 @@
+// Window script commands for navigation (app/window_script.hpp): the navigation type,
+// walking against the world, Back / Forward, the camera's position.
+#include "app/window_script.hpp"
+#include "render/collision.hpp"
+
+#include <fstream>
+#include <limits>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace gs::app {
+
+namespace {
+
+std::optional<render::NavigationMode> modeNamed(const std::string& name) {
+  if (name == "EXAMINE") return render::NavigationMode::examine;
+  if (name == "WALK") return render::NavigationMode::walk;
+  if (name == "FLY") return render::NavigationMode::fly;
+  return std::nullopt;
+}
+
+/// The numbers of `text`; false when a word is not one.
+bool numbers(const std::string& text, std::vector<double>& out) {
+  std::istringstream words(text);
+  std::string word;
+  while (words >> word) {
+    std::istringstream in(word);
+    double v = 0.0;
+    if (!(in >> v) || !in.eof()) return false;
+    out.push_back(v);
+  }
+  return true;
+}
+
+}  // namespace
+
+bool WindowScript::isNavigation(const std::string& verb) {
+  return verb == "navigation" || verb == "walk" || verb == "back" || verb == "forward" ||
+         verb == "camera";
+}
+
+std::string WindowScript::checkNavigation(const Command& c) {
+  if (c.verb == "navigation" && !modeNamed(c.argument)) return "navigation EXAMINE, WALK or FLY";
+  if (c.verb == "walk") {
+    std::vector<double> n;
+    if (!numbers(c.argument, n) || (n.size() != 3 && n.size() != 4) ||
+        (n.size() == 4 && (n[3] < 1 || n[3] > 10000)))
+      return "walk F R U [STEPS] (metres) with 1 <= STEPS <= 10000";
+  }
+  if ((c.verb == "back" || c.verb == "forward") && !c.argument.empty())
+    return c.verb + " without arguments";
+  if (c.verb == "camera" && c.argument.empty()) return "camera followed by a path";
+  return {};
+}
+
+void WindowScript::navigate(WindowState& state, const Command& c) {
+  if (c.verb == "navigation") {
+    state.setNavigation(*modeNamed(c.argument));
+  } else if (c.verb == "walk") {
+    std::vector<double> n;
+    numbers(c.argument, n);
+    const int steps = n.size() == 4 ? static_cast<int>(n[3]) : 1;
+    for (int i = 0; i < steps; ++i)
+      state.moveViewer(static_cast<float>(n[0] / steps), static_cast<float>(n[1] / steps),
+                       static_cast<float>(n[2] / steps), std::numeric_limits<float>::infinity());
+  } else if (c.verb == "back" || c.verb == "forward") {
+    if (!(c.verb == "back" ? state.goBack() : state.goForward()))
+      state.log.push_back(
+          {false, "script line " + std::to_string(c.line) + ": no world to go " + c.verb + " to"});
+  } else if (c.verb == "camera") {
+    const glm::vec3 p = state.view().navigator.camera().position;
+    std::ofstream out(c.argument);
+    out << p.x << " " << p.y << " " << p.z << "\n";
+    if (!out) state.log.push_back({true, "camera: cannot write " + c.argument});
+  }
+}
+
+}  // namespace gs::app

@@ -1,0 +1,382 @@
+#include "entropy_payload.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "base/byte_order.hpp"
+#include "qnv/record.hpp"
+#include "qnv/stream.hpp"
+#include "rans.hpp"
+
+namespace gs::qnv::detail {
+
+using base::appendLe;
+using base::loadLe;
+
+namespace {
+
+std::uint32_t spread3(std::uint32_t v) {
+  v &= 0x3ffu;
+  v = (v | (v << 16)) & 0x030000ffu;
+  v = (v | (v << 8)) & 0x0300f00fu;
+  v = (v | (v << 4)) & 0x030c30c3u;
+  v = (v | (v << 2)) & 0x09249249u;
+  return v;
+}
+
+std::uint32_t compact3(std::uint32_t v) {
+  v &= 0x09249249u;
+  v = (v | (v >> 2)) & 0x030c30c3u;
+  v = (v | (v >> 4)) & 0x0300f00fu;
+  v = (v | (v >> 8)) & 0x030000ffu;
+  v = (v | (v >> 16)) & 0x3ffu;
+  return v;
+}
+
+int bitLength(std::uint32_t v) {
+  return v ? 32 - __builtin_clz(v) : 0;
+}
+int gammaBits(std::uint32_t v) {
+  return 2 * (bitLength(v) - 1) + 1;
+}
+
+// The four modelled fields and their alphabets.
+enum Field { kGap = 0, kTheta = 1, kPhi = 2, kColor = 3, kFields = 4 };
+constexpr std::array<int, kFields> kAlphabetBits = {5, 6, 6, 8};
+// The rANS state each field uses: two interleaved states halve the decoder's chain of
+// dependent multiplications.
+constexpr std::array<int, kFields> kLane = {0, 1, 0, 1};
+// Table modes: 0 constant symbol, 1..12 rANS with 2^mode total frequency, 13 raw bits.
+constexpr int kModeConstant = 0;
+constexpr int kModeRaw = 13;
+constexpr std::uint8_t kFlagGrid = 1;
+constexpr std::size_t kPreambleBytes = 6;  // flags, aMin, aBits, rANS bytes
+
+struct FieldCoder {
+  int mode = kModeRaw;
+  unsigned constant = 0;
+  RansModel model;
+};
+
+// Frequencies summing to 2^bits, at least 1 for every symbol seen; empty when there are
+// more distinct symbols than slots.
+std::vector<std::uint16_t> normalize(const std::vector<std::uint32_t>& counts, std::size_t n,
+                                     int bits) {
+  const std::uint32_t total = 1u << bits;
+  std::size_t distinct = 0;
+  for (std::uint32_t c : counts) distinct += c > 0;
+  if (distinct > total) return {};
+  std::vector<std::uint16_t> f(counts.size(), 0);
+  std::int64_t sum = 0;
+  for (std::size_t s = 0; s < counts.size(); ++s) {
+    if (counts[s] == 0) continue;
+    const double exact = static_cast<double>(counts[s]) * total / static_cast<double>(n);
+    f[s] = static_cast<std::uint16_t>(std::max(1.0, std::floor(exact + 0.5)));
+    sum += f[s];
+  }
+  while (sum != total) {  // take from or give to the largest frequencies
+    const auto largest = static_cast<std::size_t>(std::max_element(f.begin(), f.end()) - f.begin());
+    if (sum < total) {
+      f[largest] = static_cast<std::uint16_t>(f[largest] + (total - sum));
+      sum = total;
+    } else {
+      const std::int64_t take = std::min<std::int64_t>(sum - total, f[largest] - 1);
+      if (take <= 0) return {};  // cannot happen: distinct <= total
+      std::int64_t step = std::max<std::int64_t>(1, take / 2);
+      f[largest] = static_cast<std::uint16_t>(f[largest] - step);
+      sum -= step;
+    }
+  }
+  return f;
+}
+
+double tableBits(const std::vector<std::uint16_t>& f) {
+  double bits = 4;
+  std::uint32_t present = 0, previous = 0;
+  bool first = true;
+  std::vector<std::uint32_t> freqs;
+  for (std::size_t s = 0; s < f.size(); ++s) {
+    if (!f[s]) continue;
+    bits += gammaBits(static_cast<std::uint32_t>(s) - (first ? 0 : previous + 1) + 1);
+    previous = static_cast<std::uint32_t>(s);
+    first = false;
+    ++present;
+    freqs.push_back(f[s]);
+  }
+  bits += gammaBits(present);
+  for (std::size_t i = 0; i + 1 < freqs.size(); ++i) bits += gammaBits(freqs[i]);
+  return bits;
+}
+
+// Chooses the cheapest coding of a field with these symbol counts over n records.
+FieldCoder planField(const std::vector<std::uint32_t>& counts, std::size_t n, int alphabetBits) {
+  FieldCoder best;
+  std::size_t distinct = 0;
+  for (std::size_t s = 0; s < counts.size(); ++s)
+    if (counts[s]) {
+      ++distinct;
+      best.constant = static_cast<unsigned>(s);
+    }
+  if (distinct == 1) {
+    best.mode = kModeConstant;
+    return best;
+  }
+  double bestBits = 4.0 + static_cast<double>(n) * alphabetBits;  // raw
+  for (int bits = 4; bits <= kMaxProbBits; ++bits) {
+    std::vector<std::uint16_t> f = normalize(counts, n, bits);
+    if (f.empty()) continue;
+    double cost = tableBits(f);
+    for (std::size_t s = 0; s < counts.size(); ++s)
+      if (counts[s]) cost += counts[s] * (bits - std::log2(static_cast<double>(f[s])));
+    if (cost < bestBits) {
+      bestBits = cost;
+      best.mode = bits;
+      best.model.probBits = bits;
+      best.model.freq = std::move(f);
+    }
+  }
+  if (best.mode != kModeRaw) best.model.build();
+  return best;
+}
+
+void writeTable(BitWriter& bits, const FieldCoder& coder, int alphabetBits) {
+  bits.put(static_cast<std::uint32_t>(coder.mode), 4);
+  if (coder.mode == kModeConstant) {
+    bits.put(coder.constant, alphabetBits);
+    return;
+  }
+  if (coder.mode == kModeRaw) return;
+  const auto& f = coder.model.freq;
+  std::uint32_t present = 0;
+  for (std::uint16_t v : f) present += v > 0;
+  bits.gamma(present);
+  std::uint32_t next = 0, written = 0;
+  for (std::size_t s = 0; s < f.size(); ++s) {
+    if (!f[s]) continue;
+    bits.gamma(static_cast<std::uint32_t>(s) - next + 1);
+    next = static_cast<std::uint32_t>(s) + 1;
+    if (++written < present) bits.gamma(f[s]);
+  }
+}
+
+bool readTable(BitReader& bits, FieldCoder& coder, int alphabetBits) {
+  coder.mode = static_cast<int>(bits.get(4));
+  if (coder.mode == kModeConstant) {
+    coder.constant = bits.get(alphabetBits);
+    return !bits.overrun();
+  }
+  if (coder.mode == kModeRaw) return true;
+  if (coder.mode > kMaxProbBits) return false;
+  const std::uint32_t alphabet = 1u << alphabetBits, total = 1u << coder.mode;
+  const std::uint32_t present = bits.gamma();
+  if (present > alphabet || present > total || bits.overrun()) return false;
+  coder.model.probBits = coder.mode;
+  coder.model.freq.assign(alphabet, 0);
+  std::uint32_t next = 0, sum = 0;
+  for (std::uint32_t i = 0; i < present; ++i) {
+    const std::uint32_t s = next + bits.gamma() - 1;
+    if (s >= alphabet || bits.overrun()) return false;
+    next = s + 1;
+    const std::uint32_t f = i + 1 < present ? bits.gamma() : total - sum;
+    if (f == 0 || sum + f > total || bits.overrun()) return false;
+    coder.model.freq[s] = static_cast<std::uint16_t>(f);
+    sum += f;
+  }
+  if (sum != total) return false;
+  coder.model.build();
+  return true;
+}
+
+}  // namespace
+
+PositionGrid PositionGrid::forHeader(const StreamHeader& header) {
+  PositionGrid grid;
+  for (int a = 0; a < 3; ++a) {
+    const std::uint32_t dims = header.kind == StreamKind::volume ? header.volumeDims[a] : 0;
+    if (dims >= 2 && dims <= kPositionSteps) {
+      grid.active = grid.active || dims < kPositionSteps;
+      for (std::uint32_t i = 0; i < dims; ++i)
+        grid.cellOf[a].push_back(static_cast<std::uint16_t>(
+            std::min<std::uint32_t>(kPositionSteps - 1, i * kPositionSteps / (dims - 1))));
+    } else {
+      for (std::uint32_t i = 0; i < kPositionSteps; ++i)
+        grid.cellOf[a].push_back(static_cast<std::uint16_t>(i));
+    }
+    grid.indexOf[a].assign(kPositionSteps, -1);
+    for (std::size_t i = 0; i < grid.cellOf[a].size(); ++i)
+      grid.indexOf[a][grid.cellOf[a][i]] = static_cast<std::int16_t>(i);
+  }
+  return grid;
+}
+
+void appendEntropyPayload(std::string& out, std::span<const std::uint64_t> records,
+                          const PositionGrid& grid, EntropyFieldBits* report) {
+  const std::size_t n = records.size();
+  // Grid mode when every position of the packet lies on the grid.
+  bool onGrid = grid.active;
+  for (std::size_t i = 0; i < n && onGrid; ++i) {
+    const RecordFields f = unpackRecord(records[i]);
+    onGrid = grid.indexOf[0][f.x] >= 0 && grid.indexOf[1][f.y] >= 0 && grid.indexOf[2][f.z] >= 0;
+  }
+  std::vector<std::pair<std::uint32_t, std::uint64_t>> sorted;
+  sorted.reserve(n);
+  std::uint32_t aMin = kMagnitudeSteps, aMax = 0;
+  for (std::uint64_t r : records) {
+    const RecordFields f = unpackRecord(r);
+    std::uint32_t x = f.x, y = f.y, z = f.z;
+    if (onGrid) {
+      x = static_cast<std::uint32_t>(grid.indexOf[0][x]);
+      y = static_cast<std::uint32_t>(grid.indexOf[1][y]);
+      z = static_cast<std::uint32_t>(grid.indexOf[2][z]);
+    }
+    sorted.emplace_back(spread3(x) | (spread3(y) << 1) | (spread3(z) << 2), r);
+    aMin = std::min<std::uint32_t>(aMin, f.a);
+    aMax = std::max<std::uint32_t>(aMax, f.a);
+  }
+  std::sort(sorted.begin(), sorted.end());
+  const int aBits = bitLength(aMax - aMin);
+
+  // Symbols per record: gap token, theta and phi deltas from the previous record, colour.
+  std::vector<std::array<std::uint32_t, kFields>> symbols(n);
+  std::array<std::vector<std::uint32_t>, kFields> counts;
+  for (int k = 0; k < kFields; ++k) counts[k].assign(std::size_t{1} << kAlphabetBits[k], 0);
+  std::uint32_t previousCode = 0, previousTheta = 0, previousPhi = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const RecordFields f = unpackRecord(sorted[i].second);
+    auto& s = symbols[i];
+    s[kGap] = static_cast<std::uint32_t>(bitLength(sorted[i].first - previousCode));
+    s[kTheta] = (f.theta - previousTheta) & 63u;
+    s[kPhi] = (f.phi - previousPhi) & 63u;
+    s[kColor] = f.c;
+    previousCode = sorted[i].first;
+    previousTheta = f.theta;
+    previousPhi = f.phi;
+    for (int k = 0; k < kFields; ++k) ++counts[k][s[k]];
+  }
+  std::array<FieldCoder, kFields> coders;
+  for (int k = 0; k < kFields; ++k) coders[k] = planField(counts[k], n, kAlphabetBits[k]);
+
+  std::string bitBytes;
+  BitWriter bits(bitBytes);
+  for (int k = 0; k < kFields; ++k) writeTable(bits, coders[k], kAlphabetBits[k]);
+  previousCode = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& s = symbols[i];
+    const std::uint32_t gap = sorted[i].first - previousCode;
+    previousCode = sorted[i].first;
+    for (int k = 0; k < kFields; ++k) {
+      if (coders[k].mode == kModeRaw) bits.put(s[k], kAlphabetBits[k]);
+      if (k == kGap && s[kGap] >= 2) bits.put(gap, static_cast<int>(s[kGap]) - 1);
+      if (k == kPhi) bits.put(magnitudeCode(sorted[i].second) - aMin, aBits);
+    }
+  }
+  bits.finish();
+  RansEncoder rans;
+  for (std::size_t i = n; i-- > 0;)
+    for (int k = kFields; k-- > 0;)
+      if (coders[k].mode != kModeRaw && coders[k].mode != kModeConstant)
+        rans.put(coders[k].model, symbols[i][k], kLane[k]);
+  std::string ransBytes;
+  rans.finish(ransBytes);
+
+  if (report) {
+    std::array<double, kFields> fieldBits{};
+    for (int k = 0; k < kFields; ++k) {
+      const FieldCoder& c = coders[k];
+      if (c.mode == kModeRaw) fieldBits[k] = static_cast<double>(n) * kAlphabetBits[k];
+      if (c.mode == kModeRaw || c.mode == kModeConstant) continue;
+      for (std::size_t s = 0; s < counts[k].size(); ++s)
+        if (counts[k][s])
+          fieldBits[k] += counts[k][s] * (c.mode - std::log2(static_cast<double>(c.model.freq[s])));
+    }
+    double gapExtra = 0;
+    for (const auto& s : symbols) gapExtra += s[kGap] >= 2 ? s[kGap] - 1 : 0;
+    report->position += fieldBits[kGap] + gapExtra;
+    report->direction += fieldBits[kTheta] + fieldBits[kPhi];
+    report->magnitude += static_cast<double>(n) * aBits;
+    report->color += fieldBits[kColor];
+    double tables = 0;
+    {
+      std::string scratch;
+      BitWriter w(scratch);
+      for (int k = 0; k < kFields; ++k) writeTable(w, coders[k], kAlphabetBits[k]);
+      w.finish();
+      tables = 8.0 * static_cast<double>(scratch.size());
+    }
+    report->tables += tables;
+    const double total =
+        8.0 * static_cast<double>(kPreambleBytes + ransBytes.size() + bitBytes.size());
+    report->framing += total - (fieldBits[kGap] + gapExtra + fieldBits[kTheta] + fieldBits[kPhi] +
+                                static_cast<double>(n) * aBits + fieldBits[kColor] + tables);
+  }
+  appendLe<std::uint8_t>(out, onGrid ? kFlagGrid : 0);
+  appendLe<std::uint16_t>(out, static_cast<std::uint16_t>(aMin));
+  appendLe<std::uint8_t>(out, static_cast<std::uint8_t>(aBits));
+  appendLe<std::uint16_t>(out, static_cast<std::uint16_t>(ransBytes.size()));
+  out += ransBytes;
+  out += bitBytes;
+}
+
+bool decodeEntropyPayload(std::string_view payload, std::size_t count, const PositionGrid& grid,
+                          std::uint64_t* out) {
+  if (payload.size() < kPreambleBytes || count == 0) return false;
+  const auto flags = loadLe<std::uint8_t>(payload.data());
+  const auto aMin = loadLe<std::uint16_t>(payload.data() + 1);
+  const int aBits = loadLe<std::uint8_t>(payload.data() + 3);
+  const auto ransSize = loadLe<std::uint16_t>(payload.data() + 4);
+  if (flags > kFlagGrid || aMin >= kMagnitudeSteps || aBits > kMagnitudeBits ||
+      ransSize > payload.size() - kPreambleBytes || ((flags & kFlagGrid) && !grid.active))
+    return false;
+  const auto* begin = reinterpret_cast<const unsigned char*>(payload.data());
+  const unsigned char* ransBegin = begin + kPreambleBytes;
+  const unsigned char* bitsBegin = ransBegin + ransSize;
+  const unsigned char* end = begin + payload.size();
+  BitReader bits(bitsBegin, end);
+  std::array<FieldCoder, kFields> coders;
+  for (int k = 0; k < kFields; ++k)
+    if (!readTable(bits, coders[k], kAlphabetBits[k])) return false;
+  RansDecoder rans(ransBegin, bitsBegin);
+  const bool useGrid = flags & kFlagGrid;
+  const std::array<std::size_t, 3> limit = {useGrid ? grid.cellOf[0].size() : kPositionSteps,
+                                            useGrid ? grid.cellOf[1].size() : kPositionSteps,
+                                            useGrid ? grid.cellOf[2].size() : kPositionSteps};
+  auto field = [&](int k) -> std::uint32_t {
+    const FieldCoder& c = coders[k];
+    if (c.mode == kModeConstant) return c.constant;
+    if (c.mode == kModeRaw) return bits.get(kAlphabetBits[k]);
+    return rans.get(c.model, kLane[k]);
+  };
+  // Range errors are gathered in `bad` and checked once at the end; indices are clamped
+  // so that nothing is read out of bounds meanwhile.
+  std::uint64_t code = 0;
+  std::uint32_t theta = 0, phi = 0;
+  bool bad = false;
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::uint32_t token = field(kGap);  // 0..31
+    const std::uint32_t extra = bits.get(static_cast<int>(std::max(token, 1u)) - 1);
+    const std::uint32_t gap = token < 2 ? token : ((1u << (token - 1)) | extra);
+    code += gap;
+    bad |= code >= (1u << 30);
+    const auto m = static_cast<std::uint32_t>(code);
+    theta = (theta + field(kTheta)) & 63u;
+    phi = (phi + field(kPhi)) & 63u;
+    const std::uint32_t a = aMin + bits.get(aBits);
+    const std::uint32_t c = field(kColor);
+    std::uint32_t x = compact3(m), y = compact3(m >> 1), z = compact3(m >> 2);
+    bad |= theta >= kThetaSteps || a >= kMagnitudeSteps || x >= limit[0] || y >= limit[1] ||
+           z >= limit[2];
+    if (useGrid) {
+      x = grid.cellOf[0][std::min<std::size_t>(x, limit[0] - 1)];
+      y = grid.cellOf[1][std::min<std::size_t>(y, limit[1] - 1)];
+      z = grid.cellOf[2][std::min<std::size_t>(z, limit[2] - 1)];
+    }
+    out[i] = (std::uint64_t{x} << 54) | (std::uint64_t{y} << 44) | (std::uint64_t{z} << 34) |
+             (std::uint64_t{theta} << 29) | (std::uint64_t{phi} << 23) | (std::uint64_t{a} << 8) |
+             c;
+  }
+  const std::size_t bitBytes = static_cast<std::size_t>(end - bitsBegin);
+  return !bad && !bits.overrun() && (bits.bitsConsumed() + 7) / 8 == bitBytes &&
+         rans.finishedCleanly();
+}
+
+}  // namespace gs::qnv::detail

@@ -1,0 +1,52 @@
+// The entropy packet encoding (PacketEncoding::entropy), private to qnv/src; the bytes
+// are pinned in docs/qnv-format.md ("Compact coding"). A packet's records are sorted by
+// the Morton code of their positions (on the volume's voxel grid when the header has
+// one), the Morton gaps, direction deltas and colours are coded with small per-packet
+// static rANS models, the magnitude codes as fixed-width offsets from the packet's
+// smallest. Each packet decodes alone given the stream header; records come back in
+// Morton order, not stream order.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace gs::qnv {
+struct StreamHeader;
+}
+
+namespace gs::qnv::detail {
+
+/// The lattice positions lie on per axis: for a volume of at most 1024 samples along an
+/// axis, voxel i sits in cell floor(i * 1024 / (dims - 1)) (clamped to 1023), so a
+/// position needs only log2(dims) bits there; otherwise all 1024 cells.
+struct PositionGrid {
+  std::array<std::vector<std::uint16_t>, 3> cellOf;  // index -> cell (0..1023)
+  std::array<std::vector<std::int16_t>, 3> indexOf;  // cell -> index, or -1
+  bool active = false;                               // some axis is coarser than 1024
+
+  /// The grid of a stream: from volumeDims for volumes, none for surfaces.
+  static PositionGrid forHeader(const StreamHeader& header);
+};
+
+/// Where the bits of entropy payloads go (the rANS fields at their model cost).
+struct EntropyFieldBits {
+  double position = 0, direction = 0, magnitude = 0, color = 0, tables = 0, framing = 0;
+};
+
+/// Appends the entropy payload of `records` (1..8191 records) to `out`; adds its bits
+/// per field to `bits` when given.
+void appendEntropyPayload(std::string& out, std::span<const std::uint64_t> records,
+                          const PositionGrid& grid, EntropyFieldBits* bits = nullptr);
+
+/// Decodes an entropy payload holding exactly `count` records into `out[0..count)`.
+/// Returns false on any inconsistency (unknown flags, a table that does not sum up, a
+/// field out of range, bytes missing or left over); never writes more than `count`
+/// records and allocates only the fixed-size model tables.
+bool decodeEntropyPayload(std::string_view payload, std::size_t count, const PositionGrid& grid,
+                          std::uint64_t* out);
+
+}  // namespace gs::qnv::detail

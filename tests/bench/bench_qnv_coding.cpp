@@ -1,0 +1,120 @@
+// Packet codings compared (docs/qnv-format.md, "Compact coding"): for each plain .qnv
+// stream given, re-packs its records at 1376, 16384 and 65528 record bytes per packet
+// as plain, compact (zstd) and entropy (rANS) packets, and prints bits per vector, the
+// entropy coding's bits per field, and StreamDecoder throughput on one thread (CRC,
+// payload decode and dequantization into DecodedVectors; best of 7, thread CPU time).
+//
+//   ghostspace encode CThead.nhdr --fraction 0.091 -o head.qnv
+//   bench_qnv_coding head.qnv bunny.qnv
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "qnv/coding.hpp"
+#include "qnv/decoder.hpp"
+
+namespace qnv = gs::qnv;
+
+namespace {
+
+// The records of a stream, in stream order per packet.
+bool readRecords(const std::string& path, qnv::EncodedVectors& out) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string bytes = buffer.str();
+  std::string error;
+  const auto header = qnv::parseHeader(bytes, path, error);
+  if (!header) {
+    std::fprintf(stderr, "bench_qnv_coding: %s\n", error.c_str());
+    return false;
+  }
+  out.header = *header;
+  // Decode, then re-quantize nothing: a plain stream's payload is the records. Walk the
+  // packets directly so the records stay bit-exact.
+  std::size_t at = qnv::kHeaderBytes;
+  while (at + qnv::kPacketHeaderBytes <= bytes.size()) {
+    std::uint16_t count = 0, payload = 0;
+    std::memcpy(&count, bytes.data() + at + 2, 2);
+    std::memcpy(&payload, bytes.data() + at + 8, 2);
+    if (bytes[at + 10] != 0 || payload != count * 8u) {
+      std::fprintf(stderr, "bench_qnv_coding: %s is not a plain stream\n", path.c_str());
+      return false;
+    }
+    for (std::size_t i = 0; i < count; ++i) {
+      std::uint64_t r = 0;
+      std::memcpy(&r, bytes.data() + at + qnv::kPacketHeaderBytes + 8 * i, 8);
+      out.records.push_back(r);  // little-endian host assumed (x86-64, arm64)
+    }
+    at += qnv::kPacketHeaderBytes + payload;
+  }
+  return true;
+}
+
+// Thread CPU time: the shared development VM is loaded, and time spent descheduled is
+// not the decoder's.
+double cpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+// Vectors per second through StreamDecoder::feed in 64 KiB chunks, the header (and the
+// dequantizer's tables it builds) fed before the clock starts.
+double decodeRate(const std::string& stream) {
+  double best = 1e9;
+  std::uint64_t got = 0;
+  for (int rep = 0; rep < 7; ++rep) {
+    qnv::StreamDecoder d("bench");
+    got = 0;
+    const auto sink = [&](std::uint64_t, std::span<const qnv::DecodedVector> v) {
+      got += v.size();
+    };
+    d.feed(std::string_view(stream).substr(0, qnv::kHeaderBytes), sink);
+    const double t0 = cpuSeconds();
+    for (std::size_t at = qnv::kHeaderBytes; at < stream.size(); at += 1 << 16)
+      d.feed(std::string_view(stream).substr(at, 1 << 16), sink);
+    d.finish(sink);
+    best = std::min(best, cpuSeconds() - t0);
+  }
+  return static_cast<double>(got) / best / 1e6;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: bench_qnv_coding PLAIN.qnv...\n");
+    return 2;
+  }
+  for (int i = 1; i < argc; ++i) {
+    qnv::EncodedVectors e;
+    if (!readRecords(argv[i], e)) return 1;
+    const double n = static_cast<double>(e.records.size());
+    std::printf("== %s: %zu vectors ==\n", argv[i], e.records.size());
+    std::printf("%8s %-8s %10s %9s %12s\n", "packet", "coding", "bytes", "bits/vec", "decode M/s");
+    for (std::uint32_t packet : {1376u, 16384u, 65528u}) {
+      for (auto coding : {qnv::PacketEncoding::plain, qnv::PacketEncoding::compact,
+                          qnv::PacketEncoding::entropy}) {
+        const std::string s = qnv::writeStream(e, {packet, coding});
+        const char* name = coding == qnv::PacketEncoding::plain     ? "plain"
+                           : coding == qnv::PacketEncoding::compact ? "compact"
+                                                                    : "entropy";
+        std::printf("%8u %-8s %10zu %9.2f %12.1f\n", packet, name, s.size(),
+                    8.0 * static_cast<double>(s.size() - qnv::kHeaderBytes) / n, decodeRate(s));
+      }
+      const qnv::CodingBits b = qnv::entropyCodingBits(e, packet);
+      std::printf(
+          "%8u entropy bits/vector by field: position %.2f, direction %.2f, magnitude %.2f, "
+          "colour %.2f, tables %.2f, framing %.2f = %.2f\n",
+          packet, b.position / n, b.direction / n, b.magnitude / n, b.color / n, b.tables / n,
+          b.framing / n, b.total() / n);
+    }
+  }
+  return 0;
+}
