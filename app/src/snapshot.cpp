@@ -155,6 +155,9 @@ int runSnapshot(const Options& options) {
   for (View& v : views) {
     runtimes.of(v.scene, time.start);
     runtimes.addInlines(v.scene.get(), v.renderer->traversal());
+    // MovieTextures show the frame of their media time, waiting for it (docs/media.md).
+    v.renderer->setMediaClock(runtimes.mediaClock(v.scene.get()), true);
+    runtimes.setMediaDurations(v.scene.get(), v.renderer->takeMediaDurations());
   }
   render::Image image;
   for (int frame = 0; frame < time.frames; ++frame) {
@@ -163,6 +166,8 @@ int runSnapshot(const Options& options) {
       runtimes.setViewer(v.scene.get(), session::viewerPose(camera(v), aspect));
     }
     runtimes.advanceTo(time.start + time.interval * frame);
+    for (View& v : views)
+      runtimes.setMediaDurations(v.scene.get(), v.renderer->takeMediaDurations());
     for (View& v : views) v.renderer->traversal().setBoundNodes(runtimes.bound(v.scene.get()));
     draw();
     image = render::readPixels(0, 0, options.width, options.height);

@@ -151,6 +151,12 @@ void WindowState::updateRuntimes() {
                      std::string& error) {
           return session->loader().fetchWhole(url, referrer, bytes, error, 10.0);
         });
+    sounds = std::make_unique<WorldSounds>(
+        true, [this](const std::string& url, const std::string& referrer, std::string& bytes,
+                     std::string& error) {
+          return session->loader().fetchWhole(url, referrer, bytes, error, 10.0);
+        });
+    if (!sounds->note().empty()) std::fprintf(stderr, "ghostspace: %s\n", sounds->note().c_str());
     clockOffset = time.set ? time.start - runtime::wallClockSeconds() : 0.0;
     runtimes->setLinkHandler([this](const vrml::Scene& scene, const std::vector<std::string>& url,
                                     const std::vector<std::string>& parameter) {
@@ -179,6 +185,8 @@ void WindowState::updateRuntimes() {
     const vrml::Scene* scene = worlds[v.world].scene.get();
     v.renderer->traversal().setBoundNodes(runtimes->bound(scene));
     runtimes->addInlines(scene, v.renderer->traversal());
+    v.renderer->setMediaClock(runtimes->mediaClock(scene), false);  // docs/media.md
+    runtimes->setMediaDurations(scene, v.renderer->takeMediaDurations());
     const runtime::ExecutionModel& model = runtimes->of(worlds[v.world].scene, now);
     const vrml::Node* vp = model.bound(runtime::BindableKind::Viewpoint);
     const std::uint64_t revision = vp ? vrml::revisionWithFields(*vp) : 0;
@@ -204,6 +212,9 @@ void WindowState::updateRuntimes() {
       }
     }
   }
+  if (sounds && active < viewports.size() && viewports[active].world < worlds.size())
+    sounds->update(worlds[viewports[active].world].scene, viewports[active].navigator.camera(),
+                   *runtimes, now);
   std::vector<std::string> lines;
   runtimes->drainMessages(lines);
   for (std::string& line : lines) {

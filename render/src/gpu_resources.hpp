@@ -4,6 +4,7 @@
 
 #include <glad/gl.h>
 
+#include "formats/movie.hpp"
 #include "render/image.hpp"
 #include "render/scene_renderer.hpp"
 #include "render/traversal.hpp"
@@ -11,8 +12,11 @@
 #include "vrml/parser.hpp"
 
 #include <array>
+#include <memory>
 #include <string>
 #include <unordered_map>
+#include <utility>
+#include <vector>
 
 namespace gs::render::detail {
 
@@ -43,8 +47,39 @@ struct GpuTexture {
   bool hasAlpha = false;  // some texel is not fully opaque
 };
 
+/// MovieTexture nodes (6.28, movie_textures.cpp): one formats::MoviePlayer each (decoding
+/// on its worker thread) and a GL texture updated with the frame for the node's media
+/// time whenever that frame changes (glTexSubImage2D, no mipmaps).
+class MovieTextures {
+ public:
+  /// The texture of MovieTexture `node` for this frame; components 0 until its first
+  /// frame is decoded (or when it cannot be read: a warning naming the url, once).
+  const GpuTexture& get(const vrml::Node& node, const std::string& baseUrl,
+                        SceneTraversal& traversal, const ResourceLoader& loader);
+  /// With `waitForFrames`, also waits for the movies met so far to open, so that their
+  /// durations are known before the next draw.
+  void setClock(MediaClock clock, bool waitForFrames);
+  /// Durations found since the last call (seconds; -1: unreadable).
+  std::vector<std::pair<const vrml::Node*, double>> takeDurations();
+  void release();
+
+ private:
+  struct Movie {
+    std::unique_ptr<formats::MoviePlayer> player;
+    GpuTexture texture;
+    int width = 0, height = 0;
+    std::int64_t shown = -1;  // index of the frame in the texture
+    bool durationTaken = false, failed = false;
+  };
+  std::unordered_map<const vrml::Node*, Movie> movies_;
+  std::vector<std::pair<const vrml::Node*, double>> durations_;
+  MediaClock clock_;
+  bool wait_ = false;
+};
+
 /// ImageTexture and PixelTexture nodes turned into GL textures once each (clause 6.22,
-/// 6.33); MovieTexture and unsupported images become "no texture" with a warning.
+/// 6.33); MovieTexture through MovieTextures; unsupported textures become "no texture"
+/// with a warning.
 class TextureCache {
  public:
   /// The texture of `node` (an ImageTexture or PixelTexture), loading it on first use;
@@ -53,6 +88,7 @@ class TextureCache {
   const GpuTexture& get(const vrml::Node& node, const std::string& baseUrl,
                         SceneTraversal& traversal, const ResourceLoader& loader);
   void release();
+  MovieTextures movies;
 
  private:
   std::unordered_map<const vrml::Node*, GpuTexture> textures_;

@@ -417,4 +417,12 @@ void SceneRenderer::draw(const Camera& camera, int x, int y, int width, int heig
   glUseProgram(0);
 }
 
+void SceneRenderer::setMediaClock(MediaClock clock, bool waitForFrames) {
+  gpu_->textures.movies.setClock(std::move(clock), waitForFrames);
+}
+
+std::vector<std::pair<const vrml::Node*, double>> SceneRenderer::takeMediaDurations() {
+  return gpu_->textures.movies.takeDurations();
+}
+
 }  // namespace gs::render

@@ -1,5 +1,5 @@
 // ImageTexture and PixelTexture to GL textures (clauses 6.22, 6.33), with mipmaps and the
-// repeatS / repeatT wrap modes.
+// repeatS / repeatT wrap modes; MovieTexture goes to movie_textures.cpp.
 #include "base/file.hpp"
 #include "base/url.hpp"
 #include "gpu_resources.hpp"
@@ -138,6 +138,7 @@ bool decodeSFImage(const vrml::SFImage& image, std::vector<std::uint8_t>& rgba, 
 
 const GpuTexture& TextureCache::get(const vrml::Node& node, const std::string& baseUrl,
                                     SceneTraversal& traversal, const ResourceLoader& loader) {
+  if (node.typeName() == "MovieTexture") return movies.get(node, baseUrl, traversal, loader);
   if (auto it = textures_.find(&node); it != textures_.end()) return it->second;
   GpuTexture texture;
   const bool repeatS = sfBool(node, "repeatS", true), repeatT = sfBool(node, "repeatT", true);
@@ -181,6 +182,7 @@ void TextureCache::release() {
   for (auto& [node, texture] : textures_)
     if (texture.id != 0) glDeleteTextures(1, &texture.id);
   textures_.clear();
+  movies.release();
 }
 
 }  // namespace gs::render::detail

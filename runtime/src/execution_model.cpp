@@ -185,6 +185,7 @@ void ExecutionModel::advanceTo(double time) {
   s_->eventsThisCascade = 0;
   s_->cascadeOverflow = false;
   for (NodeState* t : s_->timeSensors) s_->evaluateTimeSensor(*t);
+  for (NodeState* m : s_->mediaNodes) s_->evaluateMedia(*m);
   s_->evaluateEnvironmentSensors();
   for (PendingEvent& e : s_->posted) s_->queue.push_back(std::move(e));
   s_->posted.clear();
@@ -240,6 +241,8 @@ std::vector<vrml::Node*> ExecutionModel::bindStack(BindableKind kind) const {
 bool ExecutionModel::animating() const {
   for (const NodeState* t : s_->timeSensors)
     if (t->time.active) return true;
+  for (const NodeState* m : s_->mediaNodes)
+    if (m->media->state.active) return true;
   return !s_->posted.empty();
 }
 

@@ -1,6 +1,7 @@
 // Private to runtime/: the state behind ExecutionModel, shared by its source files.
 #pragma once
 
+#include "media_nodes.hpp"
 #include "runtime/execution_model.hpp"
 #include "runtime/interpolators.hpp"
 #include "runtime/time_dependent.hpp"
@@ -25,6 +26,7 @@ enum class NodeRole : std::uint8_t {
   grouping,      // addChildren / removeChildren (6.21, 6.52, ...)
   proximity,     // ProximitySensor (6.38)
   visibility,    // VisibilitySensor (6.52)
+  media,         // MovieTexture (6.28), AudioClip (6.3): media_nodes.cpp
 };
 
 struct NodeState;
@@ -62,6 +64,7 @@ struct NodeState {
   glm::vec3 lastPosition{0.0f};
   vrml::Rotation lastOrientation{0.0f};
   std::unique_ptr<ScriptInstance> script;
+  std::unique_ptr<MediaNode> media;  // role media
   bool scriptHadEvents = false;
   bool problemReported = false;
 };
@@ -92,6 +95,7 @@ struct ExecutionModel::State {
   std::unordered_map<const vrml::Node*, std::unique_ptr<NodeState>> nodes;
   std::vector<NodeState*> timeSensors;
   std::vector<NodeState*> scripts;
+  std::vector<NodeState*> mediaNodes;  // MovieTextures and AudioClips
   std::size_t environmentSensors = 0;  // ProximitySensors and VisibilitySensors met
   std::optional<ViewerPose> viewer;
   std::vector<NodeState*> newScripts;  // registered, initialize() not yet called
@@ -127,6 +131,11 @@ struct ExecutionModel::State {
   void evaluateTimeSensor(NodeState& ns);
   void bind(NodeState& ns, bool on);
   void bindFirstCandidates();
+  // ---- MovieTexture and AudioClip (media_nodes.cpp) ----
+  /// Makes `ns` a media node when it is a MovieTexture or AudioClip.
+  bool classifyMedia(NodeState& ns);
+  void deliverMedia(NodeState& ns, int field, vrml::FieldValue value);
+  void evaluateMedia(NodeState& ns);
   // ---- environmental sensors (environment_sensors.cpp) ----
   void evaluateEnvironmentSensors();
 

@@ -74,6 +74,7 @@ void ExecutionModel::State::classify(NodeState& ns) {
     return;
   }
   const std::string& name = type.name;
+  if (classifyMedia(ns)) return;
   if (name == "TimeSensor") {
     ns.role = NodeRole::timeSensor;
     TimeSensorFields& f = ns.timeFields;
@@ -243,6 +244,9 @@ void ExecutionModel::State::deliver(NodeState& ns, int field, vrml::FieldValue v
         ns.scriptHadEvents = true;
         ns.script->eventIn(field, value, model.now());
       }
+      return;
+    case NodeRole::media:
+      deliverMedia(ns, field, std::move(value));
       return;
     case NodeRole::plain:
     case NodeRole::proximity:

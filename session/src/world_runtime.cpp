@@ -154,6 +154,21 @@ render::BoundNodes WorldRuntimes::bound(const vrml::Scene* scene) const {
   return b;
 }
 
+render::MediaClock WorldRuntimes::mediaClock(const vrml::Scene* scene) const {
+  return [this, scene](const vrml::Node& node) -> std::optional<double> {
+    const auto it = worlds_.find(scene);
+    if (it == worlds_.end()) return std::nullopt;
+    return it->second.model->mediaTime(node);
+  };
+}
+
+void WorldRuntimes::setMediaDurations(
+    const vrml::Scene* scene, const std::vector<std::pair<const vrml::Node*, double>>& durations) {
+  const auto it = worlds_.find(scene);
+  if (it == worlds_.end()) return;
+  for (const auto& [node, seconds] : durations) it->second.model->setMediaDuration(*node, seconds);
+}
+
 void WorldRuntimes::drainMessages(std::vector<std::string>& out) {
   for (auto& [key, e] : worlds_) {
     const auto& items = e.model->diagnostics().items;

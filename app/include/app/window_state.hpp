@@ -4,6 +4,7 @@
 #pragma once
 
 #include "app/layout.hpp"
+#include "app/world_sound.hpp"
 #include "render/camera.hpp"
 #include "render/scene_renderer.hpp"
 #include "runtime/pointer.hpp"
@@ -92,6 +93,8 @@ struct WindowState {
   session::RuntimeOptions time;
   /// The execution model of every world opened, made on the first update().
   std::unique_ptr<session::WorldRuntimes> runtimes;
+  /// The active viewport's Sounds (docs/media.md), made with runtimes.
+  std::unique_ptr<WorldSounds> sounds;
   double clockOffset = 0.0;  // world time = wallClockSeconds() + clockOffset
   /// Set by a script's `time` / `advance`: the window's clock is virtual from then on
   /// (virtualTime), no longer the wall clock.

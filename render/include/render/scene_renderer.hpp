@@ -11,7 +11,10 @@
 #include "vrml/scene.hpp"
 
 #include <cstddef>
+#include <functional>
 #include <memory>
+#include <optional>
+#include <utility>
 #include <vector>
 
 namespace gs::render {
@@ -31,6 +34,10 @@ enum class LoadStatus {
 /// Reads the bytes behind an already resolved URL (ImageTexture, Inline, EXTERNPROTO).
 using ResourceLoader =
     std::function<LoadStatus(const std::string& url, std::string& bytes, std::string& error)>;
+
+/// MovieTexture (6.28): the seconds into `movie`'s clip to show now, from the execution
+/// model (runtime::ExecutionModel::mediaTime); empty: the first frame.
+using MediaClock = std::function<std::optional<double>(const vrml::Node& movie)>;
 
 struct SceneRendererOptions {
   /// Reads URLs that are not local files (or local files that cannot be opened) for
@@ -115,6 +122,14 @@ class SceneRenderer {
     headlight_ = on;
     headlightSet_ = true;
   }
+
+  /// Where MovieTextures take their media time from (docs/media.md). `waitForFrames`:
+  /// draw() waits for the frame of that time (--snapshot: the same pixels every run);
+  /// otherwise it shows the newest frame decoded so far and never waits (the window).
+  void setMediaClock(MediaClock clock, bool waitForFrames);
+  /// The durations of the MovieTextures whose movies opened (seconds; -1: unreadable)
+  /// since the last call, for runtime::ExecutionModel::setMediaDuration.
+  std::vector<std::pair<const vrml::Node*, double>> takeMediaDurations();
 
   /// Counts of the last draw().
   const DrawStatistics& statistics() const { return statistics_; }

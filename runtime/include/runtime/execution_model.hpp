@@ -7,6 +7,7 @@
 #pragma once
 
 #include "runtime/clock.hpp"
+#include "runtime/media_time.hpp"
 #include "runtime/pointer.hpp"
 #include "runtime/script_host.hpp"
 #include "runtime/viewer.hpp"
@@ -17,6 +18,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -128,6 +130,19 @@ class ExecutionModel final : public ScriptContext {
   std::uint64_t bindingRevision() const { return bindingRevision_; }
   /// Every node of a stack, bottom first (for tests).
   std::vector<vrml::Node*> bindStack(BindableKind kind) const;
+
+  /// MovieTexture (6.28) and AudioClip (6.3), runtime/media_time.hpp. The application
+  /// that decoded `node`'s media reports its duration in seconds (-1: unreadable): a
+  /// duration_changed event goes out at now() (once per distinct value) and the node,
+  /// which cannot become active before its duration is known, is evaluated at once.
+  /// Ignored for other nodes.
+  void setMediaDuration(const vrml::Node& node, double seconds);
+  /// The media state of a MovieTexture or AudioClip of this world as of the last cascade
+  /// (media time, isActive, duration); empty for other nodes.
+  std::optional<MediaState> media(const vrml::Node& node) const;
+  /// media(node)->mediaTime when `node` is a media node of this world: the seconds into
+  /// the clip to show or play now.
+  std::optional<double> mediaTime(const vrml::Node& node) const;
 
   const vrml::Diagnostics& diagnostics() const { return diagnostics_; }
   const ExecutionStatistics& statistics() const { return stats_; }

@@ -3,6 +3,7 @@
 // clock: the wall clock in a window, the virtual clock of --time for --snapshot.
 #pragma once
 
+#include "render/scene_renderer.hpp"
 #include "render/traversal.hpp"
 #include "runtime/execution_model.hpp"
 #include "vrml/scene.hpp"
@@ -79,6 +80,12 @@ class WorldRuntimes {
   void setLinkHandler(LinkHandler handler) { link_ = std::move(handler); }
   /// The nodes bound in `scene`'s execution model; nothing bound when it has none.
   render::BoundNodes bound(const vrml::Scene* scene) const;
+  /// MovieTexture and AudioClip (docs/media.md): the media clock a renderer of `scene`
+  /// reads (runtime::ExecutionModel::mediaTime; empty before the world runs), and the
+  /// durations its decoders found, handed to the execution model.
+  render::MediaClock mediaClock(const vrml::Scene* scene) const;
+  void setMediaDurations(const vrml::Scene* scene,
+                         const std::vector<std::pair<const vrml::Node*, double>>& durations);
   /// Diagnostics of every world not returned before, formatted, appended to `out`.
   void drainMessages(std::vector<std::string>& out);
 

@@ -1,0 +1,40 @@
+#include "app/world_sound.hpp"
+
+#include <cstdio>
+
+namespace gs::app {
+
+WorldSounds::WorldSounds(bool enabled, session::FetchWhole fetch)
+    : output_(audio::openAudioOutput(enabled, note_)), fetch_(std::move(fetch)) {}
+
+void WorldSounds::update(const std::shared_ptr<const vrml::Scene>& scene,
+                         const render::Camera& camera, session::WorldRuntimes& runtimes,
+                         double now) {
+  if (!scene) return;
+  auto& s = scenes_[scene.get()];
+  if (!s) {
+    audio::ClipLoader loader;
+    if (fetch_)
+      loader = [fetch = fetch_, referrer = scene->url](const std::string& url, std::string& bytes,
+                                                       std::string& error) {
+        return fetch(url, referrer, bytes, error);
+      };
+    s = std::make_unique<audio::SoundScene>(scene, std::move(loader));
+  }
+  runtime::ExecutionModel& model = runtimes.of(scene, now);
+  s->update(
+      render::viewMatrix(camera),
+      [&model](const vrml::Node& clip) -> std::optional<audio::ClipTime> {
+        const auto m = model.media(clip);
+        if (!m) return std::nullopt;
+        return audio::ClipTime{m->active, m->mediaTime};
+      },
+      *output_);
+  runtimes.setMediaDurations(scene.get(), s->takeDurations());
+  // Clips that cannot be read: each once, as the renderer's diagnostics.
+  std::size_t& shown = shown_[scene.get()];
+  for (; shown < s->diagnostics().items.size(); ++shown)
+    std::fprintf(stderr, "%s\n", s->diagnostics().items[shown].format().c_str());
+}
+
+}  // namespace gs::app

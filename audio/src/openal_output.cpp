@@ -1,0 +1,119 @@
+// The OpenAL Soft output: one source per voice (up to 32), one buffer per clip. The
+// ellipsoid model of 6.42 sets each source's gain, so OpenAL's own distance model is off.
+#include "audio/audio_output.hpp"
+
+#include <AL/al.h>
+#include <AL/alc.h>
+
+#include <cmath>
+#include <unordered_map>
+
+namespace gs::audio {
+
+namespace {
+
+class OpenAlOutput final : public AudioOutput {
+ public:
+  OpenAlOutput(ALCdevice* device, ALCcontext* context) : device_(device), context_(context) {
+    alcMakeContextCurrent(context_);
+    alDistanceModel(AL_NONE);
+    const ALCchar* name = alcGetString(device_, ALC_DEVICE_SPECIFIER);
+    name_ = std::string("OpenAL Soft: ") + (name != nullptr ? name : "default device");
+  }
+  ~OpenAlOutput() override {
+    alcMakeContextCurrent(context_);
+    for (auto& [key, s] : sources_) alDeleteSources(1, &s.id);
+    for (auto& [clip, b] : buffers_) alDeleteBuffers(1, &b);
+    alcMakeContextCurrent(nullptr);
+    alcDestroyContext(context_);
+    alcCloseDevice(device_);
+  }
+  bool isNull() const override { return false; }
+  std::string name() const override { return name_; }
+  std::size_t maxVoices() const override { return 32; }
+
+  void update(const std::vector<Voice>& voices) override {
+    alcMakeContextCurrent(context_);
+    std::unordered_map<const void*, bool> keep;
+    for (const Voice& v : voices) {
+      if (!v.clip || v.clip->samples.empty()) continue;
+      keep[v.key] = true;
+      Source& s = sources_[v.key];
+      if (s.id == 0) alGenSources(1, &s.id);
+      const ALuint buffer = bufferOf(*v.clip);
+      if (s.clip != v.clip.get()) {
+        alSourceStop(s.id);
+        alSourcei(s.id, AL_BUFFER, static_cast<ALint>(buffer));
+        s.clip = v.clip.get();
+      }
+      alSourcef(s.id, AL_GAIN, v.gain);
+      alSourcef(s.id, AL_PITCH, v.pitch);
+      alSourcei(s.id, AL_LOOPING, v.loop ? AL_TRUE : AL_FALSE);
+      alSourcei(s.id, AL_SOURCE_RELATIVE, AL_TRUE);
+      const glm::vec3 p = v.spatialize ? v.position : glm::vec3(0.0f);
+      alSource3f(s.id, AL_POSITION, p.x, p.y, p.z);
+      ALint state = AL_STOPPED;
+      alGetSourcei(s.id, AL_SOURCE_STATE, &state);
+      float at = 0.0f;
+      alGetSourcef(s.id, AL_SEC_OFFSET, &at);
+      if (state != AL_PLAYING || std::fabs(at - static_cast<float>(v.offset)) > 0.1f) {
+        alSourcef(s.id, AL_SEC_OFFSET, static_cast<float>(v.offset));
+        if (state != AL_PLAYING) alSourcePlay(s.id);
+      }
+    }
+    for (auto it = sources_.begin(); it != sources_.end();) {
+      if (keep.count(it->first) == 0) {
+        alSourceStop(it->second.id);
+        alDeleteSources(1, &it->second.id);
+        it = sources_.erase(it);
+      } else {
+        ++it;
+      }
+    }
+  }
+
+ private:
+  struct Source {
+    ALuint id = 0;
+    const formats::AudioData* clip = nullptr;
+  };
+  ALuint bufferOf(const formats::AudioData& clip) {
+    ALuint& b = buffers_[&clip];
+    if (b == 0) {
+      alGenBuffers(1, &b);
+      alBufferData(
+          b, clip.channels == 2 ? AL_FORMAT_STEREO16 : AL_FORMAT_MONO16, clip.samples.data(),
+          static_cast<ALsizei>(clip.samples.size() * sizeof(std::int16_t)), clip.sampleRate);
+    }
+    return b;
+  }
+
+  ALCdevice* device_;
+  ALCcontext* context_;
+  std::string name_;
+  std::unordered_map<const void*, Source> sources_;
+  std::unordered_map<const formats::AudioData*, ALuint> buffers_;
+};
+
+}  // namespace
+
+std::unique_ptr<AudioOutput> openAudioOutput(bool wanted, std::string& note) {
+  if (!wanted) {
+    note = "sound is off";
+    return std::make_unique<NullAudioOutput>();
+  }
+  ALCdevice* device = alcOpenDevice(nullptr);
+  if (device == nullptr) {
+    note = "no audio device: sound is not played";
+    return std::make_unique<NullAudioOutput>();
+  }
+  ALCcontext* context = alcCreateContext(device, nullptr);
+  if (context == nullptr) {
+    alcCloseDevice(device);
+    note = "the audio device has no context: sound is not played";
+    return std::make_unique<NullAudioOutput>();
+  }
+  return std::make_unique<OpenAlOutput>(device, context);
+}
+
+}  // namespace gs::audio

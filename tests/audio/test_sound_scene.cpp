@@ -1,0 +1,97 @@
+// SoundScene with the execution model and the null output: an AudioClip's time rules
+// decide what plays, at which offset, and the headless output is the null one.
+#include "audio/audio_output.hpp"
+#include "audio/sound_scene.hpp"
+#include "runtime/execution_model.hpp"
+#include "vrml/parser.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cstdlib>
+
+using namespace gs;
+
+namespace {
+
+struct World {
+  std::shared_ptr<vrml::Scene> scene;
+  std::unique_ptr<runtime::ExecutionModel> model;
+  audio::SoundScene sounds;
+  audio::NullAudioOutput out;
+
+  explicit World(const std::string& body)
+      : scene(std::make_shared<vrml::Scene>(vrml::parseVrml(
+            "#VRML V2.0 utf8\n" + body, std::string(GS_SOURCE_DIR) + "/assets/media/test.wrl"))),
+        model(std::make_unique<runtime::ExecutionModel>(scene, 0.0)),
+        sounds(scene, {}) {}
+
+  /// One frame at `time` heard from `listener` (a viewer looking down -Z).
+  void frame(double time, glm::vec3 listener = {0.0f, 0.0f, 0.0f}) {
+    model->advanceTo(time);
+    glm::mat4 view(1.0f);
+    view[3] = glm::vec4(-listener, 1.0f);
+    sounds.update(
+        view,
+        [this](const vrml::Node& n) -> std::optional<audio::ClipTime> {
+          const auto m = model->media(n);
+          if (!m) return std::nullopt;
+          return audio::ClipTime{m->active, m->mediaTime};
+        },
+        out);
+    for (const auto& [node, seconds] : sounds.takeDurations())
+      model->setMediaDuration(*node, seconds);
+  }
+};
+
+}  // namespace
+
+TEST_CASE("Sound: a WAV clip plays through the null output for its duration", "[audio][sound]") {
+  World w(R"(Transform { translation 0 0 -5.5 children
+  Sound { source DEF C AudioClip { url "tone.wav" startTime 1 } } })");
+  w.frame(0.0);  // loads the clip: duration_changed 0.5
+  CHECK(w.out.playing().empty());
+  REQUIRE(w.model->media(*w.scene->rootNodes[0]->mfnode("children")[0]->sfnode("source")));
+  w.frame(1.0);
+  REQUIRE(w.out.playing().size() == 1);
+  const audio::Voice& v = w.out.playing()[0];
+  CHECK(v.offset == Approx(0.0));
+  CHECK(v.gain == Approx(0.316228));  // 5.5 m from the default spheres: -10 dB
+  CHECK(v.position.z == Approx(-5.5f));
+  REQUIRE(v.clip);
+  CHECK(v.clip->duration() == Approx(0.5));
+  w.frame(1.25);
+  REQUIRE(w.out.playing().size() == 1);
+  CHECK(w.out.playing()[0].offset == Approx(0.25));
+  w.frame(1.6);  // past startTime + duration: stopped
+  CHECK(w.out.playing().empty());
+  CHECK(w.sounds.heard().size() == 1);
+  CHECK_FALSE(w.sounds.heard()[0].playing);
+}
+
+TEST_CASE("Sound: a looping clip, a listener out of range, a missing file", "[audio][sound]") {
+  World w(R"(Sound { maxFront 2 maxBack 2 source AudioClip { url "tone.wav" loop TRUE } }
+Sound { source AudioClip { url "missing.wav" loop TRUE } })");
+  w.frame(0.0);
+  w.frame(10.2);  // looping since 0: 0.2 s into the 21st cycle
+  REQUIRE(w.out.playing().size() == 1);
+  CHECK(w.out.playing()[0].offset == Approx(0.2));
+  CHECK(w.out.playing()[0].loop);
+  w.frame(10.3, {0.0f, 0.0f, 3.0f});  // beyond maxFront: silent, not played
+  CHECK(w.out.playing().empty());
+  REQUIRE(w.sounds.diagnostics().items.size() == 1);
+  CHECK(w.sounds.diagnostics().items[0].message.find("missing.wav") != std::string::npos);
+}
+
+TEST_CASE("Sound: without an audio device the output is the null one", "[audio][sound]") {
+  std::string note;
+  auto off = audio::openAudioOutput(false, note);
+  REQUIRE(off);
+  CHECK(off->isNull());
+  // No backend OpenAL Soft knows: the device cannot open, which is a note, not an error.
+  ::setenv("ALSOFT_DRIVERS", "no-such-backend", 1);
+  auto none = audio::openAudioOutput(true, note);
+  REQUIRE(none);
+  CHECK(none->isNull());
+  CHECK(note.find("no audio device") != std::string::npos);
+  none->update({});
+}
