@@ -44,7 +44,6 @@ Image decodeImage(std::string_view bytes, const std::string& name, int* componen
   if (bytes.empty()) throw std::runtime_error("cannot decode " + name + ": no data");
   if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
     throw std::runtime_error("cannot decode " + name + ": file too large");
-  if (detail::looksLikeGif(bytes)) return detail::decodeGif(bytes, name, components);
   int w = 0, h = 0, n = 0;
   const std::size_t maxPixels =
       std::max(kImagePixelsAlwaysAllowed, bytes.size() * kMaxImagePixelsPerByte);
@@ -55,6 +54,21 @@ Image decodeImage(std::string_view bytes, const std::string& name, int* componen
                               std::to_string(kMaxImagePixelsPerByte) +
                               " pixels per byte, render::kMaxImagePixelsPerByte)");
   };
+  if (detail::looksLikeGif(bytes)) {
+    // The logical screen size (bytes 6..9, little-endian) bounds what giflib allocates:
+    // refuse it before decoding when the file is too small to hold that many pixels.
+    if (bytes.size() >= 10) {
+      const auto u16 = [&](std::size_t i) {
+        return int(static_cast<unsigned char>(bytes[i])) |
+               (int(static_cast<unsigned char>(bytes[i + 1])) << 8);
+      };
+      w = u16(6);
+      h = u16(8);
+      if (static_cast<std::size_t>(w) * static_cast<std::size_t>(h) > maxPixels)
+        throw tooManyPixels();
+    }
+    return detail::decodeGif(bytes, name, components);
+  }
   if (detail::looksLikeJpeg(bytes)) {
     // libjpeg-turbo, not stb_image (see image_jpeg.hpp).
     Image image;
