@@ -1,4 +1,5 @@
 #include "compact_payload.hpp"
+#include "morton.hpp"
 
 #include <algorithm>
 #include <vector>
@@ -10,25 +11,6 @@
 namespace gs::qnv::detail {
 
 namespace {
-
-// Spreads the low 10 bits of v to every third bit.
-std::uint32_t spread3(std::uint32_t v) {
-  v &= 0x3ffu;
-  v = (v | (v << 16)) & 0x030000ffu;
-  v = (v | (v << 8)) & 0x0300f00fu;
-  v = (v | (v << 4)) & 0x030c30c3u;
-  v = (v | (v << 2)) & 0x09249249u;
-  return v;
-}
-
-std::uint32_t compact3(std::uint32_t v) {
-  v &= 0x09249249u;
-  v = (v | (v >> 2)) & 0x030c30c3u;
-  v = (v | (v >> 4)) & 0x0300f00fu;
-  v = (v | (v >> 8)) & 0x030000ffu;
-  v = (v | (v >> 16)) & 0x3ffu;
-  return v;
-}
 
 std::uint32_t morton(std::uint64_t r) {
   const RecordFields f = unpackRecord(r);

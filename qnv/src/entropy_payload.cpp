@@ -1,4 +1,5 @@
 #include "entropy_payload.hpp"
+#include "morton.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -14,24 +15,6 @@ using base::appendLe;
 using base::loadLe;
 
 namespace {
-
-std::uint32_t spread3(std::uint32_t v) {
-  v &= 0x3ffu;
-  v = (v | (v << 16)) & 0x030000ffu;
-  v = (v | (v << 8)) & 0x0300f00fu;
-  v = (v | (v << 4)) & 0x030c30c3u;
-  v = (v | (v << 2)) & 0x09249249u;
-  return v;
-}
-
-std::uint32_t compact3(std::uint32_t v) {
-  v &= 0x09249249u;
-  v = (v | (v >> 2)) & 0x030c30c3u;
-  v = (v | (v >> 4)) & 0x0300f00fu;
-  v = (v | (v >> 8)) & 0x030000ffu;
-  v = (v | (v >> 16)) & 0x3ffu;
-  return v;
-}
 
 int bitLength(std::uint32_t v) {
   return v ? 32 - __builtin_clz(v) : 0;
