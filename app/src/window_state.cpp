@@ -214,7 +214,8 @@ void WindowState::updateRuntimes() {
   }
   if (sounds && active < viewports.size() && viewports[active].world < worlds.size())
     sounds->update(worlds[viewports[active].world].scene, viewports[active].navigator.camera(),
-                   *runtimes, now);
+                   *runtimes, now,
+                   viewports[active].renderer ? &viewports[active].renderer->traversal() : nullptr);
   std::vector<std::string> lines;
   runtimes->drainMessages(lines);
   for (std::string& line : lines) {

@@ -8,8 +8,8 @@ WorldSounds::WorldSounds(bool enabled, session::FetchWhole fetch)
     : output_(audio::openAudioOutput(enabled, note_)), fetch_(std::move(fetch)) {}
 
 void WorldSounds::update(const std::shared_ptr<const vrml::Scene>& scene,
-                         const render::Camera& camera, session::WorldRuntimes& runtimes,
-                         double now) {
+                         const render::Camera& camera, session::WorldRuntimes& runtimes, double now,
+                         const render::SceneTraversal* traversal) {
   if (!scene) return;
   auto& s = scenes_[scene.get()];
   if (!s) {
@@ -29,7 +29,10 @@ void WorldSounds::update(const std::shared_ptr<const vrml::Scene>& scene,
         if (!m) return std::nullopt;
         return audio::ClipTime{m->active, m->mediaTime};
       },
-      *output_);
+      *output_,
+      traversal ? audio::InlineQuery(
+                      [traversal](const vrml::Node& inl) { return traversal->loadedInline(inl); })
+                : audio::InlineQuery());
   runtimes.setMediaDurations(scene.get(), s->takeDurations());
   // Clips that cannot be read: each once, as the renderer's diagnostics.
   std::size_t& shown = shown_[scene.get()];

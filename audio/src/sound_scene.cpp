@@ -1,12 +1,15 @@
-// SoundScene: the Sounds of a world, their gains and voices each frame (6.42, 6.3).
+// SoundScene: the Sounds of a world, their gains and voices each frame (6.42, 6.3, 6.28).
 #include "audio/sound_scene.hpp"
 
 #include "base/file.hpp"
 #include "base/url.hpp"
+#include "formats/movie_audio.hpp"
 #include "vrml/transform.hpp"
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_inverse.hpp>
+
+#include <algorithm>
 
 namespace gs::audio {
 
@@ -15,41 +18,60 @@ namespace {
 struct FoundSound {
   const vrml::Node* node;
   glm::mat4 world;
+  const vrml::Scene* scene;  // the world that holds it: its url is the clips' base
 };
 
-void walk(const vrml::NodePtr& n, const glm::mat4& m, std::vector<FoundSound>& out, int depth) {
-  if (!n || depth > 256) return;
-  const std::string& type = n->typeName();
-  if (type == "Sound") {
-    out.push_back({n.get(), m});
-    return;
+struct Walk {
+  const InlineQuery& inlines;
+  std::vector<FoundSound>& out;
+  std::vector<std::shared_ptr<const vrml::Scene>> keep;  // inline worlds met this frame
+  std::vector<const vrml::Scene*> path;                  // the worlds being walked
+
+  void node(const vrml::NodePtr& n, const glm::mat4& m, const vrml::Scene* scene, int depth) {
+    if (!n || depth > 256) return;
+    const std::string& type = n->typeName();
+    if (type == "Sound") {
+      out.push_back({n.get(), m, scene});
+      return;
+    }
+    if (type == "Transform") {
+      const glm::mat4 child = m * vrml::transformMatrix(*n);
+      for (const vrml::NodePtr& c : n->mfnode("children")) node(c, child, scene, depth + 1);
+    } else if (type == "Group" || type == "Anchor" || type == "Billboard" || type == "Collision") {
+      for (const vrml::NodePtr& c : n->mfnode("children")) node(c, m, scene, depth + 1);
+    } else if (type == "Switch") {
+      const auto& choices = n->mfnode("choice");
+      const int which = n->get<vrml::FieldType::SFInt32>("whichChoice", -1);
+      if (which >= 0 && static_cast<std::size_t>(which) < choices.size())
+        node(choices[static_cast<std::size_t>(which)], m, scene, depth + 1);
+    } else if (type == "LOD") {
+      const auto& levels = n->mfnode("level");
+      if (!levels.empty()) node(levels.front(), m, scene, depth + 1);
+    } else if (type == "Inline" && inlines) {
+      // The world the renderer loaded for it, in the Inline's coordinate system (6.25).
+      std::shared_ptr<const vrml::Scene> world = inlines(*n);
+      // A world that inlines itself, directly or not, is walked once on each path.
+      if (!world || std::find(path.begin(), path.end(), world.get()) != path.end()) return;
+      keep.push_back(world);
+      path.push_back(world.get());
+      for (const vrml::NodePtr& c : world->rootNodes) node(c, m, world.get(), depth + 1);
+      path.pop_back();
+    }
   }
-  if (type == "Transform") {
-    const glm::mat4 child = m * vrml::transformMatrix(*n);
-    for (const vrml::NodePtr& c : n->mfnode("children")) walk(c, child, out, depth + 1);
-  } else if (type == "Group" || type == "Anchor" || type == "Billboard" || type == "Collision") {
-    for (const vrml::NodePtr& c : n->mfnode("children")) walk(c, m, out, depth + 1);
-  } else if (type == "Switch") {
-    const auto& choices = n->mfnode("choice");
-    const int which = n->get<vrml::FieldType::SFInt32>("whichChoice", -1);
-    if (which >= 0 && static_cast<std::size_t>(which) < choices.size())
-      walk(choices[static_cast<std::size_t>(which)], m, out, depth + 1);
-  } else if (type == "LOD") {
-    const auto& levels = n->mfnode("level");
-    if (!levels.empty()) walk(levels.front(), m, out, depth + 1);
-  }
-}
+};
 
 }  // namespace
 
 SoundScene::SoundScene(std::shared_ptr<const vrml::Scene> scene, ClipLoader loader)
     : scene_(std::move(scene)), loader_(std::move(loader)) {}
 
-std::shared_ptr<const formats::AudioData> SoundScene::clipOf(const vrml::Node& clip) {
+std::shared_ptr<const formats::AudioData> SoundScene::clipOf(const vrml::Node& clip,
+                                                             const std::string& base) {
   if (const auto it = clips_.find(&clip); it != clips_.end()) return it->second;
+  const bool movie = clip.typeName() == "MovieTexture";
   std::shared_ptr<formats::AudioData> data;
+  double duration = -1.0;
   std::string failures;
-  const std::string base = scene_ ? scene_->url : std::string();
   const auto urls = clip.get<vrml::FieldType::MFString>("url", std::vector<std::string>{});
   for (const std::string& reference : urls) {
     if (reference.empty()) continue;
@@ -61,27 +83,44 @@ std::shared_ptr<const formats::AudioData> SoundScene::clipOf(const vrml::Node& c
       if (!path.empty()) ok = base::readFile(path, bytes, error);
       if (!ok && loader_) ok = loader_(url, bytes, error);
     }
-    auto decoded = std::make_shared<formats::AudioData>();
-    if (ok && formats::readAudio(bytes, url, *decoded, error)) {
-      data = std::move(decoded);
-      break;
+    if (ok && movie) {
+      formats::MovieAudio sound;
+      const bool decoded = formats::readMovieAudio(bytes, url, sound, error);
+      if (decoded) data = std::make_shared<formats::AudioData>(std::move(sound.audio));
+      if (sound.duration >= 0.0) {  // a movie, with or without sound: the first readable one
+        duration = sound.duration;
+        if (!decoded) failures += (failures.empty() ? "" : "; ") + error;
+        break;
+      }
+    } else if (ok) {
+      auto decoded = std::make_shared<formats::AudioData>();
+      if (formats::readAudio(bytes, url, *decoded, error)) {
+        duration = decoded->duration();
+        data = std::move(decoded);
+        break;
+      }
     }
     failures += (failures.empty() ? "" : "; ") + (error.empty() ? url : error);
   }
   if (!data)
-    diagnostics_.warning(clip.location, "cannot load AudioClip (" +
-                                            (failures.empty() ? std::string("no url") : failures) +
-                                            "): silent");
-  durations_.emplace_back(&clip, data ? data->duration() : -1.0);
+    diagnostics_.warning(
+        clip.location,
+        std::string(movie ? "cannot play the sound of MovieTexture (" : "cannot load AudioClip (") +
+            (failures.empty() ? std::string("no url") : failures) + "): silent");
+  durations_.emplace_back(&clip, duration);
   clips_.emplace(&clip, data);
   return data;
 }
 
 void SoundScene::update(const glm::mat4& worldToListener, const ClipTimeQuery& clipTime,
-                        AudioOutput& output) {
+                        AudioOutput& output, const InlineQuery& inlines) {
   std::vector<FoundSound> found;
+  Walk walk{inlines, found, {}, {scene_.get()}};
   if (scene_)
-    for (const vrml::NodePtr& n : scene_->rootNodes) walk(n, glm::mat4(1.0f), found, 0);
+    for (const vrml::NodePtr& n : scene_->rootNodes) walk.node(n, glm::mat4(1.0f), scene_.get(), 0);
+  // Inline worlds stay alive while their nodes key clips_ (a renderer made anew loads new
+  // ones; the old nodes' addresses must not be reused under our keys).
+  for (auto& w : walk.keep) inlineWorlds_.emplace(w.get(), std::move(w));
   const glm::mat4 listenerToWorld = glm::inverse(worldToListener);
   const glm::vec3 listener(listenerToWorld[3]);
   heard_.clear();
@@ -107,11 +146,19 @@ void SoundScene::update(const glm::mat4& worldToListener, const ClipTimeQuery& c
     v.key = &s;
     const vrml::NodePtr source = s.sfnode("source");
     std::optional<ClipTime> time;
+    const std::string& base = f.scene->url;
     if (source && source->typeName() == "AudioClip") {
-      v.clip = clipOf(*source);
+      v.clip = clipOf(*source, base);
       if (clipTime) time = clipTime(*source);
       v.pitch = source->get<FieldType::SFFloat>("pitch", 1.0f);
       v.loop = source->get<FieldType::SFBool>("loop", false);
+    } else if (source && source->typeName() == "MovieTexture") {
+      // Its audio stream, on the movie's own clock (6.28); backwards it is not heard.
+      v.clip = clipOf(*source, base);
+      if (clipTime) time = clipTime(*source);
+      v.pitch = source->get<FieldType::SFFloat>("speed", 1.0f);
+      v.loop = source->get<FieldType::SFBool>("loop", false);
+      if (!(v.pitch > 0.0f)) v.clip = nullptr;
     }
     const bool audible = v.clip && time && time->active && h.gain > 0.0f;
     v.offset = time ? time->mediaTime : 0.0;

@@ -88,4 +88,10 @@ const SceneTraversal::InlineScene* SceneTraversal::inlineScene(const vrml::Node&
   return result.get();
 }
 
+std::shared_ptr<const vrml::Scene> SceneTraversal::loadedInline(
+    const vrml::Node& inlineNode) const {
+  const auto it = inlinesByNode_.find(&inlineNode);
+  return it == inlinesByNode_.end() ? nullptr : it->second->scene;
+}
+
 }  // namespace gs::render

@@ -1,9 +1,6 @@
 // SoundScene with the execution model and the null output: an AudioClip's time rules
 // decide what plays, at which offset, and the headless output is the null one.
-#include "audio/audio_output.hpp"
-#include "audio/sound_scene.hpp"
-#include "runtime/execution_model.hpp"
-#include "vrml/parser.hpp"
+#include "sound_world.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -11,39 +8,7 @@
 
 using namespace gs;
 
-namespace {
-
-struct World {
-  std::shared_ptr<vrml::Scene> scene;
-  std::unique_ptr<runtime::ExecutionModel> model;
-  audio::SoundScene sounds;
-  audio::NullAudioOutput out;
-
-  explicit World(const std::string& body)
-      : scene(std::make_shared<vrml::Scene>(vrml::parseVrml(
-            "#VRML V2.0 utf8\n" + body, std::string(GS_SOURCE_DIR) + "/assets/media/test.wrl"))),
-        model(std::make_unique<runtime::ExecutionModel>(scene, 0.0)),
-        sounds(scene, {}) {}
-
-  /// One frame at `time` heard from `listener` (a viewer looking down -Z).
-  void frame(double time, glm::vec3 listener = {0.0f, 0.0f, 0.0f}) {
-    model->advanceTo(time);
-    glm::mat4 view(1.0f);
-    view[3] = glm::vec4(-listener, 1.0f);
-    sounds.update(
-        view,
-        [this](const vrml::Node& n) -> std::optional<audio::ClipTime> {
-          const auto m = model->media(n);
-          if (!m) return std::nullopt;
-          return audio::ClipTime{m->active, m->mediaTime};
-        },
-        out);
-    for (const auto& [node, seconds] : sounds.takeDurations())
-      model->setMediaDuration(*node, seconds);
-  }
-};
-
-}  // namespace
+using World = test::SoundWorld;
 
 TEST_CASE("Sound: a WAV clip plays through the null output for its duration", "[audio][sound]") {
   World w(R"(Transform { translation 0 0 -5.5 children

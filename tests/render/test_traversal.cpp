@@ -248,10 +248,15 @@ TEST_CASE("Inline loads once, resolves relative URLs and survives failures",
     return s;
   };
   auto root = makeNode("Inline", {{"url", mfString({"missing.wrl", "sub/a.wrl"})}});
-  SceneTraversal t(
-      makeScene({root, makeNode("Inline", {{"url", mfString({"gone.wrl"})}})}, "/w/main.wrl"), o);
+  auto gone = makeNode("Inline", {{"url", mfString({"gone.wrl"})}});
+  SceneTraversal t(makeScene({root, gone}, "/w/main.wrl"), o);
+  CHECK_FALSE(t.loadedInline(*root));  // not met yet: loadedInline loads nothing
   TraversalFrame frame;
   t.collect(Camera{}, frame);
+  // The worlds loaded, as audio::SoundScene asks for them.
+  REQUIRE(t.loadedInline(*root));
+  CHECK(t.loadedInline(*root)->url == "/w/sub/a.wrl");
+  CHECK_FALSE(t.loadedInline(*gone));
   // a.wrl's shape and b.wrl's shape; b.wrl inlining a.wrl again is a recursion: cut.
   CHECK(frame.shapes.size() == 2);
   CHECK(*frame.shapes[0].baseUrl == "/w/b.wrl");

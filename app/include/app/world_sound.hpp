@@ -21,9 +21,11 @@ class WorldSounds {
   WorldSounds(bool enabled, session::FetchWhole fetch);
   /// Why the output is the null one ("" when a device opened).
   const std::string& note() const { return note_; }
-  /// One frame: `scene`'s Sounds heard from `camera`, clip durations to `runtimes`.
+  /// One frame: `scene`'s Sounds heard from `camera`, clip durations to `runtimes`; the
+  /// Sounds of the Inline worlds `traversal` (a renderer of `scene`; may be null) loaded too.
   void update(const std::shared_ptr<const vrml::Scene>& scene, const render::Camera& camera,
-              session::WorldRuntimes& runtimes, double now);
+              session::WorldRuntimes& runtimes, double now,
+              const render::SceneTraversal* traversal = nullptr);
 
  private:
   std::string note_;  // before output_: the output's constructor writes it

@@ -1,7 +1,8 @@
-// The Sound nodes (ISO/IEC 14772-1:1997 6.42) of one world and their AudioClips (6.3),
-// heard from the viewer's place: each frame the scene graph is walked for Sounds (their
-// coordinate systems through Transform, Group, Anchor, Billboard, Collision, the chosen
-// Switch child and LOD's first level), each audible one gets the gain of the ellipsoid
+// The Sound nodes (ISO/IEC 14772-1:1997 6.42) of one world and their sources, AudioClips
+// (6.3) or MovieTextures (6.28, their audio stream), heard from the viewer's place: each
+// frame the scene graph is walked for Sounds (their coordinate systems through Transform,
+// Group, Anchor, Billboard, Collision, the chosen Switch child, LOD's first level and the
+// worlds of loaded Inlines, 6.25), each audible one gets the gain of the ellipsoid
 // model (audio/sound_model.hpp), the device's voices go by priority, and the output
 // plays them at the media time the execution model gives (docs/media.md).
 #pragma once
@@ -25,7 +26,7 @@
 
 namespace gs::audio {
 
-/// What the execution model says of an AudioClip now (runtime::MediaState, as plain
+/// What the execution model says of an AudioClip or MovieTexture now (runtime::MediaState, as plain
 /// values so audio/ needs no runtime/).
 struct ClipTime {
   bool active = false;     // isActive
@@ -37,6 +38,10 @@ using ClipTimeQuery = std::function<std::optional<ClipTime>(const vrml::Node& cl
 /// Reads the bytes of an already resolved URL (the session's loader or a file read).
 using ClipLoader =
     std::function<bool(const std::string& url, std::string& bytes, std::string& error)>;
+/// The world an Inline node (6.25) has loaded so far (the renderer loads Inlines; e.g.
+/// render::SceneTraversal::loadedInline); null when none (not yet, or failed). Its `url`
+/// is the base of the clip URLs inside it.
+using InlineQuery = std::function<std::shared_ptr<const vrml::Scene>(const vrml::Node& inlineNode)>;
 
 /// One Sound as last heard (for tests and a panel).
 struct HeardSound {
@@ -47,18 +52,22 @@ struct HeardSound {
 
 class SoundScene {
  public:
-  /// AudioClip urls resolve against the scene's url; local files are read directly (as
-  /// base::mayReference allows), others through `loader` (empty: local files only); each
-  /// clip once, on first use.
+  /// AudioClip and MovieTexture urls resolve against the url of the scene that holds them; local
+  /// files are read directly (as base::mayReference allows), others through `loader` (empty: local
+  /// files only); each clip once, on first use.
   SoundScene(std::shared_ptr<const vrml::Scene> scene, ClipLoader loader);
 
   /// One frame: `worldToListener` is the viewer's view matrix (world to eye coordinates).
-  /// Walks the scene, loads new clips, computes every Sound's gain, chooses voices and
-  /// hands them to `output`.
-  void update(const glm::mat4& worldToListener, const ClipTimeQuery& clipTime, AudioOutput& output);
+  /// Walks the scene (and, through `inlines`, the Inline worlds loaded so far), loads new
+  /// clips, computes every Sound's gain, chooses voices and hands them to `output`.
+  /// A MovieTexture source plays its audio stream (formats/movie_audio.hpp) at its media
+  /// time, at `speed` as the pitch; a movie played backwards (speed < 0) is silent.
+  void update(const glm::mat4& worldToListener, const ClipTimeQuery& clipTime, AudioOutput& output,
+              const InlineQuery& inlines = {});
 
   /// Durations (seconds; -1: unreadable) of clips loaded since the last call, for
-  /// runtime::ExecutionModel::setMediaDuration.
+  /// runtime::ExecutionModel::setMediaDuration (a MovieTexture's is its video's, the one
+  /// the renderer reports).
   std::vector<std::pair<const vrml::Node*, double>> takeDurations();
   /// Every Sound of the last update, in scene order.
   const std::vector<HeardSound>& heard() const { return heard_; }
@@ -66,13 +75,14 @@ class SoundScene {
   const vrml::Diagnostics& diagnostics() const { return diagnostics_; }
 
  private:
-  std::shared_ptr<const formats::AudioData> clipOf(const vrml::Node& clip);
+  std::shared_ptr<const formats::AudioData> clipOf(const vrml::Node& clip, const std::string& base);
 
   std::shared_ptr<const vrml::Scene> scene_;
   ClipLoader loader_;
   std::unordered_map<const vrml::Node*, std::shared_ptr<const formats::AudioData>> clips_;
   std::vector<std::pair<const vrml::Node*, double>> durations_;
   std::vector<HeardSound> heard_;
+  std::unordered_map<const vrml::Scene*, std::shared_ptr<const vrml::Scene>> inlineWorlds_;
   vrml::Diagnostics diagnostics_;
 };
 

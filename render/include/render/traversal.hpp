@@ -264,6 +264,11 @@ class SceneTraversal {
     return inlineScenesLoaded_;
   }
 
+  /// The world loaded for `inlineNode` (an Inline of the scene or of a loaded Inline world),
+  /// or null when it was not loaded (not met yet, or failed). Loads nothing: for the
+  /// Sounds inside Inlines (audio::SoundScene).
+  std::shared_ptr<const vrml::Scene> loadedInline(const vrml::Node& inlineNode) const;
+
   /// How many tessellations collect() and mesh() made (a changed geometry is
   /// tessellated again; an animated Transform is not): for benchmarks and tests.
   std::uint64_t tessellationCount() const { return tessellations_; }
