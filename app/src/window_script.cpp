@@ -91,7 +91,7 @@ bool WindowScript::load(const std::string& path, std::string& error) {
       if (!parseNumber(c.argument, number) || !(number > 0.0) || number > 10000)
         return fail("frame-target MS with 0 < MS <= 10000");
     } else if (c.verb == "open" || c.verb == "screenshot" || c.verb == "screenshot-viewport" ||
-               c.verb == "status") {
+               c.verb == "status" || c.verb == "frame-stats") {
       if (c.argument.empty()) return fail(c.verb + " followed by a path");
     } else if (isInteraction(c.verb)) {
       std::vector<double> n;
@@ -113,7 +113,7 @@ bool WindowScript::load(const std::string& path, std::string& error) {
       return fail(
           "a command (layout, open, viewport, lod, mode, wait-loaded, frames, "
           "screenshot, screenshot-viewport, time, advance, pointer, press, release, click, "
-          "drag, key, navigation, walk, back, forward, camera, quit)");
+          "drag, key, navigation, walk, back, forward, camera, frame-stats, quit)");
     }
     commands_.push_back(std::move(c));
   }
@@ -121,6 +121,7 @@ bool WindowScript::load(const std::string& path, std::string& error) {
 }
 
 bool WindowScript::step(WindowState& state, int width, int height) {
+  frameStamps_.push_back(now());  // one call per frame drawn: frame-stats
   if (framesLeft_ > 0 && --framesLeft_ > 0) return true;
   while (next_ < commands_.size()) {
     const Command& c = commands_[next_];
@@ -188,6 +189,8 @@ bool WindowScript::step(WindowState& state, int width, int height) {
       state.setVectorBudget(static_cast<std::uint64_t>(number));
     } else if (c.verb == "frame-target") {
       state.frameTarget = number / 1000.0;
+    } else if (c.verb == "frame-stats") {
+      writeFrameStats(state, c.argument);
     } else if (c.verb == "status") {
       std::ofstream out(c.argument);
       for (std::size_t i = 0; i < state.viewports.size(); ++i) {

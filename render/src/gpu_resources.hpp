@@ -62,8 +62,11 @@ class MovieTextures {
   /// Durations found since the last call (seconds; -1: unreadable).
   std::vector<std::pair<const vrml::Node*, double>> takeDurations();
   void release();
+  /// Movie frames copied into textures so far (all movies).
+  std::uint64_t framesUploaded() const { return uploads_; }
 
  private:
+  std::uint64_t uploads_ = 0;
   struct Movie {
     std::unique_ptr<formats::MoviePlayer> player;
     GpuTexture texture;

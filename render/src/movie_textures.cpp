@@ -114,6 +114,7 @@ const GpuTexture& MovieTextures::get(const vrml::Node& node, const std::string& 
   }
   glBindTexture(GL_TEXTURE_2D, 0);
   m.shown = frame->index;
+  ++uploads_;
   return m.texture;
 }
 

@@ -400,6 +400,7 @@ void SceneRenderer::draw(const Camera& camera, int x, int y, int width, int heig
     for (const DrawItem& d : g.transparent) drawItem(d);
     statistics_.transparent = g.transparent.size();
   }
+  statistics_.movieFrames = g.textures.movies.framesUploaded();
 
   if (!g.frame.splats.empty() || splats_->mode() == RenderMode::splats) {
     glDisable(GL_SCISSOR_TEST);

@@ -34,6 +34,10 @@
 //                           by walls (collideTime sent), WALK on the ground at once
 //   back / forward          Back / Forward (Alt+Left / Alt+Right) in the active viewport
 //   camera OUT.txt          the active viewport's camera position "X Y Z" (metres)
+//   frame-stats OUT.txt     the frames drawn since the last frame-stats (or the start):
+//                           "frames N mean_ms M median_ms M p95_ms M max_ms M", then per
+//                           viewport "viewport I movie_frames K" (MovieTexture frames
+//                           copied into textures since its renderer was made)
 //   Each of these commands is followed by one frame drawn before the next command.
 //   quit
 #pragma once
@@ -83,6 +87,9 @@ class WindowScript {
   static bool isNavigation(const std::string& verb);
   static std::string checkNavigation(const Command& c);
   void navigate(WindowState& state, const Command& c);
+  /// frame-stats (window_script_stats.cpp); the steady-clock seconds of each step().
+  void writeFrameStats(WindowState& state, const std::string& path);
+  std::vector<double> frameStamps_;
 };
 
 }  // namespace gs::app

@@ -11,6 +11,7 @@
 #include "vrml/scene.hpp"
 
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -61,6 +62,9 @@ struct DrawStatistics {
   std::size_t triangles = 0;    // triangles submitted
   std::size_t transparent = 0;  // shapes drawn in the blended pass
   std::size_t splats = 0;       // QNV vectors drawn
+  /// MovieTexture frames copied into textures since the renderer was made (each movie
+  /// frame once, however often it is drawn): docs/media.md's "frames shown".
+  std::uint64_t movieFrames = 0;
 };
 
 /// Holds the GPU resources of one scene. CPU work (traversal, viewpoints, bounds) needs
