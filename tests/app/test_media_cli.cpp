@@ -3,6 +3,7 @@
 #include "baseline.hpp"
 #include "process.hpp"
 #include "test_support.hpp"
+#include "xvfb.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -71,4 +72,45 @@ TEST_CASE("MovieTexture: a movie that is not one is a warning naming it", "[app]
   CHECK(r.exitCode == 0);
   CHECK(r.err.find("broken.mpg") != std::string::npos);
   CHECK(r.err.find("MovieTexture") != std::string::npos);
+}
+
+TEST_CASE("the window's frame-stats: frame times and the movie frames each viewport showed",
+          "[app][media][window]") {
+  gs::test::Xvfb x;
+  if (gs::test::skipWithoutXvfb(x)) return;
+  const fs::path dir = fs::path(GS_BINARY_DIR) / "test_media_cli";
+  fs::create_directories(dir);
+  const fs::path script = dir / "stats.script", first = dir / "stats-1.txt",
+                 second = dir / "stats-2.txt";
+  // The movie world on the left, a world without movies on the right.
+  std::ofstream(script) << "layout 2x1\nviewport 1\nopen "
+                        << (gs::test::sourceDir() / "assets/worlds/welcome.wrl").string()
+                        << "\nwait-loaded\nframe-stats " << first.string()
+                        << "\nframes 6\nframe-stats " << second.string() << "\nquit\n";
+  auto r = runGhostspace(
+      {"--size", "320x240", "--new-instance", "--script", script.string(), movieWorld()},
+      {"DISPLAY=" + x.display()});
+  INFO(r.err);
+  REQUIRE(r.exitCode == 0);
+  std::ifstream in(second);
+  std::string word;
+  std::size_t frames = 0;
+  double mean = -1.0, median = -1.0, p95 = -1.0, max = -1.0;
+  REQUIRE(in >> word >> frames);
+  CHECK(word == "frames");
+  CHECK(frames == 6);  // the frames drawn since the first frame-stats
+  REQUIRE(in >> word >> mean >> word >> median >> word >> p95 >> word >> max);
+  CHECK(mean > 0.0);
+  CHECK(median <= max);
+  CHECK(p95 <= max);
+  std::uint64_t movieFrames[2] = {99999, 99999};
+  for (int i = 0; i < 2; ++i) {
+    int index = -1;
+    REQUIRE(in >> word >> index >> word >> movieFrames[i]);
+    CHECK(index == i);
+    CHECK(word == "movie_frames");
+  }
+  // Two looping movies: at most one new frame each per frame drawn so far; none without.
+  CHECK(movieFrames[0] <= 2 * 40);
+  CHECK(movieFrames[1] == 0);
 }
