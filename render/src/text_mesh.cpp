@@ -97,6 +97,13 @@ vrml::Mesh tessellateText(const vrml::Node& text, vrml::Diagnostics* diag,
     }
     for (std::uint32_t i : gm->indices) mesh.indices.push_back(base + i);
   }
+  // The bounding box is the lines' layout boxes (advance by ascender..descender), not just
+  // the glyphs' ink, as castle-model-viewer's: it frames the same camera on a Text world
+  // (docs/castle-comparison.md).
+  if (!mesh.indices.empty() && !layout.bounds.empty()) {
+    mesh.bounds.extend(glm::vec3(layout.bounds.min, 0.0f));
+    mesh.bounds.extend(glm::vec3(layout.bounds.max, 0.0f));
+  }
   return mesh;
 }
 
