@@ -83,10 +83,22 @@ TEST_CASE("Text 'O' triangulates with its hole", "[render][text]") {
   const double ring =
       outlineArea(gs::formats::sharedFontLibrary().outline(layout.glyphs.at(0).key));
   CHECK(meshArea(m) == Approx(ring * scale * scale).epsilon(1e-4));
+  // The bounding box is the line's layout box (advance by ascender..descender, as
+  // castle-model-viewer frames Text), larger than the glyph's ink.
+  gs::vrml::Bounds ink;
+  for (const glm::vec3& p : m.positions) ink.extend(p);
+  CHECK(m.bounds.min.x == Approx(layout.bounds.min.x));
+  CHECK(m.bounds.max.x == Approx(layout.bounds.max.x));
+  CHECK(m.bounds.min.y == Approx(layout.bounds.min.y));
+  CHECK(m.bounds.max.y == Approx(layout.bounds.max.y));
+  CHECK(m.bounds.min.y == Approx(-483.0 * scale));  // DejaVu Sans' descender
+  CHECK(m.bounds.max.y == Approx(1901.0 * scale));  // and ascender
+  CHECK(m.bounds.min.y < ink.min.y - 0.3f);
+  CHECK(m.bounds.max.y > ink.max.y + 0.3f);
   // The centre of the O is open, the ring is filled.
-  const glm::vec3 c = m.bounds.center();
+  const glm::vec3 c = ink.center();
   CHECK_FALSE(covered(m, {c.x, c.y}));
-  CHECK(covered(m, {m.bounds.min.x + 0.05f, c.y}));
+  CHECK(covered(m, {ink.min.x + 0.05f, c.y}));
   // 6.47: texture coordinates are the position over size from the first string's origin
   // (BEGIN / FIRST: the local origin).
   for (std::size_t i = 0; i < m.positions.size(); i += 7) {
