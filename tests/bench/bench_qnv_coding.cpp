@@ -97,23 +97,28 @@ int main(int argc, char** argv) {
     if (!readRecords(argv[i], e)) return 1;
     const double n = static_cast<double>(e.records.size());
     std::printf("== %s: %zu vectors ==\n", argv[i], e.records.size());
-    std::printf("%8s %-8s %10s %9s %12s\n", "packet", "coding", "bytes", "bits/vec", "decode M/s");
+    std::printf("%8s %-14s %10s %9s %12s\n", "packet", "coding", "bytes", "bits/vec", "decode M/s");
     for (std::uint32_t packet : {1376u, 16384u, 65528u}) {
-      for (auto coding : {qnv::PacketEncoding::plain, qnv::PacketEncoding::compact,
-                          qnv::PacketEncoding::entropy}) {
-        const std::string s = qnv::writeStream(e, {packet, coding});
-        const char* name = coding == qnv::PacketEncoding::plain     ? "plain"
-                           : coding == qnv::PacketEncoding::compact ? "compact"
-                                                                    : "entropy";
-        std::printf("%8u %-8s %10zu %9.2f %12.1f\n", packet, name, s.size(),
+      for (int variant = 0; variant < 4; ++variant) {
+        const auto coding = variant == 0   ? qnv::PacketEncoding::plain
+                            : variant == 1 ? qnv::PacketEncoding::compact
+                                           : qnv::PacketEncoding::entropy;
+        qnv::WriteOptions options{packet, coding};
+        options.streamModel = variant == 3;
+        const std::string s = qnv::writeStream(e, options);
+        const char* names[] = {"plain", "compact", "entropy", "entropy+model"};
+        std::printf("%8u %-14s %10zu %9.2f %12.1f\n", packet, names[variant], s.size(),
                     8.0 * static_cast<double>(s.size() - qnv::kHeaderBytes) / n, decodeRate(s));
       }
-      const qnv::CodingBits b = qnv::entropyCodingBits(e, packet);
-      std::printf(
-          "%8u entropy bits/vector by field: position %.2f, direction %.2f, magnitude %.2f, "
-          "colour %.2f, tables %.2f, framing %.2f = %.2f\n",
-          packet, b.position / n, b.direction / n, b.magnitude / n, b.color / n, b.tables / n,
-          b.framing / n, b.total() / n);
+      for (bool model : {false, true}) {
+        const qnv::CodingBits b = qnv::entropyCodingBits(e, packet, model);
+        std::printf(
+            "%8u %-14s bits/vector by field: position %.2f, direction %.2f, magnitude %.2f, "
+            "colour %.2f, tables %.2f, framing %.2f, model %.2f = %.2f (%llu packets on blocks)\n",
+            packet, model ? "entropy+model" : "entropy", b.position / n, b.direction / n,
+            b.magnitude / n, b.color / n, b.tables / n, b.framing / n, b.model / n, b.total() / n,
+            static_cast<unsigned long long>(b.blockPackets));
+      }
     }
   }
   return 0;
