@@ -338,42 +338,50 @@ bool decodeEntropyPayload(std::string_view payload, std::size_t count, const Pos
   };
   // Range errors are gathered in `bad` and checked once at the end; indices are clamped
   // so that nothing is read out of bounds meanwhile.
-  std::uint64_t code = 0;
-  std::uint32_t theta = 0, phi = 0;
-  bool bad = false;
   const int blockBits = useBlocks ? 3 * grid.blockShift : 0;
   const std::uint64_t codeLimit =
       useBlocks ? std::uint64_t{grid.blocks.size()} << blockBits : std::uint64_t{1} << 30;
   const std::uint32_t lowMask = (1u << blockBits) - 1;
-  for (std::size_t i = 0; i < count; ++i) {
-    const std::uint32_t token = field(kGap);  // 0..31
-    const std::uint32_t extra = bits.get(static_cast<int>(std::max(token, 1u)) - 1);
-    const std::uint32_t gap = token < 2 ? token : ((1u << (token - 1)) | extra);
-    code += gap;
-    bad |= code >= codeLimit;
-    auto m = static_cast<std::uint32_t>(code);
-    if (useBlocks)  // rank of the block, then the offset inside it
-      m = (grid.blocks[std::min<std::size_t>(code >> blockBits, grid.blocks.size() - 1)]
-           << blockBits) |
-          (m & lowMask);
-    theta = (theta + field(kTheta)) & 63u;
-    phi = (phi + field(kPhi)) & 63u;
-    const std::uint32_t a = aMin + bits.get(aBits);
-    const std::uint32_t c = field(kColor);
-    std::uint32_t x = compact3(m), y = compact3(m >> 1), z = compact3(m >> 2);
-    bad |= theta >= kThetaSteps || a >= kMagnitudeSteps || x >= limit[0] || y >= limit[1] ||
-           z >= limit[2];
-    if (useGrid) {
-      x = grid.cellOf[0][std::min<std::size_t>(x, limit[0] - 1)];
-      y = grid.cellOf[1][std::min<std::size_t>(y, limit[1] - 1)];
-      z = grid.cellOf[2][std::min<std::size_t>(z, limit[2] - 1)];
+  // One loop per position mode, so that the common ones carry no dead branches.
+  const auto records = [&]<bool kBlocks, bool kGrid>() {
+    std::uint64_t code = 0;
+    std::uint32_t theta = 0, phi = 0;
+    bool bad = false;
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::uint32_t token = field(kGap);  // 0..31
+      const std::uint32_t extra = bits.get(static_cast<int>(std::max(token, 1u)) - 1);
+      const std::uint32_t gap = token < 2 ? token : ((1u << (token - 1)) | extra);
+      code += gap;
+      bad |= code >= codeLimit;
+      auto m = static_cast<std::uint32_t>(code);
+      if constexpr (kBlocks)  // rank of the block, then the offset inside it
+        m = (grid.blocks[std::min<std::size_t>(code >> blockBits, grid.blocks.size() - 1)]
+             << blockBits) |
+            (m & lowMask);
+      theta = (theta + field(kTheta)) & 63u;
+      phi = (phi + field(kPhi)) & 63u;
+      const std::uint32_t a = aMin + bits.get(aBits);
+      const std::uint32_t c = field(kColor);
+      std::uint32_t x = compact3(m), y = compact3(m >> 1), z = compact3(m >> 2);
+      bad |= theta >= kThetaSteps || a >= kMagnitudeSteps || x >= limit[0] || y >= limit[1] ||
+             z >= limit[2];
+      if constexpr (kGrid) {
+        x = grid.cellOf[0][std::min<std::size_t>(x, limit[0] - 1)];
+        y = grid.cellOf[1][std::min<std::size_t>(y, limit[1] - 1)];
+        z = grid.cellOf[2][std::min<std::size_t>(z, limit[2] - 1)];
+      }
+      out[i] = (std::uint64_t{x} << 54) | (std::uint64_t{y} << 44) | (std::uint64_t{z} << 34) |
+               (std::uint64_t{theta} << 29) | (std::uint64_t{phi} << 23) | (std::uint64_t{a} << 8) |
+               c;
     }
-    out[i] = (std::uint64_t{x} << 54) | (std::uint64_t{y} << 44) | (std::uint64_t{z} << 34) |
-             (std::uint64_t{theta} << 29) | (std::uint64_t{phi} << 23) | (std::uint64_t{a} << 8) |
-             c;
-  }
+    return !bad;
+  };
+  const bool good = useBlocks ? (useGrid ? records.template operator()<true, true>()
+                                         : records.template operator()<true, false>())
+                              : (useGrid ? records.template operator()<false, true>()
+                                         : records.template operator()<false, false>());
   const std::size_t bitBytes = static_cast<std::size_t>(end - bitsBegin);
-  return !bad && !bits.overrun() && (bits.bitsConsumed() + 7) / 8 == bitBytes &&
+  return good && !bits.overrun() && (bits.bitsConsumed() + 7) / 8 == bitBytes &&
          rans.finishedCleanly();
 }
 
