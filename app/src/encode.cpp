@@ -91,6 +91,7 @@ std::string parseSettings(const EncodeOptions& e, Settings& s) {
   if (e.coding == "plain") s.write.encoding = qnv::PacketEncoding::plain;
   if (e.coding == "compact") s.write.encoding = qnv::PacketEncoding::compact;
   if (e.coding == "entropy") s.write.encoding = qnv::PacketEncoding::entropy;
+  s.write.streamModel = true;  // entropy only, and only where it saves bytes
   return {};
 }
 

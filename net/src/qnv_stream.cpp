@@ -38,14 +38,14 @@ std::uint64_t QnvStream::bytesFor(std::uint64_t vectors) const {
   const std::uint64_t perPacket = h->recordsPerPacket();
   const std::uint64_t packets = (vectors + perPacket - 1) / perPacket;
   if (h->encoding == qnv::PacketEncoding::plain)
-    return qnv::kHeaderBytes + packets * (qnv::kPacketHeaderBytes + h->packetBytes);
+    return h->headerBytes + packets * (qnv::kPacketHeaderBytes + h->packetBytes);
   // Compact packets vary in size: extrapolate the bytes per packet seen so far, with a
   // margin; pump() asks again when the estimate fell short.
   const std::uint64_t seen = decoder_.stats().packetsDecoded + decoder_.stats().packetsCorrupt;
   const double perPacketBytes =
-      seen > 0 ? static_cast<double>(fed_ - qnv::kHeaderBytes) / static_cast<double>(seen)
+      seen > 0 ? static_cast<double>(fed_ - h->headerBytes) / static_cast<double>(seen)
                : static_cast<double>(qnv::kPacketHeaderBytes + h->packetBytes);
-  return qnv::kHeaderBytes +
+  return h->headerBytes +
          static_cast<std::uint64_t>(
              std::ceil(static_cast<double>(packets) * perPacketBytes * 1.1)) +
          qnv::kPacketHeaderBytes + h->packetBytes;

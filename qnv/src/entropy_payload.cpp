@@ -33,6 +33,7 @@ constexpr std::array<int, kFields> kLane = {0, 1, 0, 1};
 constexpr int kModeConstant = 0;
 constexpr int kModeRaw = 13;
 constexpr std::uint8_t kFlagGrid = 1;
+constexpr std::uint8_t kFlagBlocks = 2;    // positions are ranks among the model's blocks
 constexpr std::size_t kPreambleBytes = 6;  // flags, aMin, aBits, rANS bytes
 
 struct FieldCoder {
@@ -172,26 +173,6 @@ bool readTable(BitReader& bits, FieldCoder& coder, int alphabetBits) {
 
 }  // namespace
 
-PositionGrid PositionGrid::forHeader(const StreamHeader& header) {
-  PositionGrid grid;
-  for (int a = 0; a < 3; ++a) {
-    const std::uint32_t dims = header.kind == StreamKind::volume ? header.volumeDims[a] : 0;
-    if (dims >= 2 && dims <= kPositionSteps) {
-      grid.active = grid.active || dims < kPositionSteps;
-      for (std::uint32_t i = 0; i < dims; ++i)
-        grid.cellOf[a].push_back(static_cast<std::uint16_t>(
-            std::min<std::uint32_t>(kPositionSteps - 1, i * kPositionSteps / (dims - 1))));
-    } else {
-      for (std::uint32_t i = 0; i < kPositionSteps; ++i)
-        grid.cellOf[a].push_back(static_cast<std::uint16_t>(i));
-    }
-    grid.indexOf[a].assign(kPositionSteps, -1);
-    for (std::size_t i = 0; i < grid.cellOf[a].size(); ++i)
-      grid.indexOf[a][grid.cellOf[a][i]] = static_cast<std::int16_t>(i);
-  }
-  return grid;
-}
-
 void appendEntropyPayload(std::string& out, std::span<const std::uint64_t> records,
                           const PositionGrid& grid, EntropyFieldBits* report) {
   const std::size_t n = records.size();
@@ -216,6 +197,28 @@ void appendEntropyPayload(std::string& out, std::span<const std::uint64_t> recor
     aMin = std::min<std::uint32_t>(aMin, f.a);
     aMax = std::max<std::uint32_t>(aMax, f.a);
   }
+  // Block mode: the model's blocks live in the grid's index space (or the cells' when
+  // there is no grid); every record's block must be one of them.
+  bool useBlocks = grid.blockShift > 0 && onGrid == grid.active;
+  const int blockBits = 3 * grid.blockShift;
+  for (std::size_t i = 0; i < n && useBlocks; ++i) {
+    const std::int64_t rank = grid.blockRank(sorted[i].first >> blockBits);
+    useBlocks = rank >= 0;
+    if (useBlocks)
+      sorted[i].first = (static_cast<std::uint32_t>(rank) << blockBits) |
+                        (sorted[i].first & ((1u << blockBits) - 1));
+  }
+  if (!useBlocks && grid.blockShift > 0)  // undo the ranks already taken
+    for (std::size_t i = 0; i < n; ++i) {
+      const RecordFields f = unpackRecord(sorted[i].second);
+      std::uint32_t x = f.x, y = f.y, z = f.z;
+      if (onGrid) {
+        x = static_cast<std::uint32_t>(grid.indexOf[0][x]);
+        y = static_cast<std::uint32_t>(grid.indexOf[1][y]);
+        z = static_cast<std::uint32_t>(grid.indexOf[2][z]);
+      }
+      sorted[i].first = spread3(x) | (spread3(y) << 1) | (spread3(z) << 2);
+    }
   std::sort(sorted.begin(), sorted.end());
   const int aBits = bitLength(aMax - aMin);
 
@@ -292,7 +295,9 @@ void appendEntropyPayload(std::string& out, std::span<const std::uint64_t> recor
     report->framing += total - (fieldBits[kGap] + gapExtra + fieldBits[kTheta] + fieldBits[kPhi] +
                                 static_cast<double>(n) * aBits + fieldBits[kColor] + tables);
   }
-  appendLe<std::uint8_t>(out, onGrid ? kFlagGrid : 0);
+  if (report && useBlocks) ++report->blockPackets;
+  appendLe<std::uint8_t>(
+      out, static_cast<std::uint8_t>((onGrid ? kFlagGrid : 0) | (useBlocks ? kFlagBlocks : 0)));
   appendLe<std::uint16_t>(out, static_cast<std::uint16_t>(aMin));
   appendLe<std::uint8_t>(out, static_cast<std::uint8_t>(aBits));
   appendLe<std::uint16_t>(out, static_cast<std::uint16_t>(ransBytes.size()));
@@ -307,8 +312,10 @@ bool decodeEntropyPayload(std::string_view payload, std::size_t count, const Pos
   const auto aMin = loadLe<std::uint16_t>(payload.data() + 1);
   const int aBits = loadLe<std::uint8_t>(payload.data() + 3);
   const auto ransSize = loadLe<std::uint16_t>(payload.data() + 4);
-  if (flags > kFlagGrid || aMin >= kMagnitudeSteps || aBits > kMagnitudeBits ||
-      ransSize > payload.size() - kPreambleBytes || ((flags & kFlagGrid) && !grid.active))
+  const bool useBlocks = flags & kFlagBlocks;
+  if (flags > (kFlagGrid | kFlagBlocks) || aMin >= kMagnitudeSteps || aBits > kMagnitudeBits ||
+      ransSize > payload.size() - kPreambleBytes || ((flags & kFlagGrid) && !grid.active) ||
+      (useBlocks && (grid.blockShift == 0 || ((flags & kFlagGrid) != 0) != grid.active)))
     return false;
   const auto* begin = reinterpret_cast<const unsigned char*>(payload.data());
   const unsigned char* ransBegin = begin + kPreambleBytes;
@@ -331,34 +338,50 @@ bool decodeEntropyPayload(std::string_view payload, std::size_t count, const Pos
   };
   // Range errors are gathered in `bad` and checked once at the end; indices are clamped
   // so that nothing is read out of bounds meanwhile.
-  std::uint64_t code = 0;
-  std::uint32_t theta = 0, phi = 0;
-  bool bad = false;
-  for (std::size_t i = 0; i < count; ++i) {
-    const std::uint32_t token = field(kGap);  // 0..31
-    const std::uint32_t extra = bits.get(static_cast<int>(std::max(token, 1u)) - 1);
-    const std::uint32_t gap = token < 2 ? token : ((1u << (token - 1)) | extra);
-    code += gap;
-    bad |= code >= (1u << 30);
-    const auto m = static_cast<std::uint32_t>(code);
-    theta = (theta + field(kTheta)) & 63u;
-    phi = (phi + field(kPhi)) & 63u;
-    const std::uint32_t a = aMin + bits.get(aBits);
-    const std::uint32_t c = field(kColor);
-    std::uint32_t x = compact3(m), y = compact3(m >> 1), z = compact3(m >> 2);
-    bad |= theta >= kThetaSteps || a >= kMagnitudeSteps || x >= limit[0] || y >= limit[1] ||
-           z >= limit[2];
-    if (useGrid) {
-      x = grid.cellOf[0][std::min<std::size_t>(x, limit[0] - 1)];
-      y = grid.cellOf[1][std::min<std::size_t>(y, limit[1] - 1)];
-      z = grid.cellOf[2][std::min<std::size_t>(z, limit[2] - 1)];
+  const int blockBits = useBlocks ? 3 * grid.blockShift : 0;
+  const std::uint64_t codeLimit =
+      useBlocks ? std::uint64_t{grid.blocks.size()} << blockBits : std::uint64_t{1} << 30;
+  const std::uint32_t lowMask = (1u << blockBits) - 1;
+  // One loop per position mode, so that the common ones carry no dead branches.
+  const auto records = [&]<bool kBlocks, bool kGrid>() {
+    std::uint64_t code = 0;
+    std::uint32_t theta = 0, phi = 0;
+    bool bad = false;
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::uint32_t token = field(kGap);  // 0..31
+      const std::uint32_t extra = bits.get(static_cast<int>(std::max(token, 1u)) - 1);
+      const std::uint32_t gap = token < 2 ? token : ((1u << (token - 1)) | extra);
+      code += gap;
+      bad |= code >= codeLimit;
+      auto m = static_cast<std::uint32_t>(code);
+      if constexpr (kBlocks)  // rank of the block, then the offset inside it
+        m = (grid.blocks[std::min<std::size_t>(code >> blockBits, grid.blocks.size() - 1)]
+             << blockBits) |
+            (m & lowMask);
+      theta = (theta + field(kTheta)) & 63u;
+      phi = (phi + field(kPhi)) & 63u;
+      const std::uint32_t a = aMin + bits.get(aBits);
+      const std::uint32_t c = field(kColor);
+      std::uint32_t x = compact3(m), y = compact3(m >> 1), z = compact3(m >> 2);
+      bad |= theta >= kThetaSteps || a >= kMagnitudeSteps || x >= limit[0] || y >= limit[1] ||
+             z >= limit[2];
+      if constexpr (kGrid) {
+        x = grid.cellOf[0][std::min<std::size_t>(x, limit[0] - 1)];
+        y = grid.cellOf[1][std::min<std::size_t>(y, limit[1] - 1)];
+        z = grid.cellOf[2][std::min<std::size_t>(z, limit[2] - 1)];
+      }
+      out[i] = (std::uint64_t{x} << 54) | (std::uint64_t{y} << 44) | (std::uint64_t{z} << 34) |
+               (std::uint64_t{theta} << 29) | (std::uint64_t{phi} << 23) | (std::uint64_t{a} << 8) |
+               c;
     }
-    out[i] = (std::uint64_t{x} << 54) | (std::uint64_t{y} << 44) | (std::uint64_t{z} << 34) |
-             (std::uint64_t{theta} << 29) | (std::uint64_t{phi} << 23) | (std::uint64_t{a} << 8) |
-             c;
-  }
+    return !bad;
+  };
+  const bool good = useBlocks ? (useGrid ? records.template operator()<true, true>()
+                                         : records.template operator()<true, false>())
+                              : (useGrid ? records.template operator()<false, true>()
+                                         : records.template operator()<false, false>());
   const std::size_t bitBytes = static_cast<std::size_t>(end - bitsBegin);
-  return !bad && !bits.overrun() && (bits.bitsConsumed() + 7) / 8 == bitBytes &&
+  return good && !bits.overrun() && (bits.bitsConsumed() + 7) / 8 == bitBytes &&
          rans.finishedCleanly();
 }
 

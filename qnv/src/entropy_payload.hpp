@@ -22,19 +22,40 @@ namespace gs::qnv::detail {
 
 /// The lattice positions lie on per axis: for a volume of at most 1024 samples along an
 /// axis, voxel i sits in cell floor(i * 1024 / (dims - 1)) (clamped to 1023), so a
-/// position needs only log2(dims) bits there; otherwise all 1024 cells.
+/// position needs only log2(dims) bits there; otherwise all 1024 cells. With a stream
+/// model (docs/qnv-format.md, "Stream model"), also the occupied blocks of that index
+/// space. Built in position_model.cpp.
 struct PositionGrid {
   std::array<std::vector<std::uint16_t>, 3> cellOf;  // index -> cell (0..1023)
   std::array<std::vector<std::int16_t>, 3> indexOf;  // cell -> index, or -1
   bool active = false;                               // some axis is coarser than 1024
+  /// Stream model: blocks of 2^blockShift indices per axis (1..7, at most 2^21 blocks in
+  /// the index space), 0 without a model.
+  int blockShift = 0;
+  /// Morton codes of the occupied blocks' coordinates, strictly increasing (at most 2^21).
+  std::vector<std::uint32_t> blocks;
+  /// False when the header's model block does not decode (the stream is then refused).
+  bool modelValid = true;
 
-  /// The grid of a stream: from volumeDims for volumes, none for surfaces.
+  /// The grid of a stream: from volumeDims for volumes, none for surfaces; the occupied
+  /// blocks from header.model.
   static PositionGrid forHeader(const StreamHeader& header);
+  /// Index-space size along axis a (the sample count on the grid, else 1024).
+  std::uint32_t axisSize(int a) const {
+    return active ? static_cast<std::uint32_t>(cellOf[a].size()) : 1024u;
+  }
+  /// Rank of the block with Morton code `block` among the occupied ones, or -1.
+  std::int64_t blockRank(std::uint32_t block) const;
 };
+
+/// The stream model block for `records` (stream order) under `header`: the occupied
+/// blocks at the block size that saves most; empty when no model saves bytes.
+std::string buildStreamModel(const StreamHeader& header, std::span<const std::uint64_t> records);
 
 /// Where the bits of entropy payloads go (the rANS fields at their model cost).
 struct EntropyFieldBits {
   double position = 0, direction = 0, magnitude = 0, color = 0, tables = 0, framing = 0;
+  std::size_t blockPackets = 0;  // packets coding positions among the model's blocks
 };
 
 /// Appends the entropy payload of `records` (1..8191 records) to `out`; adds its bits

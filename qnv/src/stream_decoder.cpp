@@ -65,14 +65,22 @@ bool StreamDecoder::feed(std::string_view chunk, const Sink& sink) {
       }
       return true;
     }
-    header_ = parseHeader(have, name_, why);
-    if (!header_) {
+    std::optional<StreamHeader> header = parseHeader(have, name_, why);
+    if (!header) {
       error_ = why;
       return false;
     }
+    if (have.size() < header->headerBytes) return true;  // wait for the stream model
+    auto grid =
+        std::make_shared<const detail::PositionGrid>(detail::PositionGrid::forHeader(*header));
+    if (!grid->modelValid) {
+      error_ = name_ + ": QNV stream model does not decode";
+      return false;
+    }
+    header_ = std::move(header);
     dequantizer_.emplace(*header_);
-    grid_ = std::make_shared<const detail::PositionGrid>(detail::PositionGrid::forHeader(*header_));
-    offset_ += kHeaderBytes;
+    grid_ = std::move(grid);
+    offset_ += header_->headerBytes;
   }
   view_ = buffer_;
   parsePackets(sink);

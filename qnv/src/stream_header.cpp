@@ -54,10 +54,17 @@ std::string serializeHeader(const StreamHeader& h) {
   for (int i = 0; i < 3; ++i) appendLe<std::uint32_t>(out, h.volumeDims[i]);
   appendFloatLe(out, h.valueMin);
   appendFloatLe(out, h.valueMax);
-  appendLe<std::uint32_t>(out, static_cast<std::uint32_t>(kHeaderBytes));
+  const std::size_t modelSection = h.model.empty() ? 0 : 8 + h.model.size();
+  appendLe<std::uint32_t>(out, static_cast<std::uint32_t>(kHeaderBytes + modelSection));
   for (const Rgba8& c : h.palette)
     for (int i = 0; i < 4; ++i) out.push_back(static_cast<char>(c[i]));
   appendLe<std::uint32_t>(out, crc32(out));
+  if (!h.model.empty()) {  // the model section: length, bytes, CRC of both
+    const std::size_t start = out.size();
+    appendLe<std::uint32_t>(out, static_cast<std::uint32_t>(h.model.size()));
+    out += h.model;
+    appendLe<std::uint32_t>(out, crc32(std::string_view(out).substr(start)));
+  }
   return out;
 }
 
@@ -108,9 +115,22 @@ std::optional<StreamHeader> parseHeader(std::string_view bytes, const std::strin
 
   if (kind != 1 && kind != 2) return fail("unknown stream kind " + std::to_string(kind));
   if (encoding > 2) return fail("unknown packet encoding " + std::to_string(encoding));
-  if (headerBytes != kHeaderBytes)
+  if (headerBytes != kHeaderBytes && (encoding != 2 || headerBytes < kHeaderBytes + 9 ||
+                                      headerBytes > kHeaderBytes + 8 + kMaxModelBytes))
     return fail("header size " + std::to_string(headerBytes) + " is not " +
-                std::to_string(kHeaderBytes));
+                std::to_string(kHeaderBytes) +
+                (encoding == 2 ? " nor that of a stream model block" : ""));
+  h.headerBytes = headerBytes;
+  if (headerBytes > kHeaderBytes && bytes.size() >= headerBytes) {
+    const std::string_view section = bytes.substr(kHeaderBytes, headerBytes - kHeaderBytes);
+    const std::size_t modelBytes = section.size() - 8;
+    if (loadLe<std::uint32_t>(section.data()) != modelBytes)
+      return fail("stream model length does not match the header size");
+    if (crc32(section.substr(0, 4 + modelBytes)) !=
+        loadLe<std::uint32_t>(section.data() + 4 + modelBytes))
+      return fail("QNV stream model is damaged (CRC mismatch)");
+    h.model.assign(section.substr(4, modelBytes));
+  }
   if (h.packetBytes < kMinPacketBytes || h.packetBytes > kMaxPacketBytes || h.packetBytes % 8)
     return fail("impossible packet size " + std::to_string(h.packetBytes) + " bytes");
   if (h.vectorCount > kMaxVectorCount)

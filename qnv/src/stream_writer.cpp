@@ -58,6 +58,23 @@ void appendPacket(std::string& out, std::uint32_t sequence, std::span<const std:
                      header ? detail::PositionGrid::forHeader(*header) : detail::PositionGrid{});
 }
 
+namespace {
+
+// The stream for a header whose packetBytes, encoding, vectorCount and model are final.
+std::string writePackets(const StreamHeader& header, std::span<const std::uint64_t> all) {
+  std::string out = serializeHeader(header);
+  const std::size_t per = header.recordsPerPacket();
+  out.reserve(out.size() + all.size() * 8 + (all.size() / per + 1) * kPacketHeaderBytes);
+  const detail::PositionGrid grid = detail::PositionGrid::forHeader(header);
+  std::uint32_t sequence = 0;
+  for (std::size_t first = 0; first < all.size(); first += per, ++sequence)
+    appendPacketOnGrid(out, sequence, all.subspan(first, std::min(per, all.size() - first)),
+                       header.encoding, grid);
+  return out;
+}
+
+}  // namespace
+
 std::string writeStream(const EncodedVectors& vectors, const WriteOptions& options) {
   if (options.packetBytes < kMinPacketBytes || options.packetBytes > kMaxPacketBytes ||
       options.packetBytes % 8 != 0)
@@ -68,23 +85,39 @@ std::string writeStream(const EncodedVectors& vectors, const WriteOptions& optio
   header.packetBytes = options.packetBytes;
   header.encoding = options.encoding;
   header.vectorCount = vectors.records.size();
-  std::string out = serializeHeader(header);
-  const std::size_t per = header.recordsPerPacket();
-  out.reserve(out.size() + vectors.records.size() * 8 +
-              (vectors.records.size() / per + 1) * kPacketHeaderBytes);
+  // A model the caller gives (say, one shared by the bricks of a space) is kept for
+  // entropy packets when it decodes and no model is to be built; packets whose blocks
+  // it lacks do without it.
+  if (options.encoding != PacketEncoding::entropy || options.streamModel ||
+      (!header.model.empty() && !detail::PositionGrid::forHeader(header).modelValid))
+    header.model.clear();
   const std::span<const std::uint64_t> all(vectors.records);
-  const detail::PositionGrid grid = detail::PositionGrid::forHeader(header);
-  std::uint32_t sequence = 0;
-  for (std::size_t first = 0; first < all.size(); first += per, ++sequence)
-    appendPacketOnGrid(out, sequence, all.subspan(first, std::min(per, all.size() - first)),
-                       options.encoding, grid);
+  std::string out = writePackets(header, all);
+  if (options.encoding == PacketEncoding::entropy && options.streamModel) {
+    // The model's saving is estimated per block size; the stream written both ways
+    // decides, so a model is kept only when it makes the stream smaller.
+    header.model = detail::buildStreamModel(header, all);
+    if (!header.model.empty()) {
+      std::string with = writePackets(header, all);
+      if (with.size() < out.size()) out = std::move(with);
+    }
+  }
   return out;
 }
 
-CodingBits entropyCodingBits(const EncodedVectors& vectors, std::uint32_t packetBytes) {
+CodingBits entropyCodingBits(const EncodedVectors& vectors, std::uint32_t packetBytes,
+                             bool streamModel) {
   if (packetBytes < kMinPacketBytes || packetBytes > kMaxPacketBytes || packetBytes % 8 != 0)
     throw InputError("packet size " + std::to_string(packetBytes) + " bytes is out of range");
-  const detail::PositionGrid grid = detail::PositionGrid::forHeader(vectors.header);
+  StreamHeader header = vectors.header;
+  header.model.clear();
+  if (streamModel) {  // the model writeStream would keep
+    WriteOptions options{packetBytes, PacketEncoding::entropy};
+    options.streamModel = true;
+    std::string error;
+    header.model = parseHeader(writeStream(vectors, options), "model", error)->model;
+  }
+  const detail::PositionGrid grid = detail::PositionGrid::forHeader(header);
   detail::EntropyFieldBits bits;
   const std::size_t per = packetBytes / 8;
   std::string scratch;
@@ -102,6 +135,8 @@ CodingBits entropyCodingBits(const EncodedVectors& vectors, std::uint32_t packet
   out.color = bits.color;
   out.tables = bits.tables;
   out.framing = bits.framing;
+  out.model = header.model.empty() ? 0.0 : 8.0 * static_cast<double>(header.model.size() + 8);
+  out.blockPackets = bits.blockPackets;
   out.vectors = all.size();
   return out;
 }

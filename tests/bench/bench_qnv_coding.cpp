@@ -65,7 +65,7 @@ double cpuSeconds() {
 }
 
 // Vectors per second through StreamDecoder::feed in 64 KiB chunks, the header (and the
-// dequantizer's tables it builds) fed before the clock starts.
+// dequantizer's tables and the stream model it builds) fed before the clock starts.
 double decodeRate(const std::string& stream) {
   double best = 1e9;
   std::uint64_t got = 0;
@@ -75,9 +75,11 @@ double decodeRate(const std::string& stream) {
     const auto sink = [&](std::uint64_t, std::span<const qnv::DecodedVector> v) {
       got += v.size();
     };
-    d.feed(std::string_view(stream).substr(0, qnv::kHeaderBytes), sink);
+    std::string error;
+    const std::size_t headerBytes = qnv::parseHeader(stream, "bench", error)->headerBytes;
+    d.feed(std::string_view(stream).substr(0, headerBytes), sink);
     const double t0 = cpuSeconds();
-    for (std::size_t at = qnv::kHeaderBytes; at < stream.size(); at += 1 << 16)
+    for (std::size_t at = headerBytes; at < stream.size(); at += 1 << 16)
       d.feed(std::string_view(stream).substr(at, 1 << 16), sink);
     d.finish(sink);
     best = std::min(best, cpuSeconds() - t0);
@@ -97,23 +99,38 @@ int main(int argc, char** argv) {
     if (!readRecords(argv[i], e)) return 1;
     const double n = static_cast<double>(e.records.size());
     std::printf("== %s: %zu vectors ==\n", argv[i], e.records.size());
-    std::printf("%8s %-8s %10s %9s %12s\n", "packet", "coding", "bytes", "bits/vec", "decode M/s");
+    std::printf("%8s %-14s %10s %9s %12s\n", "packet", "coding", "bytes", "bits/vec", "decode M/s");
     for (std::uint32_t packet : {1376u, 16384u, 65528u}) {
-      for (auto coding : {qnv::PacketEncoding::plain, qnv::PacketEncoding::compact,
-                          qnv::PacketEncoding::entropy}) {
-        const std::string s = qnv::writeStream(e, {packet, coding});
-        const char* name = coding == qnv::PacketEncoding::plain     ? "plain"
-                           : coding == qnv::PacketEncoding::compact ? "compact"
-                                                                    : "entropy";
-        std::printf("%8u %-8s %10zu %9.2f %12.1f\n", packet, name, s.size(),
+      for (int variant = 0; variant < 4; ++variant) {
+        const auto coding = variant == 0   ? qnv::PacketEncoding::plain
+                            : variant == 1 ? qnv::PacketEncoding::compact
+                                           : qnv::PacketEncoding::entropy;
+        qnv::WriteOptions options{packet, coding};
+        options.streamModel = variant == 3;
+        const std::string s = qnv::writeStream(e, options);
+        const char* names[] = {"plain", "compact", "entropy", "entropy+model"};
+        std::printf("%8u %-14s %10zu %9.2f %12.1f", packet, names[variant], s.size(),
                     8.0 * static_cast<double>(s.size() - qnv::kHeaderBytes) / n, decodeRate(s));
+        std::string error;
+        const std::size_t headerBytes = qnv::parseHeader(s, "bench", error)->headerBytes;
+        if (headerBytes > qnv::kHeaderBytes) {  // the model's one-off cost
+          const double t0 = cpuSeconds();
+          qnv::StreamDecoder d("bench");
+          d.feed(std::string_view(s).substr(0, headerBytes), nullptr);
+          std::printf("  (model %zu bytes, header decoded in %.2f ms)",
+                      headerBytes - qnv::kHeaderBytes, 1e3 * (cpuSeconds() - t0));
+        }
+        std::printf("\n");
       }
-      const qnv::CodingBits b = qnv::entropyCodingBits(e, packet);
-      std::printf(
-          "%8u entropy bits/vector by field: position %.2f, direction %.2f, magnitude %.2f, "
-          "colour %.2f, tables %.2f, framing %.2f = %.2f\n",
-          packet, b.position / n, b.direction / n, b.magnitude / n, b.color / n, b.tables / n,
-          b.framing / n, b.total() / n);
+      for (bool model : {false, true}) {
+        const qnv::CodingBits b = qnv::entropyCodingBits(e, packet, model);
+        std::printf(
+            "%8u %-14s bits/vector by field: position %.2f, direction %.2f, magnitude %.2f, "
+            "colour %.2f, tables %.2f, framing %.2f, model %.2f = %.2f (%llu packets on blocks)\n",
+            packet, model ? "entropy+model" : "entropy", b.position / n, b.direction / n,
+            b.magnitude / n, b.color / n, b.tables / n, b.framing / n, b.model / n, b.total() / n,
+            static_cast<unsigned long long>(b.blockPackets));
+      }
     }
   }
   return 0;

@@ -1,6 +1,7 @@
 // Writes seed inputs for the QNV fuzz targets into the folder given as the one argument:
 // a small volume stream in plain and compact packets (and one with packets damaged), and
-// compact payloads prefixed with their record count as fuzz_qnv_compact reads them.
+// compact payloads prefixed with their record count as fuzz_qnv_compact reads them, and
+// entropy payloads with and without a stream model as fuzz_qnv_entropy reads them.
 // Generated rather than committed so that they follow the format of this build.
 #include <algorithm>
 #include <cmath>
@@ -9,6 +10,7 @@
 #include <string>
 
 #include "compact_payload.hpp"
+#include "entropy_payload.hpp"
 #include "qnv/encoder.hpp"
 #include "qnv/stream.hpp"
 
@@ -53,6 +55,36 @@ int main(int argc, char** argv) {
     payload += static_cast<char>((count - 1) >> 8);
     gs::qnv::detail::appendCompactPayload(payload, {e.records.data(), count});
     write(dir + "/compact_" + std::to_string(count) + ".bin", payload);
+  }
+  // Entropy payloads of a 48 x 44 x 24 shell (fuzz_qnv_entropy's volume header): the
+  // first 64 records of its stream order, with and without the stream's model.
+  gs::qnv::Volume shell;
+  shell.dims = {48, 44, 24};
+  shell.samples.resize(shell.voxelCount());
+  for (std::uint32_t z = 0; z < 24; ++z)
+    for (std::uint32_t y = 0; y < 44; ++y)
+      for (std::uint32_t x = 0; x < 48; ++x)
+        shell.samples[x + 48 * (y + 44 * z)] =
+            1000.0f /
+            (1.0f + std::exp(2.0f * (std::hypot(x - 20.0f, y - 22.0f, z - 11.0f) - 9.0f)));
+  gs::qnv::VolumeEncodeOptions thin;
+  thin.selection.fraction = 0.05;
+  const gs::qnv::EncodedVectors s = gs::qnv::encodeVolume(shell, thin);
+  for (bool model : {false, true}) {
+    gs::qnv::StreamHeader h = s.header;
+    const std::span<const std::uint64_t> records(s.records.data(),
+                                                 std::min<std::size_t>(64, s.records.size()));
+    if (model) h.model = gs::qnv::detail::buildStreamModel(h, s.records);
+    std::string input;
+    input += '\1';
+    input += static_cast<char>((records.size() - 1) & 0xff);
+    input += static_cast<char>((records.size() - 1) >> 8);
+    input += static_cast<char>(h.model.size() & 0xff);
+    input += static_cast<char>(h.model.size() >> 8);
+    input += h.model;
+    gs::qnv::detail::appendEntropyPayload(input, records,
+                                          gs::qnv::detail::PositionGrid::forHeader(h));
+    write(dir + (model ? "/entropy_model.bin" : "/entropy_plain.bin"), input);
   }
   return 0;
 }

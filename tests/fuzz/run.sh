@@ -32,9 +32,10 @@ cmake -S "$top" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGS_FUZZ=ON -DGS_
 cmake --build "$build" -j"$(nproc)" --target fuzz_all
 
 corpus_root="$top/../shared/corpus"
-mkdir -p "$build/seeds/qnv" "$build/seeds/compact" "$build/logs"
+mkdir -p "$build/seeds/qnv" "$build/seeds/compact" "$build/seeds/entropy" "$build/logs"
 "$build/fuzz/make_qnv_seeds" "$build/seeds/qnv"
 mv -f "$build/seeds/qnv"/compact_*.bin "$build/seeds/compact/"
+mv -f "$build/seeds/qnv"/entropy_*.bin "$build/seeds/entropy/"
 
 # Seed folders (those that exist), dictionary and input size cap of each target.
 seeds_of() {
@@ -45,6 +46,7 @@ seeds_of() {
     fuzz_vrml_proto) s=("$here/seeds/proto" "$here/seeds/vrml") ;;
     fuzz_qnv_stream) s=("$here/seeds/qnv" "$build/seeds/qnv") ;;
     fuzz_qnv_compact) s=("$here/seeds/compact" "$build/seeds/compact") ;;
+    fuzz_qnv_entropy) s=("$here/seeds/entropy" "$build/seeds/entropy") ;;
     fuzz_ply | fuzz_obj | fuzz_gltf) s=("$here/seeds/mesh") ;;
     fuzz_nrrd | fuzz_nifti) s=("$here/seeds/volume") ;;
     fuzz_image) s=("$here/seeds/image" "$top/assets/worlds/textures") ;;

@@ -44,8 +44,12 @@ struct OpacityProfile {
 inline constexpr std::array<std::uint8_t, 8> kMagic = {0x89, 'Q', 'N', 'V', '\r', '\n', 0x1a, '\n'};
 /// The only version this build writes and reads.
 inline constexpr std::uint16_t kFormatVersion = 1;
-/// Bytes of the version-1 header, palette and header CRC included.
+/// Bytes of the version-1 header, palette and header CRC included. A stream with a
+/// stream model (docs/qnv-format.md, "Stream model") has a longer header:
+/// StreamHeader::headerBytes.
 inline constexpr std::size_t kHeaderBytes = 1132;
+/// Largest stream model block: its bytes after the 4-byte length, CRC excluded.
+inline constexpr std::size_t kMaxModelBytes = std::size_t{1} << 20;
 /// Bytes of each packet's own header: sync "QP", count, sequence, payload bytes,
 /// encoding, reserved, CRC-32.
 inline constexpr std::size_t kPacketHeaderBytes = 16;
@@ -75,6 +79,13 @@ struct StreamHeader {
   float valueMin = 0.0f;            // volumes: palette entry c holds values from
   float valueMax = 0.0f;            //   valueMin + c * (valueMax - valueMin) / 256 upwards
   std::array<Rgba8, kPaletteSize> palette{};
+  /// Bytes of the whole header: kHeaderBytes, or kHeaderBytes + 8 + model.size() when the
+  /// stream carries a model block (only with PacketEncoding::entropy).
+  std::uint32_t headerBytes = static_cast<std::uint32_t>(kHeaderBytes);
+  /// The stream model block (docs/qnv-format.md, "Stream model"): shared context the
+  /// entropy packets may refer to; empty when none. serializeHeader writes it after the
+  /// palette; parseHeader fills it when given all headerBytes.
+  std::string model;
 
   /// Records in one full packet (packetBytes / 8).
   std::uint32_t recordsPerPacket() const { return packetBytes / 8; }
@@ -82,14 +93,18 @@ struct StreamHeader {
   std::uint64_t packetCount() const;
 };
 
-/// The kHeaderBytes bytes of `header` (little-endian, CRC-32 last).
+/// The header's bytes (little-endian, CRC-32 last): kHeaderBytes, then the model block
+/// section when header.model is not empty (headerBytes is computed, not read).
 std::string serializeHeader(const StreamHeader& header);
 
 /// Parses and checks a header from the first kHeaderBytes of `bytes`. Returns nullopt
 /// and sets `error` to a sentence naming `name` on: too few bytes, a wrong signature
 /// ("not a QNV stream"), an unknown version ("QNV version 7 is newer than this build
 /// reads (1)"), a header CRC mismatch, or an impossible value (kind, packet size,
-/// vector count above kMaxVectorCount, non-finite or inverted bounds, magnitude range).
+/// vector count above kMaxVectorCount, non-finite or inverted bounds, magnitude range,
+/// a header size that is neither kHeaderBytes nor a model block's, a damaged model).
+/// Given fewer than headerBytes bytes of a stream with a model block, it returns the
+/// header with headerBytes set and model empty: the caller waits for the rest.
 std::optional<StreamHeader> parseHeader(std::string_view bytes, const std::string& name,
                                         std::string& error);
 
@@ -104,6 +119,11 @@ struct EncodedVectors {
 struct WriteOptions {
   std::uint32_t packetBytes = kDefaultPacketBytes;  // multiple of 8 in [8, 65528]
   PacketEncoding encoding = PacketEncoding::plain;
+  /// Entropy encoding only: add a stream model block (the occupied blocks of space) to
+  /// the header when it makes the stream smaller; packets then code positions among the
+  /// occupied blocks only. Without it, a model in the given header (one shared by several
+  /// streams of the same space) is kept when it decodes; other encodings drop it.
+  bool streamModel = false;
 };
 
 /// The whole .qnv file: header (vectorCount, packetBytes and encoding set from the

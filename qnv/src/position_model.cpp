@@ -1,0 +1,173 @@
+// The position grid of a stream and its stream model block (docs/qnv-format.md, "Compact
+// coding" and "Stream model"): the voxel grid of a volume, and the occupied blocks of the
+// index space, so that entropy packets code positions among occupied blocks only.
+#include <algorithm>
+#include <cmath>
+
+#include "base/byte_order.hpp"
+#include "entropy_payload.hpp"
+#include "morton.hpp"
+#include "qnv/record.hpp"
+#include "qnv/stream.hpp"
+
+namespace gs::qnv::detail {
+
+using base::appendLe;
+using base::loadLe;
+
+namespace {
+
+constexpr std::uint8_t kModelOccupancy = 1;
+constexpr int kMinBlockShift = 1, kMaxBlockShift = 7;
+constexpr std::uint64_t kMaxBlocks = std::uint64_t{1} << 21;  // blocks in the index space
+constexpr std::size_t kChunkRecords = 8191;                   // records per entropy payload
+constexpr std::size_t kModelPreamble = 6;                     // kind, shift, block count
+
+// Blocks per axis at this shift.
+std::array<std::uint32_t, 3> blocksPerAxis(const PositionGrid& grid, int shift) {
+  std::array<std::uint32_t, 3> n{};
+  for (int a = 0; a < 3; ++a) n[a] = (grid.axisSize(a) + (1u << shift) - 1) >> shift;
+  return n;
+}
+
+// Reads the occupancy model; false when anything is inconsistent.
+bool loadModel(PositionGrid& grid, std::string_view model) {
+  if (model.size() < kModelPreamble) return false;
+  const auto kind = loadLe<std::uint8_t>(model.data());
+  const int shift = loadLe<std::uint8_t>(model.data() + 1);
+  const auto count = loadLe<std::uint32_t>(model.data() + 2);
+  if (kind != kModelOccupancy || shift < kMinBlockShift || shift > kMaxBlockShift) return false;
+  const auto perAxis = blocksPerAxis(grid, shift);
+  const std::uint64_t total = std::uint64_t{perAxis[0]} * perAxis[1] * perAxis[2];
+  if (total > kMaxBlocks || count == 0 || count > total) return false;
+  grid.blocks.clear();
+  grid.blocks.reserve(count);
+  std::size_t at = kModelPreamble;
+  std::vector<std::uint64_t> records;
+  const PositionGrid cells;  // block coordinates are coded as plain cells
+  while (grid.blocks.size() < count) {
+    const std::size_t n = std::min<std::size_t>(kChunkRecords, count - grid.blocks.size());
+    if (model.size() - at < 2) return false;
+    const auto bytes = loadLe<std::uint16_t>(model.data() + at);
+    at += 2;
+    if (model.size() - at < bytes) return false;
+    records.resize(n);
+    if (!decodeEntropyPayload(model.substr(at, bytes), n, cells, records.data())) return false;
+    at += bytes;
+    for (std::uint64_t r : records) {
+      const RecordFields f = unpackRecord(r);
+      if (f.x >= perAxis[0] || f.y >= perAxis[1] || f.z >= perAxis[2] || f.theta || f.phi || f.a ||
+          f.c)
+        return false;
+      const std::uint32_t code = spread3(f.x) | (spread3(f.y) << 1) | (spread3(f.z) << 2);
+      if (!grid.blocks.empty() && code <= grid.blocks.back()) return false;
+      grid.blocks.push_back(code);
+    }
+  }
+  if (at != model.size()) return false;
+  grid.blockShift = shift;
+  return true;
+}
+
+// The model bytes for these sorted, distinct block codes at `shift`.
+std::string encodeModel(const std::vector<std::uint32_t>& blocks, int shift) {
+  std::string out;
+  appendLe<std::uint8_t>(out, kModelOccupancy);
+  appendLe<std::uint8_t>(out, static_cast<std::uint8_t>(shift));
+  appendLe<std::uint32_t>(out, static_cast<std::uint32_t>(blocks.size()));
+  std::vector<std::uint64_t> records;
+  std::string payload;
+  const PositionGrid cells;
+  for (std::size_t first = 0; first < blocks.size(); first += kChunkRecords) {
+    records.clear();
+    for (std::size_t i = first; i < std::min(blocks.size(), first + kChunkRecords); ++i) {
+      RecordFields f{};
+      f.x = static_cast<std::uint16_t>(compact3(blocks[i]));
+      f.y = static_cast<std::uint16_t>(compact3(blocks[i] >> 1));
+      f.z = static_cast<std::uint16_t>(compact3(blocks[i] >> 2));
+      records.push_back(packRecord(f));
+    }
+    payload.clear();
+    appendEntropyPayload(payload, records, cells);
+    appendLe<std::uint16_t>(out, static_cast<std::uint16_t>(payload.size()));
+    out += payload;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::int64_t PositionGrid::blockRank(std::uint32_t block) const {
+  const auto it = std::lower_bound(blocks.begin(), blocks.end(), block);
+  return it != blocks.end() && *it == block ? it - blocks.begin() : -1;
+}
+
+PositionGrid PositionGrid::forHeader(const StreamHeader& header) {
+  PositionGrid grid;
+  for (int a = 0; a < 3; ++a) {
+    const std::uint32_t dims = header.kind == StreamKind::volume ? header.volumeDims[a] : 0;
+    if (dims >= 2 && dims <= kPositionSteps) {
+      grid.active = grid.active || dims < kPositionSteps;
+      for (std::uint32_t i = 0; i < dims; ++i)
+        grid.cellOf[a].push_back(static_cast<std::uint16_t>(
+            std::min<std::uint32_t>(kPositionSteps - 1, i * kPositionSteps / (dims - 1))));
+    } else {
+      for (std::uint32_t i = 0; i < kPositionSteps; ++i)
+        grid.cellOf[a].push_back(static_cast<std::uint16_t>(i));
+    }
+    grid.indexOf[a].assign(kPositionSteps, -1);
+    for (std::size_t i = 0; i < grid.cellOf[a].size(); ++i)
+      grid.indexOf[a][grid.cellOf[a][i]] = static_cast<std::int16_t>(i);
+  }
+  if (!header.model.empty() && !loadModel(grid, header.model)) {
+    grid.modelValid = false;
+    grid.blocks.clear();
+    grid.blockShift = 0;
+  }
+  return grid;
+}
+
+std::string buildStreamModel(const StreamHeader& header, std::span<const std::uint64_t> records) {
+  StreamHeader plain = header;
+  plain.model.clear();
+  const PositionGrid grid = PositionGrid::forHeader(plain);
+  if (records.empty()) return {};
+  // Index-space Morton codes of all records; none when some record is off the grid.
+  std::vector<std::uint32_t> codes;
+  codes.reserve(records.size());
+  for (std::uint64_t r : records) {
+    const RecordFields f = unpackRecord(r);
+    std::array<std::uint32_t, 3> q = {f.x, f.y, f.z};
+    if (grid.active) {
+      for (int a = 0; a < 3; ++a) {
+        const int index = grid.indexOf[a][q[a]];
+        if (index < 0) return {};
+        q[a] = static_cast<std::uint32_t>(index);
+      }
+    }
+    codes.push_back(spread3(q[0]) | (spread3(q[1]) << 1) | (spread3(q[2]) << 2));
+  }
+  std::sort(codes.begin(), codes.end());
+  std::string best;
+  double bestSaving = 0;
+  for (int shift = kMinBlockShift; shift <= kMaxBlockShift; ++shift) {
+    std::vector<std::uint32_t> blocks;
+    for (std::uint32_t c : codes)
+      if (blocks.empty() || blocks.back() != c >> (3 * shift)) blocks.push_back(c >> (3 * shift));
+    const auto perAxis = blocksPerAxis(grid, shift);
+    const double total = static_cast<double>(perAxis[0]) * perAxis[1] * perAxis[2];
+    if (total > static_cast<double>(kMaxBlocks)) continue;
+    std::string model = encodeModel(blocks, shift);
+    // Positions cost about log2(space / n) bits each: the occupied blocks shrink the space.
+    const double saving = static_cast<double>(records.size()) *
+                              std::log2(total / static_cast<double>(blocks.size())) -
+                          8.0 * static_cast<double>(model.size() + 8);
+    if (saving > bestSaving && model.size() <= kMaxModelBytes) {
+      bestSaving = saving;
+      best = std::move(model);
+    }
+  }
+  return best;
+}
+
+}  // namespace gs::qnv::detail
