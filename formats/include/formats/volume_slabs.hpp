@@ -32,6 +32,7 @@
 
 namespace gs::formats {
 
+using qnv::readWholeVolume;
 using qnv::VolumeGridInfo;
 using qnv::VolumeSlabReader;
 
