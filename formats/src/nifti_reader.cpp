@@ -166,8 +166,8 @@ NiftiHeader parseNiftiHeader(std::string_view bytes, const std::string& name,
   // A bound on vox_offset that keeps the cast below defined when the size is unknown.
   const double limit = std::min(static_cast<double>(fileBytes), 0x1p62);
   if (!std::isfinite(voxOffset) || voxOffset < 0.0f || static_cast<double>(voxOffset) > limit)
-    throw InputError(name + ": expected vox_offset within the file's " +
-                     std::to_string(fileBytes) + " bytes, got " + std::to_string(voxOffset));
+    throw InputError(name + ": expected vox_offset within the file's " + std::to_string(fileBytes) +
+                     " bytes, got " + std::to_string(voxOffset));
   layout.headerBytes = voxOffset < static_cast<float>(kMinVoxOffset)
                            ? kMinVoxOffset
                            : static_cast<std::size_t>(voxOffset);

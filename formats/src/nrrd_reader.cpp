@@ -203,7 +203,6 @@ struct Field {
   bool present() const { return line != 0; }
 };
 
-
 // FORMAT with its one integer conversion (%d, %i, %u with an optional 0 flag and width)
 // applied to `i`; "%%" is a literal '%'. Empty when FORMAT has not exactly one.
 std::string formatFileName(std::string_view format, std::int64_t i, bool& ok) {
@@ -254,14 +253,17 @@ void parseMultiFile(NrrdHeader& h, const std::vector<std::string_view>& w,
   std::uint64_t subdim = dim - 1;
   const std::size_t subdimAt = isList ? 1 : 4;
   if (!isList && w.size() < 4)
-    failAt(name, line, "expected 'data file: FORMAT MIN MAX STEP [SUBDIM]', got " +
-                           std::to_string(w.size()) + " words");
+    failAt(name, line,
+           "expected 'data file: FORMAT MIN MAX STEP [SUBDIM]', got " + std::to_string(w.size()) +
+               " words");
   if (w.size() > subdimAt + 1)
-    failAt(name, line, "expected at most " + std::to_string(subdimAt + 1) +
-                           " words after 'data file:', got " + std::to_string(w.size()));
+    failAt(name, line,
+           "expected at most " + std::to_string(subdimAt + 1) + " words after 'data file:', got " +
+               std::to_string(w.size()));
   if (w.size() == subdimAt + 1 && (!parseU64(w[subdimAt], subdim) || subdim < 1 || subdim > dim))
-    failAt(name, line, "expected a data file dimension between 1 and " + std::to_string(dim) +
-                           ", got '" + shown(w[subdimAt]) + "'");
+    failAt(name, line,
+           "expected a data file dimension between 1 and " + std::to_string(dim) + ", got '" +
+               shown(w[subdimAt]) + "'");
   std::uint64_t perFile = 1, total = 1;
   for (std::size_t i = 0; i < dim; ++i) {
     total *= size[i];
@@ -273,21 +275,25 @@ void parseMultiFile(NrrdHeader& h, const std::vector<std::string_view>& w,
   } else {
     std::int64_t lo = 0, hi = 0, step = 0;
     if (!parseI64(w[1], lo) || !parseI64(w[2], hi) || !parseI64(w[3], step) || step == 0)
-      failAt(name, line, "expected integers MIN MAX STEP (STEP not 0), got '" + shown(w[1]) +
-                             " " + shown(w[2]) + " " + shown(w[3]) + "'");
+      failAt(name, line,
+             "expected integers MIN MAX STEP (STEP not 0), got '" + shown(w[1]) + " " +
+                 shown(w[2]) + " " + shown(w[3]) + "'");
     if ((step > 0 && hi < lo) || (step < 0 && hi > lo))
-      failAt(name, line, "data file range " + std::to_string(lo) + " to " + std::to_string(hi) +
-                             " step " + std::to_string(step) + " names no file");
+      failAt(name, line,
+             "data file range " + std::to_string(lo) + " to " + std::to_string(hi) + " step " +
+                 std::to_string(step) + " names no file");
     // |hi - lo| < 2^64 as both are int64; compute in unsigned to avoid overflow.
-    const std::uint64_t span = step > 0 ? static_cast<std::uint64_t>(hi) - static_cast<std::uint64_t>(lo)
-                                        : static_cast<std::uint64_t>(lo) - static_cast<std::uint64_t>(hi);
+    const std::uint64_t span =
+        step > 0 ? static_cast<std::uint64_t>(hi) - static_cast<std::uint64_t>(lo)
+                 : static_cast<std::uint64_t>(lo) - static_cast<std::uint64_t>(hi);
     const std::uint64_t stride = step > 0 ? static_cast<std::uint64_t>(step)
                                           : std::uint64_t{0} - static_cast<std::uint64_t>(step);
     const std::uint64_t count = span / stride + 1;
     if (count != expected)
-      failAt(name, line, "data file range names " + std::to_string(count) + " files, expected " +
-                             std::to_string(expected) + " (one per " + std::to_string(subdim) +
-                             "-dimensional part of the data)");
+      failAt(name, line,
+             "data file range names " + std::to_string(count) + " files, expected " +
+                 std::to_string(expected) + " (one per " + std::to_string(subdim) +
+                 "-dimensional part of the data)");
     if (count > options.maxDataFiles)
       failAt(name, line, "more than " + std::to_string(options.maxDataFiles) + " data files");
     for (std::uint64_t k = 0; k < count; ++k) {
@@ -297,14 +303,17 @@ void parseMultiFile(NrrdHeader& h, const std::vector<std::string_view>& w,
                                                        k * static_cast<std::uint64_t>(step));
       h.dataFiles.push_back(formatFileName(w[0], i, ok));
       if (!ok)
-        failAt(name, line, "expected a data file format with one integer conversion (%d, %03d), "
-                           "got '" + shown(w[0]) + "'");
+        failAt(name, line,
+               "expected a data file format with one integer conversion (%d, %03d), "
+               "got '" +
+                   shown(w[0]) + "'");
     }
   }
   if (h.dataFiles.size() != expected)
-    failAt(name, line, "data file list names " + std::to_string(h.dataFiles.size()) +
-                           " files, expected " + std::to_string(expected) + " (one per " +
-                           std::to_string(subdim) + "-dimensional part of the data)");
+    failAt(name, line,
+           "data file list names " + std::to_string(h.dataFiles.size()) + " files, expected " +
+               std::to_string(expected) + " (one per " + std::to_string(subdim) +
+               "-dimensional part of the data)");
   for (const std::string& f : h.dataFiles)
     if (f.empty()) failAt(name, line, "expected a data file name, got ''");
   h.samplesPerDataFile = perFile;

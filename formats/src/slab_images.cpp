@@ -102,8 +102,7 @@ void readPng(const std::string& path, SliceShape& shape, const SliceShape* expec
   shape.height = h;
   shape.type = depth == 16 ? ScalarType::uint16 : ScalarType::uint8;
   const std::uint64_t bytes = std::uint64_t{w} * h * (depth == 16 ? 2 : 1);
-  if (std::uint64_t{w} * h > qnv::kMaxSliceVoxels ||
-      bytes > file.size() * 1032 + 64 * 1024) {
+  if (std::uint64_t{w} * h > qnv::kMaxSliceVoxels || bytes > file.size() * 1032 + 64 * 1024) {
     error.message = "image of " + std::to_string(w) + " x " + std::to_string(h) +
                     " pixels is more than the file's " + std::to_string(file.size()) +
                     " bytes can hold, or more than the slice limit";
@@ -232,8 +231,8 @@ class TiffFile {
                  ")");
           const std::uint32_t cw = std::min(tw, s.width - x0);
           for (std::uint32_t y = y0; y < std::min(y0 + th, s.height); ++y)
-            convertSamples(tile.data() + std::size_t{tw} * (y - y0) * bytes, cw, s.type,
-                           kNativeBig, out + std::size_t{s.width} * y + x0);
+            convertSamples(tile.data() + std::size_t{tw} * (y - y0) * bytes, cw, s.type, kNativeBig,
+                           out + std::size_t{s.width} * y + x0);
         }
       return;
     }
@@ -285,9 +284,9 @@ class SliceStackReader final : public VolumeSlabReader {
 
   void readSlices(std::uint32_t z0, std::uint32_t z1, std::vector<float>& out) override {
     if (!(z0 < z1 && z1 <= info_.dims.z))
-      throw InputError(files_.front() + ": expected slices 0 <= z0 < z1 <= " +
-                       std::to_string(info_.dims.z) + ", got [" + std::to_string(z0) + ", " +
-                       std::to_string(z1) + ")");
+      throw InputError(files_.front() +
+                       ": expected slices 0 <= z0 < z1 <= " + std::to_string(info_.dims.z) +
+                       ", got [" + std::to_string(z0) + ", " + std::to_string(z1) + ")");
     const std::size_t slice = static_cast<std::size_t>(info_.sliceVoxels());
     out.resize(slice * (z1 - z0));
     for (std::uint32_t z = z0; z < z1; ++z) {

@@ -34,8 +34,7 @@ RandomFile::~RandomFile() {
 std::size_t RandomFile::readSome(std::uint64_t offset, char* dst, std::size_t n) const {
   std::size_t done = 0;
   while (done < n) {
-    const ssize_t got =
-        ::pread(fd_, dst + done, n - done, static_cast<off_t>(offset + done));
+    const ssize_t got = ::pread(fd_, dst + done, n - done, static_cast<off_t>(offset + done));
     if (got < 0) {
       if (errno == EINTR) continue;
       throw InputError(path_ + ": read error at byte offset " + std::to_string(offset + done) +
@@ -73,8 +72,8 @@ std::uint64_t offsetAfterLines(const RandomFile& file, std::uint64_t start, std:
     }
   }
   if (done < lines)
-    throw InputError(file.path() + ": expected " + std::to_string(lines) +
-                     " lines to skip, got " + std::to_string(done));
+    throw InputError(file.path() + ": expected " + std::to_string(lines) + " lines to skip, got " +
+                     std::to_string(done));
   // A "\r\n" line end: the '\n' belongs to the last line.
   if (afterCr) {
     char next = 0;
@@ -162,8 +161,8 @@ std::uint64_t GzipStream::skip(std::uint64_t n) {
   std::uint64_t done = 0;
   while (done < n) {
     const std::size_t got =
-        read(scratch.data(), static_cast<std::size_t>(std::min<std::uint64_t>(n - done,
-                                                                               scratch.size())));
+        read(scratch.data(),
+             static_cast<std::size_t>(std::min<std::uint64_t>(n - done, scratch.size())));
     if (got == 0) break;
     done += got;
   }

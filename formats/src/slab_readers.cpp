@@ -56,9 +56,9 @@ class PiecewiseReader final : public VolumeSlabReader {
 
   void readSlices(std::uint32_t z0, std::uint32_t z1, std::vector<float>& out) override {
     if (!(z0 < z1 && z1 <= info_.dims.z))
-      throw InputError(pieces_.front().path + ": expected slices 0 <= z0 < z1 <= " +
-                       std::to_string(info_.dims.z) + ", got [" + std::to_string(z0) + ", " +
-                       std::to_string(z1) + ")");
+      throw InputError(pieces_.front().path +
+                       ": expected slices 0 <= z0 < z1 <= " + std::to_string(info_.dims.z) +
+                       ", got [" + std::to_string(z0) + ", " + std::to_string(z1) + ")");
     const std::uint64_t slice = info_.sliceVoxels();
     out.resize(static_cast<std::size_t>(slice * (z1 - z0)));
     readSamples(slice * z0, out.size(), out.data());
@@ -75,7 +75,8 @@ class PiecewiseReader final : public VolumeSlabReader {
     while (count > 0) {
       const Piece& p = pieces_[index];
       const std::uint64_t local = first - p.firstSample;
-      const std::size_t n = static_cast<std::size_t>(std::min<std::uint64_t>(count, p.samples - local));
+      const std::size_t n =
+          static_cast<std::size_t>(std::min<std::uint64_t>(count, p.samples - local));
       for (std::size_t done = 0; done < n;) {
         const std::size_t step = std::min(n - done, kChunkBytes / bytes);
         scratch_.resize(step * bytes);
@@ -208,8 +209,7 @@ std::unique_ptr<VolumeSlabReader> openNrrd(const std::string& path) {
   options.multiFile = true;
   options.maxVoxels = qnv::kMaxSlabVolumeVoxels;
   const NrrdHeader h = parseNrrdHeader(head, path, options);
-  if (h.dataOffset >= head.size() && at < file.size() && h.dataFile.empty() &&
-      h.dataFiles.empty())
+  if (h.dataOffset >= head.size() && at < file.size() && h.dataFile.empty() && h.dataFiles.empty())
     throw InputError(path + ": NRRD header longer than " + std::to_string(kMaxHeaderBytes) +
                      " bytes");
 
@@ -227,7 +227,8 @@ std::unique_ptr<VolumeSlabReader> openNrrd(const std::string& path) {
                        std::to_string(kMaxVoxels));
     if (!h.dataFiles.empty())
       throw InputError(path + ": ascii NRRD data in several files are not supported");
-    const std::string dataPath = h.dataFile.empty() ? path : detail::resolveBeside(path, h.dataFile);
+    const std::string dataPath =
+        h.dataFile.empty() ? path : detail::resolveBeside(path, h.dataFile);
     const RandomFile data(dataPath);
     const std::uint64_t from = h.dataFile.empty() ? h.dataOffset : 0;
     // Each value takes at least 2 bytes, so a file of this size is enough.
@@ -271,7 +272,8 @@ std::unique_ptr<VolumeSlabReader> openNrrd(const std::string& path) {
 std::unique_ptr<VolumeSlabReader> openNifti(const std::string& path) {
   const RandomFile file(path);
   std::string head(348, '\0');
-  const bool gzip = file.readSome(0, head.data(), 2) == 2 && static_cast<unsigned char>(head[0]) == 0x1f &&
+  const bool gzip = file.readSome(0, head.data(), 2) == 2 &&
+                    static_cast<unsigned char>(head[0]) == 0x1f &&
                     static_cast<unsigned char>(head[1]) == 0x8b;
   std::size_t got = 0;
   if (gzip) {

@@ -28,12 +28,11 @@ float difference(const float* s, std::size_t stride, std::uint32_t i, std::uint3
   return (s[stride] - s[-static_cast<std::ptrdiff_t>(stride)]) / (2.0f * spacing);
 }
 
-void checkRange(const VolumeGridInfo& info, std::uint32_t z0, std::uint32_t z1,
-                const char* what) {
+void checkRange(const VolumeGridInfo& info, std::uint32_t z0, std::uint32_t z1, const char* what) {
   if (!(z0 < z1 && z1 <= info.dims.z))
-    throw InputError(std::string(what) + ": expected slices 0 <= z0 < z1 <= " +
-                     std::to_string(info.dims.z) + ", got [" + std::to_string(z0) + ", " +
-                     std::to_string(z1) + ")");
+    throw InputError(std::string(what) +
+                     ": expected slices 0 <= z0 < z1 <= " + std::to_string(info.dims.z) +
+                     ", got [" + std::to_string(z0) + ", " + std::to_string(z1) + ")");
 }
 
 // The part of a slab one worker computes: rows [rowBegin, rowEnd) of the slab, a row
@@ -59,8 +58,7 @@ void computeChunk(const SlabContext& c, Chunk& chunk) {
   for (std::uint64_t r = chunk.rowBegin; r < chunk.rowEnd; ++r) {
     const std::uint32_t z = c.slabZ0 + static_cast<std::uint32_t>(r / d.y);
     const std::uint32_t y = static_cast<std::uint32_t>(r % d.y);
-    const float* s =
-        c.window + std::size_t{d.x} * (y + std::size_t{d.y} * (z - c.windowZ0));
+    const float* s = c.window + std::size_t{d.x} * (y + std::size_t{d.y} * (z - c.windowZ0));
     const std::uint64_t row = std::uint64_t{d.x} * (y + std::uint64_t{d.y} * z);
     for (std::uint32_t x = 0; x < d.x; ++x) {
       const float v = s[x];
@@ -155,9 +153,8 @@ VolumeVectorSummary forEachVolumeVector(VolumeSlabReader& reader, std::uint32_t 
     throw InputError("voxel spacing must be positive");
 
   VolumeVectorSummary summary;
-  summary.slabSlices =
-      options.slabSlices > 0 ? std::min(options.slabSlices, info.dims.z)
-                             : slabSlicesForMemory(info, options.memoryBytes);
+  summary.slabSlices = options.slabSlices > 0 ? std::min(options.slabSlices, info.dims.z)
+                                              : slabSlicesForMemory(info, options.memoryBytes);
   std::pair<float, float> domain;
   if (options.valueWindow)
     domain = *options.valueWindow;
@@ -174,8 +171,7 @@ VolumeVectorSummary forEachVolumeVector(VolumeSlabReader& reader, std::uint32_t 
   context.info = info;
   context.lo = domain.first;
   context.hi = domain.second;
-  context.valueScale =
-      context.hi > context.lo ? kPaletteSize / (context.hi - context.lo) : 0.0f;
+  context.valueScale = context.hi > context.lo ? kPaletteSize / (context.hi - context.lo) : 0.0f;
 
   unsigned threads = options.threads > 0 ? options.threads : std::thread::hardware_concurrency();
   threads = std::clamp(threads, 1u, 256u);
@@ -212,8 +208,8 @@ VolumeVectorSummary forEachVolumeVector(VolumeSlabReader& reader, std::uint32_t 
     for (std::uint64_t t = 0; t < used; ++t) {
       chunks[t].rowBegin = rows * t / used;
       chunks[t].rowEnd = rows * (t + 1) / used;
-      const std::size_t worst = static_cast<std::size_t>(
-          (chunks[t].rowEnd - chunks[t].rowBegin) * std::uint64_t{info.dims.x});
+      const std::size_t worst = static_cast<std::size_t>((chunks[t].rowEnd - chunks[t].rowBegin) *
+                                                         std::uint64_t{info.dims.x});
       if (chunks[t].vectors.capacity() < worst) chunks[t].vectors.reserve(worst);
     }
     if (used == 1) {

@@ -172,8 +172,8 @@ TEST_CASE("slab reader: the assets equal the whole-volume readers", "[formats][s
     CHECK(whole.spacing == expected.spacing);
   }
   // The sphere of assets/volumes/README.md, whatever the container.
-  for (const char* name : {"sphere.nrrd", "sphere_gzip.nrrd", "sphere_detached.nhdr", "sphere.nii",
-                           "sphere.nii.gz"}) {
+  for (const char* name :
+       {"sphere.nrrd", "sphere_gzip.nrrd", "sphere_detached.nhdr", "sphere.nii", "sphere.nii.gz"}) {
     INFO(name);
     auto reader = openVolumeSlabs(assetPath(name));
     const Volume v = readWholeVolume(*reader);
@@ -254,8 +254,7 @@ TEST_CASE("slab reader: NRRD data file FORMAT MIN MAX STEP [SUBDIM]", "[formats]
   CHECK_THROWS_WITH(openVolumeSlabs(header.string()), Contains("slice004.raw"));
   // A range naming the wrong number of files.
   writeFile(header, kHead + "encoding: raw\ndata file: slice%03d.raw 1 6 1\n");
-  CHECK_THROWS_WITH(openVolumeSlabs(header.string()),
-                    Contains("names 6 files, expected 7"));
+  CHECK_THROWS_WITH(openVolumeSlabs(header.string()), Contains("names 6 files, expected 7"));
   // A format without a conversion, or with two.
   writeFile(header, kHead + "encoding: raw\ndata file: slice%03d%d.raw 1 7 1\n");
   CHECK_THROWS_WITH(openVolumeSlabs(header.string()), Contains("one integer conversion"));
@@ -305,7 +304,8 @@ TEST_CASE("slab reader: hostile NRRD headers are refused before any large alloca
   // One slice over the slice limit; a grid over the volume limit.
   writeFile(path, "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 100000 100000 1\nencoding: raw\n\n");
   CHECK_THROWS_WITH(openVolumeSlabs(path.string()), Contains("kMaxSliceVoxels"));
-  writeFile(path, "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 16384 16384 8192\nencoding: raw\n\n");
+  writeFile(path,
+            "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 16384 16384 8192\nencoding: raw\n\n");
   CHECK_THROWS_WITH(openVolumeSlabs(path.string()), Contains("exceeds the limit"));
   // A missing or absolute data file.
   writeFile(path, kHead + "encoding: raw\ndata file: nothere.raw\n");
@@ -313,8 +313,9 @@ TEST_CASE("slab reader: hostile NRRD headers are refused before any large alloca
   writeFile(path, kHead + "encoding: raw\ndata file: /etc/passwd\n");
   CHECK_THROWS_WITH(openVolumeSlabs(path.string()), Contains("absolute path"));
   // A file range of 2^63 files.
-  writeFile(path, kHead + "encoding: raw\ndata file: s%d.raw -9223372036854775807 "
-                          "9223372036854775807 1\n");
+  writeFile(path, kHead +
+                      "encoding: raw\ndata file: s%d.raw -9223372036854775807 "
+                      "9223372036854775807 1\n");
   CHECK_THROWS_WITH(openVolumeSlabs(path.string()), Contains("expected 7"));
   // A slice range outside the grid.
   writeFile(path, kHead + "encoding: raw\n\n" + fieldBytes(0, 7));
