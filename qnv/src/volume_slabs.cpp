@@ -134,10 +134,10 @@ std::pair<float, float> volumeValueRange(VolumeSlabReader& reader, std::uint32_t
 
 std::uint32_t slabSlicesForMemory(const VolumeGridInfo& info, std::uint64_t memoryBytes) {
   const std::uint64_t slice = std::max<std::uint64_t>(info.sliceVoxels(), 1);
-  // Window: the slab and its two neighbours; fresh: the slab's new slices; vectors: one
-  // per voxel of the slab at worst.
+  // Window: the slab and its two neighbours; fresh: the slab's new slices; next: the
+  // next slab's, read ahead; vectors: one per voxel of the slab at worst.
   const std::uint64_t fixed = 2 * slice * sizeof(float);
-  const std::uint64_t perSlice = slice * (2 * sizeof(float) + sizeof(VolumeVector));
+  const std::uint64_t perSlice = slice * (3 * sizeof(float) + sizeof(VolumeVector));
   std::uint64_t slab = memoryBytes > fixed ? (memoryBytes - fixed) / perSlice : 0;
   slab = std::clamp<std::uint64_t>(slab, 1, std::max<std::uint32_t>(info.dims.z, 1));
   return static_cast<std::uint32_t>(slab);
@@ -178,7 +178,12 @@ VolumeVectorSummary forEachVolumeVector(VolumeSlabReader& reader, std::uint32_t 
   std::vector<Chunk> chunks(threads);
 
   const std::size_t slice = static_cast<std::size_t>(info.sliceVoxels());
-  std::vector<float> window, fresh;
+  std::vector<float> window, fresh, next;
+  // The next slab's new slices are read by `prefetch` while this slab's vectors are
+  // computed and handed out (declared after the buffers: it is joined before they go).
+  std::uint32_t nextZ0 = 0, nextZ1 = 0;
+  std::exception_ptr prefetchError;
+  std::jthread prefetch;
   std::uint32_t windowZ0 = 0, windowZ1 = 0;  // slices held in `window`
   for (std::uint32_t zs = z0; zs < z1;) {
     const std::uint32_t ze = zs + std::min(summary.slabSlices, z1 - zs);
@@ -192,13 +197,36 @@ VolumeVectorSummary forEachVolumeVector(VolumeSlabReader& reader, std::uint32_t 
                    slice * (keepZ1 - keepZ0) * sizeof(float));
     }
     window.resize(slice * (needZ1 - needZ0));
+    if (prefetch.joinable()) {
+      prefetch.join();
+      if (prefetchError) std::rethrow_exception(prefetchError);
+    }
     if (keepZ1 < needZ1) {
-      reader.readSlices(keepZ1, needZ1, fresh);
+      if (nextZ0 == keepZ1 && nextZ1 == needZ1)
+        fresh.swap(next);
+      else
+        reader.readSlices(keepZ1, needZ1, fresh);
       std::memcpy(window.data() + slice * (keepZ1 - needZ0), fresh.data(),
                   fresh.size() * sizeof(float));
     }
     windowZ0 = needZ0;
     windowZ1 = needZ1;
+    nextZ0 = nextZ1 = 0;
+    if (ze < z1) {
+      const std::uint32_t following = ze + std::min(summary.slabSlices, z1 - ze);
+      const std::uint32_t from = needZ1, to = std::min(following + 1, info.dims.z);
+      if (from < to) {
+        prefetch = std::jthread([&reader, &next, &prefetchError, from, to] {
+          try {
+            reader.readSlices(from, to, next);
+          } catch (...) {
+            prefetchError = std::current_exception();
+          }
+        });
+        nextZ0 = from;
+        nextZ1 = to;
+      }
+    }
 
     context.window = window.data();
     context.windowZ0 = windowZ0;

@@ -192,10 +192,47 @@ TEST_CASE("slab thickness from a memory bound", "[qnv][volume][slabs]") {
   const std::uint64_t slice = 2048ull * 2048;
   const std::uint32_t slab = slabSlicesForMemory(info, std::uint64_t{2} << 30);
   CHECK(slab >= 1);
-  const std::uint64_t used = 2 * slice * 4 + slab * slice * (8 + sizeof(VolumeVector));
+  const std::uint64_t used = 2 * slice * 4 + slab * slice * (12 + sizeof(VolumeVector));
   CHECK(used <= (std::uint64_t{2} << 30));
-  CHECK(used + slice * (8 + sizeof(VolumeVector)) > (std::uint64_t{2} << 30));
+  CHECK(used + slice * (12 + sizeof(VolumeVector)) > (std::uint64_t{2} << 30));
   CHECK(slabSlicesForMemory(info, 1) == 1);
   info.dims = {4, 4, 3};
   CHECK(slabSlicesForMemory(info, std::uint64_t{1} << 30) == 3);
+}
+
+namespace {
+
+// Fails when asked for slice `bad` (a short read in the middle of the data).
+class FailingSlabs final : public VolumeSlabReader {
+ public:
+  FailingSlabs(const Volume& v, std::uint32_t bad) : inner_(v), bad_(bad) {}
+  const VolumeGridInfo& info() const override { return inner_.info(); }
+  void readSlices(std::uint32_t z0, std::uint32_t z1, std::vector<float>& out) override {
+    if (z0 <= bad_ && bad_ < z1) throw InputError("failing.raw: short read at byte offset 42");
+    inner_.readSlices(z0, z1, out);
+  }
+
+ private:
+  MemoryVolumeSlabs inner_;
+  std::uint32_t bad_;
+};
+
+}  // namespace
+
+TEST_CASE("slab gradients: a read error of a slab read ahead reaches the caller",
+          "[qnv][volume][slabs]") {
+  const Volume volume = headLike({12, 10, 16}, 5);
+  for (std::uint32_t bad : {0u, 7u, 15u})
+    for (std::uint32_t thickness : {1u, 3u}) {
+      FailingSlabs reader(volume, bad);
+      VolumeVectorOptions options;
+      options.valueRange = std::pair{0.0f, 2100.0f};
+      options.slabSlices = thickness;
+      options.threads = 2;
+      std::uint64_t handed = 0;
+      CHECK_THROWS_WITH(
+          forEachVolumeVector(reader, 0, 16, options,
+                              [&](std::span<const VolumeVector> v) { handed += v.size(); }),
+          Contains("byte offset 42"));
+    }
 }

@@ -115,9 +115,10 @@ using VolumeVectorCallback = std::function<void(std::span<const VolumeVector>)>;
 
 /// The slab thickness (>= 1) such that the gradient step over `info`'s grid holds at
 /// most `memoryBytes`: the window of (slab + 2) slices of float samples, the slab's
-/// freshly read slices, and a VolumeVector (48 bytes) per voxel of the slab (the worst
-/// case: every voxel gives a vector), i.e. slice voxels * (8 + 48) bytes per slab slice
-/// plus slice voxels * 8 bytes. 1 when even one slice exceeds the bound; never more
+/// freshly read slices, the next slab's slices (read ahead while this one is computed),
+/// and a VolumeVector (48 bytes) per voxel of the slab (the worst case: every voxel
+/// gives a vector), i.e. slice voxels * (12 + 48) bytes per slab slice plus slice
+/// voxels * 8 bytes. 1 when even one slice exceeds the bound; never more
 /// than dims.z. The reader's own buffer (a few MiB) and the callback's memory are not
 /// counted.
 std::uint32_t slabSlicesForMemory(const VolumeGridInfo& info, std::uint64_t memoryBytes);
@@ -129,7 +130,8 @@ std::uint32_t slabSlicesForMemory(const VolumeGridInfo& info, std::uint64_t memo
 /// dropped, colour = min(255, (value - lo) * 256 / (hi - lo)) for the domain [lo, hi].
 /// Reads each slice of [z0 - 1, z1 + 1) once, slab by slab, keeping a window of the
 /// slab plus its two neighbour slices (memory O(slab)); the vectors of each slab are
-/// computed by `options.threads` threads and handed to `callback` in order.
+/// computed by `options.threads` threads and handed to `callback` in order, while one
+/// more thread reads the next slab from `reader` (which is used by one thread at a time).
 /// Throws InputError for a bad range or an empty window, and whatever the reader or the
 /// callback throws (the workers are joined first).
 VolumeVectorSummary forEachVolumeVector(VolumeSlabReader& reader, std::uint32_t z0,
