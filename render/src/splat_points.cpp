@@ -67,27 +67,29 @@ void main() {
   vec3 center = (u_modelView * vec4(a_positionMagnitude.xyz, 1.0)).xyz;
   vec3 t = linear * (tangent * spread);
   vec3 b = linear * (bitangent * spread);
-  // Screen box of the patch's corners center +- 3 t +- 3 b, clipped to the viewport.
-  vec2 lo = vec2(1e30);
-  vec2 hi = vec2(-1e30);
-  for (int i = 0; i < 4; ++i) {
-    vec3 p = center + ((i & 1) == 0 ? -3.0 : 3.0) * t + ((i & 2) == 0 ? -3.0 : 3.0) * b;
-    vec4 clip = u_projection * vec4(p, 1.0);
-    if (!(clip.w > 0.0)) {  // behind the eye: pointsFit keeps such views off this path
-      cull();
-      return;
-    }
-    vec2 pixel = (clip.xy / clip.w * 0.5 + 0.5) * u_viewportSize;
-    lo = min(lo, pixel);
-    hi = max(hi, pixel);
+  // Screen box of the 3-sigma disk center + 3 (cos a t + sin a b): clip x / w over a is
+  // (x0 + x1 cos a + x2 sin a) / (w0 + w1 cos a + w2 sin a), whose extremes k solve
+  // (x0 - k w0)^2 = (x1 - k w1)^2 + (x2 - k w2)^2 (exact while the disk is in front).
+  vec4 c0 = u_projection * vec4(center, 1.0);
+  vec4 c1 = u_projection * vec4(3.0 * t, 0.0);
+  vec4 c2 = u_projection * vec4(3.0 * b, 0.0);
+  float qa = c0.w * c0.w - c1.w * c1.w - c2.w * c2.w;
+  if (!(qa > 0.0) || !(c0.w > 0.0)) {  // reaches behind the eye: pointsFit prevents it
+    cull();
+    return;
   }
+  vec2 qb = c0.xy * c0.w - c1.xy * c1.w - c2.xy * c2.w;
+  vec2 qc = c0.xy * c0.xy - c1.xy * c1.xy - c2.xy * c2.xy;
+  vec2 root = sqrt(max(qb * qb - qa * qc, vec2(0.0)));
+  vec2 lo = ((qb - root) / qa * 0.5 + 0.5) * u_viewportSize;
+  vec2 hi = ((qb + root) / qa * 0.5 + 0.5) * u_viewportSize;
   lo = max(lo, vec2(0.0));
   hi = min(hi, u_viewportSize);
   if (!(lo.x < hi.x && lo.y < hi.y)) {  // outside the view (or not finite)
     cull();
     return;
   }
-  gl_PointSize = max(hi.x - lo.x, hi.y - lo.y) + 0.5;  // a quarter pixel of margin each side
+  gl_PointSize = max(hi.x - lo.x, hi.y - lo.y) + 1.0;  // half a pixel of margin each side
   gl_Position = vec4((lo + hi) / u_viewportSize - 1.0, 0.0, 1.0);
   vec3 normal = cross(t, b);
   vec3 bn = cross(b, normal);
@@ -165,7 +167,7 @@ bool pointsFit(std::span<const qnv::DecodedVector> vectors, const SplatStyle& st
   const float volumeSpread = 2.0f * style.sigma * style.voxelSize;
   const float surfaceScale = 2.0f * style.sigma / std::sqrt(3.14159265f);
   // The sprite is clipped to the viewport: under the largest size it always fits.
-  const float margin = 1.5f;  // the shader's half pixel and one for rounding
+  const float margin = 2.0f;  // the shader's pixel and one for rounding
   const bool sizeMatters =
       static_cast<float>(std::max(view.width, view.height)) + margin > view.maxPointSize;
   const float pixelsX = 0.5f * static_cast<float>(view.width) * std::abs(view.scaleX);

@@ -1,9 +1,9 @@
 // Private to render/: the point-sprite splat path (SplatPath::points, splat_renderer.hpp).
 //
-// Each vector is one GL point. The vertex shader projects the four corners of the
-// vector's square patch (splat_model.hpp: the same corners the geometry path emits),
-// clips their screen bounding box to the viewport and makes the point a sprite that
-// covers that box plus one pixel; a patch outside the view is culled there. The fragment
+// Each vector is one GL point. The vertex shader finds the exact screen bounding box of
+// the projected 3-sigma disk of the vector's patch (splat_model.hpp: outside the disk the
+// profile is cut to zero), clips it to the viewport and makes the point a sprite that
+// covers that box plus half a pixel each side; a patch outside the view is culled there. The fragment
 // shader intersects its pixel's ray with the patch plane (as the CPU reference of
 // equation (1) does, splat_reference.hpp), discards what falls outside the square patch,
 // the 3-sigma disk, the clip range or the viewport, and writes the patch's depth, so it

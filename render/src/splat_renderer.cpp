@@ -133,7 +133,7 @@ void main() { o_color = texture(u_layer, v_uv); }
 
 constexpr int kMaxSplatLights = 8;
 
-SplatPath gDefaultPath = SplatPath::points;
+SplatPath gDefaultPath = SplatPath::geometry;
 
 /// Uniform locations of one splat program (-1 for those it lacks).
 struct SplatUniforms {
