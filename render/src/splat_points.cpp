@@ -89,7 +89,7 @@ void main() {
     cull();
     return;
   }
-  gl_PointSize = max(hi.x - lo.x, hi.y - lo.y) + 1.0;  // half a pixel of margin each side
+  gl_PointSize = max(hi.x - lo.x, hi.y - lo.y) + 0.5;  // a quarter pixel of margin each side
   gl_Position = vec4((lo + hi) / u_viewportSize - 1.0, 0.0, 1.0);
   vec3 normal = cross(t, b);
   vec3 bn = cross(b, normal);
@@ -167,7 +167,7 @@ bool pointsFit(std::span<const qnv::DecodedVector> vectors, const SplatStyle& st
   const float volumeSpread = 2.0f * style.sigma * style.voxelSize;
   const float surfaceScale = 2.0f * style.sigma / std::sqrt(3.14159265f);
   // The sprite is clipped to the viewport: under the largest size it always fits.
-  const float margin = 2.0f;  // the shader's pixel and one for rounding
+  const float margin = 1.5f;  // the shader's half pixel and one for rounding
   const bool sizeMatters =
       static_cast<float>(std::max(view.width, view.height)) + margin > view.maxPointSize;
   const float pixelsX = 0.5f * static_cast<float>(view.width) * std::abs(view.scaleX);

@@ -3,13 +3,14 @@
 // Each vector is one GL point. The vertex shader finds the exact screen bounding box of
 // the projected 3-sigma disk of the vector's patch (splat_model.hpp: outside the disk the
 // profile is cut to zero), clips it to the viewport and makes the point a sprite that
-// covers that box plus half a pixel each side; a patch outside the view is culled there. The fragment
-// shader intersects its pixel's ray with the patch plane (as the CPU reference of
-// equation (1) does, splat_reference.hpp), discards what falls outside the square patch,
-// the 3-sigma disk, the clip range or the viewport, and writes the patch's depth, so it
-// shades exactly the fragments the geometry path's two triangles would. One point per
-// splat instead of a geometry-shader invocation and two triangles: llvmpipe runs vertex
-// and geometry processing on one thread, and the geometry stage dominated it.
+// covers that box plus a quarter pixel each side; a patch outside the view is culled
+// there. The fragment shader intersects its pixel's ray with the patch plane (as the CPU
+// reference of equation (1) does, splat_reference.hpp), discards what falls outside the
+// disk, the clip range or the viewport, and writes the patch's depth, so it shades the
+// fragments the geometry path's two triangles shade. One point per splat instead of a
+// geometry-shader invocation and two triangles; but a square sprite over an oblique
+// ellipse covers more pixels than the patch, and on llvmpipe the covered pixel blocks
+// dominate the cost: measured in render/README.md, the geometry path stays the default.
 //
 // A sprite cannot cross the near plane nor exceed the largest point size, so the pass
 // checks the view first (pointsFit) and draws with the geometry path when some splat

@@ -53,7 +53,7 @@ enum class SplatBlend { backToFront, frontToBack };
 
 /// How the pass turns a vector into pixels. Both shade the same fragments with the same
 /// Gaussian (the picture agrees with the CPU reference of equation (1) either way);
-/// `points` is several times faster on llvmpipe (render/README.md, bench_splats).
+/// on llvmpipe `points` measured no faster (render/README.md, bench_splats).
 enum class SplatPath {
   /// One point sprite per splat covering its projected patch, culled outside the view;
   /// the fragment shader intersects each pixel's ray with the patch plane. A view where
@@ -64,7 +64,7 @@ enum class SplatPath {
   geometry,
 };
 
-/// The path a new SplatRenderer takes (`points` unless set; `--splat-path`). Not
+/// The path a new SplatRenderer takes (`geometry` unless set; `--splat-path`). Not
 /// thread-safe: set it before rendering starts.
 void setDefaultSplatPath(SplatPath path);
 SplatPath defaultSplatPath();
