@@ -7,6 +7,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "render/splat_renderer.hpp"
+
 #include <algorithm>
 #include <charconv>
 #include <cstdio>
@@ -114,6 +116,11 @@ Parsed parseArguments(int argc, char** argv) {
                  "polygons (default), splats (polygons drawn as QNV splats) or outlines "
                  "(OutlineGroup outlines only)")
       ->check(CLI::IsMember(modeNames));
+  std::string splatPathText = render::splatPathName(render::defaultSplatPath());
+  cli.add_option("--splat-path", splatPathText,
+                 "How splats are drawn: geometry (default: a geometry shader makes each patch) "
+                 "or points (point sprites; render/README.md)")
+      ->check(CLI::IsMember(std::vector<std::string>{"geometry", "points"}));
   cli.add_option("--script", o.script,
                  "Window: run the UI actions of FILE between frames (layout, open, viewport, "
                  "lod, mode, wait-loaded, frames, screenshot, quit; see app/window_script.hpp)")
@@ -251,6 +258,8 @@ Parsed parseArguments(int argc, char** argv) {
   }
   o.layout = layoutFromName(layoutText).value_or(Layout::single);  // checked by IsMember
   o.mode = render::renderModeFromName(modeText).value_or(render::RenderMode::polygons);
+  if (render::SplatPath path; render::parseSplatPath(splatPathText.c_str(), path))
+    render::setDefaultSplatPath(path);  // checked by IsMember
   if (!size.empty() && !parseSize(size, o.width, o.height)) {
     std::fprintf(stderr, "ghostspace: --size: expected WxH such as 800x600, got '%s'\n",
                  size.c_str());

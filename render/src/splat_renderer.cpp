@@ -5,10 +5,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cstddef>
+#include <cstring>
 #include <stdexcept>
+#include <string_view>
 
 #include "gl_program.hpp"
 #include "render/splat_sort.hpp"
+#include "splat_points.hpp"
 
 namespace gs::render {
 
@@ -130,7 +133,60 @@ void main() { o_color = texture(u_layer, v_uv); }
 
 constexpr int kMaxSplatLights = 8;
 
+SplatPath gDefaultPath = SplatPath::geometry;
+
+/// Uniform locations of one splat program (-1 for those it lacks).
+struct SplatUniforms {
+  GLint modelView, projection, modelViewProjection, normalMatrix, surface, sigma, opacityScale,
+      voxelSize, magnitudeMax, ambient, lightCount, lightDirection, lightColor, viewportSize,
+      viewport, rayScale, clipRange, depthMap;
+  void locate(GLuint program) {
+    const auto at = [program](const char* name) { return detail::uniform(program, name); };
+    modelView = at("u_modelView");
+    projection = at("u_projection");
+    modelViewProjection = at("u_modelViewProjection");
+    normalMatrix = at("u_normalMatrix");
+    surface = at("u_surface");
+    sigma = at("u_sigma");
+    opacityScale = at("u_opacityScale");
+    voxelSize = at("u_voxelSize");
+    magnitudeMax = at("u_magnitudeMax");
+    ambient = at("u_ambient");
+    lightCount = at("u_lightCount");
+    lightDirection = at("u_lightDirection");
+    lightColor = at("u_lightColor");
+    viewportSize = at("u_viewportSize");
+    viewport = at("u_viewport");
+    rayScale = at("u_rayScale");
+    clipRange = at("u_clipRange");
+    depthMap = at("u_depthMap");
+  }
+};
+
 }  // namespace
+
+void setDefaultSplatPath(SplatPath path) {
+  gDefaultPath = path;
+}
+
+SplatPath defaultSplatPath() {
+  return gDefaultPath;
+}
+
+const char* splatPathName(SplatPath path) {
+  return path == SplatPath::points ? "points" : "geometry";
+}
+
+bool parseSplatPath(const char* text, SplatPath& path) {
+  const std::string_view t = text != nullptr ? text : "";
+  if (t == "points")
+    path = SplatPath::points;
+  else if (t == "geometry")
+    path = SplatPath::geometry;
+  else
+    return false;
+  return true;
+}
 
 void SplatSet::computeBounds() {
   bounds = vrml::Bounds{};
@@ -138,14 +194,12 @@ void SplatSet::computeBounds() {
 }
 
 struct SplatRenderer::Gpu {
-  GLuint program = 0, layerProgram = 0;
+  GLuint program = 0, pointsProgram = 0, layerProgram = 0;
   GLuint vao = 0, orderBuffer = 0, vectorBuffer = 0;
   GLuint layerFbo = 0, layerTexture = 0;
   int layerWidth = 0, layerHeight = 0;
-  struct {
-    GLint model, modelViewProjection, normalMatrix, surface, sigma, opacityScale, voxelSize,
-        magnitudeMax, ambient, lightCount, lightDirection, lightColor;
-  } u{};
+  SplatUniforms u{}, pu{};  // of program, pointsProgram
+  float maxPointSize = 1.0f;
   const qnv::DecodedVector* uploadedData = nullptr;
   std::size_t uploadedSize = 0;
   std::size_t bufferCapacity = 0;  // vectors the GL buffer holds
@@ -156,23 +210,24 @@ struct SplatRenderer::Gpu {
   SplatBlend sortedBlend = SplatBlend::backToFront;
   DepthSorter sorter;
   std::vector<std::uint32_t> order;
+  // Whether the last view checked fits the points path (pointsFit), and that view.
+  bool pointsFit = false;
+  glm::mat4 fitView{0.0f}, fitProjection{0.0f};
+  std::size_t fitCount = 0;
+  int fitWidth = 0, fitHeight = 0;
+  SplatStyle fitStyle;
 
   void create() {
     program = detail::buildProgram("splat", kSplatVertexShader, kSplatFragmentShader,
                                    kSplatGeometryShader);
+    pointsProgram = detail::buildProgram("splat points", detail::kSplatPointsVertexShader,
+                                         detail::kSplatPointsFragmentShader);
     layerProgram = detail::buildProgram("splat layer", kLayerVertexShader, kLayerFragmentShader);
-    u.model = detail::uniform(program, "u_model");
-    u.modelViewProjection = detail::uniform(program, "u_modelViewProjection");
-    u.normalMatrix = detail::uniform(program, "u_normalMatrix");
-    u.surface = detail::uniform(program, "u_surface");
-    u.sigma = detail::uniform(program, "u_sigma");
-    u.opacityScale = detail::uniform(program, "u_opacityScale");
-    u.voxelSize = detail::uniform(program, "u_voxelSize");
-    u.magnitudeMax = detail::uniform(program, "u_magnitudeMax");
-    u.ambient = detail::uniform(program, "u_ambient");
-    u.lightCount = detail::uniform(program, "u_lightCount");
-    u.lightDirection = detail::uniform(program, "u_lightDirection");
-    u.lightColor = detail::uniform(program, "u_lightColor");
+    u.locate(program);
+    pu.locate(pointsProgram);
+    GLfloat range[2] = {1.0f, 1.0f};
+    glGetFloatv(GL_POINT_SIZE_RANGE, range);
+    maxPointSize = range[1];
     glGenVertexArrays(1, &vao);
     glGenBuffers(1, &orderBuffer);
     glGenBuffers(1, &vectorBuffer);
@@ -195,6 +250,7 @@ struct SplatRenderer::Gpu {
 
   void destroy() {
     glDeleteProgram(program);
+    glDeleteProgram(pointsProgram);
     glDeleteProgram(layerProgram);
     glDeleteVertexArrays(1, &vao);
     glDeleteBuffers(1, &orderBuffer);
@@ -243,7 +299,7 @@ struct SplatRenderer::Gpu {
   }
 };
 
-SplatRenderer::SplatRenderer() = default;
+SplatRenderer::SplatRenderer() : path_(gDefaultPath) {}
 
 SplatRenderer::~SplatRenderer() {
   release();
@@ -299,29 +355,71 @@ void SplatRenderer::draw(const SplatSet& set, std::size_t count, const glm::mat4
   GLint previousFramebuffer = 0;
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previousFramebuffer);
 
-  glUseProgram(g.program);
-  glUniformMatrix4fv(g.u.model, 1, GL_FALSE, &model[0][0]);
-  const glm::mat4 modelViewProjection = projectionMatrix(camera, aspect) * modelView;
-  glUniformMatrix4fv(g.u.modelViewProjection, 1, GL_FALSE, &modelViewProjection[0][0]);
-  const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(model)));
-  glUniformMatrix3fv(g.u.normalMatrix, 1, GL_FALSE, &normalMatrix[0][0]);
+  const glm::mat4 projection = projectionMatrix(camera, aspect);
   const SplatStyle& s = style != nullptr ? *style : set.style;
-  glUniform1i(g.u.surface, s.kind == qnv::StreamKind::surface ? 1 : 0);
-  glUniform1f(g.u.sigma, s.sigma);
-  glUniform1f(g.u.opacityScale, s.opacityScale);
-  glUniform1f(g.u.voxelSize, s.voxelSize);
-  glUniform1f(g.u.magnitudeMax, s.magnitudeMax);
-  glUniform1f(g.u.ambient, s.ambient);
+  // The points path when this view allows it (checked again only when the view changed).
+  bool points = false;
+  if (path_ == SplatPath::points) {
+    if (g.fitCount != count || g.fitView != modelView || g.fitProjection != projection ||
+        g.fitWidth != viewport[2] || g.fitHeight != viewport[3] ||
+        std::memcmp(&g.fitStyle, &s, sizeof s) != 0) {
+      detail::PointView pv;
+      pv.modelView = modelView;
+      pv.scaleX = projection[0][0];
+      pv.scaleY = projection[1][1];
+      pv.width = viewport[2];
+      pv.height = viewport[3];
+      pv.nearClip = std::max(camera.nearClip, 1e-6f);
+      pv.maxPointSize = g.maxPointSize;
+      g.pointsFit = detail::pointsFit({set.vectors.data(), count}, s, pv);
+      g.fitCount = count;
+      g.fitView = modelView;
+      g.fitProjection = projection;
+      g.fitWidth = viewport[2];
+      g.fitHeight = viewport[3];
+      g.fitStyle = s;
+    }
+    points = g.pointsFit;
+  }
+  statistics_.path = points ? SplatPath::points : SplatPath::geometry;
+  const SplatUniforms& u = points ? g.pu : g.u;
+  glUseProgram(points ? g.pointsProgram : g.program);
+  if (points) {
+    glUniformMatrix4fv(u.modelView, 1, GL_FALSE, &modelView[0][0]);
+    glUniformMatrix4fv(u.projection, 1, GL_FALSE, &projection[0][0]);
+    glUniform2f(u.viewportSize, static_cast<float>(viewport[2]), static_cast<float>(viewport[3]));
+    // Where the pass draws: the layer (from its origin) or the framebuffer's viewport.
+    const bool layer = blend == SplatBlend::frontToBack;
+    glUniform4f(u.viewport, layer ? 0.0f : static_cast<float>(viewport[0]),
+                layer ? 0.0f : static_cast<float>(viewport[1]), static_cast<float>(viewport[2]),
+                static_cast<float>(viewport[3]));
+    glUniform2f(u.rayScale, 1.0f / projection[0][0], 1.0f / projection[1][1]);
+    const float nearClip = std::max(camera.nearClip, 1e-6f);
+    glUniform2f(u.clipRange, nearClip, std::max(camera.farClip, nearClip * 1.001f));
+    glUniform2f(u.depthMap, projection[2][2], projection[3][2]);
+    glEnable(GL_PROGRAM_POINT_SIZE);
+  } else {
+    const glm::mat4 modelViewProjection = projection * modelView;
+    glUniformMatrix4fv(u.modelViewProjection, 1, GL_FALSE, &modelViewProjection[0][0]);
+  }
+  const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(model)));
+  glUniformMatrix3fv(u.normalMatrix, 1, GL_FALSE, &normalMatrix[0][0]);
+  glUniform1i(u.surface, s.kind == qnv::StreamKind::surface ? 1 : 0);
+  glUniform1f(u.sigma, s.sigma);
+  glUniform1f(u.opacityScale, s.opacityScale);
+  glUniform1f(u.voxelSize, s.voxelSize);
+  glUniform1f(u.magnitudeMax, s.magnitudeMax);
+  glUniform1f(u.ambient, s.ambient);
   const int lightCount = static_cast<int>(std::min<std::size_t>(lights.size(), kMaxSplatLights));
   glm::vec3 directions[kMaxSplatLights], colors[kMaxSplatLights];
   for (int i = 0; i < lightCount; ++i) {
     directions[i] = lights[static_cast<std::size_t>(i)].direction;
     colors[i] = lights[static_cast<std::size_t>(i)].color;
   }
-  glUniform1i(g.u.lightCount, lightCount);
+  glUniform1i(u.lightCount, lightCount);
   if (lightCount > 0) {
-    glUniform3fv(g.u.lightDirection, lightCount, &directions[0][0]);
-    glUniform3fv(g.u.lightColor, lightCount, &colors[0][0]);
+    glUniform3fv(u.lightDirection, lightCount, &directions[0][0]);
+    glUniform3fv(u.lightColor, lightCount, &colors[0][0]);
   }
 
   glEnable(GL_BLEND);
@@ -343,6 +441,7 @@ void SplatRenderer::draw(const SplatSet& set, std::size_t count, const glm::mat4
   }
   glBindVertexArray(g.vao);
   glDrawElements(GL_POINTS, static_cast<GLsizei>(count), GL_UNSIGNED_INT, nullptr);
+  if (points) glDisable(GL_PROGRAM_POINT_SIZE);
   if (blend == SplatBlend::frontToBack) {
     glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(previousFramebuffer));
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);

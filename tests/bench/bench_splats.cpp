@@ -1,69 +1,160 @@
-// Splat pass throughput on the headless path (OSMesa): splats per second at 1, 4 and 16
-// million vectors, and the frame time of the depth sort alone.
+// Splat pass throughput on the headless path (OSMesa), both SplatPaths in one run:
+// M splats/s of a whole frame (depth sort, upload of the order, draw, glFinish) for
+// synthetic sphere shells of a few sizes and for .qnv files given on the command line
+// (e.g. the bunny and CThead's top 9.1%, render/README.md), each seen whole by a fitted
+// camera. Each figure is the best of FRAMES frames (the camera moves a little every
+// frame, so each frame sorts again); "cpu" is the process's CPU time per frame (all
+// llvmpipe threads), less sensitive to other work on a shared machine than the wall time.
 //
-//   bench_splats [WxH]      (default 512x512)
+//   bench_splats [WxH] [--millions 1,4] [--frames N] [FILE.qnv ...]   (default 512x512)
 #include <glad/gl.h>
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <ctime>
+#include <memory>
 #include <random>
+#include <string>
+#include <vector>
 
 #include "render/context.hpp"
 #include "render/splat_renderer.hpp"
+#include "render/splat_source.hpp"
 
 using namespace gs;
 using Clock = std::chrono::steady_clock;
 
+namespace {
+
+double processSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+std::shared_ptr<render::SplatSet> shell(std::size_t n) {
+  auto set = std::make_shared<render::SplatSet>();
+  set->vectors.resize(n);
+  std::mt19937 rng(3);
+  std::normal_distribution<float> g(0.0f, 1.0f);
+  // A sphere shell, each splat about as large as its share of the surface.
+  const float area = 4.0f * 3.14159265f / static_cast<float>(n);
+  for (auto& v : set->vectors) {
+    const glm::vec3 d = glm::normalize(glm::vec3(g(rng), g(rng), g(rng)));
+    v = {d, area, d, 0xffc0c0c0u};
+  }
+  set->computeBounds();
+  return set;
+}
+
+struct Figure {
+  double wall = 1e9, cpu = 1e9, sort = 0.0;
+  render::SplatPath drew = render::SplatPath::geometry;
+};
+
+Figure measure(const render::SplatSet& set, render::SplatPath path, int width, int height,
+               int frames) {
+  const float aspect = float(width) / float(height);
+  render::Camera direction;
+  render::Camera camera = render::fitCamera(set.bounds, aspect, direction);
+  const glm::vec3 start = camera.position;
+  const float step = 0.003f * glm::length(set.bounds.size());
+  const render::SplatLight lights[] = {{camera.forward(), glm::vec3(1.0f)}};
+  render::SplatRenderer renderer;
+  renderer.setPath(path);
+  Figure f;
+  for (int frame = 0; frame <= frames; ++frame) {
+    camera.position = start + glm::vec3(step * static_cast<float>(frame), 0.0f, 0.0f);
+    glViewport(0, 0, width, height);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    const auto t0 = Clock::now();
+    const double c0 = processSeconds();
+    renderer.draw(set, set.vectors.size(), glm::mat4(1.0f), camera, aspect, lights);
+    glFinish();
+    const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    const double cpu = processSeconds() - c0;
+    if (frame == 0) continue;  // upload and shader compilation
+    if (seconds < f.wall) f.sort = renderer.statistics().sortSeconds;
+    f.wall = std::min(f.wall, seconds);
+    f.cpu = std::min(f.cpu, cpu);
+    f.drew = renderer.statistics().path;
+  }
+  return f;
+}
+
+void report(const char* name, const render::SplatSet& set, int width, int height, int frames) {
+  const double n = static_cast<double>(set.vectors.size());
+  Figure figures[2];
+  const render::SplatPath paths[2] = {render::SplatPath::geometry, render::SplatPath::points};
+  for (int i = 0; i < 2; ++i) figures[i] = measure(set, paths[i], width, height, frames);
+  for (int i = 0; i < 2; ++i) {
+    const Figure& f = figures[i];
+    std::printf(
+        "%-14s %9.0f splats  %-8s frame %7.3f s  %5.2f M splats/s  (cpu %.3f s, "
+        "sort %.3f s)%s\n",
+        name, n, render::splatPathName(paths[i]), f.wall, n / f.wall / 1e6, f.cpu, f.sort,
+        f.drew != paths[i] ? "  [fell back to geometry]" : "");
+  }
+  std::printf("%-14s points / geometry: %.2fx (wall), %.2fx (cpu)\n", name,
+              figures[0].wall / figures[1].wall, figures[0].cpu / figures[1].cpu);
+  std::fflush(stdout);
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
-  int width = 512, height = 512;
-  if (argc > 1 && std::sscanf(argv[1], "%dx%d", &width, &height) != 2) {
-    std::fprintf(stderr, "usage: bench_splats [WxH]\n");
-    return 2;
+  int width = 512, height = 512, frames = 3;
+  std::vector<double> millions = {1, 4};
+  std::vector<std::string> files;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--frames" && i + 1 < argc) {
+      frames = std::max(1, std::atoi(argv[++i]));
+    } else if (a == "--millions" && i + 1 < argc) {
+      millions.clear();
+      for (char* p = argv[++i]; *p != '\0';) {
+        char* end = nullptr;
+        millions.push_back(std::strtod(p, &end));
+        if (end == p) break;
+        p = *end == ',' ? end + 1 : end;
+      }
+    } else if (a.find(".qnv") == std::string::npos &&
+               std::sscanf(a.c_str(), "%dx%d", &width, &height) == 2) {
+      // the size
+    } else if (a.size() > 4 && a.substr(a.size() - 4) == ".qnv") {
+      files.push_back(a);
+    } else {
+      std::fprintf(stderr,
+                   "usage: bench_splats [WxH] [--millions 1,4] [--frames N] [FILE.qnv ...]\n");
+      return 2;
+    }
   }
   auto context = render::createOffscreenContext(width, height);
-  GLint maxTexels = 0;
-  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
-  std::printf("%s; %dx%d; GL_MAX_TEXTURE_BUFFER_SIZE %d texels\n", glGetString(GL_RENDERER), width,
-              height, maxTexels);
-  render::Camera camera;
-  camera.position = {0.0f, 0.0f, 3.0f};
-  camera.nearClip = 0.5f;
-  camera.farClip = 10.0f;
-  const render::SplatLight lights[] = {{glm::vec3(0, 0, -1), glm::vec3(1.0f)}};
-  for (std::size_t millions : {1, 4, 16}) {
-    const std::size_t n = millions * 1000000;
-    if (2 * n > static_cast<std::size_t>(maxTexels)) {
-      std::printf("%2zu M: skipped (more than the texture buffer holds)\n", millions);
-      continue;
+  double load[3] = {0, 0, 0};
+  if (std::FILE* f = std::fopen("/proc/loadavg", "r")) {
+    if (std::fscanf(f, "%lf %lf %lf", &load[0], &load[1], &load[2]) != 3) load[0] = -1;
+    std::fclose(f);
+  }
+  std::printf("%s; %dx%d; best of %d frames; load average %.2f %.2f %.2f\n",
+              glGetString(GL_RENDERER), width, height, frames, load[0], load[1], load[2]);
+  for (const std::string& file : files) {
+    std::string error;
+    const auto set = render::loadQnvFile(file, error);
+    if (!set) {
+      std::fprintf(stderr, "%s\n", error.c_str());
+      return 1;
     }
-    render::SplatSet set;
-    set.vectors.resize(n);
-    std::mt19937 rng(3);
-    std::normal_distribution<float> g(0.0f, 1.0f);
-    // A sphere shell, each splat about as large as its share of the surface.
-    const float area = 4.0f * 3.14159265f / static_cast<float>(n);
-    for (auto& v : set.vectors) {
-      const glm::vec3 d = glm::normalize(glm::vec3(g(rng), g(rng), g(rng)));
-      v = {d, area, d, 0xffc0c0c0u};
-    }
-    set.computeBounds();
-    render::SplatRenderer renderer;
-    double sortSeconds = 0.0, frameSeconds = 1e9;
-    for (int frame = 0; frame < 4; ++frame) {
-      // Move the camera a little every frame so each frame sorts again.
-      camera.position.x = 0.01f * static_cast<float>(frame);
-      glViewport(0, 0, width, height);
-      glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-      const auto t0 = Clock::now();
-      renderer.draw(set, n, glm::mat4(1.0f), camera, float(width) / float(height), lights);
-      glFinish();
-      const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-      if (frame == 0) continue;  // upload
-      frameSeconds = std::min(frameSeconds, seconds);
-      sortSeconds = renderer.statistics().sortSeconds;
-    }
-    std::printf("%2zu M splats: frame %.3f s (%.1f M splats/s), of which the depth sort %.3f s\n",
-                millions, frameSeconds, static_cast<double>(n) / frameSeconds / 1e6, sortSeconds);
+    const std::size_t slash = file.find_last_of('/');
+    report(file.substr(slash == std::string::npos ? 0 : slash + 1).c_str(), *set, width, height,
+           frames);
+  }
+  for (const double m : millions) {
+    const auto set = shell(static_cast<std::size_t>(m * 1e6));
+    char name[32];
+    std::snprintf(name, sizeof name, "shell %.2g M", m);
+    report(name, *set, width, height, frames);
   }
   return 0;
 }

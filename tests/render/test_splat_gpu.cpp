@@ -1,5 +1,6 @@
 // The OpenGL splat pass against the CPU reference of equation (1) (splat_reference.hpp):
-// the same vectors, style, lights and camera must give the same picture.
+// the same vectors, style, lights and camera must give the same picture, on both paths
+// (SplatPath: point sprites and the geometry shader).
 #include <catch2/catch.hpp>
 
 #include <glad/gl.h>
@@ -49,44 +50,50 @@ Camera camera() {
 }
 
 Image drawGpu(const SplatSet& set, std::size_t count, std::span<const SplatLight> lights,
-              SplatBlend blend) {
+              SplatBlend blend, SplatPath path = SplatPath::points, const Camera& cam = camera()) {
   static auto context = createOffscreenContext(kSize, kSize);
   static SplatRenderer renderer;
+  renderer.setPath(path);
   glViewport(0, 0, kSize, kSize);
   glClearColor(kBackground.r, kBackground.g, kBackground.b, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  renderer.draw(set, count, glm::mat4(1.0f), camera(), 1.0f, lights, blend);
+  renderer.draw(set, count, glm::mat4(1.0f), cam, 1.0f, lights, blend);
+  CHECK(renderer.statistics().path == path);  // this camera keeps every patch in front
   return readPixels(0, 0, kSize, kSize);
 }
 
 }  // namespace
 
 TEST_CASE("the OpenGL splat pass matches the CPU reference of equation (1)", "[splat][gpu]") {
+  const SplatPath path = GENERATE(SplatPath::points, SplatPath::geometry);
+  INFO("path " << splatPathName(path));
   const SplatSet set = shell(3000);
   const SplatLight lights[] = {{glm::normalize(glm::vec3(-0.3f, -0.5f, -1.0f)), glm::vec3(0.8f)}};
   const Image reference =
       renderSplatsReference(set.vectors, set.style, lights, camera(), kSize, kSize, kBackground);
-  const Image gpu = drawGpu(set, set.vectors.size(), lights, SplatBlend::backToFront);
+  const Image gpu = drawGpu(set, set.vectors.size(), lights, SplatBlend::backToFront, path);
   const ImageDifference d = compareImages(gpu, reference, 8);
   INFO("differing " << d.fractionDiffering << ", mean " << d.meanAbsolute);
   CHECK(d.fractionDiffering <= 0.01);
   // The picture is not just background.
   CHECK(compareImages(gpu, Image(kSize, kSize, 26, 51, 77), 16).fractionDiffering > 0.2);
 
-  const Image frontToBack = drawGpu(set, set.vectors.size(), lights, SplatBlend::frontToBack);
+  const Image frontToBack = drawGpu(set, set.vectors.size(), lights, SplatBlend::frontToBack, path);
   const ImageDifference f = compareImages(frontToBack, reference, 8);
   INFO("front to back: differing " << f.fractionDiffering);
   CHECK(f.fractionDiffering <= 0.01);
 }
 
 TEST_CASE("the level of detail draws a prefix of the stream", "[splat][gpu]") {
+  const SplatPath path = GENERATE(SplatPath::points, SplatPath::geometry);
+  INFO("path " << splatPathName(path));
   const SplatSet set = shell(3000);
   const SplatLight lights[] = {{glm::vec3(0, 0, -1), glm::vec3(1.0f)}};
-  const Image some = drawGpu(set, 300, lights, SplatBlend::backToFront);
+  const Image some = drawGpu(set, 300, lights, SplatBlend::backToFront, path);
   const Image reference = renderSplatsReference(set.vectors, set.style, lights, camera(), kSize,
                                                 kSize, kBackground, 300);
   CHECK(compareImages(some, reference, 8).fractionDiffering <= 0.01);
-  const Image all = drawGpu(set, set.vectors.size(), lights, SplatBlend::backToFront);
+  const Image all = drawGpu(set, set.vectors.size(), lights, SplatBlend::backToFront, path);
   CHECK(compareImages(some, all, 16).fractionDiffering > 0.05);
 }
 
@@ -99,7 +106,9 @@ TEST_CASE("a wrong depth order would fail the comparison", "[splat][gpu]") {
   set.style.opacityScale = 2.0f;
   set.computeBounds();
   const SplatLight lights[] = {{glm::vec3(0, 0, -1), glm::vec3(1.0f)}};
-  const Image gpu = drawGpu(set, 2, lights, SplatBlend::backToFront);
+  const SplatPath path = GENERATE(SplatPath::points, SplatPath::geometry);
+  INFO("path " << splatPathName(path));
+  const Image gpu = drawGpu(set, 2, lights, SplatBlend::backToFront, path);
   const Image right =
       renderSplatsReference(set.vectors, set.style, lights, camera(), kSize, kSize, kBackground);
   const std::uint32_t wrongOrder[] = {1, 0};  // blue composited as if it were nearest
@@ -109,4 +118,51 @@ TEST_CASE("a wrong depth order would fail the comparison", "[splat][gpu]") {
                          kSize, kSize);
   CHECK(compareImages(gpu, right, 8).fractionDiffering <= 0.01);
   CHECK(compareImages(gpu, wrong, 8).fractionDiffering > 0.02);
+}
+
+TEST_CASE("the points path draws the patches the geometry path draws, oblique and clipped",
+          "[splat][gpu]") {
+  // Large oblique patches, some across the viewport's edges: the sprites must cover them
+  // wholly and the fragment shader cut them where the geometry path's triangles end.
+  SplatSet set;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  for (int i = 0; i < 60; ++i) {
+    const glm::vec3 p(1.4f * u(rng), 1.4f * u(rng), 1.2f * u(rng));
+    const glm::vec3 n = glm::normalize(glm::vec3(u(rng), u(rng), 0.3f * u(rng)) + 1e-3f);
+    set.vectors.push_back({p, 0.02f + 0.05f * std::abs(u(rng)), n, rgba(200, 120 + i, 60)});
+  }
+  set.style.kind = qnv::StreamKind::surface;
+  set.computeBounds();
+  const SplatLight lights[] = {{glm::normalize(glm::vec3(0.4f, -0.3f, -1.0f)), glm::vec3(1.0f)}};
+  const Image reference =
+      renderSplatsReference(set.vectors, set.style, lights, camera(), kSize, kSize, kBackground);
+  const Image points = drawGpu(set, set.vectors.size(), lights, SplatBlend::backToFront);
+  const Image geometry =
+      drawGpu(set, set.vectors.size(), lights, SplatBlend::backToFront, SplatPath::geometry);
+  CHECK(compareImages(points, reference, 8).fractionDiffering <= 0.01);
+  CHECK(compareImages(points, geometry, 2).fractionDiffering <= 0.005);
+  CHECK(compareImages(points, Image(kSize, kSize, 26, 51, 77), 16).fractionDiffering > 0.1);
+}
+
+TEST_CASE("a patch across the near plane sends the points path to the geometry path",
+          "[splat][gpu]") {
+  const SplatSet set = shell(500);
+  Camera cam = camera();
+  cam.position = glm::normalize(cam.position) * 1.02f;  // the nearest patches cross near
+  cam.nearClip = 0.05f;
+  const SplatLight lights[] = {{glm::vec3(0, 0, -1), glm::vec3(1.0f)}};
+  drawGpu(set, 1, lights, SplatBlend::backToFront);  // makes the test context current
+  SplatRenderer renderer;
+  CHECK(renderer.path() == defaultSplatPath());
+  renderer.setPath(SplatPath::points);
+  glViewport(0, 0, kSize, kSize);
+  renderer.draw(set, set.vectors.size(), glm::mat4(1.0f), cam, 1.0f, lights);
+  CHECK(renderer.statistics().path == SplatPath::geometry);
+  renderer.draw(set, set.vectors.size(), glm::mat4(1.0f), camera(), 1.0f, lights);
+  CHECK(renderer.statistics().path == SplatPath::points);
+  SplatPath parsed = SplatPath::points;
+  CHECK(parseSplatPath("geometry", parsed));
+  CHECK(parsed == SplatPath::geometry);
+  CHECK_FALSE(parseSplatPath("sprites", parsed));
 }

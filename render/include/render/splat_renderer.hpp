@@ -51,11 +51,33 @@ struct SplatSet {
 /// then composited over the framebuffer.
 enum class SplatBlend { backToFront, frontToBack };
 
+/// How the pass turns a vector into pixels. Both shade the same fragments with the same
+/// Gaussian (the picture agrees with the CPU reference of equation (1) either way);
+/// on llvmpipe `points` measured no faster (render/README.md, bench_splats).
+enum class SplatPath {
+  /// One point sprite per splat covering its projected patch, culled outside the view;
+  /// the fragment shader intersects each pixel's ray with the patch plane. A view where
+  /// some patch crosses the near plane or needs a sprite larger than the largest point
+  /// size is drawn with `geometry` instead (SplatStatistics::path says which ran).
+  points,
+  /// A geometry shader expands each point into its square patch (two triangles).
+  geometry,
+};
+
+/// The path a new SplatRenderer takes (`geometry` unless set; `--splat-path`). Not
+/// thread-safe: set it before rendering starts.
+void setDefaultSplatPath(SplatPath path);
+SplatPath defaultSplatPath();
+/// "points" or "geometry"; parseSplatPath returns false for any other text.
+const char* splatPathName(SplatPath path);
+bool parseSplatPath(const char* text, SplatPath& path);
+
 /// What the last draw() did.
 struct SplatStatistics {
-  std::size_t splats = 0;    // vectors drawn
-  bool sorted = false;       // whether the view moved and the depth sort ran
-  double sortSeconds = 0.0;  // CPU time of that sort
+  std::size_t splats = 0;              // vectors drawn
+  bool sorted = false;                 // whether the view moved and the depth sort ran
+  double sortSeconds = 0.0;            // CPU time of that sort
+  SplatPath path = SplatPath::points;  // the path that drew
 };
 
 /// GPU resources for drawing splat sets. Create, draw and destroy with the same context
@@ -80,6 +102,9 @@ class SplatRenderer {
             SplatBlend blend = SplatBlend::backToFront, const SplatStyle* style = nullptr);
 
   const SplatStatistics& statistics() const { return statistics_; }
+  /// The path draw() tries (defaultSplatPath() at construction).
+  void setPath(SplatPath path) { path_ = path; }
+  SplatPath path() const { return path_; }
   /// Frees every GL object (context current).
   void release();
 
@@ -87,6 +112,7 @@ class SplatRenderer {
   struct Gpu;
   std::unique_ptr<Gpu> gpu_;
   SplatStatistics statistics_;
+  SplatPath path_;
 };
 
 }  // namespace gs::render
