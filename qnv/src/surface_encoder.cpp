@@ -31,8 +31,8 @@ void report(const ProgressCallback& progress, double done) {
 
 }  // namespace
 
-EncodedVectors encodeSurface(const TriangleMesh& mesh, const SurfaceEncodeOptions& options,
-                             EncodeSummary* summary) {
+SelectedVectors selectSurfaceVectors(const TriangleMesh& mesh, const SurfaceEncodeOptions& options,
+                                     EncodeSummary* summary) {
   const std::size_t triangles = mesh.triangleCount();
   if (triangles > std::numeric_limits<std::uint32_t>::max())
     throw InputError("too many triangles to encode (" + std::to_string(triangles) + ")");
@@ -43,13 +43,11 @@ EncodedVectors encodeSurface(const TriangleMesh& mesh, const SurfaceEncodeOption
 
   std::vector<detail::Candidate> candidates;
   candidates.reserve(triangles);
-  std::vector<glm::vec3> cross(triangles);
   for (std::size_t t = 0; t < triangles; ++t) {
     const glm::vec3& a = mesh.positions[mesh.indices[3 * t]];
     const glm::vec3& b = mesh.positions[mesh.indices[3 * t + 1]];
     const glm::vec3& c = mesh.positions[mesh.indices[3 * t + 2]];
-    cross[t] = glm::cross(b - a, c - a);
-    const float area = 0.5f * glm::length(cross[t]);
+    const float area = 0.5f * glm::length(glm::cross(b - a, c - a));
     if (area > 0.0f && std::isfinite(area) &&
         std::isfinite(a.x + a.y + a.z + b.x + b.y + b.z + c.x + c.y + c.z))
       candidates.push_back({area, static_cast<std::uint32_t>(t)});
@@ -62,24 +60,29 @@ EncodedVectors encodeSurface(const TriangleMesh& mesh, const SurfaceEncodeOption
       candidates.begin(), candidates.end(),
       [](const detail::Candidate& x, const detail::Candidate& y) { return x.index < y.index; });
 
-  EncodedVectors out;
+  SelectedVectors out;
   StreamHeader& h = out.header;
   h.kind = StreamKind::surface;
   h.mapping = options.mapping;
   h.profile = options.profile;
-  std::vector<glm::vec3> centroid(candidates.size());
+  out.vectors.resize(candidates.size());
   std::vector<Rgba8> colors(candidates.size());
   glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
   float aMin = std::numeric_limits<float>::max(), aMax = 0.0f;
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     const std::size_t t = candidates[i].index;
-    centroid[i] = (mesh.positions[mesh.indices[3 * t]] + mesh.positions[mesh.indices[3 * t + 1]] +
-                   mesh.positions[mesh.indices[3 * t + 2]]) /
-                  3.0f;
-    lo = glm::min(lo, centroid[i]);
-    hi = glm::max(hi, centroid[i]);
-    aMin = std::min(aMin, candidates[i].magnitude);
-    aMax = std::max(aMax, candidates[i].magnitude);
+    const glm::vec3& a = mesh.positions[mesh.indices[3 * t]];
+    const glm::vec3& b = mesh.positions[mesh.indices[3 * t + 1]];
+    const glm::vec3& c = mesh.positions[mesh.indices[3 * t + 2]];
+    SourceVector& v = out.vectors[i];
+    v.position = (a + b + c) / 3.0f;
+    v.normal = glm::cross(b - a, c - a);
+    v.magnitude = candidates[i].magnitude;
+    v.source = t;
+    lo = glm::min(lo, v.position);
+    hi = glm::max(hi, v.position);
+    aMin = std::min(aMin, v.magnitude);
+    aMax = std::max(aMax, v.magnitude);
     colors[i] = triangleColor(mesh, t);
   }
   if (candidates.empty()) lo = hi = glm::vec3(0.0f), aMin = aMax = 1.0f;
@@ -89,23 +92,24 @@ EncodedVectors encodeSurface(const TriangleMesh& mesh, const SurfaceEncodeOption
   h.magnitudeMax = aMax;
   std::vector<std::uint8_t> colorIndex;
   h.palette = buildPalette(colors, colorIndex);
+  for (std::size_t i = 0; i < out.vectors.size(); ++i) out.vectors[i].color = colorIndex[i];
+  h.vectorCount = out.vectors.size();
+  if (summary) *summary = {triangles, candidateCount, out.vectors.size()};
   report(options.progress, 0.6);
+  return out;
+}
 
-  const MagnitudeQuantizer quantizeA(h.mapping, aMin, aMax);
-  out.records.resize(candidates.size());
-  for (std::size_t i = 0; i < candidates.size(); ++i) {
-    RecordFields f;
-    f.x = quantizeCoordinate(centroid[i].x, lo.x, hi.x);
-    f.y = quantizeCoordinate(centroid[i].y, lo.y, hi.y);
-    f.z = quantizeCoordinate(centroid[i].z, lo.z, hi.z);
-    quantizeDirection(cross[candidates[i].index], f.theta, f.phi);
-    f.a = quantizeA(candidates[i].magnitude);
-    f.c = colorIndex[i];
-    out.records[i] = packRecord(f);
-  }
+EncodedVectors encodeSurface(const TriangleMesh& mesh, const SurfaceEncodeOptions& options,
+                             EncodeSummary* summary) {
+  SelectedVectors selected = selectSurfaceVectors(mesh, options, summary);
+  EncodedVectors out;
+  out.header = selected.header;
+  const StreamHeader& h = out.header;
+  const MagnitudeQuantizer quantizeA(h.mapping, h.magnitudeMin, h.magnitudeMax);
+  out.records.resize(selected.vectors.size());
+  for (std::size_t i = 0; i < selected.vectors.size(); ++i)
+    out.records[i] = quantizeVector(selected.vectors[i], h, quantizeA);
   detail::sortLargestFirst(out.records);
-  h.vectorCount = out.records.size();
-  if (summary) *summary = {triangles, candidateCount, out.records.size()};
   report(options.progress, 1.0);
   return out;
 }

@@ -26,8 +26,8 @@ float difference(const float* s, std::size_t stride, std::uint32_t i, std::uint3
 
 }  // namespace
 
-EncodedVectors encodeVolume(const Volume& volume, const VolumeEncodeOptions& options,
-                            EncodeSummary* summary) {
+SelectedVectors selectVolumeVectors(const Volume& volume, const VolumeEncodeOptions& options,
+                                    EncodeSummary* summary) {
   const glm::uvec3 d = volume.dims;
   const std::size_t voxels = volume.voxelCount();
   if (voxels > kMaxVoxels)
@@ -78,7 +78,7 @@ EncodedVectors encodeVolume(const Volume& volume, const VolumeEncodeOptions& opt
   detail::keepLargest(candidates, options.selection.keepOf(voxels));
   report(options.progress, 0.6);
 
-  EncodedVectors out;
+  SelectedVectors out;
   StreamHeader& h = out.header;
   h.kind = StreamKind::volume;
   h.mapping = options.mapping;
@@ -98,34 +98,67 @@ EncodedVectors encodeVolume(const Volume& volume, const VolumeEncodeOptions& opt
   h.magnitudeMax = aMax;
 
   const float valueScale = windowHi > windowLo ? kPaletteSize / (windowHi - windowLo) : 0.0f;
-  const MagnitudeQuantizer quantizeA(h.mapping, aMin, aMax);
-  out.records.resize(candidates.size());
+  out.vectors.resize(candidates.size());
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     const std::size_t index = candidates[i].index;
     const std::uint32_t x = static_cast<std::uint32_t>(index % d.x);
     const std::uint32_t y = static_cast<std::uint32_t>((index / d.x) % d.y);
     const std::uint32_t z = static_cast<std::uint32_t>(index / sliceStride);
     const float* s = volume.samples.data() + index;
-    const glm::vec3 gradient(difference(s, 1, x, d.x, spacing.x),
-                             difference(s, d.x, y, d.y, spacing.y),
-                             difference(s, sliceStride, z, d.z, spacing.z));
-    const glm::vec3 p = volume.origin + glm::vec3(x, y, z) * spacing;
-    RecordFields f;
-    f.x = quantizeCoordinate(p.x, h.boundsMin.x, h.boundsMax.x);
-    f.y = quantizeCoordinate(p.y, h.boundsMin.y, h.boundsMax.y);
-    f.z = quantizeCoordinate(p.z, h.boundsMin.z, h.boundsMax.z);
-    quantizeDirection(gradient, f.theta, f.phi);
-    f.a = quantizeA(candidates[i].magnitude);
+    SourceVector& v = out.vectors[i];
+    v.normal = glm::vec3(difference(s, 1, x, d.x, spacing.x), difference(s, d.x, y, d.y, spacing.y),
+                         difference(s, sliceStride, z, d.z, spacing.z));
+    v.position = volume.origin + glm::vec3(x, y, z) * spacing;
+    v.magnitude = candidates[i].magnitude;
+    v.source = index;
     const float slice = (*s - windowLo) * valueScale;
-    f.c = static_cast<std::uint8_t>(std::clamp(slice, 0.0f, static_cast<float>(kPaletteSize - 1)));
-    out.records[i] = packRecord(f);
+    v.color =
+        static_cast<std::uint8_t>(std::clamp(slice, 0.0f, static_cast<float>(kPaletteSize - 1)));
   }
+  h.vectorCount = out.vectors.size();
+  if (summary) *summary = {voxels, candidateCount, out.vectors.size()};
+  report(options.progress, 0.8);
+  return out;
+}
+
+EncodedVectors encodeVolume(const Volume& volume, const VolumeEncodeOptions& options,
+                            EncodeSummary* summary) {
+  SelectedVectors selected = selectVolumeVectors(volume, options, summary);
+  EncodedVectors out;
+  out.header = selected.header;
+  const StreamHeader& h = out.header;
+  const MagnitudeQuantizer quantizeA(h.mapping, h.magnitudeMin, h.magnitudeMax);
+  out.records.resize(selected.vectors.size());
+  for (std::size_t i = 0; i < selected.vectors.size(); ++i)
+    out.records[i] = quantizeVector(selected.vectors[i], h, quantizeA);
   report(options.progress, 0.9);
   detail::sortLargestFirst(out.records);
-  h.vectorCount = out.records.size();
-  if (summary) *summary = {voxels, candidateCount, out.records.size()};
   report(options.progress, 1.0);
   return out;
+}
+
+std::uint64_t quantizeVector(const SourceVector& v, const StreamHeader& h,
+                             const MagnitudeQuantizer& quantizeA, const glm::uvec3* gridIndex) {
+  RecordFields f;
+  if (gridIndex) {
+    std::uint16_t* code[3] = {&f.x, &f.y, &f.z};
+    for (int a = 0; a < 3; ++a) {
+      const std::uint64_t n = h.volumeDims[a];
+      *code[a] =
+          n < 2
+              ? 0
+              : static_cast<std::uint16_t>(std::min<std::uint64_t>(
+                    kPositionSteps - 1, std::uint64_t{(*gridIndex)[a]} * kPositionSteps / (n - 1)));
+    }
+  } else {
+    f.x = quantizeCoordinate(v.position.x, h.boundsMin.x, h.boundsMax.x);
+    f.y = quantizeCoordinate(v.position.y, h.boundsMin.y, h.boundsMax.y);
+    f.z = quantizeCoordinate(v.position.z, h.boundsMin.z, h.boundsMax.z);
+  }
+  quantizeDirection(v.normal, f.theta, f.phi);
+  f.a = quantizeA(v.magnitude);
+  f.c = v.color;
+  return packRecord(f);
 }
 
 }  // namespace gs::qnv

@@ -74,6 +74,43 @@ struct VolumeEncodeOptions {
 EncodedVectors encodeVolume(const Volume& volume, const VolumeEncodeOptions& options,
                             EncodeSummary* summary = nullptr);
 
+/// One vector before quantization, as the encoders select it: what a record quantizes,
+/// plus the exact magnitude and the element it came from (for tilesets, which quantize
+/// each brick against its own box: qnv/tileset_writer.hpp).
+struct SourceVector {
+  glm::vec3 position{0};     // triangle centroid or voxel centre (world units)
+  glm::vec3 normal{0};       // (b - a) x (c - a) or the gradient; any non-zero length
+  float magnitude = 0;       // A: triangle area or gradient magnitude (> 0, finite)
+  std::uint8_t color = 0;    // palette index
+  std::uint64_t source = 0;  // triangle index, or voxel linear index x + dx (y + dy z)
+};
+
+/// The kept vectors of an encode and the stream header that gives them meaning
+/// (vectorCount = vectors.size(); packetBytes and encoding left at their defaults).
+struct SelectedVectors {
+  StreamHeader header;
+  std::vector<SourceVector> vectors;
+};
+
+/// encodeSurface up to quantization: the kept triangles' vectors in triangle order.
+SelectedVectors selectSurfaceVectors(const TriangleMesh& mesh, const SurfaceEncodeOptions& options,
+                                     EncodeSummary* summary = nullptr);
+
+/// encodeVolume up to quantization: the kept voxels' vectors (in no particular order;
+/// deterministic for a given input).
+SelectedVectors selectVolumeVectors(const Volume& volume, const VolumeEncodeOptions& options,
+                                    EncodeSummary* summary = nullptr);
+
+/// The record of `v` in a stream with header `header` (its box, and the magnitude range
+/// `quantizeA` was made for). With `gridIndex` (volumes: the voxel's index within the
+/// header's volumeDims, whose voxel 0 sits at boundsMin) the position codes are computed
+/// exactly in integers, floor(i * 1024 / (dims - 1)) clamped to 1023 (0 when dims is 1),
+/// the value quantizeCoordinate gives without rounding, so the entropy coding's grid mode
+/// always applies.
+std::uint64_t quantizeVector(const SourceVector& v, const StreamHeader& header,
+                             const MagnitudeQuantizer& quantizeA,
+                             const glm::uvec3* gridIndex = nullptr);
+
 /// A ramp for CT: entry c (t = c / 255) goes from dark red (soft tissue) to white
 /// (bone), with opacity 255 * t.
 std::array<Rgba8, kPaletteSize> defaultTransferFunction();

@@ -1,0 +1,169 @@
+// Building a QNV tileset (issue 13 parts 1 and 2): the octree layout, the per-leaf quota
+// assignment, per-brick quantization, and the share/merge split that lets many machines
+// encode one tileset. Pure computation on buffers: the caller writes the files
+// (app/src/encode_tileset.cpp). Rules in docs/qnv-format.md, section "Tilesets".
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <set>
+#include <span>
+#include <string>
+#include <string_view>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "qnv/encoder.hpp"
+#include "qnv/tileset.hpp"
+
+namespace gs::qnv {
+
+/// Most shares a tileset encode may be split into (2^20).
+inline constexpr std::uint32_t kMaxTilesetShares = std::uint32_t{1} << 20;
+
+/// How a tileset is cut and coded.
+struct TilesetOptions {
+  std::uint32_t brickVoxels = 64;      // volumes: leaf block side in voxels, >= 1
+  std::uint64_t brickVectors = 16384;  // K: vectors a node aims at (surfaces: leaf size), >= 1
+  WriteOptions write;                  // packet size and coding of every brick
+};
+
+/// An octree node: level (0 = root) and cell (each coordinate < 2^level).
+struct TilesetCell {
+  std::uint8_t level = 0;
+  glm::uvec3 cell{0};
+  /// (level, z, y, x), the order of bricks in the index.
+  auto key() const { return std::make_tuple(level, cell.z, cell.y, cell.x); }
+  bool operator<(const TilesetCell& o) const { return key() < o.key(); }
+  bool operator==(const TilesetCell& o) const { return key() == o.key(); }
+};
+
+/// The octree of a tileset over `whole` (the single stream's header: kind, box, dims,
+/// vectorCount = the kept vectors).
+/// Volumes: leaves are blocks of B voxels per side, depth = the smallest D with
+/// 2^D B >= max(dims); the leaf grid is ceil(dims / B) per axis.
+/// Surfaces: depth = the smallest D with 8^D K >= vectorCount (at most 8); cells are
+/// equal subdivisions of the box, the leaf grid is 2^D per axis.
+class TilesetLayout {
+ public:
+  /// Throws InputError on a brickVoxels or brickVectors of 0.
+  TilesetLayout(const StreamHeader& whole, const TilesetOptions& options);
+
+  std::uint8_t depth() const { return depth_; }
+  glm::uvec3 leafGrid() const { return leafGrid_; }
+  std::uint64_t leafCount() const;
+  /// The leaf holding `v`: its voxel's block, or the cell holding its position (clamped).
+  glm::uvec3 leafOf(const SourceVector& v) const;
+  /// Volumes: the voxel (x, y, z) of `v` from its source index.
+  glm::uvec3 voxelOf(const SourceVector& v) const;
+  /// Leaves are numbered in (z, y, x) order over leafGrid(): x + gx (y + gy z).
+  std::uint64_t leafIndex(glm::uvec3 leaf) const;
+  glm::uvec3 leafAt(std::uint64_t index) const;
+  /// Share `share` of `shares` (0 <= share < shares <= kMaxTilesetShares) owns leaves
+  /// [floor(share L / shares), floor((share + 1) L / shares)) of the L leaves.
+  std::pair<std::uint64_t, std::uint64_t> shareLeaves(std::uint32_t share,
+                                                      std::uint32_t shares) const;
+  /// Per-leaf quota of level `level` < depth(): ceil(K / 8^(depth - level)).
+  std::uint64_t quota(std::uint8_t level) const;
+  /// The header of node `node`'s brick: the template with the node's box (volumes: the
+  /// box of its voxel block's centres, volumeDims = the block's dims) and vectorCount.
+  StreamHeader brickHeader(const TilesetCell& node, std::uint64_t vectorCount) const;
+  /// Volumes: the first voxel of `node`'s block (for quantizeVector's grid index).
+  glm::uvec3 blockStart(const TilesetCell& node) const;
+  /// The whole template (packetBytes and encoding from the options; vectorCount as given).
+  const StreamHeader& templateHeader() const { return whole_; }
+
+ private:
+  StreamHeader whole_;
+  TilesetOptions options_;
+  std::uint8_t depth_ = 0;
+  glm::uvec3 leafGrid_{1};
+};
+
+/// A brick's file and its index record.
+struct BrickFile {
+  TilesetBrick brick;
+  std::string bytes;
+};
+
+/// Writes one brick: `header` (from TilesetLayout::brickHeader), then the records in the
+/// order given (largest A first) in packets of header.recordsPerPacket().
+BrickFile writeBrick(const TilesetCell& node, const StreamHeader& header,
+                     std::span<const std::uint64_t> records);
+
+/// One vector an interior node receives from a leaf: its record (already quantized for
+/// that node's brick) and the keys that order the node's brick: exact magnitude
+/// descending, then source ascending.
+struct InteriorEntry {
+  float magnitude = 0;
+  std::uint64_t source = 0;
+  std::uint64_t record = 0;
+};
+
+/// What one share contributes to the interior nodes, by node.
+using InteriorParts = std::map<TilesetCell, std::vector<InteriorEntry>>;
+
+/// The bytes of a share's interior contributions (parts/I-of-N/interior.qnvp):
+/// signature 0x89 "QNP" CR LF 0x1A LF, u32 brickVoxels, u64 brickVectors (the octree
+/// cut, so the merge rebuilds the layout), u32 node count, then per node (in key order)
+/// u8 level, u8[3] 0, u32 x, y, z, u64 entry count, then per entry f32 magnitude,
+/// u64 source, u64 record; CRC-32 last. Little-endian.
+std::string serializeInteriorParts(const InteriorParts& parts, const TilesetOptions& cut);
+/// Parses and checks those bytes (counts against bytes, levels <= 12, cells < 2^level,
+/// node order, CRC) and sets cut's brickVoxels and brickVectors; nullopt and a sentence
+/// naming `name` in `error` otherwise.
+std::optional<InteriorParts> parseInteriorParts(std::string_view bytes, const std::string& name,
+                                                TilesetOptions& cut, std::string& error);
+
+/// The interior bricks from every share's parts: a node's entries from all shares,
+/// sorted by (magnitude descending, source ascending), so the result does not depend on
+/// how the leaves were split. `layout` gives each node's brick header.
+std::vector<BrickFile> mergeInteriorParts(const std::vector<InteriorParts>& shares,
+                                          const TilesetLayout& layout);
+
+/// The index over `bricks` (any order; sorted here by level, z, y, x): depth and template
+/// from `layout`, template vectorCount = the bricks' sum.
+TilesetIndex assembleTilesetIndex(const TilesetLayout& layout, std::vector<TilesetBrick> bricks);
+
+/// A whole tileset in memory, as an unsplit run writes it (share 0 of 1, then the merge):
+/// the bricks in index order and the index.
+struct TilesetFiles {
+  TilesetIndex index;
+  std::vector<BrickFile> bricks;
+};
+TilesetFiles buildTileset(const SelectedVectors& selected, const TilesetOptions& options);
+
+/// One share's encoder. Vectors arrive in any order through add(); a leaf whose vectors
+/// have all arrived is closed with finishLeaf(), which returns its brick at once and
+/// keeps only the leaf's interior quotas (at most sum of q_L vectors), so memory is the
+/// open leaves plus the interior contributions.
+class TilesetShareWriter {
+ public:
+  TilesetShareWriter(const TilesetLayout& layout, std::uint32_t share = 0,
+                     std::uint32_t shares = 1);
+
+  /// Buffers `v` in its leaf; false (and nothing kept) when the leaf is not this share's.
+  bool add(const SourceVector& v);
+  /// Ranks the leaf's vectors (magnitude descending, source ascending), gives the first
+  /// q_0 to the root, the next q_1 to the level-1 ancestor, ..., and returns the rest as
+  /// the leaf's brick (nullopt when none remain). Later add()s to it throw InputError.
+  std::optional<BrickFile> finishLeaf(glm::uvec3 leaf);
+  /// Leaves holding buffered vectors, in (z, y, x) order.
+  std::vector<glm::uvec3> openLeaves() const;
+  /// The interior contributions so far.
+  const InteriorParts& interior() const { return interior_; }
+  std::pair<std::uint64_t, std::uint64_t> leafRange() const { return range_; }
+
+ private:
+  const TilesetLayout& layout_;
+  std::pair<std::uint64_t, std::uint64_t> range_;
+  std::map<std::uint64_t, std::vector<SourceVector>> open_;
+  std::set<std::uint64_t> finished_;
+  InteriorParts interior_;
+};
+
+}  // namespace gs::qnv

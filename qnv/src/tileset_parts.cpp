@@ -1,0 +1,148 @@
+// The interior contributions of one share of a split tileset encode and their merge.
+#include <algorithm>
+#include <cstring>
+#include <tuple>
+
+#include "base/byte_order.hpp"
+#include "qnv/tileset_writer.hpp"
+
+namespace gs::qnv {
+
+using base::appendFloatLe;
+using base::appendLe;
+using base::loadFloatLe;
+using base::loadLe;
+
+namespace {
+
+constexpr char kPartsMagic[8] = {'\x89', 'Q', 'N', 'P', '\r', '\n', '\x1a', '\n'};
+constexpr std::size_t kNodeBytes = 24;
+constexpr std::size_t kEntryBytes = 20;
+
+}  // namespace
+
+std::string serializeInteriorParts(const InteriorParts& parts, const TilesetOptions& cut) {
+  std::string out(kPartsMagic, sizeof kPartsMagic);
+  appendLe<std::uint32_t>(out, cut.brickVoxels);
+  appendLe<std::uint64_t>(out, cut.brickVectors);
+  appendLe<std::uint32_t>(out, static_cast<std::uint32_t>(parts.size()));
+  for (const auto& [node, entries] : parts) {
+    appendLe<std::uint8_t>(out, node.level);
+    out.append(3, '\0');
+    for (int a = 0; a < 3; ++a) appendLe<std::uint32_t>(out, node.cell[a]);
+    appendLe<std::uint64_t>(out, entries.size());
+    for (const InteriorEntry& e : entries) {
+      appendFloatLe(out, e.magnitude);
+      appendLe<std::uint64_t>(out, e.source);
+      appendLe<std::uint64_t>(out, e.record);
+    }
+  }
+  appendLe<std::uint32_t>(out, crc32(out));
+  return out;
+}
+
+std::optional<InteriorParts> parseInteriorParts(std::string_view bytes, const std::string& name,
+                                                TilesetOptions& cut, std::string& error) {
+  auto fail = [&](const std::string& why) -> std::optional<InteriorParts> {
+    error = name + ": " + why;
+    return std::nullopt;
+  };
+  if (bytes.size() < 28 || std::memcmp(bytes.data(), kPartsMagic, 8) != 0)
+    return fail("not the interior part of a QNV tileset share (wrong signature or too short)");
+  const std::size_t crcAt = bytes.size() - 4;
+  if (crc32(bytes.substr(0, crcAt)) != loadLe<std::uint32_t>(bytes.data() + crcAt))
+    return fail("damaged or truncated (CRC mismatch)");
+  cut.brickVoxels = loadLe<std::uint32_t>(bytes.data() + 8);
+  cut.brickVectors = loadLe<std::uint64_t>(bytes.data() + 12);
+  if (cut.brickVoxels == 0 || cut.brickVectors == 0) return fail("impossible octree cut");
+  const std::uint32_t nodes = loadLe<std::uint32_t>(bytes.data() + 20);
+  InteriorParts parts;
+  std::size_t at = 24;
+  const TilesetCell* previous = nullptr;
+  for (std::uint32_t i = 0; i < nodes; ++i) {
+    if (crcAt - at < kNodeBytes) return fail("node " + std::to_string(i) + " is cut off");
+    const char* p = bytes.data() + at;
+    TilesetCell node;
+    node.level = loadLe<std::uint8_t>(p);
+    for (int a = 0; a < 3; ++a) node.cell[a] = loadLe<std::uint32_t>(p + 4 + 4 * a);
+    const std::uint64_t count = loadLe<std::uint64_t>(p + 16);
+    at += kNodeBytes;
+    if (node.level > kTilesetMaxDepth || node.cell.x >> node.level || node.cell.y >> node.level ||
+        node.cell.z >> node.level)
+      return fail("node " + std::to_string(i) + " is not an octree cell");
+    if (previous && !(*previous < node))
+      return fail("node " + std::to_string(i) + " is out of order or listed twice");
+    if (count > (crcAt - at) / kEntryBytes)
+      return fail("node " + std::to_string(i) + " claims more entries than the file holds");
+    std::vector<InteriorEntry>& entries = parts[node];
+    entries.resize(count);
+    for (InteriorEntry& e : entries) {
+      const char* q = bytes.data() + at;
+      e.magnitude = loadFloatLe(q);
+      e.source = loadLe<std::uint64_t>(q + 4);
+      e.record = loadLe<std::uint64_t>(q + 12);
+      at += kEntryBytes;
+    }
+    previous = &parts.find(node)->first;
+  }
+  if (at != crcAt) return fail(std::to_string(crcAt - at) + " bytes after the last node");
+  return parts;
+}
+
+std::vector<BrickFile> mergeInteriorParts(const std::vector<InteriorParts>& shares,
+                                          const TilesetLayout& layout) {
+  std::map<TilesetCell, std::vector<InteriorEntry>> nodes;
+  for (const InteriorParts& share : shares)
+    for (const auto& [node, entries] : share) {
+      std::vector<InteriorEntry>& all = nodes[node];
+      all.insert(all.end(), entries.begin(), entries.end());
+    }
+  std::vector<BrickFile> bricks;
+  std::vector<std::uint64_t> records;
+  for (auto& [node, entries] : nodes) {
+    if (entries.empty()) continue;
+    std::sort(entries.begin(), entries.end(), [](const InteriorEntry& a, const InteriorEntry& b) {
+      return a.magnitude > b.magnitude || (a.magnitude == b.magnitude && a.source < b.source);
+    });
+    records.clear();
+    for (const InteriorEntry& e : entries) records.push_back(e.record);
+    bricks.push_back(writeBrick(node, layout.brickHeader(node, records.size()), records));
+  }
+  return bricks;
+}
+
+TilesetIndex assembleTilesetIndex(const TilesetLayout& layout, std::vector<TilesetBrick> bricks) {
+  std::sort(bricks.begin(), bricks.end(), [](const TilesetBrick& a, const TilesetBrick& b) {
+    return std::make_tuple(a.level, a.z, a.y, a.x) < std::make_tuple(b.level, b.z, b.y, b.x);
+  });
+  TilesetIndex index;
+  index.depth = layout.depth();
+  index.header = layout.templateHeader();
+  index.header.vectorCount = 0;
+  for (const TilesetBrick& b : bricks) index.header.vectorCount += b.vectorCount;
+  index.bricks = std::move(bricks);
+  return index;
+}
+
+TilesetFiles buildTileset(const SelectedVectors& selected, const TilesetOptions& options) {
+  const TilesetLayout layout(selected.header, options);
+  TilesetShareWriter writer(layout);
+  for (const SourceVector& v : selected.vectors) writer.add(v);
+  std::vector<BrickFile> bricks;
+  for (const glm::uvec3& leaf : writer.openLeaves())
+    if (auto brick = writer.finishLeaf(leaf)) bricks.push_back(std::move(*brick));
+  for (BrickFile& b : mergeInteriorParts({writer.interior()}, layout))
+    bricks.push_back(std::move(b));
+  std::vector<TilesetBrick> records;
+  for (const BrickFile& b : bricks) records.push_back(b.brick);
+  TilesetFiles files;
+  files.index = assembleTilesetIndex(layout, std::move(records));
+  std::sort(bricks.begin(), bricks.end(), [](const BrickFile& a, const BrickFile& b) {
+    return std::make_tuple(a.brick.level, a.brick.z, a.brick.y, a.brick.x) <
+           std::make_tuple(b.brick.level, b.brick.z, b.brick.y, b.brick.x);
+  });
+  files.bricks = std::move(bricks);
+  return files;
+}
+
+}  // namespace gs::qnv
