@@ -19,18 +19,7 @@ using namespace gs;
 namespace {
 
 qnv::EncodedVectors ballVectors(int n) {
-  qnv::Volume v;
-  v.dims = glm::uvec3(static_cast<unsigned>(n));
-  v.samples.resize(v.voxelCount());
-  for (int z = 0; z < n; ++z)
-    for (int y = 0; y < n; ++y)
-      for (int x = 0; x < n; ++x) {
-        const double dx = x - n / 2.0, dy = y - n / 2.0, dz = z - n / 2.0;
-        const double r = std::sqrt(dx * dx + dy * dy + dz * dz) / (n / 2.0);
-        v.samples[static_cast<std::size_t>((z * n + y) * n + x)] =
-            static_cast<float>(std::clamp(255.0 * (1.2 - r), 0.0, 255.0));
-      }
-  return qnv::encodeVolume(v, {});
+  return test::ballVolumeVectors(n);
 }
 
 fs::path freshDir(const std::string& name) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <tuple>
 
 #include "qnv/tileset.hpp"
@@ -51,15 +52,17 @@ inline qnv::TilesetIndex syntheticTileset(int depth, std::uint64_t perBrick) {
 #include <fstream>
 #include <map>
 
+#include "qnv/encoder.hpp"
 #include "qnv/record.hpp"
+#include "qnv/volume.hpp"
 
 namespace gs::test {
 
 /// Writes a depth-1 tileset of `vectors` (encoder output, largest first) into `dir`
 /// after the pinned rule (docs/qnv-format.md): the first ceil(K / 8) vectors of every
 /// octant go to the root, the rest stay in their octant's brick. Every brick keeps the
-/// whole box as its quantization box (the index gives each octant's box), so it decodes to exactly the single stream's
-/// vectors. Returns the index written to dir/index.qnvt.
+/// whole box as its quantization box (the index gives each octant's box), so it decodes to exactly
+/// the single stream's vectors. Returns the index written to dir/index.qnvt.
 inline qnv::TilesetIndex writeTestTileset(const qnv::EncodedVectors& vectors,
                                           const std::filesystem::path& dir, std::uint64_t K) {
   const std::uint64_t quota = (K + 7) / 8;
@@ -118,6 +121,22 @@ inline qnv::TilesetIndex writeTestTileset(const qnv::EncodedVectors& vectors,
   });
   std::ofstream(dir / "index.qnvt", std::ios::binary) << qnv::serializeTilesetIndex(index);
   return index;
+}
+
+/// The vectors of an n^3 volume holding a ball with a soft edge (every vector kept).
+inline qnv::EncodedVectors ballVolumeVectors(int n) {
+  qnv::Volume v;
+  v.dims = glm::uvec3(static_cast<unsigned>(n));
+  v.samples.resize(v.voxelCount());
+  for (int z = 0; z < n; ++z)
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        const double dx = x - n / 2.0, dy = y - n / 2.0, dz = z - n / 2.0;
+        const double r = std::sqrt(dx * dx + dy * dy + dz * dz) / (n / 2.0);
+        v.samples[static_cast<std::size_t>((z * n + y) * n + x)] =
+            static_cast<float>(std::clamp(255.0 * (1.2 - r), 0.0, 255.0));
+      }
+  return qnv::encodeVolume(v, {});
 }
 
 }  // namespace gs::test
