@@ -140,3 +140,48 @@ TEST_CASE("tileset stream: a hostile index is refused with a message naming it",
   CHECK(messages[0].second.find(url) != std::string::npos);
   CHECK(set->vectors.empty());
 }
+
+TEST_CASE("tileset stream: a new view re-chooses, and far bricks go over the memory budget",
+          "[tileset][session]") {
+  const auto encoded = ballVectors(24);
+  const fs::path dir = freshDir("ball24memory");
+  const auto index = test::writeTestTileset(encoded, dir, 512);
+  session::TilesetOptions options;
+  options.memoryBytes = 6000 * sizeof(qnv::DecodedVector);  // about half the vectors
+  session::StreamingSession s;
+  s.setTilesetOptions(options);
+  std::string error;
+  REQUIRE(s.open(dir.string(), error));
+  auto set = s.rendererOptions({}).splatLoader((dir / "index.qnvt").string(), "", error);
+  REQUIRE(set);
+  auto settle = [&] {
+    for (int i = 0; i < 100000 && !(s.pump(), s.settled()); ++i) s.loader().wait(0.01);
+  };
+  settle();
+  REQUIRE(!set->bounds.empty());
+  const auto& h = encoded.header;
+  // Two views, one after the other, each into an opposite corner octant.
+  auto corner = [&](glm::vec3 at, float turn) {
+    render::SplatSet::View v;
+    v.camera.position = h.boundsMin + (h.boundsMax - h.boundsMin) * at;
+    v.camera.orientation = glm::angleAxis(turn, glm::vec3(0, 1, 0));
+    v.camera.fieldOfView = 0.3f;
+    v.heightPixels = 512;
+    v.vectors = set->total();
+    return v;
+  };
+  int key = 0;
+  set->views[&key] = corner({0.25f, 0.25f, -0.2f}, 3.14159265f);  // looks along +z
+  settle();
+  const auto first = s.tilesets()[0]->statistics();
+  CHECK(first.chosenBricks == 3);  // root and the two octants of that column
+  CHECK(first.residentVectors <= 6000 + index.header.recordsPerPacket());
+  set->views[&key] = corner({0.75f, 0.75f, 1.2f}, 0.0f);  // the opposite column, along -z
+  settle();
+  const auto second = s.tilesets()[0]->statistics();
+  CHECK(second.chosenBricks == 3);
+  CHECK(second.requests > first.requests);
+  CHECK(second.evictedBricks >= 1);
+  CHECK(second.residentVectors <= 6000 + index.header.recordsPerPacket());
+  CHECK(set->vectors.size() == second.chosenVectors);
+}
