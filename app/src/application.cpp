@@ -3,6 +3,7 @@
 #include "app/commands.hpp"
 #include "app/layout.hpp"
 #include "app/options.hpp"
+#include "encode_tileset.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -187,9 +188,8 @@ Parsed parseArguments(int argc, char** argv) {
       ".gltf, .glb) or a volume (.nrrd, .nhdr, .nii, .nii.gz, or raw with --raw-dims)");
   std::string encodeInput;
   encode->add_option("INPUT", encodeInput, "World, mesh or volume")->required();
-  encode->add_option("-o,--output", enc.output, "The .qnv file to write")
-      ->type_name("OUT.qnv")
-      ->required();
+  encode->add_option("-o,--output", enc.output, "The .qnv file to write")->type_name("OUT.qnv");
+  addTilesetOptions(*encode, enc);  // encode_tileset.cpp
   auto* fraction = encode
                        ->add_option("--fraction", enc.fraction,
                                     "Keep the largest F of all triangles or voxels (0 < F <= 1)")
@@ -232,6 +232,8 @@ Parsed parseArguments(int argc, char** argv) {
       ->check(CLI::Range(0.0, 180.0));
   bool noProgress = false;
   encode->add_flag("--no-progress", noProgress, "No progress bar on the terminal");
+
+  CLI::App* tileset = addTilesetCommand(cli, o.tilesetDir);  // encode_tileset.cpp
 
   try {
     cli.parse(argc, argv);
@@ -306,6 +308,8 @@ Parsed parseArguments(int argc, char** argv) {
   if (encode->parsed()) {
     o.command = Command::encode;
     o.inputs = {encodeInput};
+  } else if (tileset->parsed()) {
+    o.command = Command::tilesetIndex;
   } else if (info->parsed()) {
     o.command = Command::info;
     o.inputs = infoInputs;
@@ -337,6 +341,8 @@ int run(int argc, char** argv) {
         return runWindow(p.options);
       case Command::encode:
         return runEncode(p.options);
+      case Command::tilesetIndex:
+        return runTilesetIndex(p.options);
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "ghostspace: %s\n", e.what());

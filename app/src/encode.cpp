@@ -6,6 +6,7 @@
 
 #include "app/commands.hpp"
 #include "app/progress_bar.hpp"
+#include "encode_tileset.hpp"
 #include "formats/input_kind.hpp"
 #include "formats/volume_readers.hpp"
 #include "qnv/encoder.hpp"
@@ -45,7 +46,9 @@ struct Settings {
 
 /// Checks the encode options; returns an empty string or the usage error.
 std::string parseSettings(const EncodeOptions& e, Settings& s) {
-  if (e.output.empty()) return "encode: -o OUT.qnv is required";
+  if (e.output.empty() == e.tileset.empty())
+    return "encode: give either -o OUT.qnv or --tileset OUT/";
+  if (e.tileset.empty() && !e.bricks.empty()) return "encode: --bricks I/N needs --tileset OUT/";
   if (!(e.fraction > 0.0 && e.fraction <= 1.0))
     return "encode: --fraction must be in (0, 1], got " + std::to_string(e.fraction);
   s.selection.fraction = e.fraction;
@@ -98,6 +101,20 @@ std::string withCommas(std::uint64_t n) {
   return s;
 }
 
+void printSummary(const std::string& input, const qnv::EncodeSummary& summary,
+                  const char* elements) {
+  std::printf("%s: %s %s, %s with a non-zero magnitude, kept %s (%.2f%%)\n", input.c_str(),
+              withCommas(summary.elements).c_str(), elements,
+              withCommas(summary.candidates).c_str(), withCommas(summary.kept).c_str(),
+              summary.elements ? 100.0 * static_cast<double>(summary.kept) /
+                                     static_cast<double>(summary.elements)
+                               : 0.0);
+}
+
+double secondsSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
 }  // namespace
 
 int runEncode(const Options& options) {
@@ -112,6 +129,8 @@ int runEncode(const Options& options) {
   const auto progress = [&bar](double f) { bar.update(f); };
   const auto t0 = std::chrono::steady_clock::now();
   qnv::EncodedVectors vectors;
+  qnv::SelectedVectors selected;  // --tileset: quantized per brick (encode_tileset.cpp)
+  const bool tileset = !options.encode.tileset.empty();
   qnv::EncodeSummary summary;
   const char* elements = "triangles";
   try {
@@ -124,7 +143,10 @@ int runEncode(const Options& options) {
       v.mapping = s.mapping;
       v.valueWindow = s.window;
       v.progress = progress;
-      vectors = qnv::encodeVolume(volume, v, &summary);
+      if (tileset)
+        selected = qnv::selectVolumeVectors(volume, v, &summary);
+      else
+        vectors = qnv::encodeVolume(volume, v, &summary);
       elements = "voxels";
     } else {
       qnv::TriangleMesh mesh;
@@ -141,16 +163,20 @@ int runEncode(const Options& options) {
       v.selection = s.selection;
       v.mapping = s.mapping;
       v.progress = progress;
-      vectors = qnv::encodeSurface(mesh, v, &summary);
+      if (tileset)
+        selected = qnv::selectSurfaceVectors(mesh, v, &summary);
+      else
+        vectors = qnv::encodeSurface(mesh, v, &summary);
     }
   } catch (const qnv::InputError& error) {
     std::fprintf(stderr, "ghostspace: %s\n", error.what());
     return 1;
   }
-  const std::string bytes = qnv::writeStream(vectors, s.write);
+  const std::string bytes = tileset ? std::string() : qnv::writeStream(vectors, s.write);
   bar.finish();
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  printSummary(input, summary, elements);
+  if (tileset) return writeTileset(options, selected, s.write, input, secondsSince(t0));
+  const double seconds = secondsSince(t0);
   std::ofstream out(options.encode.output, std::ios::binary | std::ios::trunc);
   out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
   out.close();
@@ -162,12 +188,6 @@ int runEncode(const Options& options) {
                                    ? 8.0 * static_cast<double>(bytes.size() - qnv::kHeaderBytes) /
                                          static_cast<double>(summary.kept)
                                    : 0.0;
-  std::printf("%s: %s %s, %s with a non-zero magnitude, kept %s (%.2f%%)\n", input.c_str(),
-              withCommas(summary.elements).c_str(), elements,
-              withCommas(summary.candidates).c_str(), withCommas(summary.kept).c_str(),
-              summary.elements ? 100.0 * static_cast<double>(summary.kept) /
-                                     static_cast<double>(summary.elements)
-                               : 0.0);
   const std::uint64_t perPacket = s.write.packetBytes / 8;
   std::printf(
       "%s: %s bytes, %.1f bits per vector (packets and header included), %s packets; %.3f s\n",

@@ -1,154 +1,97 @@
-// Viewing a QNV tileset over a slow link (docs/tilesets.md, "Viewing a tileset"): time to
-// the first vectors and to all the vectors the view chose, and the bytes
-// fetched, for CThead's top 9.1% as one stream and as a tileset (default cut: 64-voxel
-// bricks, K = 16384), for the whole view and for a zoom into one corner. No GL: the
-// session is driven by a recorded view (512 x 512 pixels) as the renderer records it.
+// A tileset against the single stream (docs/qnv-format.md, "Tilesets", "Measured"): reads
+// CThead (gzip, int16 big-endian, 256 x 256 x 113, spacing 1 1 2), keeps the top
+// FRACTION of its voxels, and prints for each coding the single stream's bytes and encode
+// time (gradients, selection, quantization, sort, packets) against the tileset's
+// (gradients, selection, octree assignment, per-brick quantization, packets, merge):
+// bricks, depth, index bytes, total bytes. Thread CPU time, best of 3, one thread.
 //
-//   bench_tileset ROOT URL [PARALLEL [BRICK_VOXELS]]
-//
-// ROOT is the folder a web server serves at URL (e.g. nginx with `limit_rate 1250k;` for
-// an emulated 10 Mbit/s link per connection): the program writes ROOT/cthead.qnv and
-// ROOT/cthead/ (the tileset) there first. PARALLEL is the number of brick transfers at
-// once (default 1: the same single connection the stream gets); BRICK_VOXELS the leaf
-// block side (default 64).
-#include <chrono>
-#include <cstdio>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
-#include <vector>
+//   bench_tileset [CThead.raw.gz] [FRACTION]
+#include <zlib.h>
 
-#include <glm/gtc/quaternion.hpp>
+#include <algorithm>
+#include <cstdio>
+#include <ctime>
+#include <functional>
+#include <string>
 
 #include "qnv/encoder.hpp"
 #include "qnv/tileset_writer.hpp"
-#include "render/camera.hpp"
-#include "session/splat_inputs.hpp"
-#include "session/streaming_session.hpp"
-#include "session/volume_input.hpp"
 
-namespace fs = std::filesystem;
-using namespace gs;
-using Clock = std::chrono::steady_clock;
+namespace qnv = gs::qnv;
 
 namespace {
 
-void writeFile(const fs::path& p, const std::string& bytes) {
-  fs::create_directories(p.parent_path());
-  std::ofstream(p, std::ios::binary)
-      .write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+double cpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
-struct Result {
-  double first = -1, tenth = -1, all = -1;
-  std::uint64_t bytes = 0, vectors = 0;
-};
+double best(const std::function<void()>& run) {
+  double fastest = 1e30;
+  for (int i = 0; i < 3; ++i) {
+    const double t0 = cpuSeconds();
+    run();
+    fastest = std::min(fastest, cpuSeconds() - t0);
+  }
+  return fastest;
+}
 
-/// Opens `url` (a stream or a tileset), shows it to `camera` (or the fitted camera) and
-/// pumps until settled.
-Result measure(const std::string& url, const render::Camera* camera, int parallel) {
-  net::LoaderOptions lo;
-  session::StreamingSession s(lo);
-  session::TilesetOptions to;
-  to.parallelFetches = parallel;
-  s.setTilesetOptions(to);
-  const auto t0 = Clock::now();
-  auto seconds = [&] { return std::chrono::duration<double>(Clock::now() - t0).count(); };
-  std::string error;
-  if (!s.open(url, error)) {
-    std::fprintf(stderr, "%s\n", error.c_str());
-    std::exit(1);
-  }
-  const std::string node =
-      session::tilesetIndexOf(url).empty() ? url : session::tilesetIndexOf(url);
-  auto set = s.rendererOptions({}).splatLoader(node, "", error);
-  if (!set) {
-    std::fprintf(stderr, "%s\n", error.c_str());
-    std::exit(1);
-  }
-  Result r;
-  std::vector<std::pair<double, std::uint64_t>> samples;  // (seconds, vectors present)
-  bool viewed = false;
-  for (;;) {
-    s.pump();
-    if (!viewed && !set->bounds.empty()) {
-      render::SplatSet::View v;
-      v.camera = camera ? *camera : render::fitCamera(set->bounds, 1.0f, render::Camera{});
-      v.heightPixels = 512;
-      v.vectors = set->total();
-      set->views[&r] = v;
-      set->wantedVectors = set->total();  // a single stream: the whole prefix (lod 1)
-      viewed = true;
-      continue;
-    }
-    const std::uint64_t have = set->vectors.size();
-    if (have > 0 && r.first < 0) r.first = seconds();
-    if (samples.empty() || samples.back().second != have) samples.push_back({seconds(), have});
-    if (viewed && s.settled()) break;
-    s.loader().wait(0.005);
-  }
-  r.all = seconds();
-  r.vectors = set->vectors.size();
-  for (const auto& [t, n] : samples)
-    if (n * 10 >= r.vectors) {
-      r.tenth = t;
-      break;
-    }
-  r.bytes = s.loader().budget().totalBytes();  // every transfer, index and bricks too
-  return r;
+bool readCThead(const std::string& path, qnv::Volume& v) {
+  v.dims = {256, 256, 113};
+  v.spacing = {1, 1, 2};
+  std::vector<unsigned char> bytes(v.voxelCount() * 2);
+  gzFile f = gzopen(path.c_str(), "rb");
+  if (!f) return false;
+  const int n = gzread(f, bytes.data(), static_cast<unsigned>(bytes.size()));
+  gzclose(f);
+  if (n != static_cast<int>(bytes.size())) return false;
+  v.samples.resize(v.voxelCount());
+  for (std::size_t i = 0; i < v.samples.size(); ++i)
+    v.samples[i] =
+        static_cast<float>(static_cast<std::int16_t>((bytes[2 * i] << 8) | bytes[2 * i + 1]));
+  return true;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 3) {
-    std::fprintf(stderr, "usage: bench_tileset ROOT URL [PARALLEL]\n");
-    return 2;
+  const std::string path =
+      argc > 1 ? argv[1] : std::string(GS_CORPUS_DIR) + "/volume/cthead/CThead.raw.gz";
+  const double fraction = argc > 2 ? std::atof(argv[2]) : 0.091;
+  qnv::Volume volume;
+  if (!readCThead(path, volume)) {
+    std::fprintf(stderr, "bench_tileset: cannot read %s\n", path.c_str());
+    return 1;
   }
-  const fs::path root = argv[1];
-  const std::string url = argv[2];
-  const int parallel = argc > 3 ? std::atoi(argv[3]) : 1;
-  qnv::TilesetOptions cut;
-  if (argc > 4) cut.brickVoxels = static_cast<std::uint32_t>(std::atoi(argv[4]));
-  const fs::path ct = fs::path(GS_CORPUS_DIR) / "volume/cthead/CThead.nhdr";
-  if (!fs::exists(ct)) {
-    std::printf("skipped: %s is absent\n", ct.c_str());
-    return 0;
-  }
-  const qnv::Volume volume = session::loadVolumeFile(ct.string());
   qnv::VolumeEncodeOptions options;
-  options.selection.fraction = 0.091;
-  writeFile(root / "cthead.qnv", qnv::writeStream(qnv::encodeVolume(volume, options)));
-  const auto tileset = qnv::buildTileset(qnv::selectVolumeVectors(volume, options), cut);
-  fs::remove_all(root / "cthead");
-  for (const auto& b : tileset.bricks) writeFile(root / "cthead" / b.brick.path(), b.bytes);
-  writeFile(root / "cthead/index.qnvt", qnv::serializeTilesetIndex(tileset.index));
-  std::printf("CThead top 9.1%%: %llu vectors; stream %llu bytes; tileset %zu bricks, depth %d\n",
-              static_cast<unsigned long long>(tileset.index.header.vectorCount),
-              static_cast<unsigned long long>(fs::file_size(root / "cthead.qnv")),
-              tileset.bricks.size(), tileset.index.depth);
-
-  // The corner zoom: from the fitted camera's place, a quarter of its field of view
-  // turned towards the box point at (0.2, 0.8, 0.5) of each axis.
-  const auto& h = tileset.index.header;
-  vrml::Bounds box;
-  box.extend(h.boundsMin);
-  box.extend(h.boundsMax);
-  render::Camera zoom = render::fitCamera(box, 1.0f, render::Camera{});
-  const glm::vec3 target = h.boundsMin + (h.boundsMax - h.boundsMin) * glm::vec3(0.2f, 0.8f, 0.5f);
-  zoom.orientation = glm::quatLookAt(glm::normalize(target - zoom.position), glm::vec3(0, 1, 0));
-  zoom.fieldOfView /= 4.0f;
-
-  std::printf("%-22s %9s %9s %9s %12s %10s\n", "", "first s", "10% s", "all s", "bytes", "vectors");
-  for (const auto& [name, input, camera] :
-       {std::tuple{"stream, whole view", url + "/cthead.qnv", (const render::Camera*)nullptr},
-        std::tuple{"stream, corner zoom", url + "/cthead.qnv", (const render::Camera*)&zoom},
-        std::tuple{"tileset, whole view", url + "/cthead/", (const render::Camera*)nullptr},
-        std::tuple{"tileset, corner zoom", url + "/cthead/", (const render::Camera*)&zoom}}) {
-    const Result r = measure(input, camera, parallel);
-    std::printf("%-22s %9.3f %9.3f %9.3f %12llu %10llu\n", name, r.first, r.tenth, r.all,
-                static_cast<unsigned long long>(r.bytes),
-                static_cast<unsigned long long>(r.vectors));
+  options.selection.fraction = fraction;
+  std::printf("CThead top %.1f%%, one thread, best of 3 (CPU s)\n", 100 * fraction);
+  std::printf("%-8s %6s | %11s %7s | %6s %5s %5s %11s %11s %7s\n", "coding", "packet", "stream B",
+              "s", "bricks", "depth", "leaf", "index B", "total B", "s");
+  for (const auto& [encoding, packetBytes] : {std::pair{qnv::PacketEncoding::plain, 1376u},
+                                              {qnv::PacketEncoding::entropy, 1376u},
+                                              {qnv::PacketEncoding::entropy, 16384u}}) {
+    const qnv::WriteOptions write{packetBytes, encoding};
+    std::size_t streamBytes = 0;
+    const double streamSeconds = best(
+        [&] { streamBytes = qnv::writeStream(qnv::encodeVolume(volume, options), write).size(); });
+    qnv::TilesetFiles files;
+    qnv::TilesetOptions cut;
+    cut.write = write;
+    const double tilesetSeconds =
+        best([&] { files = qnv::buildTileset(qnv::selectVolumeVectors(volume, options), cut); });
+    const std::size_t indexBytes = qnv::serializeTilesetIndex(files.index).size();
+    std::size_t total = indexBytes, leaves = 0;
+    for (const qnv::BrickFile& b : files.bricks) {
+      total += b.bytes.size();
+      leaves += b.brick.level == files.index.depth;
+    }
+    std::printf("%-8s %6u | %11zu %7.3f | %6zu %5u %5zu %11zu %11zu %7.3f\n",
+                encoding == qnv::PacketEncoding::plain ? "plain" : "entropy", packetBytes,
+                streamBytes, streamSeconds, files.bricks.size(),
+                static_cast<unsigned>(files.index.depth), leaves, indexBytes, total,
+                tilesetSeconds);
   }
   return 0;
 }

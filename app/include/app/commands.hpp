@@ -36,6 +36,12 @@ int runEncodeOutline(const Options& options);
 /// read or the output written, 2 on bad options.
 int runEncode(const Options& options);
 
+/// `ghostspace tileset index OUT/`: merges the shares an `encode --tileset OUT/ --bricks
+/// I/N` run left under OUT/parts/ into the interior bricks and OUT/index.qnvt, then removes
+/// OUT/parts (app/src/encode_tileset.cpp, docs/qnv-format.md "Tilesets"). 0 on success, 1
+/// with one line on stderr when a share is missing, damaged or from another encode.
+int runTilesetIndex(const Options& options);
+
 /// `ghostspace --snapshot OUT.png [--size WxH] INPUT`: streams INPUT (a file or an
 /// http(s) URL, docs/progressive-loading.md), renders off-screen through OSMesa from the
 /// bound Viewpoint once everything asked for arrived (or at --snapshot-at) and writes a

@@ -12,7 +12,7 @@
 
 namespace gs::app {
 
-enum class Command { window, snapshot, info, encode };
+enum class Command { window, snapshot, info, encode, tilesetIndex };
 
 /// `ghostspace encode` (README.md, "Encoding QNV streams").
 struct EncodeOptions {
@@ -32,6 +32,12 @@ struct EncodeOptions {
   bool progress = true;              // --no-progress turns the terminal bar off
   bool outline = false;              // --outline: OUT is a .wrl of outline groups
   double maxAngle = 30.0;            // --max-angle DEG: outline groups' normal spread
+
+  // Tilesets (docs/qnv-format.md, "Tilesets"; app/src/encode_tileset.cpp).
+  std::string tileset;                    // --tileset OUT/: a tileset folder, not a stream
+  std::uint32_t brickVoxels = 64;         // --brick-voxels B: volume leaf block side
+  std::uint64_t brickVectors = 1u << 14;  // --brick-vectors K: vectors a node aims at
+  std::string bricks;                     // --bricks I/N: write share I of N only
 };
 
 struct Options {
@@ -58,6 +64,7 @@ struct Options {
   session::RuntimeOptions time;       // --time, --time-step, --trace-events
   bool infoExitZero = false;          // info --exit-zero: worlds with errors exit 0
   EncodeOptions encode;
+  std::string tilesetDir;  // tileset index OUT/: the folder whose shares are merged
 };
 
 /// The level of detail of viewport `index`: lods[index], the last of lods past its end,

@@ -143,6 +143,8 @@ TilesetFiles buildTileset(const SelectedVectors& selected, const TilesetOptions&
 /// open leaves plus the interior contributions.
 class TilesetShareWriter {
  public:
+  /// `layout` must outlive the writer. Throws InputError unless
+  /// 0 <= share < shares <= kMaxTilesetShares.
   TilesetShareWriter(const TilesetLayout& layout, std::uint32_t share = 0,
                      std::uint32_t shares = 1);
 

@@ -1,0 +1,18 @@
+// qnv::parseTilesetIndex (index.qnvt) and qnv::parseInteriorParts (a share's
+// interior.qnvp): every count and range checked against the bytes; then
+// brickPrefixBytes over every brick of an accepted index.
+#include "fuzz_support.hpp"
+#include "qnv/tileset.hpp"
+#include "qnv/tileset_writer.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string_view bytes(reinterpret_cast<const char*>(data), size);
+  std::string error;
+  if (const auto index = gs::qnv::parseTilesetIndex(bytes, "fuzz.qnvt", error))
+    for (const gs::qnv::TilesetBrick& b : index->bricks)
+      for (std::uint64_t n : {std::uint64_t{0}, std::uint64_t{1}, b.vectorCount / 2, b.vectorCount})
+        (void)gs::qnv::brickPrefixBytes(b, index->header, n);
+  gs::qnv::TilesetOptions cut;
+  (void)gs::qnv::parseInteriorParts(bytes, "fuzz.qnvp", cut, error);
+  return 0;
+}
