@@ -65,10 +65,20 @@ double meanBand(const qnv::TilesetBrick& b) {
   return sum > 0.0 ? weighted / sum / 15.0 : 0.0;
 }
 
-}  // namespace
+/// Vectors of `b` whose A code lies at or above band position `threshold` (0..16; band b
+/// spans [b, b + 1), a band cut in part counts in proportion): the prefix of the brick
+/// above one global magnitude.
+double aboveThreshold(const qnv::TilesetBrick& b, double threshold) {
+  double n = 0.0;
+  for (std::size_t band = 0; band < b.histogram.size(); ++band)
+    n += b.histogram[band] * std::clamp(static_cast<double>(band) + 1.0 - threshold, 0.0, 1.0);
+  return n;
+}
 
-std::vector<BrickChoice> selectBricks(const qnv::TilesetIndex& index, const TilesetView& view,
-                                      const TilesetBudget& budget) {
+/// The walk in priority order at threshold `ppv`, stopping at `limit` records, keeping
+/// in each brick only the vectors above band position `threshold` (0: all).
+std::vector<BrickChoice> walk(const qnv::TilesetIndex& index, const TilesetView& view, double ppv,
+                              std::uint64_t limit, double threshold = 0.0) {
   std::vector<BrickChoice> out;
   const auto& bricks = index.bricks;
   std::unordered_map<std::uint64_t, std::size_t> byCell;
@@ -92,9 +102,7 @@ std::vector<BrickChoice> selectBricks(const qnv::TilesetIndex& index, const Tile
     if (b.level == 0 || !byCell.count(cellKey(b.level - 1u, b.x / 2, b.y / 2, b.z / 2)))
       consider(i, 1e300);
   }
-  const std::uint64_t limit = std::min(budget.vectors, budget.memoryVectors);
   const std::uint64_t perPacket = std::max<std::uint64_t>(index.header.recordsPerPacket(), 1);
-  const double ppv = std::max(budget.pixelsPerVector, 1e-6);
   std::uint64_t used = 0;
   while (!queue.empty() && used < limit) {
     const auto [priority, i] = queue.top();
@@ -104,6 +112,12 @@ std::vector<BrickChoice> selectBricks(const qnv::TilesetIndex& index, const Tile
     const double count = static_cast<double>(b.vectorCount);
     std::uint64_t records =
         area / ppv >= count ? b.vectorCount : static_cast<std::uint64_t>(std::ceil(area / ppv));
+    if (threshold > 0.0)
+      records =
+          std::min(records, static_cast<std::uint64_t>(std::ceil(aboveThreshold(b, threshold))));
+    // Nothing above the threshold here: nor in the descendants (each node took the
+    // largest vectors of every leaf below it).
+    if (records == 0) continue;
     records = std::min(records, limit - used);
     records = std::min(b.vectorCount, (std::max<std::uint64_t>(records, 1) + perPacket - 1) /
                                           perPacket * perPacket);
@@ -124,6 +138,30 @@ std::vector<BrickChoice> selectBricks(const qnv::TilesetIndex& index, const Tile
     }
   }
   return out;
+}
+
+}  // namespace
+
+std::vector<BrickChoice> selectBricks(const qnv::TilesetIndex& index, const TilesetView& view,
+                                      const TilesetBudget& budget) {
+  const std::uint64_t limit = std::min(budget.vectors, budget.memoryVectors);
+  double ppv = std::max(budget.pixelsPerVector, 1e-6);
+  auto records = [](const std::vector<BrickChoice>& choices) {
+    std::uint64_t n = 0;
+    for (const BrickChoice& c : choices) n += c.records;
+    return n;
+  };
+  std::vector<BrickChoice> out = walk(index, view, ppv, UINT64_MAX);
+  if (records(out) <= limit) return out;
+  // Over budget: keep the vectors above one magnitude threshold over every visible brick
+  // (read from the histograms), as the single stream's prefix keeps the largest vectors
+  // of the whole data; bisection on the threshold until the choice fits.
+  double low = 0.0, high = 16.0;
+  for (int i = 0; i < 30; ++i) {
+    const double mid = (low + high) / 2.0;
+    (records(walk(index, view, ppv, UINT64_MAX, mid)) > limit ? low : high) = mid;
+  }
+  return walk(index, view, ppv, limit, high);
 }
 
 std::vector<BrickChoice> mergeChoices(const std::vector<std::vector<BrickChoice>>& views) {

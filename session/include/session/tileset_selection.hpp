@@ -19,9 +19,13 @@
 //   larger and stronger bricks first. A child enters the queue only when its parent was
 //   taken, so ancestors (an even, magnitude-first sample of their region) come before
 //   their children.
-// - Budget: records are taken in that order until min(vectorBudget, memoryBudget) is
-//   reached; the brick that crosses it gets the remaining records (whole packets, so the
-//   total may pass the budget by less than one packet per call) and the walk ends.
+// - Budget: when the choice holds more records than min(vectorBudget, memoryBudget),
+//   every brick keeps only its vectors above one global magnitude threshold, read from
+//   the histograms (a band cut in part counts in proportion), the threshold found by
+//   bisection so the choice fits: the vectors kept are those the single stream's prefix
+//   of that size keeps (the largest of the whole data), restricted to the view. The walk
+//   at that threshold then stops at the budget (whole packets: the total may pass it by
+//   less than one packet).
 #pragma once
 
 #include <cstddef>
