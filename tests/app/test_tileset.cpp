@@ -3,6 +3,8 @@
 // fetches only the bricks its view chooses.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -139,4 +141,46 @@ TEST_CASE("a hostile tileset index named by a world is reported and the world st
   CHECK(r.exitCode == 0);
   CHECK(r.err.find(nginx.url("/bad/index.qnvt")) != std::string::npos);
   CHECK(covered("hostile_index") > 0.05);
+}
+
+TEST_CASE(
+    "ghostspace encode --tileset: the snapshot equals the single stream's, full and at "
+    "--lod 0.1",
+    "[app][tileset]") {
+  // A ball whose gradient grows towards its centre (magnitudes spread over many bands;
+  // a field of equal magnitudes would leave the stream's prefix to its tie-break order).
+  const fs::path raw = outDir() / "ball40.raw";
+  {
+    std::string v(40 * 40 * 40, '\0');
+    for (int z = 0; z < 40; ++z)
+      for (int y = 0; y < 40; ++y)
+        for (int x = 0; x < 40; ++x) {
+          const double r = std::hypot(x - 20.0, y - 20.0, z - 20.0) / 20.0;
+          v[static_cast<std::size_t>((z * 40 + y) * 40 + x)] = static_cast<char>(
+              static_cast<unsigned char>(std::clamp(180.0 * (1.2 - r) * (1.2 - r), 0.0, 255.0)));
+        }
+    std::ofstream(raw, std::ios::binary) << v;
+  }
+  const fs::path dir = outDir() / "ball40_tileset";
+  fs::remove_all(dir);
+  for (const std::vector<std::string>& out :
+       {std::vector<std::string>{"--tileset", dir.string() + "/", "--brick-voxels", "16"},
+        std::vector<std::string>{"-o", (outDir() / "ball40.qnv").string()}}) {
+    std::vector<std::string> args = {"encode", raw.string(), "--raw-dims", "40,40,40",
+                                     "--no-progress"};
+    args.insert(args.end(), out.begin(), out.end());
+    const auto r = runGhostspace(args);
+    INFO(r.err);
+    REQUIRE(r.exitCode == 0);
+  }
+  for (const std::string lod : {"1", "0.1"}) {
+    for (const auto& [name, input] : {std::pair{"ball40_t", dir.string()},
+                                      std::pair{"ball40_s", (outDir() / "ball40.qnv").string()}})
+      REQUIRE(runGhostspace({"--snapshot", (outDir() / (name + lod + ".png")).string(), "--size",
+                             "300x300", "--no-progress", "--lod", lod, input})
+                  .exitCode == 0);
+    INFO("--lod " << lod);
+    CHECK(covered("ball40_t" + lod) > 0.05);
+    CHECK(differing("ball40_t" + lod, "ball40_s" + lod) <= gs::test::kMaxFractionDiffering);
+  }
 }
