@@ -134,6 +134,11 @@ Parsed parseArguments(int argc, char** argv) {
                  "link; files and URLs alike)")
       ->type_name("BYTES_PER_S")
       ->check(CLI::NonNegativeNumber);
+  cli.add_option("--tileset-memory", o.tilesetMemoryMb,
+                 "Megabytes of decoded vectors a QNV tileset keeps at most (default 512); "
+                 "bricks far from every view are dropped beyond it (docs/tilesets.md)")
+      ->type_name("MB")
+      ->check(CLI::PositiveNumber);
   std::string snapshotAt;
   cli.add_option("--snapshot-at", snapshotAt,
                  "With --snapshot: render what arrived after this many bytes (e.g. 200000, "

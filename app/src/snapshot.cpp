@@ -28,6 +28,12 @@ render::SceneRendererOptions rendererOptions(const Options& options) {
   return r;
 }
 
+session::TilesetOptions tilesetOptions(const Options& options) {
+  session::TilesetOptions o;
+  o.memoryBytes = static_cast<std::uint64_t>(options.tilesetMemoryMb * 1048576.0);
+  return o;
+}
+
 net::LoaderOptions loaderOptions(const Options& options) {
   net::LoaderOptions o;
   o.maxRate = options.maxRate;
@@ -59,6 +65,7 @@ double loadFraction(const net::Loader& loader) {
 
 int runSnapshot(const Options& options) {
   session::StreamingSession session(loaderOptions(options));
+  session.setTilesetOptions(tilesetOptions(options));
   // One viewport per layout cell; the INPUTs fill them in order and a single INPUT fills
   // them all. A world named twice is loaded once (the session shares its streams).
   const int cells = layoutCells(options.layout);

@@ -144,6 +144,7 @@ int runWindow(const Options& options) {
   state.rendererOptions = rendererOptions(options);
   state.time = options.time;
   state.session = std::make_unique<session::StreamingSession>(loaderOptions(options));
+  state.session->setTilesetOptions(tilesetOptions(options));
   state.setLayout(options.layout);
   state.openInputs(options.inputs, options.lods);
   WindowScript script;

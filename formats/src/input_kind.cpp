@@ -7,6 +7,7 @@
 #include "base/text.hpp"
 #include "base/url.hpp"
 #include "qnv/stream.hpp"
+#include "qnv/tileset.hpp"
 
 namespace gs::formats {
 
@@ -19,14 +20,15 @@ struct Suffix {
 
 // Longest first where one suffix ends another (".nii.gz" before ".gz" handling).
 constexpr std::array kSuffixes = {
-    Suffix{".wrl", InputKind::world}, Suffix{".wrl.gz", InputKind::world},
-    Suffix{".wrz", InputKind::world}, Suffix{".qnv", InputKind::qnv},
-    Suffix{".ply", InputKind::ply},   Suffix{".ply.gz", InputKind::ply},
-    Suffix{".obj", InputKind::obj},   Suffix{".obj.gz", InputKind::obj},
-    Suffix{".gltf", InputKind::gltf}, Suffix{".gltf.gz", InputKind::gltf},
-    Suffix{".glb", InputKind::gltf},  Suffix{".glb.gz", InputKind::gltf},
-    Suffix{".nrrd", InputKind::nrrd}, Suffix{".nhdr", InputKind::nrrd},
-    Suffix{".nii", InputKind::nifti}, Suffix{".nii.gz", InputKind::nifti},
+    Suffix{".wrl", InputKind::world},       Suffix{".wrl.gz", InputKind::world},
+    Suffix{".wrz", InputKind::world},       Suffix{".qnv", InputKind::qnv},
+    Suffix{".qnvt", InputKind::qnvTileset}, Suffix{".ply", InputKind::ply},
+    Suffix{".ply.gz", InputKind::ply},      Suffix{".obj", InputKind::obj},
+    Suffix{".obj.gz", InputKind::obj},      Suffix{".gltf", InputKind::gltf},
+    Suffix{".gltf.gz", InputKind::gltf},    Suffix{".glb", InputKind::gltf},
+    Suffix{".glb.gz", InputKind::gltf},     Suffix{".nrrd", InputKind::nrrd},
+    Suffix{".nhdr", InputKind::nrrd},       Suffix{".nii", InputKind::nifti},
+    Suffix{".nii.gz", InputKind::nifti},
 };
 
 bool lineEndAt(std::string_view s, std::size_t i) {
@@ -40,6 +42,11 @@ InputKind sniffPlain(std::string_view head) {
       std::equal(magic.begin(), magic.end(), head.begin(),
                  [](std::uint8_t m, char c) { return m == static_cast<std::uint8_t>(c); }))
     return InputKind::qnv;
+  const auto& index = qnv::kTilesetMagic;
+  if (head.size() >= index.size() &&
+      std::equal(index.begin(), index.end(), head.begin(),
+                 [](std::uint8_t m, char c) { return m == static_cast<std::uint8_t>(c); }))
+    return InputKind::qnvTileset;
   if (head.starts_with("ply") && lineEndAt(head, 3)) return InputKind::ply;
   if (head.starts_with("glTF")) return InputKind::gltf;
   if (head.size() >= 8 && head.starts_with("NRRD000") && head[7] >= '1' && head[7] <= '5')

@@ -404,7 +404,7 @@ void SceneRenderer::draw(const Camera& camera, int x, int y, int width, int heig
 
   if (!g.frame.splats.empty() || splats_->mode() == RenderMode::splats) {
     glDisable(GL_SCISSOR_TEST);
-    statistics_.splats = splats_->draw(g.frame, traversal_, camera, aspect, headlight_);
+    statistics_.splats = splats_->draw(g.frame, traversal_, camera, aspect, headlight_, height);
     glEnable(GL_SCISSOR_TEST);
     glUseProgram(g.program);
   }

@@ -70,6 +70,12 @@ const SceneSplats::NodeSet& SceneSplats::nodeSet(const vrml::Node& node, const s
 }
 
 std::size_t SceneSplats::drawCount(const vrml::Node* node, const SplatSet& set) const {
+  const std::uint64_t prefix = wantedPrefix(node, set);
+  set.wantedVectors = std::max(set.wantedVectors, prefix);
+  return static_cast<std::size_t>(std::min<std::uint64_t>(prefix, set.vectors.size()));
+}
+
+std::uint64_t SceneSplats::wantedPrefix(const vrml::Node* node, const SplatSet& set) const {
   const double size = static_cast<double>(set.total());
   double n = size;
   if (node != nullptr) {
@@ -79,10 +85,8 @@ std::size_t SceneSplats::drawCount(const vrml::Node* node, const SplatSet& set) 
   }
   const double wanted = n * std::clamp(drawLod_, 0.0, 1.0);
   if (wanted <= 0.0 || size <= 0.0) return 0;
-  const auto prefix =
-      std::clamp<std::uint64_t>(static_cast<std::uint64_t>(std::llround(wanted)), 1, set.total());
-  set.wantedVectors = std::max(set.wantedVectors, prefix);
-  return static_cast<std::size_t>(std::min<std::uint64_t>(prefix, set.vectors.size()));
+  return std::clamp<std::uint64_t>(static_cast<std::uint64_t>(std::llround(wanted)), 1,
+                                   set.total());
 }
 
 vrml::Bounds SceneSplats::bounds(SceneTraversal& traversal) {
@@ -103,7 +107,8 @@ vrml::Bounds SceneSplats::bounds(SceneTraversal& traversal) {
 }
 
 std::size_t SceneSplats::draw(const TraversalFrame& frame, SceneTraversal& traversal,
-                              const Camera& camera, float aspect, bool headlight) {
+                              const Camera& camera, float aspect, bool headlight,
+                              int heightPixels) {
   SplatLight lights[8];
   std::size_t lightCount = 0;
   if (headlight) lights[lightCount++] = {camera.forward(), glm::vec3(1.0f)};
@@ -140,9 +145,12 @@ std::size_t SceneSplats::draw(const TraversalFrame& frame, SceneTraversal& trave
   }
   for (const SplatInstance& s : frame.splats) {
     const NodeSet& entry = nodeSet(*s.node, *s.baseUrl, traversal);
-    if (entry.set)
-      drawSet(*entry.set, drawCount(s.node, *entry.set), s.model,
-              entry.ownStyle ? &entry.style : nullptr);
+    if (!entry.set) continue;
+    const std::size_t count = drawCount(s.node, *entry.set);
+    if (entry.set->viewDependent)
+      entry.set->views[this] = {camera, s.model, aspect, heightPixels,
+                                wantedPrefix(s.node, *entry.set)};
+    drawSet(*entry.set, count, s.model, entry.ownStyle ? &entry.style : nullptr);
   }
   return drawn;
 }

@@ -30,13 +30,16 @@ class SceneSplats {
   /// given to the renderer, rounded, at least 1 when the product is positive; then
   /// clamped to the vectors present. Records the prefix wanted in set.wantedVectors.
   std::size_t drawCount(const vrml::Node* node, const SplatSet& set) const;
+  /// That prefix before the clamp to the vectors present (0 when nothing is drawn).
+  std::uint64_t wantedPrefix(const vrml::Node* node, const SplatSet& set) const;
   /// World bounds of every QNV node of the scene (loads them) and, in splats mode, of the
   /// polygon world.
   vrml::Bounds bounds(SceneTraversal& traversal);
   /// Draws the frame's QNV nodes (and the world's splats in splats mode) over what is in
   /// the framebuffer. Returns the number of splats drawn.
+  /// `heightPixels` is the viewport's height (recorded for view-dependent sets).
   std::size_t draw(const TraversalFrame& frame, SceneTraversal& traversal, const Camera& camera,
-                   float aspect, bool headlight);
+                   float aspect, bool headlight, int heightPixels = 0);
   RenderMode mode() const { return mode_; }
   /// The scene grew (progressive loading): the splats-mode world set is built again when
   /// root nodes were added.

@@ -13,7 +13,23 @@
 namespace gs::session {
 
 bool isSplatInput(const std::string& path) {
-  return formats::isSplatKind(formats::classifyFile(path));
+  return formats::isSplatKind(formats::classifyFile(path)) || !tilesetIndexOf(path).empty();
+}
+
+std::string tilesetIndexOf(const std::string& input) {
+  if (base::isHttpUrl(input)) {
+    const std::string_view bare = base::withoutQueryOrFragment(input);
+    if (!bare.empty() && bare.back() == '/') return std::string(bare) + "index.qnvt";
+    return formats::kindFromName(input) == formats::InputKind::qnvTileset ? input : "";
+  }
+  const std::string path = base::localPathOfUrl(input);
+  if (path.empty()) return "";
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    const std::string index = (std::filesystem::path(path) / "index.qnvt").string();
+    return formats::classifyFile(index) == formats::InputKind::qnvTileset ? index : "";
+  }
+  return formats::classifyFile(path) == formats::InputKind::qnvTileset ? input : "";
 }
 
 std::string splatWorldText(const std::string& path) {

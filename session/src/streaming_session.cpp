@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 
 #include "base/url.hpp"
@@ -19,6 +20,15 @@ StreamingSession::~StreamingSession() = default;
 
 std::shared_ptr<const vrml::Scene> StreamingSession::open(const std::string& input,
                                                           std::string& error) {
+  if (const std::string index = tilesetIndexOf(input); !index.empty()) {
+    // A world of one QNV node naming the index; a local one names it by its file name
+    // (the world's url is the index itself, so the name resolves to it).
+    const bool remote = base::isHttpUrl(index);
+    const std::string name = remote ? index : std::filesystem::path(index).filename().string();
+    auto scene = std::make_shared<vrml::Scene>(vrml::parseVrml(splatWorldText(name), index));
+    localScenes_.push_back(scene);
+    return scene;
+  }
   const bool remote = base::isHttpUrl(input);
   if (remote) {
     // Nothing has arrived yet: the name decides (a world when it says nothing).
@@ -69,6 +79,12 @@ std::shared_ptr<const render::SplatSet> StreamingSession::splatSet(const std::st
                                                                    std::string& error) {
   if (!base::mayReference(referrer, url, error)) return nullptr;  // before any cache
   if (auto it = qnv_.find(url); it != qnv_.end()) return it->second.set;
+  if (auto it = tilesets_.find(url); it != tilesets_.end()) return it->second->set();
+  if (const std::string index = tilesetIndexOf(url); !index.empty()) {
+    auto& tileset = tilesets_[url];
+    tileset = std::make_unique<TilesetStream>(loader_, index, referrer, tilesetOptions_);
+    return tileset->set();
+  }
   const std::string path = base::localPathOfUrl(url);
   const formats::InputKind kind =
       path.empty() ? formats::InputKind::unknown : formats::classifyFile(path);
@@ -117,6 +133,7 @@ render::SceneRendererOptions StreamingSession::rendererOptions(render::SceneRend
 bool StreamingSession::pump() {
   for (auto& [url, e] : qnv_) e.stream->want(e.set->wantedVectors);
   bool changed = loader_.pump();
+  for (auto& [url, t] : tilesets_) changed |= t->pump();
   for (auto& [url, e] : qnv_) {
     const auto& header = e.stream->header();
     if (e.haveHeader || !header) continue;
@@ -134,7 +151,21 @@ bool StreamingSession::pump() {
   return changed;
 }
 
+bool StreamingSession::settled() const {
+  if (!loader_.settled()) return false;
+  for (const auto& [url, t] : tilesets_)
+    if (!t->settled()) return false;
+  return true;
+}
+
+std::vector<const TilesetStream*> StreamingSession::tilesets() const {
+  std::vector<const TilesetStream*> out;
+  for (const auto& [url, t] : tilesets_) out.push_back(t.get());
+  return out;
+}
+
 void StreamingSession::drainMessages(std::vector<std::pair<bool, std::string>>& out) {
+  for (auto& [url, t] : tilesets_) t->drainMessages(out);
   for (const net::StreamProgress& p : loader_.progress()) {
     if (!p.settled() || p.state == net::StreamState::idle) continue;
     const std::string state = net::toString(p.state);

@@ -5,6 +5,7 @@
 
 #include "formats/input_kind.hpp"
 #include "qnv/stream.hpp"
+#include "qnv/tileset.hpp"
 #include "test_support.hpp"
 
 using gs::formats::classifyFile;
@@ -21,6 +22,7 @@ TEST_CASE("kindFromName: extensions in any case, URLs without query", "[formats]
   CHECK(kindFromName("a.WRZ") == InputKind::world);
   CHECK(kindFromName("http://h/a.wrl?x=1#vp") == InputKind::world);
   CHECK(kindFromName("http://h/s.QNV") == InputKind::qnv);
+  CHECK(kindFromName("http://h/ct/index.qnvt") == InputKind::qnvTileset);
   CHECK(kindFromName("m.ply.GZ") == InputKind::ply);
   CHECK(kindFromName("m.obj") == InputKind::obj);
   CHECK(kindFromName("m.glb") == InputKind::gltf);
@@ -36,6 +38,9 @@ TEST_CASE("kindFromContent: magic bytes, also inside gzip", "[formats][kind]") {
   CHECK(kindFromContent(gs::test::gzip("#VRML V2.0 utf8\nGroup {}\n")) == InputKind::world);
   const std::string qnvMagic(gs::qnv::kMagic.begin(), gs::qnv::kMagic.end());
   CHECK(kindFromContent(qnvMagic + "rest") == InputKind::qnv);
+  const std::string indexMagic(gs::qnv::kTilesetMagic.begin(), gs::qnv::kTilesetMagic.end());
+  CHECK(kindFromContent(indexMagic + "rest") == InputKind::qnvTileset);
+  CHECK(kindFromContent(indexMagic.substr(0, 7)) == InputKind::unknown);
   CHECK(kindFromContent("ply\nformat ascii 1.0\n") == InputKind::ply);
   CHECK(kindFromContent("ply\r\nformat ascii 1.0\n") == InputKind::ply);
   CHECK(kindFromContent(gs::test::gzip("ply\nformat ascii 1.0\n")) == InputKind::ply);

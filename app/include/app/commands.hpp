@@ -4,6 +4,7 @@
 #include "app/options.hpp"
 #include "net/loader.hpp"
 #include "render/scene_renderer.hpp"
+#include "session/tileset_stream.hpp"
 
 #include <string>
 
@@ -55,6 +56,9 @@ int runWindow(const Options& options);
 /// The renderer options the command line asks for: --lod, --mode, and the application's
 /// splat loader (session/splat_inputs.hpp).
 render::SceneRendererOptions rendererOptions(const Options& options);
+
+/// The tileset options the command line asks for: --tileset-memory.
+session::TilesetOptions tilesetOptions(const Options& options);
 
 /// The loader options the command line asks for: --max-rate, --snapshot-at BYTES.
 net::LoaderOptions loaderOptions(const Options& options);

@@ -60,6 +60,7 @@ struct Options {
   double snapshotAtSeconds = 0.0;     // 0: not set
   bool progress = true;               // --no-progress: no progress bar on the terminal
   double stallTimeout = 20.0;         // --stall-timeout S: a transfer silent this long fails
+  double tilesetMemoryMb = 512.0;     // --tileset-memory MB: decoded tileset vectors held
   session::RuntimeOptions time;       // --time, --time-step, --trace-events
   bool infoExitZero = false;          // info --exit-zero: worlds with errors exit 0
   EncodeOptions encode;

@@ -11,14 +11,15 @@
 namespace gs::formats {
 
 enum class InputKind {
-  unknown,  // nothing recognised (the caller decides; the session parses it as VRML97)
-  world,    // VRML97: .wrl, .wrl.gz, .wrz; content "#VRML V2.0"
-  qnv,      // QNV stream: .qnv; content the QNV signature (docs/qnv-format.md)
-  ply,      // .ply[.gz]; content "ply" + line end
-  obj,      // Wavefront OBJ: .obj[.gz] (no magic)
-  gltf,     // .gltf[.gz], .glb[.gz]; content "glTF" (GLB)
-  nrrd,     // .nrrd, .nhdr; content "NRRD0001".."NRRD0005"
-  nifti,    // .nii, .nii.gz; content "n+1\0" or "ni1\0" at byte 344
+  unknown,     // nothing recognised (the caller decides; the session parses it as VRML97)
+  world,       // VRML97: .wrl, .wrl.gz, .wrz; content "#VRML V2.0"
+  qnv,         // QNV stream: .qnv; content the QNV signature (docs/qnv-format.md)
+  qnvTileset,  // QNV tileset index: .qnvt; content its signature "\x89QNT\r\n\x1a\n"
+  ply,         // .ply[.gz]; content "ply" + line end
+  obj,         // Wavefront OBJ: .obj[.gz] (no magic)
+  gltf,        // .gltf[.gz], .glb[.gz]; content "glTF" (GLB)
+  nrrd,        // .nrrd, .nhdr; content "NRRD0001".."NRRD0005"
+  nifti,       // .nii, .nii.gz; content "n+1\0" or "ni1\0" at byte 344
 };
 
 /// The kind the name says: `name` is a path or URL; its extension (case-insensitive,
@@ -49,9 +50,9 @@ constexpr bool isVolume(InputKind k) {
   return k == InputKind::nrrd || k == InputKind::nifti;
 }
 /// Inputs shown as QNV splats or as a world made for them (no Viewpoint of their own):
-/// QNV streams, meshes and volumes.
+/// QNV streams and tilesets, meshes and volumes.
 constexpr bool isSplatKind(InputKind k) {
-  return k == InputKind::qnv || isMesh(k) || isVolume(k);
+  return k == InputKind::qnv || k == InputKind::qnvTileset || isMesh(k) || isVolume(k);
 }
 
 }  // namespace gs::formats

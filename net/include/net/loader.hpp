@@ -71,10 +71,14 @@ class Loader {
   void stopAll(const std::string& why);
   const LoaderOptions& options() const { return options_; }
   const FetchBudget& budget() const { return *budget_; }
-
- private:
+  /// The request this loader would make for `url` referenced by `referrer`, under its
+  /// rules (mayReference, local files only for local content) and limits (the shared
+  /// budget, rate, timeouts): for consumers that run their own transfers (the range
+  /// requests of tileset bricks). An empty url with `error` when refused.
   FetchRequest requestFor(const std::string& url, const std::string& referrer,
                           std::string& error) const;
+
+ private:
   LoaderOptions options_;
   std::shared_ptr<FetchBudget> budget_;
   Allowance allowance_;

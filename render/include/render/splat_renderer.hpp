@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <span>
 #include <vector>
@@ -39,6 +40,22 @@ struct SplatSet {
   /// Bumped whenever vectors already present change (a late packet filling a gap): the
   /// renderer then uploads the whole set again instead of only the new tail.
   std::uint64_t revision = 0;
+  /// Whether the vectors depend on the view (a QNV tileset, session/tileset_stream.hpp):
+  /// then every scene renderer that draws the set records in `views` how it drew it, and
+  /// the loader chooses the bricks from those views.
+  bool viewDependent = false;
+  /// How one viewport drew a view-dependent set: its camera (world coordinates), the
+  /// node's placement (set coordinates to world), viewport aspect and height (pixels),
+  /// and the vectors its level of detail asked for.
+  struct View {
+    Camera camera;
+    glm::mat4 model{1.0f};
+    float aspect = 1.0f;
+    int heightPixels = 0;
+    std::uint64_t vectors = 0;
+  };
+  /// The last view of every scene renderer that drew the set (keyed by its address).
+  mutable std::map<const void*, View> views;
   /// Vectors of the whole stream: expectedVectors, or vectors.size() when that is 0.
   std::uint64_t total() const { return expectedVectors > 0 ? expectedVectors : vectors.size(); }
   /// Bounds of `vectors` positions; call after filling vectors.

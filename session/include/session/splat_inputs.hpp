@@ -14,6 +14,11 @@ namespace gs::session {
 /// then name).
 bool isSplatInput(const std::string& path);
 
+/// The index URL when `input` names a QNV tileset (docs/tilesets.md), else "": an index
+/// file (local: its signature, else its name; URL: the name ".qnvt"), a local folder
+/// holding index.qnvt, or an http(s) URL ending in '/' (its "index.qnvt").
+std::string tilesetIndexOf(const std::string& input);
+
 /// The VRML97 world an input that is not a VRML97 file opens as: a mesh becomes one
 /// Shape with an IndexedFaceSet (drawn as polygons, or as splats with --mode splats);
 /// a .qnv stream or a volume becomes one QuantizedNormalVectors node naming the file.

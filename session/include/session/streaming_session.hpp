@@ -12,6 +12,7 @@
 
 #include "net/loader.hpp"
 #include "render/scene_renderer.hpp"
+#include "session/tileset_stream.hpp"
 #include "vrml/scene.hpp"
 
 namespace gs::session {
@@ -24,7 +25,8 @@ class StreamingSession {
   StreamingSession& operator=(const StreamingSession&) = delete;
 
   /// Opens the user's input: a VRML97 world (path or http(s):// URL; streamed), a .qnv
-  /// stream (path or URL; a world of one QuantizedNormalVectors node that streams it), or
+  /// stream or a QNV tileset (its folder or index.qnvt, path or URL; tilesetIndexOf) (a
+  /// world of one QuantizedNormalVectors node that streams it), or
   /// a local mesh or volume (read and encoded now, session/splat_inputs.hpp); local inputs
   /// are classified by formats::classifyFile, URLs by their name. The scene
   /// returned grows as pump() runs. Returns null with `error` ("cannot open 'x': ...")
@@ -41,7 +43,11 @@ class StreamingSession {
   /// splat set changed: call SceneRenderer::sceneChanged() on the renderers.
   bool pump();
   /// Whether nothing is arriving and nothing more was asked for.
-  bool settled() const { return loader_.settled(); }
+  bool settled() const;
+  /// Options of the tilesets opened from now on (--tileset-memory).
+  void setTilesetOptions(const TilesetOptions& options) { tilesetOptions_ = options; }
+  /// Every tileset opened, in URL order (statistics for tests and the progress display).
+  std::vector<const TilesetStream*> tilesets() const;
   net::Loader& loader() { return loader_; }
   const net::Loader& loader() const { return loader_; }
 
@@ -61,9 +67,11 @@ class StreamingSession {
     std::size_t warningsShown = 0;
   };
   std::map<std::string, QnvEntry> qnv_;
-  std::vector<std::shared_ptr<net::WorldStream>> worlds_;  // every world streamed
-  std::map<std::string, std::size_t> diagnosticsShown_;    // per world url
-  std::map<std::string, std::string> endShown_;            // url -> state shown
+  TilesetOptions tilesetOptions_;
+  std::map<std::string, std::unique_ptr<TilesetStream>> tilesets_;  // by index URL
+  std::vector<std::shared_ptr<net::WorldStream>> worlds_;           // every world streamed
+  std::map<std::string, std::size_t> diagnosticsShown_;             // per world url
+  std::map<std::string, std::string> endShown_;                     // url -> state shown
   std::vector<std::shared_ptr<const vrml::Scene>> localScenes_;
 };
 

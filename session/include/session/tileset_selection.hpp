@@ -1,0 +1,82 @@
+// Which bricks of a QNV tileset to draw, and how much of each, from the view alone (issue
+// 13 part 1; docs/tilesets.md "Viewing a tileset"). Pure computation, no GL, no network.
+//
+// The rule (a screen-space error against a pixel budget, as 3D Tiles' geometric error and
+// Potree's point budget do it):
+// - A brick's box (its index bounds, placed by `model`) is culled when it lies wholly
+//   outside the view frustum (left, right, bottom, top, near planes).
+// - Its projected size s (pixels) is the diameter of its bounding sphere over the distance
+//   from the eye to the sphere's near side (at least the near distance), times the
+//   viewport height over 2 tan(fov / 2): an overestimate, as is usual for conservative
+//   refinement. Its screen area is s^2 pixels.
+// - A brick drawn alone gives s^2 / vectorCount pixels per vector. It is refined (its
+//   visible children are considered too) while that exceeds `pixelsPerVector` (default 1:
+//   about one vector per pixel of the brick's footprint).
+// - A brick's own prefix is min(vectorCount, ceil(s^2 / pixelsPerVector)) records, rounded
+//   up to whole packets, so a small far brick sends only its largest vectors.
+// - Order: a priority queue from the root, larger priority first, priority = s * (1 + m)
+//   where m in [0, 1] is the brick's mean magnitude band (its histogram) over 15: nearer,
+//   larger and stronger bricks first. A child enters the queue only when its parent was
+//   taken, so ancestors (an even, magnitude-first sample of their region) come before
+//   their children.
+// - Budget: when the choice holds more records than min(vectorBudget, memoryBudget),
+//   every brick keeps only its vectors above one global magnitude threshold, read from
+//   the histograms (a band cut in part counts in proportion), the threshold found by
+//   bisection so the choice fits: the vectors kept are those the single stream's prefix
+//   of that size keeps (the largest of the whole data), restricted to the view. The walk
+//   at that threshold then stops at the budget (whole packets: the total may pass it by
+//   less than one packet).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "qnv/tileset.hpp"
+
+namespace gs::session {
+
+/// The view a selection is made for (world coordinates, metres, radians).
+struct TilesetView {
+  glm::vec3 position{0.0f, 0.0f, 10.0f};
+  glm::vec3 forward{0.0f, 0.0f, -1.0f};  // unit
+  glm::vec3 up{0.0f, 1.0f, 0.0f};        // unit, orthogonal to forward
+  float verticalFov = 0.785398f;         // radians, (0, pi)
+  float aspect = 1.0f;                   // width / height
+  int heightPixels = 512;                // viewport height
+  float nearClip = 0.0f;                 // metres; 0: no near plane
+  glm::mat4 model{1.0f};                 // tileset coordinates to world
+};
+
+struct TilesetBudget {
+  /// Vectors drawn at most (the viewport's level of detail times the tileset's count).
+  std::uint64_t vectors = UINT64_MAX;
+  /// Vectors held decoded at most (--tileset-memory MB / 20 bytes per vector).
+  std::uint64_t memoryVectors = UINT64_MAX;
+  /// Screen-space error threshold: pixels per vector above which a brick is refined.
+  double pixelsPerVector = 1.0;
+};
+
+/// One brick chosen: its index in TilesetIndex::bricks and the prefix to fetch and draw.
+struct BrickChoice {
+  std::size_t brick = 0;
+  std::uint64_t records = 0;  // whole packets (or the brick's count)
+  std::uint64_t bytes = 0;    // qnv::brickPrefixBytes for `records`
+  double priority = 0.0;      // s * (1 + m), larger first
+  double pixels = 0.0;        // projected size s
+};
+
+/// The bricks to draw for `view`, in priority order (ancestors before descendants).
+std::vector<BrickChoice> selectBricks(const qnv::TilesetIndex& index, const TilesetView& view,
+                                      const TilesetBudget& budget);
+
+/// Merges the choices of several views: per brick the largest prefix, ordered by the
+/// largest priority any view gave it.
+std::vector<BrickChoice> mergeChoices(const std::vector<std::vector<BrickChoice>>& views);
+
+/// Bytes of all the prefixes of `choices` (what fetching them costs, headers included).
+std::uint64_t totalBytes(const std::vector<BrickChoice>& choices);
+
+}  // namespace gs::session

@@ -1,0 +1,98 @@
+// A QNV tileset viewed progressively (issue 13 part 1; docs/tilesets.md): its index is
+// fetched whole, then the views that draw it choose bricks and prefixes
+// (session/tileset_selection.hpp), fetched as HTTP range requests (or file reads) in
+// priority order through the session's net::Loader rules and limits, each brick decoded
+// incrementally by its own qnv::StreamDecoder. The splat set handed to the renderers holds
+// the chosen prefixes one after the other in priority order (ancestors first) and is
+// rebuilt whenever vectors arrive or the choice changes. Every viewport of a session draws
+// the same set: they share one fetch queue and one brick cache. Bricks no view chose are
+// dropped, farthest first, when the decoded vectors exceed the memory budget.
+// Runs on the thread that draws; transfers run on their own threads.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "net/loader.hpp"
+#include "qnv/decoder.hpp"
+#include "qnv/tileset.hpp"
+#include "render/splat_renderer.hpp"
+#include "session/tileset_selection.hpp"
+
+namespace gs::session {
+
+struct TilesetOptions {
+  /// Decoded vectors held at most, in bytes (--tileset-memory MB); 32 bytes a vector.
+  std::uint64_t memoryBytes = std::uint64_t{512} << 20;
+  /// Screen-space error threshold (TilesetBudget::pixelsPerVector).
+  double pixelsPerVector = 1.0;
+  /// Brick transfers running at once.
+  int parallelFetches = 4;
+};
+
+/// Counters for tests, benchmarks and the progress display (all since opening).
+struct TilesetStatistics {
+  std::uint64_t indexBytes = 0;
+  std::uint64_t brickBytes = 0;       // bytes of bricks taken from transfers
+  std::uint64_t requests = 0;         // brick range requests started
+  std::uint64_t chosenBricks = 0;     // in the last choice
+  std::uint64_t chosenVectors = 0;    // records of the last choice
+  std::uint64_t residentVectors = 0;  // decoded and held now
+  std::uint64_t evictedBricks = 0;
+};
+
+class TilesetStream {
+ public:
+  /// Starts fetching the index at `indexUrl` (a path, file:// or http(s):// URL, already
+  /// resolved; bricks are its siblings "bricks/L/X_Y_Z.qnv") under `loader`'s rules for
+  /// `referrer` (empty: the user's own input). `loader` must outlive the stream.
+  TilesetStream(net::Loader& loader, std::string indexUrl, std::string referrer,
+                TilesetOptions options = {});
+  ~TilesetStream();
+  TilesetStream(const TilesetStream&) = delete;
+  TilesetStream& operator=(const TilesetStream&) = delete;
+
+  /// The set the renderers draw (view-dependent; empty until bricks arrive).
+  std::shared_ptr<render::SplatSet> set() const { return set_; }
+  /// Takes the index when it arrived, chooses bricks from the views recorded in the set,
+  /// (re)starts transfers in priority order, decodes what arrived, drops far bricks over
+  /// the memory budget and rebuilds the set. True when the set changed.
+  bool pump();
+  /// Nothing arriving and nothing more wanted for the views seen so far.
+  bool settled() const;
+  /// Failures (the index, naming its URL) and warnings (bricks) not returned before;
+  /// error = true for failures.
+  void drainMessages(std::vector<std::pair<bool, std::string>>& out);
+  const std::optional<qnv::TilesetIndex>& index() const { return index_; }
+  const TilesetStatistics& statistics() const { return stats_; }
+  /// The URL of the index.
+  const std::string& url() const { return url_; }
+
+ private:
+  struct Brick;
+  bool takeIndex();
+  bool viewsChanged() const;
+  void choose();
+  bool pumpBricks();
+  void evict();
+  void rebuild();
+
+  net::Loader& loader_;
+  std::string url_, referrer_, base_;
+  TilesetOptions options_;
+  std::shared_ptr<render::SplatSet> set_;
+  std::optional<qnv::TilesetIndex> index_;
+  bool indexFailed_ = false;
+  std::vector<Brick> bricks_;
+  std::vector<BrickChoice> choice_;
+  std::vector<std::pair<const void*, render::SplatSet::View>> lastViews_;
+  bool dirty_ = false;
+  TilesetStatistics stats_;
+  std::vector<std::pair<bool, std::string>> messages_;
+  std::size_t messagesShown_ = 0;
+};
+
+}  // namespace gs::session

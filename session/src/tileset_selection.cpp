@@ -1,0 +1,197 @@
+#include "session/tileset_selection.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <queue>
+#include <unordered_map>
+
+namespace gs::session {
+
+namespace {
+
+std::uint64_t cellKey(std::uint32_t level, std::uint32_t x, std::uint32_t y, std::uint32_t z) {
+  return (std::uint64_t{level} << 48) | (std::uint64_t{x & 0xffffu} << 32) |
+         (std::uint64_t{y & 0xffffu} << 16) | std::uint64_t{z & 0xffffu};
+}
+
+struct Projected {
+  bool visible = false;
+  double pixels = 0.0;  // projected diameter
+};
+
+Projected project(const qnv::TilesetBrick& b, const TilesetView& v) {
+  const glm::vec3 right = glm::normalize(glm::cross(v.forward, v.up));
+  const double t = std::tan(static_cast<double>(std::clamp(v.verticalFov, 1e-3f, 3.1f)) / 2.0);
+  const double th = t * static_cast<double>(std::max(v.aspect, 1e-3f));
+  const double nearZ = std::max(0.0, static_cast<double>(v.nearClip));
+  // Eye coordinates of the eight corners; the box is culled when all lie outside one plane.
+  int outside[5] = {0, 0, 0, 0, 0};
+  glm::dvec3 lo(1e300), hi(-1e300);
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::vec3 local((corner & 1) ? b.boundsMax.x : b.boundsMin.x,
+                          (corner & 2) ? b.boundsMax.y : b.boundsMin.y,
+                          (corner & 4) ? b.boundsMax.z : b.boundsMin.z);
+    const glm::vec3 w = glm::vec3(v.model * glm::vec4(local, 1.0f));
+    lo = glm::min(lo, glm::dvec3(w));
+    hi = glm::max(hi, glm::dvec3(w));
+    const glm::vec3 d = w - v.position;
+    const double x = glm::dot(d, right), y = glm::dot(d, v.up), z = glm::dot(d, v.forward);
+    outside[0] += x > th * z;
+    outside[1] += -x > th * z;
+    outside[2] += y > t * z;
+    outside[3] += -y > t * z;
+    outside[4] += z < nearZ;
+  }
+  Projected p;
+  for (int plane = 0; plane < 5; ++plane)
+    if (outside[plane] == 8) return p;
+  p.visible = true;
+  const glm::dvec3 centre = (lo + hi) * 0.5;
+  const double radius = glm::length(hi - lo) * 0.5;
+  const double distance = std::max(glm::length(centre - glm::dvec3(v.position)) - radius,
+                                   std::max(nearZ, radius * 1e-3 + 1e-9));
+  const double focal = static_cast<double>(std::max(v.heightPixels, 1)) / (2.0 * t);
+  p.pixels = std::min(2.0 * radius / distance * focal, 1e9);
+  return p;
+}
+
+double meanBand(const qnv::TilesetBrick& b) {
+  double sum = 0.0, weighted = 0.0;
+  for (std::size_t band = 0; band < b.histogram.size(); ++band) {
+    sum += b.histogram[band];
+    weighted += static_cast<double>(band) * b.histogram[band];
+  }
+  return sum > 0.0 ? weighted / sum / 15.0 : 0.0;
+}
+
+/// Vectors of `b` whose A code lies at or above band position `threshold` (0..16; band b
+/// spans [b, b + 1), a band cut in part counts in proportion): the prefix of the brick
+/// above one global magnitude.
+double aboveThreshold(const qnv::TilesetBrick& b, double threshold) {
+  double n = 0.0;
+  for (std::size_t band = 0; band < b.histogram.size(); ++band)
+    n += b.histogram[band] * std::clamp(static_cast<double>(band) + 1.0 - threshold, 0.0, 1.0);
+  return n;
+}
+
+/// The walk in priority order at threshold `ppv`, stopping at `limit` records, keeping
+/// in each brick only the vectors above band position `threshold` (0: all).
+std::vector<BrickChoice> walk(const qnv::TilesetIndex& index, const TilesetView& view, double ppv,
+                              std::uint64_t limit, double threshold = 0.0) {
+  std::vector<BrickChoice> out;
+  const auto& bricks = index.bricks;
+  std::unordered_map<std::uint64_t, std::size_t> byCell;
+  byCell.reserve(bricks.size());
+  for (std::size_t i = 0; i < bricks.size(); ++i)
+    byCell.emplace(cellKey(bricks[i].level, bricks[i].x, bricks[i].y, bricks[i].z), i);
+  using Entry = std::pair<double, std::size_t>;  // priority, brick
+  std::priority_queue<Entry> queue;
+  std::vector<Projected> seen(bricks.size());
+  // A child's priority is capped by its parent's, so that ancestors come first in every
+  // merge of views too.
+  auto consider = [&](std::size_t i, double cap) {
+    const Projected p = project(bricks[i], view);
+    if (!p.visible || bricks[i].vectorCount == 0) return;
+    seen[i] = p;
+    queue.push({std::min(cap, p.pixels * (1.0 + meanBand(bricks[i]))), i});
+  };
+  // Roots: level 0, and any brick whose parent is missing (an index need not hold them).
+  for (std::size_t i = 0; i < bricks.size(); ++i) {
+    const auto& b = bricks[i];
+    if (b.level == 0 || !byCell.count(cellKey(b.level - 1u, b.x / 2, b.y / 2, b.z / 2)))
+      consider(i, 1e300);
+  }
+  const std::uint64_t perPacket = std::max<std::uint64_t>(index.header.recordsPerPacket(), 1);
+  std::uint64_t used = 0;
+  while (!queue.empty() && used < limit) {
+    const auto [priority, i] = queue.top();
+    queue.pop();
+    const qnv::TilesetBrick& b = bricks[i];
+    const double area = seen[i].pixels * seen[i].pixels;
+    const double count = static_cast<double>(b.vectorCount);
+    std::uint64_t records =
+        area / ppv >= count ? b.vectorCount : static_cast<std::uint64_t>(std::ceil(area / ppv));
+    if (threshold > 0.0)
+      records =
+          std::min(records, static_cast<std::uint64_t>(std::ceil(aboveThreshold(b, threshold))));
+    // Nothing above the threshold here: nor in the descendants (each node took the
+    // largest vectors of every leaf below it).
+    if (records == 0) continue;
+    records = std::min(records, limit - used);
+    records = std::min(b.vectorCount, (std::max<std::uint64_t>(records, 1) + perPacket - 1) /
+                                          perPacket * perPacket);
+    BrickChoice c;
+    c.brick = i;
+    c.records = records;
+    c.bytes = qnv::brickPrefixBytes(b, index.header, records);
+    c.priority = priority;
+    c.pixels = seen[i].pixels;
+    out.push_back(c);
+    used += records;
+    if (area / count > ppv && b.level < 31) {
+      for (std::uint32_t k = 0; k < 8; ++k) {
+        const auto it = byCell.find(cellKey(b.level + 1u, b.x * 2 + (k & 1),
+                                            b.y * 2 + ((k >> 1) & 1), b.z * 2 + ((k >> 2) & 1)));
+        if (it != byCell.end()) consider(it->second, priority);
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<BrickChoice> selectBricks(const qnv::TilesetIndex& index, const TilesetView& view,
+                                      const TilesetBudget& budget) {
+  const std::uint64_t limit = std::min(budget.vectors, budget.memoryVectors);
+  double ppv = std::max(budget.pixelsPerVector, 1e-6);
+  auto records = [](const std::vector<BrickChoice>& choices) {
+    std::uint64_t n = 0;
+    for (const BrickChoice& c : choices) n += c.records;
+    return n;
+  };
+  std::vector<BrickChoice> out = walk(index, view, ppv, UINT64_MAX);
+  if (records(out) <= limit) return out;
+  // Over budget: keep the vectors above one magnitude threshold over every visible brick
+  // (read from the histograms), as the single stream's prefix keeps the largest vectors
+  // of the whole data; bisection on the threshold until the choice fits.
+  double low = 0.0, high = 16.0;
+  for (int i = 0; i < 30; ++i) {
+    const double mid = (low + high) / 2.0;
+    (records(walk(index, view, ppv, UINT64_MAX, mid)) > limit ? low : high) = mid;
+  }
+  return walk(index, view, ppv, limit, high);
+}
+
+std::vector<BrickChoice> mergeChoices(const std::vector<std::vector<BrickChoice>>& views) {
+  std::map<std::size_t, BrickChoice> best;
+  for (const auto& choices : views)
+    for (const BrickChoice& c : choices) {
+      auto [it, inserted] = best.emplace(c.brick, c);
+      if (inserted) continue;
+      BrickChoice& b = it->second;
+      if (c.records > b.records) {
+        b.records = c.records;
+        b.bytes = c.bytes;
+      }
+      b.priority = std::max(b.priority, c.priority);
+      b.pixels = std::max(b.pixels, c.pixels);
+    }
+  std::vector<BrickChoice> out;
+  for (const auto& [i, c] : best) out.push_back(c);
+  // Stable on the index order (levels ascending) so ancestors stay before children when
+  // priorities tie.
+  std::stable_sort(out.begin(), out.end(), [](const BrickChoice& a, const BrickChoice& b) {
+    return a.priority > b.priority;
+  });
+  return out;
+}
+
+std::uint64_t totalBytes(const std::vector<BrickChoice>& choices) {
+  std::uint64_t n = 0;
+  for (const BrickChoice& c : choices) n += c.bytes;
+  return n;
+}
+
+}  // namespace gs::session

@@ -1,0 +1,278 @@
+#include "session/tileset_stream.hpp"
+
+#include <algorithm>
+
+#include "base/url.hpp"
+#include "render/camera.hpp"
+
+namespace gs::session {
+
+struct TilesetStream::Brick {
+  std::unique_ptr<qnv::StreamDecoder> decoder;
+  std::vector<qnv::DecodedVector> vectors;  // in brick order (largest first)
+  std::uint64_t fed = 0;                    // bytes given to the decoder, from offset 0
+  std::unique_ptr<net::Transfer> transfer;
+  std::uint64_t transferEnd = 0;  // end of the bytes the running transfer asked for
+  std::uint64_t wantedBytes = 0;  // end of the prefix chosen (0: not chosen)
+  double priority = 0.0;          // in the last choice it was in
+  bool failed = false;
+  std::size_t warningsShown = 0;
+};
+
+namespace {
+
+bool sameView(const render::SplatSet::View& a, const render::SplatSet::View& b) {
+  return a.camera.position == b.camera.position && a.camera.orientation == b.camera.orientation &&
+         a.camera.fieldOfView == b.camera.fieldOfView && a.camera.nearClip == b.camera.nearClip &&
+         a.model == b.model && a.aspect == b.aspect && a.heightPixels == b.heightPixels &&
+         a.vectors == b.vectors;
+}
+
+TilesetView tilesetView(const render::SplatSet::View& v) {
+  TilesetView t;
+  t.position = v.camera.position;
+  t.forward = v.camera.forward();
+  t.up = v.camera.up();
+  t.aspect = v.aspect;
+  t.verticalFov = render::verticalFieldOfView(v.camera.fieldOfView, v.aspect);
+  t.heightPixels = v.heightPixels > 0 ? v.heightPixels : 512;
+  t.nearClip = v.camera.nearClip;
+  t.model = v.model;
+  return t;
+}
+
+}  // namespace
+
+TilesetStream::TilesetStream(net::Loader& loader, std::string indexUrl, std::string referrer,
+                             TilesetOptions options)
+    : loader_(loader),
+      url_(std::move(indexUrl)),
+      referrer_(std::move(referrer)),
+      options_(options),
+      set_(std::make_shared<render::SplatSet>()) {
+  set_->viewDependent = true;
+  takeIndex();  // starts the fetch
+}
+
+TilesetStream::~TilesetStream() = default;
+
+bool TilesetStream::takeIndex() {
+  if (index_ || indexFailed_) return false;
+  std::string bytes, error;
+  if (!loader_.fetchInBackground(url_, referrer_, bytes, error)) {
+    if (!error.empty()) {
+      indexFailed_ = true;
+      messages_.push_back({true, error});
+    }
+    return false;
+  }
+  stats_.indexBytes = bytes.size();
+  index_ = qnv::parseTilesetIndex(bytes, url_, error);
+  if (!index_) {
+    indexFailed_ = true;
+    messages_.push_back({true, error});
+    return false;
+  }
+  bricks_.resize(index_->bricks.size());
+  render::SplatSet& set = *set_;
+  set.style = render::SplatStyle::fromHeader(index_->header);
+  set.expectedVectors = index_->header.vectorCount;
+  set.bounds = vrml::Bounds{};
+  set.bounds.extend(index_->header.boundsMin);
+  set.bounds.extend(index_->header.boundsMax);
+  ++set.revision;
+  return true;
+}
+
+bool TilesetStream::viewsChanged() const {
+  const auto& views = set_->views;
+  return views.size() != lastViews_.size() ||
+         !std::equal(views.begin(), views.end(), lastViews_.begin(),
+                     [](const auto& a, const auto& b) {
+                       return a.first == b.first && sameView(a.second, b.second);
+                     });
+}
+
+void TilesetStream::choose() {
+  if (!viewsChanged()) return;
+  const std::vector<std::pair<const void*, render::SplatSet::View>> views(set_->views.begin(),
+                                                                          set_->views.end());
+  lastViews_ = views;
+  std::vector<std::vector<BrickChoice>> perView;
+  TilesetBudget budget;
+  budget.memoryVectors = options_.memoryBytes / sizeof(qnv::DecodedVector);
+  budget.pixelsPerVector = options_.pixelsPerVector;
+  for (const auto& [key, view] : views) {
+    budget.vectors = view.vectors;
+    perView.push_back(selectBricks(*index_, tilesetView(view), budget));
+  }
+  choice_ = mergeChoices(perView);
+  for (Brick& b : bricks_) b.wantedBytes = 0;
+  stats_.chosenBricks = choice_.size();
+  stats_.chosenVectors = 0;
+  for (const BrickChoice& c : choice_) {
+    Brick& b = bricks_[c.brick];
+    b.wantedBytes = c.bytes;
+    b.priority = c.priority;
+    stats_.chosenVectors += c.records;
+  }
+  // Re-prioritise: transfers of bricks no longer wanted stop (their bytes so far stay).
+  for (Brick& b : bricks_)
+    if (b.transfer && b.wantedBytes <= b.fed) b.transfer.reset();
+  dirty_ = true;
+}
+
+bool TilesetStream::pumpBricks() {
+  bool changed = false;
+  const auto& header = index_->header;
+  std::string chunk;
+  int running = 0;
+  for (std::size_t i = 0; i < bricks_.size(); ++i) {
+    Brick& b = bricks_[i];
+    if (!b.transfer) continue;
+    const qnv::TilesetBrick& info = index_->bricks[i];
+    // The status first: once it says finished, the take() after it has every byte.
+    const net::TransferStatus s = b.transfer->status();
+    chunk.clear();
+    b.transfer->take(chunk);
+    if (!chunk.empty()) {
+      stats_.brickBytes += chunk.size();
+      if (!b.decoder) b.decoder = std::make_unique<qnv::StreamDecoder>(url_ + " " + info.path());
+      const std::uint64_t limit = info.vectorCount;
+      auto sink = [&](std::uint64_t first, std::span<const qnv::DecodedVector> v) {
+        if (first + v.size() > limit) return;  // a sequence number the index does not allow
+        if (b.vectors.size() < first + v.size())
+          b.vectors.resize(first + v.size(), qnv::DecodedVector{{}, 0.0f, {0, 0, 1}, 0});
+        std::copy(v.begin(), v.end(), b.vectors.begin() + static_cast<std::ptrdiff_t>(first));
+        changed = true;
+      };
+      b.fed += chunk.size();
+      bool bad = !b.decoder->feed(chunk, sink);
+      std::string why = b.decoder->error();
+      if (const auto& h = b.decoder->header();
+          !bad && h &&
+          (h->packetBytes != header.packetBytes || h->vectorCount != info.vectorCount)) {
+        bad = true;
+        why = url_ + " " + info.path() + ": the brick's header disagrees with the index";
+      }
+      if (bad) {
+        b.failed = true;
+        b.transfer.reset();
+        messages_.push_back({false, why});
+        changed = true;
+        continue;
+      }
+    }
+    if (s.finished()) {
+      if (s.state == net::TransferState::failed) {
+        b.failed = true;
+        messages_.push_back({false, s.error});
+      } else if (b.fed < b.transferEnd && s.state == net::TransferState::done) {
+        b.failed = true;  // the file is shorter than its index says: do not ask again
+        messages_.push_back({false, url_ + " " + info.path() + ": the brick ends after " +
+                                        std::to_string(b.fed) + " of " +
+                                        std::to_string(b.transferEnd) + " bytes"});
+      }
+      b.transfer.reset();
+      changed = true;
+      continue;
+    }
+    ++running;
+  }
+  // Start transfers in priority order for the prefixes not yet fetched.
+  for (const BrickChoice& c : choice_) {
+    if (running >= options_.parallelFetches) break;
+    Brick& b = bricks_[c.brick];
+    if (b.failed || b.transfer || b.fed >= b.wantedBytes) continue;
+    std::string error;
+    const std::string url = base::resolveUrl(url_, index_->bricks[c.brick].path());
+    net::FetchRequest r = loader_.requestFor(url, referrer_.empty() ? "" : referrer_, error);
+    if (r.url.empty()) {
+      b.failed = true;
+      messages_.push_back({false, error});
+      continue;
+    }
+    r.offset = b.fed;
+    r.length = b.wantedBytes - b.fed;
+    b.transferEnd = b.wantedBytes;
+    b.transfer = net::startTransfer(std::move(r));
+    ++stats_.requests;
+    ++running;
+  }
+  return changed;
+}
+
+void TilesetStream::evict() {
+  const std::uint64_t limit = options_.memoryBytes / sizeof(qnv::DecodedVector);
+  std::uint64_t resident = 0;
+  for (const Brick& b : bricks_) resident += b.vectors.size();
+  if (resident > limit) {
+    // Bricks no view chose, lowest priority (farthest, smallest on screen) first.
+    std::vector<std::size_t> order;
+    for (std::size_t i = 0; i < bricks_.size(); ++i)
+      if (bricks_[i].wantedBytes == 0 && !bricks_[i].vectors.empty()) order.push_back(i);
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return bricks_[a].priority < bricks_[b].priority;
+    });
+    for (std::size_t i : order) {
+      if (resident <= limit) break;
+      Brick& b = bricks_[i];
+      resident -= b.vectors.size();
+      b = Brick{};
+      ++stats_.evictedBricks;
+    }
+  }
+  stats_.residentVectors = resident;
+}
+
+void TilesetStream::rebuild() {
+  render::SplatSet& set = *set_;
+  set.vectors.clear();
+  for (const BrickChoice& c : choice_) {
+    const Brick& b = bricks_[c.brick];
+    const std::size_t n =
+        std::min<std::size_t>(static_cast<std::size_t>(c.records), b.vectors.size());
+    set.vectors.insert(set.vectors.end(), b.vectors.begin(),
+                       b.vectors.begin() + static_cast<std::ptrdiff_t>(n));
+  }
+  ++set.revision;
+}
+
+bool TilesetStream::pump() {
+  bool changed = takeIndex();
+  if (!index_) return changed;
+  choose();
+  if (pumpBricks()) dirty_ = true;
+  if (dirty_) {
+    evict();
+    rebuild();
+    dirty_ = false;
+    changed = true;
+  }
+  return changed;
+}
+
+bool TilesetStream::settled() const {
+  if (indexFailed_) return true;
+  if (!index_) return false;
+  if (viewsChanged()) return false;
+  for (const BrickChoice& c : choice_) {
+    const Brick& b = bricks_[c.brick];
+    if (b.transfer || (!b.failed && b.fed < b.wantedBytes)) return false;
+  }
+  return true;
+}
+
+void TilesetStream::drainMessages(std::vector<std::pair<bool, std::string>>& out) {
+  for (std::size_t i = 0; i < bricks_.size(); ++i) {
+    Brick& b = bricks_[i];
+    if (!b.decoder) continue;
+    const auto& w = b.decoder->warnings();
+    for (; b.warningsShown < w.size(); ++b.warningsShown)
+      messages_.push_back({false, w[b.warningsShown]});
+  }
+  for (; messagesShown_ < messages_.size(); ++messagesShown_)
+    out.push_back(messages_[messagesShown_]);
+}
+
+}  // namespace gs::session

@@ -1,0 +1,186 @@
+// QNV tilesets end to end (docs/tilesets.md): the real ghostspace executable renders a
+// tileset from a folder, an index file, an http URL and a VRML world's QNV node, and
+// fetches only the bricks its view chooses.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "baseline.hpp"
+#include "http/nginx_server.hpp"
+#include "process.hpp"
+#include "render/image.hpp"
+#include "session/tileset_fixture.hpp"
+#include "test_support.hpp"
+
+namespace fs = std::filesystem;
+using gs::test::NginxServer;
+using gs::test::runGhostspace;
+
+namespace {
+
+fs::path outDir() {
+  const fs::path d = fs::path(GS_BINARY_DIR) / "tileset-app-actual";
+  fs::create_directories(d);
+  return d;
+}
+
+/// The 48^3 ball as a depth-1 tileset in outDir()/name and as one stream name.qnv.
+fs::path ballTileset(const std::string& name) {
+  const fs::path dir = outDir() / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const auto vectors = gs::test::ballVolumeVectors(48);
+  gs::test::writeTestTileset(vectors, dir, 4096);
+  std::ofstream(outDir() / (name + ".qnv"), std::ios::binary) << gs::qnv::writeStream(vectors);
+  return dir;
+}
+
+gs::test::ProcessResult shoot(const std::string& name, const std::string& input) {
+  return runGhostspace({"--snapshot", (outDir() / (name + ".png")).string(), "--size", "300x300",
+                        "--no-progress", input});
+}
+
+double differing(const std::string& a, const std::string& b) {
+  return gs::test::fractionDiffering((outDir() / (a + ".png")).string(),
+                                     (outDir() / (b + ".png")).string());
+}
+
+/// Fraction of pixels that are not the background colour of the top-left pixel.
+double covered(const std::string& name) {
+  const gs::render::Image image = gs::render::readPng((outDir() / (name + ".png")).string());
+  std::size_t n = 0;
+  const std::size_t pixels = static_cast<std::size_t>(image.width) * image.height;
+  for (std::size_t i = 0; i < pixels; ++i)
+    for (int c = 0; c < 3; ++c)
+      if (image.rgba[i * 4 + c] != image.rgba[c]) {
+        ++n;
+        break;
+      }
+  return static_cast<double>(n) / static_cast<double>(pixels);
+}
+
+/// A world looking along +z into the corner octant (x, y < 24) of the ball's box.
+std::string cornerWorld(const std::string& url) {
+  return "#VRML V2.0 utf8\nViewpoint { position 12 12 -10 orientation 0 1 0 3.14159265 "
+         "fieldOfView 0.3 }\nQuantizedNormalVectors { url \"" +
+         url + "\" }\n";
+}
+
+}  // namespace
+
+TEST_CASE("a tileset at full refinement looks like the single stream of its vectors",
+          "[app][tileset]") {
+  const fs::path dir = ballTileset("ball48");
+  REQUIRE(shoot("ball48_single", (outDir() / "ball48.qnv").string()).exitCode == 0);
+  for (const auto& [name, input] : {std::pair{"ball48_folder", dir.string()},
+                                    std::pair{"ball48_index", (dir / "index.qnvt").string()}}) {
+    const auto r = shoot(name, input);
+    INFO(r.err);
+    REQUIRE(r.exitCode == 0);
+    CHECK(covered(name) > 0.3);
+    CHECK(differing(name, "ball48_single") <= gs::test::kMaxFractionDiffering);
+  }
+}
+
+TEST_CASE("a tileset over HTTP: the corner zoom fetches far fewer bytes than the whole view",
+          "[app][tileset][http]") {
+  NginxServer nginx;
+  if (!nginx.ok()) return;
+  const fs::path dir = ballTileset("ball48_http");
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    if (e.is_regular_file())
+      nginx.writeFile("t/" + fs::relative(e.path(), dir).string(), gs::test::readBytes(e.path()));
+  nginx.writeFile("corner.wrl", cornerWorld("t/index.qnvt"));
+  REQUIRE(shoot("ball48_local", dir.string()).exitCode == 0);
+  std::size_t lines = 0;
+  auto bytesSince = [&](std::size_t& seen) {
+    const auto log = nginx.accessLog(seen + 1);
+    const std::vector<std::string> fresh(log.begin() + static_cast<std::ptrdiff_t>(seen),
+                                         log.end());
+    seen = log.size();
+    return NginxServer::bodyBytes(fresh);
+  };
+  const auto whole = shoot("ball48_http", nginx.url("/t/"));
+  INFO(whole.err);
+  REQUIRE(whole.exitCode == 0);
+  CHECK(differing("ball48_local", "ball48_http") == 0.0);
+  const std::uint64_t wholeBytes = bytesSince(lines);
+  const auto zoom = shoot("ball48_corner", nginx.url("/corner.wrl"));
+  INFO(zoom.err);
+  REQUIRE(zoom.exitCode == 0);
+  CHECK(covered("ball48_corner") > 0.3);
+  const std::uint64_t zoomBytes = bytesSince(lines);
+  INFO(wholeBytes << " bytes for the whole view, " << zoomBytes << " for the corner");
+  CHECK(zoomBytes * 2 < wholeBytes);
+  // Bricks came as range requests (206) of their prefixes.
+  for (const std::string& line : nginx.accessLog())
+    if (line.find("/bricks/") != std::string::npos) {
+      INFO(line);
+      CHECK(line.find(" 206 ") != std::string::npos);
+    }
+}
+
+TEST_CASE("a hostile tileset index named by a world is reported and the world still shows",
+          "[app][tileset][http]") {
+  NginxServer nginx;
+  if (!nginx.ok()) return;
+  std::string index(2000, '\x11');
+  const std::string magic(gs::qnv::kTilesetMagic.begin(), gs::qnv::kTilesetMagic.end());
+  index.replace(0, magic.size(), magic);  // the signature, then lies
+  nginx.writeFile("bad/index.qnvt", index);
+  nginx.writeFile("world.wrl",
+                  "#VRML V2.0 utf8\nViewpoint { position 0 0 6 }\n"
+                  "Shape { appearance Appearance { material Material { diffuseColor 1 0.5 0.2 } }"
+                  " geometry Box { size 2 2 2 } }\n"
+                  "QuantizedNormalVectors { url \"bad/index.qnvt\" }\n");
+  const auto r = shoot("hostile_index", nginx.url("/world.wrl"));
+  INFO(r.err);
+  CHECK(r.exitCode == 0);
+  CHECK(r.err.find(nginx.url("/bad/index.qnvt")) != std::string::npos);
+  CHECK(covered("hostile_index") > 0.05);
+}
+
+TEST_CASE(
+    "ghostspace encode --tileset: the snapshot equals the single stream's, full and at "
+    "--lod 0.1",
+    "[app][tileset]") {
+  // A ball whose gradient grows towards its centre (magnitudes spread over many bands;
+  // a field of equal magnitudes would leave the stream's prefix to its tie-break order).
+  const fs::path raw = outDir() / "ball40.raw";
+  {
+    std::string v(40 * 40 * 40, '\0');
+    for (int z = 0; z < 40; ++z)
+      for (int y = 0; y < 40; ++y)
+        for (int x = 0; x < 40; ++x) {
+          const double r = std::hypot(x - 20.0, y - 20.0, z - 20.0) / 20.0;
+          v[static_cast<std::size_t>((z * 40 + y) * 40 + x)] = static_cast<char>(
+              static_cast<unsigned char>(std::clamp(180.0 * (1.2 - r) * (1.2 - r), 0.0, 255.0)));
+        }
+    std::ofstream(raw, std::ios::binary) << v;
+  }
+  const fs::path dir = outDir() / "ball40_tileset";
+  fs::remove_all(dir);
+  for (const std::vector<std::string>& out :
+       {std::vector<std::string>{"--tileset", dir.string() + "/", "--brick-voxels", "16"},
+        std::vector<std::string>{"-o", (outDir() / "ball40.qnv").string()}}) {
+    std::vector<std::string> args = {"encode", raw.string(), "--raw-dims", "40,40,40",
+                                     "--no-progress"};
+    args.insert(args.end(), out.begin(), out.end());
+    const auto r = runGhostspace(args);
+    INFO(r.err);
+    REQUIRE(r.exitCode == 0);
+  }
+  for (const std::string lod : {"1", "0.1"}) {
+    for (const auto& [name, input] : {std::pair{"ball40_t", dir.string()},
+                                      std::pair{"ball40_s", (outDir() / "ball40.qnv").string()}})
+      REQUIRE(runGhostspace({"--snapshot", (outDir() / (name + lod + ".png")).string(), "--size",
+                             "300x300", "--no-progress", "--lod", lod, input})
+                  .exitCode == 0);
+    INFO("--lod " << lod);
+    CHECK(covered("ball40_t" + lod) > 0.05);
+    CHECK(differing("ball40_t" + lod, "ball40_s" + lod) <= gs::test::kMaxFractionDiffering);
+  }
+}

@@ -1,0 +1,133 @@
+#include <catch2/catch.hpp>
+
+#include <set>
+
+#include "session/tileset_selection.hpp"
+#include "tileset_fixture.hpp"
+
+using namespace gs;
+using session::BrickChoice;
+
+namespace {
+
+session::TilesetView wholeView() {
+  session::TilesetView v;
+  v.position = {0.5f, 0.5f, 3.0f};
+  v.verticalFov = 0.785398f;
+  v.heightPixels = 512;
+  return v;
+}
+
+// Looks straight down -Z at the corner cell x, y in [0, 0.25] of the unit cube.
+session::TilesetView cornerView() {
+  session::TilesetView v;
+  v.position = {0.125f, 0.125f, 1.15f};
+  v.verticalFov = 0.174533f;  // 10 degrees
+  v.heightPixels = 512;
+  return v;
+}
+
+bool ancestorsFirst(const qnv::TilesetIndex& index, const std::vector<BrickChoice>& choices) {
+  std::set<std::tuple<int, std::uint32_t, std::uint32_t, std::uint32_t>> taken;
+  for (const BrickChoice& c : choices) {
+    const auto& b = index.bricks[c.brick];
+    if (b.level > 0 && !taken.count({b.level - 1, b.x / 2, b.y / 2, b.z / 2})) return false;
+    taken.insert({b.level, b.x, b.y, b.z});
+  }
+  return true;
+}
+
+}  // namespace
+
+TEST_CASE("tileset selection: the whole view refines every brick of a close tileset",
+          "[tileset][selection]") {
+  const auto index = test::syntheticTileset(2, 4096);
+  const auto choices = session::selectBricks(index, wholeView(), {});
+  REQUIRE(choices.size() == index.bricks.size());  // 1 + 8 + 64
+  CHECK(index.bricks[choices.front().brick].level == 0);
+  CHECK(ancestorsFirst(index, choices));
+  for (const BrickChoice& c : choices) {
+    CHECK(c.records == 4096);
+    CHECK(c.bytes == index.bricks[c.brick].fileBytes);
+  }
+}
+
+TEST_CASE("tileset selection: a zoom into one corner picks that corner's deep bricks only",
+          "[tileset][selection]") {
+  const auto index = test::syntheticTileset(2, 4096);
+  const auto whole = session::selectBricks(index, wholeView(), {});
+  const auto zoom = session::selectBricks(index, cornerView(), {});
+  REQUIRE(!zoom.empty());
+  CHECK(ancestorsFirst(index, zoom));
+  int deep = 0;
+  for (const BrickChoice& c : zoom) {
+    const auto& b = index.bricks[c.brick];
+    CHECK(b.x == 0);
+    CHECK(b.y == 0);
+    deep += b.level == 2;
+  }
+  CHECK(deep == 4);         // the column of leaf cells under the corner, every depth
+  CHECK(zoom.size() == 7);  // root, 2 level-1 cells, 4 leaves
+  CHECK(session::totalBytes(zoom) * 8 < session::totalBytes(whole));
+}
+
+TEST_CASE("tileset selection: a far view takes a whole-packet prefix of the root",
+          "[tileset][selection]") {
+  const auto index = test::syntheticTileset(2, 4096);
+  auto v = wholeView();
+  v.position.z = 60.0f;  // the cube spans about 21 pixels: ~450 pixels of area
+  const auto choices = session::selectBricks(index, v, {});
+  REQUIRE(choices.size() == 1);
+  CHECK(index.bricks[choices[0].brick].level == 0);
+  const std::uint64_t per = index.header.recordsPerPacket();
+  CHECK(choices[0].records < 4096);
+  CHECK(choices[0].records % per == 0);
+  CHECK(choices[0].bytes ==
+        qnv::brickPrefixBytes(index.bricks[choices[0].brick], index.header, choices[0].records));
+  CHECK(choices[0].bytes < index.bricks[choices[0].brick].fileBytes);
+}
+
+TEST_CASE("tileset selection: the vector budget and the memory budget cap the records",
+          "[tileset][selection]") {
+  const auto index = test::syntheticTileset(2, 4096);
+  const std::uint64_t per = index.header.recordsPerPacket();
+  for (const bool memory : {false, true}) {
+    session::TilesetBudget budget;
+    (memory ? budget.memoryVectors : budget.vectors) = 10000;
+    const auto choices = session::selectBricks(index, wholeView(), budget);
+    std::uint64_t records = 0;
+    for (const BrickChoice& c : choices) records += c.records;
+    CHECK(records >= 9000);
+    CHECK(records < 10000 + per);
+    // An even density: a prefix of the root and of every level-1 brick, no leaves (a walk
+    // that stopped at the budget would take the root, one level-1 brick and a part).
+    CHECK(choices.size() == 9);
+    for (const BrickChoice& c : choices) CHECK(index.bricks[c.brick].level <= 1);
+    CHECK(ancestorsFirst(index, choices));
+  }
+}
+
+TEST_CASE("tileset selection: bricks behind the eye or outside the frustum are culled",
+          "[tileset][selection]") {
+  const auto index = test::syntheticTileset(2, 4096);
+  auto v = wholeView();
+  v.forward = {0.0f, 0.0f, 1.0f};  // looking away
+  CHECK(session::selectBricks(index, v, {}).empty());
+  v = wholeView();
+  v.model = glm::mat4(1.0f);
+  v.model[3] = glm::vec4(40.0f, 0.0f, 0.0f, 1.0f);  // moved far to the right
+  CHECK(session::selectBricks(index, v, {}).empty());
+}
+
+TEST_CASE("tileset selection: views merge to the largest prefix per brick, ancestors first",
+          "[tileset][selection]") {
+  const auto index = test::syntheticTileset(2, 4096);
+  auto far = wholeView();
+  far.position.z = 60.0f;
+  const auto a = session::selectBricks(index, far, {});
+  const auto b = session::selectBricks(index, cornerView(), {});
+  const auto merged = session::mergeChoices({a, b});
+  REQUIRE(merged.size() == b.size());
+  CHECK(ancestorsFirst(index, merged));
+  for (const BrickChoice& c : merged) CHECK(c.records == 4096);
+}

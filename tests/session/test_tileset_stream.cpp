@@ -1,0 +1,187 @@
+// session/tileset_stream.hpp end to end on local files (no GL): a tileset written after
+// the pinned rule, opened through the session, driven by recorded views.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "qnv/encoder.hpp"
+#include "qnv/volume.hpp"
+#include "render/camera.hpp"
+#include "session/streaming_session.hpp"
+#include "test_support.hpp"
+#include "tileset_fixture.hpp"
+
+namespace fs = std::filesystem;
+using namespace gs;
+
+namespace {
+
+qnv::EncodedVectors ballVectors(int n) {
+  return test::ballVolumeVectors(n);
+}
+
+fs::path freshDir(const std::string& name) {
+  const fs::path d = fs::path(GS_BINARY_DIR) / "tileset-actual" / name;
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+/// Opens `input` in a session, shows its set to one view of `camera` (512 x 512) and
+/// pumps until settled. Returns the tileset's statistics and the vectors drawn.
+struct Loaded {
+  session::TilesetStatistics stats;
+  std::vector<qnv::DecodedVector> vectors;
+  std::vector<std::pair<bool, std::string>> messages;
+};
+
+Loaded load(const std::string& input, const render::Camera* camera) {
+  session::StreamingSession s;
+  std::string error;
+  auto scene = s.open(input, error);
+  REQUIRE(scene);
+  auto options = s.rendererOptions({});
+  auto set = options.splatLoader(input, "", error);
+  REQUIRE(set);
+  for (int i = 0; i < 100000 && !(s.pump(), s.settled() && !set->bounds.empty()); ++i)
+    s.loader().wait(0.01);
+  render::SplatSet::View view;
+  view.camera = camera ? *camera : render::fitCamera(set->bounds, 1.0f, render::Camera{});
+  view.heightPixels = 512;
+  view.vectors = set->total();
+  set->views[&view] = view;
+  for (int i = 0; i < 100000 && !(s.pump(), s.settled()); ++i) s.loader().wait(0.01);
+  Loaded out;
+  REQUIRE(s.tilesets().size() == 1);
+  out.stats = s.tilesets()[0]->statistics();
+  out.vectors = set->vectors;
+  s.drainMessages(out.messages);
+  return out;
+}
+
+bool byValue(const qnv::DecodedVector& a, const qnv::DecodedVector& b) {
+  return std::tie(a.position.x, a.position.y, a.position.z, a.magnitude, a.rgba) <
+         std::tie(b.position.x, b.position.y, b.position.z, b.magnitude, b.rgba);
+}
+
+}  // namespace
+
+TEST_CASE("tileset stream: the whole view at full refinement holds the single stream's vectors",
+          "[tileset][session]") {
+  const auto encoded = ballVectors(24);
+  const fs::path dir = freshDir("ball24");
+  const auto index = test::writeTestTileset(encoded, dir, 512);
+  REQUIRE(index.bricks.size() == 9);
+  // The single stream, decoded.
+  const std::string single = (dir / "single.qnv").string();
+  std::ofstream(single, std::ios::binary) << qnv::writeStream(encoded);
+  std::string error;
+  const auto whole = render::loadQnvFile(single, error);
+  REQUIRE(whole);
+
+  for (const std::string& input : {dir.string(), (dir / "index.qnvt").string()}) {
+    const Loaded l = load(input, nullptr);
+    INFO(input);
+    CHECK(l.messages.empty());
+    CHECK(l.stats.chosenBricks == 9);
+    std::uint64_t files = 0;
+    for (const auto& b : index.bricks) files += b.fileBytes;
+    CHECK(l.stats.brickBytes == files);
+    auto a = l.vectors, b = whole->vectors;
+    std::sort(a.begin(), a.end(), byValue);
+    std::sort(b.begin(), b.end(), byValue);
+    REQUIRE(a.size() == b.size());
+    CHECK(std::equal(a.begin(), a.end(), b.begin(), [](const auto& x, const auto& y) {
+      return x.position == y.position && x.magnitude == y.magnitude && x.normal == y.normal &&
+             x.rgba == y.rgba;
+    }));
+  }
+}
+
+TEST_CASE("tileset stream: a zoom into one corner fetches far fewer bytes", "[tileset][session]") {
+  const auto encoded = ballVectors(24);
+  const fs::path dir = freshDir("ball24zoom");
+  test::writeTestTileset(encoded, dir, 512);
+  const Loaded whole = load(dir.string(), nullptr);
+  // Close to the corner of the lowest x, y, z octant, looking along +z into it.
+  const auto& h = encoded.header;
+  render::Camera zoom;
+  zoom.position = h.boundsMin + (h.boundsMax - h.boundsMin) * glm::vec3(0.25f, 0.25f, -0.2f);
+  zoom.orientation = glm::angleAxis(3.14159265f, glm::vec3(0, 1, 0));  // looks along +z
+  zoom.fieldOfView = 0.3f;
+  const Loaded corner = load(dir.string(), &zoom);
+  INFO(whole.stats.brickBytes << " bytes for the whole view, " << corner.stats.brickBytes
+                              << " for the corner");
+  CHECK(corner.stats.chosenBricks < whole.stats.chosenBricks);
+  CHECK(corner.stats.brickBytes * 2 < whole.stats.brickBytes);
+  CHECK(!corner.vectors.empty());
+}
+
+TEST_CASE("tileset stream: a hostile index is refused with a message naming it",
+          "[tileset][session]") {
+  const fs::path dir = freshDir("hostile");
+  const auto index = test::writeTestTileset(ballVectors(12), dir, 64);
+  std::string bytes = qnv::serializeTilesetIndex(index);
+  bytes[20] ^= 0x40;  // inside the template header: the CRC no longer holds
+  std::ofstream(dir / "index.qnvt", std::ios::binary) << bytes;
+  session::StreamingSession s;
+  std::string error;
+  const std::string url = (dir / "index.qnvt").string();
+  REQUIRE(s.open(url, error));
+  auto set = s.rendererOptions({}).splatLoader(url, "", error);
+  REQUIRE(set);
+  for (int i = 0; i < 100000 && !(s.pump(), s.settled()); ++i) s.loader().wait(0.01);
+  std::vector<std::pair<bool, std::string>> messages;
+  s.drainMessages(messages);
+  REQUIRE(messages.size() == 1);
+  CHECK(messages[0].first);
+  CHECK(messages[0].second.find(url) != std::string::npos);
+  CHECK(set->vectors.empty());
+}
+
+TEST_CASE("tileset stream: a new view re-chooses, and far bricks go over the memory budget",
+          "[tileset][session]") {
+  const auto encoded = ballVectors(24);
+  const fs::path dir = freshDir("ball24memory");
+  const auto index = test::writeTestTileset(encoded, dir, 512);
+  session::TilesetOptions options;
+  options.memoryBytes = 6000 * sizeof(qnv::DecodedVector);  // about half the vectors
+  session::StreamingSession s;
+  s.setTilesetOptions(options);
+  std::string error;
+  REQUIRE(s.open(dir.string(), error));
+  auto set = s.rendererOptions({}).splatLoader((dir / "index.qnvt").string(), "", error);
+  REQUIRE(set);
+  auto settle = [&] {
+    for (int i = 0; i < 100000 && !(s.pump(), s.settled()); ++i) s.loader().wait(0.01);
+  };
+  settle();
+  REQUIRE(!set->bounds.empty());
+  const auto& h = encoded.header;
+  // Two views, one after the other, each into an opposite corner octant.
+  auto corner = [&](glm::vec3 at, float turn) {
+    render::SplatSet::View v;
+    v.camera.position = h.boundsMin + (h.boundsMax - h.boundsMin) * at;
+    v.camera.orientation = glm::angleAxis(turn, glm::vec3(0, 1, 0));
+    v.camera.fieldOfView = 0.3f;
+    v.heightPixels = 512;
+    v.vectors = set->total();
+    return v;
+  };
+  int key = 0;
+  set->views[&key] = corner({0.25f, 0.25f, -0.2f}, 3.14159265f);  // looks along +z
+  settle();
+  const auto first = s.tilesets()[0]->statistics();
+  CHECK(first.chosenBricks == 3);  // root and the two octants of that column
+  CHECK(first.residentVectors <= 6000 + index.header.recordsPerPacket());
+  set->views[&key] = corner({0.75f, 0.75f, 1.2f}, 0.0f);  // the opposite column, along -z
+  settle();
+  const auto second = s.tilesets()[0]->statistics();
+  CHECK(second.chosenBricks == 3);
+  CHECK(second.requests > first.requests);
+  CHECK(second.evictedBricks >= 1);
+  CHECK(second.residentVectors <= 6000 + index.header.recordsPerPacket());
+  CHECK(set->vectors.size() == second.chosenVectors);
+}
