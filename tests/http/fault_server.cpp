@@ -236,18 +236,15 @@ void FaultServer::serve(int fd, const Request& request, const std::string& body,
   sendAll(fd, head + content.substr(0, std::min(cut, content.size())));
   if (end == End::reset)
     closeWithReset(fd);
+  else if (end == End::stall)
+    stall(fd);
   else
     closeNormally(fd);
 }
 
-// Headers and `cutAfter` body bytes, then silence: until the server is destroyed, or with
-// Config::stallSeconds >= 0 until then or until the client closes.
-void FaultServer::stall(int fd, const std::string& body) {
-  const std::string head =
-      "HTTP/1.1 200 OK\r\nContent-Type: application/octet-stream\r\n"
-      "Content-Length: " +
-      std::to_string(body.size()) + "\r\nConnection: close\r\n\r\n";
-  sendAll(fd, head + body.substr(0, std::min(config_.cutAfter, body.size())));
+// Silence after what was sent: until the server is destroyed, or with
+// Config::stallSeconds >= 0 until then or until the client closes; then a normal close.
+void FaultServer::stall(int fd) {
   const bool bounded = config_.stallSeconds >= 0.0;
   const auto until = Clock::now() + std::chrono::duration_cast<Clock::duration>(
                                         std::chrono::duration<double>(config_.stallSeconds));
@@ -301,7 +298,7 @@ void FaultServer::handle(int fd, int connection) {
       serve(fd, request, body, true, kNoCut, End::finish, std::max<std::size_t>(cut, 1));
       break;
     case Behaviour::stall:
-      stall(fd, body);
+      serve(fd, request, body, true, cut, End::stall);
       break;
     case Behaviour::notFound:
       respond(fd, 404, "Not Found", "", "not found\n");

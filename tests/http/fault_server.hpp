@@ -25,7 +25,8 @@ class FaultServer {
     ignoreRanges,        // always 200 with the whole body
     resetMidway,         // serve, but reset (RST) the connection after `cutAfter` body bytes
     resetOnceThenServe,  // the first connection as resetMidway, later ones serve
-    stall,               // headers and `cutAfter` body bytes, then silence until destroyed
+    stall,               // serve `cutAfter` body bytes, then silence until destroyed (or
+                         // Config::stallSeconds), then close
     notFound,            // 404 Not Found
     serverError,         // 500 Internal Server Error
     wrongLengthShort,    // 200 whose Content-Length claims kMissing more bytes than sent
@@ -99,10 +100,10 @@ class FaultServer {
   /// The body of `path`: Config::body, or the file below Config::root (false: 404).
   bool bodyOf(const std::string& path, std::string& body) const;
   /// How the response ends after `cut` body bytes (all of them when kNoCut).
-  enum class End { finish, reset, fin };
+  enum class End { finish, reset, fin, stall };
   void serve(int fd, const Request& request, const std::string& body, bool honourRange,
              std::size_t cut, End end, std::size_t rangeShift = 0);
-  void stall(int fd, const std::string& body);
+  void stall(int fd);
   void closeNormally(int fd);
   void closeWithReset(int fd);
 

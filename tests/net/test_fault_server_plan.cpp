@@ -26,27 +26,31 @@ FetchRequest request(const std::string& url) {
 
 }  // namespace
 
-TEST_CASE("fault plan: a reset and a truncated body are resumed from a folder",
+TEST_CASE("fault plan: a reset, a short stall and a truncated body are resumed",
           "[net][http][faults]") {
   gs::test::TempDir dir("faultplan");
   const std::string body = noiseBytes(90000, 21);
   dir.write("a.qnv", body);
   FaultServer::Config config;
   config.root = dir.path.string();
-  config.plan = {Behaviour::resetMidway, Behaviour::truncate, Behaviour::serve};
+  config.plan = {Behaviour::resetMidway, Behaviour::stall, Behaviour::truncate, Behaviour::serve};
+  config.stallSeconds = 0.05;  // then closed: shorter than the client's stall timeout
   config.cutAfter = 20000;
   config.bytesPerSecond = 4e6;  // paced in pieces of 200000 / s: the bytes stay the same
   FaultServer server(config);
   REQUIRE(server.ok());
-  const auto r = fetch(request(server.url("/a.qnv?soak=1")));
+  FetchRequest q = request(server.url("/a.qnv?soak=1"));
+  q.maxResumes = 3;
+  const auto r = fetch(q);
   REQUIRE(r.status.state == TransferState::done);
   CHECK(r.bytes == body);
-  CHECK(r.status.resumes == 2);
+  CHECK(r.status.resumes == 3);
   const auto seen = server.requests();
-  REQUIRE(seen.size() == 3);
+  REQUIRE(seen.size() == 4);
   CHECK(seen[0].range.empty());
   CHECK(seen[1].range == "bytes=20000-");
   CHECK(seen[2].range == "bytes=40000-");
+  CHECK(seen[3].range == "bytes=60000-");
 }
 
 TEST_CASE("fault plan: a wrong Content-Range fails the transfer", "[net][http][faults]") {
