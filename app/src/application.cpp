@@ -125,6 +125,10 @@ Parsed parseArguments(int argc, char** argv) {
                  "Window: run the UI actions of FILE between frames (layout, open, viewport, "
                  "lod, mode, wait-loaded, frames, screenshot, quit; see app/window_script.hpp)")
       ->type_name("FILE");
+  cli.add_option("--frame-log", o.frameLog,
+                 "Window: write one CSV line per frame (seconds, frame and work ms, resident "
+                 "KiB, vectors and level of detail per viewport) to FILE")
+      ->type_name("FILE");
   cli.add_flag("--new-instance", o.newInstance,
                "Open a window of its own even when one is running (by default the INPUTs go "
                "to the running window, each in a new viewport)");

@@ -1,6 +1,7 @@
 // `ghostspace [INPUT...]`: the GLFW window, its Dear ImGui menu and panels, EXAMINE
 // navigation. Rendering goes through the same render::SceneRenderer as --snapshot.
 #include "app/commands.hpp"
+#include "app/frame_log.hpp"
 #include "app/single_instance.hpp"
 #include "app/window_script.hpp"
 #include "app/window_state.hpp"
@@ -159,10 +160,20 @@ int runWindow(const Options& options) {
   std::unique_ptr<InstanceServer> instances;
   if (!options.newInstance) instances = std::make_unique<InstanceServer>();
 
+  std::unique_ptr<FrameLog> frameLog;
+  if (!options.frameLog.empty()) {
+    frameLog = std::make_unique<FrameLog>(options.frameLog);
+    if (!frameLog->ok()) {
+      std::fprintf(stderr, "ghostspace: cannot write --frame-log %s\n", options.frameLog.c_str());
+      return 2;
+    }
+  }
+
   int frame = 0;
   GLFWwindow* window = context->glfwHandle();
   while (!glfwWindowShouldClose(window) && !state.quitRequested) {
     glfwWaitEventsTimeout(1.0 / 60.0);
+    if (frameLog) frameLog->beginFrame();
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
@@ -183,6 +194,7 @@ int runWindow(const Options& options) {
     ImGui::Render();
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     context->swapBuffers();
+    if (frameLog) frameLog->endFrame(state);
     if (options.frames > 0 && ++frame >= options.frames) break;
   }
   return 0;

@@ -13,7 +13,11 @@
 #include <algorithm>
 #include <cctype>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <limits>
 
 namespace gs::test {
@@ -22,10 +26,47 @@ namespace {
 using Clock = std::chrono::steady_clock;
 constexpr std::size_t kNoCut = std::numeric_limits<std::size_t>::max();
 
+using B = FaultServer::Behaviour;
+struct Named {
+  B behaviour;
+  const char* name;
+};
+constexpr Named kNames[] = {
+    {B::serve, "serve"},
+    {B::ignoreRanges, "ignore-ranges"},
+    {B::resetMidway, "reset"},
+    {B::resetOnceThenServe, "reset-once"},
+    {B::stall, "stall"},
+    {B::notFound, "not-found"},
+    {B::serverError, "server-error"},
+    {B::wrongLengthShort, "short"},
+    {B::redirect, "redirect"},
+    {B::redirectToFile, "redirect-file"},
+    {B::truncate, "truncate"},
+    {B::wrongContentRange, "wrong-range"},
+};
+
 }  // namespace
 
+const char* FaultServer::behaviourName(Behaviour behaviour) {
+  for (const Named& n : kNames)
+    if (n.behaviour == behaviour) return n.name;
+  return "?";
+}
+
+bool FaultServer::behaviourFromName(const std::string& name, Behaviour& behaviour) {
+  for (const Named& n : kNames)
+    if (name == n.name) {
+      behaviour = n.behaviour;
+      return true;
+    }
+  return false;
+}
+
 FaultServer::FaultServer(std::string body, Behaviour behaviour, std::size_t cutAfter)
-    : body_(std::move(body)), behaviour_(behaviour), cutAfter_(cutAfter) {
+    : FaultServer(Config{"", std::move(body), {behaviour}, cutAfter}) {}
+
+FaultServer::FaultServer(Config config) : config_(std::move(config)) {
   const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
   if (fd < 0) return;
   const int one = 1;
@@ -33,6 +74,7 @@ FaultServer::FaultServer(std::string body, Behaviour behaviour, std::size_t cutA
   sockaddr_in a{};
   a.sin_family = AF_INET;
   a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  a.sin_port = htons(static_cast<std::uint16_t>(config_.port));
   socklen_t len = sizeof a;
   if (::bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0 || ::listen(fd, 16) != 0 ||
       ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &len) != 0) {
@@ -103,14 +145,31 @@ bool FaultServer::readRequest(int fd, Request& request) {
 }
 
 bool FaultServer::sendAll(int fd, const std::string& bytes) {
+  // Paced (Config::bytesPerSecond): pieces of a twentieth of a second, each sent once the
+  // clock reaches the time its first byte is due.
+  const double rate = config_.bytesPerSecond;
+  const std::size_t piece =
+      rate > 0.0 ? std::max<std::size_t>(512, static_cast<std::size_t>(rate / 20.0)) : bytes.size();
+  const auto start = Clock::now();
   std::size_t sent = 0;
   while (sent < bytes.size()) {
     if (stop_) return false;
+    if (rate > 0.0) {
+      const auto due = start + std::chrono::duration_cast<Clock::duration>(
+                                   std::chrono::duration<double>(static_cast<double>(sent) / rate));
+      if (Clock::now() < due) {
+        std::this_thread::sleep_for(
+            std::min<Clock::duration>(due - Clock::now(), std::chrono::milliseconds(20)));
+        continue;
+      }
+    }
     pollfd p{fd, POLLOUT, 0};
     if (::poll(&p, 1, 20) <= 0) continue;
-    const ssize_t n = ::send(fd, bytes.data() + sent, bytes.size() - sent, MSG_NOSIGNAL);
-    if (n <= 0) return false;
-    sent += static_cast<std::size_t>(n);
+    if (p.revents & (POLLERR | POLLHUP)) return false;
+    const std::size_t n = std::min(piece, bytes.size() - sent);
+    const ssize_t done = ::send(fd, bytes.data() + sent, n, MSG_NOSIGNAL);
+    if (done <= 0) return false;
+    sent += static_cast<std::size_t>(done);
   }
   return true;
 }
@@ -124,18 +183,35 @@ void FaultServer::respond(int fd, int status, const std::string& reason, const s
   closeNormally(fd);
 }
 
+bool FaultServer::bodyOf(const std::string& path, std::string& body) const {
+  if (config_.root.empty()) {
+    body = config_.body;
+    return true;
+  }
+  const std::string file = path.substr(0, path.find_first_of("?#"));
+  if (file.empty() || file[0] != '/' || file.find("..") != std::string::npos) return false;
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(config_.root + file, error)) return false;
+  std::ifstream in(config_.root + file, std::ios::binary);
+  if (!in) return false;
+  body.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  return static_cast<bool>(in) || in.eof();
+}
+
 // 200 or 206 (honouring "bytes=a-" and "bytes=a-b"); after `cut` body bytes the connection
-// is reset instead of finished.
-void FaultServer::serve(int fd, const Request& request, bool honourRange, std::size_t cut) {
-  std::size_t first = 0, last = body_.empty() ? 0 : body_.size() - 1;
-  bool ranged = false;
+// ends as `end` says instead of finishing. A `rangeShift` makes the answer 206 whatever was
+// asked, its Content-Range starting that many bytes later than the bytes sent.
+void FaultServer::serve(int fd, const Request& request, const std::string& body, bool honourRange,
+                        std::size_t cut, End end, std::size_t rangeShift) {
+  std::size_t first = 0, last = body.empty() ? 0 : body.size() - 1;
+  bool ranged = rangeShift > 0;
   if (honourRange && !request.range.empty()) {
     unsigned long long a = 0, b = 0;
     const int n = std::sscanf(request.range.c_str(), "bytes=%llu-%llu", &a, &b);
     if (n >= 1) {
-      if (a >= body_.size()) {
+      if (a >= body.size()) {
         respond(fd, 416, "Range Not Satisfiable",
-                "Content-Range: bytes */" + std::to_string(body_.size()) + "\r\n", "");
+                "Content-Range: bytes */" + std::to_string(body.size()) + "\r\n", "");
         return;
       }
       ranged = true;
@@ -143,21 +219,42 @@ void FaultServer::serve(int fd, const Request& request, bool honourRange, std::s
       if (n == 2) last = std::min(last, static_cast<std::size_t>(b));
     }
   }
-  const std::string content = body_.empty() ? "" : body_.substr(first, last - first + 1);
+  const std::string content = body.empty() ? "" : body.substr(first, last - first + 1);
   std::string head = ranged ? "HTTP/1.1 206 Partial Content\r\n" : "HTTP/1.1 200 OK\r\n";
   head += "Content-Type: application/octet-stream\r\nContent-Length: " +
           std::to_string(content.size()) + "\r\nConnection: close\r\n";
   if (ranged)
-    head += "Content-Range: bytes " + std::to_string(first) + "-" + std::to_string(last) + "/" +
-            std::to_string(body_.size()) + "\r\n";
+    head += "Content-Range: bytes " + std::to_string(first + rangeShift) + "-" +
+            std::to_string(last + rangeShift) + "/" + std::to_string(body.size() + rangeShift) +
+            "\r\n";
   head += "\r\n";
-  if (cut == kNoCut) {
+  if (cut == kNoCut || end == End::finish) {
     sendAll(fd, head + content);
     closeNormally(fd);
     return;
   }
   sendAll(fd, head + content.substr(0, std::min(cut, content.size())));
-  closeWithReset(fd);
+  if (end == End::reset)
+    closeWithReset(fd);
+  else if (end == End::stall)
+    stall(fd);
+  else
+    closeNormally(fd);
+}
+
+// Silence after what was sent: until the server is destroyed, or with
+// Config::stallSeconds >= 0 until then or until the client closes; then a normal close.
+void FaultServer::stall(int fd) {
+  const bool bounded = config_.stallSeconds >= 0.0;
+  const auto until = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                        std::chrono::duration<double>(config_.stallSeconds));
+  while (!stop_ && (!bounded || Clock::now() < until)) {
+    pollfd p{fd, POLLIN, 0};
+    if (::poll(&p, 1, 20) <= 0 || !bounded) continue;  // unbounded: wait for the end anyway
+    char buf[1024];
+    if (::recv(fd, buf, sizeof buf, 0) <= 0) break;  // the client gave up
+  }
+  ::close(fd);
 }
 
 void FaultServer::handle(int fd, int connection) {
@@ -166,32 +263,43 @@ void FaultServer::handle(int fd, int connection) {
     ::close(fd);
     return;
   }
-  switch (behaviour_) {
+  const std::vector<Behaviour>& plan = config_.plan;
+  Behaviour behaviour =
+      plan.empty() ? Behaviour::serve : plan[static_cast<std::size_t>(connection) % plan.size()];
+  if (behaviour == Behaviour::resetOnceThenServe && plan.size() > 1)
+    behaviour = Behaviour::resetMidway;
+  if (config_.verbose)
+    std::fprintf(stderr, "gs_fault_server: connection %d: GET %s%s%s: %s\n", connection,
+                 request.path.c_str(),
+                 request.range.empty() ? "" : " Range: ", request.range.c_str(),
+                 behaviourName(behaviour));
+  std::string body;
+  if (behaviour != Behaviour::redirectToFile && behaviour != Behaviour::notFound &&
+      behaviour != Behaviour::serverError && !bodyOf(request.path, body))
+    behaviour = Behaviour::notFound;
+  const std::size_t cut = config_.cutAfter;
+  switch (behaviour) {
     case Behaviour::serve:
-      serve(fd, request, true, kNoCut);
+      serve(fd, request, body, true, kNoCut, End::finish);
       break;
     case Behaviour::ignoreRanges:
-      serve(fd, request, false, kNoCut);
+      serve(fd, request, body, false, kNoCut, End::finish);
       break;
     case Behaviour::resetMidway:
-      serve(fd, request, true, cutAfter_);
+      serve(fd, request, body, true, cut, End::reset);
       break;
     case Behaviour::resetOnceThenServe:
-      serve(fd, request, true, connection == 0 ? cutAfter_ : kNoCut);
+      serve(fd, request, body, true, connection == 0 ? cut : kNoCut, End::reset);
       break;
-    case Behaviour::stall: {
-      const std::string head =
-          "HTTP/1.1 200 OK\r\nContent-Type: application/octet-stream\r\n"
-          "Content-Length: " +
-          std::to_string(body_.size()) + "\r\nConnection: close\r\n\r\n";
-      sendAll(fd, head + body_.substr(0, std::min(cutAfter_, body_.size())));
-      while (!stop_) {
-        pollfd p{fd, POLLIN, 0};
-        ::poll(&p, 1, 20);  // the client may close meanwhile: wait for the end anyway
-      }
-      ::close(fd);
+    case Behaviour::truncate:
+      serve(fd, request, body, true, cut, End::fin);
       break;
-    }
+    case Behaviour::wrongContentRange:
+      serve(fd, request, body, true, kNoCut, End::finish, std::max<std::size_t>(cut, 1));
+      break;
+    case Behaviour::stall:
+      serve(fd, request, body, true, cut, End::stall);
+      break;
     case Behaviour::notFound:
       respond(fd, 404, "Not Found", "", "not found\n");
       break;
@@ -202,13 +310,12 @@ void FaultServer::handle(int fd, int connection) {
       sendAll(fd,
               "HTTP/1.1 200 OK\r\nContent-Type: application/octet-stream\r\n"
               "Content-Length: " +
-                  std::to_string(body_.size() + kMissing) + "\r\nConnection: close\r\n\r\n" +
-                  body_);
+                  std::to_string(body.size() + kMissing) + "\r\nConnection: close\r\n\r\n" + body);
       closeNormally(fd);
       break;
     case Behaviour::redirect:
       if (request.path == "/target")
-        serve(fd, request, true, kNoCut);
+        serve(fd, request, body, true, kNoCut, End::finish);
       else
         respond(fd, 302, "Found", "Location: " + url("/target") + "\r\n", "moved\n");
       break;

@@ -52,6 +52,7 @@ struct Options {
   Layout layout = Layout::single;  // --layout 1x1|2x1|2x2: viewports in the window or image
   std::string script;              // --script FILE: UI actions for the window (window_script.hpp)
   bool newInstance = false;        // --new-instance: do not hand INPUTs to a running window
+  std::string frameLog;            // --frame-log FILE: a line per window frame (frame_log.hpp)
   render::RenderMode mode = render::RenderMode::polygons;  // --mode polygons|splats|outlines
   bool fit = false;      // --fit: frame the whole scene, not the Viewpoint
   double maxRate = 0.0;  // --max-rate BYTES_PER_S: emulate a slow link (0: off)
