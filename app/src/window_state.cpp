@@ -1,4 +1,5 @@
 #include "app/window_state.hpp"
+#include "app/auto_lod.hpp"
 #include "runtime/clock.hpp"
 
 #include <glad/gl.h>
@@ -364,16 +365,19 @@ void WindowState::drawScene(int x, int y, int width, int height) {
     if (i == active)
       lastAspect = static_cast<float>(v.rect.width) / static_cast<float>(v.rect.height);
     if (!v.renderer) continue;
+    const double target = frameTarget / static_cast<double>(viewports.size());
+    v.renderer->setVectorBudget(v.autoLod ? autoLodBudget(v.vectorBudget, v.splatRate, target)
+                                          : v.vectorBudget);
     const double t0 = secondsNow();
     v.renderer->draw(v.navigator.camera(), v.rect.x, v.rect.y, v.rect.width, v.rect.height);
-    if (v.autoLod && v.renderer->statistics().splats > 0) {
+    const std::uint64_t drawn = v.renderer->statistics().splats;
+    if (v.autoLod && drawn > 0) {
       // Hold the frame-time target: move the fraction by the ratio of target to time
       // taken (damped, at most x2 or /2 a frame). Timing waits for the GPU.
       glFinish();
       const double taken = std::max(secondsNow() - t0, 1e-4);
-      const double target = frameTarget / static_cast<double>(viewports.size());
-      const double ratio = std::clamp(std::sqrt(target / taken), 0.5, 2.0);
-      v.options.lod = std::clamp(v.options.lod * ratio, 1e-4, 1.0);
+      v.splatRate = static_cast<double>(drawn) / taken;
+      v.options.lod = std::clamp(v.options.lod * autoLodRatio(target, taken), 1e-4, 1.0);
       v.renderer->setLod(v.options.lod);
     }
   }

@@ -47,6 +47,11 @@ struct Viewport {
   bool autoLod = false;
   /// At most this many QNV vectors drawn per frame (0: no budget).
   std::uint64_t vectorBudget = 0;
+  /// Automatic level of detail: the splats per second the last frame drew (0 before the
+  /// first measured frame). It caps the next frame's vectors at what fits twice the
+  /// frame-time target, so a stream of millions of vectors arriving between two frames
+  /// cannot make one frame take seconds (docs/soak.md).
+  double splatRate = 0.0;
   /// What the viewport last saw of its world's execution model: a change of the bound
   /// Viewpoint (or of its fields) moves the camera there (4.6.10, 6.53).
   std::uint64_t bindingSeen = 0;
