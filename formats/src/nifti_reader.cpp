@@ -1,5 +1,6 @@
 // NIfTI-1 single files (.nii): the 348-byte header of nifti1.h in either byte order, then
 // the samples from vox_offset.
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -110,7 +111,8 @@ float finiteOr0(float v) {
 
 }  // namespace
 
-Volume readNifti(std::string_view bytes, const std::string& name) {
+NiftiHeader parseNiftiHeader(std::string_view bytes, const std::string& name,
+                             std::uint64_t fileBytes) {
   if (bytes.size() < kHeaderBytes)
     throw InputError(name + ": not a NIfTI-1 file (expected a 348-byte header, got " +
                      std::to_string(bytes.size()) + " bytes)");
@@ -161,28 +163,39 @@ Volume readNifti(std::string_view bytes, const std::string& name) {
     layout.spacing[i] = usableSpacing(h.f32(kPixdim + 4 * static_cast<std::size_t>(i + 1)));
 
   const float voxOffset = h.f32(kVoxOffset);
-  if (!std::isfinite(voxOffset) || voxOffset < 0.0f ||
-      static_cast<double>(voxOffset) > static_cast<double>(bytes.size()))
-    throw InputError(name + ": expected vox_offset within the file's " +
-                     std::to_string(bytes.size()) + " bytes, got " + std::to_string(voxOffset));
+  // A bound on vox_offset that keeps the cast below defined when the size is unknown.
+  const double limit = std::min(static_cast<double>(fileBytes), 0x1p62);
+  if (!std::isfinite(voxOffset) || voxOffset < 0.0f || static_cast<double>(voxOffset) > limit)
+    throw InputError(name + ": expected vox_offset within the file's " + std::to_string(fileBytes) +
+                     " bytes, got " + std::to_string(voxOffset));
   layout.headerBytes = voxOffset < static_cast<float>(kMinVoxOffset)
                            ? kMinVoxOffset
                            : static_cast<std::size_t>(voxOffset);
 
-  Volume v = decodeRaw(bytes, layout, name);
-
+  NiftiHeader out;
+  out.layout = layout;
   const float slope = h.f32(kSclSlope);
   if (std::isfinite(slope) && slope != 0.0f) {
-    const float inter = finiteOr0(h.f32(kSclInter));
-    for (float& s : v.samples) s = s * slope + inter;
+    out.scaled = true;
+    out.slope = slope;
+    out.inter = finiteOr0(h.f32(kSclInter));
   }
   if (h.i16(kQformCode) > 0) {
     for (int i = 0; i < 3; ++i)
-      v.origin[i] = finiteOr0(h.f32(kQoffset + 4 * static_cast<std::size_t>(i)));
+      out.origin[i] = finiteOr0(h.f32(kQoffset + 4 * static_cast<std::size_t>(i)));
   } else if (h.i16(kSformCode) > 0) {
-    v.origin = {finiteOr0(h.f32(kSrowX + 12)), finiteOr0(h.f32(kSrowY + 12)),
-                finiteOr0(h.f32(kSrowZ + 12))};
+    out.origin = {finiteOr0(h.f32(kSrowX + 12)), finiteOr0(h.f32(kSrowY + 12)),
+                  finiteOr0(h.f32(kSrowZ + 12))};
   }
+  return out;
+}
+
+Volume readNifti(std::string_view bytes, const std::string& name) {
+  const NiftiHeader header = parseNiftiHeader(bytes, name, bytes.size());
+  Volume v = decodeRaw(bytes, header.layout, name);
+  if (header.scaled)
+    for (float& s : v.samples) s = s * header.slope + header.inter;
+  v.origin = header.origin;
   return v;
 }
 

@@ -141,15 +141,16 @@ constexpr std::array<TypeAlias, 42> kNrrdTypes{{
 }};
 
 // dims.x * dims.y * dims.z after checking each is >= 1 and the product is <= kMaxVoxels.
-std::size_t checkedVoxels(const glm::uvec3& d, const std::string& where) {
+std::size_t checkedVoxels(const glm::uvec3& d, const std::string& where,
+                          std::uint64_t limit = kMaxVoxels) {
   if (d.x == 0 || d.y == 0 || d.z == 0)
     throw InputError(where + ": expected sizes >= 1, got " + std::to_string(d.x) + " " +
                      std::to_string(d.y) + " " + std::to_string(d.z));
   const std::uint64_t xy = std::uint64_t{d.x} * d.y;
-  if (xy > kMaxVoxels || xy * d.z > kMaxVoxels)
+  if (xy > limit || xy * d.z > limit)
     throw InputError(where + ": volume of " + std::to_string(d.x) + " x " + std::to_string(d.y) +
                      " x " + std::to_string(d.z) + " voxels exceeds the limit of " +
-                     std::to_string(kMaxVoxels) + " voxels");
+                     std::to_string(limit) + " voxels");
   return static_cast<std::size_t>(xy * d.z);
 }
 
@@ -202,9 +203,126 @@ struct Field {
   bool present() const { return line != 0; }
 };
 
+// FORMAT with its one integer conversion (%d, %i, %u with an optional 0 flag and width)
+// applied to `i`; "%%" is a literal '%'. Empty when FORMAT has not exactly one.
+std::string formatFileName(std::string_view format, std::int64_t i, bool& ok) {
+  std::string out;
+  int conversions = 0;
+  ok = false;
+  for (std::size_t k = 0; k < format.size(); ++k) {
+    if (format[k] != '%') {
+      out += format[k];
+      continue;
+    }
+    if (++k == format.size()) return {};
+    if (format[k] == '%') {
+      out += '%';
+      continue;
+    }
+    bool zero = false;
+    if (format[k] == '0') zero = true, ++k;
+    std::size_t width = 0;
+    while (k < format.size() && format[k] >= '0' && format[k] <= '9' && width < 100)
+      width = width * 10 + static_cast<std::size_t>(format[k++] - '0');
+    if (k == format.size() || (format[k] != 'd' && format[k] != 'i' && format[k] != 'u') ||
+        width > 32)
+      return {};
+    ++conversions;
+    std::string digits = std::to_string(i < 0 ? -i : i);
+    const std::string sign = i < 0 ? "-" : "";
+    const std::size_t used = digits.size() + sign.size();
+    if (used < width)
+      digits = zero ? sign + std::string(width - used, '0') + digits
+                    : std::string(width - used, ' ') + sign + digits;
+    else
+      digits = sign + digits;
+    out += digits;
+  }
+  ok = conversions == 1;
+  return out;
+}
+
+// The multi-file forms of "data file:" (teem's format definition, section 3):
+//   LIST [SUBDIM], the names following on their own lines, or
+//   FORMAT MIN MAX STEP [SUBDIM].
+void parseMultiFile(NrrdHeader& h, const std::vector<std::string_view>& w,
+                    std::vector<std::string> listed, const std::vector<std::uint64_t>& size,
+                    const std::string& name, std::size_t line, const NrrdParseOptions& options) {
+  const bool isList = w.front() == "LIST";
+  const std::size_t dim = size.size();
+  std::uint64_t subdim = dim - 1;
+  const std::size_t subdimAt = isList ? 1 : 4;
+  if (!isList && w.size() < 4)
+    failAt(name, line,
+           "expected 'data file: FORMAT MIN MAX STEP [SUBDIM]', got " + std::to_string(w.size()) +
+               " words");
+  if (w.size() > subdimAt + 1)
+    failAt(name, line,
+           "expected at most " + std::to_string(subdimAt + 1) + " words after 'data file:', got " +
+               std::to_string(w.size()));
+  if (w.size() == subdimAt + 1 && (!parseU64(w[subdimAt], subdim) || subdim < 1 || subdim > dim))
+    failAt(name, line,
+           "expected a data file dimension between 1 and " + std::to_string(dim) + ", got '" +
+               shown(w[subdimAt]) + "'");
+  std::uint64_t perFile = 1, total = 1;
+  for (std::size_t i = 0; i < dim; ++i) {
+    total *= size[i];
+    if (i < subdim) perFile *= size[i];
+  }
+  const std::uint64_t expected = total / perFile;
+  if (isList) {
+    h.dataFiles = std::move(listed);
+  } else {
+    std::int64_t lo = 0, hi = 0, step = 0;
+    if (!parseI64(w[1], lo) || !parseI64(w[2], hi) || !parseI64(w[3], step) || step == 0)
+      failAt(name, line,
+             "expected integers MIN MAX STEP (STEP not 0), got '" + shown(w[1]) + " " +
+                 shown(w[2]) + " " + shown(w[3]) + "'");
+    if ((step > 0 && hi < lo) || (step < 0 && hi > lo))
+      failAt(name, line,
+             "data file range " + std::to_string(lo) + " to " + std::to_string(hi) + " step " +
+                 std::to_string(step) + " names no file");
+    // |hi - lo| < 2^64 as both are int64; compute in unsigned to avoid overflow.
+    const std::uint64_t span =
+        step > 0 ? static_cast<std::uint64_t>(hi) - static_cast<std::uint64_t>(lo)
+                 : static_cast<std::uint64_t>(lo) - static_cast<std::uint64_t>(hi);
+    const std::uint64_t stride = step > 0 ? static_cast<std::uint64_t>(step)
+                                          : std::uint64_t{0} - static_cast<std::uint64_t>(step);
+    const std::uint64_t count = span / stride + 1;
+    if (count != expected)
+      failAt(name, line,
+             "data file range names " + std::to_string(count) + " files, expected " +
+                 std::to_string(expected) + " (one per " + std::to_string(subdim) +
+                 "-dimensional part of the data)");
+    if (count > options.maxDataFiles)
+      failAt(name, line, "more than " + std::to_string(options.maxDataFiles) + " data files");
+    for (std::uint64_t k = 0; k < count; ++k) {
+      bool ok = false;
+      // In [lo, hi]; unsigned arithmetic so that no intermediate overflows.
+      const std::int64_t i = static_cast<std::int64_t>(static_cast<std::uint64_t>(lo) +
+                                                       k * static_cast<std::uint64_t>(step));
+      h.dataFiles.push_back(formatFileName(w[0], i, ok));
+      if (!ok)
+        failAt(name, line,
+               "expected a data file format with one integer conversion (%d, %03d), "
+               "got '" +
+                   shown(w[0]) + "'");
+    }
+  }
+  if (h.dataFiles.size() != expected)
+    failAt(name, line,
+           "data file list names " + std::to_string(h.dataFiles.size()) + " files, expected " +
+               std::to_string(expected) + " (one per " + std::to_string(subdim) +
+               "-dimensional part of the data)");
+  for (const std::string& f : h.dataFiles)
+    if (f.empty()) failAt(name, line, "expected a data file name, got ''");
+  h.samplesPerDataFile = perFile;
+}
+
 }  // namespace
 
-NrrdHeader parseNrrdHeader(std::string_view bytes, const std::string& name) {
+NrrdHeader parseNrrdHeader(std::string_view bytes, const std::string& name,
+                           const NrrdParseOptions& options) {
   // Magic line.
   std::size_t eol = bytes.find('\n');
   std::string_view magic = bytes.substr(0, eol);
@@ -218,6 +336,8 @@ NrrdHeader parseNrrdHeader(std::string_view bytes, const std::string& name) {
   std::size_t pos = eol == std::string_view::npos ? bytes.size() : eol + 1;
   std::size_t lineNo = 1;
   h.dataOffset = bytes.size();
+  bool listing = false;  // after "data file: LIST": every line is a file name
+  std::vector<std::string> listed;
   while (pos < bytes.size()) {
     eol = bytes.find('\n', pos);
     const std::size_t next = eol == std::string_view::npos ? bytes.size() : eol + 1;
@@ -229,6 +349,13 @@ NrrdHeader parseNrrdHeader(std::string_view bytes, const std::string& name) {
     if (line.empty()) {  // the blank line: attached data follow
       h.dataOffset = pos;
       break;
+    }
+    if (listing) {
+      if (listed.size() >= options.maxDataFiles)
+        failAt(name, lineNo,
+               "more than " + std::to_string(options.maxDataFiles) + " data files listed");
+      listed.emplace_back(trim(line));
+      continue;
     }
     if (line.front() == '#') continue;
     const std::size_t colon = line.find(':');
@@ -257,8 +384,11 @@ NrrdHeader parseNrrdHeader(std::string_view bytes, const std::string& name) {
       dataFile = f;
       // The LIST form names one file per following line: stop before reading them.
       const auto w = words(f.value);
-      if (!w.empty() && w.front() == "LIST")
-        failAt(name, lineNo, "data file lists ('data file: LIST') are not supported");
+      if (!w.empty() && w.front() == "LIST") {
+        if (!options.multiFile)
+          failAt(name, lineNo, "data file lists ('data file: LIST') are not supported");
+        listing = true;
+      }
     } else if (key == "line skip" || key == "lineskip")
       lineSkip = f;
     else if (key == "byte skip" || key == "byteskip")
@@ -316,7 +446,7 @@ NrrdHeader parseNrrdHeader(std::string_view bytes, const std::string& name) {
   }
   for (int i = 0; i < 3; ++i)
     h.dims[i] = axis[i] < 0 ? 1u : static_cast<std::uint32_t>(size[axis[i]]);
-  checkedVoxels(h.dims, name + ":" + std::to_string(sizes.line));
+  checkedVoxels(h.dims, name + ":" + std::to_string(sizes.line), options.maxVoxels);
 
   if (spacings.present()) {
     const auto w = words(spacings.value);
@@ -378,10 +508,15 @@ NrrdHeader parseNrrdHeader(std::string_view bytes, const std::string& name) {
     const std::string_view f = trim(dataFile.value);
     const auto w = words(f);
     if (f.empty()) failAt(name, dataFile.line, "expected a data file name, got ''");
-    if (w.size() > 1 && w.front().find('%') != std::string_view::npos)
+    const bool isList = w.front() == "LIST";
+    const bool isFormat = w.size() > 1 && w.front().find('%') != std::string_view::npos;
+    if (isFormat && !options.multiFile)
       failAt(name, dataFile.line,
              "data file patterns ('" + shown(f) + "') are not supported; use a single file");
-    h.dataFile = std::string(f);
+    if (isList || isFormat)
+      parseMultiFile(h, w, std::move(listed), size, name, dataFile.line, options);
+    else
+      h.dataFile = std::string(f);
   }
   if (lineSkip.present()) {
     std::uint64_t n = 0;

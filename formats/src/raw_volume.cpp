@@ -114,10 +114,15 @@ Volume decodeRaw(std::string_view bytes, const RawLayout& layout, const std::str
   v.spacing = layout.spacing;
   v.sourceType = layout.type;
   v.samples.resize(count);
-  const char* src = bytes.data() + layout.headerBytes;
-  float* out = v.samples.data();
-  const bool swap = layout.bigEndian != (std::endian::native == std::endian::big);
-  switch (layout.type) {
+  convertSamples(bytes.data() + layout.headerBytes, count, layout.type, layout.bigEndian,
+                 v.samples.data());
+  return v;
+}
+
+void convertSamples(const char* src, std::size_t count, ScalarType type, bool bigEndian,
+                    float* out) {
+  const bool swap = bigEndian != (std::endian::native == std::endian::big);
+  switch (type) {
     case ScalarType::int8:
       convertOrder<std::int8_t>(src, count, false, out);
       break;
@@ -149,7 +154,6 @@ Volume decodeRaw(std::string_view bytes, const RawLayout& layout, const std::str
       convertOrder<double>(src, count, swap, out);
       break;
   }
-  return v;
 }
 
 }  // namespace gs::formats

@@ -3,11 +3,20 @@
 #include "base/gzip.hpp"
 #include "formats/volume_readers.hpp"
 #include "fuzz_support.hpp"
+#include "qnv/volume_slabs.hpp"
 
 #include <algorithm>
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view bytes = gs::fuzz::view(data, size);
+  // The slab readers' parse (docs/out-of-core.md): multi-file forms, larger grids.
+  gs::fuzz::expectingErrors([&] {
+    gs::formats::NrrdParseOptions multi;
+    multi.multiFile = true;
+    multi.maxVoxels = gs::qnv::kMaxSlabVolumeVoxels;
+    multi.maxDataFiles = 4096;
+    (void)gs::formats::parseNrrdHeader(bytes, "fuzz.nrrd", multi);
+  });
   gs::fuzz::expectingErrors([&] {
     const gs::formats::NrrdHeader h = gs::formats::parseNrrdHeader(bytes, "fuzz.nrrd");
     if (!h.dataFile.empty() || h.dataOffset > bytes.size()) return;

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
@@ -61,11 +62,33 @@ struct NrrdHeader {
   /// bytes. -1 means the data is the last dataBytes() bytes (raw and gzip only).
   std::int64_t byteSkip = 0;
 
+  /// Multi-file data (only with NrrdParseOptions::multiFile): every data file in order,
+  /// from "data file: LIST [SUBDIM]" (the names on the lines after it) or "data file:
+  /// FORMAT MIN MAX STEP [SUBDIM]" (FORMAT holds one printf-style integer conversion,
+  /// %d, %Nd or %0Nd, expanded for MIN, MIN + STEP, ... up to MAX). Each file holds
+  /// samplesPerDataFile samples: the product of the sizes of the first SUBDIM axes
+  /// (SUBDIM defaults to dimension - 1: one slice per file); line skip and byte skip
+  /// apply to every file. Empty otherwise.
+  std::vector<std::string> dataFiles;
+  std::uint64_t samplesPerDataFile = 0;
+
   std::size_t voxelCount() const {
     return std::size_t{dims.x} * std::size_t{dims.y} * std::size_t{dims.z};
   }
   /// Bytes of binary sample data the header describes (voxelCount() * scalarBytes(type)).
   std::size_t dataBytes() const { return voxelCount() * scalarBytes(type); }
+};
+
+/// How parseNrrdHeader reads a header.
+struct NrrdParseOptions {
+  /// Accept the multi-file forms of "data file:" (LIST and FORMAT), filling
+  /// NrrdHeader::dataFiles. Off: they are InputError "... not supported".
+  bool multiFile = false;
+  /// The most voxels the header may describe (kMaxVoxels for a whole volume in memory;
+  /// slab readers allow qnv::kMaxSlabVolumeVoxels).
+  std::uint64_t maxVoxels = kMaxVoxels;
+  /// The most files a multi-file header may name.
+  std::size_t maxDataFiles = std::size_t{1} << 20;
 };
 
 /// Parses the NRRD header at the start of `bytes` (a .nrrd file or a .nhdr detached
@@ -79,21 +102,23 @@ struct NrrdHeader {
 ///     "double", ...). "block" and unknown names are InputError.
 ///   - dimension: 3; 4 when the first (or last) axis has size 1 (e.g. one scalar
 ///     component); 2 for a single slice (dims.z = 1).
-///   - sizes: one integer >= 1 per axis, each < 2^32, product <= kMaxVoxels.
+///   - sizes: one integer >= 1 per axis, each < 2^32, product <= options.maxVoxels.
 ///   - spacings: one number per axis; nan/zero give 1, negatives their absolute value.
 ///   - space directions: one "(x,y,z)" vector (or "none") per axis; the vector lengths
 ///     become the spacings (they win over "spacings"). space origin "(x,y,z)" -> origin.
 ///   - endian: little | big.
 ///   - encoding: raw | gzip, gz | ascii, txt, text. hex, bzip2 and zrl are InputError.
-///   - data file / datafile: one file name. The list forms ("LIST", "fmt%03d.raw min max
-///     step") are InputError "... not supported".
+///   - data file / datafile: one file name; the list forms ("LIST", "fmt%03d.raw min max
+///     step") only with options.multiFile (see NrrdHeader::dataFiles), else InputError
+///     "... not supported".
 ///   - line skip / lineskip (>= 0), byte skip / byteskip (>= -1).
 /// Comment lines (#), "key:=value" pairs and other fields (content, kinds, labels,
 /// units, space, ...) are ignored. type, dimension, sizes and encoding are required.
 ///
 /// Throws InputError "name:LINE: expected ..., got ..." for a malformed line, and
 /// "name: ..." for a missing magic, a missing required field, or a volume over limits.
-NrrdHeader parseNrrdHeader(std::string_view bytes, const std::string& name);
+NrrdHeader parseNrrdHeader(std::string_view bytes, const std::string& name,
+                           const NrrdParseOptions& options = {});
 
 /// Returns `bytes` without its first `lines` lines (each ended by "\n", "\r\n" or "\r"),
 /// as teem applies "line skip:". For gzip data, call this on the compressed bytes before
@@ -136,6 +161,21 @@ Volume decodeNrrdData(const NrrdHeader& header, std::string_view data, const std
 /// and "name: expected N bytes of voxel data, got M" for short data.
 Volume readNifti(std::string_view bytes, const std::string& name);
 
+struct RawLayout;
+
+/// What the header of a NIfTI-1 file says (readNifti's rules above), for readers that
+/// fetch the samples themselves: the samples are laid out as `layout` says from
+/// layout.headerBytes (the effective vox_offset) on; value = stored * slope + inter
+/// when `scaled`.
+struct NiftiHeader;
+
+/// Parses the first 348 bytes of `bytes` as readNifti does. `fileBytes` is the size of
+/// the whole (decompressed) file when known, for the vox_offset check; pass
+/// UINT64_MAX when it is not (a .nii.gz read as a stream). Throws InputError as
+/// readNifti does for the header.
+NiftiHeader parseNiftiHeader(std::string_view bytes, const std::string& name,
+                             std::uint64_t fileBytes);
+
 // ---------------------------------------------------------------------------- raw
 
 /// How the samples of a headerless raw file are laid out (x fastest, then y, then z).
@@ -152,5 +192,17 @@ struct RawLayout {
 /// kMaxVoxels voxels, a spacing that is not finite and positive, and "name: expected N
 /// bytes of voxel data, got M" when `bytes` (after headerBytes) is short.
 Volume decodeRaw(std::string_view bytes, const RawLayout& layout, const std::string& name);
+
+/// See parseNiftiHeader.
+struct NiftiHeader {
+  RawLayout layout;  // dims, type, byte order, spacing, headerBytes = vox_offset
+  bool scaled = false;
+  float slope = 1.0f, inter = 0.0f;
+  glm::vec3 origin{0, 0, 0};
+};
+
+/// Converts `count` packed samples of `type` at `src` (byte order `bigEndian`) to float.
+void convertSamples(const char* src, std::size_t count, ScalarType type, bool bigEndian,
+                    float* out);
 
 }  // namespace gs::formats
