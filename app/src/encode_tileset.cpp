@@ -22,8 +22,6 @@ namespace gs::app {
 
 namespace fs = std::filesystem;
 
-namespace {
-
 bool parseShare(const std::string& text, std::uint32_t& share, std::uint32_t& shares) {
   const std::size_t slash = text.find('/');
   if (slash == std::string::npos) return false;
@@ -48,6 +46,8 @@ std::string writeFile(const fs::path& path, std::string_view bytes) {
   if (!out) return "cannot write '" + path.string() + "'";
   return {};
 }
+
+namespace {
 
 std::optional<std::string> readFile(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -80,17 +80,13 @@ std::string writeShare(const fs::path& dir, const qnv::TilesetLayout& layout,
   return writeFile(part / "interior.qnvp", interior);
 }
 
-struct Merged {
-  qnv::TilesetIndex index;
-  std::uint64_t indexBytes = 0;
-  std::uint64_t totalBytes = 0;
-};
-
 // The template header without its vector count, to compare shares.
 std::string templateKey(qnv::StreamHeader h) {
   h.vectorCount = 0;
   return qnv::serializeHeader(h);
 }
+
+}  // namespace
 
 std::string mergeShares(const fs::path& dir, Merged& merged) {
   const fs::path partsDir = dir / "parts";
@@ -194,8 +190,6 @@ void printMerged(const fs::path& dir, const Merged& m) {
       static_cast<unsigned long long>(m.indexBytes), static_cast<unsigned long long>(m.totalBytes));
 }
 
-}  // namespace
-
 void addTilesetOptions(CLI::App& encode, EncodeOptions& o) {
   encode
       .add_option("--tileset", o.tileset,
@@ -212,6 +206,17 @@ void addTilesetOptions(CLI::App& encode, EncodeOptions& o) {
                   "Tilesets: vectors an octree node aims at (default 16384)")
       ->type_name("K")
       ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 32));
+  encode
+      .add_option("--memory", o.memoryMB,
+                  "Tilesets of volumes: encode out of core, slab by slab, in about MB "
+                  "mebibytes (fractions allowed; docs/out-of-core.md)")
+      ->type_name("MB")
+      ->check(CLI::Range(0.001, 1048576.0 * 1024.0));
+  encode
+      .add_option("--threads", o.threads,
+                  "Out-of-core encodes: worker threads (default: every core)")
+      ->type_name("N")
+      ->check(CLI::Range(1u, 256u));
   encode
       .add_option("--bricks", o.bricks,
                   "Tilesets: write only share I of N (0 <= I < N) of a split encode; "

@@ -1,6 +1,7 @@
 // The interior contributions of one share of a split tileset encode and their merge.
 #include <algorithm>
 #include <cstring>
+#include <functional>
 #include <tuple>
 
 #include "base/byte_order.hpp"
@@ -21,12 +22,18 @@ constexpr std::size_t kEntryBytes = 20;
 
 }  // namespace
 
-std::string serializeInteriorParts(const InteriorParts& parts, const TilesetOptions& cut) {
+void writeInteriorParts(const std::vector<TilesetCell>& nodes,
+                        const std::function<std::vector<InteriorEntry>(std::size_t)>& entriesOf,
+                        const TilesetOptions& cut,
+                        const std::function<void(std::string_view)>& sink) {
   std::string out(kPartsMagic, sizeof kPartsMagic);
   appendLe<std::uint32_t>(out, cut.brickVoxels);
   appendLe<std::uint64_t>(out, cut.brickVectors);
-  appendLe<std::uint32_t>(out, static_cast<std::uint32_t>(parts.size()));
-  for (const auto& [node, entries] : parts) {
+  appendLe<std::uint32_t>(out, static_cast<std::uint32_t>(nodes.size()));
+  std::uint32_t crc = 0;
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const TilesetCell& node = nodes[i];
+    const std::vector<InteriorEntry> entries = entriesOf(i);
     appendLe<std::uint8_t>(out, node.level);
     out.append(3, '\0');
     for (int a = 0; a < 3; ++a) appendLe<std::uint32_t>(out, node.cell[a]);
@@ -36,8 +43,26 @@ std::string serializeInteriorParts(const InteriorParts& parts, const TilesetOpti
       appendLe<std::uint64_t>(out, e.source);
       appendLe<std::uint64_t>(out, e.record);
     }
+    crc = crc32(out, crc);
+    sink(out);
+    out.clear();
   }
-  appendLe<std::uint32_t>(out, crc32(out));
+  crc = crc32(out, crc);
+  appendLe<std::uint32_t>(out, crc);
+  sink(out);
+}
+
+std::string serializeInteriorParts(const InteriorParts& parts, const TilesetOptions& cut) {
+  std::vector<TilesetCell> nodes;
+  std::vector<const std::vector<InteriorEntry>*> lists;
+  for (const auto& [node, entries] : parts) {
+    nodes.push_back(node);
+    lists.push_back(&entries);
+  }
+  std::string out;
+  writeInteriorParts(
+      nodes, [&](std::size_t i) { return *lists[i]; }, cut,
+      [&](std::string_view bytes) { out.append(bytes); });
   return out;
 }
 
