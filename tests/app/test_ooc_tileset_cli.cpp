@@ -30,7 +30,7 @@ std::uint16_t sample(std::uint32_t x, std::uint32_t y, std::uint32_t z) {
   int v = dx * dx + dy * dy + dz * dz < 40 ? 900 : 100;
   if (z > 17 && x < 10) v += 300;
   const std::uint32_t h = (x * 73856093u) ^ (y * 19349663u) ^ (z * 83492791u);
-  return static_cast<std::uint16_t>(v + static_cast<int>(h % 5));
+  return static_cast<std::uint16_t>(v + 2 * static_cast<int>(h % 3));
 }
 
 // A detached NRRD header naming one raw file per slice (teem's "data file: FORMAT MIN MAX
