@@ -9,6 +9,7 @@
 #include <set>
 
 #include "qnv/encoder.hpp"
+#include "qnv/tileset_writer.hpp"
 #include "qnv/volume_tileset.hpp"
 
 using namespace gs::qnv;
@@ -96,4 +97,58 @@ TEST_CASE("out-of-core selection keeps selectVolumeVectors's vectors", "[qnv][vo
       }
     }
   }
+}
+
+TEST_CASE("interior parts scanned piece by piece equal the parsed ones", "[qnv][tileset][ooc]") {
+  InteriorParts parts;
+  parts[TilesetCell{0, {0, 0, 0}}] = {{2.5f, 7, 0x1234}, {1.0f, 3, 99}};
+  parts[TilesetCell{1, {1, 0, 1}}] = {{0.25f, 11, 5}};
+  TilesetOptions cut;
+  cut.brickVoxels = 5;
+  cut.brickVectors = 77;
+  const std::string bytes = serializeInteriorParts(parts, cut);
+  const PartReader read = [&](std::uint64_t offset, std::size_t n, char* out) {
+    REQUIRE(offset + n <= bytes.size());
+    std::copy_n(bytes.data() + offset, n, out);
+  };
+  std::string error;
+  TilesetOptions scanned;
+  const auto spans = scanInteriorParts(bytes.size(), read, "p", scanned, error);
+  REQUIRE(spans);
+  CHECK(scanned.brickVoxels == 5);
+  CHECK(scanned.brickVectors == 77);
+  REQUIRE(spans->size() == 2);
+  std::size_t i = 0;
+  for (const auto& [node, entries] : parts) {
+    const InteriorPartSpan& span = (*spans)[i++];
+    CHECK(span.node == node);
+    const std::vector<InteriorEntry> loaded = loadInteriorEntries(span, read);
+    REQUIRE(loaded.size() == entries.size());
+    for (std::size_t k = 0; k < loaded.size(); ++k) {
+      CHECK(loaded[k].magnitude == entries[k].magnitude);
+      CHECK(loaded[k].source == entries[k].source);
+      CHECK(loaded[k].record == entries[k].record);
+    }
+  }
+  // Every damage parseInteriorParts refuses, scanInteriorParts refuses with its sentence.
+  for (std::size_t cutAt : {bytes.size() - 1, std::size_t{30}, std::size_t{27}}) {
+    const std::string part = bytes.substr(0, cutAt);
+    const PartReader readPart = [&](std::uint64_t offset, std::size_t n, char* out) {
+      REQUIRE(offset + n <= part.size());
+      std::copy_n(part.data() + offset, n, out);
+    };
+    std::string parseError, scanError;
+    TilesetOptions c1, c2;
+    CHECK_FALSE(parseInteriorParts(part, "p", c1, parseError));
+    CHECK_FALSE(scanInteriorParts(part.size(), readPart, "p", c2, scanError));
+    CHECK(scanError.rfind("p: ", 0) == 0);
+  }
+  std::string flipped = bytes;
+  flipped[40] ^= 1;
+  const PartReader readFlipped = [&](std::uint64_t offset, std::size_t n, char* out) {
+    std::copy_n(flipped.data() + offset, n, out);
+  };
+  TilesetOptions c3;
+  CHECK_FALSE(scanInteriorParts(flipped.size(), readFlipped, "p", c3, error));
+  CHECK(error == "p: damaged or truncated (CRC mismatch)");
 }

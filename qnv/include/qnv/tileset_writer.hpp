@@ -127,6 +127,32 @@ void writeInteriorParts(const std::vector<TilesetCell>& nodes,
 std::optional<InteriorParts> parseInteriorParts(std::string_view bytes, const std::string& name,
                                                 TilesetOptions& cut, std::string& error);
 
+/// Where one node's entries lie in an interior.qnvp file: `count` entries of 20 bytes
+/// from byte `offset`.
+struct InteriorPartSpan {
+  TilesetCell node;
+  std::uint64_t offset = 0;
+  std::uint64_t count = 0;
+};
+/// Reads `bytes` bytes at `offset` of a part file into `out`; throws on a short read.
+using PartReader = std::function<void(std::uint64_t offset, std::size_t bytes, char* out)>;
+/// parseInteriorParts's checks on a file of `size` bytes read piece by piece through
+/// `read` (1 MiB at a time for the CRC, then the node headers), never held whole: the
+/// nodes' spans in key order, or nullopt and the same sentences in `error`. Safe for
+/// untrusted input (every count is checked against the file size).
+std::optional<std::vector<InteriorPartSpan>> scanInteriorParts(std::uint64_t size,
+                                                               const PartReader& read,
+                                                               const std::string& name,
+                                                               TilesetOptions& cut,
+                                                               std::string& error);
+/// The entries of one span (scanInteriorParts's result for the same file).
+std::vector<InteriorEntry> loadInteriorEntries(const InteriorPartSpan& span,
+                                               const PartReader& read);
+/// One interior node's brick from its entries of every share: sorted by (magnitude
+/// descending, source ascending), so the result does not depend on the split.
+BrickFile mergeInteriorNode(const TilesetCell& node, std::vector<InteriorEntry> entries,
+                            const TilesetLayout& layout);
+
 /// The interior bricks from every share's parts: a node's entries from all shares,
 /// sorted by (magnitude descending, source ascending), so the result does not depend on
 /// how the leaves were split. `layout` gives each node's brick header.
