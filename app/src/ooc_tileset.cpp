@@ -8,7 +8,8 @@
 //     interior contributions past an eighth of the bound go to interior.spill after each
 //     row of leaves, and come back node by node when interior.qnvp is written.
 // Finishing a row of leaves (sort, quantize, code, write) runs on --threads workers, one
-// leaf each at a time; they hold a leaf's vectors and its brick on top of the bound.
+// leaf each at a time, while the vector pass reads and computes the next row; they hold
+// a leaf's records and brick on top of the bound (its vectors are counted).
 #include "ooc_tileset.hpp"
 
 #include <fcntl.h>
@@ -22,6 +23,7 @@
 #include <exception>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <optional>
 #include <thread>
 #include <vector>
@@ -131,21 +133,18 @@ class ShareEncoder {
     const std::size_t capacity = b.capacity();
     b.push_back(v);
     openBytes_ += (b.capacity() - capacity) * sizeof(qnv::SourceVector);
-    if (openBytes_ + interiorBytes_ > leafBudget_) spillLeaves();
+    if (openBytes_ + finishingBytes_ + interiorBytes_ > leafBudget_) spillLeaves();
   }
 
-  // Finishes every leaf of leaf row `row` (z) in this share.
+  // Starts finishing every leaf of leaf row `row` (z) in this share, on a thread of its
+  // own (with --threads workers) while the vector pass goes on; the previous row's
+  // finishing is collected first, so at most one row is in flight.
   void finishRow(std::uint32_t row) {
+    collect();
     const std::uint64_t perRow = std::uint64_t{layout_.leafGrid().x} * layout_.leafGrid().y;
     const std::uint64_t first = std::max(range_.first, perRow * row);
     const std::uint64_t last = std::min(range_.second, perRow * (row + 1));
-    struct Job {
-      std::uint64_t leaf;
-      std::vector<qnv::SourceVector> vectors;
-      std::vector<Chunk> chunks;
-      std::optional<qnv::TilesetBrick> brick;
-    };
-    std::vector<Job> jobs;
+    auto batch = std::make_unique<Batch>();
     last_ = nullptr;
     for (std::uint64_t leaf = first; leaf < last; ++leaf) {
       Job job{leaf, {}, {}, {}};
@@ -157,48 +156,58 @@ class ShareEncoder {
         job.chunks = std::move(s->second);
         spilled_.erase(s);
       }
-      if (!job.vectors.empty() || !job.chunks.empty()) jobs.push_back(std::move(job));
+      batch->bytes += job.vectors.capacity() * sizeof(qnv::SourceVector);
+      if (!job.vectors.empty() || !job.chunks.empty()) batch->jobs.push_back(std::move(job));
     }
-    const unsigned workers = static_cast<unsigned>(
-        std::max<std::size_t>(1, std::min<std::size_t>(threads_, jobs.size())));
-    std::vector<qnv::InteriorParts> interior(workers);
-    std::vector<std::exception_ptr> errors(workers);
-    std::atomic<std::size_t> next{0};
-    const auto work = [&](unsigned w) {
-      try {
-        for (std::size_t j; (j = next++) < jobs.size();) {
-          Job& job = jobs[j];
-          readChunks(leafSpill_, job.chunks, job.vectors);
-          std::optional<qnv::BrickFile> brick =
-              writer_.rankLeaf(layout_.leafAt(job.leaf), std::move(job.vectors), interior[w]);
-          job.vectors = {};
-          if (!brick) continue;
-          if (std::string e = writeFile(dir_ / brick->brick.path(), brick->bytes); !e.empty())
-            throw qnv::InputError(e);
-          job.brick = std::move(brick->brick);
-        }
-      } catch (...) {
-        errors[w] = std::current_exception();
-      }
-    };
-    if (workers == 1) {
-      work(0);
-    } else {
-      std::vector<std::thread> pool;
-      for (unsigned w = 0; w < workers; ++w) pool.emplace_back(work, w);
-      for (std::thread& t : pool) t.join();
-    }
-    for (const std::exception_ptr& e : errors)
-      if (e) std::rethrow_exception(e);
     openBytes_ = 0;
     for (const auto& [leaf, vectors] : open_)
       openBytes_ += vectors.capacity() * sizeof(qnv::SourceVector);
-    for (Job& job : jobs)
+    finishingBytes_ = batch->bytes;
+    const unsigned workers = static_cast<unsigned>(
+        std::max<std::size_t>(1, std::min<std::size_t>(threads_, batch->jobs.size())));
+    batch->interior.resize(workers);
+    batch->errors.resize(workers);
+    Batch* b = batch.get();
+    batch->runner = std::jthread([this, b, workers] {
+      const auto work = [this, b](unsigned w) {
+        try {
+          for (std::size_t j; (j = b->next++) < b->jobs.size();) {
+            Job& job = b->jobs[j];
+            readChunks(leafSpill_, job.chunks, job.vectors);
+            std::optional<qnv::BrickFile> brick =
+                writer_.rankLeaf(layout_.leafAt(job.leaf), std::move(job.vectors), b->interior[w]);
+            job.vectors = {};
+            if (!brick) continue;
+            if (std::string e = writeFile(dir_ / brick->brick.path(), brick->bytes); !e.empty())
+              throw qnv::InputError(e);
+            job.brick = std::move(brick->brick);
+          }
+        } catch (...) {
+          b->errors[w] = std::current_exception();
+        }
+      };
+      std::vector<std::thread> pool;
+      for (unsigned w = 1; w < workers; ++w) pool.emplace_back(work, w);
+      work(0);
+      for (std::thread& t : pool) t.join();
+    });
+    inFlight_ = std::move(batch);
+  }
+
+  // Waits for the row in flight and takes its bricks and interior contributions.
+  void collect() {
+    if (!inFlight_) return;
+    std::unique_ptr<Batch> batch = std::move(inFlight_);
+    batch->runner.join();
+    finishingBytes_ = 0;
+    for (const std::exception_ptr& e : batch->errors)
+      if (e) std::rethrow_exception(e);
+    for (Job& job : batch->jobs)
       if (job.brick) {
         brickBytes_ += job.brick->fileBytes;
         bricks_.push_back(std::move(*job.brick));
       }
-    for (qnv::InteriorParts& parts : interior) {
+    for (qnv::InteriorParts& parts : batch->interior) {
       for (const auto& [node, entries] : parts)
         interiorBytes_ += entries.size() * sizeof(qnv::InteriorEntry);
       writer_.addInterior(std::move(parts));
@@ -208,6 +217,7 @@ class ShareEncoder {
 
   // leaves.qnvt and interior.qnvp of the share; "" or the error.
   std::string writeParts(const fs::path& part, const qnv::TilesetOptions& cut) {
+    collect();
     const std::string index =
         qnv::serializeTilesetIndex(qnv::assembleTilesetIndex(layout_, std::move(bricks_)));
     if (std::string e = writeFile(part / "leaves.qnvt", index); !e.empty()) return e;
@@ -275,6 +285,22 @@ class ShareEncoder {
     interiorBytes_ = 0;
   }
 
+  struct Job {
+    std::uint64_t leaf;
+    std::vector<qnv::SourceVector> vectors;
+    std::vector<Chunk> chunks;
+    std::optional<qnv::TilesetBrick> brick;
+  };
+  // A row of leaves being finished.
+  struct Batch {
+    std::vector<Job> jobs;
+    std::vector<qnv::InteriorParts> interior;
+    std::vector<std::exception_ptr> errors;
+    std::atomic<std::size_t> next{0};
+    std::uint64_t bytes = 0;  // the jobs' vectors held in memory
+    std::jthread runner;
+  };
+
   fs::path dir_;
   const qnv::TilesetLayout& layout_;
   qnv::TilesetShareWriter writer_;
@@ -288,7 +314,9 @@ class ShareEncoder {
   std::map<qnv::TilesetCell, std::vector<Chunk>> interiorChunks_;
   std::uint64_t openBytes_ = 0, interiorBytes_ = 0, brickBytes_ = 0, partBytes_ = 0;
   std::vector<qnv::TilesetBrick> bricks_;
+  std::uint64_t finishingBytes_ = 0;
   SpillFile leafSpill_, interiorSpill_;
+  std::unique_ptr<Batch> inFlight_;  // last: joined before the members it uses go
 };
 
 }  // namespace
