@@ -12,7 +12,7 @@ gs=$1 volume=$2 memory=$3 out=$4 shares=${5:-1}
 shift 5 || shift $#
 rm -rf "$out/single" "$out/split"
 mkdir -p "$out"
-voxels=$(sed -n 's/^sizes: *//p' "$volume" | awk '{print $1*$2*$3}')
+voxels=$(head -c 4096 "$volume" | sed -n 's/^sizes: *//p' | awk '{print $1*$2*$3}')
 run() { /usr/bin/time -f "%e %M" -o "$out/time.txt" "$@" >"$out/log.txt" 2>&1 || { cat "$out/log.txt"; exit 1; }; }
 run "$gs" encode "$volume" --tileset "$out/single" --memory "$memory" --no-progress "$@"
 read -r seconds kib <"$out/time.txt"
