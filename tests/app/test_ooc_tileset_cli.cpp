@@ -174,7 +174,8 @@ TEST_CASE("an out-of-core tileset split into 3 shares merges to the single run's
   checkSameTree(single, memory);
 }
 
-TEST_CASE("--memory is refused without a tileset and for meshes", "[app][encode][tileset][ooc]") {
+TEST_CASE("encode refuses --memory without a tileset and for meshes",
+          "[app][encode][tileset][ooc]") {
   gs::test::TempDir dir("ooc");
   const std::string sphere = (gs::test::sourceDir() / "assets/volumes/sphere.nrrd").string();
   auto r = runGhostspace({"encode", sphere, "-o", (dir.path / "a.qnv").string(), "--memory", "64"});
