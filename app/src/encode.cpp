@@ -1,14 +1,19 @@
 // `ghostspace encode`: any supported input to a .qnv stream.
+#include <cctype>
 #include <charconv>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
+#include <memory>
 
 #include "app/commands.hpp"
 #include "app/progress_bar.hpp"
 #include "encode_tileset.hpp"
 #include "formats/input_kind.hpp"
 #include "formats/volume_readers.hpp"
+#include "formats/volume_slabs.hpp"
+#include "ooc_tileset.hpp"
 #include "qnv/encoder.hpp"
 #include "qnv/error.hpp"
 #include "render/world_triangles.hpp"
@@ -49,6 +54,7 @@ std::string parseSettings(const EncodeOptions& e, Settings& s) {
   if (e.output.empty() == e.tileset.empty())
     return "encode: give either -o OUT.qnv or --tileset OUT/";
   if (e.tileset.empty() && !e.bricks.empty()) return "encode: --bricks I/N needs --tileset OUT/";
+  if (e.tileset.empty() && e.memoryMB > 0) return "encode: --memory MB needs --tileset OUT/";
   if (!(e.fraction > 0.0 && e.fraction <= 1.0))
     return "encode: --fraction must be in (0, 1], got " + std::to_string(e.fraction);
   s.selection.fraction = e.fraction;
@@ -112,6 +118,33 @@ void printSummary(const std::string& input, const qnv::EncodeSummary& summary,
                                : 0.0);
 }
 
+// A stack of 2-D slices (formats/volume_slabs.hpp): a folder, a printf-style pattern, or
+// one PNG or TIFF file.
+bool isSliceStack(const std::string& input) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(input, ec) || input.find('%') != std::string::npos) return true;
+  std::string ext = std::filesystem::path(input).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".png" || ext == ".tif" || ext == ".tiff";
+}
+
+// The whole volume of a volume file; the NRRD multi-file forms, which the session's
+// loader refuses, through the slab readers.
+qnv::Volume loadWholeVolume(const std::string& input) {
+  std::unique_ptr<qnv::VolumeSlabReader> reader;
+  try {
+    return session::loadVolumeFile(input);
+  } catch (const qnv::InputError&) {
+    try {
+      reader = formats::openVolumeSlabs(input);
+    } catch (const qnv::InputError&) {
+      reader.reset();
+    }
+    if (!reader) throw;  // the session loader's sentence
+  }
+  return qnv::readWholeVolume(*reader);
+}
+
 double secondsSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -135,14 +168,22 @@ int runEncode(const Options& options) {
   qnv::EncodeSummary summary;
   const char* elements = "triangles";
   try {
-    const formats::InputKind kind = formats::classifyFile(input);
-    if (s.raw || formats::isVolume(kind)) {
-      const qnv::Volume volume =
-          s.raw ? session::loadRawVolumeFile(input, *s.raw) : session::loadVolumeFile(input);
+    const bool stack = !s.raw && isSliceStack(input);
+    const formats::InputKind kind =
+        stack ? formats::InputKind::unknown : formats::classifyFile(input);
+    if (s.raw || stack || formats::isVolume(kind)) {
       qnv::VolumeEncodeOptions v;
       v.selection = s.selection;
       v.mapping = s.mapping;
       v.valueWindow = s.window;
+      if (tileset && options.encode.memoryMB > 0) {  // out of core: ooc_tileset.cpp
+        bar.finish();
+        const auto reader = formats::openVolumeSlabs(input, s.raw ? &*s.raw : nullptr);
+        return writeVolumeTilesetOutOfCore(options, *reader, v, s.write, input);
+      }
+      const qnv::Volume volume = s.raw   ? session::loadRawVolumeFile(input, *s.raw)
+                                 : stack ? qnv::readWholeVolume(*formats::openVolumeSlabs(input))
+                                         : loadWholeVolume(input);
       v.progress = progress;
       if (tileset)
         selected = qnv::selectVolumeVectors(volume, v, &summary);
@@ -150,6 +191,9 @@ int runEncode(const Options& options) {
         vectors = qnv::encodeVolume(volume, v, &summary);
       elements = "voxels";
     } else {
+      if (options.encode.memoryMB > 0)
+        throw qnv::InputError("--memory: out-of-core encoding is done for volumes only, not for '" +
+                              input + "' (docs/out-of-core.md)");
       qnv::TriangleMesh mesh;
       if (formats::isMesh(kind)) {
         mesh = session::loadMeshFile(input);

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <sstream>
 
 #include "app/commands.hpp"
@@ -21,8 +22,6 @@
 namespace gs::app {
 
 namespace fs = std::filesystem;
-
-namespace {
 
 bool parseShare(const std::string& text, std::uint32_t& share, std::uint32_t& shares) {
   const std::size_t slash = text.find('/');
@@ -48,6 +47,8 @@ std::string writeFile(const fs::path& path, std::string_view bytes) {
   if (!out) return "cannot write '" + path.string() + "'";
   return {};
 }
+
+namespace {
 
 std::optional<std::string> readFile(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -80,17 +81,13 @@ std::string writeShare(const fs::path& dir, const qnv::TilesetLayout& layout,
   return writeFile(part / "interior.qnvp", interior);
 }
 
-struct Merged {
-  qnv::TilesetIndex index;
-  std::uint64_t indexBytes = 0;
-  std::uint64_t totalBytes = 0;
-};
-
 // The template header without its vector count, to compare shares.
 std::string templateKey(qnv::StreamHeader h) {
   h.vectorCount = 0;
   return qnv::serializeHeader(h);
 }
+
+}  // namespace
 
 std::string mergeShares(const fs::path& dir, Merged& merged) {
   const fs::path partsDir = dir / "parts";
@@ -120,56 +117,94 @@ std::string mergeShares(const fs::path& dir, Merged& merged) {
              (partsDir / shareName(i, shares)).string() + "'): run encode with --bricks " +
              std::to_string(i) + "/" + std::to_string(shares);
 
+  // The interior parts stay on disk: each share's is checked and indexed by node, then
+  // every node is merged from the shares' spans, one node in memory at a time.
+  struct SharePart {
+    std::shared_ptr<std::ifstream> file;
+    fs::path path;
+    std::vector<qnv::InteriorPartSpan> spans;
+  };
+  const auto readerOf = [](const SharePart& part) -> qnv::PartReader {
+    return [&part](std::uint64_t offset, std::size_t n, char* out) {
+      part.file->clear();
+      part.file->seekg(static_cast<std::streamoff>(offset));
+      part.file->read(out, static_cast<std::streamsize>(n));
+      if (part.file->gcount() != static_cast<std::streamsize>(n))
+        throw qnv::InputError("cannot read '" + part.path.string() + "'");
+    };
+  };
   std::vector<qnv::TilesetBrick> bricks;
-  std::vector<qnv::InteriorParts> interior;
+  std::vector<SharePart> interior;
   std::optional<qnv::TilesetIndex> first;
   qnv::TilesetOptions cut;
   std::uint64_t total = 0;
-  for (const auto& [i, folder] : found) {
-    std::string error;
-    const fs::path leavesPath = folder / "leaves.qnvt", interiorPath = folder / "interior.qnvp";
-    const auto leavesBytes = readFile(leavesPath);
-    const auto interiorBytes = readFile(interiorPath);
-    if (!leavesBytes || !interiorBytes)
-      return "cannot read '" + (leavesBytes ? interiorPath : leavesPath).string() + "'";
-    auto leaves = qnv::parseTilesetIndex(*leavesBytes, leavesPath.string(), error);
-    if (!leaves) return error;
-    qnv::TilesetOptions shareCut;
-    auto parts = qnv::parseInteriorParts(*interiorBytes, interiorPath.string(), shareCut, error);
-    if (!parts) return error;
-    if (!first) {
-      first = leaves;
-      cut = shareCut;
-    } else if (leaves->depth != first->depth ||
-               templateKey(leaves->header) != templateKey(first->header) ||
-               shareCut.brickVoxels != cut.brickVoxels ||
-               shareCut.brickVectors != cut.brickVectors) {
-      return "'" + folder.string() + "' comes from another encode than share 0 (its header, " +
-             "depth or brick options differ)";
+  try {
+    for (const auto& [i, folder] : found) {
+      std::string error;
+      const fs::path leavesPath = folder / "leaves.qnvt", interiorPath = folder / "interior.qnvp";
+      const auto leavesBytes = readFile(leavesPath);
+      SharePart part{
+          std::make_shared<std::ifstream>(interiorPath, std::ios::binary), interiorPath, {}};
+      const std::uint64_t size = fs::file_size(interiorPath, ec);
+      if (!leavesBytes || !*part.file || ec)
+        return "cannot read '" + (leavesBytes ? interiorPath : leavesPath).string() + "'";
+      auto leaves = qnv::parseTilesetIndex(*leavesBytes, leavesPath.string(), error);
+      if (!leaves) return error;
+      qnv::TilesetOptions shareCut;
+      auto spans =
+          qnv::scanInteriorParts(size, readerOf(part), interiorPath.string(), shareCut, error);
+      if (!spans) return error;
+      part.spans = std::move(*spans);
+      if (!first) {
+        first = leaves;
+        cut = shareCut;
+      } else if (leaves->depth != first->depth ||
+                 templateKey(leaves->header) != templateKey(first->header) ||
+                 shareCut.brickVoxels != cut.brickVoxels ||
+                 shareCut.brickVectors != cut.brickVectors) {
+        return "'" + folder.string() + "' comes from another encode than share 0 (its header, " +
+               "depth or brick options differ)";
+      }
+      total += leaves->header.vectorCount;
+      for (const qnv::InteriorPartSpan& span : part.spans) total += span.count;
+      for (qnv::TilesetBrick& b : leaves->bricks) {
+        const fs::path path = dir / b.path();
+        if (!fs::is_regular_file(path, ec) || fs::file_size(path, ec) != b.fileBytes)
+          return "'" + path.string() + "' is missing or not the brick share " + std::to_string(i) +
+                 " wrote";
+        bricks.push_back(std::move(b));
+      }
+      interior.push_back(std::move(part));
     }
-    total += leaves->header.vectorCount;
-    for (const auto& [node, entries] : *parts) total += entries.size();
-    for (qnv::TilesetBrick& b : leaves->bricks) {
-      const fs::path path = dir / b.path();
-      if (!fs::is_regular_file(path, ec) || fs::file_size(path, ec) != b.fileBytes)
-        return "'" + path.string() + "' is missing or not the brick share " + std::to_string(i) +
-               " wrote";
-      bricks.push_back(std::move(b));
-    }
-    interior.push_back(std::move(*parts));
-  }
 
-  qnv::StreamHeader whole = first->header;
-  whole.vectorCount = total;
-  cut.write.packetBytes = whole.packetBytes;
-  cut.write.encoding = whole.encoding;
-  const qnv::TilesetLayout layout(whole, cut);
-  if (layout.depth() != first->depth) return "the shares' octree depth does not fit their vectors";
-  for (const qnv::BrickFile& b : qnv::mergeInteriorParts(interior, layout)) {
-    if (std::string error = writeFile(dir / b.brick.path(), b.bytes); !error.empty()) return error;
-    bricks.push_back(b.brick);
+    qnv::StreamHeader whole = first->header;
+    whole.vectorCount = total;
+    cut.write.packetBytes = whole.packetBytes;
+    cut.write.encoding = whole.encoding;
+    const qnv::TilesetLayout layout(whole, cut);
+    if (layout.depth() != first->depth)
+      return "the shares' octree depth does not fit their vectors";
+    std::map<qnv::TilesetCell, std::vector<std::pair<const SharePart*, qnv::InteriorPartSpan>>>
+        nodes;
+    for (const SharePart& part : interior)
+      for (const qnv::InteriorPartSpan& span : part.spans)
+        nodes[span.node].push_back({&part, span});
+    for (const auto& [node, spans] : nodes) {
+      std::vector<qnv::InteriorEntry> entries;
+      for (const auto& [part, span] : spans) {
+        std::vector<qnv::InteriorEntry> more = qnv::loadInteriorEntries(span, readerOf(*part));
+        entries.insert(entries.end(), more.begin(), more.end());
+      }
+      if (entries.empty()) continue;
+      const qnv::BrickFile b = qnv::mergeInteriorNode(node, std::move(entries), layout);
+      if (std::string error = writeFile(dir / b.brick.path(), b.bytes); !error.empty())
+        return error;
+      bricks.push_back(b.brick);
+    }
+    merged.index = qnv::assembleTilesetIndex(layout, std::move(bricks));
+  } catch (const qnv::InputError& e) {
+    return e.what();
   }
-  merged.index = qnv::assembleTilesetIndex(layout, std::move(bricks));
   const std::string bytes = qnv::serializeTilesetIndex(merged.index);
   std::string error;
   // The reader's checks on what we are about to publish (duplicate cells across shares...).
@@ -194,8 +229,6 @@ void printMerged(const fs::path& dir, const Merged& m) {
       static_cast<unsigned long long>(m.indexBytes), static_cast<unsigned long long>(m.totalBytes));
 }
 
-}  // namespace
-
 void addTilesetOptions(CLI::App& encode, EncodeOptions& o) {
   encode
       .add_option("--tileset", o.tileset,
@@ -212,6 +245,17 @@ void addTilesetOptions(CLI::App& encode, EncodeOptions& o) {
                   "Tilesets: vectors an octree node aims at (default 16384)")
       ->type_name("K")
       ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 32));
+  encode
+      .add_option("--memory", o.memoryMB,
+                  "Tilesets of volumes: encode out of core, slab by slab, in about MB "
+                  "mebibytes (fractions allowed; docs/out-of-core.md)")
+      ->type_name("MB")
+      ->check(CLI::Range(0.001, 1048576.0 * 1024.0));
+  encode
+      .add_option("--threads", o.threads,
+                  "Out-of-core encodes: worker threads (default: every core)")
+      ->type_name("N")
+      ->check(CLI::Range(1u, 256u));
   encode
       .add_option("--bricks", o.bricks,
                   "Tilesets: write only share I of N (0 <= I < N) of a split encode; "

@@ -4,10 +4,13 @@
 
 #include <CLI/CLI.hpp>
 
+#include <filesystem>
 #include <string>
+#include <string_view>
 
 #include "app/options.hpp"
 #include "qnv/encoder.hpp"
+#include "qnv/tileset.hpp"
 
 namespace gs::app {
 
@@ -23,5 +26,24 @@ CLI::App* addTilesetCommand(CLI::App& cli, std::string& folder);
 /// folder, 2 on bad options).
 int writeTileset(const Options& options, const qnv::SelectedVectors& selected,
                  const qnv::WriteOptions& write, const std::string& input, double seconds);
+
+/// Parses --bricks "I/N" (0 <= I < N <= qnv::kMaxTilesetShares); false when malformed.
+bool parseShare(const std::string& text, std::uint32_t& share, std::uint32_t& shares);
+/// "I-of-N", the share's folder under OUT/parts/.
+std::string shareName(std::uint32_t share, std::uint32_t shares);
+/// Writes `bytes` to `path` (folders made as needed); "" or a sentence naming the path.
+std::string writeFile(const std::filesystem::path& path, std::string_view bytes);
+
+/// What the merge wrote.
+struct Merged {
+  qnv::TilesetIndex index;
+  std::uint64_t indexBytes = 0;
+  std::uint64_t totalBytes = 0;
+};
+/// Merges OUT/parts/*: the interior bricks and OUT/index.qnvt; removes OUT/parts.
+/// "" or the error.
+std::string mergeShares(const std::filesystem::path& dir, Merged& merged);
+/// Prints the merged tileset's sizes on stdout.
+void printMerged(const std::filesystem::path& dir, const Merged& merged);
 
 }  // namespace gs::app

@@ -201,8 +201,23 @@ std::optional<BrickFile> TilesetShareWriter::finishLeaf(glm::uvec3 leaf) {
   if (found == open_.end()) return std::nullopt;
   std::vector<SourceVector> vectors = std::move(found->second);
   open_.erase(found);
-  std::sort(vectors.begin(), vectors.end(), rankedBefore);
+  return rankLeaf(leaf, std::move(vectors), interior_);
+}
 
+void TilesetShareWriter::addInterior(InteriorParts&& parts) {
+  for (auto& [node, entries] : parts) {
+    std::vector<InteriorEntry>& to = interior_[node];
+    if (to.empty())
+      to = std::move(entries);
+    else
+      to.insert(to.end(), entries.begin(), entries.end());
+  }
+}
+
+std::optional<BrickFile> TilesetShareWriter::rankLeaf(glm::uvec3 leaf,
+                                                      std::vector<SourceVector> vectors,
+                                                      InteriorParts& interior) const {
+  std::sort(vectors.begin(), vectors.end(), rankedBefore);
   const std::uint8_t depth = layout_.depth();
   const StreamHeader& whole = layout_.templateHeader();
   const MagnitudeQuantizer quantizeA(whole.mapping, whole.magnitudeMin, whole.magnitudeMax);
@@ -219,7 +234,7 @@ std::optional<BrickFile> TilesetShareWriter::finishLeaf(glm::uvec3 leaf) {
     const StreamHeader h = layout_.brickHeader(node, 0);
     const std::size_t end = static_cast<std::size_t>(
         std::min<std::uint64_t>(vectors.size(), next + layout_.quota(level)));
-    std::vector<InteriorEntry>& entries = interior_[node];
+    std::vector<InteriorEntry>& entries = interior[node];
     for (; next < end; ++next)
       entries.push_back(
           {vectors[next].magnitude, vectors[next].source, recordFor(vectors[next], node, h)});

@@ -38,6 +38,8 @@ struct EncodeOptions {
   std::uint32_t brickVoxels = 64;         // --brick-voxels B: volume leaf block side
   std::uint64_t brickVectors = 1u << 14;  // --brick-vectors K: vectors a node aims at
   std::string bricks;                     // --bricks I/N: write share I of N only
+  double memoryMB = 0;                    // --memory MB: volumes out of core (0: in memory)
+  unsigned threads = 0;                   // --threads N: out-of-core workers (0: all cores)
 };
 
 struct Options {

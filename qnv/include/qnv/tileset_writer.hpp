@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
 #include <set>
@@ -113,11 +114,44 @@ using InteriorParts = std::map<TilesetCell, std::vector<InteriorEntry>>;
 /// u8 level, u8[3] 0, u32 x, y, z, u64 entry count, then per entry f32 magnitude,
 /// u64 source, u64 record; CRC-32 last. Little-endian.
 std::string serializeInteriorParts(const InteriorParts& parts, const TilesetOptions& cut);
+/// The same bytes in pieces, for parts too large to hold at once (out-of-core encodes
+/// spill them): `nodes` in key order, entriesOf(i) gives node i's entries (in any order),
+/// `sink` receives the bytes in order.
+void writeInteriorParts(const std::vector<TilesetCell>& nodes,
+                        const std::function<std::vector<InteriorEntry>(std::size_t)>& entriesOf,
+                        const TilesetOptions& cut,
+                        const std::function<void(std::string_view)>& sink);
 /// Parses and checks those bytes (counts against bytes, levels <= 12, cells < 2^level,
 /// node order, CRC) and sets cut's brickVoxels and brickVectors; nullopt and a sentence
 /// naming `name` in `error` otherwise.
 std::optional<InteriorParts> parseInteriorParts(std::string_view bytes, const std::string& name,
                                                 TilesetOptions& cut, std::string& error);
+
+/// Where one node's entries lie in an interior.qnvp file: `count` entries of 20 bytes
+/// from byte `offset`.
+struct InteriorPartSpan {
+  TilesetCell node;
+  std::uint64_t offset = 0;
+  std::uint64_t count = 0;
+};
+/// Reads `bytes` bytes at `offset` of a part file into `out`; throws on a short read.
+using PartReader = std::function<void(std::uint64_t offset, std::size_t bytes, char* out)>;
+/// parseInteriorParts's checks on a file of `size` bytes read piece by piece through
+/// `read` (1 MiB at a time for the CRC, then the node headers), never held whole: the
+/// nodes' spans in key order, or nullopt and the same sentences in `error`. Safe for
+/// untrusted input (every count is checked against the file size).
+std::optional<std::vector<InteriorPartSpan>> scanInteriorParts(std::uint64_t size,
+                                                               const PartReader& read,
+                                                               const std::string& name,
+                                                               TilesetOptions& cut,
+                                                               std::string& error);
+/// The entries of one span (scanInteriorParts's result for the same file).
+std::vector<InteriorEntry> loadInteriorEntries(const InteriorPartSpan& span,
+                                               const PartReader& read);
+/// One interior node's brick from its entries of every share: sorted by (magnitude
+/// descending, source ascending), so the result does not depend on the split.
+BrickFile mergeInteriorNode(const TilesetCell& node, std::vector<InteriorEntry> entries,
+                            const TilesetLayout& layout);
 
 /// The interior bricks from every share's parts: a node's entries from all shares,
 /// sorted by (magnitude descending, source ascending), so the result does not depend on
@@ -154,6 +188,16 @@ class TilesetShareWriter {
   /// q_0 to the root, the next q_1 to the level-1 ancestor, ..., and returns the rest as
   /// the leaf's brick (nullopt when none remain). Later add()s to it throw InputError.
   std::optional<BrickFile> finishLeaf(glm::uvec3 leaf);
+  /// finishLeaf's work on vectors the caller gathered itself (all of `leaf`'s, in any
+  /// order): the interior entries go to `interior` (not the writer's), the rest is the
+  /// returned brick. Touches no state of the writer: safe from several threads at once
+  /// (out-of-core encodes finish a row of leaves in parallel: app/src/ooc_tileset.cpp).
+  std::optional<BrickFile> rankLeaf(glm::uvec3 leaf, std::vector<SourceVector> vectors,
+                                    InteriorParts& interior) const;
+  /// Moves `parts`' entries into the writer's interior contributions.
+  void addInterior(InteriorParts&& parts);
+  /// Hands out the interior contributions so far and forgets them (to spill them).
+  InteriorParts takeInterior() { return std::exchange(interior_, {}); }
   /// Leaves holding buffered vectors, in (z, y, x) order.
   std::vector<glm::uvec3> openLeaves() const;
   /// The interior contributions so far.

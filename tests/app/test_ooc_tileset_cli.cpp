@@ -1,0 +1,189 @@
+// `ghostspace encode VOLUME --tileset OUT/ --memory MB`: the out-of-core tileset encode
+// gives the in-memory tileset encode's files byte for byte (keep all, --fraction with ties
+// at the threshold, --count, --window), spills under a tiny bound, and split runs merge
+// to the single run's bytes; inputs made at test time as a multi-file NRRD and a folder
+// of PNG slices (docs/out-of-core.md, "Tileset encoding").
+#include <catch2/catch.hpp>
+
+#include <png.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+#include "process.hpp"
+#include "test_support.hpp"
+
+using gs::test::runGhostspace;
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr std::uint32_t kX = 21, kY = 17, kZ = 23;
+
+// Integer samples (a ball, a slab and hashed noise), so that many gradient magnitudes
+// tie exactly and the selection's tie rule is exercised.
+std::uint16_t sample(std::uint32_t x, std::uint32_t y, std::uint32_t z) {
+  const int dx = static_cast<int>(x) - 9, dy = static_cast<int>(y) - 8,
+            dz = static_cast<int>(z) - 12;
+  int v = dx * dx + dy * dy + dz * dz < 40 ? 900 : 100;
+  if (z > 17 && x < 10) v += 300;
+  const std::uint32_t h = (x * 73856093u) ^ (y * 19349663u) ^ (z * 83492791u);
+  return static_cast<std::uint16_t>(v + 2 * static_cast<int>(h % 3));
+}
+
+// A detached NRRD header naming one raw file per slice (teem's "data file: FORMAT MIN MAX
+// STEP" form), little-endian uint16.
+fs::path writeMultiFileNrrd(const fs::path& dir) {
+  fs::create_directories(dir);
+  for (std::uint32_t z = 0; z < kZ; ++z) {
+    char name[32];
+    std::snprintf(name, sizeof name, "slice_%03u.raw", z);
+    std::ofstream out(dir / name, std::ios::binary);
+    for (std::uint32_t y = 0; y < kY; ++y)
+      for (std::uint32_t x = 0; x < kX; ++x) {
+        const std::uint16_t v = sample(x, y, z);
+        const char bytes[2] = {static_cast<char>(v & 0xff), static_cast<char>(v >> 8)};
+        out.write(bytes, 2);
+      }
+  }
+  const fs::path header = dir / "volume.nhdr";
+  std::ofstream out(header);
+  out << "NRRD0004\ntype: uint16\ndimension: 3\nsizes: " << kX << " " << kY << " " << kZ
+      << "\nspacings: 1 0.8 1.5\nencoding: raw\nendian: little\n"
+      << "data file: slice_%03d.raw 0 " << kZ - 1 << " 1\n";
+  return header;
+}
+
+// One 16-bit grey PNG per slice in `dir`.
+void writePngStack(const fs::path& dir) {
+  fs::create_directories(dir);
+  for (std::uint32_t z = 0; z < kZ; ++z) {
+    const fs::path path = dir / ("ct" + std::to_string(z) + ".png");
+    std::FILE* f = std::fopen(path.string().c_str(), "wb");
+    REQUIRE(f);
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+    png_infop info = png_create_info_struct(png);
+    png_init_io(png, f);
+    png_set_IHDR(png, info, kX, kY, 16, PNG_COLOR_TYPE_GRAY, PNG_INTERLACE_NONE,
+                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    png_write_info(png, info);
+    std::vector<png_byte> row;
+    for (std::uint32_t y = 0; y < kY; ++y) {
+      row.clear();
+      for (std::uint32_t x = 0; x < kX; ++x) {
+        const std::uint16_t v = sample(x, y, z);
+        row.push_back(static_cast<png_byte>(v >> 8));
+        row.push_back(static_cast<png_byte>(v & 0xff));
+      }
+      png_write_row(png, row.data());
+    }
+    png_write_end(png, nullptr);
+    png_destroy_write_struct(&png, &info);
+    std::fclose(f);
+  }
+}
+
+std::map<std::string, std::string> tree(const fs::path& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& entry : fs::recursive_directory_iterator(dir))
+    if (entry.is_regular_file())
+      files[fs::relative(entry.path(), dir).string()] = gs::test::readBytes(entry.path());
+  return files;
+}
+
+void checkSameTree(const fs::path& a, const fs::path& b) {
+  const auto x = tree(a), y = tree(b);
+  CHECK(x.size() > 2);
+  CHECK(x.count("index.qnvt") == 1);
+  REQUIRE(x.size() == y.size());
+  for (const auto& [path, bytes] : x) {
+    INFO(path);
+    REQUIRE(y.count(path));
+    CHECK(y.at(path) == bytes);
+  }
+}
+
+gs::test::ProcessResult encode(const std::string& input, const fs::path& out,
+                               std::vector<std::string> more) {
+  std::vector<std::string> args = {"encode", input, "--tileset", out.string(), "--no-progress"};
+  args.insert(args.end(), more.begin(), more.end());
+  auto r = runGhostspace(args);
+  INFO(r.err);
+  REQUIRE(r.exitCode == 0);
+  return r;
+}
+
+std::vector<std::string> with(std::vector<std::string> a, const std::vector<std::string>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+}  // namespace
+
+TEST_CASE("an out-of-core volume tileset is the in-memory tileset, byte for byte",
+          "[app][encode][tileset][ooc]") {
+  gs::test::TempDir dir("ooc");
+  const std::string nrrd = writeMultiFileNrrd(dir.path / "nrrd").string();
+  const std::vector<std::vector<std::string>> cases = {
+      {"--brick-voxels", "4", "--brick-vectors", "32"},
+      {"--brick-voxels", "5", "--brick-vectors", "64", "--fraction", "0.3", "--coding", "entropy",
+       "--packet-bytes", "128"},
+      {"--brick-voxels", "8", "--brick-vectors", "16", "--count", "777", "--magnitude", "linear"},
+      {"--brick-voxels", "3", "--brick-vectors", "40", "--window", "500:1300", "--fraction",
+       "0.05"},
+  };
+  int n = 0;
+  for (const auto& options : cases) {
+    const fs::path memory = dir.path / ("memory" + std::to_string(n));
+    const fs::path ooc = dir.path / ("ooc" + std::to_string(n));
+    const fs::path tiny = dir.path / ("tiny" + std::to_string(n++));
+    encode(nrrd, memory, options);
+    const auto r = encode(nrrd, ooc, with(options, {"--memory", "64", "--threads", "3"}));
+    CHECK_THAT(r.out, Catch::Contains("out of core"));
+    checkSameTree(memory, ooc);
+    // 20 KB: one slice per slab, every leaf and interior contribution spilled.
+    const auto t = encode(nrrd, tiny, with(options, {"--memory", "0.02", "--threads", "2"}));
+    CHECK_THAT(t.out, Catch::Contains("(1 per slab)"));
+    CHECK_THAT(t.out, !Catch::Contains("spilled 0 + 0 bytes"));
+    checkSameTree(memory, tiny);
+  }
+}
+
+TEST_CASE("an out-of-core tileset split into 3 shares merges to the single run's bytes",
+          "[app][encode][tileset][ooc]") {
+  gs::test::TempDir dir("ooc");
+  writePngStack(dir.path / "png");
+  const std::string stack = (dir.path / "png").string();
+  const std::vector<std::string> options = {"--brick-voxels", "4",   "--brick-vectors", "24",
+                                            "--fraction",     "0.4", "--memory",        "0.05"};
+  const fs::path single = dir.path / "single", split = dir.path / "split";
+  encode(stack, single, options);
+  for (std::uint32_t i : {2u, 0u, 1u}) {
+    const auto r = encode(stack, split, with(options, {"--bricks", std::to_string(i) + "/3"}));
+    CHECK_THAT(r.out, Catch::Contains("share " + std::to_string(i) + " of 3"));
+  }
+  const auto merge = runGhostspace({"tileset", "index", split.string()});
+  INFO(merge.err);
+  REQUIRE(merge.exitCode == 0);
+  checkSameTree(single, split);
+  // The PNG stack holds the NRRD's samples: the same tileset but for the spacing.
+  const fs::path memory = dir.path / "memory";
+  encode(stack, memory, {"--brick-voxels", "4", "--brick-vectors", "24", "--fraction", "0.4"});
+  checkSameTree(single, memory);
+}
+
+TEST_CASE("encode refuses --memory without a tileset and for meshes",
+          "[app][encode][tileset][ooc]") {
+  gs::test::TempDir dir("ooc");
+  const std::string sphere = (gs::test::sourceDir() / "assets/volumes/sphere.nrrd").string();
+  auto r = runGhostspace({"encode", sphere, "-o", (dir.path / "a.qnv").string(), "--memory", "64"});
+  CHECK(r.exitCode == 2);
+  CHECK_THAT(r.err, Catch::Contains("--memory MB needs --tileset"));
+  const std::string world = (gs::test::sourceDir() / "assets/worlds/welcome.wrl").string();
+  r = runGhostspace(
+      {"encode", world, "--tileset", (dir.path / "t").string(), "--memory", "64", "--no-progress"});
+  CHECK(r.exitCode == 1);
+  CHECK_THAT(r.err, Catch::Contains("volumes only"));
+}
