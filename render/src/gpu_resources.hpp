@@ -6,6 +6,7 @@
 
 #include "formats/movie.hpp"
 #include "render/image.hpp"
+#include "render/movie_players.hpp"
 #include "render/scene_renderer.hpp"
 #include "render/traversal.hpp"
 #include "vrml/geometry.hpp"
@@ -48,10 +49,14 @@ struct GpuTexture {
 };
 
 /// MovieTexture nodes (6.28, movie_textures.cpp): one formats::MoviePlayer each (decoding
-/// on its worker thread) and a GL texture updated with the frame for the node's media
+/// on its worker thread), shared through MoviePlayers with the other renderers of the
+/// world, and a GL texture of this renderer updated with the frame for the node's media
 /// time whenever that frame changes (glTexSubImage2D, no mipmaps).
 class MovieTextures {
  public:
+  /// Where players are found and made (SceneRendererOptions::movies); before the first
+  /// get(). Unset: a registry of this renderer's own.
+  void setPlayers(std::shared_ptr<MoviePlayers> players);
   /// The texture of MovieTexture `node` for this frame; components 0 until its first
   /// frame is decoded (or when it cannot be read: a warning naming the url, once).
   const GpuTexture& get(const vrml::Node& node, const std::string& baseUrl,
@@ -68,7 +73,7 @@ class MovieTextures {
  private:
   std::uint64_t uploads_ = 0;
   struct Movie {
-    std::unique_ptr<formats::MoviePlayer> player;
+    std::shared_ptr<formats::MoviePlayer> player;
     GpuTexture texture;
     int width = 0, height = 0;
     std::int64_t shown = -1;  // index of the frame in the texture
@@ -76,6 +81,7 @@ class MovieTextures {
   };
   std::unordered_map<const vrml::Node*, Movie> movies_;
   std::vector<std::pair<const vrml::Node*, double>> durations_;
+  std::shared_ptr<MoviePlayers> players_;
   MediaClock clock_;
   bool wait_ = false;
 };

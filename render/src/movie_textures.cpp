@@ -1,14 +1,16 @@
-// MovieTexture (ISO/IEC 14772-1:1997 6.28): a formats::MoviePlayer per node decodes on its
-// own thread; each draw picks the frame for the node's media time (the execution model's
-// MediaClock) and, when it changed, copies it into the node's texture. The drawing thread
-// never decodes and, in the window, never waits (docs/media.md).
+// MovieTexture (ISO/IEC 14772-1:1997 6.28): a formats::MoviePlayer per node, shared through
+// render::MoviePlayers by the renderers of the same world, decodes on its own thread (rows
+// bottom first, as GL wants them); each draw picks the frame for the node's media time
+// (the execution model's MediaClock) and, when it is newer than the one in this
+// renderer's texture, copies it there. The drawing thread never decodes, never flips rows
+// and, in the window, never waits (docs/media.md).
 #include "base/file.hpp"
 #include "base/url.hpp"
 #include "gpu_resources.hpp"
 #include "node_access.hpp"
 
-#include <algorithm>
-#include <cstring>
+#include <memory>
+#include <utility>
 
 namespace gs::render::detail {
 
@@ -39,12 +41,31 @@ LoadStatus readMovie(const vrml::Node& node, const std::string& baseUrl,
   return LoadStatus::failed;
 }
 
+/// The url field resolved against `baseUrl`, one line each: with the node, the key of its
+/// player in MoviePlayers.
+std::string playerKey(const vrml::Node& node, const std::string& baseUrl) {
+  std::string key;
+  for (const std::string& reference : mfString(node, "url"))
+    if (!reference.empty()) key += base::resolveUrl(baseUrl, reference) + '\n';
+  return key;
+}
+
 }  // namespace
+
+void MovieTextures::setPlayers(std::shared_ptr<MoviePlayers> players) {
+  players_ = std::move(players);
+}
 
 const GpuTexture& MovieTextures::get(const vrml::Node& node, const std::string& baseUrl,
                                      SceneTraversal& traversal, const ResourceLoader& loader) {
   Movie& m = movies_[&node];
   if (m.failed) return m.texture;
+  if (!m.player) {
+    if (!players_) players_ = std::make_shared<MoviePlayers>();
+    // Another renderer of this world may play the movie already: no second read or decoder.
+    const std::string key = playerKey(node, baseUrl);
+    m.player = players_->find(node, key);
+  }
   if (!m.player) {
     std::string url, bytes, failures;
     const LoadStatus status = readMovie(node, baseUrl, loader, url, bytes, failures);
@@ -58,10 +79,7 @@ const GpuTexture& MovieTextures::get(const vrml::Node& node, const std::string& 
                            : "cannot load MovieTexture (" + failures + "): drawn untextured");
       return m.texture;
     }
-    m.player = std::make_unique<formats::MoviePlayer>(
-        [bytes = std::move(bytes), url](std::string& error) mutable {
-          return formats::MovieDecoder::open(std::move(bytes), url, error);
-        });
+    m.player = players_->open(node, playerKey(node, baseUrl), std::move(bytes), url);
   }
   formats::MoviePlayer& player = *m.player;
   // --snapshot waits for the movie to open, so its duration is known at once.
@@ -85,18 +103,15 @@ const GpuTexture& MovieTextures::get(const vrml::Node& node, const std::string& 
   const std::shared_ptr<const formats::VideoFrame> frame =
       wait_ ? player.waitFrameFor(at) : player.frameFor(at);
   if (!frame || frame->index == m.shown) return m.texture;
-  // GL wants the bottom row first; VRML's (0, 0) is the image's lower-left corner.
-  const std::size_t row = static_cast<std::size_t>(frame->width) * 4;
-  std::vector<std::uint8_t> flipped(frame->rgba.size());
-  for (int y = 0; y < frame->height; ++y)
-    std::memcpy(flipped.data() + static_cast<std::size_t>(frame->height - 1 - y) * row,
-                frame->rgba.data() + static_cast<std::size_t>(y) * row, row);
+  // The player decodes rows bottom first (MoviePlayers): VRML's (0, 0) is the image's
+  // lower-left corner, GL's first row the bottom one.
+  const std::uint8_t* pixels = frame->rgba.data();
   if (m.texture.id == 0 || m.width != frame->width || m.height != frame->height) {
     if (m.texture.id == 0) glGenTextures(1, &m.texture.id);
     glBindTexture(GL_TEXTURE_2D, m.texture.id);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, frame->width, frame->height, 0, GL_RGBA,
-                 GL_UNSIGNED_BYTE, flipped.data());
+                 GL_UNSIGNED_BYTE, pixels);
     const bool repeatS = sfBool(node, "repeatS", true), repeatT = sfBool(node, "repeatT", true);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
@@ -110,7 +125,7 @@ const GpuTexture& MovieTextures::get(const vrml::Node& node, const std::string& 
     glBindTexture(GL_TEXTURE_2D, m.texture.id);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, frame->width, frame->height, GL_RGBA, GL_UNSIGNED_BYTE,
-                    flipped.data());
+                    pixels);
   }
   glBindTexture(GL_TEXTURE_2D, 0);
   m.shown = frame->index;

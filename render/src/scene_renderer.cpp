@@ -207,7 +207,9 @@ SceneRenderer::SceneRenderer(std::shared_ptr<const vrml::Scene> scene, SceneRend
       gpu_(std::make_unique<Gpu>()),
       splats_(std::make_unique<detail::SceneSplats>(traversal_.sharedScene(), options_.splatLoader,
                                                     options_.lod, options_.traversal.mode)),
-      headlight_(traversal_.navigation().headlight) {}
+      headlight_(traversal_.navigation().headlight) {
+  gpu_->textures.movies.setPlayers(options_.movies);
+}
 
 SceneRenderer::~SceneRenderer() {
   // Without loaded GL functions there is nothing to free (and no way to).

@@ -20,6 +20,8 @@
 
 namespace gs::render {
 
+class MoviePlayers;
+
 namespace detail {
 class SceneSplats;
 }
@@ -54,6 +56,10 @@ struct SceneRendererOptions {
   /// fraction or count), 0..1. traversal.mode = RenderMode::splats draws the polygon
   /// world as splats.
   double lod = 1.0;
+  /// MovieTexture players (render/movie_players.hpp) shared with the other renderers
+  /// given the same registry: renderers of one world then decode each movie once. Null: a
+  /// registry of this renderer's own.
+  std::shared_ptr<MoviePlayers> movies;
 };
 
 /// What the last draw() did.
