@@ -1,9 +1,9 @@
-// MovieTexture (ISO/IEC 14772-1:1997 6.28): a formats::MoviePlayer per node, shared through
-// render::MoviePlayers by the renderers of the same world, decodes on its own thread (rows
-// bottom first, as GL wants them); each draw picks the frame for the node's media time
-// (the execution model's MediaClock) and, when it is newer than the one in this
-// renderer's texture, copies it there. The drawing thread never decodes, never flips rows
-// and, in the window, never waits (docs/media.md).
+// MovieTexture (ISO/IEC 14772-1:1997 6.28): a formats::MoviePlayer per node, shared with its
+// GL texture through render::MoviePlayers by the renderers of the same world, decodes on
+// its own thread (rows bottom first, as GL wants them); each draw picks the frame for the
+// node's media time (the execution model's MediaClock) and, when the texture holds another
+// frame, copies it there (the first viewport of a world to draw a frame does). The drawing thread
+// never decodes, never flips rows and, in the window, never waits (docs/media.md).
 #include "base/file.hpp"
 #include "base/url.hpp"
 #include "gpu_resources.hpp"
@@ -56,20 +56,24 @@ void MovieTextures::setPlayers(std::shared_ptr<MoviePlayers> players) {
   players_ = std::move(players);
 }
 
+MovieGlTexture::~MovieGlTexture() {
+  if (texture.id != 0 && glad_glDeleteTextures != nullptr) glDeleteTextures(1, &texture.id);
+}
+
 const GpuTexture& MovieTextures::get(const vrml::Node& node, const std::string& baseUrl,
                                      SceneTraversal& traversal, const ResourceLoader& loader) {
+  static const GpuTexture kNone;  // untextured
   Movie& m = movies_[&node];
-  if (m.failed) return m.texture;
+  if (m.failed) return kNone;
   if (!m.player) {
     if (!players_) players_ = std::make_shared<MoviePlayers>();
     // Another renderer of this world may play the movie already: no second read or decoder.
-    const std::string key = playerKey(node, baseUrl);
-    m.player = players_->find(node, key);
+    m.player = players_->find(node, playerKey(node, baseUrl));
   }
   if (!m.player) {
     std::string url, bytes, failures;
     const LoadStatus status = readMovie(node, baseUrl, loader, url, bytes, failures);
-    if (status == LoadStatus::pending) return m.texture;  // untextured until the bytes arrive
+    if (status == LoadStatus::pending) return kNone;  // untextured until the bytes arrive
     if (status == LoadStatus::failed) {
       m.failed = true;
       durations_.emplace_back(&node, -1.0);
@@ -77,7 +81,7 @@ const GpuTexture& MovieTextures::get(const vrml::Node& node, const std::string& 
                        failures.empty()
                            ? std::string("MovieTexture has no url: drawn untextured")
                            : "cannot load MovieTexture (" + failures + "): drawn untextured");
-      return m.texture;
+      return kNone;
     }
     m.player = players_->open(node, playerKey(node, baseUrl), std::move(bytes), url);
   }
@@ -88,27 +92,38 @@ const GpuTexture& MovieTextures::get(const vrml::Node& node, const std::string& 
     m.failed = true;
     const std::string error = player.error();
     m.player.reset();  // `player` is gone from here on
+    m.gl.reset();
     if (!m.durationTaken) durations_.emplace_back(&node, -1.0);
     traversal.report(vrml::Severity::warning, node.location,
                      "cannot play MovieTexture (" + error + "): drawn untextured");
-    return m.texture;
+    return kNone;
   }
-  if (status != formats::MoviePlayer::Status::ready) return m.texture;
+  if (status != formats::MoviePlayer::Status::ready) return kNone;
   if (!m.durationTaken) {
     m.durationTaken = true;
     durations_.emplace_back(&node, player.duration());
   }
+  if (!m.gl)
+    m.gl = players_->texture(node, playerKey(node, baseUrl),
+                             [] { return std::make_shared<MovieGlTexture>(); });
+  MovieGlTexture& gl = *m.gl;
   std::optional<double> t = clock_ ? clock_(node) : std::nullopt;
   const double at = t.value_or(0.0);
   const std::shared_ptr<const formats::VideoFrame> frame =
       wait_ ? player.waitFrameFor(at) : player.frameFor(at);
-  if (!frame || frame->index == m.shown) return m.texture;
+  if (!frame) return gl.texture;
+  if (frame->index != m.seen) {
+    m.seen = frame->index;
+    ++shown_;
+  }
+  // Another renderer of the world (the same clock) may have copied this frame already.
+  if (frame->index == gl.frame) return gl.texture;
   // The player decodes rows bottom first (MoviePlayers): VRML's (0, 0) is the image's
   // lower-left corner, GL's first row the bottom one.
   const std::uint8_t* pixels = frame->rgba.data();
-  if (m.texture.id == 0 || m.width != frame->width || m.height != frame->height) {
-    if (m.texture.id == 0) glGenTextures(1, &m.texture.id);
-    glBindTexture(GL_TEXTURE_2D, m.texture.id);
+  if (gl.texture.id == 0 || gl.width != frame->width || gl.height != frame->height) {
+    if (gl.texture.id == 0) glGenTextures(1, &gl.texture.id);
+    glBindTexture(GL_TEXTURE_2D, gl.texture.id);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, frame->width, frame->height, 0, GL_RGBA,
                  GL_UNSIGNED_BYTE, pixels);
@@ -117,20 +132,20 @@ const GpuTexture& MovieTextures::get(const vrml::Node& node, const std::string& 
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, repeatS ? GL_REPEAT : GL_CLAMP_TO_EDGE);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, repeatT ? GL_REPEAT : GL_CLAMP_TO_EDGE);
-    m.width = frame->width;
-    m.height = frame->height;
-    m.texture.components = 3;  // 6.28: movies are RGB
-    m.texture.hasAlpha = false;
+    gl.width = frame->width;
+    gl.height = frame->height;
+    gl.texture.components = 3;  // 6.28: movies are RGB
+    gl.texture.hasAlpha = false;
   } else {
-    glBindTexture(GL_TEXTURE_2D, m.texture.id);
+    glBindTexture(GL_TEXTURE_2D, gl.texture.id);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, frame->width, frame->height, GL_RGBA, GL_UNSIGNED_BYTE,
                     pixels);
   }
   glBindTexture(GL_TEXTURE_2D, 0);
-  m.shown = frame->index;
+  gl.frame = frame->index;
   ++uploads_;
-  return m.texture;
+  return gl.texture;
 }
 
 void MovieTextures::setClock(MediaClock clock, bool waitForFrames) {
@@ -152,9 +167,7 @@ std::vector<std::pair<const vrml::Node*, double>> MovieTextures::takeDurations()
 }
 
 void MovieTextures::release() {
-  for (auto& [node, m] : movies_)
-    if (m.texture.id != 0) glDeleteTextures(1, &m.texture.id);
-  movies_.clear();
+  movies_.clear();  // the last renderer holding a movie's texture deletes it
 }
 
 }  // namespace gs::render::detail

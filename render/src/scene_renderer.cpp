@@ -402,7 +402,8 @@ void SceneRenderer::draw(const Camera& camera, int x, int y, int width, int heig
     for (const DrawItem& d : g.transparent) drawItem(d);
     statistics_.transparent = g.transparent.size();
   }
-  statistics_.movieFrames = g.textures.movies.framesUploaded();
+  statistics_.movieFrames = g.textures.movies.framesShown();
+  statistics_.movieUploads = g.textures.movies.framesUploaded();
 
   if (!g.frame.splats.empty() || splats_->mode() == RenderMode::splats) {
     glDisable(GL_SCISSOR_TEST);

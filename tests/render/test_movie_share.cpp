@@ -1,8 +1,8 @@
 // MovieTexture players shared by the renderers of one world (docs/media.md, "Threading"):
 // two renderers, as two viewports of the window, draw the same world at the same world
-// time through one render::MoviePlayers; the movie is opened and decoded once, and both
-// show the frame of that time. colours.mpg: 16 x 16, 24 frames at 24 fps, red, green, blue
-// and white for 6 frames each.
+// time through one render::MoviePlayers; the movie is opened and decoded once, copied
+// into one texture once per frame, and both show the frame of that time. colours.mpg: 16 x 16, 24
+// frames at 24 fps, red, green, blue and white for 6 frames each.
 #include "render/context.hpp"
 #include "render/image.hpp"
 #include "render/movie_players.hpp"
@@ -75,9 +75,11 @@ TEST_CASE("MovieTexture: two viewports of one world decode its movie once",
   // would have decoded at least 16.
   CHECK(players->framesDecoded() >= 8);
   CHECK(players->framesDecoded() <= 12);
-  // Each renderer copied the frame into its own texture once.
+  // Both drew the new frame; one texture, so the first copied it and the second not.
   CHECK(left.statistics().movieFrames == 1);
   CHECK(right.statistics().movieFrames == 1);
+  CHECK(left.statistics().movieUploads == 1);
+  CHECK(right.statistics().movieUploads == 0);
 
   worldTime = 0.6;  // frame 14: blue
   image = drawBoth();
@@ -87,6 +89,8 @@ TEST_CASE("MovieTexture: two viewports of one world decode its movie once",
   CHECK(players->framesDecoded() <= 19);
   CHECK(left.statistics().movieFrames == 2);
   CHECK(right.statistics().movieFrames == 2);
+  CHECK(left.statistics().movieUploads == 2);
+  CHECK(right.statistics().movieUploads == 0);
   // Both report the duration the execution model needs.
   const auto durations = left.takeMediaDurations();
   REQUIRE(durations.size() == 1);
@@ -120,4 +124,7 @@ TEST_CASE("MovieTexture: renderers without a shared registry each play their own
   CHECK(b->playersOpened() == 1);
   CHECK(a->framesDecoded() >= 22);
   CHECK(b->framesDecoded() >= 22);
+  // Separate registries: separate textures, each copied by its renderer.
+  CHECK(first.statistics().movieUploads == 1);
+  CHECK(second.statistics().movieUploads == 1);
 }
