@@ -11,6 +11,7 @@ namespace gs::audio::detail {
 ClipResult decodeClip(ClipJob job) {
   ClipResult result;
   result.clip = job.clip;
+  result.movie = job.movie;
   std::string failures;
   const auto fail = [&](const std::string& why) {
     failures += (failures.empty() ? "" : "; ") + why;

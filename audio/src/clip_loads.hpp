@@ -39,6 +39,7 @@ struct ClipJob {
 /// What decoding a clip gave.
 struct ClipResult {
   const vrml::Node* clip = nullptr;
+  bool movie = false;                              // as ClipJob::movie
   std::shared_ptr<const formats::AudioData> data;  // null: silent
   double duration = -1.0;                          // seconds; -1: unreadable
   std::string failures;                            // "url: why; ..." when data is null

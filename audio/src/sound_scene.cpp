@@ -96,11 +96,10 @@ std::shared_ptr<const formats::AudioData> SoundScene::clipOf(const vrml::Node& c
 
 void SoundScene::install() {
   for (detail::ClipResult& r : loads_->take()) {
-    const bool movie = r.clip->typeName() == "MovieTexture";
     if (!r.data)
       diagnostics_.warning(r.clip->location,
-                           std::string(movie ? "cannot play the sound of MovieTexture ("
-                                             : "cannot load AudioClip (") +
+                           std::string(r.movie ? "cannot play the sound of MovieTexture ("
+                                               : "cannot load AudioClip (") +
                                (r.failures.empty() ? std::string("no url") : r.failures) +
                                "): silent");
     durations_.emplace_back(r.clip, r.duration);
