@@ -6,6 +6,7 @@
 #include "app/layout.hpp"
 #include "app/progress_bar.hpp"
 #include "render/context.hpp"
+#include "render/movie_players.hpp"
 #include "session/splat_inputs.hpp"
 #include "session/streaming_session.hpp"
 #include "session/world_runtime.hpp"
@@ -25,6 +26,8 @@ render::SceneRendererOptions rendererOptions(const Options& options) {
   r.splatLoader = session::splatLoader();
   r.lod = options.lod;
   r.traversal.mode = options.mode;
+  // One player per movie for all the viewports made with these options (docs/media.md).
+  r.movies = std::make_shared<render::MoviePlayers>();
   return r;
 }
 
@@ -87,12 +90,13 @@ int runSnapshot(const Options& options) {
     ViewportRect rect;
   };
   std::vector<View> views;
+  const render::SceneRendererOptions shared = rendererOptions(options);  // one movie registry
   for (int i = 0; i < cells && (scenes.size() == 1 || i < static_cast<int>(scenes.size())); ++i) {
     View v;
     const std::size_t k = scenes.size() == 1 ? 0 : static_cast<std::size_t>(i);
     v.input = options.inputs[k];
     v.scene = scenes[k];
-    render::SceneRendererOptions ro = rendererOptions(options);
+    render::SceneRendererOptions ro = shared;
     ro.lod = viewportLod(options, static_cast<std::size_t>(i));
     v.renderer = std::make_unique<render::SceneRenderer>(v.scene, session.rendererOptions(ro));
     v.rect = layoutRect(options.layout, i, options.width, options.height);

@@ -3,7 +3,7 @@
 
 #include "base/file.hpp"
 #include "base/url.hpp"
-#include "formats/movie_audio.hpp"
+#include "clip_loads.hpp"
 #include "vrml/transform.hpp"
 
 #include <glm/geometric.hpp>
@@ -63,57 +63,63 @@ struct Walk {
 }  // namespace
 
 SoundScene::SoundScene(std::shared_ptr<const vrml::Scene> scene, ClipLoader loader)
-    : scene_(std::move(scene)), loader_(std::move(loader)) {}
+    : scene_(std::move(scene)),
+      loader_(std::move(loader)),
+      loads_(std::make_unique<detail::ClipLoads>()) {}
+
+SoundScene::~SoundScene() = default;
 
 std::shared_ptr<const formats::AudioData> SoundScene::clipOf(const vrml::Node& clip,
                                                              const std::string& base) {
   if (const auto it = clips_.find(&clip); it != clips_.end()) return it->second;
-  const bool movie = clip.typeName() == "MovieTexture";
-  std::shared_ptr<formats::AudioData> data;
-  double duration = -1.0;
-  std::string failures;
+  if (!loading_.insert(&clip).second) return nullptr;  // on the worker: silent until decoded
+  // The URLs are resolved here, on the drawing thread, where the node's fields may be read
+  // and the loader used; files are read and decoded on the worker (docs/media.md).
+  detail::ClipJob job;
+  job.clip = &clip;
+  job.movie = clip.typeName() == "MovieTexture";
   const auto urls = clip.get<vrml::FieldType::MFString>("url", std::vector<std::string>{});
   for (const std::string& reference : urls) {
     if (reference.empty()) continue;
-    const std::string url = base::resolveUrl(base, reference);
-    std::string bytes, error;
-    bool ok = false;
-    if (base::mayReference(base, url, error)) {
-      const std::string path = base::localPathOfUrl(url);
-      if (!path.empty()) ok = base::readFile(path, bytes, error);
-      if (!ok && loader_) ok = loader_(url, bytes, error);
+    detail::ClipSource s;
+    s.url = base::resolveUrl(base, reference);
+    if (base::mayReference(base, s.url, s.error)) {
+      s.path = base::localPathOfUrl(s.url);
+      if (s.path.empty() && loader_) s.fetched = loader_(s.url, s.bytes, s.error);
+      if (s.path.empty() && !loader_) s.error = s.url + ": only local files without a loader";
     }
-    if (ok && movie) {
-      formats::MovieAudio sound;
-      const bool decoded = formats::readMovieAudio(bytes, url, sound, error);
-      if (decoded) data = std::make_shared<formats::AudioData>(std::move(sound.audio));
-      if (sound.duration >= 0.0) {  // a movie, with or without sound: the first readable one
-        duration = sound.duration;
-        if (!decoded) failures += (failures.empty() ? "" : "; ") + error;
-        break;
-      }
-    } else if (ok) {
-      auto decoded = std::make_shared<formats::AudioData>();
-      if (formats::readAudio(bytes, url, *decoded, error)) {
-        duration = decoded->duration();
-        data = std::move(decoded);
-        break;
-      }
-    }
-    failures += (failures.empty() ? "" : "; ") + (error.empty() ? url : error);
+    job.sources.push_back(std::move(s));
   }
-  if (!data)
-    diagnostics_.warning(
-        clip.location,
-        std::string(movie ? "cannot play the sound of MovieTexture (" : "cannot load AudioClip (") +
-            (failures.empty() ? std::string("no url") : failures) + "): silent");
-  durations_.emplace_back(&clip, duration);
-  clips_.emplace(&clip, data);
-  return data;
+  loads_->submit(std::move(job));
+  return nullptr;
+}
+
+void SoundScene::install() {
+  for (detail::ClipResult& r : loads_->take()) {
+    if (!r.data)
+      diagnostics_.warning(r.clip->location,
+                           std::string(r.movie ? "cannot play the sound of MovieTexture ("
+                                               : "cannot load AudioClip (") +
+                               (r.failures.empty() ? std::string("no url") : r.failures) +
+                               "): silent");
+    durations_.emplace_back(r.clip, r.duration);
+    loading_.erase(r.clip);
+    clips_.emplace(r.clip, std::move(r.data));
+  }
+}
+
+void SoundScene::waitForClips() {
+  loads_->waitIdle();
+  install();
+}
+
+std::size_t SoundScene::clipsLoading() const {
+  return loading_.size();
 }
 
 void SoundScene::update(const glm::mat4& worldToListener, const ClipTimeQuery& clipTime,
                         AudioOutput& output, const InlineQuery& inlines) {
+  install();  // clips decoded since the last frame
   std::vector<FoundSound> found;
   Walk walk{inlines, found, {}, {scene_.get()}};
   if (scene_)

@@ -29,7 +29,9 @@ struct MovieDecoder::Impl {
   int width = 0, height = 0;
   double frameDuration = 1.0 / 25.0;
   std::int64_t frameCount = 0;
-  std::int64_t decoded = -1;  // index of the frame in `frame`; -1: none since the rewind
+  std::int64_t decoded = -1;   // index of the frame in `frame`; -1: none since the rewind
+  std::uint64_t pictures = 0;  // frames the codec produced since open
+  bool bottomFirst = false;    // rows of the frames handed out: bottom first
   bool demuxEnded = false, decoderDrained = false;
   std::string name;
 
@@ -66,6 +68,7 @@ struct MovieDecoder::Impl {
       const int r = avcodec_receive_frame(codec, frame);
       if (r == 0) {
         ++decoded;
+        ++pictures;
         av_frame_unref(shown);
         av_frame_move_ref(shown, frame);
         return true;
@@ -231,7 +234,27 @@ bool MovieDecoder::decodeFrame(std::int64_t index, VideoFrame& out, std::string&
   std::uint8_t* planes[4] = {out.rgba.data(), nullptr, nullptr, nullptr};
   int strides[4] = {w * 4, 0, 0, 0};
   sws_scale(d.sws, d.shown->data, d.shown->linesize, 0, h, planes, strides);
+  out.bottomRowFirst = d.bottomFirst;
+  if (d.bottomFirst) {  // swap rows in place: one row of scratch
+    const std::size_t row = static_cast<std::size_t>(w) * 4;
+    std::vector<std::uint8_t> scratch(row);
+    for (int y = 0; y < h / 2; ++y) {
+      std::uint8_t* top = out.rgba.data() + static_cast<std::size_t>(y) * row;
+      std::uint8_t* bottom = out.rgba.data() + static_cast<std::size_t>(h - 1 - y) * row;
+      std::memcpy(scratch.data(), top, row);
+      std::memcpy(top, bottom, row);
+      std::memcpy(bottom, scratch.data(), row);
+    }
+  }
   return true;
+}
+
+void MovieDecoder::setBottomRowFirst(bool bottomFirst) {
+  impl_->bottomFirst = bottomFirst;
+}
+
+std::uint64_t MovieDecoder::framesDecoded() const {
+  return impl_->pictures;
 }
 
 }  // namespace gs::formats

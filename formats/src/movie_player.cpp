@@ -53,6 +53,11 @@ double MoviePlayer::duration() const {
   return duration_;
 }
 
+std::uint64_t MoviePlayer::framesDecoded() const {
+  std::lock_guard lock(mutex_);
+  return framesDecoded_;
+}
+
 void MoviePlayer::run(Opener open) {
   std::string error;
   std::unique_ptr<MovieDecoder> decoder = open(error);
@@ -104,6 +109,7 @@ void MoviePlayer::run(Opener open) {
     auto frame = std::make_shared<VideoFrame>();
     const bool ok = decoder->decodeFrame(next, *frame, error);
     lock.lock();
+    framesDecoded_ = decoder->framesDecoded();
     if (!ok) {
       status_ = Status::failed;
       error_ = error;

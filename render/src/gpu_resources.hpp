@@ -6,6 +6,7 @@
 
 #include "formats/movie.hpp"
 #include "render/image.hpp"
+#include "render/movie_players.hpp"
 #include "render/scene_renderer.hpp"
 #include "render/traversal.hpp"
 #include "vrml/geometry.hpp"
@@ -47,11 +48,27 @@ struct GpuTexture {
   bool hasAlpha = false;  // some texel is not fully opaque
 };
 
+/// The GL texture of a movie, shared by the renderers that share its player
+/// (MoviePlayers): the frame in it, copied by the first renderer that drew it.
+struct MovieGlTexture {
+  GpuTexture texture;  // components 0 until the first frame
+  int width = 0, height = 0;
+  std::int64_t frame = -1;  // index of the frame in the texture
+  MovieGlTexture() = default;
+  MovieGlTexture(const MovieGlTexture&) = delete;
+  MovieGlTexture& operator=(const MovieGlTexture&) = delete;
+  ~MovieGlTexture();  // deletes the texture (its context must be current)
+};
+
 /// MovieTexture nodes (6.28, movie_textures.cpp): one formats::MoviePlayer each (decoding
-/// on its worker thread) and a GL texture updated with the frame for the node's media
+/// on its worker thread), shared through MoviePlayers with the other renderers of the
+/// world, and a GL texture of this renderer updated with the frame for the node's media
 /// time whenever that frame changes (glTexSubImage2D, no mipmaps).
 class MovieTextures {
  public:
+  /// Where players are found and made (SceneRendererOptions::movies); before the first
+  /// get(). Unset: a registry of this renderer's own.
+  void setPlayers(std::shared_ptr<MoviePlayers> players);
   /// The texture of MovieTexture `node` for this frame; components 0 until its first
   /// frame is decoded (or when it cannot be read: a warning naming the url, once).
   const GpuTexture& get(const vrml::Node& node, const std::string& baseUrl,
@@ -62,20 +79,22 @@ class MovieTextures {
   /// Durations found since the last call (seconds; -1: unreadable).
   std::vector<std::pair<const vrml::Node*, double>> takeDurations();
   void release();
-  /// Movie frames copied into textures so far (all movies).
+  /// New movie frames this renderer drew so far (all movies; each frame once).
+  std::uint64_t framesShown() const { return shown_; }
+  /// Of those, the frames this renderer copied into the shared textures itself.
   std::uint64_t framesUploaded() const { return uploads_; }
 
  private:
-  std::uint64_t uploads_ = 0;
+  std::uint64_t shown_ = 0, uploads_ = 0;
   struct Movie {
-    std::unique_ptr<formats::MoviePlayer> player;
-    GpuTexture texture;
-    int width = 0, height = 0;
-    std::int64_t shown = -1;  // index of the frame in the texture
+    std::shared_ptr<formats::MoviePlayer> player;
+    std::shared_ptr<MovieGlTexture> gl;  // with the player, shared through players_
+    std::int64_t seen = -1;              // index of the frame this renderer drew last
     bool durationTaken = false, failed = false;
   };
   std::unordered_map<const vrml::Node*, Movie> movies_;
   std::vector<std::pair<const vrml::Node*, double>> durations_;
+  std::shared_ptr<MoviePlayers> players_;
   MediaClock clock_;
   bool wait_ = false;
 };

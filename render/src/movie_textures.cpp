@@ -1,14 +1,16 @@
-// MovieTexture (ISO/IEC 14772-1:1997 6.28): a formats::MoviePlayer per node decodes on its
-// own thread; each draw picks the frame for the node's media time (the execution model's
-// MediaClock) and, when it changed, copies it into the node's texture. The drawing thread
-// never decodes and, in the window, never waits (docs/media.md).
+// MovieTexture (ISO/IEC 14772-1:1997 6.28): a formats::MoviePlayer per node, shared with its
+// GL texture through render::MoviePlayers by the renderers of the same world, decodes on
+// its own thread (rows bottom first, as GL wants them); each draw picks the frame for the
+// node's media time (the execution model's MediaClock) and, when the texture holds another
+// frame, copies it there (the first viewport of a world to draw a frame does). The drawing thread
+// never decodes, never flips rows and, in the window, never waits (docs/media.md).
 #include "base/file.hpp"
 #include "base/url.hpp"
 #include "gpu_resources.hpp"
 #include "node_access.hpp"
 
-#include <algorithm>
-#include <cstring>
+#include <memory>
+#include <utility>
 
 namespace gs::render::detail {
 
@@ -39,16 +41,39 @@ LoadStatus readMovie(const vrml::Node& node, const std::string& baseUrl,
   return LoadStatus::failed;
 }
 
+/// The url field resolved against `baseUrl`, one line each: with the node, the key of its
+/// player in MoviePlayers.
+std::string playerKey(const vrml::Node& node, const std::string& baseUrl) {
+  std::string key;
+  for (const std::string& reference : mfString(node, "url"))
+    if (!reference.empty()) key += base::resolveUrl(baseUrl, reference) + '\n';
+  return key;
+}
+
 }  // namespace
+
+void MovieTextures::setPlayers(std::shared_ptr<MoviePlayers> players) {
+  players_ = std::move(players);
+}
+
+MovieGlTexture::~MovieGlTexture() {
+  if (texture.id != 0 && glad_glDeleteTextures != nullptr) glDeleteTextures(1, &texture.id);
+}
 
 const GpuTexture& MovieTextures::get(const vrml::Node& node, const std::string& baseUrl,
                                      SceneTraversal& traversal, const ResourceLoader& loader) {
+  static const GpuTexture kNone;  // untextured
   Movie& m = movies_[&node];
-  if (m.failed) return m.texture;
+  if (m.failed) return kNone;
+  if (!m.player) {
+    if (!players_) players_ = std::make_shared<MoviePlayers>();
+    // Another renderer of this world may play the movie already: no second read or decoder.
+    m.player = players_->find(node, playerKey(node, baseUrl));
+  }
   if (!m.player) {
     std::string url, bytes, failures;
     const LoadStatus status = readMovie(node, baseUrl, loader, url, bytes, failures);
-    if (status == LoadStatus::pending) return m.texture;  // untextured until the bytes arrive
+    if (status == LoadStatus::pending) return kNone;  // untextured until the bytes arrive
     if (status == LoadStatus::failed) {
       m.failed = true;
       durations_.emplace_back(&node, -1.0);
@@ -56,12 +81,9 @@ const GpuTexture& MovieTextures::get(const vrml::Node& node, const std::string& 
                        failures.empty()
                            ? std::string("MovieTexture has no url: drawn untextured")
                            : "cannot load MovieTexture (" + failures + "): drawn untextured");
-      return m.texture;
+      return kNone;
     }
-    m.player = std::make_unique<formats::MoviePlayer>(
-        [bytes = std::move(bytes), url](std::string& error) mutable {
-          return formats::MovieDecoder::open(std::move(bytes), url, error);
-        });
+    m.player = players_->open(node, playerKey(node, baseUrl), std::move(bytes), url);
   }
   formats::MoviePlayer& player = *m.player;
   // --snapshot waits for the movie to open, so its duration is known at once.
@@ -70,52 +92,60 @@ const GpuTexture& MovieTextures::get(const vrml::Node& node, const std::string& 
     m.failed = true;
     const std::string error = player.error();
     m.player.reset();  // `player` is gone from here on
+    m.gl.reset();
     if (!m.durationTaken) durations_.emplace_back(&node, -1.0);
     traversal.report(vrml::Severity::warning, node.location,
                      "cannot play MovieTexture (" + error + "): drawn untextured");
-    return m.texture;
+    return kNone;
   }
-  if (status != formats::MoviePlayer::Status::ready) return m.texture;
+  if (status != formats::MoviePlayer::Status::ready) return kNone;
   if (!m.durationTaken) {
     m.durationTaken = true;
     durations_.emplace_back(&node, player.duration());
   }
+  if (!m.gl)
+    m.gl = players_->texture(node, playerKey(node, baseUrl),
+                             [] { return std::make_shared<MovieGlTexture>(); });
+  MovieGlTexture& gl = *m.gl;
   std::optional<double> t = clock_ ? clock_(node) : std::nullopt;
   const double at = t.value_or(0.0);
   const std::shared_ptr<const formats::VideoFrame> frame =
       wait_ ? player.waitFrameFor(at) : player.frameFor(at);
-  if (!frame || frame->index == m.shown) return m.texture;
-  // GL wants the bottom row first; VRML's (0, 0) is the image's lower-left corner.
-  const std::size_t row = static_cast<std::size_t>(frame->width) * 4;
-  std::vector<std::uint8_t> flipped(frame->rgba.size());
-  for (int y = 0; y < frame->height; ++y)
-    std::memcpy(flipped.data() + static_cast<std::size_t>(frame->height - 1 - y) * row,
-                frame->rgba.data() + static_cast<std::size_t>(y) * row, row);
-  if (m.texture.id == 0 || m.width != frame->width || m.height != frame->height) {
-    if (m.texture.id == 0) glGenTextures(1, &m.texture.id);
-    glBindTexture(GL_TEXTURE_2D, m.texture.id);
+  if (!frame) return gl.texture;
+  if (frame->index != m.seen) {
+    m.seen = frame->index;
+    ++shown_;
+  }
+  // Another renderer of the world (the same clock) may have copied this frame already.
+  if (frame->index == gl.frame) return gl.texture;
+  // The player decodes rows bottom first (MoviePlayers): VRML's (0, 0) is the image's
+  // lower-left corner, GL's first row the bottom one.
+  const std::uint8_t* pixels = frame->rgba.data();
+  if (gl.texture.id == 0 || gl.width != frame->width || gl.height != frame->height) {
+    if (gl.texture.id == 0) glGenTextures(1, &gl.texture.id);
+    glBindTexture(GL_TEXTURE_2D, gl.texture.id);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, frame->width, frame->height, 0, GL_RGBA,
-                 GL_UNSIGNED_BYTE, flipped.data());
+                 GL_UNSIGNED_BYTE, pixels);
     const bool repeatS = sfBool(node, "repeatS", true), repeatT = sfBool(node, "repeatT", true);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, repeatS ? GL_REPEAT : GL_CLAMP_TO_EDGE);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, repeatT ? GL_REPEAT : GL_CLAMP_TO_EDGE);
-    m.width = frame->width;
-    m.height = frame->height;
-    m.texture.components = 3;  // 6.28: movies are RGB
-    m.texture.hasAlpha = false;
+    gl.width = frame->width;
+    gl.height = frame->height;
+    gl.texture.components = 3;  // 6.28: movies are RGB
+    gl.texture.hasAlpha = false;
   } else {
-    glBindTexture(GL_TEXTURE_2D, m.texture.id);
+    glBindTexture(GL_TEXTURE_2D, gl.texture.id);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, frame->width, frame->height, GL_RGBA, GL_UNSIGNED_BYTE,
-                    flipped.data());
+                    pixels);
   }
   glBindTexture(GL_TEXTURE_2D, 0);
-  m.shown = frame->index;
+  gl.frame = frame->index;
   ++uploads_;
-  return m.texture;
+  return gl.texture;
 }
 
 void MovieTextures::setClock(MediaClock clock, bool waitForFrames) {
@@ -137,9 +167,7 @@ std::vector<std::pair<const vrml::Node*, double>> MovieTextures::takeDurations()
 }
 
 void MovieTextures::release() {
-  for (auto& [node, m] : movies_)
-    if (m.texture.id != 0) glDeleteTextures(1, &m.texture.id);
-  movies_.clear();
+  movies_.clear();  // the last renderer holding a movie's texture deletes it
 }
 
 }  // namespace gs::render::detail

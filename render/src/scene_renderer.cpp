@@ -207,7 +207,9 @@ SceneRenderer::SceneRenderer(std::shared_ptr<const vrml::Scene> scene, SceneRend
       gpu_(std::make_unique<Gpu>()),
       splats_(std::make_unique<detail::SceneSplats>(traversal_.sharedScene(), options_.splatLoader,
                                                     options_.lod, options_.traversal.mode)),
-      headlight_(traversal_.navigation().headlight) {}
+      headlight_(traversal_.navigation().headlight) {
+  gpu_->textures.movies.setPlayers(options_.movies);
+}
 
 SceneRenderer::~SceneRenderer() {
   // Without loaded GL functions there is nothing to free (and no way to).
@@ -400,7 +402,8 @@ void SceneRenderer::draw(const Camera& camera, int x, int y, int width, int heig
     for (const DrawItem& d : g.transparent) drawItem(d);
     statistics_.transparent = g.transparent.size();
   }
-  statistics_.movieFrames = g.textures.movies.framesUploaded();
+  statistics_.movieFrames = g.textures.movies.framesShown();
+  statistics_.movieUploads = g.textures.movies.framesUploaded();
 
   if (!g.frame.splats.empty() || splats_->mode() == RenderMode::splats) {
     glDisable(GL_SCISSOR_TEST);

@@ -103,14 +103,19 @@ TEST_CASE("the window's frame-stats: frame times and the movie frames each viewp
   CHECK(mean > 0.0);
   CHECK(median <= max);
   CHECK(p95 <= max);
-  std::uint64_t movieFrames[2] = {99999, 99999};
+  std::uint64_t movieFrames[2] = {99999, 99999}, uploads[2] = {99999, 99999};
   for (int i = 0; i < 2; ++i) {
     int index = -1;
     REQUIRE(in >> word >> index >> word >> movieFrames[i]);
     CHECK(index == i);
     CHECK(word == "movie_frames");
+    REQUIRE(in >> word >> uploads[i]);
+    CHECK(word == "movie_uploads");
   }
   // Two looping movies: at most one new frame each per frame drawn so far; none without.
   CHECK(movieFrames[0] <= 2 * 40);
   CHECK(movieFrames[1] == 0);
+  // The frames shown were copied by this viewport (it alone shows the movie world).
+  CHECK(uploads[0] == movieFrames[0]);
+  CHECK(uploads[1] == 0);
 }

@@ -39,6 +39,7 @@ struct SoundWorld {
           return audio::ClipTime{m->active, m->mediaTime};
         },
         out, inlines);
+    sounds.waitForClips();  // clips are decoded on a worker: wait, for the same result every run
     for (const auto& [node, seconds] : sounds.takeDurations())
       model->setMediaDuration(*node, seconds);
   }

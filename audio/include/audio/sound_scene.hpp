@@ -21,10 +21,15 @@
 #include <optional>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 #include <utility>
 #include <vector>
 
 namespace gs::audio {
+
+namespace detail {
+class ClipLoads;
+}
 
 /// What the execution model says of an AudioClip or MovieTexture now (runtime::MediaState, as plain
 /// values so audio/ needs no runtime/).
@@ -54,8 +59,12 @@ class SoundScene {
  public:
   /// AudioClip and MovieTexture urls resolve against the url of the scene that holds them; local
   /// files are read directly (as base::mayReference allows), others through `loader` (empty: local
-  /// files only); each clip once, on first use.
+  /// files only; it is called on the thread that calls update()); each clip once, from its first
+  /// use, read and decoded on a worker thread: a Sound is silent until its clip is decoded.
   SoundScene(std::shared_ptr<const vrml::Scene> scene, ClipLoader loader);
+  ~SoundScene();  // waits for the clip being decoded, if any
+  SoundScene(const SoundScene&) = delete;
+  SoundScene& operator=(const SoundScene&) = delete;
 
   /// One frame: `worldToListener` is the viewer's view matrix (world to eye coordinates).
   /// Walks the scene (and, through `inlines`, the Inline worlds loaded so far), loads new
@@ -69,21 +78,33 @@ class SoundScene {
   /// runtime::ExecutionModel::setMediaDuration (a MovieTexture's is its video's, the one
   /// the renderer reports).
   std::vector<std::pair<const vrml::Node*, double>> takeDurations();
+  /// Waits until the worker has decoded every clip asked for so far and takes them in (their
+  /// durations and diagnostics too): for tests and --snapshot-like callers that want the
+  /// same result every run; the window never waits.
+  void waitForClips();
+  /// Clips being read or decoded on the worker now (asked for, not yet taken in).
+  std::size_t clipsLoading() const;
   /// Every Sound of the last update, in scene order.
   const std::vector<HeardSound>& heard() const { return heard_; }
   /// Clips that could not be read, each once ("URL: why").
   const vrml::Diagnostics& diagnostics() const { return diagnostics_; }
 
  private:
+  /// The clip's sound once decoded; null while on the worker (the first call starts it) or
+  /// when it cannot be played.
   std::shared_ptr<const formats::AudioData> clipOf(const vrml::Node& clip, const std::string& base);
+  /// Takes in the clips the worker finished.
+  void install();
 
   std::shared_ptr<const vrml::Scene> scene_;
   ClipLoader loader_;
   std::unordered_map<const vrml::Node*, std::shared_ptr<const formats::AudioData>> clips_;
+  std::unordered_set<const vrml::Node*> loading_;  // on the worker
   std::vector<std::pair<const vrml::Node*, double>> durations_;
   std::vector<HeardSound> heard_;
   std::unordered_map<const vrml::Scene*, std::shared_ptr<const vrml::Scene>> inlineWorlds_;
   vrml::Diagnostics diagnostics_;
+  std::unique_ptr<detail::ClipLoads> loads_;  // last: its worker stops first
 };
 
 }  // namespace gs::audio

@@ -23,7 +23,8 @@ struct VideoFrame {
   int width = 0, height = 0;       // pixels
   std::int64_t index = 0;          // frame number from 0
   double time = 0.0;               // seconds from the clip's start: index * frameDuration
-  std::vector<std::uint8_t> rgba;  // width * height * 4 bytes, top row first, alpha 255
+  std::vector<std::uint8_t> rgba;  // width * height * 4 bytes, alpha 255, rows in this order:
+  bool bottomRowFirst = false;     // false: top row first; true: bottom row first (OpenGL's)
 };
 
 /// What a movie may be.
@@ -61,6 +62,12 @@ class MovieDecoder {
   /// an earlier frame rewinds to the start. False with `error` when decoding fails before
   /// any frame; a stream that ends early gives its last decoded frame.
   bool decodeFrame(std::int64_t index, VideoFrame& out, std::string& error);
+  /// Frames from here on come bottom row first (VideoFrame::bottomRowFirst), as
+  /// glTexImage2D takes them, flipped on the decoding thread; false (the default): top first.
+  void setBottomRowFirst(bool bottomFirst);
+  /// Pictures the codec has produced since open (each frame decoded once; a rewind decodes
+  /// the frames before the one asked for again): how tests see that a movie is decoded once.
+  std::uint64_t framesDecoded() const;
 
  private:
   struct Impl;
@@ -89,6 +96,8 @@ class MoviePlayer {
   std::string error() const;
   /// Seconds, once ready (0 before).
   double duration() const;
+  /// MovieDecoder::framesDecoded of the worker's decoder (0 before it opened).
+  std::uint64_t framesDecoded() const;
 
   /// Asks for the frame at media time `t` (seconds) and returns the best frame ready
   /// now: that frame when decoded, else the nearest earlier one queued, else the last
@@ -108,6 +117,7 @@ class MoviePlayer {
   std::string error_;
   double duration_ = 0.0, frameDuration_ = 0.0;
   std::int64_t frameCount_ = 0;
+  std::uint64_t framesDecoded_ = 0;
   std::int64_t wanted_ = 0;
   std::size_t queueFrames_;
   std::deque<std::shared_ptr<const VideoFrame>> queue_;  // by index, ascending

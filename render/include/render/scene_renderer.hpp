@@ -20,6 +20,8 @@
 
 namespace gs::render {
 
+class MoviePlayers;
+
 namespace detail {
 class SceneSplats;
 }
@@ -54,6 +56,10 @@ struct SceneRendererOptions {
   /// fraction or count), 0..1. traversal.mode = RenderMode::splats draws the polygon
   /// world as splats.
   double lod = 1.0;
+  /// MovieTexture players (render/movie_players.hpp) shared with the other renderers
+  /// given the same registry: renderers of one world then decode each movie once. Null: a
+  /// registry of this renderer's own.
+  std::shared_ptr<MoviePlayers> movies;
 };
 
 /// What the last draw() did.
@@ -62,9 +68,12 @@ struct DrawStatistics {
   std::size_t triangles = 0;    // triangles submitted
   std::size_t transparent = 0;  // shapes drawn in the blended pass
   std::size_t splats = 0;       // QNV vectors drawn
-  /// MovieTexture frames copied into textures since the renderer was made (each movie
-  /// frame once, however often it is drawn): docs/media.md's "frames shown".
+  /// New MovieTexture frames drawn since the renderer was made (each movie frame once,
+  /// however often it is drawn): docs/media.md's "frames shown".
   std::uint64_t movieFrames = 0;
+  /// Of those, the frames this renderer copied into a movie's texture itself; renderers
+  /// sharing SceneRendererOptions::movies share the texture, so one copies, the others not.
+  std::uint64_t movieUploads = 0;
 };
 
 /// Holds the GPU resources of one scene. CPU work (traversal, viewpoints, bounds) needs
