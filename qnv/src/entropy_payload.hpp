@@ -59,9 +59,12 @@ struct EntropyFieldBits {
 };
 
 /// Appends the entropy payload of `records` (1..8191 records) to `out`; adds its bits
-/// per field to `bits` when given.
+/// per field to `bits` when given. `fast` picks the fast layout (flag bit 2,
+/// docs/qnv-format.md "Fast layout": the same symbols, decoded field by field with up to
+/// 16 interleaved rANS states) over the original one.
 void appendEntropyPayload(std::string& out, std::span<const std::uint64_t> records,
-                          const PositionGrid& grid, EntropyFieldBits* bits = nullptr);
+                          const PositionGrid& grid, EntropyFieldBits* bits = nullptr,
+                          bool fast = false);
 
 /// Decodes an entropy payload holding exactly `count` records into `out[0..count)`.
 /// Returns false on any inconsistency (unknown flags, a table that does not sum up, a

@@ -1,0 +1,287 @@
+// The fast layout of the entropy packet encoding (flag bit 2; docs/qnv-format.md, "Fast
+// layout"). The symbols and tables are those of the original layout; only where the bits
+// lie changes, so that a decoder can work on many records at once: each field is a
+// separate run of symbols (structure of arrays), the rANS-coded runs share up to 16
+// interleaved states, and the gap extra bits and magnitude offsets lie in their own bit
+// sections. The decoder makes one pass per field, then one pass that rebuilds records.
+#include <algorithm>
+#include <cstring>
+#include <vector>
+
+#include "base/byte_order.hpp"
+#include "entropy_fields.hpp"
+#include "entropy_payload.hpp"
+#include "morton.hpp"
+#include "qnv/record.hpp"
+
+namespace gs::qnv::detail {
+
+using base::appendLe;
+
+namespace {
+
+constexpr std::size_t kFastPreambleBytes = 9;  // flags, aMin, aBits, lanes, R, G
+constexpr int kMaxLanesLog2 = 4;               // at most 16 states
+constexpr std::size_t kMaxRecords = 8191;      // a packet's most (65528 / 8)
+
+// Lanes by packet size: every state costs 4 bytes, so small packets get few.
+int lanesLog2For(std::size_t n) {
+  return n >= 1024 ? 4 : n >= 256 ? 3 : n >= 64 ? 2 : n >= 16 ? 1 : 0;
+}
+
+// A little-endian load from a byte pointer.
+template <typename T>
+inline T loadLe(const unsigned char* p) {
+  return base::loadLe<T>(reinterpret_cast<const char*>(p));
+}
+
+// The 64 bits from bit `pos` of [base, base + size), LSB first; zeros past the end.
+inline std::uint64_t peekBits(const unsigned char* base, std::size_t size, std::uint64_t pos) {
+  const std::size_t byte = static_cast<std::size_t>(pos >> 3);
+  std::uint64_t w = 0;
+  if (byte + 8 <= size) {
+    w = loadLe<std::uint64_t>(base + byte);
+  } else {
+    for (std::size_t i = 0; byte + i < size && i < 8; ++i)
+      w |= std::uint64_t{base[byte + i]} << (8 * i);
+  }
+  return w >> (pos & 7);
+}
+
+// rANS over one run of n symbols, symbol j on lane j mod L, states carried in x.
+template <int L>
+void decodeRun(const RansModel& model, std::uint32_t* x, const unsigned char*& p,
+               const unsigned char* end, std::uint8_t* sym, std::size_t n, bool& overrun) {
+  const std::uint32_t* slots = model.slots.data();
+  const int shift = model.probBits;
+  const std::uint32_t mask = (1u << shift) - 1;
+  std::size_t j = 0;
+  // Whole groups of L symbols while the words they may read are surely there: first every
+  // lane's step (independent of each other), then the renormalizations in lane order.
+  for (; j + L <= n && end - p >= 2 * L; j += L) {
+    std::uint32_t xx[L];
+    for (int l = 0; l < L; ++l) {
+      const std::uint32_t e = slots[x[l] & mask];
+      xx[l] = (((e >> 8) & 0xfffu) + 1) * (x[l] >> shift) + (e >> 20);
+      sym[j + static_cast<std::size_t>(l)] = static_cast<std::uint8_t>(e);
+    }
+    for (int l = 0; l < L; ++l) {
+      const bool need = xx[l] < kRansLow;
+      const std::uint32_t word = loadLe<std::uint16_t>(p);
+      x[l] = need ? (xx[l] << 16) | word : xx[l];
+      p += need ? 2 : 0;
+    }
+  }
+  for (; j < n; ++j) {  // the rest one at a time, bounds-checked
+    std::uint32_t& s = x[j & (L - 1)];
+    const std::uint32_t e = slots[s & mask];
+    s = (((e >> 8) & 0xfffu) + 1) * (s >> shift) + (e >> 20);
+    sym[j] = static_cast<std::uint8_t>(e);
+    if (s < kRansLow) {
+      if (end - p < 2) {
+        overrun = true;
+        s <<= 16;
+      } else {
+        s = (s << 16) | loadLe<std::uint16_t>(p);
+        p += 2;
+      }
+    }
+  }
+}
+
+using RunDecoder = void (*)(const RansModel&, std::uint32_t*, const unsigned char*&,
+                            const unsigned char*, std::uint8_t*, std::size_t, bool&);
+constexpr RunDecoder kRunDecoders[kMaxLanesLog2 + 1] = {decodeRun<1>, decodeRun<2>, decodeRun<4>,
+                                                        decodeRun<8>, decodeRun<16>};
+
+// The gap of a token t: t for t < 2, else 2^(t-1) plus t - 1 extra bits.
+struct GapTables {
+  std::array<std::uint32_t, 32> base{}, width{}, mask{};
+  constexpr GapTables() {
+    for (std::uint32_t t = 0; t < 32; ++t) {
+      base[t] = t < 2 ? t : 1u << (t - 1);
+      width[t] = t < 2 ? 0 : t - 1;
+      mask[t] = (1u << width[t]) - 1;
+    }
+  }
+};
+constexpr GapTables kGapTables;
+
+}  // namespace
+
+void appendFastLayout(std::string& out, const PacketSymbols& packet) {
+  const std::size_t n = packet.sorted.size();
+  const auto& coders = *packet.coders;
+  const int lanesLog2 = lanesLog2For(n);
+  const std::size_t laneMask = (std::size_t{1} << lanesLog2) - 1;
+
+  // rANS: the coded fields in order, each a run of n symbols, symbol j on lane j mod L;
+  // encoded back to front, so the words come out in reverse reading order.
+  std::array<std::uint32_t, 16> x;
+  x.fill(kRansLow);
+  std::vector<std::uint16_t> words;
+  for (int k = kFields; k-- > 0;) {
+    if (!coders[k].coded()) continue;
+    const RansModel& m = coders[k].model;
+    for (std::size_t j = n; j-- > 0;) {
+      std::uint32_t& s = x[j & laneMask];
+      const std::uint32_t symbol = packet.symbols[j][static_cast<std::size_t>(k)];
+      const std::uint32_t f = m.freq[symbol];
+      if (s >= std::uint64_t{(kRansLow >> m.probBits) << 16} * f) {
+        words.push_back(static_cast<std::uint16_t>(s));
+        s >>= 16;
+      }
+      s = ((s / f) << m.probBits) + (s % f) + m.start[symbol];
+    }
+  }
+  std::string rans;
+  for (std::size_t l = 0; l <= laneMask; ++l) appendLe<std::uint32_t>(rans, x[l]);
+  for (auto w = words.rbegin(); w != words.rend(); ++w) appendLe<std::uint16_t>(rans, *w);
+
+  std::string gapBits;
+  BitWriter gaps(gapBits);
+  std::uint32_t previous = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t code = packet.sorted[i].first;
+    const int t = static_cast<int>(packet.symbols[i][kGap]);
+    if (t >= 2) gaps.put(code - previous, t - 1);
+    previous = code;
+  }
+  gaps.finish();
+
+  std::string bitPart;
+  BitWriter bits(bitPart);
+  for (int k = 0; k < kFields; ++k) writeTable(bits, coders[k], kAlphabetBits[k]);
+  for (int k = 0; k < kFields; ++k)
+    if (coders[k].mode == kModeRaw)
+      for (std::size_t i = 0; i < n; ++i)
+        bits.put(packet.symbols[i][static_cast<std::size_t>(k)], kAlphabetBits[k]);
+  for (std::size_t i = 0; i < n; ++i)
+    bits.put(magnitudeCode(packet.sorted[i].second) - packet.aMin, packet.aBits);
+  bits.finish();
+
+  appendLe<std::uint8_t>(out, static_cast<std::uint8_t>(packet.flags | kFlagFast));
+  appendLe<std::uint16_t>(out, static_cast<std::uint16_t>(packet.aMin));
+  appendLe<std::uint8_t>(out, static_cast<std::uint8_t>(packet.aBits));
+  appendLe<std::uint8_t>(out, static_cast<std::uint8_t>(lanesLog2));
+  // A part over 65535 bytes makes the payload larger than the plain records, and the
+  // writer then falls back to plain for this packet.
+  appendLe<std::uint16_t>(out,
+                          static_cast<std::uint16_t>(std::min<std::size_t>(rans.size(), 65535)));
+  appendLe<std::uint16_t>(out,
+                          static_cast<std::uint16_t>(std::min<std::size_t>(gapBits.size(), 65535)));
+  out += rans;
+  out += gapBits;
+  out += bitPart;
+}
+
+bool decodeFastLayout(std::string_view payload, std::size_t count, const PositionGrid& grid,
+                      std::uint64_t* out) {
+  if (payload.size() < kFastPreambleBytes || count == 0 || count > kMaxRecords) return false;
+  const auto* begin = reinterpret_cast<const unsigned char*>(payload.data());
+  const std::uint8_t flags = begin[0];
+  const auto aMin = loadLe<std::uint16_t>(begin + 1);
+  const int aBits = begin[3];
+  const int lanesLog2 = begin[4];
+  const std::size_t ransSize = loadLe<std::uint16_t>(begin + 5);
+  const std::size_t gapSize = loadLe<std::uint16_t>(begin + 7);
+  const bool useGrid = flags & kFlagGrid;
+  const bool useBlocks = flags & kFlagBlocks;
+  const std::size_t lanes = std::size_t{1} << std::min(lanesLog2, kMaxLanesLog2);
+  if (flags > (kFlagGrid | kFlagBlocks | kFlagFast) || aMin >= kMagnitudeSteps ||
+      aBits > kMagnitudeBits || lanesLog2 > kMaxLanesLog2 ||
+      ransSize + gapSize > payload.size() - kFastPreambleBytes || ransSize < 4 * lanes ||
+      (useGrid && !grid.active) || (useBlocks && (grid.blockShift == 0 || useGrid != grid.active)))
+    return false;
+  const unsigned char* ransBegin = begin + kFastPreambleBytes;
+  const unsigned char* ransEnd = ransBegin + ransSize;
+  const unsigned char* gapBase = ransEnd;
+  const unsigned char* bitBase = gapBase + gapSize;
+  const std::size_t bitSize = payload.size() - kFastPreambleBytes - ransSize - gapSize;
+
+  BitReader tableBits(bitBase, bitBase + bitSize);
+  std::array<FieldCoder, kFields> coders;
+  for (int k = 0; k < kFields; ++k)
+    if (!readTable(tableBits, coders[k], kAlphabetBits[k])) return false;
+  if (tableBits.overrun()) return false;
+  std::uint64_t bitPos = tableBits.bitsConsumed();
+
+  // One run of symbols per field.
+  alignas(64) std::uint8_t sym[kFields][kMaxRecords + 1];
+  std::uint32_t x[16];
+  const unsigned char* p = ransBegin;
+  for (std::size_t l = 0; l < lanes; ++l, p += 4) {
+    x[l] = loadLe<std::uint32_t>(p);
+    if (x[l] < kRansLow) return false;  // a state the encoder never leaves behind
+  }
+  bool overrun = false;
+  for (int k = 0; k < kFields; ++k) {
+    const FieldCoder& c = coders[k];
+    if (c.mode == kModeConstant) {
+      std::memset(sym[k], static_cast<int>(c.constant), count);
+    } else if (c.mode == kModeRaw) {
+      const int w = kAlphabetBits[k];
+      for (std::size_t i = 0; i < count; ++i, bitPos += static_cast<std::uint64_t>(w))
+        sym[k][i] = static_cast<std::uint8_t>(peekBits(bitBase, bitSize, bitPos) & ((1u << w) - 1));
+    } else {
+      kRunDecoders[lanesLog2](c.model, x, p, ransEnd, sym[k], count, overrun);
+    }
+  }
+  if (overrun || p != ransEnd) return false;
+  for (std::size_t l = 0; l < lanes; ++l)
+    if (x[l] != kRansLow) return false;
+  const std::uint64_t aPos = bitPos;
+  if ((aPos + std::uint64_t{count} * static_cast<std::uint64_t>(aBits) + 7) / 8 != bitSize)
+    return false;
+
+  const std::array<std::size_t, 3> limit = {useGrid ? grid.cellOf[0].size() : kPositionSteps,
+                                            useGrid ? grid.cellOf[1].size() : kPositionSteps,
+                                            useGrid ? grid.cellOf[2].size() : kPositionSteps};
+  const int blockBits = useBlocks ? 3 * grid.blockShift : 0;
+  const std::uint64_t codeLimit =
+      useBlocks ? std::uint64_t{grid.blocks.size()} << blockBits : std::uint64_t{1} << 30;
+  const std::uint32_t lowMask = (1u << blockBits) - 1;
+  const auto aMask = static_cast<std::uint32_t>((1u << aBits) - 1);
+  // Rebuilds the records; range errors are gathered in `bad`, indices clamped meanwhile.
+  const auto records = [&]<bool kBlocks, bool kGrid>() {
+    std::uint64_t code = 0, gapPos = 0;
+    std::uint32_t theta = 0, phi = 0;
+    bool bad = false;
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::uint32_t t = sym[kGap][i];
+      const auto extra = static_cast<std::uint32_t>(peekBits(gapBase, gapSize, gapPos));
+      gapPos += kGapTables.width[t];
+      code += kGapTables.base[t] | (extra & kGapTables.mask[t]);
+      bad |= code >= codeLimit;
+      auto m = static_cast<std::uint32_t>(code);
+      if constexpr (kBlocks)
+        m = (grid.blocks[std::min<std::size_t>(code >> blockBits, grid.blocks.size() - 1)]
+             << blockBits) |
+            (m & lowMask);
+      theta = (theta + sym[kTheta][i]) & 63u;
+      phi = (phi + sym[kPhi][i]) & 63u;
+      const std::uint32_t a =
+          aMin + (static_cast<std::uint32_t>(
+                      peekBits(bitBase, bitSize, aPos + i * static_cast<std::uint64_t>(aBits))) &
+                  aMask);
+      std::uint32_t px = compact3(m), py = compact3(m >> 1), pz = compact3(m >> 2);
+      bad |= theta >= kThetaSteps || a >= kMagnitudeSteps || px >= limit[0] || py >= limit[1] ||
+             pz >= limit[2];
+      if constexpr (kGrid) {
+        px = grid.cellOf[0][std::min<std::size_t>(px, limit[0] - 1)];
+        py = grid.cellOf[1][std::min<std::size_t>(py, limit[1] - 1)];
+        pz = grid.cellOf[2][std::min<std::size_t>(pz, limit[2] - 1)];
+      }
+      out[i] = (std::uint64_t{px} << 54) | (std::uint64_t{py} << 44) | (std::uint64_t{pz} << 34) |
+               (std::uint64_t{theta} << 29) | (std::uint64_t{phi} << 23) | (std::uint64_t{a} << 8) |
+               sym[kColor][i];
+    }
+    return !bad && (gapPos + 7) / 8 == gapSize;
+  };
+  return useBlocks ? (useGrid ? records.template operator()<true, true>()
+                              : records.template operator()<true, false>())
+                   : (useGrid ? records.template operator()<false, true>()
+                              : records.template operator()<false, false>());
+}
+
+}  // namespace gs::qnv::detail
