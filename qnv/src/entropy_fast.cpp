@@ -11,7 +11,6 @@
 #include "base/byte_order.hpp"
 #include "entropy_fields.hpp"
 #include "entropy_payload.hpp"
-#include "morton.hpp"
 #include "qnv/record.hpp"
 
 namespace gs::qnv::detail {
@@ -50,8 +49,12 @@ inline std::uint64_t peekBits(const unsigned char* base, std::size_t size, std::
 
 // rANS over one run of n symbols, symbol j on lane j mod L, states carried in x.
 template <int L>
-void decodeRun(const RansModel& model, std::uint32_t* x, const unsigned char*& p,
+void decodeRun(const RansModel& model, std::uint32_t* states, const unsigned char*& where,
                const unsigned char* end, std::uint8_t* sym, std::size_t n, bool& overrun) {
+  // Local copies: the byte stores to sym may alias anything reached through a pointer.
+  std::uint32_t x[L];
+  std::memcpy(x, states, sizeof x);
+  const unsigned char* p = where;
   const std::uint32_t* slots = model.slots.data();
   const int shift = model.probBits;
   const std::uint32_t mask = (1u << shift) - 1;
@@ -60,17 +63,21 @@ void decodeRun(const RansModel& model, std::uint32_t* x, const unsigned char*& p
   // lane's step (independent of each other), then the renormalizations in lane order.
   for (; j + L <= n && end - p >= 2 * L; j += L) {
     std::uint32_t xx[L];
+    std::uint8_t out[L];
     for (int l = 0; l < L; ++l) {
       const std::uint32_t e = slots[x[l] & mask];
       xx[l] = (((e >> 8) & 0xfffu) + 1) * (x[l] >> shift) + (e >> 20);
-      sym[j + static_cast<std::size_t>(l)] = static_cast<std::uint8_t>(e);
+      out[l] = static_cast<std::uint8_t>(e);
     }
     for (int l = 0; l < L; ++l) {
-      const bool need = xx[l] < kRansLow;
+      // Arithmetic rather than a select, which compilers turn into a branch that the
+      // coin-flip renormalizations mispredict.
+      const auto need = static_cast<std::uint32_t>(xx[l] < kRansLow);
       const std::uint32_t word = loadLe<std::uint16_t>(p);
-      x[l] = need ? (xx[l] << 16) | word : xx[l];
-      p += need ? 2 : 0;
+      x[l] = (xx[l] << (need << 4)) | (word & (0u - need));
+      p += need << 1;
     }
+    std::memcpy(sym + j, out, L);
   }
   for (; j < n; ++j) {  // the rest one at a time, bounds-checked
     std::uint32_t& s = x[j & (L - 1)];
@@ -87,6 +94,8 @@ void decodeRun(const RansModel& model, std::uint32_t* x, const unsigned char*& p
       }
     }
   }
+  std::memcpy(states, x, sizeof x);
+  where = p;
 }
 
 using RunDecoder = void (*)(const RansModel&, std::uint32_t*, const unsigned char*&,
@@ -106,6 +115,25 @@ struct GapTables {
   }
 };
 constexpr GapTables kGapTables;
+
+// A 12-bit piece of a Morton code (4 bits of each axis) spread back to X at bits 20..23,
+// Y at 10..13, Z at 0..3; pieces 1 and 2 shifted left by 4 and 8 complete the axes.
+struct MortonPieces {
+  std::array<std::uint32_t, 4096> xyz{};
+  constexpr MortonPieces() {
+    for (std::uint32_t c = 0; c < 4096; ++c)
+      for (int b = 0; b < 4; ++b)
+        xyz[c] |= (((c >> (3 * b)) & 1u) << (20 + b)) | (((c >> (3 * b + 1)) & 1u) << (10 + b)) |
+                  (((c >> (3 * b + 2)) & 1u) << b);
+  }
+};
+constexpr MortonPieces kMortonPieces;
+
+// X << 20 | Y << 10 | Z of a 30-bit Morton code.
+inline std::uint32_t mortonToXyz(std::uint32_t m) {
+  return kMortonPieces.xyz[m & 4095u] | (kMortonPieces.xyz[(m >> 12) & 4095u] << 4) |
+         (kMortonPieces.xyz[(m >> 24) & 63u] << 8);
+}
 
 }  // namespace
 
@@ -242,21 +270,25 @@ bool decodeFastLayout(std::string_view payload, std::size_t count, const Positio
       useBlocks ? std::uint64_t{grid.blocks.size()} << blockBits : std::uint64_t{1} << 30;
   const std::uint32_t lowMask = (1u << blockBits) - 1;
   const auto aMask = static_cast<std::uint32_t>((1u << aBits) - 1);
-  // Rebuilds the records; range errors are gathered in `bad`, indices clamped meanwhile.
+  const std::uint16_t* cellX = grid.cellOf[0].data();
+  const std::uint16_t* cellY = grid.cellOf[1].data();
+  const std::uint16_t* cellZ = grid.cellOf[2].data();
+  const std::uint32_t* blocks = grid.blocks.data();
+  const std::size_t lastBlock = grid.blocks.empty() ? 0 : grid.blocks.size() - 1;
+  // Rebuilds the records. Range errors are checked once at the end (the code only grows,
+  // theta and A are ORed into `seen`, grid overflows into `outside`), indices clamped
+  // meanwhile.
   const auto records = [&]<bool kBlocks, bool kGrid>() {
     std::uint64_t code = 0, gapPos = 0;
-    std::uint32_t theta = 0, phi = 0;
-    bool bad = false;
+    std::uint32_t theta = 0, phi = 0, seen = 0, outside = 0;
     for (std::size_t i = 0; i < count; ++i) {
       const std::uint32_t t = sym[kGap][i];
       const auto extra = static_cast<std::uint32_t>(peekBits(gapBase, gapSize, gapPos));
       gapPos += kGapTables.width[t];
       code += kGapTables.base[t] | (extra & kGapTables.mask[t]);
-      bad |= code >= codeLimit;
       auto m = static_cast<std::uint32_t>(code);
       if constexpr (kBlocks)
-        m = (grid.blocks[std::min<std::size_t>(code >> blockBits, grid.blocks.size() - 1)]
-             << blockBits) |
+        m = (blocks[std::min<std::size_t>(code >> blockBits, lastBlock)] << blockBits) |
             (m & lowMask);
       theta = (theta + sym[kTheta][i]) & 63u;
       phi = (phi + sym[kPhi][i]) & 63u;
@@ -264,19 +296,23 @@ bool decodeFastLayout(std::string_view payload, std::size_t count, const Positio
           aMin + (static_cast<std::uint32_t>(
                       peekBits(bitBase, bitSize, aPos + i * static_cast<std::uint64_t>(aBits))) &
                   aMask);
-      std::uint32_t px = compact3(m), py = compact3(m >> 1), pz = compact3(m >> 2);
-      bad |= theta >= kThetaSteps || a >= kMagnitudeSteps || px >= limit[0] || py >= limit[1] ||
-             pz >= limit[2];
+      std::uint32_t xyz = mortonToXyz(m);  // bits over 30 are dropped; the code is checked
+      seen |= (theta << 16) | a;
       if constexpr (kGrid) {
-        px = grid.cellOf[0][std::min<std::size_t>(px, limit[0] - 1)];
-        py = grid.cellOf[1][std::min<std::size_t>(py, limit[1] - 1)];
-        pz = grid.cellOf[2][std::min<std::size_t>(pz, limit[2] - 1)];
+        const std::uint32_t px = xyz >> 20, py = (xyz >> 10) & 1023u, pz = xyz & 1023u;
+        outside |= static_cast<std::uint32_t>(px >= limit[0]) |
+                   static_cast<std::uint32_t>(py >= limit[1]) |
+                   static_cast<std::uint32_t>(pz >= limit[2]);
+        xyz = (std::uint32_t{cellX[std::min<std::size_t>(px, limit[0] - 1)]} << 20) |
+              (std::uint32_t{cellY[std::min<std::size_t>(py, limit[1] - 1)]} << 10) |
+              cellZ[std::min<std::size_t>(pz, limit[2] - 1)];
       }
-      out[i] = (std::uint64_t{px} << 54) | (std::uint64_t{py} << 44) | (std::uint64_t{pz} << 34) |
-               (std::uint64_t{theta} << 29) | (std::uint64_t{phi} << 23) | (std::uint64_t{a} << 8) |
-               sym[kColor][i];
+      out[i] = (std::uint64_t{xyz} << 34) | (std::uint64_t{theta} << 29) |
+               (std::uint64_t{phi} << 23) | (std::uint64_t{a} << 8) | sym[kColor][i];
     }
-    return !bad && (gapPos + 7) / 8 == gapSize;
+    static_assert(kThetaSteps == 32 && kMagnitudeSteps == 32768);
+    return code < codeLimit && (seen & ((32u << 16) | 32768u)) == 0 && outside == 0 &&
+           (gapPos + 7) / 8 == gapSize;
   };
   return useBlocks ? (useGrid ? records.template operator()<true, true>()
                               : records.template operator()<true, false>())
