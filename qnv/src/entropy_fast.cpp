@@ -5,6 +5,7 @@
 // interleaved states, and the gap extra bits and magnitude offsets lie in their own bit
 // sections. The decoder makes one pass per field, then one pass that rebuilds records.
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <vector>
 
@@ -12,6 +13,10 @@
 #include "entropy_fields.hpp"
 #include "entropy_payload.hpp"
 #include "qnv/record.hpp"
+
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
 
 namespace gs::qnv::detail {
 
@@ -97,6 +102,85 @@ void decodeRun(const RansModel& model, std::uint32_t* states, const unsigned cha
   std::memcpy(states, x, sizeof x);
   where = p;
 }
+
+#if defined(__x86_64__)
+// For each mask of lanes that renormalize, the word each lane takes: lane i takes word
+// popcount(mask & (2^i - 1)) of the next eight.
+struct WordPermutes {
+  alignas(32) std::array<std::array<std::uint32_t, 8>, 256> lane{};
+  constexpr WordPermutes() {
+    for (std::uint32_t m = 0; m < 256; ++m) {
+      std::uint32_t k = 0;
+      for (std::uint32_t i = 0; i < 8; ++i) {
+        lane[m][i] = k & 7u;
+        k += (m >> i) & 1u;
+      }
+    }
+  }
+};
+constexpr WordPermutes kWordPermutes;
+
+#define GS_AVX2 __attribute__((target("avx2,popcnt"), always_inline)) inline
+
+// One rANS step of eight states; returns the symbols (one per 32-bit lane).
+GS_AVX2 __m256i avx2Step(__m256i& x, const int* slots, __m256i mask, __m128i shift) {
+  const __m256i e = _mm256_i32gather_epi32(slots, _mm256_and_si256(x, mask), 4);
+  const __m256i f = _mm256_add_epi32(
+      _mm256_and_si256(_mm256_srli_epi32(e, 8), _mm256_set1_epi32(0xfff)), _mm256_set1_epi32(1));
+  x = _mm256_add_epi32(_mm256_mullo_epi32(f, _mm256_srl_epi32(x, shift)), _mm256_srli_epi32(e, 20));
+  return _mm256_and_si256(e, _mm256_set1_epi32(0xff));
+}
+
+// Renormalizes eight states from the words at p, in lane order; advances p.
+GS_AVX2 void avx2Renormalize(__m256i& x, const unsigned char*& p) {
+  const __m256i need = _mm256_cmpeq_epi32(_mm256_srli_epi32(x, 16), _mm256_setzero_si256());
+  const auto bits = static_cast<unsigned>(_mm256_movemask_ps(_mm256_castsi256_ps(need)));
+  const __m256i words = _mm256_cvtepu16_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)));
+  const __m256i perm =
+      _mm256_load_si256(reinterpret_cast<const __m256i*>(kWordPermutes.lane[bits].data()));
+  const __m256i shifted =
+      _mm256_or_si256(_mm256_slli_epi32(x, 16), _mm256_permutevar8x32_epi32(words, perm));
+  x = _mm256_blendv_epi8(x, shifted, need);
+  p += 2 * static_cast<unsigned>(__builtin_popcount(bits));
+}
+
+// decodeRun<16> with AVX2: two vectors of eight states, the same symbols and words in
+// the same order (lanes 0..7 renormalize before 8..15).
+__attribute__((target("avx2,popcnt"))) void decodeRun16Avx2(
+    const RansModel& model, std::uint32_t* states, const unsigned char*& where,
+    const unsigned char* end, std::uint8_t* sym, std::size_t n, bool& overrun) {
+  const auto* slots = reinterpret_cast<const int*>(model.slots.data());
+  const __m128i shift = _mm_cvtsi32_si128(model.probBits);
+  const __m256i mask = _mm256_set1_epi32((1 << model.probBits) - 1);
+  __m256i xa = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(states));
+  __m256i xb = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(states + 8));
+  const unsigned char* p = where;
+  std::size_t j = 0;
+  for (; j + 16 <= n && end - p >= 32; j += 16) {
+    const __m256i sa = avx2Step(xa, slots, mask, shift);
+    const __m256i sb = avx2Step(xb, slots, mask, shift);
+    avx2Renormalize(xa, p);
+    avx2Renormalize(xb, p);
+    // 16 symbols in order: pack to 16-bit (a0-3 b0-3 a4-7 b4-7), then to bytes.
+    const __m256i s16 = _mm256_permute4x64_epi64(_mm256_packus_epi32(sa, sb), 0xd8);
+    const __m256i s8 = _mm256_packus_epi16(s16, s16);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(sym + j),
+                     _mm256_castsi256_si128(_mm256_permute4x64_epi64(s8, 0x08)));
+  }
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(states), xa);
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(states + 8), xb);
+  where = p;
+  // The rest as the scalar decoder does it: j is a multiple of 16, so lanes line up.
+  decodeRun<16>(model, states, where, end, sym + j, n - j, overrun);
+}
+
+// AVX2 where the CPU has it, unless GS_QNV_NO_AVX2 is set (to measure the scalar path).
+bool useAvx2() {
+  static const bool use = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt") &&
+                          std::getenv("GS_QNV_NO_AVX2") == nullptr;
+  return use;
+}
+#endif
 
 using RunDecoder = void (*)(const RansModel&, std::uint32_t*, const unsigned char*&,
                             const unsigned char*, std::uint8_t*, std::size_t, bool&);
@@ -252,7 +336,11 @@ bool decodeFastLayout(std::string_view payload, std::size_t count, const Positio
       for (std::size_t i = 0; i < count; ++i, bitPos += static_cast<std::uint64_t>(w))
         sym[k][i] = static_cast<std::uint8_t>(peekBits(bitBase, bitSize, bitPos) & ((1u << w) - 1));
     } else {
-      kRunDecoders[lanesLog2](c.model, x, p, ransEnd, sym[k], count, overrun);
+      RunDecoder run = kRunDecoders[lanesLog2];
+#if defined(__x86_64__)
+      if (lanesLog2 == 4 && useAvx2()) run = decodeRun16Avx2;
+#endif
+      run(c.model, x, p, ransEnd, sym[k], count, overrun);
     }
   }
   if (overrun || p != ransEnd) return false;
@@ -262,17 +350,17 @@ bool decodeFastLayout(std::string_view payload, std::size_t count, const Positio
   if ((aPos + std::uint64_t{count} * static_cast<std::uint64_t>(aBits) + 7) / 8 != bitSize)
     return false;
 
-  const std::array<std::size_t, 3> limit = {useGrid ? grid.cellOf[0].size() : kPositionSteps,
-                                            useGrid ? grid.cellOf[1].size() : kPositionSteps,
-                                            useGrid ? grid.cellOf[2].size() : kPositionSteps};
   const int blockBits = useBlocks ? 3 * grid.blockShift : 0;
   const std::uint64_t codeLimit =
       useBlocks ? std::uint64_t{grid.blocks.size()} << blockBits : std::uint64_t{1} << 30;
   const std::uint32_t lowMask = (1u << blockBits) - 1;
   const auto aMask = static_cast<std::uint32_t>((1u << aBits) - 1);
-  const std::uint16_t* cellX = grid.cellOf[0].data();
-  const std::uint16_t* cellY = grid.cellOf[1].data();
-  const std::uint16_t* cellZ = grid.cellOf[2].data();
+  if (useGrid)
+    for (const auto& cells : grid.cellOrOutside)
+      if (cells.size() != kPositionSteps) return false;
+  const std::uint16_t* cellX = grid.cellOrOutside[0].data();
+  const std::uint16_t* cellY = grid.cellOrOutside[1].data();
+  const std::uint16_t* cellZ = grid.cellOrOutside[2].data();
   const std::uint32_t* blocks = grid.blocks.data();
   const std::size_t lastBlock = grid.blocks.empty() ? 0 : grid.blocks.size() - 1;
   // Rebuilds the records. Range errors are checked once at the end (the code only grows,
@@ -280,7 +368,7 @@ bool decodeFastLayout(std::string_view payload, std::size_t count, const Positio
   // meanwhile.
   const auto records = [&]<bool kBlocks, bool kGrid>() {
     std::uint64_t code = 0, gapPos = 0;
-    std::uint32_t theta = 0, phi = 0, seen = 0, outside = 0;
+    std::uint32_t theta = 0, phi = 0, seen = 0, outside = 0;  // outside: ORed cells
     for (std::size_t i = 0; i < count; ++i) {
       const std::uint32_t t = sym[kGap][i];
       const auto extra = static_cast<std::uint32_t>(peekBits(gapBase, gapSize, gapPos));
@@ -299,19 +387,16 @@ bool decodeFastLayout(std::string_view payload, std::size_t count, const Positio
       std::uint32_t xyz = mortonToXyz(m);  // bits over 30 are dropped; the code is checked
       seen |= (theta << 16) | a;
       if constexpr (kGrid) {
-        const std::uint32_t px = xyz >> 20, py = (xyz >> 10) & 1023u, pz = xyz & 1023u;
-        outside |= static_cast<std::uint32_t>(px >= limit[0]) |
-                   static_cast<std::uint32_t>(py >= limit[1]) |
-                   static_cast<std::uint32_t>(pz >= limit[2]);
-        xyz = (std::uint32_t{cellX[std::min<std::size_t>(px, limit[0] - 1)]} << 20) |
-              (std::uint32_t{cellY[std::min<std::size_t>(py, limit[1] - 1)]} << 10) |
-              cellZ[std::min<std::size_t>(pz, limit[2] - 1)];
+        const std::uint32_t cx = cellX[xyz >> 20], cy = cellY[(xyz >> 10) & 1023u],
+                            cz = cellZ[xyz & 1023u];
+        outside |= cx | cy | cz;
+        xyz = (cx << 20) | (cy << 10) | cz;
       }
       out[i] = (std::uint64_t{xyz} << 34) | (std::uint64_t{theta} << 29) |
                (std::uint64_t{phi} << 23) | (std::uint64_t{a} << 8) | sym[kColor][i];
     }
     static_assert(kThetaSteps == 32 && kMagnitudeSteps == 32768);
-    return code < codeLimit && (seen & ((32u << 16) | 32768u)) == 0 && outside == 0 &&
+    return code < codeLimit && (seen & ((32u << 16) | 32768u)) == 0 && (outside & 0x8000u) == 0 &&
            (gapPos + 7) / 8 == gapSize;
   };
   return useBlocks ? (useGrid ? records.template operator()<true, true>()
