@@ -30,7 +30,7 @@ struct PositionGrid {
   std::array<std::vector<std::int16_t>, 3> indexOf;  // cell -> index, or -1
   /// index (0..1023) -> cell, or 0x8000 past the axis's indices: lookups without clamps.
   std::array<std::vector<std::uint16_t>, 3> cellOrOutside;
-  bool active = false;                               // some axis is coarser than 1024
+  bool active = false;  // some axis is coarser than 1024
   /// Stream model: blocks of 2^blockShift indices per axis (1..7, at most 2^21 blocks in
   /// the index space), 0 without a model.
   int blockShift = 0;
