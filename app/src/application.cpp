@@ -218,9 +218,9 @@ Parsed parseArguments(int argc, char** argv) {
                    "zstd-compress each packet (spatially sorted, delta-coded)");
   encode
       ->add_option("--coding", enc.coding,
-                   "Packet coding: plain (64-bit records), compact (zstd) or entropy (rANS, "
-                   "smallest; docs/qnv-format.md)")
-      ->check(CLI::IsMember({"plain", "compact", "entropy"}))
+                   "Packet coding: plain (64-bit records), compact (zstd), entropy (rANS, "
+                   "smallest) or entropy-fast (rANS, fast layout; docs/qnv-format.md)")
+      ->check(CLI::IsMember({"plain", "compact", "entropy", "entropy-fast"}))
       ->type_name("NAME");
   encode->add_option("--window", enc.valueWindow, "Volumes: keep voxels with values in LO..HI")
       ->type_name("LO:HI");

@@ -96,7 +96,9 @@ std::string parseSettings(const EncodeOptions& e, Settings& s) {
   s.write.encoding = e.compact ? qnv::PacketEncoding::compact : qnv::PacketEncoding::plain;
   if (e.coding == "plain") s.write.encoding = qnv::PacketEncoding::plain;
   if (e.coding == "compact") s.write.encoding = qnv::PacketEncoding::compact;
-  if (e.coding == "entropy") s.write.encoding = qnv::PacketEncoding::entropy;
+  if (e.coding == "entropy" || e.coding == "entropy-fast")
+    s.write.encoding = qnv::PacketEncoding::entropy;
+  s.write.fastEntropy = e.coding == "entropy-fast";
   s.write.streamModel = true;  // entropy only, and only where it saves bytes
   return {};
 }

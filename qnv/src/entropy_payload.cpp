@@ -1,4 +1,5 @@
 #include "entropy_payload.hpp"
+#include "entropy_fields.hpp"
 #include "morton.hpp"
 
 #include <algorithm>
@@ -23,24 +24,10 @@ int gammaBits(std::uint32_t v) {
   return 2 * (bitLength(v) - 1) + 1;
 }
 
-// The four modelled fields and their alphabets.
-enum Field { kGap = 0, kTheta = 1, kPhi = 2, kColor = 3, kFields = 4 };
-constexpr std::array<int, kFields> kAlphabetBits = {5, 6, 6, 8};
 // The rANS state each field uses: two interleaved states halve the decoder's chain of
 // dependent multiplications.
 constexpr std::array<int, kFields> kLane = {0, 1, 0, 1};
-// Table modes: 0 constant symbol, 1..12 rANS with 2^mode total frequency, 13 raw bits.
-constexpr int kModeConstant = 0;
-constexpr int kModeRaw = 13;
-constexpr std::uint8_t kFlagGrid = 1;
-constexpr std::uint8_t kFlagBlocks = 2;    // positions are ranks among the model's blocks
 constexpr std::size_t kPreambleBytes = 6;  // flags, aMin, aBits, rANS bytes
-
-struct FieldCoder {
-  int mode = kModeRaw;
-  unsigned constant = 0;
-  RansModel model;
-};
 
 // Frequencies summing to 2^bits, at least 1 for every symbol seen; empty when there are
 // more distinct symbols than slots.
@@ -123,6 +110,8 @@ FieldCoder planField(const std::vector<std::uint32_t>& counts, std::size_t n, in
   return best;
 }
 
+}  // namespace
+
 void writeTable(BitWriter& bits, const FieldCoder& coder, int alphabetBits) {
   bits.put(static_cast<std::uint32_t>(coder.mode), 4);
   if (coder.mode == kModeConstant) {
@@ -171,10 +160,8 @@ bool readTable(BitReader& bits, FieldCoder& coder, int alphabetBits) {
   return true;
 }
 
-}  // namespace
-
 void appendEntropyPayload(std::string& out, std::span<const std::uint64_t> records,
-                          const PositionGrid& grid, EntropyFieldBits* report) {
+                          const PositionGrid& grid, EntropyFieldBits* report, bool fast) {
   const std::size_t n = records.size();
   // Grid mode when every position of the packet lies on the grid.
   bool onGrid = grid.active;
@@ -242,28 +229,41 @@ void appendEntropyPayload(std::string& out, std::span<const std::uint64_t> recor
   std::array<FieldCoder, kFields> coders;
   for (int k = 0; k < kFields; ++k) coders[k] = planField(counts[k], n, kAlphabetBits[k]);
 
-  std::string bitBytes;
-  BitWriter bits(bitBytes);
-  for (int k = 0; k < kFields; ++k) writeTable(bits, coders[k], kAlphabetBits[k]);
-  previousCode = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto& s = symbols[i];
-    const std::uint32_t gap = sorted[i].first - previousCode;
-    previousCode = sorted[i].first;
-    for (int k = 0; k < kFields; ++k) {
-      if (coders[k].mode == kModeRaw) bits.put(s[k], kAlphabetBits[k]);
-      if (k == kGap && s[kGap] >= 2) bits.put(gap, static_cast<int>(s[kGap]) - 1);
-      if (k == kPhi) bits.put(magnitudeCode(sorted[i].second) - aMin, aBits);
+  const auto flags =
+      static_cast<std::uint8_t>((onGrid ? kFlagGrid : 0) | (useBlocks ? kFlagBlocks : 0));
+  std::string payload;
+  if (fast) {
+    appendFastLayout(payload, PacketSymbols{sorted, symbols, &coders, aMin, aBits, flags});
+  } else {
+    std::string bitBytes;
+    BitWriter bits(bitBytes);
+    for (int k = 0; k < kFields; ++k) writeTable(bits, coders[k], kAlphabetBits[k]);
+    previousCode = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto& s = symbols[i];
+      const std::uint32_t gap = sorted[i].first - previousCode;
+      previousCode = sorted[i].first;
+      for (int k = 0; k < kFields; ++k) {
+        if (coders[k].mode == kModeRaw) bits.put(s[k], kAlphabetBits[k]);
+        if (k == kGap && s[kGap] >= 2) bits.put(gap, static_cast<int>(s[kGap]) - 1);
+        if (k == kPhi) bits.put(magnitudeCode(sorted[i].second) - aMin, aBits);
+      }
     }
+    bits.finish();
+    RansEncoder rans;
+    for (std::size_t i = n; i-- > 0;)
+      for (int k = kFields; k-- > 0;)
+        if (coders[k].mode != kModeRaw && coders[k].mode != kModeConstant)
+          rans.put(coders[k].model, symbols[i][k], kLane[k]);
+    std::string ransBytes;
+    rans.finish(ransBytes);
+    appendLe<std::uint8_t>(payload, flags);
+    appendLe<std::uint16_t>(payload, static_cast<std::uint16_t>(aMin));
+    appendLe<std::uint8_t>(payload, static_cast<std::uint8_t>(aBits));
+    appendLe<std::uint16_t>(payload, static_cast<std::uint16_t>(ransBytes.size()));
+    payload += ransBytes;
+    payload += bitBytes;
   }
-  bits.finish();
-  RansEncoder rans;
-  for (std::size_t i = n; i-- > 0;)
-    for (int k = kFields; k-- > 0;)
-      if (coders[k].mode != kModeRaw && coders[k].mode != kModeConstant)
-        rans.put(coders[k].model, symbols[i][k], kLane[k]);
-  std::string ransBytes;
-  rans.finish(ransBytes);
 
   if (report) {
     std::array<double, kFields> fieldBits{};
@@ -290,25 +290,19 @@ void appendEntropyPayload(std::string& out, std::span<const std::uint64_t> recor
       tables = 8.0 * static_cast<double>(scratch.size());
     }
     report->tables += tables;
-    const double total =
-        8.0 * static_cast<double>(kPreambleBytes + ransBytes.size() + bitBytes.size());
+    const double total = 8.0 * static_cast<double>(payload.size());
     report->framing += total - (fieldBits[kGap] + gapExtra + fieldBits[kTheta] + fieldBits[kPhi] +
                                 static_cast<double>(n) * aBits + fieldBits[kColor] + tables);
   }
   if (report && useBlocks) ++report->blockPackets;
-  appendLe<std::uint8_t>(
-      out, static_cast<std::uint8_t>((onGrid ? kFlagGrid : 0) | (useBlocks ? kFlagBlocks : 0)));
-  appendLe<std::uint16_t>(out, static_cast<std::uint16_t>(aMin));
-  appendLe<std::uint8_t>(out, static_cast<std::uint8_t>(aBits));
-  appendLe<std::uint16_t>(out, static_cast<std::uint16_t>(ransBytes.size()));
-  out += ransBytes;
-  out += bitBytes;
+  out += payload;
 }
 
 bool decodeEntropyPayload(std::string_view payload, std::size_t count, const PositionGrid& grid,
                           std::uint64_t* out) {
   if (payload.size() < kPreambleBytes || count == 0) return false;
   const auto flags = loadLe<std::uint8_t>(payload.data());
+  if (flags & kFlagFast) return decodeFastLayout(payload, count, grid, out);
   const auto aMin = loadLe<std::uint16_t>(payload.data() + 1);
   const int aBits = loadLe<std::uint8_t>(payload.data() + 3);
   const auto ransSize = loadLe<std::uint16_t>(payload.data() + 4);

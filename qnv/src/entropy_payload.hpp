@@ -28,7 +28,9 @@ namespace gs::qnv::detail {
 struct PositionGrid {
   std::array<std::vector<std::uint16_t>, 3> cellOf;  // index -> cell (0..1023)
   std::array<std::vector<std::int16_t>, 3> indexOf;  // cell -> index, or -1
-  bool active = false;                               // some axis is coarser than 1024
+  /// index (0..1023) -> cell, or 0x8000 past the axis's indices: lookups without clamps.
+  std::array<std::vector<std::uint16_t>, 3> cellOrOutside;
+  bool active = false;  // some axis is coarser than 1024
   /// Stream model: blocks of 2^blockShift indices per axis (1..7, at most 2^21 blocks in
   /// the index space), 0 without a model.
   int blockShift = 0;
@@ -59,9 +61,12 @@ struct EntropyFieldBits {
 };
 
 /// Appends the entropy payload of `records` (1..8191 records) to `out`; adds its bits
-/// per field to `bits` when given.
+/// per field to `bits` when given. `fast` picks the fast layout (flag bit 2,
+/// docs/qnv-format.md "Fast layout": the same symbols, decoded field by field with up to
+/// 16 interleaved rANS states) over the original one.
 void appendEntropyPayload(std::string& out, std::span<const std::uint64_t> records,
-                          const PositionGrid& grid, EntropyFieldBits* bits = nullptr);
+                          const PositionGrid& grid, EntropyFieldBits* bits = nullptr,
+                          bool fast = false);
 
 /// Decodes an entropy payload holding exactly `count` records into `out[0..count)`.
 /// Returns false on any inconsistency (unknown flags, a table that does not sum up, a

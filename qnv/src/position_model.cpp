@@ -115,6 +115,8 @@ PositionGrid PositionGrid::forHeader(const StreamHeader& header) {
       for (std::uint32_t i = 0; i < kPositionSteps; ++i)
         grid.cellOf[a].push_back(static_cast<std::uint16_t>(i));
     }
+    grid.cellOrOutside[a] = grid.cellOf[a];
+    grid.cellOrOutside[a].resize(kPositionSteps, 0x8000);
     grid.indexOf[a].assign(kPositionSteps, -1);
     for (std::size_t i = 0; i < grid.cellOf[a].size(); ++i)
       grid.indexOf[a][grid.cellOf[a][i]] = static_cast<std::int16_t>(i);

@@ -174,12 +174,14 @@ class RansDecoder {
     // Renormalize without a branch: x >= 2^(16 - probBits) here, so one 16-bit word
     // always brings it back to [2^16, 2^32). Past the end, zeros are read instead.
     static constexpr unsigned char kZeros[2] = {0, 0};
-    const bool need = x < kRansLow;
+    // Arithmetic rather than selects, which compilers turn into branches that the
+    // coin-flip renormalizations mispredict.
+    const auto need = static_cast<std::uint32_t>(x < kRansLow);
     const bool have = end_ - p_ >= 2;
     const unsigned char* src = have ? p_ : kZeros;
     const std::uint32_t word = src[0] | (std::uint32_t{src[1]} << 8);
-    x = need ? (x << 16) | word : x;
-    p_ += (need && have) ? 2 : 0;
+    x = (x << (need << 4)) | (word & (0u - need));
+    p_ += (need & static_cast<std::uint32_t>(have)) << 1;
     overrun_ |= need && !have;
     return e & 0xffu;
   }

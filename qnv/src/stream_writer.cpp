@@ -13,7 +13,7 @@ namespace {
 
 void appendPacketOnGrid(std::string& out, std::uint32_t sequence,
                         std::span<const std::uint64_t> records, PacketEncoding encoding,
-                        const detail::PositionGrid& grid) {
+                        const detail::PositionGrid& grid, bool fastEntropy) {
   const std::size_t start = out.size();
   out.append("QP");
   appendLe<std::uint16_t>(out, static_cast<std::uint16_t>(records.size()));
@@ -27,7 +27,7 @@ void appendPacketOnGrid(std::string& out, std::uint32_t sequence,
     if (encoding == PacketEncoding::compact)
       detail::appendCompactPayload(out, records);
     else
-      detail::appendEntropyPayload(out, records, grid);
+      detail::appendEntropyPayload(out, records, grid, nullptr, fastEntropy);
     // Incompressible records (or a zstd failure) fall back to plain for this packet, so
     // a payload never exceeds the plain size the decoder bounds it by.
     if (out.size() - payloadStart > records.size() * 8 || out.size() == payloadStart) {
@@ -53,15 +53,17 @@ void appendPacketOnGrid(std::string& out, std::uint32_t sequence,
 }  // namespace
 
 void appendPacket(std::string& out, std::uint32_t sequence, std::span<const std::uint64_t> records,
-                  PacketEncoding encoding, const StreamHeader* header) {
+                  PacketEncoding encoding, const StreamHeader* header, bool fastEntropy) {
   appendPacketOnGrid(out, sequence, records, encoding,
-                     header ? detail::PositionGrid::forHeader(*header) : detail::PositionGrid{});
+                     header ? detail::PositionGrid::forHeader(*header) : detail::PositionGrid{},
+                     fastEntropy);
 }
 
 namespace {
 
 // The stream for a header whose packetBytes, encoding, vectorCount and model are final.
-std::string writePackets(const StreamHeader& header, std::span<const std::uint64_t> all) {
+std::string writePackets(const StreamHeader& header, std::span<const std::uint64_t> all,
+                         bool fastEntropy) {
   std::string out = serializeHeader(header);
   const std::size_t per = header.recordsPerPacket();
   out.reserve(out.size() + all.size() * 8 + (all.size() / per + 1) * kPacketHeaderBytes);
@@ -69,7 +71,7 @@ std::string writePackets(const StreamHeader& header, std::span<const std::uint64
   std::uint32_t sequence = 0;
   for (std::size_t first = 0; first < all.size(); first += per, ++sequence)
     appendPacketOnGrid(out, sequence, all.subspan(first, std::min(per, all.size() - first)),
-                       header.encoding, grid);
+                       header.encoding, grid, fastEntropy);
   return out;
 }
 
@@ -92,13 +94,13 @@ std::string writeStream(const EncodedVectors& vectors, const WriteOptions& optio
       (!header.model.empty() && !detail::PositionGrid::forHeader(header).modelValid))
     header.model.clear();
   const std::span<const std::uint64_t> all(vectors.records);
-  std::string out = writePackets(header, all);
+  std::string out = writePackets(header, all, options.fastEntropy);
   if (options.encoding == PacketEncoding::entropy && options.streamModel) {
     // The model's saving is estimated per block size; the stream written both ways
     // decides, so a model is kept only when it makes the stream smaller.
     header.model = detail::buildStreamModel(header, all);
     if (!header.model.empty()) {
-      std::string with = writePackets(header, all);
+      std::string with = writePackets(header, all, options.fastEntropy);
       if (with.size() < out.size()) out = std::move(with);
     }
   }
@@ -106,7 +108,7 @@ std::string writeStream(const EncodedVectors& vectors, const WriteOptions& optio
 }
 
 CodingBits entropyCodingBits(const EncodedVectors& vectors, std::uint32_t packetBytes,
-                             bool streamModel) {
+                             bool streamModel, bool fastEntropy) {
   if (packetBytes < kMinPacketBytes || packetBytes > kMaxPacketBytes || packetBytes % 8 != 0)
     throw InputError("packet size " + std::to_string(packetBytes) + " bytes is out of range");
   StreamHeader header = vectors.header;
@@ -114,6 +116,7 @@ CodingBits entropyCodingBits(const EncodedVectors& vectors, std::uint32_t packet
   if (streamModel) {  // the model writeStream would keep
     WriteOptions options{packetBytes, PacketEncoding::entropy};
     options.streamModel = true;
+    options.fastEntropy = fastEntropy;
     std::string error;
     header.model = parseHeader(writeStream(vectors, options), "model", error)->model;
   }
@@ -125,7 +128,7 @@ CodingBits entropyCodingBits(const EncodedVectors& vectors, std::uint32_t packet
   for (std::size_t first = 0; first < all.size(); first += per) {
     scratch.clear();
     detail::appendEntropyPayload(scratch, all.subspan(first, std::min(per, all.size() - first)),
-                                 grid, &bits);
+                                 grid, &bits, fastEntropy);
     bits.framing += 8.0 * kPacketHeaderBytes;
   }
   CodingBits out;

@@ -1,6 +1,7 @@
 // Packet codings compared (docs/qnv-format.md, "Compact coding"): for each plain .qnv
 // stream given, re-packs its records at 1376, 16384 and 65528 record bytes per packet
-// as plain, compact (zstd) and entropy (rANS) packets, and prints bits per vector, the
+// as plain, compact (zstd) and entropy (rANS; original and fast layout, each with and
+// without the stream model) packets, and prints bits per vector, the
 // entropy coding's bits per field, and StreamDecoder throughput on one thread (CRC,
 // payload decode and dequantization into DecodedVectors; best of 7, thread CPU time).
 //
@@ -101,14 +102,16 @@ int main(int argc, char** argv) {
     std::printf("== %s: %zu vectors ==\n", argv[i], e.records.size());
     std::printf("%8s %-14s %10s %9s %12s\n", "packet", "coding", "bytes", "bits/vec", "decode M/s");
     for (std::uint32_t packet : {1376u, 16384u, 65528u}) {
-      for (int variant = 0; variant < 4; ++variant) {
+      for (int variant = 0; variant < 6; ++variant) {
         const auto coding = variant == 0   ? qnv::PacketEncoding::plain
                             : variant == 1 ? qnv::PacketEncoding::compact
                                            : qnv::PacketEncoding::entropy;
         qnv::WriteOptions options{packet, coding};
-        options.streamModel = variant == 3;
+        options.streamModel = variant == 3 || variant == 5;
+        options.fastEntropy = variant >= 4;
         const std::string s = qnv::writeStream(e, options);
-        const char* names[] = {"plain", "compact", "entropy", "entropy+model"};
+        const char* names[] = {"plain",         "compact",      "entropy",
+                               "entropy+model", "entropy-fast", "fast+model"};
         std::printf("%8u %-14s %10zu %9.2f %12.1f", packet, names[variant], s.size(),
                     8.0 * static_cast<double>(s.size() - qnv::kHeaderBytes) / n, decodeRate(s));
         std::string error;
@@ -122,13 +125,16 @@ int main(int argc, char** argv) {
         }
         std::printf("\n");
       }
-      for (bool model : {false, true}) {
-        const qnv::CodingBits b = qnv::entropyCodingBits(e, packet, model);
+      for (int variant = 0; variant < 4; ++variant) {
+        const bool model = variant % 2 == 1, fast = variant >= 2;
+        const qnv::CodingBits b = qnv::entropyCodingBits(e, packet, model, fast);
         std::printf(
             "%8u %-14s bits/vector by field: position %.2f, direction %.2f, magnitude %.2f, "
             "colour %.2f, tables %.2f, framing %.2f, model %.2f = %.2f (%llu packets on blocks)\n",
-            packet, model ? "entropy+model" : "entropy", b.position / n, b.direction / n,
-            b.magnitude / n, b.color / n, b.tables / n, b.framing / n, b.model / n, b.total() / n,
+            packet,
+            fast ? (model ? "fast+model" : "entropy-fast") : (model ? "entropy+model" : "entropy"),
+            b.position / n, b.direction / n, b.magnitude / n, b.color / n, b.tables / n,
+            b.framing / n, b.model / n, b.total() / n,
             static_cast<unsigned long long>(b.blockPackets));
       }
     }

@@ -1,8 +1,8 @@
-// The entropy packet payload decoded alone, under a stream model block read from the
-// input (docs/qnv-format.md, "Compact coding" and "Stream model"). Input: byte 0 picks
-// the header (bit 0: a 48 x 44 x 24 volume, its voxel grid, else a surface); bytes 1-2
-// the record count - 1 (mod 8191); bytes 3-4 the model's length L (0: no model); then
-// L model bytes (as far as the input goes), then the payload.
+// The entropy packet payload (either layout: flag bit 2 picks the fast one) decoded alone, under a
+// stream model block read from the input (docs/qnv-format.md, "Compact coding" and "Stream model").
+// Input: byte 0 picks the header (bit 0: a 48 x 44 x 24 volume, its voxel grid, else a surface);
+// bytes 1-2 the record count - 1 (mod 8191); bytes 3-4 the model's length L (0: no model); then L
+// model bytes (as far as the input goes), then the payload.
 #include <algorithm>
 #include <vector>
 

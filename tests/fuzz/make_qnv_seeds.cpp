@@ -1,7 +1,8 @@
 // Writes seed inputs for the QNV fuzz targets into the folder given as the one argument:
 // a small volume stream in plain and compact packets (and one with packets damaged), and
 // compact payloads prefixed with their record count as fuzz_qnv_compact reads them, and
-// entropy payloads with and without a stream model as fuzz_qnv_entropy reads them.
+// entropy payloads (original and fast layout) with and without a stream model as
+// fuzz_qnv_entropy reads them.
 // Generated rather than committed so that they follow the format of this build.
 #include <algorithm>
 #include <cmath>
@@ -70,10 +71,11 @@ int main(int argc, char** argv) {
   gs::qnv::VolumeEncodeOptions thin;
   thin.selection.fraction = 0.05;
   const gs::qnv::EncodedVectors s = gs::qnv::encodeVolume(shell, thin);
-  for (bool model : {false, true}) {
+  for (int variant = 0; variant < 4; ++variant) {
+    const bool model = variant % 2 == 1, fast = variant >= 2;  // fast: 300 records, 8 lanes
     gs::qnv::StreamHeader h = s.header;
-    const std::span<const std::uint64_t> records(s.records.data(),
-                                                 std::min<std::size_t>(64, s.records.size()));
+    const std::span<const std::uint64_t> records(
+        s.records.data(), std::min<std::size_t>(fast ? 300 : 64, s.records.size()));
     if (model) h.model = gs::qnv::detail::buildStreamModel(h, s.records);
     std::string input;
     input += '\1';
@@ -82,9 +84,10 @@ int main(int argc, char** argv) {
     input += static_cast<char>(h.model.size() & 0xff);
     input += static_cast<char>(h.model.size() >> 8);
     input += h.model;
-    gs::qnv::detail::appendEntropyPayload(input, records,
-                                          gs::qnv::detail::PositionGrid::forHeader(h));
-    write(dir + (model ? "/entropy_model.bin" : "/entropy_plain.bin"), input);
+    gs::qnv::detail::appendEntropyPayload(
+        input, records, gs::qnv::detail::PositionGrid::forHeader(h), nullptr, fast);
+    write(dir + (fast ? "/entropy_fast" : "/entropy") + (model ? "_model.bin" : "_plain.bin"),
+          input);
   }
   return 0;
 }

@@ -17,7 +17,7 @@ seconds=${1:?usage: run.sh SECONDS [TARGET...]}
 shift
 build=${GS_FUZZ_BUILD:-$top/build-fuzz}
 jobs=${GS_FUZZ_JOBS:-1}
-all=(fuzz_vrml_parse fuzz_vrml_stream fuzz_vrml_proto fuzz_qnv_stream fuzz_qnv_compact
+all=(fuzz_vrml_parse fuzz_vrml_stream fuzz_vrml_proto fuzz_qnv_stream fuzz_qnv_compact fuzz_qnv_entropy
      fuzz_ply fuzz_obj fuzz_gltf fuzz_nrrd fuzz_nifti fuzz_image fuzz_http_response
      fuzz_instance_message fuzz_script)
 targets=("$@")

@@ -30,8 +30,9 @@ struct CodingBits {
 
 /// Codes `vectors` with the entropy packet encoding at `packetBytes` (as writeStream,
 /// with a stream model block when `streamModel` and it pays) and reports where the bits
-/// went. Throws InputError on a packetBytes out of range.
+/// went; `fastEntropy` for the fast layout (WriteOptions::fastEntropy). Throws InputError on a
+/// packetBytes out of range.
 CodingBits entropyCodingBits(const EncodedVectors& vectors, std::uint32_t packetBytes,
-                             bool streamModel = false);
+                             bool streamModel = false, bool fastEntropy = false);
 
 }  // namespace gs::qnv

@@ -124,6 +124,10 @@ struct WriteOptions {
   /// occupied blocks only. Without it, a model in the given header (one shared by several
   /// streams of the same space) is kept when it decodes; other encodings drop it.
   bool streamModel = false;
+  /// Entropy encoding only: write the fast layout of each packet (payload flag bit 2,
+  /// docs/qnv-format.md "Fast layout": the same symbols, laid out field by field for a
+  /// decoder several times faster, a few bytes larger per packet). `--coding entropy-fast`.
+  bool fastEntropy = false;
 };
 
 /// The whole .qnv file: header (vectorCount, packetBytes and encoding set from the
@@ -135,8 +139,10 @@ std::string writeStream(const EncodedVectors& vectors, const WriteOptions& optio
 /// `records.size()` must be 1..packetBytes/8 of the stream it belongs to. `header`, when
 /// given, is the stream's: entropy packets of a volume then code positions on its voxel
 /// grid (smaller); without it they code all 1024 cells per axis (still valid).
+/// `fastEntropy`: entropy packets in the fast layout (WriteOptions::fastEntropy).
 void appendPacket(std::string& out, std::uint32_t sequence, std::span<const std::uint64_t> records,
-                  PacketEncoding encoding, const StreamHeader* header = nullptr);
+                  PacketEncoding encoding, const StreamHeader* header = nullptr,
+                  bool fastEntropy = false);
 
 /// CRC-32 (ISO-HDLC, as zlib and PNG) of `bytes`, continuing from `crc` (0 to start);
 /// computed by libdeflate (about 9 GB/s with PCLMUL).

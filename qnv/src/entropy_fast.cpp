@@ -1,0 +1,408 @@
+// The fast layout of the entropy packet encoding (flag bit 2; docs/qnv-format.md, "Fast
+// layout"). The symbols and tables are those of the original layout; only where the bits
+// lie changes, so that a decoder can work on many records at once: each field is a
+// separate run of symbols (structure of arrays), the rANS-coded runs share up to 16
+// interleaved states, and the gap extra bits and magnitude offsets lie in their own bit
+// sections. The decoder makes one pass per field, then one pass that rebuilds records.
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <vector>
+
+#include "base/byte_order.hpp"
+#include "entropy_fields.hpp"
+#include "entropy_payload.hpp"
+#include "qnv/record.hpp"
+
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
+namespace gs::qnv::detail {
+
+using base::appendLe;
+
+namespace {
+
+constexpr std::size_t kFastPreambleBytes = 9;  // flags, aMin, aBits, lanes, R, G
+constexpr int kMaxLanesLog2 = 4;               // at most 16 states
+constexpr std::size_t kMaxRecords = 8191;      // a packet's most (65528 / 8)
+
+// Lanes by packet size: every state costs 4 bytes, so small packets get few.
+int lanesLog2For(std::size_t n) {
+  return n >= 1024 ? 4 : n >= 256 ? 3 : n >= 64 ? 2 : n >= 16 ? 1 : 0;
+}
+
+// A little-endian load from a byte pointer.
+template <typename T>
+inline T loadLe(const unsigned char* p) {
+  return base::loadLe<T>(reinterpret_cast<const char*>(p));
+}
+
+// The 64 bits from bit `pos` of [base, base + size), LSB first; zeros past the end.
+inline std::uint64_t peekBits(const unsigned char* base, std::size_t size, std::uint64_t pos) {
+  const std::size_t byte = static_cast<std::size_t>(pos >> 3);
+  std::uint64_t w = 0;
+  if (byte + 8 <= size) {
+    w = loadLe<std::uint64_t>(base + byte);
+  } else {
+    for (std::size_t i = 0; byte + i < size && i < 8; ++i)
+      w |= std::uint64_t{base[byte + i]} << (8 * i);
+  }
+  return w >> (pos & 7);
+}
+
+// rANS over one run of n symbols, symbol j on lane j mod L, states carried in x.
+template <int L>
+void decodeRun(const RansModel& model, std::uint32_t* states, const unsigned char*& where,
+               const unsigned char* end, std::uint8_t* sym, std::size_t n, bool& overrun) {
+  // Local copies: the byte stores to sym may alias anything reached through a pointer.
+  std::uint32_t x[L];
+  std::memcpy(x, states, sizeof x);
+  const unsigned char* p = where;
+  const std::uint32_t* slots = model.slots.data();
+  const int shift = model.probBits;
+  const std::uint32_t mask = (1u << shift) - 1;
+  std::size_t j = 0;
+  // Whole groups of L symbols while the words they may read are surely there: first every
+  // lane's step (independent of each other), then the renormalizations in lane order.
+  for (; j + L <= n && end - p >= 2 * L; j += L) {
+    std::uint32_t xx[L];
+    std::uint8_t out[L];
+    for (int l = 0; l < L; ++l) {
+      const std::uint32_t e = slots[x[l] & mask];
+      xx[l] = (((e >> 8) & 0xfffu) + 1) * (x[l] >> shift) + (e >> 20);
+      out[l] = static_cast<std::uint8_t>(e);
+    }
+    for (int l = 0; l < L; ++l) {
+      // Arithmetic rather than a select, which compilers turn into a branch that the
+      // coin-flip renormalizations mispredict.
+      const auto need = static_cast<std::uint32_t>(xx[l] < kRansLow);
+      const std::uint32_t word = loadLe<std::uint16_t>(p);
+      x[l] = (xx[l] << (need << 4)) | (word & (0u - need));
+      p += need << 1;
+    }
+    std::memcpy(sym + j, out, L);
+  }
+  for (; j < n; ++j) {  // the rest one at a time, bounds-checked
+    std::uint32_t& s = x[j & (L - 1)];
+    const std::uint32_t e = slots[s & mask];
+    s = (((e >> 8) & 0xfffu) + 1) * (s >> shift) + (e >> 20);
+    sym[j] = static_cast<std::uint8_t>(e);
+    if (s < kRansLow) {
+      if (end - p < 2) {
+        overrun = true;
+        s <<= 16;
+      } else {
+        s = (s << 16) | loadLe<std::uint16_t>(p);
+        p += 2;
+      }
+    }
+  }
+  std::memcpy(states, x, sizeof x);
+  where = p;
+}
+
+#if defined(__x86_64__)
+// For each mask of lanes that renormalize, the word each lane takes: lane i takes word
+// popcount(mask & (2^i - 1)) of the next eight.
+struct WordPermutes {
+  alignas(32) std::array<std::array<std::uint32_t, 8>, 256> lane{};
+  constexpr WordPermutes() {
+    for (std::uint32_t m = 0; m < 256; ++m) {
+      std::uint32_t k = 0;
+      for (std::uint32_t i = 0; i < 8; ++i) {
+        lane[m][i] = k & 7u;
+        k += (m >> i) & 1u;
+      }
+    }
+  }
+};
+constexpr WordPermutes kWordPermutes;
+
+#define GS_AVX2 __attribute__((target("avx2,popcnt"), always_inline)) inline
+
+// One rANS step of eight states; returns the symbols (one per 32-bit lane).
+GS_AVX2 __m256i avx2Step(__m256i& x, const int* slots, __m256i mask, __m128i shift) {
+  const __m256i e = _mm256_i32gather_epi32(slots, _mm256_and_si256(x, mask), 4);
+  const __m256i f = _mm256_add_epi32(
+      _mm256_and_si256(_mm256_srli_epi32(e, 8), _mm256_set1_epi32(0xfff)), _mm256_set1_epi32(1));
+  x = _mm256_add_epi32(_mm256_mullo_epi32(f, _mm256_srl_epi32(x, shift)), _mm256_srli_epi32(e, 20));
+  return _mm256_and_si256(e, _mm256_set1_epi32(0xff));
+}
+
+// Renormalizes eight states from the words at p, in lane order; advances p.
+GS_AVX2 void avx2Renormalize(__m256i& x, const unsigned char*& p) {
+  const __m256i need = _mm256_cmpeq_epi32(_mm256_srli_epi32(x, 16), _mm256_setzero_si256());
+  const auto bits = static_cast<unsigned>(_mm256_movemask_ps(_mm256_castsi256_ps(need)));
+  const __m256i words = _mm256_cvtepu16_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)));
+  const __m256i perm =
+      _mm256_load_si256(reinterpret_cast<const __m256i*>(kWordPermutes.lane[bits].data()));
+  const __m256i shifted =
+      _mm256_or_si256(_mm256_slli_epi32(x, 16), _mm256_permutevar8x32_epi32(words, perm));
+  x = _mm256_blendv_epi8(x, shifted, need);
+  p += 2 * static_cast<unsigned>(__builtin_popcount(bits));
+}
+
+// decodeRun<16> with AVX2: two vectors of eight states, the same symbols and words in
+// the same order (lanes 0..7 renormalize before 8..15).
+__attribute__((target("avx2,popcnt"))) void decodeRun16Avx2(
+    const RansModel& model, std::uint32_t* states, const unsigned char*& where,
+    const unsigned char* end, std::uint8_t* sym, std::size_t n, bool& overrun) {
+  const auto* slots = reinterpret_cast<const int*>(model.slots.data());
+  const __m128i shift = _mm_cvtsi32_si128(model.probBits);
+  const __m256i mask = _mm256_set1_epi32((1 << model.probBits) - 1);
+  __m256i xa = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(states));
+  __m256i xb = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(states + 8));
+  const unsigned char* p = where;
+  std::size_t j = 0;
+  for (; j + 16 <= n && end - p >= 32; j += 16) {
+    const __m256i sa = avx2Step(xa, slots, mask, shift);
+    const __m256i sb = avx2Step(xb, slots, mask, shift);
+    avx2Renormalize(xa, p);
+    avx2Renormalize(xb, p);
+    // 16 symbols in order: pack to 16-bit (a0-3 b0-3 a4-7 b4-7), then to bytes.
+    const __m256i s16 = _mm256_permute4x64_epi64(_mm256_packus_epi32(sa, sb), 0xd8);
+    const __m256i s8 = _mm256_packus_epi16(s16, s16);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(sym + j),
+                     _mm256_castsi256_si128(_mm256_permute4x64_epi64(s8, 0x08)));
+  }
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(states), xa);
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(states + 8), xb);
+  where = p;
+  // The rest as the scalar decoder does it: j is a multiple of 16, so lanes line up.
+  decodeRun<16>(model, states, where, end, sym + j, n - j, overrun);
+}
+
+// AVX2 where the CPU has it, unless GS_QNV_NO_AVX2 is set (to measure the scalar path).
+bool useAvx2() {
+  static const bool use = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt") &&
+                          std::getenv("GS_QNV_NO_AVX2") == nullptr;
+  return use;
+}
+#endif
+
+using RunDecoder = void (*)(const RansModel&, std::uint32_t*, const unsigned char*&,
+                            const unsigned char*, std::uint8_t*, std::size_t, bool&);
+constexpr RunDecoder kRunDecoders[kMaxLanesLog2 + 1] = {decodeRun<1>, decodeRun<2>, decodeRun<4>,
+                                                        decodeRun<8>, decodeRun<16>};
+
+// The gap of a token t: t for t < 2, else 2^(t-1) plus t - 1 extra bits.
+struct GapTables {
+  std::array<std::uint32_t, 32> base{}, width{}, mask{};
+  constexpr GapTables() {
+    for (std::uint32_t t = 0; t < 32; ++t) {
+      base[t] = t < 2 ? t : 1u << (t - 1);
+      width[t] = t < 2 ? 0 : t - 1;
+      mask[t] = (1u << width[t]) - 1;
+    }
+  }
+};
+constexpr GapTables kGapTables;
+
+// A 12-bit piece of a Morton code (4 bits of each axis) spread back to X at bits 20..23,
+// Y at 10..13, Z at 0..3; pieces 1 and 2 shifted left by 4 and 8 complete the axes.
+struct MortonPieces {
+  std::array<std::uint32_t, 4096> xyz{};
+  constexpr MortonPieces() {
+    for (std::uint32_t c = 0; c < 4096; ++c)
+      for (int b = 0; b < 4; ++b)
+        xyz[c] |= (((c >> (3 * b)) & 1u) << (20 + b)) | (((c >> (3 * b + 1)) & 1u) << (10 + b)) |
+                  (((c >> (3 * b + 2)) & 1u) << b);
+  }
+};
+constexpr MortonPieces kMortonPieces;
+
+// X << 20 | Y << 10 | Z of a 30-bit Morton code.
+inline std::uint32_t mortonToXyz(std::uint32_t m) {
+  return kMortonPieces.xyz[m & 4095u] | (kMortonPieces.xyz[(m >> 12) & 4095u] << 4) |
+         (kMortonPieces.xyz[(m >> 24) & 63u] << 8);
+}
+
+}  // namespace
+
+void appendFastLayout(std::string& out, const PacketSymbols& packet) {
+  const std::size_t n = packet.sorted.size();
+  const auto& coders = *packet.coders;
+  const int lanesLog2 = lanesLog2For(n);
+  const std::size_t laneMask = (std::size_t{1} << lanesLog2) - 1;
+
+  // rANS: the coded fields in order, each a run of n symbols, symbol j on lane j mod L;
+  // encoded back to front, so the words come out in reverse reading order.
+  std::array<std::uint32_t, 16> x;
+  x.fill(kRansLow);
+  std::vector<std::uint16_t> words;
+  for (int k = kFields; k-- > 0;) {
+    if (!coders[k].coded()) continue;
+    const RansModel& m = coders[k].model;
+    for (std::size_t j = n; j-- > 0;) {
+      std::uint32_t& s = x[j & laneMask];
+      const std::uint32_t symbol = packet.symbols[j][static_cast<std::size_t>(k)];
+      const std::uint32_t f = m.freq[symbol];
+      if (s >= std::uint64_t{(kRansLow >> m.probBits) << 16} * f) {
+        words.push_back(static_cast<std::uint16_t>(s));
+        s >>= 16;
+      }
+      s = ((s / f) << m.probBits) + (s % f) + m.start[symbol];
+    }
+  }
+  std::string rans;
+  for (std::size_t l = 0; l <= laneMask; ++l) appendLe<std::uint32_t>(rans, x[l]);
+  for (auto w = words.rbegin(); w != words.rend(); ++w) appendLe<std::uint16_t>(rans, *w);
+
+  std::string gapBits;
+  BitWriter gaps(gapBits);
+  std::uint32_t previous = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t code = packet.sorted[i].first;
+    const int t = static_cast<int>(packet.symbols[i][kGap]);
+    if (t >= 2) gaps.put(code - previous, t - 1);
+    previous = code;
+  }
+  gaps.finish();
+
+  std::string bitPart;
+  BitWriter bits(bitPart);
+  for (int k = 0; k < kFields; ++k) writeTable(bits, coders[k], kAlphabetBits[k]);
+  for (int k = 0; k < kFields; ++k)
+    if (coders[k].mode == kModeRaw)
+      for (std::size_t i = 0; i < n; ++i)
+        bits.put(packet.symbols[i][static_cast<std::size_t>(k)], kAlphabetBits[k]);
+  for (std::size_t i = 0; i < n; ++i)
+    bits.put(magnitudeCode(packet.sorted[i].second) - packet.aMin, packet.aBits);
+  bits.finish();
+
+  appendLe<std::uint8_t>(out, static_cast<std::uint8_t>(packet.flags | kFlagFast));
+  appendLe<std::uint16_t>(out, static_cast<std::uint16_t>(packet.aMin));
+  appendLe<std::uint8_t>(out, static_cast<std::uint8_t>(packet.aBits));
+  appendLe<std::uint8_t>(out, static_cast<std::uint8_t>(lanesLog2));
+  // A part over 65535 bytes makes the payload larger than the plain records, and the
+  // writer then falls back to plain for this packet.
+  appendLe<std::uint16_t>(out,
+                          static_cast<std::uint16_t>(std::min<std::size_t>(rans.size(), 65535)));
+  appendLe<std::uint16_t>(out,
+                          static_cast<std::uint16_t>(std::min<std::size_t>(gapBits.size(), 65535)));
+  out += rans;
+  out += gapBits;
+  out += bitPart;
+}
+
+bool decodeFastLayout(std::string_view payload, std::size_t count, const PositionGrid& grid,
+                      std::uint64_t* out) {
+  if (payload.size() < kFastPreambleBytes || count == 0 || count > kMaxRecords) return false;
+  const auto* begin = reinterpret_cast<const unsigned char*>(payload.data());
+  const std::uint8_t flags = begin[0];
+  const auto aMin = loadLe<std::uint16_t>(begin + 1);
+  const int aBits = begin[3];
+  const int lanesLog2 = begin[4];
+  const std::size_t ransSize = loadLe<std::uint16_t>(begin + 5);
+  const std::size_t gapSize = loadLe<std::uint16_t>(begin + 7);
+  const bool useGrid = flags & kFlagGrid;
+  const bool useBlocks = flags & kFlagBlocks;
+  const std::size_t lanes = std::size_t{1} << std::min(lanesLog2, kMaxLanesLog2);
+  if (flags > (kFlagGrid | kFlagBlocks | kFlagFast) || aMin >= kMagnitudeSteps ||
+      aBits > kMagnitudeBits || lanesLog2 > kMaxLanesLog2 ||
+      ransSize + gapSize > payload.size() - kFastPreambleBytes || ransSize < 4 * lanes ||
+      (useGrid && !grid.active) || (useBlocks && (grid.blockShift == 0 || useGrid != grid.active)))
+    return false;
+  const unsigned char* ransBegin = begin + kFastPreambleBytes;
+  const unsigned char* ransEnd = ransBegin + ransSize;
+  const unsigned char* gapBase = ransEnd;
+  const unsigned char* bitBase = gapBase + gapSize;
+  const std::size_t bitSize = payload.size() - kFastPreambleBytes - ransSize - gapSize;
+
+  BitReader tableBits(bitBase, bitBase + bitSize);
+  std::array<FieldCoder, kFields> coders;
+  for (int k = 0; k < kFields; ++k)
+    if (!readTable(tableBits, coders[k], kAlphabetBits[k])) return false;
+  if (tableBits.overrun()) return false;
+  std::uint64_t bitPos = tableBits.bitsConsumed();
+
+  // One run of symbols per field.
+  alignas(64) std::uint8_t sym[kFields][kMaxRecords + 1];
+  std::uint32_t x[16];
+  const unsigned char* p = ransBegin;
+  for (std::size_t l = 0; l < lanes; ++l, p += 4) {
+    x[l] = loadLe<std::uint32_t>(p);
+    if (x[l] < kRansLow) return false;  // a state the encoder never leaves behind
+  }
+  bool overrun = false;
+  for (int k = 0; k < kFields; ++k) {
+    const FieldCoder& c = coders[k];
+    if (c.mode == kModeConstant) {
+      std::memset(sym[k], static_cast<int>(c.constant), count);
+    } else if (c.mode == kModeRaw) {
+      const int w = kAlphabetBits[k];
+      for (std::size_t i = 0; i < count; ++i, bitPos += static_cast<std::uint64_t>(w))
+        sym[k][i] = static_cast<std::uint8_t>(peekBits(bitBase, bitSize, bitPos) & ((1u << w) - 1));
+    } else {
+      RunDecoder run = kRunDecoders[lanesLog2];
+#if defined(__x86_64__)
+      if (lanesLog2 == 4 && useAvx2()) run = decodeRun16Avx2;
+#endif
+      run(c.model, x, p, ransEnd, sym[k], count, overrun);
+    }
+  }
+  if (overrun || p != ransEnd) return false;
+  for (std::size_t l = 0; l < lanes; ++l)
+    if (x[l] != kRansLow) return false;
+  const std::uint64_t aPos = bitPos;
+  if ((aPos + std::uint64_t{count} * static_cast<std::uint64_t>(aBits) + 7) / 8 != bitSize)
+    return false;
+
+  const int blockBits = useBlocks ? 3 * grid.blockShift : 0;
+  const std::uint64_t codeLimit =
+      useBlocks ? std::uint64_t{grid.blocks.size()} << blockBits : std::uint64_t{1} << 30;
+  const std::uint32_t lowMask = (1u << blockBits) - 1;
+  const auto aMask = static_cast<std::uint32_t>((1u << aBits) - 1);
+  if (useGrid)
+    for (const auto& cells : grid.cellOrOutside)
+      if (cells.size() != kPositionSteps) return false;
+  const std::uint16_t* cellX = grid.cellOrOutside[0].data();
+  const std::uint16_t* cellY = grid.cellOrOutside[1].data();
+  const std::uint16_t* cellZ = grid.cellOrOutside[2].data();
+  const std::uint32_t* blocks = grid.blocks.data();
+  const std::size_t lastBlock = grid.blocks.empty() ? 0 : grid.blocks.size() - 1;
+  // Rebuilds the records. Range errors are checked once at the end (the code only grows,
+  // theta and A are ORed into `seen`, grid overflows into `outside`), indices clamped
+  // meanwhile.
+  const auto records = [&]<bool kBlocks, bool kGrid>() {
+    std::uint64_t code = 0, gapPos = 0;
+    std::uint32_t theta = 0, phi = 0, seen = 0, outside = 0;  // outside: ORed cells
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::uint32_t t = sym[kGap][i];
+      const auto extra = static_cast<std::uint32_t>(peekBits(gapBase, gapSize, gapPos));
+      gapPos += kGapTables.width[t];
+      code += kGapTables.base[t] | (extra & kGapTables.mask[t]);
+      auto m = static_cast<std::uint32_t>(code);
+      if constexpr (kBlocks)
+        m = (blocks[std::min<std::size_t>(code >> blockBits, lastBlock)] << blockBits) |
+            (m & lowMask);
+      theta = (theta + sym[kTheta][i]) & 63u;
+      phi = (phi + sym[kPhi][i]) & 63u;
+      const std::uint32_t a =
+          aMin + (static_cast<std::uint32_t>(
+                      peekBits(bitBase, bitSize, aPos + i * static_cast<std::uint64_t>(aBits))) &
+                  aMask);
+      std::uint32_t xyz = mortonToXyz(m);  // bits over 30 are dropped; the code is checked
+      seen |= (theta << 16) | a;
+      if constexpr (kGrid) {
+        const std::uint32_t cx = cellX[xyz >> 20], cy = cellY[(xyz >> 10) & 1023u],
+                            cz = cellZ[xyz & 1023u];
+        outside |= cx | cy | cz;
+        xyz = (cx << 20) | (cy << 10) | cz;
+      }
+      out[i] = (std::uint64_t{xyz} << 34) | (std::uint64_t{theta} << 29) |
+               (std::uint64_t{phi} << 23) | (std::uint64_t{a} << 8) | sym[kColor][i];
+    }
+    static_assert(kThetaSteps == 32 && kMagnitudeSteps == 32768);
+    return code < codeLimit && (seen & ((32u << 16) | 32768u)) == 0 && (outside & 0x8000u) == 0 &&
+           (gapPos + 7) / 8 == gapSize;
+  };
+  return useBlocks ? (useGrid ? records.template operator()<true, true>()
+                              : records.template operator()<true, false>())
+                   : (useGrid ? records.template operator()<false, true>()
+                              : records.template operator()<false, false>());
+}
+
+}  // namespace gs::qnv::detail

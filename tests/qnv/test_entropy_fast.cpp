@@ -1,0 +1,288 @@
+// The fast layout of the entropy packet coding (WriteOptions::fastEntropy, payload flag
+// bit 2, docs/qnv-format.md "Fast layout"): lossless at every packet size and lane count,
+// frozen by a golden stream, close in size to the original layout, and safe on cut,
+// damaged and hostile payloads.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <random>
+#include <set>
+
+#include "qnv/coding.hpp"
+#include "qnv/decoder.hpp"
+#include "qnv/encoder.hpp"
+#include "test_support.hpp"
+
+using namespace gs::qnv;
+
+namespace {
+
+// Two overlapping soft spheres, n x (n - 4) x n/2 voxels.
+Volume blob(std::uint32_t n) {
+  Volume v;
+  v.dims = {n, n - 4, n / 2};
+  v.spacing = {1, 1, 2};
+  v.samples.resize(v.voxelCount());
+  std::size_t i = 0;
+  for (std::uint32_t z = 0; z < v.dims.z; ++z)
+    for (std::uint32_t y = 0; y < v.dims.y; ++y)
+      for (std::uint32_t x = 0; x < v.dims.x; ++x) {
+        const float d = std::hypot(x - n * 0.4f, y - n * 0.45f, 2.0f * z - n * 0.5f);
+        const float e = std::hypot(x - n * 0.65f, y - n * 0.5f, 2.0f * z - n * 0.4f);
+        v.samples[i++] = 1000.0f / (1.0f + std::exp(d - n * 0.3f)) +
+                         600.0f / (1.0f + std::exp(0.5f * (e - n * 0.2f)));
+      }
+  return v;
+}
+
+// A wavy sheet of 2 n^2 triangles in a few colours.
+TriangleMesh sheet(int n) {
+  TriangleMesh m;
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j)
+      m.positions.push_back({static_cast<float>(i), static_cast<float>(j),
+                             2.0f * std::sin(0.3f * i) * std::cos(0.2f * j) + 0.01f * i * j});
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const std::uint32_t a = i * (n + 1) + j, b = a + 1, c = a + n + 1, d = c + 1;
+      m.indices.insert(m.indices.end(), {a, c, b, b, c, d});
+      const auto k = static_cast<std::uint8_t>(((i / 7) + (j / 5)) % 4 * 60);
+      m.faceColors.push_back({k, 100, 50, 255});
+      m.faceColors.push_back({k, 100, 50, 255});
+    }
+  return m;
+}
+
+const EncodedVectors& volumeVectors() {
+  static const EncodedVectors e = encodeVolume(blob(40), {});
+  return e;
+}
+
+const EncodedVectors& smallVectors() {  // the golden stream's: ~1000 vectors
+  static const EncodedVectors e = [] {
+    VolumeEncodeOptions options;
+    options.selection.fraction = 0.5;
+    return encodeVolume(blob(16), options);
+  }();
+  return e;
+}
+
+const EncodedVectors& surfaceVectors() {
+  static const EncodedVectors e = encodeSurface(sheet(50), {});
+  return e;
+}
+
+WriteOptions fast(std::uint32_t bytes, bool model = false) {
+  WriteOptions o{bytes, PacketEncoding::entropy};
+  o.fastEntropy = true;
+  o.streamModel = model;
+  return o;
+}
+
+using Bytes32 = std::array<unsigned char, sizeof(DecodedVector)>;
+
+struct Packets {
+  std::map<std::uint64_t, std::multiset<Bytes32>> byFirst;  // by the packet's first index
+  std::size_t vectors = 0;
+  bool finished = false;
+  DecoderStats stats;
+};
+
+Packets decode(std::string_view bytes, std::size_t chunk) {
+  Packets out;
+  StreamDecoder d("test.qnv");
+  auto sink = [&](std::uint64_t first, std::span<const DecodedVector> v) {
+    for (const DecodedVector& x : v) {
+      Bytes32 b;
+      std::memcpy(b.data(), &x, b.size());
+      out.byFirst[first].insert(b);
+    }
+    out.vectors += v.size();
+  };
+  for (std::size_t at = 0; at < bytes.size(); at += chunk) d.feed(bytes.substr(at, chunk), sink);
+  out.finished = d.finish(sink);
+  out.stats = d.stats();
+  return out;
+}
+
+std::size_t payloadBytes(const std::string& s, std::size_t at) {
+  return static_cast<unsigned char>(s[at + 8]) + 256u * static_cast<unsigned char>(s[at + 9]);
+}
+
+std::vector<std::size_t> packetStarts(const std::string& s, std::size_t headerBytes) {
+  std::vector<std::size_t> starts;
+  for (std::size_t at = headerBytes; at + kPacketHeaderBytes <= s.size();
+       at += kPacketHeaderBytes + payloadBytes(s, at))
+    starts.push_back(at);
+  return starts;
+}
+
+void resealPacket(std::string& s, std::size_t at, std::size_t payload) {
+  s[at + 8] = static_cast<char>(payload & 0xff);
+  s[at + 9] = static_cast<char>(payload >> 8);
+  const std::uint32_t crc = crc32(std::string_view(s).substr(at + kPacketHeaderBytes, payload),
+                                  crc32(std::string_view(s).substr(at + 2, 10)));
+  for (int i = 0; i < 4; ++i) s[at + 12 + i] = static_cast<char>(crc >> (8 * i));
+}
+
+std::string goldenPath() {
+  return (gs::test::sourceDir() / "tests/qnv/golden/blob_entropy_fast.qnv").string();
+}
+
+}  // namespace
+
+TEST_CASE("fast entropy packets carry the same records as plain ones at every lane count",
+          "[qnv][entropy][fast]") {
+  for (const EncodedVectors* e : {&volumeVectors(), &surfaceVectors()}) {
+    // 1, 6, 32, 172, 512, 2048 and 8191 records per packet: 1 to 16 rANS lanes.
+    for (std::uint32_t bytes : {8u, 48u, 256u, 1376u, 4096u, 16384u, 65528u}) {
+      for (bool model : {false, true}) {
+        INFO("packet bytes " << bytes << ", model " << model << ", " << e->records.size());
+        const std::string slow = writeStream(*e, {bytes, PacketEncoding::entropy});
+        const std::string quick = writeStream(*e, fast(bytes, model));
+        if (bytes >= 1376 && !model) CHECK(quick.size() * 100 < slow.size() * 103);
+        const Packets a = decode(writeStream(*e, {bytes, PacketEncoding::plain}), 1 << 16);
+        const Packets b = decode(quick, 1000);
+        REQUIRE(b.finished);
+        CHECK(b.stats.packetsCorrupt == 0);
+        CHECK(b.vectors == e->records.size());
+        CHECK(a.byFirst == b.byFirst);
+      }
+    }
+  }
+}
+
+TEST_CASE("the fast layout's bit report accounts for every byte", "[qnv][entropy][fast]") {
+  for (const EncodedVectors* e : {&volumeVectors(), &surfaceVectors()}) {
+    const std::string s = writeStream(*e, fast(16384));
+    const CodingBits bits = entropyCodingBits(*e, 16384, false, true);
+    CHECK(std::abs(bits.total() / 8.0 - static_cast<double>(s.size() - kHeaderBytes)) < 1.0);
+    CHECK(bits.framing < bits.total() / 20);
+  }
+}
+
+TEST_CASE("fast entropy packets hold any records, off the grid and at the field limits",
+          "[qnv][entropy][fast]") {
+  std::mt19937_64 rng(11);
+  EncodedVectors e = volumeVectors();
+  std::vector<std::vector<std::uint64_t>> cases;
+  cases.emplace_back();
+  for (int i = 0; i < 3000; ++i) cases.back().push_back(rng());  // incompressible
+  cases.push_back(std::vector<std::uint64_t>(500, 0x123456789abcdef0ull));
+  cases.push_back({~std::uint64_t{0}, 0, packRecord({1023, 1023, 1023, 31, 63, 32767, 255}),
+                   packRecord({0, 0, 0, 0, 0, 0, 0}), packRecord({1023, 0, 1023, 31, 0, 0, 255})});
+  cases.emplace_back();  // on the grid but for a few, with a wide magnitude range
+  for (std::size_t i = 0; i < 9000; ++i) {
+    std::uint64_t r = e.records[i % e.records.size()];
+    if (i % 97 == 0) r ^= std::uint64_t{1} << 54;
+    cases.back().push_back((r & ~(std::uint64_t{32767} << 8)) | ((rng() % 32768) << 8));
+  }
+  cases.emplace_back();  // few distinct colours and directions, raw and constant fields
+  for (std::size_t i = 0; i < 5000; ++i) {
+    RecordFields f{};
+    f.x = static_cast<std::uint16_t>(rng() % 1024);
+    f.y = static_cast<std::uint16_t>(rng() % 1024);
+    f.z = 7;
+    f.theta = static_cast<std::uint8_t>(rng() % 32);
+    f.phi = 5;
+    f.a = static_cast<std::uint16_t>(rng() % 4);
+    f.c = static_cast<std::uint8_t>(rng() % 256);
+    cases.back().push_back(packRecord(f));
+  }
+  for (const auto& records : cases) {
+    e.records = records;
+    for (std::uint32_t bytes : {8u, 48u, 1376u, 4096u, 65528u}) {
+      const Packets a = decode(writeStream(e, {bytes, PacketEncoding::plain}), 1 << 16);
+      const Packets b = decode(writeStream(e, fast(bytes)), 1 << 16);
+      REQUIRE(b.finished);
+      CHECK(a.byFirst == b.byFirst);
+    }
+  }
+}
+
+TEST_CASE("the encoder reproduces the golden fast entropy stream byte for byte",
+          "[qnv][entropy][fast][golden]") {
+  // 64 records per packet: grid-coded positions, four rANS lanes.
+  const std::string stream = writeStream(smallVectors(), fast(512));
+  if (std::getenv("GS_WRITE_GOLDEN")) std::ofstream(goldenPath(), std::ios::binary) << stream;
+  const std::string golden = gs::test::readBytes(goldenPath());
+  REQUIRE(golden.size() == stream.size());
+  CHECK(stream == golden);
+  for (std::size_t at : packetStarts(golden, kHeaderBytes)) {
+    CHECK(golden[at + 10] == 2);                        // the entropy encoding
+    CHECK(golden[at + kPacketHeaderBytes] == (1 | 4));  // grid, fast layout
+    CHECK(golden[at + kPacketHeaderBytes + 4] == 2);    // 4 lanes
+  }
+  const Packets a = decode(writeStream(smallVectors(), {512, PacketEncoding::plain}), 1 << 16);
+  const Packets b = decode(golden, 4096);
+  REQUIRE(b.finished);
+  CHECK(a.byFirst == b.byFirst);
+}
+
+TEST_CASE("every truncation of a fast entropy stream keeps the whole packets before the cut",
+          "[qnv][entropy][fast]") {
+  EncodedVectors e = smallVectors();
+  e.records.resize(200);
+  const std::string s = writeStream(e, fast(512));
+  const std::vector<std::size_t> starts = packetStarts(s, kHeaderBytes);
+  REQUIRE(starts.size() == 4);
+  std::size_t whole = 0;
+  for (std::size_t len = 0; len <= s.size(); ++len) {
+    while (whole < starts.size() &&
+           (whole + 1 < starts.size() ? starts[whole + 1] : s.size()) <= len)
+      ++whole;
+    const Packets p = decode(std::string_view(s).substr(0, len), 333);
+    REQUIRE(p.stats.packetsDecoded == (len < kHeaderBytes ? 0 : whole));
+    REQUIRE(p.finished == (len == s.size()));
+  }
+}
+
+TEST_CASE("a cut or damaged fast entropy payload under a valid CRC is rejected, never read past",
+          "[qnv][entropy][fast]") {
+  // 64 records (4 lanes), 512 (8 lanes) and 2048 (16 lanes, the AVX2 path where the CPU
+  // has it; every 13th cut and byte there) per packet, with and without a model.
+  for (std::uint32_t bytes : {512u, 4096u, 16384u}) {
+    const std::size_t stride = bytes == 16384 ? 13 : 1;
+    for (bool model : {false, true}) {
+      EncodedVectors e = bytes == 512 ? smallVectors() : volumeVectors();
+      e.records.resize(std::min<std::size_t>(e.records.size(), bytes == 16384 ? 2100 : 1100));
+      const std::string s = writeStream(e, fast(bytes, model));
+      std::string why;
+      const std::vector<std::size_t> starts =
+          packetStarts(s, parseHeader(s, "x", why)->headerBytes);
+      REQUIRE(starts.size() >= 2);
+      const std::size_t at = starts[1];
+      const std::size_t payload = payloadBytes(s, at);
+      const std::size_t total = decode(s, 1 << 16).vectors;
+      const std::size_t lost =
+          static_cast<unsigned char>(s[at + 2]) + 256u * static_cast<unsigned char>(s[at + 3]);
+      INFO("packet bytes " << bytes << ", model " << model << ", payload " << payload);
+      std::size_t wrong = 0;
+      for (std::size_t cut = 0; cut < payload; cut += stride) {
+        std::string t = s.substr(0, at + kPacketHeaderBytes + cut) +
+                        s.substr(at + kPacketHeaderBytes + payload);
+        resealPacket(t, at, cut);
+        const Packets p = decode(t, 1 << 16);
+        wrong += p.stats.packetsCorrupt != 1 || p.vectors != total - lost;
+      }
+      CHECK(wrong == 0);
+      std::size_t rejected = 0, bad = 0;
+      for (std::size_t i = 0; i < payload; i += stride)
+        for (unsigned char x : {0x01, 0x80, 0xff}) {
+          std::string t = s;
+          t[at + kPacketHeaderBytes + i] = static_cast<char>(t[at + kPacketHeaderBytes + i] ^ x);
+          resealPacket(t, at, payload);
+          const Packets p = decode(t, 1 << 16);
+          bad += p.vectors + lost * p.stats.packetsCorrupt != total;
+          rejected += p.stats.packetsCorrupt;
+        }
+      CHECK(bad == 0);
+      CHECK(rejected > payload / stride);
+    }
+  }
+}
