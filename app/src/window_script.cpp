@@ -201,6 +201,12 @@ bool WindowScript::step(WindowState& state, int width, int height) {
             << " " << navs[static_cast<int>(v.navigator.mode())] << " "
             << (v.renderer ? v.renderer->statistics().splats : 0) << "\n";
       }
+      for (const session::TilesetStream* t : state.session->tilesets()) {
+        const session::TilesetStatistics& s = t->statistics();
+        out << "tileset " << t->url() << " resident " << s.residentVectors << " peak "
+            << s.peakResidentVectors << " evicted " << s.evictedBricks << " requests " << s.requests
+            << " bytes " << s.brickBytes << " chosen " << s.chosenVectors << "\n";
+      }
       if (!out) state.log.push_back({true, "status: cannot write " + c.argument});
     } else if (c.verb == "quit") {
       ++next_;

@@ -12,9 +12,13 @@ struct TilesetStream::Brick {
   std::vector<qnv::DecodedVector> vectors;  // in brick order (largest first)
   std::uint64_t fed = 0;                    // bytes given to the decoder, from offset 0
   std::unique_ptr<net::Transfer> transfer;
-  std::uint64_t transferEnd = 0;  // end of the bytes the running transfer asked for
-  std::uint64_t wantedBytes = 0;  // end of the prefix chosen (0: not chosen)
-  double priority = 0.0;          // in the last choice it was in
+  std::uint64_t transferEnd = 0;    // end of the bytes the running transfer asked for
+  std::uint64_t wantedBytes = 0;    // end of the prefix chosen (0: not chosen)
+  std::uint64_t wantedRecords = 0;  // records of that prefix
+  /// Vectors past the chosen prefix were dropped (evict()): `fed` counts the bytes kept,
+  /// and the next transfer starts again from offset 0 with a new decoder.
+  bool trimmed = false;
+  double priority = 0.0;  // in the last choice it was in
   bool failed = false;
   std::size_t warningsShown = 0;
 };
@@ -113,6 +117,7 @@ void TilesetStream::choose() {
   for (const BrickChoice& c : choice_) {
     Brick& b = bricks_[c.brick];
     b.wantedBytes = c.bytes;
+    b.wantedRecords = c.records;
     b.priority = c.priority;
     stats_.chosenVectors += c.records;
   }
@@ -184,6 +189,11 @@ bool TilesetStream::pumpBricks() {
     if (running >= options_.parallelFetches) break;
     Brick& b = bricks_[c.brick];
     if (b.failed || b.transfer || b.fed >= b.wantedBytes) continue;
+    if (b.trimmed) {  // the decoder needs the stream from its header
+      b.fed = 0;
+      b.decoder.reset();
+      b.trimmed = false;
+    }
     std::string error;
     const std::string url = base::resolveUrl(url_, index_->bricks[c.brick].path());
     net::FetchRequest r = loader_.requestFor(url, referrer_.empty() ? "" : referrer_, error);
@@ -221,8 +231,20 @@ void TilesetStream::evict() {
       b = Brick{};
       ++stats_.evictedBricks;
     }
+    // Still over: chosen bricks holding more than their chosen prefix (left from an
+    // earlier view that chose more of them) keep only that prefix.
+    for (Brick& b : bricks_) {
+      if (resident <= limit) break;
+      if (b.wantedBytes == 0 || b.transfer || b.vectors.size() <= b.wantedRecords) continue;
+      resident -= b.vectors.size() - b.wantedRecords;
+      b.vectors.resize(static_cast<std::size_t>(b.wantedRecords));
+      b.vectors.shrink_to_fit();
+      b.fed = b.wantedBytes;
+      b.trimmed = true;
+    }
   }
   stats_.residentVectors = resident;
+  stats_.peakResidentVectors = std::max(stats_.peakResidentVectors, resident);
 }
 
 void TilesetStream::rebuild() {

@@ -18,7 +18,9 @@
 //   budget N                the active viewport's vector budget (vectors per frame; 0: none)
 //   frame-target MS         the frame time automatic levels of detail aim at
 //   status OUT.txt          one line per viewport: index, world URL, level of detail,
-//                           mode, navigation, splats drawn (for tests)
+//                           mode, navigation, splats drawn (for tests); then one line per
+//                           QNV tileset: "tileset URL resident R peak P evicted E requests Q
+//                           bytes B chosen C" (session::TilesetStatistics; R, P, C vectors)
 //   time T                  the worlds' clock to SFTime T (seconds); from then on the
 //                           clock is virtual (no longer the wall clock)
 //   advance S               the virtual clock S seconds on (cascades at --time-step)

@@ -41,6 +41,9 @@ struct TilesetStatistics {
   std::uint64_t chosenBricks = 0;     // in the last choice
   std::uint64_t chosenVectors = 0;    // records of the last choice
   std::uint64_t residentVectors = 0;  // decoded and held now
+  /// The most residentVectors has been after any pump (held between frames, after its
+  /// eviction); within one pump the bricks that just arrived are counted before eviction.
+  std::uint64_t peakResidentVectors = 0;
   std::uint64_t evictedBricks = 0;
 };
 
