@@ -17,7 +17,7 @@ seconds=${1:?usage: run.sh SECONDS [TARGET...]}
 shift
 build=${GS_FUZZ_BUILD:-$top/build-fuzz}
 jobs=${GS_FUZZ_JOBS:-1}
-all=(fuzz_vrml_parse fuzz_vrml_stream fuzz_vrml_proto fuzz_qnv_stream fuzz_qnv_compact fuzz_qnv_entropy
+all=(fuzz_vrml_parse fuzz_vrml_stream fuzz_vrml_proto fuzz_qnv_stream fuzz_qnv_compact fuzz_qnv_entropy fuzz_tileset_index
      fuzz_ply fuzz_obj fuzz_gltf fuzz_nrrd fuzz_nifti fuzz_image fuzz_http_response
      fuzz_instance_message fuzz_script)
 targets=("$@")
@@ -49,6 +49,7 @@ seeds_of() {
     fuzz_qnv_stream) s=("$here/seeds/qnv" "$build/seeds/qnv") ;;
     fuzz_qnv_compact) s=("$here/seeds/compact" "$build/seeds/compact") ;;
     fuzz_qnv_entropy) s=("$here/seeds/entropy" "$build/seeds/entropy") ;;
+    fuzz_tileset_index) s=("$top/tests/qnv/golden/tileset_blob") ;;
     fuzz_ply | fuzz_obj | fuzz_gltf) s=("$here/seeds/mesh") ;;
     fuzz_nrrd | fuzz_nifti) s=("$here/seeds/volume") ;;
     fuzz_image) s=("$here/seeds/image" "$top/assets/worlds/textures") ;;
