@@ -7,24 +7,10 @@
 
 namespace gs::render::detail {
 
-// The splat model of splat_model.hpp in GLSL, as in the geometry path's vertex shader
-// (splat_renderer.cpp): keep the three in step.
-const char* const kSplatPointsVertexShader = R"glsl(#version 330 core
-layout(location = 0) in vec4 a_positionMagnitude;
-layout(location = 1) in vec3 a_normal;
-layout(location = 2) in uint a_rgba;
+// The point path's vertex shader after the shared model (splat_glsl.hpp).
+const char* const kSplatPointsVertexBody = R"glsl(
 uniform mat4 u_modelView;
 uniform mat4 u_projection;
-uniform mat3 u_normalMatrix;
-uniform int u_surface;
-uniform float u_sigma;
-uniform float u_opacityScale;
-uniform float u_voxelSize;
-uniform float u_magnitudeMax;
-uniform float u_ambient;
-uniform int u_lightCount;
-uniform vec3 u_lightDirection[8];
-uniform vec3 u_lightColor[8];
 uniform vec2 u_viewportSize;  // pixels
 flat out vec3 v_center;       // eye coordinates
 flat out vec3 v_normal;       // eye coordinates, the patch plane's normal (not unit)
@@ -39,22 +25,11 @@ void cull() {
 }
 
 void main() {
-  uint rgba = a_rgba;
-  vec4 c = vec4(float(rgba & 255u), float((rgba >> 8) & 255u), float((rgba >> 16) & 255u),
-                float(rgba >> 24)) / 255.0;
-  float magnitude = a_positionMagnitude.w;
+  vec4 c = splatRgba();
   vec3 n = a_normal;
   float spread;
   float peak;
-  if (u_surface == 1) {
-    float radius = sqrt(max(magnitude, 0.0) / 3.14159265);
-    spread = 2.0 * u_sigma * radius;
-    peak = spread > 0.0 ? u_opacityScale * magnitude / (2.0 * 3.14159265 * spread * spread) : 0.0;
-    peak *= c.a;
-  } else {
-    spread = 2.0 * u_sigma * u_voxelSize;
-    peak = u_opacityScale * c.a * sqrt(clamp(magnitude / u_magnitudeMax, 0.0, 1.0));
-  }
+  splatProfile(a_positionMagnitude.w, c.a, spread, peak);
   peak = clamp(peak, 0.0, 1.0);
   if (!(peak > 0.0) || !(spread > 0.0)) {
     cull();
@@ -99,11 +74,7 @@ void main() {
   v_center = center;
   v_normal = normal;
   v_peak = peak;
-  vec3 wn = normalize(u_normalMatrix * n);
-  vec3 light = vec3(u_ambient);
-  for (int k = 0; k < u_lightCount; ++k)
-    light += abs(dot(wn, u_lightDirection[k])) * u_lightColor[k];
-  v_color = min(c.rgb * light, vec3(1.0));
+  v_color = splatLit(n, c.rgb);
 }
 )glsl";
 

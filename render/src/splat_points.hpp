@@ -27,7 +27,8 @@
 
 namespace gs::render::detail {
 
-extern const char* const kSplatPointsVertexShader;
+/// The point path's vertex shader after splatVertexShader's shared part (splat_glsl.hpp).
+extern const char* const kSplatPointsVertexBody;
 extern const char* const kSplatPointsFragmentShader;
 
 /// What pointsFit needs of the view: `modelView` (model to eye), the projection's x and y

@@ -11,28 +11,16 @@
 
 #include "gl_program.hpp"
 #include "render/splat_sort.hpp"
+#include "splat_glsl.hpp"
 #include "splat_points.hpp"
 
 namespace gs::render {
 
 namespace {
 
-// The splat model of splat_model.hpp in GLSL: keep the two in step.
-const char* const kSplatVertexShader = R"glsl(#version 330 core
-layout(location = 0) in vec4 a_positionMagnitude;
-layout(location = 1) in vec3 a_normal;
-layout(location = 2) in uint a_rgba;
+// The geometry path's vertex shader after the shared model (splat_glsl.hpp).
+const char* const kSplatVertexBody = R"glsl(
 uniform mat4 u_model;
-uniform mat3 u_normalMatrix;
-uniform int u_surface;
-uniform float u_sigma;
-uniform float u_opacityScale;
-uniform float u_voxelSize;
-uniform float u_magnitudeMax;
-uniform float u_ambient;
-uniform int u_lightCount;
-uniform vec3 u_lightDirection[8];
-uniform vec3 u_lightColor[8];
 out vec3 g_center;  // model coordinates
 out vec3 g_tangent;
 out vec3 g_bitangent;
@@ -41,33 +29,18 @@ out float g_peak;
 out vec3 g_color;
 
 void main() {
-  uint rgba = a_rgba;
-  vec4 c = vec4(float(rgba & 255u), float((rgba >> 8) & 255u), float((rgba >> 16) & 255u),
-                float(rgba >> 24)) / 255.0;
-  float magnitude = a_positionMagnitude.w;
+  vec4 c = splatRgba();
   vec3 n = a_normal;
   float spread;
   float peak;
-  if (u_surface == 1) {
-    float radius = sqrt(max(magnitude, 0.0) / 3.14159265);
-    spread = 2.0 * u_sigma * radius;
-    peak = spread > 0.0 ? u_opacityScale * magnitude / (2.0 * 3.14159265 * spread * spread) : 0.0;
-    peak *= c.a;
-  } else {
-    spread = 2.0 * u_sigma * u_voxelSize;
-    peak = u_opacityScale * c.a * sqrt(clamp(magnitude / u_magnitudeMax, 0.0, 1.0));
-  }
+  splatProfile(a_positionMagnitude.w, c.a, spread, peak);
   g_peak = clamp(peak, 0.0, 1.0);
   g_spread = spread;
   vec3 helper = abs(n.z) < 0.9 ? vec3(0.0, 0.0, 1.0) : vec3(1.0, 0.0, 0.0);
   g_tangent = normalize(cross(helper, n));
   g_bitangent = cross(n, g_tangent);
   g_center = a_positionMagnitude.xyz;
-  vec3 wn = normalize(u_normalMatrix * n);
-  vec3 light = vec3(u_ambient);
-  for (int k = 0; k < u_lightCount; ++k)
-    light += abs(dot(wn, u_lightDirection[k])) * u_lightColor[k];
-  g_color = min(c.rgb * light, vec3(1.0));
+  g_color = splatLit(n, c.rgb);
 }
 )glsl";
 
@@ -218,10 +191,11 @@ struct SplatRenderer::Gpu {
   SplatStyle fitStyle;
 
   void create() {
-    program = detail::buildProgram("splat", kSplatVertexShader, kSplatFragmentShader,
-                                   kSplatGeometryShader);
-    pointsProgram = detail::buildProgram("splat points", detail::kSplatPointsVertexShader,
-                                         detail::kSplatPointsFragmentShader);
+    program = detail::buildProgram("splat", detail::splatVertexShader(kSplatVertexBody).c_str(),
+                                   kSplatFragmentShader, kSplatGeometryShader);
+    pointsProgram = detail::buildProgram(
+        "splat points", detail::splatVertexShader(detail::kSplatPointsVertexBody).c_str(),
+        detail::kSplatPointsFragmentShader);
     layerProgram = detail::buildProgram("splat layer", kLayerVertexShader, kLayerFragmentShader);
     u.locate(program);
     pu.locate(pointsProgram);
