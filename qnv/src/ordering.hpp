@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "qnv/encoder.hpp"
+
 namespace gs::qnv::detail {
 
 /// An element that may become a vector: its exact magnitude and its source index.
@@ -20,5 +22,9 @@ void keepLargest(std::vector<Candidate>& candidates, std::uint64_t keep);
 /// Reorders packed records by A code, largest first; records with equal codes keep their
 /// relative order (a stable counting sort, O(n)).
 void sortLargestFirst(std::vector<std::uint64_t>& records);
+
+/// The stream of `selected`: each vector quantized with its header (quantizeVector), the
+/// records then sorted largest first. What encodeSurface and encodeVolume write.
+EncodedVectors quantizeLargestFirst(const SelectedVectors& selected);
 
 }  // namespace gs::qnv::detail

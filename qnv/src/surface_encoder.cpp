@@ -102,14 +102,7 @@ SelectedVectors selectSurfaceVectors(const TriangleMesh& mesh, const SurfaceEnco
 EncodedVectors encodeSurface(const TriangleMesh& mesh, const SurfaceEncodeOptions& options,
                              EncodeSummary* summary) {
   SelectedVectors selected = selectSurfaceVectors(mesh, options, summary);
-  EncodedVectors out;
-  out.header = selected.header;
-  const StreamHeader& h = out.header;
-  const MagnitudeQuantizer quantizeA(h.mapping, h.magnitudeMin, h.magnitudeMax);
-  out.records.resize(selected.vectors.size());
-  for (std::size_t i = 0; i < selected.vectors.size(); ++i)
-    out.records[i] = quantizeVector(selected.vectors[i], h, quantizeA);
-  detail::sortLargestFirst(out.records);
+  EncodedVectors out = detail::quantizeLargestFirst(selected);
   report(options.progress, 1.0);
   return out;
 }

@@ -124,15 +124,7 @@ SelectedVectors selectVolumeVectors(const Volume& volume, const VolumeEncodeOpti
 EncodedVectors encodeVolume(const Volume& volume, const VolumeEncodeOptions& options,
                             EncodeSummary* summary) {
   SelectedVectors selected = selectVolumeVectors(volume, options, summary);
-  EncodedVectors out;
-  out.header = selected.header;
-  const StreamHeader& h = out.header;
-  const MagnitudeQuantizer quantizeA(h.mapping, h.magnitudeMin, h.magnitudeMax);
-  out.records.resize(selected.vectors.size());
-  for (std::size_t i = 0; i < selected.vectors.size(); ++i)
-    out.records[i] = quantizeVector(selected.vectors[i], h, quantizeA);
-  report(options.progress, 0.9);
-  detail::sortLargestFirst(out.records);
+  EncodedVectors out = detail::quantizeLargestFirst(selected);
   report(options.progress, 1.0);
   return out;
 }
@@ -159,6 +151,18 @@ std::uint64_t quantizeVector(const SourceVector& v, const StreamHeader& h,
   f.a = quantizeA(v.magnitude);
   f.c = v.color;
   return packRecord(f);
+}
+
+EncodedVectors detail::quantizeLargestFirst(const SelectedVectors& selected) {
+  EncodedVectors out;
+  out.header = selected.header;
+  const StreamHeader& h = out.header;
+  const MagnitudeQuantizer quantizeA(h.mapping, h.magnitudeMin, h.magnitudeMax);
+  out.records.resize(selected.vectors.size());
+  for (std::size_t i = 0; i < selected.vectors.size(); ++i)
+    out.records[i] = quantizeVector(selected.vectors[i], h, quantizeA);
+  detail::sortLargestFirst(out.records);
+  return out;
 }
 
 }  // namespace gs::qnv
