@@ -33,6 +33,22 @@ bool parseShare(const std::string& text, std::uint32_t& share, std::uint32_t& sh
          shares >= 1 && shares <= qnv::kMaxTilesetShares && share < shares;
 }
 
+bool tilesetShareOptions(const EncodeOptions& e, const qnv::WriteOptions& write,
+                         std::uint32_t& share, std::uint32_t& shares, qnv::TilesetOptions& cut) {
+  share = 0;
+  shares = 1;
+  if (!e.bricks.empty() && !parseShare(e.bricks, share, shares)) {
+    std::fprintf(stderr,
+                 "ghostspace: encode: --bricks: expected I/N with 0 <= I < N <= %u, got '%s'\n",
+                 qnv::kMaxTilesetShares, e.bricks.c_str());
+    return false;
+  }
+  cut.brickVoxels = e.brickVoxels;
+  cut.brickVectors = e.brickVectors;
+  cut.write = write;
+  return true;
+}
+
 std::string shareName(std::uint32_t share, std::uint32_t shares) {
   return std::to_string(share) + "-of-" + std::to_string(shares);
 }
@@ -278,18 +294,10 @@ int writeTileset(const Options& options, const qnv::SelectedVectors& selected,
                  const qnv::WriteOptions& write, const std::string& input, double seconds) {
   const EncodeOptions& e = options.encode;
   std::uint32_t share = 0, shares = 1;
-  if (!e.bricks.empty() && !parseShare(e.bricks, share, shares)) {
-    std::fprintf(stderr,
-                 "ghostspace: encode: --bricks: expected I/N with 0 <= I < N <= %u, got '%s'\n",
-                 qnv::kMaxTilesetShares, e.bricks.c_str());
-    return 2;
-  }
+  qnv::TilesetOptions cut;
+  if (!tilesetShareOptions(e, write, share, shares, cut)) return 2;
   const auto t0 = std::chrono::steady_clock::now();
   const fs::path dir = e.tileset;
-  qnv::TilesetOptions cut;
-  cut.brickVoxels = e.brickVoxels;
-  cut.brickVectors = e.brickVectors;
-  cut.write = write;
   try {
     const qnv::TilesetLayout layout(selected.header, cut);
     std::error_code ec;

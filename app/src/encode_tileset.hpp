@@ -11,6 +11,7 @@
 #include "app/options.hpp"
 #include "qnv/encoder.hpp"
 #include "qnv/tileset.hpp"
+#include "qnv/tileset_writer.hpp"
 
 namespace gs::app {
 
@@ -29,6 +30,10 @@ int writeTileset(const Options& options, const qnv::SelectedVectors& selected,
 
 /// Parses --bricks "I/N" (0 <= I < N <= qnv::kMaxTilesetShares); false when malformed.
 bool parseShare(const std::string& text, std::uint32_t& share, std::uint32_t& shares);
+/// The share of `encode` (its --bricks, 0 of 1 without) and the brick options of its
+/// tileset. False, with the error printed on stderr, on a malformed --bricks.
+bool tilesetShareOptions(const EncodeOptions& encode, const qnv::WriteOptions& write,
+                         std::uint32_t& share, std::uint32_t& shares, qnv::TilesetOptions& cut);
 /// "I-of-N", the share's folder under OUT/parts/.
 std::string shareName(std::uint32_t share, std::uint32_t shares);
 /// Writes `bytes` to `path` (folders made as needed); "" or a sentence naming the path.

@@ -326,21 +326,13 @@ int writeVolumeTilesetOutOfCore(const Options& options, qnv::VolumeSlabReader& r
                                 const qnv::WriteOptions& write, const std::string& input) {
   const EncodeOptions& e = options.encode;
   std::uint32_t share = 0, shares = 1;
-  if (!e.bricks.empty() && !parseShare(e.bricks, share, shares)) {
-    std::fprintf(stderr,
-                 "ghostspace: encode: --bricks: expected I/N with 0 <= I < N <= %u, got '%s'\n",
-                 qnv::kMaxTilesetShares, e.bricks.c_str());
-    return 2;
-  }
+  qnv::TilesetOptions cut;
+  if (!tilesetShareOptions(e, write, share, shares, cut)) return 2;
   const auto t0 = std::chrono::steady_clock::now();
   const fs::path dir = e.tileset;
   const auto memory = static_cast<std::uint64_t>(e.memoryMB * 1048576.0);
   const unsigned threads =
       e.threads > 0 ? e.threads : std::max(1u, std::thread::hardware_concurrency());
-  qnv::TilesetOptions cut;
-  cut.brickVoxels = e.brickVoxels;
-  cut.brickVectors = e.brickVectors;
-  cut.write = write;
   try {
     const qnv::VolumeGridInfo& info = reader.info();
     qnv::VolumeVectorOptions step;
