@@ -193,9 +193,17 @@ int runEncode(const Options& options) {
         vectors = qnv::encodeVolume(volume, v, &summary);
       elements = "voxels";
     } else {
-      if (options.encode.memoryMB > 0)
-        throw qnv::InputError("--memory: out-of-core encoding is done for volumes only, not for '" +
-                              input + "' (docs/out-of-core.md)");
+      if (options.encode.memoryMB > 0 && kind != formats::InputKind::ply)
+        throw qnv::InputError(
+            "--memory: out-of-core encoding reads volumes and PLY meshes only, not '" + input +
+            "' (docs/out-of-core.md)");
+      if (options.encode.memoryMB > 0) {  // out of core: ooc_mesh.cpp
+        bar.finish();
+        qnv::SurfaceEncodeOptions v;
+        v.selection = s.selection;
+        v.mapping = s.mapping;
+        return writeMeshTilesetOutOfCore(options, input, v, s.write);
+      }
       qnv::TriangleMesh mesh;
       if (formats::isMesh(kind)) {
         mesh = session::loadMeshFile(input);

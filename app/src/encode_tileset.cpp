@@ -263,7 +263,7 @@ void addTilesetOptions(CLI::App& encode, EncodeOptions& o) {
       ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 32));
   encode
       .add_option("--memory", o.memoryMB,
-                  "Tilesets of volumes: encode out of core, slab by slab, in about MB "
+                  "Tilesets of volumes and PLY meshes: encode out of core in about MB "
                   "mebibytes (fractions allowed; docs/out-of-core.md)")
       ->type_name("MB")
       ->check(CLI::Range(0.001, 1048576.0 * 1024.0));

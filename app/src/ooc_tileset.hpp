@@ -1,5 +1,5 @@
-// `ghostspace encode VOLUME --tileset OUT/ --memory MB [--threads N] [--bricks I/N]`: the
-// out-of-core tileset encode of a volume (docs/out-of-core.md, "Tileset encoding").
+// `ghostspace encode VOLUME|MESH.ply --tileset OUT/ --memory MB [--threads N] [--bricks I/N]`:
+// the out-of-core tileset encode of a volume or a mesh (docs/out-of-core.md, "Tileset encoding").
 // Private to app/src.
 #pragma once
 
@@ -21,5 +21,15 @@ namespace gs::app {
 int writeVolumeTilesetOutOfCore(const Options& options, qnv::VolumeSlabReader& reader,
                                 const qnv::VolumeEncodeOptions& encode,
                                 const qnv::WriteOptions& write, const std::string& input);
+
+/// The same for the triangles of the PLY file `input` (ooc_mesh.cpp), read with
+/// formats::streamPly: its vertices and triangles are copied to the share's part folder
+/// (16 bytes each), the selection passes (qnv::planSurfaceSelection) and the vector pass
+/// read them back, vertices through a cache of a quarter of --memory, and each kept
+/// triangle's vector goes to the leaf of its centroid. The files are those of the
+/// in-memory encode byte for byte. Same exit codes.
+int writeMeshTilesetOutOfCore(const Options& options, const std::string& input,
+                              const qnv::SurfaceEncodeOptions& encode,
+                              const qnv::WriteOptions& write);
 
 }  // namespace gs::app

@@ -5,8 +5,11 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -253,9 +256,40 @@ void assignRoles(Header& h, const std::string& name, bool& vertexColors, bool& f
   }
 }
 
-// The mesh being built, shared by the ascii and binary bodies.
-struct Builder {
+// Where the vertices and triangles go: a TriangleMesh (readPly) or a PlySink (streamPly).
+struct MeshOut {
   TriangleMesh mesh;
+  void reserveVertices(std::uint64_t n, bool colors) {
+    mesh.positions.reserve(n);
+    if (colors) mesh.vertexColors.reserve(n);
+  }
+  void reserveTriangles(std::uint64_t n) { mesh.indices.reserve(3 * n); }
+  void vertex(const glm::vec3& p, const Rgba8* color) {
+    mesh.positions.push_back(p);
+    if (color) mesh.vertexColors.push_back(*color);
+  }
+  void triangle(std::uint32_t a, std::uint32_t b, std::uint32_t c, const Rgba8* color) {
+    mesh.indices.insert(mesh.indices.end(), {a, b, c});
+    if (color) mesh.faceColors.push_back(*color);
+  }
+};
+
+struct SinkOut {
+  PlySink* sink = nullptr;
+  void reserveVertices(std::uint64_t, bool) {}
+  void reserveTriangles(std::uint64_t) {}
+  void vertex(const glm::vec3& p, const Rgba8* color) {
+    sink->vertex(p, color ? *color : Rgba8{0, 0, 0, 255});
+  }
+  void triangle(std::uint32_t a, std::uint32_t b, std::uint32_t c, const Rgba8* color) {
+    sink->triangle(a, b, c, color ? *color : Rgba8{0, 0, 0, 255});
+  }
+};
+
+// The mesh being built, shared by the ascii and binary bodies.
+template <typename Out>
+struct Builder {
+  Out out;
   std::uint64_t vertexCount = 0;  // as declared in the header
   bool vertexColors = false, faceColors = false;
   glm::vec3 pos{0.0f};
@@ -281,60 +315,89 @@ struct Builder {
   }
   bool finishVertex() {  // false when a coordinate is not finite
     if (!std::isfinite(pos.x) || !std::isfinite(pos.y) || !std::isfinite(pos.z)) return false;
-    mesh.positions.push_back(pos);
-    if (vertexColors) mesh.vertexColors.push_back(color);
+    out.vertex(pos, vertexColors ? &color : nullptr);
     color = {0, 0, 0, 255};
     return true;
   }
   void finishFace() {  // poly.size() >= 3 checked by the caller
-    for (std::size_t k = 1; k + 1 < poly.size(); ++k) {
-      mesh.indices.insert(mesh.indices.end(), {poly[0], poly[k], poly[k + 1]});
-      if (faceColors) mesh.faceColors.push_back(color);
-    }
+    for (std::size_t k = 1; k + 1 < poly.size(); ++k)
+      out.triangle(poly[0], poly[k], poly[k + 1], faceColors ? &color : nullptr);
     color = {0, 0, 0, 255};
   }
+};
+
+// The body's bytes: [p, end) in memory; with a file, fill() reads more of it.
+struct Window {
+  static constexpr std::size_t kChunk = std::size_t{1} << 20;
+  const char* p = nullptr;
+  const char* end = nullptr;
+  std::FILE* file = nullptr;  // null: the whole body is in [p, end)
+  const std::string* name = nullptr;
+  std::uint64_t fileLeft = 0;  // bytes of the file after `end`
+  std::string buffer;
+
+  // Makes [p, p + n) readable; false when the input has fewer bytes left.
+  bool fill(std::size_t n) {
+    const auto have = static_cast<std::size_t>(end - p);
+    if (have >= n) return true;
+    if (!file || have + fileLeft < n) return false;
+    if (have > 0) std::memmove(buffer.data(), p, have);
+    if (buffer.size() < std::max(n, kChunk)) buffer.resize(std::max(n, kChunk));
+    const std::size_t want =
+        static_cast<std::size_t>(std::min<std::uint64_t>(fileLeft, buffer.size() - have));
+    if (std::fread(buffer.data() + have, 1, want, file) != want)
+      throw InputError(*name + ": cannot read (the file shrank?)");
+    fileLeft -= want;
+    p = buffer.data();
+    end = p + have + want;
+    return true;
+  }
+  std::uint64_t remaining() const { return static_cast<std::uint64_t>(end - p) + fileLeft; }
 };
 
 // ---- ascii body ----
 
 struct Cursor {
-  const char* p;
-  const char* end;
+  Window& w;
   std::uint64_t line;       // where the scan is
   std::uint64_t tokenLine;  // of the last token read; at the end of the file, of the one before
 
+  // The next token; valid until the next call.
   std::string_view next() {
-    while (p != end) {
-      const char c = *p;
+    for (;;) {
+      if (w.p == w.end && !w.fill(1)) break;
+      const char c = *w.p;
       if (c == '\n')
         ++line;
       else if (c != ' ' && c != '\t' && c != '\r' && c != '\v' && c != '\f')
         break;
-      ++p;
+      ++w.p;
     }
-    const char* start = p;
-    if (p != end) tokenLine = line;
-    while (p != end && *p != ' ' && *p != '\n' && *p != '\t' && *p != '\r' && *p != '\v' &&
-           *p != '\f')
-      ++p;
-    return {start, static_cast<std::size_t>(p - start)};
+    if (w.p != w.end) tokenLine = line;
+    std::size_t n = 0;
+    for (;;) {
+      if (w.p + n == w.end && !w.fill(n + 1)) break;
+      const char c = w.p[n];
+      if (c == ' ' || c == '\n' || c == '\t' || c == '\r' || c == '\v' || c == '\f') break;
+      ++n;
+    }
+    const std::string_view tok(w.p, n);
+    w.p += n;
+    return tok;
   }
 };
 
-void readAsciiBody(const Header& h, std::string_view bytes, const std::string& name, Builder& b) {
-  Cursor c{bytes.data() + h.bodyOffset, bytes.data() + bytes.size(), h.bodyLine, h.bodyLine};
+template <typename B>
+void readAsciiBody(const Header& h, Window& w, const std::string& name, B& b) {
+  Cursor c{w, h.bodyLine, h.bodyLine};
   for (const Element& e : h.elements) {
     if (e.props.empty()) continue;  // consumes nothing
     const bool isVertex = e.name == "vertex", isFace = e.name == "face";
     // Each instance needs at least one token and one separator per property, a face three
     // more for its indices.
-    const std::uint64_t fit =
-        static_cast<std::uint64_t>(c.end - c.p) / (2 * (e.props.size() + (isFace ? 3 : 0))) + 1;
-    if (isVertex) {
-      b.mesh.positions.reserve(std::min(e.count, fit));
-      if (b.vertexColors) b.mesh.vertexColors.reserve(std::min(e.count, fit));
-    }
-    if (isFace) b.mesh.indices.reserve(3 * std::min(e.count, fit));
+    const std::uint64_t fit = w.remaining() / (2 * (e.props.size() + (isFace ? 3 : 0))) + 1;
+    if (isVertex) b.out.reserveVertices(std::min(e.count, fit), b.vertexColors);
+    if (isFace) b.out.reserveTriangles(std::min(e.count, fit));
     const std::string what = isVertex ? "a vertex" : isFace ? "a face" : "an element";
     for (std::uint64_t i = 0; i < e.count; ++i) {
       if (isFace) b.poly.clear();
@@ -420,12 +483,10 @@ std::int64_t loadInt(const char* p, Type t) {
   return static_cast<std::int64_t>(loadScalar<kBig>(p, t));
 }
 
-template <bool kBig>
-void readBinaryBody(const Header& h, std::string_view bytes, const std::string& name, Builder& b) {
-  const char* p = bytes.data() + h.bodyOffset;
-  const char* const end = bytes.data() + bytes.size();
+template <bool kBig, typename B>
+void readBinaryBody(const Header& h, Window& w, const std::string& name, B& b) {
   auto need = [&](std::uint64_t n, const Element& e, std::uint64_t i) {
-    if (static_cast<std::uint64_t>(end - p) < n)
+    if (n > w.remaining() || !w.fill(static_cast<std::size_t>(n)))
       failBinary(name, "data ends inside " + std::string(e.name) + " " + std::to_string(i) +
                            " of " + std::to_string(e.count));
   };
@@ -434,42 +495,40 @@ void readBinaryBody(const Header& h, std::string_view bytes, const std::string& 
     for (const Property& prop : e.props)
       minBytes += typeSize(prop.isList ? prop.countType : prop.type);
     if (minBytes == 0) continue;  // no properties: consumes nothing
-    const auto left = static_cast<std::uint64_t>(end - p);
+    const std::uint64_t left = w.remaining();
     if (e.count > left / minBytes)
       failBinary(name, "element " + std::string(e.name) + " claims " + std::to_string(e.count) +
                            " entries of at least " + std::to_string(minBytes) + " bytes but only " +
                            std::to_string(left) + " bytes remain");
     const bool isVertex = e.name == "vertex", isFace = e.name == "face";
-    if (isVertex) {
-      b.mesh.positions.reserve(e.count);
-      if (b.vertexColors) b.mesh.vertexColors.reserve(e.count);
-    }
+    if (isVertex) b.out.reserveVertices(e.count, b.vertexColors);
     if (isFace) {  // a face needs at least 3 indices
       std::uint64_t faceBytes = minBytes;
       for (const Property& prop : e.props)
         if (prop.role == Role::kIndices) faceBytes += 3 * typeSize(prop.type);
-      b.mesh.indices.reserve(3 * std::min(e.count, left / faceBytes));
+      b.out.reserveTriangles(std::min(e.count, left / faceBytes));
     }
     for (std::uint64_t i = 0; i < e.count; ++i) {
       if (isFace) b.poly.clear();
       for (const Property& prop : e.props) {
         if (prop.isList) {
           need(typeSize(prop.countType), e, i);
-          const std::int64_t n = loadInt<kBig>(p, prop.countType);
-          p += typeSize(prop.countType);
+          const std::int64_t n = loadInt<kBig>(w.p, prop.countType);
+          w.p += typeSize(prop.countType);
           const std::size_t size = typeSize(prop.type);
           if (n < 0)
             failBinary(name,
                        std::string(e.name) + " " + std::to_string(i) + ": negative list count");
-          if (static_cast<std::uint64_t>(n) > static_cast<std::uint64_t>(end - p) / size)
+          if (static_cast<std::uint64_t>(n) > w.remaining() / size)
             need(std::numeric_limits<std::uint64_t>::max(), e, i);
+          need(static_cast<std::uint64_t>(n) * size, e, i);
           if (prop.role == Role::kIndices) {
             if (n < 3)
               failBinary(name, "face " + std::to_string(i) +
                                    ": expected at least 3 vertex indices, got " +
                                    std::to_string(n));
-            for (std::int64_t k = 0; k < n; ++k, p += size) {
-              const std::int64_t v = loadInt<kBig>(p, prop.type);
+            for (std::int64_t k = 0; k < n; ++k, w.p += size) {
+              const std::int64_t v = loadInt<kBig>(w.p, prop.type);
               if (v < 0 || static_cast<std::uint64_t>(v) >= b.vertexCount)
                 failBinary(name, "face " + std::to_string(i) + ": vertex index " +
                                      std::to_string(v) + " is out of range (" +
@@ -477,13 +536,14 @@ void readBinaryBody(const Header& h, std::string_view bytes, const std::string& 
               b.poly.push_back(static_cast<std::uint32_t>(v));
             }
           } else {
-            p += static_cast<std::size_t>(n) * size;
+            w.p += static_cast<std::size_t>(n) * size;
           }
         } else {
           const std::size_t size = typeSize(prop.type);
           need(size, e, i);
-          if (prop.role != Role::kSkip) b.set(prop.role, loadScalar<kBig>(p, prop.type), prop.type);
-          p += size;
+          if (prop.role != Role::kSkip)
+            b.set(prop.role, loadScalar<kBig>(w.p, prop.type), prop.type);
+          w.p += size;
         }
       }
       if (isVertex && !b.finishVertex())
@@ -493,21 +553,82 @@ void readBinaryBody(const Header& h, std::string_view bytes, const std::string& 
   }
 }
 
+// The body, after assignRoles set b's colour flags.
+template <typename B>
+void readBody(const Header& h, Window& w, const std::string& name, B& b) {
+  for (const Element& e : h.elements)
+    if (e.name == "vertex") b.vertexCount = e.count;
+  if (h.format == Format::kAscii)
+    readAsciiBody(h, w, name, b);
+  else if (h.format == Format::kLittle)
+    readBinaryBody<false>(h, w, name, b);
+  else
+    readBinaryBody<true>(h, w, name, b);
+}
+
 }  // namespace
 
 TriangleMesh readPly(std::string_view bytes, const std::string& name) {
   Header h = parseHeader(bytes, name);
-  Builder b;
+  Builder<MeshOut> b;
   assignRoles(h, name, b.vertexColors, b.faceColors);
-  for (const Element& e : h.elements)
-    if (e.name == "vertex") b.vertexCount = e.count;
-  if (h.format == Format::kAscii)
-    readAsciiBody(h, bytes, name, b);
-  else if (h.format == Format::kLittle)
-    readBinaryBody<false>(h, bytes, name, b);
-  else
-    readBinaryBody<true>(h, bytes, name, b);
-  return std::move(b.mesh);
+  Window w;
+  w.p = bytes.data() + h.bodyOffset;
+  w.end = bytes.data() + bytes.size();
+  readBody(h, w, name, b);
+  return std::move(b.out.mesh);
+}
+
+void streamPly(const std::string& path, PlySink& sink) {
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
+                                                       &std::fclose);
+  std::error_code ec;
+  const std::uint64_t size = std::filesystem::file_size(path, ec);
+  if (!file || ec) throw InputError("cannot open '" + path + "'");
+  // The header: whole lines up to the one whose first word is end_header (parseHeader's
+  // rule), read 64 KiB at a time, at most 16 MiB.
+  std::string head;
+  std::size_t scanned = 0;
+  for (bool done = false; !done;) {
+    if (head.size() > (std::size_t{16} << 20))
+      throw InputError(path + ": the PLY header is longer than 16 MiB");
+    const std::size_t at = head.size();
+    head.resize(at + 65536);
+    head.resize(at + std::fread(head.data() + at, 1, 65536, file.get()));
+    if (head.size() >= 2 && static_cast<unsigned char>(head[0]) == 0x1f &&
+        static_cast<unsigned char>(head[1]) == 0x8b)
+      throw InputError(path + ": a gzip-compressed PLY cannot be streamed (gunzip it first)");
+    const bool eof = head.size() == at;
+    for (std::size_t nl; !done && (nl = head.find('\n', scanned)) != std::string::npos;
+         scanned = nl + 1) {
+      std::string_view line = std::string_view(head).substr(scanned, nl - scanned);
+      if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+      done = splitWords(line).w[0] == "end_header";
+    }
+    if (eof) break;  // parseHeader reports what is missing
+  }
+  Header h = parseHeader(head, path);
+  PlyLayout layout;
+  for (const Element& e : h.elements) {
+    if (e.name == "vertex") layout.vertexCount = e.count;
+    if (e.name == "face") layout.faceCount = e.count;
+  }
+  Builder<SinkOut> b;
+  b.out.sink = &sink;
+  Window w;
+  w.p = head.data() + h.bodyOffset;
+  w.end = head.data() + head.size();
+  w.file = file.get();
+  w.name = &path;
+  w.fileLeft = size > head.size() ? size - head.size() : 0;
+  w.buffer.assign(w.p, w.end);  // the body's first bytes leave `head`, which the header needs
+  w.p = w.buffer.data();
+  w.end = w.p + w.buffer.size();
+  assignRoles(h, path, b.vertexColors, b.faceColors);
+  layout.vertexColors = b.vertexColors;
+  layout.faceColors = b.faceColors;
+  sink.begin(layout);
+  readBody(h, w, path, b);
 }
 
 }  // namespace gs::formats

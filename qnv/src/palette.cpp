@@ -42,12 +42,16 @@ Box makeBox(const std::vector<Entry>& entries, std::size_t begin, std::size_t en
 
 }  // namespace
 
-std::array<Rgba8, kPaletteSize> buildPalette(std::span<const Rgba8> colors,
-                                             std::vector<std::uint8_t>& indices) {
+std::uint32_t paletteKey(const Rgba8& color) {
+  return key(color);
+}
+
+std::array<Rgba8, kPaletteSize> buildPaletteFromCounts(
+    const std::unordered_map<std::uint32_t, std::uint64_t>& counts,
+    std::unordered_map<std::uint32_t, std::uint8_t>& indexOf) {
   std::array<Rgba8, kPaletteSize> palette;
   palette.fill(Rgba8{0, 0, 0, 255});
-  std::unordered_map<std::uint32_t, std::uint64_t> counts;
-  for (const Rgba8& c : colors) ++counts[key(c)];
+  indexOf.clear();
   std::vector<Entry> entries;
   entries.reserve(counts.size());
   for (const auto& [k, n] : counts)
@@ -84,7 +88,6 @@ std::array<Rgba8, kPaletteSize> buildPalette(std::span<const Rgba8> colors,
     for (std::size_t i = 0; i < entries.size(); ++i) boxes.push_back({i, i + 1, 0, 0});
   }
 
-  std::unordered_map<std::uint32_t, std::uint8_t> indexOf;
   for (std::size_t b = 0; b < boxes.size(); ++b) {
     double sum[4] = {0, 0, 0, 0}, weight = 0;
     for (std::size_t i = boxes[b].begin; i < boxes[b].end; ++i) {
@@ -97,6 +100,15 @@ std::array<Rgba8, kPaletteSize> buildPalette(std::span<const Rgba8> colors,
     for (int ch = 0; ch < 4; ++ch)
       palette[b][ch] = static_cast<std::uint8_t>(std::clamp(sum[ch] / weight + 0.5, 0.0, 255.0));
   }
+  return palette;
+}
+
+std::array<Rgba8, kPaletteSize> buildPalette(std::span<const Rgba8> colors,
+                                             std::vector<std::uint8_t>& indices) {
+  std::unordered_map<std::uint32_t, std::uint64_t> counts;
+  for (const Rgba8& c : colors) ++counts[key(c)];
+  std::unordered_map<std::uint32_t, std::uint8_t> indexOf;
+  const std::array<Rgba8, kPaletteSize> palette = buildPaletteFromCounts(counts, indexOf);
   indices.resize(colors.size());
   for (std::size_t i = 0; i < colors.size(); ++i) indices[i] = indexOf[key(colors[i])];
   return palette;

@@ -31,6 +31,20 @@ void report(const ProgressCallback& progress, double done) {
 
 }  // namespace
 
+bool triangleVector(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, std::uint64_t index,
+                    SourceVector& out) {
+  const glm::vec3 normal = glm::cross(b - a, c - a);
+  const float area = 0.5f * glm::length(normal);
+  if (!(area > 0.0f && std::isfinite(area) &&
+        std::isfinite(a.x + a.y + a.z + b.x + b.y + b.z + c.x + c.y + c.z)))
+    return false;
+  out.position = (a + b + c) / 3.0f;
+  out.normal = normal;
+  out.magnitude = area;
+  out.source = index;
+  return true;
+}
+
 SelectedVectors selectSurfaceVectors(const TriangleMesh& mesh, const SurfaceEncodeOptions& options,
                                      EncodeSummary* summary) {
   const std::size_t triangles = mesh.triangleCount();
@@ -44,13 +58,10 @@ SelectedVectors selectSurfaceVectors(const TriangleMesh& mesh, const SurfaceEnco
   std::vector<detail::Candidate> candidates;
   candidates.reserve(triangles);
   for (std::size_t t = 0; t < triangles; ++t) {
-    const glm::vec3& a = mesh.positions[mesh.indices[3 * t]];
-    const glm::vec3& b = mesh.positions[mesh.indices[3 * t + 1]];
-    const glm::vec3& c = mesh.positions[mesh.indices[3 * t + 2]];
-    const float area = 0.5f * glm::length(glm::cross(b - a, c - a));
-    if (area > 0.0f && std::isfinite(area) &&
-        std::isfinite(a.x + a.y + a.z + b.x + b.y + b.z + c.x + c.y + c.z))
-      candidates.push_back({area, static_cast<std::uint32_t>(t)});
+    SourceVector v;
+    if (triangleVector(mesh.positions[mesh.indices[3 * t]], mesh.positions[mesh.indices[3 * t + 1]],
+                       mesh.positions[mesh.indices[3 * t + 2]], t, v))
+      candidates.push_back({v.magnitude, static_cast<std::uint32_t>(t)});
   }
   report(options.progress, 0.3);
   const std::uint64_t candidateCount = candidates.size();
@@ -71,14 +82,9 @@ SelectedVectors selectSurfaceVectors(const TriangleMesh& mesh, const SurfaceEnco
   float aMin = std::numeric_limits<float>::max(), aMax = 0.0f;
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     const std::size_t t = candidates[i].index;
-    const glm::vec3& a = mesh.positions[mesh.indices[3 * t]];
-    const glm::vec3& b = mesh.positions[mesh.indices[3 * t + 1]];
-    const glm::vec3& c = mesh.positions[mesh.indices[3 * t + 2]];
     SourceVector& v = out.vectors[i];
-    v.position = (a + b + c) / 3.0f;
-    v.normal = glm::cross(b - a, c - a);
-    v.magnitude = candidates[i].magnitude;
-    v.source = t;
+    triangleVector(mesh.positions[mesh.indices[3 * t]], mesh.positions[mesh.indices[3 * t + 1]],
+                   mesh.positions[mesh.indices[3 * t + 2]], t, v);
     lo = glm::min(lo, v.position);
     hi = glm::max(hi, v.position);
     aMin = std::min(aMin, v.magnitude);

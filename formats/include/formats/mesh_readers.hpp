@@ -1,8 +1,10 @@
 // Readers for triangle mesh files: PLY, Wavefront OBJ and glTF 2.0 (JSON or GLB).
-// All of them read bytes already in memory, are safe for untrusted input and report
-// malformed input with InputError. Positions are the file's own units, unscaled.
+// They read bytes already in memory (streamPly reads a PLY file piece by piece), are safe for
+// untrusted input and report malformed input with InputError. Positions are the file's own units,
+// unscaled.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <string>
@@ -39,6 +41,37 @@ using qnv::TriangleMesh;
 /// than 2^32 - 1 vertices, data ending early, and counts that the remaining bytes cannot
 /// hold (checked before anything is allocated for them).
 TriangleMesh readPly(std::string_view bytes, const std::string& name);
+
+/// What streamPly found in a PLY header, before the body.
+struct PlyLayout {
+  std::uint64_t vertexCount = 0;  // declared count of element "vertex"
+  std::uint64_t faceCount = 0;    // declared count of element "face" (polygons, not triangles)
+  bool vertexColors = false;      // the vertex element has red, green and blue
+  bool faceColors = false;        // the face element has red, green and blue
+};
+
+/// Receives a PLY file's vertices and triangles in file order from streamPly.
+class PlySink {
+ public:
+  virtual ~PlySink() = default;
+  /// Called once, after the header and before the first vertex or triangle.
+  virtual void begin(const PlyLayout& layout) = 0;
+  /// One vertex (finite coordinates); `color` is its colour when layout.vertexColors,
+  /// else opaque black.
+  virtual void vertex(const glm::vec3& position, Rgba8 color) = 0;
+  /// One triangle of a face (faces fan-triangulated as readPly does): vertex indices below
+  /// layout.vertexCount; `color` is the face's colour when layout.faceColors, else opaque
+  /// black. Triangles arrive in readPly's order, so the n-th call is readPly's triangle n.
+  virtual void triangle(std::uint32_t a, std::uint32_t b, std::uint32_t c, Rgba8 color) = 0;
+};
+
+/// readPly on the file at `path` without holding it: the file is read forward in 1 MiB
+/// pieces (the header, up to 16 MiB, whole) and everything readPly would store goes to
+/// `sink` instead, so memory does not grow with the file. The same rules and the same
+/// errors as readPly (named by `path`), plus InputError for a file that cannot be opened
+/// or read, and for a gzip-compressed file ("gunzip it first"). Exceptions `sink` throws
+/// pass through.
+void streamPly(const std::string& path, PlySink& sink);
 
 /// Reads a Wavefront OBJ file.
 ///

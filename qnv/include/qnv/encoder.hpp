@@ -8,6 +8,7 @@
 #include <functional>
 #include <optional>
 #include <span>
+#include <unordered_map>
 #include <vector>
 
 #include "qnv/mesh.hpp"
@@ -120,5 +121,21 @@ std::array<Rgba8, kPaletteSize> defaultTransferFunction();
 /// else a count-weighted median cut in RGBA. Unused entries are opaque black.
 std::array<Rgba8, kPaletteSize> buildPalette(std::span<const Rgba8> colors,
                                              std::vector<std::uint8_t>& indices);
+
+/// The key of `color` in buildPaletteFromCounts's maps: r | g << 8 | b << 16 | a << 24.
+std::uint32_t paletteKey(const Rgba8& color);
+/// buildPalette from the distinct colours (by paletteKey) and how often each occurs: the
+/// same palette as buildPalette on any list with those counts, in any order. `indexOf`
+/// receives every key's palette index. Memory: about 60 bytes per distinct colour.
+std::array<Rgba8, kPaletteSize> buildPaletteFromCounts(
+    const std::unordered_map<std::uint32_t, std::uint64_t>& counts,
+    std::unordered_map<std::uint32_t, std::uint8_t>& indexOf);
+
+/// The vector of triangle (a, b, c) as encodeSurface defines it (section 2.1): area
+/// 0.5 |(b - a) x (c - a)|, centroid (a + b + c) / 3, normal (b - a) x (c - a). False
+/// (and `out` untouched) for a degenerate triangle: zero or non-finite area, or a
+/// non-finite coordinate. `out.color` is left as it is; out.source = `index`.
+bool triangleVector(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, std::uint64_t index,
+                    SourceVector& out);
 
 }  // namespace gs::qnv

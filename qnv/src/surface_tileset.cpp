@@ -1,0 +1,141 @@
+#include "qnv/surface_tileset.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <limits>
+#include <vector>
+
+#include <glm/common.hpp>
+
+#include "qnv/error.hpp"
+
+namespace gs::qnv {
+
+namespace {
+
+constexpr std::size_t kBins = std::size_t{1} << 16;
+
+// The bin (from the top) where the running count from the largest reaches `need`, and
+// the count strictly above it.
+std::pair<std::size_t, std::uint64_t> crossing(const std::vector<std::uint64_t>& bins,
+                                               std::uint64_t need) {
+  std::uint64_t above = 0;
+  for (std::size_t b = bins.size(); b-- > 0;) {
+    if (above + bins[b] >= need) return {b, above};
+    above += bins[b];
+  }
+  throw InputError("internal error: the area histogram holds fewer triangles than counted");
+}
+
+// The box, area range and colour counts of the triangles measured, as
+// selectSurfaceVectors computes them over its kept set.
+struct Measure {
+  glm::vec3 lo{std::numeric_limits<float>::max()};
+  glm::vec3 hi{std::numeric_limits<float>::lowest()};
+  float aMin = std::numeric_limits<float>::max(), aMax = 0.0f;
+  std::uint64_t count = 0;
+  std::unordered_map<std::uint32_t, std::uint64_t> colors;
+  std::uint64_t maxColors = 0;
+  bool tooManyColors = false;
+
+  void add(const SourceVector& v, const Rgba8& color) {
+    lo = glm::min(lo, v.position);
+    hi = glm::max(hi, v.position);
+    aMin = std::min(aMin, v.magnitude);
+    aMax = std::max(aMax, v.magnitude);
+    ++count;
+    if (tooManyColors) return;
+    ++colors[paletteKey(color)];
+    if (colors.size() > maxColors) {
+      tooManyColors = true;
+      colors = {};
+    }
+  }
+};
+
+}  // namespace
+
+SurfaceSelectionPlan planSurfaceSelection(TriangleSoupReader& soup,
+                                          const SurfaceEncodeOptions& options,
+                                          std::uint64_t maxColors) {
+  const std::uint64_t triangles = soup.triangleCount();
+  if (triangles > std::numeric_limits<std::uint32_t>::max())
+    throw InputError("too many triangles to encode (" + std::to_string(triangles) + ")");
+
+  // Pass 1: candidates, the histogram of the upper 16 bits, and every candidate measured
+  // (what keeping all needs).
+  std::vector<std::uint64_t> coarse(kBins, 0);
+  Measure all;
+  all.maxColors = maxColors;
+  soup.forEachTriangle([&](std::uint64_t first, std::span<const SurfaceTriangle> batch) {
+    for (std::size_t i = 0; i < batch.size(); ++i) {
+      SourceVector v;
+      if (!triangleVector(batch[i].a, batch[i].b, batch[i].c, first + i, v)) continue;
+      ++coarse[std::bit_cast<std::uint32_t>(v.magnitude) >> 16];
+      all.add(v, batch[i].color);
+    }
+  });
+  const std::uint64_t candidates = all.count;
+
+  SurfaceSelectionPlan plan;
+  const std::uint64_t kept = std::min(options.selection.keepOf(triangles), candidates);
+  plan.summary = {triangles, candidates, kept};
+  Measure keptMeasure;
+  Measure* measured = &all;
+  if (kept == 0 && candidates > 0) {  // keep none
+    plan.keepAll = false;
+    plan.threshold = std::numeric_limits<float>::infinity();
+  } else if (kept < candidates) {
+    // Pass 2: the lower 16 bits inside the crossing bin.
+    plan.keepAll = false;
+    plan.passes = 3;
+    const auto [bin, above] = crossing(coarse, kept);
+    std::vector<std::uint64_t> fine(kBins, 0);
+    soup.forEachTriangle(
+        [&, bin = bin](std::uint64_t first, std::span<const SurfaceTriangle> batch) {
+          for (std::size_t i = 0; i < batch.size(); ++i) {
+            SourceVector v;
+            if (!triangleVector(batch[i].a, batch[i].b, batch[i].c, first + i, v)) continue;
+            const std::uint32_t bits = std::bit_cast<std::uint32_t>(v.magnitude);
+            if ((bits >> 16) == bin) ++fine[bits & 0xffffu];
+          }
+        });
+    const auto [low, aboveFine] = crossing(fine, kept - above);
+    plan.threshold = std::bit_cast<float>(static_cast<std::uint32_t>((bin << 16) | low));
+    plan.tiesKept = kept - above - aboveFine;
+    // Pass 3: the kept triangles' box, area range and colours.
+    keptMeasure.maxColors = maxColors;
+    SurfaceKeepFilter filter(plan);
+    soup.forEachTriangle([&](std::uint64_t first, std::span<const SurfaceTriangle> batch) {
+      for (std::size_t i = 0; i < batch.size(); ++i) {
+        SourceVector v;
+        if (!triangleVector(batch[i].a, batch[i].b, batch[i].c, first + i, v)) continue;
+        if (filter.keep(v.magnitude)) keptMeasure.add(v, batch[i].color);
+      }
+    });
+    measured = &keptMeasure;
+  }
+  if (kept == 0) measured = &keptMeasure;  // nothing kept: the empty measure
+  if (measured->tooManyColors)
+    throw InputError("the kept triangles have more than " + std::to_string(maxColors) +
+                     " distinct colours, more than --memory allows to count (raise it)");
+
+  StreamHeader& h = plan.header;
+  h.kind = StreamKind::surface;
+  h.mapping = options.mapping;
+  h.profile = options.profile;
+  if (measured->count == 0) {
+    h.boundsMin = h.boundsMax = glm::vec3(0.0f);
+    h.magnitudeMin = h.magnitudeMax = 1.0f;
+  } else {
+    h.boundsMin = measured->lo;
+    h.boundsMax = measured->hi;
+    h.magnitudeMin = measured->aMin;
+    h.magnitudeMax = measured->aMax;
+  }
+  h.palette = buildPaletteFromCounts(measured->colors, plan.paletteIndex);
+  h.vectorCount = kept;
+  return plan;
+}
+
+}  // namespace gs::qnv
