@@ -328,7 +328,7 @@ struct Builder {
 
 // The body's bytes: [p, end) in memory; with a file, fill() reads more of it.
 struct Window {
-  static constexpr std::size_t kChunk = std::size_t{1} << 20;
+  std::size_t chunk = std::size_t{1} << 20;
   const char* p = nullptr;
   const char* end = nullptr;
   std::FILE* file = nullptr;  // null: the whole body is in [p, end)
@@ -342,9 +342,9 @@ struct Window {
     if (have >= n) return true;
     if (!file || have + fileLeft < n) return false;
     if (have > 0) std::memmove(buffer.data(), p, have);
-    if (buffer.size() < std::max(n, kChunk)) buffer.resize(std::max(n, kChunk));
-    const std::size_t want =
-        static_cast<std::size_t>(std::min<std::uint64_t>(fileLeft, buffer.size() - have));
+    if (buffer.size() < std::max(n, chunk)) buffer.resize(std::max(n, chunk));
+    const std::size_t want = static_cast<std::size_t>(std::min<std::uint64_t>(
+        fileLeft, std::min(buffer.size() - have, std::max(chunk, n - have))));
     if (std::fread(buffer.data() + have, 1, want, file) != want)
       throw InputError(*name + ": cannot read (the file shrank?)");
     fileLeft -= want;
@@ -579,22 +579,23 @@ TriangleMesh readPly(std::string_view bytes, const std::string& name) {
   return std::move(b.out.mesh);
 }
 
-void streamPly(const std::string& path, PlySink& sink) {
+void streamPly(const std::string& path, PlySink& sink, std::size_t chunkBytes) {
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
                                                        &std::fclose);
   std::error_code ec;
   const std::uint64_t size = std::filesystem::file_size(path, ec);
   if (!file || ec) throw InputError("cannot open '" + path + "'");
   // The header: whole lines up to the one whose first word is end_header (parseHeader's
-  // rule), read 64 KiB at a time, at most 16 MiB.
+  // rule), read in pieces of at most 64 KiB, at most 16 MiB.
   std::string head;
   std::size_t scanned = 0;
   for (bool done = false; !done;) {
     if (head.size() > (std::size_t{16} << 20))
       throw InputError(path + ": the PLY header is longer than 16 MiB");
     const std::size_t at = head.size();
-    head.resize(at + 65536);
-    head.resize(at + std::fread(head.data() + at, 1, 65536, file.get()));
+    const std::size_t piece = std::clamp<std::size_t>(chunkBytes, 1, 65536);
+    head.resize(at + piece);
+    head.resize(at + std::fread(head.data() + at, 1, piece, file.get()));
     if (head.size() >= 2 && static_cast<unsigned char>(head[0]) == 0x1f &&
         static_cast<unsigned char>(head[1]) == 0x8b)
       throw InputError(path + ": a gzip-compressed PLY cannot be streamed (gunzip it first)");
@@ -621,6 +622,7 @@ void streamPly(const std::string& path, PlySink& sink) {
   w.file = file.get();
   w.name = &path;
   w.fileLeft = size > head.size() ? size - head.size() : 0;
+  w.chunk = std::max<std::size_t>(1, chunkBytes);
   w.buffer.assign(w.p, w.end);  // the body's first bytes leave `head`, which the header needs
   w.p = w.buffer.data();
   w.end = w.p + w.buffer.size();

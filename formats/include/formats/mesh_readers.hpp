@@ -71,7 +71,8 @@ class PlySink {
 /// errors as readPly (named by `path`), plus InputError for a file that cannot be opened
 /// or read, and for a gzip-compressed file ("gunzip it first"). Exceptions `sink` throws
 /// pass through.
-void streamPly(const std::string& path, PlySink& sink);
+/// `chunkBytes` (>= 1) is the piece size, small only in tests.
+void streamPly(const std::string& path, PlySink& sink, std::size_t chunkBytes = std::size_t{1} << 20);
 
 /// Reads a Wavefront OBJ file.
 ///
