@@ -174,7 +174,7 @@ TEST_CASE("an out-of-core tileset split into 3 shares merges to the single run's
   checkSameTree(single, memory);
 }
 
-TEST_CASE("encode refuses --memory without a tileset and for meshes",
+TEST_CASE("encode refuses --memory without a tileset and for worlds",
           "[app][encode][tileset][ooc]") {
   gs::test::TempDir dir("ooc");
   const std::string sphere = (gs::test::sourceDir() / "assets/volumes/sphere.nrrd").string();
@@ -185,5 +185,5 @@ TEST_CASE("encode refuses --memory without a tileset and for meshes",
   r = runGhostspace(
       {"encode", world, "--tileset", (dir.path / "t").string(), "--memory", "64", "--no-progress"});
   CHECK(r.exitCode == 1);
-  CHECK_THAT(r.err, Catch::Contains("volumes only"));
+  CHECK_THAT(r.err, Catch::Contains("volumes and PLY meshes only"));
 }
