@@ -170,16 +170,20 @@ int writeMeshTilesetOutOfCore(const Options& options, const std::string& input,
     soup.finish();
     const double copySeconds = since(t0);
 
-    // Distinct colours counted: an eighth of the bound at about 64 bytes each, at least
-    // 65536 (4 MiB).
-    const std::uint64_t maxColors = std::max<std::uint64_t>(65536, memory / 8 / 64);
+    // Distinct colours counted: half the bound (the vertex cache holds a quarter, nothing
+    // else is held yet) at 40 bytes each, at least 65536 (2.5 MiB).
+    const std::uint64_t maxColors = std::max<std::uint64_t>(65536, memory / 2 / 40);
     const auto t1 = std::chrono::steady_clock::now();
     const qnv::SurfaceSelectionPlan plan = qnv::planSurfaceSelection(soup, encode, maxColors);
     const double planSeconds = since(t1);
     const qnv::TilesetLayout layout(plan.header, cut);
 
     std::optional<ooc::ShareEncoder> encoder;
-    encoder.emplace(dir, part, layout, share, shares, memory, threads);
+    // The palette lookup (5 bytes a colour) stays through the vector pass: it comes out of
+    // the leaves' three quarters.
+    const std::uint64_t lookup = 5 * plan.palette.keys.size() * 4 / 3;
+    encoder.emplace(dir, part, layout, share, shares,
+                    memory > 2 * lookup ? memory - lookup : memory / 2, threads);
     ooc::ShareEncoder& writer = *encoder;
     const auto range = writer.range();
     const auto t2 = std::chrono::steady_clock::now();
@@ -190,7 +194,7 @@ int writeMeshTilesetOutOfCore(const Options& options, const std::string& input,
           qnv::SourceVector v;
           if (!qnv::triangleVector(batch[i].a, batch[i].b, batch[i].c, first + i, v)) continue;
           if (!filter.keep(v.magnitude)) continue;
-          v.color = plan.paletteIndex.at(qnv::paletteKey(batch[i].color));
+          v.color = plan.palette.indexOf(batch[i].color);
           const std::uint64_t leaf = layout.leafIndex(layout.leafOf(v));
           if (leaf >= range.first && leaf < range.second) writer.add(leaf, v);
         }

@@ -46,16 +46,15 @@ std::uint32_t paletteKey(const Rgba8& color) {
   return key(color);
 }
 
-std::array<Rgba8, kPaletteSize> buildPaletteFromCounts(
-    const std::unordered_map<std::uint32_t, std::uint64_t>& counts,
-    std::unordered_map<std::uint32_t, std::uint8_t>& indexOf) {
-  std::array<Rgba8, kPaletteSize> palette;
+CountedPalette buildPaletteFromCounts(std::vector<std::pair<std::uint32_t, std::uint64_t>> counts) {
+  CountedPalette out;
+  std::array<Rgba8, kPaletteSize>& palette = out.palette;
   palette.fill(Rgba8{0, 0, 0, 255});
-  indexOf.clear();
   std::vector<Entry> entries;
   entries.reserve(counts.size());
   for (const auto& [k, n] : counts)
     entries.push_back({Rgba8(k & 255u, (k >> 8) & 255u, (k >> 16) & 255u, k >> 24), n});
+  counts = {};
   std::sort(entries.begin(), entries.end(),
             [](const Entry& a, const Entry& b) { return key(a.color) < key(b.color); });
 
@@ -95,23 +94,47 @@ std::array<Rgba8, kPaletteSize> buildPaletteFromCounts(
         sum[ch] +=
             static_cast<double>(entries[i].color[ch]) * static_cast<double>(entries[i].weight);
       weight += static_cast<double>(entries[i].weight);
-      indexOf[key(entries[i].color)] = static_cast<std::uint8_t>(b);
+      out.keys.push_back(key(entries[i].color));
+      out.indices.push_back(static_cast<std::uint8_t>(b));
     }
     for (int ch = 0; ch < 4; ++ch)
       palette[b][ch] = static_cast<std::uint8_t>(std::clamp(sum[ch] / weight + 0.5, 0.0, 255.0));
   }
-  return palette;
+  entries = {};
+  // Keys in order, for indexOf's binary search.
+  std::vector<std::uint32_t> order(out.keys.size());
+  for (std::uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(),
+            [&](std::uint32_t a, std::uint32_t b) { return out.keys[a] < out.keys[b]; });
+  std::vector<std::uint32_t> keys(order.size());
+  std::vector<std::uint8_t> indices(order.size());
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    keys[i] = out.keys[order[i]];
+    indices[i] = out.indices[order[i]];
+  }
+  out.keys = std::move(keys);
+  out.indices = std::move(indices);
+  return out;
+}
+
+std::uint8_t CountedPalette::indexOf(const Rgba8& color) const {
+  const std::uint32_t k = key(color);
+  const auto it = std::lower_bound(keys.begin(), keys.end(), k);
+  return it != keys.end() && *it == k ? indices[static_cast<std::size_t>(it - keys.begin())] : 0;
 }
 
 std::array<Rgba8, kPaletteSize> buildPalette(std::span<const Rgba8> colors,
                                              std::vector<std::uint8_t>& indices) {
   std::unordered_map<std::uint32_t, std::uint64_t> counts;
   for (const Rgba8& c : colors) ++counts[key(c)];
+  const CountedPalette palette = buildPaletteFromCounts({counts.begin(), counts.end()});
+  counts = {};
   std::unordered_map<std::uint32_t, std::uint8_t> indexOf;
-  const std::array<Rgba8, kPaletteSize> palette = buildPaletteFromCounts(counts, indexOf);
+  for (std::size_t i = 0; i < palette.keys.size(); ++i)
+    indexOf[palette.keys[i]] = palette.indices[i];
   indices.resize(colors.size());
   for (std::size_t i = 0; i < colors.size(); ++i) indices[i] = indexOf[key(colors[i])];
-  return palette;
+  return palette.palette;
 }
 
 std::array<Rgba8, kPaletteSize> defaultTransferFunction() {

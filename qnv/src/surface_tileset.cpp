@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include <glm/common.hpp>
@@ -27,6 +28,64 @@ std::pair<std::size_t, std::uint64_t> crossing(const std::vector<std::uint64_t>&
   throw InputError("internal error: the area histogram holds fewer triangles than counted");
 }
 
+// Distinct colours and their counts in an open-addressing table of 64-bit slots
+// (key << 32 | count; 0 is empty, since a counted colour has count >= 1; counts stay
+// below 2^32 as triangles do), at most half full: 8 to 24 bytes a colour.
+class ColorCounter {
+ public:
+  explicit ColorCounter(std::uint64_t maxColors) : maxColors_(maxColors) {}
+  // False once more than maxColors distinct colours were seen (the table is then dropped).
+  bool add(std::uint32_t key) {
+    if (full_) return false;
+    if (2 * (size_ + 1) > slots_.size()) grow();
+    if (full_) return false;
+    std::uint64_t* slot = find(key);
+    if (*slot == 0) {
+      *slot = (std::uint64_t{key} << 32) | 1u;
+      ++size_;
+    } else {
+      ++*slot;
+    }
+    return true;
+  }
+  bool full() const { return full_; }
+  std::uint64_t size() const { return size_; }
+  // The counts, and the table freed.
+  std::vector<std::pair<std::uint32_t, std::uint64_t>> take() {
+    std::vector<std::pair<std::uint32_t, std::uint64_t>> out;
+    out.reserve(size_);
+    for (std::uint64_t s : slots_)
+      if (s != 0) out.push_back({static_cast<std::uint32_t>(s >> 32), s & 0xffffffffu});
+    slots_ = {};
+    size_ = 0;
+    return out;
+  }
+
+ private:
+  std::uint64_t* find(std::uint32_t key) {
+    const std::size_t mask = slots_.size() - 1;
+    for (std::size_t i = (key * std::uint64_t{0x9E3779B97F4A7C15}) >> 20 & mask;;
+         i = (i + 1) & mask)
+      if (slots_[i] == 0 || (slots_[i] >> 32) == key) return &slots_[i];
+  }
+  void grow() {
+    if (size_ + 1 > maxColors_) {
+      full_ = true;
+      slots_ = {};
+      return;
+    }
+    std::vector<std::uint64_t> old = std::exchange(slots_, {});
+    slots_.assign(std::max<std::size_t>(64, 2 * old.size()), 0);
+    for (std::uint64_t s : old)
+      if (s != 0) *find(static_cast<std::uint32_t>(s >> 32)) = s;
+  }
+
+  std::uint64_t maxColors_;
+  std::vector<std::uint64_t> slots_;
+  std::uint64_t size_ = 0;
+  bool full_ = false;
+};
+
 // The box, area range and colour counts of the triangles measured, as
 // selectSurfaceVectors computes them over its kept set.
 struct Measure {
@@ -34,22 +93,16 @@ struct Measure {
   glm::vec3 hi{std::numeric_limits<float>::lowest()};
   float aMin = std::numeric_limits<float>::max(), aMax = 0.0f;
   std::uint64_t count = 0;
-  std::unordered_map<std::uint32_t, std::uint64_t> colors;
-  std::uint64_t maxColors = 0;
-  bool tooManyColors = false;
+  ColorCounter colors;
 
+  explicit Measure(std::uint64_t maxColors) : colors(maxColors) {}
   void add(const SourceVector& v, const Rgba8& color) {
     lo = glm::min(lo, v.position);
     hi = glm::max(hi, v.position);
     aMin = std::min(aMin, v.magnitude);
     aMax = std::max(aMax, v.magnitude);
     ++count;
-    if (tooManyColors) return;
-    ++colors[paletteKey(color)];
-    if (colors.size() > maxColors) {
-      tooManyColors = true;
-      colors = {};
-    }
+    colors.add(paletteKey(color));
   }
 };
 
@@ -65,8 +118,7 @@ SurfaceSelectionPlan planSurfaceSelection(TriangleSoupReader& soup,
   // Pass 1: candidates, the histogram of the upper 16 bits, and every candidate measured
   // (what keeping all needs).
   std::vector<std::uint64_t> coarse(kBins, 0);
-  Measure all;
-  all.maxColors = maxColors;
+  Measure all(maxColors);
   soup.forEachTriangle([&](std::uint64_t first, std::span<const SurfaceTriangle> batch) {
     for (std::size_t i = 0; i < batch.size(); ++i) {
       SourceVector v;
@@ -80,7 +132,7 @@ SurfaceSelectionPlan planSurfaceSelection(TriangleSoupReader& soup,
   SurfaceSelectionPlan plan;
   const std::uint64_t kept = std::min(options.selection.keepOf(triangles), candidates);
   plan.summary = {triangles, candidates, kept};
-  Measure keptMeasure;
+  Measure keptMeasure(maxColors);
   Measure* measured = &all;
   if (kept == 0 && candidates > 0) {  // keep none
     plan.keepAll = false;
@@ -104,7 +156,7 @@ SurfaceSelectionPlan planSurfaceSelection(TriangleSoupReader& soup,
     plan.threshold = std::bit_cast<float>(static_cast<std::uint32_t>((bin << 16) | low));
     plan.tiesKept = kept - above - aboveFine;
     // Pass 3: the kept triangles' box, area range and colours.
-    keptMeasure.maxColors = maxColors;
+    all.colors.take();  // pass 1's colours are not needed: freed
     SurfaceKeepFilter filter(plan);
     soup.forEachTriangle([&](std::uint64_t first, std::span<const SurfaceTriangle> batch) {
       for (std::size_t i = 0; i < batch.size(); ++i) {
@@ -116,7 +168,7 @@ SurfaceSelectionPlan planSurfaceSelection(TriangleSoupReader& soup,
     measured = &keptMeasure;
   }
   if (kept == 0) measured = &keptMeasure;  // nothing kept: the empty measure
-  if (measured->tooManyColors)
+  if (measured->colors.full())
     throw InputError("the kept triangles have more than " + std::to_string(maxColors) +
                      " distinct colours, more than --memory allows to count (raise it)");
 
@@ -133,7 +185,8 @@ SurfaceSelectionPlan planSurfaceSelection(TriangleSoupReader& soup,
     h.magnitudeMin = measured->aMin;
     h.magnitudeMax = measured->aMax;
   }
-  h.palette = buildPaletteFromCounts(measured->colors, plan.paletteIndex);
+  plan.palette = buildPaletteFromCounts(measured->colors.take());
+  h.palette = plan.palette.palette;
   h.vectorCount = kept;
   return plan;
 }

@@ -8,7 +8,7 @@
 #include <functional>
 #include <optional>
 #include <span>
-#include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "qnv/mesh.hpp"
@@ -122,14 +122,20 @@ std::array<Rgba8, kPaletteSize> defaultTransferFunction();
 std::array<Rgba8, kPaletteSize> buildPalette(std::span<const Rgba8> colors,
                                              std::vector<std::uint8_t>& indices);
 
-/// The key of `color` in buildPaletteFromCounts's maps: r | g << 8 | b << 16 | a << 24.
+/// The key of `color` in buildPaletteFromCounts: r | g << 8 | b << 16 | a << 24.
 std::uint32_t paletteKey(const Rgba8& color);
-/// buildPalette from the distinct colours (by paletteKey) and how often each occurs: the
-/// same palette as buildPalette on any list with those counts, in any order. `indexOf`
-/// receives every key's palette index. Memory: about 60 bytes per distinct colour.
-std::array<Rgba8, kPaletteSize> buildPaletteFromCounts(
-    const std::unordered_map<std::uint32_t, std::uint64_t>& counts,
-    std::unordered_map<std::uint32_t, std::uint8_t>& indexOf);
+/// A palette made from colour counts, and the palette index of every counted colour.
+struct CountedPalette {
+  std::array<Rgba8, kPaletteSize> palette{};
+  std::vector<std::uint32_t> keys;    // the counted colours' paletteKey, ascending
+  std::vector<std::uint8_t> indices;  // the palette index of keys[i]
+  /// The palette index of `color` (binary search; 0 for a colour that was not counted).
+  std::uint8_t indexOf(const Rgba8& color) const;
+};
+/// buildPalette from the distinct colours (by paletteKey, each once, in any order) and how
+/// often each occurs: the same palette as buildPalette on any list with those counts.
+/// Memory: about 40 bytes per distinct colour at the peak, 5 in the result.
+CountedPalette buildPaletteFromCounts(std::vector<std::pair<std::uint32_t, std::uint64_t>> counts);
 
 /// The vector of triangle (a, b, c) as encodeSurface defines it (section 2.1): area
 /// 0.5 |(b - a) x (c - a)|, centroid (a + b + c) / 3, normal (b - a) x (c - a). False

@@ -9,7 +9,6 @@
 #include <cstdint>
 #include <functional>
 #include <span>
-#include <unordered_map>
 
 #include "qnv/encoder.hpp"
 #include "qnv/mesh.hpp"
@@ -62,8 +61,8 @@ struct SurfaceSelectionPlan {
   /// the boundary bin of the first's histogram, the third measures the kept triangles'
   /// box, area range and colours).
   unsigned passes = 1;
-  /// The palette index of every colour of a kept triangle, by paletteKey.
-  std::unordered_map<std::uint32_t, std::uint8_t> paletteIndex;
+  /// The palette (header.palette) and the index of every colour of a kept triangle.
+  CountedPalette palette;
 };
 
 /// The passes over `soup`. Pass 1 counts the candidates, measures their box, area range
@@ -71,10 +70,10 @@ struct SurfaceSelectionPlan {
 /// (positive floats order as their bits). When the selection keeps some but not all,
 /// pass 2 takes a histogram of the lower 16 bits inside the bin where the kept count is
 /// crossed (the threshold is then exact) and pass 3 measures the kept triangles.
-/// Memory: two 64 Ki-entry histograms (1 MiB) and the distinct colours (about 60 bytes
-/// each). Throws InputError when the soup has more than 2^32 - 1 triangles (as
-/// selectSurfaceVectors does), when the counted triangles have more than `maxColors`
-/// distinct colours, and as the reader does.
+/// Memory: two 64 Ki-entry histograms (1 MiB) and the distinct colours (at most 40 bytes
+/// each: counted in a table of 8-24 bytes, then buildPaletteFromCounts). Throws InputError when the
+/// soup has more than 2^32 - 1 triangles (as selectSurfaceVectors does), when the counted triangles
+/// have more than `maxColors` distinct colours, and as the reader does.
 SurfaceSelectionPlan planSurfaceSelection(TriangleSoupReader& soup,
                                           const SurfaceEncodeOptions& options,
                                           std::uint64_t maxColors);
