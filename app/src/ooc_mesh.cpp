@@ -219,14 +219,16 @@ int writeMeshTilesetOutOfCore(const Options& options, const std::string& input,
         throw qnv::InputError(error);
     const qnv::EncodeSummary& s = plan.summary;
     std::printf(
-        "%s: %llu triangles (%llu vertices), %llu with a non-zero area, kept %llu (%.2f%%); out "
+        "%s: %llu triangles (%llu vertices), %llu with a non-zero area, kept %llu (%.2f%%), %llu "
+        "colours; out "
         "of core in %g MiB: copied %llu bytes %.3f s, %u selection pass%s %.3f s, vector pass "
         "%.3f s, %llu vertex block reads, spilled %llu + %llu bytes\n",
         input.c_str(), static_cast<unsigned long long>(s.elements),
         static_cast<unsigned long long>(vertices), static_cast<unsigned long long>(s.candidates),
         static_cast<unsigned long long>(s.kept),
         s.elements ? 100.0 * static_cast<double>(s.kept) / static_cast<double>(s.elements) : 0.0,
-        e.memoryMB, static_cast<unsigned long long>(copied), copySeconds, plan.passes,
+        static_cast<unsigned long long>(plan.palette.keys.size()), e.memoryMB,
+        static_cast<unsigned long long>(copied), copySeconds, plan.passes,
         plan.passes > 1 ? "es" : "", planSeconds, vectorSeconds,
         static_cast<unsigned long long>(misses), static_cast<unsigned long long>(leafSpill),
         static_cast<unsigned long long>(interiorSpill));

@@ -3,7 +3,7 @@
 // R = 1, r = 0.35, radius modulated by 0.04 sin(7u) cos(5v) plus a fine ripple, cut into
 // an N x M grid of quads, two triangles each; with --colors, a vertex colour from the
 // position (hundreds of thousands of distinct triangle colours: the out-of-core encode
-// counts them in an eighth of --memory).
+// counts them in half of --memory, 40 bytes each).
 // --soup writes every triangle with three vertices of its own (no sharing: 3 vertices per
 // triangle, the worst case for the vertex copy), else the grid's shared vertices. Prints
 // the counts, the file size and the write rate.
