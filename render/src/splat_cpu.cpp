@@ -7,6 +7,7 @@
 #include <atomic>
 #include <barrier>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <thread>
 
@@ -16,6 +17,13 @@ namespace {
 
 constexpr int kTile = 32;                     // tile side, pixels
 constexpr float kSaturated = 1.0f / 2048.0f;  // transmittance below which a pixel is done
+// The least alpha that changes an 8-bit framebuffer: blending a premultiplied source of
+// alpha a over a destination d moves it by 255 a (c - d) levels, which rounds to nothing
+// below half a level for any colour. The GL paths draw into RGBA8, where such fragments
+// vanish; the cpu path drops them too, so both show the same picture (without it the
+// millions of faint gradients of a whole CT stream add up to a haze the GL paths never
+// show), and a splat whose peak is below it is not drawn at all.
+constexpr float kVisibleAlpha = 0.5f / 255.0f;
 constexpr float kExtent2 = kSplatExtent * kSplatExtent;  // 9: r2 beyond it is cut
 constexpr int kMaxLights = 8;
 
@@ -108,7 +116,8 @@ bool prepare(const qnv::DecodedVector& vector, const Frame& f, Prepared& out) {
   const glm::vec3 n = vector.normal / length;
   const glm::vec4 rgba = unpackRgba(vector.rgba);
   const SplatProfile profile = splatProfile(*f.style, vector.magnitude, rgba.a);
-  if (!(profile.peak > 0.0f) || !(profile.spread > 0.0f) || !std::isfinite(profile.spread)) {
+  if (!(profile.peak >= kVisibleAlpha) || !(profile.spread > 0.0f) ||
+      !std::isfinite(profile.spread)) {
     return false;
   }
   glm::vec3 t, b;
@@ -248,7 +257,8 @@ void composite(const Prepared p, int tx0, int ty0, int tw, int th, float nearCli
       if ((open[0] | open[1] | open[2] | open[3]) == 0) continue;  // all four saturated
       const I4 inside =
           (r2 <= kExtent2) & (depth >= nearClip) & (depth <= load4(&tile.limit[i])) & open;
-      const F4 alpha = select4(inside, p.peak * exp4(-0.5f * select4(inside, r2)));
+      const F4 profile = p.peak * exp4(-0.5f * select4(inside, r2));
+      const F4 alpha = select4(inside & (profile >= kVisibleAlpha), profile);
       const F4 weight = transmittance * alpha;
       store4(&tile.r[i], load4(&tile.r[i]) + weight * p.color.r);
       store4(&tile.g[i], load4(&tile.g[i]) + weight * p.color.g);
