@@ -118,9 +118,10 @@ Parsed parseArguments(int argc, char** argv) {
       ->check(CLI::IsMember(modeNames));
   std::string splatPathText = render::splatPathName(render::defaultSplatPath());
   cli.add_option("--splat-path", splatPathText,
-                 "How splats are drawn: geometry (default: a geometry shader makes each patch) "
-                 "or points (point sprites; render/README.md)")
-      ->check(CLI::IsMember(std::vector<std::string>{"geometry", "points"}));
+                 "How splats are drawn: auto (default: cpu where GL is llvmpipe or softpipe, "
+                 "else geometry), geometry (a geometry shader makes each patch), points (point "
+                 "sprites) or cpu (a multi-threaded CPU rasterizer; render/README.md)")
+      ->check(CLI::IsMember(std::vector<std::string>{"auto", "geometry", "points", "cpu"}));
   cli.add_option("--script", o.script,
                  "Window: run the UI actions of FILE between frames (layout, open, viewport, "
                  "lod, mode, wait-loaded, frames, screenshot, quit; see app/window_script.hpp)")

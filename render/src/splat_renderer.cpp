@@ -11,6 +11,7 @@
 
 #include "gl_program.hpp"
 #include "render/splat_sort.hpp"
+#include "splat_cpu.hpp"
 #include "splat_glsl.hpp"
 #include "splat_points.hpp"
 
@@ -106,7 +107,7 @@ void main() { o_color = texture(u_layer, v_uv); }
 
 constexpr int kMaxSplatLights = 8;
 
-SplatPath gDefaultPath = SplatPath::geometry;
+SplatPath gDefaultPath = SplatPath::automatic;
 
 /// Uniform locations of one splat program (-1 for those it lacks).
 struct SplatUniforms {
@@ -147,7 +148,17 @@ SplatPath defaultSplatPath() {
 }
 
 const char* splatPathName(SplatPath path) {
-  return path == SplatPath::points ? "points" : "geometry";
+  switch (path) {
+    case SplatPath::points:
+      return "points";
+    case SplatPath::geometry:
+      return "geometry";
+    case SplatPath::cpu:
+      return "cpu";
+    case SplatPath::automatic:
+      break;
+  }
+  return "auto";
 }
 
 bool parseSplatPath(const char* text, SplatPath& path) {
@@ -156,9 +167,21 @@ bool parseSplatPath(const char* text, SplatPath& path) {
     path = SplatPath::points;
   else if (t == "geometry")
     path = SplatPath::geometry;
+  else if (t == "cpu")
+    path = SplatPath::cpu;
+  else if (t == "auto")
+    path = SplatPath::automatic;
   else
     return false;
   return true;
+}
+
+SplatPath automaticSplatPath(const char* glRenderer) {
+  const std::string_view r = glRenderer != nullptr ? glRenderer : "";
+  return r.find("llvmpipe") != std::string_view::npos ||
+                 r.find("softpipe") != std::string_view::npos
+             ? SplatPath::cpu
+             : SplatPath::geometry;
 }
 
 void SplatSet::computeBounds() {
@@ -178,9 +201,15 @@ struct SplatRenderer::Gpu {
   std::size_t bufferCapacity = 0;  // vectors the GL buffer holds
   std::uint64_t uploadedRevision = 0;
   std::size_t orderCapacity = 0;
+  // The last depth order: of which set, count and view, which direction, whether it is in
+  // orderBuffer.
+  const qnv::DecodedVector* sortedData = nullptr;
+  std::size_t sortedSize = 0;
+  std::uint64_t sortedRevision = 0;
   glm::mat4 sortedView{0.0f};
   std::size_t sortedCount = 0;
-  SplatBlend sortedBlend = SplatBlend::backToFront;
+  bool sortedFrontToBack = false;
+  bool orderOnGpu = false;
   DepthSorter sorter;
   std::vector<std::uint32_t> order;
   // Whether the last view checked fits the points path (pointsFit), and that view.
@@ -189,8 +218,16 @@ struct SplatRenderer::Gpu {
   std::size_t fitCount = 0;
   int fitWidth = 0, fitHeight = 0;
   SplatStyle fitStyle;
+  // The cpu path: its rasterizer, image, the scene's depth, the texture and an empty VAO.
+  SplatPath automaticPath = SplatPath::geometry;  // what `automatic` means here
+  detail::CpuSplatRasterizer rasterizer;
+  std::vector<std::uint8_t> pixels;
+  std::vector<float> depth;
+  GLuint cpuTexture = 0, emptyVao = 0;
+  int cpuWidth = 0, cpuHeight = 0;
 
   void create() {
+    automaticPath = automaticSplatPath(reinterpret_cast<const char*>(glGetString(GL_RENDERER)));
     program = detail::buildProgram("splat", detail::splatVertexShader(kSplatVertexBody).c_str(),
                                    kSplatFragmentShader, kSplatGeometryShader);
     pointsProgram = detail::buildProgram(
@@ -231,6 +268,8 @@ struct SplatRenderer::Gpu {
     glDeleteBuffers(1, &vectorBuffer);
     glDeleteFramebuffers(1, &layerFbo);
     glDeleteTextures(1, &layerTexture);
+    glDeleteTextures(1, &cpuTexture);
+    glDeleteVertexArrays(1, &emptyVao);
   }
 
   void upload(const SplatSet& set) {
@@ -253,7 +292,6 @@ struct SplatRenderer::Gpu {
     uploadedData = data;
     uploadedSize = size;
     uploadedRevision = set.revision;
-    sortedCount = 0;  // force a sort
   }
 
   void ensureLayer(int width, int height) {
@@ -295,21 +333,36 @@ void SplatRenderer::draw(const SplatSet& set, std::size_t count, const glm::mat4
     gpu_->create();
   }
   Gpu& g = *gpu_;
-  g.upload(set);
+  const SplatPath path = path_ == SplatPath::automatic ? g.automaticPath : path_;
+  const bool cpu = path == SplatPath::cpu;
+  if (!cpu) g.upload(set);
 
-  // Depth order of the first `count` vectors, redone only when the view moved.
+  // Depth order of the first `count` vectors, redone only when the set or the view
+  // changed. The cpu path always composites front to back.
   const glm::mat4 view = viewMatrix(camera);
   const glm::mat4 modelView = view * model;
-  if (g.sortedCount != count || g.sortedView != modelView || g.sortedBlend != blend) {
+  const bool frontToBack = cpu || blend == SplatBlend::frontToBack;
+  if (g.sortedData != set.vectors.data() || g.sortedSize != set.vectors.size() ||
+      g.sortedRevision != set.revision || g.sortedCount != count || g.sortedView != modelView ||
+      g.sortedFrontToBack != frontToBack) {
     const auto t0 = std::chrono::steady_clock::now();
     const std::span<const qnv::DecodedVector> first(set.vectors.data(), count);
-    if (blend == SplatBlend::backToFront)
-      g.sorter.sortBackToFront(first, modelView, g.order);
-    else
+    if (frontToBack)
       g.sorter.sortFrontToBack(first, modelView, g.order);
+    else
+      g.sorter.sortBackToFront(first, modelView, g.order);
     statistics_.sortSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     statistics_.sorted = true;
+    g.sortedData = set.vectors.data();
+    g.sortedSize = set.vectors.size();
+    g.sortedRevision = set.revision;
+    g.sortedCount = count;
+    g.sortedView = modelView;
+    g.sortedFrontToBack = frontToBack;
+    g.orderOnGpu = false;
+  }
+  if (!cpu && !g.orderOnGpu) {
     glBindVertexArray(g.vao);
     const auto bytes = static_cast<GLsizeiptr>(count * sizeof(std::uint32_t));
     if (g.orderCapacity < count) {
@@ -319,9 +372,7 @@ void SplatRenderer::draw(const SplatSet& set, std::size_t count, const glm::mat4
       glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, 0, bytes, g.order.data());
     }
     glBindVertexArray(0);
-    g.sortedCount = count;
-    g.sortedView = modelView;
-    g.sortedBlend = blend;
+    g.orderOnGpu = true;
   }
 
   GLint viewport[4];
@@ -331,9 +382,13 @@ void SplatRenderer::draw(const SplatSet& set, std::size_t count, const glm::mat4
 
   const glm::mat4 projection = projectionMatrix(camera, aspect);
   const SplatStyle& s = style != nullptr ? *style : set.style;
+  if (cpu) {
+    drawCpu(set, count, model, modelView, camera, projection, lights, blend, s);
+    return;
+  }
   // The points path when this view allows it (checked again only when the view changed).
   bool points = false;
-  if (path_ == SplatPath::points) {
+  if (path == SplatPath::points) {
     if (g.fitCount != count || g.fitView != modelView || g.fitProjection != projection ||
         g.fitWidth != viewport[2] || g.fitHeight != viewport[3] ||
         std::memcmp(&g.fitStyle, &s, sizeof s) != 0) {
@@ -431,6 +486,83 @@ void SplatRenderer::draw(const SplatSet& set, std::size_t count, const glm::mat4
   glDisable(GL_BLEND);
   glEnable(GL_DEPTH_TEST);
   statistics_.splats = count;
+}
+
+void SplatRenderer::drawCpu(const SplatSet& set, std::size_t count, const glm::mat4& model,
+                            const glm::mat4& modelView, const Camera& camera,
+                            const glm::mat4& projection, std::span<const SplatLight> lights,
+                            SplatBlend blend, const SplatStyle& style) {
+  Gpu& g = *gpu_;
+  statistics_.path = SplatPath::cpu;
+  statistics_.splats = count;
+  GLint viewport[4];
+  glGetIntegerv(GL_VIEWPORT, viewport);
+  const int width = viewport[2], height = viewport[3];
+  if (width <= 0 || height <= 0) return;
+  const std::size_t pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+
+  // The scene's depth, as the GL paths' depth test sees it (the front-to-back GL layer
+  // has no depth test: neither has this path in that mode).
+  std::span<const float> depth;
+  if (blend == SplatBlend::backToFront) {
+    GLint drawFramebuffer = 0, readFramebuffer = 0;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawFramebuffer);
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &readFramebuffer);
+    if (readFramebuffer != drawFramebuffer)
+      glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(drawFramebuffer));
+    g.depth.resize(pixels);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glReadPixels(viewport[0], viewport[1], width, height, GL_DEPTH_COMPONENT, GL_FLOAT,
+                 g.depth.data());
+    if (glGetError() == GL_NO_ERROR) depth = g.depth;  // else: no depth buffer to test
+    if (readFramebuffer != drawFramebuffer)
+      glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(readFramebuffer));
+  }
+
+  detail::CpuSplatView v;
+  v.modelView = modelView;
+  v.projection = projection;
+  v.normalMatrix = glm::transpose(glm::inverse(glm::mat3(model)));
+  v.width = width;
+  v.height = height;
+  v.nearClip = std::max(camera.nearClip, 1e-6f);
+  v.farClip = std::max(camera.farClip, v.nearClip * 1.001f);
+  g.rasterizer.draw({set.vectors.data(), count}, g.order, style, lights, v, depth, g.pixels);
+
+  // The premultiplied image over the framebuffer: one quad, texel per pixel.
+  glActiveTexture(GL_TEXTURE0);
+  if (g.cpuTexture == 0) {
+    glGenTextures(1, &g.cpuTexture);
+    glGenVertexArrays(1, &g.emptyVao);
+  }
+  glBindTexture(GL_TEXTURE_2D, g.cpuTexture);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  if (width != g.cpuWidth || height != g.cpuHeight) {
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+                 g.pixels.data());
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    g.cpuWidth = width;
+    g.cpuHeight = height;
+  } else {
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE,
+                    g.pixels.data());
+  }
+  glUseProgram(g.layerProgram);
+  glUniform1i(detail::uniform(g.layerProgram, "u_layer"), 0);
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  glDisable(GL_DEPTH_TEST);
+  glDepthMask(GL_FALSE);
+  glDisable(GL_CULL_FACE);
+  glBindVertexArray(g.emptyVao);
+  glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+  glBindVertexArray(0);
+  glDepthMask(GL_TRUE);
+  glDisable(GL_BLEND);
+  glEnable(GL_DEPTH_TEST);
 }
 
 }  // namespace gs::render

@@ -1,12 +1,14 @@
-// Splat pass throughput on the headless path (OSMesa), both SplatPaths in one run:
+// Splat pass throughput on the headless path (OSMesa), the three SplatPaths in one run:
 // M splats/s of a whole frame (depth sort, upload of the order, draw, glFinish) for
 // synthetic sphere shells of a few sizes and for .qnv files given on the command line
 // (e.g. the bunny and CThead's top 9.1%, render/README.md), each seen whole by a fitted
 // camera. Each figure is the best of FRAMES frames (the camera moves a little every
 // frame, so each frame sorts again); "cpu" is the process's CPU time per frame (all
-// llvmpipe threads), less sensitive to other work on a shared machine than the wall time.
+// llvmpipe threads and the cpu path's workers), less sensitive to other work on a shared
+// machine than the wall time.
 //
-//   bench_splats [WxH] [--millions 1,4] [--frames N] [FILE.qnv ...]   (default 512x512)
+//   bench_splats [WxH] [--millions 1,4] [--frames N] [--path P] [FILE.qnv ...]
+//   (default 512x512; --path geometry|points|cpu measures only that path)
 #include <glad/gl.h>
 
 #include <chrono>
@@ -17,6 +19,7 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "render/context.hpp"
@@ -84,12 +87,20 @@ Figure measure(const render::SplatSet& set, render::SplatPath path, int width, i
   return f;
 }
 
+std::string only;  // --path: measure only that path
+
 void report(const char* name, const render::SplatSet& set, int width, int height, int frames) {
   const double n = static_cast<double>(set.vectors.size());
-  Figure figures[2];
-  const render::SplatPath paths[2] = {render::SplatPath::geometry, render::SplatPath::points};
-  for (int i = 0; i < 2; ++i) figures[i] = measure(set, paths[i], width, height, frames);
-  for (int i = 0; i < 2; ++i) {
+  constexpr int kPaths = 3;
+  Figure figures[kPaths];
+  const render::SplatPath paths[kPaths] = {render::SplatPath::geometry, render::SplatPath::points,
+                                           render::SplatPath::cpu};
+  for (int i = 0; i < kPaths; ++i) {
+    if (!only.empty() && only != render::splatPathName(paths[i])) continue;  // --path
+    figures[i] = measure(set, paths[i], width, height, frames);
+  }
+  for (int i = 0; i < kPaths; ++i) {
+    if (!only.empty() && only != render::splatPathName(paths[i])) continue;
     const Figure& f = figures[i];
     std::printf(
         "%-14s %9.0f splats  %-8s frame %7.3f s  %5.2f M splats/s  (cpu %.3f s, "
@@ -97,8 +108,12 @@ void report(const char* name, const render::SplatSet& set, int width, int height
         name, n, render::splatPathName(paths[i]), f.wall, n / f.wall / 1e6, f.cpu, f.sort,
         f.drew != paths[i] ? "  [fell back to geometry]" : "");
   }
-  std::printf("%-14s points / geometry: %.2fx (wall), %.2fx (cpu)\n", name,
-              figures[0].wall / figures[1].wall, figures[0].cpu / figures[1].cpu);
+  if (!only.empty()) return;
+  std::printf(
+      "%-14s points / geometry: %.2fx (wall), %.2fx (cpu); cpu / geometry: %.2fx (wall), "
+      "%.2fx (cpu)\n",
+      name, figures[0].wall / figures[1].wall, figures[0].cpu / figures[1].cpu,
+      figures[0].wall / figures[2].wall, figures[0].cpu / figures[2].cpu);
   std::fflush(stdout);
 }
 
@@ -110,7 +125,9 @@ int main(int argc, char** argv) {
   std::vector<std::string> files;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--frames" && i + 1 < argc) {
+    if (a == "--path" && i + 1 < argc) {
+      only = argv[++i];
+    } else if (a == "--frames" && i + 1 < argc) {
       frames = std::max(1, std::atoi(argv[++i]));
     } else if (a == "--millions" && i + 1 < argc) {
       millions.clear();
@@ -127,7 +144,8 @@ int main(int argc, char** argv) {
       files.push_back(a);
     } else {
       std::fprintf(stderr,
-                   "usage: bench_splats [WxH] [--millions 1,4] [--frames N] [FILE.qnv ...]\n");
+                   "usage: bench_splats [WxH] [--millions 1,4] [--frames N] [--path P] "
+                   "[FILE.qnv ...]\n");
       return 2;
     }
   }
@@ -137,8 +155,9 @@ int main(int argc, char** argv) {
     if (std::fscanf(f, "%lf %lf %lf", &load[0], &load[1], &load[2]) != 3) load[0] = -1;
     std::fclose(f);
   }
-  std::printf("%s; %dx%d; best of %d frames; load average %.2f %.2f %.2f\n",
-              glGetString(GL_RENDERER), width, height, frames, load[0], load[1], load[2]);
+  std::printf("%s; %dx%d; best of %d frames; %u hardware threads; load average %.2f %.2f %.2f\n",
+              glGetString(GL_RENDERER), width, height, frames, std::thread::hardware_concurrency(),
+              load[0], load[1], load[2]);
   for (const std::string& file : files) {
     std::string error;
     const auto set = render::loadQnvFile(file, error);

@@ -68,9 +68,9 @@ struct SplatSet {
 /// then composited over the framebuffer.
 enum class SplatBlend { backToFront, frontToBack };
 
-/// How the pass turns a vector into pixels. Both shade the same fragments with the same
-/// Gaussian (the picture agrees with the CPU reference of equation (1) either way);
-/// on llvmpipe `points` measured no faster (render/README.md, bench_splats).
+/// How the pass turns a vector into pixels. All shade the same splats (the picture agrees
+/// with the CPU reference of equation (1) on each); they differ in speed
+/// (render/README.md, bench_splats).
 enum class SplatPath {
   /// One point sprite per splat covering its projected patch, culled outside the view;
   /// the fragment shader intersects each pixel's ray with the patch plane. A view where
@@ -79,22 +79,33 @@ enum class SplatPath {
   points,
   /// A geometry shader expands each point into its square patch (two triangles).
   geometry,
+  /// A multi-threaded CPU rasterizer (src/splat_cpu.hpp) composites the splats front to
+  /// back into a premultiplied RGBA8 image, depth-tested against the framebuffer's depth
+  /// (read once per draw), then drawn as one textured quad over the framebuffer. The
+  /// fastest path where GL itself runs on the CPU (llvmpipe, softpipe).
+  cpu,
+  /// `cpu` when the GL renderer (GL_RENDERER) is llvmpipe or softpipe, else `geometry`;
+  /// resolved at the first draw. Only a setting: SplatStatistics::path is never automatic.
+  automatic,
 };
 
-/// The path a new SplatRenderer takes (`geometry` unless set; `--splat-path`). Not
+/// The path a new SplatRenderer takes (`automatic` unless set; `--splat-path`). Not
 /// thread-safe: set it before rendering starts.
 void setDefaultSplatPath(SplatPath path);
 SplatPath defaultSplatPath();
-/// "points" or "geometry"; parseSplatPath returns false for any other text.
+/// "points", "geometry", "cpu" or "auto"; parseSplatPath returns false for any other text.
 const char* splatPathName(SplatPath path);
 bool parseSplatPath(const char* text, SplatPath& path);
+/// What `automatic` means for a GL_RENDERER string: `cpu` when it contains "llvmpipe" or
+/// "softpipe", else `geometry` (a null string: `geometry`).
+SplatPath automaticSplatPath(const char* glRenderer);
 
 /// What the last draw() did.
 struct SplatStatistics {
   std::size_t splats = 0;              // vectors drawn
   bool sorted = false;                 // whether the view moved and the depth sort ran
   double sortSeconds = 0.0;            // CPU time of that sort
-  SplatPath path = SplatPath::points;  // the path that drew
+  SplatPath path = SplatPath::points;  // the path that drew (never automatic)
 };
 
 /// GPU resources for drawing splat sets. Create, draw and destroy with the same context
@@ -111,7 +122,8 @@ class SplatRenderer {
   /// Draws the first `count` vectors of `set` (clamped to its size), placed by `model`
   /// (local to world), seen by `camera` in a viewport of aspect width / height, lit by
   /// `lights` (world directions; at most 8 are used). Depth-tested against what is in the
-  /// framebuffer, without writing depth. The viewport must already be set. `style`
+  /// framebuffer, without writing depth (the cpu path reads that depth back with
+  /// glReadPixels). The viewport must already be set. `style`
   /// (may be null) replaces set.style (a QNV node's mode and opacityScale). Throws
   /// std::runtime_error when a shader fails to compile.
   void draw(const SplatSet& set, std::size_t count, const glm::mat4& model, const Camera& camera,
@@ -119,13 +131,18 @@ class SplatRenderer {
             SplatBlend blend = SplatBlend::backToFront, const SplatStyle* style = nullptr);
 
   const SplatStatistics& statistics() const { return statistics_; }
-  /// The path draw() tries (defaultSplatPath() at construction).
+  /// The path draw() tries (defaultSplatPath() at construction; may be `automatic`).
   void setPath(SplatPath path) { path_ = path; }
   SplatPath path() const { return path_; }
   /// Frees every GL object (context current).
   void release();
 
  private:
+  /// The cpu path of draw(), after the depth sort (front to back, in gpu_->order).
+  void drawCpu(const SplatSet& set, std::size_t count, const glm::mat4& model,
+               const glm::mat4& modelView, const Camera& camera, const glm::mat4& projection,
+               std::span<const SplatLight> lights, SplatBlend blend, const SplatStyle& style);
+
   struct Gpu;
   std::unique_ptr<Gpu> gpu_;
   SplatStatistics statistics_;
