@@ -72,7 +72,8 @@ class PlySink {
 /// or read, and for a gzip-compressed file ("gunzip it first"). Exceptions `sink` throws
 /// pass through.
 /// `chunkBytes` (>= 1) is the piece size, small only in tests.
-void streamPly(const std::string& path, PlySink& sink, std::size_t chunkBytes = std::size_t{1} << 20);
+void streamPly(const std::string& path, PlySink& sink,
+               std::size_t chunkBytes = std::size_t{1} << 20);
 
 /// Reads a Wavefront OBJ file.
 ///
