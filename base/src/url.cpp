@@ -90,10 +90,18 @@ std::string removeDotSegments(std::string_view path) {
 
 /// RFC 3986 5.2.3: `reference` joined to the directory of the base path.
 std::string merge(const UrlParts& base, std::string_view reference) {
-  if (base.hasAuthority && base.path.empty()) return "/" + std::string(reference);
-  const std::size_t slash = base.path.rfind('/');
-  if (slash == std::string_view::npos) return std::string(reference);
-  return std::string(base.path.substr(0, slash + 1)) + std::string(reference);
+  // Built with append (not operator+ of temporaries, which trips GCC 12's -Wrestrict
+  // false positive at -O3).
+  std::string out;
+  if (base.hasAuthority && base.path.empty()) {
+    out.reserve(reference.size() + 1);
+    out.push_back('/');
+  } else if (const std::size_t slash = base.path.rfind('/'); slash != std::string_view::npos) {
+    out.reserve(slash + 1 + reference.size());
+    out.append(base.path.substr(0, slash + 1));
+  }
+  out.append(reference);
+  return out;
 }
 
 /// RFC 3986 5.3: the components put back together.
