@@ -152,10 +152,11 @@ void WindowState::updateRuntimes() {
                      std::string& error) {
           return session->loader().fetchWhole(url, referrer, bytes, error, 10.0);
         });
+    // Clips from the network arrive in the background: a frame never waits for them.
     sounds = std::make_unique<WorldSounds>(
         true, [this](const std::string& url, const std::string& referrer, std::string& bytes,
                      std::string& error) {
-          return session->loader().fetchWhole(url, referrer, bytes, error, 10.0);
+          return session->loader().fetchInBackground(url, referrer, bytes, error);
         });
     if (!sounds->note().empty()) std::fprintf(stderr, "ghostspace: %s\n", sounds->note().c_str());
     clockOffset = time.set ? time.start - runtime::wallClockSeconds() : 0.0;

@@ -79,16 +79,25 @@ std::shared_ptr<const formats::AudioData> SoundScene::clipOf(const vrml::Node& c
   job.clip = &clip;
   job.movie = clip.typeName() == "MovieTexture";
   const auto urls = clip.get<vrml::FieldType::MFString>("url", std::vector<std::string>{});
+  bool arriving = false;  // a remote URL still on its way: the clip is asked for again later
   for (const std::string& reference : urls) {
     if (reference.empty()) continue;
     detail::ClipSource s;
     s.url = base::resolveUrl(base, reference);
     if (base::mayReference(base, s.url, s.error)) {
       s.path = base::localPathOfUrl(s.url);
-      if (s.path.empty() && loader_) s.fetched = loader_(s.url, s.bytes, s.error);
+      if (s.path.empty() && loader_) {
+        s.fetched = loader_(s.url, s.bytes, s.error);
+        arriving = arriving || (!s.fetched && s.error.empty());
+      }
       if (s.path.empty() && !loader_) s.error = s.url + ": only local files without a loader";
     }
     job.sources.push_back(std::move(s));
+  }
+  if (arriving) {  // never wait for the network here: silent until every fetch answered
+    loading_.erase(&clip);
+    ++fetchesWaiting_;
+    return nullptr;
   }
   loads_->submit(std::move(job));
   return nullptr;

@@ -2,6 +2,7 @@
 // first meets a clip does not decode it; the Sound is silent until the worker is done and
 // plays from the next frame on, at the media time of that frame. Deterministic: the test
 // waits for the worker (SoundScene::waitForClips), it never sleeps.
+#include "base/file.hpp"
 #include "movie_maker.hpp"
 #include "sound_world.hpp"
 
@@ -82,4 +83,57 @@ TEST_CASE("Sound: an AudioClip that cannot be read is reported once the worker g
   frameWithoutWaiting(w, 1.0);
   CHECK(w.out.playing().empty());
   CHECK(w.sounds.clipsLoading() == 0);
+}
+
+TEST_CASE("Sound: a remote AudioClip is fetched without waiting, frame by frame",
+          "[audio][sound][worker][remote]") {
+  // A loader that answers "on its way" for three calls, then gives the WAV's bytes, as
+  // net::Loader::fetchInBackground does: no frame may block on the transfer.
+  std::string wav;
+  std::string error;
+  REQUIRE(base::readFile(std::string(GS_SOURCE_DIR) + "/assets/media/tone.wav", wav, error));
+  int calls = 0;
+  audio::ClipLoader loader = [&](const std::string& url, std::string& bytes, std::string& why) {
+    CHECK(url == "http://example.org/media/tone.wav");
+    if (++calls <= 3) return false;  // error empty: still arriving
+    bytes = wav;
+    why.clear();
+    return true;
+  };
+  test::SoundWorld w(R"(Sound { source AudioClip { url "tone.wav" loop TRUE } })",
+                     "http://example.org/media/world.wrl", loader);
+  for (int frame = 0; frame < 3; ++frame) {
+    frameWithoutWaiting(w, 0.1 * frame);
+    CHECK(w.sounds.clipsLoading() == 0);  // nothing handed to the worker yet
+    CHECK(w.out.playing().empty());
+  }
+  CHECK(w.sounds.fetchesWaiting() == 3);
+  CHECK(w.sounds.diagnostics().items.empty());
+  frameWithoutWaiting(w, 0.3);  // the bytes arrived: handed to the worker
+  CHECK(calls == 4);
+  w.sounds.waitForClips();
+  for (const auto& [n, seconds] : w.sounds.takeDurations()) w.model->setMediaDuration(*n, seconds);
+  frameWithoutWaiting(w, 0.4);
+  REQUIRE(w.out.playing().size() == 1);
+  CHECK(w.sounds.diagnostics().items.empty());
+  CHECK(calls == 4);  // asked no more once decoded
+}
+
+TEST_CASE("Sound: a remote AudioClip whose fetch fails is reported, not retried",
+          "[audio][sound][worker][remote]") {
+  int calls = 0;
+  audio::ClipLoader loader = [&](const std::string& url, std::string&, std::string& why) {
+    ++calls;
+    why = url + ": HTTP 404";
+    return false;
+  };
+  test::SoundWorld w(R"(Sound { source AudioClip { url "gone.wav" loop TRUE } })",
+                     "http://example.org/media/world.wrl", loader);
+  frameWithoutWaiting(w, 0.0);
+  w.sounds.waitForClips();
+  frameWithoutWaiting(w, 0.1);
+  CHECK(calls == 1);
+  REQUIRE(w.sounds.diagnostics().items.size() == 1);
+  CHECK(w.sounds.diagnostics().items[0].message.find("gone.wav: HTTP 404") != std::string::npos);
+  CHECK(w.sounds.fetchesWaiting() == 0);
 }

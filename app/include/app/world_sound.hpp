@@ -17,7 +17,9 @@ namespace gs::app {
 class WorldSounds {
  public:
   /// Opens the audio output (`enabled` false: the null output). `fetch` reads clip URLs
-  /// that are not local files (under the loader's rules).
+  /// that are not local files (under the loader's rules) without blocking, as
+  /// audio::ClipLoader says (false with an empty error while on its way; the window passes
+  /// net::Loader::fetchInBackground).
   WorldSounds(bool enabled, session::FetchWhole fetch);
   /// Why the output is the null one ("" when a device opened).
   const std::string& note() const { return note_; }

@@ -40,7 +40,11 @@ struct ClipTime {
 
 /// The clip's state now; empty when the execution model does not know the node.
 using ClipTimeQuery = std::function<std::optional<ClipTime>(const vrml::Node& clip)>;
-/// Reads the bytes of an already resolved URL (the session's loader or a file read).
+/// Reads the bytes of an already resolved URL that is not a local file (the session's
+/// loader), without blocking the drawing thread: true with `bytes` once they arrived; false
+/// with `error` naming the URL when refused or failed; false with `error` empty while the
+/// transfer is on its way (net::Loader::fetchInBackground), when the SoundScene asks again
+/// on a later frame. Called on the drawing thread only.
 using ClipLoader =
     std::function<bool(const std::string& url, std::string& bytes, std::string& error)>;
 /// The world an Inline node (6.25) has loaded so far (the renderer loads Inlines; e.g.
@@ -84,6 +88,9 @@ class SoundScene {
   void waitForClips();
   /// Clips being read or decoded on the worker now (asked for, not yet taken in).
   std::size_t clipsLoading() const;
+  /// How many times a clip was asked for while one of its remote URLs was still arriving
+  /// (the loader answered "on its way"): each such frame went on without waiting.
+  std::size_t fetchesWaiting() const { return fetchesWaiting_; }
   /// Every Sound of the last update, in scene order.
   const std::vector<HeardSound>& heard() const { return heard_; }
   /// Clips that could not be read, each once ("URL: why").
@@ -100,6 +107,7 @@ class SoundScene {
   ClipLoader loader_;
   std::unordered_map<const vrml::Node*, std::shared_ptr<const formats::AudioData>> clips_;
   std::unordered_set<const vrml::Node*> loading_;  // on the worker
+  std::size_t fetchesWaiting_ = 0;
   std::vector<std::pair<const vrml::Node*, double>> durations_;
   std::vector<HeardSound> heard_;
   std::unordered_map<const vrml::Scene*, std::shared_ptr<const vrml::Scene>> inlineWorlds_;
