@@ -22,7 +22,9 @@
 // 2. Compositing: threads take tiles; per tile, the chunks' bins in order are front to
 //    back. Per pixel C += T alpha c, T *= 1 - alpha; a pixel whose transmittance falls
 //    below 1/2048 (less than an eighth of a level left) is saturated and skipped, and a
-//    tile with no unsaturated pixel left stops. Four pixels at a time (vector extensions),
+//    tile with no unsaturated pixel left stops. A fragment whose alpha is below half an
+//    8-bit level (0.5/255), which RGBA8 blending in the GL paths cannot show, is dropped,
+//    and a splat whose peak is below it is not set up. Four pixels at a time (vector extensions),
 //    the Gaussian from a polynomial exp; each row only over its exact span of the disk.
 // 3. Output: premultiplied RGBA8 (C, 1 - T), rows bottom to top (OpenGL's order), to be
 //    blended over the framebuffer with (ONE, ONE_MINUS_SRC_ALPHA).
