@@ -27,6 +27,7 @@
 namespace gs::app {
 
 namespace fs = std::filesystem;
+using ooc::since;
 
 namespace {
 
@@ -42,10 +43,6 @@ static_assert(sizeof(SoupVertex) == 16 && sizeof(SoupTriangle) == 16);
 
 constexpr std::size_t kBatch = 65536;           // triangles or vertices per 1 MiB
 constexpr std::uint32_t kBlockVertices = 2048;  // 32 KiB cache blocks
-
-double since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // A PLY file copied to the part folder, then read back as a triangle soup.
 class PlySoup final : public formats::PlySink, public qnv::TriangleSoupReader {
@@ -232,19 +229,8 @@ int writeMeshTilesetOutOfCore(const Options& options, const std::string& input,
         plan.passes > 1 ? "es" : "", planSeconds, vectorSeconds,
         static_cast<unsigned long long>(misses), static_cast<unsigned long long>(leafSpill),
         static_cast<unsigned long long>(interiorSpill));
-    if (e.bricks.empty()) {
-      printMerged(dir, merged);
-      std::printf("%s: encoded in %.3f s\n", input.c_str(), since(t0));
-    } else {
-      std::printf(
-          "%s: share %u of %u: leaves %llu..%llu of %llu (depth %u), %llu bytes; %.3f s. After "
-          "every share: ghostspace tileset index %s\n",
-          dir.string().c_str(), share, shares, static_cast<unsigned long long>(range.first),
-          static_cast<unsigned long long>(range.second),
-          static_cast<unsigned long long>(layout.leafCount()),
-          static_cast<unsigned>(layout.depth()), static_cast<unsigned long long>(written),
-          since(t0), dir.string().c_str());
-    }
+    ooc::printEncodeResult(dir, input, e.bricks.empty(), merged, share, shares, range, layout,
+                           written, t0);
   } catch (const qnv::InputError& error) {
     std::fprintf(stderr, "ghostspace: encode: %s\n", error.what());
     return 1;

@@ -9,12 +9,16 @@
 
 #include <atomic>
 #include <cerrno>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <exception>
 #include <filesystem>
 #include <map>
 #include <memory>
 #include <optional>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -301,5 +305,33 @@ class ShareEncoder {
   SpillFile leafSpill_, interiorSpill_;
   std::unique_ptr<Batch> inFlight_;  // last: joined before the members it uses go
 };
+
+// Seconds since `t0` (the encodes' progress lines).
+inline double since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// The last line of an out-of-core encode: the merged tileset when the run was the whole
+// encode (`merged` from mergeShares), else which leaves share `share` of `shares` wrote
+// (`leaves` of the layout's leaves, `written` bytes) and the merge command to run after
+// every share.
+inline void printEncodeResult(const fs::path& dir, const std::string& input, bool wholeRun,
+                              const Merged& merged, std::uint32_t share, std::uint32_t shares,
+                              std::pair<std::uint64_t, std::uint64_t> leaves,
+                              const qnv::TilesetLayout& layout, std::uint64_t written,
+                              std::chrono::steady_clock::time_point t0) {
+  if (wholeRun) {
+    printMerged(dir, merged);
+    std::printf("%s: encoded in %.3f s\n", input.c_str(), since(t0));
+    return;
+  }
+  std::printf(
+      "%s: share %u of %u: leaves %llu..%llu of %llu (depth %u), %llu bytes; %.3f s. After "
+      "every share: ghostspace tileset index %s\n",
+      dir.string().c_str(), share, shares, static_cast<unsigned long long>(leaves.first),
+      static_cast<unsigned long long>(leaves.second),
+      static_cast<unsigned long long>(layout.leafCount()), static_cast<unsigned>(layout.depth()),
+      static_cast<unsigned long long>(written), since(t0), dir.string().c_str());
+}
 
 }  // namespace gs::app::ooc

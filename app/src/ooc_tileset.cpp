@@ -29,14 +29,7 @@ namespace gs::app {
 namespace fs = std::filesystem;
 
 using ooc::ShareEncoder;
-
-namespace {
-
-double since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-}  // namespace
+using ooc::since;
 
 int writeVolumeTilesetOutOfCore(const Options& options, qnv::VolumeSlabReader& reader,
                                 const qnv::VolumeEncodeOptions& encode,
@@ -135,19 +128,8 @@ int writeVolumeTilesetOutOfCore(const Options& options, qnv::VolumeSlabReader& r
         e.memoryMB, plan.passes, plan.passes > 1 ? "es" : "", planSeconds, z0, z1, slabSlices,
         vectorSeconds, static_cast<unsigned long long>(leafSpill),
         static_cast<unsigned long long>(interiorSpill));
-    if (e.bricks.empty()) {
-      printMerged(dir, merged);
-      std::printf("%s: encoded in %.3f s\n", input.c_str(), since(t0));
-    } else {
-      std::printf(
-          "%s: share %u of %u: leaves %llu..%llu of %llu (depth %u), %llu bytes; %.3f s. After "
-          "every share: ghostspace tileset index %s\n",
-          dir.string().c_str(), share, shares, static_cast<unsigned long long>(leaves.first),
-          static_cast<unsigned long long>(leaves.second),
-          static_cast<unsigned long long>(layout.leafCount()),
-          static_cast<unsigned>(layout.depth()), static_cast<unsigned long long>(written),
-          since(t0), dir.string().c_str());
-    }
+    ooc::printEncodeResult(dir, input, e.bricks.empty(), merged, share, shares, leaves, layout,
+                           written, t0);
   } catch (const qnv::InputError& error) {
     std::fprintf(stderr, "ghostspace: encode: %s\n", error.what());
     return 1;

@@ -1,5 +1,7 @@
 #include "qnv/surface_tileset.hpp"
 
+#include "histogram_crossing.hpp"
+
 #include <algorithm>
 #include <bit>
 #include <limits>
@@ -15,18 +17,6 @@ namespace gs::qnv {
 namespace {
 
 constexpr std::size_t kBins = std::size_t{1} << 16;
-
-// The bin (from the top) where the running count from the largest reaches `need`, and
-// the count strictly above it.
-std::pair<std::size_t, std::uint64_t> crossing(const std::vector<std::uint64_t>& bins,
-                                               std::uint64_t need) {
-  std::uint64_t above = 0;
-  for (std::size_t b = bins.size(); b-- > 0;) {
-    if (above + bins[b] >= need) return {b, above};
-    above += bins[b];
-  }
-  throw InputError("internal error: the area histogram holds fewer triangles than counted");
-}
 
 // Distinct colours and their counts in an open-addressing table of 64-bit slots
 // (key << 32 | count; 0 is empty, since a counted colour has count >= 1; counts stay
@@ -141,7 +131,8 @@ SurfaceSelectionPlan planSurfaceSelection(TriangleSoupReader& soup,
     // Pass 2: the lower 16 bits inside the crossing bin.
     plan.keepAll = false;
     plan.passes = 3;
-    const auto [bin, above] = crossing(coarse, kept);
+    const auto [bin, above] =
+        detail::histogramCrossing(coarse, kept, "area histogram holds fewer triangles");
     std::vector<std::uint64_t> fine(kBins, 0);
     soup.forEachTriangle(
         [&, bin = bin](std::uint64_t first, std::span<const SurfaceTriangle> batch) {
@@ -152,7 +143,8 @@ SurfaceSelectionPlan planSurfaceSelection(TriangleSoupReader& soup,
             if ((bits >> 16) == bin) ++fine[bits & 0xffffu];
           }
         });
-    const auto [low, aboveFine] = crossing(fine, kept - above);
+    const auto [low, aboveFine] =
+        detail::histogramCrossing(fine, kept - above, "area histogram holds fewer triangles");
     plan.threshold = std::bit_cast<float>(static_cast<std::uint32_t>((bin << 16) | low));
     plan.tiesKept = kept - above - aboveFine;
     // Pass 3: the kept triangles' box, area range and colours.

@@ -1,5 +1,7 @@
 #include "qnv/volume_tileset.hpp"
 
+#include "histogram_crossing.hpp"
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -34,18 +36,6 @@ class RangeMeasuringReader final : public VolumeSlabReader {
   float lo_ = std::numeric_limits<float>::max();
   float hi_ = std::numeric_limits<float>::lowest();
 };
-
-// The bin (from the top) where the running count from the largest reaches `need`, and
-// the count strictly above it.
-std::pair<std::size_t, std::uint64_t> crossing(const std::vector<std::uint64_t>& bins,
-                                               std::uint64_t need) {
-  std::uint64_t above = 0;
-  for (std::size_t b = bins.size(); b-- > 0;) {
-    if (above + bins[b] >= need) return {b, above};
-    above += bins[b];
-  }
-  throw InputError("internal error: the magnitude histogram holds fewer vectors than counted");
-}
 
 }  // namespace
 
@@ -91,7 +81,8 @@ VolumeSelectionPlan planVolumeSelection(VolumeSlabReader& reader,
     // Pass 2: the lower 16 bits inside the crossing bin, in all and before startSlice.
     plan.keepAll = false;
     plan.passes = 2;
-    const std::pair<std::size_t, std::uint64_t> coarseCut = crossing(coarse, kept);
+    const std::pair<std::size_t, std::uint64_t> coarseCut =
+        detail::histogramCrossing(coarse, kept, "magnitude histogram holds fewer vectors");
     const std::size_t bin = coarseCut.first;
     const std::uint64_t above = coarseCut.second;
     std::vector<std::uint64_t> fine(kBins, 0), fineBefore(kBins, 0);
@@ -104,7 +95,8 @@ VolumeSelectionPlan planVolumeSelection(VolumeSlabReader& reader,
         if (v.index < startIndex) ++fineBefore[bits & 0xffffu];
       }
     });
-    const auto [low, aboveFine] = crossing(fine, kept - above);
+    const auto [low, aboveFine] =
+        detail::histogramCrossing(fine, kept - above, "magnitude histogram holds fewer vectors");
     plan.threshold = std::bit_cast<float>(static_cast<std::uint32_t>((bin << 16) | low));
     plan.tiesKept = kept - above - aboveFine;
     plan.tiesBefore = fineBefore[low];
