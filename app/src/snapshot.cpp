@@ -170,17 +170,36 @@ int runSnapshot(const Options& options) {
     v.renderer->setMediaClock(runtimes.mediaClock(v.scene.get()), true);
     runtimes.setMediaDurations(v.scene.get(), v.renderer->takeMediaDurations());
   }
+  // What the new state references (an Inline a Switch now shows, an Inline or texture url
+  // a Script set, a LOD level chosen at T) is asked for while drawing: draw, pump what
+  // arrives into the scenes and their execution models, and draw again until nothing more
+  // arrives. Transfers end (arrive, fail or stall past --stall-timeout), so this ends.
+  auto drawSettled = [&](double at) {
+    for (;;) {
+      for (View& v : views) v.renderer->traversal().setBoundNodes(runtimes.bound(v.scene.get()));
+      draw();
+      if (session.pump()) {
+        changed();
+        runtimes.scenesGrew();
+        for (View& v : views) runtimes.addInlines(v.scene.get(), v.renderer->traversal());
+        runtimes.advanceTo(at);  // the new worlds' Scripts and sensors start at `at`
+        continue;
+      }
+      if (session.settled()) return;
+      session.loader().wait(0.01);
+    }
+  };
   render::Image image;
   for (int frame = 0; frame < time.frames; ++frame) {
     for (View& v : views) {
       const float aspect = static_cast<float>(v.rect.width) / static_cast<float>(v.rect.height);
       runtimes.setViewer(v.scene.get(), session::viewerPose(camera(v), aspect));
     }
-    runtimes.advanceTo(time.start + time.interval * frame);
+    const double at = time.start + time.interval * frame;
+    runtimes.advanceTo(at);
     for (View& v : views)
       runtimes.setMediaDurations(v.scene.get(), v.renderer->takeMediaDurations());
-    for (View& v : views) v.renderer->traversal().setBoundNodes(runtimes.bound(v.scene.get()));
-    draw();
+    drawSettled(at);
     image = render::readPixels(0, 0, options.width, options.height);
     if (time.frames > 1)
       render::writePng(session::framePath(options.snapshotPath, frame, time.frames), image);

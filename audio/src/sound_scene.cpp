@@ -29,25 +29,26 @@ struct Walk {
 
   void node(const vrml::NodePtr& n, const glm::mat4& m, const vrml::Scene* scene, int depth) {
     if (!n || depth > 256) return;
-    const std::string& type = n->typeName();
-    if (type == "Sound") {
+    using vrml::NodeTypeId;
+    const NodeTypeId type = n->typeId();
+    if (type == NodeTypeId::Sound) {
       out.push_back({n.get(), m, scene});
       return;
     }
-    if (type == "Transform") {
+    if (type == NodeTypeId::Transform) {
       const glm::mat4 child = m * vrml::transformMatrix(*n);
       for (const vrml::NodePtr& c : n->mfnode("children")) node(c, child, scene, depth + 1);
-    } else if (type == "Group" || type == "Anchor" || type == "Billboard" || type == "Collision") {
-      for (const vrml::NodePtr& c : n->mfnode("children")) node(c, m, scene, depth + 1);
-    } else if (type == "Switch") {
+    } else if (type == NodeTypeId::Switch) {
       const auto& choices = n->mfnode("choice");
       const int which = n->get<vrml::FieldType::SFInt32>("whichChoice", -1);
       if (which >= 0 && static_cast<std::size_t>(which) < choices.size())
         node(choices[static_cast<std::size_t>(which)], m, scene, depth + 1);
-    } else if (type == "LOD") {
+    } else if (type == NodeTypeId::LOD) {
       const auto& levels = n->mfnode("level");
       if (!levels.empty()) node(levels.front(), m, scene, depth + 1);
-    } else if (type == "Inline" && inlines) {
+    } else if (n->is(vrml::AbstractType::X3DGroupingNode)) {
+      for (const vrml::NodePtr& c : n->mfnode("children")) node(c, m, scene, depth + 1);
+    } else if (type == NodeTypeId::Inline && inlines) {
       // The world the renderer loaded for it, in the Inline's coordinate system (6.25).
       std::shared_ptr<const vrml::Scene> world = inlines(*n);
       // A world that inlines itself, directly or not, is walked once on each path.
@@ -77,7 +78,7 @@ std::shared_ptr<const formats::AudioData> SoundScene::clipOf(const vrml::Node& c
   // and the loader used; files are read and decoded on the worker (docs/media.md).
   detail::ClipJob job;
   job.clip = &clip;
-  job.movie = clip.typeName() == "MovieTexture";
+  job.movie = clip.typeId() == vrml::NodeTypeId::MovieTexture;
   const auto urls = clip.get<vrml::FieldType::MFString>("url", std::vector<std::string>{});
   bool arriving = false;  // a remote URL still on its way: the clip is asked for again later
   for (const std::string& reference : urls) {
@@ -162,12 +163,12 @@ void SoundScene::update(const glm::mat4& worldToListener, const ClipTimeQuery& c
     const vrml::NodePtr source = s.sfnode("source");
     std::optional<ClipTime> time;
     const std::string& base = f.scene->url;
-    if (source && source->typeName() == "AudioClip") {
+    if (source && source->typeId() == vrml::NodeTypeId::AudioClip) {
       v.clip = clipOf(*source, base);
       if (clipTime) time = clipTime(*source);
       v.pitch = source->get<FieldType::SFFloat>("pitch", 1.0f);
       v.loop = source->get<FieldType::SFBool>("loop", false);
-    } else if (source && source->typeName() == "MovieTexture") {
+    } else if (source && source->typeId() == vrml::NodeTypeId::MovieTexture) {
       // Its audio stream, on the movie's own clock (6.28); backwards it is not heard.
       v.clip = clipOf(*source, base);
       if (clipTime) time = clipTime(*source);

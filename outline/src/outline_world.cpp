@@ -100,10 +100,10 @@ std::string appearanceText(const vrml::Node* appearance, const glm::vec3* color 
   Writer w;
   w << "Appearance {";
   const vrml::NodePtr m = appearance ? appearance->sfnode("material") : nullptr;
-  if (!(m && !m->unresolved && m->typeName() == "Material") && color) {
+  if (!(m && !m->unresolved && m->typeId() == vrml::NodeTypeId::Material) && color) {
     w << " material Material { diffuseColor 0 0 0 emissiveColor ";
     w.vec(*color) << " }";
-  } else if (m && !m->unresolved && m->typeName() == "Material") {
+  } else if (m && !m->unresolved && m->typeId() == vrml::NodeTypeId::Material) {
     using vrml::FieldType;
     w << " material Material { diffuseColor ";
     w.vec(color ? *color : m->get<FieldType::SFColor>("diffuseColor", glm::vec3(0.8f)))

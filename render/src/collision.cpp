@@ -15,7 +15,7 @@ constexpr float kRestTolerance = 1e-4f;
 
 void addCollisionNodes(const PickHit& hit, std::vector<const vrml::Node*>& out) {
   for (const PathStep& step : hit.path)
-    if (step.node != nullptr && step.node->typeName() == "Collision" &&
+    if (step.node != nullptr && step.node->typeId() == vrml::NodeTypeId::Collision &&
         std::find(out.begin(), out.end(), step.node) == out.end())
       out.push_back(step.node);
 }

@@ -1,34 +1,51 @@
 #include "node_kind.hpp"
 
-#include <string_view>
-#include <unordered_map>
-
 namespace gs::render::detail {
 
 NodeKind nodeKind(const vrml::Node& node) {
   if (node.unresolved) return NodeKind::other;
-  static const std::unordered_map<std::string_view, NodeKind> kByName = {
-      {"Anchor", NodeKind::Anchor},
-      {"Billboard", NodeKind::Billboard},
-      {"Collision", NodeKind::Collision},
-      {"Group", NodeKind::Group},
-      {"Transform", NodeKind::Transform},
-      {"Switch", NodeKind::Switch},
-      {"LOD", NodeKind::LOD},
-      {"Inline", NodeKind::Inline},
-      {"Shape", NodeKind::Shape},
-      {"DirectionalLight", NodeKind::DirectionalLight},
-      {"PointLight", NodeKind::PointLight},
-      {"SpotLight", NodeKind::SpotLight},
-      {"Viewpoint", NodeKind::Viewpoint},
-      {"NavigationInfo", NodeKind::NavigationInfo},
-      {"Background", NodeKind::Background},
-      {"Fog", NodeKind::Fog},
-      {"OutlineGroup", NodeKind::OutlineGroup},
-      {"QuantizedNormalVectors", NodeKind::QuantizedNormalVectors},
-  };
-  const auto it = kByName.find(node.typeName());
-  return it == kByName.end() ? NodeKind::other : it->second;
+  using vrml::NodeTypeId;
+  switch (node.typeId()) {
+    case NodeTypeId::Anchor:
+      return NodeKind::Anchor;
+    case NodeTypeId::Billboard:
+      return NodeKind::Billboard;
+    case NodeTypeId::Collision:
+      return NodeKind::Collision;
+    case NodeTypeId::Group:
+      return NodeKind::Group;
+    case NodeTypeId::Transform:
+      return NodeKind::Transform;
+    case NodeTypeId::Switch:
+      return NodeKind::Switch;
+    case NodeTypeId::LOD:
+      return NodeKind::LOD;
+    case NodeTypeId::Inline:
+      return NodeKind::Inline;
+    case NodeTypeId::Shape:
+      return NodeKind::Shape;
+    case NodeTypeId::DirectionalLight:
+      return NodeKind::DirectionalLight;
+    case NodeTypeId::PointLight:
+      return NodeKind::PointLight;
+    case NodeTypeId::SpotLight:
+      return NodeKind::SpotLight;
+    case NodeTypeId::Viewpoint:
+      return NodeKind::Viewpoint;
+    case NodeTypeId::NavigationInfo:
+      return NodeKind::NavigationInfo;
+    case NodeTypeId::Background:
+      return NodeKind::Background;
+    case NodeTypeId::Fog:
+      return NodeKind::Fog;
+    case NodeTypeId::OutlineGroup:
+      return NodeKind::OutlineGroup;
+    case NodeTypeId::QuantizedNormalVectors:
+      return NodeKind::QuantizedNormalVectors;
+    default:
+      // Any other grouping node (X3DGroupingNode) is drawn as a Group: its children.
+      return node.is(vrml::AbstractType::X3DGroupingNode) ? NodeKind::Group : NodeKind::other;
+  }
 }
 
 }  // namespace gs::render::detail

@@ -41,7 +41,7 @@ Shading readShading(const vrml::Node* appearance) {
   if (appearance == nullptr) return s;
   // Only a Material lights the shape (6.3); any other node there leaves it unlit (4.14.1).
   if (const vrml::NodePtr m = appearance->sfnode("material");
-      m && !m->unresolved && m->typeName() == "Material") {
+      m && !m->unresolved && m->typeId() == vrml::NodeTypeId::Material) {
     s.hasMaterial = true;
     s.diffuseColor = glm::clamp(sfColor(*m, "diffuseColor", glm::vec3(0.8f)), 0.0f, 1.0f);
     s.ambientIntensity = std::clamp(sfFloat(*m, "ambientIntensity", 0.2f), 0.0f, 1.0f);

@@ -147,9 +147,11 @@ std::size_t SceneSplats::draw(const TraversalFrame& frame, SceneTraversal& trave
     const NodeSet& entry = nodeSet(*s.node, *s.baseUrl, traversal);
     if (!entry.set) continue;
     const std::size_t count = drawCount(s.node, *entry.set);
-    if (entry.set->viewDependent)
-      entry.set->views[this] = {camera, s.model, aspect, heightPixels,
-                                wantedPrefix(s.node, *entry.set)};
+    if (entry.set->viewDependent) {
+      auto& request = viewRequests_[entry.set.get()];
+      if (!request) request = entry.set->viewRequests->request();
+      request->update({camera, s.model, aspect, heightPixels, wantedPrefix(s.node, *entry.set)});
+    }
     drawSet(*entry.set, count, s.model, entry.ownStyle ? &entry.style : nullptr);
   }
   return drawn;

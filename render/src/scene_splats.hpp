@@ -74,6 +74,9 @@ class SceneSplats {
   bool worldBuilt_ = false;
   std::size_t worldRoots_ = 0;  // root nodes of the scene when world_ was built
   std::unordered_map<const SplatSet*, std::unique_ptr<SplatRenderer>> renderers_;
+  /// This renderer's view request on each view-dependent set it drew (released with it:
+  /// a closed viewport stops asking for bricks). The sets are kept alive by sets_.
+  std::unordered_map<const SplatSet*, std::unique_ptr<SplatViewRequests::Request>> viewRequests_;
 };
 
 }  // namespace gs::render::detail

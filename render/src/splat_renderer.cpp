@@ -184,6 +184,18 @@ SplatPath automaticSplatPath(const char* glRenderer) {
              : SplatPath::geometry;
 }
 
+SplatViewRequests::Request::~Request() {
+  if (auto registry = registry_.lock()) registry->views_.erase(id_);
+}
+
+void SplatViewRequests::Request::update(const SplatView& view) {
+  if (auto registry = registry_.lock()) registry->views_[id_] = view;
+}
+
+std::unique_ptr<SplatViewRequests::Request> SplatViewRequests::request() {
+  return std::unique_ptr<Request>(new Request(weak_from_this(), next_++));
+}
+
 void SplatSet::computeBounds() {
   bounds = vrml::Bounds{};
   for (const qnv::DecodedVector& v : vectors) bounds.extend(v.position);

@@ -108,7 +108,7 @@ vrml::Mesh tessellateText(const vrml::Node& text, vrml::Diagnostics* diag,
 }
 
 vrml::Mesh tessellateGeometry(const vrml::Node& geometry, vrml::Diagnostics* diag) {
-  if (geometry.typeName() == "Text") return tessellateText(geometry, diag);
+  if (geometry.typeId() == vrml::NodeTypeId::Text) return tessellateText(geometry, diag);
   return vrml::tessellate(geometry, diag);
 }
 

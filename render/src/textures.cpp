@@ -138,11 +138,12 @@ bool decodeSFImage(const vrml::SFImage& image, std::vector<std::uint8_t>& rgba, 
 
 const GpuTexture& TextureCache::get(const vrml::Node& node, const std::string& baseUrl,
                                     SceneTraversal& traversal, const ResourceLoader& loader) {
-  if (node.typeName() == "MovieTexture") return movies.get(node, baseUrl, traversal, loader);
+  if (node.typeId() == vrml::NodeTypeId::MovieTexture)
+    return movies.get(node, baseUrl, traversal, loader);
   if (auto it = textures_.find(&node); it != textures_.end()) return it->second;
   GpuTexture texture;
   const bool repeatS = sfBool(node, "repeatS", true), repeatT = sfBool(node, "repeatT", true);
-  if (node.typeName() == "PixelTexture") {
+  if (node.typeId() == vrml::NodeTypeId::PixelTexture) {
     std::vector<std::uint8_t> rgba;
     static const vrml::SFImage kEmpty;
     const vrml::SFImage& image = fieldRef<vrml::FieldType::SFImage>(node, "image", kEmpty);
@@ -157,7 +158,7 @@ const GpuTexture& TextureCache::get(const vrml::Node& node, const std::string& b
       traversal.report(vrml::Severity::warning, node.location,
                        "PixelTexture image is inconsistent: drawn untextured");
     }
-  } else if (node.typeName() == "ImageTexture") {
+  } else if (node.typeId() == vrml::NodeTypeId::ImageTexture) {
     LoadedImage loaded = loadFirstImage(mfString(node, "url"), baseUrl, loader);
     if (loaded.pending) {
       static const GpuTexture kNone;  // untextured until the bytes arrive

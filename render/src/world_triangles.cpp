@@ -20,7 +20,7 @@ qnv::Rgba8 toRgba8(const glm::vec4& c) {
 glm::vec4 materialColor(const vrml::Node* appearance) {
   if (!appearance) return glm::vec4(1.0f);
   const vrml::NodePtr m = appearance->sfnode("material");
-  if (!m || m->unresolved || m->typeName() != "Material") return glm::vec4(1.0f);
+  if (!m || m->unresolved || m->typeId() != vrml::NodeTypeId::Material) return glm::vec4(1.0f);
   const glm::vec3 diffuse = m->get<vrml::FieldType::SFColor>("diffuseColor", glm::vec3(0.8f));
   const float transparency = m->get<vrml::FieldType::SFFloat>("transparency", 0.0f);
   return glm::vec4(diffuse, 1.0f - transparency);

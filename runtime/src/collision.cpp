@@ -9,7 +9,7 @@ void ExecutionModel::collided(const std::vector<vrml::Node*>& collisionNodes) {
   State& s = *s_;
   bool any = false;
   for (vrml::Node* n : collisionNodes) {
-    if (n == nullptr || n->typeName() != "Collision") continue;
+    if (n == nullptr || n->typeId() != vrml::NodeTypeId::Collision) continue;
     const int field = n->type().findExact("collideTime");
     if (field < 0) continue;
     if (!any) {  // one timestamp for all of them

@@ -115,21 +115,21 @@ void ExecutionModel::State::evaluateEnvironmentSensors() {
         if (depth > 1000) return;
         for (const vrml::NodePtr& c : list) {
           if (!c) continue;
-          const std::string& type = c->typeName();
-          if (type == "Transform") {
+          using vrml::NodeTypeId;
+          const NodeTypeId type = c->typeId();
+          if (type == NodeTypeId::Transform) {
             walk(c->mfnode("children"), m * vrml::transformMatrix(*c), depth + 1);
-          } else if (type == "Group" || type == "Anchor" || type == "Collision" ||
-                     type == "Billboard") {
-            walk(c->mfnode("children"), m, depth + 1);
-          } else if (type == "Switch") {
+          } else if (type == NodeTypeId::Switch) {
             const auto& choice = c->mfnode("choice");
             const int which = c->get<FieldType::SFInt32>("whichChoice", -1);
             if (which >= 0 && static_cast<std::size_t>(which) < choice.size())
               walk({choice[static_cast<std::size_t>(which)]}, m, depth + 1);
-          } else if (type == "LOD") {
+          } else if (type == NodeTypeId::LOD) {
             const auto& level = c->mfnode("level");
             if (!level.empty()) walk({level.front()}, m, depth + 1);
-          } else if (type == "ProximitySensor" || type == "VisibilitySensor") {
+          } else if (c->is(vrml::AbstractType::X3DGroupingNode)) {
+            walk(c->mfnode("children"), m, depth + 1);
+          } else if (type == NodeTypeId::ProximitySensor || type == NodeTypeId::VisibilitySensor) {
             const auto it = nodes.find(c.get());
             if (it != nodes.end()) sensor(*it->second, m);
           }

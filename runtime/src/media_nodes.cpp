@@ -28,8 +28,8 @@ double rateOf(const vrml::Node& n, const MediaNode& m) {
 
 bool ExecutionModel::State::classifyMedia(NodeState& ns) {
   const vrml::NodeType& type = ns.node->type();
-  const bool movie = type.name == "MovieTexture";
-  if (!movie && type.name != "AudioClip") return false;
+  const bool movie = type.id() == vrml::NodeTypeId::MovieTexture;
+  if (!movie && type.id() != vrml::NodeTypeId::AudioClip) return false;
   ns.role = NodeRole::media;
   ns.media = std::make_unique<MediaNode>();
   MediaNode& m = *ns.media;

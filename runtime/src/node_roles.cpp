@@ -4,6 +4,7 @@
 #include "execution_state.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <string_view>
 
 namespace gs::runtime {
@@ -13,32 +14,43 @@ using vrml::FieldType;
 
 namespace {
 
-struct NamedInterpolator {
-  std::string_view name;
-  InterpolatorKind kind;
-};
-constexpr NamedInterpolator kInterpolators[] = {
-    {"ColorInterpolator", InterpolatorKind::Color},
-    {"CoordinateInterpolator", InterpolatorKind::Coordinate},
-    {"NormalInterpolator", InterpolatorKind::Normal},
-    {"OrientationInterpolator", InterpolatorKind::Orientation},
-    {"PositionInterpolator", InterpolatorKind::Position},
-    {"ScalarInterpolator", InterpolatorKind::Scalar},
-};
+/// The interpolator kind of an X3DInterpolatorNode of VRML97 (4.6.8, 6.x), or nothing.
+std::optional<InterpolatorKind> interpolatorKind(vrml::NodeTypeId id) {
+  using vrml::NodeTypeId;
+  switch (id) {
+    case NodeTypeId::ColorInterpolator:
+      return InterpolatorKind::Color;
+    case NodeTypeId::CoordinateInterpolator:
+      return InterpolatorKind::Coordinate;
+    case NodeTypeId::NormalInterpolator:
+      return InterpolatorKind::Normal;
+    case NodeTypeId::OrientationInterpolator:
+      return InterpolatorKind::Orientation;
+    case NodeTypeId::PositionInterpolator:
+      return InterpolatorKind::Position;
+    case NodeTypeId::ScalarInterpolator:
+      return InterpolatorKind::Scalar;
+    default:
+      return std::nullopt;
+  }
+}
 
-struct NamedBindable {
-  std::string_view name;
-  BindableKind kind;
-};
-constexpr NamedBindable kBindables[] = {
-    {"Viewpoint", BindableKind::Viewpoint},
-    {"NavigationInfo", BindableKind::NavigationInfo},
-    {"Background", BindableKind::Background},
-    {"Fog", BindableKind::Fog},
-};
-
-constexpr std::string_view kGroupingNodes[] = {"Anchor", "Billboard", "Collision", "Group",
-                                               "Transform"};
+/// The stack of an X3DBindableNode of VRML97 (4.6.10), or nothing.
+std::optional<BindableKind> bindableKind(vrml::NodeTypeId id) {
+  using vrml::NodeTypeId;
+  switch (id) {
+    case NodeTypeId::Viewpoint:
+      return BindableKind::Viewpoint;
+    case NodeTypeId::NavigationInfo:
+      return BindableKind::NavigationInfo;
+    case NodeTypeId::Background:
+      return BindableKind::Background;
+    case NodeTypeId::Fog:
+      return BindableKind::Fog;
+    default:
+      return std::nullopt;
+  }
+}
 
 template <FieldType T, class V>
 V value(const vrml::Node& n, int field, V fallback) {
@@ -73,9 +85,11 @@ void ExecutionModel::State::classify(NodeState& ns) {
     newScripts.push_back(&ns);
     return;
   }
-  const std::string& name = type.name;
+  using vrml::AbstractType;
+  using vrml::NodeTypeId;
+  const NodeTypeId id = type.id();
   if (classifyMedia(ns)) return;
-  if (name == "TimeSensor") {
+  if (id == NodeTypeId::TimeSensor) {
     ns.role = NodeRole::timeSensor;
     TimeSensorFields& f = ns.timeFields;
     f.cycleInterval = idx("cycleInterval");
@@ -90,38 +104,42 @@ void ExecutionModel::State::classify(NodeState& ns) {
     timeSensors.push_back(&ns);
     return;
   }
-  for (const NamedInterpolator& i : kInterpolators)
-    if (name == i.name) {
+  if (type.is(AbstractType::X3DInterpolatorNode)) {
+    if (const auto kind = interpolatorKind(id)) {
       ns.role = NodeRole::interpolator;
-      ns.interpolator = i.kind;
+      ns.interpolator = *kind;
       ns.setFraction = idx("set_fraction");
       ns.key = idx("key");
       ns.keyValue = idx("keyValue");
       ns.valueChanged = idx("value_changed");
-      return;
     }
-  for (const NamedBindable& b : kBindables)
-    if (name == b.name) {
+    return;
+  }
+  if (type.is(AbstractType::X3DBindableNode)) {
+    if (const auto kind = bindableKind(id)) {
       ns.role = NodeRole::bindable;
-      ns.bindable = b.kind;
+      ns.bindable = *kind;
       ns.setBind = idx("set_bind");
       ns.isBound = idx("isBound");
       ns.bindTime = idx("bindTime");
-      return;
     }
-  if (name == "ProximitySensor" || name == "VisibilitySensor") {
-    ns.role = name == "ProximitySensor" ? NodeRole::proximity : NodeRole::visibility;
+    return;
+  }
+  if (id == NodeTypeId::ProximitySensor || id == NodeTypeId::VisibilitySensor) {
+    ns.role = id == NodeTypeId::ProximitySensor ? NodeRole::proximity : NodeRole::visibility;
     ++environmentSensors;
     return;
   }
-  for (std::string_view g : kGroupingNodes)
-    if (name == g) {
-      ns.role = NodeRole::grouping;
-      ns.addChildren = idx("addChildren");
-      ns.removeChildren = idx("removeChildren");
-      ns.children = idx("children");
-      return;
-    }
+  // Every grouping node (X3DGroupingNode: Anchor, Billboard, Collision, Group, Transform,
+  // OutlineGroup ...) takes addChildren / removeChildren. VRML97's Switch and LOD are
+  // X3DGroupingNodes in X3D but have no such events in VRML97 (index -1: nothing to do).
+  if (type.is(AbstractType::X3DGroupingNode)) {
+    ns.role = NodeRole::grouping;
+    ns.addChildren = idx("addChildren");
+    ns.removeChildren = idx("removeChildren");
+    ns.children = idx("children");
+    return;
+  }
 }
 
 void ExecutionModel::State::report(vrml::Severity severity, const vrml::Node& node,

@@ -26,20 +26,26 @@ namespace {
 enum class SensorKind : std::uint8_t { touch, plane, sphere, cylinder, anchor };
 
 bool sensorKindOf(const vrml::Node& n, SensorKind& kind) {
-  const std::string& name = n.typeName();
-  if (name == "TouchSensor")
-    kind = SensorKind::touch;
-  else if (name == "PlaneSensor")
-    kind = SensorKind::plane;
-  else if (name == "SphereSensor")
-    kind = SensorKind::sphere;
-  else if (name == "CylinderSensor")
-    kind = SensorKind::cylinder;
-  else if (name == "Anchor")
-    kind = SensorKind::anchor;
-  else
-    return false;
-  return true;
+  using vrml::NodeTypeId;
+  switch (n.typeId()) {
+    case NodeTypeId::TouchSensor:
+      kind = SensorKind::touch;
+      return true;
+    case NodeTypeId::PlaneSensor:
+      kind = SensorKind::plane;
+      return true;
+    case NodeTypeId::SphereSensor:
+      kind = SensorKind::sphere;
+      return true;
+    case NodeTypeId::CylinderSensor:
+      kind = SensorKind::cylinder;
+      return true;
+    case NodeTypeId::Anchor:
+      kind = SensorKind::anchor;
+      return true;
+    default:
+      return false;
+  }
 }
 
 int fieldOf(const vrml::Node& n, std::string_view name) {
@@ -447,7 +453,7 @@ bool ExecutionModel::wantsPointer() const {
     p.sensorsSeen = false;
     for (const auto& [node, ns] : s.nodes) {
       SensorKind kind;
-      if (sensorKindOf(*node, kind) || node->typeName() == "Inline") {
+      if (sensorKindOf(*node, kind) || node->typeId() == vrml::NodeTypeId::Inline) {
         p.sensorsSeen = true;
         break;
       }

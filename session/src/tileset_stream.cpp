@@ -89,7 +89,7 @@ bool TilesetStream::takeIndex() {
 }
 
 bool TilesetStream::viewsChanged() const {
-  const auto& views = set_->views;
+  const auto& views = set_->viewRequests->views();
   return views.size() != lastViews_.size() ||
          !std::equal(views.begin(), views.end(), lastViews_.begin(),
                      [](const auto& a, const auto& b) {
@@ -99,8 +99,9 @@ bool TilesetStream::viewsChanged() const {
 
 void TilesetStream::choose() {
   if (!viewsChanged()) return;
-  const std::vector<std::pair<const void*, render::SplatSet::View>> views(set_->views.begin(),
-                                                                          set_->views.end());
+  const auto& requested = set_->viewRequests->views();
+  const std::vector<std::pair<std::uint64_t, render::SplatSet::View>> views(requested.begin(),
+                                                                            requested.end());
   lastViews_ = views;
   std::vector<std::vector<BrickChoice>> perView;
   TilesetBudget budget;

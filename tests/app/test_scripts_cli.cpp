@@ -2,9 +2,11 @@
 // world; a hostile Script (an endless loop, a ROUTE back to itself) ends with a diagnostic
 // naming the world's file:line while the picture is still written.
 #include "process.hpp"
+#include "render/image.hpp"
 
 #include <catch2/catch.hpp>
 
+#include <array>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -78,4 +80,43 @@ ROUTE T.fraction_changed TO L.ping
   CHECK(fs::exists(png));
   CHECK(r.err.find("hang.wrl:3:7:") != std::string::npos);
   CHECK(r.err.find("time limit") != std::string::npos);
+}
+
+namespace {
+
+/// The centre pixel of a PNG: {r, g, b}.
+std::array<int, 3> centre(const fs::path& png) {
+  const auto image = gs::render::readPng(png.string());
+  const std::size_t i =
+      (static_cast<std::size_t>(image.height / 2) * static_cast<std::size_t>(image.width) +
+       static_cast<std::size_t>(image.width / 2)) *
+      4;
+  return {image.rgba[i], image.rgba[i + 1], image.rgba[i + 2]};
+}
+
+}  // namespace
+
+TEST_CASE("snapshot: loads what the world's events reference (an Inline chosen by a Script)",
+          "[app][script][inline]") {
+  // Regression: loading followed the static scene only, so an Inline that a Switch shows
+  // after a Script's initialize() was never fetched and the snapshot stayed empty.
+  writeWorld("part.wrl", R"(#VRML V2.0 utf8
+Shape { appearance Appearance { material Material { diffuseColor 1 0 0 emissiveColor 1 0 0 } }
+        geometry Box { size 4 4 4 } }
+)");
+  const fs::path world = writeWorld("chosen.wrl", R"(#VRML V2.0 utf8
+Viewpoint { position 0 0 12 }
+DEF SW Switch { whichChoice -1 choice [ Inline { url "part.wrl" } ] }
+DEF S Script { eventOut SFInt32 choice url "javascript: function initialize() { choice = 0; }" }
+ROUTE S.choice TO SW.set_whichChoice
+)");
+  const fs::path png = world.parent_path() / "chosen.png";
+  auto r = runGhostspace(
+      {"--snapshot", png.string(), "--size", "64x64", "--no-progress", world.string()});
+  INFO(r.err);
+  REQUIRE(r.exitCode == 0);
+  const auto c = centre(png);
+  CHECK(c[0] > 200);
+  CHECK(c[1] < 60);
+  CHECK(c[2] < 60);
 }

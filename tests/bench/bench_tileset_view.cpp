@@ -112,6 +112,7 @@ Result measure(const std::string& url, const render::Camera* camera, int paralle
   std::vector<Copy> copies;
   bool viewed = false;
   render::Camera view;
+  std::unique_ptr<render::SplatViewRequests::Request> request;
   for (;;) {
     s.pump();
     if (!viewed && !set->bounds.empty()) {
@@ -119,7 +120,8 @@ Result measure(const std::string& url, const render::Camera* camera, int paralle
       v.camera = camera ? *camera : render::fitCamera(set->bounds, 1.0f, render::Camera{});
       v.heightPixels = kSize;
       v.vectors = set->total();
-      set->views[&r] = v;
+      request = set->viewRequests->request();
+      request->update(v);
       set->wantedVectors = set->total();  // a single stream: the whole prefix (lod 1)
       view = v.camera;
       viewed = true;

@@ -7,6 +7,7 @@ NodePtr makeNode(const std::string& type,
   auto t = std::make_shared<vrml::NodeType>();
   t->name = type;
   t->builtIn = true;
+  t->model = vrml::nodeModel(type);  // what the renderer decides the node's kind by
   for (const auto& [name, value] : fields)
     t->fields.push_back(vrml::FieldSpec{name, value.type(), vrml::AccessType::exposedField, value});
   return std::make_shared<vrml::Node>(t);

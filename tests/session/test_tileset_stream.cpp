@@ -51,7 +51,8 @@ Loaded load(const std::string& input, const render::Camera* camera) {
   view.camera = camera ? *camera : render::fitCamera(set->bounds, 1.0f, render::Camera{});
   view.heightPixels = 512;
   view.vectors = set->total();
-  set->views[&view] = view;
+  const auto request = set->viewRequests->request();
+  request->update(view);
   for (int i = 0; i < 100000 && !(s.pump(), s.settled()); ++i) s.loader().wait(0.01);
   Loaded out;
   REQUIRE(s.tilesets().size() == 1);
@@ -170,13 +171,13 @@ TEST_CASE("tileset stream: a new view re-chooses, and far bricks go over the mem
     v.vectors = set->total();
     return v;
   };
-  int key = 0;
-  set->views[&key] = corner({0.25f, 0.25f, -0.2f}, 3.14159265f);  // looks along +z
+  auto request = set->viewRequests->request();
+  request->update(corner({0.25f, 0.25f, -0.2f}, 3.14159265f));  // looks along +z
   settle();
   const auto first = s.tilesets()[0]->statistics();
   CHECK(first.chosenBricks == 3);  // root and the two octants of that column
   CHECK(first.residentVectors <= 6000 + index.header.recordsPerPacket());
-  set->views[&key] = corner({0.75f, 0.75f, 1.2f}, 0.0f);  // the opposite column, along -z
+  request->update(corner({0.75f, 0.75f, 1.2f}, 0.0f));  // the opposite column, along -z
   settle();
   const auto second = s.tilesets()[0]->statistics();
   CHECK(second.chosenBricks == 3);
@@ -184,4 +185,10 @@ TEST_CASE("tileset stream: a new view re-chooses, and far bricks go over the mem
   CHECK(second.evictedBricks >= 1);
   CHECK(second.residentVectors <= 6000 + index.header.recordsPerPacket());
   CHECK(set->vectors.size() == second.chosenVectors);
+  // A closed viewport releases its request: no view asks for bricks any more (regression:
+  // a view used to stay in the set until the session ended).
+  request.reset();
+  CHECK(set->viewRequests->views().empty());
+  settle();
+  CHECK(s.tilesets()[0]->statistics().chosenBricks == 0);
 }

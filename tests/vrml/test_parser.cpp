@@ -336,9 +336,21 @@ TEST_CASE("Script: exposedField refused, duplicate names, IS outside PROTO", "[p
   CHECK(s.rootNodes[0]->get<FieldType::SFInt32>("n", 0) == 3);
   CHECK(s.rootNodes[0]->field("v") == nullptr);
 
-  Scene d = parse("Script { field SFBool a TRUE field SFBool a FALSE }");
+  Scene d = parse("Script { field SFBool a TRUE field SFInt32 a 1 }");
   REQUIRE(d.diagnostics.errorCount() == 1);
   CHECK(d.diagnostics.items[0].message == "'a' is already declared in this Script node");
+
+  // An identical second declaration (NIST, Sourcebook) is a warning; the first one holds.
+  Scene twice = parse(
+      "Script { eventIn SFBool value_in eventIn SFBool value_in\n"
+      "field SFBool b TRUE field SFBool b FALSE }");
+  CHECK(twice.diagnostics.errorCount() == 0);
+  REQUIRE(twice.diagnostics.items.size() == 2);
+  CHECK(twice.diagnostics.items[0].severity == Severity::warning);
+  CHECK(twice.diagnostics.items[0].message ==
+        "'value_in' is declared twice in this Script node; the second is ignored");
+  CHECK(twice.rootNodes[0]->get<FieldType::SFBool>("b", false));
+  CHECK(twice.rootNodes[0]->type().findExact("value_in") >= 0);
 
   Scene is = parse("Group {\n  children IS foo\n}");
   REQUIRE(is.diagnostics.errorCount() == 1);
@@ -372,9 +384,9 @@ TEST_CASE("nodes where the spec does not allow them are read with a warning", "[
   REQUIRE(s.diagnostics.items.size() == 2);
   CHECK(s.diagnostics.errorCount() == 0);
   CHECK(s.diagnostics.items[0].message ==
-        "Material node is not allowed at the root of a scene (expected a children node)");
+        "Material node is not allowed at the root of a scene (expected X3DChildNode)");
   CHECK(s.diagnostics.items[1].message ==
-        "Material node is not allowed in 'geometry' of Shape (expected a geometry node)");
+        "Material node is not allowed in 'geometry' of Shape (expected X3DGeometryNode)");
   CHECK(s.rootNodes.size() == 2);
 }
 

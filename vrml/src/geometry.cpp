@@ -149,31 +149,43 @@ Mesh tessellate(const Node& geometry, Diagnostics* diag) {
   using namespace geometry_detail;
   if (geometry.unresolved) return {};
   ProblemLog log(geometry, diag);
-  const std::string& t = geometry.typeName();
   Mesh m;
-  if (t == "Box")
-    m = tessellateBox(geometry, log);
-  else if (t == "Cone")
-    m = tessellateCone(geometry, log);
-  else if (t == "Cylinder")
-    m = tessellateCylinder(geometry, log);
-  else if (t == "Sphere")
-    m = tessellateSphere(geometry, log);
-  else if (t == "IndexedFaceSet")
-    m = tessellateIndexedFaceSet(geometry, log);
-  else if (t == "IndexedLineSet")
-    m = tessellateIndexedLineSet(geometry, log);
-  else if (t == "PointSet")
-    m = tessellatePointSet(geometry, log);
-  else if (t == "ElevationGrid")
-    m = tessellateElevationGrid(geometry, log);
-  else if (t == "Extrusion")
-    m = tessellateExtrusion(geometry, log);
-  else if (t == "OutlineGroup")  // GhostSpace extension: its outline (outline_geometry.cpp)
-    m = triangulateOutline(fieldOr<FieldType::MFVec3f>(geometry, "outline"),
-                           fieldOr<FieldType::MFInt32>(geometry, "outlineLengths"), diag,
-                           geometry.location);
-  // Text (6.47) and every non-geometry node: an empty mesh.
+  switch (geometry.typeId()) {
+    case NodeTypeId::Box:
+      m = tessellateBox(geometry, log);
+      break;
+    case NodeTypeId::Cone:
+      m = tessellateCone(geometry, log);
+      break;
+    case NodeTypeId::Cylinder:
+      m = tessellateCylinder(geometry, log);
+      break;
+    case NodeTypeId::Sphere:
+      m = tessellateSphere(geometry, log);
+      break;
+    case NodeTypeId::IndexedFaceSet:
+      m = tessellateIndexedFaceSet(geometry, log);
+      break;
+    case NodeTypeId::IndexedLineSet:
+      m = tessellateIndexedLineSet(geometry, log);
+      break;
+    case NodeTypeId::PointSet:
+      m = tessellatePointSet(geometry, log);
+      break;
+    case NodeTypeId::ElevationGrid:
+      m = tessellateElevationGrid(geometry, log);
+      break;
+    case NodeTypeId::Extrusion:
+      m = tessellateExtrusion(geometry, log);
+      break;
+    case NodeTypeId::OutlineGroup:  // GhostSpace extension: its outline (outline_geometry.cpp)
+      m = triangulateOutline(fieldOr<FieldType::MFVec3f>(geometry, "outline"),
+                             fieldOr<FieldType::MFInt32>(geometry, "outlineLengths"), diag,
+                             geometry.location);
+      break;
+    default:  // Text (6.47) and every non-geometry node: an empty mesh.
+      break;
+  }
   log.flush();
   return m;
 }

@@ -55,7 +55,10 @@ TypeMap buildTypes() {
     type->name = e.name;
     type->builtIn = true;
     type->extension = e.extension;
-    type->script = e.name == "Script";
+    type->model = nodeModel(e.name);
+    if (type->model == nullptr)
+      throw std::logic_error("node table entry '" + std::string(e.name) + "' has no node model");
+    type->script = type->model->id == NodeTypeId::Script;
     try {
       type->fields = parser.parseInterfaceText(e.name);
     } catch (const ParseError& err) {

@@ -329,7 +329,7 @@ NodePtr Parser::parseNode(Scope& scope, const Token& t, int depth, int& height,
   int h = 0;
   parseNodeBody(scope, node, nullptr, depth, h);
   height = h + 1;
-  if (node->type().builtIn && node->typeName() == "Inline") checkInline(*node, t.offset);
+  if (node->typeId() == NodeTypeId::Inline) checkInline(*node, t.offset);
   return node;
 }
 
@@ -457,15 +457,24 @@ void Parser::parseScriptDeclaration(Scope& scope, const NodePtr& node, const Tok
   const bool hasValue = !isRef && (a == AccessType::field || a == AccessType::exposedField);
   const NodeType& base = node->type();  // the built-in Script type until the body ends
   std::string problem;
-  if (a == AccessType::exposedField)
+  Severity severity = Severity::error;
+  const auto earlier = script.names.find(name);
+  if (a == AccessType::exposedField) {
     problem = "exposedField is not allowed in a Script node (clause 6.40)";
-  else if (script.names.count(name) != 0 || base.findField(name) >= 0)
+  } else if (earlier != script.names.end() &&
+             script.type->fields[static_cast<std::size_t>(earlier->second)].access == a &&
+             script.type->fields[static_cast<std::size_t>(earlier->second)].type == ft) {
+    // An identical second declaration (NIST and Sourcebook worlds have them): read as the
+    // first, as Coin3D and castle-model-viewer do.
+    severity = Severity::warning;
+    problem = "'" + name + "' is declared twice in this Script node; the second is ignored";
+  } else if (earlier != script.names.end() || base.findField(name) >= 0) {
     problem = "'" + name + "' is already declared in this Script node";
-  else if (script.names.size() >= kMaxScriptMembers)
+  } else if (script.names.size() >= kMaxScriptMembers)
     problem =
         "more than " + std::to_string(kMaxScriptMembers) + " fields and events in one Script node";
   if (!problem.empty()) {
-    report(Severity::error, a == AccessType::exposedField ? keyword.offset : nt.offset, problem);
+    report(severity, a == AccessType::exposedField ? keyword.offset : nt.offset, problem);
     if (isRef) {
       lex_.consume(after);
       lex_.expectId("an interface name after IS");

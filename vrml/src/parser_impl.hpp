@@ -280,8 +280,10 @@ std::span<const IsConnection> connectionsOf(const std::vector<IsConnection>& lin
 int treeHeight(const NodePtr& n, std::unordered_map<const Node*, int>& memo);
 
 /// Whether a node of type `child` may be the value of `field` of built-in `parent`
-/// (null: at the root of a scene). Unknown or extension types are always allowed. On
-/// false, `expected` names the node class expected ("a children node", "Material").
+/// (null: at the root of a scene), by the field's acceptableNodeTypes in the node model
+/// (node_model.hpp). PROTO types and Script fields are always allowed. On false,
+/// `expected` names what the field takes ("X3DChildNode", "Coordinate or
+/// CoordinateDouble").
 bool nodeClassAllowed(const NodeType* parent, std::string_view field, const NodeType& child,
                       std::string& expected);
 

@@ -21,6 +21,51 @@
 
 namespace gs::render {
 
+/// How one viewport drew a view-dependent set (a QNV tileset): its camera (world
+/// coordinates), the node's placement (set coordinates to world), viewport aspect and
+/// height (pixels), and the vectors its level of detail asked for.
+struct SplatView {
+  Camera camera;
+  glm::mat4 model{1.0f};
+  float aspect = 1.0f;
+  int heightPixels = 0;
+  std::uint64_t vectors = 0;
+};
+
+/// The views that ask a view-dependent set for vectors (docs/tilesets.md, "Views"): each
+/// scene renderer that draws the set holds one Request and updates it every frame it
+/// draws; destroying the Request releases it, so a closed viewport stops choosing and
+/// fetching bricks. The tileset loader reads views(). Drawing thread only.
+class SplatViewRequests : public std::enable_shared_from_this<SplatViewRequests> {
+ public:
+  /// One viewport's request; releases itself when destroyed (also after the registry).
+  class Request {
+   public:
+    ~Request();
+    Request(const Request&) = delete;
+    Request& operator=(const Request&) = delete;
+    /// Records how the viewport drew the set this frame.
+    void update(const SplatView& view);
+
+   private:
+    friend class SplatViewRequests;
+    Request(std::weak_ptr<SplatViewRequests> registry, std::uint64_t id)
+        : registry_(std::move(registry)), id_(id) {}
+    std::weak_ptr<SplatViewRequests> registry_;
+    std::uint64_t id_;
+  };
+  /// A new request (no view until its first update()). The registry must be owned by a
+  /// shared_ptr (SplatSet::viewRequests is).
+  std::unique_ptr<Request> request();
+  /// The last view of every live request that was updated, keyed by request (in the order
+  /// the requests were made).
+  const std::map<std::uint64_t, SplatView>& views() const { return views_; }
+
+ private:
+  std::map<std::uint64_t, SplatView> views_;
+  std::uint64_t next_ = 1;
+};
+
 /// One stream's vectors, ready to draw: in stream order (largest first), so the first N
 /// are the level of detail N. Positions and normals are in the coordinates of the node
 /// that shows them (world coordinates for a .qnv opened directly).
@@ -41,21 +86,12 @@ struct SplatSet {
   /// renderer then uploads the whole set again instead of only the new tail.
   std::uint64_t revision = 0;
   /// Whether the vectors depend on the view (a QNV tileset, session/tileset_stream.hpp):
-  /// then every scene renderer that draws the set records in `views` how it drew it, and
-  /// the loader chooses the bricks from those views.
+  /// then every scene renderer that draws the set registers a request in viewRequests
+  /// and updates it with how it drew it; the loader chooses the bricks from those views.
   bool viewDependent = false;
-  /// How one viewport drew a view-dependent set: its camera (world coordinates), the
-  /// node's placement (set coordinates to world), viewport aspect and height (pixels),
-  /// and the vectors its level of detail asked for.
-  struct View {
-    Camera camera;
-    glm::mat4 model{1.0f};
-    float aspect = 1.0f;
-    int heightPixels = 0;
-    std::uint64_t vectors = 0;
-  };
-  /// The last view of every scene renderer that drew the set (keyed by its address).
-  mutable std::map<const void*, View> views;
+  using View = SplatView;
+  /// The views that ask for the set's vectors (shared: renderers hold requests on it).
+  std::shared_ptr<SplatViewRequests> viewRequests = std::make_shared<SplatViewRequests>();
   /// Vectors of the whole stream: expectedVectors, or vectors.size() when that is 0.
   std::uint64_t total() const { return expectedVectors > 0 ? expectedVectors : vectors.size(); }
   /// Bounds of `vectors` positions; call after filling vectors.

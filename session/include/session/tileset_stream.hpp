@@ -91,7 +91,7 @@ class TilesetStream {
   bool indexFailed_ = false;
   std::vector<Brick> bricks_;
   std::vector<BrickChoice> choice_;
-  std::vector<std::pair<const void*, render::SplatSet::View>> lastViews_;
+  std::vector<std::pair<std::uint64_t, render::SplatSet::View>> lastViews_;
   bool dirty_ = false;
   TilesetStatistics stats_;
   std::vector<std::pair<bool, std::string>> messages_;

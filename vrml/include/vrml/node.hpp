@@ -5,6 +5,7 @@
 
 #include "vrml/diagnostic.hpp"
 #include "vrml/field.hpp"
+#include "vrml/node_model.hpp"
 
 #include <cstdint>
 #include <memory>
@@ -35,6 +36,15 @@ struct NodeType {
   bool script = false;            // Script: user-declared interface allowed (clause 6.40)
   /// For PROTO / EXTERNPROTO types: the definition; null for built-ins.
   std::shared_ptr<const ProtoDefinition> proto;
+  /// What the type is in X3D's terms (abstract types, component, level): the node model
+  /// of a built-in or extension type; null for PROTO and EXTERNPROTO types.
+  const NodeModel* model = nullptr;
+
+  /// The concrete type, NodeTypeId::unknown for PROTO / EXTERNPROTO types.
+  NodeTypeId id() const { return model != nullptr ? model->id : NodeTypeId::unknown; }
+  /// True when the type inherits the X3D abstract type `t` (X3DGroupingNode ...);
+  /// false for PROTO / EXTERNPROTO types.
+  bool is(AbstractType t) const { return model != nullptr && model->is(t); }
 
   /// Index into `fields` of the interface member called `name`, also accepting the
   /// exposedField aliases `set_name` and `name_changed` (clause 4.10.3); -1 if none.
@@ -56,6 +66,11 @@ class Node {
   const std::shared_ptr<const NodeType>& typePtr() const { return type_; }
   /// The VRML97 type name, e.g. "Transform".
   const std::string& typeName() const { return type_->name; }
+  /// The concrete type from the node model; NodeTypeId::unknown for PROTO / EXTERNPROTO
+  /// types (an expanded PROTO instance has its first body node's type).
+  NodeTypeId typeId() const { return type_->id(); }
+  /// True when the node's type inherits the X3D abstract type `t` (node_model.hpp).
+  bool is(AbstractType t) const { return type_->is(t); }
 
   /// Value of the field or exposedField `name`; nullptr when the type has no such field.
   const FieldValue* field(std::string_view name) const;
