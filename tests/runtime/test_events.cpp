@@ -110,6 +110,21 @@ DEF H Group { children [ DEF S2 Shape {} ] }
   CHECK(w.node("G").mfnode("children").size() == 1);
 }
 
+TEST_CASE("runtime: OutlineGroup is a grouping node: addChildren and removeChildren",
+          "[runtime][outline]") {
+  // Regression: the runtime kept its own list of grouping nodes without OutlineGroup, so
+  // these events were dropped silently; the node model's X3DGroupingNode decides now.
+  RunningWorld w(R"(
+DEF G OutlineGroup { groupId 0 children [ DEF S1 Shape {} ] }
+DEF H Group { children [ DEF S2 Shape {} ] }
+)");
+  auto s2 = w.scene->rootNodes[1]->mfnode("children")[0];
+  w.send("G", "addChildren", FieldValue::make<FieldType::MFNode>(std::vector{s2}));
+  CHECK(w.node("G").mfnode("children").size() == 2);
+  w.send("G", "removeChildren", FieldValue::make<FieldType::MFNode>(std::vector{s2}));
+  CHECK(w.node("G").mfnode("children").size() == 1);
+}
+
 TEST_CASE("runtime: events to a PROTO instance reach the IS-connected body field", "[runtime]") {
   RunningWorld w(R"(
 PROTO Mover [ exposedField SFVec3f where 0 0 0 ] {
