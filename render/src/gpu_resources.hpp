@@ -92,7 +92,7 @@ class MovieTextures {
     std::int64_t seen = -1;              // index of the frame this renderer drew last
     bool durationTaken = false, failed = false;
   };
-  std::unordered_map<const vrml::Node*, Movie> movies_;
+  vrml::NodeMap<Movie> movies_;
   std::vector<std::pair<const vrml::Node*, double>> durations_;
   std::shared_ptr<MoviePlayers> players_;
   MediaClock clock_;
@@ -113,7 +113,7 @@ class TextureCache {
   MovieTextures movies;
 
  private:
-  std::unordered_map<const vrml::Node*, GpuTexture> textures_;
+  vrml::NodeMap<GpuTexture> textures_;
 };
 
 /// The first image of a URL list that could be read and decoded (ImageTexture.url,

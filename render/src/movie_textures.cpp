@@ -156,7 +156,7 @@ void MovieTextures::setClock(MediaClock clock, bool waitForFrames) {
     if (m.player && !m.durationTaken &&
         m.player->waitOpened() == formats::MoviePlayer::Status::ready) {
       m.durationTaken = true;
-      durations_.emplace_back(node, m.player->duration());
+      durations_.emplace_back(node.node, m.player->duration());
     }
 }
 

@@ -150,8 +150,8 @@ struct LightArrays {
 struct SceneRenderer::Gpu {
   GLuint program = 0;
   SurfaceUniforms u{};
-  std::unordered_map<const vrml::Node*, GpuMesh> meshes;
-  std::unordered_map<const vrml::Node*, Shading> shadings;
+  vrml::NodeMap<GpuMesh> meshes;
+  vrml::NodeMap<Shading> shadings;
   TextureCache textures;
   BackgroundPass background;
   // Reused from frame to frame.

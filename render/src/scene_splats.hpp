@@ -68,7 +68,7 @@ class SceneSplats {
   };
   const NodeSet& nodeSet(const vrml::Node& node, const std::string& baseUrl,
                          SceneTraversal& traversal);
-  std::unordered_map<const vrml::Node*, NodeSet> sets_;
+  vrml::NodeMap<NodeSet> sets_;
   std::map<std::string, std::shared_ptr<const SplatSet>> byUrl_;
   std::shared_ptr<const SplatSet> world_;
   bool worldBuilt_ = false;

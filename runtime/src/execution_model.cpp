@@ -3,6 +3,7 @@
 #include "execution_state.hpp"
 
 #include "vrml/parser.hpp"
+#include "vrml/proto.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -30,12 +31,19 @@ NodeState& ExecutionModel::State::reach(vrml::Node& node, bool bindables) {
   for (std::size_t i = 0; i < n; ++i) {
     const vrml::FieldValue& v = node.fieldAt(i);
     if (v.type() == FieldType::SFNode) {
-      if (const vrml::NodePtr& c = v.get<FieldType::SFNode>()) reach(*c, bindables);
+      if (const vrml::NodePtr& c = v.get<FieldType::SFNode>()) reach(c, bindables);
     } else if (v.type() == FieldType::MFNode) {
       for (const vrml::NodePtr& c : v.get<FieldType::MFNode>())
-        if (c) reach(*c, bindables);
+        if (c) reach(c, bindables);
     }
   }
+  return ns;
+}
+
+NodeState& ExecutionModel::State::reach(const vrml::NodePtr& node, bool bindables) {
+  NodeState& ns = reach(*node, bindables);
+  // An alias made for a back reference owns nothing (use_count 0): its owner keeps it.
+  if (!ns.keepAlive && node.use_count() > 0) ns.keepAlive = node;
   return ns;
 }
 
@@ -54,9 +62,9 @@ bool ExecutionModel::State::connect(vrml::Node& from, int fromField, vrml::Node&
 void ExecutionModel::State::takeScene(const vrml::Scene& s, std::size_t& roots, std::size_t& hidden,
                                       std::size_t& routes, bool bindables) {
   for (; roots < s.rootNodes.size(); ++roots)
-    if (s.rootNodes[roots]) reach(*s.rootNodes[roots], bindables);
+    if (s.rootNodes[roots]) reach(s.rootNodes[roots], bindables);
   for (; hidden < s.hiddenNodes.size(); ++hidden)
-    if (s.hiddenNodes[hidden]) reach(*s.hiddenNodes[hidden], false);
+    if (s.hiddenNodes[hidden]) reach(s.hiddenNodes[hidden], false);
   for (; routes < s.routes.size(); ++routes) {
     const vrml::Route& r = s.routes[routes];
     if (!r.fromNode || !r.toNode) continue;
@@ -274,14 +282,44 @@ std::string ExecutionModel::worldUrl() const {
 
 namespace {
 
-/// Resolves a route end as a ROUTE statement names it; -1 when the node has no such
-/// eventOut (out) or eventIn.
-int routeEnd(const vrml::Node& node, const std::string& name, bool out) {
-  const int i = node.type().findField(name);
+/// Resolves a route end as a ROUTE statement names it on `type`; -1 when the type has no
+/// such eventOut (out) or eventIn.
+int routeEnd(const vrml::NodeType& type, const std::string& name, bool out) {
+  const int i = type.findField(name);
   if (i < 0) return -1;
-  const AccessType a = node.type().fields[static_cast<std::size_t>(i)].access;
+  const AccessType a = type.fields[static_cast<std::size_t>(i)].access;
   if (a == AccessType::exposedField) return i;
   return (a == (out ? AccessType::eventOut : AccessType::eventIn)) ? i : -1;
+}
+
+/// One end of a route as the route table stores it: a member of a built-in or Script node.
+struct RouteEndpoint {
+  vrml::NodePtr node;
+  int field = -1;
+};
+
+/// The members a route end `node.name` stands for: the node's own member, or, for a PROTO
+/// instance, the body members its declared interface member is IS-connected to (4.8.3).
+/// `type` is set to the member's field type; empty when there is no such member.
+std::vector<RouteEndpoint> routeEndpoints(const vrml::NodePtr& node, const std::string& name,
+                                          bool out, FieldType& type) {
+  std::vector<RouteEndpoint> ends;
+  const vrml::ProtoInstance* p = vrml::declaredInterface(*node);
+  const vrml::NodeType& declared = p != nullptr ? *p->type : node->type();
+  const int i = routeEnd(declared, name, out);
+  if (i < 0) return ends;
+  type = declared.fields[static_cast<std::size_t>(i)].type;
+  if (p == nullptr) {
+    ends.push_back({node, i});
+    return ends;
+  }
+  for (const vrml::InstanceLink& k : p->linksOf(i)) {
+    const bool fits = k.nodeAccess == AccessType::exposedField ||
+                      k.nodeAccess == (out ? AccessType::eventOut : AccessType::eventIn);
+    if (vrml::NodePtr body = k.node.lock(); fits && body) ends.push_back({body, k.nodeField});
+  }
+  if (ends.empty()) type = FieldType::SFBool;  // an interface member IS connects to nothing
+  return ends;
 }
 
 }  // namespace
@@ -289,35 +327,47 @@ int routeEnd(const vrml::Node& node, const std::string& name, bool out) {
 bool ExecutionModel::addRoute(const vrml::NodePtr& from, const std::string& eventOut,
                               const vrml::NodePtr& to, const std::string& eventIn) {
   if (!from || !to) return false;
-  const int a = routeEnd(*from, eventOut, true), b = routeEnd(*to, eventIn, false);
-  if (a < 0 || b < 0 ||
-      from->type().fields[static_cast<std::size_t>(a)].type !=
-          to->type().fields[static_cast<std::size_t>(b)].type) {
-    diagnostics_.error(from->location, "addRoute " + from->typeName() + "." + eventOut + " TO " +
-                                           to->typeName() + "." + eventIn +
+  FieldType st = FieldType::SFBool, dt = FieldType::SFBool;
+  const std::vector<RouteEndpoint> a = routeEndpoints(from, eventOut, true, st);
+  const std::vector<RouteEndpoint> b = routeEndpoints(to, eventIn, false, dt);
+  if (a.empty() || b.empty() || st != dt) {
+    const std::string fromType = from->protoName().empty() ? from->typeName() : from->protoName();
+    const std::string toType = to->protoName().empty() ? to->typeName() : to->protoName();
+    diagnostics_.error(from->location, "addRoute " + fromType + "." + eventOut + " TO " + toType +
+                                           "." + eventIn +
                                            ": no such events or their types differ");
     return false;
   }
-  s_->reach(*from, false).keepAlive = from;
-  s_->reach(*to, false).keepAlive = to;
-  return s_->connect(*from, a, *to, b);
+  bool any = false;
+  for (const RouteEndpoint& f : a)
+    for (const RouteEndpoint& t : b) {
+      s_->reach(f.node, false);
+      s_->reach(t.node, false);
+      any = s_->connect(*f.node, f.field, *t.node, t.field) || any;
+    }
+  return any;
 }
 
 bool ExecutionModel::deleteRoute(const vrml::NodePtr& from, const std::string& eventOut,
                                  const vrml::NodePtr& to, const std::string& eventIn) {
   if (!from || !to) return false;
-  const int a = routeEnd(*from, eventOut, true), b = routeEnd(*to, eventIn, false);
-  auto it = s_->nodes.find(from.get());
-  auto jt = s_->nodes.find(to.get());
-  if (a < 0 || b < 0 || it == s_->nodes.end() || jt == s_->nodes.end()) return false;
-  auto& out = it->second->routesOut[static_cast<std::size_t>(a)];
-  const RouteTarget t{jt->second.get(), b};
-  for (auto r = out.begin(); r != out.end(); ++r)
-    if (*r == t) {
-      out.erase(r);
-      return true;
+  FieldType st = FieldType::SFBool, dt = FieldType::SFBool;
+  bool any = false;
+  for (const RouteEndpoint& f : routeEndpoints(from, eventOut, true, st))
+    for (const RouteEndpoint& t : routeEndpoints(to, eventIn, false, dt)) {
+      auto it = s_->nodes.find(f.node.get());
+      auto jt = s_->nodes.find(t.node.get());
+      if (it == s_->nodes.end() || jt == s_->nodes.end()) continue;
+      auto& out = it->second->routesOut[static_cast<std::size_t>(f.field)];
+      const RouteTarget target{jt->second.get(), t.field};
+      for (auto r = out.begin(); r != out.end(); ++r)
+        if (*r == target) {
+          out.erase(r);
+          any = true;
+          break;
+        }
     }
-  return false;
+  return any;
 }
 
 std::vector<vrml::NodePtr> ExecutionModel::createVrmlFromString(const std::string& text) {
@@ -328,9 +378,9 @@ std::vector<vrml::NodePtr> ExecutionModel::createVrmlFromString(const std::strin
   std::size_t roots = 0, hidden = 0, routes = 0;
   s_->takeScene(made, roots, hidden, routes, false);
   for (const vrml::NodePtr& n : made.rootNodes)
-    if (n) s_->reach(*n, false).keepAlive = n;
+    if (n) s_->reach(n, false);
   for (const vrml::NodePtr& n : made.hiddenNodes)
-    if (n) s_->reach(*n, false).keepAlive = n;
+    if (n) s_->reach(n, false);
   return made.rootNodes;
 }
 

@@ -47,7 +47,12 @@ struct TimeSensorFields {
 /// The execution model's record of one node.
 struct NodeState {
   vrml::Node* node = nullptr;
-  vrml::NodePtr keepAlive;  // nodes made at run time (createVrmlFromString)
+  /// The node, kept alive for as long as the execution model lives (node identity): once
+  /// registered, a node's address names that node and no other while this record exists,
+  /// so a node freed by a `children` assignment cannot lend its record (role, field
+  /// indices, routes) to a node later allocated at the same address. Null only for a node
+  /// first met without an owning pointer (an event to a node the caller owns).
+  vrml::NodePtr keepAlive;
   NodeRole role = NodeRole::plain;
   InterpolatorKind interpolator = InterpolatorKind::Scalar;
   BindableKind bindable = BindableKind::Viewpoint;
@@ -115,6 +120,8 @@ struct ExecutionModel::State {
   /// The state of `node`, registering it (and every node reachable from its SFNode and
   /// MFNode fields) when new. `bindables`: whether bindable nodes join the candidates.
   NodeState& reach(vrml::Node& node, bool bindables);
+  /// As reach(Node&), and keeps `node` alive with its record (NodeState::keepAlive).
+  NodeState& reach(const vrml::NodePtr& node, bool bindables);
   void takeScene(const vrml::Scene& s, std::size_t& roots, std::size_t& hidden, std::size_t& routes,
                  bool bindables);
   bool connect(vrml::Node& from, int fromField, vrml::Node& to, int toField);

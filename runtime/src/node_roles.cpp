@@ -247,7 +247,7 @@ void ExecutionModel::State::deliver(NodeState& ns, int field, vrml::FieldValue v
           const auto it = std::find(children.begin(), children.end(), c);
           if (field == ns.addChildren && it == children.end()) {
             children.push_back(c);
-            reach(*c, false);
+            reach(c, false);
           } else if (field == ns.removeChildren && it != children.end()) {
             children.erase(it);
           }

@@ -187,7 +187,7 @@ std::vector<Sensor> sensorsUnder(ExecutionModel::State& s, const PickResult& hit
         SensorKind kind;
         if (!c || !sensorKindOf(*c, kind) || kind == SensorKind::anchor) continue;
         if (!read<FieldType::SFBool>(*c, "enabled", true)) continue;
-        found.push_back({&s.reach(*c, false), kind, entry->localToWorld});
+        found.push_back({&s.reach(c, false), kind, entry->localToWorld});
       }
     SensorKind kind;
     if (entry->node != nullptr && sensorKindOf(*entry->node, kind) && kind == SensorKind::anchor)

@@ -110,6 +110,9 @@ class EsScript final : public ScriptInstance {
   static duk_ret_t fieldSetter(duk_context* c);
   static duk_ret_t nodeFieldGetter(duk_context* c);
   static duk_ret_t nodeFieldSetter(duk_context* c);
+  // The declared interface of a PROTO instance (vrml::declaredInterface), by member index.
+  static duk_ret_t protoFieldGetter(duk_context* c);
+  static duk_ret_t protoFieldSetter(duk_context* c);
   void pushAccessor(duk_context* c, std::vector<void*>& cache, std::size_t index, duk_c_function fn,
                     duk_idx_t nargs);
   void pushProto(duk_context* c, vrml::FieldType t);
@@ -135,8 +138,9 @@ class EsScript final : public ScriptInstance {
   std::vector<int> changed_;              // indexes dirty or touched in this call
   std::vector<vrml::FieldValue> last_;    // value each eventOut had when last sent/seen
   std::vector<void*> getters_, setters_;  // Script field accessors (by index)
-  std::vector<void*> nodeGetters_, nodeSetters_;  // SFNode field accessors (by index)
-  std::vector<vrml::NodePtr> nodes_;              // SFNode objects' nodes, by id
+  std::vector<void*> nodeGetters_, nodeSetters_;    // SFNode field accessors (by index)
+  std::vector<void*> protoGetters_, protoSetters_;  // PROTO instance interface accessors
+  std::vector<vrml::NodePtr> nodes_;                // SFNode objects' nodes, by id
   std::unordered_map<const vrml::Node*, std::uint32_t> nodeIds_;
   std::vector<char> warnedMissing_;  // eventIn without a function: warned once
 };

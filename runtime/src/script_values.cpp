@@ -2,6 +2,7 @@
 // the scalar types, objects of the prelude's SF/MF classes for the others, and SFNode
 // objects whose properties are the node's fields.
 #include "script_ecmascript_internal.hpp"
+#include "vrml/proto.hpp"
 
 #include <algorithm>
 #include <array>
@@ -489,6 +490,46 @@ duk_ret_t EsScript::nodeFieldSetter(duk_context* c) {
   return 0;
 }
 
+// A PROTO instance shows its declared interface (clause 4.8.3): reading a member reads
+// the body member IS-connected to it; writing one sends the event to every body member
+// IS-connected to it.
+duk_ret_t EsScript::protoFieldGetter(duk_context* c) {
+  EsScript& self = of(c);
+  const int i = duk_get_current_magic(c);
+  duk_push_this(c);
+  vrml::NodePtr n = self.nodeAt(c, -1);
+  const vrml::ProtoInstance* p = n ? vrml::declaredInterface(*n) : nullptr;
+  if (p == nullptr || i < 0 || static_cast<std::size_t>(i) >= p->type->fields.size() ||
+      p->type->fields[static_cast<std::size_t>(i)].access == vrml::AccessType::eventIn)
+    return 0;  // undefined
+  const FieldValue* v = p->value(i);
+  if (v == nullptr || v->type() != p->type->fields[static_cast<std::size_t>(i)].type) return 0;
+  self.pushValue(c, *v);
+  return 1;
+}
+
+duk_ret_t EsScript::protoFieldSetter(duk_context* c) {
+  EsScript& self = of(c);
+  const int i = duk_get_current_magic(c);
+  duk_push_this(c);
+  vrml::NodePtr n = self.nodeAt(c, -1);
+  const vrml::ProtoInstance* p = n ? vrml::declaredInterface(*n) : nullptr;
+  if (p == nullptr || i < 0 || static_cast<std::size_t>(i) >= p->type->fields.size()) return 0;
+  const vrml::FieldSpec& spec = p->type->fields[static_cast<std::size_t>(i)];
+  if (spec.access != vrml::AccessType::eventIn && spec.access != vrml::AccessType::exposedField) {
+    std::string msg = spec.name + " of " + p->type->name + " is " +
+                      std::string(vrml::accessTypeName(spec.access)) + ": it cannot be written";
+    GS_DUK_ERROR(c, DUK_ERR_TYPE_ERROR, "%s", msg.c_str());
+  }
+  FieldValue v = self.requireValue(c, 0, spec.type, spec.name.c_str());
+  for (const vrml::InstanceLink& k : p->linksOf(i)) {
+    if (k.nodeAccess != vrml::AccessType::eventIn && k.nodeAccess != vrml::AccessType::exposedField)
+      continue;
+    if (const vrml::NodePtr body = k.node.lock()) self.ctx_.sendEvent(*body, k.nodeField, v);
+  }
+  return 0;
+}
+
 void EsScript::pushNode(duk_context* c, const vrml::NodePtr& n) {
   if (!n) {
     duk_push_null(c);
@@ -504,11 +545,17 @@ void EsScript::pushNode(duk_context* c, const vrml::NodePtr& n) {
   duk_push_bare_object(c);
   duk_push_uint(c, id);
   duk_put_prop_string(c, -2, kNodeIdKey);
-  const vrml::NodeType& type = n->type();
+  const vrml::ProtoInstance* instance = vrml::declaredInterface(*n);
+  const vrml::NodeType& type = instance != nullptr ? *instance->type : n->type();
   auto define = [&](const std::string& key, std::size_t i) {
     duk_push_lstring(c, key.data(), key.size());
-    pushAccessor(c, nodeGetters_, i, nodeFieldGetter, 0);
-    pushAccessor(c, nodeSetters_, i, nodeFieldSetter, 1);
+    if (instance != nullptr) {
+      pushAccessor(c, protoGetters_, i, protoFieldGetter, 0);
+      pushAccessor(c, protoSetters_, i, protoFieldSetter, 1);
+    } else {
+      pushAccessor(c, nodeGetters_, i, nodeFieldGetter, 0);
+      pushAccessor(c, nodeSetters_, i, nodeFieldSetter, 1);
+    }
     duk_def_prop(c, -4,
                  DUK_DEFPROP_HAVE_GETTER | DUK_DEFPROP_HAVE_SETTER | DUK_DEFPROP_SET_ENUMERABLE |
                      DUK_DEFPROP_FORCE);

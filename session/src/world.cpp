@@ -53,6 +53,8 @@ std::map<std::string, std::size_t> countNodesByType(const vrml::Scene& scene) {
     stack.pop_back();
     if (!seen.insert(n).second) continue;
     ++counts[n->typeName()];
+    // A PROTO instance also counts as what the world declares it to be (clause 4.8).
+    if (const std::string& proto = n->protoName(); !proto.empty()) ++counts[proto + " (PROTO)"];
     for (std::size_t i = 0; i < n->fieldCount(); ++i) {
       const vrml::FieldValue& v = n->fieldAt(i);
       if (v.type() == vrml::FieldType::SFNode) {

@@ -3,6 +3,9 @@
 
 #include <catch2/catch.hpp>
 
+#include <cstdint>
+#include <memory>
+
 using gs::test::RunningWorld;
 using gs::vrml::FieldType;
 using gs::vrml::FieldValue;
@@ -137,4 +140,33 @@ ROUTE SRC.translation_changed TO M.set_where
   w.send("SRC", "translation", vec3(5, 0, 0));
   CHECK(w.scene->rootNodes[0]->field("translation")->get<FieldType::SFVec3f>() ==
         glm::vec3(5, 0, 0));
+}
+
+TEST_CASE("runtime: a node freed by a children assignment lends its record to no later node",
+          "[runtime][identity]") {
+  // Node identity (the owners issue): the execution model keys its records by address.
+  // A PositionInterpolator dropped from the graph must not hand its role, field indices
+  // and routes to a Transform that createVrmlFromString allocates at the same address.
+  RunningWorld w(R"(
+DEF G Group { children [ DEF I PositionInterpolator { key [ 0 1 ] keyValue [ 0 0 0, 1 1 1 ] } ] }
+)");
+  std::weak_ptr<gs::vrml::Node> dropped = w.node("G").mfnode("children").at(0);
+  std::uintptr_t droppedAt = reinterpret_cast<std::uintptr_t>(dropped.lock().get());
+  w.send("G", "set_children",
+         FieldValue::make<FieldType::MFNode>(std::vector<gs::vrml::NodePtr>{}));
+  REQUIRE(w.node("G").mfnode("children").empty());
+  // The model keeps what it registered alive, so the address cannot be reused.
+  CHECK_FALSE(dropped.expired());
+  bool reused = false;
+  for (int i = 0; i < 64; ++i) {
+    std::vector<gs::vrml::NodePtr> made = w.model->createVrmlFromString("Transform { }");
+    REQUIRE(made.size() == 1);
+    gs::vrml::Node& t = *made[0];
+    reused = reused || reinterpret_cast<std::uintptr_t>(&t) == droppedAt;
+    const int field = RunningWorld::field(t, "set_translation");
+    REQUIRE(w.model->postEvent(t, field, vec3(1, 2, 3)));
+    w.model->processEvents();
+    CHECK(t.field("translation")->get<FieldType::SFVec3f>() == glm::vec3(1, 2, 3));
+  }
+  CHECK_FALSE(reused);
 }

@@ -48,7 +48,7 @@ Ball { }
   CHECK(s.protos[0]->proto->connections.size() == 2);
   const Node& a = *s.rootNodes[0];
   CHECK(a.typeName() == "Transform");
-  CHECK(a.protoName == "Ball");
+  CHECK(a.protoName() == "Ball");
   CHECK(a.location.line == 15);
   auto shape = [](const Node& t) { return t.mfnode("children").at(0); };
   CHECK(shape(a)->sfnode("geometry")->get<FieldType::SFFloat>("radius", 0.0f) == 2.0f);
@@ -127,7 +127,7 @@ Outer { c 0.5 0.5 0.5 }
   CHECK(color(s.rootNodes[1]) == glm::vec3(1, 0, 1));
   CHECK(color(s.rootNodes[2]) == glm::vec3(0, 1, 0));
   CHECK(color(s.rootNodes[3]) == glm::vec3(0.5f));
-  CHECK(s.rootNodes[3]->protoName == "Outer");
+  CHECK(s.rootNodes[3]->protoName() == "Outer");
 }
 
 TEST_CASE("PROTO scope: nested PROTOs are local, DEF names do not cross the body",
@@ -354,7 +354,7 @@ First {}
   REQUIRE(s.rootNodes.size() == 4);
   const Node& box = *s.rootNodes[0];
   CHECK(box.typeName() == "Shape");
-  CHECK(box.protoName == "Box2");
+  CHECK(box.protoName() == "Box2");
   CHECK(!box.unresolved);
   CHECK(box.sfnode("appearance")
             ->sfnode("material")
@@ -368,7 +368,7 @@ First {}
   REQUIRE(s.routes.size() == 2);  // the body's own ROUTE and ours, flattened
   CHECK(s.routes[1].toField == "set_fraction");
   CHECK(s.routes[1].toNode->typeName() == "PositionInterpolator");
-  CHECK(s.rootNodes[3]->protoName == "First");
+  CHECK(s.rootNodes[3]->protoName() == "First");
   CHECK(s.rootNodes[3]->typeName() == "Shape");
 }
 
@@ -396,7 +396,7 @@ Gone { on TRUE }
   const Node& n = *s.rootNodes[0];
   CHECK(n.unresolved);
   CHECK(n.typeName() == "Gone");
-  CHECK(n.protoName == "Gone");
+  CHECK(n.protoName() == "Gone");
   CHECK(n.get<FieldType::SFBool>("on", false));
   CHECK(n.mfnode("kids").empty());
 }
@@ -474,4 +474,46 @@ TEST_CASE("PROTO recursion and expansion bombs end with an error", "[parser][pro
   Scene dp = parse(deep);
   REQUIRE(dp.diagnostics.errorCount() >= 1);
   CHECK(gs::test::firstError(dp).find("nests deeper than 256") != std::string::npos);
+}
+
+TEST_CASE("PROTO: an instance keeps its declared interface, values and IS map", "[proto]") {
+  Scene s = parse(R"(
+PROTO Lamp [ exposedField SFFloat level 0.5 field SFColor tint 1 0 0 eventIn SFBool unused ] {
+  Group { children [ PointLight { intensity IS level color IS tint } ] }
+}
+PROTO Pair [ exposedField SFFloat both 0.1 ] {
+  Group { children [ Lamp { level IS both } ] }
+}
+Lamp { level 0.25 }
+Pair { }
+Pair { both 0.9 }
+)");
+  REQUIRE(s.diagnostics.items.empty());
+  REQUIRE(s.rootNodes.size() == 3);
+  const Node& lamp = *s.rootNodes[0];
+  REQUIRE(lamp.protoInstance);
+  const ProtoInstance& p = *lamp.protoInstance;
+  CHECK(declaredInterface(lamp) == &p);
+  CHECK(p.type->name == "Lamp");
+  REQUIRE(p.values.size() == 3);
+  CHECK(p.values[0].get<FieldType::SFFloat>() == 0.25f);
+  CHECK(p.values[1].get<FieldType::SFColor>() == glm::vec3(1, 0, 0));
+  REQUIRE(p.linksOf(0).size() == 1);
+  CHECK(p.linksOf(2).empty());
+  const NodePtr light = lamp.mfnode("children").at(0);
+  CHECK(p.linksOf(0)[0].node.lock() == light);
+  CHECK(p.value(0)->get<FieldType::SFFloat>() == 0.25f);
+  CHECK(p.value(7) == nullptr);
+  // The inner Lamp of each Pair links to that Pair's own copy of the body, not the template.
+  for (std::size_t k = 1; k < 3; ++k) {
+    const NodePtr inner = s.rootNodes[k]->mfnode("children").at(0);
+    REQUIRE(inner->protoInstance);
+    CHECK(inner->protoName() == "Lamp");
+    const NodePtr innerLight = inner->mfnode("children").at(0);
+    REQUIRE(inner->protoInstance->linksOf(0).size() == 1);
+    CHECK(inner->protoInstance->linksOf(0)[0].node.lock() == innerLight);
+    CHECK(inner->protoInstance->value(0)->get<FieldType::SFFloat>() == (k == 1 ? 0.1f : 0.9f));
+  }
+  // A plain node has no interface of its own.
+  CHECK(declaredInterface(*lamp.mfnode("children").at(0)) == nullptr);
 }

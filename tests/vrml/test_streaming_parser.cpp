@@ -54,7 +54,8 @@ struct Comparer {
     if (!seen.insert({a.get(), b.get()}).second) return true;
     if (a->typeName() != b->typeName())
       return fail(path + ": type " + a->typeName() + " vs " + b->typeName());
-    if (a->defName != b->defName || a->protoName != b->protoName || a->unresolved != b->unresolved)
+    if (a->defName != b->defName || a->protoName() != b->protoName() ||
+        a->unresolved != b->unresolved)
       return fail(path + ": DEF/PROTO name or resolution differs");
     if (where(a->location) != where(b->location))
       return fail(path + ": location " + where(a->location) + " vs " + where(b->location));
@@ -433,7 +434,7 @@ TEST_CASE("streaming: names persist across chunks; undone statements leave none"
     const NodePtr g = s.rootNodes[0]->sfnode("geometry");
     REQUIRE(g);
     CHECK(g->typeName() == "Box");
-    CHECK(g->protoName == "Cube");
+    CHECK(g->protoName() == "Cube");
     CHECK(g->get<FieldType::SFVec3f>("size", glm::vec3(0)) == glm::vec3(2, 3, 4));
   }
   SECTION("a DEF, PROTO and ROUTE of a statement cut short are undone") {

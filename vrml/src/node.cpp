@@ -1,6 +1,28 @@
 #include "vrml/node.hpp"
 
+#include "vrml/proto.hpp"
+
+#include <atomic>
+
 namespace gs::vrml {
+
+namespace {
+
+// Serials are handed out in blocks per thread (parsers run on several threads), so a
+// node costs no contended atomic operation.
+std::atomic<std::uint64_t> nextSerialBlock{0};
+
+std::uint64_t nextSerial() {
+  constexpr std::uint64_t kBlock = 4096;
+  thread_local std::uint64_t next = 0, end = 0;
+  if (next == end) {
+    next = nextSerialBlock.fetch_add(kBlock, std::memory_order_relaxed) + 1;
+    end = next + kBlock;
+  }
+  return next++;
+}
+
+}  // namespace
 
 int NodeType::findExact(std::string_view n) const {
   for (std::size_t i = 0; i < fields.size(); ++i)
@@ -23,9 +45,37 @@ int NodeType::findField(std::string_view n) const {
                                                                                             : -1;
 }
 
-Node::Node(std::shared_ptr<const NodeType> type) : type_(std::move(type)) {
+Node::Node(std::shared_ptr<const NodeType> type) : type_(std::move(type)), serial_(nextSerial()) {
   values_.reserve(type_->fields.size());
   for (const FieldSpec& f : type_->fields) values_.push_back(f.defaultValue);
+}
+
+Node::Node(const Node& other)
+    : defName(other.defName),
+      protoInstance(other.protoInstance),
+      unresolved(other.unresolved),
+      location(other.location),
+      type_(other.type_),
+      values_(other.values_),
+      revision_(other.revision_),
+      serial_(nextSerial()) {}
+
+Node& Node::operator=(const Node& other) {
+  if (this == &other) return *this;
+  defName = other.defName;
+  protoInstance = other.protoInstance;
+  unresolved = other.unresolved;
+  location = other.location;
+  type_ = other.type_;
+  values_ = other.values_;
+  revision_ = other.revision_ + 1;
+  serial_ = nextSerial();
+  return *this;
+}
+
+const std::string& Node::protoName() const {
+  static const std::string kNone;
+  return protoInstance ? protoInstance->type->name : kNone;
 }
 
 const FieldValue* Node::field(std::string_view name) const {

@@ -510,7 +510,7 @@ void Parser::retype(Node& node, std::shared_ptr<const NodeType> type,
   for (std::size_t k = 0; k < extra.size() && n + k < fresh.fieldCount(); ++k)
     fresh.fieldAt(n + k) = std::move(extra[k]);
   fresh.defName = std::move(node.defName);
-  fresh.protoName = std::move(node.protoName);
+  fresh.protoInstance = std::move(node.protoInstance);
   fresh.unresolved = node.unresolved;
   fresh.location = std::move(node.location);
   node = std::move(fresh);  // same address: USE back references stay valid

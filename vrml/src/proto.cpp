@@ -394,7 +394,10 @@ NodePtr Parser::instantiate(Scope& scope, InstanceValues& inst, std::size_t offs
     countNode(offset);
     auto node = std::make_shared<Node>(declared);
     node->unresolved = true;
-    node->protoName = declared->name;
+    // The node's own type is the declared interface: the record names the PROTO only.
+    auto record = std::make_shared<ProtoInstance>();
+    record->type = declared;
+    node->protoInstance = std::move(record);
     node->location = inst.location;
     for (std::size_t i = 0; i < inst.values.size(); ++i)
       if (inst.given[i]) node->fieldAt(i) = std::move(inst.values[i]);
@@ -435,6 +438,14 @@ NodePtr Parser::instantiate(Scope& scope, InstanceValues& inst, std::size_t offs
   copies.reserve(def.body.size() + def.hidden.size());
   for (const NodePtr& n : def.body) copies.push_back(copyTree(n, memo, keep));
   for (const NodePtr& n : def.hidden) copies.push_back(copyTree(n, memo, keep));
+  // PROTO instances inside the body: their records must name this copy's nodes.
+  for (auto& [original, copy] : memo) {
+    if (!copy->protoInstance || copy->protoInstance->links.empty()) continue;
+    auto record = std::make_shared<ProtoInstance>(*copy->protoInstance);
+    for (InstanceLink& k : record->links)
+      if (auto it = memo.find(k.node.lock().get()); it != memo.end()) k.node = it->second;
+    copy->protoInstance = std::move(record);
+  }
   for (const IsConnection& c : def.connections) {
     auto it = memo.find(c.node.get());
     if (it == memo.end()) continue;
@@ -466,7 +477,15 @@ NodePtr Parser::instantiate(Scope& scope, InstanceValues& inst, std::size_t offs
     for (NodePtr& k : keep) scope.hidden->push_back(std::move(k));
   }
   NodePtr result = copies.front();
-  result->protoName = declared->name;
+  auto record = std::make_shared<ProtoInstance>();
+  record->type = declared;
+  record->values.reserve(declared->fields.size());
+  for (std::size_t i = 0; i < declared->fields.size(); ++i)
+    record->values.push_back(inst.given[i] ? inst.values[i] : declared->fields[i].defaultValue);
+  record->links.reserve(l->size());
+  for (const IsConnection& c : *l)
+    record->links.push_back(InstanceLink{c.node, c.nodeField, c.nodeAccess, c.protoField});
+  result->protoInstance = std::move(record);
   result->location = inst.location;
   std::unordered_map<const Node*, int> heights;
   height = treeHeight(result, heights);
@@ -476,3 +495,36 @@ NodePtr Parser::instantiate(Scope& scope, InstanceValues& inst, std::size_t offs
 }
 
 }  // namespace gs::vrml::parsing
+
+namespace gs::vrml {
+
+namespace {
+
+struct LinkOrder {
+  bool operator()(const InstanceLink& a, int m) const { return a.protoField < m; }
+  bool operator()(int m, const InstanceLink& a) const { return m < a.protoField; }
+};
+
+}  // namespace
+
+std::span<const InstanceLink> ProtoInstance::linksOf(int member) const {
+  auto range = std::equal_range(links.begin(), links.end(), member, LinkOrder{});
+  return {range.first, range.second};
+}
+
+const ProtoInstance* declaredInterface(const Node& node) {
+  const ProtoInstance* p = node.protoInstance.get();
+  return (p != nullptr && p->type.get() != &node.type()) ? p : nullptr;
+}
+
+const FieldValue* ProtoInstance::value(int member) const {
+  if (member < 0 || static_cast<std::size_t>(member) >= type->fields.size()) return nullptr;
+  for (const InstanceLink& k : linksOf(member)) {
+    if (k.nodeAccess != AccessType::field && k.nodeAccess != AccessType::exposedField) continue;
+    if (const NodePtr n = k.node.lock()) return &n->fieldAt(static_cast<std::size_t>(k.nodeField));
+  }
+  const auto i = static_cast<std::size_t>(member);
+  return i < values.size() ? &values[i] : nullptr;
+}
+
+}  // namespace gs::vrml

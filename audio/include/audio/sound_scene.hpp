@@ -105,7 +105,7 @@ class SoundScene {
 
   std::shared_ptr<const vrml::Scene> scene_;
   ClipLoader loader_;
-  std::unordered_map<const vrml::Node*, std::shared_ptr<const formats::AudioData>> clips_;
+  vrml::NodeMap<std::shared_ptr<const formats::AudioData>> clips_;
   std::unordered_set<const vrml::Node*> loading_;  // on the worker
   std::size_t fetchesWaiting_ = 0;
   std::vector<std::pair<const vrml::Node*, double>> durations_;

@@ -53,7 +53,8 @@ struct TilesetView {
 struct TilesetBudget {
   /// Vectors drawn at most (the viewport's level of detail times the tileset's count).
   std::uint64_t vectors = UINT64_MAX;
-  /// Vectors held decoded at most (--tileset-memory MB / 20 bytes per vector).
+  /// Vectors held decoded at most (--tileset-memory MB / sizeof(qnv::DecodedVector), 32
+  /// bytes per vector).
   std::uint64_t memoryVectors = UINT64_MAX;
   /// Screen-space error threshold: pixels per vector above which a brick is refined.
   double pixelsPerVector = 1.0;

@@ -24,7 +24,8 @@ struct LoadedWorld {
 LoadedWorld loadWorld(const std::string& path);
 
 /// Distinct nodes reachable from the scene's roots through SFNode/MFNode fields, counted
-/// by type name (a USEd node counts once).
+/// by type name (a USEd node counts once). A PROTO instance counts under its body node's
+/// type (what is drawn) and under "Name (PROTO)" (what the world declares).
 std::map<std::string, std::size_t> countNodesByType(const vrml::Scene& scene);
 
 }  // namespace gs::session

@@ -12,6 +12,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 namespace gs::vrml {
@@ -25,6 +26,7 @@ struct FieldSpec {
 };
 
 struct ProtoDefinition;  // proto.hpp
+struct ProtoInstance;    // proto.hpp
 
 /// A node type: a built-in VRML97 node, one of our extension nodes, or a PROTO /
 /// EXTERNPROTO declared in a file.
@@ -55,12 +57,27 @@ struct NodeType {
 
 /// One node instance in a scene graph. Field values are indexed like `type->fields`.
 /// A PROTO instance is expanded when parsed: the Node in the graph is a copy of the
-/// PROTO's first implementation node with IS fields substituted, and `protoName` keeps
-/// the PROTO's name. An instance of an EXTERNPROTO that could not be resolved keeps its
-/// declared interface as `type` and is not rendered (`unresolved` is true).
+/// PROTO's first implementation node with IS fields substituted, and `protoInstance`
+/// keeps what the instance is to the world: the PROTO as declared, the instance's
+/// interface values and its IS map (clause 4.8.3), through which Scripts, ROUTEs,
+/// Browser.addRoute and `info` address the declared interface. An instance of an
+/// EXTERNPROTO that could not be resolved keeps its declared interface as `type` and is
+/// not rendered (`unresolved` is true).
 class Node {
  public:
   explicit Node(std::shared_ptr<const NodeType> type);
+  /// A copy has the same type, fields and names as `other`, and a serial() of its own.
+  Node(const Node& other);
+  Node& operator=(const Node& other);
+  /// Moving keeps the moved-from node's serial() (the node it becomes is that node).
+  Node(Node&& other) noexcept = default;
+  Node& operator=(Node&& other) noexcept = default;
+  ~Node() = default;
+
+  /// A number no other Node of this process had or will have (1, 2, ...; never 0): what a
+  /// cache keyed by a node's address stores beside its entry, so that a node allocated at
+  /// the address of a freed one does not inherit the freed one's entry.
+  std::uint64_t serial() const { return serial_; }
 
   const NodeType& type() const { return *type_; }
   const std::shared_ptr<const NodeType>& typePtr() const { return type_; }
@@ -106,8 +123,13 @@ class Node {
   /// The MFNode field `name` (empty when absent).
   const std::vector<NodePtr>& mfnode(std::string_view name) const;
 
-  std::string defName;      // DEF name, empty when none
-  std::string protoName;    // PROTO this node expands, empty for plain nodes
+  /// The PROTO (or EXTERNPROTO) name when this node stands for a PROTO instance, else
+  /// empty.
+  const std::string& protoName() const;
+
+  std::string defName;  // DEF name, empty when none
+  /// The PROTO instance this node stands for (proto.hpp), null for plain nodes.
+  std::shared_ptr<const ProtoInstance> protoInstance;
   bool unresolved = false;  // instance of an EXTERNPROTO that could not be loaded
   SourceLocation location;  // where the node's type name appeared
 
@@ -115,7 +137,33 @@ class Node {
   std::shared_ptr<const NodeType> type_;
   std::vector<FieldValue> values_;
   std::uint64_t revision_ = 0;
+  std::uint64_t serial_;
 };
+
+/// The key of a cache of per-node data (tessellations, GPU buffers, textures, decoded
+/// clips): the node's address and its serial(), so an entry made for a node never serves
+/// a node allocated later at the same address (node identity). Converts implicitly from a
+/// node pointer, so `cache.find(&node)` reads as with an address key.
+struct NodeKey {
+  const Node* node = nullptr;
+  std::uint64_t serial = 0;
+
+  NodeKey() = default;
+  NodeKey(const Node* n)  // NOLINT(google-explicit-constructor): a key is a node
+      : node(n), serial(n != nullptr ? n->serial() : 0) {}
+  bool operator==(const NodeKey&) const = default;
+};
+
+/// Hash of a NodeKey (its serial, unique per process).
+struct NodeKeyHash {
+  std::size_t operator()(const NodeKey& k) const noexcept {
+    return std::hash<std::uint64_t>{}(k.serial);
+  }
+};
+
+/// A cache of per-node data keyed by node identity (NodeKey).
+template <class V>
+using NodeMap = std::unordered_map<NodeKey, V, NodeKeyHash>;
 
 /// revision() of `node` plus those of the nodes in its SFNode fields (one level): what a
 /// cache of a geometry (its Coordinate, Normal, Color, TextureCoordinate) or an

@@ -10,6 +10,7 @@
 #include "vrml/scene.hpp"
 
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -55,5 +56,43 @@ struct ProtoDefinition {
   /// same name, type and access in `resolved`, or -1 (values given to it are ignored).
   std::vector<int> memberMap;
 };
+
+/// One IS link of a PROTO instance (clause 4.8.3): interface member `protoField` of the
+/// instance is the member `nodeField` of the body node `node` (a copy made for this
+/// instance). Weak, because the first body node is the instance's own node.
+struct InstanceLink {
+  std::weak_ptr<Node> node;
+  int nodeField = -1;                         // index into node->type().fields
+  AccessType nodeAccess = AccessType::field;  // as named in the IS statement
+  int protoField = -1;                        // index into ProtoInstance::type->fields
+};
+
+/// What a PROTO instance is to the world (OpenVRML's proto_node, castle's kept source
+/// instance): the type as declared, the values the instance gave its interface, and where
+/// each interface member lives in the instance's copy of the body. The Node that stands
+/// for the instance in the graph (the copy of the first body node) points to it through
+/// Node::protoInstance. Scripts (SFNode fields), Browser.addRoute / deleteRoute and
+/// `info` address the declared interface through it; ROUTE statements are resolved
+/// through the same links by the parser.
+struct ProtoInstance {
+  std::shared_ptr<const NodeType> type;  // the PROTO or EXTERNPROTO as declared
+  /// The instance's interface values as parsed (given, else the declared default),
+  /// indexed like type->fields; meaningful for field and exposedField members.
+  std::vector<FieldValue> values;
+  std::vector<InstanceLink> links;  // sorted by protoField
+
+  /// The links of interface member `member` (0 <= member < type->fields.size()); empty
+  /// when the body connects nothing to it.
+  std::span<const InstanceLink> linksOf(int member) const;
+  /// The current value of field or exposedField `member`: that of the first linked body
+  /// member that carries a value (field or exposedField), so an exposedField IS reads what
+  /// events set in the body; else values[member]. Null when `member` is out of range.
+  const FieldValue* value(int member) const;
+};
+
+/// The declared interface of the PROTO instance `node` stands for, or null when `node` is
+/// a plain node or its own type already is that interface (an unresolved EXTERNPROTO
+/// instance). What Scripts and Browser.addRoute address instead of the body node's fields.
+const ProtoInstance* declaredInterface(const Node& node);
 
 }  // namespace gs::vrml
