@@ -23,34 +23,13 @@ duk_idx_t dupTop(duk_context* c, duk_idx_t idx) {
 }
 
 constexpr std::array<const char*, vrml::kFieldTypeCount> kClassNames = {
-    nullptr,  "SFColor",    nullptr,    "SFImage", nullptr,   "SFNode",  "SFRotation",
-    nullptr,  nullptr,      "SFVec2f",  "SFVec3f", "MFColor", "MFFloat", "MFInt32",
-    "MFNode", "MFRotation", "MFString", "MFTime",  "MFVec2f", "MFVec3f"};
-
-FieldType elementType(FieldType t) {
-  switch (t) {
-    case FieldType::MFColor:
-      return FieldType::SFColor;
-    case FieldType::MFFloat:
-      return FieldType::SFFloat;
-    case FieldType::MFInt32:
-      return FieldType::SFInt32;
-    case FieldType::MFNode:
-      return FieldType::SFNode;
-    case FieldType::MFRotation:
-      return FieldType::SFRotation;
-    case FieldType::MFString:
-      return FieldType::SFString;
-    case FieldType::MFTime:
-      return FieldType::SFTime;
-    case FieldType::MFVec2f:
-      return FieldType::SFVec2f;
-    case FieldType::MFVec3f:
-      return FieldType::SFVec3f;
-    default:
-      return t;
-  }
-}
+    nullptr, "SFColor", nullptr, "SFImage", nullptr, "SFNode", "SFRotation", nullptr, nullptr,
+    "SFVec2f", "SFVec3f", "MFColor", "MFFloat", "MFInt32", "MFNode", "MFRotation", "MFString",
+    "MFTime", "MFVec2f", "MFVec3f",
+    // X3D types: pushed and read as their nearest VRML97 type (vrml::nearestVrml97Type).
+    nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr,
+    nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr,
+    nullptr, nullptr};
 
 const char* typeOf(duk_context* c, duk_idx_t idx) {
   switch (duk_get_type(c, idx)) {
@@ -244,6 +223,9 @@ void EsScript::pushValue(duk_context* c, const FieldValue& v) {
             [&](std::size_t i) { vec3(FieldType::SFVec3f, a[i], "x", "y", "z"); });
       break;
     }
+    default:  // an X3D type: as its nearest VRML97 type
+      pushValue(c, vrml::toNearestVrml97(v));
+      break;
   }
 }
 
@@ -372,12 +354,19 @@ bool EsScript::toValue(duk_context* c, duk_idx_t idx, FieldType t, FieldValue& o
       return true;
     }
     default:
-      return toMF(c, idx, t, out, why);
+      break;
   }
+  if (static_cast<int>(t) >= vrml::kVrml97FieldTypeCount) {  // an X3D type
+    FieldValue near;
+    if (!toValue(c, idx, vrml::nearestVrml97Type(t), near, why)) return false;
+    out = vrml::fromNearestVrml97(t, near);
+    return true;
+  }
+  return toMF(c, idx, t, out, why);
 }
 
 bool EsScript::toMF(duk_context* c, duk_idx_t idx, FieldType t, FieldValue& out, std::string& why) {
-  FieldType et = elementType(t);
+  FieldType et = vrml::elementType(t);
   out = FieldValue(t);
   if (duk_is_null_or_undefined(c, idx)) return true;  // empty
   bool list = duk_is_array(c, idx) != 0;

@@ -21,6 +21,23 @@ void vec(std::string& out, const float* v, int n) {
   }
 }
 
+void vec(std::string& out, const double* v, int n) {
+  for (int i = 0; i < n; ++i) {
+    if (i) out += ' ';
+    number(out, v[i]);
+  }
+}
+
+// A matrix row by row, as X3D writes it (glm stores it column by column).
+template <class M, int N>
+void matrix(std::string& out, const M& m) {
+  for (int row = 0; row < N; ++row)
+    for (int col = 0; col < N; ++col) {
+      if (row != 0 || col != 0) out += ' ';
+      number(out, m[col][row]);
+    }
+}
+
 void time(std::string& out, double t) {
   char buf[40];
   std::snprintf(buf, sizeof buf, "%.3f", t);
@@ -56,6 +73,88 @@ void jsonString(std::string& out, const std::string& s) {
     }
   }
   out += '"';
+}
+
+// The X3D types (fieldValueText's second half).
+void x3dValueText(std::string& out, const vrml::FieldValue& v) {
+  switch (v.type()) {
+    case FieldType::SFDouble:
+      number(out, v.get<FieldType::SFDouble>());
+      break;
+    case FieldType::SFVec2d:
+      vec(out, &v.get<FieldType::SFVec2d>().x, 2);
+      break;
+    case FieldType::SFVec3d:
+      vec(out, &v.get<FieldType::SFVec3d>().x, 3);
+      break;
+    case FieldType::SFVec4f:
+      vec(out, &v.get<FieldType::SFVec4f>().x, 4);
+      break;
+    case FieldType::SFVec4d:
+      vec(out, &v.get<FieldType::SFVec4d>().x, 4);
+      break;
+    case FieldType::SFColorRGBA:
+      vec(out, &v.get<FieldType::SFColorRGBA>().x, 4);
+      break;
+    case FieldType::SFMatrix3f:
+      matrix<glm::mat3, 3>(out, v.get<FieldType::SFMatrix3f>());
+      break;
+    case FieldType::SFMatrix3d:
+      matrix<glm::dmat3, 3>(out, v.get<FieldType::SFMatrix3d>());
+      break;
+    case FieldType::SFMatrix4f:
+      matrix<glm::mat4, 4>(out, v.get<FieldType::SFMatrix4f>());
+      break;
+    case FieldType::SFMatrix4d:
+      matrix<glm::dmat4, 4>(out, v.get<FieldType::SFMatrix4d>());
+      break;
+    case FieldType::MFBool:
+      list(out, v.get<FieldType::MFBool>(), [&](bool b) { out += b ? "TRUE" : "FALSE"; });
+      break;
+    case FieldType::MFDouble:
+      list(out, v.get<FieldType::MFDouble>(), [&](double x) { number(out, x); });
+      break;
+    case FieldType::MFImage:
+      list(out, v.get<FieldType::MFImage>(), [&](const vrml::SFImage& im) {
+        out += std::to_string(im.width) + ' ' + std::to_string(im.height) + ' ' +
+               std::to_string(im.components) + " ...";
+      });
+      break;
+    case FieldType::MFVec2d:
+      list(out, v.get<FieldType::MFVec2d>(), [&](const glm::dvec2& x) { vec(out, &x.x, 2); });
+      break;
+    case FieldType::MFVec3d:
+      list(out, v.get<FieldType::MFVec3d>(), [&](const glm::dvec3& x) { vec(out, &x.x, 3); });
+      break;
+    case FieldType::MFVec4f:
+    case FieldType::MFColorRGBA: {
+      const auto& l = v.type() == FieldType::MFVec4f ? v.get<FieldType::MFVec4f>()
+                                                     : v.get<FieldType::MFColorRGBA>();
+      list(out, l, [&](const glm::vec4& x) { vec(out, &x.x, 4); });
+      break;
+    }
+    case FieldType::MFVec4d:
+      list(out, v.get<FieldType::MFVec4d>(), [&](const glm::dvec4& x) { vec(out, &x.x, 4); });
+      break;
+    case FieldType::MFMatrix3f:
+      list(out, v.get<FieldType::MFMatrix3f>(),
+           [&](const glm::mat3& m) { matrix<glm::mat3, 3>(out, m); });
+      break;
+    case FieldType::MFMatrix3d:
+      list(out, v.get<FieldType::MFMatrix3d>(),
+           [&](const glm::dmat3& m) { matrix<glm::dmat3, 3>(out, m); });
+      break;
+    case FieldType::MFMatrix4f:
+      list(out, v.get<FieldType::MFMatrix4f>(),
+           [&](const glm::mat4& m) { matrix<glm::mat4, 4>(out, m); });
+      break;
+    case FieldType::MFMatrix4d:
+      list(out, v.get<FieldType::MFMatrix4d>(),
+           [&](const glm::dmat4& m) { matrix<glm::dmat4, 4>(out, m); });
+      break;
+    default:
+      break;
+  }
 }
 
 }  // namespace
@@ -132,6 +231,9 @@ std::string fieldValueText(const vrml::FieldValue& v) {
       break;
     case FieldType::MFVec2f:
       list(out, v.get<FieldType::MFVec2f>(), [&](const glm::vec2& x) { vec(out, &x.x, 2); });
+      break;
+    default:
+      x3dValueText(out, v);
       break;
   }
   return out;

@@ -14,7 +14,8 @@ constexpr std::size_t kMaxDiagnostics = 1000;
 constexpr std::size_t kMaxScriptMembers = 4096;
 
 bool isAccessKeyword(std::string_view s) {
-  return s == "eventIn" || s == "eventOut" || s == "field" || s == "exposedField";
+  AccessType a;
+  return accessTypeFromName(s, a);
 }
 
 // NodeType::findExact for the hot path: most names differ in length or first byte.
@@ -77,6 +78,7 @@ void Parser::parseScene(Scene& scene) {
   top.routes = &scene.routes;
   top.hidden = &scene.hiddenNodes;
   top.declared = &scene.protos;
+  top.x3d = &scene.x3d;
   top.checkRoots = externDepth_ == 0;
   try {
     parseStatements(top, &scene.rootNodes, 0, false, nullptr);
@@ -136,6 +138,7 @@ void Parser::parseStatement(Scope& scope, std::vector<NodePtr>* nodes, int depth
     if (t.kind != Tok::id) lex_.failExpected(t.offset, "a node, PROTO, EXTERNPROTO or ROUTE");
     if (t.text == "PROTO") {
       parseProto(scope);
+    } else if (ctx_.x3d && parseX3dStatement(scope, t)) {
     } else if (t.text == "EXTERNPROTO") {
       parseExternProto(scope);
     } else if (t.text == "ROUTE") {
@@ -251,7 +254,7 @@ std::shared_ptr<const NodeType> Parser::lookupType(Scope& scope, std::string_vie
                                   static_cast<unsigned char>(name[name.size() / 2]) * 11u) &
                                  (typeCache_.size() - 1)];
   if (e.type && e.type->name == name) return e.type;
-  std::shared_ptr<const NodeType> t = builtInNodeType(name);
+  std::shared_ptr<const NodeType> t = ctx_.x3d ? x3dNodeType(name) : builtInNodeType(name);
   if (t) e.type = t;
   return t;
 }
@@ -390,6 +393,8 @@ void Parser::parseNodeBody(Scope& scope, const NodePtr& node, InstanceValues* in
         access = ty.fields[static_cast<std::size_t>(i)].access;
       } else if ((i = ty.findField(t.text)) >= 0) {
         access = t.text.starts_with("set_") ? AccessType::eventIn : AccessType::eventOut;
+      } else if (ctx_.x3d && (i = x3dFieldAlias(ty, t.text)) >= 0) {
+        access = ty.fields[static_cast<std::size_t>(i)].access;
       } else {
         report(Severity::error, t.offset,
                "unknown field '" + std::string(t.text) + "' in " + ty.name);
@@ -443,12 +448,7 @@ FieldType Parser::parseFieldTypeName() {
 void Parser::parseScriptDeclaration(Scope& scope, const NodePtr& node, const Token& keyword,
                                     int depth, int& height, ScriptBuild& script) {
   AccessType a = AccessType::field;
-  if (keyword.text == "eventIn")
-    a = AccessType::eventIn;
-  else if (keyword.text == "eventOut")
-    a = AccessType::eventOut;
-  else if (keyword.text == "exposedField")
-    a = AccessType::exposedField;
+  accessTypeFromName(keyword.text, a);
   const FieldType ft = parseFieldTypeName();
   const Token nt = lex_.peek();
   const std::string name(lex_.expectId("a field name"));
@@ -459,7 +459,7 @@ void Parser::parseScriptDeclaration(Scope& scope, const NodePtr& node, const Tok
   std::string problem;
   Severity severity = Severity::error;
   const auto earlier = script.names.find(name);
-  if (a == AccessType::exposedField) {
+  if (a == AccessType::exposedField && !ctx_.x3d) {
     problem = "exposedField is not allowed in a Script node (clause 6.40)";
   } else if (earlier != script.names.end() &&
              script.type->fields[static_cast<std::size_t>(earlier->second)].access == a &&
@@ -637,6 +637,20 @@ void Parser::checkInline(const Node& node, std::size_t offset) {
   }
 }
 
+FieldValue Parser::parseValueText(FieldType t) {
+  tableMode_ = true;
+  Scope scope;
+  FieldValue v(t);
+  int h = 0;
+  try {
+    parseValue(t, v, scope, 0, h);
+  } catch (const RecoverableError& e) {
+    throw ParseError(e.diagnostic);
+  }
+  if (!lex_.atEnd()) lex_.fatal(lex_.offset(), "unexpected text after the value");
+  return v;
+}
+
 std::vector<FieldSpec> Parser::parseInterfaceText(std::string_view name) {
   tableMode_ = true;
   Scope scope;
@@ -649,6 +663,32 @@ std::vector<FieldSpec> Parser::parseInterfaceText(std::string_view name) {
     if (diag_.items.size() != before) throw ParseError(diag_.items.back());
   }
   return std::move(type.fields);
+}
+
+std::string headerProblem(std::string_view line, std::string& x3dVersion) {
+  x3dVersion.clear();
+  if (line.starts_with("#VRML V2.0 utf8")) return {};
+  if (line.starts_with("#VRML V1.0")) return "VRML 1.0 is not supported";
+  // "#X3D V3.0 utf8" ... "#X3D V4.1 utf8" (ISO/IEC 19776-2 clause 4.2.2).
+  if (line.starts_with("#X3D V") && line.size() >= 9) {
+    const std::string_view rest = line.substr(6);
+    const std::size_t sp = rest.find(' ');
+    const std::string_view v = rest.substr(0, sp);
+    const bool digits = v.size() >= 3 && v[0] >= '3' && v[0] <= '4' && v[1] == '.' &&
+                        v.find_first_not_of("0123456789", 2) == std::string_view::npos;
+    if (!digits)
+      return "unsupported X3D version '" + std::string(v.substr(0, 16)) +
+             "' (this browser reads X3D 3.0 to 4.1)";
+    if (sp == std::string_view::npos || !rest.substr(sp + 1).starts_with("utf8"))
+      return "expected 'utf8' after '#X3D V" + std::string(v) + "'";
+    x3dVersion = v;
+    return {};
+  }
+  std::string got;
+  for (char c : line.substr(0, 40))
+    got += (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? '?' : c;
+  if (line.size() > 40) got += "...";
+  return "expected '#VRML V2.0 utf8' or '#X3D V4.0 utf8' header, got '" + got + "'";
 }
 
 void parseInto(std::string_view bytes, const std::string& url, Context& ctx, int externDepth,
@@ -675,23 +715,22 @@ void parseInto(std::string_view bytes, const std::string& url, Context& ctx, int
   const std::size_t eol = bytes.find_first_of("\r\n", start);
   const std::string_view line =
       bytes.substr(start, eol == std::string_view::npos ? std::string_view::npos : eol - start);
-  if (!line.starts_with("#VRML V2.0 utf8")) {
-    std::string msg;
-    if (line.starts_with("#VRML V1.0")) {
-      msg = "VRML 1.0 is not supported";
-    } else {
-      std::string got;
-      for (char c : line.substr(0, 40))
-        got += (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? '?' : c;
-      if (line.size() > 40) got += "...";
-      msg = "expected '#VRML V2.0 utf8' header, got '" + got + "'";
-    }
+  std::string version;
+  std::string msg = headerProblem(line, version);
+  if (!msg.empty()) {
     scene.diagnostics.error({url, 1, 1}, std::move(msg));
     return;
+  }
+  const bool wasX3d = ctx.x3d;
+  ctx.x3d = !version.empty();
+  if (ctx.x3d) {
+    scene.x3d.version = version;
+    scene.x3d.encoding = "Classic VRML";
   }
   Parser parser(bytes, url, eol == std::string_view::npos ? bytes.size() : eol, ctx,
                 scene.diagnostics, externDepth);
   parser.parseScene(scene);
+  ctx.x3d = wasX3d;
 }
 
 }  // namespace gs::vrml::parsing

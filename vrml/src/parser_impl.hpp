@@ -72,6 +72,7 @@ struct Scope {
   std::vector<Route>* routes = nullptr;    // where ROUTEs go
   std::vector<NodePtr>* hidden = nullptr;  // where hidden instance nodes go
   std::vector<std::shared_ptr<const NodeType>>* declared = nullptr;  // Scene::protos
+  X3dInfo* x3d = nullptr;     // top scope: where X3D header statements go
   bool checkRoots = false;    // root nodes are checked against the children node class
   ScopeUndo* undo = nullptr;  // when set, changes to defs and protos are logged there
 };
@@ -93,6 +94,9 @@ struct ExternFile {
 struct Context {
   explicit Context(const ParseOptions& o) : options(o) {}
   const ParseOptions& options;
+  /// The file being parsed is X3D (its header said #X3D): X3D node types and interfaces,
+  /// the X3D statements. Set per file by parseInto / StreamingParser.
+  bool x3d = false;
   std::size_t nodeCount = 0;
   NameMap<std::shared_ptr<ExternFile>> externFiles;
   /// When set (StreamingParser), the files the top-level file loads, in order.
@@ -136,6 +140,9 @@ class Parser {
   /// Parses the node table's interface text of node `name` (table mode: no nodes).
   /// Throws ParseError on any problem.
   std::vector<FieldSpec> parseInterfaceText(std::string_view name);
+  /// Parses the whole text as one value of type `t` (table mode: SFNode only NULL).
+  /// Throws ParseError on any problem.
+  FieldValue parseValueText(FieldType t);
 
   // For StreamingParser: the top-level statements one at a time, over a text that grows.
   /// Parses the next statement of `top` (set up as parseScene sets its top scope) into
@@ -206,6 +213,8 @@ class Parser {
   // value_parser.cpp: field values (clause 5)
   void parseValue(FieldType t, FieldValue& out, Scope& scope, int depth, int& height,
                   const NodeType* parent = nullptr, std::string_view field = {});
+  /// The X3D field types (SFDouble ... MFMatrix4d), Classic VRML encoding.
+  void parseX3dValue(FieldType t, FieldValue& out);
   NodePtr parseSFNode(Scope& scope, int depth, int& height, const NodeType* parent,
                       std::string_view field);
   bool readBool();
@@ -233,6 +242,13 @@ class Parser {
                       int& height, std::shared_ptr<const std::vector<IsConnection>>& links);
   NodePtr copyTree(const NodePtr& n, std::unordered_map<const Node*, NodePtr>& memo,
                    std::vector<NodePtr>& keep);
+
+  // x3d_statements.cpp: PROFILE, COMPONENT, UNIT, META, IMPORT, EXPORT (X3D 19776-2 4.x)
+  /// True when `t` starts an X3D statement, which is then parsed.
+  bool parseX3dStatement(Scope& scope, const Token& t);
+  /// The node type an X3D field-name alias stands for: Switch/LOD `children` (VRML97's
+  /// choice/level), Collision `enabled` (collide); -1 when none.
+  static int x3dFieldAlias(const NodeType& type, std::string_view name);
 
   // route.cpp: ROUTE (clause 4.10)
   void parseRoute(Scope& scope);
@@ -291,6 +307,12 @@ bool nodeClassAllowed(const NodeType* parent, std::string_view field, const Node
 /// `url` with base::GzipError's reason.
 void gunzipInto(std::string_view bytes, const std::string& url, std::size_t maxBytes,
                 std::string& out);
+
+/// The problem with the first line `line` of a file ("VRML 1.0 is not supported", "expected
+/// '#VRML V2.0 utf8' ... header, got '...'"), empty when it is a VRML97 header or an X3D
+/// Classic VRML header ("#X3D V3.3 utf8", versions 3.0 to 4.x), whose version ("3.3") is
+/// then put in `x3dVersion` (cleared otherwise).
+std::string headerProblem(std::string_view line, std::string& x3dVersion);
 
 /// Parses `bytes` (a whole file, gzip or not) into `scene` with shared context `ctx`.
 void parseInto(std::string_view bytes, const std::string& url, Context& ctx, int externDepth,

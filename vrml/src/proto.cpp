@@ -30,16 +30,9 @@ bool Parser::parseInterfaceDeclaration(Scope& scope, NodeType& type, bool withVa
                                        NameMap<int>& names) {
   const Token at = lex_.peek();
   AccessType a = AccessType::field;
-  if (at.kind == Tok::id && at.text == "eventIn")
-    a = AccessType::eventIn;
-  else if (at.kind == Tok::id && at.text == "eventOut")
-    a = AccessType::eventOut;
-  else if (at.kind == Tok::id && at.text == "field")
-    a = AccessType::field;
-  else if (at.kind == Tok::id && at.text == "exposedField")
-    a = AccessType::exposedField;
-  else
-    lex_.failExpected(at.offset, "eventIn, eventOut, field or exposedField");
+  if (at.kind != Tok::id || !accessTypeFromName(at.text, a))
+    lex_.failExpected(at.offset, ctx_.x3d ? "inputOnly, outputOnly, initializeOnly or inputOutput"
+                                          : "eventIn, eventOut, field or exposedField");
   lex_.consume(at);
   const FieldType ft = parseFieldTypeName();
   const Token nt = lex_.peek();
@@ -106,9 +99,8 @@ void Parser::parseInterface(Scope& scope, NodeType& type, bool withValues, bool 
       while (true) {
         const Token t = lex_.peek();
         if (t.kind == Tok::end || t.kind == Tok::rbracket) break;
-        if (t.kind == Tok::id && (t.text == "eventIn" || t.text == "eventOut" ||
-                                  t.text == "field" || t.text == "exposedField"))
-          break;
+        AccessType ignored;
+        if (t.kind == Tok::id && accessTypeFromName(t.text, ignored)) break;
         lex_.skipBalanced();
       }
     }

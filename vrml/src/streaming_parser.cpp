@@ -125,17 +125,6 @@ class Gunzip {
   std::array<unsigned char, 1 << 16> buffer_{};
 };
 
-/// The first line's check of parseInto (clause 4.2.2); empty when it is a VRML97 header.
-std::string headerProblem(std::string_view line) {
-  if (line.starts_with("#VRML V2.0 utf8")) return {};
-  if (line.starts_with("#VRML V1.0")) return "VRML 1.0 is not supported";
-  std::string got;
-  for (char c : line.substr(0, 40))
-    got += (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? '?' : c;
-  if (line.size() > 40) got += "...";
-  return "expected '#VRML V2.0 utf8' header, got '" + got + "'";
-}
-
 /// Whitespace ends every token (strings and comments aside, which the lexer reports as
 /// cut), and a bracket is a whole token that ends the one before: text up to the last such
 /// byte holds no partial number or name, and a node statement shows once its '}' is here.
@@ -259,11 +248,18 @@ bool StreamingParser::Impl::readHeader(bool final) {
   const std::size_t eol = all.find_first_of("\r\n", start);
   const std::string_view line =
       all.substr(start, eol == std::string_view::npos ? std::string_view::npos : eol - start);
-  std::string problem = headerProblem(line);
+  std::string version;
+  std::string problem = parsing::headerProblem(line, version);
   if (!problem.empty()) {
     stop(Diagnostic{Severity::error, {url, 1, 1}, std::move(problem)});
     return false;
   }
+  ctx.x3d = !version.empty();
+  if (ctx.x3d) {
+    scene.x3d.version = version;
+    if (scene.x3d.encoding.empty()) scene.x3d.encoding = "Classic VRML";
+  }
+  top.x3d = &scene.x3d;
   const std::size_t begin = eol == std::string_view::npos ? all.size() : eol;
   parser = std::make_unique<parsing::Parser>(all.substr(0, std::max(begin, complete)), url, begin,
                                              ctx, scene.diagnostics, 0);

@@ -1,4 +1,5 @@
-// Field values of the 20 VRML97 field types (clause 5, annex A.4 grammar).
+// Field values of the 20 VRML97 field types (clause 5, annex A.4 grammar) and the 22 X3D
+// types (ISO/IEC 19776-2 clause 5, the Classic VRML encoding of each).
 #include "parser_impl.hpp"
 
 #include <algorithm>
@@ -117,6 +118,123 @@ void Parser::readInt32List(std::vector<std::int32_t>& v) {
   v.assign(intScratch_.begin(), intScratch_.end());
 }
 
+namespace {
+
+// N doubles (an X3D SFVec2d/3d/4d).
+template <class V, int N>
+V readDoubles(Lexer& lex) {
+  V v{};
+  for (int i = 0; i < N; ++i) v[i] = lex.readDouble();
+  return v;
+}
+
+// An X3D matrix written row by row (X3D clause 5.3.10), stored column-major (glm).
+template <class M, int N, bool Double>
+M readMatrix(Lexer& lex) {
+  M m(0);
+  for (int row = 0; row < N; ++row)
+    for (int col = 0; col < N; ++col) {
+      if constexpr (Double)
+        m[col][row] = lex.readDouble();
+      else
+        m[col][row] = lex.readFloat();
+    }
+  return m;
+}
+
+}  // namespace
+
+// The X3D types (parseValue's second half).
+void Parser::parseX3dValue(FieldType t, FieldValue& out) {
+  auto& st = out.storage();
+  auto vec4f = [this] {
+    glm::vec4 v;
+    for (int i = 0; i < 4; ++i) v[i] = lex_.readFloat();
+    return v;
+  };
+  switch (t) {
+    case FieldType::SFDouble:
+      st.emplace<idx<FieldType::SFDouble>()>(lex_.readDouble());
+      return;
+    case FieldType::SFVec2d:
+      st.emplace<idx<FieldType::SFVec2d>()>(readDoubles<glm::dvec2, 2>(lex_));
+      return;
+    case FieldType::SFVec3d:
+      st.emplace<idx<FieldType::SFVec3d>()>(readDoubles<glm::dvec3, 3>(lex_));
+      return;
+    case FieldType::SFVec4f:
+      st.emplace<idx<FieldType::SFVec4f>()>(vec4f());
+      return;
+    case FieldType::SFVec4d:
+      st.emplace<idx<FieldType::SFVec4d>()>(readDoubles<glm::dvec4, 4>(lex_));
+      return;
+    case FieldType::SFColorRGBA:
+      st.emplace<idx<FieldType::SFColorRGBA>()>(vec4f());
+      return;
+    case FieldType::SFMatrix3f:
+      st.emplace<idx<FieldType::SFMatrix3f>()>(readMatrix<glm::mat3, 3, false>(lex_));
+      return;
+    case FieldType::SFMatrix3d:
+      st.emplace<idx<FieldType::SFMatrix3d>()>(readMatrix<glm::dmat3, 3, true>(lex_));
+      return;
+    case FieldType::SFMatrix4f:
+      st.emplace<idx<FieldType::SFMatrix4f>()>(readMatrix<glm::mat4, 4, false>(lex_));
+      return;
+    case FieldType::SFMatrix4d:
+      st.emplace<idx<FieldType::SFMatrix4d>()>(readMatrix<glm::dmat4, 4, true>(lex_));
+      return;
+    case FieldType::MFBool:
+      readList(st.emplace<idx<FieldType::MFBool>()>(), [this] { return readBool(); });
+      return;
+    case FieldType::MFDouble:
+      readList(st.emplace<idx<FieldType::MFDouble>()>(), [this] { return lex_.readDouble(); });
+      return;
+    case FieldType::MFImage:
+      readList(st.emplace<idx<FieldType::MFImage>()>(), [this] {
+        SFImage image;
+        readImage(image);
+        return image;
+      });
+      return;
+    case FieldType::MFVec2d:
+      readList(st.emplace<idx<FieldType::MFVec2d>()>(),
+               [this] { return readDoubles<glm::dvec2, 2>(lex_); });
+      return;
+    case FieldType::MFVec3d:
+      readList(st.emplace<idx<FieldType::MFVec3d>()>(),
+               [this] { return readDoubles<glm::dvec3, 3>(lex_); });
+      return;
+    case FieldType::MFVec4f:
+      readFloatList<4>(st.emplace<idx<FieldType::MFVec4f>()>(), vec4Scratch_);
+      return;
+    case FieldType::MFVec4d:
+      readList(st.emplace<idx<FieldType::MFVec4d>()>(),
+               [this] { return readDoubles<glm::dvec4, 4>(lex_); });
+      return;
+    case FieldType::MFColorRGBA:
+      readFloatList<4>(st.emplace<idx<FieldType::MFColorRGBA>()>(), vec4Scratch_);
+      return;
+    case FieldType::MFMatrix3f:
+      readList(st.emplace<idx<FieldType::MFMatrix3f>()>(),
+               [this] { return readMatrix<glm::mat3, 3, false>(lex_); });
+      return;
+    case FieldType::MFMatrix3d:
+      readList(st.emplace<idx<FieldType::MFMatrix3d>()>(),
+               [this] { return readMatrix<glm::dmat3, 3, true>(lex_); });
+      return;
+    case FieldType::MFMatrix4f:
+      readList(st.emplace<idx<FieldType::MFMatrix4f>()>(),
+               [this] { return readMatrix<glm::mat4, 4, false>(lex_); });
+      return;
+    case FieldType::MFMatrix4d:
+      readList(st.emplace<idx<FieldType::MFMatrix4d>()>(),
+               [this] { return readMatrix<glm::dmat4, 4, true>(lex_); });
+      return;
+    default:
+      return;
+  }
+}
+
 NodePtr Parser::parseSFNode(Scope& scope, int depth, int& height, const NodeType* parent,
                             std::string_view field) {
   const std::size_t offset = lex_.offset();
@@ -217,6 +335,9 @@ void Parser::parseValue(FieldType t, FieldValue& out, Scope& scope, int depth, i
       return;
     case FieldType::MFVec3f:
       readFloatList<3>(st.emplace<idx<FieldType::MFVec3f>()>(), vec3Scratch_);
+      return;
+    default:
+      parseX3dValue(t, out);
       return;
   }
 }

@@ -1,5 +1,7 @@
-// VRML97 field types and values (ISO/IEC 14772-1:1997, clause 5 "Field and event
-// reference"). Pure data: no parsing, no OpenGL.
+// Field types and values: VRML97's 20 (ISO/IEC 14772-1:1997, clause 5 "Field and event
+// reference") and the 22 X3D adds (ISO/IEC 19775-1:2023 clause 5 "Field type reference":
+// SFDouble, SFVec2d/3d, SFVec4f/4d, SFColorRGBA, SFMatrix3f/3d/4f/4d and their MF forms,
+// MFBool, MFImage). Pure data: no parsing, no OpenGL.
 #pragma once
 
 #include <glm/glm.hpp>
@@ -16,8 +18,8 @@ namespace gs::vrml {
 class Node;
 using NodePtr = std::shared_ptr<Node>;
 
-/// The 20 VRML97 field types (clause 5). The enumerator order is also the index of the
-/// matching alternative in FieldValue::Storage, so keep the two in step.
+/// The 20 VRML97 field types (clause 5), then the 22 of X3D. The enumerator order is also
+/// the index of the matching alternative in FieldValue::Storage, so keep the two in step.
 enum class FieldType : std::uint8_t {
   SFBool,
   SFColor,
@@ -39,22 +41,58 @@ enum class FieldType : std::uint8_t {
   MFTime,
   MFVec2f,
   MFVec3f,
+  // X3D (ISO/IEC 19775-1 clause 5): single values
+  SFDouble,
+  SFVec2d,
+  SFVec3d,
+  SFVec4f,
+  SFVec4d,
+  SFColorRGBA,
+  SFMatrix3f,
+  SFMatrix3d,
+  SFMatrix4f,
+  SFMatrix4d,
+  // X3D: multiple values
+  MFBool,
+  MFDouble,
+  MFImage,
+  MFVec2d,
+  MFVec3d,
+  MFVec4f,
+  MFVec4d,
+  MFColorRGBA,
+  MFMatrix3f,
+  MFMatrix3d,
+  MFMatrix4f,
+  MFMatrix4d,
 };
-inline constexpr int kFieldTypeCount = 20;
+inline constexpr int kFieldTypeCount = 42;
+/// VRML97's 20 types are the first 20 enumerators.
+inline constexpr int kVrml97FieldTypeCount = 20;
 
-/// Interface access types of clause 4.7 / 5: field, exposedField, eventIn, eventOut.
+/// Interface access types of clause 4.7 / 5: field, exposedField, eventIn, eventOut (X3D's
+/// initializeOnly, inputOutput, inputOnly, outputOnly).
 enum class AccessType : std::uint8_t { field, exposedField, eventIn, eventOut };
 
-/// Spelling of a field type as VRML97 writes it ("SFVec3f"); "?" for out-of-range values.
+/// Spelling of a field type as VRML97 and X3D write it ("SFVec3f"); "?" for out-of-range
+/// values.
 std::string_view fieldTypeName(FieldType t);
-/// Parses a VRML97 field type name; returns false when `name` is not one of the 20.
+/// Parses a field type name (VRML97's 20 and X3D's 22); false when `name` is none of them.
 bool fieldTypeFromName(std::string_view name, FieldType& out);
 /// Spelling of an access type as VRML97 writes it ("exposedField").
 std::string_view accessTypeName(AccessType a);
+/// Spelling of an access type as X3D writes it ("inputOutput").
+std::string_view x3dAccessTypeName(AccessType a);
+/// Parses an access type in either spelling (VRML97's "exposedField" or X3D's
+/// "inputOutput"); false when `name` is neither. `x3d` tells which spelling it was.
+bool accessTypeFromName(std::string_view name, AccessType& out, bool* x3d = nullptr);
 /// True for the MF* types.
 constexpr bool isMultiValued(FieldType t) {
-  return t >= FieldType::MFColor;
+  return (t >= FieldType::MFColor && t <= FieldType::MFVec3f) || t >= FieldType::MFBool;
 }
+/// The SF type of the elements of MF type `t` (SFColor for MFColor ...); `t` itself for
+/// an SF type.
+FieldType elementType(FieldType t);
 
 /// SFImage (clause 5.5): width, height, number of components (0..4) and one packed pixel
 /// per entry, rows bottom to top, each pixel 0xRRGGBBAA-style packed as the file wrote it
@@ -71,9 +109,11 @@ struct SFImage {
 /// radians, stored as (x, y, z, angle) (clause 5.8).
 using Rotation = glm::vec4;
 
-/// A field or event value of any of the 20 types. The active alternative's index equals
-/// the FieldType enumerator; colours, vectors and rotations use glm (colour components
-/// are in [0, 1]; times are seconds since 1970-01-01 UTC; angles are radians).
+/// A field or event value of any of the 42 types. The active alternative's index equals
+/// the FieldType enumerator; colours, vectors, rotations and matrices use glm (colour
+/// components are in [0, 1]; times are seconds since 1970-01-01 UTC; angles are radians;
+/// an SFColorRGBA is (r, g, b, a)). Matrices are glm's, column-major: the file's
+/// row-major numbers are transposed when read (X3D clause 5.3.10).
 class FieldValue {
  public:
   using Storage = std::variant<bool,                       // SFBool
@@ -95,7 +135,29 @@ class FieldValue {
                                std::vector<std::string>,   // MFString
                                std::vector<double>,        // MFTime
                                std::vector<glm::vec2>,     // MFVec2f
-                               std::vector<glm::vec3>>;    // MFVec3f
+                               std::vector<glm::vec3>,     // MFVec3f
+                               double,                     // SFDouble
+                               glm::dvec2,                 // SFVec2d
+                               glm::dvec3,                 // SFVec3d
+                               glm::vec4,                  // SFVec4f
+                               glm::dvec4,                 // SFVec4d
+                               glm::vec4,                  // SFColorRGBA
+                               glm::mat3,                  // SFMatrix3f
+                               glm::dmat3,                 // SFMatrix3d
+                               glm::mat4,                  // SFMatrix4f
+                               glm::dmat4,                 // SFMatrix4d
+                               std::vector<bool>,          // MFBool
+                               std::vector<double>,        // MFDouble
+                               std::vector<SFImage>,       // MFImage
+                               std::vector<glm::dvec2>,    // MFVec2d
+                               std::vector<glm::dvec3>,    // MFVec3d
+                               std::vector<glm::vec4>,     // MFVec4f
+                               std::vector<glm::dvec4>,    // MFVec4d
+                               std::vector<glm::vec4>,     // MFColorRGBA
+                               std::vector<glm::mat3>,     // MFMatrix3f
+                               std::vector<glm::dmat3>,    // MFMatrix3d
+                               std::vector<glm::mat4>,     // MFMatrix4f
+                               std::vector<glm::dmat4>>;   // MFMatrix4d
 
   /// A default-constructed value of type `t` (FALSE, 0, empty, NULL).
   explicit FieldValue(FieldType t = FieldType::SFBool);
@@ -126,5 +188,18 @@ class FieldValue {
  private:
   Storage storage_;
 };
+
+/// The VRML97 type nearest to `t` (itself for VRML97's 20): SFDouble -> SFTime, SFVec2d ->
+/// SFVec2f, SFVec3d -> SFVec3f, SFVec4f/SFVec4d/SFColorRGBA -> SFRotation (4 floats),
+/// SFMatrix* -> MFFloat (row by row), MFBool -> MFInt32 (0 or 1), MFDouble -> MFTime,
+/// MFImage -> MFInt32 (empty), MFVec2d/3d -> MFVec2f/3f, MFVec4f/4d/MFColorRGBA ->
+/// MFRotation, MFMatrix* -> MFFloat (all matrices' numbers). What a VRML97-only consumer
+/// (the VRML97 ECMAScript classes, a .wrl writer) sees of an X3D value.
+FieldType nearestVrml97Type(FieldType t);
+/// `v` converted to nearestVrml97Type(v.type()) (doubles rounded to float).
+FieldValue toNearestVrml97(const FieldValue& v);
+/// The inverse of toNearestVrml97: `v` (of type nearestVrml97Type(t)) as a value of `t`;
+/// FieldValue(t) when `v` has another type.
+FieldValue fromNearestVrml97(FieldType t, const FieldValue& v);
 
 }  // namespace gs::vrml

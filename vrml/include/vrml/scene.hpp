@@ -27,6 +27,40 @@ struct Route {
   SourceLocation location;
 };
 
+/// UNIT category name conversionFactor (X3D clause 4.3.6): the file's values of that
+/// category are in units of `conversionFactor` base units (metres, radians, kilograms,
+/// newtons).
+struct X3dUnit {
+  std::string category;  // "length", "angle", "mass" or "force"
+  std::string name;
+  double conversionFactor = 1.0;
+};
+
+/// IMPORT inlineDEF.exportedDEF AS localDEF / EXPORT localDEF AS exportedDEF (X3D clause
+/// 4.4.6).
+struct X3dImport {
+  std::string inlineDef, exportedName, localName;
+  SourceLocation location;
+};
+struct X3dExport {
+  std::string localDef, exportedName;
+  SourceLocation location;
+};
+
+/// What an X3D world declares about itself (ISO/IEC 19775-1 clause 7.2.5, the header
+/// statements of the Classic VRML encoding and the XML encoding's <X3D> and <head>).
+/// Empty (`version` "") for a VRML97 world.
+struct X3dInfo {
+  std::string version;   // "3.3", "4.0" ...: from the header; empty for VRML97
+  std::string encoding;  // "Classic VRML", "XML" or "JSON"
+  std::string profile;   // "Immersive", "Interchange" ...; empty when none was given
+  std::vector<std::pair<std::string, int>> components;  // COMPONENT name:level
+  std::vector<X3dUnit> units;
+  std::vector<std::pair<std::string, std::string>> meta;  // META name content
+  std::vector<X3dImport> imports;
+  std::vector<X3dExport> exports;
+};
+
 /// A world read from one file or URL.
 struct Scene {
   std::string url;                 // where it was read from, as given
@@ -37,6 +71,7 @@ struct Scene {
   /// each PROTO instance's body (clause 4.8.3), kept alive for ROUTEs and Scripts.
   std::vector<NodePtr> hiddenNodes;
   Diagnostics diagnostics;
+  X3dInfo x3d;  // X3D worlds only (x3d.version empty for VRML97)
 };
 
 }  // namespace gs::vrml
