@@ -69,7 +69,8 @@ namespace {
 constexpr const char* kDescription =
     "GhostSpace " GS_VERSION
     ": an extended VRML97 browser for remote visualization of large 3D data.\n"
-    "Opens VRML97 worlds (.wrl, .wrl.gz, .wrz) and QNV streams from files or http(s) URLs in a\n"
+    "Opens VRML97 worlds (.wrl, .wrl.gz, .wrz), X3D worlds (.x3dv, .x3d, .x3dz, .x3dvz) and\n"
+    "QNV streams from files or http(s) URLs in a\n"
     "window, showing them while they arrive, or renders them headless.";
 
 struct Parsed {
@@ -180,7 +181,8 @@ Parsed parseArguments(int argc, char** argv) {
   bool noProgressBar = false;
   cli.add_flag("--no-progress", noProgressBar, "No progress bar on the terminal");
   cli.add_option("INPUT", o.inputs,
-                 "Worlds to open, files or http(s):// URLs: VRML97 (.wrl, .wrl.gz, .wrz), QNV "
+                 "Worlds to open, files or http(s):// URLs: VRML97 (.wrl, .wrl.gz, .wrz), X3D "
+                 "(.x3dv, .x3d, .x3dz, .x3dvz), QNV "
                  "streams (.qnv), and local meshes (.ply, .obj, .gltf, .glb) or volumes "
                  "(.nrrd, .nhdr, .nii, .nii.gz)");
 

@@ -1,5 +1,6 @@
 #include "app/pointer_input.hpp"
 #include "base/url.hpp"
+#include "formats/input_kind.hpp"
 
 #include "render/traversal.hpp"
 
@@ -68,10 +69,11 @@ bool endsWith(const std::string& s, const std::string& tail) {
   return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
 }
 
+// A world (VRML97 or X3D in any encoding, formats::kindFromName) or a QNV stream.
 bool isWorld(const std::string& path) {
-  for (const char* ext : {".wrl", ".wrz", ".wrl.gz", ".vrml", ".vrml.gz", ".qnv"})
-    if (endsWith(path, ext)) return true;
-  return false;
+  const formats::InputKind k = formats::kindFromName(path);
+  return k == formats::InputKind::world || k == formats::InputKind::qnv ||
+         endsWith(path, ".vrml") || endsWith(path, ".vrml.gz");
 }
 
 bool isPassiveDocument(const std::string& path) {

@@ -13,7 +13,8 @@ namespace gs::app {
 
 namespace {
 
-// Files the open dialog lists: VRML97 worlds by name (.wrl, .wrl.gz, .wrz, any case).
+// Files the open dialog lists: worlds by name (VRML97 .wrl, .wrl.gz, .wrz; X3D .x3d, .x3dv,
+// .x3dz, .x3dvz, ...; any case).
 bool isWorldFile(const std::filesystem::path& p) {
   return formats::kindFromName(p.filename().string()) == formats::InputKind::world;
 }
@@ -25,7 +26,7 @@ void drawOpenDialog(WindowState& state) {
     ImGui::End();
     return;
   }
-  ImGui::TextUnformatted("Path or http(s):// URL of a world (.wrl, .wrl.gz, .wrz, .qnv, ...):");
+  ImGui::TextUnformatted("Path or http(s):// URL of a world (.wrl, .x3d, .x3dv, .qnv, ...):");
   const bool entered = ImGui::InputText("##path", state.openPath, sizeof state.openPath,
                                         ImGuiInputTextFlags_EnterReturnsTrue);
   ImGui::SameLine();

@@ -20,15 +20,32 @@ struct Suffix {
 
 // Longest first where one suffix ends another (".nii.gz" before ".gz" handling).
 constexpr std::array kSuffixes = {
-    Suffix{".wrl", InputKind::world},       Suffix{".wrl.gz", InputKind::world},
-    Suffix{".wrz", InputKind::world},       Suffix{".qnv", InputKind::qnv},
-    Suffix{".qnvt", InputKind::qnvTileset}, Suffix{".ply", InputKind::ply},
-    Suffix{".ply.gz", InputKind::ply},      Suffix{".obj", InputKind::obj},
-    Suffix{".obj.gz", InputKind::obj},      Suffix{".gltf", InputKind::gltf},
-    Suffix{".gltf.gz", InputKind::gltf},    Suffix{".glb", InputKind::gltf},
-    Suffix{".glb.gz", InputKind::gltf},     Suffix{".nrrd", InputKind::nrrd},
-    Suffix{".nhdr", InputKind::nrrd},       Suffix{".nii", InputKind::nifti},
+    Suffix{".wrl", InputKind::world},
+    Suffix{".wrl.gz", InputKind::world},
+    Suffix{".wrz", InputKind::world},
+    Suffix{".qnv", InputKind::qnv},
+    Suffix{".qnvt", InputKind::qnvTileset},
+    Suffix{".ply", InputKind::ply},
+    Suffix{".ply.gz", InputKind::ply},
+    Suffix{".obj", InputKind::obj},
+    Suffix{".obj.gz", InputKind::obj},
+    Suffix{".gltf", InputKind::gltf},
+    Suffix{".gltf.gz", InputKind::gltf},
+    Suffix{".glb", InputKind::gltf},
+    Suffix{".glb.gz", InputKind::gltf},
+    Suffix{".nrrd", InputKind::nrrd},
+    Suffix{".nhdr", InputKind::nrrd},
+    Suffix{".nii", InputKind::nifti},
     Suffix{".nii.gz", InputKind::nifti},
+    // X3D (ISO/IEC 19776-1, -2, -5): XML, Classic VRML, JSON, and their gzip forms.
+    Suffix{".x3d", InputKind::world},
+    Suffix{".x3dv", InputKind::world},
+    Suffix{".x3dj", InputKind::world},
+    Suffix{".x3dz", InputKind::world},
+    Suffix{".x3dvz", InputKind::world},
+    Suffix{".x3d.gz", InputKind::world},
+    Suffix{".x3dv.gz", InputKind::world},
+    Suffix{".x3dj.gz", InputKind::world},
 };
 
 bool lineEndAt(std::string_view s, std::size_t i) {
@@ -36,7 +53,14 @@ bool lineEndAt(std::string_view s, std::size_t i) {
 }
 
 InputKind sniffPlain(std::string_view head) {
-  if (head.starts_with("#VRML V2.0")) return InputKind::world;
+  if (head.starts_with("#VRML V2.0") || head.starts_with("#X3D V")) return InputKind::world;
+  // The X3D XML encoding: an XML declaration or DOCTYPE, then <X3D (ISO/IEC 19776-1 4.2).
+  if (const std::size_t x3d = head.find("<X3D"); x3d != std::string_view::npos) {
+    std::string_view before = head.substr(0, x3d);
+    if (before.starts_with("\xEF\xBB\xBF")) before.remove_prefix(3);
+    const std::size_t first = before.find_first_not_of(" \t\r\n");
+    if (first == std::string_view::npos || before[first] == '<') return InputKind::world;
+  }
   const auto& magic = qnv::kMagic;
   if (head.size() >= magic.size() &&
       std::equal(magic.begin(), magic.end(), head.begin(),

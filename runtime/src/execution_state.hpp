@@ -27,6 +27,30 @@ enum class NodeRole : std::uint8_t {
   proximity,     // ProximitySensor (6.38)
   visibility,    // VisibilitySensor (6.52)
   media,         // MovieTexture (6.28), AudioClip (6.3): media_nodes.cpp
+  eventUtility,  // X3D Event Utilities (X3D 4.0 clause 30): event_utilities.cpp
+};
+
+/// The X3D event-utility nodes (X3D 4.0 clause 30).
+enum class EventUtilityKind : std::uint8_t {
+  booleanFilter,
+  booleanToggle,
+  booleanTrigger,
+  integerTrigger,
+  timeTrigger,
+  booleanSequencer,
+  integerSequencer,
+};
+
+/// Field indices of an event-utility node (found once), -1 when absent, and the
+/// sequencers' position in keyValue.
+struct EventUtilityFields {
+  EventUtilityKind kind = EventUtilityKind::booleanFilter;
+  int input = -1;  // set_boolean, set_triggerTime; set_fraction (sequencers)
+  int next = -1, previous = -1, key = -1, keyValue = -1;  // sequencers
+  int value = -1;                                         // toggle, integerKey
+  std::array<int, 3> out{-1, -1, -1};  // inputTrue / inputFalse / inputNegate, triggerTrue,
+                                       // triggerValue, triggerTime, value_changed
+  int index = -1;                      // sequencers: the keyValue last sent, -1 before any
 };
 
 struct NodeState;
@@ -69,7 +93,8 @@ struct NodeState {
   glm::vec3 lastPosition{0.0f};
   vrml::Rotation lastOrientation{0.0f};
   std::unique_ptr<ScriptInstance> script;
-  std::unique_ptr<MediaNode> media;  // role media
+  std::unique_ptr<MediaNode> media;             // role media
+  std::unique_ptr<EventUtilityFields> utility;  // role eventUtility
   bool scriptHadEvents = false;
   bool problemReported = false;
 };
@@ -143,6 +168,10 @@ struct ExecutionModel::State {
   bool classifyMedia(NodeState& ns);
   void deliverMedia(NodeState& ns, int field, vrml::FieldValue value);
   void evaluateMedia(NodeState& ns);
+  // ---- X3D event utilities (event_utilities.cpp) ----
+  /// Makes `ns` an event utility when it is a node of X3D 4.0 clause 30.
+  bool classifyEventUtility(NodeState& ns);
+  void deliverEventUtility(NodeState& ns, int field, vrml::FieldValue value);
   // ---- environmental sensors (environment_sensors.cpp) ----
   void evaluateEnvironmentSensors();
 

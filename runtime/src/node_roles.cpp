@@ -89,6 +89,7 @@ void ExecutionModel::State::classify(NodeState& ns) {
   using vrml::NodeTypeId;
   const NodeTypeId id = type.id();
   if (classifyMedia(ns)) return;
+  if (classifyEventUtility(ns)) return;
   if (id == NodeTypeId::TimeSensor) {
     ns.role = NodeRole::timeSensor;
     TimeSensorFields& f = ns.timeFields;
@@ -266,6 +267,13 @@ void ExecutionModel::State::deliver(NodeState& ns, int field, vrml::FieldValue v
     case NodeRole::media:
       deliverMedia(ns, field, std::move(value));
       return;
+    case NodeRole::eventUtility:
+      if (field == ns.utility->input || field == ns.utility->next ||
+          field == ns.utility->previous) {
+        deliverEventUtility(ns, field, std::move(value));
+        return;
+      }
+      break;  // toggle, integerKey, key, keyValue: exposedFields
     case NodeRole::plain:
     case NodeRole::proximity:
     case NodeRole::visibility:

@@ -45,8 +45,15 @@ TEST_CASE("cmake --install writes the helper-application files", "[app][install]
 
   const std::string entry = gs::test::readBytes(desktop);
   CHECK(entry.find("Exec=ghostspace %U") != std::string::npos);
-  for (const char* type : {"model/vrml", "x-world/x-vrml", "model/x-qnv"})
+  for (const char* type : {"model/vrml", "x-world/x-vrml", "model/x-qnv", "model/x3d+xml",
+                           "model/x3d-vrml", "model/x3d+json"})
     CHECK(entry.find(type) != std::string::npos);
+  // The X3D media types are defined with their extensions and magic (helper application
+  // for X3D links).
+  const std::string types = gs::test::readBytes(mime);
+  for (const char* x3d :
+       {"model/x3d+xml", "model/x3d-vrml", "model/x3d+json", "*.x3dv", "*.x3dz", "#X3D V"})
+    CHECK(types.find(x3d) != std::string::npos);
 
   if (fs::exists("/usr/bin/desktop-file-validate"))
     CHECK(shell("desktop-file-validate " + quoted(desktop) + " > /dev/null") == 0);

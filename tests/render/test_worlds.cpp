@@ -3,6 +3,7 @@
 #include "render/context.hpp"
 #include "render/image.hpp"
 #include "render/scene_renderer.hpp"
+#include "test_support.hpp"
 #include "vrml/parser.hpp"
 
 #include <catch2/catch.hpp>
@@ -146,4 +147,28 @@ Shape { appearance Appearance { material Box { } } geometry Box { size 4 4 0.1 }
   const Rendered r = renderFile(dir / "not_a_material.wrl");
   // Unlit white (clause 4.14.1), not a Material's default grey without lights (black).
   CHECK(close(r.image.pixel(kSize / 2, kSize / 2), 255, 255, 255, 8));
+}
+
+TEST_CASE("the X3D asset draws the same in the Classic VRML and XML encodings",
+          "[render][offscreen][world][x3d]") {
+  const fs::path dir = gs::test::sourceDir() / "assets/worlds";
+  const Rendered classic = renderFile(dir / "x3d_features.x3dv");
+  const Rendered xml = renderFile(dir / "x3d_features.x3d");
+  REQUIRE(classic.image.width == xml.image.width);
+  CHECK(classic.image.rgba == xml.image.rgba);
+  // Each of the four X3D shapes shows in its colour: the red IndexedTriangleSet, the
+  // green Box Switch.children chose, the blue Rectangle2D and the yellow LineSet.
+  int red = 0, green = 0, blue = 0, yellow = 0;
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      const std::uint8_t* p = classic.image.pixel(x, y);
+      red += close(p, 255, 0, 0, 60) ? 1 : 0;
+      green += close(p, 0, 255, 0, 60) ? 1 : 0;
+      blue += close(p, 0, 0, 255, 60) ? 1 : 0;
+      yellow += close(p, 255, 255, 0, 60) ? 1 : 0;
+    }
+  CHECK(red > 20);
+  CHECK(green > 20);
+  CHECK(blue > 20);
+  CHECK(yellow > 0);
 }

@@ -11,6 +11,17 @@
 
 namespace gs::test {
 
+/// The whole text of a world and its url.
+struct WorldText {
+  std::string text;
+  std::string url;
+};
+
+/// An X3D world (Classic VRML encoding, X3D 4.0) of `body`.
+inline WorldText x3dWorld(const std::string& body) {
+  return {"#X3D V4.0 utf8\n" + body, "test.x3dv"};
+}
+
 /// A world parsed from `body` (the header is added) and run from `loadTime`, recording
 /// every event as "NODE.field=value" (trace names, runtime/trace.hpp).
 struct RunningWorld {
@@ -19,8 +30,13 @@ struct RunningWorld {
   std::unique_ptr<runtime::ExecutionModel> model;
 
   explicit RunningWorld(const std::string& body, double loadTime = 0.0,
+                        runtime::ExecutionOptions options = {})
+      : RunningWorld(WorldText{"#VRML V2.0 utf8\n" + body, "test.wrl"}, loadTime,
+                     std::move(options)) {}
+  /// A world from the whole text of a file (header included), e.g. x3dWorld(body).
+  explicit RunningWorld(const WorldText& world, double loadTime = 0.0,
                         runtime::ExecutionOptions options = {}) {
-    scene = std::make_shared<vrml::Scene>(vrml::parseVrml("#VRML V2.0 utf8\n" + body, "test.wrl"));
+    scene = std::make_shared<vrml::Scene>(vrml::parseVrml(world.text, world.url));
     options.trace = [this](const runtime::TraceEvent& e) {
       const auto& spec = e.node->type().fields[static_cast<std::size_t>(e.field)];
       std::string name = spec.name;

@@ -15,7 +15,7 @@ using namespace gs::vrml;
 using gs::test::firstError;
 using gs::test::parse;
 
-TEST_CASE("header: V2.0 utf8 accepted, V1.0 and others refused", "[parser]") {
+TEST_CASE("header: V2.0 utf8 and X3D accepted, V1.0 and others refused", "[parser]") {
   CHECK(parseVrml("#VRML V2.0 utf8\n", "a.wrl").diagnostics.items.empty());
   CHECK(parseVrml("#VRML V2.0 utf8 written by hand\nGroup {}", "a.wrl").rootNodes.size() == 1);
   CHECK(parseVrml("#VRML V2.0 utf8", "a.wrl").diagnostics.items.empty());
@@ -26,16 +26,20 @@ TEST_CASE("header: V2.0 utf8 accepted, V1.0 and others refused", "[parser]") {
   CHECK(v1.diagnostics.items[0].severity == Severity::error);
   CHECK(v1.rootNodes.empty());
 
-  Scene other = parseVrml("#X3D V3.0 utf8\nGroup {}\n", "x.wrl");
+  // X3D's Classic VRML encoding is read (test_x3d_classic.cpp).
+  CHECK(parseVrml("#X3D V3.0 utf8\nGroup {}\n", "x.wrl").diagnostics.items.empty());
+
+  Scene other = parseVrml("#VRML V3.0 utf8\nGroup {}\n", "x.wrl");
   REQUIRE(other.diagnostics.items.size() == 1);
   CHECK(other.diagnostics.items[0].message ==
-        "expected '#VRML V2.0 utf8' header, got '#X3D V3.0 utf8'");
+        "expected '#VRML V2.0 utf8' or '#X3D V4.0 utf8' header, got '#VRML V3.0 utf8'");
   CHECK(other.diagnostics.items[0].location.line == 1);
   CHECK(other.diagnostics.items[0].location.column == 1);
 
   Scene empty = parseVrml("", "e.wrl");
   REQUIRE(empty.diagnostics.items.size() == 1);
-  CHECK(empty.diagnostics.items[0].message == "expected '#VRML V2.0 utf8' header, got ''");
+  CHECK(empty.diagnostics.items[0].message ==
+        "expected '#VRML V2.0 utf8' or '#X3D V4.0 utf8' header, got ''");
 }
 
 TEST_CASE("SF field types of built-in nodes", "[parser]") {

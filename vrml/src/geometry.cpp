@@ -23,6 +23,57 @@ glm::vec4 rgba(const glm::vec3& c) {
   return {clamp01(c.r), clamp01(c.g), clamp01(c.b), 1.0f};
 }
 
+glm::vec4 rgba(const glm::vec4& c) {
+  auto clamp01 = [](float x) { return x > 0.0f ? (x < 1.0f ? x : 1.0f) : 0.0f; };  // NaN -> 0
+  return {clamp01(c.r), clamp01(c.g), clamp01(c.b), clamp01(c.a)};
+}
+
+ColorSource::ColorSource(const Node& geometry, std::string_view field) {
+  static const std::vector<glm::vec3> kNone;
+  rgb_ = &kNone;
+  const NodePtr child = geometry.sfnode(field);
+  if (child == nullptr) return;
+  present_ = true;
+  const FieldValue* f = child->field("color");
+  if (f == nullptr) return;
+  if (f->type() == FieldType::MFColor) {
+    rgb_ = &f->get<FieldType::MFColor>();
+  } else if (f->type() == FieldType::MFColorRGBA) {
+    rgb_ = nullptr;
+    rgba_ = &f->get<FieldType::MFColorRGBA>();
+  }
+}
+
+const std::vector<glm::vec2>& texCoordPoints(const Node& geometry, TexSource& kind) {
+  static const std::vector<glm::vec2> kNone;
+  NodePtr tc = geometry.sfnode("texCoord");
+  kind = TexSource::none;
+  if (tc == nullptr) return kNone;
+  if (tc->typeId() == NodeTypeId::MultiTextureCoordinate) {  // its first coordinate set
+    const std::vector<NodePtr>& sets = tc->mfnode("texCoord");
+    tc = sets.empty() ? nullptr : sets.front();
+  }
+  const FieldValue* f = tc != nullptr ? tc->field("point") : nullptr;
+  if (f == nullptr || f->type() != FieldType::MFVec2f) {
+    kind = TexSource::generated;
+    return kNone;
+  }
+  kind = TexSource::points;
+  return f->get<FieldType::MFVec2f>();
+}
+
+std::span<const glm::vec3> coordPoints(const Node& geometry, std::vector<glm::vec3>& scratch) {
+  const NodePtr coord = geometry.sfnode("coord");
+  if (coord == nullptr) return {};
+  const FieldValue* f = coord->field("point");
+  if (f == nullptr) return {};
+  if (f->type() == FieldType::MFVec3f) return f->get<FieldType::MFVec3f>();
+  if (f->type() != FieldType::MFVec3d) return {};
+  const auto& d = f->get<FieldType::MFVec3d>();
+  scratch.assign(d.begin(), d.end());  // glm converts dvec3 -> vec3 explicitly per element
+  return scratch;
+}
+
 void ProblemLog::add(const std::string& message) {
   if (count_++ == 0) first_ = message;
 }
@@ -177,6 +228,57 @@ Mesh tessellate(const Node& geometry, Diagnostics* diag) {
       break;
     case NodeTypeId::Extrusion:
       m = tessellateExtrusion(geometry, log);
+      break;
+    case NodeTypeId::IndexedTriangleSet:  // X3D 4.0 clause 11 (geometry_x3d.cpp)
+      m = tessellateIndexedTriangleSet(geometry, log);
+      break;
+    case NodeTypeId::IndexedTriangleFanSet:
+      m = tessellateIndexedTriangleFanSet(geometry, log);
+      break;
+    case NodeTypeId::IndexedTriangleStripSet:
+      m = tessellateIndexedTriangleStripSet(geometry, log);
+      break;
+    case NodeTypeId::TriangleSet:
+      m = tessellateTriangleSet(geometry, log);
+      break;
+    case NodeTypeId::TriangleFanSet:
+      m = tessellateTriangleFanSet(geometry, log);
+      break;
+    case NodeTypeId::TriangleStripSet:
+      m = tessellateTriangleStripSet(geometry, log);
+      break;
+    case NodeTypeId::LineSet:
+      m = tessellateLineSet(geometry, log);
+      break;
+    case NodeTypeId::IndexedQuadSet:  // X3D 4.0 clause 32, CADGeometry
+      m = tessellateIndexedQuadSet(geometry, log);
+      break;
+    case NodeTypeId::QuadSet:
+      m = tessellateQuadSet(geometry, log);
+      break;
+    case NodeTypeId::Arc2D:  // X3D 4.0 clause 14, Geometry2D (geometry_2d.cpp)
+      m = tessellateArc2D(geometry, log);
+      break;
+    case NodeTypeId::ArcClose2D:
+      m = tessellateArcClose2D(geometry, log);
+      break;
+    case NodeTypeId::Circle2D:
+      m = tessellateCircle2D(geometry, log);
+      break;
+    case NodeTypeId::Disk2D:
+      m = tessellateDisk2D(geometry, log);
+      break;
+    case NodeTypeId::Polyline2D:
+      m = tessellatePolyline2D(geometry, log);
+      break;
+    case NodeTypeId::Polypoint2D:
+      m = tessellatePolypoint2D(geometry, log);
+      break;
+    case NodeTypeId::Rectangle2D:
+      m = tessellateRectangle2D(geometry, log);
+      break;
+    case NodeTypeId::TriangleSet2D:
+      m = tessellateTriangleSet2D(geometry, log);
       break;
     case NodeTypeId::OutlineGroup:  // GhostSpace extension: its outline (outline_geometry.cpp)
       m = triangulateOutline(fieldOr<FieldType::MFVec3f>(geometry, "outline"),

@@ -61,10 +61,10 @@ Mesh tessellateElevationGrid(const Node& node, ProblemLog& log) {
                             zSpacing * static_cast<float>(j)};
 
   PolygonSoup soup = polygonSoupOf(node, points);
-  const auto& colors = childArray<FieldType::MFColor>(node, "color", "color");
+  const ColorSource colors(node);  // Color or X3D ColorRGBA
   const auto& normals = childArray<FieldType::MFVec3f>(node, "normal", "vector");
   const auto& texPoints = childArray<FieldType::MFVec2f>(node, "texCoord", "point");
-  const bool haveColor = node.sfnode("color") != nullptr;
+  const bool haveColor = colors.present();
   const bool haveNormal = node.sfnode("normal") != nullptr;
   const bool haveTex = node.sfnode("texCoord") != nullptr;
   const bool colorPerVertex = node.get<FieldType::SFBool>("colorPerVertex", true);
@@ -96,7 +96,7 @@ Mesh tessellateElevationGrid(const Node& node, ProblemLog& log) {
         const std::size_t v = id(c);
         if (haveColor) {
           const std::size_t k = colorPerVertex ? v : q;
-          soup.colors.push_back(k < colors.size() ? rgba(colors[k]) : kWhite);
+          soup.colors.push_back(k < colors.size() ? colors[k] : kWhite);
         }
         if (haveNormal) {
           const std::size_t k = normalPerVertex ? v : q;

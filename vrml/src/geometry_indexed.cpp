@@ -44,9 +44,8 @@ std::string badIndex(const char* what, std::size_t pos, std::int32_t value, std:
          " is out of range (" + std::to_string(size) + " values)";
 }
 
-/// Default IndexedFaceSet texture coordinates (6.23): S along the longest side of the
-/// bounding box (from 0 to 1), T along the second longest (from 0 to its length / the
-/// longest); ties prefer X, then Y, then Z.
+}  // namespace
+
 void defaultTexCoords(PolygonSoup& soup) {
   Bounds box;
   for (std::uint32_t p : soup.corners) box.extend(soup.points[p]);
@@ -63,26 +62,24 @@ void defaultTexCoords(PolygonSoup& soup) {
   }
 }
 
-}  // namespace
-
 Mesh tessellateIndexedFaceSet(const Node& node, ProblemLog& log) {
-  const NodePtr coordNode = node.sfnode("coord");
-  if (coordNode == nullptr) return {};
-  const auto& points = fieldOr<FieldType::MFVec3f>(*coordNode, "point");
+  std::vector<glm::vec3> scratch;
+  const std::span<const glm::vec3> points = coordPoints(node, scratch);  // or CoordinateDouble
   const auto& coordIndex = fieldOr<FieldType::MFInt32>(node, "coordIndex");
   if (points.empty() || coordIndex.empty()) return {};
 
-  const auto& colors = childArray<FieldType::MFColor>(node, "color", "color");
+  const ColorSource colors(node);  // Color or X3D ColorRGBA
   const auto& colorIndex = fieldOr<FieldType::MFInt32>(node, "colorIndex");
   const bool colorPerVertex = node.get<FieldType::SFBool>("colorPerVertex", true);
   const auto& normals = childArray<FieldType::MFVec3f>(node, "normal", "vector");
   const auto& normalIndex = fieldOr<FieldType::MFInt32>(node, "normalIndex");
   const bool normalPerVertex = node.get<FieldType::SFBool>("normalPerVertex", true);
-  const auto& texPoints = childArray<FieldType::MFVec2f>(node, "texCoord", "point");
+  TexSource texKind = TexSource::none;
+  const auto& texPoints = texCoordPoints(node, texKind);
   const auto& texIndex = fieldOr<FieldType::MFInt32>(node, "texCoordIndex");
-  const bool haveColor = node.sfnode("color") != nullptr;
+  const bool haveColor = colors.present();
   const bool haveNormal = node.sfnode("normal") != nullptr;
-  const bool haveTex = node.sfnode("texCoord") != nullptr;
+  const bool haveTex = texKind == TexSource::points;
 
   PolygonSoup soup = polygonSoupOf(node, points);
   soup.corners.reserve(coordIndex.size());
@@ -100,7 +97,7 @@ Mesh tessellateIndexedFaceSet(const Node& node, ProblemLog& log) {
           return badIndex(colorPerVertex ? "colorIndex" : "colorIndex (per face)",
                           colorPerVertex ? i : face, c, colors.size());
         });
-      soup.colors.push_back(ok ? rgba(colors[static_cast<std::size_t>(c)]) : kWhite);
+      soup.colors.push_back(ok ? colors[static_cast<std::size_t>(c)] : kWhite);
     }
     if (haveNormal) {
       const std::int32_t n = resolve(normalPerVertex, normalIndex, coordIndex, i, face);
@@ -151,7 +148,9 @@ Mesh tessellateIndexedFaceSet(const Node& node, ProblemLog& log) {
     empty = true;
   }
   if (haveColor && colors.empty()) soup.colors.clear();
-  if (!haveTex || texPoints.empty()) {
+  if (texKind == TexSource::generated) {
+    soup.texCoords.clear();  // TextureCoordinateGenerator: computed elsewhere
+  } else if (!haveTex || texPoints.empty()) {
     soup.texCoords.clear();
     defaultTexCoords(soup);
   }
@@ -159,15 +158,14 @@ Mesh tessellateIndexedFaceSet(const Node& node, ProblemLog& log) {
 }
 
 Mesh tessellateIndexedLineSet(const Node& node, ProblemLog& log) {
-  const NodePtr coordNode = node.sfnode("coord");
-  if (coordNode == nullptr) return {};
-  const auto& points = fieldOr<FieldType::MFVec3f>(*coordNode, "point");
+  std::vector<glm::vec3> scratch;
+  const std::span<const glm::vec3> points = coordPoints(node, scratch);  // or CoordinateDouble
   const auto& coordIndex = fieldOr<FieldType::MFInt32>(node, "coordIndex");
   if (points.empty() || coordIndex.empty()) return {};
-  const auto& colors = childArray<FieldType::MFColor>(node, "color", "color");
+  const ColorSource colors(node);  // Color or X3D ColorRGBA
   const auto& colorIndex = fieldOr<FieldType::MFInt32>(node, "colorIndex");
   const bool colorPerVertex = node.get<FieldType::SFBool>("colorPerVertex", true);
-  const bool haveColor = node.sfnode("color") != nullptr && !colors.empty();
+  const bool haveColor = colors.present() && !colors.empty();
 
   MeshBuilder b(Primitive::lines, false, haveColor, false);
   constexpr std::uint32_t kNone = 0xffffffffu;
@@ -199,7 +197,7 @@ Mesh tessellateIndexedLineSet(const Node& node, ProblemLog& log) {
       if (!ok)
         log.addLazy(
             [&] { return badIndex("colorIndex", colorPerVertex ? i : line, c, colors.size()); });
-      v.color = ok ? rgba(colors[static_cast<std::size_t>(c)]) : kWhite;
+      v.color = ok ? colors[static_cast<std::size_t>(c)] : kWhite;
     }
     const std::uint32_t cur = b.add(v);
     if (prev != kNone && prev != cur) {
@@ -212,11 +210,10 @@ Mesh tessellateIndexedLineSet(const Node& node, ProblemLog& log) {
 }
 
 Mesh tessellatePointSet(const Node& node, ProblemLog& log) {
-  const NodePtr coordNode = node.sfnode("coord");
-  if (coordNode == nullptr) return {};
-  const auto& points = fieldOr<FieldType::MFVec3f>(*coordNode, "point");
-  const auto& colors = childArray<FieldType::MFColor>(node, "color", "color");
-  const bool haveColor = node.sfnode("color") != nullptr && !colors.empty();
+  std::vector<glm::vec3> scratch;
+  const std::span<const glm::vec3> points = coordPoints(node, scratch);  // or CoordinateDouble
+  const ColorSource colors(node);                                        // Color or X3D ColorRGBA
+  const bool haveColor = colors.present() && !colors.empty();
   if (haveColor && colors.size() < points.size())
     log.add("Color has " + std::to_string(colors.size()) + " colours for " +
             std::to_string(points.size()) + " points; the others are white");
@@ -231,7 +228,7 @@ Mesh tessellatePointSet(const Node& node, ProblemLog& log) {
     }
     Vertex v;
     v.position = points[i];
-    if (haveColor) v.color = i < colors.size() ? rgba(colors[i]) : kWhite;
+    if (haveColor) v.color = i < colors.size() ? colors[i] : kWhite;
     b.index(b.push(v));
   }
   return b.finish(false);

@@ -56,6 +56,42 @@ bool finite(const glm::vec2& v);
 bool finite(const glm::vec3& v);
 /// Colour with components clamped to [0, 1] (NaN becomes 0) and alpha 1.
 glm::vec4 rgba(const glm::vec3& c);
+/// Colour with all four components clamped to [0, 1] (NaN becomes 0).
+glm::vec4 rgba(const glm::vec4& c);
+
+/// The colours of a geometry node's `color` field, whichever node it holds: a Color
+/// (VRML97 6.12, MFColor `color`; alpha 1) or an X3D ColorRGBA (X3D 4.0 clause 11,
+/// MFColorRGBA `color`). Does not copy the node's array.
+class ColorSource {
+ public:
+  explicit ColorSource(const Node& geometry, std::string_view field = "color");
+  /// True when the field holds a node (a Color or ColorRGBA, possibly empty).
+  bool present() const { return present_; }
+  std::size_t size() const { return rgb_ != nullptr ? rgb_->size() : rgba_->size(); }
+  bool empty() const { return size() == 0; }
+  /// Colour `i` (< size()), clamped to [0, 1].
+  glm::vec4 operator[](std::size_t i) const {
+    return rgb_ != nullptr ? rgba((*rgb_)[i]) : rgba((*rgba_)[i]);
+  }
+
+ private:
+  bool present_ = false;
+  const std::vector<glm::vec3>* rgb_ = nullptr;
+  const std::vector<glm::vec4>* rgba_ = nullptr;
+};
+
+/// The texture coordinates of a geometry node's `texCoord` field: a TextureCoordinate's
+/// `point`, or the first TextureCoordinate of a MultiTextureCoordinate (X3D 4.0 clause 18).
+/// `kind` tells which case applies: none (NULL field: the node's default mapping),
+/// points (the returned array, possibly empty), generated (TextureCoordinateGenerator,
+/// X3D clause 18, or anything else: coordinates come from elsewhere, the mesh gets none).
+enum class TexSource : std::uint8_t { none, points, generated };
+const std::vector<glm::vec2>& texCoordPoints(const Node& geometry, TexSource& kind);
+
+/// The points of a geometry node's `coord` field: a Coordinate's MFVec3f `point`, or an
+/// X3D CoordinateDouble's MFVec3d `point` converted into `scratch` (rounded to float).
+/// Empty when the field is NULL or holds something else.
+std::span<const glm::vec3> coordPoints(const Node& geometry, std::vector<glm::vec3>& scratch);
 
 // ---------------------------------------------------------------------------------------
 // Problems
@@ -186,6 +222,11 @@ struct PolygonSoup {
   void endFace() { faceStart.push_back(static_cast<std::uint32_t>(corners.size())); }
 };
 
+/// Default IndexedFaceSet texture coordinates (6.23), appended per corner of `soup`: S
+/// along the longest side of the corners' bounding box (0 to 1), T along the second
+/// longest (0 to its length / the longest); ties prefer X, then Y, then Z.
+void defaultTexCoords(PolygonSoup& soup);
+
 /// A soup over `points` with the node's ccw, convex, solid and creaseAngle fields
 /// (IndexedFaceSet 6.23, ElevationGrid 6.18, Extrusion 6.19; an absent field keeps its
 /// VRML97 default: TRUE, TRUE, TRUE, 0 radians).
@@ -209,6 +250,27 @@ Mesh tessellateIndexedLineSet(const Node& node, ProblemLog& log);
 Mesh tessellatePointSet(const Node& node, ProblemLog& log);
 Mesh tessellateElevationGrid(const Node& node, ProblemLog& log);
 Mesh tessellateExtrusion(const Node& node, ProblemLog& log);
+
+// X3D 4.0 Rendering (clause 11) and CADGeometry (clause 32): geometry_x3d.cpp.
+Mesh tessellateIndexedTriangleSet(const Node& node, ProblemLog& log);
+Mesh tessellateIndexedTriangleFanSet(const Node& node, ProblemLog& log);
+Mesh tessellateIndexedTriangleStripSet(const Node& node, ProblemLog& log);
+Mesh tessellateTriangleSet(const Node& node, ProblemLog& log);
+Mesh tessellateTriangleFanSet(const Node& node, ProblemLog& log);
+Mesh tessellateTriangleStripSet(const Node& node, ProblemLog& log);
+Mesh tessellateIndexedQuadSet(const Node& node, ProblemLog& log);
+Mesh tessellateQuadSet(const Node& node, ProblemLog& log);
+Mesh tessellateLineSet(const Node& node, ProblemLog& log);
+
+// X3D 4.0 Geometry2D (clause 14): geometry_2d.cpp.
+Mesh tessellateArc2D(const Node& node, ProblemLog& log);
+Mesh tessellateArcClose2D(const Node& node, ProblemLog& log);
+Mesh tessellateCircle2D(const Node& node, ProblemLog& log);
+Mesh tessellateDisk2D(const Node& node, ProblemLog& log);
+Mesh tessellatePolyline2D(const Node& node, ProblemLog& log);
+Mesh tessellatePolypoint2D(const Node& node, ProblemLog& log);
+Mesh tessellateRectangle2D(const Node& node, ProblemLog& log);
+Mesh tessellateTriangleSet2D(const Node& node, ProblemLog& log);
 
 /// An orthonormal basis (u, v) of the plane normal to the unit vector `n`, with
 /// u x v = n: counter-clockwise in the (u, v) plane is counter-clockwise about n.

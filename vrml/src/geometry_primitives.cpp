@@ -1,6 +1,7 @@
 // The solid primitives: Box (6.4), Cone (6.11), Cylinder (6.15), Sphere (6.43), centred
 // on the origin, kRoundSegments around the Y axis. Curved surfaces get smooth normals,
-// flat faces and caps flat ones; texture coordinates follow each node's clause.
+// flat faces and caps flat ones; texture coordinates follow each node's clause. X3D's
+// `solid` field (X3D 4.0 clause 13, Geometry3D) is honoured; VRML97 nodes are always solid.
 //
 // Around the Y axis, angle a (0..2pi) is the point (-sin a, 0, -cos a): it starts at the
 // back (-Z) and turns counterclockwise seen from above (+Y), and s = a / 2pi, as the spec
@@ -23,6 +24,11 @@ constexpr int kSphereRings = kRoundSegments / 2;  // latitude bands of the Spher
 glm::vec3 around(double k, int n) {
   const double a = 2.0 * std::numbers::pi * k / n;
   return {static_cast<float>(-std::sin(a)), 0.0f, static_cast<float>(-std::cos(a))};
+}
+
+/// X3D's `solid` field of the primitives (X3D 4.0 clause 13; default TRUE; VRML97 has none).
+bool solidField(const Node& node) {
+  return node.get<FieldType::SFBool>("solid", true);
 }
 
 /// Reads a size or radius that the spec requires to be > 0: negative or non-finite
@@ -87,7 +93,7 @@ Mesh tessellateBox(const Node& node, ProblemLog& log) {
     b.triangle(v[0], v[1], v[2]);
     b.triangle(v[0], v[2], v[3]);
   }
-  return b.finish(true);
+  return b.finish(solidField(node));
 }
 
 Mesh tessellateCylinder(const Node& node, ProblemLog& log) {
@@ -113,7 +119,7 @@ Mesh tessellateCylinder(const Node& node, ProblemLog& log) {
   }
   if (node.get<FieldType::SFBool>("top", true)) disc(b, r, y, true);
   if (node.get<FieldType::SFBool>("bottom", true)) disc(b, r, -y, false);
-  return b.finish(true);
+  return b.finish(solidField(node));
 }
 
 Mesh tessellateCone(const Node& node, ProblemLog& log) {
@@ -157,7 +163,7 @@ Mesh tessellateCone(const Node& node, ProblemLog& log) {
     }
   }
   if (node.get<FieldType::SFBool>("bottom", true)) disc(b, r, -y, false);
-  return b.finish(true);
+  return b.finish(solidField(node));
 }
 
 Mesh tessellateSphere(const Node& node, ProblemLog& log) {
@@ -196,7 +202,7 @@ Mesh tessellateSphere(const Node& node, ProblemLog& log) {
     }
     std::swap(prev, cur);
   }
-  return b.finish(true);
+  return b.finish(solidField(node));
 }
 
 }  // namespace gs::vrml::geometry_detail

@@ -60,6 +60,7 @@ TypeMap buildTypes() {
     if (type->model == nullptr)
       throw std::logic_error("node table entry '" + std::string(e.name) + "' has no node model");
     type->script = type->model->id == NodeTypeId::Script;
+    type->userFields = type->script;
     try {
       type->fields = parser.parseInterfaceText(e.name);
     } catch (const ParseError& err) {
@@ -129,8 +130,18 @@ TypeMap buildX3dTypes() {
     type->extension = m.extension;
     type->model = &m;
     type->script = m.id == NodeTypeId::Script;
+    type->userFields = type->script || m.is(AbstractType::X3DProgrammableShaderObject);
     if (std::shared_ptr<const NodeType> vrml97 = builtInNodeType(m.name)) {
       type->fields = vrml97->fields;
+      // X3D made some VRML97 fields inputOutput (FontStyle.justify, ...): what X3D
+      // worlds route to and connect by IS.
+      for (FieldSpec& spec : type->fields)
+        if (const NodeFieldModel* f = m.findField(spec.name); f != nullptr) {
+          AccessType a;
+          if (accessTypeFromName(f->access, a) && a == AccessType::exposedField &&
+              spec.access == AccessType::field)
+            spec.access = a;
+        }
       for (const NodeFieldModel& f : m.fields)
         if (vrml97->findExact(f.name) < 0 && !aliasedInX3d(m.id, f.name))
           type->fields.push_back(specOf(f, name));

@@ -2,6 +2,7 @@
 // node, nodeBody, scriptBody), DEF/USE (clause 4.6.2), error recovery, and the public
 // entry points parseVrml() and loadVrmlFile().
 #include "parser_impl.hpp"
+#include "x3d_xml.hpp"
 
 #include <algorithm>
 #include <cstring>
@@ -184,7 +185,7 @@ NodePtr Parser::parseNodeStatement(Scope& scope, int depth, int& height, bool al
       // A back reference to a node still being read: allowed from a Script's fields
       // (clause 6.40), a cycle anywhere else. Stored without ownership so the cycle
       // does not keep the nodes alive.
-      if (!e.node->type().script)
+      if (!e.node->type().script && recursion_ != scriptValueRecursion_)
         lex_.fail(nt.offset,
                   "USE '" + std::string(name) + "' inside its own definition would make a cycle");
       height = 0;
@@ -345,7 +346,7 @@ void Parser::parseNodeBody(Scope& scope, const NodePtr& node, InstanceValues* in
   lex_.setOffset(open + 1);
   // The members a Script node declares (clause 6.40); made only for Script nodes.
   std::unique_ptr<ScriptBuild> scriptBuild;
-  if (node && node->type().script) scriptBuild = std::make_unique<ScriptBuild>();
+  if (node && node->type().userFields) scriptBuild = std::make_unique<ScriptBuild>();
   static ScriptBuild noScript;  // never written: only Script nodes declare members
   ScriptBuild& script = scriptBuild ? *scriptBuild : noScript;
   while (true) {
@@ -375,7 +376,7 @@ void Parser::parseNodeBody(Scope& scope, const NodePtr& node, InstanceValues* in
         continue;
       }
       lex_.consume(t);
-      if (node && ty.script && isAccessKeyword(t.text)) {
+      if (node && ty.userFields && isAccessKeyword(t.text)) {
         parseScriptDeclaration(scope, node, t, depth, height, script);
         continue;
       }
@@ -417,7 +418,7 @@ void Parser::parseNodeBody(Scope& scope, const NodePtr& node, InstanceValues* in
       FieldValue& dst = inst != nullptr           ? inst->values[ui]
                         : ui < node->fieldCount() ? node->fieldAt(ui)
                                                   : script.values[ui - node->fieldCount()];
-      const bool check = node && ty.builtIn && !ty.extension && !ty.script;
+      const bool check = node && ty.builtIn && !ty.extension && !ty.userFields;
       int h = 0;
       parseValue(spec.type, dst, scope, depth, h, check ? &ty : nullptr, spec.name);
       height = std::max(height, h);
@@ -438,9 +439,15 @@ FieldType Parser::parseFieldTypeName() {
   const Token tt = lex_.peek();
   const std::string_view typeName = lex_.expectId("a field type");
   FieldType ft = FieldType::SFBool;
-  if (!fieldTypeFromName(typeName, ft))
-    lex_.fail(tt.offset, "unknown field type '" + std::string(typeName) + "'");
-  return ft;
+  if (fieldTypeFromName(typeName, ft)) return ft;
+  // VRML 1.0's SFLong / MFLong, still found in castle's X3D shader worlds: SFInt32 / MFInt32.
+  if (typeName == "SFLong" || typeName == "MFLong") {
+    report(Severity::warning, tt.offset,
+           std::string(typeName) + " is VRML 1.0's name: read as " +
+               (typeName == "SFLong" ? "SFInt32" : "MFInt32"));
+    return typeName == "SFLong" ? FieldType::SFInt32 : FieldType::MFInt32;
+  }
+  lex_.fail(tt.offset, "unknown field type '" + std::string(typeName) + "'");
 }
 
 // scriptBodyElement ::= nodeBodyElement | restrictedInterfaceDeclaration |
@@ -459,7 +466,7 @@ void Parser::parseScriptDeclaration(Scope& scope, const NodePtr& node, const Tok
   std::string problem;
   Severity severity = Severity::error;
   const auto earlier = script.names.find(name);
-  if (a == AccessType::exposedField && !ctx_.x3d) {
+  if (a == AccessType::exposedField && !ctx_.x3d && node->type().script) {
     problem = "exposedField is not allowed in a Script node (clause 6.40)";
   } else if (earlier != script.names.end() &&
              script.type->fields[static_cast<std::size_t>(earlier->second)].access == a &&
@@ -497,7 +504,17 @@ void Parser::parseScriptDeclaration(Scope& scope, const NodePtr& node, const Tok
   }
   if (hasValue) {
     int h = 0;
-    parseValue(ft, script.values.back(), scope, depth, h);
+    // A node named directly as the value may be any node still being read (a Script's
+    // field USEs an ancestor: clause 6.40, castle's node_cycle_in_script.x3d).
+    const int outer = scriptValueRecursion_;
+    scriptValueRecursion_ = recursion_;
+    try {
+      parseValue(ft, script.values.back(), scope, depth, h);
+    } catch (...) {
+      scriptValueRecursion_ = outer;
+      throw;
+    }
+    scriptValueRecursion_ = outer;
     height = std::max(height, h);
   }
 }
@@ -604,7 +621,7 @@ void Parser::resync(const NodeType* type) {
     if (t.kind == Tok::id) {
       if (isStatementKeyword(t.text)) return;
       if (type != nullptr &&
-          (type->findField(t.text) >= 0 || (type->script && isAccessKeyword(t.text))))
+          (type->findField(t.text) >= 0 || (type->userFields && isAccessKeyword(t.text))))
         return;
     }
     lex_.skipBalanced();
@@ -707,6 +724,22 @@ void parseInto(std::string_view bytes, const std::string& url, Context& ctx, int
   if (bytes.size() > limits.maxInputBytes) {
     scene.diagnostics.error({url, 0, 0}, "input of " + std::to_string(bytes.size()) +
                                              " bytes exceeds ParseLimits::maxInputBytes");
+    return;
+  }
+  // X3D's XML encoding (the first byte that is no space or BOM is '<'): translated into
+  // Classic VRML text, which is parsed below; diagnostics are moved back onto the XML.
+  bool decided = false;
+  if (looksLikeXml(bytes, decided)) {
+    std::string classic;
+    XmlToClassic xml(classic, url, limits.maxNesting);
+    xml.skipTo(scene);
+    xml.feed(bytes);
+    xml.finish();
+    xml.addWarnings(scene);
+    if (xml.wroteHeader()) parseInto(classic, url, ctx, externDepth, scene);
+    xml.mapScene(scene);
+    scene.x3d.encoding = "XML";
+    if (xml.failed()) scene.diagnostics.items.push_back(xml.fatalError());
     return;
   }
   // Header (clause 4.2.2): "#VRML V2.0 utf8" on the first line. A UTF-8 byte order mark

@@ -246,8 +246,9 @@ class Parser {
   // x3d_statements.cpp: PROFILE, COMPONENT, UNIT, META, IMPORT, EXPORT (X3D 19776-2 4.x)
   /// True when `t` starts an X3D statement, which is then parsed.
   bool parseX3dStatement(Scope& scope, const Token& t);
-  /// The node type an X3D field-name alias stands for: Switch/LOD `children` (VRML97's
-  /// choice/level), Collision `enabled` (collide); -1 when none.
+  /// The member an X3D field-name alias stands for in `type`: Switch/LOD `children`
+  /// (VRML97's choice/level), Collision `enabled` (collide), ComposedCubeMapTexture's X3D 3
+  /// face names (back ... top for X3D 4's backTexture ... topTexture); -1 when none.
   static int x3dFieldAlias(const NodeType& type, std::string_view name);
 
   // route.cpp: ROUTE (clause 4.10)
@@ -263,12 +264,13 @@ class Parser {
   Context& ctx_;
   Diagnostics& diag_;
   int externDepth_ = 0;
-  int recursion_ = 0;            // parseNode frames on the stack (bounded by maxNesting)
-  bool tableMode_ = false;       // parsing the node table: no nodes allowed
-  bool giveUp_ = false;          // too many errors: stop
-  std::size_t errors_ = 0;       // errors reported by this parser
-  std::size_t suppressed_ = 0;   // diagnostics not stored (over the limit)
-  bool protosDeclared_ = false;  // no PROTO seen yet: node types are all built-in
+  int recursion_ = 0;              // parseNode frames on the stack (bounded by maxNesting)
+  int scriptValueRecursion_ = -1;  // recursion_ while a Script field's value is read
+  bool tableMode_ = false;         // parsing the node table: no nodes allowed
+  bool giveUp_ = false;            // too many errors: stop
+  std::size_t errors_ = 0;         // errors reported by this parser
+  std::size_t suppressed_ = 0;     // diagnostics not stored (over the limit)
+  bool protosDeclared_ = false;    // no PROTO seen yet: node types are all built-in
   struct TypeCacheEntry {
     std::shared_ptr<const NodeType> type;
   };

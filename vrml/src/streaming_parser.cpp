@@ -5,9 +5,12 @@
 // top Scope. A statement whose parse looked at the end of that text (Lexer::hitEnd) while
 // more may come is undone (lexer position, scene sizes, counters, DEF and PROTO names) and
 // retried once the unparsed text has grown by half; the others are committed at once.
+// X3D's XML encoding (first byte '<') goes through XmlToClassic, whose Classic VRML text is
+// what grows in that string; the parser's diagnostics are then moved back onto the XML.
 #include "vrml/streaming_parser.hpp"
 
 #include "parser_impl.hpp"
+#include "x3d_xml.hpp"
 
 #include <zlib.h>
 
@@ -93,7 +96,7 @@ class Gunzip {
       zs_.avail_out = static_cast<uInt>(buffer_.size());
       const int rc = inflate(&zs_, Z_NO_FLUSH);
       const std::size_t produced = buffer_.size() - zs_.avail_out;
-      if (produced > max_ - std::min(max_, out.size())) {
+      if (produced > max_ - std::min(max_, total_)) {
         tooLarge = true;
         throw ParseError(Diagnostic{Severity::error,
                                     {url_, 0, 0},
@@ -101,6 +104,7 @@ class Gunzip {
                                         " bytes (ParseLimits::maxInputBytes)"});
       }
       out.append(reinterpret_cast<const char*>(buffer_.data()), produced);
+      total_ += produced;
       if (rc == Z_STREAM_END) {
         memberDone_ = true;
         break;
@@ -118,6 +122,7 @@ class Gunzip {
 
   std::string url_;
   std::size_t max_;
+  std::size_t total_ = 0;  // bytes produced so far
   z_stream zs_{};
   bool started_ = false;
   bool memberDone_ = false;
@@ -151,7 +156,12 @@ struct StreamingParser::Impl {
   enum class Kind { unknown, plain, gzip } kind = Kind::unknown;
   std::string head;  // the first byte, while the kind is unknown
   std::unique_ptr<Gunzip> gunzip;
-  std::string text;          // the text so far (decompressed)
+  // The encoding, decided by the first byte of the text that is no space or BOM: '<' is
+  // X3D's XML, whose bytes go to `xml` (through `scratch`) and whose translation is `text`.
+  enum class Encoding { unknown, classic, xml } encoding = Encoding::unknown;
+  std::unique_ptr<parsing::XmlToClassic> xml;
+  std::string scratch;
+  std::string text;          // the text so far (decompressed; Classic VRML)
   std::size_t scanned = 0;   // bytes of `text` looked at for the two marks below
   std::size_t complete = 0;  // bytes up to and including the last one that ends tokens
   std::size_t firstEol = std::string::npos;  // the first CR or LF
@@ -168,6 +178,14 @@ struct StreamingParser::Impl {
   bool stopped = false;
 
   void append(std::string_view bytes);
+  std::string& sink() { return encoding == Encoding::xml ? scratch : text; }
+  bool decide(bool final);
+  void translated(bool final);
+  std::size_t parseMapped(bool final) {
+    const std::size_t added = parse(final);
+    if (xml) xml->mapScene(scene);
+    return added;
+  }
   void scanNew();
   bool readHeader(bool final);
   std::size_t parse(bool final);
@@ -217,7 +235,7 @@ void StreamingParser::Impl::append(std::string_view bytes) {
     }
   }
   if (kind == Kind::gzip) {
-    gunzip->feed(bytes, text);
+    gunzip->feed(bytes, sink());
     return;
   }
   plainBytes += bytes.size();
@@ -237,7 +255,36 @@ void StreamingParser::Impl::append(std::string_view bytes) {
         "input of " + std::to_string(plainBytes) + " bytes exceeds ParseLimits::maxInputBytes"};
     return;
   }
-  text.append(bytes);
+  sink().append(bytes);
+}
+
+// Decides the encoding once the text shows its first meaningful byte (or at the end);
+// false while it cannot yet. Switching to XML moves the bytes so far to the translator.
+bool StreamingParser::Impl::decide(bool final) {
+  if (encoding != Encoding::unknown) return true;
+  bool decided = false;
+  const bool isXml = parsing::looksLikeXml(text, decided);
+  if (!decided && !final) return false;
+  if (!isXml) {
+    encoding = Encoding::classic;
+    return true;
+  }
+  encoding = Encoding::xml;
+  scene.x3d.encoding = "XML";
+  xml = std::make_unique<parsing::XmlToClassic>(text, url, user.limits.maxNesting);
+  xml->skipTo(scene);
+  scratch = std::move(text);
+  text.clear();
+  return true;
+}
+
+// After XML bytes arrived in `scratch`: translates them, and adds the translator's
+// warnings (already at XML locations) to the scene.
+void StreamingParser::Impl::translated(bool final) {
+  xml->feed(scratch);
+  scratch.clear();
+  if (final) xml->finish();
+  xml->addWarnings(scene);
 }
 
 bool StreamingParser::Impl::readHeader(bool final) {
@@ -374,8 +421,23 @@ std::size_t StreamingParser::Impl::guarded(std::string_view bytes, bool final) {
       return 0;
     }
     if (stopped) return 0;
+    if (!decide(final)) return 0;
+    if (xml) {
+      translated(final);
+      if (xml->failed()) {
+        // An XML syntax error ends the parse; the statements translated before it stay.
+        std::size_t added = 0;
+        if (xml->wroteHeader()) {
+          scanNew();
+          added = parseMapped(true);
+        }
+        stop(xml->fatalError());
+        return added;
+      }
+      if (!xml->wroteHeader()) return 0;  // (at the end, expat has failed: no element)
+    }
     scanNew();
-    return parse(final);
+    return parseMapped(final);
   } catch (const std::bad_alloc&) {
     stop(Diagnostic{Severity::error, {url, 0, 0}, "out of memory"});
     return 0;
@@ -387,7 +449,7 @@ StreamingParser::StreamingParser(std::string url, ParseOptions options)
 
 bool StreamingParser::rebase(std::string url) {
   Impl& m = *impl_;
-  if (!m.text.empty() || !m.head.empty() || m.gunzip || m.parser) return false;
+  if (!m.text.empty() || !m.head.empty() || m.gunzip || m.parser || m.xml) return false;
   m.url = std::move(url);
   m.scene.url = m.url;
   return true;

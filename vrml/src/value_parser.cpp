@@ -311,6 +311,23 @@ void Parser::parseValue(FieldType t, FieldValue& out, Scope& scope, int depth, i
       }
       while (lex_.peekChar() != ']') {
         if (lex_.atEnd()) lex_.failExpected(lex_.offset(), "a node or ']'");
+        // PROTO, EXTERNPROTO and ROUTE statements among the nodes of an MFNode value (X3D's
+        // Classic VRML grammar, ISO/IEC 19776-2 A.3; castle and OpenVRML read them in
+        // VRML97 too): they belong to the enclosing scope.
+        if (const Token stmt = lex_.peek(); stmt.kind == Tok::id && !tableMode_) {
+          if (stmt.text == "PROTO") {
+            parseProto(scope);
+            continue;
+          }
+          if (stmt.text == "EXTERNPROTO") {
+            parseExternProto(scope);
+            continue;
+          }
+          if (stmt.text == "ROUTE") {
+            parseRoute(scope);
+            continue;
+          }
+        }
         NodePtr n = parseSFNode(scope, depth, height, parent, field);
         if (n) v.push_back(std::move(n));
       }

@@ -30,6 +30,12 @@ int Parser::x3dFieldAlias(const NodeType& type, std::string_view name) {
       return name == "children" ? type.findExact("level") : -1;
     case NodeTypeId::Collision:
       return name == "enabled" ? type.findExact("collide") : -1;
+    case NodeTypeId::ComposedCubeMapTexture:
+      // X3D 3's names of the six faces (X3D 4 added the "Texture" suffix).
+      if (name == "back" || name == "bottom" || name == "front" || name == "left" ||
+          name == "right" || name == "top")
+        return type.findExact(std::string(name) + "Texture");
+      return -1;
     default:
       return -1;
   }

@@ -12,7 +12,8 @@ namespace gs::formats {
 
 enum class InputKind {
   unknown,     // nothing recognised (the caller decides; the session parses it as VRML97)
-  world,       // VRML97: .wrl, .wrl.gz, .wrz; content "#VRML V2.0"
+  world,       // VRML97 (.wrl, .wrl.gz, .wrz; content "#VRML V2.0") and X3D (.x3d, .x3dv,
+               // .x3dj, .x3dz, .x3dvz, .x3d.gz, .x3dv.gz; content "#X3D V" or "<X3D")
   qnv,         // QNV stream: .qnv; content the QNV signature (docs/qnv-format.md)
   qnvTileset,  // QNV tileset index: .qnvt; content its signature "\x89QNT\r\n\x1a\n"
   ply,         // .ply[.gz]; content "ply" + line end

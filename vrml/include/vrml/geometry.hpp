@@ -2,7 +2,13 @@
 // Box 6.4, Cone 6.11, Cylinder 6.15, ElevationGrid 6.18, Extrusion 6.19,
 // IndexedFaceSet 6.23, IndexedLineSet 6.24, PointSet 6.36, Sphere 6.43; Text 6.47 gives an
 // empty mesh here: render::tessellateText draws it, render/text_mesh.hpp, so that vrml/
-// needs no font library). Pure computation in the node's local coordinates (metres).
+// needs no font library), and of the X3D 4.0 (ISO/IEC 19775-1) geometry the Immersive
+// profile and CADGeometry add: the Rendering component's IndexedTriangleSet,
+// IndexedTriangleFanSet, IndexedTriangleStripSet, TriangleSet, TriangleFanSet,
+// TriangleStripSet and LineSet (X3D clause 11), CADGeometry's IndexedQuadSet and QuadSet
+// (clause 32), and Geometry2D's Arc2D, ArcClose2D, Circle2D, Disk2D, Polyline2D,
+// Polypoint2D, Rectangle2D and TriangleSet2D (clause 14). Pure computation in the node's
+// local coordinates (metres).
 #pragma once
 
 #include "vrml/diagnostic.hpp"
@@ -67,9 +73,30 @@ struct Mesh {
 ///   normal, colour and texture coordinate are all equal.
 /// - Box, Cone, Cylinder and Sphere: kRoundSegments around the Y axis (Sphere: half as
 ///   many latitude bands, Cone kConeStacks stacks), flat caps, smooth sides, texture coordinates as
-///   clause 6 says; always solid.
+///   clause 6 says; solid unless X3D's `solid` field (X3D clause 13) is FALSE.
 /// - IndexedLineSet gives Primitive::lines (a polyline breaks at a bad index), PointSet
 ///   Primitive::points; both without normals or texture coordinates, solid = false.
+/// - Colours come from a Color node or an X3D ColorRGBA node (X3D clause 11, its alpha goes to
+///   Mesh::colors' w), in every node with a `color` field.
+/// - The X3D triangle and quad sets (X3D clauses 11, 32) honour ccw, solid, colorPerVertex,
+///   normalPerVertex, color, normal and texCoord (a TextureCoordinate, or the first of a
+///   MultiTextureCoordinate; a TextureCoordinateGenerator gives no texture coordinates;
+///   NULL gives IndexedFaceSet's bounding-box default). Per face means per triangle (per
+///   quad). Without a Normal node, normals are generated as X3D clause 11 says: with
+///   normalPerVertex TRUE the average of the faces sharing the vertex (the same
+///   coordinate index: non-indexed TriangleSet and QuadSet faces share none, so they come
+///   out flat), with FALSE flat per face. Fans and strips (fanCount, stripCount, or -1
+///   separated index runs) split into triangles keeping the first triangle's winding;
+///   quads into two triangles. LineSet gives Primitive::lines, a polyline per vertexCount.
+///   Counts below the minimum, counts past the end of coord and incomplete last faces are
+///   skipped and reported. Coordinates may also be X3D CoordinateDouble.
+/// - Geometry2D (X3D clause 14) lies in the Z = 0 plane: Arc2D, Circle2D, Polyline2D (and
+///   Disk2D with innerRadius = outerRadius) give lines, Polypoint2D points, the others
+///   triangles counter-clockwise about +Z with normals +Z, solid only when their `solid`
+///   field (default FALSE) says so. Arcs sweep counter-clockwise from startAngle to
+///   endAngle (equal angles: a full circle), kRoundSegments segments per full turn.
+///   Texture coordinates of the filled ones map the shape's bounding box onto [0,1]^2 (s
+///   along X, t along Y; for Rectangle2D the front face of a Box).
 /// - Degenerate polygons (fewer than 3 distinct points, zero area) are dropped silently;
 ///   ElevationGrid uses only the complete rows its height array holds; Extrusion caps are
 ///   made whenever beginCap / endCap ask for them (also on closed spines) and its grid is
@@ -93,7 +120,8 @@ Mesh triangulateOutline(const std::vector<glm::vec3>& points,
                         const std::vector<std::int32_t>& loopLengths, Diagnostics* diag = nullptr,
                         const SourceLocation& where = {});
 
-/// Number of segments used around the circumference of Cone, Cylinder and Sphere.
+/// Number of segments used around the circumference of Cone, Cylinder and Sphere, and per
+/// full turn of the Geometry2D arcs and circles.
 inline constexpr int kRoundSegments = 32;
 
 /// Number of stacks (rings up the side) of a Cone: 2 * (kConeStacks - 1) + 1 triangles per

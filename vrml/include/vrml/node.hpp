@@ -35,7 +35,10 @@ struct NodeType {
   std::vector<FieldSpec> fields;  // every field, exposedField, eventIn and eventOut
   bool builtIn = false;           // from the node table
   bool extension = false;         // a GhostSpace extension node (docs/vrml-extensions.md)
-  bool script = false;            // Script: user-declared interface allowed (clause 6.40)
+  bool script = false;            // Script (clause 6.40): run by the Script host
+  /// Nodes that declare fields of their own in their body: Script (clause 6.40) and X3D's
+  /// X3DProgrammableShaderObject nodes (ComposedShader, ShaderProgram, PackagedShader).
+  bool userFields = false;
   /// For PROTO / EXTERNPROTO types: the definition; null for built-ins.
   std::shared_ptr<const ProtoDefinition> proto;
   /// What the type is in X3D's terms (abstract types, component, level): the node model

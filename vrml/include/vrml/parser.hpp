@@ -1,5 +1,7 @@
 // The VRML97 reader: classic UTF-8 encoding (ISO/IEC 14772-1:1997 clause 5 and annex A
-// grammar), gzip read transparently. Safe for untrusted input: every error is a
+// grammar), gzip read transparently; also X3D's Classic VRML encoding (ISO/IEC 19776-2)
+// and X3D's XML encoding (ISO/IEC 19776-1, read through expat and translated into the
+// Classic encoding; external entities are never loaded). Safe for untrusted input: every error is a
 // Diagnostic with file:line:column, nesting and allocation are bounded.
 #pragma once
 
@@ -36,11 +38,13 @@ struct ParseOptions {
   std::function<void(const NodePtr&)> onRootNode;
 };
 
-/// Parses a VRML97 text (or gzip of one) held in memory. `url` names it in diagnostics
-/// and is the base for relative URLs. Never throws for bad content: a fatal syntax error
-/// ends the parse with an error Diagnostic and the nodes read before it are kept;
-/// recoverable problems (unknown node or field, unresolved EXTERNPROTO) are diagnosed and
-/// skipped. A "#VRML V1.0 ascii" header gives the error "VRML 1.0 is not supported".
+/// Parses a VRML97 or X3D text (or gzip of one) held in memory: text whose first byte
+/// after white space and a UTF-8 BOM is '<' is X3D XML (Scene::x3d.encoding "XML"), whose
+/// diagnostics and node locations give the XML's line and column. `url` names it in
+/// diagnostics and is the base for relative URLs. Never throws for bad content: a fatal syntax
+/// error ends the parse with an error Diagnostic and the nodes read before it are kept; recoverable
+/// problems (unknown node or field, unresolved EXTERNPROTO) are diagnosed and skipped. A "#VRML
+/// V1.0 ascii" header gives the error "VRML 1.0 is not supported".
 ///
 /// PROTO instances are expanded (see Node and proto.hpp); ROUTEs to their interfaces are
 /// flattened (see Route). A Script field that USEs the Script itself, or a Script it is

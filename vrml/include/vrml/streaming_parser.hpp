@@ -2,7 +2,10 @@
 // 1.2: a world written outlines first is shown while it loads). Each completed top-level
 // statement (node, PROTO, EXTERNPROTO, ROUTE) joins the scene as soon as its last byte
 // has arrived, so the scene grows in file order; the result after finish() is the Scene
-// that parseVrml() gives for the whole text.
+// that parseVrml() gives for the whole text. X3D's XML encoding (ISO/IEC 19776-1: the
+// first byte after white space and BOM is '<') is read too: it is translated into Classic
+// VRML text as it comes, each top-level element of <Scene> joining the scene once its end
+// tag has arrived, with diagnostics and node locations at the XML's line and column.
 #pragma once
 
 #include "vrml/parser.hpp"
@@ -47,7 +50,8 @@ class StreamingParser {
   /// Moves the scene out (after finish()).
   Scene takeScene();
 
-  /// Text bytes (after gunzip) received / consumed by complete statements.
+  /// Text bytes (after gunzip) received / consumed by complete statements (for XML: of
+  /// its Classic VRML translation).
   std::size_t textBytes() const;
   std::size_t parsedBytes() const;
   /// Whether parsing stopped for good (finish() called, or a fatal error).

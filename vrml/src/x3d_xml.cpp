@@ -1,0 +1,811 @@
+// X3D XML encoding -> Classic VRML text (see x3d_xml.hpp). The element stack says where
+// the parser is (outside X3D, in head, in Scene, in a buffered statement, skipping); the
+// elements of one top-level statement are kept as a tree of XNode until its end tag, then
+// written out: attributes converted by the field types of x3dNodeType() (or of the
+// declared PROTO, or of the Script's <field>), child elements grouped by containerField.
+#include "x3d_xml.hpp"
+
+#include "vrml/field.hpp"
+#include "vrml/node_model.hpp"
+#include "vrml/node_table.hpp"
+#include "x3d_values.hpp"
+
+#include <expat.h>
+
+#include <algorithm>
+#include <optional>
+#include <unordered_map>
+#include <unordered_set>
+
+namespace gs::vrml::parsing {
+
+namespace {
+
+bool xmlSpace(char c) {
+  return c == ' ' || c == '\t' || c == '\n' || c == '\r';
+}
+
+bool blank(std::string_view s) {
+  return std::all_of(s.begin(), s.end(), xmlSpace);
+}
+
+std::string_view trimLeft(std::string_view s) {
+  while (!s.empty() && xmlSpace(s.front())) s.remove_prefix(1);
+  return s;
+}
+
+/// One element of a statement being buffered.
+struct XNode {
+  std::string name;
+  int line = 0;
+  int column = 0;
+  std::vector<std::pair<std::string, std::string>> attrs;
+  std::vector<std::unique_ptr<XNode>> children;
+  std::string text;  // character data (kept for the nodes that take source text)
+  XNode* parent = nullptr;
+
+  const std::string* attr(std::string_view n) const {
+    for (const auto& [k, v] : attrs)
+      if (k == n) return &v;
+    return nullptr;
+  }
+  std::string attrOr(std::string_view n, std::string_view fallback = {}) const {
+    const std::string* v = attr(n);
+    return v != nullptr ? *v : std::string(fallback);
+  }
+};
+
+/// A PROTO or EXTERNPROTO declared in the file: its interface and where its instances go
+/// when they name no containerField (the first node of its body's).
+struct ProtoInfo {
+  std::vector<std::pair<std::string, FieldType>> fields;
+  std::string containerField = "children";
+
+  std::optional<FieldType> field(std::string_view n) const {
+    for (const auto& [k, t] : fields)
+      if (k == n) return t;
+    return std::nullopt;
+  }
+};
+
+// Nodes whose <field> children declare interface members (ISO/IEC 19776-1 5.3.7).
+bool declaresFields(std::string_view n) {
+  return n == "Script" || n == "ComposedShader" || n == "ShaderProgram" || n == "PackagedShader";
+}
+
+// Nodes whose text content is source code, added to `url`.
+bool takesSource(std::string_view n) {
+  return n == "Script" || n == "ShaderPart" || n == "ShaderProgram" || n == "PackagedShader";
+}
+
+// Attributes that are no field: XML bookkeeping and HTML-style ones.
+bool ignoredAttribute(std::string_view n) {
+  return n == "DEF" || n == "USE" || n == "containerField" || n == "class" || n == "id" ||
+         n == "style" || n.starts_with("xmlns") || n.find(':') != std::string_view::npos;
+}
+
+// A DEF/PROTO name as Classic VRML can write it (clause 5.2.3 of ISO/IEC 19776-2: no
+// spaces, quotes, '#', ',', '.', brackets or backslash; not starting with a digit or
+// sign). XML IDs such as "Cube.001" are written "Cube_001".
+std::string ident(std::string_view s) {
+  std::string out;
+  out.reserve(s.size() + 1);
+  for (char c : s) {
+    const auto u = static_cast<unsigned char>(c);
+    const bool bad = u <= 0x20 || u == 0x7f || c == '"' || c == '#' || c == '\'' || c == ',' ||
+                     c == '.' || c == '[' || c == '\\' || c == ']' || c == '{' || c == '}';
+    out += bad ? '_' : c;
+  }
+  if (out.empty() || (out[0] >= '0' && out[0] <= '9') || out[0] == '+' || out[0] == '-')
+    out.insert(out.begin(), '_');
+  return out;
+}
+
+// The Classic text of a field type's default value (for a <field> without value).
+std::string defaultText(FieldType t) {
+  if (isMultiValued(t)) return "[ ]";
+  switch (t) {
+    case FieldType::SFBool:
+      return "FALSE";
+    case FieldType::SFString:
+      return "\"\"";
+    case FieldType::SFRotation:
+      return "0 0 1 0";
+    case FieldType::SFImage:
+      return "0 0 0";
+    case FieldType::SFNode:
+      return "NULL";
+    case FieldType::SFMatrix3f:
+    case FieldType::SFMatrix3d:
+      return "1 0 0 0 1 0 0 0 1";
+    case FieldType::SFMatrix4f:
+    case FieldType::SFMatrix4d:
+      return "1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1";
+    case FieldType::SFVec2f:
+    case FieldType::SFVec2d:
+      return "0 0";
+    case FieldType::SFColor:
+    case FieldType::SFVec3f:
+    case FieldType::SFVec3d:
+      return "0 0 0";
+    case FieldType::SFVec4f:
+    case FieldType::SFVec4d:
+    case FieldType::SFColorRGBA:
+      return "0 0 0 0";
+    default:
+      return "0";
+  }
+}
+
+bool takesValue(std::string_view access) {
+  return access != "inputOnly" && access != "outputOnly" && access != "eventIn" &&
+         access != "eventOut";
+}
+
+// Whether `text` starts with a URL scheme ("ecmascript:", "data:", "http:").
+bool hasScheme(std::string_view text) {
+  if (text.empty() || !((text[0] >= 'a' && text[0] <= 'z') || (text[0] >= 'A' && text[0] <= 'Z')))
+    return false;
+  for (std::size_t i = 1; i < text.size() && i < 40; ++i) {
+    const char c = text[i];
+    if (c == ':') return true;
+    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                    c == '+' || c == '-' || c == '.';
+    if (!ok) return false;
+  }
+  return false;
+}
+
+struct LineEntry {
+  int classicLine;
+  int line;
+  int column;
+};
+
+}  // namespace
+
+struct XmlToClassic::Impl {
+  Impl(std::string& o, std::string u, int maxNesting)
+      : out(o), url(std::move(u)), maxDepth(std::max(maxNesting, 1) + 8) {
+    xp = XML_ParserCreate(nullptr);
+    if (xp == nullptr) throw std::bad_alloc();
+    XML_SetUserData(xp, this);
+    XML_SetElementHandler(xp, &Impl::onStart, &Impl::onEnd);
+    XML_SetCharacterDataHandler(xp, &Impl::onText);
+    // No external entity handler and no parameter-entity parsing: DTDs and external
+    // entities named by the document are never fetched.
+    XML_SetParamEntityParsing(xp, XML_PARAM_ENTITY_PARSING_NEVER);
+  }
+  ~Impl() { XML_ParserFree(xp); }
+  Impl(const Impl&) = delete;
+  Impl& operator=(const Impl&) = delete;
+
+  enum class Frame : std::uint8_t { x3d, head, scene, item, skip, buffered };
+
+  std::string& out;
+  std::string url;
+  int maxDepth;
+  XML_Parser xp = nullptr;
+  std::vector<Frame> stack;
+  std::unique_ptr<XNode> root;  // the statement being buffered
+  XNode* cur = nullptr;         // its open element
+  bool wroteHeader = false;
+  bool x3d3 = false;  // version 3.x: metadata nodes go to `metadata` by default
+  bool failed = false;
+  Diagnostic fatal;
+  std::vector<Diagnostic> warnings;
+  std::unordered_map<std::string, ProtoInfo> protos;
+  // Classic line -> XML location, one entry per element start (increasing lines).
+  std::vector<LineEntry> lines;
+  // What mapScene() has already moved onto the XML.
+  struct Done {
+    std::size_t diagnostics = 0, roots = 0, hidden = 0, routes = 0, imports = 0, exports = 0;
+  } done;
+  std::unordered_set<const Node*> mappedNodes;
+  std::size_t counted = 0;  // bytes of `out` whose line ends were counted
+  int classicLine = 1;      // line of out[counted]
+
+  // ---- expat callbacks -----------------------------------------------------------------
+
+  static void XMLCALL onStart(void* ud, const XML_Char* name, const XML_Char** atts) {
+    static_cast<Impl*>(ud)->start(name, atts);
+  }
+  static void XMLCALL onEnd(void* ud, const XML_Char* /*name*/) { static_cast<Impl*>(ud)->end(); }
+  static void XMLCALL onText(void* ud, const XML_Char* s, int len) {
+    Impl& m = *static_cast<Impl*>(ud);
+    if (m.failed || m.stack.empty() || m.stack.back() != Frame::buffered || m.cur == nullptr)
+      return;
+    if (takesSource(m.cur->name)) m.cur->text.append(s, static_cast<std::size_t>(len));
+  }
+
+  std::pair<int, int> here() const {
+    return {static_cast<int>(XML_GetCurrentLineNumber(xp)),
+            static_cast<int>(XML_GetCurrentColumnNumber(xp)) + 1};
+  }
+
+  void fail(int line, int column, std::string message) {
+    if (failed) return;
+    failed = true;
+    fatal = Diagnostic{Severity::error, {url, line, column}, std::move(message)};
+    XML_StopParser(xp, XML_FALSE);
+  }
+
+  void warn(const XNode& n, std::string message) {
+    warnings.push_back(Diagnostic{Severity::warning, {url, n.line, n.column}, std::move(message)});
+  }
+
+  void start(const XML_Char* name, const XML_Char** atts) {
+    if (failed) return;
+    const auto [line, column] = here();
+    const std::string_view n(name);
+    if (static_cast<int>(stack.size()) >= maxDepth) {
+      fail(line, column, "XML elements nested deeper than " + std::to_string(maxDepth) + " levels");
+      return;
+    }
+    if (stack.empty()) {
+      if (n != "X3D") {
+        fail(line, column, "expected the root element <X3D>, got <" + std::string(n) + ">");
+        return;
+      }
+      std::string version = "4.0", profile;
+      for (const XML_Char** a = atts; *a != nullptr; a += 2) {
+        if (std::string_view(a[0]) == "version") version = a[1];
+        x3d3 = version.starts_with('3');
+        if (std::string_view(a[0]) == "profile") profile = a[1];
+      }
+      beginLine(line, column);
+      out += "#X3D V";
+      for (char c : version) out += xmlSpace(c) ? '_' : c;
+      out += " utf8\n";
+      wroteHeader = true;
+      if (!profile.empty()) {
+        beginLine(line, column);
+        out += "PROFILE " + ident(profile) + "\n";
+      }
+      stack.push_back(Frame::x3d);
+      return;
+    }
+    switch (stack.back()) {
+      case Frame::x3d:
+        stack.push_back(n == "head" ? Frame::head : n == "Scene" ? Frame::scene : Frame::skip);
+        return;
+      case Frame::head:
+        headItem(n, atts, line, column);
+        stack.push_back(Frame::item);
+        return;
+      case Frame::item:
+      case Frame::skip:
+        stack.push_back(Frame::skip);
+        return;
+      case Frame::scene:
+      case Frame::buffered: {
+        auto node = std::make_unique<XNode>();
+        node->name = n;
+        node->line = line;
+        node->column = column;
+        for (const XML_Char** a = atts; *a != nullptr; a += 2) node->attrs.emplace_back(a[0], a[1]);
+        if (stack.back() == Frame::scene) {
+          root = std::move(node);
+          cur = root.get();
+        } else {
+          node->parent = cur;
+          cur->children.push_back(std::move(node));
+          cur = cur->children.back().get();
+        }
+        stack.push_back(Frame::buffered);
+        return;
+      }
+    }
+  }
+
+  void end() {
+    if (failed || stack.empty()) return;
+    const Frame f = stack.back();
+    stack.pop_back();
+    if (f != Frame::buffered) return;
+    if (cur == root.get()) {
+      statement(*root);
+      out += '\n';
+      root.reset();
+      cur = nullptr;
+    } else {
+      cur = cur->parent;
+    }
+  }
+
+  // <component>, <unit>, <meta> of <head>.
+  void headItem(std::string_view n, const XML_Char** atts, int line, int column) {
+    auto get = [atts](std::string_view key) {
+      for (const XML_Char** a = atts; *a != nullptr; a += 2)
+        if (std::string_view(a[0]) == key) return std::string(a[1]);
+      return std::string();
+    };
+    if (n == "component") {
+      beginLine(line, column);
+      out += "COMPONENT " + ident(get("name"));
+      const std::string level = get("level");
+      if (!blank(level)) {
+        out += ':';
+        for (char c : level) out += xmlSpace(c) ? '_' : c;
+      }
+    } else if (n == "unit") {
+      beginLine(line, column);
+      out += "UNIT " + ident(get("category")) + " " + ident(get("name")) + " ";
+      const std::string f = get("conversionFactor");
+      out += blank(f) ? std::string("1") : f;
+    } else if (n == "meta") {
+      beginLine(line, column);
+      out += "META ";
+      appendQuoted(out, get("name"));
+      out += ' ';
+      appendQuoted(out, get("content"));
+    } else {
+      return;
+    }
+    out += '\n';
+  }
+
+  // ---- output with line map ------------------------------------------------------------
+
+  void beginLine(int line, int column) {
+    if (!out.empty() && out.back() != '\n') out += '\n';
+    for (; counted < out.size(); ++counted)
+      if (out[counted] == '\n') ++classicLine;
+    if (!lines.empty() && lines.back().classicLine == classicLine)
+      lines.back() = {classicLine, line, column};
+    else
+      lines.push_back({classicLine, line, column});
+  }
+  void beginLine(const XNode& n) { beginLine(n.line, n.column); }
+
+  // ---- statements ----------------------------------------------------------------------
+
+  void statement(const XNode& n) {
+    if (n.name == "ROUTE") {
+      route(n);
+    } else if (n.name == "IMPORT") {
+      beginLine(n);
+      const std::string imported = n.attrOr("importedDEF");
+      out += "IMPORT " + ident(n.attrOr("inlineDEF")) + "." + ident(imported) + " AS " +
+             ident(n.attrOr("AS", imported));
+    } else if (n.name == "EXPORT") {
+      beginLine(n);
+      const std::string local = n.attrOr("localDEF");
+      out += "EXPORT " + ident(local) + " AS " + ident(n.attrOr("AS", local));
+    } else if (n.name == "ProtoDeclare") {
+      protoDeclare(n);
+    } else if (n.name == "ExternProtoDeclare") {
+      externProtoDeclare(n);
+    } else {
+      node(n);
+    }
+  }
+
+  void route(const XNode& n) {
+    beginLine(n);
+    out += "ROUTE " + ident(n.attrOr("fromNode")) + "." + ident(n.attrOr("fromField")) + " TO " +
+           ident(n.attrOr("toNode")) + "." + ident(n.attrOr("toField"));
+  }
+
+  // `accessType type name [value]` of a <field> in a ProtoInterface, ExternProtoDeclare,
+  // Script or shader. Returns the field's type when it names one.
+  std::optional<FieldType> fieldDeclaration(const XNode& f, bool withValue) {
+    beginLine(f);
+    const std::string access = f.attrOr("accessType", "initializeOnly");
+    const std::string typeName = f.attrOr("type");
+    out += ident(access) + " " + ident(typeName) + " " + ident(f.attrOr("name")) + " ";
+    FieldType t{};
+    const bool known = fieldTypeFromName(typeName, t);
+    if (!withValue || !takesValue(access)) return known ? std::optional(t) : std::nullopt;
+    const std::string* value = f.attr("value");
+    if (!known) {
+      if (value != nullptr) out += *value;
+      return std::nullopt;
+    }
+    if (t == FieldType::SFNode || t == FieldType::MFNode) {
+      std::vector<const XNode*> nodes;
+      for (const auto& c : f.children)
+        if (isNodeElement(*c)) nodes.push_back(c.get());
+      if (!nodes.empty()) {
+        nodeValue(t == FieldType::MFNode, nodes);
+        return t;
+      }
+    }
+    if (value != nullptr)
+      convertedValue(f, t, *value);
+    else
+      out += defaultText(t);
+    return t;
+  }
+
+  void convertedValue(const XNode& n, FieldType t, std::string_view value) {
+    std::string warning;
+    out += xmlValueToClassic(t, value, warning);
+    if (!warning.empty()) {
+      warn(n, std::move(warning));
+    } else if (t == FieldType::MFString) {
+      // In a double-quoted MFString only \" and \\ are escapes (ISO/IEC 19776-1 5.3.2).
+      for (std::size_t i = 0; i + 1 < value.size(); ++i) {
+        if (value[i] != '\\') continue;
+        const char next = value[i + 1];
+        if (next != '"' && next != '\\') {
+          warn(n, std::string("backslash before '") + next +
+                      "' in an MFString value escapes nothing: read as '" + next + "'");
+          break;
+        }
+        ++i;
+      }
+    }
+  }
+
+  // One node or a list of nodes as the value of an SFNode / MFNode field.
+  void nodeValue(bool list, const std::vector<const XNode*>& nodes) {
+    if (list) out += "[";
+    for (const XNode* c : nodes) {
+      if (!list && c != nodes.front()) out += " ";
+      node(*c);
+    }
+    if (list) out += " ]";
+  }
+
+  void protoDeclare(const XNode& n) {
+    const std::string name = ident(n.attrOr("name"));
+    ProtoInfo info;
+    beginLine(n);
+    out += "PROTO " + name + " [";
+    const XNode* body = nullptr;
+    for (const auto& c : n.children) {
+      if (c->name == "ProtoInterface") {
+        for (const auto& f : c->children) {
+          if (f->name != "field") continue;
+          if (auto t = fieldDeclaration(*f, true)) info.fields.emplace_back(f->attrOr("name"), *t);
+        }
+      } else if (c->name == "ProtoBody" && body == nullptr) {
+        body = c.get();
+      }
+    }
+    out += " ]\n{";
+    if (body != nullptr) {
+      for (const auto& c : body->children) {
+        if (!isNodeElement(*c)) continue;
+        info.containerField = containerFieldOf(*c, nullptr);
+        break;
+      }
+    }
+    // Declared before the body: an instance in the body is a (diagnosed) recursion.
+    protos[name] = info;
+    if (body != nullptr)
+      for (const auto& c : body->children) statement(*c);
+    out += "\n}";
+  }
+
+  void externProtoDeclare(const XNode& n) {
+    const std::string name = ident(n.attrOr("name"));
+    ProtoInfo info;
+    beginLine(n);
+    out += "EXTERNPROTO " + name + " [";
+    for (const auto& f : n.children) {
+      if (f->name != "field") continue;
+      if (auto t = fieldDeclaration(*f, false)) info.fields.emplace_back(f->attrOr("name"), *t);
+    }
+    out += " ] ";
+    convertedValue(n, FieldType::MFString, n.attrOr("url"));
+    protos[name] = info;
+  }
+
+  // Elements that are nodes (not statements or the XML encoding's structure).
+  static bool isNodeElement(const XNode& n) {
+    const std::string_view s = n.name;
+    return s != "ROUTE" && s != "IMPORT" && s != "EXPORT" && s != "ProtoDeclare" &&
+           s != "ExternProtoDeclare" && s != "IS" && s != "connect" && s != "field" &&
+           s != "fieldValue" && s != "ProtoInterface" && s != "ProtoBody";
+  }
+
+  // Where child `c` of `parent` goes: its containerField, else its type's default
+  // (X3D 3's `metadata` for metadata nodes in a 3.x file). A default the parent (of a
+  // known type) has no field for falls back to `metadata` for metadata nodes, else to
+  // `children` where the parent has it, as castle-model-viewer does (HAnimMotion in a
+  // Group, a 3.x MetadataSet in a 4.0 world).
+  std::string containerFieldOf(const XNode& c, const XNode* parent) const {
+    if (const std::string* cf = c.attr("containerField"); cf != nullptr && !blank(*cf)) return *cf;
+    std::string field = "children";
+    const bool metadata = c.name.starts_with("Metadata");
+    if (c.name == "ProtoInstance") {
+      auto it = protos.find(ident(c.attrOr("name")));
+      if (it != protos.end()) field = it->second.containerField;
+    } else if (metadata && x3d3) {
+      field = "metadata";
+    } else if (const NodeModel* m = nodeModel(c.name); m != nullptr && !m->containerField.empty()) {
+      field = m->containerField;
+    } else if (auto it = protos.find(c.name); it != protos.end()) {
+      field = it->second.containerField;
+    }
+    if (parent == nullptr || !knownFields(*parent) || fieldType(*parent, field)) return field;
+    if (metadata && fieldType(*parent, "metadata")) return "metadata";
+    if (fieldType(*parent, "children")) return "children";
+    return field;
+  }
+
+  // Whether the fields of node element `p` are all known here.
+  bool knownFields(const XNode& p) const {
+    if (p.name == "ProtoInstance") return protos.contains(ident(p.attrOr("name")));
+    return x3dNodeType(p.name) != nullptr || protos.contains(p.name);
+  }
+
+  // The type of field `f` of node element `p`; nothing when unknown.
+  std::optional<FieldType> fieldType(const XNode& p, std::string_view f) const {
+    if (p.name == "ProtoInstance") {
+      auto it = protos.find(ident(p.attrOr("name")));
+      if (it == protos.end()) return std::nullopt;
+      return it->second.field(f);
+    }
+    if (declaresFields(p.name)) {
+      for (const auto& c : p.children) {
+        if (c->name != "field" || c->attrOr("name") != f) continue;
+        FieldType t{};
+        if (fieldTypeFromName(c->attrOr("type"), t)) return t;
+      }
+    }
+    if (const auto type = x3dNodeType(p.name)) {
+      int i = type->findField(f);
+      if (i < 0 && p.name == "Collision" && f == "enabled") i = type->findExact("collide");
+      if (i >= 0) return type->fields[static_cast<std::size_t>(i)].type;
+      if (f == "children" && (p.name == "Switch" || p.name == "LOD")) return FieldType::MFNode;
+      return std::nullopt;
+    }
+    if (auto it = protos.find(p.name); it != protos.end()) return it->second.field(f);
+    return std::nullopt;
+  }
+
+  void node(const XNode& n) {
+    beginLine(n);
+    if (const std::string* use = n.attr("USE")) {
+      out += "USE " + ident(*use);
+      return;
+    }
+    if (const std::string* def = n.attr("DEF"); def != nullptr && !blank(*def))
+      out += "DEF " + ident(*def) + " ";
+    const bool instance = n.name == "ProtoInstance";
+    out += instance ? ident(n.attrOr("name")) : ident(n.name);
+    out += " {";
+    // Source text of Scripts and shaders: one more url entry.
+    std::string source;
+    if (takesSource(n.name) && !blank(n.text)) {
+      std::string_view text = trimLeft(n.text);
+      while (!text.empty() && xmlSpace(text.back())) text.remove_suffix(1);
+      if (!hasScheme(text)) source = n.name == "Script" ? "ecmascript:" : "data:text/plain,";
+      source += text;
+    }
+    bool urlDone = false;
+    if (!instance) {
+      for (const auto& [k, v] : n.attrs) {
+        if (ignoredAttribute(k)) continue;
+        out += " " + k + " ";
+        const auto t = fieldType(n, k);
+        if (!t) {
+          appendQuoted(out, v);
+          continue;
+        }
+        convertedValue(n, *t, v);
+        if (k == "url" && *t == FieldType::MFString && !source.empty()) {
+          // "[ ... ]": the source goes before the closing bracket.
+          out.resize(out.size() - 1);
+          appendQuoted(out, source);
+          out += " ]";
+          urlDone = true;
+        }
+      }
+    }
+    if (!source.empty() && !urlDone) {
+      out += " url [ ";
+      appendQuoted(out, source);
+      out += " ]";
+    }
+    // Field declarations (Script, shaders), values of a PROTO instance, IS.
+    std::vector<const XNode*> routes;
+    std::vector<std::pair<std::string, std::vector<const XNode*>>> groups;
+    for (const auto& cp : n.children) {
+      const XNode& c = *cp;
+      if (c.name == "field") {
+        if (declaresFields(n.name))
+          fieldDeclaration(c, true);
+        else
+          warn(c, "<field> is only allowed in Script, shader nodes and PROTO interfaces: ignored");
+      } else if (c.name == "fieldValue") {
+        if (instance)
+          fieldValue(n, c);
+        else
+          warn(c, "<fieldValue> is only allowed in a ProtoInstance: ignored");
+      } else if (c.name == "IS") {
+        for (const auto& k : c.children) {
+          if (k->name != "connect") continue;
+          beginLine(*k);
+          out += ident(k->attrOr("nodeField")) + " IS " + ident(k->attrOr("protoField"));
+        }
+      } else if (c.name == "ROUTE" || c.name == "ProtoDeclare" || c.name == "ExternProtoDeclare") {
+        routes.push_back(&c);
+      } else if (!isNodeElement(c)) {
+        warn(c, "<" + c.name + "> is not allowed in a node: ignored");
+      } else {
+        const std::string field = containerFieldOf(c, &n);
+        auto it = std::find_if(groups.begin(), groups.end(),
+                               [&](const auto& g) { return g.first == field; });
+        if (it == groups.end()) {
+          groups.emplace_back(field, std::vector<const XNode*>{});
+          it = groups.end() - 1;
+        }
+        it->second.push_back(&c);
+      }
+    }
+    for (const auto& [field, nodes] : groups) {
+      beginLine(*nodes.front());
+      out += ident(field) + " ";
+      const auto t = fieldType(n, field);
+      nodeValue(!t || *t == FieldType::MFNode || nodes.size() > 1, nodes);
+    }
+    // ROUTEs and PROTOs last, after the DEFs of the children they may name.
+    for (const XNode* r : routes) statement(*r);
+    out += " }";
+  }
+
+  // <fieldValue name value> or with node children, in a ProtoInstance.
+  void fieldValue(const XNode& inst, const XNode& fv) {
+    beginLine(fv);
+    const std::string name = fv.attrOr("name");
+    out += ident(name) + " ";
+    const auto t = fieldType(inst, name);
+    std::vector<const XNode*> nodes;
+    for (const auto& c : fv.children)
+      if (isNodeElement(*c)) nodes.push_back(c.get());
+    if (!nodes.empty()) {
+      nodeValue(!t || *t == FieldType::MFNode || nodes.size() > 1, nodes);
+      return;
+    }
+    const std::string* value = fv.attr("value");
+    if (t)
+      convertedValue(fv, *t, value != nullptr ? std::string_view(*value) : std::string_view());
+    else if (value != nullptr)
+      out += *value;  // an undeclared PROTO: the parser reports it
+  }
+};
+
+bool looksLikeXml(std::string_view text, bool& decided) {
+  std::size_t i = 0;
+  while (i < text.size()) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (xmlSpace(static_cast<char>(c)) || c == 0xEF || c == 0xBB || c == 0xBF) {
+      ++i;
+      continue;
+    }
+    decided = true;
+    return c == '<';
+  }
+  decided = false;
+  return false;
+}
+
+XmlToClassic::XmlToClassic(std::string& out, std::string url, int maxNesting)
+    : impl_(std::make_unique<Impl>(out, std::move(url), maxNesting)) {}
+
+XmlToClassic::~XmlToClassic() = default;
+
+bool XmlToClassic::feed(std::string_view bytes) {
+  Impl& m = *impl_;
+  while (!m.failed && !bytes.empty()) {
+    constexpr std::size_t kMax = 1u << 30;  // XML_Parse takes an int length
+    const std::size_t n = std::min(bytes.size(), kMax);
+    if (XML_Parse(m.xp, bytes.data(), static_cast<int>(n), XML_FALSE) == XML_STATUS_ERROR &&
+        !m.failed) {
+      const auto [line, column] = m.here();
+      m.fail(line, column,
+             std::string("XML syntax error: ") + XML_ErrorString(XML_GetErrorCode(m.xp)));
+    }
+    bytes.remove_prefix(n);
+  }
+  return !m.failed;
+}
+
+bool XmlToClassic::finish() {
+  Impl& m = *impl_;
+  if (m.failed) return false;
+  if (XML_Parse(m.xp, "", 0, XML_TRUE) == XML_STATUS_ERROR && !m.failed) {
+    const auto [line, column] = m.here();
+    m.fail(line, column,
+           std::string("XML syntax error: ") + XML_ErrorString(XML_GetErrorCode(m.xp)));
+  }
+  return !m.failed;
+}
+
+bool XmlToClassic::wroteHeader() const {
+  return impl_->wroteHeader;
+}
+
+bool XmlToClassic::failed() const {
+  return impl_->failed;
+}
+
+const Diagnostic& XmlToClassic::fatalError() const {
+  return impl_->fatal;
+}
+
+std::pair<int, int> XmlToClassic::xmlLocation(int classicLine) const {
+  const auto& lines = impl_->lines;
+  auto it = std::upper_bound(lines.begin(), lines.end(), classicLine,
+                             [](int l, const LineEntry& e) { return l < e.classicLine; });
+  if (it == lines.begin()) return {0, 0};
+  --it;
+  return {it->line, it->column};
+}
+
+void XmlToClassic::skipTo(const Scene& scene) {
+  Impl::Done& d = impl_->done;
+  d.diagnostics = scene.diagnostics.items.size();
+  d.roots = scene.rootNodes.size();
+  d.hidden = scene.hiddenNodes.size();
+  d.routes = scene.routes.size();
+  d.imports = scene.x3d.imports.size();
+  d.exports = scene.x3d.exports.size();
+}
+
+void XmlToClassic::mapScene(Scene& scene) {
+  Impl& m = *impl_;
+  Impl::Done& d = m.done;
+  auto map = [&](SourceLocation& l) {
+    if (l.file != m.url || l.line <= 0) return;
+    const auto [line, column] = xmlLocation(l.line);
+    if (line <= 0) return;
+    l.line = line;
+    l.column = column;
+  };
+  // Each vector only grows while parsing; a smaller one was replaced (rejected input).
+  auto from = [](std::size_t& done, std::size_t size) {
+    const std::size_t f = std::min(done, size);
+    done = size;
+    return f;
+  };
+  auto& items = scene.diagnostics.items;
+  for (std::size_t i = from(d.diagnostics, items.size()); i < items.size(); ++i)
+    map(items[i].location);
+  std::vector<Node*> todo;
+  auto push = [&](const NodePtr& n) {
+    if (n && m.mappedNodes.insert(n.get()).second) todo.push_back(n.get());
+  };
+  for (std::size_t i = from(d.roots, scene.rootNodes.size()); i < scene.rootNodes.size(); ++i)
+    push(scene.rootNodes[i]);
+  for (std::size_t i = from(d.hidden, scene.hiddenNodes.size()); i < scene.hiddenNodes.size(); ++i)
+    push(scene.hiddenNodes[i]);
+  for (std::size_t i = from(d.routes, scene.routes.size()); i < scene.routes.size(); ++i) {
+    Route& r = scene.routes[i];
+    map(r.location);
+    push(r.fromNode);
+    push(r.toNode);
+  }
+  auto& imports = scene.x3d.imports;
+  for (std::size_t i = from(d.imports, imports.size()); i < imports.size(); ++i)
+    map(imports[i].location);
+  auto& exports = scene.x3d.exports;
+  for (std::size_t i = from(d.exports, exports.size()); i < exports.size(); ++i)
+    map(exports[i].location);
+  while (!todo.empty()) {
+    Node* n = todo.back();
+    todo.pop_back();
+    map(n->location);
+    for (std::size_t i = 0; i < n->fieldCount(); ++i) {
+      const FieldValue& v = n->fieldAt(i);
+      if (v.type() == FieldType::SFNode)
+        push(v.get<FieldType::SFNode>());
+      else if (v.type() == FieldType::MFNode)
+        for (const NodePtr& c : v.get<FieldType::MFNode>()) push(c);
+    }
+  }
+}
+
+void XmlToClassic::addWarnings(Scene& scene) {
+  mapScene(scene);
+  auto& w = impl_->warnings;
+  for (Diagnostic& x : w) scene.diagnostics.items.push_back(std::move(x));
+  w.clear();
+  impl_->done.diagnostics = scene.diagnostics.items.size();
+}
+
+}  // namespace gs::vrml::parsing
