@@ -4,6 +4,7 @@
 #include "app/layout.hpp"
 #include "app/options.hpp"
 #include "encode_tileset.hpp"
+#include "option_table.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -80,7 +81,7 @@ struct Parsed {
 
 Parsed parseArguments(int argc, char** argv) {
   Parsed r;
-  Options& o = r.options;
+  Arguments a;  // every option's value (option_table.cpp)
   CLI::App cli{kDescription, "ghostspace"};
   cli.set_version_flag("--version", std::string("ghostspace ") + GS_VERSION);
   cli.footer(
@@ -92,95 +93,8 @@ Parsed parseArguments(int argc, char** argv) {
       "  ghostspace --snapshot part.png --max-rate 1250000 --snapshot-at 2s http://host/head.qnv\n"
       "  ghostspace encode CThead.nhdr --fraction 0.091 -o head.qnv\n"
       "  ghostspace info head.qnv                      header, packets, magnitude histogram");
-  std::string size;
-  cli.add_option("--snapshot", o.snapshotPath,
-                 "Render INPUT off-screen (no display needed) from its bound Viewpoint and "
-                 "write a PNG to this path")
-      ->type_name("OUT.png");
-  cli.add_option("--size", size, "Image or window size in pixels, e.g. 800x600")->type_name("WxH");
-  cli.add_option("--frames", o.frames, "Close the window after this many frames (testing)")
-      ->check(CLI::NonNegativeNumber);
-  std::string lodText;
-  cli.add_option("--lod", lodText,
-                 "Level of detail: the fraction of every QNV stream drawn, largest vectors "
-                 "first (0 < F <= 1); a list F1,F2,... gives one per viewport")
-      ->type_name("F[,F...]");
-  std::vector<std::string> layoutNames, modeNames;
-  for (const LayoutInfo& l : kLayouts) layoutNames.emplace_back(l.name);
-  for (const render::RenderModeInfo& m : render::kRenderModes) modeNames.emplace_back(m.name);
-  std::string layoutText(layoutName(o.layout)), modeText(render::renderModeName(o.mode));
-  cli.add_option("--layout", layoutText,
-                 "Viewports: 1x1 (default), 2x1 (two side by side) or 2x2; the INPUTs fill "
-                 "them in order (one INPUT fills them all)")
-      ->check(CLI::IsMember(layoutNames));
-  cli.add_option("--mode", modeText,
-                 "polygons (default), splats (polygons drawn as QNV splats) or outlines "
-                 "(OutlineGroup outlines only)")
-      ->check(CLI::IsMember(modeNames));
-  std::string splatPathText = render::splatPathName(render::defaultSplatPath());
-  cli.add_option("--splat-path", splatPathText,
-                 "How splats are drawn: auto (default: cpu where GL is llvmpipe or softpipe, "
-                 "else geometry), geometry (a geometry shader makes each patch), points (point "
-                 "sprites) or cpu (a multi-threaded CPU rasterizer; render/README.md)")
-      ->check(CLI::IsMember(std::vector<std::string>{"auto", "geometry", "points", "cpu"}));
-  cli.add_option("--script", o.script,
-                 "Window: run the UI actions of FILE between frames (layout, open, viewport, "
-                 "lod, mode, wait-loaded, frames, screenshot, quit; see app/window_script.hpp)")
-      ->type_name("FILE");
-  cli.add_option("--frame-log", o.frameLog,
-                 "Window: write one CSV line per frame (seconds, frame and work ms, resident "
-                 "KiB, vectors and level of detail per viewport) to FILE")
-      ->type_name("FILE");
-  cli.add_flag("--new-instance", o.newInstance,
-               "Open a window of its own even when one is running (by default the INPUTs go "
-               "to the running window, each in a new viewport)");
-  cli.add_flag("--fit", o.fit, "Frame the whole scene instead of using the bound Viewpoint");
-  cli.add_option("--max-rate", o.maxRate,
-                 "Deliver at most this many bytes per second per transfer (emulates a slow "
-                 "link; files and URLs alike)")
-      ->type_name("BYTES_PER_S")
-      ->check(CLI::NonNegativeNumber);
-  cli.add_option("--tileset-memory", o.tilesetMemoryMb,
-                 "Megabytes of decoded vectors a QNV tileset keeps at most (default 512); "
-                 "bricks far from every view are dropped beyond it (docs/tilesets.md)")
-      ->type_name("MB")
-      ->check(CLI::PositiveNumber);
-  std::string snapshotAt;
-  cli.add_option("--snapshot-at", snapshotAt,
-                 "With --snapshot: render what arrived after this many bytes (e.g. 200000, "
-                 "512k, 2M) or seconds (e.g. 2.5s) instead of waiting for the whole input")
-      ->type_name("BYTES|Ts");
-  cli.add_option("--stall-timeout", o.stallTimeout,
-                 "Seconds without a byte after which a transfer fails (default 20)")
-      ->type_name("S")
-      ->check(CLI::Range(0.05, 3600.0));
-  std::string timeText;
-  cli.add_option("--time", timeText,
-                 "SFTime (seconds since 1970) the world is loaded and shown at; T0:DT:N with "
-                 "--snapshot writes N frames DT seconds apart (OUT-0000.png ...). Default: the "
-                 "wall clock in a window, 0 for --snapshot")
-      ->type_name("T|T0:DT:N");
-  cli.add_option("--time-step", o.time.step,
-                 "Fixed step of the event cascade between times, seconds (default 1/60)")
-      ->type_name("S")
-      ->check(CLI::PositiveNumber);
-  cli.add_option("--trace-events", o.time.traceFile,
-                 "Write every event as a JSON line (time, node, field, value) to FILE")
-      ->type_name("FILE");
-  bool noScripts = false;
-  cli.add_flag("--no-scripts", noScripts, "Script nodes do not run");
-  cli.add_option("--script-time-limit", o.time.scriptLimits.callSeconds,
-                 "Seconds one Script call may run before the Script is stopped (default 0.5)")
-      ->type_name("S")
-      ->check(CLI::PositiveNumber);
-  double scriptMegabytes = static_cast<double>(o.time.scriptLimits.heapBytes) / 1048576.0;
-  cli.add_option("--script-memory-limit", scriptMegabytes,
-                 "Megabytes one Script's heap may use before it is stopped (default 64)")
-      ->type_name("MB")
-      ->check(CLI::Range(1.0, 65536.0));
-  bool noProgressBar = false;
-  cli.add_flag("--no-progress", noProgressBar, "No progress bar on the terminal");
-  cli.add_option("INPUT", o.inputs,
+  registerOptions(OptionScope::main, cli, a);
+  cli.add_option("INPUT", a.options.inputs,
                  "Worlds to open, files or http(s):// URLs: VRML97 (.wrl, .wrl.gz, .wrz), X3D "
                  "(.x3dv, .x3d, .x3dz, .x3dvz), QNV "
                  "streams (.qnv), and local meshes (.ply, .obj, .gltf, .glb) or volumes "
@@ -191,62 +105,17 @@ Parsed parseArguments(int argc, char** argv) {
                                       "triangles, bounding box, diagnostics, parse time");
   std::vector<std::string> infoInputs;
   info->add_option("INPUT", infoInputs, "VRML97 world or .qnv stream")->required();
-  info->add_flag("--exit-zero", o.infoExitZero,
-                 "Exit 0 when every INPUT was read, even when a world has errors (by default "
-                 "a world with errors makes the exit status 1)");
+  registerOptions(OptionScope::info, *info, a);
 
-  EncodeOptions& enc = o.encode;
   CLI::App* encode = cli.add_subcommand(
       "encode",
       "Encode INPUT as a QNV stream (docs/qnv-format.md): a VRML97 world, a mesh (.ply, .obj, "
       ".gltf, .glb) or a volume (.nrrd, .nhdr, .nii, .nii.gz, or raw with --raw-dims)");
   std::string encodeInput;
   encode->add_option("INPUT", encodeInput, "World, mesh or volume")->required();
-  encode->add_option("-o,--output", enc.output, "The .qnv file to write")->type_name("OUT.qnv");
-  addTilesetOptions(*encode, enc);  // encode_tileset.cpp
-  auto* fraction = encode
-                       ->add_option("--fraction", enc.fraction,
-                                    "Keep the largest F of all triangles or voxels (0 < F <= 1)")
-                       ->type_name("F");
-  encode->add_option("--count", enc.count, "Keep the N largest vectors")
-      ->type_name("N")
-      ->excludes(fraction);
-  encode
-      ->add_option(
-          "--packet-bytes", enc.packetBytes,
-          "Record bytes per packet, a multiple of 8 (48 = the paper's ATM cell; default 1376 "
-          "fits a 1400-byte datagram)")
-      ->type_name("B");
-  encode->add_flag("--compact", enc.compact,
-                   "zstd-compress each packet (spatially sorted, delta-coded)");
-  encode
-      ->add_option("--coding", enc.coding,
-                   "Packet coding: plain (64-bit records), compact (zstd), entropy (rANS, "
-                   "smallest) or entropy-fast (rANS, fast layout; docs/qnv-format.md)")
-      ->check(CLI::IsMember({"plain", "compact", "entropy", "entropy-fast"}))
-      ->type_name("NAME");
-  encode->add_option("--window", enc.valueWindow, "Volumes: keep voxels with values in LO..HI")
-      ->type_name("LO:HI");
-  encode->add_option("--magnitude", enc.magnitude,
-                     "Magnitude quantization: log (default) or linear");
-  encode->add_option("--raw-dims", enc.rawDims, "INPUT is raw voxels of this size")
-      ->type_name("X,Y,Z");
-  encode->add_option("--raw-type", enc.rawType, "Raw sample type: uint8 int16 float32 ...");
-  encode->add_option("--raw-spacing", enc.rawSpacing, "Raw voxel spacing")->type_name("SX,SY,SZ");
-  encode->add_flag("--raw-big-endian", enc.rawBigEndian, "Raw samples are big-endian");
-  encode->add_option("--raw-skip", enc.rawHeaderBytes, "Bytes to skip before the raw samples");
-  encode->add_flag("--outline", enc.outline,
-                   "Write OUT as a VRML97 world of outline groups, outlines first "
-                   "(docs/vrml-extensions.md) instead of a .qnv stream");
-  encode
-      ->add_option("--max-angle", enc.maxAngle,
-                   "With --outline: largest angle in degrees between a triangle's normal and "
-                   "its group's (default 30)")
-      ->type_name("DEG")
-      ->check(CLI::Range(0.0, 180.0));
-  bool noProgress = false;
-  encode->add_flag("--no-progress", noProgress, "No progress bar on the terminal");
+  registerOptions(OptionScope::encode, *encode, a);
 
+  Options& o = a.options;
   CLI::App* tileset = addTilesetCommand(cli, o.tilesetDir);  // encode_tileset.cpp
 
   try {
@@ -268,18 +137,24 @@ Parsed parseArguments(int argc, char** argv) {
     r.exitCode = 2;
     return r;
   }
-  o.layout = layoutFromName(layoutText).value_or(Layout::single);  // checked by IsMember
-  o.mode = render::renderModeFromName(modeText).value_or(render::RenderMode::polygons);
-  if (render::SplatPath path; render::parseSplatPath(splatPathText.c_str(), path))
+  if (a.helpMarkdown) {
+    std::fputs(optionsMarkdown().c_str(), stdout);
+    r.exitCode = 0;
+    return r;
+  }
+  o.layout = layoutFromName(a.layout).value_or(Layout::single);  // checked by IsMember
+  o.mode = render::renderModeFromName(a.mode).value_or(render::RenderMode::polygons);
+  if (render::SplatPath path; render::parseSplatPath(a.splatPath.c_str(), path))
     render::setDefaultSplatPath(path);  // checked by IsMember
-  if (!size.empty() && !parseSize(size, o.width, o.height)) {
+  if (!a.size.empty() && !parseSize(a.size, o.width, o.height)) {
     std::fprintf(stderr, "ghostspace: --size: expected WxH such as 800x600, got '%s'\n",
-                 size.c_str());
+                 a.size.c_str());
     r.exitCode = 2;
     return r;
   }
-  enc.progress = !noProgress;
-  if (!lodText.empty()) {
+  o.encode.progress = !a.encodeNoProgress;
+  if (cli.count("--lod") > 0 && !a.lod.empty()) {
+    const std::string& lodText = a.lod;
     // "F" or "F1,F2,...": each 0 < F <= 1.
     std::size_t at = 0;
     for (;;) {
@@ -302,22 +177,23 @@ Parsed parseArguments(int argc, char** argv) {
     }
     o.lod = o.lods.front();
   }
-  o.progress = !noProgressBar;
-  o.time.scripts = !noScripts;
-  o.time.scriptLimits.heapBytes = static_cast<std::size_t>(scriptMegabytes * 1048576.0);
-  if (!timeText.empty() && !session::parseTimeOption(timeText, o.time)) {
+  o.progress = !a.noProgress;
+  o.time.scripts = !a.noScripts;
+  o.time.scriptLimits.heapBytes = static_cast<std::size_t>(a.scriptMegabytes * 1048576.0);
+  if (!a.time.empty() && !session::parseTimeOption(a.time, o.time)) {
     std::fprintf(stderr,
                  "ghostspace: --time: expected seconds T >= 0 or T0:DT:N (DT > 0, N >= 1), "
                  "got '%s'\n",
-                 timeText.c_str());
+                 a.time.c_str());
     r.exitCode = 2;
     return r;
   }
-  if (!snapshotAt.empty() && !parseSnapshotAt(snapshotAt, o.snapshotAtBytes, o.snapshotAtSeconds)) {
+  if (!a.snapshotAt.empty() &&
+      !parseSnapshotAt(a.snapshotAt, o.snapshotAtBytes, o.snapshotAtSeconds)) {
     std::fprintf(stderr,
                  "ghostspace: --snapshot-at: expected a byte count (200000, 512k, 2M) or "
                  "seconds (2.5s), got '%s'\n",
-                 snapshotAt.c_str());
+                 a.snapshotAt.c_str());
     r.exitCode = 2;
     return r;
   }
@@ -339,6 +215,7 @@ Parsed parseArguments(int argc, char** argv) {
       r.exitCode = 2;
     }
   }
+  r.options = std::move(o);
   return r;
 }
 

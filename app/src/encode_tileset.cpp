@@ -245,40 +245,6 @@ void printMerged(const fs::path& dir, const Merged& m) {
       static_cast<unsigned long long>(m.indexBytes), static_cast<unsigned long long>(m.totalBytes));
 }
 
-void addTilesetOptions(CLI::App& encode, EncodeOptions& o) {
-  encode
-      .add_option("--tileset", o.tileset,
-                  "Write a tileset folder (index.qnvt and bricks/, docs/qnv-format.md "
-                  "\"Tilesets\") instead of one stream")
-      ->type_name("OUT/");
-  encode
-      .add_option("--brick-voxels", o.brickVoxels,
-                  "Tilesets of volumes: leaf bricks of B voxels per side (default 64)")
-      ->type_name("B")
-      ->check(CLI::Range(1u, 1u << 20));
-  encode
-      .add_option("--brick-vectors", o.brickVectors,
-                  "Tilesets: vectors an octree node aims at (default 16384)")
-      ->type_name("K")
-      ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 32));
-  encode
-      .add_option("--memory", o.memoryMB,
-                  "Tilesets of volumes and PLY meshes: encode out of core in about MB "
-                  "mebibytes (fractions allowed; docs/out-of-core.md)")
-      ->type_name("MB")
-      ->check(CLI::Range(0.001, 1048576.0 * 1024.0));
-  encode
-      .add_option("--threads", o.threads,
-                  "Out-of-core encodes: worker threads (default: every core)")
-      ->type_name("N")
-      ->check(CLI::Range(1u, 256u));
-  encode
-      .add_option("--bricks", o.bricks,
-                  "Tilesets: write only share I of N (0 <= I < N) of a split encode; "
-                  "`ghostspace tileset index OUT/` merges the shares")
-      ->type_name("I/N");
-}
-
 CLI::App* addTilesetCommand(CLI::App& cli, std::string& folder) {
   CLI::App* tileset = cli.add_subcommand("tileset", "Work on QNV tilesets (docs/qnv-format.md)");
   CLI::App* index = tileset->add_subcommand(

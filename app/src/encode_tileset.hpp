@@ -15,9 +15,6 @@
 
 namespace gs::app {
 
-/// Declares --tileset, --brick-voxels, --brick-vectors and --bricks on `encode`.
-void addTilesetOptions(CLI::App& encode, EncodeOptions& options);
-
 /// Declares `tileset index OUT/` on `cli`; returns the `tileset` subcommand.
 CLI::App* addTilesetCommand(CLI::App& cli, std::string& folder);
 

@@ -3,6 +3,7 @@
 #include "formats/input_kind.hpp"
 #include "render/traversal.hpp"
 #include "session/world.hpp"
+#include "vrml/node_support.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -27,6 +28,19 @@ int runInfo(const Options& options) {
     std::printf("  bytes: %zu\n", w.bytes);
     std::printf("  parse time: %.3f ms (%.1f MB/s)\n", w.parseSeconds * 1e3,
                 w.parseSeconds > 0 ? static_cast<double>(w.bytes) / 1e6 / w.parseSeconds : 0.0);
+    if (const vrml::X3dInfo& x = w.scene->x3d; !x.version.empty()) {
+      // X3D: the encoding, profile and components the world declares, and which
+      // components are not fully supported (docs/x3d.md).
+      std::printf("  X3D %s, %s encoding, profile %s\n", x.version.c_str(), x.encoding.c_str(),
+                  x.profile.empty() ? "(none)" : x.profile.c_str());
+      for (const auto& [name, level] : x.components) {
+        const auto missing = vrml::unimplementedNodes(name, level);
+        std::printf("  component %s:%d: %s\n", name.c_str(), level,
+                    !vrml::knownComponent(name) ? "unknown"
+                    : missing.empty()           ? "supported"
+                                                : "not fully supported (see diagnostics)");
+      }
+    }
     std::printf("  root nodes: %zu, routes: %zu, PROTO/EXTERNPROTO: %zu\n",
                 w.scene->rootNodes.size(), w.scene->routes.size(), w.scene->protos.size());
     std::printf("  nodes by type:\n");

@@ -36,12 +36,313 @@ bool parseNumbers(const std::string& text, std::vector<double>& out) {
   return true;
 }
 
-bool isInteraction(const std::string& verb) {
-  return verb == "time" || verb == "advance" || verb == "pointer" || verb == "press" ||
-         verb == "release" || verb == "click" || verb == "drag" || verb == "key";
+/// `text` as one number; 0 when it is not one (load() checked it).
+double numberIn(const std::string& text) {
+  double value = 0.0;
+  parseNumber(text, value);
+  return value;
+}
+
+/// Whether `text` is one number within [lo, hi].
+bool numberWithin(const std::string& text, double lo, double hi) {
+  double value = 0.0;
+  return parseNumber(text, value) && value >= lo && value <= hi;
+}
+
+/// "" when `ok`, else `expected`: a Verb's check.
+std::string unless(bool ok, std::string expected) {
+  return ok ? std::string() : std::move(expected);
+}
+
+void writeScreenshot(WindowState& state, const std::string& path, const ViewportRect& r) {
+  try {
+    render::writePng(path, render::readPixels(r.x, r.y, r.width, r.height));
+    state.log.push_back({false, "screenshot " + path});
+  } catch (const std::exception& e) {
+    state.log.push_back({true, std::string("screenshot: ") + e.what()});
+  }
+}
+
+/// The status command: one line per viewport, then one per QNV tileset.
+void writeStatus(WindowState& state, const std::string& path) {
+  std::ofstream out(path);
+  for (std::size_t i = 0; i < state.viewports.size(); ++i) {
+    const Viewport& v = state.viewports[i];
+    const char* navs[] = {"EXAMINE", "WALK", "FLY"};
+    out << i << " " << (v.world < state.worlds.size() ? state.worlds[v.world].scene->url : "-")
+        << " " << v.options.lod << " " << render::renderModeName(v.options.traversal.mode) << " "
+        << navs[static_cast<int>(v.navigator.mode())] << " "
+        << (v.renderer ? v.renderer->statistics().splats : 0) << "\n";
+  }
+  for (const session::TilesetStream* t : state.session->tilesets()) {
+    const session::TilesetStatistics& s = t->statistics();
+    out << "tileset " << t->url() << " resident " << s.residentVectors << " peak "
+        << s.peakResidentVectors << " evicted " << s.evictedBricks << " requests " << s.requests
+        << " bytes " << s.brickBytes << " chosen " << s.chosenVectors << "\n";
+  }
+  if (!out) state.log.push_back({true, "status: cannot write " + path});
 }
 
 }  // namespace
+
+const std::vector<WindowScript::Verb>& WindowScript::verbs() {
+  using N = std::vector<double>;
+  static const std::vector<Verb> table = [] {
+    // The check of a verb that ignores its argument.
+    std::string (*const anyArgument)(const Command&) = [](const Command&) { return std::string(); };
+    std::vector<Verb> rows = {
+        {"layout",
+         [](const Command& c) {
+           return unless(layoutFromName(c.argument).has_value(), "layout 1x1, 2x1 or 2x2");
+         },
+         [](WindowScript&, WindowState& state, const Command& c, int, int) {
+           state.setLayout(*layoutFromName(c.argument));
+           return Next::go;
+         }},
+        {"open",
+         [](const Command& c) { return unless(!c.argument.empty(), "open followed by a path"); },
+         [](WindowScript&, WindowState& state, const Command& c, int, int) {
+           state.open(c.argument);
+           return Next::go;
+         }},
+        {"viewport",
+         [](const Command& c) { return unless(numberWithin(c.argument, 0, 3), "viewport 0..3"); },
+         [](WindowScript&, WindowState& state, const Command& c, int, int) {
+           const auto index = static_cast<std::size_t>(numberIn(c.argument));
+           if (index < state.viewports.size()) state.active = index;
+           return Next::go;
+         }},
+        {"viewpoint",
+         [](const Command& c) {
+           return unless(numberWithin(c.argument, 0, 1e6),
+                         "viewpoint N (index in the Viewpoints menu, from 0)");
+         },
+         [](WindowScript&, WindowState& state, const Command& c, int, int) {
+           state.jumpToViewpoint(static_cast<std::size_t>(numberIn(c.argument)));
+           return Next::go;
+         }},
+        {"lod",
+         [](const Command& c) {
+           double f = 0.0;
+           return unless(parseNumber(c.argument, f) && f > 0.0 && f <= 1.0,
+                         "lod F with 0 < F <= 1");
+         },
+         [](WindowScript&, WindowState& state, const Command& c, int, int) {
+           state.setLod(numberIn(c.argument));
+           return Next::go;
+         }},
+        {"mode",
+         [](const Command& c) {
+           return unless(render::renderModeFromName(c.argument).has_value(),
+                         "mode polygons, splats or outlines");
+         },
+         [](WindowScript&, WindowState& state, const Command& c, int, int) {
+           state.setMode(*render::renderModeFromName(c.argument));
+           return Next::go;
+         }},
+        {"wait-loaded", anyArgument,
+         [](WindowScript& s, WindowState& state, const Command& c, int, int) {
+           // Settled for two frames running: the frame after a change has drawn (and so
+           // asked for what its level of detail needs) and nothing new started.
+           if (s.waitStart_ < 0.0) s.waitStart_ = now();
+           s.settledFrames_ = state.session->settled() ? s.settledFrames_ + 1 : 0;
+           if (s.settledFrames_ < 3 && now() - s.waitStart_ < 60.0) return Next::wait;
+           if (s.settledFrames_ < 3)
+             state.log.push_back(
+                 {true, "script line " + std::to_string(c.line) + ": still loading after 60 s"});
+           s.waitStart_ = -1.0;
+           s.settledFrames_ = 0;
+           return Next::go;
+         }},
+        {"wait-viewports",
+         [](const Command& c) {
+           return unless(numberWithin(c.argument, 1, 4), "wait-viewports N with 1 <= N <= 4");
+         },
+         [](WindowScript& s, WindowState& state, const Command& c, int, int) {
+           if (s.waitStart_ < 0.0) s.waitStart_ = now();
+           std::size_t shown = 0;
+           for (const Viewport& v : state.viewports) shown += v.world != Viewport::kNone ? 1 : 0;
+           const auto wanted = static_cast<std::size_t>(numberIn(c.argument));
+           if (shown < wanted && now() - s.waitStart_ < 60.0) return Next::wait;
+           if (shown < wanted)
+             state.log.push_back({true, "script line " + std::to_string(c.line) +
+                                            ": fewer viewports than asked after 60 s"});
+           s.waitStart_ = -1.0;
+           return Next::go;
+         }},
+        {"frames",
+         [](const Command& c) {
+           return unless(numberWithin(c.argument, 1, 1e6), "frames N with N >= 1");
+         },
+         [](WindowScript& s, WindowState&, const Command& c, int, int) {
+           s.framesLeft_ = static_cast<int>(numberIn(c.argument));
+           return Next::frame;
+         }},
+        {"screenshot",
+         [](const Command& c) {
+           return unless(!c.argument.empty(), "screenshot followed by a path");
+         },
+         [](WindowScript&, WindowState& state, const Command& c, int width, int height) {
+           writeScreenshot(state, c.argument, ViewportRect{0, 0, width, height});
+           return Next::go;
+         }},
+        {"screenshot-viewport",
+         [](const Command& c) {
+           return unless(!c.argument.empty(), "screenshot-viewport followed by a path");
+         },
+         [](WindowScript&, WindowState& state, const Command& c, int, int) {
+           writeScreenshot(state, c.argument, state.view().rect);
+           return Next::go;
+         }},
+        {"auto-lod",
+         [](const Command& c) {
+           return unless(c.argument == "on" || c.argument == "off", "auto-lod on or off");
+         },
+         [](WindowScript&, WindowState& state, const Command& c, int, int) {
+           state.view().autoLod = c.argument == "on";
+           return Next::go;
+         }},
+        {"budget",
+         [](const Command& c) {
+           return unless(numberWithin(c.argument, 0, 1e12),
+                         "budget N (vectors per frame, 0: none)");
+         },
+         [](WindowScript&, WindowState& state, const Command& c, int, int) {
+           state.setVectorBudget(static_cast<std::uint64_t>(numberIn(c.argument)));
+           return Next::go;
+         }},
+        {"frame-target",
+         [](const Command& c) {
+           double ms = 0.0;
+           return unless(parseNumber(c.argument, ms) && ms > 0.0 && ms <= 10000,
+                         "frame-target MS with 0 < MS <= 10000");
+         },
+         [](WindowScript&, WindowState& state, const Command& c, int, int) {
+           state.frameTarget = numberIn(c.argument) / 1000.0;
+           return Next::go;
+         }},
+        {"frame-stats",
+         [](const Command& c) {
+           return unless(!c.argument.empty(), "frame-stats followed by a path");
+         },
+         [](WindowScript& s, WindowState& state, const Command& c, int, int) {
+           s.writeFrameStats(state, c.argument);
+           return Next::go;
+         }},
+        {"status",
+         [](const Command& c) { return unless(!c.argument.empty(), "status followed by a path"); },
+         [](WindowScript&, WindowState& state, const Command& c, int, int) {
+           writeStatus(state, c.argument);
+           return Next::go;
+         }},
+        // Interaction: each is drawn once before the next command, so screenshots show it.
+        {"time",
+         [](const Command& c) {
+           N n;
+           return unless(
+               parseNumbers(c.argument, n) && n.size() == 1 && n[0] >= 0.0 && n[0] <= 1e12,
+               "time S with S >= 0 seconds");
+         },
+         [](WindowScript&, WindowState& state, const Command& c, int, int) {
+           N n;
+           parseNumbers(c.argument, n);
+           state.setWorldTime(n[0]);
+           return Next::frame;
+         }},
+        {"advance",
+         [](const Command& c) {
+           N n;
+           return unless(
+               parseNumbers(c.argument, n) && n.size() == 1 && n[0] >= 0.0 && n[0] <= 1e12,
+               "advance S with S >= 0 seconds");
+         },
+         [](WindowScript&, WindowState& state, const Command& c, int, int) {
+           N n;
+           parseNumbers(c.argument, n);
+           state.setWorldTime(state.worldTime() + n[0]);
+           return Next::frame;
+         }},
+        {"pointer",
+         [](const Command& c) {
+           N n;
+           return unless(parseNumbers(c.argument, n) && n.size() == 2, "pointer X Y (pixels)");
+         },
+         [](WindowScript& s, WindowState& state, const Command& c, int, int height) {
+           N n;
+           parseNumbers(c.argument, n);
+           s.movePointer(state, n[0], n[1], height);
+           return Next::frame;
+         }},
+        {"press",
+         [](const Command& c) { return unless(c.argument.empty(), "press without arguments"); },
+         [](WindowScript& s, WindowState& state, const Command&, int, int height) {
+           s.setButton(state, true, height);
+           return Next::frame;
+         }},
+        {"release",
+         [](const Command& c) { return unless(c.argument.empty(), "release without arguments"); },
+         [](WindowScript& s, WindowState& state, const Command&, int, int height) {
+           s.setButton(state, false, height);
+           return Next::frame;
+         }},
+        {"click",
+         [](const Command& c) {
+           N n;
+           return unless(parseNumbers(c.argument, n) && n.size() == 2, "click X Y (pixels)");
+         },
+         [](WindowScript& s, WindowState& state, const Command& c, int, int height) {
+           N n;
+           parseNumbers(c.argument, n);
+           s.movePointer(state, n[0], n[1], height);
+           s.setButton(state, true, height);
+           s.setButton(state, false, height);
+           return Next::frame;
+         }},
+        {"drag",
+         [](const Command& c) {
+           N n;
+           return unless(parseNumbers(c.argument, n) && (n.size() == 4 || n.size() == 5) &&
+                             (n.size() == 4 || (n[4] >= 1 && n[4] <= 10000)),
+                         "drag X1 Y1 X2 Y2 [STEPS] with 1 <= STEPS <= 10000");
+         },
+         [](WindowScript& s, WindowState& state, const Command& c, int, int height) {
+           N n;
+           parseNumbers(c.argument, n);
+           const int steps = n.size() == 5 ? static_cast<int>(n[4]) : 10;
+           s.movePointer(state, n[0], n[1], height);
+           s.setButton(state, true, height);
+           const bool held = state.pointerHeld;
+           for (int i = 1; i <= steps; ++i) {
+             const double f = static_cast<double>(i) / steps;
+             const float x0 = s.pointerX_, y0 = s.pointerY_;
+             s.movePointer(state, n[0] + (n[2] - n[0]) * f, n[1] + (n[3] - n[1]) * f, height);
+             if (!held && state.view().renderer) {  // no sensor holds it: the drag navigates
+               Viewport& v = state.view();
+               const int h = std::max(1, v.rect.height);
+               if (v.navigator.mode() == render::NavigationMode::examine)
+                 v.navigator.orbit(s.pointerX_ - x0, s.pointerY_ - y0, h);
+               else
+                 v.navigator.look(s.pointerX_ - x0, s.pointerY_ - y0, h);
+               v.autoFrame = false;
+             }
+           }
+           s.setButton(state, false, height);
+           return Next::frame;
+         }},
+        {"key", [](const Command& c) { return unless(!c.argument.empty(), "key K"); },
+         [](WindowScript&, WindowState& state, const Command& c, int, int) {
+           state.log.push_back(
+               {false, "key " + c.argument + " (no key sensor in VRML97: ignored)"});
+           return Next::frame;
+         }},
+        {"quit", anyArgument,
+         [](WindowScript&, WindowState&, const Command&, int, int) { return Next::quit; }},
+    };
+    for (const Verb& n : navigationVerbs()) rows.push_back(n);
+    return rows;
+  }();
+  return table;
+}
 
 bool WindowScript::load(const std::string& path, std::string& error) {
   std::ifstream in(path);
@@ -62,59 +363,14 @@ bool WindowScript::load(const std::string& path, std::string& error) {
       error = path + ":" + std::to_string(line) + ": expected " + expected + ", got '" + text + "'";
       return false;
     };
-    double number = 0.0;
-    if (c.verb == "layout") {
-      if (!layoutFromName(c.argument)) return fail("layout 1x1, 2x1 or 2x2");
-    } else if (c.verb == "viewport") {
-      if (!parseNumber(c.argument, number) || number < 0 || number > 3)
-        return fail("viewport 0..3");
-    } else if (c.verb == "viewpoint") {
-      if (!parseNumber(c.argument, number) || number < 0 || number > 1e6)
-        return fail("viewpoint N (index in the Viewpoints menu, from 0)");
-    } else if (c.verb == "lod") {
-      if (!parseNumber(c.argument, number) || !(number > 0.0) || number > 1.0)
-        return fail("lod F with 0 < F <= 1");
-    } else if (c.verb == "mode") {
-      if (!render::renderModeFromName(c.argument)) return fail("mode polygons, splats or outlines");
-    } else if (c.verb == "frames") {
-      if (!parseNumber(c.argument, number) || number < 1 || number > 1e6)
-        return fail("frames N with N >= 1");
-    } else if (c.verb == "wait-viewports") {
-      if (!parseNumber(c.argument, number) || number < 1 || number > 4)
-        return fail("wait-viewports N with 1 <= N <= 4");
-    } else if (c.verb == "auto-lod") {
-      if (c.argument != "on" && c.argument != "off") return fail("auto-lod on or off");
-    } else if (c.verb == "budget") {
-      if (!parseNumber(c.argument, number) || number < 0 || number > 1e12)
-        return fail("budget N (vectors per frame, 0: none)");
-    } else if (c.verb == "frame-target") {
-      if (!parseNumber(c.argument, number) || !(number > 0.0) || number > 10000)
-        return fail("frame-target MS with 0 < MS <= 10000");
-    } else if (c.verb == "open" || c.verb == "screenshot" || c.verb == "screenshot-viewport" ||
-               c.verb == "status" || c.verb == "frame-stats") {
-      if (c.argument.empty()) return fail(c.verb + " followed by a path");
-    } else if (isInteraction(c.verb)) {
-      std::vector<double> n;
-      const bool numbers = parseNumbers(c.argument, n);
-      if ((c.verb == "time" || c.verb == "advance") &&
-          (!numbers || n.size() != 1 || n[0] < 0.0 || n[0] > 1e12))
-        return fail(c.verb + " S with S >= 0 seconds");
-      if ((c.verb == "pointer" || c.verb == "click") && (!numbers || n.size() != 2))
-        return fail(c.verb + " X Y (pixels)");
-      if (c.verb == "drag" && (!numbers || (n.size() != 4 && n.size() != 5) ||
-                               (n.size() == 5 && (n[4] < 1 || n[4] > 10000))))
-        return fail("drag X1 Y1 X2 Y2 [STEPS] with 1 <= STEPS <= 10000");
-      if ((c.verb == "press" || c.verb == "release") && !c.argument.empty())
-        return fail(c.verb + " without arguments");
-      if (c.verb == "key" && c.argument.empty()) return fail("key K");
-    } else if (isNavigation(c.verb)) {
-      if (const std::string expected = checkNavigation(c); !expected.empty()) return fail(expected);
-    } else if (c.verb != "wait-loaded" && c.verb != "quit") {
-      return fail(
-          "a command (layout, open, viewport, lod, mode, wait-loaded, frames, "
-          "screenshot, screenshot-viewport, time, advance, pointer, press, release, click, "
-          "drag, key, navigation, walk, back, forward, camera, frame-stats, quit)");
+    for (const Verb& v : verbs())
+      if (c.verb == v.name) c.handler = &v;
+    if (!c.handler) {
+      std::string names;
+      for (const Verb& v : verbs()) names += (names.empty() ? "" : ", ") + std::string(v.name);
+      return fail("a command (" + names + ")");
     }
+    if (const std::string expected = c.handler->check(c); !expected.empty()) return fail(expected);
     commands_.push_back(std::move(c));
   }
   return true;
@@ -125,150 +381,24 @@ bool WindowScript::step(WindowState& state, int width, int height) {
   if (framesLeft_ > 0 && --framesLeft_ > 0) return true;
   while (next_ < commands_.size()) {
     const Command& c = commands_[next_];
-    double number = 0.0;
-    parseNumber(c.argument, number);
-    if (isInteraction(c.verb)) {
-      interact(state, c, height);
-      ++next_;
-      return true;  // drawn once before the next command, so screenshots show it
-    }
-    if (isNavigation(c.verb)) {
-      navigate(state, c);
-      ++next_;
-      return true;
-    }
-    if (c.verb == "wait-loaded") {
-      // Settled for two frames running: the frame after a change has drawn (and so asked
-      // for what its level of detail needs) and nothing new started.
-      if (waitStart_ < 0.0) waitStart_ = now();
-      settledFrames_ = state.session->settled() ? settledFrames_ + 1 : 0;
-      if (settledFrames_ < 3 && now() - waitStart_ < 60.0) return true;
-      if (settledFrames_ < 3)
-        state.log.push_back(
-            {true, "script line " + std::to_string(c.line) + ": still loading after 60 s"});
-      waitStart_ = -1.0;
-      settledFrames_ = 0;
-    } else if (c.verb == "wait-viewports") {
-      if (waitStart_ < 0.0) waitStart_ = now();
-      std::size_t shown = 0;
-      for (const Viewport& v : state.viewports) shown += v.world != Viewport::kNone ? 1 : 0;
-      if (shown < static_cast<std::size_t>(number) && now() - waitStart_ < 60.0) return true;
-      if (shown < static_cast<std::size_t>(number))
-        state.log.push_back({true, "script line " + std::to_string(c.line) +
-                                       ": fewer viewports than asked after 60 s"});
-      waitStart_ = -1.0;
-    } else if (c.verb == "frames") {
-      framesLeft_ = static_cast<int>(number);
-      ++next_;
-      return true;
-    } else if (c.verb == "layout") {
-      state.setLayout(*layoutFromName(c.argument));
-    } else if (c.verb == "open") {
-      state.open(c.argument);
-    } else if (c.verb == "viewport") {
-      const auto index = static_cast<std::size_t>(number);
-      if (index < state.viewports.size()) state.active = index;
-    } else if (c.verb == "viewpoint") {
-      state.jumpToViewpoint(static_cast<std::size_t>(number));
-    } else if (c.verb == "lod") {
-      state.setLod(number);
-    } else if (c.verb == "mode") {
-      state.setMode(*render::renderModeFromName(c.argument));
-    } else if (c.verb == "screenshot" || c.verb == "screenshot-viewport") {
-      ViewportRect r{0, 0, width, height};
-      if (c.verb == "screenshot-viewport") r = state.view().rect;
-      try {
-        render::writePng(c.argument, render::readPixels(r.x, r.y, r.width, r.height));
-        state.log.push_back({false, "screenshot " + c.argument});
-      } catch (const std::exception& e) {
-        state.log.push_back({true, std::string("screenshot: ") + e.what()});
-      }
-    } else if (c.verb == "auto-lod") {
-      state.view().autoLod = c.argument == "on";
-    } else if (c.verb == "budget") {
-      state.setVectorBudget(static_cast<std::uint64_t>(number));
-    } else if (c.verb == "frame-target") {
-      state.frameTarget = number / 1000.0;
-    } else if (c.verb == "frame-stats") {
-      writeFrameStats(state, c.argument);
-    } else if (c.verb == "status") {
-      std::ofstream out(c.argument);
-      for (std::size_t i = 0; i < state.viewports.size(); ++i) {
-        const Viewport& v = state.viewports[i];
-        const char* navs[] = {"EXAMINE", "WALK", "FLY"};
-        out << i << " " << (v.world < state.worlds.size() ? state.worlds[v.world].scene->url : "-")
-            << " " << v.options.lod << " " << render::renderModeName(v.options.traversal.mode)
-            << " " << navs[static_cast<int>(v.navigator.mode())] << " "
-            << (v.renderer ? v.renderer->statistics().splats : 0) << "\n";
-      }
-      for (const session::TilesetStream* t : state.session->tilesets()) {
-        const session::TilesetStatistics& s = t->statistics();
-        out << "tileset " << t->url() << " resident " << s.residentVectors << " peak "
-            << s.peakResidentVectors << " evicted " << s.evictedBricks << " requests " << s.requests
-            << " bytes " << s.brickBytes << " chosen " << s.chosenVectors << "\n";
-      }
-      if (!out) state.log.push_back({true, "status: cannot write " + c.argument});
-    } else if (c.verb == "quit") {
-      ++next_;
-      return false;
-    }
+    const Next after = c.handler->run(*this, state, c, width, height);
+    if (after == Next::wait) return true;
     ++next_;
+    if (after == Next::frame) return true;
+    if (after == Next::quit) return false;
   }
   return true;
 }
 
-bool WindowScript::interact(WindowState& state, const Command& c, int height) {
-  std::vector<double> n;
-  parseNumbers(c.argument, n);
-  auto to = [&](double x, double y) {
-    pointerX_ = static_cast<float>(x);
-    pointerY_ = static_cast<float>(y);
-    state.pointerInput(pointerX_, pointerY_, buttonDown_, height);
-  };
-  auto button = [&](bool down) {
-    buttonDown_ = down;
-    state.pointerInput(pointerX_, pointerY_, buttonDown_, height);
-  };
-  if (c.verb == "time") {
-    state.setWorldTime(n[0]);
-  } else if (c.verb == "advance") {
-    state.setWorldTime(state.worldTime() + n[0]);
-  } else if (c.verb == "pointer") {
-    to(n[0], n[1]);
-  } else if (c.verb == "press") {
-    button(true);
-  } else if (c.verb == "release") {
-    button(false);
-  } else if (c.verb == "click") {
-    to(n[0], n[1]);
-    button(true);
-    button(false);
-  } else if (c.verb == "drag") {
-    const int steps = n.size() == 5 ? static_cast<int>(n[4]) : 10;
-    to(n[0], n[1]);
-    button(true);
-    const bool held = state.pointerHeld;
-    for (int i = 1; i <= steps; ++i) {
-      const double f = static_cast<double>(i) / steps;
-      const float x0 = pointerX_, y0 = pointerY_;
-      to(n[0] + (n[2] - n[0]) * f, n[1] + (n[3] - n[1]) * f);
-      if (!held && state.view().renderer) {  // no sensor holds it: the drag navigates
-        Viewport& v = state.view();
-        const int h = std::max(1, v.rect.height);
-        if (v.navigator.mode() == render::NavigationMode::examine)
-          v.navigator.orbit(pointerX_ - x0, pointerY_ - y0, h);
-        else
-          v.navigator.look(pointerX_ - x0, pointerY_ - y0, h);
-        v.autoFrame = false;
-      }
-    }
-    button(false);
-  } else if (c.verb == "key") {
-    state.log.push_back({false, "key " + c.argument + " (no key sensor in VRML97: ignored)"});
-  } else {
-    return false;
-  }
-  return true;
+void WindowScript::movePointer(WindowState& state, double x, double y, int height) {
+  pointerX_ = static_cast<float>(x);
+  pointerY_ = static_cast<float>(y);
+  state.pointerInput(pointerX_, pointerY_, buttonDown_, height);
+}
+
+void WindowScript::setButton(WindowState& state, bool down, int height) {
+  buttonDown_ = down;
+  state.pointerInput(pointerX_, pointerY_, buttonDown_, height);
 }
 
 }  // namespace gs::app

@@ -36,45 +36,66 @@ bool numbers(const std::string& text, std::vector<double>& out) {
 
 }  // namespace
 
-bool WindowScript::isNavigation(const std::string& verb) {
-  return verb == "navigation" || verb == "walk" || verb == "back" || verb == "forward" ||
-         verb == "camera";
-}
-
-std::string WindowScript::checkNavigation(const Command& c) {
-  if (c.verb == "navigation" && !modeNamed(c.argument)) return "navigation EXAMINE, WALK or FLY";
-  if (c.verb == "walk") {
-    std::vector<double> n;
-    if (!numbers(c.argument, n) || (n.size() != 3 && n.size() != 4) ||
-        (n.size() == 4 && (n[3] < 1 || n[3] > 10000)))
-      return "walk F R U [STEPS] (metres) with 1 <= STEPS <= 10000";
-  }
-  if ((c.verb == "back" || c.verb == "forward") && !c.argument.empty())
-    return c.verb + " without arguments";
-  if (c.verb == "camera" && c.argument.empty()) return "camera followed by a path";
-  return {};
-}
-
-void WindowScript::navigate(WindowState& state, const Command& c) {
-  if (c.verb == "navigation") {
-    state.setNavigation(*modeNamed(c.argument));
-  } else if (c.verb == "walk") {
-    std::vector<double> n;
-    numbers(c.argument, n);
-    const int steps = n.size() == 4 ? static_cast<int>(n[3]) : 1;
-    for (int i = 0; i < steps; ++i)
-      state.moveViewer(static_cast<float>(n[0] / steps), static_cast<float>(n[1] / steps),
-                       static_cast<float>(n[2] / steps), std::numeric_limits<float>::infinity());
-  } else if (c.verb == "back" || c.verb == "forward") {
-    if (!(c.verb == "back" ? state.goBack() : state.goForward()))
-      state.log.push_back(
-          {false, "script line " + std::to_string(c.line) + ": no world to go " + c.verb + " to"});
-  } else if (c.verb == "camera") {
-    const glm::vec3 p = state.view().navigator.camera().position;
-    std::ofstream out(c.argument);
-    out << p.x << " " << p.y << " " << p.z << "\n";
-    if (!out) state.log.push_back({true, "camera: cannot write " + c.argument});
-  }
+std::vector<WindowScript::Verb> WindowScript::navigationVerbs() {
+  return {
+      {"navigation",
+       [](const Command& c) {
+         return modeNamed(c.argument) ? std::string() : "navigation EXAMINE, WALK or FLY";
+       },
+       [](WindowScript&, WindowState& state, const Command& c, int, int) {
+         state.setNavigation(*modeNamed(c.argument));
+         return Next::frame;
+       }},
+      {"walk",
+       [](const Command& c) {
+         std::vector<double> n;
+         if (!numbers(c.argument, n) || (n.size() != 3 && n.size() != 4) ||
+             (n.size() == 4 && (n[3] < 1 || n[3] > 10000)))
+           return std::string("walk F R U [STEPS] (metres) with 1 <= STEPS <= 10000");
+         return std::string();
+       },
+       [](WindowScript&, WindowState& state, const Command& c, int, int) {
+         std::vector<double> n;
+         numbers(c.argument, n);
+         const int steps = n.size() == 4 ? static_cast<int>(n[3]) : 1;
+         for (int i = 0; i < steps; ++i)
+           state.moveViewer(static_cast<float>(n[0] / steps), static_cast<float>(n[1] / steps),
+                            static_cast<float>(n[2] / steps),
+                            std::numeric_limits<float>::infinity());
+         return Next::frame;
+       }},
+      {"back",
+       [](const Command& c) {
+         return c.argument.empty() ? std::string() : "back without arguments";
+       },
+       [](WindowScript&, WindowState& state, const Command& c, int, int) {
+         if (!state.goBack())
+           state.log.push_back(
+               {false, "script line " + std::to_string(c.line) + ": no world to go back to"});
+         return Next::frame;
+       }},
+      {"forward",
+       [](const Command& c) {
+         return c.argument.empty() ? std::string() : "forward without arguments";
+       },
+       [](WindowScript&, WindowState& state, const Command& c, int, int) {
+         if (!state.goForward())
+           state.log.push_back(
+               {false, "script line " + std::to_string(c.line) + ": no world to go forward to"});
+         return Next::frame;
+       }},
+      {"camera",
+       [](const Command& c) {
+         return c.argument.empty() ? "camera followed by a path" : std::string();
+       },
+       [](WindowScript&, WindowState& state, const Command& c, int, int) {
+         const glm::vec3 p = state.view().navigator.camera().position;
+         std::ofstream out(c.argument);
+         out << p.x << " " << p.y << " " << p.z << "\n";
+         if (!out) state.log.push_back({true, "camera: cannot write " + c.argument});
+         return Next::frame;
+       }},
+  };
 }
 
 }  // namespace gs::app

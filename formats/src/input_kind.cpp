@@ -61,6 +61,18 @@ InputKind sniffPlain(std::string_view head) {
     const std::size_t first = before.find_first_not_of(" \t\r\n");
     if (first == std::string_view::npos || before[first] == '<') return InputKind::world;
   }
+  // The X3D JSON encoding (ISO/IEC 19776-5): '{', then the key "X3D" first, within the
+  // first 64 bytes (a glTF's JSON starts with other keys).
+  {
+    std::string_view json = head.substr(0, 64);
+    if (json.starts_with("\xEF\xBB\xBF")) json.remove_prefix(3);
+    const std::size_t brace = json.find_first_not_of(" \t\r\n");
+    if (brace != std::string_view::npos && json[brace] == '{') {
+      const std::size_t key = json.find_first_not_of(" \t\r\n", brace + 1);
+      if (key != std::string_view::npos && json.substr(key).starts_with("\"X3D\""))
+        return InputKind::world;
+    }
+  }
   const auto& magic = qnv::kMagic;
   if (head.size() >= magic.size() &&
       std::equal(magic.begin(), magic.end(), head.begin(),

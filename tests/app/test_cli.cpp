@@ -96,6 +96,22 @@ TEST_CASE("README.md names every option --help lists", "[app][cli]") {
   }
 }
 
+TEST_CASE("README.md's option table is what --help-markdown prints", "[app][cli]") {
+  // One table (app/src/option_table.cpp) declares every option: CLI11, --help and
+  // README.md's table between the marker comments. Regenerate it with
+  // `ghostspace --help-markdown` when an option changes.
+  const std::string readme = gs::test::readBytes(gs::test::sourceDir() / "README.md");
+  const std::string begin = "<!-- options:begin (ghostspace --help-markdown) -->\n";
+  const std::string end = "<!-- options:end -->";
+  const std::size_t from = readme.find(begin), to = readme.find(end);
+  REQUIRE(from != std::string::npos);
+  REQUIRE(to != std::string::npos);
+  REQUIRE(from < to);
+  const auto r = runGhostspace({"--help-markdown"});
+  REQUIRE(r.exitCode == 0);
+  CHECK(readme.substr(from + begin.size(), to - from - begin.size()) == r.out);
+}
+
 TEST_CASE("info exits 1 for a world with errors unless --exit-zero", "[app][cli]") {
   gs::test::TempDir dir("info");
   const std::string bad = dir.write(

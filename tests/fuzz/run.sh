@@ -17,7 +17,7 @@ seconds=${1:?usage: run.sh SECONDS [TARGET...]}
 shift
 build=${GS_FUZZ_BUILD:-$top/build-fuzz}
 jobs=${GS_FUZZ_JOBS:-1}
-all=(fuzz_vrml_parse fuzz_vrml_stream fuzz_vrml_proto fuzz_x3d_xml fuzz_qnv_stream fuzz_qnv_compact fuzz_qnv_entropy fuzz_tileset_index
+all=(fuzz_vrml_parse fuzz_vrml_stream fuzz_vrml_proto fuzz_x3d_xml fuzz_x3d_json fuzz_qnv_stream fuzz_qnv_compact fuzz_qnv_entropy fuzz_tileset_index
      fuzz_ply fuzz_obj fuzz_gltf fuzz_nrrd fuzz_nifti fuzz_image fuzz_http_response
      fuzz_instance_message fuzz_script)
 targets=("$@")
@@ -49,6 +49,7 @@ seeds_of() {
       s=("$here/seeds/vrml" "$top/assets/worlds" "$corpus_root/vrml/openvrml/bad") ;;
     fuzz_vrml_proto) s=("$here/seeds/proto" "$here/seeds/vrml") ;;
     fuzz_x3d_xml) s=("$top/assets/worlds" "$corpus_root/x3d/castle/x3d/warnings") ;;
+    fuzz_x3d_json) s=("$top/assets/worlds") ;;
     fuzz_qnv_stream) s=("$here/seeds/qnv" "$build/seeds/qnv") ;;
     fuzz_qnv_compact) s=("$here/seeds/compact" "$build/seeds/compact") ;;
     fuzz_qnv_entropy) s=("$here/seeds/entropy" "$build/seeds/entropy") ;;
@@ -65,7 +66,7 @@ seeds_of() {
 }
 dict_of() {
   case "$1" in
-    fuzz_vrml_* | fuzz_x3d_xml) echo "$here/dict/vrml.dict" ;;
+    fuzz_vrml_* | fuzz_x3d_xml | fuzz_x3d_json) echo "$here/dict/vrml.dict" ;;
     fuzz_nrrd | fuzz_nifti) echo "$here/dict/nrrd.dict" ;;
     fuzz_script) echo "$here/dict/script.dict" ;;
     fuzz_http_response) echo "$here/dict/http.dict" ;;

@@ -149,13 +149,15 @@ Shape { appearance Appearance { material Box { } } geometry Box { size 4 4 0.1 }
   CHECK(close(r.image.pixel(kSize / 2, kSize / 2), 255, 255, 255, 8));
 }
 
-TEST_CASE("the X3D asset draws the same in the Classic VRML and XML encodings",
+TEST_CASE("the X3D asset draws the same in the Classic VRML, XML and JSON encodings",
           "[render][offscreen][world][x3d]") {
   const fs::path dir = gs::test::sourceDir() / "assets/worlds";
   const Rendered classic = renderFile(dir / "x3d_features.x3dv");
   const Rendered xml = renderFile(dir / "x3d_features.x3d");
+  const Rendered json = renderFile(dir / "x3d_features.x3dj");
   REQUIRE(classic.image.width == xml.image.width);
   CHECK(classic.image.rgba == xml.image.rgba);
+  CHECK(classic.image.rgba == json.image.rgba);
   // Each of the four X3D shapes shows in its colour: the red IndexedTriangleSet, the
   // green Box Switch.children chose, the blue Rectangle2D and the yellow LineSet.
   int red = 0, green = 0, blue = 0, yellow = 0;

@@ -258,3 +258,28 @@ TEST_CASE("X3D Classic: the castle corpus's Classic worlds load", "[x3d][classic
   CHECK(worlds == 97);
   WARN(clean << " of " << worlds << " Classic worlds parse with no diagnostic at all");
 }
+
+TEST_CASE("X3D Classic: UNIT angle and length convert the file's values", "[x3d][classic]") {
+  const Scene s = x3d(R"(UNIT angle degree 0.017453292519943295
+UNIT length km 1000
+DEF T Transform { rotation 1 0 0 90 children Shape { geometry Box { size 0.002 0.002 0.002 } } }
+Viewpoint { fieldOfView 45 }
+OrientationInterpolator { key [ 0 1 ] keyValue [ 0 1 0 0, 0 1 0 180 ] })");
+  INFO(describe(s));
+  CHECK(s.diagnostics.errorCount() == 0);
+  REQUIRE(s.rootNodes.size() == 3);
+  // Each root (an X3DChildNode) is scaled from kilometres to metres.
+  const Node& wrap = *s.rootNodes[0];
+  CHECK(wrap.typeId() == NodeTypeId::Transform);
+  CHECK(fieldOf(wrap, "scale").get<FieldType::SFVec3f>() == glm::vec3(1000.0f));
+  const NodePtr t = wrap.mfnode("children").at(0);
+  CHECK(t->defName == "T");
+  CHECK(fieldOf(*t, "rotation").get<FieldType::SFRotation>().w == Approx(1.5707963));
+  const NodePtr vp = s.rootNodes[1]->mfnode("children").at(0);
+  CHECK(fieldOf(*vp, "fieldOfView").get<FieldType::SFFloat>() == Approx(0.785398));
+  const NodePtr oi = s.rootNodes[2]->mfnode("children").at(0);
+  CHECK(fieldOf(*oi, "keyValue").get<FieldType::MFRotation>()[1].w == Approx(3.14159265));
+  // A VRML97-style world without UNIT keeps its values.
+  const Scene plain = x3d("Transform { rotation 1 0 0 90 }");
+  CHECK(fieldOf(*plain.rootNodes.at(0), "rotation").get<FieldType::SFRotation>().w == 90.0f);
+}

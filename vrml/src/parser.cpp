@@ -2,6 +2,7 @@
 // node, nodeBody, scriptBody), DEF/USE (clause 4.6.2), error recovery, and the public
 // entry points parseVrml() and loadVrmlFile().
 #include "parser_impl.hpp"
+#include "x3d_json.hpp"
 #include "x3d_xml.hpp"
 
 #include <algorithm>
@@ -150,6 +151,7 @@ void Parser::parseStatement(Scope& scope, std::vector<NodePtr>* nodes, int depth
       if (n) {
         if (height != nullptr) *height = std::max(*height, h);
         if (scope.checkRoots) checkNodeClass(nullptr, {}, n, t.offset);
+        if (scope.x3d != nullptr) n = applyLengthUnit(n);
         nodes->push_back(n);
         if (scope.checkRoots && ctx_.options.onRootNode) ctx_.options.onRootNode(n);
       }
@@ -421,6 +423,7 @@ void Parser::parseNodeBody(Scope& scope, const NodePtr& node, InstanceValues* in
       const bool check = node && ty.builtIn && !ty.extension && !ty.userFields;
       int h = 0;
       parseValue(spec.type, dst, scope, depth, h, check ? &ty : nullptr, spec.name);
+      if (ctx_.units.angle != 1.0) applyAngleUnit(spec, dst);
       height = std::max(height, h);
       if (inst != nullptr) inst->given[ui] = 1;
     } catch (const RecoverableError& e) {
@@ -742,6 +745,17 @@ void parseInto(std::string_view bytes, const std::string& url, Context& ctx, int
     if (xml.failed()) scene.diagnostics.items.push_back(xml.fatalError());
     return;
   }
+  // X3D's JSON encoding (the first such byte is '{'): translated the same way, whole.
+  if (looksLikeJson(bytes, decided)) {
+    std::string classic;
+    JsonToClassic json(classic, url, limits.maxNesting);
+    json.translate(bytes, scene);
+    if (json.wroteHeader()) parseInto(classic, url, ctx, externDepth, scene);
+    json.mapScene(scene);
+    scene.x3d.encoding = "JSON";
+    if (json.failed()) scene.diagnostics.items.push_back(json.fatalError());
+    return;
+  }
   // Header (clause 4.2.2): "#VRML V2.0 utf8" on the first line. A UTF-8 byte order mark
   // before it is tolerated.
   std::size_t start = bytes.starts_with("\xEF\xBB\xBF") ? 3 : 0;
@@ -755,6 +769,8 @@ void parseInto(std::string_view bytes, const std::string& url, Context& ctx, int
     return;
   }
   const bool wasX3d = ctx.x3d;
+  const Context::Units wasUnits = ctx.units;
+  ctx.units = {};
   ctx.x3d = !version.empty();
   if (ctx.x3d) {
     scene.x3d.version = version;
@@ -764,6 +780,7 @@ void parseInto(std::string_view bytes, const std::string& url, Context& ctx, int
                 scene.diagnostics, externDepth);
   parser.parseScene(scene);
   ctx.x3d = wasX3d;
+  ctx.units = wasUnits;
 }
 
 }  // namespace gs::vrml::parsing

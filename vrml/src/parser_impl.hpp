@@ -97,6 +97,13 @@ struct Context {
   /// The file being parsed is X3D (its header said #X3D): X3D node types and interfaces,
   /// the X3D statements. Set per file by parseInto / StreamingParser.
   bool x3d = false;
+  /// The file's UNIT conversion factors (X3D clause 4.3.6) for length and angle: what a
+  /// value the file writes is in metres and radians. Set by its UNIT statements; 1 in a
+  /// VRML97 file. Per file, like `x3d`.
+  struct Units {
+    double length = 1.0;
+    double angle = 1.0;
+  } units;
   std::size_t nodeCount = 0;
   NameMap<std::shared_ptr<ExternFile>> externFiles;
   /// When set (StreamingParser), the files the top-level file loads, in order.
@@ -246,6 +253,13 @@ class Parser {
   // x3d_statements.cpp: PROFILE, COMPONENT, UNIT, META, IMPORT, EXPORT (X3D 19776-2 4.x)
   /// True when `t` starts an X3D statement, which is then parsed.
   bool parseX3dStatement(Scope& scope, const Token& t);
+  /// Applies the file's angle unit (Context::units.angle) to the value `v` just read for
+  /// field `spec`: the angle of SFRotation / MFRotation values and the fields X3D gives in
+  /// angle units (fieldOfView, creaseAngle, skyAngle ...).
+  void applyAngleUnit(const FieldSpec& spec, FieldValue& v) const;
+  /// `n` inside a Transform scaled by the file's length unit (Context::units.length), so
+  /// that its lengths are metres; `n` itself when the unit is the metre or n is no child.
+  NodePtr applyLengthUnit(const NodePtr& n) const;
   /// The member an X3D field-name alias stands for in `type`: Switch/LOD `children`
   /// (VRML97's choice/level), Collision `enabled` (collide), ComposedCubeMapTexture's X3D 3
   /// face names (back ... top for X3D 4's backTexture ... topTexture); -1 when none.

@@ -7,9 +7,12 @@
 // retried once the unparsed text has grown by half; the others are committed at once.
 // X3D's XML encoding (first byte '<') goes through XmlToClassic, whose Classic VRML text is
 // what grows in that string; the parser's diagnostics are then moved back onto the XML.
+// X3D's JSON encoding (first byte '{') is not streamed: its bytes are collected in
+// `scratch` and translated by JsonToClassic at finish(), then parsed as one piece.
 #include "vrml/streaming_parser.hpp"
 
 #include "parser_impl.hpp"
+#include "x3d_json.hpp"
 #include "x3d_xml.hpp"
 
 #include <zlib.h>
@@ -158,8 +161,9 @@ struct StreamingParser::Impl {
   std::unique_ptr<Gunzip> gunzip;
   // The encoding, decided by the first byte of the text that is no space or BOM: '<' is
   // X3D's XML, whose bytes go to `xml` (through `scratch`) and whose translation is `text`.
-  enum class Encoding { unknown, classic, xml } encoding = Encoding::unknown;
+  enum class Encoding { unknown, classic, xml, json } encoding = Encoding::unknown;
   std::unique_ptr<parsing::XmlToClassic> xml;
+  std::unique_ptr<parsing::JsonToClassic> json;
   std::string scratch;
   std::string text;          // the text so far (decompressed; Classic VRML)
   std::size_t scanned = 0;   // bytes of `text` looked at for the two marks below
@@ -178,12 +182,15 @@ struct StreamingParser::Impl {
   bool stopped = false;
 
   void append(std::string_view bytes);
-  std::string& sink() { return encoding == Encoding::xml ? scratch : text; }
+  std::string& sink() {
+    return encoding == Encoding::xml || encoding == Encoding::json ? scratch : text;
+  }
   bool decide(bool final);
   void translated(bool final);
   std::size_t parseMapped(bool final) {
     const std::size_t added = parse(final);
     if (xml) xml->mapScene(scene);
+    if (json) json->mapScene(scene);
     return added;
   }
   void scanNew();
@@ -265,6 +272,13 @@ bool StreamingParser::Impl::decide(bool final) {
   bool decided = false;
   const bool isXml = parsing::looksLikeXml(text, decided);
   if (!decided && !final) return false;
+  if (!isXml && parsing::looksLikeJson(text, decided)) {
+    encoding = Encoding::json;
+    scene.x3d.encoding = "JSON";
+    scratch = std::move(text);
+    text.clear();
+    return true;
+  }
   if (!isXml) {
     encoding = Encoding::classic;
     return true;
@@ -332,6 +346,8 @@ std::size_t StreamingParser::Impl::parse(bool final) {
     const std::size_t routes = scene.routes.size();
     const std::size_t hidden = scene.hiddenNodes.size();
     const std::size_t protos = scene.protos.size();
+    const X3dInfo x3dBefore = scene.x3d;  // a few short lists: the header statements
+    const parsing::Context::Units unitsBefore = ctx.units;
     const std::size_t diags = scene.diagnostics.items.size();
     const std::size_t nodes = ctx.nodeCount;
     const std::size_t externs = loaded.size();
@@ -353,6 +369,8 @@ std::size_t StreamingParser::Impl::parse(bool final) {
       cut(scene.routes, routes);
       cut(scene.hiddenNodes, hidden);
       cut(scene.protos, protos);
+      scene.x3d = x3dBefore;
+      ctx.units = unitsBefore;
       cut(scene.diagnostics.items, diags);
       ctx.nodeCount = nodes;
       for (auto it = undo.defs.rbegin(); it != undo.defs.rend(); ++it) {
@@ -436,6 +454,25 @@ std::size_t StreamingParser::Impl::guarded(std::string_view bytes, bool final) {
       }
       if (!xml->wroteHeader()) return 0;  // (at the end, expat has failed: no element)
     }
+    if (encoding == Encoding::json) {
+      if (!final) return 0;  // whole documents only
+      json = std::make_unique<parsing::JsonToClassic>(text, url, user.limits.maxNesting);
+      json->translate(scratch, scene);
+      scratch.clear();
+      scratch.shrink_to_fit();
+      std::size_t added = 0;
+      if (json->wroteHeader()) {
+        scanNew();
+        added = parseMapped(true);
+      }
+      scene.x3d.encoding = "JSON";
+      if (json->failed()) {
+        stop(json->fatalError());
+      } else if (!json->wroteHeader()) {
+        stopped = true;
+      }
+      return added;
+    }
     scanNew();
     return parseMapped(final);
   } catch (const std::bad_alloc&) {
@@ -449,7 +486,8 @@ StreamingParser::StreamingParser(std::string url, ParseOptions options)
 
 bool StreamingParser::rebase(std::string url) {
   Impl& m = *impl_;
-  if (!m.text.empty() || !m.head.empty() || m.gunzip || m.parser || m.xml) return false;
+  if (!m.text.empty() || !m.head.empty() || m.gunzip || m.parser || m.xml || !m.scratch.empty())
+    return false;
   m.url = std::move(url);
   m.scene.url = m.url;
   return true;

@@ -3,6 +3,7 @@
 // (ISO/IEC 19775-1 clause 4.4.6). The XML encoding's <head>, <IMPORT> and <EXPORT> are
 // translated into the same statements (x3d_xml.cpp).
 #include "parser_impl.hpp"
+#include "vrml/node_support.hpp"
 
 #include <cstdlib>
 
@@ -75,6 +76,19 @@ bool Parser::parseX3dStatement(Scope& scope, const Token& t) {
       report(Severity::warning, ct.offset, "COMPONENT " + name + ": level must be at least 1");
       level = 1;
     }
+    // A component asked for that is not (fully) implemented: one diagnostic naming it;
+    // the rest of the world loads (its nodes are read all the same).
+    if (!knownComponent(name)) {
+      report(Severity::warning, ct.offset, "unknown component '" + name + "'");
+    } else if (const auto missing = unimplementedNodes(name, level); !missing.empty()) {
+      std::string list;
+      for (std::size_t i = 0; i < missing.size() && i < 6; ++i)
+        list += (i ? ", " : "") + std::string(missing[i]);
+      if (missing.size() > 6) list += " and " + std::to_string(missing.size() - 6) + " more";
+      report(Severity::warning, ct.offset,
+             "COMPONENT " + name + ":" + std::to_string(level) +
+                 " is not fully supported: " + list + " read but not drawn or run");
+    }
     info.components.emplace_back(std::move(name), level);
   } else if (kw == "UNIT") {
     const Token ct = lex_.peek();
@@ -91,6 +105,8 @@ bool Parser::parseX3dStatement(Scope& scope, const Token& t) {
       report(Severity::error, ct.offset,
              "UNIT " + u.category + " " + u.name + ": the conversion factor must be positive");
     } else {
+      if (u.category == "length") ctx_.units.length = u.conversionFactor;
+      if (u.category == "angle") ctx_.units.angle = u.conversionFactor;
       info.units.push_back(std::move(u));
     }
   } else if (kw == "META") {
@@ -127,6 +143,44 @@ bool Parser::parseX3dStatement(Scope& scope, const Token& t) {
       info.exports.push_back(std::move(ex));
   }
   return true;
+}
+
+void Parser::applyAngleUnit(const FieldSpec& spec, FieldValue& v) const {
+  const auto f = static_cast<float>(ctx_.units.angle);
+  switch (spec.type) {
+    case FieldType::SFRotation:
+      v.get<FieldType::SFRotation>().w *= f;
+      return;
+    case FieldType::MFRotation:
+      for (Rotation& r : v.get<FieldType::MFRotation>()) r.w *= f;
+      return;
+    default:
+      break;
+  }
+  // Fields X3D measures in angle base units (ISO/IEC 19775-1 table 4.4 "Standard units").
+  static constexpr std::string_view kAngleFields[] = {
+      "fieldOfView", "creaseAngle", "skyAngle", "groundAngle", "beamWidth", "cutOffAngle",
+      "diskAngle",   "minAngle",    "maxAngle", "startAngle",  "endAngle"};
+  bool angle = false;
+  for (std::string_view a : kAngleFields) angle = angle || spec.name == a;
+  if (!angle) return;
+  if (spec.type == FieldType::SFFloat)
+    v.get<FieldType::SFFloat>() *= f;
+  else if (spec.type == FieldType::MFFloat)
+    for (float& x : v.get<FieldType::MFFloat>()) x *= f;
+}
+
+NodePtr Parser::applyLengthUnit(const NodePtr& n) const {
+  if (ctx_.units.length == 1.0 || !n || !n->is(AbstractType::X3DChildNode)) return n;
+  static const std::shared_ptr<const NodeType> kTransform = x3dNodeType("Transform");
+  auto t = std::make_shared<Node>(kTransform);
+  t->location = n->location;
+  const auto f = static_cast<float>(ctx_.units.length);
+  t->fieldAt(static_cast<std::size_t>(kTransform->findExact("scale"))) =
+      FieldValue::make<FieldType::SFVec3f>(glm::vec3(f));
+  t->fieldAt(static_cast<std::size_t>(kTransform->findExact("children"))) =
+      FieldValue::make<FieldType::MFNode>(std::vector<NodePtr>{n});
+  return t;
 }
 
 }  // namespace gs::vrml::parsing

@@ -1,4 +1,5 @@
-// The ghostspace command line (see README.md, "Command line").
+// The ghostspace command line (see README.md, "Command line"): what the options fill.
+// Each option is declared once, in app/src/option_table.cpp.
 #pragma once
 
 #include "session/world_runtime.hpp"
@@ -21,8 +22,8 @@ struct EncodeOptions {
   std::uint64_t count = 0;           // --count N: keep the N largest (wins over F)
   std::uint32_t packetBytes = 1376;  // --packet-bytes B: record bytes per packet
   bool compact = false;              // --compact: zstd-compressed packets
-  std::string coding;                // --coding plain|compact|entropy (wins over --compact)
-  std::string valueWindow;           // --window LO:HI: volume values kept
+  std::string coding;       // --coding plain|compact|entropy|entropy-fast (wins over --compact)
+  std::string valueWindow;  // --window LO:HI: volume values kept
   std::string magnitude = "log";     // --magnitude log|linear
   std::string rawDims;               // --raw-dims X,Y,Z: INPUT is raw voxels
   std::string rawType = "uint8";     // --raw-type int16 ...

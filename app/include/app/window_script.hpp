@@ -67,11 +67,28 @@ class WindowScript {
   bool empty() const { return commands_.empty(); }
 
  private:
+  struct Command;
+  /// What step() does once a command ran: the next command at once, a frame first, the
+  /// same command again next frame (waiting), or stop.
+  enum class Next { go, frame, wait, quit };
+  /// One command of the language: the verb, what load() checks of its argument (what the
+  /// line should have been, "" when it is right) and what step() runs. One table,
+  /// verbs(), serves both.
+  struct Verb {
+    const char* name;
+    std::string (*check)(const Command& c);
+    Next (*run)(WindowScript& script, WindowState& state, const Command& c, int width, int height);
+  };
   struct Command {
     std::string verb;
     std::string argument;
     int line = 0;
+    const Verb* handler = nullptr;  // in verbs()
   };
+  /// Every verb: window_script.cpp's and the navigation verbs (navigation, walk, back,
+  /// forward, camera) of window_script_navigation.cpp.
+  static const std::vector<Verb>& verbs();
+  static std::vector<Verb> navigationVerbs();
   std::vector<Command> commands_;
   std::size_t next_ = 0;
   int framesLeft_ = 0;
@@ -80,15 +97,9 @@ class WindowScript {
   double waitStart_ = -1.0;
   float pointerX_ = 0.0f, pointerY_ = 0.0f;  // the scripted mouse
   bool buttonDown_ = false;
-  /// Runs an interaction command (time, advance, pointer, press, release, click, drag,
-  /// key); false when `verb` is not one.
-  bool interact(WindowState& state, const Command& c, int height);
-  /// Navigation commands (navigation, walk, back, forward, camera;
-  /// window_script_navigation.cpp): whether `verb` is one; what its arguments should have
-  /// been ("" when they are right); running one.
-  static bool isNavigation(const std::string& verb);
-  static std::string checkNavigation(const Command& c);
-  void navigate(WindowState& state, const Command& c);
+  /// The scripted mouse to (x, y) / its button down or up, told to the window's sensors.
+  void movePointer(WindowState& state, double x, double y, int height);
+  void setButton(WindowState& state, bool down, int height);
   /// frame-stats (window_script_stats.cpp); the steady-clock seconds of each step().
   void writeFrameStats(WindowState& state, const std::string& path);
   std::vector<double> frameStamps_;

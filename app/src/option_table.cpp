@@ -1,0 +1,462 @@
+#include "option_table.hpp"
+
+#include <cstdio>
+#include <string_view>
+#include <type_traits>
+#include <vector>
+
+#include "app/layout.hpp"
+#include "render/splat_renderer.hpp"
+#include "render/traversal.hpp"
+
+namespace gs::app {
+
+Arguments::Arguments() {
+  size = std::to_string(options.width) + "x" + std::to_string(options.height);
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", options.lod);
+  lod = text;
+  layout = std::string(layoutName(options.layout));
+  mode = render::renderModeName(options.mode);
+  splatPath = render::splatPathName(render::defaultSplatPath());
+  scriptMegabytes = static_cast<double>(options.time.scriptLimits.heapBytes) / 1048576.0;
+}
+
+namespace {
+
+// A Field: the member of Arguments `expression` names, of type `type`.
+#define GS_FIELD(type, expression) Field(+[](Arguments& a) -> type& { return a.expression; })
+
+std::vector<std::string> layoutNames() {
+  std::vector<std::string> names;
+  for (const LayoutInfo& l : kLayouts) names.emplace_back(l.name);
+  return names;
+}
+
+std::vector<std::string> modeNames() {
+  std::vector<std::string> names;
+  for (const render::RenderModeInfo& m : render::kRenderModes) names.emplace_back(m.name);
+  return names;
+}
+
+const std::vector<OptionSpec>& table() {
+  using enum OptionScope;
+  static const std::vector<OptionSpec> rows = {
+      {.scope = main,
+       .names = "--snapshot",
+       .valueName = "OUT.png",
+       .field = GS_FIELD(std::string, options.snapshotPath),
+       .help = "Render INPUT off-screen (no display needed) from its bound Viewpoint and "
+               "write a PNG to this path",
+       .more = "It draws once everything it asks for arrived, from the VRML97 default "
+               "viewpoint (0 0 10, field of view 0.785398 rad) when the world has none. Exit code "
+               "0 when the "
+               "PNG was written; 3 when it was written from an incomplete input (a transfer "
+               "failed: the message names the URL and why); 1 with an error on stderr when "
+               "nothing could be shown; 2 on bad options. Diagnostics about the world are "
+               "printed to stderr, one per line, and the rest of the world still renders."},
+      {.scope = main,
+       .names = "--size",
+       .valueName = "WxH",
+       .field = GS_FIELD(std::string, size),
+       .help = "Image or window size in pixels"},
+      {.scope = main,
+       .names = "--layout",
+       .valueName = "NAME",
+       .field = GS_FIELD(std::string, layout),
+       .help = "Viewports: 1x1, 2x1 (two side by side) or 2x2; the INPUTs fill them in order "
+               "(one INPUT fills them all)",
+       .more = "Works in the window and with `--snapshot`.",
+       .check = CLI::IsMember(layoutNames())},
+      {.scope = main,
+       .names = "--lod",
+       .valueName = "F[,F...]",
+       .field = GS_FIELD(std::string, lod),
+       .help = "Level of detail: the fraction of every QNV stream drawn, largest vectors "
+               "first (0 < F <= 1); a list F1,F2,... gives one per viewport",
+       .more = "The last one repeats. Paper section 2: every prefix is the best picture of "
+               "its size."},
+      {.scope = main,
+       .names = "--mode",
+       .valueName = "NAME",
+       .field = GS_FIELD(std::string, mode),
+       .help = "polygons, splats (polygons drawn as QNV splats) or outlines (OutlineGroup "
+               "outlines only)",
+       .more = "Splats: the triangles go through the surface encoder; outlines: "
+               "docs/vrml-extensions.md.",
+       .check = CLI::IsMember(modeNames())},
+      {.scope = main,
+       .names = "--splat-path",
+       .valueName = "NAME",
+       .field = GS_FIELD(std::string, splatPath),
+       .help = "How splats are drawn: auto (cpu where GL is llvmpipe or softpipe, else "
+               "geometry), geometry (a geometry shader makes each patch), points (point "
+               "sprites) or cpu (a multi-threaded CPU rasterizer; render/README.md)",
+       .more = "The cpu path draws its image as one quad, about 3x faster on llvmpipe; every "
+               "path gives the same picture, measured in render/README.md.",
+       .check = CLI::IsMember(std::vector<std::string>{"auto", "geometry", "points", "cpu"})},
+      {.scope = main,
+       .names = "--fit",
+       .valueName = "",
+       .field = GS_FIELD(bool, options.fit),
+       .help = "Frame the whole scene instead of using the bound Viewpoint",
+       .more = "Streams, meshes and volumes have no Viewpoint and are always framed."},
+      {.scope = main,
+       .names = "--frames",
+       .valueName = "N",
+       .field = GS_FIELD(int, options.frames),
+       .help = "Close the window after this many frames (0: never; testing)",
+       .check = CLI::NonNegativeNumber},
+      {.scope = main,
+       .names = "--script",
+       .valueName = "FILE",
+       .field = GS_FIELD(std::string, options.script),
+       .help = "Window: run the UI actions of FILE between frames (layout, open, viewport, "
+               "lod, mode, wait-loaded, frames, screenshot, quit; see app/window_script.hpp)",
+       .more = "One per line; also `viewpoint N`, `auto-lod on|off`, `frame-target MS`, "
+               "`budget N`, `wait-viewports N`, `screenshot-viewport OUT.png`, `status "
+               "OUT.txt`, `frame-stats OUT.txt` (frame times, movie frames shown); "
+               "interaction: `time T`, `advance S` (the clock becomes virtual), `pointer X "
+               "Y`, `press`, `release`, `click X Y`, `drag X1 Y1 X2 Y2 [STEPS]`, `key K`; "
+               "navigation: `navigation EXAMINE|WALK|FLY`, `walk F R U [STEPS]`, `back`, "
+               "`forward`, `camera OUT.txt`. A bad line is an error naming it (exit code 2)."},
+      {.scope = main,
+       .names = "--frame-log",
+       .valueName = "FILE",
+       .field = GS_FIELD(std::string, options.frameLog),
+       .help = "Window: write one CSV line per frame (seconds, frame and work ms, resident "
+               "KiB, vectors and level of detail per viewport) to FILE",
+       .more = "The frame time includes the wait for events, the work time does not "
+               "(app/include/app/frame_log.hpp; the soak test uses it, docs/soak.md)."},
+      {.scope = main,
+       .names = "--new-instance",
+       .valueName = "",
+       .field = GS_FIELD(bool, options.newInstance),
+       .help = "Open a window of its own even when one is running (by default the INPUTs go "
+               "to the running window, each in a new viewport)",
+       .more = "The running window is found through a socket in `$XDG_RUNTIME_DIR`; the "
+               "launch that handed its INPUTs over exits."},
+      {.scope = main,
+       .names = "--max-rate",
+       .valueName = "BYTES_PER_S",
+       .field = GS_FIELD(double, options.maxRate),
+       .help = "Deliver at most this many bytes per second per transfer (0: no limit; "
+               "emulates a slow link; files and URLs alike)",
+       .more = "docs/progressive-loading.md.",
+       .check = CLI::NonNegativeNumber},
+      {.scope = main,
+       .names = "--snapshot-at",
+       .valueName = "BYTES|Ts",
+       .field = GS_FIELD(std::string, snapshotAt),
+       .help = "With --snapshot: render what arrived after this many bytes (e.g. 200000, "
+               "512k, 2M) or seconds (e.g. 2.5s) instead of waiting for the whole input"},
+      {.scope = main,
+       .names = "--stall-timeout",
+       .valueName = "S",
+       .field = GS_FIELD(double, options.stallTimeout),
+       .help = "Seconds without a byte after which a transfer fails",
+       .check = CLI::Range(0.05, 3600.0)},
+      {.scope = main,
+       .names = "--tileset-memory",
+       .valueName = "MB",
+       .field = GS_FIELD(double, options.tilesetMemoryMb),
+       .help = "Megabytes of decoded vectors a QNV tileset keeps at most; bricks far from "
+               "every view are dropped beyond it (docs/tilesets.md)",
+       .check = CLI::PositiveNumber},
+      {.scope = main,
+       .names = "--no-progress",
+       .valueName = "",
+       .field = GS_FIELD(bool, noProgress),
+       .help = "No progress bar on the terminal"},
+      {.scope = main,
+       .names = "--time",
+       .valueName = "T|T0:DT:N",
+       .field = GS_FIELD(std::string, time),
+       .help = "SFTime (seconds since 1970) the world is loaded and shown at; T0:DT:N with "
+               "--snapshot writes N frames DT seconds apart (OUT-0000.png ...). Default: the "
+               "wall clock in a window, 0 for --snapshot",
+       .more = "In the window the clock starts at T, then follows the wall clock. The same "
+               "command gives the same pixels on any machine (docs/runtime.md)."},
+      {.scope = main,
+       .names = "--time-step",
+       .valueName = "S",
+       .field = GS_FIELD(double, options.time.step),
+       .help = "Fixed step of the event cascade between times, seconds",
+       .shownDefault = "1/60",  // the field holds 0.016666...
+       .check = CLI::PositiveNumber},
+      {.scope = main,
+       .names = "--trace-events",
+       .valueName = "FILE",
+       .field = GS_FIELD(std::string, options.time.traceFile),
+       .help = "Write every event as a JSON line (time, node, field, value) to FILE",
+       .more = "ROUTEs, sensors and Scripts alike: "
+               "`{\"time\":1.320,\"node\":\"TS\",\"field\":\"fraction_changed\",\"value\":"
+               "\"0.33\"}`."},
+      {.scope = main,
+       .names = "--no-scripts",
+       .valueName = "",
+       .field = GS_FIELD(bool, noScripts),
+       .help = "Script nodes do not run",
+       .more = "A warning names each."},
+      {.scope = main,
+       .names = "--script-time-limit",
+       .valueName = "S",
+       .field = GS_FIELD(double, options.time.scriptLimits.callSeconds),
+       .help = "Seconds one Script call may run before the Script is stopped",
+       .more = "A call (initialize, an eventIn ...) running longer stops that Script with a "
+               "diagnostic naming its file:line; the world goes on (docs/runtime-scripts.md, "
+               "docs/limits.md).",
+       .check = CLI::PositiveNumber},
+      {.scope = main,
+       .names = "--script-memory-limit",
+       .valueName = "MB",
+       .field = GS_FIELD(double, scriptMegabytes),
+       .help = "Megabytes one Script's heap may use before it is stopped",
+       .more = "It is stopped as with `--script-time-limit` (docs/limits.md).",
+       .check = CLI::Range(1.0, 65536.0)},
+      {.scope = main,
+       .names = "--help-markdown",
+       .valueName = "",
+       .field = GS_FIELD(bool, helpMarkdown),
+       .help = "Print this table of options as Markdown (README.md's) and exit"},
+      {.scope = info,
+       .names = "--exit-zero",
+       .valueName = "",
+       .field = GS_FIELD(bool, options.infoExitZero),
+       .help = "Exit 0 when every INPUT was read, even when a world has errors (by default "
+               "a world with errors makes the exit status 1)"},
+      {.scope = encode,
+       .names = "-o,--output",
+       .valueName = "OUT.qnv",
+       .field = GS_FIELD(std::string, options.encode.output),
+       .help = "The .qnv file to write",
+       .more = "With `--outline`: the VRML97 world of outline groups."},
+      {.scope = encode,
+       .names = "--fraction",
+       .valueName = "F",
+       .field = GS_FIELD(double, options.encode.fraction),
+       .help = "Keep the largest F of all triangles or voxels (0 < F <= 1)",
+       .more = "The paper's figure 2 uses 1.2%, 3.5% and 9.1% of CThead."},
+      {.scope = encode,
+       .names = "--count",
+       .valueName = "N",
+       .field = GS_FIELD(std::uint64_t, options.encode.count),
+       .help = "Keep the N largest vectors (0: as --fraction says)",
+       .excludes = "--fraction"},
+      {.scope = encode,
+       .names = "--packet-bytes",
+       .valueName = "B",
+       .field = GS_FIELD(unsigned, options.encode.packetBytes),
+       .help = "Record bytes per packet, a multiple of 8 (48 = the paper's ATM cell; 1376 "
+               "fits a 1400-byte datagram)"},
+      {.scope = encode,
+       .names = "--compact",
+       .valueName = "",
+       .field = GS_FIELD(bool, options.encode.compact),
+       .help = "zstd-compress each packet (spatially sorted, delta-coded)",
+       .more = "Each packet on its own."},
+      {.scope = encode,
+       .names = "--coding",
+       .valueName = "NAME",
+       .field = GS_FIELD(std::string, options.encode.coding),
+       .help = "Packet coding: plain (64-bit records), compact (zstd), entropy (rANS, "
+               "smallest) or entropy-fast (rANS, fast layout; docs/qnv-format.md)",
+       .more = "Wins over `--compact`. `entropy` codes each packet with its own small rANS "
+               "models and puts the occupied blocks of space in the header when that saves "
+               "bytes (CThead's top 9.1%: 34.8 bits per vector in 16 KiB packets against 48 "
+               "for `--compact` and 64 plain; docs/qnv-format.md, \"Compact coding\" and "
+               "\"Stream model\").",
+       .check = CLI::IsMember({"plain", "compact", "entropy", "entropy-fast"})},
+      {.scope = encode,
+       .names = "--window",
+       .valueName = "LO:HI",
+       .field = GS_FIELD(std::string, options.encode.valueWindow),
+       .help = "Volumes: keep voxels with values in LO..HI",
+       .more = "The window (e.g. bone) becomes the transfer function's domain."},
+      {.scope = encode,
+       .names = "--magnitude",
+       .valueName = "NAME",
+       .field = GS_FIELD(std::string, options.encode.magnitude),
+       .help = "Magnitude quantization: log or linear"},
+      {.scope = encode,
+       .names = "--raw-dims",
+       .valueName = "X,Y,Z",
+       .field = GS_FIELD(std::string, options.encode.rawDims),
+       .help = "INPUT is raw voxels of this size",
+       .more = "E.g. `--raw-dims 256,256,113 --raw-type int16 --raw-big-endian "
+               "--raw-spacing 1,1,2`."},
+      {.scope = encode,
+       .names = "--raw-type",
+       .valueName = "TYPE",
+       .field = GS_FIELD(std::string, options.encode.rawType),
+       .help = "Raw sample type: uint8 int16 float32 ..."},
+      {.scope = encode,
+       .names = "--raw-spacing",
+       .valueName = "SX,SY,SZ",
+       .field = GS_FIELD(std::string, options.encode.rawSpacing),
+       .help = "Raw voxel spacing"},
+      {.scope = encode,
+       .names = "--raw-big-endian",
+       .valueName = "",
+       .field = GS_FIELD(bool, options.encode.rawBigEndian),
+       .help = "Raw samples are big-endian"},
+      {.scope = encode,
+       .names = "--raw-skip",
+       .valueName = "BYTES",
+       .field = GS_FIELD(std::uint64_t, options.encode.rawHeaderBytes),
+       .help = "Bytes to skip before the raw samples"},
+      {.scope = encode,
+       .names = "--no-progress",
+       .valueName = "",
+       .field = GS_FIELD(bool, encodeNoProgress),
+       .help = "No progress bar on the terminal",
+       .more = "Without it, one is drawn on stderr when it is a terminal."},
+      {.scope = encode,
+       .names = "--outline",
+       .valueName = "",
+       .field = GS_FIELD(bool, options.encode.outline),
+       .help = "Write OUT as a VRML97 world of outline groups, outlines first "
+               "(docs/vrml-extensions.md) instead of a .qnv stream"},
+      {.scope = encode,
+       .names = "--max-angle",
+       .valueName = "DEG",
+       .field = GS_FIELD(double, options.encode.maxAngle),
+       .help = "With --outline: largest angle in degrees between a triangle's normal and "
+               "its group's",
+       .check = CLI::Range(0.0, 180.0)},
+      {.scope = encode,
+       .names = "--tileset",
+       .valueName = "OUT/",
+       .field = GS_FIELD(std::string, options.encode.tileset),
+       .help = "Write a tileset folder (index.qnvt and bricks/, docs/qnv-format.md "
+               "\"Tilesets\") instead of one stream",
+       .more = "One brick per octree node, `OUT/bricks/L/X_Y_Z.qnv`, each an ordinary stream "
+               "sorted largest first. `--fraction`, `--count`, `--window`, `--coding` and "
+               "`--packet-bytes` mean what they mean for a stream."},
+      {.scope = encode,
+       .names = "--brick-voxels",
+       .valueName = "B",
+       .field = GS_FIELD(unsigned, options.encode.brickVoxels),
+       .help = "Tilesets of volumes: leaf bricks of B voxels per side",
+       .check = CLI::Range(1u, 1u << 20)},
+      {.scope = encode,
+       .names = "--brick-vectors",
+       .valueName = "K",
+       .field = GS_FIELD(std::uint64_t, options.encode.brickVectors),
+       .help = "Tilesets: vectors an octree node aims at",
+       .more = "For surfaces also the leaf size that sets the depth.",
+       .check = CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 32)},
+      {.scope = encode,
+       .names = "--memory",
+       .valueName = "MB",
+       .field = GS_FIELD(double, options.encode.memoryMB),
+       .help = "Tilesets of volumes and PLY meshes: encode out of core in about MB "
+               "mebibytes (fractions allowed; 0: in memory; docs/out-of-core.md)",
+       .more = "Volumes slab by slab, meshes triangle by triangle (bricked by centroid), "
+               "spilling to `OUT/parts/I-of-N/` past it; the files are the in-memory "
+               "encode's byte for byte (docs/out-of-core.md, \"Tileset encoding\" and "
+               "\"Meshes\"). Volumes and meshes may then be larger than memory, and `INPUT` "
+               "may also be a folder or `%04d` pattern of PNG/TIFF slices or a multi-file "
+               "NRRD.",
+       .check = CLI::Range(0.001, 1048576.0 * 1024.0)},
+      {.scope = encode,
+       .names = "--threads",
+       .valueName = "N",
+       .field = GS_FIELD(unsigned, options.encode.threads),
+       .help = "Out-of-core encodes: worker threads (0: every core)",
+       .check = CLI::Range(1u, 256u)},
+      {.scope = encode,
+       .names = "--bricks",
+       .valueName = "I/N",
+       .field = GS_FIELD(std::string, options.encode.bricks),
+       .help = "Tilesets: write only share I of N (0 <= I < N) of a split encode; "
+               "`ghostspace tileset index OUT/` merges the shares",
+       .more = "A share is the leaf bricks of the I-th contiguous range of leaves and "
+               "`OUT/parts/I-of-N/`; run the shares anywhere (a SLURM array, Kubernetes "
+               "Jobs, GNU parallel); the merge writes the interior bricks and `index.qnvt`, "
+               "byte-identical to an unsplit run."},
+      {.scope = builtIn,
+       .names = "--help",
+       .valueName = "",
+       .field = GS_FIELD(bool, helpMarkdown),
+       .help = "Print the options and exit (also after `info` and `encode`)"},
+      {.scope = builtIn,
+       .names = "--version",
+       .valueName = "",
+       .field = GS_FIELD(bool, helpMarkdown),
+       .help = "Print the version and exit",
+       .more = "An unknown option is an error that names it (exit code 2)."},
+  };
+  return rows;
+}
+
+#undef GS_FIELD
+
+CLI::Option* add(CLI::App& app, const OptionSpec& spec, Arguments& arguments) {
+  CLI::Option* option = std::visit(
+      [&](auto get) -> CLI::Option* {
+        auto& value = get(arguments);
+        using T = std::remove_reference_t<decltype(value)>;
+        if constexpr (std::is_same_v<T, bool>)
+          return app.add_flag(spec.names, value, spec.help);
+        else
+          return app.add_option(spec.names, value, spec.help)->capture_default_str();
+      },
+      spec.field);
+  if (*spec.valueName) option->type_name(spec.valueName);
+  if (spec.shownDefault) option->default_str(spec.shownDefault);
+  if (spec.check) option->check(*spec.check);
+  if (spec.excludes) option->excludes(app.get_option(spec.excludes));
+  return option;
+}
+
+/// `text` with `|` escaped for a Markdown table cell.
+std::string cell(std::string_view text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '|') out += '\\';
+    out += c;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::span<const OptionSpec> optionTable() {
+  return table();
+}
+
+void registerOptions(OptionScope scope, CLI::App& app, Arguments& arguments) {
+  for (const OptionSpec& spec : table())
+    if (spec.scope == scope) add(app, spec, arguments);
+}
+
+std::string optionsMarkdown() {
+  using enum OptionScope;
+  Arguments arguments;
+  std::string out = "| option | default | meaning |\n|---|---|---|\n";
+  for (OptionScope scope : {main, info, encode, builtIn}) {
+    CLI::App app;  // what --help shows as each default
+    if (scope != builtIn) registerOptions(scope, app, arguments);
+    for (const OptionSpec& spec : table()) {
+      if (spec.scope != scope) continue;
+      std::string name = scope == info ? "info " : scope == encode ? "encode " : "";
+      name += spec.names;
+      if (const auto comma = name.find(','); comma != std::string::npos)
+        name.insert(comma + 1, " ");
+      if (*spec.valueName) name += std::string(" ") + spec.valueName;
+      std::string shown;
+      if (scope != builtIn) {
+        const std::string names(spec.names);
+        shown = app.get_option(names.substr(names.rfind(',') + 1))->get_default_str();
+      }
+      std::string meaning = spec.help;
+      meaning += *spec.more ? std::string(". ") + spec.more : std::string(".");
+      out += "| `" + cell(name) + "` | " + (shown.empty() ? "" : "`" + cell(shown) + "`") + " | " +
+             cell(meaning) + " |\n";
+    }
+  }
+  return out;
+}
+
+}  // namespace gs::app

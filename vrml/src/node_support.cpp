@@ -1,0 +1,74 @@
+#include "vrml/node_support.hpp"
+
+#include "vrml/node_table.hpp"
+
+#include <algorithm>
+#include <array>
+
+namespace gs::vrml {
+
+namespace {
+
+// X3D nodes beyond VRML97's that have their behaviour (geometry_x3d.cpp, geometry_2d.cpp,
+// runtime/src/event_utilities.cpp; metadata nodes have none to give). One name a line:
+// docs/gen/gen_x3d_status.py reads this list.
+constexpr std::array kImplementedX3d = {
+    NodeTypeId::IndexedTriangleSet,
+    NodeTypeId::IndexedTriangleFanSet,
+    NodeTypeId::IndexedTriangleStripSet,
+    NodeTypeId::TriangleSet,
+    NodeTypeId::TriangleFanSet,
+    NodeTypeId::TriangleStripSet,
+    NodeTypeId::LineSet,
+    NodeTypeId::IndexedQuadSet,
+    NodeTypeId::QuadSet,
+    NodeTypeId::ColorRGBA,
+    NodeTypeId::CoordinateDouble,
+    NodeTypeId::MultiTextureCoordinate,
+    NodeTypeId::Arc2D,
+    NodeTypeId::ArcClose2D,
+    NodeTypeId::Circle2D,
+    NodeTypeId::Disk2D,
+    NodeTypeId::Polyline2D,
+    NodeTypeId::Polypoint2D,
+    NodeTypeId::Rectangle2D,
+    NodeTypeId::TriangleSet2D,
+    NodeTypeId::MetadataBoolean,
+    NodeTypeId::MetadataDouble,
+    NodeTypeId::MetadataFloat,
+    NodeTypeId::MetadataInteger,
+    NodeTypeId::MetadataSet,
+    NodeTypeId::MetadataString,
+    NodeTypeId::BooleanFilter,
+    NodeTypeId::BooleanSequencer,
+    NodeTypeId::BooleanToggle,
+    NodeTypeId::BooleanTrigger,
+    NodeTypeId::IntegerSequencer,
+    NodeTypeId::IntegerTrigger,
+    NodeTypeId::TimeTrigger,
+};
+
+}  // namespace
+
+bool nodeImplemented(NodeTypeId id) {
+  const NodeModel* m = nodeModel(id);
+  if (m == nullptr) return false;
+  if (builtInNodeType(m->name)) return true;  // VRML97's nodes and the extensions
+  return std::find(kImplementedX3d.begin(), kImplementedX3d.end(), id) != kImplementedX3d.end();
+}
+
+std::vector<std::string_view> unimplementedNodes(std::string_view component, int level) {
+  std::vector<std::string_view> out;
+  for (const NodeModel& m : nodeModels())
+    if (m.component == component && m.level <= level && !nodeImplemented(m.id))
+      out.push_back(m.name);
+  return out;
+}
+
+bool knownComponent(std::string_view component) {
+  for (const NodeModel& m : nodeModels())
+    if (m.component == component) return true;
+  return false;
+}
+
+}  // namespace gs::vrml
