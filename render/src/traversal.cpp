@@ -193,7 +193,7 @@ struct SceneTraversal::Walk {
         if (static_cast<int>(inlineChain.size()) >= self.options_.maxInlineDepth) {
           self.report(vrml::Severity::error, n.location,
                       "Inline nesting deeper than " + std::to_string(self.options_.maxInlineDepth) +
-                          " files (RendererOptions::maxInlineDepth) at " + inl->url +
+                          " files (TraversalOptions::maxInlineDepth) at " + inl->url +
                           ": not drawn");
           break;
         }
