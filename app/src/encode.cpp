@@ -13,7 +13,6 @@
 #include "formats/input_kind.hpp"
 #include "formats/volume_readers.hpp"
 #include "formats/volume_slabs.hpp"
-#include "ooc_tileset.hpp"
 #include "qnv/encoder.hpp"
 #include "qnv/error.hpp"
 #include "render/world_triangles.hpp"
@@ -178,7 +177,7 @@ int runEncode(const Options& options) {
       v.selection = s.selection;
       v.mapping = s.mapping;
       v.valueWindow = s.window;
-      if (tileset && options.encode.memoryMB > 0) {  // out of core: ooc_tileset.cpp
+      if (tileset && options.encode.memoryMB > 0) {  // out of core: encode/src/ooc_volume.cpp
         bar.finish();
         const auto reader = formats::openVolumeSlabs(input, s.raw ? &*s.raw : nullptr);
         return writeVolumeTilesetOutOfCore(options, *reader, v, s.write, input);
@@ -197,7 +196,7 @@ int runEncode(const Options& options) {
         throw qnv::InputError(
             "--memory: out-of-core encoding reads volumes and PLY meshes only, not '" + input +
             "' (docs/out-of-core.md)");
-      if (options.encode.memoryMB > 0) {  // out of core: ooc_mesh.cpp
+      if (options.encode.memoryMB > 0) {  // out of core: encode/src/ooc_mesh.cpp
         bar.finish();
         qnv::SurfaceEncodeOptions v;
         v.selection = s.selection;

@@ -1,239 +1,35 @@
-// `ghostspace encode --tileset OUT/ [--bricks I/N]` and `ghostspace tileset index OUT/`:
-// the files of a QNV tileset (docs/qnv-format.md, "Tilesets"). A share writes the leaf
-// bricks of its contiguous range of leaves (in (z, y, x) order) and, under
-// OUT/parts/I-of-N/, its leaves' index (leaves.qnvt, the index format) and what it gives
-// the interior nodes (interior.qnvp); the merge turns every share's parts into the
-// interior bricks and OUT/index.qnvt. An unsplit run is share 0 of 1 and the merge.
+// `ghostspace encode --tileset OUT/ [--bricks I/N] [--memory MB]` and `ghostspace tileset
+// index OUT/`: options in, the library's tileset encodes (encode/tileset.hpp) called,
+// their results printed.
 #include "encode_tileset.hpp"
 
-#include <charconv>
-#include <chrono>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
-#include <map>
-#include <memory>
-#include <sstream>
 
 #include "app/commands.hpp"
-#include "qnv/error.hpp"
-#include "qnv/tileset_writer.hpp"
 
 namespace gs::app {
 
 namespace fs = std::filesystem;
 
-bool parseShare(const std::string& text, std::uint32_t& share, std::uint32_t& shares) {
-  const std::size_t slash = text.find('/');
-  if (slash == std::string::npos) return false;
-  const char* s = text.data();
-  auto [p, ec] = std::from_chars(s, s + slash, share);
-  auto [q, ec2] = std::from_chars(s + slash + 1, s + text.size(), shares);
-  return ec == std::errc() && p == s + slash && ec2 == std::errc() && q == s + text.size() &&
-         shares >= 1 && shares <= qnv::kMaxTilesetShares && share < shares;
-}
-
-bool tilesetShareOptions(const EncodeOptions& e, const qnv::WriteOptions& write,
-                         std::uint32_t& share, std::uint32_t& shares, qnv::TilesetOptions& cut) {
-  share = 0;
-  shares = 1;
-  if (!e.bricks.empty() && !parseShare(e.bricks, share, shares)) {
+bool tilesetTarget(const EncodeOptions& e, const qnv::WriteOptions& write,
+                   encode::TilesetTarget& target) {
+  target.dir = e.tileset;
+  target.whole = e.bricks.empty();
+  target.share = 0;
+  target.shares = 1;
+  if (!target.whole && !encode::parseShare(e.bricks, target.share, target.shares)) {
     std::fprintf(stderr,
                  "ghostspace: encode: --bricks: expected I/N with 0 <= I < N <= %u, got '%s'\n",
                  qnv::kMaxTilesetShares, e.bricks.c_str());
     return false;
   }
-  cut.brickVoxels = e.brickVoxels;
-  cut.brickVectors = e.brickVectors;
-  cut.write = write;
+  target.cut.brickVoxels = e.brickVoxels;
+  target.cut.brickVectors = e.brickVectors;
+  target.cut.write = write;
   return true;
 }
 
-std::string shareName(std::uint32_t share, std::uint32_t shares) {
-  return std::to_string(share) + "-of-" + std::to_string(shares);
-}
-
-// Writes `bytes` to `path` (folders made as needed); "" or a sentence naming the path.
-std::string writeFile(const fs::path& path, std::string_view bytes) {
-  std::error_code ec;
-  fs::create_directories(path.parent_path(), ec);
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-  out.close();
-  if (!out) return "cannot write '" + path.string() + "'";
-  return {};
-}
-
-namespace {
-
-std::optional<std::string> readFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// Share `share` of `shares`: leaf bricks and the parts. "" or the error.
-std::string writeShare(const fs::path& dir, const qnv::TilesetLayout& layout,
-                       const qnv::TilesetOptions& cut, const qnv::SelectedVectors& selected,
-                       std::uint32_t share, std::uint32_t shares, std::uint64_t& bytes) {
-  qnv::TilesetShareWriter writer(layout, share, shares);
-  for (const qnv::SourceVector& v : selected.vectors) writer.add(v);
-  std::vector<qnv::TilesetBrick> leaves;
-  for (const glm::uvec3& leaf : writer.openLeaves()) {
-    std::optional<qnv::BrickFile> brick = writer.finishLeaf(leaf);
-    if (!brick) continue;
-    if (std::string error = writeFile(dir / brick->brick.path(), brick->bytes); !error.empty())
-      return error;
-    bytes += brick->bytes.size();
-    leaves.push_back(std::move(brick->brick));
-  }
-  const fs::path part = dir / "parts" / shareName(share, shares);
-  const std::string index = serializeTilesetIndex(assembleTilesetIndex(layout, std::move(leaves)));
-  const std::string interior = serializeInteriorParts(writer.interior(), cut);
-  bytes += index.size() + interior.size();
-  if (std::string error = writeFile(part / "leaves.qnvt", index); !error.empty()) return error;
-  return writeFile(part / "interior.qnvp", interior);
-}
-
-// The template header without its vector count, to compare shares.
-std::string templateKey(qnv::StreamHeader h) {
-  h.vectorCount = 0;
-  return qnv::serializeHeader(h);
-}
-
-}  // namespace
-
-std::string mergeShares(const fs::path& dir, Merged& merged) {
-  const fs::path partsDir = dir / "parts";
-  std::error_code ec;
-  if (!fs::is_directory(partsDir, ec))
-    return "'" + partsDir.string() +
-           "' holds no shares to merge (run encode --tileset with --bricks I/N first)";
-  std::map<std::uint32_t, fs::path> found;
-  std::uint32_t shares = 0;
-  for (const fs::directory_entry& entry : fs::directory_iterator(partsDir, ec)) {
-    const std::string name = entry.path().filename().string();
-    const std::size_t of = name.find("-of-");
-    std::uint32_t i = 0, n = 0;
-    if (of == std::string::npos ||
-        !parseShare(name.substr(0, of) + "/" + name.substr(of + 4), i, n))
-      return "'" + entry.path().string() + "' is not a share's folder (I-of-N)";
-    if (shares != 0 && n != shares)
-      return "'" + partsDir.string() + "' mixes shares of " + std::to_string(shares) + " and " +
-             std::to_string(n) + " (left over from another encode?)";
-    shares = n;
-    found[i] = entry.path();
-  }
-  if (shares == 0) return "'" + partsDir.string() + "' holds no shares to merge";
-  for (std::uint32_t i = 0; i < shares; ++i)
-    if (!found.count(i))
-      return "share " + std::to_string(i) + " of " + std::to_string(shares) + " is missing ('" +
-             (partsDir / shareName(i, shares)).string() + "'): run encode with --bricks " +
-             std::to_string(i) + "/" + std::to_string(shares);
-
-  // The interior parts stay on disk: each share's is checked and indexed by node, then
-  // every node is merged from the shares' spans, one node in memory at a time.
-  struct SharePart {
-    std::shared_ptr<std::ifstream> file;
-    fs::path path;
-    std::vector<qnv::InteriorPartSpan> spans;
-  };
-  const auto readerOf = [](const SharePart& part) -> qnv::PartReader {
-    return [&part](std::uint64_t offset, std::size_t n, char* out) {
-      part.file->clear();
-      part.file->seekg(static_cast<std::streamoff>(offset));
-      part.file->read(out, static_cast<std::streamsize>(n));
-      if (part.file->gcount() != static_cast<std::streamsize>(n))
-        throw qnv::InputError("cannot read '" + part.path.string() + "'");
-    };
-  };
-  std::vector<qnv::TilesetBrick> bricks;
-  std::vector<SharePart> interior;
-  std::optional<qnv::TilesetIndex> first;
-  qnv::TilesetOptions cut;
-  std::uint64_t total = 0;
-  try {
-    for (const auto& [i, folder] : found) {
-      std::string error;
-      const fs::path leavesPath = folder / "leaves.qnvt", interiorPath = folder / "interior.qnvp";
-      const auto leavesBytes = readFile(leavesPath);
-      SharePart part{
-          std::make_shared<std::ifstream>(interiorPath, std::ios::binary), interiorPath, {}};
-      const std::uint64_t size = fs::file_size(interiorPath, ec);
-      if (!leavesBytes || !*part.file || ec)
-        return "cannot read '" + (leavesBytes ? interiorPath : leavesPath).string() + "'";
-      auto leaves = qnv::parseTilesetIndex(*leavesBytes, leavesPath.string(), error);
-      if (!leaves) return error;
-      qnv::TilesetOptions shareCut;
-      auto spans =
-          qnv::scanInteriorParts(size, readerOf(part), interiorPath.string(), shareCut, error);
-      if (!spans) return error;
-      part.spans = std::move(*spans);
-      if (!first) {
-        first = leaves;
-        cut = shareCut;
-      } else if (leaves->depth != first->depth ||
-                 templateKey(leaves->header) != templateKey(first->header) ||
-                 shareCut.brickVoxels != cut.brickVoxels ||
-                 shareCut.brickVectors != cut.brickVectors) {
-        return "'" + folder.string() + "' comes from another encode than share 0 (its header, " +
-               "depth or brick options differ)";
-      }
-      total += leaves->header.vectorCount;
-      for (const qnv::InteriorPartSpan& span : part.spans) total += span.count;
-      for (qnv::TilesetBrick& b : leaves->bricks) {
-        const fs::path path = dir / b.path();
-        if (!fs::is_regular_file(path, ec) || fs::file_size(path, ec) != b.fileBytes)
-          return "'" + path.string() + "' is missing or not the brick share " + std::to_string(i) +
-                 " wrote";
-        bricks.push_back(std::move(b));
-      }
-      interior.push_back(std::move(part));
-    }
-
-    qnv::StreamHeader whole = first->header;
-    whole.vectorCount = total;
-    cut.write.packetBytes = whole.packetBytes;
-    cut.write.encoding = whole.encoding;
-    const qnv::TilesetLayout layout(whole, cut);
-    if (layout.depth() != first->depth)
-      return "the shares' octree depth does not fit their vectors";
-    std::map<qnv::TilesetCell, std::vector<std::pair<const SharePart*, qnv::InteriorPartSpan>>>
-        nodes;
-    for (const SharePart& part : interior)
-      for (const qnv::InteriorPartSpan& span : part.spans)
-        nodes[span.node].push_back({&part, span});
-    for (const auto& [node, spans] : nodes) {
-      std::vector<qnv::InteriorEntry> entries;
-      for (const auto& [part, span] : spans) {
-        std::vector<qnv::InteriorEntry> more = qnv::loadInteriorEntries(span, readerOf(*part));
-        entries.insert(entries.end(), more.begin(), more.end());
-      }
-      if (entries.empty()) continue;
-      const qnv::BrickFile b = qnv::mergeInteriorNode(node, std::move(entries), layout);
-      if (std::string error = writeFile(dir / b.brick.path(), b.bytes); !error.empty())
-        return error;
-      bricks.push_back(b.brick);
-    }
-    merged.index = qnv::assembleTilesetIndex(layout, std::move(bricks));
-  } catch (const qnv::InputError& e) {
-    return e.what();
-  }
-  const std::string bytes = qnv::serializeTilesetIndex(merged.index);
-  std::string error;
-  // The reader's checks on what we are about to publish (duplicate cells across shares...).
-  if (!qnv::parseTilesetIndex(bytes, (dir / "index.qnvt").string(), error)) return error;
-  if (std::string e = writeFile(dir / "index.qnvt", bytes); !e.empty()) return e;
-  merged.indexBytes = bytes.size();
-  merged.totalBytes = bytes.size();
-  for (const qnv::TilesetBrick& b : merged.index.bricks) merged.totalBytes += b.fileBytes;
-  fs::remove_all(partsDir, ec);
-  return {};
-}
-
-void printMerged(const fs::path& dir, const Merged& m) {
+void printMerged(const fs::path& dir, const encode::Merged& m) {
   std::uint64_t leaves = 0;
   for (const qnv::TilesetBrick& b : m.index.bricks) leaves += b.level == m.index.depth;
   std::printf(
@@ -244,6 +40,38 @@ void printMerged(const fs::path& dir, const Merged& m) {
       static_cast<unsigned long long>(m.index.header.vectorCount),
       static_cast<unsigned long long>(m.indexBytes), static_cast<unsigned long long>(m.totalBytes));
 }
+
+namespace {
+
+// The last line of a tileset encode: the merged tileset when the run was the whole
+// encode, else which leaves the share wrote and the merge command to run after every
+// share. `seconds`: the whole command's time.
+void printEncodeResult(const encode::TilesetTarget& target, const std::string& input,
+                       const encode::TilesetResult& r, double seconds) {
+  const fs::path& dir = target.dir;
+  if (target.whole) {
+    printMerged(dir, r.merged);
+    std::printf("%s: encoded in %.3f s\n", input.c_str(), seconds);
+    return;
+  }
+  std::printf(
+      "%s: share %u of %u: leaves %llu..%llu of %llu (depth %u), %llu bytes; %.3f s. After "
+      "every share: ghostspace tileset index %s\n",
+      dir.string().c_str(), target.share, target.shares,
+      static_cast<unsigned long long>(r.leaves.first),
+      static_cast<unsigned long long>(r.leaves.second),
+      static_cast<unsigned long long>(r.leafCount), r.depth,
+      static_cast<unsigned long long>(r.shareBytes), seconds, dir.string().c_str());
+}
+
+encode::OutOfCoreOptions outOfCore(const EncodeOptions& e) {
+  encode::OutOfCoreOptions ooc;
+  ooc.memoryBytes = static_cast<std::uint64_t>(e.memoryMB * 1048576.0);
+  ooc.threads = e.threads;
+  return ooc;
+}
+
+}  // namespace
 
 CLI::App* addTilesetCommand(CLI::App& cli, std::string& folder) {
   CLI::App* tileset = cli.add_subcommand("tileset", "Work on QNV tilesets (docs/qnv-format.md)");
@@ -258,55 +86,84 @@ CLI::App* addTilesetCommand(CLI::App& cli, std::string& folder) {
 
 int writeTileset(const Options& options, const qnv::SelectedVectors& selected,
                  const qnv::WriteOptions& write, const std::string& input, double seconds) {
-  const EncodeOptions& e = options.encode;
-  std::uint32_t share = 0, shares = 1;
-  qnv::TilesetOptions cut;
-  if (!tilesetShareOptions(e, write, share, shares, cut)) return 2;
-  const auto t0 = std::chrono::steady_clock::now();
-  const fs::path dir = e.tileset;
-  try {
-    const qnv::TilesetLayout layout(selected.header, cut);
-    std::error_code ec;
-    if (e.bricks.empty()) {  // the whole output: nothing stale may remain
-      fs::remove_all(dir / "bricks", ec);
-      fs::remove_all(dir / "parts", ec);
-      fs::remove(dir / "index.qnvt", ec);
-    }
-    std::uint64_t bytes = 0;
-    std::string error = writeShare(dir, layout, cut, selected, share, shares, bytes);
-    Merged merged;
-    if (error.empty() && e.bricks.empty()) error = mergeShares(dir, merged);
-    if (!error.empty()) {
-      std::fprintf(stderr, "ghostspace: %s\n", error.c_str());
-      return 1;
-    }
-    const double total =
-        seconds + std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (e.bricks.empty()) {
-      printMerged(dir, merged);
-      std::printf("%s: encoded in %.3f s\n", input.c_str(), total);
-    } else {
-      const auto range = layout.shareLeaves(share, shares);
-      std::printf(
-          "%s: share %u of %u: leaves %llu..%llu of %llu (depth %u), %llu bytes; %.3f s. After "
-          "every share: ghostspace tileset index %s\n",
-          dir.string().c_str(), share, shares, static_cast<unsigned long long>(range.first),
-          static_cast<unsigned long long>(range.second),
-          static_cast<unsigned long long>(layout.leafCount()),
-          static_cast<unsigned>(layout.depth()), static_cast<unsigned long long>(bytes), total,
-          dir.string().c_str());
-    }
-  } catch (const qnv::InputError& error) {
-    std::fprintf(stderr, "ghostspace: encode: %s\n", error.what());
+  encode::TilesetTarget target;
+  if (!tilesetTarget(options.encode, write, target)) return 2;
+  const encode::TilesetResult r = encode::writeTileset(target, selected);
+  if (r.failure == encode::Failure::input) {
+    std::fprintf(stderr, "ghostspace: encode: %s\n", r.error.c_str());
     return 2;
   }
+  if (!r.ok()) {
+    std::fprintf(stderr, "ghostspace: %s\n", r.error.c_str());
+    return 1;
+  }
+  printEncodeResult(target, input, r, seconds + r.seconds);
+  return 0;
+}
+
+int writeVolumeTilesetOutOfCore(const Options& options, qnv::VolumeSlabReader& reader,
+                                const qnv::VolumeEncodeOptions& encode,
+                                const qnv::WriteOptions& write, const std::string& input) {
+  const EncodeOptions& e = options.encode;
+  encode::TilesetTarget target;
+  if (!tilesetTarget(e, write, target)) return 2;
+  const encode::VolumeOutOfCoreResult r =
+      encode::writeVolumeTilesetOutOfCore(target, reader, encode, outOfCore(e));
+  if (!r.tileset.ok()) {
+    std::fprintf(stderr, "ghostspace: encode: %s\n", r.tileset.error.c_str());
+    return 1;
+  }
+  const qnv::EncodeSummary& s = r.summary;
+  std::printf(
+      "%s: %llu voxels, %llu with a non-zero magnitude, kept %llu (%.2f%%); out of core in "
+      "%g MiB: %u selection pass%s %.3f s, vector pass over slices %u..%u (%u per slab) "
+      "%.3f s, spilled %llu + %llu bytes\n",
+      input.c_str(), static_cast<unsigned long long>(s.elements),
+      static_cast<unsigned long long>(s.candidates), static_cast<unsigned long long>(s.kept),
+      s.elements ? 100.0 * static_cast<double>(s.kept) / static_cast<double>(s.elements) : 0.0,
+      e.memoryMB, r.passes, r.passes > 1 ? "es" : "", r.planSeconds, r.z0, r.z1, r.slabSlices,
+      r.vectorSeconds, static_cast<unsigned long long>(r.leafSpillBytes),
+      static_cast<unsigned long long>(r.interiorSpillBytes));
+  printEncodeResult(target, input, r.tileset, r.tileset.seconds);
+  return 0;
+}
+
+int writeMeshTilesetOutOfCore(const Options& options, const std::string& input,
+                              const qnv::SurfaceEncodeOptions& encode,
+                              const qnv::WriteOptions& write) {
+  const EncodeOptions& e = options.encode;
+  encode::TilesetTarget target;
+  if (!tilesetTarget(e, write, target)) return 2;
+  const encode::MeshOutOfCoreResult r =
+      encode::writeMeshTilesetOutOfCore(target, input, encode, outOfCore(e));
+  if (!r.tileset.ok()) {
+    std::fprintf(stderr, "ghostspace: encode: %s\n", r.tileset.error.c_str());
+    return 1;
+  }
+  const qnv::EncodeSummary& s = r.summary;
+  std::printf(
+      "%s: %llu triangles (%llu vertices), %llu with a non-zero area, kept %llu (%.2f%%), %llu "
+      "colours; out "
+      "of core in %g MiB: copied %llu bytes %.3f s, %u selection pass%s %.3f s, vector pass "
+      "%.3f s, %llu vertex block reads, spilled %llu + %llu bytes\n",
+      input.c_str(), static_cast<unsigned long long>(s.elements),
+      static_cast<unsigned long long>(r.vertices), static_cast<unsigned long long>(s.candidates),
+      static_cast<unsigned long long>(s.kept),
+      s.elements ? 100.0 * static_cast<double>(s.kept) / static_cast<double>(s.elements) : 0.0,
+      static_cast<unsigned long long>(r.colors), e.memoryMB,
+      static_cast<unsigned long long>(r.copiedBytes), r.copySeconds, r.passes,
+      r.passes > 1 ? "es" : "", r.planSeconds, r.vectorSeconds,
+      static_cast<unsigned long long>(r.cacheMisses),
+      static_cast<unsigned long long>(r.leafSpillBytes),
+      static_cast<unsigned long long>(r.interiorSpillBytes));
+  printEncodeResult(target, input, r.tileset, r.tileset.seconds);
   return 0;
 }
 
 int runTilesetIndex(const Options& options) {
   const fs::path dir = options.tilesetDir;
-  Merged merged;
-  if (const std::string error = mergeShares(dir, merged); !error.empty()) {
+  encode::Merged merged;
+  if (const std::string error = encode::mergeShares(dir, merged); !error.empty()) {
     std::fprintf(stderr, "ghostspace: tileset index: %s\n", error.c_str());
     return 1;
   }

@@ -10,6 +10,7 @@
 #include "session/splat_inputs.hpp"
 #include "session/streaming_session.hpp"
 #include "session/world_runtime.hpp"
+#include "session/world_view.hpp"
 
 #include <glad/gl.h>
 #include "render/image.hpp"
@@ -83,67 +84,56 @@ int runSnapshot(const Options& options) {
     scenes.push_back(scene);
   }
   auto context = render::createOffscreenContext(options.width, options.height);
-  struct View {
-    std::string input;
-    std::shared_ptr<const vrml::Scene> scene;
-    std::unique_ptr<render::SceneRenderer> renderer;
-    ViewportRect rect;
-  };
-  std::vector<View> views;
+  // One WorldView per cell (session/world_view.hpp): the load below and every frame of
+  // life are thin loops over them.
+  session::ViewGroup group(session);
+  std::vector<std::unique_ptr<session::WorldView>> views;
   const render::SceneRendererOptions shared = rendererOptions(options);  // one movie registry
   for (int i = 0; i < cells && (scenes.size() == 1 || i < static_cast<int>(scenes.size())); ++i) {
-    View v;
     const std::size_t k = scenes.size() == 1 ? 0 : static_cast<std::size_t>(i);
-    v.input = options.inputs[k];
-    v.scene = scenes[k];
     render::SceneRendererOptions ro = shared;
     ro.lod = viewportLod(options, static_cast<std::size_t>(i));
-    v.renderer = std::make_unique<render::SceneRenderer>(v.scene, session.rendererOptions(ro));
-    v.rect = layoutRect(options.layout, i, options.width, options.height);
+    auto v = std::make_unique<session::WorldView>(group, scenes[k], ro);
+    const ViewportRect rect = layoutRect(options.layout, i, options.width, options.height);
+    v->setRect(rect.x, rect.y, rect.width, rect.height);
+    // A stream, mesh or volume has no Viewpoint of its own: frame it whole.
+    const bool fit = options.fit || session::isSplatInput(options.inputs[k]);
+    v->setCamera([fit](render::SceneRenderer& r, float aspect) {
+      render::Camera c = r.boundViewpointCamera();
+      if (fit) c = r.fitToScene(aspect, c);
+      render::fitClipPlanes(c, r.bounds(), r.navigation().nearClip());
+      return c;
+    });
     views.push_back(std::move(v));
   }
-  auto camera = [&](View& v) {
-    const float aspect = static_cast<float>(v.rect.width) / static_cast<float>(v.rect.height);
-    render::Camera c = v.renderer->boundViewpointCamera();
-    // A stream, mesh or volume has no Viewpoint of its own: frame it whole.
-    if (options.fit || session::isSplatInput(v.input)) c = v.renderer->fitToScene(aspect, c);
-    render::fitClipPlanes(c, v.renderer->bounds(), v.renderer->navigation().nearClip());
-    return c;
-  };
-  auto draw = [&] {
+  auto clear = [&] {
     glViewport(0, 0, options.width, options.height);
     glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    for (View& v : views)
-      v.renderer->draw(camera(v), v.rect.x, v.rect.y, v.rect.width, v.rect.height);
   };
 
   // Load. Drawing is what asks for Inline worlds and QNV prefixes (the level of detail),
   // so the scene is drawn (at most 4 times a second) whenever it changed, and the load
-  // ends when a pump after the last draw finds nothing arriving.
+  // ends when a pump after the last draw finds nothing arriving. The worlds do not run
+  // yet: their Scripts start on the whole world, at --time.
   ProgressBar bar("loading", stderr, options.progress);
   const auto t0 = Clock::now();
   auto lastDraw = t0;
   bool needDraw = true, drewSincePump = false;
-  auto changed = [&] {
-    for (View& v : views) v.renderer->sceneChanged();
-  };
   for (;;) {
-    if (session.pump()) {
-      changed();
-      needDraw = true;
-    }
+    if (group.pump()) needDraw = true;
     drewSincePump = false;
     if (options.snapshotAtSeconds > 0.0 && secondsSince(t0) >= options.snapshotAtSeconds) {
       session.loader().stopAll("stopped after " + std::to_string(options.snapshotAtSeconds) +
                                " s (--snapshot-at)");
-      session.pump();
-      changed();
+      group.pump();
+      for (auto& v : views) v->renderer().sceneChanged();
       break;
     }
-    const bool settled = session.settled();
+    const bool settled = group.settled();
     if (needDraw && (settled || secondsSince(lastDraw) >= 0.25)) {
-      draw();
+      clear();
+      for (auto& v : views) v->draw();
       lastDraw = Clock::now();
       needDraw = false;
       drewSincePump = true;
@@ -163,43 +153,23 @@ int runSnapshot(const Options& options) {
         return session.loader().fetchWhole(url, referrer, bytes, error, 10.0);
       });
   const session::RuntimeOptions& time = options.time;
-  for (View& v : views) {
-    runtimes.of(v.scene, time.start);
-    runtimes.addInlines(v.scene.get(), v.renderer->traversal());
-    // MovieTextures show the frame of their media time, waiting for it (docs/media.md).
-    v.renderer->setMediaClock(runtimes.mediaClock(v.scene.get()), true);
-    runtimes.setMediaDurations(v.scene.get(), v.renderer->takeMediaDurations());
-  }
+  // MovieTextures show the frame of their media time, waiting for it (docs/media.md).
+  group.attachRuntimes(runtimes, time.start, true);
   // What the new state references (an Inline a Switch now shows, an Inline or texture url
-  // a Script set, a LOD level chosen at T) is asked for while drawing: draw, pump what
-  // arrives into the scenes and their execution models, and draw again until nothing more
-  // arrives. Transfers end (arrive, fail or stall past --stall-timeout), so this ends.
-  auto drawSettled = [&](double at) {
-    for (;;) {
-      for (View& v : views) v.renderer->traversal().setBoundNodes(runtimes.bound(v.scene.get()));
-      draw();
-      if (session.pump()) {
-        changed();
-        runtimes.scenesGrew();
-        for (View& v : views) runtimes.addInlines(v.scene.get(), v.renderer->traversal());
-        runtimes.advanceTo(at);  // the new worlds' Scripts and sensors start at `at`
-        continue;
-      }
-      if (session.settled()) return;
-      session.loader().wait(0.01);
-    }
-  };
+  // a Script set, a LOD level chosen at T) is asked for while drawing: frames at the same
+  // time repeat until a pump finds nothing arriving and nothing more was asked for.
+  // Transfers end (arrive, fail or stall past --stall-timeout), so this ends.
   render::Image image;
   for (int frame = 0; frame < time.frames; ++frame) {
-    for (View& v : views) {
-      const float aspect = static_cast<float>(v.rect.width) / static_cast<float>(v.rect.height);
-      runtimes.setViewer(v.scene.get(), session::viewerPose(camera(v), aspect));
-    }
     const double at = time.start + time.interval * frame;
-    runtimes.advanceTo(at);
-    for (View& v : views)
-      runtimes.setMediaDurations(v.scene.get(), v.renderer->takeMediaDurations());
-    drawSettled(at);
+    for (;;) {
+      clear();
+      bool changed = false;
+      for (auto& v : views) changed |= v->frame(at);
+      if (changed) continue;
+      if (group.settled()) break;
+      session.loader().wait(0.01);
+    }
     image = render::readPixels(0, 0, options.width, options.height);
     if (time.frames > 1)
       render::writePng(session::framePath(options.snapshotPath, frame, time.frames), image);
@@ -213,8 +183,8 @@ int runSnapshot(const Options& options) {
   for (const net::StreamProgress& p : session.loader().progress())
     failed |= p.state == net::StreamState::failed;
   for (const auto& [isError, text] : messages) std::fprintf(stderr, "%s\n", text.c_str());
-  for (const View& v : views)
-    for (const auto& d : v.renderer->diagnostics().items)
+  for (const auto& v : views)
+    for (const auto& d : v->renderer().diagnostics().items)
       std::fprintf(stderr, "%s\n", d.format().c_str());
   bool anyError = failed;
   for (const auto& m : messages) anyError |= m.first;

@@ -68,14 +68,30 @@ struct ProtoInfo {
   }
 };
 
-// Nodes whose <field> children declare interface members (ISO/IEC 19776-1 5.3.7).
+// The XML encoding's element for a PROTO instance (ISO/IEC 19776-1 5.3.6): a statement of
+// the encoding, not a node class.
+constexpr std::string_view kProtoInstanceElement = "ProtoInstance";
+
+// Nodes whose <field> children declare interface members (ISO/IEC 19776-1 5.3.7): Script
+// and the X3DProgrammableShaderObject nodes (NodeType::userFields).
 bool declaresFields(std::string_view n) {
-  return n == "Script" || n == "ComposedShader" || n == "ShaderProgram" || n == "PackagedShader";
+  const auto type = x3dNodeType(n);
+  return type && type->userFields;
 }
 
-// Nodes whose text content is source code, added to `url`.
+// Nodes whose text content is source code, added to `url`: Script, ShaderPart and the
+// programmable shader nodes that carry a url (ShaderProgram, PackagedShader).
 bool takesSource(std::string_view n) {
-  return n == "Script" || n == "ShaderPart" || n == "ShaderProgram" || n == "PackagedShader";
+  const auto type = x3dNodeType(n);
+  if (!type) return false;
+  return type->script || type->id() == NodeTypeId::ShaderPart ||
+         (type->userFields && type->is(AbstractType::X3DUrlObject));
+}
+
+// Script source gets the ecmascript: scheme; shader source a data: URL.
+bool isScript(std::string_view n) {
+  const auto type = x3dNodeType(n);
+  return type && type->script;
 }
 
 // Attributes that are no field: XML bookkeeping and HTML-style ones.
@@ -510,7 +526,7 @@ struct XmlToClassic::Impl {
     if (const std::string* cf = c.attr("containerField"); cf != nullptr && !blank(*cf)) return *cf;
     std::string field = "children";
     const bool metadata = c.name.starts_with("Metadata");
-    if (c.name == "ProtoInstance") {
+    if (c.name == kProtoInstanceElement) {
       auto it = protos.find(ident(c.attrOr("name")));
       if (it != protos.end()) field = it->second.containerField;
     } else if (metadata && x3d3) {
@@ -528,13 +544,13 @@ struct XmlToClassic::Impl {
 
   // Whether the fields of node element `p` are all known here.
   bool knownFields(const XNode& p) const {
-    if (p.name == "ProtoInstance") return protos.contains(ident(p.attrOr("name")));
+    if (p.name == kProtoInstanceElement) return protos.contains(ident(p.attrOr("name")));
     return x3dNodeType(p.name) != nullptr || protos.contains(p.name);
   }
 
   // The type of field `f` of node element `p`; nothing when unknown.
   std::optional<FieldType> fieldType(const XNode& p, std::string_view f) const {
-    if (p.name == "ProtoInstance") {
+    if (p.name == kProtoInstanceElement) {
       auto it = protos.find(ident(p.attrOr("name")));
       if (it == protos.end()) return std::nullopt;
       return it->second.field(f);
@@ -548,9 +564,12 @@ struct XmlToClassic::Impl {
     }
     if (const auto type = x3dNodeType(p.name)) {
       int i = type->findField(f);
-      if (i < 0 && p.name == "Collision" && f == "enabled") i = type->findExact("collide");
+      // X3D's names for VRML97's fields (Parser::x3dFieldAlias).
+      if (i < 0 && type->id() == NodeTypeId::Collision && f == "enabled")
+        i = type->findExact("collide");
       if (i >= 0) return type->fields[static_cast<std::size_t>(i)].type;
-      if (f == "children" && (p.name == "Switch" || p.name == "LOD")) return FieldType::MFNode;
+      if (f == "children" && (type->id() == NodeTypeId::Switch || type->id() == NodeTypeId::LOD))
+        return FieldType::MFNode;
       return std::nullopt;
     }
     if (auto it = protos.find(p.name); it != protos.end()) return it->second.field(f);
@@ -565,7 +584,7 @@ struct XmlToClassic::Impl {
     }
     if (const std::string* def = n.attr("DEF"); def != nullptr && !blank(*def))
       out += "DEF " + ident(*def) + " ";
-    const bool instance = n.name == "ProtoInstance";
+    const bool instance = n.name == kProtoInstanceElement;
     out += instance ? ident(n.attrOr("name")) : ident(n.name);
     out += " {";
     // Source text of Scripts and shaders: one more url entry.
@@ -573,7 +592,7 @@ struct XmlToClassic::Impl {
     if (takesSource(n.name) && !blank(n.text)) {
       std::string_view text = trimLeft(n.text);
       while (!text.empty() && xmlSpace(text.back())) text.remove_suffix(1);
-      if (!hasScheme(text)) source = n.name == "Script" ? "ecmascript:" : "data:text/plain,";
+      if (!hasScheme(text)) source = isScript(n.name) ? "ecmascript:" : "data:text/plain,";
       source += text;
     }
     bool urlDone = false;

@@ -1,7 +1,7 @@
 // Building a QNV tileset (issue 13 parts 1 and 2): the octree layout, the per-leaf quota
 // assignment, per-brick quantization, and the share/merge split that lets many machines
 // encode one tileset. Pure computation on buffers: the caller writes the files
-// (app/src/encode_tileset.cpp). Rules in docs/qnv-format.md, section "Tilesets".
+// (encode/src/tileset.cpp). Rules in docs/qnv-format.md, section "Tilesets".
 #pragma once
 
 #include <cstdint>
@@ -191,7 +191,7 @@ class TilesetShareWriter {
   /// finishLeaf's work on vectors the caller gathered itself (all of `leaf`'s, in any
   /// order): the interior entries go to `interior` (not the writer's), the rest is the
   /// returned brick. Touches no state of the writer: safe from several threads at once
-  /// (out-of-core encodes finish a row of leaves in parallel: app/src/ooc_tileset.cpp).
+  /// (out-of-core encodes finish a row of leaves in parallel: encode/src/ooc_volume.cpp).
   std::optional<BrickFile> rankLeaf(glm::uvec3 leaf, std::vector<SourceVector> vectors,
                                     InteriorParts& interior) const;
   /// Moves `parts`' entries into the writer's interior contributions.

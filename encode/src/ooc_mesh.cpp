@@ -3,28 +3,25 @@
 // mesh.vertices (position and colour, 16 bytes a vertex) and mesh.triangles (three
 // vertex indices and the face colour, 16 bytes a triangle). Every later pass reads
 // mesh.triangles front to back, 1 MiB at a time, and fetches the corners through a
-// direct-mapped cache of 32 KiB blocks of mesh.vertices holding a quarter of --memory
+// direct-mapped cache of 32 KiB blocks of mesh.vertices holding a quarter of the memory bound
 // (a soup whose vertices fit is read once; a file with little locality pays a read per
 // miss). The passes: the selection (qnv::planSurfaceSelection: 1 or 3 passes), then the
 // vector pass, which sends each kept triangle's vector to the leaf holding its centroid
-// (ooc::ShareEncoder: the other three quarters of --memory, spilled past them), then every
+// (ooc::ShareEncoder: the other three quarters of the bound, spilled past them), then every
 // leaf row of this share is finished, as the volume encode does.
 #include <chrono>
-#include <cstdio>
 #include <filesystem>
 #include <optional>
-#include <thread>
 #include <vector>
 
-#include "encode_tileset.hpp"
+#include "encode/tileset.hpp"
 #include "formats/mesh_readers.hpp"
 #include "ooc_share.hpp"
-#include "ooc_tileset.hpp"
 #include "qnv/error.hpp"
 #include "qnv/surface_tileset.hpp"
 #include "qnv/tileset_writer.hpp"
 
-namespace gs::app {
+namespace gs::encode {
 
 namespace fs = std::filesystem;
 using ooc::since;
@@ -140,39 +137,33 @@ class PlySoup final : public formats::PlySink, public qnv::TriangleSoupReader {
 
 }  // namespace
 
-int writeMeshTilesetOutOfCore(const Options& options, const std::string& input,
-                              const qnv::SurfaceEncodeOptions& encode,
-                              const qnv::WriteOptions& write) {
-  const EncodeOptions& e = options.encode;
-  std::uint32_t share = 0, shares = 1;
-  qnv::TilesetOptions cut;
-  if (!tilesetShareOptions(e, write, share, shares, cut)) return 2;
+MeshOutOfCoreResult writeMeshTilesetOutOfCore(const TilesetTarget& target, const fs::path& ply,
+                                              const qnv::SurfaceEncodeOptions& encode,
+                                              const OutOfCoreOptions& ooc) {
+  MeshOutOfCoreResult result;
+  TilesetResult& out = result.tileset;
+  const std::uint32_t share = target.share, shares = target.shares;
+  const qnv::TilesetOptions& cut = target.cut;
   const auto t0 = std::chrono::steady_clock::now();
-  const fs::path dir = e.tileset;
-  const auto memory = static_cast<std::uint64_t>(e.memoryMB * 1048576.0);
-  const unsigned threads =
-      e.threads > 0 ? e.threads : std::max(1u, std::thread::hardware_concurrency());
+  const fs::path& dir = target.dir;
+  const std::uint64_t memory = ooc.memoryBytes;
+  const unsigned threads = ooc::workerThreads(ooc);
   try {
-    if (e.bricks.empty()) {  // the whole output: nothing stale may remain
-      std::error_code ec;
-      fs::remove_all(dir / "bricks", ec);
-      fs::remove_all(dir / "parts", ec);
-      fs::remove(dir / "index.qnvt", ec);
-    }
+    if (target.whole) ooc::removeStale(dir);  // the whole output: nothing stale may remain
     const fs::path part = dir / "parts" / shareName(share, shares);
     std::optional<PlySoup> soupHolder;
     soupHolder.emplace(part, memory / 4);
     PlySoup& soup = *soupHolder;
-    formats::streamPly(input, soup);
+    formats::streamPly(ply.string(), soup);
     soup.finish();
-    const double copySeconds = since(t0);
+    result.copySeconds = since(t0);
 
     // Distinct colours counted: half the bound (the vertex cache holds a quarter, nothing
     // else is held yet) at 40 bytes each, at least 65536 (2.5 MiB).
     const std::uint64_t maxColors = std::max<std::uint64_t>(65536, memory / 2 / 40);
     const auto t1 = std::chrono::steady_clock::now();
     const qnv::SurfaceSelectionPlan plan = qnv::planSurfaceSelection(soup, encode, maxColors);
-    const double planSeconds = since(t1);
+    result.planSeconds = since(t1);
     const qnv::TilesetLayout layout(plan.header, cut);
 
     std::optional<ooc::ShareEncoder> encoder;
@@ -202,40 +193,30 @@ int writeMeshTilesetOutOfCore(const Options& options, const std::string& input,
     }
     if (std::string error = writer.writeParts(part, cut); !error.empty())
       throw qnv::InputError(error);
-    const double vectorSeconds = since(t2);
-    const std::uint64_t written = writer.bytesWritten();
-    const std::uint64_t leafSpill = writer.leafSpillBytes();
-    const std::uint64_t interiorSpill = writer.interiorSpillBytes();
-    const std::uint64_t copied = soup.fileBytes(), vertices = soup.vertexCount();
-    const std::uint64_t misses = soup.cacheMisses();
+    result.vectorSeconds = since(t2);
+    out.shareBytes = writer.bytesWritten();
+    result.leafSpillBytes = writer.leafSpillBytes();
+    result.interiorSpillBytes = writer.interiorSpillBytes();
+    result.copiedBytes = soup.fileBytes();
+    result.vertices = soup.vertexCount();
+    result.cacheMisses = soup.cacheMisses();
     encoder.reset();  // removes the spill files
     soupHolder.reset();
-    Merged merged;
-    if (e.bricks.empty())
-      if (std::string error = mergeShares(dir, merged); !error.empty())
+    if (target.whole)
+      if (std::string error = mergeShares(dir, out.merged); !error.empty())
         throw qnv::InputError(error);
-    const qnv::EncodeSummary& s = plan.summary;
-    std::printf(
-        "%s: %llu triangles (%llu vertices), %llu with a non-zero area, kept %llu (%.2f%%), %llu "
-        "colours; out "
-        "of core in %g MiB: copied %llu bytes %.3f s, %u selection pass%s %.3f s, vector pass "
-        "%.3f s, %llu vertex block reads, spilled %llu + %llu bytes\n",
-        input.c_str(), static_cast<unsigned long long>(s.elements),
-        static_cast<unsigned long long>(vertices), static_cast<unsigned long long>(s.candidates),
-        static_cast<unsigned long long>(s.kept),
-        s.elements ? 100.0 * static_cast<double>(s.kept) / static_cast<double>(s.elements) : 0.0,
-        static_cast<unsigned long long>(plan.palette.keys.size()), e.memoryMB,
-        static_cast<unsigned long long>(copied), copySeconds, plan.passes,
-        plan.passes > 1 ? "es" : "", planSeconds, vectorSeconds,
-        static_cast<unsigned long long>(misses), static_cast<unsigned long long>(leafSpill),
-        static_cast<unsigned long long>(interiorSpill));
-    ooc::printEncodeResult(dir, input, e.bricks.empty(), merged, share, shares, range, layout,
-                           written, t0);
+    result.summary = plan.summary;
+    result.passes = plan.passes;
+    result.colors = plan.palette.keys.size();
+    out.leaves = range;
+    out.leafCount = layout.leafCount();
+    out.depth = layout.depth();
   } catch (const qnv::InputError& error) {
-    std::fprintf(stderr, "ghostspace: encode: %s\n", error.what());
-    return 1;
+    out.failure = Failure::input;
+    out.error = error.what();
   }
-  return 0;
+  out.seconds = since(t0);
+  return result;
 }
 
-}  // namespace gs::app
+}  // namespace gs::encode

@@ -1,7 +1,7 @@
 // The share side of the out-of-core tileset encodes (volumes: ooc_tileset.cpp, meshes:
 // ooc_mesh.cpp): vectors buffered by leaf under a memory bound and spilled to the share's
 // part folder past it, leaves finished a row at a time on worker threads, and the share's
-// parts written (docs/out-of-core.md, "Tileset encoding"). Private to app/src.
+// parts written (docs/out-of-core.md, "Tileset encoding"). Private to encode/src.
 #pragma once
 
 #include <fcntl.h>
@@ -22,11 +22,11 @@
 #include <thread>
 #include <vector>
 
-#include "encode_tileset.hpp"
+#include "encode/tileset.hpp"
 #include "qnv/error.hpp"
 #include "qnv/tileset_writer.hpp"
 
-namespace gs::app::ooc {
+namespace gs::encode::ooc {
 
 namespace fs = std::filesystem;
 
@@ -311,27 +311,17 @@ inline double since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// The last line of an out-of-core encode: the merged tileset when the run was the whole
-// encode (`merged` from mergeShares), else which leaves share `share` of `shares` wrote
-// (`leaves` of the layout's leaves, `written` bytes) and the merge command to run after
-// every share.
-inline void printEncodeResult(const fs::path& dir, const std::string& input, bool wholeRun,
-                              const Merged& merged, std::uint32_t share, std::uint32_t shares,
-                              std::pair<std::uint64_t, std::uint64_t> leaves,
-                              const qnv::TilesetLayout& layout, std::uint64_t written,
-                              std::chrono::steady_clock::time_point t0) {
-  if (wholeRun) {
-    printMerged(dir, merged);
-    std::printf("%s: encoded in %.3f s\n", input.c_str(), since(t0));
-    return;
-  }
-  std::printf(
-      "%s: share %u of %u: leaves %llu..%llu of %llu (depth %u), %llu bytes; %.3f s. After "
-      "every share: ghostspace tileset index %s\n",
-      dir.string().c_str(), share, shares, static_cast<unsigned long long>(leaves.first),
-      static_cast<unsigned long long>(leaves.second),
-      static_cast<unsigned long long>(layout.leafCount()), static_cast<unsigned>(layout.depth()),
-      static_cast<unsigned long long>(written), since(t0), dir.string().c_str());
+// The worker count of `ooc`: its threads, else the hardware's.
+inline unsigned workerThreads(const OutOfCoreOptions& ooc) {
+  return ooc.threads > 0 ? ooc.threads : std::max(1u, std::thread::hardware_concurrency());
 }
 
-}  // namespace gs::app::ooc
+// Removes what a whole run replaces: bricks/, parts/ and index.qnvt of `dir`.
+inline void removeStale(const fs::path& dir) {
+  std::error_code ec;
+  fs::remove_all(dir / "bricks", ec);
+  fs::remove_all(dir / "parts", ec);
+  fs::remove(dir / "index.qnvt", ec);
+}
+
+}  // namespace gs::encode::ooc
