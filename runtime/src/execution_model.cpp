@@ -22,8 +22,7 @@ NodeState& ExecutionModel::State::reach(vrml::Node& node, bool bindables) {
   NodeState& ns = *it->second;
   ns.node = &node;
   const std::size_t n = node.fieldCount();
-  ns.routesOut.resize(n);
-  ns.lastSent.assign(n, 0);
+  ns.out.resize(n);
   classify(ns);
   if (ns.role == NodeRole::bindable && bindables)
     candidates[static_cast<std::size_t>(ns.bindable)].push_back(&ns);
@@ -50,12 +49,8 @@ NodeState& ExecutionModel::State::reach(const vrml::NodePtr& node, bool bindable
 bool ExecutionModel::State::connect(vrml::Node& from, int fromField, vrml::Node& to, int toField) {
   NodeState& a = reach(from, false);
   NodeState& b = reach(to, false);
-  if (fromField < 0 || static_cast<std::size_t>(fromField) >= a.routesOut.size()) return false;
-  std::vector<RouteTarget>& out = a.routesOut[static_cast<std::size_t>(fromField)];
-  const RouteTarget t{&b, toField};
-  for (const RouteTarget& r : out)
-    if (r == t) return true;  // 4.10.2: a duplicate ROUTE is ignored
-  out.push_back(t);
+  if (fromField < 0 || static_cast<std::size_t>(fromField) >= a.out.size()) return false;
+  a.out[static_cast<std::size_t>(fromField)].add({&b, toField});  // a duplicate is ignored
   return true;
 }
 
@@ -78,17 +73,19 @@ void ExecutionModel::State::takeScene(const vrml::Scene& s, std::size_t& roots, 
 // ---- events ----
 
 void ExecutionModel::State::emit(NodeState& from, int field, const vrml::FieldValue& value) {
-  std::uint64_t& last = from.lastSent[static_cast<std::size_t>(field)];
+  OutPort& port = from.out[static_cast<std::size_t>(field)];
   ExecutionStatistics& st = model.stats_;
-  if (last == stamp) {  // 4.10.3: one event per eventOut per timestamp ends loops
+  if (port.lastSent == stamp) {  // 4.10.3: one event per eventOut per timestamp ends loops
     ++st.eventsDropped;
     return;
   }
-  last = stamp;
+  port.lastSent = stamp;
   ++st.eventsSent;
-  if (model.options_.trace) model.options_.trace({model.now(), from.node, field, &value});
-  for (const RouteTarget& r : from.routesOut[static_cast<std::size_t>(field)])
-    queue.push_back({r.to, r.field, value});
+  if (model.options_.trace) [[unlikely]]
+    model.options_.trace({model.now(), from.node, field, &value});
+  if (port.first.to == nullptr) return;
+  queue.push_back({port.first.to, port.first.field, value});
+  for (const RouteTarget& r : port.more) queue.push_back({r.to, r.field, value});
 }
 
 void ExecutionModel::State::emitOwn(NodeState& from, int field, vrml::FieldValue value) {
@@ -99,7 +96,7 @@ void ExecutionModel::State::emitOwn(NodeState& from, int field, vrml::FieldValue
 
 void ExecutionModel::State::runCascade() {
   for (;;) {
-    while (!queue.empty()) {
+    while (queueHead < queue.size()) {
       if (++eventsThisCascade > model.options_.maxEventsPerCascade) {
         if (!cascadeOverflow)
           model.diagnostics_.error({}, "more than " +
@@ -108,13 +105,23 @@ void ExecutionModel::State::runCascade() {
                                            "(limit maxEventsPerCascade)");
         cascadeOverflow = true;
         queue.clear();
+        queueHead = 0;
         break;
       }
-      PendingEvent e = std::move(queue.front());
-      queue.pop_front();
+      // Fetch the records of the events a few places ahead (a cascade over many nodes
+      // waits on memory, not on work): the state now, its node a little later.
+      if (queueHead + 8 < queue.size()) __builtin_prefetch(queue[queueHead + 8].to);
+      if (queueHead + 4 < queue.size()) __builtin_prefetch(queue[queueHead + 4].to->node);
+      // deliver() may append to the queue (and so move it): take the event out first.
+      PendingEvent& next = queue[queueHead++];
+      NodeState* to = next.to;
+      const int field = next.field;
+      vrml::FieldValue value = std::move(next.value);
       ++model.stats_.eventsDelivered;
-      deliver(*e.to, e.field, std::move(e.value));
+      deliver(*to, field, std::move(value));
     }
+    queue.clear();  // keeps its capacity for the next cascade
+    queueHead = 0;
     // 4.12.6: eventsProcessed() after the events of this timestamp reached a Script.
     bool more = false;
     for (NodeState* s : scripts) {
@@ -123,7 +130,7 @@ void ExecutionModel::State::runCascade() {
       if (s->script && !s->script->stopped()) s->script->eventsProcessed(model.now());
       more = true;
     }
-    if (!more || queue.empty()) break;
+    if (!more || queueHead >= queue.size()) break;
   }
 }
 
@@ -192,7 +199,16 @@ void ExecutionModel::advanceTo(double time) {
   ++stats_.cascades;
   s_->eventsThisCascade = 0;
   s_->cascadeOverflow = false;
-  for (NodeState* t : s_->timeSensors) s_->evaluateTimeSensor(*t);
+  const std::vector<NodeState*>& sensors = s_->timeSensors;
+  for (std::size_t i = 0; i < sensors.size(); ++i) {
+    // As in runCascade: fetch the sensors' records and nodes ahead of their evaluation.
+    if (i + 8 < sensors.size()) __builtin_prefetch(sensors[i + 8]);
+    if (i + 4 < sensors.size()) __builtin_prefetch(sensors[i + 4]->node);
+    if (i + 2 < sensors.size() && sensors[i + 2]->timeFields.fraction >= 0)
+      __builtin_prefetch(&sensors[i + 2]->node->fieldAt(
+          static_cast<std::size_t>(sensors[i + 2]->timeFields.fraction)));
+    s_->evaluateTimeSensor(*sensors[i]);
+  }
   for (NodeState* m : s_->mediaNodes) s_->evaluateMedia(*m);
   s_->evaluateEnvironmentSensors();
   for (PendingEvent& e : s_->posted) s_->queue.push_back(std::move(e));
@@ -358,14 +374,8 @@ bool ExecutionModel::deleteRoute(const vrml::NodePtr& from, const std::string& e
       auto it = s_->nodes.find(f.node.get());
       auto jt = s_->nodes.find(t.node.get());
       if (it == s_->nodes.end() || jt == s_->nodes.end()) continue;
-      auto& out = it->second->routesOut[static_cast<std::size_t>(f.field)];
-      const RouteTarget target{jt->second.get(), t.field};
-      for (auto r = out.begin(); r != out.end(); ++r)
-        if (*r == target) {
-          out.erase(r);
-          any = true;
-          break;
-        }
+      OutPort& port = it->second->out[static_cast<std::size_t>(f.field)];
+      if (port.remove({jt->second.get(), t.field})) any = true;
     }
   return any;
 }

@@ -7,7 +7,6 @@
 #include "runtime/time_dependent.hpp"
 
 #include <array>
-#include <deque>
 #include <memory>
 #include <optional>
 #include <unordered_map>
@@ -62,6 +61,47 @@ struct RouteTarget {
   bool operator==(const RouteTarget&) const = default;
 };
 
+/// An eventOut's routes and the stamp of the last event it sent, side by side so that
+/// sending touches one record (4.10.3).
+/// The first route is kept in the record itself (most eventOuts have at most one), the
+/// others in `more`, in the order they were added.
+struct OutPort {
+  std::uint64_t lastSent = 0;
+  RouteTarget first;  // first.to null: no route
+  std::vector<RouteTarget> more;
+
+  /// Adds `t`; false when it is there already (4.10.2: a duplicate ROUTE is ignored).
+  bool add(const RouteTarget& t) {
+    if (first.to == nullptr) {
+      first = t;
+      return true;
+    }
+    if (first == t) return false;
+    for (const RouteTarget& r : more)
+      if (r == t) return false;
+    more.push_back(t);
+    return true;
+  }
+  /// Removes `t`; false when it is not there.
+  bool remove(const RouteTarget& t) {
+    if (first.to != nullptr && first == t) {
+      if (more.empty()) {
+        first = {};
+      } else {
+        first = more.front();
+        more.erase(more.begin());
+      }
+      return true;
+    }
+    for (auto r = more.begin(); r != more.end(); ++r)
+      if (*r == t) {
+        more.erase(r);
+        return true;
+      }
+    return false;
+  }
+};
+
 /// Field indices of a TimeSensor (6.50), -1 when absent.
 struct TimeSensorFields {
   int cycleInterval = -1, enabled = -1, loop = -1, startTime = -1, stopTime = -1;
@@ -81,14 +121,17 @@ struct NodeState {
   InterpolatorKind interpolator = InterpolatorKind::Scalar;
   BindableKind bindable = BindableKind::Viewpoint;
   /// Per field index: routes leaving it, and the stamp of the last event it sent.
-  std::vector<std::vector<RouteTarget>> routesOut;
-  std::vector<std::uint64_t> lastSent;
+  std::vector<OutPort> out;
   // Field indices used by the role (from the node table, found once).
   int setFraction = -1, key = -1, keyValue = -1, valueChanged = -1;  // interpolators
   int setBind = -1, isBound = -1, bindTime = -1;                     // bindables
   int addChildren = -1, removeChildren = -1, children = -1;          // grouping
   TimeSensorFields timeFields;
   TimeState time;
+  /// TimeSensor: its time fields as last read, valid while node->revision() is
+  /// timeFieldsRevision (every write bumps the revision: the change contract).
+  TimeFields timeFieldsCache;
+  std::uint64_t timeFieldsRevision = ~std::uint64_t{0};
   bool sensorActive = false;  // ProximitySensor / VisibilitySensor: the viewer is inside / sees it
   glm::vec3 lastPosition{0.0f};
   vrml::Rotation lastOrientation{0.0f};
@@ -131,7 +174,10 @@ struct ExecutionModel::State {
   std::vector<NodeState*> newScripts;  // registered, initialize() not yet called
   std::array<std::vector<NodeState*>, kBindableKindCount> stacks;      // bottom first
   std::array<std::vector<NodeState*>, kBindableKindCount> candidates;  // file order
-  std::deque<PendingEvent> queue;
+  /// The events of the cascade, first in first out: `queue[queueHead]` is next (a vector
+  /// reused from cascade to cascade, no allocation per event once it has grown).
+  std::vector<PendingEvent> queue;
+  std::size_t queueHead = 0;
   std::vector<PendingEvent> posted;
   std::uint64_t stamp = 0;
   std::size_t eventsThisCascade = 0;

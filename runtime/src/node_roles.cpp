@@ -152,7 +152,10 @@ void ExecutionModel::State::report(vrml::Severity severity, const vrml::Node& no
 
 void ExecutionModel::State::evaluateTimeSensor(NodeState& ns) {
   const TimeSensorFields& f = ns.timeFields;
-  const TimeFields fields = timeFieldsOf(*ns.node, f);
+  // The time fields change only through setField (which bumps the revision), so they are
+  // read again only after a write: most frames only the sensor's own outputs changed.
+  if (ns.node->revision() != ns.timeFieldsRevision) ns.timeFieldsCache = timeFieldsOf(*ns.node, f);
+  const TimeFields fields = ns.timeFieldsCache;
   const double now = model.now();
   const TimeStep step = evaluateTime(ns.time, fields, now);
   using vrml::FieldValue;
@@ -165,6 +168,8 @@ void ExecutionModel::State::evaluateTimeSensor(NodeState& ns) {
     emitOwn(ns, f.time, FieldValue::make<FieldType::SFTime>(now));
   }
   if (step.deactivated) emitOwn(ns, f.isActive, FieldValue::make<FieldType::SFBool>(false));
+  // Only outputs were written since the fields were read: the cache stays valid.
+  ns.timeFieldsRevision = ns.node->revision();
 }
 
 void ExecutionModel::State::bind(NodeState& ns, bool on) {
@@ -229,7 +234,7 @@ void ExecutionModel::State::deliver(NodeState& ns, int field, vrml::FieldValue v
           ns.problemReported = true;
           return;
         }
-        emitOwn(ns, ns.valueChanged, *out);
+        emitOwn(ns, ns.valueChanged, std::move(*out));
         return;
       }
       break;
