@@ -131,6 +131,45 @@ void WorldRuntimes::addInlines(const vrml::Scene* scene, const render::SceneTrav
   if (it == worlds_.end()) return;
   // Each scene is taken once (addInlineScene ignores the ones it has).
   for (const auto& s : traversal.inlineScenes()) it->second.model->addInlineScene(s);
+  resolveImportedRoutes(it->second, traversal);
+}
+
+void WorldRuntimes::resolveImportedRoutes(Entry& e, const render::SceneTraversal& traversal) {
+  const vrml::X3dInfo& x3d = e.scene->x3d;
+  if (x3d.importedRoutes.empty()) return;
+  e.importedRouteDone.resize(x3d.importedRoutes.size(), 0);
+  // The node an IMPORT's local name stands for, once its Inline's world has arrived:
+  // null while it has not; `missing` set when it arrived without that EXPORT.
+  auto importedNode = [&](const std::string& local, bool& missing) -> vrml::NodePtr {
+    for (const vrml::X3dImport& im : x3d.imports) {
+      if (im.localName != local || !im.inlineNode) continue;
+      const auto inlined = traversal.loadedInline(*im.inlineNode);
+      if (!inlined) return nullptr;
+      for (const vrml::X3dExport& ex : inlined->x3d.exports)
+        if (ex.exportedName == im.exportedName) return ex.node;
+      missing = true;
+      return nullptr;
+    }
+    missing = true;
+    return nullptr;
+  };
+  for (std::size_t i = 0; i < x3d.importedRoutes.size(); ++i) {
+    if (e.importedRouteDone[i]) continue;
+    const vrml::X3dImportedRoute& r = x3d.importedRoutes[i];
+    bool missing = false;
+    const vrml::NodePtr from = r.fromNode ? r.fromNode : importedNode(r.fromImport, missing);
+    const vrml::NodePtr to = r.toNode ? r.toNode : importedNode(r.toImport, missing);
+    if (missing) {
+      e.importedRouteDone[i] = 1;
+      e.model->scriptDiagnostic(
+          vrml::Severity::error, r.location,
+          "ROUTE to or from an IMPORTed node the Inline does not EXPORT (X3D 4.4.6)");
+      continue;
+    }
+    if (!from || !to) continue;  // an Inline still loading
+    e.importedRouteDone[i] = 1;
+    e.model->addRoute(from, r.fromField, to, r.toField);
+  }
 }
 
 void WorldRuntimes::setViewer(const vrml::Scene* scene, const runtime::ViewerPose& viewer) {

@@ -127,3 +127,43 @@ TEST_CASE("an animated world at fixed times gives the same pixels through two Wo
   CHECK(a2.pixel(kSize / 2 - 12, kSize / 2)[1] < 30);
   CHECK(a2.pixel(kSize / 2 + 12, kSize / 2)[1] > 100);
 }
+
+TEST_CASE("a ROUTE to an IMPORTed node runs once the Inline that EXPORTs it has arrived",
+          "[session][offscreen][world_view][x3d]") {
+  context();
+  gs::test::TempDir dir("world-view-import");
+  dir.write("part.x3dv",
+            "#X3D V4.0 utf8\n"
+            "DEF Mover Transform { children Shape {\n"
+            "  appearance Appearance { material Material { diffuseColor 1 0 0 } }\n"
+            "  geometry Box { size 2 2 2 } } }\n"
+            "EXPORT Mover AS Moved\n");
+  const std::string main =
+      dir.write("main.x3dv",
+                "#X3D V4.0 utf8\n"
+                "Viewpoint { position 0 0 12 }\n"
+                "DEF I Inline { url \"part.x3dv\" }\n"
+                "IMPORT I.Moved AS M\n"
+                "DEF T TimeSensor { loop TRUE cycleInterval 4 }\n"
+                "DEF P PositionInterpolator { key [ 0 1 ] keyValue [ -4 0 0, 4 0 0 ] }\n"
+                "ROUTE T.fraction_changed TO P.set_fraction\n"
+                "ROUTE P.value_changed TO M.set_translation\n");
+  Viewer v(main);
+  REQUIRE(v.view->scene()->x3d.importedRoutes.size() == 1);
+  // At t = 1 s the box is a quarter of the way (x = -2): left of centre; at 3 s right.
+  auto redColumns = [](const Image& im) {
+    int left = 0, right = 0;
+    for (int y = 0; y < kSize; ++y)
+      for (int x = 0; x < kSize; ++x) {
+        const std::uint8_t* p = im.pixel(x, y);
+        if (p[0] > 120 && p[1] < 60 && p[2] < 60) (x < kSize / 2 ? left : right) += 1;
+      }
+    return std::pair<int, int>(left, right);
+  };
+  const auto at1 = redColumns(v.settle(1.0));
+  const auto at3 = redColumns(v.settle(3.0));
+  CHECK(at1.first > 0);
+  CHECK(at1.second == 0);
+  CHECK(at3.second > 0);
+  CHECK(at3.first == 0);
+}

@@ -103,6 +103,33 @@ void Parser::parseRouteStatement(Scope& scope) {
   const std::string_view toField = lex_.expectId("an eventIn name");
 
   const DefEntry* from = findDef(scope, fromName);
+  const DefEntry* to0 = findDef(scope, toName);
+  // An end naming an IMPORTed node (X3D 4.4.6): kept until the Inline's world arrives.
+  auto imported = [&](std::string_view name) {
+    if (scope.x3d == nullptr) return false;
+    for (const X3dImport& im : scope.x3d->imports)
+      if (im.localName == name) return true;
+    return false;
+  };
+  const bool fromImported = from == nullptr && imported(fromName);
+  const bool toImported = to0 == nullptr && imported(toName);
+  if ((fromImported || toImported) && (from != nullptr || fromImported) &&
+      (to0 != nullptr || toImported)) {
+    X3dImportedRoute r;
+    if (fromImported)
+      r.fromImport = fromName;
+    else
+      r.fromNode = from->node;
+    r.fromField = fromField;
+    if (toImported)
+      r.toImport = toName;
+    else
+      r.toNode = to0->node;
+    r.toField = toField;
+    r.location = lex_.locationAt(kw.offset);
+    scope.x3d->importedRoutes.push_back(std::move(r));
+    return;
+  }
   if (from == nullptr) {
     report(Severity::error, fromTok.offset,
            "ROUTE from unknown DEF name '" + std::string(fromName) + "'");

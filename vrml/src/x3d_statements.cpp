@@ -128,6 +128,8 @@ bool Parser::parseX3dStatement(Scope& scope, const Token& t) {
     if (inl == nullptr || inl->node->typeId() != NodeTypeId::Inline)
       report(Severity::error, it.offset,
              "IMPORT from '" + im.inlineDef + "', which is no Inline's DEF name");
+    else
+      im.inlineNode = inl->node;
     info.imports.push_back(std::move(im));
   } else {
     // EXPORT localDEF [AS exportedDEF]
@@ -137,10 +139,13 @@ bool Parser::parseX3dStatement(Scope& scope, const Token& t) {
     ex.localDef = lex_.expectId("a DEF name");
     ex.exportedName = ex.localDef;
     if (lex_.acceptKeyword("AS")) ex.exportedName = lex_.expectId("an exported name after AS");
-    if (findDef(scope, ex.localDef) == nullptr)
+    const DefEntry* local = findDef(scope, ex.localDef);
+    if (local == nullptr) {
       report(Severity::error, et.offset, "EXPORT of unknown DEF name '" + ex.localDef + "'");
-    else
+    } else {
+      ex.node = local->node;
       info.exports.push_back(std::move(ex));
+    }
   }
   return true;
 }

@@ -266,7 +266,7 @@ class SceneTraversal {
 
   /// The world loaded for `inlineNode` (an Inline of the scene or of a loaded Inline world),
   /// or null when it was not loaded (not met yet, or failed). Loads nothing: for the
-  /// Sounds inside Inlines (audio::SoundScene).
+  /// Sounds inside Inlines (audio::SoundScene) and X3D IMPORTs (session::WorldRuntimes).
   std::shared_ptr<const vrml::Scene> loadedInline(const vrml::Node& inlineNode) const;
 
   /// How many tessellations collect() and mesh() made (a changed geometry is

@@ -64,7 +64,9 @@ class WorldRuntimes {
   /// Every world's clock to `time` (seconds) in steps of at most the --time-step.
   void advanceTo(double time);
   /// The Inline worlds `traversal` (a renderer of `scene`) loaded since the last call
-  /// join `scene`'s execution model (their routes and sensors run).
+  /// join `scene`'s execution model (their routes and sensors run), and the ROUTEs of
+  /// `scene` to or from IMPORTed nodes (vrml::X3dImportedRoute, X3D clause 4.4.6) whose
+  /// Inline has arrived are added (a name the Inline does not EXPORT is a diagnostic).
   void addInlines(const vrml::Scene* scene, const render::SceneTraversal& traversal);
   /// The viewer of `scene`'s world (ProximitySensor, VisibilitySensor); ignored when the
   /// world has no execution model yet.
@@ -98,8 +100,10 @@ class WorldRuntimes {
     std::shared_ptr<const vrml::Scene> scene;
     std::unique_ptr<runtime::ExecutionModel> model;
     std::size_t diagnosticsShown = 0;
+    std::vector<char> importedRouteDone;  // per scene->x3d.importedRoutes
   };
   std::map<const vrml::Scene*, Entry> worlds_;
+  void resolveImportedRoutes(Entry& e, const render::SceneTraversal& traversal);
 };
 
 }  // namespace gs::session

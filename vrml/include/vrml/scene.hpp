@@ -40,10 +40,26 @@ struct X3dUnit {
 /// 4.4.6).
 struct X3dImport {
   std::string inlineDef, exportedName, localName;
+  NodePtr inlineNode;  // the Inline DEFed inlineDef; null when there is none
   SourceLocation location;
 };
 struct X3dExport {
   std::string localDef, exportedName;
+  NodePtr node;  // the node DEFed localDef
+  SourceLocation location;
+};
+
+/// A ROUTE with an end that names an IMPORTed node (X3D clause 4.4.6): it cannot be
+/// checked or stored as a Route until the Inline's world has arrived and says what it
+/// exports; the session resolves it then (session::WorldRuntimes) through the execution
+/// model's addRoute, which reports a mismatch. An end that is no import has its node set.
+struct X3dImportedRoute {
+  NodePtr fromNode;        // null when `fromImport` names the source
+  std::string fromImport;  // local name of an X3dImport, or empty
+  std::string fromField;
+  NodePtr toNode;
+  std::string toImport;
+  std::string toField;
   SourceLocation location;
 };
 
@@ -59,6 +75,7 @@ struct X3dInfo {
   std::vector<std::pair<std::string, std::string>> meta;  // META name content
   std::vector<X3dImport> imports;
   std::vector<X3dExport> exports;
+  std::vector<X3dImportedRoute> importedRoutes;
 };
 
 /// A world read from one file or URL.
