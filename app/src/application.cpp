@@ -145,7 +145,7 @@ Parsed parseArguments(int argc, char** argv) {
   o.layout = layoutFromName(a.layout).value_or(Layout::single);  // checked by IsMember
   o.mode = render::renderModeFromName(a.mode).value_or(render::RenderMode::polygons);
   if (render::SplatPath path; render::parseSplatPath(a.splatPath.c_str(), path))
-    render::setDefaultSplatPath(path);  // checked by IsMember
+    o.splatPath = path;  // checked by IsMember
   if (!a.size.empty() && !parseSize(a.size, o.width, o.height)) {
     std::fprintf(stderr, "ghostspace: --size: expected WxH such as 800x600, got '%s'\n",
                  a.size.c_str());

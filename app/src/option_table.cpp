@@ -18,7 +18,7 @@ Arguments::Arguments() {
   lod = text;
   layout = std::string(layoutName(options.layout));
   mode = render::renderModeName(options.mode);
-  splatPath = render::splatPathName(render::defaultSplatPath());
+  splatPath = render::splatPathName(render::SplatPath::automatic);
   scriptMegabytes = static_cast<double>(options.time.scriptLimits.heapBytes) / 1048576.0;
 }
 

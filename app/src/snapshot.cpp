@@ -26,6 +26,7 @@ render::SceneRendererOptions rendererOptions(const Options& options) {
   render::SceneRendererOptions r;
   r.splatLoader = session::splatLoader();
   r.lod = options.lod;
+  r.splatPath = options.splatPath;
   r.traversal.mode = options.mode;
   // One player per movie for all the viewports made with these options (docs/media.md).
   r.movies = std::make_shared<render::MoviePlayers>();

@@ -206,7 +206,8 @@ SceneRenderer::SceneRenderer(std::shared_ptr<const vrml::Scene> scene, SceneRend
                  }()),
       gpu_(std::make_unique<Gpu>()),
       splats_(std::make_unique<detail::SceneSplats>(traversal_.sharedScene(), options_.splatLoader,
-                                                    options_.lod, options_.traversal.mode)),
+                                                    options_.lod, options_.traversal.mode,
+                                                    options_.splatPath)),
       headlight_(traversal_.navigation().headlight) {
   gpu_->textures.movies.setPlayers(options_.movies);
 }

@@ -7,8 +7,13 @@
 namespace gs::render::detail {
 
 SceneSplats::SceneSplats(std::shared_ptr<const vrml::Scene> scene, SplatLoader loader, double lod,
-                         RenderMode mode)
-    : scene_(std::move(scene)), loader_(std::move(loader)), lod_(lod), drawLod_(lod), mode_(mode) {
+                         RenderMode mode, SplatPath splatPath)
+    : scene_(std::move(scene)),
+      loader_(std::move(loader)),
+      lod_(lod),
+      drawLod_(lod),
+      mode_(mode),
+      path_(splatPath) {
   if (!loader_)
     loader_ = [](const std::string& url, const std::string&,
                  std::string& error) -> std::shared_ptr<const SplatSet> {
@@ -130,7 +135,10 @@ std::size_t SceneSplats::draw(const TraversalFrame& frame, SceneTraversal& trave
   auto drawSet = [&](const SplatSet& set, std::size_t count, const glm::mat4& model,
                      const SplatStyle* style) {
     auto& renderer = renderers_[&set];
-    if (!renderer) renderer = std::make_unique<SplatRenderer>();
+    if (!renderer) {
+      renderer = std::make_unique<SplatRenderer>();
+      renderer->setPath(path_);
+    }
     renderer->draw(set, count, model, camera, aspect, lit, SplatBlend::backToFront, style);
     drawn += renderer->statistics().splats;
   };

@@ -18,7 +18,7 @@ namespace gs::render::detail {
 class SceneSplats {
  public:
   SceneSplats(std::shared_ptr<const vrml::Scene> scene, SplatLoader loader, double lod,
-              RenderMode mode);
+              RenderMode mode, SplatPath path = SplatPath::automatic);
 
   /// The vectors of a QuantizedNormalVectors node: inline ones, or its first url that
   /// loads (resolved against `baseUrl`). Loaded on first use; failures are reported to
@@ -59,6 +59,7 @@ class SceneSplats {
   std::uint64_t budget_ = 0;
   double drawLod_ = 1.0;  // lod_ lowered to the vector budget for the frame being drawn
   RenderMode mode_;
+  SplatPath path_ = SplatPath::automatic;  // every SplatRenderer made here takes it
   /// A node's set and the style it is drawn with (the node's mode and opacityScale over
   /// the stream's own; the set itself is shared and may still grow).
   struct NodeSet {

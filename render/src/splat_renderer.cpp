@@ -107,8 +107,6 @@ void main() { o_color = texture(u_layer, v_uv); }
 
 constexpr int kMaxSplatLights = 8;
 
-SplatPath gDefaultPath = SplatPath::automatic;
-
 /// Uniform locations of one splat program (-1 for those it lacks).
 struct SplatUniforms {
   GLint modelView, projection, modelViewProjection, normalMatrix, surface, sigma, opacityScale,
@@ -138,14 +136,6 @@ struct SplatUniforms {
 };
 
 }  // namespace
-
-void setDefaultSplatPath(SplatPath path) {
-  gDefaultPath = path;
-}
-
-SplatPath defaultSplatPath() {
-  return gDefaultPath;
-}
 
 const char* splatPathName(SplatPath path) {
   switch (path) {
@@ -323,7 +313,7 @@ struct SplatRenderer::Gpu {
   }
 };
 
-SplatRenderer::SplatRenderer() : path_(gDefaultPath) {}
+SplatRenderer::SplatRenderer() : path_(SplatPath::automatic) {}
 
 SplatRenderer::~SplatRenderer() {
   release();

@@ -165,7 +165,7 @@ TEST_CASE("a patch across the near plane sends the points path to the geometry p
   const SplatLight lights[] = {{glm::vec3(0, 0, -1), glm::vec3(1.0f)}};
   drawGpu(set, 1, lights, SplatBlend::backToFront);  // makes the test context current
   SplatRenderer renderer;
-  CHECK(renderer.path() == defaultSplatPath());
+  CHECK(renderer.path() == SplatPath::automatic);
   renderer.setPath(SplatPath::points);
   glViewport(0, 0, kSize, kSize);
   renderer.draw(set, set.vectors.size(), glm::mat4(1.0f), cam, 1.0f, lights);

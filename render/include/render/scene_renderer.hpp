@@ -5,6 +5,7 @@
 #pragma once
 
 #include "render/camera.hpp"
+#include "render/splat_renderer.hpp"
 #include "render/splat_source.hpp"
 #include "render/traversal.hpp"
 #include "vrml/parser.hpp"
@@ -56,6 +57,8 @@ struct SceneRendererOptions {
   /// fraction or count), 0..1. traversal.mode = RenderMode::splats draws the polygon
   /// world as splats.
   double lod = 1.0;
+  /// How the splat pass turns vectors into pixels (`--splat-path`; render/README.md).
+  SplatPath splatPath = SplatPath::automatic;
   /// MovieTexture players (render/movie_players.hpp) shared with the other renderers
   /// given the same registry: renderers of one world then decode each movie once. Null: a
   /// registry of this renderer's own.

@@ -125,10 +125,6 @@ enum class SplatPath {
   automatic,
 };
 
-/// The path a new SplatRenderer takes (`automatic` unless set; `--splat-path`). Not
-/// thread-safe: set it before rendering starts.
-void setDefaultSplatPath(SplatPath path);
-SplatPath defaultSplatPath();
 /// "points", "geometry", "cpu" or "auto"; parseSplatPath returns false for any other text.
 const char* splatPathName(SplatPath path);
 bool parseSplatPath(const char* text, SplatPath& path);
@@ -167,7 +163,8 @@ class SplatRenderer {
             SplatBlend blend = SplatBlend::backToFront, const SplatStyle* style = nullptr);
 
   const SplatStatistics& statistics() const { return statistics_; }
-  /// The path draw() tries (defaultSplatPath() at construction; may be `automatic`).
+  /// The path draw() tries (`automatic` at construction, setPath() changes it;
+  /// SceneRendererOptions::splatPath for a SceneRenderer's splats).
   void setPath(SplatPath path) { path_ = path; }
   SplatPath path() const { return path_; }
   /// Frees every GL object (context current).
