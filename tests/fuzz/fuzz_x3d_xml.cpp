@@ -1,28 +1,9 @@
 // The X3D XML encoding (vrml/src/x3d_xml.cpp: expat, the translation into Classic VRML
 // text, the diagnostics moved back onto the XML) on any bytes, whole and streamed in two
-// pieces. The input is made to start with '<' so that every run takes the XML path.
-// EXTERNPROTO URLs are refused, so the fuzzer never reads the machine's files.
-#include "fuzz_support.hpp"
-#include "vrml/parser.hpp"
-#include "vrml/streaming_parser.hpp"
-
-#include <string>
+// pieces (fuzz_x3d.hpp); every input starts '<'.
+#include "fuzz_x3d.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  gs::vrml::ParseOptions options;
-  options.limits.maxNodes = 200'000;
-  options.loader = [](const std::string&, std::string&, std::string& error) {
-    error = "no files while fuzzing";
-    return false;
-  };
-  std::string bytes(gs::fuzz::view(data, size));
-  if (bytes.empty() || bytes[0] != '<') bytes.insert(0, "<");
-  const gs::vrml::Scene whole = gs::vrml::parseVrml(bytes, "fuzz.x3d", options);
-  for (const auto& d : whole.diagnostics.items) (void)d.format();
-  gs::vrml::StreamingParser stream("fuzz.x3d", options);
-  const std::size_t cut = size > 0 ? data[0] % (bytes.size() + 1) : 0;
-  stream.feed(std::string_view(bytes).substr(0, cut));
-  stream.feed(std::string_view(bytes).substr(cut));
-  stream.finish();
+  gs::fuzz::parseX3dEncoding(data, size, '<', "fuzz.x3d");
   return 0;
 }

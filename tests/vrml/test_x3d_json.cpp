@@ -3,6 +3,7 @@
 // gives the scene of its Classic twin; field values; head statements; PROTOs; Scripts;
 // syntax errors at file:line:column; structural errors naming the JSON path; the nesting
 // bound; streaming; and assets/worlds/x3d_features.x3dj.
+#include "scene_compare.hpp"
 #include "test_support.hpp"
 
 #include "vrml/parser.hpp"
@@ -33,73 +34,7 @@ NodePtr sfnode(const Node& n, const char* name) {
   return fieldOf(n, name).get<FieldType::SFNode>();
 }
 
-// Structural equality of two scenes: node types, DEF names, field values, routes;
-// locations too when `locations`.
-struct Same {
-  bool locations = false;
-  std::set<std::pair<const Node*, const Node*>> seen;
-  std::string diff;
-
-  bool fail(const std::string& what) {
-    if (diff.empty()) diff = what;
-    return false;
-  }
-  static std::string where(const SourceLocation& l) {
-    return l.file + ":" + std::to_string(l.line) + ":" + std::to_string(l.column);
-  }
-  bool nodes(const NodePtr& a, const NodePtr& b, const std::string& path) {
-    if (!a || !b) return (!a && !b) || fail(path + ": NULL on one side only");
-    if (!seen.insert({a.get(), b.get()}).second) return true;
-    if (a->typeName() != b->typeName())
-      return fail(path + ": type " + a->typeName() + " vs " + b->typeName());
-    if (a->defName != b->defName) return fail(path + ": DEF " + a->defName + " vs " + b->defName);
-    if (locations && where(a->location) != where(b->location))
-      return fail(path + ": location " + where(a->location) + " vs " + where(b->location));
-    if (a->fieldCount() != b->fieldCount()) return fail(path + ": field count differs");
-    for (std::size_t i = 0; i < a->fieldCount(); ++i)
-      if (!values(a->fieldAt(i), b->fieldAt(i), path + "." + a->type().fields[i].name))
-        return false;
-    return true;
-  }
-  bool values(const FieldValue& a, const FieldValue& b, const std::string& path) {
-    if (a.type() != b.type()) return fail(path + ": field type differs");
-    if (a.type() == FieldType::SFNode)
-      return nodes(a.get<FieldType::SFNode>(), b.get<FieldType::SFNode>(), path);
-    if (a.type() == FieldType::MFNode) {
-      const auto& x = a.get<FieldType::MFNode>();
-      const auto& y = b.get<FieldType::MFNode>();
-      if (x.size() != y.size()) return fail(path + ": MFNode sizes differ");
-      for (std::size_t i = 0; i < x.size(); ++i)
-        if (!nodes(x[i], y[i], path + "[" + std::to_string(i) + "]")) return false;
-      return true;
-    }
-    return a.storage() == b.storage() || fail(path + ": values differ");
-  }
-  bool scenes(const Scene& a, const Scene& b) {
-    if (a.rootNodes.size() != b.rootNodes.size())
-      return fail("root count " + std::to_string(a.rootNodes.size()) + " vs " +
-                  std::to_string(b.rootNodes.size()));
-    for (std::size_t i = 0; i < a.rootNodes.size(); ++i)
-      if (!nodes(a.rootNodes[i], b.rootNodes[i], "root" + std::to_string(i))) return false;
-    if (a.hiddenNodes.size() != b.hiddenNodes.size()) return fail("hidden count differs");
-    if (a.routes.size() != b.routes.size()) return fail("route count differs");
-    for (std::size_t i = 0; i < a.routes.size(); ++i) {
-      const Route& x = a.routes[i];
-      const Route& y = b.routes[i];
-      if (x.fromField != y.fromField || x.toField != y.toField || !x.fromNode || !y.fromNode ||
-          x.fromNode->defName != y.fromNode->defName || x.toNode->defName != y.toNode->defName ||
-          (locations && where(x.location) != where(y.location)))
-        return fail("route " + std::to_string(i) + " differs");
-    }
-    if (a.protos.size() != b.protos.size()) return fail("PROTO count differs");
-    const X3dInfo& p = a.x3d;
-    const X3dInfo& q = b.x3d;
-    if (p.version != q.version || p.profile != q.profile || p.components != q.components ||
-        p.meta != q.meta || p.units.size() != q.units.size())
-      return fail("X3D header differs");
-    return true;
-  }
-};
+using gs::test::Same;
 
 std::multiset<std::string> diagnosticSet(const Scene& s) {
   std::multiset<std::string> out;

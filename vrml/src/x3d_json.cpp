@@ -15,6 +15,7 @@
 // is mapped to line 1 column 1; structural errors name their JSON path in any case.
 #include "x3d_json.hpp"
 
+#include "x3d_locations.hpp"
 #include "x3d_xml.hpp"
 
 #include <nlohmann/json.hpp>
@@ -131,10 +132,7 @@ struct JsonToClassic::Impl {
   std::vector<std::pair<int, int>> xmlLines{{0, 0}, {0, 0}};
   std::pair<int, int> here{1, 1};  // the JSON location of the element being written
 
-  struct Done {
-    std::size_t diagnostics = 0, roots = 0, hidden = 0, routes = 0, imports = 0, exports = 0;
-  } done;
-  std::unordered_set<const Node*> mappedNodes;
+  LocationMapper locations;  // what mapScene() has already moved onto the JSON
 
   std::pair<int, int> lineColumn(std::size_t offset) const {
     auto it = std::upper_bound(lineStarts.begin(), lineStarts.end(), offset);
@@ -416,8 +414,7 @@ struct JsonToClassic::Impl {
     }
     for (Diagnostic& d : problems) items.push_back(std::move(d));
     problems.clear();
-    done = {items.size(),        scene.rootNodes.size(),   scene.hiddenNodes.size(),
-            scene.routes.size(), scene.x3d.imports.size(), scene.x3d.exports.size()};
+    locations.skipTo(scene);
     if (xml->failed()) {
       Diagnostic d = xml->fatalError();
       const auto [line, column] = jsonOfXml(d.location.line);
@@ -468,55 +465,8 @@ std::pair<int, int> JsonToClassic::jsonLocation(int classicLine) const {
 }
 
 void JsonToClassic::mapScene(Scene& scene) {
-  Impl& m = *impl_;
-  Impl::Done& d = m.done;
-  auto map = [&](SourceLocation& l) {
-    if (l.file != m.url || l.line <= 0) return;
-    const auto [line, column] = jsonLocation(l.line);
-    if (line <= 0) return;
-    l.line = line;
-    l.column = column;
-  };
-  auto from = [](std::size_t& done, std::size_t size) {
-    const std::size_t f = std::min(done, size);
-    done = size;
-    return f;
-  };
-  auto& items = scene.diagnostics.items;
-  for (std::size_t i = from(d.diagnostics, items.size()); i < items.size(); ++i)
-    map(items[i].location);
-  std::vector<Node*> todo;
-  auto push = [&](const NodePtr& n) {
-    if (n && m.mappedNodes.insert(n.get()).second) todo.push_back(n.get());
-  };
-  for (std::size_t i = from(d.roots, scene.rootNodes.size()); i < scene.rootNodes.size(); ++i)
-    push(scene.rootNodes[i]);
-  for (std::size_t i = from(d.hidden, scene.hiddenNodes.size()); i < scene.hiddenNodes.size(); ++i)
-    push(scene.hiddenNodes[i]);
-  for (std::size_t i = from(d.routes, scene.routes.size()); i < scene.routes.size(); ++i) {
-    Route& r = scene.routes[i];
-    map(r.location);
-    push(r.fromNode);
-    push(r.toNode);
-  }
-  auto& imports = scene.x3d.imports;
-  for (std::size_t i = from(d.imports, imports.size()); i < imports.size(); ++i)
-    map(imports[i].location);
-  auto& exports = scene.x3d.exports;
-  for (std::size_t i = from(d.exports, exports.size()); i < exports.size(); ++i)
-    map(exports[i].location);
-  while (!todo.empty()) {
-    Node* n = todo.back();
-    todo.pop_back();
-    map(n->location);
-    for (std::size_t i = 0; i < n->fieldCount(); ++i) {
-      const FieldValue& v = n->fieldAt(i);
-      if (v.type() == FieldType::SFNode)
-        push(v.get<FieldType::SFNode>());
-      else if (v.type() == FieldType::MFNode)
-        for (const NodePtr& c : v.get<FieldType::MFNode>()) push(c);
-    }
-  }
+  impl_->locations.map(scene, impl_->url,
+                       [this](int classicLine) { return jsonLocation(classicLine); });
 }
 
 }  // namespace gs::vrml::parsing

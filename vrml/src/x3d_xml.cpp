@@ -8,6 +8,7 @@
 #include "vrml/field.hpp"
 #include "vrml/node_model.hpp"
 #include "vrml/node_table.hpp"
+#include "x3d_locations.hpp"
 #include "x3d_values.hpp"
 
 #include <expat.h>
@@ -213,13 +214,9 @@ struct XmlToClassic::Impl {
   std::unordered_map<std::string, ProtoInfo> protos;
   // Classic line -> XML location, one entry per element start (increasing lines).
   std::vector<LineEntry> lines;
-  // What mapScene() has already moved onto the XML.
-  struct Done {
-    std::size_t diagnostics = 0, roots = 0, hidden = 0, routes = 0, imports = 0, exports = 0;
-  } done;
-  std::unordered_set<const Node*> mappedNodes;
-  std::size_t counted = 0;  // bytes of `out` whose line ends were counted
-  int classicLine = 1;      // line of out[counted]
+  LocationMapper locations;  // what mapScene() has already moved onto the XML
+  std::size_t counted = 0;   // bytes of `out` whose line ends were counted
+  int classicLine = 1;       // line of out[counted]
 
   // ---- expat callbacks -----------------------------------------------------------------
 
@@ -757,66 +754,12 @@ std::pair<int, int> XmlToClassic::xmlLocation(int classicLine) const {
 }
 
 void XmlToClassic::skipTo(const Scene& scene) {
-  Impl::Done& d = impl_->done;
-  d.diagnostics = scene.diagnostics.items.size();
-  d.roots = scene.rootNodes.size();
-  d.hidden = scene.hiddenNodes.size();
-  d.routes = scene.routes.size();
-  d.imports = scene.x3d.imports.size();
-  d.exports = scene.x3d.exports.size();
+  impl_->locations.skipTo(scene);
 }
 
 void XmlToClassic::mapScene(Scene& scene) {
-  Impl& m = *impl_;
-  Impl::Done& d = m.done;
-  auto map = [&](SourceLocation& l) {
-    if (l.file != m.url || l.line <= 0) return;
-    const auto [line, column] = xmlLocation(l.line);
-    if (line <= 0) return;
-    l.line = line;
-    l.column = column;
-  };
-  // Each vector only grows while parsing; a smaller one was replaced (rejected input).
-  auto from = [](std::size_t& done, std::size_t size) {
-    const std::size_t f = std::min(done, size);
-    done = size;
-    return f;
-  };
-  auto& items = scene.diagnostics.items;
-  for (std::size_t i = from(d.diagnostics, items.size()); i < items.size(); ++i)
-    map(items[i].location);
-  std::vector<Node*> todo;
-  auto push = [&](const NodePtr& n) {
-    if (n && m.mappedNodes.insert(n.get()).second) todo.push_back(n.get());
-  };
-  for (std::size_t i = from(d.roots, scene.rootNodes.size()); i < scene.rootNodes.size(); ++i)
-    push(scene.rootNodes[i]);
-  for (std::size_t i = from(d.hidden, scene.hiddenNodes.size()); i < scene.hiddenNodes.size(); ++i)
-    push(scene.hiddenNodes[i]);
-  for (std::size_t i = from(d.routes, scene.routes.size()); i < scene.routes.size(); ++i) {
-    Route& r = scene.routes[i];
-    map(r.location);
-    push(r.fromNode);
-    push(r.toNode);
-  }
-  auto& imports = scene.x3d.imports;
-  for (std::size_t i = from(d.imports, imports.size()); i < imports.size(); ++i)
-    map(imports[i].location);
-  auto& exports = scene.x3d.exports;
-  for (std::size_t i = from(d.exports, exports.size()); i < exports.size(); ++i)
-    map(exports[i].location);
-  while (!todo.empty()) {
-    Node* n = todo.back();
-    todo.pop_back();
-    map(n->location);
-    for (std::size_t i = 0; i < n->fieldCount(); ++i) {
-      const FieldValue& v = n->fieldAt(i);
-      if (v.type() == FieldType::SFNode)
-        push(v.get<FieldType::SFNode>());
-      else if (v.type() == FieldType::MFNode)
-        for (const NodePtr& c : v.get<FieldType::MFNode>()) push(c);
-    }
-  }
+  impl_->locations.map(scene, impl_->url,
+                       [this](int classicLine) { return xmlLocation(classicLine); });
 }
 
 void XmlToClassic::addWarnings(Scene& scene) {
@@ -824,7 +767,7 @@ void XmlToClassic::addWarnings(Scene& scene) {
   auto& w = impl_->warnings;
   for (Diagnostic& x : w) scene.diagnostics.items.push_back(std::move(x));
   w.clear();
-  impl_->done.diagnostics = scene.diagnostics.items.size();
+  impl_->locations.skipDiagnostics(scene);
 }
 
 }  // namespace gs::vrml::parsing
