@@ -99,9 +99,12 @@ int runSnapshot(const Options& options) {
     v->setRect(rect.x, rect.y, rect.width, rect.height);
     // A stream, mesh or volume has no Viewpoint of its own: frame it whole.
     const bool fit = options.fit || session::isSplatInput(options.inputs[k]);
-    v->setCamera([fit](render::SceneRenderer& r, float aspect) {
+    // A glTF asset without a camera is framed whole too, as glTF viewers do (asked when
+    // drawn: the encoding is known once the asset has arrived).
+    v->setCamera([fit, scene = scenes[k]](render::SceneRenderer& r, float aspect) {
       render::Camera c = r.boundViewpointCamera();
-      if (fit) c = r.fitToScene(aspect, c);
+      const bool gltf = scene->x3d.encoding == "glTF";
+      if (fit || (gltf && r.viewpoints().empty())) c = r.fitToScene(aspect, c);
       render::fitClipPlanes(c, r.bounds(), r.navigation().nearClip());
       return c;
     });

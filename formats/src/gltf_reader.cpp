@@ -1,7 +1,6 @@
 // glTF 2.0 reader (JSON or GLB) on top of Debian's shared tinygltf: see mesh_readers.hpp.
-// tinygltf parses; this file checks everything it then reads (GLB chunks, accessors,
-// buffer views, indices, the node graph) so that a hostile file cannot make it read out of
-// bounds, recurse without limit or allocate more than the input justifies.
+// gltf/ loads the asset with its checks; this file walks the node graph (checked: no node
+// reached twice, no index out of range) into one triangle mesh.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -22,141 +21,18 @@
 #include <glm/mat4x4.hpp>
 #include <glm/matrix.hpp>
 
-#include <tiny_gltf.h>
 
 #include "base/byte_order.hpp"
+#include "gltf/accessors.hpp"
 #include "formats/mesh_readers.hpp"
 
 namespace gs::formats {
 namespace {
 
 using base::loadFloatLe;
-using base::loadLe;
+using gltf::fail;
 
 constexpr std::size_t kMaxOutput = std::size_t{1} << 27;  // vertices and triangles
-constexpr int kMaxJsonDepth = 64;
-
-[[noreturn]] void fail(const std::string& name, const std::string& what) {
-  throw InputError(name + ": " + what);
-}
-
-// tinygltf recurses into "extras" and "extensions" without a depth limit: refuse deep JSON.
-void checkJsonDepth(std::string_view json, const std::string& name) {
-  int depth = 0;
-  bool inString = false;
-  for (std::size_t i = 0; i < json.size(); ++i) {
-    const char c = json[i];
-    if (inString) {
-      if (c == '\\')
-        ++i;
-      else if (c == '"')
-        inString = false;
-    } else if (c == '"') {
-      inString = true;
-    } else if (c == '[' || c == '{') {
-      if (++depth > kMaxJsonDepth)
-        fail(name, "JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
-    } else if (c == ']' || c == '}') {
-      --depth;
-    }
-  }
-}
-
-// Checks the GLB container (tinygltf 2.7 bounds the BIN chunk 8 bytes too late) and
-// returns the JSON chunk; `length` is set to the GLB's own length.
-std::string_view checkGlb(std::string_view b, const std::string& name, std::size_t& length) {
-  if (b.size() < 20) fail(name, "GLB header needs 20 bytes, got " + std::to_string(b.size()));
-  const auto version = loadLe<std::uint32_t>(b.data() + 4);
-  if (version != 2) fail(name, "expected GLB version 2, got " + std::to_string(version));
-  length = loadLe<std::uint32_t>(b.data() + 8);
-  if (length > b.size() || length < 20)
-    fail(name, "GLB length " + std::to_string(length) + " does not match the " +
-                   std::to_string(b.size()) + " bytes present");
-  const std::size_t jsonBytes = loadLe<std::uint32_t>(b.data() + 12);
-  if (loadLe<std::uint32_t>(b.data() + 16) != 0x4E4F534Au) fail(name, "GLB lacks a JSON chunk");
-  if (jsonBytes > length - 20) fail(name, "GLB JSON chunk runs past the end of the file");
-  const std::size_t rest = 20 + jsonBytes;
-  if (rest < length) {
-    if (length - rest < 8) fail(name, "GLB chunk header truncated");
-    if (loadLe<std::uint32_t>(b.data() + rest) > length - rest - 8)
-      fail(name, "GLB BIN chunk runs past the end of the file");
-  }
-  return b.substr(20, jsonBytes);
-}
-
-// ---- tinygltf callbacks: external files only through the ResourceLoader ----
-
-struct FsState {
-  const ResourceLoader* loader = nullptr;
-  std::set<std::string> tried;
-  std::map<std::string, std::string> loaded;
-  std::string missing;  // the first URI that could not be loaded
-  std::exception_ptr error;
-};
-
-bool isImageUri(const std::string& uri) {
-  const auto dot = uri.find_last_of("./");
-  if (dot == std::string::npos || uri[dot] != '.') return false;
-  std::string ext = uri.substr(dot + 1);
-  for (char& c : ext) c = static_cast<char>(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c);
-  return ext == "png" || ext == "jpg" || ext == "jpeg" || ext == "webp" || ext == "ktx2" ||
-         ext == "ktx" || ext == "basis" || ext == "dds" || ext == "bmp" || ext == "gif" ||
-         ext == "tga";
-}
-
-bool fileExists(const std::string& path, void* user) {
-  auto& s = *static_cast<FsState*>(user);
-  if (path.empty() || isImageUri(path) || s.error) return false;  // images are not needed
-  if (s.loaded.count(path)) return true;
-  // tinygltf tries the URI, then "./" + URI: ask the loader once.
-  if (path.starts_with("./") && s.tried.count(path.substr(2))) return false;
-  if (!s.tried.insert(path).second) return false;
-  std::optional<std::string> bytes;
-  if (*s.loader) {
-    try {
-      bytes = (*s.loader)(path);
-    } catch (...) {
-      s.error = std::current_exception();
-      return false;
-    }
-  }
-  if (!bytes) {
-    if (s.missing.empty()) s.missing = path;
-    return false;
-  }
-  s.loaded.emplace(path, std::move(*bytes));
-  return true;
-}
-
-std::string expandFilePath(const std::string& path, void*) {
-  return path;
-}
-
-bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path,
-                   void* user) {
-  auto& s = *static_cast<FsState*>(user);
-  const auto it = s.loaded.find(path);
-  if (it == s.loaded.end()) {
-    if (err) *err = "not available";
-    return false;
-  }
-  out->assign(it->second.begin(), it->second.end());
-  s.loaded.erase(it);
-  return true;
-}
-
-bool writeWholeFile(std::string* err, const std::string&, const std::vector<unsigned char>&,
-                    void*) {
-  if (err) *err = "writing is not allowed";
-  return false;
-}
-
-bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int,
-               const unsigned char*, int, void*) {
-  return true;  // images are not decoded
-}
-
-// ---- the model walk ----
 
 Rgba8 toRgba8(const std::vector<double>& c) {
   Rgba8 out{255, 255, 255, 255};
@@ -168,40 +44,6 @@ Rgba8 toRgba8(const std::vector<double>& c) {
   }
   return out;
 }
-
-// One accessor's elements, bounds checked.
-struct View {
-  const unsigned char* data = nullptr;
-  std::size_t count = 0, stride = 0;
-  int componentType = 0, components = 0;
-
-  const char* at(std::size_t i, int c) const {
-    return reinterpret_cast<const char*>(data + i * stride) +
-           c * tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(componentType));
-  }
-  float unorm(std::size_t i, int c) const {  // float, or unsigned normalized
-    const char* p = at(i, c);
-    switch (componentType) {
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-        return static_cast<float>(static_cast<std::uint8_t>(*p)) / 255.0f;
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-        return static_cast<float>(loadLe<std::uint16_t>(p)) / 65535.0f;
-      default:
-        return loadFloatLe(p);
-    }
-  }
-  std::uint32_t index(std::size_t i) const {
-    const char* p = at(i, 0);
-    switch (componentType) {
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-        return static_cast<std::uint8_t>(*p);
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-        return loadLe<std::uint16_t>(p);
-      default:
-        return loadLe<std::uint32_t>(p);
-    }
-  }
-};
 
 class Walker {
  public:
@@ -274,33 +116,8 @@ class Walker {
     return t * r * s;
   }
 
-  View view(int index, const char* what) const {
-    const std::string where = std::string(what) + " accessor " + std::to_string(index);
-    if (index < 0 || static_cast<std::size_t>(index) >= m_.accessors.size())
-      fail(name_, where + " does not exist");
-    const tinygltf::Accessor& a = m_.accessors[static_cast<std::size_t>(index)];
-    if (a.sparse.isSparse) fail(name_, where + " is sparse, which is not supported");
-    if (a.bufferView < 0 || static_cast<std::size_t>(a.bufferView) >= m_.bufferViews.size())
-      fail(name_, where + " has no valid bufferView");
-    const tinygltf::BufferView& bv = m_.bufferViews[static_cast<std::size_t>(a.bufferView)];
-    if (bv.buffer < 0 || static_cast<std::size_t>(bv.buffer) >= m_.buffers.size())
-      fail(name_, where + ": its buffer view has no valid buffer");
-    const std::vector<unsigned char>& buf = m_.buffers[static_cast<std::size_t>(bv.buffer)].data;
-    const int size = tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(a.componentType));
-    const int comps = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(a.type));
-    if (size <= 0 || comps <= 0) fail(name_, where + " has an invalid type");
-    const std::size_t elem = static_cast<std::size_t>(size) * static_cast<std::size_t>(comps);
-    const std::size_t stride = bv.byteStride ? bv.byteStride : elem;
-    if (stride < elem) fail(name_, where + ": byteStride is smaller than an element");
-    if (bv.byteOffset > buf.size() || bv.byteLength > buf.size() - bv.byteOffset)
-      fail(name_, where + ": its buffer view runs past the end of its buffer");
-    View v{nullptr, a.count, stride, a.componentType, comps};
-    if (a.count == 0) return v;
-    if (a.byteOffset > bv.byteLength || elem > bv.byteLength - a.byteOffset ||
-        a.count - 1 > (bv.byteLength - a.byteOffset - elem) / stride)
-      fail(name_, where + " runs past the end of its buffer view");
-    v.data = buf.data() + bv.byteOffset + a.byteOffset;
-    return v;
+  gltf::AccessorView view(int index, const char* what) const {
+    return gltf::accessorView(m_, index, name_, what);
   }
 
   // baseColorFactor; white without a material (the glTF default material).
@@ -317,16 +134,17 @@ class Walker {
       return;
     const auto posIt = prim.attributes.find("POSITION");
     if (posIt == prim.attributes.end()) return;
-    const View pos = view(posIt->second, "POSITION");
+    const gltf::AccessorView pos = view(posIt->second, "POSITION");
     if (pos.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || pos.components != 3)
       fail(name_, "POSITION accessor " + std::to_string(posIt->second) + " is not float VEC3");
     const std::size_t base = out_.positions.size();
     if (pos.count > kMaxOutput - base)
       fail(name_, "more than " + std::to_string(kMaxOutput) + " vertices");
     const Rgba8 matColor = materialColor(prim.material);
-    std::optional<View> color;
+    std::optional<gltf::AccessorView> color;
     if (const auto it = prim.attributes.find("COLOR_0"); it != prim.attributes.end()) {
       color = view(it->second, "COLOR_0");
+      color->normalized = true;  // integer colours are always normalized (glTF 3.7.2.1)
       const int t = color->componentType;
       if ((t != TINYGLTF_COMPONENT_TYPE_FLOAT && t != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
            t != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) ||
@@ -347,7 +165,7 @@ class Walker {
       Rgba8 c = matColor;
       if (color)
         for (int k = 0; k < 4; ++k) {
-          const float f = k < color->components ? color->unorm(i, k) : 1.0f;
+          const float f = k < color->components ? color->value(i, k) : 1.0f;
           const float v = f * static_cast<float>(matColor[k]);
           c[k] = !(v > 0.0f) ? 0 : v >= 255.0f ? 255 : static_cast<std::uint8_t>(std::lround(v));
         }
@@ -356,22 +174,7 @@ class Walker {
     // The vertex list, then triangles by mode.
     std::vector<std::uint32_t> list;
     if (prim.indices >= 0) {
-      const View idx = view(prim.indices, "indices");
-      const int t = idx.componentType;
-      if (idx.components != 1 || (t != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-                                  t != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-                                  t != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
-        fail(name_,
-             "indices accessor " + std::to_string(prim.indices) + " is not u8/u16/u32 SCALAR");
-      list.reserve(idx.count);
-      for (std::size_t i = 0; i < idx.count; ++i) {
-        const std::uint32_t v = idx.index(i);
-        if (v >= pos.count)
-          fail(name_, "index " + std::to_string(v) + " in accessor " +
-                          std::to_string(prim.indices) + " is out of range (" +
-                          std::to_string(pos.count) + " vertices)");
-        list.push_back(v);
-      }
+      list = gltf::readIndices(m_, prim.indices, pos.count, name_);
     } else {
       list.resize(pos.count);
       for (std::size_t i = 0; i < pos.count; ++i) list[i] = static_cast<std::uint32_t>(i);
@@ -420,48 +223,16 @@ class Walker {
   bool anyVertexColor_ = false;
 };
 
-std::string firstLine(const std::string& s) {
-  std::string line = s.substr(0, s.find('\n'));
-  return line.empty() ? "tinygltf could not read the file" : line;
-}
-
 }  // namespace
 
 TriangleMesh readGltf(std::string_view bytes, const std::string& name,
                       const ResourceLoader& loader) {
-  if (bytes.size() > std::numeric_limits<std::uint32_t>::max())
-    fail(name, "glTF input larger than 4 GiB");
-  const bool glb = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
-  std::size_t length = bytes.size();
-  checkJsonDepth(glb ? checkGlb(bytes, name, length) : bytes, name);
-
-  FsState state;
-  state.loader = &loader;
-  tinygltf::TinyGLTF ctx;
-  ctx.SetImageLoader(&skipImage, nullptr);
-  ctx.SetFsCallbacks({&fileExists, &expandFilePath, &readWholeFile, &writeWholeFile, &state});
-  tinygltf::Model model;
-  std::string err, warn;
-  bool ok = false;
   try {
-    const auto n = static_cast<unsigned int>(length);
-    if (glb)
-      ok = ctx.LoadBinaryFromMemory(&model, &err, &warn,
-                                    reinterpret_cast<const unsigned char*>(bytes.data()), n, "");
-    else
-      ok = ctx.LoadASCIIFromString(&model, &err, &warn, bytes.data(), n, "");
-  } catch (const std::exception& e) {
-    if (state.error) std::rethrow_exception(state.error);
-    fail(name, std::string("tinygltf: ") + e.what());
+    const tinygltf::Model model = gltf::load(bytes, name, loader);
+    return Walker(model, name).run();
+  } catch (const gltf::Error& e) {
+    throw InputError(e.what());
   }
-  if (state.error) std::rethrow_exception(state.error);
-  if (!ok) {
-    if (!state.missing.empty())
-      fail(name, "cannot load external buffer '" + state.missing + "'" +
-                     (loader ? "" : " (no resource loader: external files are not allowed)"));
-    fail(name, firstLine(err));
-  }
-  return Walker(model, name).run();
 }
 
 }  // namespace gs::formats

@@ -21,6 +21,9 @@ inline GLint uniform(GLuint program, const char* name) {
 /// The lit/unlit surface program (VRML97 lighting, clause 4.14), shaders.cpp.
 extern const char* const kSurfaceVertexShader;
 extern const char* const kSurfaceFragmentShader;
+/// The physically based fragment stage (PhysicalMaterial, glTF), shaders_physical.cpp;
+/// with kSurfaceVertexShader.
+extern const char* const kPhysicalFragmentShader;
 /// The full-screen Background gradient program.
 extern const char* const kBackgroundVertexShader;
 extern const char* const kBackgroundFragmentShader;

@@ -22,8 +22,17 @@ using namespace detail;
 
 namespace {
 
-/// An Appearance node's values, read once (clause 6.3 Appearance, 6.27 Material).
+/// The lighting model of a shape: VRML97 / X3D Material (Phong), X3D 4 PhysicalMaterial
+/// (shaders_physical.cpp) or UnlitMaterial (the Phong program's unlit path).
+enum class ShadingModel : std::uint8_t { phong, physical, unlit };
+
+/// The maps of a PhysicalMaterial beyond its base texture, in texture units 1..4.
+enum PhysicalMap { kMetallicRoughness, kNormalMap, kEmissiveMap, kOcclusionMap, kPhysicalMaps };
+
+/// An Appearance node's values, read once (clause 6.3 Appearance, 6.27 Material; X3D 4.0
+/// clause 12.4.2 Appearance alphaMode, 12.4.10 PhysicalMaterial, 12.4.12 UnlitMaterial).
 struct Shading {
+  ShadingModel model = ShadingModel::phong;
   bool hasMaterial = false;
   glm::vec3 diffuseColor{0.8f};
   float ambientIntensity = 0.2f;
@@ -33,8 +42,43 @@ struct Shading {
   float transparency = 0.0f;
   const vrml::Node* texture = nullptr;
   glm::mat3 textureMatrix{1.0f};
+  // PhysicalMaterial (diffuseColor holds baseColor, texture baseTexture).
+  float metallic = 1.0f, roughness = 1.0f, normalScale = 1.0f, occlusionStrength = 1.0f;
+  std::array<const vrml::Node*, kPhysicalMaps> maps{};
+  int alphaMode = 0;  // 0 AUTO, 1 OPAQUE, 2 MASK, 3 BLEND
+  float alphaCutoff = 0.5f;
   std::uint64_t revision = 0;  // vrml::revisionWithFields of the Appearance read
 };
+
+const vrml::Node* sfnodeOf(const vrml::Node& n, std::string_view field) {
+  const vrml::NodePtr p = n.sfnode(field);
+  return p && !p->unresolved ? p.get() : nullptr;
+}
+
+// X3D 4's PhysicalMaterial and UnlitMaterial; their own textures win over
+// Appearance.texture (X3D 4.0 clause 12.4.2).
+void readX3dMaterial(const vrml::Node& m, Shading& s) {
+  s.transparency = std::clamp(sfFloat(m, "transparency", 0.0f), 0.0f, 1.0f);
+  s.emissiveColor = glm::max(sfColor(m, "emissiveColor", glm::vec3(0.0f)), 0.0f);
+  if (m.typeId() == vrml::NodeTypeId::UnlitMaterial) {
+    s.model = ShadingModel::unlit;
+    s.emissiveColor = glm::clamp(s.emissiveColor, 0.0f, 1.0f);
+    if (const vrml::Node* t = sfnodeOf(m, "emissiveTexture")) s.texture = t;
+    return;
+  }
+  s.model = ShadingModel::physical;
+  s.hasMaterial = true;
+  s.diffuseColor = glm::clamp(sfColor(m, "baseColor", glm::vec3(1.0f)), 0.0f, 1.0f);
+  s.metallic = std::clamp(sfFloat(m, "metallic", 1.0f), 0.0f, 1.0f);
+  s.roughness = std::clamp(sfFloat(m, "roughness", 1.0f), 0.0f, 1.0f);
+  s.normalScale = sfFloat(m, "normalScale", 1.0f);
+  s.occlusionStrength = std::clamp(sfFloat(m, "occlusionStrength", 1.0f), 0.0f, 1.0f);
+  if (const vrml::Node* t = sfnodeOf(m, "baseTexture")) s.texture = t;
+  s.maps[kMetallicRoughness] = sfnodeOf(m, "metallicRoughnessTexture");
+  s.maps[kNormalMap] = sfnodeOf(m, "normalTexture");
+  s.maps[kEmissiveMap] = sfnodeOf(m, "emissiveTexture");
+  s.maps[kOcclusionMap] = sfnodeOf(m, "occlusionTexture");
+}
 
 Shading readShading(const vrml::Node* appearance) {
   Shading s;
@@ -52,6 +96,16 @@ Shading readShading(const vrml::Node* appearance) {
   }
   if (const vrml::NodePtr t = appearance->sfnode("texture"); t && !t->unresolved)
     s.texture = t.get();
+  if (const vrml::NodePtr m = appearance->sfnode("material");
+      m && !m->unresolved && (m->typeId() == vrml::NodeTypeId::PhysicalMaterial ||
+                              m->typeId() == vrml::NodeTypeId::UnlitMaterial))
+    readX3dMaterial(*m, s);
+  if (const vrml::FieldValue* mode = appearance->field("alphaMode");
+      mode != nullptr && mode->type() == vrml::FieldType::SFString) {
+    const std::string& v = mode->get<vrml::FieldType::SFString>();
+    s.alphaMode = v == "OPAQUE" ? 1 : v == "MASK" ? 2 : v == "BLEND" ? 3 : 0;
+    s.alphaCutoff = sfFloat(*appearance, "alphaCutoff", 0.5f);
+  }
   if (const vrml::NodePtr tt = appearance->sfnode("textureTransform"); tt && !tt->unresolved)
     s.textureMatrix = textureTransformMatrix(*tt);
   return s;
@@ -65,8 +119,27 @@ struct SurfaceUniforms {
   GLint lightCount, lightType, lightColor, lightIntensity, lightAmbientIntensity, lightPosition,
       lightDirection, lightAttenuation, lightRadius, lightBeamWidth, lightCutOffAngle;
   GLint fogType, fogColor, fogVisibilityRange;
+  // The physical program's own (-1 in the Phong program).
+  GLint metallic, roughness, normalScale, occlusionStrength, alphaMode, alphaCutoff;
+  std::array<GLint, kPhysicalMaps> hasMap, map;
 
   void find(GLuint p) {
+    metallic = uniform(p, "u_metallic");
+    roughness = uniform(p, "u_roughness");
+    normalScale = uniform(p, "u_normalScale");
+    occlusionStrength = uniform(p, "u_occlusionStrength");
+    alphaMode = uniform(p, "u_alphaMode");
+    alphaCutoff = uniform(p, "u_alphaCutoff");
+    static constexpr std::array<const char*, kPhysicalMaps> kHas = {
+        "u_hasMetallicRoughnessTexture", "u_hasNormalTexture", "u_hasEmissiveTexture",
+        "u_hasOcclusionTexture"};
+    static constexpr std::array<const char*, kPhysicalMaps> kMap = {
+        "u_metallicRoughnessTexture", "u_normalTexture", "u_emissiveTexture",
+        "u_occlusionTexture"};
+    for (std::size_t i = 0; i < kPhysicalMaps; ++i) {
+      hasMap[i] = uniform(p, kHas[i]);
+      map[i] = uniform(p, kMap[i]);
+    }
     modelView = uniform(p, "u_modelView");
     projection = uniform(p, "u_projection");
     normalMatrix = uniform(p, "u_normalMatrix");
@@ -105,6 +178,7 @@ struct DrawItem {
   const GpuMesh* mesh;
   const Shading* shading;
   const GpuTexture* texture;  // null: untextured
+  std::array<const GpuTexture*, kPhysicalMaps> maps;  // PhysicalMaterial's other maps
   float depth;                // along the view direction, for sorting
 };
 
@@ -150,6 +224,8 @@ struct LightArrays {
 struct SceneRenderer::Gpu {
   GLuint program = 0;
   SurfaceUniforms u{};
+  GLuint physical = 0;  // the PhysicalMaterial program, built when first needed
+  SurfaceUniforms pu{};
   vrml::NodeMap<GpuMesh> meshes;
   vrml::NodeMap<Shading> shadings;
   TextureCache textures;
@@ -166,6 +242,8 @@ struct SceneRenderer::Gpu {
     background.release();
     if (program != 0) glDeleteProgram(program);
     program = 0;
+    if (physical != 0) glDeleteProgram(physical);
+    physical = 0;
   }
 };
 
@@ -323,22 +401,51 @@ void SceneRenderer::draw(const Camera& camera, int x, int y, int width, int heig
       if (texture->components == 0) texture = nullptr;
     }
     const glm::vec3 center = glm::vec3(s.model * glm::vec4(mesh.bounds.center(), 1.0f));
-    const DrawItem item{&s, &mesh, &shading, texture, glm::dot(center - camera.position, forward)};
-    const bool blended = shading.transparency > 0.0f || (texture != nullptr && texture->hasAlpha);
+    std::array<const GpuTexture*, kPhysicalMaps> maps{};
+    if (shading.model == ShadingModel::physical && mesh.primitive == vrml::Primitive::triangles)
+      for (std::size_t i = 0; i < kPhysicalMaps; ++i)
+        if (shading.maps[i] != nullptr) {
+          maps[i] = &g.textures.get(*shading.maps[i], *s.baseUrl, traversal_, options_.loader);
+          if (maps[i]->components == 0) maps[i] = nullptr;
+        }
+    const DrawItem item{&s,   &mesh, &shading, texture,
+                        maps, glm::dot(center - camera.position, forward)};
+    // Appearance.alphaMode (X3D 4.0 clause 12.4.2): OPAQUE and MASK never blend, BLEND
+    // always does, AUTO when the material or the texture is translucent.
+    const bool blended =
+        shading.alphaMode == 3 ||
+        (shading.alphaMode == 0 &&
+         (shading.transparency > 0.0f || (texture != nullptr && texture->hasAlpha)));
     (blended ? g.transparent : g.opaque).push_back(item);
   }
   std::sort(g.transparent.begin(), g.transparent.end(),
             [](const DrawItem& a, const DrawItem& b) { return a.depth > b.depth; });
 
-  // Per-frame uniforms.
-  glUseProgram(g.program);
-  glUniformMatrix4fv(g.u.projection, 1, GL_FALSE, glm::value_ptr(projection));
-  glUniform1f(g.u.pointSize, options_.pointSize);
-  glUniform1i(g.u.texture, 0);
+  // Per-frame uniforms, in each program a shape of this frame uses.
+  const bool anyPhysical =
+      std::any_of(g.opaque.begin(), g.opaque.end(),
+                  [](const DrawItem& d) { return d.shading->model == ShadingModel::physical; }) ||
+      std::any_of(g.transparent.begin(), g.transparent.end(),
+                  [](const DrawItem& d) { return d.shading->model == ShadingModel::physical; });
+  if (anyPhysical && g.physical == 0) {
+    g.physical = buildProgram("physical", kSurfaceVertexShader, kPhysicalFragmentShader);
+    g.pu.find(g.physical);
+  }
   const FogSettings& fog = traversal_.fog();
-  glUniform1i(g.u.fogType, fog.visibilityRange > 0.0f ? (fog.exponential ? 2 : 1) : 0);
-  glUniform3fv(g.u.fogColor, 1, glm::value_ptr(fog.color));
-  glUniform1f(g.u.fogVisibilityRange, fog.visibilityRange);
+  for (const auto& [program, u] : {std::pair{g.program, &g.u}, std::pair{g.physical, &g.pu}}) {
+    if (program == 0 || (program == g.physical && !anyPhysical)) continue;
+    glUseProgram(program);
+    glUniformMatrix4fv(u->projection, 1, GL_FALSE, glm::value_ptr(projection));
+    glUniform1f(u->pointSize, options_.pointSize);
+    glUniform1i(u->texture, 0);
+    for (std::size_t i = 0; i < kPhysicalMaps; ++i)
+      glUniform1i(u->map[i], static_cast<GLint>(i + 1));
+    glUniform1i(u->fogType, fog.visibilityRange > 0.0f ? (fog.exponential ? 2 : 1) : 0);
+    glUniform3fv(u->fogColor, 1, glm::value_ptr(fog.color));
+    glUniform1f(u->fogVisibilityRange, fog.visibilityRange);
+  }
+  glUseProgram(g.program);
+  GLuint current = g.program;
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glEnable(GL_PROGRAM_POINT_SIZE);
@@ -353,24 +460,50 @@ void SceneRenderer::draw(const Camera& camera, int x, int y, int width, int heig
     const Shading& sh = *d.shading;
     const bool triangles = mesh.primitive == vrml::Primitive::triangles;
     const bool lit = triangles && sh.hasMaterial;
+    const bool physical = lit && sh.model == ShadingModel::physical;
+    const GLuint program = physical ? g.physical : g.program;
+    const SurfaceUniforms& u = physical ? g.pu : g.u;
+    if (program != current) {
+      glUseProgram(program);
+      current = program;
+      lastLightsOf = nullptr;  // each program has its own light uniforms
+    }
     const glm::mat4 modelView = view * s.model;
     const glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(modelView));
-    glUniformMatrix4fv(g.u.modelView, 1, GL_FALSE, glm::value_ptr(modelView));
-    glUniformMatrix3fv(g.u.normalMatrix, 1, GL_FALSE, glm::value_ptr(normalMatrix));
-    glUniformMatrix3fv(g.u.textureMatrix, 1, GL_FALSE, glm::value_ptr(sh.textureMatrix));
-    glUniform1i(g.u.lit, lit ? 1 : 0);
-    glUniform1i(g.u.hasColor, mesh.hasColors ? 1 : 0);
-    glUniform1i(g.u.textureComponents, d.texture != nullptr ? d.texture->components : 0);
+    glUniformMatrix4fv(u.modelView, 1, GL_FALSE, glm::value_ptr(modelView));
+    glUniformMatrix3fv(u.normalMatrix, 1, GL_FALSE, glm::value_ptr(normalMatrix));
+    glUniformMatrix3fv(u.textureMatrix, 1, GL_FALSE, glm::value_ptr(sh.textureMatrix));
+    glUniform1i(u.lit, lit ? 1 : 0);
+    glUniform1i(u.hasColor, mesh.hasColors ? 1 : 0);
+    glUniform1i(u.textureComponents, d.texture != nullptr ? d.texture->components : 0);
     if (d.texture != nullptr) glBindTexture(GL_TEXTURE_2D, d.texture->id);
-    glUniform3fv(g.u.diffuseColor, 1, glm::value_ptr(sh.diffuseColor));
-    glUniform1f(g.u.ambientIntensity, sh.ambientIntensity);
-    glUniform3fv(g.u.specularColor, 1, glm::value_ptr(sh.specularColor));
-    glUniform3fv(g.u.emissiveColor, 1, glm::value_ptr(sh.emissiveColor));
-    glUniform1f(g.u.shininess, sh.shininess);
-    glUniform1f(g.u.transparency, sh.transparency);
-    // Lines and points are unlit: emissiveColor with a Material, else white (6.24, 6.36).
-    const glm::vec3 unlit = (!triangles && sh.hasMaterial) ? sh.emissiveColor : glm::vec3(1.0f);
-    glUniform3fv(g.u.unlitColor, 1, glm::value_ptr(unlit));
+    glUniform3fv(u.diffuseColor, 1, glm::value_ptr(sh.diffuseColor));
+    glUniform1f(u.ambientIntensity, sh.ambientIntensity);
+    glUniform3fv(u.specularColor, 1, glm::value_ptr(sh.specularColor));
+    glUniform3fv(u.emissiveColor, 1, glm::value_ptr(sh.emissiveColor));
+    glUniform1f(u.shininess, sh.shininess);
+    glUniform1f(u.transparency, sh.transparency);
+    if (physical) {
+      glUniform1f(u.metallic, sh.metallic);
+      glUniform1f(u.roughness, sh.roughness);
+      glUniform1f(u.normalScale, sh.normalScale);
+      glUniform1f(u.occlusionStrength, sh.occlusionStrength);
+      glUniform1i(u.alphaMode, sh.alphaMode == 3 ? 0 : sh.alphaMode);
+      glUniform1f(u.alphaCutoff, sh.alphaCutoff);
+      for (std::size_t i = 0; i < kPhysicalMaps; ++i) {
+        glUniform1i(u.hasMap[i], d.maps[i] != nullptr ? 1 : 0);
+        if (d.maps[i] == nullptr) continue;
+        glActiveTexture(GL_TEXTURE1 + static_cast<GLenum>(i));
+        glBindTexture(GL_TEXTURE_2D, d.maps[i]->id);
+      }
+      glActiveTexture(GL_TEXTURE0);
+    }
+    // Lines and points are unlit: emissiveColor with a Material, else white (6.24, 6.36);
+    // a PhysicalMaterial's lines take its baseColor, an UnlitMaterial gives emissiveColor.
+    glm::vec3 unlit = (!triangles && sh.hasMaterial) ? sh.emissiveColor : glm::vec3(1.0f);
+    if (sh.model == ShadingModel::physical && !triangles) unlit = sh.diffuseColor;
+    if (sh.model == ShadingModel::unlit) unlit = sh.emissiveColor;
+    glUniform3fv(u.unlitColor, 1, glm::value_ptr(unlit));
     if (lit && (lastLightsOf == nullptr || lastLightsOf->scopedLightBegin != s.scopedLightBegin ||
                 lastLightsOf->scopedLightCount != s.scopedLightCount)) {
       LightArrays lights;
@@ -378,7 +511,7 @@ void SceneRenderer::draw(const Camera& camera, int x, int y, int width, int heig
       for (std::uint32_t i = 0; i < s.scopedLightCount; ++i)
         lights.add(g.eyeLights[g.frame.scopedLights[s.scopedLightBegin + i]]);
       for (std::uint32_t index : g.frame.globalLights) lights.add(g.eyeLights[index]);
-      lights.upload(g.u);
+      lights.upload(u);
       lastLightsOf = &s;
     }
     if (triangles && mesh.solid)

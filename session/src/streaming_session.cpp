@@ -38,7 +38,7 @@ std::shared_ptr<const vrml::Scene> StreamingSession::open(const std::string& inp
       localScenes_.push_back(scene);
       return scene;
     }
-    if (formats::isMesh(kind) || formats::isVolume(kind)) {
+    if ((formats::isMesh(kind) && kind != formats::InputKind::gltf) || formats::isVolume(kind)) {
       error = input +
               ": meshes and volumes are read from local files; encode them to .qnv "
               "(ghostspace encode) to stream them";

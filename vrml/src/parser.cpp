@@ -1,6 +1,7 @@
 // Statements and nodes (annex A.3 "Nodes" grammar: vrmlScene, statements, nodeStatement,
 // node, nodeBody, scriptBody), DEF/USE (clause 4.6.2), error recovery, and the public
 // entry points parseVrml() and loadVrmlFile().
+#include "gltf_import.hpp"
 #include "parser_impl.hpp"
 #include "x3d_json.hpp"
 #include "x3d_xml.hpp"
@@ -727,6 +728,11 @@ void parseInto(std::string_view bytes, const std::string& url, Context& ctx, int
   if (bytes.size() > limits.maxInputBytes) {
     scene.diagnostics.error({url, 0, 0}, "input of " + std::to_string(bytes.size()) +
                                              " bytes exceeds ParseLimits::maxInputBytes");
+    return;
+  }
+  // glTF 2.0 (GLB, or a JSON document that is no X3D): built into X3D nodes.
+  if (isGltf(bytes)) {
+    importGltf(bytes, url, ctx.options, scene);
     return;
   }
   // X3D's XML encoding (the first byte that is no space or BOM is '<'): translated into

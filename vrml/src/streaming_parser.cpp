@@ -12,6 +12,7 @@
 #include "vrml/streaming_parser.hpp"
 
 #include "parser_impl.hpp"
+#include "gltf_import.hpp"
 #include "x3d_json.hpp"
 #include "x3d_xml.hpp"
 
@@ -161,7 +162,7 @@ struct StreamingParser::Impl {
   std::unique_ptr<Gunzip> gunzip;
   // The encoding, decided by the first byte of the text that is no space or BOM: '<' is
   // X3D's XML, whose bytes go to `xml` (through `scratch`) and whose translation is `text`.
-  enum class Encoding { unknown, classic, xml, json } encoding = Encoding::unknown;
+  enum class Encoding { unknown, classic, xml, json, gltf } encoding = Encoding::unknown;
   std::unique_ptr<parsing::XmlToClassic> xml;
   std::unique_ptr<parsing::JsonToClassic> json;
   std::string scratch;
@@ -183,7 +184,9 @@ struct StreamingParser::Impl {
 
   void append(std::string_view bytes);
   std::string& sink() {
-    return encoding == Encoding::xml || encoding == Encoding::json ? scratch : text;
+    return encoding == Encoding::xml || encoding == Encoding::json || encoding == Encoding::gltf
+               ? scratch
+               : text;
   }
   bool decide(bool final);
   void translated(bool final);
@@ -269,6 +272,14 @@ void StreamingParser::Impl::append(std::string_view bytes) {
 // false while it cannot yet. Switching to XML moves the bytes so far to the translator.
 bool StreamingParser::Impl::decide(bool final) {
   if (encoding != Encoding::unknown) return true;
+  // A GLB (binary glTF, magic "glTF") is collected whole, like a JSON document.
+  if (!final && !text.empty() && text.size() < 4 && text[0] == 'g') return false;
+  if (gltf::isGlb(text)) {
+    encoding = Encoding::gltf;
+    scratch = std::move(text);
+    text.clear();
+    return true;
+  }
   bool decided = false;
   const bool isXml = parsing::looksLikeXml(text, decided);
   if (!decided && !final) return false;
@@ -453,6 +464,16 @@ std::size_t StreamingParser::Impl::guarded(std::string_view bytes, bool final) {
         return added;
       }
       if (!xml->wroteHeader()) return 0;  // (at the end, expat has failed: no element)
+    }
+    if (encoding == Encoding::gltf ||
+        (encoding == Encoding::json && final && gltf::looksLikeGltfJson(scratch))) {
+      if (!final) return 0;  // whole assets only
+      const std::size_t before = scene.rootNodes.size();
+      parsing::importGltf(scratch, url, user, scene);
+      scratch.clear();
+      scratch.shrink_to_fit();
+      stopped = true;
+      return scene.rootNodes.size() - before;
     }
     if (encoding == Encoding::json) {
       if (!final) return 0;  // whole documents only

@@ -1,0 +1,105 @@
+// glTF animations (glTF 2.0 clause 3.11) as X3D's event model runs them, the way
+// castle-engine converts them: one TimeSensor per animation, DEF-named after it, with
+// cycleInterval the animation's length; per channel a PositionInterpolator (translation,
+// scale) or OrientationInterpolator (rotation) ROUTEd from the sensor's fraction_changed
+// to the target Transform. The first animation loops from time 0; the others are
+// stopped until their TimeSensor is started. STEP samplers become keys doubled just before
+// the next key; CUBICSPLINE samplers are interpolated linearly through their values;
+// `weights` channels (morph target animation) are reported and not played.
+#include "gltf_importer.hpp"
+
+#include "gltf/accessors.hpp"
+
+
+#include <cmath>
+
+namespace gs::vrml::parsing {
+
+namespace {
+
+void addRoute(Scene& scene, const NodePtr& from, const char* fromField, const NodePtr& to,
+              const char* toField, const std::string& url) {
+  scene.routes.push_back(Route{from, fromField, to, toField, SourceLocation{url, 0, 0}});
+}
+
+}  // namespace
+
+void GltfImporter::animations() {
+  std::vector<NodePtr> made;
+  bool weightsReported = false;
+  for (std::size_t a = 0; a < m_.animations.size(); ++a) {
+    const tinygltf::Animation& anim = m_.animations[a];
+    // Each sampler's times, read once; the animation lasts until its last key.
+    std::vector<std::vector<float>> times(anim.samplers.size());
+    float duration = 0.0f;
+    for (std::size_t s = 0; s < anim.samplers.size(); ++s) {
+      times[s] = gltf::readFloats(m_, anim.samplers[s].input, 1, url_, "animation input");
+      for (float t : times[s])
+        if (std::isfinite(t)) duration = std::max(duration, t);
+    }
+    if (!(duration > 0.0f)) continue;
+    NodePtr sensor = make("TimeSensor");
+    sensor->defName = anim.name.empty() ? "animation_" + std::to_string(a) : anim.name;
+    set(*sensor, "cycleInterval", FieldValue::make<FieldType::SFTime>(static_cast<double>(duration)));
+    set(*sensor, "loop", FieldValue::make<FieldType::SFBool>(a == 0));
+    made.push_back(sensor);
+    for (const tinygltf::AnimationChannel& ch : anim.channels) {
+      if (ch.sampler < 0 || static_cast<std::size_t>(ch.sampler) >= anim.samplers.size() ||
+          ch.target_node < 0 || static_cast<std::size_t>(ch.target_node) >= transforms_.size() ||
+          !transforms_[static_cast<std::size_t>(ch.target_node)])
+        continue;  // a channel to a node outside the scene drawn animates nothing
+      const tinygltf::AnimationSampler& sampler = anim.samplers[static_cast<std::size_t>(ch.sampler)];
+      const bool rotation = ch.target_path == "rotation";
+      if (ch.target_path != "translation" && ch.target_path != "scale" && !rotation) {
+        if (ch.target_path == "weights" && !weightsReported) {
+          warn("animation of morph target weights is not played");
+          weightsReported = true;
+        }
+        continue;
+      }
+      const std::vector<float>& t = times[static_cast<std::size_t>(ch.sampler)];
+      const int comps = rotation ? 4 : 3;
+      std::vector<float> out = gltf::readFloats(m_, sampler.output, comps, url_, "animation output");
+      const bool cubic = sampler.interpolation == "CUBICSPLINE";
+      const std::size_t per = cubic ? 3 : 1;  // in-tangent, value, out-tangent
+      if (out.size() != t.size() * per * static_cast<std::size_t>(comps))
+        gltf::fail(url_, "animation " + std::to_string(a) +
+                             ": a sampler's output count does not match its input count");
+      const bool step = sampler.interpolation == "STEP";
+      std::vector<float> key;
+      std::vector<glm::vec3> vec;
+      std::vector<Rotation> rot;
+      auto push = [&](float fraction, std::size_t i) {
+        key.push_back(std::clamp(fraction, 0.0f, 1.0f));
+        const std::size_t at = (i * per + (cubic ? 1 : 0)) * static_cast<std::size_t>(comps);
+        if (rotation)
+          rot.push_back(gltfRotation(glm::dquat(out[at + 3], out[at], out[at + 1], out[at + 2])));
+        else
+          vec.emplace_back(out[at], out[at + 1], out[at + 2]);
+      };
+      for (std::size_t i = 0; i < t.size(); ++i) {
+        push(t[i] / duration, i);
+        if (step && i + 1 < t.size())  // holds until just before the next key
+          push(std::nextafter(std::clamp(t[i + 1] / duration, 0.0f, 1.0f), 0.0f), i);
+      }
+      NodePtr interp = make(rotation ? "OrientationInterpolator" : "PositionInterpolator");
+      set(*interp, "key", FieldValue::make<FieldType::MFFloat>(std::move(key)));
+      if (rotation)
+        set(*interp, "keyValue", FieldValue::make<FieldType::MFRotation>(std::move(rot)));
+      else
+        set(*interp, "keyValue", FieldValue::make<FieldType::MFVec3f>(std::move(vec)));
+      made.push_back(interp);
+      const NodePtr& target = transforms_[static_cast<std::size_t>(ch.target_node)];
+      addRoute(scene_, sensor, "fraction_changed", interp, "set_fraction", url_);
+      addRoute(scene_, interp, "value_changed", target,
+               rotation ? "set_rotation" : ch.target_path == "scale" ? "set_scale" : "set_translation",
+               url_);
+    }
+  }
+  for (NodePtr& n : made) {
+    scene_.rootNodes.push_back(n);
+    if (options_.onRootNode) options_.onRootNode(n);
+  }
+}
+
+}  // namespace gs::vrml::parsing
