@@ -1,5 +1,7 @@
 #include "base/url.hpp"
 
+#include "base/data_url.hpp"
+
 #include <vector>
 
 #include "base/text.hpp"
@@ -192,6 +194,7 @@ std::string localPathOfUrl(std::string_view url) {
 
 bool mayReference(std::string_view baseUrl, std::string_view resolvedUrl, std::string& error) {
   if (!isHttpUrl(baseUrl) || isHttpUrl(resolvedUrl)) return true;
+  if (isDataUrl(resolvedUrl)) return true;  // holds its bytes: reads nothing
   error = std::string(baseUrl) + " may not reference '" + std::string(resolvedUrl) +
           "': content from the network may only reference http(s) URLs";
   return false;

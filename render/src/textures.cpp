@@ -1,5 +1,6 @@
 // ImageTexture and PixelTexture to GL textures (clauses 6.22, 6.33), with mipmaps and the
 // repeatS / repeatT wrap modes; MovieTexture goes to movie_textures.cpp.
+#include "base/data_url.hpp"
 #include "base/file.hpp"
 #include "base/url.hpp"
 #include "gpu_resources.hpp"
@@ -45,9 +46,12 @@ LoadedImage loadFirstImage(const std::vector<std::string>& urls, const std::stri
     const std::string url = base::resolveUrl(baseUrl, reference);
     std::string bytes, error;
     bool ok = false;
-    const std::string path = base::localPathOfUrl(url);
+    const std::string path = base::isDataUrl(url) ? "" : base::localPathOfUrl(url);
     if (!base::mayReference(baseUrl, url, error)) {
       // A world from the network never reads local files.
+    } else if (base::isDataUrl(url)) {
+      std::string mediaType;
+      ok = base::decodeDataUrl(url, bytes, mediaType, error);  // embedded (glTF, X3D 4)
     } else {
       if (!path.empty()) ok = base::readFile(path, bytes, error);
       if (!ok && loader) {
@@ -77,7 +81,8 @@ LoadedImage loadFirstImage(const std::vector<std::string>& urls, const std::stri
         error = e.what();
       }
     }
-    out.failures += (out.failures.empty() ? "" : "; ") + url + ": " + error;
+    const std::string shown = base::isDataUrl(url) && url.size() > 48 ? url.substr(0, 48) + "..." : url;
+    out.failures += (out.failures.empty() ? "" : "; ") + shown + ": " + error;
   }
   return out;
 }

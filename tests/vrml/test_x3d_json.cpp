@@ -238,9 +238,14 @@ TEST_CASE("X3D JSON: errors at file:line:column or naming the JSON path", "[x3d]
     CHECK(s.rootNodes.empty());
   }
   SECTION("no X3D object") {
-    const Scene s = parseVrml(R"({"asset": {"version": "2.0"}})", "gltf.x3dj");
+    const Scene s = parseVrml(R"({"scene": {"version": "2.0"}})", "other.x3dj");
     REQUIRE(s.diagnostics.items.size() == 1);
     CHECK(s.diagnostics.items[0].message.find("\"X3D\"") != std::string::npos);
+  }
+  SECTION("a glTF asset is not X3D JSON: it is read as glTF") {
+    const Scene s = parseVrml(R"({"asset": {"version": "2.0"}})", "a.gltf");
+    CHECK(s.diagnostics.items.empty());
+    CHECK(s.x3d.encoding == "glTF");
   }
   SECTION("a node that is not an object: the rest loads") {
     const Scene s = json(R"({"Group": {}}, 5, {"Transform": "x"}, {"Shape": {}})");

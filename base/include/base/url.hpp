@@ -46,7 +46,7 @@ std::string localPathOfUrl(std::string_view url);
 std::string percentDecode(std::string_view s);
 
 /// Whether content read from `baseUrl` may reference `resolvedUrl`: always for local
-/// content; for content from http(s) only http(s) URLs (docs/progressive-loading.md,
+/// content; for content from http(s) only http(s) and data: URLs (docs/progressive-loading.md,
 /// "Safety"). False sets `error` to "<base> may not reference '<url>': content from the
 /// network may only reference http(s) URLs".
 bool mayReference(std::string_view baseUrl, std::string_view resolvedUrl, std::string& error);
