@@ -52,13 +52,20 @@ struct SceneTraversal::Walk {
     }
   }
 
+  // VRML97 bounds intensity to [0, 1] (clause 6.16); X3D 4 lights (those with X3D's
+  // `global` field) take any intensity >= 0 (X3D 4.0 clause 17.4.1), as glTF's do.
+  static float lightIntensity(const vrml::Node& n) {
+    const float i = std::max(detail::sfFloat(n, "intensity", 1.0f), 0.0f);
+    return n.type().findExact("global") >= 0 ? i : std::min(i, 1.0f);
+  }
+
   void directionalLight(const vrml::Node& n, const glm::mat4& m) {
     using namespace detail;
     if (!sfBool(n, "on", true)) return;
     LightInstance light;
     light.type = LightType::directional;
     light.color = sfColor(n, "color", glm::vec3(1.0f));
-    light.intensity = std::clamp(sfFloat(n, "intensity", 1.0f), 0.0f, 1.0f);
+    light.intensity = lightIntensity(n);
     light.ambientIntensity = std::clamp(sfFloat(n, "ambientIntensity", 0.0f), 0.0f, 1.0f);
     const glm::vec3 d = glm::mat3(m) * sfVec3(n, "direction", glm::vec3(0, 0, -1));
     if (glm::length(d) < 1e-12f) return;
@@ -74,7 +81,7 @@ struct SceneTraversal::Walk {
     LightInstance light;
     light.type = spot ? LightType::spot : LightType::point;
     light.color = sfColor(n, "color", glm::vec3(1.0f));
-    light.intensity = std::clamp(sfFloat(n, "intensity", 1.0f), 0.0f, 1.0f);
+    light.intensity = lightIntensity(n);
     light.ambientIntensity = std::clamp(sfFloat(n, "ambientIntensity", 0.0f), 0.0f, 1.0f);
     light.location = glm::vec3(m * glm::vec4(sfVec3(n, "location", glm::vec3(0.0f)), 1.0f));
     light.attenuation = glm::max(sfVec3(n, "attenuation", glm::vec3(1, 0, 0)), glm::vec3(0.0f));

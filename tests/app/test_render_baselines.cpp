@@ -20,6 +20,7 @@ struct RenderCase {
   const char* name;   // baseline file stem
   const char* world;  // relative to the corpus (corpus = true) or the source folder
   bool corpus;
+  const char* time = nullptr;  // --time, for animated worlds
 };
 
 const RenderCase kCases[] = {
@@ -43,13 +44,31 @@ const RenderCase kCases[] = {
     {"castle_creaseangle", "vrml/castle/vrml_engine_doc_simple_examples/creaseangle.wrl", true},
     {"castle_teapot", "vrml/castle/vrml_2/teapot.wrl", true},
     {"kicad_cp_elec_5x3", "vrml/kicad/Capacitor_SMD__CP_Elec_5x3.wrl", true},
+    // glTF models (castle's demo models), framed whole where they have no camera.
+    {"gltf_castle", "gltf/castle/castle/castle.gltf", true},
+    {"gltf_cat", "gltf/castle/bump_mapping/tangents/cat-16c3444c8d1440fc97fdf10f60ec58b0/scene.gltf",
+     true},
+    {"gltf_fox_t1", "gltf/castle/animation/gltf_skinned_animation/fox_from_khronos/Fox.gltf", true,
+     "1"},
+    {"gltf_punctual_lights", "gltf/castle/gltf/punctual_lights/test_lights.gltf", true},
+    {"gltf_lines", "gltf/castle/gltf/lines/lines.gltf", true},
+    {"gltf_baked_lighting",
+     "gltf/castle/blender/baking_lighting/sample_level_using_baked_texture.gltf", true},
+    {"gltf_vertex_paint", "gltf/castle/blender/per_vertex_colors/vertex_paint.glb", true},
+    {"gltf_teapot_clearcoat", "gltf/castle/x3d/inline_geometry/utah_teapot_original/scene.gltf",
+     true},
+    {"gltf_camera_animation_t1", "gltf/castle/gltf/camera_animation/camera_animation.glb", true,
+     "1"},
 };
 
 void checkAgainstBaseline(const RenderCase& c) {
-  if (c.corpus && !gs::test::haveCorpus("vrml")) return;
+  const std::string part = std::string(c.world).substr(0, std::string(c.world).find('/'));
+  if (c.corpus && !gs::test::haveCorpus(part)) return;
   const fs::path world =
       c.corpus ? gs::test::corpusDir() / c.world : gs::test::sourceDir() / c.world;
-  gs::test::checkBaseline(c.name, {"--size", "300x300", world.string()});
+  std::vector<std::string> args = {"--size", "300x300", world.string()};
+  if (c.time != nullptr) args.insert(args.end(), {"--time", c.time});
+  gs::test::checkBaseline(c.name, args);
 }
 
 }  // namespace
