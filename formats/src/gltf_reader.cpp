@@ -21,10 +21,9 @@
 #include <glm/mat4x4.hpp>
 #include <glm/matrix.hpp>
 
-
 #include "base/byte_order.hpp"
-#include "gltf/accessors.hpp"
 #include "formats/mesh_readers.hpp"
+#include "gltf/accessors.hpp"
 
 namespace gs::formats {
 namespace {

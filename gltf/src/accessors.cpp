@@ -88,8 +88,7 @@ AccessorView accessorView(const tinygltf::Model& m, int index, const std::string
   if (index < 0 || static_cast<std::size_t>(index) >= m.accessors.size())
     fail(name, where + " does not exist");
   const tinygltf::Accessor& a = m.accessors[static_cast<std::size_t>(index)];
-  if (a.sparse.isSparse && !allowSparse)
-    fail(name, where + " is sparse, which is not supported");
+  if (a.sparse.isSparse && !allowSparse) fail(name, where + " is sparse, which is not supported");
   const int size = tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(a.componentType));
   const int comps = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(a.type));
   if (size <= 0 || comps <= 0) fail(name, where + " has an invalid type");
@@ -101,8 +100,7 @@ AccessorView accessorView(const tinygltf::Model& m, int index, const std::string
 }
 
 std::vector<float> readFloats(const tinygltf::Model& m, int index, int components,
-                              const std::string& name, const char* what,
-                              std::size_t maxElements) {
+                              const std::string& name, const char* what, std::size_t maxElements) {
   const AccessorView v = accessorView(m, index, name, what, true);
   const std::string where = accessorName(what, index);
   if (v.components != components)
@@ -131,9 +129,8 @@ std::vector<float> readFloats(const tinygltf::Model& m, int index, int component
       static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(it))),
       indices.stride, false, name, where + " sparse indices");
   // Sparse values are tightly packed elements of the accessor's type.
-  const std::size_t elemBytes =
-      n * static_cast<std::size_t>(
-              tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(a.componentType)));
+  const std::size_t elemBytes = n * static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(
+                                        static_cast<std::uint32_t>(a.componentType)));
   AccessorView values{nullptr, count, 0, a.componentType, components, a.normalized};
   values.data = checkedRange(m, a.sparse.values.bufferView, a.sparse.values.byteOffset, count,
                              elemBytes, values.stride, false, name, where + " sparse values");
@@ -147,9 +144,8 @@ std::vector<float> readFloats(const tinygltf::Model& m, int index, int component
   return out;
 }
 
-std::vector<std::uint32_t> readIndices(const tinygltf::Model& m, int index,
-                                       std::size_t vertexCount, const std::string& name,
-                                       std::size_t maxElements) {
+std::vector<std::uint32_t> readIndices(const tinygltf::Model& m, int index, std::size_t vertexCount,
+                                       const std::string& name, std::size_t maxElements) {
   const AccessorView idx = accessorView(m, index, name, "indices");
   const int t = idx.componentType;
   if (idx.components != 1 ||

@@ -18,7 +18,6 @@ using base::loadLe;
 
 constexpr int kMaxJsonDepth = 64;
 
-
 // tinygltf recurses into "extras" and "extensions" without a depth limit: refuse deep JSON.
 void checkJsonDepth(std::string_view json, const std::string& name) {
   int depth = 0;
@@ -162,8 +161,8 @@ bool isGlb(std::string_view bytes) {
 bool looksLikeGltfJson(std::string_view bytes) {
   std::size_t i = bytes.starts_with("\xEF\xBB\xBF") ? 3 : 0;
   auto skipSpace = [&] {
-    while (i < bytes.size() && (bytes[i] == ' ' || bytes[i] == '\t' || bytes[i] == '\n' ||
-                                bytes[i] == '\r'))
+    while (i < bytes.size() &&
+           (bytes[i] == ' ' || bytes[i] == '\t' || bytes[i] == '\n' || bytes[i] == '\r'))
       ++i;
   };
   skipSpace();

@@ -97,8 +97,9 @@ Shading readShading(const vrml::Node* appearance) {
   if (const vrml::NodePtr t = appearance->sfnode("texture"); t && !t->unresolved)
     s.texture = t.get();
   if (const vrml::NodePtr m = appearance->sfnode("material");
-      m && !m->unresolved && (m->typeId() == vrml::NodeTypeId::PhysicalMaterial ||
-                              m->typeId() == vrml::NodeTypeId::UnlitMaterial))
+      m && !m->unresolved &&
+      (m->typeId() == vrml::NodeTypeId::PhysicalMaterial ||
+       m->typeId() == vrml::NodeTypeId::UnlitMaterial))
     readX3dMaterial(*m, s);
   if (const vrml::FieldValue* mode = appearance->field("alphaMode");
       mode != nullptr && mode->type() == vrml::FieldType::SFString) {
@@ -134,8 +135,7 @@ struct SurfaceUniforms {
         "u_hasMetallicRoughnessTexture", "u_hasNormalTexture", "u_hasEmissiveTexture",
         "u_hasOcclusionTexture"};
     static constexpr std::array<const char*, kPhysicalMaps> kMap = {
-        "u_metallicRoughnessTexture", "u_normalTexture", "u_emissiveTexture",
-        "u_occlusionTexture"};
+        "u_metallicRoughnessTexture", "u_normalTexture", "u_emissiveTexture", "u_occlusionTexture"};
     for (std::size_t i = 0; i < kPhysicalMaps; ++i) {
       hasMap[i] = uniform(p, kHas[i]);
       map[i] = uniform(p, kMap[i]);
@@ -177,9 +177,9 @@ struct DrawItem {
   const ShapeInstance* shape;
   const GpuMesh* mesh;
   const Shading* shading;
-  const GpuTexture* texture;  // null: untextured
+  const GpuTexture* texture;                          // null: untextured
   std::array<const GpuTexture*, kPhysicalMaps> maps;  // PhysicalMaterial's other maps
-  float depth;                // along the view direction, for sorting
+  float depth;                                        // along the view direction, for sorting
 };
 
 /// Uniform arrays of the lights of one shape.
@@ -408,14 +408,13 @@ void SceneRenderer::draw(const Camera& camera, int x, int y, int width, int heig
           maps[i] = &g.textures.get(*shading.maps[i], *s.baseUrl, traversal_, options_.loader);
           if (maps[i]->components == 0) maps[i] = nullptr;
         }
-    const DrawItem item{&s,   &mesh, &shading, texture,
-                        maps, glm::dot(center - camera.position, forward)};
+    const DrawItem item{&s,      &mesh, &shading,
+                        texture, maps,  glm::dot(center - camera.position, forward)};
     // Appearance.alphaMode (X3D 4.0 clause 12.4.2): OPAQUE and MASK never blend, BLEND
     // always does, AUTO when the material or the texture is translucent.
-    const bool blended =
-        shading.alphaMode == 3 ||
-        (shading.alphaMode == 0 &&
-         (shading.transparency > 0.0f || (texture != nullptr && texture->hasAlpha)));
+    const bool blended = shading.alphaMode == 3 ||
+                         (shading.alphaMode == 0 && (shading.transparency > 0.0f ||
+                                                     (texture != nullptr && texture->hasAlpha)));
     (blended ? g.transparent : g.opaque).push_back(item);
   }
   std::sort(g.transparent.begin(), g.transparent.end(),

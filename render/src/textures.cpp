@@ -81,7 +81,8 @@ LoadedImage loadFirstImage(const std::vector<std::string>& urls, const std::stri
         error = e.what();
       }
     }
-    const std::string shown = base::isDataUrl(url) && url.size() > 48 ? url.substr(0, 48) + "..." : url;
+    const std::string shown =
+        base::isDataUrl(url) && url.size() > 48 ? url.substr(0, 48) + "..." : url;
     out.failures += (out.failures.empty() ? "" : "; ") + shown + ": " + error;
   }
   return out;

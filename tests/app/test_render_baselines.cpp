@@ -46,8 +46,8 @@ const RenderCase kCases[] = {
     {"kicad_cp_elec_5x3", "vrml/kicad/Capacitor_SMD__CP_Elec_5x3.wrl", true},
     // glTF models (castle's demo models), framed whole where they have no camera.
     {"gltf_castle", "gltf/castle/castle/castle.gltf", true},
-    {"gltf_cat", "gltf/castle/bump_mapping/tangents/cat-16c3444c8d1440fc97fdf10f60ec58b0/scene.gltf",
-     true},
+    {"gltf_cat",
+     "gltf/castle/bump_mapping/tangents/cat-16c3444c8d1440fc97fdf10f60ec58b0/scene.gltf", true},
     {"gltf_fox_t1", "gltf/castle/animation/gltf_skinned_animation/fox_from_khronos/Fox.gltf", true,
      "1"},
     {"gltf_punctual_lights", "gltf/castle/gltf/punctual_lights/test_lights.gltf", true},

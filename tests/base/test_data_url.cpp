@@ -17,7 +17,8 @@ TEST_CASE("data: URLs decode and round-trip", "[base][data-url]") {
   REQUIRE(decodeDataUrl("DATA:,a%20b", bytes, type, error));
   CHECK(bytes == "a b");
   CHECK(type.empty());
-  for (const std::string& s : std::vector<std::string>{"", "a", "ab", "abc", std::string("\0\xff\x10\x80", 4)}) {
+  for (const std::string& s :
+       std::vector<std::string>{"", "a", "ab", "abc", std::string("\0\xff\x10\x80", 4)}) {
     const std::string url = makeDataUrl("application/octet-stream", s);
     REQUIRE(decodeDataUrl(url, bytes, type, error));
     CHECK(bytes == s);

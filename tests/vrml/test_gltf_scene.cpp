@@ -102,11 +102,14 @@ TEST_CASE("glTF animations become TimeSensors, interpolators and ROUTEs; STEP ho
   asset.replace(asset.find("\"buffers\":["), 11, "\"buffers\":[" + animBuffer + ",");
   // Buffer views now name buffer 1 for the triangle: move them to index 1, add views 2, 3.
   std::string::size_type at = 0;
-  while ((at = asset.find("\"buffer\":0", at)) != std::string::npos) asset.replace(at, 10, "\"buffer\":1");
-  asset.replace(asset.find("\"bufferViews\":["), 15,
-                R"("bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":8},{"buffer":0,"byteOffset":8,"byteLength":24},)");
+  while ((at = asset.find("\"buffer\":0", at)) != std::string::npos)
+    asset.replace(at, 10, "\"buffer\":1");
+  asset.replace(
+      asset.find("\"bufferViews\":["), 15,
+      R"("bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":8},{"buffer":0,"byteOffset":8,"byteLength":24},)");
   // Accessors: views shift by 2; add the time and value accessors.
-  asset.replace(asset.find("\"bufferView\":0,\"componentType\":5126,\"count\":3"), 14, "\"bufferView\":2");
+  asset.replace(asset.find("\"bufferView\":0,\"componentType\":5126,\"count\":3"), 14,
+                "\"bufferView\":2");
   asset.replace(asset.find("\"bufferView\":1,\"componentType\":5123"), 14, "\"bufferView\":3");
   const std::string indexAccessor = R"("count":3,"type":"SCALAR"}])";
   asset.replace(asset.find(indexAccessor), indexAccessor.size(),
@@ -160,7 +163,8 @@ TEST_CASE("a glTF asset streams like a world: complete when the last byte arrive
           "[vrml][gltf]") {
   const std::string asset = triangleAsset();
   StreamingParser p("tri.gltf");
-  for (std::size_t i = 0; i < asset.size(); i += 100) p.feed(std::string_view(asset).substr(i, 100));
+  for (std::size_t i = 0; i < asset.size(); i += 100)
+    p.feed(std::string_view(asset).substr(i, 100));
   p.finish();
   CHECK(p.scene().rootNodes.size() == 1);
   CHECK(p.scene().x3d.encoding == "glTF");
@@ -199,8 +203,8 @@ TEST_CASE("the corpus glTF models load as worlds with their nodes", "[vrml][gltf
     }
   }
   // Fox's TimeSensors are named after its animations; only the first loops from the start.
-  const Scene fox = loadVrmlFile(
-      (dir / "animation/gltf_skinned_animation/fox_from_khronos/Fox.gltf").string());
+  const Scene fox =
+      loadVrmlFile((dir / "animation/gltf_skinned_animation/fox_from_khronos/Fox.gltf").string());
   std::vector<std::string> names;
   for (const auto& n : fox.rootNodes)
     if (n->typeName() == "TimeSensor") names.push_back(n->defName);

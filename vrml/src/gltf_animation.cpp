@@ -10,7 +10,6 @@
 
 #include "gltf/accessors.hpp"
 
-
 #include <cmath>
 
 namespace gs::vrml::parsing {
@@ -40,15 +39,20 @@ void GltfImporter::animations() {
     if (!(duration > 0.0f)) continue;
     NodePtr sensor = make("TimeSensor");
     sensor->defName = anim.name.empty() ? "animation_" + std::to_string(a) : anim.name;
-    set(*sensor, "cycleInterval", FieldValue::make<FieldType::SFTime>(static_cast<double>(duration)));
+    set(*sensor, "cycleInterval",
+        FieldValue::make<FieldType::SFTime>(static_cast<double>(duration)));
     set(*sensor, "loop", FieldValue::make<FieldType::SFBool>(a == 0));
     made.push_back(sensor);
+    // EXPORTed by name, so that a world Inlining the asset can IMPORT and start it (as
+    // castle-engine exports glTF animations).
+    scene_.x3d.exports.push_back(X3dExport{sensor->defName, sensor->defName, sensor, {url_, 0, 0}});
     for (const tinygltf::AnimationChannel& ch : anim.channels) {
       if (ch.sampler < 0 || static_cast<std::size_t>(ch.sampler) >= anim.samplers.size() ||
           ch.target_node < 0 || static_cast<std::size_t>(ch.target_node) >= transforms_.size() ||
           !transforms_[static_cast<std::size_t>(ch.target_node)])
         continue;  // a channel to a node outside the scene drawn animates nothing
-      const tinygltf::AnimationSampler& sampler = anim.samplers[static_cast<std::size_t>(ch.sampler)];
+      const tinygltf::AnimationSampler& sampler =
+          anim.samplers[static_cast<std::size_t>(ch.sampler)];
       const bool rotation = ch.target_path == "rotation";
       if (ch.target_path != "translation" && ch.target_path != "scale" && !rotation) {
         if (ch.target_path == "weights" && !weightsReported) {
@@ -59,7 +63,8 @@ void GltfImporter::animations() {
       }
       const std::vector<float>& t = times[static_cast<std::size_t>(ch.sampler)];
       const int comps = rotation ? 4 : 3;
-      std::vector<float> out = gltf::readFloats(m_, sampler.output, comps, url_, "animation output");
+      std::vector<float> out =
+          gltf::readFloats(m_, sampler.output, comps, url_, "animation output");
       const bool cubic = sampler.interpolation == "CUBICSPLINE";
       const std::size_t per = cubic ? 3 : 1;  // in-tangent, value, out-tangent
       if (out.size() != t.size() * per * static_cast<std::size_t>(comps))
@@ -92,7 +97,9 @@ void GltfImporter::animations() {
       const NodePtr& target = transforms_[static_cast<std::size_t>(ch.target_node)];
       addRoute(scene_, sensor, "fraction_changed", interp, "set_fraction", url_);
       addRoute(scene_, interp, "value_changed", target,
-               rotation ? "set_rotation" : ch.target_path == "scale" ? "set_scale" : "set_translation",
+               rotation                    ? "set_rotation"
+               : ch.target_path == "scale" ? "set_scale"
+                                           : "set_translation",
                url_);
     }
   }

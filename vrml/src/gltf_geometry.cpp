@@ -54,7 +54,8 @@ NodePtr GltfImporter::primitiveShape(const tinygltf::Mesh& mesh, const tinygltf:
       std::vector<float>* dest = name == "POSITION" ? &pos : name == "NORMAL" ? &normals : nullptr;
       if (dest == nullptr || dest->empty()) continue;
       const std::vector<float> d = gltf::readFloats(m_, accessor, 3, url_, "morph target");
-      if (d.size() != dest->size()) gltf::fail(url_, "a morph target's count differs from POSITION");
+      if (d.size() != dest->size())
+        gltf::fail(url_, "a morph target's count differs from POSITION");
       for (std::size_t i = 0; i < d.size(); ++i) (*dest)[i] += w * d[i];
     }
   }
@@ -118,7 +119,8 @@ NodePtr GltfImporter::primitiveShape(const tinygltf::Mesh& mesh, const tinygltf:
   } else if (mode == TINYGLTF_MODE_LINE || mode == TINYGLTF_MODE_LINE_STRIP ||
              mode == TINYGLTF_MODE_LINE_LOOP) {
     if (mode == TINYGLTF_MODE_LINE) {
-      for (std::size_t i = 0; i + 1 < n; i += 2) push(list[i]), push(list[i + 1]), index.push_back(-1);
+      for (std::size_t i = 0; i + 1 < n; i += 2)
+        push(list[i]), push(list[i + 1]), index.push_back(-1);
     } else if (n >= 2) {
       for (std::uint32_t v : list) push(v);
       if (mode == TINYGLTF_MODE_LINE_LOOP) push(list[0]);

@@ -20,7 +20,7 @@ constexpr double kPi = 3.14159265358979323846;
 
 // Extensions whose content is read (docs/gltf.md); any other is reported by name.
 const std::set<std::string> kReadExtensions = {
-    "KHR_lights_punctual",  "KHR_materials_unlit",   "KHR_materials_emissive_strength",
+    "KHR_lights_punctual",   "KHR_materials_unlit",   "KHR_materials_emissive_strength",
     "KHR_texture_transform", "KHR_mesh_quantization",
 };
 
@@ -145,7 +145,10 @@ NodePtr GltfImporter::buildNode(int index, int depth, const glm::dmat4& parentWo
   set(*t, "translation", FieldValue::make<FieldType::SFVec3f>(glm::vec3(translation)));
   set(*t, "rotation", FieldValue::make<FieldType::SFRotation>(axisAngle(rotation)));
   set(*t, "scale", FieldValue::make<FieldType::SFVec3f>(glm::vec3(scale)));
-  if (!n.name.empty()) t->defName = n.name;
+  if (!n.name.empty()) {
+    t->defName = n.name;
+    scene_.x3d.exports.push_back(X3dExport{n.name, n.name, t, {url_, 0, 0}});
+  }
   const double qlen = glm::length(rotation);
   const glm::dquat unit = qlen > 0.0 ? rotation / qlen : glm::dquat(1.0, 0.0, 0.0, 0.0);
   const glm::dmat4 world = parentWorld * glm::translate(glm::dmat4(1.0), translation) *
@@ -180,9 +183,8 @@ NodePtr GltfImporter::camera(int index) {
     set(*v, "fieldOfView", FieldValue::make<FieldType::MFFloat>(std::vector<float>{-x, -y, x, y}));
   } else {
     v = make("Viewpoint");
-    const double yfov = c.perspective.yfov > 0.0 && c.perspective.yfov < kPi
-                            ? c.perspective.yfov
-                            : kPi / 4.0;
+    const double yfov =
+        c.perspective.yfov > 0.0 && c.perspective.yfov < kPi ? c.perspective.yfov : kPi / 4.0;
     set(*v, "fieldOfView", FieldValue::make<FieldType::SFFloat>(static_cast<float>(yfov)));
   }
   set(*v, "position", FieldValue::make<FieldType::SFVec3f>(glm::vec3(0.0f)));
@@ -204,14 +206,13 @@ void GltfImporter::light(int index, const glm::dmat4& world) {
   auto number = [&](const tinygltf::Value& o, const char* key, double fallback) {
     return o.Has(key) && o.Get(key).IsNumber() ? o.Get(key).GetNumberAsDouble() : fallback;
   };
-  const std::string type = l.Has("type") && l.Get("type").IsString() ? l.Get("type").Get<std::string>()
-                                                                     : "";
+  const std::string type =
+      l.Has("type") && l.Get("type").IsString() ? l.Get("type").Get<std::string>() : "";
   glm::vec3 color(1.0f);
   if (l.Has("color") && l.Get("color").IsArray() && l.Get("color").ArrayLen() == 3)
     for (int k = 0; k < 3; ++k)
-      color[k] = static_cast<float>(l.Get("color").Get(k).IsNumber()
-                                        ? l.Get("color").Get(k).GetNumberAsDouble()
-                                        : 1.0);
+      color[k] = static_cast<float>(
+          l.Get("color").Get(k).IsNumber() ? l.Get("color").Get(k).GetNumberAsDouble() : 1.0);
   NodePtr light;
   if (type == "directional") {
     light = make("DirectionalLight");
@@ -232,7 +233,8 @@ void GltfImporter::light(int index, const glm::dmat4& world) {
   }
   set(*light, "color", FieldValue::make<FieldType::SFColor>(glm::clamp(color, 0.0f, 1.0f)));
   set(*light, "intensity",
-      FieldValue::make<FieldType::SFFloat>(static_cast<float>(std::max(0.0, number(l, "intensity", 1.0)))));
+      FieldValue::make<FieldType::SFFloat>(
+          static_cast<float>(std::max(0.0, number(l, "intensity", 1.0)))));
   // glTF lights shine along -Z of their node, from its origin, falling off with the square
   // of the distance within `range` (infinite when absent).
   const glm::vec3 origin(world * glm::dvec4(0.0, 0.0, 0.0, 1.0));

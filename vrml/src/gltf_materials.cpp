@@ -29,7 +29,8 @@ double number(const tinygltf::Value& o, const char* key, double fallback) {
 }
 
 std::string sniffMediaType(const std::vector<unsigned char>& b) {
-  if (b.size() >= 4 && b[0] == 0x89 && b[1] == 'P' && b[2] == 'N' && b[3] == 'G') return "image/png";
+  if (b.size() >= 4 && b[0] == 0x89 && b[1] == 'P' && b[2] == 'N' && b[3] == 'G')
+    return "image/png";
   if (b.size() >= 2 && b[0] == 0xFF && b[1] == 0xD8) return "image/jpeg";
   return "application/octet-stream";
 }
@@ -80,9 +81,10 @@ NodePtr GltfImporter::texture(int index) {
       if (!image.uri.empty())
         url = image.uri;
       else if (!image.image.empty())
-        url = base::makeDataUrl(image.mimeType.empty() ? sniffMediaType(image.image) : image.mimeType,
-                                std::string_view(reinterpret_cast<const char*>(image.image.data()),
-                                                 image.image.size()));
+        url =
+            base::makeDataUrl(image.mimeType.empty() ? sniffMediaType(image.image) : image.mimeType,
+                              std::string_view(reinterpret_cast<const char*>(image.image.data()),
+                                               image.image.size()));
       if (!url.empty()) {
         out = make("ImageTexture");
         set(*out, "url", FieldValue::make<FieldType::MFString>(std::vector<std::string>{url}));
@@ -104,7 +106,8 @@ NodePtr GltfImporter::appearance(int material) {
   if (const auto it = appearances_.find(material); it != appearances_.end()) return it->second;
   NodePtr a = make("Appearance");
   const tinygltf::Material* mat = materialAt(m_, material);
-  if (material >= 0 && mat == nullptr) warn("material " + std::to_string(material) + " does not exist");
+  if (material >= 0 && mat == nullptr)
+    warn("material " + std::to_string(material) + " does not exist");
   NodePtr m;
   if (mat == nullptr) {
     // The default material (clause 3.9.6): white, fully rough, not metallic.
@@ -128,10 +131,12 @@ NodePtr GltfImporter::appearance(int material) {
     } else {
       m = make("PhysicalMaterial");
       set(*m, "baseColor", FieldValue::make<FieldType::SFColor>(baseColor));
-      set(*m, "metallic", FieldValue::make<FieldType::SFFloat>(
-                              std::clamp(static_cast<float>(pbr.metallicFactor), 0.0f, 1.0f)));
-      set(*m, "roughness", FieldValue::make<FieldType::SFFloat>(
-                               std::clamp(static_cast<float>(pbr.roughnessFactor), 0.0f, 1.0f)));
+      set(*m, "metallic",
+          FieldValue::make<FieldType::SFFloat>(
+              std::clamp(static_cast<float>(pbr.metallicFactor), 0.0f, 1.0f)));
+      set(*m, "roughness",
+          FieldValue::make<FieldType::SFFloat>(
+              std::clamp(static_cast<float>(pbr.roughnessFactor), 0.0f, 1.0f)));
       set(*m, "emissiveColor", FieldValue::make<FieldType::SFColor>(emissive));
       if (NodePtr t = texture(pbr.baseColorTexture.index))
         set(*m, "baseTexture", FieldValue::make<FieldType::SFNode>(t));
@@ -144,8 +149,9 @@ NodePtr GltfImporter::appearance(int material) {
       }
       if (NodePtr t = texture(mat->occlusionTexture.index)) {
         set(*m, "occlusionTexture", FieldValue::make<FieldType::SFNode>(t));
-        set(*m, "occlusionStrength", FieldValue::make<FieldType::SFFloat>(
-                                         static_cast<float>(mat->occlusionTexture.strength)));
+        set(*m, "occlusionStrength",
+            FieldValue::make<FieldType::SFFloat>(
+                static_cast<float>(mat->occlusionTexture.strength)));
       }
       if (NodePtr t = texture(mat->emissiveTexture.index))
         set(*m, "emissiveTexture", FieldValue::make<FieldType::SFNode>(t));

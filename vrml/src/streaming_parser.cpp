@@ -11,8 +11,8 @@
 // `scratch` and translated by JsonToClassic at finish(), then parsed as one piece.
 #include "vrml/streaming_parser.hpp"
 
-#include "parser_impl.hpp"
 #include "gltf_import.hpp"
+#include "parser_impl.hpp"
 #include "x3d_json.hpp"
 #include "x3d_xml.hpp"
 
