@@ -49,20 +49,7 @@ class Walker {
   Walker(const tinygltf::Model& model, const std::string& name) : m_(model), name_(name) {}
 
   TriangleMesh run() {
-    std::vector<int> roots;
-    if (m_.defaultScene >= 0 && static_cast<std::size_t>(m_.defaultScene) < m_.scenes.size())
-      roots = m_.scenes[static_cast<std::size_t>(m_.defaultScene)].nodes;
-    else if (!m_.scenes.empty())
-      roots = m_.scenes[0].nodes;
-    else {
-      std::vector<char> isChild(m_.nodes.size(), 0);
-      for (const auto& n : m_.nodes)
-        for (int c : n.children)
-          if (c >= 0 && static_cast<std::size_t>(c) < isChild.size())
-            isChild[static_cast<std::size_t>(c)] = 1;
-      for (std::size_t i = 0; i < m_.nodes.size(); ++i)
-        if (!isChild[i]) roots.push_back(static_cast<int>(i));
-    }
+    const std::vector<int> roots = gltf::sceneRoots(m_);
     std::vector<char> visited(m_.nodes.size(), 0);
     std::vector<std::pair<int, glm::dmat4>> stack;
     for (auto it = roots.rbegin(); it != roots.rend(); ++it)

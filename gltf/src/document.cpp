@@ -154,6 +154,21 @@ void fail(const std::string& name, const std::string& what) {
   throw Error(name + ": " + what);
 }
 
+std::vector<int> sceneRoots(const tinygltf::Model& m) {
+  if (m.defaultScene >= 0 && static_cast<std::size_t>(m.defaultScene) < m.scenes.size())
+    return m.scenes[static_cast<std::size_t>(m.defaultScene)].nodes;
+  if (!m.scenes.empty()) return m.scenes[0].nodes;
+  std::vector<char> isChild(m.nodes.size(), 0);
+  for (const auto& n : m.nodes)
+    for (int c : n.children)
+      if (c >= 0 && static_cast<std::size_t>(c) < isChild.size())
+        isChild[static_cast<std::size_t>(c)] = 1;
+  std::vector<int> roots;
+  for (std::size_t i = 0; i < m.nodes.size(); ++i)
+    if (!isChild[i]) roots.push_back(static_cast<int>(i));
+  return roots;
+}
+
 bool isGlb(std::string_view bytes) {
   return bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
 }

@@ -75,20 +75,7 @@ void GltfImporter::checkExtensions() {
 
 void GltfImporter::run() {
   checkExtensions();
-  std::vector<int> roots;
-  if (m_.defaultScene >= 0 && static_cast<std::size_t>(m_.defaultScene) < m_.scenes.size())
-    roots = m_.scenes[static_cast<std::size_t>(m_.defaultScene)].nodes;
-  else if (!m_.scenes.empty())
-    roots = m_.scenes[0].nodes;
-  else {
-    std::vector<char> isChild(m_.nodes.size(), 0);
-    for (const auto& n : m_.nodes)
-      for (int c : n.children)
-        if (c >= 0 && static_cast<std::size_t>(c) < isChild.size())
-          isChild[static_cast<std::size_t>(c)] = 1;
-    for (std::size_t i = 0; i < m_.nodes.size(); ++i)
-      if (!isChild[i]) roots.push_back(static_cast<int>(i));
-  }
+  const std::vector<int> roots = gltf::sceneRoots(m_);
   transforms_.assign(m_.nodes.size(), nullptr);
   std::vector<NodePtr> built;
   for (int r : roots) built.push_back(buildNode(r, 0, glm::dmat4(1.0)));

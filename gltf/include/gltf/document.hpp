@@ -50,4 +50,9 @@ enum class Images {
 tinygltf::Model load(std::string_view bytes, const std::string& name, const BufferLoader& loader,
                      Images images = Images::skip, std::vector<std::string>* warnings = nullptr);
 
+/// The root nodes to draw (glTF 2.0 clause 3.5.2): those of the default scene, else of
+/// scene 0, else every node that is no other node's child. Indices are as written
+/// (unchecked).
+std::vector<int> sceneRoots(const tinygltf::Model& model);
+
 }  // namespace gs::gltf
