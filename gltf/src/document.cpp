@@ -1,6 +1,8 @@
 // Loading glTF 2.0 assets through tinygltf with the checks tinygltf lacks: see document.hpp.
 #include "gltf/document.hpp"
 
+#include "compression.hpp"
+
 #include "base/byte_order.hpp"
 
 #include <algorithm>
@@ -14,6 +16,7 @@
 namespace gs::gltf {
 namespace {
 
+using base::appendLe;
 using base::loadLe;
 
 constexpr int kMaxJsonDepth = 64;
@@ -194,7 +197,25 @@ tinygltf::Model load(std::string_view bytes, const std::string& name, const Buff
     fail(name, "glTF input larger than 4 GiB");
   const bool glb = isGlb(bytes);
   std::size_t length = bytes.size();
-  checkJsonDepth(glb ? checkGlb(bytes, name, length) : bytes, name);
+  const std::string_view json = glb ? checkGlb(bytes, name, length) : bytes;
+  checkJsonDepth(json, name);
+  // Draco primitives' accessors get placeholder buffer views (compression.hpp); a GLB is
+  // rebuilt around the patched JSON chunk.
+  std::string patched = detail::placeDracoAccessors(json);
+  if (!patched.empty()) {
+    while (patched.size() % 4 != 0) patched += ' ';
+    if (glb) {
+      const std::string_view rest = bytes.substr(20 + json.size(), length - 20 - json.size());
+      std::string rebuilt(bytes.substr(0, 8));  // magic and version
+      appendLe<std::uint32_t>(rebuilt,
+                              static_cast<std::uint32_t>(20 + patched.size() + rest.size()));
+      appendLe<std::uint32_t>(rebuilt, static_cast<std::uint32_t>(patched.size()));
+      appendLe<std::uint32_t>(rebuilt, 0x4E4F534Au);  // "JSON"
+      patched = rebuilt + patched + std::string(rest);
+    }
+    bytes = patched;
+    length = bytes.size();
+  }
 
   FsState state;
   state.loader = &loader;
@@ -235,7 +256,32 @@ tinygltf::Model load(std::string_view bytes, const std::string& name, const Buff
       at = eol + 1;
     }
   }
+  detail::decodeDraco(model, name);
   return model;
 }
+
+namespace detail {
+
+void replaceAccessorData(tinygltf::Model& m, tinygltf::Accessor& a, int componentType,
+                         std::size_t count, const void* data, std::size_t bytes) {
+  tinygltf::Buffer buffer;
+  buffer.data.assign(static_cast<const unsigned char*>(data),
+                     static_cast<const unsigned char*>(data) + bytes);
+  m.buffers.push_back(std::move(buffer));
+  tinygltf::BufferView view;
+  view.buffer = static_cast<int>(m.buffers.size() - 1);
+  view.byteOffset = 0;
+  view.byteLength = bytes;
+  view.byteStride = 0;
+  m.bufferViews.push_back(std::move(view));
+  a.bufferView = static_cast<int>(m.bufferViews.size() - 1);
+  a.byteOffset = 0;
+  a.componentType = componentType;
+  a.normalized = false;
+  a.count = count;
+  a.sparse.isSparse = false;
+}
+
+}  // namespace detail
 
 }  // namespace gs::gltf

@@ -1,5 +1,6 @@
-// ImageTexture and PixelTexture to GL textures (clauses 6.22, 6.33), with mipmaps and the
-// repeatS / repeatT wrap modes; MovieTexture goes to movie_textures.cpp.
+// ImageTexture and PixelTexture to GL textures (clauses 6.22, 6.33), with mipmaps, the
+// repeatS / repeatT wrap modes or X3D's TextureProperties (filters, boundary modes);
+// MovieTexture goes to movie_textures.cpp.
 #include "base/data_url.hpp"
 #include "base/file.hpp"
 #include "base/url.hpp"
@@ -13,8 +14,51 @@
 namespace gs::render::detail {
 namespace {
 
-GLuint uploadRgba(const std::uint8_t* rowsBottomUp, int width, int height, bool repeatS,
-                  bool repeatT) {
+/// How a texture is sampled: VRML97's repeatS / repeatT (6.22), or X3D 4.0's
+/// TextureProperties (clause 18.4.9) when the texture has one (which then overrides them).
+struct Sampling {
+  GLint minFilter = GL_LINEAR_MIPMAP_LINEAR, magFilter = GL_LINEAR;
+  GLint wrapS = GL_REPEAT, wrapT = GL_REPEAT;
+};
+
+GLint boundaryMode(const std::string& mode) {
+  if (mode == "MIRRORED_REPEAT") return GL_MIRRORED_REPEAT;
+  if (mode == "CLAMP" || mode == "CLAMP_TO_EDGE") return GL_CLAMP_TO_EDGE;
+  if (mode == "CLAMP_TO_BOUNDARY") return GL_CLAMP_TO_BORDER;
+  return GL_REPEAT;  // REPEAT and anything unknown
+}
+
+// X3D 4.0 tables 18.7 and 18.8. FASTEST is nearest (as castle-engine reads it); NICEST
+// and DEFAULT are the trilinear / bilinear filtering GhostSpace draws without one.
+GLint minificationFilter(const std::string& mode) {
+  if (mode == "AVG_PIXEL") return GL_LINEAR;
+  if (mode == "AVG_PIXEL_NEAREST_MIPMAP") return GL_LINEAR_MIPMAP_NEAREST;
+  if (mode == "NEAREST_PIXEL" || mode == "FASTEST") return GL_NEAREST;
+  if (mode == "NEAREST_PIXEL_AVG_MIPMAP") return GL_NEAREST_MIPMAP_LINEAR;
+  if (mode == "NEAREST_PIXEL_NEAREST_MIPMAP") return GL_NEAREST_MIPMAP_NEAREST;
+  return GL_LINEAR_MIPMAP_LINEAR;  // AVG_PIXEL_AVG_MIPMAP, NICEST, DEFAULT
+}
+
+GLint magnificationFilter(const std::string& mode) {
+  return mode == "NEAREST_PIXEL" || mode == "FASTEST" ? GL_NEAREST : GL_LINEAR;
+}
+
+Sampling samplingOf(const vrml::Node& texture) {
+  Sampling s;
+  s.wrapS = sfBool(texture, "repeatS", true) ? GL_REPEAT : GL_CLAMP_TO_EDGE;
+  s.wrapT = sfBool(texture, "repeatT", true) ? GL_REPEAT : GL_CLAMP_TO_EDGE;
+  static const vrml::NodePtr kNone;
+  const vrml::NodePtr& p = fieldRef<vrml::FieldType::SFNode>(texture, "textureProperties", kNone);
+  if (!p || p->typeId() != vrml::NodeTypeId::TextureProperties) return s;
+  s.wrapS = boundaryMode(sfString(*p, "boundaryModeS"));
+  s.wrapT = boundaryMode(sfString(*p, "boundaryModeT"));
+  s.minFilter = minificationFilter(sfString(*p, "minificationFilter"));
+  s.magFilter = magnificationFilter(sfString(*p, "magnificationFilter"));
+  return s;
+}
+
+GLuint uploadRgba(const std::uint8_t* rowsBottomUp, int width, int height,
+                  const Sampling& sampling) {
   GLuint id = 0;
   glGenTextures(1, &id);
   glBindTexture(GL_TEXTURE_2D, id);
@@ -22,10 +66,10 @@ GLuint uploadRgba(const std::uint8_t* rowsBottomUp, int width, int height, bool 
   glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
                rowsBottomUp);
   glGenerateMipmap(GL_TEXTURE_2D);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, repeatS ? GL_REPEAT : GL_CLAMP_TO_EDGE);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, repeatT ? GL_REPEAT : GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, sampling.minFilter);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, sampling.magFilter);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, sampling.wrapS);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, sampling.wrapT);
   glBindTexture(GL_TEXTURE_2D, 0);
   return id;
 }
@@ -88,7 +132,9 @@ LoadedImage loadFirstImage(const std::vector<std::string>& urls, const std::stri
   return out;
 }
 
-GpuTexture uploadImage(const LoadedImage& loaded, bool repeatS, bool repeatT) {
+namespace {
+
+GpuTexture uploadSampled(const LoadedImage& loaded, const Sampling& sampling) {
   GpuTexture texture;
   const Image& image = loaded.image;
   // GL wants the bottom row first; VRML's (0, 0) is the image's lower-left corner.
@@ -97,10 +143,19 @@ GpuTexture uploadImage(const LoadedImage& loaded, bool repeatS, bool repeatT) {
   for (int y = 0; y < image.height; ++y)
     std::copy_n(image.rgba.data() + static_cast<std::size_t>(y) * row, row,
                 flipped.data() + static_cast<std::size_t>(image.height - 1 - y) * row);
-  texture.id = uploadRgba(flipped.data(), image.width, image.height, repeatS, repeatT);
+  texture.id = uploadRgba(flipped.data(), image.width, image.height, sampling);
   texture.components = loaded.components;
   texture.hasAlpha = loaded.hasAlpha;
   return texture;
+}
+
+}  // namespace
+
+GpuTexture uploadImage(const LoadedImage& loaded, bool repeatS, bool repeatT) {
+  Sampling sampling;
+  sampling.wrapS = repeatS ? GL_REPEAT : GL_CLAMP_TO_EDGE;
+  sampling.wrapT = repeatT ? GL_REPEAT : GL_CLAMP_TO_EDGE;
+  return uploadSampled(loaded, sampling);
 }
 
 bool decodeSFImage(const vrml::SFImage& image, std::vector<std::uint8_t>& rgba, bool& hasAlpha) {
@@ -148,7 +203,7 @@ const GpuTexture& TextureCache::get(const vrml::Node& node, const std::string& b
     return movies.get(node, baseUrl, traversal, loader);
   if (auto it = textures_.find(&node); it != textures_.end()) return it->second;
   GpuTexture texture;
-  const bool repeatS = sfBool(node, "repeatS", true), repeatT = sfBool(node, "repeatT", true);
+  const Sampling sampling = samplingOf(node);
   if (node.typeId() == vrml::NodeTypeId::PixelTexture) {
     std::vector<std::uint8_t> rgba;
     static const vrml::SFImage kEmpty;
@@ -157,7 +212,7 @@ const GpuTexture& TextureCache::get(const vrml::Node& node, const std::string& b
     if (image.width == 0 || image.height == 0) {
       // An empty PixelTexture means no texture (clause 6.33).
     } else if (decodeSFImage(image, rgba, hasAlpha)) {
-      texture.id = uploadRgba(rgba.data(), image.width, image.height, repeatS, repeatT);
+      texture.id = uploadRgba(rgba.data(), image.width, image.height, sampling);
       texture.components = image.components;
       texture.hasAlpha = hasAlpha;
     } else {
@@ -171,7 +226,7 @@ const GpuTexture& TextureCache::get(const vrml::Node& node, const std::string& b
       return kNone;
     }
     if (loaded.components > 0)
-      texture = uploadImage(loaded, repeatS, repeatT);
+      texture = uploadSampled(loaded, sampling);
     else
       traversal.report(
           vrml::Severity::warning, node.location,

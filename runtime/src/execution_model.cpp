@@ -159,6 +159,7 @@ ExecutionModel::ExecutionModel(std::shared_ptr<const vrml::Scene> scene, double 
   s_->initializeScripts();
   for (NodeState* t : s_->timeSensors) s_->evaluateTimeSensor(*t);
   s_->runCascade();
+  s_->evaluateSkins();
   ++stats_.cascades;
 }
 
@@ -175,6 +176,7 @@ void ExecutionModel::sceneGrew() {
   s_->bindFirstCandidates();
   s_->runCascade();
   s_->initializeScripts();
+  s_->evaluateSkins();
 }
 
 void ExecutionModel::addInlineScene(std::shared_ptr<const vrml::Scene> scene) {
@@ -190,6 +192,7 @@ void ExecutionModel::addInlineScene(std::shared_ptr<const vrml::Scene> scene) {
   for (std::size_t i = firstSensor; i < s_->timeSensors.size(); ++i)
     s_->evaluateTimeSensor(*s_->timeSensors[i]);
   s_->runCascade();
+  s_->evaluateSkins();
 }
 
 void ExecutionModel::advanceTo(double time) {
@@ -214,6 +217,7 @@ void ExecutionModel::advanceTo(double time) {
   for (PendingEvent& e : s_->posted) s_->queue.push_back(std::move(e));
   s_->posted.clear();
   s_->runCascade();
+  s_->evaluateSkins();
 }
 
 void ExecutionModel::advanceBy(double duration, double step) {
@@ -245,6 +249,7 @@ void ExecutionModel::processEvents() {
   for (PendingEvent& e : s_->posted) s_->queue.push_back(std::move(e));
   s_->posted.clear();
   s_->runCascade();
+  s_->evaluateSkins();
 }
 
 void ExecutionModel::setViewer(const ViewerPose& viewer) {

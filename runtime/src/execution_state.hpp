@@ -52,6 +52,13 @@ struct EventUtilityFields {
   int index = -1;                      // sequencers: the keyValue last sent, -1 before any
 };
 
+/// A Skin's record (skin.cpp): the signature of the skeleton it last skinned with.
+struct SkinState {
+  std::uint64_t signature = 0;
+  bool evaluated = false;
+  bool problemReported = false;
+};
+
 struct NodeState;
 
 /// One route from an eventOut, resolved: the receiving node and its field index.
@@ -138,6 +145,7 @@ struct NodeState {
   std::unique_ptr<ScriptInstance> script;
   std::unique_ptr<MediaNode> media;             // role media
   std::unique_ptr<EventUtilityFields> utility;  // role eventUtility
+  std::unique_ptr<SkinState> skin;              // a Skin (role plain)
   bool scriptHadEvents = false;
   bool problemReported = false;
 };
@@ -169,6 +177,7 @@ struct ExecutionModel::State {
   std::vector<NodeState*> timeSensors;
   std::vector<NodeState*> scripts;
   std::vector<NodeState*> mediaNodes;  // MovieTextures and AudioClips
+  std::vector<NodeState*> skins;       // Skin nodes (skin.cpp)
   std::size_t environmentSensors = 0;  // ProximitySensors and VisibilitySensors met
   std::optional<ViewerPose> viewer;
   std::vector<NodeState*> newScripts;  // registered, initialize() not yet called
@@ -218,6 +227,12 @@ struct ExecutionModel::State {
   /// Makes `ns` an event utility when it is a node of X3D 4.0 clause 30.
   bool classifyEventUtility(NodeState& ns);
   void deliverEventUtility(NodeState& ns, int field, vrml::FieldValue value);
+  // ---- Skin (skin.cpp) ----
+  /// Makes `ns` a skin when it is a Skin node (its events stay plain).
+  bool classifySkin(NodeState& ns);
+  /// After a cascade: re-skins every Skin whose skeleton or own fields changed.
+  void evaluateSkins();
+  void evaluateSkin(NodeState& ns);
   // ---- environmental sensors (environment_sensors.cpp) ----
   void evaluateEnvironmentSensors();
 

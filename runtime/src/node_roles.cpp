@@ -90,6 +90,7 @@ void ExecutionModel::State::classify(NodeState& ns) {
   const NodeTypeId id = type.id();
   if (classifyMedia(ns)) return;
   if (classifyEventUtility(ns)) return;
+  if (classifySkin(ns)) return;
   if (id == NodeTypeId::TimeSensor) {
     ns.role = NodeRole::timeSensor;
     TimeSensorFields& f = ns.timeFields;

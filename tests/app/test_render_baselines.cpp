@@ -59,6 +59,13 @@ const RenderCase kCases[] = {
      true},
     {"gltf_camera_animation_t1", "gltf/castle/gltf/camera_animation/camera_animation.glb", true,
      "1"},
+    // Skins (CPU skinning by the Skin node) and morph weights animation, at t = 1 s: the
+    // poses castle-model-viewer --screenshot 1 shows.
+    {"gltf_skinned_anim_t1", "gltf/castle/animation/blender_skinned_animation/skinned_anim.glb",
+     true, "1"},
+    {"gltf_bunny_t1",
+     "gltf/castle/animation/gltf_skinned_animation/animals_from_quaternius/Bunny.gltf", true, "1"},
+    {"gltf_monkey_morph_t1", "gltf/castle/gltf/morph_targets/monkey_morph.glb", true, "1"},
 };
 
 void checkAgainstBaseline(const RenderCase& c) {

@@ -174,3 +174,48 @@ TEST_CASE("the X3D asset draws the same in the Classic VRML, XML and JSON encodi
   CHECK(blue > 20);
   CHECK(yellow > 0);
 }
+
+TEST_CASE("TextureProperties: nearest and linear magnification, mirrored repeat",
+          "[render][offscreen][world]") {
+  const fs::path dir = worldDir();
+  // A 2x1 texture (black, white) across the whole view (s from 0 to `sMax`).
+  auto world = [](const std::string& properties, int sMax) {
+    const std::string s = std::to_string(sMax);
+    return "#X3D V4.0 utf8\nPROFILE Immersive\n"
+           "Viewpoint { position 0 0 1 fieldOfView 1.5708 }\n"
+           "Shape { appearance Appearance { texture PixelTexture { image 2 1 1 0x00 0xFF " +
+           properties +
+           " } }\n"
+           "  geometry IndexedFaceSet { coord Coordinate { point [-1 -1 0, 1 -1 0, 1 1 0, -1 1 0] "
+           "}\n"
+           "    coordIndex [0 1 2 3 -1] texCoord TextureCoordinate { point [0 0, " +
+           s + " 0, " + s + " 1, 0 1] } texCoordIndex [0 1 2 3 -1] } }\n";
+  };
+  writeText(dir / "tp_linear.x3dv", world("repeatS FALSE", 1));
+  writeText(dir / "tp_nearest.x3dv",
+            world("textureProperties TextureProperties { magnificationFilter \"NEAREST_PIXEL\" "
+                  "boundaryModeS \"CLAMP_TO_EDGE\" }",
+                  1));
+  writeText(
+      dir / "tp_repeat.x3dv",
+      world("textureProperties TextureProperties { magnificationFilter \"NEAREST_PIXEL\" }", 2));
+  writeText(dir / "tp_mirrored.x3dv",
+            world("textureProperties TextureProperties { magnificationFilter \"NEAREST_PIXEL\" "
+                  "boundaryModeS \"MIRRORED_REPEAT\" }",
+                  2));
+  // Just left and right of the middle: blended grey when linear, black then white when
+  // nearest.
+  const Rendered linear = renderFile(dir / "tp_linear.x3dv");
+  INFO("linear " << int(linear.image.pixel(30, 32)[0]) << " "
+                 << int(linear.image.pixel(33, 32)[0]));
+  CHECK(linear.image.pixel(30, 32)[0] > 60);
+  CHECK(linear.image.pixel(33, 32)[0] < 195);
+  const Rendered nearest = renderFile(dir / "tp_nearest.x3dv");
+  CHECK(nearest.image.pixel(30, 32)[0] < 10);
+  CHECK(nearest.image.pixel(33, 32)[0] > 245);
+  // s in [1.25, 1.5) at x = 40..47: REPEAT reads texel 0 (black), MIRRORED_REPEAT texel 1.
+  const Rendered repeat = renderFile(dir / "tp_repeat.x3dv");
+  const Rendered mirrored = renderFile(dir / "tp_mirrored.x3dv");
+  CHECK(repeat.image.pixel(44, 32)[0] < 10);
+  CHECK(mirrored.image.pixel(44, 32)[0] > 245);
+}

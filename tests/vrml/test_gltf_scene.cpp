@@ -182,14 +182,19 @@ TEST_CASE("the corpus glTF models load as worlds with their nodes", "[vrml][gltf
       {"gltf/punctual_lights/test_lights.gltf",
        {{"DirectionalLight", 1}, {"PointLight", 1}, {"SpotLight", 1}, {"Viewpoint", 1}}},
       {"animation/gltf_skinned_animation/fox_from_khronos/Fox.gltf",
-       {{"TimeSensor", 3}, {"ImageTexture", 1}}},
+       {{"TimeSensor", 3}, {"ImageTexture", 1}, {"Skin", 1}}},
+      {"animation/blender_skinned_animation/skinned_anim.glb",
+       {{"TimeSensor", 2}, {"Skin", 1}, {"Shape", 2}}},
       {"gltf/lines/lines.gltf", {{"IndexedLineSet", 2}, {"UnlitMaterial", 1}}},
       {"blender/baking_lighting/sample_level_using_baked_texture.gltf",
        {{"UnlitMaterial", 1}, {"Viewpoint", 1}}},
       {"blender/per_vertex_colors/vertex_paint.glb", {{"ColorRGBA", 1}}},
-      {"gltf/morph_targets/monkey_morph.glb", {{"Shape", 1}}},
+      // Three animations of the two sparse targets' weights: a CoordinateInterpolator and
+      // a NormalInterpolator each.
+      {"gltf/morph_targets/monkey_morph.glb",
+       {{"Shape", 1}, {"TimeSensor", 3}, {"CoordinateInterpolator", 3}, {"NormalInterpolator", 3}}},
       {"animation/gltf_skinned_animation/animals_from_quaternius/Bunny.gltf",
-       {{"TimeSensor", 14}, {"Shape", 6}}},
+       {{"TimeSensor", 14}, {"Shape", 6}, {"Skin", 6}}},
   };
   for (const Expect& e : models) {
     INFO(e.path);

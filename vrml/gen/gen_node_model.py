@@ -72,6 +72,25 @@ EXTENSIONS = [
             ("bboxSize", "SFVec3f", "initializeOnly", "-1 -1 -1", ""),
         ],
     },
+    {
+        "name": "Skin",
+        "component": "GhostSpace",
+        "level": 1,
+        "bases": ["X3DChildNode"],
+        "containerField": "children",
+        "fields": [
+            ("skeleton", "MFNode", "inputOutput", "", "X3DGroupingNode"),
+            ("joints", "MFNode", "inputOutput", "", "X3DGroupingNode"),
+            ("inverseBindMatrices", "MFFloat", "initializeOnly", "", ""),
+            ("skinnedTransform", "SFNode", "inputOutput", "NULL", "X3DGroupingNode"),
+            ("coord", "SFNode", "inputOutput", "NULL", "X3DCoordinateNode"),
+            ("normal", "SFNode", "inputOutput", "NULL", "X3DNormalNode"),
+            ("restPoint", "MFVec3f", "inputOutput", "", ""),
+            ("restNormal", "MFVec3f", "inputOutput", "", ""),
+            ("vertexJoints", "MFInt32", "initializeOnly", "", ""),
+            ("vertexWeights", "MFFloat", "initializeOnly", "", ""),
+        ],
+    },
 ]
 
 # XML-encoding attributes X3DUOM lists as fields of every node (inherited from X3DNode);

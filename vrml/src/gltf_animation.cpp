@@ -4,8 +4,10 @@
 // scale) or OrientationInterpolator (rotation) ROUTEd from the sensor's fraction_changed
 // to the target Transform. The first animation loops from time 0; the others are
 // stopped until their TimeSensor is started. STEP samplers become keys doubled just before
-// the next key; CUBICSPLINE samplers are interpolated linearly through their values;
-// `weights` channels (morph target animation) are reported and not played.
+// the next key; CUBICSPLINE samplers are interpolated linearly through their values.
+// `weights` channels (morph target animation, clause 3.7.2.2) become per primitive a
+// CoordinateInterpolator and NormalInterpolator of the morphed vertices at each key: the
+// vertices are linear in the weights, so between LINEAR keys this is exact.
 #include "gltf_importer.hpp"
 
 #include "gltf/accessors.hpp"
@@ -14,18 +16,24 @@
 
 namespace gs::vrml::parsing {
 
-namespace {
-
 void addRoute(Scene& scene, const NodePtr& from, const char* fromField, const NodePtr& to,
               const char* toField, const std::string& url) {
   scene.routes.push_back(Route{from, fromField, to, toField, SourceLocation{url, 0, 0}});
 }
 
-}  // namespace
+std::set<int> GltfImporter::morphAnimatedNodes() const {
+  std::set<int> out;
+  for (const tinygltf::Animation& anim : m_.animations)
+    for (const tinygltf::AnimationChannel& ch : anim.channels)
+      if (ch.target_path == "weights" && ch.target_node >= 0 &&
+          static_cast<std::size_t>(ch.target_node) < m_.nodes.size() &&
+          m_.nodes[static_cast<std::size_t>(ch.target_node)].mesh >= 0)
+        out.insert(ch.target_node);
+  return out;
+}
 
 void GltfImporter::animations() {
   std::vector<NodePtr> made;
-  bool weightsReported = false;
   for (std::size_t a = 0; a < m_.animations.size(); ++a) {
     const tinygltf::Animation& anim = m_.animations[a];
     // Each sampler's times, read once; the animation lasts until its last key.
@@ -54,41 +62,48 @@ void GltfImporter::animations() {
       const tinygltf::AnimationSampler& sampler =
           anim.samplers[static_cast<std::size_t>(ch.sampler)];
       const bool rotation = ch.target_path == "rotation";
-      if (ch.target_path != "translation" && ch.target_path != "scale" && !rotation) {
-        if (ch.target_path == "weights" && !weightsReported) {
-          warn("animation of morph target weights is not played");
-          weightsReported = true;
+      const bool weights = ch.target_path == "weights";
+      if (ch.target_path != "translation" && ch.target_path != "scale" && !rotation && !weights)
+        continue;
+      const std::vector<float>& t = times[static_cast<std::size_t>(ch.sampler)];
+      const bool cubic = sampler.interpolation == "CUBICSPLINE";
+      const bool step = sampler.interpolation == "STEP";
+      // The keys as fractions of the cycle, each with the sampler key whose value it holds:
+      // a STEP key is doubled just before the next one, so it holds until then.
+      std::vector<float> key;
+      std::vector<std::size_t> source;
+      for (std::size_t i = 0; i < t.size(); ++i) {
+        key.push_back(std::clamp(t[i] / duration, 0.0f, 1.0f));
+        source.push_back(i);
+        if (step && i + 1 < t.size()) {
+          key.push_back(std::nextafter(std::clamp(t[i + 1] / duration, 0.0f, 1.0f), 0.0f));
+          source.push_back(i);
         }
+      }
+      if (weights) {
+        const std::vector<float> out =
+            gltf::readFloats(m_, sampler.output, 1, url_, "animation output");
+        morphChannel(sensor, ch.target_node, key, source, out, t.size(), cubic, made);
         continue;
       }
-      const std::vector<float>& t = times[static_cast<std::size_t>(ch.sampler)];
       const int comps = rotation ? 4 : 3;
       std::vector<float> out =
           gltf::readFloats(m_, sampler.output, comps, url_, "animation output");
-      const bool cubic = sampler.interpolation == "CUBICSPLINE";
       const std::size_t per = cubic ? 3 : 1;  // in-tangent, value, out-tangent
       if (out.size() != t.size() * per * static_cast<std::size_t>(comps))
         gltf::fail(url_, "animation " + std::to_string(a) +
                              ": a sampler's output count does not match its input count");
-      const bool step = sampler.interpolation == "STEP";
-      std::vector<float> key;
       std::vector<glm::vec3> vec;
       std::vector<Rotation> rot;
-      auto push = [&](float fraction, std::size_t i) {
-        key.push_back(std::clamp(fraction, 0.0f, 1.0f));
+      for (std::size_t i : source) {
         const std::size_t at = (i * per + (cubic ? 1 : 0)) * static_cast<std::size_t>(comps);
         if (rotation)
           rot.push_back(gltfRotation(glm::dquat(out[at + 3], out[at], out[at + 1], out[at + 2])));
         else
           vec.emplace_back(out[at], out[at + 1], out[at + 2]);
-      };
-      for (std::size_t i = 0; i < t.size(); ++i) {
-        push(t[i] / duration, i);
-        if (step && i + 1 < t.size())  // holds until just before the next key
-          push(std::nextafter(std::clamp(t[i + 1] / duration, 0.0f, 1.0f), 0.0f), i);
       }
       NodePtr interp = make(rotation ? "OrientationInterpolator" : "PositionInterpolator");
-      set(*interp, "key", FieldValue::make<FieldType::MFFloat>(std::move(key)));
+      set(*interp, "key", FieldValue::make<FieldType::MFFloat>(key));
       if (rotation)
         set(*interp, "keyValue", FieldValue::make<FieldType::MFRotation>(std::move(rot)));
       else

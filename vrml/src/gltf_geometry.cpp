@@ -17,11 +17,6 @@ std::vector<glm::vec3> vec3s(const std::vector<float>& f) {
   return out;
 }
 
-int attribute(const tinygltf::Primitive& p, const std::string& name) {
-  const auto it = p.attributes.find(name);
-  return it == p.attributes.end() ? -1 : it->second;
-}
-
 }  // namespace
 
 const std::vector<NodePtr>& GltfImporter::meshShapes(int index) {
@@ -35,14 +30,27 @@ const std::vector<NodePtr>& GltfImporter::meshShapes(int index) {
   return meshes_[index] = std::move(shapes);
 }
 
+std::vector<NodePtr> GltfImporter::ownShapes(int node, int index) {
+  if (index < 0 || static_cast<std::size_t>(index) >= m_.meshes.size())
+    gltf::fail(url_, "mesh " + std::to_string(index) + " does not exist");
+  const tinygltf::Mesh& mesh = m_.meshes[static_cast<std::size_t>(index)];
+  std::vector<NodePtr> shapes;
+  auto& own = nodePrimitives_[node];
+  for (std::size_t i = 0; i < mesh.primitives.size(); ++i)
+    if (NodePtr s = primitiveShape(mesh, mesh.primitives[i])) {
+      own.emplace_back(static_cast<int>(i), s);
+      shapes.push_back(std::move(s));
+    }
+  return shapes;
+}
+
 NodePtr GltfImporter::primitiveShape(const tinygltf::Mesh& mesh, const tinygltf::Primitive& p) {
-  const int posIndex = attribute(p, "POSITION");
+  const int posIndex = gltfAttribute(p, "POSITION");
   if (posIndex < 0) return nullptr;  // nothing to draw (clause 3.7.2.1 allows it)
-  if (p.extensions.count("KHR_draco_mesh_compression")) return nullptr;  // reported once
   std::vector<float> pos = gltf::readFloats(m_, posIndex, 3, url_, "POSITION");
   const std::size_t vertexCount = pos.size() / 3;
   std::vector<float> normals;
-  if (const int n = attribute(p, "NORMAL"); n >= 0) {
+  if (const int n = gltfAttribute(p, "NORMAL"); n >= 0) {
     normals = gltf::readFloats(m_, n, 3, url_, "NORMAL");
     if (normals.size() != pos.size()) gltf::fail(url_, "NORMAL and POSITION counts differ");
   }
@@ -71,7 +79,7 @@ NodePtr GltfImporter::primitiveShape(const tinygltf::Mesh& mesh, const tinygltf:
   NodePtr coord = make("Coordinate");
   set(*coord, "point", FieldValue::make<FieldType::MFVec3f>(vec3s(pos)));
   NodePtr color;
-  if (const int c = attribute(p, "COLOR_0"); c >= 0) {
+  if (const int c = gltfAttribute(p, "COLOR_0"); c >= 0) {
     const gltf::AccessorView v = gltf::accessorView(m_, c, url_, "COLOR_0", true);
     const std::vector<float> f = gltf::readFloats(m_, c, v.components, url_, "COLOR_0");
     if (f.size() / static_cast<std::size_t>(v.components) != vertexCount)
@@ -152,7 +160,7 @@ NodePtr GltfImporter::primitiveShape(const tinygltf::Mesh& mesh, const tinygltf:
     // The texture coordinates the base colour texture reads, V flipped (glTF's origin is
     // the image's top left, X3D's its bottom left) and KHR_texture_transform applied.
     const int set = baseTexCoord(p.material);
-    if (const int uv = attribute(p, "TEXCOORD_" + std::to_string(set)); uv >= 0) {
+    if (const int uv = gltfAttribute(p, "TEXCOORD_" + std::to_string(set)); uv >= 0) {
       const std::vector<float> f = gltf::readFloats(m_, uv, 2, url_, "TEXCOORD");
       if (f.size() / 2 != vertexCount) gltf::fail(url_, "TEXCOORD and POSITION counts differ");
       const glm::mat3 m = uvTransform(p.material);

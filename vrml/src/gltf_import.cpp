@@ -21,7 +21,7 @@ constexpr double kPi = 3.14159265358979323846;
 // Extensions whose content is read (docs/gltf.md); any other is reported by name.
 const std::set<std::string> kReadExtensions = {
     "KHR_lights_punctual",   "KHR_materials_unlit",   "KHR_materials_emissive_strength",
-    "KHR_texture_transform", "KHR_mesh_quantization",
+    "KHR_texture_transform", "KHR_mesh_quantization", "KHR_draco_mesh_compression",
 };
 
 Rotation axisAngle(glm::dquat q) {
@@ -40,6 +40,25 @@ Rotation axisAngle(glm::dquat q) {
 
 Rotation gltfRotation(const glm::dquat& q) {
   return axisAngle(q);
+}
+
+int gltfAttribute(const tinygltf::Primitive& p, const std::string& name) {
+  const auto it = p.attributes.find(name);
+  return it == p.attributes.end() ? -1 : it->second;
+}
+
+const NodePtr& sfnodeField(const Node& node, std::string_view field) {
+  static const NodePtr none;
+  const int i = node.type().findExact(field);
+  if (i < 0 || node.fieldAt(static_cast<std::size_t>(i)).type() != FieldType::SFNode) return none;
+  return node.fieldAt(static_cast<std::size_t>(i)).get<FieldType::SFNode>();
+}
+
+const std::vector<glm::vec3>& mfvec3Field(const Node& node, std::string_view field) {
+  static const std::vector<glm::vec3> none;
+  const int i = node.type().findExact(field);
+  if (i < 0 || node.fieldAt(static_cast<std::size_t>(i)).type() != FieldType::MFVec3f) return none;
+  return node.fieldAt(static_cast<std::size_t>(i)).get<FieldType::MFVec3f>();
 }
 
 bool isGltf(std::string_view bytes) {
@@ -77,6 +96,15 @@ void GltfImporter::run() {
   checkExtensions();
   const std::vector<int> roots = gltf::sceneRoots(m_);
   transforms_.assign(m_.nodes.size(), nullptr);
+  parents_.assign(m_.nodes.size(), -1);
+  for (std::size_t i = 0; i < m_.nodes.size(); ++i)
+    for (int c : m_.nodes[i].children)
+      if (c >= 0 && static_cast<std::size_t>(c) < m_.nodes.size() &&
+          parents_[static_cast<std::size_t>(c)] < 0)
+        parents_[static_cast<std::size_t>(c)] = static_cast<int>(i);
+  ownGeometry_ = morphAnimatedNodes();
+  for (std::size_t i = 0; i < m_.nodes.size(); ++i)
+    if (m_.nodes[i].skin >= 0) ownGeometry_.insert(static_cast<int>(i));
   std::vector<NodePtr> built;
   for (int r : roots) built.push_back(buildNode(r, 0, glm::dmat4(1.0)));
   // Lights light the whole scene (glTF's lights are not scoped): at the root, placed by
@@ -86,6 +114,7 @@ void GltfImporter::run() {
     scene_.rootNodes.push_back(n);
     if (options_.onRootNode) options_.onRootNode(n);
   }
+  skins();
   animations();
 }
 
@@ -143,7 +172,8 @@ NodePtr GltfImporter::buildNode(int index, int depth, const glm::dmat4& parentWo
 
   std::vector<NodePtr> children;
   if (n.mesh >= 0) {
-    const std::vector<NodePtr>& shapes = meshShapes(n.mesh);
+    const std::vector<NodePtr> shapes =
+        ownGeometry_.count(index) ? ownShapes(index, n.mesh) : meshShapes(n.mesh);
     children.insert(children.end(), shapes.begin(), shapes.end());
   }
   if (n.camera >= 0)

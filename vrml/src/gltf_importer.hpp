@@ -11,6 +11,7 @@
 #include <glm/mat4x4.hpp>
 
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,17 @@ namespace gs::vrml::parsing {
 /// The rotation of unit quaternion `q` (any length but 0; 0 gives no rotation) as VRML's
 /// axis and angle, the angle in [0, pi].
 Rotation gltfRotation(const glm::dquat& q);
+
+/// The accessor of attribute `name` (POSITION, JOINTS_0, ...) of `p`, -1 without one.
+int gltfAttribute(const tinygltf::Primitive& p, const std::string& name);
+
+/// Field `field` of `node` when it is an SFNode (MFVec3f), else null (empty).
+const NodePtr& sfnodeField(const Node& node, std::string_view field);
+const std::vector<glm::vec3>& mfvec3Field(const Node& node, std::string_view field);
+
+/// Adds ROUTE from.fromField TO to.toField to `scene` (located at `url`).
+void addRoute(Scene& scene, const NodePtr& from, const char* fromField, const NodePtr& to,
+              const char* toField, const std::string& url);
 
 /// One import: the built nodes, shared where the asset shares (a mesh used by two nodes is
 /// one Shape list, USEd twice).
@@ -43,19 +55,34 @@ class GltfImporter {
 
   // gltf_geometry.cpp: meshes and primitives.
   const std::vector<NodePtr>& meshShapes(int mesh);
+  /// The Shapes of mesh `mesh` made for node `node` alone (a skinned or morph-animated
+  /// node deforms its own copy), remembered in nodePrimitives_.
+  std::vector<NodePtr> ownShapes(int node, int mesh);
   NodePtr primitiveShape(const tinygltf::Mesh& mesh, const tinygltf::Primitive& p);
 
   // gltf_materials.cpp: materials, textures, samplers.
   NodePtr appearance(int material);
   NodePtr texture(int index);
+  /// A sampler's filters and wrap modes as a TextureProperties node.
+  NodePtr sampler(const tinygltf::Sampler& s);
   /// The TEXCOORD_n set the base colour texture reads (0 without one).
   int baseTexCoord(int material) const;
   /// The base colour texture's KHR_texture_transform as a 3x3 UV matrix (identity
   /// without one).
   glm::mat3 uvTransform(int material) const;
 
+  // gltf_skins.cpp: skins as Skin nodes.
+  void skins();
+
   // gltf_animation.cpp: animations as TimeSensors, interpolators and ROUTEs.
   void animations();
+  /// Nodes whose morph target weights some animation channel drives.
+  std::set<int> morphAnimatedNodes() const;
+  /// A `weights` channel: per primitive of the node's own Shapes, a CoordinateInterpolator
+  /// (and NormalInterpolator) of the morphed vertices at each key, ROUTEd from `sensor`.
+  void morphChannel(const NodePtr& sensor, int node, const std::vector<float>& fractions,
+                    const std::vector<std::size_t>& sourceKeys, const std::vector<float>& output,
+                    std::size_t keyCount, bool cubic, std::vector<NodePtr>& made);
 
   const tinygltf::Model& m_;
   const std::string& url_;
@@ -66,6 +93,12 @@ class GltfImporter {
   std::map<int, NodePtr> appearances_;
   std::map<int, NodePtr> textures_;
   std::vector<NodePtr> lights_;  // placed at the root, in world coordinates
+  std::vector<int> parents_;     // per glTF node: its parent, -1 for none
+  std::set<int> ownGeometry_;    // nodes that get their own Shapes (skinned, morph-animated)
+  /// Per node in ownGeometry_: (primitive index, Shape) for each primitive drawn.
+  std::map<int, std::vector<std::pair<int, NodePtr>>> nodePrimitives_;
+  /// The Skin made for a Shape (morph animation of a skinned mesh ROUTEs to it).
+  std::map<const Node*, NodePtr> skinOfShape_;
   std::size_t nodesMade_ = 0;
   bool firstCamera_ = true;
 };

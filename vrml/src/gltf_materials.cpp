@@ -1,8 +1,8 @@
 // glTF materials as X3D 4 appearance (glTF 2.0 clause 3.9; X3D 4.0 clause 12.4.10
 // PhysicalMaterial, 12.4.12 UnlitMaterial, 12.4.2 Appearance alphaMode): metallic-roughness
 // as PhysicalMaterial, KHR_materials_unlit as UnlitMaterial, each texture an ImageTexture
-// (external images by URL, embedded ones as data: URLs), samplers' wrap modes as
-// repeatS / repeatT.
+// (external images by URL, embedded ones as data: URLs), samplers as TextureProperties
+// (filters, wrap modes; repeatS / repeatT too, for what reads only those).
 #include "gltf_importer.hpp"
 
 #include "base/data_url.hpp"
@@ -92,6 +92,7 @@ NodePtr GltfImporter::texture(int index) {
           const tinygltf::Sampler& s = m_.samplers[static_cast<std::size_t>(t.sampler)];
           set(*out, "repeatS", FieldValue::make<FieldType::SFBool>(s.wrapS != 33071));
           set(*out, "repeatT", FieldValue::make<FieldType::SFBool>(s.wrapT != 33071));
+          set(*out, "textureProperties", FieldValue::make<FieldType::SFNode>(sampler(s)));
         }
       }
     } else if (!t.extensions.empty()) {
@@ -100,6 +101,42 @@ NodePtr GltfImporter::texture(int index) {
     }
   }
   return textures_[index] = out;
+}
+
+NodePtr GltfImporter::sampler(const tinygltf::Sampler& s) {
+  // glTF 2.0 clause 5.26 (sampler) as X3D 4.0 clause 18.4.9 TextureProperties; an
+  // undefined filter is DEFAULT (trilinear minification, bilinear magnification).
+  auto minification = [](int f) -> std::string {
+    switch (f) {
+      case 9728:
+        return "NEAREST_PIXEL";
+      case 9729:
+        return "AVG_PIXEL";
+      case 9984:
+        return "NEAREST_PIXEL_NEAREST_MIPMAP";
+      case 9985:
+        return "AVG_PIXEL_NEAREST_MIPMAP";
+      case 9986:
+        return "NEAREST_PIXEL_AVG_MIPMAP";
+      case 9987:
+        return "AVG_PIXEL_AVG_MIPMAP";
+      default:
+        return "DEFAULT";
+    }
+  };
+  auto wrap = [](int w) -> std::string {
+    return w == 33071 ? "CLAMP_TO_EDGE" : w == 33648 ? "MIRRORED_REPEAT" : "REPEAT";
+  };
+  NodePtr p = make("TextureProperties");
+  set(*p, "minificationFilter", FieldValue::make<FieldType::SFString>(minification(s.minFilter)));
+  set(*p, "magnificationFilter",
+      FieldValue::make<FieldType::SFString>(s.magFilter == 9728   ? "NEAREST_PIXEL"
+                                            : s.magFilter == 9729 ? "AVG_PIXEL"
+                                                                  : "DEFAULT"));
+  set(*p, "boundaryModeS", FieldValue::make<FieldType::SFString>(wrap(s.wrapS)));
+  set(*p, "boundaryModeT", FieldValue::make<FieldType::SFString>(wrap(s.wrapT)));
+  set(*p, "generateMipMaps", FieldValue::make<FieldType::SFBool>(true));
+  return p;
 }
 
 NodePtr GltfImporter::appearance(int material) {

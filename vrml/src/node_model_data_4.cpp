@@ -629,6 +629,18 @@ constexpr NodeFieldModel kFieldsQuantizedNormalVectors[] = {
     F{"bboxCenter", "SFVec3f", "initializeOnly", "0 0 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"bboxSize", "SFVec3f", "initializeOnly", "-1 -1 -1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
 };
+constexpr NodeFieldModel kFieldsSkin[] = {
+    F{"skeleton", "MFNode", "inputOutput", "", "X3DGroupingNode", AbstractTypeSet{0x0000000000400000ULL, 0x0000000000000000ULL}, {}},
+    F{"joints", "MFNode", "inputOutput", "", "X3DGroupingNode", AbstractTypeSet{0x0000000000400000ULL, 0x0000000000000000ULL}, {}},
+    F{"inverseBindMatrices", "MFFloat", "initializeOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"skinnedTransform", "SFNode", "inputOutput", "NULL", "X3DGroupingNode", AbstractTypeSet{0x0000000000400000ULL, 0x0000000000000000ULL}, {}},
+    F{"coord", "SFNode", "inputOutput", "NULL", "X3DCoordinateNode", AbstractTypeSet{0x0000000000000800ULL, 0x0000000000000000ULL}, {}},
+    F{"normal", "SFNode", "inputOutput", "NULL", "X3DNormalNode", AbstractTypeSet{0x0000000800000000ULL, 0x0000000000000000ULL}, {}},
+    F{"restPoint", "MFVec3f", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"restNormal", "MFVec3f", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"vertexJoints", "MFInt32", "initializeOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"vertexWeights", "MFFloat", "initializeOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+};
 
 constexpr NodeModel kModels[] = {
     {"SplinePositionInterpolator", NodeTypeId::SplinePositionInterpolator, "Interpolation", 4, AbstractTypeSet{0x0000000401000080ULL, 0x0000000000000000ULL}, "children", kFieldsSplinePositionInterpolator, false},
@@ -682,6 +694,7 @@ constexpr NodeModel kModels[] = {
     {"WorldInfo", NodeTypeId::WorldInfo, "Core", 1, AbstractTypeSet{0x0000000400800080ULL, 0x0000000000000000ULL}, "children", kFieldsWorldInfo, false},
     {"OutlineGroup", NodeTypeId::OutlineGroup, "GhostSpace", 1, AbstractTypeSet{0x00000004004000a0ULL, 0x0000000000000000ULL}, "children", kFieldsOutlineGroup, true},
     {"QuantizedNormalVectors", NodeTypeId::QuantizedNormalVectors, "GhostSpace", 1, AbstractTypeSet{0x00000004000000a0ULL, 0x0000000000000100ULL}, "children", kFieldsQuantizedNormalVectors, true},
+    {"Skin", NodeTypeId::Skin, "GhostSpace", 1, AbstractTypeSet{0x0000000400000080ULL, 0x0000000000000000ULL}, "children", kFieldsSkin, true},
 };
 
 }  // namespace

@@ -10,7 +10,8 @@ namespace gs::vrml {
 namespace {
 
 // X3D nodes beyond VRML97's that have their behaviour (geometry_x3d.cpp, geometry_2d.cpp,
-// runtime/src/event_utilities.cpp, render's physical program; metadata nodes have none
+// runtime/src/event_utilities.cpp, render's physical program and textures.cpp; metadata
+// nodes have none
 // to give). One name a line:
 // docs/gen/gen_x3d_status.py reads this list.
 constexpr std::array kImplementedX3d = {
@@ -49,6 +50,7 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::TimeTrigger,
     NodeTypeId::PhysicalMaterial,
     NodeTypeId::UnlitMaterial,
+    NodeTypeId::TextureProperties,
 };
 
 }  // namespace

@@ -403,6 +403,18 @@ field MFColor color []
 field SFVec3f bboxCenter 0 0 0
 field SFVec3f bboxSize -1 -1 -1)",
                    true},
+
+    NodeTableEntry{"Skin", R"(exposedField MFNode skeleton []
+exposedField MFNode joints []
+field MFFloat inverseBindMatrices []
+exposedField SFNode skinnedTransform NULL
+exposedField SFNode coord NULL
+exposedField SFNode normal NULL
+exposedField MFVec3f restPoint []
+exposedField MFVec3f restNormal []
+field MFInt32 vertexJoints []
+field MFFloat vertexWeights [])",
+                   true},
 };
 
 constexpr std::size_t countVrml97Entries() {

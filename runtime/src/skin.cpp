@@ -1,0 +1,171 @@
+// Skinned meshes (the GhostSpace Skin extension node, docs/vrml-extensions.md; glTF 2.0
+// clause 3.8 "Skins"): after each cascade, every Skin whose skeleton moved writes its
+// Coordinate's `point` (and its Normal's `vector`) as the weighted sum of its joints'
+// matrices applied to the rest pose:
+//   jointMatrix_j = inverse(M_skinnedTransform) * M_joint_j * inverseBindMatrix_j
+//   point_v       = (sum_k weight_vk * jointMatrix_{joint_vk}) * restPoint_v
+// where M_x is node x's matrix relative to the skeleton roots (a factor common to all of
+// them cancels). Normals use the same matrix's upper 3x3, renormalized.
+#include "execution_state.hpp"
+
+#include "vrml/transform.hpp"
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include <unordered_map>
+
+namespace gs::runtime {
+
+using vrml::FieldType;
+
+namespace {
+
+/// Limits of one skeleton walk: hostile or cyclic graphs end early (the skin then uses
+/// identity for what the walk did not reach).
+constexpr std::size_t kMaxSkeletonNodes = 65536;
+constexpr int kMaxSkeletonDepth = 256;
+
+int fieldIndex(const vrml::Node& node, std::string_view name, FieldType type) {
+  const int i = node.type().findExact(name);
+  if (i < 0 || node.type().fields[static_cast<std::size_t>(i)].type != type) return -1;
+  return i;
+}
+
+/// Field `index` of `node` (found by fieldIndex, so of type T), or an empty value of T.
+template <FieldType T>
+const auto& fieldOr(const vrml::Node& node, int index) {
+  static const vrml::FieldValue empty(T);
+  return (index < 0 ? empty : node.fieldAt(static_cast<std::size_t>(index))).template get<T>();
+}
+
+std::uint64_t mix(std::uint64_t h, std::uint64_t v) {
+  h ^= v + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2);
+  return h;
+}
+
+/// Every grouping node under `roots` with its matrix relative to them (the first path to
+/// a node wins), and a signature of their revisions: equal signatures, same matrices.
+std::uint64_t walkSkeleton(const std::vector<vrml::NodePtr>& roots,
+                           std::unordered_map<const vrml::Node*, glm::mat4>& matrices) {
+  std::uint64_t signature = 0;
+  struct Item {
+    const vrml::Node* node;
+    glm::mat4 parent;
+    int depth;
+  };
+  std::vector<Item> stack;
+  for (auto r = roots.rbegin(); r != roots.rend(); ++r)
+    if (*r) stack.push_back({r->get(), glm::mat4(1.0f), 0});
+  while (!stack.empty() && matrices.size() < kMaxSkeletonNodes) {
+    const Item item = stack.back();
+    stack.pop_back();
+    const vrml::Node& n = *item.node;
+    if (!n.type().is(vrml::AbstractType::X3DGroupingNode)) continue;
+    const glm::mat4 m = n.type().id() == vrml::NodeTypeId::Transform
+                            ? item.parent * vrml::transformMatrix(n)
+                            : item.parent;
+    if (!matrices.emplace(&n, m).second) continue;
+    signature = mix(mix(signature, reinterpret_cast<std::uintptr_t>(&n)), n.revision());
+    if (item.depth >= kMaxSkeletonDepth) continue;
+    const int children = n.type().findExact("children");
+    if (children < 0 || n.fieldAt(static_cast<std::size_t>(children)).type() != FieldType::MFNode)
+      continue;
+    const std::vector<vrml::NodePtr>& kids =
+        n.fieldAt(static_cast<std::size_t>(children)).get<FieldType::MFNode>();
+    for (auto c = kids.rbegin(); c != kids.rend(); ++c)
+      if (*c) stack.push_back({c->get(), m, item.depth + 1});
+  }
+  return signature;
+}
+
+}  // namespace
+
+bool ExecutionModel::State::classifySkin(NodeState& ns) {
+  if (ns.node->type().id() != vrml::NodeTypeId::Skin) return false;
+  ns.skin = std::make_unique<SkinState>();
+  skins.push_back(&ns);
+  return true;
+}
+
+void ExecutionModel::State::evaluateSkins() {
+  for (NodeState* s : skins) evaluateSkin(*s);
+}
+
+void ExecutionModel::State::evaluateSkin(NodeState& ns) {
+  const vrml::Node& skin = *ns.node;
+  SkinState& st = *ns.skin;
+  auto idx = [&](std::string_view name, FieldType type) { return fieldIndex(skin, name, type); };
+  std::unordered_map<const vrml::Node*, glm::mat4> matrices;
+  const std::vector<vrml::NodePtr>& roots =
+      fieldOr<FieldType::MFNode>(skin, idx("skeleton", FieldType::MFNode));
+  const std::uint64_t signature = mix(walkSkeleton(roots, matrices), skin.revision());
+  if (st.evaluated && signature == st.signature) return;
+  st.evaluated = true;
+  st.signature = signature;
+
+  const std::vector<vrml::NodePtr>& joints =
+      fieldOr<FieldType::MFNode>(skin, idx("joints", FieldType::MFNode));
+  const auto& ibm =
+      fieldOr<FieldType::MFFloat>(skin, idx("inverseBindMatrices", FieldType::MFFloat));
+  const auto& rest = fieldOr<FieldType::MFVec3f>(skin, idx("restPoint", FieldType::MFVec3f));
+  const auto& restNormal = fieldOr<FieldType::MFVec3f>(skin, idx("restNormal", FieldType::MFVec3f));
+  const auto& vj = fieldOr<FieldType::MFInt32>(skin, idx("vertexJoints", FieldType::MFInt32));
+  const auto& vw = fieldOr<FieldType::MFFloat>(skin, idx("vertexWeights", FieldType::MFFloat));
+  const vrml::NodePtr& mesh =
+      fieldOr<FieldType::SFNode>(skin, idx("skinnedTransform", FieldType::SFNode));
+  const vrml::NodePtr& coord = fieldOr<FieldType::SFNode>(skin, idx("coord", FieldType::SFNode));
+  const vrml::NodePtr& normal = fieldOr<FieldType::SFNode>(skin, idx("normal", FieldType::SFNode));
+  const int point = coord ? fieldIndex(*coord, "point", FieldType::MFVec3f) : -1;
+  const int vector = normal ? fieldIndex(*normal, "vector", FieldType::MFVec3f) : -1;
+  const std::size_t count = rest.size();
+  const std::size_t per = count == 0 ? 0 : vj.size() / count;
+  if (point < 0 || count == 0 || per == 0 || per * count != vj.size() || vw.size() != vj.size() ||
+      (vector >= 0 && restNormal.size() != count)) {
+    if (!st.problemReported)
+      report(vrml::Severity::error, skin,
+             "needs a Coordinate, restPoint, and vertexJoints and vertexWeights of the same "
+             "whole multiple of restPoint's count (and restNormal as many as restPoint with a "
+             "Normal); the mesh stays as it is");
+    st.problemReported = true;
+    return;
+  }
+
+  auto matrixOf = [&](const vrml::NodePtr& n) {
+    const auto it = n ? matrices.find(n.get()) : matrices.end();
+    return it == matrices.end() ? glm::mat4(1.0f) : it->second;
+  };
+  const glm::mat4 toMesh = glm::inverse(matrixOf(mesh));
+  std::vector<glm::mat4> jointMatrix(joints.size());
+  for (std::size_t j = 0; j < joints.size(); ++j) {
+    glm::mat4 inverseBind(1.0f);
+    if (16 * (j + 1) <= ibm.size()) inverseBind = glm::make_mat4(ibm.data() + 16 * j);
+    jointMatrix[j] = toMesh * matrixOf(joints[j]) * inverseBind;
+  }
+
+  std::vector<glm::vec3> points(count), normals(vector >= 0 ? count : 0);
+  for (std::size_t v = 0; v < count; ++v) {
+    glm::mat4 m(0.0f);
+    float total = 0.0f;
+    for (std::size_t k = v * per; k < (v + 1) * per; ++k) {
+      const std::int32_t j = vj[k];
+      const float w = vw[k];
+      if (!(w != 0.0f) || j < 0 || static_cast<std::size_t>(j) >= jointMatrix.size()) continue;
+      m += w * jointMatrix[static_cast<std::size_t>(j)];
+      total += w;
+    }
+    if (!(total > 0.0f)) m = glm::mat4(1.0f);  // no influence: the rest pose
+    points[v] = glm::vec3(m * glm::vec4(rest[v], 1.0f));
+    if (!normals.empty()) {
+      const glm::vec3 n = glm::mat3(m) * restNormal[v];
+      const float len = glm::length(n);
+      normals[v] = len > 0.0f ? n / len : restNormal[v];
+    }
+  }
+  coord->setField(static_cast<std::size_t>(point),
+                  vrml::FieldValue::make<FieldType::MFVec3f>(std::move(points)));
+  if (vector >= 0)
+    normal->setField(static_cast<std::size_t>(vector),
+                     vrml::FieldValue::make<FieldType::MFVec3f>(std::move(normals)));
+}
+
+}  // namespace gs::runtime
