@@ -8,6 +8,7 @@
 #include "gl_program.hpp"
 #include "gpu_resources.hpp"
 #include "node_access.hpp"
+#include "surface_programs.hpp"
 
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -28,6 +29,7 @@ enum class ShadingModel : std::uint8_t { phong, physical, unlit };
 
 /// The maps of a PhysicalMaterial beyond its base texture, in texture units 1..4.
 enum PhysicalMap { kMetallicRoughness, kNormalMap, kEmissiveMap, kOcclusionMap, kPhysicalMaps };
+static_assert(kPhysicalMaps == kPhysicalMapCount);
 
 /// An Appearance node's values, read once (clause 6.3 Appearance, 6.27 Material; X3D 4.0
 /// clause 12.4.2 Appearance alphaMode, 12.4.10 PhysicalMaterial, 12.4.12 UnlitMaterial).
@@ -112,67 +114,6 @@ Shading readShading(const vrml::Node* appearance) {
   return s;
 }
 
-struct SurfaceUniforms {
-  GLint modelView, projection, normalMatrix, textureMatrix, pointSize;
-  GLint lit, hasColor, textureComponents, texture;
-  GLint diffuseColor, ambientIntensity, specularColor, emissiveColor, shininess, transparency,
-      unlitColor;
-  GLint lightCount, lightType, lightColor, lightIntensity, lightAmbientIntensity, lightPosition,
-      lightDirection, lightAttenuation, lightRadius, lightBeamWidth, lightCutOffAngle;
-  GLint fogType, fogColor, fogVisibilityRange;
-  // The physical program's own (-1 in the Phong program).
-  GLint metallic, roughness, normalScale, occlusionStrength, alphaMode, alphaCutoff;
-  std::array<GLint, kPhysicalMaps> hasMap, map;
-
-  void find(GLuint p) {
-    metallic = uniform(p, "u_metallic");
-    roughness = uniform(p, "u_roughness");
-    normalScale = uniform(p, "u_normalScale");
-    occlusionStrength = uniform(p, "u_occlusionStrength");
-    alphaMode = uniform(p, "u_alphaMode");
-    alphaCutoff = uniform(p, "u_alphaCutoff");
-    static constexpr std::array<const char*, kPhysicalMaps> kHas = {
-        "u_hasMetallicRoughnessTexture", "u_hasNormalTexture", "u_hasEmissiveTexture",
-        "u_hasOcclusionTexture"};
-    static constexpr std::array<const char*, kPhysicalMaps> kMap = {
-        "u_metallicRoughnessTexture", "u_normalTexture", "u_emissiveTexture", "u_occlusionTexture"};
-    for (std::size_t i = 0; i < kPhysicalMaps; ++i) {
-      hasMap[i] = uniform(p, kHas[i]);
-      map[i] = uniform(p, kMap[i]);
-    }
-    modelView = uniform(p, "u_modelView");
-    projection = uniform(p, "u_projection");
-    normalMatrix = uniform(p, "u_normalMatrix");
-    textureMatrix = uniform(p, "u_textureMatrix");
-    pointSize = uniform(p, "u_pointSize");
-    lit = uniform(p, "u_lit");
-    hasColor = uniform(p, "u_hasColor");
-    textureComponents = uniform(p, "u_textureComponents");
-    texture = uniform(p, "u_texture");
-    diffuseColor = uniform(p, "u_diffuseColor");
-    ambientIntensity = uniform(p, "u_ambientIntensity");
-    specularColor = uniform(p, "u_specularColor");
-    emissiveColor = uniform(p, "u_emissiveColor");
-    shininess = uniform(p, "u_shininess");
-    transparency = uniform(p, "u_transparency");
-    unlitColor = uniform(p, "u_unlitColor");
-    lightCount = uniform(p, "u_lightCount");
-    lightType = uniform(p, "u_lightType");
-    lightColor = uniform(p, "u_lightColor");
-    lightIntensity = uniform(p, "u_lightIntensity");
-    lightAmbientIntensity = uniform(p, "u_lightAmbientIntensity");
-    lightPosition = uniform(p, "u_lightPosition");
-    lightDirection = uniform(p, "u_lightDirection");
-    lightAttenuation = uniform(p, "u_lightAttenuation");
-    lightRadius = uniform(p, "u_lightRadius");
-    lightBeamWidth = uniform(p, "u_lightBeamWidth");
-    lightCutOffAngle = uniform(p, "u_lightCutOffAngle");
-    fogType = uniform(p, "u_fogType");
-    fogColor = uniform(p, "u_fogColor");
-    fogVisibilityRange = uniform(p, "u_fogVisibilityRange");
-  }
-};
-
 struct DrawItem {
   const ShapeInstance* shape;
   const GpuMesh* mesh;
@@ -222,10 +163,7 @@ struct LightArrays {
 }  // namespace
 
 struct SceneRenderer::Gpu {
-  GLuint program = 0;
-  SurfaceUniforms u{};
-  GLuint physical = 0;  // the PhysicalMaterial program, built when first needed
-  SurfaceUniforms pu{};
+  SurfacePrograms programs;
   vrml::NodeMap<GpuMesh> meshes;
   vrml::NodeMap<Shading> shadings;
   TextureCache textures;
@@ -240,10 +178,7 @@ struct SceneRenderer::Gpu {
     meshes.clear();
     textures.release();
     background.release();
-    if (program != 0) glDeleteProgram(program);
-    program = 0;
-    if (physical != 0) glDeleteProgram(physical);
-    physical = 0;
+    programs.release();
   }
 };
 
@@ -341,10 +276,9 @@ void SceneRenderer::draw(const Camera& camera, int x, int y, int width, int heig
   Gpu& g = *gpu_;
   statistics_ = {};
   if (width <= 0 || height <= 0) return;
-  if (g.program == 0) {
-    g.program = buildProgram("surface", kSurfaceVertexShader, kSurfaceFragmentShader);
-    g.u.find(g.program);
-  }
+  g.programs.enableVariants(options_.shaderVariants);
+  g.programs.beginFrame();
+  g.programs.generic();
   traversal_.collect(camera, g.frame);
 
   const float aspect = float(width) / float(height);
@@ -420,31 +354,28 @@ void SceneRenderer::draw(const Camera& camera, int x, int y, int width, int heig
   std::sort(g.transparent.begin(), g.transparent.end(),
             [](const DrawItem& a, const DrawItem& b) { return a.depth > b.depth; });
 
-  // Per-frame uniforms, in each program a shape of this frame uses.
-  const bool anyPhysical =
-      std::any_of(g.opaque.begin(), g.opaque.end(),
-                  [](const DrawItem& d) { return d.shading->model == ShadingModel::physical; }) ||
-      std::any_of(g.transparent.begin(), g.transparent.end(),
-                  [](const DrawItem& d) { return d.shading->model == ShadingModel::physical; });
-  if (anyPhysical && g.physical == 0) {
-    g.physical = buildProgram("physical", kSurfaceVertexShader, kPhysicalFragmentShader);
-    g.pu.find(g.physical);
-  }
+  // Per-frame uniforms, set in each program the first time this frame uses it.
   const FogSettings& fog = traversal_.fog();
-  for (const auto& [program, u] : {std::pair{g.program, &g.u}, std::pair{g.physical, &g.pu}}) {
-    if (program == 0 || (program == g.physical && !anyPhysical)) continue;
-    glUseProgram(program);
-    glUniformMatrix4fv(u->projection, 1, GL_FALSE, glm::value_ptr(projection));
-    glUniform1f(u->pointSize, options_.pointSize);
-    glUniform1i(u->texture, 0);
-    for (std::size_t i = 0; i < kPhysicalMaps; ++i)
-      glUniform1i(u->map[i], static_cast<GLint>(i + 1));
-    glUniform1i(u->fogType, fog.visibilityRange > 0.0f ? (fog.exponential ? 2 : 1) : 0);
-    glUniform3fv(u->fogColor, 1, glm::value_ptr(fog.color));
-    glUniform1f(u->fogVisibilityRange, fog.visibilityRange);
-  }
-  glUseProgram(g.program);
-  GLuint current = g.program;
+  const int fogType = fog.visibilityRange > 0.0f ? (fog.exponential ? 2 : 1) : 0;
+  const SurfaceProgram* current = nullptr;
+  auto use = [&](SurfaceProgram& p) {
+    if (&p == current) return false;
+    glUseProgram(p.id);
+    current = &p;
+    if (p.frameSet != g.programs.frame()) {
+      const SurfaceUniforms& u = p.u;
+      glUniformMatrix4fv(u.projection, 1, GL_FALSE, glm::value_ptr(projection));
+      glUniform1f(u.pointSize, options_.pointSize);
+      glUniform1i(u.texture, 0);
+      for (std::size_t i = 0; i < kPhysicalMaps; ++i)
+        glUniform1i(u.map[i], static_cast<GLint>(i + 1));
+      glUniform1i(u.fogType, fogType);
+      glUniform3fv(u.fogColor, 1, glm::value_ptr(fog.color));
+      glUniform1f(u.fogVisibilityRange, fog.visibilityRange);
+      p.frameSet = g.programs.frame();
+    }
+    return true;
+  };
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glEnable(GL_PROGRAM_POINT_SIZE);
@@ -452,7 +383,9 @@ void SceneRenderer::draw(const Camera& camera, int x, int y, int width, int heig
   glCullFace(GL_BACK);
   glActiveTexture(GL_TEXTURE0);
 
-  const ShapeInstance* lastLightsOf = nullptr;
+  const ShapeInstance* lastLightsOf = nullptr;  // whose lights `lights` holds
+  LightArrays lights;
+  bool lightsUploaded = false;  // to the current program
   auto drawItem = [&](const DrawItem& d) {
     const ShapeInstance& s = *d.shape;
     const GpuMesh& mesh = *d.mesh;
@@ -460,13 +393,35 @@ void SceneRenderer::draw(const Camera& camera, int x, int y, int width, int heig
     const bool triangles = mesh.primitive == vrml::Primitive::triangles;
     const bool lit = triangles && sh.hasMaterial;
     const bool physical = lit && sh.model == ShadingModel::physical;
-    const GLuint program = physical ? g.physical : g.program;
-    const SurfaceUniforms& u = physical ? g.pu : g.u;
-    if (program != current) {
-      glUseProgram(program);
-      current = program;
-      lastLightsOf = nullptr;  // each program has its own light uniforms
+    if (lit && (lastLightsOf == nullptr || lastLightsOf->scopedLightBegin != s.scopedLightBegin ||
+                lastLightsOf->scopedLightCount != s.scopedLightCount)) {
+      lights = LightArrays{};
+      if (headlight_) lights.add(headlight);
+      for (std::uint32_t i = 0; i < s.scopedLightCount; ++i)
+        lights.add(g.eyeLights[g.frame.scopedLights[s.scopedLightBegin + i]]);
+      for (std::uint32_t index : g.frame.globalLights) lights.add(g.eyeLights[index]);
+      lastLightsOf = &s;
+      lightsUploaded = false;
     }
+    SurfaceProgram* program = nullptr;
+    if (physical) {
+      program = &g.programs.physical();
+    } else {
+      SurfaceVariant v;
+      v.lit = lit;
+      v.hasColor = mesh.hasColors;
+      v.textureComponents = d.texture != nullptr ? d.texture->components : 0;
+      v.fogType = fogType;
+      if (lit) {
+        v.lightCount = lights.count;
+        for (int i = 0; i < lights.count; ++i)
+          v.lightTypes[static_cast<std::size_t>(i)] =
+              static_cast<std::uint8_t>(lights.type[static_cast<std::size_t>(i)]);
+      }
+      program = &g.programs.phong(v);
+    }
+    if (use(*program)) lightsUploaded = false;  // each program has its own light uniforms
+    const SurfaceUniforms& u = program->u;
     const glm::mat4 modelView = view * s.model;
     const glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(modelView));
     glUniformMatrix4fv(u.modelView, 1, GL_FALSE, glm::value_ptr(modelView));
@@ -503,15 +458,9 @@ void SceneRenderer::draw(const Camera& camera, int x, int y, int width, int heig
     if (sh.model == ShadingModel::physical && !triangles) unlit = sh.diffuseColor;
     if (sh.model == ShadingModel::unlit) unlit = sh.emissiveColor;
     glUniform3fv(u.unlitColor, 1, glm::value_ptr(unlit));
-    if (lit && (lastLightsOf == nullptr || lastLightsOf->scopedLightBegin != s.scopedLightBegin ||
-                lastLightsOf->scopedLightCount != s.scopedLightCount)) {
-      LightArrays lights;
-      if (headlight_) lights.add(headlight);
-      for (std::uint32_t i = 0; i < s.scopedLightCount; ++i)
-        lights.add(g.eyeLights[g.frame.scopedLights[s.scopedLightBegin + i]]);
-      for (std::uint32_t index : g.frame.globalLights) lights.add(g.eyeLights[index]);
+    if (lit && !lightsUploaded) {
       lights.upload(u);
-      lastLightsOf = &s;
+      lightsUploaded = true;
     }
     if (triangles && mesh.solid)
       glEnable(GL_CULL_FACE);
@@ -535,6 +484,7 @@ void SceneRenderer::draw(const Camera& camera, int x, int y, int width, int heig
     for (const DrawItem& d : g.transparent) drawItem(d);
     statistics_.transparent = g.transparent.size();
   }
+  statistics_.shaderVariants = g.programs.variantCount();
   statistics_.movieFrames = g.textures.movies.framesShown();
   statistics_.movieUploads = g.textures.movies.framesUploaded();
 
@@ -542,7 +492,7 @@ void SceneRenderer::draw(const Camera& camera, int x, int y, int width, int heig
     glDisable(GL_SCISSOR_TEST);
     statistics_.splats = splats_->draw(g.frame, traversal_, camera, aspect, headlight_, height);
     glEnable(GL_SCISSOR_TEST);
-    glUseProgram(g.program);
+    glUseProgram(g.programs.generic().id);
   }
 
   // Leave the state as other code (ImGui, the app) expects it.

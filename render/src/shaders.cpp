@@ -59,10 +59,33 @@ in vec3 v_normal;
 in vec3 v_color;
 in vec2 v_texCoord;
 
+uniform sampler2D u_texture;
+
+// What a shape uses: uniforms in the generic program; compile-time constants in a
+// specialized variant (surface_programs.cpp prepends GS_VARIANT and the GS_ values), where
+// the light loop unrolls and the branches on them fold away.
+#ifdef GS_VARIANT
+const int kLightTypes[kMaxLights] = int[kMaxLights](GS_LIGHT_TYPES);
+#define LIT GS_LIT
+#define HAS_COLOR GS_HAS_COLOR
+#define TEXTURE_COMPONENTS GS_TEXTURE_COMPONENTS
+#define LIGHT_COUNT GS_LIGHT_COUNT
+#define LIGHT_TYPE(i) kLightTypes[i]
+#define FOG_TYPE GS_FOG_TYPE
+#else
 uniform bool u_lit;
 uniform bool u_hasColor;
 uniform int u_textureComponents;  // 0: no texture
-uniform sampler2D u_texture;
+uniform int u_lightCount;
+uniform int u_lightType[kMaxLights];
+uniform int u_fogType;  // 0 none, 1 LINEAR, 2 EXPONENTIAL
+#define LIT u_lit
+#define HAS_COLOR u_hasColor
+#define TEXTURE_COMPONENTS u_textureComponents
+#define LIGHT_COUNT u_lightCount
+#define LIGHT_TYPE(i) u_lightType[i]
+#define FOG_TYPE u_fogType
+#endif
 
 uniform vec3 u_diffuseColor;
 uniform float u_ambientIntensity;
@@ -72,8 +95,6 @@ uniform float u_shininess;
 uniform float u_transparency;
 uniform vec3 u_unlitColor;
 
-uniform int u_lightCount;
-uniform int u_lightType[kMaxLights];
 uniform vec3 u_lightColor[kMaxLights];
 uniform float u_lightIntensity[kMaxLights];
 uniform float u_lightAmbientIntensity[kMaxLights];
@@ -84,35 +105,34 @@ uniform float u_lightRadius[kMaxLights];
 uniform float u_lightBeamWidth[kMaxLights];
 uniform float u_lightCutOffAngle[kMaxLights];
 
-uniform int u_fogType;  // 0 none, 1 LINEAR, 2 EXPONENTIAL
 uniform vec3 u_fogColor;
 uniform float u_fogVisibilityRange;
 
 out vec4 fragColor;
 
 void main() {
-  vec3 diffuse = u_lit ? u_diffuseColor : u_unlitColor;
+  vec3 diffuse = LIT ? u_diffuseColor : u_unlitColor;
   float alpha = 1.0 - u_transparency;
-  if (u_hasColor) diffuse = v_color;
-  if (u_textureComponents > 0) {
+  if (HAS_COLOR) diffuse = v_color;
+  if (TEXTURE_COMPONENTS > 0) {
     vec4 t = texture(u_texture, v_texCoord);
-    if (u_textureComponents <= 2) diffuse *= t.r;
+    if (TEXTURE_COMPONENTS <= 2) diffuse *= t.r;
     else diffuse = t.rgb;
-    if (u_textureComponents == 2 || u_textureComponents == 4) alpha = t.a;
+    if (TEXTURE_COMPONENTS == 2 || TEXTURE_COMPONENTS == 4) alpha = t.a;
   }
 
   vec3 color = diffuse;
-  if (u_lit) {
+  if (LIT) {
     vec3 n = normalize(v_normal);
     if (!gl_FrontFacing) n = -n;  // two-sided lighting (solid FALSE)
     vec3 v = normalize(-v_position);
     color = u_emissiveColor;
     for (int i = 0; i < kMaxLights; ++i) {
-      if (i >= u_lightCount) break;
+      if (i >= LIGHT_COUNT) break;
       vec3 l;
       float attenuation = 1.0;
       float spot = 1.0;
-      if (u_lightType[i] == kDirectional) {
+      if (LIGHT_TYPE(i) == kDirectional) {
         l = -u_lightDirection[i];
       } else {
         vec3 toLight = u_lightPosition[i] - v_position;
@@ -121,7 +141,7 @@ void main() {
         l = d > 0.0 ? toLight / d : vec3(0.0, 0.0, 1.0);
         vec3 a = u_lightAttenuation[i];
         attenuation = 1.0 / max(a.x + a.y * d + a.z * d * d, 1.0);
-        if (u_lightType[i] == kSpot) {
+        if (LIGHT_TYPE(i) == kSpot) {
           float angle = acos(clamp(dot(-l, u_lightDirection[i]), -1.0, 1.0));
           float cutOff = u_lightCutOffAngle[i];
           float beam = u_lightBeamWidth[i];
@@ -142,11 +162,11 @@ void main() {
     }
   }
 
-  if (u_fogType != 0 && u_fogVisibilityRange > 0.0) {
+  if (FOG_TYPE != 0 && u_fogVisibilityRange > 0.0) {
     float d = length(v_position);
     float r = u_fogVisibilityRange;
     float f0 = 0.0;
-    if (d < r) f0 = u_fogType == 1 ? (r - d) / r : exp(-d / (r - d));
+    if (d < r) f0 = FOG_TYPE == 1 ? (r - d) / r : exp(-d / (r - d));
     color = mix(u_fogColor, color, clamp(f0, 0.0, 1.0));
   }
   fragColor = vec4(clamp(color, 0.0, 1.0), clamp(alpha, 0.0, 1.0));

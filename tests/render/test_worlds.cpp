@@ -219,3 +219,59 @@ TEST_CASE("TextureProperties: nearest and linear magnification, mirrored repeat"
   CHECK(repeat.image.pixel(44, 32)[0] < 10);
   CHECK(mirrored.image.pixel(44, 32)[0] > 245);
 }
+
+TEST_CASE("shader variants draw the pixels of the generic program, from the second frame on",
+          "[render][offscreen][world]") {
+  const fs::path dir = worldDir();
+  gs::render::writePng((dir / "sub" / "rgb.png").string(), Image(2, 2, 200, 120, 40));
+  // Every light kind, a texture, colours per vertex, fog and an unlit line: each shape
+  // its own variant.
+  writeText(dir / "variants.wrl", R"(#VRML V2.0 utf8
+Viewpoint { position 0 0 6 }
+Fog { color 0.2 0.2 0.3 fogType "EXPONENTIAL" visibilityRange 30 }
+PointLight { location 2 2 3 color 1 0.8 0.6 attenuation 0 0.2 0 }
+SpotLight { location -2 2 4 direction 0.3 -0.3 -1 cutOffAngle 0.6 beamWidth 0.3 }
+DirectionalLight { direction 0 -1 -0.5 intensity 0.5 }
+Transform { translation -1.5 0.8 0 children Shape {
+  appearance Appearance { material Material { diffuseColor 0.9 0.3 0.2 specularColor 1 1 1 shininess 0.5 } }
+  geometry Sphere { radius 0.9 } } }
+Transform { translation 1.5 0.8 0 children Shape {
+  appearance Appearance { material Material {} texture ImageTexture { url "sub/rgb.png" } }
+  geometry Box { size 1.4 1.4 1.4 } } }
+Transform { translation 0 -1.2 0 children Shape {
+  appearance Appearance { material Material {} }
+  geometry IndexedFaceSet { coord Coordinate { point [-2 -0.6 0, 2 -0.6 0, 2 0.6 0, -2 0.6 0] }
+    coordIndex [0 1 2 3 -1] color Color { color [1 0 0, 0 1 0, 0 0 1, 1 1 0] } } } }
+Shape { appearance Appearance { material Material { emissiveColor 1 1 1 } }
+  geometry IndexedLineSet { coord Coordinate { point [-3 2.2 0, 3 2.2 0] } coordIndex [0 1 -1] } }
+)");
+  static auto context = gs::render::createOffscreenContext(kSize, kSize);
+  context->makeCurrent();
+  auto scene =
+      std::make_shared<gs::vrml::Scene>(gs::vrml::loadVrmlFile((dir / "variants.wrl").string()));
+  REQUIRE(scene->diagnostics.errorCount() == 0);
+  gs::render::SceneRenderer r(scene);
+  const auto camera = r.initialCamera(1.0f);
+  r.draw(camera, 0, 0, kSize, kSize);
+  CHECK(r.statistics().shaderVariants == 0);  // the first frame: the generic program only
+  const Image generic = gs::render::readPixels(0, 0, kSize, kSize);
+  for (int frame = 0; frame < 4; ++frame) r.draw(camera, 0, 0, kSize, kSize);
+  CHECK(r.statistics().shaderVariants >= 4);
+  const Image specialized = gs::render::readPixels(0, 0, kSize, kSize);
+  if (const char* dump = std::getenv("GS_RENDER_TEST_DUMP"))
+    gs::render::writePng((fs::path(dump) / "variants_specialized.png").string(), specialized);
+  int worst = 0;
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x)
+      for (int c = 0; c < 3; ++c)
+        worst = std::max(worst, std::abs(generic.pixel(x, y)[c] - specialized.pixel(x, y)[c]));
+  CHECK(worst <= 2);
+  // The picture is not empty: the variants drew something.
+  CHECK(specialized.pixel(kSize / 2 - 16, kSize / 2 - 10)[0] > 40);
+
+  gs::render::SceneRendererOptions options;
+  options.shaderVariants = false;
+  gs::render::SceneRenderer plain(scene, options);
+  for (int frame = 0; frame < 5; ++frame) plain.draw(camera, 0, 0, kSize, kSize);
+  CHECK(plain.statistics().shaderVariants == 0);
+}

@@ -63,14 +63,19 @@ struct SceneRendererOptions {
   /// given the same registry: renderers of one world then decode each movie once. Null: a
   /// registry of this renderer's own.
   std::shared_ptr<MoviePlayers> movies;
+  /// Draw Phong shapes with shader variants specialized to what each uses (lights, texture,
+  /// fog, colours), compiled a few per frame from the second frame on; false: always the
+  /// one generic program (the same pixels, more work per pixel). render/README.md.
+  bool shaderVariants = true;
 };
 
 /// What the last draw() did.
 struct DrawStatistics {
-  std::size_t shapes = 0;       // Shape nodes drawn (instances)
-  std::size_t triangles = 0;    // triangles submitted
-  std::size_t transparent = 0;  // shapes drawn in the blended pass
-  std::size_t splats = 0;       // QNV vectors drawn
+  std::size_t shapes = 0;          // Shape nodes drawn (instances)
+  std::size_t triangles = 0;       // triangles submitted
+  std::size_t transparent = 0;     // shapes drawn in the blended pass
+  std::size_t splats = 0;          // QNV vectors drawn
+  std::size_t shaderVariants = 0;  // specialized surface programs built so far
   /// New MovieTexture frames drawn since the renderer was made (each movie frame once,
   /// however often it is drawn): docs/media.md's "frames shown".
   std::uint64_t movieFrames = 0;

@@ -1,0 +1,125 @@
+// The surface programs and their variants (surface_programs.hpp).
+#include "surface_programs.hpp"
+
+#include <string_view>
+
+namespace gs::render::detail {
+
+void SurfaceUniforms::find(GLuint p) {
+  metallic = uniform(p, "u_metallic");
+  roughness = uniform(p, "u_roughness");
+  normalScale = uniform(p, "u_normalScale");
+  occlusionStrength = uniform(p, "u_occlusionStrength");
+  alphaMode = uniform(p, "u_alphaMode");
+  alphaCutoff = uniform(p, "u_alphaCutoff");
+  static constexpr std::array<const char*, kPhysicalMapCount> kHas = {
+      "u_hasMetallicRoughnessTexture", "u_hasNormalTexture", "u_hasEmissiveTexture",
+      "u_hasOcclusionTexture"};
+  static constexpr std::array<const char*, kPhysicalMapCount> kMap = {
+      "u_metallicRoughnessTexture", "u_normalTexture", "u_emissiveTexture", "u_occlusionTexture"};
+  for (std::size_t i = 0; i < kPhysicalMapCount; ++i) {
+    hasMap[i] = uniform(p, kHas[i]);
+    map[i] = uniform(p, kMap[i]);
+  }
+  modelView = uniform(p, "u_modelView");
+  projection = uniform(p, "u_projection");
+  normalMatrix = uniform(p, "u_normalMatrix");
+  textureMatrix = uniform(p, "u_textureMatrix");
+  pointSize = uniform(p, "u_pointSize");
+  lit = uniform(p, "u_lit");
+  hasColor = uniform(p, "u_hasColor");
+  textureComponents = uniform(p, "u_textureComponents");
+  texture = uniform(p, "u_texture");
+  diffuseColor = uniform(p, "u_diffuseColor");
+  ambientIntensity = uniform(p, "u_ambientIntensity");
+  specularColor = uniform(p, "u_specularColor");
+  emissiveColor = uniform(p, "u_emissiveColor");
+  shininess = uniform(p, "u_shininess");
+  transparency = uniform(p, "u_transparency");
+  unlitColor = uniform(p, "u_unlitColor");
+  lightCount = uniform(p, "u_lightCount");
+  lightType = uniform(p, "u_lightType");
+  lightColor = uniform(p, "u_lightColor");
+  lightIntensity = uniform(p, "u_lightIntensity");
+  lightAmbientIntensity = uniform(p, "u_lightAmbientIntensity");
+  lightPosition = uniform(p, "u_lightPosition");
+  lightDirection = uniform(p, "u_lightDirection");
+  lightAttenuation = uniform(p, "u_lightAttenuation");
+  lightRadius = uniform(p, "u_lightRadius");
+  lightBeamWidth = uniform(p, "u_lightBeamWidth");
+  lightCutOffAngle = uniform(p, "u_lightCutOffAngle");
+  fogType = uniform(p, "u_fogType");
+  fogColor = uniform(p, "u_fogColor");
+  fogVisibilityRange = uniform(p, "u_fogVisibilityRange");
+}
+
+std::uint32_t SurfaceVariant::key() const {
+  std::uint32_t k = (lit ? 1u : 0u) | (hasColor ? 2u : 0u) |
+                    (static_cast<std::uint32_t>(textureComponents & 7) << 2) |
+                    (static_cast<std::uint32_t>(fogType & 3) << 5) |
+                    (static_cast<std::uint32_t>(lightCount & 15) << 7);
+  for (int i = 0; i < lightCount && i < kMaxLights; ++i)
+    k |= static_cast<std::uint32_t>(lightTypes[static_cast<std::size_t>(i)] & 3) << (11 + 2 * i);
+  return k;
+}
+
+std::string SurfaceVariant::defines() const {
+  std::string types;
+  for (int i = 0; i < kMaxLights; ++i)
+    types += (i ? ", " : "") +
+             std::to_string(i < lightCount ? lightTypes[static_cast<std::size_t>(i)] : 0);
+  return "#define GS_VARIANT 1\n#define GS_LIT " + std::string(lit ? "true" : "false") +
+         "\n#define GS_HAS_COLOR " + (hasColor ? "true" : "false") +
+         "\n#define GS_TEXTURE_COMPONENTS " + std::to_string(textureComponents) +
+         "\n#define GS_FOG_TYPE " + std::to_string(fogType) + "\n#define GS_LIGHT_COUNT " +
+         std::to_string(lightCount) + "\n#define GS_LIGHT_TYPES " + types + "\n";
+}
+
+void SurfacePrograms::beginFrame() {
+  ++frame_;
+  builtThisFrame_ = 0;
+}
+
+SurfaceProgram& SurfacePrograms::generic() {
+  if (generic_.id == 0) {
+    generic_.id = buildProgram("surface", kSurfaceVertexShader, kSurfaceFragmentShader);
+    generic_.u.find(generic_.id);
+  }
+  return generic_;
+}
+
+SurfaceProgram& SurfacePrograms::physical() {
+  if (physical_.id == 0) {
+    physical_.id = buildProgram("physical", kSurfaceVertexShader, kPhysicalFragmentShader);
+    physical_.u.find(physical_.id);
+  }
+  return physical_;
+}
+
+SurfaceProgram& SurfacePrograms::phong(const SurfaceVariant& v) {
+  const std::uint32_t key = v.key();
+  if (const auto it = variants_.find(key); it != variants_.end()) return it->second;
+  if (!variantsEnabled_ || frame_ <= 1 || builtThisFrame_ >= kVariantsPerFrame) return generic();
+  ++builtThisFrame_;
+  // The defines go after the #version line, which must come first.
+  const std::string_view source = kSurfaceFragmentShader;
+  const std::size_t eol = source.find('\n') + 1;
+  const std::string specialized =
+      std::string(source.substr(0, eol)) + v.defines() + std::string(source.substr(eol));
+  SurfaceProgram p;
+  p.id = buildProgram("surface variant", kSurfaceVertexShader, specialized.c_str());
+  p.u.find(p.id);
+  return variants_.emplace(key, p).first->second;
+}
+
+void SurfacePrograms::release() {
+  for (SurfaceProgram* p : {&generic_, &physical_})
+    if (p->id != 0) {
+      glDeleteProgram(p->id);
+      *p = {};
+    }
+  for (auto& [key, p] : variants_) glDeleteProgram(p.id);
+  variants_.clear();
+}
+
+}  // namespace gs::render::detail
