@@ -1,6 +1,7 @@
 // The Dear ImGui menu bar, open-file dialog and log panel of the window.
 #include "app/window_state.hpp"
 #include "formats/input_kind.hpp"
+#include "session/animations.hpp"
 
 #include <imgui.h>
 
@@ -90,6 +91,30 @@ void drawLog(WindowState& state) {
   if (ImGui::GetScrollY() >= ImGui::GetScrollMaxY()) ImGui::SetScrollHereY(1.0f);
   ImGui::EndChild();
   ImGui::End();
+}
+
+// Animations: the world's named TimeSensors (a glTF asset's animations, docs/gltf.md). The
+// list is made only while the menu is open (a walk over the world).
+void drawAnimationsMenu(WindowState& state) {
+  if (!state.runtimes || state.view().world >= state.worlds.size()) return;
+  if (!ImGui::BeginMenu("Animations")) return;
+  const auto& scene = state.worlds[state.view().world].scene;
+  const std::vector<vrml::Node*> sensors = session::namedTimeSensors(*scene);
+  if (sensors.empty()) ImGui::MenuItem("(no named TimeSensor)", nullptr, false, false);
+  runtime::ExecutionModel& model = state.runtimes->of(scene, state.worldTime());
+  const bool exclusive = scene->x3d.encoding == "glTF";  // one glTF animation at a time
+  for (std::size_t i = 0; i < sensors.size(); ++i) {
+    ImGui::PushID(static_cast<int>(i));
+    const bool active = session::animationActive(*sensors[i]);
+    if (ImGui::MenuItem(sensors[i]->defName.c_str(), nullptr, active)) {
+      if (active)
+        session::stopAnimation(model, *sensors[i]);
+      else
+        session::startAnimation(model, *sensors[i], sensors, exclusive);
+    }
+    ImGui::PopID();
+  }
+  ImGui::EndMenu();
 }
 
 }  // namespace
@@ -239,6 +264,7 @@ int drawMenuBar(WindowState& state, float aspect) {
     }
     ImGui::EndMenu();
   }
+  drawAnimationsMenu(state);
   if (renderer) {
     const auto& st = renderer->statistics();
     ImGui::Separator();
