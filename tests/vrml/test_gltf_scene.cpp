@@ -215,3 +215,35 @@ TEST_CASE("the corpus glTF models load as worlds with their nodes", "[vrml][gltf
     if (n->typeName() == "TimeSensor") names.push_back(n->defName);
   CHECK(names == std::vector<std::string>{"Survey", "Walk", "Run"});
 }
+
+TEST_CASE("glTF morph targets: a node's own weights replace its mesh's", "[vrml][gltf]") {
+  // The target's displacement is the POSITION accessor itself: weight w scales the
+  // triangle by 1 + w.
+  std::string asset = triangleAsset();
+  const std::string primitive = R"("material":0}]}])";
+  asset.replace(asset.find(primitive), primitive.size(),
+                R"("material":0,"targets":[{"POSITION":0}]}],"weights":[0.5]}])");
+  asset.replace(asset.find("\"name\":\"Tri\""), 12, "\"name\":\"Tri\",\"weights\":[1]");
+  INFO(asset);
+  const Scene s = parseVrml(asset, "morph.gltf");
+  INFO(describe(s));
+  REQUIRE(s.diagnostics.errorCount() == 0);
+  const Node* coord = nullptr;
+  std::vector<const Node*> stack{s.rootNodes[0].get()};
+  while (!stack.empty() && coord == nullptr) {
+    const Node* n = stack.back();
+    stack.pop_back();
+    if (n->typeName() == "Coordinate") coord = n;
+    for (std::size_t i = 0; i < n->fieldCount(); ++i) {
+      const FieldValue& v = n->fieldAt(i);
+      if (v.type() == FieldType::SFNode && v.get<FieldType::SFNode>())
+        stack.push_back(v.get<FieldType::SFNode>().get());
+      if (v.type() == FieldType::MFNode)
+        for (const auto& c : v.get<FieldType::MFNode>()) stack.push_back(c.get());
+    }
+  }
+  REQUIRE(coord != nullptr);
+  const auto& p = coord->field("point")->get<FieldType::MFVec3f>();
+  REQUIRE(p.size() == 3);
+  CHECK(p[1] == glm::vec3(2, 0, 0));  // (1 0 0) + 1 x (1 0 0): the node's weight, not 0.5
+}

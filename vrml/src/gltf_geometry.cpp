@@ -1,7 +1,7 @@
 // glTF meshes as X3D geometry (glTF 2.0 clause 3.7 "Geometry"): a Shape per primitive;
 // TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN as IndexedTriangleSet, LINES, LINE_LOOP and
 // LINE_STRIP as IndexedLineSet, POINTS as PointSet. Morph targets are applied with the
-// mesh's default weights (clause 3.7.2.2).
+// default weights: the node's, else the mesh's (clause 3.7.2.2).
 #include "gltf_importer.hpp"
 
 #include "gltf/accessors.hpp"
@@ -26,7 +26,7 @@ const std::vector<NodePtr>& GltfImporter::meshShapes(int index) {
   const tinygltf::Mesh& mesh = m_.meshes[static_cast<std::size_t>(index)];
   std::vector<NodePtr> shapes;
   for (const tinygltf::Primitive& p : mesh.primitives)
-    if (NodePtr s = primitiveShape(mesh, p)) shapes.push_back(std::move(s));
+    if (NodePtr s = primitiveShape(p, mesh.weights)) shapes.push_back(std::move(s));
   return meshes_[index] = std::move(shapes);
 }
 
@@ -36,15 +36,19 @@ std::vector<NodePtr> GltfImporter::ownShapes(int node, int index) {
   const tinygltf::Mesh& mesh = m_.meshes[static_cast<std::size_t>(index)];
   std::vector<NodePtr> shapes;
   auto& own = nodePrimitives_[node];
+  // A node's own weights replace its mesh's (glTF 2.0 clause 3.7.2.2).
+  const std::vector<double>& nodeWeights = m_.nodes[static_cast<std::size_t>(node)].weights;
+  const std::vector<double>& weights = nodeWeights.empty() ? mesh.weights : nodeWeights;
   for (std::size_t i = 0; i < mesh.primitives.size(); ++i)
-    if (NodePtr s = primitiveShape(mesh, mesh.primitives[i])) {
+    if (NodePtr s = primitiveShape(mesh.primitives[i], weights)) {
       own.emplace_back(static_cast<int>(i), s);
       shapes.push_back(std::move(s));
     }
   return shapes;
 }
 
-NodePtr GltfImporter::primitiveShape(const tinygltf::Mesh& mesh, const tinygltf::Primitive& p) {
+NodePtr GltfImporter::primitiveShape(const tinygltf::Primitive& p,
+                                     const std::vector<double>& weights) {
   const int posIndex = gltfAttribute(p, "POSITION");
   if (posIndex < 0) return nullptr;  // nothing to draw (clause 3.7.2.1 allows it)
   std::vector<float> pos = gltf::readFloats(m_, posIndex, 3, url_, "POSITION");
@@ -54,9 +58,9 @@ NodePtr GltfImporter::primitiveShape(const tinygltf::Mesh& mesh, const tinygltf:
     normals = gltf::readFloats(m_, n, 3, url_, "NORMAL");
     if (normals.size() != pos.size()) gltf::fail(url_, "NORMAL and POSITION counts differ");
   }
-  // Morph targets at the mesh's default weights.
-  for (std::size_t t = 0; t < p.targets.size() && t < mesh.weights.size(); ++t) {
-    const auto w = static_cast<float>(mesh.weights[t]);
+  // Morph targets at the default weights.
+  for (std::size_t t = 0; t < p.targets.size() && t < weights.size(); ++t) {
+    const auto w = static_cast<float>(weights[t]);
     if (w == 0.0f) continue;
     for (const auto& [name, accessor] : p.targets[t]) {
       std::vector<float>* dest = name == "POSITION" ? &pos : name == "NORMAL" ? &normals : nullptr;

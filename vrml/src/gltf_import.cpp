@@ -104,7 +104,8 @@ void GltfImporter::run() {
         parents_[static_cast<std::size_t>(c)] = static_cast<int>(i);
   ownGeometry_ = morphAnimatedNodes();
   for (std::size_t i = 0; i < m_.nodes.size(); ++i)
-    if (m_.nodes[i].skin >= 0) ownGeometry_.insert(static_cast<int>(i));
+    if (m_.nodes[i].skin >= 0 || !m_.nodes[i].weights.empty())
+      ownGeometry_.insert(static_cast<int>(i));
   std::vector<NodePtr> built;
   for (int r : roots) built.push_back(buildNode(r, 0, glm::dmat4(1.0)));
   // Lights light the whole scene (glTF's lights are not scoped): at the root, placed by

@@ -58,7 +58,8 @@ class GltfImporter {
   /// The Shapes of mesh `mesh` made for node `node` alone (a skinned or morph-animated
   /// node deforms its own copy), remembered in nodePrimitives_.
   std::vector<NodePtr> ownShapes(int node, int mesh);
-  NodePtr primitiveShape(const tinygltf::Mesh& mesh, const tinygltf::Primitive& p);
+  /// `weights`: the morph target weights (the node's when it has them, else the mesh's).
+  NodePtr primitiveShape(const tinygltf::Primitive& p, const std::vector<double>& weights);
 
   // gltf_materials.cpp: materials, textures, samplers.
   NodePtr appearance(int material);
