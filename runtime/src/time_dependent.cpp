@@ -16,7 +16,11 @@ double fractionAt(const TimeFields& f, double t) {
 }
 
 std::int64_t cycleAt(const TimeFields& f, double t) {
-  return static_cast<std::int64_t>(std::floor((t - f.startTime) / f.cycleInterval));
+  // Clamped: a tiny cycleInterval (a hostile file's 1e-30 s) makes more cycles than int64
+  // holds, and converting such a double is undefined.
+  const double c = std::floor((t - f.startTime) / f.cycleInterval);
+  constexpr double kLimit = 9.0e18;
+  return static_cast<std::int64_t>(std::clamp(std::isnan(c) ? 0.0 : c, -kLimit, kLimit));
 }
 
 bool stopsAt(const TimeFields& f, double t) {

@@ -4,9 +4,12 @@
 
 #include <catch2/catch.hpp>
 
+#include <cmath>
+
 using gs::runtime::evaluateTime;
 using gs::runtime::TimeFields;
 using gs::runtime::TimeState;
+using gs::runtime::TimeStep;
 using gs::test::RunningWorld;
 using gs::vrml::FieldType;
 using gs::vrml::FieldValue;
@@ -68,6 +71,15 @@ TEST_CASE("time: stopTime, enabled and invalid cycles", "[runtime][time]") {
   bad.loop = true;
   TimeState s3;
   CHECK_FALSE(evaluateTime(s3, bad, 1.0).activated);
+  // A tiny cycleInterval: more cycles than int64 counts, clamped (UBSan would flag the
+  // conversion; tests/data/regressions/gltf_scene).
+  TimeFields tiny;
+  tiny.cycleInterval = 1e-38;
+  tiny.loop = true;
+  TimeState s4;
+  const TimeStep t4 = evaluateTime(s4, tiny, 5.0);
+  CHECK(t4.activated);
+  CHECK(std::isfinite(t4.cycleTime));
 }
 
 TEST_CASE("TimeSensor: events in order, isActive only on change", "[runtime][time]") {
