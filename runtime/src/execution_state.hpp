@@ -6,6 +6,8 @@
 #include "runtime/interpolators.hpp"
 #include "runtime/time_dependent.hpp"
 
+#include <glm/mat4x4.hpp>
+
 #include <array>
 #include <memory>
 #include <optional>
@@ -52,11 +54,26 @@ struct EventUtilityFields {
   int index = -1;                      // sequencers: the keyValue last sent, -1 before any
 };
 
-/// A Skin's record (skin.cpp): the signature of the skeleton it last skinned with.
+/// One node waiting in a Skin's skeleton walk (skin.cpp): its parent's matrix and depth.
+struct SkeletonItem {
+  const vrml::Node* node = nullptr;
+  glm::mat4 parent{1.0f};
+  int depth = 0;
+};
+
+/// A Skin's record (skin.cpp): its field indices (found once, -1 when absent), the
+/// signature of the skeleton it last skinned with, and buffers reused from one evaluation
+/// to the next.
 struct SkinState {
+  int skeleton = -1, joints = -1, inverseBindMatrices = -1, skinnedTransform = -1;
+  int coord = -1, normal = -1, restPoint = -1, restNormal = -1;
+  int vertexJoints = -1, vertexWeights = -1;
   std::uint64_t signature = 0;
   bool evaluated = false;
   bool problemReported = false;
+  std::unordered_map<const vrml::Node*, glm::mat4> matrices;  // skeleton node -> matrix
+  std::vector<SkeletonItem> stack;
+  std::vector<glm::mat4> jointMatrices;
 };
 
 struct NodeState;

@@ -44,20 +44,18 @@ std::uint64_t mix(std::uint64_t h, std::uint64_t v) {
 }
 
 /// Every grouping node under `roots` with its matrix relative to them (the first path to
-/// a node wins), and a signature of their revisions: equal signatures, same matrices.
+/// a node wins) into `matrices` (cleared first), and a signature of their revisions: equal
+/// signatures, same matrices. `stack` is scratch space.
 std::uint64_t walkSkeleton(const std::vector<vrml::NodePtr>& roots,
-                           std::unordered_map<const vrml::Node*, glm::mat4>& matrices) {
+                           std::unordered_map<const vrml::Node*, glm::mat4>& matrices,
+                           std::vector<SkeletonItem>& stack) {
   std::uint64_t signature = 0;
-  struct Item {
-    const vrml::Node* node;
-    glm::mat4 parent;
-    int depth;
-  };
-  std::vector<Item> stack;
+  matrices.clear();
+  stack.clear();
   for (auto r = roots.rbegin(); r != roots.rend(); ++r)
     if (*r) stack.push_back({r->get(), glm::mat4(1.0f), 0});
   while (!stack.empty() && matrices.size() < kMaxSkeletonNodes) {
-    const Item item = stack.back();
+    const SkeletonItem item = stack.back();
     stack.pop_back();
     const vrml::Node& n = *item.node;
     if (!n.type().is(vrml::AbstractType::X3DGroupingNode)) continue;
@@ -67,11 +65,7 @@ std::uint64_t walkSkeleton(const std::vector<vrml::NodePtr>& roots,
     if (!matrices.emplace(&n, m).second) continue;
     signature = mix(mix(signature, reinterpret_cast<std::uintptr_t>(&n)), n.revision());
     if (item.depth >= kMaxSkeletonDepth) continue;
-    const int children = n.type().findExact("children");
-    if (children < 0 || n.fieldAt(static_cast<std::size_t>(children)).type() != FieldType::MFNode)
-      continue;
-    const std::vector<vrml::NodePtr>& kids =
-        n.fieldAt(static_cast<std::size_t>(children)).get<FieldType::MFNode>();
+    const std::vector<vrml::NodePtr>& kids = n.mfnode("children");
     for (auto c = kids.rbegin(); c != kids.rend(); ++c)
       if (*c) stack.push_back({c->get(), m, item.depth + 1});
   }
@@ -81,8 +75,20 @@ std::uint64_t walkSkeleton(const std::vector<vrml::NodePtr>& roots,
 }  // namespace
 
 bool ExecutionModel::State::classifySkin(NodeState& ns) {
-  if (ns.node->type().id() != vrml::NodeTypeId::Skin) return false;
+  const vrml::Node& n = *ns.node;
+  if (n.type().id() != vrml::NodeTypeId::Skin) return false;
   ns.skin = std::make_unique<SkinState>();
+  SkinState& st = *ns.skin;
+  st.skeleton = fieldIndex(n, "skeleton", FieldType::MFNode);
+  st.joints = fieldIndex(n, "joints", FieldType::MFNode);
+  st.inverseBindMatrices = fieldIndex(n, "inverseBindMatrices", FieldType::MFFloat);
+  st.skinnedTransform = fieldIndex(n, "skinnedTransform", FieldType::SFNode);
+  st.coord = fieldIndex(n, "coord", FieldType::SFNode);
+  st.normal = fieldIndex(n, "normal", FieldType::SFNode);
+  st.restPoint = fieldIndex(n, "restPoint", FieldType::MFVec3f);
+  st.restNormal = fieldIndex(n, "restNormal", FieldType::MFVec3f);
+  st.vertexJoints = fieldIndex(n, "vertexJoints", FieldType::MFInt32);
+  st.vertexWeights = fieldIndex(n, "vertexWeights", FieldType::MFFloat);
   skins.push_back(&ns);
   return true;
 }
@@ -94,27 +100,21 @@ void ExecutionModel::State::evaluateSkins() {
 void ExecutionModel::State::evaluateSkin(NodeState& ns) {
   const vrml::Node& skin = *ns.node;
   SkinState& st = *ns.skin;
-  auto idx = [&](std::string_view name, FieldType type) { return fieldIndex(skin, name, type); };
-  std::unordered_map<const vrml::Node*, glm::mat4> matrices;
-  const std::vector<vrml::NodePtr>& roots =
-      fieldOr<FieldType::MFNode>(skin, idx("skeleton", FieldType::MFNode));
-  const std::uint64_t signature = mix(walkSkeleton(roots, matrices), skin.revision());
+  const std::vector<vrml::NodePtr>& roots = fieldOr<FieldType::MFNode>(skin, st.skeleton);
+  const std::uint64_t signature = mix(walkSkeleton(roots, st.matrices, st.stack), skin.revision());
   if (st.evaluated && signature == st.signature) return;
   st.evaluated = true;
   st.signature = signature;
 
-  const std::vector<vrml::NodePtr>& joints =
-      fieldOr<FieldType::MFNode>(skin, idx("joints", FieldType::MFNode));
-  const auto& ibm =
-      fieldOr<FieldType::MFFloat>(skin, idx("inverseBindMatrices", FieldType::MFFloat));
-  const auto& rest = fieldOr<FieldType::MFVec3f>(skin, idx("restPoint", FieldType::MFVec3f));
-  const auto& restNormal = fieldOr<FieldType::MFVec3f>(skin, idx("restNormal", FieldType::MFVec3f));
-  const auto& vj = fieldOr<FieldType::MFInt32>(skin, idx("vertexJoints", FieldType::MFInt32));
-  const auto& vw = fieldOr<FieldType::MFFloat>(skin, idx("vertexWeights", FieldType::MFFloat));
-  const vrml::NodePtr& mesh =
-      fieldOr<FieldType::SFNode>(skin, idx("skinnedTransform", FieldType::SFNode));
-  const vrml::NodePtr& coord = fieldOr<FieldType::SFNode>(skin, idx("coord", FieldType::SFNode));
-  const vrml::NodePtr& normal = fieldOr<FieldType::SFNode>(skin, idx("normal", FieldType::SFNode));
+  const std::vector<vrml::NodePtr>& joints = fieldOr<FieldType::MFNode>(skin, st.joints);
+  const auto& ibm = fieldOr<FieldType::MFFloat>(skin, st.inverseBindMatrices);
+  const auto& rest = fieldOr<FieldType::MFVec3f>(skin, st.restPoint);
+  const auto& restNormal = fieldOr<FieldType::MFVec3f>(skin, st.restNormal);
+  const auto& vj = fieldOr<FieldType::MFInt32>(skin, st.vertexJoints);
+  const auto& vw = fieldOr<FieldType::MFFloat>(skin, st.vertexWeights);
+  const vrml::NodePtr& mesh = fieldOr<FieldType::SFNode>(skin, st.skinnedTransform);
+  const vrml::NodePtr& coord = fieldOr<FieldType::SFNode>(skin, st.coord);
+  const vrml::NodePtr& normal = fieldOr<FieldType::SFNode>(skin, st.normal);
   const int point = coord ? fieldIndex(*coord, "point", FieldType::MFVec3f) : -1;
   const int vector = normal ? fieldIndex(*normal, "vector", FieldType::MFVec3f) : -1;
   const std::size_t count = rest.size();
@@ -131,18 +131,26 @@ void ExecutionModel::State::evaluateSkin(NodeState& ns) {
   }
 
   auto matrixOf = [&](const vrml::NodePtr& n) {
-    const auto it = n ? matrices.find(n.get()) : matrices.end();
-    return it == matrices.end() ? glm::mat4(1.0f) : it->second;
+    const auto it = n ? st.matrices.find(n.get()) : st.matrices.end();
+    return it == st.matrices.end() ? glm::mat4(1.0f) : it->second;
   };
   const glm::mat4 toMesh = glm::inverse(matrixOf(mesh));
-  std::vector<glm::mat4> jointMatrix(joints.size());
+  std::vector<glm::mat4>& jointMatrix = st.jointMatrices;
+  jointMatrix.resize(joints.size());
   for (std::size_t j = 0; j < joints.size(); ++j) {
     glm::mat4 inverseBind(1.0f);
     if (16 * (j + 1) <= ibm.size()) inverseBind = glm::make_mat4(ibm.data() + 16 * j);
     jointMatrix[j] = toMesh * matrixOf(joints[j]) * inverseBind;
   }
 
-  std::vector<glm::vec3> points(count), normals(vector >= 0 ? count : 0);
+  // Written in place (the change contract: markChanged after a write through fieldAt).
+  // Neither target is a field of the Skin, so the rest pose read here stays as it was.
+  auto& points = coord->fieldAt(static_cast<std::size_t>(point)).get<FieldType::MFVec3f>();
+  points.resize(count);
+  std::vector<glm::vec3>* normals =
+      vector >= 0 ? &normal->fieldAt(static_cast<std::size_t>(vector)).get<FieldType::MFVec3f>()
+                  : nullptr;
+  if (normals != nullptr) normals->resize(count);
   for (std::size_t v = 0; v < count; ++v) {
     glm::mat4 m(0.0f);
     float total = 0.0f;
@@ -155,17 +163,14 @@ void ExecutionModel::State::evaluateSkin(NodeState& ns) {
     }
     if (!(total > 0.0f)) m = glm::mat4(1.0f);  // no influence: the rest pose
     points[v] = glm::vec3(m * glm::vec4(rest[v], 1.0f));
-    if (!normals.empty()) {
+    if (normals != nullptr) {
       const glm::vec3 n = glm::mat3(m) * restNormal[v];
       const float len = glm::length(n);
-      normals[v] = len > 0.0f ? n / len : restNormal[v];
+      (*normals)[v] = len > 0.0f ? n / len : restNormal[v];
     }
   }
-  coord->setField(static_cast<std::size_t>(point),
-                  vrml::FieldValue::make<FieldType::MFVec3f>(std::move(points)));
-  if (vector >= 0)
-    normal->setField(static_cast<std::size_t>(vector),
-                     vrml::FieldValue::make<FieldType::MFVec3f>(std::move(normals)));
+  coord->markChanged();
+  if (normals != nullptr) normal->markChanged();
 }
 
 }  // namespace gs::runtime

@@ -47,13 +47,6 @@ int gltfAttribute(const tinygltf::Primitive& p, const std::string& name) {
   return it == p.attributes.end() ? -1 : it->second;
 }
 
-const NodePtr& sfnodeField(const Node& node, std::string_view field) {
-  static const NodePtr none;
-  const int i = node.type().findExact(field);
-  if (i < 0 || node.fieldAt(static_cast<std::size_t>(i)).type() != FieldType::SFNode) return none;
-  return node.fieldAt(static_cast<std::size_t>(i)).get<FieldType::SFNode>();
-}
-
 const std::vector<glm::vec3>& mfvec3Field(const Node& node, std::string_view field) {
   static const std::vector<glm::vec3> none;
   const int i = node.type().findExact(field);

@@ -24,8 +24,7 @@ Rotation gltfRotation(const glm::dquat& q);
 /// The accessor of attribute `name` (POSITION, JOINTS_0, ...) of `p`, -1 without one.
 int gltfAttribute(const tinygltf::Primitive& p, const std::string& name);
 
-/// Field `field` of `node` when it is an SFNode (MFVec3f), else null (empty).
-const NodePtr& sfnodeField(const Node& node, std::string_view field);
+/// Field `field` of `node` when it is an MFVec3f, else an empty list.
 const std::vector<glm::vec3>& mfvec3Field(const Node& node, std::string_view field);
 
 /// Adds ROUTE from.fromField TO to.toField to `scene` (located at `url`).

@@ -37,10 +37,10 @@ void GltfImporter::morphChannel(const NodePtr& sensor, int node,
   for (const auto& [primIndex, shape] : own->second) {
     const tinygltf::Primitive& p = mesh.primitives[static_cast<std::size_t>(primIndex)];
     if (p.targets.empty()) continue;
-    const NodePtr& geometry = sfnodeField(*shape, "geometry");
+    const NodePtr geometry = shape->sfnode("geometry");
     if (!geometry || (geometry->typeId() == NodeTypeId::PointSet && p.indices >= 0)) continue;
-    const NodePtr& coord = sfnodeField(*geometry, "coord");
-    const NodePtr& normal = sfnodeField(*geometry, "normal");
+    const NodePtr coord = geometry->sfnode("coord");
+    const NodePtr normal = geometry->sfnode("normal");
     if (!coord) continue;
     const std::vector<float> base =
         gltf::readFloats(m_, gltfAttribute(p, "POSITION"), 3, url_, "POSITION");
@@ -93,22 +93,21 @@ void GltfImporter::morphChannel(const NodePtr& sensor, int node,
     // A skinned primitive morphs its rest pose; the Skin re-skins it.
     const auto skin = skinOfShape_.find(shape.get());
     const bool skinned = skin != skinOfShape_.end();
-    NodePtr ci = make("CoordinateInterpolator");
-    set(*ci, "key", FieldValue::make<FieldType::MFFloat>(fractions));
-    set(*ci, "keyValue", FieldValue::make<FieldType::MFVec3f>(std::move(points)));
-    addRoute(scene_, sensor, "fraction_changed", ci, "set_fraction", url_);
-    addRoute(scene_, ci, "value_changed", skinned ? skin->second : coord,
-             skinned ? "set_restPoint" : "set_point", url_);
-    made.push_back(std::move(ci));
-    if (!normals.empty()) {
-      NodePtr ni = make("NormalInterpolator");
-      set(*ni, "key", FieldValue::make<FieldType::MFFloat>(fractions));
-      set(*ni, "keyValue", FieldValue::make<FieldType::MFVec3f>(std::move(normals)));
-      addRoute(scene_, sensor, "fraction_changed", ni, "set_fraction", url_);
-      addRoute(scene_, ni, "value_changed", skinned ? skin->second : normal,
-               skinned ? "set_restNormal" : "set_vector", url_);
-      made.push_back(std::move(ni));
-    }
+    // One interpolator of `values` per key, ROUTEd from the sensor to `to`.`toField`.
+    auto interpolate = [&](const char* type, std::vector<glm::vec3> values, const NodePtr& to,
+                           const char* toField) {
+      NodePtr i = make(type);
+      set(*i, "key", FieldValue::make<FieldType::MFFloat>(fractions));
+      set(*i, "keyValue", FieldValue::make<FieldType::MFVec3f>(std::move(values)));
+      addRoute(scene_, sensor, "fraction_changed", i, "set_fraction", url_);
+      addRoute(scene_, i, "value_changed", to, toField, url_);
+      made.push_back(std::move(i));
+    };
+    interpolate("CoordinateInterpolator", std::move(points), skinned ? skin->second : coord,
+                skinned ? "set_restPoint" : "set_point");
+    if (!normals.empty())
+      interpolate("NormalInterpolator", std::move(normals), skinned ? skin->second : normal,
+                  skinned ? "set_restNormal" : "set_vector");
   }
 }
 

@@ -48,14 +48,14 @@ void GltfImporter::skins() {
     const tinygltf::Mesh& mesh = m_.meshes[static_cast<std::size_t>(n.mesh)];
     for (const auto& [primIndex, shape] : primitives) {
       const tinygltf::Primitive& p = mesh.primitives[static_cast<std::size_t>(primIndex)];
-      const NodePtr& geometry = sfnodeField(*shape, "geometry");
+      const NodePtr geometry = shape->sfnode("geometry");
       if (!geometry) continue;
       if (geometry->typeId() == NodeTypeId::PointSet && p.indices >= 0) {
         warn(where + "indexed POINTS are drawn unskinned");
         continue;
       }
-      const NodePtr& coord = sfnodeField(*geometry, "coord");
-      const NodePtr& normal = sfnodeField(*geometry, "normal");
+      const NodePtr coord = geometry->sfnode("coord");
+      const NodePtr normal = geometry->sfnode("normal");
       if (!coord) continue;
       const std::vector<glm::vec3>& rest = mfvec3Field(*coord, "point");
       const std::size_t count = rest.size();
