@@ -2,6 +2,7 @@
 // encoder, read back through the glTF importer; a damaged stream is an error naming Draco.
 #include "base/data_url.hpp"
 #include "base/file.hpp"
+#include "scene_walk.hpp"
 #include "test_support.hpp"
 #include "vrml/parser.hpp"
 
@@ -45,22 +46,9 @@ std::string dracoAsset(const DracoStream& s) {
 }
 
 const Node& only(const Scene& s, std::string_view type) {
-  std::vector<const Node*> stack;
-  for (const auto& n : s.rootNodes) stack.push_back(n.get());
-  while (!stack.empty()) {
-    const Node* n = stack.back();
-    stack.pop_back();
-    if (n == nullptr) continue;
-    if (n->typeName() == type) return *n;
-    for (std::size_t i = 0; i < n->fieldCount(); ++i) {
-      const FieldValue& v = n->fieldAt(i);
-      if (v.type() == FieldType::SFNode) stack.push_back(v.get<FieldType::SFNode>().get());
-      if (v.type() == FieldType::MFNode)
-        for (const auto& c : v.get<FieldType::MFNode>()) stack.push_back(c.get());
-    }
-  }
-  FAIL("no " << type);
-  throw std::logic_error("unreachable");
+  const Node* n = gs::test::firstOfType(s, type);
+  if (n == nullptr) FAIL("no " << type);
+  return *n;
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // glTF 2.0 assets read as worlds (vrml/src/gltf_*.cpp): the corpus models with the node
 // counts their JSON says, and small assets made here for what the corpus lacks (STEP
 // samplers, required and unknown extensions, data: images, hostile indices).
+#include "scene_walk.hpp"
 #include "test_support.hpp"
 #include "vrml/parser.hpp"
 #include "vrml/streaming_parser.hpp"
@@ -15,26 +16,6 @@
 using namespace gs::vrml;
 
 namespace {
-
-std::map<std::string, int> countTypes(const Scene& s) {
-  std::map<std::string, int> counts;
-  std::vector<const Node*> stack;
-  std::set<const Node*> seen;
-  for (const auto& n : s.rootNodes) stack.push_back(n.get());
-  while (!stack.empty()) {
-    const Node* n = stack.back();
-    stack.pop_back();
-    if (n == nullptr || !seen.insert(n).second) continue;
-    ++counts[n->typeName()];
-    for (std::size_t i = 0; i < n->fieldCount(); ++i) {
-      const FieldValue& v = n->fieldAt(i);
-      if (v.type() == FieldType::SFNode) stack.push_back(v.get<FieldType::SFNode>().get());
-      if (v.type() == FieldType::MFNode)
-        for (const auto& c : v.get<FieldType::MFNode>()) stack.push_back(c.get());
-    }
-  }
-  return counts;
-}
 
 std::string describe(const Scene& s) {
   std::string out;
@@ -65,7 +46,7 @@ TEST_CASE("a glTF asset is a world of X3D nodes", "[vrml][gltf]") {
   INFO(describe(s));
   CHECK(s.diagnostics.items.empty());
   CHECK(s.x3d.encoding == "glTF");
-  auto counts = countTypes(s);
+  auto counts = gs::test::countTypes(s);
   CHECK(counts["Transform"] == 1);
   CHECK(counts["Shape"] == 1);
   CHECK(counts["IndexedTriangleSet"] == 1);
@@ -120,7 +101,7 @@ TEST_CASE("glTF animations become TimeSensors, interpolators and ROUTEs; STEP ho
   INFO(describe(s));
   INFO(asset);
   CHECK(s.diagnostics.errorCount() == 0);
-  auto counts = countTypes(s);
+  auto counts = gs::test::countTypes(s);
   REQUIRE(counts["TimeSensor"] == 1);
   REQUIRE(counts["PositionInterpolator"] == 1);
   REQUIRE(s.routes.size() == 2);
@@ -201,7 +182,7 @@ TEST_CASE("the corpus glTF models load as worlds with their nodes", "[vrml][gltf
     const Scene s = loadVrmlFile((dir / e.path).string());
     INFO(describe(s));
     CHECK(s.diagnostics.errorCount() == 0);
-    auto counts = countTypes(s);
+    auto counts = gs::test::countTypes(s);
     for (const auto& [type, n] : e.counts) {
       INFO(type);
       CHECK(counts[type] == n);
@@ -228,20 +209,7 @@ TEST_CASE("glTF morph targets: a node's own weights replace its mesh's", "[vrml]
   const Scene s = parseVrml(asset, "morph.gltf");
   INFO(describe(s));
   REQUIRE(s.diagnostics.errorCount() == 0);
-  const Node* coord = nullptr;
-  std::vector<const Node*> stack{s.rootNodes[0].get()};
-  while (!stack.empty() && coord == nullptr) {
-    const Node* n = stack.back();
-    stack.pop_back();
-    if (n->typeName() == "Coordinate") coord = n;
-    for (std::size_t i = 0; i < n->fieldCount(); ++i) {
-      const FieldValue& v = n->fieldAt(i);
-      if (v.type() == FieldType::SFNode && v.get<FieldType::SFNode>())
-        stack.push_back(v.get<FieldType::SFNode>().get());
-      if (v.type() == FieldType::MFNode)
-        for (const auto& c : v.get<FieldType::MFNode>()) stack.push_back(c.get());
-    }
-  }
+  const Node* coord = gs::test::firstOfType(s, "Coordinate");
   REQUIRE(coord != nullptr);
   const auto& p = coord->field("point")->get<FieldType::MFVec3f>();
   REQUIRE(p.size() == 3);

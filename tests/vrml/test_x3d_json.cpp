@@ -4,6 +4,7 @@
 // syntax errors at file:line:column; structural errors naming the JSON path; the nesting
 // bound; streaming; and assets/worlds/x3d_features.x3dj.
 #include "scene_compare.hpp"
+#include "scene_walk.hpp"
 #include "test_support.hpp"
 
 #include "vrml/parser.hpp"
@@ -40,26 +41,6 @@ std::multiset<std::string> diagnosticSet(const Scene& s) {
   std::multiset<std::string> out;
   for (const Diagnostic& d : s.diagnostics.items) out.insert(d.format());
   return out;
-}
-
-std::size_t countNodes(const Scene& s) {
-  std::unordered_set<const Node*> seen;
-  std::vector<const Node*> todo;
-  for (const NodePtr& n : s.rootNodes) todo.push_back(n.get());
-  std::size_t count = 0;
-  while (!todo.empty()) {
-    const Node* n = todo.back();
-    todo.pop_back();
-    if (n == nullptr || !seen.insert(n).second) continue;
-    ++count;
-    for (std::size_t i = 0; i < n->fieldCount(); ++i) {
-      const FieldValue& v = n->fieldAt(i);
-      if (v.type() == FieldType::SFNode) todo.push_back(v.get<FieldType::SFNode>().get());
-      if (v.type() == FieldType::MFNode)
-        for (const NodePtr& c : v.get<FieldType::MFNode>()) todo.push_back(c.get());
-    }
-  }
-  return count;
 }
 
 const char* const kTwinJson = R"({ "X3D": {
@@ -293,7 +274,7 @@ TEST_CASE("X3D JSON: errors at file:line:column or naming the JSON path", "[x3d]
     const Scene u = parseVrml(deep + close + "]}}}", "deep.x3dj");
     INFO(describe(u));
     CHECK(u.diagnostics.items.empty());
-    CHECK(countNodes(u) == 200);
+    CHECK(gs::test::countNodes(u) == 200);
   }
 }
 
@@ -341,8 +322,8 @@ TEST_CASE("X3D JSON: assets/worlds/x3d_features.x3dj is the world of its .x3dv t
   CHECK(c.diagnostics.items.empty());
   CHECK(j.x3d.encoding == "JSON");
   CHECK(j.rootNodes.size() == c.rootNodes.size());
-  CHECK(countNodes(j) == countNodes(c));
-  CHECK(countNodes(j) > 10);
+  CHECK(gs::test::countNodes(j) == gs::test::countNodes(c));
+  CHECK(gs::test::countNodes(j) > 10);
   Same same;
   same.scenes(j, c);
   // (The META text names its own encoding; everything else is the same.)

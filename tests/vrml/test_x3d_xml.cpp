@@ -4,6 +4,7 @@
 // quoting; diagnostics at the XML's file:line:column; streaming byte by byte and gzip; and
 // the XML worlds of ../shared/corpus/x3d/castle.
 #include "scene_compare.hpp"
+#include "scene_walk.hpp"
 #include "test_support.hpp"
 
 #include "vrml/parser.hpp"
@@ -57,26 +58,6 @@ std::multiset<std::string> diagnosticSet(const Scene& s) {
   std::multiset<std::string> out;
   for (const Diagnostic& d : s.diagnostics.items) out.insert(d.format());
   return out;
-}
-
-std::size_t countNodes(const Scene& s) {
-  std::unordered_set<const Node*> seen;
-  std::vector<const Node*> todo;
-  for (const NodePtr& n : s.rootNodes) todo.push_back(n.get());
-  std::size_t count = 0;
-  while (!todo.empty()) {
-    const Node* n = todo.back();
-    todo.pop_back();
-    if (n == nullptr || !seen.insert(n).second) continue;
-    ++count;
-    for (std::size_t i = 0; i < n->fieldCount(); ++i) {
-      const FieldValue& v = n->fieldAt(i);
-      if (v.type() == FieldType::SFNode) todo.push_back(v.get<FieldType::SFNode>().get());
-      if (v.type() == FieldType::MFNode)
-        for (const NodePtr& c : v.get<FieldType::MFNode>()) todo.push_back(c.get());
-    }
-  }
-  return count;
 }
 
 const char* const kTwinXml = R"(<?xml version="1.0" encoding="UTF-8"?>
@@ -565,7 +546,7 @@ TEST_CASE("X3D XML: castle's scenes in both encodings have the same nodes", "[x3
     CHECK(a.diagnostics.errorCount() == 0);
     CHECK(b.diagnostics.errorCount() == 0);
     CHECK(a.rootNodes.size() == b.rootNodes.size());
-    CHECK(countNodes(a) == countNodes(b));
+    CHECK(gs::test::countNodes(a) == gs::test::countNodes(b));
     CHECK(a.routes.size() == b.routes.size());
     CHECK(a.diagnostics.warningCount() == b.diagnostics.warningCount());
   }
@@ -573,6 +554,6 @@ TEST_CASE("X3D XML: castle's scenes in both encodings have the same nodes", "[x3
   const Scene z = loadVrmlFile((root / "x3d/axis.x3dz").string());
   const Scene p = loadVrmlFile((root / "x3d/axis.x3d").string());
   CHECK(z.diagnostics.items.empty());
-  CHECK(countNodes(z) == countNodes(p));
-  CHECK(countNodes(z) > 10);
+  CHECK(gs::test::countNodes(z) == gs::test::countNodes(p));
+  CHECK(gs::test::countNodes(z) > 10);
 }
