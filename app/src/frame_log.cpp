@@ -60,8 +60,8 @@ void FrameLog::endFrame(const WindowState& state) {
   s.rssKib = residentKib();
   for (std::size_t i = 0; i < state.viewports.size() && i < 4; ++i) {
     const Viewport& v = state.viewports[i];
-    if (!v.renderer) continue;
-    s.vectors[i] = v.renderer->statistics().splats;
+    if (!v.renderer()) continue;
+    s.vectors[i] = v.renderer()->statistics().splats;
     s.lod[i] = v.options.lod;
   }
   lastEnd_ = now;

@@ -48,7 +48,7 @@ struct ImGuiSession {
 /// How far a walking avatar may drop at once (avatarSize[2]): going down a step follows
 /// the terrain at once; deeper falls continue under gravity (applyGravity).
 float avatarStep(const WindowState& state) {
-  const auto& renderer = state.view().renderer;
+  const auto& renderer = state.view().renderer();
   return renderer ? render::Avatar::of(renderer->navigation()).stepHeight : 0.75f;
 }
 
@@ -90,7 +90,7 @@ void navigate(WindowState& state, int menuHeight, int viewportHeight) {
   } else if (io.MouseDown[2] && moved) {
     navigator.dolly(-dy / 20.0f);
   }
-  const auto& renderer = state.view().renderer;
+  const auto& renderer = state.view().renderer();
   const float speed = renderer ? std::max(renderer->navigation().speed, 1e-3f) : 1.0f;
   if (io.MouseWheel != 0.0f) {
     if (examine)

@@ -33,7 +33,7 @@ void take(WindowState& state, Viewport& v, const render::WalkResult& r) {
 void WindowState::moveViewer(float forward, float right, float up, float maxFall) {
   Viewport& v = view();
   v.autoFrame = false;
-  if (!v.renderer || v.navigator.mode() == render::NavigationMode::examine) {
+  if (!v.renderer() || v.navigator.mode() == render::NavigationMode::examine) {
     v.navigator.move(forward, right, up);
     return;
   }
@@ -41,15 +41,15 @@ void WindowState::moveViewer(float forward, float right, float up, float maxFall
   options.mode = v.navigator.mode();
   options.maxFall = maxFall;
   const render::WalkResult r =
-      render::walkStep(v.renderer->traversal(), v.navigator.camera(),
-                       v.navigator.motion(forward, right, up), v.renderer->navigation(), options);
+      render::walkStep(v.renderer()->traversal(), v.navigator.camera(),
+                       v.navigator.motion(forward, right, up), v.renderer()->navigation(), options);
   take(*this, v, r);
 }
 
 void WindowState::applyGravity(float seconds) {
   seconds = std::clamp(seconds, 0.0f, 0.1f);
   for (Viewport& v : viewports) {
-    if (!v.renderer || v.navigator.mode() != render::NavigationMode::walk ||
+    if (!v.renderer() || v.navigator.mode() != render::NavigationMode::walk ||
         v.transition.start >= 0.0)
       continue;
     if (v.gravity.settled && v.gravity.at == v.navigator.camera().position) continue;
@@ -57,8 +57,8 @@ void WindowState::applyGravity(float seconds) {
     render::WalkOptions options;
     options.maxFall = v.gravity.speed * seconds;
     take(*this, v,
-         render::walkStep(v.renderer->traversal(), v.navigator.camera(), glm::vec3(0.0f),
-                          v.renderer->navigation(), options));
+         render::walkStep(v.renderer()->traversal(), v.navigator.camera(), glm::vec3(0.0f),
+                          v.renderer()->navigation(), options));
   }
 }
 

@@ -206,14 +206,14 @@ int drawMenuBar(WindowState& state, float aspect) {
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("View")) {
-    if (ImGui::MenuItem("Reset view", "R", false, state.view().renderer != nullptr))
+    if (ImGui::MenuItem("Reset view", "R", false, state.view().renderer() != nullptr))
       state.resetView();
-    if (ImGui::MenuItem("Fit to scene", "F", false, state.view().renderer != nullptr))
+    if (ImGui::MenuItem("Fit to scene", "F", false, state.view().renderer() != nullptr))
       state.fitToScene();
-    if (state.view().renderer) {
-      bool headlight = state.view().renderer->headlight();
+    if (state.view().renderer()) {
+      bool headlight = state.view().renderer()->headlight();
       if (ImGui::MenuItem("Headlight", nullptr, &headlight))
-        state.view().renderer->setHeadlight(headlight);
+        state.view().renderer()->setHeadlight(headlight);
     }
     ImGui::Separator();
     const render::RenderMode mode = state.view().options.traversal.mode;
@@ -253,7 +253,7 @@ int drawMenuBar(WindowState& state, float aspect) {
     ImGui::MenuItem("Log", nullptr, &state.showLog);
     ImGui::EndMenu();
   }
-  const auto& renderer = state.view().renderer;
+  const auto& renderer = state.view().renderer();
   const bool haveViewpoints = renderer && !renderer->viewpoints().empty();
   if (ImGui::BeginMenu("Viewpoints", haveViewpoints)) {
     const auto& vps = renderer->viewpoints();

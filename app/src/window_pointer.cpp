@@ -27,7 +27,7 @@ bool WindowState::pointerInput(float x, float y, bool buttonDown, int height) {
   std::size_t index = pointerHeld && pointerViewport < viewports.size() ? pointerViewport
                                                                         : viewportAt(x, y, height);
   if (index != Viewport::kNone &&
-      (!viewports[index].renderer || viewports[index].world >= worlds.size()))
+      (!viewports[index].renderer() || viewports[index].world >= worlds.size()))
     index = Viewport::kNone;
   if (!runtimes) {
     pointerHint = {};
@@ -37,7 +37,7 @@ bool WindowState::pointerInput(float x, float y, bool buttonDown, int height) {
   // Leaving a viewport: its world sees the pointer go off its geometry.
   if (pointerViewport != index && pointerViewport < viewports.size()) {
     const Viewport& old = viewports[pointerViewport];
-    if (old.renderer && old.world < worlds.size()) {
+    if (old.renderer() && old.world < worlds.size()) {
       runtime::PointerEvent off;
       off.buttonDown = false;
       runtimes->of(worlds[old.world].scene, now).pointer(off);
@@ -60,7 +60,7 @@ bool WindowState::pointerInput(float x, float y, bool buttonDown, int height) {
   const float vx = x - static_cast<float>(v.rect.x);
   const float vy = y - (static_cast<float>(height) - static_cast<float>(v.rect.y + v.rect.height));
   const runtime::PointerEvent event =
-      pointerEventAt(v.renderer->traversal(), v.navigator.camera(), v.rect.width, v.rect.height, vx,
+      pointerEventAt(v.renderer()->traversal(), v.navigator.camera(), v.rect.width, v.rect.height, vx,
                      vy, buttonDown);
   pointerHeld = model.pointer(event);
   pointerHint = model.pointerHint();

@@ -72,7 +72,7 @@ void writeStatus(WindowState& state, const std::string& path) {
     out << i << " " << (v.world < state.worlds.size() ? state.worlds[v.world].scene->url : "-")
         << " " << v.options.lod << " " << render::renderModeName(v.options.traversal.mode) << " "
         << navs[static_cast<int>(v.navigator.mode())] << " "
-        << (v.renderer ? v.renderer->statistics().splats : 0) << "\n";
+        << (v.renderer() ? v.renderer()->statistics().splats : 0) << "\n";
   }
   for (const session::TilesetStream* t : state.session->tilesets()) {
     const session::TilesetStatistics& s = t->statistics();
@@ -316,7 +316,7 @@ const std::vector<WindowScript::Verb>& WindowScript::verbs() {
              const double f = static_cast<double>(i) / steps;
              const float x0 = s.pointerX_, y0 = s.pointerY_;
              s.movePointer(state, n[0] + (n[2] - n[0]) * f, n[1] + (n[3] - n[1]) * f, height);
-             if (!held && state.view().renderer) {  // no sensor holds it: the drag navigates
+             if (!held && state.view().renderer()) {  // no sensor holds it: the drag navigates
                Viewport& v = state.view();
                const int h = std::max(1, v.rect.height);
                if (v.navigator.mode() == render::NavigationMode::examine)

@@ -25,8 +25,8 @@ void WindowScript::writeFrameStats(WindowState& state, const std::string& path) 
   for (std::size_t i = 0; i < state.viewports.size(); ++i) {
     const Viewport& v = state.viewports[i];
     out << "viewport " << i << " movie_frames "
-        << (v.renderer ? v.renderer->statistics().movieFrames : 0) << " movie_uploads "
-        << (v.renderer ? v.renderer->statistics().movieUploads : 0) << "\n";
+        << (v.renderer() ? v.renderer()->statistics().movieFrames : 0) << " movie_uploads "
+        << (v.renderer() ? v.renderer()->statistics().movieUploads : 0) << "\n";
   }
   if (!out) state.log.push_back({true, "frame-stats: cannot write " + path});
 }

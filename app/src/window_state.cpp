@@ -17,6 +17,27 @@ namespace gs::app {
 
 WindowState::WindowState() : viewports(1) {}
 
+WindowState::~WindowState() {
+  viewports.clear();  // the views (renderers, with their loaders) before the session
+}
+
+session::ViewGroup& WindowState::viewGroup() {
+  if (!group) group = std::make_unique<session::ViewGroup>(*session);
+  return *group;
+}
+
+void WindowState::makeView(std::size_t index) {
+  Viewport& v = viewports[index];
+  v.worldView.reset();  // its GL objects go while the context is current
+  v.worldView = std::make_unique<session::WorldView>(viewGroup(), worlds[v.world].scene, v.options);
+  // The view draws, and its world's sensors see, the viewport's navigated camera.
+  v.worldView->setCamera([this, index](render::SceneRenderer&, float) {
+    return index < viewports.size() ? viewports[index].navigator.camera() : render::Camera{};
+  });
+  v.worldView->setRect(v.rect.x, v.rect.y, v.rect.width, v.rect.height);
+  v.worldView->renderer().setVectorBudget(v.vectorBudget);
+}
+
 void WindowState::setLayout(Layout next) {
   const int cells = layoutCells(next);
   layout = next;
@@ -96,22 +117,16 @@ void WindowState::show(std::size_t world, std::size_t index) {
     v.options = rendererOptions;
   }
   v.world = world;
-  v.renderer.reset();  // its GL objects go while the context is current
-  v.renderer = std::make_unique<render::SceneRenderer>(worlds[world].scene,
-                                                       session->rendererOptions(v.options));
-  v.renderer->setVectorBudget(v.vectorBudget);
+  makeView(index);
   v.autoFrame = true;
   v.diagnosticsLogged = 0;
   home(v);
 }
 
 void WindowState::update() {
-  if (session->pump()) {
-    for (Viewport& v : viewports) {
-      if (!v.renderer) continue;
-      v.renderer->sceneChanged();
-      if (v.autoFrame) home(v);
-    }
+  if (updateViews()) {
+    for (Viewport& v : viewports)
+      if (v.renderer() && v.autoFrame) home(v);
   }
   std::vector<std::pair<bool, std::string>> messages;
   session->drainMessages(messages);
@@ -119,12 +134,11 @@ void WindowState::update() {
     log.push_back({error, std::move(text)});
     if (error) showLog = true;
   }
-  updateRuntimes();
   followLinks();
   // Problems found while drawing (textures, Inlines), each once.
   for (Viewport& v : viewports) {
-    if (!v.renderer) continue;
-    const auto& items = v.renderer->diagnostics().items;
+    if (!v.renderer()) continue;
+    const auto& items = v.renderer()->diagnostics().items;
     for (; v.diagnosticsLogged < items.size(); ++v.diagnosticsLogged) {
       const auto& d = items[v.diagnosticsLogged];
       log.push_back({d.severity == vrml::Severity::error, d.format()});
@@ -145,8 +159,9 @@ void WindowState::setNavigation(render::NavigationMode mode) {
   view().navigationChosen = true;
 }
 
-void WindowState::updateRuntimes() {
-  if (!runtimes) {
+bool WindowState::updateViews() {
+  const bool made = !runtimes;
+  if (made) {
     runtimes = std::make_unique<session::WorldRuntimes>(
         time, [this](const std::string& url, const std::string& referrer, std::string& bytes,
                      std::string& error) {
@@ -167,28 +182,32 @@ void WindowState::updateRuntimes() {
     });
   }
   const double now = worldTime();
+  // Every world opened runs, shown or not (a world a link replaced keeps its clock).
   for (const session::LoadedWorld& w : worlds) runtimes->of(w.scene, now);
-  runtimes->scenesGrew();
-  // The sensors see each world from its viewports' cameras, the active viewport last.
+  session::ViewGroup& views = viewGroup();
+  // MovieTextures follow the window's clock and never hold a frame (docs/media.md).
+  if (made) views.attachRuntimes(*runtimes, now, false);
+  // The frame step of every viewport (session/world_view.hpp), the active one last: its
+  // camera wins for a world two viewports show. A viewport with no view pumps nothing,
+  // so the group pumps once more for a window with none.
+  const session::WorldView* activeView =
+      active < viewports.size() ? viewports[active].worldView.get() : nullptr;
+  const std::uint64_t before = views.generation();
+  bool any = false;
   for (std::size_t i = 0; i <= viewports.size(); ++i) {
     const std::size_t k = i < viewports.size() ? i : active;
     if (k >= viewports.size() || (i < viewports.size() && i == active)) continue;
-    const Viewport& v = viewports[k];
-    if (!v.renderer || v.world >= worlds.size()) continue;
-    const float aspect = v.rect.height > 0
-                             ? static_cast<float>(v.rect.width) / static_cast<float>(v.rect.height)
-                             : lastAspect;
-    runtimes->setViewer(worlds[v.world].scene.get(),
-                        session::viewerPose(v.navigator.camera(), aspect));
+    Viewport& v = viewports[k];
+    if (!v.worldView) continue;
+    any = true;
+    v.worldView->update(now, activeView);
   }
-  runtimes->advanceTo(now);
+  if (!any) {
+    views.pump();
+    views.advanceTo(now);
+  }
   for (Viewport& v : viewports) {
-    if (!v.renderer || v.world >= worlds.size()) continue;
-    const vrml::Scene* scene = worlds[v.world].scene.get();
-    v.renderer->traversal().setBoundNodes(runtimes->bound(scene));
-    runtimes->addInlines(scene, v.renderer->traversal());
-    v.renderer->setMediaClock(runtimes->mediaClock(scene), false);  // docs/media.md
-    runtimes->setMediaDurations(scene, v.renderer->takeMediaDurations());
+    if (!v.renderer() || v.world >= worlds.size()) continue;
     const runtime::ExecutionModel& model = runtimes->of(worlds[v.world].scene, now);
     const vrml::Node* vp = model.bound(runtime::BindableKind::Viewpoint);
     const std::uint64_t revision = vp ? vrml::revisionWithFields(*vp) : 0;
@@ -205,32 +224,33 @@ void WindowState::updateRuntimes() {
         if (newlyBound) {
           // A Viewpoint bound from the menu, an Anchor or a Script: an animated move.
           v.transition.from = v.navigator.camera();
-          v.transition.to = v.renderer->boundViewpointCamera();
+          v.transition.to = v.renderer()->boundViewpointCamera();
           v.transition.start = secondsNow();
         } else {  // the bound Viewpoint itself moves (a route into its fields)
           v.transition.start = -1.0;
-          v.navigator.setCamera(v.renderer->boundViewpointCamera());
+          v.navigator.setCamera(v.renderer()->boundViewpointCamera());
         }
       }
     }
   }
   if (sounds && active < viewports.size() && viewports[active].world < worlds.size())
-    sounds->update(worlds[viewports[active].world].scene, viewports[active].navigator.camera(),
-                   *runtimes, now,
-                   viewports[active].renderer ? &viewports[active].renderer->traversal() : nullptr);
+    sounds->update(
+        worlds[viewports[active].world].scene, viewports[active].navigator.camera(), *runtimes, now,
+        viewports[active].renderer() ? &viewports[active].renderer()->traversal() : nullptr);
   std::vector<std::string> lines;
   runtimes->drainMessages(lines);
   for (std::string& line : lines) {
     log.push_back({true, std::move(line)});
     showLog = true;
   }
+  return views.generation() != before;
 }
 
 void WindowState::home(Viewport& v) {
-  if (!v.renderer) return;
+  if (!v.renderer()) return;
   // A world's NavigationInfo chooses the navigation; without one, EXAMINE (as most
   // browsers do for a model) rather than VRML97's default WALK.
-  const render::NavigationSettings& nav = v.renderer->navigation();
+  const render::NavigationSettings& nav = v.renderer()->navigation();
   if (!v.navigationChosen)
     v.navigator.setMode(nav.node != nullptr
                             ? render::navigationModeOf(nav.type, render::NavigationMode::examine)
@@ -238,15 +258,15 @@ void WindowState::home(Viewport& v) {
   const float aspect = static_cast<float>(v.rect.width) / static_cast<float>(v.rect.height);
   // The bound Viewpoint; a world without one is framed whole (a KiCad part, say, lies
   // far from the VRML97 default viewpoint's view), as other browsers do.
-  render::Camera camera = v.renderer->initialCamera(aspect > 0.0f ? aspect : lastAspect);
-  const vrml::Bounds& b = v.renderer->bounds();
+  render::Camera camera = v.renderer()->initialCamera(aspect > 0.0f ? aspect : lastAspect);
+  const vrml::Bounds& b = v.renderer()->bounds();
   // Orbit around the point of the view axis nearest the scene's centre.
   glm::vec3 center = camera.position + camera.forward() * 10.0f;
   if (!b.empty()) {
     const float along = glm::dot(b.center() - camera.position, camera.forward());
     center = camera.position + camera.forward() * std::max(along, 1e-3f);
   }
-  v.navigator.setSceneBounds(b, v.renderer->navigation().nearClip());
+  v.navigator.setSceneBounds(b, v.renderer()->navigation().nearClip());
   v.navigator.setHome(camera, center);
 }
 
@@ -257,44 +277,41 @@ void WindowState::resetView() {
 
 void WindowState::fitToScene() {
   Viewport& v = view();
-  if (!v.renderer) return;
+  if (!v.renderer()) return;
   v.autoFrame = false;
-  const render::Camera fitted = v.renderer->fitToScene(lastAspect, v.navigator.camera());
-  v.navigator.setHome(fitted, v.renderer->bounds().center());
+  const render::Camera fitted = v.renderer()->fitToScene(lastAspect, v.navigator.camera());
+  v.navigator.setHome(fitted, v.renderer()->bounds().center());
 }
 
 void WindowState::setMode(render::RenderMode mode) {
   Viewport& v = view();
   v.options.traversal.mode = mode;
   rendererOptions.traversal.mode = mode;  // for viewports made later
-  if (!v.renderer) return;
+  if (!v.renderer()) return;
   const render::Camera camera = v.navigator.camera();
-  v.renderer.reset();
-  v.renderer = std::make_unique<render::SceneRenderer>(worlds[v.world].scene,
-                                                       session->rendererOptions(v.options));
-  v.renderer->setVectorBudget(v.vectorBudget);
+  makeView(active);
   v.navigator.setCamera(camera);
 }
 
 void WindowState::setLod(double lod) {
   Viewport& v = view();
   v.options.lod = lod;
-  if (v.renderer) v.renderer->setLod(lod);
+  if (v.renderer()) v.renderer()->setLod(lod);
 }
 
 void WindowState::setVectorBudget(std::uint64_t vectors) {
   Viewport& v = view();
   v.vectorBudget = vectors;
-  if (v.renderer) v.renderer->setVectorBudget(vectors);
+  if (v.renderer()) v.renderer()->setVectorBudget(vectors);
 }
 
 void WindowState::jumpToViewpoint(std::size_t index) {
   Viewport& v = view();
-  if (!v.renderer || index >= v.renderer->viewpoints().size()) return;
+  if (!v.renderer() || index >= v.renderer()->viewpoints().size()) return;
   v.autoFrame = false;
   // The Viewpoints menu binds through the stack (4.6.10): isBound and bindTime go out and
   // updateRuntimes() moves the camera.
-  if (auto* node = const_cast<vrml::Node*>(v.renderer->viewpoints()[index].node);
+  if (auto* node = const_cast<vrml::Node*>(v.renderer()->viewpoints()[index].node);
       node != nullptr && runtimes && v.world < worlds.size()) {
     runtime::ExecutionModel& model = runtimes->of(worlds[v.world].scene, worldTime());
     const int setBind = node->type().findField("set_bind");
@@ -305,7 +322,7 @@ void WindowState::jumpToViewpoint(std::size_t index) {
     }
   }
   v.transition.from = v.navigator.camera();
-  v.transition.to = v.renderer->viewpointCamera(index);
+  v.transition.to = v.renderer()->viewpointCamera(index);
   v.transition.start = secondsNow();
 }
 
@@ -354,7 +371,7 @@ void WindowState::drawScene(int x, int y, int width, int height) {
   // Linked viewports follow the active one's camera.
   if (view().linked)
     for (Viewport& v : viewports)
-      if (&v != &view() && v.linked && v.renderer) {
+      if (&v != &view() && v.linked && v.renderer()) {
         v.navigator.setCamera(view().navigator.camera());
         v.autoFrame = false;
       }
@@ -365,13 +382,14 @@ void WindowState::drawScene(int x, int y, int width, int height) {
     v.rect.y += y;
     if (i == active)
       lastAspect = static_cast<float>(v.rect.width) / static_cast<float>(v.rect.height);
-    if (!v.renderer) continue;
+    if (!v.renderer()) continue;
     const double target = frameTarget / static_cast<double>(viewports.size());
-    v.renderer->setVectorBudget(v.autoLod ? autoLodBudget(v.vectorBudget, v.splatRate, target)
-                                          : v.vectorBudget);
+    v.renderer()->setVectorBudget(v.autoLod ? autoLodBudget(v.vectorBudget, v.splatRate, target)
+                                            : v.vectorBudget);
     const double t0 = secondsNow();
-    v.renderer->draw(v.navigator.camera(), v.rect.x, v.rect.y, v.rect.width, v.rect.height);
-    const std::uint64_t drawn = v.renderer->statistics().splats;
+    v.worldView->setRect(v.rect.x, v.rect.y, v.rect.width, v.rect.height);
+    v.worldView->draw();  // step 6 of the frame (session/world_view.hpp)
+    const std::uint64_t drawn = v.renderer()->statistics().splats;
     if (v.autoLod && drawn > 0) {
       // Hold the frame-time target: move the fraction by the ratio of target to time
       // taken (damped, at most x2 or /2 a frame). Timing waits for the GPU.
@@ -379,7 +397,7 @@ void WindowState::drawScene(int x, int y, int width, int height) {
       const double taken = std::max(secondsNow() - t0, 1e-4);
       v.splatRate = static_cast<double>(drawn) / taken;
       v.options.lod = std::clamp(v.options.lod * autoLodRatio(target, taken), 1e-4, 1.0);
-      v.renderer->setLod(v.options.lod);
+      v.renderer()->setLod(v.options.lod);
     }
   }
 }

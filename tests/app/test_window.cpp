@@ -393,3 +393,42 @@ Shape { geometry Box {} }
   REQUIRE(sideBound != std::string::npos);
   CHECK(frontBound != std::string::npos);
 }
+
+TEST_CASE("the window runs the same frame step as --snapshot: a Script-chosen Inline shows",
+          "[app][window][inline]") {
+  // The window's viewports are session::WorldViews (the owners issue): the Inline a Switch
+  // shows after a Script's initialize() is fetched and drawn, as --snapshot draws it.
+  Xvfb x;
+  if (skipWithoutXvfb(x)) return;
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(GS_BINARY_DIR) / "window-chosen";
+  fs::create_directories(dir);
+  std::ofstream(dir / "part.wrl") << R"(#VRML V2.0 utf8
+Shape { appearance Appearance { material Material { diffuseColor 1 0 0 emissiveColor 1 0 0 } }
+        geometry Box { size 4 4 4 } }
+)";
+  const fs::path world = dir / "chosen.wrl", script = dir / "chosen.script",
+                 png = dir / "chosen.png";
+  std::ofstream(world) << R"(#VRML V2.0 utf8
+Viewpoint { position 0 0 12 }
+DEF SW Switch { whichChoice -1 choice [ Inline { url "part.wrl" } ] }
+DEF S Script { eventOut SFInt32 choice url "javascript: function initialize() { choice = 0; }" }
+ROUTE S.choice TO SW.set_whichChoice
+)";
+  std::ofstream(script) << "wait-loaded\nframes 3\nwait-loaded\nscreenshot " << png.string()
+                        << "\nquit\n";
+  fs::remove(png);
+  auto r = gs::test::runGhostspace(
+      {"--size", "160x120", "--new-instance", "--script", script.string(), world.string()},
+      {"DISPLAY=" + x.display()});
+  INFO(r.err);
+  REQUIRE(r.exitCode == 0);
+  const auto image = gs::render::readPng(png.string());
+  const std::size_t i =
+      (static_cast<std::size_t>(image.height / 2) * static_cast<std::size_t>(image.width) +
+       static_cast<std::size_t>(image.width / 2)) *
+      4;
+  CHECK(image.rgba[i] > 200);
+  CHECK(image.rgba[i + 1] < 60);
+  CHECK(image.rgba[i + 2] < 60);
+}

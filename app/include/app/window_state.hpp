@@ -11,6 +11,7 @@
 #include "session/streaming_session.hpp"
 #include "session/world.hpp"
 #include "session/world_runtime.hpp"
+#include "session/world_view.hpp"
 
 #include <cstddef>
 #include <memory>
@@ -26,11 +27,15 @@ struct LogLine {
 };
 
 /// One cell of the layout. Worlds are shared: two viewports showing the same world
-/// share its scene and its streams (loaded once), each with its own renderer.
+/// share its scene and its streams (loaded once), each with its own session::WorldView
+/// (its renderer; the frame step that --snapshot runs too).
 struct Viewport {
   static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
-  std::size_t world = kNone;                        // index into WindowState::worlds
-  std::unique_ptr<render::SceneRenderer> renderer;  // null while empty
+  std::size_t world = kNone;  // index into WindowState::worlds
+  /// The world's view in this cell (WindowState::viewGroup()); null while empty.
+  std::unique_ptr<session::WorldView> worldView;
+  /// The view's renderer; null while empty.
+  render::SceneRenderer* renderer() const { return worldView ? &worldView->renderer() : nullptr; }
   render::ExamineNavigator navigator;
   render::SceneRendererOptions options;  // level of detail, mode, loaders
   /// False once the user moved this camera: until then it is framed again as the world
@@ -76,6 +81,9 @@ struct Viewport {
 
 struct WindowState {
   std::vector<gs::session::LoadedWorld> worlds;  // every world opened, in order
+  /// What the viewports' WorldViews share (made on first use over `session`, which is
+  /// not replaced after that); declared before `viewports`, which it outlives.
+  std::unique_ptr<session::ViewGroup> group;
   Layout layout = Layout::single;
   std::vector<Viewport> viewports;  // layoutCells(layout) of them
   std::size_t active = 0;           // the viewport the menus and the mouse act on
@@ -122,6 +130,12 @@ struct WindowState {
       std::make_unique<gs::session::StreamingSession>();
 
   WindowState();
+  ~WindowState();
+  WindowState(const WindowState&) = delete;
+  WindowState& operator=(const WindowState&) = delete;
+
+  /// The ViewGroup of every viewport (made over `session` on the first call).
+  session::ViewGroup& viewGroup();
 
   /// The active viewport (there is always at least one).
   Viewport& view() { return viewports[active]; }
@@ -206,9 +220,14 @@ struct WindowState {
   /// Viewport::kNone after logging why not.
   std::size_t load(const std::string& path);
   void home(Viewport& v);
-  /// Once per frame from update(): every world's execution model to the window's clock,
-  /// bound nodes to the renderers, a newly bound Viewpoint to the camera.
-  void updateRuntimes();
+  /// Makes viewport `index` a new WorldView of its world with its options (the old
+  /// view's GL objects go first, while the context is current).
+  void makeView(std::size_t index);
+  /// Once per frame from update(): the execution models made (first call), every world
+  /// to the window's clock, each viewport's WorldView::update (the frame step shared with
+  /// --snapshot), a newly bound Viewpoint to the camera, sounds, messages. Returns
+  /// whether a pump changed a scene.
+  bool updateViews();
 };
 
 /// Draws the main menu bar (File, View, Viewpoints, Help) and acts on it; returns its
