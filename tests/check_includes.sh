@@ -52,5 +52,13 @@ for m in "${modules[@]}"; do
     fi
   done < <(grep -rnE '^#include "[^"/]+/' "$m" --include='*.cpp' --include='*.hpp' || true)
 done
+# What needs no OpenGL stays free of it: scene/ (traversal, picking, collision, world
+# triangles) and the modules above it that draw nothing (outline/: `encode --outline`).
+gl=$(grep -rnE '^#include [<"](glad/|GL/|GLFW/|render/)' scene outline --include='*.cpp' --include='*.hpp' || true)
+if [[ -n $gl ]]; then
+  echo "$gl"
+  echo "scene/ and outline/ must not include OpenGL, GLFW or render/ headers (docs/architecture.md)"
+  status=1
+fi
 if ((status == 0)); then echo "check_includes: ${#modules[@]} modules, every include is a listed dependency"; fi
 exit $status

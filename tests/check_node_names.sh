@@ -12,7 +12,7 @@ names=$(sed -n 's/^GS_NODE_TYPE(\(.*\))$/\1/p' vrml/include/vrml/node_model_type
 pattern="(==|!=) *\"($names)\"|\"($names)\" *(==|!=)|\\{ *\"($names)\" *,"
 hits=$(git ls-files 'app/*.cpp' 'app/*.hpp' 'audio/*.cpp' 'audio/*.hpp' 'base/*.cpp' 'base/*.hpp' \
          'formats/*.cpp' 'formats/*.hpp' 'net/*.cpp' 'net/*.hpp' 'outline/*.cpp' 'outline/*.hpp' \
-         'qnv/*.cpp' 'qnv/*.hpp' 'render/*.cpp' 'render/*.hpp' 'runtime/*.cpp' 'runtime/*.hpp' \
+         'qnv/*.cpp' 'qnv/*.hpp' 'render/*.cpp' 'render/*.hpp' 'scene/*.cpp' 'scene/*.hpp' 'runtime/*.cpp' 'runtime/*.hpp' \
          'session/*.cpp' 'session/*.hpp' 'vrml/*.cpp' 'vrml/*.hpp' |
        grep -v -e '^vrml/src/node_table_data.cpp$' -e '^vrml/src/node_model_data_[0-9]*.cpp$' |
        xargs grep -nE "$pattern" || true)

@@ -143,7 +143,7 @@ Parsed parseArguments(int argc, char** argv) {
     return r;
   }
   o.layout = layoutFromName(a.layout).value_or(Layout::single);  // checked by IsMember
-  o.mode = render::renderModeFromName(a.mode).value_or(render::RenderMode::polygons);
+  o.mode = scene::renderModeFromName(a.mode).value_or(scene::RenderMode::polygons);
   if (render::SplatPath path; render::parseSplatPath(a.splatPath.c_str(), path))
     o.splatPath = path;  // checked by IsMember
   if (!a.size.empty() && !parseSize(a.size, o.width, o.height)) {

@@ -15,7 +15,7 @@
 #include "formats/volume_slabs.hpp"
 #include "qnv/encoder.hpp"
 #include "qnv/error.hpp"
-#include "render/world_triangles.hpp"
+#include "scene/world_triangles.hpp"
 #include "session/mesh_input.hpp"
 #include "session/volume_input.hpp"
 #include "session/world.hpp"
@@ -211,7 +211,7 @@ int runEncode(const Options& options) {
         for (const vrml::Diagnostic& d : world.scene->diagnostics.items)
           std::fprintf(stderr, "%s\n", d.format().c_str());
         if (!world.readable) return 1;
-        mesh = render::worldTriangles(world.scene);
+        mesh = scene::worldTriangles(world.scene);
       }
       qnv::SurfaceEncodeOptions v;
       v.selection = s.selection;

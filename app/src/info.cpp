@@ -1,7 +1,7 @@
 // `ghostspace info INPUT`: what was read, how big it is, how long parsing took.
 #include "app/commands.hpp"
 #include "formats/input_kind.hpp"
-#include "render/traversal.hpp"
+#include "scene/traversal.hpp"
 #include "session/world.hpp"
 #include "vrml/node_support.hpp"
 
@@ -47,8 +47,8 @@ int runInfo(const Options& options) {
     for (const auto& [type, count] : session::countNodesByType(*w.scene))
       std::printf("    %-24s %zu\n", type.c_str(), count);
 
-    render::SceneTraversal traversal(w.scene);
-    render::TraversalFrame frame;
+    scene::SceneTraversal traversal(w.scene);
+    scene::TraversalFrame frame;
     traversal.collect(traversal.boundViewpointCamera(), frame);
     std::size_t triangles = 0;
     for (const auto& s : frame.shapes) triangles += traversal.mesh(*s.geometry).triangleCount();

@@ -7,7 +7,7 @@
 
 #include "app/layout.hpp"
 #include "render/splat_renderer.hpp"
-#include "render/traversal.hpp"
+#include "scene/traversal.hpp"
 
 namespace gs::app {
 
@@ -17,7 +17,7 @@ Arguments::Arguments() {
   std::snprintf(text, sizeof text, "%g", options.lod);
   lod = text;
   layout = std::string(layoutName(options.layout));
-  mode = render::renderModeName(options.mode);
+  mode = scene::renderModeName(options.mode);
   splatPath = render::splatPathName(render::SplatPath::automatic);
   scriptMegabytes = static_cast<double>(options.time.scriptLimits.heapBytes) / 1048576.0;
 }
@@ -35,7 +35,7 @@ std::vector<std::string> layoutNames() {
 
 std::vector<std::string> modeNames() {
   std::vector<std::string> names;
-  for (const render::RenderModeInfo& m : render::kRenderModes) names.emplace_back(m.name);
+  for (const scene::RenderModeInfo& m : scene::kRenderModes) names.emplace_back(m.name);
   return names;
 }
 

@@ -2,7 +2,7 @@
 #include "base/url.hpp"
 #include "formats/input_kind.hpp"
 
-#include "render/traversal.hpp"
+#include "scene/traversal.hpp"
 
 #include <spawn.h>
 #include <sys/wait.h>
@@ -17,10 +17,10 @@ extern char** environ;
 
 namespace gs::app {
 
-runtime::PickResult toPickResult(const render::PickHit& hit) {
+runtime::PickResult toPickResult(const scene::PickHit& hit) {
   runtime::PickResult r;
   r.path.reserve(hit.path.size());
-  for (const render::PathStep& step : hit.path)
+  for (const scene::PathStep& step : hit.path)
     r.path.push_back({const_cast<vrml::Node*>(step.node), step.localToWorld, step.children});
   r.point = hit.point;
   r.normal = hit.normal;
@@ -28,16 +28,15 @@ runtime::PickResult toPickResult(const render::PickHit& hit) {
   return r;
 }
 
-runtime::PointerEvent pointerEventAt(render::SceneTraversal& traversal,
-                                     const render::Camera& camera, int width, int height, float x,
-                                     float y, bool buttonDown) {
+runtime::PointerEvent pointerEventAt(scene::SceneTraversal& traversal, const scene::Camera& camera,
+                                     int width, int height, float x, float y, bool buttonDown) {
   runtime::PointerEvent e;
-  const render::Ray ray = render::rayThroughPixel(camera, width, height, x, y);
+  const scene::Ray ray = scene::rayThroughPixel(camera, width, height, x, y);
   e.rayOrigin = ray.origin;
   e.rayDirection = ray.direction;
   e.buttonDown = buttonDown;
   if (x >= 0.0f && y >= 0.0f && x < static_cast<float>(width) && y < static_cast<float>(height))
-    if (auto hit = render::pick(traversal, camera, ray)) e.hit = toPickResult(*hit);
+    if (auto hit = scene::pick(traversal, camera, ray)) e.hit = toPickResult(*hit);
   return e;
 }
 

@@ -107,10 +107,10 @@ int runSnapshot(const Options& options) {
     // A glTF asset without a camera is framed whole too, as glTF viewers do (asked when
     // drawn: the encoding is known once the asset has arrived).
     v->setCamera([fit, scene = scenes[k]](render::SceneRenderer& r, float aspect) {
-      render::Camera c = r.boundViewpointCamera();
+      scene::Camera c = r.boundViewpointCamera();
       const bool gltf = scene->x3d.encoding == "glTF";
       if (fit || (gltf && r.viewpoints().empty())) c = r.fitToScene(aspect, c);
-      render::fitClipPlanes(c, r.bounds(), r.navigation().nearClip());
+      scene::fitClipPlanes(c, r.bounds(), r.navigation().nearClip());
       return c;
     });
     views.push_back(std::move(v));

@@ -5,8 +5,8 @@
 #include "app/single_instance.hpp"
 #include "app/window_script.hpp"
 #include "app/window_state.hpp"
-#include "render/collision.hpp"
 #include "render/context.hpp"
+#include "scene/collision.hpp"
 
 #include <GLFW/glfw3.h>
 #include <imgui.h>
@@ -49,7 +49,7 @@ struct ImGuiSession {
 /// the terrain at once; deeper falls continue under gravity (applyGravity).
 float avatarStep(const WindowState& state) {
   const auto& renderer = state.view().renderer();
-  return renderer ? render::Avatar::of(renderer->navigation()).stepHeight : 0.75f;
+  return renderer ? scene::Avatar::of(renderer->navigation()).stepHeight : 0.75f;
 }
 
 void navigate(WindowState& state, int menuHeight, int viewportHeight) {
@@ -73,11 +73,11 @@ void navigate(WindowState& state, int menuHeight, int viewportHeight) {
         state.viewportAt(io.MousePos.x, io.MousePos.y - menuHeight, viewportHeight);
     if (under != Viewport::kNone) state.active = under;
   }
-  render::ExamineNavigator& navigator = state.view().navigator;
+  scene::ExamineNavigator& navigator = state.view().navigator;
   viewportHeight = std::max(1, state.view().rect.height);
   const float dx = io.MouseDelta.x, dy = io.MouseDelta.y;
   const bool moved = dx != 0.0f || dy != 0.0f;
-  const bool examine = navigator.mode() == render::NavigationMode::examine;
+  const bool examine = navigator.mode() == scene::NavigationMode::examine;
   if (io.MouseDown[0] && moved && !state.pointerHeld) {
     if (io.KeyShift)
       navigator.pan(dx, dy, viewportHeight);

@@ -1,9 +1,9 @@
 // The window's viewer against its world (issue 11 points 6 and 7): WALK and FLY stop at
-// walls and WALK falls and follows the terrain (render::walkStep, ISO/IEC 14772-1:1997
+// walls and WALK falls and follows the terrain (scene::walkStep, ISO/IEC 14772-1:1997
 // 6.29), Collision nodes met send collideTime (6.8); Back and Forward through the worlds
 // Anchor links opened in a viewport.
 #include "app/window_state.hpp"
-#include "render/collision.hpp"
+#include "scene/collision.hpp"
 
 #include <algorithm>
 #include <limits>
@@ -16,7 +16,7 @@ constexpr float kGravity = 9.81f;  // metres per second squared
 
 /// Applies a walkStep result to viewport `v` of `state`: the camera, the gravity state,
 /// collideTime for the Collision nodes met.
-void take(WindowState& state, Viewport& v, const render::WalkResult& r) {
+void take(WindowState& state, Viewport& v, const scene::WalkResult& r) {
   v.navigator.setCamera(r.camera);
   v.gravity.settled = r.grounded;
   v.gravity.at = r.camera.position;
@@ -33,32 +33,32 @@ void take(WindowState& state, Viewport& v, const render::WalkResult& r) {
 void WindowState::moveViewer(float forward, float right, float up, float maxFall) {
   Viewport& v = view();
   v.autoFrame = false;
-  if (!v.renderer() || v.navigator.mode() == render::NavigationMode::examine) {
+  if (!v.renderer() || v.navigator.mode() == scene::NavigationMode::examine) {
     v.navigator.move(forward, right, up);
     return;
   }
-  render::WalkOptions options;
+  scene::WalkOptions options;
   options.mode = v.navigator.mode();
   options.maxFall = maxFall;
-  const render::WalkResult r =
-      render::walkStep(v.renderer()->traversal(), v.navigator.camera(),
-                       v.navigator.motion(forward, right, up), v.renderer()->navigation(), options);
+  const scene::WalkResult r =
+      scene::walkStep(v.renderer()->traversal(), v.navigator.camera(),
+                      v.navigator.motion(forward, right, up), v.renderer()->navigation(), options);
   take(*this, v, r);
 }
 
 void WindowState::applyGravity(float seconds) {
   seconds = std::clamp(seconds, 0.0f, 0.1f);
   for (Viewport& v : viewports) {
-    if (!v.renderer() || v.navigator.mode() != render::NavigationMode::walk ||
+    if (!v.renderer() || v.navigator.mode() != scene::NavigationMode::walk ||
         v.transition.start >= 0.0)
       continue;
     if (v.gravity.settled && v.gravity.at == v.navigator.camera().position) continue;
     v.gravity.speed += kGravity * seconds;
-    render::WalkOptions options;
+    scene::WalkOptions options;
     options.maxFall = v.gravity.speed * seconds;
     take(*this, v,
-         render::walkStep(v.renderer()->traversal(), v.navigator.camera(), glm::vec3(0.0f),
-                          v.renderer()->navigation(), options));
+         scene::walkStep(v.renderer()->traversal(), v.navigator.camera(), glm::vec3(0.0f),
+                         v.renderer()->navigation(), options));
   }
 }
 

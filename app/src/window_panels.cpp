@@ -216,13 +216,13 @@ int drawMenuBar(WindowState& state, float aspect) {
         state.view().renderer()->setHeadlight(headlight);
     }
     ImGui::Separator();
-    const render::RenderMode mode = state.view().options.traversal.mode;
-    if (ImGui::MenuItem("Polygons", nullptr, mode == render::RenderMode::polygons))
-      state.setMode(render::RenderMode::polygons);
-    if (ImGui::MenuItem("Splats (QNV)", nullptr, mode == render::RenderMode::splats))
-      state.setMode(render::RenderMode::splats);
-    if (ImGui::MenuItem("Outlines only", nullptr, mode == render::RenderMode::outlines))
-      state.setMode(render::RenderMode::outlines);
+    const scene::RenderMode mode = state.view().options.traversal.mode;
+    if (ImGui::MenuItem("Polygons", nullptr, mode == scene::RenderMode::polygons))
+      state.setMode(scene::RenderMode::polygons);
+    if (ImGui::MenuItem("Splats (QNV)", nullptr, mode == scene::RenderMode::splats))
+      state.setMode(scene::RenderMode::splats);
+    if (ImGui::MenuItem("Outlines only", nullptr, mode == scene::RenderMode::outlines))
+      state.setMode(scene::RenderMode::outlines);
     float lod = static_cast<float>(state.view().options.lod);
     if (ImGui::SliderFloat("Level of detail", &lod, 0.001f, 1.0f, "%.3f",
                            ImGuiSliderFlags_Logarithmic))
@@ -234,13 +234,13 @@ int drawMenuBar(WindowState& state, float aspect) {
       state.setVectorBudget(static_cast<std::uint64_t>(std::max(budget, 0)));
     ImGui::Separator();
     ImGui::Separator();
-    const render::NavigationMode nav = state.view().navigator.mode();
-    if (ImGui::MenuItem("Examine", nullptr, nav == render::NavigationMode::examine))
-      state.setNavigation(render::NavigationMode::examine);
-    if (ImGui::MenuItem("Walk", nullptr, nav == render::NavigationMode::walk))
-      state.setNavigation(render::NavigationMode::walk);
-    if (ImGui::MenuItem("Fly", nullptr, nav == render::NavigationMode::fly))
-      state.setNavigation(render::NavigationMode::fly);
+    const scene::NavigationMode nav = state.view().navigator.mode();
+    if (ImGui::MenuItem("Examine", nullptr, nav == scene::NavigationMode::examine))
+      state.setNavigation(scene::NavigationMode::examine);
+    if (ImGui::MenuItem("Walk", nullptr, nav == scene::NavigationMode::walk))
+      state.setNavigation(scene::NavigationMode::walk);
+    if (ImGui::MenuItem("Fly", nullptr, nav == scene::NavigationMode::fly))
+      state.setNavigation(scene::NavigationMode::fly);
     ImGui::MenuItem("Link this viewport's camera", nullptr, &state.view().linked);
     ImGui::Separator();
     for (const LayoutInfo& l : kLayouts) {

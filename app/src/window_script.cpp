@@ -70,7 +70,7 @@ void writeStatus(WindowState& state, const std::string& path) {
     const Viewport& v = state.viewports[i];
     const char* navs[] = {"EXAMINE", "WALK", "FLY"};
     out << i << " " << (v.world < state.worlds.size() ? state.worlds[v.world].scene->url : "-")
-        << " " << v.options.lod << " " << render::renderModeName(v.options.traversal.mode) << " "
+        << " " << v.options.lod << " " << scene::renderModeName(v.options.traversal.mode) << " "
         << navs[static_cast<int>(v.navigator.mode())] << " "
         << (v.renderer() ? v.renderer()->statistics().splats : 0) << "\n";
   }
@@ -133,11 +133,11 @@ const std::vector<WindowScript::Verb>& WindowScript::verbs() {
          }},
         {"mode",
          [](const Command& c) {
-           return unless(render::renderModeFromName(c.argument).has_value(),
+           return unless(scene::renderModeFromName(c.argument).has_value(),
                          "mode polygons, splats or outlines");
          },
          [](WindowScript&, WindowState& state, const Command& c, int, int) {
-           state.setMode(*render::renderModeFromName(c.argument));
+           state.setMode(*scene::renderModeFromName(c.argument));
            return Next::go;
          }},
         {"wait-loaded", anyArgument,
@@ -319,7 +319,7 @@ const std::vector<WindowScript::Verb>& WindowScript::verbs() {
              if (!held && state.view().renderer()) {  // no sensor holds it: the drag navigates
                Viewport& v = state.view();
                const int h = std::max(1, v.rect.height);
-               if (v.navigator.mode() == render::NavigationMode::examine)
+               if (v.navigator.mode() == scene::NavigationMode::examine)
                  v.navigator.orbit(s.pointerX_ - x0, s.pointerY_ - y0, h);
                else
                  v.navigator.look(s.pointerX_ - x0, s.pointerY_ - y0, h);

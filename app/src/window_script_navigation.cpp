@@ -1,7 +1,7 @@
 // Window script commands for navigation (app/window_script.hpp): the navigation type,
 // walking against the world, Back / Forward, the camera's position.
 #include "app/window_script.hpp"
-#include "render/collision.hpp"
+#include "scene/collision.hpp"
 
 #include <fstream>
 #include <limits>
@@ -14,10 +14,10 @@ namespace gs::app {
 
 namespace {
 
-std::optional<render::NavigationMode> modeNamed(const std::string& name) {
-  if (name == "EXAMINE") return render::NavigationMode::examine;
-  if (name == "WALK") return render::NavigationMode::walk;
-  if (name == "FLY") return render::NavigationMode::fly;
+std::optional<scene::NavigationMode> modeNamed(const std::string& name) {
+  if (name == "EXAMINE") return scene::NavigationMode::examine;
+  if (name == "WALK") return scene::NavigationMode::walk;
+  if (name == "FLY") return scene::NavigationMode::fly;
   return std::nullopt;
 }
 

@@ -32,7 +32,7 @@ void WindowState::makeView(std::size_t index) {
   v.worldView = std::make_unique<session::WorldView>(viewGroup(), worlds[v.world].scene, v.options);
   // The view draws, and its world's sensors see, the viewport's navigated camera.
   v.worldView->setCamera([this, index](render::SceneRenderer&, float) {
-    return index < viewports.size() ? viewports[index].navigator.camera() : render::Camera{};
+    return index < viewports.size() ? viewports[index].navigator.camera() : scene::Camera{};
   });
   v.worldView->setRect(v.rect.x, v.rect.y, v.rect.width, v.rect.height);
   v.worldView->renderer().setVectorBudget(v.vectorBudget);
@@ -154,7 +154,7 @@ double secondsNow() {
 
 }  // namespace
 
-void WindowState::setNavigation(render::NavigationMode mode) {
+void WindowState::setNavigation(scene::NavigationMode mode) {
   view().navigator.setMode(mode);
   view().navigationChosen = true;
 }
@@ -250,15 +250,15 @@ void WindowState::home(Viewport& v) {
   if (!v.renderer()) return;
   // A world's NavigationInfo chooses the navigation; without one, EXAMINE (as most
   // browsers do for a model) rather than VRML97's default WALK.
-  const render::NavigationSettings& nav = v.renderer()->navigation();
+  const scene::NavigationSettings& nav = v.renderer()->navigation();
   if (!v.navigationChosen)
     v.navigator.setMode(nav.node != nullptr
-                            ? render::navigationModeOf(nav.type, render::NavigationMode::examine)
-                            : render::NavigationMode::examine);
+                            ? scene::navigationModeOf(nav.type, scene::NavigationMode::examine)
+                            : scene::NavigationMode::examine);
   const float aspect = static_cast<float>(v.rect.width) / static_cast<float>(v.rect.height);
   // The bound Viewpoint; a world without one is framed whole (a KiCad part, say, lies
   // far from the VRML97 default viewpoint's view), as other browsers do.
-  render::Camera camera = v.renderer()->initialCamera(aspect > 0.0f ? aspect : lastAspect);
+  scene::Camera camera = v.renderer()->initialCamera(aspect > 0.0f ? aspect : lastAspect);
   const vrml::Bounds& b = v.renderer()->bounds();
   // Orbit around the point of the view axis nearest the scene's centre.
   glm::vec3 center = camera.position + camera.forward() * 10.0f;
@@ -279,16 +279,16 @@ void WindowState::fitToScene() {
   Viewport& v = view();
   if (!v.renderer()) return;
   v.autoFrame = false;
-  const render::Camera fitted = v.renderer()->fitToScene(lastAspect, v.navigator.camera());
+  const scene::Camera fitted = v.renderer()->fitToScene(lastAspect, v.navigator.camera());
   v.navigator.setHome(fitted, v.renderer()->bounds().center());
 }
 
-void WindowState::setMode(render::RenderMode mode) {
+void WindowState::setMode(scene::RenderMode mode) {
   Viewport& v = view();
   v.options.traversal.mode = mode;
   rendererOptions.traversal.mode = mode;  // for viewports made later
   if (!v.renderer()) return;
-  const render::Camera camera = v.navigator.camera();
+  const scene::Camera camera = v.navigator.camera();
   makeView(active);
   v.navigator.setCamera(camera);
 }
@@ -361,7 +361,7 @@ void WindowState::drawScene(int x, int y, int width, int height) {
     // Smoothstep from the old camera to the Viewpoint's.
     const double t = std::clamp((now - v.transition.start) / 1.0, 0.0, 1.0);
     const float s = static_cast<float>(t * t * (3.0 - 2.0 * t));
-    render::Camera c = v.transition.to;
+    scene::Camera c = v.transition.to;
     c.position = glm::mix(v.transition.from.position, v.transition.to.position, s);
     c.orientation = glm::slerp(v.transition.from.orientation, v.transition.to.orientation, s);
     c.fieldOfView = glm::mix(v.transition.from.fieldOfView, v.transition.to.fieldOfView, s);

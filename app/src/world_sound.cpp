@@ -8,8 +8,8 @@ WorldSounds::WorldSounds(bool enabled, session::FetchWhole fetch)
     : output_(audio::openAudioOutput(enabled, note_)), fetch_(std::move(fetch)) {}
 
 void WorldSounds::update(const std::shared_ptr<const vrml::Scene>& scene,
-                         const render::Camera& camera, session::WorldRuntimes& runtimes, double now,
-                         const render::SceneTraversal* traversal) {
+                         const scene::Camera& camera, session::WorldRuntimes& runtimes, double now,
+                         const scene::SceneTraversal* traversal) {
   if (!scene) return;
   auto& s = scenes_[scene.get()];
   if (!s) {
@@ -23,7 +23,7 @@ void WorldSounds::update(const std::shared_ptr<const vrml::Scene>& scene,
   }
   runtime::ExecutionModel& model = runtimes.of(scene, now);
   s->update(
-      render::viewMatrix(camera),
+      scene::viewMatrix(camera),
       [&model](const vrml::Node& clip) -> std::optional<audio::ClipTime> {
         const auto m = model.media(clip);
         if (!m) return std::nullopt;

@@ -14,7 +14,7 @@
 #include <glm/matrix.hpp>
 
 #include "qnv/error.hpp"
-#include "render/traversal.hpp"
+#include "scene/traversal.hpp"
 
 namespace gs::outline {
 
@@ -125,10 +125,10 @@ struct Flattened {
 };
 
 /// Material id = appearance index * 2 + solid.
-Flattened flatten(render::SceneTraversal& traversal, const render::TraversalFrame& frame) {
+Flattened flatten(scene::SceneTraversal& traversal, const scene::TraversalFrame& frame) {
   Flattened f;
   std::map<std::string, std::uint32_t> appearanceIndex;
-  for (const render::ShapeInstance& shape : frame.shapes) {
+  for (const scene::ShapeInstance& shape : frame.shapes) {
     const vrml::Mesh& mesh = traversal.mesh(*shape.geometry);
     if (mesh.primitive != vrml::Primitive::triangles || mesh.indices.empty()) continue;
     auto materialOf = [&](const glm::vec3* color) {
@@ -186,10 +186,9 @@ bool needsNormals(const PolygonGroup& g) {
   return false;
 }
 
-void writeBindables(Writer& w, const render::SceneTraversal& t,
-                    const render::TraversalFrame& frame) {
+void writeBindables(Writer& w, const scene::SceneTraversal& t, const scene::TraversalFrame& frame) {
   if (t.navigation().node) {
-    const render::NavigationSettings& n = t.navigation();
+    const scene::NavigationSettings& n = t.navigation();
     w << "NavigationInfo { type [";
     for (const std::string& s : n.type) w.str(s) << " ";
     w << "] headlight " << (n.headlight ? "TRUE" : "FALSE") << " speed ";
@@ -199,7 +198,7 @@ void writeBindables(Writer& w, const render::SceneTraversal& t,
     w.num(n.visibilityLimit) << " }\n";
   }
   if (t.background().node) {
-    const render::BackgroundSettings& b = t.background();
+    const scene::BackgroundSettings& b = t.background();
     w << "Background {\n  ";
     w.vectors("skyColor", b.skyColor, "    ");
     w << "\n  ";
@@ -211,13 +210,13 @@ void writeBindables(Writer& w, const render::SceneTraversal& t,
     w << "\n}\n";
   }
   if (t.fog().node) {
-    const render::FogSettings& fog = t.fog();
+    const scene::FogSettings& fog = t.fog();
     w << "Fog { color ";
     w.vec(fog.color) << " fogType " << (fog.exponential ? "\"EXPONENTIAL\"" : "\"LINEAR\"")
                      << " visibilityRange ";
     w.num(fog.visibilityRange) << " }\n";
   }
-  for (const render::ViewpointInfo& v : t.viewpoints()) {
+  for (const scene::ViewpointInfo& v : t.viewpoints()) {
     const glm::quat q = glm::normalize(v.camera.orientation);
     const float angle = 2.0f * std::acos(std::clamp(q.w, -1.0f, 1.0f));
     const float s = std::sqrt(std::max(0.0f, 1.0f - q.w * q.w));
@@ -229,25 +228,25 @@ void writeBindables(Writer& w, const render::SceneTraversal& t,
     w.num(v.camera.fieldOfView) << " description ";
     w.str(v.description) << " }\n";
   }
-  for (const render::LightInstance& l : frame.lights) {
-    const char* type = l.type == render::LightType::directional ? "DirectionalLight"
-                       : l.type == render::LightType::point     ? "PointLight"
-                                                                : "SpotLight";
+  for (const scene::LightInstance& l : frame.lights) {
+    const char* type = l.type == scene::LightType::directional ? "DirectionalLight"
+                       : l.type == scene::LightType::point     ? "PointLight"
+                                                               : "SpotLight";
     w << type << " { color ";
     w.vec(l.color) << " intensity ";
     w.num(l.intensity) << " ambientIntensity ";
     w.num(l.ambientIntensity);
-    if (l.type != render::LightType::point) {
+    if (l.type != scene::LightType::point) {
       w << " direction ";
       w.vec(l.direction);
     }
-    if (l.type != render::LightType::directional) {
+    if (l.type != scene::LightType::directional) {
       w << " location ";
       w.vec(l.location) << " attenuation ";
       w.vec(l.attenuation) << " radius ";
       w.num(l.radius);
     }
-    if (l.type == render::LightType::spot) {
+    if (l.type == scene::LightType::spot) {
       w << " beamWidth ";
       w.num(l.beamWidth) << " cutOffAngle ";
       w.num(l.cutOffAngle);
@@ -261,8 +260,8 @@ void writeBindables(Writer& w, const render::SceneTraversal& t,
 std::string writeOutlineWorld(std::shared_ptr<const vrml::Scene> scene,
                               const OutlineOptions& options, OutlineWorldSummary* summary) {
   const std::string url = scene->url;
-  render::SceneTraversal traversal(std::move(scene));
-  render::TraversalFrame frame;
+  scene::SceneTraversal traversal(std::move(scene));
+  scene::TraversalFrame frame;
   traversal.collect(traversal.boundViewpointCamera(), frame);
   const Flattened flat = flatten(traversal, frame);
   OutlineSummary os;

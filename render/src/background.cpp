@@ -2,7 +2,7 @@
 // triangle (or a plain clear for a single sky colour), then the panorama cube.
 #include "gl_program.hpp"
 #include "gpu_resources.hpp"
-#include "node_access.hpp"
+#include "scene/node_access.hpp"
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -32,8 +32,8 @@ constexpr Face kFaceTable[BackgroundPass::kFaces] = {
 
 }  // namespace
 
-void BackgroundPass::draw(const BackgroundSettings& background, const glm::mat4& view,
-                          const glm::mat4& projection, SceneTraversal& traversal,
+void BackgroundPass::draw(const scene::BackgroundSettings& background, const glm::mat4& view,
+                          const glm::mat4& projection, scene::SceneTraversal& traversal,
                           const ResourceLoader& loader) {
   const glm::mat4 rotationOnly = glm::mat4(glm::mat3(view));
   GLboolean depthTest = glIsEnabled(GL_DEPTH_TEST);
@@ -48,7 +48,7 @@ void BackgroundPass::draw(const BackgroundSettings& background, const glm::mat4&
   if (depthTest) glEnable(GL_DEPTH_TEST);
 }
 
-void BackgroundPass::drawGradient(const BackgroundSettings& background,
+void BackgroundPass::drawGradient(const scene::BackgroundSettings& background,
                                   const glm::mat4& rotationOnly, const glm::mat4& projection) {
   const int skyCount =
       std::min<int>(static_cast<int>(background.skyColor.size()), kMaxBackgroundColors);
@@ -95,9 +95,9 @@ void BackgroundPass::drawGradient(const BackgroundSettings& background,
   glBindVertexArray(0);
 }
 
-void BackgroundPass::drawPanorama(const BackgroundSettings& background,
+void BackgroundPass::drawPanorama(const scene::BackgroundSettings& background,
                                   const glm::mat4& rotationOnly, const glm::mat4& projection,
-                                  SceneTraversal& traversal, const ResourceLoader& loader) {
+                                  scene::SceneTraversal& traversal, const ResourceLoader& loader) {
   const vrml::Node& node = *background.node;
   const std::uint64_t revision = vrml::revisionWithFields(node);
   if (&node != facesNode_ || revision != facesRevision_) {
@@ -109,7 +109,7 @@ void BackgroundPass::drawPanorama(const BackgroundSettings& background,
   for (int f = 0; f < kFaces; ++f) {
     const auto i = static_cast<std::size_t>(f);
     if (!faceDone_[i]) {
-      const std::vector<std::string>& urls = mfString(node, kFaceTable[i].field);
+      const std::vector<std::string>& urls = scene::mfString(node, kFaceTable[i].field);
       if (urls.empty()) {
         faceDone_[i] = true;
         continue;

@@ -8,7 +8,7 @@
 #include "render/image.hpp"
 #include "render/movie_players.hpp"
 #include "render/scene_renderer.hpp"
-#include "render/traversal.hpp"
+#include "scene/traversal.hpp"
 #include "vrml/geometry.hpp"
 #include "vrml/parser.hpp"
 
@@ -72,7 +72,7 @@ class MovieTextures {
   /// The texture of MovieTexture `node` for this frame; components 0 until its first
   /// frame is decoded (or when it cannot be read: a warning naming the url, once).
   const GpuTexture& get(const vrml::Node& node, const std::string& baseUrl,
-                        SceneTraversal& traversal, const ResourceLoader& loader);
+                        scene::SceneTraversal& traversal, const ResourceLoader& loader);
   /// With `waitForFrames`, also waits for the movies met so far to open, so that their
   /// durations are known before the next draw.
   void setClock(MediaClock clock, bool waitForFrames);
@@ -108,7 +108,7 @@ class TextureCache {
   /// URLs resolve against `baseUrl`. Failures are reported to `traversal` once and give a
   /// texture with 0 components.
   const GpuTexture& get(const vrml::Node& node, const std::string& baseUrl,
-                        SceneTraversal& traversal, const ResourceLoader& loader);
+                        scene::SceneTraversal& traversal, const ResourceLoader& loader);
   void release();
   MovieTextures movies;
 
@@ -150,18 +150,19 @@ class BackgroundPass {
   /// Fills the current viewport. Only the view's rotation matters (the Background is at
   /// infinity): `view` is the camera's view matrix, `projection` its projection. Leaves
   /// depth writes and the depth buffer untouched.
-  void draw(const BackgroundSettings& background, const glm::mat4& view,
-            const glm::mat4& projection, SceneTraversal& traversal, const ResourceLoader& loader);
+  void draw(const scene::BackgroundSettings& background, const glm::mat4& view,
+            const glm::mat4& projection, scene::SceneTraversal& traversal,
+            const ResourceLoader& loader);
   void release();
 
   /// The faces in the order of their fields: back, bottom, front, left, right, top.
   static constexpr int kFaces = 6;
 
  private:
-  void drawGradient(const BackgroundSettings& background, const glm::mat4& rotationOnly,
+  void drawGradient(const scene::BackgroundSettings& background, const glm::mat4& rotationOnly,
                     const glm::mat4& projection);
-  void drawPanorama(const BackgroundSettings& background, const glm::mat4& rotationOnly,
-                    const glm::mat4& projection, SceneTraversal& traversal,
+  void drawPanorama(const scene::BackgroundSettings& background, const glm::mat4& rotationOnly,
+                    const glm::mat4& projection, scene::SceneTraversal& traversal,
                     const ResourceLoader& loader);
   void releaseFaces();
 

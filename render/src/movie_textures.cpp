@@ -7,7 +7,7 @@
 #include "base/file.hpp"
 #include "base/url.hpp"
 #include "gpu_resources.hpp"
-#include "node_access.hpp"
+#include "scene/node_access.hpp"
 
 #include <memory>
 #include <utility>
@@ -20,7 +20,7 @@ namespace {
 LoadStatus readMovie(const vrml::Node& node, const std::string& baseUrl,
                      const ResourceLoader& loader, std::string& url, std::string& bytes,
                      std::string& failures) {
-  for (const std::string& reference : mfString(node, "url")) {
+  for (const std::string& reference : scene::mfString(node, "url")) {
     if (reference.empty()) continue;
     url = base::resolveUrl(baseUrl, reference);
     std::string error;
@@ -45,7 +45,7 @@ LoadStatus readMovie(const vrml::Node& node, const std::string& baseUrl,
 /// player in MoviePlayers.
 std::string playerKey(const vrml::Node& node, const std::string& baseUrl) {
   std::string key;
-  for (const std::string& reference : mfString(node, "url"))
+  for (const std::string& reference : scene::mfString(node, "url"))
     if (!reference.empty()) key += base::resolveUrl(baseUrl, reference) + '\n';
   return key;
 }
@@ -61,7 +61,8 @@ MovieGlTexture::~MovieGlTexture() {
 }
 
 const GpuTexture& MovieTextures::get(const vrml::Node& node, const std::string& baseUrl,
-                                     SceneTraversal& traversal, const ResourceLoader& loader) {
+                                     scene::SceneTraversal& traversal,
+                                     const ResourceLoader& loader) {
   static const GpuTexture kNone;  // untextured
   Movie& m = movies_[&node];
   if (m.failed) return kNone;
@@ -127,7 +128,8 @@ const GpuTexture& MovieTextures::get(const vrml::Node& node, const std::string& 
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, frame->width, frame->height, 0, GL_RGBA,
                  GL_UNSIGNED_BYTE, pixels);
-    const bool repeatS = sfBool(node, "repeatS", true), repeatT = sfBool(node, "repeatT", true);
+    const bool repeatS = scene::sfBool(node, "repeatS", true),
+               repeatT = scene::sfBool(node, "repeatT", true);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, repeatS ? GL_REPEAT : GL_CLAMP_TO_EDGE);

@@ -7,7 +7,7 @@
 
 #include "gl_program.hpp"
 #include "gpu_resources.hpp"
-#include "node_access.hpp"
+#include "scene/node_access.hpp"
 #include "surface_programs.hpp"
 
 #include <glm/gtc/matrix_inverse.hpp>
@@ -60,8 +60,8 @@ const vrml::Node* sfnodeOf(const vrml::Node& n, std::string_view field) {
 // X3D 4's PhysicalMaterial and UnlitMaterial; their own textures win over
 // Appearance.texture (X3D 4.0 clause 12.4.2).
 void readX3dMaterial(const vrml::Node& m, Shading& s) {
-  s.transparency = std::clamp(sfFloat(m, "transparency", 0.0f), 0.0f, 1.0f);
-  s.emissiveColor = glm::max(sfColor(m, "emissiveColor", glm::vec3(0.0f)), 0.0f);
+  s.transparency = std::clamp(scene::sfFloat(m, "transparency", 0.0f), 0.0f, 1.0f);
+  s.emissiveColor = glm::max(scene::sfColor(m, "emissiveColor", glm::vec3(0.0f)), 0.0f);
   if (m.typeId() == vrml::NodeTypeId::UnlitMaterial) {
     s.model = ShadingModel::unlit;
     s.emissiveColor = glm::clamp(s.emissiveColor, 0.0f, 1.0f);
@@ -70,11 +70,11 @@ void readX3dMaterial(const vrml::Node& m, Shading& s) {
   }
   s.model = ShadingModel::physical;
   s.hasMaterial = true;
-  s.diffuseColor = glm::clamp(sfColor(m, "baseColor", glm::vec3(1.0f)), 0.0f, 1.0f);
-  s.metallic = std::clamp(sfFloat(m, "metallic", 1.0f), 0.0f, 1.0f);
-  s.roughness = std::clamp(sfFloat(m, "roughness", 1.0f), 0.0f, 1.0f);
-  s.normalScale = sfFloat(m, "normalScale", 1.0f);
-  s.occlusionStrength = std::clamp(sfFloat(m, "occlusionStrength", 1.0f), 0.0f, 1.0f);
+  s.diffuseColor = glm::clamp(scene::sfColor(m, "baseColor", glm::vec3(1.0f)), 0.0f, 1.0f);
+  s.metallic = std::clamp(scene::sfFloat(m, "metallic", 1.0f), 0.0f, 1.0f);
+  s.roughness = std::clamp(scene::sfFloat(m, "roughness", 1.0f), 0.0f, 1.0f);
+  s.normalScale = scene::sfFloat(m, "normalScale", 1.0f);
+  s.occlusionStrength = std::clamp(scene::sfFloat(m, "occlusionStrength", 1.0f), 0.0f, 1.0f);
   if (const vrml::Node* t = sfnodeOf(m, "baseTexture")) s.texture = t;
   s.maps[kMetallicRoughness] = sfnodeOf(m, "metallicRoughnessTexture");
   s.maps[kNormalMap] = sfnodeOf(m, "normalTexture");
@@ -89,12 +89,12 @@ Shading readShading(const vrml::Node* appearance) {
   if (const vrml::NodePtr m = appearance->sfnode("material");
       m && !m->unresolved && m->typeId() == vrml::NodeTypeId::Material) {
     s.hasMaterial = true;
-    s.diffuseColor = glm::clamp(sfColor(*m, "diffuseColor", glm::vec3(0.8f)), 0.0f, 1.0f);
-    s.ambientIntensity = std::clamp(sfFloat(*m, "ambientIntensity", 0.2f), 0.0f, 1.0f);
-    s.specularColor = glm::clamp(sfColor(*m, "specularColor", glm::vec3(0.0f)), 0.0f, 1.0f);
-    s.emissiveColor = glm::clamp(sfColor(*m, "emissiveColor", glm::vec3(0.0f)), 0.0f, 1.0f);
-    s.shininess = std::clamp(sfFloat(*m, "shininess", 0.2f), 0.0f, 1.0f);
-    s.transparency = std::clamp(sfFloat(*m, "transparency", 0.0f), 0.0f, 1.0f);
+    s.diffuseColor = glm::clamp(scene::sfColor(*m, "diffuseColor", glm::vec3(0.8f)), 0.0f, 1.0f);
+    s.ambientIntensity = std::clamp(scene::sfFloat(*m, "ambientIntensity", 0.2f), 0.0f, 1.0f);
+    s.specularColor = glm::clamp(scene::sfColor(*m, "specularColor", glm::vec3(0.0f)), 0.0f, 1.0f);
+    s.emissiveColor = glm::clamp(scene::sfColor(*m, "emissiveColor", glm::vec3(0.0f)), 0.0f, 1.0f);
+    s.shininess = std::clamp(scene::sfFloat(*m, "shininess", 0.2f), 0.0f, 1.0f);
+    s.transparency = std::clamp(scene::sfFloat(*m, "transparency", 0.0f), 0.0f, 1.0f);
   }
   if (const vrml::NodePtr t = appearance->sfnode("texture"); t && !t->unresolved)
     s.texture = t.get();
@@ -107,15 +107,15 @@ Shading readShading(const vrml::Node* appearance) {
       mode != nullptr && mode->type() == vrml::FieldType::SFString) {
     const std::string& v = mode->get<vrml::FieldType::SFString>();
     s.alphaMode = v == "OPAQUE" ? 1 : v == "MASK" ? 2 : v == "BLEND" ? 3 : 0;
-    s.alphaCutoff = sfFloat(*appearance, "alphaCutoff", 0.5f);
+    s.alphaCutoff = scene::sfFloat(*appearance, "alphaCutoff", 0.5f);
   }
   if (const vrml::NodePtr tt = appearance->sfnode("textureTransform"); tt && !tt->unresolved)
-    s.textureMatrix = textureTransformMatrix(*tt);
+    s.textureMatrix = scene::textureTransformMatrix(*tt);
   return s;
 }
 
 struct DrawItem {
-  const ShapeInstance* shape;
+  const scene::ShapeInstance* shape;
   const GpuMesh* mesh;
   const Shading* shading;
   const GpuTexture* texture;                          // null: untextured
@@ -130,7 +130,7 @@ struct LightArrays {
   std::array<glm::vec3, kMaxLights> color{}, position{}, direction{}, attenuation{};
   std::array<float, kMaxLights> intensity{}, ambient{}, radius{}, beamWidth{}, cutOff{};
 
-  void add(const LightInstance& l) {  // l in eye coordinates
+  void add(const scene::LightInstance& l) {  // l in eye coordinates
     if (count >= kMaxLights) return;
     const auto i = static_cast<std::size_t>(count++);
     type[i] = static_cast<GLint>(l.type);
@@ -169,8 +169,8 @@ struct SceneRenderer::Gpu {
   TextureCache textures;
   BackgroundPass background;
   // Reused from frame to frame.
-  TraversalFrame frame;
-  std::vector<LightInstance> eyeLights;
+  scene::TraversalFrame frame;
+  std::vector<scene::LightInstance> eyeLights;
   std::vector<DrawItem> opaque, transparent;
 
   void release() {
@@ -186,7 +186,7 @@ SceneRenderer::SceneRenderer(std::shared_ptr<const vrml::Scene> scene, SceneRend
     : options_(std::move(options)),
       traversal_(std::move(scene),
                  [this] {
-                   TraversalOptions t = options_.traversal;
+                   scene::TraversalOptions t = options_.traversal;
                    if (!t.inlineLoader && options_.loader) {
                      // Whole files for Inline and EXTERNPROTO: pending counts as failed.
                      const vrml::UrlLoader loader = [l = options_.loader](const std::string& url,
@@ -258,9 +258,9 @@ void SceneRenderer::setLod(double lod) {
   splats_->setLod(lod);
 }
 
-Camera SceneRenderer::initialCamera(float aspect) {
+scene::Camera SceneRenderer::initialCamera(float aspect) {
   if (!viewpoints().empty() || bounds().empty()) return boundViewpointCamera();
-  Camera camera = fitCamera(bounds(), aspect, Camera{});
+  scene::Camera camera = scene::fitCamera(bounds(), aspect, scene::Camera{});
   if (navigation().visibilityLimit > 0.0f)
     camera.farClip = std::max(navigation().visibilityLimit, camera.nearClip * 2.0f);
   return camera;
@@ -272,7 +272,7 @@ void SceneRenderer::releaseGpuResources() {
   gpu_->shadings.clear();
 }
 
-void SceneRenderer::draw(const Camera& camera, int x, int y, int width, int height) {
+void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, int height) {
   Gpu& g = *gpu_;
   statistics_ = {};
   if (width <= 0 || height <= 0) return;
@@ -282,8 +282,8 @@ void SceneRenderer::draw(const Camera& camera, int x, int y, int width, int heig
   traversal_.collect(camera, g.frame);
 
   const float aspect = float(width) / float(height);
-  const glm::mat4 view = viewMatrix(camera);
-  const glm::mat4 projection = projectionMatrix(camera, aspect);
+  const glm::mat4 view = scene::viewMatrix(camera);
+  const glm::mat4 projection = scene::projectionMatrix(camera, aspect);
 
   glViewport(x, y, width, height);
   glScissor(x, y, width, height);
@@ -297,19 +297,19 @@ void SceneRenderer::draw(const Camera& camera, int x, int y, int width, int heig
   g.eyeLights.resize(g.frame.lights.size());
   const glm::mat3 viewRotation(view);
   for (std::size_t i = 0; i < g.frame.lights.size(); ++i) {
-    LightInstance l = g.frame.lights[i];
+    scene::LightInstance l = g.frame.lights[i];
     l.location = glm::vec3(view * glm::vec4(l.location, 1.0f));
     l.direction = glm::normalize(viewRotation * l.direction);
     g.eyeLights[i] = l;
   }
-  LightInstance headlight;  // directional along the view direction, intensity 1, ambient 0
+  scene::LightInstance headlight;  // directional along the view direction, intensity 1, ambient 0
   headlight.direction = glm::vec3(0.0f, 0.0f, -1.0f);
 
   // Sort shapes into the opaque and transparent passes.
   g.opaque.clear();
   g.transparent.clear();
   const glm::vec3 forward = camera.forward();
-  for (const ShapeInstance& s : g.frame.shapes) {
+  for (const scene::ShapeInstance& s : g.frame.shapes) {
     auto [meshIt, newMesh] = g.meshes.try_emplace(s.geometry);
     // The change contract (docs/runtime.md): a geometry whose fields or Coordinate /
     // Normal / Color / TextureCoordinate changed is tessellated and uploaded again.
@@ -355,7 +355,7 @@ void SceneRenderer::draw(const Camera& camera, int x, int y, int width, int heig
             [](const DrawItem& a, const DrawItem& b) { return a.depth > b.depth; });
 
   // Per-frame uniforms, set in each program the first time this frame uses it.
-  const FogSettings& fog = traversal_.fog();
+  const scene::FogSettings& fog = traversal_.fog();
   const int fogType = fog.visibilityRange > 0.0f ? (fog.exponential ? 2 : 1) : 0;
   const SurfaceProgram* current = nullptr;
   auto use = [&](SurfaceProgram& p) {
@@ -383,11 +383,11 @@ void SceneRenderer::draw(const Camera& camera, int x, int y, int width, int heig
   glCullFace(GL_BACK);
   glActiveTexture(GL_TEXTURE0);
 
-  const ShapeInstance* lastLightsOf = nullptr;  // whose lights `lights` holds
+  const scene::ShapeInstance* lastLightsOf = nullptr;  // whose lights `lights` holds
   LightArrays lights;
   bool lightsUploaded = false;  // to the current program
   auto drawItem = [&](const DrawItem& d) {
-    const ShapeInstance& s = *d.shape;
+    const scene::ShapeInstance& s = *d.shape;
     const GpuMesh& mesh = *d.mesh;
     const Shading& sh = *d.shading;
     const bool triangles = mesh.primitive == vrml::Primitive::triangles;
@@ -471,7 +471,7 @@ void SceneRenderer::draw(const Camera& camera, int x, int y, int width, int heig
     statistics_.triangles += mesh.triangles;
   };
 
-  if (splats_->mode() == RenderMode::splats) {
+  if (splats_->mode() == scene::RenderMode::splats) {
     g.opaque.clear();  // the polygons are drawn as splats below
     g.transparent.clear();
   }
@@ -488,7 +488,7 @@ void SceneRenderer::draw(const Camera& camera, int x, int y, int width, int heig
   statistics_.movieFrames = g.textures.movies.framesShown();
   statistics_.movieUploads = g.textures.movies.framesUploaded();
 
-  if (!g.frame.splats.empty() || splats_->mode() == RenderMode::splats) {
+  if (!g.frame.splats.empty() || splats_->mode() == scene::RenderMode::splats) {
     glDisable(GL_SCISSOR_TEST);
     statistics_.splats = splats_->draw(g.frame, traversal_, camera, aspect, headlight_, height);
     glEnable(GL_SCISSOR_TEST);

@@ -7,7 +7,7 @@
 namespace gs::render::detail {
 
 SceneSplats::SceneSplats(std::shared_ptr<const vrml::Scene> scene, SplatLoader loader, double lod,
-                         RenderMode mode, SplatPath splatPath)
+                         scene::RenderMode mode, SplatPath splatPath)
     : scene_(std::move(scene)),
       loader_(std::move(loader)),
       lod_(lod),
@@ -28,12 +28,12 @@ SceneSplats::SceneSplats(std::shared_ptr<const vrml::Scene> scene, SplatLoader l
 
 std::shared_ptr<const SplatSet> SceneSplats::setOf(const vrml::Node& node,
                                                    const std::string& baseUrl,
-                                                   SceneTraversal& traversal) {
+                                                   scene::SceneTraversal& traversal) {
   return nodeSet(node, baseUrl, traversal).set;
 }
 
 const SceneSplats::NodeSet& SceneSplats::nodeSet(const vrml::Node& node, const std::string& baseUrl,
-                                                 SceneTraversal& traversal) {
+                                                 scene::SceneTraversal& traversal) {
   if (auto it = sets_.find(&node); it != sets_.end()) return it->second;
   std::shared_ptr<const SplatSet> set = inlineSplatSet(node);
   if (!set) {
@@ -94,11 +94,11 @@ std::uint64_t SceneSplats::wantedPrefix(const vrml::Node* node, const SplatSet& 
                                    set.total());
 }
 
-vrml::Bounds SceneSplats::bounds(SceneTraversal& traversal) {
+vrml::Bounds SceneSplats::bounds(scene::SceneTraversal& traversal) {
   vrml::Bounds b;
-  TraversalFrame frame;
+  scene::TraversalFrame frame;
   traversal.collect(traversal.boundViewpointCamera(), frame);
-  for (const SplatInstance& s : frame.splats) {
+  for (const scene::SplatInstance& s : frame.splats) {
     const auto set = setOf(*s.node, *s.baseUrl, traversal);
     if (!set || set->bounds.empty()) continue;
     for (int corner = 0; corner < 8; ++corner) {
@@ -111,14 +111,14 @@ vrml::Bounds SceneSplats::bounds(SceneTraversal& traversal) {
   return b;
 }
 
-std::size_t SceneSplats::draw(const TraversalFrame& frame, SceneTraversal& traversal,
-                              const Camera& camera, float aspect, bool headlight,
+std::size_t SceneSplats::draw(const scene::TraversalFrame& frame, scene::SceneTraversal& traversal,
+                              const scene::Camera& camera, float aspect, bool headlight,
                               int heightPixels) {
   SplatLight lights[8];
   std::size_t lightCount = 0;
   if (headlight) lights[lightCount++] = {camera.forward(), glm::vec3(1.0f)};
-  for (const LightInstance& l : frame.lights)
-    if (l.type == LightType::directional && lightCount < 8)
+  for (const scene::LightInstance& l : frame.lights)
+    if (l.type == scene::LightType::directional && lightCount < 8)
       lights[lightCount++] = {l.direction, l.color * l.intensity};
   const std::span<const SplatLight> lit(lights, lightCount);
   std::size_t drawn = 0;
@@ -126,10 +126,10 @@ std::size_t SceneSplats::draw(const TraversalFrame& frame, SceneTraversal& trave
   drawLod_ = lod_;
   if (budget_ > 0) {
     double total = 0.0;
-    for (const SplatInstance& s : frame.splats)
+    for (const scene::SplatInstance& s : frame.splats)
       if (const NodeSet& e = nodeSet(*s.node, *s.baseUrl, traversal); e.set)
         total += static_cast<double>(e.set->total());
-    if (mode_ == RenderMode::splats && world_) total += static_cast<double>(world_->total());
+    if (mode_ == scene::RenderMode::splats && world_) total += static_cast<double>(world_->total());
     if (total > 0.0) drawLod_ = std::min(lod_, static_cast<double>(budget_) / total);
   }
   auto drawSet = [&](const SplatSet& set, std::size_t count, const glm::mat4& model,
@@ -142,7 +142,7 @@ std::size_t SceneSplats::draw(const TraversalFrame& frame, SceneTraversal& trave
     renderer->draw(set, count, model, camera, aspect, lit, SplatBlend::backToFront, style);
     drawn += renderer->statistics().splats;
   };
-  if (mode_ == RenderMode::splats) {
+  if (mode_ == scene::RenderMode::splats) {
     if (!worldBuilt_) {
       if (world_) renderers_.erase(world_.get());  // its address may be reused
       world_ = worldSplatSet(scene_);
@@ -151,7 +151,7 @@ std::size_t SceneSplats::draw(const TraversalFrame& frame, SceneTraversal& trave
     }
     if (world_) drawSet(*world_, drawCount(nullptr, *world_), glm::mat4(1.0f), nullptr);
   }
-  for (const SplatInstance& s : frame.splats) {
+  for (const scene::SplatInstance& s : frame.splats) {
     const NodeSet& entry = nodeSet(*s.node, *s.baseUrl, traversal);
     if (!entry.set) continue;
     const std::size_t count = drawCount(s.node, *entry.set);

@@ -11,20 +11,20 @@
 
 #include "render/splat_renderer.hpp"
 #include "render/splat_source.hpp"
-#include "render/traversal.hpp"
+#include "scene/traversal.hpp"
 
 namespace gs::render::detail {
 
 class SceneSplats {
  public:
   SceneSplats(std::shared_ptr<const vrml::Scene> scene, SplatLoader loader, double lod,
-              RenderMode mode, SplatPath path = SplatPath::automatic);
+              scene::RenderMode mode, SplatPath path = SplatPath::automatic);
 
   /// The vectors of a QuantizedNormalVectors node: inline ones, or its first url that
   /// loads (resolved against `baseUrl`). Loaded on first use; failures are reported to
   /// `traversal` once. Null when there is nothing to draw.
   std::shared_ptr<const SplatSet> setOf(const vrml::Node& node, const std::string& baseUrl,
-                                        SceneTraversal& traversal);
+                                        scene::SceneTraversal& traversal);
   /// The vectors drawn of `set` for `node`: its count field (>= 0) or fraction of the
   /// set's total() (the whole stream, even while it arrives), times the level of detail
   /// given to the renderer, rounded, at least 1 when the product is positive; then
@@ -34,13 +34,13 @@ class SceneSplats {
   std::uint64_t wantedPrefix(const vrml::Node* node, const SplatSet& set) const;
   /// World bounds of every QNV node of the scene (loads them) and, in splats mode, of the
   /// polygon world.
-  vrml::Bounds bounds(SceneTraversal& traversal);
+  vrml::Bounds bounds(scene::SceneTraversal& traversal);
   /// Draws the frame's QNV nodes (and the world's splats in splats mode) over what is in
   /// the framebuffer. Returns the number of splats drawn.
   /// `heightPixels` is the viewport's height (recorded for view-dependent sets).
-  std::size_t draw(const TraversalFrame& frame, SceneTraversal& traversal, const Camera& camera,
-                   float aspect, bool headlight, int heightPixels = 0);
-  RenderMode mode() const { return mode_; }
+  std::size_t draw(const scene::TraversalFrame& frame, scene::SceneTraversal& traversal,
+                   const scene::Camera& camera, float aspect, bool headlight, int heightPixels = 0);
+  scene::RenderMode mode() const { return mode_; }
   /// The scene grew (progressive loading): the splats-mode world set is built again when
   /// root nodes were added.
   void sceneChanged() {
@@ -58,7 +58,7 @@ class SceneSplats {
   double lod_;
   std::uint64_t budget_ = 0;
   double drawLod_ = 1.0;  // lod_ lowered to the vector budget for the frame being drawn
-  RenderMode mode_;
+  scene::RenderMode mode_;
   SplatPath path_ = SplatPath::automatic;  // every SplatRenderer made here takes it
   /// A node's set and the style it is drawn with (the node's mode and opacityScale over
   /// the stream's own; the set itself is shared and may still grow).
@@ -68,7 +68,7 @@ class SceneSplats {
     bool ownStyle = false;
   };
   const NodeSet& nodeSet(const vrml::Node& node, const std::string& baseUrl,
-                         SceneTraversal& traversal);
+                         scene::SceneTraversal& traversal);
   vrml::NodeMap<NodeSet> sets_;
   std::map<std::string, std::shared_ptr<const SplatSet>> byUrl_;
   std::shared_ptr<const SplatSet> world_;

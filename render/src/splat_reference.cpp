@@ -112,13 +112,14 @@ PixelBox pixelBox(const EyeSplat& s, const glm::mat4& projection, float nearClip
 std::vector<glm::vec3> compositeSplats(std::span<const qnv::DecodedVector> vectors,
                                        std::span<const std::uint32_t> order,
                                        SplatCompositing compositing, const SplatStyle& style,
-                                       std::span<const SplatLight> lights, const Camera& camera,
-                                       int width, int height, const glm::vec3& background) {
+                                       std::span<const SplatLight> lights,
+                                       const scene::Camera& camera, int width, int height,
+                                       const glm::vec3& background) {
   if (width <= 0 || height <= 0) return {};
   const std::size_t pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
   const float aspect = static_cast<float>(width) / static_cast<float>(height);
-  const glm::mat4 view = viewMatrix(camera);
-  const glm::mat4 projection = projectionMatrix(camera, aspect);
+  const glm::mat4 view = scene::viewMatrix(camera);
+  const glm::mat4 projection = scene::projectionMatrix(camera, aspect);
   const glm::mat4 inverseProjection = glm::inverse(projection);
   // The clip range projectionMatrix really uses.
   const float nearClip = std::max(camera.nearClip, 1e-6f);
@@ -199,12 +200,13 @@ Image splatColorsToImage(std::span<const glm::vec3> colors, int width, int heigh
 namespace {
 
 Image renderOrdered(std::span<const qnv::DecodedVector> vectors, const SplatStyle& style,
-                    std::span<const SplatLight> lights, const Camera& camera, int width, int height,
-                    const glm::vec3& background, std::size_t count, SplatCompositing compositing) {
+                    std::span<const SplatLight> lights, const scene::Camera& camera, int width,
+                    int height, const glm::vec3& background, std::size_t count,
+                    SplatCompositing compositing) {
   if (width <= 0 || height <= 0) return {};
   DepthSorter sorter;
   std::vector<std::uint32_t> order;
-  const glm::mat4 view = viewMatrix(camera);
+  const glm::mat4 view = scene::viewMatrix(camera);
   if (compositing == SplatCompositing::frontToBack) {
     sorter.sortFrontToBack(vectors, view, order, count);
   } else {
@@ -218,15 +220,15 @@ Image renderOrdered(std::span<const qnv::DecodedVector> vectors, const SplatStyl
 }  // namespace
 
 Image renderSplatsReference(std::span<const qnv::DecodedVector> vectors, const SplatStyle& style,
-                            std::span<const SplatLight> lights, const Camera& camera, int width,
-                            int height, const glm::vec3& background, std::size_t count) {
+                            std::span<const SplatLight> lights, const scene::Camera& camera,
+                            int width, int height, const glm::vec3& background, std::size_t count) {
   return renderOrdered(vectors, style, lights, camera, width, height, background, count,
                        SplatCompositing::frontToBack);
 }
 
 Image renderSplatsReferenceBackToFront(std::span<const qnv::DecodedVector> vectors,
                                        const SplatStyle& style, std::span<const SplatLight> lights,
-                                       const Camera& camera, int width, int height,
+                                       const scene::Camera& camera, int width, int height,
                                        const glm::vec3& background, std::size_t count) {
   return renderOrdered(vectors, style, lights, camera, width, height, background, count,
                        SplatCompositing::backToFront);

@@ -325,8 +325,9 @@ void SplatRenderer::release() {
 }
 
 void SplatRenderer::draw(const SplatSet& set, std::size_t count, const glm::mat4& model,
-                         const Camera& camera, float aspect, std::span<const SplatLight> lights,
-                         SplatBlend blend, const SplatStyle* style) {
+                         const scene::Camera& camera, float aspect,
+                         std::span<const SplatLight> lights, SplatBlend blend,
+                         const SplatStyle* style) {
   statistics_ = {};
   count = std::min(count, set.vectors.size());
   if (count == 0) return;
@@ -341,7 +342,7 @@ void SplatRenderer::draw(const SplatSet& set, std::size_t count, const glm::mat4
 
   // Depth order of the first `count` vectors, redone only when the set or the view
   // changed. The cpu path always composites front to back.
-  const glm::mat4 view = viewMatrix(camera);
+  const glm::mat4 view = scene::viewMatrix(camera);
   const glm::mat4 modelView = view * model;
   const bool frontToBack = cpu || blend == SplatBlend::frontToBack;
   if (g.sortedData != set.vectors.data() || g.sortedSize != set.vectors.size() ||
@@ -382,7 +383,7 @@ void SplatRenderer::draw(const SplatSet& set, std::size_t count, const glm::mat4
   GLint previousFramebuffer = 0;
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previousFramebuffer);
 
-  const glm::mat4 projection = projectionMatrix(camera, aspect);
+  const glm::mat4 projection = scene::projectionMatrix(camera, aspect);
   const SplatStyle& s = style != nullptr ? *style : set.style;
   if (cpu) {
     drawCpu(set, count, model, modelView, camera, projection, lights, blend, s);
@@ -491,7 +492,7 @@ void SplatRenderer::draw(const SplatSet& set, std::size_t count, const glm::mat4
 }
 
 void SplatRenderer::drawCpu(const SplatSet& set, std::size_t count, const glm::mat4& model,
-                            const glm::mat4& modelView, const Camera& camera,
+                            const glm::mat4& modelView, const scene::Camera& camera,
                             const glm::mat4& projection, std::span<const SplatLight> lights,
                             SplatBlend blend, const SplatStyle& style) {
   Gpu& g = *gpu_;

@@ -3,7 +3,7 @@
 #include <glm/geometric.hpp>
 
 #include "base/file.hpp"
-#include "render/world_triangles.hpp"
+#include "scene/world_triangles.hpp"
 
 namespace gs::render {
 
@@ -82,7 +82,7 @@ std::shared_ptr<SplatSet> inlineSplatSet(const vrml::Node& node) {
 }
 
 std::shared_ptr<SplatSet> worldSplatSet(std::shared_ptr<const vrml::Scene> scene) {
-  return splatSetFromEncoded(qnv::encodeSurface(worldTriangles(std::move(scene)), {}));
+  return splatSetFromEncoded(qnv::encodeSurface(scene::worldTriangles(std::move(scene)), {}));
 }
 
 }  // namespace gs::render

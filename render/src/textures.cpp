@@ -5,9 +5,9 @@
 #include "base/file.hpp"
 #include "base/url.hpp"
 #include "gpu_resources.hpp"
-#include "node_access.hpp"
 #include "render/image.hpp"
 #include "render/scene_renderer.hpp"
+#include "scene/node_access.hpp"
 
 #include <algorithm>
 
@@ -45,15 +45,16 @@ GLint magnificationFilter(const std::string& mode) {
 
 Sampling samplingOf(const vrml::Node& texture) {
   Sampling s;
-  s.wrapS = sfBool(texture, "repeatS", true) ? GL_REPEAT : GL_CLAMP_TO_EDGE;
-  s.wrapT = sfBool(texture, "repeatT", true) ? GL_REPEAT : GL_CLAMP_TO_EDGE;
+  s.wrapS = scene::sfBool(texture, "repeatS", true) ? GL_REPEAT : GL_CLAMP_TO_EDGE;
+  s.wrapT = scene::sfBool(texture, "repeatT", true) ? GL_REPEAT : GL_CLAMP_TO_EDGE;
   static const vrml::NodePtr kNone;
-  const vrml::NodePtr& p = fieldRef<vrml::FieldType::SFNode>(texture, "textureProperties", kNone);
+  const vrml::NodePtr& p =
+      scene::fieldRef<vrml::FieldType::SFNode>(texture, "textureProperties", kNone);
   if (!p || p->typeId() != vrml::NodeTypeId::TextureProperties) return s;
-  s.wrapS = boundaryMode(sfString(*p, "boundaryModeS"));
-  s.wrapT = boundaryMode(sfString(*p, "boundaryModeT"));
-  s.minFilter = minificationFilter(sfString(*p, "minificationFilter"));
-  s.magFilter = magnificationFilter(sfString(*p, "magnificationFilter"));
+  s.wrapS = boundaryMode(scene::sfString(*p, "boundaryModeS"));
+  s.wrapT = boundaryMode(scene::sfString(*p, "boundaryModeT"));
+  s.minFilter = minificationFilter(scene::sfString(*p, "minificationFilter"));
+  s.magFilter = magnificationFilter(scene::sfString(*p, "magnificationFilter"));
   return s;
 }
 
@@ -198,7 +199,8 @@ bool decodeSFImage(const vrml::SFImage& image, std::vector<std::uint8_t>& rgba, 
 }
 
 const GpuTexture& TextureCache::get(const vrml::Node& node, const std::string& baseUrl,
-                                    SceneTraversal& traversal, const ResourceLoader& loader) {
+                                    scene::SceneTraversal& traversal,
+                                    const ResourceLoader& loader) {
   if (node.typeId() == vrml::NodeTypeId::MovieTexture)
     return movies.get(node, baseUrl, traversal, loader);
   if (auto it = textures_.find(&node); it != textures_.end()) return it->second;
@@ -207,7 +209,7 @@ const GpuTexture& TextureCache::get(const vrml::Node& node, const std::string& b
   if (node.typeId() == vrml::NodeTypeId::PixelTexture) {
     std::vector<std::uint8_t> rgba;
     static const vrml::SFImage kEmpty;
-    const vrml::SFImage& image = fieldRef<vrml::FieldType::SFImage>(node, "image", kEmpty);
+    const vrml::SFImage& image = scene::fieldRef<vrml::FieldType::SFImage>(node, "image", kEmpty);
     bool hasAlpha = false;
     if (image.width == 0 || image.height == 0) {
       // An empty PixelTexture means no texture (clause 6.33).
@@ -220,7 +222,7 @@ const GpuTexture& TextureCache::get(const vrml::Node& node, const std::string& b
                        "PixelTexture image is inconsistent: drawn untextured");
     }
   } else if (node.typeId() == vrml::NodeTypeId::ImageTexture) {
-    LoadedImage loaded = loadFirstImage(mfString(node, "url"), baseUrl, loader);
+    LoadedImage loaded = loadFirstImage(scene::mfString(node, "url"), baseUrl, loader);
     if (loaded.pending) {
       static const GpuTexture kNone;  // untextured until the bytes arrive
       return kNone;

@@ -1,5 +1,5 @@
 // Collision (ISO/IEC 14772-1:1997 6.8): collideTime when the avatar meets the children or
-// the proxy of a Collision node. The renderer decides the meeting (render::walkStep);
+// the proxy of a Collision node. The renderer decides the meeting (scene::walkStep);
 // this sends the events.
 #include "execution_state.hpp"
 

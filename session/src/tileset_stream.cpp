@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "base/url.hpp"
-#include "render/camera.hpp"
+#include "scene/camera.hpp"
 
 namespace gs::session {
 
@@ -38,7 +38,7 @@ TilesetView tilesetView(const render::SplatSet::View& v) {
   t.forward = v.camera.forward();
   t.up = v.camera.up();
   t.aspect = v.aspect;
-  t.verticalFov = render::verticalFieldOfView(v.camera.fieldOfView, v.aspect);
+  t.verticalFov = scene::verticalFieldOfView(v.camera.fieldOfView, v.aspect);
   t.heightPixels = v.heightPixels > 0 ? v.heightPixels : 512;
   t.nearClip = v.camera.nearClip;
   t.model = v.model;

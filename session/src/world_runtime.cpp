@@ -22,7 +22,7 @@ bool parseNumber(std::string_view text, double& out) {
 
 }  // namespace
 
-runtime::ViewerPose viewerPose(const render::Camera& camera, float aspect) {
+runtime::ViewerPose viewerPose(const scene::Camera& camera, float aspect) {
   runtime::ViewerPose v;
   v.position = camera.position;
   v.orientation = camera.orientation;
@@ -126,7 +126,7 @@ void WorldRuntimes::advanceTo(double time) {
   }
 }
 
-void WorldRuntimes::addInlines(const vrml::Scene* scene, const render::SceneTraversal& traversal) {
+void WorldRuntimes::addInlines(const vrml::Scene* scene, const scene::SceneTraversal& traversal) {
   const auto it = worlds_.find(scene);
   if (it == worlds_.end()) return;
   // Each scene is taken once (addInlineScene ignores the ones it has).
@@ -134,7 +134,7 @@ void WorldRuntimes::addInlines(const vrml::Scene* scene, const render::SceneTrav
   resolveImportedRoutes(it->second, traversal);
 }
 
-void WorldRuntimes::resolveImportedRoutes(Entry& e, const render::SceneTraversal& traversal) {
+void WorldRuntimes::resolveImportedRoutes(Entry& e, const scene::SceneTraversal& traversal) {
   const vrml::X3dInfo& x3d = e.scene->x3d;
   if (x3d.importedRoutes.empty()) return;
   e.importedRouteDone.resize(x3d.importedRoutes.size(), 0);
@@ -181,8 +181,8 @@ void WorldRuntimes::scenesGrew() {
   for (auto& [key, e] : worlds_) e.model->sceneGrew();
 }
 
-render::BoundNodes WorldRuntimes::bound(const vrml::Scene* scene) const {
-  render::BoundNodes b;
+scene::BoundNodes WorldRuntimes::bound(const vrml::Scene* scene) const {
+  scene::BoundNodes b;
   const auto it = worlds_.find(scene);
   if (it == worlds_.end()) return b;
   const runtime::ExecutionModel& m = *it->second.model;

@@ -56,7 +56,7 @@ WorldView::~WorldView() {
   views.erase(std::remove(views.begin(), views.end(), this), views.end());
 }
 
-render::Camera WorldView::camera() {
+scene::Camera WorldView::camera() {
   if (camera_) return camera_(*renderer_, aspect());
   return renderer_->boundViewpointCamera();
 }

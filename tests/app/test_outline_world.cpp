@@ -3,7 +3,7 @@
 #include "outline/outline_world.hpp"
 #include "process.hpp"
 #include "render/image.hpp"
-#include "render/traversal.hpp"
+#include "scene/traversal.hpp"
 #include "test_support.hpp"
 #include "vrml/parser.hpp"
 
@@ -23,8 +23,8 @@ struct Counts {
   std::size_t triangles = 0, outlineTriangles = 0;
 };
 Counts countTriangles(std::shared_ptr<const gs::vrml::Scene> scene) {
-  gs::render::SceneTraversal t(std::move(scene));
-  gs::render::TraversalFrame frame;
+  gs::scene::SceneTraversal t(std::move(scene));
+  gs::scene::TraversalFrame frame;
   t.collect(t.boundViewpointCamera(), frame);
   Counts c;
   for (const auto& s : frame.shapes)
@@ -157,7 +157,7 @@ TEST_CASE("writeOutlineWorld keeps the viewpoint and background", "[app][outline
   CHECK(out.find("DEF A0 Appearance") < out.find("USE A0"));
   auto re = std::make_shared<gs::vrml::Scene>(gs::vrml::parseVrml(out, "/tmp/vp2.wrl"));
   CHECK(re->diagnostics.items.empty());
-  gs::render::SceneTraversal t(re);
+  gs::scene::SceneTraversal t(re);
   REQUIRE(t.viewpoints().size() == 1);
   CHECK(t.viewpoints()[0].camera.position.x == Approx(1.0f));
   CHECK(t.background().skyColor.front().z == Approx(0.3f));

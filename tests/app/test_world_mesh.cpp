@@ -4,7 +4,7 @@
 #include <glm/geometric.hpp>
 
 #include "qnv/encoder.hpp"
-#include "render/world_triangles.hpp"
+#include "scene/world_triangles.hpp"
 #include "vrml/parser.hpp"
 
 namespace {
@@ -16,7 +16,7 @@ std::shared_ptr<const gs::vrml::Scene> parse(const std::string& text) {
 }  // namespace
 
 TEST_CASE("world triangles carry the Transform and the Material colour", "[app][qnv]") {
-  const auto mesh = gs::render::worldTriangles(parse(R"(#VRML V2.0 utf8
+  const auto mesh = gs::scene::worldTriangles(parse(R"(#VRML V2.0 utf8
 Transform { translation 10 0 0 children Shape {
   appearance Appearance { material Material { diffuseColor 1 0 0 transparency 0.5 } }
   geometry Box { size 2 2 2 } } }
@@ -39,7 +39,7 @@ Shape { geometry PointSet { coord Coordinate { point [0 0 0] } } }
 }
 
 TEST_CASE("a mirroring Transform keeps triangle normals facing out", "[app][qnv]") {
-  const auto mesh = gs::render::worldTriangles(parse(R"(#VRML V2.0 utf8
+  const auto mesh = gs::scene::worldTriangles(parse(R"(#VRML V2.0 utf8
 Transform { scale -1 1 1 children Shape { geometry IndexedFaceSet {
   coord Coordinate { point [0 0 0, 1 0 0, 0 1 0] } coordIndex [0 1 2] } } }
 )"));

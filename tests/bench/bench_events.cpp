@@ -3,8 +3,8 @@
 // milliseconds per cascade), and whether the chains redraw without re-tessellation.
 //
 //   bench_events [chains] [frames]      (default 10000 chains, 300 frames)
-#include "render/traversal.hpp"
 #include "runtime/execution_model.hpp"
+#include "scene/traversal.hpp"
 #include "vrml/parser.hpp"
 
 #include <chrono>
@@ -51,8 +51,8 @@ int main(int argc, char** argv) {
   gs::runtime::ExecutionModel model(scene, 1.7e9);
   const double loadSeconds = since(t0);
 
-  gs::render::SceneTraversal traversal(scene);
-  gs::render::TraversalFrame frame;
+  gs::scene::SceneTraversal traversal(scene);
+  gs::scene::TraversalFrame frame;
   traversal.collect(traversal.boundViewpointCamera(), frame);
   for (const auto& s : frame.shapes) traversal.mesh(*s.geometry);
   const std::uint64_t tessellationsBefore = traversal.tessellationCount();

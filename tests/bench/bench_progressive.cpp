@@ -76,8 +76,8 @@ bool blank(const render::Image& image) {
 /// Streams `input` at `rate` bytes/s into an off-screen renderer, drawing with `camera`
 /// (null: the final camera is not known yet; the scene is framed as it stands) at most
 /// 5 times a second. Returns every frame drawn; the last one is the complete picture.
-std::vector<Frame> stream(const std::string& input, double rate, const render::Camera* camera,
-                          double lod, render::Camera* finalCamera, std::uint64_t stopAfter = 0) {
+std::vector<Frame> stream(const std::string& input, double rate, const scene::Camera* camera,
+                          double lod, scene::Camera* finalCamera, std::uint64_t stopAfter = 0) {
   net::LoaderOptions lo;
   lo.maxRate = rate;
   lo.stopAfterBytes = stopAfter;
@@ -95,8 +95,8 @@ std::vector<Frame> stream(const std::string& input, double rate, const render::C
   const float aspect = static_cast<float>(kWidth) / kHeight;
   auto cameraNow = [&] {
     if (camera) return *camera;
-    render::Camera c = renderer.fitToScene(aspect, renderer.boundViewpointCamera());
-    render::fitClipPlanes(c, renderer.bounds(), renderer.navigation().nearClip());
+    scene::Camera c = renderer.fitToScene(aspect, renderer.boundViewpointCamera());
+    scene::fitClipPlanes(c, renderer.bounds(), renderer.navigation().nearClip());
     return c;
   };
   const auto t0 = Clock::now();
@@ -133,7 +133,7 @@ std::vector<Frame> stream(const std::string& input, double rate, const render::C
 /// and prints the times.
 void measure(const char* label, const std::string& input, double rate, double plainBytes,
              double lod = 1.0) {
-  render::Camera camera;
+  scene::Camera camera;
   const auto reference = stream(input, 0.0, nullptr, lod, &camera);
   if (reference.empty()) return;
   const render::Image& final = reference.back().image;

@@ -16,7 +16,7 @@
 #include "base/file.hpp"
 #include "qnv/decoder.hpp"
 #include "qnv/encoder.hpp"
-#include "render/world_triangles.hpp"
+#include "scene/world_triangles.hpp"
 #include "session/mesh_input.hpp"
 #include "session/volume_input.hpp"
 #include "session/world.hpp"
@@ -205,7 +205,7 @@ int main(int argc, char** argv) {
     qnv::TriangleMesh mesh =
         p.extension() == ".ply"
             ? gs::session::loadMeshFile(p.string())
-            : gs::render::worldTriangles(gs::session::loadWorld(p.string()).scene);
+            : gs::scene::worldTriangles(gs::session::loadWorld(p.string()).scene);
     const qnv::EncodedVectors e = qnv::encodeSurface(mesh, {}, &summary);
     const double seconds = since(t0);
     const std::size_t sizes[5] = {

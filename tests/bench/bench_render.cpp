@@ -55,7 +55,7 @@ int main(int argc, char** argv) {
     gs::render::SceneRendererOptions options;
     options.shaderVariants = !generic;
     gs::render::SceneRenderer renderer(scene, std::move(options));
-    gs::render::Camera camera = renderer.initialCamera(float(width) / float(height));
+    gs::scene::Camera camera = renderer.initialCamera(float(width) / float(height));
     if (fit) camera = renderer.fitToScene(float(width) / float(height), camera);
     const auto t2 = Clock::now();
     renderer.draw(camera, 0, 0, width, height);

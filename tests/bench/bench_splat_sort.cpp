@@ -15,9 +15,9 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "render/camera.hpp"
 #include "render/splat_reference.hpp"
 #include "render/splat_sort.hpp"
+#include "scene/camera.hpp"
 
 namespace {
 
@@ -53,10 +53,10 @@ std::vector<gs::qnv::DecodedVector> sphere(std::size_t n, std::uint32_t seed) {
 
 int main(int argc, char** argv) {
   const int maxMillions = argc > 1 ? std::max(1, std::atoi(argv[1])) : 16;
-  gs::render::Camera camera;
+  gs::scene::Camera camera;
   camera.position = {0.3f, 0.4f, 3.0f};
   camera.orientation = glm::angleAxis(0.1f, glm::normalize(glm::vec3(1.0f, 1.0f, 0.0f)));
-  const glm::mat4 view = gs::render::viewMatrix(camera);
+  const glm::mat4 view = gs::scene::viewMatrix(camera);
 
   std::printf("DepthSorter (LSD radix, 3 x 11 bits, one thread), best of 5 after a warm-up\n");
   for (const int millions : {1, 4, 16}) {
@@ -95,7 +95,7 @@ int main(int argc, char** argv) {
     gs::render::SplatStyle style;  // surface, sigma 0.5
     const std::vector<gs::render::SplatLight> lights = {
         {glm::normalize(glm::vec3(-1.0f, -1.0f, -1.0f)), glm::vec3(0.8f)}};
-    gs::render::Camera view2;
+    gs::scene::Camera view2;
     view2.position = {0.0f, 0.0f, 2.8f};
     gs::render::Image image = gs::render::renderSplatsReference(vectors, style, lights, view2, size,
                                                                 size, glm::vec3(0.1f));

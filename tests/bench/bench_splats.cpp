@@ -60,8 +60,8 @@ struct Figure {
 Figure measure(const render::SplatSet& set, render::SplatPath path, int width, int height,
                int frames) {
   const float aspect = float(width) / float(height);
-  render::Camera direction;
-  render::Camera camera = render::fitCamera(set.bounds, aspect, direction);
+  scene::Camera direction;
+  scene::Camera camera = scene::fitCamera(set.bounds, aspect, direction);
   const glm::vec3 start = camera.position;
   const float step = 0.003f * glm::length(set.bounds.size());
   const render::SplatLight lights[] = {{camera.forward(), glm::vec3(1.0f)}};

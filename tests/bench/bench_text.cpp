@@ -6,7 +6,7 @@
 #include "render/context.hpp"
 #include "render/image.hpp"
 #include "render/scene_renderer.hpp"
-#include "render/text_mesh.hpp"
+#include "scene/text_mesh.hpp"
 #include "vrml/parser.hpp"
 
 #include <chrono>
@@ -51,13 +51,13 @@ int main(int argc, char** argv) {
   const gs::vrml::Node& text = *scene->rootNodes.at(0)->sfnode("geometry");
 
   auto t0 = Clock::now();
-  const gs::vrml::Mesh cold = gs::render::tessellateText(text);
+  const gs::vrml::Mesh cold = gs::scene::tessellateText(text);
   const double coldS = since(t0);
   t0 = Clock::now();
-  const gs::vrml::Mesh warm = gs::render::tessellateText(text);
+  const gs::vrml::Mesh warm = gs::scene::tessellateText(text);
   const double warmS = since(t0);
   std::printf("characters %d, glyph meshes cached %zu, triangles %zu, vertices %zu\n", characters,
-              gs::render::cachedGlyphMeshCount(), warm.triangleCount(), warm.positions.size());
+              gs::scene::cachedGlyphMeshCount(), warm.triangleCount(), warm.positions.size());
   std::printf("layout + tessellation: cold %.1f ms, warm %.1f ms\n", coldS * 1e3, warmS * 1e3);
   (void)cold;
 

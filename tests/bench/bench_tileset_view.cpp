@@ -31,10 +31,10 @@
 
 #include "qnv/encoder.hpp"
 #include "qnv/tileset_writer.hpp"
-#include "render/camera.hpp"
 #include "render/context.hpp"
 #include "render/image.hpp"
 #include "render/splat_renderer.hpp"
+#include "scene/camera.hpp"
 #include "session/splat_inputs.hpp"
 #include "session/streaming_session.hpp"
 #include "session/volume_input.hpp"
@@ -70,7 +70,7 @@ struct Result {
 
 /// Draws `vectors` (styled as `set`) seen by `camera` at kSize x kSize.
 render::Image draw(const render::SplatSet& style, const std::vector<qnv::DecodedVector>& vectors,
-                   const render::Camera& camera) {
+                   const scene::Camera& camera) {
   render::SplatSet set;
   set.style = style.style;
   set.vectors = vectors;
@@ -87,7 +87,7 @@ render::Image draw(const render::SplatSet& style, const std::vector<qnv::Decoded
 
 /// Opens `url` (a stream or a tileset), shows it to `camera` (or the fitted camera) and
 /// pumps until settled.
-Result measure(const std::string& url, const render::Camera* camera, int parallel) {
+Result measure(const std::string& url, const scene::Camera* camera, int parallel) {
   net::LoaderOptions lo;
   session::StreamingSession s(lo);
   session::TilesetOptions to;
@@ -111,13 +111,13 @@ Result measure(const std::string& url, const render::Camera* camera, int paralle
   std::vector<std::pair<double, std::uint64_t>> samples;  // (seconds, vectors present)
   std::vector<Copy> copies;
   bool viewed = false;
-  render::Camera view;
+  scene::Camera view;
   std::unique_ptr<render::SplatViewRequests::Request> request;
   for (;;) {
     s.pump();
     if (!viewed && !set->bounds.empty()) {
       render::SplatSet::View v;
-      v.camera = camera ? *camera : render::fitCamera(set->bounds, 1.0f, render::Camera{});
+      v.camera = camera ? *camera : scene::fitCamera(set->bounds, 1.0f, scene::Camera{});
       v.heightPixels = kSize;
       v.vectors = set->total();
       request = set->viewRequests->request();
@@ -201,7 +201,7 @@ int main(int argc, char** argv) {
   vrml::Bounds box;
   box.extend(h.boundsMin);
   box.extend(h.boundsMax);
-  render::Camera zoom = render::fitCamera(box, 1.0f, render::Camera{});
+  scene::Camera zoom = scene::fitCamera(box, 1.0f, scene::Camera{});
   const glm::vec3 target = h.boundsMin + (h.boundsMax - h.boundsMin) * glm::vec3(0.2f, 0.8f, 0.5f);
   zoom.orientation = glm::quatLookAt(glm::normalize(target - zoom.position), glm::vec3(0, 1, 0));
   zoom.fieldOfView /= 4.0f;
@@ -211,10 +211,10 @@ int main(int argc, char** argv) {
               "close B", "base s", "base B", "all s", "bytes", "vectors");
   std::map<std::string, render::Image> finals;
   for (const auto& [name, input, camera] :
-       {std::tuple{"stream, whole view", url + "/cthead.qnv", (const render::Camera*)nullptr},
-        std::tuple{"stream, corner zoom", url + "/cthead.qnv", (const render::Camera*)&zoom},
-        std::tuple{"tileset, whole view", url + "/cthead/", (const render::Camera*)nullptr},
-        std::tuple{"tileset, corner zoom", url + "/cthead/", (const render::Camera*)&zoom}}) {
+       {std::tuple{"stream, whole view", url + "/cthead.qnv", (const scene::Camera*)nullptr},
+        std::tuple{"stream, corner zoom", url + "/cthead.qnv", (const scene::Camera*)&zoom},
+        std::tuple{"tileset, whole view", url + "/cthead/", (const scene::Camera*)nullptr},
+        std::tuple{"tileset, corner zoom", url + "/cthead/", (const scene::Camera*)&zoom}}) {
     const Result r = measure(input, camera, parallel);
     std::printf("%-22s %7.3f %7.3f %7.3f %10llu %7.3f %10llu %7.3f %10llu %8llu\n", name, r.first,
                 r.tenth, r.close, static_cast<unsigned long long>(r.closeBytes), r.base,

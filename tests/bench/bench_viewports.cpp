@@ -67,9 +67,9 @@ int main(int argc, char** argv) {
   auto drawAll = [&](int frame) {
     for (int i = 0; i < 4; ++i) {
       const float aspect = static_cast<float>(rects[i].width) / static_cast<float>(rects[i].height);
-      render::Camera c = views[i]->fitToScene(aspect, views[i]->boundViewpointCamera());
+      scene::Camera c = views[i]->fitToScene(aspect, views[i]->boundViewpointCamera());
       c.position.x += 0.5f * static_cast<float>(frame);  // a new view: the sort runs again
-      render::fitClipPlanes(c, views[i]->bounds(), views[i]->navigation().nearClip());
+      scene::fitClipPlanes(c, views[i]->bounds(), views[i]->navigation().nearClip());
       views[i]->draw(c, rects[i].x, rects[i].y, rects[i].width, rects[i].height);
     }
   };
@@ -94,9 +94,9 @@ int main(int argc, char** argv) {
     const auto t0 = Clock::now();
     for (int i = 0; i < 4; ++i) {
       const float aspect = static_cast<float>(rects[i].width) / static_cast<float>(rects[i].height);
-      render::Camera c = views[i]->fitToScene(aspect, views[i]->boundViewpointCamera());
+      scene::Camera c = views[i]->fitToScene(aspect, views[i]->boundViewpointCamera());
       c.position.x += 0.5f * static_cast<float>(frame);  // a new view: the sort runs again
-      render::fitClipPlanes(c, views[i]->bounds(), views[i]->navigation().nearClip());
+      scene::fitClipPlanes(c, views[i]->bounds(), views[i]->navigation().nearClip());
       const auto s0 = Clock::now();
       views[i]->draw(c, rects[i].x, rects[i].y, rects[i].width, rects[i].height);
       glFinish();

@@ -63,17 +63,17 @@ struct WorldResult {
 constexpr const char* kVariantNames[3] = {"snap", "fit", "castle"};
 
 /// castle-model-viewer's camera for a world without a Viewpoint (see the file comment).
-gs::render::Camera castleWholeSceneCamera(const gs::vrml::Bounds& bounds) {
-  gs::render::Camera camera;
+gs::scene::Camera castleWholeSceneCamera(const gs::vrml::Bounds& bounds) {
+  gs::scene::Camera camera;
   if (bounds.empty()) return camera;
   const glm::vec3 size = bounds.size();
   camera.position = bounds.center();
   camera.position.z = bounds.max.z + 2.0f * (size.x + size.y + size.z) / 3.0f;
-  gs::render::fitClipPlanes(camera, bounds);
+  gs::scene::fitClipPlanes(camera, bounds);
   return camera;
 }
 
-VariantResult renderVariant(gs::render::SceneRenderer& renderer, const gs::render::Camera& camera,
+VariantResult renderVariant(gs::render::SceneRenderer& renderer, const gs::scene::Camera& camera,
                             const Image& reference, const std::string& outPath) {
   renderer.draw(camera, 0, 0, kWidth, kHeight);
   const Image ours = gs::render::readPixels(0, 0, kWidth, kHeight);
@@ -167,10 +167,10 @@ int main(int argc, char** argv) {
           base = (fs::path(outDir) / flat).string();
         }
         const float aspect = float(kWidth) / float(kHeight);
-        gs::render::Camera cameras[3] = {renderer.boundViewpointCamera(),
-                                         renderer.initialCamera(aspect),
-                                         renderer.boundViewpointCamera()};
-        gs::render::fitClipPlanes(cameras[0], renderer.bounds(), renderer.navigation().nearClip());
+        gs::scene::Camera cameras[3] = {renderer.boundViewpointCamera(),
+                                        renderer.initialCamera(aspect),
+                                        renderer.boundViewpointCamera()};
+        gs::scene::fitClipPlanes(cameras[0], renderer.bounds(), renderer.navigation().nearClip());
         if (!r.hasViewpoint) cameras[2] = castleWholeSceneCamera(renderer.bounds());
         for (int v = 0; v < 3; ++v)
           r.variants[v] = renderVariant(renderer, cameras[v], reference,

@@ -314,7 +314,7 @@ TEST_CASE("bounds of rotated shapes come from their points, not their boxes",
       "#VRML V2.0 utf8\nTransform { rotation 0 1 0 0.7853982 children Shape { geometry "
       "Sphere { } } }\n",
       "/tmp/sphere.wrl"));
-  gs::render::SceneTraversal t(sphere);
+  gs::scene::SceneTraversal t(sphere);
   const gs::vrml::Bounds b = t.worldBounds();
   CHECK(b.max.x == Approx(1.0f).epsilon(0.01));
   CHECK(b.min.z == Approx(-1.0f).epsilon(0.01));
@@ -324,7 +324,7 @@ TEST_CASE("bounds of rotated shapes come from their points, not their boxes",
       "#VRML V2.0 utf8\nTransform { rotation 0 1 0 0.7853982 translation 5 0 0 children Shape {"
       " geometry Box { } } }\n",
       "/tmp/box.wrl"));
-  gs::render::SceneTraversal u(box);
+  gs::scene::SceneTraversal u(box);
   const gs::vrml::Bounds c = u.worldBounds();
   CHECK(c.max.x == Approx(5.0f + std::sqrt(2.0f)).epsilon(1e-4));
   CHECK(c.min.x == Approx(5.0f - std::sqrt(2.0f)).epsilon(1e-4));
@@ -335,7 +335,7 @@ TEST_CASE("bounds of rotated shapes come from their points, not their boxes",
       "#VRML V2.0 utf8\nTransform { rotation 0 1 0 0.7853982 children Transform { rotation 0 1 "
       "0 0.7853982 children Shape { geometry Box { size 2 4 6 } } } }\n",
       "/tmp/twice.wrl"));
-  gs::render::SceneTraversal v(twice);
+  gs::scene::SceneTraversal v(twice);
   CHECK(v.worldBounds().max.x == Approx(3.0f).epsilon(1e-4));
   CHECK(v.worldBounds().max.z == Approx(1.0f).epsilon(1e-4));
 }

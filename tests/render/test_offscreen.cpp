@@ -11,8 +11,8 @@
 #include <filesystem>
 
 using namespace gs::test;
-using gs::render::Camera;
 using gs::render::Image;
+using gs::scene::Camera;
 
 namespace {
 

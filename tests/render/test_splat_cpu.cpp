@@ -16,12 +16,12 @@
 #include "render/splat_sort.hpp"
 
 using gs::qnv::DecodedVector;
-using gs::render::Camera;
 using gs::render::DepthSorter;
 using gs::render::Image;
 using gs::render::SplatCompositing;
 using gs::render::SplatLight;
 using gs::render::SplatStyle;
+using gs::scene::Camera;
 
 namespace {
 
@@ -53,7 +53,7 @@ glm::mat4 tiltedView() {
   Camera c;
   c.position = {3.0f, -2.0f, 12.0f};
   c.orientation = glm::angleAxis(0.3f, glm::normalize(glm::vec3(1.0f, 2.0f, 0.5f)));
-  return gs::render::viewMatrix(c);
+  return gs::scene::viewMatrix(c);
 }
 
 std::vector<DecodedVector> randomVectors(std::size_t n, std::uint32_t seed) {
@@ -356,8 +356,8 @@ TEST_CASE("front to back equals back to front", "[render][splat]") {
     // The linear colours agree to float rounding.
     DepthSorter sorter;
     std::vector<std::uint32_t> nearFirst, farFirst;
-    sorter.sortFrontToBack(v, gs::render::viewMatrix(camera), nearFirst);
-    sorter.sortBackToFront(v, gs::render::viewMatrix(camera), farFirst);
+    sorter.sortFrontToBack(v, gs::scene::viewMatrix(camera), nearFirst);
+    sorter.sortBackToFront(v, gs::scene::viewMatrix(camera), farFirst);
     const auto a = gs::render::compositeSplats(v, nearFirst, SplatCompositing::frontToBack, style,
                                                lights, camera, 80, 60, {0.1f, 0.2f, 0.3f});
     const auto b = gs::render::compositeSplats(v, farFirst, SplatCompositing::backToFront, style,

@@ -14,6 +14,7 @@
 
 using namespace gs;
 using namespace gs::render;
+using namespace gs::scene;
 
 namespace {
 

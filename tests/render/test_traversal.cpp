@@ -1,6 +1,6 @@
 // Scene traversal on the CPU: node maths, grouping nodes, LOD, lights, bindables, Inline.
-#include "render/traversal.hpp"
 #include "render_test_util.hpp"
+#include "scene/traversal.hpp"
 #include "vrml/parser.hpp"
 
 #include <catch2/catch.hpp>
@@ -10,9 +10,9 @@
 #include <fstream>
 
 using namespace gs::test;
-using gs::render::Camera;
-using gs::render::SceneTraversal;
-using gs::render::TraversalFrame;
+using gs::scene::Camera;
+using gs::scene::SceneTraversal;
+using gs::scene::TraversalFrame;
 
 namespace {
 bool near(glm::vec3 a, glm::vec3 b, float eps = 1e-4f) {
@@ -27,8 +27,8 @@ NodePtr box() {
 NodePtr shape(NodePtr g = box()) {
   return makeNode("Shape", {{"geometry", sfNode(g)}});
 }
-gs::render::TraversalOptions options() {
-  gs::render::TraversalOptions o;
+gs::scene::TraversalOptions options() {
+  gs::scene::TraversalOptions o;
   o.tessellator = &testTessellate;
   return o;
 }
@@ -40,7 +40,7 @@ TEST_CASE("Transform follows clause 6.52's order", "[render][traversal]") {
                                   {"rotation", sfRotation(0, 0, 1, kHalfPi)},
                                   {"scale", sfVec3(2, 1, 1)},
                                   {"center", sfVec3(1, 0, 0)}});
-  const glm::mat4 m = gs::render::transformMatrix(*t);
+  const glm::mat4 m = gs::scene::transformMatrix(*t);
   // The centre stays put under rotation and scale, then translates.
   CHECK(near(apply(m, {1, 0, 0}), {2, 2, 3}));
   // (2,0,0): 1 from the centre along X, scaled to 2, rotated to +Y, back by the centre.
@@ -48,15 +48,15 @@ TEST_CASE("Transform follows clause 6.52's order", "[render][traversal]") {
   // scaleOrientation rotates the axes of the scale.
   auto so = makeNode("Transform", {{"scale", sfVec3(2, 1, 1)},
                                    {"scaleOrientation", sfRotation(0, 0, 1, kHalfPi)}});
-  const glm::mat4 s = gs::render::transformMatrix(*so);
+  const glm::mat4 s = gs::scene::transformMatrix(*so);
   CHECK(near(apply(s, {0, 1, 0}), {0, 2, 0}));
   CHECK(near(apply(s, {1, 0, 0}), {1, 0, 0}));
   // Missing fields read as their defaults: identity.
-  CHECK(gs::render::transformMatrix(*makeNode("Transform")) == glm::mat4(1.0f));
+  CHECK(gs::scene::transformMatrix(*makeNode("Transform")) == glm::mat4(1.0f));
 }
 
 TEST_CASE("LOD level selection per clause 6.26", "[render][traversal]") {
-  using gs::render::selectLodLevel;
+  using gs::scene::selectLodLevel;
   const std::vector<float> range{10.0f, 20.0f};
   CHECK(selectLodLevel(range, 5.0f, 3) == 0);
   CHECK(selectLodLevel(range, 10.0f, 3) == 1);
@@ -68,7 +68,7 @@ TEST_CASE("LOD level selection per clause 6.26", "[render][traversal]") {
 }
 
 TEST_CASE("Billboard rotations turn local Z towards the viewer", "[render][traversal]") {
-  using gs::render::billboardRotation;
+  using gs::scene::billboardRotation;
   // Around +Y, viewer on +X: local +Z turns to +X.
   glm::mat4 r = billboardRotation({0, 1, 0}, {5, 3, 0}, {0, 1, 0});
   CHECK(near(glm::mat3(r) * glm::vec3(0, 0, 1), {1, 0, 0}));
@@ -85,13 +85,13 @@ TEST_CASE("TextureTransform order is -C S R C T", "[render][traversal]") {
   auto tt = makeNode(
       "TextureTransform",
       {{"translation", sfVec2(0.5f, 0)}, {"scale", sfVec2(2, 2)}, {"center", sfVec2(0.5f, 0.5f)}});
-  const glm::mat3 m = gs::render::textureTransformMatrix(*tt);
+  const glm::mat3 m = gs::scene::textureTransformMatrix(*tt);
   // (0,0): translate to (0.5,0), +C (1,0.5), rotate, scale (2,1), -C: (1.5,0.5)
   const glm::vec3 p = m * glm::vec3(0, 0, 1);
   CHECK(p.x == Approx(1.5f));
   CHECK(p.y == Approx(0.5f));
   auto rot = makeNode("TextureTransform", {{"rotation", sfFloat(kHalfPi)}});
-  const glm::vec3 q = gs::render::textureTransformMatrix(*rot) * glm::vec3(1, 0, 1);
+  const glm::vec3 q = gs::scene::textureTransformMatrix(*rot) * glm::vec3(1, 0, 1);
   CHECK(q.x == Approx(0.0f).margin(1e-6));
   CHECK(q.y == Approx(1.0f));
 }
@@ -112,13 +112,13 @@ TEST_CASE("the parser and the renderer resolve a URL the same way", "[render][tr
   };
   auto scene = std::make_shared<const gs::vrml::Scene>(gs::vrml::parseVrml(text, world, parse));
   std::string rendererUrl;
-  gs::render::TraversalOptions options;
+  gs::scene::TraversalOptions options;
   options.inlineLoader = [&](const std::string& url) {
     rendererUrl = url;
     return gs::vrml::Scene{};
   };
-  gs::render::SceneTraversal traversal(scene, options);
-  gs::render::TraversalFrame frame;
+  gs::scene::SceneTraversal traversal(scene, options);
+  gs::scene::TraversalFrame frame;
   traversal.collect(traversal.boundViewpointCamera(), frame);
   CHECK(parserUrl == "http://h.org/w/protos/p.wrl");
   CHECK(rendererUrl == parserUrl);
@@ -178,12 +178,12 @@ TEST_CASE("DirectionalLight lights only its siblings; point lights are global",
   const auto& a = frame.shapes[0];
   REQUIRE(a.scopedLightCount == 1);
   const auto& l = frame.lights[frame.scopedLights[a.scopedLightBegin]];
-  CHECK(l.type == gs::render::LightType::directional);
+  CHECK(l.type == gs::scene::LightType::directional);
   CHECK(near(l.direction, {1, 0, 0}));  // rotated by the Transform
   CHECK(frame.shapes[1].scopedLightCount == 0);
   REQUIRE(frame.globalLights.size() == 1);
   const auto& p = frame.lights[frame.globalLights[0]];
-  CHECK(p.type == gs::render::LightType::point);
+  CHECK(p.type == gs::scene::LightType::point);
   CHECK(near(p.location, {0, 2, 0}));
   CHECK(p.radius == Approx(10.0f));  // scaled with the Transform
 }
@@ -234,7 +234,7 @@ TEST_CASE("the first Viewpoint, NavigationInfo, Background and Fog are bound",
 TEST_CASE("Inline loads once, resolves relative URLs and survives failures",
           "[render][traversal]") {
   std::vector<std::string> loads;
-  gs::render::TraversalOptions o = options();
+  gs::scene::TraversalOptions o = options();
   o.inlineLoader = [&](const std::string& url) {
     loads.push_back(url);
     gs::vrml::Scene s;
@@ -274,7 +274,7 @@ TEST_CASE("Inline loads once, resolves relative URLs and survives failures",
 }
 
 TEST_CASE("the default Inline loader reads local files only", "[render][traversal]") {
-  gs::render::TraversalOptions o = options();
+  gs::scene::TraversalOptions o = options();
   SceneTraversal t(
       makeScene({makeNode("Inline", {{"url", mfString({"http://example.org/x.wrl"})}})}), o);
   TraversalFrame frame;

@@ -1,5 +1,5 @@
 // 6.8 Collision: collideTime when the avatar meets a Collision's children or proxy
-// (ExecutionModel::collided; render::walkStep decides the meeting).
+// (ExecutionModel::collided; scene::walkStep decides the meeting).
 #include "runtime_fixture.hpp"
 
 #include <catch2/catch.hpp>

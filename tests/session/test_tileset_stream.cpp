@@ -8,7 +8,7 @@
 
 #include "qnv/encoder.hpp"
 #include "qnv/volume.hpp"
-#include "render/camera.hpp"
+#include "scene/camera.hpp"
 #include "session/streaming_session.hpp"
 #include "test_support.hpp"
 #include "tileset_fixture.hpp"
@@ -37,7 +37,7 @@ struct Loaded {
   std::vector<std::pair<bool, std::string>> messages;
 };
 
-Loaded load(const std::string& input, const render::Camera* camera) {
+Loaded load(const std::string& input, const scene::Camera* camera) {
   session::StreamingSession s;
   std::string error;
   auto scene = s.open(input, error);
@@ -48,7 +48,7 @@ Loaded load(const std::string& input, const render::Camera* camera) {
   for (int i = 0; i < 100000 && !(s.pump(), s.settled() && !set->bounds.empty()); ++i)
     s.loader().wait(0.01);
   render::SplatSet::View view;
-  view.camera = camera ? *camera : render::fitCamera(set->bounds, 1.0f, render::Camera{});
+  view.camera = camera ? *camera : scene::fitCamera(set->bounds, 1.0f, scene::Camera{});
   view.heightPixels = 512;
   view.vectors = set->total();
   const auto request = set->viewRequests->request();
@@ -108,7 +108,7 @@ TEST_CASE("tileset stream: a zoom into one corner fetches far fewer bytes", "[ti
   const Loaded whole = load(dir.string(), nullptr);
   // Close to the corner of the lowest x, y, z octant, looking along +z into it.
   const auto& h = encoded.header;
-  render::Camera zoom;
+  scene::Camera zoom;
   zoom.position = h.boundsMin + (h.boundsMax - h.boundsMin) * glm::vec3(0.25f, 0.25f, -0.2f);
   zoom.orientation = glm::angleAxis(3.14159265f, glm::vec3(0, 1, 0));  // looks along +z
   zoom.fieldOfView = 0.3f;

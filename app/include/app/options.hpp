@@ -10,7 +10,7 @@
 
 #include "app/layout.hpp"
 #include "render/splat_renderer.hpp"
-#include "render/traversal.hpp"
+#include "scene/traversal.hpp"
 
 namespace gs::app {
 
@@ -57,7 +57,7 @@ struct Options {
   std::string script;              // --script FILE: UI actions for the window (window_script.hpp)
   bool newInstance = false;        // --new-instance: do not hand INPUTs to a running window
   std::string frameLog;            // --frame-log FILE: a line per window frame (frame_log.hpp)
-  render::RenderMode mode = render::RenderMode::polygons;      // --mode polygons|splats|outlines
+  scene::RenderMode mode = scene::RenderMode::polygons;        // --mode polygons|splats|outlines
   render::SplatPath splatPath = render::SplatPath::automatic;  // --splat-path (render/README.md)
   bool fit = false;      // --fit: frame the whole scene, not the Viewpoint
   double maxRate = 0.0;  // --max-rate BYTES_PER_S: emulate a slow link (0: off)

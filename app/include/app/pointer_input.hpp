@@ -1,11 +1,11 @@
 // The pointing device between the renderer's picking and the execution model's sensors
-// (docs/runtime.md): a render::PickHit as a runtime::PickResult, and what the browser
+// (docs/runtime.md): a scene::PickHit as a runtime::PickResult, and what the browser
 // does with a link (Anchor, Browser.loadURL) that is not a `#Name` Viewpoint.
 #pragma once
 
-#include "render/camera.hpp"
-#include "render/picking.hpp"
 #include "runtime/pointer.hpp"
+#include "scene/camera.hpp"
+#include "scene/picking.hpp"
 
 #include <string>
 #include <vector>
@@ -13,13 +13,12 @@
 namespace gs::app {
 
 /// The runtime's view of a pick (the nodes are the scene's; render/ holds them const).
-runtime::PickResult toPickResult(const render::PickHit& hit);
+runtime::PickResult toPickResult(const scene::PickHit& hit);
 
 /// The pointer event for the point (x, y) of a viewport width x height pixels (from its
 /// top left) seen by `camera`, picking on what `traversal` draws for that camera.
-runtime::PointerEvent pointerEventAt(render::SceneTraversal& traversal,
-                                     const render::Camera& camera, int width, int height, float x,
-                                     float y, bool buttonDown);
+runtime::PointerEvent pointerEventAt(scene::SceneTraversal& traversal, const scene::Camera& camera,
+                                     int width, int height, float x, float y, bool buttonDown);
 
 /// What a link asks of the browser (ISO/IEC 14772-1 6.2; issue 11 point 7).
 enum class LinkAction {

@@ -5,9 +5,9 @@
 
 #include "app/layout.hpp"
 #include "app/world_sound.hpp"
-#include "render/camera.hpp"
 #include "render/scene_renderer.hpp"
 #include "runtime/pointer.hpp"
+#include "scene/camera.hpp"
 #include "session/streaming_session.hpp"
 #include "session/world.hpp"
 #include "session/world_runtime.hpp"
@@ -36,7 +36,7 @@ struct Viewport {
   std::unique_ptr<session::WorldView> worldView;
   /// The view's renderer; null while empty.
   render::SceneRenderer* renderer() const { return worldView ? &worldView->renderer() : nullptr; }
-  render::ExamineNavigator navigator;
+  scene::ExamineNavigator navigator;
   render::SceneRendererOptions options;  // level of detail, mode, loaders
   /// False once the user moved this camera: until then it is framed again as the world
   /// arrives.
@@ -64,7 +64,7 @@ struct Viewport {
   const vrml::Node* viewpointSeen = nullptr;
   /// An animated move to a Viewpoint (1 s, position and orientation interpolated).
   struct Transition {
-    render::Camera from, to;
+    scene::Camera from, to;
     double start = -1.0;  // seconds (steady clock); < 0: none
   } transition;
   /// WALK gravity (window_navigation.cpp): where the avatar last stood on the ground, and
@@ -164,7 +164,7 @@ struct WindowState {
   /// Frames the active viewport's whole scene keeping the view direction.
   void fitToScene();
   /// Draws the active viewport in `mode` (a new renderer; the view stays).
-  void setMode(render::RenderMode mode);
+  void setMode(scene::RenderMode mode);
   /// Sets the active viewport's level of detail (fraction of every QNV stream, 0..1).
   void setLod(double lod);
   /// Sets the active viewport's vector budget (vectors per frame in all; 0: none).
@@ -174,10 +174,10 @@ struct WindowState {
   void jumpToViewpoint(std::size_t index);
   /// Sets the active viewport's navigation type (EXAMINE, WALK, FLY), overriding its
   /// NavigationInfo.
-  void setNavigation(render::NavigationMode mode);
+  void setNavigation(scene::NavigationMode mode);
   /// WALK and FLY (window_navigation.cpp): moves the active viewport's camera `forward`,
   /// `right` and `up` metres as ExamineNavigator::move, but stopped by walls, and, in
-  /// WALK, on the ground (render::walkStep; falls of at most `maxFall` metres at once);
+  /// WALK, on the ground (scene::walkStep; falls of at most `maxFall` metres at once);
   /// the Collision nodes met send collideTime. EXAMINE: ExamineNavigator::move.
   void moveViewer(float forward, float right, float up, float maxFall);
   /// Once a frame: WALK viewports whose avatar is above the ground fall towards it

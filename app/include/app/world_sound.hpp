@@ -5,7 +5,7 @@
 
 #include "audio/audio_output.hpp"
 #include "audio/sound_scene.hpp"
-#include "render/camera.hpp"
+#include "scene/camera.hpp"
 #include "session/world_runtime.hpp"
 
 #include <map>
@@ -25,9 +25,9 @@ class WorldSounds {
   const std::string& note() const { return note_; }
   /// One frame: `scene`'s Sounds heard from `camera`, clip durations to `runtimes`; the
   /// Sounds of the Inline worlds `traversal` (a renderer of `scene`; may be null) loaded too.
-  void update(const std::shared_ptr<const vrml::Scene>& scene, const render::Camera& camera,
+  void update(const std::shared_ptr<const vrml::Scene>& scene, const scene::Camera& camera,
               session::WorldRuntimes& runtimes, double now,
-              const render::SceneTraversal* traversal = nullptr);
+              const scene::SceneTraversal* traversal = nullptr);
 
  private:
   std::string note_;  // before output_: the output's constructor writes it

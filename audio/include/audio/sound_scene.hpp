@@ -48,7 +48,7 @@ using ClipTimeQuery = std::function<std::optional<ClipTime>(const vrml::Node& cl
 using ClipLoader =
     std::function<bool(const std::string& url, std::string& bytes, std::string& error)>;
 /// The world an Inline node (6.25) has loaded so far (the renderer loads Inlines; e.g.
-/// render::SceneTraversal::loadedInline); null when none (not yet, or failed). Its `url`
+/// scene::SceneTraversal::loadedInline); null when none (not yet, or failed). Its `url`
 /// is the base of the clip URLs inside it.
 using InlineQuery = std::function<std::shared_ptr<const vrml::Scene>(const vrml::Node& inlineNode)>;
 

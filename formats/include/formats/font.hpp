@@ -2,7 +2,7 @@
 // choice through fontconfig, UTF-8 shaping through HarfBuzz, glyph outlines through
 // FreeType, and the layout of lines (size, spacing, justify, horizontal, leftToRight,
 // topToBottom, length, maxExtent). Produces plain data: flattened outlines and glyph
-// placements; turning outlines into triangles is render/'s (render/text_mesh.hpp).
+// placements; turning outlines into triangles is render/'s (scene/text_mesh.hpp).
 // docs/text.md explains the choices.
 #pragma once
 

@@ -26,7 +26,7 @@ struct OutlineWorldSummary {
   std::size_t outlineBytes = 0;
 };
 
-/// Flattens `scene` as render::worldTriangles does (render/world_triangles.hpp: every
+/// Flattens `scene` as scene::worldTriangles does (scene/world_triangles.hpp: every
 /// triangle drawn from the bound Viewpoint, Inlines included, in world coordinates,
 /// counter-clockwise front, mirroring transforms undone), groups it with
 /// encodeOutlineGroups and writes a VRML97 text world (UTF-8):

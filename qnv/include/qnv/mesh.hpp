@@ -1,5 +1,5 @@
 // A triangle mesh as the surface encoder consumes it (paper section 2.1: one vector per
-// triangle). The readers of formats/ (PLY, OBJ, glTF) produce it; render::worldTriangles
+// triangle). The readers of formats/ (PLY, OBJ, glTF) produce it; scene::worldTriangles
 // builds it from VRML worlds.
 #pragma once
 

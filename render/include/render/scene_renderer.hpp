@@ -4,10 +4,10 @@
 // and the headlight. The same code draws into a window or an off-screen framebuffer.
 #pragma once
 
-#include "render/camera.hpp"
 #include "render/splat_renderer.hpp"
 #include "render/splat_source.hpp"
-#include "render/traversal.hpp"
+#include "scene/camera.hpp"
+#include "scene/traversal.hpp"
 #include "vrml/parser.hpp"
 #include "vrml/scene.hpp"
 
@@ -48,7 +48,7 @@ struct SceneRendererOptions {
   /// ImageTexture and, when traversal.inlineLoader is empty, for Inline. Empty: local files
   /// only. May answer LoadStatus::pending (loading in the background).
   ResourceLoader loader;
-  TraversalOptions traversal;
+  scene::TraversalOptions traversal;
   /// Diameter of PointSet points in pixels.
   float pointSize = 2.0f;
   /// Loads the vectors of QuantizedNormalVectors urls. Empty: local .qnv files.
@@ -102,20 +102,20 @@ class SceneRenderer {
   /// the rectangle and its depth is cleared; pixels outside it are untouched. Throws
   /// std::runtime_error when a shader fails to compile (a broken driver). Problems with
   /// the content (missing textures or Inlines) are diagnostics, never exceptions.
-  void draw(const Camera& camera, int x, int y, int width, int height);
+  void draw(const scene::Camera& camera, int x, int y, int width, int height);
 
   /// Every Viewpoint of the main file, depth-first (for a viewpoint menu).
-  const std::vector<ViewpointInfo>& viewpoints() const { return traversal_.viewpoints(); }
+  const std::vector<scene::ViewpointInfo>& viewpoints() const { return traversal_.viewpoints(); }
   /// Camera of the bound (first) Viewpoint or the VRML97 default, with clip planes from
   /// NavigationInfo and the scene bounds (SceneTraversal::viewpointCamera).
-  Camera boundViewpointCamera() { return traversal_.boundViewpointCamera(); }
+  scene::Camera boundViewpointCamera() { return traversal_.boundViewpointCamera(); }
   /// The camera to start with in a viewport of aspect width / height: the bound
   /// Viewpoint's when the file has one; otherwise the VRML97 default orientation and field
   /// of view moved back to frame the whole scene (as castle-model-viewer and most browsers
   /// do, since the default position 0 0 10 often shows nothing useful).
-  Camera initialCamera(float aspect);
+  scene::Camera initialCamera(float aspect);
   /// Camera of viewpoints()[index] with clip planes as boundViewpointCamera().
-  Camera viewpointCamera(std::size_t index) { return traversal_.viewpointCamera(index); }
+  scene::Camera viewpointCamera(std::size_t index) { return traversal_.viewpointCamera(index); }
   /// World bounding box of the scene as drawn from the bound Viewpoint (loads Inlines,
   /// tessellates all geometry and loads QNV streams the first time).
   const vrml::Bounds& bounds();
@@ -131,11 +131,11 @@ class SceneRenderer {
   void setLod(double lod);
   /// A camera looking along `direction`'s view direction that frames the whole scene in a
   /// viewport of aspect width / height (fitCamera on bounds()).
-  Camera fitToScene(float aspect, const Camera& direction) {
-    return fitCamera(bounds(), aspect, direction);
+  scene::Camera fitToScene(float aspect, const scene::Camera& direction) {
+    return scene::fitCamera(bounds(), aspect, direction);
   }
   /// The bound NavigationInfo (type, headlight, speed, avatarSize, visibilityLimit).
-  const NavigationSettings& navigation() const { return traversal_.navigation(); }
+  const scene::NavigationSettings& navigation() const { return traversal_.navigation(); }
 
   /// Whether the headlight is on; starts as NavigationInfo.headlight.
   bool headlight() const { return headlight_; }
@@ -160,7 +160,7 @@ class SceneRenderer {
   /// Problems met while loading Inlines and textures or tessellating, each once.
   const vrml::Diagnostics& diagnostics() const { return traversal_.diagnostics(); }
   /// The CPU traversal (for tests and tools).
-  SceneTraversal& traversal() { return traversal_; }
+  scene::SceneTraversal& traversal() { return traversal_; }
 
   /// Frees every GL object (the renderer's context must be current); the next draw()
   /// creates them again.
@@ -169,7 +169,7 @@ class SceneRenderer {
  private:
   struct Gpu;
   SceneRendererOptions options_;
-  SceneTraversal traversal_;
+  scene::SceneTraversal traversal_;
   std::unique_ptr<Gpu> gpu_;
   std::unique_ptr<detail::SceneSplats> splats_;
   vrml::Bounds bounds_;

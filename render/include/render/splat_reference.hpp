@@ -53,9 +53,9 @@
 #include <glm/vec3.hpp>
 
 #include "qnv/decoder.hpp"
-#include "render/camera.hpp"
 #include "render/image.hpp"
 #include "render/splat_model.hpp"
+#include "scene/camera.hpp"
 
 namespace gs::render {
 
@@ -64,15 +64,15 @@ namespace gs::render {
 /// DepthSorter order. Returns an opaque width x height image (an empty Image when width or
 /// height is not positive). `background` is linear 0..1 RGB.
 Image renderSplatsReference(std::span<const qnv::DecodedVector> vectors, const SplatStyle& style,
-                            std::span<const SplatLight> lights, const Camera& camera, int width,
-                            int height, const glm::vec3& background,
+                            std::span<const SplatLight> lights, const scene::Camera& camera,
+                            int width, int height, const glm::vec3& background,
                             std::size_t count = static_cast<std::size_t>(-1));
 
 /// The same image computed back to front with the over operator (equal up to float
 /// rounding to renderSplatsReference): a check of the compositing itself.
 Image renderSplatsReferenceBackToFront(std::span<const qnv::DecodedVector> vectors,
                                        const SplatStyle& style, std::span<const SplatLight> lights,
-                                       const Camera& camera, int width, int height,
+                                       const scene::Camera& camera, int width, int height,
                                        const glm::vec3& background,
                                        std::size_t count = static_cast<std::size_t>(-1));
 
@@ -90,8 +90,9 @@ enum class SplatCompositing {
 std::vector<glm::vec3> compositeSplats(std::span<const qnv::DecodedVector> vectors,
                                        std::span<const std::uint32_t> order,
                                        SplatCompositing compositing, const SplatStyle& style,
-                                       std::span<const SplatLight> lights, const Camera& camera,
-                                       int width, int height, const glm::vec3& background);
+                                       std::span<const SplatLight> lights,
+                                       const scene::Camera& camera, int width, int height,
+                                       const glm::vec3& background);
 
 /// Converts compositeSplats' colours to an opaque RGBA8 Image: round(255 clamp(c, 0, 1)).
 Image splatColorsToImage(std::span<const glm::vec3> colors, int width, int height);

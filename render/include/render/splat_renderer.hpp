@@ -15,8 +15,8 @@
 #include <glm/glm.hpp>
 
 #include "qnv/decoder.hpp"
-#include "render/camera.hpp"
 #include "render/splat_model.hpp"
+#include "scene/camera.hpp"
 #include "vrml/geometry.hpp"
 
 namespace gs::render {
@@ -25,7 +25,7 @@ namespace gs::render {
 /// coordinates), the node's placement (set coordinates to world), viewport aspect and
 /// height (pixels), and the vectors its level of detail asked for.
 struct SplatView {
-  Camera camera;
+  scene::Camera camera;
   glm::mat4 model{1.0f};
   float aspect = 1.0f;
   int heightPixels = 0;
@@ -158,8 +158,8 @@ class SplatRenderer {
   /// glReadPixels). The viewport must already be set. `style`
   /// (may be null) replaces set.style (a QNV node's mode and opacityScale). Throws
   /// std::runtime_error when a shader fails to compile.
-  void draw(const SplatSet& set, std::size_t count, const glm::mat4& model, const Camera& camera,
-            float aspect, std::span<const SplatLight> lights,
+  void draw(const SplatSet& set, std::size_t count, const glm::mat4& model,
+            const scene::Camera& camera, float aspect, std::span<const SplatLight> lights,
             SplatBlend blend = SplatBlend::backToFront, const SplatStyle* style = nullptr);
 
   const SplatStatistics& statistics() const { return statistics_; }
@@ -173,7 +173,7 @@ class SplatRenderer {
  private:
   /// The cpu path of draw(), after the depth sort (front to back, in gpu_->order).
   void drawCpu(const SplatSet& set, std::size_t count, const glm::mat4& model,
-               const glm::mat4& modelView, const Camera& camera, const glm::mat4& projection,
+               const glm::mat4& modelView, const scene::Camera& camera, const glm::mat4& projection,
                std::span<const SplatLight> lights, SplatBlend blend, const SplatStyle& style);
 
   struct Gpu;

@@ -119,7 +119,7 @@ class ExecutionModel final : public ScriptContext {
   bool wantsPointer() const;
 
   /// The avatar collided with the children (or proxy) of `collisionNodes` (Collision,
-  /// 6.8; render::walkStep says which): one new timestamp at now() in which each sends
+  /// 6.8; scene::walkStep says which): one new timestamp at now() in which each sends
   /// collideTime = now(). Nodes that are not Collision nodes are ignored.
   void collided(const std::vector<vrml::Node*>& collisionNodes);
 

@@ -4,8 +4,8 @@
 #pragma once
 
 #include "render/scene_renderer.hpp"
-#include "render/traversal.hpp"
 #include "runtime/execution_model.hpp"
+#include "scene/traversal.hpp"
 #include "vrml/scene.hpp"
 
 #include <cstdio>
@@ -38,7 +38,7 @@ using FetchWhole = std::function<bool(const std::string& url, const std::string&
 
 /// The viewer pose the execution model's sensors see for a camera drawn at `aspect`
 /// (width / height).
-runtime::ViewerPose viewerPose(const render::Camera& camera, float aspect);
+runtime::ViewerPose viewerPose(const scene::Camera& camera, float aspect);
 
 /// Parses --time "T" or "T0:DT:N" (T0 >= 0, DT > 0, 1 <= N <= 100000). False when
 /// malformed; the fields are then unchanged.
@@ -67,7 +67,7 @@ class WorldRuntimes {
   /// join `scene`'s execution model (their routes and sensors run), and the ROUTEs of
   /// `scene` to or from IMPORTed nodes (vrml::X3dImportedRoute, X3D clause 4.4.6) whose
   /// Inline has arrived are added (a name the Inline does not EXPORT is a diagnostic).
-  void addInlines(const vrml::Scene* scene, const render::SceneTraversal& traversal);
+  void addInlines(const vrml::Scene* scene, const scene::SceneTraversal& traversal);
   /// The viewer of `scene`'s world (ProximitySensor, VisibilitySensor); ignored when the
   /// world has no execution model yet.
   void setViewer(const vrml::Scene* scene, const runtime::ViewerPose& viewer);
@@ -81,7 +81,7 @@ class WorldRuntimes {
                          const std::vector<std::string>& parameter)>;
   void setLinkHandler(LinkHandler handler) { link_ = std::move(handler); }
   /// The nodes bound in `scene`'s execution model; nothing bound when it has none.
-  render::BoundNodes bound(const vrml::Scene* scene) const;
+  scene::BoundNodes bound(const vrml::Scene* scene) const;
   /// MovieTexture and AudioClip (docs/media.md): the media clock a renderer of `scene`
   /// reads (runtime::ExecutionModel::mediaTime; empty before the world runs), and the
   /// durations its decoders found, handed to the execution model.
@@ -103,7 +103,7 @@ class WorldRuntimes {
     std::vector<char> importedRouteDone;  // per scene->x3d.importedRoutes
   };
   std::map<const vrml::Scene*, Entry> worlds_;
-  void resolveImportedRoutes(Entry& e, const render::SceneTraversal& traversal);
+  void resolveImportedRoutes(Entry& e, const scene::SceneTraversal& traversal);
 };
 
 }  // namespace gs::session

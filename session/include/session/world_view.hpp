@@ -19,8 +19,8 @@
 // A new per-frame step goes into WorldView::frame, at its place in this order.
 #pragma once
 
-#include "render/camera.hpp"
 #include "render/scene_renderer.hpp"
+#include "scene/camera.hpp"
 #include "session/streaming_session.hpp"
 #include "session/world_runtime.hpp"
 #include "vrml/scene.hpp"
@@ -77,7 +77,7 @@ class ViewGroup {
 
 /// The camera a view draws with and its world's sensors see, given the renderer (its
 /// bound Viewpoint, bounds) and the aspect (width / height) of the view's rectangle.
-using CameraSource = std::function<render::Camera(render::SceneRenderer& renderer, float aspect)>;
+using CameraSource = std::function<scene::Camera(render::SceneRenderer& renderer, float aspect)>;
 
 /// One viewport of one world.
 class WorldView {
@@ -97,7 +97,7 @@ class WorldView {
 
   void setCamera(CameraSource camera) { camera_ = std::move(camera); }
   /// The camera of the view's current rectangle.
-  render::Camera camera();
+  scene::Camera camera();
   /// Where the view draws (pixels of the current framebuffer, lower-left origin).
   void setRect(int x, int y, int width, int height);
   float aspect() const;

@@ -1,7 +1,7 @@
 // Tessellation of VRML97 geometry nodes into triangle, line and point arrays (clause 6:
 // Box 6.4, Cone 6.11, Cylinder 6.15, ElevationGrid 6.18, Extrusion 6.19,
 // IndexedFaceSet 6.23, IndexedLineSet 6.24, PointSet 6.36, Sphere 6.43; Text 6.47 gives an
-// empty mesh here: render::tessellateText draws it, render/text_mesh.hpp, so that vrml/
+// empty mesh here: scene::tessellateText draws it, scene/text_mesh.hpp, so that vrml/
 // needs no font library), and of the X3D 4.0 (ISO/IEC 19775-1) geometry the Immersive
 // profile and CADGeometry add: the Rendering component's IndexedTriangleSet,
 // IndexedTriangleFanSet, IndexedTriangleStripSet, TriangleSet, TriangleFanSet,
@@ -101,7 +101,7 @@ struct Mesh {
 ///   ElevationGrid uses only the complete rows its height array holds; Extrusion caps are
 ///   made whenever beginCap / endCap ask for them (also on closed spines) and its grid is
 ///   limited to kMaxExtrusionPoints.
-/// - Text gives an empty mesh (render::tessellateGeometry draws it through FreeType).
+/// - Text gives an empty mesh (scene::tessellateGeometry draws it through FreeType).
 /// Safe for untrusted nodes: time and memory stay proportional to the node's arrays.
 Mesh tessellate(const Node& geometry, Diagnostics* diag = nullptr);
 

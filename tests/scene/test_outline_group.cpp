@@ -1,6 +1,6 @@
 // The OutlineGroup extension node (docs/vrml-extensions.md) in the traversal: outlines
 // shown until their group's polygons arrive, RenderMode::outlines, hole tessellation.
-#include "render/traversal.hpp"
+#include "scene/traversal.hpp"
 #include "vrml/geometry.hpp"
 #include "vrml/parser.hpp"
 
@@ -9,10 +9,10 @@
 #include <memory>
 #include <string>
 
-using gs::render::RenderMode;
-using gs::render::SceneTraversal;
-using gs::render::TraversalFrame;
-using gs::render::TraversalOptions;
+using gs::scene::RenderMode;
+using gs::scene::SceneTraversal;
+using gs::scene::TraversalFrame;
+using gs::scene::TraversalOptions;
 
 namespace {
 
@@ -44,7 +44,7 @@ std::size_t outlineShapes(const TraversalFrame& f) {
 
 }  // namespace
 
-TEST_CASE("an outline is drawn until its group's polygons arrive", "[render][outline]") {
+TEST_CASE("an outline is drawn until its group's polygons arrive", "[scene][outline]") {
   TraversalFrame frame;
   {
     SceneTraversal t(parse(kHeader + kOutline0 + kPlainShape));
@@ -79,7 +79,7 @@ TEST_CASE("an outline is drawn until its group's polygons arrive", "[render][out
 }
 
 TEST_CASE("outlines mode draws only outlines and shapes outside outline groups",
-          "[render][outline]") {
+          "[scene][outline]") {
   TraversalOptions options;
   options.mode = RenderMode::outlines;
   SceneTraversal t(parse(kHeader + kOutline0 + kPlainShape + kPolygons0), options);
@@ -96,7 +96,7 @@ TEST_CASE("outlines mode draws only outlines and shapes outside outline groups",
   CHECK(frame.shapes.size() == 1);
 }
 
-TEST_CASE("an outline with a hole is tessellated around the hole", "[render][outline]") {
+TEST_CASE("an outline with a hole is tessellated around the hole", "[scene][outline]") {
   // A 4x4 square with a 2x2 hole in the middle (hole given counter-clockwise: the
   // orientation of later loops does not matter).
   const std::string text = kHeader +
@@ -139,7 +139,7 @@ TEST_CASE("an outline with a hole is tessellated around the hole", "[render][out
 }
 
 TEST_CASE("the extension fallback PROTOs and a world declaring them parse cleanly",
-          "[render][outline]") {
+          "[scene][outline]") {
   const std::string dir = std::string(GS_SOURCE_DIR) + "/assets/worlds/";
   const gs::vrml::Scene protos = gs::vrml::loadVrmlFile(dir + "ghostspace-extensions.wrl");
   CHECK(protos.diagnostics.items.empty());

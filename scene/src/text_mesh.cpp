@@ -1,15 +1,15 @@
 // Text (6.47) as triangles: layout from formats/, glyph outlines triangulated by
 // vrml::triangulateOutline (ear clipping with holes bridged), cached per face and glyph.
-#include "render/text_mesh.hpp"
+#include "scene/text_mesh.hpp"
 
-#include "node_access.hpp"
+#include "scene/node_access.hpp"
 
 #include <map>
 #include <memory>
 #include <mutex>
 #include <tuple>
 
-namespace gs::render {
+namespace gs::scene {
 
 namespace {
 
@@ -53,21 +53,21 @@ std::shared_ptr<const GlyphMesh> glyphMesh(formats::FontLibrary& fonts, formats:
 
 formats::TextStyle textStyleOf(const vrml::Node& text, vrml::Diagnostics* diag) {
   formats::TextStyle style;
-  style.length = detail::mfFloat(text, "length");
-  style.maxExtent = detail::sfFloat(text, "maxExtent", 0.0f);
+  style.length = mfFloat(text, "length");
+  style.maxExtent = sfFloat(text, "maxExtent", 0.0f);
   const vrml::NodePtr fs = text.sfnode("fontStyle");
   if (!fs) return style;
-  style.family = detail::mfString(*fs, "family");
+  style.family = mfString(*fs, "family");
   if (fs->field("family") == nullptr) style.family = {"SERIF"};
-  style.style = fs->field("style") ? detail::sfString(*fs, "style") : std::string("PLAIN");
-  style.language = detail::sfString(*fs, "language");
-  style.size = detail::sfFloat(*fs, "size", 1.0f);
-  style.spacing = detail::sfFloat(*fs, "spacing", 1.0f);
-  style.horizontal = detail::sfBool(*fs, "horizontal", true);
-  style.leftToRight = detail::sfBool(*fs, "leftToRight", true);
-  style.topToBottom = detail::sfBool(*fs, "topToBottom", true);
+  style.style = fs->field("style") ? sfString(*fs, "style") : std::string("PLAIN");
+  style.language = sfString(*fs, "language");
+  style.size = sfFloat(*fs, "size", 1.0f);
+  style.spacing = sfFloat(*fs, "spacing", 1.0f);
+  style.horizontal = sfBool(*fs, "horizontal", true);
+  style.leftToRight = sfBool(*fs, "leftToRight", true);
+  style.topToBottom = sfBool(*fs, "topToBottom", true);
   std::vector<std::string> justify = {"BEGIN"};
-  if (fs->field("justify") != nullptr) justify = detail::mfString(*fs, "justify");
+  if (fs->field("justify") != nullptr) justify = mfString(*fs, "justify");
   std::string unknown;
   formats::parseJustify(justify, style.major, style.minor, &unknown);
   if (!unknown.empty() && diag != nullptr)
@@ -80,7 +80,7 @@ vrml::Mesh tessellateText(const vrml::Node& text, vrml::Diagnostics* diag,
   vrml::Mesh mesh;
   mesh.solid = false;
   const formats::TextStyle style = textStyleOf(text, diag);
-  const formats::TextLayout layout = fonts.layout(detail::mfString(text, "string"), style);
+  const formats::TextLayout layout = fonts.layout(mfString(text, "string"), style);
   if (diag != nullptr)
     for (const std::string& w : layout.warnings) diag->warning(text.location, w);
   const float unit = layout.textureUnit > 0.0f ? 1.0f / layout.textureUnit : 1.0f;
@@ -117,4 +117,4 @@ std::size_t cachedGlyphMeshCount() {
   return gGlyphMeshes.size();
 }
 
-}  // namespace gs::render
+}  // namespace gs::scene

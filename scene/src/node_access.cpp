@@ -1,14 +1,13 @@
 // The field accessors of node_access.hpp that return references to shared empty values.
-#include "node_access.hpp"
+#include "scene/node_access.hpp"
 
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
 #include <cmath>
 
-namespace gs::render {
+namespace gs::scene {
 
-namespace detail {
 const std::vector<float>& mfFloat(const vrml::Node& n, std::string_view name) {
   static const std::vector<float> kEmpty;
   return fieldRef<vrml::FieldType::MFFloat>(n, name, kEmpty);
@@ -36,6 +35,5 @@ glm::mat3 rotationPart(const glm::mat4& m) {
 float meanScale(const glm::mat4& m) {
   return std::cbrt(std::abs(glm::determinant(glm::mat3(m))));
 }
-}  // namespace detail
 
-}  // namespace gs::render
+}  // namespace gs::scene

@@ -1,8 +1,8 @@
-// Text (6.47) as triangles (render/text_mesh.hpp): holes, texture coordinates, the glyph
+// Text (6.47) as triangles (scene/text_mesh.hpp): holes, texture coordinates, the glyph
 // cache, diagnostics, picking and worldTriangles.
-#include "render/picking.hpp"
-#include "render/text_mesh.hpp"
-#include "render/world_triangles.hpp"
+#include "scene/picking.hpp"
+#include "scene/text_mesh.hpp"
+#include "scene/world_triangles.hpp"
 #include "vrml/parser.hpp"
 
 #include <catch2/catch.hpp>
@@ -34,9 +34,9 @@ double meshArea(const gs::vrml::Mesh& m) {
 bool covered(const gs::vrml::Mesh& m, glm::vec2 p) {
   for (std::size_t t = 0; t + 2 < m.indices.size(); t += 3) {
     float d = 0, u = 0, v = 0;
-    if (gs::render::intersectTriangle(glm::vec3(p, 1.0f), {0, 0, -1}, m.positions[m.indices[t]],
-                                      m.positions[m.indices[t + 1]], m.positions[m.indices[t + 2]],
-                                      d, u, v))
+    if (gs::scene::intersectTriangle(glm::vec3(p, 1.0f), {0, 0, -1}, m.positions[m.indices[t]],
+                                     m.positions[m.indices[t + 1]], m.positions[m.indices[t + 2]],
+                                     d, u, v))
       return true;
   }
   return false;
@@ -61,11 +61,11 @@ double outlineArea(const gs::formats::GlyphOutline& o) {
 
 }  // namespace
 
-TEST_CASE("Text 'O' triangulates with its hole", "[render][text]") {
+TEST_CASE("Text 'O' triangulates with its hole", "[scene][text]") {
   auto scene = world(
       R"(Shape { geometry Text { string "O" fontStyle FontStyle { size 2 family "SANS" } } })");
   gs::vrml::Diagnostics diag;
-  const gs::vrml::Mesh m = gs::render::tessellateText(textOf(*scene), &diag);
+  const gs::vrml::Mesh m = gs::scene::tessellateText(textOf(*scene), &diag);
   CHECK(diag.items.empty());
   REQUIRE(m.triangleCount() > 20);
   CHECK_FALSE(m.solid);
@@ -78,7 +78,7 @@ TEST_CASE("Text 'O' triangulates with its hole", "[render][text]") {
     CHECK(glm::cross(q - p, r - p).z >= 0.0f);
   }
   const auto layout =
-      gs::formats::sharedFontLibrary().layout({"O"}, gs::render::textStyleOf(textOf(*scene)));
+      gs::formats::sharedFontLibrary().layout({"O"}, gs::scene::textStyleOf(textOf(*scene)));
   const double scale = 2.0 / 2048.0;
   const double ring =
       outlineArea(gs::formats::sharedFontLibrary().outline(layout.glyphs.at(0).key));
@@ -107,24 +107,24 @@ TEST_CASE("Text 'O' triangulates with its hole", "[render][text]") {
   }
 }
 
-TEST_CASE("Text glyph triangulations are cached per face and glyph", "[render][text]") {
+TEST_CASE("Text glyph triangulations are cached per face and glyph", "[scene][text]") {
   auto scene = world(R"(Shape { geometry Text { string "QQQ QQ" } })");
-  gs::render::tessellateText(textOf(*scene));
-  const std::size_t before = gs::render::cachedGlyphMeshCount();
-  const gs::vrml::Mesh m = gs::render::tessellateText(textOf(*scene));
-  CHECK(gs::render::cachedGlyphMeshCount() == before);
+  gs::scene::tessellateText(textOf(*scene));
+  const std::size_t before = gs::scene::cachedGlyphMeshCount();
+  const gs::vrml::Mesh m = gs::scene::tessellateText(textOf(*scene));
+  CHECK(gs::scene::cachedGlyphMeshCount() == before);
   auto single = world(R"(Shape { geometry Text { string "Q" } })");
-  const gs::vrml::Mesh one = gs::render::tessellateText(textOf(*single));
+  const gs::vrml::Mesh one = gs::scene::tessellateText(textOf(*single));
   CHECK(m.triangleCount() == 5 * one.triangleCount());  // the blank has no triangles
 }
 
-TEST_CASE("Text font problems are diagnostics, not failures", "[render][text]") {
+TEST_CASE("Text font problems are diagnostics, not failures", "[scene][text]") {
   auto scene = world(
       "Shape { geometry Text { string [ \"ok\" \"bad \xFF byte\" ]\n"
       "fontStyle FontStyle { family \"NoSuchFamilyAnywhere\" "
       "justify [ \"SIDEWAYS\" ] } } }");
   gs::vrml::Diagnostics diag;
-  const gs::vrml::Mesh m = gs::render::tessellateText(textOf(*scene), &diag);
+  const gs::vrml::Mesh m = gs::scene::tessellateText(textOf(*scene), &diag);
   CHECK(m.triangleCount() > 0);
   REQUIRE(diag.items.size() == 3);
   std::string all;
@@ -133,21 +133,21 @@ TEST_CASE("Text font problems are diagnostics, not failures", "[render][text]") 
   CHECK(all.find("SIDEWAYS") != std::string::npos);
   CHECK(all.find("UTF-8") != std::string::npos);
   auto empty = world(R"(Shape { geometry Text { } })");
-  CHECK(gs::render::tessellateText(textOf(*empty)).positions.empty());
+  CHECK(gs::scene::tessellateText(textOf(*empty)).positions.empty());
 }
 
-TEST_CASE("Text is picked and flattened like other geometry", "[render][text][picking]") {
+TEST_CASE("Text is picked and flattened like other geometry", "[scene][text][picking]") {
   auto scene = world(R"(Transform { translation 0 0 -1 children
     Shape { geometry Text { string "HI" fontStyle FontStyle { family "SANS" } } } })");
-  gs::render::SceneTraversal traversal(scene);
-  const gs::render::Camera viewer;
+  gs::scene::SceneTraversal traversal(scene);
+  const gs::scene::Camera viewer;
   // The left stem of the H: x in [0.098, 0.198] em in DejaVu Sans, y in [0, 0.729].
-  const auto hit = gs::render::pick(traversal, viewer, {{0.15f, 0.3f, 10.0f}, {0, 0, -1}});
+  const auto hit = gs::scene::pick(traversal, viewer, {{0.15f, 0.3f, 10.0f}, {0, 0, -1}});
   REQUIRE(hit);
   CHECK(hit->point.z == Approx(-1.0f));
   CHECK(hit->texCoord.x == Approx(0.15f).margin(1e-5));
-  CHECK_FALSE(gs::render::pick(traversal, viewer, {{0.4f, 0.6f, 10.0f}, {0, 0, -1}}));  // H's gap
-  const auto tris = gs::render::worldTriangles(scene);
+  CHECK_FALSE(gs::scene::pick(traversal, viewer, {{0.4f, 0.6f, 10.0f}, {0, 0, -1}}));  // H's gap
+  const auto tris = gs::scene::worldTriangles(scene);
   CHECK(tris.indices.size() / 3 > 10);
   for (const glm::vec3& p : tris.positions) CHECK(p.z == Approx(-1.0f));
 }

@@ -1,12 +1,12 @@
 // Camera matrices and framing.
-#include "render/camera.hpp"
+#include "scene/camera.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
 #include <cmath>
 
-namespace gs::render {
+namespace gs::scene {
 
 glm::mat4 viewMatrix(const Camera& camera) {
   const glm::mat4 rotation = glm::mat4_cast(glm::conjugate(glm::normalize(camera.orientation)));
@@ -69,4 +69,4 @@ Camera fitCamera(const vrml::Bounds& bounds, float aspect, const Camera& directi
   return camera;
 }
 
-}  // namespace gs::render
+}  // namespace gs::scene

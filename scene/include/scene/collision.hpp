@@ -1,19 +1,19 @@
 // The avatar against the world (ISO/IEC 14772-1:1997 clauses 6.8 Collision and 6.29
 // NavigationInfo): WALK and FLY stop at walls, WALK falls under gravity, follows the
-// terrain and climbs steps. Pure computation over the CPU picking of render/picking.hpp
+// terrain and climbs steps. Pure computation over the CPU picking of scene/picking.hpp
 // (rays against the tessellated shapes, no OpenGL), so it is testable without a window.
 // Units: metres.
 #pragma once
 
-#include "render/camera.hpp"
-#include "render/traversal.hpp"
+#include "scene/camera.hpp"
+#include "scene/traversal.hpp"
 
 #include <glm/glm.hpp>
 
 #include <limits>
 #include <vector>
 
-namespace gs::render {
+namespace gs::scene {
 
 /// NavigationInfo.avatarSize (6.29): the avatar's collision radius, the eye's height above
 /// the ground and the highest step it climbs. Missing or negative entries take the
@@ -57,4 +57,4 @@ struct WalkResult {
 WalkResult walkStep(SceneTraversal& traversal, const Camera& camera, const glm::vec3& motion,
                     const NavigationSettings& navigation, const WalkOptions& options = {});
 
-}  // namespace gs::render
+}  // namespace gs::scene

@@ -1,4 +1,4 @@
-// Private to render/: typed, allocation-free access to node fields with the VRML97
+// Typed, allocation-free access to node fields with the VRML97
 // defaults as fallbacks (a node whose type lacks a field reads as the default).
 #pragma once
 
@@ -6,7 +6,7 @@
 
 #include <string_view>
 
-namespace gs::render::detail {
+namespace gs::scene {
 
 /// Reference to the value of field `name` of type T, or to `fallback` when the field is
 /// missing or of another type. `fallback` must outlive the reference (use statics or
@@ -51,4 +51,4 @@ glm::mat3 rotationPart(const glm::mat4& m);
 /// Cube root of |det| of the upper-left 3x3: the mean scale factor of `m`.
 float meanScale(const glm::mat4& m);
 
-}  // namespace gs::render::detail
+}  // namespace gs::scene

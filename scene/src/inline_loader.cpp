@@ -3,17 +3,17 @@
 // streamed through TraversalOptions::inlineSource, read through inlineLoader or from a
 // local file; results and failures cached by URL and by node.
 #include "base/url.hpp"
-#include "node_access.hpp"
-#include "render/traversal.hpp"
+#include "scene/node_access.hpp"
+#include "scene/traversal.hpp"
 #include "vrml/parser.hpp"
 
-namespace gs::render {
+namespace gs::scene {
 
 const SceneTraversal::InlineScene* SceneTraversal::inlineScene(const vrml::Node& inlineNode,
                                                                const std::string& baseUrl) {
   if (auto it = inlinesByNode_.find(&inlineNode); it != inlinesByNode_.end())
     return it->second.get();
-  const std::vector<std::string>& urls = detail::mfString(inlineNode, "url");
+  const std::vector<std::string>& urls = mfString(inlineNode, "url");
   std::shared_ptr<InlineScene> result;
   std::string failures;
   for (const std::string& reference : urls) {
@@ -94,4 +94,4 @@ std::shared_ptr<const vrml::Scene> SceneTraversal::loadedInline(
   return it == inlinesByNode_.end() ? nullptr : it->second->scene;
 }
 
-}  // namespace gs::render
+}  // namespace gs::scene

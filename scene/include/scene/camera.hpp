@@ -11,7 +11,7 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-namespace gs::render {
+namespace gs::scene {
 
 /// A viewer: where it is, where it looks, and its lens (VRML97 Viewpoint semantics).
 /// The default orientation looks along -Z with +Y up, as VRML97's default Viewpoint.
@@ -109,7 +109,7 @@ class ExamineNavigator {
   /// along world +Y. EXAMINE: forward dollies (positive: closer) and right/up pan.
   void move(float forward, float right, float up);
   /// WALK and FLY: the world offset (metres) move() would apply, for a caller that
-  /// checks it against the world first (render/collision.hpp walkStep).
+  /// checks it against the world first (scene/collision.hpp walkStep).
   glm::vec3 motion(float forward, float right, float up) const;
 
   NavigationMode mode() const { return mode_; }
@@ -131,4 +131,4 @@ class ExamineNavigator {
   NavigationMode mode_ = NavigationMode::examine;
 };
 
-}  // namespace gs::render
+}  // namespace gs::scene

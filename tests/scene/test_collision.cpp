@@ -1,9 +1,9 @@
-// The avatar against the world (render/collision.hpp): walls stop WALK and FLY at
+// The avatar against the world (scene/collision.hpp): walls stop WALK and FLY at
 // avatarSize[0], WALK falls to avatarSize[1] above the ground and climbs steps up to
 // avatarSize[2]; Collision.collide FALSE lets the avatar through, a proxy blocks in place
 // of the children (ISO/IEC 14772-1:1997 6.8, 6.29).
-#include "render/collision.hpp"
-#include "render/picking.hpp"
+#include "scene/collision.hpp"
+#include "scene/picking.hpp"
 #include "vrml/parser.hpp"
 
 #include <catch2/catch.hpp>
@@ -11,11 +11,11 @@
 #include <memory>
 #include <string>
 
-using gs::render::Camera;
-using gs::render::NavigationMode;
-using gs::render::SceneTraversal;
-using gs::render::WalkOptions;
-using gs::render::walkStep;
+using gs::scene::Camera;
+using gs::scene::NavigationMode;
+using gs::scene::SceneTraversal;
+using gs::scene::WalkOptions;
+using gs::scene::walkStep;
 
 namespace {
 
@@ -39,9 +39,9 @@ Camera standingAt(float x, float y, float z) {
 }
 
 /// Walks `motion` from `from` in `mode` through `scene`.
-gs::render::WalkResult walk(const std::shared_ptr<gs::vrml::Scene>& scene, const Camera& from,
-                            glm::vec3 motion, NavigationMode mode = NavigationMode::walk,
-                            float maxFall = std::numeric_limits<float>::infinity()) {
+gs::scene::WalkResult walk(const std::shared_ptr<gs::vrml::Scene>& scene, const Camera& from,
+                           glm::vec3 motion, NavigationMode mode = NavigationMode::walk,
+                           float maxFall = std::numeric_limits<float>::infinity()) {
   SceneTraversal traversal(scene);
   WalkOptions options;
   options.mode = mode;
@@ -162,7 +162,7 @@ TEST_CASE("Collision collide FALSE lets the avatar through", "[collision]") {
   CHECK(r.collided.empty());
   // The wall is still drawn and picked.
   SceneTraversal traversal(scene);
-  CHECK(gs::render::pick(traversal, standingAt(0, 1.6f, 0), {{0, 1.6f, 0}, {0, 0, -1}}));
+  CHECK(gs::scene::pick(traversal, standingAt(0, 1.6f, 0), {{0, 1.6f, 0}, {0, 0, -1}}));
 }
 
 TEST_CASE("a Collision reports itself when its children block", "[collision]") {
@@ -190,14 +190,14 @@ TEST_CASE("a Collision proxy blocks where the children would not", "[collision]"
   CHECK(r.collided[0]->defName == "C");
   // The proxy is not drawn, so it is not picked; the children are not collided with.
   SceneTraversal traversal(scene);
-  CHECK_FALSE(gs::render::pick(traversal, standingAt(0, 1.6f, 0), {{0, 1.6f, 0}, {0, 0, -1}}));
+  CHECK_FALSE(gs::scene::pick(traversal, standingAt(0, 1.6f, 0), {{0, 1.6f, 0}, {0, 0, -1}}));
   const auto sideways = walk(scene, standingAt(5, 1.6f, 0), {5, 0, 0});
   CHECK_FALSE(sideways.blocked);
   CHECK(sideways.camera.position.x == Approx(10.0f).margin(1e-4));
 }
 
 TEST_CASE("WALK moves on the horizontal plane whatever the pitch", "[collision]") {
-  gs::render::ExamineNavigator nav;
+  gs::scene::ExamineNavigator nav;
   nav.setMode(NavigationMode::walk);
   Camera c = standingAt(0, 1.6f, 0);
   c.orientation = glm::angleAxis(0.5f, glm::vec3(1, 0, 0));  // looking up

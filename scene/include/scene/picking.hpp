@@ -4,8 +4,8 @@
 // application converts, as render/ does not depend on runtime/).
 #pragma once
 
-#include "render/camera.hpp"
-#include "render/traversal.hpp"
+#include "scene/camera.hpp"
+#include "scene/traversal.hpp"
 
 #include <glm/glm.hpp>
 
@@ -13,7 +13,7 @@
 #include <optional>
 #include <vector>
 
-namespace gs::render {
+namespace gs::scene {
 
 /// A half line in world coordinates; the direction need not be unit length.
 struct Ray {
@@ -59,4 +59,4 @@ bool intersectTriangle(const glm::vec3& origin, const glm::vec3& direction, cons
                        const glm::vec3& b, const glm::vec3& c, float& t, float& u, float& v,
                        float minT = 0.0f);
 
-}  // namespace gs::render
+}  // namespace gs::scene

@@ -1,6 +1,6 @@
-#include "node_kind.hpp"
+#include "scene/node_kind.hpp"
 
-namespace gs::render::detail {
+namespace gs::scene {
 
 NodeKind nodeKind(const vrml::Node& node) {
   if (node.unresolved) return NodeKind::other;
@@ -48,4 +48,4 @@ NodeKind nodeKind(const vrml::Node& node) {
   }
 }
 
-}  // namespace gs::render::detail
+}  // namespace gs::scene

@@ -1,12 +1,12 @@
 // The EXAMINE navigator: orbit, pan and dolly around a centre point.
-#include "render/camera.hpp"
+#include "scene/camera.hpp"
 
 #include <glm/gtc/quaternion.hpp>
 
 #include <algorithm>
 #include <cmath>
 
-namespace gs::render {
+namespace gs::scene {
 
 namespace {
 constexpr float kPi = 3.14159265358979f;
@@ -126,4 +126,4 @@ void ExamineNavigator::updateClip() {
   if (!bounds_.empty()) fitClipPlanes(camera_, bounds_, maxNear_);
 }
 
-}  // namespace gs::render
+}  // namespace gs::scene

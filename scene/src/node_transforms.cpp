@@ -1,16 +1,14 @@
 // The matrices of the grouping and texture nodes: LOD level choice (6.26), Billboard
 // (6.6) and TextureTransform (6.51); Transform matrices are in vrml/transform.hpp.
-#include "node_access.hpp"
-#include "render/traversal.hpp"
+#include "scene/node_access.hpp"
+#include "scene/traversal.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
 #include <cmath>
 
-namespace gs::render {
-
-using namespace detail;
+namespace gs::scene {
 
 int selectLodLevel(const std::vector<float>& range, float distance, std::size_t levelCount) {
   if (levelCount == 0) return -1;
@@ -61,4 +59,4 @@ glm::mat3 textureTransformMatrix(const vrml::Node& tt) {
   return translate(-c) * scale * rot * translate(c) * translate(t);
 }
 
-}  // namespace gs::render
+}  // namespace gs::scene

@@ -1,12 +1,12 @@
-// The avatar against the world: walls, gravity, terrain and steps (render/collision.hpp).
-#include "render/collision.hpp"
+// The avatar against the world: walls, gravity, terrain and steps (scene/collision.hpp).
+#include "scene/collision.hpp"
 
-#include "render/picking.hpp"
+#include "scene/picking.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-namespace gs::render {
+namespace gs::scene {
 
 namespace {
 
@@ -97,4 +97,4 @@ WalkResult walkStep(SceneTraversal& traversal, const Camera& camera, const glm::
   return result;
 }
 
-}  // namespace gs::render
+}  // namespace gs::scene

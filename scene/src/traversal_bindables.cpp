@@ -1,16 +1,13 @@
 // SceneTraversal set-up: the main URL and the bindable nodes (Viewpoint, NavigationInfo,
 // Background, Fog; clauses 4.6.10, 6.29, 6.5, 6.19, 6.53).
 #include "base/url.hpp"
-#include "node_access.hpp"
-#include "node_kind.hpp"
-#include "render/traversal.hpp"
+#include "scene/node_access.hpp"
+#include "scene/node_kind.hpp"
+#include "scene/traversal.hpp"
 
 #include <filesystem>
 
-namespace gs::render {
-
-using detail::NodeKind;
-using detail::nodeKind;
+namespace gs::scene {
 
 namespace {
 
@@ -83,7 +80,6 @@ void SceneTraversal::sceneChanged() {
 }
 
 void SceneTraversal::findBindables() {
-  using namespace detail;
   bool haveNavigation = false, haveBackground = false, haveFog = false;
   auto visit = [&](const vrml::Node& n, NodeKind kind, const glm::mat4& m) {
     switch (kind) {
@@ -161,4 +157,4 @@ void SceneTraversal::setBoundNodes(const BoundNodes& bound) {
   findBindables();
 }
 
-}  // namespace gs::render
+}  // namespace gs::scene

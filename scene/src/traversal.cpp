@@ -1,19 +1,16 @@
 // Per-frame scene-graph traversal: shapes with world matrices and scoped lights.
-#include "render/traversal.hpp"
+#include "scene/traversal.hpp"
 
-#include "node_access.hpp"
-#include "node_kind.hpp"
-#include "render/text_mesh.hpp"
+#include "scene/node_access.hpp"
+#include "scene/node_kind.hpp"
+#include "scene/text_mesh.hpp"
 
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include <algorithm>
 #include <cmath>
 
-namespace gs::render {
-
-using detail::NodeKind;
-using detail::nodeKind;
+namespace gs::scene {
 
 /// State of one collect() walk.
 struct SceneTraversal::Walk {
@@ -55,12 +52,11 @@ struct SceneTraversal::Walk {
   // VRML97 bounds intensity to [0, 1] (clause 6.16); X3D 4 lights (those with X3D's
   // `global` field) take any intensity >= 0 (X3D 4.0 clause 17.4.1), as glTF's do.
   static float lightIntensity(const vrml::Node& n) {
-    const float i = std::max(detail::sfFloat(n, "intensity", 1.0f), 0.0f);
+    const float i = std::max(sfFloat(n, "intensity", 1.0f), 0.0f);
     return n.type().findExact("global") >= 0 ? i : std::min(i, 1.0f);
   }
 
   void directionalLight(const vrml::Node& n, const glm::mat4& m) {
-    using namespace detail;
     if (!sfBool(n, "on", true)) return;
     LightInstance light;
     light.type = LightType::directional;
@@ -76,7 +72,6 @@ struct SceneTraversal::Walk {
   }
 
   void pointOrSpotLight(const vrml::Node& n, const glm::mat4& m, bool spot) {
-    using namespace detail;
     if (!sfBool(n, "on", true)) return;
     LightInstance light;
     light.type = spot ? LightType::spot : LightType::point;
@@ -107,9 +102,9 @@ struct SceneTraversal::Walk {
   void outlineGroup(const vrml::Node& n, const glm::mat4& m, const std::string* baseUrl) {
     const RenderMode mode = self.options_.mode;
     if (mode != RenderMode::outlines) group(&n, n.mfnode("children"), m, baseUrl, nullptr);
-    const auto& outline = detail::fieldRef<vrml::FieldType::MFVec3f>(n, "outline", kNoPoints);
+    const auto& outline = fieldRef<vrml::FieldType::MFVec3f>(n, "outline", kNoPoints);
     if (outline.empty()) return;
-    const int id = detail::sfInt(n, "groupId", -1);
+    const int id = sfInt(n, "groupId", -1);
     if (mode != RenderMode::outlines && id >= 0 && filled != nullptr && filled->contains(id))
       return;  // the group's polygons have arrived: they replace the outline
     addShape(n, n, m, baseUrl);
@@ -144,7 +139,7 @@ struct SceneTraversal::Walk {
   /// A Collision (6.8) when collecting collision geometry: nothing with collide FALSE,
   /// else its proxy when it has one, else its children.
   void collision(const vrml::Node& n, const glm::mat4& m, const std::string* baseUrl) {
-    if (!detail::sfBool(n, "collide", true)) return;
+    if (!sfBool(n, "collide", true)) return;
     const vrml::NodePtr proxy = n.sfnode("proxy");
     if (!proxy || proxy->unresolved) return group(&n, n.mfnode("children"), m, baseUrl, nullptr);
     if (frame.recordPaths) path.push_back({&n, m, nullptr});
@@ -153,7 +148,6 @@ struct SceneTraversal::Walk {
   }
 
   void node(const vrml::Node& n, const glm::mat4& m, const std::string* baseUrl) {
-    using namespace detail;
     switch (nodeKind(n)) {
       case NodeKind::Collision:  // the proxy is for collisions only: not drawn
         if (frame.collisionGeometry) {
@@ -266,7 +260,7 @@ const std::unordered_set<std::int32_t>& SceneTraversal::filledGroups(const vrml:
     stack.pop_back();
     if (!seen.insert(n).second) continue;
     if (nodeKind(*n) == NodeKind::OutlineGroup && !n->mfnode("children").empty()) {
-      const int id = detail::sfInt(*n, "groupId", -1);
+      const int id = sfInt(*n, "groupId", -1);
       if (id >= 0) it->second.insert(id);
     }
     for (std::size_t i = 0; i < n->fieldCount(); ++i) {
@@ -397,4 +391,4 @@ void SceneTraversal::report(vrml::Severity severity, const vrml::SourceLocation&
   diagnostics_.items.push_back(std::move(d));
 }
 
-}  // namespace gs::render
+}  // namespace gs::scene

@@ -1,6 +1,6 @@
-// CPU picking (render/picking.hpp): the nearest triangle, the path of grouping nodes with
+// CPU picking (scene/picking.hpp): the nearest triangle, the path of grouping nodes with
 // their matrices, misses, rays through pixels.
-#include "render/picking.hpp"
+#include "scene/picking.hpp"
 #include "vrml/parser.hpp"
 
 #include <catch2/catch.hpp>
@@ -9,10 +9,10 @@
 
 #include <memory>
 
-using gs::render::Camera;
-using gs::render::pick;
-using gs::render::Ray;
-using gs::render::SceneTraversal;
+using gs::scene::Camera;
+using gs::scene::pick;
+using gs::scene::Ray;
+using gs::scene::SceneTraversal;
 
 namespace {
 
@@ -64,7 +64,7 @@ DEF ROOT Transform { translation 0 0 -5 children [
 
 }  // namespace
 
-TEST_CASE("picking: the nearest triangle, with its path and matrices", "[render][picking]") {
+TEST_CASE("picking: the nearest triangle, with its path and matrices", "[scene][picking]") {
   auto scene = world(kWorld);
   SceneTraversal traversal(scene);
   const Camera viewer;  // at 0 0 10 looking along -Z
@@ -87,7 +87,7 @@ TEST_CASE("picking: the nearest triangle, with its path and matrices", "[render]
   CHECK(nearMatrix(hit->path[3].localToWorld, glm::translate(glm::mat4(1.0f), {0, 0, -3})));
 }
 
-TEST_CASE("picking: beside the near box the far one; misses", "[render][picking]") {
+TEST_CASE("picking: beside the near box the far one; misses", "[scene][picking]") {
   auto scene = world(kWorld);
   SceneTraversal traversal(scene);
   const Camera viewer;
@@ -108,7 +108,7 @@ TEST_CASE("picking: beside the near box the far one; misses", "[render][picking]
 }
 
 TEST_CASE("picking: only the chosen Switch child; rotated and scaled transforms",
-          "[render][picking]") {
+          "[scene][picking]") {
   auto scene = world(R"(
 DEF SW Switch { whichChoice 1 choice [
   Shape { geometry Box {} }
@@ -128,25 +128,25 @@ DEF SW Switch { whichChoice 1 choice [
   CHECK(near(x, {0.0f, 0.0f, -2.0f}, 1e-5f));
 }
 
-TEST_CASE("picking: the ray through a pixel", "[render][picking]") {
+TEST_CASE("picking: the ray through a pixel", "[scene][picking]") {
   Camera c;  // 0 0 10, fieldOfView 0.785398
-  const Ray centre = gs::render::rayThroughPixel(c, 200, 100, 100.0f, 50.0f);
+  const Ray centre = gs::scene::rayThroughPixel(c, 200, 100, 100.0f, 50.0f);
   CHECK(near(centre.origin, {0.0f, 0.0f, 10.0f}));
   CHECK(near(centre.direction, {0.0f, 0.0f, -1.0f}));
   // The top edge's centre: half the vertical field of view up (aspect 2: vertical fov).
-  const Ray top = gs::render::rayThroughPixel(c, 200, 100, 100.0f, 0.0f);
+  const Ray top = gs::scene::rayThroughPixel(c, 200, 100, 100.0f, 0.0f);
   CHECK(std::atan2(top.direction.y, -top.direction.z) == Approx(0.785398f / 2.0f));
-  const Ray right = gs::render::rayThroughPixel(c, 200, 100, 200.0f, 50.0f);
+  const Ray right = gs::scene::rayThroughPixel(c, 200, 100, 200.0f, 50.0f);
   CHECK(right.direction.x / -right.direction.z == Approx(2.0f * std::tan(0.785398f / 2.0f)));
 }
 
-TEST_CASE("picking: Moller-Trumbore", "[render][picking]") {
+TEST_CASE("picking: Moller-Trumbore", "[scene][picking]") {
   float t = 0, u = 0, v = 0;
-  CHECK(gs::render::intersectTriangle({0.25f, 0.25f, 1}, {0, 0, -1}, {0, 0, 0}, {1, 0, 0},
-                                      {0, 1, 0}, t, u, v));
+  CHECK(gs::scene::intersectTriangle({0.25f, 0.25f, 1}, {0, 0, -1}, {0, 0, 0}, {1, 0, 0}, {0, 1, 0},
+                                     t, u, v));
   CHECK(t == Approx(1.0f));
   CHECK(u == Approx(0.25f));
   CHECK(v == Approx(0.25f));
-  CHECK(!gs::render::intersectTriangle({0.75f, 0.75f, 1}, {0, 0, -1}, {0, 0, 0}, {1, 0, 0},
-                                       {0, 1, 0}, t, u, v));
+  CHECK(!gs::scene::intersectTriangle({0.75f, 0.75f, 1}, {0, 0, -1}, {0, 0, 0}, {1, 0, 0},
+                                      {0, 1, 0}, t, u, v));
 }

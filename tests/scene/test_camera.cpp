@@ -1,5 +1,5 @@
 // Camera matrices, framing and the EXAMINE navigator: pure maths, no context.
-#include "render/camera.hpp"
+#include "scene/camera.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -7,13 +7,13 @@
 
 #include <cmath>
 
-using gs::render::Camera;
-using gs::render::ExamineNavigator;
+using gs::scene::Camera;
+using gs::scene::ExamineNavigator;
 
 namespace {
 glm::vec3 project(const Camera& c, float aspect, glm::vec3 p) {
   const glm::vec4 clip =
-      gs::render::projectionMatrix(c, aspect) * gs::render::viewMatrix(c) * glm::vec4(p, 1.0f);
+      gs::scene::projectionMatrix(c, aspect) * gs::scene::viewMatrix(c) * glm::vec4(p, 1.0f);
   return glm::vec3(clip) / clip.w;
 }
 bool near(glm::vec3 a, glm::vec3 b, float eps = 1e-4f) {
@@ -21,7 +21,7 @@ bool near(glm::vec3 a, glm::vec3 b, float eps = 1e-4f) {
 }
 }  // namespace
 
-TEST_CASE("the default camera is VRML97's default Viewpoint", "[render][camera]") {
+TEST_CASE("the default camera is VRML97's default Viewpoint", "[scene][camera]") {
   Camera c;
   CHECK(near(c.position, {0, 0, 10}));
   CHECK(near(c.forward(), {0, 0, -1}));
@@ -31,7 +31,7 @@ TEST_CASE("the default camera is VRML97's default Viewpoint", "[render][camera]"
   CHECK(near(project(c, 1.0f, {0, 0, 0}) * glm::vec3(1, 1, 0), {0, 0, 0}));
 }
 
-TEST_CASE("the field of view spans the smaller viewport side", "[render][camera]") {
+TEST_CASE("the field of view spans the smaller viewport side", "[scene][camera]") {
   Camera c;
   c.position = {0, 0, 0};
   const float edge = std::tan(c.fieldOfView * 0.5f);  // at distance 1
@@ -39,17 +39,17 @@ TEST_CASE("the field of view spans the smaller viewport side", "[render][camera]
   CHECK(project(c, 2.0f, {0, edge, -1}).y == Approx(1.0f).margin(1e-4));
   // Portrait: the horizontal extent is the field of view.
   CHECK(project(c, 0.5f, {edge, 0, -1}).x == Approx(1.0f).margin(1e-4));
-  CHECK(gs::render::verticalFieldOfView(c.fieldOfView, 0.5f) > c.fieldOfView);
+  CHECK(gs::scene::verticalFieldOfView(c.fieldOfView, 0.5f) > c.fieldOfView);
 }
 
-TEST_CASE("fitCamera frames the whole box and keeps the view direction", "[render][camera]") {
+TEST_CASE("fitCamera frames the whole box and keeps the view direction", "[scene][camera]") {
   gs::vrml::Bounds b;
   b.extend(glm::vec3(-3, -1, -2));
   b.extend(glm::vec3(5, 2, 1));
   Camera dir;
   dir.orientation = glm::angleAxis(0.6f, glm::normalize(glm::vec3(1, 1, 0)));
   for (float aspect : {0.5f, 1.0f, 2.0f}) {
-    const Camera c = gs::render::fitCamera(b, aspect, dir);
+    const Camera c = gs::scene::fitCamera(b, aspect, dir);
     CHECK(near(c.forward(), dir.forward()));
     CHECK(c.nearClip > 0.0f);
     CHECK(c.farClip > c.nearClip);
@@ -67,11 +67,11 @@ TEST_CASE("fitCamera frames the whole box and keeps the view direction", "[rende
     CHECK(std::abs(centre.y) < 1e-4f);
   }
   // An empty box changes nothing.
-  const Camera same = gs::render::fitCamera(gs::vrml::Bounds{}, 1.0f, dir);
+  const Camera same = gs::scene::fitCamera(gs::vrml::Bounds{}, 1.0f, dir);
   CHECK(near(same.position, dir.position));
 }
 
-TEST_CASE("EXAMINE orbit keeps the distance and turns around the centre", "[render][camera]") {
+TEST_CASE("EXAMINE orbit keeps the distance and turns around the centre", "[scene][camera]") {
   ExamineNavigator nav;
   Camera start;
   nav.setHome(start, glm::vec3(0.0f));
@@ -89,7 +89,7 @@ TEST_CASE("EXAMINE orbit keeps the distance and turns around the centre", "[rend
   CHECK(near(nav.camera().position, start.position));
 }
 
-TEST_CASE("EXAMINE pan and dolly", "[render][camera]") {
+TEST_CASE("EXAMINE pan and dolly", "[scene][camera]") {
   ExamineNavigator nav;
   nav.setHome(Camera{}, glm::vec3(0.0f));
   nav.pan(10.0f, 0.0f, 100);
@@ -105,7 +105,7 @@ TEST_CASE("EXAMINE pan and dolly", "[render][camera]") {
   CHECK(nav.distance() > 0.0f);
 }
 
-TEST_CASE("the navigator keeps clip planes around the scene", "[render][camera]") {
+TEST_CASE("the navigator keeps clip planes around the scene", "[scene][camera]") {
   ExamineNavigator nav;
   gs::vrml::Bounds b;
   b.extend(glm::vec3(-1));
@@ -117,15 +117,14 @@ TEST_CASE("the navigator keeps clip planes around the scene", "[render][camera]"
   CHECK(nav.camera().nearClip < nav.distance() - 1.7f);
 }
 
-TEST_CASE("WALK and FLY navigation: look and move", "[render][navigation]") {
-  using gs::render::NavigationMode;
-  CHECK(gs::render::navigationModeOf({"ANY", "FLY", "WALK"}, NavigationMode::examine) ==
+TEST_CASE("WALK and FLY navigation: look and move", "[scene][navigation]") {
+  using gs::scene::NavigationMode;
+  CHECK(gs::scene::navigationModeOf({"ANY", "FLY", "WALK"}, NavigationMode::examine) ==
         NavigationMode::fly);
-  CHECK(gs::render::navigationModeOf({"NONE", "ANY"}, NavigationMode::walk) ==
-        NavigationMode::walk);
-  gs::render::Camera start;  // at 0 0 10 looking along -Z
+  CHECK(gs::scene::navigationModeOf({"NONE", "ANY"}, NavigationMode::walk) == NavigationMode::walk);
+  gs::scene::Camera start;  // at 0 0 10 looking along -Z
   start.position = {0.0f, 1.6f, 10.0f};
-  gs::render::ExamineNavigator nav;
+  gs::scene::ExamineNavigator nav;
   nav.setHome(start, glm::vec3(0.0f, 1.6f, 0.0f));
   nav.setMode(NavigationMode::walk);
   // Looking down 45 degrees, then walking 2 m: the eye height stays.

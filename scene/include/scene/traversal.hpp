@@ -5,7 +5,7 @@
 // glm's, column-major.
 #pragma once
 
-#include "render/camera.hpp"
+#include "scene/camera.hpp"
 #include "vrml/diagnostic.hpp"
 #include "vrml/geometry.hpp"
 #include "vrml/node.hpp"
@@ -27,7 +27,7 @@
 #include <unordered_set>
 #include <vector>
 
-namespace gs::render {
+namespace gs::scene {
 
 enum class LightType : std::uint8_t { directional, point, spot };
 
@@ -47,7 +47,7 @@ struct LightInstance {
 };
 
 /// One grouping node on the way from the root to a Shape (recorded when
-/// TraversalFrame::recordPaths is set; render/picking.hpp).
+/// TraversalFrame::recordPaths is set; scene/picking.hpp).
 struct PathStep {
   /// Anchor, Billboard, Collision, Group, Transform, Inline, OutlineGroup, or the Shape
   /// last; null for the root of the main scene.
@@ -199,8 +199,8 @@ struct TraversalOptions {
   std::function<std::shared_ptr<const vrml::Scene>(const std::string& url,
                                                    const std::string& referrer, std::string& error)>
       inlineSource;
-  /// Tessellates a geometry node. Empty: render::tessellateGeometry (vrml::tessellate, and
-  /// Text through render/text_mesh.hpp).
+  /// Tessellates a geometry node. Empty: scene::tessellateGeometry (vrml::tessellate, and
+  /// Text through scene/text_mesh.hpp).
   std::function<vrml::Mesh(const vrml::Node& geometry, vrml::Diagnostics* diag)> tessellator;
   /// Nesting limit for Inline files inlining others.
   int maxInlineDepth = 16;
@@ -370,4 +370,4 @@ glm::mat4 billboardRotation(const glm::vec3& axisOfRotation, const glm::vec3& vi
 /// Tc' = -C x S x R x C x T x Tc, as a 3x3 homogeneous 2D matrix.
 glm::mat3 textureTransformMatrix(const vrml::Node& textureTransform);
 
-}  // namespace gs::render
+}  // namespace gs::scene

@@ -1,13 +1,13 @@
-#include "render/world_triangles.hpp"
+#include "scene/world_triangles.hpp"
 
 #include <algorithm>
 
 #include <glm/common.hpp>
 #include <glm/matrix.hpp>
 
-#include "render/traversal.hpp"
+#include "scene/traversal.hpp"
 
-namespace gs::render {
+namespace gs::scene {
 
 namespace {
 
@@ -66,4 +66,4 @@ qnv::TriangleMesh worldTriangles(std::shared_ptr<const vrml::Scene> scene) {
   return out;
 }
 
-}  // namespace gs::render
+}  // namespace gs::scene

@@ -8,7 +8,7 @@
 #include "vrml/geometry.hpp"
 #include "vrml/node.hpp"
 
-namespace gs::render {
+namespace gs::scene {
 
 /// The FontStyle (6.20) and Text (6.47) fields of `text` as a formats::TextStyle (a
 /// missing fontStyle gives the defaults). An unknown justify value is a warning in
@@ -31,4 +31,4 @@ vrml::Mesh tessellateGeometry(const vrml::Node& geometry, vrml::Diagnostics* dia
 /// Glyph triangulations made so far (each face and glyph once), for tests of the cache.
 std::size_t cachedGlyphMeshCount();
 
-}  // namespace gs::render
+}  // namespace gs::scene

@@ -1,11 +1,11 @@
 // CPU picking: rays against the tessellations of the shapes collect() draws.
-#include "render/picking.hpp"
+#include "scene/picking.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-namespace gs::render {
+namespace gs::scene {
 
 Ray rayThroughPixel(const Camera& camera, int width, int height, float x, float y) {
   const float w = static_cast<float>(std::max(width, 1));
@@ -117,4 +117,4 @@ std::optional<PickHit> pickInFrame(SceneTraversal& traversal, const TraversalFra
   return best;
 }
 
-}  // namespace gs::render
+}  // namespace gs::scene

@@ -1,11 +1,12 @@
-// Private to render/: the node types the renderer knows, looked up once per NodeType.
+// The node kinds that traversal and the renderer act on, from the node model
+// (Node::typeId, Node::is), looked up once per NodeType.
 #pragma once
 
 #include "vrml/node.hpp"
 
 #include <cstdint>
 
-namespace gs::render::detail {
+namespace gs::scene {
 
 enum class NodeKind : std::uint8_t {
   other,  // not rendered (sensors, interpolators, Script, unknown types...)
@@ -38,4 +39,4 @@ inline bool hasChildren(NodeKind k) {
          k == NodeKind::Group || k == NodeKind::Transform || k == NodeKind::OutlineGroup;
 }
 
-}  // namespace gs::render::detail
+}  // namespace gs::scene
