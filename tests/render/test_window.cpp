@@ -1,6 +1,7 @@
 // The GLFW window context and switching between it and an OSMesa context in one process
-// (GUIDE.md section 5: every GL call goes through the current context's loader). Needs a
-// display: skipped without DISPLAY (run under xvfb-run to include it).
+// (docs/architecture.md, "One renderer for window and snapshot": every GL call goes through the
+// current context's loader). Needs a display: skipped without DISPLAY (run under xvfb-run to
+// include it).
 #include "render/context.hpp"
 #include "render/image.hpp"
 #include "render/scene_renderer.hpp"

@@ -1,7 +1,8 @@
 // OpenGL contexts: an off-screen one (OSMesa, rendering on the CPU) and a window one
 // (GLFW). After creation both are used the same way: every GL entry point is a function
-// pointer loaded by glad through the context's own GetProcAddress (GUIDE.md section 5:
-// libGL and libOSMesa both export gl*, so a direct call could reach the wrong library).
+// pointer loaded by glad through the context's own GetProcAddress (docs/architecture.md, "One
+// renderer for window and snapshot": libGL and libOSMesa both export gl*, so a direct call could
+// reach the wrong library).
 #pragma once
 
 #include <glad/gl.h>
