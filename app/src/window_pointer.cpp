@@ -60,8 +60,8 @@ bool WindowState::pointerInput(float x, float y, bool buttonDown, int height) {
   const float vx = x - static_cast<float>(v.rect.x);
   const float vy = y - (static_cast<float>(height) - static_cast<float>(v.rect.y + v.rect.height));
   const runtime::PointerEvent event =
-      pointerEventAt(v.renderer()->traversal(), v.navigator.camera(), v.rect.width, v.rect.height, vx,
-                     vy, buttonDown);
+      pointerEventAt(v.renderer()->traversal(), v.navigator.camera(), v.rect.width, v.rect.height,
+                     vx, vy, buttonDown);
   pointerHeld = model.pointer(event);
   pointerHint = model.pointerHint();
   return pointerHeld;
