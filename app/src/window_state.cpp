@@ -187,17 +187,14 @@ bool WindowState::updateViews() {
   session::ViewGroup& views = viewGroup();
   // MovieTextures follow the window's clock and never hold a frame (docs/media.md).
   if (made) views.attachRuntimes(*runtimes, now, false);
-  // The frame step of every viewport (session/world_view.hpp), the active one last: its
-  // camera wins for a world two viewports show. A viewport with no view pumps nothing,
-  // so the group pumps once more for a window with none.
+  // The frame step of every viewport (session/world_view.hpp); the active viewport's
+  // camera wins for a world two viewports show (ViewGroup::advanceTo sets it last). A
+  // window with no view pumps and advances through the group itself.
   const session::WorldView* activeView =
       active < viewports.size() ? viewports[active].worldView.get() : nullptr;
   const std::uint64_t before = views.generation();
   bool any = false;
-  for (std::size_t i = 0; i <= viewports.size(); ++i) {
-    const std::size_t k = i < viewports.size() ? i : active;
-    if (k >= viewports.size() || (i < viewports.size() && i == active)) continue;
-    Viewport& v = viewports[k];
+  for (Viewport& v : viewports) {
     if (!v.worldView) continue;
     any = true;
     v.worldView->update(now, activeView);

@@ -28,6 +28,15 @@ double fractionDiffering(const std::string& a, const std::string& b, int toleran
   return render::compareImages(render::readPng(a), render::readPng(b), tolerance).fractionDiffering;
 }
 
+std::array<int, 3> centrePixel(const std::string& path) {
+  const render::Image image = render::readPng(path);
+  const std::size_t i =
+      (static_cast<std::size_t>(image.height / 2) * static_cast<std::size_t>(image.width) +
+       static_cast<std::size_t>(image.width / 2)) *
+      4;
+  return {image.rgba[i], image.rgba[i + 1], image.rgba[i + 2]};
+}
+
 void checkBaseline(const std::string& name, const std::vector<std::string>& args) {
   const std::string actual = snapshot(name, args);
   const fs::path baseline = sourceDir() / "tests/render/baselines" / (name + ".png");

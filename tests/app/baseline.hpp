@@ -2,6 +2,7 @@
 // binary renders with --snapshot, and the PNG is compared with tests/render/baselines.
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,9 @@ std::string snapshot(const std::string& name, const std::vector<std::string>& ar
 /// `tolerance` (of 255) in some channel.
 double fractionDiffering(const std::string& a, const std::string& b,
                          int tolerance = kChannelTolerance);
+
+/// The centre pixel of the PNG at `path`: {red, green, blue}, 0..255.
+std::array<int, 3> centrePixel(const std::string& path);
 
 /// Renders and compares with tests/render/baselines/NAME.png under the metric above. A
 /// missing baseline fails and leaves the rendered image to be looked at and copied in.

@@ -1,12 +1,11 @@
 // Scripts through the command line (docs/runtime-scripts.md): a Script's events reach the
 // world; a hostile Script (an endless loop, a ROUTE back to itself) ends with a diagnostic
 // naming the world's file:line while the picture is still written.
+#include "baseline.hpp"
 #include "process.hpp"
-#include "render/image.hpp"
 
 #include <catch2/catch.hpp>
 
-#include <array>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -82,20 +81,6 @@ ROUTE T.fraction_changed TO L.ping
   CHECK(r.err.find("time limit") != std::string::npos);
 }
 
-namespace {
-
-/// The centre pixel of a PNG: {r, g, b}.
-std::array<int, 3> centre(const fs::path& png) {
-  const auto image = gs::render::readPng(png.string());
-  const std::size_t i =
-      (static_cast<std::size_t>(image.height / 2) * static_cast<std::size_t>(image.width) +
-       static_cast<std::size_t>(image.width / 2)) *
-      4;
-  return {image.rgba[i], image.rgba[i + 1], image.rgba[i + 2]};
-}
-
-}  // namespace
-
 TEST_CASE("snapshot: loads what the world's events reference (an Inline chosen by a Script)",
           "[app][script][inline]") {
   // Regression: loading followed the static scene only, so an Inline that a Switch shows
@@ -115,7 +100,7 @@ ROUTE S.choice TO SW.set_whichChoice
       {"--snapshot", png.string(), "--size", "64x64", "--no-progress", world.string()});
   INFO(r.err);
   REQUIRE(r.exitCode == 0);
-  const auto c = centre(png);
+  const auto c = gs::test::centrePixel(png.string());
   CHECK(c[0] > 200);
   CHECK(c[1] < 60);
   CHECK(c[2] < 60);
