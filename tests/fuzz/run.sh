@@ -30,10 +30,18 @@ generator=()
 [ -e "$build/CMakeCache.txt" ] || ! command -v ninja > /dev/null || generator=(-G Ninja)
 cmake -S "$top" -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGS_FUZZ=ON -DGS_BUILD_TESTS=OFF \
   -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ "${launcher[@]}" \
+  -DCMAKE_UNITY_BUILD="${GS_UNITY:-ON}" \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only" \
   -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only" > /dev/null
-# Only the targets asked for (and the QNV seed writer): quicker when some are named.
-cmake --build "$build" -j"$(nproc)" --target make_qnv_seeds "${targets[@]}"
+# Only the targets asked for (and the QNV seed writer): quicker when some are named. A unity
+# build (cmake/Unity.cmake) that fails on two files' colliding local names is built again
+# one file per unit, saying so.
+if ! cmake --build "$build" -j"$(nproc)" --target make_qnv_seeds "${targets[@]}"; then
+  [ "${GS_UNITY:-ON}" = ON ] || exit 1
+  echo "unity build failed: building one file per unit (add the file to cmake/Unity.cmake)"
+  cmake -S "$top" -B "$build" -DCMAKE_UNITY_BUILD=OFF > /dev/null
+  cmake --build "$build" -j"$(nproc)" --target make_qnv_seeds "${targets[@]}"
+fi
 
 corpus_root="$top/../shared/corpus"
 mkdir -p "$build/seeds/qnv" "$build/seeds/compact" "$build/seeds/entropy" "$build/logs"
