@@ -156,11 +156,7 @@ int runSnapshot(const Options& options) {
   // Life (docs/runtime.md): each world is loaded at --time T (0 by default) and moved
   // through T0 + i * DT at the fixed --time-step, so a frame's pixels depend on the
   // command alone.
-  session::WorldRuntimes runtimes(
-      options.time, [&session](const std::string& url, const std::string& referrer,
-                               std::string& bytes, std::string& error) {
-        return session.loader().fetchWhole(url, referrer, bytes, error, 10.0);
-      });
+  session::WorldRuntimes runtimes(options.time, &session.loader());
   const session::RuntimeOptions& time = options.time;
   // MovieTextures show the frame of their media time, waiting for it (docs/media.md).
   group.attachRuntimes(runtimes, time.start, true);

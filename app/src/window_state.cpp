@@ -162,17 +162,9 @@ void WindowState::setNavigation(scene::NavigationMode mode) {
 bool WindowState::updateViews() {
   const bool made = !runtimes;
   if (made) {
-    runtimes = std::make_unique<session::WorldRuntimes>(
-        time, [this](const std::string& url, const std::string& referrer, std::string& bytes,
-                     std::string& error) {
-          return session->loader().fetchWhole(url, referrer, bytes, error, 10.0);
-        });
+    runtimes = std::make_unique<session::WorldRuntimes>(time, &session->loader());
     // Clips from the network arrive in the background: a frame never waits for them.
-    sounds = std::make_unique<WorldSounds>(
-        true, [this](const std::string& url, const std::string& referrer, std::string& bytes,
-                     std::string& error) {
-          return session->loader().fetchInBackground(url, referrer, bytes, error);
-        });
+    sounds = std::make_unique<WorldSounds>(true, &session->loader());
     if (!sounds->note().empty()) std::fprintf(stderr, "ghostspace: %s\n", sounds->note().c_str());
     clockOffset = time.set ? time.start - runtime::wallClockSeconds() : 0.0;
     runtimes->setLinkHandler([this](const vrml::Scene& scene, const std::vector<std::string>& url,

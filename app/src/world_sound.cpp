@@ -4,23 +4,15 @@
 
 namespace gs::app {
 
-WorldSounds::WorldSounds(bool enabled, session::FetchWhole fetch)
-    : output_(audio::openAudioOutput(enabled, note_)), fetch_(std::move(fetch)) {}
+WorldSounds::WorldSounds(bool enabled, base::Fetcher* fetcher)
+    : output_(audio::openAudioOutput(enabled, note_)), fetcher_(fetcher) {}
 
 void WorldSounds::update(const std::shared_ptr<const vrml::Scene>& scene,
                          const scene::Camera& camera, session::WorldRuntimes& runtimes, double now,
                          const scene::SceneTraversal* traversal) {
   if (!scene) return;
   auto& s = scenes_[scene.get()];
-  if (!s) {
-    audio::ClipLoader loader;
-    if (fetch_)
-      loader = [fetch = fetch_, referrer = scene->url](const std::string& url, std::string& bytes,
-                                                       std::string& error) {
-        return fetch(url, referrer, bytes, error);
-      };
-    s = std::make_unique<audio::SoundScene>(scene, std::move(loader));
-  }
+  if (!s) s = std::make_unique<audio::SoundScene>(scene, fetcher_);
   runtime::ExecutionModel& model = runtimes.of(scene, now);
   s->update(
       scene::viewMatrix(camera),

@@ -63,10 +63,8 @@ struct Walk {
 
 }  // namespace
 
-SoundScene::SoundScene(std::shared_ptr<const vrml::Scene> scene, ClipLoader loader)
-    : scene_(std::move(scene)),
-      loader_(std::move(loader)),
-      loads_(std::make_unique<detail::ClipLoads>()) {}
+SoundScene::SoundScene(std::shared_ptr<const vrml::Scene> scene, base::Fetcher* fetcher)
+    : scene_(std::move(scene)), fetcher_(fetcher), loads_(std::make_unique<detail::ClipLoads>()) {}
 
 SoundScene::~SoundScene() = default;
 
@@ -85,13 +83,13 @@ std::shared_ptr<const formats::AudioData> SoundScene::clipOf(const vrml::Node& c
     if (reference.empty()) continue;
     detail::ClipSource s;
     s.url = base::resolveUrl(base, reference);
-    if (base::mayReference(base, s.url, s.error)) {
-      s.path = base::localPathOfUrl(s.url);
-      if (s.path.empty() && loader_) {
-        s.fetched = loader_(s.url, s.bytes, s.error);
-        arriving = arriving || (!s.fetched && s.error.empty());
-      }
-      if (s.path.empty() && !loader_) s.error = s.url + ": only local files without a loader";
+    s.path = base::localFileFor(s.url, base, s.error);  // refused: error set
+    if (s.path.empty() && s.error.empty()) {
+      base::Fetched got = base::fetcherOr(fetcher_).fetch(s.url, base, base::FetchMode::background);
+      s.fetched = got.ready();
+      s.bytes = std::move(got.bytes);
+      s.error = std::move(got.error);
+      arriving = arriving || got.pending();
     }
     job.sources.push_back(std::move(s));
   }

@@ -48,10 +48,8 @@ std::shared_ptr<WorldStream> Loader::world(const std::string& url, const std::st
   }
   vrml::ParseOptions parse;
   // EXTERNPROTO files are small: fetched whole, under the same rules, as the world
-  // that names them is parsed.
-  parse.loader = [this, url](const std::string& proto, std::string& bytes, std::string& why) {
-    return fetchWhole(proto, url, bytes, why, 10.0);
-  };
+  // that names them is parsed (the stream ends before this loader).
+  parse.fetcher = this;
   auto stream = std::make_shared<WorldStream>(std::move(r), std::move(parse));
   if (capReached_) stream->stop("stopped: the byte cap was reached before it started");
   worlds_[url] = stream;
@@ -69,6 +67,20 @@ std::shared_ptr<QnvStream> Loader::qnv(const std::string& url, const std::string
   qnvs_[url] = stream;
   order_.push_back({StreamKey::Kind::qnv, url});
   return stream;
+}
+
+base::Fetched Loader::fetch(const std::string& url, const std::string& referrer,
+                            base::FetchMode mode) {
+  if (std::optional<base::Fetched> local = base::fetchLocally(url, referrer))
+    return std::move(*local);
+  base::Fetched out;
+  const bool ok = mode == base::FetchMode::whole
+                      ? fetchWhole(url, referrer, out.bytes, out.error, 10.0)
+                      : fetchInBackground(url, referrer, out.bytes, out.error);
+  out.state = ok                  ? base::FetchState::ready
+              : out.error.empty() ? base::FetchState::pending
+                                  : base::FetchState::failed;
+  return out;
 }
 
 bool Loader::fetchWhole(const std::string& url, const std::string& referrer, std::string& bytes,

@@ -34,7 +34,7 @@ constexpr Face kFaceTable[BackgroundPass::kFaces] = {
 
 void BackgroundPass::draw(const scene::BackgroundSettings& background, const glm::mat4& view,
                           const glm::mat4& projection, scene::SceneTraversal& traversal,
-                          const ResourceLoader& loader) {
+                          base::Fetcher* fetcher) {
   const glm::mat4 rotationOnly = glm::mat4(glm::mat3(view));
   GLboolean depthTest = glIsEnabled(GL_DEPTH_TEST);
   glDisable(GL_DEPTH_TEST);
@@ -42,7 +42,7 @@ void BackgroundPass::draw(const scene::BackgroundSettings& background, const glm
   glDisable(GL_CULL_FACE);
   drawGradient(background, rotationOnly, projection);
   if (background.node != nullptr)
-    drawPanorama(background, rotationOnly, projection, traversal, loader);
+    drawPanorama(background, rotationOnly, projection, traversal, fetcher);
   glDisable(GL_BLEND);
   glDepthMask(GL_TRUE);
   if (depthTest) glEnable(GL_DEPTH_TEST);
@@ -97,7 +97,7 @@ void BackgroundPass::drawGradient(const scene::BackgroundSettings& background,
 
 void BackgroundPass::drawPanorama(const scene::BackgroundSettings& background,
                                   const glm::mat4& rotationOnly, const glm::mat4& projection,
-                                  scene::SceneTraversal& traversal, const ResourceLoader& loader) {
+                                  scene::SceneTraversal& traversal, base::Fetcher* fetcher) {
   const vrml::Node& node = *background.node;
   const std::uint64_t revision = vrml::revisionWithFields(node);
   if (&node != facesNode_ || revision != facesRevision_) {
@@ -114,7 +114,7 @@ void BackgroundPass::drawPanorama(const scene::BackgroundSettings& background,
         faceDone_[i] = true;
         continue;
       }
-      LoadedImage loaded = loadFirstImage(urls, background.baseUrl, loader);
+      LoadedImage loaded = loadFirstImage(urls, background.baseUrl, fetcher);
       if (loaded.pending) continue;  // the colours show until it arrives
       faceDone_[i] = true;
       if (loaded.components > 0)

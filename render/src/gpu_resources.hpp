@@ -72,7 +72,7 @@ class MovieTextures {
   /// The texture of MovieTexture `node` for this frame; components 0 until its first
   /// frame is decoded (or when it cannot be read: a warning naming the url, once).
   const GpuTexture& get(const vrml::Node& node, const std::string& baseUrl,
-                        scene::SceneTraversal& traversal, const ResourceLoader& loader);
+                        scene::SceneTraversal& traversal, base::Fetcher* fetcher);
   /// With `waitForFrames`, also waits for the movies met so far to open, so that their
   /// durations are known before the next draw.
   void setClock(MediaClock clock, bool waitForFrames);
@@ -108,7 +108,7 @@ class TextureCache {
   /// URLs resolve against `baseUrl`. Failures are reported to `traversal` once and give a
   /// texture with 0 components.
   const GpuTexture& get(const vrml::Node& node, const std::string& baseUrl,
-                        scene::SceneTraversal& traversal, const ResourceLoader& loader);
+                        scene::SceneTraversal& traversal, base::Fetcher* fetcher);
   void release();
   MovieTextures movies;
 
@@ -127,11 +127,11 @@ struct LoadedImage {
   std::string failures;   // "url: why; ..." for the URLs that failed
 };
 
-/// Reads `urls` (resolved against `baseUrl`) in order through local files and `loader`
+/// Reads `urls` (resolved against `baseUrl`) in order through `fetcher` (null: local files)
 /// under base::mayReference until one decodes. An RGB or grey file with transparent pixels
 /// (PNG tRNS, GIF) counts as RGBA or grey+alpha. Never throws for bad content.
 LoadedImage loadFirstImage(const std::vector<std::string>& urls, const std::string& baseUrl,
-                           const ResourceLoader& loader);
+                           base::Fetcher* fetcher);
 
 /// Uploads a loaded image as a mipmapped RGBA texture, bottom row first.
 GpuTexture uploadImage(const LoadedImage& loaded, bool repeatS, bool repeatT);
@@ -142,7 +142,7 @@ bool decodeSFImage(const vrml::SFImage& image, std::vector<std::uint8_t>& rgba, 
 
 /// The Background (clause 6.5): the sky and ground colours as a full-screen gradient, then
 /// the six panorama images on a cube around the viewer, blended over the colours by their
-/// alpha. Images load through the renderer's ResourceLoader like ImageTextures: a face
+/// alpha. Images load through the renderer's fetcher like ImageTextures: a face
 /// whose image is still on its way is left out (the colours show) and asked for again at
 /// the next draw; a face whose URLs all fail is reported once and left out.
 class BackgroundPass {
@@ -152,7 +152,7 @@ class BackgroundPass {
   /// depth writes and the depth buffer untouched.
   void draw(const scene::BackgroundSettings& background, const glm::mat4& view,
             const glm::mat4& projection, scene::SceneTraversal& traversal,
-            const ResourceLoader& loader);
+            base::Fetcher* fetcher);
   void release();
 
   /// The faces in the order of their fields: back, bottom, front, left, right, top.
@@ -163,7 +163,7 @@ class BackgroundPass {
                     const glm::mat4& projection);
   void drawPanorama(const scene::BackgroundSettings& background, const glm::mat4& rotationOnly,
                     const glm::mat4& projection, scene::SceneTraversal& traversal,
-                    const ResourceLoader& loader);
+                    base::Fetcher* fetcher);
   void releaseFaces();
 
   GLuint program_ = 0, vao_ = 0;

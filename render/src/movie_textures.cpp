@@ -16,29 +16,20 @@ namespace gs::render::detail {
 
 namespace {
 
-/// The movie's bytes: a local file, or the loader's (pending while they arrive).
-LoadStatus readMovie(const vrml::Node& node, const std::string& baseUrl,
-                     const ResourceLoader& loader, std::string& url, std::string& bytes,
-                     std::string& failures) {
+/// The movie's bytes: the first url the fetcher reads (pending while it arrives); failed
+/// with every url's reason in `failures` when none can be read.
+base::FetchState readMovie(const vrml::Node& node, const std::string& baseUrl,
+                           base::Fetcher* fetcher, std::string& url, std::string& bytes,
+                           std::string& failures) {
   for (const std::string& reference : scene::mfString(node, "url")) {
     if (reference.empty()) continue;
     url = base::resolveUrl(baseUrl, reference);
-    std::string error;
-    if (!base::mayReference(baseUrl, url, error)) {
-      failures += (failures.empty() ? "" : "; ") + url + ": " + error;
-      continue;
-    }
-    const std::string path = base::localPathOfUrl(url);
-    if (!path.empty() && base::readFile(path, bytes, error)) return LoadStatus::loaded;
-    if (loader) {
-      const LoadStatus status = loader(url, bytes, error);
-      if (status != LoadStatus::failed) return status;
-    } else if (path.empty()) {
-      error = "only local files can be read without a network loader";
-    }
-    failures += (failures.empty() ? "" : "; ") + url + ": " + error;
+    base::Fetched got = base::fetcherOr(fetcher).fetch(url, baseUrl, base::FetchMode::background);
+    if (got.ready()) bytes = std::move(got.bytes);
+    if (got.ready() || got.pending()) return got.state;
+    failures += (failures.empty() ? "" : "; ") + got.error;
   }
-  return LoadStatus::failed;
+  return base::FetchState::failed;
 }
 
 /// The url field resolved against `baseUrl`, one line each: with the node, the key of its
@@ -62,7 +53,7 @@ MovieGlTexture::~MovieGlTexture() {
 
 const GpuTexture& MovieTextures::get(const vrml::Node& node, const std::string& baseUrl,
                                      scene::SceneTraversal& traversal,
-                                     const ResourceLoader& loader) {
+                                     base::Fetcher* fetcher) {
   static const GpuTexture kNone;  // untextured
   Movie& m = movies_[&node];
   if (m.failed) return kNone;
@@ -73,9 +64,9 @@ const GpuTexture& MovieTextures::get(const vrml::Node& node, const std::string& 
   }
   if (!m.player) {
     std::string url, bytes, failures;
-    const LoadStatus status = readMovie(node, baseUrl, loader, url, bytes, failures);
-    if (status == LoadStatus::pending) return kNone;  // untextured until the bytes arrive
-    if (status == LoadStatus::failed) {
+    const base::FetchState status = readMovie(node, baseUrl, fetcher, url, bytes, failures);
+    if (status == base::FetchState::pending) return kNone;  // untextured until they arrive
+    if (status != base::FetchState::ready) {
       m.failed = true;
       durations_.emplace_back(&node, -1.0);
       traversal.report(vrml::Severity::warning, node.location,

@@ -187,34 +187,7 @@ SceneRenderer::SceneRenderer(std::shared_ptr<const vrml::Scene> scene, SceneRend
       traversal_(std::move(scene),
                  [this] {
                    scene::TraversalOptions t = options_.traversal;
-                   if (!t.inlineLoader && options_.loader) {
-                     // Whole files for Inline and EXTERNPROTO: pending counts as failed.
-                     const vrml::UrlLoader loader = [l = options_.loader](const std::string& url,
-                                                                          std::string& bytes,
-                                                                          std::string& error) {
-                       const LoadStatus status = l(url, bytes, error);
-                       if (status == LoadStatus::pending && error.empty()) error = "still loading";
-                       return status == LoadStatus::loaded;
-                     };
-                     t.inlineLoader = [loader](const std::string& url) {
-                       const std::string path = base::localPathOfUrl(url);
-                       if (!path.empty()) {
-                         vrml::Scene local = vrml::loadVrmlFile(path);
-                         if (!local.rootNodes.empty() || !local.diagnostics.hasErrors())
-                           return local;
-                       }
-                       std::string bytes, error;
-                       if (!loader(url, bytes, error)) {
-                         vrml::Scene failed;
-                         failed.url = url;
-                         failed.diagnostics.error({url, 0, 0}, "cannot read " + url + ": " + error);
-                         return failed;
-                       }
-                       vrml::ParseOptions parse;
-                       parse.loader = loader;
-                       return vrml::parseVrml(bytes, url, parse);
-                     };
-                   }
+                   if (t.fetcher == nullptr) t.fetcher = options_.fetcher;
                    return t;
                  }()),
       gpu_(std::make_unique<Gpu>()),
@@ -291,7 +264,7 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
   glDepthMask(GL_TRUE);
   glClearDepth(1.0);
   glClear(GL_DEPTH_BUFFER_BIT);
-  g.background.draw(traversal_.background(), view, projection, traversal_, options_.loader);
+  g.background.draw(traversal_.background(), view, projection, traversal_, options_.fetcher);
 
   // Lights in eye coordinates.
   g.eyeLights.resize(g.frame.lights.size());
@@ -331,7 +304,7 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     const Shading& shading = shadeIt->second;
     const GpuTexture* texture = nullptr;
     if (shading.texture != nullptr && mesh.primitive == vrml::Primitive::triangles) {
-      texture = &g.textures.get(*shading.texture, *s.baseUrl, traversal_, options_.loader);
+      texture = &g.textures.get(*shading.texture, *s.baseUrl, traversal_, options_.fetcher);
       if (texture->components == 0) texture = nullptr;
     }
     const glm::vec3 center = glm::vec3(s.model * glm::vec4(mesh.bounds.center(), 1.0f));
@@ -339,7 +312,7 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     if (shading.model == ShadingModel::physical && mesh.primitive == vrml::Primitive::triangles)
       for (std::size_t i = 0; i < kPhysicalMaps; ++i)
         if (shading.maps[i] != nullptr) {
-          maps[i] = &g.textures.get(*shading.maps[i], *s.baseUrl, traversal_, options_.loader);
+          maps[i] = &g.textures.get(*shading.maps[i], *s.baseUrl, traversal_, options_.fetcher);
           if (maps[i]->components == 0) maps[i] = nullptr;
         }
     const DrawItem item{&s,      &mesh, &shading,

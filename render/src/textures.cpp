@@ -84,35 +84,24 @@ bool anyTranslucent(const std::vector<std::uint8_t>& rgba) {
 }  // namespace
 
 LoadedImage loadFirstImage(const std::vector<std::string>& urls, const std::string& baseUrl,
-                           const ResourceLoader& loader) {
+                           base::Fetcher* fetcher) {
   LoadedImage out;
   for (const std::string& reference : urls) {
     if (reference.empty()) continue;
     const std::string url = base::resolveUrl(baseUrl, reference);
-    std::string bytes, error;
-    bool ok = false;
-    const std::string path = base::isDataUrl(url) ? "" : base::localPathOfUrl(url);
-    if (!base::mayReference(baseUrl, url, error)) {
-      // A world from the network never reads local files.
-    } else if (base::isDataUrl(url)) {
-      std::string mediaType;
-      ok = base::decodeDataUrl(url, bytes, mediaType, error);  // embedded (glTF, X3D 4)
-    } else {
-      if (!path.empty()) ok = base::readFile(path, bytes, error);
-      if (!ok && loader) {
-        const LoadStatus status = loader(url, bytes, error);
-        ok = status == LoadStatus::loaded;
-        if (status == LoadStatus::pending) {
-          out.pending = true;  // on its way: the next url only if this one fails
-          return out;
-        }
-      } else if (!ok && path.empty())
-        error = "only local files can be read without a network loader";
+    // Local files, data: URLs (glTF, X3D 4) and the network, under the one set of rules
+    // (a world from the network never reads local files).
+    const base::Fetched got =
+        base::fetcherOr(fetcher).fetch(url, baseUrl, base::FetchMode::background);
+    if (got.pending()) {
+      out.pending = true;  // on its way: the next url only if this one fails
+      return out;
     }
-    if (ok) {
+    std::string error = got.error;
+    if (got.ready()) {
       try {
         int components = 0;
-        out.image = decodeImage(bytes, url, &components);
+        out.image = decodeImage(got.bytes, url, &components);
         out.components = std::clamp(components, 1, 4);
         // A palette or tRNS transparency makes an RGB or grey file RGBA or grey+alpha.
         if (anyTranslucent(out.image.rgba)) {
@@ -128,7 +117,11 @@ LoadedImage loadFirstImage(const std::vector<std::string>& urls, const std::stri
     }
     const std::string shown =
         base::isDataUrl(url) && url.size() > 48 ? url.substr(0, 48) + "..." : url;
-    out.failures += (out.failures.empty() ? "" : "; ") + shown + ": " + error;
+    if (!got.ready()) {
+      out.failures += (out.failures.empty() ? "" : "; ") + error;  // names the URL
+    } else {
+      out.failures += (out.failures.empty() ? "" : "; ") + shown + ": " + error;
+    }
   }
   return out;
 }
@@ -200,9 +193,9 @@ bool decodeSFImage(const vrml::SFImage& image, std::vector<std::uint8_t>& rgba, 
 
 const GpuTexture& TextureCache::get(const vrml::Node& node, const std::string& baseUrl,
                                     scene::SceneTraversal& traversal,
-                                    const ResourceLoader& loader) {
+                                    base::Fetcher* fetcher) {
   if (node.typeId() == vrml::NodeTypeId::MovieTexture)
-    return movies.get(node, baseUrl, traversal, loader);
+    return movies.get(node, baseUrl, traversal, fetcher);
   if (auto it = textures_.find(&node); it != textures_.end()) return it->second;
   GpuTexture texture;
   const Sampling sampling = samplingOf(node);
@@ -222,7 +215,7 @@ const GpuTexture& TextureCache::get(const vrml::Node& node, const std::string& b
                        "PixelTexture image is inconsistent: drawn untextured");
     }
   } else if (node.typeId() == vrml::NodeTypeId::ImageTexture) {
-    LoadedImage loaded = loadFirstImage(scene::mfString(node, "url"), baseUrl, loader);
+    LoadedImage loaded = loadFirstImage(scene::mfString(node, "url"), baseUrl, fetcher);
     if (loaded.pending) {
       static const GpuTexture kNone;  // untextured until the bytes arrive
       return kNone;

@@ -2,6 +2,7 @@
 // ScriptContext services. Node-specific behaviour is in node_roles.cpp.
 #include "execution_state.hpp"
 
+#include "base/url.hpp"
 #include "vrml/parser.hpp"
 #include "vrml/proto.hpp"
 
@@ -405,9 +406,16 @@ void ExecutionModel::loadUrl(const std::vector<std::string>& url,
 }
 
 bool ExecutionModel::fetchText(const std::string& url, std::string& text, std::string& error) {
-  if (options_.fetchText) return options_.fetchText(url, text, error);
-  error = "cannot read '" + url + "': no loader for Script files";
-  return false;
+  // Relative to the world's URL (after redirects), under the fetcher's rules.
+  const std::string world = s_->scene ? s_->scene->url : std::string();
+  base::Fetched got = base::fetcherOr(options_.fetcher)
+                          .fetch(base::resolveUrl(world, url), world, base::FetchMode::whole);
+  if (!got.ready()) {
+    error = "cannot read '" + url + "': " + got.error;
+    return false;
+  }
+  text = std::move(got.bytes);
+  return true;
 }
 
 void ExecutionModel::replaceWorld(const std::vector<vrml::NodePtr>&) {

@@ -1,7 +1,7 @@
 // SceneTraversal's Inline loader (clause 6.25): each url resolved against the world
 // that holds the Inline (base/url.hpp), checked against what that world may reference,
-// streamed through TraversalOptions::inlineSource, read through inlineLoader or from a
-// local file; results and failures cached by URL and by node.
+// streamed through TraversalOptions::inlineSource or read whole through its fetcher;
+// results and failures cached by URL and by node.
 #include "base/url.hpp"
 #include "scene/node_access.hpp"
 #include "scene/traversal.hpp"
@@ -31,12 +31,9 @@ const SceneTraversal::InlineScene* SceneTraversal::inlineScene(const vrml::Node&
     entry->url = url;
     vrml::Scene loaded;
     std::string reason;
-    if (!base::mayReference(baseUrl, url, reason)) {
-      failures += (failures.empty() ? "" : "; ") + reason;  // a remote world, a local file
-      continue;
-    }
     if (options_.inlineSource) {
-      // Progressive: the scene grows in place while it loads (sceneChanged()).
+      // Progressive: the scene grows in place while it loads (sceneChanged()); the
+      // source applies the rules (net::Loader::world: a remote world, a local file).
       entry->scene = options_.inlineSource(url, baseUrl, reason);
       inlinesByUrl_[url] = entry;
       if (entry->scene) {
@@ -47,17 +44,18 @@ const SceneTraversal::InlineScene* SceneTraversal::inlineScene(const vrml::Node&
       failures += (failures.empty() ? "" : "; ") + url + ": " + reason;
       continue;
     }
-    if (options_.inlineLoader) {
-      loaded = options_.inlineLoader(url);
-    } else {
-      const std::string path = base::localPathOfUrl(url);
-      if (path.empty()) {
-        reason = "only local files can be inlined without a network loader";
-      } else {
-        loaded = vrml::loadVrmlFile(path);
-      }
+    // Read whole (a traversal without a session: tests, `encode`), under the same rules.
+    base::Fetched got =
+        base::fetcherOr(options_.fetcher).fetch(url, baseUrl, base::FetchMode::whole);
+    if (!got.ready()) {
+      inlinesByUrl_[url] = entry;  // remember the failure
+      failures += (failures.empty() ? "" : "; ") + got.error;
+      continue;
     }
-    if (reason.empty() && loaded.rootNodes.empty() && loaded.diagnostics.hasErrors()) {
+    vrml::ParseOptions parse;
+    parse.fetcher = options_.fetcher;
+    loaded = vrml::parseVrml(got.bytes, url, parse);
+    if (loaded.rootNodes.empty() && loaded.diagnostics.hasErrors()) {
       const auto& items = loaded.diagnostics.items;
       for (const auto& d : items)
         if (d.severity == vrml::Severity::error) {

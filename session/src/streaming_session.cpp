@@ -121,12 +121,9 @@ render::SceneRendererOptions StreamingSession::rendererOptions(render::SceneRend
   };
   base.splatLoader = [this](const std::string& url, const std::string& referrer,
                             std::string& error) { return splatSet(url, referrer, error); };
-  base.loader = [this](const std::string& url, std::string& bytes, std::string& error) {
-    // Textures load in the background while the scene draws untextured; the renderer
-    // has already refused local files for remote worlds.
-    if (loader_.fetchInBackground(url, "", bytes, error)) return render::LoadStatus::loaded;
-    return error.empty() ? render::LoadStatus::pending : render::LoadStatus::failed;
-  };
+  // Textures, movies and panoramas load in the background while the scene draws without
+  // them, under the loader's rules.
+  base.fetcher = &loader_;
   return base;
 }
 

@@ -67,8 +67,8 @@ std::string framePath(const std::string& path, int frame, int frames) {
   return path.substr(0, dot) + suffix + path.substr(dot);
 }
 
-WorldRuntimes::WorldRuntimes(const RuntimeOptions& options, FetchWhole fetch)
-    : options_(options), fetch_(std::move(fetch)) {
+WorldRuntimes::WorldRuntimes(const RuntimeOptions& options, base::Fetcher* fetcher)
+    : options_(options), fetcher_(fetcher) {
   if (!options_.traceFile.empty()) {
     trace_ = std::fopen(options_.traceFile.c_str(), "w");
     if (trace_ == nullptr)
@@ -108,12 +108,7 @@ runtime::ExecutionModel& WorldRuntimes::of(const std::shared_ptr<const vrml::Sce
     };
     if (options_.scripts) o.scripts = runtime::ecmascriptFactory();
     o.scriptLimits = options_.scriptLimits;
-    if (fetch_)
-      o.fetchText = [fetch = fetch_, world = scene.get()](const std::string& url, std::string& text,
-                                                          std::string& error) {
-        // Relative to the world's URL (after redirects), under the loader's rules.
-        return fetch(base::resolveUrl(world->url, url), world->url, text, error);
-      };
+    o.fetcher = fetcher_;
     e.model = std::make_unique<runtime::ExecutionModel>(scene, time, std::move(o));
   }
   return *e.model;

@@ -21,14 +21,14 @@ struct SoundWorld {
   audio::InlineQuery inlines;  // empty: Inlines are not walked
 
   /// `body` after the VRML header, as if read from `url` (the base of its clip URLs).
-  /// `loader` fetches the URLs that are not local files (none: only files play).
+  /// `fetcher` fetches the URLs that are not local files (none: only files play).
   explicit SoundWorld(const std::string& body,
                       const std::string& url = std::string(GS_SOURCE_DIR) +
                                                "/assets/media/test.wrl",
-                      audio::ClipLoader loader = {})
+                      base::Fetcher* fetcher = nullptr)
       : scene(std::make_shared<vrml::Scene>(vrml::parseVrml("#VRML V2.0 utf8\n" + body, url))),
         model(std::make_unique<runtime::ExecutionModel>(scene, 0.0)),
-        sounds(scene, std::move(loader)) {}
+        sounds(scene, fetcher) {}
 
   /// One frame at `time` heard from `listener` (a viewer looking down -Z).
   void frame(double time, glm::vec3 listener = {0.0f, 0.0f, 0.0f}) {

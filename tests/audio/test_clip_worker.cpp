@@ -93,15 +93,16 @@ TEST_CASE("Sound: a remote AudioClip is fetched without waiting, frame by frame"
   std::string error;
   REQUIRE(base::readFile(std::string(GS_SOURCE_DIR) + "/assets/media/tone.wav", wav, error));
   int calls = 0;
-  audio::ClipLoader loader = [&](const std::string& url, std::string& bytes, std::string& why) {
+  base::CallbackFetcher fetcher([&](const std::string& url, const std::string& referrer,
+                                   base::FetchMode mode) {
     CHECK(url == "http://example.org/media/tone.wav");
-    if (++calls <= 3) return false;  // error empty: still arriving
-    bytes = wav;
-    why.clear();
-    return true;
-  };
+    CHECK(referrer == "http://example.org/media/world.wrl");
+    CHECK(mode == base::FetchMode::background);
+    if (++calls <= 3) return base::Fetched{base::FetchState::pending, {}, {}};  // arriving
+    return base::fetchReady(wav);
+  });
   test::SoundWorld w(R"(Sound { source AudioClip { url "tone.wav" loop TRUE } })",
-                     "http://example.org/media/world.wrl", loader);
+                     "http://example.org/media/world.wrl", &fetcher);
   for (int frame = 0; frame < 3; ++frame) {
     frameWithoutWaiting(w, 0.1 * frame);
     CHECK(w.sounds.clipsLoading() == 0);  // nothing handed to the worker yet
@@ -122,13 +123,12 @@ TEST_CASE("Sound: a remote AudioClip is fetched without waiting, frame by frame"
 TEST_CASE("Sound: a remote AudioClip whose fetch fails is reported, not retried",
           "[audio][sound][worker][remote]") {
   int calls = 0;
-  audio::ClipLoader loader = [&](const std::string& url, std::string&, std::string& why) {
+  base::CallbackFetcher fetcher([&](const std::string& url, const std::string&, base::FetchMode) {
     ++calls;
-    why = url + ": HTTP 404";
-    return false;
-  };
+    return base::fetchFailed(url + ": HTTP 404");
+  });
   test::SoundWorld w(R"(Sound { source AudioClip { url "gone.wav" loop TRUE } })",
-                     "http://example.org/media/world.wrl", loader);
+                     "http://example.org/media/world.wrl", &fetcher);
   frameWithoutWaiting(w, 0.0);
   w.sounds.waitForClips();
   frameWithoutWaiting(w, 0.1);

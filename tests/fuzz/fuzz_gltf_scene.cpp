@@ -3,6 +3,7 @@
 // animation samplers, skins, morph targets, Draco) on any bytes, then run for two instants
 // of the execution model (animations, morph interpolators, CPU skinning); external buffers
 // are refused (the loader answers nothing), so only data: URIs and the GLB BIN chunk count.
+#include "fuzz_no_files.hpp"
 #include "fuzz_support.hpp"
 #include "gltf_import.hpp"
 #include "runtime/execution_model.hpp"
@@ -11,10 +12,7 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   gs::vrml::ParseOptions options;
-  options.loader = [](const std::string&, std::string&, std::string& error) {
-    error = "no external files while fuzzing";
-    return false;
-  };
+  options.fetcher = gs::fuzz::noFiles();
   options.limits.maxNodes = 100000;
   auto scene = std::make_shared<gs::vrml::Scene>();
   gs::vrml::parsing::importGltf(gs::fuzz::view(data, size), "fuzz.gltf", options, *scene);

@@ -3,6 +3,7 @@
 // field holding a node; the world is loaded (initialize()), then time advances a few
 // frames so that a TimeSensor's events reach the Script. Small limits: 50 ms per call,
 // 16 MiB of heap.
+#include "fuzz_no_files.hpp"
 #include "fuzz_support.hpp"
 #include "runtime/execution_model.hpp"
 #include "runtime/script_ecmascript.hpp"
@@ -39,20 +40,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       "ROUTE T.time TO S.tick\nROUTE T.fraction_changed TO S.fraction\n"
       "ROUTE S.v TO X.set_translation\n";
   gs::vrml::ParseOptions parse;
-  parse.loader = [](const std::string&, std::string&, std::string& error) {
-    error = "no files while fuzzing";
-    return false;
-  };
+  parse.fetcher = gs::fuzz::noFiles();
   auto scene = std::make_shared<gs::vrml::Scene>(gs::vrml::parseVrml(world, "fuzz.wrl", parse));
   gs::runtime::ExecutionOptions options;
   options.scripts = gs::runtime::ecmascriptFactory();
   options.scriptLimits.callSeconds = 0.05;
   options.scriptLimits.heapBytes = 16u << 20;
   options.maxEventsPerCascade = 10'000;
-  options.fetchText = [](const std::string&, std::string&, std::string& error) {
-    error = "no files while fuzzing";
-    return false;
-  };
+  options.fetcher = gs::fuzz::noFiles();
   gs::runtime::ExecutionModel model(scene, 0.0, options);
   for (int frame = 1; frame <= 3; ++frame) model.advanceTo(frame * 0.1);
   return 0;

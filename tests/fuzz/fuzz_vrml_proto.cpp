@@ -19,10 +19,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       nul == std::string_view::npos ? world : withHeader(all.substr(nul + 1));
   gs::vrml::ParseOptions options;
   options.limits.maxNodes = 200'000;
-  options.loader = [&library](const std::string&, std::string& bytes, std::string&) {
-    bytes = library;
-    return true;
-  };
+  gs::base::CallbackFetcher served(
+      [&library](const std::string&, const std::string&, gs::base::FetchMode) {
+        return gs::base::fetchReady(library);
+      });
+  options.fetcher = &served;
   const gs::vrml::Scene scene = gs::vrml::parseVrml(world, "http://fuzz.example/w.wrl", options);
   (void)scene;
   return 0;

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "fuzz_no_files.hpp"
 #include "fuzz_support.hpp"
 #include "vrml/parser.hpp"
 #include "vrml/streaming_parser.hpp"
@@ -19,10 +20,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string text = in.ConsumeRemainingBytesAsString();
   gs::vrml::ParseOptions options;
   options.limits.maxNodes = 200'000;
-  options.loader = [](const std::string&, std::string&, std::string& error) {
-    error = "no files while fuzzing";
-    return false;
-  };
+  options.fetcher = gs::fuzz::noFiles();
   gs::vrml::StreamingParser parser("fuzz.wrl", options);
   std::size_t at = 0;
   for (std::size_t i = 0; at < text.size(); ++i) {

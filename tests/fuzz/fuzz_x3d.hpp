@@ -4,6 +4,7 @@
 // machine's files.
 #pragma once
 
+#include "fuzz_no_files.hpp"
 #include "fuzz_support.hpp"
 #include "vrml/parser.hpp"
 #include "vrml/streaming_parser.hpp"
@@ -16,10 +17,7 @@ inline void parseX3dEncoding(const std::uint8_t* data, std::size_t size, char le
                              const char* url) {
   vrml::ParseOptions options;
   options.limits.maxNodes = 200'000;
-  options.loader = [](const std::string&, std::string&, std::string& error) {
-    error = "no files while fuzzing";
-    return false;
-  };
+  options.fetcher = noFiles();
   std::string bytes(view(data, size));
   if (bytes.empty() || bytes[0] != lead) bytes.insert(0, 1, lead);
   const vrml::Scene whole = vrml::parseVrml(bytes, url, options);

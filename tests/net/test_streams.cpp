@@ -180,6 +180,36 @@ TEST_CASE("the loader refuses local files named by remote content", "[net][strea
   CHECK(loader.progress().size() == 1);
 }
 
+TEST_CASE("net::Loader as the session's base::Fetcher: whole, background, the rules",
+          "[net][streams][fetch]") {
+  const std::string body = "#VRML V2.0 utf8\nPROTO P [] { Group { } }\n";
+  FaultServer server(body, FaultServer::Behaviour::serve);
+  REQUIRE(server.ok());
+  net::Loader loader;
+  base::Fetcher& fetcher = loader;
+  // Whole: waits for the bytes.
+  base::Fetched got = fetcher.fetch(server.url("/p.wrl"), "", base::FetchMode::whole);
+  CHECK(got.ready());
+  CHECK(got.bytes == body);
+  // Background: pending at first, ready after pumps, never waiting in fetch().
+  got = fetcher.fetch(server.url("/q.wrl"), "http://h.org/w.wrl", base::FetchMode::background);
+  CHECK(got.pending());
+  const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (got.pending() && std::chrono::steady_clock::now() < end) {
+    loader.pump();
+    loader.wait(0.01);
+    got = fetcher.fetch(server.url("/q.wrl"), "http://h.org/w.wrl", base::FetchMode::background);
+  }
+  CHECK(got.ready());
+  CHECK(got.bytes == body);
+  // Local files and data: URLs at once, under the rules.
+  CHECK(fetcher.fetch("data:,abc", "http://h.org/w.wrl", base::FetchMode::background).bytes ==
+        "abc");
+  got = fetcher.fetch("/etc/passwd", "http://h.org/w.wrl", base::FetchMode::whole);
+  CHECK(got.state == base::FetchState::refused);
+  CHECK(got.error.find("may only reference http(s) URLs") != std::string::npos);
+}
+
 TEST_CASE("a hostile packet sequence number does not size the consumer's arrays",
           "[net][streams]") {
   // A valid header claiming 2^32 vectors of 8-record packets, then one good packet placed

@@ -104,19 +104,22 @@ TEST_CASE("the parser and the renderer resolve a URL the same way", "[render][tr
       "#VRML V2.0 utf8\nEXTERNPROTO P [] \"../protos/./p.wrl\"\n"
       "Inline { url \"../protos/./p.wrl\" }\n";
   std::string parserUrl;
+  gs::base::CallbackFetcher parserFetcher(
+      [&](const std::string& url, const std::string&, gs::base::FetchMode) {
+        parserUrl = url;
+        return gs::base::fetchFailed(url + ": not served here");
+      });
   gs::vrml::ParseOptions parse;
-  parse.loader = [&](const std::string& url, std::string&, std::string& error) {
-    parserUrl = url;
-    error = "not served here";
-    return false;
-  };
+  parse.fetcher = &parserFetcher;
   auto scene = std::make_shared<const gs::vrml::Scene>(gs::vrml::parseVrml(text, world, parse));
   std::string rendererUrl;
+  gs::base::CallbackFetcher rendererFetcher(
+      [&](const std::string& url, const std::string&, gs::base::FetchMode) {
+        rendererUrl = url;
+        return gs::base::fetchFailed(url + ": not served here");
+      });
   gs::scene::TraversalOptions options;
-  options.inlineLoader = [&](const std::string& url) {
-    rendererUrl = url;
-    return gs::vrml::Scene{};
-  };
+  options.fetcher = &rendererFetcher;
   gs::scene::SceneTraversal traversal(scene, options);
   gs::scene::TraversalFrame frame;
   traversal.collect(traversal.boundViewpointCamera(), frame);
@@ -234,19 +237,21 @@ TEST_CASE("the first Viewpoint, NavigationInfo, Background and Fog are bound",
 TEST_CASE("Inline loads once, resolves relative URLs and survives failures",
           "[render][traversal]") {
   std::vector<std::string> loads;
-  gs::scene::TraversalOptions o = options();
-  o.inlineLoader = [&](const std::string& url) {
+  gs::base::CallbackFetcher fetcher([&](const std::string& url, const std::string& referrer,
+                                        gs::base::FetchMode mode) {
     loads.push_back(url);
-    gs::vrml::Scene s;
-    s.url = url;
+    CHECK(mode == gs::base::FetchMode::whole);  // no session: the traversal reads whole
+    CHECK_FALSE(referrer.empty());
     if (url == "/w/sub/a.wrl")
-      s.rootNodes = {makeNode("Inline", {{"url", mfString({"../b.wrl"})}}), shape()};
-    else if (url == "/w/b.wrl")
-      s.rootNodes = {shape(), makeNode("Inline", {{"url", mfString({"sub/a.wrl"})}})};
-    else
-      s.diagnostics.error({url, 0, 0}, "cannot read " + url + ": no such file");
-    return s;
-  };
+      return gs::base::fetchReady(
+          "#VRML V2.0 utf8\nInline { url \"../b.wrl\" }\nShape { geometry Box { } }\n");
+    if (url == "/w/b.wrl")
+      return gs::base::fetchReady(
+          "#VRML V2.0 utf8\nShape { geometry Box { } }\nInline { url \"sub/a.wrl\" }\n");
+    return gs::base::fetchFailed("cannot read " + url + ": no such file");
+  });
+  gs::scene::TraversalOptions o;
+  o.fetcher = &fetcher;
   auto root = makeNode("Inline", {{"url", mfString({"missing.wrl", "sub/a.wrl"})}});
   auto gone = makeNode("Inline", {{"url", mfString({"gone.wrl"})}});
   SceneTraversal t(makeScene({root, gone}, "/w/main.wrl"), o);

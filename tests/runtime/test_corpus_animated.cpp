@@ -24,13 +24,10 @@ TEST_CASE("runtime: animated corpus worlds run 10 simulated seconds", "[runtime]
     if (scene->routes.empty()) continue;
     ++animated;
     INFO(path.string());
-    // Scripts run too (ECMAScript through Duktape, with their files read from disk).
+    // Scripts run too (ECMAScript through Duktape, with their files read from disk: the
+    // model's default fetcher reads local files relative to the world).
     runtime::ExecutionOptions options;
     options.scripts = runtime::ecmascriptFactory();
-    options.fetchText = [&path](const std::string& url, std::string& text, std::string& error) {
-      const auto file = path.parent_path() / url;
-      return base::readFile(file.string(), text, error, 1u << 20);
-    };
     runtime::ExecutionModel model(scene, 1000.0, std::move(options));
     model.advanceBy(10.0, 1.0 / 60.0);
     CHECK(model.now() == Approx(1010.0));

@@ -390,7 +390,8 @@ Gone { on TRUE }
                        "\"urn:web3d:x\", \"http://example.com/lib.wrl#Gone\", "
                        "\"extern_lib.wrl#NoSuch\"]: ") == 0);
   CHECK(d.message.find("urn:web3d:x: urn: names are not resolved") != std::string::npos);
-  CHECK(d.message.find("remote URLs are not loaded") != std::string::npos);
+  CHECK(d.message.find("http://example.com/lib.wrl: only local files can be read without a "
+                       "network loader") != std::string::npos);
   CHECK(d.message.find("the file declares no PROTO 'NoSuch'") != std::string::npos);
   REQUIRE(s.rootNodes.size() == 1);
   const Node& n = *s.rootNodes[0];
@@ -401,18 +402,20 @@ Gone { on TRUE }
   CHECK(n.mfnode("kids").empty());
 }
 
-TEST_CASE("EXTERNPROTO through ParseOptions::loader", "[parser][proto]") {
+TEST_CASE("EXTERNPROTO through ParseOptions::fetcher", "[parser][proto]") {
   std::vector<std::string> asked;
-  ParseOptions o;
-  o.loader = [&](const std::string& u, std::string& bytes, std::string& error) {
+  gs::base::CallbackFetcher fetcher([&](const std::string& u, const std::string& referrer,
+                                        gs::base::FetchMode mode) {
+    CHECK(referrer == "http://host/dir/world.wrl");
+    CHECK(mode == gs::base::FetchMode::whole);
     asked.push_back(u);
-    if (u == "http://host/dir/lib.wrl") {
-      bytes = "#VRML V2.0 utf8\nPROTO Q [ field SFFloat r 3 ] { Sphere { radius IS r } }";
-      return true;
-    }
-    error = "404";
-    return false;
-  };
+    if (u == "http://host/dir/lib.wrl")
+      return gs::base::fetchReady(
+          "#VRML V2.0 utf8\nPROTO Q [ field SFFloat r 3 ] { Sphere { radius IS r } }");
+    return gs::base::fetchFailed(u + ": 404");
+  });
+  ParseOptions o;
+  o.fetcher = &fetcher;
   Scene s = parseVrml(
       "#VRML V2.0 utf8\nEXTERNPROTO Q [ field SFFloat r ] [ \"x.wrl\" \"lib.wrl#Q\" ]\n"
       "Shape { geometry Q { } }\n",

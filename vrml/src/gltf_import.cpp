@@ -268,13 +268,11 @@ void importGltf(std::string_view bytes, const std::string& url, const ParseOptio
                 Scene& scene) {
   scene.x3d.encoding = "glTF";
   const gltf::BufferLoader loader = [&](const std::string& uri) -> std::optional<std::string> {
-    const std::string resolved = base::resolveUrl(url, uri);
-    std::string error, data;
-    if (!base::mayReference(url, resolved, error)) throw gltf::Error(url + ": " + error);
-    const bool ok = options.loader ? options.loader(resolved, data, error)
-                                   : readFile(resolved, options.limits.maxInputBytes, data, error);
-    if (!ok) return std::nullopt;
-    return data;
+    base::Fetched got = base::fetcherOr(options.fetcher)
+                            .fetch(base::resolveUrl(url, uri), url, base::FetchMode::whole);
+    if (got.state == base::FetchState::refused) throw gltf::Error(url + ": " + got.error);
+    if (!got.ready()) return std::nullopt;
+    return std::move(got.bytes);
   };
   try {
     std::vector<std::string> warnings;

@@ -20,8 +20,8 @@ bool isGltf(std::string_view bytes);
 
 /// Reads the glTF asset `bytes` (named `url`, the base of its relative URIs) into `scene`:
 /// root nodes, routes and diagnostics; Scene::x3d.encoding is "glTF". External buffers are
-/// read through options.loader, else as local files when `url` is local; a remote asset
-/// never reads local files. Never throws for bad content: an error Diagnostic ends the
+/// read through options.fetcher (base::fetcherOr), whose rules keep a remote asset
+/// from reading local files. Never throws for bad content: an error Diagnostic ends the
 /// import, and nodes built before it stay (none, for an asset that does not load).
 void importGltf(std::string_view bytes, const std::string& url, const ParseOptions& options,
                 Scene& scene);

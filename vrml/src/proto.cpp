@@ -210,11 +210,6 @@ void Parser::resolveExternProto(Scope& scope, ProtoDefinition& def, const NodeTy
       }
     } else {
       const std::string resolved = base::resolveUrl(lex_.file(), file);
-      if (!ctx_.options.loader && base::hasScheme(resolved) &&
-          !base::startsWithNoCase(resolved, "file:")) {
-        addReason(url, "remote URLs are not loaded");
-        continue;
-      }
       if (externDepth_ + 1 > ctx_.options.limits.maxExternProtoDepth) {
         addReason(url, "EXTERNPROTO files nested deeper than " +
                            std::to_string(ctx_.options.limits.maxExternProtoDepth) +
@@ -287,14 +282,12 @@ bool Parser::loadExternFile(const std::string& url, std::shared_ptr<ExternFile>&
   }
   auto f = std::make_shared<ExternFile>();
   ctx_.externFiles[url] = f;
-  std::string bytes;
-  std::string error;
-  const bool ok = ctx_.options.loader
-                      ? ctx_.options.loader(url, bytes, error)
-                      : readFile(url, ctx_.options.limits.maxInputBytes, bytes, error);
+  base::Fetched got =
+      base::fetcherOr(ctx_.options.fetcher).fetch(url, lex_.file(), base::FetchMode::whole);
+  std::string& bytes = got.bytes;
   f->loading = false;
-  if (!ok) {
-    f->error = error.empty() ? "cannot be read" : error;
+  if (!got.ready()) {
+    f->error = got.error.empty() ? "cannot be read" : got.error;
     reason = f->error;
     return false;
   }

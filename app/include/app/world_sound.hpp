@@ -16,11 +16,10 @@ namespace gs::app {
 
 class WorldSounds {
  public:
-  /// Opens the audio output (`enabled` false: the null output). `fetch` reads clip URLs
-  /// that are not local files (under the loader's rules) without blocking, as
-  /// audio::ClipLoader says (false with an empty error while on its way; the window passes
-  /// net::Loader::fetchInBackground).
-  WorldSounds(bool enabled, session::FetchWhole fetch);
+  /// Opens the audio output (`enabled` false: the null output). `fetcher` reads clip URLs
+  /// that are not local files in the background (audio::SoundScene; the window passes its
+  /// session's net::Loader; not owned, must outlive this).
+  WorldSounds(bool enabled, base::Fetcher* fetcher);
   /// Why the output is the null one ("" when a device opened).
   const std::string& note() const { return note_; }
   /// One frame: `scene`'s Sounds heard from `camera`, clip durations to `runtimes`; the
@@ -32,7 +31,7 @@ class WorldSounds {
  private:
   std::string note_;  // before output_: the output's constructor writes it
   std::unique_ptr<audio::AudioOutput> output_;
-  session::FetchWhole fetch_;
+  base::Fetcher* fetcher_ = nullptr;
   std::map<const vrml::Scene*, std::unique_ptr<audio::SoundScene>> scenes_;
   std::map<const vrml::Scene*, std::size_t> shown_;  // diagnostics printed
 };

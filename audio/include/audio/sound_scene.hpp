@@ -9,6 +9,7 @@
 
 #include "audio/audio_output.hpp"
 #include "audio/sound_model.hpp"
+#include "base/fetch.hpp"
 #include "formats/audio.hpp"
 #include "vrml/diagnostic.hpp"
 #include "vrml/node.hpp"
@@ -40,13 +41,6 @@ struct ClipTime {
 
 /// The clip's state now; empty when the execution model does not know the node.
 using ClipTimeQuery = std::function<std::optional<ClipTime>(const vrml::Node& clip)>;
-/// Reads the bytes of an already resolved URL that is not a local file (the session's
-/// loader), without blocking the drawing thread: true with `bytes` once they arrived; false
-/// with `error` naming the URL when refused or failed; false with `error` empty while the
-/// transfer is on its way (net::Loader::fetchInBackground), when the SoundScene asks again
-/// on a later frame. Called on the drawing thread only.
-using ClipLoader =
-    std::function<bool(const std::string& url, std::string& bytes, std::string& error)>;
 /// The world an Inline node (6.25) has loaded so far (the renderer loads Inlines; e.g.
 /// scene::SceneTraversal::loadedInline); null when none (not yet, or failed). Its `url`
 /// is the base of the clip URLs inside it.
@@ -61,11 +55,14 @@ struct HeardSound {
 
 class SoundScene {
  public:
-  /// AudioClip and MovieTexture urls resolve against the url of the scene that holds them; local
-  /// files are read directly (as base::mayReference allows), others through `loader` (empty: local
-  /// files only; it is called on the thread that calls update()); each clip once, from its first
-  /// use, read and decoded on a worker thread: a Sound is silent until its clip is decoded.
-  SoundScene(std::shared_ptr<const vrml::Scene> scene, ClipLoader loader);
+  /// AudioClip and MovieTexture urls resolve against the url of the scene that holds them;
+  /// local files the rules allow (base::localFileFor) are read on a worker thread, others
+  /// fetched through `fetcher` in the background (base::FetchMode::background: never
+  /// waiting, asked again on a later frame while pending; called on the thread that calls
+  /// update(); null: local files and data: URLs only; not owned, must outlive the scene);
+  /// each clip once, from its first use, decoded on the worker: a Sound is silent until
+  /// its clip is decoded.
+  SoundScene(std::shared_ptr<const vrml::Scene> scene, base::Fetcher* fetcher);
   ~SoundScene();  // waits for the clip being decoded, if any
   SoundScene(const SoundScene&) = delete;
   SoundScene& operator=(const SoundScene&) = delete;
@@ -104,7 +101,7 @@ class SoundScene {
   void install();
 
   std::shared_ptr<const vrml::Scene> scene_;
-  ClipLoader loader_;
+  base::Fetcher* fetcher_ = nullptr;
   vrml::NodeMap<std::shared_ptr<const formats::AudioData>> clips_;
   std::unordered_set<const vrml::Node*> loading_;  // on the worker
   std::size_t fetchesWaiting_ = 0;

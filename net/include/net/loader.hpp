@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "base/fetch.hpp"
 #include "net/progress.hpp"
 #include "net/streams.hpp"
 #include "net/transfer.hpp"
@@ -31,10 +32,16 @@ struct LoaderOptions {
   double stallTimeout = 20.0;    // seconds
 };
 
-class Loader {
+class Loader final : public base::Fetcher {
  public:
   explicit Loader(LoaderOptions options = {});
-  ~Loader();
+  ~Loader() override;
+
+  /// The session's base::Fetcher (the one way content reads a resource): local and data:
+  /// URLs as base::fetchLocally() reads them, at once; others by fetchWhole() (10 s at
+  /// most) or fetchInBackground() as `mode` says, under the same rules and limits.
+  base::Fetched fetch(const std::string& url, const std::string& referrer,
+                      base::FetchMode mode) override;
 
   /// The world at `url` (a path, file:// or http(s):// URL already resolved), opened
   /// when first asked. `referrer` is the URL of the content that references it (empty for

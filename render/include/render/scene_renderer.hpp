@@ -27,27 +27,17 @@ namespace detail {
 class SceneSplats;
 }
 
-/// What a ResourceLoader answers.
-enum class LoadStatus {
-  loaded,   // the bytes are in `bytes`
-  failed,   // `error` says why
-  pending,  // on their way: a texture is drawn untextured for now, without a diagnostic,
-            // and asked for again at a later draw
-};
-
-/// Reads the bytes behind an already resolved URL (ImageTexture, Inline, EXTERNPROTO).
-using ResourceLoader =
-    std::function<LoadStatus(const std::string& url, std::string& bytes, std::string& error)>;
-
 /// MovieTexture (6.28): the seconds into `movie`'s clip to show now, from the execution
 /// model (runtime::ExecutionModel::mediaTime); empty: the first frame.
 using MediaClock = std::function<std::optional<double>(const vrml::Node& movie)>;
 
 struct SceneRendererOptions {
-  /// Reads URLs that are not local files (or local files that cannot be opened) for
-  /// ImageTexture and, when traversal.inlineLoader is empty, for Inline. Empty: local files
-  /// only. May answer LoadStatus::pending (loading in the background).
-  ResourceLoader loader;
+  /// Reads ImageTexture, MovieTexture and Background panorama urls in the background
+  /// (base::FetchMode::background: a texture still on its way is drawn untextured, without
+  /// a diagnostic, and asked for again at a later draw), and is the traversal's fetcher
+  /// when traversal.fetcher is null. Not owned; must outlive the renderer. Null: local
+  /// files and data: URLs only.
+  base::Fetcher* fetcher = nullptr;
   scene::TraversalOptions traversal;
   /// Diameter of PointSet points in pixels.
   float pointSize = 2.0f;

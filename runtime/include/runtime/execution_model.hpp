@@ -6,6 +6,7 @@
 // clock once a frame. Not thread-safe: use it on the thread that draws.
 #pragma once
 
+#include "base/fetch.hpp"
 #include "runtime/clock.hpp"
 #include "runtime/media_time.hpp"
 #include "runtime/pointer.hpp"
@@ -44,8 +45,10 @@ struct ExecutionOptions {
   ScriptLimits scriptLimits;
   /// Browser.loadURL and Anchor requests (url list, parameter list); empty: ignored.
   std::function<void(const std::vector<std::string>&, const std::vector<std::string>&)> loadUrl;
-  /// Text fetch for Script urls (ScriptContext::fetchText); empty: local files only... none.
-  std::function<bool(const std::string& url, std::string& text, std::string& error)> fetchText;
+  /// Reads Script url files and Browser.createVrmlFromURL texts (ScriptContext::fetchText:
+  /// resolved against the world's URL, which is the referrer; base::FetchMode::whole). Not
+  /// owned; must outlive the model. Null: local files and data: URLs only.
+  base::Fetcher* fetcher = nullptr;
   /// Limit on events handled in one timestamp; past it the cascade stops with a
   /// diagnostic (a guard against routes that multiply events).
   std::size_t maxEventsPerCascade = 1'000'000;

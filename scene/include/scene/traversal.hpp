@@ -5,6 +5,7 @@
 // glm's, column-major.
 #pragma once
 
+#include "base/fetch.hpp"
 #include "scene/camera.hpp"
 #include "vrml/diagnostic.hpp"
 #include "vrml/geometry.hpp"
@@ -188,11 +189,12 @@ constexpr std::optional<RenderMode> renderModeFromName(std::string_view name) {
 
 /// How a traversal reads Inline files and tessellates geometry.
 struct TraversalOptions {
-  /// Loads the world at an already resolved URL (Inline, clause 6.25). Empty: local files
-  /// (plain paths and file:// URLs) with vrml::loadVrmlFile; other schemes fail with a
-  /// diagnostic.
-  std::function<vrml::Scene(const std::string& url)> inlineLoader;
-  /// Progressive Inline worlds (wins over inlineLoader): the scene at an already
+  /// Reads Inline worlds whole (clause 6.25; FetchMode::whole, the Inline's world as the
+  /// referrer) and their EXTERNPROTOs when inlineSource is empty; not owned, must outlive
+  /// the traversal. Null: local files and data: URLs only (base::LocalFetcher); other
+  /// schemes fail with a diagnostic.
+  base::Fetcher* fetcher = nullptr;
+  /// Progressive Inline worlds (wins over fetcher): the scene at an already
   /// resolved `url` named by content from `referrer`, which may still be loading and
   /// grows in place (call SceneTraversal::sceneChanged() after it grew). Null with
   /// `error` set when the URL is refused or cannot be loaded.

@@ -31,11 +31,6 @@ struct RuntimeOptions {
   runtime::ScriptLimits scriptLimits;
 };
 
-/// Reads a whole small resource (a Script's .js file) named by content at `referrer`
-/// under the loader's rules (net::Loader::fetchWhole). False with `error` naming the URL.
-using FetchWhole = std::function<bool(const std::string& url, const std::string& referrer,
-                                      std::string& bytes, std::string& error)>;
-
 /// The viewer pose the execution model's sensors see for a camera drawn at `aspect`
 /// (width / height).
 runtime::ViewerPose viewerPose(const scene::Camera& camera, float aspect);
@@ -53,8 +48,9 @@ class WorldRuntimes {
  public:
   /// Traces go to `options.traceFile` when set (an error opening it throws
   /// std::runtime_error naming the file).
-  /// Script files are read through `fetch` (empty: Scripts may only be inline).
-  explicit WorldRuntimes(const RuntimeOptions& options, FetchWhole fetch = {});
+  /// Script files are read through `fetcher` (the session's net::Loader; null: local files
+  /// only; not owned, must outlive the runtimes).
+  explicit WorldRuntimes(const RuntimeOptions& options, base::Fetcher* fetcher = nullptr);
   ~WorldRuntimes();
   WorldRuntimes(const WorldRuntimes&) = delete;
   WorldRuntimes& operator=(const WorldRuntimes&) = delete;
@@ -93,7 +89,7 @@ class WorldRuntimes {
 
  private:
   RuntimeOptions options_;
-  FetchWhole fetch_;
+  base::Fetcher* fetcher_ = nullptr;
   std::FILE* trace_ = nullptr;
   LinkHandler link_;
   struct Entry {

@@ -5,6 +5,7 @@
 // Diagnostic with file:line:column, nesting and allocation are bounded.
 #pragma once
 
+#include "base/fetch.hpp"
 #include "vrml/scene.hpp"
 
 #include <cstddef>
@@ -22,17 +23,12 @@ struct ParseLimits {
   std::size_t maxNodes = 4'000'000;        // nodes created, PROTO expansions included
 };
 
-/// Loads the bytes behind a URL (already resolved against the base URL). Returns false
-/// and sets `error` when it cannot. The parser uses it for EXTERNPROTO; the default
-/// loader reads local files only.
-using UrlLoader =
-    std::function<bool(const std::string& url, std::string& bytes, std::string& error)>;
-
 struct ParseOptions {
   ParseLimits limits;
-  /// Used for EXTERNPROTO URLs; when empty, local files are read (relative to the
-  /// directory of the parsed file).
-  UrlLoader loader;
+  /// Reads EXTERNPROTO files and a glTF asset's external buffers and images
+  /// (FetchMode::whole, the parsed file's URL as referrer); not owned, and must outlive
+  /// the parse. Null: local files and data: URLs only (base::LocalFetcher).
+  base::Fetcher* fetcher = nullptr;
   /// Called with each completed top-level node as soon as it is parsed (for progressive
   /// display); may be empty.
   std::function<void(const NodePtr&)> onRootNode;
