@@ -151,8 +151,7 @@ class BackgroundPass {
   /// infinity): `view` is the camera's view matrix, `projection` its projection. Leaves
   /// depth writes and the depth buffer untouched.
   void draw(const scene::BackgroundSettings& background, const glm::mat4& view,
-            const glm::mat4& projection, scene::SceneTraversal& traversal,
-            base::Fetcher* fetcher);
+            const glm::mat4& projection, scene::SceneTraversal& traversal, base::Fetcher* fetcher);
   void release();
 
   /// The faces in the order of their fields: back, bottom, front, left, right, top.

@@ -52,8 +52,7 @@ MovieGlTexture::~MovieGlTexture() {
 }
 
 const GpuTexture& MovieTextures::get(const vrml::Node& node, const std::string& baseUrl,
-                                     scene::SceneTraversal& traversal,
-                                     base::Fetcher* fetcher) {
+                                     scene::SceneTraversal& traversal, base::Fetcher* fetcher) {
   static const GpuTexture kNone;  // untextured
   Movie& m = movies_[&node];
   if (m.failed) return kNone;

@@ -192,8 +192,7 @@ bool decodeSFImage(const vrml::SFImage& image, std::vector<std::uint8_t>& rgba, 
 }
 
 const GpuTexture& TextureCache::get(const vrml::Node& node, const std::string& baseUrl,
-                                    scene::SceneTraversal& traversal,
-                                    base::Fetcher* fetcher) {
+                                    scene::SceneTraversal& traversal, base::Fetcher* fetcher) {
   if (node.typeId() == vrml::NodeTypeId::MovieTexture)
     return movies.get(node, baseUrl, traversal, fetcher);
   if (auto it = textures_.find(&node); it != textures_.end()) return it->second;

@@ -93,14 +93,14 @@ TEST_CASE("Sound: a remote AudioClip is fetched without waiting, frame by frame"
   std::string error;
   REQUIRE(base::readFile(std::string(GS_SOURCE_DIR) + "/assets/media/tone.wav", wav, error));
   int calls = 0;
-  base::CallbackFetcher fetcher([&](const std::string& url, const std::string& referrer,
-                                   base::FetchMode mode) {
-    CHECK(url == "http://example.org/media/tone.wav");
-    CHECK(referrer == "http://example.org/media/world.wrl");
-    CHECK(mode == base::FetchMode::background);
-    if (++calls <= 3) return base::Fetched{base::FetchState::pending, {}, {}};  // arriving
-    return base::fetchReady(wav);
-  });
+  base::CallbackFetcher fetcher(
+      [&](const std::string& url, const std::string& referrer, base::FetchMode mode) {
+        CHECK(url == "http://example.org/media/tone.wav");
+        CHECK(referrer == "http://example.org/media/world.wrl");
+        CHECK(mode == base::FetchMode::background);
+        if (++calls <= 3) return base::Fetched{base::FetchState::pending, {}, {}};  // arriving
+        return base::fetchReady(wav);
+      });
   test::SoundWorld w(R"(Sound { source AudioClip { url "tone.wav" loop TRUE } })",
                      "http://example.org/media/world.wrl", &fetcher);
   for (int frame = 0; frame < 3; ++frame) {

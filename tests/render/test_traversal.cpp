@@ -237,19 +237,19 @@ TEST_CASE("the first Viewpoint, NavigationInfo, Background and Fog are bound",
 TEST_CASE("Inline loads once, resolves relative URLs and survives failures",
           "[render][traversal]") {
   std::vector<std::string> loads;
-  gs::base::CallbackFetcher fetcher([&](const std::string& url, const std::string& referrer,
-                                        gs::base::FetchMode mode) {
-    loads.push_back(url);
-    CHECK(mode == gs::base::FetchMode::whole);  // no session: the traversal reads whole
-    CHECK_FALSE(referrer.empty());
-    if (url == "/w/sub/a.wrl")
-      return gs::base::fetchReady(
-          "#VRML V2.0 utf8\nInline { url \"../b.wrl\" }\nShape { geometry Box { } }\n");
-    if (url == "/w/b.wrl")
-      return gs::base::fetchReady(
-          "#VRML V2.0 utf8\nShape { geometry Box { } }\nInline { url \"sub/a.wrl\" }\n");
-    return gs::base::fetchFailed("cannot read " + url + ": no such file");
-  });
+  gs::base::CallbackFetcher fetcher(
+      [&](const std::string& url, const std::string& referrer, gs::base::FetchMode mode) {
+        loads.push_back(url);
+        CHECK(mode == gs::base::FetchMode::whole);  // no session: the traversal reads whole
+        CHECK_FALSE(referrer.empty());
+        if (url == "/w/sub/a.wrl")
+          return gs::base::fetchReady(
+              "#VRML V2.0 utf8\nInline { url \"../b.wrl\" }\nShape { geometry Box { } }\n");
+        if (url == "/w/b.wrl")
+          return gs::base::fetchReady(
+              "#VRML V2.0 utf8\nShape { geometry Box { } }\nInline { url \"sub/a.wrl\" }\n");
+        return gs::base::fetchFailed("cannot read " + url + ": no such file");
+      });
   gs::scene::TraversalOptions o;
   o.fetcher = &fetcher;
   auto root = makeNode("Inline", {{"url", mfString({"missing.wrl", "sub/a.wrl"})}});

@@ -404,16 +404,16 @@ Gone { on TRUE }
 
 TEST_CASE("EXTERNPROTO through ParseOptions::fetcher", "[parser][proto]") {
   std::vector<std::string> asked;
-  gs::base::CallbackFetcher fetcher([&](const std::string& u, const std::string& referrer,
-                                        gs::base::FetchMode mode) {
-    CHECK(referrer == "http://host/dir/world.wrl");
-    CHECK(mode == gs::base::FetchMode::whole);
-    asked.push_back(u);
-    if (u == "http://host/dir/lib.wrl")
-      return gs::base::fetchReady(
-          "#VRML V2.0 utf8\nPROTO Q [ field SFFloat r 3 ] { Sphere { radius IS r } }");
-    return gs::base::fetchFailed(u + ": 404");
-  });
+  gs::base::CallbackFetcher fetcher(
+      [&](const std::string& u, const std::string& referrer, gs::base::FetchMode mode) {
+        CHECK(referrer == "http://host/dir/world.wrl");
+        CHECK(mode == gs::base::FetchMode::whole);
+        asked.push_back(u);
+        if (u == "http://host/dir/lib.wrl")
+          return gs::base::fetchReady(
+              "#VRML V2.0 utf8\nPROTO Q [ field SFFloat r 3 ] { Sphere { radius IS r } }");
+        return gs::base::fetchFailed(u + ": 404");
+      });
   ParseOptions o;
   o.fetcher = &fetcher;
   Scene s = parseVrml(
