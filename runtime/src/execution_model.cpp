@@ -2,6 +2,7 @@
 // ScriptContext services. Node-specific behaviour is in node_roles.cpp.
 #include "execution_state.hpp"
 
+#include "base/text.hpp"
 #include "base/url.hpp"
 #include "vrml/parser.hpp"
 #include "vrml/proto.hpp"
@@ -147,6 +148,40 @@ void ExecutionModel::State::initializeScripts() {
   }
 }
 
+bool ExecutionModel::State::scriptFilesArriving(const vrml::Node& script) {
+  const std::string world = scene ? scene->url : std::string();
+  const auto urls = script.get<vrml::FieldType::MFString>("url", std::vector<std::string>{});
+  for (const std::string& entry : urls) {
+    std::string_view e = entry;
+    while (!e.empty() && std::isspace(static_cast<unsigned char>(e.front()))) e.remove_prefix(1);
+    if (e.empty()) continue;
+    bool inlineCode = false;
+    for (std::string_view scheme : {"javascript:", "ecmascript:", "vrmlscript:"})
+      inlineCode = inlineCode || base::startsWithNoCase(e, scheme);
+    if (inlineCode) return false;  // runs from its own text first
+    if (base::startsWithNoCase(e, "java:")) continue;
+    const base::Fetched got =
+        base::fetcherOr(model.options_.fetcher)
+            .fetch(base::resolveUrl(world, entry), world, base::FetchMode::background);
+    if (got.pending()) return true;
+    if (got.ready()) return false;
+  }
+  return false;
+}
+
+void ExecutionModel::State::startArrivedScripts() {
+  if (arrivingScripts.empty()) return;
+  bool started = false;
+  std::erase_if(arrivingScripts, [&](NodeState* ns) {
+    if (scriptFilesArriving(*ns->node)) return false;  // still on its way: kept
+    ns->script = model.options_.scripts(*ns->node, model, model.options_.scriptLimits);
+    newScripts.push_back(ns);
+    started = true;
+    return true;
+  });
+  if (started) initializeScripts();
+}
+
 // ---- ExecutionModel ----
 
 ExecutionModel::ExecutionModel(std::shared_ptr<const vrml::Scene> scene, double loadTime,
@@ -177,6 +212,7 @@ void ExecutionModel::sceneGrew() {
   s_->bindFirstCandidates();
   s_->runCascade();
   s_->initializeScripts();
+  s_->startArrivedScripts();
   s_->evaluateSkins();
 }
 
@@ -218,7 +254,12 @@ void ExecutionModel::advanceTo(double time) {
   for (PendingEvent& e : s_->posted) s_->queue.push_back(std::move(e));
   s_->posted.clear();
   s_->runCascade();
+  s_->startArrivedScripts();  // a Script whose file arrived starts now (initialize())
   s_->evaluateSkins();
+}
+
+std::size_t ExecutionModel::scriptsArriving() const {
+  return s_->arrivingScripts.size();
 }
 
 void ExecutionModel::advanceBy(double duration, double step) {
@@ -408,8 +449,13 @@ void ExecutionModel::loadUrl(const std::vector<std::string>& url,
 bool ExecutionModel::fetchText(const std::string& url, std::string& text, std::string& error) {
   // Relative to the world's URL (after redirects), under the fetcher's rules.
   const std::string world = s_->scene ? s_->scene->url : std::string();
-  base::Fetched got = base::fetcherOr(options_.fetcher)
-                          .fetch(base::resolveUrl(world, url), world, base::FetchMode::whole);
+  // A Script's own file was asked for in the background before the Script was made
+  // (State::scriptFilesArriving), so it is ready here; a createVrmlFromURL text is read
+  // whole during the call.
+  const std::string resolved = base::resolveUrl(world, url);
+  base::Fetcher& fetcher = base::fetcherOr(options_.fetcher);
+  base::Fetched got = fetcher.fetch(resolved, world, base::FetchMode::background);
+  if (got.pending()) got = fetcher.fetch(resolved, world, base::FetchMode::whole);
   if (!got.ready()) {
     error = "cannot read '" + url + "': " + got.error;
     return false;

@@ -198,6 +198,9 @@ struct ExecutionModel::State {
   std::size_t environmentSensors = 0;  // ProximitySensors and VisibilitySensors met
   std::optional<ViewerPose> viewer;
   std::vector<NodeState*> newScripts;  // registered, initialize() not yet called
+  /// Scripts whose url files are still on their way (FetchMode::background): made and
+  /// initialized by startArrivedScripts() once every file they may need has answered.
+  std::vector<NodeState*> arrivingScripts;
   std::array<std::vector<NodeState*>, kBindableKindCount> stacks;      // bottom first
   std::array<std::vector<NodeState*>, kBindableKindCount> candidates;  // file order
   /// The events of the cascade, first in first out: `queue[queueHead]` is next (a vector
@@ -228,6 +231,13 @@ struct ExecutionModel::State {
   void emitOwn(NodeState& from, int field, vrml::FieldValue value);
   void runCascade();
   void initializeScripts();
+  /// Whether a url file `script` may run from is still on its way: each entry that is
+  /// not inline source is asked for in the background, in order, up to the first that
+  /// arrived (a frame never waits for a Script's file; the factory's fetchText then
+  /// finds it ready).
+  bool scriptFilesArriving(const vrml::Node& script);
+  /// Makes and initializes the arrivingScripts whose files have all answered.
+  void startArrivedScripts();
 
   // ---- node roles (node_roles.cpp) ----
   void classify(NodeState& ns);

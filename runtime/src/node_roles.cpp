@@ -76,6 +76,10 @@ void ExecutionModel::State::classify(NodeState& ns) {
   auto idx = [&](std::string_view name) { return type.findExact(name); };
   if (type.script) {
     ns.role = NodeRole::script;
+    if (model.options_.scripts && scriptFilesArriving(*ns.node)) {
+      arrivingScripts.push_back(&ns);  // made when its file arrives (startArrivedScripts)
+      return;
+    }
     if (model.options_.scripts) {
       ns.script = model.options_.scripts(*ns.node, model, model.options_.scriptLimits);
     } else {

@@ -1,5 +1,6 @@
 // session::WorldView without a window: an off-screen context, a StreamingSession and
 // WorldRuntimes, frames at fixed times, pixels read back.
+#include "http/nginx_server.hpp"
 #include "render/context.hpp"
 #include "render/image.hpp"
 #include "session/streaming_session.hpp"
@@ -33,7 +34,8 @@ gs::render::GlContext& context() {
 struct Viewer {
   StreamingSession session;
   ViewGroup group{session};
-  WorldRuntimes runtimes{gs::session::RuntimeOptions{}};
+  // Script files through the session's loader, as the window and --snapshot read them.
+  WorldRuntimes runtimes{gs::session::RuntimeOptions{}, &session.loader()};
   std::unique_ptr<WorldView> view;
 
   explicit Viewer(const std::string& path) {
@@ -88,6 +90,36 @@ TEST_CASE("a WorldView loads the Inline a Script's Switch choice shows at initia
   CHECK(p[0] > 100);
   CHECK(p[1] < 60);
   CHECK(p[2] < 60);
+}
+
+TEST_CASE("a Script whose url file is on its way starts when it arrives, holding no frame",
+          "[session][offscreen][world_view][script][http]") {
+  context();
+  gs::test::NginxServer server;
+  if (!server.ok()) return;  // reported as a missing fixture
+  server.writeFile("part.wrl",
+                   "#VRML V2.0 utf8\n"
+                   "Shape { appearance Appearance { material Material { diffuseColor 1 0 0 } }\n"
+                   "        geometry Box { size 4 4 4 } }\n");
+  server.writeFile("choose.js", "function initialize() { choice = 0; }\n");
+  server.writeFile("main.wrl",
+                   "#VRML V2.0 utf8\n"
+                   "Viewpoint { position 0 0 12 }\n"
+                   "DEF SW Switch { whichChoice -1 choice [ Inline { url \"part.wrl\" } ] }\n"
+                   "DEF S Script { eventOut SFInt32 choice url \"choose.js\" }\n"
+                   "ROUTE S.choice TO SW.set_whichChoice\n");
+  Viewer v(server.url("/main.wrl"));
+  gs::runtime::ExecutionModel& model = v.runtimes.of(v.view->scene(), 0.0);
+  // The model was made without waiting for choose.js: the Script waits for it.
+  CHECK(model.scriptsArriving() == 1);
+  Image image = v.settle(0.0);
+  CHECK(model.scriptsArriving() == 0);
+  CHECK(model.diagnostics().items.empty());
+  CHECK(v.view->renderer().traversal().inlineScenes().size() == 1);
+  const std::uint8_t* p = image.pixel(kSize / 2, kSize / 2);
+  INFO("centre " << int(p[0]) << " " << int(p[1]) << " " << int(p[2]));
+  CHECK(p[0] > 100);
+  CHECK(p[1] < 60);
 }
 
 TEST_CASE("an animated world at fixed times gives the same pixels through two WorldViews",

@@ -45,8 +45,9 @@ struct ExecutionOptions {
   ScriptLimits scriptLimits;
   /// Browser.loadURL and Anchor requests (url list, parameter list); empty: ignored.
   std::function<void(const std::vector<std::string>&, const std::vector<std::string>&)> loadUrl;
-  /// Reads Script url files and Browser.createVrmlFromURL texts (ScriptContext::fetchText:
-  /// resolved against the world's URL, which is the referrer; base::FetchMode::whole). Not
+  /// Reads Script url files (in the background: a Script waits for its file without
+  /// holding a frame; scriptsArriving()) and Browser.createVrmlFromURL texts (whole,
+  /// during the call); both resolved against the world's URL, which is the referrer. Not
   /// owned; must outlive the model. Null: local files and data: URLs only.
   base::Fetcher* fetcher = nullptr;
   /// Limit on events handled in one timestamp; past it the cascade stops with a
@@ -149,6 +150,10 @@ class ExecutionModel final : public ScriptContext {
 
   const vrml::Diagnostics& diagnostics() const { return diagnostics_; }
   const ExecutionStatistics& statistics() const { return stats_; }
+  /// Scripts not made yet because a url file they may run from is still on its way
+  /// (ExecutionOptions::fetcher, FetchMode::background): each is made and initialized at
+  /// the first advanceTo() or sceneGrew() after its file answered (arrived or failed).
+  std::size_t scriptsArriving() const;
   /// Whether anything in the world may still change without input: an active
   /// TimeSensor, a Script with pending work.
   bool animating() const;
