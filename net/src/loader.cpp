@@ -47,9 +47,10 @@ std::shared_ptr<WorldStream> Loader::world(const std::string& url, const std::st
     std::erase(order_, StreamKey{StreamKey::Kind::world, url});
   }
   vrml::ParseOptions parse;
-  // EXTERNPROTO files are small: fetched whole, under the same rules, as the world
-  // that names them is parsed (the stream ends before this loader).
+  // EXTERNPROTO files are small: fetched in the background under the same rules, the
+  // statement that needs one waiting for it (the stream ends before this loader).
   parse.fetcher = this;
+  parse.externProtosInBackground = true;  // a statement waits for its file, no frame does
   auto stream = std::make_shared<WorldStream>(std::move(r), std::move(parse));
   if (capReached_) stream->stop("stopped: the byte cap was reached before it started");
   worlds_[url] = stream;

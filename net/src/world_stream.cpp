@@ -14,11 +14,26 @@ WorldStream::WorldStream(FetchRequest request, vrml::ParseOptions parse)
 
 WorldStream::~WorldStream() = default;
 
+bool WorldStream::pumpWaiting() {
+  const bool grew = parser_->feed({}) > 0;  // retries the statement that waits
+  progress_.rootNodes = parser_->scene().rootNodes.size();
+  if (parser_->waitingForExternProto()) return grew;
+  parser_->finish();
+  progress_.rootNodes = parser_->scene().rootNodes.size();
+  progress_.state = *endWhenArrived_;
+  endWhenArrived_.reset();
+  return true;
+}
+
 bool WorldStream::pump(Allowance& allowance) {
-  if (!transfer_) return false;
+  if (!transfer_) return endWhenArrived_ ? pumpWaiting() : false;
   chunk_.clear();
   transfer_->take(chunk_);
   bool changed = false;
+  if (chunk_.empty() && parser_->waitingForExternProto()) {
+    changed = parser_->feed({}) > 0;  // retries the statement that waits
+    progress_.rootNodes = parser_->scene().rootNodes.size();
+  }
   if (!chunk_.empty()) {
     if (progress_.bytes == 0) {
       // Relative URLs inside resolve against where the bytes came from, after redirects.
@@ -52,6 +67,14 @@ bool WorldStream::pump(Allowance& allowance) {
 }
 
 void WorldStream::stop(const std::string& why) {
+  if (!transfer_ && endWhenArrived_) {  // all bytes in, a statement waiting: end it now
+    endWhenArrived_.reset();
+    parser_->finish();  // the EXTERNPROTO still on its way fails with a warning
+    progress_.rootNodes = parser_->scene().rootNodes.size();
+    progress_.state = StreamState::stopped;
+    progress_.error = why;
+    return;
+  }
   if (!transfer_) return;
   transfer_->cancel();
   end(StreamState::stopped, why);
@@ -59,6 +82,11 @@ void WorldStream::stop(const std::string& why) {
 
 void WorldStream::end(StreamState state, const std::string& message) {
   transfer_.reset();
+  if (state == StreamState::done && parser_->waitingForExternProto()) {
+    endWhenArrived_ = state;  // ends in pumpWaiting() once the EXTERNPROTO file answered
+    progress_.error = message;
+    return;
+  }
   // A transfer that failed before its first byte has no text to diagnose.
   if (progress_.bytes > 0 || state == StreamState::done) parser_->finish();
   progress_.rootNodes = parser_->scene().rootNodes.size();

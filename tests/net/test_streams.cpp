@@ -210,6 +210,34 @@ TEST_CASE("net::Loader as the session's base::Fetcher: whole, background, the ru
   CHECK(got.error.find("may only reference http(s) URLs") != std::string::npos);
 }
 
+TEST_CASE("a streamed world's EXTERNPROTO arrives in the background; the world ends after it",
+          "[net][streams][proto]") {
+  NginxServer server;
+  if (!server.ok()) return;
+  server.writeFile(
+      "lib.wrl", "#VRML V2.0 utf8\nPROTO Ball [ field SFFloat r 1 ] { Sphere { radius IS r } }\n");
+  server.writeFile("w.wrl",
+                   "#VRML V2.0 utf8\nEXTERNPROTO Ball [ field SFFloat r ] \"lib.wrl\"\n"
+                   "Shape { geometry Ball { r 2 } }\nGroup { }\n");
+  net::Loader loader;
+  std::string error;
+  auto w = loader.world(server.url("/w.wrl"), "", error);
+  REQUIRE(w);
+  const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (!loader.settled() && std::chrono::steady_clock::now() < end) {
+    loader.pump();
+    loader.wait(0.01);
+  }
+  REQUIRE(loader.settled());
+  CHECK(w->progress().state == net::StreamState::done);
+  const vrml::Scene& s = *w->scene();
+  CHECK(s.diagnostics.items.empty());
+  REQUIRE(s.rootNodes.size() == 2);
+  const vrml::NodePtr ball = s.rootNodes[0]->sfnode("geometry");
+  REQUIRE(ball);
+  CHECK_FALSE(ball->unresolved);
+}
+
 TEST_CASE("a hostile packet sequence number does not size the consumer's arrays",
           "[net][streams]") {
   // A valid header claiming 2^32 vectors of 8-record packets, then one good packet placed

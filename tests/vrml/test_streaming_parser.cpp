@@ -688,3 +688,64 @@ TEST_CASE("streaming: feeding byte by byte costs amortized linear time", "[strea
                     << " bytes");
   CHECK(bytewise < 200 * whole + 1.0);
 }
+
+TEST_CASE("StreamingParser: a statement waits for its EXTERNPROTO file, no feed does",
+          "[parser][streaming][proto]") {
+  const std::string world =
+      "#VRML V2.0 utf8\n"
+      "Group { }\n"
+      "EXTERNPROTO Ball [ field SFFloat r ] \"lib.wrl#Ball\"\n"
+      "Shape { geometry Ball { r 2 } }\n"
+      "Transform { }\n";
+  int asked = 0;
+  bool arrived = false;
+  std::vector<gs::base::FetchMode> modes;
+  gs::base::CallbackFetcher fetcher(
+      [&](const std::string& url, const std::string& referrer, gs::base::FetchMode mode) {
+        ++asked;
+        modes.push_back(mode);
+        CHECK(url == "http://h.org/lib.wrl");
+        CHECK(referrer == "http://h.org/world.wrl");
+        if (!arrived) return gs::base::Fetched{gs::base::FetchState::pending, {}, {}};
+        return gs::base::fetchReady(
+            "#VRML V2.0 utf8\nPROTO Ball [ field SFFloat r 1 ] { Sphere { radius IS r } }\n");
+      });
+  ParseOptions options;
+  options.fetcher = &fetcher;
+  options.externProtosInBackground = true;
+
+  SECTION("the file arrives: the statements after it join in file order") {
+    StreamingParser parser("http://h.org/world.wrl", options);
+    CHECK(parser.feed(world) == 1);  // the Group; the EXTERNPROTO waits, and all after it
+    CHECK(parser.waitingForExternProto());
+    CHECK(asked == 1);
+    CHECK(parser.feed({}) == 0);  // still on its way: retried, nothing added
+    CHECK(asked == 2);
+    arrived = true;
+    CHECK(parser.feed({}) == 2);
+    CHECK_FALSE(parser.waitingForExternProto());
+    parser.finish();
+    const Scene& s = parser.scene();
+    CHECK(s.diagnostics.items.empty());
+    REQUIRE(s.rootNodes.size() == 3);
+    const NodePtr ball = s.rootNodes[1]->sfnode("geometry");
+    REQUIRE(ball);
+    CHECK(ball->protoName() == "Ball");
+    CHECK_FALSE(ball->unresolved);
+    CHECK(modes == std::vector<gs::base::FetchMode>(3, gs::base::FetchMode::background));
+    // The same scene as a whole parse with the file at hand (which reads it whole).
+    const Scene whole = parseVrml(world, "http://h.org/world.wrl", options);
+    CHECK(modes.back() == gs::base::FetchMode::whole);
+    CHECK(difference(s, whole) == "");
+  }
+  SECTION("the world ends first: finish() does not wait, the EXTERNPROTO fails") {
+    StreamingParser parser("http://h.org/world.wrl", options);
+    parser.feed(world);
+    parser.finish();
+    const Scene& s = parser.scene();
+    CHECK(s.rootNodes.size() == 3);
+    REQUIRE(s.diagnostics.items.size() == 1);
+    CHECK(s.diagnostics.items[0].message.find("lib.wrl#Ball: still on its way") !=
+          std::string::npos);
+  }
+}

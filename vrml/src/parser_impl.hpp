@@ -108,6 +108,13 @@ struct Context {
   NameMap<std::shared_ptr<ExternFile>> externFiles;
   /// When set (StreamingParser), the files the top-level file loads, in order.
   std::vector<std::shared_ptr<ExternFile>>* loaded = nullptr;
+  /// StreamingParser with ParseOptions::externProtosInBackground: EXTERNPROTO files of
+  /// the top-level file are asked for in the background while this is set (cleared by
+  /// finish(), when a file still on its way fails instead).
+  bool externInBackground = false;
+  /// Set when an EXTERNPROTO file of the statement being parsed is still on its way: the
+  /// StreamingParser undoes the statement and retries it at a later feed().
+  bool externPending = false;
 };
 
 /// The members a Script node declares in its body (clause 6.40), gathered into one

@@ -280,10 +280,17 @@ bool Parser::loadExternFile(const std::string& url, std::shared_ptr<ExternFile>&
     }
     return true;
   }
+  const bool background = ctx_.externInBackground && externDepth_ == 0;
+  base::Fetched got = base::fetcherOr(ctx_.options.fetcher)
+                          .fetch(url, lex_.file(),
+                                 background ? base::FetchMode::background : base::FetchMode::whole);
+  if (got.pending()) {  // the StreamingParser undoes this statement and retries it later
+    ctx_.externPending = true;
+    reason = "still on its way";
+    return false;
+  }
   auto f = std::make_shared<ExternFile>();
   ctx_.externFiles[url] = f;
-  base::Fetched got =
-      base::fetcherOr(ctx_.options.fetcher).fetch(url, lex_.file(), base::FetchMode::whole);
   std::string& bytes = got.bytes;
   f->loading = false;
   if (!got.ready()) {

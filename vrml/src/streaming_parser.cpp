@@ -148,6 +148,7 @@ struct StreamingParser::Impl {
       : url(std::move(u)), user(std::move(o)), inner(user), ctx(inner) {
     inner.onRootNode = nullptr;  // called here, once a statement is committed
     ctx.loaded = &loaded;
+    ctx.externInBackground = user.externProtosInBackground;
     scene.url = url;
   }
 
@@ -177,8 +178,9 @@ struct StreamingParser::Impl {
   parsing::Scope top;
   parsing::ScopeUndo undo;
   std::vector<std::shared_ptr<parsing::ExternFile>> loaded;
-  std::size_t parsed = 0;   // text consumed by committed statements
-  std::size_t retryAt = 0;  // a statement cut short is retried once `complete` is here
+  std::size_t parsed = 0;      // text consumed by committed statements
+  std::size_t retryAt = 0;     // a statement cut short is retried once `complete` is here
+  bool waitingExtern = false;  // the last statement tried waits for an EXTERNPROTO file
   bool finished = false;
   bool stopped = false;
 
@@ -363,6 +365,7 @@ std::size_t StreamingParser::Impl::parse(bool final) {
     const std::size_t nodes = ctx.nodeCount;
     const std::size_t externs = loaded.size();
     lex.clearHitEnd();
+    ctx.externPending = false;
     bool more = false;
     std::optional<ParseError> fatal;
     try {
@@ -370,8 +373,9 @@ std::size_t StreamingParser::Impl::parse(bool final) {
     } catch (const ParseError& e) {
       fatal.emplace(e);
     }
-    if (!final && lex.hitEnd()) {
-      // Cut short by the end of the text so far: undo it all, wait for more.
+    if (!final && (lex.hitEnd() || ctx.externPending)) {
+      // Cut short by the end of the text so far, or needing an EXTERNPROTO file still on
+      // its way: undo it all, wait for more (or for the file: retried at every feed).
       parser->restore(before);
       auto cut = [](auto& v, std::size_t n) {
         v.erase(v.begin() + static_cast<std::ptrdiff_t>(n), v.end());
@@ -401,9 +405,11 @@ std::size_t StreamingParser::Impl::parse(bool final) {
       undo.defs.clear();
       undo.protos.clear();
       const std::size_t start = before.position.offset;
-      retryAt = start + (end - start) * 3 / 2 + 1;
+      waitingExtern = ctx.externPending && !lex.hitEnd();
+      retryAt = waitingExtern ? 0 : start + (end - start) * 3 / 2 + 1;
       break;
     }
+    waitingExtern = false;
     undo.defs.clear();
     undo.protos.clear();
     parsed = lex.offset();
@@ -542,6 +548,10 @@ std::size_t StreamingParser::textBytes() const {
 
 std::size_t StreamingParser::parsedBytes() const {
   return impl_->parsed;
+}
+
+bool StreamingParser::waitingForExternProto() const {
+  return impl_->waitingExtern && !done();
 }
 
 bool StreamingParser::done() const {

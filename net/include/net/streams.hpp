@@ -31,8 +31,10 @@ class WorldStream {
   WorldStream(FetchRequest request, vrml::ParseOptions parse);
   ~WorldStream();
 
-  /// Moves the bytes that arrived into the parser (at most `allowance`). Returns true
-  /// when the scene grew or the stream ended.
+  /// Moves the bytes that arrived into the parser (at most `allowance`), and retries a
+  /// statement that waits for an EXTERNPROTO file (vrml::ParseOptions::
+  /// externProtosInBackground): a world whose bytes all arrived ends only once no
+  /// statement waits. Returns true when the scene grew or the stream ended.
   bool pump(Allowance& allowance);
   /// The scene so far. The object stays the same while it grows (root nodes appended in
   /// file order between pump() calls); it lives as long as the returned pointer.
@@ -44,7 +46,12 @@ class WorldStream {
 
  private:
   void end(StreamState state, const std::string& message);
+  /// Pumps a stream whose transfer ended while a statement waited for an EXTERNPROTO.
+  bool pumpWaiting();
   std::unique_ptr<Transfer> transfer_;
+  /// Set when the transfer ended (done) while the parser waited for an EXTERNPROTO file:
+  /// the state the stream ends in once it no longer waits.
+  std::optional<StreamState> endWhenArrived_;
   std::shared_ptr<vrml::StreamingParser> parser_;
   std::shared_ptr<const vrml::Scene> scene_;
   StreamProgress progress_;

@@ -29,6 +29,13 @@ struct ParseOptions {
   /// (FetchMode::whole, the parsed file's URL as referrer); not owned, and must outlive
   /// the parse. Null: local files and data: URLs only (base::LocalFetcher).
   base::Fetcher* fetcher = nullptr;
+  /// StreamingParser only: EXTERNPROTO files of the streamed file are asked for in the
+  /// background (base::FetchMode::background), and a statement that needs one still on
+  /// its way waits, as a statement cut short does, and is retried at a later feed() (the
+  /// instances appear when their definition arrives; StreamingParser::
+  /// waitingForExternProto()). At finish() a file still on its way fails the EXTERNPROTO
+  /// (a warning). False: read whole (FetchMode::whole) during the parse.
+  bool externProtosInBackground = false;
   /// Called with each completed top-level node as soon as it is parsed (for progressive
   /// display); may be empty.
   std::function<void(const NodePtr&)> onRootNode;

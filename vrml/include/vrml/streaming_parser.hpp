@@ -56,6 +56,10 @@ class StreamingParser {
   std::size_t parsedBytes() const;
   /// Whether parsing stopped for good (finish() called, or a fatal error).
   bool done() const;
+  /// With ParseOptions::externProtosInBackground: whether the next statement waits for
+  /// an EXTERNPROTO file still on its way. feed() (even of no bytes) retries it; call
+  /// finish() only once this is false, or the EXTERNPROTO fails with "still on its way".
+  bool waitingForExternProto() const;
 
  private:
   struct Impl;
