@@ -71,7 +71,8 @@ struct FsState {
   const BufferLoader* loader = nullptr;
   std::set<std::string> tried;
   std::map<std::string, std::string> loaded;
-  std::string missing;  // the first URI that could not be loaded
+  std::string missing;            // the first URI that could not be loaded
+  std::size_t fallbackBytes = 0;  // zero bytes served for EXT_meshopt_compression so far
   std::exception_ptr error;
 };
 
@@ -89,6 +90,12 @@ bool fileExists(const std::string& path, void* user) {
   auto& s = *static_cast<FsState*>(user);
   if (path.empty() || isImageUri(path) || s.error) return false;  // images are not needed
   if (s.loaded.count(path)) return true;
+  if (const auto zeros = detail::meshoptFallbackBytes(path)) {  // decoded into after loading
+    if (*zeros > detail::maxMeshoptFallbackBytes() - s.fallbackBytes) return false;
+    s.fallbackBytes += *zeros;
+    s.loaded.emplace(path, std::string(*zeros, '\0'));
+    return true;
+  }
   // tinygltf tries the URI, then "./" + URI: ask the loader once.
   if (path.starts_with("./") && s.tried.count(path.substr(2))) return false;
   if (!s.tried.insert(path).second) return false;
@@ -202,6 +209,10 @@ tinygltf::Model load(std::string_view bytes, const std::string& name, const Buff
   // Draco primitives' accessors get placeholder buffer views (compression.hpp); a GLB is
   // rebuilt around the patched JSON chunk.
   std::string patched = detail::placeDracoAccessors(json);
+  // EXT_meshopt_compression's fallback buffers get a uri load() serves as zeros.
+  if (std::string more = detail::placeMeshoptFallbacks(patched.empty() ? json : patched);
+      !more.empty())
+    patched = std::move(more);
   if (!patched.empty()) {
     while (patched.size() % 4 != 0) patched += ' ';
     if (glb) {
@@ -256,6 +267,7 @@ tinygltf::Model load(std::string_view bytes, const std::string& name, const Buff
       at = eol + 1;
     }
   }
+  detail::decodeMeshopt(model, name);
   detail::decodeDraco(model, name);
   return model;
 }

@@ -20,8 +20,9 @@ constexpr double kPi = 3.14159265358979323846;
 
 // Extensions whose content is read (docs/gltf.md); any other is reported by name.
 const std::set<std::string> kReadExtensions = {
-    "KHR_lights_punctual",   "KHR_materials_unlit",   "KHR_materials_emissive_strength",
-    "KHR_texture_transform", "KHR_mesh_quantization", "KHR_draco_mesh_compression",
+    "KHR_lights_punctual",     "KHR_materials_unlit",   "KHR_materials_emissive_strength",
+    "KHR_texture_transform",   "KHR_mesh_quantization", "KHR_draco_mesh_compression",
+    "EXT_meshopt_compression",
 };
 
 Rotation axisAngle(glm::dquat q) {
