@@ -1,7 +1,6 @@
 // SoundScene: the Sounds of a world, their gains and voices each frame (6.42, 6.3, 6.28).
 #include "audio/sound_scene.hpp"
 
-#include "base/file.hpp"
 #include "base/url.hpp"
 #include "clip_loads.hpp"
 #include "vrml/transform.hpp"

@@ -4,7 +4,6 @@
 // node's media time (the execution model's MediaClock) and, when the texture holds another
 // frame, copies it there (the first viewport of a world to draw a frame does). The drawing thread
 // never decodes, never flips rows and, in the window, never waits (docs/media.md).
-#include "base/file.hpp"
 #include "base/url.hpp"
 #include "gpu_resources.hpp"
 #include "scene/node_access.hpp"

@@ -2,7 +2,6 @@
 // repeatS / repeatT wrap modes or X3D's TextureProperties (filters, boundary modes);
 // MovieTexture goes to movie_textures.cpp.
 #include "base/data_url.hpp"
-#include "base/file.hpp"
 #include "base/url.hpp"
 #include "gpu_resources.hpp"
 #include "render/image.hpp"

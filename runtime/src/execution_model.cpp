@@ -2,13 +2,14 @@
 // ScriptContext services. Node-specific behaviour is in node_roles.cpp.
 #include "execution_state.hpp"
 
-#include "base/text.hpp"
+#include "base/data_url.hpp"
 #include "base/url.hpp"
 #include "vrml/parser.hpp"
 #include "vrml/proto.hpp"
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
 namespace gs::runtime {
 
@@ -150,19 +151,26 @@ void ExecutionModel::State::initializeScripts() {
 
 bool ExecutionModel::State::scriptFilesArriving(const vrml::Node& script) {
   const std::string world = scene ? scene->url : std::string();
-  const auto urls = script.get<vrml::FieldType::MFString>("url", std::vector<std::string>{});
-  for (const std::string& entry : urls) {
-    std::string_view e = entry;
-    while (!e.empty() && std::isspace(static_cast<unsigned char>(e.front()))) e.remove_prefix(1);
-    if (e.empty()) continue;
-    bool inlineCode = false;
-    for (std::string_view scheme : {"javascript:", "ecmascript:", "vrmlscript:"})
-      inlineCode = inlineCode || base::startsWithNoCase(e, scheme);
-    if (inlineCode) return false;  // runs from its own text first
-    if (base::startsWithNoCase(e, "java:")) continue;
+  const vrml::FieldValue* urls = script.field("url");
+  if (urls == nullptr || urls->type() != vrml::FieldType::MFString) return false;
+  for (const std::string& entry : urls->get<vrml::FieldType::MFString>()) {
+    const ScriptUrlEntry e = classifyScriptUrl(entry);
+    if (e.kind == ScriptUrlEntry::Kind::inlineSource) return false;  // runs its own text first
+    if (e.kind != ScriptUrlEntry::Kind::file) continue;
+    // Local files and data: URLs answer at once: nothing to wait for, and nothing read
+    // here (the factory's fetchText reads the file); a refused or missing one is skipped.
+    const std::string url = base::resolveUrl(world, entry);
+    if (base::isDataUrl(url)) return false;
+    std::string refused;
+    const std::string path = base::localFileFor(url, world, refused);
+    if (!refused.empty()) continue;
+    if (!path.empty()) {
+      std::error_code ec;
+      if (std::filesystem::is_regular_file(path, ec)) return false;
+      continue;
+    }
     const base::Fetched got =
-        base::fetcherOr(model.options_.fetcher)
-            .fetch(base::resolveUrl(world, entry), world, base::FetchMode::background);
+        base::fetcherOr(model.options_.fetcher).fetch(url, world, base::FetchMode::background);
     if (got.pending()) return true;
     if (got.ready()) return false;
   }

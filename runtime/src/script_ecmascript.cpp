@@ -135,13 +135,6 @@ void esFree(void* udata, void* ptr) {
   std::abort();
 }
 
-bool startsWithNoCase(std::string_view s, std::string_view prefix) {
-  if (s.size() < prefix.size()) return false;
-  for (std::size_t i = 0; i < prefix.size(); ++i)
-    if (std::tolower(static_cast<unsigned char>(s[i])) != prefix[i]) return false;
-  return true;
-}
-
 std::string mib(std::size_t bytes) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.4g MiB", static_cast<double>(bytes) / (1024.0 * 1024.0));
@@ -409,27 +402,17 @@ bool EsScript::load() {
   }
 
   for (const std::string& entry : urls) {
-    std::string_view e = entry;
-    while (!e.empty() && std::isspace(static_cast<unsigned char>(e.front()))) e.remove_prefix(1);
+    const ScriptUrlEntry e = classifyScriptUrl(entry);
     std::string source, sourceName;
-    bool inlineCode = false;
-    for (std::string_view scheme : {"javascript:", "ecmascript:", "vrmlscript:"}) {
-      if (startsWithNoCase(e, scheme)) {
-        source = std::string(e.substr(scheme.size()));
-        sourceName = std::string(scheme);
-        inlineCode = true;
-        break;
-      }
+    if (e.kind == ScriptUrlEntry::Kind::empty) continue;
+    if (e.kind == ScriptUrlEntry::Kind::java) {
+      warn("url '" + entry + "' is Java, which GhostSpace does not run");
+      continue;
     }
-    if (!inlineCode) {
-      if (e.empty()) continue;
-      std::string lower(e);
-      std::transform(lower.begin(), lower.end(), lower.begin(),
-                     [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
-      if (lower.ends_with(".class") || startsWithNoCase(e, "java:")) {
-        warn("url '" + entry + "' is Java, which GhostSpace does not run");
-        continue;
-      }
+    if (e.kind == ScriptUrlEntry::Kind::inlineSource) {
+      source = std::string(e.text);
+      sourceName = std::string(e.scheme);
+    } else {
       std::string error;
       if (!ctx_.fetchText(entry, source, error)) {
         warn(error.empty() ? "cannot read '" + entry + "'" : error);

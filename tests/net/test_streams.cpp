@@ -12,6 +12,7 @@
 #include "net/loader.hpp"
 #include "qnv/encoder.hpp"
 #include "qnv/stream.hpp"
+#include "transfer_test_util.hpp"
 
 using gs::test::FaultServer;
 using gs::test::NginxServer;
@@ -152,12 +153,7 @@ TEST_CASE("the loader's byte cap stops every stream with a valid prefix", "[net]
   std::string error;
   auto w = loader.world(server.url("/w.wrl"), "", error);
   REQUIRE(w);
-  const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(10);
-  while (!loader.settled() && std::chrono::steady_clock::now() < end) {
-    loader.pump();
-    loader.wait(0.01);
-  }
-  REQUIRE(loader.settled());
+  REQUIRE(gs::test::settle(loader));
   CHECK(w->progress().state == net::StreamState::stopped);
   CHECK(w->scene()->rootNodes.size() == 2);
   CHECK(loader.progress().front().error.find("stopped") != std::string::npos);
@@ -223,12 +219,7 @@ TEST_CASE("a streamed world's EXTERNPROTO arrives in the background; the world e
   std::string error;
   auto w = loader.world(server.url("/w.wrl"), "", error);
   REQUIRE(w);
-  const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(10);
-  while (!loader.settled() && std::chrono::steady_clock::now() < end) {
-    loader.pump();
-    loader.wait(0.01);
-  }
-  REQUIRE(loader.settled());
+  REQUIRE(gs::test::settle(loader));
   CHECK(w->progress().state == net::StreamState::done);
   const vrml::Scene& s = *w->scene();
   CHECK(s.diagnostics.items.empty());

@@ -8,6 +8,7 @@
 
 #include "http/nginx_server.hpp"
 #include "net/loader.hpp"
+#include "transfer_test_util.hpp"
 
 using gs::test::NginxServer;
 using namespace gs;
@@ -20,12 +21,7 @@ std::shared_ptr<const vrml::Scene> loadWorld(const std::string& url) {
   std::string error;
   auto w = loader.world(url, "", error);
   REQUIRE(w);
-  const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(20);
-  while (!loader.settled() && std::chrono::steady_clock::now() < end) {
-    loader.pump();
-    loader.wait(0.01);
-  }
-  REQUIRE(loader.settled());
+  REQUIRE(gs::test::settle(loader, 20.0));
   CHECK(w->progress().state == net::StreamState::done);
   return w->scene();
 }

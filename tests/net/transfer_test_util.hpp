@@ -2,6 +2,7 @@
 // a temporary folder.
 #pragma once
 
+#include "net/loader.hpp"
 #include "net/transfer.hpp"
 #include "test_support.hpp"
 
@@ -22,6 +23,17 @@ struct TransferResult {
   int deliveries = 0;          // take() calls that returned bytes
   bool timedOut = false;       // still running at the deadline (then cancelled)
 };
+
+/// Pumps `loader` until every stream and fetch settled or `timeout` seconds passed;
+/// whether it settled.
+inline bool settle(net::Loader& loader, double timeout = 10.0) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout);
+  while (!loader.settled() && std::chrono::steady_clock::now() < end) {
+    loader.pump();
+    loader.wait(0.01);
+  }
+  return loader.settled();
+}
 
 /// Drives `t` to its end, taking bytes as they arrive; cancels it after `timeout` s.
 inline TransferResult drain(net::Transfer& t, double timeout = 20.0) {

@@ -85,6 +85,24 @@ class ScriptInstance {
   virtual bool stopped() const = 0;
 };
 
+/// What one entry of a Script's url field is (VRML97 6.40 and annex C.2).
+struct ScriptUrlEntry {
+  enum class Kind {
+    empty,         ///< blank: skipped
+    inlineSource,  ///< `javascript:`, `ecmascript:` or `vrmlscript:` (any case) and its code
+    java,          ///< a `.class` file or a `java:` URL: not run
+    file,          ///< any other: a file or URL to read (ScriptContext::fetchText)
+  } kind = Kind::empty;
+  /// inlineSource: the scheme as this browser names it ("javascript:" ...).
+  std::string_view scheme;
+  /// inlineSource: the code after the scheme; java and file: the entry without its
+  /// leading blanks. Views into the entry given.
+  std::string_view text;
+};
+
+/// Classifies `entry` (leading blanks skipped).
+ScriptUrlEntry classifyScriptUrl(std::string_view entry);
+
 /// Makes the instance for a Script node from the first of its url entries it can run
 /// (`javascript:` / `ecmascript:` / `vrmlscript:` inline, or a file or URL read with
 /// ScriptContext::fetchText). Null (with a diagnostic through `ctx`) when none can run.
