@@ -14,11 +14,14 @@ constexpr std::array<std::string_view, kFieldTypeCount> kFieldTypeNames = {
     "SFMatrix3d", "SFMatrix4f", "SFMatrix4d", "MFBool", "MFDouble", "MFImage", "MFVec2d", "MFVec3d",
     "MFVec4f", "MFVec4d", "MFColorRGBA", "MFMatrix3f", "MFMatrix3d", "MFMatrix4f", "MFMatrix4d"};
 
+// One constructor per alternative, picked by index (a jump, not 42 comparisons: make()
+// and every node's default fields come through here).
 template <std::size_t... I>
 FieldValue::Storage makeDefault(std::size_t index, std::index_sequence<I...>) {
-  FieldValue::Storage s;
-  ((index == I ? (void)s.template emplace<I>() : (void)0), ...);
-  return s;
+  using Make = FieldValue::Storage (*)();
+  static constexpr Make kMake[] = {
+      +[]() -> FieldValue::Storage { return FieldValue::Storage(std::in_place_index<I>); }...};
+  return index < sizeof...(I) ? kMake[index]() : FieldValue::Storage();
 }
 }  // namespace
 

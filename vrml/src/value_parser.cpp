@@ -184,7 +184,7 @@ void Parser::parseX3dValue(FieldType t, FieldValue& out) {
       st.emplace<idx<FieldType::SFMatrix4d>()>(readMatrix<glm::dmat4, 4, true>(lex_));
       return;
     case FieldType::MFBool:
-      readList(st.emplace<idx<FieldType::MFBool>()>(), [this] { return readBool(); });
+      readList(st.emplace<idx<FieldType::MFBool>()>().get(), [this] { return readBool(); });
       return;
     case FieldType::MFDouble:
       readList(st.emplace<idx<FieldType::MFDouble>()>(), [this] { return lex_.readDouble(); });

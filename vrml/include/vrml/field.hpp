@@ -109,6 +109,60 @@ struct SFImage {
 /// radians, stored as (x, y, z, angle) (clause 5.8).
 using Rotation = glm::vec4;
 
+/// A value kept on the heap so that a rarely used large alternative (a matrix, an image, a
+/// string) does not make every FieldValue as large as itself: FieldValue stays 32 bytes,
+/// which is what the event queue and every node's field array pay per value. Copies are
+/// deep; a Boxed that holds nothing (default-constructed or moved from) reads as `T{}` and
+/// allocates only when written through get().
+template <class T>
+class Boxed {
+ public:
+  Boxed() = default;
+  Boxed(T value) : p_(std::make_unique<T>(std::move(value))) {}  // NOLINT: implicit on purpose
+  Boxed(const Boxed& o) : p_(o.p_ ? std::make_unique<T>(*o.p_) : nullptr) {}
+  Boxed(Boxed&&) noexcept = default;
+  Boxed& operator=(const Boxed& o) {
+    if (this != &o) p_ = o.p_ ? std::make_unique<T>(*o.p_) : nullptr;
+    return *this;
+  }
+  Boxed& operator=(Boxed&&) noexcept = default;
+  ~Boxed() = default;
+
+  /// The value, `T{}` when none was stored.
+  const T& get() const {
+    static const T kEmpty{};
+    return p_ ? *p_ : kEmpty;
+  }
+  /// The value for writing (allocated as `T{}` first when none was stored).
+  T& get() {
+    if (!p_) p_ = std::make_unique<T>();
+    return *p_;
+  }
+  friend bool operator==(const Boxed& a, const Boxed& b) { return a.get() == b.get(); }
+
+ private:
+  std::unique_ptr<T> p_;
+};
+
+namespace detail {
+template <class T>
+T& unbox(T& v) {
+  return v;
+}
+template <class T>
+const T& unbox(const T& v) {
+  return v;
+}
+template <class T>
+T& unbox(Boxed<T>& b) {
+  return b.get();
+}
+template <class T>
+const T& unbox(const Boxed<T>& b) {
+  return b.get();
+}
+}  // namespace detail
+
 /// A field or event value of any of the 42 types. The active alternative's index equals
 /// the FieldType enumerator; colours, vectors, rotations and matrices use glm (colour
 /// components are in [0, 1]; times are seconds since 1970-01-01 UTC; angles are radians;
@@ -119,11 +173,11 @@ class FieldValue {
   using Storage = std::variant<bool,                       // SFBool
                                glm::vec3,                  // SFColor
                                float,                      // SFFloat
-                               SFImage,                    // SFImage
+                               Boxed<SFImage>,             // SFImage
                                std::int32_t,               // SFInt32
                                NodePtr,                    // SFNode (nullptr = NULL)
                                Rotation,                   // SFRotation
-                               std::string,                // SFString
+                               Boxed<std::string>,         // SFString
                                double,                     // SFTime
                                glm::vec2,                  // SFVec2f
                                glm::vec3,                  // SFVec3f
@@ -140,13 +194,13 @@ class FieldValue {
                                glm::dvec2,                 // SFVec2d
                                glm::dvec3,                 // SFVec3d
                                glm::vec4,                  // SFVec4f
-                               glm::dvec4,                 // SFVec4d
+                               Boxed<glm::dvec4>,          // SFVec4d
                                glm::vec4,                  // SFColorRGBA
-                               glm::mat3,                  // SFMatrix3f
-                               glm::dmat3,                 // SFMatrix3d
-                               glm::mat4,                  // SFMatrix4f
-                               glm::dmat4,                 // SFMatrix4d
-                               std::vector<bool>,          // MFBool
+                               Boxed<glm::mat3>,           // SFMatrix3f
+                               Boxed<glm::dmat3>,          // SFMatrix3d
+                               Boxed<glm::mat4>,           // SFMatrix4f
+                               Boxed<glm::dmat4>,          // SFMatrix4d
+                               Boxed<std::vector<bool>>,   // MFBool
                                std::vector<double>,        // MFDouble
                                std::vector<SFImage>,       // MFImage
                                std::vector<glm::dvec2>,    // MFVec2d
@@ -168,26 +222,31 @@ class FieldValue {
   /// the value holds another type.
   template <FieldType T>
   auto& get() {
-    return std::get<static_cast<std::size_t>(T)>(storage_);
+    return detail::unbox(std::get<static_cast<std::size_t>(T)>(storage_));
   }
   template <FieldType T>
   const auto& get() const {
-    return std::get<static_cast<std::size_t>(T)>(storage_);
+    return detail::unbox(std::get<static_cast<std::size_t>(T)>(storage_));
   }
   /// Typed construction: `FieldValue::make<FieldType::SFFloat>(1.0f)`.
   template <FieldType T, class V>
   static FieldValue make(V&& v) {
-    FieldValue f;
-    f.storage_.template emplace<static_cast<std::size_t>(T)>(std::forward<V>(v));
-    return f;
+    return FieldValue(std::in_place_index<static_cast<std::size_t>(T)>, std::forward<V>(v));
   }
 
+  /// The variant itself: alternatives as listed above (the large ones as Boxed<T>). For
+  /// comparing values (`a.storage() == b.storage()`) and for emplacing while parsing.
   Storage& storage() { return storage_; }
   const Storage& storage() const { return storage_; }
 
  private:
+  template <std::size_t I, class V>
+  FieldValue(std::in_place_index_t<I> i, V&& v) : storage_(i, std::forward<V>(v)) {}
+
   Storage storage_;
 };
+
+static_assert(sizeof(FieldValue) <= 32, "a FieldValue is what every field and event costs");
 
 /// The VRML97 type nearest to `t` (itself for VRML97's 20): SFDouble -> SFTime, SFVec2d ->
 /// SFVec2f, SFVec3d -> SFVec3f, SFVec4f/SFVec4d/SFColorRGBA -> SFRotation (4 floats),
