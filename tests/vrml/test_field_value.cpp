@@ -44,8 +44,7 @@ TEST_CASE("FieldValue: a boxed value never written reads as the default", "[vrml
   CHECK(bools.get<FieldType::MFBool>().size() == 1);
 }
 
-TEST_CASE("FieldValue: every type's default has that type, and a value is small",
-          "[vrml][field]") {
+TEST_CASE("FieldValue: every type's default has that type, and a value is small", "[vrml][field]") {
   for (std::size_t i = 0; i < kFieldTypeCount; ++i) {
     const auto t = static_cast<FieldType>(i);
     CHECK(FieldValue(t).type() == t);
