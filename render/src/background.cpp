@@ -17,7 +17,7 @@ namespace {
 /// upright with +Y up; the top looking up +Y with +Z up; the bottom looking down -Y with
 /// -Z up (castle-model-viewer agrees: docs/background-and-images.md).
 struct Face {
-  const char* field;
+  vrml::FieldName field;
   glm::vec3 center, right, up;
 };
 
@@ -121,8 +121,8 @@ void BackgroundPass::drawPanorama(const scene::BackgroundSettings& background,
         faces_[i] = uploadImage(loaded, false, false);
       else
         traversal.report(vrml::Severity::warning, node.location,
-                         "cannot load Background " + std::string(kFaceTable[i].field) + " (" +
-                             loaded.failures + "): the colours show there");
+                         "cannot load Background " + std::string(kFaceTable[i].field.name()) +
+                             " (" + loaded.failures + "): the colours show there");
     }
     any = any || faces_[i].id != 0;
   }

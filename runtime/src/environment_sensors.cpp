@@ -18,7 +18,7 @@ using vrml::FieldValue;
 
 namespace {
 
-glm::vec3 vec3Field(const vrml::Node& n, const char* name) {
+glm::vec3 vec3Field(const vrml::Node& n, vrml::FieldName name) {
   return n.get<FieldType::SFVec3f>(name, glm::vec3(0.0f));
 }
 

@@ -8,19 +8,19 @@
 
 namespace gs::scene {
 
-const std::vector<float>& mfFloat(const vrml::Node& n, std::string_view name) {
+const std::vector<float>& mfFloat(const vrml::Node& n, vrml::FieldName name) {
   static const std::vector<float> kEmpty;
   return fieldRef<vrml::FieldType::MFFloat>(n, name, kEmpty);
 }
-const std::vector<glm::vec3>& mfColor(const vrml::Node& n, std::string_view name) {
+const std::vector<glm::vec3>& mfColor(const vrml::Node& n, vrml::FieldName name) {
   static const std::vector<glm::vec3> kEmpty;
   return fieldRef<vrml::FieldType::MFColor>(n, name, kEmpty);
 }
-const std::vector<std::string>& mfString(const vrml::Node& n, std::string_view name) {
+const std::vector<std::string>& mfString(const vrml::Node& n, vrml::FieldName name) {
   static const std::vector<std::string> kEmpty;
   return fieldRef<vrml::FieldType::MFString>(n, name, kEmpty);
 }
-const std::string& sfString(const vrml::Node& n, std::string_view name) {
+const std::string& sfString(const vrml::Node& n, vrml::FieldName name) {
   static const std::string kEmpty;
   return fieldRef<vrml::FieldType::SFString>(n, name, kEmpty);
 }

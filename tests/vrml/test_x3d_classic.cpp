@@ -27,7 +27,7 @@ Scene x3d(const std::string& body, const std::string& version = "4.0") {
   return parseVrml("#X3D V" + version + " utf8\n" + body, "test.x3dv");
 }
 
-const FieldValue& fieldOf(const Node& n, const char* name) {
+const FieldValue& fieldOf(const Node& n, std::string_view name) {
   const FieldValue* v = n.field(name);
   REQUIRE(v != nullptr);
   return *v;

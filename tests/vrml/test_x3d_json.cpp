@@ -25,7 +25,7 @@ std::string describe(const Scene& s) {
   return out;
 }
 
-const FieldValue& fieldOf(const Node& n, const char* name) {
+const FieldValue& fieldOf(const Node& n, std::string_view name) {
   const FieldValue* v = n.field(name);
   REQUIRE(v != nullptr);
   return *v;

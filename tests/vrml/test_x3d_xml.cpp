@@ -38,7 +38,7 @@ Scene xml(const std::string& scene, const std::string& version = "3.3",
       "test.x3d");
 }
 
-const FieldValue& fieldOf(const Node& n, const char* name) {
+const FieldValue& fieldOf(const Node& n, std::string_view name) {
   const FieldValue* v = n.field(name);
   REQUIRE(v != nullptr);
   return *v;

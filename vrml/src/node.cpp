@@ -78,22 +78,13 @@ const std::string& Node::protoName() const {
   return protoInstance ? protoInstance->type->name : kNone;
 }
 
-const FieldValue* Node::field(std::string_view name) const {
-  int i = type_->findExact(name);
-  return i < 0 ? nullptr : &values_[static_cast<std::size_t>(i)];
-}
-
-FieldValue* Node::field(std::string_view name) {
-  int i = type_->findExact(name);
-  return i < 0 ? nullptr : &values_[static_cast<std::size_t>(i)];
-}
-
-NodePtr Node::sfnode(std::string_view name) const {
+const NodePtr& Node::sfnode(FieldName name) const {
+  static const NodePtr kNull;
   const FieldValue* f = field(name);
-  return (f != nullptr && f->type() == FieldType::SFNode) ? f->get<FieldType::SFNode>() : nullptr;
+  return (f != nullptr && f->type() == FieldType::SFNode) ? f->get<FieldType::SFNode>() : kNull;
 }
 
-const std::vector<NodePtr>& Node::mfnode(std::string_view name) const {
+const std::vector<NodePtr>& Node::mfnode(FieldName name) const {
   static const std::vector<NodePtr> kEmpty;
   const FieldValue* f = field(name);
   return (f != nullptr && f->type() == FieldType::MFNode) ? f->get<FieldType::MFNode>() : kEmpty;

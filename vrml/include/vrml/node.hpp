@@ -5,8 +5,11 @@
 
 #include "vrml/diagnostic.hpp"
 #include "vrml/field.hpp"
+#include "vrml/field_name.hpp"
 #include "vrml/node_model.hpp"
 
+#include <array>
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -56,6 +59,38 @@ struct NodeType {
   int findField(std::string_view name) const;
   /// Index of the member called exactly `name` (no aliases); -1 if none.
   int findExact(std::string_view name) const;
+  /// findExact(field.name()), answered from a per-type table when the name is a FieldKey
+  /// (the table is filled on first use and safe to read from several threads). The type's
+  /// interface must be complete before the first call (types are, before nodes of them).
+  int indexOf(FieldName field) const {
+    if (field.key() == FieldKey::none) return findExact(field.name());
+    std::atomic<std::int16_t>& slot = keyIndex_.slots[static_cast<std::size_t>(field.key())];
+    int i = slot.load(std::memory_order_relaxed);
+    if (i == KeyIndexCache::kUnknown) {
+      i = findExact(field.name());
+      slot.store(static_cast<std::int16_t>(i), std::memory_order_relaxed);
+    }
+    return i;
+  }
+
+ private:
+  /// FieldKey -> index, kUnknown until asked. A copy starts empty (the copy's interface may
+  /// grow: a Script's per-instance type).
+  struct KeyIndexCache {
+    static constexpr std::int16_t kUnknown = -2;
+    std::array<std::atomic<std::int16_t>, kFieldKeyCount> slots;
+    KeyIndexCache() { reset(); }
+    KeyIndexCache(const KeyIndexCache&) { reset(); }
+    KeyIndexCache& operator=(const KeyIndexCache&) {
+      reset();
+      return *this;
+    }
+    ~KeyIndexCache() = default;
+    void reset() {
+      for (auto& s : slots) s.store(kUnknown, std::memory_order_relaxed);
+    }
+  };
+  mutable KeyIndexCache keyIndex_;
 };
 
 /// One node instance in a scene graph. Field values are indexed like `type->fields`.
@@ -93,8 +128,15 @@ class Node {
   bool is(AbstractType t) const { return type_->is(t); }
 
   /// Value of the field or exposedField `name`; nullptr when the type has no such field.
-  const FieldValue* field(std::string_view name) const;
-  FieldValue* field(std::string_view name);
+  /// A literal name listed in field_name.hpp costs one table load (NodeType::indexOf).
+  const FieldValue* field(FieldName name) const {
+    const int i = type_->indexOf(name);
+    return i < 0 ? nullptr : &values_[static_cast<std::size_t>(i)];
+  }
+  FieldValue* field(FieldName name) {
+    const int i = type_->indexOf(name);
+    return i < 0 ? nullptr : &values_[static_cast<std::size_t>(i)];
+  }
   /// Value at index `i` of type().fields (0 <= i < fields().size()).
   const FieldValue& fieldAt(std::size_t i) const { return values_[i]; }
   FieldValue& fieldAt(std::size_t i) { return values_[i]; }
@@ -116,15 +158,15 @@ class Node {
   /// Convenience typed getters for renderers: the value of field `name` when it exists
   /// and has type T, else `fallback`.
   template <FieldType T, class V>
-  V get(std::string_view name, V fallback) const {
+  V get(FieldName name, V fallback) const {
     const FieldValue* f = field(name);
     if (f == nullptr || f->type() != T) return fallback;
     return f->get<T>();
   }
   /// The SFNode field `name` (nullptr when absent or NULL).
-  NodePtr sfnode(std::string_view name) const;
+  const NodePtr& sfnode(FieldName name) const;
   /// The MFNode field `name` (empty when absent).
-  const std::vector<NodePtr>& mfnode(std::string_view name) const;
+  const std::vector<NodePtr>& mfnode(FieldName name) const;
 
   /// The PROTO (or EXTERNPROTO) name when this node stands for a PROTO instance, else
   /// empty.
