@@ -1,6 +1,9 @@
 #include "session/tileset_selection.hpp"
 
+#include "qnv/record.hpp"
+
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <queue>
@@ -75,16 +78,99 @@ double aboveThreshold(const qnv::TilesetBrick& b, double threshold) {
   return n;
 }
 
+/// What the opacity-aware part of the rule knows of each brick of a volume tileset (empty
+/// for surfaces): the optical depth its vectors of each band add, averaged over the brick's
+/// mean projected area, and the optical depth all its descendants add, averaged over the
+/// same area. Both are independent of the view (a splat's opacity and its footprint shrink
+/// together with distance).
+struct OpticalDepths {
+  std::vector<std::array<double, qnv::kTilesetBands>> own;
+  std::vector<double> below;
+};
+
+/// Optical depth of one vector of band `band` times the area it covers (world units^2):
+/// the integral of splatProfile's volume Gaussian, peak * 2 pi s^2, with s = 2 sigma
+/// voxelSize and peak = opacityScale * sqrt(A / magnitudeMax) (clamped to 1) at the band's
+/// centre code; the transfer function's alpha is taken as 1 (an upper bound).
+double bandOpacityArea(const qnv::StreamHeader& h, std::size_t band) {
+  const float a = qnv::reconstructMagnitude(static_cast<std::uint32_t>(band) * 2048u + 1024u,
+                                            h.mapping, h.magnitudeMin, h.magnitudeMax);
+  const double voxel = std::max({h.voxelSpacing.x, h.voxelSpacing.y, h.voxelSpacing.z, 1e-6f});
+  const double spread = 2.0 * h.profile.sigma * voxel;
+  const double peak =
+      std::clamp(h.profile.opacityScale *
+                     std::sqrt(std::clamp(a / std::max(h.magnitudeMax, 1e-30f), 0.0f, 1.0f)),
+                 0.0f, 1.0f);
+  return peak * 2.0 * 3.14159265358979 * spread * spread;
+}
+
+/// Mean projected area of a brick's box over all directions: a quarter of its surface
+/// area (Cauchy's formula for convex bodies).
+double meanProjectedArea(const qnv::TilesetBrick& b) {
+  const glm::dvec3 e = glm::max(glm::dvec3(b.boundsMax - b.boundsMin), glm::dvec3(1e-9));
+  return (e.x * e.y + e.y * e.z + e.z * e.x) / 2.0;
+}
+
+OpticalDepths opticalDepths(const qnv::TilesetIndex& index,
+                            const std::unordered_map<std::uint64_t, std::size_t>& byCell) {
+  OpticalDepths d;
+  if (index.header.kind != qnv::StreamKind::volume) return d;
+  const auto& bricks = index.bricks;
+  std::array<double, qnv::kTilesetBands> perVector{};
+  for (std::size_t band = 0; band < qnv::kTilesetBands; ++band)
+    perVector[band] = bandOpacityArea(index.header, band);
+  d.own.resize(bricks.size());
+  d.below.assign(bricks.size(), 0.0);
+  std::vector<double> total(bricks.size(), 0.0);  // opacity-area of the brick and below
+  for (std::size_t i = 0; i < bricks.size(); ++i)
+    for (std::size_t band = 0; band < qnv::kTilesetBands; ++band) {
+      const double w = bricks[i].histogram[band] * perVector[band];
+      d.own[i][band] = w / meanProjectedArea(bricks[i]);
+      total[i] += w;
+    }
+  // Bricks are sorted by level: from the deepest up, each adds its subtree to its parent.
+  for (std::size_t k = bricks.size(); k-- > 0;) {
+    const auto& b = bricks[k];
+    if (b.level == 0) continue;
+    const auto parent = byCell.find(cellKey(b.level - 1u, b.x / 2, b.y / 2, b.z / 2));
+    if (parent == byCell.end()) continue;
+    total[parent->second] += total[k];
+    d.below[parent->second] += total[k];
+  }
+  for (std::size_t i = 0; i < bricks.size(); ++i) d.below[i] /= meanProjectedArea(bricks[i]);
+  return d;
+}
+
+/// Records of brick `i` the opacity-aware rule keeps: all but its weakest vectors whose
+/// optical depth, together, stays within `maxLost` (bands dropped from the weakest up, the
+/// last one in part).
+double opacityRecords(const qnv::TilesetBrick& b, const std::array<double, qnv::kTilesetBands>& own,
+                      double maxLost) {
+  double dropped = 0.0, lost = 0.0;
+  for (std::size_t band = 0; band < qnv::kTilesetBands; ++band) {
+    if (b.histogram[band] == 0) continue;
+    if (lost + own[band] <= maxLost) {
+      lost += own[band];
+      dropped += b.histogram[band];
+      continue;
+    }
+    dropped += b.histogram[band] * std::max(0.0, (maxLost - lost) / own[band]);
+    break;
+  }
+  return static_cast<double>(b.vectorCount) - dropped;
+}
+
 /// The walk in priority order at threshold `ppv`, stopping at `limit` records, keeping
 /// in each brick only the vectors above band position `threshold` (0: all).
-std::vector<BrickChoice> walk(const qnv::TilesetIndex& index, const TilesetView& view, double ppv,
-                              std::uint64_t limit, double threshold = 0.0) {
+std::vector<BrickChoice> walk(const qnv::TilesetIndex& index,
+                              const std::unordered_map<std::uint64_t, std::size_t>& byCell,
+                              const OpticalDepths& depths, const TilesetView& view,
+                              const TilesetBudget& budget, std::uint64_t limit,
+                              double threshold = 0.0) {
   std::vector<BrickChoice> out;
   const auto& bricks = index.bricks;
-  std::unordered_map<std::uint64_t, std::size_t> byCell;
-  byCell.reserve(bricks.size());
-  for (std::size_t i = 0; i < bricks.size(); ++i)
-    byCell.emplace(cellKey(bricks[i].level, bricks[i].x, bricks[i].y, bricks[i].z), i);
+  const double ppv = std::max(budget.pixelsPerVector, 1e-6);
+  const bool opacityAware = !depths.own.empty() && budget.maxLostOpticalDepth > 0.0;
   using Entry = std::pair<double, std::size_t>;  // priority, brick
   std::priority_queue<Entry> queue;
   std::vector<Projected> seen(bricks.size());
@@ -110,8 +196,11 @@ std::vector<BrickChoice> walk(const qnv::TilesetIndex& index, const TilesetView&
     const qnv::TilesetBrick& b = bricks[i];
     const double area = seen[i].pixels * seen[i].pixels;
     const double count = static_cast<double>(b.vectorCount);
+    double wanted = std::min(count, area / ppv);
+    if (opacityAware)
+      wanted = std::max(wanted, opacityRecords(b, depths.own[i], budget.maxLostOpticalDepth));
     std::uint64_t records =
-        area / ppv >= count ? b.vectorCount : static_cast<std::uint64_t>(std::ceil(area / ppv));
+        wanted >= count ? b.vectorCount : static_cast<std::uint64_t>(std::ceil(wanted));
     if (threshold > 0.0)
       records =
           std::min(records, static_cast<std::uint64_t>(std::ceil(aboveThreshold(b, threshold))));
@@ -129,7 +218,9 @@ std::vector<BrickChoice> walk(const qnv::TilesetIndex& index, const TilesetView&
     c.pixels = seen[i].pixels;
     out.push_back(c);
     used += records;
-    if (area / count > ppv && b.level < 31) {
+    const bool refine =
+        area / count > ppv || (opacityAware && depths.below[i] > budget.maxLostOpticalDepth);
+    if (refine && b.level < 31) {
       for (std::uint32_t k = 0; k < 8; ++k) {
         const auto it = byCell.find(cellKey(b.level + 1u, b.x * 2 + (k & 1),
                                             b.y * 2 + ((k >> 1) & 1), b.z * 2 + ((k >> 2) & 1)));
@@ -145,13 +236,19 @@ std::vector<BrickChoice> walk(const qnv::TilesetIndex& index, const TilesetView&
 std::vector<BrickChoice> selectBricks(const qnv::TilesetIndex& index, const TilesetView& view,
                                       const TilesetBudget& budget) {
   const std::uint64_t limit = std::min(budget.vectors, budget.memoryVectors);
-  double ppv = std::max(budget.pixelsPerVector, 1e-6);
+  std::unordered_map<std::uint64_t, std::size_t> byCell;
+  byCell.reserve(index.bricks.size());
+  for (std::size_t i = 0; i < index.bricks.size(); ++i) {
+    const auto& b = index.bricks[i];
+    byCell.emplace(cellKey(b.level, b.x, b.y, b.z), i);
+  }
+  const OpticalDepths depths = opticalDepths(index, byCell);
   auto records = [](const std::vector<BrickChoice>& choices) {
     std::uint64_t n = 0;
     for (const BrickChoice& c : choices) n += c.records;
     return n;
   };
-  std::vector<BrickChoice> out = walk(index, view, ppv, UINT64_MAX);
+  std::vector<BrickChoice> out = walk(index, byCell, depths, view, budget, UINT64_MAX);
   if (records(out) <= limit) return out;
   // Over budget: keep the vectors above one magnitude threshold over every visible brick
   // (read from the histograms), as the single stream's prefix keeps the largest vectors
@@ -159,9 +256,10 @@ std::vector<BrickChoice> selectBricks(const qnv::TilesetIndex& index, const Tile
   double low = 0.0, high = 16.0;
   for (int i = 0; i < 30; ++i) {
     const double mid = (low + high) / 2.0;
-    (records(walk(index, view, ppv, UINT64_MAX, mid)) > limit ? low : high) = mid;
+    (records(walk(index, byCell, depths, view, budget, UINT64_MAX, mid)) > limit ? low : high) =
+        mid;
   }
-  return walk(index, view, ppv, limit, high);
+  return walk(index, byCell, depths, view, budget, limit, high);
 }
 
 std::vector<BrickChoice> mergeChoices(const std::vector<std::vector<BrickChoice>>& views) {

@@ -131,3 +131,64 @@ TEST_CASE("tileset selection: views merge to the largest prefix per brick, ances
   CHECK(ancestorsFirst(index, merged));
   for (const BrickChoice& c : merged) CHECK(c.records == 4096);
 }
+
+namespace {
+
+/// syntheticTileset as a volume of 1/32-unit voxels whose vectors all lie in the weakest
+/// band of magnitudes from `weakest` to 1, quantized by `mapping` (linear from 0.5: the
+/// haze of many weak gradients; logarithmic from 1e-15: vectors too faint to see).
+qnv::TilesetIndex volumeTileset(float weakest, qnv::MagnitudeMapping mapping) {
+  auto index = test::syntheticTileset(2, 4096);
+  index.header.kind = qnv::StreamKind::volume;
+  index.header.voxelSpacing = glm::vec3(1.0f / 32.0f);
+  index.header.mapping = mapping;
+  index.header.magnitudeMin = weakest;
+  index.header.magnitudeMax = 1.0f;
+  for (auto& b : index.bricks) {
+    b.histogram = {};
+    b.histogram[0] = static_cast<std::uint32_t>(b.vectorCount);
+  }
+  return index;
+}
+
+std::uint64_t chosenRecords(const qnv::TilesetIndex& index, const session::TilesetView& view,
+                            double maxLost) {
+  session::TilesetBudget budget;
+  budget.maxLostOpticalDepth = maxLost;
+  std::uint64_t n = 0;
+  for (const BrickChoice& c : session::selectBricks(index, view, budget)) n += c.records;
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("tileset selection: a far volume keeps the weak vectors that make its haze",
+          "[tileset][selection]") {
+  const auto hazy = volumeTileset(0.5f, qnv::MagnitudeMapping::linear);  // peaks of 0.7+
+  auto far = wholeView();
+  far.position.z = 60.0f;  // the cube spans about 21 pixels
+  // The screen-space rule alone keeps about one vector per pixel of the root.
+  const std::uint64_t screenOnly = chosenRecords(hazy, far, 0.0);
+  CHECK(screenOnly < 4096);
+  // The opacity-aware rule: dropping any of them would take more than 0.02 of optical
+  // depth from the pixels, so every brick is drawn whole, as the single stream draws it.
+  CHECK(chosenRecords(hazy, far, 0.02) == hazy.header.vectorCount);
+  // Within a vector budget the global magnitude threshold still decides.
+  session::TilesetBudget budget;
+  budget.vectors = 10000;
+  std::uint64_t n = 0;
+  for (const BrickChoice& c : session::selectBricks(hazy, far, budget)) n += c.records;
+  CHECK(n < 10000 + hazy.header.recordsPerPacket());
+}
+
+TEST_CASE("tileset selection: vectors too faint to see are still left to the screen-space rule",
+          "[tileset][selection]") {
+  // Band 0 spans magnitudes 1e-15 to 3e-15: peaks of 6e-8 at most.
+  const auto faint = volumeTileset(1e-15f, qnv::MagnitudeMapping::logarithmic);
+  auto far = wholeView();
+  far.position.z = 60.0f;
+  CHECK(chosenRecords(faint, far, 0.02) == chosenRecords(faint, far, 0.0));
+  // Surface tilesets have no haze: the rule does not apply to them.
+  const auto surface = test::syntheticTileset(2, 4096);
+  CHECK(chosenRecords(surface, far, 0.02) == chosenRecords(surface, far, 0.0));
+}

@@ -14,6 +14,11 @@
 //   about one vector per pixel of the brick's footprint).
 // - A brick's own prefix is min(vectorCount, ceil(s^2 / pixelsPerVector)) records, rounded
 //   up to whole packets, so a small far brick sends only its largest vectors.
+// - Opacity (volume tilesets, issue 22 item 3): the prefix is at least all but the
+//   brick's weakest vectors whose optical depth, averaged over the brick's mean projected
+//   area, stays within `maxLostOpticalDepth`, and a brick is also refined while its
+//   descendants add more than that; this optical depth does not depend on the view, so
+//   the haze of many weak vectors (equation 1) is kept at any distance.
 // - Order: a priority queue from the root, larger priority first, priority = s * (1 + m)
 //   where m in [0, 1] is the brick's mean magnitude band (its histogram) over 15: nearer,
 //   larger and stronger bricks first. A child enters the queue only when its parent was
@@ -58,6 +63,9 @@ struct TilesetBudget {
   std::uint64_t memoryVectors = UINT64_MAX;
   /// Screen-space error threshold: pixels per vector above which a brick is refined.
   double pixelsPerVector = 1.0;
+  /// Volume tilesets: the optical depth a brick's dropped vectors may take from its
+  /// pixels, on average (the opacity-aware part of the rule; 0 turns it off).
+  double maxLostOpticalDepth = 0.02;
 };
 
 /// One brick chosen: its index in TilesetIndex::bricks and the prefix to fetch and draw.
