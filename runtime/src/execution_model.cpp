@@ -258,6 +258,7 @@ void ExecutionModel::advanceTo(double time) {
     s_->evaluateTimeSensor(*sensors[i]);
   }
   for (NodeState* m : s_->mediaNodes) s_->evaluateMedia(*m);
+  for (NodeState* f : s_->followers) s_->evaluateFollower(*f);
   s_->evaluateEnvironmentSensors();
   for (PendingEvent& e : s_->posted) s_->queue.push_back(std::move(e));
   s_->posted.clear();

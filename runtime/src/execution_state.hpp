@@ -29,6 +29,7 @@ enum class NodeRole : std::uint8_t {
   visibility,    // VisibilitySensor (6.52)
   media,         // MovieTexture (6.28), AudioClip (6.3): media_nodes.cpp
   eventUtility,  // X3D Event Utilities (X3D 4.0 clause 30): event_utilities.cpp
+  follower,      // X3D Followers, dampers and chasers (X3D 4.0 clause 39): followers.cpp
 };
 
 /// The X3D event-utility nodes (X3D 4.0 clause 30).
@@ -74,6 +75,26 @@ struct SkinState {
   std::unordered_map<const vrml::Node*, glm::mat4> matrices;  // skeleton node -> matrix
   std::vector<SkeletonItem> stack;
   std::vector<glm::mat4> jointMatrices;
+};
+
+/// A damper's or chaser's motion (followers.cpp); values as flat lists of numbers.
+struct FollowerState {
+  bool damper = false;
+  vrml::FieldType type = vrml::FieldType::SFFloat;  // of value_changed
+  int setDestination = -1, setValue = -1, valueChanged = -1, isActive = -1;
+  int tau = -1, tolerance = -1;  // dampers' inputOutput fields
+  int order = 3;                 // dampers: stages, 0..5
+  double duration = 1.0;         // chasers: seconds to reach a destination
+  bool active = false;           // moving
+  bool announced = false;        // isActive TRUE sent for this motion
+  double lastTime = 0.0;
+  std::vector<std::vector<double>> buffer;  // dampers: [0] the destination, then the stages
+  std::vector<double> base, destination;    // chasers: value before the pending steps
+  struct Step {
+    double time = 0.0;
+    std::vector<double> delta;  // destination change made at `time`
+  };
+  std::vector<Step> steps;  // chasers: changes still blending in
 };
 
 struct NodeState;
@@ -162,6 +183,7 @@ struct NodeState {
   std::unique_ptr<ScriptInstance> script;
   std::unique_ptr<MediaNode> media;             // role media
   std::unique_ptr<EventUtilityFields> utility;  // role eventUtility
+  std::unique_ptr<FollowerState> follower;      // role follower
   std::unique_ptr<SkinState> skin;              // a Skin (role plain)
   bool scriptHadEvents = false;
   bool problemReported = false;
@@ -195,6 +217,7 @@ struct ExecutionModel::State {
   std::vector<NodeState*> scripts;
   std::vector<NodeState*> mediaNodes;  // MovieTextures and AudioClips
   std::vector<NodeState*> skins;       // Skin nodes (skin.cpp)
+  std::vector<NodeState*> followers;   // dampers and chasers (followers.cpp)
   std::size_t environmentSensors = 0;  // ProximitySensors and VisibilitySensors met
   std::optional<ViewerPose> viewer;
   std::vector<NodeState*> newScripts;  // registered, initialize() not yet called
@@ -256,6 +279,9 @@ struct ExecutionModel::State {
   void deliverEventUtility(NodeState& ns, int field, vrml::FieldValue value);
   // ---- Skin (skin.cpp) ----
   /// Makes `ns` a skin when it is a Skin node (its events stay plain).
+  bool classifyFollower(NodeState& ns);
+  void deliverFollower(NodeState& ns, int field, vrml::FieldValue value);
+  void evaluateFollower(NodeState& ns);
   bool classifySkin(NodeState& ns);
   /// After a cascade: re-skins every Skin whose skeleton or own fields changed.
   void evaluateSkins();

@@ -94,6 +94,7 @@ void ExecutionModel::State::classify(NodeState& ns) {
   const NodeTypeId id = type.id();
   if (classifyMedia(ns)) return;
   if (classifyEventUtility(ns)) return;
+  if (classifyFollower(ns)) return;
   if (classifySkin(ns)) return;
   if (id == NodeTypeId::TimeSensor) {
     ns.role = NodeRole::timeSensor;
@@ -284,6 +285,12 @@ void ExecutionModel::State::deliver(NodeState& ns, int field, vrml::FieldValue v
         return;
       }
       break;  // toggle, integerKey, key, keyValue: exposedFields
+    case NodeRole::follower:
+      if (field == ns.follower->setDestination || field == ns.follower->setValue) {
+        deliverFollower(ns, field, std::move(value));
+        return;
+      }
+      break;  // tau, tolerance: exposedFields
     case NodeRole::plain:
     case NodeRole::proximity:
     case NodeRole::visibility:

@@ -51,6 +51,20 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::PhysicalMaterial,
     NodeTypeId::UnlitMaterial,
     NodeTypeId::TextureProperties,
+    NodeTypeId::ColorChaser,
+    NodeTypeId::ColorDamper,
+    NodeTypeId::CoordinateChaser,
+    NodeTypeId::CoordinateDamper,
+    NodeTypeId::OrientationChaser,
+    NodeTypeId::OrientationDamper,
+    NodeTypeId::PositionChaser,
+    NodeTypeId::PositionChaser2D,
+    NodeTypeId::PositionDamper,
+    NodeTypeId::PositionDamper2D,
+    NodeTypeId::ScalarChaser,
+    NodeTypeId::ScalarDamper,
+    NodeTypeId::TexCoordChaser2D,
+    NodeTypeId::TexCoordDamper2D,
 };
 
 }  // namespace
