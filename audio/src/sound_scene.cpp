@@ -34,7 +34,7 @@ struct Walk {
       out.push_back({n.get(), m, scene});
       return;
     }
-    if (type == NodeTypeId::Transform) {
+    if (vrml::placesChildren(type)) {
       const glm::mat4 child = m * vrml::transformMatrix(*n);
       for (const vrml::NodePtr& c : n->mfnode("children")) node(c, child, scene, depth + 1);
     } else if (type == NodeTypeId::Switch) {

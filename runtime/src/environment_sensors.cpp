@@ -117,7 +117,7 @@ void ExecutionModel::State::evaluateEnvironmentSensors() {
           if (!c) continue;
           using vrml::NodeTypeId;
           const NodeTypeId type = c->typeId();
-          if (type == NodeTypeId::Transform) {
+          if (vrml::placesChildren(type)) {
             walk(c->mfnode("children"), m * vrml::transformMatrix(*c), depth + 1);
           } else if (type == NodeTypeId::Switch) {
             const auto& choice = c->mfnode("choice");

@@ -59,7 +59,7 @@ std::uint64_t walkSkeleton(const std::vector<vrml::NodePtr>& roots,
     stack.pop_back();
     const vrml::Node& n = *item.node;
     if (!n.type().is(vrml::AbstractType::X3DGroupingNode)) continue;
-    const glm::mat4 m = n.type().id() == vrml::NodeTypeId::Transform
+    const glm::mat4 m = vrml::placesChildren(n.type().id())
                             ? item.parent * vrml::transformMatrix(n)
                             : item.parent;
     if (!matrices.emplace(&n, m).second) continue;

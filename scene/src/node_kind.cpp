@@ -15,7 +15,10 @@ NodeKind nodeKind(const vrml::Node& node) {
     case NodeTypeId::Group:
       return NodeKind::Group;
     case NodeTypeId::Transform:
+    case NodeTypeId::CADPart:  // Transform's fields (X3D 4.0 clause 32.4.4)
       return NodeKind::Transform;
+    case NodeTypeId::CADFace:  // one shape (or LOD, Transform) in `shape` (32.4.2)
+      return NodeKind::CADFace;
     case NodeTypeId::Switch:
       return NodeKind::Switch;
     case NodeTypeId::LOD:

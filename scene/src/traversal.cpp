@@ -162,6 +162,13 @@ struct SceneTraversal::Walk {
       case NodeKind::Transform:
         group(&n, n.mfnode("children"), m * transformMatrix(n), baseUrl, nullptr);
         break;
+      case NodeKind::CADFace:
+        if (const vrml::NodePtr& s = n.sfnode("shape"); s && !s->unresolved) {
+          if (frame.recordPaths) path.push_back({&n, m, nullptr});
+          node(*s, m, baseUrl);
+          if (frame.recordPaths) path.pop_back();
+        }
+        break;
       case NodeKind::Billboard: {
         const glm::mat4 inverse = glm::inverse(m);
         const glm::vec3 viewer = glm::vec3(inverse * glm::vec4(viewerPosition, 1.0f));

@@ -26,6 +26,7 @@ enum class NodeKind : std::uint8_t {
   NavigationInfo,
   Background,
   Fog,
+  CADFace,       // X3D CADGeometry: its `shape` field is drawn
   OutlineGroup,  // GhostSpace extensions (docs/vrml-extensions.md)
   QuantizedNormalVectors,
 };
