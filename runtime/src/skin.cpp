@@ -59,9 +59,8 @@ std::uint64_t walkSkeleton(const std::vector<vrml::NodePtr>& roots,
     stack.pop_back();
     const vrml::Node& n = *item.node;
     if (!n.type().is(vrml::AbstractType::X3DGroupingNode)) continue;
-    const glm::mat4 m = vrml::placesChildren(n.type().id())
-                            ? item.parent * vrml::transformMatrix(n)
-                            : item.parent;
+    const glm::mat4 m =
+        vrml::placesChildren(n.type().id()) ? item.parent * vrml::transformMatrix(n) : item.parent;
     if (!matrices.emplace(&n, m).second) continue;
     signature = mix(mix(signature, reinterpret_cast<std::uintptr_t>(&n)), n.revision());
     if (item.depth >= kMaxSkeletonDepth) continue;
