@@ -1,5 +1,6 @@
 // ProximitySensor (6.38) and VisibilitySensor (6.52): the viewer's pose against boxes in
-// the sensors' coordinate systems, evaluated once a frame when the world has any.
+// the sensors' coordinate systems; X3D's TransformSensor (X3D 4.0 clause 22.4.3): a target
+// node's coordinate system against the box. Evaluated once a frame when the world has any.
 #include "execution_state.hpp"
 
 #include "vrml/transform.hpp"
@@ -10,6 +11,9 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <optional>
+#include <utility>
+#include <vector>
 
 namespace gs::runtime {
 
@@ -65,10 +69,49 @@ vrml::Rotation rotationOf(const glm::quat& q0) {
 }  // namespace
 
 void ExecutionModel::State::evaluateEnvironmentSensors() {
-  if (environmentSensors == 0 || !viewer || !scene) return;
-  const glm::mat4 clip = viewProjection(*viewer);
+  if (environmentSensors == 0 || !scene) return;
+  const glm::mat4 clip = viewer ? viewProjection(*viewer) : glm::mat4(1.0f);
   const double now = model.now();
+  // The TransformSensors met by the walk, and the coordinate systems of their targets.
+  std::vector<std::pair<NodeState*, glm::mat4>> transformSensors;
+  vrml::NodeMap<std::optional<glm::mat4>> targets;  // set by the walk where it meets them
+  for (const auto& [node, state] : nodes)
+    if (state->role == NodeRole::transformSensor)
+      if (const vrml::NodePtr& t = node->sfnode("targetObject"); t && !t->unresolved)
+        targets.try_emplace(t.get());
+  // Inside the box: events as 6.38 says for the ProximitySensor, for the viewer (local
+  // position and orientation in the sensor's coordinates) or for a TransformSensor's target.
+  auto report = [&](NodeState& ns, bool inside, const glm::vec3& local,
+                    const glm::quat& localOrientation) {
+    const vrml::Node& n = *ns.node;
+    const auto idx = [&](const char* name) { return n.type().findExact(name); };
+    if (inside != ns.sensorActive) {
+      ns.sensorActive = inside;
+      if (inside) {
+        emitOwn(ns, idx("isActive"), FieldValue::make<FieldType::SFBool>(true));
+        emitOwn(ns, idx("enterTime"), FieldValue::make<FieldType::SFTime>(now));
+      } else {
+        emitOwn(ns, idx("isActive"), FieldValue::make<FieldType::SFBool>(false));
+        emitOwn(ns, idx("exitTime"), FieldValue::make<FieldType::SFTime>(now));
+      }
+    }
+    if (inside && ns.role != NodeRole::visibility) {
+      // position_changed / orientation_changed while inside, when they change (6.38).
+      const vrml::Rotation r = rotationOf(localOrientation);
+      if (local != ns.lastPosition || r != ns.lastOrientation) {
+        ns.lastPosition = local;
+        ns.lastOrientation = r;
+        emitOwn(ns, idx("position_changed"), FieldValue::make<FieldType::SFVec3f>(local));
+        emitOwn(ns, idx("orientation_changed"), FieldValue::make<FieldType::SFRotation>(r));
+      }
+    }
+  };
   auto sensor = [&](NodeState& ns, const glm::mat4& m) {
+    if (ns.role == NodeRole::transformSensor) {
+      transformSensors.emplace_back(&ns, m);
+      return;
+    }
+    if (!viewer) return;
     const vrml::Node& n = *ns.node;
     const bool enabled = n.get<FieldType::SFBool>("enabled", true);
     const glm::vec3 center = vec3Field(n, "center"), size = vec3Field(n, "size");
@@ -86,27 +129,7 @@ void ExecutionModel::State::evaluateEnvironmentSensors() {
         inside = boxMayBeVisible(clip * m, center, size);
       }
     }
-    const auto idx = [&](const char* name) { return n.type().findExact(name); };
-    if (inside != ns.sensorActive) {
-      ns.sensorActive = inside;
-      if (inside) {
-        emitOwn(ns, idx("isActive"), FieldValue::make<FieldType::SFBool>(true));
-        emitOwn(ns, idx("enterTime"), FieldValue::make<FieldType::SFTime>(now));
-      } else {
-        emitOwn(ns, idx("isActive"), FieldValue::make<FieldType::SFBool>(false));
-        emitOwn(ns, idx("exitTime"), FieldValue::make<FieldType::SFTime>(now));
-      }
-    }
-    if (inside && ns.role == NodeRole::proximity) {
-      // position_changed / orientation_changed while inside, when they change (6.38).
-      const vrml::Rotation r = rotationOf(localOrientation);
-      if (local != ns.lastPosition || r != ns.lastOrientation) {
-        ns.lastPosition = local;
-        ns.lastOrientation = r;
-        emitOwn(ns, idx("position_changed"), FieldValue::make<FieldType::SFVec3f>(local));
-        emitOwn(ns, idx("orientation_changed"), FieldValue::make<FieldType::SFRotation>(r));
-      }
-    }
+    report(ns, inside, local, localOrientation);
   };
   // The sensors' coordinate systems: a walk of the drawn graph (all Switch choices and
   // LOD levels are not drawn: only whichChoice and the first level count).
@@ -117,7 +140,11 @@ void ExecutionModel::State::evaluateEnvironmentSensors() {
           if (!c) continue;
           using vrml::NodeTypeId;
           const NodeTypeId type = c->typeId();
-          if (vrml::placesChildren(type)) {
+          const bool places = vrml::placesChildren(type);
+          if (!targets.empty())
+            if (const auto t = targets.find(c.get()); t != targets.end() && !t->second)
+              t->second = places ? m * vrml::transformMatrix(*c) : m;  // its first instance
+          if (places) {
             walk(c->mfnode("children"), m * vrml::transformMatrix(*c), depth + 1);
           } else if (type == NodeTypeId::Switch) {
             const auto& choice = c->mfnode("choice");
@@ -129,13 +156,35 @@ void ExecutionModel::State::evaluateEnvironmentSensors() {
             if (!level.empty()) walk({level.front()}, m, depth + 1);
           } else if (c->is(vrml::AbstractType::X3DGroupingNode)) {
             walk(c->mfnode("children"), m, depth + 1);
-          } else if (type == NodeTypeId::ProximitySensor || type == NodeTypeId::VisibilitySensor) {
+          } else if (type == NodeTypeId::ProximitySensor || type == NodeTypeId::VisibilitySensor ||
+                     type == NodeTypeId::TransformSensor) {
             const auto it = nodes.find(c.get());
             if (it != nodes.end()) sensor(*it->second, m);
           }
         }
       };
   walk(scene->rootNodes, glm::mat4(1.0f), 0);
+  // TransformSensor (X3D 4.0 clause 22.4.3): the target's coordinate system (its origin and
+  // axes: a Transform target's translation and rotation) against the sensor's box, in the
+  // sensor's coordinates. A target not drawn, or none, is outside.
+  for (auto& [ns, m] : transformSensors) {
+    const vrml::Node& n = *ns->node;
+    const glm::vec3 center = vec3Field(n, "center"), size = vec3Field(n, "size");
+    bool inside = false;
+    glm::vec3 local(0.0f);
+    glm::quat localOrientation(1.0f, 0.0f, 0.0f, 0.0f);
+    const vrml::NodePtr& target = n.sfnode("targetObject");
+    const auto t = target ? targets.find(target.get()) : targets.end();
+    if (n.get<FieldType::SFBool>("enabled", true) && t != targets.end() && t->second &&
+        size.x > 0.0f && size.y > 0.0f && size.z > 0.0f) {
+      const glm::mat4 relative = glm::inverse(m) * *t->second;
+      local = glm::vec3(relative[3]);
+      const glm::vec3 d = glm::abs(local - center);
+      inside = d.x <= size.x * 0.5f && d.y <= size.y * 0.5f && d.z <= size.z * 0.5f;
+      localOrientation = glm::quat_cast(glm::mat3(relative));
+    }
+    report(*ns, inside, local, localOrientation);
+  }
 }
 
 }  // namespace gs::runtime

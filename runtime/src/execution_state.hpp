@@ -27,6 +27,7 @@ enum class NodeRole : std::uint8_t {
   grouping,      // addChildren / removeChildren (6.21, 6.52, ...)
   proximity,     // ProximitySensor (6.38)
   visibility,    // VisibilitySensor (6.52)
+  transformSensor,  // X3D TransformSensor (X3D 4.0 clause 22.4.3): environment_sensors.cpp
   media,         // MovieTexture (6.28), AudioClip (6.3): media_nodes.cpp
   eventUtility,  // X3D Event Utilities (X3D 4.0 clause 30): event_utilities.cpp
   follower,      // X3D Followers, dampers and chasers (X3D 4.0 clause 39): followers.cpp

@@ -132,8 +132,11 @@ void ExecutionModel::State::classify(NodeState& ns) {
     }
     return;
   }
-  if (id == NodeTypeId::ProximitySensor || id == NodeTypeId::VisibilitySensor) {
-    ns.role = id == NodeTypeId::ProximitySensor ? NodeRole::proximity : NodeRole::visibility;
+  if (id == NodeTypeId::ProximitySensor || id == NodeTypeId::VisibilitySensor ||
+      id == NodeTypeId::TransformSensor) {
+    ns.role = id == NodeTypeId::ProximitySensor   ? NodeRole::proximity
+              : id == NodeTypeId::VisibilitySensor ? NodeRole::visibility
+                                                   : NodeRole::transformSensor;
     ++environmentSensors;
     return;
   }
@@ -292,6 +295,7 @@ void ExecutionModel::State::deliver(NodeState& ns, int field, vrml::FieldValue v
       }
       break;  // tau, tolerance: exposedFields
     case NodeRole::plain:
+    case NodeRole::transformSensor:
     case NodeRole::proximity:
     case NodeRole::visibility:
       break;

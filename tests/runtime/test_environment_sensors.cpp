@@ -1,4 +1,5 @@
-// 6.38 ProximitySensor and 6.52 VisibilitySensor against the viewer's pose.
+// 6.38 ProximitySensor and 6.52 VisibilitySensor against the viewer's pose; X3D's
+// TransformSensor against a target node.
 #include "runtime_fixture.hpp"
 
 #include <catch2/catch.hpp>
@@ -42,4 +43,31 @@ TEST_CASE("VisibilitySensor: in view and behind the viewer", "[runtime][sensor]"
   w.model->setViewer(v);
   w.model->advanceTo(2.0);
   CHECK(w.take() == std::vector<std::string>{"VS.isActive=FALSE", "VS.exitTime=2.000"});
+}
+
+TEST_CASE("TransformSensor: a target moving through the box, no viewer needed",
+          "[runtime][sensor][x3d]") {
+  // The sensor's box sits at x = 10 under a Transform; the target is a Transform elsewhere
+  // in the graph, moved by events.
+  RunningWorld w(gs::test::x3dWorld(R"(
+DEF T Transform { children Shape { geometry Box {} } }
+Transform { translation 10 0 0 children
+  DEF S TransformSensor { size 2 2 2 targetObject USE T } }
+)"));
+  w.take();
+  w.model->advanceTo(1.0);  // the target at the origin: outside
+  CHECK(w.take().empty());
+  auto move = [&](float x, double t) {
+    w.send("T", "set_translation",
+           gs::vrml::FieldValue::make<gs::vrml::FieldType::SFVec3f>(glm::vec3(x, 0.0f, 0.0f)));
+    w.take();  // T.translation_changed
+    w.model->advanceTo(t);
+    return w.take();
+  };
+  CHECK(move(10.5f, 2.0) == std::vector<std::string>{"S.isActive=TRUE", "S.enterTime=2.000",
+                                                     "S.position_changed=0.5 0 0",
+                                                     "S.orientation_changed=0 0 1 0"});
+  CHECK(move(9.75f, 3.0) ==
+        std::vector<std::string>{"S.position_changed=-0.25 0 0", "S.orientation_changed=0 0 1 0"});
+  CHECK(move(20.0f, 4.0) == std::vector<std::string>{"S.isActive=FALSE", "S.exitTime=4.000"});
 }

@@ -55,6 +55,7 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::PhysicalMaterial,
     NodeTypeId::UnlitMaterial,
     NodeTypeId::TextureProperties,
+    NodeTypeId::TransformSensor,
     NodeTypeId::ColorChaser,
     NodeTypeId::ColorDamper,
     NodeTypeId::CoordinateChaser,
