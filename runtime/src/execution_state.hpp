@@ -19,18 +19,18 @@ namespace gs::runtime {
 
 /// What the execution model does with events a node receives.
 enum class NodeRole : std::uint8_t {
-  plain,         // exposedFields store and echo; set_x eventIns write field x
-  timeSensor,    // 6.50
-  interpolator,  // 4.6.8
-  bindable,      // 4.6.10
-  script,        // 4.12
-  grouping,      // addChildren / removeChildren (6.21, 6.52, ...)
-  proximity,     // ProximitySensor (6.38)
-  visibility,    // VisibilitySensor (6.52)
+  plain,            // exposedFields store and echo; set_x eventIns write field x
+  timeSensor,       // 6.50
+  interpolator,     // 4.6.8
+  bindable,         // 4.6.10
+  script,           // 4.12
+  grouping,         // addChildren / removeChildren (6.21, 6.52, ...)
+  proximity,        // ProximitySensor (6.38)
+  visibility,       // VisibilitySensor (6.52)
   transformSensor,  // X3D TransformSensor (X3D 4.0 clause 22.4.3): environment_sensors.cpp
-  media,         // MovieTexture (6.28), AudioClip (6.3): media_nodes.cpp
-  eventUtility,  // X3D Event Utilities (X3D 4.0 clause 30): event_utilities.cpp
-  follower,      // X3D Followers, dampers and chasers (X3D 4.0 clause 39): followers.cpp
+  media,            // MovieTexture (6.28), AudioClip (6.3): media_nodes.cpp
+  eventUtility,     // X3D Event Utilities (X3D 4.0 clause 30): event_utilities.cpp
+  follower,         // X3D Followers, dampers and chasers (X3D 4.0 clause 39): followers.cpp
 };
 
 /// The X3D event-utility nodes (X3D 4.0 clause 30).
