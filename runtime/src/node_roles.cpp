@@ -134,7 +134,7 @@ void ExecutionModel::State::classify(NodeState& ns) {
   }
   if (id == NodeTypeId::ProximitySensor || id == NodeTypeId::VisibilitySensor ||
       id == NodeTypeId::TransformSensor) {
-    ns.role = id == NodeTypeId::ProximitySensor   ? NodeRole::proximity
+    ns.role = id == NodeTypeId::ProximitySensor    ? NodeRole::proximity
               : id == NodeTypeId::VisibilitySensor ? NodeRole::visibility
                                                    : NodeRole::transformSensor;
     ++environmentSensors;
