@@ -14,15 +14,15 @@ using gs::vrml::FieldValue;
 
 namespace {
 
-FieldValue vec3(float x, float y, float z) {
+FieldValue followerVec3(float x, float y, float z) {
   return FieldValue::make<FieldType::SFVec3f>(glm::vec3(x, y, z));
 }
 
-glm::vec3 translation(const RunningWorld& w) {
+glm::vec3 chasedTranslation(const RunningWorld& w) {
   return w.node("T").field("translation")->get<FieldType::SFVec3f>();
 }
 
-bool sawEvent(const std::vector<std::string>& events, const std::string& e) {
+bool followerSaw(const std::vector<std::string>& events, const std::string& e) {
   return std::find(events.begin(), events.end(), e) != events.end();
 }
 
@@ -37,19 +37,19 @@ ROUTE C.value_changed TO T.set_translation
 )"),
                  100.0);
   w.take();
-  w.send("C", "set_destination", vec3(4, 0, 0));
-  CHECK(sawEvent(w.take(), "C.isActive=TRUE"));
+  w.send("C", "set_destination", followerVec3(4, 0, 0));
+  CHECK(followerSaw(w.take(), "C.isActive=TRUE"));
   w.model->advanceTo(101.0);  // half way: the smooth step is at 0.5
-  CHECK(translation(w).x == Approx(2.0f).margin(1e-4));
+  CHECK(chasedTranslation(w).x == Approx(2.0f).margin(1e-4));
   w.model->advanceTo(100.5);  // time never goes back: nothing changes
-  CHECK(translation(w).x == Approx(2.0f).margin(1e-4));
+  CHECK(chasedTranslation(w).x == Approx(2.0f).margin(1e-4));
   w.model->advanceTo(101.5);  // (1 - cos(0.75 pi)) / 2 of the way
-  CHECK(translation(w).x ==
+  CHECK(chasedTranslation(w).x ==
         Approx(4.0 * (0.5 - 0.5 * std::cos(0.75 * 3.14159265358979))).margin(1e-4));
   w.take();
   w.model->advanceTo(102.0);
-  CHECK(translation(w).x == Approx(4.0f));
-  CHECK(sawEvent(w.take(), "C.isActive=FALSE"));
+  CHECK(chasedTranslation(w).x == Approx(4.0f));
+  CHECK(followerSaw(w.take(), "C.isActive=FALSE"));
   w.model->advanceTo(103.0);  // at rest: no more events
   CHECK(w.take().empty());
 }
@@ -83,15 +83,15 @@ DEF T Transform {}
 ROUTE D.value_changed TO T.set_translation
 )"),
                  0.0);
-  w.send("D", "set_destination", vec3(0, 1, 0));
+  w.send("D", "set_destination", followerVec3(0, 1, 0));
   w.model->advanceTo(0.5);  // one stage: 1 - exp(-dt / tau) of the way, dt = tau
-  CHECK(translation(w).y == Approx(1.0 - std::exp(-1.0)).margin(1e-5));
+  CHECK(chasedTranslation(w).y == Approx(1.0 - std::exp(-1.0)).margin(1e-5));
   w.model->advanceTo(1.0);
-  CHECK(translation(w).y == Approx(1.0 - std::exp(-2.0)).margin(1e-5));
+  CHECK(chasedTranslation(w).y == Approx(1.0 - std::exp(-2.0)).margin(1e-5));
   w.take();
   for (int i = 1; i <= 40; ++i) w.model->advanceTo(1.0 + 0.1 * i);
-  CHECK(translation(w).y == Approx(1.0f));  // snapped once within 0.01
-  CHECK(sawEvent(w.take(), "D.isActive=FALSE"));
+  CHECK(chasedTranslation(w).y == Approx(1.0f));  // snapped once within 0.01
+  CHECK(followerSaw(w.take(), "D.isActive=FALSE"));
 }
 
 TEST_CASE("followers: damper order, tau 0, set_value and initial values",
@@ -138,7 +138,7 @@ DEF N ScalarDamper { tau 1e300 }
 )"),
                  0.0);
   const float nan = std::nanf("");
-  w.send("D", "set_destination", vec3(nan, 1e30f, -1e30f));
+  w.send("D", "set_destination", followerVec3(nan, 1e30f, -1e30f));
   w.send("N", "set_destination", FieldValue::make<FieldType::SFFloat>(nan));
   // A coordinate list of another length jumps; then many long changes stay bounded.
   w.send("C", "set_destination",

@@ -14,7 +14,7 @@ using gs::scene::TraversalFrame;
 
 namespace {
 
-const std::string kWorld = R"(#X3D V4.0 utf8
+const std::string kCadWorld = R"(#X3D V4.0 utf8
 PROFILE Immersive
 COMPONENT CADGeometry:2
 CADLayer { name "layer" children [
@@ -30,7 +30,7 @@ CADLayer { name "layer" children [
 }  // namespace
 
 TEST_CASE("CAD geometry: CADPart places its faces, CADFace draws its shape", "[scene][x3d]") {
-  auto scene = std::make_shared<gs::vrml::Scene>(gs::vrml::parseVrml(kWorld, "cad.x3dv"));
+  auto scene = std::make_shared<gs::vrml::Scene>(gs::vrml::parseVrml(kCadWorld, "cad.x3dv"));
   INFO((scene->diagnostics.items.empty() ? "" : scene->diagnostics.items.front().message));
   CHECK(scene->diagnostics.items.empty());  // the component is implemented: no warning
   SceneTraversal t(scene);
