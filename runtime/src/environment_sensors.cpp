@@ -73,12 +73,11 @@ void ExecutionModel::State::evaluateEnvironmentSensors() {
   const glm::mat4 clip = viewer ? viewProjection(*viewer) : glm::mat4(1.0f);
   const double now = model.now();
   // The TransformSensors met by the walk, and the coordinate systems of their targets.
-  std::vector<std::pair<NodeState*, glm::mat4>> transformSensors;
+  std::vector<std::pair<NodeState*, glm::mat4>> metSensors;
   vrml::NodeMap<std::optional<glm::mat4>> targets;  // set by the walk where it meets them
-  for (const auto& [node, state] : nodes)
-    if (state->role == NodeRole::transformSensor)
-      if (const vrml::NodePtr& t = node->sfnode("targetObject"); t && !t->unresolved)
-        targets.try_emplace(t.get());
+  for (const NodeState* ts : transformSensors)
+    if (const vrml::NodePtr& t = ts->node->sfnode("targetObject"); t && !t->unresolved)
+      targets.try_emplace(t.get());
   // Inside the box: events as 6.38 says for the ProximitySensor, for the viewer (local
   // position and orientation in the sensor's coordinates) or for a TransformSensor's target.
   auto report = [&](NodeState& ns, bool inside, const glm::vec3& local,
@@ -108,7 +107,7 @@ void ExecutionModel::State::evaluateEnvironmentSensors() {
   };
   auto sensor = [&](NodeState& ns, const glm::mat4& m) {
     if (ns.role == NodeRole::transformSensor) {
-      transformSensors.emplace_back(&ns, m);
+      metSensors.emplace_back(&ns, m);
       return;
     }
     if (!viewer) return;
@@ -167,7 +166,7 @@ void ExecutionModel::State::evaluateEnvironmentSensors() {
   // TransformSensor (X3D 4.0 clause 22.4.3): the target's coordinate system (its origin and
   // axes: a Transform target's translation and rotation) against the sensor's box, in the
   // sensor's coordinates. A target not drawn, or none, is outside.
-  for (auto& [ns, m] : transformSensors) {
+  for (auto& [ns, m] : metSensors) {
     const vrml::Node& n = *ns->node;
     const glm::vec3 center = vec3Field(n, "center"), size = vec3Field(n, "size");
     bool inside = false;

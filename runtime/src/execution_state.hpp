@@ -216,10 +216,11 @@ struct ExecutionModel::State {
   std::unordered_map<const vrml::Node*, std::unique_ptr<NodeState>> nodes;
   std::vector<NodeState*> timeSensors;
   std::vector<NodeState*> scripts;
-  std::vector<NodeState*> mediaNodes;  // MovieTextures and AudioClips
-  std::vector<NodeState*> skins;       // Skin nodes (skin.cpp)
-  std::vector<NodeState*> followers;   // dampers and chasers (followers.cpp)
-  std::size_t environmentSensors = 0;  // ProximitySensors and VisibilitySensors met
+  std::vector<NodeState*> mediaNodes;        // MovieTextures and AudioClips
+  std::vector<NodeState*> skins;             // Skin nodes (skin.cpp)
+  std::vector<NodeState*> followers;         // dampers and chasers (followers.cpp)
+  std::vector<NodeState*> transformSensors;  // X3D TransformSensors (environment_sensors.cpp)
+  std::size_t environmentSensors = 0;        // ProximitySensors and VisibilitySensors met
   std::optional<ViewerPose> viewer;
   std::vector<NodeState*> newScripts;  // registered, initialize() not yet called
   /// Scripts whose url files are still on their way (FetchMode::background): made and

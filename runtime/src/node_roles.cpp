@@ -137,6 +137,7 @@ void ExecutionModel::State::classify(NodeState& ns) {
     ns.role = id == NodeTypeId::ProximitySensor    ? NodeRole::proximity
               : id == NodeTypeId::VisibilitySensor ? NodeRole::visibility
                                                    : NodeRole::transformSensor;
+    if (ns.role == NodeRole::transformSensor) transformSensors.push_back(&ns);
     ++environmentSensors;
     return;
   }
