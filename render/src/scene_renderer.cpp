@@ -3,6 +3,7 @@
 
 #include "base/url.hpp"
 
+#include "environment_maps.hpp"
 #include "scene_splats.hpp"
 
 #include "gl_program.hpp"
@@ -47,6 +48,9 @@ struct Shading {
   // PhysicalMaterial (diffuseColor holds baseColor, texture baseTexture).
   float metallic = 1.0f, roughness = 1.0f, normalScale = 1.0f, occlusionStrength = 1.0f;
   std::array<const vrml::Node*, kPhysicalMaps> maps{};
+  /// baseTextureMapping, then the maps' *TextureMapping fields (X3D 4.0 clause 12.4.10).
+  std::array<std::string, 1 + kPhysicalMaps> mappings{};
+  bool anyMapping = false;
   int alphaMode = 0;  // 0 AUTO, 1 OPAQUE, 2 MASK, 3 BLEND
   float alphaCutoff = 0.5f;
   std::uint64_t revision = 0;  // vrml::revisionWithFields of the Appearance read
@@ -80,6 +84,27 @@ void readX3dMaterial(const vrml::Node& m, Shading& s) {
   s.maps[kNormalMap] = sfnodeOf(m, "normalTexture");
   s.maps[kEmissiveMap] = sfnodeOf(m, "emissiveTexture");
   s.maps[kOcclusionMap] = sfnodeOf(m, "occlusionTexture");
+  static constexpr std::array<vrml::FieldName, 1 + kPhysicalMaps> kMappings = {
+      "baseTextureMapping", "metallicRoughnessTextureMapping", "normalTextureMapping",
+      "emissiveTextureMapping", "occlusionTextureMapping"};
+  for (std::size_t i = 0; i < kMappings.size(); ++i) {
+    s.mappings[i] = scene::sfString(m, kMappings[i]);
+    s.anyMapping = s.anyMapping || !s.mappings[i].empty();
+  }
+}
+
+/// The texture coordinate set (0 or 1, GpuMesh's two) a texture with *TextureMapping
+/// `mapping` reads in `geometry`: the position of the TextureCoordinate whose `mapping`
+/// equals it in the geometry's MultiTextureCoordinate (X3D 4.0 clause 18.2.3). 0 for an
+/// empty mapping, none found, or a set past the second.
+int texCoordSetOf(const std::string& mapping, const vrml::Node& geometry) {
+  if (mapping.empty()) return 0;
+  const vrml::NodePtr& tc = geometry.sfnode("texCoord");
+  if (!tc || tc->typeId() != vrml::NodeTypeId::MultiTextureCoordinate) return 0;
+  const std::vector<vrml::NodePtr>& sets = tc->mfnode("texCoord");
+  for (std::size_t i = 0; i < sets.size() && i < 2; ++i)
+    if (sets[i] && scene::sfString(*sets[i], "mapping") == mapping) return static_cast<int>(i);
+  return 0;
 }
 
 Shading readShading(const vrml::Node* appearance) {
@@ -121,7 +146,15 @@ struct DrawItem {
   const GpuTexture* texture;                          // null: untextured
   std::array<const GpuTexture*, kPhysicalMaps> maps;  // PhysicalMaterial's other maps
   float depth;                                        // along the view direction, for sorting
+  /// The EnvironmentLight of a PhysicalMaterial shape and its maps; null: none.
+  const scene::EnvironmentLightInstance* environmentLight = nullptr;
+  const GpuEnvironment* environment = nullptr;
+  /// The set each texture reads: base colour, then the maps (texCoordSetOf).
+  std::array<GLint, 1 + kPhysicalMaps> texCoordSets{};
 };
+
+/// Texture unit of an EnvironmentLight's specular cube map (units 0..4 are 2D maps).
+constexpr GLint kEnvironmentUnit = 5;
 
 /// Uniform arrays of the lights of one shape.
 struct LightArrays {
@@ -167,6 +200,7 @@ struct SceneRenderer::Gpu {
   vrml::NodeMap<GpuMesh> meshes;
   vrml::NodeMap<Shading> shadings;
   TextureCache textures;
+  EnvironmentMaps environments;
   BackgroundPass background;
   // Reused from frame to frame.
   scene::TraversalFrame frame;
@@ -177,6 +211,7 @@ struct SceneRenderer::Gpu {
     for (auto& [node, mesh] : meshes) mesh.release();
     meshes.clear();
     textures.release();
+    environments.release();
     background.release();
     programs.release();
   }
@@ -315,8 +350,16 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
           maps[i] = &g.textures.get(*shading.maps[i], *s.baseUrl, traversal_, options_.fetcher);
           if (maps[i]->components == 0) maps[i] = nullptr;
         }
-    const DrawItem item{&s,      &mesh, &shading,
-                        texture, maps,  glm::dot(center - camera.position, forward)};
+    DrawItem item{&s, &mesh, &shading, texture, maps, glm::dot(center - camera.position, forward)};
+    if (shading.model == ShadingModel::physical && mesh.primitive == vrml::Primitive::triangles &&
+        s.environmentLight >= 0) {
+      item.environmentLight =
+          &g.frame.environmentLights[static_cast<std::size_t>(s.environmentLight)];
+      item.environment = g.environments.get(*item.environmentLight, traversal_, options_.fetcher);
+    }
+    if (shading.anyMapping && mesh.hasTexCoords1)
+      for (std::size_t i = 0; i < item.texCoordSets.size(); ++i)
+        item.texCoordSets[i] = texCoordSetOf(shading.mappings[i], *s.geometry);
     // Appearance.alphaMode (X3D 4.0 clause 12.4.2): OPAQUE and MASK never blend, BLEND
     // always does, AUTO when the material or the texture is translucent.
     const bool blended = shading.alphaMode == 3 ||
@@ -342,6 +385,7 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
       glUniform1i(u.texture, 0);
       for (std::size_t i = 0; i < kPhysicalMaps; ++i)
         glUniform1i(u.map[i], static_cast<GLint>(i + 1));
+      glUniform1i(u.environmentMap, kEnvironmentUnit);
       glUniform1i(u.fogType, fogType);
       glUniform3fv(u.fogColor, 1, glm::value_ptr(fog.color));
       glUniform1f(u.fogVisibilityRange, fog.visibilityRange);
@@ -352,6 +396,7 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glEnable(GL_PROGRAM_POINT_SIZE);
+  glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
   glFrontFace(GL_CCW);
   glCullFace(GL_BACK);
   glActiveTexture(GL_TEXTURE0);
@@ -359,6 +404,26 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
   const scene::ShapeInstance* lastLightsOf = nullptr;  // whose lights `lights` holds
   LightArrays lights;
   bool lightsUploaded = false;  // to the current program
+  // An EnvironmentLight's uniforms (shaders_physical.cpp): eye directions turn into the
+  // environment's through the view's rotation and the light's.
+  const glm::mat3 eyeToWorld = glm::transpose(glm::mat3(view));
+  auto setEnvironment = [&](const SurfaceUniforms& u, const DrawItem& d) {
+    const GpuEnvironment* env = d.environment;
+    glUniform1i(u.hasEnvironment, env != nullptr ? 1 : 0);
+    if (env == nullptr) return;
+    const scene::EnvironmentLightInstance& light = *d.environmentLight;
+    glUniform1i(u.hasEnvironmentMap, env->cubeMap != 0 ? 1 : 0);
+    glUniform3fv(u.environmentSh, 9, glm::value_ptr(env->irradiance[0]));
+    glUniform3fv(u.environmentColor, 1, glm::value_ptr(light.color));
+    glUniform1f(u.environmentAmbient, light.ambientIntensity);
+    glUniform1f(u.environmentMaxLod, env->maxLod);
+    const glm::mat3 eyeToEnvironment = glm::transpose(light.rotation) * eyeToWorld;
+    glUniformMatrix3fv(u.eyeToEnvironment, 1, GL_FALSE, glm::value_ptr(eyeToEnvironment));
+    if (env->cubeMap != 0) {
+      glActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(kEnvironmentUnit));
+      glBindTexture(GL_TEXTURE_CUBE_MAP, env->cubeMap);
+    }
+  };
   auto drawItem = [&](const DrawItem& d) {
     const scene::ShapeInstance& s = *d.shape;
     const GpuMesh& mesh = *d.mesh;
@@ -423,6 +488,10 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
         glActiveTexture(GL_TEXTURE1 + static_cast<GLenum>(i));
         glBindTexture(GL_TEXTURE_2D, d.maps[i]->id);
       }
+      setEnvironment(u, d);
+      glUniform1i(u.baseTexCoordSet, d.texCoordSets[0]);
+      glUniform4i(u.mapTexCoordSet, d.texCoordSets[1], d.texCoordSets[2], d.texCoordSets[3],
+                  d.texCoordSets[4]);
       glActiveTexture(GL_TEXTURE0);
     }
     // Lines and points are unlit: emissiveColor with a Material, else white (6.24, 6.36);
@@ -474,6 +543,9 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
   glDisable(GL_CULL_FACE);
   glDisable(GL_SCISSOR_TEST);
   glBindTexture(GL_TEXTURE_2D, 0);
+  glActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(kEnvironmentUnit));
+  glBindTexture(GL_TEXTURE_CUBE_MAP, 0);
+  glActiveTexture(GL_TEXTURE0);
   glUseProgram(0);
 }
 

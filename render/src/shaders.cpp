@@ -25,6 +25,7 @@ layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
 layout(location = 2) in vec4 a_color;
 layout(location = 3) in vec2 a_texCoord;
+layout(location = 4) in vec2 a_texCoord1;  // the second set (MultiTextureCoordinate)
 
 uniform mat4 u_modelView;
 uniform mat4 u_projection;
@@ -36,6 +37,7 @@ out vec3 v_position;  // eye coordinates
 out vec3 v_normal;    // eye coordinates, not normalized
 out vec3 v_color;
 out vec2 v_texCoord;
+out vec2 v_texCoord1;
 
 void main() {
   vec4 eye = u_modelView * vec4(a_position, 1.0);
@@ -43,6 +45,7 @@ void main() {
   v_normal = u_normalMatrix * a_normal;
   v_color = a_color.rgb;
   v_texCoord = (u_textureMatrix * vec3(a_texCoord, 1.0)).xy;
+  v_texCoord1 = (u_textureMatrix * vec3(a_texCoord1, 1.0)).xy;
   gl_PointSize = u_pointSize;
   gl_Position = u_projection * eye;
 }

@@ -21,6 +21,16 @@ void SurfaceUniforms::find(GLuint p) {
     hasMap[i] = uniform(p, kHas[i]);
     map[i] = uniform(p, kMap[i]);
   }
+  baseTexCoordSet = uniform(p, "u_baseTexCoordSet");
+  mapTexCoordSet = uniform(p, "u_mapTexCoordSet");
+  hasEnvironment = uniform(p, "u_hasEnvironment");
+  hasEnvironmentMap = uniform(p, "u_hasEnvironmentMap");
+  environmentMap = uniform(p, "u_environmentMap");
+  environmentSh = uniform(p, "u_environmentSh");
+  environmentColor = uniform(p, "u_environmentColor");
+  environmentAmbient = uniform(p, "u_environmentAmbient");
+  environmentMaxLod = uniform(p, "u_environmentMaxLod");
+  eyeToEnvironment = uniform(p, "u_eyeToEnvironment");
   modelView = uniform(p, "u_modelView");
   projection = uniform(p, "u_projection");
   normalMatrix = uniform(p, "u_normalMatrix");

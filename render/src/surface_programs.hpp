@@ -38,6 +38,9 @@ struct SurfaceUniforms {
   GLint fogType, fogColor, fogVisibilityRange;
   GLint metallic, roughness, normalScale, occlusionStrength, alphaMode, alphaCutoff;
   std::array<GLint, kPhysicalMapCount> hasMap, map;
+  GLint hasEnvironment, hasEnvironmentMap, environmentMap, environmentSh, environmentColor,
+      environmentAmbient, environmentMaxLod, eyeToEnvironment;
+  GLint baseTexCoordSet, mapTexCoordSet;
 
   /// Looks every location up in linked program `p`.
   void find(GLuint p);

@@ -6,6 +6,7 @@
 #include "scene/text_mesh.hpp"
 
 #include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -22,6 +23,8 @@ struct SceneTraversal::Walk {
   std::vector<const std::string*>& inlineChain;  // URLs being traversed (recursion guard)
   bool scopeChanged = true;
   std::uint32_t lastScopeBegin = 0;
+  /// The innermost scoped EnvironmentLight (index in frame.environmentLights), -1: none.
+  std::int32_t environmentScope = -1;
   /// groupIds with children in the file being walked (SceneTraversal::filledGroups).
   const std::unordered_set<std::int32_t>* filled = nullptr;
   /// The grouping nodes above the current one when frame.recordPaths (picking).
@@ -38,14 +41,46 @@ struct SceneTraversal::Walk {
   void nodes(const std::vector<vrml::NodePtr>& list, const glm::mat4& m,
              const std::string* baseUrl) {
     // DirectionalLights light their siblings and the siblings' descendants (clause 6.16).
+    // So do EnvironmentLights whose global is FALSE (X3D 4.0 clause 17.2.1.1).
     const std::size_t scopeSize = scope.size();
-    for (const vrml::NodePtr& n : list)
-      if (n && nodeKind(*n) == NodeKind::DirectionalLight) directionalLight(*n, m);
+    const std::int32_t outerEnvironment = environmentScope;
+    for (const vrml::NodePtr& n : list) {
+      if (!n) continue;
+      const NodeKind kind = nodeKind(*n);
+      if (kind == NodeKind::DirectionalLight) directionalLight(*n, m);
+      if (kind == NodeKind::EnvironmentLight) environmentLight(*n, m, baseUrl);
+    }
     for (const vrml::NodePtr& n : list)
       if (n) node(*n, m, baseUrl);
     if (scope.size() != scopeSize) {
       scope.resize(scopeSize);
       scopeChanged = true;
+    }
+    environmentScope = outerEnvironment;
+  }
+
+  // X3D 4.1 clause 17.4.2: the cube maps turn with the light's coordinate system and its
+  // `rotation`; scoped like a DirectionalLight unless global.
+  void environmentLight(const vrml::Node& n, const glm::mat4& m, const std::string* baseUrl) {
+    if (!sfBool(n, "on", true)) return;
+    EnvironmentLightInstance light;
+    light.node = &n;
+    const vrml::Rotation r = sfRotation(n, "rotation", vrml::Rotation(0, 0, 1, 0));
+    const glm::vec3 axis(r.x, r.y, r.z);
+    const glm::mat3 own = glm::length(axis) > 1e-12f
+                              ? glm::mat3(glm::rotate(glm::mat4(1.0f), r.w, axis))
+                              : glm::mat3(1.0f);
+    light.rotation = rotationPart(m) * own;
+    light.color = glm::max(sfColor(n, "color", glm::vec3(1.0f)), 0.0f) *
+                  std::max(sfFloat(n, "intensity", 1.0f), 0.0f);
+    light.ambientIntensity = std::clamp(sfFloat(n, "ambientIntensity", 0.0f), 0.0f, 1.0f);
+    light.baseUrl = baseUrl;
+    const auto index = static_cast<std::int32_t>(frame.environmentLights.size());
+    frame.environmentLights.push_back(light);
+    if (sfBool(n, "global", false)) {
+      if (self.firstGlobalEnvironment_ < 0) self.firstGlobalEnvironment_ = index;
+    } else {
+      environmentScope = index;
     }
   }
 
@@ -127,6 +162,7 @@ struct SceneTraversal::Walk {
     }
     s.scopedLightBegin = lastScopeBegin;
     s.scopedLightCount = static_cast<std::uint32_t>(scope.size());
+    s.environmentLight = environmentScope;
     if (frame.recordPaths) {
       s.pathBegin = static_cast<std::uint32_t>(frame.paths.size());
       frame.paths.insert(frame.paths.end(), path.begin(), path.end());
@@ -247,11 +283,15 @@ void SceneTraversal::collect(const Camera& viewer, TraversalFrame& frame) {
   frame.clear();
   scopeScratch_.clear();
   chainScratch_.clear();
-  Walk walk{*this, frame, viewer.position, viewer.up(), scopeScratch_, chainScratch_,
-            true,  0,     nullptr};
+  Walk walk{*this, frame, viewer.position, viewer.up(), scopeScratch_, chainScratch_, true,
+            0,     -1,    nullptr};
   walk.inlineChain.push_back(&mainUrl_);
   walk.filled = &filledGroups(*scene_);
+  firstGlobalEnvironment_ = -1;
   walk.group(nullptr, scene_->rootNodes, glm::mat4(1.0f), &mainUrl_, &scene_->rootNodes);
+  if (firstGlobalEnvironment_ >= 0)
+    for (ShapeInstance& s : frame.shapes)
+      if (s.environmentLight < 0) s.environmentLight = firstGlobalEnvironment_;
 }
 
 const std::unordered_set<std::int32_t>& SceneTraversal::filledGroups(const vrml::Scene& scene) {

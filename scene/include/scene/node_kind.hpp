@@ -22,6 +22,7 @@ enum class NodeKind : std::uint8_t {
   DirectionalLight,
   PointLight,
   SpotLight,
+  EnvironmentLight,  // X3D 4.1: image-based lighting of physical materials
   Viewpoint,
   NavigationInfo,
   Background,

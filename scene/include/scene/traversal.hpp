@@ -47,6 +47,18 @@ struct LightInstance {
   float cutOffAngle = 0.785398f;            // radians
 };
 
+/// An EnvironmentLight (X3D 4.1 clause 17.4.2): image-based lighting of the
+/// PhysicalMaterial shapes it lights (render/README.md, "Image-based lighting").
+struct EnvironmentLightInstance {
+  const vrml::Node* node = nullptr;
+  /// Environment (cube map) coordinates to world: the light's transform's rotation times
+  /// its `rotation` field; orthonormal.
+  glm::mat3 rotation{1.0f};
+  glm::vec3 color{1.0f};  // times intensity (>= 0)
+  float ambientIntensity = 0.0f;
+  const std::string* baseUrl = nullptr;  // the base for its textures' urls; never null
+};
+
 /// One grouping node on the way from the root to a Shape (recorded when
 /// TraversalFrame::recordPaths is set; scene/picking.hpp).
 struct PathStep {
@@ -68,6 +80,10 @@ struct ShapeInstance {
   /// Range in TraversalFrame::scopedLights of the DirectionalLights that light it.
   std::uint32_t scopedLightBegin = 0;
   std::uint32_t scopedLightCount = 0;
+  /// Index in TraversalFrame::environmentLights of the EnvironmentLight that lights it:
+  /// the innermost scoped one (global FALSE: its siblings and their descendants), else the
+  /// first global one; -1 for none.
+  std::int32_t environmentLight = -1;
   /// URL of the file the shape comes from (the base for texture URLs); never null.
   const std::string* baseUrl = nullptr;
   /// Range in TraversalFrame::paths of its path, the root first and the Shape last
@@ -90,6 +106,7 @@ struct TraversalFrame {
   std::vector<LightInstance> lights;        // every light met, world coordinates
   std::vector<std::uint32_t> scopedLights;  // indices into lights (ShapeInstance ranges)
   std::vector<std::uint32_t> globalLights;  // point and spot lights, indices into lights
+  std::vector<EnvironmentLightInstance> environmentLights;  // every one that is on
   /// Set by the caller: collect() records each Shape's path of grouping nodes (picking).
   bool recordPaths = false;
   /// Set by the caller: collect() gathers what the avatar collides with (clause 6.8)
@@ -104,6 +121,7 @@ struct TraversalFrame {
     lights.clear();
     scopedLights.clear();
     globalLights.clear();
+    environmentLights.clear();
   }
 };
 
@@ -345,6 +363,7 @@ class SceneTraversal {
   std::set<std::string> reported_;
   TraversalFrame scratch_;
   std::vector<std::uint32_t> scopeScratch_;       // reused by collect()
+  std::int32_t firstGlobalEnvironment_ = -1;      // collect(): the first global EnvironmentLight
   std::vector<const std::string*> chainScratch_;  // reused by collect()
 };
 
