@@ -109,7 +109,8 @@ int runSnapshot(const Options& options) {
     v->setCamera([fit, scene = scenes[k]](render::SceneRenderer& r, float aspect) {
       scene::Camera c = r.boundViewpointCamera();
       const bool gltf = scene->x3d.encoding == "glTF";
-      if (fit || (gltf && r.viewpoints().empty())) c = r.fitToScene(aspect, c);
+      if (fit) c = r.fitToScene(aspect, c);
+      if (!fit && gltf && r.viewpoints().empty()) c = scene::wholeSceneCamera(r.bounds(), c);
       scene::fitClipPlanes(c, r.bounds(), r.navigation().nearClip());
       return c;
     });

@@ -268,7 +268,8 @@ void SceneRenderer::setLod(double lod) {
 
 scene::Camera SceneRenderer::initialCamera(float aspect) {
   if (!viewpoints().empty() || bounds().empty()) return boundViewpointCamera();
-  scene::Camera camera = scene::fitCamera(bounds(), aspect, scene::Camera{});
+  (void)aspect;
+  scene::Camera camera = scene::wholeSceneCamera(bounds(), scene::Camera{});
   if (navigation().visibilityLimit > 0.0f)
     camera.farClip = std::max(navigation().visibilityLimit, camera.nearClip * 2.0f);
   return camera;

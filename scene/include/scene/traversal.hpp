@@ -147,6 +147,8 @@ struct NavigationSettings {
 /// The bound Background (clause 6.5): sky and ground gradients; the panorama URLs are
 /// read from `node` (backUrl ...) and resolved against `baseUrl`.
 struct BackgroundSettings {
+  /// Black without a Background (clause 6.5); dark grey (0.1) for a glTF asset opened as a
+  /// world, as castle-model-viewer shows one (docs/gltf.md).
   std::vector<glm::vec3> skyColor{glm::vec3(0.0f)};
   std::vector<float> skyAngle;  // radians from the zenith, increasing
   std::vector<glm::vec3> groundColor;
