@@ -268,8 +268,11 @@ void SceneRenderer::setLod(double lod) {
 
 scene::Camera SceneRenderer::initialCamera(float aspect) {
   if (!viewpoints().empty() || bounds().empty()) return boundViewpointCamera();
-  (void)aspect;
-  scene::Camera camera = scene::wholeSceneCamera(bounds(), scene::Camera{});
+  // A glTF asset starts where castle-model-viewer starts it (docs/gltf.md); other worlds
+  // are fitted to the viewport.
+  const bool gltf = traversal_.sharedScene()->x3d.encoding == "glTF";
+  scene::Camera camera = gltf ? scene::wholeSceneCamera(bounds(), scene::Camera{})
+                              : scene::fitCamera(bounds(), aspect, scene::Camera{});
   if (navigation().visibilityLimit > 0.0f)
     camera.farClip = std::max(navigation().visibilityLimit, camera.nearClip * 2.0f);
   return camera;

@@ -99,10 +99,11 @@ class SceneRenderer {
   /// Camera of the bound (first) Viewpoint or the VRML97 default, with clip planes from
   /// NavigationInfo and the scene bounds (SceneTraversal::viewpointCamera).
   scene::Camera boundViewpointCamera() { return traversal_.boundViewpointCamera(); }
-  /// The camera to start with: the bound Viewpoint's when the file has one; otherwise the
-  /// VRML97 default orientation and field of view placed as castle-model-viewer places
-  /// it to show the whole scene (scene::wholeSceneCamera; the default position 0 0 10
-  /// often shows nothing useful). `aspect` (width / height) is not used by that rule.
+  /// The camera to start with in a viewport of aspect width / height: the bound
+  /// Viewpoint's when the file has one; otherwise the VRML97 default orientation and field
+  /// of view moved back to show the whole scene (the default position 0 0 10 often shows
+  /// nothing useful): for a glTF asset where castle-model-viewer puts it
+  /// (scene::wholeSceneCamera), for other worlds just far enough (scene::fitCamera).
   scene::Camera initialCamera(float aspect);
   /// Camera of viewpoints()[index] with clip planes as boundViewpointCamera().
   scene::Camera viewpointCamera(std::size_t index) { return traversal_.viewpointCamera(index); }
