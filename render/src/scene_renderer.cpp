@@ -43,6 +43,10 @@ struct Shading {
   glm::vec3 emissiveColor{0.0f};
   float shininess = 0.2f;
   float transparency = 0.0f;
+  /// X3D 4.0 TwoSidedMaterial with separateBackColor TRUE: the back faces' values.
+  bool separateBack = false;
+  glm::vec3 backDiffuseColor{0.8f}, backSpecularColor{0.0f}, backEmissiveColor{0.0f};
+  float backAmbientIntensity = 0.2f, backShininess = 0.2f, backTransparency = 0.0f;
   const vrml::Node* texture = nullptr;
   glm::mat3 textureMatrix{1.0f};
   // PhysicalMaterial (diffuseColor holds baseColor, texture baseTexture).
@@ -107,12 +111,34 @@ int texCoordSetOf(const std::string& mapping, const vrml::Node& geometry) {
   return 0;
 }
 
+// X3D 4.0 clause 12.4.11 TwoSidedMaterial: the back* fields light back faces when
+// separateBackColor is TRUE; otherwise both sides take the front values.
+void readBackMaterial(const vrml::Node& m, Shading& s) {
+  s.separateBack = scene::sfBool(m, "separateBackColor", false);
+  if (!s.separateBack) return;
+  const auto color = [&](vrml::FieldName f, glm::vec3 fallback) {
+    return glm::clamp(scene::sfColor(m, f, fallback), 0.0f, 1.0f);
+  };
+  const auto unit = [&](vrml::FieldName f, float fallback) {
+    return std::clamp(scene::sfFloat(m, f, fallback), 0.0f, 1.0f);
+  };
+  s.backDiffuseColor = color("backDiffuseColor", glm::vec3(0.8f));
+  s.backSpecularColor = color("backSpecularColor", glm::vec3(0.0f));
+  s.backEmissiveColor = color("backEmissiveColor", glm::vec3(0.0f));
+  s.backAmbientIntensity = unit("backAmbientIntensity", 0.2f);
+  s.backShininess = unit("backShininess", 0.2f);
+  s.backTransparency = unit("backTransparency", 0.0f);
+}
+
 Shading readShading(const vrml::Node* appearance) {
   Shading s;
   if (appearance == nullptr) return s;
-  // Only a Material lights the shape (6.3); any other node there leaves it unlit (4.14.1).
+  // Only a Material (or X3D's TwoSidedMaterial) lights the shape (6.3); any other node
+  // there leaves it unlit (4.14.1).
   if (const vrml::NodePtr m = appearance->sfnode("material");
-      m && !m->unresolved && m->typeId() == vrml::NodeTypeId::Material) {
+      m && !m->unresolved &&
+      (m->typeId() == vrml::NodeTypeId::Material ||
+       m->typeId() == vrml::NodeTypeId::TwoSidedMaterial)) {
     s.hasMaterial = true;
     s.diffuseColor = glm::clamp(scene::sfColor(*m, "diffuseColor", glm::vec3(0.8f)), 0.0f, 1.0f);
     s.ambientIntensity = std::clamp(scene::sfFloat(*m, "ambientIntensity", 0.2f), 0.0f, 1.0f);
@@ -120,6 +146,7 @@ Shading readShading(const vrml::Node* appearance) {
     s.emissiveColor = glm::clamp(scene::sfColor(*m, "emissiveColor", glm::vec3(0.0f)), 0.0f, 1.0f);
     s.shininess = std::clamp(scene::sfFloat(*m, "shininess", 0.2f), 0.0f, 1.0f);
     s.transparency = std::clamp(scene::sfFloat(*m, "transparency", 0.0f), 0.0f, 1.0f);
+    if (m->typeId() == vrml::NodeTypeId::TwoSidedMaterial) readBackMaterial(*m, s);
   }
   if (const vrml::NodePtr t = appearance->sfnode("texture"); t && !t->unresolved)
     s.texture = t.get();
@@ -155,6 +182,10 @@ struct DrawItem {
 
 /// Texture unit of an EnvironmentLight's specular cube map (units 0..4 are 2D maps).
 constexpr GLint kEnvironmentUnit = 5;
+
+/// ClipPlanes one shape takes (X3D 4.0 clause 11.4.1 asks for at least 6; the vertex
+/// shader's kMaxClipPlanes). Further ones are reported once and not applied.
+constexpr std::uint32_t kMaxClipPlanes = 6;
 
 /// Uniform arrays of the lights of one shape.
 struct LightArrays {
@@ -205,6 +236,7 @@ struct SceneRenderer::Gpu {
   // Reused from frame to frame.
   scene::TraversalFrame frame;
   std::vector<scene::LightInstance> eyeLights;
+  std::vector<glm::vec4> eyeClipPlanes;
   std::vector<DrawItem> opaque, transparent;
 
   void release() {
@@ -314,6 +346,13 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     l.direction = glm::normalize(viewRotation * l.direction);
     g.eyeLights[i] = l;
   }
+  // ClipPlanes in eye coordinates (a plane maps by the inverse transpose of the view).
+  const glm::mat4 planeToEye = glm::transpose(glm::inverse(view));
+  g.eyeClipPlanes.resize(g.frame.scopedClipPlanes.size());
+  for (std::size_t i = 0; i < g.frame.scopedClipPlanes.size(); ++i)
+    g.eyeClipPlanes[i] = planeToEye * g.frame.scopedClipPlanes[i];
+  std::uint32_t clipDistancesOn = 0;  // GL_CLIP_DISTANCEi enabled: i < clipDistancesOn
+
   scene::LightInstance headlight;  // directional along the view direction, intensity 1, ambient 0
   headlight.direction = glm::vec3(0.0f, 0.0f, -1.0f);
 
@@ -367,8 +406,9 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     // Appearance.alphaMode (X3D 4.0 clause 12.4.2): OPAQUE and MASK never blend, BLEND
     // always does, AUTO when the material or the texture is translucent.
     const bool blended = shading.alphaMode == 3 ||
-                         (shading.alphaMode == 0 && (shading.transparency > 0.0f ||
-                                                     (texture != nullptr && texture->hasAlpha)));
+                         (shading.alphaMode == 0 &&
+                          (shading.transparency > 0.0f || shading.backTransparency > 0.0f ||
+                           (texture != nullptr && texture->hasAlpha)));
     (blended ? g.transparent : g.opaque).push_back(item);
   }
   std::sort(g.transparent.begin(), g.transparent.end(),
@@ -479,6 +519,15 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     glUniform3fv(u.emissiveColor, 1, glm::value_ptr(sh.emissiveColor));
     glUniform1f(u.shininess, sh.shininess);
     glUniform1f(u.transparency, sh.transparency);
+    glUniform1i(u.separateBack, sh.separateBack ? 1 : 0);
+    if (sh.separateBack) {
+      glUniform3fv(u.backDiffuseColor, 1, glm::value_ptr(sh.backDiffuseColor));
+      glUniform1f(u.backAmbientIntensity, sh.backAmbientIntensity);
+      glUniform3fv(u.backSpecularColor, 1, glm::value_ptr(sh.backSpecularColor));
+      glUniform3fv(u.backEmissiveColor, 1, glm::value_ptr(sh.backEmissiveColor));
+      glUniform1f(u.backShininess, sh.backShininess);
+      glUniform1f(u.backTransparency, sh.backTransparency);
+    }
     if (physical) {
       glUniform1f(u.metallic, sh.metallic);
       glUniform1f(u.roughness, sh.roughness);
@@ -508,6 +557,20 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
       lights.upload(u);
       lightsUploaded = true;
     }
+    const std::uint32_t clips = std::min(s.clipPlaneCount, kMaxClipPlanes);
+    if (s.clipPlaneCount > kMaxClipPlanes)
+      traversal_.report(vrml::Severity::warning, s.shape->location,
+                        std::to_string(s.clipPlaneCount) +
+                            " ClipPlanes clip this shape: only the innermost " +
+                            std::to_string(kMaxClipPlanes) + " are applied");
+    glUniform1i(u.clipPlaneCount, static_cast<GLint>(clips));
+    if (clips > 0)
+      glUniform4fv(u.clipPlanes, static_cast<GLsizei>(clips),
+                   glm::value_ptr(g.eyeClipPlanes[s.clipPlaneBegin + s.clipPlaneCount - clips]));
+    for (; clipDistancesOn < clips; ++clipDistancesOn)
+      glEnable(GL_CLIP_DISTANCE0 + clipDistancesOn);
+    for (; clipDistancesOn > clips; --clipDistancesOn)
+      glDisable(GL_CLIP_DISTANCE0 + clipDistancesOn - 1);
     if (triangles && mesh.solid)
       glEnable(GL_CULL_FACE);
     else
@@ -530,6 +593,7 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     for (const DrawItem& d : g.transparent) drawItem(d);
     statistics_.transparent = g.transparent.size();
   }
+  for (; clipDistancesOn > 0; --clipDistancesOn) glDisable(GL_CLIP_DISTANCE0 + clipDistancesOn - 1);
   statistics_.shaderVariants = g.programs.variantCount();
   statistics_.movieFrames = g.textures.movies.framesShown();
   statistics_.movieUploads = g.textures.movies.framesUploaded();

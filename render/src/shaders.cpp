@@ -32,6 +32,11 @@ uniform mat4 u_projection;
 uniform mat3 u_normalMatrix;
 uniform mat3 u_textureMatrix;
 uniform float u_pointSize;
+// X3D ClipPlanes (clause 11.4.1) in eye coordinates: kept where dot(plane, eye) >= 0.
+const int kMaxClipPlanes = 6;
+uniform int u_clipPlaneCount;
+uniform vec4 u_clipPlanes[kMaxClipPlanes];
+out float gl_ClipDistance[kMaxClipPlanes];
 
 out vec3 v_position;  // eye coordinates
 out vec3 v_normal;    // eye coordinates, not normalized
@@ -47,6 +52,8 @@ void main() {
   v_texCoord = (u_textureMatrix * vec3(a_texCoord, 1.0)).xy;
   v_texCoord1 = (u_textureMatrix * vec3(a_texCoord1, 1.0)).xy;
   gl_PointSize = u_pointSize;
+  for (int i = 0; i < kMaxClipPlanes; ++i)
+    gl_ClipDistance[i] = i < u_clipPlaneCount ? dot(u_clipPlanes[i], eye) : 1.0;
   gl_Position = u_projection * eye;
 }
 )glsl";
@@ -97,6 +104,15 @@ uniform vec3 u_emissiveColor;
 uniform float u_shininess;
 uniform float u_transparency;
 uniform vec3 u_unlitColor;
+// X3D 4.0 TwoSidedMaterial (clause 12.4.11) with separateBackColor TRUE: back faces take
+// these instead.
+uniform bool u_separateBack;
+uniform vec3 u_backDiffuseColor;
+uniform float u_backAmbientIntensity;
+uniform vec3 u_backSpecularColor;
+uniform vec3 u_backEmissiveColor;
+uniform float u_backShininess;
+uniform float u_backTransparency;
 
 uniform vec3 u_lightColor[kMaxLights];
 uniform float u_lightIntensity[kMaxLights];
@@ -114,8 +130,14 @@ uniform float u_fogVisibilityRange;
 out vec4 fragColor;
 
 void main() {
-  vec3 diffuse = LIT ? u_diffuseColor : u_unlitColor;
-  float alpha = 1.0 - u_transparency;
+  bool back = u_separateBack && !gl_FrontFacing;
+  vec3 diffuseColor = back ? u_backDiffuseColor : u_diffuseColor;
+  float ambientIntensity = back ? u_backAmbientIntensity : u_ambientIntensity;
+  vec3 specularColor = back ? u_backSpecularColor : u_specularColor;
+  vec3 emissiveColor = back ? u_backEmissiveColor : u_emissiveColor;
+  float shininess = back ? u_backShininess : u_shininess;
+  vec3 diffuse = LIT ? diffuseColor : u_unlitColor;
+  float alpha = 1.0 - (back ? u_backTransparency : u_transparency);
   if (HAS_COLOR) diffuse = v_color;
   if (TEXTURE_COMPONENTS > 0) {
     vec4 t = texture(u_texture, v_texCoord);
@@ -129,7 +151,7 @@ void main() {
     vec3 n = normalize(v_normal);
     if (!gl_FrontFacing) n = -n;  // two-sided lighting (solid FALSE)
     vec3 v = normalize(-v_position);
-    color = u_emissiveColor;
+    color = emissiveColor;
     for (int i = 0; i < kMaxLights; ++i) {
       if (i >= LIGHT_COUNT) break;
       vec3 l;
@@ -153,13 +175,13 @@ void main() {
         }
       }
       float nDotL = max(dot(n, l), 0.0);
-      vec3 ambient = u_lightAmbientIntensity[i] * diffuse * u_ambientIntensity;
+      vec3 ambient = u_lightAmbientIntensity[i] * diffuse * ambientIntensity;
       vec3 lambert = u_lightIntensity[i] * diffuse * nDotL;
       vec3 specular = vec3(0.0);
       if (nDotL > 0.0) {
         vec3 h = normalize(l + v);
-        float exponent = max(u_shininess * 128.0, 1e-3);
-        specular = u_lightIntensity[i] * u_specularColor * pow(max(dot(n, h), 1e-6), exponent);
+        float exponent = max(shininess * 128.0, 1e-3);
+        specular = u_lightIntensity[i] * specularColor * pow(max(dot(n, h), 1e-6), exponent);
       }
       color += attenuation * spot * u_lightColor[i] * (ambient + lambert + specular);
     }

@@ -21,6 +21,15 @@ void SurfaceUniforms::find(GLuint p) {
     hasMap[i] = uniform(p, kHas[i]);
     map[i] = uniform(p, kMap[i]);
   }
+  clipPlaneCount = uniform(p, "u_clipPlaneCount");
+  clipPlanes = uniform(p, "u_clipPlanes");
+  separateBack = uniform(p, "u_separateBack");
+  backDiffuseColor = uniform(p, "u_backDiffuseColor");
+  backAmbientIntensity = uniform(p, "u_backAmbientIntensity");
+  backSpecularColor = uniform(p, "u_backSpecularColor");
+  backEmissiveColor = uniform(p, "u_backEmissiveColor");
+  backShininess = uniform(p, "u_backShininess");
+  backTransparency = uniform(p, "u_backTransparency");
   baseTexCoordSet = uniform(p, "u_baseTexCoordSet");
   mapTexCoordSet = uniform(p, "u_mapTexCoordSet");
   hasEnvironment = uniform(p, "u_hasEnvironment");

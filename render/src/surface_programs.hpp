@@ -41,6 +41,9 @@ struct SurfaceUniforms {
   GLint hasEnvironment, hasEnvironmentMap, environmentMap, environmentSh, environmentColor,
       environmentAmbient, environmentMaxLod, eyeToEnvironment;
   GLint baseTexCoordSet, mapTexCoordSet;
+  GLint clipPlaneCount, clipPlanes;
+  GLint separateBack, backDiffuseColor, backAmbientIntensity, backSpecularColor, backEmissiveColor,
+      backShininess, backTransparency;
 
   /// Looks every location up in linked program `p`.
   void find(GLuint p);

@@ -35,6 +35,8 @@ NodeKind nodeKind(const vrml::Node& node) {
       return NodeKind::SpotLight;
     case NodeTypeId::EnvironmentLight:
       return NodeKind::EnvironmentLight;
+    case NodeTypeId::ClipPlane:
+      return NodeKind::ClipPlane;
     case NodeTypeId::Viewpoint:
       return NodeKind::Viewpoint;
     case NodeTypeId::NavigationInfo:

@@ -25,6 +25,10 @@ struct SceneTraversal::Walk {
   std::uint32_t lastScopeBegin = 0;
   /// The innermost scoped EnvironmentLight (index in frame.environmentLights), -1: none.
   std::int32_t environmentScope = -1;
+  /// The ClipPlanes in scope, world coordinates (SceneTraversal::clipScratch_).
+  std::vector<glm::vec4>* clipScope = nullptr;
+  bool clipScopeChanged = true;
+  std::uint32_t lastClipBegin = 0;
   /// groupIds with children in the file being walked (SceneTraversal::filledGroups).
   const std::unordered_set<std::int32_t>* filled = nullptr;
   /// The grouping nodes above the current one when frame.recordPaths (picking).
@@ -42,13 +46,16 @@ struct SceneTraversal::Walk {
              const std::string* baseUrl) {
     // DirectionalLights light their siblings and the siblings' descendants (clause 6.16).
     // So do EnvironmentLights whose global is FALSE (X3D 4.0 clause 17.2.1.1).
+    // ClipPlanes clip them (X3D 4.0 clause 11.4.1).
     const std::size_t scopeSize = scope.size();
+    const std::size_t clipSize = clipScope->size();
     const std::int32_t outerEnvironment = environmentScope;
     for (const vrml::NodePtr& n : list) {
       if (!n) continue;
       const NodeKind kind = nodeKind(*n);
       if (kind == NodeKind::DirectionalLight) directionalLight(*n, m);
       if (kind == NodeKind::EnvironmentLight) environmentLight(*n, m, baseUrl);
+      if (kind == NodeKind::ClipPlane) clipPlane(*n, m);
     }
     for (const vrml::NodePtr& n : list)
       if (n) node(*n, m, baseUrl);
@@ -57,6 +64,22 @@ struct SceneTraversal::Walk {
       scopeChanged = true;
     }
     environmentScope = outerEnvironment;
+    if (clipScope->size() != clipSize) {
+      clipScope->resize(clipSize);
+      clipScopeChanged = true;
+    }
+  }
+
+  // X3D 4.0 clause 11.4.1: the plane (a, b, c, d) in the ClipPlane's coordinate system; a
+  // plane transforms by the inverse transpose of the point transform.
+  void clipPlane(const vrml::Node& n, const glm::mat4& m) {
+    if (!sfBool(n, "enabled", true)) return;
+    const glm::vec4 local = n.get<vrml::FieldType::SFVec4f>("plane", glm::vec4(0, 1, 0, 0));
+    if (!std::isfinite(local.x) || !std::isfinite(local.y) || !std::isfinite(local.z) ||
+        !std::isfinite(local.w) || glm::length(glm::vec3(local)) < 1e-12f)
+      return;
+    clipScope->push_back(glm::transpose(glm::inverse(m)) * local);
+    clipScopeChanged = true;
   }
 
   // X3D 4.1 clause 17.4.2: the cube maps turn with the light's coordinate system and its
@@ -163,6 +186,14 @@ struct SceneTraversal::Walk {
     s.scopedLightBegin = lastScopeBegin;
     s.scopedLightCount = static_cast<std::uint32_t>(scope.size());
     s.environmentLight = environmentScope;
+    if (clipScopeChanged) {
+      lastClipBegin = static_cast<std::uint32_t>(frame.scopedClipPlanes.size());
+      frame.scopedClipPlanes.insert(frame.scopedClipPlanes.end(), clipScope->begin(),
+                                    clipScope->end());
+      clipScopeChanged = false;
+    }
+    s.clipPlaneBegin = lastClipBegin;
+    s.clipPlaneCount = static_cast<std::uint32_t>(clipScope->size());
     if (frame.recordPaths) {
       s.pathBegin = static_cast<std::uint32_t>(frame.paths.size());
       frame.paths.insert(frame.paths.end(), path.begin(), path.end());
@@ -288,6 +319,8 @@ void SceneTraversal::collect(const Camera& viewer, TraversalFrame& frame) {
   walk.inlineChain.push_back(&mainUrl_);
   walk.filled = &filledGroups(*scene_);
   firstGlobalEnvironment_ = -1;
+  clipScratch_.clear();
+  walk.clipScope = &clipScratch_;
   walk.group(nullptr, scene_->rootNodes, glm::mat4(1.0f), &mainUrl_, &scene_->rootNodes);
   if (firstGlobalEnvironment_ >= 0)
     for (ShapeInstance& s : frame.shapes)

@@ -369,3 +369,80 @@ TEST_CASE("EnvironmentLight: a texture it cannot read is one warning, the world 
   CHECK(r.diagnostics.items[0].message.find("ImageCubeMapTexture") != std::string::npos);
   CHECK(close(r.image.pixel(32, 32), 255, 255, 255, 2));
 }
+
+TEST_CASE("ClipPlane clips its siblings and their descendants in its own coordinates",
+          "[render][offscreen][world]") {
+  const fs::path dir = worldDir();
+  // Two white quads at z = 0 and z = -0.01 spanning the view, seen from 0 0 5 (a metre is
+  // about 15.5 pixels). The plane x >= 0 of a Transform moved by 1 keeps world x >= 1 of
+  // the quad beside it; the quad outside that Transform is not clipped but lies behind.
+  writeText(dir / "clip.x3dv", R"(#X3D V4.0 utf8
+PROFILE Immersive
+NavigationInfo { headlight FALSE }
+Viewpoint { position 0 0 5 }
+Transform {
+  translation 1 0 0
+  children [
+    ClipPlane { plane 1 0 0 0 }
+    Transform {
+      translation -1 0 0
+      children Shape {
+        appearance Appearance { material Material { diffuseColor 0 0 0 emissiveColor 1 1 1 } }
+        geometry IndexedFaceSet { coord Coordinate { point [ -4 -4 0, 4 -4 0, 4 4 0, -4 4 0 ] }
+                                  coordIndex [ 0 1 2 3 -1 ] }
+      }
+    }
+  ]
+}
+Shape {
+  appearance Appearance { material Material { diffuseColor 0 0 0 emissiveColor 1 0 0 } }
+  geometry IndexedFaceSet { coord Coordinate { point [ -4 -4 -0.01, 4 -4 -0.01, 4 4 -0.01, -4 4 -0.01 ] }
+                            coordIndex [ 0 1 2 3 -1 ] }
+}
+)");
+  const Rendered r = renderFile(dir / "clip.x3dv");
+  CHECK(r.diagnostics.items.empty());
+  CHECK(close(r.image.pixel(55, 32), 255, 255, 255, 2));  // x = 1.5: kept
+  CHECK(close(r.image.pixel(40, 32), 255, 0, 0, 2));      // x = 0.5: clipped, red behind
+  CHECK(close(r.image.pixel(10, 32), 255, 0, 0, 2));      // x = -1.4: clipped
+  // Disabled, it clips nothing.
+  std::ifstream in(dir / "clip.x3dv");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  text.replace(text.find("plane 1 0 0 0"), 13, "plane 1 0 0 0 enabled FALSE");
+  writeText(dir / "clip_off.x3dv", text);
+  CHECK(close(renderFile(dir / "clip_off.x3dv").image.pixel(10, 32), 255, 255, 255, 2));
+}
+
+TEST_CASE("TwoSidedMaterial lights back faces with its back colours when separateBackColor",
+          "[render][offscreen][world]") {
+  const fs::path dir = worldDir();
+  const auto world = [](const std::string& separate) {
+    // Left quad faces the viewer (counterclockwise), the right one turns its back.
+    return R"(#X3D V4.0 utf8
+PROFILE Immersive
+NavigationInfo { headlight FALSE }
+Viewpoint { position 0 0 5 }
+Shape {
+  appearance Appearance {
+    material TwoSidedMaterial { separateBackColor )" +
+           separate + R"( diffuseColor 0 0 0 emissiveColor 1 0 0
+                                backDiffuseColor 0 0 0 backEmissiveColor 0 0 1 }
+  }
+  geometry IndexedFaceSet {
+    solid FALSE
+    coord Coordinate { point [ -2 -1 0, -0.2 -1 0, -0.2 1 0, -2 1 0,
+                               0.2 -1 0, 2 -1 0, 2 1 0, 0.2 1 0 ] }
+    coordIndex [ 0 1 2 3 -1, 7 6 5 4 -1 ]
+  }
+}
+)";
+  };
+  writeText(dir / "two_sided.x3dv", world("TRUE"));
+  const Rendered separate = renderFile(dir / "two_sided.x3dv");
+  CHECK(separate.diagnostics.items.empty());
+  CHECK(close(separate.image.pixel(18, 32), 255, 0, 0, 2));  // front: emissiveColor
+  CHECK(close(separate.image.pixel(46, 32), 0, 0, 255, 2));  // back: backEmissiveColor
+  writeText(dir / "two_sided_same.x3dv", world("FALSE"));
+  const Rendered same = renderFile(dir / "two_sided_same.x3dv");
+  CHECK(close(same.image.pixel(46, 32), 255, 0, 0, 2));  // both sides take the front values
+}

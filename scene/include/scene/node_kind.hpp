@@ -23,6 +23,7 @@ enum class NodeKind : std::uint8_t {
   PointLight,
   SpotLight,
   EnvironmentLight,  // X3D 4.1: image-based lighting of physical materials
+  ClipPlane,         // X3D Rendering: clips its siblings and their descendants
   Viewpoint,
   NavigationInfo,
   Background,

@@ -84,6 +84,9 @@ struct ShapeInstance {
   /// the innermost scoped one (global FALSE: its siblings and their descendants), else the
   /// first global one; -1 for none.
   std::int32_t environmentLight = -1;
+  /// Range in TraversalFrame::scopedClipPlanes of the ClipPlanes that clip it.
+  std::uint32_t clipPlaneBegin = 0;
+  std::uint32_t clipPlaneCount = 0;
   /// URL of the file the shape comes from (the base for texture URLs); never null.
   const std::string* baseUrl = nullptr;
   /// Range in TraversalFrame::paths of its path, the root first and the Shape last
@@ -107,6 +110,9 @@ struct TraversalFrame {
   std::vector<std::uint32_t> scopedLights;  // indices into lights (ShapeInstance ranges)
   std::vector<std::uint32_t> globalLights;  // point and spot lights, indices into lights
   std::vector<EnvironmentLightInstance> environmentLights;  // every one that is on
+  /// Enabled ClipPlanes (X3D 4.0 clause 11.4.1) in world coordinates, as (a, b, c, d): a
+  /// point p is kept where a p.x + b p.y + c p.z + d >= 0 (ShapeInstance ranges).
+  std::vector<glm::vec4> scopedClipPlanes;
   /// Set by the caller: collect() records each Shape's path of grouping nodes (picking).
   bool recordPaths = false;
   /// Set by the caller: collect() gathers what the avatar collides with (clause 6.8)
@@ -122,6 +128,7 @@ struct TraversalFrame {
     scopedLights.clear();
     globalLights.clear();
     environmentLights.clear();
+    scopedClipPlanes.clear();
   }
 };
 
@@ -366,6 +373,7 @@ class SceneTraversal {
   TraversalFrame scratch_;
   std::vector<std::uint32_t> scopeScratch_;       // reused by collect()
   std::int32_t firstGlobalEnvironment_ = -1;      // collect(): the first global EnvironmentLight
+  std::vector<glm::vec4> clipScratch_;            // collect(): the ClipPlanes in scope
   std::vector<const std::string*> chainScratch_;  // reused by collect()
 };
 
