@@ -53,7 +53,13 @@ struct SceneTraversal::Walk {
     for (const vrml::NodePtr& n : list) {
       if (!n) continue;
       const NodeKind kind = nodeKind(*n);
-      if (kind == NodeKind::DirectionalLight) directionalLight(*n, m);
+      // X3D's `global` (clause 17.2.1.1; VRML97's rule without the field): a light that is
+      // not global lights only its siblings and their descendants.
+      if (kind == NodeKind::DirectionalLight && !sfBool(*n, "global", false))
+        directionalLight(*n, m, true);
+      if ((kind == NodeKind::PointLight || kind == NodeKind::SpotLight) &&
+          !sfBool(*n, "global", true))
+        pointOrSpotLight(*n, m, kind == NodeKind::SpotLight, true);
       if (kind == NodeKind::EnvironmentLight) environmentLight(*n, m, baseUrl);
       if (kind == NodeKind::ClipPlane) clipPlane(*n, m);
     }
@@ -114,7 +120,16 @@ struct SceneTraversal::Walk {
     return n.type().findExact("global") >= 0 ? i : std::min(i, 1.0f);
   }
 
-  void directionalLight(const vrml::Node& n, const glm::mat4& m) {
+  /// Adds the light to `scope` (its siblings and their descendants) when `scoped`, else to
+  /// the frame's global lights.
+  void addLight(const LightInstance& light, bool scoped) {
+    (scoped ? scope : frame.globalLights)
+        .push_back(static_cast<std::uint32_t>(frame.lights.size()));
+    frame.lights.push_back(light);
+    if (scoped) scopeChanged = true;
+  }
+
+  void directionalLight(const vrml::Node& n, const glm::mat4& m, bool scoped) {
     if (!sfBool(n, "on", true)) return;
     LightInstance light;
     light.type = LightType::directional;
@@ -124,12 +139,10 @@ struct SceneTraversal::Walk {
     const glm::vec3 d = glm::mat3(m) * sfVec3(n, "direction", glm::vec3(0, 0, -1));
     if (glm::length(d) < 1e-12f) return;
     light.direction = glm::normalize(d);
-    scope.push_back(static_cast<std::uint32_t>(frame.lights.size()));
-    frame.lights.push_back(light);
-    scopeChanged = true;
+    addLight(light, scoped);
   }
 
-  void pointOrSpotLight(const vrml::Node& n, const glm::mat4& m, bool spot) {
+  void pointOrSpotLight(const vrml::Node& n, const glm::mat4& m, bool spot, bool scoped) {
     if (!sfBool(n, "on", true)) return;
     LightInstance light;
     light.type = spot ? LightType::spot : LightType::point;
@@ -145,8 +158,7 @@ struct SceneTraversal::Walk {
       light.beamWidth = sfFloat(n, "beamWidth", 1.570796f);
       light.cutOffAngle = sfFloat(n, "cutOffAngle", 0.785398f);
     }
-    frame.globalLights.push_back(static_cast<std::uint32_t>(frame.lights.size()));
-    frame.lights.push_back(light);
+    addLight(light, scoped);
   }
 
   void shape(const vrml::Node& n, const glm::mat4& m, const std::string* baseUrl) {
@@ -298,13 +310,16 @@ struct SceneTraversal::Walk {
       case NodeKind::OutlineGroup:
         outlineGroup(n, m, baseUrl);
         break;
+      // Global lights light everything (scoped ones were handled with their siblings).
       case NodeKind::PointLight:
-        pointOrSpotLight(n, m, false);
-        break;
       case NodeKind::SpotLight:
-        pointOrSpotLight(n, m, true);
+        if (sfBool(n, "global", true))
+          pointOrSpotLight(n, m, nodeKind(n) == NodeKind::SpotLight, false);
         break;
-      default:  // DirectionalLight was handled with its siblings; others draw nothing
+      case NodeKind::DirectionalLight:
+        if (sfBool(n, "global", false)) directionalLight(n, m, false);
+        break;
+      default:  // others draw nothing
         break;
     }
   }

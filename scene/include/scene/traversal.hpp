@@ -108,7 +108,9 @@ struct TraversalFrame {
   std::vector<SplatInstance> splats;
   std::vector<LightInstance> lights;        // every light met, world coordinates
   std::vector<std::uint32_t> scopedLights;  // indices into lights (ShapeInstance ranges)
-  std::vector<std::uint32_t> globalLights;  // point and spot lights, indices into lights
+  /// Lights whose X3D `global` is TRUE (VRML97: every point and spot light), indices into
+  /// lights; the others are in scopedLights (clause 17.2.1.1).
+  std::vector<std::uint32_t> globalLights;
   std::vector<EnvironmentLightInstance> environmentLights;  // every one that is on
   /// Enabled ClipPlanes (X3D 4.0 clause 11.4.1) in world coordinates, as (a, b, c, d): a
   /// point p is kept where a p.x + b p.y + c p.z + d >= 0 (ShapeInstance ranges).
