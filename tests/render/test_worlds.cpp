@@ -446,3 +446,38 @@ Shape {
   const Rendered same = renderFile(dir / "two_sided_same.x3dv");
   CHECK(close(same.image.pixel(46, 32), 255, 0, 0, 2));  // both sides take the front values
 }
+
+TEST_CASE("X3D lights: global FALSE scopes a PointLight, global TRUE frees a DirectionalLight",
+          "[render][offscreen][world]") {
+  const fs::path dir = worldDir();
+  // Left quad: a scoped PointLight beside it. Right quad: in another group, lit only by a
+  // global DirectionalLight from the left group when `directionalGlobal` is TRUE.
+  const auto world = [](const std::string& directionalGlobal) {
+    return R"(#X3D V3.2 utf8
+PROFILE Interchange
+NavigationInfo { headlight FALSE }
+Viewpoint { position 0 0 5 }
+Group { children [
+  PointLight { location -1 0 1 global FALSE }
+  DirectionalLight { direction 0 0 -1 intensity 0.5 global )" +
+           directionalGlobal + R"( color 0 1 0 }
+  Shape { appearance Appearance { material Material { diffuseColor 1 1 1 } }
+          geometry IndexedFaceSet { coord Coordinate { point [ -2 -1 0, -0.2 -1 0, -0.2 1 0, -2 1 0 ] }
+                                    coordIndex [ 0 1 2 3 -1 ] } }
+] }
+Group { children
+  Shape { appearance Appearance { material Material { diffuseColor 1 1 1 } }
+          geometry IndexedFaceSet { coord Coordinate { point [ 0.2 -1 0, 2 -1 0, 2 1 0, 0.2 1 0 ] }
+                                    coordIndex [ 0 1 2 3 -1 ] } }
+}
+)";
+  };
+  writeText(dir / "lights_scoped.x3dv", world("FALSE"));
+  const Rendered scoped = renderFile(dir / "lights_scoped.x3dv");
+  CHECK(scoped.diagnostics.items.empty());
+  CHECK(scoped.image.pixel(18, 32)[0] > 100);            // the PointLight lights its sibling
+  CHECK(close(scoped.image.pixel(46, 32), 0, 0, 0, 2));  // ... and nothing else
+  writeText(dir / "lights_global.x3dv", world("TRUE"));
+  const Rendered global = renderFile(dir / "lights_global.x3dv");
+  CHECK(close(global.image.pixel(46, 32), 0, 128, 0, 3));  // the global green light
+}
