@@ -48,6 +48,9 @@ struct Shading {
   glm::vec3 backDiffuseColor{0.8f}, backSpecularColor{0.0f}, backEmissiveColor{0.0f};
   float backAmbientIntensity = 0.2f, backShininess = 0.2f, backTransparency = 0.0f;
   const vrml::Node* texture = nullptr;
+  /// An RGB(A) texture multiplies the diffuse colour (X3D 4 Material.diffuseTexture)
+  /// instead of replacing it (VRML97 table 4.5 for Appearance.texture).
+  bool textureModulates = false;
   glm::mat3 textureMatrix{1.0f};
   // PhysicalMaterial (diffuseColor holds baseColor, texture baseTexture).
   float metallic = 1.0f, roughness = 1.0f, normalScale = 1.0f, occlusionStrength = 1.0f;
@@ -150,6 +153,15 @@ Shading readShading(const vrml::Node* appearance) {
   }
   if (const vrml::NodePtr t = appearance->sfnode("texture"); t && !t->unresolved)
     s.texture = t.get();
+  // X3D 4.0 clause 12.4.4: a Material's diffuseTexture textures the shape as
+  // Appearance.texture does (which wins when both are given).
+  if (const vrml::NodePtr m = appearance->sfnode("material");
+      s.texture == nullptr && m && !m->unresolved &&
+      (m->typeId() == vrml::NodeTypeId::Material ||
+       m->typeId() == vrml::NodeTypeId::TwoSidedMaterial)) {
+    s.texture = sfnodeOf(*m, "diffuseTexture");
+    s.textureModulates = s.texture != nullptr;  // diffuseColor x texture (clause 17.2.2.4)
+  }
   if (const vrml::NodePtr m = appearance->sfnode("material");
       m && !m->unresolved &&
       (m->typeId() == vrml::NodeTypeId::PhysicalMaterial ||
@@ -519,6 +531,7 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     glUniform3fv(u.emissiveColor, 1, glm::value_ptr(sh.emissiveColor));
     glUniform1f(u.shininess, sh.shininess);
     glUniform1f(u.transparency, sh.transparency);
+    glUniform1i(u.textureModulates, sh.textureModulates ? 1 : 0);
     glUniform1i(u.separateBack, sh.separateBack ? 1 : 0);
     if (sh.separateBack) {
       glUniform3fv(u.backDiffuseColor, 1, glm::value_ptr(sh.backDiffuseColor));

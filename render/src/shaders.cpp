@@ -70,6 +70,7 @@ in vec3 v_color;
 in vec2 v_texCoord;
 
 uniform sampler2D u_texture;
+uniform bool u_textureModulates;  // X3D 4 Material.diffuseTexture: diffuse x texture
 
 // What a shape uses: uniforms in the generic program; compile-time constants in a
 // specialized variant (surface_programs.cpp prepends GS_VARIANT and the GS_ values), where
@@ -142,7 +143,7 @@ void main() {
   if (TEXTURE_COMPONENTS > 0) {
     vec4 t = texture(u_texture, v_texCoord);
     if (TEXTURE_COMPONENTS <= 2) diffuse *= t.r;
-    else diffuse = t.rgb;
+    else diffuse = u_textureModulates ? diffuse * t.rgb : t.rgb;
     if (TEXTURE_COMPONENTS == 2 || TEXTURE_COMPONENTS == 4) alpha = t.a;
   }
 

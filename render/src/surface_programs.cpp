@@ -22,6 +22,7 @@ void SurfaceUniforms::find(GLuint p) {
     map[i] = uniform(p, kMap[i]);
   }
   clipPlaneCount = uniform(p, "u_clipPlaneCount");
+  textureModulates = uniform(p, "u_textureModulates");
   clipPlanes = uniform(p, "u_clipPlanes");
   separateBack = uniform(p, "u_separateBack");
   backDiffuseColor = uniform(p, "u_backDiffuseColor");

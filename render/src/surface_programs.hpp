@@ -41,7 +41,7 @@ struct SurfaceUniforms {
   GLint hasEnvironment, hasEnvironmentMap, environmentMap, environmentSh, environmentColor,
       environmentAmbient, environmentMaxLod, eyeToEnvironment;
   GLint baseTexCoordSet, mapTexCoordSet;
-  GLint clipPlaneCount, clipPlanes;
+  GLint clipPlaneCount, clipPlanes, textureModulates;
   GLint separateBack, backDiffuseColor, backAmbientIntensity, backSpecularColor, backEmissiveColor,
       backShininess, backTransparency;
 

@@ -142,7 +142,7 @@ TEST_CASE("snapshot writes a PNG of the bundled scene", "[app][cli][snapshot]") 
   CHECK(std::filesystem::file_size(out) > 100);
 }
 
-TEST_CASE("--castle-camera starts a world without a Viewpoint where castle-model-viewer does",
+TEST_CASE("snapshots with the castle camera start a world without a Viewpoint as castle does",
           "[app][cli]") {
   // A 2 m white box at the origin: from VRML97's default viewpoint (0 0 10) its front face
   // spans 2 / 9 of the view's height at tan(pi / 8); from castle's camera (z = 1 + 2 * 2)

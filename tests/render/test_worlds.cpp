@@ -481,3 +481,27 @@ Group { children
   const Rendered global = renderFile(dir / "lights_global.x3dv");
   CHECK(close(global.image.pixel(46, 32), 0, 128, 0, 3));  // the global green light
 }
+
+TEST_CASE("X3D 4 Material.diffuseTexture textures the shape and multiplies diffuseColor",
+          "[render][offscreen][world]") {
+  const fs::path dir = worldDir();
+  writeText(dir / "diffuse_texture.x3dv", R"(#X3D V4.0 utf8
+PROFILE Immersive
+NavigationInfo { headlight FALSE }
+Viewpoint { position 0 0 5 }
+DirectionalLight { direction 0 0 -1 }
+Shape {
+  appearance Appearance {
+    material Material { diffuseColor 1 0 0
+                        diffuseTexture PixelTexture { image 2 1 3 0xFFFFFF 0x00FF00
+                                                       repeatS FALSE repeatT FALSE } }
+  }
+  geometry IndexedFaceSet { coord Coordinate { point [ -2 -1 0, 2 -1 0, 2 1 0, -2 1 0 ] }
+                            coordIndex [ 0 1 2 3 -1 ] }
+}
+)");
+  const Rendered r = renderFile(dir / "diffuse_texture.x3dv");
+  CHECK(r.diagnostics.items.empty());
+  CHECK(close(r.image.pixel(6, 32), 255, 0, 0, 3));  // red x white
+  CHECK(close(r.image.pixel(58, 32), 0, 0, 0, 3));   // red x green
+}
