@@ -40,6 +40,7 @@ std::optional<BindableKind> bindableKind(vrml::NodeTypeId id) {
   using vrml::NodeTypeId;
   switch (id) {
     case NodeTypeId::Viewpoint:
+    case NodeTypeId::OrthoViewpoint:  // X3D: one viewpoint stack (clause 23.2.1)
       return BindableKind::Viewpoint;
     case NodeTypeId::NavigationInfo:
       return BindableKind::NavigationInfo;

@@ -25,6 +25,17 @@ glm::mat4 projectionMatrix(const Camera& camera, float aspect) {
   if (!(aspect > 0.0f)) aspect = 1.0f;
   const float nearClip = std::max(camera.nearClip, 1e-6f);
   const float farClip = std::max(camera.farClip, nearClip * 1.001f);
+  if (camera.orthographic) {
+    const glm::vec4 r = camera.orthoRegion;
+    float w = std::max(std::abs(r.z - r.x), 1e-6f), h = std::max(std::abs(r.w - r.y), 1e-6f);
+    const float cx = (r.x + r.z) * 0.5f, cy = (r.y + r.w) * 0.5f;
+    if (aspect > w / h)
+      w = h * aspect;
+    else
+      h = w / aspect;
+    return glm::ortho(cx - w * 0.5f, cx + w * 0.5f, cy - h * 0.5f, cy + h * 0.5f, nearClip,
+                      farClip);
+  }
   return glm::perspective(verticalFieldOfView(camera.fieldOfView, aspect), aspect, nearClip,
                           farClip);
 }

@@ -38,6 +38,7 @@ NodeKind nodeKind(const vrml::Node& node) {
     case NodeTypeId::ClipPlane:
       return NodeKind::ClipPlane;
     case NodeTypeId::Viewpoint:
+    case NodeTypeId::OrthoViewpoint:  // Camera::orthographic (X3D 4.0 clause 23.4.5)
       return NodeKind::Viewpoint;
     case NodeTypeId::NavigationInfo:
       return NodeKind::NavigationInfo;

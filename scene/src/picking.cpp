@@ -14,6 +14,12 @@ Ray rayThroughPixel(const Camera& camera, int width, int height, float x, float 
   const float tanHalf = std::tan(verticalFieldOfView(camera.fieldOfView, aspect) * 0.5f);
   const float ndcX = 2.0f * x / w - 1.0f;
   const float ndcY = 1.0f - 2.0f * y / h;
+  if (camera.orthographic) {  // parallel rays from the view plane through the pixel
+    const glm::mat4 inverse = glm::inverse(projectionMatrix(camera, aspect));
+    const glm::vec4 onPlane = inverse * glm::vec4(ndcX, ndcY, -1.0f, 1.0f);
+    const glm::vec3 offset(onPlane.x / onPlane.w, onPlane.y / onPlane.w, 0.0f);
+    return {camera.position + camera.orientation * offset, camera.forward()};
+  }
   const glm::vec3 eye(ndcX * tanHalf * aspect, ndcY * tanHalf, -1.0f);
   return {camera.position, glm::normalize(camera.orientation * eye)};
 }

@@ -98,7 +98,16 @@ void SceneTraversal::findBindables() {
         const glm::quat local = glm::quat_cast(
             glm::mat3(rotationMatrix(sfRotation(n, "orientation", vrml::Rotation(0, 0, 1, 0)))));
         info.camera.orientation = glm::normalize(glm::quat_cast(rotationPart(m)) * local);
-        info.camera.fieldOfView = sfFloat(n, "fieldOfView", 0.785398f);
+        if (n.typeId() == vrml::NodeTypeId::OrthoViewpoint) {
+          // X3D 4.0 clause 23.4.5: fieldOfView (minX, minY, maxX, maxY), default -1 -1 1 1.
+          const std::vector<float>& f = mfFloat(n, "fieldOfView");
+          info.camera.orthographic = true;
+          if (f.size() >= 4 && std::isfinite(f[0]) && std::isfinite(f[1]) && std::isfinite(f[2]) &&
+              std::isfinite(f[3]) && f[2] != f[0] && f[3] != f[1])
+            info.camera.orthoRegion = glm::vec4(f[0], f[1], f[2], f[3]);
+        } else {
+          info.camera.fieldOfView = sfFloat(n, "fieldOfView", 0.785398f);
+        }
         viewpoints_.push_back(std::move(info));
         break;
       }

@@ -1,5 +1,6 @@
 // Scene traversal on the CPU: node maths, grouping nodes, LOD, lights, bindables, Inline.
 #include "render_test_util.hpp"
+#include "scene/picking.hpp"
 #include "scene/traversal.hpp"
 #include "vrml/parser.hpp"
 
@@ -311,4 +312,32 @@ TEST_CASE("X3D's 3D texture transforms act on (s, t, 0, 1)", "[render][traversal
       glm::vec3(0, 0, 1);
   CHECK(p.x == Approx(1.5f));
   CHECK(p.y == Approx(0.5f));
+}
+
+TEST_CASE("OrthoViewpoint binds an orthographic camera showing its region", "[render][traversal]") {
+  auto scene = std::make_shared<gs::vrml::Scene>(gs::vrml::parseVrml(
+      "#X3D V4.0 utf8\nPROFILE Immersive\n"
+      "OrthoViewpoint { position 0 0 10 fieldOfView [ -1 -1 4 4 ] }\nShape { geometry Box { } }\n",
+      "ortho.x3dv"));
+  gs::scene::SceneTraversal traversal(scene, options());
+  REQUIRE(traversal.viewpoints().size() == 1);
+  const gs::scene::Camera c = traversal.boundViewpointCamera();
+  CHECK(c.orthographic);
+  CHECK(c.orthoRegion == glm::vec4(-1, -1, 4, 4));
+  // The region fills a square viewport exactly: (4, 4, z) is the top right corner.
+  const glm::mat4 p = gs::scene::projectionMatrix(c, 1.0f) * gs::scene::viewMatrix(c);
+  const glm::vec4 corner = p * glm::vec4(4, 4, 0, 1);
+  CHECK(corner.x / corner.w == Approx(1.0f));
+  CHECK(corner.y / corner.w == Approx(1.0f));
+  // A wider viewport sees more across, the same vertically.
+  const glm::vec4 wide =
+      gs::scene::projectionMatrix(c, 2.0f) * gs::scene::viewMatrix(c) * glm::vec4(4, 4, 0, 1);
+  CHECK(wide.x / wide.w == Approx(0.5f));  // (4 - 1.5) / 5
+  CHECK(wide.y / wide.w == Approx(1.0f));
+  // Picking rays are parallel to the view direction.
+  const gs::scene::Ray a = gs::scene::rayThroughPixel(c, 100, 100, 0, 0);
+  const gs::scene::Ray b = gs::scene::rayThroughPixel(c, 100, 100, 100, 100);
+  CHECK(a.direction == b.direction);
+  CHECK(a.origin.x == Approx(-1.0f));
+  CHECK(b.origin.x == Approx(4.0f));
 }

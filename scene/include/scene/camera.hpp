@@ -21,6 +21,11 @@ struct Camera {
   float fieldOfView = 0.785398f;  // radians, across the smaller viewport side (6.53)
   float nearClip = 0.125f;        // metres, > 0
   float farClip = 1000.0f;        // metres, > nearClip
+  /// An OrthoViewpoint's parallel projection (X3D 4.0 clause 23.4.5): the region
+  /// (minX, minY, maxX, maxY) of the view plane, metres in the camera's coordinates, is
+  /// shown whole and the viewport's longer axis sees more; fieldOfView is then unused.
+  bool orthographic = false;
+  glm::vec4 orthoRegion{-1.0f, -1.0f, 1.0f, 1.0f};
 
   /// Unit vector the camera looks along (orientation applied to -Z).
   glm::vec3 forward() const { return orientation * glm::vec3(0.0f, 0.0f, -1.0f); }
@@ -35,7 +40,8 @@ glm::mat4 viewMatrix(const Camera& camera);
 
 /// Perspective projection for a viewport of `aspect` = width / height. The field of view
 /// spans the smaller viewport side (VRML97 6.53): vertical when aspect >= 1, horizontal
-/// otherwise. Clamps the field of view to 0.001..3.1 radians.
+/// otherwise. Clamps the field of view to 0.001..3.1 radians. An orthographic camera gets
+/// the parallel projection of its orthoRegion, widened on one axis to the aspect.
 glm::mat4 projectionMatrix(const Camera& camera, float aspect);
 
 /// Vertical field of view (radians) that projectionMatrix uses for `aspect`.
