@@ -13,6 +13,19 @@
 
 namespace gs::scene {
 
+namespace {
+
+/// Metres per length unit of `scene`'s X3D UNIT statement (1 without one; usable factors
+/// only: the parser scaled its root nodes by it).
+float lengthUnitOf(const vrml::Scene& scene) {
+  for (const vrml::X3dUnit& u : scene.x3d.units)
+    if (u.category == "length" && std::isfinite(u.conversionFactor) && u.conversionFactor > 0.0)
+      return static_cast<float>(u.conversionFactor);
+  return 1.0f;
+}
+
+}  // namespace
+
 /// State of one collect() walk.
 struct SceneTraversal::Walk {
   SceneTraversal& self;
@@ -25,6 +38,8 @@ struct SceneTraversal::Walk {
   std::uint32_t lastScopeBegin = 0;
   /// The innermost scoped EnvironmentLight (index in frame.environmentLights), -1: none.
   std::int32_t environmentScope = -1;
+  /// The X3D length unit (metres per unit) of the file being walked (lengthUnitOf).
+  float lengthUnit = 1.0f;
   /// The ClipPlanes in scope, world coordinates (SceneTraversal::clipScratch_).
   std::vector<glm::vec4>* clipScope = nullptr;
   bool clipScopeChanged = true;
@@ -295,8 +310,15 @@ struct SceneTraversal::Walk {
         const auto* outerFilled = filled;
         filled = &self.filledGroups(*inl->scene);
         // URLs inside resolve against where the file really came from (after redirects).
-        group(&n, inl->scene->rootNodes, m, inl->scene->url.empty() ? &inl->url : &inl->scene->url,
-              &inl->scene->rootNodes);
+        // The parser put this file's root nodes in a Transform scaled by its length unit
+        // (X3D clause 4.3.6): an inlined file keeps its own unit, so the outer file's scale
+        // is undone here (castle's units.x3dv).
+        const float outerUnit = lengthUnit;
+        lengthUnit = lengthUnitOf(*inl->scene);
+        group(&n, inl->scene->rootNodes,
+              outerUnit != 1.0f ? m * glm::scale(glm::mat4(1.0f), glm::vec3(1.0f / outerUnit)) : m,
+              inl->scene->url.empty() ? &inl->url : &inl->scene->url, &inl->scene->rootNodes);
+        lengthUnit = outerUnit;
         filled = outerFilled;
         inlineChain.pop_back();
         break;
@@ -329,13 +351,13 @@ void SceneTraversal::collect(const Camera& viewer, TraversalFrame& frame) {
   frame.clear();
   scopeScratch_.clear();
   chainScratch_.clear();
-  Walk walk{*this, frame, viewer.position, viewer.up(), scopeScratch_, chainScratch_, true,
-            0,     -1,    nullptr};
+  Walk walk{*this, frame, viewer.position, viewer.up(), scopeScratch_, chainScratch_};
   walk.inlineChain.push_back(&mainUrl_);
   walk.filled = &filledGroups(*scene_);
   firstGlobalEnvironment_ = -1;
   clipScratch_.clear();
   walk.clipScope = &clipScratch_;
+  walk.lengthUnit = lengthUnitOf(*scene_);
   walk.group(nullptr, scene_->rootNodes, glm::mat4(1.0f), &mainUrl_, &scene_->rootNodes);
   if (firstGlobalEnvironment_ >= 0)
     for (ShapeInstance& s : frame.shapes)

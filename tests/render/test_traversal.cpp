@@ -341,3 +341,24 @@ TEST_CASE("OrthoViewpoint binds an orthographic camera showing its region", "[re
   CHECK(a.origin.x == Approx(-1.0f));
   CHECK(b.origin.x == Approx(4.0f));
 }
+
+TEST_CASE("an Inlined file keeps its own length unit inside a file in kilometres",
+          "[render][traversal]") {
+  const auto dir = std::filesystem::temp_directory_path() / "gs_units_inline";
+  std::filesystem::create_directories(dir);
+  // The outer file is in km: its box is 2 m wide. The inlined file (no UNIT) is in metres:
+  // its box, 4 m to the right, is 2 m wide too (X3D clause 4.3.6; castle's units.x3dv).
+  std::ofstream(dir / "outer.x3dv")
+      << "#X3D V3.3 utf8\nPROFILE Interchange\nUNIT length km 1000\n"
+         "Shape { geometry Box { size 0.002 0.002 0.002 } }\nInline { url \"inner.x3dv\" }\n";
+  std::ofstream(dir / "inner.x3dv")
+      << "#X3D V3.3 utf8\nPROFILE Interchange\n"
+         "Transform { translation 4 0 0 children Shape { geometry Box { } } }\n";
+  auto scene =
+      std::make_shared<gs::vrml::Scene>(gs::vrml::loadVrmlFile((dir / "outer.x3dv").string()));
+  gs::scene::SceneTraversal traversal(scene, gs::scene::TraversalOptions{});
+  const gs::vrml::Bounds& b = traversal.worldBounds();
+  CHECK(b.min.x == Approx(-1.0f));
+  CHECK(b.max.x == Approx(5.0f));
+  CHECK(b.max.y == Approx(1.0f));
+}
