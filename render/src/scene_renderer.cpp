@@ -560,10 +560,10 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
                   d.texCoordSets[4]);
       glActiveTexture(GL_TEXTURE0);
     }
-    // Lines and points are unlit: emissiveColor with a Material, else white (6.24, 6.36);
-    // a PhysicalMaterial's lines take its baseColor, an UnlitMaterial gives emissiveColor.
+    // Lines and points are unlit: emissiveColor with a Material or a PhysicalMaterial (as
+    // castle-model-viewer draws them; 6.24, 6.36), else white; an UnlitMaterial gives
+    // emissiveColor.
     glm::vec3 unlit = (!triangles && sh.hasMaterial) ? sh.emissiveColor : glm::vec3(1.0f);
-    if (sh.model == ShadingModel::physical && !triangles) unlit = sh.diffuseColor;
     if (sh.model == ShadingModel::unlit) unlit = sh.emissiveColor;
     glUniform3fv(u.unlitColor, 1, glm::value_ptr(unlit));
     if (lit && !lightsUploaded) {
