@@ -506,6 +506,9 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
       v.hasColor = mesh.hasColors;
       v.textureComponents = d.texture != nullptr ? d.texture->components : 0;
       v.fogType = fogType;
+      v.separateBack = sh.separateBack;
+      v.textureModulates = sh.textureModulates;
+      v.clipPlanes = static_cast<int>(std::min(s.clipPlaneCount, kMaxClipPlanes));
       if (lit) {
         v.lightCount = lights.count;
         for (int i = 0; i < lights.count; ++i)

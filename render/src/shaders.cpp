@@ -33,8 +33,14 @@ uniform mat3 u_normalMatrix;
 uniform mat3 u_textureMatrix;
 uniform float u_pointSize;
 // X3D ClipPlanes (clause 11.4.1) in eye coordinates: kept where dot(plane, eye) >= 0.
+// A specialized variant fixes their count (surface_programs.cpp).
 const int kMaxClipPlanes = 6;
+#ifdef GS_VARIANT
+#define CLIP_PLANES GS_CLIP_PLANES
+#else
 uniform int u_clipPlaneCount;
+#define CLIP_PLANES u_clipPlaneCount
+#endif
 uniform vec4 u_clipPlanes[kMaxClipPlanes];
 out float gl_ClipDistance[kMaxClipPlanes];
 
@@ -53,7 +59,7 @@ void main() {
   v_texCoord1 = (u_textureMatrix * vec3(a_texCoord1, 1.0)).xy;
   gl_PointSize = u_pointSize;
   for (int i = 0; i < kMaxClipPlanes; ++i)
-    gl_ClipDistance[i] = i < u_clipPlaneCount ? dot(u_clipPlanes[i], eye) : 1.0;
+    gl_ClipDistance[i] = i < CLIP_PLANES ? dot(u_clipPlanes[i], eye) : 1.0;
   gl_Position = u_projection * eye;
 }
 )glsl";
@@ -70,7 +76,6 @@ in vec3 v_color;
 in vec2 v_texCoord;
 
 uniform sampler2D u_texture;
-uniform bool u_textureModulates;  // X3D 4 Material.diffuseTexture: diffuse x texture
 
 // What a shape uses: uniforms in the generic program; compile-time constants in a
 // specialized variant (surface_programs.cpp prepends GS_VARIANT and the GS_ values), where
@@ -83,7 +88,11 @@ const int kLightTypes[kMaxLights] = int[kMaxLights](GS_LIGHT_TYPES);
 #define LIGHT_COUNT GS_LIGHT_COUNT
 #define LIGHT_TYPE(i) kLightTypes[i]
 #define FOG_TYPE GS_FOG_TYPE
+#define TEXTURE_MODULATES GS_TEXTURE_MODULATES
+#define SEPARATE_BACK GS_SEPARATE_BACK
 #else
+uniform bool u_textureModulates;  // X3D 4 Material.diffuseTexture: diffuse x texture
+uniform bool u_separateBack;      // TwoSidedMaterial.separateBackColor
 uniform bool u_lit;
 uniform bool u_hasColor;
 uniform int u_textureComponents;  // 0: no texture
@@ -96,6 +105,8 @@ uniform int u_fogType;  // 0 none, 1 LINEAR, 2 EXPONENTIAL
 #define LIGHT_COUNT u_lightCount
 #define LIGHT_TYPE(i) u_lightType[i]
 #define FOG_TYPE u_fogType
+#define TEXTURE_MODULATES u_textureModulates
+#define SEPARATE_BACK u_separateBack
 #endif
 
 uniform vec3 u_diffuseColor;
@@ -107,7 +118,6 @@ uniform float u_transparency;
 uniform vec3 u_unlitColor;
 // X3D 4.0 TwoSidedMaterial (clause 12.4.11) with separateBackColor TRUE: back faces take
 // these instead.
-uniform bool u_separateBack;
 uniform vec3 u_backDiffuseColor;
 uniform float u_backAmbientIntensity;
 uniform vec3 u_backSpecularColor;
@@ -131,7 +141,7 @@ uniform float u_fogVisibilityRange;
 out vec4 fragColor;
 
 void main() {
-  bool back = u_separateBack && !gl_FrontFacing;
+  bool back = SEPARATE_BACK && !gl_FrontFacing;
   vec3 diffuseColor = back ? u_backDiffuseColor : u_diffuseColor;
   float ambientIntensity = back ? u_backAmbientIntensity : u_ambientIntensity;
   vec3 specularColor = back ? u_backSpecularColor : u_specularColor;
@@ -143,7 +153,7 @@ void main() {
   if (TEXTURE_COMPONENTS > 0) {
     vec4 t = texture(u_texture, v_texCoord);
     if (TEXTURE_COMPONENTS <= 2) diffuse *= t.r;
-    else diffuse = u_textureModulates ? diffuse * t.rgb : t.rgb;
+    else diffuse = TEXTURE_MODULATES ? diffuse * t.rgb : t.rgb;
     if (TEXTURE_COMPONENTS == 2 || TEXTURE_COMPONENTS == 4) alpha = t.a;
   }
 

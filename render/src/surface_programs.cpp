@@ -80,6 +80,8 @@ std::uint32_t SurfaceVariant::key() const {
                     (static_cast<std::uint32_t>(lightCount & 15) << 7);
   for (int i = 0; i < lightCount && i < kMaxLights; ++i)
     k |= static_cast<std::uint32_t>(lightTypes[static_cast<std::size_t>(i)] & 3) << (11 + 2 * i);
+  k |= (separateBack ? 1u : 0u) << 27 | (textureModulates ? 1u : 0u) << 28 |
+       static_cast<std::uint32_t>(clipPlanes & 7) << 29;
   return k;
 }
 
@@ -92,7 +94,10 @@ std::string SurfaceVariant::defines() const {
          "\n#define GS_HAS_COLOR " + (hasColor ? "true" : "false") +
          "\n#define GS_TEXTURE_COMPONENTS " + std::to_string(textureComponents) +
          "\n#define GS_FOG_TYPE " + std::to_string(fogType) + "\n#define GS_LIGHT_COUNT " +
-         std::to_string(lightCount) + "\n#define GS_LIGHT_TYPES " + types + "\n";
+         std::to_string(lightCount) + "\n#define GS_LIGHT_TYPES " + types +
+         "\n#define GS_SEPARATE_BACK " + (separateBack ? "true" : "false") +
+         "\n#define GS_TEXTURE_MODULATES " + (textureModulates ? "true" : "false") +
+         "\n#define GS_CLIP_PLANES " + std::to_string(clipPlanes) + "\n";
 }
 
 void SurfacePrograms::beginFrame() {
@@ -122,12 +127,14 @@ SurfaceProgram& SurfacePrograms::phong(const SurfaceVariant& v) {
   if (!variantsEnabled_ || frame_ <= 1 || builtThisFrame_ >= kVariantsPerFrame) return generic();
   ++builtThisFrame_;
   // The defines go after the #version line, which must come first.
-  const std::string_view source = kSurfaceFragmentShader;
-  const std::size_t eol = source.find('\n') + 1;
-  const std::string specialized =
-      std::string(source.substr(0, eol)) + v.defines() + std::string(source.substr(eol));
+  const auto specialize = [&](std::string_view source) {
+    const std::size_t eol = source.find('\n') + 1;
+    return std::string(source.substr(0, eol)) + v.defines() + std::string(source.substr(eol));
+  };
+  const std::string vertex = specialize(kSurfaceVertexShader);
+  const std::string fragment = specialize(kSurfaceFragmentShader);
   SurfaceProgram p;
-  p.id = buildProgram("surface variant", kSurfaceVertexShader, specialized.c_str());
+  p.id = buildProgram("surface variant", vertex.c_str(), fragment.c_str());
   p.u.find(p.id);
   return variants_.emplace(key, p).first->second;
 }

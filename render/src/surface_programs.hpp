@@ -57,6 +57,9 @@ struct SurfaceVariant {
   int fogType = 0;                                    // 0 none, 1 LINEAR, 2 EXPONENTIAL
   int lightCount = 0;                                 // 0 .. kMaxLights; 0 when not lit
   std::array<std::uint8_t, kMaxLights> lightTypes{};  // 0 directional, 1 point, 2 spot
+  bool separateBack = false;                          // TwoSidedMaterial with separateBackColor
+  bool textureModulates = false;                      // Material.diffuseTexture
+  int clipPlanes = 0;                                 // 0 .. 6 ClipPlanes
 
   /// A number naming the variant (equal keys, equal variants).
   std::uint32_t key() const;
