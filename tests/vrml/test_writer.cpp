@@ -1,0 +1,276 @@
+// The writers of vrml/writer.hpp (`ghostspace convert`): parse -> write -> parse gives the
+// same scene graph (tests/vrml/scene_compare.hpp) for the project's X3D feature world in
+// each encoding, PROTOs with IS and ROUTEs to their interfaces, exact float values,
+// XML / JSON escaping, and over the corpus worlds (../shared/corpus/x3d and vrml*); an X3D
+// world written as VRML97 names what it leaves out.
+#include "scene_compare.hpp"
+#include "test_support.hpp"
+
+#include "vrml/parser.hpp"
+#include "vrml/writer.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cstring>
+#include <map>
+
+using namespace gs::vrml;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string extensionOf(Encoding e) {
+  switch (e) {
+    case Encoding::vrml97:
+      return ".wrl";
+    case Encoding::classic:
+      return ".x3dv";
+    case Encoding::xml:
+      return ".x3d";
+    case Encoding::json:
+      return ".x3dj";
+  }
+  return "";
+}
+
+std::string describe(const Scene& s) {
+  std::string out;
+  for (const Diagnostic& d : s.diagnostics.items) out += d.format() + "\n";
+  return out;
+}
+
+struct Trip {
+  Scene back;
+  WriteResult written;
+  std::string diff;  // empty when the scenes are the same
+};
+
+// Writes `scene` in `e` and reads it back as if it lay beside `url` (relative URLs resolve
+// the same way).
+Trip roundTrip(const Scene& scene, Encoding e, const std::string& url) {
+  Trip t;
+  t.written = writeScene(scene, WriteOptions{e});
+  const fs::path p(url);
+  t.back = parseVrml(t.written.text, (p.parent_path() / (p.stem().string() + "-rt" + extensionOf(e))).string());
+  gs::test::Same same;
+  if (!same.scenes(scene, t.back)) t.diff = same.diff;
+  if (t.diff.empty() && t.back.diagnostics.errorCount() > scene.diagnostics.errorCount())
+    t.diff = "new errors: " + describe(t.back);
+  return t;
+}
+
+}  // namespace
+
+TEST_CASE("writer: encodings by file name", "[writer]") {
+  CHECK(encodingForPath("a/b.wrl") == Encoding::vrml97);
+  CHECK(encodingForPath("B.X3DV") == Encoding::classic);
+  CHECK(encodingForPath("c.x3d") == Encoding::xml);
+  CHECK(encodingForPath("d.x3dj") == Encoding::json);
+  CHECK_FALSE(encodingForPath("e.x3dz").has_value());
+  CHECK_FALSE(encodingForPath("dir.wrl/file").has_value());
+}
+
+TEST_CASE("writer: the X3D feature world round-trips in every X3D encoding", "[writer]") {
+  for (const char* name : {"x3d_features.x3dv", "x3d_features.x3d", "x3d_features.x3dj"}) {
+    const std::string path = (gs::test::sourceDir() / "assets/worlds" / name).string();
+    const Scene s = loadVrmlFile(path);
+    REQUIRE(s.diagnostics.errorCount() == 0);
+    REQUIRE_FALSE(s.rootNodes.empty());
+    for (Encoding e : {Encoding::classic, Encoding::xml, Encoding::json}) {
+      INFO(name << " as " << encodingName(e));
+      const Trip t = roundTrip(s, e, path);
+      INFO(t.written.text);
+      CHECK(t.diff.empty());
+      CHECK(t.diff == "");
+      CHECK(t.back.x3d.encoding == (e == Encoding::classic ? "Classic VRML"
+                                    : e == Encoding::xml   ? "XML"
+                                                           : "JSON"));
+    }
+  }
+}
+
+TEST_CASE("writer: VRML97 worlds of assets/ round-trip as .wrl", "[writer]") {
+  for (const char* name : {"features.wrl", "animation.wrl", "ghostspace-extensions.wrl",
+                           "text.wrl", "welcome.wrl"}) {
+    const std::string path = (gs::test::sourceDir() / "assets/worlds" / name).string();
+    const Scene s = loadVrmlFile(path);
+    INFO(name);
+    REQUIRE(s.diagnostics.errorCount() == 0);
+    const Trip t = roundTrip(s, Encoding::vrml97, path);
+    CHECK(t.diff == "");
+    CHECK(t.written.text.starts_with("#VRML V2.0 utf8\n"));
+  }
+}
+
+TEST_CASE("writer: PROTOs stay declarations, instances and ROUTEs name interfaces", "[writer]") {
+  const Scene s = parseVrml(R"(#VRML V2.0 utf8
+PROTO Mover [ exposedField SFVec3f where 0 0 0  eventIn SFFloat set_f  field SFNode what NULL ]
+{
+  DEF T Transform {
+    translation IS where
+    children [ DEF Inner Shape { geometry IS what } ]
+  }
+  DEF S Script { eventIn SFFloat f IS set_f  eventOut SFVec3f p  url "javascript:function f(v){}" }
+  ROUTE S.p TO T.set_translation
+}
+PROTO Pair [ exposedField SFVec3f at 1 2 3 ] { Group { children [ Mover { where IS at } ] } }
+DEF M Mover { where 0.1 0.2 1.0000001 what Box { size 1e-7 3.4e38 0.5 } }
+DEF P Pair { }
+DEF TS TimeSensor { loop TRUE }
+DEF PI PositionInterpolator { key [ 0 1 ] keyValue [ 0 0 0, 1 1 1 ] }
+ROUTE TS.fraction_changed TO PI.set_fraction
+ROUTE PI.value_changed TO M.where
+ROUTE TS.fraction_changed TO M.set_f
+)",
+                            "protos.wrl");
+  REQUIRE(s.diagnostics.errorCount() == 0);
+  {
+    const Trip t = roundTrip(s, Encoding::vrml97, "protos.wrl");
+    INFO(t.written.text);
+    CHECK(t.diff == "");
+    CHECK(t.written.text.find("PROTO Mover [") != std::string::npos);
+    CHECK(t.written.text.find("DEF M Mover {") != std::string::npos);
+    CHECK(t.written.text.find("ROUTE PI.value_changed TO M.where") != std::string::npos);
+    CHECK(t.written.text.find("ROUTE TS.fraction_changed TO M.set_f") != std::string::npos);
+    CHECK(t.written.text.find("where IS at") != std::string::npos);
+    CHECK(t.written.text.find("where 0.1 0.2 1.0000001") != std::string::npos);
+    CHECK(t.written.diagnostics.items.empty());
+  }
+}
+
+TEST_CASE("writer: PROTOs, Scripts and strings in every X3D encoding", "[writer]") {
+  const Scene s = parseVrml(R"(#X3D V4.0 utf8
+PROFILE Immersive
+COMPONENT Scripting:1
+META "title" "a <title> & \"quotes\""
+PROTO Mover [ inputOutput SFVec3f where 0 0 0  inputOnly SFFloat set_f  initializeOnly SFNode what NULL ]
+{
+  DEF T Transform {
+    translation IS where
+    children [ Shape { geometry IS what } ]
+  }
+  DEF S Script {
+    inputOnly SFFloat f IS set_f
+    outputOnly SFVec3f p
+    initializeOnly MFString texts [ "a\"b", "c\\d", "e&f<g>'h'" ]
+    url "ecmascript:function f(v) { if (v < 1 && v > 0) p = new SFVec3f(v, 0, 0); }"
+  }
+  ROUTE S.p TO T.set_translation
+}
+DEF M Mover { where 0.1 0.2 0.30000001 what Box { size 1e-7 3.4e38 0.5 } }
+DEF TS TimeSensor { loop TRUE description "line 1\nline\t2" }
+DEF W WorldInfo { title "x\"y\\z" info [ "]]>", "" ] }
+DEF SW Switch { whichChoice 0 children [ Group { } ] }
+ROUTE TS.fraction_changed TO M.set_f
+EXPORT TS AS Clock
+)",
+                            "protos.x3dv");
+  REQUIRE(s.diagnostics.errorCount() == 0);
+  for (Encoding e : {Encoding::classic, Encoding::xml, Encoding::json}) {
+    INFO(encodingName(e));
+    const Trip t = roundTrip(s, e, "protos.x3dv");
+    INFO(t.written.text);
+    CHECK(t.diff == "");
+    CHECK(t.back.x3d.exports.size() == 1);
+    CHECK(t.written.diagnostics.items.empty());
+  }
+}
+
+TEST_CASE("writer: an X3D world as VRML97 names what it leaves out", "[writer]") {
+  const Scene s = parseVrml(R"(#X3D V4.0 utf8
+PROFILE Immersive
+META "author" "someone"
+DEF T Transform { children [
+  Shape { geometry Box { } appearance Appearance { material Material { } } }
+  DEF D Disk2D { }
+] visible FALSE }
+Transform { translation 1 2 3 }
+)",
+                            "x.x3dv");
+  REQUIRE(s.diagnostics.errorCount() == 0);
+  const WriteResult w = writeScene(s, WriteOptions{Encoding::vrml97});
+  std::string all;
+  for (const Diagnostic& d : w.diagnostics.items) all += d.format() + "\n";
+  INFO(all);
+  INFO(w.text);
+  CHECK(all.find("Disk2D") != std::string::npos);
+  CHECK(all.find("x.x3dv:6:9: warning: X3D node Disk2D") != std::string::npos);
+  CHECK(all.find("Transform.visible") != std::string::npos);
+  CHECK(all.find("META") != std::string::npos);
+  CHECK(w.text.find("Disk2D") == std::string::npos);
+  const Scene back = parseVrml(w.text, "x.wrl");
+  CHECK(back.diagnostics.items.empty());
+  CHECK(back.x3d.version.empty());
+  CHECK(back.rootNodes.size() == 2);
+}
+
+TEST_CASE("writer: floats and doubles read back to the same bits", "[writer]") {
+  const Scene s = parseVrml(R"(#X3D V4.0 utf8
+Transform { translation 0.1 -0 1.17549435e-38 scale 3.4028235e38 1e-45 16777217 }
+TimeSensor { cycleInterval 1.0000000000000002 startTime 1.7e9 }
+PixelTexture { image 2 1 4 0xFFFFFFFF 0x00000001 }
+)",
+                            "f.x3dv");
+  REQUIRE(s.diagnostics.errorCount() == 0);
+  for (Encoding e : {Encoding::classic, Encoding::xml, Encoding::json}) {
+    INFO(encodingName(e));
+    const Trip t = roundTrip(s, e, "f.x3dv");
+    INFO(t.written.text);
+    CHECK(t.diff == "");
+  }
+}
+
+namespace {
+
+// Parse -> write -> parse over every world with `suffix` under the corpus folder `sub`.
+struct CorpusFigures {
+  int worlds = 0;
+  std::map<Encoding, int> same;
+  std::map<Encoding, std::vector<std::string>> differ;
+};
+
+CorpusFigures sweep(const std::string& sub, const std::vector<std::string>& suffixes,
+                    const std::vector<Encoding>& encodings) {
+  CorpusFigures f;
+  for (const std::string& suffix : suffixes) {
+    for (const fs::path& p : gs::test::filesWithSuffix(gs::test::corpusDir() / sub, suffix)) {
+      const Scene s = loadVrmlFile(p.string());
+      if (s.rootNodes.empty() || s.diagnostics.errorCount() > 0) continue;
+      ++f.worlds;
+      for (Encoding e : encodings) {
+        const Trip t = roundTrip(s, e, p.string());
+        if (t.diff.empty())
+          ++f.same[e];
+        else
+          f.differ[e].push_back(p.lexically_relative(gs::test::corpusDir()).string() + ": " +
+                                t.diff);
+      }
+    }
+  }
+  for (const auto& [e, list] : f.differ)
+    for (const std::string& d : list) WARN(std::string(encodingName(e)) + ": " + d);
+  return f;
+}
+
+}  // namespace
+
+TEST_CASE("writer: the castle X3D corpus round-trips in every X3D encoding", "[writer][corpus]") {
+  if (!gs::test::haveCorpus("x3d/castle")) return;
+  const CorpusFigures f = sweep("x3d/castle", {".x3dv", ".x3d", ".x3dvz", ".x3dz"},
+                                {Encoding::classic, Encoding::xml, Encoding::json});
+  for (Encoding e : {Encoding::classic, Encoding::xml, Encoding::json})
+    WARN(std::string(encodingName(e)) + ": " + std::to_string(f.same.at(e)) + " of " +
+         std::to_string(f.worlds) + " worlds give the same scene graph");
+  CHECK(f.worlds > 100);
+  for (Encoding e : {Encoding::classic, Encoding::xml, Encoding::json})
+    CHECK(f.same.at(e) == f.worlds);
+}
+
+TEST_CASE("writer: the VRML97 corpus round-trips as .wrl", "[writer][corpus]") {
+  if (!gs::test::haveCorpus("vrml")) return;
+  const CorpusFigures f = sweep("vrml", {".wrl", ".wrl.gz", ".wrz"}, {Encoding::vrml97});
+  WARN("VRML97: " + std::to_string(f.same.at(Encoding::vrml97)) + " of " +
+       std::to_string(f.worlds) + " worlds give the same scene graph");
+  CHECK(f.worlds > 100);
+  CHECK(f.same.at(Encoding::vrml97) == f.worlds);
+}

@@ -1,0 +1,651 @@
+// The document the writers print (writer_impl.hpp), made from a parsed Scene. The parser
+// expanded every PROTO instance and flattened ROUTEs to instance interfaces onto body
+// members (proto.hpp, scene.hpp); this folds both back: an instance is written as its
+// PROTO's name with the interface values it was given (ProtoInstance::values), a ROUTE end
+// on a body member is mapped through the instances' IS links to the interface member, and
+// the ROUTEs each instance copied from its PROTO's body are recognised by their source
+// location and left to the PROTO. Statements keep their order among the root nodes by
+// their source locations.
+#include "vrml/node_table.hpp"
+#include "vrml/proto.hpp"
+#include "writer_impl.hpp"
+
+#include <algorithm>
+#include <map>
+#include <set>
+#include <tuple>
+#include <unordered_map>
+#include <unordered_set>
+
+namespace gs::vrml::writing {
+
+namespace {
+
+using LocKey = std::tuple<std::string, int, int>;
+
+LocKey keyOf(const SourceLocation& l) {
+  return {l.file, l.line, l.column};
+}
+
+bool sameValue(const FieldValue& a, const FieldValue& b) {
+  return a.storage() == b.storage();
+}
+
+bool carriesValue(AccessType a) {
+  return a == AccessType::field || a == AccessType::exposedField;
+}
+
+// The definition whose body an instance of `type` copied (a resolved EXTERNPROTO's target).
+const ProtoDefinition* bodyOf(const NodeType* type) {
+  if (type == nullptr || !type->proto) return nullptr;
+  if (type->proto->external)
+    return type->proto->resolved ? bodyOf(type->proto->resolved.get()) : nullptr;
+  return type->proto.get();
+}
+
+// True when `n` stands for a PROTO or EXTERNPROTO instance (expanded or not).
+const NodeType* instanceType(const Node& n) {
+  if (const ProtoInstance* p = declaredInterface(n)) return p->type.get();
+  if (n.type().proto) return &n.type();  // unresolved EXTERNPROTO instance
+  return nullptr;
+}
+
+class Builder {
+ public:
+  Builder(const Scene& scene, const WriteOptions& options, Diagnostics& diagnostics)
+      : scene_(scene), diag_(diagnostics) {
+    x3dIn_ = !scene.x3d.version.empty();
+    x3dOut_ = options.encoding != Encoding::vrml97;
+    version_ = x3dIn_ ? scene.x3d.version : options.x3dVersionForVrml97;
+    x3d3Out_ = x3dOut_ && version_.starts_with('3');
+  }
+
+  WDocument build() {
+    WDocument doc;
+    doc.x3d = x3dOut_;
+    if (x3dOut_) {
+      doc.version = version_;
+      doc.profile = x3dIn_ ? scene_.x3d.profile : "Immersive";
+      doc.components = scene_.x3d.components;
+      doc.meta = scene_.x3d.meta;
+    } else if (x3dIn_) {
+      if (!scene_.x3d.profile.empty() || !scene_.x3d.components.empty())
+        warn({}, "the PROFILE and COMPONENT statements have no VRML97 form: not written");
+      for (const auto& [name, content] : scene_.x3d.meta)
+        warn({}, "META \"" + name + "\" \"" + content + "\" has no VRML97 form: not written");
+    }
+    if (!scene_.x3d.units.empty())
+      warn({}, "UNIT statements are not written: the values were converted to base units "
+               "(metres, radians) when read, and are written so");
+    for (const auto& p : scene_.protos) topProtos_.insert(p.get());
+    for (const NodePtr& n : scene_.rootNodes) survey(n);
+    for (const auto& p : scene_.protos) surveyType(p.get());
+
+    // ROUTEs first (an instance routed to keeps its DEF), then PROTOs and root nodes.
+    std::vector<std::pair<SourceLocation, WStatement>> others;
+    std::set<LocKey> copied;  // ROUTEs the instances copied from their PROTOs' bodies
+    for (const ProtoDefinition* d : allBodies_)
+      for (const Route& r : d->routes)
+        if (r.location.line > 0) copied.insert(keyOf(r.location));
+    addRoutes(scene_.routes, copied, others);
+    addX3dStatements(others);
+    for (const auto& p : scene_.protos) {
+      WStatement s;
+      s.kind = WStatement::Kind::proto;
+      s.proto = protoOf(*p);
+      others.emplace_back(p->proto ? p->proto->location : SourceLocation{}, std::move(s));
+    }
+    std::vector<WStatement> roots;
+    std::vector<SourceLocation> rootAt;
+    for (const NodePtr& n : scene_.rootNodes) {
+      if (!n) continue;
+      WStatement s;
+      s.node = nodeOf(n);
+      if (!s.node.node) continue;
+      roots.push_back(std::move(s));
+      rootAt.push_back(n->location);
+    }
+    checkDefs();
+
+    // Each statement goes before the first root node that follows it in the source.
+    auto before = [](const SourceLocation& a, const SourceLocation& b) {
+      return a.file == b.file && a.line > 0 && b.line > 0 &&
+             std::pair(a.line, a.column) < std::pair(b.line, b.column);
+    };
+    std::vector<std::pair<std::size_t, std::size_t>> order;  // (root index, statement)
+    for (std::size_t i = 0; i < others.size(); ++i) {
+      const SourceLocation& at = others[i].first;
+      std::size_t r = 0;
+      if (at.line > 0) {
+        r = rootAt.size();
+        for (std::size_t k = 0; k < rootAt.size(); ++k)
+          if (before(at, rootAt[k])) {
+            r = k;
+            break;
+          }
+      } else if (others[i].second.kind != WStatement::Kind::proto) {
+        r = rootAt.size();
+      }
+      order.emplace_back(r, i);
+    }
+    std::stable_sort(order.begin(), order.end(), [&](const auto& a, const auto& b) {
+      if (a.first != b.first) return a.first < b.first;
+      const SourceLocation& x = others[a.second].first;
+      const SourceLocation& y = others[b.second].first;
+      return std::pair(x.line, x.column) < std::pair(y.line, y.column);
+    });
+    std::size_t next = 0;
+    for (std::size_t r = 0; r <= roots.size(); ++r) {
+      while (next < order.size() && order[next].first <= r) {
+        doc.statements.push_back(std::move(others[order[next].second].second));
+        ++next;
+      }
+      if (r < roots.size()) doc.statements.push_back(std::move(roots[r]));
+    }
+    while (next < order.size()) doc.statements.push_back(std::move(others[order[next++].second].second));
+    flushDiagnostics();
+    doc.owned = std::move(owned_);
+    return doc;
+  }
+
+ private:
+  const Scene& scene_;
+  Diagnostics& diag_;
+  bool x3dIn_ = false, x3dOut_ = false, x3d3Out_ = false;
+  std::string version_;
+  std::unordered_set<const NodeType*> topProtos_;
+  std::unordered_set<const Node*> surveyed_;
+  std::unordered_set<const NodeType*> surveyedTypes_;
+  std::vector<const ProtoDefinition*> allBodies_;
+  // (body member node, field index) -> (instance node, interface member)
+  std::unordered_multimap<const Node*, std::tuple<int, const Node*, int>> links_;
+  std::unordered_map<const Node*, int> references_;
+  std::unordered_set<const Node*> written_;
+  std::map<std::string, std::vector<const Node*>> defs_;
+  // Aggregated diagnostics: message -> (count, first place).
+  std::map<std::string, std::pair<int, SourceLocation>> dropped_;
+  std::vector<std::string> droppedOrder_;
+  std::deque<FieldValue> owned_;
+  // The PROTO body being written, with the PROTO types declared around it.
+  const ProtoDefinition* body_ = nullptr;
+  const NodeType* bodyType_ = nullptr;
+  std::vector<const NodeType*> declaredInBodies_;
+
+  void warn(SourceLocation at, std::string message) {
+    if (at.file.empty()) at.file = scene_.url;
+    diag_.warning(std::move(at), std::move(message));
+  }
+  void drop(const SourceLocation& at, const std::string& message) {
+    auto [it, added] = dropped_.try_emplace(message, 0, at);
+    if (added) droppedOrder_.push_back(message);
+    ++it->second.first;
+  }
+  void flushDiagnostics() {
+    for (const std::string& m : droppedOrder_) {
+      const auto& [count, at] = dropped_[m];
+      warn(at, count > 1 ? m + " (" + std::to_string(count) + " times)" : m);
+    }
+  }
+
+  // ---- survey: references, IS links, the PROTO bodies instances copied --------------------
+
+  void surveyType(const NodeType* t) {
+    if (t == nullptr || !surveyedTypes_.insert(t).second || !t->proto) return;
+    const ProtoDefinition& d = *t->proto;
+    for (const FieldSpec& f : t->fields) surveyValue(f.defaultValue);
+    if (d.external) {
+      if (d.resolved) surveyType(d.resolved.get());
+    } else {
+      allBodies_.push_back(&d);
+      for (const NodePtr& n : d.body) survey(n);
+    }
+  }
+
+  void surveyValue(const FieldValue& v) {
+    if (v.type() == FieldType::SFNode) survey(v.get<FieldType::SFNode>());
+    if (v.type() == FieldType::MFNode)
+      for (const NodePtr& c : v.get<FieldType::MFNode>()) survey(c);
+  }
+
+  void survey(const NodePtr& n) {
+    if (!n) return;
+    ++references_[n.get()];
+    if (!surveyed_.insert(n.get()).second) return;
+    if (const ProtoInstance* p = declaredInterface(*n)) {
+      surveyType(p->type.get());
+      for (const InstanceLink& k : p->links)
+        if (const NodePtr b = k.node.lock())
+          links_.emplace(b.get(), std::tuple(k.nodeField, n.get(), k.protoField));
+      for (const FieldValue& v : p->values) surveyValue(v);
+      return;
+    }
+    surveyType(instanceType(*n));
+    for (std::size_t i = 0; i < n->fieldCount(); ++i) surveyValue(n->fieldAt(i));
+  }
+
+  // ---- nodes ------------------------------------------------------------------------------
+
+  // The name the target gives field `name` of a node of `type` (X3D renamed three of
+  // VRML97's fields; X3D 3 named ComposedCubeMapTexture's faces without "Texture").
+  std::string fieldName(const Node& n, const std::string& name) const {
+    if (!x3dOut_) return name;
+    switch (n.typeId()) {
+      case NodeTypeId::Switch:
+        return name == "choice" ? "children" : name;
+      case NodeTypeId::LOD:
+        return name == "level" ? "children" : name;
+      case NodeTypeId::Collision:
+        return name == "collide" ? "enabled" : name;
+      case NodeTypeId::ComposedCubeMapTexture:
+        if (x3d3Out_ && name.ends_with("Texture")) return name.substr(0, name.size() - 7);
+        return name;
+      default:
+        return name;
+    }
+  }
+
+  // The built-in type `n` started as, before a Script or shader declared its own fields.
+  std::shared_ptr<const NodeType> baseType(const Node& n) const {
+    return x3dIn_ ? x3dNodeType(n.typeName()) : builtInNodeType(n.typeName());
+  }
+
+  // The IS connections of the PROTO body being written that name member `field` of `n`.
+  std::vector<const IsConnection*> connections(const Node* n, int field) const {
+    std::vector<const IsConnection*> out;
+    if (body_ == nullptr) return out;
+    for (const IsConnection& c : body_->connections)
+      if (c.node.get() == n && c.nodeField == field) out.push_back(&c);
+    return out;
+  }
+
+  const std::string& bodyMember(int protoField) const {
+    return bodyType_->fields[static_cast<std::size_t>(protoField)].name;
+  }
+
+  // Node values of an SFNode / MFNode field.
+  std::vector<WNode> nodesOf(const FieldValue& v) {
+    std::vector<WNode> out;
+    auto one = [&](const NodePtr& c) {
+      if (!c) return;
+      WNode w = nodeOf(c);
+      if (w.node != nullptr) out.push_back(std::move(w));
+    };
+    if (v.type() == FieldType::SFNode) one(v.get<FieldType::SFNode>());
+    if (v.type() == FieldType::MFNode)
+      for (const NodePtr& c : v.get<FieldType::MFNode>()) one(c);
+    return out;
+  }
+
+  // A value the VRML97 target can hold: X3D's field types become their nearest VRML97
+  // type (field.hpp toNearestVrml97), with a diagnostic.
+  const FieldValue* targetValue(const FieldValue& v, const std::string& what,
+                                const SourceLocation& at) {
+    if (x3dOut_ || static_cast<int>(v.type()) < kVrml97FieldTypeCount) return &v;
+    drop(at, what + ": X3D field type " + std::string(fieldTypeName(v.type())) +
+                 " has no VRML97 form: written as " +
+                 std::string(fieldTypeName(nearestVrml97Type(v.type()))));
+    owned_.push_back(toNearestVrml97(v));
+    return &owned_.back();
+  }
+  FieldType targetType(FieldType t) const {
+    return x3dOut_ ? t : nearestVrml97Type(t);
+  }
+
+  WDecl declOf(const FieldSpec& f, const FieldValue* value, const std::string& owner,
+               const SourceLocation& at) {
+    WDecl d;
+    d.access = f.access;
+    d.type = targetType(f.type);
+    d.name = f.name;
+    if (value != nullptr && carriesValue(f.access)) {
+      if (f.type == FieldType::SFNode || f.type == FieldType::MFNode) {
+        d.value = value;
+        d.nodes = nodesOf(*value);
+      } else {
+        d.value = targetValue(*value, owner + "." + f.name, at);
+      }
+    }
+    return d;
+  }
+
+  WNode nodeOf(const NodePtr& np) {
+    const Node& n = *np;
+    WNode w;
+    if (written_.contains(&n) && !n.defName.empty()) {
+      w.node = &n;
+      w.use = true;
+      w.def = n.defName;
+      const NodeType* it = instanceType(n);
+      w.instance = it != nullptr;
+      w.typeName = it != nullptr ? it->name : n.typeName();
+      return w;
+    }
+    const NodeType* itype = instanceType(n);
+    if (itype == nullptr && !x3dOut_ && x3dIn_ && !builtInNodeType(n.typeName())) {
+      drop(n.location, "X3D node " + n.typeName() + " has no VRML97 form: not written");
+      return w;
+    }
+    written_.insert(&n);
+    w.node = &n;
+    w.def = n.defName;
+    if (itype != nullptr) {
+      instanceOf(n, *itype, w);
+    } else {
+      plainNode(n, w);
+    }
+    if (!w.def.empty()) {
+      auto& v = defs_[w.def];
+      if (std::find(v.begin(), v.end(), &n) == v.end()) v.push_back(&n);
+    }
+    return w;
+  }
+
+  void instanceOf(const Node& n, const NodeType& type, WNode& w) {
+    w.instance = true;
+    w.typeName = type.name;
+    const ProtoInstance* p = declaredInterface(n);
+    // An instance without a DEF of its own carries its body's first node's DEF name.
+    if (const ProtoDefinition* b = bodyOf(&type);
+        p != nullptr && b != nullptr && !b->body.empty() && b->body.front()->defName == w.def &&
+        references_[&n] <= 1 && !routed_.contains(&n))
+      w.def.clear();
+    for (std::size_t m = 0; m < type.fields.size(); ++m) {
+      const FieldSpec& f = type.fields[m];
+      // IS inside a PROTO body: the member's links lead to body members the enclosing
+      // body connected.
+      std::string is;
+      if (p == nullptr) {
+        for (const IsConnection* c : connections(&n, static_cast<int>(m))) is = bodyMember(c->protoField);
+      } else if (body_ != nullptr) {
+        for (const InstanceLink& k : p->linksOf(static_cast<int>(m))) {
+          const NodePtr b = k.node.lock();
+          for (const IsConnection* c : connections(b.get(), k.nodeField)) is = bodyMember(c->protoField);
+          if (!is.empty()) break;
+        }
+      }
+      if (!is.empty()) {
+        WField wf;
+        wf.name = f.name;
+        wf.type = f.type;
+        wf.isMember = is;
+        wf.isAccess = f.access;
+        w.fields.push_back(std::move(wf));
+        continue;
+      }
+      if (!carriesValue(f.access)) continue;
+      const FieldValue& v = p != nullptr ? p->values[m] : n.fieldAt(m);
+      if (sameValue(v, f.defaultValue)) continue;
+      w.fields.push_back(valueField(f.name, v, type.name, n.location));
+    }
+  }
+
+  WField valueField(const std::string& name, const FieldValue& v, const std::string& owner,
+                    const SourceLocation& at) {
+    WField wf;
+    wf.name = name;
+    wf.type = v.type();
+    if (v.type() == FieldType::SFNode || v.type() == FieldType::MFNode) {
+      wf.value = &v;
+      wf.nodes = nodesOf(v);
+    } else {
+      wf.value = targetValue(v, owner + "." + name, at);
+      wf.type = wf.value->type();
+    }
+    return wf;
+  }
+
+  void plainNode(const Node& n, WNode& w) {
+    const NodeType& type = n.type();
+    w.typeName = n.typeName();
+    if (const NodeModel* m = type.model) {
+      w.containerDefault = std::string(m->containerField);
+      if (x3d3Out_ && n.is(AbstractType::X3DMetadataObject)) w.containerDefault = "metadata";
+    }
+    const auto base = baseType(n);
+    const std::size_t userStart =
+        type.userFields && base ? std::min(base->fields.size(), type.fields.size()) : type.fields.size();
+    std::shared_ptr<const NodeType> vrml97;
+    if (!x3dOut_ && x3dIn_) vrml97 = builtInNodeType(n.typeName());
+    for (std::size_t i = 0; i < type.fields.size(); ++i) {
+      const FieldSpec& f = type.fields[i];
+      const auto is = connections(&n, static_cast<int>(i));
+      const bool user = i >= userStart;
+      const FieldValue& v = n.fieldAt(i);
+      const bool valued = carriesValue(f.access) && (user || !sameValue(v, f.defaultValue));
+      if (!user && vrml97 && vrml97->findExact(f.name) < 0 && (valued || !is.empty())) {
+        drop(n.location, "X3D field " + n.typeName() + "." + f.name +
+                             " has no VRML97 form: not written");
+        continue;
+      }
+      if (user) {
+        WDecl d = declOf(f, is.empty() ? &v : nullptr, n.typeName(), n.location);
+        if (!is.empty()) d.isMember = bodyMember(is.front()->protoField);
+        w.decls.push_back(std::move(d));
+        continue;
+      }
+      for (const IsConnection* c : is) {
+        WField wf;
+        wf.name = fieldName(n, f.name);
+        if (c->nodeAccess == AccessType::eventIn && f.access == AccessType::exposedField)
+          wf.name = "set_" + wf.name;
+        else if (c->nodeAccess == AccessType::eventOut && f.access == AccessType::exposedField)
+          wf.name += "_changed";
+        wf.type = f.type;
+        wf.isMember = bodyMember(c->protoField);
+        wf.isAccess = c->nodeAccess;
+        w.fields.push_back(std::move(wf));
+      }
+      if (!is.empty() || !valued) continue;
+      w.fields.push_back(valueField(fieldName(n, f.name), v, n.typeName(), n.location));
+    }
+  }
+
+  // ---- PROTO declarations -----------------------------------------------------------------
+
+  std::shared_ptr<WProto> protoOf(const NodeType& t) {
+    auto p = std::make_shared<WProto>();
+    p->name = t.name;
+    const ProtoDefinition& d = *t.proto;
+    p->external = d.external;
+    const SourceLocation at = d.location;
+    for (const FieldSpec& f : t.fields)
+      p->interface.push_back(declOf(f, d.external ? nullptr : &f.defaultValue, t.name, at));
+    if (d.external) {
+      p->urls = &d.urls;
+      return p;
+    }
+    const ProtoDefinition* outerBody = body_;
+    const NodeType* outerType = bodyType_;
+    const std::size_t declared = declaredInBodies_.size();
+    body_ = &d;
+    bodyType_ = &t;
+    // PROTOs declared in this body (the parser keeps no list of them): the types of the
+    // instances in it that are declared neither at the top nor around it.
+    // The body's own ROUTEs (not those its instances of other PROTOs copied), mapped first
+    // so that an instance routed to keeps its DEF.
+    std::set<LocKey> copied;
+    for (const NodeType* nt : instanceTypesIn(d)) {
+      const ProtoDefinition* b = bodyOf(nt);
+      if (b == nullptr || b == &d) continue;
+      for (const Route& r : b->routes)
+        if (r.location.line > 0) copied.insert(keyOf(r.location));
+    }
+    std::vector<std::pair<SourceLocation, WStatement>> routes;
+    addRoutes(d.routes, copied, routes);
+    for (const NodeType* nt : nestedTypes()) {
+      declaredInBodies_.push_back(nt);
+      WStatement s;
+      s.kind = WStatement::Kind::proto;
+      s.proto = protoOf(*nt);
+      p->body.push_back(std::move(s));
+    }
+    for (const NodePtr& n : d.body) {
+      WStatement s;
+      s.node = nodeOf(n);
+      if (s.node.node != nullptr) p->body.push_back(std::move(s));
+    }
+    for (auto& [at2, s] : routes) p->body.push_back(std::move(s));
+    body_ = outerBody;
+    bodyType_ = outerType;
+    declaredInBodies_.resize(declared);
+    return p;
+  }
+
+  std::vector<const NodeType*> instanceTypesIn(const ProtoDefinition& d) const {
+    std::vector<const NodeType*> out;
+    std::unordered_set<const Node*> seen;
+    std::vector<const Node*> stack;
+    for (const NodePtr& n : d.body) stack.push_back(n.get());
+    while (!stack.empty()) {
+      const Node* n = stack.back();
+      stack.pop_back();
+      if (n == nullptr || !seen.insert(n).second) continue;
+      auto push = [&](const FieldValue& v) {
+        if (v.type() == FieldType::SFNode) stack.push_back(v.get<FieldType::SFNode>().get());
+        if (v.type() == FieldType::MFNode)
+          for (const NodePtr& c : v.get<FieldType::MFNode>()) stack.push_back(c.get());
+      };
+      if (const ProtoInstance* p = declaredInterface(*n)) {
+        out.push_back(p->type.get());
+        for (const FieldValue& v : p->values) push(v);
+        continue;
+      }
+      for (std::size_t i = 0; i < n->fieldCount(); ++i) push(n->fieldAt(i));
+    }
+    return out;
+  }
+
+  // PROTO types whose instances the body being written holds and that are declared
+  // neither at the top of the file nor around the body.
+  std::vector<const NodeType*> nestedTypes() const {
+    std::vector<const NodeType*> out;
+    for (const NodeType* t : instanceTypesIn(*body_)) {
+      if (topProtos_.contains(t) || t == bodyType_) continue;
+      if (std::find(declaredInBodies_.begin(), declaredInBodies_.end(), t) !=
+          declaredInBodies_.end())
+        continue;
+      if (std::find(out.begin(), out.end(), t) == out.end()) out.push_back(t);
+    }
+    return out;
+  }
+
+  // ---- ROUTEs and X3D statements ----------------------------------------------------------
+
+  std::unordered_set<const Node*> routed_;
+
+  // The DEF name and member a ROUTE end names: an instance's interface member when `node`
+  // is a body member an instance linked, else the node's own DEF name and the field.
+  bool routeEnd(const NodePtr& node, const std::string& field, std::string& name,
+                std::string& member) {
+    if (!node) return false;
+    const int i = node->type().findField(field);
+    auto [a, b] = links_.equal_range(node.get());
+    for (auto it = a; it != b; ++it) {
+      const auto& [nodeField, inst, protoField] = it->second;
+      if (nodeField != i) continue;
+      const ProtoInstance* p = declaredInterface(*inst);
+      if (p == nullptr || inst->defName.empty()) continue;
+      name = inst->defName;
+      member = p->type->fields[static_cast<std::size_t>(protoField)].name;
+      routed_.insert(inst);
+      return true;
+    }
+    if (node->defName.empty()) return false;
+    name = node->defName;
+    member = instanceType(*node) != nullptr ? field : fieldName(*node, field);
+    routed_.insert(node.get());
+    return true;
+  }
+
+  void addRoutes(const std::vector<Route>& routes, const std::set<LocKey>& copied,
+                 std::vector<std::pair<SourceLocation, WStatement>>& out) {
+    std::set<std::tuple<std::string, std::string, std::string, std::string, LocKey>> done;
+    for (const Route& r : routes) {
+      if (r.location.line > 0 && copied.contains(keyOf(r.location))) continue;
+      WStatement s;
+      s.kind = WStatement::Kind::route;
+      WRoute& w = s.route;
+      if (!routeEnd(r.fromNode, r.fromField, w.fromNode, w.fromField) ||
+          !routeEnd(r.toNode, r.toField, w.toNode, w.toField)) {
+        warn(r.location, "ROUTE " + r.fromField + " TO " + r.toField +
+                             ": an end has no DEF name to write: not written");
+        continue;
+      }
+      if (!done.emplace(w.fromNode, w.fromField, w.toNode, w.toField, keyOf(r.location)).second)
+        continue;  // one ROUTE to an interface member several body members are IS to
+      out.emplace_back(r.location, std::move(s));
+    }
+  }
+
+  void addX3dStatements(std::vector<std::pair<SourceLocation, WStatement>>& out) {
+    const X3dInfo& x = scene_.x3d;
+    for (const X3dImport& im : x.imports) {
+      if (!x3dOut_) {
+        warn(im.location, "IMPORT " + im.inlineDef + "." + im.exportedName +
+                              " has no VRML97 form: not written");
+        continue;
+      }
+      WStatement s;
+      s.kind = WStatement::Kind::import;
+      s.a = im.inlineDef;
+      s.b = im.exportedName;
+      s.c = im.localName;
+      out.emplace_back(im.location, std::move(s));
+    }
+    for (const X3dExport& ex : x.exports) {
+      if (!x3dOut_) {
+        warn(ex.location, "EXPORT " + ex.localDef + " has no VRML97 form: not written");
+        continue;
+      }
+      WStatement s;
+      s.kind = WStatement::Kind::exported;
+      s.a = ex.localDef;
+      s.b = ex.exportedName;
+      out.emplace_back(ex.location, std::move(s));
+    }
+    for (const X3dImportedRoute& r : x.importedRoutes) {
+      if (!x3dOut_) {
+        warn(r.location, "ROUTE through an IMPORTed node has no VRML97 form: not written");
+        continue;
+      }
+      WStatement s;
+      s.kind = WStatement::Kind::route;
+      WRoute& w = s.route;
+      bool ok = true;
+      if (r.fromImport.empty()) {
+        ok = routeEnd(r.fromNode, r.fromField, w.fromNode, w.fromField);
+      } else {
+        w.fromNode = r.fromImport;
+        w.fromField = r.fromField;
+      }
+      if (r.toImport.empty()) {
+        ok = ok && routeEnd(r.toNode, r.toField, w.toNode, w.toField);
+      } else {
+        w.toNode = r.toImport;
+        w.toField = r.toField;
+      }
+      if (!ok) {
+        warn(r.location, "ROUTE through an IMPORTed node: an end has no DEF name: not written");
+        continue;
+      }
+      out.emplace_back(r.location, std::move(s));
+    }
+  }
+
+  void checkDefs() {
+    for (const auto& [name, nodes] : defs_)
+      if (nodes.size() > 1)
+        warn(nodes.back()->location,
+             "DEF name '" + name + "' names " + std::to_string(nodes.size()) +
+                 " nodes: a USE or ROUTE may name another node when the file is read back");
+  }
+};
+
+}  // namespace
+
+WDocument buildDocument(const Scene& scene, const WriteOptions& options, Diagnostics& diagnostics) {
+  Builder b(scene, options, diagnostics);
+  return b.build();
+}
+
+}  // namespace gs::vrml::writing
