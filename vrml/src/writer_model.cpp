@@ -78,10 +78,17 @@ class Builder {
       warn({}, "UNIT statements are not written: the values were converted to base units "
                "(metres, radians) when read, and are written so");
     for (const auto& p : scene_.protos) topProtos_.insert(p.get());
-    for (const NodePtr& n : scene_.rootNodes) survey(n);
+    // (extraTop_ types are declared at the top too once written.)
+    for (const NodePtr& n : scene_.rootNodes) {
+      survey(n);
+      if (n) ++rootIndex_;
+    }
     for (const auto& p : scene_.protos) surveyType(p.get());
 
-    // ROUTEs first (an instance routed to keeps its DEF), then PROTOs and root nodes.
+    // ROUTEs are mapped first (an instance routed to keeps its DEF). Then every statement
+    // takes its place among the root nodes by source location (before the first root that
+    // follows it), and PROTOs and roots are built in that order, so that a USE in a PROTO
+    // interface finds the DEF it named before it.
     std::vector<std::pair<SourceLocation, WStatement>> others;
     std::set<LocKey> copied;  // ROUTEs the instances copied from their PROTOs' bodies
     for (const ProtoDefinition* d : allBodies_)
@@ -89,25 +96,18 @@ class Builder {
         if (r.location.line > 0) copied.insert(keyOf(r.location));
     addRoutes(scene_.routes, copied, others);
     addX3dStatements(others);
-    for (const auto& p : scene_.protos) {
+    const std::size_t firstProto = others.size();
+    std::vector<const NodeType*> protos;
+    for (const auto& p : scene_.protos) protos.push_back(p.get());
+    protos.insert(protos.end(), extraTop_.begin(), extraTop_.end());
+    for (const NodeType* p : protos) {
       WStatement s;
       s.kind = WStatement::Kind::proto;
-      s.proto = protoOf(*p);
       others.emplace_back(p->proto ? p->proto->location : SourceLocation{}, std::move(s));
     }
-    std::vector<WStatement> roots;
-    std::vector<SourceLocation> rootAt;
-    for (const NodePtr& n : scene_.rootNodes) {
-      if (!n) continue;
-      WStatement s;
-      s.node = nodeOf(n);
-      if (!s.node.node) continue;
-      roots.push_back(std::move(s));
-      rootAt.push_back(n->location);
-    }
-    checkDefs();
-
-    // Each statement goes before the first root node that follows it in the source.
+    std::vector<const NodePtr*> roots;
+    for (const NodePtr& n : scene_.rootNodes)
+      if (n) roots.push_back(&n);
     auto before = [](const SourceLocation& a, const SourceLocation& b) {
       return a.file == b.file && a.line > 0 && b.line > 0 &&
              std::pair(a.line, a.column) < std::pair(b.line, b.column);
@@ -117,14 +117,19 @@ class Builder {
       const SourceLocation& at = others[i].first;
       std::size_t r = 0;
       if (at.line > 0) {
-        r = rootAt.size();
-        for (std::size_t k = 0; k < rootAt.size(); ++k)
-          if (before(at, rootAt[k])) {
+        r = roots.size();
+        for (std::size_t k = 0; k < roots.size(); ++k)
+          if (before(at, (*roots[k])->location)) {
             r = k;
             break;
           }
-      } else if (others[i].second.kind != WStatement::Kind::proto) {
-        r = rootAt.size();
+        // A PROTO goes before the first root that holds an instance of it (X3D allows
+        // PROTO statements in MFNode values: it may be inside that root).
+        if (i >= firstProto)
+          if (auto it = firstUse_.find(protos[i - firstProto]); it != firstUse_.end())
+            r = std::min(r, it->second);
+      } else if (i < firstProto) {
+        r = roots.size();
       }
       order.emplace_back(r, i);
     }
@@ -134,15 +139,20 @@ class Builder {
       const SourceLocation& y = others[b.second].first;
       return std::pair(x.line, x.column) < std::pair(y.line, y.column);
     });
+    auto emit = [&](std::size_t i) {
+      WStatement& s = others[i].second;
+      if (i >= firstProto) s.proto = protoOf(*protos[i - firstProto]);
+      doc.statements.push_back(std::move(s));
+    };
     std::size_t next = 0;
     for (std::size_t r = 0; r <= roots.size(); ++r) {
-      while (next < order.size() && order[next].first <= r) {
-        doc.statements.push_back(std::move(others[order[next].second].second));
-        ++next;
-      }
-      if (r < roots.size()) doc.statements.push_back(std::move(roots[r]));
+      while (next < order.size() && order[next].first <= r) emit(order[next++].second);
+      if (r == roots.size()) break;
+      WStatement s;
+      s.node = nodeOf(*roots[r]);
+      if (s.node.node != nullptr) doc.statements.push_back(std::move(s));
     }
-    while (next < order.size()) doc.statements.push_back(std::move(others[order[next++].second].second));
+    checkDefs();
     flushDiagnostics();
     doc.owned = std::move(owned_);
     return doc;
@@ -157,6 +167,10 @@ class Builder {
   std::unordered_set<const Node*> surveyed_;
   std::unordered_set<const NodeType*> surveyedTypes_;
   std::vector<const ProtoDefinition*> allBodies_;
+  std::vector<const NodeType*> extraTop_;  // PROTOs declared in nodes, used outside bodies
+  int bodyDepth_ = 0;
+  std::size_t rootIndex_ = 0;  // the root being surveyed
+  std::unordered_map<const NodeType*, std::size_t> firstUse_;  // PROTO -> first root using it
   // (body member node, field index) -> (instance node, interface member)
   std::unordered_multimap<const Node*, std::tuple<int, const Node*, int>> links_;
   std::unordered_map<const Node*, int> references_;
@@ -190,7 +204,21 @@ class Builder {
   // ---- survey: references, IS links, the PROTO bodies instances copied --------------------
 
   void surveyType(const NodeType* t) {
-    if (t == nullptr || !surveyedTypes_.insert(t).second || !t->proto) return;
+    if (t == nullptr || !t->proto) return;
+    firstUse_.try_emplace(t, rootIndex_);
+    // A PROTO whose instances are outside every PROTO body but that the file declared
+    // inside a node (X3D allows PROTO statements in MFNode values; Scene::protos lists
+    // only those at the top): written at the top, before the root node it was in.
+    if (bodyDepth_ == 0 && !topProtos_.contains(t) &&
+        std::find(extraTop_.begin(), extraTop_.end(), t) == extraTop_.end())
+      extraTop_.push_back(t);
+    if (!surveyedTypes_.insert(t).second) return;
+    ++bodyDepth_;
+    surveyDeclaration(t);
+    --bodyDepth_;
+  }
+
+  void surveyDeclaration(const NodeType* t) {
     const ProtoDefinition& d = *t->proto;
     for (const FieldSpec& f : t->fields) surveyValue(f.defaultValue);
     if (d.external) {
@@ -225,8 +253,9 @@ class Builder {
 
   // ---- nodes ------------------------------------------------------------------------------
 
-  // The name the target gives field `name` of a node of `type` (X3D renamed three of
-  // VRML97's fields; X3D 3 named ComposedCubeMapTexture's faces without "Texture").
+  // The name the target gives field `name` of a node of `type`: X3D renamed three of
+  // VRML97's fields. (ComposedCubeMapTexture's faces keep X3D 4's names, which both X3D
+  // readers here take in any version; X3D 3 named them without "Texture".)
   std::string fieldName(const Node& n, const std::string& name) const {
     if (!x3dOut_) return name;
     switch (n.typeId()) {
@@ -236,9 +265,6 @@ class Builder {
         return name == "level" ? "children" : name;
       case NodeTypeId::Collision:
         return name == "collide" ? "enabled" : name;
-      case NodeTypeId::ComposedCubeMapTexture:
-        if (x3d3Out_ && name.ends_with("Texture")) return name.substr(0, name.size() - 7);
-        return name;
       default:
         return name;
     }
@@ -520,7 +546,9 @@ class Builder {
   std::vector<const NodeType*> nestedTypes() const {
     std::vector<const NodeType*> out;
     for (const NodeType* t : instanceTypesIn(*body_)) {
-      if (topProtos_.contains(t) || t == bodyType_) continue;
+      if (topProtos_.contains(t) || t == bodyType_ ||
+          std::find(extraTop_.begin(), extraTop_.end(), t) != extraTop_.end())
+        continue;
       if (std::find(declaredInBodies_.begin(), declaredInBodies_.end(), t) !=
           declaredInBodies_.end())
         continue;

@@ -595,7 +595,10 @@ struct XmlToClassic::Impl {
     bool urlDone = false;
     if (!instance) {
       for (const auto& [k, v] : n.attrs) {
-        if (ignoredAttribute(k)) continue;
+        // HTML's class, id and style, unless the node has a field of that name
+        // (FontStyle.style, ScreenFontStyle.style).
+        const bool html = k == "class" || k == "id" || k == "style";
+        if (ignoredAttribute(k) && !(html && fieldType(n, k))) continue;
         out += " " + k + " ";
         const auto t = fieldType(n, k);
         if (!t) {
