@@ -67,6 +67,8 @@ struct WProto {
 
 struct WRoute {
   std::string fromNode, fromField, toNode, toField;
+  const Node* from = nullptr;  // the nodes named (null for an IMPORTed name)
+  const Node* to = nullptr;
 };
 
 /// One statement, at the top of the file or in a PROTO body.

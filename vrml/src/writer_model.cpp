@@ -126,8 +126,15 @@ class Builder {
         // A PROTO goes before the first root that holds an instance of it (X3D allows
         // PROTO statements in MFNode values: it may be inside that root).
         if (i >= firstProto)
-          if (auto it = firstUse_.find(protos[i - firstProto]); it != firstUse_.end())
-            r = std::min(r, it->second);
+          if (auto it = firstUse_.find(protos[i - firstProto]);
+              it != firstUse_.end() && it->second < r) {
+            r = it->second;
+            warn(at, "PROTO " + protos[i - firstProto]->name +
+                         " was declared inside a node: written before that root node");
+          }
+        if (i >= firstProto + scene_.protos.size())
+          warn(at, "PROTO " + protos[i - firstProto]->name +
+                       " was declared inside a node: written at the top of the file");
       } else if (i < firstProto) {
         r = roots.size();
       }
@@ -135,13 +142,20 @@ class Builder {
     }
     std::stable_sort(order.begin(), order.end(), [&](const auto& a, const auto& b) {
       if (a.first != b.first) return a.first < b.first;
+      // PROTOs the file declared inside nodes first: a top-level PROTO may use them.
+      const bool ea = a.second >= firstProto + scene_.protos.size();
+      const bool eb = b.second >= firstProto + scene_.protos.size();
+      if (ea != eb) return ea;
       const SourceLocation& x = others[a.second].first;
       const SourceLocation& y = others[b.second].first;
       return std::pair(x.line, x.column) < std::pair(y.line, y.column);
     });
     auto emit = [&](std::size_t i) {
       WStatement& s = others[i].second;
-      if (i >= firstProto) s.proto = protoOf(*protos[i - firstProto]);
+      if (i >= firstProto) {
+        s.proto = protoOf(*protos[i - firstProto]);
+        if (emptyProtos_.contains(protos[i - firstProto])) return;
+      }
       doc.statements.push_back(std::move(s));
     };
     std::size_t next = 0;
@@ -152,6 +166,7 @@ class Builder {
       s.node = nodeOf(*roots[r]);
       if (s.node.node != nullptr) doc.statements.push_back(std::move(s));
     }
+    dropRoutesToUnwritten(doc.statements);
     checkDefs();
     flushDiagnostics();
     doc.owned = std::move(owned_);
@@ -213,20 +228,17 @@ class Builder {
         std::find(extraTop_.begin(), extraTop_.end(), t) == extraTop_.end())
       extraTop_.push_back(t);
     if (!surveyedTypes_.insert(t).second) return;
-    ++bodyDepth_;
-    surveyDeclaration(t);
-    --bodyDepth_;
-  }
-
-  void surveyDeclaration(const NodeType* t) {
+    // Interface defaults are written where the declaration is; bodies in their own scope.
     const ProtoDefinition& d = *t->proto;
     for (const FieldSpec& f : t->fields) surveyValue(f.defaultValue);
+    ++bodyDepth_;
     if (d.external) {
       if (d.resolved) surveyType(d.resolved.get());
     } else {
       allBodies_.push_back(&d);
       for (const NodePtr& n : d.body) survey(n);
     }
+    --bodyDepth_;
   }
 
   void surveyValue(const FieldValue& v) {
@@ -347,6 +359,10 @@ class Builder {
       return w;
     }
     const NodeType* itype = instanceType(n);
+    if (itype != nullptr && emptyProtos_.contains(itype)) {
+      drop(n.location, "instance of " + itype->name + " not written (its PROTO was not)");
+      return w;
+    }
     if (itype == nullptr && !x3dOut_ && x3dIn_ && !builtInNodeType(n.typeName())) {
       drop(n.location, "X3D node " + n.typeName() + " has no VRML97 form: not written");
       return w;
@@ -445,11 +461,31 @@ class Builder {
       }
       if (user) {
         WDecl d = declOf(f, is.empty() ? &v : nullptr, n.typeName(), n.location);
+        if (!x3dOut_ && type.script && d.access == AccessType::exposedField) {
+          // VRML97 Scripts have no exposedField (clause 6.40): a field, without its events.
+          drop(n.location, "Script inputOutput " + f.name +
+                               " has no VRML97 form: written as a field (its events are lost)");
+          d.access = AccessType::field;
+        }
         if (!is.empty()) d.isMember = bodyMember(is.front()->protoField);
         w.decls.push_back(std::move(d));
         continue;
       }
       for (const IsConnection* c : is) {
+        // VRML97 connects a node's field only to a field of the interface (clause 4.8.3,
+        // table 4.4); X3D made many of them inputOutput.
+        if (vrml97 && !user) {
+          const int k = vrml97->findExact(f.name);
+          const AccessType member = bodyType_->fields[static_cast<std::size_t>(c->protoField)].access;
+          if (k >= 0 && vrml97->fields[static_cast<std::size_t>(k)].access != AccessType::exposedField &&
+              vrml97->fields[static_cast<std::size_t>(k)].access != member) {
+            drop(n.location, "IS of " + n.typeName() + "." + f.name + " (a " +
+                                 std::string(accessTypeName(vrml97->fields[static_cast<std::size_t>(k)].access)) +
+                                 " in VRML97) to " + std::string(accessTypeName(member)) + " " +
+                                 bodyMember(c->protoField) + ": not written");
+            continue;
+          }
+        }
         WField wf;
         wf.name = fieldName(n, f.name);
         if (c->nodeAccess == AccessType::eventIn && f.access == AccessType::exposedField)
@@ -503,14 +539,23 @@ class Builder {
       WStatement s;
       s.kind = WStatement::Kind::proto;
       s.proto = protoOf(*nt);
-      p->body.push_back(std::move(s));
+      if (!emptyProtos_.contains(nt)) p->body.push_back(std::move(s));
     }
     for (const NodePtr& n : d.body) {
       WStatement s;
       s.node = nodeOf(n);
       if (s.node.node != nullptr) p->body.push_back(std::move(s));
     }
+    const bool anyNode = std::any_of(p->body.begin(), p->body.end(), [](const WStatement& s) {
+      return s.kind == WStatement::Kind::node;
+    });
     for (auto& [at2, s] : routes) p->body.push_back(std::move(s));
+    dropRoutesToUnwritten(p->body);
+    if (!anyNode) {
+      drop(d.location, "PROTO " + t.name + ": no node of its body can be written: the PROTO "
+                       "and its instances are not written");
+      emptyProtos_.insert(&t);
+    }
     body_ = outerBody;
     bodyType_ = outerType;
     declaredInBodies_.resize(declared);
@@ -560,11 +605,13 @@ class Builder {
   // ---- ROUTEs and X3D statements ----------------------------------------------------------
 
   std::unordered_set<const Node*> routed_;
+  bool failedQuietly_ = false;  // routeEnd() said why it failed
+  std::unordered_set<const NodeType*> emptyProtos_;  // VRML97: every body node left out
 
   // The DEF name and member a ROUTE end names: an instance's interface member when `node`
   // is a body member an instance linked, else the node's own DEF name and the field.
   bool routeEnd(const NodePtr& node, const std::string& field, std::string& name,
-                std::string& member) {
+                std::string& member, const Node*& named) {
     if (!node) return false;
     const int i = node->type().findField(field);
     auto [a, b] = links_.equal_range(node.get());
@@ -576,12 +623,27 @@ class Builder {
       name = inst->defName;
       member = p->type->fields[static_cast<std::size_t>(protoField)].name;
       routed_.insert(inst);
+      named = inst;
       return true;
     }
     if (node->defName.empty()) return false;
+    if (!x3dOut_ && x3dIn_ && instanceType(*node) == nullptr) {
+      // A field X3D added to a VRML97 node (or an X3D node) has no VRML97 event.
+      const auto vrml97 = builtInNodeType(node->typeName());
+      const NodeType& t = node->type();
+      const bool user = t.userFields && vrml97 && i >= static_cast<int>(vrml97->fields.size());
+      if (!user && (!vrml97 || i < 0 ||
+                    vrml97->findExact(t.fields[static_cast<std::size_t>(i)].name) < 0)) {
+        drop(node->location, "ROUTE end " + node->typeName() + "." + field +
+                                 " has no VRML97 form: ROUTE not written");
+        failedQuietly_ = true;
+        return false;
+      }
+    }
     name = node->defName;
     member = instanceType(*node) != nullptr ? field : fieldName(*node, field);
     routed_.insert(node.get());
+    named = node.get();
     return true;
   }
 
@@ -593,8 +655,10 @@ class Builder {
       WStatement s;
       s.kind = WStatement::Kind::route;
       WRoute& w = s.route;
-      if (!routeEnd(r.fromNode, r.fromField, w.fromNode, w.fromField) ||
-          !routeEnd(r.toNode, r.toField, w.toNode, w.toField)) {
+      failedQuietly_ = false;
+      if (!routeEnd(r.fromNode, r.fromField, w.fromNode, w.fromField, w.from) ||
+          !routeEnd(r.toNode, r.toField, w.toNode, w.toField, w.to)) {
+        if (failedQuietly_) continue;  // already said
         warn(r.location, "ROUTE " + r.fromField + " TO " + r.toField +
                              ": an end has no DEF name to write: not written");
         continue;
@@ -641,13 +705,13 @@ class Builder {
       WRoute& w = s.route;
       bool ok = true;
       if (r.fromImport.empty()) {
-        ok = routeEnd(r.fromNode, r.fromField, w.fromNode, w.fromField);
+        ok = routeEnd(r.fromNode, r.fromField, w.fromNode, w.fromField, w.from);
       } else {
         w.fromNode = r.fromImport;
         w.fromField = r.fromField;
       }
       if (r.toImport.empty()) {
-        ok = ok && routeEnd(r.toNode, r.toField, w.toNode, w.toField);
+        ok = ok && routeEnd(r.toNode, r.toField, w.toNode, w.toField, w.to);
       } else {
         w.toNode = r.toImport;
         w.toField = r.toField;
@@ -658,6 +722,21 @@ class Builder {
       }
       out.emplace_back(r.location, std::move(s));
     }
+  }
+
+  // ROUTEs to or from nodes that were left out (an X3D node in a .wrl, or one inside it).
+  void dropRoutesToUnwritten(std::vector<WStatement>& statements) {
+    std::erase_if(statements, [&](const WStatement& s) {
+      if (s.kind != WStatement::Kind::route) return false;
+      const WRoute& r = s.route;
+      const bool gone = (r.from != nullptr && !written_.contains(r.from)) ||
+                        (r.to != nullptr && !written_.contains(r.to));
+      if (gone)
+        drop(r.from != nullptr && !written_.contains(r.from) ? r.from->location : r.to->location,
+             "ROUTE " + r.fromNode + "." + r.fromField + " TO " + r.toNode + "." + r.toField +
+                 ": a node it names was not written: not written");
+      return gone;
+    });
   }
 
   void checkDefs() {
