@@ -52,7 +52,8 @@ Trip roundTrip(const Scene& scene, Encoding e, const std::string& url) {
   Trip t;
   t.written = writeScene(scene, WriteOptions{e});
   const fs::path p(url);
-  t.back = parseVrml(t.written.text, (p.parent_path() / (p.stem().string() + "-rt" + extensionOf(e))).string());
+  t.back = parseVrml(t.written.text,
+                     (p.parent_path() / (p.stem().string() + "-rt" + extensionOf(e))).string());
   gs::test::Same same;
   if (!same.scenes(scene, t.back)) t.diff = same.diff;
   if (t.diff.empty() && t.back.diagnostics.errorCount() > scene.diagnostics.errorCount())
@@ -91,8 +92,8 @@ TEST_CASE("writer: the X3D feature world round-trips in every X3D encoding", "[w
 }
 
 TEST_CASE("writer: VRML97 worlds of assets/ round-trip as .wrl", "[writer]") {
-  for (const char* name : {"features.wrl", "animation.wrl", "ghostspace-extensions.wrl",
-                           "text.wrl", "welcome.wrl"}) {
+  for (const char* name :
+       {"features.wrl", "animation.wrl", "ghostspace-extensions.wrl", "text.wrl", "welcome.wrl"}) {
     const std::string path = (gs::test::sourceDir() / "assets/worlds" / name).string();
     const Scene s = loadVrmlFile(path);
     INFO(name);
@@ -159,7 +160,8 @@ PROTO Mover [ inputOutput SFVec3f where 0 0 0  inputOnly SFFloat set_f  initiali
   ROUTE S.p TO T.set_translation
 }
 DEF M Mover { where 0.1 0.2 0.30000001 what Box { size 1e-7 3.4e38 0.5 } }
-DEF TS TimeSensor { loop TRUE description "line 1\nline\t2" }
+DEF TS TimeSensor { loop TRUE description "line 1
+line	2" }
 DEF W WorldInfo { title "x\"y\\z" info [ "]]>", "" ] }
 DEF SW Switch { whichChoice 0 children [ Group { } ] }
 ROUTE TS.fraction_changed TO M.set_f
@@ -174,6 +176,15 @@ EXPORT TS AS Clock
     CHECK(t.diff == "");
     CHECK(t.back.x3d.exports.size() == 1);
     CHECK(t.written.diagnostics.items.empty());
+    if (e == Encoding::xml) {
+      // The Script's source as CDATA; "]]>" in an attribute; escaped attribute text.
+      CHECK(t.written.text.find("<![CDATA[ecmascript:function f(v) { if (v < 1 && v > 0)") !=
+            std::string::npos);
+      CHECK(t.written.text.find("info=\"&quot;]]&gt;&quot; &quot;&quot;\"") != std::string::npos);
+      CHECK(t.written.text.find("description=\"line 1&#10;line&#9;2\"") != std::string::npos);
+      CHECK(t.written.text.find("<Switch DEF=\"SW\" whichChoice=\"0\">") != std::string::npos);
+    }
+    if (e == Encoding::json) CHECK(t.written.text.find("\"#sourceCode\": [") != std::string::npos);
   }
 }
 
@@ -255,7 +266,11 @@ CorpusFigures sweep(const std::string& sub, const std::vector<std::string>& suff
         // What VRML97 cannot hold is a diagnostic; what is written reads back cleanly.
         CHECK(back.diagnostics.errorCount() == 0);
         if (back.diagnostics.errorCount() > 0) WARN(name + ": " + describe(back));
-        f.vrml97Clean += w.diagnostics.items.empty() && back.diagnostics.items.empty() ? 1 : 0;
+        const bool onlyHeader = std::all_of(
+            w.diagnostics.items.begin(), w.diagnostics.items.end(), [](const Diagnostic& d) {
+              return d.message.find("PROFILE and COMPONENT") != std::string::npos;
+            });
+        f.vrml97Clean += onlyHeader && back.diagnostics.items.empty() ? 1 : 0;
       }
     }
   }
@@ -277,7 +292,7 @@ TEST_CASE("writer: the castle X3D corpus round-trips in every X3D encoding", "[w
     WARN(std::string(encodingName(e)) + ": " + std::to_string(f.same.at(e)) + " of " +
          std::to_string(f.worlds) + " worlds give the same scene graph");
   WARN("as VRML97: " + std::to_string(f.vrml97Clean) + " of " + std::to_string(f.worlds) +
-       " worlds need no diagnostic");
+       " worlds need no diagnostic but the one for PROFILE / COMPONENT");
   CHECK(f.worlds > 100);
   for (Encoding e : {Encoding::classic, Encoding::xml, Encoding::json}) {
     INFO(encodingName(e));
@@ -312,8 +327,8 @@ TEST_CASE("writer: worlds in both X3D encodings convert into each other", "[writ
     // The XML world written as Classic reads as its Classic twin does, and the other way.
     const Scene a = parseVrml(writeScene(xml, WriteOptions{Encoding::classic}).text,
                               twin.string() + "-rt.x3dv");
-    const Scene b = parseVrml(writeScene(classic, WriteOptions{Encoding::xml}).text,
-                              p.string() + "-rt.x3d");
+    const Scene b =
+        parseVrml(writeScene(classic, WriteOptions{Encoding::xml}).text, p.string() + "-rt.x3d");
     // (The twins' headers may differ: castle gave them different META.)
     gs::test::Same s1, s2;
     INFO(p.string());
@@ -326,4 +341,102 @@ TEST_CASE("writer: worlds in both X3D encodings convert into each other", "[writ
     ++pairs;
   }
   CHECK(pairs >= 6);
+}
+
+namespace {
+
+// A VRML97 scene against its X3D conversion: the same node types, DEF names and, for each
+// field of the VRML97 node, an equal value in the X3D node's field of that name (X3D's
+// `children` of Switch and LOD, `enabled` of Collision are read into VRML97's names);
+// ROUTEs compared as Same does. `diff` names the first difference.
+struct SameAsX3d {
+  std::set<std::pair<const Node*, const Node*>> seen;
+  std::string diff;
+  bool fail(const std::string& what) {
+    if (diff.empty()) diff = what;
+    return false;
+  }
+  bool nodes(const NodePtr& a, const NodePtr& b, const std::string& path) {
+    if (!a || !b) return (!a && !b) || fail(path + ": NULL on one side only");
+    if (!seen.insert({a.get(), b.get()}).second) return true;
+    if (a->typeName() != b->typeName())
+      return fail(path + ": type " + a->typeName() + " vs " + b->typeName());
+    if (a->defName != b->defName) return fail(path + ": DEF " + a->defName + " vs " + b->defName);
+    for (std::size_t i = 0; i < a->fieldCount(); ++i) {
+      const auto& spec = a->type().fields[i];
+      const int j = b->type().findExact(spec.name);
+      if (j < 0) return fail(path + "." + spec.name + ": no such X3D field");
+      if (!values(a->fieldAt(i), b->fieldAt(static_cast<std::size_t>(j)), path + "." + spec.name))
+        return false;
+    }
+    return true;
+  }
+  bool values(const FieldValue& a, const FieldValue& b, const std::string& path) {
+    if (a.type() != b.type()) return fail(path + ": field type differs");
+    if (a.type() == FieldType::SFNode)
+      return nodes(a.get<FieldType::SFNode>(), b.get<FieldType::SFNode>(), path);
+    if (a.type() == FieldType::MFNode) {
+      const auto& x = a.get<FieldType::MFNode>();
+      const auto& y = b.get<FieldType::MFNode>();
+      if (x.size() != y.size()) return fail(path + ": MFNode sizes differ");
+      for (std::size_t i = 0; i < x.size(); ++i)
+        if (!nodes(x[i], y[i], path + "[" + std::to_string(i) + "]")) return false;
+      return true;
+    }
+    return a.storage() == b.storage() || fail(path + ": values differ");
+  }
+  bool scenes(const Scene& a, const Scene& b) {
+    if (a.rootNodes.size() != b.rootNodes.size()) return fail("root count differs");
+    for (std::size_t i = 0; i < a.rootNodes.size(); ++i)
+      if (!nodes(a.rootNodes[i], b.rootNodes[i], "root" + std::to_string(i))) return false;
+    if (a.routes.size() != b.routes.size()) return fail("route count differs");
+    for (std::size_t i = 0; i < a.routes.size(); ++i)
+      if (a.routes[i].fromField != b.routes[i].fromField ||
+          a.routes[i].toField != b.routes[i].toField ||
+          a.routes[i].fromNode->defName != b.routes[i].fromNode->defName ||
+          a.routes[i].toNode->defName != b.routes[i].toNode->defName)
+        return fail("route " + std::to_string(i) + " differs");
+    if (a.protos.size() != b.protos.size()) return fail("PROTO count differs");
+    return true;
+  }
+};
+
+}  // namespace
+
+TEST_CASE("writer: VRML97 worlds written as X3D keep every VRML97 field", "[writer][corpus]") {
+  if (!gs::test::haveCorpus("vrml")) return;
+  int worlds = 0;
+  std::map<Encoding, int> same;
+  std::map<Encoding, std::set<std::string>> differ;
+  for (const std::string suffix : {".wrl", ".wrl.gz", ".wrz"}) {
+    for (const fs::path& p : gs::test::filesWithSuffix(gs::test::corpusDir() / "vrml", suffix)) {
+      const Scene s = loadVrmlFile(p.string());
+      if (s.rootNodes.empty() || s.diagnostics.errorCount() > 0) continue;
+      ++worlds;
+      const std::string name = p.lexically_relative(gs::test::corpusDir()).string();
+      for (Encoding e : {Encoding::classic, Encoding::xml, Encoding::json}) {
+        const WriteResult w = writeScene(s, WriteOptions{e});
+        const Scene back = parseVrml(w.text, p.string() + "-rt" + extensionOf(e));
+        SameAsX3d cmp;
+        if (cmp.scenes(s, back) && back.diagnostics.errorCount() == 0) {
+          ++same[e];
+        } else {
+          differ[e].insert(name);
+          WARN(std::string(encodingName(e)) + ": " + name + ": " + cmp.diff + " " + describe(back));
+        }
+      }
+    }
+  }
+  for (Encoding e : {Encoding::classic, Encoding::xml, Encoding::json})
+    WARN("VRML97 as " + std::string(encodingName(e)) + ": " + std::to_string(same[e]) + " of " +
+         std::to_string(worlds) + " worlds keep every VRML97 field and ROUTE");
+  CHECK(worlds > 100);
+  // The one known difference: a PROTO declared inside a node of an interface default is
+  // written at the top (see "the VRML97 corpus round-trips as .wrl").
+  const std::set<std::string> expected = {"vrml/openvrml/good/proto-in-proto-default-value.wrl"};
+  for (Encoding e : {Encoding::classic, Encoding::xml, Encoding::json}) {
+    INFO(encodingName(e));
+    CHECK(differ[e] == expected);
+    CHECK(same[e] == worlds - 1);
+  }
 }

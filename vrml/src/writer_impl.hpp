@@ -24,9 +24,9 @@ struct WNode;
 struct WField {
   std::string name;  // as the target spells it (X3D's `children` for Switch's `choice`)
   FieldType type = FieldType::SFBool;
-  const FieldValue* value = nullptr;  // null when only `isMember` is written
-  std::vector<WNode> nodes;           // SFNode (0 or 1) / MFNode values
-  std::string isMember;               // `name IS isMember`; empty when none
+  const FieldValue* value = nullptr;        // null when only `isMember` is written
+  std::vector<WNode> nodes;                 // SFNode (0 or 1) / MFNode values
+  std::string isMember;                     // `name IS isMember`; empty when none
   AccessType isAccess = AccessType::field;  // how the IS statement named the member
 };
 
@@ -110,8 +110,8 @@ struct XElem {
   std::string name;
   std::vector<XAttr> attrs;
   std::vector<XElem> children;
-  bool node = false;           // a node (or USE / ProtoInstance), not a statement or structure
-  std::string containerField;  // of a node in a node's field; empty in Scene, ProtoBody ...
+  bool node = false;               // a node (or USE / ProtoInstance), not a statement or structure
+  std::string containerField;      // of a node in a node's field; empty in Scene, ProtoBody ...
   bool explicitContainer = false;  // the XML printer writes containerField
   std::string source;              // Script source (CDATA / "#sourceCode")
 };

@@ -75,8 +75,9 @@ class Builder {
         warn({}, "META \"" + name + "\" \"" + content + "\" has no VRML97 form: not written");
     }
     if (!scene_.x3d.units.empty())
-      warn({}, "UNIT statements are not written: the values were converted to base units "
-               "(metres, radians) when read, and are written so");
+      warn({},
+           "UNIT statements are not written: the values were converted to base units "
+           "(metres, radians) when read, and are written so");
     for (const auto& p : scene_.protos) topProtos_.insert(p.get());
     // (extraTop_ types are declared at the top too once written.)
     for (const NodePtr& n : scene_.rootNodes) {
@@ -184,7 +185,7 @@ class Builder {
   std::vector<const ProtoDefinition*> allBodies_;
   std::vector<const NodeType*> extraTop_;  // PROTOs declared in nodes, used outside bodies
   int bodyDepth_ = 0;
-  std::size_t rootIndex_ = 0;  // the root being surveyed
+  std::size_t rootIndex_ = 0;                                  // the root being surveyed
   std::unordered_map<const NodeType*, std::size_t> firstUse_;  // PROTO -> first root using it
   // (body member node, field index) -> (instance node, interface member)
   std::unordered_multimap<const Node*, std::tuple<int, const Node*, int>> links_;
@@ -266,8 +267,7 @@ class Builder {
   // ---- nodes ------------------------------------------------------------------------------
 
   // The name the target gives field `name` of a node of `type`: X3D renamed three of
-  // VRML97's fields. (ComposedCubeMapTexture's faces keep X3D 4's names, which both X3D
-  // readers here take in any version; X3D 3 named them without "Texture".)
+  // VRML97's fields, and X3D 4 renamed ComposedCubeMapTexture's faces.
   std::string fieldName(const Node& n, const std::string& name) const {
     if (!x3dOut_) return name;
     switch (n.typeId()) {
@@ -277,9 +277,22 @@ class Builder {
         return name == "level" ? "children" : name;
       case NodeTypeId::Collision:
         return name == "collide" ? "enabled" : name;
+      case NodeTypeId::ComposedCubeMapTexture:
+        // X3D 3 named the faces without "Texture" (castle-model-viewer 4.2 reads only those).
+        if (x3d3Out_ && name.ends_with("Texture")) return name.substr(0, name.size() - 7);
+        return name;
       default:
         return name;
     }
+  }
+
+  // The XML encoding's containerField default of `n`'s type (X3D 3 put metadata nodes in
+  // `metadata` by default, as the reader does for a 3.x file).
+  std::string containerDefault(const Node& n) const {
+    const NodeModel* m = n.type().model;
+    if (m == nullptr) return {};
+    if (x3d3Out_ && n.is(AbstractType::X3DMetadataObject)) return "metadata";
+    return std::string(m->containerField);
   }
 
   // The built-in type `n` started as, before a Script or shader declared its own fields.
@@ -325,9 +338,7 @@ class Builder {
     owned_.push_back(toNearestVrml97(v));
     return &owned_.back();
   }
-  FieldType targetType(FieldType t) const {
-    return x3dOut_ ? t : nearestVrml97Type(t);
-  }
+  FieldType targetType(FieldType t) const { return x3dOut_ ? t : nearestVrml97Type(t); }
 
   WDecl declOf(const FieldSpec& f, const FieldValue* value, const std::string& owner,
                const SourceLocation& at) {
@@ -356,6 +367,7 @@ class Builder {
       const NodeType* it = instanceType(n);
       w.instance = it != nullptr;
       w.typeName = it != nullptr ? it->name : n.typeName();
+      if (it == nullptr) w.containerDefault = containerDefault(n);
       return w;
     }
     const NodeType* itype = instanceType(n);
@@ -397,11 +409,13 @@ class Builder {
       // body connected.
       std::string is;
       if (p == nullptr) {
-        for (const IsConnection* c : connections(&n, static_cast<int>(m))) is = bodyMember(c->protoField);
+        for (const IsConnection* c : connections(&n, static_cast<int>(m)))
+          is = bodyMember(c->protoField);
       } else if (body_ != nullptr) {
         for (const InstanceLink& k : p->linksOf(static_cast<int>(m))) {
           const NodePtr b = k.node.lock();
-          for (const IsConnection* c : connections(b.get(), k.nodeField)) is = bodyMember(c->protoField);
+          for (const IsConnection* c : connections(b.get(), k.nodeField))
+            is = bodyMember(c->protoField);
           if (!is.empty()) break;
         }
       }
@@ -439,13 +453,11 @@ class Builder {
   void plainNode(const Node& n, WNode& w) {
     const NodeType& type = n.type();
     w.typeName = n.typeName();
-    if (const NodeModel* m = type.model) {
-      w.containerDefault = std::string(m->containerField);
-      if (x3d3Out_ && n.is(AbstractType::X3DMetadataObject)) w.containerDefault = "metadata";
-    }
+    w.containerDefault = containerDefault(n);
     const auto base = baseType(n);
-    const std::size_t userStart =
-        type.userFields && base ? std::min(base->fields.size(), type.fields.size()) : type.fields.size();
+    const std::size_t userStart = type.userFields && base
+                                      ? std::min(base->fields.size(), type.fields.size())
+                                      : type.fields.size();
     std::shared_ptr<const NodeType> vrml97;
     if (!x3dOut_ && x3dIn_) vrml97 = builtInNodeType(n.typeName());
     for (std::size_t i = 0; i < type.fields.size(); ++i) {
@@ -455,8 +467,8 @@ class Builder {
       const FieldValue& v = n.fieldAt(i);
       const bool valued = carriesValue(f.access) && (user || !sameValue(v, f.defaultValue));
       if (!user && vrml97 && vrml97->findExact(f.name) < 0 && (valued || !is.empty())) {
-        drop(n.location, "X3D field " + n.typeName() + "." + f.name +
-                             " has no VRML97 form: not written");
+        drop(n.location,
+             "X3D field " + n.typeName() + "." + f.name + " has no VRML97 form: not written");
         continue;
       }
       if (user) {
@@ -476,11 +488,14 @@ class Builder {
         // table 4.4); X3D made many of them inputOutput.
         if (vrml97 && !user) {
           const int k = vrml97->findExact(f.name);
-          const AccessType member = bodyType_->fields[static_cast<std::size_t>(c->protoField)].access;
-          if (k >= 0 && vrml97->fields[static_cast<std::size_t>(k)].access != AccessType::exposedField &&
+          const AccessType member =
+              bodyType_->fields[static_cast<std::size_t>(c->protoField)].access;
+          if (k >= 0 &&
+              vrml97->fields[static_cast<std::size_t>(k)].access != AccessType::exposedField &&
               vrml97->fields[static_cast<std::size_t>(k)].access != member) {
             drop(n.location, "IS of " + n.typeName() + "." + f.name + " (a " +
-                                 std::string(accessTypeName(vrml97->fields[static_cast<std::size_t>(k)].access)) +
+                                 std::string(accessTypeName(
+                                     vrml97->fields[static_cast<std::size_t>(k)].access)) +
                                  " in VRML97) to " + std::string(accessTypeName(member)) + " " +
                                  bodyMember(c->protoField) + ": not written");
             continue;
@@ -552,8 +567,9 @@ class Builder {
     for (auto& [at2, s] : routes) p->body.push_back(std::move(s));
     dropRoutesToUnwritten(p->body);
     if (!anyNode) {
-      drop(d.location, "PROTO " + t.name + ": no node of its body can be written: the PROTO "
-                       "and its instances are not written");
+      drop(d.location, "PROTO " + t.name +
+                           ": no node of its body can be written: the PROTO "
+                           "and its instances are not written");
       emptyProtos_.insert(&t);
     }
     body_ = outerBody;
@@ -605,7 +621,7 @@ class Builder {
   // ---- ROUTEs and X3D statements ----------------------------------------------------------
 
   std::unordered_set<const Node*> routed_;
-  bool failedQuietly_ = false;  // routeEnd() said why it failed
+  bool failedQuietly_ = false;                       // routeEnd() said why it failed
   std::unordered_set<const NodeType*> emptyProtos_;  // VRML97: every body node left out
 
   // The DEF name and member a ROUTE end names: an instance's interface member when `node`
@@ -632,8 +648,8 @@ class Builder {
       const auto vrml97 = builtInNodeType(node->typeName());
       const NodeType& t = node->type();
       const bool user = t.userFields && vrml97 && i >= static_cast<int>(vrml97->fields.size());
-      if (!user && (!vrml97 || i < 0 ||
-                    vrml97->findExact(t.fields[static_cast<std::size_t>(i)].name) < 0)) {
+      if (!user &&
+          (!vrml97 || i < 0 || vrml97->findExact(t.fields[static_cast<std::size_t>(i)].name) < 0)) {
         drop(node->location, "ROUTE end " + node->typeName() + "." + field +
                                  " has no VRML97 form: ROUTE not written");
         failedQuietly_ = true;
@@ -673,8 +689,8 @@ class Builder {
     const X3dInfo& x = scene_.x3d;
     for (const X3dImport& im : x.imports) {
       if (!x3dOut_) {
-        warn(im.location, "IMPORT " + im.inlineDef + "." + im.exportedName +
-                              " has no VRML97 form: not written");
+        warn(im.location,
+             "IMPORT " + im.inlineDef + "." + im.exportedName + " has no VRML97 form: not written");
         continue;
       }
       WStatement s;

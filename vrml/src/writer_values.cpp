@@ -267,11 +267,10 @@ std::string xmlValue(const FieldValue& v) {
   if (v.type() == FieldType::SFString) return v.get<FieldType::SFString>();
   std::vector<std::string> e = elements(v, true);
   std::string out;
-  const bool commas = isMultiValued(v.type()) && v.type() != FieldType::MFString &&
-                      v.type() != FieldType::MFBool && elementType(v.type()) != FieldType::SFFloat &&
-                      elementType(v.type()) != FieldType::SFInt32 &&
-                      elementType(v.type()) != FieldType::SFTime &&
-                      elementType(v.type()) != FieldType::SFDouble;
+  const bool commas =
+      isMultiValued(v.type()) && v.type() != FieldType::MFString && v.type() != FieldType::MFBool &&
+      elementType(v.type()) != FieldType::SFFloat && elementType(v.type()) != FieldType::SFInt32 &&
+      elementType(v.type()) != FieldType::SFTime && elementType(v.type()) != FieldType::SFDouble;
   for (std::size_t i = 0; i < e.size(); ++i) {
     if (i > 0) out += commas ? ", " : " ";
     out += e[i];

@@ -72,7 +72,8 @@ class ElementBuilder {
         return e;
       case WStatement::Kind::import:
         e.name = "IMPORT";
-        e.attrs = {{"inlineDEF", s.a, nullptr}, {"importedDEF", s.b, nullptr}, {"AS", s.c, nullptr}};
+        e.attrs = {
+            {"inlineDEF", s.a, nullptr}, {"importedDEF", s.b, nullptr}, {"AS", s.c, nullptr}};
         return e;
       case WStatement::Kind::exported:
         e.name = "EXPORT";
@@ -129,11 +130,13 @@ class ElementBuilder {
   }
 
   // Where the Script source goes: the last url entry, when it has a scheme and reads back
-  // unchanged from CDATA (the reader trims the text's ends and appends it to url).
+  // unchanged from CDATA (the reader trims the text's ends and appends it to url; XML
+  // normalizes line ends in text).
   static bool inlineSource(const std::string& s) {
     const bool scheme = s.starts_with("ecmascript:") || s.starts_with("javascript:") ||
                         s.starts_with("vrmlscript:");
-    if (!scheme || s.empty()) return false;
+    // XML turns "\r\n" and "\r" in text into "\n" (XML 1.0 clause 2.11).
+    if (!scheme || s.find('\r') != std::string::npos) return false;
     const char last = s.back();
     return last != ' ' && last != '\t' && last != '\n' && last != '\r';
   }
