@@ -113,6 +113,7 @@ struct XElem {
   bool node = false;               // a node (or USE / ProtoInstance), not a statement or structure
   std::string containerField;      // of a node in a node's field; empty in Scene, ProtoBody ...
   bool explicitContainer = false;  // the XML printer writes containerField
+  bool sfnode = false;             // the value of an SFNode field (JSON: an object, no array)
   std::string source;              // Script source (CDATA / "#sourceCode")
 };
 /// The <X3D> element of `doc` (head and Scene); values made for it (an EXTERNPROTO's url

@@ -1,7 +1,8 @@
 // The JSON writer (ISO/IEC 19776-5): the XML encoding's elements (xmlDocument(),
 // writer_xml.cpp) as JSON objects. An attribute is an "@name" key whose value has its JSON
 // type (numbers, true / false, strings; an MF or multi-component value an array, an
-// MFString an array of strings); the nodes of a field are "-field": [{"Type": {...}}, ...];
+// MFString an array of strings); the nodes of an MFNode field are "-field": [{"Type":
+// {...}}, ...], the node of an SFNode field "-field": {"Type": {...}};
 // statements and the nodes of Scene, ProtoBody, <field> and <fieldValue> are "-children";
 // other child elements are keys named by the element ("field": [...], "IS": {...}); a
 // Script's inline source is "#sourceCode": [lines]. What the reader
@@ -166,7 +167,14 @@ class JsonPrinter {
           group.push_back(&d);
         }
         key(k);
-        if (c.node) {
+        if (c.node && group.size() == 1 && c.sfnode) {
+          // An SFNode field's value: {"Type": {...}} (ISO/IEC 19776-5 5.4).
+          out += "{";
+          jsonString(out, c.name);
+          out += ": ";
+          body(c, in);
+          out += "}";
+        } else if (c.node) {
           nodes(group, in);
         } else if (group.size() == 1 && singleObject(c.name)) {
           body(c, in);

@@ -182,7 +182,10 @@ class ElementBuilder {
         continue;
       }
       if (f.type == FieldType::SFNode || f.type == FieldType::MFNode) {
-        for (const WNode& c : f.nodes) nested.push_back(node(c, f.name, n.typeName));
+        for (const WNode& c : f.nodes) {
+          nested.push_back(node(c, f.name, n.typeName));
+          nested.back().sfnode = f.type == FieldType::SFNode;
+        }
         continue;
       }
       if (script && f.name == "url" && f.type == FieldType::MFString) {
