@@ -440,3 +440,26 @@ TEST_CASE("writer: VRML97 worlds written as X3D keep every VRML97 field", "[writ
     CHECK(same[e] == worlds - 1);
   }
 }
+
+TEST_CASE("writer: a USE that a reordered DEF would capture is a diagnostic", "[writer]") {
+  // The file gives X to the proxy, then to the Group, and USEs the Group; the writer writes
+  // Collision's fields in the node type's order (children before proxy), so at the USE the
+  // name X is the proxy's.
+  const Scene s = parseVrml(R"(#VRML V2.0 utf8
+Collision { proxy DEF X Shape { } children [ DEF X Group { } ] }
+Transform { children [ USE X ] }
+)",
+                            "defs.wrl");
+  REQUIRE(s.diagnostics.items.empty());
+  const WriteResult w = writeScene(s, WriteOptions{Encoding::vrml97});
+  REQUIRE(w.diagnostics.items.size() == 1);
+  CHECK(w.diagnostics.items[0].format() ==
+        "defs.wrl:2:52: warning: a USE of this node (DEF X): that DEF name was given to another "
+        "node in between: the file read back will USE that one");
+  // Files without such a clash write without a word (castle's own DEF/USE torture test
+  // included, in the corpus test).
+  const Scene plain =
+      parseVrml("#VRML V2.0 utf8\nDEF X Group { }\nDEF X Group { }\nTransform { children USE X }\n",
+                "plain.wrl");
+  CHECK(writeScene(plain, WriteOptions{Encoding::vrml97}).diagnostics.items.empty());
+}

@@ -153,6 +153,7 @@ class Builder {
     });
     auto emit = [&](std::size_t i) {
       WStatement& s = others[i].second;
+      if (s.kind == WStatement::Kind::route) checkRoute(s.route, others[i].first);
       if (i >= firstProto) {
         s.proto = protoOf(*protos[i - firstProto]);
         if (emptyProtos_.contains(protos[i - firstProto])) return;
@@ -168,7 +169,6 @@ class Builder {
       if (s.node.node != nullptr) doc.statements.push_back(std::move(s));
     }
     dropRoutesToUnwritten(doc.statements);
-    checkDefs();
     flushDiagnostics();
     doc.owned = std::move(owned_);
     return doc;
@@ -191,7 +191,7 @@ class Builder {
   std::unordered_multimap<const Node*, std::tuple<int, const Node*, int>> links_;
   std::unordered_map<const Node*, int> references_;
   std::unordered_set<const Node*> written_;
-  std::map<std::string, std::vector<const Node*>> defs_;
+  std::unordered_map<std::string, const Node*> binding_;  // DEF name -> node, as written so far
   // Aggregated diagnostics: message -> (count, first place).
   std::map<std::string, std::pair<int, SourceLocation>> dropped_;
   std::vector<std::string> droppedOrder_;
@@ -368,6 +368,10 @@ class Builder {
       w.instance = it != nullptr;
       w.typeName = it != nullptr ? it->name : n.typeName();
       if (it == nullptr) w.containerDefault = containerDefault(n);
+      if (auto b = binding_.find(n.defName); b != binding_.end() && b->second != &n)
+        drop(n.location, "a USE of this node (DEF " + n.defName +
+                             "): that DEF name was given to another node in between: the "
+                             "file read back will USE that one");
       return w;
     }
     const NodeType* itype = instanceType(n);
@@ -382,14 +386,11 @@ class Builder {
     written_.insert(&n);
     w.node = &n;
     w.def = n.defName;
+    if (!w.def.empty()) binding_[w.def] = &n;  // (an instance's DEF may be cleared below)
     if (itype != nullptr) {
       instanceOf(n, *itype, w);
     } else {
       plainNode(n, w);
-    }
-    if (!w.def.empty()) {
-      auto& v = defs_[w.def];
-      if (std::find(v.begin(), v.end(), &n) == v.end()) v.push_back(&n);
     }
     return w;
   }
@@ -401,8 +402,11 @@ class Builder {
     // An instance without a DEF of its own carries its body's first node's DEF name.
     if (const ProtoDefinition* b = bodyOf(&type);
         p != nullptr && b != nullptr && !b->body.empty() && b->body.front()->defName == w.def &&
-        references_[&n] <= 1 && !routed_.contains(&n))
+        references_[&n] <= 1 && !routed_.contains(&n)) {
+      if (auto it = binding_.find(w.def); it != binding_.end() && it->second == &n)
+        binding_.erase(it);
       w.def.clear();
+    }
     for (std::size_t m = 0; m < type.fields.size(); ++m) {
       const FieldSpec& f = type.fields[m];
       // IS inside a PROTO body: the member's links lead to body members the enclosing
@@ -533,6 +537,7 @@ class Builder {
     }
     const ProtoDefinition* outerBody = body_;
     const NodeType* outerType = bodyType_;
+    const auto outerBinding = binding_;  // the body's DEF names are its own
     const std::size_t declared = declaredInBodies_.size();
     body_ = &d;
     bodyType_ = &t;
@@ -564,7 +569,10 @@ class Builder {
     const bool anyNode = std::any_of(p->body.begin(), p->body.end(), [](const WStatement& s) {
       return s.kind == WStatement::Kind::node;
     });
-    for (auto& [at2, s] : routes) p->body.push_back(std::move(s));
+    for (auto& [at2, s] : routes) {
+      checkRoute(s.route, at2);
+      p->body.push_back(std::move(s));
+    }
     dropRoutesToUnwritten(p->body);
     if (!anyNode) {
       drop(d.location, "PROTO " + t.name +
@@ -574,6 +582,7 @@ class Builder {
     }
     body_ = outerBody;
     bodyType_ = outerType;
+    binding_ = outerBinding;
     declaredInBodies_.resize(declared);
     return p;
   }
@@ -755,12 +764,17 @@ class Builder {
     });
   }
 
-  void checkDefs() {
-    for (const auto& [name, nodes] : defs_)
-      if (nodes.size() > 1)
-        warn(nodes.back()->location,
-             "DEF name '" + name + "' names " + std::to_string(nodes.size()) +
-                 " nodes: a USE or ROUTE may name another node when the file is read back");
+  // A ROUTE whose DEF names were given to other nodes before the place it is written at
+  // (a name DEFed twice, as castle's tricky_def_use.x3dv does).
+  void checkRoute(const WRoute& r, const SourceLocation& at) {
+    auto other = [&](const std::string& name, const Node* node) {
+      if (node == nullptr) return false;
+      auto b = binding_.find(name);
+      return b != binding_.end() && b->second != node;
+    };
+    if (other(r.fromNode, r.from) || other(r.toNode, r.to))
+      warn(at, "ROUTE " + r.fromNode + "." + r.fromField + " TO " + r.toNode + "." + r.toField +
+                   ": a DEF name it uses names another node where it is written");
   }
 };
 
