@@ -251,6 +251,7 @@ class Builder {
   void survey(const NodePtr& n) {
     if (!n) return;
     ++references_[n.get()];
+    if (!n->defName.empty()) usedNames_.insert(n->defName);
     if (!surveyed_.insert(n.get()).second) return;
     if (const ProtoInstance* p = declaredInterface(*n)) {
       surveyType(p->type.get());
@@ -263,6 +264,61 @@ class Builder {
     surveyType(instanceType(*n));
     for (std::size_t i = 0; i < n->fieldCount(); ++i) surveyValue(n->fieldAt(i));
   }
+
+  // ---- names ----
+
+  std::unordered_map<std::string, std::string> idents_;
+
+  // `raw` as a name every encoding reads back as itself (ISO/IEC 19776-2 clause 5.2.3,
+  // ISO/IEC 14772-1 annex A.2 IdFirstChar / IdRestChars): no white space or control
+  // characters, quotes, '#', ',', '.', brackets, braces or backslash, not starting with a
+  // digit or sign, and no keyword; each other byte becomes '_' (as the XML reader does
+  // with XML IDs such as "Cube.001"). A name glTF or XML gave may need it; a warning says so.
+  const std::string& ident(const std::string& raw) {
+    auto [it, added] = idents_.try_emplace(raw);
+    if (!added) return it->second;
+    std::string out;
+    for (char c : raw) {
+      const auto u = static_cast<unsigned char>(c);
+      const bool bad = u <= 0x20 || u == 0x7f || c == '"' || c == '#' || c == '\'' || c == ',' ||
+                       c == '.' || c == '[' || c == '\\' || c == ']' || c == '{' || c == '}';
+      out += bad ? '_' : c;
+    }
+    if (!out.empty() && ((out[0] >= '0' && out[0] <= '9') || out[0] == '+' || out[0] == '-'))
+      out.insert(out.begin(), '_');
+    static constexpr std::string_view kKeywords[] = {
+        "DEF",        "USE",      "PROTO",        "EXTERNPROTO",    "ROUTE",     "TO",
+        "IS",         "NULL",     "TRUE",         "FALSE",          "IMPORT",    "EXPORT",
+        "AS",         "PROFILE",  "COMPONENT",    "META",           "UNIT",      "field",
+        "eventIn",    "eventOut", "exposedField", "initializeOnly", "inputOnly", "outputOnly",
+        "inputOutput"};
+    for (std::string_view k : kKeywords)
+      if (out == k) out += '_';
+    if (out != raw && !raw.empty())
+      warn({}, "the name '" + raw + "' is no identifier of the Classic encoding: written as '" +
+                   out + "'");
+    it->second = std::move(out);
+    return it->second;
+  }
+
+  // The DEF name `n` is written with: its own (as ident() spells it), or, for a node a ROUTE
+  // names that has none (the glTF importer's interpolators and Transforms), one made up
+  // when `make`: "_" + its type + a number, unused by the world.
+  std::unordered_map<const Node*, std::string> madeNames_;
+  std::unordered_set<std::string> usedNames_;
+  std::string defOf(const Node& n, bool make = false) {
+    if (!n.defName.empty()) return ident(n.defName);
+    if (auto it = madeNames_.find(&n); it != madeNames_.end()) return it->second;
+    if (!make) return {};
+    std::string name;
+    do {
+      name = "_" + n.typeName() + "_" + std::to_string(madeNames_.size() + 1 + extraNumber_++);
+    } while (usedNames_.contains(name));
+    usedNames_.insert(name);
+    madeNames_.emplace(&n, name);
+    return name;
+  }
+  std::size_t extraNumber_ = 0;
 
   // ---- nodes ------------------------------------------------------------------------------
 
@@ -360,15 +416,15 @@ class Builder {
   WNode nodeOf(const NodePtr& np) {
     const Node& n = *np;
     WNode w;
-    if (written_.contains(&n) && !n.defName.empty()) {
+    if (written_.contains(&n) && !defOf(n).empty()) {
       w.node = &n;
       w.use = true;
-      w.def = n.defName;
+      w.def = defOf(n);
       const NodeType* it = instanceType(n);
       w.instance = it != nullptr;
       w.typeName = it != nullptr ? it->name : n.typeName();
       if (it == nullptr) w.containerDefault = containerDefault(n);
-      if (auto b = binding_.find(n.defName); b != binding_.end() && b->second != &n)
+      if (auto b = binding_.find(w.def); b != binding_.end() && b->second != &n)
         drop(n.location, "a USE of this node (DEF " + n.defName +
                              "): that DEF name was given to another node in between: the "
                              "file read back will USE that one");
@@ -385,7 +441,7 @@ class Builder {
     }
     written_.insert(&n);
     w.node = &n;
-    w.def = n.defName;
+    w.def = defOf(n);
     if (!w.def.empty()) binding_[w.def] = &n;  // (an instance's DEF may be cleared below)
     if (itype != nullptr) {
       instanceOf(n, *itype, w);
@@ -401,7 +457,7 @@ class Builder {
     const ProtoInstance* p = declaredInterface(n);
     // An instance without a DEF of its own carries its body's first node's DEF name.
     if (const ProtoDefinition* b = bodyOf(&type);
-        p != nullptr && b != nullptr && !b->body.empty() && b->body.front()->defName == w.def &&
+        p != nullptr && b != nullptr && !b->body.empty() && b->body.front()->defName == n.defName &&
         references_[&n] <= 1 && !routed_.contains(&n)) {
       if (auto it = binding_.find(w.def); it != binding_.end() && it->second == &n)
         binding_.erase(it);
@@ -644,14 +700,13 @@ class Builder {
       const auto& [nodeField, inst, protoField] = it->second;
       if (nodeField != i) continue;
       const ProtoInstance* p = declaredInterface(*inst);
-      if (p == nullptr || inst->defName.empty()) continue;
-      name = inst->defName;
+      if (p == nullptr) continue;
+      name = defOf(*inst, true);
       member = p->type->fields[static_cast<std::size_t>(protoField)].name;
       routed_.insert(inst);
       named = inst;
       return true;
     }
-    if (node->defName.empty()) return false;
     if (!x3dOut_ && x3dIn_ && instanceType(*node) == nullptr) {
       // A field X3D added to a VRML97 node (or an X3D node) has no VRML97 event.
       const auto vrml97 = builtInNodeType(node->typeName());
@@ -665,7 +720,7 @@ class Builder {
         return false;
       }
     }
-    name = node->defName;
+    name = defOf(*node, true);
     member = instanceType(*node) != nullptr ? field : fieldName(*node, field);
     routed_.insert(node.get());
     named = node.get();
@@ -704,9 +759,9 @@ class Builder {
       }
       WStatement s;
       s.kind = WStatement::Kind::import;
-      s.a = im.inlineDef;
-      s.b = im.exportedName;
-      s.c = im.localName;
+      s.a = ident(im.inlineDef);
+      s.b = ident(im.exportedName);
+      s.c = ident(im.localName);
       out.emplace_back(im.location, std::move(s));
     }
     for (const X3dExport& ex : x.exports) {
@@ -716,8 +771,8 @@ class Builder {
       }
       WStatement s;
       s.kind = WStatement::Kind::exported;
-      s.a = ex.localDef;
-      s.b = ex.exportedName;
+      s.a = ident(ex.localDef);
+      s.b = ident(ex.exportedName);
       out.emplace_back(ex.location, std::move(s));
     }
     for (const X3dImportedRoute& r : x.importedRoutes) {
@@ -732,13 +787,13 @@ class Builder {
       if (r.fromImport.empty()) {
         ok = routeEnd(r.fromNode, r.fromField, w.fromNode, w.fromField, w.from);
       } else {
-        w.fromNode = r.fromImport;
+        w.fromNode = ident(r.fromImport);
         w.fromField = r.fromField;
       }
       if (r.toImport.empty()) {
         ok = ok && routeEnd(r.toNode, r.toField, w.toNode, w.toField, w.to);
       } else {
-        w.toNode = r.toImport;
+        w.toNode = ident(r.toImport);
         w.toField = r.toField;
       }
       if (!ok) {
