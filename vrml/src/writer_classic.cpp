@@ -22,6 +22,11 @@ class ClassicPrinter {
       if (!doc_.profile.empty()) out_ += "PROFILE " + doc_.profile + "\n";
       for (const auto& [name, level] : doc_.components)
         out_ += "COMPONENT " + name + ":" + std::to_string(level) + "\n";
+      for (const X3dUnit& u : doc_.units) {
+        std::string factor;
+        appendNumber(factor, u.conversionFactor);
+        out_ += "UNIT " + u.category + " " + u.name + " " + factor + "\n";
+      }
       for (const auto& [name, content] : doc_.meta)
         out_ += "META " + quoted(name) + " " + quoted(content) + "\n";
     } else {

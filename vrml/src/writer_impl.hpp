@@ -85,6 +85,7 @@ struct WDocument {
   bool x3d = false;  // an X3D encoding (else VRML97)
   std::string version, profile;
   std::vector<std::pair<std::string, int>> components;
+  std::vector<X3dUnit> units;  // mass and force only (length and angle values are converted)
   std::vector<std::pair<std::string, std::string>> meta;
   std::vector<WStatement> statements;
   std::deque<FieldValue> owned;  // values converted for the target, pointed to by WField

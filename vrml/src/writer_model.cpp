@@ -74,10 +74,19 @@ class Builder {
       for (const auto& [name, content] : scene_.x3d.meta)
         warn({}, "META \"" + name + "\" \"" + content + "\" has no VRML97 form: not written");
     }
-    if (!scene_.x3d.units.empty())
-      warn({},
-           "UNIT statements are not written: the values were converted to base units "
-           "(metres, radians) when read, and are written so");
+    // Length and angle units were applied to the values when read (a scaled Transform
+    // around each root, angles in radians): written so, without the UNIT. Mass and force
+    // are only recorded (no physics here): kept.
+    for (const X3dUnit& u : scene_.x3d.units) {
+      if (x3dOut_ && u.category != "length" && u.category != "angle") {
+        doc.units.push_back(u);
+        continue;
+      }
+      warn({}, "UNIT " + u.category + " " + u.name + " is not written: " +
+                   (x3dOut_ ? "the values were converted to base units (metres, radians) when "
+                              "read, and are written so"
+                            : "VRML97 has no UNIT statement"));
+    }
     for (const auto& p : scene_.protos) topProtos_.insert(p.get());
     // (extraTop_ types are declared at the top too once written.)
     for (const NodePtr& n : scene_.rootNodes) {

@@ -37,6 +37,16 @@ class ElementBuilder {
       c.attrs.push_back({"level", std::to_string(level), nullptr});
       head.children.push_back(std::move(c));
     }
+    for (const X3dUnit& u : doc_.units) {
+      XElem e;
+      e.name = "unit";
+      std::string factor;
+      appendNumber(factor, u.conversionFactor);
+      e.attrs.push_back({"category", u.category, nullptr});
+      e.attrs.push_back({"name", u.name, nullptr});
+      e.attrs.push_back({"conversionFactor", factor, nullptr});
+      head.children.push_back(std::move(e));
+    }
     for (const auto& [name, content] : doc_.meta) {
       XElem m;
       m.name = "meta";
