@@ -8,6 +8,7 @@
 
 #include "vrml/field.hpp"
 #include "vrml/node.hpp"
+#include "vrml/proto.hpp"
 #include "vrml/scene.hpp"
 #include "vrml/writer.hpp"
 
@@ -120,6 +121,24 @@ struct XElem {
 /// The <X3D> element of `doc` (head and Scene); values made for it (an EXTERNPROTO's url
 /// list, a Script's url without its inline source) go to `owned`, which must outlive it.
 XElem xmlDocument(const WDocument& doc, std::deque<FieldValue>& owned);
+
+// ---- the scene (writer_scene.cpp) --------------------------------------------------------
+
+/// The PROTO body an instance of `type` copied: its own, or a resolved EXTERNPROTO's
+/// target's; null for built-in types and unresolved EXTERNPROTOs.
+const ProtoDefinition* bodyOf(const NodeType* type);
+/// The PROTO or EXTERNPROTO type `n` stands for an instance of (expanded, or an unresolved
+/// EXTERNPROTO's instance); null for a plain node.
+const NodeType* instanceType(const Node& n);
+/// The PROTO types of the instances in `d`'s body (with repeats), not looking into the
+/// instances' own bodies.
+std::vector<const NodeType*> instanceTypesIn(const ProtoDefinition& d);
+/// `raw` as a name every encoding reads back as itself (ISO/IEC 19776-2 clause 5.2.3,
+/// ISO/IEC 14772-1 annex A.2 IdFirstChar / IdRestChars): each byte that is white space, a
+/// control character, a quote, '#', ',', '.', a bracket, a brace or a backslash becomes
+/// '_' (as the XML reader spells XML IDs such as "Cube.001"), '_' goes before a leading
+/// digit or sign and after a keyword.
+std::string classicIdent(std::string_view raw);
 
 // ---- values ------------------------------------------------------------------------------
 

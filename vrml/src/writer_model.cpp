@@ -35,21 +35,6 @@ bool carriesValue(AccessType a) {
   return a == AccessType::field || a == AccessType::exposedField;
 }
 
-// The definition whose body an instance of `type` copied (a resolved EXTERNPROTO's target).
-const ProtoDefinition* bodyOf(const NodeType* type) {
-  if (type == nullptr || !type->proto) return nullptr;
-  if (type->proto->external)
-    return type->proto->resolved ? bodyOf(type->proto->resolved.get()) : nullptr;
-  return type->proto.get();
-}
-
-// True when `n` stands for a PROTO or EXTERNPROTO instance (expanded or not).
-const NodeType* instanceType(const Node& n) {
-  if (const ProtoInstance* p = declaredInterface(n)) return p->type.get();
-  if (n.type().proto) return &n.type();  // unresolved EXTERNPROTO instance
-  return nullptr;
-}
-
 class Builder {
  public:
   Builder(const Scene& scene, const WriteOptions& options, Diagnostics& diagnostics)
@@ -278,35 +263,15 @@ class Builder {
 
   std::unordered_map<std::string, std::string> idents_;
 
-  // `raw` as a name every encoding reads back as itself (ISO/IEC 19776-2 clause 5.2.3,
-  // ISO/IEC 14772-1 annex A.2 IdFirstChar / IdRestChars): no white space or control
-  // characters, quotes, '#', ',', '.', brackets, braces or backslash, not starting with a
-  // digit or sign, and no keyword; each other byte becomes '_' (as the XML reader does
-  // with XML IDs such as "Cube.001"). A name glTF or XML gave may need it; a warning says so.
+  // `raw` as classicIdent() writes it; a warning the first time a name changes (glTF's
+  // "Cube.001").
   const std::string& ident(const std::string& raw) {
     auto [it, added] = idents_.try_emplace(raw);
     if (!added) return it->second;
-    std::string out;
-    for (char c : raw) {
-      const auto u = static_cast<unsigned char>(c);
-      const bool bad = u <= 0x20 || u == 0x7f || c == '"' || c == '#' || c == '\'' || c == ',' ||
-                       c == '.' || c == '[' || c == '\\' || c == ']' || c == '{' || c == '}';
-      out += bad ? '_' : c;
-    }
-    if (!out.empty() && ((out[0] >= '0' && out[0] <= '9') || out[0] == '+' || out[0] == '-'))
-      out.insert(out.begin(), '_');
-    static constexpr std::string_view kKeywords[] = {
-        "DEF",        "USE",      "PROTO",        "EXTERNPROTO",    "ROUTE",     "TO",
-        "IS",         "NULL",     "TRUE",         "FALSE",          "IMPORT",    "EXPORT",
-        "AS",         "PROFILE",  "COMPONENT",    "META",           "UNIT",      "field",
-        "eventIn",    "eventOut", "exposedField", "initializeOnly", "inputOnly", "outputOnly",
-        "inputOutput"};
-    for (std::string_view k : kKeywords)
-      if (out == k) out += '_';
-    if (out != raw && !raw.empty())
+    it->second = classicIdent(raw);
+    if (it->second != raw && !raw.empty())
       warn({}, "the name '" + raw + "' is no identifier of the Classic encoding: written as '" +
-                   out + "'");
-    it->second = std::move(out);
+                   it->second + "'");
     return it->second;
   }
 
@@ -650,30 +615,6 @@ class Builder {
     binding_ = outerBinding;
     declaredInBodies_.resize(declared);
     return p;
-  }
-
-  std::vector<const NodeType*> instanceTypesIn(const ProtoDefinition& d) const {
-    std::vector<const NodeType*> out;
-    std::unordered_set<const Node*> seen;
-    std::vector<const Node*> stack;
-    for (const NodePtr& n : d.body) stack.push_back(n.get());
-    while (!stack.empty()) {
-      const Node* n = stack.back();
-      stack.pop_back();
-      if (n == nullptr || !seen.insert(n).second) continue;
-      auto push = [&](const FieldValue& v) {
-        if (v.type() == FieldType::SFNode) stack.push_back(v.get<FieldType::SFNode>().get());
-        if (v.type() == FieldType::MFNode)
-          for (const NodePtr& c : v.get<FieldType::MFNode>()) stack.push_back(c.get());
-      };
-      if (const ProtoInstance* p = declaredInterface(*n)) {
-        out.push_back(p->type.get());
-        for (const FieldValue& v : p->values) push(v);
-        continue;
-      }
-      for (std::size_t i = 0; i < n->fieldCount(); ++i) push(n->fieldAt(i));
-    }
-    return out;
   }
 
   // PROTO types whose instances the body being written holds and that are declared
