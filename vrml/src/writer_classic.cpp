@@ -143,12 +143,13 @@ class ClassicPrinter {
     }
     if (!n.def.empty()) out_ += "DEF " + n.def + " ";
     out_ += n.typeName;
-    if (n.decls.empty() && n.fields.empty()) {
+    if (n.protos.empty() && n.decls.empty() && n.fields.empty()) {
       out_ += " { }";
       return;
     }
     out_ += " {\n";
     const std::string inner = indent + "  ";
+    for (const auto& p : n.protos) proto(*p, inner);
     for (const WDecl& d : n.decls) decl(d, inner);
     for (const WField& f : n.fields) {
       out_ += inner + f.name;

@@ -20,6 +20,7 @@
 namespace gs::vrml::writing {
 
 struct WNode;
+struct WProto;
 
 /// One field of a node written with a value, or connected by IS inside a PROTO body.
 struct WField {
@@ -49,6 +50,9 @@ struct WNode {
   bool instance = false;  // PROTO / EXTERNPROTO instance: `typeName` is the PROTO's name
   std::string def;        // DEF or USE name
   std::string typeName;
+  /// PROTOs declared in the node's body (Classic encodings only: a PROTO the file declared
+  /// inside a node, which Scene::protos does not list), before everything else.
+  std::vector<std::shared_ptr<WProto>> protos;
   std::vector<WDecl> decls;  // Script and shader user fields, before `fields`
   std::vector<WField> fields;
   /// The XML encoding's containerField default of the node's type (empty for instances).

@@ -43,6 +43,9 @@ class Builder {
     x3dOut_ = options.encoding != Encoding::vrml97;
     version_ = x3dIn_ ? scene.x3d.version : options.x3dVersionForVrml97;
     x3d3Out_ = x3dOut_ && version_.starts_with('3');
+    // ISO/IEC 14772-1 and 19776-2 allow PROTO statements in a node's body (nodeBodyElement);
+    // the XML reader moves them after the node's children.
+    protosInBodies_ = options.encoding == Encoding::vrml97 || options.encoding == Encoding::classic;
   }
 
   WDocument build() {
@@ -94,7 +97,15 @@ class Builder {
     const std::size_t firstProto = others.size();
     std::vector<const NodeType*> protos;
     for (const auto& p : scene_.protos) protos.push_back(p.get());
-    protos.insert(protos.end(), extraTop_.begin(), extraTop_.end());
+    for (const NodeType* t : extraTop_) {
+      // In the body of the node that holds the first instance, where the Classic encodings
+      // can say it (the file had it in a node); else at the top.
+      const Node* parent = extraParent_[t];
+      if (protosInBodies_ && parent != nullptr && instanceType(*parent) == nullptr)
+        bodyProtos_[parent].push_back(t);
+      else
+        protos.push_back(t);
+    }
     for (const NodeType* p : protos) {
       WStatement s;
       s.kind = WStatement::Kind::proto;
@@ -178,6 +189,10 @@ class Builder {
   std::unordered_set<const NodeType*> surveyedTypes_;
   std::vector<const ProtoDefinition*> allBodies_;
   std::vector<const NodeType*> extraTop_;  // PROTOs declared in nodes, used outside bodies
+  std::unordered_map<const NodeType*, const Node*> extraParent_;  // -> node of 1st instance
+  const Node* surveyParent_ = nullptr;  // the node whose field survey() is in
+  bool protosInBodies_ = false;         // the encoding has PROTO statements in node bodies
+  std::unordered_map<const Node*, std::vector<const NodeType*>> bodyProtos_;
   int bodyDepth_ = 0;
   std::size_t rootIndex_ = 0;                                  // the root being surveyed
   std::unordered_map<const NodeType*, std::size_t> firstUse_;  // PROTO -> first root using it
@@ -220,8 +235,10 @@ class Builder {
     // inside a node (X3D allows PROTO statements in MFNode values; Scene::protos lists
     // only those at the top): written at the top, before the root node it was in.
     if (bodyDepth_ == 0 && !topProtos_.contains(t) &&
-        std::find(extraTop_.begin(), extraTop_.end(), t) == extraTop_.end())
+        std::find(extraTop_.begin(), extraTop_.end(), t) == extraTop_.end()) {
       extraTop_.push_back(t);
+      extraParent_[t] = surveyParent_;
+    }
     if (!surveyedTypes_.insert(t).second) return;
     // Interface defaults are written where the declaration is; bodies in their own scope.
     const ProtoDefinition& d = *t->proto;
@@ -247,16 +264,21 @@ class Builder {
     ++references_[n.get()];
     if (!n->defName.empty()) usedNames_.insert(n->defName);
     if (!surveyed_.insert(n.get()).second) return;
+    const Node* parent = surveyParent_;
     if (const ProtoInstance* p = declaredInterface(*n)) {
       surveyType(p->type.get());
       for (const InstanceLink& k : p->links)
         if (const NodePtr b = k.node.lock())
           links_.emplace(b.get(), std::tuple(k.nodeField, n.get(), k.protoField));
+      surveyParent_ = n.get();
       for (const FieldValue& v : p->values) surveyValue(v);
+      surveyParent_ = parent;
       return;
     }
     surveyType(instanceType(*n));
+    surveyParent_ = n.get();
     for (std::size_t i = 0; i < n->fieldCount(); ++i) surveyValue(n->fieldAt(i));
+    surveyParent_ = parent;
   }
 
   // ---- names ----
@@ -485,6 +507,11 @@ class Builder {
   }
 
   void plainNode(const Node& n, WNode& w) {
+    if (auto it = bodyProtos_.find(&n); it != bodyProtos_.end())
+      for (const NodeType* t : it->second) {
+        auto p = protoOf(*t);
+        if (!emptyProtos_.contains(t)) w.protos.push_back(std::move(p));
+      }
     const NodeType& type = n.type();
     w.typeName = n.typeName();
     w.containerDefault = containerDefault(n);
