@@ -102,6 +102,15 @@ const std::vector<OptionSpec>& table() {
        .help = "Frame the whole scene instead of using the bound Viewpoint",
        .more = "Streams, meshes and volumes have no Viewpoint and are always framed."},
       {.scope = main,
+       .names = "--castle-camera",
+       .valueName = "",
+       .field = GS_FIELD(bool, options.castleCamera),
+       .help = "With --snapshot: start a world without a Viewpoint where castle-model-viewer "
+               "starts it instead of at VRML97's default viewpoint",
+       .more = "Looking along -Z from the box centre's X and Y, at the box's largest Z plus "
+               "twice its average side (scene::wholeSceneCamera). glTF assets without a camera "
+               "always start there; tests/bench/x3d_vs_castle.sh compares with it."},
+      {.scope = main,
        .names = "--frames",
        .valueName = "N",
        .field = GS_FIELD(int, options.frames),

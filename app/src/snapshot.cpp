@@ -106,10 +106,13 @@ int runSnapshot(const Options& options) {
     const bool fit = options.fit || session::isSplatInput(options.inputs[k]);
     // A glTF asset without a camera is framed whole too, as glTF viewers do (asked when
     // drawn: the encoding is known once the asset has arrived).
-    v->setCamera([fit, scene = scenes[k]](render::SceneRenderer& r, float aspect) {
+    v->setCamera([fit, castle = options.castleCamera, scene = scenes[k]](render::SceneRenderer& r,
+                                                                         float aspect) {
       scene::Camera c = r.boundViewpointCamera();
       const bool gltf = scene->x3d.encoding == "glTF";
-      if (fit || (gltf && r.viewpoints().empty())) c = r.fitToScene(aspect, c);
+      if (fit) c = r.fitToScene(aspect, c);
+      if (!fit && (gltf || castle) && r.viewpoints().empty())
+        c = scene::wholeSceneCamera(r.bounds(), c);
       scene::fitClipPlanes(c, r.bounds(), r.navigation().nearClip());
       return c;
     });

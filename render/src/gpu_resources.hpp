@@ -29,12 +29,14 @@ struct GpuMesh {
   bool indexed = false;
   vrml::Primitive primitive = vrml::Primitive::triangles;
   bool hasNormals = false, hasColors = false, hasTexCoords = false;
+  bool hasTexCoords1 = false;  // the second texture coordinate set (vrml::Mesh::texCoords1)
   bool solid = true;
   std::size_t triangles = 0;
   vrml::Bounds bounds;
   std::uint64_t revision = 0;  // vrml::revisionWithFields of the geometry uploaded
 
-  /// Uploads `mesh` (attribute locations: 0 position, 1 normal, 2 colour, 3 texCoord).
+  /// Uploads `mesh` (attribute locations: 0 position, 1 normal, 2 colour, 3 texCoord,
+  /// 4 the second texCoord set).
   void upload(const vrml::Mesh& mesh);
   /// Issues the draw call (the program and uniforms must be set).
   void draw() const;

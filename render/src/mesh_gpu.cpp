@@ -15,6 +15,7 @@ void GpuMesh::upload(const vrml::Mesh& mesh) {
   hasNormals = mesh.primitive == vrml::Primitive::triangles && mesh.normals.size() == n;
   hasColors = mesh.colors.size() == n && n > 0;
   hasTexCoords = mesh.texCoords.size() == n && n > 0;
+  hasTexCoords1 = hasTexCoords && mesh.texCoords1.size() == n;
   indexed = !mesh.indices.empty();
   count = static_cast<GLsizei>(indexed ? mesh.indices.size() : n);
   if (!indexed && primitive == vrml::Primitive::triangles) triangles = n / 3;
@@ -34,7 +35,8 @@ void GpuMesh::upload(const vrml::Mesh& mesh) {
   const std::size_t normalBytes = hasNormals ? n * sizeof(glm::vec3) : 0;
   const std::size_t colorBytes = hasColors ? n * sizeof(glm::vec4) : 0;
   const std::size_t texBytes = hasTexCoords ? n * sizeof(glm::vec2) : 0;
-  const std::size_t total = positionBytes + normalBytes + colorBytes + texBytes;
+  const std::size_t tex1Bytes = hasTexCoords1 ? n * sizeof(glm::vec2) : 0;
+  const std::size_t total = positionBytes + normalBytes + colorBytes + texBytes + tex1Bytes;
 
   glGenVertexArrays(1, &vao);
   glBindVertexArray(vao);
@@ -54,6 +56,7 @@ void GpuMesh::upload(const vrml::Mesh& mesh) {
   if (hasNormals) attribute(1, 3, mesh.normals.data(), normalBytes);
   if (hasColors) attribute(2, 4, mesh.colors.data(), colorBytes);
   if (hasTexCoords) attribute(3, 2, mesh.texCoords.data(), texBytes);
+  if (hasTexCoords1) attribute(4, 2, mesh.texCoords1.data(), tex1Bytes);
   if (indexed) {
     glGenBuffers(1, &indexBuffer);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indexBuffer);
@@ -71,6 +74,7 @@ void GpuMesh::draw() const {
   if (!hasNormals) glVertexAttrib3f(1, 0.0f, 0.0f, 1.0f);
   if (!hasColors) glVertexAttrib4f(2, 1.0f, 1.0f, 1.0f, 1.0f);
   if (!hasTexCoords) glVertexAttrib2f(3, 0.0f, 0.0f);
+  if (!hasTexCoords1) glVertexAttrib2f(4, 0.0f, 0.0f);
   const GLenum mode = primitive == vrml::Primitive::triangles ? GL_TRIANGLES
                       : primitive == vrml::Primitive::lines   ? GL_LINES
                                                               : GL_POINTS;

@@ -3,6 +3,7 @@
 
 #include "base/url.hpp"
 
+#include "environment_maps.hpp"
 #include "scene_splats.hpp"
 
 #include "gl_program.hpp"
@@ -42,11 +43,21 @@ struct Shading {
   glm::vec3 emissiveColor{0.0f};
   float shininess = 0.2f;
   float transparency = 0.0f;
+  /// X3D 4.0 TwoSidedMaterial with separateBackColor TRUE: the back faces' values.
+  bool separateBack = false;
+  glm::vec3 backDiffuseColor{0.8f}, backSpecularColor{0.0f}, backEmissiveColor{0.0f};
+  float backAmbientIntensity = 0.2f, backShininess = 0.2f, backTransparency = 0.0f;
   const vrml::Node* texture = nullptr;
+  /// An RGB(A) texture multiplies the diffuse colour (X3D 4 Material.diffuseTexture)
+  /// instead of replacing it (VRML97 table 4.5 for Appearance.texture).
+  bool textureModulates = false;
   glm::mat3 textureMatrix{1.0f};
   // PhysicalMaterial (diffuseColor holds baseColor, texture baseTexture).
   float metallic = 1.0f, roughness = 1.0f, normalScale = 1.0f, occlusionStrength = 1.0f;
   std::array<const vrml::Node*, kPhysicalMaps> maps{};
+  /// baseTextureMapping, then the maps' *TextureMapping fields (X3D 4.0 clause 12.4.10).
+  std::array<std::string, 1 + kPhysicalMaps> mappings{};
+  bool anyMapping = false;
   int alphaMode = 0;  // 0 AUTO, 1 OPAQUE, 2 MASK, 3 BLEND
   float alphaCutoff = 0.5f;
   std::uint64_t revision = 0;  // vrml::revisionWithFields of the Appearance read
@@ -80,14 +91,57 @@ void readX3dMaterial(const vrml::Node& m, Shading& s) {
   s.maps[kNormalMap] = sfnodeOf(m, "normalTexture");
   s.maps[kEmissiveMap] = sfnodeOf(m, "emissiveTexture");
   s.maps[kOcclusionMap] = sfnodeOf(m, "occlusionTexture");
+  static constexpr std::array<vrml::FieldName, 1 + kPhysicalMaps> kMappings = {
+      "baseTextureMapping", "metallicRoughnessTextureMapping", "normalTextureMapping",
+      "emissiveTextureMapping", "occlusionTextureMapping"};
+  for (std::size_t i = 0; i < kMappings.size(); ++i) {
+    s.mappings[i] = scene::sfString(m, kMappings[i]);
+    s.anyMapping = s.anyMapping || !s.mappings[i].empty();
+  }
+}
+
+/// The texture coordinate set (0 or 1, GpuMesh's two) a texture with *TextureMapping
+/// `mapping` reads in `geometry`: the position of the TextureCoordinate whose `mapping`
+/// equals it in the geometry's MultiTextureCoordinate (X3D 4.0 clause 18.2.3). 0 for an
+/// empty mapping, none found, or a set past the second.
+int texCoordSetOf(const std::string& mapping, const vrml::Node& geometry) {
+  if (mapping.empty()) return 0;
+  const vrml::NodePtr& tc = geometry.sfnode("texCoord");
+  if (!tc || tc->typeId() != vrml::NodeTypeId::MultiTextureCoordinate) return 0;
+  const std::vector<vrml::NodePtr>& sets = tc->mfnode("texCoord");
+  for (std::size_t i = 0; i < sets.size() && i < 2; ++i)
+    if (sets[i] && scene::sfString(*sets[i], "mapping") == mapping) return static_cast<int>(i);
+  return 0;
+}
+
+// X3D 4.0 clause 12.4.11 TwoSidedMaterial: the back* fields light back faces when
+// separateBackColor is TRUE; otherwise both sides take the front values.
+void readBackMaterial(const vrml::Node& m, Shading& s) {
+  s.separateBack = scene::sfBool(m, "separateBackColor", false);
+  if (!s.separateBack) return;
+  const auto color = [&](vrml::FieldName f, glm::vec3 fallback) {
+    return glm::clamp(scene::sfColor(m, f, fallback), 0.0f, 1.0f);
+  };
+  const auto unit = [&](vrml::FieldName f, float fallback) {
+    return std::clamp(scene::sfFloat(m, f, fallback), 0.0f, 1.0f);
+  };
+  s.backDiffuseColor = color("backDiffuseColor", glm::vec3(0.8f));
+  s.backSpecularColor = color("backSpecularColor", glm::vec3(0.0f));
+  s.backEmissiveColor = color("backEmissiveColor", glm::vec3(0.0f));
+  s.backAmbientIntensity = unit("backAmbientIntensity", 0.2f);
+  s.backShininess = unit("backShininess", 0.2f);
+  s.backTransparency = unit("backTransparency", 0.0f);
 }
 
 Shading readShading(const vrml::Node* appearance) {
   Shading s;
   if (appearance == nullptr) return s;
-  // Only a Material lights the shape (6.3); any other node there leaves it unlit (4.14.1).
+  // Only a Material (or X3D's TwoSidedMaterial) lights the shape (6.3); any other node
+  // there leaves it unlit (4.14.1).
   if (const vrml::NodePtr m = appearance->sfnode("material");
-      m && !m->unresolved && m->typeId() == vrml::NodeTypeId::Material) {
+      m && !m->unresolved &&
+      (m->typeId() == vrml::NodeTypeId::Material ||
+       m->typeId() == vrml::NodeTypeId::TwoSidedMaterial)) {
     s.hasMaterial = true;
     s.diffuseColor = glm::clamp(scene::sfColor(*m, "diffuseColor", glm::vec3(0.8f)), 0.0f, 1.0f);
     s.ambientIntensity = std::clamp(scene::sfFloat(*m, "ambientIntensity", 0.2f), 0.0f, 1.0f);
@@ -95,9 +149,19 @@ Shading readShading(const vrml::Node* appearance) {
     s.emissiveColor = glm::clamp(scene::sfColor(*m, "emissiveColor", glm::vec3(0.0f)), 0.0f, 1.0f);
     s.shininess = std::clamp(scene::sfFloat(*m, "shininess", 0.2f), 0.0f, 1.0f);
     s.transparency = std::clamp(scene::sfFloat(*m, "transparency", 0.0f), 0.0f, 1.0f);
+    if (m->typeId() == vrml::NodeTypeId::TwoSidedMaterial) readBackMaterial(*m, s);
   }
   if (const vrml::NodePtr t = appearance->sfnode("texture"); t && !t->unresolved)
     s.texture = t.get();
+  // X3D 4.0 clause 12.4.4: a Material's diffuseTexture textures the shape as
+  // Appearance.texture does (which wins when both are given).
+  if (const vrml::NodePtr m = appearance->sfnode("material");
+      s.texture == nullptr && m && !m->unresolved &&
+      (m->typeId() == vrml::NodeTypeId::Material ||
+       m->typeId() == vrml::NodeTypeId::TwoSidedMaterial)) {
+    s.texture = sfnodeOf(*m, "diffuseTexture");
+    s.textureModulates = s.texture != nullptr;  // diffuseColor x texture (clause 17.2.2.4)
+  }
   if (const vrml::NodePtr m = appearance->sfnode("material");
       m && !m->unresolved &&
       (m->typeId() == vrml::NodeTypeId::PhysicalMaterial ||
@@ -121,7 +185,19 @@ struct DrawItem {
   const GpuTexture* texture;                          // null: untextured
   std::array<const GpuTexture*, kPhysicalMaps> maps;  // PhysicalMaterial's other maps
   float depth;                                        // along the view direction, for sorting
+  /// The EnvironmentLight of a PhysicalMaterial shape and its maps; null: none.
+  const scene::EnvironmentLightInstance* environmentLight = nullptr;
+  const GpuEnvironment* environment = nullptr;
+  /// The set each texture reads: base colour, then the maps (texCoordSetOf).
+  std::array<GLint, 1 + kPhysicalMaps> texCoordSets{};
 };
+
+/// Texture unit of an EnvironmentLight's specular cube map (units 0..4 are 2D maps).
+constexpr GLint kEnvironmentUnit = 5;
+
+/// ClipPlanes one shape takes (X3D 4.0 clause 11.4.1 asks for at least 6; the vertex
+/// shader's kMaxClipPlanes). Further ones are reported once and not applied.
+constexpr std::uint32_t kMaxClipPlanes = 6;
 
 /// Uniform arrays of the lights of one shape.
 struct LightArrays {
@@ -167,16 +243,19 @@ struct SceneRenderer::Gpu {
   vrml::NodeMap<GpuMesh> meshes;
   vrml::NodeMap<Shading> shadings;
   TextureCache textures;
+  EnvironmentMaps environments;
   BackgroundPass background;
   // Reused from frame to frame.
   scene::TraversalFrame frame;
   std::vector<scene::LightInstance> eyeLights;
+  std::vector<glm::vec4> eyeClipPlanes;
   std::vector<DrawItem> opaque, transparent;
 
   void release() {
     for (auto& [node, mesh] : meshes) mesh.release();
     meshes.clear();
     textures.release();
+    environments.release();
     background.release();
     programs.release();
   }
@@ -233,7 +312,11 @@ void SceneRenderer::setLod(double lod) {
 
 scene::Camera SceneRenderer::initialCamera(float aspect) {
   if (!viewpoints().empty() || bounds().empty()) return boundViewpointCamera();
-  scene::Camera camera = scene::fitCamera(bounds(), aspect, scene::Camera{});
+  // A glTF asset starts where castle-model-viewer starts it (docs/gltf.md); other worlds
+  // are fitted to the viewport.
+  const bool gltf = traversal_.sharedScene()->x3d.encoding == "glTF";
+  scene::Camera camera = gltf ? scene::wholeSceneCamera(bounds(), scene::Camera{})
+                              : scene::fitCamera(bounds(), aspect, scene::Camera{});
   if (navigation().visibilityLimit > 0.0f)
     camera.farClip = std::max(navigation().visibilityLimit, camera.nearClip * 2.0f);
   return camera;
@@ -275,6 +358,13 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     l.direction = glm::normalize(viewRotation * l.direction);
     g.eyeLights[i] = l;
   }
+  // ClipPlanes in eye coordinates (a plane maps by the inverse transpose of the view).
+  const glm::mat4 planeToEye = glm::transpose(glm::inverse(view));
+  g.eyeClipPlanes.resize(g.frame.scopedClipPlanes.size());
+  for (std::size_t i = 0; i < g.frame.scopedClipPlanes.size(); ++i)
+    g.eyeClipPlanes[i] = planeToEye * g.frame.scopedClipPlanes[i];
+  std::uint32_t clipDistancesOn = 0;  // GL_CLIP_DISTANCEi enabled: i < clipDistancesOn
+
   scene::LightInstance headlight;  // directional along the view direction, intensity 1, ambient 0
   headlight.direction = glm::vec3(0.0f, 0.0f, -1.0f);
 
@@ -315,13 +405,22 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
           maps[i] = &g.textures.get(*shading.maps[i], *s.baseUrl, traversal_, options_.fetcher);
           if (maps[i]->components == 0) maps[i] = nullptr;
         }
-    const DrawItem item{&s,      &mesh, &shading,
-                        texture, maps,  glm::dot(center - camera.position, forward)};
+    DrawItem item{&s, &mesh, &shading, texture, maps, glm::dot(center - camera.position, forward)};
+    if (shading.model == ShadingModel::physical && mesh.primitive == vrml::Primitive::triangles &&
+        s.environmentLight >= 0) {
+      item.environmentLight =
+          &g.frame.environmentLights[static_cast<std::size_t>(s.environmentLight)];
+      item.environment = g.environments.get(*item.environmentLight, traversal_, options_.fetcher);
+    }
+    if (shading.anyMapping && mesh.hasTexCoords1)
+      for (std::size_t i = 0; i < item.texCoordSets.size(); ++i)
+        item.texCoordSets[i] = texCoordSetOf(shading.mappings[i], *s.geometry);
     // Appearance.alphaMode (X3D 4.0 clause 12.4.2): OPAQUE and MASK never blend, BLEND
     // always does, AUTO when the material or the texture is translucent.
     const bool blended = shading.alphaMode == 3 ||
-                         (shading.alphaMode == 0 && (shading.transparency > 0.0f ||
-                                                     (texture != nullptr && texture->hasAlpha)));
+                         (shading.alphaMode == 0 &&
+                          (shading.transparency > 0.0f || shading.backTransparency > 0.0f ||
+                           (texture != nullptr && texture->hasAlpha)));
     (blended ? g.transparent : g.opaque).push_back(item);
   }
   std::sort(g.transparent.begin(), g.transparent.end(),
@@ -342,6 +441,7 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
       glUniform1i(u.texture, 0);
       for (std::size_t i = 0; i < kPhysicalMaps; ++i)
         glUniform1i(u.map[i], static_cast<GLint>(i + 1));
+      glUniform1i(u.environmentMap, kEnvironmentUnit);
       glUniform1i(u.fogType, fogType);
       glUniform3fv(u.fogColor, 1, glm::value_ptr(fog.color));
       glUniform1f(u.fogVisibilityRange, fog.visibilityRange);
@@ -352,6 +452,7 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glEnable(GL_PROGRAM_POINT_SIZE);
+  glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
   glFrontFace(GL_CCW);
   glCullFace(GL_BACK);
   glActiveTexture(GL_TEXTURE0);
@@ -359,6 +460,26 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
   const scene::ShapeInstance* lastLightsOf = nullptr;  // whose lights `lights` holds
   LightArrays lights;
   bool lightsUploaded = false;  // to the current program
+  // An EnvironmentLight's uniforms (shaders_physical.cpp): eye directions turn into the
+  // environment's through the view's rotation and the light's.
+  const glm::mat3 eyeToWorld = glm::transpose(glm::mat3(view));
+  auto setEnvironment = [&](const SurfaceUniforms& u, const DrawItem& d) {
+    const GpuEnvironment* env = d.environment;
+    glUniform1i(u.hasEnvironment, env != nullptr ? 1 : 0);
+    if (env == nullptr) return;
+    const scene::EnvironmentLightInstance& light = *d.environmentLight;
+    glUniform1i(u.hasEnvironmentMap, env->cubeMap != 0 ? 1 : 0);
+    glUniform3fv(u.environmentSh, 9, glm::value_ptr(env->irradiance[0]));
+    glUniform3fv(u.environmentColor, 1, glm::value_ptr(light.color));
+    glUniform1f(u.environmentAmbient, light.ambientIntensity);
+    glUniform1f(u.environmentMaxLod, env->maxLod);
+    const glm::mat3 eyeToEnvironment = glm::transpose(light.rotation) * eyeToWorld;
+    glUniformMatrix3fv(u.eyeToEnvironment, 1, GL_FALSE, glm::value_ptr(eyeToEnvironment));
+    if (env->cubeMap != 0) {
+      glActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(kEnvironmentUnit));
+      glBindTexture(GL_TEXTURE_CUBE_MAP, env->cubeMap);
+    }
+  };
   auto drawItem = [&](const DrawItem& d) {
     const scene::ShapeInstance& s = *d.shape;
     const GpuMesh& mesh = *d.mesh;
@@ -410,6 +531,16 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     glUniform3fv(u.emissiveColor, 1, glm::value_ptr(sh.emissiveColor));
     glUniform1f(u.shininess, sh.shininess);
     glUniform1f(u.transparency, sh.transparency);
+    glUniform1i(u.textureModulates, sh.textureModulates ? 1 : 0);
+    glUniform1i(u.separateBack, sh.separateBack ? 1 : 0);
+    if (sh.separateBack) {
+      glUniform3fv(u.backDiffuseColor, 1, glm::value_ptr(sh.backDiffuseColor));
+      glUniform1f(u.backAmbientIntensity, sh.backAmbientIntensity);
+      glUniform3fv(u.backSpecularColor, 1, glm::value_ptr(sh.backSpecularColor));
+      glUniform3fv(u.backEmissiveColor, 1, glm::value_ptr(sh.backEmissiveColor));
+      glUniform1f(u.backShininess, sh.backShininess);
+      glUniform1f(u.backTransparency, sh.backTransparency);
+    }
     if (physical) {
       glUniform1f(u.metallic, sh.metallic);
       glUniform1f(u.roughness, sh.roughness);
@@ -423,6 +554,10 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
         glActiveTexture(GL_TEXTURE1 + static_cast<GLenum>(i));
         glBindTexture(GL_TEXTURE_2D, d.maps[i]->id);
       }
+      setEnvironment(u, d);
+      glUniform1i(u.baseTexCoordSet, d.texCoordSets[0]);
+      glUniform4i(u.mapTexCoordSet, d.texCoordSets[1], d.texCoordSets[2], d.texCoordSets[3],
+                  d.texCoordSets[4]);
       glActiveTexture(GL_TEXTURE0);
     }
     // Lines and points are unlit: emissiveColor with a Material, else white (6.24, 6.36);
@@ -435,6 +570,20 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
       lights.upload(u);
       lightsUploaded = true;
     }
+    const std::uint32_t clips = std::min(s.clipPlaneCount, kMaxClipPlanes);
+    if (s.clipPlaneCount > kMaxClipPlanes)
+      traversal_.report(vrml::Severity::warning, s.shape->location,
+                        std::to_string(s.clipPlaneCount) +
+                            " ClipPlanes clip this shape: only the innermost " +
+                            std::to_string(kMaxClipPlanes) + " are applied");
+    glUniform1i(u.clipPlaneCount, static_cast<GLint>(clips));
+    if (clips > 0)
+      glUniform4fv(u.clipPlanes, static_cast<GLsizei>(clips),
+                   glm::value_ptr(g.eyeClipPlanes[s.clipPlaneBegin + s.clipPlaneCount - clips]));
+    for (; clipDistancesOn < clips; ++clipDistancesOn)
+      glEnable(GL_CLIP_DISTANCE0 + clipDistancesOn);
+    for (; clipDistancesOn > clips; --clipDistancesOn)
+      glDisable(GL_CLIP_DISTANCE0 + clipDistancesOn - 1);
     if (triangles && mesh.solid)
       glEnable(GL_CULL_FACE);
     else
@@ -457,6 +606,7 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     for (const DrawItem& d : g.transparent) drawItem(d);
     statistics_.transparent = g.transparent.size();
   }
+  for (; clipDistancesOn > 0; --clipDistancesOn) glDisable(GL_CLIP_DISTANCE0 + clipDistancesOn - 1);
   statistics_.shaderVariants = g.programs.variantCount();
   statistics_.movieFrames = g.textures.movies.framesShown();
   statistics_.movieUploads = g.textures.movies.framesUploaded();
@@ -474,6 +624,9 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
   glDisable(GL_CULL_FACE);
   glDisable(GL_SCISSOR_TEST);
   glBindTexture(GL_TEXTURE_2D, 0);
+  glActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(kEnvironmentUnit));
+  glBindTexture(GL_TEXTURE_CUBE_MAP, 0);
+  glActiveTexture(GL_TEXTURE0);
   glUseProgram(0);
 }
 

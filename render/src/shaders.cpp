@@ -25,17 +25,24 @@ layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
 layout(location = 2) in vec4 a_color;
 layout(location = 3) in vec2 a_texCoord;
+layout(location = 4) in vec2 a_texCoord1;  // the second set (MultiTextureCoordinate)
 
 uniform mat4 u_modelView;
 uniform mat4 u_projection;
 uniform mat3 u_normalMatrix;
 uniform mat3 u_textureMatrix;
 uniform float u_pointSize;
+// X3D ClipPlanes (clause 11.4.1) in eye coordinates: kept where dot(plane, eye) >= 0.
+const int kMaxClipPlanes = 6;
+uniform int u_clipPlaneCount;
+uniform vec4 u_clipPlanes[kMaxClipPlanes];
+out float gl_ClipDistance[kMaxClipPlanes];
 
 out vec3 v_position;  // eye coordinates
 out vec3 v_normal;    // eye coordinates, not normalized
 out vec3 v_color;
 out vec2 v_texCoord;
+out vec2 v_texCoord1;
 
 void main() {
   vec4 eye = u_modelView * vec4(a_position, 1.0);
@@ -43,7 +50,10 @@ void main() {
   v_normal = u_normalMatrix * a_normal;
   v_color = a_color.rgb;
   v_texCoord = (u_textureMatrix * vec3(a_texCoord, 1.0)).xy;
+  v_texCoord1 = (u_textureMatrix * vec3(a_texCoord1, 1.0)).xy;
   gl_PointSize = u_pointSize;
+  for (int i = 0; i < kMaxClipPlanes; ++i)
+    gl_ClipDistance[i] = i < u_clipPlaneCount ? dot(u_clipPlanes[i], eye) : 1.0;
   gl_Position = u_projection * eye;
 }
 )glsl";
@@ -60,6 +70,7 @@ in vec3 v_color;
 in vec2 v_texCoord;
 
 uniform sampler2D u_texture;
+uniform bool u_textureModulates;  // X3D 4 Material.diffuseTexture: diffuse x texture
 
 // What a shape uses: uniforms in the generic program; compile-time constants in a
 // specialized variant (surface_programs.cpp prepends GS_VARIANT and the GS_ values), where
@@ -94,6 +105,15 @@ uniform vec3 u_emissiveColor;
 uniform float u_shininess;
 uniform float u_transparency;
 uniform vec3 u_unlitColor;
+// X3D 4.0 TwoSidedMaterial (clause 12.4.11) with separateBackColor TRUE: back faces take
+// these instead.
+uniform bool u_separateBack;
+uniform vec3 u_backDiffuseColor;
+uniform float u_backAmbientIntensity;
+uniform vec3 u_backSpecularColor;
+uniform vec3 u_backEmissiveColor;
+uniform float u_backShininess;
+uniform float u_backTransparency;
 
 uniform vec3 u_lightColor[kMaxLights];
 uniform float u_lightIntensity[kMaxLights];
@@ -111,13 +131,19 @@ uniform float u_fogVisibilityRange;
 out vec4 fragColor;
 
 void main() {
-  vec3 diffuse = LIT ? u_diffuseColor : u_unlitColor;
-  float alpha = 1.0 - u_transparency;
+  bool back = u_separateBack && !gl_FrontFacing;
+  vec3 diffuseColor = back ? u_backDiffuseColor : u_diffuseColor;
+  float ambientIntensity = back ? u_backAmbientIntensity : u_ambientIntensity;
+  vec3 specularColor = back ? u_backSpecularColor : u_specularColor;
+  vec3 emissiveColor = back ? u_backEmissiveColor : u_emissiveColor;
+  float shininess = back ? u_backShininess : u_shininess;
+  vec3 diffuse = LIT ? diffuseColor : u_unlitColor;
+  float alpha = 1.0 - (back ? u_backTransparency : u_transparency);
   if (HAS_COLOR) diffuse = v_color;
   if (TEXTURE_COMPONENTS > 0) {
     vec4 t = texture(u_texture, v_texCoord);
     if (TEXTURE_COMPONENTS <= 2) diffuse *= t.r;
-    else diffuse = t.rgb;
+    else diffuse = u_textureModulates ? diffuse * t.rgb : t.rgb;
     if (TEXTURE_COMPONENTS == 2 || TEXTURE_COMPONENTS == 4) alpha = t.a;
   }
 
@@ -126,7 +152,7 @@ void main() {
     vec3 n = normalize(v_normal);
     if (!gl_FrontFacing) n = -n;  // two-sided lighting (solid FALSE)
     vec3 v = normalize(-v_position);
-    color = u_emissiveColor;
+    color = emissiveColor;
     for (int i = 0; i < kMaxLights; ++i) {
       if (i >= LIGHT_COUNT) break;
       vec3 l;
@@ -150,13 +176,13 @@ void main() {
         }
       }
       float nDotL = max(dot(n, l), 0.0);
-      vec3 ambient = u_lightAmbientIntensity[i] * diffuse * u_ambientIntensity;
+      vec3 ambient = u_lightAmbientIntensity[i] * diffuse * ambientIntensity;
       vec3 lambert = u_lightIntensity[i] * diffuse * nDotL;
       vec3 specular = vec3(0.0);
       if (nDotL > 0.0) {
         vec3 h = normalize(l + v);
-        float exponent = max(u_shininess * 128.0, 1e-3);
-        specular = u_lightIntensity[i] * u_specularColor * pow(max(dot(n, h), 1e-6), exponent);
+        float exponent = max(shininess * 128.0, 1e-3);
+        specular = u_lightIntensity[i] * specularColor * pow(max(dot(n, h), 1e-6), exponent);
       }
       color += attenuation * spot * u_lightColor[i] * (ambient + lambert + specular);
     }

@@ -14,8 +14,15 @@
 // castle-model-viewer does for physical materials. Textures: base colour (unit 0),
 // metallic-roughness (1: G roughness, B metallic), normal (2, tangent space, the tangent
 // frame from screen-space derivatives of position and texture coordinates), emissive (3),
-// occlusion (4: R). No environment light: without X3D 4's EnvironmentLight the only
-// ambient term is the lights' ambientIntensity (docs/gltf.md, "Lighting").
+// occlusion (4: R). An X3D 4.1 EnvironmentLight adds image-based light (environment_maps.hpp):
+//
+//   color += I_env C_env occlusion (c_diff E(n) / pi + L_spec(r, roughness) (f0 A + B)),
+//
+// E(n) / pi from nine spherical-harmonic coefficients, L_spec the specular cube map (unit
+// 5) read at mip level roughness * maxLod along the reflected view direction, and (A, B)
+// the split-sum environment BRDF in B. Karis's analytic fit ("Physically Based Shading on
+// Mobile", 2014). Without one the only ambient term is the lights' ambientIntensity
+// (docs/gltf.md, "Lighting").
 #include "gl_program.hpp"
 
 namespace gs::render::detail {
@@ -30,6 +37,7 @@ in vec3 v_position;
 in vec3 v_normal;
 in vec3 v_color;
 in vec2 v_texCoord;
+in vec2 v_texCoord1;
 
 uniform bool u_hasColor;
 uniform int u_textureComponents;  // base colour texture: 0 none
@@ -44,6 +52,11 @@ uniform sampler2D u_emissiveTexture;
 uniform bool u_hasOcclusionTexture;
 uniform sampler2D u_occlusionTexture;
 uniform float u_occlusionStrength;
+// The texture coordinate set each texture reads (0 or 1: PhysicalMaterial's *TextureMapping
+// fields against the geometry's MultiTextureCoordinate): base colour, then
+// metallic-roughness, normal, emissive, occlusion.
+uniform int u_baseTexCoordSet;
+uniform ivec4 u_mapTexCoordSet;
 
 uniform vec3 u_diffuseColor;  // baseColor, linear
 uniform vec3 u_emissiveColor;
@@ -69,6 +82,15 @@ uniform int u_fogType;
 uniform vec3 u_fogColor;
 uniform float u_fogVisibilityRange;
 
+uniform bool u_hasEnvironment;
+uniform bool u_hasEnvironmentMap;
+uniform samplerCube u_environmentMap;
+uniform vec3 u_environmentSh[9];  // E(n) / pi, real SH bands 0..2
+uniform vec3 u_environmentColor;  // color * intensity
+uniform float u_environmentAmbient;
+uniform float u_environmentMaxLod;
+uniform mat3 u_eyeToEnvironment;
+
 out vec4 fragColor;
 
 vec3 toLinear(vec3 c) {
@@ -78,22 +100,46 @@ vec3 toSrgb(vec3 c) {
   return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(0.0031308, c));
 }
 
+vec2 uvOf(int set) {
+  return set == 1 ? v_texCoord1 : v_texCoord;
+}
+
 vec3 surfaceNormal() {
   vec3 n = normalize(v_normal);
   if (!gl_FrontFacing) n = -n;
   if (!u_hasNormalTexture) return n;
   vec3 dp1 = dFdx(v_position), dp2 = dFdy(v_position);
-  vec2 duv1 = dFdx(v_texCoord), duv2 = dFdy(v_texCoord);
+  vec2 uv = uvOf(u_mapTexCoordSet.y);
+  vec2 duv1 = dFdx(uv), duv2 = dFdy(uv);
   vec3 dp2perp = cross(dp2, n), dp1perp = cross(n, dp1);
   vec3 t = dp2perp * duv1.x + dp1perp * duv2.x;
   vec3 b = dp2perp * duv1.y + dp1perp * duv2.y;
   float scale = max(dot(t, t), dot(b, b));
   if (!(scale > 0.0)) return n;
   float invmax = inversesqrt(scale);
-  vec3 m = texture(u_normalTexture, v_texCoord).xyz * 2.0 - 1.0;
+  vec3 m = texture(u_normalTexture, uv).xyz * 2.0 - 1.0;
   m.xy *= u_normalScale;
   vec3 mapped = normalize(mat3(t * invmax, b * invmax, n) * m);
   return mapped;
+}
+
+vec3 irradiance(vec3 d) {
+  vec3 e = u_environmentSh[0] * 0.282095;
+  e += u_environmentSh[1] * (0.488603 * d.y) + u_environmentSh[2] * (0.488603 * d.z) +
+       u_environmentSh[3] * (0.488603 * d.x);
+  e += u_environmentSh[4] * (1.092548 * d.x * d.y) + u_environmentSh[5] * (1.092548 * d.y * d.z) +
+       u_environmentSh[6] * (0.315392 * (3.0 * d.z * d.z - 1.0)) +
+       u_environmentSh[7] * (1.092548 * d.x * d.z) +
+       u_environmentSh[8] * (0.546274 * (d.x * d.x - d.y * d.y));
+  return max(e, vec3(0.0));
+}
+
+vec2 environmentBrdf(float roughness, float nDotV) {
+  const vec4 c0 = vec4(-1.0, -0.0275, -0.572, 0.022);
+  const vec4 c1 = vec4(1.0, 0.0425, 1.04, -0.04);
+  vec4 r = roughness * c0 + c1;
+  float a004 = min(r.x * r.x, exp2(-9.28 * nDotV)) * r.x + r.y;
+  return vec2(-1.04, 1.04) * a004 + r.zw;
 }
 
 void main() {
@@ -101,7 +147,7 @@ void main() {
   float alpha = 1.0 - u_transparency;
   if (u_hasColor) base *= v_color;
   if (u_textureComponents > 0) {
-    vec4 t = texture(u_texture, v_texCoord);
+    vec4 t = texture(u_texture, uvOf(u_baseTexCoordSet));
     base *= u_textureComponents <= 2 ? vec3(t.r) : toLinear(t.rgb);
     if (u_textureComponents == 2 || u_textureComponents == 4) alpha *= t.a;
   }
@@ -113,7 +159,7 @@ void main() {
   float metallic = u_metallic;
   float roughness = u_roughness;
   if (u_hasMetallicRoughnessTexture) {
-    vec4 mr = texture(u_metallicRoughnessTexture, v_texCoord);
+    vec4 mr = texture(u_metallicRoughnessTexture, uvOf(u_mapTexCoordSet.x));
     roughness *= mr.g;
     metallic *= mr.b;
   }
@@ -121,7 +167,7 @@ void main() {
   metallic = clamp(metallic, 0.0, 1.0);
   float occlusion = 1.0;
   if (u_hasOcclusionTexture)
-    occlusion = 1.0 + u_occlusionStrength * (texture(u_occlusionTexture, v_texCoord).r - 1.0);
+    occlusion = 1.0 + u_occlusionStrength * (texture(u_occlusionTexture, uvOf(u_mapTexCoordSet.w)).r - 1.0);
 
   vec3 n = surfaceNormal();
   vec3 v = normalize(-v_position);
@@ -131,7 +177,18 @@ void main() {
   float a = roughness * roughness;
   float a2 = a * a;
   vec3 color = u_emissiveColor;
-  if (u_hasEmissiveTexture) color *= toLinear(texture(u_emissiveTexture, v_texCoord).rgb);
+  if (u_hasEmissiveTexture) color *= toLinear(texture(u_emissiveTexture, uvOf(u_mapTexCoordSet.z)).rgb);
+  if (u_hasEnvironment) {
+    vec3 envColor = u_environmentColor * occlusion;
+    vec3 light = cDiff * irradiance(normalize(u_eyeToEnvironment * n));
+    if (u_hasEnvironmentMap) {
+      vec3 r = normalize(u_eyeToEnvironment * reflect(-v, n));
+      vec3 prefiltered = textureLod(u_environmentMap, r, roughness * u_environmentMaxLod).rgb;
+      vec2 ab = environmentBrdf(roughness, nDotV);
+      light += prefiltered * (f0 * ab.x + ab.y);
+    }
+    color += envColor * light + u_environmentColor * u_environmentAmbient * base * occlusion;
+  }
   for (int i = 0; i < kMaxLights; ++i) {
     if (i >= u_lightCount) break;
     vec3 l;

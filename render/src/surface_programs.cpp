@@ -21,6 +21,26 @@ void SurfaceUniforms::find(GLuint p) {
     hasMap[i] = uniform(p, kHas[i]);
     map[i] = uniform(p, kMap[i]);
   }
+  clipPlaneCount = uniform(p, "u_clipPlaneCount");
+  textureModulates = uniform(p, "u_textureModulates");
+  clipPlanes = uniform(p, "u_clipPlanes");
+  separateBack = uniform(p, "u_separateBack");
+  backDiffuseColor = uniform(p, "u_backDiffuseColor");
+  backAmbientIntensity = uniform(p, "u_backAmbientIntensity");
+  backSpecularColor = uniform(p, "u_backSpecularColor");
+  backEmissiveColor = uniform(p, "u_backEmissiveColor");
+  backShininess = uniform(p, "u_backShininess");
+  backTransparency = uniform(p, "u_backTransparency");
+  baseTexCoordSet = uniform(p, "u_baseTexCoordSet");
+  mapTexCoordSet = uniform(p, "u_mapTexCoordSet");
+  hasEnvironment = uniform(p, "u_hasEnvironment");
+  hasEnvironmentMap = uniform(p, "u_hasEnvironmentMap");
+  environmentMap = uniform(p, "u_environmentMap");
+  environmentSh = uniform(p, "u_environmentSh");
+  environmentColor = uniform(p, "u_environmentColor");
+  environmentAmbient = uniform(p, "u_environmentAmbient");
+  environmentMaxLod = uniform(p, "u_environmentMaxLod");
+  eyeToEnvironment = uniform(p, "u_eyeToEnvironment");
   modelView = uniform(p, "u_modelView");
   projection = uniform(p, "u_projection");
   normalMatrix = uniform(p, "u_normalMatrix");

@@ -38,6 +38,12 @@ struct SurfaceUniforms {
   GLint fogType, fogColor, fogVisibilityRange;
   GLint metallic, roughness, normalScale, occlusionStrength, alphaMode, alphaCutoff;
   std::array<GLint, kPhysicalMapCount> hasMap, map;
+  GLint hasEnvironment, hasEnvironmentMap, environmentMap, environmentSh, environmentColor,
+      environmentAmbient, environmentMaxLod, eyeToEnvironment;
+  GLint baseTexCoordSet, mapTexCoordSet;
+  GLint clipPlaneCount, clipPlanes, textureModulates;
+  GLint separateBack, backDiffuseColor, backAmbientIntensity, backSpecularColor, backEmissiveColor,
+      backShininess, backTransparency;
 
   /// Looks every location up in linked program `p`.
   void find(GLuint p);

@@ -40,6 +40,18 @@ void fitClipPlanes(Camera& camera, const vrml::Bounds& bounds, float maxNear) {
   camera.farClip = std::max(farClip, nearClip * 2.0f);
 }
 
+Camera wholeSceneCamera(const vrml::Bounds& bounds, const Camera& defaults) {
+  Camera camera = defaults;
+  if (bounds.empty()) return camera;
+  const glm::vec3 size = bounds.size();
+  const float offset = 2.0f * (size.x + size.y + size.z) / 3.0f;
+  const glm::vec3 center = bounds.center();
+  camera.orientation = glm::quat(1.0f, 0.0f, 0.0f, 0.0f);
+  camera.position = glm::vec3(center.x, center.y, bounds.max.z + std::max(offset, 1e-4f));
+  fitClipPlanes(camera, bounds);
+  return camera;
+}
+
 Camera fitCamera(const vrml::Bounds& bounds, float aspect, const Camera& direction) {
   Camera camera = direction;
   if (bounds.empty()) return camera;

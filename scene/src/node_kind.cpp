@@ -33,6 +33,10 @@ NodeKind nodeKind(const vrml::Node& node) {
       return NodeKind::PointLight;
     case NodeTypeId::SpotLight:
       return NodeKind::SpotLight;
+    case NodeTypeId::EnvironmentLight:
+      return NodeKind::EnvironmentLight;
+    case NodeTypeId::ClipPlane:
+      return NodeKind::ClipPlane;
     case NodeTypeId::Viewpoint:
       return NodeKind::Viewpoint;
     case NodeTypeId::NavigationInfo:

@@ -40,7 +40,44 @@ glm::mat4 billboardRotation(const glm::vec3& axisOfRotation, const glm::vec3& vi
   return glm::rotate(glm::mat4(1.0f), angle, axis);
 }
 
+namespace {
+
+/// The 2D part of a 3D texture matrix acting on (s, t, 0, 1).
+glm::mat3 planar(const glm::mat4& m) {
+  glm::mat3 out(1.0f);
+  out[0] = glm::vec3(m[0].x, m[0].y, 0.0f);
+  out[1] = glm::vec3(m[1].x, m[1].y, 0.0f);
+  out[2] = glm::vec3(m[3].x, m[3].y, 1.0f);
+  return out;
+}
+
+}  // namespace
+
 glm::mat3 textureTransformMatrix(const vrml::Node& tt) {
+  switch (tt.typeId()) {
+    case vrml::NodeTypeId::MultiTextureTransform: {
+      const std::vector<vrml::NodePtr>& list = tt.mfnode("textureTransform");
+      return !list.empty() && list.front() && list.front().get() != &tt
+                 ? textureTransformMatrix(*list.front())
+                 : glm::mat3(1.0f);
+    }
+    case vrml::NodeTypeId::TextureTransformMatrix3D:
+      return planar(tt.get<vrml::FieldType::SFMatrix4f>("matrix", glm::mat4(1.0f)));
+    case vrml::NodeTypeId::TextureTransform3D: {
+      const glm::vec3 c = sfVec3(tt, "center", glm::vec3(0.0f));
+      const glm::vec3 s = sfVec3(tt, "scale", glm::vec3(1.0f));
+      const glm::vec3 t = sfVec3(tt, "translation", glm::vec3(0.0f));
+      const vrml::Rotation r = sfRotation(tt, "rotation", vrml::Rotation(0, 0, 1, 0));
+      const glm::vec3 axis(r.x, r.y, r.z);
+      const glm::mat4 rot = glm::length(axis) > 1e-12f
+                                ? glm::rotate(glm::mat4(1.0f), r.w, glm::normalize(axis))
+                                : glm::mat4(1.0f);
+      return planar(glm::translate(glm::mat4(1.0f), -c) * glm::scale(glm::mat4(1.0f), s) * rot *
+                    glm::translate(glm::mat4(1.0f), c) * glm::translate(glm::mat4(1.0f), t));
+    }
+    default:
+      break;
+  }
   const glm::vec2 c = sfVec2(tt, "center", glm::vec2(0.0f));
   const glm::vec2 s = sfVec2(tt, "scale", glm::vec2(1.0f));
   const glm::vec2 t = sfVec2(tt, "translation", glm::vec2(0.0f));

@@ -6,6 +6,7 @@
 #include "scene/text_mesh.hpp"
 
 #include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -22,6 +23,12 @@ struct SceneTraversal::Walk {
   std::vector<const std::string*>& inlineChain;  // URLs being traversed (recursion guard)
   bool scopeChanged = true;
   std::uint32_t lastScopeBegin = 0;
+  /// The innermost scoped EnvironmentLight (index in frame.environmentLights), -1: none.
+  std::int32_t environmentScope = -1;
+  /// The ClipPlanes in scope, world coordinates (SceneTraversal::clipScratch_).
+  std::vector<glm::vec4>* clipScope = nullptr;
+  bool clipScopeChanged = true;
+  std::uint32_t lastClipBegin = 0;
   /// groupIds with children in the file being walked (SceneTraversal::filledGroups).
   const std::unordered_set<std::int32_t>* filled = nullptr;
   /// The grouping nodes above the current one when frame.recordPaths (picking).
@@ -38,14 +45,71 @@ struct SceneTraversal::Walk {
   void nodes(const std::vector<vrml::NodePtr>& list, const glm::mat4& m,
              const std::string* baseUrl) {
     // DirectionalLights light their siblings and the siblings' descendants (clause 6.16).
+    // So do EnvironmentLights whose global is FALSE (X3D 4.0 clause 17.2.1.1).
+    // ClipPlanes clip them (X3D 4.0 clause 11.4.1).
     const std::size_t scopeSize = scope.size();
-    for (const vrml::NodePtr& n : list)
-      if (n && nodeKind(*n) == NodeKind::DirectionalLight) directionalLight(*n, m);
+    const std::size_t clipSize = clipScope->size();
+    const std::int32_t outerEnvironment = environmentScope;
+    for (const vrml::NodePtr& n : list) {
+      if (!n) continue;
+      const NodeKind kind = nodeKind(*n);
+      // X3D's `global` (clause 17.2.1.1; VRML97's rule without the field): a light that is
+      // not global lights only its siblings and their descendants.
+      if (kind == NodeKind::DirectionalLight && !sfBool(*n, "global", false))
+        directionalLight(*n, m, true);
+      if ((kind == NodeKind::PointLight || kind == NodeKind::SpotLight) &&
+          !sfBool(*n, "global", true))
+        pointOrSpotLight(*n, m, kind == NodeKind::SpotLight, true);
+      if (kind == NodeKind::EnvironmentLight) environmentLight(*n, m, baseUrl);
+      if (kind == NodeKind::ClipPlane) clipPlane(*n, m);
+    }
     for (const vrml::NodePtr& n : list)
       if (n) node(*n, m, baseUrl);
     if (scope.size() != scopeSize) {
       scope.resize(scopeSize);
       scopeChanged = true;
+    }
+    environmentScope = outerEnvironment;
+    if (clipScope->size() != clipSize) {
+      clipScope->resize(clipSize);
+      clipScopeChanged = true;
+    }
+  }
+
+  // X3D 4.0 clause 11.4.1: the plane (a, b, c, d) in the ClipPlane's coordinate system; a
+  // plane transforms by the inverse transpose of the point transform.
+  void clipPlane(const vrml::Node& n, const glm::mat4& m) {
+    if (!sfBool(n, "enabled", true)) return;
+    const glm::vec4 local = n.get<vrml::FieldType::SFVec4f>("plane", glm::vec4(0, 1, 0, 0));
+    if (!std::isfinite(local.x) || !std::isfinite(local.y) || !std::isfinite(local.z) ||
+        !std::isfinite(local.w) || glm::length(glm::vec3(local)) < 1e-12f)
+      return;
+    clipScope->push_back(glm::transpose(glm::inverse(m)) * local);
+    clipScopeChanged = true;
+  }
+
+  // X3D 4.1 clause 17.4.2: the cube maps turn with the light's coordinate system and its
+  // `rotation`; scoped like a DirectionalLight unless global.
+  void environmentLight(const vrml::Node& n, const glm::mat4& m, const std::string* baseUrl) {
+    if (!sfBool(n, "on", true)) return;
+    EnvironmentLightInstance light;
+    light.node = &n;
+    const vrml::Rotation r = sfRotation(n, "rotation", vrml::Rotation(0, 0, 1, 0));
+    const glm::vec3 axis(r.x, r.y, r.z);
+    const glm::mat3 own = glm::length(axis) > 1e-12f
+                              ? glm::mat3(glm::rotate(glm::mat4(1.0f), r.w, axis))
+                              : glm::mat3(1.0f);
+    light.rotation = rotationPart(m) * own;
+    light.color = glm::max(sfColor(n, "color", glm::vec3(1.0f)), 0.0f) *
+                  std::max(sfFloat(n, "intensity", 1.0f), 0.0f);
+    light.ambientIntensity = std::clamp(sfFloat(n, "ambientIntensity", 0.0f), 0.0f, 1.0f);
+    light.baseUrl = baseUrl;
+    const auto index = static_cast<std::int32_t>(frame.environmentLights.size());
+    frame.environmentLights.push_back(light);
+    if (sfBool(n, "global", false)) {
+      if (self.firstGlobalEnvironment_ < 0) self.firstGlobalEnvironment_ = index;
+    } else {
+      environmentScope = index;
     }
   }
 
@@ -56,7 +120,16 @@ struct SceneTraversal::Walk {
     return n.type().findExact("global") >= 0 ? i : std::min(i, 1.0f);
   }
 
-  void directionalLight(const vrml::Node& n, const glm::mat4& m) {
+  /// Adds the light to `scope` (its siblings and their descendants) when `scoped`, else to
+  /// the frame's global lights.
+  void addLight(const LightInstance& light, bool scoped) {
+    (scoped ? scope : frame.globalLights)
+        .push_back(static_cast<std::uint32_t>(frame.lights.size()));
+    frame.lights.push_back(light);
+    if (scoped) scopeChanged = true;
+  }
+
+  void directionalLight(const vrml::Node& n, const glm::mat4& m, bool scoped) {
     if (!sfBool(n, "on", true)) return;
     LightInstance light;
     light.type = LightType::directional;
@@ -66,12 +139,10 @@ struct SceneTraversal::Walk {
     const glm::vec3 d = glm::mat3(m) * sfVec3(n, "direction", glm::vec3(0, 0, -1));
     if (glm::length(d) < 1e-12f) return;
     light.direction = glm::normalize(d);
-    scope.push_back(static_cast<std::uint32_t>(frame.lights.size()));
-    frame.lights.push_back(light);
-    scopeChanged = true;
+    addLight(light, scoped);
   }
 
-  void pointOrSpotLight(const vrml::Node& n, const glm::mat4& m, bool spot) {
+  void pointOrSpotLight(const vrml::Node& n, const glm::mat4& m, bool spot, bool scoped) {
     if (!sfBool(n, "on", true)) return;
     LightInstance light;
     light.type = spot ? LightType::spot : LightType::point;
@@ -87,8 +158,7 @@ struct SceneTraversal::Walk {
       light.beamWidth = sfFloat(n, "beamWidth", 1.570796f);
       light.cutOffAngle = sfFloat(n, "cutOffAngle", 0.785398f);
     }
-    frame.globalLights.push_back(static_cast<std::uint32_t>(frame.lights.size()));
-    frame.lights.push_back(light);
+    addLight(light, scoped);
   }
 
   void shape(const vrml::Node& n, const glm::mat4& m, const std::string* baseUrl) {
@@ -127,6 +197,15 @@ struct SceneTraversal::Walk {
     }
     s.scopedLightBegin = lastScopeBegin;
     s.scopedLightCount = static_cast<std::uint32_t>(scope.size());
+    s.environmentLight = environmentScope;
+    if (clipScopeChanged) {
+      lastClipBegin = static_cast<std::uint32_t>(frame.scopedClipPlanes.size());
+      frame.scopedClipPlanes.insert(frame.scopedClipPlanes.end(), clipScope->begin(),
+                                    clipScope->end());
+      clipScopeChanged = false;
+    }
+    s.clipPlaneBegin = lastClipBegin;
+    s.clipPlaneCount = static_cast<std::uint32_t>(clipScope->size());
     if (frame.recordPaths) {
       s.pathBegin = static_cast<std::uint32_t>(frame.paths.size());
       frame.paths.insert(frame.paths.end(), path.begin(), path.end());
@@ -231,13 +310,16 @@ struct SceneTraversal::Walk {
       case NodeKind::OutlineGroup:
         outlineGroup(n, m, baseUrl);
         break;
+      // Global lights light everything (scoped ones were handled with their siblings).
       case NodeKind::PointLight:
-        pointOrSpotLight(n, m, false);
-        break;
       case NodeKind::SpotLight:
-        pointOrSpotLight(n, m, true);
+        if (sfBool(n, "global", true))
+          pointOrSpotLight(n, m, nodeKind(n) == NodeKind::SpotLight, false);
         break;
-      default:  // DirectionalLight was handled with its siblings; others draw nothing
+      case NodeKind::DirectionalLight:
+        if (sfBool(n, "global", false)) directionalLight(n, m, false);
+        break;
+      default:  // others draw nothing
         break;
     }
   }
@@ -247,11 +329,17 @@ void SceneTraversal::collect(const Camera& viewer, TraversalFrame& frame) {
   frame.clear();
   scopeScratch_.clear();
   chainScratch_.clear();
-  Walk walk{*this, frame, viewer.position, viewer.up(), scopeScratch_, chainScratch_,
-            true,  0,     nullptr};
+  Walk walk{*this, frame, viewer.position, viewer.up(), scopeScratch_, chainScratch_, true,
+            0,     -1,    nullptr};
   walk.inlineChain.push_back(&mainUrl_);
   walk.filled = &filledGroups(*scene_);
+  firstGlobalEnvironment_ = -1;
+  clipScratch_.clear();
+  walk.clipScope = &clipScratch_;
   walk.group(nullptr, scene_->rootNodes, glm::mat4(1.0f), &mainUrl_, &scene_->rootNodes);
+  if (firstGlobalEnvironment_ >= 0)
+    for (ShapeInstance& s : frame.shapes)
+      if (s.environmentLight < 0) s.environmentLight = firstGlobalEnvironment_;
 }
 
 const std::unordered_set<std::int32_t>& SceneTraversal::filledGroups(const vrml::Scene& scene) {

@@ -81,6 +81,10 @@ void SceneTraversal::sceneChanged() {
 
 void SceneTraversal::findBindables() {
   bool haveNavigation = false, haveBackground = false, haveFog = false;
+  // glTF has no background: a glTF asset opened as a world shows castle-model-viewer's
+  // dark grey (0.1), where X3D and VRML97 worlds without a Background keep clause 6.5's
+  // black. A Background of the world (an X3D world inlining glTF) wins.
+  if (scene_->x3d.encoding == "glTF") background_.skyColor = {glm::vec3(0.1f)};
   auto visit = [&](const vrml::Node& n, NodeKind kind, const glm::mat4& m) {
     switch (kind) {
       case NodeKind::Viewpoint: {

@@ -1,11 +1,13 @@
 // End-to-end tests of the command line: the real binary, its exit codes and messages.
 #include "process.hpp"
+#include "render/image.hpp"
 #include "test_support.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <algorithm>
 #include <cctype>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -183,4 +185,30 @@ TEST_CASE("convert writes a world in the encoding OUT's extension names", "[app]
   CHECK(partial.exitCode == 1);
   CHECK(partial.err.find("NoSuchNode") != std::string::npos);
   CHECK(gs::test::readBytes(dir.path / "b.x3d").find("<Group/>") != std::string::npos);
+}
+
+TEST_CASE("snapshots with the castle camera start a world without a Viewpoint as castle does",
+          "[app][cli]") {
+  // A 2 m white box at the origin: from VRML97's default viewpoint (0 0 10) its front face
+  // spans 2 / 9 of the view's height at tan(pi / 8); from castle's camera (z = 1 + 2 * 2)
+  // it spans 2 / 4 of it: about 21 and 48 of 80 pixels.
+  const auto dir = std::filesystem::temp_directory_path() / "gs_castle_camera";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "box.wrl") << "#VRML V2.0 utf8\nNavigationInfo { headlight FALSE }\n"
+                                    "Shape { appearance Appearance { material Material {"
+                                    " emissiveColor 1 1 1 } } geometry Box { } }\n";
+  const auto rows = [&](const std::vector<std::string>& extra) {
+    std::vector<std::string> args = {"--snapshot", (dir / "out.png").string(), "--size", "80x80"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    args.push_back((dir / "box.wrl").string());
+    REQUIRE(runGhostspace(args).exitCode == 0);
+    const gs::render::Image image = gs::render::readPng((dir / "out.png").string());
+    int white = 0;
+    for (int y = 0; y < image.height; ++y) white += image.pixel(40, y)[0] > 128 ? 1 : 0;
+    return white;
+  };
+  const int vrml97 = rows({});
+  const int castle = rows({"--castle-camera"});
+  CHECK(std::abs(vrml97 - 21) <= 2);
+  CHECK(std::abs(castle - 48) <= 2);
 }

@@ -66,6 +66,15 @@ const RenderCase kCases[] = {
     {"gltf_bunny_t1",
      "gltf/castle/animation/gltf_skinned_animation/animals_from_quaternius/Bunny.gltf", true, "1"},
     {"gltf_monkey_morph_t1", "gltf/castle/gltf/morph_targets/monkey_morph.glb", true, "1"},
+    // The rest of the corpus's glTF scenes: a camera-less mesh (castle's framing) and
+    // Blender's custom properties (extras) beside a camera and a required point light.
+    {"gltf_torus", "gltf/castle/x3d/inline_geometry/torus.glb", true},
+    {"gltf_custom_properties",
+     "gltf/castle/blender/custom_properties/blender_custom_properties.gltf", true},
+    {"gltf_custom_properties_2",
+     "gltf/castle/blender/custom_properties_2/blender_custom_properties.gltf", true},
+    // X3D 4.1 EnvironmentLight: image-based light on PhysicalMaterial (render/README.md).
+    {"environment_light", "assets/worlds/environment_light.x3dv", false},
 };
 
 void checkAgainstBaseline(const RenderCase& c) {

@@ -9,9 +9,9 @@
 //   fit    SceneRenderer::initialCamera: the same when the world has a Viewpoint, else the
 //          whole scene framed tightly (what the window does);
 //   castle the same when the world has a Viewpoint, else castle's own placement for a world
-//          without one (CameraViewpointForWholeScene in castle-engine's CastleCameras:
-//          looking along -Z from the box centre's x, y at z = box max z + 2 * the average
-//          of the box's three sizes).
+//          without one (scene::wholeSceneCamera: CameraViewpointForWholeScene in
+//          castle-engine's CastleCameras, looking along -Z from the box centre's x, y at
+//          z = box max z + 2 * the average of the box's three sizes).
 // Each variant is compared with the reference by render::compareImages (tolerance 16), and
 // "background-masked": pixels where the reference shows its corner colour (castle's
 // background) and ours shows our corner colour (our background) count as equal. Also
@@ -61,17 +61,6 @@ struct WorldResult {
 };
 
 constexpr const char* kVariantNames[3] = {"snap", "fit", "castle"};
-
-/// castle-model-viewer's camera for a world without a Viewpoint (see the file comment).
-gs::scene::Camera castleWholeSceneCamera(const gs::vrml::Bounds& bounds) {
-  gs::scene::Camera camera;
-  if (bounds.empty()) return camera;
-  const glm::vec3 size = bounds.size();
-  camera.position = bounds.center();
-  camera.position.z = bounds.max.z + 2.0f * (size.x + size.y + size.z) / 3.0f;
-  gs::scene::fitClipPlanes(camera, bounds);
-  return camera;
-}
 
 VariantResult renderVariant(gs::render::SceneRenderer& renderer, const gs::scene::Camera& camera,
                             const Image& reference, const std::string& outPath) {
@@ -171,7 +160,7 @@ int main(int argc, char** argv) {
                                         renderer.initialCamera(aspect),
                                         renderer.boundViewpointCamera()};
         gs::scene::fitClipPlanes(cameras[0], renderer.bounds(), renderer.navigation().nearClip());
-        if (!r.hasViewpoint) cameras[2] = castleWholeSceneCamera(renderer.bounds());
+        if (!r.hasViewpoint) cameras[2] = gs::scene::wholeSceneCamera(renderer.bounds(), gs::scene::Camera{});
         for (int v = 0; v < 3; ++v)
           r.variants[v] = renderVariant(renderer, cameras[v], reference,
                                         base.empty() ? "" : base + "_" + kVariantNames[v] + ".png");

@@ -288,3 +288,27 @@ TEST_CASE("the default Inline loader reads local files only", "[render][traversa
   REQUIRE(t.diagnostics().items.size() == 1);
   CHECK(t.diagnostics().items[0].message.find("only local files") != std::string::npos);
 }
+
+TEST_CASE("X3D's 3D texture transforms act on (s, t, 0, 1)", "[render][traversal]") {
+  const auto matrixOf = [](const std::string& transform) {
+    const gs::vrml::Scene scene = gs::vrml::parseVrml(
+        "#X3D V4.0 utf8\nPROFILE Full\nShape { appearance Appearance { textureTransform " +
+            transform + " } }\n",
+        "tt.x3dv");
+    for (const auto& d : scene.diagnostics.items) FAIL_CHECK(d.format());
+    const auto& appearance = scene.rootNodes.at(0)->sfnode("appearance");
+    REQUIRE(appearance);
+    return gs::scene::textureTransformMatrix(*appearance->sfnode("textureTransform"));
+  };
+  // Row-major in the file: scale (2, 3) and translation (0.5, 0.25).
+  glm::vec3 p =
+      matrixOf("TextureTransformMatrix3D { matrix 2 0 0 0.5  0 3 0 0.25  0 0 1 0  0 0 0 1 }") *
+      glm::vec3(1, 1, 1);
+  CHECK(p.x == Approx(2.5f));
+  CHECK(p.y == Approx(3.25f));
+  // The 2D case above, in 3D: (0, 0) goes to (1.5, 0.5).
+  p = matrixOf("TextureTransform3D { translation 0.5 0 0 scale 2 2 1 center 0.5 0.5 0 }") *
+      glm::vec3(0, 0, 1);
+  CHECK(p.x == Approx(1.5f));
+  CHECK(p.y == Approx(0.5f));
+}

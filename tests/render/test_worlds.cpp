@@ -275,3 +275,233 @@ Shape { appearance Appearance { material Material { emissiveColor 1 1 1 } }
   for (int frame = 0; frame < 5; ++frame) plain.draw(camera, 0, 0, kSize, kSize);
   CHECK(plain.statistics().shaderVariants == 0);
 }
+
+namespace {
+
+/// A world with one sphere of `material` at the origin, seen from 0 0 3.2 (radius about 24
+/// pixels), lit only by an EnvironmentLight whose cube faces are one colour each.
+std::string environmentWorld(const std::string& material, const std::string& faces,
+                             const std::string& light = "") {
+  return "#X3D V4.0 utf8\nPROFILE Immersive\nNavigationInfo { headlight FALSE }\n"
+         "Viewpoint { position 0 0 3.2 }\n"
+         "EnvironmentLight { global TRUE " +
+         light + " specularTexture ComposedCubeMapTexture {\n" + faces +
+         "} }\nShape { appearance Appearance { material PhysicalMaterial { " + material +
+         " } } geometry Sphere { } }\n";
+}
+
+// +X red, -X blue, +Y white, -Y green, -Z (front) yellow, +Z (back) grey.
+const std::string kColouredFaces =
+    "rightTexture PixelTexture { image 1 1 3 0xFF0000 }\n"
+    "leftTexture PixelTexture { image 1 1 3 0x0000FF }\n"
+    "topTexture PixelTexture { image 1 1 3 0xFFFFFF }\n"
+    "bottomTexture PixelTexture { image 1 1 3 0x00FF00 }\n"
+    "frontTexture PixelTexture { image 1 1 3 0xFFFF00 }\n"
+    "backTexture PixelTexture { image 1 1 3 0x808080 }\n";
+
+}  // namespace
+
+TEST_CASE("EnvironmentLight: a mirror reflects each cube face from its direction",
+          "[render][offscreen][world]") {
+  const fs::path dir = worldDir();
+  writeText(dir / "env_mirror.x3dv",
+            environmentWorld("baseColor 1 1 1 metallic 1 roughness 0", kColouredFaces));
+  const Rendered r = renderFile(dir / "env_mirror.x3dv");
+  CHECK(r.diagnostics.items.empty());
+  // The normal at 45 degrees to the view reflects the view ray by 90 degrees.
+  const std::uint8_t* right = r.image.pixel(49, 32);
+  const std::uint8_t* left = r.image.pixel(15, 32);
+  const std::uint8_t* top = r.image.pixel(32, 15);
+  const std::uint8_t* bottom = r.image.pixel(32, 49);
+  INFO("right " << int(right[0]) << " " << int(right[1]) << " " << int(right[2]));
+  INFO("left " << int(left[0]) << " " << int(left[1]) << " " << int(left[2]));
+  INFO("top " << int(top[0]) << " " << int(top[1]) << " " << int(top[2]));
+  INFO("bottom " << int(bottom[0]) << " " << int(bottom[1]) << " " << int(bottom[2]));
+  CHECK((right[0] > 200 && right[1] < 60 && right[2] < 60));
+  CHECK((left[2] > 200 && left[0] < 60 && left[1] < 60));
+  CHECK((top[0] > 200 && top[1] > 200 && top[2] > 200));
+  CHECK((bottom[1] > 200 && bottom[0] < 60 && bottom[2] < 60));
+  // Straight back along the view ray: the +Z face behind the viewer, grey 0x80.
+  CHECK(close(r.image.pixel(32, 32), 128, 128, 128, 12));
+}
+
+TEST_CASE("EnvironmentLight: diffuse light is the cube's irradiance, at its intensity",
+          "[render][offscreen][world]") {
+  const fs::path dir = worldDir();
+  std::string grey;
+  for (const char* face : {"right", "left", "top", "bottom", "front", "back"})
+    grey += std::string(face) + "Texture PixelTexture { image 1 1 3 0x808080 }\n";
+  const std::string white = "baseColor 1 1 1 metallic 0 roughness 1";
+  // A uniform environment of radiance L gives irradiance pi L: a white Lambertian sphere
+  // shows L itself everywhere (the specular term adds f0 = 0.04 at most).
+  writeText(dir / "env_grey.x3dv", environmentWorld(white, grey));
+  const Rendered uniform = renderFile(dir / "env_grey.x3dv");
+  INFO("centre " << int(uniform.image.pixel(32, 32)[0]));
+  CHECK(close(uniform.image.pixel(32, 32), 129, 129, 129, 6));
+  CHECK(close(uniform.image.pixel(12, 32), 129, 129, 129, 8));
+  // Coloured faces: the side facing +X is redder than the side facing -X, and the other
+  // way round for blue.
+  writeText(dir / "env_diffuse.x3dv", environmentWorld(white, kColouredFaces));
+  const Rendered coloured = renderFile(dir / "env_diffuse.x3dv");
+  const std::uint8_t* right = coloured.image.pixel(52, 32);
+  const std::uint8_t* left = coloured.image.pixel(12, 32);
+  CHECK(right[0] > right[2] + 40);
+  CHECK(left[2] > left[0] + 40);
+  // Switched off, or at intensity 0, it gives nothing: black without other lights.
+  writeText(dir / "env_off.x3dv", environmentWorld(white, kColouredFaces, "on FALSE"));
+  CHECK(close(renderFile(dir / "env_off.x3dv").image.pixel(32, 32), 0, 0, 0, 2));
+  writeText(dir / "env_zero.x3dv", environmentWorld(white, kColouredFaces, "intensity 0"));
+  CHECK(close(renderFile(dir / "env_zero.x3dv").image.pixel(32, 32), 0, 0, 0, 2));
+}
+
+TEST_CASE("EnvironmentLight: a texture it cannot read is one warning, the world still draws",
+          "[render][offscreen][world]") {
+  const fs::path dir = worldDir();
+  writeText(dir / "env_bad.x3dv",
+            "#X3D V4.0 utf8\nPROFILE Immersive\nNavigationInfo { headlight FALSE }\n"
+            "Viewpoint { position 0 0 3.2 }\n"
+            "EnvironmentLight { specularTexture ImageCubeMapTexture { url \"sky.dds\" } }\n"
+            "Shape { appearance Appearance { material PhysicalMaterial { baseColor 0 0 0 "
+            "emissiveColor 1 1 1 } } "
+            "geometry Sphere { } }\n");
+  const Rendered r = renderFile(dir / "env_bad.x3dv");
+  REQUIRE(r.diagnostics.items.size() == 1);
+  CHECK(r.diagnostics.items[0].message.find("ImageCubeMapTexture") != std::string::npos);
+  CHECK(close(r.image.pixel(32, 32), 255, 255, 255, 2));
+}
+
+TEST_CASE("ClipPlane clips its siblings and their descendants in its own coordinates",
+          "[render][offscreen][world]") {
+  const fs::path dir = worldDir();
+  // Two white quads at z = 0 and z = -0.01 spanning the view, seen from 0 0 5 (a metre is
+  // about 15.5 pixels). The plane x >= 0 of a Transform moved by 1 keeps world x >= 1 of
+  // the quad beside it; the quad outside that Transform is not clipped but lies behind.
+  writeText(dir / "clip.x3dv", R"(#X3D V4.0 utf8
+PROFILE Immersive
+NavigationInfo { headlight FALSE }
+Viewpoint { position 0 0 5 }
+Transform {
+  translation 1 0 0
+  children [
+    ClipPlane { plane 1 0 0 0 }
+    Transform {
+      translation -1 0 0
+      children Shape {
+        appearance Appearance { material Material { diffuseColor 0 0 0 emissiveColor 1 1 1 } }
+        geometry IndexedFaceSet { coord Coordinate { point [ -4 -4 0, 4 -4 0, 4 4 0, -4 4 0 ] }
+                                  coordIndex [ 0 1 2 3 -1 ] }
+      }
+    }
+  ]
+}
+Shape {
+  appearance Appearance { material Material { diffuseColor 0 0 0 emissiveColor 1 0 0 } }
+  geometry IndexedFaceSet { coord Coordinate { point [ -4 -4 -0.01, 4 -4 -0.01, 4 4 -0.01, -4 4 -0.01 ] }
+                            coordIndex [ 0 1 2 3 -1 ] }
+}
+)");
+  const Rendered r = renderFile(dir / "clip.x3dv");
+  CHECK(r.diagnostics.items.empty());
+  CHECK(close(r.image.pixel(55, 32), 255, 255, 255, 2));  // x = 1.5: kept
+  CHECK(close(r.image.pixel(40, 32), 255, 0, 0, 2));      // x = 0.5: clipped, red behind
+  CHECK(close(r.image.pixel(10, 32), 255, 0, 0, 2));      // x = -1.4: clipped
+  // Disabled, it clips nothing.
+  std::ifstream in(dir / "clip.x3dv");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  text.replace(text.find("plane 1 0 0 0"), 13, "plane 1 0 0 0 enabled FALSE");
+  writeText(dir / "clip_off.x3dv", text);
+  CHECK(close(renderFile(dir / "clip_off.x3dv").image.pixel(10, 32), 255, 255, 255, 2));
+}
+
+TEST_CASE("TwoSidedMaterial lights back faces with its back colours when separateBackColor",
+          "[render][offscreen][world]") {
+  const fs::path dir = worldDir();
+  const auto world = [](const std::string& separate) {
+    // Left quad faces the viewer (counterclockwise), the right one turns its back.
+    return R"(#X3D V4.0 utf8
+PROFILE Immersive
+NavigationInfo { headlight FALSE }
+Viewpoint { position 0 0 5 }
+Shape {
+  appearance Appearance {
+    material TwoSidedMaterial { separateBackColor )" +
+           separate + R"( diffuseColor 0 0 0 emissiveColor 1 0 0
+                                backDiffuseColor 0 0 0 backEmissiveColor 0 0 1 }
+  }
+  geometry IndexedFaceSet {
+    solid FALSE
+    coord Coordinate { point [ -2 -1 0, -0.2 -1 0, -0.2 1 0, -2 1 0,
+                               0.2 -1 0, 2 -1 0, 2 1 0, 0.2 1 0 ] }
+    coordIndex [ 0 1 2 3 -1, 7 6 5 4 -1 ]
+  }
+}
+)";
+  };
+  writeText(dir / "two_sided.x3dv", world("TRUE"));
+  const Rendered separate = renderFile(dir / "two_sided.x3dv");
+  CHECK(separate.diagnostics.items.empty());
+  CHECK(close(separate.image.pixel(18, 32), 255, 0, 0, 2));  // front: emissiveColor
+  CHECK(close(separate.image.pixel(46, 32), 0, 0, 255, 2));  // back: backEmissiveColor
+  writeText(dir / "two_sided_same.x3dv", world("FALSE"));
+  const Rendered same = renderFile(dir / "two_sided_same.x3dv");
+  CHECK(close(same.image.pixel(46, 32), 255, 0, 0, 2));  // both sides take the front values
+}
+
+TEST_CASE("X3D lights: global FALSE scopes a PointLight, global TRUE frees a DirectionalLight",
+          "[render][offscreen][world]") {
+  const fs::path dir = worldDir();
+  // Left quad: a scoped PointLight beside it. Right quad: in another group, lit only by a
+  // global DirectionalLight from the left group when `directionalGlobal` is TRUE.
+  const auto world = [](const std::string& directionalGlobal) {
+    return R"(#X3D V3.2 utf8
+PROFILE Interchange
+NavigationInfo { headlight FALSE }
+Viewpoint { position 0 0 5 }
+Group { children [
+  PointLight { location -1 0 1 global FALSE }
+  DirectionalLight { direction 0 0 -1 intensity 0.5 global )" +
+           directionalGlobal + R"( color 0 1 0 }
+  Shape { appearance Appearance { material Material { diffuseColor 1 1 1 } }
+          geometry IndexedFaceSet { coord Coordinate { point [ -2 -1 0, -0.2 -1 0, -0.2 1 0, -2 1 0 ] }
+                                    coordIndex [ 0 1 2 3 -1 ] } }
+] }
+Group { children
+  Shape { appearance Appearance { material Material { diffuseColor 1 1 1 } }
+          geometry IndexedFaceSet { coord Coordinate { point [ 0.2 -1 0, 2 -1 0, 2 1 0, 0.2 1 0 ] }
+                                    coordIndex [ 0 1 2 3 -1 ] } }
+}
+)";
+  };
+  writeText(dir / "lights_scoped.x3dv", world("FALSE"));
+  const Rendered scoped = renderFile(dir / "lights_scoped.x3dv");
+  CHECK(scoped.diagnostics.items.empty());
+  CHECK(scoped.image.pixel(18, 32)[0] > 100);            // the PointLight lights its sibling
+  CHECK(close(scoped.image.pixel(46, 32), 0, 0, 0, 2));  // ... and nothing else
+  writeText(dir / "lights_global.x3dv", world("TRUE"));
+  const Rendered global = renderFile(dir / "lights_global.x3dv");
+  CHECK(close(global.image.pixel(46, 32), 0, 128, 0, 3));  // the global green light
+}
+
+TEST_CASE("X3D 4 Material.diffuseTexture textures the shape and multiplies diffuseColor",
+          "[render][offscreen][world]") {
+  const fs::path dir = worldDir();
+  writeText(dir / "diffuse_texture.x3dv", R"(#X3D V4.0 utf8
+PROFILE Immersive
+NavigationInfo { headlight FALSE }
+Viewpoint { position 0 0 5 }
+DirectionalLight { direction 0 0 -1 }
+Shape {
+  appearance Appearance {
+    material Material { diffuseColor 1 0 0
+                        diffuseTexture PixelTexture { image 2 1 3 0xFFFFFF 0x00FF00
+                                                       repeatS FALSE repeatT FALSE } }
+  }
+  geometry IndexedFaceSet { coord Coordinate { point [ -2 -1 0, 2 -1 0, 2 1 0, -2 1 0 ] }
+                            coordIndex [ 0 1 2 3 -1 ] }
+}
+)");
+  const Rendered r = renderFile(dir / "diffuse_texture.x3dv");
+  CHECK(r.diagnostics.items.empty());
+  CHECK(close(r.image.pixel(6, 32), 255, 0, 0, 3));  // red x white
+  CHECK(close(r.image.pixel(58, 32), 0, 0, 0, 3));   // red x green
+}

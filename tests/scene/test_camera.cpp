@@ -149,3 +149,25 @@ TEST_CASE("WALK and FLY navigation: look and move", "[scene][navigation]") {
   nav.move(0.0f, 1.0f, 0.5f);  // sideways and up
   CHECK(nav.camera().position.y == Approx(2.1f).margin(1e-4));
 }
+
+TEST_CASE("wholeSceneCamera: castle-model-viewer's camera for a world without a Viewpoint",
+          "[scene][camera]") {
+  // torus.glb's box: 2.5 x 0.5 x 2.5 around the origin; average side 11/6.
+  gs::vrml::Bounds box;
+  box.extend(glm::vec3(-1.25f, -0.25f, -1.25f));
+  box.extend(glm::vec3(1.25f, 0.25f, 1.25f));
+  box.extend(glm::vec3(0.5f, 0.0f, 0.0f));  // inside: changes nothing
+  gs::scene::Camera defaults;
+  defaults.fieldOfView = 0.6f;
+  defaults.orientation = glm::angleAxis(1.0f, glm::vec3(0.0f, 1.0f, 0.0f));
+  const gs::scene::Camera c = gs::scene::wholeSceneCamera(box, defaults);
+  CHECK(c.position.x == Approx(0.0f).margin(1e-6));
+  CHECK(c.position.y == Approx(0.0f).margin(1e-6));
+  CHECK(c.position.z == Approx(1.25f + 2.0f * 11.0f / 6.0f).epsilon(1e-5));
+  CHECK(c.forward().z == Approx(-1.0f));  // looks along -Z whatever the defaults' orientation
+  CHECK(c.fieldOfView == 0.6f);
+  CHECK(c.nearClip < 2.0f * 11.0f / 6.0f);  // the box is inside the clip planes
+  CHECK(c.farClip > c.position.z + 1.25f);
+  // An empty box leaves the camera as it was.
+  CHECK(gs::scene::wholeSceneCamera(gs::vrml::Bounds{}, defaults).position == defaults.position);
+}

@@ -91,6 +91,31 @@ EXTENSIONS = [
             ("vertexWeights", "MFFloat", "initializeOnly", "", ""),
         ],
     },
+    # X3D 4.1's EnvironmentLight (clause 17.4.2 of the 4.1 draft; X_ITE and castle-engine
+    # read it): image-based lighting from cube maps. X3DUOM 4.0 does not have it yet, so
+    # it is declared here with 4.1's interface, in its own component (Lighting, level 4).
+    {
+        "name": "EnvironmentLight",
+        "extension": False,
+        "component": "Lighting",
+        "level": 4,
+        "bases": ["X3DLightNode"],
+        "containerField": "children",
+        "fields": [
+            ("ambientIntensity", "SFFloat", "inputOutput", "0", ""),
+            ("color", "SFColor", "inputOutput", "1 1 1", ""),
+            ("diffuseCoefficients", "MFFloat", "inputOutput", "", ""),
+            ("diffuseTexture", "SFNode", "inputOutput", "NULL", "X3DEnvironmentTextureNode"),
+            ("global", "SFBool", "inputOutput", "false", ""),
+            ("intensity", "SFFloat", "inputOutput", "1", ""),
+            ("metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject"),
+            ("on", "SFBool", "inputOutput", "true", ""),
+            ("rotation", "SFRotation", "inputOutput", "0 0 1 0", ""),
+            ("shadowIntensity", "SFFloat", "inputOutput", "1", ""),
+            ("shadows", "SFBool", "inputOutput", "false", ""),
+            ("specularTexture", "SFNode", "inputOutput", "NULL", "X3DEnvironmentTextureNode"),
+        ],
+    },
 ]
 
 # XML-encoding attributes X3DUOM lists as fields of every node (inherited from X3DNode);
@@ -170,7 +195,7 @@ def generate(uom):
     index = {n: i for i, n in enumerate(abstract_names)}
     concrete_names = {c["name"] for c in concrete}
     for e in EXTENSIONS:
-        e["extension"] = True
+        e.setdefault("extension", True)
     models = sorted(concrete, key=lambda c: c["name"]) + EXTENSIONS
     ids = [m["name"] for m in models]
 

@@ -62,6 +62,16 @@ const std::vector<glm::vec2>& texCoordPoints(const Node& geometry, TexSource& ki
   return f->get<FieldType::MFVec2f>();
 }
 
+const std::vector<glm::vec2>* secondTexCoordPoints(const Node& geometry) {
+  const NodePtr& tc = geometry.sfnode("texCoord");
+  if (tc == nullptr || tc->typeId() != NodeTypeId::MultiTextureCoordinate) return nullptr;
+  const std::vector<NodePtr>& sets = tc->mfnode("texCoord");
+  if (sets.size() < 2 || sets[1] == nullptr) return nullptr;
+  const FieldValue* f = sets[1]->field("point");
+  if (f == nullptr || f->type() != FieldType::MFVec2f) return nullptr;
+  return &f->get<FieldType::MFVec2f>();
+}
+
 std::span<const glm::vec3> coordPoints(const Node& geometry, std::vector<glm::vec3>& scratch) {
   const NodePtr coord = geometry.sfnode("coord");
   if (coord == nullptr) return {};
@@ -117,6 +127,7 @@ std::uint64_t MeshBuilder::hashOf(const Vertex& v) const {
   if (normals_) h = mix(h, &v.normal, sizeof v.normal);
   if (colors_) h = mix(h, &v.color, sizeof v.color);
   if (texCoords_) h = mix(h, &v.texCoord, sizeof v.texCoord);
+  if (texCoords1_) h = mix(h, &v.texCoord1, sizeof v.texCoord1);
   return finalMix(h);
 }
 
@@ -125,6 +136,7 @@ std::uint64_t MeshBuilder::hashOfStored(std::uint32_t i) const {
   if (normals_) h = mix(h, &mesh_.normals[i], sizeof(glm::vec3));
   if (colors_) h = mix(h, &mesh_.colors[i], sizeof(glm::vec4));
   if (texCoords_) h = mix(h, &mesh_.texCoords[i], sizeof(glm::vec2));
+  if (texCoords1_) h = mix(h, &mesh_.texCoords1[i], sizeof(glm::vec2));
   return finalMix(h);
 }
 
@@ -132,7 +144,8 @@ bool MeshBuilder::sameAsStored(std::uint32_t i, const Vertex& v) const {
   return std::memcmp(&mesh_.positions[i], &v.position, sizeof v.position) == 0 &&
          (!normals_ || std::memcmp(&mesh_.normals[i], &v.normal, sizeof v.normal) == 0) &&
          (!colors_ || std::memcmp(&mesh_.colors[i], &v.color, sizeof v.color) == 0) &&
-         (!texCoords_ || std::memcmp(&mesh_.texCoords[i], &v.texCoord, sizeof v.texCoord) == 0);
+         (!texCoords_ || std::memcmp(&mesh_.texCoords[i], &v.texCoord, sizeof v.texCoord) == 0) &&
+         (!texCoords1_ || std::memcmp(&mesh_.texCoords1[i], &v.texCoord1, sizeof v.texCoord1) == 0);
 }
 
 void MeshBuilder::grow(std::size_t minSlots) {
@@ -156,6 +169,7 @@ std::uint32_t MeshBuilder::push(const Vertex& v) {
   if (normals_) mesh_.normals.push_back(v.normal);
   if (colors_) mesh_.colors.push_back(v.color);
   if (texCoords_) mesh_.texCoords.push_back(v.texCoord);
+  if (texCoords1_) mesh_.texCoords1.push_back(v.texCoord1);
   return i;
 }
 
@@ -180,6 +194,7 @@ void MeshBuilder::reserve(std::size_t vertices, std::size_t indices) {
   if (normals_) mesh_.normals.reserve(vertices);
   if (colors_) mesh_.colors.reserve(vertices);
   if (texCoords_) mesh_.texCoords.reserve(vertices);
+  if (texCoords1_) mesh_.texCoords1.reserve(vertices);
   mesh_.indices.reserve(indices);
   grow(2 * vertices + 2);
 }

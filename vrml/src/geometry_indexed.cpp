@@ -80,6 +80,7 @@ Mesh tessellateIndexedFaceSet(const Node& node, ProblemLog& log) {
   const bool haveColor = colors.present();
   const bool haveNormal = node.sfnode("normal") != nullptr;
   const bool haveTex = texKind == TexSource::points;
+  const std::vector<glm::vec2>* tex1 = haveTex ? secondTexCoordPoints(node) : nullptr;
 
   PolygonSoup soup = polygonSoupOf(node, points);
   soup.corners.reserve(coordIndex.size());
@@ -117,6 +118,12 @@ Mesh tessellateIndexedFaceSet(const Node& node, ProblemLog& log) {
           inRange(t, texPoints.size()) && finite(texPoints[static_cast<std::size_t>(t)]);
       if (!ok) log.addLazy([&] { return badIndex("texCoordIndex", i, t, texPoints.size()); });
       soup.texCoords.push_back(ok ? texPoints[static_cast<std::size_t>(t)] : glm::vec2(0.0f));
+      // The second set shares texCoordIndex (X3D 4.0 clause 18.4.3).
+      if (tex1 != nullptr)
+        soup.texCoords1.push_back(inRange(t, tex1->size()) &&
+                                          finite((*tex1)[static_cast<std::size_t>(t)])
+                                      ? (*tex1)[static_cast<std::size_t>(t)]
+                                      : glm::vec2(0.0f));
     }
   };
 

@@ -88,6 +88,10 @@ class ColorSource {
 enum class TexSource : std::uint8_t { none, points, generated };
 const std::vector<glm::vec2>& texCoordPoints(const Node& geometry, TexSource& kind);
 
+/// The `point` array of the second TextureCoordinate of a geometry's MultiTextureCoordinate
+/// (X3D 4.0 clause 18.4.3), or null when it has none (Mesh::texCoords1).
+const std::vector<glm::vec2>* secondTexCoordPoints(const Node& geometry);
+
 /// The points of a geometry node's `coord` field: a Coordinate's MFVec3f `point`, or an
 /// X3D CoordinateDouble's MFVec3d `point` converted into `scratch` (rounded to float).
 /// Empty when the field is NULL or holds something else.
@@ -129,6 +133,7 @@ struct Vertex {
   glm::vec3 normal{0.0f};
   glm::vec4 color{0.0f};
   glm::vec2 texCoord{0.0f};
+  glm::vec2 texCoord1{0.0f};  // the second set (Mesh::texCoords1)
 };
 
 /// Accumulates vertices and indices into a Mesh. `add` merges vertices whose attributes
@@ -137,6 +142,8 @@ struct Vertex {
 class MeshBuilder {
  public:
   MeshBuilder(Primitive primitive, bool normals, bool colors, bool texCoords);
+  /// Makes the mesh carry Vertex::texCoord1 too (before the first vertex).
+  void carrySecondTexCoords() { texCoords1_ = true; }
   /// Index of a vertex equal to `v`, appending it when new.
   std::uint32_t add(const Vertex& v);
   /// Appends `v` without looking for an equal vertex.
@@ -158,7 +165,7 @@ class MeshBuilder {
   void grow(std::size_t minSlots);
 
   Mesh mesh_;
-  bool normals_, colors_, texCoords_;
+  bool normals_, colors_, texCoords_, texCoords1_ = false;
   /// Open-addressing table: (high 32 bits of the hash << 32) | (vertex index + 1); 0 = empty.
   std::vector<std::uint64_t> slots_;
 };
@@ -211,8 +218,9 @@ struct PolygonSoup {
   std::vector<std::uint32_t> faceStart{0};  // face f is corners [faceStart[f], faceStart[f+1])
   /// Per corner, or empty. A non-finite or zero normal means "generate this one".
   std::vector<glm::vec3> normals;
-  std::vector<glm::vec4> colors;     // per corner, or empty
-  std::vector<glm::vec2> texCoords;  // per corner, or empty
+  std::vector<glm::vec4> colors;      // per corner, or empty
+  std::vector<glm::vec2> texCoords;   // per corner, or empty
+  std::vector<glm::vec2> texCoords1;  // the second set per corner, or empty (Mesh::texCoords1)
   float creaseAngle = 0.0f;
   bool ccw = true;
   bool convex = true;

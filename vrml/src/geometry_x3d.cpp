@@ -97,7 +97,9 @@ Mesh buildComposed(const Node& node, ProblemLog& log, std::span<const glm::vec3>
   const bool haveColor = colors.present() && !colors.empty();
   const bool haveNormal = node.sfnode("normal") != nullptr && !normals.empty();
   const bool haveTex = texKind == TexSource::points && !texPoints.empty();
+  const std::vector<glm::vec2>* tex1 = haveTex ? secondTexCoordPoints(node) : nullptr;
   const std::size_t n = faces.corners.size();
+  if (tex1 != nullptr) soup.texCoords1.reserve(n);
   if (haveColor) soup.colors.reserve(n);
   if (haveNormal) soup.normals.reserve(n);
   if (haveTex) soup.texCoords.reserve(n);
@@ -127,6 +129,9 @@ Mesh buildComposed(const Node& node, ProblemLog& log, std::span<const glm::vec3>
         if (v >= texPoints.size())
           log.addLazy([&] { return missing("texCoord", v, texPoints.size()); });
         soup.texCoords.push_back(ok ? texPoints[v] : glm::vec2(0.0f));
+        if (tex1 != nullptr)
+          soup.texCoords1.push_back(v < tex1->size() && finite((*tex1)[v]) ? (*tex1)[v]
+                                                                           : glm::vec2(0.0f));
       }
     }
   }

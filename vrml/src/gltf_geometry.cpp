@@ -161,13 +161,19 @@ NodePtr GltfImporter::primitiveShape(const tinygltf::Primitive& p,
   const bool triangles = geometry->typeId() == NodeTypeId::IndexedTriangleSet;
   if (triangles) {
     set(*geometry, "solid", FieldValue::make<FieldType::SFBool>(!doubleSided));
-    // The texture coordinates the base colour texture reads, V flipped (glTF's origin is
-    // the image's top left, X3D's its bottom left) and KHR_texture_transform applied.
-    const int set = baseTexCoord(p.material);
-    if (const int uv = gltfAttribute(p, "TEXCOORD_" + std::to_string(set)); uv >= 0) {
+    // The texture coordinates the material's textures read, V flipped (glTF's origin is
+    // the image's top left, X3D's its bottom left), the base colour texture's
+    // KHR_texture_transform applied to its set. Two sets become a MultiTextureCoordinate
+    // whose TextureCoordinates' `mapping` the PhysicalMaterial's *TextureMapping fields
+    // name (appearance()).
+    const std::vector<int> sets = texCoordSets(p.material);
+    std::vector<NodePtr> coordinates;
+    for (std::size_t k = 0; k < sets.size(); ++k) {
+      const int uv = gltfAttribute(p, "TEXCOORD_" + std::to_string(sets[k]));
+      if (uv < 0) continue;
       const std::vector<float> f = gltf::readFloats(m_, uv, 2, url_, "TEXCOORD");
       if (f.size() / 2 != vertexCount) gltf::fail(url_, "TEXCOORD and POSITION counts differ");
-      const glm::mat3 m = uvTransform(p.material);
+      const glm::mat3 m = k == 0 ? uvTransform(p.material) : glm::mat3(1.0f);
       std::vector<glm::vec2> st(vertexCount);
       for (std::size_t i = 0; i < vertexCount; ++i) {
         const glm::vec3 t = m * glm::vec3(f[2 * i], f[2 * i + 1], 1.0f);
@@ -175,7 +181,20 @@ NodePtr GltfImporter::primitiveShape(const tinygltf::Primitive& p,
       }
       NodePtr tc = make("TextureCoordinate");
       GltfImporter::set(*tc, "point", FieldValue::make<FieldType::MFVec2f>(std::move(st)));
-      GltfImporter::set(*geometry, "texCoord", FieldValue::make<FieldType::SFNode>(std::move(tc)));
+      if (sets.size() > 1)
+        GltfImporter::set(
+            *tc, "mapping",
+            FieldValue::make<FieldType::SFString>("TEXCOORD_" + std::to_string(sets[k])));
+      coordinates.push_back(std::move(tc));
+    }
+    if (coordinates.size() == 1 && sets.size() == 1) {
+      GltfImporter::set(*geometry, "texCoord", FieldValue::make<FieldType::SFNode>(coordinates[0]));
+    } else if (!coordinates.empty()) {
+      NodePtr multi = make("MultiTextureCoordinate");
+      GltfImporter::set(*multi, "texCoord",
+                        FieldValue::make<FieldType::MFNode>(std::move(coordinates)));
+      GltfImporter::set(*geometry, "texCoord",
+                        FieldValue::make<FieldType::SFNode>(std::move(multi)));
     }
   }
   NodePtr shape = make("Shape");

@@ -10,6 +10,7 @@
 #include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
 
+#include <array>
 #include <map>
 #include <set>
 #include <string>
@@ -65,8 +66,13 @@ class GltfImporter {
   NodePtr texture(int index);
   /// A sampler's filters and wrap modes as a TextureProperties node.
   NodePtr sampler(const tinygltf::Sampler& s);
-  /// The TEXCOORD_n set the base colour texture reads (0 without one).
-  int baseTexCoord(int material) const;
+  /// The TEXCOORD_n sets the material's textures read: the base colour texture's first (0
+  /// without one), then the others' sets in ascending order, each once; at most 2 (a third
+  /// is reported as a warning when `report`, and read from the first). `used` gets, per
+  /// texture (base colour, metallic-roughness, normal, emissive, occlusion), the set it
+  /// reads or -1.
+  std::vector<int> texCoordSets(int material, std::array<int, 5>* used = nullptr,
+                                bool report = false);
   /// The base colour texture's KHR_texture_transform as a 3x3 UV matrix (identity
   /// without one).
   glm::mat3 uvTransform(int material) const;

@@ -9,6 +9,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 namespace gs::vrml::parsing {
@@ -37,10 +38,34 @@ std::string sniffMediaType(const std::vector<unsigned char>& b) {
 
 }  // namespace
 
-int GltfImporter::baseTexCoord(int material) const {
-  const tinygltf::Material* mat = materialAt(m_, material);
-  if (mat == nullptr || mat->pbrMetallicRoughness.baseColorTexture.index < 0) return 0;
-  return std::clamp(mat->pbrMetallicRoughness.baseColorTexture.texCoord, 0, 7);
+std::vector<int> GltfImporter::texCoordSets(int material, std::array<int, 5>* used, bool report) {
+  std::array<int, 5> sets{-1, -1, -1, -1, -1};
+  if (const tinygltf::Material* mat = materialAt(m_, material)) {
+    const auto& pbr = mat->pbrMetallicRoughness;
+    const auto of = [](int index, int texCoord) {
+      return index < 0 ? -1 : std::clamp(texCoord, 0, 7);
+    };
+    sets = {of(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord),
+            of(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord),
+            of(mat->normalTexture.index, mat->normalTexture.texCoord),
+            of(mat->emissiveTexture.index, mat->emissiveTexture.texCoord),
+            of(mat->occlusionTexture.index, mat->occlusionTexture.texCoord)};
+    if (mat->extensions.count("KHR_materials_unlit")) sets = {sets[0], -1, -1, -1, -1};
+  }
+  if (used != nullptr) *used = sets;
+  std::vector<int> out{std::max(sets[0], 0)};
+  std::vector<int> others;
+  for (std::size_t i = 1; i < sets.size(); ++i)
+    if (sets[i] >= 0 && sets[i] != out[0]) others.push_back(sets[i]);
+  std::sort(others.begin(), others.end());
+  others.erase(std::unique(others.begin(), others.end()), others.end());
+  if (!others.empty()) out.push_back(others.front());
+  if (others.size() > 1 && report)
+    warn("material " + std::to_string(material) + " reads " + std::to_string(others.size() + 1) +
+         " TEXCOORD sets; only two are drawn (TEXCOORD_" + std::to_string(out[0]) + " and _" +
+         std::to_string(out[1]) + "), the others' textures read TEXCOORD_" +
+         std::to_string(out[0]));
+  return out;
 }
 
 glm::mat3 GltfImporter::uvTransform(int material) const {
@@ -192,6 +217,20 @@ NodePtr GltfImporter::appearance(int material) {
       }
       if (NodePtr t = texture(mat->emissiveTexture.index))
         set(*m, "emissiveTexture", FieldValue::make<FieldType::SFNode>(t));
+      // Textures on two TEXCOORD sets name theirs (X3D 4.0 clause 12.4.10 *TextureMapping;
+      // the geometry's MultiTextureCoordinate, primitiveShape()).
+      std::array<int, 5> used{};
+      const std::vector<int> sets = texCoordSets(material, &used, true);
+      static constexpr std::array<const char*, 5> kMapping = {
+          "baseTextureMapping", "metallicRoughnessTextureMapping", "normalTextureMapping",
+          "emissiveTextureMapping", "occlusionTextureMapping"};
+      for (std::size_t i = 0; sets.size() > 1 && i < used.size(); ++i) {
+        if (used[i] < 0) continue;
+        const int s =
+            std::find(sets.begin(), sets.end(), used[i]) != sets.end() ? used[i] : sets[0];
+        set(*m, kMapping[i],
+            FieldValue::make<FieldType::SFString>("TEXCOORD_" + std::to_string(s)));
+      }
     }
     set(*m, "transparency", FieldValue::make<FieldType::SFFloat>(transparency));
     const std::string mode = mat->alphaMode.empty() ? "OPAQUE" : mat->alphaMode;

@@ -641,6 +641,20 @@ constexpr NodeFieldModel kFieldsSkin[] = {
     F{"vertexJoints", "MFInt32", "initializeOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"vertexWeights", "MFFloat", "initializeOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
 };
+constexpr NodeFieldModel kFieldsEnvironmentLight[] = {
+    F{"ambientIntensity", "SFFloat", "inputOutput", "0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"color", "SFColor", "inputOutput", "1 1 1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"diffuseCoefficients", "MFFloat", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"diffuseTexture", "SFNode", "inputOutput", "NULL", "X3DEnvironmentTextureNode", AbstractTypeSet{0x0000000000004000ULL, 0x0000000000000000ULL}, {}},
+    F{"global", "SFBool", "inputOutput", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"intensity", "SFFloat", "inputOutput", "1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
+    F{"on", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"rotation", "SFRotation", "inputOutput", "0 0 1 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"shadowIntensity", "SFFloat", "inputOutput", "1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"shadows", "SFBool", "inputOutput", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"specularTexture", "SFNode", "inputOutput", "NULL", "X3DEnvironmentTextureNode", AbstractTypeSet{0x0000000000004000ULL, 0x0000000000000000ULL}, {}},
+};
 
 constexpr NodeModel kModels[] = {
     {"SplinePositionInterpolator", NodeTypeId::SplinePositionInterpolator, "Interpolation", 4, AbstractTypeSet{0x0000000401000080ULL, 0x0000000000000000ULL}, "children", kFieldsSplinePositionInterpolator, false},
@@ -695,6 +709,7 @@ constexpr NodeModel kModels[] = {
     {"OutlineGroup", NodeTypeId::OutlineGroup, "GhostSpace", 1, AbstractTypeSet{0x00000004004000a0ULL, 0x0000000000000000ULL}, "children", kFieldsOutlineGroup, true},
     {"QuantizedNormalVectors", NodeTypeId::QuantizedNormalVectors, "GhostSpace", 1, AbstractTypeSet{0x00000004000000a0ULL, 0x0000000000000100ULL}, "children", kFieldsQuantizedNormalVectors, true},
     {"Skin", NodeTypeId::Skin, "GhostSpace", 1, AbstractTypeSet{0x0000000400000080ULL, 0x0000000000000000ULL}, "children", kFieldsSkin, true},
+    {"EnvironmentLight", NodeTypeId::EnvironmentLight, "Lighting", 4, AbstractTypeSet{0x0000000410000080ULL, 0x0000000000000000ULL}, "children", kFieldsEnvironmentLight, false},
 };
 
 }  // namespace

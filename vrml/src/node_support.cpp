@@ -54,6 +54,9 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::TimeTrigger,
     NodeTypeId::PhysicalMaterial,
     NodeTypeId::UnlitMaterial,
+    NodeTypeId::TwoSidedMaterial,
+    NodeTypeId::ClipPlane,
+    NodeTypeId::EnvironmentLight,  // X3D 4.1 (vrml/gen/gen_node_model.py)
     NodeTypeId::TextureProperties,
     NodeTypeId::TransformSensor,
     NodeTypeId::ColorChaser,

@@ -59,8 +59,9 @@ struct Options {
   std::string frameLog;            // --frame-log FILE: a line per window frame (frame_log.hpp)
   scene::RenderMode mode = scene::RenderMode::polygons;        // --mode polygons|splats|outlines
   render::SplatPath splatPath = render::SplatPath::automatic;  // --splat-path (render/README.md)
-  bool fit = false;      // --fit: frame the whole scene, not the Viewpoint
-  double maxRate = 0.0;  // --max-rate BYTES_PER_S: emulate a slow link (0: off)
+  bool fit = false;           // --fit: frame the whole scene, not the Viewpoint
+  bool castleCamera = false;  // --castle-camera: castle's camera for a world without Viewpoint
+  double maxRate = 0.0;       // --max-rate BYTES_PER_S: emulate a slow link (0: off)
   /// --snapshot-at BYTES | SECONDSs: render after only part of the input arrived.
   std::uint64_t snapshotAtBytes = 0;  // 0: not set
   double snapshotAtSeconds = 0.0;     // 0: not set

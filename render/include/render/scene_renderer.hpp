@@ -101,8 +101,9 @@ class SceneRenderer {
   scene::Camera boundViewpointCamera() { return traversal_.boundViewpointCamera(); }
   /// The camera to start with in a viewport of aspect width / height: the bound
   /// Viewpoint's when the file has one; otherwise the VRML97 default orientation and field
-  /// of view moved back to frame the whole scene (as castle-model-viewer and most browsers
-  /// do, since the default position 0 0 10 often shows nothing useful).
+  /// of view moved back to show the whole scene (the default position 0 0 10 often shows
+  /// nothing useful): for a glTF asset where castle-model-viewer puts it
+  /// (scene::wholeSceneCamera), for other worlds just far enough (scene::fitCamera).
   scene::Camera initialCamera(float aspect);
   /// Camera of viewpoints()[index] with clip planes as boundViewpointCamera().
   scene::Camera viewpointCamera(std::size_t index) { return traversal_.viewpointCamera(index); }

@@ -48,6 +48,14 @@ float verticalFieldOfView(float fieldOfView, float aspect);
 /// empty box returns `direction` unchanged.
 Camera fitCamera(const vrml::Bounds& bounds, float aspect, const Camera& direction);
 
+/// The camera castle-model-viewer starts with in a world without a Viewpoint
+/// (castle-engine's CameraViewpointForWholeScene with direction -Z and up +Y): `defaults`'
+/// field of view, at the box centre's X and Y and at the box's largest Z plus twice its
+/// average side ((size.x + size.y + size.z) / 3), looking along -Z with +Y up; clip
+/// planes as fitClipPlanes. Unlike fitCamera it does not depend on the viewport's aspect.
+/// An empty box returns `defaults` unchanged.
+Camera wholeSceneCamera(const vrml::Bounds& bounds, const Camera& defaults);
+
 /// Sets `camera`'s near and far planes to enclose the sphere around `bounds` seen from
 /// the camera's position: far just beyond the sphere's far side, near the sphere's near
 /// side (at least far / 10000, so the depth buffer keeps precision; at most `maxNear`

@@ -22,6 +22,8 @@ enum class NodeKind : std::uint8_t {
   DirectionalLight,
   PointLight,
   SpotLight,
+  EnvironmentLight,  // X3D 4.1: image-based lighting of physical materials
+  ClipPlane,         // X3D Rendering: clips its siblings and their descendants
   Viewpoint,
   NavigationInfo,
   Background,

@@ -47,6 +47,18 @@ struct LightInstance {
   float cutOffAngle = 0.785398f;            // radians
 };
 
+/// An EnvironmentLight (X3D 4.1 clause 17.4.2): image-based lighting of the
+/// PhysicalMaterial shapes it lights (render/README.md, "Image-based lighting").
+struct EnvironmentLightInstance {
+  const vrml::Node* node = nullptr;
+  /// Environment (cube map) coordinates to world: the light's transform's rotation times
+  /// its `rotation` field; orthonormal.
+  glm::mat3 rotation{1.0f};
+  glm::vec3 color{1.0f};  // times intensity (>= 0)
+  float ambientIntensity = 0.0f;
+  const std::string* baseUrl = nullptr;  // the base for its textures' urls; never null
+};
+
 /// One grouping node on the way from the root to a Shape (recorded when
 /// TraversalFrame::recordPaths is set; scene/picking.hpp).
 struct PathStep {
@@ -68,6 +80,13 @@ struct ShapeInstance {
   /// Range in TraversalFrame::scopedLights of the DirectionalLights that light it.
   std::uint32_t scopedLightBegin = 0;
   std::uint32_t scopedLightCount = 0;
+  /// Index in TraversalFrame::environmentLights of the EnvironmentLight that lights it:
+  /// the innermost scoped one (global FALSE: its siblings and their descendants), else the
+  /// first global one; -1 for none.
+  std::int32_t environmentLight = -1;
+  /// Range in TraversalFrame::scopedClipPlanes of the ClipPlanes that clip it.
+  std::uint32_t clipPlaneBegin = 0;
+  std::uint32_t clipPlaneCount = 0;
   /// URL of the file the shape comes from (the base for texture URLs); never null.
   const std::string* baseUrl = nullptr;
   /// Range in TraversalFrame::paths of its path, the root first and the Shape last
@@ -89,7 +108,13 @@ struct TraversalFrame {
   std::vector<SplatInstance> splats;
   std::vector<LightInstance> lights;        // every light met, world coordinates
   std::vector<std::uint32_t> scopedLights;  // indices into lights (ShapeInstance ranges)
-  std::vector<std::uint32_t> globalLights;  // point and spot lights, indices into lights
+  /// Lights whose X3D `global` is TRUE (VRML97: every point and spot light), indices into
+  /// lights; the others are in scopedLights (clause 17.2.1.1).
+  std::vector<std::uint32_t> globalLights;
+  std::vector<EnvironmentLightInstance> environmentLights;  // every one that is on
+  /// Enabled ClipPlanes (X3D 4.0 clause 11.4.1) in world coordinates, as (a, b, c, d): a
+  /// point p is kept where a p.x + b p.y + c p.z + d >= 0 (ShapeInstance ranges).
+  std::vector<glm::vec4> scopedClipPlanes;
   /// Set by the caller: collect() records each Shape's path of grouping nodes (picking).
   bool recordPaths = false;
   /// Set by the caller: collect() gathers what the avatar collides with (clause 6.8)
@@ -104,6 +129,8 @@ struct TraversalFrame {
     lights.clear();
     scopedLights.clear();
     globalLights.clear();
+    environmentLights.clear();
+    scopedClipPlanes.clear();
   }
 };
 
@@ -129,6 +156,8 @@ struct NavigationSettings {
 /// The bound Background (clause 6.5): sky and ground gradients; the panorama URLs are
 /// read from `node` (backUrl ...) and resolved against `baseUrl`.
 struct BackgroundSettings {
+  /// Black without a Background (clause 6.5); dark grey (0.1) for a glTF asset opened as a
+  /// world, as castle-model-viewer shows one (docs/gltf.md).
   std::vector<glm::vec3> skyColor{glm::vec3(0.0f)};
   std::vector<float> skyAngle;  // radians from the zenith, increasing
   std::vector<glm::vec3> groundColor;
@@ -345,6 +374,8 @@ class SceneTraversal {
   std::set<std::string> reported_;
   TraversalFrame scratch_;
   std::vector<std::uint32_t> scopeScratch_;       // reused by collect()
+  std::int32_t firstGlobalEnvironment_ = -1;      // collect(): the first global EnvironmentLight
+  std::vector<glm::vec4> clipScratch_;            // collect(): the ClipPlanes in scope
   std::vector<const std::string*> chainScratch_;  // reused by collect()
 };
 
@@ -369,7 +400,10 @@ glm::mat4 billboardRotation(const glm::vec3& axisOfRotation, const glm::vec3& vi
                             const glm::vec3& viewerUp);
 
 /// The texture-coordinate matrix of a TextureTransform (clause 6.49):
-/// Tc' = -C x S x R x C x T x Tc, as a 3x3 homogeneous 2D matrix.
+/// Tc' = -C x S x R x C x T x Tc, as a 3x3 homogeneous 2D matrix. Also X3D's
+/// TextureTransform3D (the same product in 3D), TextureTransformMatrix3D (its `matrix`,
+/// row-major in the file) and MultiTextureTransform (its first transform), all applied to
+/// (s, t, 0, 1) and kept in 2D (X3D 4.0 clauses 33.4.8, 33.4.9, 18.4.5).
 glm::mat3 textureTransformMatrix(const vrml::Node& textureTransform);
 
 }  // namespace gs::scene

@@ -49,9 +49,13 @@ enum class Primitive : std::uint8_t { triangles, lines, points };
 struct Mesh {
   Primitive primitive = Primitive::triangles;
   std::vector<glm::vec3> positions;
-  std::vector<glm::vec3> normals;      // unit length; empty for lines and points
-  std::vector<glm::vec4> colors;       // RGBA in [0,1]; empty when the node has no Color
-  std::vector<glm::vec2> texCoords;    // empty for lines and points
+  std::vector<glm::vec3> normals;    // unit length; empty for lines and points
+  std::vector<glm::vec4> colors;     // RGBA in [0,1]; empty when the node has no Color
+  std::vector<glm::vec2> texCoords;  // empty for lines and points
+  /// The second texture coordinate set (the second TextureCoordinate of an X3D
+  /// MultiTextureCoordinate, X3D 4.0 clause 18.4.3, as glTF's TEXCOORD_1 becomes), per
+  /// vertex; empty when the geometry has none.
+  std::vector<glm::vec2> texCoords1;
   std::vector<std::uint32_t> indices;  // 3 per triangle, 2 per line segment, 1 per point
   bool solid = true;                   // back faces may be culled (the node's `solid` field)
   Bounds bounds;                       // of positions
