@@ -92,7 +92,8 @@ Parsed parseArguments(int argc, char** argv) {
       "  ghostspace http://host/world.wrl               stream a world into a window\n"
       "  ghostspace --snapshot part.png --max-rate 1250000 --snapshot-at 2s http://host/head.qnv\n"
       "  ghostspace encode CThead.nhdr --fraction 0.091 -o head.qnv\n"
-      "  ghostspace info head.qnv                      header, packets, magnitude histogram");
+      "  ghostspace info head.qnv                      header, packets, magnitude histogram\n"
+      "  ghostspace convert world.x3dv -o world.x3d    X3D Classic VRML to XML");
   registerOptions(OptionScope::main, cli, a);
   cli.add_option("INPUT", a.options.inputs,
                  "Worlds to open, files or http(s):// URLs: VRML97 (.wrl, .wrl.gz, .wrz), X3D "
@@ -114,6 +115,15 @@ Parsed parseArguments(int argc, char** argv) {
   std::string encodeInput;
   encode->add_option("INPUT", encodeInput, "World, mesh or volume")->required();
   registerOptions(OptionScope::encode, *encode, a);
+
+  CLI::App* convert = cli.add_subcommand(
+      "convert",
+      "Write the world INPUT in another encoding: VRML97 (.wrl), X3D Classic VRML (.x3dv), "
+      "XML (.x3d) or JSON (.x3dj), chosen by OUT's extension");
+  std::string convertInput;
+  convert->add_option("INPUT", convertInput, "World to read")->required();
+  registerOptions(OptionScope::convert, *convert, a);
+  convert->get_option("--output")->required();
 
   Options& o = a.options;
   CLI::App* tileset = addTilesetCommand(cli, o.tilesetDir);  // encode_tileset.cpp
@@ -200,6 +210,9 @@ Parsed parseArguments(int argc, char** argv) {
   if (encode->parsed()) {
     o.command = Command::encode;
     o.inputs = {encodeInput};
+  } else if (convert->parsed()) {
+    o.command = Command::convert;
+    o.inputs = {convertInput};
   } else if (tileset->parsed()) {
     o.command = Command::tilesetIndex;
   } else if (info->parsed()) {
@@ -236,6 +249,8 @@ int run(int argc, char** argv) {
         return runEncode(p.options);
       case Command::tilesetIndex:
         return runTilesetIndex(p.options);
+      case Command::convert:
+        return runConvert(p.options);
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "ghostspace: %s\n", e.what());

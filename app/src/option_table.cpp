@@ -384,11 +384,20 @@ const std::vector<OptionSpec>& table() {
                "`OUT/parts/I-of-N/`; run the shares anywhere (a SLURM array, Kubernetes "
                "Jobs, GNU parallel); the merge writes the interior bricks and `index.qnvt`, "
                "byte-identical to an unsplit run."},
+      {.scope = convert,
+       .names = "-o,--output",
+       .valueName = "OUT",
+       .field = GS_FIELD(std::string, options.convertOutput),
+       .help = "The world to write: .wrl (VRML97), .x3dv (X3D Classic VRML), .x3d (X3D XML) "
+               "or .x3dj (X3D JSON), by its extension",
+       .more = "DEF names, PROTOs, ROUTEs, IMPORT / EXPORT and the X3D header are kept where "
+               "the encoding has them; what it cannot hold (an X3D node in a .wrl, a UNIT "
+               "statement) is a warning on stderr (docs/x3d.md, \"Conversion\")."},
       {.scope = builtIn,
        .names = "--help",
        .valueName = "",
        .field = GS_FIELD(bool, helpMarkdown),
-       .help = "Print the options and exit (also after `info` and `encode`)"},
+       .help = "Print the options and exit (also after `info`, `encode` and `convert`)"},
       {.scope = builtIn,
        .names = "--version",
        .valueName = "",
@@ -444,12 +453,15 @@ std::string optionsMarkdown() {
   using enum OptionScope;
   Arguments arguments;
   std::string out = "| option | default | meaning |\n|---|---|---|\n";
-  for (OptionScope scope : {main, info, encode, builtIn}) {
+  for (OptionScope scope : {main, info, encode, convert, builtIn}) {
     CLI::App app;  // what --help shows as each default
     if (scope != builtIn) registerOptions(scope, app, arguments);
     for (const OptionSpec& spec : table()) {
       if (spec.scope != scope) continue;
-      std::string name = scope == info ? "info " : scope == encode ? "encode " : "";
+      std::string name = scope == info      ? "info "
+                         : scope == encode  ? "encode "
+                         : scope == convert ? "convert "
+                                            : "";
       name += spec.names;
       if (const auto comma = name.find(','); comma != std::string::npos)
         name.insert(comma + 1, " ");

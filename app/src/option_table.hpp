@@ -41,7 +41,7 @@ using Field = std::variant<bool& (*)(Arguments&), int& (*)(Arguments&), unsigned
                            std::string& (*)(Arguments&)>;
 
 /// The command an option belongs to.
-enum class OptionScope { main, info, encode, builtIn };
+enum class OptionScope { main, info, encode, convert, builtIn };
 
 struct OptionSpec {
   OptionScope scope;

@@ -77,8 +77,10 @@ TEST_CASE("README.md names every option --help lists", "[app][cli]") {
   // fall behind it.
   const std::string readme = gs::test::readBytes(gs::test::sourceDir() / "README.md");
   REQUIRE_FALSE(readme.empty());
-  for (const std::vector<std::string>& args :
-       {std::vector<std::string>{"--help"}, {"info", "--help"}, {"encode", "--help"}}) {
+  for (const std::vector<std::string>& args : {std::vector<std::string>{"--help"},
+                                               {"info", "--help"},
+                                               {"encode", "--help"},
+                                               {"convert", "--help"}}) {
     const auto r = runGhostspace(args);
     REQUIRE(r.exitCode == 0);
     std::size_t at = 0, found = 0;
@@ -140,6 +142,49 @@ TEST_CASE("snapshot writes a PNG of the bundled scene", "[app][cli][snapshot]") 
   CHECK(r.exitCode == 0);
   REQUIRE(std::filesystem::exists(out));
   CHECK(std::filesystem::file_size(out) > 100);
+}
+
+TEST_CASE("convert writes a world in the encoding OUT's extension names", "[app][cli]") {
+  gs::test::TempDir dir("convert");
+  const auto x3dv = gs::test::sourceDir() / "assets/worlds/x3d_features.x3dv";
+  // X3D Classic -> XML -> JSON -> Classic: each step reads back with no diagnostic.
+  const std::string xml = (dir.path / "w.x3d").string();
+  const std::string json = (dir.path / "w.x3dj").string();
+  const std::string classic = (dir.path / "w.x3dv").string();
+  auto r = runGhostspace({"convert", x3dv.string(), "-o", xml});
+  INFO(r.err);
+  REQUIRE(r.exitCode == 0);
+  CHECK(r.out.find("X3D XML") != std::string::npos);
+  CHECK(gs::test::readBytes(xml).find("<X3D ") != std::string::npos);
+  CHECK(runGhostspace({"convert", xml, "-o", json}).exitCode == 0);
+  CHECK(gs::test::readBytes(json).starts_with("{ \"X3D\": {"));
+  CHECK(runGhostspace({"convert", json, "-o", classic}).exitCode == 0);
+  CHECK(gs::test::readBytes(classic).starts_with("#X3D V"));
+  const auto info = runGhostspace({"info", classic});
+  CHECK(info.exitCode == 0);
+  CHECK(info.out.find("0 errors, 0 warnings") != std::string::npos);
+
+  // X3D as VRML97: what VRML97 lacks is a warning naming it, on stderr; exit 0.
+  const std::string wrl = (dir.path / "w.wrl").string();
+  const auto lossy = runGhostspace({"convert", x3dv.string(), "-o", wrl});
+  CHECK(lossy.exitCode == 0);
+  CHECK(lossy.err.find("warning: ") != std::string::npos);
+  CHECK(lossy.err.find("no VRML97 form") != std::string::npos);
+  CHECK(gs::test::readBytes(wrl).starts_with("#VRML V2.0 utf8\n"));
+  CHECK(runGhostspace({"info", wrl}).exitCode == 0);
+
+  // An OUT that names no encoding is a usage error; a missing -o too.
+  const auto bad = runGhostspace({"convert", x3dv.string(), "-o", (dir.path / "w.txt").string()});
+  CHECK(bad.exitCode == 2);
+  CHECK(bad.err.find(".wrl, .x3dv, .x3d or .x3dj") != std::string::npos);
+  CHECK(runGhostspace({"convert", x3dv.string()}).exitCode == 2);
+  // An input with errors is still written, with exit status 1.
+  const std::string broken =
+      dir.write("broken.wrl", "#VRML V2.0 utf8\nGroup { }\nNoSuchNode { }\n");
+  const auto partial = runGhostspace({"convert", broken, "-o", (dir.path / "b.x3d").string()});
+  CHECK(partial.exitCode == 1);
+  CHECK(partial.err.find("NoSuchNode") != std::string::npos);
+  CHECK(gs::test::readBytes(dir.path / "b.x3d").find("<Group/>") != std::string::npos);
 }
 
 TEST_CASE("snapshots with the castle camera start a world without a Viewpoint as castle does",

@@ -564,6 +564,11 @@ struct XmlToClassic::Impl {
       // X3D's names for VRML97's fields (Parser::x3dFieldAlias).
       if (i < 0 && type->id() == NodeTypeId::Collision && f == "enabled")
         i = type->findExact("collide");
+      // X3D 3's names of ComposedCubeMapTexture's faces (Parser::x3dFieldAlias).
+      if (i < 0 && type->id() == NodeTypeId::ComposedCubeMapTexture &&
+          (f == "back" || f == "bottom" || f == "front" || f == "left" || f == "right" ||
+           f == "top"))
+        i = type->findExact(std::string(f) + "Texture");
       if (i >= 0) return type->fields[static_cast<std::size_t>(i)].type;
       if (f == "children" && (type->id() == NodeTypeId::Switch || type->id() == NodeTypeId::LOD))
         return FieldType::MFNode;
@@ -595,7 +600,10 @@ struct XmlToClassic::Impl {
     bool urlDone = false;
     if (!instance) {
       for (const auto& [k, v] : n.attrs) {
-        if (ignoredAttribute(k)) continue;
+        // HTML's class, id and style, unless the node has a field of that name
+        // (FontStyle.style, ScreenFontStyle.style).
+        const bool html = k == "class" || k == "id" || k == "style";
+        if (ignoredAttribute(k) && !(html && fieldType(n, k))) continue;
         out += " " + k + " ";
         const auto t = fieldType(n, k);
         if (!t) {

@@ -36,6 +36,16 @@ int runEncodeOutline(const Options& options);
 /// read or the output written, 2 on bad options.
 int runEncode(const Options& options);
 
+/// `ghostspace convert IN -o OUT`: reads the world IN (any encoding session::loadWorld
+/// reads) and writes it to OUT in the encoding OUT's extension names (.wrl VRML97, .x3dv
+/// X3D Classic VRML, .x3d X3D XML, .x3dj X3D JSON; vrml::writeScene, docs/x3d.md
+/// "Conversion"). IN's diagnostics and what OUT's encoding cannot hold go to stderr, one
+/// line each ("file:line:column: warning: ..."); one summary line goes to stdout. Returns
+/// 0 when OUT was written and IN had no errors, 1 when IN cannot be read, has errors (OUT
+/// is still written with what was read) or OUT cannot be written, 2 when OUT's extension
+/// names no encoding.
+int runConvert(const Options& options);
+
 /// `ghostspace tileset index OUT/`: merges the shares an `encode --tileset OUT/ --bricks
 /// I/N` run left under OUT/parts/ into the interior bricks and OUT/index.qnvt, then removes
 /// OUT/parts (app/src/encode_tileset.cpp, docs/qnv-format.md "Tilesets"). 0 on success, 1

@@ -14,7 +14,7 @@
 
 namespace gs::app {
 
-enum class Command { window, snapshot, info, encode, tilesetIndex };
+enum class Command { window, snapshot, info, encode, tilesetIndex, convert };
 
 /// `ghostspace encode` (README.md, "Encoding QNV streams").
 struct EncodeOptions {
@@ -71,7 +71,8 @@ struct Options {
   session::RuntimeOptions time;       // --time, --time-step, --trace-events
   bool infoExitZero = false;          // info --exit-zero: worlds with errors exit 0
   EncodeOptions encode;
-  std::string tilesetDir;  // tileset index OUT/: the folder whose shares are merged
+  std::string convertOutput;  // convert -o OUT: .wrl, .x3dv, .x3d or .x3dj
+  std::string tilesetDir;     // tileset index OUT/: the folder whose shares are merged
 };
 
 /// The level of detail of viewport `index`: lods[index], the last of lods past its end,
