@@ -160,7 +160,8 @@ int main(int argc, char** argv) {
                                         renderer.initialCamera(aspect),
                                         renderer.boundViewpointCamera()};
         gs::scene::fitClipPlanes(cameras[0], renderer.bounds(), renderer.navigation().nearClip());
-        if (!r.hasViewpoint) cameras[2] = gs::scene::wholeSceneCamera(renderer.bounds(), gs::scene::Camera{});
+        if (!r.hasViewpoint)
+          cameras[2] = gs::scene::wholeSceneCamera(renderer.bounds(), gs::scene::Camera{});
         for (int v = 0; v < 3; ++v)
           r.variants[v] = renderVariant(renderer, cameras[v], reference,
                                         base.empty() ? "" : base + "_" + kVariantNames[v] + ".png");

@@ -58,9 +58,10 @@ struct WriteResult {
 /// name its interface; ROUTEs, IMPORT / EXPORT and PROTO declarations keep their place
 /// among the root nodes (by their source locations). UNIT statements of length and angle
 /// are not written: the parser has already converted the values into base units (metres,
-/// radians), which is what is written (a diagnostic says so); mass and force UNITs are. For Encoding::vrml97, nodes and fields that
-/// VRML97 lacks, X3D-only field types and X3D's header statements are diagnostics and
-/// are left out. Never throws for any Scene the parser made (std::bad_alloc aside).
+/// radians), which is what is written (a diagnostic says so); mass and force UNITs are. For
+/// Encoding::vrml97, nodes and fields that VRML97 lacks, X3D-only field types and X3D's header
+/// statements are diagnostics and are left out. Never throws for any Scene the parser made
+/// (std::bad_alloc aside).
 WriteResult writeScene(const Scene& scene, const WriteOptions& options);
 
 }  // namespace gs::vrml
