@@ -34,7 +34,7 @@ std::string extensionOf(Encoding e) {
   return "";
 }
 
-std::string describe(const Scene& s) {
+std::string diagnosticsOf(const Scene& s) {
   std::string out;
   for (const Diagnostic& d : s.diagnostics.items) out += d.format() + "\n";
   return out;
@@ -57,7 +57,7 @@ Trip roundTrip(const Scene& scene, Encoding e, const std::string& url) {
   gs::test::Same same;
   if (!same.scenes(scene, t.back)) t.diff = same.diff;
   if (t.diff.empty() && t.back.diagnostics.errorCount() > scene.diagnostics.errorCount())
-    t.diff = "new errors: " + describe(t.back);
+    t.diff = "new errors: " + diagnosticsOf(t.back);
   return t;
 }
 
@@ -264,7 +264,7 @@ CorpusFigures sweep(const std::string& sub, const std::vector<std::string>& suff
         const Scene back = parseVrml(w.text, p.string() + "-rt.wrl");
         // What VRML97 cannot hold is a diagnostic; what is written reads back cleanly.
         CHECK(back.diagnostics.errorCount() == 0);
-        if (back.diagnostics.errorCount() > 0) WARN(name + ": " + describe(back));
+        if (back.diagnostics.errorCount() > 0) WARN(name + ": " + diagnosticsOf(back));
         const bool onlyHeader = std::all_of(
             w.diagnostics.items.begin(), w.diagnostics.items.end(), [](const Diagnostic& d) {
               return d.message.find("PROFILE and COMPONENT") != std::string::npos;
@@ -422,7 +422,8 @@ TEST_CASE("writer: VRML97 worlds written as X3D keep every VRML97 field", "[writ
           ++same[e];
         } else {
           differ[e].insert(name);
-          WARN(std::string(encodingName(e)) + ": " + name + ": " + cmp.diff + " " + describe(back));
+          WARN(std::string(encodingName(e)) + ": " + name + ": " + cmp.diff + " " +
+               diagnosticsOf(back));
         }
       }
     }
@@ -478,7 +479,7 @@ TEST_CASE("writer: glTF worlds convert to X3D that reads back cleanly", "[writer
       for (Encoding e : {Encoding::classic, Encoding::xml, Encoding::json}) {
         const WriteResult w = writeScene(s, WriteOptions{e});
         const Scene back = parseVrml(w.text, p.string() + "-rt" + extensionOf(e));
-        INFO(p.string() << " as " << encodingName(e) << "\n" << describe(back));
+        INFO(p.string() << " as " << encodingName(e) << "\n" << diagnosticsOf(back));
         // glTF names such as "Cube.001" are no Classic identifiers: renamed, with a warning.
         CHECK(back.diagnostics.errorCount() == 0);
         CHECK(back.rootNodes.size() == s.rootNodes.size());
