@@ -341,68 +341,6 @@ TEST_CASE("writer: worlds in both X3D encodings convert into each other", "[writ
   CHECK(pairs >= 6);
 }
 
-namespace {
-
-// A VRML97 scene against its X3D conversion: the same node types, DEF names and, for each
-// field of the VRML97 node, an equal value in the X3D node's field of that name (X3D's
-// `children` of Switch and LOD, `enabled` of Collision are read into VRML97's names);
-// ROUTEs compared as Same does. `diff` names the first difference.
-struct SameAsX3d {
-  bool defNames = true;  // compare DEF names (and the DEF names ROUTEs name)
-  std::set<std::pair<const Node*, const Node*>> seen;
-  std::string diff;
-  bool fail(const std::string& what) {
-    if (diff.empty()) diff = what;
-    return false;
-  }
-  bool nodes(const NodePtr& a, const NodePtr& b, const std::string& path) {
-    if (!a || !b) return (!a && !b) || fail(path + ": NULL on one side only");
-    if (!seen.insert({a.get(), b.get()}).second) return true;
-    if (a->typeName() != b->typeName())
-      return fail(path + ": type " + a->typeName() + " vs " + b->typeName());
-    if (defNames && a->defName != b->defName)
-      return fail(path + ": DEF " + a->defName + " vs " + b->defName);
-    for (std::size_t i = 0; i < a->fieldCount(); ++i) {
-      const auto& spec = a->type().fields[i];
-      const int j = b->type().findExact(spec.name);
-      if (j < 0) return fail(path + "." + spec.name + ": no such X3D field");
-      if (!values(a->fieldAt(i), b->fieldAt(static_cast<std::size_t>(j)), path + "." + spec.name))
-        return false;
-    }
-    return true;
-  }
-  bool values(const FieldValue& a, const FieldValue& b, const std::string& path) {
-    if (a.type() != b.type()) return fail(path + ": field type differs");
-    if (a.type() == FieldType::SFNode)
-      return nodes(a.get<FieldType::SFNode>(), b.get<FieldType::SFNode>(), path);
-    if (a.type() == FieldType::MFNode) {
-      const auto& x = a.get<FieldType::MFNode>();
-      const auto& y = b.get<FieldType::MFNode>();
-      if (x.size() != y.size()) return fail(path + ": MFNode sizes differ");
-      for (std::size_t i = 0; i < x.size(); ++i)
-        if (!nodes(x[i], y[i], path + "[" + std::to_string(i) + "]")) return false;
-      return true;
-    }
-    return a.storage() == b.storage() || fail(path + ": values differ");
-  }
-  bool scenes(const Scene& a, const Scene& b) {
-    if (a.rootNodes.size() != b.rootNodes.size()) return fail("root count differs");
-    for (std::size_t i = 0; i < a.rootNodes.size(); ++i)
-      if (!nodes(a.rootNodes[i], b.rootNodes[i], "root" + std::to_string(i))) return false;
-    if (a.routes.size() != b.routes.size()) return fail("route count differs");
-    for (std::size_t i = 0; i < a.routes.size(); ++i)
-      if (a.routes[i].fromField != b.routes[i].fromField ||
-          a.routes[i].toField != b.routes[i].toField ||
-          (defNames && (a.routes[i].fromNode->defName != b.routes[i].fromNode->defName ||
-                        a.routes[i].toNode->defName != b.routes[i].toNode->defName)))
-        return fail("route " + std::to_string(i) + " differs");
-    if (a.protos.size() != b.protos.size()) return fail("PROTO count differs");
-    return true;
-  }
-};
-
-}  // namespace
-
 TEST_CASE("writer: VRML97 worlds written as X3D keep every VRML97 field", "[writer][corpus]") {
   if (!gs::test::haveCorpus("vrml")) return;
   int worlds = 0;
@@ -417,7 +355,8 @@ TEST_CASE("writer: VRML97 worlds written as X3D keep every VRML97 field", "[writ
       for (Encoding e : {Encoding::classic, Encoding::xml, Encoding::json}) {
         const WriteResult w = writeScene(s, WriteOptions{e});
         const Scene back = parseVrml(w.text, p.string() + "-rt" + extensionOf(e));
-        SameAsX3d cmp;
+        gs::test::Same cmp;
+        cmp.fieldsByName = true;
         if (cmp.scenes(s, back) && back.diagnostics.errorCount() == 0) {
           ++same[e];
         } else {
@@ -485,7 +424,8 @@ TEST_CASE("writer: glTF worlds convert to X3D that reads back cleanly", "[writer
         CHECK(back.rootNodes.size() == s.rootNodes.size());
         CHECK(back.routes.size() == s.routes.size());
         // The same graph and values, DEF names aside.
-        SameAsX3d same;
+        gs::test::Same same;
+        same.fieldsByName = true;
         same.defNames = false;
         const bool equal = same.scenes(s, back);
         INFO(same.diff);
