@@ -1,11 +1,21 @@
 // VRML parse throughput: reads every .wrl under a folder into memory, then parses each
 // file N times on one thread and prints MB, seconds and MB/s.
 //
-//   bench_parse [folder] [repetitions]
+//   bench_parse [folder] [repetitions] [x3d]
 //
 // The folder defaults to ../shared/corpus/vrml/kicad (relative to the working
 // directory, i.e. run it from the project root); repetitions default to 5.
+//
+// Then the same content in X3D's encodings (issue 20): each world is written by
+// vrml::writeScene (what `ghostspace convert` does) as Classic VRML (.x3dv) and XML
+// (.x3d), each text is parsed N times, and expat alone (handlers that do nothing) reads
+// the XML bytes N times: the XML reader's figure is quoted as a share of expat's. A third
+// argument `x3d` measures only these; with XMLONLY=1 in the environment as well, only the
+// XML reader runs (for a profiler) and nothing is printed.
 #include "vrml/parser.hpp"
+#include "vrml/writer.hpp"
+
+#include <expat.h>
 
 #include <algorithm>
 #include <chrono>
@@ -26,6 +36,76 @@ bool readAll(const std::filesystem::path& p, std::string& out) {
   while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) out.append(buf, n);
   std::fclose(f);
   return true;
+}
+
+struct Text {
+  std::string name;
+  std::string bytes;
+};
+
+/// Best pass over `texts` of `reps` passes of `work` on each text, in seconds.
+template <typename Work>
+double bestPass(const std::vector<Text>& texts, int reps, Work&& work) {
+  using Clock = std::chrono::steady_clock;
+  double best = 1e300;
+  for (int r = 0; r < reps; ++r) {
+    const auto t0 = Clock::now();
+    for (const Text& t : texts) work(t);
+    best = std::min(best, std::chrono::duration<double>(Clock::now() - t0).count());
+  }
+  return best;
+}
+
+/// expat over `bytes` with start and end handlers that do nothing; false on an XML error.
+bool expatBare(const std::string& bytes) {
+  XML_Parser p = XML_ParserCreate(nullptr);
+  XML_SetElementHandler(
+      p, [](void*, const XML_Char*, const XML_Char**) {}, [](void*, const XML_Char*) {});
+  const bool ok = XML_Parse(p, bytes.data(), static_cast<int>(bytes.size()), 1) != XML_STATUS_ERROR;
+  XML_ParserFree(p);
+  return ok;
+}
+
+/// Parses each input, writes it as Classic VRML and XML, and prints the three figures.
+void benchX3dEncodings(const std::vector<Text>& inputs, int reps) {
+  std::vector<Text> classic, xml;
+  for (const Text& in : inputs) {
+    const gs::vrml::Scene s = gs::vrml::parseVrml(in.bytes, in.name);
+    gs::vrml::WriteOptions o;
+    o.encoding = gs::vrml::Encoding::classic;
+    classic.push_back({in.name + ".x3dv", gs::vrml::writeScene(s, o).text});
+    o.encoding = gs::vrml::Encoding::xml;
+    xml.push_back({in.name + ".x3d", gs::vrml::writeScene(s, o).text});
+  }
+  const auto total = [](const std::vector<Text>& v) {
+    std::size_t n = 0;
+    for (const Text& t : v) n += t.bytes.size();
+    return static_cast<double>(n) / 1e6;
+  };
+  std::size_t errors = 0;
+  const auto parse = [&errors](const Text& t) {
+    const gs::vrml::Scene s = gs::vrml::parseVrml(t.bytes, t.name);
+    errors += s.diagnostics.errorCount();
+  };
+  parse(classic.front());  // warm
+  if (std::getenv("XMLONLY") != nullptr) {
+    bestPass(xml, reps, parse);
+    return;
+  }
+  const double classicSec = bestPass(classic, reps, parse);
+  const double xmlSec = bestPass(xml, reps, parse);
+  std::size_t expatErrors = 0;
+  const double expatSec =
+      bestPass(xml, reps, [&expatErrors](const Text& t) { expatErrors += !expatBare(t.bytes); });
+  const double classicMB = total(classic) / classicSec, xmlMB = total(xml) / xmlSec,
+               expatMB = total(xml) / expatSec;
+  std::printf(
+      "X3D Classic (.x3dv, %.2f MB): %.1f MB/s best pass (with scene destruction)\n"
+      "X3D XML (.x3d, %.2f MB): %.1f MB/s best pass; expat alone on the same bytes: %.1f "
+      "MB/s; the XML reader reads at %.0f%% of expat's throughput\n"
+      "%zu parse errors, %zu expat errors\n",
+      total(classic), classicMB, total(xml), xmlMB, expatMB, 100.0 * xmlMB / expatMB,
+      errors / static_cast<std::size_t>(reps), expatErrors);
 }
 
 }  // namespace
@@ -54,6 +134,12 @@ int main(int argc, char** argv) {
   if (inputs.empty()) {
     std::fprintf(stderr, "bench_parse: no .wrl files under %s\n", dir.string().c_str());
     return 1;
+  }
+  if (argc > 3 && std::string(argv[3]) == "x3d") {
+    std::vector<Text> texts;
+    for (const Input& in : inputs) texts.push_back({in.name, in.bytes});
+    benchX3dEncodings(texts, reps);
+    return 0;
   }
   std::size_t nodes = 0, errors = 0;
   // One untimed pass: builds the node table and warms the caches.
@@ -93,5 +179,8 @@ int main(int argc, char** argv) {
       "errors\n",
       inputs.size(), mb1, reps, mb, parseSec, mb / parseSec, mb1 / best, freeSec,
       mb / (parseSec + freeSec), mb1 / bestWithFree, nodes, errors);
+  std::vector<Text> texts;
+  for (const Input& in : inputs) texts.push_back({in.name, in.bytes});
+  benchX3dEncodings(texts, reps);
   return 0;
 }
