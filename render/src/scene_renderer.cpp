@@ -8,6 +8,7 @@
 
 #include "gl_program.hpp"
 #include "gpu_resources.hpp"
+#include "multi_texture.hpp"
 #include "scene/node_access.hpp"
 #include "surface_programs.hpp"
 
@@ -60,6 +61,10 @@ struct Shading {
   bool anyMapping = false;
   int alphaMode = 0;  // 0 AUTO, 1 OPAQUE, 2 MASK, 3 BLEND
   float alphaCutoff = 0.5f;
+  /// Appearance.texture's MultiTexture (X3D 4.0 clause 18.4.3) for the Phong program;
+  /// `texture` is then null. A PhysicalMaterial takes its first stage as baseTexture.
+  MultiTextureStages multi;
+  const vrml::Node* multiTextureNode = nullptr;
   std::uint64_t revision = 0;  // vrml::revisionWithFields of the Appearance read
 };
 
@@ -173,8 +178,18 @@ Shading readShading(const vrml::Node* appearance) {
     s.alphaMode = v == "OPAQUE" ? 1 : v == "MASK" ? 2 : v == "BLEND" ? 3 : 0;
     s.alphaCutoff = scene::sfFloat(*appearance, "alphaCutoff", 0.5f);
   }
-  if (const vrml::NodePtr tt = appearance->sfnode("textureTransform"); tt && !tt->unresolved)
-    s.textureMatrix = scene::textureTransformMatrix(*tt);
+  const vrml::NodePtr tt = appearance->sfnode("textureTransform");
+  if (tt && !tt->unresolved) s.textureMatrix = scene::textureTransformMatrix(*tt);
+  if (s.texture != nullptr && s.texture->typeId() == vrml::NodeTypeId::MultiTexture) {
+    s.multiTextureNode = s.texture;
+    s.multi = readMultiTexture(*s.texture, tt && !tt->unresolved ? tt.get() : nullptr);
+    s.texture = nullptr;
+    s.textureMatrix = glm::mat3(1.0f);  // each stage has its own (multi_texture.hpp)
+    if (s.model == ShadingModel::physical) {
+      if (!s.multi.stages.empty()) s.texture = s.multi.stages.front().texture;
+      s.multi.stages.clear();
+    }
+  }
   return s;
 }
 
@@ -190,6 +205,11 @@ struct DrawItem {
   const GpuEnvironment* environment = nullptr;
   /// The set each texture reads: base colour, then the maps (texCoordSetOf).
   std::array<GLint, 1 + kPhysicalMaps> texCoordSets{};
+  /// A MultiTexture's stage textures (null: not loaded; the stage is then OFF) and the
+  /// texture coordinate set each reads.
+  std::array<const GpuTexture*, kMaxTextureStages> stageTextures{};
+  std::array<GLint, kMaxTextureStages> stageSets{};
+  int stageCount = 0;
 };
 
 /// Texture unit of an EnvironmentLight's specular cube map (units 0..4 are 2D maps).
@@ -390,6 +410,9 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     if (newShade || shadeIt->second.revision != shadeRevision) {
       shadeIt->second = readShading(s.appearance);
       shadeIt->second.revision = shadeRevision;
+      for (const std::string& problem : shadeIt->second.multi.problems)
+        traversal_.report(vrml::Severity::warning, shadeIt->second.multiTextureNode->location,
+                          problem);
     }
     const Shading& shading = shadeIt->second;
     const GpuTexture* texture = nullptr;
@@ -412,6 +435,23 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
           &g.frame.environmentLights[static_cast<std::size_t>(s.environmentLight)];
       item.environment = g.environments.get(*item.environmentLight, traversal_, options_.fetcher);
     }
+    bool stageAlpha = false;
+    if (mesh.primitive == vrml::Primitive::triangles) {
+      const std::vector<TextureStage>& stages = shading.multi.stages;
+      item.stageCount = static_cast<int>(stages.size());
+      for (std::size_t i = 0; i < stages.size(); ++i) {
+        const GpuTexture* t =
+            &g.textures.get(*stages[i].texture, *s.baseUrl, traversal_, options_.fetcher);
+        item.stageTextures[i] = t->components > 0 ? t : nullptr;
+        // Translucent texels, or an alpha combination that can fall below 1 however
+        // opaque the textures are (SUBTRACT gives 1 - 1 = 0; DOTPRODUCT3).
+        stageAlpha = stageAlpha || (t->components > 0 && t->hasAlpha) ||
+                     stages[i].alphaMode == TextureMode::subtract ||
+                     stages[i].alphaMode == TextureMode::dotProduct3;
+        item.stageSets[i] = stageTexCoordSet(static_cast<int>(i), *s.geometry, mesh.hasTexCoords1);
+      }
+      stageAlpha = stageAlpha || (item.stageCount > 0 && shading.multi.factor.a < 1.0f);
+    }
     if (shading.anyMapping && mesh.hasTexCoords1)
       for (std::size_t i = 0; i < item.texCoordSets.size(); ++i)
         item.texCoordSets[i] = texCoordSetOf(shading.mappings[i], *s.geometry);
@@ -420,7 +460,7 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     const bool blended = shading.alphaMode == 3 ||
                          (shading.alphaMode == 0 &&
                           (shading.transparency > 0.0f || shading.backTransparency > 0.0f ||
-                           (texture != nullptr && texture->hasAlpha)));
+                           (texture != nullptr && texture->hasAlpha) || stageAlpha));
     (blended ? g.transparent : g.opaque).push_back(item);
   }
   std::sort(g.transparent.begin(), g.transparent.end(),
@@ -480,6 +520,34 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
       glBindTexture(GL_TEXTURE_CUBE_MAP, env->cubeMap);
     }
   };
+  // A MultiTexture's stages: stage i's texture on unit i (stage 0 on u_texture's unit).
+  auto setStages = [&](const SurfaceUniforms& u, const DrawItem& d, const MultiTextureStages& m) {
+    std::array<GLint, 2 * kMaxTextureStages> modes{};
+    std::array<GLint, kMaxTextureStages> sources{}, functions{};
+    std::array<glm::mat3, kMaxTextureStages> matrices{};
+    for (int i = 0; i < d.stageCount; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      const TextureStage& st = m.stages[k];
+      const bool loaded = d.stageTextures[k] != nullptr;
+      modes[2 * k] = static_cast<GLint>(loaded ? st.rgbMode : TextureMode::off);
+      modes[2 * k + 1] = static_cast<GLint>(loaded ? st.alphaMode : TextureMode::off);
+      sources[k] = static_cast<GLint>(st.source);
+      functions[k] = static_cast<GLint>(st.function);
+      matrices[k] = st.matrix;
+      if (!loaded) continue;
+      if (i > 0) glUniform1i(u.stageTexture[k - 1], i);
+      glActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(i));
+      glBindTexture(GL_TEXTURE_2D, d.stageTextures[k]->id);
+    }
+    glActiveTexture(GL_TEXTURE0);
+    const auto n = static_cast<GLsizei>(d.stageCount);
+    glUniform2iv(u.stageMode, n, modes.data());
+    glUniform1iv(u.stageSource, n, sources.data());
+    glUniform1iv(u.stageFunction, n, functions.data());
+    glUniform1iv(u.stageTexCoord, n, d.stageSets.data());
+    glUniformMatrix3fv(u.stageMatrix, n, GL_FALSE, glm::value_ptr(matrices[0]));
+    glUniform4fv(u.stageFactor, 1, glm::value_ptr(m.factor));
+  };
   auto drawItem = [&](const DrawItem& d) {
     const scene::ShapeInstance& s = *d.shape;
     const GpuMesh& mesh = *d.mesh;
@@ -509,6 +577,7 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
       v.separateBack = sh.separateBack;
       v.textureModulates = sh.textureModulates;
       v.clipPlanes = static_cast<int>(std::min(s.clipPlaneCount, kMaxClipPlanes));
+      v.textureStages = d.stageCount;
       if (lit) {
         v.lightCount = lights.count;
         for (int i = 0; i < lights.count; ++i)
@@ -544,6 +613,8 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
       glUniform1f(u.backShininess, sh.backShininess);
       glUniform1f(u.backTransparency, sh.backTransparency);
     }
+    glUniform1i(u.stageCount, d.stageCount);
+    if (d.stageCount > 0) setStages(u, d, sh.multi);
     if (physical) {
       glUniform1f(u.metallic, sh.metallic);
       glUniform1f(u.roughness, sh.roughness);

@@ -16,6 +16,12 @@
 // u_unlitColor (white, or emissiveColor for lines and points) with the same texture and
 // colour rules. Fog (clause 6.19): f0 = (r - d) / r (LINEAR) or exp(-d / (r - d))
 // (EXPONENTIAL), 0 beyond the visibility range r, d the distance to the viewer.
+//
+// Multi-texturing (X3D 4.0 clause 18.4.3, multi_texture.hpp): a MultiTexture's stages, up
+// to 4, replace the single texture. Each combines its texture (Arg1, after its function)
+// with its source (Arg2) by its mode in RGB and alpha (table 18.3), the first stage's
+// "previous" being the diffuse colour and 1 - transparency; the last result is the diffuse
+// colour and alpha the lighting uses.
 #include "gl_program.hpp"
 
 namespace gs::render::detail {
@@ -74,8 +80,21 @@ in vec3 v_position;
 in vec3 v_normal;
 in vec3 v_color;
 in vec2 v_texCoord;
+in vec2 v_texCoord1;
 
-uniform sampler2D u_texture;
+uniform sampler2D u_texture;  // also stage 0 of a MultiTexture
+
+// A MultiTexture's stages (multi_texture.hpp): stage i samples unit i.
+const int kMaxStages = 4;
+uniform sampler2D u_stageTexture1;
+uniform sampler2D u_stageTexture2;
+uniform sampler2D u_stageTexture3;
+uniform ivec2 u_stageMode[kMaxStages];  // TextureMode of RGB and of alpha
+uniform int u_stageSource[kMaxStages];  // TextureSource
+uniform int u_stageFunction[kMaxStages];
+uniform int u_stageTexCoord[kMaxStages];  // 0: v_texCoord, 1: v_texCoord1
+uniform mat3 u_stageMatrix[kMaxStages];
+uniform vec4 u_stageFactor;  // MultiTexture color and alpha
 
 // What a shape uses: uniforms in the generic program; compile-time constants in a
 // specialized variant (surface_programs.cpp prepends GS_VARIANT and the GS_ values), where
@@ -90,7 +109,9 @@ const int kLightTypes[kMaxLights] = int[kMaxLights](GS_LIGHT_TYPES);
 #define FOG_TYPE GS_FOG_TYPE
 #define TEXTURE_MODULATES GS_TEXTURE_MODULATES
 #define SEPARATE_BACK GS_SEPARATE_BACK
+#define STAGE_COUNT GS_STAGE_COUNT
 #else
+uniform int u_stageCount;  // 0: no MultiTexture
 uniform bool u_textureModulates;  // X3D 4 Material.diffuseTexture: diffuse x texture
 uniform bool u_separateBack;      // TwoSidedMaterial.separateBackColor
 uniform bool u_lit;
@@ -107,6 +128,7 @@ uniform int u_fogType;  // 0 none, 1 LINEAR, 2 EXPONENTIAL
 #define FOG_TYPE u_fogType
 #define TEXTURE_MODULATES u_textureModulates
 #define SEPARATE_BACK u_separateBack
+#define STAGE_COUNT u_stageCount
 #endif
 
 uniform vec3 u_diffuseColor;
@@ -140,6 +162,58 @@ uniform float u_fogVisibilityRange;
 
 out vec4 fragColor;
 
+vec4 stageSample(int i, vec2 st) {
+  if (i == 0) return texture(u_texture, st);
+  if (i == 1) return texture(u_stageTexture1, st);
+  if (i == 2) return texture(u_stageTexture2, st);
+  return texture(u_stageTexture3, st);
+}
+
+// Table 18.3: t is Arg1 (the stage's texture), s Arg2 (its source).
+vec4 combine(int mode, vec4 t, vec4 s, vec4 previous, float diffuseAlpha) {
+  vec4 r;
+  if (mode == 0) r = t * s;
+  else if (mode == 1) r = t;
+  else if (mode == 2) r = 2.0 * t * s;
+  else if (mode == 3) r = 4.0 * t * s;
+  else if (mode == 4) r = t + s;
+  else if (mode == 5) r = t + s - 0.5;
+  else if (mode == 6) r = 2.0 * (t + s - 0.5);
+  else if (mode == 7) r = t - s;
+  else if (mode == 8) r = t + s - t * s;
+  else if (mode == 9) r = mix(s, t, diffuseAlpha);
+  else if (mode == 10) r = mix(s, t, t.a);
+  else if (mode == 11) r = mix(s, t, u_stageFactor.a);
+  else if (mode == 12) r = mix(s, t, previous.a);
+  else if (mode == 13) r = vec4(t.rgb + t.a * s.rgb, t.a);
+  else if (mode == 14) r = vec4((1.0 - t.a) * s.rgb + t.rgb, t.a);
+  else if (mode == 15) r = vec4((1.0 - t.rgb) * s.rgb + t.a, t.a);
+  else if (mode == 17) r = s;
+  else if (mode == 18) r = vec4(4.0 * dot(t.rgb - 0.5, s.rgb - 0.5));
+  else r = previous;  // OFF
+  return clamp(r, 0.0, 1.0);
+}
+
+vec4 applyStages(vec4 diffuse, vec3 specular) {
+  vec4 previous = diffuse;
+  for (int i = 0; i < kMaxStages; ++i) {
+    if (i >= STAGE_COUNT) break;
+    ivec2 mode = u_stageMode[i];
+    if (mode.x == 16) continue;  // OFF
+    vec2 uv = u_stageTexCoord[i] == 0 ? v_texCoord : v_texCoord1;
+    vec4 t = stageSample(i, (u_stageMatrix[i] * vec3(uv, 1.0)).xy);
+    int source = u_stageSource[i];
+    vec4 s = source == 1 ? diffuse : source == 2 ? vec4(specular, diffuse.a)
+                                   : source == 3 ? u_stageFactor : previous;
+    previous = vec4(combine(mode.x, t, s, previous, diffuse.a).rgb,
+                    combine(mode.y, t, s, previous, diffuse.a).a);
+    // The function acts on the stage's result (as castle-model-viewer applies it).
+    if (u_stageFunction[i] == 1) previous.rgb = 1.0 - previous.rgb;
+    else if (u_stageFunction[i] == 2) previous.rgb = vec3(previous.a);
+  }
+  return previous;
+}
+
 void main() {
   bool back = SEPARATE_BACK && !gl_FrontFacing;
   vec3 diffuseColor = back ? u_backDiffuseColor : u_diffuseColor;
@@ -155,6 +229,11 @@ void main() {
     if (TEXTURE_COMPONENTS <= 2) diffuse *= t.r;
     else diffuse = TEXTURE_MODULATES ? diffuse * t.rgb : t.rgb;
     if (TEXTURE_COMPONENTS == 2 || TEXTURE_COMPONENTS == 4) alpha = t.a;
+  }
+  if (STAGE_COUNT > 0) {
+    vec4 combined = applyStages(vec4(diffuse, alpha), specularColor);
+    diffuse = combined.rgb;
+    alpha = combined.a;
   }
 
   vec3 color = diffuse;

@@ -22,6 +22,17 @@ void SurfaceUniforms::find(GLuint p) {
     map[i] = uniform(p, kMap[i]);
   }
   clipPlaneCount = uniform(p, "u_clipPlaneCount");
+  stageCount = uniform(p, "u_stageCount");
+  stageMode = uniform(p, "u_stageMode");
+  stageSource = uniform(p, "u_stageSource");
+  stageFunction = uniform(p, "u_stageFunction");
+  stageTexCoord = uniform(p, "u_stageTexCoord");
+  stageMatrix = uniform(p, "u_stageMatrix");
+  stageFactor = uniform(p, "u_stageFactor");
+  static constexpr std::array<const char*, 3> kStageTextures = {
+      "u_stageTexture1", "u_stageTexture2", "u_stageTexture3"};
+  for (std::size_t i = 0; i < kStageTextures.size(); ++i)
+    stageTexture[i] = uniform(p, kStageTextures[i]);
   textureModulates = uniform(p, "u_textureModulates");
   clipPlanes = uniform(p, "u_clipPlanes");
   separateBack = uniform(p, "u_separateBack");
@@ -73,15 +84,17 @@ void SurfaceUniforms::find(GLuint p) {
   fogVisibilityRange = uniform(p, "u_fogVisibilityRange");
 }
 
-std::uint32_t SurfaceVariant::key() const {
-  std::uint32_t k = (lit ? 1u : 0u) | (hasColor ? 2u : 0u) |
+std::uint64_t SurfaceVariant::key() const {
+  std::uint64_t k = (lit ? 1u : 0u) | (hasColor ? 2u : 0u) |
                     (static_cast<std::uint32_t>(textureComponents & 7) << 2) |
                     (static_cast<std::uint32_t>(fogType & 3) << 5) |
                     (static_cast<std::uint32_t>(lightCount & 15) << 7);
   for (int i = 0; i < lightCount && i < kMaxLights; ++i)
-    k |= static_cast<std::uint32_t>(lightTypes[static_cast<std::size_t>(i)] & 3) << (11 + 2 * i);
-  k |= (separateBack ? 1u : 0u) << 27 | (textureModulates ? 1u : 0u) << 28 |
-       static_cast<std::uint32_t>(clipPlanes & 7) << 29;
+    k |= static_cast<std::uint64_t>(lightTypes[static_cast<std::size_t>(i)] & 3) << (11 + 2 * i);
+  k |= std::uint64_t{separateBack ? 1u : 0u} << 27 |
+       std::uint64_t{textureModulates ? 1u : 0u} << 28 |
+       static_cast<std::uint64_t>(clipPlanes & 7) << 29 |
+       static_cast<std::uint64_t>(textureStages & 7) << 32;
   return k;
 }
 
@@ -97,7 +110,8 @@ std::string SurfaceVariant::defines() const {
          std::to_string(lightCount) + "\n#define GS_LIGHT_TYPES " + types +
          "\n#define GS_SEPARATE_BACK " + (separateBack ? "true" : "false") +
          "\n#define GS_TEXTURE_MODULATES " + (textureModulates ? "true" : "false") +
-         "\n#define GS_CLIP_PLANES " + std::to_string(clipPlanes) + "\n";
+         "\n#define GS_CLIP_PLANES " + std::to_string(clipPlanes) + "\n#define GS_STAGE_COUNT " +
+         std::to_string(textureStages) + "\n";
 }
 
 void SurfacePrograms::beginFrame() {
@@ -122,7 +136,7 @@ SurfaceProgram& SurfacePrograms::physical() {
 }
 
 SurfaceProgram& SurfacePrograms::phong(const SurfaceVariant& v) {
-  const std::uint32_t key = v.key();
+  const std::uint64_t key = v.key();
   if (const auto it = variants_.find(key); it != variants_.end()) return it->second;
   if (!variantsEnabled_ || frame_ <= 1 || builtThisFrame_ >= kVariantsPerFrame) return generic();
   ++builtThisFrame_;

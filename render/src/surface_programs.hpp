@@ -42,6 +42,9 @@ struct SurfaceUniforms {
       environmentAmbient, environmentMaxLod, eyeToEnvironment;
   GLint baseTexCoordSet, mapTexCoordSet;
   GLint clipPlaneCount, clipPlanes, textureModulates;
+  // A MultiTexture's stages (multi_texture.hpp): units 1..3 for stages 1..3.
+  GLint stageCount, stageMode, stageSource, stageFunction, stageTexCoord, stageMatrix, stageFactor;
+  std::array<GLint, 3> stageTexture;
   GLint separateBack, backDiffuseColor, backAmbientIntensity, backSpecularColor, backEmissiveColor,
       backShininess, backTransparency;
 
@@ -60,9 +63,10 @@ struct SurfaceVariant {
   bool separateBack = false;                          // TwoSidedMaterial with separateBackColor
   bool textureModulates = false;                      // Material.diffuseTexture
   int clipPlanes = 0;                                 // 0 .. 6 ClipPlanes
+  int textureStages = 0;                              // 0 .. 4 MultiTexture stages
 
   /// A number naming the variant (equal keys, equal variants).
-  std::uint32_t key() const;
+  std::uint64_t key() const;
   /// The `#define` lines that turn kSurfaceFragmentShader into this variant.
   std::string defines() const;
 };
@@ -99,7 +103,7 @@ class SurfacePrograms {
 
  private:
   SurfaceProgram generic_, physical_;
-  std::unordered_map<std::uint32_t, SurfaceProgram> variants_;
+  std::unordered_map<std::uint64_t, SurfaceProgram> variants_;
   std::uint64_t frame_ = 0;
   int builtThisFrame_ = 0;
   bool variantsEnabled_ = true;

@@ -5,6 +5,7 @@
 #include "render/scene_renderer.hpp"
 #include "test_support.hpp"
 #include "vrml/parser.hpp"
+#include "world_files.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -14,45 +15,12 @@
 
 namespace fs = std::filesystem;
 using gs::render::Image;
-
-namespace {
-
-constexpr int kSize = 64;
-
-fs::path worldDir() {
-  const fs::path dir = fs::temp_directory_path() / "gs_render_worlds";
-  fs::create_directories(dir / "sub");
-  return dir;
-}
-
-void writeText(const fs::path& p, const std::string& text) {
-  std::ofstream(p) << text;
-}
-
-struct Rendered {
-  Image image;
-  gs::vrml::Diagnostics diagnostics;
-};
-
-Rendered renderFile(const fs::path& file) {
-  static auto context = gs::render::createOffscreenContext(kSize, kSize);
-  context->makeCurrent();
-  auto scene = std::make_shared<gs::vrml::Scene>(gs::vrml::loadVrmlFile(file.string()));
-  for (const auto& d : scene->diagnostics.items) WARN(d.format());
-  gs::render::SceneRenderer r(scene);
-  r.draw(r.initialCamera(1.0f), 0, 0, kSize, kSize);
-  Rendered out{gs::render::readPixels(0, 0, kSize, kSize), r.diagnostics()};
-  if (const char* dir = std::getenv("GS_RENDER_TEST_DUMP"))
-    gs::render::writePng((fs::path(dir) / (file.stem().string() + ".png")).string(), out.image);
-  return out;
-}
-
-bool close(const std::uint8_t* p, int r, int g, int b, int tolerance) {
-  return std::abs(p[0] - r) <= tolerance && std::abs(p[1] - g) <= tolerance &&
-         std::abs(p[2] - b) <= tolerance;
-}
-
-}  // namespace
+using gs::test::close;
+using gs::test::Rendered;
+using gs::test::renderFile;
+using gs::test::worldDir;
+using gs::test::writeText;
+constexpr int kSize = gs::test::kWorldSize;
 
 TEST_CASE("ImageTexture reads a PNG relative to the world", "[render][offscreen][world]") {
   const fs::path dir = worldDir();

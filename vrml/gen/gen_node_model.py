@@ -158,7 +158,17 @@ def read_uom(path):
             "containerField": cf.get("default") if cf is not None else "children",
             "fields": fields,
         })
+    # X3DUOM 4.0 errata: ISO/IEC 19775-1 (X3D 4.0) clauses 18.4.8, 33.4.8 and 33.4.9 derive
+    # TextureTransform, TextureTransformMatrix3D and TextureTransform3D from
+    # X3DSingleTextureTransformNode, which MultiTextureTransform.textureTransform accepts;
+    # X3DUOM gives them X3DTextureTransformNode only.
+    for c in concrete:
+        if c["name"] in SINGLE_TEXTURE_TRANSFORMS:
+            c["bases"] = ["X3DSingleTextureTransformNode"]
     return abstract, concrete
+
+
+SINGLE_TEXTURE_TRANSFORMS = ("TextureTransform", "TextureTransformMatrix3D", "TextureTransform3D")
 
 
 def closure(bases, abstract):

@@ -31,6 +31,11 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::ColorRGBA,
     NodeTypeId::CoordinateDouble,
     NodeTypeId::MultiTextureCoordinate,
+    NodeTypeId::MultiTexture,  // render/src/multi_texture.cpp
+    NodeTypeId::MultiTextureTransform,
+    NodeTypeId::TextureTransform3D,
+    NodeTypeId::TextureTransformMatrix3D,
+    NodeTypeId::OrthoViewpoint,
     NodeTypeId::Arc2D,
     NodeTypeId::ArcClose2D,
     NodeTypeId::Circle2D,

@@ -1,0 +1,62 @@
+// World files for the render tests: written to a temporary folder, loaded by the real
+// parser and drawn off-screen at kWorldSize x kWorldSize pixels by a SceneRenderer from the
+// world's initial camera (test_worlds.cpp, test_multi_texture.cpp).
+#pragma once
+
+#include "render/context.hpp"
+#include "render/image.hpp"
+#include "render/scene_renderer.hpp"
+#include "vrml/parser.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
+
+namespace gs::test {
+
+inline constexpr int kWorldSize = 64;
+
+/// The folder the world files go to (with a sub/ folder), created if absent.
+inline std::filesystem::path worldDir() {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "gs_render_worlds";
+  std::filesystem::create_directories(dir / "sub");
+  return dir;
+}
+
+inline void writeText(const std::filesystem::path& p, const std::string& text) {
+  std::ofstream(p) << text;
+}
+
+struct Rendered {
+  render::Image image;
+  vrml::Diagnostics diagnostics;  // the renderer's (the parser's are WARNed)
+};
+
+/// Loads `file` and draws one frame. With GS_RENDER_TEST_DUMP=DIR set, the picture is also
+/// written to DIR/<file stem>.png to be looked at.
+inline Rendered renderFile(const std::filesystem::path& file) {
+  static auto context = render::createOffscreenContext(kWorldSize, kWorldSize);
+  context->makeCurrent();
+  auto scene = std::make_shared<vrml::Scene>(vrml::loadVrmlFile(file.string()));
+  for (const auto& d : scene->diagnostics.items) WARN(d.format());
+  render::SceneRenderer r(scene);
+  r.draw(r.initialCamera(1.0f), 0, 0, kWorldSize, kWorldSize);
+  Rendered out{render::readPixels(0, 0, kWorldSize, kWorldSize), r.diagnostics()};
+  if (const char* dir = std::getenv("GS_RENDER_TEST_DUMP"))
+    render::writePng((std::filesystem::path(dir) / (file.stem().string() + ".png")).string(),
+                     out.image);
+  return out;
+}
+
+/// Whether RGB pixel `p` is within `tolerance` of (r, g, b) in every channel.
+inline bool close(const std::uint8_t* p, int r, int g, int b, int tolerance) {
+  return std::abs(p[0] - r) <= tolerance && std::abs(p[1] - g) <= tolerance &&
+         std::abs(p[2] - b) <= tolerance;
+}
+
+}  // namespace gs::test
