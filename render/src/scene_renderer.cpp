@@ -11,6 +11,7 @@
 #include "multi_texture.hpp"
 #include "scene/node_access.hpp"
 #include "surface_programs.hpp"
+#include "texture_generation.hpp"
 
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -210,6 +211,7 @@ struct DrawItem {
   std::array<const GpuTexture*, kMaxTextureStages> stageTextures{};
   std::array<GLint, kMaxTextureStages> stageSets{};
   int stageCount = 0;
+  TexGen texGen{};  // the geometry's TextureCoordinateGenerator
 };
 
 /// Texture unit of an EnvironmentLight's specular cube map (units 0..4 are 2D maps).
@@ -452,6 +454,12 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
       }
       stageAlpha = stageAlpha || (item.stageCount > 0 && shading.multi.factor.a < 1.0f);
     }
+    if (texture != nullptr || item.stageCount > 0) {
+      item.texGen = texGenOf(*s.geometry);
+      if (!item.texGen.problem.empty())
+        traversal_.report(vrml::Severity::warning, s.geometry->sfnode("texCoord")->location,
+                          item.texGen.problem);
+    }
     if (shading.anyMapping && mesh.hasTexCoords1)
       for (std::size_t i = 0; i < item.texCoordSets.size(); ++i)
         item.texCoordSets[i] = texCoordSetOf(shading.mappings[i], *s.geometry);
@@ -578,6 +586,7 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
       v.textureModulates = sh.textureModulates;
       v.clipPlanes = static_cast<int>(std::min(s.clipPlaneCount, kMaxClipPlanes));
       v.textureStages = d.stageCount;
+      v.texGen = static_cast<int>(d.texGen.mode);
       if (lit) {
         v.lightCount = lights.count;
         for (int i = 0; i < lights.count; ++i)
@@ -614,6 +623,12 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
       glUniform1f(u.backTransparency, sh.backTransparency);
     }
     glUniform1i(u.stageCount, d.stageCount);
+    glUniform1i(u.texGen, static_cast<GLint>(d.texGen.mode));
+    if (d.texGen.mode == TexGenMode::sphereRefract)
+      glUniform1f(u.texGenParameter, d.texGen.parameter);
+    if (d.texGen.mode == TexGenMode::worldSpaceReflection ||
+        d.texGen.mode == TexGenMode::worldSpaceNormal)
+      glUniformMatrix3fv(u.eyeToWorld, 1, GL_FALSE, glm::value_ptr(eyeToWorld));
     if (d.stageCount > 0) setStages(u, d, sh.multi);
     if (physical) {
       glUniform1f(u.metallic, sh.metallic);

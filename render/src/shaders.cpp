@@ -49,6 +49,39 @@ uniform int u_clipPlaneCount;
 #endif
 uniform vec4 u_clipPlanes[kMaxClipPlanes];
 out float gl_ClipDistance[kMaxClipPlanes];
+// X3D TextureCoordinateGenerator (clause 18.4.8; texture_generation.hpp numbers the modes):
+// texture coordinates made per vertex instead of read. 0: read a_texCoord.
+#ifdef GS_VARIANT
+#define TEX_GEN GS_TEX_GEN
+#else
+uniform int u_texGen;
+#define TEX_GEN u_texGen
+#endif
+uniform float u_texGenParameter;  // SPHERE-REFLECT's index of refraction
+uniform mat3 u_eyeToWorld;        // the view's rotation, inverted
+
+// Sphere mapping of direction r (OpenGL's GL_SPHERE_MAP).
+vec2 sphereMap(vec3 r) {
+  float m = 2.0 * sqrt(r.x * r.x + r.y * r.y + (r.z + 1.0) * (r.z + 1.0));
+  return m > 0.0 ? r.xy / m + 0.5 : vec2(0.5);
+}
+
+vec2 generatedTexCoord(vec3 eye, vec3 eyeNormal) {
+  vec3 u = normalize(eye);
+  vec3 n = normalize(eyeNormal);
+  vec3 localN = normalize(a_normal);
+  if (TEX_GEN == 1) return sphereMap(reflect(u, n));                     // SPHERE
+  if (TEX_GEN == 2) return n.xy;                                         // CAMERASPACENORMAL
+  if (TEX_GEN == 3) return eye.xy;                                       // CAMERASPACEPOSITION
+  if (TEX_GEN == 4) return reflect(u, n).xy;                             // CAMERASPACEREFLECTIONVECTOR
+  if (TEX_GEN == 5) return localN.xy * 0.5 + 0.5;                        // SPHERE-LOCAL
+  if (TEX_GEN == 6) return a_position.xy;                                // COORD (and NOISE)
+  if (TEX_GEN == 7) return eye.xy;                                       // COORD-EYE (and NOISE-EYE)
+  if (TEX_GEN == 8) return sphereMap(refract(u, n, 1.0 / max(u_texGenParameter, 1e-3)));
+  if (TEX_GEN == 9) return (u_eyeToWorld * reflect(u, n)).xy;            // WORLDSPACEREFLECTIONVECTOR
+  if (TEX_GEN == 10) return (u_eyeToWorld * n).xy;                       // WORLDSPACENORMAL
+  return a_texCoord;
+}
 
 out vec3 v_position;  // eye coordinates
 out vec3 v_normal;    // eye coordinates, not normalized
@@ -61,7 +94,8 @@ void main() {
   v_position = eye.xyz;
   v_normal = u_normalMatrix * a_normal;
   v_color = a_color.rgb;
-  v_texCoord = (u_textureMatrix * vec3(a_texCoord, 1.0)).xy;
+  vec2 texCoord = TEX_GEN != 0 ? generatedTexCoord(eye.xyz, v_normal) : a_texCoord;
+  v_texCoord = (u_textureMatrix * vec3(texCoord, 1.0)).xy;
   v_texCoord1 = (u_textureMatrix * vec3(a_texCoord1, 1.0)).xy;
   gl_PointSize = u_pointSize;
   for (int i = 0; i < kMaxClipPlanes; ++i)

@@ -23,6 +23,9 @@ void SurfaceUniforms::find(GLuint p) {
   }
   clipPlaneCount = uniform(p, "u_clipPlaneCount");
   stageCount = uniform(p, "u_stageCount");
+  texGen = uniform(p, "u_texGen");
+  texGenParameter = uniform(p, "u_texGenParameter");
+  eyeToWorld = uniform(p, "u_eyeToWorld");
   stageMode = uniform(p, "u_stageMode");
   stageSource = uniform(p, "u_stageSource");
   stageFunction = uniform(p, "u_stageFunction");
@@ -94,7 +97,8 @@ std::uint64_t SurfaceVariant::key() const {
   k |= std::uint64_t{separateBack ? 1u : 0u} << 27 |
        std::uint64_t{textureModulates ? 1u : 0u} << 28 |
        static_cast<std::uint64_t>(clipPlanes & 7) << 29 |
-       static_cast<std::uint64_t>(textureStages & 7) << 32;
+       static_cast<std::uint64_t>(textureStages & 7) << 32 |
+       static_cast<std::uint64_t>(texGen & 15) << 35;
   return k;
 }
 
@@ -111,7 +115,7 @@ std::string SurfaceVariant::defines() const {
          "\n#define GS_SEPARATE_BACK " + (separateBack ? "true" : "false") +
          "\n#define GS_TEXTURE_MODULATES " + (textureModulates ? "true" : "false") +
          "\n#define GS_CLIP_PLANES " + std::to_string(clipPlanes) + "\n#define GS_STAGE_COUNT " +
-         std::to_string(textureStages) + "\n";
+         std::to_string(textureStages) + "\n#define GS_TEX_GEN " + std::to_string(texGen) + "\n";
 }
 
 void SurfacePrograms::beginFrame() {

@@ -45,6 +45,7 @@ struct SurfaceUniforms {
   // A MultiTexture's stages (multi_texture.hpp): units 1..3 for stages 1..3.
   GLint stageCount, stageMode, stageSource, stageFunction, stageTexCoord, stageMatrix, stageFactor;
   std::array<GLint, 3> stageTexture;
+  GLint texGen, texGenParameter, eyeToWorld;  // TextureCoordinateGenerator
   GLint separateBack, backDiffuseColor, backAmbientIntensity, backSpecularColor, backEmissiveColor,
       backShininess, backTransparency;
 
@@ -64,6 +65,7 @@ struct SurfaceVariant {
   bool textureModulates = false;                      // Material.diffuseTexture
   int clipPlanes = 0;                                 // 0 .. 6 ClipPlanes
   int textureStages = 0;                              // 0 .. 4 MultiTexture stages
+  int texGen = 0;                                     // TexGenMode (texture_generation.hpp)
 
   /// A number naming the variant (equal keys, equal variants).
   std::uint64_t key() const;

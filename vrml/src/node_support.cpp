@@ -33,6 +33,7 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::MultiTextureCoordinate,
     NodeTypeId::MultiTexture,  // render/src/multi_texture.cpp
     NodeTypeId::MultiTextureTransform,
+    NodeTypeId::TextureCoordinateGenerator,  // render/src/texture_generation.cpp
     NodeTypeId::TextureTransform3D,
     NodeTypeId::TextureTransformMatrix3D,
     NodeTypeId::OrthoViewpoint,
