@@ -13,6 +13,10 @@ NodeKind nodeKind(const vrml::Node& node) {
     case NodeTypeId::Collision:
       return NodeKind::Collision;
     case NodeTypeId::Group:
+    // X3D's StaticGroup (clause 10.4.3) is no X3DGroupingNode (its children cannot
+    // change), and ViewpointGroup (23.4.6) groups viewpoints: both walk their children.
+    case NodeTypeId::StaticGroup:
+    case NodeTypeId::ViewpointGroup:
       return NodeKind::Group;
     case NodeTypeId::Transform:
     case NodeTypeId::CADPart:  // Transform's fields (X3D 4.0 clause 32.4.4)

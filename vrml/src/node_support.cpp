@@ -34,6 +34,8 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::MultiTexture,  // render/src/multi_texture.cpp
     NodeTypeId::MultiTextureTransform,
     NodeTypeId::TextureCoordinateGenerator,  // render/src/texture_generation.cpp
+    NodeTypeId::StaticGroup,                 // scene/src/node_kind.cpp
+    NodeTypeId::ViewpointGroup,
     NodeTypeId::TextureTransform3D,
     NodeTypeId::TextureTransformMatrix3D,
     NodeTypeId::OrthoViewpoint,

@@ -1,0 +1,33 @@
+// X3D's StaticGroup (X3D 4.0 clause 10.4.3) and ViewpointGroup (23.4.6) in the traversal:
+// neither is an X3DGroupingNode, both walk their children (shapes drawn, viewpoints bound).
+#include "scene/traversal.hpp"
+#include "vrml/parser.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <memory>
+#include <string>
+
+using gs::scene::SceneTraversal;
+using gs::scene::TraversalFrame;
+
+TEST_CASE("StaticGroup draws its children, ViewpointGroup offers its viewpoints", "[scene][x3d]") {
+  const std::string world = R"(#X3D V4.0 utf8
+PROFILE Immersive
+StaticGroup { children [
+  Transform { translation 2 0 0 children Shape { geometry Box {} } }
+  ViewpointGroup { children [
+    Viewpoint { position 0 0 7 description "grouped" }
+  ] }
+] }
+)";
+  auto scene = std::make_shared<gs::vrml::Scene>(gs::vrml::parseVrml(world, "static.x3dv"));
+  CHECK(scene->diagnostics.items.empty());
+  SceneTraversal t(scene);
+  TraversalFrame frame;
+  t.collect(t.boundViewpointCamera(), frame);
+  REQUIRE(frame.shapes.size() == 1);
+  CHECK(frame.shapes[0].model[3].x == Approx(2.0f));
+  REQUIRE(t.viewpoints().size() == 1);
+  CHECK(t.boundViewpointCamera().position.z == Approx(7.0f));
+}
