@@ -244,6 +244,11 @@ FaceImages loadFaces(const vrml::Node& texture, const std::string& baseUrl,
   return out;
 }
 
+float linearToSrgb(float c) {
+  c = std::clamp(c, 0.0f, 1.0f);
+  return c <= 0.0031308f ? c * 12.92f : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+}
+
 /// Uploads `faces` as a mipmapped cube map of half floats.
 GLuint uploadCubeMap(const CubeFaces& faces) {
   GLuint id = 0;
@@ -268,6 +273,22 @@ constexpr int kMaxCubeSize = 256;
 constexpr int kMinCubeSize = 16;
 
 }  // namespace
+
+CubeTexture loadCubeTexture(const vrml::Node& composed, const std::string& baseUrl,
+                            base::Fetcher* fetcher) {
+  CubeTexture out;
+  FaceImages faces = loadFaces(composed, baseUrl, fetcher);
+  out.pending = faces.pending;
+  out.problem = std::move(faces.problem);
+  if (faces.pending || faces.size == 0) return out;
+  std::array<const Image*, 6> images{};
+  for (std::size_t i = 0; i < 6; ++i) images[i] = &faces.images[i];
+  CubeFaces cube = resampleCubeFaces(images, std::min(faces.size, 512));
+  for (std::vector<glm::vec3>& texels : cube.texels)
+    for (glm::vec3& t : texels) t = {linearToSrgb(t.x), linearToSrgb(t.y), linearToSrgb(t.z)};
+  out.id = uploadCubeMap(cube);
+  return out;
+}
 
 const GpuEnvironment* EnvironmentMaps::get(const scene::EnvironmentLightInstance& light,
                                            scene::SceneTraversal& traversal,

@@ -14,6 +14,7 @@
 #include <glm/glm.hpp>
 
 #include <array>
+#include <string>
 #include <vector>
 
 namespace gs::base {
@@ -50,6 +51,20 @@ IrradianceSh irradianceOf(const CubeFaces& faces);
 /// (27 floats, the order of IrradianceSh), convolved as irradianceOf does; false when
 /// fewer than 27 or a non-finite one.
 bool irradianceFromCoefficients(const std::vector<float>& coefficients, IrradianceSh& out);
+
+/// A ComposedCubeMapTexture (X3D 4.0 clause 34.4.1) as a texture of a shape (the Phong
+/// program's samplerCube): its faces loaded through `fetcher` (null: local files) against
+/// `baseUrl`, resampled to GL's cube layout at the largest face's side (at most 512 texels,
+/// at least 1), kept in sRGB as the 2D textures are, mipmapped. `pending` when a face is
+/// still on its way (ask again later); `problem` says why a face is missing (it is then
+/// black). Returns id 0 when no face has pixels. Needs a current GL context.
+struct CubeTexture {
+  GLuint id = 0;
+  bool pending = false;
+  std::string problem;
+};
+CubeTexture loadCubeTexture(const vrml::Node& composed, const std::string& baseUrl,
+                            base::Fetcher* fetcher);
 
 /// The GPU side of one EnvironmentLight.
 struct GpuEnvironment {

@@ -48,6 +48,7 @@ struct GpuTexture {
   GLuint id = 0;
   int components = 0;     // 1..4 as VRML97 counts them; 0 = no usable texture
   bool hasAlpha = false;  // some texel is not fully opaque
+  bool cube = false;      // a GL_TEXTURE_CUBE_MAP (ComposedCubeMapTexture), else 2D
 };
 
 /// The GL texture of a movie, shared by the renderers that share its player

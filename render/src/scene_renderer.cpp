@@ -216,6 +216,25 @@ struct DrawItem {
 
 /// Texture unit of an EnvironmentLight's specular cube map (units 0..4 are 2D maps).
 constexpr GLint kEnvironmentUnit = 5;
+/// Texture unit of a shape's ComposedCubeMapTexture (samplers of two types never share one).
+constexpr GLint kCubeTextureUnit = 6;
+
+/// The Phong program's CUBE_MAP for a shape: 0 without a cube map texture, else the
+/// direction it is looked up by (shaders.cpp, cubeDirection), from the geometry's
+/// TextureCoordinateGenerator.
+int cubeMapMode(const DrawItem& d) {
+  if (d.texture == nullptr || !d.texture->cube) return 0;
+  switch (d.texGen.mode) {
+    case TexGenMode::cameraSpaceReflection:
+      return 2;
+    case TexGenMode::cameraSpaceNormal:
+      return 3;
+    case TexGenMode::worldSpaceNormal:
+      return 4;
+    default:
+      return 1;
+  }
+}
 
 /// ClipPlanes one shape takes (X3D 4.0 clause 11.4.1 asks for at least 6; the vertex
 /// shader's kMaxClipPlanes). Further ones are reported once and not applied.
@@ -490,6 +509,7 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
       for (std::size_t i = 0; i < kPhysicalMaps; ++i)
         glUniform1i(u.map[i], static_cast<GLint>(i + 1));
       glUniform1i(u.environmentMap, kEnvironmentUnit);
+      glUniform1i(u.cubeTexture, kCubeTextureUnit);
       glUniform1i(u.fogType, fogType);
       glUniform3fv(u.fogColor, 1, glm::value_ptr(fog.color));
       glUniform1f(u.fogVisibilityRange, fog.visibilityRange);
@@ -587,6 +607,8 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
       v.clipPlanes = static_cast<int>(std::min(s.clipPlaneCount, kMaxClipPlanes));
       v.textureStages = d.stageCount;
       v.texGen = static_cast<int>(d.texGen.mode);
+      v.cubeMap = cubeMapMode(d);
+      if (v.cubeMap != 0) v.texGen = 0;  // the fragment shader finds the direction
       if (lit) {
         v.lightCount = lights.count;
         for (int i = 0; i < lights.count; ++i)
@@ -605,7 +627,13 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     glUniform1i(u.lit, lit ? 1 : 0);
     glUniform1i(u.hasColor, mesh.hasColors ? 1 : 0);
     glUniform1i(u.textureComponents, d.texture != nullptr ? d.texture->components : 0);
-    if (d.texture != nullptr) glBindTexture(GL_TEXTURE_2D, d.texture->id);
+    if (d.texture != nullptr && d.texture->cube) {
+      glActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(kCubeTextureUnit));
+      glBindTexture(GL_TEXTURE_CUBE_MAP, d.texture->id);
+      glActiveTexture(GL_TEXTURE0);
+    } else if (d.texture != nullptr) {
+      glBindTexture(GL_TEXTURE_2D, d.texture->id);
+    }
     glUniform3fv(u.diffuseColor, 1, glm::value_ptr(sh.diffuseColor));
     glUniform1f(u.ambientIntensity, sh.ambientIntensity);
     glUniform3fv(u.specularColor, 1, glm::value_ptr(sh.specularColor));
@@ -623,11 +651,13 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
       glUniform1f(u.backTransparency, sh.backTransparency);
     }
     glUniform1i(u.stageCount, d.stageCount);
-    glUniform1i(u.texGen, static_cast<GLint>(d.texGen.mode));
+    const int cube = cubeMapMode(d);
+    glUniform1i(u.cubeMap, cube);
+    glUniform1i(u.texGen, cube != 0 ? 0 : static_cast<GLint>(d.texGen.mode));
     if (d.texGen.mode == TexGenMode::sphereRefract)
       glUniform1f(u.texGenParameter, d.texGen.parameter);
     if (d.texGen.mode == TexGenMode::worldSpaceReflection ||
-        d.texGen.mode == TexGenMode::worldSpaceNormal)
+        d.texGen.mode == TexGenMode::worldSpaceNormal || cube == 1 || cube == 4)
       glUniformMatrix3fv(u.eyeToWorld, 1, GL_FALSE, glm::value_ptr(eyeToWorld));
     if (d.stageCount > 0) setStages(u, d, sh.multi);
     if (physical) {
@@ -713,8 +743,10 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
   glDisable(GL_CULL_FACE);
   glDisable(GL_SCISSOR_TEST);
   glBindTexture(GL_TEXTURE_2D, 0);
-  glActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(kEnvironmentUnit));
-  glBindTexture(GL_TEXTURE_CUBE_MAP, 0);
+  for (GLint unit : {kEnvironmentUnit, kCubeTextureUnit}) {
+    glActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(unit));
+    glBindTexture(GL_TEXTURE_CUBE_MAP, 0);
+  }
   glActiveTexture(GL_TEXTURE0);
   glUseProgram(0);
 }

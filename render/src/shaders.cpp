@@ -117,6 +117,12 @@ in vec2 v_texCoord;
 in vec2 v_texCoord1;
 
 uniform sampler2D u_texture;  // also stage 0 of a MultiTexture
+// A ComposedCubeMapTexture (X3D 4.0 clause 34.4.1) on unit 6, looked up by the direction
+// CUBE_MAP names: 1 the world-space reflection (castle-model-viewer's
+// WORLDSPACEREFLECTIONVECTOR, and the default), 2 the eye-space one
+// (CAMERASPACEREFLECTIONVECTOR), 3 the eye-space normal, 4 the world-space normal.
+uniform samplerCube u_cubeTexture;
+uniform mat3 u_eyeToWorld;
 
 // A MultiTexture's stages (multi_texture.hpp): stage i samples unit i.
 const int kMaxStages = 4;
@@ -144,8 +150,11 @@ const int kLightTypes[kMaxLights] = int[kMaxLights](GS_LIGHT_TYPES);
 #define TEXTURE_MODULATES GS_TEXTURE_MODULATES
 #define SEPARATE_BACK GS_SEPARATE_BACK
 #define STAGE_COUNT GS_STAGE_COUNT
+#define CUBE_MAP GS_CUBE_MAP
 #else
 uniform int u_stageCount;  // 0: no MultiTexture
+uniform int u_cubeMap;     // 0: no cube map texture
+#define CUBE_MAP u_cubeMap
 uniform bool u_textureModulates;  // X3D 4 Material.diffuseTexture: diffuse x texture
 uniform bool u_separateBack;      // TwoSidedMaterial.separateBackColor
 uniform bool u_lit;
@@ -195,6 +204,16 @@ uniform vec3 u_fogColor;
 uniform float u_fogVisibilityRange;
 
 out vec4 fragColor;
+
+vec3 cubeDirection() {
+  vec3 n = normalize(v_normal);
+  if (!gl_FrontFacing) n = -n;
+  vec3 r = reflect(normalize(v_position), n);
+  if (CUBE_MAP == 2) return r;
+  if (CUBE_MAP == 3) return n;
+  if (CUBE_MAP == 4) return u_eyeToWorld * n;
+  return u_eyeToWorld * r;
+}
 
 vec4 stageSample(int i, vec2 st) {
   if (i == 0) return texture(u_texture, st);
@@ -259,7 +278,8 @@ void main() {
   float alpha = 1.0 - (back ? u_backTransparency : u_transparency);
   if (HAS_COLOR) diffuse = v_color;
   if (TEXTURE_COMPONENTS > 0) {
-    vec4 t = texture(u_texture, v_texCoord);
+    vec4 t = CUBE_MAP > 0 ? vec4(texture(u_cubeTexture, cubeDirection()).rgb, 1.0)
+                          : texture(u_texture, v_texCoord);
     if (TEXTURE_COMPONENTS <= 2) diffuse *= t.r;
     else diffuse = TEXTURE_MODULATES ? diffuse * t.rgb : t.rgb;
     if (TEXTURE_COMPONENTS == 2 || TEXTURE_COMPONENTS == 4) alpha = t.a;

@@ -26,6 +26,8 @@ void SurfaceUniforms::find(GLuint p) {
   texGen = uniform(p, "u_texGen");
   texGenParameter = uniform(p, "u_texGenParameter");
   eyeToWorld = uniform(p, "u_eyeToWorld");
+  cubeMap = uniform(p, "u_cubeMap");
+  cubeTexture = uniform(p, "u_cubeTexture");
   stageMode = uniform(p, "u_stageMode");
   stageSource = uniform(p, "u_stageSource");
   stageFunction = uniform(p, "u_stageFunction");
@@ -98,7 +100,8 @@ std::uint64_t SurfaceVariant::key() const {
        std::uint64_t{textureModulates ? 1u : 0u} << 28 |
        static_cast<std::uint64_t>(clipPlanes & 7) << 29 |
        static_cast<std::uint64_t>(textureStages & 7) << 32 |
-       static_cast<std::uint64_t>(texGen & 15) << 35;
+       static_cast<std::uint64_t>(texGen & 15) << 35 |
+       static_cast<std::uint64_t>(cubeMap & 7) << 39;
   return k;
 }
 
@@ -115,7 +118,8 @@ std::string SurfaceVariant::defines() const {
          "\n#define GS_SEPARATE_BACK " + (separateBack ? "true" : "false") +
          "\n#define GS_TEXTURE_MODULATES " + (textureModulates ? "true" : "false") +
          "\n#define GS_CLIP_PLANES " + std::to_string(clipPlanes) + "\n#define GS_STAGE_COUNT " +
-         std::to_string(textureStages) + "\n#define GS_TEX_GEN " + std::to_string(texGen) + "\n";
+         std::to_string(textureStages) + "\n#define GS_TEX_GEN " + std::to_string(texGen) +
+         "\n#define GS_CUBE_MAP " + std::to_string(cubeMap) + "\n";
 }
 
 void SurfacePrograms::beginFrame() {

@@ -46,6 +46,7 @@ struct SurfaceUniforms {
   GLint stageCount, stageMode, stageSource, stageFunction, stageTexCoord, stageMatrix, stageFactor;
   std::array<GLint, 3> stageTexture;
   GLint texGen, texGenParameter, eyeToWorld;  // TextureCoordinateGenerator
+  GLint cubeMap, cubeTexture;                 // a ComposedCubeMapTexture on unit 6
   GLint separateBack, backDiffuseColor, backAmbientIntensity, backSpecularColor, backEmissiveColor,
       backShininess, backTransparency;
 
@@ -66,6 +67,7 @@ struct SurfaceVariant {
   int clipPlanes = 0;                                 // 0 .. 6 ClipPlanes
   int textureStages = 0;                              // 0 .. 4 MultiTexture stages
   int texGen = 0;                                     // TexGenMode (texture_generation.hpp)
+  int cubeMap = 0;  // 0 none, else the lookup direction (shaders.cpp, cubeDirection)
 
   /// A number naming the variant (equal keys, equal variants).
   std::uint64_t key() const;

@@ -3,6 +3,7 @@
 // MovieTexture goes to movie_textures.cpp.
 #include "base/data_url.hpp"
 #include "base/url.hpp"
+#include "environment_maps.hpp"
 #include "gpu_resources.hpp"
 #include "render/image.hpp"
 #include "render/scene_renderer.hpp"
@@ -226,6 +227,18 @@ const GpuTexture& TextureCache::get(const vrml::Node& node, const std::string& b
           loaded.failures.empty()
               ? std::string("ImageTexture has no url: drawn untextured")
               : "cannot load ImageTexture (" + loaded.failures + "): drawn untextured");
+  } else if (node.typeId() == vrml::NodeTypeId::ComposedCubeMapTexture) {
+    CubeTexture cube = loadCubeTexture(node, baseUrl, fetcher);
+    if (cube.pending) {
+      static const GpuTexture kNone;  // untextured until the faces arrive
+      return kNone;
+    }
+    if (!cube.problem.empty())
+      traversal.report(vrml::Severity::warning, node.location,
+                       "ComposedCubeMapTexture: " + cube.problem + ": that face is black");
+    texture.id = cube.id;
+    texture.components = cube.id != 0 ? 3 : 0;
+    texture.cube = true;
   } else {
     traversal.report(vrml::Severity::warning, node.location,
                      node.typeName() + " is not supported yet: drawn untextured");

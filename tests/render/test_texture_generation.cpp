@@ -77,3 +77,41 @@ TEST_CASE("TextureCoordinateGenerator NOISE is drawn as COORD with one warning",
   CHECK(black(noise, 4));
   CHECK(white(noise, 20));
 }
+
+TEST_CASE(
+    "ComposedCubeMapTexture: looked up by the world-space reflection, or the eye-space "
+    "one with CAMERASPACEREFLECTIONVECTOR",
+    "[render][offscreen][world][texgen]") {
+  // The viewer looks along world -X at a quad facing it: the reflection at the centre is
+  // eye +Z, which is world +X.
+  const auto world = [](const std::string& texCoord) {
+    return R"(#X3D V3.2 utf8
+PROFILE Interchange
+COMPONENT CubeMapTexturing:1
+NavigationInfo { headlight FALSE }
+Viewpoint { position 0 0 0 orientation 0 1 0 1.5708 fieldOfView 1.5708 }
+Transform { rotation 0 1 0 1.5708 children Transform { translation 0 0 -1 children Shape {
+  appearance Appearance { texture ComposedCubeMapTexture {
+    backTexture PixelTexture { image 1 1 3 0xFF0000 }
+    frontTexture PixelTexture { image 1 1 3 0x00FF00 }
+    leftTexture PixelTexture { image 1 1 3 0x0000FF }
+    rightTexture PixelTexture { image 1 1 3 0xFFFF00 }
+    topTexture PixelTexture { image 1 1 3 0x00FFFF }
+    bottomTexture PixelTexture { image 1 1 3 0xFF00FF } } }
+  geometry IndexedFaceSet { coord Coordinate { point [-1 -1 0, 1 -1 0, 1 1 0, -1 1 0] }
+    coordIndex [0 1 2 3 -1] )" +
+           texCoord + R"( } } } }
+)";
+  };
+  const fs::path dir = worldDir();
+  writeText(dir / "cube_world.x3dv", world(""));
+  const Rendered worldSpace = renderFile(dir / "cube_world.x3dv");
+  CHECK(worldSpace.diagnostics.items.empty());
+  INFO(int(worldSpace.image.pixel(32, 32)[0]) << " " << int(worldSpace.image.pixel(32, 32)[1])
+                                              << " " << int(worldSpace.image.pixel(32, 32)[2]));
+  CHECK(close(worldSpace.image.pixel(32, 32), 255, 255, 0, 8));  // the right face (+X)
+  writeText(dir / "cube_eye.x3dv",
+            world("texCoord TextureCoordinateGenerator { mode \"CAMERASPACEREFLECTIONVECTOR\" }"));
+  const Rendered eyeSpace = renderFile(dir / "cube_eye.x3dv");
+  CHECK(close(eyeSpace.image.pixel(32, 32), 255, 0, 0, 8));  // the back face (+Z)
+}

@@ -35,6 +35,7 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::MultiTextureTransform,
     NodeTypeId::TextureCoordinateGenerator,  // render/src/texture_generation.cpp
     NodeTypeId::StaticGroup,                 // scene/src/node_kind.cpp
+    NodeTypeId::ComposedCubeMapTexture,      // render/src/textures.cpp, environment_maps.cpp
     NodeTypeId::ViewpointGroup,
     NodeTypeId::TextureTransform3D,
     NodeTypeId::TextureTransformMatrix3D,
