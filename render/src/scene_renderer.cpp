@@ -316,6 +316,7 @@ SceneRenderer::SceneRenderer(std::shared_ptr<const vrml::Scene> scene, SceneRend
                                                     options_.splatPath)),
       headlight_(traversal_.navigation().headlight) {
   gpu_->textures.movies.setPlayers(options_.movies);
+  splats_->setFetcher(options_.fetcher);
 }
 
 SceneRenderer::~SceneRenderer() {

@@ -1,5 +1,7 @@
 #include "scene_splats.hpp"
 
+#include "volume_data.hpp"
+
 #include "base/url.hpp"
 
 #include <cmath>
@@ -35,6 +37,18 @@ std::shared_ptr<const SplatSet> SceneSplats::setOf(const vrml::Node& node,
 const SceneSplats::NodeSet& SceneSplats::nodeSet(const vrml::Node& node, const std::string& baseUrl,
                                                  scene::SceneTraversal& traversal) {
   if (auto it = sets_.find(&node); it != sets_.end()) return it->second;
+  if (isVolumeDataNode(node)) {
+    VolumeDataSet volume = volumeDataSet(node, baseUrl, fetcher_);
+    if (volume.pending) {
+      static const NodeSet kNothingYet;  // asked again at the next draw
+      return kNothingYet;
+    }
+    if (!volume.problem.empty())
+      traversal.report(vrml::Severity::error, node.location, volume.problem + ": not drawn");
+    NodeSet entry;
+    entry.set = std::move(volume.set);
+    return sets_[&node] = entry;
+  }
   std::shared_ptr<const SplatSet> set = inlineSplatSet(node);
   if (!set) {
     const auto urls = node.get<vrml::FieldType::MFString>("url", std::vector<std::string>{});

@@ -13,6 +13,10 @@
 #include "render/splat_source.hpp"
 #include "scene/traversal.hpp"
 
+namespace gs::base {
+class Fetcher;
+}
+
 namespace gs::render::detail {
 
 class SceneSplats {
@@ -47,6 +51,8 @@ class SceneSplats {
     if (scene_->rootNodes.size() != worldRoots_) worldBuilt_ = false;
   }
   void setLod(double lod) { lod_ = lod; }
+  /// Where X3D volume data nodes' voxel files load from (null: local files only).
+  void setFetcher(base::Fetcher* fetcher) { fetcher_ = fetcher; }
   /// At most this many vectors drawn in all per frame (0: no budget): the level of detail
   /// is lowered to fit (min(lod, budget / vectors of every stream drawn)).
   void setVectorBudget(std::uint64_t budget) { budget_ = budget; }
@@ -55,6 +61,7 @@ class SceneSplats {
  private:
   std::shared_ptr<const vrml::Scene> scene_;
   SplatLoader loader_;
+  base::Fetcher* fetcher_ = nullptr;
   double lod_;
   std::uint64_t budget_ = 0;
   double drawLod_ = 1.0;  // lod_ lowered to the vector budget for the frame being drawn

@@ -53,6 +53,11 @@ NodeKind nodeKind(const vrml::Node& node) {
     case NodeTypeId::OutlineGroup:
       return NodeKind::OutlineGroup;
     case NodeTypeId::QuantizedNormalVectors:
+    // X3D's volume data nodes are drawn as QNV vectors of their voxels
+    // (render/src/volume_data.hpp).
+    case NodeTypeId::VolumeData:
+    case NodeTypeId::IsoSurfaceVolumeData:
+    case NodeTypeId::SegmentedVolumeData:
       return NodeKind::QuantizedNormalVectors;
     default:
       // Any other grouping node (X3DGroupingNode) is drawn as a Group: its children.
