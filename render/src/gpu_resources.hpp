@@ -29,6 +29,7 @@ struct GpuMesh {
   bool indexed = false;
   vrml::Primitive primitive = vrml::Primitive::triangles;
   bool hasNormals = false, hasColors = false, hasTexCoords = false;
+  bool colorAlpha = false;  // some colour is translucent (X3D ColorRGBA alpha < 1)
   bool hasTexCoords1 = false;  // the second texture coordinate set (vrml::Mesh::texCoords1)
   bool solid = true;
   std::size_t triangles = 0;

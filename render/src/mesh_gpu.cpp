@@ -1,6 +1,8 @@
 // Uploading tessellated meshes to GPU buffers.
 #include "gpu_resources.hpp"
 
+#include <algorithm>
+
 #include <cstdint>
 
 namespace gs::render::detail {
@@ -14,6 +16,8 @@ void GpuMesh::upload(const vrml::Mesh& mesh) {
   triangles = mesh.triangleCount();
   hasNormals = mesh.primitive == vrml::Primitive::triangles && mesh.normals.size() == n;
   hasColors = mesh.colors.size() == n && n > 0;
+  colorAlpha = hasColors && std::any_of(mesh.colors.begin(), mesh.colors.end(),
+                                        [](const glm::vec4& c) { return c.w < 1.0f; });
   hasTexCoords = mesh.texCoords.size() == n && n > 0;
   hasTexCoords1 = hasTexCoords && mesh.texCoords1.size() == n;
   indexed = !mesh.indices.empty();

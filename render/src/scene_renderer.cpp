@@ -485,10 +485,11 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
         item.texCoordSets[i] = texCoordSetOf(shading.mappings[i], *s.geometry);
     // Appearance.alphaMode (X3D 4.0 clause 12.4.2): OPAQUE and MASK never blend, BLEND
     // always does, AUTO when the material or the texture is translucent.
-    const bool blended = shading.alphaMode == 3 ||
-                         (shading.alphaMode == 0 &&
-                          (shading.transparency > 0.0f || shading.backTransparency > 0.0f ||
-                           (texture != nullptr && texture->hasAlpha) || stageAlpha));
+    const bool blended =
+        shading.alphaMode == 3 ||
+        (shading.alphaMode == 0 &&
+         (shading.transparency > 0.0f || shading.backTransparency > 0.0f ||
+          (texture != nullptr && texture->hasAlpha) || stageAlpha || mesh.colorAlpha));
     (blended ? g.transparent : g.opaque).push_back(item);
   }
   std::sort(g.transparent.begin(), g.transparent.end(),

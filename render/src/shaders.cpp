@@ -85,7 +85,7 @@ vec2 generatedTexCoord(vec3 eye, vec3 eyeNormal) {
 
 out vec3 v_position;  // eye coordinates
 out vec3 v_normal;    // eye coordinates, not normalized
-out vec3 v_color;
+out vec4 v_color;  // RGBA: ColorRGBA alpha multiplies the material alpha
 out vec2 v_texCoord;
 out vec2 v_texCoord1;
 
@@ -93,7 +93,7 @@ void main() {
   vec4 eye = u_modelView * vec4(a_position, 1.0);
   v_position = eye.xyz;
   v_normal = u_normalMatrix * a_normal;
-  v_color = a_color.rgb;
+  v_color = a_color;
   vec2 texCoord = TEX_GEN != 0 ? generatedTexCoord(eye.xyz, v_normal) : a_texCoord;
   v_texCoord = (u_textureMatrix * vec3(texCoord, 1.0)).xy;
   v_texCoord1 = (u_textureMatrix * vec3(a_texCoord1, 1.0)).xy;
@@ -112,7 +112,7 @@ const int kSpot = 2;
 
 in vec3 v_position;
 in vec3 v_normal;
-in vec3 v_color;
+in vec4 v_color;
 in vec2 v_texCoord;
 in vec2 v_texCoord1;
 
@@ -276,7 +276,10 @@ void main() {
   float shininess = back ? u_backShininess : u_shininess;
   vec3 diffuse = LIT ? diffuseColor : u_unlitColor;
   float alpha = 1.0 - (back ? u_backTransparency : u_transparency);
-  if (HAS_COLOR) diffuse = v_color;
+  if (HAS_COLOR) {
+    diffuse = v_color.rgb;
+    alpha *= v_color.a;  // X3D ColorRGBA (clause 11.4.3); 1 for Color
+  }
   if (TEXTURE_COMPONENTS > 0) {
     vec4 t = CUBE_MAP > 0 ? vec4(texture(u_cubeTexture, cubeDirection()).rgb, 1.0)
                           : texture(u_texture, v_texCoord);

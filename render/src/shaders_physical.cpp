@@ -35,7 +35,7 @@ const float kPi = 3.14159265;
 
 in vec3 v_position;
 in vec3 v_normal;
-in vec3 v_color;
+in vec4 v_color;
 in vec2 v_texCoord;
 in vec2 v_texCoord1;
 
@@ -145,7 +145,10 @@ vec2 environmentBrdf(float roughness, float nDotV) {
 void main() {
   vec3 base = u_diffuseColor;
   float alpha = 1.0 - u_transparency;
-  if (u_hasColor) base *= v_color;
+  if (u_hasColor) {  // glTF COLOR_0 / X3D ColorRGBA multiply the base colour and alpha
+    base *= v_color.rgb;
+    alpha *= v_color.a;
+  }
   if (u_textureComponents > 0) {
     vec4 t = texture(u_texture, uvOf(u_baseTexCoordSet));
     base *= u_textureComponents <= 2 ? vec3(t.r) : toLinear(t.rgb);

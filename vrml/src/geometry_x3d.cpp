@@ -304,7 +304,9 @@ Mesh tessellateIndexedQuadSet(const Node& node, ProblemLog& log) {
   leftOver(log, index.size(), 4, "index");
   Faces faces(points, log);
   for (std::size_t i = 0; i + 4 <= index.size(); i += 4) {
-    const std::int64_t v[4] = {index[i], index[i + 1], index[i + 2], index[i + 3]};
+    // Starting at the second vertex splits the quad along its 1-3 diagonal, as
+    // castle-model-viewer does (colours interpolate as in its pictures).
+    const std::int64_t v[4] = {index[i + 1], index[i + 2], index[i + 3], index[i]};
     faces.add(v, 4, "index", i);
   }
   return buildComposed(node, log, points, faces);
@@ -318,7 +320,7 @@ Mesh tessellateQuadSet(const Node& node, ProblemLog& log) {
   Faces faces(points, log);
   for (std::size_t i = 0; i + 4 <= points.size(); i += 4) {
     const auto b = static_cast<std::int64_t>(i);
-    const std::int64_t v[4] = {b, b + 1, b + 2, b + 3};
+    const std::int64_t v[4] = {b + 1, b + 2, b + 3, b};  // the 1-3 diagonal, as above
     faces.add(v, 4, "coord", i);
   }
   return buildComposed(node, log, points, faces);
