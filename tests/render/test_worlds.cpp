@@ -473,3 +473,21 @@ Shape {
   CHECK(close(r.image.pixel(6, 32), 255, 0, 0, 3));  // red x white
   CHECK(close(r.image.pixel(58, 32), 0, 0, 0, 3));   // red x green
 }
+
+TEST_CASE("ColorRGBA alpha makes a shape translucent", "[render][offscreen][world]") {
+  const fs::path dir = worldDir();
+  // A red quad behind a white one whose colours have alpha 0.25: mostly red shows.
+  writeText(dir / "color_rgba.x3dv", R"(#X3D V3.2 utf8
+PROFILE Interchange
+NavigationInfo { headlight FALSE }
+Viewpoint { position 0 0 1 fieldOfView 1.5708 }
+Shape { appearance Appearance { material Material { diffuseColor 0 0 0 emissiveColor 1 0 0 } }
+  geometry QuadSet { coord Coordinate { point [-1 -1 -0.5, 1 -1 -0.5, 1 1 -0.5, -1 1 -0.5] } } }
+Shape { geometry QuadSet { coord Coordinate { point [-1 -1 0, 1 -1 0, 1 1 0, -1 1 0] }
+  color ColorRGBA { color [1 1 1 0.25, 1 1 1 0.25, 1 1 1 0.25, 1 1 1 0.25] } } }
+)");
+  const Rendered r = renderFile(dir / "color_rgba.x3dv");
+  CHECK(r.diagnostics.items.empty());
+  // 0.25 white over red: (255, 64, 64).
+  CHECK(close(r.image.pixel(32, 32), 255, 64, 64, 4));
+}
