@@ -271,6 +271,13 @@ Mesh tessellate(const Node& geometry, Diagnostics* diag) {
     case NodeTypeId::QuadSet:
       m = tessellateQuadSet(geometry, log);
       break;
+    case NodeTypeId::NurbsCurve:  // X3D 4.0 clause 27, NURBS (geometry_nurbs.cpp)
+      m = tessellateNurbsCurve(geometry, log);
+      break;
+    case NodeTypeId::NurbsPatchSurface:
+    case NodeTypeId::NurbsTrimmedSurface:
+      m = tessellateNurbsSurface(geometry, log);
+      break;
     case NodeTypeId::Arc2D:  // X3D 4.0 clause 14, Geometry2D (geometry_2d.cpp)
       m = tessellateArc2D(geometry, log);
       break;

@@ -271,6 +271,10 @@ Mesh tessellateQuadSet(const Node& node, ProblemLog& log);
 Mesh tessellateLineSet(const Node& node, ProblemLog& log);
 
 // X3D 4.0 Geometry2D (clause 14): geometry_2d.cpp.
+/// X3D NURBS (geometry_nurbs.cpp): NurbsCurve as lines; NurbsPatchSurface and
+/// NurbsTrimmedSurface (untrimmed) as triangles.
+Mesh tessellateNurbsCurve(const Node& node, ProblemLog& log);
+Mesh tessellateNurbsSurface(const Node& node, ProblemLog& log);
 Mesh tessellateArc2D(const Node& node, ProblemLog& log);
 Mesh tessellateArcClose2D(const Node& node, ProblemLog& log);
 Mesh tessellateCircle2D(const Node& node, ProblemLog& log);

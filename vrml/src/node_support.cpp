@@ -36,6 +36,9 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::TextureCoordinateGenerator,  // render/src/texture_generation.cpp
     NodeTypeId::StaticGroup,                 // scene/src/node_kind.cpp
     NodeTypeId::ComposedCubeMapTexture,      // render/src/textures.cpp, environment_maps.cpp
+    NodeTypeId::NurbsCurve,                  // vrml/src/geometry_nurbs.cpp
+    NodeTypeId::NurbsPatchSurface,
+    NodeTypeId::NurbsTrimmedSurface,         // untrimmed
     NodeTypeId::VolumeData,                  // render/src/volume_data.cpp: QNV splats
     NodeTypeId::IsoSurfaceVolumeData,
     NodeTypeId::SegmentedVolumeData,
