@@ -29,7 +29,7 @@ struct GpuMesh {
   bool indexed = false;
   vrml::Primitive primitive = vrml::Primitive::triangles;
   bool hasNormals = false, hasColors = false, hasTexCoords = false;
-  bool colorAlpha = false;  // some colour is translucent (X3D ColorRGBA alpha < 1)
+  bool colorAlpha = false;     // some colour is translucent (X3D ColorRGBA alpha < 1)
   bool hasTexCoords1 = false;  // the second texture coordinate set (vrml::Mesh::texCoords1)
   bool solid = true;
   std::size_t triangles = 0;
@@ -50,7 +50,25 @@ struct GpuTexture {
   int components = 0;     // 1..4 as VRML97 counts them; 0 = no usable texture
   bool hasAlpha = false;  // some texel is not fully opaque
   bool cube = false;      // a GL_TEXTURE_CUBE_MAP (ComposedCubeMapTexture), else 2D
+  bool volume = false;    // a GL_TEXTURE_3D (X3D Texturing3D)
 };
+
+/// The texels of an X3D Texturing3D texture (clause 33): RGBA8, s fastest, then t (rows
+/// bottom to top), then r; components 1..4 as the file had them.
+struct Texels3D {
+  int width = 0, height = 0, depth = 0, components = 0;
+  std::vector<std::uint8_t> rgba;
+  bool pending = false;  // a file is still on its way: ask again at a later draw
+  std::string problem;   // why there is no texture (for a warning); empty when fine
+};
+
+/// Decodes a PixelTexture3D (its image), a ComposedTexture3D (one slice per 2D
+/// ImageTexture or PixelTexture, all of one size) or an ImageTexture3D (the first url that
+/// loads: an uncompressed DDS volume, RGB, RGBA or luminance, or a raw/ascii NRRD with
+/// attached data as grey stretched over its value range). At most 2^24 texels. Never
+/// throws: a bad texture gives `problem`. Other nodes give an empty result.
+Texels3D decodeTexture3D(const vrml::Node& node, const std::string& baseUrl,
+                         base::Fetcher* fetcher);
 
 /// The GL texture of a movie, shared by the renderers that share its player
 /// (MoviePlayers): the frame in it, copied by the first renderer that drew it.

@@ -54,6 +54,7 @@ struct Shading {
   /// instead of replacing it (VRML97 table 4.5 for Appearance.texture).
   bool textureModulates = false;
   glm::mat3 textureMatrix{1.0f};
+  glm::mat4 textureMatrix3D{1.0f};  // the same transform for 3D texture coordinates
   // PhysicalMaterial (diffuseColor holds baseColor, texture baseTexture).
   float metallic = 1.0f, roughness = 1.0f, normalScale = 1.0f, occlusionStrength = 1.0f;
   std::array<const vrml::Node*, kPhysicalMaps> maps{};
@@ -180,7 +181,10 @@ Shading readShading(const vrml::Node* appearance) {
     s.alphaCutoff = scene::sfFloat(*appearance, "alphaCutoff", 0.5f);
   }
   const vrml::NodePtr tt = appearance->sfnode("textureTransform");
-  if (tt && !tt->unresolved) s.textureMatrix = scene::textureTransformMatrix(*tt);
+  if (tt && !tt->unresolved) {
+    s.textureMatrix = scene::textureTransformMatrix(*tt);
+    s.textureMatrix3D = scene::textureTransformMatrix3D(*tt);
+  }
   if (s.texture != nullptr && s.texture->typeId() == vrml::NodeTypeId::MultiTexture) {
     s.multiTextureNode = s.texture;
     s.multi = readMultiTexture(*s.texture, tt && !tt->unresolved ? tt.get() : nullptr);
@@ -218,6 +222,8 @@ struct DrawItem {
 constexpr GLint kEnvironmentUnit = 5;
 /// Texture unit of a shape's ComposedCubeMapTexture (samplers of two types never share one).
 constexpr GLint kCubeTextureUnit = 6;
+/// Texture unit of a shape's X3D Texturing3D texture.
+constexpr GLint kTexture3DUnit = 7;
 
 /// The Phong program's CUBE_MAP for a shape: 0 without a cube map texture, else the
 /// direction it is looked up by (shaders.cpp, cubeDirection), from the geometry's
@@ -512,6 +518,7 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
         glUniform1i(u.map[i], static_cast<GLint>(i + 1));
       glUniform1i(u.environmentMap, kEnvironmentUnit);
       glUniform1i(u.cubeTexture, kCubeTextureUnit);
+      glUniform1i(u.texture3D, kTexture3DUnit);
       glUniform1i(u.fogType, fogType);
       glUniform3fv(u.fogColor, 1, glm::value_ptr(fog.color));
       glUniform1f(u.fogVisibilityRange, fog.visibilityRange);
@@ -610,6 +617,7 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
       v.textureStages = d.stageCount;
       v.texGen = static_cast<int>(d.texGen.mode);
       v.cubeMap = cubeMapMode(d);
+      v.texture3D = d.texture != nullptr && d.texture->volume;
       if (v.cubeMap != 0) v.texGen = 0;  // the fragment shader finds the direction
       if (lit) {
         v.lightCount = lights.count;
@@ -629,7 +637,16 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     glUniform1i(u.lit, lit ? 1 : 0);
     glUniform1i(u.hasColor, mesh.hasColors ? 1 : 0);
     glUniform1i(u.textureComponents, d.texture != nullptr ? d.texture->components : 0);
-    if (d.texture != nullptr && d.texture->cube) {
+    const bool volumeTexture = d.texture != nullptr && d.texture->volume;
+    glUniform1i(u.texture3DOn, volumeTexture ? 1 : 0);
+    if (volumeTexture) {
+      glUniformMatrix4fv(u.textureMatrix3D, 1, GL_FALSE, glm::value_ptr(sh.textureMatrix3D));
+      glUniform3fv(u.texBoundsMin, 1, glm::value_ptr(mesh.bounds.min));
+      glUniform3fv(u.texBoundsSize, 1, glm::value_ptr(mesh.bounds.size()));
+      glActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(kTexture3DUnit));
+      glBindTexture(GL_TEXTURE_3D, d.texture->id);
+      glActiveTexture(GL_TEXTURE0);
+    } else if (d.texture != nullptr && d.texture->cube) {
       glActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(kCubeTextureUnit));
       glBindTexture(GL_TEXTURE_CUBE_MAP, d.texture->id);
       glActiveTexture(GL_TEXTURE0);
@@ -749,6 +766,8 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     glActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(unit));
     glBindTexture(GL_TEXTURE_CUBE_MAP, 0);
   }
+  glActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(kTexture3DUnit));
+  glBindTexture(GL_TEXTURE_3D, 0);
   glActiveTexture(GL_TEXTURE0);
   glUseProgram(0);
 }

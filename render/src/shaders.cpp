@@ -57,6 +57,18 @@ out float gl_ClipDistance[kMaxClipPlanes];
 uniform int u_texGen;
 #define TEX_GEN u_texGen
 #endif
+#ifdef GS_VARIANT
+#define TEXTURE_3D GS_TEXTURE_3D
+#else
+uniform bool u_texture3DOn;  // an X3D Texturing3D texture: v_texCoord3 is read
+#define TEXTURE_3D u_texture3DOn
+#endif
+// 3D texture coordinates (X3D 4.0 clause 33): COORD / COORD-EYE generation, else the
+// shape's bounding box mapped to [0, 1]^3; then the Appearance's 3D texture transform.
+uniform mat4 u_textureMatrix3D;
+uniform vec3 u_texBoundsMin;
+uniform vec3 u_texBoundsSize;
+out vec3 v_texCoord3;
 uniform float u_texGenParameter;  // SPHERE-REFLECT's index of refraction
 uniform mat3 u_eyeToWorld;        // the view's rotation, inverted
 
@@ -97,6 +109,14 @@ void main() {
   vec2 texCoord = TEX_GEN != 0 ? generatedTexCoord(eye.xyz, v_normal) : a_texCoord;
   v_texCoord = (u_textureMatrix * vec3(texCoord, 1.0)).xy;
   v_texCoord1 = (u_textureMatrix * vec3(a_texCoord1, 1.0)).xy;
+  if (TEXTURE_3D) {
+    vec3 r = TEX_GEN == 6 ? a_position
+           : TEX_GEN == 7 ? eye.xyz
+                          : (a_position - u_texBoundsMin) / max(u_texBoundsSize, vec3(1e-6));
+    v_texCoord3 = (u_textureMatrix3D * vec4(r, 1.0)).xyz;
+  } else {
+    v_texCoord3 = vec3(0.0);
+  }
   gl_PointSize = u_pointSize;
   for (int i = 0; i < kMaxClipPlanes; ++i)
     gl_ClipDistance[i] = i < CLIP_PLANES ? dot(u_clipPlanes[i], eye) : 1.0;
@@ -123,6 +143,9 @@ uniform sampler2D u_texture;  // also stage 0 of a MultiTexture
 // (CAMERASPACEREFLECTIONVECTOR), 3 the eye-space normal, 4 the world-space normal.
 uniform samplerCube u_cubeTexture;
 uniform mat3 u_eyeToWorld;
+// An X3D Texturing3D texture (clause 33) on unit 7, read at v_texCoord3.
+uniform sampler3D u_texture3D;
+in vec3 v_texCoord3;
 
 // A MultiTexture's stages (multi_texture.hpp): stage i samples unit i.
 const int kMaxStages = 4;
@@ -151,7 +174,10 @@ const int kLightTypes[kMaxLights] = int[kMaxLights](GS_LIGHT_TYPES);
 #define SEPARATE_BACK GS_SEPARATE_BACK
 #define STAGE_COUNT GS_STAGE_COUNT
 #define CUBE_MAP GS_CUBE_MAP
+#define TEXTURE_3D GS_TEXTURE_3D
 #else
+uniform bool u_texture3DOn;
+#define TEXTURE_3D u_texture3DOn
 uniform int u_stageCount;  // 0: no MultiTexture
 uniform int u_cubeMap;     // 0: no cube map texture
 #define CUBE_MAP u_cubeMap
@@ -281,8 +307,9 @@ void main() {
     alpha *= v_color.a;  // X3D ColorRGBA (clause 11.4.3); 1 for Color
   }
   if (TEXTURE_COMPONENTS > 0) {
-    vec4 t = CUBE_MAP > 0 ? vec4(texture(u_cubeTexture, cubeDirection()).rgb, 1.0)
-                          : texture(u_texture, v_texCoord);
+    vec4 t = TEXTURE_3D    ? texture(u_texture3D, v_texCoord3)
+             : CUBE_MAP > 0 ? vec4(texture(u_cubeTexture, cubeDirection()).rgb, 1.0)
+                            : texture(u_texture, v_texCoord);
     if (TEXTURE_COMPONENTS <= 2) diffuse *= t.r;
     else diffuse = TEXTURE_MODULATES ? diffuse * t.rgb : t.rgb;
     if (TEXTURE_COMPONENTS == 2 || TEXTURE_COMPONENTS == 4) alpha = t.a;

@@ -28,6 +28,11 @@ void SurfaceUniforms::find(GLuint p) {
   eyeToWorld = uniform(p, "u_eyeToWorld");
   cubeMap = uniform(p, "u_cubeMap");
   cubeTexture = uniform(p, "u_cubeTexture");
+  texture3DOn = uniform(p, "u_texture3DOn");
+  texture3D = uniform(p, "u_texture3D");
+  textureMatrix3D = uniform(p, "u_textureMatrix3D");
+  texBoundsMin = uniform(p, "u_texBoundsMin");
+  texBoundsSize = uniform(p, "u_texBoundsSize");
   stageMode = uniform(p, "u_stageMode");
   stageSource = uniform(p, "u_stageSource");
   stageFunction = uniform(p, "u_stageFunction");
@@ -101,7 +106,7 @@ std::uint64_t SurfaceVariant::key() const {
        static_cast<std::uint64_t>(clipPlanes & 7) << 29 |
        static_cast<std::uint64_t>(textureStages & 7) << 32 |
        static_cast<std::uint64_t>(texGen & 15) << 35 |
-       static_cast<std::uint64_t>(cubeMap & 7) << 39;
+       static_cast<std::uint64_t>(cubeMap & 7) << 39 | std::uint64_t{texture3D ? 1u : 0u} << 42;
   return k;
 }
 
@@ -119,7 +124,8 @@ std::string SurfaceVariant::defines() const {
          "\n#define GS_TEXTURE_MODULATES " + (textureModulates ? "true" : "false") +
          "\n#define GS_CLIP_PLANES " + std::to_string(clipPlanes) + "\n#define GS_STAGE_COUNT " +
          std::to_string(textureStages) + "\n#define GS_TEX_GEN " + std::to_string(texGen) +
-         "\n#define GS_CUBE_MAP " + std::to_string(cubeMap) + "\n";
+         "\n#define GS_CUBE_MAP " + std::to_string(cubeMap) + "\n#define GS_TEXTURE_3D " +
+         (texture3D ? "true" : "false") + "\n";
 }
 
 void SurfacePrograms::beginFrame() {

@@ -47,6 +47,7 @@ struct SurfaceUniforms {
   std::array<GLint, 3> stageTexture;
   GLint texGen, texGenParameter, eyeToWorld;  // TextureCoordinateGenerator
   GLint cubeMap, cubeTexture;                 // a ComposedCubeMapTexture on unit 6
+  GLint texture3DOn, texture3D, textureMatrix3D, texBoundsMin, texBoundsSize;  // unit 7
   GLint separateBack, backDiffuseColor, backAmbientIntensity, backSpecularColor, backEmissiveColor,
       backShininess, backTransparency;
 
@@ -67,7 +68,8 @@ struct SurfaceVariant {
   int clipPlanes = 0;                                 // 0 .. 6 ClipPlanes
   int textureStages = 0;                              // 0 .. 4 MultiTexture stages
   int texGen = 0;                                     // TexGenMode (texture_generation.hpp)
-  int cubeMap = 0;  // 0 none, else the lookup direction (shaders.cpp, cubeDirection)
+  int cubeMap = 0;         // 0 none, else the lookup direction (shaders.cpp, cubeDirection)
+  bool texture3D = false;  // an X3D Texturing3D texture
 
   /// A number naming the variant (equal keys, equal variants).
   std::uint64_t key() const;

@@ -18,7 +18,7 @@ namespace {
 /// TextureProperties (clause 18.4.9) when the texture has one (which then overrides them).
 struct Sampling {
   GLint minFilter = GL_LINEAR_MIPMAP_LINEAR, magFilter = GL_LINEAR;
-  GLint wrapS = GL_REPEAT, wrapT = GL_REPEAT;
+  GLint wrapS = GL_REPEAT, wrapT = GL_REPEAT, wrapR = GL_REPEAT;
 };
 
 GLint boundaryMode(const std::string& mode) {
@@ -47,12 +47,14 @@ Sampling samplingOf(const vrml::Node& texture) {
   Sampling s;
   s.wrapS = scene::sfBool(texture, "repeatS", true) ? GL_REPEAT : GL_CLAMP_TO_EDGE;
   s.wrapT = scene::sfBool(texture, "repeatT", true) ? GL_REPEAT : GL_CLAMP_TO_EDGE;
+  s.wrapR = scene::sfBool(texture, "repeatR", true) ? GL_REPEAT : GL_CLAMP_TO_EDGE;
   static const vrml::NodePtr kNone;
   const vrml::NodePtr& p =
       scene::fieldRef<vrml::FieldType::SFNode>(texture, "textureProperties", kNone);
   if (!p || p->typeId() != vrml::NodeTypeId::TextureProperties) return s;
   s.wrapS = boundaryMode(scene::sfString(*p, "boundaryModeS"));
   s.wrapT = boundaryMode(scene::sfString(*p, "boundaryModeT"));
+  s.wrapR = boundaryMode(scene::sfString(*p, "boundaryModeR"));
   s.minFilter = minificationFilter(scene::sfString(*p, "minificationFilter"));
   s.magFilter = magnificationFilter(scene::sfString(*p, "magnificationFilter"));
   return s;
@@ -72,6 +74,23 @@ GLuint uploadRgba(const std::uint8_t* rowsBottomUp, int width, int height,
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, sampling.wrapS);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, sampling.wrapT);
   glBindTexture(GL_TEXTURE_2D, 0);
+  return id;
+}
+
+GLuint uploadRgba3D(const Texels3D& t, const Sampling& sampling) {
+  GLuint id = 0;
+  glGenTextures(1, &id);
+  glBindTexture(GL_TEXTURE_3D, id);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA8, t.width, t.height, t.depth, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+               t.rgba.data());
+  glGenerateMipmap(GL_TEXTURE_3D);
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, sampling.minFilter);
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, sampling.magFilter);
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_S, sampling.wrapS);
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_T, sampling.wrapT);
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_R, sampling.wrapR);
+  glBindTexture(GL_TEXTURE_3D, 0);
   return id;
 }
 
@@ -227,6 +246,23 @@ const GpuTexture& TextureCache::get(const vrml::Node& node, const std::string& b
           loaded.failures.empty()
               ? std::string("ImageTexture has no url: drawn untextured")
               : "cannot load ImageTexture (" + loaded.failures + "): drawn untextured");
+  } else if (node.typeId() == vrml::NodeTypeId::PixelTexture3D ||
+             node.typeId() == vrml::NodeTypeId::ComposedTexture3D ||
+             node.typeId() == vrml::NodeTypeId::ImageTexture3D) {
+    const Texels3D texels = decodeTexture3D(node, baseUrl, fetcher);
+    if (texels.pending) {
+      static const GpuTexture kNone;  // untextured until the bytes arrive
+      return kNone;
+    }
+    if (!texels.problem.empty())
+      traversal.report(vrml::Severity::warning, node.location,
+                       node.typeName() + ": " + texels.problem + ": drawn untextured");
+    if (texels.depth > 0 && !texels.rgba.empty()) {
+      texture.id = uploadRgba3D(texels, sampling);
+      texture.components = texels.components;
+      texture.hasAlpha = anyTranslucent(texels.rgba);
+      texture.volume = true;
+    }
   } else if (node.typeId() == vrml::NodeTypeId::ComposedCubeMapTexture) {
     CubeTexture cube = loadCubeTexture(node, baseUrl, fetcher);
     if (cube.pending) {

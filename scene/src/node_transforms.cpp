@@ -53,16 +53,18 @@ glm::mat3 planar(const glm::mat4& m) {
 
 }  // namespace
 
-glm::mat3 textureTransformMatrix(const vrml::Node& tt) {
+glm::mat4 textureTransformMatrix3D(const vrml::Node& tt) {
   switch (tt.typeId()) {
     case vrml::NodeTypeId::MultiTextureTransform: {
       const std::vector<vrml::NodePtr>& list = tt.mfnode("textureTransform");
       return !list.empty() && list.front() && list.front().get() != &tt
-                 ? textureTransformMatrix(*list.front())
-                 : glm::mat3(1.0f);
+                 ? textureTransformMatrix3D(*list.front())
+                 : glm::mat4(1.0f);
     }
     case vrml::NodeTypeId::TextureTransformMatrix3D:
-      return planar(tt.get<vrml::FieldType::SFMatrix4f>("matrix", glm::mat4(1.0f)));
+      // The file writes the matrix row by row for row vectors (translation in its last
+      // row, as X_ITE and VRML97's VrmlMatrix read it); GLM multiplies column vectors.
+      return glm::transpose(tt.get<vrml::FieldType::SFMatrix4f>("matrix", glm::mat4(1.0f)));
     case vrml::NodeTypeId::TextureTransform3D: {
       const glm::vec3 c = sfVec3(tt, "center", glm::vec3(0.0f));
       const glm::vec3 s = sfVec3(tt, "scale", glm::vec3(1.0f));
@@ -72,9 +74,31 @@ glm::mat3 textureTransformMatrix(const vrml::Node& tt) {
       const glm::mat4 rot = glm::length(axis) > 1e-12f
                                 ? glm::rotate(glm::mat4(1.0f), r.w, glm::normalize(axis))
                                 : glm::mat4(1.0f);
-      return planar(glm::translate(glm::mat4(1.0f), -c) * glm::scale(glm::mat4(1.0f), s) * rot *
-                    glm::translate(glm::mat4(1.0f), c) * glm::translate(glm::mat4(1.0f), t));
+      return glm::translate(glm::mat4(1.0f), -c) * glm::scale(glm::mat4(1.0f), s) * rot *
+             glm::translate(glm::mat4(1.0f), c) * glm::translate(glm::mat4(1.0f), t);
     }
+    default: {  // a 2D transform acting on (s, t) and leaving r alone
+      const glm::mat3 m = textureTransformMatrix(tt);
+      glm::mat4 out(1.0f);
+      out[0] = glm::vec4(m[0].x, m[0].y, 0.0f, 0.0f);
+      out[1] = glm::vec4(m[1].x, m[1].y, 0.0f, 0.0f);
+      out[3] = glm::vec4(m[2].x, m[2].y, 0.0f, 1.0f);
+      return out;
+    }
+  }
+}
+
+glm::mat3 textureTransformMatrix(const vrml::Node& tt) {
+  switch (tt.typeId()) {
+    case vrml::NodeTypeId::MultiTextureTransform: {
+      const std::vector<vrml::NodePtr>& list = tt.mfnode("textureTransform");
+      return !list.empty() && list.front() && list.front().get() != &tt
+                 ? textureTransformMatrix(*list.front())
+                 : glm::mat3(1.0f);
+    }
+    case vrml::NodeTypeId::TextureTransformMatrix3D:
+    case vrml::NodeTypeId::TextureTransform3D:
+      return planar(textureTransformMatrix3D(tt));
     default:
       break;
   }

@@ -301,9 +301,10 @@ TEST_CASE("X3D's 3D texture transforms act on (s, t, 0, 1)", "[render][traversal
     REQUIRE(appearance);
     return gs::scene::textureTransformMatrix(*appearance->sfnode("textureTransform"));
   };
-  // Row-major in the file: scale (2, 3) and translation (0.5, 0.25).
+  // Row by row in the file, for row vectors (as castle-model-viewer and X_ITE read it):
+  // scale (2, 3), translation (0.5, 0.25) in the last row.
   glm::vec3 p =
-      matrixOf("TextureTransformMatrix3D { matrix 2 0 0 0.5  0 3 0 0.25  0 0 1 0  0 0 0 1 }") *
+      matrixOf("TextureTransformMatrix3D { matrix 2 0 0 0  0 3 0 0  0 0 1 0  0.5 0.25 0 1 }") *
       glm::vec3(1, 1, 1);
   CHECK(p.x == Approx(2.5f));
   CHECK(p.y == Approx(3.25f));

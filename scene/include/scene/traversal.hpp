@@ -402,8 +402,14 @@ glm::mat4 billboardRotation(const glm::vec3& axisOfRotation, const glm::vec3& vi
 /// The texture-coordinate matrix of a TextureTransform (clause 6.49):
 /// Tc' = -C x S x R x C x T x Tc, as a 3x3 homogeneous 2D matrix. Also X3D's
 /// TextureTransform3D (the same product in 3D), TextureTransformMatrix3D (its `matrix`,
-/// row-major in the file) and MultiTextureTransform (its first transform), all applied to
+/// written row by row for row vectors: the translation in its last row) and MultiTextureTransform (its first transform), all applied to
 /// (s, t, 0, 1) and kept in 2D (X3D 4.0 clauses 33.4.8, 33.4.9, 18.4.5).
 glm::mat3 textureTransformMatrix(const vrml::Node& textureTransform);
+
+/// The same transforms as 4x4 matrices acting on 3D texture coordinates (s, t, r, 1), for
+/// X3D's Texturing3D (clause 33): TextureTransform3D's -C x S x R x C x T product,
+/// TextureTransformMatrix3D's matrix, a 2D TextureTransform acting on (s, t) only, and
+/// MultiTextureTransform's first transform.
+glm::mat4 textureTransformMatrix3D(const vrml::Node& textureTransform);
 
 }  // namespace gs::scene
