@@ -279,7 +279,10 @@ DEF S Script {
   outputOnly SFBool missingThrew
   outputOnly SFBool routed
   outputOnly SFBool deleted
+  inputOnly SFBool unroute
   url "ecmascript:
+    var route;
+    function unroute(v) { deleted = Browser.currentScene.deleteRoute(route); }
     function initialize() {
       var scene = Browser.currentScene;
       roots = scene.rootNodes.length;
@@ -289,6 +292,7 @@ DEF S Script {
       try { scene.getNamedNode('Nope'); missingThrew = false; } catch (e) { missingThrew = true; }
       var r = scene.addRoute(scene.getNamedNode('PI'), 'value_changed', scene.getNamedNode('T'), 'set_translation');
       routed = r instanceof X3DRoute && r.sourceField === 'value_changed';
+      route = r;
       scene.getNamedNode('T').scale = new SFVec3f(2, 2, 2);
     }
   "
@@ -305,6 +309,105 @@ DEF S Script {
   // The route the Script added carries the interpolator's value.
   w.send("PI", "set_fraction", FieldValue::make<FieldType::SFFloat>(0.5f));
   CHECK(w.node("T").field("translation")->get<FieldType::SFVec3f>() == glm::vec3(5, 0, 0));
+  // deleteRoute(the X3DRoute): the interpolator's events no longer arrive.
+  w.send("S", "unroute", FieldValue::make<FieldType::SFBool>(true));
+  CHECK(outOf(w, "deleted").get<FieldType::SFBool>());
+  w.send("PI", "set_fraction", FieldValue::make<FieldType::SFFloat>(1.0f));
+  CHECK(w.node("T").field("translation")->get<FieldType::SFVec3f>() == glm::vec3(5, 0, 0));
+}
+
+TEST_CASE("X3D Script: another node's X3D-typed fields through its SFNode", "[script][x3d]") {
+  RunningWorld w(x3dWorld(R"(
+DEF C ColorRGBA { color [ 0.25 0.5 0.75 0.125 ] }
+DEF M TextureTransformMatrix3D { }
+DEF S Script {
+  initializeOnly SFNode c USE C
+  initializeOnly SFNode m USE M
+  outputOnly SFFloat alpha
+  outputOnly SFFloat diagonal
+  url "ecmascript:
+    function initialize() {
+      alpha = c.color[0].a;
+      diagonal = m.matrix[0] + m.matrix[5] + m.matrix[10] + m.matrix[15] + m.matrix[1];
+      c.color = new MFColorRGBA(new SFColorRGBA(1, 0, 0, 0.5), [0, 1, 0, 1]);
+      var t = new SFMatrix4f();
+      t.setTransform(new SFVec3f(7, 8, 9));
+      m.matrix = t;
+    }
+  "
+}
+)"),
+                 0.0, x3dScripts());
+  INFO(modelDiagnostics(w));
+  CHECK(outOf(w, "alpha").get<FieldType::SFFloat>() == 0.125f);
+  CHECK(outOf(w, "diagonal").get<FieldType::SFFloat>() == 4.0f);
+  CHECK(w.node("C").field("color")->get<FieldType::MFColorRGBA>() ==
+        std::vector<glm::vec4>{{1, 0, 0, 0.5f}, {0, 1, 0, 1}});
+  // The translation is the matrix's last row as X3D writes it (numbers 12 13 14).
+  const glm::mat4 m = w.node("M").field("matrix")->get<FieldType::SFMatrix4f>();
+  CHECK(m[0][3] == 7.0f);
+  CHECK(m[1][3] == 8.0f);
+  CHECK(m[2][3] == 9.0f);
+  CHECK(m[0][0] == 1.0f);
+}
+
+TEST_CASE("X3D Script: createX3DFromURL sends the file's nodes to the eventIn", "[script][x3d]") {
+  FakeScriptContext ctx;
+  ctx.files["part.x3dv"] = "#X3D V3.3 utf8\nTransform { translation 4 5 6 }\n";
+  ScriptWorld w = loadScript(ctx, R"(#X3D V3.3 utf8
+DEF G Group { }
+DEF S Script {
+  initializeOnly SFNode g USE G
+  url "ecmascript:
+    function initialize() { Browser.createX3DFromURL(new MFString('missing.x3dv', 'part.x3dv'), 'addChildren', g); }
+  "
+}
+)",
+                             relaxedLimits(), "test.x3dv");
+  REQUIRE(w.instance);
+  w.instance->initialize(0.0);
+  INFO(ctx.diagnosticText());
+  REQUIRE(ctx.sent.size() == 1);
+  CHECK(ctx.sent[0].node->typeName() == "Group");
+  CHECK(ctx.sent[0].field == ctx.sent[0].node->type().findField("addChildren"));
+  const auto& nodes = ctx.sent[0].value.get<FieldType::MFNode>();
+  REQUIRE(nodes.size() == 1);
+  CHECK(nodes[0]->field("translation")->get<FieldType::SFVec3f>() == glm::vec3(4, 5, 6));
+  CHECK(ctx.diagnosticText().find("missing.x3dv") != std::string::npos);
+}
+
+TEST_CASE("X3D Script: an MFVec3d longer than the memory limit allows is refused",
+          "[script][x3d]") {
+  FakeScriptContext ctx;
+  runtime::ScriptLimits limits = relaxedLimits();
+  limits.heapBytes = 8u * 1024u * 1024u;
+  ScriptWorld w = loadScript(ctx, R"(#X3D V4.0 utf8
+DEF S Script {
+  outputOnly MFVec3d big
+  outputOnly MFMatrix4d many
+  outputOnly SFInt32 after
+  url "ecmascript:
+    function initialize() {
+      var a = new MFVec3d();
+      a.length = 100000000;
+      try { big = a; } catch (e) { after = 1; }
+      var b = new MFMatrix4d();
+      b.length = 100000000;
+      try { many = b; } catch (e) { after += 1; }
+    }
+  "
+}
+)",
+                             limits, "test.x3dv");
+  REQUIRE(w.instance);
+  w.instance->initialize(0.0);
+  INFO(ctx.diagnosticText());
+  CHECK(ctx.emittedFor(*w.script, "big").empty());
+  CHECK(ctx.emittedFor(*w.script, "many").empty());
+  auto after = ctx.emittedFor(*w.script, "after");
+  REQUIRE(after.size() == 1);
+  CHECK(after[0].get<FieldType::SFInt32>() == 2);
+  CHECK_FALSE(w.instance->stopped());
 }
 
 TEST_CASE("X3D Script: X3DConstants and getFieldDefinitions", "[script][x3d]") {
