@@ -246,7 +246,7 @@ namespace {
 
 // X3D's access type numbers (X3DConstants): initializeOnly 0, inputOnly 1, outputOnly 2,
 // inputOutput 3.
-int x3dAccess(vrml::AccessType a) {
+int x3dAccessNumber(vrml::AccessType a) {
   switch (a) {
     case vrml::AccessType::field:
       return 0;
@@ -372,7 +372,7 @@ duk_ret_t x3dFieldDefinitions(duk_context* c) {
     duk_push_array(c);
     duk_push_lstring(c, spec.name.data(), spec.name.size());
     duk_put_prop_index(c, -2, 0);
-    duk_push_int(c, x3dAccess(spec.access));
+    duk_push_int(c, x3dAccessNumber(spec.access));
     duk_put_prop_index(c, -2, 1);
     std::string_view t = vrml::fieldTypeName(spec.type);
     duk_push_lstring(c, t.data(), t.size());
