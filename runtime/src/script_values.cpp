@@ -624,7 +624,13 @@ void EsScript::installNodeHooks(duk_context* c) {
       if (len > maxText)
         GS_DUK_ERROR(cx, DUK_ERR_RANGE_ERROR, "SFNode: the VRML text is longer than %lu bytes",
                      static_cast<unsigned long>(maxText));
-      std::vector<vrml::NodePtr> nodes = self.ctx_.createVrmlFromString(std::string(text, len));
+      std::string body(text, len);
+      // In an X3D world the text is X3D (its nodes and fields), as the world's version.
+      const vrml::Scene* world = self.ctx_.currentScene();
+      if (world != nullptr && !world->x3d.version.empty() && !body.starts_with("#X3D") &&
+          !body.starts_with("#VRML"))
+        body = "#X3D V" + world->x3d.version + " utf8\n" + body;
+      std::vector<vrml::NodePtr> nodes = self.ctx_.createVrmlFromString(body);
       if (nodes.empty() || !nodes.front())
         GS_DUK_ERROR(cx, DUK_ERR_ERROR, "SFNode: the VRML text holds no node");
       self.pushNode(cx, nodes.front());

@@ -280,6 +280,7 @@ DEF S Script {
   outputOnly SFBool routed
   outputOnly SFBool deleted
   inputOnly SFBool unroute
+  outputOnly SFFloat disk
   url "ecmascript:
     var route;
     function unroute(v) { deleted = Browser.currentScene.deleteRoute(route); }
@@ -287,6 +288,7 @@ DEF S Script {
       var scene = Browser.currentScene;
       roots = scene.rootNodes.length;
       var made = scene.createNode('Group');
+      disk = new SFNode('Disk2D { outerRadius 2.5 }').outerRadius;
       info = scene.specificationVersion + ' ' + scene.encoding + ' ' + made.getNodeName() + ' ' +
              scene.getNamedNode('T').getNodeName() + ' ' + (scene instanceof X3DScene);
       try { scene.getNamedNode('Nope'); missingThrew = false; } catch (e) { missingThrew = true; }
@@ -303,6 +305,8 @@ DEF S Script {
   CHECK(outOf(w, "roots").get<FieldType::SFInt32>() == 3);
   CHECK(outOf(w, "info").get<FieldType::SFString>() == "4.0 Classic VRML Group Transform true");
   CHECK(outOf(w, "missingThrew").get<FieldType::SFBool>());
+  // new SFNode(text) in an X3D world reads X3D's nodes.
+  CHECK(outOf(w, "disk").get<FieldType::SFFloat>() == 2.5f);
   CHECK(outOf(w, "routed").get<FieldType::SFBool>());
   // Written through the SFNode of getNamedNode.
   CHECK(w.node("T").field("scale")->get<FieldType::SFVec3f>() == glm::vec3(2, 2, 2));
