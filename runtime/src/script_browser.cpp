@@ -147,6 +147,27 @@ duk_ret_t createVrmlFromURL(duk_context* c) {
   return 0;
 }
 
+// Browser.description (19777-1): setting it calls setDescription; reading it gives the
+// last text set.
+constexpr const char* kDescriptionKey = DUK_HIDDEN_SYMBOL("gsDescription");
+
+duk_ret_t getDescription(duk_context* c) {
+  duk_push_this(c);
+  duk_get_prop_string(c, -1, kDescriptionKey);
+  if (duk_is_undefined(c, -1)) duk_push_string(c, "");
+  return 1;
+}
+
+duk_ret_t putDescription(duk_context* c) {
+  EsScript& self = EsScript::of(c);
+  std::string text = stringArg(c, 0);
+  duk_push_this(c);
+  duk_push_lstring(c, text.data(), text.size());
+  duk_put_prop_string(c, -2, kDescriptionKey);
+  self.context().setDescription(text);
+  return 0;
+}
+
 // createX3DFromString(text) (ISO/IEC 19777-1): as createVrmlFromString, for X3D Classic
 // VRML text ("#X3D V3.3 utf8" assumed when it has no header); returns a scene object
 // whose rootNodes is the MFNode.
@@ -259,6 +280,11 @@ void EsScript::installBrowser(duk_context* c) {
   duk_push_string(c, "currentFrameRate");
   duk_push_c_function(c, getCurrentFrameRate, 0);
   duk_def_prop(c, -3, DUK_DEFPROP_HAVE_GETTER | DUK_DEFPROP_SET_ENUMERABLE);
+  duk_push_string(c, "description");
+  duk_push_c_function(c, getDescription, 0);
+  duk_push_c_function(c, putDescription, 1);
+  duk_def_prop(c, -4,
+               DUK_DEFPROP_HAVE_GETTER | DUK_DEFPROP_HAVE_SETTER | DUK_DEFPROP_SET_ENUMERABLE);
   duk_push_string(c, "currentScene");
   duk_get_prop_string(c, -3, "__gsScene");
   duk_def_prop(c, -3, DUK_DEFPROP_HAVE_VALUE | DUK_DEFPROP_SET_ENUMERABLE);

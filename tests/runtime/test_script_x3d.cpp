@@ -239,6 +239,8 @@ DEF S Script {
       name = Browser.name + ' ' + (typeof Browser.version) + ' ' + (Browser.name === Browser.getName());
       fps = Browser.currentFrameRate + Browser.currentSpeed;
       Browser.println('hello', 42);
+      Browser.description = 'About';
+      name += ' ' + Browser.description;
       var scene = Browser.createX3DFromString('DEF A Transform { translation 1 2 3 } Group { }');
       count = scene.rootNodes.length;
       made = scene.rootNodes[0].translation;
@@ -252,7 +254,8 @@ DEF S Script {
   INFO(ctx.diagnosticText());
   auto name = ctx.emittedFor(*w.script, "name");
   REQUIRE(name.size() == 1);
-  CHECK(name[0].get<FieldType::SFString>() == "GhostSpace string true");
+  CHECK(name[0].get<FieldType::SFString>() == "GhostSpace string true About");
+  CHECK(ctx.description == "About");
   auto fps = ctx.emittedFor(*w.script, "fps");
   REQUIRE(fps.size() == 1);
   CHECK(fps[0].get<FieldType::SFFloat>() == 30.0f);
