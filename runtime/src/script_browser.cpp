@@ -285,10 +285,12 @@ void EsScript::installBrowser(duk_context* c) {
   duk_push_c_function(c, putDescription, 1);
   duk_def_prop(c, -4,
                DUK_DEFPROP_HAVE_GETTER | DUK_DEFPROP_HAVE_SETTER | DUK_DEFPROP_SET_ENUMERABLE);
-  duk_push_string(c, "currentScene");
-  duk_get_prop_string(c, -3, "__gsScene");
-  duk_def_prop(c, -3, DUK_DEFPROP_HAVE_VALUE | DUK_DEFPROP_SET_ENUMERABLE);
-  duk_del_prop_string(c, -2, "__gsScene");
+  if (duk_has_prop_string(c, -2, "__gsScene")) {  // X3D Scripts only (EsScript::wantsX3D)
+    duk_push_string(c, "currentScene");
+    duk_get_prop_string(c, -3, "__gsScene");
+    duk_def_prop(c, -3, DUK_DEFPROP_HAVE_VALUE | DUK_DEFPROP_SET_ENUMERABLE);
+    duk_del_prop_string(c, -2, "__gsScene");
+  }
   duk_put_prop_string(c, -2, "Browser");
   // print(), and addRoute / deleteRoute without "Browser." as FreeWRL's tests use them.
   duk_push_c_function(c, print, DUK_VARARGS);

@@ -383,9 +383,11 @@ bool EsScript::load() {
       duk_del_prop_string(c, -1, "Duktape");  // GC control, finalizers, internals
       duk_pop(c);
       s.installNodeHooks(c);
-      s.installX3DHooks(c);
+      const bool x3d = s.wantsX3D();
+      if (x3d) s.installX3DHooks(c);
       runPrelude(c, kPrelude, "prelude", preludeBytecode());
-      runPrelude(c, kPreludeX3D, "prelude-x3d", preludeX3DBytecode());
+      // Starting a heap costs about twice as much with them: VRML97 Scripts go without.
+      if (x3d) runPrelude(c, kPreludeX3D, "prelude-x3d", preludeX3DBytecode());
       s.capturePrototypes(c);
       s.installBrowser(c);
       s.installFields(c);

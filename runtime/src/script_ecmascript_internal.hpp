@@ -96,6 +96,9 @@ class EsScript final : public ScriptInstance {
   /// false with `why` when it cannot.
   bool toX3DSingle(duk_context* c, duk_idx_t idx, vrml::FieldType t, vrml::FieldValue& out,
                    std::string& why);
+  /// Whether the Script gets the X3D classes: it is in an X3D world (its node type has
+  /// X3D's `metadata` field, or currentScene() is X3D) or has a field of an X3D type.
+  bool wantsX3D() const;
   /// Installs the natives the X3D prelude takes (__gsX3D): scene, routes, field
   /// definitions.
   void installX3DHooks(duk_context* c);

@@ -70,7 +70,12 @@ void putNumber(duk_context* c, const char* name, double v) {
 }  // namespace
 
 void EsScript::pushProto(duk_context* c, FieldType t) {
-  duk_push_heapptr(c, protos_[static_cast<std::size_t>(t)]);
+  void* proto = protos_[static_cast<std::size_t>(t)];
+  if (proto == nullptr) {
+    duk_push_undefined(c);  // a class this heap does not have: a bare object
+    return;
+  }
+  duk_push_heapptr(c, proto);
 }
 
 void EsScript::capturePrototypes(duk_context* c) {
@@ -80,6 +85,10 @@ void EsScript::capturePrototypes(duk_context* c) {
   for (std::size_t i = 0; i < kClassNames.size(); ++i) {
     if (kClassNames[i] == nullptr) continue;
     duk_get_global_string(c, kClassNames[i]);
+    if (duk_is_undefined(c, -1)) {  // an X3D class in a heap without them (wantsX3D)
+      duk_pop(c);
+      continue;
+    }
     duk_get_prop_string(c, -1, "prototype");
     protos_[i] = duk_get_heapptr(c, -1);
     duk_put_prop_index(c, -3, static_cast<duk_uarridx_t>(i));

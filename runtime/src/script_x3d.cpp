@@ -392,6 +392,15 @@ duk_ret_t x3dTypeName(duk_context* c) {
 
 }  // namespace
 
+bool EsScript::wantsX3D() const {
+  const vrml::NodeType& type = node_.type();
+  if (type.findExact("metadata") >= 0) return true;
+  for (const vrml::FieldSpec& f : type.fields)
+    if (static_cast<int>(f.type) >= vrml::kVrml97FieldTypeCount) return true;
+  const vrml::Scene* scene = ctx_.currentScene();
+  return scene != nullptr && !scene->x3d.version.empty();
+}
+
 void EsScript::installX3DHooks(duk_context* c) {
   struct Entry {
     const char* name;

@@ -481,3 +481,21 @@ DEF S Script {
   INFO(modelDiagnostics(classic));
   CHECK(outOf(classic, "out").get<FieldType::SFDouble>() == 1.0 / 3.0);
 }
+
+TEST_CASE("X3D Script: a VRML97 world's Script goes without the X3D classes", "[script][x3d]") {
+  RunningWorld w(R"(
+DEF S Script {
+  eventOut SFString seen
+  url "javascript:
+    function initialize() {
+      seen = typeof SFVec3d + ' ' + typeof X3DConstants + ' ' + typeof Browser.currentScene + ' ' +
+             typeof SFVec3f + ' ' + Browser.name;
+    }
+  "
+}
+)",
+                 0.0, x3dScripts());
+  INFO(modelDiagnostics(w));
+  CHECK(outOf(w, "seen").get<FieldType::SFString>() ==
+        "undefined undefined undefined function GhostSpace");
+}
