@@ -260,22 +260,31 @@ int x3dAccessNumber(vrml::AccessType a) {
   return 0;
 }
 
+// What x3dFindNamed carries down: the nodes seen, and the Script whose deadline a large
+// world's walk checks.
+struct X3dNamedWalk {
+  EsScript& self;
+  duk_context* c;
+  std::unordered_set<const vrml::Node*> seen;
+};
+
 // The first node DEFed `name` in file order under `nodes` (not looking inside PROTO
 // instances, whose DEF names are the PROTO body's own).
 vrml::NodePtr x3dFindNamed(const std::vector<vrml::NodePtr>& nodes, const std::string& name,
-                           std::unordered_set<const vrml::Node*>& seen, int depth) {
+                           X3dNamedWalk& walk, int depth) {
   if (depth > 1024) return nullptr;
   for (const vrml::NodePtr& n : nodes) {
-    if (!n || !seen.insert(n.get()).second) continue;
+    if (!n || !walk.seen.insert(n.get()).second) continue;
+    if ((walk.seen.size() & 4095u) == 0) walk.self.checkDeadline(walk.c);
     if (n->defName == name) return n;
     if (vrml::declaredInterface(*n) != nullptr) continue;
     for (std::size_t i = 0; i < n->fieldCount(); ++i) {
       const FieldValue& v = n->fieldAt(i);
       vrml::NodePtr found;
       if (v.type() == FieldType::SFNode)
-        found = x3dFindNamed({v.get<FieldType::SFNode>()}, name, seen, depth + 1);
+        found = x3dFindNamed({v.get<FieldType::SFNode>()}, name, walk, depth + 1);
       else if (v.type() == FieldType::MFNode)
-        found = x3dFindNamed(v.get<FieldType::MFNode>(), name, seen, depth + 1);
+        found = x3dFindNamed(v.get<FieldType::MFNode>(), name, walk, depth + 1);
       if (found) return found;
     }
   }
@@ -319,8 +328,8 @@ duk_ret_t x3dNamedNode(duk_context* c) {
   EsScript& self = EsScript::of(c);
   const vrml::Scene* scene = self.context().currentScene();
   std::string name = x3dString(c, 0);
-  std::unordered_set<const vrml::Node*> seen;
-  vrml::NodePtr n = scene != nullptr ? x3dFindNamed(scene->rootNodes, name, seen, 0) : nullptr;
+  X3dNamedWalk walk{self, c, {}};
+  vrml::NodePtr n = scene != nullptr ? x3dFindNamed(scene->rootNodes, name, walk, 0) : nullptr;
   self.pushNode(c, n);
   return 1;
 }
