@@ -438,7 +438,8 @@ bool ExecutionModel::deleteRoute(const vrml::NodePtr& from, const std::string& e
 
 std::vector<vrml::NodePtr> ExecutionModel::createVrmlFromString(const std::string& text) {
   std::string bytes = text;
-  if (!bytes.starts_with("#VRML")) bytes = "#VRML V2.0 utf8\n" + bytes;
+  if (!bytes.starts_with("#VRML") && !bytes.starts_with("#X3D"))
+    bytes = "#VRML V2.0 utf8\n" + bytes;
   vrml::Scene made = vrml::parseVrml(bytes, worldUrl());
   for (vrml::Diagnostic& d : made.diagnostics.items) diagnostics_.items.push_back(std::move(d));
   std::size_t roots = 0, hidden = 0, routes = 0;
@@ -448,6 +449,10 @@ std::vector<vrml::NodePtr> ExecutionModel::createVrmlFromString(const std::strin
   for (const vrml::NodePtr& n : made.hiddenNodes)
     if (n) s_->reach(n, false);
   return made.rootNodes;
+}
+
+const vrml::Scene* ExecutionModel::currentScene() const {
+  return s_->scene.get();
 }
 
 void ExecutionModel::loadUrl(const std::vector<std::string>& url,

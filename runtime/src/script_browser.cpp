@@ -147,6 +147,53 @@ duk_ret_t createVrmlFromURL(duk_context* c) {
   return 0;
 }
 
+// Browser.description (19777-1): setting it calls setDescription; reading it gives the
+// last text set.
+constexpr const char* kDescriptionKey = DUK_HIDDEN_SYMBOL("gsDescription");
+
+duk_ret_t getDescription(duk_context* c) {
+  duk_push_this(c);
+  duk_get_prop_string(c, -1, kDescriptionKey);
+  if (duk_is_undefined(c, -1)) duk_push_string(c, "");
+  return 1;
+}
+
+duk_ret_t putDescription(duk_context* c) {
+  EsScript& self = EsScript::of(c);
+  std::string text = stringArg(c, 0);
+  duk_push_this(c);
+  duk_push_lstring(c, text.data(), text.size());
+  duk_put_prop_string(c, -2, kDescriptionKey);
+  self.context().setDescription(text);
+  return 0;
+}
+
+// createX3DFromString(text) (ISO/IEC 19777-1): as createVrmlFromString, for X3D Classic
+// VRML text ("#X3D V3.3 utf8" assumed when it has no header); returns a scene object
+// whose rootNodes is the MFNode.
+duk_ret_t createX3DFromString(duk_context* c) {
+  EsScript& self = EsScript::of(c);
+  std::string text = stringArg(c, 0);
+  std::size_t max = maxVrmlText(self.limits().heapBytes);
+  if (text.size() > max)
+    GS_DUK_ERROR(c, DUK_ERR_RANGE_ERROR,
+                 "Browser.createX3DFromString: the text is longer than %lu bytes",
+                 static_cast<unsigned long>(max));
+  if (!text.starts_with("#X3D") && !text.starts_with("#VRML")) text = "#X3D V3.3 utf8\n" + text;
+  FieldValue nodes = FieldValue::make<FieldType::MFNode>(self.context().createVrmlFromString(text));
+  duk_push_object(c);
+  self.pushValue(c, nodes);
+  duk_put_prop_string(c, -2, "rootNodes");
+  return 1;
+}
+
+// createX3DFromURL(url, event, node) as 19777-1 orders it, or (url, node, event) as
+// createVrmlFromURL does.
+duk_ret_t createX3DFromURL(duk_context* c) {
+  if (duk_is_string(c, 1) && duk_is_object(c, 2)) duk_swap(c, 1, 2);
+  return createVrmlFromURL(c);
+}
+
 duk_ret_t route(duk_context* c, bool add) {
   EsScript& self = EsScript::of(c);
   const char* what = add ? "Browser.addRoute" : "Browser.deleteRoute";
@@ -208,12 +255,41 @@ void EsScript::installBrowser(duk_context* c) {
       {"loadURL", loadURL, 2},
       {"setDescription", setDescription, 1},
       {"print", print, DUK_VARARGS},
+      // ISO/IEC 19777-1 additions
+      {"println", print, DUK_VARARGS},
+      {"createX3DFromString", createX3DFromString, 1},
+      {"createX3DFromURL", createX3DFromURL, 3},
   };
   duk_push_global_object(c);
   duk_push_object(c);
   for (const Entry& e : kBrowser) {
     duk_push_c_function(c, e.fn, e.nargs);
     duk_put_prop_string(c, -2, e.name);
+  }
+  // 19777-1's properties: name and version, currentSpeed and currentFrameRate (read as
+  // the get* functions answer), currentScene (the X3DScene made by kPreludeX3D).
+  duk_push_string(c, "name");
+  duk_push_string(c, "GhostSpace");
+  duk_def_prop(c, -3, DUK_DEFPROP_HAVE_VALUE | DUK_DEFPROP_SET_ENUMERABLE);
+  duk_push_string(c, "version");
+  duk_push_string(c, GS_VERSION);
+  duk_def_prop(c, -3, DUK_DEFPROP_HAVE_VALUE | DUK_DEFPROP_SET_ENUMERABLE);
+  duk_push_string(c, "currentSpeed");
+  duk_push_c_function(c, getCurrentSpeed, 0);
+  duk_def_prop(c, -3, DUK_DEFPROP_HAVE_GETTER | DUK_DEFPROP_SET_ENUMERABLE);
+  duk_push_string(c, "currentFrameRate");
+  duk_push_c_function(c, getCurrentFrameRate, 0);
+  duk_def_prop(c, -3, DUK_DEFPROP_HAVE_GETTER | DUK_DEFPROP_SET_ENUMERABLE);
+  duk_push_string(c, "description");
+  duk_push_c_function(c, getDescription, 0);
+  duk_push_c_function(c, putDescription, 1);
+  duk_def_prop(c, -4,
+               DUK_DEFPROP_HAVE_GETTER | DUK_DEFPROP_HAVE_SETTER | DUK_DEFPROP_SET_ENUMERABLE);
+  if (duk_has_prop_string(c, -2, "__gsScene")) {  // X3D Scripts only (EsScript::wantsX3D)
+    duk_push_string(c, "currentScene");
+    duk_get_prop_string(c, -3, "__gsScene");
+    duk_def_prop(c, -3, DUK_DEFPROP_HAVE_VALUE | DUK_DEFPROP_SET_ENUMERABLE);
+    duk_del_prop_string(c, -2, "__gsScene");
   }
   duk_put_prop_string(c, -2, "Browser");
   // print(), and addRoute / deleteRoute without "Browser." as FreeWRL's tests use them.

@@ -143,24 +143,45 @@ std::string mib(std::size_t bytes) {
 
 constexpr int kMaxReportedErrors = 20;
 
-// The prelude compiled once per process (a heap loads bytecode several times faster than
-// it compiles the source); empty if that failed (each heap then compiles the source).
+// `source` compiled (a heap loads bytecode several times faster than it compiles the
+// source); empty if that failed (each heap then compiles the source).
+std::string compileBytecode(const char* source, const char* name) {
+  std::string out;
+  duk_context* c = duk_create_heap(nullptr, nullptr, nullptr, nullptr, esFatal);
+  if (c == nullptr) return out;
+  duk_push_string(c, name);
+  if (duk_pcompile_string_filename(c, 0, source) == 0) {
+    duk_dump_function(c);
+    duk_size_t size = 0;
+    const void* data = duk_get_buffer(c, -1, &size);
+    if (data != nullptr) out.assign(static_cast<const char*>(data), size);
+  }
+  duk_destroy_heap(c);
+  return out;
+}
+
+// The preludes compiled once per process.
 const std::string& preludeBytecode() {
-  static const std::string bytecode = [] {
-    std::string out;
-    duk_context* c = duk_create_heap(nullptr, nullptr, nullptr, nullptr, esFatal);
-    if (c == nullptr) return out;
-    duk_push_string(c, "prelude");
-    if (duk_pcompile_string_filename(c, 0, gs::runtime::es::kPrelude) == 0) {
-      duk_dump_function(c);
-      duk_size_t size = 0;
-      const void* data = duk_get_buffer(c, -1, &size);
-      if (data != nullptr) out.assign(static_cast<const char*>(data), size);
-    }
-    duk_destroy_heap(c);
-    return out;
-  }();
+  static const std::string bytecode = compileBytecode(gs::runtime::es::kPrelude, "prelude");
   return bytecode;
+}
+const std::string& preludeX3DBytecode() {
+  static const std::string bytecode = compileBytecode(gs::runtime::es::kPreludeX3D, "prelude-x3d");
+  return bytecode;
+}
+
+// Runs prelude `source` (its bytecode when there is some) in heap `c`.
+void runPrelude(duk_context* c, const char* source, const char* name, const std::string& bytecode) {
+  if (bytecode.empty()) {
+    duk_push_string(c, name);
+    duk_compile_string_filename(c, 0, source);
+  } else {
+    void* buf = duk_push_fixed_buffer(c, bytecode.size());
+    std::memcpy(buf, bytecode.data(), bytecode.size());
+    duk_load_function(c);
+  }
+  duk_call(c, 0);
+  duk_pop(c);
 }
 
 }  // namespace
@@ -362,17 +383,11 @@ bool EsScript::load() {
       duk_del_prop_string(c, -1, "Duktape");  // GC control, finalizers, internals
       duk_pop(c);
       s.installNodeHooks(c);
-      const std::string& bytecode = preludeBytecode();
-      if (bytecode.empty()) {
-        duk_push_string(c, "prelude");
-        duk_compile_string_filename(c, 0, kPrelude);
-      } else {
-        void* buf = duk_push_fixed_buffer(c, bytecode.size());
-        std::memcpy(buf, bytecode.data(), bytecode.size());
-        duk_load_function(c);
-      }
-      duk_call(c, 0);
-      duk_pop(c);
+      const bool x3d = s.wantsX3D();
+      if (x3d) s.installX3DHooks(c);
+      runPrelude(c, kPrelude, "prelude", preludeBytecode());
+      // Starting a heap costs about twice as much with them: VRML97 Scripts go without.
+      if (x3d) runPrelude(c, kPreludeX3D, "prelude-x3d", preludeX3DBytecode());
       s.capturePrototypes(c);
       s.installBrowser(c);
       s.installFields(c);

@@ -19,6 +19,9 @@ namespace gs::runtime::es {
 
 /// The SF/MF classes and VrmlMatrix in ECMAScript (script_prelude.cpp).
 extern const char* const kPrelude;
+/// The X3D classes (ISO/IEC 19777-1), X3DConstants and X3DScene, run after kPrelude
+/// (script_prelude_x3d.cpp).
+extern const char* const kPreludeX3D;
 
 /// Per-heap accounting shared with Duktape's allocator and interrupt hooks (the heap's
 /// udata).
@@ -84,6 +87,21 @@ class EsScript final : public ScriptInstance {
   void installNodeHooks(duk_context* c);
   /// After the prelude ran: remembers the prototypes of the SF/MF classes.
   void capturePrototypes(duk_context* c);
+
+  // ---- the X3D binding (script_x3d.cpp) ----
+  /// Pushes a value of one of X3D's 22 types as an object of the X3D classes (SFDouble
+  /// and MFDouble as numbers); undefined for a VRML97 type.
+  void pushX3DValue(duk_context* c, const vrml::FieldValue& v);
+  /// Converts the value at `idx` to X3D single-valued type `t` (SFDouble ... SFMatrix4d);
+  /// false with `why` when it cannot.
+  bool toX3DSingle(duk_context* c, duk_idx_t idx, vrml::FieldType t, vrml::FieldValue& out,
+                   std::string& why);
+  /// Whether the Script gets the X3D classes: it is in an X3D world (its node type has
+  /// X3D's `metadata` field, or currentScene() is X3D) or has a field of an X3D type.
+  bool wantsX3D() const;
+  /// Installs the natives the X3D prelude takes (__gsX3D): scene, routes, field
+  /// definitions.
+  void installX3DHooks(duk_context* c);
 
   // ---- Browser object and print (script_browser.cpp) ----
   void installBrowser(duk_context* c);

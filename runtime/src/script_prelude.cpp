@@ -324,6 +324,9 @@ method(VrmlMatrix.prototype, 'toString', function () {
 G.SFVec2f = SFVec2f; G.SFVec3f = SFVec3f; G.SFColor = SFColor; G.SFRotation = SFRotation;
 G.SFImage = SFImage; G.SFNode = SFNode; G.VrmlMatrix = VrmlMatrix;
 G.TRUE = true; G.FALSE = false;
+// For the X3D classes (script_prelude_x3d.cpp), which take it and delete it.
+G.__gsKit = { n: n, method: method, defineIndexes: defineIndexes, mfClass: mfClass, copyOf: copyOf,
+              SFColor: SFColor, VrmlMatrix: VrmlMatrix };
 })(this);
 )JS";
 

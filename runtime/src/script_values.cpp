@@ -26,10 +26,10 @@ constexpr std::array<const char*, vrml::kFieldTypeCount> kClassNames = {
     nullptr, "SFColor", nullptr, "SFImage", nullptr, "SFNode", "SFRotation", nullptr, nullptr,
     "SFVec2f", "SFVec3f", "MFColor", "MFFloat", "MFInt32", "MFNode", "MFRotation", "MFString",
     "MFTime", "MFVec2f", "MFVec3f",
-    // X3D types: pushed and read as their nearest VRML97 type (vrml::nearestVrml97Type).
-    nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr,
-    nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr,
-    nullptr, nullptr};
+    // X3D types (ISO/IEC 19777-1; script_prelude_x3d.cpp): SFDouble is a number.
+    nullptr, "SFVec2d", "SFVec3d", "SFVec4f", "SFVec4d", "SFColorRGBA", "SFMatrix3f", "SFMatrix3d",
+    "SFMatrix4f", "SFMatrix4d", "MFBool", "MFDouble", "MFImage", "MFVec2d", "MFVec3d", "MFVec4f",
+    "MFVec4d", "MFColorRGBA", "MFMatrix3f", "MFMatrix3d", "MFMatrix4f", "MFMatrix4d"};
 
 const char* typeOf(duk_context* c, duk_idx_t idx) {
   switch (duk_get_type(c, idx)) {
@@ -70,7 +70,12 @@ void putNumber(duk_context* c, const char* name, double v) {
 }  // namespace
 
 void EsScript::pushProto(duk_context* c, FieldType t) {
-  duk_push_heapptr(c, protos_[static_cast<std::size_t>(t)]);
+  void* proto = protos_[static_cast<std::size_t>(t)];
+  if (proto == nullptr) {
+    duk_push_undefined(c);  // a class this heap does not have: a bare object
+    return;
+  }
+  duk_push_heapptr(c, proto);
 }
 
 void EsScript::capturePrototypes(duk_context* c) {
@@ -80,6 +85,10 @@ void EsScript::capturePrototypes(duk_context* c) {
   for (std::size_t i = 0; i < kClassNames.size(); ++i) {
     if (kClassNames[i] == nullptr) continue;
     duk_get_global_string(c, kClassNames[i]);
+    if (duk_is_undefined(c, -1)) {  // an X3D class in a heap without them (wantsX3D)
+      duk_pop(c);
+      continue;
+    }
     duk_get_prop_string(c, -1, "prototype");
     protos_[i] = duk_get_heapptr(c, -1);
     duk_put_prop_index(c, -3, static_cast<duk_uarridx_t>(i));
@@ -223,8 +232,8 @@ void EsScript::pushValue(duk_context* c, const FieldValue& v) {
             [&](std::size_t i) { vec3(FieldType::SFVec3f, a[i], "x", "y", "z"); });
       break;
     }
-    default:  // an X3D type: as its nearest VRML97 type
-      pushValue(c, vrml::toNearestVrml97(v));
+    default:  // an X3D type: the X3D classes (script_x3d.cpp)
+      pushX3DValue(c, v);
       break;
   }
 }
@@ -356,12 +365,8 @@ bool EsScript::toValue(duk_context* c, duk_idx_t idx, FieldType t, FieldValue& o
     default:
       break;
   }
-  if (static_cast<int>(t) >= vrml::kVrml97FieldTypeCount) {  // an X3D type
-    FieldValue near;
-    if (!toValue(c, idx, vrml::nearestVrml97Type(t), near, why)) return false;
-    out = vrml::fromNearestVrml97(t, near);
-    return true;
-  }
+  if (static_cast<int>(t) >= vrml::kVrml97FieldTypeCount && !vrml::isMultiValued(t))
+    return toX3DSingle(c, idx, t, out, why);  // script_x3d.cpp
   return toMF(c, idx, t, out, why);
 }
 
@@ -431,6 +436,43 @@ bool EsScript::toMF(duk_context* c, duk_idx_t idx, FieldType t, FieldValue& out,
     case FieldType::SFVec3f:
       return fill(out.get<FieldType::MFVec3f>(),
                   std::integral_constant<FieldType, FieldType::SFVec3f>());
+    // X3D's MF types
+    case FieldType::SFBool:
+      return fill(out.get<FieldType::MFBool>(),
+                  std::integral_constant<FieldType, FieldType::SFBool>());
+    case FieldType::SFDouble:
+      return fill(out.get<FieldType::MFDouble>(),
+                  std::integral_constant<FieldType, FieldType::SFDouble>());
+    case FieldType::SFImage:
+      return fill(out.get<FieldType::MFImage>(),
+                  std::integral_constant<FieldType, FieldType::SFImage>());
+    case FieldType::SFVec2d:
+      return fill(out.get<FieldType::MFVec2d>(),
+                  std::integral_constant<FieldType, FieldType::SFVec2d>());
+    case FieldType::SFVec3d:
+      return fill(out.get<FieldType::MFVec3d>(),
+                  std::integral_constant<FieldType, FieldType::SFVec3d>());
+    case FieldType::SFVec4f:
+      return fill(out.get<FieldType::MFVec4f>(),
+                  std::integral_constant<FieldType, FieldType::SFVec4f>());
+    case FieldType::SFVec4d:
+      return fill(out.get<FieldType::MFVec4d>(),
+                  std::integral_constant<FieldType, FieldType::SFVec4d>());
+    case FieldType::SFColorRGBA:
+      return fill(out.get<FieldType::MFColorRGBA>(),
+                  std::integral_constant<FieldType, FieldType::SFColorRGBA>());
+    case FieldType::SFMatrix3f:
+      return fill(out.get<FieldType::MFMatrix3f>(),
+                  std::integral_constant<FieldType, FieldType::SFMatrix3f>());
+    case FieldType::SFMatrix3d:
+      return fill(out.get<FieldType::MFMatrix3d>(),
+                  std::integral_constant<FieldType, FieldType::SFMatrix3d>());
+    case FieldType::SFMatrix4f:
+      return fill(out.get<FieldType::MFMatrix4f>(),
+                  std::integral_constant<FieldType, FieldType::SFMatrix4f>());
+    case FieldType::SFMatrix4d:
+      return fill(out.get<FieldType::MFMatrix4d>(),
+                  std::integral_constant<FieldType, FieldType::SFMatrix4d>());
     default:
       why = "unsupported type";
       return false;
@@ -591,7 +633,13 @@ void EsScript::installNodeHooks(duk_context* c) {
       if (len > maxText)
         GS_DUK_ERROR(cx, DUK_ERR_RANGE_ERROR, "SFNode: the VRML text is longer than %lu bytes",
                      static_cast<unsigned long>(maxText));
-      std::vector<vrml::NodePtr> nodes = self.ctx_.createVrmlFromString(std::string(text, len));
+      std::string body(text, len);
+      // In an X3D world the text is X3D (its nodes and fields), as the world's version.
+      const vrml::Scene* world = self.ctx_.currentScene();
+      if (world != nullptr && !world->x3d.version.empty() && !body.starts_with("#X3D") &&
+          !body.starts_with("#VRML"))
+        body = "#X3D V" + world->x3d.version + " utf8\n" + body;
+      std::vector<vrml::NodePtr> nodes = self.ctx_.createVrmlFromString(body);
       if (nodes.empty() || !nodes.front())
         GS_DUK_ERROR(cx, DUK_ERR_ERROR, "SFNode: the VRML text holds no node");
       self.pushNode(cx, nodes.front());

@@ -31,6 +31,7 @@ struct FakeScriptContext : runtime::ScriptContext {
   std::string description;
   std::map<std::string, std::string> files;  // fetchText
   std::vector<std::shared_ptr<vrml::Scene>> created;
+  const vrml::Scene* world = nullptr;  // currentScene
   double time = 1000.0;
   double fps = 0.0;
 
@@ -60,8 +61,9 @@ struct FakeScriptContext : runtime::ScriptContext {
     return true;
   }
   std::vector<vrml::NodePtr> createVrmlFromString(const std::string& text) override {
+    const bool header = text.starts_with("#VRML") || text.starts_with("#X3D");
     auto scene = std::make_shared<vrml::Scene>(
-        vrml::parseVrml("#VRML V2.0 utf8\n" + text, "createVrmlFromString"));
+        vrml::parseVrml(header ? text : "#VRML V2.0 utf8\n" + text, "createVrmlFromString"));
     created.push_back(scene);
     return scene->rootNodes;
   }
@@ -82,6 +84,7 @@ struct FakeScriptContext : runtime::ScriptContext {
   }
   void replaceWorld(const std::vector<vrml::NodePtr>& nodes) override { replacedWith = nodes; }
   void setDescription(const std::string& text) override { description = text; }
+  const vrml::Scene* currentScene() const override { return world; }
   void print(const std::string& text) override { printed.push_back(text); }
   void scriptDiagnostic(vrml::Severity severity, const vrml::SourceLocation& where,
                         const std::string& message) override {

@@ -169,6 +169,7 @@ class ExecutionModel final : public ScriptContext {
   bool deleteRoute(const vrml::NodePtr& from, const std::string& eventOut, const vrml::NodePtr& to,
                    const std::string& eventIn) override;
   std::vector<vrml::NodePtr> createVrmlFromString(const std::string& text) override;
+  const vrml::Scene* currentScene() const override;
   void loadUrl(const std::vector<std::string>& url,
                const std::vector<std::string>& parameter) override;
   bool fetchText(const std::string& url, std::string& text, std::string& error) override;

@@ -7,6 +7,7 @@
 #include "vrml/diagnostic.hpp"
 #include "vrml/field.hpp"
 #include "vrml/node.hpp"
+#include "vrml/scene.hpp"
 
 #include <functional>
 #include <memory>
@@ -46,8 +47,13 @@ class ScriptContext {
   virtual bool deleteRoute(const vrml::NodePtr& from, const std::string& eventOut,
                            const vrml::NodePtr& to, const std::string& eventIn) = 0;
   /// Browser.createVrmlFromString: the root nodes of `text` parsed as a VRML97 file
-  /// (relative URLs against the world's URL); parse errors become diagnostics.
+  /// (relative URLs against the world's URL); parse errors become diagnostics. Text that
+  /// starts with a "#VRML" or "#X3D" header is parsed as that header says
+  /// (createX3DFromString, X3DScene.createNode).
   virtual std::vector<vrml::NodePtr> createVrmlFromString(const std::string& text) = 0;
+  /// The world the Script is in (the X3D binding's Browser.currentScene: root nodes, DEF
+  /// names, header); null when there is none. Not owned; valid during the call.
+  virtual const vrml::Scene* currentScene() const { return nullptr; }
   /// Browser.loadURL(url, parameter) and Anchor activation: the browser follows the
   /// loader's rules (4.12.10.3, 6.2); nothing happens at once.
   virtual void loadUrl(const std::vector<std::string>& url,

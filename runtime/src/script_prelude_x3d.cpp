@@ -1,0 +1,275 @@
+// The X3D ECMAScript classes (ISO/IEC 19777-1) beside annex C's, written in ECMAScript 5
+// and run in each Script heap right after kPrelude (whose helpers it takes from
+// __gsKit). The host (script_x3d.cpp) builds and reads these objects directly: SFVec2d
+// {x,y}, SFVec3d {x,y,z}, SFVec4f/SFVec4d {x,y,z,w}, SFColorRGBA {r,g,b,a}, SFMatrix3f/3d
+// {0..8} and SFMatrix4f/4d {0..15} (row by row, as X3D writes them: row vectors,
+// translation in the last row, as VrmlMatrix); the MF classes are Arrays whose prototype
+// is MFxxx.prototype. SFDouble is a plain number. Also X3DConstants, X3DFieldDefinition,
+// SFNode.getFieldDefinitions / getNodeName, X3DRoute and the X3DScene object that
+// Browser.currentScene returns (over the natives of __gsX3D, script_x3d.cpp).
+#include "script_ecmascript_internal.hpp"
+
+namespace gs::runtime::es {
+
+const char* const kPreludeX3D = R"JS((function (G) {
+'use strict';
+var K = G.__gsKit, hooks = G.__gsX3D;
+delete G.__gsKit;
+delete G.__gsX3D;
+var n = K.n, method = K.method, defineIndexes = K.defineIndexes, mfClass = K.mfClass, copyOf = K.copyOf;
+var SFColor = K.SFColor, VrmlMatrix = K.VrmlMatrix, SFNode = G.SFNode;
+function getter(proto, name, fn) {
+  Object.defineProperty(proto, name, { get: fn, enumerable: false, configurable: true });
+}
+
+// ---- vectors and SFColorRGBA: components named by `keys` ----
+function vecClass(keys, math) {
+  var N = keys.length;
+  function C(a, b, c, d) {
+    var o = this instanceof C ? this : Object.create(C.prototype), args = [a, b, c, d];
+    for (var i = 0; i < N; ++i) o[keys[i]] = n(args[i]);
+    return o;
+  }
+  defineIndexes(C.prototype, keys);
+  function make(f) {
+    var o = Object.create(C.prototype);
+    for (var i = 0; i < N; ++i) o[keys[i]] = f(keys[i]);
+    return o;
+  }
+  if (math) {
+    method(C.prototype, 'add', function (v) { var t = this; return make(function (k) { return t[k] + n(v[k]); }); });
+    method(C.prototype, 'subtract', function (v) { var t = this; return make(function (k) { return t[k] - n(v[k]); }); });
+    method(C.prototype, 'multiply', function (s) { var t = this; s = n(s); return make(function (k) { return t[k] * s; }); });
+    method(C.prototype, 'divide', function (s) { var t = this; s = n(s); return make(function (k) { return t[k] / s; }); });
+    method(C.prototype, 'negate', function () { var t = this; return make(function (k) { return -t[k]; }); });
+    method(C.prototype, 'dot', function (v) {
+      var d = 0;
+      for (var i = 0; i < N; ++i) d += this[keys[i]] * n(v[keys[i]]);
+      return d;
+    });
+    method(C.prototype, 'length', function () { return Math.sqrt(this.dot(this)); });
+    method(C.prototype, 'normalize', function () {
+      var l = this.length(), t = this;
+      return make(function (k) { return l > 0 ? t[k] / l : 0; });
+    });
+    if (N === 3) {
+      method(C.prototype, 'cross', function (v) {
+        return new C(this.y * v.z - this.z * v.y, this.z * v.x - this.x * v.z, this.x * v.y - this.y * v.x);
+      });
+    }
+  }
+  method(C.prototype, 'toString', function () {
+    var parts = [];
+    for (var i = 0; i < N; ++i) parts.push(String(this[keys[i]]));
+    return parts.join(' ');
+  });
+  return C;
+}
+var SFVec2d = vecClass(['x', 'y'], true), SFVec3d = vecClass(['x', 'y', 'z'], true);
+var SFVec4f = vecClass(['x', 'y', 'z', 'w'], true), SFVec4d = vecClass(['x', 'y', 'z', 'w'], true);
+var SFColorRGBA = vecClass(['r', 'g', 'b', 'a'], false);
+method(SFColorRGBA.prototype, 'setHSV', function (h, s, v) {
+  var c = new SFColor();
+  c.setHSV(h, s, v);
+  this.r = c.r; this.g = c.g; this.b = c.b;
+});
+method(SFColorRGBA.prototype, 'getHSV', function () { return new SFColor(this.r, this.g, this.b).getHSV(); });
+
+// ---- matrices: N x N numbers 0..N*N-1, row by row ----
+function matClass(N, Vec) {
+  var S = N * N, keys = N === 4 ? ['x', 'y', 'z'] : ['x', 'y'];
+  function C() {
+    var o = this instanceof C ? this : Object.create(C.prototype), a = arguments;
+    for (var i = 0; i < S; ++i) o[i] = a.length === S ? n(a[i]) : (i % (N + 1) === 0 ? 1 : 0);
+    return o;
+  }
+  function from(f) {
+    var m = Object.create(C.prototype);
+    for (var i = 0; i < S; ++i) m[i] = f(Math.floor(i / N), i % N);
+    return m;
+  }
+  function mul(a, b) {  // a * b
+    return from(function (r, c) {
+      var s = 0;
+      for (var k = 0; k < N; ++k) s += n(a[r * N + k]) * n(b[k * N + c]);
+      return s;
+    });
+  }
+  // v (N-1 components, then `last`) times the matrix as a row (rowVector) or column vector.
+  function apply(m, v, last, rowVector, divide) {
+    var u = [];
+    for (var i = 0; i < N - 1; ++i) u.push(n(v[keys[i]]));
+    u.push(last);
+    var out = [];
+    for (var j = 0; j < N; ++j) {
+      var s = 0;
+      for (var k = 0; k < N; ++k) s += u[k] * (rowVector ? m[k * N + j] : m[j * N + k]);
+      out.push(s);
+    }
+    var w = divide ? (out[N - 1] || 1) : 1;
+    return new Vec(out[0] / w, out[1] / w, N === 4 ? out[2] / w : 0);
+  }
+  method(C.prototype, 'transpose', function () { var t = this; return from(function (r, c) { return t[c * N + r]; }); });
+  method(C.prototype, 'multLeft', function (m) { return mul(m, this); });
+  method(C.prototype, 'multRight', function (m) { return mul(this, m); });
+  method(C.prototype, 'multVecMatrix', function (v) { return apply(this, v, 1, true, true); });
+  method(C.prototype, 'multMatrixVec', function (v) { return apply(this, v, 1, false, true); });
+  method(C.prototype, 'multDirMatrix', function (v) { return apply(this, v, 0, true, false); });
+  method(C.prototype, 'multMatrixDir', function (v) { return apply(this, v, 0, false, false); });
+  method(C.prototype, 'inverse', function () {  // Gauss-Jordan; a singular matrix gives identity
+    var a = [], r = [], i, j, c;
+    for (i = 0; i < N; ++i) {
+      a.push([]); r.push([]);
+      for (j = 0; j < N; ++j) { a[i].push(n(this[i * N + j])); r[i].push(i === j ? 1 : 0); }
+    }
+    for (c = 0; c < N; ++c) {
+      var p = c;
+      for (i = c + 1; i < N; ++i) if (Math.abs(a[i][c]) > Math.abs(a[p][c])) p = i;
+      if (Math.abs(a[p][c]) < 1e-300) return new C();
+      var t = a[c]; a[c] = a[p]; a[p] = t; t = r[c]; r[c] = r[p]; r[p] = t;
+      var d = a[c][c];
+      for (j = 0; j < N; ++j) { a[c][j] /= d; r[c][j] /= d; }
+      for (i = 0; i < N; ++i) {
+        if (i === c) continue;
+        var f = a[i][c];
+        for (j = 0; j < N; ++j) { a[i][j] -= f * a[c][j]; r[i][j] -= f * r[c][j]; }
+      }
+    }
+    return from(function (row, col) { return r[row][col]; });
+  });
+  method(C.prototype, 'toString', function () {
+    var parts = [];
+    for (var i = 0; i < S; ++i) parts.push(String(this[i]));
+    return parts.join(' ');
+  });
+  if (N === 4) {
+    // As VrmlMatrix: v' = v * -C * -SR * S * SR * R * C * T.
+    method(C.prototype, 'setTransform', function (t, r, s, so, c) {
+      var v = new VrmlMatrix();
+      v.setTransform(t, r, s, so, c);
+      for (var i = 0; i < S; ++i) this[i] = v[Math.floor(i / 4)][i % 4];
+    });
+    method(C.prototype, 'getTransform', function (t, r, s) {
+      var a = [];
+      for (var i = 0; i < S; ++i) a.push(this[i]);
+      VrmlMatrix.apply(null, a).getTransform(t, r, s);
+    });
+  } else {
+    // 2D: setTransform(translation, rotation angle, scale, scaleOrientation angle, center).
+    var rot = function (angle) {
+      var cs = Math.cos(n(angle)), sn = Math.sin(n(angle));
+      return new C(cs, sn, 0, -sn, cs, 0, 0, 0, 1);
+    };
+    var move = function (v, sign) { return v ? new C(1, 0, 0, 0, 1, 0, sign * n(v.x), sign * n(v.y), 1) : new C(); };
+    method(C.prototype, 'setTransform', function (t, r, s, so, c) {
+      var m = mul(move(c, -1), rot(-n(so)));
+      m = mul(m, s ? new C(n(s.x), 0, 0, 0, n(s.y), 0, 0, 0, 1) : new C());
+      m = mul(mul(mul(mul(m, rot(so)), rot(r)), move(c, 1)), move(t, 1));
+      for (var i = 0; i < S; ++i) this[i] = m[i];
+    });
+    // Fills translation and scale; returns the rotation angle.
+    method(C.prototype, 'getTransform', function (t, r, s) {
+      if (t) { t.x = this[6]; t.y = this[7]; }
+      if (s) { s.x = Math.sqrt(this[0] * this[0] + this[1] * this[1]); s.y = Math.sqrt(this[3] * this[3] + this[4] * this[4]); }
+      return Math.atan2(this[1], this[0]);
+    });
+  }
+  return C;
+}
+var SFMatrix3f = matClass(3, G.SFVec2f), SFMatrix3d = matClass(3, SFVec2d);
+var SFMatrix4f = matClass(4, G.SFVec3f), SFMatrix4d = matClass(4, SFVec3d);
+
+function copyMatrix(C, S, v) {
+  if (v instanceof C) { var c = Object.create(C.prototype); for (var i = 0; i < S; ++i) c[i] = v[i]; return c; }
+  if (v && typeof v === 'object') {
+    var a = [];
+    for (var j = 0; j < S; ++j) a.push(v[j]);
+    return C.apply(null, a);
+  }
+  return v;
+}
+
+mfClass('MFBool', function (v) { return !!v; });
+mfClass('MFDouble', function (v) { return +v; });
+mfClass('MFImage', function (v) { return v; });
+mfClass('MFVec2d', function (v) { return copyOf(SFVec2d, v); });
+mfClass('MFVec3d', function (v) { return copyOf(SFVec3d, v); });
+mfClass('MFVec4f', function (v) { return copyOf(SFVec4f, v); });
+mfClass('MFVec4d', function (v) { return copyOf(SFVec4d, v); });
+mfClass('MFColorRGBA', function (v) { return copyOf(SFColorRGBA, v); });
+mfClass('MFMatrix3f', function (v) { return copyMatrix(SFMatrix3f, 9, v); });
+mfClass('MFMatrix3d', function (v) { return copyMatrix(SFMatrix3d, 9, v); });
+mfClass('MFMatrix4f', function (v) { return copyMatrix(SFMatrix4f, 16, v); });
+mfClass('MFMatrix4d', function (v) { return copyMatrix(SFMatrix4d, 16, v); });
+
+// ---- X3DConstants: access types and field types (19777-1's numbering) ----
+var X3DConstants = {
+  initializeOnly: 0, inputOnly: 1, outputOnly: 2, inputOutput: 3,
+  NOT_STARTED_STATE: 0, IN_PROGRESS_STATE: 1, COMPLETE_STATE: 2, FAILED_STATE: 3
+};
+var types = ['Bool', 'Color', 'ColorRGBA', 'Double', 'Float', 'Image', 'Int32', 'Matrix3d', 'Matrix3f',
+             'Matrix4d', 'Matrix4f', 'Node', 'Rotation', 'String', 'Time', 'Vec2d', 'Vec2f', 'Vec3d',
+             'Vec3f', 'Vec4d', 'Vec4f'];
+types.forEach(function (t, i) { X3DConstants['SF' + t] = i; X3DConstants['MF' + t] = types.length + i; });
+Object.freeze(X3DConstants);
+
+function X3DFieldDefinition(name, accessType, dataType) {
+  Object.defineProperty(this, 'name', { value: name, enumerable: true });
+  Object.defineProperty(this, 'accessType', { value: accessType, enumerable: true });
+  Object.defineProperty(this, 'dataType', { value: dataType, enumerable: true });
+}
+method(SFNode.prototype, 'getFieldDefinitions', function () {
+  var defs = hooks.fieldDefinitions(this), out = [];
+  for (var i = 0; i < defs.length; ++i)
+    out.push(new X3DFieldDefinition(defs[i][0], defs[i][1], X3DConstants[defs[i][2]]));
+  return out;
+});
+method(SFNode.prototype, 'getNodeName', function () { return hooks.typeName(this); });
+
+// ---- X3DRoute and X3DScene (Browser.currentScene) ----
+function X3DRoute(a, af, b, bf) {
+  Object.defineProperty(this, 'sourceNode', { value: a, enumerable: true });
+  Object.defineProperty(this, 'sourceField', { value: af, enumerable: true });
+  Object.defineProperty(this, 'destinationNode', { value: b, enumerable: true });
+  Object.defineProperty(this, 'destinationField', { value: bf, enumerable: true });
+}
+function X3DExecutionContext() { throw new TypeError('X3DExecutionContext cannot be made by a Script'); }
+function X3DScene() { throw new TypeError('X3DScene cannot be made by a Script'); }
+X3DScene.prototype = Object.create(X3DExecutionContext.prototype);
+var P = X3DScene.prototype;
+method(P, 'constructor', X3DScene);
+getter(P, 'specificationVersion', function () { return hooks.sceneInfo()[0]; });
+getter(P, 'encoding', function () { return hooks.sceneInfo()[1]; });
+getter(P, 'profile', function () { return hooks.sceneInfo()[2]; });
+getter(P, 'worldURL', function () { return hooks.sceneInfo()[3]; });
+getter(P, 'rootNodes', function () { return hooks.rootNodes(); });
+method(P, 'getNamedNode', function (name) {
+  var node = hooks.namedNode(String(name));
+  if (node === null) throw new Error("getNamedNode: the scene has no node named '" + name + "'");
+  return node;
+});
+method(P, 'createNode', function (typeName) { return hooks.createNode(String(typeName)); });
+method(P, 'addRoute', function (a, af, b, bf) {
+  af = String(af); bf = String(bf);
+  if (!hooks.route(true, a, af, b, bf))
+    throw new Error('addRoute: cannot route ' + af + ' to ' + bf);
+  return new X3DRoute(a, af, b, bf);
+});
+method(P, 'deleteRoute', function (a, af, b, bf) {
+  if (a instanceof X3DRoute) return hooks.route(false, a.sourceNode, a.sourceField, a.destinationNode, a.destinationField);
+  return hooks.route(false, a, String(af), b, String(bf));
+});
+method(P, 'getImportedNode', function (name) {
+  throw new Error("getImportedNode('" + name + "'): imported nodes are not available to Scripts");
+});
+
+G.SFVec2d = SFVec2d; G.SFVec3d = SFVec3d; G.SFVec4f = SFVec4f; G.SFVec4d = SFVec4d;
+G.SFColorRGBA = SFColorRGBA; G.SFMatrix3f = SFMatrix3f; G.SFMatrix3d = SFMatrix3d;
+G.SFMatrix4f = SFMatrix4f; G.SFMatrix4d = SFMatrix4d; G.X3DConstants = X3DConstants;
+G.X3DFieldDefinition = X3DFieldDefinition; G.X3DRoute = X3DRoute;
+G.X3DExecutionContext = X3DExecutionContext; G.X3DScene = X3DScene;
+G.__gsScene = Object.create(P);  // Browser.currentScene (installBrowser takes it)
+})(this);
+)JS";
+
+}  // namespace gs::runtime::es

@@ -1,0 +1,435 @@
+// The X3D ECMAScript binding's host side (ISO/IEC 19777-1): X3D field values <-> objects
+// of the classes of script_prelude_x3d.cpp, and the natives behind X3DScene,
+// SFNode.getFieldDefinitions and getNodeName (__gsX3D, taken by that prelude).
+#include "script_ecmascript_internal.hpp"
+#include "vrml/proto.hpp"
+#include "vrml/scene.hpp"
+
+#include <array>
+#include <cctype>
+#include <string_view>
+#include <unordered_set>
+
+namespace gs::runtime::es {
+
+using vrml::FieldType;
+using vrml::FieldValue;
+
+namespace {
+
+constexpr std::array<const char*, 4> kX3dXyzw = {"x", "y", "z", "w"};
+constexpr std::array<const char*, 4> kX3dRgba = {"r", "g", "b", "a"};
+
+// Component `k` of a vector-like object: property `name`, else index k.
+double x3dComponent(duk_context* c, duk_idx_t obj, const char* name, duk_uarridx_t k) {
+  duk_get_prop_string(c, obj, name);
+  if (duk_is_undefined(c, -1)) {
+    duk_pop(c);
+    duk_get_prop_index(c, obj, k);
+  }
+  double v = duk_to_number(c, -1);
+  duk_pop(c);
+  return v;
+}
+
+double x3dIndex(duk_context* c, duk_idx_t obj, duk_uarridx_t k) {
+  duk_get_prop_index(c, obj, k);
+  double v = duk_to_number(c, -1);
+  duk_pop(c);
+  return v;
+}
+
+// Reads an N x N matrix object (numbers 0..N*N-1, row by row) into glm's column-major M.
+template <class M, int N>
+M x3dMatrixAt(duk_context* c, duk_idx_t obj) {
+  M m(1);
+  using Scalar = typename M::value_type;
+  for (int row = 0; row < N; ++row)
+    for (int col = 0; col < N; ++col)
+      m[col][row] =
+          static_cast<Scalar>(x3dIndex(c, obj, static_cast<duk_uarridx_t>(row * N + col)));
+  return m;
+}
+
+}  // namespace
+
+// ---- FieldValue -> ECMAScript ----
+
+void EsScript::pushX3DValue(duk_context* c, const FieldValue& v) {
+  auto finish = [&](FieldType t) {
+    pushProto(c, t);
+    duk_set_prototype(c, -2);
+  };
+  auto vec = [&](FieldType t, const auto& x, int n, bool color) {
+    duk_push_bare_object(c);
+    for (int i = 0; i < n; ++i) {
+      duk_push_number(c, static_cast<double>(x[i]));
+      duk_put_prop_string(c, -2, (color ? kX3dRgba : kX3dXyzw)[static_cast<std::size_t>(i)]);
+    }
+    finish(t);
+  };
+  auto matrix = [&](FieldType t, const auto& m, int n) {
+    duk_push_bare_object(c);
+    for (int row = 0; row < n; ++row)
+      for (int col = 0; col < n; ++col) {
+        duk_push_number(c, static_cast<double>(m[col][row]));
+        duk_put_prop_index(c, -2, static_cast<duk_uarridx_t>(row * n + col));
+      }
+    finish(t);
+  };
+  auto array = [&](FieldType t, const auto& a, auto&& each) {
+    duk_push_bare_array(c);
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      each(a[i]);
+      duk_put_prop_index(c, -2, static_cast<duk_uarridx_t>(i));
+    }
+    finish(t);
+  };
+  switch (v.type()) {
+    case FieldType::SFDouble:
+      duk_push_number(c, v.get<FieldType::SFDouble>());
+      break;
+    case FieldType::SFVec2d:
+      vec(FieldType::SFVec2d, v.get<FieldType::SFVec2d>(), 2, false);
+      break;
+    case FieldType::SFVec3d:
+      vec(FieldType::SFVec3d, v.get<FieldType::SFVec3d>(), 3, false);
+      break;
+    case FieldType::SFVec4f:
+      vec(FieldType::SFVec4f, v.get<FieldType::SFVec4f>(), 4, false);
+      break;
+    case FieldType::SFVec4d:
+      vec(FieldType::SFVec4d, v.get<FieldType::SFVec4d>(), 4, false);
+      break;
+    case FieldType::SFColorRGBA:
+      vec(FieldType::SFColorRGBA, v.get<FieldType::SFColorRGBA>(), 4, true);
+      break;
+    case FieldType::SFMatrix3f:
+      matrix(FieldType::SFMatrix3f, v.get<FieldType::SFMatrix3f>(), 3);
+      break;
+    case FieldType::SFMatrix3d:
+      matrix(FieldType::SFMatrix3d, v.get<FieldType::SFMatrix3d>(), 3);
+      break;
+    case FieldType::SFMatrix4f:
+      matrix(FieldType::SFMatrix4f, v.get<FieldType::SFMatrix4f>(), 4);
+      break;
+    case FieldType::SFMatrix4d:
+      matrix(FieldType::SFMatrix4d, v.get<FieldType::SFMatrix4d>(), 4);
+      break;
+    case FieldType::MFBool: {
+      const std::vector<bool>& a = v.get<FieldType::MFBool>();
+      duk_push_bare_array(c);
+      for (std::size_t i = 0; i < a.size(); ++i) {
+        duk_push_boolean(c, a[i]);
+        duk_put_prop_index(c, -2, static_cast<duk_uarridx_t>(i));
+      }
+      finish(FieldType::MFBool);
+      break;
+    }
+    case FieldType::MFDouble:
+      array(FieldType::MFDouble, v.get<FieldType::MFDouble>(),
+            [&](double d) { duk_push_number(c, d); });
+      break;
+    case FieldType::MFImage:
+      array(FieldType::MFImage, v.get<FieldType::MFImage>(), [&](const vrml::SFImage& img) {
+        pushValue(c, FieldValue::make<FieldType::SFImage>(img));
+      });
+      break;
+    case FieldType::MFVec2d:
+      array(FieldType::MFVec2d, v.get<FieldType::MFVec2d>(),
+            [&](const glm::dvec2& x) { vec(FieldType::SFVec2d, x, 2, false); });
+      break;
+    case FieldType::MFVec3d:
+      array(FieldType::MFVec3d, v.get<FieldType::MFVec3d>(),
+            [&](const glm::dvec3& x) { vec(FieldType::SFVec3d, x, 3, false); });
+      break;
+    case FieldType::MFVec4f:
+      array(FieldType::MFVec4f, v.get<FieldType::MFVec4f>(),
+            [&](const glm::vec4& x) { vec(FieldType::SFVec4f, x, 4, false); });
+      break;
+    case FieldType::MFVec4d:
+      array(FieldType::MFVec4d, v.get<FieldType::MFVec4d>(),
+            [&](const glm::dvec4& x) { vec(FieldType::SFVec4d, x, 4, false); });
+      break;
+    case FieldType::MFColorRGBA:
+      array(FieldType::MFColorRGBA, v.get<FieldType::MFColorRGBA>(),
+            [&](const glm::vec4& x) { vec(FieldType::SFColorRGBA, x, 4, true); });
+      break;
+    case FieldType::MFMatrix3f:
+      array(FieldType::MFMatrix3f, v.get<FieldType::MFMatrix3f>(),
+            [&](const glm::mat3& m) { matrix(FieldType::SFMatrix3f, m, 3); });
+      break;
+    case FieldType::MFMatrix3d:
+      array(FieldType::MFMatrix3d, v.get<FieldType::MFMatrix3d>(),
+            [&](const glm::dmat3& m) { matrix(FieldType::SFMatrix3d, m, 3); });
+      break;
+    case FieldType::MFMatrix4f:
+      array(FieldType::MFMatrix4f, v.get<FieldType::MFMatrix4f>(),
+            [&](const glm::mat4& m) { matrix(FieldType::SFMatrix4f, m, 4); });
+      break;
+    case FieldType::MFMatrix4d:
+      array(FieldType::MFMatrix4d, v.get<FieldType::MFMatrix4d>(),
+            [&](const glm::dmat4& m) { matrix(FieldType::SFMatrix4d, m, 4); });
+      break;
+    default:  // not an X3D type
+      duk_push_undefined(c);
+      break;
+  }
+}
+
+// ---- ECMAScript -> FieldValue ----
+
+bool EsScript::toX3DSingle(duk_context* c, duk_idx_t idx, FieldType t, FieldValue& out,
+                           std::string& why) {
+  idx = duk_normalize_index(c, idx);
+  if (t == FieldType::SFDouble) {
+    duk_dup(c, idx);
+    out = FieldValue::make<FieldType::SFDouble>(duk_to_number(c, -1));
+    duk_pop(c);
+    return true;
+  }
+  if (!duk_is_object(c, idx) || duk_is_function(c, idx)) {
+    why = "expected " + std::string(vrml::fieldTypeName(t)) + ", got " +
+          (duk_is_null_or_undefined(c, idx) ? "null or undefined" : "a value that is no object");
+    return false;
+  }
+  std::array<double, 4> d{};
+  auto comps = [&](int n, bool color) {
+    for (int i = 0; i < n; ++i)
+      d[static_cast<std::size_t>(i)] =
+          x3dComponent(c, idx, (color ? kX3dRgba : kX3dXyzw)[static_cast<std::size_t>(i)],
+                       static_cast<duk_uarridx_t>(i));
+  };
+  auto f = [&](std::size_t i) { return static_cast<float>(d[i]); };
+  switch (t) {
+    case FieldType::SFVec2d:
+      comps(2, false);
+      out = FieldValue::make<FieldType::SFVec2d>(glm::dvec2(d[0], d[1]));
+      return true;
+    case FieldType::SFVec3d:
+      comps(3, false);
+      out = FieldValue::make<FieldType::SFVec3d>(glm::dvec3(d[0], d[1], d[2]));
+      return true;
+    case FieldType::SFVec4f:
+      comps(4, false);
+      out = FieldValue::make<FieldType::SFVec4f>(glm::vec4(f(0), f(1), f(2), f(3)));
+      return true;
+    case FieldType::SFVec4d:
+      comps(4, false);
+      out = FieldValue::make<FieldType::SFVec4d>(glm::dvec4(d[0], d[1], d[2], d[3]));
+      return true;
+    case FieldType::SFColorRGBA:
+      comps(4, true);
+      out = FieldValue::make<FieldType::SFColorRGBA>(glm::vec4(f(0), f(1), f(2), f(3)));
+      return true;
+    case FieldType::SFMatrix3f:
+      out = FieldValue::make<FieldType::SFMatrix3f>(x3dMatrixAt<glm::mat3, 3>(c, idx));
+      return true;
+    case FieldType::SFMatrix3d:
+      out = FieldValue::make<FieldType::SFMatrix3d>(x3dMatrixAt<glm::dmat3, 3>(c, idx));
+      return true;
+    case FieldType::SFMatrix4f:
+      out = FieldValue::make<FieldType::SFMatrix4f>(x3dMatrixAt<glm::mat4, 4>(c, idx));
+      return true;
+    case FieldType::SFMatrix4d:
+      out = FieldValue::make<FieldType::SFMatrix4d>(x3dMatrixAt<glm::dmat4, 4>(c, idx));
+      return true;
+    default:
+      why = "unsupported type";
+      return false;
+  }
+}
+
+// ---- Natives behind X3DScene and the SFNode additions ----
+
+namespace {
+
+// X3D's access type numbers (X3DConstants): initializeOnly 0, inputOnly 1, outputOnly 2,
+// inputOutput 3.
+int x3dAccessNumber(vrml::AccessType a) {
+  switch (a) {
+    case vrml::AccessType::field:
+      return 0;
+    case vrml::AccessType::eventIn:
+      return 1;
+    case vrml::AccessType::eventOut:
+      return 2;
+    case vrml::AccessType::exposedField:
+      return 3;
+  }
+  return 0;
+}
+
+// What x3dFindNamed carries down: the nodes seen, and the Script whose deadline a large
+// world's walk checks.
+struct X3dNamedWalk {
+  EsScript& self;
+  duk_context* c;
+  std::unordered_set<const vrml::Node*> seen;
+};
+
+// The first node DEFed `name` in file order under `nodes` (not looking inside PROTO
+// instances, whose DEF names are the PROTO body's own).
+vrml::NodePtr x3dFindNamed(const std::vector<vrml::NodePtr>& nodes, const std::string& name,
+                           X3dNamedWalk& walk, int depth) {
+  if (depth > 1024) return nullptr;
+  for (const vrml::NodePtr& n : nodes) {
+    if (!n || !walk.seen.insert(n.get()).second) continue;
+    if ((walk.seen.size() & 4095u) == 0) walk.self.checkDeadline(walk.c);
+    if (n->defName == name) return n;
+    if (vrml::declaredInterface(*n) != nullptr) continue;
+    for (std::size_t i = 0; i < n->fieldCount(); ++i) {
+      const FieldValue& v = n->fieldAt(i);
+      vrml::NodePtr found;
+      if (v.type() == FieldType::SFNode)
+        found = x3dFindNamed({v.get<FieldType::SFNode>()}, name, walk, depth + 1);
+      else if (v.type() == FieldType::MFNode)
+        found = x3dFindNamed(v.get<FieldType::MFNode>(), name, walk, depth + 1);
+      if (found) return found;
+    }
+  }
+  return nullptr;
+}
+
+std::string x3dString(duk_context* c, duk_idx_t idx) {
+  duk_size_t len = 0;
+  const char* s = duk_to_lstring(c, idx, &len);
+  return std::string(s, len);
+}
+
+duk_ret_t x3dSceneInfo(duk_context* c) {
+  EsScript& self = EsScript::of(c);
+  const vrml::Scene* scene = self.context().currentScene();
+  std::string version =
+      scene != nullptr && !scene->x3d.version.empty() ? scene->x3d.version : "2.0";
+  std::string encoding = scene != nullptr && !scene->x3d.encoding.empty() ? scene->x3d.encoding
+                         : scene != nullptr                               ? "VRML"
+                                                                          : "";
+  std::string profile = scene != nullptr ? scene->x3d.profile : "";
+  std::string url = self.context().worldUrl();
+  duk_push_array(c);
+  const std::string* parts[] = {&version, &encoding, &profile, &url};
+  for (duk_uarridx_t i = 0; i < 4; ++i) {
+    duk_push_lstring(c, parts[i]->data(), parts[i]->size());
+    duk_put_prop_index(c, -2, i);
+  }
+  return 1;
+}
+
+duk_ret_t x3dRootNodes(duk_context* c) {
+  EsScript& self = EsScript::of(c);
+  const vrml::Scene* scene = self.context().currentScene();
+  self.pushValue(c, FieldValue::make<FieldType::MFNode>(
+                        scene != nullptr ? scene->rootNodes : std::vector<vrml::NodePtr>()));
+  return 1;
+}
+
+duk_ret_t x3dNamedNode(duk_context* c) {
+  EsScript& self = EsScript::of(c);
+  const vrml::Scene* scene = self.context().currentScene();
+  std::string name = x3dString(c, 0);
+  X3dNamedWalk walk{self, c, {}};
+  vrml::NodePtr n = scene != nullptr ? x3dFindNamed(scene->rootNodes, name, walk, 0) : nullptr;
+  self.pushNode(c, n);
+  return 1;
+}
+
+duk_ret_t x3dCreateNode(duk_context* c) {
+  EsScript& self = EsScript::of(c);
+  std::string type = x3dString(c, 0);
+  bool ok = !type.empty() && type.size() <= 256 &&
+            !std::isdigit(static_cast<unsigned char>(type.front()));
+  for (char ch : type) ok = ok && (std::isalnum(static_cast<unsigned char>(ch)) || ch == '_');
+  if (!ok)
+    GS_DUK_ERROR(c, DUK_ERR_TYPE_ERROR, "createNode: '%s' is not a node type name",
+                 type.substr(0, 64).c_str());
+  std::vector<vrml::NodePtr> made =
+      self.context().createVrmlFromString("#X3D V4.0 utf8\nPROFILE Full\n" + type + " { }\n");
+  if (made.empty() || !made.front())
+    GS_DUK_ERROR(c, DUK_ERR_ERROR, "createNode: there is no node type '%s'", type.c_str());
+  self.pushNode(c, made.front());
+  return 1;
+}
+
+// route(add, fromNode, fromField, toNode, toField)
+duk_ret_t x3dRoute(duk_context* c) {
+  EsScript& self = EsScript::of(c);
+  const bool add = duk_to_boolean(c, 0) != 0;
+  const char* what = add ? "addRoute" : "deleteRoute";
+  FieldValue from = self.requireValue(c, 1, FieldType::SFNode, what);
+  FieldValue to = self.requireValue(c, 3, FieldType::SFNode, what);
+  const vrml::NodePtr& a = from.get<FieldType::SFNode>();
+  const vrml::NodePtr& b = to.get<FieldType::SFNode>();
+  if (!a || !b) GS_DUK_ERROR(c, DUK_ERR_TYPE_ERROR, "%s: a node is NULL", what);
+  std::string af = x3dString(c, 2), bf = x3dString(c, 4);
+  bool ok = add ? self.context().addRoute(a, af, b, bf) : self.context().deleteRoute(a, af, b, bf);
+  duk_push_boolean(c, ok);
+  return 1;
+}
+
+// fieldDefinitions(node): [[name, accessType, typeName], ...] of the node's interface (a
+// PROTO instance's declared one).
+duk_ret_t x3dFieldDefinitions(duk_context* c) {
+  EsScript& self = EsScript::of(c);
+  vrml::NodePtr n = self.nodeAt(c, 0);
+  duk_push_array(c);
+  if (!n) return 1;
+  const vrml::ProtoInstance* p = vrml::declaredInterface(*n);
+  const vrml::NodeType& type = p != nullptr ? *p->type : n->type();
+  for (std::size_t i = 0; i < type.fields.size(); ++i) {
+    const vrml::FieldSpec& spec = type.fields[i];
+    duk_push_array(c);
+    duk_push_lstring(c, spec.name.data(), spec.name.size());
+    duk_put_prop_index(c, -2, 0);
+    duk_push_int(c, x3dAccessNumber(spec.access));
+    duk_put_prop_index(c, -2, 1);
+    std::string_view t = vrml::fieldTypeName(spec.type);
+    duk_push_lstring(c, t.data(), t.size());
+    duk_put_prop_index(c, -2, 2);
+    duk_put_prop_index(c, -2, static_cast<duk_uarridx_t>(i));
+  }
+  return 1;
+}
+
+duk_ret_t x3dTypeName(duk_context* c) {
+  EsScript& self = EsScript::of(c);
+  vrml::NodePtr n = self.nodeAt(c, 0);
+  std::string s = !n ? std::string() : !n->protoName().empty() ? n->protoName() : n->typeName();
+  duk_push_lstring(c, s.data(), s.size());
+  return 1;
+}
+
+}  // namespace
+
+bool EsScript::wantsX3D() const {
+  const vrml::NodeType& type = node_.type();
+  if (type.findExact("metadata") >= 0) return true;
+  for (const vrml::FieldSpec& f : type.fields)
+    if (static_cast<int>(f.type) >= vrml::kVrml97FieldTypeCount) return true;
+  const vrml::Scene* scene = ctx_.currentScene();
+  return scene != nullptr && !scene->x3d.version.empty();
+}
+
+void EsScript::installX3DHooks(duk_context* c) {
+  struct Entry {
+    const char* name;
+    duk_c_function fn;
+    duk_idx_t nargs;
+  };
+  static constexpr Entry kHooks[] = {
+      {"sceneInfo", x3dSceneInfo, 0}, {"rootNodes", x3dRootNodes, 0},
+      {"namedNode", x3dNamedNode, 1}, {"createNode", x3dCreateNode, 1},
+      {"route", x3dRoute, 5},         {"fieldDefinitions", x3dFieldDefinitions, 1},
+      {"typeName", x3dTypeName, 1},
+  };
+  duk_push_global_object(c);
+  duk_push_bare_object(c);
+  for (const Entry& e : kHooks) {
+    duk_push_c_function(c, e.fn, e.nargs);
+    duk_put_prop_string(c, -2, e.name);
+  }
+  duk_put_prop_string(c, -2, "__gsX3D");
+  duk_pop(c);
+}
+
+}  // namespace gs::runtime::es
