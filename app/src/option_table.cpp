@@ -126,7 +126,8 @@ const std::vector<OptionSpec>& table() {
                "`budget N`, `wait-viewports N`, `screenshot-viewport OUT.png`, `status "
                "OUT.txt`, `frame-stats OUT.txt` (frame times, movie frames shown); "
                "interaction: `time T`, `advance S` (the clock becomes virtual), `pointer X "
-               "Y`, `press`, `release`, `click X Y`, `drag X1 Y1 X2 Y2 [STEPS]`, `key K`; "
+               "Y`, `press`, `release`, `click X Y`, `drag X1 Y1 X2 Y2 [STEPS]`, `key K`, "
+               "`key-down K`, `key-up K`, `type TEXT` (X3D KeySensor, StringSensor); "
                "navigation: `navigation EXAMINE|WALK|FLY`, `walk F R U [STEPS]`, `back`, "
                "`forward`, `camera OUT.txt`. A bad line is an error naming it (exit code 2)."},
       {.scope = main,

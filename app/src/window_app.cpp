@@ -3,6 +3,7 @@
 #include "app/commands.hpp"
 #include "app/frame_log.hpp"
 #include "app/single_instance.hpp"
+#include "app/window_keys.hpp"
 #include "app/window_script.hpp"
 #include "app/window_state.hpp"
 #include "render/context.hpp"
@@ -43,7 +44,8 @@ struct ImGuiSession {
 /// Mouse and keys not taken by ImGui drive the active viewport's navigator (a click picks
 /// it). EXAMINE: left drag orbits, right drag or shift + left drag pans, middle drag and
 /// the wheel dolly. WALK and FLY: left drag looks around, the wheel and W/S/A/D, the
-/// arrows and Q/E move at NavigationInfo.speed, stopped by walls (WALK: on the ground).
+/// arrows and Q/E move at NavigationInfo.speed, stopped by walls (WALK: on the ground),
+/// unless the world has an enabled KeySensor or StringSensor.
 /// Alt+Left / Alt+Right: Back and Forward.
 /// How far a walking avatar may drop at once (avatarSize[2]): going down a step follows
 /// the terrain at once; deeper falls continue under gravity (applyGravity).
@@ -104,8 +106,9 @@ void navigate(WindowState& state, int menuHeight, int viewportHeight) {
     if (ImGui::IsKeyPressed(GLFW_KEY_RIGHT, false)) state.goForward();
   }
   // WALK and FLY: W/S or the arrows move forward and back, A/D sideways, Q/E down and up,
-  // at NavigationInfo.speed metres per second.
-  if (!examine && !io.WantCaptureKeyboard && !io.KeyAlt) {
+  // at NavigationInfo.speed metres per second; not while the world has an enabled
+  // KeySensor or StringSensor (the keyboard is then the world's).
+  if (!examine && !io.WantCaptureKeyboard && !io.KeyAlt && !state.worldWantsKeys()) {
     auto down = [](int key) { return ImGui::IsKeyDown(key); };
     const float step = speed * io.DeltaTime;
     const float f = (down('W') || down(GLFW_KEY_UP) ? 1.0f : 0.0f) -
@@ -139,6 +142,10 @@ int runWindow(const Options& options) {
     std::fprintf(stderr, "ghostspace: %s\n", e.what());
     return 1;
   }
+  // The keyboard for the worlds' KeySensors and StringSensors: installed before ImGui's
+  // callbacks, which call these first.
+  KeyboardQueue keyboard;
+  KeyboardQueue::install(context->glfwHandle(), keyboard);
   ImGuiSession imgui(context->glfwHandle());
   WindowState state;
   state.lastAspect = static_cast<float>(context->width()) / std::max(1, context->height());
@@ -183,6 +190,11 @@ int runWindow(const Options& options) {
     if (instances)
       for (const std::string& input : instances->poll()) state.openInNewViewport(input);
     state.update();
+    // Keys go to the active viewport's world, but not while a panel takes the typing
+    // (releases always do: the world forgets keys it did not see go down).
+    const bool panelsTyping = ImGui::GetIO().WantCaptureKeyboard;
+    for (const KeyInput& k : keyboard.take())
+      if (!k.press || !panelsTyping) state.keyInput(k.key, k.press);
     drawPanels(state);
     navigate(state, menuHeight, std::max(1, height - menuHeight));
 

@@ -8,6 +8,8 @@
 #include "render/image.hpp"
 
 #include <algorithm>
+#include <optional>
+#include <string_view>
 #include <vector>
 
 namespace gs::app {
@@ -52,6 +54,30 @@ bool numberWithin(const std::string& text, double lo, double hi) {
 /// "" when `ok`, else `expected`: a Verb's check.
 std::string unless(bool ok, std::string expected) {
   return ok ? std::string() : std::move(expected);
+}
+
+/// The check of `key K`, `key-down K`, `key-up K`: K as runtime::keyNamed reads it.
+std::string checkKeyName(const std::string& argument) {
+  return unless(runtime::keyNamed(argument).has_value(),
+                "key K with K one character, F1..F12, Home, End, PgUp, PgDn, Up, Down, Left, "
+                "Right, Shift, Control, Alt, Enter, Backspace, Tab, Escape, Space or U+XXXX");
+}
+
+/// The characters of UTF-8 `text` as keys; empty when it is not valid UTF-8.
+std::optional<std::vector<runtime::Key>> scriptCharacters(const std::string& text) {
+  std::vector<runtime::Key> keys;
+  for (std::size_t i = 0; i < text.size();) {
+    const auto lead = static_cast<unsigned char>(text[i]);
+    const std::size_t n = lead < 0x80             ? 1
+                          : (lead & 0xE0) == 0xC0 ? 2
+                          : (lead & 0xF0) == 0xE0 ? 3
+                                                  : 4;
+    const auto k = runtime::keyNamed(std::string_view(text).substr(i, n));
+    if (!k || !k->isCharacter()) return std::nullopt;
+    keys.push_back(*k);
+    i += n;
+  }
+  return keys;
 }
 
 void writeScreenshot(WindowState& state, const std::string& path, const ViewportRect& r) {
@@ -329,10 +355,34 @@ const std::vector<WindowScript::Verb>& WindowScript::verbs() {
            s.setButton(state, false, height);
            return Next::frame;
          }},
-        {"key", [](const Command& c) { return unless(!c.argument.empty(), "key K"); },
+        {"key", [](const Command& c) { return checkKeyName(c.argument); },
          [](WindowScript&, WindowState& state, const Command& c, int, int) {
-           state.log.push_back(
-               {false, "key " + c.argument + " (no key sensor in VRML97: ignored)"});
+           const runtime::Key k = *runtime::keyNamed(c.argument);
+           state.keyInput(k, true);
+           state.keyInput(k, false);
+           return Next::frame;
+         }},
+        {"key-down", [](const Command& c) { return checkKeyName(c.argument); },
+         [](WindowScript&, WindowState& state, const Command& c, int, int) {
+           state.keyInput(*runtime::keyNamed(c.argument), true);
+           return Next::frame;
+         }},
+        {"key-up", [](const Command& c) { return checkKeyName(c.argument); },
+         [](WindowScript&, WindowState& state, const Command& c, int, int) {
+           state.keyInput(*runtime::keyNamed(c.argument), false);
+           return Next::frame;
+         }},
+        {"type",
+         [](const Command& c) {
+           return unless(!c.argument.empty() && scriptCharacters(c.argument).has_value(),
+                         "type TEXT (UTF-8)");
+         },
+         [](WindowScript&, WindowState& state, const Command& c, int, int) {
+           const auto keys = scriptCharacters(c.argument);  // load() checked it
+           for (const runtime::Key& k : *keys) {
+             state.keyInput(k, true);
+             state.keyInput(k, false);
+           }
            return Next::frame;
          }},
         {"quit", anyArgument,

@@ -11,6 +11,7 @@
 #include <array>
 #include <memory>
 #include <optional>
+#include <string>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
@@ -31,6 +32,7 @@ enum class NodeRole : std::uint8_t {
   media,            // MovieTexture (6.28), AudioClip (6.3): media_nodes.cpp
   eventUtility,     // X3D Event Utilities (X3D 4.0 clause 30): event_utilities.cpp
   follower,         // X3D Followers, dampers and chasers (X3D 4.0 clause 39): followers.cpp
+  keySensor,        // X3D KeySensor, StringSensor (X3D 4.0 clause 21): key_sensors.cpp
 };
 
 /// The X3D event-utility nodes (X3D 4.0 clause 30).
@@ -96,6 +98,19 @@ struct FollowerState {
     std::vector<double> delta;  // destination change made at `time`
   };
   std::vector<Step> steps;  // chasers: changes still blending in
+};
+
+/// A KeySensor's or StringSensor's record (key_sensors.cpp): its field indices (found
+/// once, -1 when absent), the keys it saw go down, a StringSensor's text.
+struct KeySensorState {
+  bool string = false;  // StringSensor (else KeySensor)
+  int enabled = -1, isActive = -1;
+  int keyPress = -1, keyRelease = -1, actionKeyPress = -1, actionKeyRelease = -1;  // KeySensor
+  int shiftKey = -1, controlKey = -1, altKey = -1;                                 // KeySensor
+  int deletionAllowed = -1, enteredText = -1, finalText = -1;                      // StringSensor
+  bool active = false;    // isActive TRUE was sent last
+  std::vector<Key> held;  // KeySensor: keys down, in press order
+  std::string text;       // StringSensor: enteredText (UTF-8)
 };
 
 struct NodeState;
@@ -186,6 +201,7 @@ struct NodeState {
   std::unique_ptr<EventUtilityFields> utility;  // role eventUtility
   std::unique_ptr<FollowerState> follower;      // role follower
   std::unique_ptr<SkinState> skin;              // a Skin (role plain)
+  std::unique_ptr<KeySensorState> keys;         // role keySensor
   bool scriptHadEvents = false;
   bool problemReported = false;
 };
@@ -220,6 +236,7 @@ struct ExecutionModel::State {
   std::vector<NodeState*> skins;             // Skin nodes (skin.cpp)
   std::vector<NodeState*> followers;         // dampers and chasers (followers.cpp)
   std::vector<NodeState*> transformSensors;  // X3D TransformSensors (environment_sensors.cpp)
+  std::vector<NodeState*> keySensors;        // KeySensors, StringSensors (key_sensors.cpp)
   std::size_t environmentSensors = 0;        // ProximitySensors and VisibilitySensors met
   std::optional<ViewerPose> viewer;
   std::vector<NodeState*> newScripts;  // registered, initialize() not yet called
@@ -288,6 +305,16 @@ struct ExecutionModel::State {
   /// After a cascade: re-skins every Skin whose skeleton or own fields changed.
   void evaluateSkins();
   void evaluateSkin(NodeState& ns);
+  // ---- KeySensor and StringSensor (key_sensors.cpp) ----
+  /// Makes `ns` a key device sensor when it is a KeySensor or StringSensor.
+  bool classifyKeySensor(NodeState& ns);
+  /// `enabled` of a key device sensor: stores and echoes it; FALSE while active ends the
+  /// activity (isActive FALSE, the keys held forgotten; a StringSensor's unfinished text
+  /// is dropped: enteredText "" when it was not empty, no finalText).
+  void deliverKeySensor(NodeState& ns, int field, vrml::FieldValue value);
+  /// One key down (`press`) or up for every enabled key device sensor, in a cascade
+  /// already begun.
+  void keyEvent(const Key& key, bool press);
   // ---- environmental sensors (environment_sensors.cpp) ----
   void evaluateEnvironmentSensors();
 

@@ -97,6 +97,7 @@ void ExecutionModel::State::classify(NodeState& ns) {
   if (classifyEventUtility(ns)) return;
   if (classifyFollower(ns)) return;
   if (classifySkin(ns)) return;
+  if (classifyKeySensor(ns)) return;
   if (id == NodeTypeId::TimeSensor) {
     ns.role = NodeRole::timeSensor;
     TimeSensorFields& f = ns.timeFields;
@@ -296,6 +297,12 @@ void ExecutionModel::State::deliver(NodeState& ns, int field, vrml::FieldValue v
         return;
       }
       break;  // tau, tolerance: exposedFields
+    case NodeRole::keySensor:
+      if (field == ns.keys->enabled) {
+        deliverKeySensor(ns, field, std::move(value));
+        return;
+      }
+      break;  // description, deletionAllowed: exposedFields
     case NodeRole::plain:
     case NodeRole::transformSensor:
     case NodeRole::proximity:

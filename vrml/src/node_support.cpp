@@ -92,6 +92,8 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::ScalarDamper,
     NodeTypeId::TexCoordChaser2D,
     NodeTypeId::TexCoordDamper2D,
+    NodeTypeId::KeySensor,  // runtime/src/key_sensors.cpp
+    NodeTypeId::StringSensor,
 };
 
 }  // namespace

@@ -29,7 +29,12 @@
 //   click X Y               pointer X Y, press, release
 //   drag X1 Y1 X2 Y2 [N]    press at X1 Y1, N moves (default 10) to X2 Y2, release; a drag
 //                           that no sensor holds navigates
-//   key K                   a key (logged: VRML97 has no key sensor)
+//   key K                   key K down and up for the active viewport's world (X3D
+//                           KeySensor, StringSensor): K one UTF-8 character or a name,
+//                           F1..F12, Home, End, PgUp, PgDn, Up, Down, Left, Right, Shift,
+//                           Control, Alt, Enter, Backspace, Tab, Escape, Space, U+XXXX
+//   key-down K / key-up K   key K down / up only (e.g. Shift held over other keys)
+//   type TEXT               each character of TEXT (UTF-8, spaces kept) down and up
 //   navigation EXAMINE|WALK|FLY   the active viewport's navigation type (View menu)
 //   walk F R U [N]          WALK and FLY: the active viewport's camera F metres forward, R
 //                           right, U up in N steps (default 1) as the keys move it: stopped

@@ -6,6 +6,7 @@
 #include "app/layout.hpp"
 #include "app/world_sound.hpp"
 #include "render/scene_renderer.hpp"
+#include "runtime/keys.hpp"
 #include "runtime/pointer.hpp"
 #include "scene/camera.hpp"
 #include "session/streaming_session.hpp"
@@ -196,6 +197,13 @@ struct WindowState {
   /// it was pressed in while a sensor holds it) and tells that world's execution model.
   /// Returns pointerHeld.
   bool pointerInput(float x, float y, bool buttonDown, int height);
+  /// A key went down (`press`) or up (X3D 4.0 clause 21, runtime/keys.hpp): the active
+  /// viewport's world gets it at worldTime() (ExecutionModel::keyPress / keyRelease) for
+  /// its KeySensors and StringSensors. Nothing when the viewport shows no world.
+  void keyInput(const runtime::Key& key, bool press);
+  /// Whether the active viewport's world has an enabled KeySensor or StringSensor: the
+  /// keyboard is then the world's (WALK / FLY keys do not move the viewer).
+  bool worldWantsKeys() const;
   /// The world time of the window's clock (seconds): virtualTime or the wall clock.
   double worldTime() const;
   /// Makes the clock virtual at `time` (ignored when earlier than now) and runs every

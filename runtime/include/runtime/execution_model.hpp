@@ -8,6 +8,7 @@
 
 #include "base/fetch.hpp"
 #include "runtime/clock.hpp"
+#include "runtime/keys.hpp"
 #include "runtime/media_time.hpp"
 #include "runtime/pointer.hpp"
 #include "runtime/script_host.hpp"
@@ -121,6 +122,33 @@ class ExecutionModel final : public ScriptContext {
   /// Inline (whose sensors are found when picked), or a sensor holds the pointer. The
   /// application skips picking when false.
   bool wantsPointer() const;
+
+  /// A key went down (X3D 4.0 clause 21, runtime/keys.hpp) at SFTime `time` (seconds):
+  /// when `time` is later than now() the clock first moves there (advanceTo(time), so
+  /// TimeSensors run as in a frame); an earlier time counts as now(). Then one new
+  /// timestamp at now() in which every enabled KeySensor (21.4.1) and StringSensor
+  /// (21.4.2) of the world reacts, in the order the execution model met them:
+  /// - KeySensor: isActive TRUE when it held no key; then keyPress (SFString, the
+  ///   character as UTF-8) for a character, actionKeyPress (SFInt32, table 21.2) for an
+  ///   action key, or shiftKey / controlKey / altKey TRUE for a modifier. A key pressed
+  ///   again before its release (auto-repeat) sends keyPress / actionKeyPress again, no
+  ///   isActive (a repeated modifier sends nothing).
+  /// - StringSensor: a printable character (not below U+0020, not U+007F) appends to
+  ///   enteredText (isActive TRUE first when inactive); kKeyBackspace removes the last
+  ///   character when deletionAllowed and the text is not empty; kKeyEnter, while
+  ///   active, sends finalText (the text), enteredText "" and isActive FALSE. Other
+  ///   keys are ignored.
+  /// Sensors whose enabled is FALSE ignore keys. An invalid key (Key::valid()) is
+  /// ignored without a timestamp.
+  void keyPress(const Key& key, double time);
+  /// A key went up, at SFTime `time` as keyPress() takes it. A KeySensor that saw the key
+  /// go down (while enabled) sends keyRelease / actionKeyRelease or shiftKey /
+  /// controlKey / altKey FALSE, then isActive FALSE once it holds no key; a key it did
+  /// not see go down is ignored. StringSensors ignore releases.
+  void keyRelease(const Key& key, double time);
+  /// Whether the world has a KeySensor or StringSensor whose enabled is TRUE (the
+  /// application then lets the world have the keyboard: no keyboard navigation).
+  bool wantsKeys() const;
 
   /// The avatar collided with the children (or proxy) of `collisionNodes` (Collision,
   /// 6.8; scene::walkStep says which): one new timestamp at now() in which each sends
