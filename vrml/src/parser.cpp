@@ -740,6 +740,7 @@ void parseInto(std::string_view bytes, const std::string& url, Context& ctx, int
   bool decided = false;
   if (looksLikeXml(bytes, decided)) {
     std::string classic;
+    classic.reserve(bytes.size() + bytes.size() / 4);  // the translation is about as long
     XmlToClassic xml(classic, url, limits.maxNesting);
     xml.skipTo(scene);
     xml.feed(bytes);

@@ -14,9 +14,7 @@ std::string_view trim(std::string_view s) {
 }
 
 // true/false (any case) as TRUE/FALSE; other words as written.
-std::string booleans(std::string_view s) {
-  std::string out;
-  out.reserve(s.size());
+void appendBooleans(std::string& out, std::string_view s) {
   std::size_t i = 0;
   while (i < s.size()) {
     const bool word = (s[i] >= 'a' && s[i] <= 'z') || (s[i] >= 'A' && s[i] <= 'Z');
@@ -35,12 +33,10 @@ std::string booleans(std::string_view s) {
       out += w;
     i = j;
   }
-  return out;
 }
 
 // An MFString written with single quotes: each '...' becomes "...".
-std::string singleQuoted(std::string_view s) {
-  std::string out;
+void appendSingleQuoted(std::string& out, std::string_view s) {
   bool in = false;
   for (char c : s) {
     if (c == '\'') {
@@ -53,7 +49,6 @@ std::string singleQuoted(std::string_view s) {
     }
   }
   if (in) out += '"';
-  return out;
 }
 
 }  // namespace
@@ -68,46 +63,57 @@ void appendQuoted(std::string& out, std::string_view s) {
 }
 
 std::string xmlValueToClassic(FieldType t, std::string_view xml, std::string& warning) {
-  warning.clear();
   std::string out;
+  appendXmlValueAsClassic(out, t, xml, warning);
+  return out;
+}
+
+void appendXmlValueAsClassic(std::string& out, FieldType t, std::string_view xml,
+                             std::string& warning) {
+  warning.clear();
   switch (t) {
     case FieldType::SFString:
       appendQuoted(out, xml);
-      return out;
+      return;
     case FieldType::MFString: {
       const std::string_view v = trim(xml);
-      out = "[ ";
+      out += "[ ";
       if (v.empty()) {
       } else if (v.front() == '"') {
         out += v;
       } else if (v.front() == '\'') {
         warning = "MFString value written with single quotes: read as double-quoted strings";
-        out += singleQuoted(v);
+        appendSingleQuoted(out, v);
       } else {
         warning = "MFString value without quotes: read as one string";
         appendQuoted(out, v);
       }
       out += " ]";
-      return out;
+      return;
     }
     case FieldType::SFBool:
-      return booleans(trim(xml));
+      appendBooleans(out, trim(xml));
+      return;
     case FieldType::MFBool:
-      return "[ " + booleans(trim(xml)) + " ]";
+      out += "[ ";
+      appendBooleans(out, trim(xml));
+      out += " ]";
+      return;
     case FieldType::SFNode: {
       const std::string_view v = trim(xml);
-      return v.empty() ? std::string("NULL") : std::string(v);
+      out += v.empty() ? std::string_view("NULL") : v;
+      return;
     }
     default:
       break;
   }
   if (isMultiValued(t)) {
-    out = "[ ";
+    out += "[ ";
     out += xml;
     out += " ]";
-    return out;
+    return;
   }
-  return std::string(xml);
+  out += xml;
 }
 
 }  // namespace gs::vrml::parsing

@@ -17,6 +17,9 @@ namespace gs::vrml::parsing {
 /// quotes (single quotes, or one bare string) is read leniently and `warning` is set to
 /// a sentence saying so; otherwise `warning` is left empty. Never throws.
 std::string xmlValueToClassic(FieldType t, std::string_view xml, std::string& warning);
+/// xmlValueToClassic() appended to `out`.
+void appendXmlValueAsClassic(std::string& out, FieldType t, std::string_view xml,
+                             std::string& warning);
 
 /// Appends `s` to `out` as a Classic VRML string literal ("..." with '"' and '\' escaped).
 void appendQuoted(std::string& out, std::string_view s);

@@ -14,7 +14,9 @@
 #include <expat.h>
 
 #include <algorithm>
+#include <cstring>
 #include <optional>
+#include <span>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -35,18 +37,30 @@ std::string_view trimLeft(std::string_view s) {
   return s;
 }
 
-/// One element of a statement being buffered.
+/// One element of a statement being buffered. XNodes are pooled (Impl::newNode): one
+/// that is used again keeps the capacity of its strings.
 struct XNode {
+  using Attr = std::pair<std::string, std::string>;
   std::string name;
+  const NodeType* type = nullptr;  // x3dNodeType(name), looked up once
+  bool source = false;             // takes source text (xmlTakesSource)
   int line = 0;
   int column = 0;
-  std::vector<std::pair<std::string, std::string>> attrs;
-  std::vector<std::unique_ptr<XNode>> children;
-  std::string text;  // character data (kept for the nodes that take source text)
+  std::vector<Attr> attrStore;  // the first attrCount are this element's attributes
+  std::size_t attrCount = 0;
+  std::vector<XNode*> children;  // owned by the pool
+  std::string text;              // character data (kept for the nodes that take source text)
   XNode* parent = nullptr;
 
+  std::span<const Attr> attrs() const { return {attrStore.data(), attrCount}; }
+  void addAttr(const char* k, const char* v) {
+    if (attrCount == attrStore.size()) attrStore.emplace_back();
+    Attr& a = attrStore[attrCount++];
+    a.first.assign(k);
+    a.second.assign(v);
+  }
   const std::string* attr(std::string_view n) const {
-    for (const auto& [k, v] : attrs)
+    for (const auto& [k, v] : attrs())
       if (k == n) return &v;
     return nullptr;
   }
@@ -75,24 +89,21 @@ constexpr std::string_view kProtoInstanceElement = "ProtoInstance";
 
 // Nodes whose <field> children declare interface members (ISO/IEC 19776-1 5.3.7): Script
 // and the X3DProgrammableShaderObject nodes (NodeType::userFields).
-bool declaresFields(std::string_view n) {
-  const auto type = x3dNodeType(n);
-  return type && type->userFields;
+bool declaresFields(const NodeType* type) {
+  return type != nullptr && type->userFields;
 }
 
 // Nodes whose text content is source code, added to `url`: Script, ShaderPart and the
 // programmable shader nodes that carry a url (ShaderProgram, PackagedShader).
-bool takesSource(std::string_view n) {
-  const auto type = x3dNodeType(n);
-  if (!type) return false;
+bool xmlTakesSource(const NodeType* type) {
+  if (type == nullptr) return false;
   return type->script || type->id() == NodeTypeId::ShaderPart ||
          (type->userFields && type->is(AbstractType::X3DUrlObject));
 }
 
 // Script source gets the ecmascript: scheme; shader source a data: URL.
-bool isScript(std::string_view n) {
-  const auto type = x3dNodeType(n);
-  return type && type->script;
+bool isScript(const NodeType* type) {
+  return type != nullptr && type->script;
 }
 
 // Attributes that are no field: XML bookkeeping and HTML-style ones.
@@ -104,17 +115,20 @@ bool ignoredAttribute(std::string_view n) {
 // A DEF/PROTO name as Classic VRML can write it (clause 5.2.3 of ISO/IEC 19776-2: no
 // spaces, quotes, '#', ',', '.', brackets or backslash; not starting with a digit or
 // sign). XML IDs such as "Cube.001" are written "Cube_001".
-std::string ident(std::string_view s) {
-  std::string out;
-  out.reserve(s.size() + 1);
+void appendIdent(std::string& out, std::string_view s) {
+  if (s.empty() || (s[0] >= '0' && s[0] <= '9') || s[0] == '+' || s[0] == '-') out += '_';
   for (char c : s) {
     const auto u = static_cast<unsigned char>(c);
     const bool bad = u <= 0x20 || u == 0x7f || c == '"' || c == '#' || c == '\'' || c == ',' ||
                      c == '.' || c == '[' || c == '\\' || c == ']' || c == '{' || c == '}';
     out += bad ? '_' : c;
   }
-  if (out.empty() || (out[0] >= '0' && out[0] <= '9') || out[0] == '+' || out[0] == '-')
-    out.insert(out.begin(), '_');
+}
+
+std::string ident(std::string_view s) {
+  std::string out;
+  out.reserve(s.size() + 1);
+  appendIdent(out, s);
   return out;
 }
 
@@ -204,8 +218,10 @@ struct XmlToClassic::Impl {
   int maxDepth;
   XML_Parser xp = nullptr;
   std::vector<Frame> stack;
-  std::unique_ptr<XNode> root;  // the statement being buffered
-  XNode* cur = nullptr;         // its open element
+  std::vector<std::unique_ptr<XNode>> pool;  // XNodes; the first poolUsed are in use
+  std::size_t poolUsed = 0;
+  XNode* root = nullptr;  // the statement being buffered
+  XNode* cur = nullptr;   // its open element
   bool wroteHeader = false;
   bool x3d3 = false;  // version 3.x: metadata nodes go to `metadata` by default
   bool failed = false;
@@ -228,7 +244,7 @@ struct XmlToClassic::Impl {
     Impl& m = *static_cast<Impl*>(ud);
     if (m.failed || m.stack.empty() || m.stack.back() != Frame::buffered || m.cur == nullptr)
       return;
-    if (takesSource(m.cur->name)) m.cur->text.append(s, static_cast<std::size_t>(len));
+    if (m.cur->source) m.cur->text.append(s, static_cast<std::size_t>(len));
   }
 
   std::pair<int, int> here() const {
@@ -292,23 +308,36 @@ struct XmlToClassic::Impl {
         return;
       case Frame::scene:
       case Frame::buffered: {
-        auto node = std::make_unique<XNode>();
-        node->name = n;
+        if (stack.back() == Frame::scene) poolUsed = 0;
+        XNode* node = newNode(n);
         node->line = line;
         node->column = column;
-        for (const XML_Char** a = atts; *a != nullptr; a += 2) node->attrs.emplace_back(a[0], a[1]);
+        for (const XML_Char** a = atts; *a != nullptr; a += 2) node->addAttr(a[0], a[1]);
         if (stack.back() == Frame::scene) {
-          root = std::move(node);
-          cur = root.get();
+          root = node;
         } else {
           node->parent = cur;
-          cur->children.push_back(std::move(node));
-          cur = cur->children.back().get();
+          cur->children.push_back(node);
         }
+        cur = node;
         stack.push_back(Frame::buffered);
         return;
       }
     }
+  }
+
+  // A pooled XNode for element `n`, reset.
+  XNode* newNode(std::string_view n) {
+    if (poolUsed == pool.size()) pool.push_back(std::make_unique<XNode>());
+    XNode* x = pool[poolUsed++].get();
+    x->name.assign(n);
+    x->type = x3dNodeType(n).get();  // the table lives as long as the program
+    x->source = xmlTakesSource(x->type);
+    x->attrCount = 0;
+    x->children.clear();
+    x->text.clear();
+    x->parent = nullptr;
+    return x;
   }
 
   void end() {
@@ -316,11 +345,12 @@ struct XmlToClassic::Impl {
     const Frame f = stack.back();
     stack.pop_back();
     if (f != Frame::buffered) return;
-    if (cur == root.get()) {
+    if (cur == root) {
       statement(*root);
       out += '\n';
-      root.reset();
+      root = nullptr;
       cur = nullptr;
+      poolUsed = 0;
     } else {
       cur = cur->parent;
     }
@@ -362,8 +392,15 @@ struct XmlToClassic::Impl {
 
   void beginLine(int line, int column) {
     if (!out.empty() && out.back() != '\n') out += '\n';
-    for (; counted < out.size(); ++counted)
-      if (out[counted] == '\n') ++classicLine;
+    const char* p = out.data() + counted;
+    const char* const e = out.data() + out.size();
+    while (p < e) {
+      const void* nl = std::memchr(p, '\n', static_cast<std::size_t>(e - p));
+      if (nl == nullptr) break;
+      ++classicLine;
+      p = static_cast<const char*>(nl) + 1;
+    }
+    counted = out.size();
     if (!lines.empty() && lines.back().classicLine == classicLine)
       lines.back() = {classicLine, line, column};
     else
@@ -418,7 +455,7 @@ struct XmlToClassic::Impl {
     if (t == FieldType::SFNode || t == FieldType::MFNode) {
       std::vector<const XNode*> nodes;
       for (const auto& c : f.children)
-        if (isNodeElement(*c)) nodes.push_back(c.get());
+        if (isNodeElement(*c)) nodes.push_back(c);
       if (!nodes.empty()) {
         nodeValue(t == FieldType::MFNode, nodes);
         return t;
@@ -433,7 +470,7 @@ struct XmlToClassic::Impl {
 
   void convertedValue(const XNode& n, FieldType t, std::string_view value) {
     std::string warning;
-    out += xmlValueToClassic(t, value, warning);
+    appendXmlValueAsClassic(out, t, value, warning);
     if (!warning.empty()) {
       warn(n, std::move(warning));
     } else if (t == FieldType::MFString) {
@@ -474,7 +511,7 @@ struct XmlToClassic::Impl {
           if (auto t = fieldDeclaration(*f, true)) info.fields.emplace_back(f->attrOr("name"), *t);
         }
       } else if (c->name == "ProtoBody" && body == nullptr) {
-        body = c.get();
+        body = c;
       }
     }
     out += " ]\n{";
@@ -542,7 +579,7 @@ struct XmlToClassic::Impl {
   // Whether the fields of node element `p` are all known here.
   bool knownFields(const XNode& p) const {
     if (p.name == kProtoInstanceElement) return protos.contains(ident(p.attrOr("name")));
-    return x3dNodeType(p.name) != nullptr || protos.contains(p.name);
+    return p.type != nullptr || protos.contains(p.name);
   }
 
   // The type of field `f` of node element `p`; nothing when unknown.
@@ -552,14 +589,14 @@ struct XmlToClassic::Impl {
       if (it == protos.end()) return std::nullopt;
       return it->second.field(f);
     }
-    if (declaresFields(p.name)) {
+    if (declaresFields(p.type)) {
       for (const auto& c : p.children) {
         if (c->name != "field" || c->attrOr("name") != f) continue;
         FieldType t{};
         if (fieldTypeFromName(c->attrOr("type"), t)) return t;
       }
     }
-    if (const auto type = x3dNodeType(p.name)) {
+    if (const NodeType* type = p.type) {
       int i = type->findField(f);
       // X3D's names for VRML97's fields (Parser::x3dFieldAlias).
       if (i < 0 && type->id() == NodeTypeId::Collision && f == "enabled")
@@ -581,31 +618,43 @@ struct XmlToClassic::Impl {
   void node(const XNode& n) {
     beginLine(n);
     if (const std::string* use = n.attr("USE")) {
-      out += "USE " + ident(*use);
+      out += "USE ";
+      appendIdent(out, *use);
       return;
     }
-    if (const std::string* def = n.attr("DEF"); def != nullptr && !blank(*def))
-      out += "DEF " + ident(*def) + " ";
+    if (const std::string* def = n.attr("DEF"); def != nullptr && !blank(*def)) {
+      out += "DEF ";
+      appendIdent(out, *def);
+      out += ' ';
+    }
     const bool instance = n.name == kProtoInstanceElement;
-    out += instance ? ident(n.attrOr("name")) : ident(n.name);
+    if (instance) {
+      const std::string* name = n.attr("name");
+      appendIdent(out, name != nullptr ? std::string_view(*name) : std::string_view());
+    } else {
+      appendIdent(out, n.name);
+    }
     out += " {";
     // Source text of Scripts and shaders: one more url entry.
     std::string source;
-    if (takesSource(n.name) && !blank(n.text)) {
+    if (n.source && !blank(n.text)) {
       std::string_view text = trimLeft(n.text);
       while (!text.empty() && xmlSpace(text.back())) text.remove_suffix(1);
-      if (!hasScheme(text)) source = isScript(n.name) ? "ecmascript:" : "data:text/plain,";
+      if (!hasScheme(text)) source = isScript(n.type) ? "ecmascript:" : "data:text/plain,";
       source += text;
     }
     bool urlDone = false;
     if (!instance) {
-      for (const auto& [k, v] : n.attrs) {
+      for (const auto& [k, v] : n.attrs()) {
         // HTML's class, id and style, unless the node has a field of that name
         // (FontStyle.style, ScreenFontStyle.style).
-        const bool html = k == "class" || k == "id" || k == "style";
-        if (ignoredAttribute(k) && !(html && fieldType(n, k))) continue;
-        out += " " + k + " ";
+        const bool ignored = ignoredAttribute(k);
+        if (ignored && k != "class" && k != "id" && k != "style") continue;
         const auto t = fieldType(n, k);
+        if (ignored && !t) continue;
+        out += ' ';
+        out += k;
+        out += ' ';
         if (!t) {
           appendQuoted(out, v);
           continue;
@@ -631,7 +680,7 @@ struct XmlToClassic::Impl {
     for (const auto& cp : n.children) {
       const XNode& c = *cp;
       if (c.name == "field") {
-        if (declaresFields(n.name))
+        if (declaresFields(n.type))
           fieldDeclaration(c, true);
         else
           warn(c, "<field> is only allowed in Script, shader nodes and PROTO interfaces: ignored");
@@ -663,7 +712,8 @@ struct XmlToClassic::Impl {
     }
     for (const auto& [field, nodes] : groups) {
       beginLine(*nodes.front());
-      out += ident(field) + " ";
+      appendIdent(out, field);
+      out += ' ';
       const auto t = fieldType(n, field);
       nodeValue(!t || *t == FieldType::MFNode || nodes.size() > 1, nodes);
     }
@@ -680,7 +730,7 @@ struct XmlToClassic::Impl {
     const auto t = fieldType(inst, name);
     std::vector<const XNode*> nodes;
     for (const auto& c : fv.children)
-      if (isNodeElement(*c)) nodes.push_back(c.get());
+      if (isNodeElement(*c)) nodes.push_back(c);
     if (!nodes.empty()) {
       nodeValue(!t || *t == FieldType::MFNode || nodes.size() > 1, nodes);
       return;
