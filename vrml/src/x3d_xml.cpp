@@ -37,6 +37,41 @@ std::string_view trimLeft(std::string_view s) {
   return s;
 }
 
+/// What an element of a statement is: a node (built-in, PROTO instance, unknown) or one of
+/// the XML encoding's statements and structure elements.
+enum class XKind : std::uint8_t {
+  node,
+  route,
+  importStatement,
+  exportStatement,
+  protoDeclare,
+  externProtoDeclare,
+  is,
+  connect,
+  field,
+  fieldValue,
+  protoInterface,
+  protoBody
+};
+
+XKind xkindOf(std::string_view s) {
+  static constexpr std::pair<std::string_view, XKind> kKinds[] = {
+      {"ROUTE", XKind::route},
+      {"IMPORT", XKind::importStatement},
+      {"EXPORT", XKind::exportStatement},
+      {"ProtoDeclare", XKind::protoDeclare},
+      {"ExternProtoDeclare", XKind::externProtoDeclare},
+      {"IS", XKind::is},
+      {"connect", XKind::connect},
+      {"field", XKind::field},
+      {"fieldValue", XKind::fieldValue},
+      {"ProtoInterface", XKind::protoInterface},
+      {"ProtoBody", XKind::protoBody}};
+  for (const auto& [name, kind] : kKinds)
+    if (s == name) return kind;
+  return XKind::node;
+}
+
 /// One element of a statement being buffered. XNodes are pooled (Impl::newNode): one
 /// that is used again keeps the capacity of its strings.
 struct XNode {
@@ -44,6 +79,8 @@ struct XNode {
   std::string name;
   const NodeType* type = nullptr;  // x3dNodeType(name), looked up once
   bool source = false;             // takes source text (xmlTakesSource)
+  bool instance = false;           // a <ProtoInstance>
+  XKind kind = XKind::node;
   int line = 0;
   int column = 0;
   std::vector<Attr> attrStore;  // the first attrCount are this element's attributes
@@ -333,6 +370,9 @@ struct XmlToClassic::Impl {
     x->name.assign(n);
     x->type = x3dNodeType(n).get();  // the table lives as long as the program
     x->source = xmlTakesSource(x->type);
+    // (ProtoInstance has a node model too; the statement names are none.)
+    x->kind = x->type != nullptr ? XKind::node : xkindOf(n);
+    x->instance = n == kProtoInstanceElement;
     x->attrCount = 0;
     x->children.clear();
     x->text.clear();
@@ -411,20 +451,20 @@ struct XmlToClassic::Impl {
   // ---- statements ----------------------------------------------------------------------
 
   void statement(const XNode& n) {
-    if (n.name == "ROUTE") {
+    if (n.kind == XKind::route) {
       route(n);
-    } else if (n.name == "IMPORT") {
+    } else if (n.kind == XKind::importStatement) {
       beginLine(n);
       const std::string imported = n.attrOr("importedDEF");
       out += "IMPORT " + ident(n.attrOr("inlineDEF")) + "." + ident(imported) + " AS " +
              ident(n.attrOr("AS", imported));
-    } else if (n.name == "EXPORT") {
+    } else if (n.kind == XKind::exportStatement) {
       beginLine(n);
       const std::string local = n.attrOr("localDEF");
       out += "EXPORT " + ident(local) + " AS " + ident(n.attrOr("AS", local));
-    } else if (n.name == "ProtoDeclare") {
+    } else if (n.kind == XKind::protoDeclare) {
       protoDeclare(n);
-    } else if (n.name == "ExternProtoDeclare") {
+    } else if (n.kind == XKind::externProtoDeclare) {
       externProtoDeclare(n);
     } else {
       node(n);
@@ -505,12 +545,12 @@ struct XmlToClassic::Impl {
     out += "PROTO " + name + " [";
     const XNode* body = nullptr;
     for (const auto& c : n.children) {
-      if (c->name == "ProtoInterface") {
+      if (c->kind == XKind::protoInterface) {
         for (const auto& f : c->children) {
-          if (f->name != "field") continue;
+          if (f->kind != XKind::field) continue;
           if (auto t = fieldDeclaration(*f, true)) info.fields.emplace_back(f->attrOr("name"), *t);
         }
-      } else if (c->name == "ProtoBody" && body == nullptr) {
+      } else if (c->kind == XKind::protoBody && body == nullptr) {
         body = c;
       }
     }
@@ -535,7 +575,7 @@ struct XmlToClassic::Impl {
     beginLine(n);
     out += "EXTERNPROTO " + name + " [";
     for (const auto& f : n.children) {
-      if (f->name != "field") continue;
+      if (f->kind != XKind::field) continue;
       if (auto t = fieldDeclaration(*f, false)) info.fields.emplace_back(f->attrOr("name"), *t);
     }
     out += " ] ";
@@ -544,12 +584,7 @@ struct XmlToClassic::Impl {
   }
 
   // Elements that are nodes (not statements or the XML encoding's structure).
-  static bool isNodeElement(const XNode& n) {
-    const std::string_view s = n.name;
-    return s != "ROUTE" && s != "IMPORT" && s != "EXPORT" && s != "ProtoDeclare" &&
-           s != "ExternProtoDeclare" && s != "IS" && s != "connect" && s != "field" &&
-           s != "fieldValue" && s != "ProtoInterface" && s != "ProtoBody";
-  }
+  static bool isNodeElement(const XNode& n) { return n.kind == XKind::node; }
 
   // Where child `c` of `parent` goes: its containerField, else its type's default
   // (X3D 3's `metadata` for metadata nodes in a 3.x file). A default the parent (of a
@@ -560,7 +595,7 @@ struct XmlToClassic::Impl {
     if (const std::string* cf = c.attr("containerField"); cf != nullptr && !blank(*cf)) return *cf;
     std::string field = "children";
     const bool metadata = c.name.starts_with("Metadata");
-    if (c.name == kProtoInstanceElement) {
+    if (c.instance) {
       auto it = protos.find(ident(c.attrOr("name")));
       if (it != protos.end()) field = it->second.containerField;
     } else if (metadata && x3d3) {
@@ -578,20 +613,20 @@ struct XmlToClassic::Impl {
 
   // Whether the fields of node element `p` are all known here.
   bool knownFields(const XNode& p) const {
-    if (p.name == kProtoInstanceElement) return protos.contains(ident(p.attrOr("name")));
+    if (p.instance) return protos.contains(ident(p.attrOr("name")));
     return p.type != nullptr || protos.contains(p.name);
   }
 
   // The type of field `f` of node element `p`; nothing when unknown.
   std::optional<FieldType> fieldType(const XNode& p, std::string_view f) const {
-    if (p.name == kProtoInstanceElement) {
+    if (p.instance) {
       auto it = protos.find(ident(p.attrOr("name")));
       if (it == protos.end()) return std::nullopt;
       return it->second.field(f);
     }
     if (declaresFields(p.type)) {
       for (const auto& c : p.children) {
-        if (c->name != "field" || c->attrOr("name") != f) continue;
+        if (c->kind != XKind::field || c->attrOr("name") != f) continue;
         FieldType t{};
         if (fieldTypeFromName(c->attrOr("type"), t)) return t;
       }
@@ -627,7 +662,7 @@ struct XmlToClassic::Impl {
       appendIdent(out, *def);
       out += ' ';
     }
-    const bool instance = n.name == kProtoInstanceElement;
+    const bool instance = n.instance;
     if (instance) {
       const std::string* name = n.attr("name");
       appendIdent(out, name != nullptr ? std::string_view(*name) : std::string_view());
@@ -679,23 +714,24 @@ struct XmlToClassic::Impl {
     std::vector<std::pair<std::string, std::vector<const XNode*>>> groups;
     for (const auto& cp : n.children) {
       const XNode& c = *cp;
-      if (c.name == "field") {
+      if (c.kind == XKind::field) {
         if (declaresFields(n.type))
           fieldDeclaration(c, true);
         else
           warn(c, "<field> is only allowed in Script, shader nodes and PROTO interfaces: ignored");
-      } else if (c.name == "fieldValue") {
+      } else if (c.kind == XKind::fieldValue) {
         if (instance)
           fieldValue(n, c);
         else
           warn(c, "<fieldValue> is only allowed in a ProtoInstance: ignored");
-      } else if (c.name == "IS") {
+      } else if (c.kind == XKind::is) {
         for (const auto& k : c.children) {
-          if (k->name != "connect") continue;
+          if (k->kind != XKind::connect) continue;
           beginLine(*k);
           out += ident(k->attrOr("nodeField")) + " IS " + ident(k->attrOr("protoField"));
         }
-      } else if (c.name == "ROUTE" || c.name == "ProtoDeclare" || c.name == "ExternProtoDeclare") {
+      } else if (c.kind == XKind::route || c.kind == XKind::protoDeclare ||
+                 c.kind == XKind::externProtoDeclare) {
         routes.push_back(&c);
       } else if (!isNodeElement(c)) {
         warn(c, "<" + c.name + "> is not allowed in a node: ignored");
