@@ -743,8 +743,7 @@ void parseInto(std::string_view bytes, const std::string& url, Context& ctx, int
     classic.reserve(bytes.size() + bytes.size() / 4);  // the translation is about as long
     XmlToClassic xml(classic, url, limits.maxNesting);
     xml.skipTo(scene);
-    xml.feed(bytes);
-    xml.finish();
+    xml.feed(bytes, true);
     xml.addWarnings(scene);
     if (xml.wroteHeader()) parseInto(classic, url, ctx, externDepth, scene);
     xml.mapScene(scene);

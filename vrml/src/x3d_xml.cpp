@@ -9,6 +9,7 @@
 #include "vrml/node_model.hpp"
 #include "vrml/node_table.hpp"
 #include "x3d_locations.hpp"
+#include "x3d_positions.hpp"
 #include "x3d_values.hpp"
 
 #include <expat.h>
@@ -270,6 +271,8 @@ struct XmlToClassic::Impl {
   LocationMapper locations;  // what mapScene() has already moved onto the XML
   std::size_t counted = 0;   // bytes of `out` whose line ends were counted
   int classicLine = 1;       // line of out[counted]
+  bool finished = false;     // the last bytes were fed
+  XmlPositions positions;    // element start -> line and column (startHere)
 
   // ---- expat callbacks -----------------------------------------------------------------
 
@@ -300,9 +303,16 @@ struct XmlToClassic::Impl {
     warnings.push_back(Diagnostic{Severity::warning, {url, n.line, n.column}, std::move(message)});
   }
 
+  // here() at an element's start: from the byte offset and the line starts of the fed bytes
+  // where that is exact and cheap, else from expat.
+  std::pair<int, int> startHere() {
+    const auto at = positions.at(static_cast<std::uint64_t>(XML_GetCurrentByteIndex(xp)));
+    return at.first > 0 ? at : here();
+  }
+
   void start(const XML_Char* name, const XML_Char** atts) {
     if (failed) return;
-    const auto [line, column] = here();
+    const auto [line, column] = startHere();
     const std::string_view n(name);
     if (static_cast<int>(stack.size()) >= maxDepth) {
       fail(line, column, "XML elements nested deeper than " + std::to_string(maxDepth) + " levels");
@@ -799,12 +809,18 @@ XmlToClassic::XmlToClassic(std::string& out, std::string url, int maxNesting)
 
 XmlToClassic::~XmlToClassic() = default;
 
-bool XmlToClassic::feed(std::string_view bytes) {
+bool XmlToClassic::feed(std::string_view bytes, bool last) {
   Impl& m = *impl_;
+  if (m.finished) return !m.failed;
+  if (last && bytes.empty()) return finish();
   while (!m.failed && !bytes.empty()) {
     constexpr std::size_t kMax = 1u << 30;  // XML_Parse takes an int length
     const std::size_t n = std::min(bytes.size(), kMax);
-    if (XML_Parse(m.xp, bytes.data(), static_cast<int>(n), XML_FALSE) == XML_STATUS_ERROR &&
+    const bool final = last && n == bytes.size();
+    m.positions.feed(bytes.substr(0, n));
+    if (final) m.finished = true;
+    if (XML_Parse(m.xp, bytes.data(), static_cast<int>(n), final ? XML_TRUE : XML_FALSE) ==
+            XML_STATUS_ERROR &&
         !m.failed) {
       const auto [line, column] = m.here();
       m.fail(line, column,
@@ -818,6 +834,9 @@ bool XmlToClassic::feed(std::string_view bytes) {
 bool XmlToClassic::finish() {
   Impl& m = *impl_;
   if (m.failed) return false;
+  if (m.finished) return true;
+  m.finished = true;
+  m.positions.feed({});
   if (XML_Parse(m.xp, "", 0, XML_TRUE) == XML_STATUS_ERROR && !m.failed) {
     const auto [line, column] = m.here();
     m.fail(line, column,
