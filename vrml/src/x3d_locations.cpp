@@ -37,7 +37,7 @@ bool LocationMapper::insertMapped(const Node* n) {
 
 void LocationMapper::map(Scene& scene, const std::string& url, const Locate& locate) {
   auto move = [&](SourceLocation& l) {
-    if (l.file != url || l.line <= 0) return;
+    if (l.line <= 0 || l.file != url) return;
     const auto [line, column] = locate(l.line);
     if (line <= 0) return;
     l.line = line;

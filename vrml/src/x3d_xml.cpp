@@ -153,14 +153,19 @@ bool ignoredAttribute(std::string_view n) {
 // A DEF/PROTO name as Classic VRML can write it (clause 5.2.3 of ISO/IEC 19776-2: no
 // spaces, quotes, '#', ',', '.', brackets or backslash; not starting with a digit or
 // sign). XML IDs such as "Cube.001" are written "Cube_001".
+bool identBad(char c) {
+  const auto u = static_cast<unsigned char>(c);
+  return u <= 0x20 || u == 0x7f || c == '"' || c == '#' || c == '\'' || c == ',' || c == '.' ||
+         c == '[' || c == '\\' || c == ']' || c == '{' || c == '}';
+}
+
 void appendIdent(std::string& out, std::string_view s) {
   if (s.empty() || (s[0] >= '0' && s[0] <= '9') || s[0] == '+' || s[0] == '-') out += '_';
-  for (char c : s) {
-    const auto u = static_cast<unsigned char>(c);
-    const bool bad = u <= 0x20 || u == 0x7f || c == '"' || c == '#' || c == '\'' || c == ',' ||
-                     c == '.' || c == '[' || c == '\\' || c == ']' || c == '{' || c == '}';
-    out += bad ? '_' : c;
+  if (std::none_of(s.begin(), s.end(), identBad)) {
+    out += s;  // the usual case: one append
+    return;
   }
+  for (char c : s) out += identBad(c) ? '_' : c;
 }
 
 std::string ident(std::string_view s) {
@@ -389,6 +394,22 @@ struct XmlToClassic::Impl {
     x->parent = nullptr;
     return x;
   }
+
+  // node()'s lists, one per nesting level of node(), kept for their capacity.
+  struct NodeScratch {
+    std::vector<std::pair<std::string, std::vector<const XNode*>>> group;  // by field
+    std::size_t groups = 0;                                                // in use
+    std::vector<const XNode*> routes;
+  };
+  std::vector<std::unique_ptr<NodeScratch>> scratch;
+  std::size_t scratchDepth = 0;
+  struct ScratchLevel {
+    std::size_t& depth;
+    explicit ScratchLevel(std::size_t& d) : depth(d) { ++depth; }
+    ~ScratchLevel() { --depth; }
+    ScratchLevel(const ScratchLevel&) = delete;
+    ScratchLevel& operator=(const ScratchLevel&) = delete;
+  };
 
   void end() {
     if (failed || stack.empty()) return;
@@ -720,8 +741,11 @@ struct XmlToClassic::Impl {
       out += " ]";
     }
     // Field declarations (Script, shaders), values of a PROTO instance, IS.
-    std::vector<const XNode*> routes;
-    std::vector<std::pair<std::string, std::vector<const XNode*>>> groups;
+    if (scratchDepth == scratch.size()) scratch.push_back(std::make_unique<NodeScratch>());
+    NodeScratch& sc = *scratch[scratchDepth];
+    const ScratchLevel level(scratchDepth);
+    sc.groups = 0;
+    sc.routes.clear();
     for (const auto& cp : n.children) {
       const XNode& c = *cp;
       if (c.kind == XKind::field) {
@@ -742,21 +766,24 @@ struct XmlToClassic::Impl {
         }
       } else if (c.kind == XKind::route || c.kind == XKind::protoDeclare ||
                  c.kind == XKind::externProtoDeclare) {
-        routes.push_back(&c);
+        sc.routes.push_back(&c);
       } else if (!isNodeElement(c)) {
         warn(c, "<" + c.name + "> is not allowed in a node: ignored");
       } else {
         const std::string field = containerFieldOf(c, &n);
-        auto it = std::find_if(groups.begin(), groups.end(),
-                               [&](const auto& g) { return g.first == field; });
-        if (it == groups.end()) {
-          groups.emplace_back(field, std::vector<const XNode*>{});
-          it = groups.end() - 1;
+        std::size_t g = 0;
+        while (g < sc.groups && sc.group[g].first != field) ++g;
+        if (g == sc.groups) {
+          if (g == sc.group.size()) sc.group.emplace_back();
+          sc.group[g].first = field;
+          sc.group[g].second.clear();
+          ++sc.groups;
         }
-        it->second.push_back(&c);
+        sc.group[g].second.push_back(&c);
       }
     }
-    for (const auto& [field, nodes] : groups) {
+    for (std::size_t g = 0; g < sc.groups; ++g) {
+      const auto& [field, nodes] = sc.group[g];
       beginLine(*nodes.front());
       appendIdent(out, field);
       out += ' ';
@@ -764,7 +791,7 @@ struct XmlToClassic::Impl {
       nodeValue(!t || *t == FieldType::MFNode || nodes.size() > 1, nodes);
     }
     // ROUTEs and PROTOs last, after the DEFs of the children they may name.
-    for (const XNode* r : routes) statement(*r);
+    for (const XNode* r : sc.routes) statement(*r);
     out += " }";
   }
 
