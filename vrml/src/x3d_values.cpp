@@ -2,6 +2,8 @@
 
 #include "base/text.hpp"
 
+#include <algorithm>
+
 namespace gs::vrml::parsing {
 
 namespace {
@@ -49,6 +51,12 @@ void appendSingleQuoted(std::string& out, std::string_view s) {
     }
   }
   if (in) out += '"';
+}
+
+bool xmlIdentBad(char c) {
+  const auto u = static_cast<unsigned char>(c);
+  return u <= 0x20 || u == 0x7f || c == '"' || c == '#' || c == '\'' || c == ',' || c == '.' ||
+         c == '[' || c == '\\' || c == ']' || c == '{' || c == '}';
 }
 
 }  // namespace
@@ -114,6 +122,80 @@ void appendXmlValueAsClassic(std::string& out, FieldType t, std::string_view xml
     return;
   }
   out += xml;
+}
+
+// A DEF/PROTO name as Classic VRML can write it (clause 5.2.3 of ISO/IEC 19776-2: no
+// spaces, quotes, '#', ',', '.', brackets or backslash; not starting with a digit or
+// sign). XML IDs such as "Cube.001" are written "Cube_001".
+void appendXmlIdent(std::string& out, std::string_view s) {
+  if (s.empty() || (s[0] >= '0' && s[0] <= '9') || s[0] == '+' || s[0] == '-') out += '_';
+  if (std::none_of(s.begin(), s.end(), xmlIdentBad)) {
+    out += s;  // the usual case: one append
+    return;
+  }
+  for (char c : s) out += xmlIdentBad(c) ? '_' : c;
+}
+
+std::string xmlIdent(std::string_view s) {
+  std::string out;
+  out.reserve(s.size() + 1);
+  appendXmlIdent(out, s);
+  return out;
+}
+
+// The Classic text of a field type's default value (for a <field> without value).
+std::string classicDefaultText(FieldType t) {
+  if (isMultiValued(t)) return "[ ]";
+  switch (t) {
+    case FieldType::SFBool:
+      return "FALSE";
+    case FieldType::SFString:
+      return "\"\"";
+    case FieldType::SFRotation:
+      return "0 0 1 0";
+    case FieldType::SFImage:
+      return "0 0 0";
+    case FieldType::SFNode:
+      return "NULL";
+    case FieldType::SFMatrix3f:
+    case FieldType::SFMatrix3d:
+      return "1 0 0 0 1 0 0 0 1";
+    case FieldType::SFMatrix4f:
+    case FieldType::SFMatrix4d:
+      return "1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1";
+    case FieldType::SFVec2f:
+    case FieldType::SFVec2d:
+      return "0 0";
+    case FieldType::SFColor:
+    case FieldType::SFVec3f:
+    case FieldType::SFVec3d:
+      return "0 0 0";
+    case FieldType::SFVec4f:
+    case FieldType::SFVec4d:
+    case FieldType::SFColorRGBA:
+      return "0 0 0 0";
+    default:
+      return "0";
+  }
+}
+
+bool accessTakesValue(std::string_view access) {
+  return access != "inputOnly" && access != "outputOnly" && access != "eventIn" &&
+         access != "eventOut";
+}
+
+// Whether `text` starts with a URL scheme ("ecmascript:", "data:", "http:").
+bool hasUrlScheme(std::string_view text) {
+  if (text.empty() || !((text[0] >= 'a' && text[0] <= 'z') || (text[0] >= 'A' && text[0] <= 'Z')))
+    return false;
+  for (std::size_t i = 1; i < text.size() && i < 40; ++i) {
+    const char c = text[i];
+    if (c == ':') return true;
+    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                    c == '+' || c == '-' || c == '.';
+    if (!ok) return false;
+  }
+  return false;
 }
 
 }  // namespace gs::vrml::parsing

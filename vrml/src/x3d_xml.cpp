@@ -11,6 +11,7 @@
 #include "x3d_locations.hpp"
 #include "x3d_positions.hpp"
 #include "x3d_values.hpp"
+#include "x3d_xml_tree.hpp"
 
 #include <expat.h>
 
@@ -37,89 +38,6 @@ std::string_view trimLeft(std::string_view s) {
   while (!s.empty() && xmlSpace(s.front())) s.remove_prefix(1);
   return s;
 }
-
-/// What an element of a statement is: a node (built-in, PROTO instance, unknown) or one of
-/// the XML encoding's statements and structure elements.
-enum class XKind : std::uint8_t {
-  node,
-  route,
-  importStatement,
-  exportStatement,
-  protoDeclare,
-  externProtoDeclare,
-  is,
-  connect,
-  field,
-  fieldValue,
-  protoInterface,
-  protoBody
-};
-
-XKind xkindOf(std::string_view s) {
-  static constexpr std::pair<std::string_view, XKind> kKinds[] = {
-      {"ROUTE", XKind::route},
-      {"IMPORT", XKind::importStatement},
-      {"EXPORT", XKind::exportStatement},
-      {"ProtoDeclare", XKind::protoDeclare},
-      {"ExternProtoDeclare", XKind::externProtoDeclare},
-      {"IS", XKind::is},
-      {"connect", XKind::connect},
-      {"field", XKind::field},
-      {"fieldValue", XKind::fieldValue},
-      {"ProtoInterface", XKind::protoInterface},
-      {"ProtoBody", XKind::protoBody}};
-  for (const auto& [name, kind] : kKinds)
-    if (s == name) return kind;
-  return XKind::node;
-}
-
-/// One element of a statement being buffered. XNodes are pooled (Impl::newNode): one
-/// that is used again keeps the capacity of its strings.
-struct XNode {
-  using Attr = std::pair<std::string, std::string>;
-  std::string name;
-  const NodeType* type = nullptr;  // x3dNodeType(name), looked up once
-  bool source = false;             // takes source text (xmlTakesSource)
-  bool instance = false;           // a <ProtoInstance>
-  XKind kind = XKind::node;
-  int line = 0;
-  int column = 0;
-  std::vector<Attr> attrStore;  // the first attrCount are this element's attributes
-  std::size_t attrCount = 0;
-  std::vector<XNode*> children;  // owned by the pool
-  std::string text;              // character data (kept for the nodes that take source text)
-  XNode* parent = nullptr;
-
-  std::span<const Attr> attrs() const { return {attrStore.data(), attrCount}; }
-  void addAttr(const char* k, const char* v) {
-    if (attrCount == attrStore.size()) attrStore.emplace_back();
-    Attr& a = attrStore[attrCount++];
-    a.first.assign(k);
-    a.second.assign(v);
-  }
-  const std::string* attr(std::string_view n) const {
-    for (const auto& [k, v] : attrs())
-      if (k == n) return &v;
-    return nullptr;
-  }
-  std::string attrOr(std::string_view n, std::string_view fallback = {}) const {
-    const std::string* v = attr(n);
-    return v != nullptr ? *v : std::string(fallback);
-  }
-};
-
-/// A PROTO or EXTERNPROTO declared in the file: its interface and where its instances go
-/// when they name no containerField (the first node of its body's).
-struct ProtoInfo {
-  std::vector<std::pair<std::string, FieldType>> fields;
-  std::string containerField = "children";
-
-  std::optional<FieldType> field(std::string_view n) const {
-    for (const auto& [k, t] : fields)
-      if (k == n) return t;
-    return std::nullopt;
-  }
-};
 
 // The XML encoding's element for a PROTO instance (ISO/IEC 19776-1 5.3.6): a statement of
 // the encoding, not a node class.
@@ -148,86 +66,6 @@ bool isScript(const NodeType* type) {
 bool ignoredAttribute(std::string_view n) {
   return n == "DEF" || n == "USE" || n == "containerField" || n == "class" || n == "id" ||
          n == "style" || n.starts_with("xmlns") || n.find(':') != std::string_view::npos;
-}
-
-// A DEF/PROTO name as Classic VRML can write it (clause 5.2.3 of ISO/IEC 19776-2: no
-// spaces, quotes, '#', ',', '.', brackets or backslash; not starting with a digit or
-// sign). XML IDs such as "Cube.001" are written "Cube_001".
-bool identBad(char c) {
-  const auto u = static_cast<unsigned char>(c);
-  return u <= 0x20 || u == 0x7f || c == '"' || c == '#' || c == '\'' || c == ',' || c == '.' ||
-         c == '[' || c == '\\' || c == ']' || c == '{' || c == '}';
-}
-
-void appendIdent(std::string& out, std::string_view s) {
-  if (s.empty() || (s[0] >= '0' && s[0] <= '9') || s[0] == '+' || s[0] == '-') out += '_';
-  if (std::none_of(s.begin(), s.end(), identBad)) {
-    out += s;  // the usual case: one append
-    return;
-  }
-  for (char c : s) out += identBad(c) ? '_' : c;
-}
-
-std::string ident(std::string_view s) {
-  std::string out;
-  out.reserve(s.size() + 1);
-  appendIdent(out, s);
-  return out;
-}
-
-// The Classic text of a field type's default value (for a <field> without value).
-std::string defaultText(FieldType t) {
-  if (isMultiValued(t)) return "[ ]";
-  switch (t) {
-    case FieldType::SFBool:
-      return "FALSE";
-    case FieldType::SFString:
-      return "\"\"";
-    case FieldType::SFRotation:
-      return "0 0 1 0";
-    case FieldType::SFImage:
-      return "0 0 0";
-    case FieldType::SFNode:
-      return "NULL";
-    case FieldType::SFMatrix3f:
-    case FieldType::SFMatrix3d:
-      return "1 0 0 0 1 0 0 0 1";
-    case FieldType::SFMatrix4f:
-    case FieldType::SFMatrix4d:
-      return "1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1";
-    case FieldType::SFVec2f:
-    case FieldType::SFVec2d:
-      return "0 0";
-    case FieldType::SFColor:
-    case FieldType::SFVec3f:
-    case FieldType::SFVec3d:
-      return "0 0 0";
-    case FieldType::SFVec4f:
-    case FieldType::SFVec4d:
-    case FieldType::SFColorRGBA:
-      return "0 0 0 0";
-    default:
-      return "0";
-  }
-}
-
-bool takesValue(std::string_view access) {
-  return access != "inputOnly" && access != "outputOnly" && access != "eventIn" &&
-         access != "eventOut";
-}
-
-// Whether `text` starts with a URL scheme ("ecmascript:", "data:", "http:").
-bool hasScheme(std::string_view text) {
-  if (text.empty() || !((text[0] >= 'a' && text[0] <= 'z') || (text[0] >= 'A' && text[0] <= 'Z')))
-    return false;
-  for (std::size_t i = 1; i < text.size() && i < 40; ++i) {
-    const char c = text[i];
-    if (c == ':') return true;
-    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
-                    c == '+' || c == '-' || c == '.';
-    if (!ok) return false;
-  }
-  return false;
 }
 
 struct LineEntry {
@@ -341,7 +179,7 @@ struct XmlToClassic::Impl {
       wroteHeader = true;
       if (!profile.empty()) {
         beginLine(line, column);
-        out += "PROFILE " + ident(profile) + "\n";
+        out += "PROFILE " + xmlIdent(profile) + "\n";
       }
       stack.push_back(Frame::x3d);
       return;
@@ -436,7 +274,7 @@ struct XmlToClassic::Impl {
     };
     if (n == "component") {
       beginLine(line, column);
-      out += "COMPONENT " + ident(get("name"));
+      out += "COMPONENT " + xmlIdent(get("name"));
       const std::string level = get("level");
       if (!blank(level)) {
         out += ':';
@@ -444,7 +282,7 @@ struct XmlToClassic::Impl {
       }
     } else if (n == "unit") {
       beginLine(line, column);
-      out += "UNIT " + ident(get("category")) + " " + ident(get("name")) + " ";
+      out += "UNIT " + xmlIdent(get("category")) + " " + xmlIdent(get("name")) + " ";
       const std::string f = get("conversionFactor");
       out += blank(f) ? std::string("1") : f;
     } else if (n == "meta") {
@@ -487,12 +325,12 @@ struct XmlToClassic::Impl {
     } else if (n.kind == XKind::importStatement) {
       beginLine(n);
       const std::string imported = n.attrOr("importedDEF");
-      out += "IMPORT " + ident(n.attrOr("inlineDEF")) + "." + ident(imported) + " AS " +
-             ident(n.attrOr("AS", imported));
+      out += "IMPORT " + xmlIdent(n.attrOr("inlineDEF")) + "." + xmlIdent(imported) + " AS " +
+             xmlIdent(n.attrOr("AS", imported));
     } else if (n.kind == XKind::exportStatement) {
       beginLine(n);
       const std::string local = n.attrOr("localDEF");
-      out += "EXPORT " + ident(local) + " AS " + ident(n.attrOr("AS", local));
+      out += "EXPORT " + xmlIdent(local) + " AS " + xmlIdent(n.attrOr("AS", local));
     } else if (n.kind == XKind::protoDeclare) {
       protoDeclare(n);
     } else if (n.kind == XKind::externProtoDeclare) {
@@ -504,8 +342,8 @@ struct XmlToClassic::Impl {
 
   void route(const XNode& n) {
     beginLine(n);
-    out += "ROUTE " + ident(n.attrOr("fromNode")) + "." + ident(n.attrOr("fromField")) + " TO " +
-           ident(n.attrOr("toNode")) + "." + ident(n.attrOr("toField"));
+    out += "ROUTE " + xmlIdent(n.attrOr("fromNode")) + "." + xmlIdent(n.attrOr("fromField")) +
+           " TO " + xmlIdent(n.attrOr("toNode")) + "." + xmlIdent(n.attrOr("toField"));
   }
 
   // `accessType type name [value]` of a <field> in a ProtoInterface, ExternProtoDeclare,
@@ -514,10 +352,10 @@ struct XmlToClassic::Impl {
     beginLine(f);
     const std::string access = f.attrOr("accessType", "initializeOnly");
     const std::string typeName = f.attrOr("type");
-    out += ident(access) + " " + ident(typeName) + " " + ident(f.attrOr("name")) + " ";
+    out += xmlIdent(access) + " " + xmlIdent(typeName) + " " + xmlIdent(f.attrOr("name")) + " ";
     FieldType t{};
     const bool known = fieldTypeFromName(typeName, t);
-    if (!withValue || !takesValue(access)) return known ? std::optional(t) : std::nullopt;
+    if (!withValue || !accessTakesValue(access)) return known ? std::optional(t) : std::nullopt;
     const std::string* value = f.attr("value");
     if (!known) {
       if (value != nullptr) out += *value;
@@ -535,7 +373,7 @@ struct XmlToClassic::Impl {
     if (value != nullptr)
       convertedValue(f, t, *value);
     else
-      out += defaultText(t);
+      out += classicDefaultText(t);
     return t;
   }
 
@@ -570,7 +408,7 @@ struct XmlToClassic::Impl {
   }
 
   void protoDeclare(const XNode& n) {
-    const std::string name = ident(n.attrOr("name"));
+    const std::string name = xmlIdent(n.attrOr("name"));
     ProtoInfo info;
     beginLine(n);
     out += "PROTO " + name + " [";
@@ -601,7 +439,7 @@ struct XmlToClassic::Impl {
   }
 
   void externProtoDeclare(const XNode& n) {
-    const std::string name = ident(n.attrOr("name"));
+    const std::string name = xmlIdent(n.attrOr("name"));
     ProtoInfo info;
     beginLine(n);
     out += "EXTERNPROTO " + name + " [";
@@ -627,7 +465,7 @@ struct XmlToClassic::Impl {
     std::string field = "children";
     const bool metadata = c.name.starts_with("Metadata");
     if (c.instance) {
-      auto it = protos.find(ident(c.attrOr("name")));
+      auto it = protos.find(xmlIdent(c.attrOr("name")));
       if (it != protos.end()) field = it->second.containerField;
     } else if (metadata && x3d3) {
       field = "metadata";
@@ -644,14 +482,14 @@ struct XmlToClassic::Impl {
 
   // Whether the fields of node element `p` are all known here.
   bool knownFields(const XNode& p) const {
-    if (p.instance) return protos.contains(ident(p.attrOr("name")));
+    if (p.instance) return protos.contains(xmlIdent(p.attrOr("name")));
     return p.type != nullptr || protos.contains(p.name);
   }
 
   // The type of field `f` of node element `p`; nothing when unknown.
   std::optional<FieldType> fieldType(const XNode& p, std::string_view f) const {
     if (p.instance) {
-      auto it = protos.find(ident(p.attrOr("name")));
+      auto it = protos.find(xmlIdent(p.attrOr("name")));
       if (it == protos.end()) return std::nullopt;
       return it->second.field(f);
     }
@@ -685,20 +523,20 @@ struct XmlToClassic::Impl {
     beginLine(n);
     if (const std::string* use = n.attr("USE")) {
       out += "USE ";
-      appendIdent(out, *use);
+      appendXmlIdent(out, *use);
       return;
     }
     if (const std::string* def = n.attr("DEF"); def != nullptr && !blank(*def)) {
       out += "DEF ";
-      appendIdent(out, *def);
+      appendXmlIdent(out, *def);
       out += ' ';
     }
     const bool instance = n.instance;
     if (instance) {
       const std::string* name = n.attr("name");
-      appendIdent(out, name != nullptr ? std::string_view(*name) : std::string_view());
+      appendXmlIdent(out, name != nullptr ? std::string_view(*name) : std::string_view());
     } else {
-      appendIdent(out, n.name);
+      appendXmlIdent(out, n.name);
     }
     out += " {";
     // Source text of Scripts and shaders: one more url entry.
@@ -706,7 +544,7 @@ struct XmlToClassic::Impl {
     if (n.source && !blank(n.text)) {
       std::string_view text = trimLeft(n.text);
       while (!text.empty() && xmlSpace(text.back())) text.remove_suffix(1);
-      if (!hasScheme(text)) source = isScript(n.type) ? "ecmascript:" : "data:text/plain,";
+      if (!hasUrlScheme(text)) source = isScript(n.type) ? "ecmascript:" : "data:text/plain,";
       source += text;
     }
     bool urlDone = false;
@@ -762,7 +600,7 @@ struct XmlToClassic::Impl {
         for (const auto& k : c.children) {
           if (k->kind != XKind::connect) continue;
           beginLine(*k);
-          out += ident(k->attrOr("nodeField")) + " IS " + ident(k->attrOr("protoField"));
+          out += xmlIdent(k->attrOr("nodeField")) + " IS " + xmlIdent(k->attrOr("protoField"));
         }
       } else if (c.kind == XKind::route || c.kind == XKind::protoDeclare ||
                  c.kind == XKind::externProtoDeclare) {
@@ -785,7 +623,7 @@ struct XmlToClassic::Impl {
     for (std::size_t g = 0; g < sc.groups; ++g) {
       const auto& [field, nodes] = sc.group[g];
       beginLine(*nodes.front());
-      appendIdent(out, field);
+      appendXmlIdent(out, field);
       out += ' ';
       const auto t = fieldType(n, field);
       nodeValue(!t || *t == FieldType::MFNode || nodes.size() > 1, nodes);
@@ -799,7 +637,7 @@ struct XmlToClassic::Impl {
   void fieldValue(const XNode& inst, const XNode& fv) {
     beginLine(fv);
     const std::string name = fv.attrOr("name");
-    out += ident(name) + " ";
+    out += xmlIdent(name) + " ";
     const auto t = fieldType(inst, name);
     std::vector<const XNode*> nodes;
     for (const auto& c : fv.children)
