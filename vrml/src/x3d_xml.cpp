@@ -83,7 +83,7 @@ struct XmlToClassic::Impl {
     if (xp == nullptr) throw std::bad_alloc();
     XML_SetUserData(xp, this);
     XML_SetElementHandler(xp, &Impl::onStart, &Impl::onEnd);
-    XML_SetCharacterDataHandler(xp, &Impl::onText);
+    // (The character data handler is set only inside elements that take source text.)
     // No external entity handler and no parameter-entity parsing: DTDs and external
     // entities named by the document are never fetched.
     XML_SetParamEntityParsing(xp, XML_PARAM_ENTITY_PARSING_NEVER);
@@ -211,6 +211,7 @@ struct XmlToClassic::Impl {
         }
         cur = node;
         stack.push_back(Frame::buffered);
+        textHandler();
         return;
       }
     }
@@ -263,6 +264,17 @@ struct XmlToClassic::Impl {
     } else {
       cur = cur->parent;
     }
+    textHandler();
+  }
+
+  // Character data matters only in an element that takes source text: expat reports it
+  // only there (fewer calls for the white space between elements).
+  bool textOn = false;
+  void textHandler() {
+    const bool want = cur != nullptr && cur->source;
+    if (want == textOn) return;
+    textOn = want;
+    XML_SetCharacterDataHandler(xp, want ? &Impl::onText : nullptr);
   }
 
   // <component>, <unit>, <meta> of <head>.
