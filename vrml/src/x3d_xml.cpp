@@ -16,6 +16,7 @@
 #include <expat.h>
 
 #include <algorithm>
+#include <array>
 #include <cstring>
 #include <optional>
 #include <span>
@@ -217,12 +218,33 @@ struct XmlToClassic::Impl {
     }
   }
 
+  // x3dNodeType(n) through a small cache of the names met (a file uses few): no hash of
+  // the whole name, no reference count. The table lives as long as the program.
+  struct TypeCacheEntry {
+    std::string name;
+    const NodeType* type = nullptr;
+    bool valid = false;
+  };
+  std::array<TypeCacheEntry, 32> typeCache;
+  const NodeType* lookupType(std::string_view n) {
+    const std::size_t h = n.empty() ? 0
+                                    : (n.size() * 7 + static_cast<unsigned char>(n.front()) * 3 +
+                                       static_cast<unsigned char>(n[n.size() / 2]) +
+                                       static_cast<unsigned char>(n.back()));
+    TypeCacheEntry& e = typeCache[h % typeCache.size()];
+    if (e.valid && e.name == n) return e.type;
+    e.name.assign(n);
+    e.type = x3dNodeType(n).get();
+    e.valid = true;
+    return e.type;
+  }
+
   // A pooled XNode for element `n`, reset.
   XNode* newNode(std::string_view n) {
     if (poolUsed == pool.size()) pool.push_back(std::make_unique<XNode>());
     XNode* x = pool[poolUsed++].get();
     x->name.assign(n);
-    x->type = x3dNodeType(n).get();  // the table lives as long as the program
+    x->type = lookupType(n);
     x->source = xmlTakesSource(x->type);
     // (ProtoInstance has a node model too; the statement names are none.)
     x->kind = x->type != nullptr ? XKind::node : xkindOf(n);
