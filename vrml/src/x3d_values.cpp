@@ -3,6 +3,7 @@
 #include "base/text.hpp"
 
 #include <algorithm>
+#include <array>
 
 namespace gs::vrml::parsing {
 
@@ -53,10 +54,19 @@ void appendSingleQuoted(std::string& out, std::string_view s) {
   if (in) out += '"';
 }
 
+// The bytes a Classic VRML identifier cannot hold, as a table.
+constexpr std::array<bool, 256> kXmlIdentBad = [] {
+  std::array<bool, 256> t{};
+  for (std::size_t u = 0; u < t.size(); ++u) {
+    const char c = static_cast<char>(u);
+    t[u] = u <= 0x20 || u == 0x7f || c == '"' || c == '#' || c == '\'' || c == ',' || c == '.' ||
+           c == '[' || c == '\\' || c == ']' || c == '{' || c == '}';
+  }
+  return t;
+}();
+
 bool xmlIdentBad(char c) {
-  const auto u = static_cast<unsigned char>(c);
-  return u <= 0x20 || u == 0x7f || c == '"' || c == '#' || c == '\'' || c == ',' || c == '.' ||
-         c == '[' || c == '\\' || c == ']' || c == '{' || c == '}';
+  return kXmlIdentBad[static_cast<unsigned char>(c)];
 }
 
 }  // namespace
@@ -129,7 +139,9 @@ void appendXmlValueAsClassic(std::string& out, FieldType t, std::string_view xml
 // sign). XML IDs such as "Cube.001" are written "Cube_001".
 void appendXmlIdent(std::string& out, std::string_view s) {
   if (s.empty() || (s[0] >= '0' && s[0] <= '9') || s[0] == '+' || s[0] == '-') out += '_';
-  if (std::none_of(s.begin(), s.end(), xmlIdentBad)) {
+  bool clean = true;
+  for (char c : s) clean &= !xmlIdentBad(c);
+  if (clean) {
     out += s;  // the usual case: one append
     return;
   }
