@@ -740,10 +740,10 @@ void parseInto(std::string_view bytes, const std::string& url, Context& ctx, int
   bool decided = false;
   if (looksLikeXml(bytes, decided)) {
     std::string classic;
+    classic.reserve(bytes.size() + bytes.size() / 4);  // the translation is about as long
     XmlToClassic xml(classic, url, limits.maxNesting);
     xml.skipTo(scene);
-    xml.feed(bytes);
-    xml.finish();
+    xml.feed(bytes, true);
     xml.addWarnings(scene);
     if (xml.wroteHeader()) parseInto(classic, url, ctx, externDepth, scene);
     xml.mapScene(scene);

@@ -1,6 +1,7 @@
 #include "x3d_locations.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <vector>
 
 namespace gs::vrml::parsing {
@@ -11,9 +12,32 @@ void LocationMapper::skipTo(const Scene& scene) {
            scene.x3d.imports.size(),       scene.x3d.exports.size()};
 }
 
+bool LocationMapper::insertMapped(const Node* n) {
+  if (2 * (mappedCount_ + 1) > mapped_.size()) {
+    std::vector<const Node*> old(std::max<std::size_t>(64, 2 * mapped_.size()), nullptr);
+    old.swap(mapped_);
+    mappedCount_ = 0;
+    for (const Node* o : old)
+      if (o != nullptr) insertMapped(o);
+  }
+  const std::size_t mask = mapped_.size() - 1;
+  // Nodes are heap blocks of at least 16 bytes: the low bits say little.
+  auto h = reinterpret_cast<std::uintptr_t>(n) >> 4;
+  h ^= h >> 17;
+  h *= 0x9E3779B97F4A7C15ull;
+  for (std::size_t i = (h >> 20) & mask;; i = (i + 1) & mask) {
+    if (mapped_[i] == n) return false;
+    if (mapped_[i] == nullptr) {
+      mapped_[i] = n;
+      ++mappedCount_;
+      return true;
+    }
+  }
+}
+
 void LocationMapper::map(Scene& scene, const std::string& url, const Locate& locate) {
   auto move = [&](SourceLocation& l) {
-    if (l.file != url || l.line <= 0) return;
+    if (l.line <= 0 || l.file != url) return;
     const auto [line, column] = locate(l.line);
     if (line <= 0) return;
     l.line = line;
@@ -29,7 +53,7 @@ void LocationMapper::map(Scene& scene, const std::string& url, const Locate& loc
     move(items[i].location);
   std::vector<Node*> todo;
   auto push = [&](const NodePtr& n) {
-    if (n && mapped_.insert(n.get()).second) todo.push_back(n.get());
+    if (n && insertMapped(n.get())) todo.push_back(n.get());
   };
   for (std::size_t i = from(done_.roots, scene.rootNodes.size()); i < scene.rootNodes.size(); ++i)
     push(scene.rootNodes[i]);

@@ -9,8 +9,8 @@
 #include <cstddef>
 #include <functional>
 #include <string>
-#include <unordered_set>
 #include <utility>
+#include <vector>
 
 namespace gs::vrml::parsing {
 
@@ -35,7 +35,10 @@ class LocationMapper {
   struct Done {
     std::size_t diagnostics = 0, roots = 0, hidden = 0, routes = 0, imports = 0, exports = 0;
   } done_;
-  std::unordered_set<const Node*> mapped_;
+  // The nodes already mapped: an open-addressing hash set (null: free slot).
+  bool insertMapped(const Node* n);
+  std::vector<const Node*> mapped_;
+  std::size_t mappedCount_ = 0;
 };
 
 }  // namespace gs::vrml::parsing

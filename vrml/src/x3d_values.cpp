@@ -2,6 +2,9 @@
 
 #include "base/text.hpp"
 
+#include <algorithm>
+#include <array>
+
 namespace gs::vrml::parsing {
 
 namespace {
@@ -14,9 +17,7 @@ std::string_view trim(std::string_view s) {
 }
 
 // true/false (any case) as TRUE/FALSE; other words as written.
-std::string booleans(std::string_view s) {
-  std::string out;
-  out.reserve(s.size());
+void appendBooleans(std::string& out, std::string_view s) {
   std::size_t i = 0;
   while (i < s.size()) {
     const bool word = (s[i] >= 'a' && s[i] <= 'z') || (s[i] >= 'A' && s[i] <= 'Z');
@@ -35,12 +36,10 @@ std::string booleans(std::string_view s) {
       out += w;
     i = j;
   }
-  return out;
 }
 
 // An MFString written with single quotes: each '...' becomes "...".
-std::string singleQuoted(std::string_view s) {
-  std::string out;
+void appendSingleQuoted(std::string& out, std::string_view s) {
   bool in = false;
   for (char c : s) {
     if (c == '\'') {
@@ -53,7 +52,21 @@ std::string singleQuoted(std::string_view s) {
     }
   }
   if (in) out += '"';
-  return out;
+}
+
+// The bytes a Classic VRML identifier cannot hold, as a table.
+constexpr std::array<bool, 256> kXmlIdentBad = [] {
+  std::array<bool, 256> t{};
+  for (std::size_t u = 0; u < t.size(); ++u) {
+    const char c = static_cast<char>(u);
+    t[u] = u <= 0x20 || u == 0x7f || c == '"' || c == '#' || c == '\'' || c == ',' || c == '.' ||
+           c == '[' || c == '\\' || c == ']' || c == '{' || c == '}';
+  }
+  return t;
+}();
+
+bool xmlIdentBad(char c) {
+  return kXmlIdentBad[static_cast<unsigned char>(c)];
 }
 
 }  // namespace
@@ -68,46 +81,133 @@ void appendQuoted(std::string& out, std::string_view s) {
 }
 
 std::string xmlValueToClassic(FieldType t, std::string_view xml, std::string& warning) {
-  warning.clear();
   std::string out;
+  appendXmlValueAsClassic(out, t, xml, warning);
+  return out;
+}
+
+void appendXmlValueAsClassic(std::string& out, FieldType t, std::string_view xml,
+                             std::string& warning) {
+  warning.clear();
   switch (t) {
     case FieldType::SFString:
       appendQuoted(out, xml);
-      return out;
+      return;
     case FieldType::MFString: {
       const std::string_view v = trim(xml);
-      out = "[ ";
+      out += "[ ";
       if (v.empty()) {
       } else if (v.front() == '"') {
         out += v;
       } else if (v.front() == '\'') {
         warning = "MFString value written with single quotes: read as double-quoted strings";
-        out += singleQuoted(v);
+        appendSingleQuoted(out, v);
       } else {
         warning = "MFString value without quotes: read as one string";
         appendQuoted(out, v);
       }
       out += " ]";
-      return out;
+      return;
     }
     case FieldType::SFBool:
-      return booleans(trim(xml));
+      appendBooleans(out, trim(xml));
+      return;
     case FieldType::MFBool:
-      return "[ " + booleans(trim(xml)) + " ]";
+      out += "[ ";
+      appendBooleans(out, trim(xml));
+      out += " ]";
+      return;
     case FieldType::SFNode: {
       const std::string_view v = trim(xml);
-      return v.empty() ? std::string("NULL") : std::string(v);
+      out += v.empty() ? std::string_view("NULL") : v;
+      return;
     }
     default:
       break;
   }
   if (isMultiValued(t)) {
-    out = "[ ";
+    out += "[ ";
     out += xml;
     out += " ]";
-    return out;
+    return;
   }
-  return std::string(xml);
+  out += xml;
+}
+
+// A DEF/PROTO name as Classic VRML can write it (clause 5.2.3 of ISO/IEC 19776-2: no
+// spaces, quotes, '#', ',', '.', brackets or backslash; not starting with a digit or
+// sign). XML IDs such as "Cube.001" are written "Cube_001".
+void appendXmlIdent(std::string& out, std::string_view s) {
+  if (s.empty() || (s[0] >= '0' && s[0] <= '9') || s[0] == '+' || s[0] == '-') out += '_';
+  bool clean = true;
+  for (char c : s) clean &= !xmlIdentBad(c);
+  if (clean) {
+    out += s;  // the usual case: one append
+    return;
+  }
+  for (char c : s) out += xmlIdentBad(c) ? '_' : c;
+}
+
+std::string xmlIdent(std::string_view s) {
+  std::string out;
+  out.reserve(s.size() + 1);
+  appendXmlIdent(out, s);
+  return out;
+}
+
+// The Classic text of a field type's default value (for a <field> without value).
+std::string classicDefaultText(FieldType t) {
+  if (isMultiValued(t)) return "[ ]";
+  switch (t) {
+    case FieldType::SFBool:
+      return "FALSE";
+    case FieldType::SFString:
+      return "\"\"";
+    case FieldType::SFRotation:
+      return "0 0 1 0";
+    case FieldType::SFImage:
+      return "0 0 0";
+    case FieldType::SFNode:
+      return "NULL";
+    case FieldType::SFMatrix3f:
+    case FieldType::SFMatrix3d:
+      return "1 0 0 0 1 0 0 0 1";
+    case FieldType::SFMatrix4f:
+    case FieldType::SFMatrix4d:
+      return "1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1";
+    case FieldType::SFVec2f:
+    case FieldType::SFVec2d:
+      return "0 0";
+    case FieldType::SFColor:
+    case FieldType::SFVec3f:
+    case FieldType::SFVec3d:
+      return "0 0 0";
+    case FieldType::SFVec4f:
+    case FieldType::SFVec4d:
+    case FieldType::SFColorRGBA:
+      return "0 0 0 0";
+    default:
+      return "0";
+  }
+}
+
+bool accessTakesValue(std::string_view access) {
+  return access != "inputOnly" && access != "outputOnly" && access != "eventIn" &&
+         access != "eventOut";
+}
+
+// Whether `text` starts with a URL scheme ("ecmascript:", "data:", "http:").
+bool hasUrlScheme(std::string_view text) {
+  if (text.empty() || !((text[0] >= 'a' && text[0] <= 'z') || (text[0] >= 'A' && text[0] <= 'Z')))
+    return false;
+  for (std::size_t i = 1; i < text.size() && i < 40; ++i) {
+    const char c = text[i];
+    if (c == ':') return true;
+    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                    c == '+' || c == '-' || c == '.';
+    if (!ok) return false;
+  }
+  return false;
 }
 
 }  // namespace gs::vrml::parsing

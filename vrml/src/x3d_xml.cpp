@@ -9,12 +9,17 @@
 #include "vrml/node_model.hpp"
 #include "vrml/node_table.hpp"
 #include "x3d_locations.hpp"
+#include "x3d_positions.hpp"
 #include "x3d_values.hpp"
+#include "x3d_xml_tree.hpp"
 
 #include <expat.h>
 
 #include <algorithm>
+#include <array>
+#include <cstring>
 #include <optional>
+#include <span>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -35,142 +40,33 @@ std::string_view trimLeft(std::string_view s) {
   return s;
 }
 
-/// One element of a statement being buffered.
-struct XNode {
-  std::string name;
-  int line = 0;
-  int column = 0;
-  std::vector<std::pair<std::string, std::string>> attrs;
-  std::vector<std::unique_ptr<XNode>> children;
-  std::string text;  // character data (kept for the nodes that take source text)
-  XNode* parent = nullptr;
-
-  const std::string* attr(std::string_view n) const {
-    for (const auto& [k, v] : attrs)
-      if (k == n) return &v;
-    return nullptr;
-  }
-  std::string attrOr(std::string_view n, std::string_view fallback = {}) const {
-    const std::string* v = attr(n);
-    return v != nullptr ? *v : std::string(fallback);
-  }
-};
-
-/// A PROTO or EXTERNPROTO declared in the file: its interface and where its instances go
-/// when they name no containerField (the first node of its body's).
-struct ProtoInfo {
-  std::vector<std::pair<std::string, FieldType>> fields;
-  std::string containerField = "children";
-
-  std::optional<FieldType> field(std::string_view n) const {
-    for (const auto& [k, t] : fields)
-      if (k == n) return t;
-    return std::nullopt;
-  }
-};
-
 // The XML encoding's element for a PROTO instance (ISO/IEC 19776-1 5.3.6): a statement of
 // the encoding, not a node class.
 constexpr std::string_view kProtoInstanceElement = "ProtoInstance";
 
 // Nodes whose <field> children declare interface members (ISO/IEC 19776-1 5.3.7): Script
 // and the X3DProgrammableShaderObject nodes (NodeType::userFields).
-bool declaresFields(std::string_view n) {
-  const auto type = x3dNodeType(n);
-  return type && type->userFields;
+bool declaresFields(const NodeType* type) {
+  return type != nullptr && type->userFields;
 }
 
 // Nodes whose text content is source code, added to `url`: Script, ShaderPart and the
 // programmable shader nodes that carry a url (ShaderProgram, PackagedShader).
-bool takesSource(std::string_view n) {
-  const auto type = x3dNodeType(n);
-  if (!type) return false;
+bool xmlTakesSource(const NodeType* type) {
+  if (type == nullptr) return false;
   return type->script || type->id() == NodeTypeId::ShaderPart ||
          (type->userFields && type->is(AbstractType::X3DUrlObject));
 }
 
 // Script source gets the ecmascript: scheme; shader source a data: URL.
-bool isScript(std::string_view n) {
-  const auto type = x3dNodeType(n);
-  return type && type->script;
+bool isScript(const NodeType* type) {
+  return type != nullptr && type->script;
 }
 
 // Attributes that are no field: XML bookkeeping and HTML-style ones.
 bool ignoredAttribute(std::string_view n) {
   return n == "DEF" || n == "USE" || n == "containerField" || n == "class" || n == "id" ||
          n == "style" || n.starts_with("xmlns") || n.find(':') != std::string_view::npos;
-}
-
-// A DEF/PROTO name as Classic VRML can write it (clause 5.2.3 of ISO/IEC 19776-2: no
-// spaces, quotes, '#', ',', '.', brackets or backslash; not starting with a digit or
-// sign). XML IDs such as "Cube.001" are written "Cube_001".
-std::string ident(std::string_view s) {
-  std::string out;
-  out.reserve(s.size() + 1);
-  for (char c : s) {
-    const auto u = static_cast<unsigned char>(c);
-    const bool bad = u <= 0x20 || u == 0x7f || c == '"' || c == '#' || c == '\'' || c == ',' ||
-                     c == '.' || c == '[' || c == '\\' || c == ']' || c == '{' || c == '}';
-    out += bad ? '_' : c;
-  }
-  if (out.empty() || (out[0] >= '0' && out[0] <= '9') || out[0] == '+' || out[0] == '-')
-    out.insert(out.begin(), '_');
-  return out;
-}
-
-// The Classic text of a field type's default value (for a <field> without value).
-std::string defaultText(FieldType t) {
-  if (isMultiValued(t)) return "[ ]";
-  switch (t) {
-    case FieldType::SFBool:
-      return "FALSE";
-    case FieldType::SFString:
-      return "\"\"";
-    case FieldType::SFRotation:
-      return "0 0 1 0";
-    case FieldType::SFImage:
-      return "0 0 0";
-    case FieldType::SFNode:
-      return "NULL";
-    case FieldType::SFMatrix3f:
-    case FieldType::SFMatrix3d:
-      return "1 0 0 0 1 0 0 0 1";
-    case FieldType::SFMatrix4f:
-    case FieldType::SFMatrix4d:
-      return "1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1";
-    case FieldType::SFVec2f:
-    case FieldType::SFVec2d:
-      return "0 0";
-    case FieldType::SFColor:
-    case FieldType::SFVec3f:
-    case FieldType::SFVec3d:
-      return "0 0 0";
-    case FieldType::SFVec4f:
-    case FieldType::SFVec4d:
-    case FieldType::SFColorRGBA:
-      return "0 0 0 0";
-    default:
-      return "0";
-  }
-}
-
-bool takesValue(std::string_view access) {
-  return access != "inputOnly" && access != "outputOnly" && access != "eventIn" &&
-         access != "eventOut";
-}
-
-// Whether `text` starts with a URL scheme ("ecmascript:", "data:", "http:").
-bool hasScheme(std::string_view text) {
-  if (text.empty() || !((text[0] >= 'a' && text[0] <= 'z') || (text[0] >= 'A' && text[0] <= 'Z')))
-    return false;
-  for (std::size_t i = 1; i < text.size() && i < 40; ++i) {
-    const char c = text[i];
-    if (c == ':') return true;
-    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
-                    c == '+' || c == '-' || c == '.';
-    if (!ok) return false;
-  }
-  return false;
 }
 
 struct LineEntry {
@@ -188,7 +84,7 @@ struct XmlToClassic::Impl {
     if (xp == nullptr) throw std::bad_alloc();
     XML_SetUserData(xp, this);
     XML_SetElementHandler(xp, &Impl::onStart, &Impl::onEnd);
-    XML_SetCharacterDataHandler(xp, &Impl::onText);
+    // (The character data handler is set only inside elements that take source text.)
     // No external entity handler and no parameter-entity parsing: DTDs and external
     // entities named by the document are never fetched.
     XML_SetParamEntityParsing(xp, XML_PARAM_ENTITY_PARSING_NEVER);
@@ -204,8 +100,10 @@ struct XmlToClassic::Impl {
   int maxDepth;
   XML_Parser xp = nullptr;
   std::vector<Frame> stack;
-  std::unique_ptr<XNode> root;  // the statement being buffered
-  XNode* cur = nullptr;         // its open element
+  std::vector<std::unique_ptr<XNode>> pool;  // XNodes; the first poolUsed are in use
+  std::size_t poolUsed = 0;
+  XNode* root = nullptr;  // the statement being buffered
+  XNode* cur = nullptr;   // its open element
   bool wroteHeader = false;
   bool x3d3 = false;  // version 3.x: metadata nodes go to `metadata` by default
   bool failed = false;
@@ -217,6 +115,8 @@ struct XmlToClassic::Impl {
   LocationMapper locations;  // what mapScene() has already moved onto the XML
   std::size_t counted = 0;   // bytes of `out` whose line ends were counted
   int classicLine = 1;       // line of out[counted]
+  bool finished = false;     // the last bytes were fed
+  XmlPositions positions;    // element start -> line and column (startHere)
 
   // ---- expat callbacks -----------------------------------------------------------------
 
@@ -228,7 +128,7 @@ struct XmlToClassic::Impl {
     Impl& m = *static_cast<Impl*>(ud);
     if (m.failed || m.stack.empty() || m.stack.back() != Frame::buffered || m.cur == nullptr)
       return;
-    if (takesSource(m.cur->name)) m.cur->text.append(s, static_cast<std::size_t>(len));
+    if (m.cur->source) m.cur->text.append(s, static_cast<std::size_t>(len));
   }
 
   std::pair<int, int> here() const {
@@ -247,9 +147,16 @@ struct XmlToClassic::Impl {
     warnings.push_back(Diagnostic{Severity::warning, {url, n.line, n.column}, std::move(message)});
   }
 
+  // here() at an element's start: from the byte offset and the line starts of the fed bytes
+  // where that is exact and cheap, else from expat.
+  std::pair<int, int> startHere() {
+    const auto at = positions.at(static_cast<std::uint64_t>(XML_GetCurrentByteIndex(xp)));
+    return at.first > 0 ? at : here();
+  }
+
   void start(const XML_Char* name, const XML_Char** atts) {
     if (failed) return;
-    const auto [line, column] = here();
+    const auto [line, column] = startHere();
     const std::string_view n(name);
     if (static_cast<int>(stack.size()) >= maxDepth) {
       fail(line, column, "XML elements nested deeper than " + std::to_string(maxDepth) + " levels");
@@ -273,7 +180,7 @@ struct XmlToClassic::Impl {
       wroteHeader = true;
       if (!profile.empty()) {
         beginLine(line, column);
-        out += "PROFILE " + ident(profile) + "\n";
+        out += "PROFILE " + xmlIdent(profile) + "\n";
       }
       stack.push_back(Frame::x3d);
       return;
@@ -292,38 +199,104 @@ struct XmlToClassic::Impl {
         return;
       case Frame::scene:
       case Frame::buffered: {
-        auto node = std::make_unique<XNode>();
-        node->name = n;
+        if (stack.back() == Frame::scene) poolUsed = 0;
+        XNode* node = newNode(n);
         node->line = line;
         node->column = column;
-        for (const XML_Char** a = atts; *a != nullptr; a += 2) node->attrs.emplace_back(a[0], a[1]);
+        for (const XML_Char** a = atts; *a != nullptr; a += 2) node->addAttr(a[0], a[1]);
         if (stack.back() == Frame::scene) {
-          root = std::move(node);
-          cur = root.get();
+          root = node;
         } else {
           node->parent = cur;
-          cur->children.push_back(std::move(node));
-          cur = cur->children.back().get();
+          cur->children.push_back(node);
         }
+        cur = node;
         stack.push_back(Frame::buffered);
+        textHandler();
         return;
       }
     }
   }
+
+  // x3dNodeType(n) through a small cache of the names met (a file uses few): no hash of
+  // the whole name, no reference count. The table lives as long as the program.
+  struct TypeCacheEntry {
+    std::string name;
+    const NodeType* type = nullptr;
+    bool valid = false;
+  };
+  std::array<TypeCacheEntry, 32> typeCache;
+  const NodeType* lookupType(std::string_view n) {
+    const std::size_t h = n.empty() ? 0
+                                    : (n.size() * 7 + static_cast<unsigned char>(n.front()) * 3 +
+                                       static_cast<unsigned char>(n[n.size() / 2]) +
+                                       static_cast<unsigned char>(n.back()));
+    TypeCacheEntry& e = typeCache[h % typeCache.size()];
+    if (e.valid && e.name == n) return e.type;
+    e.name.assign(n);
+    e.type = x3dNodeType(n).get();
+    e.valid = true;
+    return e.type;
+  }
+
+  // A pooled XNode for element `n`, reset.
+  XNode* newNode(std::string_view n) {
+    if (poolUsed == pool.size()) pool.push_back(std::make_unique<XNode>());
+    XNode* x = pool[poolUsed++].get();
+    x->name.assign(n);
+    x->type = lookupType(n);
+    x->source = xmlTakesSource(x->type);
+    // (ProtoInstance has a node model too; the statement names are none.)
+    x->kind = x->type != nullptr ? XKind::node : xkindOf(n);
+    x->instance = n == kProtoInstanceElement;
+    x->attrCount = 0;
+    x->children.clear();
+    x->text.clear();
+    x->parent = nullptr;
+    return x;
+  }
+
+  // node()'s lists, one per nesting level of node(), kept for their capacity.
+  struct NodeScratch {
+    std::vector<std::pair<std::string, std::vector<const XNode*>>> group;  // by field
+    std::size_t groups = 0;                                                // in use
+    std::vector<const XNode*> routes;
+  };
+  std::vector<std::unique_ptr<NodeScratch>> scratch;
+  std::size_t scratchDepth = 0;
+  struct ScratchLevel {
+    std::size_t& depth;
+    explicit ScratchLevel(std::size_t& d) : depth(d) { ++depth; }
+    ~ScratchLevel() { --depth; }
+    ScratchLevel(const ScratchLevel&) = delete;
+    ScratchLevel& operator=(const ScratchLevel&) = delete;
+  };
 
   void end() {
     if (failed || stack.empty()) return;
     const Frame f = stack.back();
     stack.pop_back();
     if (f != Frame::buffered) return;
-    if (cur == root.get()) {
+    if (cur == root) {
       statement(*root);
       out += '\n';
-      root.reset();
+      root = nullptr;
       cur = nullptr;
+      poolUsed = 0;
     } else {
       cur = cur->parent;
     }
+    textHandler();
+  }
+
+  // Character data matters only in an element that takes source text: expat reports it
+  // only there (fewer calls for the white space between elements).
+  bool textOn = false;
+  void textHandler() {
+    const bool want = cur != nullptr && cur->source;
+    if (want == textOn) return;
+    textOn = want;
+    XML_SetCharacterDataHandler(xp, want ? &Impl::onText : nullptr);
   }
 
   // <component>, <unit>, <meta> of <head>.
@@ -335,7 +308,7 @@ struct XmlToClassic::Impl {
     };
     if (n == "component") {
       beginLine(line, column);
-      out += "COMPONENT " + ident(get("name"));
+      out += "COMPONENT " + xmlIdent(get("name"));
       const std::string level = get("level");
       if (!blank(level)) {
         out += ':';
@@ -343,7 +316,7 @@ struct XmlToClassic::Impl {
       }
     } else if (n == "unit") {
       beginLine(line, column);
-      out += "UNIT " + ident(get("category")) + " " + ident(get("name")) + " ";
+      out += "UNIT " + xmlIdent(get("category")) + " " + xmlIdent(get("name")) + " ";
       const std::string f = get("conversionFactor");
       out += blank(f) ? std::string("1") : f;
     } else if (n == "meta") {
@@ -362,8 +335,15 @@ struct XmlToClassic::Impl {
 
   void beginLine(int line, int column) {
     if (!out.empty() && out.back() != '\n') out += '\n';
-    for (; counted < out.size(); ++counted)
-      if (out[counted] == '\n') ++classicLine;
+    const char* p = out.data() + counted;
+    const char* const e = out.data() + out.size();
+    while (p < e) {
+      const void* nl = std::memchr(p, '\n', static_cast<std::size_t>(e - p));
+      if (nl == nullptr) break;
+      ++classicLine;
+      p = static_cast<const char*>(nl) + 1;
+    }
+    counted = out.size();
     if (!lines.empty() && lines.back().classicLine == classicLine)
       lines.back() = {classicLine, line, column};
     else
@@ -374,20 +354,20 @@ struct XmlToClassic::Impl {
   // ---- statements ----------------------------------------------------------------------
 
   void statement(const XNode& n) {
-    if (n.name == "ROUTE") {
+    if (n.kind == XKind::route) {
       route(n);
-    } else if (n.name == "IMPORT") {
+    } else if (n.kind == XKind::importStatement) {
       beginLine(n);
       const std::string imported = n.attrOr("importedDEF");
-      out += "IMPORT " + ident(n.attrOr("inlineDEF")) + "." + ident(imported) + " AS " +
-             ident(n.attrOr("AS", imported));
-    } else if (n.name == "EXPORT") {
+      out += "IMPORT " + xmlIdent(n.attrOr("inlineDEF")) + "." + xmlIdent(imported) + " AS " +
+             xmlIdent(n.attrOr("AS", imported));
+    } else if (n.kind == XKind::exportStatement) {
       beginLine(n);
       const std::string local = n.attrOr("localDEF");
-      out += "EXPORT " + ident(local) + " AS " + ident(n.attrOr("AS", local));
-    } else if (n.name == "ProtoDeclare") {
+      out += "EXPORT " + xmlIdent(local) + " AS " + xmlIdent(n.attrOr("AS", local));
+    } else if (n.kind == XKind::protoDeclare) {
       protoDeclare(n);
-    } else if (n.name == "ExternProtoDeclare") {
+    } else if (n.kind == XKind::externProtoDeclare) {
       externProtoDeclare(n);
     } else {
       node(n);
@@ -396,8 +376,8 @@ struct XmlToClassic::Impl {
 
   void route(const XNode& n) {
     beginLine(n);
-    out += "ROUTE " + ident(n.attrOr("fromNode")) + "." + ident(n.attrOr("fromField")) + " TO " +
-           ident(n.attrOr("toNode")) + "." + ident(n.attrOr("toField"));
+    out += "ROUTE " + xmlIdent(n.attrOr("fromNode")) + "." + xmlIdent(n.attrOr("fromField")) +
+           " TO " + xmlIdent(n.attrOr("toNode")) + "." + xmlIdent(n.attrOr("toField"));
   }
 
   // `accessType type name [value]` of a <field> in a ProtoInterface, ExternProtoDeclare,
@@ -406,10 +386,10 @@ struct XmlToClassic::Impl {
     beginLine(f);
     const std::string access = f.attrOr("accessType", "initializeOnly");
     const std::string typeName = f.attrOr("type");
-    out += ident(access) + " " + ident(typeName) + " " + ident(f.attrOr("name")) + " ";
+    out += xmlIdent(access) + " " + xmlIdent(typeName) + " " + xmlIdent(f.attrOr("name")) + " ";
     FieldType t{};
     const bool known = fieldTypeFromName(typeName, t);
-    if (!withValue || !takesValue(access)) return known ? std::optional(t) : std::nullopt;
+    if (!withValue || !accessTakesValue(access)) return known ? std::optional(t) : std::nullopt;
     const std::string* value = f.attr("value");
     if (!known) {
       if (value != nullptr) out += *value;
@@ -418,7 +398,7 @@ struct XmlToClassic::Impl {
     if (t == FieldType::SFNode || t == FieldType::MFNode) {
       std::vector<const XNode*> nodes;
       for (const auto& c : f.children)
-        if (isNodeElement(*c)) nodes.push_back(c.get());
+        if (isNodeElement(*c)) nodes.push_back(c);
       if (!nodes.empty()) {
         nodeValue(t == FieldType::MFNode, nodes);
         return t;
@@ -427,13 +407,13 @@ struct XmlToClassic::Impl {
     if (value != nullptr)
       convertedValue(f, t, *value);
     else
-      out += defaultText(t);
+      out += classicDefaultText(t);
     return t;
   }
 
   void convertedValue(const XNode& n, FieldType t, std::string_view value) {
     std::string warning;
-    out += xmlValueToClassic(t, value, warning);
+    appendXmlValueAsClassic(out, t, value, warning);
     if (!warning.empty()) {
       warn(n, std::move(warning));
     } else if (t == FieldType::MFString) {
@@ -462,19 +442,19 @@ struct XmlToClassic::Impl {
   }
 
   void protoDeclare(const XNode& n) {
-    const std::string name = ident(n.attrOr("name"));
+    const std::string name = xmlIdent(n.attrOr("name"));
     ProtoInfo info;
     beginLine(n);
     out += "PROTO " + name + " [";
     const XNode* body = nullptr;
     for (const auto& c : n.children) {
-      if (c->name == "ProtoInterface") {
+      if (c->kind == XKind::protoInterface) {
         for (const auto& f : c->children) {
-          if (f->name != "field") continue;
+          if (f->kind != XKind::field) continue;
           if (auto t = fieldDeclaration(*f, true)) info.fields.emplace_back(f->attrOr("name"), *t);
         }
-      } else if (c->name == "ProtoBody" && body == nullptr) {
-        body = c.get();
+      } else if (c->kind == XKind::protoBody && body == nullptr) {
+        body = c;
       }
     }
     out += " ]\n{";
@@ -493,12 +473,12 @@ struct XmlToClassic::Impl {
   }
 
   void externProtoDeclare(const XNode& n) {
-    const std::string name = ident(n.attrOr("name"));
+    const std::string name = xmlIdent(n.attrOr("name"));
     ProtoInfo info;
     beginLine(n);
     out += "EXTERNPROTO " + name + " [";
     for (const auto& f : n.children) {
-      if (f->name != "field") continue;
+      if (f->kind != XKind::field) continue;
       if (auto t = fieldDeclaration(*f, false)) info.fields.emplace_back(f->attrOr("name"), *t);
     }
     out += " ] ";
@@ -507,12 +487,7 @@ struct XmlToClassic::Impl {
   }
 
   // Elements that are nodes (not statements or the XML encoding's structure).
-  static bool isNodeElement(const XNode& n) {
-    const std::string_view s = n.name;
-    return s != "ROUTE" && s != "IMPORT" && s != "EXPORT" && s != "ProtoDeclare" &&
-           s != "ExternProtoDeclare" && s != "IS" && s != "connect" && s != "field" &&
-           s != "fieldValue" && s != "ProtoInterface" && s != "ProtoBody";
-  }
+  static bool isNodeElement(const XNode& n) { return n.kind == XKind::node; }
 
   // Where child `c` of `parent` goes: its containerField, else its type's default
   // (X3D 3's `metadata` for metadata nodes in a 3.x file). A default the parent (of a
@@ -523,8 +498,8 @@ struct XmlToClassic::Impl {
     if (const std::string* cf = c.attr("containerField"); cf != nullptr && !blank(*cf)) return *cf;
     std::string field = "children";
     const bool metadata = c.name.starts_with("Metadata");
-    if (c.name == kProtoInstanceElement) {
-      auto it = protos.find(ident(c.attrOr("name")));
+    if (c.instance) {
+      auto it = protos.find(xmlIdent(c.attrOr("name")));
       if (it != protos.end()) field = it->second.containerField;
     } else if (metadata && x3d3) {
       field = "metadata";
@@ -541,25 +516,25 @@ struct XmlToClassic::Impl {
 
   // Whether the fields of node element `p` are all known here.
   bool knownFields(const XNode& p) const {
-    if (p.name == kProtoInstanceElement) return protos.contains(ident(p.attrOr("name")));
-    return x3dNodeType(p.name) != nullptr || protos.contains(p.name);
+    if (p.instance) return protos.contains(xmlIdent(p.attrOr("name")));
+    return p.type != nullptr || protos.contains(p.name);
   }
 
   // The type of field `f` of node element `p`; nothing when unknown.
   std::optional<FieldType> fieldType(const XNode& p, std::string_view f) const {
-    if (p.name == kProtoInstanceElement) {
-      auto it = protos.find(ident(p.attrOr("name")));
+    if (p.instance) {
+      auto it = protos.find(xmlIdent(p.attrOr("name")));
       if (it == protos.end()) return std::nullopt;
       return it->second.field(f);
     }
-    if (declaresFields(p.name)) {
+    if (declaresFields(p.type)) {
       for (const auto& c : p.children) {
-        if (c->name != "field" || c->attrOr("name") != f) continue;
+        if (c->kind != XKind::field || c->attrOr("name") != f) continue;
         FieldType t{};
         if (fieldTypeFromName(c->attrOr("type"), t)) return t;
       }
     }
-    if (const auto type = x3dNodeType(p.name)) {
+    if (const NodeType* type = p.type) {
       int i = type->findField(f);
       // X3D's names for VRML97's fields (Parser::x3dFieldAlias).
       if (i < 0 && type->id() == NodeTypeId::Collision && f == "enabled")
@@ -581,31 +556,43 @@ struct XmlToClassic::Impl {
   void node(const XNode& n) {
     beginLine(n);
     if (const std::string* use = n.attr("USE")) {
-      out += "USE " + ident(*use);
+      out += "USE ";
+      appendXmlIdent(out, *use);
       return;
     }
-    if (const std::string* def = n.attr("DEF"); def != nullptr && !blank(*def))
-      out += "DEF " + ident(*def) + " ";
-    const bool instance = n.name == kProtoInstanceElement;
-    out += instance ? ident(n.attrOr("name")) : ident(n.name);
+    if (const std::string* def = n.attr("DEF"); def != nullptr && !blank(*def)) {
+      out += "DEF ";
+      appendXmlIdent(out, *def);
+      out += ' ';
+    }
+    const bool instance = n.instance;
+    if (instance) {
+      const std::string* name = n.attr("name");
+      appendXmlIdent(out, name != nullptr ? std::string_view(*name) : std::string_view());
+    } else {
+      appendXmlIdent(out, n.name);
+    }
     out += " {";
     // Source text of Scripts and shaders: one more url entry.
     std::string source;
-    if (takesSource(n.name) && !blank(n.text)) {
+    if (n.source && !blank(n.text)) {
       std::string_view text = trimLeft(n.text);
       while (!text.empty() && xmlSpace(text.back())) text.remove_suffix(1);
-      if (!hasScheme(text)) source = isScript(n.name) ? "ecmascript:" : "data:text/plain,";
+      if (!hasUrlScheme(text)) source = isScript(n.type) ? "ecmascript:" : "data:text/plain,";
       source += text;
     }
     bool urlDone = false;
     if (!instance) {
-      for (const auto& [k, v] : n.attrs) {
+      for (const auto& [k, v] : n.attrs()) {
         // HTML's class, id and style, unless the node has a field of that name
         // (FontStyle.style, ScreenFontStyle.style).
-        const bool html = k == "class" || k == "id" || k == "style";
-        if (ignoredAttribute(k) && !(html && fieldType(n, k))) continue;
-        out += " " + k + " ";
+        const bool ignored = ignoredAttribute(k);
+        if (ignored && k != "class" && k != "id" && k != "style") continue;
         const auto t = fieldType(n, k);
+        if (ignored && !t) continue;
+        out += ' ';
+        out += k;
+        out += ' ';
         if (!t) {
           appendQuoted(out, v);
           continue;
@@ -626,49 +613,57 @@ struct XmlToClassic::Impl {
       out += " ]";
     }
     // Field declarations (Script, shaders), values of a PROTO instance, IS.
-    std::vector<const XNode*> routes;
-    std::vector<std::pair<std::string, std::vector<const XNode*>>> groups;
+    if (scratchDepth == scratch.size()) scratch.push_back(std::make_unique<NodeScratch>());
+    NodeScratch& sc = *scratch[scratchDepth];
+    const ScratchLevel level(scratchDepth);
+    sc.groups = 0;
+    sc.routes.clear();
     for (const auto& cp : n.children) {
       const XNode& c = *cp;
-      if (c.name == "field") {
-        if (declaresFields(n.name))
+      if (c.kind == XKind::field) {
+        if (declaresFields(n.type))
           fieldDeclaration(c, true);
         else
           warn(c, "<field> is only allowed in Script, shader nodes and PROTO interfaces: ignored");
-      } else if (c.name == "fieldValue") {
+      } else if (c.kind == XKind::fieldValue) {
         if (instance)
           fieldValue(n, c);
         else
           warn(c, "<fieldValue> is only allowed in a ProtoInstance: ignored");
-      } else if (c.name == "IS") {
+      } else if (c.kind == XKind::is) {
         for (const auto& k : c.children) {
-          if (k->name != "connect") continue;
+          if (k->kind != XKind::connect) continue;
           beginLine(*k);
-          out += ident(k->attrOr("nodeField")) + " IS " + ident(k->attrOr("protoField"));
+          out += xmlIdent(k->attrOr("nodeField")) + " IS " + xmlIdent(k->attrOr("protoField"));
         }
-      } else if (c.name == "ROUTE" || c.name == "ProtoDeclare" || c.name == "ExternProtoDeclare") {
-        routes.push_back(&c);
+      } else if (c.kind == XKind::route || c.kind == XKind::protoDeclare ||
+                 c.kind == XKind::externProtoDeclare) {
+        sc.routes.push_back(&c);
       } else if (!isNodeElement(c)) {
         warn(c, "<" + c.name + "> is not allowed in a node: ignored");
       } else {
         const std::string field = containerFieldOf(c, &n);
-        auto it = std::find_if(groups.begin(), groups.end(),
-                               [&](const auto& g) { return g.first == field; });
-        if (it == groups.end()) {
-          groups.emplace_back(field, std::vector<const XNode*>{});
-          it = groups.end() - 1;
+        std::size_t g = 0;
+        while (g < sc.groups && sc.group[g].first != field) ++g;
+        if (g == sc.groups) {
+          if (g == sc.group.size()) sc.group.emplace_back();
+          sc.group[g].first = field;
+          sc.group[g].second.clear();
+          ++sc.groups;
         }
-        it->second.push_back(&c);
+        sc.group[g].second.push_back(&c);
       }
     }
-    for (const auto& [field, nodes] : groups) {
+    for (std::size_t g = 0; g < sc.groups; ++g) {
+      const auto& [field, nodes] = sc.group[g];
       beginLine(*nodes.front());
-      out += ident(field) + " ";
+      appendXmlIdent(out, field);
+      out += ' ';
       const auto t = fieldType(n, field);
       nodeValue(!t || *t == FieldType::MFNode || nodes.size() > 1, nodes);
     }
     // ROUTEs and PROTOs last, after the DEFs of the children they may name.
-    for (const XNode* r : routes) statement(*r);
+    for (const XNode* r : sc.routes) statement(*r);
     out += " }";
   }
 
@@ -676,11 +671,11 @@ struct XmlToClassic::Impl {
   void fieldValue(const XNode& inst, const XNode& fv) {
     beginLine(fv);
     const std::string name = fv.attrOr("name");
-    out += ident(name) + " ";
+    out += xmlIdent(name) + " ";
     const auto t = fieldType(inst, name);
     std::vector<const XNode*> nodes;
     for (const auto& c : fv.children)
-      if (isNodeElement(*c)) nodes.push_back(c.get());
+      if (isNodeElement(*c)) nodes.push_back(c);
     if (!nodes.empty()) {
       nodeValue(!t || *t == FieldType::MFNode || nodes.size() > 1, nodes);
       return;
@@ -713,12 +708,18 @@ XmlToClassic::XmlToClassic(std::string& out, std::string url, int maxNesting)
 
 XmlToClassic::~XmlToClassic() = default;
 
-bool XmlToClassic::feed(std::string_view bytes) {
+bool XmlToClassic::feed(std::string_view bytes, bool last) {
   Impl& m = *impl_;
+  if (m.finished) return !m.failed;
+  if (last && bytes.empty()) return finish();
   while (!m.failed && !bytes.empty()) {
     constexpr std::size_t kMax = 1u << 30;  // XML_Parse takes an int length
     const std::size_t n = std::min(bytes.size(), kMax);
-    if (XML_Parse(m.xp, bytes.data(), static_cast<int>(n), XML_FALSE) == XML_STATUS_ERROR &&
+    const bool final = last && n == bytes.size();
+    m.positions.feed(bytes.substr(0, n));
+    if (final) m.finished = true;
+    if (XML_Parse(m.xp, bytes.data(), static_cast<int>(n), final ? XML_TRUE : XML_FALSE) ==
+            XML_STATUS_ERROR &&
         !m.failed) {
       const auto [line, column] = m.here();
       m.fail(line, column,
@@ -732,6 +733,9 @@ bool XmlToClassic::feed(std::string_view bytes) {
 bool XmlToClassic::finish() {
   Impl& m = *impl_;
   if (m.failed) return false;
+  if (m.finished) return true;
+  m.finished = true;
+  m.positions.feed({});
   if (XML_Parse(m.xp, "", 0, XML_TRUE) == XML_STATUS_ERROR && !m.failed) {
     const auto [line, column] = m.here();
     m.fail(line, column,

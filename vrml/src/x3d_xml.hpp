@@ -39,8 +39,9 @@ class XmlToClassic {
 
   /// Adds the next bytes of the XML (any split). Returns false once translation stopped
   /// for good (XML syntax error, nesting limit): fatalError() says why; the statements
-  /// written before stay.
-  bool feed(std::string_view bytes);
+  /// written before stay. `last`: no more bytes will come (finish() in the same call,
+  /// which spares expat a pass over the bytes for its line and column counts).
+  bool feed(std::string_view bytes, bool last = false);
   /// No more bytes will come (an unclosed document is a syntax error). Same result.
   bool finish();
 
