@@ -38,11 +38,11 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::ComposedCubeMapTexture,      // render/src/textures.cpp, environment_maps.cpp
     NodeTypeId::NurbsCurve,                  // vrml/src/geometry_nurbs.cpp
     NodeTypeId::NurbsPatchSurface,
-    NodeTypeId::NurbsTrimmedSurface,         // untrimmed
-    NodeTypeId::PixelTexture3D,              // render/src/textures_3d.cpp; volume data too
+    NodeTypeId::NurbsTrimmedSurface,  // untrimmed
+    NodeTypeId::PixelTexture3D,       // render/src/textures_3d.cpp; volume data too
     NodeTypeId::ComposedTexture3D,
     NodeTypeId::ImageTexture3D,
-    NodeTypeId::VolumeData,                  // render/src/volume_data.cpp: QNV splats
+    NodeTypeId::VolumeData,  // render/src/volume_data.cpp: QNV splats
     NodeTypeId::IsoSurfaceVolumeData,
     NodeTypeId::SegmentedVolumeData,
     NodeTypeId::OpacityMapVolumeStyle,

@@ -402,8 +402,9 @@ glm::mat4 billboardRotation(const glm::vec3& axisOfRotation, const glm::vec3& vi
 /// The texture-coordinate matrix of a TextureTransform (clause 6.49):
 /// Tc' = -C x S x R x C x T x Tc, as a 3x3 homogeneous 2D matrix. Also X3D's
 /// TextureTransform3D (the same product in 3D), TextureTransformMatrix3D (its `matrix`,
-/// written row by row for row vectors: the translation in its last row) and MultiTextureTransform (its first transform), all applied to
-/// (s, t, 0, 1) and kept in 2D (X3D 4.0 clauses 33.4.8, 33.4.9, 18.4.5).
+/// written row by row for row vectors: the translation in its last row) and MultiTextureTransform
+/// (its first transform), all applied to (s, t, 0, 1) and kept in 2D (X3D 4.0
+/// clauses 33.4.8, 33.4.9, 18.4.5).
 glm::mat3 textureTransformMatrix(const vrml::Node& textureTransform);
 
 /// The same transforms as 4x4 matrices acting on 3D texture coordinates (s, t, r, 1), for
