@@ -4,6 +4,9 @@
 
 #include "app/window_state.hpp"
 
+// GLFW without its OpenGL header: glad provides GL elsewhere (and must come first in a
+// unity build's translation unit).
+#define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
 namespace gs::app {
