@@ -29,6 +29,13 @@ set(GS_UNITY_ALONE
   tests/qnv/test_golden.cpp
   tests/qnv/test_stream_model.cpp
   tests/qnv/test_tileset_index.cpp
+  tests/app/test_window_keys.cpp
+  tests/render/test_multi_texture.cpp
+  tests/render/test_texture_3d.cpp
+  tests/render/test_texture_generation.cpp
+  tests/render/test_volume_data.cpp
+  tests/render/test_worlds.cpp
+  tests/runtime/test_key_sensors.cpp
   tests/render/test_movie_share.cpp
   tests/render/test_offscreen.cpp
   tests/render/test_splat_cpu.cpp
