@@ -60,6 +60,15 @@ Sampling samplingOf(const vrml::Node& texture) {
   return s;
 }
 
+/// Mipmaps, filters and S/T wrapping of the texture bound to `target`.
+void applySampling(GLenum target, const Sampling& sampling) {
+  glGenerateMipmap(target);
+  glTexParameteri(target, GL_TEXTURE_MIN_FILTER, sampling.minFilter);
+  glTexParameteri(target, GL_TEXTURE_MAG_FILTER, sampling.magFilter);
+  glTexParameteri(target, GL_TEXTURE_WRAP_S, sampling.wrapS);
+  glTexParameteri(target, GL_TEXTURE_WRAP_T, sampling.wrapT);
+}
+
 GLuint uploadRgba(const std::uint8_t* rowsBottomUp, int width, int height,
                   const Sampling& sampling) {
   GLuint id = 0;
@@ -68,11 +77,7 @@ GLuint uploadRgba(const std::uint8_t* rowsBottomUp, int width, int height,
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
                rowsBottomUp);
-  glGenerateMipmap(GL_TEXTURE_2D);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, sampling.minFilter);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, sampling.magFilter);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, sampling.wrapS);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, sampling.wrapT);
+  applySampling(GL_TEXTURE_2D, sampling);
   glBindTexture(GL_TEXTURE_2D, 0);
   return id;
 }
@@ -84,11 +89,7 @@ GLuint uploadRgba3D(const Texels3D& t, const Sampling& sampling) {
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA8, t.width, t.height, t.depth, 0, GL_RGBA, GL_UNSIGNED_BYTE,
                t.rgba.data());
-  glGenerateMipmap(GL_TEXTURE_3D);
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, sampling.minFilter);
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, sampling.magFilter);
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_S, sampling.wrapS);
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_T, sampling.wrapT);
+  applySampling(GL_TEXTURE_3D, sampling);
   glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_R, sampling.wrapR);
   glBindTexture(GL_TEXTURE_3D, 0);
   return id;

@@ -173,4 +173,9 @@ inline constexpr duk_errcode_t kNoBlameFileLine = 1L << 24;
 /// Hidden property of an SFNode object holding its node id.
 inline constexpr const char* kNodeIdKey = DUK_HIDDEN_SYMBOL("gsNode");
 
+/// Component `k` of a vector-like script object (SFVec3f, SFVec3d, SFColorRGBA, an array):
+/// its property `name` ("x", "r" ...), else its index k, as a number (NaN when neither is
+/// a number). Leaves the Duktape stack as it was (script_values.cpp).
+double vectorComponent(duk_context* c, duk_idx_t obj, const char* name, duk_uarridx_t k);
+
 }  // namespace gs::runtime::es

@@ -50,8 +50,14 @@ const char* typeOf(duk_context* c, duk_idx_t idx) {
   }
 }
 
-// Reads component `k` of a vector-like object: property `name`, else index k.
-double component(duk_context* c, duk_idx_t obj, const char* name, duk_uarridx_t k) {
+void putNumber(duk_context* c, const char* name, double v) {
+  duk_push_number(c, v);
+  duk_put_prop_string(c, -2, name);
+}
+
+}  // namespace
+
+double vectorComponent(duk_context* c, duk_idx_t obj, const char* name, duk_uarridx_t k) {
   duk_get_prop_string(c, obj, name);
   if (duk_is_undefined(c, -1)) {
     duk_pop(c);
@@ -61,13 +67,6 @@ double component(duk_context* c, duk_idx_t obj, const char* name, duk_uarridx_t 
   duk_pop(c);
   return v;
 }
-
-void putNumber(duk_context* c, const char* name, double v) {
-  duk_push_number(c, v);
-  duk_put_prop_string(c, -2, name);
-}
-
-}  // namespace
 
 void EsScript::pushProto(duk_context* c, FieldType t) {
   void* proto = protos_[static_cast<std::size_t>(t)];
@@ -284,16 +283,16 @@ bool EsScript::toValue(duk_context* c, duk_idx_t idx, FieldType t, FieldValue& o
     case FieldType::SFVec2f:
       if (!needObject()) return false;
       out = FieldValue::make<FieldType::SFVec2f>(
-          glm::vec2(static_cast<float>(component(c, idx, "x", 0)),
-                    static_cast<float>(component(c, idx, "y", 1))));
+          glm::vec2(static_cast<float>(vectorComponent(c, idx, "x", 0)),
+                    static_cast<float>(vectorComponent(c, idx, "y", 1))));
       return true;
     case FieldType::SFVec3f:
     case FieldType::SFColor: {
       if (!needObject()) return false;
       bool color = t == FieldType::SFColor;
-      glm::vec3 v(static_cast<float>(component(c, idx, color ? "r" : "x", 0)),
-                  static_cast<float>(component(c, idx, color ? "g" : "y", 1)),
-                  static_cast<float>(component(c, idx, color ? "b" : "z", 2)));
+      glm::vec3 v(static_cast<float>(vectorComponent(c, idx, color ? "r" : "x", 0)),
+                  static_cast<float>(vectorComponent(c, idx, color ? "g" : "y", 1)),
+                  static_cast<float>(vectorComponent(c, idx, color ? "b" : "z", 2)));
       out =
           color ? FieldValue::make<FieldType::SFColor>(v) : FieldValue::make<FieldType::SFVec3f>(v);
       return true;
@@ -301,10 +300,10 @@ bool EsScript::toValue(duk_context* c, duk_idx_t idx, FieldType t, FieldValue& o
     case FieldType::SFRotation:
       if (!needObject()) return false;
       out = FieldValue::make<FieldType::SFRotation>(
-          vrml::Rotation(static_cast<float>(component(c, idx, "x", 0)),
-                         static_cast<float>(component(c, idx, "y", 1)),
-                         static_cast<float>(component(c, idx, "z", 2)),
-                         static_cast<float>(component(c, idx, "angle", 3))));
+          vrml::Rotation(static_cast<float>(vectorComponent(c, idx, "x", 0)),
+                         static_cast<float>(vectorComponent(c, idx, "y", 1)),
+                         static_cast<float>(vectorComponent(c, idx, "z", 2)),
+                         static_cast<float>(vectorComponent(c, idx, "angle", 3))));
       return true;
     case FieldType::SFNode: {
       if (duk_is_null_or_undefined(c, idx)) {

@@ -20,18 +20,6 @@ namespace {
 constexpr std::array<const char*, 4> kX3dXyzw = {"x", "y", "z", "w"};
 constexpr std::array<const char*, 4> kX3dRgba = {"r", "g", "b", "a"};
 
-// Component `k` of a vector-like object: property `name`, else index k.
-double x3dComponent(duk_context* c, duk_idx_t obj, const char* name, duk_uarridx_t k) {
-  duk_get_prop_string(c, obj, name);
-  if (duk_is_undefined(c, -1)) {
-    duk_pop(c);
-    duk_get_prop_index(c, obj, k);
-  }
-  double v = duk_to_number(c, -1);
-  duk_pop(c);
-  return v;
-}
-
 double x3dIndex(duk_context* c, duk_idx_t obj, duk_uarridx_t k) {
   duk_get_prop_index(c, obj, k);
   double v = duk_to_number(c, -1);
@@ -197,8 +185,8 @@ bool EsScript::toX3DSingle(duk_context* c, duk_idx_t idx, FieldType t, FieldValu
   auto comps = [&](int n, bool color) {
     for (int i = 0; i < n; ++i)
       d[static_cast<std::size_t>(i)] =
-          x3dComponent(c, idx, (color ? kX3dRgba : kX3dXyzw)[static_cast<std::size_t>(i)],
-                       static_cast<duk_uarridx_t>(i));
+          vectorComponent(c, idx, (color ? kX3dRgba : kX3dXyzw)[static_cast<std::size_t>(i)],
+                          static_cast<duk_uarridx_t>(i));
   };
   auto f = [&](std::size_t i) { return static_cast<float>(d[i]); };
   switch (t) {
