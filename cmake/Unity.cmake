@@ -1,7 +1,7 @@
 # Unity ("jumbo") builds: CI's sanitizer build compiles each target's sources in batches
 # of 8 per translation unit (-DCMAKE_UNITY_BUILD=ON, docs/ci.md), which halves its
-# compile time; the strict build stays one file per unit, so it still catches a missing
-# #include. Files whose file-local names (anonymous namespaces) collide with a neighbour's
+# compile time; the strict build batches only the test suites (-DGS_UNITY_TESTS=ON), so
+# every source of the program is still compiled alone and a missing #include is caught. Files whose file-local names (anonymous namespaces) collide with a neighbour's
 # in one batch are compiled alone: list them here, relative to the project root, when a
 # unity build reports "redefinition of" or "ambiguous" for a name in an anonymous namespace.
 set(GS_UNITY_ALONE
@@ -31,6 +31,8 @@ set(GS_UNITY_ALONE
   tests/qnv/test_tileset_index.cpp
   tests/app/test_window_keys.cpp
   tests/render/test_multi_texture.cpp
+  tests/render/test_line_fill_properties.cpp
+  tests/render/test_texture_background.cpp
   tests/render/test_texture_3d.cpp
   tests/render/test_texture_generation.cpp
   tests/render/test_volume_data.cpp
@@ -54,7 +56,7 @@ set(GS_UNITY_ALONE
 # Marks the listed files under `subdir` (a prefix of their paths) as compiled alone, in the
 # current directory's scope (source file properties are per directory).
 function(gs_unity_alone subdir)
-  if(NOT CMAKE_UNITY_BUILD)
+  if(NOT CMAKE_UNITY_BUILD AND NOT (GS_UNITY_TESTS AND subdir MATCHES "^tests/"))
     return()
   endif()
   foreach(f IN LISTS GS_UNITY_ALONE)

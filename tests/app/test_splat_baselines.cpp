@@ -42,7 +42,7 @@ std::string ctheadStream() {
 }  // namespace
 
 TEST_CASE("CThead as QNV at the paper's fractions matches its baselines",
-          "[app][render][splat][corpus]") {
+          "[heavy][app][render][splat][corpus]") {
   if (!gs::test::haveCorpus("volume/cthead")) return;
   const std::string stream = ctheadStream();
   for (const auto& [name, fraction] :
@@ -58,7 +58,7 @@ TEST_CASE("CThead as QNV at the paper's fractions matches its baselines",
 }
 
 TEST_CASE("the top 9.1% of CThead's vectors look like all of them",
-          "[app][render][splat][corpus]") {
+          "[heavy][app][render][splat][corpus]") {
   if (!gs::test::haveCorpus("volume/cthead")) return;
   const std::string stream = ctheadStream();
   const std::string top = gs::test::snapshot(
@@ -73,7 +73,7 @@ TEST_CASE("the top 9.1% of CThead's vectors look like all of them",
   CHECK(topVsAll < fewVsAll);  // more vectors, closer to the whole picture
 }
 
-TEST_CASE("a volume snapshots straight from its NRRD file", "[app][render][splat][corpus]") {
+TEST_CASE("a volume snapshots straight from its NRRD file", "[heavy][app][render][splat][corpus]") {
   if (!gs::test::haveCorpus("volume/cthead")) return;
   const std::string direct = gs::test::snapshot(
       "cthead_direct", {"--size", "200x200", "--lod", ctheadLod(0.091),

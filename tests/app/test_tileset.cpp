@@ -186,7 +186,7 @@ TEST_CASE(
 }
 
 TEST_CASE("CThead as a tileset looks like its single stream: the haze of weak vectors stays",
-          "[app][tileset][corpus]") {
+          "[heavy][app][tileset][corpus]") {
   // docs/tilesets.md, "Choosing bricks": the opacity-aware rule. The top 10% of CThead's
   // voxels, 160 x 160 pixels: the screen-space rule alone drew about one vector per pixel
   // of each brick and lost the soft tissue's haze (19% of pixels off by more than

@@ -44,7 +44,7 @@ TilesetStatus tilesetStatus(const fs::path& file) {
 }  // namespace
 
 TEST_CASE("a scripted fly-through keeps a tileset's decoded vectors under --tileset-memory",
-          "[app][window][tileset]") {
+          "[heavy][app][window][tileset]") {
   gs::test::Xvfb xvfb;
   if (gs::test::skipWithoutXvfb(xvfb)) return;
   const fs::path dir = fs::path(GS_BINARY_DIR) / "tileset-flythrough";

@@ -300,7 +300,7 @@ TEST_CASE("writer: the castle X3D corpus round-trips in every X3D encoding", "[w
   }
 }
 
-TEST_CASE("writer: the VRML97 corpus round-trips as .wrl", "[writer][corpus]") {
+TEST_CASE("writer: the VRML97 corpus round-trips as .wrl", "[heavy][writer][corpus]") {
   if (!gs::test::haveCorpus("vrml")) return;
   CorpusFigures f = sweep("vrml", {".wrl", ".wrl.gz", ".wrz"}, {Encoding::vrml97});
   WARN("VRML97: " + std::to_string(f.same.at(Encoding::vrml97)) + " of " +
@@ -341,7 +341,8 @@ TEST_CASE("writer: worlds in both X3D encodings convert into each other", "[writ
   CHECK(pairs >= 6);
 }
 
-TEST_CASE("writer: VRML97 worlds written as X3D keep every VRML97 field", "[writer][corpus]") {
+TEST_CASE("writer: VRML97 worlds written as X3D keep every VRML97 field",
+          "[heavy][writer][corpus]") {
   if (!gs::test::haveCorpus("vrml")) return;
   int worlds = 0;
   std::map<Encoding, int> same;
@@ -407,7 +408,7 @@ Transform { children [ USE X ] }
   CHECK(writeScene(plain, WriteOptions{Encoding::vrml97}).diagnostics.items.empty());
 }
 
-TEST_CASE("writer: glTF worlds convert to X3D that reads back cleanly", "[writer][corpus]") {
+TEST_CASE("writer: glTF worlds convert to X3D that reads back cleanly", "[heavy][writer][corpus]") {
   if (!gs::test::haveCorpus("gltf")) return;
   int worlds = 0, renamed = 0;
   for (const std::string suffix : {".gltf", ".glb"}) {
