@@ -1,5 +1,6 @@
 // The Background pass (clause 6.5): sky and ground colour gradients as a full-screen
-// triangle (or a plain clear for a single sky colour), then the panorama cube.
+// triangle (or a plain clear for a single sky colour), then the panorama cube, whose faces
+// are image files (Background) or texture nodes (X3D's TextureBackground).
 #include "gl_program.hpp"
 #include "gpu_resources.hpp"
 #include "scene/node_access.hpp"
@@ -17,24 +18,25 @@ namespace {
 /// upright with +Y up; the top looking up +Y with +Z up; the bottom looking down -Y with
 /// -Z up (castle-model-viewer agrees: docs/background-and-images.md).
 struct Face {
-  vrml::FieldName field;
+  vrml::FieldName field;    // Background's MFString
+  vrml::FieldName texture;  // TextureBackground's SFNode (X3D 4.0 clause 24.4.3)
   glm::vec3 center, right, up;
 };
 
 constexpr Face kFaceTable[BackgroundPass::kFaces] = {
-    {"backUrl", {0, 0, 1}, {-1, 0, 0}, {0, 1, 0}},
-    {"bottomUrl", {0, -1, 0}, {1, 0, 0}, {0, 0, -1}},
-    {"frontUrl", {0, 0, -1}, {1, 0, 0}, {0, 1, 0}},
-    {"leftUrl", {-1, 0, 0}, {0, 0, -1}, {0, 1, 0}},
-    {"rightUrl", {1, 0, 0}, {0, 0, 1}, {0, 1, 0}},
-    {"topUrl", {0, 1, 0}, {1, 0, 0}, {0, 0, 1}},
+    {"backUrl", "backTexture", {0, 0, 1}, {-1, 0, 0}, {0, 1, 0}},
+    {"bottomUrl", "bottomTexture", {0, -1, 0}, {1, 0, 0}, {0, 0, -1}},
+    {"frontUrl", "frontTexture", {0, 0, -1}, {1, 0, 0}, {0, 1, 0}},
+    {"leftUrl", "leftTexture", {-1, 0, 0}, {0, 0, -1}, {0, 1, 0}},
+    {"rightUrl", "rightTexture", {1, 0, 0}, {0, 0, 1}, {0, 1, 0}},
+    {"topUrl", "topTexture", {0, 1, 0}, {1, 0, 0}, {0, 0, 1}},
 };
 
 }  // namespace
 
 void BackgroundPass::draw(const scene::BackgroundSettings& background, const glm::mat4& view,
                           const glm::mat4& projection, scene::SceneTraversal& traversal,
-                          base::Fetcher* fetcher) {
+                          base::Fetcher* fetcher, TextureCache& textures) {
   const glm::mat4 rotationOnly = glm::mat4(glm::mat3(view));
   GLboolean depthTest = glIsEnabled(GL_DEPTH_TEST);
   glDisable(GL_DEPTH_TEST);
@@ -42,7 +44,7 @@ void BackgroundPass::draw(const scene::BackgroundSettings& background, const glm
   glDisable(GL_CULL_FACE);
   drawGradient(background, rotationOnly, projection);
   if (background.node != nullptr)
-    drawPanorama(background, rotationOnly, projection, traversal, fetcher);
+    drawPanorama(background, rotationOnly, projection, traversal, fetcher, textures);
   glDisable(GL_BLEND);
   glDepthMask(GL_TRUE);
   if (depthTest) glEnable(GL_DEPTH_TEST);
@@ -97,7 +99,8 @@ void BackgroundPass::drawGradient(const scene::BackgroundSettings& background,
 
 void BackgroundPass::drawPanorama(const scene::BackgroundSettings& background,
                                   const glm::mat4& rotationOnly, const glm::mat4& projection,
-                                  scene::SceneTraversal& traversal, base::Fetcher* fetcher) {
+                                  scene::SceneTraversal& traversal, base::Fetcher* fetcher,
+                                  TextureCache& textures) {
   const vrml::Node& node = *background.node;
   const std::uint64_t revision = vrml::revisionWithFields(node);
   if (&node != facesNode_ || revision != facesRevision_) {
@@ -106,8 +109,20 @@ void BackgroundPass::drawPanorama(const scene::BackgroundSettings& background,
     facesRevision_ = revision;
   }
   bool any = false;
+  faceIds_ = {};
   for (int f = 0; f < kFaces; ++f) {
     const auto i = static_cast<std::size_t>(f);
+    // A TextureBackground: its texture nodes, from the shapes' texture cache.
+    if (const vrml::FieldValue* t = node.field(kFaceTable[i].texture);
+        t != nullptr && t->type() == vrml::FieldType::SFNode) {
+      const vrml::NodePtr& texture = t->get<vrml::FieldType::SFNode>();
+      if (texture && !texture->unresolved) {
+        const GpuTexture& gpu = textures.get(*texture, background.baseUrl, traversal, fetcher);
+        if (gpu.components > 0 && !gpu.volume && !gpu.cube) faceIds_[i] = gpu.id;
+      }
+      any = any || faceIds_[i] != 0;
+      continue;
+    }
     if (!faceDone_[i]) {
       const std::vector<std::string>& urls = scene::mfString(node, kFaceTable[i].field);
       if (urls.empty()) {
@@ -124,6 +139,7 @@ void BackgroundPass::drawPanorama(const scene::BackgroundSettings& background,
                          "cannot load Background " + std::string(kFaceTable[i].field.name()) +
                              " (" + loaded.failures + "): the colours show there");
     }
+    faceIds_[i] = faces_[i].id;
     any = any || faces_[i].id != 0;
   }
   if (!any) return;
@@ -148,11 +164,11 @@ void BackgroundPass::drawPanorama(const scene::BackgroundSettings& background,
   glBindVertexArray(vao_);
   for (int f = 0; f < kFaces; ++f) {
     const auto i = static_cast<std::size_t>(f);
-    if (faces_[i].id == 0) continue;
+    if (faceIds_[i] == 0) continue;
     glUniform3fv(locFaceCenter_, 1, glm::value_ptr(kFaceTable[i].center));
     glUniform3fv(locFaceRight_, 1, glm::value_ptr(kFaceTable[i].right));
     glUniform3fv(locFaceUp_, 1, glm::value_ptr(kFaceTable[i].up));
-    glBindTexture(GL_TEXTURE_2D, faces_[i].id);
+    glBindTexture(GL_TEXTURE_2D, faceIds_[i]);
     glDrawArrays(GL_TRIANGLES, 0, 6);
   }
   glBindVertexArray(0);

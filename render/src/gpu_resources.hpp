@@ -172,8 +172,11 @@ class BackgroundPass {
   /// Fills the current viewport. Only the view's rotation matters (the Background is at
   /// infinity): `view` is the camera's view matrix, `projection` its projection. Leaves
   /// depth writes and the depth buffer untouched.
+  /// A TextureBackground's faces (X3D 4.0 clause 24.4.3) are its texture nodes, taken
+  /// from `textures` (ImageTexture, PixelTexture, MovieTexture; loaded as shapes' are).
   void draw(const scene::BackgroundSettings& background, const glm::mat4& view,
-            const glm::mat4& projection, scene::SceneTraversal& traversal, base::Fetcher* fetcher);
+            const glm::mat4& projection, scene::SceneTraversal& traversal, base::Fetcher* fetcher,
+            TextureCache& textures);
   void release();
 
   /// The faces in the order of their fields: back, bottom, front, left, right, top.
@@ -184,7 +187,7 @@ class BackgroundPass {
                     const glm::mat4& projection);
   void drawPanorama(const scene::BackgroundSettings& background, const glm::mat4& rotationOnly,
                     const glm::mat4& projection, scene::SceneTraversal& traversal,
-                    base::Fetcher* fetcher);
+                    base::Fetcher* fetcher, TextureCache& textures);
   void releaseFaces();
 
   GLuint program_ = 0, vao_ = 0;
@@ -198,6 +201,7 @@ class BackgroundPass {
   std::uint64_t facesRevision_ = 0;
   std::array<GpuTexture, kFaces> faces_{};
   std::array<bool, kFaces> faceDone_{};  // loaded or failed: not asked for again
+  std::array<GLuint, kFaces> faceIds_{};   // this frame's: faces_ or a TextureBackground's
 };
 
 }  // namespace gs::render::detail

@@ -8,6 +8,7 @@
 
 #include "gl_program.hpp"
 #include "gpu_resources.hpp"
+#include "line_fill_properties.hpp"
 #include "multi_texture.hpp"
 #include "scene/node_access.hpp"
 #include "surface_programs.hpp"
@@ -67,6 +68,7 @@ struct Shading {
   /// `texture` is then null. A PhysicalMaterial takes its first stage as baseTexture.
   MultiTextureStages multi;
   const vrml::Node* multiTextureNode = nullptr;
+  LineFillStyle lineFill;      // X3D LineProperties and FillProperties
   std::uint64_t revision = 0;  // vrml::revisionWithFields of the Appearance read
 };
 
@@ -180,6 +182,7 @@ Shading readShading(const vrml::Node* appearance) {
     s.alphaMode = v == "OPAQUE" ? 1 : v == "MASK" ? 2 : v == "BLEND" ? 3 : 0;
     s.alphaCutoff = scene::sfFloat(*appearance, "alphaCutoff", 0.5f);
   }
+  s.lineFill = readLineFillStyle(*appearance);
   const vrml::NodePtr tt = appearance->sfnode("textureTransform");
   if (tt && !tt->unresolved) {
     s.textureMatrix = scene::textureTransformMatrix(*tt);
@@ -395,7 +398,8 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
   glDepthMask(GL_TRUE);
   glClearDepth(1.0);
   glClear(GL_DEPTH_BUFFER_BIT);
-  g.background.draw(traversal_.background(), view, projection, traversal_, options_.fetcher);
+  g.background.draw(traversal_.background(), view, projection, traversal_, options_.fetcher,
+                    g.textures);
 
   // Lights in eye coordinates.
   g.eyeLights.resize(g.frame.lights.size());
@@ -441,8 +445,11 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
       for (const std::string& problem : shadeIt->second.multi.problems)
         traversal_.report(vrml::Severity::warning, shadeIt->second.multiTextureNode->location,
                           problem);
+      if (const LineFillStyle& lf = shadeIt->second.lineFill; !lf.problem.empty())
+        traversal_.report(vrml::Severity::warning, lf.problemNode->location, lf.problem);
     }
     const Shading& shading = shadeIt->second;
+    if (mesh.primitive == vrml::Primitive::triangles && shading.lineFill.invisible()) continue;
     const GpuTexture* texture = nullptr;
     if (shading.texture != nullptr && mesh.primitive == vrml::Primitive::triangles) {
       texture = &g.textures.get(*shading.texture, *s.baseUrl, traversal_, options_.fetcher);
@@ -522,6 +529,7 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
       glUniform1i(u.fogType, fogType);
       glUniform3fv(u.fogColor, 1, glm::value_ptr(fog.color));
       glUniform1f(u.fogVisibilityRange, fog.visibilityRange);
+      glUniform2f(u.viewportSize, static_cast<float>(width), static_cast<float>(height));
       p.frameSet = g.programs.frame();
     }
     return true;
@@ -619,6 +627,7 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
       v.cubeMap = cubeMapMode(d);
       v.texture3D = d.texture != nullptr && d.texture->volume;
       if (v.cubeMap != 0) v.texGen = 0;  // the fragment shader finds the direction
+      sh.lineFill.specialize(v, mesh.primitive);
       if (lit) {
         v.lightCount = lights.count;
         for (int i = 0; i < lights.count; ++i)
@@ -704,6 +713,7 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     glm::vec3 unlit = (!triangles && sh.hasMaterial) ? sh.emissiveColor : glm::vec3(1.0f);
     if (sh.model == ShadingModel::unlit) unlit = sh.emissiveColor;
     glUniform3fv(u.unlitColor, 1, glm::value_ptr(unlit));
+    sh.lineFill.setUniforms(u, mesh.primitive);
     if (lit && !lightsUploaded) {
       lights.upload(u);
       lightsUploaded = true;
@@ -727,6 +737,8 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     else
       glDisable(GL_CULL_FACE);
     mesh.draw();
+    if (mesh.primitive == vrml::Primitive::lines && sh.lineFill.lineWidth != 1.0f)
+      glLineWidth(1.0f);
     statistics_.shapes += 1;
     statistics_.triangles += mesh.triangles;
   };

@@ -100,6 +100,10 @@ out vec3 v_normal;    // eye coordinates, not normalized
 out vec4 v_color;  // RGBA: ColorRGBA alpha multiplies the material alpha
 out vec2 v_texCoord;
 out vec2 v_texCoord1;
+// Screen-space line patterns (LineProperties.linetype): the position in normalized device
+// coordinates, and (flat) that of the segment's provoking vertex, where its pattern starts.
+noperspective out vec2 v_ndc;
+flat out vec2 v_lineStart;
 
 void main() {
   vec4 eye = u_modelView * vec4(a_position, 1.0);
@@ -121,6 +125,9 @@ void main() {
   for (int i = 0; i < kMaxClipPlanes; ++i)
     gl_ClipDistance[i] = i < CLIP_PLANES ? dot(u_clipPlanes[i], eye) : 1.0;
   gl_Position = u_projection * eye;
+  float w = abs(gl_Position.w) > 1e-6 ? gl_Position.w : 1e-6;
+  v_ndc = gl_Position.xy / w;
+  v_lineStart = v_ndc;
 }
 )glsl";
 
@@ -175,7 +182,16 @@ const int kLightTypes[kMaxLights] = int[kMaxLights](GS_LIGHT_TYPES);
 #define STAGE_COUNT GS_STAGE_COUNT
 #define CUBE_MAP GS_CUBE_MAP
 #define TEXTURE_3D GS_TEXTURE_3D
+#define LINE_TYPE GS_LINE_TYPE
+#define HATCH_STYLE GS_HATCH_STYLE
+#define FILLED GS_FILLED
 #else
+uniform int u_lineType;    // LineProperties.linetype: 1 solid .. 5 dash-dot-dot
+uniform int u_hatchStyle;  // FillProperties: 0 no hatches, 1 .. 6
+uniform bool u_filled;     // FillProperties.filled
+#define LINE_TYPE u_lineType
+#define HATCH_STYLE u_hatchStyle
+#define FILLED u_filled
 uniform bool u_texture3DOn;
 #define TEXTURE_3D u_texture3DOn
 uniform int u_stageCount;  // 0: no MultiTexture
@@ -230,6 +246,36 @@ uniform vec3 u_fogColor;
 uniform float u_fogVisibilityRange;
 
 out vec4 fragColor;
+
+// X3D LineProperties and FillProperties (clauses 12.4.6, 12.4.3; line_fill_properties.hpp):
+// dash patterns along each segment from its provoking vertex, in pixels scaled by the line
+// width, and hatch lines every 8 pixels of the window in hatchColor over the fill.
+noperspective in vec2 v_ndc;
+flat in vec2 v_lineStart;
+uniform vec2 u_viewportSize;  // pixels
+uniform float u_lineWidth;    // pixels
+uniform vec3 u_hatchColor;
+
+bool linePatternOn() {
+  float d = length((v_ndc - v_lineStart) * 0.5 * u_viewportSize) / max(u_lineWidth, 1.0);
+  if (LINE_TYPE == 2) return mod(d, 12.0) < 8.0;  // dashed
+  if (LINE_TYPE == 3) return mod(d, 4.0) < 2.0;   // dotted
+  float p = mod(d, LINE_TYPE == 4 ? 18.0 : 24.0);  // dash-dot, dash-dot-dot
+  return p < 8.0 || (p >= 11.0 && p < 13.0) || (LINE_TYPE == 5 && p >= 16.0 && p < 18.0);
+}
+
+bool hatchOn(vec2 pixel) {
+  bool horizontal = mod(pixel.y, 8.0) < 1.0;
+  bool vertical = mod(pixel.x, 8.0) < 1.0;
+  bool positive = mod(pixel.x - pixel.y, 8.0) < 1.0;
+  bool negative = mod(pixel.x + pixel.y, 8.0) < 1.0;
+  if (HATCH_STYLE == 1) return horizontal;
+  if (HATCH_STYLE == 2) return vertical;
+  if (HATCH_STYLE == 3) return positive;
+  if (HATCH_STYLE == 4) return negative;
+  if (HATCH_STYLE == 5) return horizontal || vertical;
+  return positive || negative;
+}
 
 vec3 cubeDirection() {
   vec3 n = normalize(v_normal);
@@ -294,6 +340,7 @@ vec4 applyStages(vec4 diffuse, vec3 specular) {
 }
 
 void main() {
+  if (LINE_TYPE > 1 && !linePatternOn()) discard;
   bool back = SEPARATE_BACK && !gl_FrontFacing;
   vec3 diffuseColor = back ? u_backDiffuseColor : u_diffuseColor;
   float ambientIntensity = back ? u_backAmbientIntensity : u_ambientIntensity;
@@ -360,6 +407,9 @@ void main() {
       color += attenuation * spot * u_lightColor[i] * (ambient + lambert + specular);
     }
   }
+
+  if (HATCH_STYLE > 0 && hatchOn(gl_FragCoord.xy)) color = u_hatchColor;
+  else if (!FILLED) discard;
 
   if (FOG_TYPE != 0 && u_fogVisibilityRange > 0.0) {
     float d = length(v_position);

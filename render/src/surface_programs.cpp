@@ -45,6 +45,12 @@ void SurfaceUniforms::find(GLuint p) {
     stageTexture[i] = uniform(p, kStageTextures[i]);
   textureModulates = uniform(p, "u_textureModulates");
   clipPlanes = uniform(p, "u_clipPlanes");
+  lineType = uniform(p, "u_lineType");
+  lineWidth = uniform(p, "u_lineWidth");
+  hatchStyle = uniform(p, "u_hatchStyle");
+  filled = uniform(p, "u_filled");
+  hatchColor = uniform(p, "u_hatchColor");
+  viewportSize = uniform(p, "u_viewportSize");
   separateBack = uniform(p, "u_separateBack");
   backDiffuseColor = uniform(p, "u_backDiffuseColor");
   backAmbientIntensity = uniform(p, "u_backAmbientIntensity");
@@ -106,7 +112,9 @@ std::uint64_t SurfaceVariant::key() const {
        static_cast<std::uint64_t>(clipPlanes & 7) << 29 |
        static_cast<std::uint64_t>(textureStages & 7) << 32 |
        static_cast<std::uint64_t>(texGen & 15) << 35 |
-       static_cast<std::uint64_t>(cubeMap & 7) << 39 | std::uint64_t{texture3D ? 1u : 0u} << 42;
+       static_cast<std::uint64_t>(cubeMap & 7) << 39 | std::uint64_t{texture3D ? 1u : 0u} << 42 |
+       static_cast<std::uint64_t>(lineType & 7) << 43 |
+       static_cast<std::uint64_t>(hatchStyle & 7) << 46 | std::uint64_t{unfilled ? 1u : 0u} << 49;
   return k;
 }
 
@@ -125,7 +133,9 @@ std::string SurfaceVariant::defines() const {
          "\n#define GS_CLIP_PLANES " + std::to_string(clipPlanes) + "\n#define GS_STAGE_COUNT " +
          std::to_string(textureStages) + "\n#define GS_TEX_GEN " + std::to_string(texGen) +
          "\n#define GS_CUBE_MAP " + std::to_string(cubeMap) + "\n#define GS_TEXTURE_3D " +
-         (texture3D ? "true" : "false") + "\n";
+         (texture3D ? "true" : "false") + "\n#define GS_LINE_TYPE " + std::to_string(lineType) +
+         "\n#define GS_HATCH_STYLE " + std::to_string(hatchStyle) + "\n#define GS_FILLED " +
+         (unfilled ? "false" : "true") + "\n";
 }
 
 void SurfacePrograms::beginFrame() {

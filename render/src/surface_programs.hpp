@@ -48,6 +48,7 @@ struct SurfaceUniforms {
   GLint texGen, texGenParameter, eyeToWorld;  // TextureCoordinateGenerator
   GLint cubeMap, cubeTexture;                 // a ComposedCubeMapTexture on unit 6
   GLint texture3DOn, texture3D, textureMatrix3D, texBoundsMin, texBoundsSize;  // unit 7
+  GLint lineType, lineWidth, hatchStyle, filled, hatchColor, viewportSize;  // line_fill_properties
   GLint separateBack, backDiffuseColor, backAmbientIntensity, backSpecularColor, backEmissiveColor,
       backShininess, backTransparency;
 
@@ -70,6 +71,9 @@ struct SurfaceVariant {
   int texGen = 0;                                     // TexGenMode (texture_generation.hpp)
   int cubeMap = 0;         // 0 none, else the lookup direction (shaders.cpp, cubeDirection)
   bool texture3D = false;  // an X3D Texturing3D texture
+  int lineType = 1;        // LineProperties.linetype, 1 .. 5 (line_fill_properties.hpp)
+  int hatchStyle = 0;      // FillProperties hatch style, 0 (none) .. 6
+  bool unfilled = false;   // FillProperties.filled FALSE
 
   /// A number naming the variant (equal keys, equal variants).
   std::uint64_t key() const;

@@ -45,6 +45,7 @@ std::optional<BindableKind> bindableKind(vrml::NodeTypeId id) {
     case NodeTypeId::NavigationInfo:
       return BindableKind::NavigationInfo;
     case NodeTypeId::Background:
+    case NodeTypeId::TextureBackground:
       return BindableKind::Background;
     case NodeTypeId::Fog:
       return BindableKind::Fog;

@@ -47,6 +47,7 @@ NodeKind nodeKind(const vrml::Node& node) {
     case NodeTypeId::NavigationInfo:
       return NodeKind::NavigationInfo;
     case NodeTypeId::Background:
+    case NodeTypeId::TextureBackground:  // its faces are textures (X3D 4.0 clause 24.4.3)
       return NodeKind::Background;
     case NodeTypeId::Fog:
       return NodeKind::Fog;

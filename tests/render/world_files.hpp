@@ -37,15 +37,17 @@ struct Rendered {
   vrml::Diagnostics diagnostics;  // the renderer's (the parser's are WARNed)
 };
 
-/// Loads `file` and draws one frame. With GS_RENDER_TEST_DUMP=DIR set, the picture is also
-/// written to DIR/<file stem>.png to be looked at.
-inline Rendered renderFile(const std::filesystem::path& file) {
+/// Loads `file` and draws `frames` frames (the first is drawn by the generic surface
+/// program, later ones by the shader variants: surface_programs.hpp), keeping the last.
+/// With GS_RENDER_TEST_DUMP=DIR set, the picture is also written to DIR/<file stem>.png to
+/// be looked at.
+inline Rendered renderFile(const std::filesystem::path& file, int frames = 1) {
   static auto context = render::createOffscreenContext(kWorldSize, kWorldSize);
   context->makeCurrent();
   auto scene = std::make_shared<vrml::Scene>(vrml::loadVrmlFile(file.string()));
   for (const auto& d : scene->diagnostics.items) WARN(d.format());
   render::SceneRenderer r(scene);
-  r.draw(r.initialCamera(1.0f), 0, 0, kWorldSize, kWorldSize);
+  for (int i = 0; i < frames; ++i) r.draw(r.initialCamera(1.0f), 0, 0, kWorldSize, kWorldSize);
   Rendered out{render::readPixels(0, 0, kWorldSize, kWorldSize), r.diagnostics()};
   if (const char* dir = std::getenv("GS_RENDER_TEST_DUMP"))
     render::writePng((std::filesystem::path(dir) / (file.stem().string() + ".png")).string(),

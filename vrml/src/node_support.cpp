@@ -94,6 +94,10 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::TexCoordDamper2D,
     NodeTypeId::KeySensor,  // runtime/src/key_sensors.cpp
     NodeTypeId::StringSensor,
+    NodeTypeId::LineProperties,  // render/src/line_fill_properties.cpp
+    NodeTypeId::FillProperties,
+    NodeTypeId::ProtoInstance,      // the XML encoding's PROTO instance (vrml/src/x3d_xml.cpp)
+    NodeTypeId::TextureBackground,  // render/src/background.cpp
 };
 
 }  // namespace

@@ -1,0 +1,55 @@
+// Private to render/: X3D's LineProperties and FillProperties (ISO/IEC 19775-1 X3D 4.0
+// clauses 12.4.6 and 12.4.3, the Shape component), read from an Appearance for the
+// surface program, which draws line patterns and hatching in its fragment shader
+// (shaders.cpp: linePatternOn, hatchOn).
+#pragma once
+
+#include "vrml/geometry.hpp"
+#include "vrml/node.hpp"
+
+#include <glm/vec3.hpp>
+
+#include <string>
+
+namespace gs::render::detail {
+
+struct SurfaceUniforms;
+struct SurfaceVariant;
+
+/// The line and fill styles of one Appearance; the defaults draw as VRML97 does.
+struct LineFillStyle {
+  /// LineProperties.linetype when applied: 1 solid, 2 dashed, 3 dotted, 4 dash-dot,
+  /// 5 dash-dot-dot (ISO/IEC 9973's first five); other values draw solid (the clause's
+  /// rule for unsupported types).
+  int lineType = 1;
+  /// Line width in pixels: the nominal width 1 times linewidthScaleFactor when that is
+  /// above 0 and LineProperties is applied, else 1. At most 64.
+  float lineWidth = 1.0f;
+  /// FillProperties.filled: FALSE leaves polygons' insides undrawn but for the hatches.
+  bool filled = true;
+  /// The hatch pattern drawn over polygons (FillProperties.hatched): 0 none, 1 horizontal,
+  /// 2 vertical, 3 positive slope, 4 negative slope, 5 horizontal/vertical cross-hatch,
+  /// 6 diagonal cross-hatch (ISO/IEC 9973's first six; styles 7-19 draw as 6).
+  int hatchStyle = 0;
+  glm::vec3 hatchColor{1.0f};  // FillProperties.hatchColor, components in [0, 1]
+  /// A value drawn as another one (for a warning at the node), else empty.
+  std::string problem;
+  const vrml::Node* problemNode = nullptr;
+
+  /// Whether a polygon with this style shows nothing at all (filled and hatched FALSE).
+  bool invisible() const { return !filled && hatchStyle == 0; }
+  /// Fixes the line type (lines only), hatch style and filling (polygons only) in `v`.
+  void specialize(SurfaceVariant& v, vrml::Primitive primitive) const;
+  /// Sets the program's line and fill uniforms for a mesh of `primitive`, and for lines
+  /// the GL line width (which the caller puts back to 1 after drawing).
+  void setUniforms(const SurfaceUniforms& u, vrml::Primitive primitive) const;
+};
+
+/// Reads `appearance`'s lineProperties and fillProperties fields (either may be absent,
+/// NULL or of another type: the defaults then).
+LineFillStyle readLineFillStyle(const vrml::Node& appearance);
+
+/// Pixels between hatch lines, and the period of the line patterns' dashes at width 1.
+inline constexpr float kHatchSpacing = 8.0f;
+
+}  // namespace gs::render::detail
