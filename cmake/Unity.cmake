@@ -33,6 +33,7 @@ set(GS_UNITY_ALONE
   tests/render/test_multi_texture.cpp
   tests/render/test_line_fill_properties.cpp
   tests/render/test_texture_background.cpp
+  tests/render/test_composed_shaders.cpp
   tests/render/test_texture_3d.cpp
   tests/render/test_texture_generation.cpp
   tests/render/test_volume_data.cpp

@@ -6,6 +6,7 @@
 #include "environment_maps.hpp"
 #include "scene_splats.hpp"
 
+#include "composed_shaders.hpp"
 #include "gl_program.hpp"
 #include "gpu_resources.hpp"
 #include "line_fill_properties.hpp"
@@ -45,7 +46,8 @@ struct DrawItem {
   std::array<const GpuTexture*, kMaxTextureStages> stageTextures{};
   std::array<GLint, kMaxTextureStages> stageSets{};
   int stageCount = 0;
-  TexGen texGen{};  // the geometry's TextureCoordinateGenerator
+  TexGen texGen{};                    // the geometry's TextureCoordinateGenerator
+  const UserProgram* user = nullptr;  // the Appearance's ComposedShader, null: none
 };
 
 /// Texture unit of an EnvironmentLight's specular cube map (units 0..4 are 2D maps).
@@ -122,6 +124,7 @@ struct SceneRenderer::Gpu {
   TextureCache textures;
   EnvironmentMaps environments;
   BackgroundPass background;
+  UserPrograms userPrograms;
   // Reused from frame to frame.
   scene::TraversalFrame frame;
   std::vector<scene::LightInstance> eyeLights;
@@ -134,6 +137,7 @@ struct SceneRenderer::Gpu {
     textures.release();
     environments.release();
     background.release();
+    userPrograms.release();
     programs.release();
   }
 };
@@ -320,6 +324,9 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
         traversal_.report(vrml::Severity::warning, s.geometry->sfnode("texCoord")->location,
                           item.texGen.problem);
     }
+    if (shading.hasShaders)
+      item.user =
+          g.userPrograms.find(*shading.appearance, *s.baseUrl, traversal_, options_.fetcher);
     if (shading.anyMapping && mesh.hasTexCoords1)
       for (std::size_t i = 0; i < item.texCoordSets.size(); ++i)
         item.texCoordSets[i] = texCoordSetOf(shading.mappings[i], *s.geometry);
@@ -425,6 +432,21 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     const GpuMesh& mesh = *d.mesh;
     const Shading& sh = *d.shading;
     const bool triangles = mesh.primitive == vrml::Primitive::triangles;
+    if (d.user != nullptr) {  // a ComposedShader draws the shape (composed_shaders.hpp)
+      g.userPrograms.use(*d.user, view * s.model, projection, d.texture, g.textures, *s.baseUrl,
+                         traversal_, options_.fetcher);
+      current = nullptr;
+      for (; clipDistancesOn > 0; --clipDistancesOn)
+        glDisable(GL_CLIP_DISTANCE0 + clipDistancesOn - 1);
+      if (triangles && mesh.solid)
+        glEnable(GL_CULL_FACE);
+      else
+        glDisable(GL_CULL_FACE);
+      mesh.draw();
+      statistics_.shapes += 1;
+      statistics_.triangles += mesh.triangles;
+      return;
+    }
     const bool lit = triangles && sh.hasMaterial;
     const bool physical = lit && sh.model == ShadingModel::physical;
     if (lit && (lastLightsOf == nullptr || lastLightsOf->scopedLightBegin != s.scopedLightBegin ||

@@ -128,6 +128,8 @@ Shading readShading(const vrml::Node* appearance) {
     s.alphaCutoff = scene::sfFloat(*appearance, "alphaCutoff", 0.5f);
   }
   s.lineFill = readLineFillStyle(*appearance);
+  s.appearance = appearance;
+  s.hasShaders = !appearance->mfnode("shaders").empty();
   const vrml::NodePtr tt = appearance->sfnode("textureTransform");
   if (tt && !tt->unresolved) {
     s.textureMatrix = scene::textureTransformMatrix(*tt);

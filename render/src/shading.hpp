@@ -61,7 +61,11 @@ struct Shading {
   /// `texture` is then null. A PhysicalMaterial takes its first stage as baseTexture.
   MultiTextureStages multi;
   const vrml::Node* multiTextureNode = nullptr;
-  LineFillStyle lineFill;      // X3D LineProperties and FillProperties
+  LineFillStyle lineFill;  // X3D LineProperties and FillProperties
+  /// The Appearance read, and whether its `shaders` field lists any shader (X3D 4.0
+  /// clause 31: composed_shaders.hpp).
+  const vrml::Node* appearance = nullptr;
+  bool hasShaders = false;
   std::uint64_t revision = 0;  // vrml::revisionWithFields of the Appearance read
 };
 

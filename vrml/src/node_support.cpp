@@ -98,6 +98,8 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::FillProperties,
     NodeTypeId::ProtoInstance,      // the XML encoding's PROTO instance (vrml/src/x3d_xml.cpp)
     NodeTypeId::TextureBackground,  // render/src/background.cpp
+    NodeTypeId::ComposedShader,     // render/src/composed_shaders.cpp (GLSL)
+    NodeTypeId::ShaderPart,
 };
 
 }  // namespace

@@ -1,0 +1,92 @@
+// Private to render/: X3D's programmable shaders (ISO/IEC 19775-1 X3D 4.0 clause 31, the
+// Shaders component) as far as a desktop OpenGL renderer draws them: an Appearance's first
+// ComposedShader in GLSL whose ShaderParts compile and link replaces the built-in surface
+// program for that shape (clause 31.2.2: "the first shader the browser supports").
+//
+// Sources written for OpenGL 2 (GLSL 1.10 to 1.50: attribute, varying, texture2D,
+// gl_Vertex, gl_ModelViewMatrix, gl_FragColor ...) are translated to GLSL 3.30 core
+// (translateGlsl); the vertex data and matrices are offered under castle-model-viewer's
+// names (castle_Vertex, castle_ModelViewMatrix ...), X_ITE's (x3d_Vertex,
+// x3d_ModelViewMatrix ...) and OpenGL 2's built-ins. Each field the shader node declares
+// (initializeOnly or inputOutput) sets the uniform of its name every frame (clause 31.2.3),
+// SFNode texture fields binding their texture to a unit of its own; Appearance.texture
+// is on unit 0. ProgramShader, PackagedShader, other languages and vertex attribute nodes
+// (FloatVertexAttribute ...) are read and not used.
+#pragma once
+
+#include "gl_program.hpp"
+#include "gpu_resources.hpp"
+
+#include "base/fetch.hpp"
+#include "scene/traversal.hpp"
+#include "vrml/node.hpp"
+
+#include <glm/mat4x4.hpp>
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace gs::render::detail {
+
+enum class ShaderStage { vertex, fragment };
+
+/// GLSL `source` of `stage` as GLSL 3.30 core: unchanged when it declares `#version 330`
+/// or later (not `es`); otherwise the #version line is dropped, its #extension lines are
+/// kept first, and macros and declarations map OpenGL 2's keywords, functions and
+/// built-in variables that `source` uses onto core ones (gl_Vertex onto the input
+/// gs_Vertex, gl_ModelViewMatrix onto the uniform gs_ModelViewMatrix, gl_FragColor onto an
+/// output ...). A `#line 1` keeps the compiler's line numbers those of `source`.
+std::string translateGlsl(std::string_view source, ShaderStage stage);
+
+/// A linked program of one ComposedShader node and the uniforms it takes.
+struct UserProgram {
+  GLuint id = 0;
+  const vrml::Node* shader = nullptr;  // the ComposedShader (its fields are read per draw)
+  std::vector<GLint> modelView, projection, normalMatrix, modelViewProjection;
+  struct FieldUniform {
+    std::size_t field;  // index into the shader node's fields
+    GLint location;
+    GLint unit;  // texture unit for an SFNode texture field, else -1
+  };
+  std::vector<FieldUniform> fields;
+};
+
+/// The programs of the ComposedShaders of one GL context, built on first use. Needs that
+/// context current in every call.
+class UserPrograms {
+ public:
+  /// The program for a shape with Appearance `appearance`: that of the first node of its
+  /// `shaders` field that is a ComposedShader in GLSL (or with no language) whose parts
+  /// load (urls: files, data: URLs, the network under the fetcher's rules; resolved
+  /// against `baseUrl`), compile and link. Null when there is none, or while a part is
+  /// still arriving (the built-in shading draws the shape meanwhile). A shader that fails
+  /// is reported to `traversal` once (at the node, with the compiler's log) and not tried
+  /// again until its parts change.
+  const UserProgram* find(const vrml::Node& appearance, const std::string& baseUrl,
+                          scene::SceneTraversal& traversal, base::Fetcher* fetcher);
+
+  /// Makes `program` current with the uniforms of one shape: the matrices (`modelView`
+  /// and `projection` as column-major glm matrices), the shader node's field values and
+  /// textures (from `textures`), and `texture` (Appearance.texture, may be null) on unit
+  /// 0. Leaves texture unit 0 active.
+  void use(const UserProgram& program, const glm::mat4& modelView, const glm::mat4& projection,
+           const GpuTexture* texture, TextureCache& textures, const std::string& baseUrl,
+           scene::SceneTraversal& traversal, base::Fetcher* fetcher);
+
+  /// Deletes every program.
+  void release();
+
+ private:
+  struct Entry {
+    std::uint64_t partsRevision = 0;
+    bool failed = false;
+    UserProgram program;
+  };
+  const UserProgram* build(const vrml::Node& shader, Entry& entry, const std::string& baseUrl,
+                           scene::SceneTraversal& traversal, base::Fetcher* fetcher, bool& pending);
+  vrml::NodeMap<Entry> programs_;
+};
+
+}  // namespace gs::render::detail

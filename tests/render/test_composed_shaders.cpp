@@ -1,0 +1,161 @@
+// X3D ComposedShader (X3D 4.0 clause 31): OpenGL 2 GLSL translated to 3.30 core, the
+// shader's fields as uniforms, failures falling back to the built-in shading; drawn
+// off-screen at 64x64.
+#include "../../render/src/composed_shaders.hpp"
+#include "test_support.hpp"
+#include "world_files.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <string>
+
+namespace fs = std::filesystem;
+using gs::render::detail::ShaderStage;
+using gs::render::detail::translateGlsl;
+using gs::test::close;
+using gs::test::Rendered;
+using gs::test::renderFile;
+using gs::test::worldDir;
+using gs::test::writeText;
+
+namespace {
+
+/// A square filling the view from (0, 0, 1), emissive blue, drawn by a ComposedShader with
+/// castle-model-viewer's vertex names, fragment shader body `fragment` and the extra
+/// shader fields `fields`.
+fs::path shaderWorld(const std::string& name, const std::string& fragment,
+                     const std::string& fields) {
+  const fs::path file = worldDir() / (name + ".x3dv");
+  writeText(file, R"(#X3D V3.2 utf8
+PROFILE Interchange
+COMPONENT Shaders:1
+NavigationInfo { headlight FALSE }
+Viewpoint { position 0 0 1 fieldOfView 1.5708 }
+Transform { translation 0 0 -1 scale 2 2 1 children Shape {
+  appearance Appearance {
+    material Material { diffuseColor 0 0 0 emissiveColor 0 0 1 }
+    shaders ComposedShader {
+      language "GLSL"
+      )" + fields + R"(
+      parts [
+        ShaderPart { type "VERTEX" url "data:text/plain,
+          uniform mat4 castle_ModelViewMatrix;
+          uniform mat4 castle_ProjectionMatrix;
+          attribute vec4 castle_Vertex;
+          varying vec2 position;
+          void main(void) {
+            position = castle_Vertex.xy;
+            gl_Position = castle_ProjectionMatrix * (castle_ModelViewMatrix * castle_Vertex);
+          }" }
+        ShaderPart { type "FRAGMENT" url "data:text/plain,
+          varying vec2 position;
+          )" + fragment +
+                      R"(" }
+      ]
+    }
+  }
+  geometry IndexedFaceSet { coord Coordinate { point [-1 -1 0, 1 -1 0, 1 1 0, -1 1 0] }
+    coordIndex [0 1 2 3 -1] } } }
+)");
+  return file;
+}
+
+int linesOf(const std::string& s) {
+  return static_cast<int>(std::count(s.begin(), s.end(), '\n'));
+}
+
+}  // namespace
+
+TEST_CASE("translateGlsl maps OpenGL 2 GLSL onto 3.30 core and keeps line numbers",
+          "[render][shaders]") {
+  const std::string vertex = "#version 120\nvoid main() { gl_Position = ftransform(); }\n";
+  const std::string v = translateGlsl(vertex, ShaderStage::vertex);
+  CHECK(v.starts_with("#version 330 core\n"));
+  CHECK(v.find("#define attribute in") != std::string::npos);
+  CHECK(v.find("#define varying out") != std::string::npos);
+  CHECK(v.find("in vec4 gs_Vertex;") != std::string::npos);
+  CHECK(v.find("uniform mat4 gs_ModelViewProjectionMatrix;") != std::string::npos);
+  CHECK(v.find("#version 120") == std::string::npos);
+  // The body after "#line 1" has the source's lines.
+  CHECK(linesOf(v.substr(v.find("#line 1\n") + 8)) == linesOf(vertex));
+  // Only what is used is declared.
+  CHECK(v.find("gs_Normal") == std::string::npos);
+
+  const std::string fragment =
+      "#extension GL_OES_standard_derivatives : enable\nvarying vec3 n;\n"
+      "void main() { gl_FragColor = texture2D(t, n.xy) * gl_Color; }\n";
+  const std::string f = translateGlsl(fragment, ShaderStage::fragment);
+  CHECK(f.find("#define varying in") != std::string::npos);
+  CHECK(f.find("out vec4 gs_FragColor;") != std::string::npos);
+  CHECK(f.find("#define texture2D texture") != std::string::npos);
+  CHECK(f.find("in vec4 gs_FrontColor;\n#define gl_Color gs_FrontColor") != std::string::npos);
+  // The extension comes before every declaration, and its line is blank in the body.
+  CHECK(f.find("#extension GL_OES") < f.find("#define"));
+  CHECK(f.find("#extension", f.find("#line 1")) == std::string::npos);
+
+  // GLSL 3.30 and later is left as written.
+  const std::string modern = "#version 330 core\nout vec4 c;\nvoid main() { c = vec4(1); }\n";
+  CHECK(translateGlsl(modern, ShaderStage::fragment) == modern);
+}
+
+TEST_CASE("A ComposedShader draws the shape with its fields as uniforms",
+          "[render][offscreen][world][shaders]") {
+  // An SFColor field and an SFNode texture field; the left half shows the colour, the
+  // right half the texture.
+  const Rendered r = renderFile(
+      shaderWorld("shader_fields",
+                  "uniform vec3 my_color; uniform sampler2D my_texture;\n"
+                  "void main(void) { gl_FragColor = position.x < 0.0 ? vec4(my_color, 1.0)\n"
+                  "  : texture2D(my_texture, vec2(0.5)); }",
+                  "inputOutput SFColor my_color 0 1 0\n"
+                  "inputOutput SFNode my_texture PixelTexture { image 1 1 3 0xFF0000 }"));
+  CHECK(r.diagnostics.items.empty());
+  CHECK(close(r.image.pixel(10, 32), 0, 255, 0, 4));
+  CHECK(close(r.image.pixel(54, 32), 255, 0, 0, 4));
+  // MF fields become uniform arrays; doubles are given as floats.
+  const Rendered arrays =
+      renderFile(shaderWorld("shader_arrays",
+                             "uniform float a[2]; uniform vec3 d;\n"
+                             "void main(void) { gl_FragColor = vec4(a[0], a[1], d.z, 1.0); }",
+                             "initializeOnly MFFloat a [1 0.5] initializeOnly SFVec3d d 0 0 0.25"));
+  CHECK(close(arrays.image.pixel(32, 32), 255, 128, 64, 4));
+}
+
+TEST_CASE("A ComposedShader that does not compile leaves the built-in shading, with a warning",
+          "[render][offscreen][world][shaders]") {
+  const Rendered r = renderFile(
+      shaderWorld("shader_broken", "void main(void) { gl_FragColor = undeclared; }", ""));
+  REQUIRE(r.diagnostics.items.size() == 1);
+  const std::string& message = r.diagnostics.items[0].message;
+  CHECK(message.find("ComposedShader not used") != std::string::npos);
+  CHECK(message.find("FRAGMENT") != std::string::npos);
+  CHECK(message.find("undeclared") != std::string::npos);
+  CHECK(close(r.image.pixel(32, 32), 0, 0, 255, 4));  // the Material's emissive blue
+  // Another language is not tried: the Material draws, without a warning.
+  const fs::path hlsl = worldDir() / "shader_hlsl.x3dv";
+  writeText(hlsl, R"(#X3D V3.2 utf8
+PROFILE Interchange
+Viewpoint { position 0 0 1 fieldOfView 1.5708 }
+Transform { translation 0 0 -1 scale 2 2 1 children Shape {
+  appearance Appearance { material Material { diffuseColor 0 0 0 emissiveColor 0 0 1 }
+    shaders ComposedShader { language "HLSL" parts ShaderPart { type "FRAGMENT" url "x.hlsl" } } }
+  geometry IndexedFaceSet { coord Coordinate { point [-1 -1 0, 1 -1 0, 1 1 0, -1 1 0] }
+    coordIndex [0 1 2 3 -1] } } }
+)");
+  const Rendered other = renderFile(hlsl);
+  CHECK(other.diagnostics.items.empty());
+  CHECK(close(other.image.pixel(32, 32), 0, 0, 255, 4));
+}
+
+TEST_CASE("castle's shader type test: every field type reaches its uniform",
+          "[render][offscreen][world][shaders][corpus]") {
+  if (!gs::test::haveCorpus("x3d/castle/shaders")) return;
+  // types.fs paints a column white when its uniform has the value the world gives it and
+  // red otherwise, for 36 columns (every SF and MF type).
+  const Rendered r = renderFile(gs::test::corpusDir() / "x3d/castle/shaders/types_test.x3dv");
+  int white = 0;
+  for (int x = 0; x < gs::test::kWorldSize; ++x)
+    white += close(r.image.pixel(x, 32), 255, 255, 255, 4) ? 1 : 0;
+  CHECK(white == gs::test::kWorldSize);
+}
