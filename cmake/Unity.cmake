@@ -32,7 +32,7 @@ set(GS_UNITY_ALONE
   tests/app/test_window_keys.cpp
   tests/render/test_multi_texture.cpp
   tests/render/test_line_fill_properties.cpp
-  tests/render/test_texture_background.cpp
+  tests/render/test_environmental_effects.cpp
   tests/render/test_composed_shaders.cpp
   tests/render/test_texture_3d.cpp
   tests/render/test_texture_generation.cpp

@@ -200,8 +200,8 @@ class BackgroundPass {
   const vrml::Node* facesNode_ = nullptr;
   std::uint64_t facesRevision_ = 0;
   std::array<GpuTexture, kFaces> faces_{};
-  std::array<bool, kFaces> faceDone_{};  // loaded or failed: not asked for again
-  std::array<GLuint, kFaces> faceIds_{};   // this frame's: faces_ or a TextureBackground's
+  std::array<bool, kFaces> faceDone_{};   // loaded or failed: not asked for again
+  std::array<GLuint, kFaces> faceIds_{};  // this frame's: faces_ or a TextureBackground's
 };
 
 }  // namespace gs::render::detail

@@ -35,6 +35,14 @@ LineFillStyle readLineFillStyle(const vrml::Node& appearance) {
     const float scale = scene::sfFloat(*l, "linewidthScaleFactor", 0.0f);
     s.lineWidth = scale > 0.0f ? std::clamp(scale, 1.0f, 64.0f) : 1.0f;
   }
+  if (const vrml::Node* p =
+          propertiesNode(appearance, "pointProperties", vrml::NodeTypeId::PointProperties)) {
+    s.pointScale = std::max(scene::sfFloat(*p, "pointSizeScaleFactor", 1.0f), 0.0f);
+    s.pointMin = std::max(scene::sfFloat(*p, "pointSizeMinValue", 1.0f), 0.0f);
+    s.pointMax = std::max(scene::sfFloat(*p, "pointSizeMaxValue", 1.0f), s.pointMin);
+    s.pointAttenuation = glm::max(scene::sfVec3(*p, "attenuation", glm::vec3(1, 0, 0)), 0.0f);
+    if (s.pointAttenuation == glm::vec3(0.0f)) s.pointAttenuation.x = 1.0f;
+  }
   if (const vrml::Node* f =
           propertiesNode(appearance, "fillProperties", vrml::NodeTypeId::FillProperties)) {
     s.filled = scene::sfBool(*f, "filled", true);
@@ -68,6 +76,11 @@ void LineFillStyle::setUniforms(const SurfaceUniforms& u, vrml::Primitive primit
   if (polygons && hatchStyle != 0)
     glUniform3f(u.hatchColor, hatchColor.r, hatchColor.g, hatchColor.b);
   if (lines) glLineWidth(lineWidth);
+  const bool points = primitive == vrml::Primitive::points;
+  glUniform1f(u.pointScale, points ? pointScale : 1.0f);
+  glUniform2f(u.pointSizeRange, points ? pointMin : 1.0f, points ? pointMax : 1.0f);
+  const glm::vec3 a = points ? pointAttenuation : glm::vec3(1.0f, 0.0f, 0.0f);
+  glUniform3f(u.pointAttenuation, a.x, a.y, a.z);
 }
 
 }  // namespace gs::render::detail

@@ -1,7 +1,8 @@
-// Private to render/: X3D's LineProperties and FillProperties (ISO/IEC 19775-1 X3D 4.0
-// clauses 12.4.6 and 12.4.3, the Shape component), read from an Appearance for the
-// surface program, which draws line patterns and hatching in its fragment shader
-// (shaders.cpp: linePatternOn, hatchOn).
+// Private to render/: X3D's LineProperties, FillProperties and PointProperties (ISO/IEC
+// 19775-1 X3D 4.0 clauses 12.4.6, 12.4.3 and 12.4.9, the Shape component), read from an
+// Appearance for the surface program, which draws line patterns and hatching in its
+// fragment shader (shaders.cpp: linePatternOn, hatchOn) and sizes points in its vertex
+// shader.
 #pragma once
 
 #include "vrml/geometry.hpp"
@@ -32,6 +33,12 @@ struct LineFillStyle {
   /// 6 diagonal cross-hatch (ISO/IEC 9973's first six; styles 7-19 draw as 6).
   int hatchStyle = 0;
   glm::vec3 hatchColor{1.0f};  // FillProperties.hatchColor, components in [0, 1]
+  /// PointProperties: a point's size in pixels is the nominal size (the renderer's
+  /// pointSize option) times pointScale / (a[0] + a[1] r + a[2] r^2), r its distance from
+  /// the viewer in metres, clamped to [pointMin, pointMax] times the nominal size. The
+  /// defaults keep the nominal size.
+  float pointScale = 1.0f, pointMin = 1.0f, pointMax = 1.0f;
+  glm::vec3 pointAttenuation{1.0f, 0.0f, 0.0f};
   /// A value drawn as another one (for a warning at the node), else empty.
   std::string problem;
   const vrml::Node* problemNode = nullptr;
@@ -40,8 +47,8 @@ struct LineFillStyle {
   bool invisible() const { return !filled && hatchStyle == 0; }
   /// Fixes the line type (lines only), hatch style and filling (polygons only) in `v`.
   void specialize(SurfaceVariant& v, vrml::Primitive primitive) const;
-  /// Sets the program's line and fill uniforms for a mesh of `primitive`, and for lines
-  /// the GL line width (which the caller puts back to 1 after drawing).
+  /// Sets the program's line, point and fill uniforms for a mesh of `primitive`, and for
+  /// lines the GL line width (which the caller puts back to 1 after drawing).
   void setUniforms(const SurfaceUniforms& u, vrml::Primitive primitive) const;
 };
 

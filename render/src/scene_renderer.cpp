@@ -343,8 +343,14 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
             [](const DrawItem& a, const DrawItem& b) { return a.depth > b.depth; });
 
   // Per-frame uniforms, set in each program the first time this frame uses it.
-  const scene::FogSettings& fog = traversal_.fog();
-  const int fogType = fog.visibilityRange > 0.0f ? (fog.exponential ? 2 : 1) : 0;
+  // The bound Fog, or per shape its innermost X3D LocalFog (set with the shape's uniforms).
+  const scene::FogSettings& boundFog = traversal_.fog();
+  const auto fogOf = [&](const scene::ShapeInstance& s) -> const scene::FogSettings& {
+    return s.localFog >= 0 ? g.frame.localFogs[static_cast<std::size_t>(s.localFog)] : boundFog;
+  };
+  const auto fogTypeOf = [](const scene::FogSettings& f) {
+    return f.visibilityRange > 0.0f ? (f.exponential ? 2 : 1) : 0;
+  };
   const SurfaceProgram* current = nullptr;
   auto use = [&](SurfaceProgram& p) {
     if (&p == current) return false;
@@ -360,9 +366,6 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
       glUniform1i(u.environmentMap, kEnvironmentUnit);
       glUniform1i(u.cubeTexture, kCubeTextureUnit);
       glUniform1i(u.texture3D, kTexture3DUnit);
-      glUniform1i(u.fogType, fogType);
-      glUniform3fv(u.fogColor, 1, glm::value_ptr(fog.color));
-      glUniform1f(u.fogVisibilityRange, fog.visibilityRange);
       glUniform2f(u.viewportSize, static_cast<float>(width), static_cast<float>(height));
       p.frameSet = g.programs.frame();
     }
@@ -467,7 +470,7 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
       v.lit = lit;
       v.hasColor = mesh.hasColors;
       v.textureComponents = d.texture != nullptr ? d.texture->components : 0;
-      v.fogType = fogType;
+      v.fogType = fogTypeOf(fogOf(s));
       v.separateBack = sh.separateBack;
       v.textureModulates = sh.textureModulates;
       v.clipPlanes = static_cast<int>(std::min(s.clipPlaneCount, kMaxClipPlanes));
@@ -563,6 +566,10 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     if (sh.model == ShadingModel::unlit) unlit = sh.emissiveColor;
     glUniform3fv(u.unlitColor, 1, glm::value_ptr(unlit));
     sh.lineFill.setUniforms(u, mesh.primitive);
+    const scene::FogSettings& fog = fogOf(s);
+    glUniform1i(u.fogType, fogTypeOf(fog));
+    glUniform3fv(u.fogColor, 1, glm::value_ptr(fog.color));
+    glUniform1f(u.fogVisibilityRange, fog.visibilityRange);
     if (lit && !lightsUploaded) {
       lights.upload(u);
       lightsUploaded = true;

@@ -37,7 +37,12 @@ uniform mat4 u_modelView;
 uniform mat4 u_projection;
 uniform mat3 u_normalMatrix;
 uniform mat3 u_textureMatrix;
-uniform float u_pointSize;
+uniform float u_pointSize;  // pixels, the nominal size
+// X3D PointProperties (clause 12.4.9): the nominal size times u_pointScale over the
+// attenuation polynomial of the distance, clamped to u_pointSizeRange times the nominal.
+uniform float u_pointScale;
+uniform vec2 u_pointSizeRange;
+uniform vec3 u_pointAttenuation;
 // X3D ClipPlanes (clause 11.4.1) in eye coordinates: kept where dot(plane, eye) >= 0.
 // A specialized variant fixes their count (surface_programs.cpp).
 const int kMaxClipPlanes = 6;
@@ -121,7 +126,10 @@ void main() {
   } else {
     v_texCoord3 = vec3(0.0);
   }
-  gl_PointSize = u_pointSize;
+  float r = length(eye.xyz);
+  float attenuation = max(dot(u_pointAttenuation, vec3(1.0, r, r * r)), 1e-6);
+  gl_PointSize = clamp(u_pointSize * u_pointScale / attenuation, u_pointSize * u_pointSizeRange.x,
+                       u_pointSize * u_pointSizeRange.y);
   for (int i = 0; i < kMaxClipPlanes; ++i)
     gl_ClipDistance[i] = i < CLIP_PLANES ? dot(u_clipPlanes[i], eye) : 1.0;
   gl_Position = u_projection * eye;

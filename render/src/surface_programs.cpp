@@ -46,6 +46,9 @@ void SurfaceUniforms::find(GLuint p) {
   textureModulates = uniform(p, "u_textureModulates");
   clipPlanes = uniform(p, "u_clipPlanes");
   lineType = uniform(p, "u_lineType");
+  pointScale = uniform(p, "u_pointScale");
+  pointSizeRange = uniform(p, "u_pointSizeRange");
+  pointAttenuation = uniform(p, "u_pointAttenuation");
   lineWidth = uniform(p, "u_lineWidth");
   hatchStyle = uniform(p, "u_hatchStyle");
   filled = uniform(p, "u_filled");

@@ -51,6 +51,8 @@ NodeKind nodeKind(const vrml::Node& node) {
       return NodeKind::Background;
     case NodeTypeId::Fog:
       return NodeKind::Fog;
+    case NodeTypeId::LocalFog:
+      return NodeKind::LocalFog;
     case NodeTypeId::OutlineGroup:
       return NodeKind::OutlineGroup;
     case NodeTypeId::QuantizedNormalVectors:

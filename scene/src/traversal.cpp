@@ -38,6 +38,8 @@ struct SceneTraversal::Walk {
   std::uint32_t lastScopeBegin = 0;
   /// The innermost scoped EnvironmentLight (index in frame.environmentLights), -1: none.
   std::int32_t environmentScope = -1;
+  /// The innermost enabled LocalFog (index in frame.localFogs), -1: none.
+  std::int32_t fogScope = -1;
   /// The X3D length unit (metres per unit) of the file being walked (lengthUnitOf).
   float lengthUnit = 1.0f;
   /// The ClipPlanes in scope, world coordinates (SceneTraversal::clipScratch_).
@@ -65,6 +67,7 @@ struct SceneTraversal::Walk {
     const std::size_t scopeSize = scope.size();
     const std::size_t clipSize = clipScope->size();
     const std::int32_t outerEnvironment = environmentScope;
+    const std::int32_t outerFog = fogScope;
     for (const vrml::NodePtr& n : list) {
       if (!n) continue;
       const NodeKind kind = nodeKind(*n);
@@ -77,6 +80,7 @@ struct SceneTraversal::Walk {
         pointOrSpotLight(*n, m, kind == NodeKind::SpotLight, true);
       if (kind == NodeKind::EnvironmentLight) environmentLight(*n, m, baseUrl);
       if (kind == NodeKind::ClipPlane) clipPlane(*n, m);
+      if (kind == NodeKind::LocalFog) localFog(*n, m);
     }
     for (const vrml::NodePtr& n : list)
       if (n) node(*n, m, baseUrl);
@@ -85,6 +89,7 @@ struct SceneTraversal::Walk {
       scopeChanged = true;
     }
     environmentScope = outerEnvironment;
+    fogScope = outerFog;
     if (clipScope->size() != clipSize) {
       clipScope->resize(clipSize);
       clipScopeChanged = true;
@@ -101,6 +106,19 @@ struct SceneTraversal::Walk {
       return;
     clipScope->push_back(glm::transpose(glm::inverse(m)) * local);
     clipScopeChanged = true;
+  }
+
+  // X3D 4.0 clause 24.4.4: Fog's fields, for the siblings and their descendants; the
+  // visibility range in the LocalFog's coordinate system.
+  void localFog(const vrml::Node& n, const glm::mat4& m) {
+    if (!sfBool(n, "enabled", true)) return;
+    FogSettings f;
+    f.node = &n;
+    f.color = glm::clamp(sfColor(n, "color", glm::vec3(1.0f)), 0.0f, 1.0f);
+    f.exponential = sfString(n, "fogType") == "EXPONENTIAL";
+    f.visibilityRange = std::max(sfFloat(n, "visibilityRange", 0.0f), 0.0f) * meanScale(m);
+    fogScope = static_cast<std::int32_t>(frame.localFogs.size());
+    frame.localFogs.push_back(f);
   }
 
   // X3D 4.1 clause 17.4.2: the cube maps turn with the light's coordinate system and its
@@ -213,6 +231,7 @@ struct SceneTraversal::Walk {
     s.scopedLightBegin = lastScopeBegin;
     s.scopedLightCount = static_cast<std::uint32_t>(scope.size());
     s.environmentLight = environmentScope;
+    s.localFog = fogScope;
     if (clipScopeChanged) {
       lastClipBegin = static_cast<std::uint32_t>(frame.scopedClipPlanes.size());
       frame.scopedClipPlanes.insert(frame.scopedClipPlanes.end(), clipScope->begin(),

@@ -168,3 +168,48 @@ TEST_CASE("An unsupported linetype draws solid with a warning at the node",
   for (int row = 0; row < 64; ++row) lit += countOf(pixelsOf(r, true, row, 255, 0, 0));
   CHECK(lit == 64);
 }
+
+namespace {
+
+/// One red point at the origin seen from 1 m, with `points` as the Appearance's
+/// pointProperties (may be empty); the renderer's nominal point size is 2 pixels.
+int pointPixels(const std::string& name, const std::string& points, int frames) {
+  const fs::path file = worldDir() / (name + ".x3dv");
+  writeText(file, R"(#X3D V4.0 utf8
+PROFILE Interchange
+Viewpoint { position 0 0 1 fieldOfView 1.5708 }
+Shape {
+  appearance Appearance { material UnlitMaterial { emissiveColor 1 0 0 } )" +
+                      points + R"( }
+  geometry PointSet { coord Coordinate { point [0 0 0] } } }
+)");
+  const Rendered r = renderFile(file, frames);
+  int lit = 0;
+  for (int row = 0; row < gs::test::kWorldSize; ++row)
+    lit += countOf(pixelsOf(r, true, row, 255, 0, 0));
+  return lit;
+}
+
+}  // namespace
+
+TEST_CASE("PointProperties scales, attenuates and clamps the point size",
+          "[render][offscreen][world][point]") {
+  for (int frames : {1, 3}) {
+    INFO("frames " << frames);
+    CHECK(pointPixels("point_plain", "", frames) == 4);  // 2 x 2
+    CHECK(pointPixels("point_scaled",
+                      "pointProperties PointProperties { pointSizeScaleFactor 3 "
+                      "pointSizeMaxValue 10 }",
+                      frames) == 36);  // 2 * 3 = 6 pixels wide
+    // Attenuation 2 r^2 at r = 1 halves it.
+    CHECK(pointPixels("point_attenuated",
+                      "pointProperties PointProperties { pointSizeScaleFactor 3 "
+                      "pointSizeMaxValue 10 attenuation 0 0 2 }",
+                      frames) == 9);
+    // The minimum wins over a smaller computed size; the default maximum (1) caps a scale.
+    CHECK(pointPixels("point_minimum", "pointProperties PointProperties { pointSizeMinValue 4 }",
+                      frames) == 64);
+    CHECK(pointPixels("point_capped", "pointProperties PointProperties { pointSizeScaleFactor 3 }",
+                      frames) == 4);
+  }
+}

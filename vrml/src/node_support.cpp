@@ -96,8 +96,10 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::StringSensor,
     NodeTypeId::LineProperties,  // render/src/line_fill_properties.cpp
     NodeTypeId::FillProperties,
+    NodeTypeId::PointProperties,
     NodeTypeId::ProtoInstance,      // the XML encoding's PROTO instance (vrml/src/x3d_xml.cpp)
     NodeTypeId::TextureBackground,  // render/src/background.cpp
+    NodeTypeId::LocalFog,           // scene/src/traversal.cpp (ShapeInstance::localFog)
     NodeTypeId::ComposedShader,     // render/src/composed_shaders.cpp (GLSL)
     NodeTypeId::ShaderPart,
 };

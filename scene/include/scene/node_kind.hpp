@@ -28,6 +28,7 @@ enum class NodeKind : std::uint8_t {
   NavigationInfo,
   Background,
   Fog,
+  LocalFog,      // X3D EnvironmentalEffects: fogs its siblings and their descendants
   CADFace,       // X3D CADGeometry: its `shape` field is drawn
   OutlineGroup,  // GhostSpace extensions (docs/vrml-extensions.md)
   QuantizedNormalVectors,

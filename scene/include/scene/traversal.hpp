@@ -71,6 +71,14 @@ struct PathStep {
   const std::vector<vrml::NodePtr>* children = nullptr;
 };
 
+/// The bound Fog (clause 6.19), or an X3D LocalFog (X3D 4.0 clause 24.4.4).
+struct FogSettings {
+  glm::vec3 color{1.0f};
+  bool exponential = false;      // fogType "EXPONENTIAL", else "LINEAR"
+  float visibilityRange = 0.0f;  // world metres (scaled by the Fog's transform); 0 = no fog
+  const vrml::Node* node = nullptr;
+};
+
 /// One Shape to draw: its nodes, world matrix and scoped lights.
 struct ShapeInstance {
   const vrml::Node* shape = nullptr;
@@ -87,6 +95,9 @@ struct ShapeInstance {
   /// Range in TraversalFrame::scopedClipPlanes of the ClipPlanes that clip it.
   std::uint32_t clipPlaneBegin = 0;
   std::uint32_t clipPlaneCount = 0;
+  /// Index in TraversalFrame::localFogs of the innermost X3D LocalFog that fogs it (its
+  /// siblings and their descendants, X3D 4.0 clause 24.4.4), -1: the bound Fog's.
+  std::int32_t localFog = -1;
   /// URL of the file the shape comes from (the base for texture URLs); never null.
   const std::string* baseUrl = nullptr;
   /// Range in TraversalFrame::paths of its path, the root first and the Shape last
@@ -115,6 +126,8 @@ struct TraversalFrame {
   /// Enabled ClipPlanes (X3D 4.0 clause 11.4.1) in world coordinates, as (a, b, c, d): a
   /// point p is kept where a p.x + b p.y + c p.z + d >= 0 (ShapeInstance ranges).
   std::vector<glm::vec4> scopedClipPlanes;
+  /// Enabled LocalFogs (ShapeInstance::localFog), visibility ranges in world metres.
+  std::vector<FogSettings> localFogs;
   /// Set by the caller: collect() records each Shape's path of grouping nodes (picking).
   bool recordPaths = false;
   /// Set by the caller: collect() gathers what the avatar collides with (clause 6.8)
@@ -131,6 +144,7 @@ struct TraversalFrame {
     globalLights.clear();
     environmentLights.clear();
     scopedClipPlanes.clear();
+    localFogs.clear();
   }
 };
 
@@ -165,14 +179,6 @@ struct BackgroundSettings {
   glm::mat3 rotation{1.0f};        // world rotation of the Background's coordinate system
   const vrml::Node* node = nullptr;
   std::string baseUrl;  // URL of the file holding the node
-};
-
-/// The bound Fog (clause 6.19).
-struct FogSettings {
-  glm::vec3 color{1.0f};
-  bool exponential = false;      // fogType "EXPONENTIAL", else "LINEAR"
-  float visibilityRange = 0.0f;  // world metres (scaled by the Fog's transform); 0 = no fog
-  const vrml::Node* node = nullptr;
 };
 
 /// What a traversal draws of the polygon-group extension (OutlineGroup, paper section

@@ -1,5 +1,6 @@
-// X3D TextureBackground (X3D 4.0 clause 24.4.3): a Background whose six faces are texture
-// nodes, drawn off-screen at 64x64 looking down -Z at its front face.
+// X3D's Environmental effects beyond VRML97's (X3D 4.0 clause 24): TextureBackground, a
+// Background whose six faces are texture nodes (24.4.3), and LocalFog, fog scoped to its
+// siblings (24.4.4); drawn off-screen at 64x64.
 #include "test_support.hpp"
 #include "world_files.hpp"
 
@@ -46,4 +47,33 @@ TEST_CASE("TextureBackground draws its texture nodes on the panorama's faces",
   CHECK(p[0] < 160);
   CHECK(p[2] > 100);
   CHECK(p[2] < 160);
+}
+
+TEST_CASE("LocalFog fogs its siblings and their descendants, and only them",
+          "[render][offscreen][world][fog]") {
+  // Two emissive blue quads 1 m in front of the viewer, left and right; a red LINEAR
+  // LocalFog with visibilityRange 2 beside the left one: f0 = (2 - 1) / 2 = 0.5 there.
+  const fs::path file = worldDir() / "local_fog.x3dv";
+  writeText(file, R"(#X3D V3.2 utf8
+PROFILE Immersive
+NavigationInfo { headlight FALSE }
+Viewpoint { position 0 0 1 fieldOfView 1.5708 }
+DEF Q Shape {
+  appearance Appearance { material Material { diffuseColor 0 0 0 emissiveColor 0 0 1 } }
+  geometry IndexedFaceSet { coord Coordinate { point [-2 -2 0, 0 -2 0, 0 2 0, -2 2 0] }
+    coordIndex [0 1 2 3 -1] } }
+Group { children [
+  LocalFog { color 1 0 0 visibilityRange 2 }
+  Transform { translation 2 0 0 children USE Q }
+] }
+)");
+  for (int frames : {1, 3}) {
+    INFO("frames " << frames);
+    const Rendered r = renderFile(file, frames);
+    CHECK(r.diagnostics.items.empty());
+    // Near the middle the distance is 1 m (1.001 at pixel 33: f0 = 0.4994).
+    CHECK(close(r.image.pixel(30, 32), 0, 0, 255, 4));    // outside the LocalFog's group
+    CHECK(close(r.image.pixel(33, 32), 128, 0, 127, 6));  // half fogged
+    CHECK(close(r.image.pixel(60, 32), 0, 0, 255, 4) == false);
+  }
 }
