@@ -211,6 +211,9 @@ var types = ['Bool', 'Color', 'ColorRGBA', 'Double', 'Float', 'Image', 'Int32', 
              'Matrix4d', 'Matrix4f', 'Node', 'Rotation', 'String', 'Time', 'Vec2d', 'Vec2f', 'Vec3d',
              'Vec3f', 'Vec4d', 'Vec4f'];
 types.forEach(function (t, i) { X3DConstants['SF' + t] = i; X3DConstants['MF' + t] = types.length + i; });
+// Node types (19777-1 clause 7.9.1): every concrete and abstract type of the node model.
+var nodeTypes = hooks.nodeTypeConstants();
+for (var k = 0; k < nodeTypes.length; k += 2) X3DConstants[nodeTypes[k]] = nodeTypes[k + 1];
 Object.freeze(X3DConstants);
 
 function X3DFieldDefinition(name, accessType, dataType) {
@@ -225,6 +228,7 @@ method(SFNode.prototype, 'getFieldDefinitions', function () {
   return out;
 });
 method(SFNode.prototype, 'getNodeName', function () { return hooks.typeName(this); });
+method(SFNode.prototype, 'getNodeType', function () { return hooks.nodeType(this); });
 
 // ---- X3DRoute and X3DScene (Browser.currentScene) ----
 function X3DRoute(a, af, b, bf) {

@@ -2,6 +2,7 @@
 // of the classes of script_prelude_x3d.cpp, and the natives behind X3DScene,
 // SFNode.getFieldDefinitions and getNodeName (__gsX3D, taken by that prelude).
 #include "script_ecmascript_internal.hpp"
+#include "vrml/node_model.hpp"
 #include "vrml/proto.hpp"
 #include "vrml/scene.hpp"
 
@@ -379,6 +380,51 @@ duk_ret_t x3dFieldDefinitions(duk_context* c) {
   return 1;
 }
 
+// The node type constants of X3DConstants (19777-1 clause 7.9.1): each concrete node type
+// of the node model by its name, numbered by its NodeTypeId, and each abstract type (X3D's
+// X3D...Node names) numbered from kAbstractTypeBase. As one flat array: [name, number, ...].
+constexpr int kAbstractTypeBase = 1000;
+constexpr std::string_view kAbstractTypeNames[] = {
+#define GS_ABSTRACT_TYPE(name) #name,
+#include "vrml/node_model_types.inc"
+#undef GS_ABSTRACT_TYPE
+};
+
+duk_ret_t x3dNodeTypeConstants(duk_context* c) {
+  duk_push_array(c);
+  duk_uarridx_t i = 0;
+  const auto add = [&](std::string_view name, int number) {
+    duk_push_lstring(c, name.data(), name.size());
+    duk_put_prop_index(c, -2, i++);
+    duk_push_int(c, number);
+    duk_put_prop_index(c, -2, i++);
+  };
+  for (const vrml::NodeModel& m : vrml::nodeModels()) add(m.name, static_cast<int>(m.id));
+  for (std::size_t t = 0; t < std::size(kAbstractTypeNames); ++t)
+    add(kAbstractTypeNames[t], kAbstractTypeBase + static_cast<int>(t));
+  return 1;
+}
+
+// nodeType(node): SFNode.getNodeType's numbers: the concrete type, then every abstract
+// type it inherits; a PROTO instance is X3DPrototypeInstance and its first node's types.
+duk_ret_t x3dNodeType(duk_context* c) {
+  EsScript& self = EsScript::of(c);
+  vrml::NodePtr n = self.nodeAt(c, 0);
+  duk_push_array(c);
+  if (!n) return 1;
+  duk_uarridx_t i = 0;
+  const auto add = [&](int number) {
+    duk_push_int(c, number);
+    duk_put_prop_index(c, -2, i++);
+  };
+  if (!n->protoName().empty())
+    add(kAbstractTypeBase + static_cast<int>(vrml::AbstractType::X3DPrototypeInstance));
+  if (n->typeId() != vrml::NodeTypeId::unknown) add(static_cast<int>(n->typeId()));
+  for (std::size_t t = 0; t < std::size(kAbstractTypeNames); ++t)
+    if (n->is(static_cast<vrml::AbstractType>(t))) add(kAbstractTypeBase + static_cast<int>(t));
+  return 1;
+}
+
 duk_ret_t x3dTypeName(duk_context* c) {
   EsScript& self = EsScript::of(c);
   vrml::NodePtr n = self.nodeAt(c, 0);
@@ -408,7 +454,8 @@ void EsScript::installX3DHooks(duk_context* c) {
       {"sceneInfo", x3dSceneInfo, 0}, {"rootNodes", x3dRootNodes, 0},
       {"namedNode", x3dNamedNode, 1}, {"createNode", x3dCreateNode, 1},
       {"route", x3dRoute, 5},         {"fieldDefinitions", x3dFieldDefinitions, 1},
-      {"typeName", x3dTypeName, 1},
+      {"typeName", x3dTypeName, 1},   {"nodeTypeConstants", x3dNodeTypeConstants, 0},
+      {"nodeType", x3dNodeType, 1},
   };
   duk_push_global_object(c);
   duk_push_bare_object(c);

@@ -451,6 +451,32 @@ DEF S Script {
   CHECK(outOf(w, "own").get<FieldType::SFString>() == "own 2 13");
 }
 
+TEST_CASE("X3D Script: node type constants and SFNode.getNodeType", "[script][x3d]") {
+  RunningWorld w(x3dWorld(R"(
+DEF T Transform { }
+DEF S Script {
+  initializeOnly SFNode t USE T
+  outputOnly SFString kinds
+  url "ecmascript:
+    function has(types, c) { return types.indexOf(c) >= 0 ? 'y' : 'n'; }
+    function initialize() {
+      var types = t.getNodeType();
+      kinds = (types[0] === X3DConstants.Transform ? 'T' : '?') +
+              has(types, X3DConstants.X3DGroupingNode) + has(types, X3DConstants.X3DChildNode) +
+              has(types, X3DConstants.X3DBoundedObject) + has(types, X3DConstants.X3DShapeNode) +
+              (X3DConstants.Transform !== X3DConstants.Group ? 'd' : 's') +
+              (typeof X3DConstants.X3DPrototypeInstance) + ' ' +
+              Browser.currentScene.getNamedNode('S').getNodeType().indexOf(X3DConstants.Script);
+    }
+  "
+}
+)"),
+                 0.0, x3dScripts());
+  INFO(modelDiagnostics(w));
+  // A Transform is a grouping, child and bounded node and no shape; Script is its type.
+  CHECK(outOf(w, "kinds").get<FieldType::SFString>() == "Tyyynd" "number 0");
+}
+
 TEST_CASE("X3D Script: inline code in the XML encoding's CDATA and ecmascript: urls run",
           "[script][x3d]") {
   RunningWorld xml(WorldText{R"(<?xml version="1.0" encoding="UTF-8"?>
