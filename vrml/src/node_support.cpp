@@ -94,6 +94,7 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::TexCoordDamper2D,
     NodeTypeId::KeySensor,  // runtime/src/key_sensors.cpp
     NodeTypeId::StringSensor,
+    NodeTypeId::LoadSensor,  // runtime/src/load_sensors.cpp
 };
 
 }  // namespace
