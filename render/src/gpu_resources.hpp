@@ -132,10 +132,18 @@ class TextureCache {
   const GpuTexture& get(const vrml::Node& node, const std::string& baseUrl,
                         scene::SceneTraversal& traversal, base::Fetcher* fetcher);
   void release();
+  /// The ImageTextures and ImageTexture3Ds whose loading ended (true: loaded, false:
+  /// failed) since the last call, for X3D LoadSensors (SceneRenderer::takeUrlObjectLoads).
+  std::vector<std::pair<const vrml::Node*, bool>> takeLoads() {
+    std::vector<std::pair<const vrml::Node*, bool>> out;
+    out.swap(loads_);
+    return out;
+  }
   MovieTextures movies;
 
  private:
   vrml::NodeMap<GpuTexture> textures_;
+  std::vector<std::pair<const vrml::Node*, bool>> loads_;
 };
 
 /// The first image of a URL list that could be read and decoded (ImageTexture.url,

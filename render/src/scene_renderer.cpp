@@ -648,4 +648,8 @@ std::vector<std::pair<const vrml::Node*, double>> SceneRenderer::takeMediaDurati
   return gpu_->textures.movies.takeDurations();
 }
 
+std::vector<std::pair<const vrml::Node*, bool>> SceneRenderer::takeUrlObjectLoads() {
+  return gpu_->textures.takeLoads();
+}
+
 }  // namespace gs::render

@@ -280,6 +280,7 @@ const GpuTexture& TextureCache::get(const vrml::Node& node, const std::string& b
     traversal.report(vrml::Severity::warning, node.location,
                      node.typeName() + " is not supported yet: drawn untextured");
   }
+  if (node.is(vrml::AbstractType::X3DUrlObject)) loads_.emplace_back(&node, texture.id != 0);
   return textures_.emplace(&node, texture).first->second;
 }
 

@@ -199,6 +199,7 @@ ExecutionModel::ExecutionModel(std::shared_ptr<const vrml::Scene> scene, double 
   s_->stamp = 1;
   if (s_->scene) s_->takeScene(*s_->scene, s_->rootsSeen, s_->hiddenSeen, s_->routesSeen, true);
   s_->bindFirstCandidates();
+  s_->startNewLoadSensors();  // X3D 9.4.3: a LoadSensor starts watching when the world loads
   s_->runCascade();
   s_->initializeScripts();
   for (NodeState* t : s_->timeSensors) s_->evaluateTimeSensor(*t);
@@ -218,6 +219,7 @@ void ExecutionModel::sceneGrew() {
   for (State::InlineCursor& c : s_->inlineScenes)
     s_->takeScene(*c.scene, c.roots, c.hidden, c.routes, false);
   s_->bindFirstCandidates();
+  s_->startNewLoadSensors();
   s_->runCascade();
   s_->initializeScripts();
   s_->startArrivedScripts();
@@ -232,6 +234,7 @@ void ExecutionModel::addInlineScene(std::shared_ptr<const vrml::Scene> scene) {
   const std::size_t firstSensor = s_->timeSensors.size();
   ++s_->stamp;
   s_->takeScene(*c.scene, c.roots, c.hidden, c.routes, false);
+  s_->startNewLoadSensors();
   s_->initializeScripts();
   // The Inline's world starts now: its TimeSensors as at load (4.10.3's initial events).
   for (std::size_t i = firstSensor; i < s_->timeSensors.size(); ++i)
@@ -259,6 +262,8 @@ void ExecutionModel::advanceTo(double time) {
   }
   for (NodeState* m : s_->mediaNodes) s_->evaluateMedia(*m);
   for (NodeState* f : s_->followers) s_->evaluateFollower(*f);
+  s_->startNewLoadSensors();  // made since (createVrmlFromString, addChildren)
+  s_->evaluateLoadSensors();  // their timeOuts
   s_->evaluateEnvironmentSensors();
   for (PendingEvent& e : s_->posted) s_->queue.push_back(std::move(e));
   s_->posted.clear();
@@ -323,6 +328,10 @@ bool ExecutionModel::animating() const {
     if (t->time.active) return true;
   for (const NodeState* m : s_->mediaNodes)
     if (m->media->state.active) return true;
+  for (const NodeState* l : s_->loadSensors)  // a timeOut still to pass
+    if (l->load->watching && l->load->timeOut >= 0 &&
+        l->node->fieldAt(static_cast<std::size_t>(l->load->timeOut)).get<FieldType::SFTime>() > 0.0)
+      return true;
   return !s_->posted.empty();
 }
 

@@ -33,6 +33,7 @@ enum class NodeRole : std::uint8_t {
   eventUtility,     // X3D Event Utilities (X3D 4.0 clause 30): event_utilities.cpp
   follower,         // X3D Followers, dampers and chasers (X3D 4.0 clause 39): followers.cpp
   keySensor,        // X3D KeySensor, StringSensor (X3D 4.0 clause 21): key_sensors.cpp
+  loadSensor,       // X3D LoadSensor (X3D 4.0 clause 9.4.3): load_sensors.cpp
 };
 
 /// The X3D event-utility nodes (X3D 4.0 clause 30).
@@ -111,6 +112,17 @@ struct KeySensorState {
   bool active = false;    // isActive TRUE was sent last
   std::vector<Key> held;  // KeySensor: keys down, in press order
   std::string text;       // StringSensor: enteredText (UTF-8)
+};
+
+/// A LoadSensor's record (load_sensors.cpp): its field indices (found once, -1 when
+/// absent) and the watch under way.
+struct LoadSensorState {
+  int enabled = -1, timeOut = -1, children = -1;
+  int isActive = -1, isLoaded = -1, loadTime = -1, progress = -1;
+  bool watching = false;  // a watch started and has not reported its end
+  bool active = false;    // isActive TRUE was sent last
+  double started = 0.0;   // SFTime the watch started (timeOut counts from here)
+  float progressSent = -1.0f;
 };
 
 struct NodeState;
@@ -202,6 +214,7 @@ struct NodeState {
   std::unique_ptr<FollowerState> follower;      // role follower
   std::unique_ptr<SkinState> skin;              // a Skin (role plain)
   std::unique_ptr<KeySensorState> keys;         // role keySensor
+  std::unique_ptr<LoadSensorState> load;        // role loadSensor
   bool scriptHadEvents = false;
   bool problemReported = false;
 };
@@ -237,7 +250,11 @@ struct ExecutionModel::State {
   std::vector<NodeState*> followers;         // dampers and chasers (followers.cpp)
   std::vector<NodeState*> transformSensors;  // X3D TransformSensors (environment_sensors.cpp)
   std::vector<NodeState*> keySensors;        // KeySensors, StringSensors (key_sensors.cpp)
-  std::size_t environmentSensors = 0;        // ProximitySensors and VisibilitySensors met
+  std::vector<NodeState*> loadSensors;       // LoadSensors (load_sensors.cpp)
+  std::vector<NodeState*> newLoadSensors;    // registered, their first watch not started
+  /// What loaders reported of url objects (ExecutionModel::setUrlObjectState).
+  std::unordered_map<const vrml::Node*, UrlLoadState> urlStates;
+  std::size_t environmentSensors = 0;  // ProximitySensors and VisibilitySensors met
   std::optional<ViewerPose> viewer;
   std::vector<NodeState*> newScripts;  // registered, initialize() not yet called
   /// Scripts whose url files are still on their way (FetchMode::background): made and
@@ -315,6 +332,22 @@ struct ExecutionModel::State {
   /// One key down (`press`) or up for every enabled key device sensor, in a cascade
   /// already begun.
   void keyEvent(const Key& key, bool press);
+  // ---- LoadSensor (load_sensors.cpp) ----
+  /// Makes `ns` a LoadSensor when it is one (its first watch starts at
+  /// startNewLoadSensors(), once the routes of its scene are in).
+  bool classifyLoadSensor(NodeState& ns);
+  /// enabled, timeOut, children (watchList): stores and echoes the value; enabled TRUE and
+  /// a new children list start a new watch, enabled FALSE ends one (isActive FALSE).
+  void deliverLoadSensor(NodeState& ns, int field, vrml::FieldValue value);
+  /// Starts the first watch of the LoadSensors registered since the last call, in the
+  /// cascade under way.
+  void startNewLoadSensors();
+  /// Reports what the LoadSensors that are watching can report now (their nodes' states,
+  /// their timeOut), in the cascade under way.
+  void evaluateLoadSensors();
+  void evaluateLoadSensor(NodeState& ns);
+  void startLoadWatch(NodeState& ns);
+
   // ---- environmental sensors (environment_sensors.cpp) ----
   void evaluateEnvironmentSensors();
 

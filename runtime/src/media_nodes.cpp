@@ -98,19 +98,24 @@ void ExecutionModel::State::deliverMedia(NodeState& ns, int field, FieldValue va
 }
 
 void ExecutionModel::setMediaDuration(const vrml::Node& node, double seconds) {
-  const auto it = s_->nodes.find(&node);
-  if (it == s_->nodes.end() || !it->second->media) return;
-  NodeState& ns = *it->second;
   if (!std::isfinite(seconds) || seconds <= 0.0) seconds = -1.0;
-  MediaState& st = ns.media->state;
-  if (st.duration && *st.duration == seconds) return;
-  st.duration = seconds;
-  ns.media->durationPending = true;
-  ++s_->stamp;
-  ++stats_.cascades;
-  s_->eventsThisCascade = 0;
-  s_->evaluateMedia(ns);
-  s_->runCascade();
+  const auto it = s_->nodes.find(&node);
+  if (it != s_->nodes.end() && it->second->media) {
+    NodeState& ns = *it->second;
+    MediaState& st = ns.media->state;
+    if (!st.duration || *st.duration != seconds) {
+      st.duration = seconds;
+      ns.media->durationPending = true;
+      ++s_->stamp;
+      ++stats_.cascades;
+      s_->eventsThisCascade = 0;
+      s_->evaluateMedia(ns);
+      s_->runCascade();
+    }
+  }
+  // The load report of LoadSensors (load_sensors.cpp), after duration_changed: a duration
+  // means the media opened.
+  setUrlObjectState(node, seconds > 0.0 ? UrlLoadState::loaded : UrlLoadState::failed);
 }
 
 std::optional<MediaState> ExecutionModel::media(const vrml::Node& node) const {

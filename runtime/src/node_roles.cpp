@@ -99,6 +99,7 @@ void ExecutionModel::State::classify(NodeState& ns) {
   if (classifyFollower(ns)) return;
   if (classifySkin(ns)) return;
   if (classifyKeySensor(ns)) return;
+  if (classifyLoadSensor(ns)) return;
   if (id == NodeTypeId::TimeSensor) {
     ns.role = NodeRole::timeSensor;
     TimeSensorFields& f = ns.timeFields;
@@ -304,6 +305,12 @@ void ExecutionModel::State::deliver(NodeState& ns, int field, vrml::FieldValue v
         return;
       }
       break;  // description, deletionAllowed: exposedFields
+    case NodeRole::loadSensor:
+      if (field == ns.load->enabled || field == ns.load->timeOut || field == ns.load->children) {
+        deliverLoadSensor(ns, field, std::move(value));
+        return;
+      }
+      break;  // description, metadata: exposedFields
     case NodeRole::plain:
     case NodeRole::transformSensor:
     case NodeRole::proximity:

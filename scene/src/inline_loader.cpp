@@ -92,4 +92,11 @@ std::shared_ptr<const vrml::Scene> SceneTraversal::loadedInline(
   return it == inlinesByNode_.end() ? nullptr : it->second->scene;
 }
 
+std::vector<SceneTraversal::InlineLoad> SceneTraversal::inlineLoads() const {
+  std::vector<InlineLoad> out;
+  out.reserve(inlinesByNode_.size());
+  for (const auto& [node, entry] : inlinesByNode_) out.push_back({node, entry->scene});
+  return out;
+}
+
 }  // namespace gs::scene

@@ -155,6 +155,22 @@ bool StreamingSession::settled() const {
   return true;
 }
 
+runtime::UrlLoadState StreamingSession::worldLoadState(const vrml::Scene& scene) const {
+  for (const auto& w : worlds_) {
+    if (w->scene().get() != &scene) continue;
+    switch (w->progress().state) {
+      case net::StreamState::done:
+        return runtime::UrlLoadState::loaded;
+      case net::StreamState::failed:
+      case net::StreamState::stopped:
+        return runtime::UrlLoadState::failed;
+      default:
+        return runtime::UrlLoadState::loading;
+    }
+  }
+  return runtime::UrlLoadState::loaded;
+}
+
 std::vector<const TilesetStream*> StreamingSession::tilesets() const {
   std::vector<const TilesetStream*> out;
   for (const auto& [url, t] : tilesets_) out.push_back(t.get());

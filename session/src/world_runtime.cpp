@@ -127,6 +127,25 @@ void WorldRuntimes::addInlines(const vrml::Scene* scene, const scene::SceneTrave
   // Each scene is taken once (addInlineScene ignores the ones it has).
   for (const auto& s : traversal.inlineScenes()) it->second.model->addInlineScene(s);
   resolveImportedRoutes(it->second, traversal);
+  // X3D LoadSensor (X3D 4.0 clause 9.4.3): each Inline's load state until it settles.
+  Entry& e = it->second;
+  for (const scene::SceneTraversal::InlineLoad& load : traversal.inlineLoads()) {
+    if (e.inlinesSettled.contains(load.node)) continue;
+    runtime::UrlLoadState state = runtime::UrlLoadState::failed;
+    if (load.scene)
+      state = worldLoadState_ ? worldLoadState_(*load.scene) : runtime::UrlLoadState::loaded;
+    if (state != runtime::UrlLoadState::loading) e.inlinesSettled.insert(load.node);
+    e.model->setUrlObjectState(*load.node, state);
+  }
+}
+
+void WorldRuntimes::setUrlObjectLoads(
+    const vrml::Scene* scene, const std::vector<std::pair<const vrml::Node*, bool>>& loads) {
+  const auto it = worlds_.find(scene);
+  if (it == worlds_.end()) return;
+  for (const auto& [node, loaded] : loads)
+    it->second.model->setUrlObjectState(
+        *node, loaded ? runtime::UrlLoadState::loaded : runtime::UrlLoadState::failed);
 }
 
 void WorldRuntimes::resolveImportedRoutes(Entry& e, const scene::SceneTraversal& traversal) {

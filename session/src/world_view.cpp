@@ -7,12 +7,16 @@ namespace gs::session {
 void ViewGroup::attachRuntimes(WorldRuntimes& runtimes, double time, bool waitForMedia) {
   runtimes_ = &runtimes;
   waitForMedia_ = waitForMedia;
+  // LoadSensors watching an Inline hear of its end once its stream is done.
+  runtimes.setWorldLoadState(
+      [s = &session_](const vrml::Scene& scene) { return s->worldLoadState(scene); });
   for (WorldView* v : views_) {
     runtimes.of(v->scene_, time);
     runtimes.addInlines(v->scene_.get(), v->renderer_->traversal());
     // MovieTextures show the frame of their media time (docs/media.md).
     v->renderer_->setMediaClock(runtimes.mediaClock(v->scene_.get()), waitForMedia);
     runtimes.setMediaDurations(v->scene_.get(), v->renderer_->takeMediaDurations());
+    runtimes.setUrlObjectLoads(v->scene_.get(), v->renderer_->takeUrlObjectLoads());
   }
 }
 
@@ -85,6 +89,8 @@ bool WorldView::update(double time, const WorldView* last) {
     group_.advanceTo(time, last);
     // 4. MovieTexture durations found by the decoders (docs/media.md).
     runtimes->setMediaDurations(scene_.get(), renderer_->takeMediaDurations());
+    //    The textures whose loading ended, for LoadSensors.
+    runtimes->setUrlObjectLoads(scene_.get(), renderer_->takeUrlObjectLoads());
     // 5. Bound nodes from the execution model to the renderer.
     renderer_->traversal().setBoundNodes(runtimes->bound(scene_.get()));
   }

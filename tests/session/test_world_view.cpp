@@ -199,3 +199,64 @@ TEST_CASE("a ROUTE to an IMPORTed node runs once the Inline that EXPORTs it has 
   CHECK(at3.second > 0);
   CHECK(at3.first == 0);
 }
+
+TEST_CASE("LoadSensors hear of the Inlines and textures a WorldView loaded, and of failures",
+          "[session][offscreen][world_view][x3d][load_sensor]") {
+  context();
+  gs::test::TempDir dir("world-view-load");
+  dir.write("part.x3dv",
+            "#X3D V4.0 utf8\n"
+            "Shape { appearance Appearance { material Material { diffuseColor 1 0 0 } }\n"
+            "        geometry Box { size 4 4 4 } }\n");
+  gs::render::writePng((dir.path / "t.png").string(), Image(2, 2, 0, 0, 255));
+  const std::string main =
+      dir.write("main.x3dv",
+                "#X3D V4.0 utf8\n"
+                "PROFILE Immersive\n"
+                "Viewpoint { position 0 0 12 }\n"
+                "DEF I Inline { url \"part.x3dv\" }\n"
+                "DEF Missing Inline { url \"missing.x3dv\" }\n"
+                "Transform { translation 0 3 0 children Shape {\n"
+                "  appearance Appearance { texture DEF T ImageTexture { url \"t.png\" } }\n"
+                "  geometry Box { size 0.5 0.5 0.5 } } }\n"
+                "Transform { translation 0 -3 0 children Shape {\n"
+                "  appearance Appearance { texture DEF U ImageTexture { url \"none.png\" } }\n"
+                "  geometry Box { size 0.5 0.5 0.5 } } }\n"
+                "DEF LI LoadSensor { children USE I }\n"
+                "DEF LM LoadSensor { children USE Missing }\n"
+                "DEF LT LoadSensor { children USE T }\n"
+                "DEF LU LoadSensor { children USE U }\n"
+                "DEF LB LoadSensor { children [ USE I USE T ] }\n"
+                // isLoaded FALSE (a failure) toggles NM / NU: FALSE is also the default.
+                "DEF FM BooleanFilter {} DEF NM BooleanToggle {}\n"
+                "DEF FU BooleanFilter {} DEF NU BooleanToggle {}\n"
+                "ROUTE LM.isLoaded TO FM.set_boolean ROUTE FM.inputNegate TO NM.set_boolean\n"
+                "ROUTE LU.isLoaded TO FU.set_boolean ROUTE FU.inputNegate TO NU.set_boolean\n");
+  Viewer v(main);
+  v.settle(0.0);
+  v.settle(0.5);
+  auto sensor = [&](const std::string& name) -> const gs::vrml::Node& {
+    for (const gs::vrml::NodePtr& n : v.view->scene()->rootNodes)
+      if (n && n->defName == name) return *n;
+    FAIL("no node " << name);
+    throw 0;
+  };
+  auto flag = [&](const std::string& name, const std::string& field) {
+    return sensor(name).field(field)->get<gs::vrml::FieldType::SFBool>();
+  };
+  const auto& model = v.runtimes.of(v.view->scene(), 0.0);
+  INFO(model.diagnostics().items.size());
+  for (const char* name : {"LI", "LT", "LB"}) {
+    INFO(name);
+    CHECK(flag(name, "isLoaded"));
+    CHECK_FALSE(flag(name, "isActive"));
+    CHECK(sensor(name).field("progress")->get<gs::vrml::FieldType::SFFloat>() == 1.0f);
+  }
+  for (const char* name : {"LM", "LU"}) {
+    INFO(name);
+    CHECK_FALSE(flag(name, "isLoaded"));
+    CHECK_FALSE(flag(name, "isActive"));
+  }
+  CHECK(flag("NM", "toggle"));  // LM sent isLoaded FALSE
+  CHECK(flag("NU", "toggle"));
+}

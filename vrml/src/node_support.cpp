@@ -102,6 +102,7 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::LocalFog,           // scene/src/traversal.cpp (ShapeInstance::localFog)
     NodeTypeId::ComposedShader,     // render/src/composed_shaders.cpp (GLSL)
     NodeTypeId::ShaderPart,
+    NodeTypeId::LoadSensor,  // runtime/src/load_sensors.cpp
 };
 
 }  // namespace

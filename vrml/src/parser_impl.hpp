@@ -269,7 +269,8 @@ class Parser {
   NodePtr applyLengthUnit(const NodePtr& n) const;
   /// The member an X3D field-name alias stands for in `type`: Switch/LOD `children`
   /// (VRML97's choice/level), Collision `enabled` (collide), ComposedCubeMapTexture's X3D 3
-  /// face names (back ... top for X3D 4's backTexture ... topTexture); -1 when none.
+  /// face names (back ... top for X3D 4's backTexture ... topTexture), LoadSensor's X3D 3
+  /// `watchList` (X3D 4's `children`); -1 when none.
   static int x3dFieldAlias(const NodeType& type, std::string_view name);
 
   // route.cpp: ROUTE (clause 4.10)

@@ -142,6 +142,11 @@ class SceneRenderer {
   /// The durations of the MovieTextures whose movies opened (seconds; -1: unreadable)
   /// since the last call, for runtime::ExecutionModel::setMediaDuration.
   std::vector<std::pair<const vrml::Node*, double>> takeMediaDurations();
+  /// The ImageTextures and ImageTexture3Ds (X3DUrlObject textures) whose loading ended
+  /// since the last call: true when the image was read, false when no url could be. For
+  /// X3D LoadSensors (runtime::ExecutionModel::setUrlObjectState). A texture loads when
+  /// first drawn.
+  std::vector<std::pair<const vrml::Node*, bool>> takeUrlObjectLoads();
 
   /// Counts of the last draw().
   const DrawStatistics& statistics() const { return statistics_; }

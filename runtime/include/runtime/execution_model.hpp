@@ -34,6 +34,15 @@ struct TraceEvent {
   const vrml::FieldValue* value = nullptr;
 };
 
+/// How far the loading of an X3DUrlObject node (Inline, ImageTexture, MovieTexture,
+/// AudioClip ...) got, as its loader reports it to ExecutionModel::setUrlObjectState
+/// (X3D 4.0 clause 9.3.2, "X3DUrlObject", load state). A node never reported is loading.
+enum class UrlLoadState : std::uint8_t {
+  loading,  // not asked for yet, or bytes on their way
+  loaded,   // the content arrived and was read (an Inline's world parsed to its end)
+  failed,   // no url could be read or decoded
+};
+
 /// The four bindable node types of 4.6.10, each with its own stack.
 enum class BindableKind { Viewpoint, NavigationInfo, Background, Fog };
 inline constexpr int kBindableKindCount = 4;
@@ -167,7 +176,8 @@ class ExecutionModel final : public ScriptContext {
   /// that decoded `node`'s media reports its duration in seconds (-1: unreadable): a
   /// duration_changed event goes out at now() (once per distinct value) and the node,
   /// which cannot become active before its duration is known, is evaluated at once.
-  /// Ignored for other nodes.
+  /// Ignored for other nodes. It is also the node's load report for LoadSensors
+  /// (setUrlObjectState): a duration means loaded, -1 failed.
   void setMediaDuration(const vrml::Node& node, double seconds);
   /// The media state of a MovieTexture or AudioClip of this world as of the last cascade
   /// (media time, isActive, duration); empty for other nodes.
@@ -176,6 +186,19 @@ class ExecutionModel final : public ScriptContext {
   /// the clip to show or play now.
   std::optional<double> mediaTime(const vrml::Node& node) const;
 
+  /// X3D LoadSensor (X3D 4.0 clause 9.4.3, runtime/src/load_sensors.cpp): whoever loads
+  /// `node`'s url (session::WorldRuntimes for Inlines and textures; setMediaDuration for
+  /// MovieTexture and AudioClip) reports how far it got. A change of state opens one new
+  /// timestamp at now() in which every enabled LoadSensor watching `node` is evaluated:
+  /// all its watched nodes loaded: progress 1, isLoaded TRUE, loadTime = now(), then
+  /// isActive FALSE; one failed: isLoaded FALSE, isActive FALSE; otherwise progress (the
+  /// fraction of its watched nodes loaded) when it changed. A report of the state the node
+  /// already has does nothing; so does one for a node no LoadSensor watches (it is kept for
+  /// sensors that start watching later).
+  void setUrlObjectState(const vrml::Node& node, UrlLoadState state);
+  /// The state last reported for `node` (loading when none was).
+  UrlLoadState urlObjectState(const vrml::Node& node) const;
+
   const vrml::Diagnostics& diagnostics() const { return diagnostics_; }
   const ExecutionStatistics& statistics() const { return stats_; }
   /// Scripts not made yet because a url file they may run from is still on its way
@@ -183,7 +206,7 @@ class ExecutionModel final : public ScriptContext {
   /// the first advanceTo() or sceneGrew() after its file answered (arrived or failed).
   std::size_t scriptsArriving() const;
   /// Whether anything in the world may still change without input: an active
-  /// TimeSensor, a Script with pending work.
+  /// TimeSensor, a Script with pending work, an active LoadSensor with a timeOut.
   bool animating() const;
 
   // ---- ScriptContext ----

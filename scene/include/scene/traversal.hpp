@@ -306,6 +306,18 @@ class SceneTraversal {
   /// Sounds inside Inlines (audio::SoundScene) and X3D IMPORTs (session::WorldRuntimes).
   std::shared_ptr<const vrml::Scene> loadedInline(const vrml::Node& inlineNode) const;
 
+  /// An Inline node the traversal met and what loading it gave: its world (which may
+  /// still be streaming in, TraversalOptions::inlineSource), or null when no url could be
+  /// loaded.
+  struct InlineLoad {
+    const vrml::Node* node = nullptr;
+    std::shared_ptr<const vrml::Scene> scene;
+  };
+  /// Every Inline node met so far (drawing or computing bounds loads them), in no
+  /// particular order: what session::WorldRuntimes reports to X3D LoadSensors
+  /// (runtime::ExecutionModel::setUrlObjectState). Loads nothing.
+  std::vector<InlineLoad> inlineLoads() const;
+
   /// How many tessellations collect() and mesh() made (a changed geometry is
   /// tessellated again; an animated Transform is not): for benchmarks and tests.
   std::uint64_t tessellationCount() const { return tessellations_; }

@@ -12,6 +12,7 @@
 
 #include "net/loader.hpp"
 #include "render/scene_renderer.hpp"
+#include "runtime/execution_model.hpp"
 #include "session/tileset_stream.hpp"
 #include "vrml/scene.hpp"
 
@@ -44,6 +45,12 @@ class StreamingSession {
   bool pump();
   /// Whether nothing is arriving and nothing more was asked for.
   bool settled() const;
+  /// How far the loading of `scene` got, for X3D LoadSensors watching an Inline
+  /// (runtime::ExecutionModel::setUrlObjectState): a world this session streams is loaded
+  /// once its stream is done (its whole text parsed), failed when the stream failed or was
+  /// stopped (--snapshot-at), loading before; a world it does not stream (read whole) is
+  /// loaded.
+  runtime::UrlLoadState worldLoadState(const vrml::Scene& scene) const;
   /// Options of the tilesets opened from now on (--tileset-memory).
   void setTilesetOptions(const TilesetOptions& options) { tilesetOptions_ = options; }
   /// Every tileset opened, in URL order (statistics for tests and the progress display).

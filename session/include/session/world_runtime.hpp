@@ -13,6 +13,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 namespace gs::session {
@@ -63,7 +64,19 @@ class WorldRuntimes {
   /// join `scene`'s execution model (their routes and sensors run), and the ROUTEs of
   /// `scene` to or from IMPORTed nodes (vrml::X3dImportedRoute, X3D clause 4.4.6) whose
   /// Inline has arrived are added (a name the Inline does not EXPORT is a diagnostic).
+  /// The Inline nodes `traversal` met report their load state to the execution model's
+  /// LoadSensors (runtime::ExecutionModel::setUrlObjectState): failed when no url could be
+  /// loaded, otherwise the state of its world as the world load state function says
+  /// (setWorldLoadState; unset: loaded).
   void addInlines(const vrml::Scene* scene, const scene::SceneTraversal& traversal);
+  /// How far an Inline's world got while it streams in (StreamingSession::worldLoadState).
+  using WorldLoadState = std::function<runtime::UrlLoadState(const vrml::Scene&)>;
+  void setWorldLoadState(WorldLoadState state) { worldLoadState_ = std::move(state); }
+  /// X3D LoadSensor: the url objects whose loading ended (true: loaded, false: failed;
+  /// render::SceneRenderer::takeUrlObjectLoads) go to `scene`'s execution model
+  /// (runtime::ExecutionModel::setUrlObjectState); ignored when it has none yet.
+  void setUrlObjectLoads(const vrml::Scene* scene,
+                         const std::vector<std::pair<const vrml::Node*, bool>>& loads);
   /// The viewer of `scene`'s world (ProximitySensor, VisibilitySensor); ignored when the
   /// world has no execution model yet.
   void setViewer(const vrml::Scene* scene, const runtime::ViewerPose& viewer);
@@ -92,11 +105,14 @@ class WorldRuntimes {
   base::Fetcher* fetcher_ = nullptr;
   std::FILE* trace_ = nullptr;
   LinkHandler link_;
+  WorldLoadState worldLoadState_;
   struct Entry {
     std::shared_ptr<const vrml::Scene> scene;
     std::unique_ptr<runtime::ExecutionModel> model;
     std::size_t diagnosticsShown = 0;
     std::vector<char> importedRouteDone;  // per scene->x3d.importedRoutes
+    /// Inline nodes whose load ended (loaded or failed): not asked about again.
+    std::unordered_set<const vrml::Node*> inlinesSettled;
   };
   std::map<const vrml::Scene*, Entry> worlds_;
   void resolveImportedRoutes(Entry& e, const scene::SceneTraversal& traversal);

@@ -9,7 +9,8 @@
 //   2. the Inline worlds the renderer loaded so far join the world's execution model;
 //   3. every world's execution model advances to `time` (the viewers' poses first, once
 //      per time);
-//   4. the media durations the renderer found go to the execution model;
+//   4. the media durations the renderer found, and the textures whose loading ended
+//      (LoadSensor), go to the execution model;
 //   5. the bound nodes (Viewpoint, NavigationInfo, Background, Fog) go from the
 //      execution model to the renderer;
 //   6. draw: drawing is what starts the loads the new state references (an Inline a
