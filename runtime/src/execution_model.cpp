@@ -464,6 +464,15 @@ const vrml::Scene* ExecutionModel::currentScene() const {
   return s_->scene.get();
 }
 
+void ExecutionModel::setImportedNode(const std::string& localName, vrml::NodePtr node) {
+  imported_[localName] = std::move(node);
+}
+
+vrml::NodePtr ExecutionModel::importedNode(const std::string& localName) const {
+  const auto it = imported_.find(localName);
+  return it != imported_.end() ? it->second : nullptr;
+}
+
 void ExecutionModel::loadUrl(const std::vector<std::string>& url,
                              const std::vector<std::string>& parameter) {
   s_->requestUrl(url, parameter);  // `#Name` binds a Viewpoint (pointer_sensors.cpp)

@@ -264,7 +264,10 @@ method(P, 'deleteRoute', function (a, af, b, bf) {
   return hooks.route(false, a, String(af), b, String(bf));
 });
 method(P, 'getImportedNode', function (name) {
-  throw new Error("getImportedNode('" + name + "'): imported nodes are not available to Scripts");
+  var node = hooks.importedNode(String(name));
+  if (node === null)
+    throw new Error("getImportedNode: no IMPORT '" + name + "' whose Inline has arrived and EXPORTs it");
+  return node;
 });
 
 G.SFVec2d = SFVec2d; G.SFVec3d = SFVec3d; G.SFVec4f = SFVec4f; G.SFVec4d = SFVec4d;

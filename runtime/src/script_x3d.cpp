@@ -425,6 +425,18 @@ duk_ret_t x3dNodeType(duk_context* c) {
   return 1;
 }
 
+// importedNode(name): the node of the world's IMPORT `name`, or null.
+duk_ret_t x3dImportedNode(duk_context* c) {
+  EsScript& self = EsScript::of(c);
+  const vrml::NodePtr n = self.context().importedNode(x3dString(c, 0));
+  if (!n) {
+    duk_push_null(c);
+    return 1;
+  }
+  self.pushNode(c, n);
+  return 1;
+}
+
 duk_ret_t x3dTypeName(duk_context* c) {
   EsScript& self = EsScript::of(c);
   vrml::NodePtr n = self.nodeAt(c, 0);
@@ -455,7 +467,7 @@ void EsScript::installX3DHooks(duk_context* c) {
       {"namedNode", x3dNamedNode, 1}, {"createNode", x3dCreateNode, 1},
       {"route", x3dRoute, 5},         {"fieldDefinitions", x3dFieldDefinitions, 1},
       {"typeName", x3dTypeName, 1},   {"nodeTypeConstants", x3dNodeTypeConstants, 0},
-      {"nodeType", x3dNodeType, 1},
+      {"nodeType", x3dNodeType, 1},   {"importedNode", x3dImportedNode, 1},
   };
   duk_push_global_object(c);
   duk_push_bare_object(c);

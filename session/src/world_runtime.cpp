@@ -150,8 +150,6 @@ void WorldRuntimes::setUrlObjectLoads(
 
 void WorldRuntimes::resolveImportedRoutes(Entry& e, const scene::SceneTraversal& traversal) {
   const vrml::X3dInfo& x3d = e.scene->x3d;
-  if (x3d.importedRoutes.empty()) return;
-  e.importedRouteDone.resize(x3d.importedRoutes.size(), 0);
   // The node an IMPORT's local name stands for, once its Inline's world has arrived:
   // null while it has not; `missing` set when it arrived without that EXPORT.
   auto importedNode = [&](const std::string& local, bool& missing) -> vrml::NodePtr {
@@ -167,6 +165,20 @@ void WorldRuntimes::resolveImportedRoutes(Entry& e, const scene::SceneTraversal&
     missing = true;
     return nullptr;
   };
+  // What Scripts' getImportedNode answers (each IMPORT once its node is known).
+  e.importKnown.resize(x3d.imports.size(), 0);
+  for (std::size_t i = 0; i < x3d.imports.size(); ++i) {
+    if (e.importKnown[i]) continue;
+    bool missing = false;
+    if (vrml::NodePtr n = importedNode(x3d.imports[i].localName, missing)) {
+      e.model->setImportedNode(x3d.imports[i].localName, std::move(n));
+      e.importKnown[i] = 1;
+    } else if (missing) {
+      e.importKnown[i] = 1;
+    }
+  }
+  if (x3d.importedRoutes.empty()) return;
+  e.importedRouteDone.resize(x3d.importedRoutes.size(), 0);
   for (std::size_t i = 0; i < x3d.importedRoutes.size(); ++i) {
     if (e.importedRouteDone[i]) continue;
     const vrml::X3dImportedRoute& r = x3d.importedRoutes[i];

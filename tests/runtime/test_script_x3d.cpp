@@ -474,7 +474,38 @@ DEF S Script {
                  0.0, x3dScripts());
   INFO(modelDiagnostics(w));
   // A Transform is a grouping, child and bounded node and no shape; Script is its type.
-  CHECK(outOf(w, "kinds").get<FieldType::SFString>() == "Tyyynd" "number 0");
+  CHECK(outOf(w, "kinds").get<FieldType::SFString>() ==
+        "Tyyynd"
+        "number 0");
+}
+
+TEST_CASE("X3D Script: getImportedNode answers the world's IMPORTs", "[script][x3d]") {
+  RunningWorld w(x3dWorld(R"(
+DEF T Transform { }
+DEF S Script {
+  inputOnly SFTime look
+  outputOnly SFString found
+  url "ecmascript:
+    function look() {
+      var scene = Browser.currentScene;
+      var parts = [];
+      try { parts.push(scene.getImportedNode('Imported').getNodeName()); }
+      catch (e) { parts.push('none'); }
+      try { scene.getImportedNode('Unknown'); parts.push('?'); }
+      catch (e) { parts.push(e.message.indexOf('Unknown') >= 0 ? 'error' : 'other'); }
+      found = parts.join(' ');
+    }
+  "
+}
+)"),
+                 0.0, x3dScripts());
+  // Before the IMPORT's Inline arrives there is none; session::WorldRuntimes then records it.
+  w.send("S", "look", vrml::FieldValue::make<FieldType::SFTime>(1.0));
+  CHECK(outOf(w, "found").get<FieldType::SFString>() == "none error");
+  w.model->setImportedNode("Imported", w.scene->rootNodes.front());
+  w.send("S", "look", vrml::FieldValue::make<FieldType::SFTime>(2.0));
+  INFO(modelDiagnostics(w));
+  CHECK(outOf(w, "found").get<FieldType::SFString>() == "Transform error");
 }
 
 TEST_CASE("X3D Script: inline code in the XML encoding's CDATA and ecmascript: urls run",

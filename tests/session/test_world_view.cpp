@@ -260,3 +260,28 @@ TEST_CASE("LoadSensors hear of the Inlines and textures a WorldView loaded, and 
   CHECK(flag("NM", "toggle"));  // LM sent isLoaded FALSE
   CHECK(flag("NU", "toggle"));
 }
+
+TEST_CASE("An IMPORT's node reaches Scripts' getImportedNode once its Inline arrives",
+          "[session][offscreen][world_view][x3d][import]") {
+  context();
+  gs::test::TempDir dir("world-view-import");
+  dir.write("part.x3dv",
+            "#X3D V4.0 utf8\n"
+            "DEF Inner Transform { children Shape { geometry Box { } } }\n"
+            "EXPORT Inner AS Outer\n");
+  const std::string main = dir.write("main.x3dv",
+                                     "#X3D V4.0 utf8\n"
+                                     "PROFILE Immersive\n"
+                                     "DEF I Inline { url \"part.x3dv\" }\n"
+                                     "IMPORT I.Outer AS Imported\n"
+                                     "IMPORT I.NotExported AS Nothing\n");
+  Viewer v(main);
+  v.settle(0.0);
+  v.settle(0.5);
+  const auto& model = v.runtimes.of(v.view->scene(), 0.0);
+  const gs::vrml::NodePtr imported = model.importedNode("Imported");
+  REQUIRE(imported);
+  CHECK(imported->defName == "Inner");
+  CHECK_FALSE(model.importedNode("Nothing"));
+  CHECK_FALSE(model.importedNode("Inner"));  // the Inline's own name is not the world's
+}

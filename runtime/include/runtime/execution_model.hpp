@@ -22,6 +22,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace gs::runtime {
@@ -199,6 +200,10 @@ class ExecutionModel final : public ScriptContext {
   /// The state last reported for `node` (loading when none was).
   UrlLoadState urlObjectState(const vrml::Node& node) const;
 
+  /// Records that the world's IMPORT `localName` stands for `node` (its Inline's world
+  /// arrived and EXPORTs it; session::WorldRuntimes), for Scripts' getImportedNode.
+  void setImportedNode(const std::string& localName, vrml::NodePtr node);
+
   const vrml::Diagnostics& diagnostics() const { return diagnostics_; }
   const ExecutionStatistics& statistics() const { return stats_; }
   /// Scripts not made yet because a url file they may run from is still on its way
@@ -221,6 +226,7 @@ class ExecutionModel final : public ScriptContext {
                    const std::string& eventIn) override;
   std::vector<vrml::NodePtr> createVrmlFromString(const std::string& text) override;
   const vrml::Scene* currentScene() const override;
+  vrml::NodePtr importedNode(const std::string& localName) const override;
   void loadUrl(const std::vector<std::string>& url,
                const std::vector<std::string>& parameter) override;
   bool fetchText(const std::string& url, std::string& text, std::string& error) override;
@@ -241,6 +247,7 @@ class ExecutionModel final : public ScriptContext {
   vrml::Diagnostics diagnostics_;
   std::uint64_t bindingRevision_ = 0;
   double frameRate_ = 0.0;
+  std::unordered_map<std::string, vrml::NodePtr> imported_;  // setImportedNode
   friend struct State;
 };
 

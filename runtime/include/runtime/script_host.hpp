@@ -54,6 +54,13 @@ class ScriptContext {
   /// The world the Script is in (the X3D binding's Browser.currentScene: root nodes, DEF
   /// names, header); null when there is none. Not owned; valid during the call.
   virtual const vrml::Scene* currentScene() const { return nullptr; }
+  /// The node an X3D IMPORT of the world names `localName` (X3D 4.0 clause 4.4.6) once
+  /// its Inline's world has arrived and EXPORTs it; null before, or when there is none
+  /// (X3DExecutionContext.getImportedNode).
+  virtual vrml::NodePtr importedNode(const std::string& localName) const {
+    (void)localName;
+    return nullptr;
+  }
   /// Browser.loadURL(url, parameter) and Anchor activation: the browser follows the
   /// loader's rules (4.12.10.3, 6.2); nothing happens at once.
   virtual void loadUrl(const std::vector<std::string>& url,

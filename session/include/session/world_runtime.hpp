@@ -111,6 +111,7 @@ class WorldRuntimes {
     std::unique_ptr<runtime::ExecutionModel> model;
     std::size_t diagnosticsShown = 0;
     std::vector<char> importedRouteDone;  // per scene->x3d.importedRoutes
+    std::vector<char> importKnown;        // per scene->x3d.imports: resolved or missing
     /// Inline nodes whose load ended (loaded or failed): not asked about again.
     std::unordered_set<const vrml::Node*> inlinesSettled;
   };
