@@ -100,6 +100,13 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::TextureBackground,  // render/src/background.cpp
     NodeTypeId::ComposedShader,     // render/src/composed_shaders.cpp (GLSL)
     NodeTypeId::ShaderPart,
+    NodeTypeId::CoordinateInterpolator2D,  // runtime/src/interpolators.cpp
+    NodeTypeId::PositionInterpolator2D,
+    NodeTypeId::EaseInEaseOut,  // runtime/src/interpolators_x3d.cpp
+    NodeTypeId::SplinePositionInterpolator,
+    NodeTypeId::SplinePositionInterpolator2D,
+    NodeTypeId::SplineScalarInterpolator,
+    NodeTypeId::SquadOrientationInterpolator,
 };
 
 }  // namespace
