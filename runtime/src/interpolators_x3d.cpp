@@ -234,17 +234,15 @@ std::optional<vrml::FieldValue> interpolateSpline(const std::vector<float>& key,
 
 glm::dquat squadIntermediate(const glm::dquat& previous, const glm::dquat& q,
                              const glm::dquat& next) {
-  using namespace x3dinterp;
   const glm::dquat inverse = glm::conjugate(q);
-  const glm::dquat sum =
-      logUnit(inverse * towards(q, next)) + logUnit(inverse * towards(q, previous));
-  return glm::normalize(q * expPure(sum * -0.25));
+  const glm::dquat sum = x3dinterp::logUnit(inverse * x3dinterp::towards(q, next)) +
+                         x3dinterp::logUnit(inverse * x3dinterp::towards(q, previous));
+  return glm::normalize(q * x3dinterp::expPure(sum * -0.25));
 }
 
 std::optional<vrml::Rotation> interpolateSquad(const std::vector<float>& key,
                                                const std::vector<vrml::Rotation>& keyValue,
                                                float fraction, std::string& problem) {
-  using namespace x3dinterp;
   if (key.empty()) {
     problem = "key is empty";
     return std::nullopt;
@@ -255,19 +253,19 @@ std::optional<vrml::Rotation> interpolateSquad(const std::vector<float>& key,
     return std::nullopt;
   }
   const std::size_t n = key.size();
-  if (n == 1) return rotationOf(quatOf(keyValue[0]));
+  if (n == 1) return x3dinterp::rotationOf(x3dinterp::quatOf(keyValue[0]));
   if (!std::isfinite(fraction)) fraction = 0.0f;
-  const Segment seg = segmentOf(key, fraction);
+  const x3dinterp::Segment seg = x3dinterp::segmentOf(key, fraction);
   const std::size_t i = seg.i;
   // q_{i-1} .. q_{i+2}, each in the hemisphere of the one before.
-  const glm::dquat qi = quatOf(keyValue[i]);
-  const glm::dquat qi1 = towards(qi, quatOf(keyValue[i + 1]));
-  const glm::dquat si = i > 0 ? squadIntermediate(quatOf(keyValue[i - 1]), qi, qi1) : qi;
-  const glm::dquat si1 =
-      i + 2 < n ? squadIntermediate(qi, qi1, quatOf(keyValue[i + 2])) : qi1;  // the last key
+  const glm::dquat qi = x3dinterp::quatOf(keyValue[i]);
+  const glm::dquat qi1 = x3dinterp::towards(qi, x3dinterp::quatOf(keyValue[i + 1]));
+  const glm::dquat si = i > 0 ? squadIntermediate(x3dinterp::quatOf(keyValue[i - 1]), qi, qi1) : qi;
+  const glm::dquat si1 = i + 2 < n ? squadIntermediate(qi, qi1, x3dinterp::quatOf(keyValue[i + 2]))
+                                   : qi1;  // the last key
   const double h = seg.s;
-  return rotationOf(
-      slerpPlain(slerpPlain(qi, qi1, h), slerpPlain(si, si1, h), 2.0 * h * (1.0 - h)));
+  return x3dinterp::rotationOf(x3dinterp::slerpPlain(
+      x3dinterp::slerpPlain(qi, qi1, h), x3dinterp::slerpPlain(si, si1, h), 2.0 * h * (1.0 - h)));
 }
 
 std::optional<vrml::FieldValue> interpolateX3d(InterpolatorKind kind, const std::vector<float>& key,
