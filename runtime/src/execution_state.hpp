@@ -4,6 +4,7 @@
 #include "media_nodes.hpp"
 #include "runtime/execution_model.hpp"
 #include "runtime/interpolators.hpp"
+#include "runtime/interpolators_x3d.hpp"
 #include "runtime/time_dependent.hpp"
 
 #include <glm/mat4x4.hpp>
@@ -197,6 +198,7 @@ struct NodeState {
   std::vector<OutPort> out;
   // Field indices used by the role (from the node table, found once).
   int setFraction = -1, key = -1, keyValue = -1, valueChanged = -1;  // interpolators
+  int keyVelocity = -1, closed = -1, normalizeVelocity = -1;         // X3D spline interpolators
   int setBind = -1, isBound = -1, bindTime = -1;                     // bindables
   int addChildren = -1, removeChildren = -1, children = -1;          // grouping
   TimeSensorFields timeFields;

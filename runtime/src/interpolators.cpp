@@ -1,4 +1,5 @@
-// Clause 4.6.8 and the six interpolator nodes of part 6.
+// Clause 4.6.8 and the six interpolator nodes of part 6; X3D's linear 2D interpolators
+// (X3D 4.0 19.4.3, 19.4.8).
 #include "runtime/interpolators.hpp"
 
 #include <glm/gtc/quaternion.hpp>
@@ -80,10 +81,11 @@ std::optional<vrml::FieldValue> single(const std::vector<float>& key, const std:
   return vrml::FieldValue::make<T>(v);
 }
 
-/// keyValue.size() / key.size() values per key (Coordinate, Normal).
-template <class Mix>
+/// keyValue.size() / key.size() values per key (Coordinate, Coordinate2D, Normal); `T` is
+/// the MF type of value_changed.
+template <vrml::FieldType T, class V, class Mix>
 std::optional<vrml::FieldValue> multiple(const std::vector<float>& key,
-                                         const std::vector<glm::vec3>& values, float fraction,
+                                         const std::vector<V>& values, float fraction,
                                          std::string& problem, Mix mix) {
   if (values.size() % key.size() != 0) {
     problem = "keyValue has " + std::to_string(values.size()) + " values, not a multiple of the " +
@@ -92,15 +94,15 @@ std::optional<vrml::FieldValue> multiple(const std::vector<float>& key,
   }
   const std::size_t n = values.size() / key.size();
   const KeySpan s = findKeySpan(key, fraction);
-  std::vector<glm::vec3> out(n);
-  const glm::vec3* a = values.data() + s.index * n;
+  std::vector<V> out(n);
+  const V* a = values.data() + s.index * n;
   if (s.index + 1 < key.size()) {
-    const glm::vec3* b = a + n;
+    const V* b = a + n;
     for (std::size_t i = 0; i < n; ++i) out[i] = mix(a[i], b[i], s.t);
   } else {
     std::copy(a, a + n, out.begin());
   }
-  return vrml::FieldValue::make<vrml::FieldType::MFVec3f>(std::move(out));
+  return vrml::FieldValue::make<T>(std::move(out));
 }
 
 }  // namespace
@@ -134,10 +136,27 @@ std::optional<vrml::FieldValue> interpolate(InterpolatorKind kind, const std::ve
                                            problem, slerpRotation);
     case InterpolatorKind::Coordinate:
       if (keyValue.type() != FieldType::MFVec3f) break;
-      return multiple(key, keyValue.get<FieldType::MFVec3f>(), fraction, problem, lerp);
+      return multiple<FieldType::MFVec3f>(key, keyValue.get<FieldType::MFVec3f>(), fraction,
+                                          problem, lerp);
     case InterpolatorKind::Normal:
       if (keyValue.type() != FieldType::MFVec3f) break;
-      return multiple(key, keyValue.get<FieldType::MFVec3f>(), fraction, problem, slerpNormal);
+      return multiple<FieldType::MFVec3f>(key, keyValue.get<FieldType::MFVec3f>(), fraction,
+                                          problem, slerpNormal);
+    case InterpolatorKind::Position2D:  // X3D 4.0 19.4.8
+      if (keyValue.type() != FieldType::MFVec2f) break;
+      return single<FieldType::SFVec2f>(key, keyValue.get<FieldType::MFVec2f>(), fraction, problem,
+                                        lerp);
+    case InterpolatorKind::Coordinate2D:  // X3D 4.0 19.4.3
+      if (keyValue.type() != FieldType::MFVec2f) break;
+      return multiple<FieldType::MFVec2f>(key, keyValue.get<FieldType::MFVec2f>(), fraction,
+                                          problem, lerp);
+    case InterpolatorKind::EaseInEaseOut:
+    case InterpolatorKind::SplinePosition:
+    case InterpolatorKind::SplinePosition2D:
+    case InterpolatorKind::SplineScalar:
+    case InterpolatorKind::SquadOrientation:
+      problem = "a non-linear interpolator (interpolateX3d)";
+      return std::nullopt;
   }
   problem = "keyValue has the wrong type";
   return std::nullopt;

@@ -14,7 +14,8 @@ using vrml::FieldType;
 
 namespace {
 
-/// The interpolator kind of an X3DInterpolatorNode of VRML97 (4.6.8, 6.x), or nothing.
+/// The interpolator kind of an interpolator node (VRML97 4.6.8, 6.x; X3D 4.0 clause 19,
+/// EaseInEaseOut included though X3D 4.0 makes it a plain X3DChildNode), or nothing.
 std::optional<InterpolatorKind> interpolatorKind(vrml::NodeTypeId id) {
   using vrml::NodeTypeId;
   switch (id) {
@@ -30,6 +31,20 @@ std::optional<InterpolatorKind> interpolatorKind(vrml::NodeTypeId id) {
       return InterpolatorKind::Position;
     case NodeTypeId::ScalarInterpolator:
       return InterpolatorKind::Scalar;
+    case NodeTypeId::CoordinateInterpolator2D:
+      return InterpolatorKind::Coordinate2D;
+    case NodeTypeId::PositionInterpolator2D:
+      return InterpolatorKind::Position2D;
+    case NodeTypeId::EaseInEaseOut:
+      return InterpolatorKind::EaseInEaseOut;
+    case NodeTypeId::SplinePositionInterpolator:
+      return InterpolatorKind::SplinePosition;
+    case NodeTypeId::SplinePositionInterpolator2D:
+      return InterpolatorKind::SplinePosition2D;
+    case NodeTypeId::SplineScalarInterpolator:
+      return InterpolatorKind::SplineScalar;
+    case NodeTypeId::SquadOrientationInterpolator:
+      return InterpolatorKind::SquadOrientation;
     default:
       return std::nullopt;
   }
@@ -59,6 +74,11 @@ V value(const vrml::Node& n, int field, V fallback) {
   if (field < 0) return fallback;
   const vrml::FieldValue& f = n.fieldAt(static_cast<std::size_t>(field));
   return f.type() == T ? f.get<T>() : fallback;
+}
+
+/// An SFBool field of `n` (FALSE when absent).
+bool boolField(const vrml::Node& n, int field) {
+  return value<FieldType::SFBool>(n, field, false);
 }
 
 TimeFields timeFieldsOf(const vrml::Node& n, const TimeSensorFields& f) {
@@ -115,17 +135,20 @@ void ExecutionModel::State::classify(NodeState& ns) {
     timeSensors.push_back(&ns);
     return;
   }
-  if (type.is(AbstractType::X3DInterpolatorNode)) {
-    if (const auto kind = interpolatorKind(id)) {
-      ns.role = NodeRole::interpolator;
-      ns.interpolator = *kind;
-      ns.setFraction = idx("set_fraction");
-      ns.key = idx("key");
-      ns.keyValue = idx("keyValue");
-      ns.valueChanged = idx("value_changed");
-    }
+  if (const auto kind = interpolatorKind(id)) {
+    const bool ease = *kind == InterpolatorKind::EaseInEaseOut;
+    ns.role = NodeRole::interpolator;
+    ns.interpolator = *kind;
+    ns.setFraction = idx("set_fraction");
+    ns.key = idx("key");
+    ns.keyValue = idx(ease ? "easeInEaseOut" : "keyValue");
+    ns.valueChanged = idx(ease ? "modifiedFraction_changed" : "value_changed");
+    ns.keyVelocity = idx("keyVelocity");  // the splines (X3D 4.0 19.4.10-19.4.12)
+    ns.closed = idx("closed");
+    ns.normalizeVelocity = idx("normalizeVelocity");
     return;
   }
+  if (type.is(AbstractType::X3DInterpolatorNode)) return;
   if (type.is(AbstractType::X3DBindableNode)) {
     if (const auto kind = bindableKind(id)) {
       ns.role = NodeRole::bindable;
@@ -238,11 +261,20 @@ void ExecutionModel::State::deliver(NodeState& ns, int field, vrml::FieldValue v
       if (field == ns.setFraction) {
         if (ns.key < 0 || ns.keyValue < 0 || ns.valueChanged < 0) return;
         std::string problem;
-        const auto out =
-            interpolate(ns.interpolator,
-                        node.fieldAt(static_cast<std::size_t>(ns.key)).get<FieldType::MFFloat>(),
-                        node.fieldAt(static_cast<std::size_t>(ns.keyValue)),
-                        value.get<FieldType::SFFloat>(), problem);
+        const auto& key = node.fieldAt(static_cast<std::size_t>(ns.key)).get<FieldType::MFFloat>();
+        const vrml::FieldValue& keyValue = node.fieldAt(static_cast<std::size_t>(ns.keyValue));
+        const float fraction = value.get<FieldType::SFFloat>();
+        std::optional<vrml::FieldValue> out;
+        if (nonLinearInterpolator(ns.interpolator)) {
+          SplineOptions options;
+          if (ns.keyVelocity >= 0)
+            options.keyVelocity = &node.fieldAt(static_cast<std::size_t>(ns.keyVelocity));
+          options.closed = boolField(node, ns.closed);
+          options.normalizeVelocity = boolField(node, ns.normalizeVelocity);
+          out = interpolateX3d(ns.interpolator, key, keyValue, options, fraction, problem);
+        } else {
+          out = interpolate(ns.interpolator, key, keyValue, fraction, problem);
+        }
         if (!out) {
           if (!ns.problemReported) report(vrml::Severity::error, node, problem + "; no output");
           ns.problemReported = true;

@@ -103,6 +103,13 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::ComposedShader,     // render/src/composed_shaders.cpp (GLSL)
     NodeTypeId::ShaderPart,
     NodeTypeId::LoadSensor,  // runtime/src/load_sensors.cpp
+    NodeTypeId::CoordinateInterpolator2D,  // runtime/src/interpolators.cpp
+    NodeTypeId::PositionInterpolator2D,
+    NodeTypeId::EaseInEaseOut,  // runtime/src/interpolators_x3d.cpp
+    NodeTypeId::SplinePositionInterpolator,
+    NodeTypeId::SplinePositionInterpolator2D,
+    NodeTypeId::SplineScalarInterpolator,
+    NodeTypeId::SquadOrientationInterpolator,
 };
 
 }  // namespace

@@ -33,15 +33,39 @@ vrml::Rotation slerpRotation(const vrml::Rotation& a, const vrml::Rotation& b, f
 /// Interpolation on the unit sphere of two normals (6.31): the result is unit length.
 glm::vec3 slerpNormal(const glm::vec3& a, const glm::vec3& b, float t);
 
-/// The kinds of interpolator, by VRML97 type name.
-enum class InterpolatorKind { Color, Coordinate, Normal, Orientation, Position, Scalar };
+/// The kinds of interpolator: VRML97's six, X3D's linear 2D ones (X3D 4.0 19.4.3
+/// CoordinateInterpolator2D, 19.4.8 PositionInterpolator2D) and X3D's non-linear ones
+/// (19.4.4 EaseInEaseOut, 19.4.10-19.4.12 the spline interpolators, 19.4.13
+/// SquadOrientationInterpolator: runtime/interpolators_x3d.hpp).
+enum class InterpolatorKind {
+  Color,
+  Coordinate,
+  Normal,
+  Orientation,
+  Position,
+  Scalar,
+  Coordinate2D,
+  Position2D,
+  EaseInEaseOut,
+  SplinePosition,
+  SplinePosition2D,
+  SplineScalar,
+  SquadOrientation,
+};
 
-/// value_changed of an interpolator of `kind` for `fraction`, given its key and keyValue
-/// fields (keyValue of the type 6.x declares: MFColor, MFVec3f, MFRotation or MFFloat).
+/// Whether `kind` is one of X3D's non-linear interpolators (interpolateX3d, not interpolate).
+constexpr bool nonLinearInterpolator(InterpolatorKind kind) {
+  return kind >= InterpolatorKind::EaseInEaseOut;
+}
+
+/// value_changed of a linear interpolator of `kind` for `fraction`, given its key and keyValue
+/// fields (keyValue of the type 6.x declares: MFColor, MFVec3f, MFRotation or MFFloat; MFVec2f
+/// for the X3D 2D ones).
 /// Colours are interpolated linearly in RGB (castle-model-viewer and X_ITE do too; the
 /// standard's HSV is a browser choice). Returns nothing, with `problem` set, when the
-/// counts disagree (key empty, keyValue not key.size() values, or for Coordinate and
-/// Normal not a whole multiple of key.size()).
+/// counts disagree (key empty, keyValue not key.size() values, or for Coordinate,
+/// Coordinate2D and Normal not a whole multiple of key.size()), and for the non-linear kinds
+/// (use interpolateX3d).
 std::optional<vrml::FieldValue> interpolate(InterpolatorKind kind, const std::vector<float>& key,
                                             const vrml::FieldValue& keyValue, float fraction,
                                             std::string& problem);
