@@ -31,13 +31,15 @@ struct GpuMesh {
   bool hasNormals = false, hasColors = false, hasTexCoords = false;
   bool colorAlpha = false;     // some colour is translucent (X3D ColorRGBA alpha < 1)
   bool hasTexCoords1 = false;  // the second texture coordinate set (vrml::Mesh::texCoords1)
+  bool hasFogDepths = false;   // X3D FogCoordinate depths (vrml::Mesh::fogDepths)
   bool solid = true;
   std::size_t triangles = 0;
   vrml::Bounds bounds;
   std::uint64_t revision = 0;  // vrml::revisionWithFields of the geometry uploaded
 
   /// Uploads `mesh` (attribute locations: 0 position, 1 normal, 2 colour, 3 texCoord,
-  /// 4 the second texCoord set).
+  /// 4 the second texCoord set, 5 the fog depth: -1 when the mesh has none, meaning the
+  /// distance to the viewer).
   void upload(const vrml::Mesh& mesh);
   /// Issues the draw call (the program and uniforms must be set).
   void draw() const;

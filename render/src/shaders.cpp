@@ -15,7 +15,8 @@
 // otherwise alpha = 1 - transparency. Unlit shapes (no Material, lines, points) take
 // u_unlitColor (white, or emissiveColor for lines and points) with the same texture and
 // colour rules. Fog (clause 6.19): f0 = (r - d) / r (LINEAR) or exp(-d / (r - d))
-// (EXPONENTIAL), 0 beyond the visibility range r, d the distance to the viewer.
+// (EXPONENTIAL), 0 beyond the visibility range r, d the distance to the viewer, or the
+// vertex's X3D FogCoordinate depth where the geometry has one (X3D 4.0 clause 24.4.2).
 //
 // Multi-texturing (X3D 4.0 clause 18.4.3, multi_texture.hpp): a MultiTexture's stages, up
 // to 4, replace the single texture. Each combines its texture (Arg1, after its function)
@@ -32,6 +33,7 @@ layout(location = 1) in vec3 a_normal;
 layout(location = 2) in vec4 a_color;
 layout(location = 3) in vec2 a_texCoord;
 layout(location = 4) in vec2 a_texCoord1;  // the second set (MultiTextureCoordinate)
+layout(location = 5) in float a_fogDepth;   // X3D FogCoordinate; -1: the eye distance
 
 uniform mat4 u_modelView;
 uniform mat4 u_projection;
@@ -105,6 +107,7 @@ out vec3 v_normal;    // eye coordinates, not normalized
 out vec4 v_color;  // RGBA: ColorRGBA alpha multiplies the material alpha
 out vec2 v_texCoord;
 out vec2 v_texCoord1;
+out float v_fogDepth;
 // Screen-space line patterns (LineProperties.linetype): the position in normalized device
 // coordinates, and (flat) that of the segment's provoking vertex, where its pattern starts.
 noperspective out vec2 v_ndc;
@@ -115,6 +118,7 @@ void main() {
   v_position = eye.xyz;
   v_normal = u_normalMatrix * a_normal;
   v_color = a_color;
+  v_fogDepth = a_fogDepth;
   vec2 texCoord = TEX_GEN != 0 ? generatedTexCoord(eye.xyz, v_normal) : a_texCoord;
   v_texCoord = (u_textureMatrix * vec3(texCoord, 1.0)).xy;
   v_texCoord1 = (u_textureMatrix * vec3(a_texCoord1, 1.0)).xy;
@@ -150,6 +154,7 @@ in vec3 v_normal;
 in vec4 v_color;
 in vec2 v_texCoord;
 in vec2 v_texCoord1;
+in float v_fogDepth;  // X3D FogCoordinate's depth, negative where the geometry has none
 
 uniform sampler2D u_texture;  // also stage 0 of a MultiTexture
 // A ComposedCubeMapTexture (X3D 4.0 clause 34.4.1) on unit 6, looked up by the direction
@@ -420,7 +425,7 @@ void main() {
   else if (!FILLED) discard;
 
   if (FOG_TYPE != 0 && u_fogVisibilityRange > 0.0) {
-    float d = length(v_position);
+    float d = v_fogDepth >= 0.0 ? v_fogDepth : length(v_position);
     float r = u_fogVisibilityRange;
     float f0 = 0.0;
     if (d < r) f0 = FOG_TYPE == 1 ? (r - d) / r : exp(-d / (r - d));

@@ -77,3 +77,38 @@ Group { children [
     CHECK(close(r.image.pixel(60, 32), 0, 0, 255, 4) == false);
   }
 }
+
+TEST_CASE("FogCoordinate depths replace the distance to the viewer in the fog equation",
+          "[render][offscreen][world][fog]") {
+  // A red LINEAR Fog of visibility range 2; three emissive blue quads 1 m away: without a
+  // FogCoordinate (half fogged), with depths 0 (not fogged) and with depths 1.5 (f0 1/4).
+  const fs::path file = worldDir() / "fog_coordinate.x3dv";
+  writeText(file, R"(#X3D V3.2 utf8
+PROFILE Immersive
+COMPONENT EnvironmentalEffects:4
+NavigationInfo { headlight FALSE }
+Viewpoint { position 0 0 1 fieldOfView 1.5708 }
+Fog { color 1 0 0 visibilityRange 2 }
+DEF A Appearance { material Material { diffuseColor 0 0 0 emissiveColor 0 0 1 } }
+Shape { appearance USE A geometry IndexedFaceSet { coordIndex [0 1 2 3 -1]
+  coord Coordinate { point [-1 -1 0, -0.34 -1 0, -0.34 1 0, -1 1 0] } } }
+Shape { appearance USE A geometry IndexedFaceSet { coordIndex [0 1 2 3 -1]
+  coord Coordinate { point [-0.33 -1 0, 0.33 -1 0, 0.33 1 0, -0.33 1 0] }
+  fogCoord FogCoordinate { depth [0 0 0 0] } } }
+Shape { appearance USE A geometry IndexedFaceSet { coordIndex [0 1 2 3 -1]
+  coord Coordinate { point [0.34 -1 0, 1 -1 0, 1 1 0, 0.34 1 0] }
+  fogCoord FogCoordinate { depth [1.5 1.5 1.5 1.5] } } }
+)");
+  for (int frames : {1, 3}) {
+    INFO("frames " << frames);
+    const Rendered r = renderFile(file, frames);
+    CHECK(r.diagnostics.items.empty());
+    // Pixel 32 is at distance 1.0002: f0 = 0.4999 without a FogCoordinate; here depth 0.
+    CHECK(close(r.image.pixel(32, 32), 0, 0, 255, 4));
+    // Left quad at pixel 12: x = -0.609, distance 1.171, f0 = 0.4145.
+    CHECK(close(r.image.pixel(12, 32), 149, 0, 106, 4));
+    // Right quad: depth 1.5, f0 = 0.25 (red 0.75, blue 0.25) wherever it is seen.
+    CHECK(close(r.image.pixel(52, 32), 191, 0, 64, 4));
+    CHECK(close(r.image.pixel(52, 5), 191, 0, 64, 4));
+  }
+}

@@ -4,8 +4,10 @@
 
 #include "geometry_internal.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <unordered_map>
 
 namespace gs::vrml {
 
@@ -209,6 +211,40 @@ Mesh MeshBuilder::finish(bool solid) {
   return m;
 }
 
+// X3D 4.0 clause 24.4.2: a FogCoordinate's depth i belongs to coordinate point i. Each
+// vertex takes the depth of the first point at its exact position (the tessellators copy
+// positions from the points; a vertex they made, such as a NURBS sample, takes 0).
+void assignFogDepths(const Node& geometry, Mesh& m) {
+  const NodePtr& fog = geometry.sfnode("fogCoord");
+  if (!fog || fog->unresolved || fog->typeId() != NodeTypeId::FogCoordinate || m.positions.empty())
+    return;
+  const std::vector<float>& depth = fieldOr<FieldType::MFFloat>(*fog, "depth");
+  const NodePtr& coord = geometry.sfnode("coord");
+  if (depth.empty() || !coord || coord->unresolved) return;
+  std::vector<glm::vec3> points;
+  if (coord->typeId() == NodeTypeId::CoordinateDouble) {
+    const std::vector<glm::dvec3>& d = fieldOr<FieldType::MFVec3d>(*coord, "point");
+    points.assign(d.begin(), d.end());
+  } else {
+    points = fieldOr<FieldType::MFVec3f>(*coord, "point");
+  }
+  struct Hash {
+    std::size_t operator()(const glm::vec3& p) const {
+      return std::hash<float>{}(p.x) * 73856093u ^ std::hash<float>{}(p.y) * 19349663u ^
+             std::hash<float>{}(p.z) * 83492791u;
+    }
+  };
+  std::unordered_map<glm::vec3, std::size_t, Hash> first;
+  first.reserve(points.size());
+  for (std::size_t i = 0; i < points.size() && i < depth.size(); ++i)
+    first.try_emplace(points[i], i);
+  m.fogDepths.resize(m.positions.size());
+  for (std::size_t v = 0; v < m.positions.size(); ++v) {
+    const auto it = first.find(m.positions[v]);
+    m.fogDepths[v] = it != first.end() ? std::max(depth[it->second], 0.0f) : 0.0f;
+  }
+}
+
 }  // namespace geometry_detail
 
 Mesh tessellate(const Node& geometry, Diagnostics* diag) {
@@ -310,6 +346,7 @@ Mesh tessellate(const Node& geometry, Diagnostics* diag) {
     default:  // Text (6.47) and every non-geometry node: an empty mesh.
       break;
   }
+  assignFogDepths(geometry, m);
   log.flush();
   return m;
 }

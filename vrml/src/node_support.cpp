@@ -100,6 +100,7 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::ProtoInstance,      // the XML encoding's PROTO instance (vrml/src/x3d_xml.cpp)
     NodeTypeId::TextureBackground,  // render/src/background.cpp
     NodeTypeId::LocalFog,           // scene/src/traversal.cpp (ShapeInstance::localFog)
+    NodeTypeId::FogCoordinate,      // vrml/src/geometry.cpp (Mesh::fogDepths)
     NodeTypeId::ComposedShader,     // render/src/composed_shaders.cpp (GLSL)
     NodeTypeId::ShaderPart,
     NodeTypeId::LoadSensor,  // runtime/src/load_sensors.cpp

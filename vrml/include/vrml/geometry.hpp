@@ -56,6 +56,10 @@ struct Mesh {
   /// MultiTextureCoordinate, X3D 4.0 clause 18.4.3, as glTF's TEXCOORD_1 becomes), per
   /// vertex; empty when the geometry has none.
   std::vector<glm::vec2> texCoords1;
+  /// X3D FogCoordinate depths (X3D 4.0 clause 24.4.2), per vertex: the distance the fog
+  /// equation uses there instead of the distance to the viewer, in the geometry's length
+  /// units; empty when the geometry has no FogCoordinate.
+  std::vector<float> fogDepths;
   std::vector<std::uint32_t> indices;  // 3 per triangle, 2 per line segment, 1 per point
   bool solid = true;                   // back faces may be culled (the node's `solid` field)
   Bounds bounds;                       // of positions
