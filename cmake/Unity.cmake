@@ -37,6 +37,7 @@ set(GS_UNITY_ALONE
   tests/render/test_texture_3d.cpp
   tests/render/test_texture_generation.cpp
   tests/render/test_volume_data.cpp
+  tests/render/test_layering.cpp
   tests/render/test_worlds.cpp
   tests/runtime/test_key_sensors.cpp
   tests/render/test_movie_share.cpp

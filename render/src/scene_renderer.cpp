@@ -229,8 +229,17 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
   glDepthMask(GL_TRUE);
   glClearDepth(1.0);
   glClear(GL_DEPTH_BUFFER_BIT);
-  g.background.draw(traversal_.background(), view, projection, traversal_, options_.fetcher,
-                    g.textures);
+  // With X3D layers (clause 35) the root layer's Background is drawn under every layer
+  // when the LayerSet's order draws the root layer; without it the default black shows.
+  if (g.frame.layerOrder.empty() ||
+      std::any_of(g.frame.layerOrder.begin(), g.frame.layerOrder.end(),
+                  [](const scene::LayerInstance& l) { return l.number == 0; })) {
+    g.background.draw(traversal_.background(), view, projection, traversal_, options_.fetcher,
+                      g.textures);
+  } else {
+    glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+  }
 
   // Lights in eye coordinates.
   g.eyeLights.resize(g.frame.lights.size());
@@ -452,13 +461,15 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     }
     const bool lit = triangles && sh.hasMaterial;
     const bool physical = lit && sh.model == ShadingModel::physical;
-    if (lit && (lastLightsOf == nullptr || lastLightsOf->scopedLightBegin != s.scopedLightBegin ||
-                lastLightsOf->scopedLightCount != s.scopedLightCount)) {
+    if (lit &&
+        (lastLightsOf == nullptr || lastLightsOf->scopedLightBegin != s.scopedLightBegin ||
+         lastLightsOf->scopedLightCount != s.scopedLightCount || lastLightsOf->layer != s.layer)) {
       lights = LightArrays{};
       if (headlight_) lights.add(headlight);
       for (std::uint32_t i = 0; i < s.scopedLightCount; ++i)
         lights.add(g.eyeLights[g.frame.scopedLights[s.scopedLightBegin + i]]);
-      for (std::uint32_t index : g.frame.globalLights) lights.add(g.eyeLights[index]);
+      for (std::uint32_t index : g.frame.globalLights)  // global in its own layer (35.2.1)
+        if (g.eyeLights[index].layer == s.layer) lights.add(g.eyeLights[index]);
       lastLightsOf = &s;
       lightsUploaded = false;
     }
@@ -603,15 +614,35 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     g.opaque.clear();  // the polygons are drawn as splats below
     g.transparent.clear();
   }
-  glDisable(GL_BLEND);
-  for (const DrawItem& d : g.opaque) drawItem(d);
-  if (!g.transparent.empty()) {
+  // One layer's opaque then transparent shapes (layer < 0: every shape).
+  const auto drawLayer = [&](std::int64_t layer) {
+    const auto inLayer = [&](const DrawItem& d) { return layer < 0 || d.shape->layer == layer; };
+    glDisable(GL_BLEND);
+    for (const DrawItem& d : g.opaque)
+      if (inLayer(d)) drawItem(d);
+    if (g.transparent.empty()) return;
     glEnable(GL_BLEND);
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     glDepthMask(GL_FALSE);
-    for (const DrawItem& d : g.transparent) drawItem(d);
-    statistics_.transparent = g.transparent.size();
+    for (const DrawItem& d : g.transparent) {
+      if (!inLayer(d)) continue;
+      drawItem(d);
+      ++statistics_.transparent;
+    }
+    glDepthMask(GL_TRUE);
+  };
+  if (g.frame.layerOrder.empty()) drawLayer(-1);
+  // X3D layers (clause 35.4.2): in the LayerSet's order, each over the previous (the depth
+  // buffer cleared), a Layer's Viewport clipping it to its clipBoundary (scissor only: the
+  // projection stays the window's, as X_ITE draws it). Every layer sees the world's camera.
+  for (const scene::LayerInstance& l : g.frame.layerOrder) {
+    const glm::ivec4 r = scene::layerRectangle(l.clipBoundary, x, y, width, height);
+    glScissor(r.x, r.y, r.z, r.w);
+    glDepthMask(GL_TRUE);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    drawLayer(l.number);
   }
+  glScissor(x, y, width, height);
   for (; clipDistancesOn > 0; --clipDistancesOn) glDisable(GL_CLIP_DISTANCE0 + clipDistancesOn - 1);
   statistics_.shaderVariants = g.programs.variantCount();
   statistics_.movieFrames = g.textures.movies.framesShown();

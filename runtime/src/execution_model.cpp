@@ -29,7 +29,10 @@ NodeState& ExecutionModel::State::reach(vrml::Node& node, bool bindables) {
   classify(ns);
   if (ns.role == NodeRole::bindable && bindables)
     candidates[static_cast<std::size_t>(ns.bindable)].push_back(&ns);
-  // Children and other node-valued fields, depth first in file order.
+  // Children and other node-valued fields, depth first in file order. The bindable nodes
+  // inside a LayerSet's Layers are not bound: every layer shares the world's camera,
+  // background and fog (docs/x3d.md, "Layering").
+  if (node.typeId() == vrml::NodeTypeId::LayerSet) bindables = false;
   for (std::size_t i = 0; i < n; ++i) {
     const vrml::FieldValue& v = node.fieldAt(i);
     if (v.type() == FieldType::SFNode) {

@@ -23,6 +23,10 @@ NodeKind nodeKind(const vrml::Node& node) {
       return NodeKind::Transform;
     case NodeTypeId::CADFace:  // one shape (or LOD, Transform) in `shape` (32.4.2)
       return NodeKind::CADFace;
+    case NodeTypeId::LayerSet:
+      return NodeKind::LayerSet;
+    case NodeTypeId::Layer:
+      return NodeKind::Layer;
     case NodeTypeId::Switch:
       return NodeKind::Switch;
     case NodeTypeId::LOD:

@@ -50,6 +50,8 @@ struct SceneTraversal::Walk {
   const std::unordered_set<std::int32_t>* filled = nullptr;
   /// The grouping nodes above the current one when frame.recordPaths (picking).
   std::vector<PathStep> path{};
+  /// The X3D layer being walked (ShapeInstance::layer): 0 for the root nodes.
+  std::uint32_t layer = 0;
 
   /// The children of a grouping node, in the coordinate system `m`.
   void group(const vrml::Node* n, const std::vector<vrml::NodePtr>& children, const glm::mat4& m,
@@ -159,6 +161,7 @@ struct SceneTraversal::Walk {
     (scoped ? scope : frame.globalLights)
         .push_back(static_cast<std::uint32_t>(frame.lights.size()));
     frame.lights.push_back(light);
+    frame.lights.back().layer = layer;
     if (scoped) scopeChanged = true;
   }
 
@@ -223,6 +226,7 @@ struct SceneTraversal::Walk {
     s.geometry = &geometry;
     s.model = m;
     s.baseUrl = baseUrl;
+    s.layer = layer;
     if (scopeChanged) {
       lastScopeBegin = static_cast<std::uint32_t>(frame.scopedLights.size());
       frame.scopedLights.insert(frame.scopedLights.end(), scope.begin(), scope.end());
@@ -259,6 +263,47 @@ struct SceneTraversal::Walk {
     node(*proxy, m, baseUrl);
     if (frame.recordPaths) path.pop_back();
   }
+
+  /// X3D Layering (clause 35): the first LayerSet among the world's root nodes makes them
+  /// layer 0 and the children of its i-th Layer layer i, each in world coordinates; its
+  /// `order` (indices into 0 and the layers) fills frame.layerOrder. A LayerSet elsewhere
+  /// (inside a group, in an Inline) draws nothing: the spec allows it at the root only.
+  void layers() {
+    const vrml::Node* set = nullptr;
+    for (const vrml::NodePtr& n : self.scene_->rootNodes)
+      if (n && nodeKind(*n) == NodeKind::LayerSet) {
+        set = n.get();
+        break;
+      }
+    if (set == nullptr) return;
+    const auto& list = set->mfnode("layers");
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      if (!list[i] || nodeKind(*list[i]) != NodeKind::Layer || !sfBool(*list[i], "visible", true))
+        continue;
+      layer = static_cast<std::uint32_t>(i + 1);
+      const auto& children = list[i]->mfnode("children");
+      group(list[i].get(), children, glm::mat4(1.0f), &self.mainUrl_, &children);
+    }
+    layer = 0;
+    for (const std::int32_t index : fieldRef<vrml::FieldType::MFInt32>(*set, "order", kNoOrder)) {
+      LayerInstance l;
+      if (index < 0 || static_cast<std::size_t>(index) > list.size()) continue;
+      if (index > 0) {
+        const vrml::NodePtr& n = list[static_cast<std::size_t>(index) - 1];
+        if (!n || nodeKind(*n) != NodeKind::Layer || !sfBool(*n, "visible", true)) continue;
+        l.node = n.get();
+        if (const vrml::NodePtr& v = n->sfnode("viewport"); v && !v->unresolved) {
+          const std::vector<float>& c = mfFloat(*v, "clipBoundary");
+          for (std::size_t k = 0; k < 4 && k < c.size(); ++k)
+            if (std::isfinite(c[k]))
+              l.clipBoundary[static_cast<int>(k)] = std::clamp(c[k], 0.0f, 1.0f);
+        }
+      }
+      l.number = static_cast<std::uint32_t>(index);
+      frame.layerOrder.push_back(l);
+    }
+  }
+  static inline const std::vector<std::int32_t> kNoOrder{};
 
   void node(const vrml::Node& n, const glm::mat4& m, const std::string* baseUrl) {
     switch (nodeKind(n)) {
@@ -378,9 +423,22 @@ void SceneTraversal::collect(const Camera& viewer, TraversalFrame& frame) {
   walk.clipScope = &clipScratch_;
   walk.lengthUnit = lengthUnitOf(*scene_);
   walk.group(nullptr, scene_->rootNodes, glm::mat4(1.0f), &mainUrl_, &scene_->rootNodes);
+  walk.layers();
   if (firstGlobalEnvironment_ >= 0)
     for (ShapeInstance& s : frame.shapes)
       if (s.environmentLight < 0) s.environmentLight = firstGlobalEnvironment_;
+}
+
+glm::ivec4 layerRectangle(const glm::vec4& clipBoundary, int x, int y, int width, int height) {
+  // As X_ITE's Viewport.getRectangle: floor of each edge, an empty rectangle when reversed.
+  const auto edge = [](int origin, int size, float f) {
+    return origin + static_cast<int>(std::floor(static_cast<float>(size) * f));
+  };
+  const int left = edge(x, width, clipBoundary.x);
+  const int right = edge(x, width, clipBoundary.y);
+  const int bottom = edge(y, height, clipBoundary.z);
+  const int top = edge(y, height, clipBoundary.w);
+  return {left, bottom, std::max(right - left, 0), std::max(top - bottom, 0)};
 }
 
 const std::unordered_set<std::int32_t>& SceneTraversal::filledGroups(const vrml::Scene& scene) {

@@ -77,6 +77,9 @@ const RenderCase kCases[] = {
     {"environment_light", "assets/worlds/environment_light.x3dv", false},
     // X3D VolumeData and IsoSurfaceVolumeData drawn as QNV splats (docs/x3d.md).
     {"volume_data", "assets/worlds/volume_data.x3dv", false},
+    // X3D Layering (docs/x3d.md): a farther layer over layer 0, a Viewport's clipBoundary
+    // cutting an animated cone in half at t = 1 s.
+    {"layers_t1", "assets/worlds/layers.x3dv", false, "1"},
 };
 
 void checkAgainstBaseline(const RenderCase& c) {

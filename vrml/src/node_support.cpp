@@ -111,6 +111,9 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::SplinePositionInterpolator2D,
     NodeTypeId::SplineScalarInterpolator,
     NodeTypeId::SquadOrientationInterpolator,
+    NodeTypeId::LayerSet,  // scene/src/traversal.cpp, render/src/scene_renderer.cpp
+    NodeTypeId::Layer,
+    NodeTypeId::Viewport,
 };
 
 }  // namespace

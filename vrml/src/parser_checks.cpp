@@ -37,6 +37,9 @@ bool nodeClassAllowed(const NodeType* parent, std::string_view field, const Node
   // PROTO instances of unknown body, unresolved EXTERNPROTOs and Scripts' own fields:
   // nothing to check against.
   if (child.model == nullptr) return true;
+  // A LayerSet is no X3DChildNode but belongs at the root of a scene (X3D 4.0 clause
+  // 35.4.2; docs/x3d.md, "Layering").
+  if (parent == nullptr && child.model->id == NodeTypeId::LayerSet) return true;
   const NodeFieldModel* want = &rootField();
   if (parent != nullptr) {
     if (parent->model == nullptr || parent->script) return true;

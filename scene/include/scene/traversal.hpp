@@ -36,6 +36,9 @@ enum class LightType : std::uint8_t { directional, point, spot };
 /// PointLight, 6.45 SpotLight).
 struct LightInstance {
   LightType type = LightType::directional;
+  /// The layer it is in (TraversalFrame::layerOrder): a global light lights only its own
+  /// layer's shapes (X3D 4.0 clause 35.2.1); 0: the root layer.
+  std::uint32_t layer = 0;
   glm::vec3 color{1.0f};
   float intensity = 1.0f;
   float ambientIntensity = 0.0f;
@@ -104,7 +107,26 @@ struct ShapeInstance {
   /// (only when TraversalFrame::recordPaths is set).
   std::uint32_t pathBegin = 0;
   std::uint32_t pathCount = 0;
+  /// The X3D layer it is in (clause 35.2.1): 0 for the world's root nodes, i for the
+  /// children of the i-th Layer in the root LayerSet's `layers` (1-based, clause 35.4.2).
+  std::uint32_t layer = 0;
 };
+
+/// One layer to draw (X3D 4.0 clause 35): a LayerSet's `order` lists them.
+struct LayerInstance {
+  /// 0: the root layer (the world's root nodes outside the LayerSet); i: the i-th Layer of
+  /// the LayerSet's `layers` (ShapeInstance::layer).
+  std::uint32_t number = 0;
+  /// The Layer's Viewport clipBoundary (clause 35.4.4): left, right, bottom, top as
+  /// fractions of the render surface, clamped to [0, 1]; the whole surface without one.
+  glm::vec4 clipBoundary{0.0f, 1.0f, 0.0f, 1.0f};
+  const vrml::Node* node = nullptr;  // the Layer, null for the root layer
+};
+
+/// The pixel rectangle (x, y, width, height; origin bottom left, as glScissor takes it) of
+/// a clipBoundary (left, right, bottom, top fractions, clause 35.4.4) inside the viewport
+/// rectangle (x, y, width, height) in pixels; width and height are never negative.
+glm::ivec4 layerRectangle(const glm::vec4& clipBoundary, int x, int y, int width, int height);
 
 /// One QuantizedNormalVectors node to draw as splats (docs/vrml-extensions.md).
 struct SplatInstance {
@@ -135,7 +157,12 @@ struct TraversalFrame {
   /// skipped, and a Collision's proxy (not drawn otherwise) replaces its children.
   bool collisionGeometry = false;
   std::vector<PathStep> paths;  // ShapeInstance::pathBegin ranges
+  /// The layers to draw, in order, each over the previous with the depth buffer cleared
+  /// (the root LayerSet's `order`, X3D 4.0 clause 35.4.2); empty without a LayerSet at the
+  /// world's root: then every shape is drawn as one layer.
+  std::vector<LayerInstance> layerOrder;
   void clear() {
+    layerOrder.clear();
     paths.clear();
     shapes.clear();
     splats.clear();
