@@ -84,8 +84,8 @@ TEST_CASE("load sensor: --snapshot shows what isLoaded chose for a missing Inlin
   const std::string trace = (dir.path / "trace.jsonl").string();
   const std::string png = (dir.path / "missing.png").string();
   // Exit code 3: a picture from an incomplete input (the Inline's file is missing).
-  const auto r = gs::test::runGhostspace({"--snapshot", png, "--size", "64x64", "--time", "2",
-                                          "--trace-events", trace, world});
+  const auto r = gs::test::runGhostspace(
+      {"--snapshot", png, "--size", "64x64", "--time", "2", "--trace-events", trace, world});
   INFO("stderr: " << r.err);
   REQUIRE(r.exitCode == 3);
   const auto c = gs::test::centrePixel(png);

@@ -103,7 +103,7 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::FogCoordinate,      // vrml/src/geometry.cpp (Mesh::fogDepths)
     NodeTypeId::ComposedShader,     // render/src/composed_shaders.cpp (GLSL)
     NodeTypeId::ShaderPart,
-    NodeTypeId::LoadSensor,  // runtime/src/load_sensors.cpp
+    NodeTypeId::LoadSensor,                // runtime/src/load_sensors.cpp
     NodeTypeId::CoordinateInterpolator2D,  // runtime/src/interpolators.cpp
     NodeTypeId::PositionInterpolator2D,
     NodeTypeId::EaseInEaseOut,  // runtime/src/interpolators_x3d.cpp
