@@ -12,6 +12,7 @@
 #include <array>
 #include <cctype>
 #include <stdexcept>
+#include <type_traits>
 
 namespace gs::render::detail {
 
@@ -192,12 +193,18 @@ bool isGlsl(const vrml::Node& shader) {
   return language.empty() || language == "GLSL";
 }
 
-/// Sets uniform array `location` from double (or float) vectors `a` as float vectors V.
+/// Sets uniform array `location` from the values `a` as V (float or a glm float vector,
+/// tightly packed floats): as they are when they are V, else converted (doubles).
 template <class V, class A, class Set>
 void setFloats(const A& a, GLint location, Set set) {
   if (a.empty()) return;
-  std::vector<V> f(a.begin(), a.end());
-  set(location, static_cast<GLsizei>(f.size()), glm::value_ptr(f[0]));
+  const auto n = static_cast<GLsizei>(a.size());
+  if constexpr (std::is_same_v<typename A::value_type, V>) {
+    set(location, n, reinterpret_cast<const float*>(a.data()));
+  } else {
+    const std::vector<V> f(a.begin(), a.end());
+    set(location, n, reinterpret_cast<const float*>(f.data()));
+  }
 }
 
 /// Sets uniform matrix array `location` from (double or float) matrices `a` as M.
@@ -431,36 +438,32 @@ void UserPrograms::use(const UserProgram& p, const glm::mat4& modelView,
       case T::SFMatrix4d:
         glUniformMatrix4fv(l, 1, GL_FALSE, glm::value_ptr(glm::mat4(v.get<T::SFMatrix4d>())));
         break;
-      case T::MFFloat: {
-        const auto& a = v.get<T::MFFloat>();
-        if (!a.empty()) glUniform1fv(l, static_cast<GLsizei>(a.size()), a.data());
+      case T::MFFloat:
+        setFloats<float>(v.get<T::MFFloat>(), l, glUniform1fv);
         break;
-      }
       case T::MFInt32: {
         const auto& a = v.get<T::MFInt32>();
         if (!a.empty()) glUniform1iv(l, static_cast<GLsizei>(a.size()), a.data());
         break;
       }
-      case T::MFVec2f: {
-        const auto& a = v.get<T::MFVec2f>();
-        if (!a.empty()) glUniform2fv(l, static_cast<GLsizei>(a.size()), glm::value_ptr(a[0]));
+      case T::MFVec2f:
+        setFloats<glm::vec2>(v.get<T::MFVec2f>(), l, glUniform2fv);
         break;
-      }
       case T::MFVec3f:
-      case T::MFColor: {
-        const auto& a = v.type() == T::MFVec3f ? v.get<T::MFVec3f>() : v.get<T::MFColor>();
-        if (!a.empty()) glUniform3fv(l, static_cast<GLsizei>(a.size()), glm::value_ptr(a[0]));
+        setFloats<glm::vec3>(v.get<T::MFVec3f>(), l, glUniform3fv);
         break;
-      }
+      case T::MFColor:
+        setFloats<glm::vec3>(v.get<T::MFColor>(), l, glUniform3fv);
+        break;
       case T::MFVec4f:
-      case T::MFColorRGBA:
-      case T::MFRotation: {
-        const auto& a = v.type() == T::MFVec4f       ? v.get<T::MFVec4f>()
-                        : v.type() == T::MFColorRGBA ? v.get<T::MFColorRGBA>()
-                                                     : v.get<T::MFRotation>();
-        if (!a.empty()) glUniform4fv(l, static_cast<GLsizei>(a.size()), glm::value_ptr(a[0]));
+        setFloats<glm::vec4>(v.get<T::MFVec4f>(), l, glUniform4fv);
         break;
-      }
+      case T::MFColorRGBA:
+        setFloats<glm::vec4>(v.get<T::MFColorRGBA>(), l, glUniform4fv);
+        break;
+      case T::MFRotation:
+        setFloats<glm::vec4>(v.get<T::MFRotation>(), l, glUniform4fv);
+        break;
       case T::MFBool: {
         const std::vector<bool>& a = v.get<T::MFBool>();
         const std::vector<GLint> ints(a.begin(), a.end());
@@ -468,12 +471,11 @@ void UserPrograms::use(const UserProgram& p, const glm::mat4& modelView,
         break;
       }
       case T::MFDouble:
-      case T::MFTime: {
-        const auto& a = v.type() == T::MFDouble ? v.get<T::MFDouble>() : v.get<T::MFTime>();
-        const std::vector<float> floats(a.begin(), a.end());
-        if (!floats.empty()) glUniform1fv(l, static_cast<GLsizei>(floats.size()), floats.data());
+        setFloats<float>(v.get<T::MFDouble>(), l, glUniform1fv);
         break;
-      }
+      case T::MFTime:
+        setFloats<float>(v.get<T::MFTime>(), l, glUniform1fv);
+        break;
       case T::MFVec2d:
         setFloats<glm::vec2>(v.get<T::MFVec2d>(), l, glUniform2fv);
         break;

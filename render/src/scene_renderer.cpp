@@ -439,6 +439,17 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     glUniformMatrix3fv(u.stageMatrix, n, GL_FALSE, glm::value_ptr(matrices[0]));
     glUniform4fv(u.stageFactor, 1, glm::value_ptr(m.factor));
   };
+  // Back faces culled for solid polygons (the geometry's solid field), then the draw call,
+  // counted.
+  const auto drawMesh = [&](const GpuMesh& mesh) {
+    if (mesh.primitive == vrml::Primitive::triangles && mesh.solid)
+      glEnable(GL_CULL_FACE);
+    else
+      glDisable(GL_CULL_FACE);
+    mesh.draw();
+    statistics_.shapes += 1;
+    statistics_.triangles += mesh.triangles;
+  };
   auto drawItem = [&](const DrawItem& d) {
     const scene::ShapeInstance& s = *d.shape;
     const GpuMesh& mesh = *d.mesh;
@@ -450,13 +461,7 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
       current = nullptr;
       for (; clipDistancesOn > 0; --clipDistancesOn)
         glDisable(GL_CLIP_DISTANCE0 + clipDistancesOn - 1);
-      if (triangles && mesh.solid)
-        glEnable(GL_CULL_FACE);
-      else
-        glDisable(GL_CULL_FACE);
-      mesh.draw();
-      statistics_.shapes += 1;
-      statistics_.triangles += mesh.triangles;
+      drawMesh(mesh);
       return;
     }
     const bool lit = triangles && sh.hasMaterial;
@@ -599,15 +604,9 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
       glEnable(GL_CLIP_DISTANCE0 + clipDistancesOn);
     for (; clipDistancesOn > clips; --clipDistancesOn)
       glDisable(GL_CLIP_DISTANCE0 + clipDistancesOn - 1);
-    if (triangles && mesh.solid)
-      glEnable(GL_CULL_FACE);
-    else
-      glDisable(GL_CULL_FACE);
-    mesh.draw();
+    drawMesh(mesh);
     if (mesh.primitive == vrml::Primitive::lines && sh.lineFill.lineWidth != 1.0f)
       glLineWidth(1.0f);
-    statistics_.shapes += 1;
-    statistics_.triangles += mesh.triangles;
   };
 
   if (splats_->mode() == scene::RenderMode::splats) {

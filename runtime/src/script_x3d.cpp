@@ -428,12 +428,7 @@ duk_ret_t x3dNodeType(duk_context* c) {
 // importedNode(name): the node of the world's IMPORT `name`, or null.
 duk_ret_t x3dImportedNode(duk_context* c) {
   EsScript& self = EsScript::of(c);
-  const vrml::NodePtr n = self.context().importedNode(x3dString(c, 0));
-  if (!n) {
-    duk_push_null(c);
-    return 1;
-  }
-  self.pushNode(c, n);
+  self.pushNode(c, self.context().importedNode(x3dString(c, 0)));  // null when none
   return 1;
 }
 
