@@ -215,6 +215,10 @@ void Lexer::skipBalanced() {
 
 SourceLocation Lexer::locationAt(std::size_t off) {
   if (off > text_.size()) off = text_.size();
+  if (origin_ != nullptr) {
+    const auto [line, column] = origin_->at(off);
+    if (line > 0) return SourceLocation{file_, line, column};
+  }
   if (off < cacheOffset_) {
     // Back to the last mark at or before `off` (marks are in increasing order).
     auto it = std::upper_bound(marks_.begin(), marks_.end(), off,

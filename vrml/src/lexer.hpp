@@ -14,6 +14,7 @@
 #include <cstring>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace gs::vrml::parsing {
@@ -80,6 +81,22 @@ struct Token {
 /// Thrown for errors: the derived class tells the parser whether it may resynchronise.
 struct RecoverableError : ParseError {
   using ParseError::ParseError;
+};
+
+/// Where the bytes of a translated text came from: X3D's XML and JSON encodings are read
+/// as the Classic VRML text they are translated into (x3d_xml.hpp), and every location the
+/// parser gives names the original file instead.
+class TextOrigin {
+ public:
+  /// The original line and column (1-based) of byte `offset` of the translation; {0, 0}
+  /// when unknown. Offsets are asked mostly in increasing order.
+  virtual std::pair<int, int> at(std::size_t offset) = 0;
+
+ protected:
+  TextOrigin() = default;
+  ~TextOrigin() = default;
+  TextOrigin(const TextOrigin&) = default;
+  TextOrigin& operator=(const TextOrigin&) = default;
 };
 
 class Lexer {
@@ -232,8 +249,12 @@ class Lexer {
   const std::string& file() const { return file_; }
 
   /// Line and column (from 1, column in bytes) of byte `offset`; cached, so asking in
-  /// increasing order costs O(distance).
+  /// increasing order costs O(distance). With an origin (setOrigin), the original file's
+  /// line and column where it knows them.
   SourceLocation locationAt(std::size_t offset);
+  /// The text is a translation (X3D XML or JSON): locations come from `origin` (which must
+  /// outlive the lexer; null: none).
+  void setOrigin(TextOrigin* origin) { origin_ = origin; }
   /// A printable excerpt of the token at `offset` for messages ("end of file" at end).
   std::string describeAt(std::size_t offset) const;
 
@@ -327,6 +348,7 @@ class Lexer {
 
   std::string_view text_;
   std::string file_;
+  TextOrigin* origin_ = nullptr;
   const char* p_;
   const char* end_;
   // Cache of the last locationAt() answer.

@@ -40,8 +40,10 @@ bool isStatementKeyword(std::string_view s) {
 }  // namespace
 
 Parser::Parser(std::string_view text, std::string file, std::size_t start, Context& ctx,
-               Diagnostics& diag, int externDepth)
-    : lex_(text, std::move(file), start), ctx_(ctx), diag_(diag), externDepth_(externDepth) {}
+               Diagnostics& diag, int externDepth, TextOrigin* origin)
+    : lex_(text, std::move(file), start), ctx_(ctx), diag_(diag), externDepth_(externDepth) {
+  lex_.setOrigin(origin);
+}
 
 // At most kMaxDiagnostics are kept (the rest are counted and summarised at the end);
 // that many errors end the parse, since the input is then most likely not VRML at all.
@@ -713,7 +715,7 @@ std::string headerProblem(std::string_view line, std::string& x3dVersion) {
 }
 
 void parseInto(std::string_view bytes, const std::string& url, Context& ctx, int externDepth,
-               Scene& scene) {
+               Scene& scene, TextOrigin* origin) {
   const ParseLimits& limits = ctx.options.limits;
   std::string inflated;
   try {
@@ -736,17 +738,15 @@ void parseInto(std::string_view bytes, const std::string& url, Context& ctx, int
     return;
   }
   // X3D's XML encoding (the first byte that is no space or BOM is '<'): translated into
-  // Classic VRML text, which is parsed below; diagnostics are moved back onto the XML.
+  // Classic VRML text, which is parsed below at the XML's locations.
   bool decided = false;
   if (looksLikeXml(bytes, decided)) {
     std::string classic;
     classic.reserve(bytes.size() + bytes.size() / 4);  // the translation is about as long
     XmlToClassic xml(classic, url, limits.maxNesting);
-    xml.skipTo(scene);
     xml.feed(bytes, true);
     xml.addWarnings(scene);
-    if (xml.wroteHeader()) parseInto(classic, url, ctx, externDepth, scene);
-    xml.mapScene(scene);
+    if (xml.wroteHeader()) parseInto(classic, url, ctx, externDepth, scene, &xml.origin());
     scene.x3d.encoding = "XML";
     if (xml.failed()) scene.diagnostics.items.push_back(xml.fatalError());
     return;
@@ -756,8 +756,7 @@ void parseInto(std::string_view bytes, const std::string& url, Context& ctx, int
     std::string classic;
     JsonToClassic json(classic, url, limits.maxNesting);
     json.translate(bytes, scene);
-    if (json.wroteHeader()) parseInto(classic, url, ctx, externDepth, scene);
-    json.mapScene(scene);
+    if (json.wroteHeader()) parseInto(classic, url, ctx, externDepth, scene, &json.origin());
     scene.x3d.encoding = "JSON";
     if (json.failed()) scene.diagnostics.items.push_back(json.fatalError());
     return;
@@ -783,7 +782,7 @@ void parseInto(std::string_view bytes, const std::string& url, Context& ctx, int
     scene.x3d.encoding = "Classic VRML";
   }
   Parser parser(bytes, url, eol == std::string_view::npos ? bytes.size() : eol, ctx,
-                scene.diagnostics, externDepth);
+                scene.diagnostics, externDepth, origin);
   parser.parseScene(scene);
   ctx.x3d = wasX3d;
   ctx.units = wasUnits;

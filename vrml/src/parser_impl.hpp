@@ -144,8 +144,9 @@ struct InstanceValues {
 class Parser {
  public:
   /// `text` is the whole file; parsing starts at byte `start` (after the header).
+  /// `origin`: the text is a translation of X3D XML or JSON, whose locations it gives.
   Parser(std::string_view text, std::string file, std::size_t start, Context& ctx,
-         Diagnostics& diag, int externDepth);
+         Diagnostics& diag, int externDepth, TextOrigin* origin = nullptr);
 
   /// Parses statements up to the end of input into `scene` (clause 4.4 / A.3
   /// vrmlScene). Reports fatal errors as diagnostics and stops there.
@@ -339,8 +340,9 @@ void gunzipInto(std::string_view bytes, const std::string& url, std::size_t maxB
 std::string headerProblem(std::string_view line, std::string& x3dVersion);
 
 /// Parses `bytes` (a whole file, gzip or not) into `scene` with shared context `ctx`.
+/// `origin`: `bytes` is the Classic translation of X3D XML or JSON, whose locations it gives.
 void parseInto(std::string_view bytes, const std::string& url, Context& ctx, int externDepth,
-               Scene& scene);
+               Scene& scene, TextOrigin* origin = nullptr);
 
 /// Whether `url` (relative to the file `base`) names the local file `base` itself.
 bool urlNamesFile(const std::string& base, const std::string& url);

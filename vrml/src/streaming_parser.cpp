@@ -192,12 +192,6 @@ struct StreamingParser::Impl {
   }
   bool decide(bool final);
   void translated(bool final);
-  std::size_t parseMapped(bool final) {
-    const std::size_t added = parse(final);
-    if (xml) xml->mapScene(scene);
-    if (json) json->mapScene(scene);
-    return added;
-  }
   void scanNew();
   bool readHeader(bool final);
   std::size_t parse(bool final);
@@ -299,7 +293,6 @@ bool StreamingParser::Impl::decide(bool final) {
   encoding = Encoding::xml;
   scene.x3d.encoding = "XML";
   xml = std::make_unique<parsing::XmlToClassic>(text, url, user.limits.maxNesting);
-  xml->skipTo(scene);
   scratch = std::move(text);
   text.clear();
   return true;
@@ -335,8 +328,9 @@ bool StreamingParser::Impl::readHeader(bool final) {
   }
   top.x3d = &scene.x3d;
   const std::size_t begin = eol == std::string_view::npos ? all.size() : eol;
+  parsing::TextOrigin* origin = xml ? &xml->origin() : json ? &json->origin() : nullptr;
   parser = std::make_unique<parsing::Parser>(all.substr(0, std::max(begin, complete)), url, begin,
-                                             ctx, scene.diagnostics, 0);
+                                             ctx, scene.diagnostics, 0, origin);
   top.routes = &scene.routes;
   top.hidden = &scene.hiddenNodes;
   top.declared = &scene.protos;
@@ -464,7 +458,7 @@ std::size_t StreamingParser::Impl::guarded(std::string_view bytes, bool final) {
         std::size_t added = 0;
         if (xml->wroteHeader()) {
           scanNew();
-          added = parseMapped(true);
+          added = parse(true);
         }
         stop(xml->fatalError());
         return added;
@@ -490,7 +484,7 @@ std::size_t StreamingParser::Impl::guarded(std::string_view bytes, bool final) {
       std::size_t added = 0;
       if (json->wroteHeader()) {
         scanNew();
-        added = parseMapped(true);
+        added = parse(true);
       }
       scene.x3d.encoding = "JSON";
       if (json->failed()) {
@@ -501,7 +495,7 @@ std::size_t StreamingParser::Impl::guarded(std::string_view bytes, bool final) {
       return added;
     }
     scanNew();
-    return parseMapped(final);
+    return parse(final);
   } catch (const std::bad_alloc&) {
     stop(Diagnostic{Severity::error, {url, 0, 0}, "out of memory"});
     return 0;

@@ -15,7 +15,6 @@
 // is mapped to line 1 column 1; structural errors name their JSON path in any case.
 #include "x3d_json.hpp"
 
-#include "x3d_locations.hpp"
 #include "x3d_xml.hpp"
 
 #include <nlohmann/json.hpp>
@@ -111,7 +110,9 @@ struct JsonToClassic::Impl {
       : out(o),
         url(std::move(u)),
         maxNesting(std::max(nesting, 1)),
-        maxDepth(3 * (maxNesting + 8)) {}
+        maxDepth(3 * (maxNesting + 8)) {
+    origin.m = this;
+  }
 
   std::string& out;
   std::string url;
@@ -132,7 +133,14 @@ struct JsonToClassic::Impl {
   std::vector<std::pair<int, int>> xmlLines{{0, 0}, {0, 0}};
   std::pair<int, int> here{1, 1};  // the JSON location of the element being written
 
-  LocationMapper locations;  // what mapScene() has already moved onto the JSON
+  // The parser's locations: through the XML's onto the JSON's.
+  struct Origin final : TextOrigin {
+    Impl* m = nullptr;
+    std::pair<int, int> at(std::size_t offset) override {
+      if (!m->xml) return {0, 0};
+      return m->jsonOfXml(m->xml->xmlLocationAt(offset).first);
+    }
+  } origin;
 
   std::pair<int, int> lineColumn(std::size_t offset) const {
     auto it = std::upper_bound(lineStarts.begin(), lineStarts.end(), offset);
@@ -399,7 +407,6 @@ struct JsonToClassic::Impl {
     doc = Json();  // the XML text is all that is needed now
     xmlText += '\n';
     xml = std::make_unique<XmlToClassic>(out, url, maxNesting);
-    xml->skipTo(scene);
     xml->feed(xmlText);
     xml->finish();
     const std::size_t from = scene.diagnostics.items.size();
@@ -414,7 +421,6 @@ struct JsonToClassic::Impl {
     }
     for (Diagnostic& d : problems) items.push_back(std::move(d));
     problems.clear();
-    locations.skipTo(scene);
     if (xml->failed()) {
       Diagnostic d = xml->fatalError();
       const auto [line, column] = jsonOfXml(d.location.line);
@@ -459,14 +465,12 @@ const Diagnostic& JsonToClassic::fatalError() const {
   return impl_->fatal;
 }
 
-std::pair<int, int> JsonToClassic::jsonLocation(int classicLine) const {
-  if (!impl_->xml) return {0, 0};
-  return impl_->jsonOfXml(impl_->xml->xmlLocation(classicLine).first);
+std::pair<int, int> JsonToClassic::jsonLocationAt(std::size_t offset) {
+  return impl_->origin.at(offset);
 }
 
-void JsonToClassic::mapScene(Scene& scene) {
-  impl_->locations.map(scene, impl_->url,
-                       [this](int classicLine) { return jsonLocation(classicLine); });
+TextOrigin& JsonToClassic::origin() {
+  return impl_->origin;
 }
 
 }  // namespace gs::vrml::parsing

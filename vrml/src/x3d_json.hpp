@@ -10,6 +10,7 @@
 // streaming). Internal to gs_vrml.
 #pragma once
 
+#include "lexer.hpp"
 #include "vrml/diagnostic.hpp"
 #include "vrml/scene.hpp"
 
@@ -51,14 +52,12 @@ class JsonToClassic {
   /// The error that stopped it (at the JSON's file:line:column), when failed().
   const Diagnostic& fatalError() const;
 
-  /// The JSON line and column (1-based) of the object whose translation Classic line
-  /// `classicLine` (1-based) belongs to; {0, 0} when none.
-  std::pair<int, int> jsonLocation(int classicLine) const;
-
-  /// Moves the locations of what the parser added to `scene` since the last call (or
-  /// translate) from Classic lines onto the JSON's lines and columns, as
-  /// XmlToClassic::mapScene does for XML.
-  void mapScene(Scene& scene);
+  /// The JSON line and column (1-based) of the object whose translation byte `offset` of
+  /// the Classic text belongs to; {0, 0} when none.
+  std::pair<int, int> jsonLocationAt(std::size_t offset);
+  /// jsonLocationAt() for the parser of the translation (Parser's `origin`), as
+  /// XmlToClassic::origin() for XML; lives as long as this translator.
+  TextOrigin& origin();
 
   struct Impl;
 

@@ -53,10 +53,17 @@ std::pair<int, int> XmlPositions::at(std::uint64_t offset) {
     cursor_ -= drop;
   }
   if (cursor_ > 0 && lineStarts_[cursor_ - 1] > offset) return {0, 0};  // went back
-  cursor_ = static_cast<std::size_t>(
-      std::upper_bound(lineStarts_.begin() + static_cast<std::ptrdiff_t>(cursor_),
-                       lineStarts_.end(), offset) -
-      lineStarts_.begin());
+  // The next element is most often a line or a few further: step there, and search
+  // only when it is far.
+  const std::size_t n = lineStarts_.size();
+  std::size_t c = cursor_;
+  for (int steps = 0; steps < 8 && c < n && lineStarts_[c] <= offset; ++steps) ++c;
+  if (c < n && lineStarts_[c] <= offset)
+    c = static_cast<std::size_t>(
+        std::upper_bound(lineStarts_.begin() + static_cast<std::ptrdiff_t>(c), lineStarts_.end(),
+                         offset) -
+        lineStarts_.begin());
+  cursor_ = c;
   const std::uint64_t start = cursor_ == 0 ? 0 : lineStarts_[cursor_ - 1];
   const std::uint64_t line = dropped_ + cursor_ + 1;
   if (start < pieceStart_ || line > 0x7fffffff || offset - start > 0x7ffffffe) return {0, 0};

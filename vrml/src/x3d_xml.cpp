@@ -8,7 +8,6 @@
 #include "vrml/field.hpp"
 #include "vrml/node_model.hpp"
 #include "vrml/node_table.hpp"
-#include "x3d_locations.hpp"
 #include "x3d_positions.hpp"
 #include "x3d_values.hpp"
 #include "x3d_xml_tree.hpp"
@@ -65,15 +64,24 @@ bool isScript(const NodeType* type) {
 
 // Attributes that are no field: XML bookkeeping and HTML-style ones.
 bool ignoredAttribute(std::string_view n) {
-  return n == "DEF" || n == "USE" || n == "containerField" || n == "class" || n == "id" ||
-         n == "style" || n.starts_with("xmlns") || n.find(':') != std::string_view::npos;
+  if (n.empty()) return false;
+  switch (n.front()) {  // (most attributes are fields: decided by their first letter)
+    case 'D':
+      return n == "DEF";
+    case 'U':
+      return n == "USE";
+    case 'c':
+      return n == "containerField" || n == "class" || n.find(':') != std::string_view::npos;
+    case 'i':
+      return n == "id" || n.find(':') != std::string_view::npos;
+    case 's':
+      return n == "style" || n.find(':') != std::string_view::npos;
+    case 'x':
+      return n.starts_with("xmlns") || n.find(':') != std::string_view::npos;
+    default:
+      return n.find(':') != std::string_view::npos;
+  }
 }
-
-struct LineEntry {
-  int classicLine;
-  int line;
-  int column;
-};
 
 }  // namespace
 
@@ -110,13 +118,10 @@ struct XmlToClassic::Impl {
   Diagnostic fatal;
   std::vector<Diagnostic> warnings;
   std::unordered_map<std::string, ProtoInfo> protos;
-  // Classic line -> XML location, one entry per element start (increasing lines).
-  std::vector<LineEntry> lines;
-  LocationMapper locations;  // what mapScene() has already moved onto the XML
-  std::size_t counted = 0;   // bytes of `out` whose line ends were counted
-  int classicLine = 1;       // line of out[counted]
-  bool finished = false;     // the last bytes were fed
-  XmlPositions positions;    // element start -> line and column (startHere)
+  // Classic offset -> XML location, one entry per element start (increasing offsets).
+  OffsetLocations lines;
+  bool finished = false;   // the last bytes were fed
+  XmlPositions positions;  // element start -> line and column (startHere)
 
   // ---- expat callbacks -----------------------------------------------------------------
 
@@ -223,20 +228,22 @@ struct XmlToClassic::Impl {
   struct TypeCacheEntry {
     std::string name;
     const NodeType* type = nullptr;
+    const NodeModel* model = nullptr;  // nodeModel(name)
     bool valid = false;
   };
   std::array<TypeCacheEntry, 32> typeCache;
-  const NodeType* lookupType(std::string_view n) {
+  const TypeCacheEntry& lookupType(std::string_view n) {
     const std::size_t h = n.empty() ? 0
                                     : (n.size() * 7 + static_cast<unsigned char>(n.front()) * 3 +
                                        static_cast<unsigned char>(n[n.size() / 2]) +
                                        static_cast<unsigned char>(n.back()));
     TypeCacheEntry& e = typeCache[h % typeCache.size()];
-    if (e.valid && e.name == n) return e.type;
+    if (e.valid && e.name == n) return e;
     e.name.assign(n);
     e.type = x3dNodeType(n).get();
+    e.model = nodeModel(n);
     e.valid = true;
-    return e.type;
+    return e;
   }
 
   // A pooled XNode for element `n`, reset.
@@ -244,7 +251,9 @@ struct XmlToClassic::Impl {
     if (poolUsed == pool.size()) pool.push_back(std::make_unique<XNode>());
     XNode* x = pool[poolUsed++].get();
     x->name.assign(n);
-    x->type = lookupType(n);
+    const TypeCacheEntry& e = lookupType(n);
+    x->type = e.type;
+    x->model = e.model;
     x->source = xmlTakesSource(x->type);
     // (ProtoInstance has a node model too; the statement names are none.)
     x->kind = x->type != nullptr ? XKind::node : xkindOf(n);
@@ -333,21 +342,11 @@ struct XmlToClassic::Impl {
 
   // ---- output with line map ------------------------------------------------------------
 
+  // An element's translation begins: on a line of its own (for a reader of the text),
+  // its first byte recorded with the element's XML location.
   void beginLine(int line, int column) {
     if (!out.empty() && out.back() != '\n') out += '\n';
-    const char* p = out.data() + counted;
-    const char* const e = out.data() + out.size();
-    while (p < e) {
-      const void* nl = std::memchr(p, '\n', static_cast<std::size_t>(e - p));
-      if (nl == nullptr) break;
-      ++classicLine;
-      p = static_cast<const char*>(nl) + 1;
-    }
-    counted = out.size();
-    if (!lines.empty() && lines.back().classicLine == classicLine)
-      lines.back() = {classicLine, line, column};
-    else
-      lines.push_back({classicLine, line, column});
+    lines.add({out.size(), line, column});
   }
   void beginLine(const XNode& n) { beginLine(n.line, n.column); }
 
@@ -503,7 +502,7 @@ struct XmlToClassic::Impl {
       if (it != protos.end()) field = it->second.containerField;
     } else if (metadata && x3d3) {
       field = "metadata";
-    } else if (const NodeModel* m = nodeModel(c.name); m != nullptr && !m->containerField.empty()) {
+    } else if (const NodeModel* m = c.model; m != nullptr && !m->containerField.empty()) {
       field = m->containerField;
     } else if (auto it = protos.find(c.name); it != protos.end()) {
       field = it->second.containerField;
@@ -534,23 +533,47 @@ struct XmlToClassic::Impl {
         if (fieldTypeFromName(c->attrOr("type"), t)) return t;
       }
     }
-    if (const NodeType* type = p.type) {
-      int i = type->findField(f);
+    if (const NodeType* type = p.type) return builtInFieldType(*type, f);
+    if (auto it = protos.find(p.name); it != protos.end()) return it->second.field(f);
+    return std::nullopt;
+  }
+
+  // The type of field `f` of built-in `type`, through a small cache of the pairs met (a
+  // file uses few; the table lives as long as the program).
+  struct FieldCacheEntry {
+    const NodeType* type = nullptr;
+    std::string name;
+    std::optional<FieldType> fieldType;
+  };
+  mutable std::array<FieldCacheEntry, 256> fieldCache;
+  std::optional<FieldType> builtInFieldType(const NodeType& type, std::string_view f) const {
+    std::size_t h = (reinterpret_cast<std::uintptr_t>(&type) >> 4) * 31 + f.size() * 7;
+    if (!f.empty())
+      h += static_cast<unsigned char>(f.front()) * 3u + static_cast<unsigned char>(f.back()) +
+           static_cast<unsigned char>(f[f.size() / 2]) * 5u;
+    FieldCacheEntry& e = fieldCache[h % fieldCache.size()];
+    if (e.type == &type && e.name == f) return e.fieldType;
+    e.type = &type;
+    e.name.assign(f);
+    e.fieldType = findBuiltInFieldType(type, f);
+    return e.fieldType;
+  }
+  static std::optional<FieldType> findBuiltInFieldType(const NodeType& type, std::string_view f) {
+    {
+      int i = type.findField(f);
       // X3D's names for VRML97's fields (Parser::x3dFieldAlias).
-      if (i < 0 && type->id() == NodeTypeId::Collision && f == "enabled")
-        i = type->findExact("collide");
+      if (i < 0 && type.id() == NodeTypeId::Collision && f == "enabled")
+        i = type.findExact("collide");
       // X3D 3's names of ComposedCubeMapTexture's faces (Parser::x3dFieldAlias).
-      if (i < 0 && type->id() == NodeTypeId::ComposedCubeMapTexture &&
+      if (i < 0 && type.id() == NodeTypeId::ComposedCubeMapTexture &&
           (f == "back" || f == "bottom" || f == "front" || f == "left" || f == "right" ||
            f == "top"))
-        i = type->findExact(std::string(f) + "Texture");
-      if (i >= 0) return type->fields[static_cast<std::size_t>(i)].type;
-      if (f == "children" && (type->id() == NodeTypeId::Switch || type->id() == NodeTypeId::LOD))
+        i = type.findExact(std::string(f) + "Texture");
+      if (i >= 0) return type.fields[static_cast<std::size_t>(i)].type;
+      if (f == "children" && (type.id() == NodeTypeId::Switch || type.id() == NodeTypeId::LOD))
         return FieldType::MFNode;
       return std::nullopt;
     }
-    if (auto it = protos.find(p.name); it != protos.end()) return it->second.field(f);
-    return std::nullopt;
   }
 
   void node(const XNode& n) {
@@ -756,30 +779,42 @@ const Diagnostic& XmlToClassic::fatalError() const {
   return impl_->fatal;
 }
 
-std::pair<int, int> XmlToClassic::xmlLocation(int classicLine) const {
-  const auto& lines = impl_->lines;
-  auto it = std::upper_bound(lines.begin(), lines.end(), classicLine,
-                             [](int l, const LineEntry& e) { return l < e.classicLine; });
-  if (it == lines.begin()) return {0, 0};
-  --it;
-  return {it->line, it->column};
+std::pair<int, int> OffsetLocations::at(std::size_t offset) {
+  const auto before = [](std::size_t o, const Entry& e) { return o < e.offset; };
+  if (entries_.empty() || offset < entries_.front().offset) return {0, 0};
+  std::size_t i = std::min(cursor_, entries_.size() - 1);
+  if (entries_[i].offset <= offset) {
+    // Forward from the last answer: a few steps, else a search of what is left.
+    for (int steps = 0; steps < 8 && i + 1 < entries_.size() && entries_[i + 1].offset <= offset;
+         ++steps)
+      ++i;
+    if (i + 1 < entries_.size() && entries_[i + 1].offset <= offset)
+      i = static_cast<std::size_t>(
+              std::upper_bound(entries_.begin() + static_cast<std::ptrdiff_t>(i), entries_.end(),
+                               offset, before) -
+              entries_.begin()) -
+          1;
+  } else {
+    i = static_cast<std::size_t>(
+            std::upper_bound(entries_.begin(), entries_.end(), offset, before) - entries_.begin()) -
+        1;
+  }
+  cursor_ = i;
+  return {entries_[i].line, entries_[i].column};
 }
 
-void XmlToClassic::skipTo(const Scene& scene) {
-  impl_->locations.skipTo(scene);
+std::pair<int, int> XmlToClassic::xmlLocationAt(std::size_t offset) {
+  return impl_->lines.at(offset);
 }
 
-void XmlToClassic::mapScene(Scene& scene) {
-  impl_->locations.map(scene, impl_->url,
-                       [this](int classicLine) { return xmlLocation(classicLine); });
+TextOrigin& XmlToClassic::origin() {
+  return impl_->lines;
 }
 
 void XmlToClassic::addWarnings(Scene& scene) {
-  mapScene(scene);
   auto& w = impl_->warnings;
   for (Diagnostic& x : w) scene.diagnostics.items.push_back(std::move(x));
   w.clear();
-  impl_->locations.skipDiagnostics(scene);
 }
 
 }  // namespace gs::vrml::parsing

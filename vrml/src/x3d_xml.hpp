@@ -4,10 +4,12 @@
 // element of <Scene> is buffered as a small tree and written out as one statement when
 // its end tag arrives, so a world still grows statement by statement while it loads.
 // Every element's translation starts on a line of its own, and the XML line and column
-// of its start tag are recorded for that line: mapDiagnostics() moves the parser's
-// diagnostics back onto the XML. Internal to gs_vrml.
+// of its start tag are recorded for its first byte: origin() gives the parser those
+// locations, so every node, route and diagnostic it makes names the XML. Internal to
+// gs_vrml.
 #pragma once
 
+#include "lexer.hpp"
 #include "vrml/diagnostic.hpp"
 #include "vrml/scene.hpp"
 
@@ -24,6 +26,34 @@ namespace gs::vrml::parsing {
 /// part of a UTF-8 byte order mark is '<'. `decided` is false when `text` holds no such
 /// byte yet (more may come).
 bool looksLikeXml(std::string_view text, bool& decided);
+
+/// Byte offsets of a translation -> the original file's line and column: one entry per
+/// translated element, at the first byte of its translation (offsets increasing). Every
+/// byte up to the next entry belongs to that element.
+class OffsetLocations final : public TextOrigin {
+ public:
+  struct Entry {
+    std::size_t offset;  // in the translation, bytes
+    int line;            // in the original, 1-based
+    int column;          // in the original, 1-based
+  };
+  /// Adds an entry at `e.offset` (not before the last one's; an entry at the same offset
+  /// replaces it: that element wrote nothing).
+  void add(const Entry& e) {
+    if (!entries_.empty() && entries_.back().offset == e.offset)
+      entries_.back() = e;
+    else
+      entries_.push_back(e);
+  }
+  const std::vector<Entry>& entries() const { return entries_; }
+  /// The entry at or before `offset`: O(1) when asked in increasing order, O(log n)
+  /// otherwise; {0, 0} before the first entry.
+  std::pair<int, int> at(std::size_t offset) override;
+
+ private:
+  std::vector<Entry> entries_;
+  std::size_t cursor_ = 0;  // the entry of the last offset asked
+};
 
 /// The translator, over expat's push parser (external entities are never loaded).
 class XmlToClassic {
@@ -53,18 +83,14 @@ class XmlToClassic {
   const Diagnostic& fatalError() const;
 
   /// The XML line and column (1-based) of the start tag of the element whose translation
-  /// Classic line `classicLine` (1-based) belongs to; {0, 0} when none.
-  std::pair<int, int> xmlLocation(int classicLine) const;
-
-  /// What `scene` holds now is not to be mapped by mapScene() (call before parsing).
-  void skipTo(const Scene& scene);
-  /// Moves the locations of what the parser added to `scene` since the last call (or
-  /// skipTo) from Classic lines to the XML's line and column, where they name this XML's
-  /// url: diagnostics, the nodes reachable from new root and hidden nodes (each node
-  /// once), ROUTEs, IMPORTs and EXPORTs.
-  void mapScene(Scene& scene);
-  /// mapScene(), then appends the warnings found while translating so far (lenient
-  /// MFString values, ignored content; at XML locations) to the scene's diagnostics.
+  /// byte `offset` of the Classic text belongs to; {0, 0} when none. Offsets asked in
+  /// increasing order cost O(1) each, others O(log elements).
+  std::pair<int, int> xmlLocationAt(std::size_t offset);
+  /// xmlLocationAt() for the parser of the translation (Parser's `origin`); lives as long
+  /// as this translator.
+  TextOrigin& origin();
+  /// Appends the warnings found while translating so far (lenient MFString values,
+  /// ignored content; at XML locations) to the scene's diagnostics.
   void addWarnings(Scene& scene);
 
   struct Impl;

@@ -5,6 +5,7 @@
 
 #include "vrml/field.hpp"
 #include "vrml/node.hpp"
+#include "vrml/node_model.hpp"
 
 #include <cstddef>
 #include <cstdint>
@@ -57,9 +58,10 @@ inline XKind xkindOf(std::string_view s) {
 struct XNode {
   using Attr = std::pair<std::string, std::string>;
   std::string name;
-  const NodeType* type = nullptr;  // x3dNodeType(name), looked up once
-  bool source = false;             // takes source text (xmlTakesSource)
-  bool instance = false;           // a <ProtoInstance>
+  const NodeType* type = nullptr;    // x3dNodeType(name), looked up once
+  const NodeModel* model = nullptr;  // nodeModel(name), looked up once
+  bool source = false;               // takes source text (xmlTakesSource)
+  bool instance = false;             // a <ProtoInstance>
   XKind kind = XKind::node;
   int line = 0;
   int column = 0;
