@@ -2,11 +2,17 @@
 // CPU, their irradiance as spherical harmonics, the specular cube map mipmapped by GL.
 #include "environment_maps.hpp"
 
+#include "base/fetch.hpp"
+#include "base/url.hpp"
+#include "dds_images.hpp"
+
 #include "gpu_resources.hpp"
 #include "scene/node_access.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <stdexcept>
 
 namespace gs::render::detail {
 namespace {
@@ -195,13 +201,81 @@ struct FaceImages {
   std::string problem;   // why the node gives no cube map
 };
 
+/// Where each X3D face of an ImageCubeMapTexture (the order of kX3dFaces: back, bottom,
+/// front, left, right, top) is in a DDS cube map (faces +X, -X, +Y, -Y, +Z, -Z), and
+/// whether its image is mirrored left to right or top to bottom: as castle-model-viewer
+/// reads DDS cube maps (measured with a file whose faces have distinct colours and
+/// corner marks).
+struct DdsFace {
+  int face;
+  bool mirrorX, mirrorY;
+};
+constexpr std::array<DdsFace, 6> kFromDds = {{{4, true, true},      // back: +Z, turned half round
+                                              {2, false, false},    // bottom: +Y
+                                              {5, true, true},      // front: -Z
+                                              {1, true, true},      // left: -X
+                                              {0, true, true},      // right: +X
+                                              {3, false, false}}};  // top: -Y
+
+/// An ImageCubeMapTexture (X3D 4.0 clause 34.4.2): its first url that gives a DDS cube
+/// map, as six X3D faces.
+FaceImages loadImageCube(const vrml::Node& texture, const std::string& baseUrl,
+                         base::Fetcher* fetcher) {
+  FaceImages out;
+  std::string failures;
+  for (const std::string& reference : scene::mfString(texture, "url")) {
+    if (reference.empty()) continue;
+    const std::string url = base::resolveUrl(baseUrl, reference);
+    const base::Fetched got =
+        base::fetcherOr(fetcher).fetch(url, baseUrl, base::FetchMode::background);
+    if (got.pending()) {
+      out.pending = true;
+      return out;
+    }
+    std::string error = got.error;
+    if (got.ready()) {
+      try {
+        if (!got.bytes.starts_with("DDS "))
+          throw std::runtime_error(url +
+                                   ": not a DDS file (ImageCubeMapTexture reads DDS cube maps)");
+        const DdsImages dds = decodeDdsImages(got.bytes, url);
+        if (!dds.cube()) throw std::runtime_error(url + ": a DDS file but no cube map");
+        const auto w = static_cast<std::size_t>(dds.width),
+                   h = static_cast<std::size_t>(dds.height);
+        for (std::size_t f = 0; f < 6; ++f) {
+          const DdsFace from = kFromDds[f];
+          Image& dst = out.images[f];
+          dst = Image(dds.width, dds.height);
+          const std::uint8_t* src =
+              dds.rgba.data() + static_cast<std::size_t>(from.face) * w * h * 4;
+          for (std::size_t y = 0; y < h; ++y)
+            for (std::size_t x = 0; x < w; ++x) {
+              const std::size_t sx = from.mirrorX ? w - 1 - x : x;
+              const std::size_t sy = from.mirrorY ? h - 1 - y : y;
+              std::copy_n(src + 4 * (sy * w + sx), 4, dst.rgba.data() + 4 * (y * w + x));
+            }
+        }
+        out.size = std::max(dds.width, dds.height);
+        return out;
+      } catch (const std::exception& e) {
+        error = e.what();
+      }
+    }
+    failures += (failures.empty() ? "" : "; ") + error;
+  }
+  out.problem = failures.empty() ? std::string("no url") : failures;
+  return out;
+}
+
 FaceImages loadFaces(const vrml::Node& texture, const std::string& baseUrl,
                      base::Fetcher* fetcher) {
+  if (texture.typeId() == vrml::NodeTypeId::ImageCubeMapTexture)
+    return loadImageCube(texture, baseUrl, fetcher);
   FaceImages out;
   if (texture.typeId() != vrml::NodeTypeId::ComposedCubeMapTexture) {
     out.problem = texture.typeName() +
                   " is not supported as an EnvironmentLight texture "
-                  "(ComposedCubeMapTexture is)";
+                  "(ComposedCubeMapTexture and ImageCubeMapTexture are)";
     return out;
   }
   // X3D 4.0 clause 34.4.1; the order of kX3dFaces.

@@ -264,15 +264,19 @@ const GpuTexture& TextureCache::get(const vrml::Node& node, const std::string& b
       texture.hasAlpha = anyTranslucent(texels.rgba);
       texture.volume = true;
     }
-  } else if (node.typeId() == vrml::NodeTypeId::ComposedCubeMapTexture) {
+  } else if (node.typeId() == vrml::NodeTypeId::ComposedCubeMapTexture ||
+             node.typeId() == vrml::NodeTypeId::ImageCubeMapTexture) {
     CubeTexture cube = loadCubeTexture(node, baseUrl, fetcher);
     if (cube.pending) {
       static const GpuTexture kNone;  // untextured until the faces arrive
       return kNone;
     }
     if (!cube.problem.empty())
-      traversal.report(vrml::Severity::warning, node.location,
-                       "ComposedCubeMapTexture: " + cube.problem + ": that face is black");
+      traversal.report(
+          vrml::Severity::warning, node.location,
+          node.typeName() + ": " + cube.problem +
+              (node.typeId() == vrml::NodeTypeId::ComposedCubeMapTexture ? ": that face is black"
+                                                                         : ": drawn untextured"));
     texture.id = cube.id;
     texture.components = cube.id != 0 ? 3 : 0;
     texture.cube = true;

@@ -1,6 +1,7 @@
 // X3D Texturing3D textures decoded to RGBA texels (gpu_resources.hpp, decodeTexture3D).
 #include "base/fetch.hpp"
 #include "base/url.hpp"
+#include "dds_images.hpp"
 #include "formats/volume_readers.hpp"
 #include "gpu_resources.hpp"
 #include "scene/node_access.hpp"
@@ -18,68 +19,27 @@ namespace {
 /// Texels a 3D texture may have (2^24: 64 MiB of RGBA).
 constexpr std::size_t kMaxTexels3D = std::size_t{1} << 24;
 
-std::uint32_t readLe32(std::string_view b, std::size_t at) {
-  std::uint32_t v = 0;
-  for (int i = 3; i >= 0; --i)
-    v = (v << 8) | static_cast<std::uint8_t>(b[at + static_cast<std::size_t>(i)]);
-  return v;
-}
-
-/// The channel a DDS bit mask selects, scaled to 8 bits.
-std::uint8_t ddsChannel(std::uint32_t pixel, std::uint32_t mask) {
-  if (mask == 0) return 255;
-  int shift = 0;
-  while (((mask >> shift) & 1u) == 0) ++shift;
-  const std::uint32_t max = mask >> shift;
-  return static_cast<std::uint8_t>(((pixel & mask) >> shift) * 255u / max);
-}
-
-/// An uncompressed DirectDraw Surface volume (or 2D image): RGB, RGBA or luminance of 8 to
-/// 32 bits a pixel, the first mip level. Compressed (FourCC) formats throw.
+/// A DirectDraw Surface volume (or 2D image) as a 3D texture (dds_images.hpp).
 Texels3D decodeDds(std::string_view b, const std::string& url) {
-  if (b.size() < 128 || b.substr(0, 4) != "DDS " || readLe32(b, 4) != 124)
-    throw std::runtime_error(url + ": not a DDS file");
+  const DdsImages dds = decodeDdsImages(b, url);
+  if (dds.cube()) throw std::runtime_error(url + ": a DDS cube map is no 3D texture");
   Texels3D t;
-  t.height = static_cast<int>(readLe32(b, 12));
-  t.width = static_cast<int>(readLe32(b, 16));
-  t.depth = std::max(1, static_cast<int>(readLe32(b, 24)));
-  const std::uint32_t flags = readLe32(b, 80), bits = readLe32(b, 88);
-  const std::uint32_t rMask = readLe32(b, 92), gMask = readLe32(b, 96), bMask = readLe32(b, 100),
-                      aMask = readLe32(b, 104);
-  if ((flags & 0x4u) != 0)
-    throw std::runtime_error(url + ": compressed DDS (FourCC) textures are not read");
-  if (bits != 8 && bits != 16 && bits != 24 && bits != 32)
-    throw std::runtime_error(url + ": DDS of " + std::to_string(bits) + " bits a pixel");
-  if (t.width <= 0 || t.height <= 0 ||
-      static_cast<std::size_t>(t.width) * static_cast<std::size_t>(t.height) *
-              static_cast<std::size_t>(t.depth) >
-          kMaxTexels3D)
+  t.width = dds.width;
+  t.height = dds.height;
+  t.depth = dds.depth;
+  t.components = dds.components;
+  if (static_cast<std::size_t>(t.width) * static_cast<std::size_t>(t.height) *
+          static_cast<std::size_t>(t.depth) >
+      kMaxTexels3D)
     throw std::runtime_error(url + ": DDS size out of range");
-  const std::size_t bytesPer = bits / 8;
-  const std::size_t texels = static_cast<std::size_t>(t.width) *
-                             static_cast<std::size_t>(t.height) * static_cast<std::size_t>(t.depth);
-  if (b.size() < 128 + texels * bytesPer)
-    throw std::runtime_error(url + ": DDS data shorter than its size says");
-  const bool luminance = (flags & 0x20000u) != 0 && (flags & 0x40u) == 0;
-  t.components = luminance ? (aMask != 0 ? 2 : 1) : (aMask != 0 ? 4 : 3);
-  t.rgba.resize(texels * 4);
+  // DDS rows run top to bottom; texture t grows upwards.
+  const std::size_t row = static_cast<std::size_t>(t.width) * 4;
+  t.rgba.resize(dds.rgba.size());
   for (int z = 0; z < t.depth; ++z)
     for (int y = 0; y < t.height; ++y)
-      for (int x = 0; x < t.width; ++x) {
-        // DDS rows run top to bottom; texture t grows upwards.
-        const std::size_t src =
-            128 + ((static_cast<std::size_t>(z) * t.height + y) * t.width + x) * bytesPer;
-        std::uint32_t p = 0;
-        for (std::size_t k = 0; k < bytesPer; ++k)
-          p |= static_cast<std::uint32_t>(static_cast<std::uint8_t>(b[src + k])) << (8 * k);
-        const std::size_t dst =
-            4 * ((static_cast<std::size_t>(z) * t.height + (t.height - 1 - y)) * t.width + x);
-        const std::uint8_t r = ddsChannel(p, rMask);
-        t.rgba[dst] = r;
-        t.rgba[dst + 1] = luminance ? r : ddsChannel(p, gMask);
-        t.rgba[dst + 2] = luminance ? r : ddsChannel(p, bMask);
-        t.rgba[dst + 3] = aMask != 0 ? ddsChannel(p, aMask) : 255;
-      }
+      std::memcpy(
+          t.rgba.data() + (static_cast<std::size_t>(z) * t.height + (t.height - 1 - y)) * row,
+          dds.rgba.data() + (static_cast<std::size_t>(z) * t.height + y) * row, row);
   return t;
 }
 

@@ -36,6 +36,7 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::TextureCoordinateGenerator,  // render/src/texture_generation.cpp
     NodeTypeId::StaticGroup,                 // scene/src/node_kind.cpp
     NodeTypeId::ComposedCubeMapTexture,      // render/src/textures.cpp, environment_maps.cpp
+    NodeTypeId::ImageCubeMapTexture,         // the same; DDS files: render/src/dds_images.cpp
     NodeTypeId::NurbsCurve,                  // vrml/src/geometry_nurbs.cpp
     NodeTypeId::NurbsPatchSurface,
     NodeTypeId::NurbsTrimmedSurface,  // untrimmed
