@@ -379,9 +379,15 @@ const GpuEnvironment* EnvironmentMaps::get(const scene::EnvironmentLightInstance
   const vrml::NodePtr specular = node.sfnode("specularTexture");
   const vrml::NodePtr diffuse = node.sfnode("diffuseTexture");
   FaceImages specularFaces, diffuseFaces;
-  if (specular && !specular->unresolved)
-    specularFaces = loadFaces(*specular, *light.baseUrl, fetcher);
-  if (diffuse && !diffuse->unresolved) diffuseFaces = loadFaces(*diffuse, *light.baseUrl, fetcher);
+  // A problem names the texture (an ImageCubeMapTexture's says only what its url gave).
+  const auto load = [&](const vrml::NodePtr& texture, const char* field) {
+    FaceImages faces = loadFaces(*texture, *light.baseUrl, fetcher);
+    if (!faces.problem.empty() && !faces.problem.starts_with(texture->typeName()))
+      faces.problem = std::string(field) + " " + texture->typeName() + ": " + faces.problem;
+    return faces;
+  };
+  if (specular && !specular->unresolved) specularFaces = load(specular, "specularTexture");
+  if (diffuse && !diffuse->unresolved) diffuseFaces = load(diffuse, "diffuseTexture");
   if (specularFaces.pending || diffuseFaces.pending) return nullptr;  // ask again next draw
   e.done = true;
   for (const std::string* problem : {&specularFaces.problem, &diffuseFaces.problem})
