@@ -37,6 +37,7 @@ set(GS_UNITY_ALONE
   tests/render/test_texture_3d.cpp
   tests/render/test_texture_generation.cpp
   tests/render/test_image_cube_map.cpp
+  tests/render/test_generated_cube_map.cpp
   tests/render/test_volume_data.cpp
   tests/render/test_layering.cpp
   tests/render/test_worlds.cpp

@@ -7,6 +7,7 @@
 #include "scene_splats.hpp"
 
 #include "composed_shaders.hpp"
+#include "generated_cube_maps.hpp"
 #include "gl_program.hpp"
 #include "gpu_resources.hpp"
 #include "line_fill_properties.hpp"
@@ -125,6 +126,7 @@ struct SceneRenderer::Gpu {
   EnvironmentMaps environments;
   BackgroundPass background;
   UserPrograms userPrograms;
+  GeneratedCubeMaps generatedCubes;
   // Reused from frame to frame.
   scene::TraversalFrame frame;
   std::vector<scene::LightInstance> eyeLights;
@@ -138,6 +140,7 @@ struct SceneRenderer::Gpu {
     environments.release();
     background.release();
     userPrograms.release();
+    generatedCubes.release();
     programs.release();
   }
 };
@@ -210,10 +213,49 @@ void SceneRenderer::releaseGpuResources() {
   gpu_->shadings.clear();
 }
 
+void SceneRenderer::generateCubeMaps(const scene::Camera& camera) {
+  Gpu& g = *gpu_;
+  traversal_.collect(camera, g.frame);
+  struct Job {
+    const vrml::Node* texture;
+    const vrml::Node* geometry;
+    glm::vec3 origin;
+  };
+  std::vector<Job> jobs;
+  for (const scene::ShapeInstance& s : g.frame.shapes) {
+    const auto it = s.appearance != nullptr ? g.shadings.find(s.appearance) : g.shadings.end();
+    if (it == g.shadings.end() || it->second.texture == nullptr ||
+        it->second.texture->typeId() != vrml::NodeTypeId::GeneratedCubeMapTexture ||
+        !g.generatedCubes.due(*it->second.texture))
+      continue;
+    const vrml::Node* t = it->second.texture;
+    if (std::none_of(jobs.begin(), jobs.end(), [t](const Job& j) { return j.texture == t; }))
+      jobs.push_back({t, s.geometry, glm::vec3(s.model[3])});
+  }
+  if (jobs.empty()) return;
+  GLint framebuffer = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
+  generatingFace_ = true;
+  for (const Job& job : jobs) {
+    faceExcludes_ = job.geometry;
+    for (int face = 0; face < 6; ++face) {
+      const int size = g.generatedCubes.bindFace(*job.texture, face);
+      draw(GeneratedCubeMaps::faceCamera(job.origin, face, camera.nearClip, camera.farClip), 0, 0,
+           size, size);
+    }
+    g.generatedCubes.finish(*job.texture);
+  }
+  generatingFace_ = false;
+  faceExcludes_ = nullptr;
+  glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(framebuffer));
+}
+
 void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, int height) {
   Gpu& g = *gpu_;
-  statistics_ = {};
   if (width <= 0 || height <= 0) return;
+  if (generatedCubeMaps_ && !generatingFace_) generateCubeMaps(camera);
+  const bool generatedBefore = generatedCubeMaps_;
+  statistics_ = {};
   g.programs.enableVariants(options_.shaderVariants);
   g.programs.beginFrame();
   g.programs.generic();
@@ -265,6 +307,7 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
   g.transparent.clear();
   const glm::vec3 forward = camera.forward();
   for (const scene::ShapeInstance& s : g.frame.shapes) {
+    if (s.geometry == faceExcludes_) continue;  // (its own GeneratedCubeMapTexture's view)
     auto [meshIt, newMesh] = g.meshes.try_emplace(s.geometry);
     // The change contract (docs/runtime.md): a geometry whose fields or Coordinate /
     // Normal / Color / TextureCoordinate changed is tessellated and uploaded again.
@@ -292,7 +335,12 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     if (mesh.primitive == vrml::Primitive::triangles && shading.lineFill.invisible()) continue;
     const GpuTexture* texture = nullptr;
     if (shading.texture != nullptr && mesh.primitive == vrml::Primitive::triangles) {
-      texture = &g.textures.get(*shading.texture, *s.baseUrl, traversal_, options_.fetcher);
+      if (shading.texture->typeId() == vrml::NodeTypeId::GeneratedCubeMapTexture) {
+        texture = g.generatedCubes.texture(*shading.texture);
+        generatedCubeMaps_ = true;
+      } else {
+        texture = &g.textures.get(*shading.texture, *s.baseUrl, traversal_, options_.fetcher);
+      }
       if (texture->components == 0) texture = nullptr;
     }
     const glm::vec3 center = glm::vec3(s.model * glm::vec4(mesh.bounds.center(), 1.0f));
@@ -668,6 +716,8 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
   glBindTexture(GL_TEXTURE_3D, 0);
   glActiveTexture(GL_TEXTURE0);
   glUseProgram(0);
+  // The first frame to show a GeneratedCubeMapTexture drew it black: again, with its faces.
+  if (!generatedBefore && generatedCubeMaps_ && !generatingFace_) draw(camera, x, y, width, height);
 }
 
 void SceneRenderer::setMediaClock(MediaClock clock, bool waitForFrames) {

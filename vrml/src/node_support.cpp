@@ -37,6 +37,7 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::StaticGroup,                 // scene/src/node_kind.cpp
     NodeTypeId::ComposedCubeMapTexture,      // render/src/textures.cpp, environment_maps.cpp
     NodeTypeId::ImageCubeMapTexture,         // the same; DDS files: render/src/dds_images.cpp
+    NodeTypeId::GeneratedCubeMapTexture,     // render/src/generated_cube_maps.cpp
     NodeTypeId::NurbsCurve,                  // vrml/src/geometry_nurbs.cpp
     NodeTypeId::NurbsPatchSurface,
     NodeTypeId::NurbsTrimmedSurface,  // untrimmed

@@ -173,6 +173,15 @@ class SceneRenderer {
   bool headlight_ = true;
   bool headlightSet_ = false;  // setHeadlight() was called: NavigationInfo no longer decides
   DrawStatistics statistics_;
+  // GeneratedCubeMapTexture (detail/generated_cube_maps.hpp): whether a shape has shown one
+  // (then each draw first draws the due ones' faces), whether a face is being drawn now,
+  // and the geometry of the shape whose cube map it is (not drawn into it).
+  bool generatedCubeMaps_ = false;
+  bool generatingFace_ = false;
+  const vrml::Node* faceExcludes_ = nullptr;
+  /// Draws the faces of the due GeneratedCubeMapTextures of the shapes `camera` would
+  /// draw, each from its shape's origin in the world, the shape itself left out.
+  void generateCubeMaps(const scene::Camera& camera);
 };
 
 }  // namespace gs::render
