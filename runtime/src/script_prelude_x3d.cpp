@@ -263,6 +263,31 @@ method(P, 'deleteRoute', function (a, af, b, bf) {
   if (a instanceof X3DRoute) return hooks.route(false, a.sourceNode, a.sourceField, a.destinationNode, a.destinationField);
   return hooks.route(false, a, String(af), b, String(bf));
 });
+// X3DProtoDeclaration / X3DExternProtoDeclaration (19777-1 7.4.12, 7.4.13): read-only
+// views of the scene's declarations, newInstance() through createProto.
+function X3DProtoDeclaration(d) {
+  var fields = [];
+  for (var i = 0; i < d[3].length; ++i)
+    fields.push(new X3DFieldDefinition(d[3][i][0], d[3][i][1], X3DConstants[d[3][i][2]]));
+  Object.defineProperty(this, 'name', { value: d[0], enumerable: true });
+  Object.defineProperty(this, 'fields', { value: fields, enumerable: true });
+  Object.defineProperty(this, 'isExternProto', { value: d[1], enumerable: true });
+  if (d[1]) {
+    var urls = new MFString();
+    for (var u = 0; u < d[2].length; ++u) urls[u] = d[2][u];
+    Object.defineProperty(this, 'urls', { value: urls, enumerable: true });
+  }
+}
+method(X3DProtoDeclaration.prototype, 'newInstance', function () { return hooks.createProto(this.name); });
+function declarations(external) {
+  var all = hooks.protoDeclarations(), out = [];
+  for (var i = 0; i < all.length; ++i)
+    if (all[i][1] === external) out.push(new X3DProtoDeclaration(all[i]));
+  return out;
+}
+getter(P, 'protos', function () { return declarations(false); });
+getter(P, 'externprotos', function () { return declarations(true); });
+method(P, 'createProto', function (name) { return hooks.createProto(String(name)); });
 method(P, 'getImportedNode', function (name) {
   var node = hooks.importedNode(String(name));
   if (node === null)
@@ -274,6 +299,7 @@ G.SFVec2d = SFVec2d; G.SFVec3d = SFVec3d; G.SFVec4f = SFVec4f; G.SFVec4d = SFVec
 G.SFColorRGBA = SFColorRGBA; G.SFMatrix3f = SFMatrix3f; G.SFMatrix3d = SFMatrix3d;
 G.SFMatrix4f = SFMatrix4f; G.SFMatrix4d = SFMatrix4d; G.X3DConstants = X3DConstants;
 G.X3DFieldDefinition = X3DFieldDefinition; G.X3DRoute = X3DRoute;
+G.X3DProtoDeclaration = X3DProtoDeclaration;
 G.X3DExecutionContext = X3DExecutionContext; G.X3DScene = X3DScene;
 G.__gsScene = Object.create(P);  // Browser.currentScene (installBrowser takes it)
 })(this);

@@ -5,6 +5,7 @@
 #include "vrml/node_model.hpp"
 #include "vrml/proto.hpp"
 #include "vrml/scene.hpp"
+#include "vrml/writer.hpp"
 
 #include <array>
 #include <cctype>
@@ -340,6 +341,82 @@ duk_ret_t x3dCreateNode(duk_context* c) {
   return 1;
 }
 
+// The PROTO or EXTERNPROTO the current scene declares by `name` (X3DExecutionContext's
+// protos and externprotos: the file's top-level declarations); null when none.
+const vrml::NodeType* x3dDeclaredProto(const vrml::Scene* scene, std::string_view name) {
+  if (scene == nullptr) return nullptr;
+  for (const auto& t : scene->protos)
+    if (t && t->proto && t->name == name) return t.get();
+  return nullptr;
+}
+
+// protoDeclarations(): [[name, isExternProto, [url ...], [[field, access, type] ...]] ...]
+// of the current scene's top-level PROTO and EXTERNPROTO declarations, in file order.
+duk_ret_t x3dProtoDeclarations(duk_context* c) {
+  EsScript& self = EsScript::of(c);
+  const vrml::Scene* scene = self.context().currentScene();
+  duk_push_array(c);
+  if (scene == nullptr) return 1;
+  duk_uarridx_t k = 0;
+  for (const auto& t : scene->protos) {
+    if (!t || !t->proto) continue;
+    duk_push_array(c);
+    duk_push_lstring(c, t->name.data(), t->name.size());
+    duk_put_prop_index(c, -2, 0);
+    duk_push_boolean(c, t->proto->external);
+    duk_put_prop_index(c, -2, 1);
+    duk_push_array(c);
+    for (duk_uarridx_t u = 0; u < t->proto->urls.size(); ++u) {
+      duk_push_lstring(c, t->proto->urls[u].data(), t->proto->urls[u].size());
+      duk_put_prop_index(c, -2, u);
+    }
+    duk_put_prop_index(c, -2, 2);
+    duk_push_array(c);
+    for (std::size_t i = 0; i < t->fields.size(); ++i) {
+      const vrml::FieldSpec& spec = t->fields[i];
+      duk_push_array(c);
+      duk_push_lstring(c, spec.name.data(), spec.name.size());
+      duk_put_prop_index(c, -2, 0);
+      duk_push_int(c, x3dAccessNumber(spec.access));
+      duk_put_prop_index(c, -2, 1);
+      std::string_view type = vrml::fieldTypeName(spec.type);
+      duk_push_lstring(c, type.data(), type.size());
+      duk_put_prop_index(c, -2, 2);
+      duk_put_prop_index(c, -2, static_cast<duk_uarridx_t>(i));
+    }
+    duk_put_prop_index(c, -2, 3);
+    duk_put_prop_index(c, -2, k++);
+  }
+  return 1;
+}
+
+// createProto(name): an instance of the current scene's PROTO or EXTERNPROTO `name`, its
+// interface at the declared defaults (19777-1 X3DExecutionContext.createProto): the
+// scene's declarations written out again, with one instance, and read as createNode reads
+// its node.
+duk_ret_t x3dCreateProto(duk_context* c) {
+  EsScript& self = EsScript::of(c);
+  const std::string name = x3dString(c, 0);
+  const vrml::Scene* scene = self.context().currentScene();
+  if (x3dDeclaredProto(scene, name) == nullptr)
+    GS_DUK_ERROR(c, DUK_ERR_ERROR, "createProto: the scene declares no PROTO or EXTERNPROTO '%s'",
+                 name.substr(0, 64).c_str());
+  vrml::Scene declarations;
+  declarations.url = scene->url;
+  declarations.x3d.version = scene->x3d.version.empty() ? "4.0" : scene->x3d.version;
+  declarations.protos = scene->protos;
+  vrml::WriteOptions options;
+  options.encoding = vrml::Encoding::classic;
+  std::string text = vrml::writeScene(declarations, options).text;
+  text += "\n" + name + " { }\n";
+  std::vector<vrml::NodePtr> made = self.context().createVrmlFromString(text);
+  if (made.empty() || !made.back())
+    GS_DUK_ERROR(c, DUK_ERR_ERROR, "createProto: '%s' could not be instantiated",
+                 name.substr(0, 64).c_str());
+  self.pushNode(c, made.back());
+  return 1;
+}
+
 // route(add, fromNode, fromField, toNode, toField)
 duk_ret_t x3dRoute(duk_context* c) {
   EsScript& self = EsScript::of(c);
@@ -458,11 +535,18 @@ void EsScript::installX3DHooks(duk_context* c) {
     duk_idx_t nargs;
   };
   static constexpr Entry kHooks[] = {
-      {"sceneInfo", x3dSceneInfo, 0}, {"rootNodes", x3dRootNodes, 0},
-      {"namedNode", x3dNamedNode, 1}, {"createNode", x3dCreateNode, 1},
-      {"route", x3dRoute, 5},         {"fieldDefinitions", x3dFieldDefinitions, 1},
-      {"typeName", x3dTypeName, 1},   {"nodeTypeConstants", x3dNodeTypeConstants, 0},
-      {"nodeType", x3dNodeType, 1},   {"importedNode", x3dImportedNode, 1},
+      {"sceneInfo", x3dSceneInfo, 0},
+      {"rootNodes", x3dRootNodes, 0},
+      {"namedNode", x3dNamedNode, 1},
+      {"createNode", x3dCreateNode, 1},
+      {"route", x3dRoute, 5},
+      {"fieldDefinitions", x3dFieldDefinitions, 1},
+      {"typeName", x3dTypeName, 1},
+      {"nodeTypeConstants", x3dNodeTypeConstants, 0},
+      {"nodeType", x3dNodeType, 1},
+      {"importedNode", x3dImportedNode, 1},
+      {"protoDeclarations", x3dProtoDeclarations, 0},
+      {"createProto", x3dCreateProto, 1},
   };
   duk_push_global_object(c);
   duk_push_bare_object(c);

@@ -323,6 +323,44 @@ DEF S Script {
   CHECK(w.node("T").field("translation")->get<FieldType::SFVec3f>() == glm::vec3(5, 0, 0));
 }
 
+TEST_CASE("X3D Script: currentScene protos, externprotos and createProto", "[script][x3d]") {
+  RunningWorld w(x3dWorld(R"(
+PROTO Ball [ inputOutput SFColor color 1 0 0 initializeOnly SFFloat radius 2 ] {
+  Shape { appearance Appearance { material Material { diffuseColor IS color } }
+          geometry Sphere { radius IS radius } }
+}
+EXTERNPROTO Far [ inputOutput SFFloat size ] [ "far.x3dv#Far" "http://example.org/far.x3dv" ]
+DEF S Script {
+  outputOnly SFString protos
+  outputOnly SFString externs
+  outputOnly SFString made
+  outputOnly SFBool missingThrew
+  url "ecmascript:
+    function initialize() {
+      var scene = Browser.currentScene;
+      var p = scene.protos, e = scene.externprotos;
+      protos = p.length + ' ' + p[0].name + ' ' + p[0].isExternProto + ' ' + p[0].fields.length +
+               ' ' + p[0].fields[0].name + ' ' + (p[0].fields[0].dataType === X3DConstants.SFColor) +
+               ' ' + (p[0].fields[1].accessType === X3DConstants.initializeOnly);
+      externs = e.length + ' ' + e[0].name + ' ' + e[0].isExternProto + ' ' + e[0].urls.length +
+                ' ' + e[0].urls[1];
+      var ball = scene.createProto('Ball');
+      var other = p[0].newInstance();
+      made = ball.getNodeName() + ' ' + ball.radius + ' ' + other.color.r;
+      try { scene.createProto('Nope'); missingThrew = false; } catch (x) { missingThrew = true; }
+    }
+  "
+}
+)"),
+                 0.0, x3dScripts());
+  INFO(modelDiagnostics(w));
+  CHECK(outOf(w, "protos").get<FieldType::SFString>() == "1 Ball false 2 color true true");
+  CHECK(outOf(w, "externs").get<FieldType::SFString>() ==
+        "1 Far true 2 http://example.org/far.x3dv");
+  CHECK(outOf(w, "made").get<FieldType::SFString>() == "Ball 2 1");  // the declared defaults
+  CHECK(outOf(w, "missingThrew").get<FieldType::SFBool>());
+}
+
 TEST_CASE("X3D Script: another node's X3D-typed fields through its SFNode", "[script][x3d]") {
   RunningWorld w(x3dWorld(R"(
 DEF C ColorRGBA { color [ 0.25 0.5 0.75 0.125 ] }
