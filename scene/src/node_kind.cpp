@@ -20,7 +20,13 @@ NodeKind nodeKind(const vrml::Node& node) {
       return NodeKind::Group;
     case NodeTypeId::Transform:
     case NodeTypeId::CADPart:  // Transform's fields (X3D 4.0 clause 32.4.4)
+    // H-Anim's joints and sites (X3D 4.0 clauses 26.3.2, 26.3.4) transform their children
+    // as a Transform does, with the same fields.
+    case NodeTypeId::HAnimJoint:
+    case NodeTypeId::HAnimSite:
       return NodeKind::Transform;
+    case NodeTypeId::HAnimHumanoid:
+      return NodeKind::HAnimHumanoid;
     case NodeTypeId::CADFace:  // one shape (or LOD, Transform) in `shape` (32.4.2)
       return NodeKind::CADFace;
     case NodeTypeId::LayerSet:

@@ -320,6 +320,15 @@ struct SceneTraversal::Walk {
       case NodeKind::Transform:
         group(&n, n.mfnode("children"), m * transformMatrix(n), baseUrl, nullptr);
         break;
+      case NodeKind::HAnimHumanoid: {
+        // Clause 26.3.1: the humanoid's Transform fields place its skeleton (the root
+        // joints) and its skin; the skin is drawn as given (bind pose: not deformed by the
+        // joints' skinCoordWeight).
+        const glm::mat4 hm = m * transformMatrix(n);
+        group(&n, n.mfnode("skeleton"), hm, baseUrl, nullptr);
+        group(&n, n.mfnode("skin"), hm, baseUrl, nullptr);
+        break;
+      }
       case NodeKind::CADFace:
         if (const vrml::NodePtr& s = n.sfnode("shape"); s && !s->unresolved) {
           if (frame.recordPaths) path.push_back({&n, m, nullptr});

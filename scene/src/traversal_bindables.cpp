@@ -24,6 +24,9 @@ void forEachBindable(const std::vector<vrml::NodePtr>& list, const glm::mat4& m,
       case NodeKind::Transform:
         forEachBindable(n->mfnode("children"), m * transformMatrix(*n), depth + 1, visit);
         break;
+      case NodeKind::HAnimHumanoid:  // viewpoints in its skeleton's sites
+        forEachBindable(n->mfnode("skeleton"), m * transformMatrix(*n), depth + 1, visit);
+        break;
       case NodeKind::Anchor:
       case NodeKind::Billboard:  // its rotation depends on the viewer: ignored here
       case NodeKind::Collision:

@@ -491,3 +491,27 @@ Shape { geometry QuadSet { coord Coordinate { point [-1 -1 0, 1 -1 0, 1 1 0, -1 
   // 0.25 white over red: (255, 64, 64).
   CHECK(close(r.image.pixel(32, 32), 255, 64, 64, 4));
 }
+
+TEST_CASE("H-Anim: a humanoid places its skeleton and skin, a joint moves its children",
+          "[render][offscreen][world]") {
+  const fs::path dir = worldDir();
+  // Seen from 0 0 5 at 45 degrees on 64x64: a metre is about 15.5 pixels, world (1, 1) at
+  // pixel (47, 17). The humanoid is at x 1; its joint lifts the segment's box by 1; its
+  // skin's box stays at the humanoid's origin.
+  writeText(dir / "hanim.x3dv", R"(#X3D V4.0 utf8
+PROFILE Full
+NavigationInfo { headlight FALSE }
+Viewpoint { position 0 0 5 }
+HAnimHumanoid { translation 1 0 0
+  skeleton HAnimJoint { translation 0 1 0 children HAnimSegment { children Shape {
+    appearance Appearance { material Material { emissiveColor 1 0 0 diffuseColor 0 0 0 } }
+    geometry Box { size 0.4 0.4 0.4 } } } }
+  skin Shape { appearance Appearance { material Material { emissiveColor 0 1 0 diffuseColor 0 0 0 } }
+    geometry Box { size 0.4 0.4 0.4 } } }
+)");
+  const Rendered r = renderFile(dir / "hanim.x3dv");
+  CHECK(r.diagnostics.items.empty());
+  CHECK(close(r.image.pixel(47, 17), 255, 0, 0, 8));  // the segment's box at (1, 1, 0)
+  CHECK(close(r.image.pixel(47, 32), 0, 255, 0, 8));  // the skin's at (1, 0, 0)
+  CHECK(close(r.image.pixel(32, 32), 0, 0, 0, 8));    // nothing at the origin
+}

@@ -38,7 +38,11 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::ComposedCubeMapTexture,      // render/src/textures.cpp, environment_maps.cpp
     NodeTypeId::ImageCubeMapTexture,         // the same; DDS files: render/src/dds_images.cpp
     NodeTypeId::GeneratedCubeMapTexture,     // render/src/generated_cube_maps.cpp
-    NodeTypeId::NurbsCurve,                  // vrml/src/geometry_nurbs.cpp
+    NodeTypeId::HAnimHumanoid,  // scene/src/traversal.cpp: skeleton and skin (bind pose)
+    NodeTypeId::HAnimJoint,     // scene/src/node_kind.cpp: as Transform
+    NodeTypeId::HAnimSegment,
+    NodeTypeId::HAnimSite,
+    NodeTypeId::NurbsCurve,  // vrml/src/geometry_nurbs.cpp
     NodeTypeId::NurbsPatchSurface,
     NodeTypeId::NurbsTrimmedSurface,  // untrimmed
     NodeTypeId::PixelTexture3D,       // render/src/textures_3d.cpp; volume data too

@@ -28,11 +28,12 @@ enum class NodeKind : std::uint8_t {
   NavigationInfo,
   Background,
   Fog,
-  LocalFog,      // X3D EnvironmentalEffects: fogs its siblings and their descendants
-  CADFace,       // X3D CADGeometry: its `shape` field is drawn
-  LayerSet,      // X3D Layering (clause 35): drawn at the world's root only
-  Layer,         // X3D Layering: one of a LayerSet's `layers`
-  OutlineGroup,  // GhostSpace extensions (docs/vrml-extensions.md)
+  LocalFog,       // X3D EnvironmentalEffects: fogs its siblings and their descendants
+  CADFace,        // X3D CADGeometry: its `shape` field is drawn
+  LayerSet,       // X3D Layering (clause 35): drawn at the world's root only
+  Layer,          // X3D Layering: one of a LayerSet's `layers`
+  HAnimHumanoid,  // X3D H-Anim (clause 26): its `skeleton` and `skin` in its own coordinates
+  OutlineGroup,   // GhostSpace extensions (docs/vrml-extensions.md)
   QuantizedNormalVectors,
 };
 
