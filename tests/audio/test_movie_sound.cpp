@@ -11,6 +11,8 @@
 
 #include <filesystem>
 
+#include <unistd.h>
+
 using namespace gs;
 
 namespace {
@@ -21,12 +23,16 @@ std::string testDir() {
   return dir;
 }
 
-/// Makes the clip once; its path.
+/// Makes the clip once per process; its path. Written under a name of this process's own
+/// and then renamed, so that test processes run side by side (ctest -j) never read a clip
+/// another is still writing.
 const std::string& toneMovie() {
   static const std::string path = [] {
     const std::string p = testDir() + "/tone_movie.mpg";
+    const std::string part = p + "." + std::to_string(::getpid()) + ".part";
     std::string error;
-    REQUIRE(test::writeMovie(p, test::MovieSpec{}, error));
+    REQUIRE(test::writeMovie(part, test::MovieSpec{}, error));
+    std::filesystem::rename(part, p);
     return p;
   }();
   return path;
