@@ -253,6 +253,7 @@ void SceneRenderer::generateCubeMaps(const scene::Camera& camera) {
 void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, int height) {
   Gpu& g = *gpu_;
   if (width <= 0 || height <= 0) return;
+  traversal_.setViewportSize(width, height);  // X3D Layout's pixel units
   if (generatedCubeMaps_ && !generatingFace_) generateCubeMaps(camera);
   const bool generatedBefore = generatedCubeMaps_;
   statistics_ = {};

@@ -27,6 +27,12 @@ NodeKind nodeKind(const vrml::Node& node) {
       return NodeKind::Transform;
     case NodeTypeId::HAnimHumanoid:
       return NodeKind::HAnimHumanoid;
+    case NodeTypeId::ScreenGroup:
+      return NodeKind::ScreenGroup;
+    case NodeTypeId::LayoutGroup:
+      return NodeKind::LayoutGroup;
+    case NodeTypeId::LayoutLayer:
+      return NodeKind::LayoutLayer;
     case NodeTypeId::CADFace:  // one shape (or LOD, Transform) in `shape` (32.4.2)
       return NodeKind::CADFace;
     case NodeTypeId::LayerSet:

@@ -61,7 +61,11 @@ formats::TextStyle textStyleOf(const vrml::Node& text, vrml::Diagnostics* diag) 
   if (fs->field("family") == nullptr) style.family = {"SERIF"};
   style.style = fs->field("style") ? sfString(*fs, "style") : std::string("PLAIN");
   style.language = sfString(*fs, "language");
-  style.size = sfFloat(*fs, "size", 1.0f);
+  // X3D Layout's ScreenFontStyle (clause 36.4.5) gives `pointSize` instead: points of
+  // 4/3 pixel (CSS's), in a ScreenGroup's pixel units.
+  style.size = fs->typeId() == vrml::NodeTypeId::ScreenFontStyle
+                   ? sfFloat(*fs, "pointSize", 12.0f) * (4.0f / 3.0f)
+                   : sfFloat(*fs, "size", 1.0f);
   style.spacing = sfFloat(*fs, "spacing", 1.0f);
   style.horizontal = sfBool(*fs, "horizontal", true);
   style.leftToRight = sfBool(*fs, "leftToRight", true);

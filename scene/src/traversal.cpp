@@ -1,6 +1,8 @@
 // Per-frame scene-graph traversal: shapes with world matrices and scoped lights.
 #include "scene/traversal.hpp"
 
+#include "scene/layout.hpp"
+
 #include "scene/node_access.hpp"
 #include "scene/node_kind.hpp"
 #include "scene/text_mesh.hpp"
@@ -52,6 +54,72 @@ struct SceneTraversal::Walk {
   std::vector<PathStep> path{};
   /// The X3D layer being walked (ShapeInstance::layer): 0 for the root nodes.
   std::uint32_t layer = 0;
+  /// The view of the layer being walked (X3D Layout, clause 36): eye coordinates of its
+  /// camera to world coordinates and back, whether it is orthographic, tan of half its
+  /// field of view (perspective), its pixels, and the enclosing Layout rectangles.
+  glm::mat4 eyeToWorld{1.0f}, worldToEye{1.0f};
+  bool orthographic = false;
+  float tanHalfFov = 0.41421f;
+  glm::vec2 viewPixels{640.0f, 480.0f};
+  std::vector<LayoutRectangle> layouts{};
+  Camera camera{};  // the world's
+
+  /// The rectangle a top-level Layout of this layer lays out in: the orthographic region,
+  /// or the viewport at the near distance as X_ITE takes it.
+  LayoutRectangle viewRegion() const {
+    if (orthographic) {
+      const glm::vec4 r = camera.orthoRegion;
+      return viewRectangle(viewPixels, std::min(r.z - r.x, r.w - r.y));
+    }
+    return viewRectangle(viewPixels, 2.0f * camera.nearClip * tanHalfFov);
+  }
+
+  /// X3D Layout's ScreenGroup (clause 36.4.4): its children in pixels, one unit a pixel of
+  /// the view at the group's depth, kept where the group's origin is and turned as it is.
+  void screenGroup(const vrml::Node& n, const glm::mat4& m, const std::string* baseUrl) {
+    const glm::mat4 mv = worldToEye * m;
+    const glm::vec3 t(mv[3]);
+    float perPixel = 0.0f;
+    if (orthographic) {
+      perPixel = layoutPerPixel;
+    } else {
+      if (t.z >= 0.0f) return;  // behind the viewer: no pixels to measure
+      perPixel = 2.0f * (-t.z) * tanHalfFov / std::min(viewPixels.x, viewPixels.y);
+    }
+    glm::mat4 placed(1.0f);
+    for (int i = 0; i < 3; ++i) {
+      const float len = glm::length(glm::vec3(mv[i]));
+      placed[i] = len > 0.0f ? mv[i] / len * perPixel : glm::vec4(0.0f);
+    }
+    placed[3] = mv[3];
+    group(&n, n.mfnode("children"), eyeToWorld * placed, baseUrl, nullptr);
+  }
+  float layoutPerPixel = 0.0f;  // an orthographic layer's metres per pixel
+
+  /// X3D Layout's LayoutGroup (clause 36.4.3) with `layout` (null: a plain group): its
+  /// children placed in the enclosing rectangle, as X_ITE does it: the group's origin and
+  /// turn kept, moved by the placement and scaled by it (placeLayout).
+  void layoutGroup(const vrml::Node* n, const vrml::Node* layout,
+                   const std::vector<vrml::NodePtr>& children, const glm::mat4& m,
+                   const std::string* baseUrl) {
+    if (layout == nullptr || layouts.empty()) return group(n, children, m, baseUrl, nullptr);
+    const LayoutPlacement p = placeLayout(*layout, layouts.back());
+    const glm::mat4 mv = worldToEye * m;
+    glm::mat4 placed(1.0f);
+    glm::vec3 shift(0.0f);
+    for (int i = 0; i < 3; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      const float len = glm::length(glm::vec3(mv[i]));
+      const glm::vec3 axis = len > 0.0f ? glm::vec3(mv[i]) / len : glm::vec3(0.0f);
+      const float scale = i == 2 ? 1.0f : p.keepScale[k] ? len : p.scale[i];
+      placed[i] = glm::vec4(axis * scale, 0.0f);
+      if (i < 2) shift += axis * p.translation[i];
+    }
+    placed[3] = glm::vec4(glm::vec3(mv[3]) + shift, 1.0f);
+    layouts.push_back(p.rectangle);
+    group(n, children, eyeToWorld * placed, baseUrl, nullptr);
+    layouts.pop_back();
+  }
 
   /// The children of a grouping node, in the coordinate system `m`.
   void group(const vrml::Node* n, const std::vector<vrml::NodePtr>& children, const glm::mat4& m,
@@ -277,12 +345,18 @@ struct SceneTraversal::Walk {
       }
     if (set == nullptr) return;
     const auto& list = set->mfnode("layers");
+    const auto isLayer = [](const vrml::Node& l) {
+      const NodeKind k = nodeKind(l);
+      return (k == NodeKind::Layer || k == NodeKind::LayoutLayer) && sfBool(l, "visible", true);
+    };
     for (std::size_t i = 0; i < list.size(); ++i) {
-      if (!list[i] || nodeKind(*list[i]) != NodeKind::Layer || !sfBool(*list[i], "visible", true))
-        continue;
+      if (!list[i] || !isLayer(*list[i])) continue;
       layer = static_cast<std::uint32_t>(i + 1);
       const auto& children = list[i]->mfnode("children");
-      group(list[i].get(), children, glm::mat4(1.0f), &self.mainUrl_, &children);
+      if (nodeKind(*list[i]) == NodeKind::LayoutLayer)
+        layoutLayer(*list[i], children);
+      else
+        group(list[i].get(), children, glm::mat4(1.0f), &self.mainUrl_, &children);
     }
     layer = 0;
     for (const std::int32_t index : fieldRef<vrml::FieldType::MFInt32>(*set, "order", kNoOrder)) {
@@ -290,7 +364,7 @@ struct SceneTraversal::Walk {
       if (index < 0 || static_cast<std::size_t>(index) > list.size()) continue;
       if (index > 0) {
         const vrml::NodePtr& n = list[static_cast<std::size_t>(index) - 1];
-        if (!n || nodeKind(*n) != NodeKind::Layer || !sfBool(*n, "visible", true)) continue;
+        if (!n || !isLayer(*n)) continue;
         l.node = n.get();
         if (const vrml::NodePtr& v = n->sfnode("viewport"); v && !v->unresolved) {
           const std::vector<float>& c = mfFloat(*v, "clipBoundary");
@@ -304,6 +378,45 @@ struct SceneTraversal::Walk {
     }
   }
   static inline const std::vector<std::int32_t> kNoOrder{};
+
+  /// X3D Layout's LayoutLayer (clause 36.4.2): its children seen by a view of its own,
+  /// X_ITE's default OrthoViewpoint (at 0 0 10, the region -1 -1 1 1 on the smaller
+  /// side), laid out by its `layout` in that region. Drawn with the world's camera, the
+  /// layer's view plane is put square in front of it at twice the near distance, so that
+  /// the perspective shows what the orthographic view would (depths within the layer are
+  /// kept, compressed, for their order). Restores the walk's view afterwards.
+  void layoutLayer(const vrml::Node& l, const std::vector<vrml::NodePtr>& children) {
+    const glm::mat4 outerEyeToWorld = eyeToWorld, outerWorldToEye = worldToEye;
+    const bool outerOrtho = orthographic;
+    const float outerPerPixel = layoutPerPixel;
+    auto outerLayouts = std::move(layouts);
+    // The world camera's view plane at distance D: a layer metre is k world-eye metres.
+    const float distance = 2.0f * camera.nearClip;
+    const float k = camera.orthographic ? std::min(camera.orthoRegion.z - camera.orthoRegion.x,
+                                                   camera.orthoRegion.w - camera.orthoRegion.y) /
+                                              2.0f
+                                        : distance * tanHalfFov;
+    const glm::mat4 layerEyeToWorldEye =
+        glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, -distance)) *
+        glm::scale(glm::mat4(1.0f), glm::vec3(k, k, k * 1e-3f)) *
+        glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, 10.0f));
+    eyeToWorld = outerEyeToWorld * layerEyeToWorldEye;
+    worldToEye = glm::inverse(eyeToWorld);
+    orthographic = true;
+    const LayoutRectangle region = viewRectangle(viewPixels, 2.0f);  // the region -1 .. 1
+    layoutPerPixel = region.metresPerPixel.x;
+    layouts.assign(1, region);
+    const glm::mat4 layerToWorld =
+        eyeToWorld * glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, -10));
+    const vrml::NodePtr& layout = l.sfnode("layout");
+    layoutGroup(&l, layout && !layout->unresolved ? layout.get() : nullptr, children, layerToWorld,
+                &self.mainUrl_);
+    eyeToWorld = outerEyeToWorld;
+    worldToEye = outerWorldToEye;
+    orthographic = outerOrtho;
+    layoutPerPixel = outerPerPixel;
+    layouts = std::move(outerLayouts);
+  }
 
   void node(const vrml::Node& n, const glm::mat4& m, const std::string* baseUrl) {
     switch (nodeKind(n)) {
@@ -320,6 +433,15 @@ struct SceneTraversal::Walk {
       case NodeKind::Transform:
         group(&n, n.mfnode("children"), m * transformMatrix(n), baseUrl, nullptr);
         break;
+      case NodeKind::ScreenGroup:
+        screenGroup(n, m, baseUrl);
+        break;
+      case NodeKind::LayoutGroup: {
+        const vrml::NodePtr& layout = n.sfnode("layout");
+        layoutGroup(&n, layout && !layout->unresolved ? layout.get() : nullptr,
+                    n.mfnode("children"), m, baseUrl);
+        break;
+      }
       case NodeKind::HAnimHumanoid: {
         // Clause 26.3.1: the humanoid's Transform fields place its skeleton (the root
         // joints) and its skin; the skin is drawn as given (bind pose: not deformed by the
@@ -431,6 +553,14 @@ void SceneTraversal::collect(const Camera& viewer, TraversalFrame& frame) {
   clipScratch_.clear();
   walk.clipScope = &clipScratch_;
   walk.lengthUnit = lengthUnitOf(*scene_);
+  walk.camera = viewer;
+  walk.worldToEye = viewMatrix(viewer);
+  walk.eyeToWorld = glm::inverse(walk.worldToEye);
+  walk.orthographic = viewer.orthographic;
+  walk.tanHalfFov = std::tan(std::clamp(viewer.fieldOfView, 0.001f, 3.1f) / 2.0f);
+  walk.viewPixels = viewportPixels_;
+  walk.layouts.assign(1, walk.viewRegion());
+  if (viewer.orthographic) walk.layoutPerPixel = walk.layouts.front().metresPerPixel.x;
   walk.group(nullptr, scene_->rootNodes, glm::mat4(1.0f), &mainUrl_, &scene_->rootNodes);
   walk.layers();
   if (firstGlobalEnvironment_ >= 0)

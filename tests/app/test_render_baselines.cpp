@@ -80,6 +80,9 @@ const RenderCase kCases[] = {
     // X3D Layering (docs/x3d.md): a farther layer over layer 0, a Viewport's clipBoundary
     // cutting an animated cone in half at t = 1 s.
     {"layers_t1", "assets/worlds/layers.x3dv", false, "1"},
+    // X3D Layout (docs/x3d.md): a LayoutLayer's 200x60-pixel panel with ScreenFontStyle text
+    // 10 pixels from the top left corner, a ScreenGroup's 16-pixel square on a box.
+    {"layout", "assets/worlds/layout.x3dv", false},
 };
 
 void checkAgainstBaseline(const RenderCase& c) {

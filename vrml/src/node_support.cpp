@@ -42,7 +42,12 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::HAnimJoint,     // scene/src/node_kind.cpp: as Transform
     NodeTypeId::HAnimSegment,
     NodeTypeId::HAnimSite,
-    NodeTypeId::NurbsCurve,  // vrml/src/geometry_nurbs.cpp
+    NodeTypeId::Layout,  // scene/src/layout.cpp, traversal.cpp
+    NodeTypeId::LayoutGroup,
+    NodeTypeId::LayoutLayer,
+    NodeTypeId::ScreenGroup,
+    NodeTypeId::ScreenFontStyle,  // scene/src/text_mesh.cpp: pointSize
+    NodeTypeId::NurbsCurve,       // vrml/src/geometry_nurbs.cpp
     NodeTypeId::NurbsPatchSurface,
     NodeTypeId::NurbsTrimmedSurface,  // untrimmed
     NodeTypeId::PixelTexture3D,       // render/src/textures_3d.cpp; volume data too

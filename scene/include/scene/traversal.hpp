@@ -353,6 +353,11 @@ class SceneTraversal {
   /// levels and orients Billboards) into `frame` (cleared first). Inline files are loaded
   /// the first time they are met; problems become diagnostics.
   void collect(const Camera& viewer, TraversalFrame& frame);
+  /// The size of the view in pixels (width, height), for X3D Layout's ScreenGroup and
+  /// LayoutGroup units (clause 36); 640x480 until set. The renderer sets it before collect().
+  void setViewportSize(int width, int height) {
+    viewportPixels_ = glm::vec2(std::max(width, 1), std::max(height, 1));
+  }
 
   /// The tessellation of `geometry`, computed once and cached (per node).
   const vrml::Mesh& mesh(const vrml::Node& geometry);
@@ -377,6 +382,7 @@ class SceneTraversal {
               const std::string& message);
 
  private:
+  glm::vec2 viewportPixels_{640.0f, 480.0f};
   /// A loaded Inline world, shared by every Inline node naming the same resolved URL.
   struct InlineScene {
     std::string url;                           // resolved; the base for URLs inside it
