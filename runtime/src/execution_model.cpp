@@ -7,6 +7,8 @@
 #include "vrml/parser.hpp"
 #include "vrml/proto.hpp"
 
+#include <algorithm>
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -469,6 +471,28 @@ const vrml::Scene* ExecutionModel::currentScene() const {
 
 void ExecutionModel::setImportedNode(const std::string& localName, vrml::NodePtr node) {
   imported_[localName] = std::move(node);
+}
+
+bool ExecutionModel::addRootNode(const vrml::NodePtr& node) {
+  if (!node || !s_->scene) return false;
+  // The world's Scene is no const object (see the header): its root list may change.
+  auto& roots = const_cast<vrml::Scene&>(*s_->scene).rootNodes;
+  if (std::find(roots.begin(), roots.end(), node) != roots.end()) return false;
+  roots.push_back(node);
+  s_->reach(node, true);
+  s_->rootsSeen = std::max(s_->rootsSeen, roots.size());
+  s_->startNewLoadSensors();
+  return true;
+}
+
+bool ExecutionModel::removeRootNode(const vrml::NodePtr& node) {
+  if (!node || !s_->scene) return false;
+  auto& roots = const_cast<vrml::Scene&>(*s_->scene).rootNodes;
+  const auto it = std::find(roots.begin(), roots.end(), node);
+  if (it == roots.end()) return false;
+  if (static_cast<std::size_t>(it - roots.begin()) < s_->rootsSeen) --s_->rootsSeen;
+  roots.erase(it);
+  return true;
 }
 
 vrml::NodePtr ExecutionModel::importedNode(const std::string& localName) const {

@@ -288,6 +288,8 @@ function declarations(external) {
 getter(P, 'protos', function () { return declarations(false); });
 getter(P, 'externprotos', function () { return declarations(true); });
 method(P, 'createProto', function (name) { return hooks.createProto(String(name)); });
+method(P, 'addRootNode', function (node) { hooks.rootNode(true, node); });
+method(P, 'removeRootNode', function (node) { hooks.rootNode(false, node); });
 method(P, 'getImportedNode', function (name) {
   var node = hooks.importedNode(String(name));
   if (node === null)

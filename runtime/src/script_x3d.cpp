@@ -509,6 +509,19 @@ duk_ret_t x3dImportedNode(duk_context* c) {
   return 1;
 }
 
+// rootNode(add, node): X3DScene.addRootNode / removeRootNode; whether the roots changed.
+duk_ret_t x3dRootNode(duk_context* c) {
+  EsScript& self = EsScript::of(c);
+  const bool add = duk_to_boolean(c, 0) != 0;
+  FieldValue v = self.requireValue(c, 1, FieldType::SFNode, add ? "addRootNode" : "removeRootNode");
+  const vrml::NodePtr& n = v.get<FieldType::SFNode>();
+  if (!n)
+    GS_DUK_ERROR(c, DUK_ERR_TYPE_ERROR, "%s: the node is NULL",
+                 add ? "addRootNode" : "removeRootNode");
+  duk_push_boolean(c, add ? self.context().addRootNode(n) : self.context().removeRootNode(n));
+  return 1;
+}
+
 duk_ret_t x3dTypeName(duk_context* c) {
   EsScript& self = EsScript::of(c);
   vrml::NodePtr n = self.nodeAt(c, 0);
@@ -546,6 +559,7 @@ void EsScript::installX3DHooks(duk_context* c) {
       {"nodeType", x3dNodeType, 1},
       {"importedNode", x3dImportedNode, 1},
       {"protoDeclarations", x3dProtoDeclarations, 0},
+      {"rootNode", x3dRootNode, 2},
       {"createProto", x3dCreateProto, 1},
   };
   duk_push_global_object(c);

@@ -361,6 +361,40 @@ DEF S Script {
   CHECK(outOf(w, "missingThrew").get<FieldType::SFBool>());
 }
 
+TEST_CASE("X3D Script: addRootNode and removeRootNode change the world's root nodes",
+          "[script][x3d]") {
+  RunningWorld w(x3dWorld(R"(
+DEF G Group { }
+DEF S Script {
+  outputOnly SFString counts
+  outputOnly SFBool nullThrew
+  url "ecmascript:
+    function initialize() {
+      var scene = Browser.currentScene;
+      var t = scene.createNode('Transform');
+      var before = scene.rootNodes.length;
+      scene.addRootNode(t);
+      scene.addRootNode(t);  // already a root: nothing
+      var added = scene.rootNodes.length;
+      var g = scene.getNamedNode('G');
+      scene.removeRootNode(g);
+      scene.removeRootNode(g);  // no longer one: nothing
+      counts = before + ' ' + added + ' ' + scene.rootNodes.length + ' ' +
+               scene.rootNodes[scene.rootNodes.length - 1].getNodeName();
+      try { scene.addRootNode(null); nullThrew = false; } catch (e) { nullThrew = true; }
+    }
+  "
+}
+)"),
+                 0.0, x3dScripts());
+  INFO(modelDiagnostics(w));
+  CHECK(outOf(w, "counts").get<FieldType::SFString>() == "2 3 2 Transform");
+  CHECK(outOf(w, "nullThrew").get<FieldType::SFBool>());
+  // The world itself, as the renderer walks it: S and the new Transform.
+  REQUIRE(w.scene->rootNodes.size() == 2);
+  CHECK(w.scene->rootNodes[1]->typeName() == "Transform");
+}
+
 TEST_CASE("X3D Script: another node's X3D-typed fields through its SFNode", "[script][x3d]") {
   RunningWorld w(x3dWorld(R"(
 DEF C ColorRGBA { color [ 0.25 0.5 0.75 0.125 ] }

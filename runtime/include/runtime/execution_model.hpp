@@ -227,6 +227,10 @@ class ExecutionModel final : public ScriptContext {
   std::vector<vrml::NodePtr> createVrmlFromString(const std::string& text) override;
   const vrml::Scene* currentScene() const override;
   vrml::NodePtr importedNode(const std::string& localName) const override;
+  /// The world's Scene changes: it must not be an object defined const (the session makes
+  /// it with std::make_shared<vrml::Scene>); Inline scenes are never changed.
+  bool addRootNode(const vrml::NodePtr& node) override;
+  bool removeRootNode(const vrml::NodePtr& node) override;
   void loadUrl(const std::vector<std::string>& url,
                const std::vector<std::string>& parameter) override;
   bool fetchText(const std::string& url, std::string& text, std::string& error) override;

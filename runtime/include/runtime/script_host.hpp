@@ -61,6 +61,19 @@ class ScriptContext {
     (void)localName;
     return nullptr;
   }
+  /// X3DScene.addRootNode (19777-1): `node` becomes the world's last root node (nothing
+  /// when it is one already); it is drawn, and its sensors, interpolators and Scripts run.
+  /// False when nothing changed.
+  virtual bool addRootNode(const vrml::NodePtr& node) {
+    (void)node;
+    return false;
+  }
+  /// X3DScene.removeRootNode: `node` is no longer a root node of the world (its first
+  /// place among them is removed); false when it was none.
+  virtual bool removeRootNode(const vrml::NodePtr& node) {
+    (void)node;
+    return false;
+  }
   /// Browser.loadURL(url, parameter) and Anchor activation: the browser follows the
   /// loader's rules (4.12.10.3, 6.2); nothing happens at once.
   virtual void loadUrl(const std::vector<std::string>& url,
