@@ -80,6 +80,14 @@ struct SkinState {
   std::unordered_map<const vrml::Node*, glm::mat4> matrices;  // skeleton node -> matrix
   std::vector<SkeletonItem> stack;
   std::vector<glm::mat4> jointMatrices;
+  // An HAnimHumanoid's skin (skin.cpp): skinCoord's points and skinNormal's vectors
+  // as they were first seen (the bind pose), and the inverse of each node's matrix then.
+  bool humanoid = false;
+  int skinCoord = -1, skinNormal = -1;
+  std::vector<glm::vec3> bindPoints, bindNormals;
+  std::unordered_map<const vrml::Node*, glm::mat4> bindInverse;
+  std::vector<glm::vec3> sum;
+  std::vector<float> weight;
 };
 
 /// A damper's or chaser's motion (followers.cpp); values as flat lists of numbers.
@@ -321,6 +329,9 @@ struct ExecutionModel::State {
   void deliverFollower(NodeState& ns, int field, vrml::FieldValue value);
   void evaluateFollower(NodeState& ns);
   bool classifySkin(NodeState& ns);
+  /// Makes `ns` a skinned humanoid when it is an HAnimHumanoid (skin.cpp).
+  bool classifyHumanoid(NodeState& ns);
+  void evaluateHumanoid(NodeState& ns);
   /// After a cascade: re-skins every Skin whose skeleton or own fields changed.
   void evaluateSkins();
   void evaluateSkin(NodeState& ns);

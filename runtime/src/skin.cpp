@@ -12,6 +12,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include <cmath>
 #include <unordered_map>
 
 namespace gs::runtime {
@@ -58,7 +59,9 @@ std::uint64_t walkSkeleton(const std::vector<vrml::NodePtr>& roots,
     const SkeletonItem item = stack.back();
     stack.pop_back();
     const vrml::Node& n = *item.node;
-    if (!n.type().is(vrml::AbstractType::X3DGroupingNode)) continue;
+    // (H-Anim's joints and sites place children without being X3DGroupingNodes.)
+    if (!n.type().is(vrml::AbstractType::X3DGroupingNode) && !vrml::placesChildren(n.type().id()))
+      continue;
     const glm::mat4 m =
         vrml::placesChildren(n.type().id()) ? item.parent * vrml::transformMatrix(n) : item.parent;
     if (!matrices.emplace(&n, m).second) continue;
@@ -93,7 +96,12 @@ bool ExecutionModel::State::classifySkin(NodeState& ns) {
 }
 
 void ExecutionModel::State::evaluateSkins() {
-  for (NodeState* s : skins) evaluateSkin(*s);
+  for (NodeState* s : skins) {
+    if (s->skin->humanoid)
+      evaluateHumanoid(*s);
+    else
+      evaluateSkin(*s);
+  }
 }
 
 void ExecutionModel::State::evaluateSkin(NodeState& ns) {
@@ -170,6 +178,100 @@ void ExecutionModel::State::evaluateSkin(NodeState& ns) {
   }
   coord->markChanged();
   if (normals != nullptr) normal->markChanged();
+}
+
+// ---- H-Anim (X3D 4.0 clause 26) ----
+//
+// An HAnimHumanoid's skin is deformed by its joints: each joint j moves the skinCoord points
+// its skinCoordIndex lists, by its skinCoordWeight, with the matrix that takes the bind
+// pose (the skeleton as first seen) to the pose now:
+//   M_j     = matrix_j(now) * inverse(matrix_j(bind))
+//   point_v = sum_j w_vj * M_j * bind_v + (1 - sum_j w_vj) * bind_v
+// where matrix_j is joint j's matrix relative to the humanoid (its skeleton's roots); a
+// weight missing from skinCoordWeight is 1. skinNormal's vectors turn with the upper 3x3.
+
+bool ExecutionModel::State::classifyHumanoid(NodeState& ns) {
+  const vrml::Node& n = *ns.node;
+  if (n.type().id() != vrml::NodeTypeId::HAnimHumanoid) return false;
+  ns.skin = std::make_unique<SkinState>();
+  SkinState& st = *ns.skin;
+  st.humanoid = true;
+  st.skeleton = fieldIndex(n, "skeleton", FieldType::MFNode);
+  st.joints = fieldIndex(n, "joints", FieldType::MFNode);
+  st.skinCoord = fieldIndex(n, "skinCoord", FieldType::SFNode);
+  st.skinNormal = fieldIndex(n, "skinNormal", FieldType::SFNode);
+  skins.push_back(&ns);
+  return true;
+}
+
+void ExecutionModel::State::evaluateHumanoid(NodeState& ns) {
+  const vrml::Node& humanoid = *ns.node;
+  SkinState& st = *ns.skin;
+  const vrml::NodePtr& coord = fieldOr<FieldType::SFNode>(humanoid, st.skinCoord);
+  if (!coord) return;  // no skin to deform
+  const int point = fieldIndex(*coord, "point", FieldType::MFVec3f);
+  if (point < 0) return;
+  const std::vector<vrml::NodePtr>& roots = fieldOr<FieldType::MFNode>(humanoid, st.skeleton);
+  const std::uint64_t signature = walkSkeleton(roots, st.matrices, st.stack);
+  const vrml::NodePtr& normal = fieldOr<FieldType::SFNode>(humanoid, st.skinNormal);
+  const int vector = normal ? fieldIndex(*normal, "vector", FieldType::MFVec3f) : -1;
+  auto& points = coord->fieldAt(static_cast<std::size_t>(point)).get<FieldType::MFVec3f>();
+  std::vector<glm::vec3>* normals =
+      vector >= 0 ? &normal->fieldAt(static_cast<std::size_t>(vector)).get<FieldType::MFVec3f>()
+                  : nullptr;
+  if (!st.evaluated) {  // the bind pose
+    st.evaluated = true;
+    st.signature = signature;
+    st.bindPoints = points;
+    if (normals != nullptr) st.bindNormals = *normals;
+    st.bindInverse.clear();
+    for (const auto& [node, m] : st.matrices) st.bindInverse.emplace(node, glm::inverse(m));
+    return;
+  }
+  if (signature == st.signature) return;
+  st.signature = signature;
+
+  const std::size_t count = st.bindPoints.size();
+  st.sum.assign(count, glm::vec3(0.0f));
+  st.weight.assign(count, 0.0f);
+  std::vector<glm::vec3> normalSum;
+  const bool withNormals = normals != nullptr && st.bindNormals.size() == count;
+  if (withNormals) normalSum.assign(count, glm::vec3(0.0f));
+  for (const vrml::NodePtr& joint : fieldOr<FieldType::MFNode>(humanoid, st.joints)) {
+    if (!joint || joint->type().id() != vrml::NodeTypeId::HAnimJoint) continue;
+    const auto now = st.matrices.find(joint.get());
+    const auto bind = st.bindInverse.find(joint.get());
+    if (now == st.matrices.end() || bind == st.bindInverse.end()) continue;
+    const glm::mat4 m = now->second * bind->second;
+    const auto& index = fieldOr<FieldType::MFInt32>(
+        *joint, fieldIndex(*joint, "skinCoordIndex", FieldType::MFInt32));
+    const auto& weight = fieldOr<FieldType::MFFloat>(
+        *joint, fieldIndex(*joint, "skinCoordWeight", FieldType::MFFloat));
+    for (std::size_t k = 0; k < index.size(); ++k) {
+      const std::int32_t v = index[k];
+      if (v < 0 || static_cast<std::size_t>(v) >= count) continue;
+      const float w = k < weight.size() ? weight[k] : 1.0f;
+      if (!std::isfinite(w)) continue;
+      const auto vi = static_cast<std::size_t>(v);
+      st.sum[vi] += w * glm::vec3(m * glm::vec4(st.bindPoints[vi], 1.0f));
+      st.weight[vi] += w;
+      if (withNormals) normalSum[vi] += w * (glm::mat3(m) * st.bindNormals[vi]);
+    }
+  }
+  // Written in place (the change contract: markChanged after a write through fieldAt).
+  points.resize(count);
+  for (std::size_t v = 0; v < count; ++v)
+    points[v] = st.sum[v] + (1.0f - st.weight[v]) * st.bindPoints[v];
+  coord->markChanged();
+  if (withNormals) {
+    normals->resize(count);
+    for (std::size_t v = 0; v < count; ++v) {
+      const glm::vec3 n = normalSum[v] + (1.0f - st.weight[v]) * st.bindNormals[v];
+      const float len = glm::length(n);
+      (*normals)[v] = len > 0.0f ? n / len : st.bindNormals[v];
+    }
+    normal->markChanged();
+  }
 }
 
 }  // namespace gs::runtime

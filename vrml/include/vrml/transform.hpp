@@ -22,7 +22,8 @@ glm::mat4 transformMatrix(const Node& transform);
 /// True for the node types whose children are placed by transformMatrix: Transform
 /// (6.52) and X3D's CADPart (X3D 4.0 clause 32.4.4, the same five transform fields).
 constexpr bool placesChildren(NodeTypeId id) {
-  return id == NodeTypeId::Transform || id == NodeTypeId::CADPart;
+  return id == NodeTypeId::Transform || id == NodeTypeId::CADPart || id == NodeTypeId::HAnimJoint ||
+         id == NodeTypeId::HAnimSite;
 }
 
 }  // namespace gs::vrml
