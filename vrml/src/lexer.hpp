@@ -242,6 +242,23 @@ class Lexer {
     cacheLineStart_ = p.cacheLineStart;
   }
 
+  /// Lexes `text` (which must outlive its use) from its start instead: the X3D XML
+  /// reader's attribute values, one at a time. Line cache and end flags start afresh; the
+  /// file name and origin stay.
+  void rebind(std::string_view text) {
+    text_ = text;
+    p_ = text.data();
+    end_ = text.data() + text.size();
+    cacheOffset_ = 0;
+    cacheLine_ = 1;
+    cacheLineStart_ = 0;
+    marks_.clear();
+    loneCr_ = false;
+    crChecked_ = 0;
+    growing_ = false;
+    hitEnd_ = false;
+  }
+
   std::size_t offset() const { return static_cast<std::size_t>(p_ - text_.data()); }
   std::size_t remaining() const { return static_cast<std::size_t>(end_ - p_); }
   void setOffset(std::size_t o) { p_ = text_.data() + o; }

@@ -15,6 +15,7 @@
 #include "parser_impl.hpp"
 #include "x3d_json.hpp"
 #include "x3d_xml.hpp"
+#include "x3d_xml_tree.hpp"
 
 #include <zlib.h>
 
@@ -143,7 +144,7 @@ bool endsTokens(char c) {
 
 }  // namespace
 
-struct StreamingParser::Impl {
+struct StreamingParser::Impl final : parsing::XmlStatementBuilder {
   Impl(std::string u, ParseOptions o)
       : url(std::move(u)), user(std::move(o)), inner(user), ctx(inner) {
     inner.onRootNode = nullptr;  // called here, once a statement is committed
@@ -194,8 +195,11 @@ struct StreamingParser::Impl {
   void translated(bool final);
   void scanNew();
   bool readHeader(bool final);
-  std::size_t parse(bool final);
+  std::size_t parse(bool final, bool force = false);
   std::size_t guarded(std::string_view bytes, bool final);
+  std::size_t guardedFeed(std::string_view bytes, bool final);
+  bool build(const parsing::XNode& root, const parsing::XmlTreeInfo& info) override;
+  std::size_t built = 0;  // root nodes added by build() during this feed
   void clearScene() {
     scene = Scene{};
     scene.url = url;
@@ -293,6 +297,7 @@ bool StreamingParser::Impl::decide(bool final) {
   encoding = Encoding::xml;
   scene.x3d.encoding = "XML";
   xml = std::make_unique<parsing::XmlToClassic>(text, url, user.limits.maxNesting);
+  xml->setBuilder(this);
   scratch = std::move(text);
   text.clear();
   return true;
@@ -340,10 +345,32 @@ bool StreamingParser::Impl::readHeader(bool final) {
   return true;
 }
 
-std::size_t StreamingParser::Impl::parse(bool final) {
+// XML: a plain statement ended (XmlToClassic), to be built after the statements
+// translated before it: those are parsed first (they are whole), and it is built once they
+// all are, committed at once.
+bool StreamingParser::Impl::build(const parsing::XNode& root, const parsing::XmlTreeInfo& info) {
+  if (stopped) return false;
+  scanNew();
+  built += parse(false, true);
+  if (stopped || !parser) return false;
+  for (std::size_t i = parsed; i < text.size(); ++i)
+    if (!parsing::isSpace(text[i])) return false;  // a statement waits for more text
+  const std::size_t roots = scene.rootNodes.size();
+  if (!parser->buildXmlStatement(top, root, info, scene.rootNodes)) return false;
+  undo.defs.clear();
+  undo.protos.clear();
+  for (std::size_t i = roots; i < scene.rootNodes.size(); ++i) {
+    ++built;
+    if (user.onRootNode) user.onRootNode(scene.rootNodes[i]);
+  }
+  return true;
+}
+
+// Parses the statements now complete (`force`: even before the text has grown to retryAt).
+std::size_t StreamingParser::Impl::parse(bool final, bool force) {
   if (!readHeader(final) || stopped) return 0;
   const std::size_t end = final ? text.size() : complete;
-  if (!final && end < retryAt) return 0;
+  if (!final && !force && end < retryAt) return 0;
   parser->extendText(std::string_view(text.data(), end), final);
   parsing::Lexer& lex = parser->lexer();
   std::size_t added = 0;
@@ -428,6 +455,12 @@ std::size_t StreamingParser::Impl::parse(bool final) {
 }
 
 std::size_t StreamingParser::Impl::guarded(std::string_view bytes, bool final) {
+  built = 0;
+  const std::size_t added = guardedFeed(bytes, final);
+  return added + built;
+}
+
+std::size_t StreamingParser::Impl::guardedFeed(std::string_view bytes, bool final) {
   try {
     if (stopped) {
       if (tooLarge) append(bytes);

@@ -196,6 +196,26 @@ bool accessTakesValue(std::string_view access) {
          access != "eventOut";
 }
 
+bool xmlIgnoredAttribute(std::string_view n) {
+  if (n.empty()) return false;
+  switch (n.front()) {  // (most attributes are fields: decided by their first letter)
+    case 'D':
+      return n == "DEF";
+    case 'U':
+      return n == "USE";
+    case 'c':
+      return n == "containerField" || n == "class" || n.find(':') != std::string_view::npos;
+    case 'i':
+      return n == "id" || n.find(':') != std::string_view::npos;
+    case 's':
+      return n == "style" || n.find(':') != std::string_view::npos;
+    case 'x':
+      return n.starts_with("xmlns") || n.find(':') != std::string_view::npos;
+    default:
+      return n.find(':') != std::string_view::npos;
+  }
+}
+
 // Whether `text` starts with a URL scheme ("ecmascript:", "data:", "http:").
 bool hasUrlScheme(std::string_view text) {
   if (text.empty() || !((text[0] >= 'a' && text[0] <= 'z') || (text[0] >= 'A' && text[0] <= 'Z')))

@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
+#include <iterator>
 #include <optional>
 #include <span>
 #include <unordered_map>
@@ -62,30 +63,9 @@ bool isScript(const NodeType* type) {
   return type != nullptr && type->script;
 }
 
-// Attributes that are no field: XML bookkeeping and HTML-style ones.
-bool ignoredAttribute(std::string_view n) {
-  if (n.empty()) return false;
-  switch (n.front()) {  // (most attributes are fields: decided by their first letter)
-    case 'D':
-      return n == "DEF";
-    case 'U':
-      return n == "USE";
-    case 'c':
-      return n == "containerField" || n == "class" || n.find(':') != std::string_view::npos;
-    case 'i':
-      return n == "id" || n.find(':') != std::string_view::npos;
-    case 's':
-      return n == "style" || n.find(':') != std::string_view::npos;
-    case 'x':
-      return n.starts_with("xmlns") || n.find(':') != std::string_view::npos;
-    default:
-      return n.find(':') != std::string_view::npos;
-  }
-}
-
 }  // namespace
 
-struct XmlToClassic::Impl {
+struct XmlToClassic::Impl final : XmlTreeInfo {
   Impl(std::string& o, std::string u, int maxNesting)
       : out(o), url(std::move(u)), maxDepth(std::max(maxNesting, 1) + 8) {
     xp = XML_ParserCreate(nullptr);
@@ -122,6 +102,10 @@ struct XmlToClassic::Impl {
   OffsetLocations lines;
   bool finished = false;   // the last bytes were fed
   XmlPositions positions;  // element start -> line and column (startHere)
+  // Plain statements are offered to `builder` while `classicSafe`: no statement translated
+  // so far can run into the text that follows it (see checkRaw).
+  XmlStatementBuilder* builder = nullptr;
+  bool classicSafe = true;
 
   // ---- expat callbacks -----------------------------------------------------------------
 
@@ -287,8 +271,11 @@ struct XmlToClassic::Impl {
     stack.pop_back();
     if (f != Frame::buffered) return;
     if (cur == root) {
-      statement(*root);
-      out += '\n';
+      if (builder == nullptr || !classicSafe || root->kind != XKind::node ||
+          !builder->build(*root, *this)) {
+        statement(*root);
+        out += '\n';
+      }
       root = nullptr;
       cur = nullptr;
       poolUsed = 0;
@@ -322,12 +309,14 @@ struct XmlToClassic::Impl {
       if (!blank(level)) {
         out += ':';
         for (char c : level) out += xmlSpace(c) ? '_' : c;
+        checkRaw(level);
       }
     } else if (n == "unit") {
       beginLine(line, column);
       out += "UNIT " + xmlIdent(get("category")) + " " + xmlIdent(get("name")) + " ";
       const std::string f = get("conversionFactor");
       out += blank(f) ? std::string("1") : f;
+      checkRaw(f);
     } else if (n == "meta") {
       beginLine(line, column);
       out += "META ";
@@ -391,7 +380,10 @@ struct XmlToClassic::Impl {
     if (!withValue || !accessTakesValue(access)) return known ? std::optional(t) : std::nullopt;
     const std::string* value = f.attr("value");
     if (!known) {
-      if (value != nullptr) out += *value;
+      if (value != nullptr) {
+        out += *value;
+        checkRaw(*value);
+      }
       return std::nullopt;
     }
     if (t == FieldType::SFNode || t == FieldType::MFNode) {
@@ -410,9 +402,45 @@ struct XmlToClassic::Impl {
     return t;
   }
 
+  // Raw XML text written into the Classic text (numbers, MFString lists, words): once
+  // some could open a string, a comment or a bracket that the parse of its statement would
+  // not close, the statements after it may be read as part of it, so none is built
+  // straight from its elements any more (classicSafe).
+  void checkRaw(std::string_view text) {
+    if (builder == nullptr || !classicSafe) return;
+    bool inString = false;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+      const char c = text[i];
+      if (inString) {
+        if (c == '\\')
+          ++i;
+        else if (c == '"')
+          inString = false;
+      } else if (c == '"') {
+        inString = true;
+      } else if (c == '#' || c == '{' || c == '}' || c == '[' || c == ']') {
+        classicSafe = false;
+        return;
+      }
+    }
+    if (inString) classicSafe = false;
+  }
+
   void convertedValue(const XNode& n, FieldType t, std::string_view value) {
     std::string warning;
+    const std::size_t at = out.size();
     appendXmlValueAsClassic(out, t, value, warning);
+    if (builder != nullptr && classicSafe) {
+      std::string_view written = std::string_view(out).substr(at);
+      if (t == FieldType::SFImage || t == FieldType::MFImage || t == FieldType::MFNode ||
+          (t == FieldType::SFNode && written != "NULL")) {
+        classicSafe = false;  // looks ahead (SFImage's size check) or holds nodes
+      } else {
+        if (isMultiValued(t) && written.size() >= 4)
+          written = written.substr(2, written.size() - 4);
+        checkRaw(written);
+      }
+    }
     if (!warning.empty()) {
       warn(n, std::move(warning));
     } else if (t == FieldType::MFString) {
@@ -488,14 +516,15 @@ struct XmlToClassic::Impl {
   // Elements that are nodes (not statements or the XML encoding's structure).
   static bool isNodeElement(const XNode& n) { return n.kind == XKind::node; }
 
-  // Where child `c` of `parent` goes: its containerField, else its type's default
-  // (X3D 3's `metadata` for metadata nodes in a 3.x file). A default the parent (of a
-  // known type) has no field for falls back to `metadata` for metadata nodes, else to
+  // Where child `c` of `parent` goes: its containerField, else its type's default (X3D
+  // 3's `metadata` for metadata nodes in a 3.x file). A default the parent (of a known
+  // type) has no field for falls back to `metadata` for metadata nodes, else to
   // `children` where the parent has it, as castle-model-viewer does (HAnimMotion in a
-  // Group, a 3.x MetadataSet in a 4.0 world).
-  std::string containerFieldOf(const XNode& c, const XNode* parent) const {
+  // Group, a 3.x MetadataSet in a 4.0 world). The view is into `c`, the node model, the
+  // PROTOs declared or a literal.
+  std::string_view containerFieldOf(const XNode& c, const XNode* parent) const {
     if (const std::string* cf = c.attr("containerField"); cf != nullptr && !blank(*cf)) return *cf;
-    std::string field = "children";
+    std::string_view field = "children";
     const bool metadata = c.name.starts_with("Metadata");
     if (c.instance) {
       auto it = protos.find(xmlIdent(c.attrOr("name")));
@@ -511,6 +540,12 @@ struct XmlToClassic::Impl {
     if (metadata && fieldType(*parent, "metadata")) return "metadata";
     if (fieldType(*parent, "children")) return "children";
     return field;
+  }
+  std::string_view containerField(const XNode& c, const XNode& parent) const override {
+    return containerFieldOf(c, &parent);
+  }
+  std::optional<FieldType> fieldTypeOf(const XNode& p, std::string_view f) const override {
+    return fieldType(p, f);
   }
 
   // Whether the fields of node element `p` are all known here.
@@ -609,7 +644,7 @@ struct XmlToClassic::Impl {
       for (const auto& [k, v] : n.attrs()) {
         // HTML's class, id and style, unless the node has a field of that name
         // (FontStyle.style, ScreenFontStyle.style).
-        const bool ignored = ignoredAttribute(k);
+        const bool ignored = xmlIgnoredAttribute(k);
         if (ignored && k != "class" && k != "id" && k != "style") continue;
         const auto t = fieldType(n, k);
         if (ignored && !t) continue;
@@ -665,7 +700,7 @@ struct XmlToClassic::Impl {
       } else if (!isNodeElement(c)) {
         warn(c, "<" + c.name + "> is not allowed in a node: ignored");
       } else {
-        const std::string field = containerFieldOf(c, &n);
+        const std::string_view field = containerFieldOf(c, &n);
         std::size_t g = 0;
         while (g < sc.groups && sc.group[g].first != field) ++g;
         if (g == sc.groups) {
@@ -706,8 +741,10 @@ struct XmlToClassic::Impl {
     const std::string* value = fv.attr("value");
     if (t)
       convertedValue(fv, *t, value != nullptr ? std::string_view(*value) : std::string_view());
-    else if (value != nullptr)
+    else if (value != nullptr) {
       out += *value;  // an undeclared PROTO: the parser reports it
+      checkRaw(*value);
+    }
   }
 };
 
@@ -767,6 +804,10 @@ bool XmlToClassic::finish() {
   return !m.failed;
 }
 
+void XmlToClassic::setBuilder(XmlStatementBuilder* builder) {
+  impl_->builder = builder;
+}
+
 bool XmlToClassic::wroteHeader() const {
   return impl_->wroteHeader;
 }
@@ -811,9 +852,11 @@ TextOrigin& XmlToClassic::origin() {
   return impl_->lines;
 }
 
-void XmlToClassic::addWarnings(Scene& scene) {
+void XmlToClassic::addWarnings(Scene& scene, std::size_t at) {
   auto& w = impl_->warnings;
-  for (Diagnostic& x : w) scene.diagnostics.items.push_back(std::move(x));
+  auto& items = scene.diagnostics.items;
+  items.insert(items.begin() + static_cast<std::ptrdiff_t>(std::min(at, items.size())),
+               std::make_move_iterator(w.begin()), std::make_move_iterator(w.end()));
   w.clear();
 }
 

@@ -22,6 +22,8 @@
 
 namespace gs::vrml::parsing {
 
+class XmlStatementBuilder;  // x3d_xml_tree.hpp
+
 /// Whether `text` (after gunzip) is XML: its first byte that is neither white space nor
 /// part of a UTF-8 byte order mark is '<'. `decided` is false when `text` holds no such
 /// byte yet (more may come).
@@ -75,6 +77,12 @@ class XmlToClassic {
   /// No more bytes will come (an unclosed document is a syntax error). Same result.
   bool finish();
 
+  /// Offers each top-level node statement of <Scene> to `builder` (null: none) before
+  /// translating it, while the Classic text written so far cannot run into what follows
+  /// it (no raw attribute text in it that could open a string, comment or bracket, no
+  /// SFImage, whose parse looks ahead). `builder` must outlive the translation.
+  void setBuilder(XmlStatementBuilder* builder);
+
   /// Whether the header line ("#X3D V3.3 utf8") has been written.
   bool wroteHeader() const;
   /// Whether translation stopped for good.
@@ -90,8 +98,9 @@ class XmlToClassic {
   /// as this translator.
   TextOrigin& origin();
   /// Appends the warnings found while translating so far (lenient MFString values,
-  /// ignored content; at XML locations) to the scene's diagnostics.
-  void addWarnings(Scene& scene);
+  /// ignored content; at XML locations) to the scene's diagnostics: at index `at` of
+  /// its list (after the others when that is past its end).
+  void addWarnings(Scene& scene, std::size_t at = static_cast<std::size_t>(-1));
 
   struct Impl;
 

@@ -102,4 +102,41 @@ struct ProtoInfo {
   }
 };
 
+/// What the translator knows of a statement's elements that the direct builder needs
+/// (x3d_xml.cpp implements it).
+class XmlTreeInfo {
+ public:
+  /// The field that child element `c` of node element `parent` goes to: its
+  /// containerField, else its type's default (see x3d_xml.cpp). The view lives as long as
+  /// the statement's elements and no PROTO is declared.
+  virtual std::string_view containerField(const XNode& c, const XNode& parent) const = 0;
+  /// The type the translator gives field `f` of node element `p` (built-in, declared
+  /// PROTO or Script field); nothing when it knows none.
+  virtual std::optional<FieldType> fieldTypeOf(const XNode& p, std::string_view f) const = 0;
+
+ protected:
+  XmlTreeInfo() = default;
+  ~XmlTreeInfo() = default;
+  XmlTreeInfo(const XmlTreeInfo&) = default;
+  XmlTreeInfo& operator=(const XmlTreeInfo&) = default;
+};
+
+/// Who makes the nodes of a "plain" top-level statement straight from its elements, with
+/// no Classic VRML text: the reader that parses the translation (parseInto's XML reader,
+/// StreamingParser). XmlToClassic offers it each top-level node element of <Scene> as its
+/// end tag arrives, while the Classic text written so far is known to hold only whole
+/// statements; what it declines is translated as before.
+class XmlStatementBuilder {
+ public:
+  /// Builds the statement whose root element is `root` after every statement before it,
+  /// or returns false having changed nothing (it is then translated).
+  virtual bool build(const XNode& root, const XmlTreeInfo& info) = 0;
+
+ protected:
+  XmlStatementBuilder() = default;
+  ~XmlStatementBuilder() = default;
+  XmlStatementBuilder(const XmlStatementBuilder&) = default;
+  XmlStatementBuilder& operator=(const XmlStatementBuilder&) = default;
+};
+
 }  // namespace gs::vrml::parsing
