@@ -259,6 +259,22 @@ class Lexer {
     hitEnd_ = false;
   }
 
+  /// Exchanges what the two lexers read (text, position, line cache, end flags), each
+  /// keeping its file name and origin: cheaper than swapping the lexers.
+  void swapText(Lexer& o) noexcept {
+    std::swap(text_, o.text_);
+    std::swap(p_, o.p_);
+    std::swap(end_, o.end_);
+    std::swap(cacheOffset_, o.cacheOffset_);
+    std::swap(cacheLine_, o.cacheLine_);
+    std::swap(cacheLineStart_, o.cacheLineStart_);
+    marks_.swap(o.marks_);
+    std::swap(loneCr_, o.loneCr_);
+    std::swap(crChecked_, o.crChecked_);
+    std::swap(growing_, o.growing_);
+    std::swap(hitEnd_, o.hitEnd_);
+  }
+
   std::size_t offset() const { return static_cast<std::size_t>(p_ - text_.data()); }
   std::size_t remaining() const { return static_cast<std::size_t>(end_ - p_); }
   void setOffset(std::size_t o) { p_ = text_.data() + o; }

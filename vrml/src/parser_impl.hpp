@@ -244,7 +244,8 @@ class Parser {
   // parser_xml_build.cpp: buildXmlStatement's nodes and values
   struct XmlBuild;
   NodePtr xmlNode(XmlBuild& b, const XNode& n, int depth, int& height);
-  void xmlValue(Scope& scope, FieldType t, std::string_view text, FieldValue& out);
+  void xmlValue(Scope& scope, FieldType t, const std::string& text, FieldValue& out);
+  bool xmlNumbers(FieldType t, const std::string& text, FieldValue& out);
   int xmlMember(const NodeType& type, std::string_view name);
 
   // value_parser.cpp: field values (clause 5)

@@ -48,6 +48,14 @@ bool plainMFString(std::string_view v) {
   return true;
 }
 
+// Whether appendXmlIdent() writes `s` as it stands.
+bool cleanIdent(std::string_view s) {
+  if (s.empty() || isDigit(s[0]) || s[0] == '+' || s[0] == '-') return false;
+  for (char c : s)
+    if (!isIdRest(c)) return false;
+  return true;
+}
+
 }  // namespace
 
 struct Parser::XmlBuild {
@@ -73,7 +81,8 @@ int Parser::xmlMember(const NodeType& type, std::string_view name) {
 // The value of type `t` written as XML attribute text `text`, read as parseValue reads
 // its translation (x3d_values.hpp): SFString as it stands, the rest through their Classic
 // text with the lexer over it. lex_ is valueLex_ here.
-void Parser::xmlValue(Scope& scope, FieldType t, std::string_view text, FieldValue& out) {
+void Parser::xmlValue(Scope& scope, FieldType t, const std::string& text, FieldValue& out) {
+  if (xmlNumbers(t, text, out)) return;
   if (t == FieldType::SFString) {
     out.storage().emplace<static_cast<std::size_t>(FieldType::SFString)>(std::string(text));
     return;
@@ -83,13 +92,145 @@ void Parser::xmlValue(Scope& scope, FieldType t, std::string_view text, FieldVal
     throw NotPlain{};
   std::string& v = valueText_;
   v.clear();
-  appendXmlValueAsClassic(v, t, text, xmlScratch_);
-  if (!xmlScratch_.empty()) throw NotPlain{};  // a lenient MFString: warned
+  if (t == FieldType::MFString || t == FieldType::SFBool || t == FieldType::MFBool) {
+    appendXmlValueAsClassic(v, t, text, xmlScratch_);
+    if (!xmlScratch_.empty()) throw NotPlain{};  // a lenient MFString: warned
+  } else if (isMultiValued(t)) {                 // numbers: as appendXmlValueAsClassic writes them
+    v += "[ ";
+    v += text;
+    v += " ]";
+  } else {
+    v += text;
+  }
   v.append(kValuePadding, ' ');
   lex_.rebind(v);
   int h = 0;
   parseValue(t, out, scope, 0, h);
   if (!lex_.atEnd()) throw NotPlain{};  // more than one value: an error
+}
+
+namespace {
+
+// The XML's number lists (the bulk of a world) in their plain forms: decimal integers of
+// up to 9 digits, decimals of up to 8 digits without exponent (Lexer's inline paths, which
+// these follow step by step, so that the values are the same), separated by white space
+// and commas. False, with `out` in any state, on anything else: the Lexer reads the value
+// then. `s` ends with a NUL byte (std::string).
+bool plainSeparator(const char* q, const char* end) {
+  return q == end || isSpace(*q);
+}
+
+bool plainInts(const char* p, const char* end, std::vector<std::int32_t>& out) {
+  out.clear();
+  while (true) {
+    while (p < end && isSpace(*p)) ++p;
+    if (p == end) return true;
+    const bool negative = *p == '-';
+    const char* first = p + (negative ? 1 : 0);
+    const char* q = first;
+    std::uint32_t v = 0;
+    unsigned d = 0;
+    while ((d = static_cast<unsigned char>(*q) - unsigned('0')) <= 9 && q - first < 9) {
+      v = v * 10 + d;
+      ++q;
+    }
+    if (q == first || d <= 9 || !plainSeparator(q, end)) return false;
+    out.push_back(negative ? -static_cast<std::int32_t>(v) : static_cast<std::int32_t>(v));
+    p = q;
+  }
+}
+
+bool plainFloat(const char*& p, const char* end, float& out) {
+  const char* q = p;
+  const bool negative = *q == '-';
+  q += negative ? 1 : 0;
+  std::uint32_t m = 0;
+  unsigned d = 0;
+  int digits = 0;
+  while ((d = static_cast<unsigned char>(*q) - unsigned('0')) <= 9 && digits < 9) {
+    m = m * 10 + d;
+    ++q;
+    ++digits;
+  }
+  int fraction = 0;
+  if (*q == '.') {
+    ++q;
+    while ((d = static_cast<unsigned char>(*q) - unsigned('0')) <= 9 && digits < 9) {
+      m = m * 10 + d;
+      ++q;
+      ++digits;
+      ++fraction;
+    }
+  }
+  if (digits == 0 || digits > 8 || d <= 9 || m >= (1u << 24) || *q == 'e' || *q == 'E' ||
+      !plainSeparator(q, end))
+    return false;
+  static constexpr float kPow10[] = {1e0f, 1e1f, 1e2f, 1e3f, 1e4f, 1e5f, 1e6f, 1e7f, 1e8f};
+  const float v = static_cast<float>(m) / kPow10[fraction];
+  out = negative ? -v : v;
+  p = q;
+  return true;
+}
+
+template <int N, class T>
+bool plainFloats(const char* p, const char* end, std::vector<T>& out) {
+  out.clear();
+  while (true) {
+    while (p < end && isSpace(*p)) ++p;
+    if (p == end) return true;
+    T v;
+    for (int i = 0; i < N; ++i) {
+      if (i > 0) {
+        while (p < end && isSpace(*p)) ++p;
+        if (p == end) return false;  // a group cut short
+      }
+      float f = 0;
+      if (!plainFloat(p, end, f)) return false;
+      if constexpr (N == 1)
+        v = f;
+      else
+        v[i] = f;
+    }
+    out.push_back(v);
+  }
+}
+
+template <FieldType T, class V>
+void emplaceList(FieldValue& out, const std::vector<V>& v) {
+  out.storage().emplace<static_cast<std::size_t>(T)>(v.begin(), v.end());
+}
+
+}  // namespace
+
+// The number lists of xmlValue in their plain forms (see plainInts); false when `t` is
+// none of them or the text is not plain.
+bool Parser::xmlNumbers(FieldType t, const std::string& text, FieldValue& out) {
+  const char* p = text.c_str();
+  const char* end = p + text.size();
+  switch (t) {
+    case FieldType::MFInt32:
+      if (!plainInts(p, end, intScratch_)) return false;
+      emplaceList<FieldType::MFInt32>(out, intScratch_);
+      return true;
+    case FieldType::MFFloat:
+      if (!plainFloats<1>(p, end, floatScratch_)) return false;
+      emplaceList<FieldType::MFFloat>(out, floatScratch_);
+      return true;
+    case FieldType::MFVec2f:
+      if (!plainFloats<2>(p, end, vec2Scratch_)) return false;
+      emplaceList<FieldType::MFVec2f>(out, vec2Scratch_);
+      return true;
+    case FieldType::MFVec3f:
+      if (!plainFloats<3>(p, end, vec3Scratch_)) return false;
+      emplaceList<FieldType::MFVec3f>(out, vec3Scratch_);
+      return true;
+    case FieldType::MFColor:
+      if (!plainFloats<3>(p, end, vec3Scratch_)) return false;
+      emplaceList<FieldType::MFColor>(out, vec3Scratch_);
+      return true;
+    default:
+      return false;
+  }
 }
 
 // parseNodeStatement + parseNode + parseNodeBody for node element `n` (depth and height
@@ -98,9 +239,13 @@ NodePtr Parser::xmlNode(XmlBuild& b, const XNode& n, int depth, int& height) {
   if (n.kind != XKind::node) throw NotPlain{};
   Scope& scope = b.scope;
   if (const std::string* use = n.attr("USE")) {
-    xmlName_.clear();
-    appendXmlIdent(xmlName_, *use);
-    const DefEntry* e = findDef(scope, xmlName_);
+    std::string_view name = *use;
+    if (!cleanIdent(name)) {
+      xmlName_.clear();
+      appendXmlIdent(xmlName_, name);
+      name = xmlName_;
+    }
+    const DefEntry* e = findDef(scope, name);
     if (e == nullptr || e->open) throw NotPlain{};  // unknown, or a cycle
     height = e->height;
     return e->node;
@@ -152,7 +297,16 @@ NodePtr Parser::xmlNode(XmlBuild& b, const XNode& n, int depth, int& height) {
   gs.used = 0;
   for (const XNode* c : n.children) {
     if (c->kind != XKind::node) throw NotPlain{};  // ROUTE, IS, field ...: translated
-    const std::string_view field = b.info.containerField(*c, n);
+    // The usual case first: the child's default field, which the parent has (what the
+    // translator's containerFieldOf answers then); the rest asked of the translator.
+    std::string_view field;
+    if (const NodeModel* m = c->model; m != nullptr && !c->instance && !m->containerField.empty() &&
+                                       !c->name.starts_with("Metadata") &&
+                                       c->attr("containerField") == nullptr &&
+                                       findMember(ty, m->containerField) >= 0)
+      field = m->containerField;
+    else
+      field = b.info.containerField(*c, n);
     std::size_t g = 0;
     while (g < gs.used && gs.groups[g].field != field) ++g;
     if (g == gs.used) {
@@ -168,10 +322,9 @@ NodePtr Parser::xmlNode(XmlBuild& b, const XNode& n, int depth, int& height) {
   for (std::size_t g = 0; g < gs.used; ++g) {
     // (gs stays put: deeper levels have their own entries.)
     const XmlGroup& group = gs.groups[g];
-    xmlName_.clear();
-    appendXmlIdent(xmlName_, group.field);
-    if (xmlName_ != group.field) throw NotPlain{};  // no field has such a name
-    const int i = xmlMember(ty, xmlName_);
+    // (The translation writes the name as an identifier: no field has a name it changes.)
+    if (!cleanIdent(group.field)) throw NotPlain{};
+    const int i = xmlMember(ty, group.field);
     const FieldSpec& spec = ty.fields[static_cast<std::size_t>(i)];
     const bool list = spec.type == FieldType::MFNode;
     if (!list && (spec.type != FieldType::SFNode || group.nodes.size() != 1)) throw NotPlain{};
@@ -233,10 +386,10 @@ bool Parser::buildXmlStatement(Scope& top, const XNode& root, const XmlTreeInfo&
           nodes(parser.ctx_.nodeCount),
           recursion(parser.recursion_) {
       if (top.undo == nullptr) top.undo = &own;
-      std::swap(p.lex_, p.valueLex_);
+      p.lex_.swapText(p.valueLex_);
     }
     ~BuildState() {
-      std::swap(p.lex_, p.valueLex_);
+      p.lex_.swapText(p.valueLex_);
       p.recursion_ = recursion;
       ScopeUndo& log = *top.undo;
       if (!done) {

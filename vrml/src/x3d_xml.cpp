@@ -215,14 +215,18 @@ struct XmlToClassic::Impl final : XmlTreeInfo {
     const NodeModel* model = nullptr;  // nodeModel(name)
     bool valid = false;
   };
-  std::array<TypeCacheEntry, 32> typeCache;
+  // (Two entries per hash: Material and Coordinate, which alternate in many worlds, share
+  // one. A name in neither replaces the second, or the first while it is empty.)
+  std::array<TypeCacheEntry, 64> typeCache;
   const TypeCacheEntry& lookupType(std::string_view n) {
     const std::size_t h = n.empty() ? 0
                                     : (n.size() * 7 + static_cast<unsigned char>(n.front()) * 3 +
                                        static_cast<unsigned char>(n[n.size() / 2]) +
                                        static_cast<unsigned char>(n.back()));
-    TypeCacheEntry& e = typeCache[h % typeCache.size()];
-    if (e.valid && e.name == n) return e;
+    const std::size_t slot = (h % (typeCache.size() / 2)) * 2;
+    if (typeCache[slot].valid && typeCache[slot].name == n) return typeCache[slot];
+    if (typeCache[slot + 1].valid && typeCache[slot + 1].name == n) return typeCache[slot + 1];
+    TypeCacheEntry& e = typeCache[typeCache[slot].valid ? slot + 1 : slot];
     e.name.assign(n);
     e.type = x3dNodeType(n).get();
     e.model = nodeModel(n);
