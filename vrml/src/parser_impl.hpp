@@ -336,6 +336,7 @@ class Parser {
   std::string xmlScratch_;
   struct XmlGroup {
     std::string_view field;
+    int member = -1;  // its index in the parent's type when known
     std::vector<const XNode*> nodes;
   };
   struct XmlGroups {

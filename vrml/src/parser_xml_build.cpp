@@ -7,6 +7,7 @@
 // parse would report, and whatever the XML spells with more than node elements, is
 // translated and parsed as before, in document order with the built statements.
 #include "parser_impl.hpp"
+#include "x3d_numbers.hpp"
 #include "x3d_values.hpp"
 #include "x3d_xml.hpp"
 #include "x3d_xml_tree.hpp"
@@ -109,128 +110,16 @@ void Parser::xmlValue(Scope& scope, FieldType t, const std::string& text, FieldV
   if (!lex_.atEnd()) throw NotPlain{};  // more than one value: an error
 }
 
-namespace {
-
-// The XML's number lists (the bulk of a world) in their plain forms: decimal integers of
-// up to 9 digits, decimals of up to 8 digits without exponent (Lexer's inline paths, which
-// these follow step by step, so that the values are the same), separated by white space
-// and commas. False, with `out` in any state, on anything else: the Lexer reads the value
-// then. `s` ends with a NUL byte (std::string).
-bool plainSeparator(const char* q, const char* end) {
-  return q == end || isSpace(*q);
-}
-
-bool plainInts(const char* p, const char* end, std::vector<std::int32_t>& out) {
-  out.clear();
-  while (true) {
-    while (p < end && isSpace(*p)) ++p;
-    if (p == end) return true;
-    const bool negative = *p == '-';
-    const char* first = p + (negative ? 1 : 0);
-    const char* q = first;
-    std::uint32_t v = 0;
-    unsigned d = 0;
-    while ((d = static_cast<unsigned char>(*q) - unsigned('0')) <= 9 && q - first < 9) {
-      v = v * 10 + d;
-      ++q;
-    }
-    if (q == first || d <= 9 || !plainSeparator(q, end)) return false;
-    out.push_back(negative ? -static_cast<std::int32_t>(v) : static_cast<std::int32_t>(v));
-    p = q;
-  }
-}
-
-bool plainFloat(const char*& p, const char* end, float& out) {
-  const char* q = p;
-  const bool negative = *q == '-';
-  q += negative ? 1 : 0;
-  std::uint32_t m = 0;
-  unsigned d = 0;
-  int digits = 0;
-  while ((d = static_cast<unsigned char>(*q) - unsigned('0')) <= 9 && digits < 9) {
-    m = m * 10 + d;
-    ++q;
-    ++digits;
-  }
-  int fraction = 0;
-  if (*q == '.') {
-    ++q;
-    while ((d = static_cast<unsigned char>(*q) - unsigned('0')) <= 9 && digits < 9) {
-      m = m * 10 + d;
-      ++q;
-      ++digits;
-      ++fraction;
-    }
-  }
-  if (digits == 0 || digits > 8 || d <= 9 || m >= (1u << 24) || *q == 'e' || *q == 'E' ||
-      !plainSeparator(q, end))
-    return false;
-  static constexpr float kPow10[] = {1e0f, 1e1f, 1e2f, 1e3f, 1e4f, 1e5f, 1e6f, 1e7f, 1e8f};
-  const float v = static_cast<float>(m) / kPow10[fraction];
-  out = negative ? -v : v;
-  p = q;
-  return true;
-}
-
-template <int N, class T>
-bool plainFloats(const char* p, const char* end, std::vector<T>& out) {
-  out.clear();
-  while (true) {
-    while (p < end && isSpace(*p)) ++p;
-    if (p == end) return true;
-    T v;
-    for (int i = 0; i < N; ++i) {
-      if (i > 0) {
-        while (p < end && isSpace(*p)) ++p;
-        if (p == end) return false;  // a group cut short
-      }
-      float f = 0;
-      if (!plainFloat(p, end, f)) return false;
-      if constexpr (N == 1)
-        v = f;
-      else
-        v[i] = f;
-    }
-    out.push_back(v);
-  }
-}
-
-template <FieldType T, class V>
-void emplaceList(FieldValue& out, const std::vector<V>& v) {
-  out.storage().emplace<static_cast<std::size_t>(T)>(v.begin(), v.end());
-}
-
-}  // namespace
-
-// The number lists of xmlValue in their plain forms (see plainInts); false when `t` is
+// The number lists of xmlValue in their plain forms (x3d_numbers.hpp); false when `t` is
 // none of them or the text is not plain.
 bool Parser::xmlNumbers(FieldType t, const std::string& text, FieldValue& out) {
-  const char* p = text.c_str();
-  const char* end = p + text.size();
-  switch (t) {
-    case FieldType::MFInt32:
-      if (!plainInts(p, end, intScratch_)) return false;
-      emplaceList<FieldType::MFInt32>(out, intScratch_);
-      return true;
-    case FieldType::MFFloat:
-      if (!plainFloats<1>(p, end, floatScratch_)) return false;
-      emplaceList<FieldType::MFFloat>(out, floatScratch_);
-      return true;
-    case FieldType::MFVec2f:
-      if (!plainFloats<2>(p, end, vec2Scratch_)) return false;
-      emplaceList<FieldType::MFVec2f>(out, vec2Scratch_);
-      return true;
-    case FieldType::MFVec3f:
-      if (!plainFloats<3>(p, end, vec3Scratch_)) return false;
-      emplaceList<FieldType::MFVec3f>(out, vec3Scratch_);
-      return true;
-    case FieldType::MFColor:
-      if (!plainFloats<3>(p, end, vec3Scratch_)) return false;
-      emplaceList<FieldType::MFColor>(out, vec3Scratch_);
-      return true;
-    default:
-      return false;
-  }
+  const int components = plainListComponents(t);
+  if (components == 0) return false;
+  if (t == FieldType::MFInt32 ? !readPlainInts(text.c_str(), intScratch_)
+                              : !readPlainFloats(text.c_str(), components, floatScratch_))
+    return false;
+  assignPlainList(out, t, intScratch_, floatScratch_);
+  return true;
 }
 
 // parseNodeStatement + parseNode + parseNodeBody for node element `n` (depth and height
@@ -269,7 +158,8 @@ NodePtr Parser::xmlNode(XmlBuild& b, const XNode& n, int depth, int& height) {
     define(scope, node->defName, DefEntry{node, node->typePtr(), nullptr, 1, true});
   }
   // The attributes, in order: fields (the translation's `name value`).
-  for (const auto& [k, v] : n.attrs()) {
+  for (std::size_t ai = 0; ai < n.attrCount; ++ai) {
+    const auto& [k, v] = n.attrStore[ai];
     const bool ignored = xmlIgnoredAttribute(k);
     if (ignored && k != "class" && k != "id" && k != "style") continue;
     int i = findMember(ty, k);
@@ -287,7 +177,12 @@ NodePtr Parser::xmlNode(XmlBuild& b, const XNode& n, int depth, int& height) {
     }
     const FieldSpec& spec = ty.fields[static_cast<std::size_t>(i)];
     FieldValue& dst = node->fieldAt(static_cast<std::size_t>(i));
-    xmlValue(scope, spec.type, v, dst);
+    if (const XNode::Numbers* numbers = n.numbersOf(ai)) {
+      if (numbers->type != spec.type) throw NotPlain{};
+      assignPlainList(dst, spec.type, numbers->ints, numbers->floats);
+    } else {
+      xmlValue(scope, spec.type, v, dst);
+    }
     if (ctx_.units.angle != 1.0) applyAngleUnit(spec, dst);
   }
   // The child elements, grouped by containerField in the order the groups first appear.
@@ -300,18 +195,24 @@ NodePtr Parser::xmlNode(XmlBuild& b, const XNode& n, int depth, int& height) {
     // The usual case first: the child's default field, which the parent has (what the
     // translator's containerFieldOf answers then); the rest asked of the translator.
     std::string_view field;
+    int member = -1;
     if (const NodeModel* m = c->model; m != nullptr && !c->instance && !m->containerField.empty() &&
                                        !c->name.starts_with("Metadata") &&
                                        c->attr("containerField") == nullptr &&
-                                       findMember(ty, m->containerField) >= 0)
+                                       (member = findMember(ty, m->containerField)) >= 0) {
       field = m->containerField;
-    else
+      const AccessType a = ty.fields[static_cast<std::size_t>(member)].access;
+      if (a == AccessType::eventIn || a == AccessType::eventOut) member = -1;
+    } else {
       field = b.info.containerField(*c, n);
+      member = -1;
+    }
     std::size_t g = 0;
     while (g < gs.used && gs.groups[g].field != field) ++g;
     if (g == gs.used) {
       if (g == gs.groups.size()) gs.groups.emplace_back();
       gs.groups[g].field = field;
+      gs.groups[g].member = member;
       gs.groups[g].nodes.clear();
       ++gs.used;
     }
@@ -323,8 +224,11 @@ NodePtr Parser::xmlNode(XmlBuild& b, const XNode& n, int depth, int& height) {
     // (gs stays put: deeper levels have their own entries.)
     const XmlGroup& group = gs.groups[g];
     // (The translation writes the name as an identifier: no field has a name it changes.)
-    if (!cleanIdent(group.field)) throw NotPlain{};
-    const int i = xmlMember(ty, group.field);
+    int i = group.member;
+    if (i < 0) {
+      if (!cleanIdent(group.field)) throw NotPlain{};
+      i = xmlMember(ty, group.field);
+    }
     const FieldSpec& spec = ty.fields[static_cast<std::size_t>(i)];
     const bool list = spec.type == FieldType::MFNode;
     if (!list && (spec.type != FieldType::SFNode || group.nodes.size() != 1)) throw NotPlain{};

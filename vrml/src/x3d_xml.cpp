@@ -8,6 +8,7 @@
 #include "vrml/field.hpp"
 #include "vrml/node_model.hpp"
 #include "vrml/node_table.hpp"
+#include "x3d_numbers.hpp"
 #include "x3d_positions.hpp"
 #include "x3d_values.hpp"
 #include "x3d_xml_tree.hpp"
@@ -192,7 +193,14 @@ struct XmlToClassic::Impl final : XmlTreeInfo {
         XNode* node = newNode(n);
         node->line = line;
         node->column = column;
-        for (const XML_Char** a = atts; *a != nullptr; a += 2) node->addAttr(a[0], a[1]);
+        // While statements may be built from their elements, number lists of built-in
+        // nodes are read now, from expat's text: no copy of it (x3d_numbers.hpp).
+        // (Not for a name that is also a PROTO's, whose fields may differ.)
+        const bool numbersNow = builder != nullptr && classicSafe && node->type != nullptr &&
+                                !node->instance && !node->source && !node->type->userFields &&
+                                (protos.empty() || !protos.contains(std::string(n)));
+        for (const XML_Char** a = atts; *a != nullptr; a += 2)
+          if (!numbersNow || !readNumbers(*node, a[0], a[1])) node->addAttr(a[0], a[1]);
         if (stack.back() == Frame::scene) {
           root = node;
         } else {
@@ -232,6 +240,27 @@ struct XmlToClassic::Impl final : XmlTreeInfo {
     e.model = nodeModel(n);
     e.valid = true;
     return e;
+  }
+
+  // Attribute `k` = `v` of built-in node element `x` as numbers, when it is a number list
+  // (MFInt32, MFFloat, MFVec2f, MFVec3f, MFColor) field of the type, named exactly, and
+  // `v` is plain; false (nothing added) otherwise.
+  static bool readNumbers(XNode& x, const char* k, const char* v) {
+    const NodeType& type = *x.type;
+    const std::size_t len = std::strlen(k);
+    for (const FieldSpec& f : type.fields) {
+      if (f.name.size() != len || std::memcmp(f.name.data(), k, len) != 0) continue;
+      const int components = plainListComponents(f.type);
+      if (components == 0 || f.access == AccessType::eventIn || f.access == AccessType::eventOut)
+        return false;
+      XNode::Numbers& slot = x.nextNumbers();
+      const bool ok = f.type == FieldType::MFInt32 ? readPlainInts(v, slot.ints)
+                                                   : readPlainFloats(v, components, slot.floats);
+      if (!ok) return false;
+      x.addNumbers(k, f.type, components);
+      return true;
+    }
+    return false;
   }
 
   // A pooled XNode for element `n`, reset.
@@ -645,7 +674,16 @@ struct XmlToClassic::Impl final : XmlTreeInfo {
     }
     bool urlDone = false;
     if (!instance) {
-      for (const auto& [k, v] : n.attrs()) {
+      for (std::size_t i = 0; i < n.attrCount; ++i) {
+        const auto& [k, v] = n.attrStore[i];
+        if (const XNode::Numbers* numbers = n.numbersOf(i)) {
+          // Read when the element started: written back as numbers that read the same.
+          out += ' ';
+          out += k;
+          out += ' ';
+          appendPlainListAsClassic(out, numbers->type, numbers->ints, numbers->floats);
+          continue;
+        }
         // HTML's class, id and style, unless the node has a field of that name
         // (FontStyle.style, ScreenFontStyle.style).
         const bool ignored = xmlIgnoredAttribute(k);

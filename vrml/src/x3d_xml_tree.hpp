@@ -71,12 +71,44 @@ struct XNode {
   std::string text;              // character data (kept for the nodes that take source text)
   XNode* parent = nullptr;
 
+  /// A number list read when the element started (x3d_numbers.hpp), for the attribute of
+  /// the same index, whose text is then not kept (empty): `type` is its field's type, or
+  /// none (`components` 0) for an attribute kept as text.
+  struct Numbers {
+    int components = 0;
+    FieldType type = FieldType::MFInt32;
+    std::vector<std::int32_t> ints;  // MFInt32
+    std::vector<float> floats;       // the other types, flat
+  };
+  std::vector<Numbers> numbers;  // parallel to attrStore
+
   std::span<const Attr> attrs() const { return {attrStore.data(), attrCount}; }
   void addAttr(const char* k, const char* v) {
     if (attrCount == attrStore.size()) attrStore.emplace_back();
+    if (numbers.size() < attrStore.size()) numbers.resize(attrStore.size());
+    numbers[attrCount].components = 0;
     Attr& a = attrStore[attrCount++];
     a.first.assign(k);
     a.second.assign(v);
+  }
+  /// The slot the next attribute's numbers are read into (addNumbers() keeps them).
+  Numbers& nextNumbers() {
+    if (attrCount == attrStore.size()) attrStore.emplace_back();
+    if (numbers.size() < attrStore.size()) numbers.resize(attrStore.size());
+    return numbers[attrCount];
+  }
+  /// Adds attribute `k`, whose value of type `t` nextNumbers() now holds.
+  void addNumbers(const char* k, FieldType t, int components) {
+    Numbers& n = numbers[attrCount];
+    n.type = t;
+    n.components = components;
+    Attr& a = attrStore[attrCount++];
+    a.first.assign(k);
+    a.second.clear();
+  }
+  /// The numbers of attribute `i` when it was read as numbers; null otherwise.
+  const Numbers* numbersOf(std::size_t i) const {
+    return i < numbers.size() && numbers[i].components > 0 ? &numbers[i] : nullptr;
   }
   const std::string* attr(std::string_view n) const {
     for (const auto& [k, v] : attrs())
