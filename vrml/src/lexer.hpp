@@ -57,6 +57,14 @@ inline bool isDigit(char c) {
   return c >= '0' && c <= '9';
 }
 
+/// a == b for the short names of node types and fields, without a call to memcmp.
+inline bool sameName(std::string_view a, std::string_view b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (a[i] != b[i]) return false;
+  return true;
+}
+
 enum class Tok : std::uint8_t {
   end,       // end of input
   id,        // identifier or keyword (DEF, USE, PROTO, TRUE, ...)

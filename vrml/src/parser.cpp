@@ -251,7 +251,7 @@ std::shared_ptr<const NodeType> Parser::lookupType(Scope& scope, std::string_vie
                                   static_cast<unsigned char>(name.back()) * 3u +
                                   static_cast<unsigned char>(name[name.size() / 2]) * 11u) &
                                  (typeCache_.size() - 1)];
-  if (e.type && e.type->name == name) return e.type;
+  if (e.type && sameName(e.type->name, name)) return e.type;
   std::shared_ptr<const NodeType> t = ctx_.x3d ? x3dNodeType(name) : builtInNodeType(name);
   if (t) e.type = t;
   return t;

@@ -343,7 +343,8 @@ class Parser {
     std::vector<XmlGroup> groups;
     std::size_t used = 0;
   };
-  std::vector<std::unique_ptr<XmlGroups>> xmlGroups_;  // one per nesting level
+  std::vector<std::unique_ptr<XmlGroups>> xmlGroups_;      // one per nesting level
+  std::vector<std::shared_ptr<const NodeType>> xmlTypes_;  // built-in types met (no PROTOs)
 };
 
 /// NodeType::findExact for the hot path: most names differ in length or first byte.
@@ -351,9 +352,7 @@ inline int findMember(const NodeType& type, std::string_view name) {
   const std::size_t n = type.fields.size();
   for (std::size_t i = 0; i < n; ++i) {
     const std::string& f = type.fields[i].name;
-    if (f.size() == name.size() && f[0] == name[0] &&
-        std::memcmp(f.data(), name.data(), name.size()) == 0)
-      return static_cast<int>(i);
+    if (f.size() == name.size() && f[0] == name[0] && sameName(f, name)) return static_cast<int>(i);
   }
   return -1;
 }

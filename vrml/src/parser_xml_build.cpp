@@ -142,9 +142,19 @@ NodePtr Parser::xmlNode(XmlBuild& b, const XNode& n, int depth, int& height) {
   const NodeType* const xmlType = n.type;
   if (xmlType == nullptr || n.instance || n.source || xmlType->userFields || xmlType->script)
     throw NotPlain{};
-  bool defining = false;
-  std::shared_ptr<const NodeType> type = lookupType(scope, n.name, defining);
-  if (!type || type.get() != xmlType || type->proto) throw NotPlain{};  // a PROTO of that name
+  // The type lookupType gives for the name: with no PROTO declared, the built-in one the
+  // translator found (kept here by address); else asked (a PROTO of that name is not
+  // plain).
+  std::shared_ptr<const NodeType> type;
+  if (!protosDeclared_)
+    for (const auto& t : xmlTypes_)
+      if (t.get() == xmlType) type = t;
+  if (!type) {
+    bool defining = false;
+    type = lookupType(scope, n.name, defining);
+    if (!type || type.get() != xmlType || type->proto) throw NotPlain{};
+    if (!protosDeclared_ && xmlTypes_.size() < 32) xmlTypes_.push_back(type);
+  }
   if (recursion_ + 1 > ctx_.options.limits.maxNesting || depth >= ctx_.options.limits.maxNesting ||
       ctx_.nodeCount + 1 > ctx_.options.limits.maxNodes)
     throw NotPlain{};  // fatal there

@@ -196,6 +196,17 @@ bool accessTakesValue(std::string_view access) {
          access != "eventOut";
 }
 
+namespace {
+
+// n.find(':') != npos for short names, without a call to memchr.
+bool hasColon(std::string_view n) {
+  for (char c : n)
+    if (c == ':') return true;
+  return false;
+}
+
+}  // namespace
+
 bool xmlIgnoredAttribute(std::string_view n) {
   if (n.empty()) return false;
   switch (n.front()) {  // (most attributes are fields: decided by their first letter)
@@ -204,15 +215,15 @@ bool xmlIgnoredAttribute(std::string_view n) {
     case 'U':
       return n == "USE";
     case 'c':
-      return n == "containerField" || n == "class" || n.find(':') != std::string_view::npos;
+      return n == "containerField" || n == "class" || hasColon(n);
     case 'i':
-      return n == "id" || n.find(':') != std::string_view::npos;
+      return n == "id" || hasColon(n);
     case 's':
-      return n == "style" || n.find(':') != std::string_view::npos;
+      return n == "style" || hasColon(n);
     case 'x':
-      return n.starts_with("xmlns") || n.find(':') != std::string_view::npos;
+      return n.starts_with("xmlns") || hasColon(n);
     default:
-      return n.find(':') != std::string_view::npos;
+      return hasColon(n);
   }
 }
 

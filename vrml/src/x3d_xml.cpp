@@ -232,8 +232,9 @@ struct XmlToClassic::Impl final : XmlTreeInfo {
                                        static_cast<unsigned char>(n[n.size() / 2]) +
                                        static_cast<unsigned char>(n.back()));
     const std::size_t slot = (h % (typeCache.size() / 2)) * 2;
-    if (typeCache[slot].valid && typeCache[slot].name == n) return typeCache[slot];
-    if (typeCache[slot + 1].valid && typeCache[slot + 1].name == n) return typeCache[slot + 1];
+    if (typeCache[slot].valid && sameName(typeCache[slot].name, n)) return typeCache[slot];
+    if (typeCache[slot + 1].valid && sameName(typeCache[slot + 1].name, n))
+      return typeCache[slot + 1];
     TypeCacheEntry& e = typeCache[typeCache[slot].valid ? slot + 1 : slot];
     e.name.assign(n);
     e.type = x3dNodeType(n).get();
