@@ -334,9 +334,9 @@ bool Parser::buildXmlStatement(Scope& top, const XNode& root, const XmlTreeInfo&
     return false;  // (a value that does not read: reported by the parse of the translation)
   }
   state.done = true;
-  if (top.x3d != nullptr) n = applyLengthUnit(n);
-  roots.push_back(n);
-  if (top.checkRoots && ctx_.options.onRootNode) ctx_.options.onRootNode(n);
+  if (top.x3d != nullptr && ctx_.units.length != 1.0) n = applyLengthUnit(n);
+  roots.push_back(std::move(n));
+  if (top.checkRoots && ctx_.options.onRootNode) ctx_.options.onRootNode(roots.back());
   return true;
 }
 
