@@ -401,6 +401,12 @@ void parseInto(std::string_view bytes, const std::string& url, Context& ctx, int
 void parseXmlInto(std::string_view bytes, const std::string& url, Context& ctx, int externDepth,
                   Scene& scene);
 
+/// Whether parseXmlInto and StreamingParser build plain XML statements straight from their
+/// elements (true, the default) or translate every statement (false: what the tests
+/// compare the direct path with). Process-wide.
+bool xmlDirectBuild();
+void setXmlDirectBuild(bool on);
+
 /// Whether `url` (relative to the file `base`) names the local file `base` itself.
 bool urlNamesFile(const std::string& base, const std::string& url);
 

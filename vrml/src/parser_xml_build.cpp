@@ -13,6 +13,7 @@
 #include "x3d_xml_tree.hpp"
 
 #include <algorithm>
+#include <atomic>
 
 namespace gs::vrml::parsing {
 
@@ -435,6 +436,18 @@ class XmlDocument final : public XmlStatementBuilder {
 
 }  // namespace
 
+namespace {
+std::atomic<bool> gXmlDirectBuild{true};
+}  // namespace
+
+bool xmlDirectBuild() {
+  return gXmlDirectBuild.load(std::memory_order_relaxed);
+}
+
+void setXmlDirectBuild(bool on) {
+  gXmlDirectBuild.store(on, std::memory_order_relaxed);
+}
+
 void parseXmlInto(std::string_view bytes, const std::string& url, Context& ctx, int externDepth,
                   Scene& scene) {
   const std::size_t before = scene.diagnostics.items.size();
@@ -442,7 +455,7 @@ void parseXmlInto(std::string_view bytes, const std::string& url, Context& ctx, 
   XmlToClassic xml(classic, url, ctx.options.limits.maxNesting);
   {
     XmlDocument doc(url, ctx, externDepth, scene, classic, xml);
-    xml.setBuilder(&doc);
+    if (xmlDirectBuild()) xml.setBuilder(&doc);
     xml.feed(bytes, true);
     doc.finish();
     xml.setBuilder(nullptr);

@@ -297,7 +297,7 @@ bool StreamingParser::Impl::decide(bool final) {
   encoding = Encoding::xml;
   scene.x3d.encoding = "XML";
   xml = std::make_unique<parsing::XmlToClassic>(text, url, user.limits.maxNesting);
-  xml->setBuilder(this);
+  if (parsing::xmlDirectBuild()) xml->setBuilder(this);
   scratch = std::move(text);
   text.clear();
   return true;
