@@ -207,10 +207,9 @@ NodePtr Parser::xmlNode(XmlBuild& b, const XNode& n, int depth, int& height) {
     // translator's containerFieldOf answers then); the rest asked of the translator.
     std::string_view field;
     int member = -1;
-    if (const NodeModel* m = c->model; m != nullptr && !c->instance && !m->containerField.empty() &&
-                                       !c->name.starts_with("Metadata") &&
-                                       c->attr("containerField") == nullptr &&
-                                       (member = findMember(ty, m->containerField)) >= 0) {
+    if (const NodeModel* m = c->model;
+        m != nullptr && !c->instance && !m->containerField.empty() && !metadataName(c->name) &&
+        c->attr("containerField") == nullptr && (member = findMember(ty, m->containerField)) >= 0) {
       field = m->containerField;
       const AccessType a = ty.fields[static_cast<std::size_t>(member)].access;
       if (a == AccessType::eventIn || a == AccessType::eventOut) member = -1;

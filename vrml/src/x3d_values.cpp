@@ -1,6 +1,7 @@
 #include "x3d_values.hpp"
 
 #include "base/text.hpp"
+#include "lexer.hpp"
 
 #include <algorithm>
 #include <array>
@@ -211,15 +212,15 @@ bool xmlIgnoredAttribute(std::string_view n) {
   if (n.empty()) return false;
   switch (n.front()) {  // (most attributes are fields: decided by their first letter)
     case 'D':
-      return n == "DEF";
+      return sameName(n, "DEF");
     case 'U':
-      return n == "USE";
+      return sameName(n, "USE");
     case 'c':
-      return n == "containerField" || n == "class" || hasColon(n);
+      return sameName(n, "containerField") || sameName(n, "class") || hasColon(n);
     case 'i':
-      return n == "id" || hasColon(n);
+      return sameName(n, "id") || hasColon(n);
     case 's':
-      return n == "style" || hasColon(n);
+      return sameName(n, "style") || hasColon(n);
     case 'x':
       return n.starts_with("xmlns") || hasColon(n);
     default:

@@ -275,7 +275,7 @@ struct XmlToClassic::Impl final : XmlTreeInfo {
     x->source = xmlTakesSource(x->type);
     // (ProtoInstance has a node model too; the statement names are none.)
     x->kind = x->type != nullptr ? XKind::node : xkindOf(n);
-    x->instance = n == kProtoInstanceElement;
+    x->instance = sameName(n, kProtoInstanceElement);
     x->attrCount = 0;
     x->children.clear();
     x->text.clear();
@@ -559,7 +559,7 @@ struct XmlToClassic::Impl final : XmlTreeInfo {
   std::string_view containerFieldOf(const XNode& c, const XNode* parent) const {
     if (const std::string* cf = c.attr("containerField"); cf != nullptr && !blank(*cf)) return *cf;
     std::string_view field = "children";
-    const bool metadata = c.name.starts_with("Metadata");
+    const bool metadata = metadataName(c.name);
     if (c.instance) {
       auto it = protos.find(xmlIdent(c.attrOr("name")));
       if (it != protos.end()) field = it->second.containerField;

@@ -3,6 +3,7 @@
 // gs_vrml.
 #pragma once
 
+#include "lexer.hpp"
 #include "vrml/field.hpp"
 #include "vrml/node.hpp"
 #include "vrml/node_model.hpp"
@@ -34,6 +35,11 @@ enum class XKind : std::uint8_t {
   protoInterface,
   protoBody
 };
+
+/// Whether element name `name` is that of a metadata node (MetadataFloat ...).
+inline bool metadataName(std::string_view name) {
+  return name.size() >= 8 && sameName(name.substr(0, 8), "Metadata");
+}
 
 inline XKind xkindOf(std::string_view s) {
   static constexpr std::pair<std::string_view, XKind> kKinds[] = {
@@ -112,7 +118,7 @@ struct XNode {
   }
   const std::string* attr(std::string_view n) const {
     for (const auto& [k, v] : attrs())
-      if (k == n) return &v;
+      if (sameName(k, n)) return &v;
     return nullptr;
   }
   std::string attrOr(std::string_view n, std::string_view fallback = {}) const {
