@@ -15,6 +15,22 @@ namespace gs::vrml::parsing {
 
 namespace {
 
+// Appends the decimal digits at q to m (m * 10 + digit each), two a step; returns the
+// first byte that is no digit. The text ends with a NUL byte, which is no digit.
+inline const char* digitsInto(const char* q, std::uint32_t& m) {
+  while (true) {
+    const unsigned d0 = static_cast<unsigned char>(q[0]) - unsigned('0');
+    if (d0 > 9) return q;
+    const unsigned d1 = static_cast<unsigned char>(q[1]) - unsigned('0');
+    if (d1 > 9) {
+      m = m * 10 + d0;
+      return q + 1;
+    }
+    m = m * 100 + d0 * 10 + d1;
+    q += 2;
+  }
+}
+
 template <FieldType T, class V>
 void emplaceFlat(FieldValue& out, const float* data, std::size_t n) {
   auto& v = out.storage().emplace<static_cast<std::size_t>(T)>(n);
@@ -29,21 +45,14 @@ bool plainFloat(const char*& p, float& out) {
   q += negative ? 1 : 0;
   const char* const first = q;
   std::uint32_t m = 0;
-  unsigned d = 0;
   // (A NUL ends every run of digits; more than 8 are not read here, and m then does not
   // matter.)
-  while ((d = static_cast<unsigned char>(*q) - unsigned('0')) <= 9) {
-    m = m * 10 + d;
-    ++q;
-  }
+  q = digitsInto(q, m);
   std::ptrdiff_t digits = q - first;
   std::ptrdiff_t fraction = 0;
   if (*q == '.') {
     const char* const dot = ++q;
-    while ((d = static_cast<unsigned char>(*q) - unsigned('0')) <= 9) {
-      m = m * 10 + d;
-      ++q;
-    }
+    q = digitsInto(q, m);
     fraction = q - dot;
     digits += fraction;
   }
@@ -98,13 +107,8 @@ bool readPlainInts(const char* p, std::vector<std::int32_t>& out) {
     if (*p == '\0') return true;
     const bool negative = *p == '-';
     const char* first = p + (negative ? 1 : 0);
-    const char* q = first;
     std::uint32_t v = 0;
-    unsigned d = 0;
-    while ((d = static_cast<unsigned char>(*q) - unsigned('0')) <= 9) {
-      v = v * 10 + d;
-      ++q;
-    }
+    const char* q = digitsInto(first, v);
     if (q == first || q - first > 9 || !isSpace(*q)) return false;
     out.push_back(negative ? -static_cast<std::int32_t>(v) : static_cast<std::int32_t>(v));
     p = q;
