@@ -407,6 +407,8 @@ class XmlDocument final : public XmlStatementBuilder {
   // run (or stopped: a fatal error, reported as parseScene reports it).
   bool parsePending(bool final) {
     if (!start()) return false;
+    if (!final && classic_.size() == parsedSize_) return true;  // nothing new
+    parsedSize_ = classic_.size();
     parser_->extendText(classic_, final);
     try {
       while (parser_->parseTopStatement(top_, scene_.rootNodes)) {
@@ -430,6 +432,7 @@ class XmlDocument final : public XmlStatementBuilder {
   std::unique_ptr<Parser> parser_;
   Scope top_;
   bool stopped_ = false;
+  std::size_t parsedSize_ = 0;  // size of the Classic text when it was last parsed
   std::string headerProblem_;
 };
 

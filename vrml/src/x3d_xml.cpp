@@ -248,9 +248,9 @@ struct XmlToClassic::Impl final : XmlTreeInfo {
   // `v` is plain; false (nothing added) otherwise.
   static bool readNumbers(XNode& x, const char* k, const char* v) {
     const NodeType& type = *x.type;
-    const std::size_t len = std::strlen(k);
+    const std::string_view name(k);
     for (const FieldSpec& f : type.fields) {
-      if (f.name.size() != len || std::memcmp(f.name.data(), k, len) != 0) continue;
+      if (!sameName(f.name, name)) continue;
       const int components = plainListComponents(f.type);
       if (components == 0 || f.access == AccessType::eventIn || f.access == AccessType::eventOut)
         return false;
@@ -258,7 +258,7 @@ struct XmlToClassic::Impl final : XmlTreeInfo {
       const bool ok = f.type == FieldType::MFInt32 ? readPlainInts(v, slot.ints)
                                                    : readPlainFloats(v, components, slot.floats);
       if (!ok) return false;
-      x.addNumbers(k, f.type, components);
+      x.addNumbers(name, f.type, components);
       return true;
     }
     return false;

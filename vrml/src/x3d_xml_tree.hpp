@@ -104,7 +104,7 @@ struct XNode {
     return numbers[attrCount];
   }
   /// Adds attribute `k`, whose value of type `t` nextNumbers() now holds.
-  void addNumbers(const char* k, FieldType t, int components) {
+  void addNumbers(std::string_view k, FieldType t, int components) {
     Numbers& n = numbers[attrCount];
     n.type = t;
     n.components = components;
