@@ -199,8 +199,10 @@ struct XmlToClassic::Impl final : XmlTreeInfo {
         const bool numbersNow = builder != nullptr && classicSafe && node->type != nullptr &&
                                 !node->instance && !node->source && !node->type->userFields &&
                                 (protos.empty() || !protos.contains(std::string(n)));
-        for (const XML_Char** a = atts; *a != nullptr; a += 2)
-          if (!numbersNow || !readNumbers(*node, a[0], a[1])) node->addAttr(a[0], a[1]);
+        for (const XML_Char** a = atts; *a != nullptr; a += 2) {
+          const std::string_view k(a[0]);
+          if (!numbersNow || !readNumbers(*node, k, a[1])) node->addAttr(k, a[1]);
+        }
         if (stack.back() == Frame::scene) {
           root = node;
         } else {
@@ -243,12 +245,11 @@ struct XmlToClassic::Impl final : XmlTreeInfo {
     return e;
   }
 
-  // Attribute `k` = `v` of built-in node element `x` as numbers, when it is a number list
+  // Attribute `name` = `v` of built-in node element `x` as numbers, when it is a number list
   // (MFInt32, MFFloat, MFVec2f, MFVec3f, MFColor) field of the type, named exactly, and
   // `v` is plain; false (nothing added) otherwise.
-  static bool readNumbers(XNode& x, const char* k, const char* v) {
+  static bool readNumbers(XNode& x, std::string_view name, const char* v) {
     const NodeType& type = *x.type;
-    const std::string_view name(k);
     for (const FieldSpec& f : type.fields) {
       if (!sameName(f.name, name)) continue;
       const int components = plainListComponents(f.type);

@@ -89,7 +89,7 @@ struct XNode {
   std::vector<Numbers> numbers;  // parallel to attrStore
 
   std::span<const Attr> attrs() const { return {attrStore.data(), attrCount}; }
-  void addAttr(const char* k, const char* v) {
+  void addAttr(std::string_view k, const char* v) {
     if (attrCount == attrStore.size()) attrStore.emplace_back();
     if (numbers.size() < attrStore.size()) numbers.resize(attrStore.size());
     numbers[attrCount].components = 0;
