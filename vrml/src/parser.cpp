@@ -729,8 +729,9 @@ void parseInto(std::string_view bytes, const std::string& url, Context& ctx, int
     importGltf(bytes, url, ctx.options, scene);
     return;
   }
-  // X3D's XML encoding (the first byte that is no space or BOM is '<'): translated into
-  // Classic VRML text, which is parsed below at the XML's locations.
+  // X3D's XML encoding (the first byte that is no space or BOM is '<'): plain statements
+  // built from their elements, the others translated into Classic VRML text and parsed,
+  // at the XML's locations (parser_xml_build.cpp).
   bool decided = false;
   if (looksLikeXml(bytes, decided)) {
     parseXmlInto(bytes, url, ctx, externDepth, scene);

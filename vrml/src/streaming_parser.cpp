@@ -6,7 +6,9 @@
 // more may come is undone (lexer position, scene sizes, counters, DEF and PROTO names) and
 // retried once the unparsed text has grown by half; the others are committed at once.
 // X3D's XML encoding (first byte '<') goes through XmlToClassic, whose Classic VRML text is
-// what grows in that string; the parser's diagnostics are then moved back onto the XML.
+// what grows in that string, at the XML's locations; a plain statement is built straight
+// from its elements (Impl::build, Parser::buildXmlStatement) once the statements before
+// it are parsed, and committed at once.
 // X3D's JSON encoding (first byte '{') is not streamed: its bytes are collected in
 // `scratch` and translated by JsonToClassic at finish(), then parsed as one piece.
 #include "vrml/streaming_parser.hpp"

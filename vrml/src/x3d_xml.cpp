@@ -1,8 +1,9 @@
 // X3D XML encoding -> Classic VRML text (see x3d_xml.hpp). The element stack says where
 // the parser is (outside X3D, in head, in Scene, in a buffered statement, skipping); the
 // elements of one top-level statement are kept as a tree of XNode until its end tag, then
-// written out: attributes converted by the field types of x3dNodeType() (or of the
-// declared PROTO, or of the Script's <field>), child elements grouped by containerField.
+// offered to the builder (parser_xml_build.cpp), else written out: attributes converted
+// by the field types of x3dNodeType() (or of the declared PROTO, or of the Script's
+// <field>), child elements grouped by containerField.
 #include "x3d_xml.hpp"
 
 #include "vrml/field.hpp"
@@ -201,7 +202,7 @@ struct XmlToClassic::Impl final : XmlTreeInfo {
                                 (protos.empty() || !protos.contains(std::string(n)));
         for (const XML_Char** a = atts; *a != nullptr; a += 2) {
           const std::string_view k(a[0]);
-          if (!numbersNow || !readNumbers(*node, k, a[1])) node->addAttr(k, a[1]);
+          if (!numbersNow || !readXmlNumbers(*node, k, a[1])) node->addAttr(k, a[1]);
         }
         if (stack.back() == Frame::scene) {
           root = node;
@@ -243,26 +244,6 @@ struct XmlToClassic::Impl final : XmlTreeInfo {
     e.model = nodeModel(n);
     e.valid = true;
     return e;
-  }
-
-  // Attribute `name` = `v` of built-in node element `x` as numbers, when it is a number list
-  // (MFInt32, MFFloat, MFVec2f, MFVec3f, MFColor) field of the type, named exactly, and
-  // `v` is plain; false (nothing added) otherwise.
-  static bool readNumbers(XNode& x, std::string_view name, const char* v) {
-    const NodeType& type = *x.type;
-    for (const FieldSpec& f : type.fields) {
-      if (!sameName(f.name, name)) continue;
-      const int components = plainListComponents(f.type);
-      if (components == 0 || f.access == AccessType::eventIn || f.access == AccessType::eventOut)
-        return false;
-      XNode::Numbers& slot = x.nextNumbers();
-      const bool ok = f.type == FieldType::MFInt32 ? readPlainInts(v, slot.ints)
-                                                   : readPlainFloats(v, components, slot.floats);
-      if (!ok) return false;
-      x.addNumbers(name, f.type, components);
-      return true;
-    }
-    return false;
   }
 
   // A pooled XNode for element `n`, reset.
@@ -442,23 +423,7 @@ struct XmlToClassic::Impl final : XmlTreeInfo {
   // not close, the statements after it may be read as part of it, so none is built
   // straight from its elements any more (classicSafe).
   void checkRaw(std::string_view text) {
-    if (builder == nullptr || !classicSafe) return;
-    bool inString = false;
-    for (std::size_t i = 0; i < text.size(); ++i) {
-      const char c = text[i];
-      if (inString) {
-        if (c == '\\')
-          ++i;
-        else if (c == '"')
-          inString = false;
-      } else if (c == '"') {
-        inString = true;
-      } else if (c == '#' || c == '{' || c == '}' || c == '[' || c == ']') {
-        classicSafe = false;
-        return;
-      }
-    }
-    if (inString) classicSafe = false;
+    if (builder != nullptr && classicSafe && !rawClassicSafe(text)) classicSafe = false;
   }
 
   void convertedValue(const XNode& n, FieldType t, std::string_view value) {
@@ -628,24 +593,6 @@ struct XmlToClassic::Impl final : XmlTreeInfo {
     e.fieldType = findBuiltInFieldType(type, f);
     return e.fieldType;
   }
-  static std::optional<FieldType> findBuiltInFieldType(const NodeType& type, std::string_view f) {
-    {
-      int i = type.findField(f);
-      // X3D's names for VRML97's fields (Parser::x3dFieldAlias).
-      if (i < 0 && type.id() == NodeTypeId::Collision && f == "enabled")
-        i = type.findExact("collide");
-      // X3D 3's names of ComposedCubeMapTexture's faces (Parser::x3dFieldAlias).
-      if (i < 0 && type.id() == NodeTypeId::ComposedCubeMapTexture &&
-          (f == "back" || f == "bottom" || f == "front" || f == "left" || f == "right" ||
-           f == "top"))
-        i = type.findExact(std::string(f) + "Texture");
-      if (i >= 0) return type.fields[static_cast<std::size_t>(i)].type;
-      if (f == "children" && (type.id() == NodeTypeId::Switch || type.id() == NodeTypeId::LOD))
-        return FieldType::MFNode;
-      return std::nullopt;
-    }
-  }
-
   void node(const XNode& n) {
     beginLine(n);
     if (const std::string* use = n.attr("USE")) {
@@ -792,21 +739,6 @@ struct XmlToClassic::Impl final : XmlTreeInfo {
   }
 };
 
-bool looksLikeXml(std::string_view text, bool& decided) {
-  std::size_t i = 0;
-  while (i < text.size()) {
-    const auto c = static_cast<unsigned char>(text[i]);
-    if (xmlSpace(static_cast<char>(c)) || c == 0xEF || c == 0xBB || c == 0xBF) {
-      ++i;
-      continue;
-    }
-    decided = true;
-    return c == '<';
-  }
-  decided = false;
-  return false;
-}
-
 XmlToClassic::XmlToClassic(std::string& out, std::string url, int maxNesting)
     : impl_(std::make_unique<Impl>(out, std::move(url), maxNesting)) {}
 
@@ -862,30 +794,6 @@ bool XmlToClassic::failed() const {
 
 const Diagnostic& XmlToClassic::fatalError() const {
   return impl_->fatal;
-}
-
-std::pair<int, int> OffsetLocations::at(std::size_t offset) {
-  const auto before = [](std::size_t o, const Entry& e) { return o < e.offset; };
-  if (entries_.empty() || offset < entries_.front().offset) return {0, 0};
-  std::size_t i = std::min(cursor_, entries_.size() - 1);
-  if (entries_[i].offset <= offset) {
-    // Forward from the last answer: a few steps, else a search of what is left.
-    for (int steps = 0; steps < 8 && i + 1 < entries_.size() && entries_[i + 1].offset <= offset;
-         ++steps)
-      ++i;
-    if (i + 1 < entries_.size() && entries_[i + 1].offset <= offset)
-      i = static_cast<std::size_t>(
-              std::upper_bound(entries_.begin() + static_cast<std::ptrdiff_t>(i), entries_.end(),
-                               offset, before) -
-              entries_.begin()) -
-          1;
-  } else {
-    i = static_cast<std::size_t>(
-            std::upper_bound(entries_.begin(), entries_.end(), offset, before) - entries_.begin()) -
-        1;
-  }
-  cursor_ = i;
-  return {entries_[i].line, entries_[i].column};
 }
 
 std::pair<int, int> XmlToClassic::xmlLocationAt(std::size_t offset) {

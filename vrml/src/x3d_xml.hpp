@@ -5,8 +5,10 @@
 // its end tag arrives, so a world still grows statement by statement while it loads.
 // Every element's translation starts on a line of its own, and the XML line and column
 // of its start tag are recorded for its first byte: origin() gives the parser those
-// locations, so every node, route and diagnostic it makes names the XML. Internal to
-// gs_vrml.
+// locations, so every node, route and diagnostic it makes names the XML. With a builder
+// (setBuilder: parseVrml's reader and StreamingParser), a plain statement is offered to it
+// first and built straight from its elements, with no Classic text (parser_xml_build.cpp).
+// Internal to gs_vrml.
 #pragma once
 
 #include "lexer.hpp"

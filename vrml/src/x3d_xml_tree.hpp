@@ -140,6 +140,22 @@ struct ProtoInfo {
   }
 };
 
+/// The type of field `f` of built-in `type` as the translation writes its value:
+/// NodeType::findField (with the set_ / _changed aliases), X3D's names of Collision's
+/// `collide` and of ComposedCubeMapTexture's faces, Switch's and LOD's `children`;
+/// nothing when none (x3d_xml_support.cpp).
+std::optional<FieldType> findBuiltInFieldType(const NodeType& type, std::string_view f);
+
+/// Attribute `name` = `v` (expat's NUL-terminated text) of built-in node element `x` read
+/// as numbers (XNode::Numbers) when it is a number list field of x's type (MFInt32,
+/// MFFloat, MFVec2f, MFVec3f, MFColor), named exactly, and `v` is plain
+/// (x3d_numbers.hpp); false, nothing added, otherwise (x3d_xml_support.cpp).
+bool readXmlNumbers(XNode& x, std::string_view name, const char* v);
+
+/// Whether raw XML text written into the Classic translation keeps its statement closed:
+/// no '#', bracket or brace outside strings, every string ended (x3d_xml_support.cpp).
+bool rawClassicSafe(std::string_view text);
+
 /// What the translator knows of a statement's elements that the direct builder needs
 /// (x3d_xml.cpp implements it).
 class XmlTreeInfo {
