@@ -6,6 +6,7 @@
 // unit rules), so that it gives what the parse of its translation gives. Whatever that
 // parse would report, and whatever the XML spells with more than node elements, is
 // translated and parsed as before, in document order with the built statements.
+#include "base/text.hpp"
 #include "parser_impl.hpp"
 #include "x3d_numbers.hpp"
 #include "x3d_values.hpp"
@@ -111,9 +112,61 @@ void Parser::xmlValue(Scope& scope, FieldType t, const std::string& text, FieldV
   if (!lex_.atEnd()) throw NotPlain{};  // more than one value: an error
 }
 
-// The number lists of xmlValue in their plain forms (x3d_numbers.hpp); false when `t` is
-// none of them or the text is not plain.
+// The number lists of xmlValue in their plain forms (x3d_numbers.hpp), and SFBool and
+// the float vectors (SFFloat ... SFRotation) as the lexer reads their one value; false
+// when `t` is none of them or the text is not plain.
 bool Parser::xmlNumbers(FieldType t, const std::string& text, FieldValue& out) {
+  auto& st = out.storage();
+  switch (t) {
+    case FieldType::SFBool: {
+      // One word, true or false in any case (as appendXmlValueAsClassic turns it into
+      // TRUE or FALSE for readBool).
+      std::string_view w = text;
+      while (!w.empty() &&
+             (w.front() == ' ' || w.front() == '\t' || w.front() == '\n' || w.front() == '\r'))
+        w.remove_prefix(1);
+      while (!w.empty() &&
+             (w.back() == ' ' || w.back() == '\t' || w.back() == '\n' || w.back() == '\r'))
+        w.remove_suffix(1);
+      if (base::equalsNoCase(w, "true")) {
+        st.emplace<static_cast<std::size_t>(FieldType::SFBool)>(true);
+        return true;
+      }
+      if (base::equalsNoCase(w, "false")) {
+        st.emplace<static_cast<std::size_t>(FieldType::SFBool)>(false);
+        return true;
+      }
+      return false;
+    }
+    case FieldType::SFFloat:
+    case FieldType::SFVec2f:
+    case FieldType::SFVec3f:
+    case FieldType::SFColor:
+    case FieldType::SFRotation: {
+      const int n = t == FieldType::SFFloat      ? 1
+                    : t == FieldType::SFVec2f    ? 2
+                    : t == FieldType::SFRotation ? 4
+                                                 : 3;
+      if (!readPlainFloats(text.c_str(), n, floatScratch_) ||
+          floatScratch_.size() != static_cast<std::size_t>(n))
+        return false;
+      const float* f = floatScratch_.data();
+      if (t == FieldType::SFFloat)
+        st.emplace<static_cast<std::size_t>(FieldType::SFFloat)>(f[0]);
+      else if (t == FieldType::SFVec2f)
+        st.emplace<static_cast<std::size_t>(FieldType::SFVec2f)>(glm::vec2(f[0], f[1]));
+      else if (t == FieldType::SFVec3f)
+        st.emplace<static_cast<std::size_t>(FieldType::SFVec3f)>(glm::vec3(f[0], f[1], f[2]));
+      else if (t == FieldType::SFColor)
+        st.emplace<static_cast<std::size_t>(FieldType::SFColor)>(glm::vec3(f[0], f[1], f[2]));
+      else
+        st.emplace<static_cast<std::size_t>(FieldType::SFRotation)>(
+            glm::vec4(f[0], f[1], f[2], f[3]));
+      return true;
+    }
+    default:
+      break;
+  }
   const int components = plainListComponents(t);
   if (components == 0) return false;
   if (t == FieldType::MFInt32 ? !readPlainInts(text.c_str(), intScratch_)
