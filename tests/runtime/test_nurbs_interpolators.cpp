@@ -52,16 +52,16 @@ std::size_t nurbsInterpErrors(const RunningWorld& w, const std::string& text) {
   return n;
 }
 
-void checkVec3(const glm::vec3& got, const glm::vec3& want) {
+void nurbsInterpCheck(const glm::vec3& got, const glm::vec3& want) {
   INFO("got " << got.x << " " << got.y << " " << got.z);
   CHECK(got.x == Approx(want.x).margin(1e-5));
   CHECK(got.y == Approx(want.y).margin(1e-5));
   CHECK(got.z == Approx(want.z).margin(1e-5));
 }
 
-constexpr float kHalfRoot2 = 0.70710678f;
+constexpr float kNurbsInterpHalfRoot2 = 0.70710678f;
 
-const char* const kQuarterCircle =
+const char* const kNurbsInterpQuarterCircle =
     "order 3 weight [ 1 0.70710678 1 ] controlPoint Coordinate { point [ 1 0 0, 1 1 0, 0 1 0 ] }";
 
 }  // namespace
@@ -77,12 +77,12 @@ ROUTE I.value_changed TO X.translation
 )"));
   // No knots: 0 0 0.5 1 1 (the uniform ones scaled to [0, 1]); fraction 0.25 is halfway
   // along the first segment.
-  checkVec3(nurbsInterpPositionAt(w, 0.25f), {0.5f, 0.0f, 0.0f});
-  checkVec3(nurbsInterpPositionAt(w, 0.5f), {1.0f, 0.0f, 0.0f});
-  checkVec3(nurbsInterpPositionAt(w, 0.75f), {1.0f, 0.5f, 0.0f});
+  nurbsInterpCheck(nurbsInterpPositionAt(w, 0.25f), {0.5f, 0.0f, 0.0f});
+  nurbsInterpCheck(nurbsInterpPositionAt(w, 0.5f), {1.0f, 0.0f, 0.0f});
+  nurbsInterpCheck(nurbsInterpPositionAt(w, 0.75f), {1.0f, 0.5f, 0.0f});
   // Outside [0, 1]: the ends.
-  checkVec3(nurbsInterpPositionAt(w, -1.0f), {0.0f, 0.0f, 0.0f});
-  checkVec3(nurbsInterpPositionAt(w, 2.0f), {1.0f, 1.0f, 0.0f});
+  nurbsInterpCheck(nurbsInterpPositionAt(w, -1.0f), {0.0f, 0.0f, 0.0f});
+  nurbsInterpCheck(nurbsInterpPositionAt(w, 2.0f), {1.0f, 1.0f, 0.0f});
   CHECK(nurbsInterpSend(w, 0.5f) ==
         std::vector<std::string>{"I.value_changed=1 0 0", "X.translation_changed=1 0 0"});
   CHECK(w.model->diagnostics().items.empty());
@@ -99,51 +99,56 @@ ROUTE I.value_changed TO X.translation
 )"));
   // Knots 0 0 4 4: the range [0, 4] and the fraction is the knot value: 2 is the midpoint,
   // 0.5 an eighth of the way, past 4 the end.
-  checkVec3(nurbsInterpPositionAt(w, 2.0f), {3.0f, 1.0f, 3.0f});
-  checkVec3(nurbsInterpPositionAt(w, 0.5f), {2.25f, 0.25f, 0.75f});
-  checkVec3(nurbsInterpPositionAt(w, 5.0f), {4.0f, 2.0f, 6.0f});
+  nurbsInterpCheck(nurbsInterpPositionAt(w, 2.0f), {3.0f, 1.0f, 3.0f});
+  nurbsInterpCheck(nurbsInterpPositionAt(w, 0.5f), {2.25f, 0.25f, 0.75f});
+  nurbsInterpCheck(nurbsInterpPositionAt(w, 5.0f), {4.0f, 2.0f, 6.0f});
   // Without knots (0 0 1 1), fraction 0.5 is the midpoint.
   RunningWorld plain(x3dWorld(R"(
 DEF I NurbsPositionInterpolator { order 2 controlPoint CoordinateDouble { point [ 2 0 0, 4 2 6 ] } }
 DEF X Transform {}
 ROUTE I.value_changed TO X.translation
 )"));
-  checkVec3(nurbsInterpPositionAt(plain, 0.5f), {3.0f, 1.0f, 3.0f});
+  nurbsInterpCheck(nurbsInterpPositionAt(plain, 0.5f), {3.0f, 1.0f, 3.0f});
 }
 
 TEST_CASE("NURBS interpolators: a rational quadratic quarter circle has radius 1",
           "[runtime][x3d][nurbs]") {
-  RunningWorld w(x3dWorld(std::string("DEF I NurbsPositionInterpolator { ") + kQuarterCircle +
+  RunningWorld w(x3dWorld(std::string("DEF I NurbsPositionInterpolator { ") +
+                          kNurbsInterpQuarterCircle +
                           " }\nDEF X Transform {}\nROUTE I.value_changed TO X.translation\n"));
   for (float f = 0.0f; f <= 1.0f; f += 0.125f) {
     const glm::vec3 p = nurbsInterpPositionAt(w, f);
     CHECK(glm::length(p) == Approx(1.0f).epsilon(1e-5));
     CHECK(p.z == Approx(0.0f).margin(1e-6));
   }
-  checkVec3(nurbsInterpPositionAt(w, 0.0f), {1.0f, 0.0f, 0.0f});
-  checkVec3(nurbsInterpPositionAt(w, 0.5f), {kHalfRoot2, kHalfRoot2, 0.0f});  // symmetric
-  checkVec3(nurbsInterpPositionAt(w, 1.0f), {0.0f, 1.0f, 0.0f});
+  nurbsInterpCheck(nurbsInterpPositionAt(w, 0.0f), {1.0f, 0.0f, 0.0f});
+  nurbsInterpCheck(nurbsInterpPositionAt(w, 0.5f),
+                   {kNurbsInterpHalfRoot2, kNurbsInterpHalfRoot2, 0.0f});  // symmetric
+  nurbsInterpCheck(nurbsInterpPositionAt(w, 1.0f), {0.0f, 1.0f, 0.0f});
 }
 
 TEST_CASE("NURBS interpolators: the orientation turns +Z onto the tangent, along the circle",
           "[runtime][x3d][nurbs]") {
-  RunningWorld w(x3dWorld(std::string("DEF I NurbsOrientationInterpolator { ") + kQuarterCircle +
+  RunningWorld w(x3dWorld(std::string("DEF I NurbsOrientationInterpolator { ") +
+                          kNurbsInterpQuarterCircle +
                           " }\nDEF X Transform {}\nROUTE I.value_changed TO X.rotation\n"));
   // The counter-clockwise circle's tangent at (x, y) is (-y, x, 0).
-  checkVec3(nurbsInterpTurnedZAt(w, 0.0f), {0.0f, 1.0f, 0.0f});
-  checkVec3(nurbsInterpTurnedZAt(w, 0.5f), {-kHalfRoot2, kHalfRoot2, 0.0f});
-  checkVec3(nurbsInterpTurnedZAt(w, 1.0f), {-1.0f, 0.0f, 0.0f});
+  nurbsInterpCheck(nurbsInterpTurnedZAt(w, 0.0f), {0.0f, 1.0f, 0.0f});
+  nurbsInterpCheck(nurbsInterpTurnedZAt(w, 0.5f),
+                   {-kNurbsInterpHalfRoot2, kNurbsInterpHalfRoot2, 0.0f});
+  nurbsInterpCheck(nurbsInterpTurnedZAt(w, 1.0f), {-1.0f, 0.0f, 0.0f});
   // At 0: +Z onto +Y is a quarter turn about -X.
   nurbsInterpSend(w, 0.0f);
   const auto r0 = w.node("X").field("rotation")->get<FieldType::SFRotation>();
-  checkVec3({r0.x, r0.y, r0.z}, {-1.0f, 0.0f, 0.0f});
+  nurbsInterpCheck({r0.x, r0.y, r0.z}, {-1.0f, 0.0f, 0.0f});
   CHECK(r0.w == Approx(1.5707963f));
   // Between, the tangent stays perpendicular to the radius.
-  RunningWorld p(x3dWorld(std::string("DEF I NurbsPositionInterpolator { ") + kQuarterCircle +
+  RunningWorld p(x3dWorld(std::string("DEF I NurbsPositionInterpolator { ") +
+                          kNurbsInterpQuarterCircle +
                           " }\nDEF X Transform {}\nROUTE I.value_changed TO X.translation\n"));
   for (float f = 0.1f; f < 1.0f; f += 0.2f) {
     const glm::vec3 at = nurbsInterpPositionAt(p, f);
-    checkVec3(nurbsInterpTurnedZAt(w, f), {-at.y, at.x, 0.0f});
+    nurbsInterpCheck(nurbsInterpTurnedZAt(w, f), {-at.y, at.x, 0.0f});
   }
 }
 
@@ -159,16 +164,16 @@ ROUTE I.value_changed TO X.rotation
   // z x x = +Y, a quarter turn: (0 1 0 1.5708).
   nurbsInterpSend(w, 0.1f);
   const auto r = w.node("X").field("rotation")->get<FieldType::SFRotation>();
-  checkVec3({r.x, r.y, r.z}, {0.0f, 1.0f, 0.0f});
+  nurbsInterpCheck({r.x, r.y, r.z}, {0.0f, 1.0f, 0.0f});
   CHECK(r.w == Approx(1.5707963f));
   // The middle segment is a point (no derivative): the direction of its neighbours.
-  checkVec3(nurbsInterpTurnedZAt(w, 0.5f), {1.0f, 0.0f, 0.0f});
+  nurbsInterpCheck(nurbsInterpTurnedZAt(w, 0.5f), {1.0f, 0.0f, 0.0f});
   RunningWorld back(x3dWorld(R"(
 DEF I NurbsOrientationInterpolator { order 2 controlPoint Coordinate { point [ 0 0 1, 0 0 -1 ] } }
 DEF X Transform {}
 ROUTE I.value_changed TO X.rotation
 )"));
-  checkVec3(nurbsInterpTurnedZAt(back, 0.5f), {0.0f, 0.0f, -1.0f});  // a half turn about +Y
+  nurbsInterpCheck(nurbsInterpTurnedZAt(back, 0.5f), {0.0f, 0.0f, -1.0f});  // a half turn about +Y
 }
 
 TEST_CASE("NURBS interpolators: NurbsSurfaceInterpolator's position and normal",
@@ -191,14 +196,14 @@ ROUTE I.normal_changed TO N.translation
   };
   // S(u, v) = (u, v, uv); dS/du = (1, 0, v), dS/dv = (0, 1, u), their cross (-v, -u, 1).
   auto [p, n] = at(0.5f, 0.5f);
-  checkVec3(p, {0.5f, 0.5f, 0.25f});
+  nurbsInterpCheck(p, {0.5f, 0.5f, 0.25f});
   const float k = 1.0f / std::sqrt(1.5f);
-  checkVec3(n, {-0.5f * k, -0.5f * k, k});
+  nurbsInterpCheck(n, {-0.5f * k, -0.5f * k, k});
   std::tie(p, n) = at(1.0f, 0.0f);
-  checkVec3(p, {1.0f, 0.0f, 0.0f});
-  checkVec3(n, {0.0f, -1.0f / std::sqrt(2.0f), 1.0f / std::sqrt(2.0f)});
+  nurbsInterpCheck(p, {1.0f, 0.0f, 0.0f});
+  nurbsInterpCheck(n, {0.0f, -1.0f / std::sqrt(2.0f), 1.0f / std::sqrt(2.0f)});
   std::tie(p, n) = at(0.0f, 0.0f);
-  checkVec3(n, {0.0f, 0.0f, 1.0f});
+  nurbsInterpCheck(n, {0.0f, 0.0f, 1.0f});
   CHECK(w.model->diagnostics().items.empty());
   // A patch whose v = 1 edge collapses to a point (a pole): the normal of the plane still.
   RunningWorld pole(x3dWorld(R"(
@@ -210,7 +215,8 @@ DEF N Transform {}
 ROUTE I.normal_changed TO N.translation
 )"));
   pole.send("I", "set_fraction", FieldValue::make<FieldType::SFVec2f>(glm::vec2(0.5f, 1.0f)));
-  checkVec3(pole.node("N").field("translation")->get<FieldType::SFVec3f>(), {0.0f, 0.0f, 1.0f});
+  nurbsInterpCheck(pole.node("N").field("translation")->get<FieldType::SFVec3f>(),
+                   {0.0f, 0.0f, 1.0f});
 }
 
 TEST_CASE("NURBS interpolators: a TimeSensor drives NurbsPositionInterpolator",
@@ -223,7 +229,7 @@ ROUTE T.fraction_changed TO I.set_fraction
 ROUTE I.value_changed TO X.translation
 )"));
   w.model->advanceTo(1.0);  // fraction 0.25
-  checkVec3(w.node("X").field("translation")->get<FieldType::SFVec3f>(), {2.0f, 0.0f, 0.0f});
+  nurbsInterpCheck(w.node("X").field("translation")->get<FieldType::SFVec3f>(), {2.0f, 0.0f, 0.0f});
 }
 
 TEST_CASE("NURBS interpolators: bad fields give one error and no output", "[runtime][x3d][nurbs]") {
@@ -270,12 +276,13 @@ DEF I NurbsSurfaceInterpolator {
 
 TEST_CASE("NURBS interpolators: the pure functions give no NaN for NaN fractions",
           "[runtime][x3d][nurbs]") {
-  RunningWorld w(x3dWorld(std::string("DEF I NurbsPositionInterpolator { ") + kQuarterCircle +
-                          " }\nDEF O NurbsOrientationInterpolator { " + kQuarterCircle + " }\n"));
+  RunningWorld w(x3dWorld(std::string("DEF I NurbsPositionInterpolator { ") +
+                          kNurbsInterpQuarterCircle + " }\nDEF O NurbsOrientationInterpolator { " +
+                          kNurbsInterpQuarterCircle + " }\n"));
   std::string problem;
   const auto p = gs::runtime::nurbsPositionAt(w.node("I"), std::nanf(""), problem);
   REQUIRE(p);
-  checkVec3(*p, {1.0f, 0.0f, 0.0f});  // NaN counts as 0
+  nurbsInterpCheck(*p, {1.0f, 0.0f, 0.0f});  // NaN counts as 0
   const auto r = gs::runtime::nurbsOrientationAt(w.node("O"), std::nanf(""), problem);
   REQUIRE(r);
   CHECK(std::isfinite(r->w));
