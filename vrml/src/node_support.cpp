@@ -49,8 +49,12 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::ScreenFontStyle,  // scene/src/text_mesh.cpp: pointSize
     NodeTypeId::NurbsCurve,       // vrml/src/geometry_nurbs.cpp
     NodeTypeId::NurbsPatchSurface,
-    NodeTypeId::NurbsTrimmedSurface,  // untrimmed
-    NodeTypeId::PixelTexture3D,       // render/src/textures_3d.cpp; volume data too
+    NodeTypeId::NurbsTrimmedSurface,        // untrimmed
+    NodeTypeId::NurbsTextureCoordinate,     // vrml/src/geometry_nurbs.cpp
+    NodeTypeId::NurbsPositionInterpolator,  // runtime/src/interpolators_nurbs.cpp
+    NodeTypeId::NurbsOrientationInterpolator,
+    NodeTypeId::NurbsSurfaceInterpolator,
+    NodeTypeId::PixelTexture3D,  // render/src/textures_3d.cpp; volume data too
     NodeTypeId::ComposedTexture3D,
     NodeTypeId::ImageTexture3D,
     NodeTypeId::VolumeData,  // render/src/volume_data.cpp: QNV splats
