@@ -29,9 +29,10 @@ struct GpuMesh {
   bool indexed = false;
   vrml::Primitive primitive = vrml::Primitive::triangles;
   bool hasNormals = false, hasColors = false, hasTexCoords = false;
-  bool colorAlpha = false;     // some colour is translucent (X3D ColorRGBA alpha < 1)
-  bool hasTexCoords1 = false;  // the second texture coordinate set (vrml::Mesh::texCoords1)
-  bool hasFogDepths = false;   // X3D FogCoordinate depths (vrml::Mesh::fogDepths)
+  bool colorAlpha = false;        // some colour is translucent (X3D ColorRGBA alpha < 1)
+  bool hasTexCoords1 = false;     // the second texture coordinate set (vrml::Mesh::texCoords1)
+  bool hasFogDepths = false;      // X3D FogCoordinate depths (vrml::Mesh::fogDepths)
+  bool hasTexCoordsStrq = false;  // X3D TextureCoordinate3D/4D (vrml::Mesh::texCoordsStrq)
   bool solid = true;
   std::size_t triangles = 0;
   vrml::Bounds bounds;
@@ -39,7 +40,8 @@ struct GpuMesh {
 
   /// Uploads `mesh` (attribute locations: 0 position, 1 normal, 2 colour, 3 texCoord,
   /// 4 the second texCoord set, 5 the fog depth: -1 when the mesh has none, meaning the
-  /// distance to the viewer).
+  /// distance to the viewer, 6 the X3D TextureCoordinate3D/4D (s, t, r, q): (0, 0, 0, 0)
+  /// when the mesh has none).
   void upload(const vrml::Mesh& mesh);
   /// Issues the draw call (the program and uniforms must be set).
   void draw() const;

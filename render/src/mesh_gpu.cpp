@@ -21,6 +21,7 @@ void GpuMesh::upload(const vrml::Mesh& mesh) {
   hasTexCoords = mesh.texCoords.size() == n && n > 0;
   hasTexCoords1 = hasTexCoords && mesh.texCoords1.size() == n;
   hasFogDepths = mesh.fogDepths.size() == n && n > 0;
+  hasTexCoordsStrq = mesh.texCoordsStrq.size() == n && n > 0;
   indexed = !mesh.indices.empty();
   count = static_cast<GLsizei>(indexed ? mesh.indices.size() : n);
   if (!indexed && primitive == vrml::Primitive::triangles) triangles = n / 3;
@@ -42,8 +43,9 @@ void GpuMesh::upload(const vrml::Mesh& mesh) {
   const std::size_t texBytes = hasTexCoords ? n * sizeof(glm::vec2) : 0;
   const std::size_t tex1Bytes = hasTexCoords1 ? n * sizeof(glm::vec2) : 0;
   const std::size_t fogBytes = hasFogDepths ? n * sizeof(float) : 0;
+  const std::size_t strqBytes = hasTexCoordsStrq ? n * sizeof(glm::vec4) : 0;
   const std::size_t total =
-      positionBytes + normalBytes + colorBytes + texBytes + tex1Bytes + fogBytes;
+      positionBytes + normalBytes + colorBytes + texBytes + tex1Bytes + fogBytes + strqBytes;
 
   glGenVertexArrays(1, &vao);
   glBindVertexArray(vao);
@@ -65,6 +67,7 @@ void GpuMesh::upload(const vrml::Mesh& mesh) {
   if (hasTexCoords) attribute(3, 2, mesh.texCoords.data(), texBytes);
   if (hasTexCoords1) attribute(4, 2, mesh.texCoords1.data(), tex1Bytes);
   if (hasFogDepths) attribute(5, 1, mesh.fogDepths.data(), fogBytes);
+  if (hasTexCoordsStrq) attribute(6, 4, mesh.texCoordsStrq.data(), strqBytes);
   if (indexed) {
     glGenBuffers(1, &indexBuffer);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indexBuffer);
@@ -84,6 +87,7 @@ void GpuMesh::draw() const {
   if (!hasTexCoords) glVertexAttrib2f(3, 0.0f, 0.0f);
   if (!hasTexCoords1) glVertexAttrib2f(4, 0.0f, 0.0f);
   if (!hasFogDepths) glVertexAttrib1f(5, -1.0f);
+  if (!hasTexCoordsStrq) glVertexAttrib4f(6, 0.0f, 0.0f, 0.0f, 0.0f);
   const GLenum mode = primitive == vrml::Primitive::triangles ? GL_TRIANGLES
                       : primitive == vrml::Primitive::lines   ? GL_LINES
                                                               : GL_POINTS;

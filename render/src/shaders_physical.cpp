@@ -38,6 +38,7 @@ in vec3 v_normal;
 in vec4 v_color;
 in vec2 v_texCoord;
 in vec2 v_texCoord1;
+in float v_texQ;  // X3D TextureCoordinate4D's q (1 otherwise): v_texCoord / it
 
 uniform bool u_hasColor;
 uniform int u_textureComponents;  // base colour texture: 0 none
@@ -101,7 +102,7 @@ vec3 toSrgb(vec3 c) {
 }
 
 vec2 uvOf(int set) {
-  return set == 1 ? v_texCoord1 : v_texCoord;
+  return set == 1 ? v_texCoord1 : v_texCoord / v_texQ;
 }
 
 vec3 surfaceNormal() {

@@ -118,6 +118,35 @@ EXTENSIONS = [
     },
 ]
 
+# castle-engine's extension fields on the X3D primitives (castle's "X3D extensions"
+# documentation; castle-engine's src/scene/x3d node declarations): Box, Cone, Cylinder,
+# Sphere and Text take a `texCoord` that replaces the primitive's own texture mapping
+# (castle accepts TextureCoordinateGenerator there, and its own ProjectedTextureCoordinate
+# and MultiGeneratedTextureCoordinate, which GhostSpace does not have), and Box a `ccw`
+# (FALSE turns its faces inside out). They are appended to the X3D node's model, so X3D
+# worlds accept them; VRML97 worlds read node_table_data.cpp's interfaces and never see
+# them. docs/x3d.md ("castle-engine's primitive fields") describes them.
+_CASTLE_TEX_COORD = ("texCoord", "SFNode", "inputOutput", "NULL", "TextureCoordinateGenerator")
+CASTLE_PRIMITIVE_FIELDS = {
+    "Box": [("ccw", "SFBool", "initializeOnly", "true", ""), _CASTLE_TEX_COORD],
+    "Cone": [_CASTLE_TEX_COORD],
+    "Cylinder": [_CASTLE_TEX_COORD],
+    "Sphere": [_CASTLE_TEX_COORD],
+    "Text": [_CASTLE_TEX_COORD],
+}
+
+
+def add_castle_fields(concrete, extra):
+    """Appends castle-engine's extension fields `extra` (node name -> field rows) to the
+    models in `concrete`; a field the standard already declares is an error."""
+    by_name = {c["name"]: c for c in concrete}
+    for node, rows in extra.items():
+        have = {f[0] for f in by_name[node]["fields"]}
+        for row in rows:
+            assert row[0] not in have, "%s.%s is already X3D's" % (node, row[0])
+            by_name[node]["fields"].append(row)
+
+
 # XML-encoding attributes X3DUOM lists as fields of every node (inherited from X3DNode);
 # not interface members. FontStyle's own `style` is a field.
 XML_ONLY_FIELDS = {"DEF", "USE", "class", "id", "style", "IS"}
@@ -165,6 +194,7 @@ def read_uom(path):
     for c in concrete:
         if c["name"] in SINGLE_TEXTURE_TRANSFORMS:
             c["bases"] = ["X3DSingleTextureTransformNode"]
+    add_castle_fields(concrete, CASTLE_PRIMITIVE_FIELDS)
     return abstract, concrete
 
 

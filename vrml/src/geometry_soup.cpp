@@ -127,6 +127,8 @@ Mesh buildPolygonMesh(const PolygonSoup& s) {
   MeshBuilder builder(Primitive::triangles, true, haveColors, haveTex);
   const bool haveTex1 = haveTex && s.texCoords1.size() == s.texCoords.size();
   if (haveTex1) builder.carrySecondTexCoords();
+  const bool haveStrq = haveTex && s.texCoordsStrq.size() == s.texCoords.size();
+  if (haveStrq) builder.carryStrqTexCoords();
   builder.reserve(0, tris.size());
   // Output vertices are found through a short chain per shared point (better locality
   // than one big hash table); past kMaxChain vertices at one point, new ones are simply
@@ -148,6 +150,7 @@ Mesh buildPolygonMesh(const PolygonSoup& s) {
       if (haveColors) v.color = s.colors[c];
       if (haveTex && finite(s.texCoords[c])) v.texCoord = s.texCoords[c];
       if (haveTex1 && finite(s.texCoords1[c])) v.texCoord1 = s.texCoords1[c];
+      if (haveStrq) v.texCoordStrq = s.texCoordsStrq[c];
       std::uint32_t found = kNone;
       int steps = 0;
       for (std::uint32_t i = head[p]; i != kNone && steps < kMaxChain; i = chain[i], ++steps) {

@@ -93,7 +93,9 @@ Mesh buildComposed(const Node& node, ProblemLog& log, std::span<const glm::vec3>
   const ColorSource colors(node);
   const auto& normals = childArray<FieldType::MFVec3f>(node, "normal", "vector");
   TexSource texKind = TexSource::none;
-  const auto& texPoints = texCoordPoints(node, texKind);
+  const StrqPoints strq = strqTexCoordPoints(node);  // X3D TextureCoordinate3D / 4D
+  const auto& texPoints = strq.present ? strq.st : texCoordPoints(node, texKind);
+  if (strq.present) texKind = TexSource::points;
   const bool haveColor = colors.present() && !colors.empty();
   const bool haveNormal = node.sfnode("normal") != nullptr && !normals.empty();
   const bool haveTex = texKind == TexSource::points && !texPoints.empty();
@@ -129,6 +131,8 @@ Mesh buildComposed(const Node& node, ProblemLog& log, std::span<const glm::vec3>
         if (v >= texPoints.size())
           log.addLazy([&] { return missing("texCoord", v, texPoints.size()); });
         soup.texCoords.push_back(ok ? texPoints[v] : glm::vec2(0.0f));
+        if (strq.present)
+          soup.texCoordsStrq.push_back(ok ? strq.strq[v] : glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
         if (tex1 != nullptr)
           soup.texCoords1.push_back(v < tex1->size() && finite((*tex1)[v]) ? (*tex1)[v]
                                                                            : glm::vec2(0.0f));

@@ -19,6 +19,7 @@ constexpr NodeTypeId kAccept7[] = {NodeTypeId::RigidBody};
 constexpr NodeTypeId kAccept8[] = {NodeTypeId::CollisionCollection};
 constexpr NodeTypeId kAccept9[] = {NodeTypeId::Contact};
 constexpr NodeTypeId kAccept10[] = {NodeTypeId::Analyser, NodeTypeId::AudioClip, NodeTypeId::AudioDestination, NodeTypeId::BiquadFilter, NodeTypeId::BufferAudioSource, NodeTypeId::ChannelMerger, NodeTypeId::ChannelSelector, NodeTypeId::ChannelSplitter, NodeTypeId::Convolver, NodeTypeId::Delay, NodeTypeId::DynamicsCompressor, NodeTypeId::Gain, NodeTypeId::ListenerPointSource, NodeTypeId::MicrophoneSource, NodeTypeId::MovieTexture, NodeTypeId::OscillatorSource, NodeTypeId::Sound, NodeTypeId::SpatialSound, NodeTypeId::StreamAudioDestination, NodeTypeId::StreamAudioSource, NodeTypeId::WaveShaper};
+constexpr NodeTypeId kAccept11[] = {NodeTypeId::TextureCoordinateGenerator};
 
 constexpr NodeFieldModel kFieldsOscillatorSource[] = {
     F{"description", "SFString", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -655,6 +656,7 @@ constexpr NodeFieldModel kFieldsSphere[] = {
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
     F{"radius", "SFFloat", "initializeOnly", "1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"solid", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"texCoord", "SFNode", "inputOutput", "NULL", "TextureCoordinateGenerator", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept11},
 };
 constexpr NodeFieldModel kFieldsSphereSensor[] = {
     F{"autoOffset", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},

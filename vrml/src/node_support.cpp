@@ -57,6 +57,8 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::PixelTexture3D,  // render/src/textures_3d.cpp; volume data too
     NodeTypeId::ComposedTexture3D,
     NodeTypeId::ImageTexture3D,
+    NodeTypeId::TextureCoordinate3D,  // vrml/src/geometry.cpp (Mesh::texCoordsStrq)
+    NodeTypeId::TextureCoordinate4D,
     NodeTypeId::VolumeData,  // render/src/volume_data.cpp: QNV splats
     NodeTypeId::IsoSurfaceVolumeData,
     NodeTypeId::SegmentedVolumeData,

@@ -60,6 +60,12 @@ struct Mesh {
   /// equation uses there instead of the distance to the viewer, in the geometry's length
   /// units; empty when the geometry has no FogCoordinate.
   std::vector<float> fogDepths;
+  /// X3D TextureCoordinate3D / TextureCoordinate4D coordinates (X3D 4.0 clauses 33.4.6,
+  /// 33.4.7) per vertex as (s, t, r, q), q = 1 for a TextureCoordinate3D: 3D textures read
+  /// at (s, t, r) / q and 2D textures at (s, t) / q, divided per pixel (projective);
+  /// texCoords then holds (s / q, t / q) for readers of 2D coordinates. Empty when the
+  /// geometry's texCoord (or its MultiTextureCoordinate's first set) is neither node.
+  std::vector<glm::vec4> texCoordsStrq;
   std::vector<std::uint32_t> indices;  // 3 per triangle, 2 per line segment, 1 per point
   bool solid = true;                   // back faces may be culled (the node's `solid` field)
   Bounds bounds;                       // of positions
@@ -81,7 +87,9 @@ struct Mesh {
 ///   normal, colour and texture coordinate are all equal.
 /// - Box, Cone, Cylinder and Sphere: kRoundSegments around the Y axis (Sphere: half as
 ///   many latitude bands, Cone kConeStacks stacks), flat caps, smooth sides, texture coordinates as
-///   clause 6 says; solid unless X3D's `solid` field (X3D clause 13) is FALSE.
+///   clause 6 says; solid unless X3D's `solid` field (X3D clause 13) is FALSE. A Box whose
+///   `ccw` (castle-engine's extension field, X3D worlds only) is FALSE is turned inside
+///   out: normals point in and the triangles face the inside.
 /// - IndexedLineSet gives Primitive::lines (a polyline breaks at a bad index), PointSet
 ///   Primitive::points; both without normals or texture coordinates, solid = false.
 /// - Colours come from a Color node or an X3D ColorRGBA node (X3D clause 11, its alpha goes to
@@ -89,6 +97,8 @@ struct Mesh {
 /// - The X3D triangle and quad sets (X3D clauses 11, 32) honour ccw, solid, colorPerVertex,
 ///   normalPerVertex, color, normal and texCoord (a TextureCoordinate, or the first of a
 ///   MultiTextureCoordinate; a TextureCoordinateGenerator gives no texture coordinates;
+///   a TextureCoordinate3D or TextureCoordinate4D, here and in IndexedFaceSet, gives
+///   Mesh::texCoordsStrq, a point with q = 0 or not finite reading as (0, 0, 0, 1);
 ///   NULL gives IndexedFaceSet's bounding-box default). Per face means per triangle (per
 ///   quad). Without a Normal node, normals are generated as X3D clause 11 says: with
 ///   normalPerVertex TRUE the average of the faces sharing the vertex (the same
