@@ -130,6 +130,7 @@ std::uint64_t MeshBuilder::hashOf(const Vertex& v) const {
   if (colors_) h = mix(h, &v.color, sizeof v.color);
   if (texCoords_) h = mix(h, &v.texCoord, sizeof v.texCoord);
   if (texCoords1_) h = mix(h, &v.texCoord1, sizeof v.texCoord1);
+  if (points_) h = mix(h, &v.point, sizeof v.point);
   return finalMix(h);
 }
 
@@ -139,6 +140,7 @@ std::uint64_t MeshBuilder::hashOfStored(std::uint32_t i) const {
   if (colors_) h = mix(h, &mesh_.colors[i], sizeof(glm::vec4));
   if (texCoords_) h = mix(h, &mesh_.texCoords[i], sizeof(glm::vec2));
   if (texCoords1_) h = mix(h, &mesh_.texCoords1[i], sizeof(glm::vec2));
+  if (points_) h = mix(h, &mesh_.pointIndices[i], sizeof(std::uint32_t));
   return finalMix(h);
 }
 
@@ -147,7 +149,9 @@ bool MeshBuilder::sameAsStored(std::uint32_t i, const Vertex& v) const {
          (!normals_ || std::memcmp(&mesh_.normals[i], &v.normal, sizeof v.normal) == 0) &&
          (!colors_ || std::memcmp(&mesh_.colors[i], &v.color, sizeof v.color) == 0) &&
          (!texCoords_ || std::memcmp(&mesh_.texCoords[i], &v.texCoord, sizeof v.texCoord) == 0) &&
-         (!texCoords1_ || std::memcmp(&mesh_.texCoords1[i], &v.texCoord1, sizeof v.texCoord1) == 0);
+         (!texCoords1_ ||
+          std::memcmp(&mesh_.texCoords1[i], &v.texCoord1, sizeof v.texCoord1) == 0) &&
+         (!points_ || mesh_.pointIndices[i] == v.point);
 }
 
 void MeshBuilder::grow(std::size_t minSlots) {
@@ -172,6 +176,7 @@ std::uint32_t MeshBuilder::push(const Vertex& v) {
   if (colors_) mesh_.colors.push_back(v.color);
   if (texCoords_) mesh_.texCoords.push_back(v.texCoord);
   if (texCoords1_) mesh_.texCoords1.push_back(v.texCoord1);
+  if (points_) mesh_.pointIndices.push_back(v.point);
   return i;
 }
 
@@ -197,6 +202,7 @@ void MeshBuilder::reserve(std::size_t vertices, std::size_t indices) {
   if (colors_) mesh_.colors.reserve(vertices);
   if (texCoords_) mesh_.texCoords.reserve(vertices);
   if (texCoords1_) mesh_.texCoords1.reserve(vertices);
+  if (points_) mesh_.pointIndices.reserve(vertices);
   mesh_.indices.reserve(indices);
   grow(2 * vertices + 2);
 }
@@ -347,6 +353,7 @@ Mesh tessellate(const Node& geometry, Diagnostics* diag) {
       break;
   }
   assignFogDepths(geometry, m);
+  assignVertexAttributes(geometry, m, log);
   log.flush();
   return m;
 }
