@@ -226,17 +226,24 @@ GLuint compileStage(ShaderStage stage, const std::string& source, const std::str
 }
 
 // What the program is built from: the parts' revisions (not the shader's own, which every
-// routed uniform value bumps); for a ProgramShader its programs' types and urls (their
-// revisions count their uniform fields too).
-std::uint64_t sourcesRevision(const vrml::Node& shader) {
+// routed uniform value bumps); for a ProgramShader a hash of its programs' types and urls
+// (their revisions count their uniform fields too), remembered in `hashes` per program
+// revision so that inline sources are not hashed every frame.
+std::uint64_t sourcesRevision(const vrml::Node& shader,
+                              vrml::NodeMap<std::pair<std::uint64_t, std::uint64_t>>& hashes) {
   std::uint64_t r = 1;
   if (shader.typeId() == vrml::NodeTypeId::ProgramShader) {
     const std::hash<std::string_view> hash;
     for (const vrml::NodePtr& program : shader.mfnode("programs")) {
       r = r * 1000003u + (program ? program->serial() : 0u);
       if (!program) continue;
-      r = r * 31u + hash(scene::sfString(*program, "type"));
-      for (const std::string& url : scene::mfString(*program, "url")) r = r * 31u + hash(url);
+      auto [known, fresh] = hashes.try_emplace(program.get(), program->revision(), 0);
+      if (fresh || known->second.first != program->revision()) {
+        std::uint64_t h = hash(scene::sfString(*program, "type"));
+        for (const std::string& url : scene::mfString(*program, "url")) h = h * 31u + hash(url);
+        known->second = {program->revision(), h};
+      }
+      r = r * 31u + known->second.second;
     }
     return r;
   }
@@ -338,7 +345,7 @@ const UserProgram* UserPrograms::find(const vrml::Node& appearance, const std::s
         !isGlsl(*shader))
       continue;
     Entry& e = programs_[shader.get()];
-    const std::uint64_t revision = sourcesRevision(*shader);
+    const std::uint64_t revision = sourcesRevision(*shader, sourceHashes_);
     if (e.program.id != 0 && e.partsRevision == revision) return &e.program;
     if (e.failed && e.partsRevision == revision) continue;
     if (e.program.id != 0) glDeleteProgram(e.program.id);
@@ -635,6 +642,7 @@ void UserPrograms::release() {
   for (auto& [key, e] : programs_)
     if (e.program.id != 0) glDeleteProgram(e.program.id);
   programs_.clear();
+  sourceHashes_.clear();
 }
 
 }  // namespace gs::render::detail

@@ -28,6 +28,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace gs::render::detail {
@@ -98,6 +99,8 @@ class UserPrograms {
                            scene::SceneTraversal& traversal, base::Fetcher* fetcher, bool& pending);
   static void skipPackaged(const vrml::Node& shader, scene::SceneTraversal& traversal);
   vrml::NodeMap<Entry> programs_;
+  /// Per ShaderProgram: (its revision, the hash of its type and urls) (sourcesRevision).
+  vrml::NodeMap<std::pair<std::uint64_t, std::uint64_t>> sourceHashes_;
 };
 
 }  // namespace gs::render::detail

@@ -9,6 +9,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <cstdint>
 #include <string>
 
 namespace fs = std::filesystem;
@@ -177,6 +178,53 @@ Shape { geometry ElevationGrid { xDimension 2 zDimension 2 height [0 0 0 0]
   CHECK(m.attributes[1].components == 9);
   REQUIRE(diag.items.size() == 1);
   CHECK(diag.items[0].message.find("numComponents 5") != std::string::npos);
+  // A change of an attribute node makes the geometry's mesh stale.
+  const std::uint64_t before = gs::vrml::revisionWithFields(*grid);
+  grid->mfnode("attrib").at(0)->markChanged();
+  CHECK(gs::vrml::revisionWithFields(*grid) != before);
+}
+
+TEST_CASE("The XML encoding's ProgramShader (CDATA) feeds an IndexedTriangleSet's attribute",
+          "[render][offscreen][world][shaders]") {
+  // X_ITE's names; the attribute h is 0 on the left points and 1 on the right ones, the
+  // fragment program's field c (orange) scaled by it.
+  const fs::path file = worldDir() / "program_shader_xml.x3d";
+  writeText(file, R"(<?xml version="1.0" encoding="UTF-8"?>
+<X3D profile='Interchange' version='4.0'>
+<head><component name='Shaders' level='1'/></head>
+<Scene>
+<NavigationInfo headlight='false'/>
+<Viewpoint position='0 0 1' fieldOfView='1.5708'/>
+<Shape>
+ <Appearance>
+  <Material diffuseColor='0 0 1'/>
+  <ProgramShader language='GLSL'>
+   <ShaderProgram containerField='programs' type='VERTEX'><![CDATA[
+uniform mat4 x3d_ModelViewMatrix; uniform mat4 x3d_ProjectionMatrix;
+attribute vec4 x3d_Vertex; attribute float h; varying float v;
+void main() { v = h; gl_Position = x3d_ProjectionMatrix * x3d_ModelViewMatrix * x3d_Vertex; }
+]]></ShaderProgram>
+   <ShaderProgram containerField='programs' type='FRAGMENT'>
+    <field name='c' type='SFColor' accessType='inputOutput' value='1 0.5 0'/><![CDATA[
+uniform vec3 c; varying float v;
+void main() { gl_FragColor = vec4(c * v, 1.0); }
+]]></ShaderProgram>
+  </ProgramShader>
+ </Appearance>
+ <IndexedTriangleSet index='0 1 2 0 2 3'>
+  <Coordinate point='-1 -1 0 1 -1 0 1 1 0 -1 1 0'/>
+  <FloatVertexAttribute containerField='attrib' name='h' numComponents='1' value='0 1 1 0'/>
+ </IndexedTriangleSet>
+</Shape>
+</Scene>
+</X3D>
+)");
+  const Rendered r = renderFile(file);
+  CHECK(r.diagnostics.items.empty());
+  // The square spans the view: x = 32 is halfway (v = 0.5), x = 1 nearly 0, x = 62 nearly 1.
+  CHECK(gs::test::close(r.image.pixel(32, 32), 128, 64, 0, 6));
+  CHECK(gs::test::close(r.image.pixel(1, 32), 6, 3, 0, 6));
+  CHECK(gs::test::close(r.image.pixel(62, 32), 250, 125, 0, 6));
 }
 
 TEST_CASE("A FloatVertexAttribute colours the vertices through the shader",
