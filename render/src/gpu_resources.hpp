@@ -21,6 +21,15 @@
 
 namespace gs::render::detail {
 
+/// A vertex attribute a user program reads (X3D 4.0 clause 31.4): its GLSL name, its first
+/// location and its shape (a vector: 1 column of 1 to 4 rows; a matN: N columns of N
+/// rows, at N consecutive locations).
+struct ProgramAttribute {
+  std::string name;
+  GLuint location = 0;
+  int columns = 1, rows = 4;
+};
+
 /// One tessellated geometry in GPU buffers (a VAO, a vertex buffer holding the attribute
 /// arrays one after another, an index buffer).
 struct GpuMesh {
@@ -37,6 +46,14 @@ struct GpuMesh {
   std::size_t triangles = 0;
   vrml::Bounds bounds;
   std::uint64_t revision = 0;  // vrml::revisionWithFields of the geometry uploaded
+  /// The mesh's vertex attributes (vrml::Mesh::attributes) in the vertex buffer: floats,
+  /// `components` per vertex, from byte `offset`.
+  struct Attribute {
+    std::string name;
+    int components = 1;
+    std::size_t offset = 0;
+  };
+  std::vector<Attribute> attributes;
 
   /// Uploads `mesh` (attribute locations: 0 position, 1 normal, 2 colour, 3 texCoord,
   /// 4 the second texCoord set, 5 the fog depth: -1 when the mesh has none, meaning the
@@ -45,6 +62,12 @@ struct GpuMesh {
   void upload(const vrml::Mesh& mesh);
   /// Issues the draw call (the program and uniforms must be set).
   void draw() const;
+  /// Feeds the attributes `wanted` of a user program from this mesh's vertex attributes
+  /// of the same names (a float attribute of n components to a vector: n values, the
+  /// others 0 and w 1; a matrix to a matrix of as many floats, column by column). One
+  /// the mesh lacks, or of another size, reads the constant (0, 0, 0, 1) in each column.
+  /// Call before draw() with that program; the arrays stay in the VAO until changed.
+  void bindAttributes(const std::vector<ProgramAttribute>& wanted) const;
   void release();
 };
 

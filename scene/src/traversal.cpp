@@ -712,6 +712,8 @@ void SceneTraversal::dropMeshArrays(const vrml::Node& geometry) {
   m.normals = {};
   m.colors = {};
   m.texCoords = {};
+  m.attributes = {};  // X3D vertex attributes (vrml::Mesh::attributes)
+  m.pointIndices = {};
   m.indices = {};
   it->second.arraysDropped = true;
 }

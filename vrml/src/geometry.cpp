@@ -166,6 +166,7 @@ std::uint64_t MeshBuilder::hashOf(const Vertex& v) const {
   if (texCoords_) h = mix(h, &v.texCoord, sizeof v.texCoord);
   if (texCoords1_) h = mix(h, &v.texCoord1, sizeof v.texCoord1);
   if (texCoordsStrq_) h = mix(h, &v.texCoordStrq, sizeof v.texCoordStrq);
+  if (points_) h = mix(h, &v.point, sizeof v.point);
   return finalMix(h);
 }
 
@@ -176,6 +177,7 @@ std::uint64_t MeshBuilder::hashOfStored(std::uint32_t i) const {
   if (texCoords_) h = mix(h, &mesh_.texCoords[i], sizeof(glm::vec2));
   if (texCoords1_) h = mix(h, &mesh_.texCoords1[i], sizeof(glm::vec2));
   if (texCoordsStrq_) h = mix(h, &mesh_.texCoordsStrq[i], sizeof(glm::vec4));
+  if (points_) h = mix(h, &mesh_.pointIndices[i], sizeof(std::uint32_t));
   return finalMix(h);
 }
 
@@ -187,7 +189,8 @@ bool MeshBuilder::sameAsStored(std::uint32_t i, const Vertex& v) const {
          (!texCoords1_ ||
           std::memcmp(&mesh_.texCoords1[i], &v.texCoord1, sizeof v.texCoord1) == 0) &&
          (!texCoordsStrq_ ||
-          std::memcmp(&mesh_.texCoordsStrq[i], &v.texCoordStrq, sizeof v.texCoordStrq) == 0);
+          std::memcmp(&mesh_.texCoordsStrq[i], &v.texCoordStrq, sizeof v.texCoordStrq) == 0) &&
+         (!points_ || mesh_.pointIndices[i] == v.point);
 }
 
 void MeshBuilder::grow(std::size_t minSlots) {
@@ -213,6 +216,7 @@ std::uint32_t MeshBuilder::push(const Vertex& v) {
   if (texCoords_) mesh_.texCoords.push_back(v.texCoord);
   if (texCoords1_) mesh_.texCoords1.push_back(v.texCoord1);
   if (texCoordsStrq_) mesh_.texCoordsStrq.push_back(v.texCoordStrq);
+  if (points_) mesh_.pointIndices.push_back(v.point);
   return i;
 }
 
@@ -239,6 +243,7 @@ void MeshBuilder::reserve(std::size_t vertices, std::size_t indices) {
   if (texCoords_) mesh_.texCoords.reserve(vertices);
   if (texCoords1_) mesh_.texCoords1.reserve(vertices);
   if (texCoordsStrq_) mesh_.texCoordsStrq.reserve(vertices);
+  if (points_) mesh_.pointIndices.reserve(vertices);
   mesh_.indices.reserve(indices);
   grow(2 * vertices + 2);
 }
@@ -389,6 +394,7 @@ Mesh tessellate(const Node& geometry, Diagnostics* diag) {
       break;
   }
   assignFogDepths(geometry, m);
+  assignVertexAttributes(geometry, m, log);
   log.flush();
   return m;
 }

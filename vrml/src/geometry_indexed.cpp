@@ -181,6 +181,7 @@ Mesh tessellateIndexedLineSet(const Node& node, ProblemLog& log) {
   const bool haveColor = colors.present() && !colors.empty();
 
   MeshBuilder b(Primitive::lines, false, haveColor, false);
+  if (hasVertexAttributes(node)) b.carryPoints();
   constexpr std::uint32_t kNone = 0xffffffffu;
   std::uint32_t prev = kNone;  // previous vertex of the current polyline
   std::size_t line = 0;
@@ -204,6 +205,7 @@ Mesh tessellateIndexedLineSet(const Node& node, ProblemLog& log) {
     }
     Vertex v;
     v.position = points[static_cast<std::size_t>(idx)];
+    v.point = static_cast<std::uint32_t>(idx);
     if (haveColor) {
       const std::int32_t c = resolve(colorPerVertex, colorIndex, coordIndex, i, line);
       const bool ok = inRange(c, colors.size());
@@ -231,6 +233,7 @@ Mesh tessellatePointSet(const Node& node, ProblemLog& log) {
     log.add("Color has " + std::to_string(colors.size()) + " colours for " +
             std::to_string(points.size()) + " points; the others are white");
   MeshBuilder b(Primitive::points, false, haveColor, false);
+  if (hasVertexAttributes(node)) b.carryPoints();
   b.reserve(points.size(), points.size());
   bool warnedNaN = false;
   for (std::size_t i = 0; i < points.size(); ++i) {
@@ -241,6 +244,7 @@ Mesh tessellatePointSet(const Node& node, ProblemLog& log) {
     }
     Vertex v;
     v.position = points[i];
+    v.point = static_cast<std::uint32_t>(i);
     if (haveColor) v.color = i < colors.size() ? colors[i] : kWhite;
     b.index(b.push(v));
   }

@@ -109,6 +109,15 @@ StrqPoints strqTexCoordPoints(const Node& geometry);
 /// Empty when the field is NULL or holds something else.
 std::span<const glm::vec3> coordPoints(const Node& geometry, std::vector<glm::vec3>& scratch);
 
+/// True when the geometry's X3D `attrib` field holds a node (X3D 4.0 clause 31.4): its
+/// mesh must record the point of each vertex (MeshBuilder::carryPoints).
+bool hasVertexAttributes(const Node& geometry);
+
+/// Fills m.attributes from the geometry's `attrib` nodes through m.pointIndices
+/// (geometry_attributes.cpp); problems go to `log`.
+class ProblemLog;
+void assignVertexAttributes(const Node& geometry, Mesh& m, ProblemLog& log);
+
 // ---------------------------------------------------------------------------------------
 // Problems
 
@@ -147,6 +156,7 @@ struct Vertex {
   glm::vec2 texCoord{0.0f};
   glm::vec2 texCoord1{0.0f};     // the second set (Mesh::texCoords1)
   glm::vec4 texCoordStrq{0.0f};  // X3D TextureCoordinate3D/4D (Mesh::texCoordsStrq)
+  std::uint32_t point = 0;       // the coordinate point it comes from (Mesh::pointIndices)
 };
 
 /// Accumulates vertices and indices into a Mesh. `add` merges vertices whose attributes
@@ -159,6 +169,8 @@ class MeshBuilder {
   void carrySecondTexCoords() { texCoords1_ = true; }
   /// Makes the mesh carry Vertex::texCoordStrq too (before the first vertex).
   void carryStrqTexCoords() { texCoordsStrq_ = true; }
+  /// Makes the mesh carry Vertex::point too (Mesh::pointIndices; before the first vertex).
+  void carryPoints() { points_ = true; }
   /// Index of a vertex equal to `v`, appending it when new.
   std::uint32_t add(const Vertex& v);
   /// Appends `v` without looking for an equal vertex.
@@ -180,7 +192,7 @@ class MeshBuilder {
   void grow(std::size_t minSlots);
 
   Mesh mesh_;
-  bool normals_, colors_, texCoords_, texCoords1_ = false;
+  bool normals_, colors_, texCoords_, texCoords1_ = false, points_ = false;
   bool texCoordsStrq_ = false;
   /// Open-addressing table: (high 32 bits of the hash << 32) | (vertex index + 1); 0 = empty.
   std::vector<std::uint64_t> slots_;
@@ -241,6 +253,7 @@ struct PolygonSoup {
   /// then holds their (s / q, t / q).
   std::vector<glm::vec4> texCoordsStrq;
   float creaseAngle = 0.0f;
+  bool carryPoints = false;  // the mesh records each vertex's point (Mesh::pointIndices)
   bool ccw = true;
   bool convex = true;
   bool solid = true;
@@ -256,7 +269,8 @@ void defaultTexCoords(PolygonSoup& soup);
 
 /// A soup over `points` with the node's ccw, convex, solid and creaseAngle fields
 /// (IndexedFaceSet 6.23, ElevationGrid 6.18, Extrusion 6.19; an absent field keeps its
-/// VRML97 default: TRUE, TRUE, TRUE, 0 radians).
+/// VRML97 default: TRUE, TRUE, TRUE, 0 radians); carryPoints when the node has vertex
+/// attributes.
 PolygonSoup polygonSoupOf(const Node& node, std::span<const glm::vec3> points);
 
 /// Triangulates the soup: reverses faces when ccw is FALSE, drops repeated consecutive

@@ -39,6 +39,7 @@ PolygonSoup polygonSoupOf(const Node& node, std::span<const glm::vec3> points) {
   soup.convex = node.get<FieldType::SFBool>("convex", true);
   soup.solid = node.get<FieldType::SFBool>("solid", true);
   soup.creaseAngle = node.get<FieldType::SFFloat>("creaseAngle", 0.0f);
+  soup.carryPoints = hasVertexAttributes(node);
   return soup;
 }
 
@@ -129,6 +130,7 @@ Mesh buildPolygonMesh(const PolygonSoup& s) {
   if (haveTex1) builder.carrySecondTexCoords();
   const bool haveStrq = haveTex && s.texCoordsStrq.size() == s.texCoords.size();
   if (haveStrq) builder.carryStrqTexCoords();
+  if (s.carryPoints) builder.carryPoints();
   builder.reserve(0, tris.size());
   // Output vertices are found through a short chain per shared point (better locality
   // than one big hash table); past kMaxChain vertices at one point, new ones are simply
@@ -143,6 +145,7 @@ Mesh buildPolygonMesh(const PolygonSoup& s) {
       const std::uint32_t c = kept[k], p = keptPoint[k];
       Vertex v;
       v.position = s.points[p];
+      v.point = p;
       if (!s.normals.empty() && usableNormal(s.normals[c]))
         v.normal = glm::vec3(glm::normalize(glm::dvec3(s.normals[c])));
       else

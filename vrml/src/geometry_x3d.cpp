@@ -342,6 +342,7 @@ Mesh tessellateLineSet(const Node& node, ProblemLog& log) {
             std::to_string(points.size()) + " points; the others are white");
 
   MeshBuilder b(Primitive::lines, false, haveColor, false);
+  if (hasVertexAttributes(node)) b.carryPoints();
   constexpr std::uint32_t kNone = 0xffffffffu;
   forEachRun(
       vertexCount, points.size(), 2, "vertexCount", log, [&](std::size_t s, std::size_t len) {
@@ -354,6 +355,7 @@ Mesh tessellateLineSet(const Node& node, ProblemLog& log) {
           }
           Vertex v;
           v.position = points[i];
+          v.point = static_cast<std::uint32_t>(i);
           if (haveColor) v.color = i < colors.size() ? colors[i] : kWhite;
           const std::uint32_t cur = b.add(v);
           if (prev != kNone && prev != cur) {

@@ -97,6 +97,9 @@ std::uint64_t revisionWithFields(const Node& node) {
     if (v.type() == FieldType::SFNode)
       if (const NodePtr& c = v.get<FieldType::SFNode>()) r += c->revision();
   }
+  // An X3D geometry's vertex attribute nodes (X3D 4.0 clause 31.4): part of its mesh.
+  for (const NodePtr& c : node.mfnode("attrib"))
+    if (c) r += c->revision();
   return r;
 }
 

@@ -120,6 +120,12 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::FogCoordinate,      // vrml/src/geometry.cpp (Mesh::fogDepths)
     NodeTypeId::ComposedShader,     // render/src/composed_shaders.cpp (GLSL)
     NodeTypeId::ShaderPart,
+    NodeTypeId::ProgramShader,  // render/src/composed_shaders.cpp (GLSL)
+    NodeTypeId::ShaderProgram,
+    NodeTypeId::PackagedShader,          // passed over with a warning (31.2.2)
+    NodeTypeId::FloatVertexAttribute,    // vrml/src/geometry_attributes.cpp (Mesh::attributes)
+    NodeTypeId::Matrix3VertexAttribute,  // and GpuMesh::bindAttributes
+    NodeTypeId::Matrix4VertexAttribute,
     NodeTypeId::LoadSensor,                // runtime/src/load_sensors.cpp
     NodeTypeId::CoordinateInterpolator2D,  // runtime/src/interpolators.cpp
     NodeTypeId::PositionInterpolator2D,

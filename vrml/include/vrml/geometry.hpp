@@ -18,6 +18,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace gs::vrml {
@@ -43,6 +44,17 @@ struct Bounds {
 
 enum class Primitive : std::uint8_t { triangles, lines, points };
 
+/// The per-vertex values of one X3D vertex attribute node of a geometry's `attrib` field
+/// (X3D 4.0 clause 31.4: FloatVertexAttribute 31.4.1, Matrix3VertexAttribute 31.4.3,
+/// Matrix4VertexAttribute 31.4.4), expanded to the mesh's vertices as its coordinates are.
+struct VertexAttribute {
+  std::string name;  // the GLSL attribute it feeds (the node's `name`)
+  /// Floats per vertex: numComponents (1 to 4) of a FloatVertexAttribute, 9 of a
+  /// Matrix3VertexAttribute, 16 of a Matrix4VertexAttribute (matrices column by column).
+  int components = 1;
+  std::vector<float> values;  // `components` per mesh vertex
+};
+
 /// Unindexed-or-indexed vertex arrays ready for a GPU buffer. Every array that is not
 /// empty has one entry per vertex. Triangles are counter-clockwise seen from the front
 /// (the side normals point to), whatever the node's `ccw` said.
@@ -66,6 +78,13 @@ struct Mesh {
   /// texCoords then holds (s / q, t / q) for readers of 2D coordinates. Empty when the
   /// geometry's texCoord (or its MultiTextureCoordinate's first set) is neither node.
   std::vector<glm::vec4> texCoordsStrq;
+  /// The vertex attribute nodes of the geometry's `attrib` field (X3D 4.0 clause 31.4), in
+  /// their order; a node without a name or with an unusable numComponents is left out.
+  std::vector<VertexAttribute> attributes;
+  /// Per vertex, the coordinate point it was made from (the index into `coord`, or into
+  /// ElevationGrid's grid, i + j * xDimension), when the geometry has an `attrib` node;
+  /// else empty.
+  std::vector<std::uint32_t> pointIndices;
   std::vector<std::uint32_t> indices;  // 3 per triangle, 2 per line segment, 1 per point
   bool solid = true;                   // back faces may be culled (the node's `solid` field)
   Bounds bounds;                       // of positions
@@ -84,7 +103,14 @@ struct Mesh {
 ///
 /// Details a caller may rely on:
 /// - The result is indexed; a vertex is shared between triangles exactly when its position,
-///   normal, colour and texture coordinate are all equal.
+///   normal, colour and texture coordinate are all equal (and its coordinate point, when
+///   the geometry has vertex attributes).
+/// - Vertex attributes (X3D 4.0 clause 31.4; the `attrib` field of IndexedFaceSet,
+///   ElevationGrid, the X3D triangle and quad sets, IndexedLineSet, LineSet and PointSet):
+///   vertex v takes value pointIndices[v] of each node (FloatVertexAttribute: numComponents
+///   floats from there; the matrices: one matrix), as the coordinates are indexed; a
+///   missing value is 0, reported once per node; numComponents outside 1 to 4 leaves the
+///   node out with a warning.
 /// - Box, Cone, Cylinder and Sphere: kRoundSegments around the Y axis (Sphere: half as
 ///   many latitude bands, Cone kConeStacks stacks), flat caps, smooth sides, texture coordinates as
 ///   clause 6 says; solid unless X3D's `solid` field (X3D clause 13) is FALSE. A Box whose

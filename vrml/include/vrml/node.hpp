@@ -210,9 +210,10 @@ struct NodeKeyHash {
 template <class V>
 using NodeMap = std::unordered_map<NodeKey, V, NodeKeyHash>;
 
-/// revision() of `node` plus those of the nodes in its SFNode fields (one level): what a
-/// cache of a geometry (its Coordinate, Normal, Color, TextureCoordinate) or an
-/// Appearance (its Material, texture, TextureTransform) compares to know it is stale.
+/// revision() of `node` plus those of the nodes in its SFNode fields (one level) and in
+/// its `attrib` field (an X3D geometry's vertex attribute nodes, clause 31.4): what a
+/// cache of a geometry (its Coordinate, Normal, Color, TextureCoordinate, attributes) or
+/// an Appearance (its Material, texture, TextureTransform) compares to know it is stale.
 std::uint64_t revisionWithFields(const Node& node);
 
 }  // namespace gs::vrml
