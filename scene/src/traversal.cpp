@@ -485,7 +485,8 @@ struct SceneTraversal::Walk {
         break;
       }
       case NodeKind::Inline: {
-        const InlineScene* inl = self.inlineScene(n, *baseUrl);
+        // An Inline written in an EXTERNPROTO's file resolves against that file.
+        const InlineScene* inl = self.inlineScene(n, n.urlBaseOr(*baseUrl));
         if (inl == nullptr || !inl->scene) break;
         if (static_cast<int>(inlineChain.size()) >= self.options_.maxInlineDepth) {
           self.report(vrml::Severity::error, n.location,
