@@ -187,6 +187,7 @@ struct SceneTraversal::Walk {
     f.color = glm::clamp(sfColor(n, "color", glm::vec3(1.0f)), 0.0f, 1.0f);
     f.exponential = sfString(n, "fogType") == "EXPONENTIAL";
     f.visibilityRange = std::max(sfFloat(n, "visibilityRange", 0.0f), 0.0f) * meanScale(m);
+    readVolumetricFog(n, meanScale(m), f);
     fogScope = static_cast<std::int32_t>(frame.localFogs.size());
     frame.localFogs.push_back(f);
   }
