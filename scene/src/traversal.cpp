@@ -524,7 +524,7 @@ struct SceneTraversal::Walk {
         shape(n, m, baseUrl);
         break;
       case NodeKind::QuantizedNormalVectors:
-        frame.splats.push_back({&n, m, baseUrl});
+        frame.splats.push_back({&n, m, &n.urlBaseOr(*baseUrl)});  // its file's base
         break;
       case NodeKind::OutlineGroup:
         outlineGroup(n, m, baseUrl);
