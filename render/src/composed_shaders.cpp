@@ -414,11 +414,12 @@ const UserProgram* UserPrograms::build(const vrml::Node& shader, Entry& entry,
     const ShaderStage stage = type == "VERTEX" ? ShaderStage::vertex : ShaderStage::fragment;
     std::string failures;
     bool done = false;
+    const std::string& partBase = part->urlBaseOr(baseUrl);  // its file's (Node::urlBase)
     for (const std::string& reference : scene::mfString(*part, "url")) {
       if (reference.empty()) continue;
-      const std::string url = base::resolveUrl(baseUrl, reference);
+      const std::string url = base::resolveUrl(partBase, reference);
       const base::Fetched got =
-          base::fetcherOr(fetcher).fetch(url, baseUrl, base::FetchMode::background);
+          base::fetcherOr(fetcher).fetch(url, partBase, base::FetchMode::background);
       if (got.pending()) {
         pending = true;
         for (GLuint s : compiled) glDeleteShader(s);

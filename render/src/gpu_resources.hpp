@@ -154,8 +154,9 @@ class MovieTextures {
 class TextureCache {
  public:
   /// The texture of `node` (an ImageTexture or PixelTexture), loading it on first use;
-  /// URLs resolve against `baseUrl`. Failures are reported to `traversal` once and give a
-  /// texture with 0 components.
+  /// URLs resolve against node.urlBaseOr(baseUrl) (`baseUrl` unless the node was written
+  /// in an EXTERNPROTO's file, vrml::Node::urlBase). Failures are reported to `traversal` once and
+  /// give a texture with 0 components.
   const GpuTexture& get(const vrml::Node& node, const std::string& baseUrl,
                         scene::SceneTraversal& traversal, base::Fetcher* fetcher);
   void release();

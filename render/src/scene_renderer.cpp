@@ -636,6 +636,12 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     glUniform1i(u.fogType, fogTypeOf(fog));
     glUniform3fv(u.fogColor, 1, glm::value_ptr(fog.color));
     glUniform1f(u.fogVisibilityRange, fog.visibilityRange);
+    // Volumetric fog: the world plane (direction, -start) in eye coordinates, so that
+    // dot(plane, (eye position, 1)) is the height along the direction above the start.
+    const glm::vec4 fogPlane =
+        fog.volumetric ? planeToEye * glm::vec4(fog.volumetricDirection, -fog.volumetricStart)
+                       : glm::vec4(0.0f);
+    glUniform4fv(u.fogPlane, 1, glm::value_ptr(fogPlane));
     if (lit && !lightsUploaded) {
       lights.upload(u);
       lightsUploaded = true;

@@ -272,6 +272,9 @@ uniform float u_lightCutOffAngle[kMaxLights];
 
 uniform vec3 u_fogColor;
 uniform float u_fogVisibilityRange;
+// Volumetric fog (castle-engine's): the fog distance is dot(u_fogPlane, (eye position, 1));
+// all zero: the distance to the eye.
+uniform vec4 u_fogPlane;
 
 out vec4 fragColor;
 
@@ -440,7 +443,9 @@ void main() {
   else if (!FILLED) discard;
 
   if (FOG_TYPE != 0 && u_fogVisibilityRange > 0.0) {
-    float d = v_fogDepth >= 0.0 ? v_fogDepth : length(v_position);
+    float d = v_fogDepth >= 0.0        ? v_fogDepth
+              : u_fogPlane != vec4(0.0) ? dot(u_fogPlane, vec4(v_position, 1.0))
+                                        : length(v_position);
     float r = u_fogVisibilityRange;
     float f0 = 0.0;
     if (d < r) f0 = FOG_TYPE == 1 ? (r - d) / r : exp(-d / (r - d));

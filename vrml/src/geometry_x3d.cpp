@@ -145,15 +145,6 @@ Mesh buildComposed(const Node& node, ProblemLog& log, std::span<const glm::vec3>
   return buildPolygonMesh(soup);
 }
 
-/// Reports the vertices left over after the last whole face of a non-indexed set, or
-/// the index values after the last whole face of an indexed one.
-void leftOver(ProblemLog& log, std::size_t size, int per, const char* what) {
-  if (size % static_cast<std::size_t>(per) == 0) return;
-  log.add(std::string(what) + " has " + std::to_string(size) + " values, not a multiple of " +
-          std::to_string(per) + "; the last " +
-          std::to_string(size % static_cast<std::size_t>(per)) + " are ignored");
-}
-
 /// Calls `run(begin, length)` for each run of a count field (fanCount, stripCount,
 /// vertexCount) over `total` consecutive vertices: counts below `minimum` are reported
 /// and skip their vertices (a negative one skips none), counts past the end are cut short
@@ -230,7 +221,8 @@ Mesh tessellateIndexedTriangleSet(const Node& node, ProblemLog& log) {
   const std::span<const glm::vec3> points = coordPoints(node, scratch);
   const auto& index = fieldOr<FieldType::MFInt32>(node, "index");
   if (points.empty() || index.empty()) return {};
-  leftOver(log, index.size(), 3, "index");
+  // X3D 4.0 clause 11.4 (IndexedTriangleSet): "If the index field does not contain a multiple of
+  // three coordinate values, the remaining vertices shall be ignored": defined, not reported.
   Faces faces(points, log);
   for (std::size_t i = 0; i + 3 <= index.size(); i += 3)
     faces.triangle(index[i], index[i + 1], index[i + 2], "index", i);
@@ -267,7 +259,8 @@ Mesh tessellateTriangleSet(const Node& node, ProblemLog& log) {
   std::vector<glm::vec3> scratch;
   const std::span<const glm::vec3> points = coordPoints(node, scratch);
   if (points.empty()) return {};
-  leftOver(log, points.size(), 3, "coord");
+  // Clause 11.4 (TriangleSet): vertices after the last whole triangle "shall be ignored"
+  // (silently).
   Faces faces(points, log);
   for (std::size_t i = 0; i + 3 <= points.size(); i += 3) {
     const auto v = static_cast<std::int64_t>(i);
@@ -305,7 +298,8 @@ Mesh tessellateIndexedQuadSet(const Node& node, ProblemLog& log) {
   const std::span<const glm::vec3> points = coordPoints(node, scratch);
   const auto& index = fieldOr<FieldType::MFInt32>(node, "index");
   if (points.empty() || index.empty()) return {};
-  leftOver(log, index.size(), 4, "index");
+  // Clause 32.4 (IndexedQuadSet): index values after the last whole quad "shall be ignored"
+  // (silently).
   Faces faces(points, log);
   for (std::size_t i = 0; i + 4 <= index.size(); i += 4) {
     // Starting at the second vertex splits the quad along its 1-3 diagonal, as
@@ -320,7 +314,7 @@ Mesh tessellateQuadSet(const Node& node, ProblemLog& log) {
   std::vector<glm::vec3> scratch;
   const std::span<const glm::vec3> points = coordPoints(node, scratch);
   if (points.empty()) return {};
-  leftOver(log, points.size(), 4, "coord");
+  // Clause 32.4 (QuadSet): vertices after the last whole quad "shall be ignored" (silently).
   Faces faces(points, log);
   for (std::size_t i = 0; i + 4 <= points.size(); i += 4) {
     const auto b = static_cast<std::int64_t>(i);

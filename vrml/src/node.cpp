@@ -55,6 +55,7 @@ Node::Node(const Node& other)
       protoInstance(other.protoInstance),
       unresolved(other.unresolved),
       location(other.location),
+      urlBase(other.urlBase),
       type_(other.type_),
       values_(other.values_),
       revision_(other.revision_),
@@ -66,6 +67,7 @@ Node& Node::operator=(const Node& other) {
   protoInstance = other.protoInstance;
   unresolved = other.unresolved;
   location = other.location;
+  urlBase = other.urlBase;
   type_ = other.type_;
   values_ = other.values_;
   revision_ = other.revision_ + 1;
