@@ -19,6 +19,7 @@ set(GS_UNITY_ALONE
   vrml/src/node_model_data_2.cpp
   vrml/src/node_model_data_3.cpp
   vrml/src/node_model_data_4.cpp
+  vrml/src/node_model_data_5.cpp
   tests/formats/test_mesh_readers.cpp
   tests/formats/test_ply_stream.cpp
   tests/formats/test_volume_readers.cpp

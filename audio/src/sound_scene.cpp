@@ -68,7 +68,8 @@ SoundScene::SoundScene(std::shared_ptr<const vrml::Scene> scene, base::Fetcher* 
 SoundScene::~SoundScene() = default;
 
 std::shared_ptr<const formats::AudioData> SoundScene::clipOf(const vrml::Node& clip,
-                                                             const std::string& base) {
+                                                             const std::string& inheritedBase) {
+  const std::string& base = clip.urlBaseOr(inheritedBase);  // an EXTERNPROTO file's node
   if (const auto it = clips_.find(&clip); it != clips_.end()) return it->second;
   if (!loading_.insert(&clip).second) return nullptr;  // on the worker: silent until decoded
   // The URLs are resolved here, on the drawing thread, where the node's fields may be read

@@ -129,7 +129,7 @@ void BackgroundPass::drawPanorama(const scene::BackgroundSettings& background,
         faceDone_[i] = true;
         continue;
       }
-      LoadedImage loaded = loadFirstImage(urls, background.baseUrl, fetcher);
+      LoadedImage loaded = loadFirstImage(urls, node.urlBaseOr(background.baseUrl), fetcher);
       if (loaded.pending) continue;  // the colours show until it arrives
       faceDone_[i] = true;
       if (loaded.components > 0)

@@ -11,8 +11,11 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <functional>
 #include <stdexcept>
+#include <tuple>
 #include <type_traits>
+#include <utility>
 
 namespace gs::render::detail {
 
@@ -95,8 +98,8 @@ constexpr std::array kAttributes = {
     AttributeNames{4,
                    {"castle_MultiTexCoord1", "x3d_MultiTexCoord1", "gs_MultiTexCoord1", nullptr}},
 };
-/// Attributes of other names (FloatVertexAttribute's, not supplied) go from here up, so
-/// they read the constant (0, 0, 0, 1) rather than a buffer of GpuMesh.
+/// Attributes of other names (the vertex attribute nodes', GpuMesh::bindAttributes) go
+/// from here up, clear of GpuMesh's own.
 constexpr GLuint kFirstOtherAttribute = 8;
 
 std::string infoLog(GLuint object, bool program) {
@@ -115,9 +118,65 @@ std::string infoLog(GLuint object, bool program) {
   return log;
 }
 
+/// The shape of an attribute of GLSL type `type`: columns and rows (a vector: 1 column).
+std::pair<int, int> shapeOf(GLenum type) {
+  switch (type) {
+    case GL_FLOAT:
+      return {1, 1};
+    case GL_FLOAT_VEC2:
+      return {1, 2};
+    case GL_FLOAT_VEC3:
+      return {1, 3};
+    case GL_FLOAT_MAT2:
+      return {2, 2};
+    case GL_FLOAT_MAT3:
+      return {3, 3};
+    case GL_FLOAT_MAT4:
+      return {4, 4};
+    default:
+      return {1, 4};
+  }
+}
+
+bool ourAttribute(std::string_view n) {
+  return std::any_of(kAttributes.begin(), kAttributes.end(), [&](const auto& a) {
+    return std::any_of(a.names.begin(), a.names.end(),
+                       [&](const char* m) { return m != nullptr && n == m; });
+  });
+}
+
+/// The active attributes of `program` that are not GpuMesh's (vertex attribute nodes',
+/// X3D 4.0 clause 31.4), with their shapes and, when `located`, their locations.
+std::vector<ProgramAttribute> otherAttributes(GLuint program, bool located) {
+  std::vector<ProgramAttribute> out;
+  GLint count = 0;
+  glGetProgramiv(program, GL_ACTIVE_ATTRIBUTES, &count);
+  for (GLint i = 0; i < count; ++i) {
+    std::array<char, 256> name{};
+    GLint size = 0;
+    GLenum type = 0;
+    glGetActiveAttrib(program, static_cast<GLuint>(i), static_cast<GLsizei>(name.size()), nullptr,
+                      &size, &type, name.data());
+    const std::string_view n(name.data());
+    if (n.starts_with("gl_") || ourAttribute(n)) continue;
+    ProgramAttribute a;
+    a.name = std::string(n);
+    std::tie(a.columns, a.rows) = shapeOf(type);
+    if (located) {
+      const GLint l = glGetAttribLocation(program, name.data());
+      if (l < 0) continue;
+      a.location = static_cast<GLuint>(l);
+    }
+    out.push_back(std::move(a));
+  }
+  return out;
+}
+
 /// Links `shaders` into a new program with GpuMesh's attribute locations; other active
-/// attributes are moved to kFirstOtherAttribute and up. Throws with the linker's log.
-GLuint linkProgram(const std::vector<GLuint>& shaders) {
+/// attributes (the vertex attribute nodes') are given locations from kFirstOtherAttribute
+/// up, a matrix as many as it has columns, and listed in `attributes`. Throws with the
+/// linker's log.
+GLuint linkProgram(const std::vector<GLuint>& shaders, std::vector<ProgramAttribute>& attributes) {
   const GLuint program = glCreateProgram();
   for (GLuint s : shaders) glAttachShader(program, s);
   for (const AttributeNames& a : kAttributes)
@@ -127,27 +186,13 @@ GLuint linkProgram(const std::vector<GLuint>& shaders) {
   GLint ok = GL_FALSE;
   glGetProgramiv(program, GL_LINK_STATUS, &ok);
   if (ok == GL_TRUE) {
-    GLint count = 0;
-    glGetProgramiv(program, GL_ACTIVE_ATTRIBUTES, &count);
+    const std::vector<ProgramAttribute> others = otherAttributes(program, false);
     GLuint next = kFirstOtherAttribute;
-    bool moved = false;
-    for (GLint i = 0; i < count; ++i) {
-      std::array<char, 256> name{};
-      GLint size = 0;
-      GLenum type = 0;
-      glGetActiveAttrib(program, static_cast<GLuint>(i), static_cast<GLsizei>(name.size()), nullptr,
-                        &size, &type, name.data());
-      const std::string_view n(name.data());
-      if (n.starts_with("gl_")) continue;
-      const bool ours = std::any_of(kAttributes.begin(), kAttributes.end(), [&](const auto& a) {
-        return std::any_of(a.names.begin(), a.names.end(),
-                           [&](const char* m) { return m != nullptr && n == m; });
-      });
-      if (ours) continue;
-      glBindAttribLocation(program, next++, name.data());
-      moved = true;
+    for (const ProgramAttribute& a : others) {
+      glBindAttribLocation(program, next, a.name.c_str());
+      next += static_cast<GLuint>(a.columns);
     }
-    if (moved) {
+    if (!others.empty()) {
       glLinkProgram(program);
       glGetProgramiv(program, GL_LINK_STATUS, &ok);
     }
@@ -157,6 +202,7 @@ GLuint linkProgram(const std::vector<GLuint>& shaders) {
     glDeleteProgram(program);
     throw std::runtime_error("the shader does not link: " + log);
   }
+  attributes = otherAttributes(program, true);
   return program;
 }
 
@@ -179,10 +225,28 @@ GLuint compileStage(ShaderStage stage, const std::string& source, const std::str
   return shader;
 }
 
-// What the program is built from: the parts (not the shader's own revision, which every
-// routed uniform value bumps).
-std::uint64_t partsRevision(const vrml::Node& shader) {
+// What the program is built from: the parts' revisions (not the shader's own, which every
+// routed uniform value bumps); for a ProgramShader a hash of its programs' types and urls
+// (their revisions count their uniform fields too), remembered in `hashes` per program
+// revision so that inline sources are not hashed every frame.
+std::uint64_t sourcesRevision(const vrml::Node& shader,
+                              vrml::NodeMap<std::pair<std::uint64_t, std::uint64_t>>& hashes) {
   std::uint64_t r = 1;
+  if (shader.typeId() == vrml::NodeTypeId::ProgramShader) {
+    const std::hash<std::string_view> hash;
+    for (const vrml::NodePtr& program : shader.mfnode("programs")) {
+      r = r * 1000003u + (program ? program->serial() : 0u);
+      if (!program) continue;
+      auto [known, fresh] = hashes.try_emplace(program.get(), program->revision(), 0);
+      if (fresh || known->second.first != program->revision()) {
+        std::uint64_t h = hash(scene::sfString(*program, "type"));
+        for (const std::string& url : scene::mfString(*program, "url")) h = h * 31u + hash(url);
+        known->second = {program->revision(), h};
+      }
+      r = r * 31u + known->second.second;
+    }
+    return r;
+  }
   for (const vrml::NodePtr& part : shader.mfnode("parts"))
     r = r * 1000003u + (part ? part->serial() * 31u + part->revision() : 0u);
   return r;
@@ -267,12 +331,21 @@ std::string translateGlsl(std::string_view source, ShaderStage stage) {
 
 const UserProgram* UserPrograms::find(const vrml::Node& appearance, const std::string& baseUrl,
                                       scene::SceneTraversal& traversal, base::Fetcher* fetcher) {
+  using vrml::NodeTypeId;
   for (const vrml::NodePtr& shader : appearance.mfnode("shaders")) {
-    if (!shader || shader->unresolved || shader->typeId() != vrml::NodeTypeId::ComposedShader ||
+    if (!shader || shader->unresolved) continue;
+    const NodeTypeId type = shader->typeId();
+    if (type == NodeTypeId::PackagedShader) {
+      Entry& e = programs_[shader.get()];
+      if (!e.failed) skipPackaged(*shader, traversal);
+      e.failed = true;
+      continue;
+    }
+    if ((type != NodeTypeId::ComposedShader && type != NodeTypeId::ProgramShader) ||
         !isGlsl(*shader))
       continue;
     Entry& e = programs_[shader.get()];
-    const std::uint64_t revision = partsRevision(*shader);
+    const std::uint64_t revision = sourcesRevision(*shader, sourceHashes_);
     if (e.program.id != 0 && e.partsRevision == revision) return &e.program;
     if (e.failed && e.partsRevision == revision) continue;
     if (e.program.id != 0) glDeleteProgram(e.program.id);
@@ -286,30 +359,67 @@ const UserProgram* UserPrograms::find(const vrml::Node& appearance, const std::s
   return nullptr;
 }
 
+void UserPrograms::skipPackaged(const vrml::Node& shader, scene::SceneTraversal& traversal) {
+  const std::string& language = scene::sfString(shader, "language");
+  const std::vector<std::string>& urls = scene::mfString(shader, "url");
+  std::string url = urls.empty() ? std::string() : urls.front();
+  if (base::isDataUrl(url) && url.size() > 48) url = url.substr(0, 48) + "...";
+  traversal.report(vrml::Severity::warning, shader.location,
+                   "PackagedShader not used: " +
+                       (language.empty() ? std::string("it names no language")
+                                         : "its language \"" + language + "\" is not one") +
+                       " this browser runs (GLSL, in ComposedShader and ProgramShader, is)" +
+                       (url.empty() ? "" : "; url \"" + url + "\"") +
+                       "; the next shader of the list is tried");
+}
+
 const UserProgram* UserPrograms::build(const vrml::Node& shader, Entry& entry,
                                        const std::string& baseUrl, scene::SceneTraversal& traversal,
                                        base::Fetcher* fetcher, bool& pending) {
+  // A ComposedShader's ShaderParts, or a ProgramShader's ShaderPrograms: each a stage's
+  // source (clauses 31.4.2, 31.4.6).
+  const bool composed = shader.typeId() == vrml::NodeTypeId::ComposedShader;
+  const std::string kind = composed ? "ComposedShader" : "ProgramShader";
+  const vrml::NodeTypeId sourceType =
+      composed ? vrml::NodeTypeId::ShaderPart : vrml::NodeTypeId::ShaderProgram;
+  const char* sourceWord = composed ? " part " : " program ";
   std::vector<GLuint> compiled;
   const auto fail = [&](const std::string& why) {
     for (GLuint s : compiled) glDeleteShader(s);
     entry.failed = true;
     traversal.report(vrml::Severity::warning, shader.location,
-                     "ComposedShader not used: " + why + "; the shape is drawn without it");
+                     kind + " not used: " + why + "; the shape is drawn without it");
     return nullptr;
   };
-  for (const vrml::NodePtr& part : shader.mfnode("parts")) {
-    if (!part || part->unresolved || part->typeId() != vrml::NodeTypeId::ShaderPart) continue;
+  std::vector<const vrml::Node*> sources;
+  bool vertex = false, fragment = false;
+  for (const vrml::NodePtr& part :
+       (composed ? shader.mfnode("parts") : shader.mfnode("programs"))) {
+    if (!part || part->unresolved || part->typeId() != sourceType) continue;
+    sources.push_back(part.get());
+    const std::string& type = scene::sfString(*part, "type");
+    vertex = vertex || type == "VERTEX";
+    fragment = fragment || type == "FRAGMENT";
+  }
+  // A ProgramShader is one vertex and one fragment program linked together; without
+  // either there is no built-in stage to stand in (31.4.6).
+  if (!composed && (!vertex || !fragment))
+    return fail(std::string("it has no ") + (vertex ? "FRAGMENT" : "VERTEX") +
+                " ShaderProgram (both are needed)");
+  for (const vrml::Node* part : sources) {
     const std::string& type = scene::sfString(*part, "type");
     if (type != "VERTEX" && type != "FRAGMENT")
-      return fail("ShaderPart type \"" + type + "\" is not supported (VERTEX and FRAGMENT are)");
+      return fail(std::string(composed ? "ShaderPart" : "ShaderProgram") + " type \"" + type +
+                  "\" is not supported (VERTEX and FRAGMENT are)");
     const ShaderStage stage = type == "VERTEX" ? ShaderStage::vertex : ShaderStage::fragment;
     std::string failures;
     bool done = false;
+    const std::string& partBase = part->urlBaseOr(baseUrl);  // its file's (Node::urlBase)
     for (const std::string& reference : scene::mfString(*part, "url")) {
       if (reference.empty()) continue;
-      const std::string url = base::resolveUrl(baseUrl, reference);
+      const std::string url = base::resolveUrl(partBase, reference);
       const base::Fetched got =
-          base::fetcherOr(fetcher).fetch(url, baseUrl, base::FetchMode::background);
+          base::fetcherOr(fetcher).fetch(url, partBase, base::FetchMode::background);
       if (got.pending()) {
         pending = true;
         for (GLuint s : compiled) glDeleteShader(s);
@@ -327,12 +437,14 @@ const UserProgram* UserPrograms::build(const vrml::Node& shader, Entry& entry,
         failures += (failures.empty() ? "" : "; ") + std::string(e.what());
       }
     }
-    if (!done) return fail("its " + type + " part " + (failures.empty() ? "has no url" : failures));
+    if (!done)
+      return fail("its " + type + sourceWord + (failures.empty() ? "has no url" : failures));
   }
   if (compiled.empty()) return fail("it has no VERTEX or FRAGMENT part");
   GLuint id = 0;
+  std::vector<ProgramAttribute> attributes;
   try {
-    id = linkProgram(compiled);
+    id = linkProgram(compiled, attributes);
   } catch (const std::exception& e) {
     return fail(e.what());
   }
@@ -340,6 +452,7 @@ const UserProgram* UserPrograms::build(const vrml::Node& shader, Entry& entry,
   UserProgram& p = entry.program;
   p.id = id;
   p.shader = &shader;
+  p.attributes = std::move(attributes);
   const auto locations = [&](std::string_view suffix) {
     std::vector<GLint> out;
     for (std::string_view prefix : {"castle_", "x3d_", "gs_"}) {
@@ -352,18 +465,25 @@ const UserProgram* UserPrograms::build(const vrml::Node& shader, Entry& entry,
   p.projection = locations("ProjectionMatrix");
   p.normalMatrix = locations("NormalMatrix");
   p.modelViewProjection = locations("ModelViewProjectionMatrix");
+  // The fields as uniforms (31.2.3): the ComposedShader's, or each ShaderProgram's own.
   GLint unit = 1;  // Appearance.texture is on 0
-  const std::vector<vrml::FieldSpec>& specs = shader.type().fields;
-  for (std::size_t i = 0; i < specs.size() && i < shader.fieldCount(); ++i) {
-    if (specs[i].access == vrml::AccessType::eventOut ||
-        specs[i].access == vrml::AccessType::eventIn)
-      continue;
-    const GLint location = glGetUniformLocation(id, specs[i].name.c_str());
-    if (location < 0) continue;
-    const bool texture = specs[i].type == vrml::FieldType::SFNode;
-    if (texture && unit >= 16) continue;
-    p.fields.push_back({i, location, texture ? unit++ : -1});
-  }
+  const auto addFields = [&](const vrml::Node& node) {
+    const std::vector<vrml::FieldSpec>& specs = node.type().fields;
+    for (std::size_t i = 0; i < specs.size() && i < node.fieldCount(); ++i) {
+      if (specs[i].access == vrml::AccessType::eventOut ||
+          specs[i].access == vrml::AccessType::eventIn)
+        continue;
+      const GLint location = glGetUniformLocation(id, specs[i].name.c_str());
+      if (location < 0) continue;
+      const bool texture = specs[i].type == vrml::FieldType::SFNode;
+      if (texture && unit >= 16) continue;
+      p.fields.push_back({&node, i, location, texture ? unit++ : -1});
+    }
+  };
+  if (composed)
+    addFields(shader);
+  else
+    for (const vrml::Node* program : sources) addFields(*program);
   return &p;
 }
 
@@ -380,7 +500,7 @@ void UserPrograms::use(const UserProgram& p, const glm::mat4& modelView,
   for (GLint l : p.modelViewProjection)
     glUniformMatrix4fv(l, 1, GL_FALSE, glm::value_ptr(modelViewProjection));
   for (const UserProgram::FieldUniform& f : p.fields) {
-    const vrml::FieldValue& v = p.shader->fieldAt(f.field);
+    const vrml::FieldValue& v = f.node->fieldAt(f.field);
     using T = vrml::FieldType;
     const GLint l = f.location;
     switch (v.type()) {
@@ -523,6 +643,7 @@ void UserPrograms::release() {
   for (auto& [key, e] : programs_)
     if (e.program.id != 0) glDeleteProgram(e.program.id);
   programs_.clear();
+  sourceHashes_.clear();
 }
 
 }  // namespace gs::render::detail

@@ -10,8 +10,10 @@
 // x3d_ModelViewMatrix ...) and OpenGL 2's built-ins. Each field the shader node declares
 // (initializeOnly or inputOutput) sets the uniform of its name every frame (clause 31.2.3),
 // SFNode texture fields binding their texture to a unit of its own; Appearance.texture
-// is on unit 0. ProgramShader, PackagedShader, other languages and vertex attribute nodes
-// (FloatVertexAttribute ...) are read and not used.
+// is on unit 0. A ProgramShader's ShaderPrograms are built the same way (each program's
+// own fields its uniforms); the vertex attribute nodes of the geometry (FloatVertexAttribute
+// ...) feed the program's attributes of their names. PackagedShader and other languages
+// are passed over (31.2.2), PackagedShader with a warning.
 #pragma once
 
 #include "gl_program.hpp"
@@ -26,6 +28,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace gs::render::detail {
@@ -40,17 +43,22 @@ enum class ShaderStage { vertex, fragment };
 /// output ...). A `#line 1` keeps the compiler's line numbers those of `source`.
 std::string translateGlsl(std::string_view source, ShaderStage stage);
 
-/// A linked program of one ComposedShader node and the uniforms it takes.
+/// A linked program of one ComposedShader or ProgramShader node and the uniforms and
+/// vertex attributes it takes.
 struct UserProgram {
   GLuint id = 0;
-  const vrml::Node* shader = nullptr;  // the ComposedShader (its fields are read per draw)
+  const vrml::Node* shader = nullptr;  // the ComposedShader or ProgramShader
   std::vector<GLint> modelView, projection, normalMatrix, modelViewProjection;
   struct FieldUniform {
-    std::size_t field;  // index into the shader node's fields
+    const vrml::Node* node;  // the ComposedShader, or a ShaderProgram (read per draw)
+    std::size_t field;       // index into that node's fields
     GLint location;
     GLint unit;  // texture unit for an SFNode texture field, else -1
   };
   std::vector<FieldUniform> fields;
+  /// The attributes other than the vertex data's (the vertex attribute nodes', X3D 4.0
+  /// clause 31.4), at locations 8 and up (GpuMesh::bindAttributes feeds them).
+  std::vector<ProgramAttribute> attributes;
 };
 
 /// The programs of the ComposedShaders of one GL context, built on first use. Needs that
@@ -58,12 +66,15 @@ struct UserProgram {
 class UserPrograms {
  public:
   /// The program for a shape with Appearance `appearance`: that of the first node of its
-  /// `shaders` field that is a ComposedShader in GLSL (or with no language) whose parts
-  /// load (urls: files, data: URLs, the network under the fetcher's rules; resolved
-  /// against `baseUrl`), compile and link. Null when there is none, or while a part is
-  /// still arriving (the built-in shading draws the shape meanwhile). A shader that fails
-  /// is reported to `traversal` once (at the node, with the compiler's log) and not tried
-  /// again until its parts change.
+  /// `shaders` field that is a ComposedShader (its ShaderParts) or a ProgramShader (its
+  /// ShaderPrograms, one VERTEX and one FRAGMENT at least) in GLSL (or with no language)
+  /// whose sources load (urls: files, data: URLs, the network under the fetcher's rules;
+  /// resolved against `baseUrl`), compile and link (X3D 4.0 clause 31.2.2). Null when
+  /// there is none, or while a source is still arriving (the built-in shading draws the
+  /// shape meanwhile). A shader that fails is reported to `traversal` once (at the node,
+  /// with the compiler's log) and not tried again until its sources change. Shaders in
+  /// other languages are passed over silently; a PackagedShader (31.4.5: no package
+  /// format is run here) is passed over with one warning naming it.
   const UserProgram* find(const vrml::Node& appearance, const std::string& baseUrl,
                           scene::SceneTraversal& traversal, base::Fetcher* fetcher);
 
@@ -86,7 +97,10 @@ class UserPrograms {
   };
   const UserProgram* build(const vrml::Node& shader, Entry& entry, const std::string& baseUrl,
                            scene::SceneTraversal& traversal, base::Fetcher* fetcher, bool& pending);
+  static void skipPackaged(const vrml::Node& shader, scene::SceneTraversal& traversal);
   vrml::NodeMap<Entry> programs_;
+  /// Per ShaderProgram: (its revision, the hash of its type and urls) (sourcesRevision).
+  vrml::NodeMap<std::pair<std::uint64_t, std::uint64_t>> sourceHashes_;
 };
 
 }  // namespace gs::render::detail

@@ -381,7 +381,7 @@ const GpuEnvironment* EnvironmentMaps::get(const scene::EnvironmentLightInstance
   FaceImages specularFaces, diffuseFaces;
   // A problem names the texture (an ImageCubeMapTexture's says only what its url gave).
   const auto load = [&](const vrml::NodePtr& texture, const char* field) {
-    FaceImages faces = loadFaces(*texture, *light.baseUrl, fetcher);
+    FaceImages faces = loadFaces(*texture, texture->urlBaseOr(*light.baseUrl), fetcher);
     if (!faces.problem.empty() && !faces.problem.starts_with(texture->typeName()))
       faces.problem = std::string(field) + " " + texture->typeName() + ": " + faces.problem;
     return faces;

@@ -21,6 +21,15 @@
 
 namespace gs::render::detail {
 
+/// A vertex attribute a user program reads (X3D 4.0 clause 31.4): its GLSL name, its first
+/// location and its shape (a vector: 1 column of 1 to 4 rows; a matN: N columns of N
+/// rows, at N consecutive locations).
+struct ProgramAttribute {
+  std::string name;
+  GLuint location = 0;
+  int columns = 1, rows = 4;
+};
+
 /// One tessellated geometry in GPU buffers (a VAO, a vertex buffer holding the attribute
 /// arrays one after another, an index buffer).
 struct GpuMesh {
@@ -29,20 +38,36 @@ struct GpuMesh {
   bool indexed = false;
   vrml::Primitive primitive = vrml::Primitive::triangles;
   bool hasNormals = false, hasColors = false, hasTexCoords = false;
-  bool colorAlpha = false;     // some colour is translucent (X3D ColorRGBA alpha < 1)
-  bool hasTexCoords1 = false;  // the second texture coordinate set (vrml::Mesh::texCoords1)
-  bool hasFogDepths = false;   // X3D FogCoordinate depths (vrml::Mesh::fogDepths)
+  bool colorAlpha = false;        // some colour is translucent (X3D ColorRGBA alpha < 1)
+  bool hasTexCoords1 = false;     // the second texture coordinate set (vrml::Mesh::texCoords1)
+  bool hasFogDepths = false;      // X3D FogCoordinate depths (vrml::Mesh::fogDepths)
+  bool hasTexCoordsStrq = false;  // X3D TextureCoordinate3D/4D (vrml::Mesh::texCoordsStrq)
   bool solid = true;
   std::size_t triangles = 0;
   vrml::Bounds bounds;
   std::uint64_t revision = 0;  // vrml::revisionWithFields of the geometry uploaded
+  /// The mesh's vertex attributes (vrml::Mesh::attributes) in the vertex buffer: floats,
+  /// `components` per vertex, from byte `offset`.
+  struct Attribute {
+    std::string name;
+    int components = 1;
+    std::size_t offset = 0;
+  };
+  std::vector<Attribute> attributes;
 
   /// Uploads `mesh` (attribute locations: 0 position, 1 normal, 2 colour, 3 texCoord,
   /// 4 the second texCoord set, 5 the fog depth: -1 when the mesh has none, meaning the
-  /// distance to the viewer).
+  /// distance to the viewer, 6 the X3D TextureCoordinate3D/4D (s, t, r, q): (0, 0, 0, 0)
+  /// when the mesh has none).
   void upload(const vrml::Mesh& mesh);
   /// Issues the draw call (the program and uniforms must be set).
   void draw() const;
+  /// Feeds the attributes `wanted` of a user program from this mesh's vertex attributes
+  /// of the same names (a float attribute of n components to a vector: n values, the
+  /// others 0 and w 1; a matrix to a matrix of as many floats, column by column). One
+  /// the mesh lacks, or of another size, reads the constant (0, 0, 0, 1) in each column.
+  /// Call before draw() with that program; the arrays stay in the VAO until changed.
+  void bindAttributes(const std::vector<ProgramAttribute>& wanted) const;
   void release();
 };
 
@@ -129,8 +154,9 @@ class MovieTextures {
 class TextureCache {
  public:
   /// The texture of `node` (an ImageTexture or PixelTexture), loading it on first use;
-  /// URLs resolve against `baseUrl`. Failures are reported to `traversal` once and give a
-  /// texture with 0 components.
+  /// URLs resolve against node.urlBaseOr(baseUrl) (`baseUrl` unless the node was written
+  /// in an EXTERNPROTO's file, vrml::Node::urlBase). Failures are reported to `traversal` once and
+  /// give a texture with 0 components.
   const GpuTexture& get(const vrml::Node& node, const std::string& baseUrl,
                         scene::SceneTraversal& traversal, base::Fetcher* fetcher);
   void release();

@@ -21,6 +21,7 @@ void GpuMesh::upload(const vrml::Mesh& mesh) {
   hasTexCoords = mesh.texCoords.size() == n && n > 0;
   hasTexCoords1 = hasTexCoords && mesh.texCoords1.size() == n;
   hasFogDepths = mesh.fogDepths.size() == n && n > 0;
+  hasTexCoordsStrq = mesh.texCoordsStrq.size() == n && n > 0;
   indexed = !mesh.indices.empty();
   count = static_cast<GLsizei>(indexed ? mesh.indices.size() : n);
   if (!indexed && primitive == vrml::Primitive::triangles) triangles = n / 3;
@@ -42,8 +43,15 @@ void GpuMesh::upload(const vrml::Mesh& mesh) {
   const std::size_t texBytes = hasTexCoords ? n * sizeof(glm::vec2) : 0;
   const std::size_t tex1Bytes = hasTexCoords1 ? n * sizeof(glm::vec2) : 0;
   const std::size_t fogBytes = hasFogDepths ? n * sizeof(float) : 0;
-  const std::size_t total =
-      positionBytes + normalBytes + colorBytes + texBytes + tex1Bytes + fogBytes;
+  const std::size_t strqBytes = hasTexCoordsStrq ? n * sizeof(glm::vec4) : 0;
+  std::size_t total =
+      positionBytes + normalBytes + colorBytes + texBytes + tex1Bytes + fogBytes + strqBytes;
+  attributes.clear();
+  for (const vrml::VertexAttribute& a : mesh.attributes)
+    if (a.components > 0 && a.values.size() == n * static_cast<std::size_t>(a.components)) {
+      attributes.push_back({a.name, a.components, total});
+      total += a.values.size() * sizeof(float);
+    }
 
   glGenVertexArrays(1, &vao);
   glBindVertexArray(vao);
@@ -65,6 +73,15 @@ void GpuMesh::upload(const vrml::Mesh& mesh) {
   if (hasTexCoords) attribute(3, 2, mesh.texCoords.data(), texBytes);
   if (hasTexCoords1) attribute(4, 2, mesh.texCoords1.data(), tex1Bytes);
   if (hasFogDepths) attribute(5, 1, mesh.fogDepths.data(), fogBytes);
+  if (hasTexCoordsStrq) attribute(6, 4, mesh.texCoordsStrq.data(), strqBytes);
+  // The user attributes: uploaded here, pointed at by bindAttributes (their locations
+  // are the program's).
+  std::size_t next = 0;
+  for (const vrml::VertexAttribute& a : mesh.attributes)
+    if (next < attributes.size() && attributes[next].name == a.name &&
+        a.values.size() == n * static_cast<std::size_t>(a.components))
+      glBufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(attributes[next++].offset),
+                      static_cast<GLsizeiptr>(a.values.size() * sizeof(float)), a.values.data());
   if (indexed) {
     glGenBuffers(1, &indexBuffer);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indexBuffer);
@@ -84,6 +101,7 @@ void GpuMesh::draw() const {
   if (!hasTexCoords) glVertexAttrib2f(3, 0.0f, 0.0f);
   if (!hasTexCoords1) glVertexAttrib2f(4, 0.0f, 0.0f);
   if (!hasFogDepths) glVertexAttrib1f(5, -1.0f);
+  if (!hasTexCoordsStrq) glVertexAttrib4f(6, 0.0f, 0.0f, 0.0f, 0.0f);
   const GLenum mode = primitive == vrml::Primitive::triangles ? GL_TRIANGLES
                       : primitive == vrml::Primitive::lines   ? GL_LINES
                                                               : GL_POINTS;
@@ -95,12 +113,42 @@ void GpuMesh::draw() const {
   glBindVertexArray(0);
 }
 
+void GpuMesh::bindAttributes(const std::vector<ProgramAttribute>& wanted) const {
+  if (count == 0 || wanted.empty()) return;
+  glBindVertexArray(vao);
+  glBindBuffer(GL_ARRAY_BUFFER, vertexBuffer);
+  for (const ProgramAttribute& w : wanted) {
+    const auto it = std::find_if(attributes.begin(), attributes.end(),
+                                 [&](const Attribute& a) { return a.name == w.name; });
+    const bool vector = w.columns == 1 && it != attributes.end() && it->components <= 4;
+    const bool matrix =
+        w.columns > 1 && it != attributes.end() && it->components == w.columns * w.rows;
+    for (int c = 0; c < w.columns; ++c) {
+      const GLuint location = w.location + static_cast<GLuint>(c);
+      if (!vector && !matrix) {
+        glDisableVertexAttribArray(location);
+        glVertexAttrib4f(location, 0.0f, 0.0f, 0.0f, 1.0f);
+        continue;
+      }
+      const GLint size = vector ? it->components : w.rows;
+      const std::size_t offset = it->offset + static_cast<std::size_t>(c * w.rows) * sizeof(float);
+      glEnableVertexAttribArray(location);
+      glVertexAttribPointer(location, size, GL_FLOAT, GL_FALSE,
+                            static_cast<GLsizei>(it->components * sizeof(float)),
+                            reinterpret_cast<const void*>(offset));
+    }
+  }
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+}
+
 void GpuMesh::release() {
   if (vao != 0) glDeleteVertexArrays(1, &vao);
   if (vertexBuffer != 0) glDeleteBuffers(1, &vertexBuffer);
   if (indexBuffer != 0) glDeleteBuffers(1, &indexBuffer);
   vao = vertexBuffer = indexBuffer = 0;
   count = 0;
+  attributes.clear();
 }
 
 }  // namespace gs::render::detail

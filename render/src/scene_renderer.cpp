@@ -48,7 +48,7 @@ struct DrawItem {
   std::array<GLint, kMaxTextureStages> stageSets{};
   int stageCount = 0;
   TexGen texGen{};                    // the geometry's TextureCoordinateGenerator
-  const UserProgram* user = nullptr;  // the Appearance's ComposedShader, null: none
+  const UserProgram* user = nullptr;  // the Appearance's user shader, null: none
 };
 
 /// Texture unit of an EnvironmentLight's specular cube map (units 0..4 are 2D maps).
@@ -504,9 +504,10 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     const GpuMesh& mesh = *d.mesh;
     const Shading& sh = *d.shading;
     const bool triangles = mesh.primitive == vrml::Primitive::triangles;
-    if (d.user != nullptr) {  // a ComposedShader draws the shape (composed_shaders.hpp)
+    if (d.user != nullptr) {  // a user shader draws the shape (composed_shaders.hpp)
       g.userPrograms.use(*d.user, view * s.model, projection, d.texture, g.textures, *s.baseUrl,
                          traversal_, options_.fetcher);
+      mesh.bindAttributes(d.user->attributes);  // the vertex attribute nodes (31.4)
       current = nullptr;
       for (; clipDistancesOn > 0; --clipDistancesOn)
         glDisable(GL_CLIP_DISTANCE0 + clipDistancesOn - 1);
@@ -635,6 +636,12 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     glUniform1i(u.fogType, fogTypeOf(fog));
     glUniform3fv(u.fogColor, 1, glm::value_ptr(fog.color));
     glUniform1f(u.fogVisibilityRange, fog.visibilityRange);
+    // Volumetric fog: the world plane (direction, -start) in eye coordinates, so that
+    // dot(plane, (eye position, 1)) is the height along the direction above the start.
+    const glm::vec4 fogPlane =
+        fog.volumetric ? planeToEye * glm::vec4(fog.volumetricDirection, -fog.volumetricStart)
+                       : glm::vec4(0.0f);
+    glUniform4fv(u.fogPlane, 1, glm::value_ptr(fogPlane));
     if (lit && !lightsUploaded) {
       lights.upload(u);
       lightsUploaded = true;

@@ -34,6 +34,10 @@ layout(location = 2) in vec4 a_color;
 layout(location = 3) in vec2 a_texCoord;
 layout(location = 4) in vec2 a_texCoord1;  // the second set (MultiTextureCoordinate)
 layout(location = 5) in float a_fogDepth;   // X3D FogCoordinate; -1: the eye distance
+// X3D TextureCoordinate3D / TextureCoordinate4D (clauses 33.4.6, 33.4.7) as (s, t, r, q);
+// q = 0 where the geometry has none. Read by 2D textures as (s, t) / q and by 3D textures
+// as (s, t, r) / q, the division per pixel (v_texQ).
+layout(location = 6) in vec4 a_texCoordStrq;
 
 uniform mat4 u_modelView;
 uniform mat4 u_projection;
@@ -70,12 +74,14 @@ uniform int u_texGen;
 uniform bool u_texture3DOn;  // an X3D Texturing3D texture: v_texCoord3 is read
 #define TEXTURE_3D u_texture3DOn
 #endif
-// 3D texture coordinates (X3D 4.0 clause 33): COORD / COORD-EYE generation, else the
-// shape's bounding box mapped to [0, 1]^3; then the Appearance's 3D texture transform.
+// 3D texture coordinates (X3D 4.0 clause 33): the geometry's TextureCoordinate3D/4D,
+// COORD / COORD-EYE generation, else the shape's bounding box mapped to [0, 1]^3 (r from
+// the back); then the Appearance's 3D texture transform.
 uniform mat4 u_textureMatrix3D;
 uniform vec3 u_texBoundsMin;
 uniform vec3 u_texBoundsSize;
 out vec3 v_texCoord3;
+out float v_texQ;  // v_texCoord and v_texCoord3 are divided by it (1 but for a_texCoordStrq)
 uniform float u_texGenParameter;  // SPHERE-REFLECT's index of refraction
 uniform mat3 u_eyeToWorld;        // the view's rotation, inverted
 
@@ -119,14 +125,22 @@ void main() {
   v_normal = u_normalMatrix * a_normal;
   v_color = a_color;
   v_fogDepth = a_fogDepth;
-  vec2 texCoord = TEX_GEN != 0 ? generatedTexCoord(eye.xyz, v_normal) : a_texCoord;
-  v_texCoord = (u_textureMatrix * vec3(texCoord, 1.0)).xy;
+  bool strq = a_texCoordStrq.w != 0.0;
+  v_texQ = strq ? a_texCoordStrq.w : 1.0;
+  vec2 texCoord = strq           ? a_texCoordStrq.xy
+                  : TEX_GEN != 0 ? generatedTexCoord(eye.xyz, v_normal)
+                                 : a_texCoord;
+  // Homogeneous (s, t, q): the affine texture matrix keeps q, divided out per pixel.
+  v_texCoord = (u_textureMatrix * vec3(texCoord, v_texQ)).xy;
   v_texCoord1 = (u_textureMatrix * vec3(a_texCoord1, 1.0)).xy;
   if (TEXTURE_3D) {
-    vec3 r = TEX_GEN == 6 ? a_position
-           : TEX_GEN == 7 ? eye.xyz
-                          : (a_position - u_texBoundsMin) / max(u_texBoundsSize, vec3(1e-6));
-    v_texCoord3 = (u_textureMatrix3D * vec4(r, 1.0)).xyz;
+    // The box mapping's r runs backwards, 1 at the back (X3D 4.0 clause 33.2.4, as
+    // castle-model-viewer reads it); 0 for a flat shape.
+    vec3 box = (a_position - u_texBoundsMin) / max(u_texBoundsSize, vec3(1e-6));
+    box.z = u_texBoundsSize.z > 1e-6 ? 1.0 - box.z : 0.0;
+    vec3 r = TEX_GEN == 6 ? a_position : TEX_GEN == 7 ? eye.xyz : box;
+    vec4 h = strq ? a_texCoordStrq : vec4(r, 1.0);
+    v_texCoord3 = (u_textureMatrix3D * h).xyz;
   } else {
     v_texCoord3 = vec3(0.0);
   }
@@ -166,6 +180,7 @@ uniform mat3 u_eyeToWorld;
 // An X3D Texturing3D texture (clause 33) on unit 7, read at v_texCoord3.
 uniform sampler3D u_texture3D;
 in vec3 v_texCoord3;
+in float v_texQ;  // X3D TextureCoordinate4D's q (1 otherwise): v_texCoord and v_texCoord3 / it
 
 // A MultiTexture's stages (multi_texture.hpp): stage i samples unit i.
 const int kMaxStages = 4;
@@ -257,6 +272,9 @@ uniform float u_lightCutOffAngle[kMaxLights];
 
 uniform vec3 u_fogColor;
 uniform float u_fogVisibilityRange;
+// Volumetric fog (castle-engine's): the fog distance is dot(u_fogPlane, (eye position, 1));
+// all zero: the distance to the eye.
+uniform vec4 u_fogPlane;
 
 out vec4 fragColor;
 
@@ -338,7 +356,7 @@ vec4 applyStages(vec4 diffuse, vec3 specular) {
     if (i >= STAGE_COUNT) break;
     ivec2 mode = u_stageMode[i];
     if (mode.x == 16) continue;  // OFF
-    vec2 uv = u_stageTexCoord[i] == 0 ? v_texCoord : v_texCoord1;
+    vec2 uv = u_stageTexCoord[i] == 0 ? v_texCoord / v_texQ : v_texCoord1;
     vec4 t = stageSample(i, (u_stageMatrix[i] * vec3(uv, 1.0)).xy);
     int source = u_stageSource[i];
     vec4 s = source == 1 ? diffuse : source == 2 ? vec4(specular, diffuse.a)
@@ -367,9 +385,9 @@ void main() {
     alpha *= v_color.a;  // X3D ColorRGBA (clause 11.4.3); 1 for Color
   }
   if (TEXTURE_COMPONENTS > 0) {
-    vec4 t = TEXTURE_3D    ? texture(u_texture3D, v_texCoord3)
+    vec4 t = TEXTURE_3D    ? texture(u_texture3D, v_texCoord3 / v_texQ)
              : CUBE_MAP > 0 ? vec4(texture(u_cubeTexture, cubeDirection()).rgb, 1.0)
-                            : texture(u_texture, v_texCoord);
+                            : texture(u_texture, v_texCoord / v_texQ);
     if (TEXTURE_COMPONENTS <= 2) diffuse *= t.r;
     else diffuse = TEXTURE_MODULATES ? diffuse * t.rgb : t.rgb;
     if (TEXTURE_COMPONENTS == 2 || TEXTURE_COMPONENTS == 4) alpha = t.a;
@@ -425,7 +443,9 @@ void main() {
   else if (!FILLED) discard;
 
   if (FOG_TYPE != 0 && u_fogVisibilityRange > 0.0) {
-    float d = v_fogDepth >= 0.0 ? v_fogDepth : length(v_position);
+    float d = v_fogDepth >= 0.0        ? v_fogDepth
+              : u_fogPlane != vec4(0.0) ? dot(u_fogPlane, vec4(v_position, 1.0))
+                                        : length(v_position);
     float r = u_fogVisibilityRange;
     float f0 = 0.0;
     if (d < r) f0 = FOG_TYPE == 1 ? (r - d) / r : exp(-d / (r - d));

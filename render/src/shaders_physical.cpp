@@ -38,6 +38,7 @@ in vec3 v_normal;
 in vec4 v_color;
 in vec2 v_texCoord;
 in vec2 v_texCoord1;
+in float v_texQ;  // X3D TextureCoordinate4D's q (1 otherwise): v_texCoord / it
 
 uniform bool u_hasColor;
 uniform int u_textureComponents;  // base colour texture: 0 none
@@ -81,6 +82,7 @@ uniform float u_lightCutOffAngle[kMaxLights];
 uniform int u_fogType;
 uniform vec3 u_fogColor;
 uniform float u_fogVisibilityRange;
+uniform vec4 u_fogPlane;  // volumetric fog: distance dot(plane, (eye, 1)); zero: eye distance
 
 uniform bool u_hasEnvironment;
 uniform bool u_hasEnvironmentMap;
@@ -101,7 +103,7 @@ vec3 toSrgb(vec3 c) {
 }
 
 vec2 uvOf(int set) {
-  return set == 1 ? v_texCoord1 : v_texCoord;
+  return set == 1 ? v_texCoord1 : v_texCoord / v_texQ;
 }
 
 vec3 surfaceNormal() {
@@ -233,7 +235,7 @@ void main() {
   color = toSrgb(clamp(color, 0.0, 1.0));
 
   if (u_fogType != 0 && u_fogVisibilityRange > 0.0) {
-    float d = length(v_position);
+    float d = u_fogPlane != vec4(0.0) ? dot(u_fogPlane, vec4(v_position, 1.0)) : length(v_position);
     float r = u_fogVisibilityRange;
     float f0g = 0.0;
     if (d < r) f0g = u_fogType == 1 ? (r - d) / r : exp(-d / (r - d));

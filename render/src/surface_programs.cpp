@@ -101,6 +101,7 @@ void SurfaceUniforms::find(GLuint p) {
   fogType = uniform(p, "u_fogType");
   fogColor = uniform(p, "u_fogColor");
   fogVisibilityRange = uniform(p, "u_fogVisibilityRange");
+  fogPlane = uniform(p, "u_fogPlane");
 }
 
 std::uint64_t SurfaceVariant::key() const {

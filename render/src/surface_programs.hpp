@@ -35,7 +35,7 @@ struct SurfaceUniforms {
       unlitColor;
   GLint lightCount, lightType, lightColor, lightIntensity, lightAmbientIntensity, lightPosition,
       lightDirection, lightAttenuation, lightRadius, lightBeamWidth, lightCutOffAngle;
-  GLint fogType, fogColor, fogVisibilityRange;
+  GLint fogType, fogColor, fogVisibilityRange, fogPlane;
   GLint metallic, roughness, normalScale, occlusionStrength, alphaMode, alphaCutoff;
   std::array<GLint, kPhysicalMapCount> hasMap, map;
   GLint hasEnvironment, hasEnvironmentMap, environmentMap, environmentSh, environmentColor,

@@ -211,8 +211,10 @@ bool decodeSFImage(const vrml::SFImage& image, std::vector<std::uint8_t>& rgba, 
   return true;
 }
 
-const GpuTexture& TextureCache::get(const vrml::Node& node, const std::string& baseUrl,
+const GpuTexture& TextureCache::get(const vrml::Node& node, const std::string& inheritedBase,
                                     scene::SceneTraversal& traversal, base::Fetcher* fetcher) {
+  // A texture written in an EXTERNPROTO's file resolves against that file (Node::urlBase).
+  const std::string& baseUrl = node.urlBaseOr(inheritedBase);
   if (node.typeId() == vrml::NodeTypeId::MovieTexture)
     return movies.get(node, baseUrl, traversal, fetcher);
   if (auto it = textures_.find(&node); it != textures_.end()) return it->second;

@@ -267,10 +267,12 @@ VolumeDataSet volumeDataSet(const vrml::Node& node, const std::string& baseUrl,
       ok = volumeFromPixelTexture3D(*voxels, volume, out.problem);
       break;
     case vrml::NodeTypeId::ImageTexture3D:
-      ok = volumeFromImageTexture3D(*voxels, baseUrl, fetcher, volume, out.pending, out.problem);
+      ok = volumeFromImageTexture3D(*voxels, voxels->urlBaseOr(baseUrl), fetcher, volume,
+                                    out.pending, out.problem);
       break;
     case vrml::NodeTypeId::ComposedTexture3D:
-      ok = volumeFromComposedTexture3D(*voxels, baseUrl, fetcher, volume, out.pending, out.problem);
+      ok = volumeFromComposedTexture3D(*voxels, voxels->urlBaseOr(baseUrl), fetcher, volume,
+                                       out.pending, out.problem);
       break;
     default:
       out.problem = voxels->typeName() +

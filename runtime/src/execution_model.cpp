@@ -155,7 +155,9 @@ void ExecutionModel::State::initializeScripts() {
 }
 
 bool ExecutionModel::State::scriptFilesArriving(const vrml::Node& script) {
-  const std::string world = scene ? scene->url : std::string();
+  const std::string worldUrl = scene ? scene->url : std::string();
+  // Relative to the file that wrote the Script (an EXTERNPROTO's: vrml::Node::urlBase).
+  const std::string world = script.urlBaseOr(worldUrl);
   const vrml::FieldValue* urls = script.field("url");
   if (urls == nullptr || urls->type() != vrml::FieldType::MFString) return false;
   for (const std::string& entry : urls->get<vrml::FieldType::MFString>()) {

@@ -35,6 +35,8 @@ enum class NodeRole : std::uint8_t {
   follower,         // X3D Followers, dampers and chasers (X3D 4.0 clause 39): followers.cpp
   keySensor,        // X3D KeySensor, StringSensor (X3D 4.0 clause 21): key_sensors.cpp
   loadSensor,       // X3D LoadSensor (X3D 4.0 clause 9.4.3): load_sensors.cpp
+  // X3D NURBS interpolators (X3D 4.0 27.4.5, 27.4.6, 27.4.9): interpolators_nurbs.cpp
+  nurbsInterpolator,
 };
 
 /// The X3D event-utility nodes (X3D 4.0 clause 30).
@@ -209,6 +211,8 @@ struct NodeState {
   int keyVelocity = -1, closed = -1, normalizeVelocity = -1;         // X3D spline interpolators
   int setBind = -1, isBound = -1, bindTime = -1;                     // bindables
   int addChildren = -1, removeChildren = -1, children = -1;          // grouping
+  // NurbsSurfaceInterpolator's normal_changed (valueChanged: its position_changed).
+  int normalChanged = -1;
   TimeSensorFields timeFields;
   TimeState time;
   /// TimeSensor: its time fields as last read, valid while node->revision() is
@@ -360,6 +364,14 @@ struct ExecutionModel::State {
   void evaluateLoadSensors();
   void evaluateLoadSensor(NodeState& ns);
   void startLoadWatch(NodeState& ns);
+
+  // ---- NURBS interpolators (interpolators_nurbs.cpp) ----
+  /// Makes `ns` a NURBS interpolator when it is a NurbsPositionInterpolator,
+  /// NurbsOrientationInterpolator or NurbsSurfaceInterpolator (X3D 4.0 27.4.5, 27.4.6, 27.4.9).
+  bool classifyNurbsInterpolator(NodeState& ns);
+  /// set_fraction `value` of a NURBS interpolator: value_changed (position_changed and
+  /// normal_changed), or one error for the node (its fields make no curve) and no output.
+  void deliverNurbsInterpolator(NodeState& ns, vrml::FieldValue value);
 
   // ---- environmental sensors (environment_sensors.cpp) ----
   void evaluateEnvironmentSensors();

@@ -121,6 +121,7 @@ void ExecutionModel::State::classify(NodeState& ns) {
   if (classifyHumanoid(ns)) return;
   if (classifyKeySensor(ns)) return;
   if (classifyLoadSensor(ns)) return;
+  if (classifyNurbsInterpolator(ns)) return;
   if (id == NodeTypeId::TimeSensor) {
     ns.role = NodeRole::timeSensor;
     TimeSensorFields& f = ns.timeFields;
@@ -344,6 +345,12 @@ void ExecutionModel::State::deliver(NodeState& ns, int field, vrml::FieldValue v
         return;
       }
       break;  // description, metadata: exposedFields
+    case NodeRole::nurbsInterpolator:
+      if (field == ns.setFraction) {
+        deliverNurbsInterpolator(ns, std::move(value));
+        return;
+      }
+      break;  // order, knot, weight, controlPoint: exposedFields
     case NodeRole::plain:
     case NodeRole::transformSensor:
     case NodeRole::proximity:

@@ -4,6 +4,8 @@
 // allocator, native stack depth through DUK_USE_NATIVE_STACK_CHECK; cmake/Duktape.cmake).
 #include "script_ecmascript_internal.hpp"
 
+#include "base/url.hpp"
+
 #include <pthread.h>
 #include <algorithm>
 #include <cassert>
@@ -429,7 +431,17 @@ bool EsScript::load() {
       sourceName = std::string(e.scheme);
     } else {
       std::string error;
-      if (!ctx_.fetchText(entry, source, error)) {
+      // A Script written in an EXTERNPROTO's file names its files relative to that file
+      // (vrml::Node::urlBase), under that file's rules (a remote one reads no local file).
+      std::string target = entry;
+      if (node_.urlBase) {
+        target = base::resolveUrl(*node_.urlBase, entry);
+        if (!base::mayReference(*node_.urlBase, target, error)) {
+          warn(error);
+          continue;
+        }
+      }
+      if (!ctx_.fetchText(target, source, error)) {
         warn(error.empty() ? "cannot read '" + entry + "'" : error);
         continue;
       }

@@ -21,8 +21,10 @@ NodeKind nodeKind(const vrml::Node& node) {
     case NodeTypeId::Transform:
     case NodeTypeId::CADPart:  // Transform's fields (X3D 4.0 clause 32.4.4)
     // H-Anim's joints and sites (X3D 4.0 clauses 26.3.2, 26.3.4) transform their children
-    // as a Transform does, with the same fields.
+    // as a Transform does, with the same fields; a segment too with castle-engine's
+    // translation, rotation and scale (vrml/gen/gen_node_model.py, castle extensions).
     case NodeTypeId::HAnimJoint:
+    case NodeTypeId::HAnimSegment:
     case NodeTypeId::HAnimSite:
       return NodeKind::Transform;
     case NodeTypeId::HAnimHumanoid:

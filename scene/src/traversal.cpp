@@ -187,6 +187,7 @@ struct SceneTraversal::Walk {
     f.color = glm::clamp(sfColor(n, "color", glm::vec3(1.0f)), 0.0f, 1.0f);
     f.exponential = sfString(n, "fogType") == "EXPONENTIAL";
     f.visibilityRange = std::max(sfFloat(n, "visibilityRange", 0.0f), 0.0f) * meanScale(m);
+    readVolumetricFog(n, meanScale(m), f);
     fogScope = static_cast<std::int32_t>(frame.localFogs.size());
     frame.localFogs.push_back(f);
   }
@@ -485,7 +486,8 @@ struct SceneTraversal::Walk {
         break;
       }
       case NodeKind::Inline: {
-        const InlineScene* inl = self.inlineScene(n, *baseUrl);
+        // An Inline written in an EXTERNPROTO's file resolves against that file.
+        const InlineScene* inl = self.inlineScene(n, n.urlBaseOr(*baseUrl));
         if (inl == nullptr || !inl->scene) break;
         if (static_cast<int>(inlineChain.size()) >= self.options_.maxInlineDepth) {
           self.report(vrml::Severity::error, n.location,
@@ -522,7 +524,7 @@ struct SceneTraversal::Walk {
         shape(n, m, baseUrl);
         break;
       case NodeKind::QuantizedNormalVectors:
-        frame.splats.push_back({&n, m, baseUrl});
+        frame.splats.push_back({&n, m, &n.urlBaseOr(*baseUrl)});  // its file's base
         break;
       case NodeKind::OutlineGroup:
         outlineGroup(n, m, baseUrl);
@@ -712,6 +714,8 @@ void SceneTraversal::dropMeshArrays(const vrml::Node& geometry) {
   m.normals = {};
   m.colors = {};
   m.texCoords = {};
+  m.attributes = {};  // X3D vertex attributes (vrml::Mesh::attributes)
+  m.pointIndices = {};
   m.indices = {};
   it->second.arraysDropped = true;
 }

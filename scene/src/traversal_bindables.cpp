@@ -5,6 +5,7 @@
 #include "scene/node_kind.hpp"
 #include "scene/traversal.hpp"
 
+#include <cmath>
 #include <filesystem>
 
 namespace gs::scene {
@@ -144,6 +145,7 @@ void SceneTraversal::findBindables() {
         fog_.color = sfColor(n, "color", glm::vec3(1.0f));
         fog_.exponential = sfString(n, "fogType") == "EXPONENTIAL";
         fog_.visibilityRange = std::max(sfFloat(n, "visibilityRange", 0.0f), 0.0f) * meanScale(m);
+        readVolumetricFog(n, meanScale(m), fog_);
         break;
       }
       default:
@@ -171,6 +173,18 @@ void SceneTraversal::setBoundNodes(const BoundNodes& bound) {
   background_ = BackgroundSettings{};
   fog_ = FogSettings{};
   findBindables();
+}
+
+void readVolumetricFog(const vrml::Node& node, float scale, FogSettings& fog) {
+  fog.volumetric = false;
+  if (!sfBool(node, "volumetric", false)) return;
+  const glm::vec3 d = sfVec3(node, "volumetricDirection", glm::vec3(0.0f, -1.0f, 0.0f));
+  const float length = glm::length(d);
+  const float start = sfFloat(node, "volumetricVisibilityStart", 0.0f) * scale;
+  if (!(length > 0.0f) || !std::isfinite(length) || !std::isfinite(start)) return;
+  fog.volumetric = true;
+  fog.volumetricDirection = d / length;
+  fog.volumetricStart = start;
 }
 
 }  // namespace gs::scene

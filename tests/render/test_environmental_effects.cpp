@@ -1,6 +1,6 @@
 // X3D's Environmental effects beyond VRML97's (X3D 4.0 clause 24): TextureBackground, a
 // Background whose six faces are texture nodes (24.4.3), and LocalFog, fog scoped to its
-// siblings (24.4.4); drawn off-screen at 64x64.
+// siblings (24.4.4), and castle-engine's volumetric Fog; drawn off-screen at 64x64.
 #include "test_support.hpp"
 #include "world_files.hpp"
 
@@ -111,4 +111,44 @@ Shape { appearance USE A geometry IndexedFaceSet { coordIndex [0 1 2 3 -1]
     CHECK(close(r.image.pixel(52, 32), 191, 0, 64, 4));
     CHECK(close(r.image.pixel(52, 5), 191, 0, 64, 4));
   }
+}
+
+TEST_CASE("castle's volumetric Fog: the fog distance is the height along its direction",
+          "[render][offscreen][world][fog]") {
+  // An emissive blue quad 1 m ahead filling the 90-degree view; a red LINEAR Fog of range
+  // 2, volumetric downwards (0 -1 0) from height 0: a point at height y is fogged by
+  // f0 = (2 - (-y)) / 2, none above y = 0, whatever its distance to the viewer.
+  const fs::path file = worldDir() / "fog_volumetric.x3dv";
+  writeText(file, R"(#X3D V3.2 utf8
+PROFILE Immersive
+NavigationInfo { headlight FALSE }
+Viewpoint { position 0 0 1 fieldOfView 1.5708 }
+Fog { color 1 0 0 visibilityRange 2 volumetric TRUE volumetricDirection 0 -3 0 }
+Shape { appearance Appearance { material Material { diffuseColor 0 0 0 emissiveColor 0 0 1 } }
+  geometry IndexedFaceSet { coord Coordinate { point [-2 -2 0, 2 -2 0, 2 2 0, -2 2 0] }
+    coordIndex [0 1 2 3 -1] } }
+)");
+  const Rendered r = renderFile(file);
+  CHECK(r.diagnostics.items.empty());
+  // Row 16 is at y = +0.484 (the eye-distance fog would give f0 = 0.44 there): no fog.
+  CHECK(close(r.image.pixel(32, 16), 0, 0, 255, 4));
+  CHECK(close(r.image.pixel(5, 16), 0, 0, 255, 4));
+  // Row 47 at y = -0.484: f0 = 0.758 (red 62, blue 193), the same at the side (x = -0.83).
+  CHECK(close(r.image.pixel(32, 47), 62, 0, 193, 5));
+  CHECK(close(r.image.pixel(5, 47), 62, 0, 193, 5));
+  // Row 60 at y = -0.891: f0 = 0.555.
+  CHECK(close(r.image.pixel(32, 60), 114, 0, 141, 5));
+  // volumetricVisibilityStart -1 moves the fog's start up to y = 1: row 16 is now at
+  // fog distance 1 - 0.484 = 0.516, f0 = 0.742 (red 66, blue 189).
+  writeText(file, R"(#X3D V3.2 utf8
+PROFILE Immersive
+NavigationInfo { headlight FALSE }
+Viewpoint { position 0 0 1 fieldOfView 1.5708 }
+Fog { color 1 0 0 visibilityRange 2 volumetric TRUE volumetricVisibilityStart -1 }
+Shape { appearance Appearance { material Material { diffuseColor 0 0 0 emissiveColor 0 0 1 } }
+  geometry IndexedFaceSet { coord Coordinate { point [-2 -2 0, 2 -2 0, 2 2 0, -2 2 0] }
+    coordIndex [0 1 2 3 -1] } }
+)");
+  const Rendered shifted = renderFile(file);
+  CHECK(close(shifted.image.pixel(32, 16), 66, 0, 189, 5));
 }

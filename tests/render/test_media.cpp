@@ -339,3 +339,56 @@ TEST_CASE("bounds of rotated shapes come from their points, not their boxes",
   CHECK(v.worldBounds().max.x == Approx(3.0f).epsilon(1e-4));
   CHECK(v.worldBounds().max.z == Approx(1.0f).epsilon(1e-4));
 }
+
+namespace {
+
+/// An unlit quad filling the view, as texturedQuad draws it, whose texture node is
+/// `texture` (a PROTO body's text).
+std::string protoQuad(const std::string& texture) {
+  return R"(Shape {
+  appearance Appearance { texture )" +
+         texture + R"( }
+  geometry IndexedFaceSet {
+    coord Coordinate { point [ -1 -1 0, 1 -1 0, 1 1 0, -1 1 0 ] }
+    coordIndex [ 0 1 2 3 ]
+    color Color { color [ 1 0 0 ] } colorPerVertex FALSE
+    texCoord TextureCoordinate { point [ 0 0, 1 0, 1 1, 0 1 ] }
+  }
+})";
+}
+
+}  // namespace
+
+TEST_CASE("a url in an EXTERNPROTO's body resolves against the PROTO's file",
+          "[render][offscreen][image][proto]") {
+  // tex.png is green beside the PROTOs (extern_sub/) and blue beside the world: a node
+  // written in extern_sub/protos.wrl finds the green one, also when its url came through
+  // IS from the world; a texture node written in the world (an SFNode value) the blue one.
+  const fs::path d = dir();
+  fs::create_directories(d / "extern_sub");
+  writeBytes(d / "extern_sub" / "tex.png", pngBytes(1, 1, 3, {0, 255, 0}));
+  writeBytes(d / "tex.png", pngBytes(1, 1, 3, {0, 0, 255}));
+  writeBytes(d / "extern_sub" / "protos.wrl",
+             "#VRML V2.0 utf8\nPROTO Body [] { " + protoQuad("ImageTexture { url \"tex.png\" }") +
+                 " }\nPROTO ByIs [ field MFString u [] ] { " +
+                 protoQuad("ImageTexture { url IS u }") +
+                 " }\nPROTO ByNode [ field SFNode t NULL ] { " + protoQuad("IS t") + " }\n");
+  const std::string head = R"(#VRML V2.0 utf8
+EXTERNPROTO Body [] "extern_sub/protos.wrl#Body"
+EXTERNPROTO ByIs [ field MFString u ] "extern_sub/protos.wrl#ByIs"
+EXTERNPROTO ByNode [ field SFNode t ] "extern_sub/protos.wrl#ByNode"
+Background { skyColor 1 1 0 }
+Viewpoint { position 0 0 2 fieldOfView 1.5 }
+)";
+  gs::vrml::Diagnostics diagnostics;
+  Image img = render("extern_body.wrl", head + "Body {}\n", &diagnostics);
+  CHECK(diagnostics.items.empty());
+  CHECK(close(img.pixel(32, 32), 0, 255, 0));
+  img = render("extern_is.wrl", head + "ByIs { u \"tex.png\" }\n", &diagnostics);
+  CHECK(diagnostics.items.empty());
+  CHECK(close(img.pixel(32, 32), 0, 255, 0));
+  img = render("extern_node.wrl", head + "ByNode { t ImageTexture { url \"tex.png\" } }\n",
+               &diagnostics);
+  CHECK(diagnostics.items.empty());
+  CHECK(close(img.pixel(32, 32), 0, 0, 255));
+}

@@ -567,3 +567,32 @@ DEF S Script {
   CHECK(ctx.emittedFor(*w.script, "outA").at(0).get<FieldType::SFFloat>() == 1.0f);
   CHECK(ctx.emittedFor(*w.script, "outB").at(0).get<FieldType::SFFloat>() == 20.0f);
 }
+
+TEST_CASE("Script: a Script written in an EXTERNPROTO's file reads its files beside that file",
+          "[script][proto][url]") {
+  // vrml::Node::urlBase (set by the parser on an EXTERNPROTO file's nodes) is the base of
+  // the Script's file entries; a remote base may not name a local file.
+  FakeScriptContext ctx;
+  ctx.files["/lib/sub/good.js"] = "function initialize() { out = 'beside the PROTO'; }";
+  ctx.files["good.js"] = "function initialize() { out = 'beside the world'; }";
+  ctx.files["file:///lib/sub/good.js"] = "function initialize() { out = 'local'; }";
+  vrml::Scene scene = vrml::parseVrml(
+      "#VRML V2.0 utf8\nDEF S Script { eventOut SFString out url \"good.js\" }\n", "test.wrl");
+  vrml::NodePtr script = findScript(scene.rootNodes);
+  REQUIRE(script);
+  script->urlBase = std::make_shared<const std::string>("/lib/sub/protos.wrl");
+  auto instance = runtime::ecmascriptFactory()(*script, ctx, relaxedLimits());
+  REQUIRE(instance);
+  instance->initialize(0.0);
+  CHECK(ctx.emittedFor(*script, "out").at(0).get<FieldType::SFString>() == "beside the PROTO");
+  CHECK(ctx.diagnostics.empty());
+
+  FakeScriptContext remote;
+  remote.files = ctx.files;
+  script->urlBase = std::make_shared<const std::string>("http://example.com/lib/protos.wrl");
+  *script->field("url") =
+      FieldValue::make<FieldType::MFString>(std::vector<std::string>{"file:///lib/sub/good.js"});
+  CHECK_FALSE(runtime::ecmascriptFactory()(*script, remote, relaxedLimits()));
+  REQUIRE_FALSE(remote.diagnostics.empty());
+  CHECK_THAT(remote.diagnostics[0].message, Catch::Contains("may not reference"));
+}

@@ -212,15 +212,6 @@ TEST_CASE("X3D Classic: the castle corpus's Classic worlds load", "[x3d][classic
       {"lights_materials/sphere.x3dv", {"'shading'"}},
       {"event_utilities/sequencer_bool_test.x3dv", {"KambiNavigationInfo"}},
       {"event_utilities/sequencer_int_test.x3dv", {"KambiNavigationInfo"}},
-      {"x3d/box_ccw.x3dv", {"'ccw' in Box"}},
-      {"x3d/point_properties.x3dv", {"'autoCenterOfRotation'"}},
-      {"x3d/points_colorrgba.x3dv", {"'autoCenterOfRotation'"}},
-      {"fog/fog_volumetric/fog_volumetric_reused_geometry_final.x3dv", {"'volumetric'"}},
-      {"text/text_textured.x3dv", {"'texCoord' in Text"}},
-      {"texturing_advanced/tex3d_primitives_auto_gen.x3dv", {"'texCoord' in Box"}},
-      {"texturing_advanced/tex3d_repeat_modes.x3dv", {"'texCoord' in Box"}},
-      {"texturing_advanced/tex3d_simple_pixel.x3dv", {"'texCoord' in Box"}},
-      {"x3d/hanim_transforms.x3dv", {"set_translation", "HAnimSite"}},
   };
   std::ifstream list(dir / "worlds.tsv");
   REQUIRE(list);

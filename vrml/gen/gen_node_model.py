@@ -118,6 +118,35 @@ EXTENSIONS = [
     },
 ]
 
+# castle-engine's extension fields on the X3D primitives (castle's "X3D extensions"
+# documentation; castle-engine's src/scene/x3d node declarations): Box, Cone, Cylinder,
+# Sphere and Text take a `texCoord` that replaces the primitive's own texture mapping
+# (castle accepts TextureCoordinateGenerator there, and its own ProjectedTextureCoordinate
+# and MultiGeneratedTextureCoordinate, which GhostSpace does not have), and Box a `ccw`
+# (FALSE turns its faces inside out). They are appended to the X3D node's model, so X3D
+# worlds accept them; VRML97 worlds read node_table_data.cpp's interfaces and never see
+# them. docs/x3d.md ("castle-engine's primitive fields") describes them.
+_CASTLE_TEX_COORD = ("texCoord", "SFNode", "inputOutput", "NULL", "TextureCoordinateGenerator")
+CASTLE_PRIMITIVE_FIELDS = {
+    "Box": [("ccw", "SFBool", "initializeOnly", "true", ""), _CASTLE_TEX_COORD],
+    "Cone": [_CASTLE_TEX_COORD],
+    "Cylinder": [_CASTLE_TEX_COORD],
+    "Sphere": [_CASTLE_TEX_COORD],
+    "Text": [_CASTLE_TEX_COORD],
+}
+
+
+def add_castle_fields(concrete, extra):
+    """Appends castle-engine's extension fields `extra` (node name -> field rows) to the
+    models in `concrete`; a field the standard already declares is an error."""
+    by_name = {c["name"]: c for c in concrete}
+    for node, rows in extra.items():
+        have = {f[0] for f in by_name[node]["fields"]}
+        for row in rows:
+            assert row[0] not in have, "%s.%s is already X3D's" % (node, row[0])
+            by_name[node]["fields"].append(row)
+
+
 # XML-encoding attributes X3DUOM lists as fields of every node (inherited from X3DNode);
 # not interface members. FontStyle's own `style` is a field.
 XML_ONLY_FIELDS = {"DEF", "USE", "class", "id", "style", "IS"}
@@ -165,10 +194,75 @@ def read_uom(path):
     for c in concrete:
         if c["name"] in SINGLE_TEXTURE_TRANSFORMS:
             c["bases"] = ["X3DSingleTextureTransformNode"]
+    add_castle_fields(concrete, CASTLE_PRIMITIVE_FIELDS)
     return abstract, concrete
 
 
 SINGLE_TEXTURE_TRANSFORMS = ("TextureTransform", "TextureTransformMatrix3D", "TextureTransform3D")
+
+# ---- castle-engine's extensions to X3D nodes (castle-model-viewer reads them) ----------------
+# Fields castle-engine adds to standard X3D nodes (its "X3D extensions" documentation and the
+# node declarations of castle-engine's src/scene/x3d), which its demo worlds
+# (../shared/corpus/x3d/castle) use. They are appended to the X3D node's model only: X3D
+# worlds accept them, VRML97 worlds read node_table_data.cpp's interfaces and never see
+# them. docs/x3d.md ("castle-engine's extension fields") says what each one does here.
+CASTLE_EXTENSION_FIELDS = {
+    # X3DViewpointNode.autoCenterOfRotation: castle's Examine navigation picks the centre of
+    # rotation from the world's bounding box; no effect on a snapshot (read and kept).
+    "Viewpoint": [("autoCenterOfRotation", "SFBool", "inputOutput", "false", "")],
+    "OrthoViewpoint": [("autoCenterOfRotation", "SFBool", "inputOutput", "false", "")],
+    # X3DFogObject's volumetric fog: the fog amount follows the height along
+    # volumetricDirection above volumetricVisibilityStart instead of the eye distance
+    # (render/, docs/x3d.md "Volumetric fog").
+    "Fog": [
+        ("volumetric", "SFBool", "inputOutput", "false", ""),
+        ("volumetricDirection", "SFVec3f", "inputOutput", "0 -1 0", ""),
+        ("volumetricVisibilityStart", "SFFloat", "inputOutput", "0", ""),
+    ],
+    "LocalFog": [
+        ("volumetric", "SFBool", "inputOutput", "false", ""),
+        ("volumetricDirection", "SFVec3f", "inputOutput", "0 -1 0", ""),
+        ("volumetricVisibilityStart", "SFFloat", "inputOutput", "0", ""),
+    ],
+    # castle's HAnimSegment is a transform like HAnimJoint and HAnimSite (translation,
+    # rotation and scale place its children: scene/, vrml/transform.hpp placesChildren).
+    "HAnimSegment": [
+        ("rotation", "SFRotation", "inputOutput", "0 0 1 0", ""),
+        ("scale", "SFVec3f", "inputOutput", "1 1 1", ""),
+        ("translation", "SFVec3f", "inputOutput", "0 0 0", ""),
+    ],
+}
+
+# Acceptable node types X3D 3.x allowed and X3D 4.0's model no longer lists, which castle's
+# worlds (written for X3D 3.2) use: X3D 3.3 clause 26.3.2 gives HAnimJoint's children (and
+# addChildren, removeChildren) as [HAnimJoint,HAnimSegment,HAnimSite], and H-Anim
+# (ISO/IEC 19774:2006, 4.9 Site) places sites in joints too; X3D 4.0 (after ISO/IEC
+# 19774-1:2019) lists HAnimJoint|HAnimSegment only.
+CASTLE_X3D3_ACCEPTABLE = {
+    ("HAnimJoint", "children"): "HAnimJoint|HAnimSegment|HAnimSite",
+    ("HAnimJoint", "addChildren"): "HAnimJoint|HAnimSegment|HAnimSite",
+    ("HAnimJoint", "removeChildren"): "HAnimJoint|HAnimSegment|HAnimSite",
+}
+
+
+def add_castle_extension_fields(concrete):
+    """Appends CASTLE_EXTENSION_FIELDS to the models in `concrete` and widens the acceptable
+    node types of CASTLE_X3D3_ACCEPTABLE; a field the standard already declares is an
+    error."""
+    by_name = {c["name"]: c for c in concrete}
+    for node, rows in CASTLE_EXTENSION_FIELDS.items():
+        have = {f[0] for f in by_name[node]["fields"]}
+        for row in rows:
+            assert row[0] not in have, "%s.%s is already X3D's" % (node, row[0])
+            by_name[node]["fields"].append(row)
+    for (node, field), acceptable in CASTLE_X3D3_ACCEPTABLE.items():
+        fields = by_name[node]["fields"]
+        for i, f in enumerate(fields):
+            if f[0] == field:
+                fields[i] = (f[0], f[1], f[2], f[3], acceptable)
+                break
+        else:
+            raise AssertionError("%s has no field %s" % (node, field))
 
 
 def closure(bases, abstract):
@@ -200,6 +294,7 @@ HEADER = "// Generated by vrml/gen/gen_node_model.py from the X3D Unified Object
 
 def generate(uom):
     abstract, concrete = read_uom(uom)
+    add_castle_extension_fields(concrete)
     abstract_names = sorted(abstract)
     assert len(abstract_names) <= 128, "AbstractTypeSet holds 128 types"
     index = {n: i for i, n in enumerate(abstract_names)}

@@ -74,6 +74,41 @@ const std::vector<glm::vec2>* secondTexCoordPoints(const Node& geometry) {
   return &f->get<FieldType::MFVec2f>();
 }
 
+StrqPoints strqTexCoordPoints(const Node& geometry) {
+  StrqPoints out;
+  NodePtr tc = geometry.sfnode("texCoord");
+  if (tc != nullptr && tc->typeId() == NodeTypeId::MultiTextureCoordinate) {
+    const std::vector<NodePtr>& sets = tc->mfnode("texCoord");
+    tc = sets.empty() ? nullptr : sets.front();
+  }
+  if (tc == nullptr || tc->unresolved) return out;
+  const FieldValue* f = tc->field("point");
+  if (f == nullptr) return out;
+  auto add = [&out](const glm::vec4& p) {
+    const bool ok = std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) &&
+                    std::isfinite(p.w) && p.w != 0.0f;
+    const glm::vec4 v = ok ? p : glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    const glm::vec2 st(v.x / v.w, v.y / v.w);
+    out.strq.push_back(v);
+    out.st.push_back(finite(st) ? st : glm::vec2(0.0f));
+  };
+  if (tc->typeId() == NodeTypeId::TextureCoordinate3D && f->type() == FieldType::MFVec3f) {
+    const std::vector<glm::vec3>& points = f->get<FieldType::MFVec3f>();
+    out.strq.reserve(points.size());
+    out.st.reserve(points.size());
+    for (const glm::vec3& p : points) add(glm::vec4(p, 1.0f));
+  } else if (tc->typeId() == NodeTypeId::TextureCoordinate4D && f->type() == FieldType::MFVec4f) {
+    const std::vector<glm::vec4>& points = f->get<FieldType::MFVec4f>();
+    out.strq.reserve(points.size());
+    out.st.reserve(points.size());
+    for (const glm::vec4& p : points) add(p);
+  } else {
+    return out;
+  }
+  out.present = true;
+  return out;
+}
+
 std::span<const glm::vec3> coordPoints(const Node& geometry, std::vector<glm::vec3>& scratch) {
   const NodePtr coord = geometry.sfnode("coord");
   if (coord == nullptr) return {};
@@ -130,6 +165,8 @@ std::uint64_t MeshBuilder::hashOf(const Vertex& v) const {
   if (colors_) h = mix(h, &v.color, sizeof v.color);
   if (texCoords_) h = mix(h, &v.texCoord, sizeof v.texCoord);
   if (texCoords1_) h = mix(h, &v.texCoord1, sizeof v.texCoord1);
+  if (texCoordsStrq_) h = mix(h, &v.texCoordStrq, sizeof v.texCoordStrq);
+  if (points_) h = mix(h, &v.point, sizeof v.point);
   return finalMix(h);
 }
 
@@ -139,6 +176,8 @@ std::uint64_t MeshBuilder::hashOfStored(std::uint32_t i) const {
   if (colors_) h = mix(h, &mesh_.colors[i], sizeof(glm::vec4));
   if (texCoords_) h = mix(h, &mesh_.texCoords[i], sizeof(glm::vec2));
   if (texCoords1_) h = mix(h, &mesh_.texCoords1[i], sizeof(glm::vec2));
+  if (texCoordsStrq_) h = mix(h, &mesh_.texCoordsStrq[i], sizeof(glm::vec4));
+  if (points_) h = mix(h, &mesh_.pointIndices[i], sizeof(std::uint32_t));
   return finalMix(h);
 }
 
@@ -147,7 +186,11 @@ bool MeshBuilder::sameAsStored(std::uint32_t i, const Vertex& v) const {
          (!normals_ || std::memcmp(&mesh_.normals[i], &v.normal, sizeof v.normal) == 0) &&
          (!colors_ || std::memcmp(&mesh_.colors[i], &v.color, sizeof v.color) == 0) &&
          (!texCoords_ || std::memcmp(&mesh_.texCoords[i], &v.texCoord, sizeof v.texCoord) == 0) &&
-         (!texCoords1_ || std::memcmp(&mesh_.texCoords1[i], &v.texCoord1, sizeof v.texCoord1) == 0);
+         (!texCoords1_ ||
+          std::memcmp(&mesh_.texCoords1[i], &v.texCoord1, sizeof v.texCoord1) == 0) &&
+         (!texCoordsStrq_ ||
+          std::memcmp(&mesh_.texCoordsStrq[i], &v.texCoordStrq, sizeof v.texCoordStrq) == 0) &&
+         (!points_ || mesh_.pointIndices[i] == v.point);
 }
 
 void MeshBuilder::grow(std::size_t minSlots) {
@@ -172,6 +215,8 @@ std::uint32_t MeshBuilder::push(const Vertex& v) {
   if (colors_) mesh_.colors.push_back(v.color);
   if (texCoords_) mesh_.texCoords.push_back(v.texCoord);
   if (texCoords1_) mesh_.texCoords1.push_back(v.texCoord1);
+  if (texCoordsStrq_) mesh_.texCoordsStrq.push_back(v.texCoordStrq);
+  if (points_) mesh_.pointIndices.push_back(v.point);
   return i;
 }
 
@@ -197,6 +242,8 @@ void MeshBuilder::reserve(std::size_t vertices, std::size_t indices) {
   if (colors_) mesh_.colors.reserve(vertices);
   if (texCoords_) mesh_.texCoords.reserve(vertices);
   if (texCoords1_) mesh_.texCoords1.reserve(vertices);
+  if (texCoordsStrq_) mesh_.texCoordsStrq.reserve(vertices);
+  if (points_) mesh_.pointIndices.reserve(vertices);
   mesh_.indices.reserve(indices);
   grow(2 * vertices + 2);
 }
@@ -347,6 +394,7 @@ Mesh tessellate(const Node& geometry, Diagnostics* diag) {
       break;
   }
   assignFogDepths(geometry, m);
+  assignVertexAttributes(geometry, m, log);
   log.flush();
   return m;
 }

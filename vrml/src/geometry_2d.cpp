@@ -251,9 +251,8 @@ Mesh tessellateRectangle2D(const Node& node, ProblemLog& log) {
 
 Mesh tessellateTriangleSet2D(const Node& node, ProblemLog& log) {
   const auto& v = fieldOr<FieldType::MFVec2f>(node, "vertices");
-  if (v.size() % 3 != 0)
-    log.add("vertices has " + std::to_string(v.size()) + " points, not a multiple of 3; the last " +
-            std::to_string(v.size() % 3) + " are ignored");
+  // X3D 4.0 clause 14.4 (TriangleSet2D): "If the number of vertices is not a multiple of three, the
+  // last vertex or last two vertices shall be ignored": defined behaviour, not reported.
   std::vector<glm::vec2> pts;
   std::vector<std::uint32_t> tris;
   pts.reserve(v.size() - v.size() % 3);

@@ -75,7 +75,9 @@ Mesh tessellateIndexedFaceSet(const Node& node, ProblemLog& log) {
   const auto& normalIndex = fieldOr<FieldType::MFInt32>(node, "normalIndex");
   const bool normalPerVertex = node.get<FieldType::SFBool>("normalPerVertex", true);
   TexSource texKind = TexSource::none;
-  const auto& texPoints = texCoordPoints(node, texKind);
+  const StrqPoints strq = strqTexCoordPoints(node);  // X3D TextureCoordinate3D / 4D
+  const auto& texPoints = strq.present ? strq.st : texCoordPoints(node, texKind);
+  if (strq.present) texKind = TexSource::points;
   const auto& texIndex = fieldOr<FieldType::MFInt32>(node, "texCoordIndex");
   const bool haveColor = colors.present();
   const bool haveNormal = node.sfnode("normal") != nullptr;
@@ -118,6 +120,9 @@ Mesh tessellateIndexedFaceSet(const Node& node, ProblemLog& log) {
           inRange(t, texPoints.size()) && finite(texPoints[static_cast<std::size_t>(t)]);
       if (!ok) log.addLazy([&] { return badIndex("texCoordIndex", i, t, texPoints.size()); });
       soup.texCoords.push_back(ok ? texPoints[static_cast<std::size_t>(t)] : glm::vec2(0.0f));
+      if (strq.present)
+        soup.texCoordsStrq.push_back(ok ? strq.strq[static_cast<std::size_t>(t)]
+                                        : glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
       // The second set shares texCoordIndex (X3D 4.0 clause 18.4.3).
       if (tex1 != nullptr)
         soup.texCoords1.push_back(inRange(t, tex1->size()) &&
@@ -159,6 +164,7 @@ Mesh tessellateIndexedFaceSet(const Node& node, ProblemLog& log) {
     soup.texCoords.clear();  // TextureCoordinateGenerator: computed elsewhere
   } else if (!haveTex || texPoints.empty()) {
     soup.texCoords.clear();
+    soup.texCoordsStrq.clear();
     defaultTexCoords(soup);
   }
   return buildPolygonMesh(soup);
@@ -175,6 +181,7 @@ Mesh tessellateIndexedLineSet(const Node& node, ProblemLog& log) {
   const bool haveColor = colors.present() && !colors.empty();
 
   MeshBuilder b(Primitive::lines, false, haveColor, false);
+  if (hasVertexAttributes(node)) b.carryPoints();
   constexpr std::uint32_t kNone = 0xffffffffu;
   std::uint32_t prev = kNone;  // previous vertex of the current polyline
   std::size_t line = 0;
@@ -198,6 +205,7 @@ Mesh tessellateIndexedLineSet(const Node& node, ProblemLog& log) {
     }
     Vertex v;
     v.position = points[static_cast<std::size_t>(idx)];
+    v.point = static_cast<std::uint32_t>(idx);
     if (haveColor) {
       const std::int32_t c = resolve(colorPerVertex, colorIndex, coordIndex, i, line);
       const bool ok = inRange(c, colors.size());
@@ -225,6 +233,7 @@ Mesh tessellatePointSet(const Node& node, ProblemLog& log) {
     log.add("Color has " + std::to_string(colors.size()) + " colours for " +
             std::to_string(points.size()) + " points; the others are white");
   MeshBuilder b(Primitive::points, false, haveColor, false);
+  if (hasVertexAttributes(node)) b.carryPoints();
   b.reserve(points.size(), points.size());
   bool warnedNaN = false;
   for (std::size_t i = 0; i < points.size(); ++i) {
@@ -235,6 +244,7 @@ Mesh tessellatePointSet(const Node& node, ProblemLog& log) {
     }
     Vertex v;
     v.position = points[i];
+    v.point = static_cast<std::uint32_t>(i);
     if (haveColor) v.color = i < colors.size() ? colors[i] : kWhite;
     b.index(b.push(v));
   }

@@ -92,10 +92,31 @@ const std::vector<glm::vec2>& texCoordPoints(const Node& geometry, TexSource& ki
 /// (X3D 4.0 clause 18.4.3), or null when it has none (Mesh::texCoords1).
 const std::vector<glm::vec2>* secondTexCoordPoints(const Node& geometry);
 
+/// X3D TextureCoordinate3D (MFVec3f `point`) or TextureCoordinate4D (MFVec4f `point`)
+/// in a geometry's `texCoord`, or as the first set of its MultiTextureCoordinate (X3D 4.0
+/// clauses 33.4.6, 33.4.7): `strq` holds each point as (s, t, r, q) (q = 1 for 3D; a point
+/// with q = 0 or a non-finite component becomes (0, 0, 0, 1)), `st` its (s / q, t / q).
+/// `present` is false (and both empty) when the field holds neither node (Mesh::texCoordsStrq).
+struct StrqPoints {
+  std::vector<glm::vec4> strq;
+  std::vector<glm::vec2> st;
+  bool present = false;
+};
+StrqPoints strqTexCoordPoints(const Node& geometry);
+
 /// The points of a geometry node's `coord` field: a Coordinate's MFVec3f `point`, or an
 /// X3D CoordinateDouble's MFVec3d `point` converted into `scratch` (rounded to float).
 /// Empty when the field is NULL or holds something else.
 std::span<const glm::vec3> coordPoints(const Node& geometry, std::vector<glm::vec3>& scratch);
+
+/// True when the geometry's X3D `attrib` field holds a node (X3D 4.0 clause 31.4): its
+/// mesh must record the point of each vertex (MeshBuilder::carryPoints).
+bool hasVertexAttributes(const Node& geometry);
+
+/// Fills m.attributes from the geometry's `attrib` nodes through m.pointIndices
+/// (geometry_attributes.cpp); problems go to `log`.
+class ProblemLog;
+void assignVertexAttributes(const Node& geometry, Mesh& m, ProblemLog& log);
 
 // ---------------------------------------------------------------------------------------
 // Problems
@@ -133,7 +154,9 @@ struct Vertex {
   glm::vec3 normal{0.0f};
   glm::vec4 color{0.0f};
   glm::vec2 texCoord{0.0f};
-  glm::vec2 texCoord1{0.0f};  // the second set (Mesh::texCoords1)
+  glm::vec2 texCoord1{0.0f};     // the second set (Mesh::texCoords1)
+  glm::vec4 texCoordStrq{0.0f};  // X3D TextureCoordinate3D/4D (Mesh::texCoordsStrq)
+  std::uint32_t point = 0;       // the coordinate point it comes from (Mesh::pointIndices)
 };
 
 /// Accumulates vertices and indices into a Mesh. `add` merges vertices whose attributes
@@ -144,6 +167,10 @@ class MeshBuilder {
   MeshBuilder(Primitive primitive, bool normals, bool colors, bool texCoords);
   /// Makes the mesh carry Vertex::texCoord1 too (before the first vertex).
   void carrySecondTexCoords() { texCoords1_ = true; }
+  /// Makes the mesh carry Vertex::texCoordStrq too (before the first vertex).
+  void carryStrqTexCoords() { texCoordsStrq_ = true; }
+  /// Makes the mesh carry Vertex::point too (Mesh::pointIndices; before the first vertex).
+  void carryPoints() { points_ = true; }
   /// Index of a vertex equal to `v`, appending it when new.
   std::uint32_t add(const Vertex& v);
   /// Appends `v` without looking for an equal vertex.
@@ -165,7 +192,8 @@ class MeshBuilder {
   void grow(std::size_t minSlots);
 
   Mesh mesh_;
-  bool normals_, colors_, texCoords_, texCoords1_ = false;
+  bool normals_, colors_, texCoords_, texCoords1_ = false, points_ = false;
+  bool texCoordsStrq_ = false;
   /// Open-addressing table: (high 32 bits of the hash << 32) | (vertex index + 1); 0 = empty.
   std::vector<std::uint64_t> slots_;
 };
@@ -221,7 +249,11 @@ struct PolygonSoup {
   std::vector<glm::vec4> colors;      // per corner, or empty
   std::vector<glm::vec2> texCoords;   // per corner, or empty
   std::vector<glm::vec2> texCoords1;  // the second set per corner, or empty (Mesh::texCoords1)
+  /// X3D TextureCoordinate3D/4D per corner (Mesh::texCoordsStrq), or empty; texCoords
+  /// then holds their (s / q, t / q).
+  std::vector<glm::vec4> texCoordsStrq;
   float creaseAngle = 0.0f;
+  bool carryPoints = false;  // the mesh records each vertex's point (Mesh::pointIndices)
   bool ccw = true;
   bool convex = true;
   bool solid = true;
@@ -237,7 +269,8 @@ void defaultTexCoords(PolygonSoup& soup);
 
 /// A soup over `points` with the node's ccw, convex, solid and creaseAngle fields
 /// (IndexedFaceSet 6.23, ElevationGrid 6.18, Extrusion 6.19; an absent field keeps its
-/// VRML97 default: TRUE, TRUE, TRUE, 0 radians).
+/// VRML97 default: TRUE, TRUE, TRUE, 0 radians); carryPoints when the node has vertex
+/// attributes.
 PolygonSoup polygonSoupOf(const Node& node, std::span<const glm::vec3> points);
 
 /// Triangulates the soup: reverses faces when ccw is FALSE, drops repeated consecutive

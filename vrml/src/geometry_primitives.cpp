@@ -81,17 +81,27 @@ Mesh tessellateBox(const Node& node, ProblemLog& log) {
       {{0, 1, 0}, {1, 0, 0}, {0, 0, -1}},   // top
       {{0, -1, 0}, {1, 0, 0}, {0, 0, 1}},   // bottom
   };
+  // castle-engine's Box.ccw extension (X3D worlds only, docs/x3d.md): FALSE turns the
+  // faces inside out, normals inward and triangles wound the other way; the texture
+  // coordinates stay as they are.
+  const bool outward = node.get<FieldType::SFBool>("ccw", true);
   MeshBuilder b(Primitive::triangles, true, false, true);
   b.reserve(24, 36);
   for (const Face& f : kFaces) {
     std::uint32_t v[4];
+    const glm::vec3 normal = outward ? f.n : -f.n;
     for (int c = 0; c < 4; ++c) {
       const float ss = (c == 1 || c == 2) ? 1.0f : 0.0f, tt = (c >= 2) ? 1.0f : 0.0f;
       const glm::vec3 p = (f.n + f.s * (2.0f * ss - 1.0f) + f.t * (2.0f * tt - 1.0f)) * h;
-      v[c] = b.push({p, f.n, {}, {ss, tt}});
+      v[c] = b.push({p, normal, {}, {ss, tt}});
     }
-    b.triangle(v[0], v[1], v[2]);
-    b.triangle(v[0], v[2], v[3]);
+    if (outward) {
+      b.triangle(v[0], v[1], v[2]);
+      b.triangle(v[0], v[2], v[3]);
+    } else {
+      b.triangle(v[0], v[2], v[1]);
+      b.triangle(v[0], v[3], v[2]);
+    }
   }
   return b.finish(solidField(node));
 }

@@ -39,6 +39,7 @@ PolygonSoup polygonSoupOf(const Node& node, std::span<const glm::vec3> points) {
   soup.convex = node.get<FieldType::SFBool>("convex", true);
   soup.solid = node.get<FieldType::SFBool>("solid", true);
   soup.creaseAngle = node.get<FieldType::SFFloat>("creaseAngle", 0.0f);
+  soup.carryPoints = hasVertexAttributes(node);
   return soup;
 }
 
@@ -127,6 +128,9 @@ Mesh buildPolygonMesh(const PolygonSoup& s) {
   MeshBuilder builder(Primitive::triangles, true, haveColors, haveTex);
   const bool haveTex1 = haveTex && s.texCoords1.size() == s.texCoords.size();
   if (haveTex1) builder.carrySecondTexCoords();
+  const bool haveStrq = haveTex && s.texCoordsStrq.size() == s.texCoords.size();
+  if (haveStrq) builder.carryStrqTexCoords();
+  if (s.carryPoints) builder.carryPoints();
   builder.reserve(0, tris.size());
   // Output vertices are found through a short chain per shared point (better locality
   // than one big hash table); past kMaxChain vertices at one point, new ones are simply
@@ -141,6 +145,7 @@ Mesh buildPolygonMesh(const PolygonSoup& s) {
       const std::uint32_t c = kept[k], p = keptPoint[k];
       Vertex v;
       v.position = s.points[p];
+      v.point = p;
       if (!s.normals.empty() && usableNormal(s.normals[c]))
         v.normal = glm::vec3(glm::normalize(glm::dvec3(s.normals[c])));
       else
@@ -148,6 +153,7 @@ Mesh buildPolygonMesh(const PolygonSoup& s) {
       if (haveColors) v.color = s.colors[c];
       if (haveTex && finite(s.texCoords[c])) v.texCoord = s.texCoords[c];
       if (haveTex1 && finite(s.texCoords1[c])) v.texCoord1 = s.texCoords1[c];
+      if (haveStrq) v.texCoordStrq = s.texCoordsStrq[c];
       std::uint32_t found = kNone;
       int steps = 0;
       for (std::uint32_t i = head[p]; i != kNone && steps < kMaxChain; i = chain[i], ++steps) {

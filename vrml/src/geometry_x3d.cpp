@@ -93,7 +93,9 @@ Mesh buildComposed(const Node& node, ProblemLog& log, std::span<const glm::vec3>
   const ColorSource colors(node);
   const auto& normals = childArray<FieldType::MFVec3f>(node, "normal", "vector");
   TexSource texKind = TexSource::none;
-  const auto& texPoints = texCoordPoints(node, texKind);
+  const StrqPoints strq = strqTexCoordPoints(node);  // X3D TextureCoordinate3D / 4D
+  const auto& texPoints = strq.present ? strq.st : texCoordPoints(node, texKind);
+  if (strq.present) texKind = TexSource::points;
   const bool haveColor = colors.present() && !colors.empty();
   const bool haveNormal = node.sfnode("normal") != nullptr && !normals.empty();
   const bool haveTex = texKind == TexSource::points && !texPoints.empty();
@@ -129,6 +131,8 @@ Mesh buildComposed(const Node& node, ProblemLog& log, std::span<const glm::vec3>
         if (v >= texPoints.size())
           log.addLazy([&] { return missing("texCoord", v, texPoints.size()); });
         soup.texCoords.push_back(ok ? texPoints[v] : glm::vec2(0.0f));
+        if (strq.present)
+          soup.texCoordsStrq.push_back(ok ? strq.strq[v] : glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
         if (tex1 != nullptr)
           soup.texCoords1.push_back(v < tex1->size() && finite((*tex1)[v]) ? (*tex1)[v]
                                                                            : glm::vec2(0.0f));
@@ -139,15 +143,6 @@ Mesh buildComposed(const Node& node, ProblemLog& log, std::span<const glm::vec3>
   soup.faceStart = std::move(faces.faceStart);
   if (texKind != TexSource::generated && !haveTex) defaultTexCoords(soup);
   return buildPolygonMesh(soup);
-}
-
-/// Reports the vertices left over after the last whole face of a non-indexed set, or
-/// the index values after the last whole face of an indexed one.
-void leftOver(ProblemLog& log, std::size_t size, int per, const char* what) {
-  if (size % static_cast<std::size_t>(per) == 0) return;
-  log.add(std::string(what) + " has " + std::to_string(size) + " values, not a multiple of " +
-          std::to_string(per) + "; the last " +
-          std::to_string(size % static_cast<std::size_t>(per)) + " are ignored");
 }
 
 /// Calls `run(begin, length)` for each run of a count field (fanCount, stripCount,
@@ -226,7 +221,8 @@ Mesh tessellateIndexedTriangleSet(const Node& node, ProblemLog& log) {
   const std::span<const glm::vec3> points = coordPoints(node, scratch);
   const auto& index = fieldOr<FieldType::MFInt32>(node, "index");
   if (points.empty() || index.empty()) return {};
-  leftOver(log, index.size(), 3, "index");
+  // X3D 4.0 clause 11.4 (IndexedTriangleSet): "If the index field does not contain a multiple of
+  // three coordinate values, the remaining vertices shall be ignored": defined, not reported.
   Faces faces(points, log);
   for (std::size_t i = 0; i + 3 <= index.size(); i += 3)
     faces.triangle(index[i], index[i + 1], index[i + 2], "index", i);
@@ -263,7 +259,8 @@ Mesh tessellateTriangleSet(const Node& node, ProblemLog& log) {
   std::vector<glm::vec3> scratch;
   const std::span<const glm::vec3> points = coordPoints(node, scratch);
   if (points.empty()) return {};
-  leftOver(log, points.size(), 3, "coord");
+  // Clause 11.4 (TriangleSet): vertices after the last whole triangle "shall be ignored"
+  // (silently).
   Faces faces(points, log);
   for (std::size_t i = 0; i + 3 <= points.size(); i += 3) {
     const auto v = static_cast<std::int64_t>(i);
@@ -301,7 +298,8 @@ Mesh tessellateIndexedQuadSet(const Node& node, ProblemLog& log) {
   const std::span<const glm::vec3> points = coordPoints(node, scratch);
   const auto& index = fieldOr<FieldType::MFInt32>(node, "index");
   if (points.empty() || index.empty()) return {};
-  leftOver(log, index.size(), 4, "index");
+  // Clause 32.4 (IndexedQuadSet): index values after the last whole quad "shall be ignored"
+  // (silently).
   Faces faces(points, log);
   for (std::size_t i = 0; i + 4 <= index.size(); i += 4) {
     // Starting at the second vertex splits the quad along its 1-3 diagonal, as
@@ -316,7 +314,7 @@ Mesh tessellateQuadSet(const Node& node, ProblemLog& log) {
   std::vector<glm::vec3> scratch;
   const std::span<const glm::vec3> points = coordPoints(node, scratch);
   if (points.empty()) return {};
-  leftOver(log, points.size(), 4, "coord");
+  // Clause 32.4 (QuadSet): vertices after the last whole quad "shall be ignored" (silently).
   Faces faces(points, log);
   for (std::size_t i = 0; i + 4 <= points.size(); i += 4) {
     const auto b = static_cast<std::int64_t>(i);
@@ -338,6 +336,7 @@ Mesh tessellateLineSet(const Node& node, ProblemLog& log) {
             std::to_string(points.size()) + " points; the others are white");
 
   MeshBuilder b(Primitive::lines, false, haveColor, false);
+  if (hasVertexAttributes(node)) b.carryPoints();
   constexpr std::uint32_t kNone = 0xffffffffu;
   forEachRun(
       vertexCount, points.size(), 2, "vertexCount", log, [&](std::size_t s, std::size_t len) {
@@ -350,6 +349,7 @@ Mesh tessellateLineSet(const Node& node, ProblemLog& log) {
           }
           Vertex v;
           v.position = points[i];
+          v.point = static_cast<std::uint32_t>(i);
           if (haveColor) v.color = i < colors.size() ? colors[i] : kWhite;
           const std::uint32_t cur = b.add(v);
           if (prev != kNone && prev != cur) {

@@ -55,6 +55,7 @@ Node::Node(const Node& other)
       protoInstance(other.protoInstance),
       unresolved(other.unresolved),
       location(other.location),
+      urlBase(other.urlBase),
       type_(other.type_),
       values_(other.values_),
       revision_(other.revision_),
@@ -66,6 +67,7 @@ Node& Node::operator=(const Node& other) {
   protoInstance = other.protoInstance;
   unresolved = other.unresolved;
   location = other.location;
+  urlBase = other.urlBase;
   type_ = other.type_;
   values_ = other.values_;
   revision_ = other.revision_ + 1;
@@ -97,6 +99,9 @@ std::uint64_t revisionWithFields(const Node& node) {
     if (v.type() == FieldType::SFNode)
       if (const NodePtr& c = v.get<FieldType::SFNode>()) r += c->revision();
   }
+  // An X3D geometry's vertex attribute nodes (X3D 4.0 clause 31.4): part of its mesh.
+  for (const NodePtr& c : node.mfnode("attrib"))
+    if (c) r += c->revision();
   return r;
 }
 

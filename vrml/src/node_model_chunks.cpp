@@ -12,14 +12,16 @@ std::span<const NodeModel> nodeModelChunk1();
 std::span<const NodeModel> nodeModelChunk2();
 std::span<const NodeModel> nodeModelChunk3();
 std::span<const NodeModel> nodeModelChunk4();
+std::span<const NodeModel> nodeModelChunk5();
 
 std::span<const std::span<const NodeModel>> nodeModelChunks() {
-  static const std::array<std::span<const NodeModel>, 5> kChunks = {
+  static const std::array<std::span<const NodeModel>, 6> kChunks = {
       nodeModelChunk0(),
       nodeModelChunk1(),
       nodeModelChunk2(),
       nodeModelChunk3(),
       nodeModelChunk4(),
+      nodeModelChunk5(),
   };
   return kChunks;
 }

@@ -14,14 +14,15 @@ constexpr NodeTypeId kAccept2[] = {NodeTypeId::FillProperties};
 constexpr NodeTypeId kAccept3[] = {NodeTypeId::LineProperties};
 constexpr NodeTypeId kAccept4[] = {NodeTypeId::PointProperties};
 constexpr NodeTypeId kAccept5[] = {NodeTypeId::RigidBody};
-constexpr NodeTypeId kAccept6[] = {NodeTypeId::Shape, NodeTypeId::LOD, NodeTypeId::Transform};
-constexpr NodeTypeId kAccept7[] = {NodeTypeId::CADFace};
-constexpr NodeTypeId kAccept8[] = {NodeTypeId::Shape};
-constexpr NodeTypeId kAccept9[] = {NodeTypeId::CollisionCollection};
-constexpr NodeTypeId kAccept10[] = {NodeTypeId::Contact};
-constexpr NodeTypeId kAccept11[] = {NodeTypeId::TextureProperties};
-constexpr NodeTypeId kAccept12[] = {NodeTypeId::ShaderPart};
-constexpr NodeTypeId kAccept13[] = {NodeTypeId::NurbsCurve2D, NodeTypeId::ContourPolyline2D};
+constexpr NodeTypeId kAccept6[] = {NodeTypeId::TextureCoordinateGenerator};
+constexpr NodeTypeId kAccept7[] = {NodeTypeId::Shape, NodeTypeId::LOD, NodeTypeId::Transform};
+constexpr NodeTypeId kAccept8[] = {NodeTypeId::CADFace};
+constexpr NodeTypeId kAccept9[] = {NodeTypeId::Shape};
+constexpr NodeTypeId kAccept10[] = {NodeTypeId::CollisionCollection};
+constexpr NodeTypeId kAccept11[] = {NodeTypeId::Contact};
+constexpr NodeTypeId kAccept12[] = {NodeTypeId::TextureProperties};
+constexpr NodeTypeId kAccept13[] = {NodeTypeId::ShaderPart};
+constexpr NodeTypeId kAccept14[] = {NodeTypeId::NurbsCurve2D, NodeTypeId::ContourPolyline2D};
 
 constexpr NodeFieldModel kFieldsAcousticProperties[] = {
     F{"absorption", "SFFloat", "inputOutput", "0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -245,6 +246,8 @@ constexpr NodeFieldModel kFieldsBox[] = {
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
     F{"size", "SFVec3f", "initializeOnly", "2 2 2", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"solid", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"ccw", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"texCoord", "SFNode", "inputOutput", "NULL", "TextureCoordinateGenerator", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept6},
 };
 constexpr NodeFieldModel kFieldsBufferAudioSource[] = {
     F{"autoRefresh", "SFTime", "inputOutput", "0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -294,7 +297,7 @@ constexpr NodeFieldModel kFieldsCADFace[] = {
     F{"bboxSize", "SFVec3f", "initializeOnly", "-1 -1 -1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
     F{"name", "SFString", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"shape", "SFNode", "inputOutput", "NULL", "Shape|LOD|Transform", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept6},
+    F{"shape", "SFNode", "inputOutput", "NULL", "Shape|LOD|Transform", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept7},
     F{"visible", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
 };
 constexpr NodeFieldModel kFieldsCADLayer[] = {
@@ -309,15 +312,15 @@ constexpr NodeFieldModel kFieldsCADLayer[] = {
     F{"visible", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
 };
 constexpr NodeFieldModel kFieldsCADPart[] = {
-    F{"addChildren", "MFNode", "inputOnly", "", "CADFace", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept7},
+    F{"addChildren", "MFNode", "inputOnly", "", "CADFace", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept8},
     F{"bboxCenter", "SFVec3f", "initializeOnly", "0 0 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"bboxDisplay", "SFBool", "inputOutput", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"bboxSize", "SFVec3f", "initializeOnly", "-1 -1 -1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"center", "SFVec3f", "inputOutput", "0 0 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"children", "MFNode", "inputOutput", "", "CADFace", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept7},
+    F{"children", "MFNode", "inputOutput", "", "CADFace", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept8},
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
     F{"name", "SFString", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"removeChildren", "MFNode", "inputOnly", "", "CADFace", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept7},
+    F{"removeChildren", "MFNode", "inputOnly", "", "CADFace", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept8},
     F{"rotation", "SFRotation", "inputOutput", "0 0 1 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"scale", "SFVec3f", "inputOutput", "1 1 1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"scaleOrientation", "SFRotation", "inputOutput", "0 0 1 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -391,7 +394,7 @@ constexpr NodeFieldModel kFieldsCollidableShape[] = {
     F{"enabled", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
     F{"rotation", "SFRotation", "inputOutput", "0 0 1 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"shape", "SFNode", "initializeOnly", "NULL", "Shape", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept8},
+    F{"shape", "SFNode", "initializeOnly", "NULL", "Shape", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept9},
     F{"translation", "SFVec3f", "inputOutput", "0 0 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"visible", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
 };
@@ -429,8 +432,8 @@ constexpr NodeFieldModel kFieldsCollisionCollection[] = {
     F{"visible", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
 };
 constexpr NodeFieldModel kFieldsCollisionSensor[] = {
-    F{"collider", "SFNode", "inputOutput", "NULL", "CollisionCollection", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept9},
-    F{"contacts", "MFNode", "outputOnly", "", "Contact", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept10},
+    F{"collider", "SFNode", "inputOutput", "NULL", "CollisionCollection", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept10},
+    F{"contacts", "MFNode", "outputOnly", "", "Contact", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept11},
     F{"description", "SFString", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"enabled", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"intersections", "MFNode", "outputOnly", "", "X3DNBodyCollidableNode", AbstractTypeSet{0x0000000080000000ULL, 0x0000000000000000ULL}, {}},
@@ -492,7 +495,7 @@ constexpr NodeFieldModel kFieldsComposedCubeMapTexture[] = {
     F{"leftTexture", "SFNode", "inputOutput", "NULL", "X3DTexture2DNode", AbstractTypeSet{0x8000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
     F{"rightTexture", "SFNode", "inputOutput", "NULL", "X3DTexture2DNode", AbstractTypeSet{0x8000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"textureProperties", "SFNode", "initializeOnly", "NULL", "TextureProperties", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept11},
+    F{"textureProperties", "SFNode", "initializeOnly", "NULL", "TextureProperties", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept12},
     F{"topTexture", "SFNode", "inputOutput", "NULL", "X3DTexture2DNode", AbstractTypeSet{0x8000000000000000ULL, 0x0000000000000000ULL}, {}},
 };
 constexpr NodeFieldModel kFieldsComposedShader[] = {
@@ -502,7 +505,7 @@ constexpr NodeFieldModel kFieldsComposedShader[] = {
     F{"isValid", "SFBool", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"language", "SFString", "initializeOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
-    F{"parts", "MFNode", "inputOutput", "", "ShaderPart", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept12},
+    F{"parts", "MFNode", "inputOutput", "", "ShaderPart", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept13},
 };
 constexpr NodeFieldModel kFieldsComposedTexture3D[] = {
     F{"description", "SFString", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -511,7 +514,7 @@ constexpr NodeFieldModel kFieldsComposedTexture3D[] = {
     F{"repeatS", "SFBool", "initializeOnly", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"repeatT", "SFBool", "initializeOnly", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"texture", "MFNode", "inputOutput", "", "X3DTexture2DNode", AbstractTypeSet{0x8000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"textureProperties", "SFNode", "initializeOnly", "NULL", "TextureProperties", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept11},
+    F{"textureProperties", "SFNode", "initializeOnly", "NULL", "TextureProperties", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept12},
 };
 constexpr NodeFieldModel kFieldsComposedVolumeStyle[] = {
     F{"enabled", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -525,6 +528,7 @@ constexpr NodeFieldModel kFieldsCone[] = {
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
     F{"side", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"solid", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"texCoord", "SFNode", "inputOutput", "NULL", "TextureCoordinateGenerator", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept6},
 };
 constexpr NodeFieldModel kFieldsConeEmitter[] = {
     F{"angle", "SFFloat", "inputOutput", "0.7854", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -557,10 +561,10 @@ constexpr NodeFieldModel kFieldsContact[] = {
     F{"surfaceSpeed", "SFVec2f", "inputOutput", "0 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
 };
 constexpr NodeFieldModel kFieldsContour2D[] = {
-    F{"addChildren", "MFNode", "inputOnly", "", "NurbsCurve2D|ContourPolyline2D", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept13},
-    F{"children", "MFNode", "inputOutput", "", "NurbsCurve2D|ContourPolyline2D", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept13},
+    F{"addChildren", "MFNode", "inputOnly", "", "NurbsCurve2D|ContourPolyline2D", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept14},
+    F{"children", "MFNode", "inputOutput", "", "NurbsCurve2D|ContourPolyline2D", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept14},
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
-    F{"removeChildren", "MFNode", "inputOnly", "", "NurbsCurve2D|ContourPolyline2D", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept13},
+    F{"removeChildren", "MFNode", "inputOnly", "", "NurbsCurve2D|ContourPolyline2D", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept14},
 };
 constexpr NodeFieldModel kFieldsContourPolyline2D[] = {
     F{"controlPoint", "MFVec2d", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -638,6 +642,7 @@ constexpr NodeFieldModel kFieldsCylinder[] = {
     F{"side", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"solid", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"top", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"texCoord", "SFNode", "inputOutput", "NULL", "TextureCoordinateGenerator", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept6},
 };
 constexpr NodeFieldModel kFieldsCylinderSensor[] = {
     F{"autoOffset", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},

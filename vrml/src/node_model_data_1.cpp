@@ -23,7 +23,7 @@ constexpr NodeTypeId kAccept11[] = {NodeTypeId::HAnimSite};
 constexpr NodeTypeId kAccept12[] = {NodeTypeId::HAnimJoint, NodeTypeId::HAnimSite};
 constexpr NodeTypeId kAccept13[] = {NodeTypeId::Group, NodeTypeId::Transform, NodeTypeId::Shape, NodeTypeId::IndexedFaceSet};
 constexpr NodeTypeId kAccept14[] = {NodeTypeId::Coordinate, NodeTypeId::CoordinateDouble};
-constexpr NodeTypeId kAccept15[] = {NodeTypeId::HAnimJoint, NodeTypeId::HAnimSegment};
+constexpr NodeTypeId kAccept15[] = {NodeTypeId::HAnimJoint, NodeTypeId::HAnimSegment, NodeTypeId::HAnimSite};
 constexpr NodeTypeId kAccept16[] = {NodeTypeId::HAnimDisplacer};
 
 constexpr NodeFieldModel kFieldsDISEntityManager[] = {
@@ -316,6 +316,9 @@ constexpr NodeFieldModel kFieldsFog[] = {
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
     F{"set_bind", "SFBool", "inputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"visibilityRange", "SFFloat", "inputOutput", "0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"volumetric", "SFBool", "inputOutput", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"volumetricDirection", "SFVec3f", "inputOutput", "0 -1 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"volumetricVisibilityStart", "SFFloat", "inputOutput", "0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
 };
 constexpr NodeFieldModel kFieldsFogCoordinate[] = {
     F{"depth", "MFFloat", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -568,19 +571,19 @@ constexpr NodeFieldModel kFieldsHAnimHumanoid[] = {
     F{"visible", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
 };
 constexpr NodeFieldModel kFieldsHAnimJoint[] = {
-    F{"addChildren", "MFNode", "inputOnly", "", "HAnimJoint|HAnimSegment", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept15},
+    F{"addChildren", "MFNode", "inputOnly", "", "HAnimJoint|HAnimSegment|HAnimSite", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept15},
     F{"bboxCenter", "SFVec3f", "initializeOnly", "0 0 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"bboxDisplay", "SFBool", "inputOutput", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"bboxSize", "SFVec3f", "initializeOnly", "-1 -1 -1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"center", "SFVec3f", "inputOutput", "0 0 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"children", "MFNode", "inputOutput", "", "HAnimJoint|HAnimSegment", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept15},
+    F{"children", "MFNode", "inputOutput", "", "HAnimJoint|HAnimSegment|HAnimSite", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept15},
     F{"description", "SFString", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"displacers", "MFNode", "inputOutput", "", "HAnimDisplacer", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept16},
     F{"limitOrientation", "SFRotation", "inputOutput", "0 0 1 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"llimit", "MFFloat", "inputOutput", "0 0 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
     F{"name", "SFString", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"removeChildren", "MFNode", "inputOnly", "", "HAnimJoint|HAnimSegment", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept15},
+    F{"removeChildren", "MFNode", "inputOnly", "", "HAnimJoint|HAnimSegment|HAnimSite", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept15},
     F{"rotation", "SFRotation", "inputOutput", "0 0 1 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"scale", "SFVec3f", "inputOutput", "1 1 1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"scaleOrientation", "SFRotation", "inputOutput", "0 0 1 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -629,6 +632,9 @@ constexpr NodeFieldModel kFieldsHAnimSegment[] = {
     F{"name", "SFString", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"removeChildren", "MFNode", "inputOnly", "", "X3DChildNode", AbstractTypeSet{0x0000000000000080ULL, 0x0000000000000000ULL}, {}},
     F{"visible", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"rotation", "SFRotation", "inputOutput", "0 0 1 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"scale", "SFVec3f", "inputOutput", "1 1 1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"translation", "SFVec3f", "inputOutput", "0 0 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
 };
 constexpr NodeFieldModel kFieldsHAnimSite[] = {
     F{"addChildren", "MFNode", "inputOnly", "", "X3DChildNode", AbstractTypeSet{0x0000000000000080ULL, 0x0000000000000000ULL}, {}},
@@ -664,18 +670,6 @@ constexpr NodeFieldModel kFieldsImageTexture[] = {
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
     F{"repeatS", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"repeatT", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"textureProperties", "SFNode", "initializeOnly", "NULL", "TextureProperties", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept5},
-    F{"url", "MFString", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-};
-constexpr NodeFieldModel kFieldsImageTexture3D[] = {
-    F{"autoRefresh", "SFTime", "inputOutput", "0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"autoRefreshTimeLimit", "SFTime", "inputOutput", "3600", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"description", "SFString", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"load", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
-    F{"repeatR", "SFBool", "initializeOnly", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"repeatS", "SFBool", "initializeOnly", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"repeatT", "SFBool", "initializeOnly", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"textureProperties", "SFNode", "initializeOnly", "NULL", "TextureProperties", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept5},
     F{"url", "MFString", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
 };
@@ -722,7 +716,6 @@ constexpr NodeModel kModels[] = {
     {"HAnimSite", NodeTypeId::HAnimSite, "HAnim", 1, AbstractTypeSet{0x00000004004000a0ULL, 0x0000000000000000ULL}, "children", kFieldsHAnimSite, false},
     {"ImageCubeMapTexture", NodeTypeId::ImageCubeMapTexture, "CubeMapTexturing", 2, AbstractTypeSet{0x0000000400004001ULL, 0x0000000000000104ULL}, "texture", kFieldsImageCubeMapTexture, false},
     {"ImageTexture", NodeTypeId::ImageTexture, "Texturing", 1, AbstractTypeSet{0x8080000400000001ULL, 0x0000000000000104ULL}, "texture", kFieldsImageTexture, false},
-    {"ImageTexture3D", NodeTypeId::ImageTexture3D, "Texturing3D", 2, AbstractTypeSet{0x0000000400000001ULL, 0x0000000000000105ULL}, "texture", kFieldsImageTexture3D, false},
 };
 
 }  // namespace

@@ -8,17 +8,28 @@ namespace {
 
 using F = NodeFieldModel;
 
-constexpr NodeTypeId kAccept0[] = {NodeTypeId::FogCoordinate};
-constexpr NodeTypeId kAccept1[] = {NodeTypeId::MultiTextureCoordinate};
-constexpr NodeTypeId kAccept2[] = {NodeTypeId::Inline};
-constexpr NodeTypeId kAccept3[] = {NodeTypeId::RigidBody};
-constexpr NodeTypeId kAccept4[] = {NodeTypeId::TextureProperties};
+constexpr NodeTypeId kAccept0[] = {NodeTypeId::TextureProperties};
+constexpr NodeTypeId kAccept1[] = {NodeTypeId::FogCoordinate};
+constexpr NodeTypeId kAccept2[] = {NodeTypeId::MultiTextureCoordinate};
+constexpr NodeTypeId kAccept3[] = {NodeTypeId::Inline};
+constexpr NodeTypeId kAccept4[] = {NodeTypeId::RigidBody};
 constexpr NodeTypeId kAccept5[] = {NodeTypeId::Coordinate, NodeTypeId::CoordinateDouble};
 constexpr NodeTypeId kAccept6[] = {NodeTypeId::NurbsTextureCoordinate};
 constexpr NodeTypeId kAccept7[] = {NodeTypeId::NurbsCurve};
 constexpr NodeTypeId kAccept8[] = {NodeTypeId::Contour2D};
-constexpr NodeTypeId kAccept9[] = {NodeTypeId::NavigationInfo};
 
+constexpr NodeFieldModel kFieldsImageTexture3D[] = {
+    F{"autoRefresh", "SFTime", "inputOutput", "0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"autoRefreshTimeLimit", "SFTime", "inputOutput", "3600", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"description", "SFString", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"load", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
+    F{"repeatR", "SFBool", "initializeOnly", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"repeatS", "SFBool", "initializeOnly", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"repeatT", "SFBool", "initializeOnly", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"textureProperties", "SFNode", "initializeOnly", "NULL", "TextureProperties", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept0},
+    F{"url", "MFString", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+};
 constexpr NodeFieldModel kFieldsIndexedFaceSet[] = {
     F{"attrib", "MFNode", "inputOutput", "", "X3DVertexAttributeNode", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000200ULL}, {}},
     F{"ccw", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -29,7 +40,7 @@ constexpr NodeFieldModel kFieldsIndexedFaceSet[] = {
     F{"coord", "SFNode", "inputOutput", "NULL", "X3DCoordinateNode", AbstractTypeSet{0x0000000000000800ULL, 0x0000000000000000ULL}, {}},
     F{"coordIndex", "MFInt32", "initializeOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"creaseAngle", "SFFloat", "initializeOnly", "0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"fogCoord", "SFNode", "inputOutput", "NULL", "FogCoordinate", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept0},
+    F{"fogCoord", "SFNode", "inputOutput", "NULL", "FogCoordinate", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept1},
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
     F{"normal", "SFNode", "inputOutput", "NULL", "X3DNormalNode", AbstractTypeSet{0x0000000800000000ULL, 0x0000000000000000ULL}, {}},
     F{"normalIndex", "MFInt32", "initializeOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -39,7 +50,7 @@ constexpr NodeFieldModel kFieldsIndexedFaceSet[] = {
     F{"set_normalIndex", "MFInt32", "inputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"set_texCoordIndex", "MFInt32", "inputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"solid", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"texCoord", "SFNode", "inputOutput", "NULL", "X3DSingleTextureCoordinateNode|MultiTextureCoordinate", AbstractTypeSet{0x0040000000000000ULL, 0x0000000000000000ULL}, kAccept1},
+    F{"texCoord", "SFNode", "inputOutput", "NULL", "X3DSingleTextureCoordinateNode|MultiTextureCoordinate", AbstractTypeSet{0x0040000000000000ULL, 0x0000000000000000ULL}, kAccept2},
     F{"texCoordIndex", "MFInt32", "initializeOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
 };
 constexpr NodeFieldModel kFieldsIndexedLineSet[] = {
@@ -49,7 +60,7 @@ constexpr NodeFieldModel kFieldsIndexedLineSet[] = {
     F{"colorPerVertex", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"coord", "SFNode", "inputOutput", "NULL", "X3DCoordinateNode", AbstractTypeSet{0x0000000000000800ULL, 0x0000000000000000ULL}, {}},
     F{"coordIndex", "MFInt32", "initializeOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"fogCoord", "SFNode", "inputOutput", "NULL", "FogCoordinate", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept0},
+    F{"fogCoord", "SFNode", "inputOutput", "NULL", "FogCoordinate", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept1},
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
     F{"normal", "SFNode", "inputOutput", "NULL", "X3DNormalNode", AbstractTypeSet{0x0000000800000000ULL, 0x0000000000000000ULL}, {}},
     F{"set_colorIndex", "MFInt32", "inputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -61,14 +72,14 @@ constexpr NodeFieldModel kFieldsIndexedQuadSet[] = {
     F{"color", "SFNode", "inputOutput", "NULL", "X3DColorNode", AbstractTypeSet{0x0000000000000100ULL, 0x0000000000000000ULL}, {}},
     F{"colorPerVertex", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"coord", "SFNode", "inputOutput", "NULL", "X3DCoordinateNode", AbstractTypeSet{0x0000000000000800ULL, 0x0000000000000000ULL}, {}},
-    F{"fogCoord", "SFNode", "inputOutput", "NULL", "FogCoordinate", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept0},
+    F{"fogCoord", "SFNode", "inputOutput", "NULL", "FogCoordinate", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept1},
     F{"index", "MFInt32", "initializeOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
     F{"normal", "SFNode", "inputOutput", "NULL", "X3DNormalNode", AbstractTypeSet{0x0000000800000000ULL, 0x0000000000000000ULL}, {}},
     F{"normalPerVertex", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"set_index", "MFInt32", "inputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"solid", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"texCoord", "SFNode", "inputOutput", "NULL", "X3DSingleTextureCoordinateNode|MultiTextureCoordinate", AbstractTypeSet{0x0040000000000000ULL, 0x0000000000000000ULL}, kAccept1},
+    F{"texCoord", "SFNode", "inputOutput", "NULL", "X3DSingleTextureCoordinateNode|MultiTextureCoordinate", AbstractTypeSet{0x0040000000000000ULL, 0x0000000000000000ULL}, kAccept2},
 };
 constexpr NodeFieldModel kFieldsIndexedTriangleFanSet[] = {
     F{"attrib", "MFNode", "inputOutput", "", "X3DVertexAttributeNode", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000200ULL}, {}},
@@ -76,14 +87,14 @@ constexpr NodeFieldModel kFieldsIndexedTriangleFanSet[] = {
     F{"color", "SFNode", "inputOutput", "NULL", "X3DColorNode", AbstractTypeSet{0x0000000000000100ULL, 0x0000000000000000ULL}, {}},
     F{"colorPerVertex", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"coord", "SFNode", "inputOutput", "NULL", "X3DCoordinateNode", AbstractTypeSet{0x0000000000000800ULL, 0x0000000000000000ULL}, {}},
-    F{"fogCoord", "SFNode", "inputOutput", "NULL", "FogCoordinate", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept0},
+    F{"fogCoord", "SFNode", "inputOutput", "NULL", "FogCoordinate", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept1},
     F{"index", "MFInt32", "initializeOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
     F{"normal", "SFNode", "inputOutput", "NULL", "X3DNormalNode", AbstractTypeSet{0x0000000800000000ULL, 0x0000000000000000ULL}, {}},
     F{"normalPerVertex", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"set_index", "MFInt32", "inputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"solid", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"texCoord", "SFNode", "inputOutput", "NULL", "X3DSingleTextureCoordinateNode|MultiTextureCoordinate", AbstractTypeSet{0x0040000000000000ULL, 0x0000000000000000ULL}, kAccept1},
+    F{"texCoord", "SFNode", "inputOutput", "NULL", "X3DSingleTextureCoordinateNode|MultiTextureCoordinate", AbstractTypeSet{0x0040000000000000ULL, 0x0000000000000000ULL}, kAccept2},
 };
 constexpr NodeFieldModel kFieldsIndexedTriangleSet[] = {
     F{"attrib", "MFNode", "inputOutput", "", "X3DVertexAttributeNode", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000200ULL}, {}},
@@ -91,14 +102,14 @@ constexpr NodeFieldModel kFieldsIndexedTriangleSet[] = {
     F{"color", "SFNode", "inputOutput", "NULL", "X3DColorNode", AbstractTypeSet{0x0000000000000100ULL, 0x0000000000000000ULL}, {}},
     F{"colorPerVertex", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"coord", "SFNode", "inputOutput", "NULL", "X3DCoordinateNode", AbstractTypeSet{0x0000000000000800ULL, 0x0000000000000000ULL}, {}},
-    F{"fogCoord", "SFNode", "inputOutput", "NULL", "FogCoordinate", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept0},
+    F{"fogCoord", "SFNode", "inputOutput", "NULL", "FogCoordinate", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept1},
     F{"index", "MFInt32", "initializeOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
     F{"normal", "SFNode", "inputOutput", "NULL", "X3DNormalNode", AbstractTypeSet{0x0000000800000000ULL, 0x0000000000000000ULL}, {}},
     F{"normalPerVertex", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"set_index", "MFInt32", "inputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"solid", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"texCoord", "SFNode", "inputOutput", "NULL", "X3DSingleTextureCoordinateNode|MultiTextureCoordinate", AbstractTypeSet{0x0040000000000000ULL, 0x0000000000000000ULL}, kAccept1},
+    F{"texCoord", "SFNode", "inputOutput", "NULL", "X3DSingleTextureCoordinateNode|MultiTextureCoordinate", AbstractTypeSet{0x0040000000000000ULL, 0x0000000000000000ULL}, kAccept2},
 };
 constexpr NodeFieldModel kFieldsIndexedTriangleStripSet[] = {
     F{"attrib", "MFNode", "inputOutput", "", "X3DVertexAttributeNode", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000200ULL}, {}},
@@ -106,14 +117,14 @@ constexpr NodeFieldModel kFieldsIndexedTriangleStripSet[] = {
     F{"color", "SFNode", "inputOutput", "NULL", "X3DColorNode", AbstractTypeSet{0x0000000000000100ULL, 0x0000000000000000ULL}, {}},
     F{"colorPerVertex", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"coord", "SFNode", "inputOutput", "NULL", "X3DCoordinateNode", AbstractTypeSet{0x0000000000000800ULL, 0x0000000000000000ULL}, {}},
-    F{"fogCoord", "SFNode", "inputOutput", "NULL", "FogCoordinate", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept0},
+    F{"fogCoord", "SFNode", "inputOutput", "NULL", "FogCoordinate", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept1},
     F{"index", "MFInt32", "initializeOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
     F{"normal", "SFNode", "inputOutput", "NULL", "X3DNormalNode", AbstractTypeSet{0x0000000800000000ULL, 0x0000000000000000ULL}, {}},
     F{"normalPerVertex", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"set_index", "MFInt32", "inputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"solid", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"texCoord", "SFNode", "inputOutput", "NULL", "X3DSingleTextureCoordinateNode|MultiTextureCoordinate", AbstractTypeSet{0x0040000000000000ULL, 0x0000000000000000ULL}, kAccept1},
+    F{"texCoord", "SFNode", "inputOutput", "NULL", "X3DSingleTextureCoordinateNode|MultiTextureCoordinate", AbstractTypeSet{0x0040000000000000ULL, 0x0000000000000000ULL}, kAccept2},
 };
 constexpr NodeFieldModel kFieldsInline[] = {
     F{"autoRefresh", "SFTime", "inputOutput", "0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -245,7 +256,7 @@ constexpr NodeFieldModel kFieldsLinePickSensor[] = {
     F{"pickedPoint", "MFVec3f", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"pickedTextureCoordinate", "MFVec3f", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"pickingGeometry", "SFNode", "inputOutput", "NULL", "X3DGeometryNode", AbstractTypeSet{0x0000000000200000ULL, 0x0000000000000000ULL}, {}},
-    F{"pickTarget", "MFNode", "inputOutput", "", "X3DGroupingNode|X3DShapeNode|Inline", AbstractTypeSet{0x0020000000400000ULL, 0x0000000000000000ULL}, kAccept2},
+    F{"pickTarget", "MFNode", "inputOutput", "", "X3DGroupingNode|X3DShapeNode|Inline", AbstractTypeSet{0x0020000000400000ULL, 0x0000000000000000ULL}, kAccept3},
     F{"sortOrder", "SFString", "initializeOnly", "CLOSEST", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
 };
 constexpr NodeFieldModel kFieldsLineProperties[] = {
@@ -258,7 +269,7 @@ constexpr NodeFieldModel kFieldsLineSet[] = {
     F{"attrib", "MFNode", "inputOutput", "", "X3DVertexAttributeNode", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000200ULL}, {}},
     F{"color", "SFNode", "inputOutput", "NULL", "X3DColorNode", AbstractTypeSet{0x0000000000000100ULL, 0x0000000000000000ULL}, {}},
     F{"coord", "SFNode", "inputOutput", "NULL", "X3DCoordinateNode", AbstractTypeSet{0x0000000000000800ULL, 0x0000000000000000ULL}, {}},
-    F{"fogCoord", "SFNode", "inputOutput", "NULL", "FogCoordinate", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept0},
+    F{"fogCoord", "SFNode", "inputOutput", "NULL", "FogCoordinate", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept1},
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
     F{"normal", "SFNode", "inputOutput", "NULL", "X3DNormalNode", AbstractTypeSet{0x0000000800000000ULL, 0x0000000000000000ULL}, {}},
     F{"vertexCount", "MFInt32", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -298,6 +309,9 @@ constexpr NodeFieldModel kFieldsLocalFog[] = {
     F{"fogType", "SFString", "inputOutput", "LINEAR", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
     F{"visibilityRange", "SFFloat", "inputOutput", "0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"volumetric", "SFBool", "inputOutput", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"volumetricDirection", "SFVec3f", "inputOutput", "0 -1 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"volumetricVisibilityStart", "SFFloat", "inputOutput", "0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
 };
 constexpr NodeFieldModel kFieldsMaterial[] = {
     F{"ambientIntensity", "SFFloat", "inputOutput", "0.2", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -392,8 +406,8 @@ constexpr NodeFieldModel kFieldsMotorJoint[] = {
     F{"axis2Torque", "SFFloat", "inputOutput", "0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"axis3Angle", "SFFloat", "inputOutput", "0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"axis3Torque", "SFFloat", "inputOutput", "0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"body1", "SFNode", "inputOutput", "NULL", "RigidBody", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept3},
-    F{"body2", "SFNode", "inputOutput", "NULL", "RigidBody", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept3},
+    F{"body1", "SFNode", "inputOutput", "NULL", "RigidBody", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept4},
+    F{"body2", "SFNode", "inputOutput", "NULL", "RigidBody", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept4},
     F{"enabledAxes", "SFInt32", "inputOutput", "1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"forceOutput", "MFString", "inputOutput", "\"NONE\"", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
@@ -434,7 +448,7 @@ constexpr NodeFieldModel kFieldsMovieTexture[] = {
     F{"speed", "SFFloat", "inputOutput", "1.0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"startTime", "SFTime", "inputOutput", "0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"stopTime", "SFTime", "inputOutput", "0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"textureProperties", "SFNode", "initializeOnly", "NULL", "TextureProperties", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept4},
+    F{"textureProperties", "SFNode", "initializeOnly", "NULL", "TextureProperties", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept0},
     F{"url", "MFString", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
 };
 constexpr NodeFieldModel kFieldsMultiTexture[] = {
@@ -637,25 +651,9 @@ constexpr NodeFieldModel kFieldsOrientationInterpolator[] = {
     F{"set_fraction", "SFFloat", "inputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"value_changed", "SFRotation", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
 };
-constexpr NodeFieldModel kFieldsOrthoViewpoint[] = {
-    F{"bindTime", "SFTime", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"centerOfRotation", "SFVec3f", "inputOutput", "0 0 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"description", "SFString", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"farDistance", "SFFloat", "inputOutput", "-1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"fieldOfView", "MFFloat", "inputOutput", "-1 -1 1 1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"isBound", "SFBool", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"jump", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
-    F{"navigationInfo", "SFNode", "inputOutput", "NULL", "NavigationInfo", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept9},
-    F{"nearDistance", "SFFloat", "inputOutput", "-1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"orientation", "SFRotation", "inputOutput", "0 0 1 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"position", "SFVec3f", "inputOutput", "0 0 10", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"retainUserOffsets", "SFBool", "inputOutput", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"set_bind", "SFBool", "inputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"viewAll", "SFBool", "inputOutput", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-};
 
 constexpr NodeModel kModels[] = {
+    {"ImageTexture3D", NodeTypeId::ImageTexture3D, "Texturing3D", 2, AbstractTypeSet{0x0000000400000001ULL, 0x0000000000000105ULL}, "texture", kFieldsImageTexture3D, false},
     {"IndexedFaceSet", NodeTypeId::IndexedFaceSet, "Geometry3D", 2, AbstractTypeSet{0x0000000400200400ULL, 0x0000000000000000ULL}, "geometry", kFieldsIndexedFaceSet, false},
     {"IndexedLineSet", NodeTypeId::IndexedLineSet, "Rendering", 1, AbstractTypeSet{0x0000000400200000ULL, 0x0000000000000000ULL}, "geometry", kFieldsIndexedLineSet, false},
     {"IndexedQuadSet", NodeTypeId::IndexedQuadSet, "CADGeometry", 1, AbstractTypeSet{0x0000000400200400ULL, 0x0000000000000000ULL}, "geometry", kFieldsIndexedQuadSet, false},
@@ -712,7 +710,6 @@ constexpr NodeModel kModels[] = {
     {"OrientationChaser", NodeTypeId::OrientationChaser, "Followers", 1, AbstractTypeSet{0x00000004000400c0ULL, 0x0000000000000000ULL}, "children", kFieldsOrientationChaser, false},
     {"OrientationDamper", NodeTypeId::OrientationDamper, "Followers", 1, AbstractTypeSet{0x0000000400041080ULL, 0x0000000000000000ULL}, "children", kFieldsOrientationDamper, false},
     {"OrientationInterpolator", NodeTypeId::OrientationInterpolator, "Interpolation", 1, AbstractTypeSet{0x0000000401000080ULL, 0x0000000000000000ULL}, "children", kFieldsOrientationInterpolator, false},
-    {"OrthoViewpoint", NodeTypeId::OrthoViewpoint, "Navigation", 3, AbstractTypeSet{0x0000000400000090ULL, 0x0000000000000400ULL}, "children", kFieldsOrthoViewpoint, false},
 };
 
 }  // namespace

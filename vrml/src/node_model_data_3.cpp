@@ -8,18 +8,37 @@ namespace {
 
 using F = NodeFieldModel;
 
-constexpr NodeTypeId kAccept0[] = {NodeTypeId::TextureCoordinate, NodeTypeId::TextureCoordinateGenerator};
-constexpr NodeTypeId kAccept1[] = {NodeTypeId::TextureProperties};
-constexpr NodeTypeId kAccept2[] = {NodeTypeId::Inline};
-constexpr NodeTypeId kAccept3[] = {NodeTypeId::FogCoordinate};
-constexpr NodeTypeId kAccept4[] = {NodeTypeId::ShaderProgram};
-constexpr NodeTypeId kAccept5[] = {NodeTypeId::MultiTextureCoordinate};
-constexpr NodeTypeId kAccept6[] = {NodeTypeId::Sphere, NodeTypeId::Box, NodeTypeId::Cone};
-constexpr NodeTypeId kAccept7[] = {NodeTypeId::RigidBody};
-constexpr NodeTypeId kAccept8[] = {NodeTypeId::CollisionCollection};
-constexpr NodeTypeId kAccept9[] = {NodeTypeId::Contact};
-constexpr NodeTypeId kAccept10[] = {NodeTypeId::Analyser, NodeTypeId::AudioClip, NodeTypeId::AudioDestination, NodeTypeId::BiquadFilter, NodeTypeId::BufferAudioSource, NodeTypeId::ChannelMerger, NodeTypeId::ChannelSelector, NodeTypeId::ChannelSplitter, NodeTypeId::Convolver, NodeTypeId::Delay, NodeTypeId::DynamicsCompressor, NodeTypeId::Gain, NodeTypeId::ListenerPointSource, NodeTypeId::MicrophoneSource, NodeTypeId::MovieTexture, NodeTypeId::OscillatorSource, NodeTypeId::Sound, NodeTypeId::SpatialSound, NodeTypeId::StreamAudioDestination, NodeTypeId::StreamAudioSource, NodeTypeId::WaveShaper};
+constexpr NodeTypeId kAccept0[] = {NodeTypeId::NavigationInfo};
+constexpr NodeTypeId kAccept1[] = {NodeTypeId::TextureCoordinate, NodeTypeId::TextureCoordinateGenerator};
+constexpr NodeTypeId kAccept2[] = {NodeTypeId::TextureProperties};
+constexpr NodeTypeId kAccept3[] = {NodeTypeId::Inline};
+constexpr NodeTypeId kAccept4[] = {NodeTypeId::FogCoordinate};
+constexpr NodeTypeId kAccept5[] = {NodeTypeId::ShaderProgram};
+constexpr NodeTypeId kAccept6[] = {NodeTypeId::MultiTextureCoordinate};
+constexpr NodeTypeId kAccept7[] = {NodeTypeId::Sphere, NodeTypeId::Box, NodeTypeId::Cone};
+constexpr NodeTypeId kAccept8[] = {NodeTypeId::RigidBody};
+constexpr NodeTypeId kAccept9[] = {NodeTypeId::CollisionCollection};
+constexpr NodeTypeId kAccept10[] = {NodeTypeId::Contact};
+constexpr NodeTypeId kAccept11[] = {NodeTypeId::Analyser, NodeTypeId::AudioClip, NodeTypeId::AudioDestination, NodeTypeId::BiquadFilter, NodeTypeId::BufferAudioSource, NodeTypeId::ChannelMerger, NodeTypeId::ChannelSelector, NodeTypeId::ChannelSplitter, NodeTypeId::Convolver, NodeTypeId::Delay, NodeTypeId::DynamicsCompressor, NodeTypeId::Gain, NodeTypeId::ListenerPointSource, NodeTypeId::MicrophoneSource, NodeTypeId::MovieTexture, NodeTypeId::OscillatorSource, NodeTypeId::Sound, NodeTypeId::SpatialSound, NodeTypeId::StreamAudioDestination, NodeTypeId::StreamAudioSource, NodeTypeId::WaveShaper};
 
+constexpr NodeFieldModel kFieldsOrthoViewpoint[] = {
+    F{"bindTime", "SFTime", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"centerOfRotation", "SFVec3f", "inputOutput", "0 0 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"description", "SFString", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"farDistance", "SFFloat", "inputOutput", "-1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"fieldOfView", "MFFloat", "inputOutput", "-1 -1 1 1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"isBound", "SFBool", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"jump", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
+    F{"navigationInfo", "SFNode", "inputOutput", "NULL", "NavigationInfo", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept0},
+    F{"nearDistance", "SFFloat", "inputOutput", "-1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"orientation", "SFRotation", "inputOutput", "0 0 1 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"position", "SFVec3f", "inputOutput", "0 0 10", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"retainUserOffsets", "SFBool", "inputOutput", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"set_bind", "SFBool", "inputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"viewAll", "SFBool", "inputOutput", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"autoCenterOfRotation", "SFBool", "inputOutput", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+};
 constexpr NodeFieldModel kFieldsOscillatorSource[] = {
     F{"description", "SFString", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"detune", "SFFloat", "inputOutput", "0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -68,7 +87,7 @@ constexpr NodeFieldModel kFieldsParticleSystem[] = {
     F{"particleLifetime", "SFFloat", "inputOutput", "5", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"particleSize", "SFVec2f", "inputOutput", "0.02 0.02", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"physics", "MFNode", "initializeOnly", "", "X3DParticlePhysicsModelNode", AbstractTypeSet{0x0000020000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"texCoord", "SFNode", "initializeOnly", "NULL", "TextureCoordinate|TextureCoordinateGenerator", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept0},
+    F{"texCoord", "SFNode", "initializeOnly", "NULL", "TextureCoordinate|TextureCoordinateGenerator", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept1},
     F{"texCoordKey", "MFFloat", "initializeOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"visible", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
 };
@@ -119,7 +138,7 @@ constexpr NodeFieldModel kFieldsPixelTexture[] = {
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
     F{"repeatS", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"repeatT", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"textureProperties", "SFNode", "initializeOnly", "NULL", "TextureProperties", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept1},
+    F{"textureProperties", "SFNode", "initializeOnly", "NULL", "TextureProperties", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept2},
 };
 constexpr NodeFieldModel kFieldsPixelTexture3D[] = {
     F{"description", "SFString", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -128,7 +147,7 @@ constexpr NodeFieldModel kFieldsPixelTexture3D[] = {
     F{"repeatR", "SFBool", "initializeOnly", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"repeatS", "SFBool", "initializeOnly", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"repeatT", "SFBool", "initializeOnly", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"textureProperties", "SFNode", "initializeOnly", "NULL", "TextureProperties", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept1},
+    F{"textureProperties", "SFNode", "initializeOnly", "NULL", "TextureProperties", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept2},
 };
 constexpr NodeFieldModel kFieldsPlaneSensor[] = {
     F{"autoOffset", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -178,7 +197,7 @@ constexpr NodeFieldModel kFieldsPointPickSensor[] = {
     F{"pickedGeometry", "MFNode", "outputOnly", "", "X3DChildNode", AbstractTypeSet{0x0000000000000080ULL, 0x0000000000000000ULL}, {}},
     F{"pickedPoint", "MFVec3f", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"pickingGeometry", "SFNode", "inputOutput", "NULL", "X3DGeometryNode", AbstractTypeSet{0x0000000000200000ULL, 0x0000000000000000ULL}, {}},
-    F{"pickTarget", "MFNode", "inputOutput", "", "X3DGroupingNode|X3DShapeNode|Inline", AbstractTypeSet{0x0020000000400000ULL, 0x0000000000000000ULL}, kAccept2},
+    F{"pickTarget", "MFNode", "inputOutput", "", "X3DGroupingNode|X3DShapeNode|Inline", AbstractTypeSet{0x0020000000400000ULL, 0x0000000000000000ULL}, kAccept3},
     F{"sortOrder", "SFString", "initializeOnly", "CLOSEST", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
 };
 constexpr NodeFieldModel kFieldsPointProperties[] = {
@@ -192,7 +211,7 @@ constexpr NodeFieldModel kFieldsPointSet[] = {
     F{"attrib", "MFNode", "inputOutput", "", "X3DVertexAttributeNode", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000200ULL}, {}},
     F{"color", "SFNode", "inputOutput", "NULL", "X3DColorNode", AbstractTypeSet{0x0000000000000100ULL, 0x0000000000000000ULL}, {}},
     F{"coord", "SFNode", "inputOutput", "NULL", "X3DCoordinateNode", AbstractTypeSet{0x0000000000000800ULL, 0x0000000000000000ULL}, {}},
-    F{"fogCoord", "SFNode", "inputOutput", "NULL", "FogCoordinate", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept3},
+    F{"fogCoord", "SFNode", "inputOutput", "NULL", "FogCoordinate", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept4},
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
     F{"normal", "SFNode", "inputOutput", "NULL", "X3DNormalNode", AbstractTypeSet{0x0000000800000000ULL, 0x0000000000000000ULL}, {}},
 };
@@ -284,7 +303,7 @@ constexpr NodeFieldModel kFieldsPrimitivePickSensor[] = {
     F{"objectType", "MFString", "inputOutput", "\"ALL\"", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"pickedGeometry", "MFNode", "outputOnly", "", "X3DChildNode", AbstractTypeSet{0x0000000000000080ULL, 0x0000000000000000ULL}, {}},
     F{"pickingGeometry", "SFNode", "inputOutput", "NULL", "X3DGeometryNode", AbstractTypeSet{0x0000000000200000ULL, 0x0000000000000000ULL}, {}},
-    F{"pickTarget", "MFNode", "inputOutput", "", "X3DGroupingNode|X3DShapeNode|Inline", AbstractTypeSet{0x0020000000400000ULL, 0x0000000000000000ULL}, kAccept2},
+    F{"pickTarget", "MFNode", "inputOutput", "", "X3DGroupingNode|X3DShapeNode|Inline", AbstractTypeSet{0x0020000000400000ULL, 0x0000000000000000ULL}, kAccept3},
     F{"sortOrder", "SFString", "initializeOnly", "CLOSEST", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
 };
 constexpr NodeFieldModel kFieldsProgramShader[] = {
@@ -293,7 +312,7 @@ constexpr NodeFieldModel kFieldsProgramShader[] = {
     F{"isValid", "SFBool", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"language", "SFString", "initializeOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
-    F{"programs", "MFNode", "inputOutput", "", "ShaderProgram", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept4},
+    F{"programs", "MFNode", "inputOutput", "", "ShaderProgram", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept5},
 };
 constexpr NodeFieldModel kFieldsProjectionVolumeStyle[] = {
     F{"enabled", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -325,12 +344,12 @@ constexpr NodeFieldModel kFieldsQuadSet[] = {
     F{"color", "SFNode", "inputOutput", "NULL", "X3DColorNode", AbstractTypeSet{0x0000000000000100ULL, 0x0000000000000000ULL}, {}},
     F{"colorPerVertex", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"coord", "SFNode", "inputOutput", "NULL", "X3DCoordinateNode", AbstractTypeSet{0x0000000000000800ULL, 0x0000000000000000ULL}, {}},
-    F{"fogCoord", "SFNode", "inputOutput", "NULL", "FogCoordinate", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept3},
+    F{"fogCoord", "SFNode", "inputOutput", "NULL", "FogCoordinate", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept4},
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
     F{"normal", "SFNode", "inputOutput", "NULL", "X3DNormalNode", AbstractTypeSet{0x0000000800000000ULL, 0x0000000000000000ULL}, {}},
     F{"normalPerVertex", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"solid", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"texCoord", "SFNode", "inputOutput", "NULL", "X3DSingleTextureCoordinateNode|MultiTextureCoordinate", AbstractTypeSet{0x0040000000000000ULL, 0x0000000000000000ULL}, kAccept5},
+    F{"texCoord", "SFNode", "inputOutput", "NULL", "X3DSingleTextureCoordinateNode|MultiTextureCoordinate", AbstractTypeSet{0x0040000000000000ULL, 0x0000000000000000ULL}, kAccept6},
 };
 constexpr NodeFieldModel kFieldsReceiverPdu[] = {
     F{"address", "SFString", "inputOutput", "localhost", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -394,7 +413,7 @@ constexpr NodeFieldModel kFieldsRigidBody[] = {
     F{"linearDampingFactor", "SFFloat", "inputOutput", "0.001", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"linearVelocity", "SFVec3f", "inputOutput", "0 0 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"mass", "SFFloat", "inputOutput", "1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"massDensityModel", "SFNode", "inputOutput", "NULL", "Sphere|Box|Cone", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept6},
+    F{"massDensityModel", "SFNode", "inputOutput", "NULL", "Sphere|Box|Cone", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept7},
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
     F{"orientation", "SFRotation", "inputOutput", "0 0 1 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"position", "SFVec3f", "inputOutput", "0 0 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -408,8 +427,8 @@ constexpr NodeFieldModel kFieldsRigidBodyCollection[] = {
     F{"bboxCenter", "SFVec3f", "initializeOnly", "0 0 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"bboxDisplay", "SFBool", "inputOutput", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"bboxSize", "SFVec3f", "initializeOnly", "-1 -1 -1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"bodies", "MFNode", "inputOutput", "", "RigidBody", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept7},
-    F{"collider", "SFNode", "initializeOnly", "NULL", "CollisionCollection", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept8},
+    F{"bodies", "MFNode", "inputOutput", "", "RigidBody", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept8},
+    F{"collider", "SFNode", "initializeOnly", "NULL", "CollisionCollection", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept9},
     F{"constantForceMix", "SFFloat", "inputOutput", "0.0001", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"contactSurfaceThickness", "SFFloat", "inputOutput", "0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"disableAngularSpeed", "SFFloat", "inputOutput", "0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -423,7 +442,7 @@ constexpr NodeFieldModel kFieldsRigidBodyCollection[] = {
     F{"maxCorrectionSpeed", "SFFloat", "inputOutput", "-1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
     F{"preferAccuracy", "SFBool", "inputOutput", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"set_contacts", "MFNode", "inputOnly", "", "Contact", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept9},
+    F{"set_contacts", "MFNode", "inputOnly", "", "Contact", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept10},
     F{"visible", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
 };
 constexpr NodeFieldModel kFieldsScalarChaser[] = {
@@ -590,9 +609,9 @@ constexpr NodeFieldModel kFieldsSingleAxisHingeJoint[] = {
     F{"angle", "SFFloat", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"angleRate", "SFFloat", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"axis", "SFVec3f", "inputOutput", "0 1 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"body1", "SFNode", "inputOutput", "NULL", "RigidBody", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept7},
+    F{"body1", "SFNode", "inputOutput", "NULL", "RigidBody", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept8},
     F{"body1AnchorPoint", "SFVec3f", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"body2", "SFNode", "inputOutput", "NULL", "RigidBody", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept7},
+    F{"body2", "SFNode", "inputOutput", "NULL", "RigidBody", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept8},
     F{"body2AnchorPoint", "SFVec3f", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"forceOutput", "MFString", "inputOutput", "\"NONE\"", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"maxAngle", "SFFloat", "inputOutput", "3.141592653", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -603,8 +622,8 @@ constexpr NodeFieldModel kFieldsSingleAxisHingeJoint[] = {
 };
 constexpr NodeFieldModel kFieldsSliderJoint[] = {
     F{"axis", "SFVec3f", "inputOutput", "0 1 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"body1", "SFNode", "inputOutput", "NULL", "RigidBody", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept7},
-    F{"body2", "SFNode", "inputOutput", "NULL", "RigidBody", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept7},
+    F{"body1", "SFNode", "inputOutput", "NULL", "RigidBody", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept8},
+    F{"body2", "SFNode", "inputOutput", "NULL", "RigidBody", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept8},
     F{"forceOutput", "MFString", "inputOutput", "\"NONE\"", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"maxSeparation", "SFFloat", "inputOutput", "1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
@@ -631,7 +650,7 @@ constexpr NodeFieldModel kFieldsSound[] = {
     F{"spatialize", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
 };
 constexpr NodeFieldModel kFieldsSpatialSound[] = {
-    F{"children", "MFNode", "inputOutput", "", "Analyser|AudioClip|AudioDestination|BiquadFilter|BufferAudioSource|ChannelMerger|ChannelSelector|ChannelSplitter|Convolver|Delay|DynamicsCompressor|Gain|ListenerPointSource|MicrophoneSource|MovieTexture|OscillatorSource|Sound|SpatialSound|StreamAudioDestination|StreamAudioSource|WaveShaper", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept10},
+    F{"children", "MFNode", "inputOutput", "", "Analyser|AudioClip|AudioDestination|BiquadFilter|BufferAudioSource|ChannelMerger|ChannelSelector|ChannelSplitter|Convolver|Delay|DynamicsCompressor|Gain|ListenerPointSource|MicrophoneSource|MovieTexture|OscillatorSource|Sound|SpatialSound|StreamAudioDestination|StreamAudioSource|WaveShaper", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept11},
     F{"coneInnerAngle", "SFFloat", "inputOutput", "6.2832", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"coneOuterAngle", "SFFloat", "inputOutput", "6.2832", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"coneOuterGain", "SFFloat", "inputOutput", "0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -651,24 +670,9 @@ constexpr NodeFieldModel kFieldsSpatialSound[] = {
     F{"rolloffFactor", "SFFloat", "inputOutput", "1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"spatialize", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
 };
-constexpr NodeFieldModel kFieldsSphere[] = {
-    F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
-    F{"radius", "SFFloat", "initializeOnly", "1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"solid", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-};
-constexpr NodeFieldModel kFieldsSphereSensor[] = {
-    F{"autoOffset", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"description", "SFString", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"enabled", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"isActive", "SFBool", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"isOver", "SFBool", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
-    F{"offset", "SFRotation", "inputOutput", "0 1 0 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"rotation_changed", "SFRotation", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"trackPoint_changed", "SFVec3f", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-};
 
 constexpr NodeModel kModels[] = {
+    {"OrthoViewpoint", NodeTypeId::OrthoViewpoint, "Navigation", 3, AbstractTypeSet{0x0000000400000090ULL, 0x0000000000000400ULL}, "children", kFieldsOrthoViewpoint, false},
     {"OscillatorSource", NodeTypeId::OscillatorSource, "Sound", 2, AbstractTypeSet{0x2800000400000080ULL, 0x0000000000000020ULL}, "children", kFieldsOscillatorSource, false},
     {"PackagedShader", NodeTypeId::PackagedShader, "Shaders", 1, AbstractTypeSet{0x0010400400000001ULL, 0x0000000000000100ULL}, "shaders", kFieldsPackagedShader, false},
     {"ParticleSystem", NodeTypeId::ParticleSystem, "ParticleSystems", 2, AbstractTypeSet{0x00200004000000a0ULL, 0x0000000000000000ULL}, "children", kFieldsParticleSystem, false},
@@ -719,8 +723,6 @@ constexpr NodeModel kModels[] = {
     {"SliderJoint", NodeTypeId::SliderJoint, "RigidBodyPhysics", 2, AbstractTypeSet{0x0001000400000000ULL, 0x0000000000000000ULL}, "joints", kFieldsSliderJoint, false},
     {"Sound", NodeTypeId::Sound, "Sound", 1, AbstractTypeSet{0x0800000400000080ULL, 0x0000000000000000ULL}, "children", kFieldsSound, false},
     {"SpatialSound", NodeTypeId::SpatialSound, "Sound", 2, AbstractTypeSet{0x0800000400000080ULL, 0x0000000000000000ULL}, "children", kFieldsSpatialSound, false},
-    {"Sphere", NodeTypeId::Sphere, "Geometry3D", 1, AbstractTypeSet{0x0000000400200000ULL, 0x0000000000000000ULL}, "geometry", kFieldsSphere, false},
-    {"SphereSensor", NodeTypeId::SphereSensor, "PointingDeviceSensor", 1, AbstractTypeSet{0x0004100400002080ULL, 0x0000000000000000ULL}, "children", kFieldsSphereSensor, false},
 };
 
 }  // namespace

@@ -8,15 +8,33 @@ namespace {
 
 using F = NodeFieldModel;
 
-constexpr NodeTypeId kAccept0[] = {NodeTypeId::Analyser, NodeTypeId::AudioClip, NodeTypeId::AudioDestination, NodeTypeId::BiquadFilter, NodeTypeId::BufferAudioSource, NodeTypeId::ChannelMerger, NodeTypeId::ChannelSelector, NodeTypeId::ChannelSplitter, NodeTypeId::Convolver, NodeTypeId::Delay, NodeTypeId::DynamicsCompressor, NodeTypeId::Gain, NodeTypeId::ListenerPointSource, NodeTypeId::MicrophoneSource, NodeTypeId::MovieTexture, NodeTypeId::OscillatorSource, NodeTypeId::Sound, NodeTypeId::SpatialSound, NodeTypeId::StreamAudioDestination, NodeTypeId::StreamAudioSource, NodeTypeId::WaveShaper};
-constexpr NodeTypeId kAccept1[] = {NodeTypeId::MultiTexture};
-constexpr NodeTypeId kAccept2[] = {NodeTypeId::FogCoordinate};
-constexpr NodeTypeId kAccept3[] = {NodeTypeId::MultiTextureCoordinate};
-constexpr NodeTypeId kAccept4[] = {NodeTypeId::RigidBody};
-constexpr NodeTypeId kAccept5[] = {NodeTypeId::NavigationInfo};
-constexpr NodeTypeId kAccept6[] = {NodeTypeId::ViewpointGroup};
-constexpr NodeTypeId kAccept7[] = {NodeTypeId::Inline};
+constexpr NodeTypeId kAccept0[] = {NodeTypeId::TextureCoordinateGenerator};
+constexpr NodeTypeId kAccept1[] = {NodeTypeId::Analyser, NodeTypeId::AudioClip, NodeTypeId::AudioDestination, NodeTypeId::BiquadFilter, NodeTypeId::BufferAudioSource, NodeTypeId::ChannelMerger, NodeTypeId::ChannelSelector, NodeTypeId::ChannelSplitter, NodeTypeId::Convolver, NodeTypeId::Delay, NodeTypeId::DynamicsCompressor, NodeTypeId::Gain, NodeTypeId::ListenerPointSource, NodeTypeId::MicrophoneSource, NodeTypeId::MovieTexture, NodeTypeId::OscillatorSource, NodeTypeId::Sound, NodeTypeId::SpatialSound, NodeTypeId::StreamAudioDestination, NodeTypeId::StreamAudioSource, NodeTypeId::WaveShaper};
+constexpr NodeTypeId kAccept2[] = {NodeTypeId::MultiTexture};
+constexpr NodeTypeId kAccept3[] = {NodeTypeId::FogCoordinate};
+constexpr NodeTypeId kAccept4[] = {NodeTypeId::MultiTextureCoordinate};
+constexpr NodeTypeId kAccept5[] = {NodeTypeId::RigidBody};
+constexpr NodeTypeId kAccept6[] = {NodeTypeId::NavigationInfo};
+constexpr NodeTypeId kAccept7[] = {NodeTypeId::ViewpointGroup};
+constexpr NodeTypeId kAccept8[] = {NodeTypeId::Inline};
 
+constexpr NodeFieldModel kFieldsSphere[] = {
+    F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
+    F{"radius", "SFFloat", "initializeOnly", "1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"solid", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"texCoord", "SFNode", "inputOutput", "NULL", "TextureCoordinateGenerator", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept0},
+};
+constexpr NodeFieldModel kFieldsSphereSensor[] = {
+    F{"autoOffset", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"description", "SFString", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"enabled", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"isActive", "SFBool", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"isOver", "SFBool", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
+    F{"offset", "SFRotation", "inputOutput", "0 1 0 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"rotation_changed", "SFRotation", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"trackPoint_changed", "SFVec3f", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+};
 constexpr NodeFieldModel kFieldsSplinePositionInterpolator[] = {
     F{"closed", "SFBool", "inputOutput", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"key", "MFFloat", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -83,7 +101,7 @@ constexpr NodeFieldModel kFieldsStreamAudioDestination[] = {
     F{"channelCount", "SFInt32", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"channelCountMode", "SFString", "inputOutput", "MAX", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"channelInterpretation", "SFString", "inputOutput", "SPEAKERS", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"children", "MFNode", "inputOutput", "", "Analyser|AudioClip|AudioDestination|BiquadFilter|BufferAudioSource|ChannelMerger|ChannelSelector|ChannelSplitter|Convolver|Delay|DynamicsCompressor|Gain|ListenerPointSource|MicrophoneSource|MovieTexture|OscillatorSource|Sound|SpatialSound|StreamAudioDestination|StreamAudioSource|WaveShaper", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept0},
+    F{"children", "MFNode", "inputOutput", "", "Analyser|AudioClip|AudioDestination|BiquadFilter|BufferAudioSource|ChannelMerger|ChannelSelector|ChannelSplitter|Convolver|Delay|DynamicsCompressor|Gain|ListenerPointSource|MicrophoneSource|MovieTexture|OscillatorSource|Sound|SpatialSound|StreamAudioDestination|StreamAudioSource|WaveShaper", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept1},
     F{"description", "SFString", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"enabled", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"gain", "SFFloat", "inputOutput", "1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -169,22 +187,23 @@ constexpr NodeFieldModel kFieldsText[] = {
     F{"solid", "SFBool", "initializeOnly", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"string", "MFString", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"textBounds", "SFVec2f", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"texCoord", "SFNode", "inputOutput", "NULL", "TextureCoordinateGenerator", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept0},
 };
 constexpr NodeFieldModel kFieldsTextureBackground[] = {
-    F{"backTexture", "SFNode", "inputOutput", "NULL", "X3DTexture2DNode|MultiTexture", AbstractTypeSet{0x8000000000000000ULL, 0x0000000000000000ULL}, kAccept1},
+    F{"backTexture", "SFNode", "inputOutput", "NULL", "X3DTexture2DNode|MultiTexture", AbstractTypeSet{0x8000000000000000ULL, 0x0000000000000000ULL}, kAccept2},
     F{"bindTime", "SFTime", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"bottomTexture", "SFNode", "inputOutput", "NULL", "X3DTexture2DNode|MultiTexture", AbstractTypeSet{0x8000000000000000ULL, 0x0000000000000000ULL}, kAccept1},
-    F{"frontTexture", "SFNode", "inputOutput", "NULL", "X3DTexture2DNode|MultiTexture", AbstractTypeSet{0x8000000000000000ULL, 0x0000000000000000ULL}, kAccept1},
+    F{"bottomTexture", "SFNode", "inputOutput", "NULL", "X3DTexture2DNode|MultiTexture", AbstractTypeSet{0x8000000000000000ULL, 0x0000000000000000ULL}, kAccept2},
+    F{"frontTexture", "SFNode", "inputOutput", "NULL", "X3DTexture2DNode|MultiTexture", AbstractTypeSet{0x8000000000000000ULL, 0x0000000000000000ULL}, kAccept2},
     F{"groundAngle", "MFFloat", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"groundColor", "MFColor", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"isBound", "SFBool", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"leftTexture", "SFNode", "inputOutput", "NULL", "X3DTexture2DNode|MultiTexture", AbstractTypeSet{0x8000000000000000ULL, 0x0000000000000000ULL}, kAccept1},
+    F{"leftTexture", "SFNode", "inputOutput", "NULL", "X3DTexture2DNode|MultiTexture", AbstractTypeSet{0x8000000000000000ULL, 0x0000000000000000ULL}, kAccept2},
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
-    F{"rightTexture", "SFNode", "inputOutput", "NULL", "X3DTexture2DNode|MultiTexture", AbstractTypeSet{0x8000000000000000ULL, 0x0000000000000000ULL}, kAccept1},
+    F{"rightTexture", "SFNode", "inputOutput", "NULL", "X3DTexture2DNode|MultiTexture", AbstractTypeSet{0x8000000000000000ULL, 0x0000000000000000ULL}, kAccept2},
     F{"set_bind", "SFBool", "inputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"skyAngle", "MFFloat", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"skyColor", "MFColor", "inputOutput", "0 0 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"topTexture", "SFNode", "inputOutput", "NULL", "X3DTexture2DNode|MultiTexture", AbstractTypeSet{0x8000000000000000ULL, 0x0000000000000000ULL}, kAccept1},
+    F{"topTexture", "SFNode", "inputOutput", "NULL", "X3DTexture2DNode|MultiTexture", AbstractTypeSet{0x8000000000000000ULL, 0x0000000000000000ULL}, kAccept2},
     F{"transparency", "SFFloat", "inputOutput", "0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
 };
 constexpr NodeFieldModel kFieldsTextureCoordinate[] = {
@@ -408,12 +427,12 @@ constexpr NodeFieldModel kFieldsTriangleFanSet[] = {
     F{"colorPerVertex", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"coord", "SFNode", "inputOutput", "NULL", "X3DCoordinateNode", AbstractTypeSet{0x0000000000000800ULL, 0x0000000000000000ULL}, {}},
     F{"fanCount", "MFInt32", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"fogCoord", "SFNode", "inputOutput", "NULL", "FogCoordinate", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept2},
+    F{"fogCoord", "SFNode", "inputOutput", "NULL", "FogCoordinate", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept3},
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
     F{"normal", "SFNode", "inputOutput", "NULL", "X3DNormalNode", AbstractTypeSet{0x0000000800000000ULL, 0x0000000000000000ULL}, {}},
     F{"normalPerVertex", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"solid", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"texCoord", "SFNode", "inputOutput", "NULL", "X3DSingleTextureCoordinateNode|MultiTextureCoordinate", AbstractTypeSet{0x0040000000000000ULL, 0x0000000000000000ULL}, kAccept3},
+    F{"texCoord", "SFNode", "inputOutput", "NULL", "X3DSingleTextureCoordinateNode|MultiTextureCoordinate", AbstractTypeSet{0x0040000000000000ULL, 0x0000000000000000ULL}, kAccept4},
 };
 constexpr NodeFieldModel kFieldsTriangleSet[] = {
     F{"attrib", "MFNode", "inputOutput", "", "X3DVertexAttributeNode", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000200ULL}, {}},
@@ -421,12 +440,12 @@ constexpr NodeFieldModel kFieldsTriangleSet[] = {
     F{"color", "SFNode", "inputOutput", "NULL", "X3DColorNode", AbstractTypeSet{0x0000000000000100ULL, 0x0000000000000000ULL}, {}},
     F{"colorPerVertex", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"coord", "SFNode", "inputOutput", "NULL", "X3DCoordinateNode", AbstractTypeSet{0x0000000000000800ULL, 0x0000000000000000ULL}, {}},
-    F{"fogCoord", "SFNode", "inputOutput", "NULL", "FogCoordinate", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept2},
+    F{"fogCoord", "SFNode", "inputOutput", "NULL", "FogCoordinate", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept3},
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
     F{"normal", "SFNode", "inputOutput", "NULL", "X3DNormalNode", AbstractTypeSet{0x0000000800000000ULL, 0x0000000000000000ULL}, {}},
     F{"normalPerVertex", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"solid", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"texCoord", "SFNode", "inputOutput", "NULL", "X3DSingleTextureCoordinateNode|MultiTextureCoordinate", AbstractTypeSet{0x0040000000000000ULL, 0x0000000000000000ULL}, kAccept3},
+    F{"texCoord", "SFNode", "inputOutput", "NULL", "X3DSingleTextureCoordinateNode|MultiTextureCoordinate", AbstractTypeSet{0x0040000000000000ULL, 0x0000000000000000ULL}, kAccept4},
 };
 constexpr NodeFieldModel kFieldsTriangleSet2D[] = {
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
@@ -439,13 +458,13 @@ constexpr NodeFieldModel kFieldsTriangleStripSet[] = {
     F{"color", "SFNode", "inputOutput", "NULL", "X3DColorNode", AbstractTypeSet{0x0000000000000100ULL, 0x0000000000000000ULL}, {}},
     F{"colorPerVertex", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"coord", "SFNode", "inputOutput", "NULL", "X3DCoordinateNode", AbstractTypeSet{0x0000000000000800ULL, 0x0000000000000000ULL}, {}},
-    F{"fogCoord", "SFNode", "inputOutput", "NULL", "FogCoordinate", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept2},
+    F{"fogCoord", "SFNode", "inputOutput", "NULL", "FogCoordinate", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept3},
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
     F{"normal", "SFNode", "inputOutput", "NULL", "X3DNormalNode", AbstractTypeSet{0x0000000800000000ULL, 0x0000000000000000ULL}, {}},
     F{"normalPerVertex", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"solid", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"stripCount", "MFInt32", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"texCoord", "SFNode", "inputOutput", "NULL", "X3DSingleTextureCoordinateNode|MultiTextureCoordinate", AbstractTypeSet{0x0040000000000000ULL, 0x0000000000000000ULL}, kAccept3},
+    F{"texCoord", "SFNode", "inputOutput", "NULL", "X3DSingleTextureCoordinateNode|MultiTextureCoordinate", AbstractTypeSet{0x0040000000000000ULL, 0x0000000000000000ULL}, kAccept4},
 };
 constexpr NodeFieldModel kFieldsTwoSidedMaterial[] = {
     F{"ambientIntensity", "SFFloat", "inputOutput", "0.2", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -467,10 +486,10 @@ constexpr NodeFieldModel kFieldsUniversalJoint[] = {
     F{"anchorPoint", "SFVec3f", "inputOutput", "0 0 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"axis1", "SFVec3f", "inputOutput", "1 0 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"axis2", "SFVec3f", "inputOutput", "0 1 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"body1", "SFNode", "inputOutput", "NULL", "RigidBody", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept4},
+    F{"body1", "SFNode", "inputOutput", "NULL", "RigidBody", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept5},
     F{"body1AnchorPoint", "SFVec3f", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"body1Axis", "SFVec3f", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"body2", "SFNode", "inputOutput", "NULL", "RigidBody", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept4},
+    F{"body2", "SFNode", "inputOutput", "NULL", "RigidBody", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept5},
     F{"body2AnchorPoint", "SFVec3f", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"body2Axis", "SFVec3f", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"forceOutput", "MFString", "inputOutput", "\"NONE\"", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -499,17 +518,18 @@ constexpr NodeFieldModel kFieldsViewpoint[] = {
     F{"isBound", "SFBool", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"jump", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
-    F{"navigationInfo", "SFNode", "inputOutput", "NULL", "NavigationInfo", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept5},
+    F{"navigationInfo", "SFNode", "inputOutput", "NULL", "NavigationInfo", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept6},
     F{"nearDistance", "SFFloat", "inputOutput", "-1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"orientation", "SFRotation", "inputOutput", "0 0 1 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"position", "SFVec3f", "inputOutput", "0 0 10", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"retainUserOffsets", "SFBool", "inputOutput", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"set_bind", "SFBool", "inputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"viewAll", "SFBool", "inputOutput", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"autoCenterOfRotation", "SFBool", "inputOutput", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
 };
 constexpr NodeFieldModel kFieldsViewpointGroup[] = {
     F{"center", "SFVec3f", "inputOutput", "0 0 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"children", "MFNode", "inputOutput", "", "X3DViewpointNode|ViewpointGroup", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000400ULL}, kAccept6},
+    F{"children", "MFNode", "inputOutput", "", "X3DViewpointNode|ViewpointGroup", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000400ULL}, kAccept7},
     F{"description", "SFString", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"displayed", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
@@ -570,14 +590,14 @@ constexpr NodeFieldModel kFieldsVolumePickSensor[] = {
     F{"objectType", "MFString", "inputOutput", "\"ALL\"", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"pickedGeometry", "MFNode", "outputOnly", "", "X3DChildNode", AbstractTypeSet{0x0000000000000080ULL, 0x0000000000000000ULL}, {}},
     F{"pickingGeometry", "SFNode", "inputOutput", "NULL", "X3DGeometryNode", AbstractTypeSet{0x0000000000200000ULL, 0x0000000000000000ULL}, {}},
-    F{"pickTarget", "MFNode", "inputOutput", "", "X3DGroupingNode|X3DShapeNode|Inline", AbstractTypeSet{0x0020000000400000ULL, 0x0000000000000000ULL}, kAccept7},
+    F{"pickTarget", "MFNode", "inputOutput", "", "X3DGroupingNode|X3DShapeNode|Inline", AbstractTypeSet{0x0020000000400000ULL, 0x0000000000000000ULL}, kAccept8},
     F{"sortOrder", "SFString", "initializeOnly", "CLOSEST", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
 };
 constexpr NodeFieldModel kFieldsWaveShaper[] = {
     F{"channelCount", "SFInt32", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"channelCountMode", "SFString", "inputOutput", "MAX", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"channelInterpretation", "SFString", "inputOutput", "SPEAKERS", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"children", "MFNode", "inputOutput", "", "Analyser|AudioClip|AudioDestination|BiquadFilter|BufferAudioSource|ChannelMerger|ChannelSelector|ChannelSplitter|Convolver|Delay|DynamicsCompressor|Gain|ListenerPointSource|MicrophoneSource|MovieTexture|OscillatorSource|Sound|SpatialSound|StreamAudioDestination|StreamAudioSource|WaveShaper", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept0},
+    F{"children", "MFNode", "inputOutput", "", "Analyser|AudioClip|AudioDestination|BiquadFilter|BufferAudioSource|ChannelMerger|ChannelSelector|ChannelSplitter|Convolver|Delay|DynamicsCompressor|Gain|ListenerPointSource|MicrophoneSource|MovieTexture|OscillatorSource|Sound|SpatialSound|StreamAudioDestination|StreamAudioSource|WaveShaper", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept1},
     F{"description", "SFString", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"elapsedTime", "SFTime", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"enabled", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -641,22 +661,10 @@ constexpr NodeFieldModel kFieldsSkin[] = {
     F{"vertexJoints", "MFInt32", "initializeOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"vertexWeights", "MFFloat", "initializeOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
 };
-constexpr NodeFieldModel kFieldsEnvironmentLight[] = {
-    F{"ambientIntensity", "SFFloat", "inputOutput", "0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"color", "SFColor", "inputOutput", "1 1 1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"diffuseCoefficients", "MFFloat", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"diffuseTexture", "SFNode", "inputOutput", "NULL", "X3DEnvironmentTextureNode", AbstractTypeSet{0x0000000000004000ULL, 0x0000000000000000ULL}, {}},
-    F{"global", "SFBool", "inputOutput", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"intensity", "SFFloat", "inputOutput", "1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
-    F{"on", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"rotation", "SFRotation", "inputOutput", "0 0 1 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"shadowIntensity", "SFFloat", "inputOutput", "1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"shadows", "SFBool", "inputOutput", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"specularTexture", "SFNode", "inputOutput", "NULL", "X3DEnvironmentTextureNode", AbstractTypeSet{0x0000000000004000ULL, 0x0000000000000000ULL}, {}},
-};
 
 constexpr NodeModel kModels[] = {
+    {"Sphere", NodeTypeId::Sphere, "Geometry3D", 1, AbstractTypeSet{0x0000000400200000ULL, 0x0000000000000000ULL}, "geometry", kFieldsSphere, false},
+    {"SphereSensor", NodeTypeId::SphereSensor, "PointingDeviceSensor", 1, AbstractTypeSet{0x0004100400002080ULL, 0x0000000000000000ULL}, "children", kFieldsSphereSensor, false},
     {"SplinePositionInterpolator", NodeTypeId::SplinePositionInterpolator, "Interpolation", 4, AbstractTypeSet{0x0000000401000080ULL, 0x0000000000000000ULL}, "children", kFieldsSplinePositionInterpolator, false},
     {"SplinePositionInterpolator2D", NodeTypeId::SplinePositionInterpolator2D, "Interpolation", 4, AbstractTypeSet{0x0000000401000080ULL, 0x0000000000000000ULL}, "children", kFieldsSplinePositionInterpolator2D, false},
     {"SplineScalarInterpolator", NodeTypeId::SplineScalarInterpolator, "Interpolation", 4, AbstractTypeSet{0x0000000401000080ULL, 0x0000000000000000ULL}, "children", kFieldsSplineScalarInterpolator, false},
@@ -709,7 +717,6 @@ constexpr NodeModel kModels[] = {
     {"OutlineGroup", NodeTypeId::OutlineGroup, "GhostSpace", 1, AbstractTypeSet{0x00000004004000a0ULL, 0x0000000000000000ULL}, "children", kFieldsOutlineGroup, true},
     {"QuantizedNormalVectors", NodeTypeId::QuantizedNormalVectors, "GhostSpace", 1, AbstractTypeSet{0x00000004000000a0ULL, 0x0000000000000100ULL}, "children", kFieldsQuantizedNormalVectors, true},
     {"Skin", NodeTypeId::Skin, "GhostSpace", 1, AbstractTypeSet{0x0000000400000080ULL, 0x0000000000000000ULL}, "children", kFieldsSkin, true},
-    {"EnvironmentLight", NodeTypeId::EnvironmentLight, "Lighting", 4, AbstractTypeSet{0x0000000410000080ULL, 0x0000000000000000ULL}, "children", kFieldsEnvironmentLight, false},
 };
 
 }  // namespace

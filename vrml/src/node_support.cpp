@@ -49,10 +49,16 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::ScreenFontStyle,  // scene/src/text_mesh.cpp: pointSize
     NodeTypeId::NurbsCurve,       // vrml/src/geometry_nurbs.cpp
     NodeTypeId::NurbsPatchSurface,
-    NodeTypeId::NurbsTrimmedSurface,  // untrimmed
-    NodeTypeId::PixelTexture3D,       // render/src/textures_3d.cpp; volume data too
+    NodeTypeId::NurbsTrimmedSurface,        // untrimmed
+    NodeTypeId::NurbsTextureCoordinate,     // vrml/src/geometry_nurbs.cpp
+    NodeTypeId::NurbsPositionInterpolator,  // runtime/src/interpolators_nurbs.cpp
+    NodeTypeId::NurbsOrientationInterpolator,
+    NodeTypeId::NurbsSurfaceInterpolator,
+    NodeTypeId::PixelTexture3D,  // render/src/textures_3d.cpp; volume data too
     NodeTypeId::ComposedTexture3D,
     NodeTypeId::ImageTexture3D,
+    NodeTypeId::TextureCoordinate3D,  // vrml/src/geometry.cpp (Mesh::texCoordsStrq)
+    NodeTypeId::TextureCoordinate4D,
     NodeTypeId::VolumeData,  // render/src/volume_data.cpp: QNV splats
     NodeTypeId::IsoSurfaceVolumeData,
     NodeTypeId::SegmentedVolumeData,
@@ -114,6 +120,12 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::FogCoordinate,      // vrml/src/geometry.cpp (Mesh::fogDepths)
     NodeTypeId::ComposedShader,     // render/src/composed_shaders.cpp (GLSL)
     NodeTypeId::ShaderPart,
+    NodeTypeId::ProgramShader,  // render/src/composed_shaders.cpp (GLSL)
+    NodeTypeId::ShaderProgram,
+    NodeTypeId::PackagedShader,          // passed over with a warning (31.2.2)
+    NodeTypeId::FloatVertexAttribute,    // vrml/src/geometry_attributes.cpp (Mesh::attributes)
+    NodeTypeId::Matrix3VertexAttribute,  // and GpuMesh::bindAttributes
+    NodeTypeId::Matrix4VertexAttribute,
     NodeTypeId::LoadSensor,                // runtime/src/load_sensors.cpp
     NodeTypeId::CoordinateInterpolator2D,  // runtime/src/interpolators.cpp
     NodeTypeId::PositionInterpolator2D,

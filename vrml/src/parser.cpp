@@ -439,10 +439,13 @@ FieldType Parser::parseFieldTypeName() {
   FieldType ft = FieldType::SFBool;
   if (fieldTypeFromName(typeName, ft)) return ft;
   // VRML 1.0's SFLong / MFLong, still found in castle's X3D shader worlds: SFInt32 / MFInt32.
+  // castle-engine reads them as those in X3D worlds without a word, so an X3D world does
+  // too; a VRML97 world (which never had them) is told.
   if (typeName == "SFLong" || typeName == "MFLong") {
-    report(Severity::warning, tt.offset,
-           std::string(typeName) + " is VRML 1.0's name: read as " +
-               (typeName == "SFLong" ? "SFInt32" : "MFInt32"));
+    if (!ctx_.x3d)
+      report(Severity::warning, tt.offset,
+             std::string(typeName) + " is VRML 1.0's name: read as " +
+                 (typeName == "SFLong" ? "SFInt32" : "MFInt32"));
     return typeName == "SFLong" ? FieldType::SFInt32 : FieldType::MFInt32;
   }
   lex_.fail(tt.offset, "unknown field type '" + std::string(typeName) + "'");

@@ -391,6 +391,12 @@ std::string headerProblem(std::string_view line, std::string& x3dVersion);
 
 /// Parses `bytes` (a whole file, gzip or not) into `scene` with shared context `ctx`.
 /// `origin`: `bytes` is the Classic translation of X3D XML or JSON, whose locations it gives.
+/// Sets Node::urlBase to `url` on every node written in the EXTERNPROTO file `url`: the
+/// bodies, hidden nodes and interface defaults of its PROTOs `protos` (nodes that have a
+/// base already, from a file nested deeper, keep theirs).
+void markExternNodes(const std::vector<std::shared_ptr<const NodeType>>& protos,
+                     const std::string& url);
+
 void parseInto(std::string_view bytes, const std::string& url, Context& ctx, int externDepth,
                Scene& scene, TextOrigin* origin = nullptr);
 

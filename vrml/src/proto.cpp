@@ -7,6 +7,7 @@
 #include "base/url.hpp"
 
 #include <algorithm>
+#include <unordered_set>
 
 namespace gs::vrml::parsing {
 
@@ -314,8 +315,47 @@ bool Parser::loadExternFile(const std::string& url, std::shared_ptr<ExternFile>&
     diag_.items.push_back(std::move(d));
   }
   f->protos = std::move(sub.protos);
+  markExternNodes(f->protos, url);
   out = f;
   return true;
+}
+
+namespace {
+
+void markNode(const NodePtr& n, const std::shared_ptr<const std::string>& base,
+              std::unordered_set<const Node*>& seen);
+
+void markValue(const FieldValue& v, const std::shared_ptr<const std::string>& base,
+               std::unordered_set<const Node*>& seen) {
+  if (v.type() == FieldType::SFNode) {
+    markNode(v.get<FieldType::SFNode>(), base, seen);
+  } else if (v.type() == FieldType::MFNode) {
+    for (const NodePtr& c : v.get<FieldType::MFNode>()) markNode(c, base, seen);
+  }
+}
+
+void markNode(const NodePtr& n, const std::shared_ptr<const std::string>& base,
+              std::unordered_set<const Node*>& seen) {
+  if (!n || !seen.insert(n.get()).second) return;
+  // A node that already has a base came from a file nested deeper (an EXTERNPROTO of
+  // this file): it keeps that file's.
+  if (!n->urlBase) n->urlBase = base;
+  for (std::size_t i = 0; i < n->fieldCount(); ++i) markValue(n->fieldAt(i), base, seen);
+}
+
+}  // namespace
+
+void markExternNodes(const std::vector<std::shared_ptr<const NodeType>>& protos,
+                     const std::string& url) {
+  const auto base = std::make_shared<const std::string>(url);
+  std::unordered_set<const Node*> seen;
+  for (const auto& type : protos) {
+    if (!type) continue;
+    for (const FieldSpec& f : type->fields) markValue(f.defaultValue, base, seen);
+    if (!type->proto || type->proto->external) continue;
+    for (const NodePtr& n : type->proto->body) markNode(n, base, seen);
+    for (const NodePtr& n : type->proto->hidden) markNode(n, base, seen);
+  }
 }
 
 NodePtr Parser::copyTree(const NodePtr& n, std::unordered_map<const Node*, NodePtr>& memo,

@@ -95,7 +95,7 @@ class SoundScene {
 
  private:
   /// The clip's sound once decoded; null while on the worker (the first call starts it) or
-  /// when it cannot be played.
+  /// when it cannot be played. Its urls resolve against clip.urlBaseOr(base).
   std::shared_ptr<const formats::AudioData> clipOf(const vrml::Node& clip, const std::string& base);
   /// Takes in the clips the worker finished.
   void install();

@@ -80,7 +80,20 @@ struct FogSettings {
   bool exponential = false;      // fogType "EXPONENTIAL", else "LINEAR"
   float visibilityRange = 0.0f;  // world metres (scaled by the Fog's transform); 0 = no fog
   const vrml::Node* node = nullptr;
+  /// castle-engine's volumetric fog (X3D worlds' Fog and LocalFog `volumetric`,
+  /// `volumetricDirection`, `volumetricVisibilityStart`; docs/x3d.md "Volumetric fog"): the
+  /// fog distance of a point p (world coordinates) is dot(p, normalize(direction)) -
+  /// start instead of its distance to the eye. direction is unit length (world axes, not
+  /// turned by the Fog's transform, as castle does); start in world metres (scaled).
+  bool volumetric = false;
+  glm::vec3 volumetricDirection{0.0f, -1.0f, 0.0f};
+  float volumetricStart = 0.0f;
 };
+
+/// Fills `fog`'s volumetric fields from Fog or LocalFog `node` (castle-engine's fields,
+/// absent in VRML97 worlds: not volumetric), `scale` being the node's transform's mean
+/// scale. A zero or non-finite direction turns volumetric fog off.
+void readVolumetricFog(const vrml::Node& node, float scale, FogSettings& fog);
 
 /// One Shape to draw: its nodes, world matrix and scoped lights.
 struct ShapeInstance {

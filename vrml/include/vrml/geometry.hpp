@@ -18,6 +18,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace gs::vrml {
@@ -43,6 +44,17 @@ struct Bounds {
 
 enum class Primitive : std::uint8_t { triangles, lines, points };
 
+/// The per-vertex values of one X3D vertex attribute node of a geometry's `attrib` field
+/// (X3D 4.0 clause 31.4: FloatVertexAttribute 31.4.1, Matrix3VertexAttribute 31.4.3,
+/// Matrix4VertexAttribute 31.4.4), expanded to the mesh's vertices as its coordinates are.
+struct VertexAttribute {
+  std::string name;  // the GLSL attribute it feeds (the node's `name`)
+  /// Floats per vertex: numComponents (1 to 4) of a FloatVertexAttribute, 9 of a
+  /// Matrix3VertexAttribute, 16 of a Matrix4VertexAttribute (matrices column by column).
+  int components = 1;
+  std::vector<float> values;  // `components` per mesh vertex
+};
+
 /// Unindexed-or-indexed vertex arrays ready for a GPU buffer. Every array that is not
 /// empty has one entry per vertex. Triangles are counter-clockwise seen from the front
 /// (the side normals point to), whatever the node's `ccw` said.
@@ -60,6 +72,19 @@ struct Mesh {
   /// equation uses there instead of the distance to the viewer, in the geometry's length
   /// units; empty when the geometry has no FogCoordinate.
   std::vector<float> fogDepths;
+  /// X3D TextureCoordinate3D / TextureCoordinate4D coordinates (X3D 4.0 clauses 33.4.6,
+  /// 33.4.7) per vertex as (s, t, r, q), q = 1 for a TextureCoordinate3D: 3D textures read
+  /// at (s, t, r) / q and 2D textures at (s, t) / q, divided per pixel (projective);
+  /// texCoords then holds (s / q, t / q) for readers of 2D coordinates. Empty when the
+  /// geometry's texCoord (or its MultiTextureCoordinate's first set) is neither node.
+  std::vector<glm::vec4> texCoordsStrq;
+  /// The vertex attribute nodes of the geometry's `attrib` field (X3D 4.0 clause 31.4), in
+  /// their order; a node without a name or with an unusable numComponents is left out.
+  std::vector<VertexAttribute> attributes;
+  /// Per vertex, the coordinate point it was made from (the index into `coord`, or into
+  /// ElevationGrid's grid, i + j * xDimension), when the geometry has an `attrib` node;
+  /// else empty.
+  std::vector<std::uint32_t> pointIndices;
   std::vector<std::uint32_t> indices;  // 3 per triangle, 2 per line segment, 1 per point
   bool solid = true;                   // back faces may be culled (the node's `solid` field)
   Bounds bounds;                       // of positions
@@ -78,10 +103,19 @@ struct Mesh {
 ///
 /// Details a caller may rely on:
 /// - The result is indexed; a vertex is shared between triangles exactly when its position,
-///   normal, colour and texture coordinate are all equal.
+///   normal, colour and texture coordinate are all equal (and its coordinate point, when
+///   the geometry has vertex attributes).
+/// - Vertex attributes (X3D 4.0 clause 31.4; the `attrib` field of IndexedFaceSet,
+///   ElevationGrid, the X3D triangle and quad sets, IndexedLineSet, LineSet and PointSet):
+///   vertex v takes value pointIndices[v] of each node (FloatVertexAttribute: numComponents
+///   floats from there; the matrices: one matrix), as the coordinates are indexed; a
+///   missing value is 0, reported once per node; numComponents outside 1 to 4 leaves the
+///   node out with a warning.
 /// - Box, Cone, Cylinder and Sphere: kRoundSegments around the Y axis (Sphere: half as
 ///   many latitude bands, Cone kConeStacks stacks), flat caps, smooth sides, texture coordinates as
-///   clause 6 says; solid unless X3D's `solid` field (X3D clause 13) is FALSE.
+///   clause 6 says; solid unless X3D's `solid` field (X3D clause 13) is FALSE. A Box whose
+///   `ccw` (castle-engine's extension field, X3D worlds only) is FALSE is turned inside
+///   out: normals point in and the triangles face the inside.
 /// - IndexedLineSet gives Primitive::lines (a polyline breaks at a bad index), PointSet
 ///   Primitive::points; both without normals or texture coordinates, solid = false.
 /// - Colours come from a Color node or an X3D ColorRGBA node (X3D clause 11, its alpha goes to
@@ -89,6 +123,8 @@ struct Mesh {
 /// - The X3D triangle and quad sets (X3D clauses 11, 32) honour ccw, solid, colorPerVertex,
 ///   normalPerVertex, color, normal and texCoord (a TextureCoordinate, or the first of a
 ///   MultiTextureCoordinate; a TextureCoordinateGenerator gives no texture coordinates;
+///   a TextureCoordinate3D or TextureCoordinate4D, here and in IndexedFaceSet, gives
+///   Mesh::texCoordsStrq, a point with q = 0 or not finite reading as (0, 0, 0, 1);
 ///   NULL gives IndexedFaceSet's bounding-box default). Per face means per triangle (per
 ///   quad). Without a Normal node, normals are generated as X3D clause 11 says: with
 ///   normalPerVertex TRUE the average of the faces sharing the vertex (the same

@@ -177,6 +177,23 @@ class Node {
   std::shared_ptr<const ProtoInstance> protoInstance;
   bool unresolved = false;  // instance of an EXTERNPROTO that could not be loaded
   SourceLocation location;  // where the node's type name appeared
+  /// For a node written in a file reached through EXTERNPROTO (a PROTO body there, its
+  /// interface defaults, and every copy an instance makes of them): that file's URL as
+  /// it was fetched (resolved against the file that named it; base/url.hpp). Null for a
+  /// node of the world (or Inline) file itself, which resolves against the base its
+  /// reader is given. Shared by the nodes of one file.
+  std::shared_ptr<const std::string> urlBase;
+
+  /// The base the node's url fields (textures, Inline, movies, sounds, shader parts)
+  /// resolve against (X3D 4.0 clause 9.2.1 read as castle-engine does: relative to the
+  /// file where the node was written, so a node of an external PROTO's body finds the
+  /// files beside that PROTO's file): *urlBase when set, else `inherited` (the world or
+  /// Inline file the node came with). Passing the result as a Fetcher's referrer keeps
+  /// its rule: a body fetched over http(s) reads no local file. The reference is to
+  /// `inherited` or to *urlBase: `inherited` must outlive its use (no temporary).
+  const std::string& urlBaseOr(const std::string& inherited) const {
+    return urlBase ? *urlBase : inherited;
+  }
 
  private:
   std::shared_ptr<const NodeType> type_;
@@ -210,9 +227,10 @@ struct NodeKeyHash {
 template <class V>
 using NodeMap = std::unordered_map<NodeKey, V, NodeKeyHash>;
 
-/// revision() of `node` plus those of the nodes in its SFNode fields (one level): what a
-/// cache of a geometry (its Coordinate, Normal, Color, TextureCoordinate) or an
-/// Appearance (its Material, texture, TextureTransform) compares to know it is stale.
+/// revision() of `node` plus those of the nodes in its SFNode fields (one level) and in
+/// its `attrib` field (an X3D geometry's vertex attribute nodes, clause 31.4): what a
+/// cache of a geometry (its Coordinate, Normal, Color, TextureCoordinate, attributes) or
+/// an Appearance (its Material, texture, TextureTransform) compares to know it is stale.
 std::uint64_t revisionWithFields(const Node& node);
 
 }  // namespace gs::vrml

@@ -20,10 +20,13 @@ glm::mat4 rotationMatrix(const Rotation& rotation);
 glm::mat4 transformMatrix(const Node& transform);
 
 /// True for the node types whose children are placed by transformMatrix: Transform
-/// (6.52) and X3D's CADPart (X3D 4.0 clause 32.4.4, the same five transform fields).
+/// (6.52), X3D's CADPart (X3D 4.0 clause 32.4.4, the same five transform fields),
+/// HAnimJoint and HAnimSite (26.3.2, 26.3.4), and HAnimSegment with castle-engine's
+/// translation, rotation and scale (an X3D world's HAnimSegment has them; defaults
+/// otherwise).
 constexpr bool placesChildren(NodeTypeId id) {
   return id == NodeTypeId::Transform || id == NodeTypeId::CADPart || id == NodeTypeId::HAnimJoint ||
-         id == NodeTypeId::HAnimSite;
+         id == NodeTypeId::HAnimSegment || id == NodeTypeId::HAnimSite;
 }
 
 }  // namespace gs::vrml
