@@ -57,6 +57,23 @@ inline bool isDigit(char c) {
   return c >= '0' && c <= '9';
 }
 
+/// a == b for the short names of node types and fields, without a call to memcmp.
+inline bool sameName(std::string_view a, std::string_view b) {
+  const std::size_t n = a.size();
+  if (n != b.size()) return false;
+  if (n >= 8 && n <= 16) {  // the usual length: two words, overlapping
+    std::uint64_t a0, a1, b0, b1;
+    std::memcpy(&a0, a.data(), 8);
+    std::memcpy(&b0, b.data(), 8);
+    std::memcpy(&a1, a.data() + n - 8, 8);
+    std::memcpy(&b1, b.data() + n - 8, 8);
+    return a0 == b0 && a1 == b1;
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    if (a[i] != b[i]) return false;
+  return true;
+}
+
 enum class Tok : std::uint8_t {
   end,       // end of input
   id,        // identifier or keyword (DEF, USE, PROTO, TRUE, ...)
@@ -240,6 +257,39 @@ class Lexer {
     cacheOffset_ = p.cacheOffset;
     cacheLine_ = p.cacheLine;
     cacheLineStart_ = p.cacheLineStart;
+  }
+
+  /// Lexes `text` (which must outlive its use) from its start instead: the X3D XML
+  /// reader's attribute values, one at a time. Line cache and end flags start afresh; the
+  /// file name and origin stay.
+  void rebind(std::string_view text) {
+    text_ = text;
+    p_ = text.data();
+    end_ = text.data() + text.size();
+    cacheOffset_ = 0;
+    cacheLine_ = 1;
+    cacheLineStart_ = 0;
+    marks_.clear();
+    loneCr_ = false;
+    crChecked_ = 0;
+    growing_ = false;
+    hitEnd_ = false;
+  }
+
+  /// Exchanges what the two lexers read (text, position, line cache, end flags), each
+  /// keeping its file name and origin: cheaper than swapping the lexers.
+  void swapText(Lexer& o) noexcept {
+    std::swap(text_, o.text_);
+    std::swap(p_, o.p_);
+    std::swap(end_, o.end_);
+    std::swap(cacheOffset_, o.cacheOffset_);
+    std::swap(cacheLine_, o.cacheLine_);
+    std::swap(cacheLineStart_, o.cacheLineStart_);
+    marks_.swap(o.marks_);
+    std::swap(loneCr_, o.loneCr_);
+    std::swap(crChecked_, o.crChecked_);
+    std::swap(growing_, o.growing_);
+    std::swap(hitEnd_, o.hitEnd_);
   }
 
   std::size_t offset() const { return static_cast<std::size_t>(p_ - text_.data()); }

@@ -21,18 +21,6 @@ bool isAccessKeyword(std::string_view s) {
   return accessTypeFromName(s, a);
 }
 
-// NodeType::findExact for the hot path: most names differ in length or first byte.
-int findMember(const NodeType& type, std::string_view name) {
-  const std::size_t n = type.fields.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::string& f = type.fields[i].name;
-    if (f.size() == name.size() && f[0] == name[0] &&
-        std::memcmp(f.data(), name.data(), name.size()) == 0)
-      return static_cast<int>(i);
-  }
-  return -1;
-}
-
 bool isStatementKeyword(std::string_view s) {
   return s == "PROTO" || s == "EXTERNPROTO" || s == "ROUTE";
 }
@@ -41,7 +29,11 @@ bool isStatementKeyword(std::string_view s) {
 
 Parser::Parser(std::string_view text, std::string file, std::size_t start, Context& ctx,
                Diagnostics& diag, int externDepth, TextOrigin* origin)
-    : lex_(text, std::move(file), start), ctx_(ctx), diag_(diag), externDepth_(externDepth) {
+    : lex_(text, file, start),
+      ctx_(ctx),
+      diag_(diag),
+      externDepth_(externDepth),
+      valueLex_({}, std::move(file)) {
   lex_.setOrigin(origin);
 }
 
@@ -259,7 +251,7 @@ std::shared_ptr<const NodeType> Parser::lookupType(Scope& scope, std::string_vie
                                   static_cast<unsigned char>(name.back()) * 3u +
                                   static_cast<unsigned char>(name[name.size() / 2]) * 11u) &
                                  (typeCache_.size() - 1)];
-  if (e.type && e.type->name == name) return e.type;
+  if (e.type && sameName(e.type->name, name)) return e.type;
   std::shared_ptr<const NodeType> t = ctx_.x3d ? x3dNodeType(name) : builtInNodeType(name);
   if (t) e.type = t;
   return t;
@@ -740,18 +732,12 @@ void parseInto(std::string_view bytes, const std::string& url, Context& ctx, int
     importGltf(bytes, url, ctx.options, scene);
     return;
   }
-  // X3D's XML encoding (the first byte that is no space or BOM is '<'): translated into
-  // Classic VRML text, which is parsed below at the XML's locations.
+  // X3D's XML encoding (the first byte that is no space or BOM is '<'): plain statements
+  // built from their elements, the others translated into Classic VRML text and parsed,
+  // at the XML's locations (parser_xml_build.cpp).
   bool decided = false;
   if (looksLikeXml(bytes, decided)) {
-    std::string classic;
-    classic.reserve(bytes.size() + bytes.size() / 4);  // the translation is about as long
-    XmlToClassic xml(classic, url, limits.maxNesting);
-    xml.feed(bytes, true);
-    xml.addWarnings(scene);
-    if (xml.wroteHeader()) parseInto(classic, url, ctx, externDepth, scene, &xml.origin());
-    scene.x3d.encoding = "XML";
-    if (xml.failed()) scene.diagnostics.items.push_back(xml.fatalError());
+    parseXmlInto(bytes, url, ctx, externDepth, scene);
     return;
   }
   // X3D's JSON encoding (the first such byte is '{'): translated the same way, whole.

@@ -13,6 +13,7 @@
 #include "vrml/scene.hpp"
 
 #include <array>
+#include <cstring>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -23,6 +24,9 @@
 #include <vector>
 
 namespace gs::vrml::parsing {
+
+struct XNode;       // x3d_xml_tree.hpp
+class XmlTreeInfo;  // x3d_xml_tree.hpp
 
 struct StringHash {
   using is_transparent = void;
@@ -166,6 +170,18 @@ class Parser {
   /// What parseScene does after the statements: reports `fatal` (null when the text
   /// ended) unless giving up, then the give-up and suppressed-diagnostics summaries.
   void endScene(const ParseError* fatal);
+  /// Builds the nodes of the X3D XML encoding's top-level statement `root` (its elements
+  /// as XmlToClassic buffered them; `info` answers for the translator) straight into
+  /// `roots`, at the XML's locations, as parseTopStatement() would from the statement's
+  /// Classic translation (parser_xml_build.cpp): DEF/USE in `top` (logged in top.undo
+  /// when set), the limits, field values from the attributes (ISO/IEC 19776-1 5.3),
+  /// children by containerField, the units of the file, the node class checks. Only when
+  /// that parse would report nothing: a statement with anything it would report (or that
+  /// the XML encoding spells with more than node elements and their attributes: PROTOs,
+  /// IS, fields, Scripts and shaders, ROUTEs inside nodes) gives false, with nothing
+  /// changed, and is then translated and parsed.
+  bool buildXmlStatement(Scope& top, const XNode& root, const XmlTreeInfo& info,
+                         std::vector<NodePtr>& roots);
   /// The text grew (Lexer::extend).
   void extendText(std::string_view text, bool final) { lex_.extend(text, final); }
   Lexer& lexer() { return lex_; }
@@ -224,6 +240,13 @@ class Parser {
   void checkNodeClass(const NodeType* parent, std::string_view field, const NodePtr& child,
                       std::size_t offset);
   void checkInline(const Node& node, std::size_t offset);
+
+  // parser_xml_build.cpp: buildXmlStatement's nodes and values
+  struct XmlBuild;
+  NodePtr xmlNode(XmlBuild& b, const XNode& n, int depth, int& height);
+  void xmlValue(Scope& scope, FieldType t, const std::string& text, FieldValue& out);
+  bool xmlNumbers(FieldType t, const std::string& text, FieldValue& out);
+  int xmlMember(const NodeType& type, std::string_view name);
 
   // value_parser.cpp: field values (clause 5)
   void parseValue(FieldType t, FieldValue& out, Scope& scope, int depth, int& height,
@@ -305,7 +328,34 @@ class Parser {
   std::vector<glm::vec3> vec3Scratch_;
   std::vector<glm::vec4> vec4Scratch_;
   std::vector<std::int32_t> intScratch_;
+  // buildXmlStatement: a lexer over one attribute value at a time (swapped with lex_
+  // while a statement is built), that value's Classic text, names, children by field.
+  Lexer valueLex_;
+  std::string valueText_;
+  std::string xmlName_;
+  std::string xmlScratch_;
+  struct XmlGroup {
+    std::string_view field;
+    int member = -1;  // its index in the parent's type when known
+    std::vector<const XNode*> nodes;
+  };
+  struct XmlGroups {
+    std::vector<XmlGroup> groups;
+    std::size_t used = 0;
+  };
+  std::vector<std::unique_ptr<XmlGroups>> xmlGroups_;      // one per nesting level
+  std::vector<std::shared_ptr<const NodeType>> xmlTypes_;  // built-in types met (no PROTOs)
 };
+
+/// NodeType::findExact for the hot path: most names differ in length or first byte.
+inline int findMember(const NodeType& type, std::string_view name) {
+  const std::size_t n = type.fields.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::string& f = type.fields[i].name;
+    if (f.size() == name.size() && f[0] == name[0] && sameName(f, name)) return static_cast<int>(i);
+  }
+  return -1;
+}
 
 /// Orders IsConnections by interface member (protoField), for equal_range.
 struct ConnectionOrder {
@@ -349,6 +399,19 @@ void markExternNodes(const std::vector<std::shared_ptr<const NodeType>>& protos,
 
 void parseInto(std::string_view bytes, const std::string& url, Context& ctx, int externDepth,
                Scene& scene, TextOrigin* origin = nullptr);
+
+/// parseInto() for X3D's XML encoding (`bytes` plain, within the limits): translated into
+/// Classic VRML text where a statement needs it and parsed as it comes, plain statements
+/// built straight from their elements (Parser::buildXmlStatement); diagnostics at the
+/// XML's file:line:column (parser_xml_build.cpp).
+void parseXmlInto(std::string_view bytes, const std::string& url, Context& ctx, int externDepth,
+                  Scene& scene);
+
+/// Whether parseXmlInto and StreamingParser build plain XML statements straight from their
+/// elements (true, the default) or translate every statement (false: what the tests
+/// compare the direct path with). Process-wide.
+bool xmlDirectBuild();
+void setXmlDirectBuild(bool on);
 
 /// Whether `url` (relative to the file `base`) names the local file `base` itself.
 bool urlNamesFile(const std::string& base, const std::string& url);

@@ -6,7 +6,9 @@
 // more may come is undone (lexer position, scene sizes, counters, DEF and PROTO names) and
 // retried once the unparsed text has grown by half; the others are committed at once.
 // X3D's XML encoding (first byte '<') goes through XmlToClassic, whose Classic VRML text is
-// what grows in that string; the parser's diagnostics are then moved back onto the XML.
+// what grows in that string, at the XML's locations; a plain statement is built straight
+// from its elements (Impl::build, Parser::buildXmlStatement) once the statements before
+// it are parsed, and committed at once.
 // X3D's JSON encoding (first byte '{') is not streamed: its bytes are collected in
 // `scratch` and translated by JsonToClassic at finish(), then parsed as one piece.
 #include "vrml/streaming_parser.hpp"
@@ -15,6 +17,7 @@
 #include "parser_impl.hpp"
 #include "x3d_json.hpp"
 #include "x3d_xml.hpp"
+#include "x3d_xml_tree.hpp"
 
 #include <zlib.h>
 
@@ -143,7 +146,7 @@ bool endsTokens(char c) {
 
 }  // namespace
 
-struct StreamingParser::Impl {
+struct StreamingParser::Impl final : parsing::XmlStatementBuilder {
   Impl(std::string u, ParseOptions o)
       : url(std::move(u)), user(std::move(o)), inner(user), ctx(inner) {
     inner.onRootNode = nullptr;  // called here, once a statement is committed
@@ -194,8 +197,11 @@ struct StreamingParser::Impl {
   void translated(bool final);
   void scanNew();
   bool readHeader(bool final);
-  std::size_t parse(bool final);
+  std::size_t parse(bool final, bool force = false);
   std::size_t guarded(std::string_view bytes, bool final);
+  std::size_t guardedFeed(std::string_view bytes, bool final);
+  bool build(const parsing::XNode& root, const parsing::XmlTreeInfo& info) override;
+  std::size_t built = 0;  // root nodes added by build() during this feed
   void clearScene() {
     scene = Scene{};
     scene.url = url;
@@ -293,6 +299,7 @@ bool StreamingParser::Impl::decide(bool final) {
   encoding = Encoding::xml;
   scene.x3d.encoding = "XML";
   xml = std::make_unique<parsing::XmlToClassic>(text, url, user.limits.maxNesting);
+  if (parsing::xmlDirectBuild()) xml->setBuilder(this);
   scratch = std::move(text);
   text.clear();
   return true;
@@ -340,10 +347,32 @@ bool StreamingParser::Impl::readHeader(bool final) {
   return true;
 }
 
-std::size_t StreamingParser::Impl::parse(bool final) {
+// XML: a plain statement ended (XmlToClassic), to be built after the statements
+// translated before it: those are parsed first (they are whole), and it is built once they
+// all are, committed at once.
+bool StreamingParser::Impl::build(const parsing::XNode& root, const parsing::XmlTreeInfo& info) {
+  if (stopped) return false;
+  scanNew();
+  built += parse(false, true);
+  if (stopped || !parser) return false;
+  for (std::size_t i = parsed; i < text.size(); ++i)
+    if (!parsing::isSpace(text[i])) return false;  // a statement waits for more text
+  const std::size_t roots = scene.rootNodes.size();
+  if (!parser->buildXmlStatement(top, root, info, scene.rootNodes)) return false;
+  undo.defs.clear();
+  undo.protos.clear();
+  for (std::size_t i = roots; i < scene.rootNodes.size(); ++i) {
+    ++built;
+    if (user.onRootNode) user.onRootNode(scene.rootNodes[i]);
+  }
+  return true;
+}
+
+// Parses the statements now complete (`force`: even before the text has grown to retryAt).
+std::size_t StreamingParser::Impl::parse(bool final, bool force) {
   if (!readHeader(final) || stopped) return 0;
   const std::size_t end = final ? text.size() : complete;
-  if (!final && end < retryAt) return 0;
+  if (!final && !force && end < retryAt) return 0;
   parser->extendText(std::string_view(text.data(), end), final);
   parsing::Lexer& lex = parser->lexer();
   std::size_t added = 0;
@@ -428,6 +457,12 @@ std::size_t StreamingParser::Impl::parse(bool final) {
 }
 
 std::size_t StreamingParser::Impl::guarded(std::string_view bytes, bool final) {
+  built = 0;
+  const std::size_t added = guardedFeed(bytes, final);
+  return added + built;
+}
+
+std::size_t StreamingParser::Impl::guardedFeed(std::string_view bytes, bool final) {
   try {
     if (stopped) {
       if (tooLarge) append(bytes);

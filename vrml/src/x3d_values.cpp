@@ -1,6 +1,7 @@
 #include "x3d_values.hpp"
 
 #include "base/text.hpp"
+#include "lexer.hpp"
 
 #include <algorithm>
 #include <array>
@@ -194,6 +195,37 @@ std::string classicDefaultText(FieldType t) {
 bool accessTakesValue(std::string_view access) {
   return access != "inputOnly" && access != "outputOnly" && access != "eventIn" &&
          access != "eventOut";
+}
+
+namespace {
+
+// n.find(':') != npos for short names, without a call to memchr.
+bool hasColon(std::string_view n) {
+  for (char c : n)
+    if (c == ':') return true;
+  return false;
+}
+
+}  // namespace
+
+bool xmlIgnoredAttribute(std::string_view n) {
+  if (n.empty()) return false;
+  switch (n.front()) {  // (most attributes are fields: decided by their first letter)
+    case 'D':
+      return sameName(n, "DEF");
+    case 'U':
+      return sameName(n, "USE");
+    case 'c':
+      return sameName(n, "containerField") || sameName(n, "class") || hasColon(n);
+    case 'i':
+      return sameName(n, "id") || hasColon(n);
+    case 's':
+      return sameName(n, "style") || hasColon(n);
+    case 'x':
+      return n.starts_with("xmlns") || hasColon(n);
+    default:
+      return hasColon(n);
+  }
 }
 
 // Whether `text` starts with a URL scheme ("ecmascript:", "data:", "http:").

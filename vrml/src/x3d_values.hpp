@@ -33,6 +33,11 @@ std::string classicDefaultText(FieldType t);
 /// Whether a field of access type `access` (X3D or VRML97 name) takes a value.
 bool accessTakesValue(std::string_view access);
 
+/// Whether XML attribute `n` is no field (ISO/IEC 19776-1 5.1): DEF, USE, containerField,
+/// namespaced names (xmlns, "xsd:..."), and HTML's class, id and style (which a node may
+/// still have a field of).
+bool xmlIgnoredAttribute(std::string_view n);
+
 /// Whether `text` starts with a URL scheme ("ecmascript:", "data:", "http:").
 bool hasUrlScheme(std::string_view text);
 

@@ -1,13 +1,15 @@
 // X3D XML encoding -> Classic VRML text (see x3d_xml.hpp). The element stack says where
 // the parser is (outside X3D, in head, in Scene, in a buffered statement, skipping); the
 // elements of one top-level statement are kept as a tree of XNode until its end tag, then
-// written out: attributes converted by the field types of x3dNodeType() (or of the
-// declared PROTO, or of the Script's <field>), child elements grouped by containerField.
+// offered to the builder (parser_xml_build.cpp), else written out: attributes converted
+// by the field types of x3dNodeType() (or of the declared PROTO, or of the Script's
+// <field>), child elements grouped by containerField.
 #include "x3d_xml.hpp"
 
 #include "vrml/field.hpp"
 #include "vrml/node_model.hpp"
 #include "vrml/node_table.hpp"
+#include "x3d_numbers.hpp"
 #include "x3d_positions.hpp"
 #include "x3d_values.hpp"
 #include "x3d_xml_tree.hpp"
@@ -17,6 +19,7 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
+#include <iterator>
 #include <optional>
 #include <span>
 #include <unordered_map>
@@ -62,30 +65,9 @@ bool isScript(const NodeType* type) {
   return type != nullptr && type->script;
 }
 
-// Attributes that are no field: XML bookkeeping and HTML-style ones.
-bool ignoredAttribute(std::string_view n) {
-  if (n.empty()) return false;
-  switch (n.front()) {  // (most attributes are fields: decided by their first letter)
-    case 'D':
-      return n == "DEF";
-    case 'U':
-      return n == "USE";
-    case 'c':
-      return n == "containerField" || n == "class" || n.find(':') != std::string_view::npos;
-    case 'i':
-      return n == "id" || n.find(':') != std::string_view::npos;
-    case 's':
-      return n == "style" || n.find(':') != std::string_view::npos;
-    case 'x':
-      return n.starts_with("xmlns") || n.find(':') != std::string_view::npos;
-    default:
-      return n.find(':') != std::string_view::npos;
-  }
-}
-
 }  // namespace
 
-struct XmlToClassic::Impl {
+struct XmlToClassic::Impl final : XmlTreeInfo {
   Impl(std::string& o, std::string u, int maxNesting)
       : out(o), url(std::move(u)), maxDepth(std::max(maxNesting, 1) + 8) {
     xp = XML_ParserCreate(nullptr);
@@ -122,6 +104,10 @@ struct XmlToClassic::Impl {
   OffsetLocations lines;
   bool finished = false;   // the last bytes were fed
   XmlPositions positions;  // element start -> line and column (startHere)
+  // Plain statements are offered to `builder` while `classicSafe`: no statement translated
+  // so far can run into the text that follows it (see checkRaw).
+  XmlStatementBuilder* builder = nullptr;
+  bool classicSafe = true;
 
   // ---- expat callbacks -----------------------------------------------------------------
 
@@ -208,7 +194,16 @@ struct XmlToClassic::Impl {
         XNode* node = newNode(n);
         node->line = line;
         node->column = column;
-        for (const XML_Char** a = atts; *a != nullptr; a += 2) node->addAttr(a[0], a[1]);
+        // While statements may be built from their elements, number lists of built-in
+        // nodes are read now, from expat's text: no copy of it (x3d_numbers.hpp).
+        // (Not for a name that is also a PROTO's, whose fields may differ.)
+        const bool numbersNow = builder != nullptr && classicSafe && node->type != nullptr &&
+                                !node->instance && !node->source && !node->type->userFields &&
+                                (protos.empty() || !protos.contains(std::string(n)));
+        for (const XML_Char** a = atts; *a != nullptr; a += 2) {
+          const std::string_view k(a[0]);
+          if (!numbersNow || !readXmlNumbers(*node, k, a[1])) node->addAttr(k, a[1]);
+        }
         if (stack.back() == Frame::scene) {
           root = node;
         } else {
@@ -231,14 +226,19 @@ struct XmlToClassic::Impl {
     const NodeModel* model = nullptr;  // nodeModel(name)
     bool valid = false;
   };
-  std::array<TypeCacheEntry, 32> typeCache;
+  // (Two entries per hash: Material and Coordinate, which alternate in many worlds, share
+  // one. A name in neither replaces the second, or the first while it is empty.)
+  std::array<TypeCacheEntry, 64> typeCache;
   const TypeCacheEntry& lookupType(std::string_view n) {
     const std::size_t h = n.empty() ? 0
                                     : (n.size() * 7 + static_cast<unsigned char>(n.front()) * 3 +
                                        static_cast<unsigned char>(n[n.size() / 2]) +
                                        static_cast<unsigned char>(n.back()));
-    TypeCacheEntry& e = typeCache[h % typeCache.size()];
-    if (e.valid && e.name == n) return e;
+    const std::size_t slot = (h % (typeCache.size() / 2)) * 2;
+    if (typeCache[slot].valid && sameName(typeCache[slot].name, n)) return typeCache[slot];
+    if (typeCache[slot + 1].valid && sameName(typeCache[slot + 1].name, n))
+      return typeCache[slot + 1];
+    TypeCacheEntry& e = typeCache[typeCache[slot].valid ? slot + 1 : slot];
     e.name.assign(n);
     e.type = x3dNodeType(n).get();
     e.model = nodeModel(n);
@@ -257,7 +257,7 @@ struct XmlToClassic::Impl {
     x->source = xmlTakesSource(x->type);
     // (ProtoInstance has a node model too; the statement names are none.)
     x->kind = x->type != nullptr ? XKind::node : xkindOf(n);
-    x->instance = n == kProtoInstanceElement;
+    x->instance = sameName(n, kProtoInstanceElement);
     x->attrCount = 0;
     x->children.clear();
     x->text.clear();
@@ -287,8 +287,11 @@ struct XmlToClassic::Impl {
     stack.pop_back();
     if (f != Frame::buffered) return;
     if (cur == root) {
-      statement(*root);
-      out += '\n';
+      if (builder == nullptr || !classicSafe || root->kind != XKind::node ||
+          !builder->build(*root, *this)) {
+        statement(*root);
+        out += '\n';
+      }
       root = nullptr;
       cur = nullptr;
       poolUsed = 0;
@@ -322,12 +325,14 @@ struct XmlToClassic::Impl {
       if (!blank(level)) {
         out += ':';
         for (char c : level) out += xmlSpace(c) ? '_' : c;
+        checkRaw(level);
       }
     } else if (n == "unit") {
       beginLine(line, column);
       out += "UNIT " + xmlIdent(get("category")) + " " + xmlIdent(get("name")) + " ";
       const std::string f = get("conversionFactor");
       out += blank(f) ? std::string("1") : f;
+      checkRaw(f);
     } else if (n == "meta") {
       beginLine(line, column);
       out += "META ";
@@ -391,7 +396,10 @@ struct XmlToClassic::Impl {
     if (!withValue || !accessTakesValue(access)) return known ? std::optional(t) : std::nullopt;
     const std::string* value = f.attr("value");
     if (!known) {
-      if (value != nullptr) out += *value;
+      if (value != nullptr) {
+        out += *value;
+        checkRaw(*value);
+      }
       return std::nullopt;
     }
     if (t == FieldType::SFNode || t == FieldType::MFNode) {
@@ -410,9 +418,29 @@ struct XmlToClassic::Impl {
     return t;
   }
 
+  // Raw XML text written into the Classic text (numbers, MFString lists, words): once
+  // some could open a string, a comment or a bracket that the parse of its statement would
+  // not close, the statements after it may be read as part of it, so none is built
+  // straight from its elements any more (classicSafe).
+  void checkRaw(std::string_view text) {
+    if (builder != nullptr && classicSafe && !rawClassicSafe(text)) classicSafe = false;
+  }
+
   void convertedValue(const XNode& n, FieldType t, std::string_view value) {
     std::string warning;
+    const std::size_t at = out.size();
     appendXmlValueAsClassic(out, t, value, warning);
+    if (builder != nullptr && classicSafe) {
+      std::string_view written = std::string_view(out).substr(at);
+      if (t == FieldType::SFImage || t == FieldType::MFImage || t == FieldType::MFNode ||
+          (t == FieldType::SFNode && written != "NULL")) {
+        classicSafe = false;  // looks ahead (SFImage's size check) or holds nodes
+      } else {
+        if (isMultiValued(t) && written.size() >= 4)
+          written = written.substr(2, written.size() - 4);
+        checkRaw(written);
+      }
+    }
     if (!warning.empty()) {
       warn(n, std::move(warning));
     } else if (t == FieldType::MFString) {
@@ -488,15 +516,16 @@ struct XmlToClassic::Impl {
   // Elements that are nodes (not statements or the XML encoding's structure).
   static bool isNodeElement(const XNode& n) { return n.kind == XKind::node; }
 
-  // Where child `c` of `parent` goes: its containerField, else its type's default
-  // (X3D 3's `metadata` for metadata nodes in a 3.x file). A default the parent (of a
-  // known type) has no field for falls back to `metadata` for metadata nodes, else to
+  // Where child `c` of `parent` goes: its containerField, else its type's default (X3D
+  // 3's `metadata` for metadata nodes in a 3.x file). A default the parent (of a known
+  // type) has no field for falls back to `metadata` for metadata nodes, else to
   // `children` where the parent has it, as castle-model-viewer does (HAnimMotion in a
-  // Group, a 3.x MetadataSet in a 4.0 world).
-  std::string containerFieldOf(const XNode& c, const XNode* parent) const {
+  // Group, a 3.x MetadataSet in a 4.0 world). The view is into `c`, the node model, the
+  // PROTOs declared or a literal.
+  std::string_view containerFieldOf(const XNode& c, const XNode* parent) const {
     if (const std::string* cf = c.attr("containerField"); cf != nullptr && !blank(*cf)) return *cf;
-    std::string field = "children";
-    const bool metadata = c.name.starts_with("Metadata");
+    std::string_view field = "children";
+    const bool metadata = metadataName(c.name);
     if (c.instance) {
       auto it = protos.find(xmlIdent(c.attrOr("name")));
       if (it != protos.end()) field = it->second.containerField;
@@ -511,6 +540,12 @@ struct XmlToClassic::Impl {
     if (metadata && fieldType(*parent, "metadata")) return "metadata";
     if (fieldType(*parent, "children")) return "children";
     return field;
+  }
+  std::string_view containerField(const XNode& c, const XNode& parent) const override {
+    return containerFieldOf(c, &parent);
+  }
+  std::optional<FieldType> fieldTypeOf(const XNode& p, std::string_view f) const override {
+    return fieldType(p, f);
   }
 
   // Whether the fields of node element `p` are all known here.
@@ -558,24 +593,6 @@ struct XmlToClassic::Impl {
     e.fieldType = findBuiltInFieldType(type, f);
     return e.fieldType;
   }
-  static std::optional<FieldType> findBuiltInFieldType(const NodeType& type, std::string_view f) {
-    {
-      int i = type.findField(f);
-      // X3D's names for VRML97's fields (Parser::x3dFieldAlias).
-      if (i < 0 && type.id() == NodeTypeId::Collision && f == "enabled")
-        i = type.findExact("collide");
-      // X3D 3's names of ComposedCubeMapTexture's faces (Parser::x3dFieldAlias).
-      if (i < 0 && type.id() == NodeTypeId::ComposedCubeMapTexture &&
-          (f == "back" || f == "bottom" || f == "front" || f == "left" || f == "right" ||
-           f == "top"))
-        i = type.findExact(std::string(f) + "Texture");
-      if (i >= 0) return type.fields[static_cast<std::size_t>(i)].type;
-      if (f == "children" && (type.id() == NodeTypeId::Switch || type.id() == NodeTypeId::LOD))
-        return FieldType::MFNode;
-      return std::nullopt;
-    }
-  }
-
   void node(const XNode& n) {
     beginLine(n);
     if (const std::string* use = n.attr("USE")) {
@@ -606,10 +623,19 @@ struct XmlToClassic::Impl {
     }
     bool urlDone = false;
     if (!instance) {
-      for (const auto& [k, v] : n.attrs()) {
+      for (std::size_t i = 0; i < n.attrCount; ++i) {
+        const auto& [k, v] = n.attrStore[i];
+        if (const XNode::Numbers* numbers = n.numbersOf(i)) {
+          // Read when the element started: written back as numbers that read the same.
+          out += ' ';
+          out += k;
+          out += ' ';
+          appendPlainListAsClassic(out, numbers->type, numbers->ints, numbers->floats);
+          continue;
+        }
         // HTML's class, id and style, unless the node has a field of that name
         // (FontStyle.style, ScreenFontStyle.style).
-        const bool ignored = ignoredAttribute(k);
+        const bool ignored = xmlIgnoredAttribute(k);
         if (ignored && k != "class" && k != "id" && k != "style") continue;
         const auto t = fieldType(n, k);
         if (ignored && !t) continue;
@@ -665,7 +691,7 @@ struct XmlToClassic::Impl {
       } else if (!isNodeElement(c)) {
         warn(c, "<" + c.name + "> is not allowed in a node: ignored");
       } else {
-        const std::string field = containerFieldOf(c, &n);
+        const std::string_view field = containerFieldOf(c, &n);
         std::size_t g = 0;
         while (g < sc.groups && sc.group[g].first != field) ++g;
         if (g == sc.groups) {
@@ -706,25 +732,12 @@ struct XmlToClassic::Impl {
     const std::string* value = fv.attr("value");
     if (t)
       convertedValue(fv, *t, value != nullptr ? std::string_view(*value) : std::string_view());
-    else if (value != nullptr)
+    else if (value != nullptr) {
       out += *value;  // an undeclared PROTO: the parser reports it
+      checkRaw(*value);
+    }
   }
 };
-
-bool looksLikeXml(std::string_view text, bool& decided) {
-  std::size_t i = 0;
-  while (i < text.size()) {
-    const auto c = static_cast<unsigned char>(text[i]);
-    if (xmlSpace(static_cast<char>(c)) || c == 0xEF || c == 0xBB || c == 0xBF) {
-      ++i;
-      continue;
-    }
-    decided = true;
-    return c == '<';
-  }
-  decided = false;
-  return false;
-}
 
 XmlToClassic::XmlToClassic(std::string& out, std::string url, int maxNesting)
     : impl_(std::make_unique<Impl>(out, std::move(url), maxNesting)) {}
@@ -767,6 +780,10 @@ bool XmlToClassic::finish() {
   return !m.failed;
 }
 
+void XmlToClassic::setBuilder(XmlStatementBuilder* builder) {
+  impl_->builder = builder;
+}
+
 bool XmlToClassic::wroteHeader() const {
   return impl_->wroteHeader;
 }
@@ -779,30 +796,6 @@ const Diagnostic& XmlToClassic::fatalError() const {
   return impl_->fatal;
 }
 
-std::pair<int, int> OffsetLocations::at(std::size_t offset) {
-  const auto before = [](std::size_t o, const Entry& e) { return o < e.offset; };
-  if (entries_.empty() || offset < entries_.front().offset) return {0, 0};
-  std::size_t i = std::min(cursor_, entries_.size() - 1);
-  if (entries_[i].offset <= offset) {
-    // Forward from the last answer: a few steps, else a search of what is left.
-    for (int steps = 0; steps < 8 && i + 1 < entries_.size() && entries_[i + 1].offset <= offset;
-         ++steps)
-      ++i;
-    if (i + 1 < entries_.size() && entries_[i + 1].offset <= offset)
-      i = static_cast<std::size_t>(
-              std::upper_bound(entries_.begin() + static_cast<std::ptrdiff_t>(i), entries_.end(),
-                               offset, before) -
-              entries_.begin()) -
-          1;
-  } else {
-    i = static_cast<std::size_t>(
-            std::upper_bound(entries_.begin(), entries_.end(), offset, before) - entries_.begin()) -
-        1;
-  }
-  cursor_ = i;
-  return {entries_[i].line, entries_[i].column};
-}
-
 std::pair<int, int> XmlToClassic::xmlLocationAt(std::size_t offset) {
   return impl_->lines.at(offset);
 }
@@ -811,9 +804,11 @@ TextOrigin& XmlToClassic::origin() {
   return impl_->lines;
 }
 
-void XmlToClassic::addWarnings(Scene& scene) {
+void XmlToClassic::addWarnings(Scene& scene, std::size_t at) {
   auto& w = impl_->warnings;
-  for (Diagnostic& x : w) scene.diagnostics.items.push_back(std::move(x));
+  auto& items = scene.diagnostics.items;
+  items.insert(items.begin() + static_cast<std::ptrdiff_t>(std::min(at, items.size())),
+               std::make_move_iterator(w.begin()), std::make_move_iterator(w.end()));
   w.clear();
 }
 

@@ -5,8 +5,10 @@
 // its end tag arrives, so a world still grows statement by statement while it loads.
 // Every element's translation starts on a line of its own, and the XML line and column
 // of its start tag are recorded for its first byte: origin() gives the parser those
-// locations, so every node, route and diagnostic it makes names the XML. Internal to
-// gs_vrml.
+// locations, so every node, route and diagnostic it makes names the XML. With a builder
+// (setBuilder: parseVrml's reader and StreamingParser), a plain statement is offered to it
+// first and built straight from its elements, with no Classic text (parser_xml_build.cpp).
+// Internal to gs_vrml.
 #pragma once
 
 #include "lexer.hpp"
@@ -21,6 +23,8 @@
 #include <vector>
 
 namespace gs::vrml::parsing {
+
+class XmlStatementBuilder;  // x3d_xml_tree.hpp
 
 /// Whether `text` (after gunzip) is XML: its first byte that is neither white space nor
 /// part of a UTF-8 byte order mark is '<'. `decided` is false when `text` holds no such
@@ -75,6 +79,12 @@ class XmlToClassic {
   /// No more bytes will come (an unclosed document is a syntax error). Same result.
   bool finish();
 
+  /// Offers each top-level node statement of <Scene> to `builder` (null: none) before
+  /// translating it, while the Classic text written so far cannot run into what follows
+  /// it (no raw attribute text in it that could open a string, comment or bracket, no
+  /// SFImage, whose parse looks ahead). `builder` must outlive the translation.
+  void setBuilder(XmlStatementBuilder* builder);
+
   /// Whether the header line ("#X3D V3.3 utf8") has been written.
   bool wroteHeader() const;
   /// Whether translation stopped for good.
@@ -90,8 +100,9 @@ class XmlToClassic {
   /// as this translator.
   TextOrigin& origin();
   /// Appends the warnings found while translating so far (lenient MFString values,
-  /// ignored content; at XML locations) to the scene's diagnostics.
-  void addWarnings(Scene& scene);
+  /// ignored content; at XML locations) to the scene's diagnostics: at index `at` of
+  /// its list (after the others when that is past its end).
+  void addWarnings(Scene& scene, std::size_t at = static_cast<std::size_t>(-1));
 
   struct Impl;
 

@@ -51,7 +51,8 @@ class StreamingParser {
   Scene takeScene();
 
   /// Text bytes (after gunzip) received / consumed by complete statements (for XML: of
-  /// its Classic VRML translation).
+  /// its Classic VRML translation, which holds only the statements not built straight
+  /// from their elements).
   std::size_t textBytes() const;
   std::size_t parsedBytes() const;
   /// Whether parsing stopped for good (finish() called, or a fatal error).
