@@ -29,10 +29,6 @@ namespace gs::vrml::parsing {
 
 namespace {
 
-bool xmlSpace(char c) {
-  return c == ' ' || c == '\t' || c == '\n' || c == '\r';
-}
-
 bool blank(std::string_view s) {
   return std::all_of(s.begin(), s.end(), xmlSpace);
 }

@@ -10,14 +10,6 @@
 
 namespace gs::vrml::parsing {
 
-namespace {
-
-bool xmlSpace(char c) {
-  return c == ' ' || c == '\t' || c == '\n' || c == '\r';
-}
-
-}  // namespace
-
 bool looksLikeXml(std::string_view text, bool& decided) {
   std::size_t i = 0;
   while (i < text.size()) {

@@ -36,6 +36,11 @@ enum class XKind : std::uint8_t {
   protoBody
 };
 
+/// XML white space (the S production of XML 1.0: space, tab, line feed, carriage return).
+inline bool xmlSpace(char c) {
+  return c == ' ' || c == '\t' || c == '\n' || c == '\r';
+}
+
 /// Whether element name `name` is that of a metadata node (MetadataFloat ...).
 inline bool metadataName(std::string_view name) {
   return name.size() >= 8 && sameName(name.substr(0, 8), "Metadata");
