@@ -419,6 +419,35 @@ TEST_CASE("node locations and onRootNode", "[parser]") {
   CHECK(shape->location.column == 24);
 }
 
+TEST_CASE("node locations share their file name in both X3D encodings", "[parser][x3d]") {
+  // One name per file, referenced by every node (SourceFile): no copy of the string per
+  // node. A long name (past the short-string buffer) would be a heap copy otherwise.
+  const std::string url = "worlds/a-file-name-longer-than-sixteen-bytes.x3d";
+  const Scene classic = parseVrml(
+      "#X3D V4.0 utf8\nGroup {}\nTransform { children Shape { geometry Box {} } }\n", url);
+  const Scene xml = parseVrml(
+      "<X3D version='4.0'><Scene><Group/><Transform><Shape><Box/></Shape></Transform>"
+      "</Scene></X3D>",
+      url);
+  for (const Scene* s : {&classic, &xml}) {
+    INFO(s->x3d.encoding);
+    REQUIRE(s->rootNodes.size() == 2);
+    const Node& group = *s->rootNodes[0];
+    const Node& box = *s->rootNodes[1]->mfnode("children").at(0)->sfnode("geometry");
+    CHECK(group.location.file == url);
+    CHECK(box.location.file == url);
+    CHECK(&group.location.file.str() == &box.location.file.str());
+  }
+  // A copy shares; a name made anew compares equal by its characters.
+  const SourceFile a(url);
+  const SourceFile b = a;
+  CHECK(&a.str() == &b.str());
+  CHECK(SourceFile(url) == a);
+  CHECK(SourceFile().empty());
+  CHECK(SourceFile().str().empty());
+  CHECK(a + ":1" == url + ":1");
+}
+
 TEST_CASE("gzip input is read transparently, concatenated members too", "[parser]") {
   const auto gz = gs::test::gzip;
   const std::string a = gz("#VRML V2.0 utf8\nGroup {}\n");

@@ -4,8 +4,14 @@
 
 namespace gs::vrml {
 
+SourceFile::SourceFile(const SourceFile& other) = default;
+SourceFile::SourceFile(SourceFile&& other) noexcept = default;
+SourceFile& SourceFile::operator=(const SourceFile& other) = default;
+SourceFile& SourceFile::operator=(SourceFile&& other) noexcept = default;
+SourceFile::~SourceFile() = default;
+
 std::string Diagnostic::format() const {
-  std::string s = location.file.empty() ? std::string("<input>") : location.file;
+  std::string s = location.file.empty() ? std::string("<input>") : location.file.str();
   if (location.line > 0) {
     s += ':' + std::to_string(location.line);
     if (location.column > 0) s += ':' + std::to_string(location.column);

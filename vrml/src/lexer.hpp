@@ -296,7 +296,9 @@ class Lexer {
   std::size_t remaining() const { return static_cast<std::size_t>(end_ - p_); }
   void setOffset(std::size_t o) { p_ = text_.data() + o; }
   std::string_view text() const { return text_; }
-  const std::string& file() const { return file_; }
+  const std::string& file() const { return file_.str(); }
+  /// The same name, shared (for locations: no copy of the string).
+  const SourceFile& sourceFile() const { return file_; }
 
   /// Line and column (from 1, column in bytes) of byte `offset`; cached, so asking in
   /// increasing order costs O(distance). With an origin (setOrigin), the original file's
@@ -397,7 +399,7 @@ class Lexer {
   [[noreturn]] void badNumber(std::size_t offset, std::string_view what);
 
   std::string_view text_;
-  std::string file_;
+  SourceFile file_;
   TextOrigin* origin_ = nullptr;
   const char* p_;
   const char* end_;

@@ -215,7 +215,7 @@ NodePtr Parser::xmlNode(XmlBuild& b, const XNode& n, int depth, int& height) {
   ++recursion_;        // (buildXmlStatement restores it)
   ++ctx_.nodeCount;
   auto node = std::make_shared<Node>(std::move(type));
-  node->location = SourceLocation{lex_.file(), n.line, n.column};
+  node->location = SourceLocation{lex_.sourceFile(), n.line, n.column};
   const NodeType& ty = node->type();
   if (const std::string* def = n.attr("DEF"); def != nullptr && !blank(*def)) {
     node->defName = xmlIdent(*def);
