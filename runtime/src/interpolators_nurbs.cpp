@@ -30,9 +30,11 @@ std::optional<Curve> curveOf(const vrml::Node& node, std::string& problem) {
     problem = "no control points";
     return std::nullopt;
   }
+  const std::vector<double> knots = vrml::nurbs::doubles(node, "knot");
+  const bool defaultKnots = knots.empty();
   auto axis = vrml::nurbs::strictAxis(
       static_cast<int>(std::min<std::size_t>(c.points.size(), vrml::nurbs::kMaxControlPoints + 1)),
-      node.get<vrml::FieldType::SFInt32>("order", 3), vrml::nurbs::doubles(node, "knot"), problem);
+      node.get<vrml::FieldType::SFInt32>("order", 3), knots, problem);
   if (!axis) return std::nullopt;
   auto weights =
       vrml::nurbs::strictWeights(vrml::nurbs::doubles(node, "weight"), c.points.size(), problem);
@@ -41,7 +43,7 @@ std::optional<Curve> curveOf(const vrml::Node& node, std::string& problem) {
   c.weights = std::move(*weights);
   // No knots: the uniform clamped ones scaled to [0, 1], so that fractions 0 to 1 run the
   // whole curve (castle-model-viewer's default; the curve is the same).
-  if (vrml::nurbs::doubles(node, "knot").empty())
+  if (defaultKnots)
     for (double& k : c.axis.knots) k /= static_cast<double>(c.axis.count - c.axis.order + 1);
   return c;
 }

@@ -12,9 +12,9 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
-#include <fstream>
 #include <set>
-#include <sstream>
+#include <string>
+#include <vector>
 
 using namespace gs::vrml;
 
@@ -24,13 +24,6 @@ void setXmlDirectBuild(bool on);
 }  // namespace gs::vrml::parsing
 
 namespace {
-
-std::string directReadFile(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 std::string directDescribe(const Scene& s) {
   std::string out;
@@ -42,6 +35,35 @@ std::multiset<std::string> directDiagnostics(const Scene& s) {
   std::multiset<std::string> out;
   for (const Diagnostic& d : s.diagnostics.items) out.insert(d.format());
   return out;
+}
+
+// The diagnostics of `s`, formatted, in their order.
+std::vector<std::string> directDiagnosticList(const Scene& s) {
+  std::vector<std::string> out;
+  for (const Diagnostic& d : s.diagnostics.items) out.push_back(d.format());
+  return out;
+}
+
+// `a` and `b` are the same scene, locations included, with the same diagnostics: in the
+// same order when `inOrder`, else as multisets.
+void directSameScene(const Scene& a, const Scene& b, bool inOrder) {
+  gs::test::Same same;
+  same.locations = true;
+  const bool equal = same.scenes(a, b);
+  INFO(same.diff);
+  CHECK(equal);
+  if (inOrder)
+    CHECK(directDiagnosticList(a) == directDiagnosticList(b));
+  else
+    CHECK(directDiagnostics(a) == directDiagnostics(b));
+}
+
+// `text` parsed with every statement translated (the direct path off for the call).
+Scene directParseTranslated(const std::string& text, const std::string& name) {
+  gs::vrml::parsing::setXmlDirectBuild(false);
+  Scene s = parseVrml(text, name);
+  gs::vrml::parsing::setXmlDirectBuild(true);
+  return s;
 }
 
 // An X3D document around `scene` (its <Scene> starts on line 4).
@@ -58,11 +80,7 @@ Scene directParse(const std::string& text) {
   for (char c : text) p.feed(std::string_view(&c, 1));
   p.finish();
   const Scene streamed = p.takeScene();
-  gs::test::Same same;
-  same.locations = true;
-  CHECK(same.scenes(whole, streamed));
-  INFO(same.diff);
-  CHECK(directDiagnostics(whole) == directDiagnostics(streamed));
+  directSameScene(whole, streamed, false);
   return whole;
 }
 
@@ -286,7 +304,7 @@ TEST_CASE("X3D XML direct: castle's and KiCad's worlds as when every statement w
   if (gs::test::haveCorpus("x3d/castle")) {
     const auto root = gs::test::corpusDir() / "x3d/castle";
     for (const auto& f : gs::test::filesWithSuffix(root, ".x3d"))
-      worlds.emplace_back(f.string(), directReadFile(f));
+      worlds.emplace_back(f.string(), gs::test::readBytes(f));
     CHECK(worlds.size() >= 30);
   }
   if (gs::test::haveCorpus("vrml/kicad")) {
@@ -299,29 +317,16 @@ TEST_CASE("X3D XML direct: castle's and KiCad's worlds as when every statement w
     }
   }
   for (const auto& [name, text] : worlds) {
-    gs::vrml::parsing::setXmlDirectBuild(false);
-    const Scene translated = parseVrml(text, name);
-    gs::vrml::parsing::setXmlDirectBuild(true);
+    const Scene translated = directParseTranslated(text, name);
     const Scene direct = parseVrml(text, name);
     INFO(name << "\n" << directDescribe(direct) << "--\n" << directDescribe(translated));
-    gs::test::Same same;
-    same.locations = true;
-    CHECK(same.scenes(direct, translated));
-    INFO(same.diff);
-    std::vector<std::string> a, b;
-    for (const Diagnostic& d : direct.diagnostics.items) a.push_back(d.format());
-    for (const Diagnostic& d : translated.diagnostics.items) b.push_back(d.format());
-    CHECK(a == b);
+    directSameScene(direct, translated, true);
     // Streamed in pieces, with the direct path: the same scene.
     StreamingParser p(name);
     for (std::size_t i = 0; i < text.size(); i += 61) p.feed(std::string_view(text).substr(i, 61));
     p.finish();
     const Scene streamed = p.takeScene();
-    gs::test::Same same2;
-    same2.locations = true;
-    CHECK(same2.scenes(streamed, translated));
-    INFO(same2.diff);
-    CHECK(directDiagnostics(streamed) == directDiagnostics(translated));
+    directSameScene(streamed, translated, false);
   }
 }
 
@@ -365,19 +370,10 @@ TEST_CASE("X3D XML direct: damaged worlds read as when every statement was trans
           break;
       }
     }
-    gs::vrml::parsing::setXmlDirectBuild(false);
-    const Scene translated = parseVrml(text, "damaged.x3d");
-    gs::vrml::parsing::setXmlDirectBuild(true);
+    const Scene translated = directParseTranslated(text, "damaged.x3d");
     const Scene direct = parseVrml(text, "damaged.x3d");
     INFO(text << "\n" << directDescribe(direct) << "--\n" << directDescribe(translated));
-    gs::test::Same same;
-    same.locations = true;
-    CHECK(same.scenes(direct, translated));
-    INFO(same.diff);
-    std::vector<std::string> a, b;
-    for (const Diagnostic& d : direct.diagnostics.items) a.push_back(d.format());
-    for (const Diagnostic& d : translated.diagnostics.items) b.push_back(d.format());
-    CHECK(a == b);
+    directSameScene(direct, translated, true);
     auto stream = [&text] {
       StreamingParser p("damaged.x3d");
       for (std::size_t i = 0; i < text.size(); i += 7) p.feed(std::string_view(text).substr(i, 7));
@@ -388,10 +384,6 @@ TEST_CASE("X3D XML direct: damaged worlds read as when every statement was trans
     gs::vrml::parsing::setXmlDirectBuild(false);
     const Scene streamedOld = stream();
     gs::vrml::parsing::setXmlDirectBuild(true);
-    gs::test::Same same2;
-    same2.locations = true;
-    CHECK(same2.scenes(streamed, streamedOld));
-    INFO(same2.diff);
-    CHECK(directDiagnostics(streamed) == directDiagnostics(streamedOld));
+    directSameScene(streamed, streamedOld, false);
   }
 }

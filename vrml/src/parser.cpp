@@ -228,6 +228,16 @@ void Parser::eraseProto(Scope& scope, const std::string& name) {
   scope.protos.erase(it);
 }
 
+void Parser::closeDef(Scope& scope, std::string_view name, const Node& node, int height) {
+  if (name.empty()) return;
+  auto it = scope.defs.find(name);
+  if (it != scope.defs.end() && it->second.node.get() == &node) {
+    it->second.open = false;
+    it->second.height = height;
+    it->second.declared = node.typePtr();
+  }
+}
+
 DefEntry* Parser::findDef(Scope& scope, std::string_view name) {
   for (Scope* s = &scope; s != nullptr; s = s->defParent) {
     auto it = s->defs.find(name);
@@ -316,15 +326,7 @@ NodePtr Parser::parseNode(Scope& scope, const Token& t, int depth, int& height,
     std::string_view name;
     const Node* node;
     int& height;
-    ~Closer() {
-      if (name.empty()) return;
-      auto it = scope.defs.find(name);
-      if (it != scope.defs.end() && it->second.node.get() == node) {
-        it->second.open = false;
-        it->second.height = height;
-        it->second.declared = node->typePtr();
-      }
-    }
+    ~Closer() { closeDef(scope, name, *node, height); }
   } closer{scope, defName, node.get(), height};
   height = 1;
   int h = 0;

@@ -214,6 +214,10 @@ class Parser {
                       const Token& t);
   /// scope.defs[name] = e, logged in scope.undo when set.
   void define(Scope& scope, std::string_view name, DefEntry e);
+  /// Ends the DEF entry `name` of `node` once its body is read (no longer open: USE may
+  /// now refer to it; its height and declared type recorded). Nothing when `name` is
+  /// empty or now names another node.
+  static void closeDef(Scope& scope, std::string_view name, const Node& node, int height);
   /// scope.protos[name] = type (null: being defined) or erased, logged in scope.undo.
   void setProto(Scope& scope, const std::string& name, std::shared_ptr<const NodeType> type);
   void eraseProto(Scope& scope, const std::string& name);

@@ -28,8 +28,7 @@ struct NotPlain {};
 constexpr std::size_t kValuePadding = 32;
 
 bool blank(std::string_view s) {
-  return std::all_of(s.begin(), s.end(),
-                     [](char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; });
+  return std::all_of(s.begin(), s.end(), xmlSpace);
 }
 
 // Whether an MFString attribute reads as its translation does with nothing to report:
@@ -122,12 +121,8 @@ bool Parser::xmlNumbers(FieldType t, const std::string& text, FieldValue& out) {
       // One word, true or false in any case (as appendXmlValueAsClassic turns it into
       // TRUE or FALSE for readBool).
       std::string_view w = text;
-      while (!w.empty() &&
-             (w.front() == ' ' || w.front() == '\t' || w.front() == '\n' || w.front() == '\r'))
-        w.remove_prefix(1);
-      while (!w.empty() &&
-             (w.back() == ' ' || w.back() == '\t' || w.back() == '\n' || w.back() == '\r'))
-        w.remove_suffix(1);
+      while (!w.empty() && xmlSpace(w.front())) w.remove_prefix(1);
+      while (!w.empty() && xmlSpace(w.back())) w.remove_suffix(1);
       if (base::equalsNoCase(w, "true")) {
         st.emplace<static_cast<std::size_t>(FieldType::SFBool)>(true);
         return true;
@@ -320,14 +315,7 @@ NodePtr Parser::xmlNode(XmlBuild& b, const XNode& n, int depth, int& height) {
       for (const std::string& u : url->get<FieldType::MFString>())
         if (urlNamesFile(lex_.file(), u)) throw NotPlain{};  // an error there
   }
-  if (!node->defName.empty()) {
-    auto it = scope.defs.find(node->defName);
-    if (it != scope.defs.end() && it->second.node.get() == node.get()) {
-      it->second.open = false;
-      it->second.height = height;
-      it->second.declared = node->typePtr();
-    }
-  }
+  closeDef(scope, node->defName, *node, height);
   return node;
 }
 
