@@ -12,6 +12,7 @@
 #include "base/byte_order.hpp"
 #include "entropy_fields.hpp"
 #include "entropy_payload.hpp"
+#include "qnv/decoder.hpp"
 #include "qnv/record.hpp"
 
 #if defined(__x86_64__)
@@ -287,8 +288,28 @@ void appendFastLayout(std::string& out, const PacketSymbols& packet) {
   out += bitPart;
 }
 
-bool decodeFastLayout(std::string_view payload, std::size_t count, const PositionGrid& grid,
-                      std::uint64_t* out) {
+namespace {
+
+// A fast payload once its tables are read and its rANS runs decoded: one run of symbols
+// per field, and where the gap and magnitude bits lie.
+struct FastSymbols {
+  alignas(64) std::uint8_t sym[kFields][kMaxRecords + 1];
+  std::uint32_t xyz[kMaxRecords];  // positions, X << 20 | Y << 10 | Z in the index space
+  std::size_t count = 0;
+  std::uint32_t aMin = 0;
+  int aBits = 0;
+  bool useGrid = false, useBlocks = false;
+  const unsigned char* gapBase = nullptr;
+  std::size_t gapSize = 0;
+  const unsigned char* bitBase = nullptr;
+  std::size_t bitSize = 0;
+  std::uint64_t aPos = 0;  // bit of the first magnitude offset
+};
+
+// Checks the preamble, reads the tables and decodes the rANS runs; false on any
+// inconsistency before the record pass.
+bool decodeFastSymbols(std::string_view payload, std::size_t count, const PositionGrid& grid,
+                       FastSymbols& s) {
   if (payload.size() < kFastPreambleBytes || count == 0 || count > kMaxRecords) return false;
   const auto* begin = reinterpret_cast<const unsigned char*>(payload.data());
   const std::uint8_t flags = begin[0];
@@ -305,21 +326,30 @@ bool decodeFastLayout(std::string_view payload, std::size_t count, const Positio
       ransSize + gapSize > payload.size() - kFastPreambleBytes || ransSize < 4 * lanes ||
       (useGrid && !grid.active) || (useBlocks && (grid.blockShift == 0 || useGrid != grid.active)))
     return false;
+  if (useGrid)
+    for (const auto& cells : grid.cellOrOutside)
+      if (cells.size() != kPositionSteps) return false;
   const unsigned char* ransBegin = begin + kFastPreambleBytes;
   const unsigned char* ransEnd = ransBegin + ransSize;
-  const unsigned char* gapBase = ransEnd;
-  const unsigned char* bitBase = gapBase + gapSize;
-  const std::size_t bitSize = payload.size() - kFastPreambleBytes - ransSize - gapSize;
+  s.count = count;
+  s.aMin = aMin;
+  s.aBits = aBits;
+  s.useGrid = useGrid;
+  s.useBlocks = useBlocks;
+  s.gapBase = ransEnd;
+  s.gapSize = gapSize;
+  s.bitBase = s.gapBase + gapSize;
+  s.bitSize = payload.size() - kFastPreambleBytes - ransSize - gapSize;
 
-  BitReader tableBits(bitBase, bitBase + bitSize);
-  std::array<FieldCoder, kFields> coders;
+  BitReader tableBits(s.bitBase, s.bitBase + s.bitSize);
+  // Kept per thread so that the tables' storage is reused from packet to packet.
+  thread_local std::array<FieldCoder, kFields> own;
+  std::array<const FieldCoder*, kFields> coders{};
   for (int k = 0; k < kFields; ++k)
-    if (!readTable(tableBits, coders[k], kAlphabetBits[k])) return false;
+    if (!(coders[k] = readPacketTable(tableBits, own[k], k, grid.shared))) return false;
   if (tableBits.overrun()) return false;
   std::uint64_t bitPos = tableBits.bitsConsumed();
 
-  // One run of symbols per field.
-  alignas(64) std::uint8_t sym[kFields][kMaxRecords + 1];
   std::uint32_t x[16];
   const unsigned char* p = ransBegin;
   for (std::size_t l = 0; l < lanes; ++l, p += 4) {
@@ -328,81 +358,159 @@ bool decodeFastLayout(std::string_view payload, std::size_t count, const Positio
   }
   bool overrun = false;
   for (int k = 0; k < kFields; ++k) {
-    const FieldCoder& c = coders[k];
+    const FieldCoder& c = *coders[k];
     if (c.mode == kModeConstant) {
-      std::memset(sym[k], static_cast<int>(c.constant), count);
+      std::memset(s.sym[k], static_cast<int>(c.constant), count);
     } else if (c.mode == kModeRaw) {
       const int w = kAlphabetBits[k];
       for (std::size_t i = 0; i < count; ++i, bitPos += static_cast<std::uint64_t>(w))
-        sym[k][i] = static_cast<std::uint8_t>(peekBits(bitBase, bitSize, bitPos) & ((1u << w) - 1));
+        s.sym[k][i] =
+            static_cast<std::uint8_t>(peekBits(s.bitBase, s.bitSize, bitPos) & ((1u << w) - 1));
     } else {
       RunDecoder run = kRunDecoders[lanesLog2];
 #if defined(__x86_64__)
       if (lanesLog2 == 4 && useAvx2()) run = decodeRun16Avx2;
 #endif
-      run(c.model, x, p, ransEnd, sym[k], count, overrun);
+      run(c.model, x, p, ransEnd, s.sym[k], count, overrun);
     }
   }
   if (overrun || p != ransEnd) return false;
   for (std::size_t l = 0; l < lanes; ++l)
     if (x[l] != kRansLow) return false;
-  const std::uint64_t aPos = bitPos;
-  if ((aPos + std::uint64_t{count} * static_cast<std::uint64_t>(aBits) + 7) / 8 != bitSize)
-    return false;
+  s.aPos = bitPos;
+  return (bitPos + std::uint64_t{count} * static_cast<std::uint64_t>(aBits) + 7) / 8 == s.bitSize;
+}
 
-  const int blockBits = useBlocks ? 3 * grid.blockShift : 0;
+// The first pass of the record rebuild: the positions, serial through the gap prefix
+// sum. Writes xyz[i] = X << 20 | Y << 10 | Z in the index space (voxel indices on a grid,
+// else cells); false when a code or index is out of range (all indices stay below 1024
+// meanwhile, so the second pass's lookups stay in bounds).
+template <bool kBlocks, bool kGrid>
+bool rebuildPositions(const FastSymbols& s, const PositionGrid& grid, std::uint32_t* xyzOut) {
+  const int blockBits = kBlocks ? 3 * grid.blockShift : 0;
   const std::uint64_t codeLimit =
-      useBlocks ? std::uint64_t{grid.blocks.size()} << blockBits : std::uint64_t{1} << 30;
+      kBlocks ? std::uint64_t{grid.blocks.size()} << blockBits : std::uint64_t{1} << 30;
   const std::uint32_t lowMask = (1u << blockBits) - 1;
-  const auto aMask = static_cast<std::uint32_t>((1u << aBits) - 1);
-  if (useGrid)
-    for (const auto& cells : grid.cellOrOutside)
-      if (cells.size() != kPositionSteps) return false;
+  const std::uint32_t* origins = grid.blockOrigins.data();
+  const std::size_t lastBlock = grid.blockOrigins.empty() ? 0 : grid.blockOrigins.size() - 1;
+  const std::uint32_t sizeX = grid.axisSize(0), sizeY = grid.axisSize(1), sizeZ = grid.axisSize(2);
+  const std::uint8_t* gaps = s.sym[kGap];
+  const unsigned char* gapBase = s.gapBase;
+  const std::size_t gapSize = s.gapSize, count = s.count;
+  std::uint64_t code = 0, gapPos = 0;
+  std::uint32_t outside = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::uint32_t t = gaps[i];
+    const auto extra = static_cast<std::uint32_t>(peekBits(gapBase, gapSize, gapPos));
+    gapPos += kGapTables.width[t];
+    code += kGapTables.base[t] | (extra & kGapTables.mask[t]);
+    std::uint32_t xyz;
+    if constexpr (kBlocks)  // the block's origin plus the position inside it
+      xyz = origins[std::min<std::size_t>(code >> blockBits, lastBlock)] +
+            mortonToXyz(static_cast<std::uint32_t>(code) & lowMask);
+    else  // bits over 30 are dropped; the code is checked
+      xyz = mortonToXyz(static_cast<std::uint32_t>(code));
+    if constexpr (kGrid)
+      outside |= static_cast<std::uint32_t>((xyz >> 20) >= sizeX) |
+                 static_cast<std::uint32_t>(((xyz >> 10) & 1023u) >= sizeY) |
+                 static_cast<std::uint32_t>((xyz & 1023u) >= sizeZ);
+    xyzOut[i] = xyz;
+  }
+  return code < codeLimit && outside == 0 && (gapPos + 7) / 8 == gapSize;
+}
+
+// Rebuilds the records from the symbols: the positions (above), then one pass handing
+// each record to emit(i, xyz, theta, phi, a, c). Theta and A are range-checked once at
+// the end (ORed into `seen`), so emit may see out-of-range values of a packet that is
+// then rejected, never indices out of its tables' bounds (theta <= 63, A <= 32767).
+template <typename Emit>
+bool rebuildRecords(const FastSymbols& s, const PositionGrid& grid, std::uint32_t* xyz,
+                    Emit&& emit) {
+  const bool positions = s.useBlocks ? (s.useGrid ? rebuildPositions<true, true>(s, grid, xyz)
+                                                  : rebuildPositions<true, false>(s, grid, xyz))
+                                     : (s.useGrid ? rebuildPositions<false, true>(s, grid, xyz)
+                                                  : rebuildPositions<false, false>(s, grid, xyz));
+  if (!positions) return false;
+  const std::uint8_t* thetas = s.sym[kTheta];
+  const std::uint8_t* phis = s.sym[kPhi];
+  const std::uint8_t* colors = s.sym[kColor];
+  const unsigned char* bitBase = s.bitBase;
+  const std::size_t bitSize = s.bitSize, count = s.count;
+  const auto aBits = static_cast<std::uint64_t>(s.aBits);
+  const auto aMask = static_cast<std::uint32_t>((1u << s.aBits) - 1);
+  const std::uint32_t aMin = s.aMin;
+  std::uint64_t aPos = s.aPos;
+  std::uint32_t theta = 0, phi = 0, seen = 0;
+  for (std::size_t i = 0; i < count; ++i, aPos += aBits) {
+    theta = (theta + thetas[i]) & 63u;
+    phi = (phi + phis[i]) & 63u;
+    const std::uint32_t a =
+        aMin + (static_cast<std::uint32_t>(peekBits(bitBase, bitSize, aPos)) & aMask);
+    seen |= (theta << 16) | a;
+    emit(i, xyz[i], theta, phi, a & 32767u, colors[i]);
+  }
+  static_assert(kThetaSteps == 32 && kMagnitudeSteps == 32768);
+  return (seen & ((32u << 16) | 32768u)) == 0;
+}
+
+}  // namespace
+
+bool decodeFastLayout(std::string_view payload, std::size_t count, const PositionGrid& grid,
+                      std::uint64_t* out) {
+  FastSymbols s;
+  if (!decodeFastSymbols(payload, count, grid, s)) return false;
   const std::uint16_t* cellX = grid.cellOrOutside[0].data();
   const std::uint16_t* cellY = grid.cellOrOutside[1].data();
   const std::uint16_t* cellZ = grid.cellOrOutside[2].data();
-  const std::uint32_t* blocks = grid.blocks.data();
-  const std::size_t lastBlock = grid.blocks.empty() ? 0 : grid.blocks.size() - 1;
-  // Rebuilds the records. Range errors are checked once at the end (the code only grows,
-  // theta and A are ORed into `seen`, grid overflows into `outside`), indices clamped
-  // meanwhile.
-  const auto records = [&]<bool kBlocks, bool kGrid>() {
-    std::uint64_t code = 0, gapPos = 0;
-    std::uint32_t theta = 0, phi = 0, seen = 0, outside = 0;  // outside: ORed cells
-    for (std::size_t i = 0; i < count; ++i) {
-      const std::uint32_t t = sym[kGap][i];
-      const auto extra = static_cast<std::uint32_t>(peekBits(gapBase, gapSize, gapPos));
-      gapPos += kGapTables.width[t];
-      code += kGapTables.base[t] | (extra & kGapTables.mask[t]);
-      auto m = static_cast<std::uint32_t>(code);
-      if constexpr (kBlocks)
-        m = (blocks[std::min<std::size_t>(code >> blockBits, lastBlock)] << blockBits) |
-            (m & lowMask);
-      theta = (theta + sym[kTheta][i]) & 63u;
-      phi = (phi + sym[kPhi][i]) & 63u;
-      const std::uint32_t a =
-          aMin + (static_cast<std::uint32_t>(
-                      peekBits(bitBase, bitSize, aPos + i * static_cast<std::uint64_t>(aBits))) &
-                  aMask);
-      std::uint32_t xyz = mortonToXyz(m);  // bits over 30 are dropped; the code is checked
-      seen |= (theta << 16) | a;
-      if constexpr (kGrid) {
-        const std::uint32_t cx = cellX[xyz >> 20], cy = cellY[(xyz >> 10) & 1023u],
-                            cz = cellZ[xyz & 1023u];
-        outside |= cx | cy | cz;
-        xyz = (cx << 20) | (cy << 10) | cz;
-      }
-      out[i] = (std::uint64_t{xyz} << 34) | (std::uint64_t{theta} << 29) |
-               (std::uint64_t{phi} << 23) | (std::uint64_t{a} << 8) | sym[kColor][i];
-    }
-    static_assert(kThetaSteps == 32 && kMagnitudeSteps == 32768);
-    return code < codeLimit && (seen & ((32u << 16) | 32768u)) == 0 && (outside & 0x8000u) == 0 &&
-           (gapPos + 7) / 8 == gapSize;
-  };
-  return useBlocks ? (useGrid ? records.template operator()<true, true>()
-                              : records.template operator()<true, false>())
-                   : (useGrid ? records.template operator()<false, true>()
-                              : records.template operator()<false, false>());
+  const bool useGrid = s.useGrid;
+  return rebuildRecords(s, grid, s.xyz,
+                        [=](std::size_t i, std::uint32_t xyz, std::uint32_t theta,
+                            std::uint32_t phi, std::uint32_t a, std::uint32_t c) {
+                          if (useGrid)
+                            xyz = (std::uint32_t{cellX[xyz >> 20]} << 20) |
+                                  (std::uint32_t{cellY[(xyz >> 10) & 1023u]} << 10) |
+                                  cellZ[xyz & 1023u];
+                          out[i] = (std::uint64_t{xyz} << 34) | (std::uint64_t{theta} << 29) |
+                                   (std::uint64_t{phi} << 23) | (std::uint64_t{a} << 8) | c;
+                        });
+}
+
+VectorTables::VectorTables(const Dequantizer& dequantizer, const PositionGrid& grid)
+    : magnitude(dequantizer.magnitudes(), dequantizer.magnitudes() + kMagnitudeSteps) {
+  for (int a = 0; a < 3; ++a) {
+    std::copy_n(dequantizer.axis(a).begin(), kPositionSteps, cellAxis[a].begin());
+    for (std::size_t i = 0; i < grid.cellOf[a].size() && i < kPositionSteps; ++i)
+      gridAxis[a][i] = dequantizer.axis(a)[grid.cellOf[a][i]];
+  }
+  std::copy_n(dequantizer.directions(), kDirectionCells, direction.begin());
+  std::copy_n(dequantizer.colors(), kPaletteSize, color.begin());
+}
+
+bool decodeFastVectors(std::string_view payload, std::size_t count, const PositionGrid& grid,
+                       const VectorTables& tables, DecodedVector* out) {
+  FastSymbols s;
+  if (!decodeFastSymbols(payload, count, grid, s)) return false;
+  const auto& axis = s.useGrid ? tables.gridAxis : tables.cellAxis;
+  const float* ax = axis[0].data();
+  const float* ay = axis[1].data();
+  const float* az = axis[2].data();
+  const glm::vec3* direction = tables.direction.data();
+  const float* magnitude = tables.magnitude.data();
+  const std::uint32_t* color = tables.color.data();
+  return rebuildRecords(s, grid, s.xyz,
+                        [=](std::size_t i, std::uint32_t xyz, std::uint32_t theta,
+                            std::uint32_t phi, std::uint32_t a, std::uint32_t c) {
+                          DecodedVector& v = out[i];
+                          v.position.x = ax[xyz >> 20];
+                          v.position.y = ay[(xyz >> 10) & 1023u];
+                          v.position.z = az[xyz & 1023u];
+                          v.magnitude = magnitude[a];
+                          const glm::vec3& n = direction[((theta & 31u) << 6) | phi];
+                          v.normal.x = n.x;
+                          v.normal.y = n.y;
+                          v.normal.z = n.z;
+                          v.rgba = color[c];
+                        });
 }
 
 }  // namespace gs::qnv::detail

@@ -9,6 +9,7 @@
 #include <string>
 #include <string_view>
 #include <utility>
+#include <vector>
 
 #include "rans.hpp"
 
@@ -19,9 +20,11 @@ struct PositionGrid;
 // The four modelled fields and their alphabets.
 enum Field { kGap = 0, kTheta = 1, kPhi = 2, kColor = 3, kFields = 4 };
 inline constexpr std::array<int, kFields> kAlphabetBits = {5, 6, 6, 8};
-// Table modes: 0 constant symbol, 1..12 rANS with 2^mode total frequency, 13 raw bits.
+// Table modes: 0 constant symbol, 1..12 rANS with 2^mode total frequency, 13 raw bits,
+// 14 one of the stream model's shared tables (docs/qnv-format.md, "Shared tables").
 inline constexpr int kModeConstant = 0;
 inline constexpr int kModeRaw = 13;
+inline constexpr int kModeShared = 14;
 inline constexpr std::uint8_t kFlagGrid = 1;
 inline constexpr std::uint8_t kFlagBlocks = 2;  // positions are ranks among the model's blocks
 inline constexpr std::uint8_t kFlagFast = 4;    // the fast layout (entropy_fast.cpp)
@@ -31,13 +34,52 @@ struct FieldCoder {
   int mode = kModeRaw;
   unsigned constant = 0;
   RansModel model;
+  /// Encoder only: the index of the stream model's shared table set this coder is taken
+  /// from (writeTable then writes mode 14 and the index in `sharedIndexBits` bits), or -1.
+  int sharedSet = -1;
+  int sharedIndexBits = 0;
   bool coded() const { return mode != kModeRaw && mode != kModeConstant; }
 };
 
-/// Writes / reads a field's table (4-bit mode, then the constant or the frequencies).
-/// readTable returns false on an invalid table.
+/// The stream model's shared tables (docs/qnv-format.md, "Shared tables"): sets of one
+/// table per field, built once per stream; a packet's field may name one set's table
+/// instead of carrying its own.
+struct SharedTables {
+  static constexpr std::size_t kMaxSets = 256;  // at most 256 * 4 * 16 KiB of slots
+  std::vector<std::array<FieldCoder, kFields>> sets;
+  /// Bits of a set index in a packet: ceil(log2(sets)), 0 for one set.
+  int indexBits() const {
+    return sets.size() <= 1 ? 0 : 32 - __builtin_clz(static_cast<unsigned>(sets.size() - 1));
+  }
+};
+
+/// Writes a field's table (4-bit mode, then the constant or the frequencies; or mode 14 and
+/// the set index when coder.sharedSet >= 0).
 void writeTable(BitWriter& bits, const FieldCoder& coder, int alphabetBits);
+/// Reads a field's own table (modes 0..13) into `coder`; false on an invalid table.
 bool readTable(BitReader& bits, FieldCoder& coder, int alphabetBits);
+/// Reads field `field`'s table of a packet: its own (into `own`) or, with mode 14, a set of
+/// `shared`. Returns the table to decode with, or nullptr when invalid (mode 15, a set index
+/// past the sets, a bad own table).
+const FieldCoder* readPacketTable(BitReader& bits, FieldCoder& own, int field,
+                                  const SharedTables& shared);
+
+/// The cheapest table for a field with these symbol counts over n records (constant, raw,
+/// or rANS at the best total frequency, table bits counted); its bits, table included,
+/// in `bitsOut` when given.
+FieldCoder planField(const std::vector<std::uint32_t>& counts, std::size_t n, int alphabetBits,
+                     double* bitsOut = nullptr);
+
+/// Bits of a field with these counts over n records under shared table `coder`, its
+/// reference (mode and a set index of `indexBits`) included; 1e300 when the table cannot
+/// code a symbol that occurs.
+double sharedTableBits(const FieldCoder& coder, const std::vector<std::uint32_t>& counts,
+                       std::size_t n, int alphabetBits, int indexBits);
+
+/// The symbol counts per field (indexed by symbol) of the entropy packet `records` would
+/// make under `grid` (for building the shared tables).
+std::array<std::vector<std::uint32_t>, kFields> packetSymbolCounts(
+    std::span<const std::uint64_t> records, const PositionGrid& grid);
 
 /// A packet as the encoder sees it once sorted: per record in Morton order its (coded)
 /// Morton code and record, its four symbols, and the chosen coders.

@@ -79,9 +79,12 @@ double tableBits(const std::vector<std::uint16_t>& f) {
   return bits;
 }
 
-// Chooses the cheapest coding of a field with these symbol counts over n records.
-FieldCoder planField(const std::vector<std::uint32_t>& counts, std::size_t n, int alphabetBits) {
+}  // namespace
+
+FieldCoder planField(const std::vector<std::uint32_t>& counts, std::size_t n, int alphabetBits,
+                     double* bitsOut) {
   FieldCoder best;
+  if (bitsOut) *bitsOut = 4.0 + alphabetBits;  // constant
   std::size_t distinct = 0;
   for (std::size_t s = 0; s < counts.size(); ++s)
     if (counts[s]) {
@@ -107,12 +110,35 @@ FieldCoder planField(const std::vector<std::uint32_t>& counts, std::size_t n, in
     }
   }
   if (best.mode != kModeRaw) best.model.build();
+  if (bitsOut) *bitsOut = bestBits;
   return best;
 }
 
-}  // namespace
+double sharedTableBits(const FieldCoder& c, const std::vector<std::uint32_t>& counts, std::size_t n,
+                       int alphabetBits, int indexBits) {
+  constexpr double kNever = 1e300;
+  double bits = 4.0 + indexBits;
+  if (c.mode == kModeRaw) return bits + static_cast<double>(n) * alphabetBits;
+  for (std::size_t s = 0; s < counts.size(); ++s) {
+    if (!counts[s]) continue;
+    if (c.mode == kModeConstant) {
+      if (s != c.constant) return kNever;
+      continue;
+    }
+    if (!c.model.freq[s]) return kNever;
+    bits += counts[s] * (c.mode - std::log2(static_cast<double>(c.model.freq[s])));
+  }
+  return bits;
+}
+
+namespace {}  // namespace
 
 void writeTable(BitWriter& bits, const FieldCoder& coder, int alphabetBits) {
+  if (coder.sharedSet >= 0) {
+    bits.put(kModeShared, 4);
+    bits.put(static_cast<std::uint32_t>(coder.sharedSet), coder.sharedIndexBits);
+    return;
+  }
   bits.put(static_cast<std::uint32_t>(coder.mode), 4);
   if (coder.mode == kModeConstant) {
     bits.put(coder.constant, alphabetBits);
@@ -132,8 +158,19 @@ void writeTable(BitWriter& bits, const FieldCoder& coder, int alphabetBits) {
   }
 }
 
+namespace {
+bool readTableAfterMode(BitReader& bits, FieldCoder& coder, int alphabetBits, int mode);
+}  // namespace
+
 bool readTable(BitReader& bits, FieldCoder& coder, int alphabetBits) {
-  coder.mode = static_cast<int>(bits.get(4));
+  return readTableAfterMode(bits, coder, alphabetBits, static_cast<int>(bits.get(4)));
+}
+
+namespace {
+
+// The rest of a table whose 4-bit mode was read.
+bool readTableAfterMode(BitReader& bits, FieldCoder& coder, int alphabetBits, int mode) {
+  coder.mode = mode;
   if (coder.mode == kModeConstant) {
     coder.constant = bits.get(alphabetBits);
     return !bits.overrun();
@@ -160,8 +197,33 @@ bool readTable(BitReader& bits, FieldCoder& coder, int alphabetBits) {
   return true;
 }
 
-void appendEntropyPayload(std::string& out, std::span<const std::uint64_t> records,
-                          const PositionGrid& grid, EntropyFieldBits* report, bool fast) {
+}  // namespace
+
+const FieldCoder* readPacketTable(BitReader& bits, FieldCoder& own, int field,
+                                  const SharedTables& shared) {
+  const int alphabetBits = kAlphabetBits[static_cast<std::size_t>(field)];
+  const auto mode = static_cast<int>(bits.get(4));
+  if (mode == kModeShared) {
+    const std::uint32_t set = bits.get(shared.indexBits());
+    if (bits.overrun() || set >= shared.sets.size()) return nullptr;
+    return &shared.sets[set][static_cast<std::size_t>(field)];
+  }
+  return readTableAfterMode(bits, own, alphabetBits, mode) ? &own : nullptr;
+}
+
+namespace {
+
+// A packet sorted and turned into symbols, before its tables are chosen.
+struct PacketPlan {
+  std::vector<std::pair<std::uint32_t, std::uint64_t>> sorted;  // coded Morton code, record
+  std::vector<std::array<std::uint32_t, kFields>> symbols;
+  std::array<std::vector<std::uint32_t>, kFields> counts;
+  std::uint32_t aMin = 0;
+  int aBits = 0;
+  std::uint8_t flags = 0;
+};
+
+PacketPlan planPacket(std::span<const std::uint64_t> records, const PositionGrid& grid) {
   const std::size_t n = records.size();
   // Grid mode when every position of the packet lies on the grid.
   bool onGrid = grid.active;
@@ -169,7 +231,8 @@ void appendEntropyPayload(std::string& out, std::span<const std::uint64_t> recor
     const RecordFields f = unpackRecord(records[i]);
     onGrid = grid.indexOf[0][f.x] >= 0 && grid.indexOf[1][f.y] >= 0 && grid.indexOf[2][f.z] >= 0;
   }
-  std::vector<std::pair<std::uint32_t, std::uint64_t>> sorted;
+  PacketPlan plan;
+  auto& sorted = plan.sorted;
   sorted.reserve(n);
   std::uint32_t aMin = kMagnitudeSteps, aMax = 0;
   for (std::uint64_t r : records) {
@@ -210,8 +273,9 @@ void appendEntropyPayload(std::string& out, std::span<const std::uint64_t> recor
   const int aBits = bitLength(aMax - aMin);
 
   // Symbols per record: gap token, theta and phi deltas from the previous record, colour.
-  std::vector<std::array<std::uint32_t, kFields>> symbols(n);
-  std::array<std::vector<std::uint32_t>, kFields> counts;
+  auto& symbols = plan.symbols;
+  symbols.resize(n);
+  auto& counts = plan.counts;
   for (int k = 0; k < kFields; ++k) counts[k].assign(std::size_t{1} << kAlphabetBits[k], 0);
   std::uint32_t previousCode = 0, previousTheta = 0, previousPhi = 0;
   for (std::size_t i = 0; i < n; ++i) {
@@ -226,11 +290,48 @@ void appendEntropyPayload(std::string& out, std::span<const std::uint64_t> recor
     previousPhi = f.phi;
     for (int k = 0; k < kFields; ++k) ++counts[k][s[k]];
   }
-  std::array<FieldCoder, kFields> coders;
-  for (int k = 0; k < kFields; ++k) coders[k] = planField(counts[k], n, kAlphabetBits[k]);
+  plan.aMin = aMin;
+  plan.aBits = aBits;
+  plan.flags = static_cast<std::uint8_t>((onGrid ? kFlagGrid : 0) | (useBlocks ? kFlagBlocks : 0));
+  return plan;
+}
 
-  const auto flags =
-      static_cast<std::uint8_t>((onGrid ? kFlagGrid : 0) | (useBlocks ? kFlagBlocks : 0));
+}  // namespace
+
+std::array<std::vector<std::uint32_t>, kFields> packetSymbolCounts(
+    std::span<const std::uint64_t> records, const PositionGrid& grid) {
+  return planPacket(records, grid).counts;
+}
+
+void appendEntropyPayload(std::string& out, std::span<const std::uint64_t> records,
+                          const PositionGrid& grid, EntropyFieldBits* report, bool fast) {
+  const std::size_t n = records.size();
+  PacketPlan plan = planPacket(records, grid);
+  const auto& sorted = plan.sorted;
+  const auto& symbols = plan.symbols;
+  const auto& counts = plan.counts;
+  const std::uint32_t aMin = plan.aMin;
+  const int aBits = plan.aBits;
+  const std::uint8_t flags = plan.flags;
+  const bool useBlocks = flags & kFlagBlocks;
+  // Each field: its own table, or a shared one of the stream model where that is smaller.
+  std::array<FieldCoder, kFields> coders;
+  const int indexBits = grid.shared.indexBits();
+  for (int k = 0; k < kFields; ++k) {
+    double bits = 0;
+    coders[k] = planField(counts[k], n, kAlphabetBits[k], &bits);
+    for (std::size_t set = 0; set < grid.shared.sets.size(); ++set) {
+      const FieldCoder& shared = grid.shared.sets[set][static_cast<std::size_t>(k)];
+      const double with = sharedTableBits(shared, counts[k], n, kAlphabetBits[k], indexBits);
+      if (with < bits) {
+        bits = with;
+        coders[k] = shared;
+        coders[k].sharedSet = static_cast<int>(set);
+        coders[k].sharedIndexBits = indexBits;
+      }
+    }
+  }
+
   std::string payload;
   if (fast) {
     appendFastLayout(payload, PacketSymbols{sorted, symbols, &coders, aMin, aBits, flags});
@@ -238,7 +339,7 @@ void appendEntropyPayload(std::string& out, std::span<const std::uint64_t> recor
     std::string bitBytes;
     BitWriter bits(bitBytes);
     for (int k = 0; k < kFields; ++k) writeTable(bits, coders[k], kAlphabetBits[k]);
-    previousCode = 0;
+    std::uint32_t previousCode = 0;
     for (std::size_t i = 0; i < n; ++i) {
       const auto& s = symbols[i];
       const std::uint32_t gap = sorted[i].first - previousCode;
@@ -316,16 +417,17 @@ bool decodeEntropyPayload(std::string_view payload, std::size_t count, const Pos
   const unsigned char* bitsBegin = ransBegin + ransSize;
   const unsigned char* end = begin + payload.size();
   BitReader bits(bitsBegin, end);
-  std::array<FieldCoder, kFields> coders;
+  std::array<FieldCoder, kFields> own;
+  std::array<const FieldCoder*, kFields> coders{};
   for (int k = 0; k < kFields; ++k)
-    if (!readTable(bits, coders[k], kAlphabetBits[k])) return false;
+    if (!(coders[k] = readPacketTable(bits, own[k], k, grid.shared))) return false;
   RansDecoder rans(ransBegin, bitsBegin);
   const bool useGrid = flags & kFlagGrid;
   const std::array<std::size_t, 3> limit = {useGrid ? grid.cellOf[0].size() : kPositionSteps,
                                             useGrid ? grid.cellOf[1].size() : kPositionSteps,
                                             useGrid ? grid.cellOf[2].size() : kPositionSteps};
   auto field = [&](int k) -> std::uint32_t {
-    const FieldCoder& c = coders[k];
+    const FieldCoder& c = *coders[k];
     if (c.mode == kModeConstant) return c.constant;
     if (c.mode == kModeRaw) return bits.get(kAlphabetBits[k]);
     return rans.get(c.model, kLane[k]);

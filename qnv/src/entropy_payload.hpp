@@ -14,9 +14,15 @@
 #include <string_view>
 #include <vector>
 
+#include <glm/vec3.hpp>
+
+#include "entropy_fields.hpp"
+
 namespace gs::qnv {
 struct StreamHeader;
-}
+struct DecodedVector;
+class Dequantizer;
+}  // namespace gs::qnv
 
 namespace gs::qnv::detail {
 
@@ -36,6 +42,10 @@ struct PositionGrid {
   int blockShift = 0;
   /// Morton codes of the occupied blocks' coordinates, strictly increasing (at most 2^21).
   std::vector<std::uint32_t> blocks;
+  /// Each occupied block's first index as X << 20 | Y << 10 | Z (for the decoders).
+  std::vector<std::uint32_t> blockOrigins;
+  /// The model's shared tables (docs/qnv-format.md, "Shared tables"), none without.
+  SharedTables shared;
   /// False when the header's model block does not decode (the stream is then refused).
   bool modelValid = true;
 
@@ -74,5 +84,31 @@ void appendEntropyPayload(std::string& out, std::span<const std::uint64_t> recor
 /// records and allocates only the fixed-size model tables.
 bool decodeEntropyPayload(std::string_view payload, std::size_t count, const PositionGrid& grid,
                           std::uint64_t* out);
+
+/// What a decoder needs to write DecodedVectors straight from a packet's fields, without
+/// 64-bit records between (the fast layout's decoder): the coordinate of each position
+/// index on each axis, for packets on the voxel grid (1024 entries, those past the grid's
+/// samples unused) and for packets of cells, and copies of the Dequantizer's direction (theta * 64
+/// + phi, 2048 unit normals), magnitude (32768) and RGBA8 colour (256) tables.
+struct VectorTables {
+  std::array<std::array<float, 1024>, 3> gridAxis{};  // voxel index -> coordinate
+  std::array<std::array<float, 1024>, 3> cellAxis{};  // cell -> coordinate
+  std::array<glm::vec3, 2048> direction{};
+  std::vector<float> magnitude;
+  std::array<std::uint32_t, 256> color{};
+
+  VectorTables(const Dequantizer& dequantizer, const PositionGrid& grid);
+};
+
+/// True when an entropy payload is in the fast layout (flag bit 2 of its first byte).
+inline bool isFastLayout(std::string_view payload) {
+  return !payload.empty() && (static_cast<unsigned char>(payload[0]) & 4u) != 0;
+}
+
+/// Decodes a fast-layout entropy payload of exactly `count` records straight into
+/// DecodedVectors `out[0..count)` (the records' Morton order), with the checks of
+/// decodeEntropyPayload: false on any inconsistency (out may then hold garbage).
+bool decodeFastVectors(std::string_view payload, std::size_t count, const PositionGrid& grid,
+                       const VectorTables& tables, DecodedVector* out);
 
 }  // namespace gs::qnv::detail

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "base/byte_order.hpp"
+#include "entropy_fields.hpp"
 #include "entropy_payload.hpp"
 #include "morton.hpp"
 #include "qnv/record.hpp"
@@ -17,7 +18,8 @@ using base::loadLe;
 
 namespace {
 
-constexpr std::uint8_t kModelOccupancy = 1;
+constexpr std::uint8_t kModelOccupancy = 1;        // kind bit: the occupied blocks
+constexpr std::uint8_t kModelSharedTables = 0x80;  // kind bit: shared tables follow
 constexpr int kMinBlockShift = 1, kMaxBlockShift = 7;
 constexpr std::uint64_t kMaxBlocks = std::uint64_t{1} << 21;  // blocks in the index space
 constexpr std::size_t kChunkRecords = 8191;                   // records per entropy payload
@@ -30,19 +32,19 @@ std::array<std::uint32_t, 3> blocksPerAxis(const PositionGrid& grid, int shift) 
   return n;
 }
 
-// Reads the occupancy model; false when anything is inconsistent.
-bool loadModel(PositionGrid& grid, std::string_view model) {
-  if (model.size() < kModelPreamble) return false;
-  const auto kind = loadLe<std::uint8_t>(model.data());
-  const int shift = loadLe<std::uint8_t>(model.data() + 1);
-  const auto count = loadLe<std::uint32_t>(model.data() + 2);
-  if (kind != kModelOccupancy || shift < kMinBlockShift || shift > kMaxBlockShift) return false;
+// Reads the occupancy part of a model (after its kind byte) from `at`, which it advances;
+// false when anything is inconsistent.
+bool loadOccupancy(PositionGrid& grid, std::string_view model, std::size_t& at) {
+  if (model.size() - at < kModelPreamble - 1) return false;
+  const int shift = loadLe<std::uint8_t>(model.data() + at);
+  const auto count = loadLe<std::uint32_t>(model.data() + at + 1);
+  at += kModelPreamble - 1;
+  if (shift < kMinBlockShift || shift > kMaxBlockShift) return false;
   const auto perAxis = blocksPerAxis(grid, shift);
   const std::uint64_t total = std::uint64_t{perAxis[0]} * perAxis[1] * perAxis[2];
   if (total > kMaxBlocks || count == 0 || count > total) return false;
   grid.blocks.clear();
   grid.blocks.reserve(count);
-  std::size_t at = kModelPreamble;
   std::vector<std::uint64_t> records;
   const PositionGrid cells;  // block coordinates are coded as plain cells
   while (grid.blocks.size() < count) {
@@ -64,15 +66,45 @@ bool loadModel(PositionGrid& grid, std::string_view model) {
       grid.blocks.push_back(code);
     }
   }
-  if (at != model.size()) return false;
   grid.blockShift = shift;
   return true;
 }
 
-// The model bytes for these sorted, distinct block codes at `shift`.
+// Reads the shared tables part (docs/qnv-format.md, "Shared tables") from `at`, which it
+// advances; false when anything is inconsistent.
+bool loadSharedTables(PositionGrid& grid, std::string_view model, std::size_t& at) {
+  if (model.size() - at < 4) return false;
+  const auto bytes = loadLe<std::uint32_t>(model.data() + at);
+  at += 4;
+  if (model.size() - at < bytes) return false;
+  const auto* begin = reinterpret_cast<const unsigned char*>(model.data() + at);
+  BitReader bits(begin, begin + bytes);
+  const std::uint32_t sets = bits.gamma();
+  if (bits.overrun() || sets > SharedTables::kMaxSets) return false;
+  grid.shared.sets.resize(sets);
+  for (auto& set : grid.shared.sets)
+    for (int k = 0; k < kFields; ++k)
+      if (!readTable(bits, set[static_cast<std::size_t>(k)], kAlphabetBits[k]) || bits.overrun())
+        return false;
+  at += bytes;
+  return (bits.bitsConsumed() + 7) / 8 == bytes;
+}
+
+// Reads a model: its kind byte, then the parts it names; false when anything is
+// inconsistent.
+bool loadModel(PositionGrid& grid, std::string_view model) {
+  if (model.empty()) return false;
+  const auto kind = loadLe<std::uint8_t>(model.data());
+  if ((kind & ~(kModelOccupancy | kModelSharedTables)) != 0 || kind == 0) return false;
+  std::size_t at = 1;
+  if ((kind & kModelOccupancy) && !loadOccupancy(grid, model, at)) return false;
+  if ((kind & kModelSharedTables) && !loadSharedTables(grid, model, at)) return false;
+  return at == model.size();
+}
+
+// The occupancy part (after the kind byte) for these sorted, distinct block codes at `shift`.
 std::string encodeModel(const std::vector<std::uint32_t>& blocks, int shift) {
   std::string out;
-  appendLe<std::uint8_t>(out, kModelOccupancy);
   appendLe<std::uint8_t>(out, static_cast<std::uint8_t>(shift));
   appendLe<std::uint32_t>(out, static_cast<std::uint32_t>(blocks.size()));
   std::vector<std::uint64_t> records;
@@ -123,13 +155,22 @@ PositionGrid PositionGrid::forHeader(const StreamHeader& header) {
   }
   if (!header.model.empty() && !loadModel(grid, header.model)) {
     grid.modelValid = false;
+    grid.shared.sets.clear();
     grid.blocks.clear();
     grid.blockShift = 0;
   }
+  grid.blockOrigins.reserve(grid.blocks.size());
+  for (std::uint32_t block : grid.blocks)
+    grid.blockOrigins.push_back((compact3(block) << (20 + grid.blockShift)) |
+                                (compact3(block >> 1) << (10 + grid.blockShift)) |
+                                (compact3(block >> 2) << grid.blockShift));
   return grid;
 }
 
-std::string buildStreamModel(const StreamHeader& header, std::span<const std::uint64_t> records) {
+namespace {
+
+// The occupancy part (without the kind byte) at the block size that saves most, or empty.
+std::string chooseOccupancy(const StreamHeader& header, std::span<const std::uint64_t> records) {
   StreamHeader plain = header;
   plain.model.clear();
   const PositionGrid grid = PositionGrid::forHeader(plain);
@@ -163,13 +204,98 @@ std::string buildStreamModel(const StreamHeader& header, std::span<const std::ui
     // Positions cost about log2(space / n) bits each: the occupied blocks shrink the space.
     const double saving = static_cast<double>(records.size()) *
                               std::log2(total / static_cast<double>(blocks.size())) -
-                          8.0 * static_cast<double>(model.size() + 8);
+                          8.0 * static_cast<double>(model.size() + 9);
     if (saving > bestSaving && model.size() <= kMaxModelBytes) {
       bestSaving = saving;
       best = std::move(model);
     }
   }
   return best;
+}
+
+// The shared tables part (docs/qnv-format.md, "Shared tables"): one set of tables per
+// group of G consecutive packets, G chosen by the bits it saves against every packet's own
+// tables; empty when none saves any.
+std::string chooseSharedTables(const StreamHeader& header, std::span<const std::uint64_t> records,
+                               const PositionGrid& grid) {
+  const std::size_t perPacket = header.packetBytes / 8;
+  if (perPacket == 0 || records.empty()) return {};
+  using Counts = std::array<std::vector<std::uint32_t>, kFields>;
+  std::vector<Counts> counts;
+  std::vector<std::size_t> sizes;
+  std::vector<double> ownBits;  // per packet and field
+  for (std::size_t first = 0; first < records.size(); first += perPacket) {
+    const auto packet = records.subspan(first, std::min(perPacket, records.size() - first));
+    counts.push_back(packetSymbolCounts(packet, grid));
+    sizes.push_back(packet.size());
+    for (int k = 0; k < kFields; ++k) {
+      double bits = 0;
+      planField(counts.back()[static_cast<std::size_t>(k)], packet.size(), kAlphabetBits[k], &bits);
+      ownBits.push_back(bits);
+    }
+  }
+  const std::size_t packets = counts.size();
+  double bestSaving = 0;
+  std::string best;
+  for (std::size_t group = 1; group <= packets; group *= 2) {
+    const std::size_t sets = (packets + group - 1) / group;
+    if (sets > SharedTables::kMaxSets) continue;
+    SharedTables shared;
+    shared.sets.resize(sets);
+    for (std::size_t set = 0; set < sets; ++set)
+      for (std::size_t k = 0; k < kFields; ++k) {
+        std::vector<std::uint32_t> sum(std::size_t{1} << kAlphabetBits[k], 0);
+        std::size_t n = 0;
+        for (std::size_t p = set * group; p < std::min(packets, (set + 1) * group); ++p) {
+          for (std::size_t s = 0; s < sum.size(); ++s) sum[s] += counts[p][k][s];
+          n += sizes[p];
+        }
+        shared.sets[set][k] = planField(sum, n, kAlphabetBits[k]);
+      }
+    std::string part;
+    BitWriter bits(part);
+    bits.gamma(static_cast<std::uint32_t>(sets));
+    for (const auto& set : shared.sets)
+      for (int k = 0; k < kFields; ++k)
+        writeTable(bits, set[static_cast<std::size_t>(k)], kAlphabetBits[k]);
+    bits.finish();
+    double saving = -8.0 * static_cast<double>(part.size() + 4);
+    for (std::size_t p = 0; p < packets; ++p)
+      for (std::size_t k = 0; k < kFields; ++k) {
+        const double own = ownBits[p * kFields + k];
+        const double with = sharedTableBits(shared.sets[p / group][k], counts[p][k], sizes[p],
+                                            kAlphabetBits[k], shared.indexBits());
+        saving += std::max(0.0, own - with);
+      }
+    if (saving > bestSaving) {
+      bestSaving = saving;
+      best.clear();
+      appendLe<std::uint32_t>(best, static_cast<std::uint32_t>(part.size()));
+      best += part;
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+std::string buildStreamModel(const StreamHeader& header, std::span<const std::uint64_t> records) {
+  StreamHeader plain = header;
+  plain.model.clear();
+  std::string occupancy = chooseOccupancy(plain, records);
+  std::string model;
+  appendLe<std::uint8_t>(model, kModelOccupancy);
+  model += occupancy;
+  StreamHeader withOccupancy = plain;
+  if (!occupancy.empty()) withOccupancy.model = model;
+  const std::string tables =
+      chooseSharedTables(plain, records, PositionGrid::forHeader(withOccupancy));
+  std::string out;
+  appendLe<std::uint8_t>(out, static_cast<std::uint8_t>((occupancy.empty() ? 0 : kModelOccupancy) |
+                                                        (tables.empty() ? 0 : kModelSharedTables)));
+  out += occupancy;
+  out += tables;
+  return out.size() > 1 && out.size() <= kMaxModelBytes ? out : std::string();
 }
 
 }  // namespace gs::qnv::detail

@@ -73,6 +73,37 @@ class BitReader {
   }
   /// Elias gamma, at most 31 leading zeros; more sets the overrun flag and returns 1.
   std::uint32_t gamma() {
+    if (fill_ < 63) refill();
+    // Fast path: the whole code (n zeros, then n + 1 bits from the top) in the window.
+    const auto window = static_cast<std::uint32_t>(acc_);
+    if (window != 0) {
+      const int n = std::countr_zero(window);
+      if (2 * n + 1 <= fill_) {
+        const auto bits = static_cast<std::uint32_t>((acc_ >> n) & ((std::uint64_t{2} << n) - 1));
+        acc_ >>= 2 * n + 1;
+        fill_ -= 2 * n + 1;
+        return reverseBits(bits) >> (31 - n);  // the first bit read is the top one
+      }
+    }
+    return gammaSlow();
+  }
+  bool overrun() const { return overrun_; }
+  /// Bits handed out so far.
+  std::size_t bitsConsumed() const {
+    return static_cast<std::size_t>(p_ - begin_) * 8 - static_cast<std::size_t>(fill_);
+  }
+  /// Bytes not yet touched by the reader (whole bytes still in the accumulator excluded).
+  std::size_t bytesLeft() const { return static_cast<std::size_t>(end_ - p_); }
+
+ private:
+  static std::uint32_t reverseBits(std::uint32_t v) {
+    v = ((v >> 1) & 0x55555555u) | ((v & 0x55555555u) << 1);
+    v = ((v >> 2) & 0x33333333u) | ((v & 0x33333333u) << 2);
+    v = ((v >> 4) & 0x0f0f0f0fu) | ((v & 0x0f0f0f0fu) << 4);
+    return __builtin_bswap32(v);
+  }
+  // Bit by bit: codes near the end of the bits, or longer than the window.
+  std::uint32_t gammaSlow() {
     int n = 0;
     while (get(1) == 0) {
       if (++n > 31 || overrun_) {
@@ -84,15 +115,6 @@ class BitReader {
     for (int i = 0; i < n; ++i) v = (v << 1) | get(1);
     return v;
   }
-  bool overrun() const { return overrun_; }
-  /// Bits handed out so far.
-  std::size_t bitsConsumed() const {
-    return static_cast<std::size_t>(p_ - begin_) * 8 - static_cast<std::size_t>(fill_);
-  }
-  /// Bytes not yet touched by the reader (whole bytes still in the accumulator excluded).
-  std::size_t bytesLeft() const { return static_cast<std::size_t>(end_ - p_); }
-
- private:
   void refill() {
     if (end_ - p_ >= 8) {  // the fast path: one unaligned little-endian load
       std::uint64_t word;

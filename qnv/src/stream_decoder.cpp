@@ -79,6 +79,7 @@ bool StreamDecoder::feed(std::string_view chunk, const Sink& sink) {
     }
     header_ = std::move(header);
     dequantizer_.emplace(*header_);
+    vectorTables_ = std::make_shared<const detail::VectorTables>(*dequantizer_, *grid);
     grid_ = std::move(grid);
     offset_ += header_->headerBytes;
   }
@@ -147,7 +148,13 @@ bool StreamDecoder::parsePackets(const Sink& sink) {
       continue;
     }
     scratch_.resize(count);
-    if (encoding != 0) {
+    if (encoding == 2 && detail::isFastLayout(payload)) {
+      // Straight to vectors, no records between (docs/qnv-format.md, "Fast layout").
+      if (!detail::decodeFastVectors(payload, count, *grid_, *vectorTables_, scratch_.data())) {
+        skipDamaged("undecodable entropy payload");
+        continue;
+      }
+    } else if (encoding != 0) {
       records_.resize(count);
       if (encoding == 1 ? !detail::decodeCompactPayload(payload, count, records_.data())
                         : !detail::decodeEntropyPayload(payload, count, *grid_, records_.data())) {

@@ -2,12 +2,16 @@
 // stream model block read from the input (docs/qnv-format.md, "Compact coding" and "Stream model").
 // Input: byte 0 picks the header (bit 0: a 48 x 44 x 24 volume, its voxel grid, else a surface);
 // bytes 1-2 the record count - 1 (mod 8191); bytes 3-4 the model's length L (0: no model); then L
-// model bytes (as far as the input goes), then the payload.
+// model bytes (as far as the input goes), then the payload. A fast-layout payload is also decoded
+// straight to vectors, which must agree with the records: the same verdict, the same vectors.
 #include <algorithm>
+#include <cstdlib>
+#include <cstring>
 #include <vector>
 
 #include "entropy_payload.hpp"
 #include "fuzz_support.hpp"
+#include "qnv/decoder.hpp"
 #include "qnv/stream.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -23,7 +27,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const auto grid = gs::qnv::detail::PositionGrid::forHeader(header);
   if (!grid.modelValid) return 0;
   std::vector<std::uint64_t> out(count);
-  gs::qnv::detail::decodeEntropyPayload(
-      gs::fuzz::view(data + 5 + modelBytes, size - 5 - modelBytes), count, grid, out.data());
+  const std::string_view payload = gs::fuzz::view(data + 5 + modelBytes, size - 5 - modelBytes);
+  const bool records = gs::qnv::detail::decodeEntropyPayload(payload, count, grid, out.data());
+  if (gs::qnv::detail::isFastLayout(payload)) {
+    const gs::qnv::Dequantizer dequantizer(header);
+    const gs::qnv::detail::VectorTables tables(dequantizer, grid);
+    std::vector<gs::qnv::DecodedVector> vectors(count), expected(count);
+    const bool direct =
+        gs::qnv::detail::decodeFastVectors(payload, count, grid, tables, vectors.data());
+    if (direct != records) std::abort();
+    dequantizer.decode(out.data(), count, expected.data());
+    if (records && std::memcmp(vectors.data(), expected.data(), count * sizeof expected[0]) != 0)
+      std::abort();
+  }
   return 0;
 }

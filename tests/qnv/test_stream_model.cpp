@@ -247,3 +247,35 @@ TEST_CASE("damaged packets of a stream with a model cost only their own vectors"
   }
   CHECK(packet > 3);
 }
+
+TEST_CASE("shared tables in the model replace the packets' own and keep every record",
+          "[qnv][model][shared]") {
+  for (const EncodedVectors* e : {&shellVectors(), &capVectors()}) {
+    // Small packets (these shapes hold 2,500-3,000 vectors): tables there cost most.
+    for (std::uint32_t bytes : {688u, 1376u}) {
+      INFO("packet bytes " << bytes << ", " << e->records.size() << " vectors");
+      const Decoded plain = decode(writeStream(*e, {bytes, PacketEncoding::plain}), 1 << 16);
+      for (bool fast : {false, true}) {
+        WriteOptions options{bytes, PacketEncoding::entropy};
+        options.streamModel = true;
+        options.fastEntropy = fast;
+        const std::string s = writeStream(*e, options);
+        std::string why;
+        const auto h = parseHeader(s, "shared.qnv", why);
+        REQUIRE(h);
+        REQUIRE(!h->model.empty());
+        // The kind byte says: shared tables follow (bit 7; docs/qnv-format.md).
+        CHECK((static_cast<unsigned char>(h->model[0]) & 0x80u) != 0);
+        const Decoded d = decode(s, 777);
+        REQUIRE(d.finished);
+        CHECK(d.stats.packetsCorrupt == 0);
+        CHECK(d.byFirst == plain.byFirst);
+        // The packets' tables shrink to references.
+        const CodingBits own = entropyCodingBits(*e, bytes, false, fast);
+        const CodingBits shared = entropyCodingBits(*e, bytes, true, fast);
+        CHECK(shared.tables * 2 < own.tables);
+        CHECK(shared.total() < own.total());
+      }
+    }
+  }
+}

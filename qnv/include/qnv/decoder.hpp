@@ -25,7 +25,8 @@ namespace gs::qnv {
 
 namespace detail {
 struct PositionGrid;
-}
+struct VectorTables;
+}  // namespace detail
 
 /// One decoded vector, 32 bytes, laid out for a GPU vertex buffer: position (world
 /// units, the cell centre), magnitude A (area in square units for surfaces, gradient
@@ -49,6 +50,16 @@ class Dequantizer {
   /// Decodes `count` little-endian records straight from stream bytes (8 * count bytes).
   void decodeBytes(const char* bytes, std::size_t count, DecodedVector* out) const;
   DecodedVector decodeOne(std::uint64_t record) const;
+
+  /// The tables themselves, for decoders that write DecodedVectors without records:
+  /// the coordinate of each cell along axis `a` (0..2; 1024 entries, world units).
+  const std::array<float, kPositionSteps>& axis(int a) const { return axis_[a]; }
+  /// The unit normal of each direction cell, theta * 64 + phi (2048 entries).
+  const glm::vec3* directions() const { return direction_.data(); }
+  /// The magnitude of each A code (32768 entries).
+  const float* magnitudes() const { return magnitude_.data(); }
+  /// The RGBA8 colour of each palette index, R in the low byte (256 entries).
+  const std::uint32_t* colors() const { return color_.data(); }
 
  private:
   std::array<std::array<float, kPositionSteps>, 3> axis_{};
@@ -119,7 +130,8 @@ class StreamDecoder {
   std::uint64_t bufferBase_ = 0;  // stream offset of buffer_[0]
   std::optional<StreamHeader> header_;
   std::optional<Dequantizer> dequantizer_;
-  std::shared_ptr<const detail::PositionGrid> grid_;  // entropy packets' voxel grid
+  std::shared_ptr<const detail::PositionGrid> grid_;          // entropy packets' voxel grid
+  std::shared_ptr<const detail::VectorTables> vectorTables_;  // fast entropy packets
   DecoderStats stats_;
   std::string error_;
   std::vector<std::string> warnings_;
