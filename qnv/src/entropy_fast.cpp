@@ -299,11 +299,14 @@ bool decodeFastLayout(std::string_view payload, std::size_t count, const Positio
   const std::size_t gapSize = loadLe<std::uint16_t>(begin + 7);
   const bool useGrid = flags & kFlagGrid;
   const bool useBlocks = flags & kFlagBlocks;
+  const bool useDirections = flags & kFlagBlockDirections;
   const std::size_t lanes = std::size_t{1} << std::min(lanesLog2, kMaxLanesLog2);
-  if (flags > (kFlagGrid | kFlagBlocks | kFlagFast) || aMin >= kMagnitudeSteps ||
-      aBits > kMagnitudeBits || lanesLog2 > kMaxLanesLog2 ||
+  if (flags > (kFlagGrid | kFlagBlocks | kFlagFast | kFlagBlockDirections) ||
+      aMin >= kMagnitudeSteps || aBits > kMagnitudeBits || lanesLog2 > kMaxLanesLog2 ||
       ransSize + gapSize > payload.size() - kFastPreambleBytes || ransSize < 4 * lanes ||
-      (useGrid && !grid.active) || (useBlocks && (grid.blockShift == 0 || useGrid != grid.active)))
+      (useGrid && !grid.active) ||
+      (useBlocks && (grid.blockShift == 0 || useGrid != grid.active)) ||
+      (useDirections && (!useBlocks || grid.blockDirections.size() != grid.blocks.size())))
     return false;
   const unsigned char* ransBegin = begin + kFastPreambleBytes;
   const unsigned char* ransEnd = ransBegin + ransSize;
@@ -366,7 +369,8 @@ bool decodeFastLayout(std::string_view payload, std::size_t count, const Positio
   // Rebuilds the records. Range errors are checked once at the end (the code only grows,
   // theta and A are ORed into `seen`, grid overflows into `outside`), indices clamped
   // meanwhile.
-  const auto records = [&]<bool kBlocks, bool kGrid>() {
+  const std::uint16_t* directions = grid.blockDirections.data();
+  const auto records = [&]<bool kBlocks, bool kGrid, bool kDirections>() {
     std::uint64_t code = 0, gapPos = 0;
     std::uint32_t theta = 0, phi = 0, seen = 0, outside = 0;  // outside: ORed cells
     for (std::size_t i = 0; i < count; ++i) {
@@ -378,8 +382,14 @@ bool decodeFastLayout(std::string_view payload, std::size_t count, const Positio
       if constexpr (kBlocks)
         m = (blocks[std::min<std::size_t>(code >> blockBits, lastBlock)] << blockBits) |
             (m & lowMask);
-      theta = (theta + sym[kTheta][i]) & 63u;
-      phi = (phi + sym[kPhi][i]) & 63u;
+      if constexpr (kDirections) {  // from the block's direction (model kind 2)
+        const std::uint32_t d = directions[std::min<std::size_t>(code >> blockBits, lastBlock)];
+        theta = ((d >> 6) + sym[kTheta][i]) & 63u;
+        phi = (d + sym[kPhi][i]) & 63u;
+      } else {
+        theta = (theta + sym[kTheta][i]) & 63u;
+        phi = (phi + sym[kPhi][i]) & 63u;
+      }
       const std::uint32_t a =
           aMin + (static_cast<std::uint32_t>(
                       peekBits(bitBase, bitSize, aPos + i * static_cast<std::uint64_t>(aBits))) &
@@ -399,10 +409,13 @@ bool decodeFastLayout(std::string_view payload, std::size_t count, const Positio
     return code < codeLimit && (seen & ((32u << 16) | 32768u)) == 0 && (outside & 0x8000u) == 0 &&
            (gapPos + 7) / 8 == gapSize;
   };
-  return useBlocks ? (useGrid ? records.template operator()<true, true>()
-                              : records.template operator()<true, false>())
-                   : (useGrid ? records.template operator()<false, true>()
-                              : records.template operator()<false, false>());
+  if (useDirections)
+    return useGrid ? records.template operator()<true, true, true>()
+                   : records.template operator()<true, false, true>();
+  return useBlocks ? (useGrid ? records.template operator()<true, true, false>()
+                              : records.template operator()<true, false, false>())
+                   : (useGrid ? records.template operator()<false, true, false>()
+                              : records.template operator()<false, false, false>());
 }
 
 }  // namespace gs::qnv::detail

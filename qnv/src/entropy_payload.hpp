@@ -36,6 +36,9 @@ struct PositionGrid {
   int blockShift = 0;
   /// Morton codes of the occupied blocks' coordinates, strictly increasing (at most 2^21).
   std::vector<std::uint32_t> blocks;
+  /// Model kind 2 only (else empty): each occupied block's direction cell, theta << 6 | phi
+  /// (theta < 32), in the order of `blocks`; packets with flag bit 3 predict from it.
+  std::vector<std::uint16_t> blockDirections;
   /// False when the header's model block does not decode (the stream is then refused).
   bool modelValid = true;
 
@@ -50,8 +53,14 @@ struct PositionGrid {
   std::int64_t blockRank(std::uint32_t block) const;
 };
 
-/// The stream model block for `records` (stream order) under `header`: the occupied
-/// blocks at the block size that saves most; empty when no model saves bytes.
+/// Stream model blocks worth writing `records` (stream order) under `header` with, for the
+/// writer to try in turn: first the occupied blocks (kind 1) at the block size whose
+/// estimated saving is largest, then the occupied blocks with their mean directions
+/// (kind 2) at that size and the sizes either side. Empty when no model saves bytes (or
+/// a record is off the volume's grid).
+std::vector<std::string> streamModelCandidates(const StreamHeader& header,
+                                               std::span<const std::uint64_t> records);
+/// The first of streamModelCandidates (kind 1), or empty.
 std::string buildStreamModel(const StreamHeader& header, std::span<const std::uint64_t> records);
 
 /// Where the bits of entropy payloads go (the rANS fields at their model cost).

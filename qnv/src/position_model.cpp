@@ -1,8 +1,12 @@
 // The position grid of a stream and its stream model block (docs/qnv-format.md, "Compact
 // coding" and "Stream model"): the voxel grid of a volume, and the occupied blocks of the
-// index space, so that entropy packets code positions among occupied blocks only.
+// index space, so that entropy packets code positions among occupied blocks only, and
+// (model kind 2) each occupied block's mean direction, from which packets may code their
+// directions.
 #include <algorithm>
 #include <cmath>
+
+#include <glm/glm.hpp>
 
 #include "base/byte_order.hpp"
 #include "entropy_payload.hpp"
@@ -18,6 +22,7 @@ using base::loadLe;
 namespace {
 
 constexpr std::uint8_t kModelOccupancy = 1;
+constexpr std::uint8_t kModelDirections = 2;  // occupied blocks with their mean directions
 constexpr int kMinBlockShift = 1, kMaxBlockShift = 7;
 constexpr std::uint64_t kMaxBlocks = std::uint64_t{1} << 21;  // blocks in the index space
 constexpr std::size_t kChunkRecords = 8191;                   // records per entropy payload
@@ -36,12 +41,16 @@ bool loadModel(PositionGrid& grid, std::string_view model) {
   const auto kind = loadLe<std::uint8_t>(model.data());
   const int shift = loadLe<std::uint8_t>(model.data() + 1);
   const auto count = loadLe<std::uint32_t>(model.data() + 2);
-  if (kind != kModelOccupancy || shift < kMinBlockShift || shift > kMaxBlockShift) return false;
+  if ((kind != kModelOccupancy && kind != kModelDirections) || shift < kMinBlockShift ||
+      shift > kMaxBlockShift)
+    return false;
   const auto perAxis = blocksPerAxis(grid, shift);
   const std::uint64_t total = std::uint64_t{perAxis[0]} * perAxis[1] * perAxis[2];
   if (total > kMaxBlocks || count == 0 || count > total) return false;
   grid.blocks.clear();
   grid.blocks.reserve(count);
+  grid.blockDirections.clear();
+  if (kind == kModelDirections) grid.blockDirections.reserve(count);
   std::size_t at = kModelPreamble;
   std::vector<std::uint64_t> records;
   const PositionGrid cells;  // block coordinates are coded as plain cells
@@ -56,12 +65,15 @@ bool loadModel(PositionGrid& grid, std::string_view model) {
     at += bytes;
     for (std::uint64_t r : records) {
       const RecordFields f = unpackRecord(r);
-      if (f.x >= perAxis[0] || f.y >= perAxis[1] || f.z >= perAxis[2] || f.theta || f.phi || f.a ||
-          f.c)
+      // Kind 1 has no directions; in kind 2 the payload decoder already holds theta < 32.
+      if (f.x >= perAxis[0] || f.y >= perAxis[1] || f.z >= perAxis[2] || f.a || f.c ||
+          (kind == kModelOccupancy && (f.theta || f.phi)))
         return false;
       const std::uint32_t code = spread3(f.x) | (spread3(f.y) << 1) | (spread3(f.z) << 2);
       if (!grid.blocks.empty() && code <= grid.blocks.back()) return false;
       grid.blocks.push_back(code);
+      if (kind == kModelDirections)
+        grid.blockDirections.push_back(static_cast<std::uint16_t>((f.theta << 6) | f.phi));
     }
   }
   if (at != model.size()) return false;
@@ -69,10 +81,12 @@ bool loadModel(PositionGrid& grid, std::string_view model) {
   return true;
 }
 
-// The model bytes for these sorted, distinct block codes at `shift`.
-std::string encodeModel(const std::vector<std::uint32_t>& blocks, int shift) {
+// The model bytes for these sorted, distinct block codes at `shift`: kind 2 when
+// `directions` (theta << 6 | phi per block) is given, else kind 1.
+std::string encodeModel(const std::vector<std::uint32_t>& blocks, int shift,
+                        const std::vector<std::uint16_t>* directions = nullptr) {
   std::string out;
-  appendLe<std::uint8_t>(out, kModelOccupancy);
+  appendLe<std::uint8_t>(out, directions ? kModelDirections : kModelOccupancy);
   appendLe<std::uint8_t>(out, static_cast<std::uint8_t>(shift));
   appendLe<std::uint32_t>(out, static_cast<std::uint32_t>(blocks.size()));
   std::vector<std::uint64_t> records;
@@ -85,6 +99,10 @@ std::string encodeModel(const std::vector<std::uint32_t>& blocks, int shift) {
       f.x = static_cast<std::uint16_t>(compact3(blocks[i]));
       f.y = static_cast<std::uint16_t>(compact3(blocks[i] >> 1));
       f.z = static_cast<std::uint16_t>(compact3(blocks[i] >> 2));
+      if (directions) {
+        f.theta = static_cast<std::uint8_t>((*directions)[i] >> 6);
+        f.phi = static_cast<std::uint8_t>((*directions)[i] & 63u);
+      }
       records.push_back(packRecord(f));
     }
     payload.clear();
@@ -124,18 +142,21 @@ PositionGrid PositionGrid::forHeader(const StreamHeader& header) {
   if (!header.model.empty() && !loadModel(grid, header.model)) {
     grid.modelValid = false;
     grid.blocks.clear();
+    grid.blockDirections.clear();
     grid.blockShift = 0;
   }
   return grid;
 }
 
-std::string buildStreamModel(const StreamHeader& header, std::span<const std::uint64_t> records) {
+std::vector<std::string> streamModelCandidates(const StreamHeader& header,
+                                               std::span<const std::uint64_t> records) {
   StreamHeader plain = header;
   plain.model.clear();
   const PositionGrid grid = PositionGrid::forHeader(plain);
   if (records.empty()) return {};
-  // Index-space Morton codes of all records; none when some record is off the grid.
-  std::vector<std::uint32_t> codes;
+  // Index-space Morton codes of all records with their direction cells, sorted; none when
+  // some record is off the grid.
+  std::vector<std::pair<std::uint32_t, std::uint16_t>> codes;
   codes.reserve(records.size());
   for (std::uint64_t r : records) {
     const RecordFields f = unpackRecord(r);
@@ -147,18 +168,25 @@ std::string buildStreamModel(const StreamHeader& header, std::span<const std::ui
         q[a] = static_cast<std::uint32_t>(index);
       }
     }
-    codes.push_back(spread3(q[0]) | (spread3(q[1]) << 1) | (spread3(q[2]) << 2));
+    codes.emplace_back(spread3(q[0]) | (spread3(q[1]) << 1) | (spread3(q[2]) << 2),
+                       static_cast<std::uint16_t>((f.theta << 6) | f.phi));
   }
   std::sort(codes.begin(), codes.end());
+  const auto occupied = [&](int shift) {
+    std::vector<std::uint32_t> blocks;
+    for (const auto& c : codes)
+      if (blocks.empty() || blocks.back() != c.first >> (3 * shift))
+        blocks.push_back(c.first >> (3 * shift));
+    return blocks;
+  };
   std::string best;
+  int bestShift = 0;
   double bestSaving = 0;
   for (int shift = kMinBlockShift; shift <= kMaxBlockShift; ++shift) {
-    std::vector<std::uint32_t> blocks;
-    for (std::uint32_t c : codes)
-      if (blocks.empty() || blocks.back() != c >> (3 * shift)) blocks.push_back(c >> (3 * shift));
     const auto perAxis = blocksPerAxis(grid, shift);
     const double total = static_cast<double>(perAxis[0]) * perAxis[1] * perAxis[2];
     if (total > static_cast<double>(kMaxBlocks)) continue;
+    const std::vector<std::uint32_t> blocks = occupied(shift);
     std::string model = encodeModel(blocks, shift);
     // Positions cost about log2(space / n) bits each: the occupied blocks shrink the space.
     const double saving = static_cast<double>(records.size()) *
@@ -167,9 +195,52 @@ std::string buildStreamModel(const StreamHeader& header, std::span<const std::ui
     if (saving > bestSaving && model.size() <= kMaxModelBytes) {
       bestSaving = saving;
       best = std::move(model);
+      bestShift = shift;
     }
   }
-  return best;
+  if (best.empty()) return {};
+  std::vector<std::string> out;
+  out.push_back(std::move(best));
+  // Kind 2 at the chosen block size and its neighbours: each block's direction is the
+  // cell of the sum of its vectors' unit normals (cell centres), which the packets' block
+  // directions then predict.
+  std::array<glm::vec3, kDirectionCells> unit;
+  for (std::uint32_t d = 0; d < kDirectionCells; ++d)
+    unit[d] = reconstructDirection(d >> 6, d & 63u);
+  for (int shift : {bestShift, bestShift - 1, bestShift + 1}) {
+    if (shift < kMinBlockShift || shift > kMaxBlockShift) continue;
+    const auto perAxis = blocksPerAxis(grid, shift);
+    if (std::uint64_t{perAxis[0]} * perAxis[1] * perAxis[2] > kMaxBlocks) continue;
+    std::vector<std::uint32_t> blocks;
+    std::vector<std::uint16_t> directions;
+    glm::dvec3 sum(0);
+    std::uint16_t first = 0;
+    const auto close = [&] {
+      std::uint8_t t = 0, p = 0;
+      quantizeDirection(glm::vec3(sum), t, p);
+      directions.push_back(glm::length(sum) > 1e-3 ? static_cast<std::uint16_t>((t << 6) | p)
+                                                   : first);
+    };
+    for (const auto& c : codes) {
+      const std::uint32_t block = c.first >> (3 * shift);
+      if (blocks.empty() || blocks.back() != block) {
+        if (!blocks.empty()) close();
+        blocks.push_back(block);
+        sum = glm::dvec3(0);
+        first = c.second;
+      }
+      sum += glm::dvec3(unit[c.second]);
+    }
+    close();
+    std::string model = encodeModel(blocks, shift, &directions);
+    if (model.size() <= kMaxModelBytes) out.push_back(std::move(model));
+  }
+  return out;
+}
+
+std::string buildStreamModel(const StreamHeader& header, std::span<const std::uint64_t> records) {
+  std::vector<std::string> models = streamModelCandidates(header, records);
+  return models.empty() ? std::string() : std::move(models.front());
 }
 
 }  // namespace gs::qnv::detail
