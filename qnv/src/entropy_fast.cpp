@@ -294,11 +294,12 @@ namespace {
 // per field, and where the gap and magnitude bits lie.
 struct FastSymbols {
   alignas(64) std::uint8_t sym[kFields][kMaxRecords + 1];
-  std::uint32_t xyz[kMaxRecords];  // positions, X << 20 | Y << 10 | Z in the index space
+  std::uint32_t xyz[kMaxRecords];        // positions, X << 20 | Y << 10 | Z in the index space
+  std::uint16_t direction[kMaxRecords];  // flag bit 3: each record's block direction
   std::size_t count = 0;
   std::uint32_t aMin = 0;
   int aBits = 0;
-  bool useGrid = false, useBlocks = false;
+  bool useGrid = false, useBlocks = false, useDirections = false;
   const unsigned char* gapBase = nullptr;
   std::size_t gapSize = 0;
   const unsigned char* bitBase = nullptr;
@@ -320,11 +321,14 @@ bool decodeFastSymbols(std::string_view payload, std::size_t count, const Positi
   const std::size_t gapSize = loadLe<std::uint16_t>(begin + 7);
   const bool useGrid = flags & kFlagGrid;
   const bool useBlocks = flags & kFlagBlocks;
+  const bool useDirections = flags & kFlagBlockDirections;
   const std::size_t lanes = std::size_t{1} << std::min(lanesLog2, kMaxLanesLog2);
-  if (flags > (kFlagGrid | kFlagBlocks | kFlagFast) || aMin >= kMagnitudeSteps ||
-      aBits > kMagnitudeBits || lanesLog2 > kMaxLanesLog2 ||
+  if (flags > (kFlagGrid | kFlagBlocks | kFlagFast | kFlagBlockDirections) ||
+      aMin >= kMagnitudeSteps || aBits > kMagnitudeBits || lanesLog2 > kMaxLanesLog2 ||
       ransSize + gapSize > payload.size() - kFastPreambleBytes || ransSize < 4 * lanes ||
-      (useGrid && !grid.active) || (useBlocks && (grid.blockShift == 0 || useGrid != grid.active)))
+      (useGrid && !grid.active) ||
+      (useBlocks && (grid.blockShift == 0 || useGrid != grid.active)) ||
+      (useDirections && (!useBlocks || grid.blockDirections.size() != grid.blocks.size())))
     return false;
   if (useGrid)
     for (const auto& cells : grid.cellOrOutside)
@@ -336,6 +340,7 @@ bool decodeFastSymbols(std::string_view payload, std::size_t count, const Positi
   s.aBits = aBits;
   s.useGrid = useGrid;
   s.useBlocks = useBlocks;
+  s.useDirections = useDirections;
   s.gapBase = ransEnd;
   s.gapSize = gapSize;
   s.bitBase = s.gapBase + gapSize;
@@ -386,7 +391,10 @@ bool decodeFastSymbols(std::string_view payload, std::size_t count, const Positi
 // else cells); false when a code or index is out of range (all indices stay below 1024
 // meanwhile, so the second pass's lookups stay in bounds).
 template <bool kBlocks, bool kGrid>
-bool rebuildPositions(const FastSymbols& s, const PositionGrid& grid, std::uint32_t* xyzOut) {
+bool rebuildPositions(FastSymbols& s, const PositionGrid& grid) {
+  std::uint32_t* xyzOut = s.xyz;
+  std::uint16_t* directionOut = s.direction;
+  const std::uint16_t* directions = s.useDirections ? grid.blockDirections.data() : nullptr;
   const int blockBits = kBlocks ? 3 * grid.blockShift : 0;
   const std::uint64_t codeLimit =
       kBlocks ? std::uint64_t{grid.blocks.size()} << blockBits : std::uint64_t{1} << 30;
@@ -405,10 +413,11 @@ bool rebuildPositions(const FastSymbols& s, const PositionGrid& grid, std::uint3
     gapPos += kGapTables.width[t];
     code += kGapTables.base[t] | (extra & kGapTables.mask[t]);
     std::uint32_t xyz;
-    if constexpr (kBlocks)  // the block's origin plus the position inside it
-      xyz = origins[std::min<std::size_t>(code >> blockBits, lastBlock)] +
-            mortonToXyz(static_cast<std::uint32_t>(code) & lowMask);
-    else  // bits over 30 are dropped; the code is checked
+    if constexpr (kBlocks) {  // the block's origin plus the position inside it
+      const std::size_t rank = std::min<std::size_t>(code >> blockBits, lastBlock);
+      xyz = origins[rank] + mortonToXyz(static_cast<std::uint32_t>(code) & lowMask);
+      if (directions) directionOut[i] = directions[rank];
+    } else  // bits over 30 are dropped; the code is checked
       xyz = mortonToXyz(static_cast<std::uint32_t>(code));
     if constexpr (kGrid)
       outside |= static_cast<std::uint32_t>((xyz >> 20) >= sizeX) |
@@ -419,18 +428,14 @@ bool rebuildPositions(const FastSymbols& s, const PositionGrid& grid, std::uint3
   return code < codeLimit && outside == 0 && (gapPos + 7) / 8 == gapSize;
 }
 
-// Rebuilds the records from the symbols: the positions (above), then one pass handing
-// each record to emit(i, xyz, theta, phi, a, c). Theta and A are range-checked once at
-// the end (ORed into `seen`), so emit may see out-of-range values of a packet that is
-// then rejected, never indices out of its tables' bounds (theta <= 63, A <= 32767).
-template <typename Emit>
-bool rebuildRecords(const FastSymbols& s, const PositionGrid& grid, std::uint32_t* xyz,
-                    Emit&& emit) {
-  const bool positions = s.useBlocks ? (s.useGrid ? rebuildPositions<true, true>(s, grid, xyz)
-                                                  : rebuildPositions<true, false>(s, grid, xyz))
-                                     : (s.useGrid ? rebuildPositions<false, true>(s, grid, xyz)
-                                                  : rebuildPositions<false, false>(s, grid, xyz));
-  if (!positions) return false;
+// The second pass: directions (deltas from the previous record, or with flag bit 3 from
+// the record's block direction), magnitudes and colours, each record handed to
+// emit(i, xyz, theta, phi, a, c). Theta and A are range-checked once at the end (ORed into
+// `seen`), so emit may see out-of-range values of a packet that is then rejected, never
+// indices out of its tables' bounds (theta <= 63, A <= 32767).
+template <bool kDirections, typename Emit>
+bool emitRecords(const FastSymbols& s, Emit&& emit) {
+  const std::uint32_t* xyz = s.xyz;
   const std::uint8_t* thetas = s.sym[kTheta];
   const std::uint8_t* phis = s.sym[kPhi];
   const std::uint8_t* colors = s.sym[kColor];
@@ -442,8 +447,13 @@ bool rebuildRecords(const FastSymbols& s, const PositionGrid& grid, std::uint32_
   std::uint64_t aPos = s.aPos;
   std::uint32_t theta = 0, phi = 0, seen = 0;
   for (std::size_t i = 0; i < count; ++i, aPos += aBits) {
-    theta = (theta + thetas[i]) & 63u;
-    phi = (phi + phis[i]) & 63u;
+    if constexpr (kDirections) {  // from the block's direction (model kind 2)
+      theta = ((s.direction[i] >> 6) + thetas[i]) & 63u;
+      phi = (s.direction[i] + phis[i]) & 63u;
+    } else {
+      theta = (theta + thetas[i]) & 63u;
+      phi = (phi + phis[i]) & 63u;
+    }
     const std::uint32_t a =
         aMin + (static_cast<std::uint32_t>(peekBits(bitBase, bitSize, aPos)) & aMask);
     seen |= (theta << 16) | a;
@@ -451,6 +461,17 @@ bool rebuildRecords(const FastSymbols& s, const PositionGrid& grid, std::uint32_
   }
   static_assert(kThetaSteps == 32 && kMagnitudeSteps == 32768);
   return (seen & ((32u << 16) | 32768u)) == 0;
+}
+
+// Rebuilds the records from the symbols: the positions, then the rest (above).
+template <typename Emit>
+bool rebuildRecords(FastSymbols& s, const PositionGrid& grid, Emit&& emit) {
+  const bool positions = s.useBlocks ? (s.useGrid ? rebuildPositions<true, true>(s, grid)
+                                                  : rebuildPositions<true, false>(s, grid))
+                                     : (s.useGrid ? rebuildPositions<false, true>(s, grid)
+                                                  : rebuildPositions<false, false>(s, grid));
+  if (!positions) return false;
+  return s.useDirections ? emitRecords<true>(s, emit) : emitRecords<false>(s, emit);
 }
 
 }  // namespace
@@ -463,7 +484,7 @@ bool decodeFastLayout(std::string_view payload, std::size_t count, const Positio
   const std::uint16_t* cellY = grid.cellOrOutside[1].data();
   const std::uint16_t* cellZ = grid.cellOrOutside[2].data();
   const bool useGrid = s.useGrid;
-  return rebuildRecords(s, grid, s.xyz,
+  return rebuildRecords(s, grid,
                         [=](std::size_t i, std::uint32_t xyz, std::uint32_t theta,
                             std::uint32_t phi, std::uint32_t a, std::uint32_t c) {
                           if (useGrid)
@@ -497,7 +518,7 @@ bool decodeFastVectors(std::string_view payload, std::size_t count, const Positi
   const glm::vec3* direction = tables.direction.data();
   const float* magnitude = tables.magnitude.data();
   const std::uint32_t* color = tables.color.data();
-  return rebuildRecords(s, grid, s.xyz,
+  return rebuildRecords(s, grid,
                         [=](std::size_t i, std::uint32_t xyz, std::uint32_t theta,
                             std::uint32_t phi, std::uint32_t a, std::uint32_t c) {
                           DecodedVector& v = out[i];

@@ -28,6 +28,9 @@ inline constexpr int kModeShared = 14;
 inline constexpr std::uint8_t kFlagGrid = 1;
 inline constexpr std::uint8_t kFlagBlocks = 2;  // positions are ranks among the model's blocks
 inline constexpr std::uint8_t kFlagFast = 4;    // the fast layout (entropy_fast.cpp)
+/// Theta and phi are coded from the direction of the record's block (model kind 2), not
+/// from the previous record; only with kFlagBlocks.
+inline constexpr std::uint8_t kFlagBlockDirections = 8;
 
 /// How one field of a packet is coded.
 struct FieldCoder {
@@ -89,7 +92,7 @@ struct PacketSymbols {
   const std::array<FieldCoder, kFields>* coders = nullptr;
   std::uint32_t aMin = 0;
   int aBits = 0;
-  std::uint8_t flags = 0;  // kFlagGrid, kFlagBlocks
+  std::uint8_t flags = 0;  // kFlagGrid, kFlagBlocks, kFlagBlockDirections
 };
 
 /// Appends the fast layout of a packet's payload (flag bit 2) to `out`.

@@ -93,6 +93,7 @@ FieldCoder planField(const std::vector<std::uint32_t>& counts, std::size_t n, in
     }
   if (distinct == 1) {
     best.mode = kModeConstant;
+    if (bitsOut) *bitsOut = 4.0 + alphabetBits;
     return best;
   }
   double bestBits = 4.0 + static_cast<double>(n) * alphabetBits;  // raw
@@ -290,9 +291,39 @@ PacketPlan planPacket(std::span<const std::uint64_t> records, const PositionGrid
     previousPhi = f.phi;
     for (int k = 0; k < kFields; ++k) ++counts[k][s[k]];
   }
+  // With a kind-2 model, theta and phi may instead be coded from the record's block
+  // direction: whichever costs fewer bits with the packet's own tables.
+  bool useDirections = false;
+  if (useBlocks && !grid.blockDirections.empty()) {
+    std::array<double, kFields> planned{};
+    for (int k : {kTheta, kPhi}) planField(counts[k], n, kAlphabetBits[k], &planned[k]);
+    std::vector<std::array<std::uint32_t, 2>> alternative(n);
+    std::array<std::vector<std::uint32_t>, 2> altCounts;
+    for (auto& c : altCounts) c.assign(64, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+      const RecordFields f = unpackRecord(sorted[i].second);
+      const std::uint32_t d = grid.blockDirections[sorted[i].first >> blockBits];
+      alternative[i] = {(f.theta - (d >> 6)) & 63u, (f.phi - d) & 63u};
+      ++altCounts[0][alternative[i][0]];
+      ++altCounts[1][alternative[i][1]];
+    }
+    double thetaBits = 0, phiBits = 0;
+    planField(altCounts[0], n, kAlphabetBits[kTheta], &thetaBits);
+    planField(altCounts[1], n, kAlphabetBits[kPhi], &phiBits);
+    if (thetaBits + phiBits < planned[kTheta] + planned[kPhi]) {
+      useDirections = true;
+      counts[kTheta] = std::move(altCounts[0]);
+      counts[kPhi] = std::move(altCounts[1]);
+      for (std::size_t i = 0; i < n; ++i) {
+        symbols[i][kTheta] = alternative[i][0];
+        symbols[i][kPhi] = alternative[i][1];
+      }
+    }
+  }
   plan.aMin = aMin;
   plan.aBits = aBits;
-  plan.flags = static_cast<std::uint8_t>((onGrid ? kFlagGrid : 0) | (useBlocks ? kFlagBlocks : 0));
+  plan.flags = static_cast<std::uint8_t>((onGrid ? kFlagGrid : 0) | (useBlocks ? kFlagBlocks : 0) |
+                                         (useDirections ? kFlagBlockDirections : 0));
   return plan;
 }
 
@@ -408,9 +439,12 @@ bool decodeEntropyPayload(std::string_view payload, std::size_t count, const Pos
   const int aBits = loadLe<std::uint8_t>(payload.data() + 3);
   const auto ransSize = loadLe<std::uint16_t>(payload.data() + 4);
   const bool useBlocks = flags & kFlagBlocks;
-  if (flags > (kFlagGrid | kFlagBlocks) || aMin >= kMagnitudeSteps || aBits > kMagnitudeBits ||
-      ransSize > payload.size() - kPreambleBytes || ((flags & kFlagGrid) && !grid.active) ||
-      (useBlocks && (grid.blockShift == 0 || ((flags & kFlagGrid) != 0) != grid.active)))
+  const bool useDirections = flags & kFlagBlockDirections;
+  if (flags > (kFlagGrid | kFlagBlocks | kFlagBlockDirections) || aMin >= kMagnitudeSteps ||
+      aBits > kMagnitudeBits || ransSize > payload.size() - kPreambleBytes ||
+      ((flags & kFlagGrid) && !grid.active) ||
+      (useBlocks && (grid.blockShift == 0 || ((flags & kFlagGrid) != 0) != grid.active)) ||
+      (useDirections && (!useBlocks || grid.blockDirections.size() != grid.blocks.size())))
     return false;
   const auto* begin = reinterpret_cast<const unsigned char*>(payload.data());
   const unsigned char* ransBegin = begin + kPreambleBytes;
@@ -439,7 +473,7 @@ bool decodeEntropyPayload(std::string_view payload, std::size_t count, const Pos
       useBlocks ? std::uint64_t{grid.blocks.size()} << blockBits : std::uint64_t{1} << 30;
   const std::uint32_t lowMask = (1u << blockBits) - 1;
   // One loop per position mode, so that the common ones carry no dead branches.
-  const auto records = [&]<bool kBlocks, bool kGrid>() {
+  const auto records = [&]<bool kBlocks, bool kGrid, bool kDirections>() {
     std::uint64_t code = 0;
     std::uint32_t theta = 0, phi = 0;
     bool bad = false;
@@ -450,12 +484,19 @@ bool decodeEntropyPayload(std::string_view payload, std::size_t count, const Pos
       code += gap;
       bad |= code >= codeLimit;
       auto m = static_cast<std::uint32_t>(code);
-      if constexpr (kBlocks)  // rank of the block, then the offset inside it
-        m = (grid.blocks[std::min<std::size_t>(code >> blockBits, grid.blocks.size() - 1)]
-             << blockBits) |
-            (m & lowMask);
-      theta = (theta + field(kTheta)) & 63u;
-      phi = (phi + field(kPhi)) & 63u;
+      std::size_t rank = 0;
+      if constexpr (kBlocks) {  // rank of the block, then the offset inside it
+        rank = std::min<std::size_t>(code >> blockBits, grid.blocks.size() - 1);
+        m = (grid.blocks[rank] << blockBits) | (m & lowMask);
+      }
+      if constexpr (kDirections) {  // from the block's direction
+        const std::uint32_t d = grid.blockDirections[rank];
+        theta = ((d >> 6) + field(kTheta)) & 63u;
+        phi = (d + field(kPhi)) & 63u;
+      } else {
+        theta = (theta + field(kTheta)) & 63u;
+        phi = (phi + field(kPhi)) & 63u;
+      }
       const std::uint32_t a = aMin + bits.get(aBits);
       const std::uint32_t c = field(kColor);
       std::uint32_t x = compact3(m), y = compact3(m >> 1), z = compact3(m >> 2);
@@ -472,10 +513,12 @@ bool decodeEntropyPayload(std::string_view payload, std::size_t count, const Pos
     }
     return !bad;
   };
-  const bool good = useBlocks ? (useGrid ? records.template operator()<true, true>()
-                                         : records.template operator()<true, false>())
-                              : (useGrid ? records.template operator()<false, true>()
-                                         : records.template operator()<false, false>());
+  const bool good = useDirections ? (useGrid ? records.template operator()<true, true, true>()
+                                             : records.template operator()<true, false, true>())
+                    : useBlocks   ? (useGrid ? records.template operator()<true, true, false>()
+                                             : records.template operator()<true, false, false>())
+                                  : (useGrid ? records.template operator()<false, true, false>()
+                                             : records.template operator()<false, false, false>());
   const std::size_t bitBytes = static_cast<std::size_t>(end - bitsBegin);
   return good && !bits.overrun() && (bits.bitsConsumed() + 7) / 8 == bitBytes &&
          rans.finishedCleanly();

@@ -46,6 +46,9 @@ struct PositionGrid {
   std::vector<std::uint32_t> blockOrigins;
   /// The model's shared tables (docs/qnv-format.md, "Shared tables"), none without.
   SharedTables shared;
+  /// Model kind 2 only (else empty): each occupied block's direction cell, theta << 6 | phi
+  /// (theta < 32), in the order of `blocks`; packets with flag bit 3 predict from it.
+  std::vector<std::uint16_t> blockDirections;
   /// False when the header's model block does not decode (the stream is then refused).
   bool modelValid = true;
 
@@ -60,8 +63,20 @@ struct PositionGrid {
   std::int64_t blockRank(std::uint32_t block) const;
 };
 
-/// The stream model block for `records` (stream order) under `header`: the occupied
-/// blocks at the block size that saves most; empty when no model saves bytes.
+/// Stream model blocks worth writing `records` (stream order) under `header` with, for the
+/// writer to try in turn: first the occupied blocks (kind 1) at the block size whose
+/// estimated saving is largest, then the occupied blocks with their mean directions
+/// (kind 2) at that size and the sizes either side. Empty when no model saves bytes (or
+/// a record is off the volume's grid).
+std::vector<std::string> streamModelCandidates(const StreamHeader& header,
+                                               std::span<const std::uint64_t> records);
+/// `model` (a candidate above, or empty for none) with shared tables appended (kind bit 7;
+/// docs/qnv-format.md, "Shared tables") when they save bits: one table set per group of
+/// consecutive packets, the group size chosen by the estimated saving. Returns `model`
+/// unchanged when no tables pay.
+std::string withSharedTables(const StreamHeader& header, std::span<const std::uint64_t> records,
+                             const std::string& model);
+/// The first of streamModelCandidates (kind 1) with its shared tables, or empty.
 std::string buildStreamModel(const StreamHeader& header, std::span<const std::uint64_t> records);
 
 /// Where the bits of entropy payloads go (the rANS fields at their model cost).

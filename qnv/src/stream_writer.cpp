@@ -96,10 +96,21 @@ std::string writeStream(const EncodedVectors& vectors, const WriteOptions& optio
   const std::span<const std::uint64_t> all(vectors.records);
   std::string out = writePackets(header, all, options.fastEntropy);
   if (options.encoding == PacketEncoding::entropy && options.streamModel) {
-    // The model's saving is estimated per block size; the stream written both ways
+    // The model's saving is estimated per block size; the stream written each way
     // decides, so a model is kept only when it makes the stream smaller.
-    header.model = detail::buildStreamModel(header, all);
-    if (!header.model.empty()) {
+    // Each candidate (the occupied blocks, then with their directions at a few block
+    // sizes) is written in turn; then the best one (or none) with shared tables.
+    std::string best;
+    for (std::string& model : detail::streamModelCandidates(header, all)) {
+      header.model = std::move(model);
+      std::string with = writePackets(header, all, options.fastEntropy);
+      if (with.size() < out.size()) {
+        out = std::move(with);
+        best = header.model;
+      }
+    }
+    header.model = detail::withSharedTables(header, all, best);
+    if (header.model != best) {
       std::string with = writePackets(header, all, options.fastEntropy);
       if (with.size() < out.size()) out = std::move(with);
     }

@@ -1,14 +1,15 @@
 // Writes seed inputs for the QNV fuzz targets into the folder given as the one argument:
 // a small volume stream in plain and compact packets (and one with packets damaged), and
 // compact payloads prefixed with their record count as fuzz_qnv_compact reads them, and
-// entropy payloads (original and fast layout) with and without a stream model as
-// fuzz_qnv_entropy reads them.
+// entropy payloads (original and fast layout) with and without a stream model (kind 1, and
+// kind 2 with the blocks' directions) as fuzz_qnv_entropy reads them.
 // Generated rather than committed so that they follow the format of this build.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "compact_payload.hpp"
 #include "entropy_payload.hpp"
@@ -71,12 +72,16 @@ int main(int argc, char** argv) {
   gs::qnv::VolumeEncodeOptions thin;
   thin.selection.fraction = 0.05;
   const gs::qnv::EncodedVectors s = gs::qnv::encodeVolume(shell, thin);
-  for (int variant = 0; variant < 4; ++variant) {
-    const bool model = variant % 2 == 1, fast = variant >= 2;  // fast: 300 records, 8 lanes
+  // Variants 4 and 5: under a kind-2 model (the blocks with their directions), whose
+  // payloads code theta and phi from the blocks (flag bit 3).
+  const std::vector<std::string> models =
+      gs::qnv::detail::streamModelCandidates(s.header, s.records);
+  for (int variant = 0; variant < 6; ++variant) {
+    const bool model = variant % 2 == 1 || variant >= 4, fast = variant % 4 >= 2 || variant == 5;
     gs::qnv::StreamHeader h = s.header;
     const std::span<const std::uint64_t> records(
         s.records.data(), std::min<std::size_t>(fast ? 300 : 64, s.records.size()));
-    if (model) h.model = gs::qnv::detail::buildStreamModel(h, s.records);
+    if (model) h.model = variant >= 4 ? models.at(1) : models.at(0);
     std::string input;
     input += '\1';
     input += static_cast<char>((records.size() - 1) & 0xff);
@@ -86,7 +91,10 @@ int main(int argc, char** argv) {
     input += h.model;
     gs::qnv::detail::appendEntropyPayload(
         input, records, gs::qnv::detail::PositionGrid::forHeader(h), nullptr, fast);
-    write(dir + (fast ? "/entropy_fast" : "/entropy") + (model ? "_model.bin" : "_plain.bin"),
+    write(dir + (fast ? "/entropy_fast" : "/entropy") +
+              (variant >= 4 ? "_directions.bin"
+               : model      ? "_model.bin"
+                            : "_plain.bin"),
           input);
   }
   return 0;
