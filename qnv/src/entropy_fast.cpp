@@ -296,6 +296,7 @@ struct FastSymbols {
   alignas(64) std::uint8_t sym[kFields][kMaxRecords + 1];
   std::uint32_t xyz[kMaxRecords];        // positions, X << 20 | Y << 10 | Z in the index space
   std::uint16_t direction[kMaxRecords];  // flag bit 3: each record's block direction
+  std::uint16_t magnitude[kMaxRecords];  // the offsets A - aMin
   std::size_t count = 0;
   std::uint32_t aMin = 0;
   int aBits = 0;
@@ -393,32 +394,44 @@ bool decodeFastSymbols(std::string_view payload, std::size_t count, const Positi
 template <bool kBlocks, bool kGrid>
 bool rebuildPositions(FastSymbols& s, const PositionGrid& grid) {
   std::uint32_t* xyzOut = s.xyz;
-  std::uint16_t* directionOut = s.direction;
-  const std::uint16_t* directions = s.useDirections ? grid.blockDirections.data() : nullptr;
+  std::uint16_t* directionOut = s.direction;  // read only with flag bit 3
   const int blockBits = kBlocks ? 3 * grid.blockShift : 0;
   const std::uint64_t codeLimit =
       kBlocks ? std::uint64_t{grid.blocks.size()} << blockBits : std::uint64_t{1} << 30;
   const std::uint32_t lowMask = (1u << blockBits) - 1;
-  const std::uint32_t* origins = grid.blockOrigins.data();
+  const std::uint64_t* origins = grid.blockOrigins.data();
   const std::size_t lastBlock = grid.blockOrigins.empty() ? 0 : grid.blockOrigins.size() - 1;
   const std::uint32_t sizeX = grid.axisSize(0), sizeY = grid.axisSize(1), sizeZ = grid.axisSize(2);
   const std::uint8_t* gaps = s.sym[kGap];
   const unsigned char* gapBase = s.gapBase;
   const std::size_t gapSize = s.gapSize, count = s.count;
+  // The codes first, the serial prefix sum alone (codes over 32 bits are out of range
+  // anyway: the last one is checked below and they only grow).
   std::uint64_t code = 0, gapPos = 0;
-  std::uint32_t outside = 0;
   for (std::size_t i = 0; i < count; ++i) {
     const std::uint32_t t = gaps[i];
     const auto extra = static_cast<std::uint32_t>(peekBits(gapBase, gapSize, gapPos));
     gapPos += kGapTables.width[t];
     code += kGapTables.base[t] | (extra & kGapTables.mask[t]);
+    xyzOut[i] = static_cast<std::uint32_t>(std::min<std::uint64_t>(code, 0xffffffffu));
+  }
+  // Then the positions: with blocks, the block's origin (a table of up to 2^21 entries,
+  // fetched ahead: the codes are known) plus the position inside it.
+  constexpr std::size_t kAhead = 16;
+  std::uint32_t outside = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::uint32_t m = xyzOut[i];
     std::uint32_t xyz;
-    if constexpr (kBlocks) {  // the block's origin plus the position inside it
-      const std::size_t rank = std::min<std::size_t>(code >> blockBits, lastBlock);
-      xyz = origins[rank] + mortonToXyz(static_cast<std::uint32_t>(code) & lowMask);
-      if (directions) directionOut[i] = directions[rank];
-    } else  // bits over 30 are dropped; the code is checked
-      xyz = mortonToXyz(static_cast<std::uint32_t>(code));
+    if constexpr (kBlocks) {
+      if (i + kAhead < count)
+        __builtin_prefetch(origins +
+                           std::min<std::size_t>(xyzOut[i + kAhead] >> blockBits, lastBlock));
+      const std::uint64_t origin = origins[std::min<std::size_t>(m >> blockBits, lastBlock)];
+      xyz = static_cast<std::uint32_t>(origin) + mortonToXyz(m & lowMask);
+      directionOut[i] = static_cast<std::uint16_t>(origin >> 32);
+    } else {  // bits over 30 are dropped; the code is checked
+      xyz = mortonToXyz(m);
+    }
     if constexpr (kGrid)
       outside |= static_cast<std::uint32_t>((xyz >> 20) >= sizeX) |
                  static_cast<std::uint32_t>(((xyz >> 10) & 1023u) >= sizeY) |
@@ -434,19 +447,25 @@ bool rebuildPositions(FastSymbols& s, const PositionGrid& grid) {
 // `seen`), so emit may see out-of-range values of a packet that is then rejected, never
 // indices out of its tables' bounds (theta <= 63, A <= 32767).
 template <bool kDirections, typename Emit>
-bool emitRecords(const FastSymbols& s, Emit&& emit) {
+bool emitRecords(FastSymbols& s, Emit&& emit) {
   const std::uint32_t* xyz = s.xyz;
   const std::uint8_t* thetas = s.sym[kTheta];
   const std::uint8_t* phis = s.sym[kPhi];
   const std::uint8_t* colors = s.sym[kColor];
-  const unsigned char* bitBase = s.bitBase;
-  const std::size_t bitSize = s.bitSize, count = s.count;
-  const auto aBits = static_cast<std::uint64_t>(s.aBits);
-  const auto aMask = static_cast<std::uint32_t>((1u << s.aBits) - 1);
+  const std::size_t count = s.count;
+  {  // the magnitude offsets first, in a loop of their own
+    const unsigned char* bitBase = s.bitBase;
+    const std::size_t bitSize = s.bitSize;
+    const auto aBits = static_cast<std::uint64_t>(s.aBits);
+    const auto aMask = static_cast<std::uint32_t>((1u << s.aBits) - 1);
+    std::uint64_t aPos = s.aPos;
+    for (std::size_t i = 0; i < count; ++i, aPos += aBits)
+      s.magnitude[i] = static_cast<std::uint16_t>(peekBits(bitBase, bitSize, aPos) & aMask);
+  }
+  const std::uint16_t* offsets = s.magnitude;
   const std::uint32_t aMin = s.aMin;
-  std::uint64_t aPos = s.aPos;
   std::uint32_t theta = 0, phi = 0, seen = 0;
-  for (std::size_t i = 0; i < count; ++i, aPos += aBits) {
+  for (std::size_t i = 0; i < count; ++i) {
     if constexpr (kDirections) {  // from the block's direction (model kind 2)
       theta = ((s.direction[i] >> 6) + thetas[i]) & 63u;
       phi = (s.direction[i] + phis[i]) & 63u;
@@ -454,8 +473,7 @@ bool emitRecords(const FastSymbols& s, Emit&& emit) {
       theta = (theta + thetas[i]) & 63u;
       phi = (phi + phis[i]) & 63u;
     }
-    const std::uint32_t a =
-        aMin + (static_cast<std::uint32_t>(peekBits(bitBase, bitSize, aPos)) & aMask);
+    const std::uint32_t a = aMin + offsets[i];
     seen |= (theta << 16) | a;
     emit(i, xyz[i], theta, phi, a & 32767u, colors[i]);
   }

@@ -42,8 +42,9 @@ struct PositionGrid {
   int blockShift = 0;
   /// Morton codes of the occupied blocks' coordinates, strictly increasing (at most 2^21).
   std::vector<std::uint32_t> blocks;
-  /// Each occupied block's first index as X << 20 | Y << 10 | Z (for the decoders).
-  std::vector<std::uint32_t> blockOrigins;
+  /// For the decoders, per occupied block: its first index as X << 20 | Y << 10 | Z in the
+  /// low 32 bits, its direction (blockDirections, or 0) in the high ones: one load.
+  std::vector<std::uint64_t> blockOrigins;
   /// The model's shared tables (docs/qnv-format.md, "Shared tables"), none without.
   SharedTables shared;
   /// Model kind 2 only (else empty): each occupied block's direction cell, theta << 6 | phi

@@ -178,10 +178,13 @@ PositionGrid PositionGrid::forHeader(const StreamHeader& header) {
     grid.blockShift = 0;
   }
   grid.blockOrigins.reserve(grid.blocks.size());
-  for (std::uint32_t block : grid.blocks)
-    grid.blockOrigins.push_back((compact3(block) << (20 + grid.blockShift)) |
+  for (std::size_t i = 0; i < grid.blocks.size(); ++i) {
+    const std::uint32_t block = grid.blocks[i];
+    const std::uint64_t direction = i < grid.blockDirections.size() ? grid.blockDirections[i] : 0;
+    grid.blockOrigins.push_back((direction << 32) | (compact3(block) << (20 + grid.blockShift)) |
                                 (compact3(block >> 1) << (10 + grid.blockShift)) |
                                 (compact3(block >> 2) << grid.blockShift));
+  }
   return grid;
 }
 
