@@ -1,3 +1,5 @@
+#include <future>
+
 #include "base/byte_order.hpp"
 #include "compact_payload.hpp"
 #include "entropy_payload.hpp"
@@ -94,26 +96,35 @@ std::string writeStream(const EncodedVectors& vectors, const WriteOptions& optio
       (!header.model.empty() && !detail::PositionGrid::forHeader(header).modelValid))
     header.model.clear();
   const std::span<const std::uint64_t> all(vectors.records);
+  if (options.encoding != PacketEncoding::entropy || !options.streamModel)
+    return writePackets(header, all, options.fastEntropy);
+  // The model's saving is estimated per block size; the stream written each way decides,
+  // so a model is kept only when it makes the stream smaller. The candidates (the occupied
+  // blocks, then with their directions at a few block sizes) are written on threads of
+  // their own beside the stream without a model; then the best one (or none) with shared
+  // tables.
+  std::vector<std::string> candidates = detail::streamModelCandidates(header, all);
+  std::vector<std::future<std::string>> written;
+  for (const std::string& model : candidates) {
+    StreamHeader with = header;
+    with.model = model;
+    written.push_back(std::async(std::launch::async, [with, all, fast = options.fastEntropy] {
+      return writePackets(with, all, fast);
+    }));
+  }
   std::string out = writePackets(header, all, options.fastEntropy);
-  if (options.encoding == PacketEncoding::entropy && options.streamModel) {
-    // The model's saving is estimated per block size; the stream written each way
-    // decides, so a model is kept only when it makes the stream smaller.
-    // Each candidate (the occupied blocks, then with their directions at a few block
-    // sizes) is written in turn; then the best one (or none) with shared tables.
-    std::string best;
-    for (std::string& model : detail::streamModelCandidates(header, all)) {
-      header.model = std::move(model);
-      std::string with = writePackets(header, all, options.fastEntropy);
-      if (with.size() < out.size()) {
-        out = std::move(with);
-        best = header.model;
-      }
+  std::string best;
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    std::string with = written[i].get();
+    if (with.size() < out.size()) {
+      out = std::move(with);
+      best = candidates[i];
     }
-    header.model = detail::withSharedTables(header, all, best);
-    if (header.model != best) {
-      std::string with = writePackets(header, all, options.fastEntropy);
-      if (with.size() < out.size()) out = std::move(with);
-    }
+  }
+  header.model = detail::withSharedTables(header, all, best);
+  if (header.model != best) {
+    std::string with = writePackets(header, all, options.fastEntropy);
+    if (with.size() < out.size()) out = std::move(with);
   }
   return out;
 }
