@@ -15,9 +15,14 @@
 #include "qnv/coding.hpp"
 #include "qnv/decoder.hpp"
 #include "qnv/encoder.hpp"
+#include "stream_support.hpp"
 #include "test_support.hpp"
 
 using namespace gs::qnv;
+using gs::qnv::packets::DecodedStream;
+using gs::qnv::packets::decodeStream;
+using gs::qnv::packets::packetStarts;
+using gs::qnv::packets::resealPacket;
 
 namespace {
 
@@ -80,54 +85,6 @@ const EncodedVectors& surfaceVectors() {
   return e;
 }
 
-using Bytes32 = std::array<unsigned char, sizeof(DecodedVector)>;
-
-// Each packet's vectors as a multiset of their bytes, keyed by the packet's first index.
-struct Packets {
-  std::map<std::uint64_t, std::multiset<Bytes32>> byFirst;
-  std::size_t vectors = 0;
-  bool finished = false;
-  DecoderStats stats;
-};
-
-Packets decode(std::string_view bytes, std::size_t chunk) {
-  Packets out;
-  StreamDecoder d("test.qnv");
-  auto sink = [&](std::uint64_t first, std::span<const DecodedVector> v) {
-    auto& set = out.byFirst[first];
-    for (const DecodedVector& x : v) {
-      Bytes32 b;
-      std::memcpy(b.data(), &x, b.size());
-      set.insert(b);
-    }
-    out.vectors += v.size();
-  };
-  for (std::size_t at = 0; at < bytes.size(); at += chunk) d.feed(bytes.substr(at, chunk), sink);
-  out.finished = d.finish(sink);
-  out.stats = d.stats();
-  return out;
-}
-
-// Offsets of the packets of a well-formed stream.
-std::vector<std::size_t> packetStarts(const std::string& s) {
-  std::vector<std::size_t> starts;
-  for (std::size_t at = kHeaderBytes; at + kPacketHeaderBytes <= s.size();) {
-    starts.push_back(at);
-    at += kPacketHeaderBytes + static_cast<unsigned char>(s[at + 8]) +
-          256u * static_cast<unsigned char>(s[at + 9]);
-  }
-  return starts;
-}
-
-// Rewrites a packet's payload size and CRC after its payload was edited.
-void resealPacket(std::string& s, std::size_t at, std::size_t payloadBytes) {
-  s[at + 8] = static_cast<char>(payloadBytes & 0xff);
-  s[at + 9] = static_cast<char>(payloadBytes >> 8);
-  const std::uint32_t crc = crc32(std::string_view(s).substr(at + kPacketHeaderBytes, payloadBytes),
-                                  crc32(std::string_view(s).substr(at + 2, 10)));
-  for (int i = 0; i < 4; ++i) s[at + 12 + i] = static_cast<char>(crc >> (8 * i));
-}
-
 std::string goldenPath() {
   return (gs::test::sourceDir() / "tests/qnv/golden/blob_entropy.qnv").string();
 }
@@ -142,8 +99,8 @@ TEST_CASE("entropy packets carry the same records as plain ones at every packet 
       const std::string plain = writeStream(*e, {bytes, PacketEncoding::plain});
       const std::string entropy = writeStream(*e, {bytes, PacketEncoding::entropy});
       if (bytes >= 1376) CHECK(entropy.size() * 4 < plain.size() * 3);
-      const Packets a = decode(plain, 1 << 16);
-      const Packets b = decode(entropy, 1000);
+      const DecodedStream a = decodeStream(plain, 1 << 16);
+      const DecodedStream b = decodeStream(entropy, 1000);
       REQUIRE(b.finished);
       CHECK(b.stats.packetsCorrupt == 0);
       CHECK(b.vectors == e->records.size());
@@ -184,8 +141,9 @@ TEST_CASE("entropy packets hold any records, off the grid and at the field limit
   for (const auto& records : cases) {
     e.records = records;
     for (std::uint32_t bytes : {8u, 48u, 1376u, 65528u}) {
-      const Packets a = decode(writeStream(e, {bytes, PacketEncoding::plain}), 1 << 16);
-      const Packets b = decode(writeStream(e, {bytes, PacketEncoding::entropy}), 1 << 16);
+      const DecodedStream a = decodeStream(writeStream(e, {bytes, PacketEncoding::plain}), 1 << 16);
+      const DecodedStream b =
+          decodeStream(writeStream(e, {bytes, PacketEncoding::entropy}), 1 << 16);
       REQUIRE(b.finished);
       CHECK(a.byFirst == b.byFirst);
     }
@@ -203,13 +161,14 @@ TEST_CASE("the encoder reproduces the golden entropy stream byte for byte",
   CHECK(stream == golden);
   // Frozen facts: the header names the entropy coding, and so does every packet.
   CHECK(golden[11] == 2);
-  for (std::size_t at : packetStarts(golden)) {
+  for (std::size_t at : packetStarts(golden, kHeaderBytes)) {
     CHECK(golden[at + 10] == 2);
     CHECK(golden[at + kPacketHeaderBytes] == 1);  // flags: positions on the voxel grid
   }
   // It decodes to exactly the plain stream's vectors.
-  const Packets a = decode(writeStream(smallVectors(), {512, PacketEncoding::plain}), 1 << 16);
-  const Packets b = decode(golden, 4096);
+  const DecodedStream a =
+      decodeStream(writeStream(smallVectors(), {512, PacketEncoding::plain}), 1 << 16);
+  const DecodedStream b = decodeStream(golden, 4096);
   REQUIRE(b.finished);
   CHECK(a.byFirst == b.byFirst);
 }
@@ -219,14 +178,14 @@ TEST_CASE("every truncation of an entropy stream keeps the whole packets before 
   EncodedVectors e = smallVectors();
   e.records.resize(200);  // 4 packets, the last one short: about 1.6 KB
   const std::string s = writeStream(e, {512, PacketEncoding::entropy});
-  const std::vector<std::size_t> starts = packetStarts(s);
+  const std::vector<std::size_t> starts = packetStarts(s, kHeaderBytes);
   REQUIRE(starts.size() == 4);
   std::size_t whole = 0;  // packets wholly inside the prefix
   for (std::size_t len = 0; len <= s.size(); ++len) {
     while (whole < starts.size() &&
            (whole + 1 < starts.size() ? starts[whole + 1] : s.size()) <= len)
       ++whole;
-    const Packets p = decode(std::string_view(s).substr(0, len), 333);
+    const DecodedStream p = decodeStream(std::string_view(s).substr(0, len), 333);
     REQUIRE(p.stats.packetsDecoded == (len < kHeaderBytes ? 0 : whole));
     REQUIRE(p.finished == (len == s.size()));
   }
@@ -235,17 +194,17 @@ TEST_CASE("every truncation of an entropy stream keeps the whole packets before 
 TEST_CASE("a cut or damaged entropy payload under a valid CRC is rejected, never read past",
           "[qnv][entropy]") {
   const std::string s = writeStream(smallVectors(), {512, PacketEncoding::entropy});
-  const std::size_t at = packetStarts(s)[3];
+  const std::size_t at = packetStarts(s, kHeaderBytes)[3];
   const std::size_t payload =
       static_cast<unsigned char>(s[at + 8]) + 256u * static_cast<unsigned char>(s[at + 9]);
-  const std::size_t total = decode(s, 1 << 16).vectors;
+  const std::size_t total = decodeStream(s, 1 << 16).vectors;
   const std::size_t lost = static_cast<unsigned char>(s[at + 2]);
   // Every shorter payload, resealed with a matching size and CRC: the packet is dropped.
   for (std::size_t cut = 0; cut < payload; ++cut) {
     std::string t =
         s.substr(0, at + kPacketHeaderBytes + cut) + s.substr(at + kPacketHeaderBytes + payload);
     resealPacket(t, at, cut);
-    const Packets p = decode(t, 1 << 16);
+    const DecodedStream p = decodeStream(t, 1 << 16);
     INFO("payload cut to " << cut << " of " << payload << " bytes");
     CHECK(p.stats.packetsCorrupt == 1);
     CHECK(p.vectors == total - lost);
@@ -258,7 +217,7 @@ TEST_CASE("a cut or damaged entropy payload under a valid CRC is rejected, never
       std::string t = s;
       t[at + kPacketHeaderBytes + i] = static_cast<char>(t[at + kPacketHeaderBytes + i] ^ x);
       resealPacket(t, at, payload);
-      const Packets p = decode(t, 1 << 16);
+      const DecodedStream p = decodeStream(t, 1 << 16);
       CHECK(p.vectors + lost * p.stats.packetsCorrupt == total);
       rejected += p.stats.packetsCorrupt;
     }
@@ -267,12 +226,12 @@ TEST_CASE("a cut or damaged entropy payload under a valid CRC is rejected, never
 
 TEST_CASE("unknown packet encodings are rejected", "[qnv][entropy]") {
   std::string s = writeStream(smallVectors(), {512, PacketEncoding::entropy});
-  const std::size_t at = packetStarts(s)[0];
+  const std::size_t at = packetStarts(s, kHeaderBytes)[0];
   s[at + 10] = 3;  // an encoding this build does not know
   const std::size_t payload =
       static_cast<unsigned char>(s[at + 8]) + 256u * static_cast<unsigned char>(s[at + 9]);
   resealPacket(s, at, payload);
-  const Packets p = decode(s, 1 << 16);
+  const DecodedStream p = decodeStream(s, 1 << 16);
   CHECK(p.stats.packetsCorrupt == 1);
   CHECK(p.vectors == smallVectors().records.size() - 64);
   // A header announcing an unknown encoding is refused outright.

@@ -16,9 +16,15 @@
 #include "qnv/coding.hpp"
 #include "qnv/decoder.hpp"
 #include "qnv/encoder.hpp"
+#include "stream_support.hpp"
 #include "test_support.hpp"
 
 using namespace gs::qnv;
+using gs::qnv::packets::DecodedStream;
+using gs::qnv::packets::decodeStream;
+using gs::qnv::packets::packetStarts;
+using gs::qnv::packets::payloadBytes;
+using gs::qnv::packets::resealPacket;
 
 namespace {
 
@@ -84,52 +90,6 @@ WriteOptions fast(std::uint32_t bytes, bool model = false) {
   return o;
 }
 
-using Bytes32 = std::array<unsigned char, sizeof(DecodedVector)>;
-
-struct Packets {
-  std::map<std::uint64_t, std::multiset<Bytes32>> byFirst;  // by the packet's first index
-  std::size_t vectors = 0;
-  bool finished = false;
-  DecoderStats stats;
-};
-
-Packets decode(std::string_view bytes, std::size_t chunk) {
-  Packets out;
-  StreamDecoder d("test.qnv");
-  auto sink = [&](std::uint64_t first, std::span<const DecodedVector> v) {
-    for (const DecodedVector& x : v) {
-      Bytes32 b;
-      std::memcpy(b.data(), &x, b.size());
-      out.byFirst[first].insert(b);
-    }
-    out.vectors += v.size();
-  };
-  for (std::size_t at = 0; at < bytes.size(); at += chunk) d.feed(bytes.substr(at, chunk), sink);
-  out.finished = d.finish(sink);
-  out.stats = d.stats();
-  return out;
-}
-
-std::size_t payloadBytes(const std::string& s, std::size_t at) {
-  return static_cast<unsigned char>(s[at + 8]) + 256u * static_cast<unsigned char>(s[at + 9]);
-}
-
-std::vector<std::size_t> packetStarts(const std::string& s, std::size_t headerBytes) {
-  std::vector<std::size_t> starts;
-  for (std::size_t at = headerBytes; at + kPacketHeaderBytes <= s.size();
-       at += kPacketHeaderBytes + payloadBytes(s, at))
-    starts.push_back(at);
-  return starts;
-}
-
-void resealPacket(std::string& s, std::size_t at, std::size_t payload) {
-  s[at + 8] = static_cast<char>(payload & 0xff);
-  s[at + 9] = static_cast<char>(payload >> 8);
-  const std::uint32_t crc = crc32(std::string_view(s).substr(at + kPacketHeaderBytes, payload),
-                                  crc32(std::string_view(s).substr(at + 2, 10)));
-  for (int i = 0; i < 4; ++i) s[at + 12 + i] = static_cast<char>(crc >> (8 * i));
-}
-
 std::string goldenPath() {
   return (gs::test::sourceDir() / "tests/qnv/golden/blob_entropy_fast.qnv").string();
 }
@@ -146,8 +106,9 @@ TEST_CASE("fast entropy packets carry the same records as plain ones at every la
         const std::string slow = writeStream(*e, {bytes, PacketEncoding::entropy});
         const std::string quick = writeStream(*e, fast(bytes, model));
         if (bytes >= 1376 && !model) CHECK(quick.size() * 100 < slow.size() * 103);
-        const Packets a = decode(writeStream(*e, {bytes, PacketEncoding::plain}), 1 << 16);
-        const Packets b = decode(quick, 1000);
+        const DecodedStream a =
+            decodeStream(writeStream(*e, {bytes, PacketEncoding::plain}), 1 << 16);
+        const DecodedStream b = decodeStream(quick, 1000);
         REQUIRE(b.finished);
         CHECK(b.stats.packetsCorrupt == 0);
         CHECK(b.vectors == e->records.size());
@@ -197,8 +158,8 @@ TEST_CASE("fast entropy packets hold any records, off the grid and at the field 
   for (const auto& records : cases) {
     e.records = records;
     for (std::uint32_t bytes : {8u, 48u, 1376u, 4096u, 65528u}) {
-      const Packets a = decode(writeStream(e, {bytes, PacketEncoding::plain}), 1 << 16);
-      const Packets b = decode(writeStream(e, fast(bytes)), 1 << 16);
+      const DecodedStream a = decodeStream(writeStream(e, {bytes, PacketEncoding::plain}), 1 << 16);
+      const DecodedStream b = decodeStream(writeStream(e, fast(bytes)), 1 << 16);
       REQUIRE(b.finished);
       CHECK(a.byFirst == b.byFirst);
     }
@@ -218,8 +179,9 @@ TEST_CASE("the encoder reproduces the golden fast entropy stream byte for byte",
     CHECK(golden[at + kPacketHeaderBytes] == (1 | 4));  // grid, fast layout
     CHECK(golden[at + kPacketHeaderBytes + 4] == 2);    // 4 lanes
   }
-  const Packets a = decode(writeStream(smallVectors(), {512, PacketEncoding::plain}), 1 << 16);
-  const Packets b = decode(golden, 4096);
+  const DecodedStream a =
+      decodeStream(writeStream(smallVectors(), {512, PacketEncoding::plain}), 1 << 16);
+  const DecodedStream b = decodeStream(golden, 4096);
   REQUIRE(b.finished);
   CHECK(a.byFirst == b.byFirst);
 }
@@ -236,7 +198,7 @@ TEST_CASE("every truncation of a fast entropy stream keeps the whole packets bef
     while (whole < starts.size() &&
            (whole + 1 < starts.size() ? starts[whole + 1] : s.size()) <= len)
       ++whole;
-    const Packets p = decode(std::string_view(s).substr(0, len), 333);
+    const DecodedStream p = decodeStream(std::string_view(s).substr(0, len), 333);
     REQUIRE(p.stats.packetsDecoded == (len < kHeaderBytes ? 0 : whole));
     REQUIRE(p.finished == (len == s.size()));
   }
@@ -258,7 +220,7 @@ TEST_CASE("a cut or damaged fast entropy payload under a valid CRC is rejected, 
       REQUIRE(starts.size() >= 2);
       const std::size_t at = starts[1];
       const std::size_t payload = payloadBytes(s, at);
-      const std::size_t total = decode(s, 1 << 16).vectors;
+      const std::size_t total = decodeStream(s, 1 << 16).vectors;
       const std::size_t lost =
           static_cast<unsigned char>(s[at + 2]) + 256u * static_cast<unsigned char>(s[at + 3]);
       INFO("packet bytes " << bytes << ", model " << model << ", payload " << payload);
@@ -267,7 +229,7 @@ TEST_CASE("a cut or damaged fast entropy payload under a valid CRC is rejected, 
         std::string t = s.substr(0, at + kPacketHeaderBytes + cut) +
                         s.substr(at + kPacketHeaderBytes + payload);
         resealPacket(t, at, cut);
-        const Packets p = decode(t, 1 << 16);
+        const DecodedStream p = decodeStream(t, 1 << 16);
         wrong += p.stats.packetsCorrupt != 1 || p.vectors != total - lost;
       }
       CHECK(wrong == 0);
@@ -277,7 +239,7 @@ TEST_CASE("a cut or damaged fast entropy payload under a valid CRC is rejected, 
           std::string t = s;
           t[at + kPacketHeaderBytes + i] = static_cast<char>(t[at + kPacketHeaderBytes + i] ^ x);
           resealPacket(t, at, payload);
-          const Packets p = decode(t, 1 << 16);
+          const DecodedStream p = decodeStream(t, 1 << 16);
           bad += p.vectors + lost * p.stats.packetsCorrupt != total;
           rejected += p.stats.packetsCorrupt;
         }

@@ -12,8 +12,11 @@
 #include "qnv/coding.hpp"
 #include "qnv/decoder.hpp"
 #include "qnv/encoder.hpp"
+#include "stream_support.hpp"
 
 using namespace gs::qnv;
+using gs::qnv::packets::DecodedStream;
+using gs::qnv::packets::decodeStream;
 
 namespace {
 
@@ -60,29 +63,6 @@ const EncodedVectors& capVectors() {
   return e;
 }
 
-struct Decoded {
-  std::map<std::uint64_t, std::multiset<std::string>> byFirst;
-  std::size_t vectors = 0;
-  bool finished = false;
-  std::string error;
-  DecoderStats stats;
-};
-
-Decoded decode(std::string_view bytes, std::size_t chunk) {
-  Decoded out;
-  StreamDecoder d("model.qnv");
-  auto sink = [&](std::uint64_t first, std::span<const DecodedVector> v) {
-    for (const DecodedVector& x : v)
-      out.byFirst[first].insert(std::string(reinterpret_cast<const char*>(&x), sizeof x));
-    out.vectors += v.size();
-  };
-  for (std::size_t at = 0; at < bytes.size(); at += chunk) d.feed(bytes.substr(at, chunk), sink);
-  out.finished = d.finish(sink);
-  out.error = d.error();
-  out.stats = d.stats();
-  return out;
-}
-
 std::string withModel(const EncodedVectors& e, std::uint32_t packetBytes) {
   WriteOptions w{packetBytes, PacketEncoding::entropy};
   w.streamModel = true;
@@ -118,8 +98,8 @@ TEST_CASE("a stream model shrinks entropy streams and keeps every record", "[qnv
         CHECK(headerBytes > kHeaderBytes);
         CHECK(modelled.size() < entropy.size());
       }
-      const Decoded a = decode(plain, 1 << 16);
-      const Decoded b = decode(modelled, 999);
+      const DecodedStream a = decodeStream(plain, 1 << 16);
+      const DecodedStream b = decodeStream(modelled, 999);
       REQUIRE(b.finished);
       CHECK(b.stats.packetsCorrupt == 0);
       CHECK(a.byFirst == b.byFirst);
@@ -174,11 +154,11 @@ TEST_CASE("every truncation of a stream with a model keeps the whole packets bef
   const std::string s = writeStream(e, {512, PacketEncoding::entropy});
   const std::size_t headerBytes = headerBytesOf(s);
   REQUIRE(headerBytes > kHeaderBytes);
-  const Decoded whole = decode(s, 1 << 16);
+  const DecodedStream whole = decodeStream(s, 1 << 16);
   REQUIRE(whole.finished);
   std::size_t previous = 0;
   for (std::size_t len = 0; len <= s.size(); ++len) {
-    const Decoded p = decode(std::string_view(s).substr(0, len), 97);
+    const DecodedStream p = decodeStream(std::string_view(s).substr(0, len), 97);
     INFO("prefix of " << len << " bytes");
     REQUIRE(p.error.empty() == (len >= headerBytes));
     if (len < headerBytes) REQUIRE(p.vectors == 0);
@@ -197,7 +177,7 @@ TEST_CASE("every flipped bit of the model section refuses the stream", "[qnv][mo
     for (int bit = 0; bit < 8; ++bit) {
       std::string t = s;
       t[i] = static_cast<char>(t[i] ^ (1 << bit));
-      const Decoded p = decode(t, 1 << 16);
+      const DecodedStream p = decodeStream(t, 1 << 16);
       INFO("byte " << i << " bit " << bit);
       REQUIRE_FALSE(p.error.empty());
       REQUIRE(p.vectors == 0);
@@ -215,7 +195,7 @@ TEST_CASE("a hostile model under a valid CRC is refused or decodes safely", "[qn
   auto attempt = [&](const std::string& model) {
     StreamHeader t = *h;
     t.model = model;
-    const Decoded p = decode(serializeHeader(t) + packets, 1 << 16);
+    const DecodedStream p = decodeStream(serializeHeader(t) + packets, 1 << 16);
     const std::size_t per = 172, last = capVectors().records.size() % per;
     ++tried;
     if (!p.error.empty()) {
@@ -239,7 +219,7 @@ TEST_CASE("a hostile model under a valid CRC is refused or decodes safely", "[qn
 TEST_CASE("damaged packets of a stream with a model cost only their own vectors", "[qnv][model]") {
   const std::string s = withModel(shellVectors(), 1376);
   const std::size_t headerBytes = headerBytesOf(s);
-  const std::size_t total = decode(s, 1 << 16).vectors;
+  const std::size_t total = decodeStream(s, 1 << 16).vectors;
   std::size_t at = headerBytes, packet = 0;
   while (at + kPacketHeaderBytes <= s.size()) {
     const std::size_t payload =
@@ -249,7 +229,7 @@ TEST_CASE("damaged packets of a stream with a model cost only their own vectors"
     if (packet++ % 3 == 0) {
       std::string t = s;
       t[at + kPacketHeaderBytes + payload / 2] ^= 0x10;
-      const Decoded p = decode(t, 1400);
+      const DecodedStream p = decodeStream(t, 1400);
       CHECK(p.stats.packetsCorrupt == 1);
       CHECK(p.vectors == total - count);
     }
@@ -264,7 +244,8 @@ TEST_CASE("shared tables in the model replace the packets' own and keep every re
     // Small packets (these shapes hold 2,500-3,000 vectors): tables there cost most.
     for (std::uint32_t bytes : {688u, 1376u}) {
       INFO("packet bytes " << bytes << ", " << e->records.size() << " vectors");
-      const Decoded plain = decode(writeStream(*e, {bytes, PacketEncoding::plain}), 1 << 16);
+      const DecodedStream plain =
+          decodeStream(writeStream(*e, {bytes, PacketEncoding::plain}), 1 << 16);
       for (bool fast : {false, true}) {
         WriteOptions options{bytes, PacketEncoding::entropy};
         options.streamModel = true;
@@ -276,7 +257,7 @@ TEST_CASE("shared tables in the model replace the packets' own and keep every re
         REQUIRE(!h->model.empty());
         // The kind byte says: shared tables follow (bit 7; docs/qnv-format.md).
         CHECK((static_cast<unsigned char>(h->model[0]) & 0x80u) != 0);
-        const Decoded d = decode(s, 777);
+        const DecodedStream d = decodeStream(s, 777);
         REQUIRE(d.finished);
         CHECK(d.stats.packetsCorrupt == 0);
         CHECK(d.byFirst == plain.byFirst);

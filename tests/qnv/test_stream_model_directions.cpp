@@ -13,9 +13,14 @@
 #include "qnv/coding.hpp"
 #include "qnv/decoder.hpp"
 #include "qnv/encoder.hpp"
+#include "stream_support.hpp"
 #include "test_support.hpp"
 
 using namespace gs::qnv;
+using gs::qnv::packets::DecodedStream;
+using gs::qnv::packets::decodeStream;
+using gs::qnv::packets::payloadBytes;
+using gs::qnv::packets::resealPacket;
 
 namespace {
 
@@ -74,29 +79,6 @@ const EncodedVectors& dirSmallSphereVectors() {  // the golden stream's: 760 tri
   return e;
 }
 
-struct DirDecoded {
-  std::map<std::uint64_t, std::multiset<std::string>> byFirst;
-  std::size_t vectors = 0;
-  bool finished = false;
-  std::string error;
-  DecoderStats stats;
-};
-
-DirDecoded dirDecode(std::string_view bytes, std::size_t chunk = 1 << 16) {
-  DirDecoded out;
-  StreamDecoder d("dirs.qnv");
-  auto sink = [&](std::uint64_t first, std::span<const DecodedVector> v) {
-    for (const DecodedVector& x : v)
-      out.byFirst[first].insert(std::string(reinterpret_cast<const char*>(&x), sizeof x));
-    out.vectors += v.size();
-  };
-  for (std::size_t at = 0; at < bytes.size(); at += chunk) d.feed(bytes.substr(at, chunk), sink);
-  out.finished = d.finish(sink);
-  out.error = d.error();
-  out.stats = d.stats();
-  return out;
-}
-
 WriteOptions dirOptions(std::uint32_t bytes, bool fast) {
   WriteOptions w{bytes, PacketEncoding::entropy};
   w.streamModel = true;
@@ -111,25 +93,13 @@ StreamHeader dirHeader(const std::string& s) {
   return *h;
 }
 
-std::size_t dirPayloadBytes(const std::string& s, std::size_t at) {
-  return static_cast<unsigned char>(s[at + 8]) + 256u * static_cast<unsigned char>(s[at + 9]);
-}
-
 // Starts of the packets whose entropy payload has flag bit 3 (directions from the blocks).
 std::vector<std::size_t> directionPackets(const std::string& s) {
   std::vector<std::size_t> starts;
   for (std::size_t at = dirHeader(s).headerBytes; at + kPacketHeaderBytes <= s.size();
-       at += kPacketHeaderBytes + dirPayloadBytes(s, at))
+       at += kPacketHeaderBytes + payloadBytes(s, at))
     if (s[at + 10] == 2 && (s[at + kPacketHeaderBytes] & 8)) starts.push_back(at);
   return starts;
-}
-
-void dirReseal(std::string& s, std::size_t at, std::size_t payload) {
-  s[at + 8] = static_cast<char>(payload & 0xff);
-  s[at + 9] = static_cast<char>(payload >> 8);
-  const std::uint32_t crc = crc32(std::string_view(s).substr(at + kPacketHeaderBytes, payload),
-                                  crc32(std::string_view(s).substr(at + 2, 10)));
-  for (int i = 0; i < 4; ++i) s[at + 12 + i] = static_cast<char>(crc >> (8 * i));
 }
 
 // Bits LSB first, as the entropy payload's bit part.
@@ -201,7 +171,7 @@ TEST_CASE("kind-2 models keep every record in both layouts and make streams smal
   for (const EncodedVectors* e : {&dirShellVectors(), &dirSphereVectors()}) {
     for (std::uint32_t bytes : {48u, 1376u, 16384u}) {
       const std::string plain = writeStream(*e, {bytes, PacketEncoding::plain});
-      const DirDecoded a = dirDecode(plain);
+      const DecodedStream a = decodeStream(plain);
       for (bool fast : {false, true}) {
         INFO("packet bytes " << bytes << ", fast " << fast << ", " << e->records.size()
                              << " vectors");
@@ -218,7 +188,7 @@ TEST_CASE("kind-2 models keep every record in both layouts and make streams smal
           CHECK(modelled.size() < entropy.size());
         }
         if (bytes >= 1376 && !h.model.empty()) CHECK(!directionPackets(modelled).empty());
-        const DirDecoded b = dirDecode(modelled, 1000);
+        const DecodedStream b = decodeStream(modelled, 1000);
         REQUIRE(b.finished);
         CHECK(b.stats.packetsCorrupt == 0);
         CHECK(a.byFirst == b.byFirst);
@@ -235,12 +205,12 @@ TEST_CASE("kind-2 models keep every record in both layouts and make streams smal
 TEST_CASE("a hand-made kind-2 model: its block's direction predicts, theta 32 and over refuses",
           "[qnv][model][directions]") {
   // The model's bytes as worked out above decode, in both kinds.
-  CHECK(dirDecode(serializeHeader(handRecords(handModel(2, 5, 17)).header)).error.empty());
-  CHECK(dirDecode(serializeHeader(handRecords(handModel(1, 0, 0)).header)).error.empty());
+  CHECK(decodeStream(serializeHeader(handRecords(handModel(2, 5, 17)).header)).error.empty());
+  CHECK(decodeStream(serializeHeader(handRecords(handModel(1, 0, 0)).header)).error.empty());
   // A direction outside theta's 32 cells, or any direction in kind 1, refuses the stream.
   for (const std::string& bad : {handModel(2, 32, 0), handModel(2, 63, 5), handModel(1, 5, 17),
                                  handModel(1, 0, 1), handModel(3, 5, 17)}) {
-    const DirDecoded p = dirDecode(serializeHeader(handRecords(bad).header));
+    const DecodedStream p = decodeStream(serializeHeader(handRecords(bad).header));
     CHECK(p.error.find("stream model does not decode") != std::string::npos);
   }
   for (bool fast : {false, true}) {
@@ -254,8 +224,8 @@ TEST_CASE("a hand-made kind-2 model: its block's direction predicts, theta 32 an
     REQUIRE(dirHeader(s).model == e.header.model);
     const std::vector<std::size_t> withDirections = directionPackets(s);
     CHECK(withDirections.size() == 3);  // 16 + 16 + 8 records
-    const DirDecoded a = dirDecode(writeStream(e, {16 * 8, PacketEncoding::plain}));
-    const DirDecoded b = dirDecode(s);
+    const DecodedStream a = decodeStream(writeStream(e, {16 * 8, PacketEncoding::plain}));
+    const DecodedStream b = decodeStream(s);
     REQUIRE(b.finished);
     CHECK(a.byFirst == b.byFirst);
     // The same packets under a kind-1 model of the same block, or a kind-2 model with
@@ -264,20 +234,20 @@ TEST_CASE("a hand-made kind-2 model: its block's direction predicts, theta 32 an
     StreamHeader h = dirHeader(s);
     const std::string packets = s.substr(h.headerBytes);
     h.model = handModel(1, 0, 0);
-    const DirDecoded kind1 = dirDecode(serializeHeader(h) + packets);
+    const DecodedStream kind1 = decodeStream(serializeHeader(h) + packets);
     CHECK(kind1.error.empty());
     CHECK(kind1.vectors == 0);
     CHECK(kind1.stats.packetsCorrupt >= 1);  // (a run of damaged packets counts once)
     h.model = handModel(2, 6, 17);
-    const DirDecoded other = dirDecode(serializeHeader(h) + packets);
+    const DecodedStream other = decodeStream(serializeHeader(h) + packets);
     CHECK(other.vectors == 40);
     CHECK(other.byFirst != b.byFirst);
     // Flag bit 3 without bit 1 (blocks) is refused too.
     std::string t = s;
     const std::size_t at = withDirections[0];
     t[at + kPacketHeaderBytes] = static_cast<char>(t[at + kPacketHeaderBytes] & ~2);
-    dirReseal(t, at, dirPayloadBytes(t, at));
-    const DirDecoded noBlocks = dirDecode(t);
+    resealPacket(t, at, payloadBytes(t, at));
+    const DecodedStream noBlocks = decodeStream(t);
     CHECK(noBlocks.stats.packetsCorrupt == 1);
     CHECK(noBlocks.vectors == 24);
   }
@@ -296,8 +266,8 @@ TEST_CASE("the encoder reproduces the golden kind-2 stream byte for byte",
   // Kind 2 with shared tables (bit 7; docs/qnv-format.md, "Shared tables").
   CHECK(static_cast<unsigned char>(h.model[0]) == 0x82);
   CHECK(directionPackets(golden).size() == 12);  // every packet
-  const DirDecoded a = dirDecode(writeStream(dirSmallSphereVectors(), {512}));
-  const DirDecoded b = dirDecode(golden, 333);
+  const DecodedStream a = decodeStream(writeStream(dirSmallSphereVectors(), {512}));
+  const DecodedStream b = decodeStream(golden, 333);
   REQUIRE(b.finished);
   CHECK(a.byFirst == b.byFirst);
 }
@@ -314,7 +284,7 @@ TEST_CASE("a hostile kind-2 model under a valid CRC is refused or decodes safely
   auto attempt = [&](const std::string& model) {
     StreamHeader t = h;
     t.model = model;
-    const DirDecoded p = dirDecode(serializeHeader(t) + packets, 999);
+    const DecodedStream p = decodeStream(serializeHeader(t) + packets, 999);
     ++tried;
     if (!p.error.empty()) {
       ++refused;
@@ -345,8 +315,8 @@ TEST_CASE("a cut or damaged payload with flag bit 3 under a valid CRC is rejecte
       const std::vector<std::size_t> starts = directionPackets(s);
       REQUIRE(starts.size() >= 2);
       const std::size_t at = starts[1];
-      const std::size_t payload = dirPayloadBytes(s, at);
-      const std::size_t total = dirDecode(s).vectors;
+      const std::size_t payload = payloadBytes(s, at);
+      const std::size_t total = decodeStream(s).vectors;
       REQUIRE(total == e.records.size());
       const std::size_t lost =
           static_cast<unsigned char>(s[at + 2]) + 256u * static_cast<unsigned char>(s[at + 3]);
@@ -355,8 +325,8 @@ TEST_CASE("a cut or damaged payload with flag bit 3 under a valid CRC is rejecte
       for (std::size_t cut = 0; cut < payload; cut += stride) {
         std::string t = s.substr(0, at + kPacketHeaderBytes + cut) +
                         s.substr(at + kPacketHeaderBytes + payload);
-        dirReseal(t, at, cut);
-        const DirDecoded p = dirDecode(t);
+        resealPacket(t, at, cut);
+        const DecodedStream p = decodeStream(t);
         wrong += p.stats.packetsCorrupt != 1 || p.vectors != total - lost;
       }
       CHECK(wrong == 0);
@@ -365,8 +335,8 @@ TEST_CASE("a cut or damaged payload with flag bit 3 under a valid CRC is rejecte
         for (unsigned char x : {0x01, 0x80, 0xff}) {
           std::string t = s;
           t[at + kPacketHeaderBytes + i] = static_cast<char>(t[at + kPacketHeaderBytes + i] ^ x);
-          dirReseal(t, at, payload);
-          const DirDecoded p = dirDecode(t);
+          resealPacket(t, at, payload);
+          const DecodedStream p = decodeStream(t);
           bad += p.vectors + lost * p.stats.packetsCorrupt != total;
           rejected += p.stats.packetsCorrupt;
         }
