@@ -77,8 +77,6 @@ std::vector<std::string> streamModelCandidates(const StreamHeader& header,
 /// unchanged when no tables pay.
 std::string withSharedTables(const StreamHeader& header, std::span<const std::uint64_t> records,
                              const std::string& model);
-/// The first of streamModelCandidates (kind 1) with its shared tables, or empty.
-std::string buildStreamModel(const StreamHeader& header, std::span<const std::uint64_t> records);
 
 /// Where the bits of entropy payloads go (the rANS fields at their model cost).
 struct EntropyFieldBits {

@@ -366,9 +366,4 @@ std::string withSharedTables(const StreamHeader& header, std::span<const std::ui
   return out.size() <= kMaxModelBytes ? out : model;
 }
 
-std::string buildStreamModel(const StreamHeader& header, std::span<const std::uint64_t> records) {
-  std::vector<std::string> models = streamModelCandidates(header, records);
-  return withSharedTables(header, records, models.empty() ? std::string() : models.front());
-}
-
 }  // namespace gs::qnv::detail
