@@ -160,14 +160,6 @@ void writeTable(BitWriter& bits, const FieldCoder& coder, int alphabetBits) {
 }
 
 namespace {
-bool readTableAfterMode(BitReader& bits, FieldCoder& coder, int alphabetBits, int mode);
-}  // namespace
-
-bool readTable(BitReader& bits, FieldCoder& coder, int alphabetBits) {
-  return readTableAfterMode(bits, coder, alphabetBits, static_cast<int>(bits.get(4)));
-}
-
-namespace {
 
 // The rest of a table whose 4-bit mode was read.
 bool readTableAfterMode(BitReader& bits, FieldCoder& coder, int alphabetBits, int mode) {
@@ -199,6 +191,10 @@ bool readTableAfterMode(BitReader& bits, FieldCoder& coder, int alphabetBits, in
 }
 
 }  // namespace
+
+bool readTable(BitReader& bits, FieldCoder& coder, int alphabetBits) {
+  return readTableAfterMode(bits, coder, alphabetBits, static_cast<int>(bits.get(4)));
+}
 
 const FieldCoder* readPacketTable(BitReader& bits, FieldCoder& own, int field,
                                   const SharedTables& shared) {

@@ -13,8 +13,12 @@
 #include <string_view>
 #include <vector>
 
+#include <cmath>
+
 #include "qnv/decoder.hpp"
+#include "qnv/encoder.hpp"
 #include "qnv/stream.hpp"
+#include "qnv/volume.hpp"
 
 namespace gs::qnv::packets {
 
@@ -42,6 +46,29 @@ inline DecodedStream decodeStream(std::string_view bytes, std::size_t chunk = 1 
   out.error = d.error();
   out.stats = d.stats();
   return out;
+}
+
+/// The vectors of a sphere shell in a volume of `dims` voxels (spacing 1, 1, 2): sample
+/// values fall from 1000 to 0 across a sphere of `radius` around (cx, cy, cz) in voxel
+/// units (z counted twice, its spacing), its radius rippled by `ripple` * sin(0.4 x); the
+/// largest `fraction` of the gradients kept. Neighbouring voxels' gradients agree.
+inline EncodedVectors sphereShellVectors(glm::uvec3 dims, float cx, float cy, float cz,
+                                         float radius, float ripple, double fraction) {
+  Volume v;
+  v.dims = dims;
+  v.spacing = {1, 1, 2};
+  v.samples.resize(v.voxelCount());
+  std::size_t i = 0;
+  for (std::uint32_t z = 0; z < v.dims.z; ++z)
+    for (std::uint32_t y = 0; y < v.dims.y; ++y)
+      for (std::uint32_t x = 0; x < v.dims.x; ++x) {
+        const float dx = x - cx, dy = y - cy, dz = 2.0f * z - cz;
+        const float r = std::sqrt(dx * dx + dy * dy + dz * dz) + std::sin(0.4f * x) * ripple;
+        v.samples[i++] = 1000.0f / (1.0f + std::exp(2.0f * (r - radius)));
+      }
+  VolumeEncodeOptions options;
+  options.selection.fraction = fraction;
+  return encodeVolume(v, options);
 }
 
 /// Payload bytes of the packet starting at byte `at` of stream `s` (its u16 at offset 8).

@@ -23,23 +23,8 @@ namespace {
 // A hollow sphere shell in a 48 x 44 x 24 volume (spacing 1, 1, 2): its gradient sits
 // on a thin surface, most blocks of the box stay empty.
 const EncodedVectors& shellVectors() {
-  static const EncodedVectors e = [] {
-    Volume v;
-    v.dims = {48, 44, 24};
-    v.spacing = {1, 1, 2};
-    v.samples.resize(v.voxelCount());
-    std::size_t i = 0;
-    for (std::uint32_t z = 0; z < v.dims.z; ++z)
-      for (std::uint32_t y = 0; y < v.dims.y; ++y)
-        for (std::uint32_t x = 0; x < v.dims.x; ++x) {
-          const float dx = x - 20.0f, dy = y - 22.0f, dz = 2.0f * z - 22.0f;
-          const float r = std::sqrt(dx * dx + dy * dy + dz * dz);
-          v.samples[i++] = 1000.0f / (1.0f + std::exp(2.0f * (r - 15.0f)));
-        }
-    VolumeEncodeOptions options;
-    options.selection.fraction = 0.05;
-    return encodeVolume(v, options);
-  }();
+  static const EncodedVectors e =
+      gs::qnv::packets::sphereShellVectors({48, 44, 24}, 20.0f, 22.0f, 22.0f, 15.0f, 0.0f, 0.05);
   return e;
 }
 

@@ -27,23 +27,8 @@ namespace {
 // A rippled sphere shell in a 40 x 36 x 20 volume (spacing 1, 1, 2): gradients point
 // every way, and neighbouring voxels agree.
 const EncodedVectors& dirShellVectors() {
-  static const EncodedVectors e = [] {
-    Volume v;
-    v.dims = {40, 36, 20};
-    v.spacing = {1, 1, 2};
-    v.samples.resize(v.voxelCount());
-    std::size_t i = 0;
-    for (std::uint32_t z = 0; z < v.dims.z; ++z)
-      for (std::uint32_t y = 0; y < v.dims.y; ++y)
-        for (std::uint32_t x = 0; x < v.dims.x; ++x) {
-          const float dx = x - 19.5f, dy = y - 17.5f, dz = 2.0f * z - 19.0f;
-          const float r = std::sqrt(dx * dx + dy * dy + dz * dz) + std::sin(0.4f * x) * 0.8f;
-          v.samples[i++] = 1000.0f / (1.0f + std::exp(2.0f * (r - 13.0f)));
-        }
-    VolumeEncodeOptions options;
-    options.selection.fraction = 0.06;
-    return encodeVolume(v, options);
-  }();
+  static const EncodedVectors e =
+      gs::qnv::packets::sphereShellVectors({40, 36, 20}, 19.5f, 17.5f, 19.0f, 13.0f, 0.8f, 0.06);
   return e;
 }
 
