@@ -297,6 +297,7 @@ struct FastSymbols {
   std::uint32_t xyz[kMaxRecords];        // positions, X << 20 | Y << 10 | Z in the index space
   std::uint16_t direction[kMaxRecords];  // flag bit 3: each record's block direction
   std::uint16_t magnitude[kMaxRecords];  // the offsets A - aMin
+  std::uint16_t partial[kMaxRecords];    // records in blocks that cross the grid's far faces
   std::size_t count = 0;
   std::uint32_t aMin = 0;
   int aBits = 0;
@@ -387,11 +388,19 @@ bool decodeFastSymbols(std::string_view payload, std::size_t count, const Positi
   return (bitPos + std::uint64_t{count} * static_cast<std::uint64_t>(aBits) + 7) / 8 == s.bitSize;
 }
 
+// 1 when index-space position xyz (X << 20 | Y << 10 | Z) lies past the grid's sizes.
+inline std::uint32_t outsideGrid(std::uint32_t xyz, std::uint32_t sizeX, std::uint32_t sizeY,
+                                 std::uint32_t sizeZ) {
+  return static_cast<std::uint32_t>((xyz >> 20) >= sizeX) |
+         static_cast<std::uint32_t>(((xyz >> 10) & 1023u) >= sizeY) |
+         static_cast<std::uint32_t>((xyz & 1023u) >= sizeZ);
+}
+
 // The first pass of the record rebuild: the positions, serial through the gap prefix
 // sum. Writes xyz[i] = X << 20 | Y << 10 | Z in the index space (voxel indices on a grid,
 // else cells); false when a code or index is out of range (all indices stay below 1024
 // meanwhile, so the second pass's lookups stay in bounds).
-template <bool kBlocks, bool kGrid>
+template <bool kBlocks, bool kGrid, bool kSmallBlocks = false>
 bool rebuildPositions(FastSymbols& s, const PositionGrid& grid) {
   std::uint32_t* xyzOut = s.xyz;
   std::uint16_t* directionOut = s.direction;  // read only with flag bit 3
@@ -419,6 +428,10 @@ bool rebuildPositions(FastSymbols& s, const PositionGrid& grid) {
   // fetched ahead: the codes are known) plus the position inside it.
   constexpr std::size_t kAhead = 16;
   std::uint32_t outside = 0;
+  // With blocks on a grid, only records in blocks that cross the grid's far faces can lie
+  // outside it: their indices are listed (branch-free) and checked after the loop.
+  std::uint16_t* partial = s.partial;
+  std::size_t partialCount = 0;
   for (std::size_t i = 0; i < count; ++i) {
     const std::uint32_t m = xyzOut[i];
     std::uint32_t xyz;
@@ -427,17 +440,22 @@ bool rebuildPositions(FastSymbols& s, const PositionGrid& grid) {
         __builtin_prefetch(origins +
                            std::min<std::size_t>(xyzOut[i + kAhead] >> blockBits, lastBlock));
       const std::uint64_t origin = origins[std::min<std::size_t>(m >> blockBits, lastBlock)];
-      xyz = static_cast<std::uint32_t>(origin) + mortonToXyz(m & lowMask);
+      // Blocks of at most 16 indices per axis: the offset is one 12-bit piece.
+      xyz = static_cast<std::uint32_t>(origin) +
+            (kSmallBlocks ? kMortonPieces.xyz[m & lowMask] : mortonToXyz(m & lowMask));
       directionOut[i] = static_cast<std::uint16_t>(origin >> 32);
+      if constexpr (kGrid) {
+        partial[partialCount] = static_cast<std::uint16_t>(i);
+        partialCount += origin >> 63;
+      }
     } else {  // bits over 30 are dropped; the code is checked
       xyz = mortonToXyz(m);
     }
-    if constexpr (kGrid)
-      outside |= static_cast<std::uint32_t>((xyz >> 20) >= sizeX) |
-                 static_cast<std::uint32_t>(((xyz >> 10) & 1023u) >= sizeY) |
-                 static_cast<std::uint32_t>((xyz & 1023u) >= sizeZ);
+    if constexpr (kGrid && !kBlocks) outside |= outsideGrid(xyz, sizeX, sizeY, sizeZ);
     xyzOut[i] = xyz;
   }
+  for (std::size_t k = 0; k < partialCount; ++k)
+    outside |= outsideGrid(xyzOut[partial[k]], sizeX, sizeY, sizeZ);
   return code < codeLimit && outside == 0 && (gapPos + 7) / 8 == gapSize;
 }
 
@@ -484,10 +502,14 @@ bool emitRecords(FastSymbols& s, Emit&& emit) {
 // Rebuilds the records from the symbols: the positions, then the rest (above).
 template <typename Emit>
 bool rebuildRecords(FastSymbols& s, const PositionGrid& grid, Emit&& emit) {
-  const bool positions = s.useBlocks ? (s.useGrid ? rebuildPositions<true, true>(s, grid)
-                                                  : rebuildPositions<true, false>(s, grid))
-                                     : (s.useGrid ? rebuildPositions<false, true>(s, grid)
-                                                  : rebuildPositions<false, false>(s, grid));
+  const bool small = grid.blockShift <= 4;
+  const bool positions = s.useBlocks
+                             ? (s.useGrid ? (small ? rebuildPositions<true, true, true>(s, grid)
+                                                   : rebuildPositions<true, true>(s, grid))
+                                          : (small ? rebuildPositions<true, false, true>(s, grid)
+                                                   : rebuildPositions<true, false>(s, grid)))
+                             : (s.useGrid ? rebuildPositions<false, true>(s, grid)
+                                          : rebuildPositions<false, false>(s, grid));
   if (!positions) return false;
   return s.useDirections ? emitRecords<true>(s, emit) : emitRecords<false>(s, emit);
 }

@@ -43,7 +43,8 @@ struct PositionGrid {
   /// Morton codes of the occupied blocks' coordinates, strictly increasing (at most 2^21).
   std::vector<std::uint32_t> blocks;
   /// For the decoders, per occupied block: its first index as X << 20 | Y << 10 | Z in the
-  /// low 32 bits, its direction (blockDirections, or 0) in the high ones: one load.
+  /// low 32 bits, its direction (blockDirections, or 0) in bits 32..43, and in bit 63
+  /// whether some index of the block lies past axisSize on an axis: one load.
   std::vector<std::uint64_t> blockOrigins;
   /// The model's shared tables (docs/qnv-format.md, "Shared tables"), none without.
   SharedTables shared;

@@ -181,9 +181,14 @@ PositionGrid PositionGrid::forHeader(const StreamHeader& header) {
   for (std::size_t i = 0; i < grid.blocks.size(); ++i) {
     const std::uint32_t block = grid.blocks[i];
     const std::uint64_t direction = i < grid.blockDirections.size() ? grid.blockDirections[i] : 0;
-    grid.blockOrigins.push_back((direction << 32) | (compact3(block) << (20 + grid.blockShift)) |
-                                (compact3(block >> 1) << (10 + grid.blockShift)) |
-                                (compact3(block >> 2) << grid.blockShift));
+    const std::uint64_t x = compact3(block), y = compact3(block >> 1), z = compact3(block >> 2);
+    const std::uint64_t last = (std::uint64_t{1} << grid.blockShift) - 1;
+    const bool partial = ((x << grid.blockShift) + last >= grid.axisSize(0)) ||
+                         ((y << grid.blockShift) + last >= grid.axisSize(1)) ||
+                         ((z << grid.blockShift) + last >= grid.axisSize(2));
+    grid.blockOrigins.push_back((std::uint64_t{partial} << 63) | (direction << 32) |
+                                (x << (20 + grid.blockShift)) | (y << (10 + grid.blockShift)) |
+                                (z << grid.blockShift));
   }
   return grid;
 }

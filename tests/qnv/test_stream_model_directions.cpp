@@ -330,3 +330,48 @@ TEST_CASE("a cut or damaged payload with flag bit 3 under a valid CRC is rejecte
     }
   }
 }
+
+TEST_CASE("records of a partial block past a volume's far face refuse their packet",
+          "[qnv][model][grid]") {
+  // A 6 x 8 x 8 volume under the hand-made kind-1 model: one block of 8^3 indices, which
+  // crosses the far x face (indices 6, 7 lie outside). 16 records with x index < 4 come
+  // first (largest A), then 16 with x index 4 or 5.
+  auto cell = [](std::uint32_t i, std::uint32_t dims) {
+    return static_cast<std::uint16_t>(std::min<std::uint32_t>(1023, i * 1024 / (dims - 1)));
+  };
+  EncodedVectors e;
+  e.header.kind = StreamKind::volume;
+  e.header.encoding = PacketEncoding::entropy;
+  e.header.volumeDims = {6, 8, 8};
+  e.header.boundsMax = {5, 7, 7};
+  e.header.magnitudeMin = 1;
+  e.header.magnitudeMax = 2;
+  e.header.model = handModel(1, 0, 0);
+  for (std::uint16_t i = 0; i < 32; ++i) {
+    RecordFields f;
+    f.x = cell(i < 16 ? i % 4 : 4 + i % 2, 6);
+    f.y = cell(i % 8, 8);
+    f.z = cell((i / 2) % 8, 8);
+    f.a = static_cast<std::uint16_t>(1000 - i);
+    e.records.push_back(packRecord(f));
+  }
+  for (bool fast : {false, true}) {
+    INFO("fast " << fast);
+    WriteOptions w{16 * 8, PacketEncoding::entropy};
+    w.fastEntropy = fast;
+    const std::string s = writeStream(e, w);
+    StreamHeader h = dirHeader(s);
+    REQUIRE(h.model == e.header.model);
+    const DecodedStream all = decodeStream(s);
+    CHECK(all.vectors == 32);
+    CHECK(all.stats.packetsCorrupt == 0);
+    // The same packets in a 4 x 8 x 8 volume: the model's one block still covers it, but
+    // the second packet's x indices 4 and 5 now lie past the far face.
+    h.volumeDims = {4, 8, 8};
+    h.boundsMax = {3, 7, 7};
+    const DecodedStream narrower = decodeStream(serializeHeader(h) + s.substr(h.headerBytes));
+    CHECK(narrower.error.empty());
+    CHECK(narrower.vectors == 16);
+    CHECK(narrower.stats.packetsCorrupt == 1);
+  }
+}
