@@ -53,6 +53,9 @@ inline std::uint64_t peekBits(const unsigned char* base, std::size_t size, std::
   return w >> (pos & 7);
 }
 
+using RunDecoder = void (*)(const RansModel&, std::uint32_t*, const unsigned char*&,
+                            const unsigned char*, std::uint8_t*, std::size_t, bool&);
+
 // rANS over one run of n symbols, symbol j on lane j mod L, states carried in x.
 template <int L>
 void decodeRun(const RansModel& model, std::uint32_t* states, const unsigned char*& where,
@@ -145,6 +148,15 @@ GS_AVX2 void avx2Renormalize(__m256i& x, const unsigned char*& p) {
   p += 2 * static_cast<unsigned>(__builtin_popcount(bits));
 }
 
+// Stores the 16 symbols of lanes a0..7 then b0..7 as bytes: packed to 16-bit (a0-3 b0-3
+// a4-7 b4-7), then to bytes.
+GS_AVX2 void storeSymbols16(std::uint8_t* out, __m256i sa, __m256i sb) {
+  const __m256i s16 = _mm256_permute4x64_epi64(_mm256_packus_epi32(sa, sb), 0xd8);
+  const __m256i s8 = _mm256_packus_epi16(s16, s16);
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(out),
+                   _mm256_castsi256_si128(_mm256_permute4x64_epi64(s8, 0x08)));
+}
+
 // decodeRun<16> with AVX2: two vectors of eight states, the same symbols and words in
 // the same order (lanes 0..7 renormalize before 8..15).
 __attribute__((target("avx2,popcnt"))) void decodeRun16Avx2(
@@ -162,11 +174,7 @@ __attribute__((target("avx2,popcnt"))) void decodeRun16Avx2(
     const __m256i sb = avx2Step(xb, slots, mask, shift);
     avx2Renormalize(xa, p);
     avx2Renormalize(xb, p);
-    // 16 symbols in order: pack to 16-bit (a0-3 b0-3 a4-7 b4-7), then to bytes.
-    const __m256i s16 = _mm256_permute4x64_epi64(_mm256_packus_epi32(sa, sb), 0xd8);
-    const __m256i s8 = _mm256_packus_epi16(s16, s16);
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(sym + j),
-                     _mm256_castsi256_si128(_mm256_permute4x64_epi64(s8, 0x08)));
+    storeSymbols16(sym + j, sa, sb);
   }
   _mm256_storeu_si256(reinterpret_cast<__m256i*>(states), xa);
   _mm256_storeu_si256(reinterpret_cast<__m256i*>(states + 8), xb);
@@ -175,16 +183,58 @@ __attribute__((target("avx2,popcnt"))) void decodeRun16Avx2(
   decodeRun<16>(model, states, where, end, sym + j, n - j, overrun);
 }
 
-// AVX2 where the CPU has it, unless GS_QNV_NO_AVX2 is set (to measure the scalar path).
-bool useAvx2() {
-  static const bool use = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt") &&
-                          std::getenv("GS_QNV_NO_AVX2") == nullptr;
-  return use;
+#define GS_AVX512 __attribute__((target("avx2,avx512f,avx512vl,popcnt"), always_inline)) inline
+
+// avx2Renormalize with AVX-512VL: the words expanded into the lanes that take them
+// (vpexpandd), without the permutation table's load on the states' dependency chain.
+GS_AVX512 void avx512Renormalize(__m256i& x, const unsigned char*& p) {
+  const __mmask8 need = _mm256_cmplt_epu32_mask(x, _mm256_set1_epi32(static_cast<int>(kRansLow)));
+  const __m256i words = _mm256_cvtepu16_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)));
+  x = _mm256_mask_or_epi32(x, need, _mm256_slli_epi32(x, 16),
+                           _mm256_maskz_expand_epi32(need, words));
+  p += 2 * static_cast<unsigned>(__builtin_popcount(need));
+}
+
+// decodeRun16Avx2 with avx512Renormalize: the same symbols, words and states.
+__attribute__((target("avx2,avx512f,avx512vl,popcnt"))) void decodeRun16Avx512(
+    const RansModel& model, std::uint32_t* states, const unsigned char*& where,
+    const unsigned char* end, std::uint8_t* sym, std::size_t n, bool& overrun) {
+  const auto* slots = reinterpret_cast<const int*>(model.slots.data());
+  const __m128i shift = _mm_cvtsi32_si128(model.probBits);
+  const __m256i mask = _mm256_set1_epi32((1 << model.probBits) - 1);
+  __m256i xa = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(states));
+  __m256i xb = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(states + 8));
+  const unsigned char* p = where;
+  std::size_t j = 0;
+  for (; j + 16 <= n && end - p >= 32; j += 16) {
+    const __m256i sa = avx2Step(xa, slots, mask, shift);
+    const __m256i sb = avx2Step(xb, slots, mask, shift);
+    avx512Renormalize(xa, p);
+    avx512Renormalize(xb, p);
+    storeSymbols16(sym + j, sa, sb);
+  }
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(states), xa);
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(states + 8), xb);
+  where = p;
+  decodeRun<16>(model, states, where, end, sym + j, n - j, overrun);
+}
+
+// The 16-lane run decoder for this CPU: AVX-512VL, else AVX2, else none (nullptr: the
+// scalar one). GS_QNV_NO_AVX512 and GS_QNV_NO_AVX2 turn them off, to measure the others.
+RunDecoder simdRun16() {
+  static const RunDecoder run = []() -> RunDecoder {
+    if (!__builtin_cpu_supports("avx2") || !__builtin_cpu_supports("popcnt") ||
+        std::getenv("GS_QNV_NO_AVX2") != nullptr)
+      return nullptr;
+    if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+        std::getenv("GS_QNV_NO_AVX512") == nullptr)
+      return decodeRun16Avx512;
+    return decodeRun16Avx2;
+  }();
+  return run;
 }
 #endif
 
-using RunDecoder = void (*)(const RansModel&, std::uint32_t*, const unsigned char*&,
-                            const unsigned char*, std::uint8_t*, std::size_t, bool&);
 constexpr RunDecoder kRunDecoders[kMaxLanesLog2 + 1] = {decodeRun<1>, decodeRun<2>, decodeRun<4>,
                                                         decodeRun<8>, decodeRun<16>};
 
@@ -376,7 +426,7 @@ bool decodeFastSymbols(std::string_view payload, std::size_t count, const Positi
     } else {
       RunDecoder run = kRunDecoders[lanesLog2];
 #if defined(__x86_64__)
-      if (lanesLog2 == 4 && useAvx2()) run = decodeRun16Avx2;
+      if (lanesLog2 == 4 && simdRun16() != nullptr) run = simdRun16();
 #endif
       run(c.model, x, p, ransEnd, s.sym[k], count, overrun);
     }
