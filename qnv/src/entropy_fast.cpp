@@ -75,7 +75,7 @@ void decodeRun(const RansModel& model, std::uint32_t* states, const unsigned cha
     std::uint8_t out[L];
     for (int l = 0; l < L; ++l) {
       const std::uint32_t e = slots[x[l] & mask];
-      xx[l] = (((e >> 8) & 0xfffu) + 1) * (x[l] >> shift) + (e >> 20);
+      xx[l] = ((e >> 20) + 1) * (x[l] >> shift) + ((e >> 8) & 0xfffu);
       out[l] = static_cast<std::uint8_t>(e);
     }
     for (int l = 0; l < L; ++l) {
@@ -91,7 +91,7 @@ void decodeRun(const RansModel& model, std::uint32_t* states, const unsigned cha
   for (; j < n; ++j) {  // the rest one at a time, bounds-checked
     std::uint32_t& s = x[j & (L - 1)];
     const std::uint32_t e = slots[s & mask];
-    s = (((e >> 8) & 0xfffu) + 1) * (s >> shift) + (e >> 20);
+    s = ((e >> 20) + 1) * (s >> shift) + ((e >> 8) & 0xfffu);
     sym[j] = static_cast<std::uint8_t>(e);
     if (s < kRansLow) {
       if (end - p < 2) {
@@ -129,9 +129,9 @@ constexpr WordPermutes kWordPermutes;
 // One rANS step of eight states; returns the symbols (one per 32-bit lane).
 GS_AVX2 __m256i avx2Step(__m256i& x, const int* slots, __m256i mask, __m128i shift) {
   const __m256i e = _mm256_i32gather_epi32(slots, _mm256_and_si256(x, mask), 4);
-  const __m256i f = _mm256_add_epi32(
-      _mm256_and_si256(_mm256_srli_epi32(e, 8), _mm256_set1_epi32(0xfff)), _mm256_set1_epi32(1));
-  x = _mm256_add_epi32(_mm256_mullo_epi32(f, _mm256_srl_epi32(x, shift)), _mm256_srli_epi32(e, 20));
+  const __m256i f = _mm256_add_epi32(_mm256_srli_epi32(e, 20), _mm256_set1_epi32(1));
+  const __m256i offset = _mm256_and_si256(_mm256_srli_epi32(e, 8), _mm256_set1_epi32(0xfff));
+  x = _mm256_add_epi32(_mm256_mullo_epi32(f, _mm256_srl_epi32(x, shift)), offset);
   return _mm256_and_si256(e, _mm256_set1_epi32(0xff));
 }
 

@@ -12,7 +12,7 @@ void RansModel::build() {
     start[s] = static_cast<std::uint16_t>(at);
     for (std::uint32_t k = 0; k < freq[s]; ++k)
       slots[at + k] =
-          static_cast<std::uint32_t>(s) | ((std::uint32_t{freq[s]} - 1) << 8) | (k << 20);
+          static_cast<std::uint32_t>(s) | (k << 8) | ((std::uint32_t{freq[s]} - 1) << 20);
     at += freq[s];
   }
 }

@@ -149,8 +149,9 @@ struct RansModel {
   int probBits = 0;
   std::vector<std::uint16_t> freq;   // per symbol
   std::vector<std::uint16_t> start;  // per symbol, cumulative
-  // Decoder: for each of the 2^probBits slots, the symbol (bits 0..7), its frequency
-  // minus one (bits 8..19) and the slot's offset from the symbol's start (bits 20..31).
+  // Decoder: for each of the 2^probBits slots, the symbol (bits 0..7), the slot's offset
+  // from the symbol's start (bits 8..19) and the symbol's frequency minus one (bits 20..31,
+  // on top: one shift from the multiplier on the decoder's dependency chain).
   std::vector<std::uint32_t> slots;
 
   /// Fills start and slots from freq (which must sum to 2^probBits).
@@ -192,7 +193,7 @@ class RansDecoder {
     std::uint32_t& x = x_[lane];
     const std::uint32_t mask = (1u << model.probBits) - 1;
     const std::uint32_t e = model.slots[x & mask];
-    x = (((e >> 8) & 0xfffu) + 1) * (x >> model.probBits) + (e >> 20);
+    x = ((e >> 20) + 1) * (x >> model.probBits) + ((e >> 8) & 0xfffu);
     // Renormalize without a branch: x >= 2^(16 - probBits) here, so one 16-bit word
     // always brings it back to [2^16, 2^32). Past the end, zeros are read instead.
     static constexpr unsigned char kZeros[2] = {0, 0};
