@@ -29,9 +29,28 @@ constexpr std::size_t kFastPreambleBytes = 9;  // flags, aMin, aBits, lanes, R, 
 constexpr int kMaxLanesLog2 = 4;               // at most 16 states
 constexpr std::size_t kMaxRecords = 8191;      // a packet's most (65528 / 8)
 
-// Lanes by packet size: every state costs 4 bytes, so small packets get few.
-int lanesLog2For(std::size_t n) {
-  return n >= 1024 ? 4 : n >= 256 ? 3 : n >= 64 ? 2 : n >= 16 ? 1 : 0;
+constexpr int kStateBits = 31;  // bits a state carries (flag bit 4)
+
+// Lanes by packet size, for `carryBits` magnitude offset bits the states may carry. A
+// state costs 4 bytes, of which about 8 bits are overhead when it carries 31 raw bits and
+// about 24 when it carries none: with bits to carry, lanes double while every lane keeps
+// 20 records or more and all lanes can carry; without, small packets get few.
+int lanesLog2For(std::size_t n, std::uint64_t carryBits) {
+  if (carryBits == 0) return n >= 1024 ? 4 : n >= 256 ? 3 : n >= 64 ? 2 : n >= 16 ? 1 : 0;
+  int k = 0;
+  while (k < kMaxLanesLog2 && n >= (std::size_t{40} << k) &&
+         carryBits >= std::uint64_t{kStateBits} << (k + 1))
+    ++k;
+  return k;
+}
+
+// Bits lane l carries when a packet's states carry `carried` bits in all: 31 each, lane 0
+// first.
+inline int laneCarry(std::uint64_t carried, std::size_t l) {
+  const std::uint64_t before = std::uint64_t{kStateBits} * l;
+  return carried <= before
+             ? 0
+             : static_cast<int>(std::min<std::uint64_t>(kStateBits, carried - before));
 }
 
 // A little-endian load from a byte pointer.
@@ -275,13 +294,36 @@ inline std::uint32_t mortonToXyz(std::uint32_t m) {
 void appendFastLayout(std::string& out, const PacketSymbols& packet) {
   const std::size_t n = packet.sorted.size();
   const auto& coders = *packet.coders;
-  const int lanesLog2 = lanesLog2For(n);
+  // The magnitude offsets, aBits each: the first `carried` bits go into the rANS states'
+  // start values (flag bit 4), the rest into the bit part.
+  std::string offsetBytes;
+  {
+    BitWriter offsets(offsetBytes);
+    for (std::size_t i = 0; i < n; ++i)
+      offsets.put(magnitudeCode(packet.sorted[i].second) - packet.aMin, packet.aBits);
+    offsets.finish();
+  }
+  const std::uint64_t offsetBits = std::uint64_t{n} * static_cast<std::uint64_t>(packet.aBits);
+  const int lanesLog2 = lanesLog2For(n, offsetBits);
   const std::size_t laneMask = (std::size_t{1} << lanesLog2) - 1;
+  const std::uint64_t carried = std::min<std::uint64_t>(offsetBits, kStateBits * (laneMask + 1));
+  const auto offsetBit = [&](std::uint64_t b) {
+    return static_cast<std::uint32_t>((static_cast<unsigned char>(offsetBytes[b >> 3]) >> (b & 7)) &
+                                      1u);
+  };
 
   // rANS: the coded fields in order, each a run of n symbols, symbol j on lane j mod L;
-  // encoded back to front, so the words come out in reverse reading order.
+  // encoded back to front, so the words come out in reverse reading order. A state that
+  // carries c bits starts at 2^31 plus those bits (the first one lowest), else at 2^16.
   std::array<std::uint32_t, 16> x;
   x.fill(kRansLow);
+  for (std::size_t l = 0; l <= laneMask; ++l) {
+    const int c = laneCarry(carried, l);
+    if (c == 0) continue;
+    std::uint32_t r = 0;
+    for (int b = 0; b < c; ++b) r |= offsetBit(kStateBits * l + static_cast<std::uint64_t>(b)) << b;
+    x[l] = 0x80000000u | r;
+  }
   std::vector<std::uint16_t> words;
   for (int k = kFields; k-- > 0;) {
     if (!coders[k].coded()) continue;
@@ -319,11 +361,11 @@ void appendFastLayout(std::string& out, const PacketSymbols& packet) {
     if (coders[k].mode == kModeRaw)
       for (std::size_t i = 0; i < n; ++i)
         bits.put(packet.symbols[i][static_cast<std::size_t>(k)], kAlphabetBits[k]);
-  for (std::size_t i = 0; i < n; ++i)
-    bits.put(magnitudeCode(packet.sorted[i].second) - packet.aMin, packet.aBits);
+  for (std::uint64_t b = carried; b < offsetBits; ++b) bits.put(offsetBit(b), 1);
   bits.finish();
 
-  appendLe<std::uint8_t>(out, static_cast<std::uint8_t>(packet.flags | kFlagFast));
+  const std::uint8_t carryFlag = carried > 0 ? kFlagStateBits : 0;
+  appendLe<std::uint8_t>(out, static_cast<std::uint8_t>(packet.flags | kFlagFast | carryFlag));
   appendLe<std::uint16_t>(out, static_cast<std::uint16_t>(packet.aMin));
   appendLe<std::uint8_t>(out, static_cast<std::uint8_t>(packet.aBits));
   appendLe<std::uint8_t>(out, static_cast<std::uint8_t>(lanesLog2));
@@ -356,7 +398,10 @@ struct FastSymbols {
   std::size_t gapSize = 0;
   const unsigned char* bitBase = nullptr;
   std::size_t bitSize = 0;
-  std::uint64_t aPos = 0;  // bit of the first magnitude offset
+  std::uint64_t aPos = 0;  // bit of the bit part's first magnitude offset bit
+  // Flag bit 4: the first `carried` magnitude offset bits, from the states, LSB first.
+  std::uint64_t carried = 0;
+  std::uint8_t carriedBytes[16 * 4 + 8] = {};
 };
 
 // Checks the preamble, reads the tables and decodes the rANS runs; false on any
@@ -375,7 +420,7 @@ bool decodeFastSymbols(std::string_view payload, std::size_t count, const Positi
   const bool useBlocks = flags & kFlagBlocks;
   const bool useDirections = flags & kFlagBlockDirections;
   const std::size_t lanes = std::size_t{1} << std::min(lanesLog2, kMaxLanesLog2);
-  if (flags > (kFlagGrid | kFlagBlocks | kFlagFast | kFlagBlockDirections) ||
+  if (flags > (kFlagGrid | kFlagBlocks | kFlagFast | kFlagBlockDirections | kFlagStateBits) ||
       aMin >= kMagnitudeSteps || aBits > kMagnitudeBits || lanesLog2 > kMaxLanesLog2 ||
       ransSize + gapSize > payload.size() - kFastPreambleBytes || ransSize < 4 * lanes ||
       (useGrid && !grid.active) ||
@@ -432,10 +477,27 @@ bool decodeFastSymbols(std::string_view payload, std::size_t count, const Positi
     }
   }
   if (overrun || p != ransEnd) return false;
-  for (std::size_t l = 0; l < lanes; ++l)
-    if (x[l] != kRansLow) return false;
+  // The states end where the encoder started them: 2^16, or with flag bit 4 2^31 plus the
+  // bits they carry (unused high bits zero).
+  const std::uint64_t offsetBits = std::uint64_t{count} * static_cast<std::uint64_t>(aBits);
+  s.carried =
+      (flags & kFlagStateBits) ? std::min<std::uint64_t>(offsetBits, kStateBits * lanes) : 0;
+  if ((flags & kFlagStateBits) && s.carried == 0) return false;  // one encoding per packet
+  for (std::size_t l = 0; l < lanes; ++l) {
+    const int c = laneCarry(s.carried, l);
+    if (c == 0) {
+      if (x[l] != kRansLow) return false;
+      continue;
+    }
+    if ((x[l] >> c) != (0x80000000u >> c)) return false;
+    // 31 bits at bit 31 * l: within the 5 bytes from byte (31 * l) / 8.
+    const std::size_t at = kStateBits * l;
+    const std::uint64_t bits = std::uint64_t{x[l] & 0x7fffffffu} << (at % 8);
+    for (std::size_t b = 0; b < 5; ++b)
+      s.carriedBytes[at / 8 + b] |= static_cast<std::uint8_t>(bits >> (8 * b));
+  }
   s.aPos = bitPos;
-  return (bitPos + std::uint64_t{count} * static_cast<std::uint64_t>(aBits) + 7) / 8 == s.bitSize;
+  return (bitPos + offsetBits - s.carried + 7) / 8 == s.bitSize;
 }
 
 // 1 when index-space position xyz (X << 20 | Y << 10 | Z) lies past the grid's sizes.
@@ -526,8 +588,27 @@ bool emitRecords(FastSymbols& s, Emit&& emit) {
     const std::size_t bitSize = s.bitSize;
     const auto aBits = static_cast<std::uint64_t>(s.aBits);
     const auto aMask = static_cast<std::uint32_t>((1u << s.aBits) - 1);
+    // Offset i lies at bit i * aBits of the carried bits followed by the bit part's: the
+    // offsets wholly among the carried bits, the one across the seam, then the rest.
+    const std::uint64_t carried = s.carried;
+    const std::size_t inStates =
+        aBits == 0 ? 0 : std::min<std::size_t>(count, static_cast<std::size_t>(carried / aBits));
+    const std::size_t carriedSize = sizeof s.carriedBytes;
+    std::size_t i = 0;
+    for (std::uint64_t pos = 0; i < inStates; ++i, pos += aBits)
+      s.magnitude[i] =
+          static_cast<std::uint16_t>(peekBits(s.carriedBytes, carriedSize, pos) & aMask);
     std::uint64_t aPos = s.aPos;
-    for (std::size_t i = 0; i < count; ++i, aPos += aBits)
+    if (i < count && carried > i * aBits) {  // across the seam
+      const std::uint64_t low = carried - i * aBits;
+      const std::uint64_t v =
+          peekBits(s.carriedBytes, carriedSize, i * aBits) & ((std::uint64_t{1} << low) - 1);
+      s.magnitude[i] =
+          static_cast<std::uint16_t>((v | (peekBits(bitBase, bitSize, aPos) << low)) & aMask);
+      aPos += aBits - low;
+      ++i;
+    }
+    for (; i < count; ++i, aPos += aBits)
       s.magnitude[i] = static_cast<std::uint16_t>(peekBits(bitBase, bitSize, aPos) & aMask);
   }
   const std::uint16_t* offsets = s.magnitude;

@@ -31,6 +31,9 @@ inline constexpr std::uint8_t kFlagFast = 4;    // the fast layout (entropy_fast
 /// Theta and phi are coded from the direction of the record's block (model kind 2), not
 /// from the previous record; only with kFlagBlocks.
 inline constexpr std::uint8_t kFlagBlockDirections = 8;
+/// Fast layout only: the rANS states start from values that carry the first magnitude
+/// offset bits (docs/qnv-format.md, "States that carry bits"), not from 2^16.
+inline constexpr std::uint8_t kFlagStateBits = 16;
 
 /// How one field of a packet is coded.
 struct FieldCoder {

@@ -90,21 +90,39 @@ WriteOptions fast(std::uint32_t bytes, bool model = false) {
   return o;
 }
 
-std::string goldenPath() {
-  return (gs::test::sourceDir() / "tests/qnv/golden/blob_entropy_fast.qnv").string();
+std::string goldenPath(const char* name = "blob_entropy_fast.qnv") {
+  return (gs::test::sourceDir() / "tests/qnv/golden" / name).string();
+}
+
+// The first payload bytes (flags, aMin, aBits, lanes) of a stream's fast entropy packets.
+std::vector<std::array<unsigned char, 5>> fastPreambles(const std::string& s) {
+  std::string why;
+  const auto h = parseHeader(s, "fast.qnv", why);
+  REQUIRE(h);
+  std::vector<std::array<unsigned char, 5>> out;
+  for (std::size_t at : packetStarts(s, h->headerBytes))
+    if (s[at + 10] == 2 && (s[at + kPacketHeaderBytes] & 4)) {
+      std::array<unsigned char, 5> p{};
+      for (std::size_t i = 0; i < p.size(); ++i)
+        p[i] = static_cast<unsigned char>(s[at + kPacketHeaderBytes + i]);
+      out.push_back(p);
+    }
+  return out;
 }
 
 }  // namespace
 
 TEST_CASE("fast entropy packets carry the same records as plain ones at every lane count",
           "[qnv][entropy][fast]") {
+  std::set<int> lanes;
   for (const EncodedVectors* e : {&volumeVectors(), &surfaceVectors()}) {
-    // 1, 6, 32, 172, 512, 2048 and 8191 records per packet: 1 to 16 rANS lanes.
-    for (std::uint32_t bytes : {8u, 48u, 256u, 1376u, 4096u, 16384u, 65528u}) {
+    // 1, 6, 32, 40, 80, 172, 512, 2048 and 8191 records per packet: 1 to 16 rANS lanes.
+    for (std::uint32_t bytes : {8u, 48u, 256u, 320u, 640u, 1376u, 4096u, 16384u, 65528u}) {
       for (bool model : {false, true}) {
         INFO("packet bytes " << bytes << ", model " << model << ", " << e->records.size());
         const std::string slow = writeStream(*e, {bytes, PacketEncoding::entropy});
         const std::string quick = writeStream(*e, fast(bytes, model));
+        for (const auto& p : fastPreambles(quick)) lanes.insert(p[4]);
         if (bytes >= 1376 && !model) CHECK(quick.size() * 100 < slow.size() * 103);
         const DecodedStream a =
             decodeStream(writeStream(*e, {bytes, PacketEncoding::plain}), 1 << 16);
@@ -116,6 +134,7 @@ TEST_CASE("fast entropy packets carry the same records as plain ones at every la
       }
     }
   }
+  CHECK(lanes == std::set<int>{0, 1, 2, 3, 4});  // lanes 2^0 .. 2^4 all decoded
 }
 
 TEST_CASE("the fast layout's bit report accounts for every byte", "[qnv][entropy][fast]") {
@@ -168,22 +187,45 @@ TEST_CASE("fast entropy packets hold any records, off the grid and at the field 
 
 TEST_CASE("the encoder reproduces the golden fast entropy stream byte for byte",
           "[qnv][entropy][fast][golden]") {
-  // 64 records per packet: grid-coded positions, four rANS lanes.
+  // 64 records per packet: grid-coded positions, two rANS lanes whose states carry the
+  // first 62 magnitude offset bits (flag bit 4).
   const std::string stream = writeStream(smallVectors(), fast(512));
   if (std::getenv("GS_WRITE_GOLDEN")) std::ofstream(goldenPath(), std::ios::binary) << stream;
   const std::string golden = gs::test::readBytes(goldenPath());
   REQUIRE(golden.size() == stream.size());
   CHECK(stream == golden);
-  for (std::size_t at : packetStarts(golden, kHeaderBytes)) {
-    CHECK(golden[at + 10] == 2);                        // the entropy encoding
-    CHECK(golden[at + kPacketHeaderBytes] == (1 | 4));  // grid, fast layout
-    CHECK(golden[at + kPacketHeaderBytes + 4] == 2);    // 4 lanes
+  REQUIRE(packetStarts(golden, kHeaderBytes).size() == fastPreambles(golden).size());
+  for (const auto& p : fastPreambles(golden)) {
+    CHECK(p[0] == (1 | 4 | 16));  // grid, fast layout, states that carry bits
+    CHECK(p[3] >= 1);             // aBits: 64 of them fill both lanes' 31 bits
+    CHECK(p[4] == 1);             // 2 lanes
   }
   const DecodedStream a =
       decodeStream(writeStream(smallVectors(), {512, PacketEncoding::plain}), 1 << 16);
   const DecodedStream b = decodeStream(golden, 4096);
   REQUIRE(b.finished);
   CHECK(a.byFirst == b.byFirst);
+}
+
+TEST_CASE("fast entropy streams written before flag bit 4 still decode, and are larger",
+          "[qnv][entropy][fast][golden]") {
+  // The same records written by the encoder before the states carried bits: states from
+  // 2^16, four lanes, every magnitude offset in the bit part.
+  const std::string v1 = gs::test::readBytes(goldenPath("blob_entropy_fast_v1.qnv"));
+  REQUIRE(v1.size() > kHeaderBytes);
+  for (const auto& p : fastPreambles(v1)) {
+    CHECK(p[0] == (1 | 4));
+    CHECK(p[4] == 2);
+  }
+  const DecodedStream a =
+      decodeStream(writeStream(smallVectors(), {512, PacketEncoding::plain}), 1 << 16);
+  const DecodedStream b = decodeStream(v1, 4096);
+  REQUIRE(b.finished);
+  CHECK(b.stats.packetsCorrupt == 0);
+  CHECK(a.byFirst == b.byFirst);
+  // Each packet saves the carried bits less the bigger start states: 2 lanes, not 4.
+  const std::string now = writeStream(smallVectors(), fast(512));
+  CHECK(now.size() + 8 * fastPreambles(now).size() <= v1.size());
 }
 
 TEST_CASE("every truncation of a fast entropy stream keeps the whole packets before the cut",
@@ -206,9 +248,9 @@ TEST_CASE("every truncation of a fast entropy stream keeps the whole packets bef
 
 TEST_CASE("a cut or damaged fast entropy payload under a valid CRC is rejected, never read past",
           "[qnv][entropy][fast]") {
-  // 64 records (4 lanes), 512 (8 lanes) and 2048 (16 lanes, the AVX2 path where the CPU
+  // 64 records (2 lanes), 172 (8 lanes) and 2048 (16 lanes, the SIMD path where the CPU
   // has it; every 13th cut and byte there) per packet, with and without a model.
-  for (std::uint32_t bytes : {512u, 4096u, 16384u}) {
+  for (std::uint32_t bytes : {512u, 1376u, 16384u}) {
     const std::size_t stride = bytes == 16384 ? 13 : 1;
     for (bool model : {false, true}) {
       EncodedVectors e = bytes == 512 ? smallVectors() : volumeVectors();
