@@ -496,6 +496,28 @@ TEST_CASE("X3D XML: fed byte by byte, or gzip, it gives the scene parsed whole",
     CHECK(same.scenes(a, b));
     INFO(same.diff);
   }
+  SECTION("an unsupported version, then an XML error: each reported once") {
+    // Found by fuzz_vrml_stream (tests/data/regressions/vrml_stream): a statement built
+    // before the syntax error had reported the version, and the error's path read the
+    // header again.
+    const std::string bad = R"(<X3D version="8.0"><Scene>
+<Transform translation="1 2 3"><Shape><Box/></Shape></Transform>
+<Group></Shape>
+</Scene></X3D>)";
+    const Scene a = parseVrml(bad, "v8.x3d");
+    for (std::size_t chunk : {1u, 7u, 64u}) {
+      StreamingParser p("v8.x3d");
+      for (std::size_t i = 0; i < bad.size(); i += chunk)
+        p.feed(std::string_view(bad).substr(i, chunk));
+      p.finish();
+      const Scene b = p.takeScene();
+      INFO("chunk " << chunk << "\n" << describe(a) << "--\n" << describe(b));
+      REQUIRE(b.diagnostics.items.size() == 2);
+      CHECK(b.diagnostics.items[0].message.starts_with("unsupported X3D version '8.0'"));
+      CHECK(b.diagnostics.items[1].message.starts_with("XML syntax error"));
+      CHECK(diagnosticSet(a) == diagnosticSet(b));
+    }
+  }
 }
 
 TEST_CASE("X3D XML: castle's XML worlds load", "[x3d][xml][corpus]") {

@@ -186,6 +186,7 @@ struct StreamingParser::Impl final : parsing::XmlStatementBuilder {
   bool waitingExtern = false;  // the last statement tried waits for an EXTERNPROTO file
   bool finished = false;
   bool stopped = false;
+  bool headerFailed = false;  // XML whose header (version) was refused: translated only
 
   void append(std::string_view bytes);
   std::string& sink() {
@@ -316,7 +317,7 @@ void StreamingParser::Impl::translated(bool final) {
 
 bool StreamingParser::Impl::readHeader(bool final) {
   if (parser) return true;
-  if (firstEol == std::string::npos && !final) return false;
+  if (headerFailed || (firstEol == std::string::npos && !final)) return false;
   const std::string_view all(text);
   const std::size_t start = all.starts_with("\xEF\xBB\xBF") ? 3 : 0;
   const std::size_t eol = all.find_first_of("\r\n", start);
@@ -325,7 +326,15 @@ bool StreamingParser::Impl::readHeader(bool final) {
   std::string version;
   std::string problem = parsing::headerProblem(line, version);
   if (!problem.empty()) {
-    stop(Diagnostic{Severity::error, {url, 1, 1}, std::move(problem)});
+    Diagnostic d{Severity::error, {url, 1, 1}, std::move(problem)};
+    if (!xml) {
+      stop(std::move(d));
+      return false;
+    }
+    // XML (an unsupported version): nothing is built, but the rest is still translated,
+    // so that its warnings and syntax error come out as parseVrml gives them.
+    headerFailed = true;
+    scene.diagnostics.items.push_back(std::move(d));
     return false;
   }
   ctx.x3d = !version.empty();
@@ -370,7 +379,7 @@ bool StreamingParser::Impl::build(const parsing::XNode& root, const parsing::Xml
 
 // Parses the statements now complete (`force`: even before the text has grown to retryAt).
 std::size_t StreamingParser::Impl::parse(bool final, bool force) {
-  if (!readHeader(final) || stopped) return 0;
+  if (stopped || !readHeader(final)) return 0;
   const std::size_t end = final ? text.size() : complete;
   if (!final && !force && end < retryAt) return 0;
   parser->extendText(std::string_view(text.data(), end), final);

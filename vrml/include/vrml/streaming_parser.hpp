@@ -37,7 +37,9 @@ class StreamingParser {
   /// linear in the input; a statement cut by the end of the bytes so far is retried only
   /// once the unparsed text has grown by half. Returns the number of root nodes added.
   /// Never throws for bad content (diagnostics as parseVrml; a corrupt gzip stream or a
-  /// fatal syntax error ends parsing and later bytes are ignored).
+  /// fatal syntax error ends parsing and later bytes are ignored; an X3D XML document whose
+  /// version is refused builds nothing, but its later bytes are still read for the XML
+  /// warnings and syntax error parseVrml also reports, so done() stays false).
   std::size_t feed(std::string_view bytes);
 
   /// No more bytes will come: parses what is left. A last statement cut short is
