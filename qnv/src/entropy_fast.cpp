@@ -176,30 +176,37 @@ GS_AVX2 void storeSymbols16(std::uint8_t* out, __m256i sa, __m256i sb) {
                    _mm256_castsi256_si128(_mm256_permute4x64_epi64(s8, 0x08)));
 }
 
-// decodeRun<16> with AVX2: two vectors of eight states, the same symbols and words in
-// the same order (lanes 0..7 renormalize before 8..15).
+// The body of decodeRun16Avx2 and decodeRun16Avx512, which differ only in RENORMALIZE: two
+// vectors of eight states, the same symbols and words in the same order as decodeRun<16>
+// (lanes 0..7 renormalize before 8..15), the rest by decodeRun<16> itself (j is a multiple
+// of 16, so lanes line up). A macro, as each function needs its own target attributes,
+// which a template's instances cannot have (nor an always_inline callee more than its
+// caller's).
+#define GS_DECODE_RUN16(RENORMALIZE)                                             \
+  const auto* slots = reinterpret_cast<const int*>(model.slots.data());          \
+  const __m128i shift = _mm_cvtsi32_si128(model.probBits);                       \
+  const __m256i mask = _mm256_set1_epi32((1 << model.probBits) - 1);             \
+  __m256i xa = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(states));     \
+  __m256i xb = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(states + 8)); \
+  const unsigned char* p = where;                                                \
+  std::size_t j = 0;                                                             \
+  for (; j + 16 <= n && end - p >= 32; j += 16) {                                \
+    const __m256i sa = avx2Step(xa, slots, mask, shift);                         \
+    const __m256i sb = avx2Step(xb, slots, mask, shift);                         \
+    RENORMALIZE(xa, p);                                                          \
+    RENORMALIZE(xb, p);                                                          \
+    storeSymbols16(sym + j, sa, sb);                                             \
+  }                                                                              \
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(states), xa);                   \
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(states + 8), xb);               \
+  where = p;                                                                     \
+  decodeRun<16>(model, states, where, end, sym + j, n - j, overrun)
+
+// decodeRun<16> with AVX2.
 __attribute__((target("avx2,popcnt"))) void decodeRun16Avx2(
     const RansModel& model, std::uint32_t* states, const unsigned char*& where,
     const unsigned char* end, std::uint8_t* sym, std::size_t n, bool& overrun) {
-  const auto* slots = reinterpret_cast<const int*>(model.slots.data());
-  const __m128i shift = _mm_cvtsi32_si128(model.probBits);
-  const __m256i mask = _mm256_set1_epi32((1 << model.probBits) - 1);
-  __m256i xa = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(states));
-  __m256i xb = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(states + 8));
-  const unsigned char* p = where;
-  std::size_t j = 0;
-  for (; j + 16 <= n && end - p >= 32; j += 16) {
-    const __m256i sa = avx2Step(xa, slots, mask, shift);
-    const __m256i sb = avx2Step(xb, slots, mask, shift);
-    avx2Renormalize(xa, p);
-    avx2Renormalize(xb, p);
-    storeSymbols16(sym + j, sa, sb);
-  }
-  _mm256_storeu_si256(reinterpret_cast<__m256i*>(states), xa);
-  _mm256_storeu_si256(reinterpret_cast<__m256i*>(states + 8), xb);
-  where = p;
-  // The rest as the scalar decoder does it: j is a multiple of 16, so lanes line up.
-  decodeRun<16>(model, states, where, end, sym + j, n - j, overrun);
+  GS_DECODE_RUN16(avx2Renormalize);
 }
 
 #define GS_AVX512 __attribute__((target("avx2,avx512f,avx512vl,popcnt"), always_inline)) inline
@@ -214,29 +221,13 @@ GS_AVX512 void avx512Renormalize(__m256i& x, const unsigned char*& p) {
   p += 2 * static_cast<unsigned>(__builtin_popcount(need));
 }
 
-// decodeRun16Avx2 with avx512Renormalize: the same symbols, words and states.
+// decodeRun<16> with AVX-512VL: the same symbols, words and states.
 __attribute__((target("avx2,avx512f,avx512vl,popcnt"))) void decodeRun16Avx512(
     const RansModel& model, std::uint32_t* states, const unsigned char*& where,
     const unsigned char* end, std::uint8_t* sym, std::size_t n, bool& overrun) {
-  const auto* slots = reinterpret_cast<const int*>(model.slots.data());
-  const __m128i shift = _mm_cvtsi32_si128(model.probBits);
-  const __m256i mask = _mm256_set1_epi32((1 << model.probBits) - 1);
-  __m256i xa = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(states));
-  __m256i xb = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(states + 8));
-  const unsigned char* p = where;
-  std::size_t j = 0;
-  for (; j + 16 <= n && end - p >= 32; j += 16) {
-    const __m256i sa = avx2Step(xa, slots, mask, shift);
-    const __m256i sb = avx2Step(xb, slots, mask, shift);
-    avx512Renormalize(xa, p);
-    avx512Renormalize(xb, p);
-    storeSymbols16(sym + j, sa, sb);
-  }
-  _mm256_storeu_si256(reinterpret_cast<__m256i*>(states), xa);
-  _mm256_storeu_si256(reinterpret_cast<__m256i*>(states + 8), xb);
-  where = p;
-  decodeRun<16>(model, states, where, end, sym + j, n - j, overrun);
+  GS_DECODE_RUN16(avx512Renormalize);
 }
+#undef GS_DECODE_RUN16
 
 // The 16-lane run decoder for this CPU: AVX-512VL, else AVX2, else none (nullptr: the
 // scalar one). GS_QNV_NO_AVX512 and GS_QNV_NO_AVX2 turn them off, to measure the others.
