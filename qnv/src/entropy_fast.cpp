@@ -12,6 +12,7 @@
 #include "base/byte_order.hpp"
 #include "entropy_fields.hpp"
 #include "entropy_payload.hpp"
+#include "morton.hpp"
 #include "qnv/decoder.hpp"
 #include "qnv/record.hpp"
 
@@ -260,25 +261,6 @@ struct GapTables {
   }
 };
 constexpr GapTables kGapTables;
-
-// A 12-bit piece of a Morton code (4 bits of each axis) spread back to X at bits 20..23,
-// Y at 10..13, Z at 0..3; pieces 1 and 2 shifted left by 4 and 8 complete the axes.
-struct MortonPieces {
-  std::array<std::uint32_t, 4096> xyz{};
-  constexpr MortonPieces() {
-    for (std::uint32_t c = 0; c < 4096; ++c)
-      for (int b = 0; b < 4; ++b)
-        xyz[c] |= (((c >> (3 * b)) & 1u) << (20 + b)) | (((c >> (3 * b + 1)) & 1u) << (10 + b)) |
-                  (((c >> (3 * b + 2)) & 1u) << b);
-  }
-};
-constexpr MortonPieces kMortonPieces;
-
-// X << 20 | Y << 10 | Z of a 30-bit Morton code.
-inline std::uint32_t mortonToXyz(std::uint32_t m) {
-  return kMortonPieces.xyz[m & 4095u] | (kMortonPieces.xyz[(m >> 12) & 4095u] << 4) |
-         (kMortonPieces.xyz[(m >> 24) & 63u] << 8);
-}
 
 }  // namespace
 

@@ -479,14 +479,17 @@ bool decodeEntropyPayload(std::string_view payload, std::size_t count, const Pos
       const std::uint32_t gap = token < 2 ? token : ((1u << (token - 1)) | extra);
       code += gap;
       bad |= code >= codeLimit;
-      auto m = static_cast<std::uint32_t>(code);
-      std::size_t rank = 0;
-      if constexpr (kBlocks) {  // rank of the block, then the offset inside it
-        rank = std::min<std::size_t>(code >> blockBits, grid.blocks.size() - 1);
-        m = (grid.blocks[rank] << blockBits) | (m & lowMask);
+      const auto m = static_cast<std::uint32_t>(code);
+      std::uint32_t xyz = 0, d = 0;  // X << 20 | Y << 10 | Z; the block's direction
+      if constexpr (kBlocks) {       // the block (by rank), then the offset inside it
+        const std::uint64_t origin =
+            grid.blockOrigins[std::min<std::size_t>(code >> blockBits, grid.blocks.size() - 1)];
+        xyz = static_cast<std::uint32_t>(origin) + mortonToXyz(m & lowMask);
+        d = static_cast<std::uint16_t>(origin >> 32);
+      } else {
+        xyz = mortonToXyz(m);
       }
       if constexpr (kDirections) {  // from the block's direction
-        const std::uint32_t d = grid.blockDirections[rank];
         theta = ((d >> 6) + field(kTheta)) & 63u;
         phi = (d + field(kPhi)) & 63u;
       } else {
@@ -495,7 +498,7 @@ bool decodeEntropyPayload(std::string_view payload, std::size_t count, const Pos
       }
       const std::uint32_t a = aMin + bits.get(aBits);
       const std::uint32_t c = field(kColor);
-      std::uint32_t x = compact3(m), y = compact3(m >> 1), z = compact3(m >> 2);
+      std::uint32_t x = xyz >> 20, y = (xyz >> 10) & 1023u, z = xyz & 1023u;
       bad |= theta >= kThetaSteps || a >= kMagnitudeSteps || x >= limit[0] || y >= limit[1] ||
              z >= limit[2];
       if constexpr (kGrid) {
