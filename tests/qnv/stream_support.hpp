@@ -48,12 +48,16 @@ inline DecodedStream decodeStream(std::string_view bytes, std::size_t chunk = 1 
   return out;
 }
 
-/// The vectors of a sphere shell in a volume of `dims` voxels (spacing 1, 1, 2): sample
-/// values fall from 1000 to 0 across a sphere of `radius` around (cx, cy, cz) in voxel
-/// units (z counted twice, its spacing), its radius rippled by `ripple` * sin(0.4 x); the
-/// largest `fraction` of the gradients kept. Neighbouring voxels' gradients agree.
-inline EncodedVectors sphereShellVectors(glm::uvec3 dims, float cx, float cy, float cz,
-                                         float radius, float ripple, double fraction) {
+/// The stream of `e`'s records as plain packets of `bytes` record bytes, decoded: what any
+/// other coding of the same records must decode to.
+inline DecodedStream plainDecoded(const EncodedVectors& e, std::uint32_t bytes) {
+  return decodeStream(writeStream(e, {bytes, PacketEncoding::plain}), 1 << 16);
+}
+
+/// A volume of `dims` voxels, spacing 1, 1, 2 (as CThead), whose sample at voxel (x, y, z)
+/// is sample(x, y, z).
+template <typename Sample>
+Volume sampledVolume(glm::uvec3 dims, Sample&& sample) {
   Volume v;
   v.dims = dims;
   v.spacing = {1, 1, 2};
@@ -61,11 +65,21 @@ inline EncodedVectors sphereShellVectors(glm::uvec3 dims, float cx, float cy, fl
   std::size_t i = 0;
   for (std::uint32_t z = 0; z < v.dims.z; ++z)
     for (std::uint32_t y = 0; y < v.dims.y; ++y)
-      for (std::uint32_t x = 0; x < v.dims.x; ++x) {
-        const float dx = x - cx, dy = y - cy, dz = 2.0f * z - cz;
-        const float r = std::sqrt(dx * dx + dy * dy + dz * dz) + std::sin(0.4f * x) * ripple;
-        v.samples[i++] = 1000.0f / (1.0f + std::exp(2.0f * (r - radius)));
-      }
+      for (std::uint32_t x = 0; x < v.dims.x; ++x) v.samples[i++] = sample(x, y, z);
+  return v;
+}
+
+/// The vectors of a sphere shell in a volume of `dims` voxels (spacing 1, 1, 2): sample
+/// values fall from 1000 to 0 across a sphere of `radius` around (cx, cy, cz) in voxel
+/// units (z counted twice, its spacing), its radius rippled by `ripple` * sin(0.4 x); the
+/// largest `fraction` of the gradients kept. Neighbouring voxels' gradients agree.
+inline EncodedVectors sphereShellVectors(glm::uvec3 dims, float cx, float cy, float cz,
+                                         float radius, float ripple, double fraction) {
+  const Volume v = sampledVolume(dims, [&](std::uint32_t x, std::uint32_t y, std::uint32_t z) {
+    const float dx = x - cx, dy = y - cy, dz = 2.0f * z - cz;
+    const float r = std::sqrt(dx * dx + dy * dy + dz * dz) + std::sin(0.4f * x) * ripple;
+    return 1000.0f / (1.0f + std::exp(2.0f * (r - radius)));
+  });
   VolumeEncodeOptions options;
   options.selection.fraction = fraction;
   return encodeVolume(v, options);

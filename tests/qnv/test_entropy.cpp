@@ -22,6 +22,7 @@ using namespace gs::qnv;
 using gs::qnv::packets::DecodedStream;
 using gs::qnv::packets::decodeStream;
 using gs::qnv::packets::packetStarts;
+using gs::qnv::packets::plainDecoded;
 using gs::qnv::packets::resealPacket;
 
 namespace {
@@ -29,21 +30,15 @@ namespace {
 // A blob: two overlapping spheres of different density, dims x dims-4 x dims/2 voxels,
 // spacing 1, 1, 2 as in CThead.
 Volume blobVolume(std::uint32_t n) {
-  Volume v;
-  v.dims = {n, n - 4, n / 2};
-  v.spacing = {1, 1, 2};
-  v.origin = {-3.5f, 2.0f, 0.25f};
-  v.samples.resize(v.voxelCount());
-  std::size_t i = 0;
-  for (std::uint32_t z = 0; z < v.dims.z; ++z)
-    for (std::uint32_t y = 0; y < v.dims.y; ++y)
-      for (std::uint32_t x = 0; x < v.dims.x; ++x) {
+  Volume v = gs::qnv::packets::sampledVolume(
+      {n, n - 4, n / 2}, [n](std::uint32_t x, std::uint32_t y, std::uint32_t z) {
         const float dx = x - n * 0.4f, dy = y - n * 0.45f, dz = 2.0f * z - n * 0.5f;
         const float ex = x - n * 0.65f, ey = y - n * 0.5f, ez = 2.0f * z - n * 0.4f;
-        v.samples[i++] =
-            1000.0f / (1.0f + std::exp(std::sqrt(dx * dx + dy * dy + dz * dz) - n * 0.3f)) +
-            600.0f / (1.0f + std::exp(0.5f * (std::sqrt(ex * ex + ey * ey + ez * ez) - n * 0.2f)));
-      }
+        return 1000.0f / (1.0f + std::exp(std::sqrt(dx * dx + dy * dy + dz * dz) - n * 0.3f)) +
+               600.0f /
+                   (1.0f + std::exp(0.5f * (std::sqrt(ex * ex + ey * ey + ez * ez) - n * 0.2f)));
+      });
+  v.origin = {-3.5f, 2.0f, 0.25f};
   return v;
 }
 
@@ -141,7 +136,7 @@ TEST_CASE("entropy packets hold any records, off the grid and at the field limit
   for (const auto& records : cases) {
     e.records = records;
     for (std::uint32_t bytes : {8u, 48u, 1376u, 65528u}) {
-      const DecodedStream a = decodeStream(writeStream(e, {bytes, PacketEncoding::plain}), 1 << 16);
+      const DecodedStream a = plainDecoded(e, bytes);
       const DecodedStream b =
           decodeStream(writeStream(e, {bytes, PacketEncoding::entropy}), 1 << 16);
       REQUIRE(b.finished);
@@ -166,8 +161,7 @@ TEST_CASE("the encoder reproduces the golden entropy stream byte for byte",
     CHECK(golden[at + kPacketHeaderBytes] == 1);  // flags: positions on the voxel grid
   }
   // It decodes to exactly the plain stream's vectors.
-  const DecodedStream a =
-      decodeStream(writeStream(smallVectors(), {512, PacketEncoding::plain}), 1 << 16);
+  const DecodedStream a = plainDecoded(smallVectors(), 512);
   const DecodedStream b = decodeStream(golden, 4096);
   REQUIRE(b.finished);
   CHECK(a.byFirst == b.byFirst);

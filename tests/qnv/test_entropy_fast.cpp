@@ -24,26 +24,20 @@ using gs::qnv::packets::DecodedStream;
 using gs::qnv::packets::decodeStream;
 using gs::qnv::packets::packetStarts;
 using gs::qnv::packets::payloadBytes;
+using gs::qnv::packets::plainDecoded;
 using gs::qnv::packets::resealPacket;
 
 namespace {
 
 // Two overlapping soft spheres, n x (n - 4) x n/2 voxels.
 Volume blob(std::uint32_t n) {
-  Volume v;
-  v.dims = {n, n - 4, n / 2};
-  v.spacing = {1, 1, 2};
-  v.samples.resize(v.voxelCount());
-  std::size_t i = 0;
-  for (std::uint32_t z = 0; z < v.dims.z; ++z)
-    for (std::uint32_t y = 0; y < v.dims.y; ++y)
-      for (std::uint32_t x = 0; x < v.dims.x; ++x) {
+  return gs::qnv::packets::sampledVolume(
+      {n, n - 4, n / 2}, [n](std::uint32_t x, std::uint32_t y, std::uint32_t z) {
         const float d = std::hypot(x - n * 0.4f, y - n * 0.45f, 2.0f * z - n * 0.5f);
         const float e = std::hypot(x - n * 0.65f, y - n * 0.5f, 2.0f * z - n * 0.4f);
-        v.samples[i++] = 1000.0f / (1.0f + std::exp(d - n * 0.3f)) +
-                         600.0f / (1.0f + std::exp(0.5f * (e - n * 0.2f)));
-      }
-  return v;
+        return 1000.0f / (1.0f + std::exp(d - n * 0.3f)) +
+               600.0f / (1.0f + std::exp(0.5f * (e - n * 0.2f)));
+      });
 }
 
 // A wavy sheet of 2 n^2 triangles in a few colours.
@@ -124,8 +118,7 @@ TEST_CASE("fast entropy packets carry the same records as plain ones at every la
         const std::string quick = writeStream(*e, fast(bytes, model));
         for (const auto& p : fastPreambles(quick)) lanes.insert(p[4]);
         if (bytes >= 1376 && !model) CHECK(quick.size() * 100 < slow.size() * 103);
-        const DecodedStream a =
-            decodeStream(writeStream(*e, {bytes, PacketEncoding::plain}), 1 << 16);
+        const DecodedStream a = plainDecoded(*e, bytes);
         const DecodedStream b = decodeStream(quick, 1000);
         REQUIRE(b.finished);
         CHECK(b.stats.packetsCorrupt == 0);
@@ -177,7 +170,7 @@ TEST_CASE("fast entropy packets hold any records, off the grid and at the field 
   for (const auto& records : cases) {
     e.records = records;
     for (std::uint32_t bytes : {8u, 48u, 1376u, 4096u, 65528u}) {
-      const DecodedStream a = decodeStream(writeStream(e, {bytes, PacketEncoding::plain}), 1 << 16);
+      const DecodedStream a = plainDecoded(e, bytes);
       const DecodedStream b = decodeStream(writeStream(e, fast(bytes)), 1 << 16);
       REQUIRE(b.finished);
       CHECK(a.byFirst == b.byFirst);
@@ -200,8 +193,7 @@ TEST_CASE("the encoder reproduces the golden fast entropy stream byte for byte",
     CHECK(p[3] >= 1);             // aBits: 64 of them fill both lanes' 31 bits
     CHECK(p[4] == 1);             // 2 lanes
   }
-  const DecodedStream a =
-      decodeStream(writeStream(smallVectors(), {512, PacketEncoding::plain}), 1 << 16);
+  const DecodedStream a = plainDecoded(smallVectors(), 512);
   const DecodedStream b = decodeStream(golden, 4096);
   REQUIRE(b.finished);
   CHECK(a.byFirst == b.byFirst);
@@ -217,8 +209,7 @@ TEST_CASE("fast entropy streams written before flag bit 4 still decode, and are 
     CHECK(p[0] == (1 | 4));
     CHECK(p[4] == 2);
   }
-  const DecodedStream a =
-      decodeStream(writeStream(smallVectors(), {512, PacketEncoding::plain}), 1 << 16);
+  const DecodedStream a = plainDecoded(smallVectors(), 512);
   const DecodedStream b = decodeStream(v1, 4096);
   REQUIRE(b.finished);
   CHECK(b.stats.packetsCorrupt == 0);

@@ -17,6 +17,7 @@
 using namespace gs::qnv;
 using gs::qnv::packets::DecodedStream;
 using gs::qnv::packets::decodeStream;
+using gs::qnv::packets::plainDecoded;
 
 namespace {
 
@@ -229,8 +230,7 @@ TEST_CASE("shared tables in the model replace the packets' own and keep every re
     // Small packets (these shapes hold 2,500-3,000 vectors): tables there cost most.
     for (std::uint32_t bytes : {688u, 1376u}) {
       INFO("packet bytes " << bytes << ", " << e->records.size() << " vectors");
-      const DecodedStream plain =
-          decodeStream(writeStream(*e, {bytes, PacketEncoding::plain}), 1 << 16);
+      const DecodedStream plain = plainDecoded(*e, bytes);
       for (bool fast : {false, true}) {
         WriteOptions options{bytes, PacketEncoding::entropy};
         options.streamModel = true;

@@ -209,7 +209,7 @@ TEST_CASE("a hand-made kind-2 model: its block's direction predicts, theta 32 an
     REQUIRE(dirHeader(s).model == e.header.model);
     const std::vector<std::size_t> withDirections = directionPackets(s);
     CHECK(withDirections.size() == 3);  // 16 + 16 + 8 records
-    const DecodedStream a = decodeStream(writeStream(e, {16 * 8, PacketEncoding::plain}));
+    const DecodedStream a = gs::qnv::packets::plainDecoded(e, 16 * 8);
     const DecodedStream b = decodeStream(s);
     REQUIRE(b.finished);
     CHECK(a.byFirst == b.byFirst);
