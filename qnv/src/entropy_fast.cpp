@@ -280,9 +280,11 @@ void appendFastLayout(std::string& out, const PacketSymbols& packet) {
   const int lanesLog2 = lanesLog2For(n, offsetBits);
   const std::size_t laneMask = (std::size_t{1} << lanesLog2) - 1;
   const std::uint64_t carried = std::min<std::uint64_t>(offsetBits, kStateBits * (laneMask + 1));
-  const auto offsetBit = [&](std::uint64_t b) {
-    return static_cast<std::uint32_t>((static_cast<unsigned char>(offsetBytes[b >> 3]) >> (b & 7)) &
-                                      1u);
+  const auto* offsetData = reinterpret_cast<const unsigned char*>(offsetBytes.data());
+  // `width` (<= 32) offset bits from bit b.
+  const auto offsetBitsAt = [&](std::uint64_t b, std::uint64_t width) {
+    return static_cast<std::uint32_t>(peekBits(offsetData, offsetBytes.size(), b) &
+                                      ((std::uint64_t{1} << width) - 1));
   };
 
   // rANS: the coded fields in order, each a run of n symbols, symbol j on lane j mod L;
@@ -292,10 +294,7 @@ void appendFastLayout(std::string& out, const PacketSymbols& packet) {
   x.fill(kRansLow);
   for (std::size_t l = 0; l <= laneMask; ++l) {
     const int c = laneCarry(carried, l);
-    if (c == 0) continue;
-    std::uint32_t r = 0;
-    for (int b = 0; b < c; ++b) r |= offsetBit(kStateBits * l + static_cast<std::uint64_t>(b)) << b;
-    x[l] = 0x80000000u | r;
+    if (c > 0) x[l] = 0x80000000u | offsetBitsAt(kStateBits * l, static_cast<std::uint64_t>(c));
   }
   std::vector<std::uint16_t> words;
   for (int k = kFields; k-- > 0;) {
@@ -334,7 +333,10 @@ void appendFastLayout(std::string& out, const PacketSymbols& packet) {
     if (coders[k].mode == kModeRaw)
       for (std::size_t i = 0; i < n; ++i)
         bits.put(packet.symbols[i][static_cast<std::size_t>(k)], kAlphabetBits[k]);
-  for (std::uint64_t b = carried; b < offsetBits; ++b) bits.put(offsetBit(b), 1);
+  for (std::uint64_t b = carried; b < offsetBits; b += 32) {
+    const std::uint64_t width = std::min<std::uint64_t>(32, offsetBits - b);
+    bits.put(offsetBitsAt(b, width), static_cast<int>(width));
+  }
   bits.finish();
 
   const std::uint8_t carryFlag = carried > 0 ? kFlagStateBits : 0;
