@@ -54,6 +54,8 @@ std::string parseSettings(const EncodeOptions& e, Settings& s) {
     return "encode: give either -o OUT.qnv or --tileset OUT/";
   if (e.tileset.empty() && !e.bricks.empty()) return "encode: --bricks I/N needs --tileset OUT/";
   if (e.tileset.empty() && e.memoryMB > 0) return "encode: --memory MB needs --tileset OUT/";
+  if (!e.tileset.empty() && e.magnitudeBits != qnv::kMagnitudeBits)
+    return "encode: --magnitude-bits is for streams (-o OUT.qnv), not --tileset";
   if (!(e.fraction > 0.0 && e.fraction <= 1.0))
     return "encode: --fraction must be in (0, 1], got " + std::to_string(e.fraction);
   s.selection.fraction = e.fraction;
@@ -226,6 +228,7 @@ int runEncode(const Options& options) {
     std::fprintf(stderr, "ghostspace: %s\n", error.what());
     return 1;
   }
+  qnv::roundMagnitudes(vectors.records, options.encode.magnitudeBits);
   const std::string bytes = tileset ? std::string() : qnv::writeStream(vectors, s.write);
   bar.finish();
   printSummary(input, summary, elements);

@@ -273,7 +273,8 @@ void appendFastLayout(std::string& out, const PacketSymbols& packet) {
   {
     BitWriter offsets(offsetBytes);
     for (std::size_t i = 0; i < n; ++i)
-      offsets.put(magnitudeCode(packet.sorted[i].second) - packet.aMin, packet.aBits);
+      offsets.put((magnitudeCode(packet.sorted[i].second) - packet.aMin) >> packet.aShift,
+                  packet.aBits);
     offsets.finish();
   }
   const std::uint64_t offsetBits = std::uint64_t{n} * static_cast<std::uint64_t>(packet.aBits);
@@ -342,7 +343,7 @@ void appendFastLayout(std::string& out, const PacketSymbols& packet) {
   const std::uint8_t carryFlag = carried > 0 ? kFlagStateBits : 0;
   appendLe<std::uint8_t>(out, static_cast<std::uint8_t>(packet.flags | kFlagFast | carryFlag));
   appendLe<std::uint16_t>(out, static_cast<std::uint16_t>(packet.aMin));
-  appendLe<std::uint8_t>(out, static_cast<std::uint8_t>(packet.aBits));
+  appendLe<std::uint8_t>(out, static_cast<std::uint8_t>(packet.aBits | (packet.aShift << 4)));
   appendLe<std::uint8_t>(out, static_cast<std::uint8_t>(lanesLog2));
   // A part over 65535 bytes makes the payload larger than the plain records, and the
   // writer then falls back to plain for this packet.
@@ -367,7 +368,7 @@ struct FastSymbols {
   std::uint16_t partial[kMaxRecords];    // records in blocks that cross the grid's far faces
   std::size_t count = 0;
   std::uint32_t aMin = 0;
-  int aBits = 0;
+  int aBits = 0, aShift = 0;
   bool useGrid = false, useBlocks = false, useDirections = false;
   const unsigned char* gapBase = nullptr;
   std::size_t gapSize = 0;
@@ -387,7 +388,8 @@ bool decodeFastSymbols(std::string_view payload, std::size_t count, const Positi
   const auto* begin = reinterpret_cast<const unsigned char*>(payload.data());
   const std::uint8_t flags = begin[0];
   const auto aMin = loadLe<std::uint16_t>(begin + 1);
-  const int aBits = begin[3];
+  const int aBits = begin[3] & 15;
+  const int aShift = begin[3] >> 4;
   const int lanesLog2 = begin[4];
   const std::size_t ransSize = loadLe<std::uint16_t>(begin + 5);
   const std::size_t gapSize = loadLe<std::uint16_t>(begin + 7);
@@ -396,7 +398,7 @@ bool decodeFastSymbols(std::string_view payload, std::size_t count, const Positi
   const bool useDirections = flags & kFlagBlockDirections;
   const std::size_t lanes = std::size_t{1} << std::min(lanesLog2, kMaxLanesLog2);
   if (flags > (kFlagGrid | kFlagBlocks | kFlagFast | kFlagBlockDirections | kFlagStateBits) ||
-      aMin >= kMagnitudeSteps || aBits > kMagnitudeBits || lanesLog2 > kMaxLanesLog2 ||
+      aMin >= kMagnitudeSteps || !validMagnitudeWidth(aBits, aShift) || lanesLog2 > kMaxLanesLog2 ||
       ransSize + gapSize > payload.size() - kFastPreambleBytes || ransSize < 4 * lanes ||
       (useGrid && !grid.active) ||
       (useBlocks && (grid.blockShift == 0 || useGrid != grid.active)) ||
@@ -410,6 +412,7 @@ bool decodeFastSymbols(std::string_view payload, std::size_t count, const Positi
   s.count = count;
   s.aMin = aMin;
   s.aBits = aBits;
+  s.aShift = aShift;
   s.useGrid = useGrid;
   s.useBlocks = useBlocks;
   s.useDirections = useDirections;
@@ -563,6 +566,7 @@ bool emitRecords(FastSymbols& s, Emit&& emit) {
     const std::size_t bitSize = s.bitSize;
     const auto aBits = static_cast<std::uint64_t>(s.aBits);
     const auto aMask = static_cast<std::uint32_t>((1u << s.aBits) - 1);
+    const int aShift = s.aShift;  // stored shifted back: A - aMin
     // Offset i lies at bit i * aBits of the carried bits followed by the bit part's: the
     // offsets wholly among the carried bits, the one across the seam, then the rest.
     const std::uint64_t carried = s.carried;
@@ -571,20 +575,21 @@ bool emitRecords(FastSymbols& s, Emit&& emit) {
     const std::size_t carriedSize = sizeof s.carriedBytes;
     std::size_t i = 0;
     for (std::uint64_t pos = 0; i < inStates; ++i, pos += aBits)
-      s.magnitude[i] =
-          static_cast<std::uint16_t>(peekBits(s.carriedBytes, carriedSize, pos) & aMask);
+      s.magnitude[i] = static_cast<std::uint16_t>(
+          (peekBits(s.carriedBytes, carriedSize, pos) & aMask) << aShift);
     std::uint64_t aPos = s.aPos;
     if (i < count && carried > i * aBits) {  // across the seam
       const std::uint64_t low = carried - i * aBits;
       const std::uint64_t v =
           peekBits(s.carriedBytes, carriedSize, i * aBits) & ((std::uint64_t{1} << low) - 1);
-      s.magnitude[i] =
-          static_cast<std::uint16_t>((v | (peekBits(bitBase, bitSize, aPos) << low)) & aMask);
+      s.magnitude[i] = static_cast<std::uint16_t>(
+          ((v | (peekBits(bitBase, bitSize, aPos) << low)) & aMask) << aShift);
       aPos += aBits - low;
       ++i;
     }
     for (; i < count; ++i, aPos += aBits)
-      s.magnitude[i] = static_cast<std::uint16_t>(peekBits(bitBase, bitSize, aPos) & aMask);
+      s.magnitude[i] =
+          static_cast<std::uint16_t>((peekBits(bitBase, bitSize, aPos) & aMask) << aShift);
   }
   const std::uint16_t* offsets = s.magnitude;
   const std::uint32_t aMin = s.aMin;

@@ -35,6 +35,13 @@ inline constexpr std::uint8_t kFlagBlockDirections = 8;
 /// offset bits (docs/qnv-format.md, "States that carry bits"), not from 2^16.
 inline constexpr std::uint8_t kFlagStateBits = 16;
 
+/// The packet's magnitude byte holds the offsets' width (bits 0..3) and the trailing zero
+/// bits they share (bits 4..7; docs/qnv-format.md, "Shared low bits"): valid when the two
+/// fit the 15-bit code, and with no shift when there is no width (one encoding).
+constexpr bool validMagnitudeWidth(int aBits, int aShift) {
+  return aBits + aShift <= 15 && (aBits > 0 || aShift == 0);
+}
+
 /// How one field of a packet is coded.
 struct FieldCoder {
   int mode = kModeRaw;
@@ -94,7 +101,8 @@ struct PacketSymbols {
   std::span<const std::array<std::uint32_t, kFields>> symbols;
   const std::array<FieldCoder, kFields>* coders = nullptr;
   std::uint32_t aMin = 0;
-  int aBits = 0;
+  int aBits = 0;           // the width of an offset (A - aMin) >> aShift, 0..15
+  int aShift = 0;          // the trailing zero bits every offset shares, 0..15 - aBits
   std::uint8_t flags = 0;  // kFlagGrid, kFlagBlocks, kFlagBlockDirections
 };
 

@@ -3,6 +3,7 @@
 #include "morton.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include "base/byte_order.hpp"
@@ -217,6 +218,7 @@ struct PacketPlan {
   std::array<std::vector<std::uint32_t>, kFields> counts;
   std::uint32_t aMin = 0;
   int aBits = 0;
+  int aShift = 0;
   std::uint8_t flags = 0;
 };
 
@@ -267,7 +269,12 @@ PacketPlan planPacket(std::span<const std::uint64_t> records, const PositionGrid
       sorted[i].first = spread3(x) | (spread3(y) << 1) | (spread3(z) << 2);
     }
   std::sort(sorted.begin(), sorted.end());
-  const int aBits = bitLength(aMax - aMin);
+  // The offsets A - aMin, shifted right by the trailing zero bits they all share (magnitude
+  // codes rounded to fewer bits: ghostspace encode --magnitude-bits).
+  std::uint32_t offsetBitsUsed = 0;
+  for (const auto& s : sorted) offsetBitsUsed |= magnitudeCode(s.second) - aMin;
+  const int aShift = offsetBitsUsed == 0 ? 0 : std::countr_zero(offsetBitsUsed);
+  const int aBits = bitLength((aMax - aMin) >> aShift);
 
   // Symbols per record: gap token, theta and phi deltas from the previous record, colour.
   auto& symbols = plan.symbols;
@@ -318,6 +325,7 @@ PacketPlan planPacket(std::span<const std::uint64_t> records, const PositionGrid
   }
   plan.aMin = aMin;
   plan.aBits = aBits;
+  plan.aShift = aShift;
   plan.flags = static_cast<std::uint8_t>((onGrid ? kFlagGrid : 0) | (useBlocks ? kFlagBlocks : 0) |
                                          (useDirections ? kFlagBlockDirections : 0));
   return plan;
@@ -339,6 +347,7 @@ void appendEntropyPayload(std::string& out, std::span<const std::uint64_t> recor
   const auto& counts = plan.counts;
   const std::uint32_t aMin = plan.aMin;
   const int aBits = plan.aBits;
+  const int aShift = plan.aShift;
   const std::uint8_t flags = plan.flags;
   const bool useBlocks = flags & kFlagBlocks;
   // Each field: its own table, or a shared one of the stream model where that is smaller.
@@ -361,7 +370,7 @@ void appendEntropyPayload(std::string& out, std::span<const std::uint64_t> recor
 
   std::string payload;
   if (fast) {
-    appendFastLayout(payload, PacketSymbols{sorted, symbols, &coders, aMin, aBits, flags});
+    appendFastLayout(payload, PacketSymbols{sorted, symbols, &coders, aMin, aBits, aShift, flags});
   } else {
     std::string bitBytes;
     BitWriter bits(bitBytes);
@@ -374,7 +383,7 @@ void appendEntropyPayload(std::string& out, std::span<const std::uint64_t> recor
       for (int k = 0; k < kFields; ++k) {
         if (coders[k].mode == kModeRaw) bits.put(s[k], kAlphabetBits[k]);
         if (k == kGap && s[kGap] >= 2) bits.put(gap, static_cast<int>(s[kGap]) - 1);
-        if (k == kPhi) bits.put(magnitudeCode(sorted[i].second) - aMin, aBits);
+        if (k == kPhi) bits.put((magnitudeCode(sorted[i].second) - aMin) >> aShift, aBits);
       }
     }
     bits.finish();
@@ -387,7 +396,7 @@ void appendEntropyPayload(std::string& out, std::span<const std::uint64_t> recor
     rans.finish(ransBytes);
     appendLe<std::uint8_t>(payload, flags);
     appendLe<std::uint16_t>(payload, static_cast<std::uint16_t>(aMin));
-    appendLe<std::uint8_t>(payload, static_cast<std::uint8_t>(aBits));
+    appendLe<std::uint8_t>(payload, static_cast<std::uint8_t>(aBits | (aShift << 4)));
     appendLe<std::uint16_t>(payload, static_cast<std::uint16_t>(ransBytes.size()));
     payload += ransBytes;
     payload += bitBytes;
@@ -432,12 +441,13 @@ bool decodeEntropyPayload(std::string_view payload, std::size_t count, const Pos
   const auto flags = loadLe<std::uint8_t>(payload.data());
   if (flags & kFlagFast) return decodeFastLayout(payload, count, grid, out);
   const auto aMin = loadLe<std::uint16_t>(payload.data() + 1);
-  const int aBits = loadLe<std::uint8_t>(payload.data() + 3);
+  const int aBits = loadLe<std::uint8_t>(payload.data() + 3) & 15;
+  const int aShift = loadLe<std::uint8_t>(payload.data() + 3) >> 4;
   const auto ransSize = loadLe<std::uint16_t>(payload.data() + 4);
   const bool useBlocks = flags & kFlagBlocks;
   const bool useDirections = flags & kFlagBlockDirections;
   if (flags > (kFlagGrid | kFlagBlocks | kFlagBlockDirections) || aMin >= kMagnitudeSteps ||
-      aBits > kMagnitudeBits || ransSize > payload.size() - kPreambleBytes ||
+      !validMagnitudeWidth(aBits, aShift) || ransSize > payload.size() - kPreambleBytes ||
       ((flags & kFlagGrid) && !grid.active) ||
       (useBlocks && (grid.blockShift == 0 || ((flags & kFlagGrid) != 0) != grid.active)) ||
       (useDirections && (!useBlocks || grid.blockDirections.size() != grid.blocks.size())))
@@ -496,7 +506,7 @@ bool decodeEntropyPayload(std::string_view payload, std::size_t count, const Pos
         theta = (theta + field(kTheta)) & 63u;
         phi = (phi + field(kPhi)) & 63u;
       }
-      const std::uint32_t a = aMin + bits.get(aBits);
+      const std::uint32_t a = aMin + (bits.get(aBits) << aShift);
       const std::uint32_t c = field(kColor);
       std::uint32_t x = xyz >> 20, y = (xyz >> 10) & 1023u, z = xyz & 1023u;
       bad |= theta >= kThetaSteps || a >= kMagnitudeSteps || x >= limit[0] || y >= limit[1] ||

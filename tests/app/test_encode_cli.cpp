@@ -1,12 +1,15 @@
 // `ghostspace encode` and `ghostspace info FILE.qnv` end to end.
 #include <catch2/catch.hpp>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "process.hpp"
 #include "qnv/decoder.hpp"
+#include "qnv/record.hpp"
+#include "qnv/stream.hpp"
 #include "test_support.hpp"
 
 using gs::test::runGhostspace;
@@ -28,6 +31,24 @@ std::uint64_t decodedVectors(const std::string& bytes) {
   d.feed(bytes, sink);
   REQUIRE(d.finish(sink));
   return n;
+}
+
+// The records of a plain stream, in stream order.
+std::vector<std::uint64_t> plainRecords(const std::string& bytes) {
+  std::vector<std::uint64_t> records;
+  for (std::size_t at = gs::qnv::kHeaderBytes; at + gs::qnv::kPacketHeaderBytes <= bytes.size();) {
+    std::uint16_t count = 0, payload = 0;
+    std::memcpy(&count, bytes.data() + at + 2, 2);
+    std::memcpy(&payload, bytes.data() + at + 8, 2);
+    REQUIRE(payload == count * 8u);
+    for (std::size_t i = 0; i < count; ++i) {
+      std::uint64_t r = 0;
+      std::memcpy(&r, bytes.data() + at + gs::qnv::kPacketHeaderBytes + 8 * i, 8);
+      records.push_back(r);
+    }
+    at += gs::qnv::kPacketHeaderBytes + payload;
+  }
+  return records;
 }
 
 }  // namespace
@@ -77,6 +98,50 @@ TEST_CASE("encode turns a VRML world into a stream that info describes", "[app][
   auto cutInfo = runGhostspace({"info", scratch("cut.qnv").string()});
   CHECK(cutInfo.exitCode == 0);
   CHECK_THAT(cutInfo.out, Catch::Contains("stream ends after"));
+}
+
+TEST_CASE("encode --magnitude-bits rounds every magnitude code, and entropy streams shrink",
+          "[app][encode]") {
+  const auto world = (gs::test::sourceDir() / "assets/worlds/welcome.wrl").string();
+  const auto out = scratch("rounded.qnv").string();
+  const auto encoded = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args = {"encode", world, "-o", out};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const auto r = runGhostspace(args);
+    REQUIRE(r.exitCode == 0);
+    return gs::test::readBytes(out);
+  };
+  const std::vector<std::uint64_t> exact = plainRecords(encoded({"--coding", "plain"}));
+  const std::vector<std::uint64_t> rounded =
+      plainRecords(encoded({"--coding", "plain", "--magnitude-bits", "10"}));
+  REQUIRE(rounded.size() == exact.size());
+  REQUIRE(exact.size() > 100);
+  std::size_t changed = 0;
+  for (std::size_t i = 0; i < exact.size(); ++i) {
+    // The same record but for A, whose low 5 bits are now 10000.
+    CHECK((rounded[i] & ~(std::uint64_t{32767} << 8)) == (exact[i] & ~(std::uint64_t{32767} << 8)));
+    CHECK(gs::qnv::magnitudeCode(rounded[i]) >> 5 == gs::qnv::magnitudeCode(exact[i]) >> 5);
+    CHECK((gs::qnv::magnitudeCode(rounded[i]) & 31u) == 16u);
+    changed += rounded[i] != exact[i];
+  }
+  CHECK(changed > exact.size() / 2);
+  // Entropy packets send the shared low bits once: about 5 bits per vector less.
+  const std::size_t exactBytes = encoded({"--coding", "entropy"}).size();
+  const std::string small = encoded({"--coding", "entropy", "--magnitude-bits", "10"});
+  CHECK(decodedVectors(small) == exact.size());
+  CHECK(small.size() + exact.size() * 4 / 8 < exactBytes);
+  const std::string fast = encoded({"--coding", "entropy-fast", "--magnitude-bits", "10"});
+  CHECK(decodedVectors(fast) == exact.size());
+  CHECK(fast.size() + exact.size() * 4 / 8 < encoded({"--coding", "entropy-fast"}).size());
+
+  for (const char* bad : {"0", "16"}) {
+    const auto r = runGhostspace({"encode", world, "-o", out, "--magnitude-bits", bad});
+    CHECK(r.exitCode == 2);
+  }
+  const auto tileset = runGhostspace(
+      {"encode", world, "--tileset", scratch("rounded").string(), "--magnitude-bits", "10"});
+  CHECK(tileset.exitCode == 2);
+  CHECK_THAT(tileset.err, Catch::Contains("--magnitude-bits is for streams"));
 }
 
 TEST_CASE("encode rejects bad options and unreadable inputs with a reason", "[app][encode]") {

@@ -76,11 +76,19 @@ int main(int argc, char** argv) {
   // payloads code theta and phi from the blocks (flag bit 3).
   const std::vector<std::string> models =
       gs::qnv::detail::streamModelCandidates(s.header, s.records);
-  for (int variant = 0; variant < 6; ++variant) {
-    const bool model = variant % 2 == 1 || variant >= 4, fast = variant % 4 >= 2 || variant == 5;
+  // Variants 6 and 7: magnitudes rounded to 8 bits (`encode --magnitude-bits 8`), whose
+  // payloads send the low bits the records share once.
+  std::vector<std::uint64_t> rounded = s.records;
+  gs::qnv::roundMagnitudes(rounded, 8);
+  for (int variant = 0; variant < 8; ++variant) {
+    // plain, model, fast plain, fast model, directions, fast directions, low bits, fast
+    // low bits
+    const bool model = variant == 1 || variant == 3 || variant == 4 || variant == 5;
+    const bool fast = variant == 2 || variant == 3 || variant == 5 || variant == 7;
     gs::qnv::StreamHeader h = s.header;
     const std::span<const std::uint64_t> records(
-        s.records.data(), std::min<std::size_t>(fast ? 300 : 64, s.records.size()));
+        (variant >= 6 ? rounded : s.records).data(),
+        std::min<std::size_t>(fast ? 300 : 64, s.records.size()));
     if (model) h.model = variant >= 4 ? models.at(1) : models.at(0);
     std::string input;
     input += '\1';
@@ -92,9 +100,10 @@ int main(int argc, char** argv) {
     gs::qnv::detail::appendEntropyPayload(
         input, records, gs::qnv::detail::PositionGrid::forHeader(h), nullptr, fast);
     write(dir + (fast ? "/entropy_fast" : "/entropy") +
-              (variant >= 4 ? "_directions.bin"
-               : model      ? "_model.bin"
-                            : "_plain.bin"),
+              (variant >= 6   ? "_low_bits.bin"
+               : variant >= 4 ? "_directions.bin"
+               : model        ? "_model.bin"
+                              : "_plain.bin"),
           input);
   }
   return 0;
