@@ -228,7 +228,7 @@ int runEncode(const Options& options) {
     std::fprintf(stderr, "ghostspace: %s\n", error.what());
     return 1;
   }
-  qnv::roundMagnitudes(vectors.records, options.encode.magnitudeBits);
+  qnv::coarsenMagnitudes(vectors.records, options.encode.magnitudeBits);
   const std::string bytes = tileset ? std::string() : qnv::writeStream(vectors, s.write);
   bar.finish();
   printSummary(input, summary, elements);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "morton.hpp"
 #include "qnv/encoder.hpp"
 #include "qnv/record.hpp"
 
@@ -13,6 +14,24 @@ std::uint64_t Selection::keepOf(std::uint64_t elements) const {
   if (fraction >= 1.0) return elements;
   return std::min<std::uint64_t>(
       elements, static_cast<std::uint64_t>(static_cast<double>(elements) * fraction + 0.5));
+}
+
+void coarsenMagnitudes(std::span<std::uint64_t> records, int bits) {
+  if (bits >= kMagnitudeBits) return;
+  roundMagnitudes(records, bits);
+  const auto morton = [](std::uint64_t r) {
+    const RecordFields f = unpackRecord(r);
+    return detail::spread3(f.x) | (detail::spread3(f.y) << 1) | (detail::spread3(f.z) << 2);
+  };
+  for (std::size_t begin = 0; begin < records.size();) {
+    std::size_t end = begin + 1;
+    while (end < records.size() && magnitudeCode(records[end]) == magnitudeCode(records[begin]))
+      ++end;
+    std::stable_sort(records.begin() + static_cast<std::ptrdiff_t>(begin),
+                     records.begin() + static_cast<std::ptrdiff_t>(end),
+                     [&](std::uint64_t a, std::uint64_t b) { return morton(a) < morton(b); });
+    begin = end;
+  }
 }
 
 namespace detail {

@@ -5,10 +5,15 @@
 // entropy coding's bits per field, and StreamDecoder throughput on one thread (CRC,
 // payload decode and dequantization into DecodedVectors; best of 7, thread CPU time).
 //
+// With `--magnitude-bits N` the records are first coarsened as `ghostspace encode
+// --magnitude-bits N` does (qnv::coarsenMagnitudes; docs/qnv-format.md, "Shared low bits").
+//
 //   ghostspace encode CThead.nhdr --fraction 0.091 -o head.qnv
 //   bench_qnv_coding head.qnv bunny.qnv
+//   bench_qnv_coding --magnitude-bits 7 head.qnv
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <ctime>
 #include <fstream>
@@ -18,6 +23,7 @@
 
 #include "qnv/coding.hpp"
 #include "qnv/decoder.hpp"
+#include "qnv/encoder.hpp"
 
 namespace qnv = gs::qnv;
 
@@ -91,15 +97,23 @@ double decodeRate(const std::string& stream) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::fprintf(stderr, "usage: bench_qnv_coding PLAIN.qnv...\n");
+  int first = 1, magnitudeBits = qnv::kMagnitudeBits;
+  if (argc > 2 && std::strcmp(argv[1], "--magnitude-bits") == 0) {
+    magnitudeBits = std::atoi(argv[2]);
+    first = 3;
+  }
+  if (argc <= first || magnitudeBits < 1 || magnitudeBits > qnv::kMagnitudeBits) {
+    std::fprintf(stderr, "usage: bench_qnv_coding [--magnitude-bits N] PLAIN.qnv...\n");
     return 2;
   }
-  for (int i = 1; i < argc; ++i) {
+  for (int i = first; i < argc; ++i) {
     qnv::EncodedVectors e;
     if (!readRecords(argv[i], e)) return 1;
+    // As `ghostspace encode --magnitude-bits N` writes them (exact streams in).
+    qnv::coarsenMagnitudes(e.records, magnitudeBits);
     const double n = static_cast<double>(e.records.size());
-    std::printf("== %s: %zu vectors ==\n", argv[i], e.records.size());
+    std::printf("== %s: %zu vectors, magnitudes of %d bits ==\n", argv[i], e.records.size(),
+                magnitudeBits);
     std::printf("%8s %-14s %10s %9s %12s\n", "packet", "coding", "bytes", "bits/vec", "decode M/s");
     for (std::uint32_t packet : {1376u, 16384u, 65528u}) {
       for (int variant = 0; variant < 6; ++variant) {

@@ -76,10 +76,10 @@ int main(int argc, char** argv) {
   // payloads code theta and phi from the blocks (flag bit 3).
   const std::vector<std::string> models =
       gs::qnv::detail::streamModelCandidates(s.header, s.records);
-  // Variants 6 and 7: magnitudes rounded to 8 bits (`encode --magnitude-bits 8`), whose
+  // Variants 6 and 7: magnitudes coarsened to 8 bits (`encode --magnitude-bits 8`), whose
   // payloads send the low bits the records share once.
   std::vector<std::uint64_t> rounded = s.records;
-  gs::qnv::roundMagnitudes(rounded, 8);
+  gs::qnv::coarsenMagnitudes(rounded, 8);
   for (int variant = 0; variant < 8; ++variant) {
     // plain, model, fast plain, fast model, directions, fast directions, low bits, fast
     // low bits

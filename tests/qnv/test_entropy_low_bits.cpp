@@ -1,11 +1,12 @@
-// Magnitude codes rounded to fewer bits (roundMagnitudeCode, `ghostspace encode
-// --magnitude-bits`) and the entropy packets' shared low bits (docs/qnv-format.md, "Shared
+// Magnitude codes rounded to fewer bits (roundMagnitudeCode, coarsenMagnitudes: `ghostspace
+// encode --magnitude-bits`) and the entropy packets' shared low bits (docs/qnv-format.md, "Shared
 // low bits"): the magnitude byte's high nibble says how many low bits every offset A - aMin
 // shares, and those are sent once, in both layouts.
 #include <catch2/catch.hpp>
 
 #include <bit>
 #include <cmath>
+#include <set>
 
 #include "qnv/decoder.hpp"
 #include "qnv/encoder.hpp"
@@ -30,7 +31,7 @@ const EncodedVectors& shellVectors() {
 
 EncodedVectors rounded(int bits) {
   EncodedVectors e = shellVectors();
-  roundMagnitudes(e.records, bits);
+  coarsenMagnitudes(e.records, bits);
   return e;
 }
 
@@ -73,6 +74,40 @@ TEST_CASE("magnitude codes rounded to fewer bits keep their top bits and sort or
   }
   CHECK(worst < 0.00452);
   CHECK(worst > 0.00448);
+}
+
+TEST_CASE("coarsened magnitudes stay sorted largest first, each run of equal codes in Morton order",
+          "[qnv][record]") {
+  const std::vector<std::uint64_t>& exact = shellVectors().records;
+  std::vector<std::uint64_t> same = exact;
+  coarsenMagnitudes(same, 15);
+  CHECK(same == exact);
+  std::vector<std::uint64_t> coarse = exact;
+  coarsenMagnitudes(coarse, 8);
+  // The same records but for A, rounded.
+  std::vector<std::uint64_t> roundedOnly = exact;
+  roundMagnitudes(roundedOnly, 8);
+  CHECK(std::multiset<std::uint64_t>(coarse.begin(), coarse.end()) ==
+        std::multiset<std::uint64_t>(roundedOnly.begin(), roundedOnly.end()));
+  const auto morton = [](std::uint64_t r) {
+    const RecordFields f = unpackRecord(r);
+    std::uint64_t m = 0;
+    for (int b = 0; b < 10; ++b)
+      m |= (std::uint64_t{(f.x >> b) & 1u} << (3 * b)) |
+           (std::uint64_t{(f.y >> b) & 1u} << (3 * b + 1)) |
+           (std::uint64_t{(f.z >> b) & 1u} << (3 * b + 2));
+    return m;
+  };
+  std::size_t outOfOrder = 0, runs = 1;
+  for (std::size_t i = 1; i < coarse.size(); ++i) {
+    const std::uint32_t a = magnitudeCode(coarse[i - 1]), b = magnitudeCode(coarse[i]);
+    outOfOrder += b > a || (b == a && morton(coarse[i]) < morton(coarse[i - 1]));
+    runs += b != a;
+  }
+  CHECK(outOfOrder == 0);
+  CHECK(runs > 20);  // many codes, each a run
+  CHECK(runs < coarse.size() / 20);
+  CHECK(coarse != roundedOnly);  // the rounding alone left runs in exact-magnitude order
 }
 
 TEST_CASE("entropy packets send the low magnitude bits their records share once",

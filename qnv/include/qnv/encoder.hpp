@@ -112,6 +112,14 @@ std::uint64_t quantizeVector(const SourceVector& v, const StreamHeader& header,
                              const MagnitudeQuantizer& quantizeA,
                              const glm::uvec3* gridIndex = nullptr);
 
+/// `ghostspace encode --magnitude-bits N` (docs/qnv-format.md, "Shared low bits"): rounds
+/// every record's A code to `bits` bits (1..15, roundMagnitudeCode; lossy) and orders each
+/// run of records with equal codes by the Morton code of (X, Y, Z), so that a packet cut
+/// from a long run covers one region of space, whose positions code in fewer bits.
+/// `records` must be sorted largest first (as encodeSurface and encodeVolume give them);
+/// they stay so. With bits = 15 nothing changes.
+void coarsenMagnitudes(std::span<std::uint64_t> records, int bits);
+
 /// A ramp for CT: entry c (t = c / 255) goes from dark red (soft tissue) to white
 /// (bone), with opacity 255 * t.
 std::array<Rgba8, kPaletteSize> defaultTransferFunction();
