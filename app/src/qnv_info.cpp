@@ -6,10 +6,13 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "app/commands.hpp"
 #include "qnv/decoder.hpp"
+#include "qnv/record.hpp"
 
 namespace gs::app {
 
@@ -41,9 +44,24 @@ int runQnvInfo(const std::string& path) {
     }
     return std::clamp(static_cast<int>(t * kHistogramBins), 0, kHistogramBins - 1);
   };
+  // The fewest bits every magnitude code fits (`encode --magnitude-bits`): codes come back
+  // from the decoded magnitudes, which are their cells' centres.
+  int magnitudeBits = 1;
+  std::optional<qnv::MagnitudeQuantizer> quantizeA;
+  std::vector<bool> codeSeen(qnv::kMagnitudeSteps);
+  std::uint64_t distinctCodes = 0;
   const auto sink = [&](std::uint64_t, std::span<const qnv::DecodedVector> vectors) {
-    for (const qnv::DecodedVector& v : vectors)
+    const qnv::StreamHeader& h = *decoder.header();
+    if (!quantizeA) quantizeA.emplace(h.mapping, h.magnitudeMin, h.magnitudeMax);
+    for (const qnv::DecodedVector& v : vectors) {
       ++histogram[static_cast<std::size_t>(bin(v.magnitude))];
+      const std::uint32_t code = (*quantizeA)(v.magnitude);
+      if (!codeSeen[code]) ++distinctCodes;
+      codeSeen[code] = true;
+      while (magnitudeBits < qnv::kMagnitudeBits &&
+             qnv::roundMagnitudeCode(code, magnitudeBits) != code)
+        ++magnitudeBits;
+    }
   };
   std::string chunk(1 << 20, '\0');
   while (in) {
@@ -77,9 +95,15 @@ int runQnvInfo(const std::string& path) {
     std::printf("  volume      %u x %u x %u voxels, spacing %g %g %g, values %g .. %g\n",
                 h.volumeDims.x, h.volumeDims.y, h.volumeDims.z, h.voxelSpacing.x, h.voxelSpacing.y,
                 h.voxelSpacing.z, h.valueMin, h.valueMax);
-  std::printf("  magnitude   %s, %g .. %g\n",
+  std::printf("  magnitude   %s, %g .. %g",
               h.mapping == qnv::MagnitudeMapping::logarithmic ? "logarithmic" : "linear",
               h.magnitudeMin, h.magnitudeMax);
+  // Exact codes fit fewer bits by chance with odds 2^-(dropped bits x distinct codes):
+  // reported when those are under 2^-32.
+  const int dropped = qnv::kMagnitudeBits - magnitudeBits;
+  if (dropped > 0 && distinctCodes * static_cast<std::uint64_t>(dropped) >= 32)
+    std::printf(", codes rounded to %d of 15 bits (encode --magnitude-bits)", magnitudeBits);
+  std::printf("\n");
   std::printf("  opacity     Gaussian, sigma %g, scale %g\n", h.profile.sigma,
               h.profile.opacityScale);
   std::printf(

@@ -137,6 +137,14 @@ TEST_CASE("encode --magnitude-bits rounds every magnitude code, and entropy stre
   CHECK(decodedVectors(fast) == exact.size());
   CHECK(fast.size() + exact.size() * 4 / 8 < encoded({"--coding", "entropy-fast"}).size());
 
+  // info tells how many bits the codes were rounded to, and says nothing of exact ones.
+  encoded({"--coding", "entropy", "--magnitude-bits", "10"});
+  const auto roundedInfo = runGhostspace({"info", out});
+  CHECK_THAT(roundedInfo.out, Catch::Contains("codes rounded to 10 of 15 bits"));
+  encoded({"--coding", "entropy"});
+  const auto exactInfo = runGhostspace({"info", out});
+  CHECK_THAT(exactInfo.out, Catch::Contains("magnitude   logarithmic"));
+  CHECK_THAT(exactInfo.out, !Catch::Contains("codes rounded"));
   for (const char* bad : {"0", "16"}) {
     const auto r = runGhostspace({"encode", world, "-o", out, "--magnitude-bits", bad});
     CHECK(r.exitCode == 2);
