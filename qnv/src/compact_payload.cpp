@@ -12,11 +12,6 @@ namespace gs::qnv::detail {
 
 namespace {
 
-std::uint32_t morton(std::uint64_t r) {
-  const RecordFields f = unpackRecord(r);
-  return spread3(f.x) | (spread3(f.y) << 1) | (spread3(f.z) << 2);
-}
-
 constexpr int kZstdLevel = 9;
 
 }  // namespace
@@ -24,7 +19,7 @@ constexpr int kZstdLevel = 9;
 void appendCompactPayload(std::string& out, std::span<const std::uint64_t> records) {
   std::vector<std::pair<std::uint32_t, std::uint64_t>> sorted;
   sorted.reserve(records.size());
-  for (std::uint64_t r : records) sorted.emplace_back(morton(r), r);
+  for (std::uint64_t r : records) sorted.emplace_back(recordMorton(r), r);
   std::sort(sorted.begin(), sorted.end());
 
   const std::size_t n = sorted.size();

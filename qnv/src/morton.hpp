@@ -5,6 +5,8 @@
 #include <array>
 #include <cstdint>
 
+#include "qnv/record.hpp"
+
 namespace gs::qnv::detail {
 
 /// Spreads the low 10 bits of v to every third bit (bit i goes to bit 3i).
@@ -25,6 +27,12 @@ inline std::uint32_t compact3(std::uint32_t v) {
   v = (v | (v >> 8)) & 0x030000ffu;
   v = (v | (v >> 16)) & 0x3ffu;
   return v;
+}
+
+/// The 30-bit Morton code of a packed record's (X, Y, Z): X at bit 0, Y at 1, Z at 2.
+inline std::uint32_t recordMorton(std::uint64_t r) {
+  const RecordFields f = unpackRecord(r);
+  return spread3(f.x) | (spread3(f.y) << 1) | (spread3(f.z) << 2);
 }
 
 // A 12-bit piece of a Morton code (4 bits of each axis) spread back to X at bits 20..23,

@@ -1,6 +1,8 @@
 #include "ordering.hpp"
 
 #include <algorithm>
+#include <utility>
+#include <vector>
 
 #include "morton.hpp"
 #include "qnv/encoder.hpp"
@@ -19,19 +21,16 @@ std::uint64_t Selection::keepOf(std::uint64_t elements) const {
 void coarsenMagnitudes(std::span<std::uint64_t> records, int bits) {
   if (bits >= kMagnitudeBits) return;
   roundMagnitudes(records, bits);
-  const auto morton = [](std::uint64_t r) {
-    const RecordFields f = unpackRecord(r);
-    return detail::spread3(f.x) | (detail::spread3(f.y) << 1) | (detail::spread3(f.z) << 2);
-  };
-  for (std::size_t begin = 0; begin < records.size();) {
-    std::size_t end = begin + 1;
-    while (end < records.size() && magnitudeCode(records[end]) == magnitudeCode(records[begin]))
-      ++end;
-    std::stable_sort(records.begin() + static_cast<std::ptrdiff_t>(begin),
-                     records.begin() + static_cast<std::ptrdiff_t>(end),
-                     [&](std::uint64_t a, std::uint64_t b) { return morton(a) < morton(b); });
-    begin = end;
-  }
+  // Largest code first, then Morton order; the records are sorted by code already, so this
+  // only reorders each run of equal codes.
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> keyed(records.size());
+  for (std::size_t i = 0; i < records.size(); ++i)
+    keyed[i] = {(std::uint64_t{kMagnitudeSteps - 1 - magnitudeCode(records[i])} << 30) |
+                    detail::recordMorton(records[i]),
+                records[i]};
+  std::stable_sort(keyed.begin(), keyed.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (std::size_t i = 0; i < records.size(); ++i) records[i] = keyed[i].second;
 }
 
 namespace detail {
