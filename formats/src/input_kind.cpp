@@ -25,6 +25,10 @@ constexpr std::array kSuffixes = {
     Suffix{".wrz", InputKind::world},
     Suffix{".qnv", InputKind::qnv},
     Suffix{".qnvt", InputKind::qnvTileset},
+    Suffix{".compressed.ply", InputKind::gaussianSplats},
+    Suffix{".splat", InputKind::gaussianSplats},
+    Suffix{".spz", InputKind::gaussianSplats},
+    Suffix{".sog", InputKind::gaussianSplats},
     Suffix{".ply", InputKind::ply},
     Suffix{".ply.gz", InputKind::ply},
     Suffix{".obj", InputKind::obj},
@@ -83,7 +87,16 @@ InputKind sniffPlain(std::string_view head) {
       std::equal(index.begin(), index.end(), head.begin(),
                  [](std::uint8_t m, char c) { return m == static_cast<std::uint8_t>(c); }))
     return InputKind::qnvTileset;
-  if (head.starts_with("ply") && lineEndAt(head, 3)) return InputKind::ply;
+  if (head.starts_with("ply") && lineEndAt(head, 3)) {
+    // A Gaussian splatting PLY: its vertex element has Gaussian properties, or it has
+    // PlayCanvas's chunk element (compressed PLY).
+    const std::size_t end = head.find("end_header");
+    const std::string_view header = head.substr(0, end);
+    for (std::string_view p : {" f_dc_0", " scale_0", " rot_0", "element chunk "})
+      if (header.find(p) != std::string_view::npos) return InputKind::gaussianSplats;
+    return InputKind::ply;
+  }
+  if (head.starts_with("NGSP")) return InputKind::gaussianSplats;  // SPZ (v4 raw; v2-v3 gzip)
   if (head.starts_with("glTF")) return InputKind::gltf;
   if (head.size() >= 8 && head.starts_with("NRRD000") && head[7] >= '1' && head[7] <= '5')
     return InputKind::nrrd;

@@ -91,7 +91,7 @@ const SceneSplats::NodeSet& SceneSplats::nodeSet(const vrml::Node& node, const s
 std::size_t SceneSplats::drawCount(const vrml::Node* node, const SplatSet& set) const {
   const std::uint64_t prefix = wantedPrefix(node, set);
   set.wantedVectors = std::max(set.wantedVectors, prefix);
-  return static_cast<std::size_t>(std::min<std::uint64_t>(prefix, set.vectors.size()));
+  return static_cast<std::size_t>(std::min<std::uint64_t>(prefix, set.size()));
 }
 
 std::uint64_t SceneSplats::wantedPrefix(const vrml::Node* node, const SplatSet& set) const {

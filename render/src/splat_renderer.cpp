@@ -11,6 +11,8 @@
 
 #include "gl_program.hpp"
 #include "render/splat_sort.hpp"
+#include "gaussian_cpu.hpp"
+#include "gaussian_gl.hpp"
 #include "splat_cpu.hpp"
 #include "splat_glsl.hpp"
 #include "splat_points.hpp"
@@ -135,6 +137,26 @@ struct SplatUniforms {
   }
 };
 
+/// The scene's depth of the current viewport (window depths, rows bottom to top), as the
+/// GL paths' depth test sees it; empty when there is no depth buffer to read.
+std::span<const float> readSceneDepth(std::vector<float>& depth, const GLint viewport[4]) {
+  const std::size_t pixels = static_cast<std::size_t>(viewport[2]) * static_cast<std::size_t>(viewport[3]);
+  GLint drawFramebuffer = 0, readFramebuffer = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawFramebuffer);
+  glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &readFramebuffer);
+  if (readFramebuffer != drawFramebuffer)
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(drawFramebuffer));
+  depth.resize(pixels);
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glReadPixels(viewport[0], viewport[1], viewport[2], viewport[3], GL_DEPTH_COMPONENT, GL_FLOAT,
+               depth.data());
+  std::span<const float> result;
+  if (glGetError() == GL_NO_ERROR) result = depth;
+  if (readFramebuffer != drawFramebuffer)
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(readFramebuffer));
+  return result;
+}
+
 }  // namespace
 
 const char* splatPathName(SplatPath path) {
@@ -189,6 +211,8 @@ std::unique_ptr<SplatViewRequests::Request> SplatViewRequests::request() {
 void SplatSet::computeBounds() {
   bounds = vrml::Bounds{};
   for (const qnv::DecodedVector& v : vectors) bounds.extend(v.position);
+  if (gaussians)
+    for (const glm::vec3& p : gaussians->positions) bounds.extend(p);
 }
 
 struct SplatRenderer::Gpu {
@@ -205,7 +229,7 @@ struct SplatRenderer::Gpu {
   std::size_t orderCapacity = 0;
   // The last depth order: of which set, count and view, which direction, whether it is in
   // orderBuffer.
-  const qnv::DecodedVector* sortedData = nullptr;
+  const void* sortedData = nullptr;  // the set's vectors or its Gaussian cloud
   std::size_t sortedSize = 0;
   std::uint64_t sortedRevision = 0;
   glm::mat4 sortedView{0.0f};
@@ -223,6 +247,9 @@ struct SplatRenderer::Gpu {
   // The cpu path: its rasterizer, image, the scene's depth, the texture and an empty VAO.
   SplatPath automaticPath = SplatPath::geometry;  // what `automatic` means here
   detail::CpuSplatRasterizer rasterizer;
+  detail::CpuGaussianRasterizer gaussianRasterizer;
+  detail::GaussianGlPass gaussianPass;
+  std::vector<std::uint32_t> backToFront;  // the GL path's order of Gaussians
   std::vector<std::uint8_t> pixels;
   std::vector<float> depth;
   GLuint cpuTexture = 0, emptyVao = 0;
@@ -272,6 +299,7 @@ struct SplatRenderer::Gpu {
     glDeleteTextures(1, &layerTexture);
     glDeleteTextures(1, &cpuTexture);
     glDeleteVertexArrays(1, &emptyVao);
+    gaussianPass.release();
   }
 
   void upload(const SplatSet& set) {
@@ -329,13 +357,17 @@ void SplatRenderer::draw(const SplatSet& set, std::size_t count, const glm::mat4
                          std::span<const SplatLight> lights, SplatBlend blend,
                          const SplatStyle* style) {
   statistics_ = {};
-  count = std::min(count, set.vectors.size());
+  count = std::min(count, set.size());
   if (count == 0) return;
   if (!gpu_) {
     gpu_ = std::make_unique<Gpu>();
     gpu_->create();
   }
   Gpu& g = *gpu_;
+  if (set.gaussians) {
+    drawGaussians(set, count, model, camera, aspect, blend, style != nullptr ? *style : set.style);
+    return;
+  }
   const SplatPath path = path_ == SplatPath::automatic ? g.automaticPath : path_;
   const bool cpu = path == SplatPath::cpu;
   if (!cpu) g.upload(set);
@@ -502,25 +534,11 @@ void SplatRenderer::drawCpu(const SplatSet& set, std::size_t count, const glm::m
   glGetIntegerv(GL_VIEWPORT, viewport);
   const int width = viewport[2], height = viewport[3];
   if (width <= 0 || height <= 0) return;
-  const std::size_t pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
 
   // The scene's depth, as the GL paths' depth test sees it (the front-to-back GL layer
   // has no depth test: neither has this path in that mode).
   std::span<const float> depth;
-  if (blend == SplatBlend::backToFront) {
-    GLint drawFramebuffer = 0, readFramebuffer = 0;
-    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawFramebuffer);
-    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &readFramebuffer);
-    if (readFramebuffer != drawFramebuffer)
-      glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(drawFramebuffer));
-    g.depth.resize(pixels);
-    glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    glReadPixels(viewport[0], viewport[1], width, height, GL_DEPTH_COMPONENT, GL_FLOAT,
-                 g.depth.data());
-    if (glGetError() == GL_NO_ERROR) depth = g.depth;  // else: no depth buffer to test
-    if (readFramebuffer != drawFramebuffer)
-      glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(readFramebuffer));
-  }
+  if (blend == SplatBlend::backToFront) depth = readSceneDepth(g.depth, viewport);
 
   detail::CpuSplatView v;
   v.modelView = modelView;
@@ -531,7 +549,66 @@ void SplatRenderer::drawCpu(const SplatSet& set, std::size_t count, const glm::m
   v.nearClip = std::max(camera.nearClip, 1e-6f);
   v.farClip = std::max(camera.farClip, v.nearClip * 1.001f);
   g.rasterizer.draw({set.vectors.data(), count}, g.order, style, lights, v, depth, g.pixels);
+  drawImage(width, height);
+}
 
+void SplatRenderer::drawGaussians(const SplatSet& set, std::size_t count, const glm::mat4& model,
+                                  const scene::Camera& camera, float aspect, SplatBlend blend,
+                                  const SplatStyle& style) {
+  Gpu& g = *gpu_;
+  const splats::GaussianCloud& cloud = *set.gaussians;
+  const glm::mat4 modelView = scene::viewMatrix(camera) * model;
+  if (g.sortedData != static_cast<const void*>(&cloud) || g.sortedSize != cloud.size() ||
+      g.sortedRevision != set.revision || g.sortedCount != count || g.sortedView != modelView ||
+      !g.sortedFrontToBack) {
+    const auto t0 = std::chrono::steady_clock::now();
+    g.sorter.sortFrontToBack(std::span<const glm::vec3>(cloud.positions.data(), count), modelView,
+                             g.order);
+    statistics_.sortSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    statistics_.sorted = true;
+    g.sortedData = static_cast<const void*>(&cloud);
+    g.sortedSize = cloud.size();
+    g.sortedRevision = set.revision;
+    g.sortedCount = count;
+    g.sortedView = modelView;
+    g.sortedFrontToBack = true;
+    g.orderOnGpu = false;
+  }
+  statistics_.splats = count;
+  GLint viewport[4];
+  glGetIntegerv(GL_VIEWPORT, viewport);
+  const int width = viewport[2], height = viewport[3];
+  if (width <= 0 || height <= 0) return;
+  const glm::mat4 projection = scene::projectionMatrix(camera, aspect);
+  const glm::vec3 eye(glm::inverse(modelView) * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+  const SplatPath path = path_ == SplatPath::automatic ? g.automaticPath : path_;
+  if (path != SplatPath::cpu) {
+    // The GL path (one program for `geometry` and `points`), back to front.
+    statistics_.path = SplatPath::geometry;
+    g.backToFront.assign(g.order.rbegin(), g.order.rend());
+    g.gaussianPass.draw(cloud, g.backToFront, modelView, projection, eye, viewport,
+                        std::max(camera.nearClip, 1e-6f), style.opacityScale);
+    return;
+  }
+  statistics_.path = SplatPath::cpu;
+  std::span<const float> depth;
+  if (blend == SplatBlend::backToFront) depth = readSceneDepth(g.depth, viewport);
+  detail::CpuGaussianView v;
+  v.modelView = modelView;
+  v.projection = projection;
+  v.eye = eye;
+  v.width = width;
+  v.height = height;
+  v.nearClip = std::max(camera.nearClip, 1e-6f);
+  v.farClip = std::max(camera.farClip, v.nearClip * 1.001f);
+  v.opacityScale = style.opacityScale;
+  g.gaussianRasterizer.draw(cloud, g.order, v, depth, g.pixels);
+  drawImage(width, height);
+}
+
+void SplatRenderer::drawImage(int width, int height) {
+  Gpu& g = *gpu_;
   // The premultiplied image over the framebuffer: one quad, texel per pixel.
   glActiveTexture(GL_TEXTURE0);
   if (g.cpuTexture == 0) {

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cstddef>
+#include <cstring>
 #include <numeric>
 #include <stdexcept>
 
@@ -54,18 +56,31 @@ DepthSorter::ScratchInfo DepthSorter::scratch() const {
 void DepthSorter::sortBackToFront(std::span<const qnv::DecodedVector> vectors,
                                   const glm::mat4& view, std::vector<std::uint32_t>& order,
                                   std::size_t count) {
-  sort(vectors, view, order, count, false);
+  const std::size_t n = std::min(count, vectors.size());
+  sort(reinterpret_cast<const unsigned char*>(vectors.data()) +
+           offsetof(qnv::DecodedVector, position),
+       sizeof(qnv::DecodedVector), n, view, order, false);
 }
 
 void DepthSorter::sortFrontToBack(std::span<const qnv::DecodedVector> vectors,
                                   const glm::mat4& view, std::vector<std::uint32_t>& order,
                                   std::size_t count) {
-  sort(vectors, view, order, count, true);
+  const std::size_t n = std::min(count, vectors.size());
+  sort(reinterpret_cast<const unsigned char*>(vectors.data()) +
+           offsetof(qnv::DecodedVector, position),
+       sizeof(qnv::DecodedVector), n, view, order, true);
 }
 
-void DepthSorter::sort(std::span<const qnv::DecodedVector> vectors, const glm::mat4& view,
-                       std::vector<std::uint32_t>& order, std::size_t count, bool frontToBack) {
-  const std::size_t n = std::min(count, vectors.size());
+void DepthSorter::sortFrontToBack(std::span<const glm::vec3> positions, const glm::mat4& view,
+                                  std::vector<std::uint32_t>& order, std::size_t count) {
+  const std::size_t n = std::min(count, positions.size());
+  sort(reinterpret_cast<const unsigned char*>(positions.data()), sizeof(glm::vec3), n, view,
+       order, true);
+}
+
+void DepthSorter::sort(const unsigned char* positions, std::size_t stride, std::size_t n,
+                       const glm::mat4& view, std::vector<std::uint32_t>& order,
+                       bool frontToBack) {
   reserve(n);
   if (order.size() != n) order.resize(n);
   if (n == 0) return;
@@ -77,9 +92,9 @@ void DepthSorter::sort(std::span<const qnv::DecodedVector> vectors, const glm::m
   const float m0 = view[0][2], m1 = view[1][2], m2 = view[2][2], m3 = view[3][2];
   const std::uint32_t flip = frontToBack ? 0xffffffffu : 0u;  // descending z: invert keys
   std::uint32_t* const keys = keys_.data();
-  const qnv::DecodedVector* const v = vectors.data();
   for (std::size_t i = 0; i < n; ++i) {
-    const glm::vec3& p = v[i].position;
+    glm::vec3 p;
+    std::memcpy(&p, positions + i * stride, sizeof p);
     const float z = (m0 * p.x + m1 * p.y) + (m2 * p.z + m3);
     const std::uint32_t key = depthKey(z) ^ flip;
     keys[i] = key;

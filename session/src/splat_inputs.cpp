@@ -3,12 +3,16 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "base/fetch.hpp"
+#include "base/file.hpp"
+
 #include "base/url.hpp"
 #include "formats/input_kind.hpp"
 #include "qnv/encoder.hpp"
 #include "qnv/error.hpp"
 #include "session/mesh_input.hpp"
 #include "session/volume_input.hpp"
+#include "splats/readers.hpp"
 
 namespace gs::session {
 
@@ -83,7 +87,76 @@ std::string meshWorldText(const qnv::TriangleMesh& mesh) {
 
 }  // namespace
 
+std::string gaussianWorldText(const std::string& path) {
+  std::string escaped;
+  for (char c : path) {
+    if (c == '"' || c == '\\') escaped.push_back('\\');
+    escaped.push_back(c);
+  }
+  // The captures' axes are y-down (docs/splats.md, "Axes"): turned 180 degrees about Z,
+  // as SuperSplat and Spark show them.
+  return "#VRML V2.0 utf8\n# A 3D Gaussian splatting scene opened by ghostspace.\n"
+         "NavigationInfo { type [\"EXAMINE\", \"ANY\"] }\n"
+         "Transform { rotation 0 0 1 3.14159265\n  children QuantizedNormalVectors { url \"" +
+         escaped + "\" }\n}\n";
+}
+
+bool isGaussianSplatFile(const std::string& path) {
+  const formats::InputKind kind = formats::classifyFile(path);
+  if (kind == formats::InputKind::gaussianSplats) return true;
+  if (kind != formats::InputKind::gltf) return false;
+  std::string bytes, error;
+  if (!base::readFile(path, bytes, error, std::size_t{1} << 30)) return false;
+  return splats::detectSplatFormat(bytes, path) == splats::SplatFormat::gltf;
+}
+
+std::shared_ptr<const render::SplatSet> gaussianSet(const std::string& bytes,
+                                                    const std::string& name,
+                                                    const splats::SideFileReader& sideFiles,
+                                                    std::string& error) {
+  try {
+    auto set = std::make_shared<render::SplatSet>();
+    set->gaussians = std::make_shared<const splats::GaussianCloud>(
+        splats::sortByImportance(splats::readGaussians(bytes, name, sideFiles)));
+    set->computeBounds();
+    return set;
+  } catch (const splats::FormatError& e) {
+    error = e.what();
+  } catch (const std::bad_alloc&) {
+    error = name + ": out of memory";
+  }
+  return nullptr;
+}
+
+std::shared_ptr<const render::SplatSet> loadGaussianFile(const std::string& path,
+                                                         std::string& error) {
+  std::string bytes;
+  if (!base::readFile(path, bytes, error, std::size_t{16} << 30)) return nullptr;
+  base::LocalFetcher fetcher;
+  return gaussianSet(bytes, path, sideFileReader(fetcher, path), error);
+}
+
+splats::SideFileReader sideFileReader(base::Fetcher& fetcher, const std::string& sceneUrl) {
+  return [&fetcher, sceneUrl](const std::string& relative, std::string& out, std::string& why) {
+    if (relative.empty() || relative.find("..") != std::string::npos ||
+        relative.find(':') != std::string::npos || relative.front() == '/') {
+      why = relative + ": not a file beside the scene";
+      return false;
+    }
+    base::Fetched f =
+        fetcher.fetch(base::resolveUrl(sceneUrl, relative), sceneUrl, base::FetchMode::whole);
+    if (!f.ready()) {
+      why = f.error;
+      return false;
+    }
+    out = std::move(f.bytes);
+    return true;
+  };
+}
+
 std::string worldTextFor(const std::string& path) {
+  if (isGaussianSplatFile(path))
+    return gaussianWorldText(std::filesystem::path(path).filename().string());
   if (formats::isMesh(formats::classifyFile(path))) return meshWorldText(loadMeshFile(path));
   return splatWorldText(std::filesystem::path(path).filename().string());  // resolves to itself
 }
@@ -96,6 +169,7 @@ render::SplatLoader splatLoader() {
       error = "cannot read " + url + ": only local files are supported here";
       return nullptr;
     }
+    if (isGaussianSplatFile(path)) return loadGaussianFile(path, error);
     try {
       const formats::InputKind kind = formats::classifyFile(path);
       if (formats::isVolume(kind))

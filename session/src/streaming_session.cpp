@@ -79,6 +79,7 @@ std::shared_ptr<const render::SplatSet> StreamingSession::splatSet(const std::st
                                                                    std::string& error) {
   if (!base::mayReference(referrer, url, error)) return nullptr;  // before any cache
   if (auto it = qnv_.find(url); it != qnv_.end()) return it->second.set;
+  if (auto it = gaussians_.find(url); it != gaussians_.end()) return it->second;
   if (auto it = tilesets_.find(url); it != tilesets_.end()) return it->second->set();
   if (const std::string index = tilesetIndexOf(url); !index.empty()) {
     auto& tileset = tilesets_[url];
@@ -88,6 +89,18 @@ std::shared_ptr<const render::SplatSet> StreamingSession::splatSet(const std::st
   const std::string path = base::localPathOfUrl(url);
   const formats::InputKind kind =
       path.empty() ? formats::InputKind::unknown : formats::classifyFile(path);
+  if ((path.empty() && formats::kindFromName(url) == formats::InputKind::gaussianSplats) ||
+      (!path.empty() && isGaussianSplatFile(path))) {
+    // A Gaussian splatting scene: read whole (local or HTTP), under the loader's rules.
+    base::Fetched fetched = loader_.fetch(url, referrer, base::FetchMode::whole);
+    if (!fetched.ready()) {
+      error = fetched.error;
+      return nullptr;
+    }
+    auto set = gaussianSet(fetched.bytes, url, sideFileReader(loader_, url), error);
+    if (set) gaussians_[url] = set;
+    return set;
+  }
   if (formats::isMesh(kind) || formats::isVolume(kind)) {
     return splatLoader()(url, referrer, error);  // encoded whole, here and now
   }

@@ -21,6 +21,11 @@ enum class InputKind {
   gltf,        // .gltf[.gz], .glb[.gz]; content "glTF" (GLB)
   nrrd,        // .nrrd, .nhdr; content "NRRD0001".."NRRD0005"
   nifti,       // .nii, .nii.gz; content "n+1\0" or "ni1\0" at byte 344
+  /// A 3D Gaussian splatting scene (docs/splats.md): a PLY whose header (in the sniffed
+  /// bytes) has Gaussian properties (f_dc_0, scale_0, rot_0) or PlayCanvas's chunk element,
+  /// SPZ (content "NGSP", raw or gzip), .splat, .spz, .sog, .compressed.ply by name.
+  /// A glTF using KHR_gaussian_splatting is `gltf` here (session/ looks inside).
+  gaussianSplats,
 };
 
 /// The kind the name says: `name` is a path or URL; its extension (case-insensitive,
@@ -51,12 +56,12 @@ constexpr bool isVolume(InputKind k) {
   return k == InputKind::nrrd || k == InputKind::nifti;
 }
 /// Inputs shown as QNV splats or as a world made for them (no Viewpoint of their own):
-/// QNV streams and tilesets, PLY and OBJ meshes and volumes. glTF opens as a world of its
+/// QNV streams and tilesets, PLY and OBJ meshes, volumes and Gaussian splatting scenes. glTF opens as a world of its
 /// own (its nodes, materials, cameras, lights and animations; docs/gltf.md), though
 /// `encode` still reads it as a mesh.
 constexpr bool isSplatKind(InputKind k) {
   return k == InputKind::qnv || k == InputKind::qnvTileset || k == InputKind::ply ||
-         k == InputKind::obj || isVolume(k);
+         k == InputKind::obj || isVolume(k) || k == InputKind::gaussianSplats;
 }
 
 }  // namespace gs::formats

@@ -17,6 +17,7 @@
 #include "qnv/decoder.hpp"
 #include "render/splat_model.hpp"
 #include "scene/camera.hpp"
+#include "splats/gaussian.hpp"
 #include "vrml/geometry.hpp"
 
 namespace gs::render {
@@ -92,9 +93,19 @@ struct SplatSet {
   using View = SplatView;
   /// The views that ask for the set's vectors (shared: renderers hold requests on it).
   std::shared_ptr<SplatViewRequests> viewRequests = std::make_shared<SplatViewRequests>();
-  /// Vectors of the whole stream: expectedVectors, or vectors.size() when that is 0.
-  std::uint64_t total() const { return expectedVectors > 0 ? expectedVectors : vectors.size(); }
-  /// Bounds of `vectors` positions; call after filling vectors.
+  /// A 3D Gaussian splatting scene (splats/gaussian.hpp; docs/splats.md) instead of QNV
+  /// vectors: when set, `vectors` is empty and the set draws these Gaussians, in their
+  /// importance order (splats::sortByImportance), so the first N are the level of detail N.
+  std::shared_ptr<const splats::GaussianCloud> gaussians;
+  /// Vectors of the whole stream: expectedVectors, or the vectors (or Gaussians) present.
+  std::uint64_t total() const {
+    if (expectedVectors > 0) return expectedVectors;
+    return gaussians ? gaussians->size() : vectors.size();
+  }
+  /// Splats present: vectors.size(), or the Gaussians' count.
+  std::size_t size() const { return gaussians ? gaussians->size() : vectors.size(); }
+  /// Bounds of the positions of `vectors` (or of the Gaussians' centres); call after
+  /// filling them.
   void computeBounds();
 };
 
@@ -172,6 +183,13 @@ class SplatRenderer {
 
  private:
   /// The cpu path of draw(), after the depth sort (front to back, in gpu_->order).
+  /// draw() for a set of Gaussians: front-to-back order, then the CPU rasterizer
+  /// (src/gaussian_cpu.hpp) on llvmpipe, or the GL program (src/gaussian_gl.hpp).
+  void drawGaussians(const SplatSet& set, std::size_t count, const glm::mat4& model,
+                     const scene::Camera& camera, float aspect, SplatBlend blend,
+                     const SplatStyle& style);
+  /// Puts the premultiplied RGBA8 image of the cpu paths over the framebuffer's viewport.
+  void drawImage(int width, int height);
   void drawCpu(const SplatSet& set, std::size_t count, const glm::mat4& model,
                const glm::mat4& modelView, const scene::Camera& camera, const glm::mat4& projection,
                std::span<const SplatLight> lights, SplatBlend blend, const SplatStyle& style);

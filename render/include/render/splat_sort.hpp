@@ -45,6 +45,11 @@ class DepthSorter {
   void sortFrontToBack(std::span<const qnv::DecodedVector> vectors, const glm::mat4& view,
                        std::vector<std::uint32_t>& order, std::size_t count = kAll);
 
+  /// As sortFrontToBack for bare centres (a splats::GaussianCloud's positions): `order`
+  /// receives 0..n-1 of the first n = min(count, positions.size()) nearest first.
+  void sortFrontToBack(std::span<const glm::vec3> positions, const glm::mat4& view,
+                       std::vector<std::uint32_t>& order, std::size_t count = kAll);
+
   /// Grows the scratch buffers to hold `count` vectors now, so the first frame does not
   /// allocate either.
   void reserve(std::size_t count);
@@ -64,8 +69,9 @@ class DepthSorter {
   static constexpr std::size_t kAll = static_cast<std::size_t>(-1);
 
  private:
-  void sort(std::span<const qnv::DecodedVector> vectors, const glm::mat4& view,
-            std::vector<std::uint32_t>& order, std::size_t count, bool frontToBack);
+  /// The sort of n positions `stride` bytes apart, starting at `positions`.
+  void sort(const unsigned char* positions, std::size_t stride, std::size_t n,
+            const glm::mat4& view, std::vector<std::uint32_t>& order, bool frontToBack);
 
   std::vector<std::uint32_t> keys_;
   std::vector<std::uint32_t> keysAlt_;

@@ -5,7 +5,9 @@
 
 #include <string>
 
+#include "base/fetch.hpp"
 #include "render/splat_source.hpp"
+#include "splats/readers.hpp"
 
 namespace gs::session {
 
@@ -24,6 +26,34 @@ std::string tilesetIndexOf(const std::string& input);
 /// a .qnv stream or a volume becomes one QuantizedNormalVectors node naming the file.
 /// Throws qnv::InputError when a mesh cannot be read.
 std::string worldTextFor(const std::string& path);
+
+/// True when the local file `path` is a 3D Gaussian splatting scene (docs/splats.md): what
+/// formats::classifyFile calls gaussianSplats, or a glTF using KHR_gaussian_splatting.
+bool isGaussianSplatFile(const std::string& path);
+
+/// The VRML97 text of the world a Gaussian splatting scene opens as: its node under a
+/// Transform turning it 180 degrees about Z (captures are y-down; docs/splats.md "Axes").
+std::string gaussianWorldText(const std::string& path);
+
+/// Side files of the scene at `sceneUrl` (SOG images, glTF buffers) through `fetcher`
+/// (which must outlive the reader), named by the scene, so the rules of what content may
+/// reference apply (base::mayReference); names with "..", a scheme or a leading '/' are
+/// refused.
+splats::SideFileReader sideFileReader(base::Fetcher& fetcher, const std::string& sceneUrl);
+
+/// A Gaussian splatting scene held in `bytes` (named `name`: a path or URL), read by
+/// splats::readGaussians and sorted by importance. Null with `error` naming the input and
+/// the reason when it cannot be read.
+std::shared_ptr<const render::SplatSet> gaussianSet(const std::string& bytes,
+                                                    const std::string& name,
+                                                    const splats::SideFileReader& sideFiles,
+                                                    std::string& error);
+
+/// A local Gaussian splatting scene read whole (splats::readGaussians; side files from
+/// its folder or below only) and sorted by importance. Null with `error` naming the file
+/// and the reason when it cannot be read.
+std::shared_ptr<const render::SplatSet> loadGaussianFile(const std::string& path,
+                                                         std::string& error);
 
 /// The VRML97 text of a world holding one QuantizedNormalVectors node whose url is
 /// `path` (a world named after the file itself uses its file name, which resolves to it) (quotes

@@ -74,6 +74,8 @@ class StreamingSession {
     std::size_t warningsShown = 0;
   };
   std::map<std::string, QnvEntry> qnv_;
+  /// Gaussian splatting scenes, read whole, by URL.
+  std::map<std::string, std::shared_ptr<const render::SplatSet>> gaussians_;
   TilesetOptions tilesetOptions_;
   std::map<std::string, std::unique_ptr<TilesetStream>> tilesets_;  // by index URL
   std::vector<std::shared_ptr<net::WorldStream>> worlds_;           // every world streamed

@@ -1,0 +1,271 @@
+// The CPU Gaussian rasterizer: per-thread setup and binning, then tiles composited front
+// to back (see gaussian_cpu.hpp).
+#include "gaussian_cpu.hpp"
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <barrier>
+#include <cmath>
+#include <cstring>
+#include <thread>
+
+namespace gs::render::detail {
+
+namespace {
+
+constexpr int kTile = 16;                   // tile side, pixels (Kerbl et al.'s)
+constexpr float kSaturated = 1e-4f;         // transmittance below which a pixel is done
+constexpr float kMinAlpha = 1.0f / 255.0f;  // fragments below it are skipped (Kerbl et al.)
+constexpr float kMaxAlpha = 0.99f;
+
+/// One visible Gaussian, ready for its pixels.
+struct Prepared {
+  float cx, cy;          // centre, pixels (pixel i's centre at i + 0.5)
+  float ca, cb, cc;      // conic: power = -0.5 (ca dx^2 + cc dy^2) - cb dx dy
+  float opacity;         // 0..1
+  float depth;           // eye depth of the centre
+  float r, g, b;         // colour (sRGB, >= 0)
+  int x0, y0, x1, y1;    // pixel box, inclusive, inside the viewport
+};
+
+/// A covariance's six distinct entries (xx, xy, xz, yy, yz, zz).
+struct Covariance6 {
+  float xx, xy, xz, yy, yz, zz;
+};
+
+struct TileBuffers {
+  alignas(16) std::array<float, kTile * kTile> r, g, b, t, limit;
+};
+
+using F4 = float __attribute__((vector_size(16)));
+using I4 = std::int32_t __attribute__((vector_size(16)));
+
+F4 load4(const float* p) {
+  F4 v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+void store4(float* p, F4 v) { std::memcpy(p, &v, sizeof v); }
+
+F4 select4(I4 mask, F4 v) { return reinterpret_cast<F4>(mask & reinterpret_cast<I4>(v)); }
+
+/// exp(x) for x in [-8, 0]: 2^n 2^f with a degree-6 polynomial for 2^f (relative error
+/// below 3e-6).
+F4 exp4(F4 x) {
+  const F4 t = x * 1.44269504f;
+  I4 n = __builtin_convertvector(t, I4);
+  n += reinterpret_cast<I4>(t < __builtin_convertvector(n, F4));
+  const F4 f = t - __builtin_convertvector(n, F4);
+  const F4 p =
+      1.0f + f * (0.693147181f +
+                  f * (0.240226507f +
+                       f * (0.0555041087f +
+                            f * (0.00961812911f + f * (0.00133335581f + f * 0.000154035304f)))));
+  return p * reinterpret_cast<F4>((n + 127) << 23);
+}
+
+void composite(const Prepared p, int tx0, int ty0, int tw, int th, TileBuffers& tile, int& live) {
+  const int xs = std::max(p.x0, tx0), xe = std::min(p.x1, tx0 + tw - 1);
+  const int ys = std::max(p.y0, ty0), ye = std::min(p.y1, ty0 + th - 1);
+  const F4 lane = {0.5f, 1.5f, 2.5f, 3.5f};
+  for (int y = ys; y <= ye; ++y) {
+    const float dy = static_cast<float>(y) + 0.5f - p.cy;
+    const float rowC = -0.5f * p.cc * dy * dy;
+    const float rowB = -p.cb * dy;
+    const int row = (y - ty0) * kTile;
+    for (int x = tx0 + ((xs - tx0) & ~3); x <= xe; x += 4) {
+      const auto i = static_cast<std::size_t>(row + x - tx0);
+      const F4 transmittance = load4(&tile.t[i]);
+      const I4 open = transmittance > kSaturated;
+      if ((open[0] | open[1] | open[2] | open[3]) == 0) continue;
+      const F4 dx = (static_cast<float>(x) - p.cx) + lane;
+      const F4 power = (-0.5f * p.ca) * dx * dx + rowB * dx + rowC;
+      const I4 column = (dx >= static_cast<float>(xs) - p.cx) & (dx < static_cast<float>(xe + 1) - p.cx);
+      const I4 inside = column & (power <= 0.0f) & (power > -8.0f) & open &
+                        (p.depth <= load4(&tile.limit[i]));
+      F4 alpha = p.opacity * exp4(select4(inside, power));
+      alpha = alpha < kMaxAlpha ? alpha : kMaxAlpha;
+      alpha = select4(inside & (alpha >= kMinAlpha), alpha);
+      const F4 weight = transmittance * alpha;
+      store4(&tile.r[i], load4(&tile.r[i]) + weight * p.r);
+      store4(&tile.g[i], load4(&tile.g[i]) + weight * p.g);
+      store4(&tile.b[i], load4(&tile.b[i]) + weight * p.b);
+      const F4 left = transmittance - weight;
+      store4(&tile.t[i], left);
+      const I4 done = open & (left <= kSaturated);
+      live += done[0] + done[1] + done[2] + done[3];
+    }
+  }
+}
+
+std::uint8_t level(float c) {
+  if (!(c > 0.0f)) return 0;
+  return static_cast<std::uint8_t>(std::min(c, 1.0f) * 255.0f + 0.5f);
+}
+
+}  // namespace
+
+struct CpuGaussianRasterizer::Scratch {
+  std::vector<std::vector<std::vector<Prepared>>> bins;  // per chunk, per tile
+  const void* cloudKey = nullptr;
+  std::size_t cloudSize = 0;
+  std::vector<Covariance6> covariances;
+};
+
+CpuGaussianRasterizer::CpuGaussianRasterizer()
+    : threads_(std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 2, 64)),
+      scratch_(std::make_unique<Scratch>()) {}
+
+CpuGaussianRasterizer::~CpuGaussianRasterizer() = default;
+
+void CpuGaussianRasterizer::draw(const splats::GaussianCloud& cloud,
+                                 std::span<const std::uint32_t> order, const CpuGaussianView& view,
+                                 std::span<const float> depth, std::vector<std::uint8_t>& out) {
+  if (view.width <= 0 || view.height <= 0) return;
+  const std::size_t pixels =
+      static_cast<std::size_t>(view.width) * static_cast<std::size_t>(view.height);
+  out.resize(pixels * 4);
+  if (depth.size() < pixels) depth = {};
+  Scratch& s = *scratch_;
+
+  // Covariances once per cloud (they do not depend on the view).
+  const std::size_t n = cloud.size();
+  if (s.cloudKey != &cloud || s.cloudSize != n) {
+    s.covariances.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const glm::mat3 m = splats::covariance(cloud.scales[i], cloud.rotations[i]);
+      s.covariances[i] = {m[0][0], m[1][0], m[2][0], m[1][1], m[2][1], m[2][2]};
+    }
+    s.cloudKey = &cloud;
+    s.cloudSize = n;
+  }
+
+  splats::ProjectionView pv;
+  pv.modelView = view.modelView;
+  const glm::mat4& p = view.projection;
+  const float w = static_cast<float>(view.width), h = static_cast<float>(view.height);
+  pv.fx = p[0][0] * w * 0.5f;
+  pv.fy = p[1][1] * h * 0.5f;
+  pv.cx = 0.5f * w * (1.0f - p[2][0]);
+  pv.cy = 0.5f * h * (1.0f - p[2][1]);
+  pv.width = view.width;
+  pv.height = view.height;
+  pv.nearClip = view.nearClip;
+  pv.farClip = view.farClip;
+  const float depthA = p[2][2], depthB = p[3][2];
+
+  const int tilesX = (view.width + kTile - 1) / kTile, tilesY = (view.height + kTile - 1) / kTile;
+  const int tiles = tilesX * tilesY;
+  const int chunks = threads_;
+  s.bins.resize(static_cast<std::size_t>(chunks));
+  std::atomic<int> nextTile{0};
+  std::barrier sync(threads_);
+  const int rest = cloud.shRestPerSplat();
+
+  const auto work = [&](int chunk) {
+    std::vector<std::vector<Prepared>>& bins = s.bins[static_cast<std::size_t>(chunk)];
+    if (bins.size() < static_cast<std::size_t>(tiles)) bins.resize(static_cast<std::size_t>(tiles));
+    for (auto& bin : bins) bin.clear();
+    const std::size_t begin = order.size() * static_cast<std::size_t>(chunk) / chunks;
+    const std::size_t end = order.size() * static_cast<std::size_t>(chunk + 1) / chunks;
+    std::array<glm::vec3, 16> sh;
+    for (std::size_t k = begin; k < end; ++k) {
+      const std::uint32_t index = order[k];
+      if (index >= n) continue;
+      const float opacity = std::min(cloud.opacities[index] * view.opacityScale, 1.0f);
+      if (!(opacity >= kMinAlpha)) continue;
+      const Covariance6& c = s.covariances[index];
+      const glm::mat3 sigma(c.xx, c.xy, c.xz, c.xy, c.yy, c.yz, c.xz, c.yz, c.zz);
+      splats::ProjectedGaussian g;
+      const glm::vec3& position = cloud.positions[index];
+      if (!splats::projectGaussian(position, sigma, pv, g)) continue;
+      // The box of pixels whose centres lie within the 3-sigma square.
+      Prepared prepared;
+      prepared.x0 = std::max(0, static_cast<int>(std::floor(g.center.x - g.extent.x)));
+      prepared.x1 = std::min(view.width - 1, static_cast<int>(std::floor(g.center.x + g.extent.x)));
+      prepared.y0 = std::max(0, static_cast<int>(std::floor(g.center.y - g.extent.y)));
+      prepared.y1 = std::min(view.height - 1, static_cast<int>(std::floor(g.center.y + g.extent.y)));
+      if (prepared.x0 > prepared.x1 || prepared.y0 > prepared.y1) continue;
+      sh[0] = cloud.shDc[index];
+      for (int j = 0; j < rest; ++j)
+        sh[static_cast<std::size_t>(j + 1)] =
+            cloud.shRest[index * static_cast<std::size_t>(rest) + static_cast<std::size_t>(j)];
+      const glm::vec3 toward = position - view.eye;
+      const float length = glm::length(toward);
+      const glm::vec3 direction = length > 0.0f ? toward / length : glm::vec3(0.0f, 0.0f, -1.0f);
+      glm::vec3 color = glm::max(splats::evaluateSh(cloud.shDegree, sh.data(), direction) + 0.5f,
+                                 glm::vec3(0.0f));
+      if (cloud.colorSpace == splats::ColorSpace::linear) {
+        for (int ch = 0; ch < 3; ++ch)
+          color[ch] = color[ch] <= 0.0031308f ? 12.92f * color[ch]
+                                              : 1.055f * std::pow(color[ch], 1.0f / 2.4f) - 0.055f;
+      }
+      if (!std::isfinite(color.r) || !std::isfinite(color.g) || !std::isfinite(color.b)) continue;
+      prepared.cx = g.center.x;
+      prepared.cy = g.center.y;
+      prepared.ca = g.conic.x;
+      prepared.cb = g.conic.y;
+      prepared.cc = g.conic.z;
+      prepared.opacity = opacity;
+      prepared.depth = g.depth;
+      prepared.r = color.r;
+      prepared.g = color.g;
+      prepared.b = color.b;
+      for (int ty = prepared.y0 / kTile; ty <= prepared.y1 / kTile; ++ty)
+        for (int tx = prepared.x0 / kTile; tx <= prepared.x1 / kTile; ++tx)
+          bins[static_cast<std::size_t>(ty * tilesX + tx)].push_back(prepared);
+    }
+    sync.arrive_and_wait();
+
+    TileBuffers tile;
+    for (int t = nextTile.fetch_add(1); t < tiles; t = nextTile.fetch_add(1)) {
+      const int tx0 = (t % tilesX) * kTile, ty0 = (t / tilesX) * kTile;
+      const int tw = std::min(kTile, view.width - tx0), th = std::min(kTile, view.height - ty0);
+      tile.r.fill(0.0f);
+      tile.g.fill(0.0f);
+      tile.b.fill(0.0f);
+      tile.t.fill(0.0f);
+      tile.limit.fill(0.0f);
+      for (int j = 0; j < th; ++j) {
+        for (int i = 0; i < tw; ++i) {
+          const auto at = static_cast<std::size_t>(j * kTile + i);
+          tile.t[at] = 1.0f;
+          float limit = view.farClip;
+          if (!depth.empty()) {
+            const float d = depth[static_cast<std::size_t>(ty0 + j) * view.width + tx0 + i];
+            if (d < 1.0f) limit = std::min(limit, depthB / (2.0f * d - 1.0f + depthA));
+          }
+          tile.limit[at] = limit;
+        }
+      }
+      int live = tw * th;
+      for (int c = 0; c < chunks && live > 0; ++c) {
+        for (const Prepared& binned :
+             s.bins[static_cast<std::size_t>(c)][static_cast<std::size_t>(t)]) {
+          composite(binned, tx0, ty0, tw, th, tile, live);
+          if (live <= 0) break;
+        }
+      }
+      for (int j = 0; j < th; ++j) {
+        std::uint8_t* row = &out[(static_cast<std::size_t>(ty0 + j) * view.width + tx0) * 4];
+        for (int i = 0; i < tw; ++i) {
+          const auto at = static_cast<std::size_t>(j * kTile + i);
+          row[4 * i + 0] = level(tile.r[at]);
+          row[4 * i + 1] = level(tile.g[at]);
+          row[4 * i + 2] = level(tile.b[at]);
+          row[4 * i + 3] = level(1.0f - tile.t[at]);
+        }
+      }
+    }
+  };
+
+  std::vector<std::thread> workers;
+  workers.reserve(static_cast<std::size_t>(threads_ - 1));
+  for (int c = 1; c < threads_; ++c) workers.emplace_back(work, c);
+  work(0);
+  for (std::thread& worker : workers) worker.join();
+}
+
+}  // namespace gs::render::detail

@@ -1,0 +1,66 @@
+// Private to render/: the CPU rasterizer of anisotropic 3D Gaussians (the splat model of
+// splats/gaussian.hpp; docs/splats.md), the cpu path of SplatRenderer for sets that hold a
+// splats::GaussianCloud. It draws what Kerbl et al. 2023's rasterizer draws:
+//
+// 1. Setup (the order split into one contiguous chunk per thread): each Gaussian's EWA
+//    projection (splats::projectGaussian: Sigma' = J W Sigma W^T J^T + 0.3 px, 3-sigma box),
+//    its colour from its spherical harmonics along the ray from the camera, binned to 16x16
+//    pixel tiles in order.
+// 2. Compositing: threads take tiles; per pixel, front to back, alpha = min(0.99,
+//    o exp(-0.5 d^T Sigma'^-1 d)), fragments with alpha < 1/255 skipped, C += T alpha c,
+//    T *= 1 - alpha (the paper's equation (1)); a pixel whose transmittance falls below
+//    1e-4 is done. Four pixels at a time (vector extensions).
+// 3. Output: premultiplied RGBA8 (C, 1 - T), rows bottom to top (OpenGL's order).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "splats/gaussian.hpp"
+
+namespace gs::render::detail {
+
+/// The view of one CPU Gaussian frame.
+struct CpuGaussianView {
+  glm::mat4 modelView{1.0f};   // cloud to eye (OpenGL eye, looking down -Z)
+  glm::mat4 projection{1.0f};  // a perspective projection (scene::projectionMatrix)
+  glm::vec3 eye{0.0f};         // the camera's position in cloud coordinates (SH direction)
+  int width = 0, height = 0;   // viewport, pixels
+  float nearClip = 0.1f;       // eye depths drawn: [nearClip, farClip]
+  float farClip = 100.0f;
+  float opacityScale = 1.0f;   // multiplies every opacity (a node's opacityScale)
+};
+
+class CpuGaussianRasterizer {
+ public:
+  CpuGaussianRasterizer();
+  ~CpuGaussianRasterizer();
+  CpuGaussianRasterizer(const CpuGaussianRasterizer&) = delete;
+  CpuGaussianRasterizer& operator=(const CpuGaussianRasterizer&) = delete;
+
+  /// Composites the Gaussians `cloud[order[i]]`, order[0] nearest (indices outside the
+  /// cloud skipped), into `out`: width * height * 4 bytes of premultiplied RGBA8, rows
+  /// bottom to top. `depth` is empty or width * height window depths of the scene (0..1,
+  /// rows bottom to top, glReadPixels' order): a Gaussian is drawn at a pixel when its
+  /// centre's window depth is below the scene's there (GL_LESS). Covariances are cached
+  /// per cloud (address and size), so a cloud must not change while drawn by this object.
+  void draw(const splats::GaussianCloud& cloud, std::span<const std::uint32_t> order,
+            const CpuGaussianView& view, std::span<const float> depth,
+            std::vector<std::uint8_t>& out);
+
+  /// Threads a frame uses (at least 2).
+  int threads() const { return threads_; }
+
+  struct Scratch;
+
+ private:
+  int threads_;
+  std::unique_ptr<Scratch> scratch_;
+};
+
+}  // namespace gs::render::detail

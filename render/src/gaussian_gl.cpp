@@ -1,0 +1,190 @@
+// The GL path of 3D Gaussians (see gaussian_gl.hpp).
+#include "gaussian_gl.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "gl_program.hpp"
+
+namespace gs::render::detail {
+
+namespace {
+
+const char* const kGaussianVertexShader = R"glsl(#version 330 core
+layout(location = 0) in uint a_index;  // per instance: the Gaussian
+uniform samplerBuffer u_splats;        // 3 texels each: centre + opacity, covariance
+uniform samplerBuffer u_colors;        // RGBA8: this view's colour
+uniform mat4 u_modelView;
+uniform mat4 u_projection;
+uniform vec2 u_focal;     // fx, fy, pixels
+uniform vec2 u_viewport;  // width, height, pixels
+uniform float u_near;
+uniform float u_opacityScale;
+out vec2 v_offset;  // pixels from the centre, y up
+flat out vec3 v_conic;
+flat out vec4 v_color;
+
+void main() {
+  int i = int(a_index);
+  vec4 t0 = texelFetch(u_splats, 3 * i);
+  vec4 t1 = texelFetch(u_splats, 3 * i + 1);
+  vec4 t2 = texelFetch(u_splats, 3 * i + 2);
+  vec4 eye = u_modelView * vec4(t0.xyz, 1.0);
+  float depth = -eye.z;
+  gl_Position = vec4(0.0, 0.0, 2.0, 1.0);  // outside the clip volume: nothing drawn
+  float opacity = min(t0.w * u_opacityScale, 1.0);
+  if (!(depth >= u_near) || !(opacity >= 1.0 / 255.0)) return;
+  mat3 sigma = mat3(t1.x, t1.y, t1.z, t1.y, t1.w, t2.x, t1.z, t2.x, t2.y);
+  mat3 w = mat3(u_modelView);
+  w[0].z = -w[0].z; w[1].z = -w[1].z; w[2].z = -w[2].z;  // eye z forward
+  vec2 limit = 1.3 * 0.5 * u_viewport / u_focal;
+  vec2 t = clamp(eye.xy / depth, -limit, limit) * depth;
+  vec3 j0 = vec3(u_focal.x / depth, 0.0, -u_focal.x * t.x / (depth * depth));
+  vec3 j1 = vec3(0.0, u_focal.y / depth, -u_focal.y * t.y / (depth * depth));
+  mat3 cov = w * sigma * transpose(w);
+  float a = dot(j0, cov * j0) + 0.3;
+  float b = dot(j0, cov * j1);
+  float c = dot(j1, cov * j1) + 0.3;
+  float det = a * c - b * b;
+  if (!(det > 0.0)) return;
+  float mid = 0.5 * (a + c);
+  float radius = ceil(3.0 * sqrt(mid + sqrt(max(0.1, mid * mid - det))));
+  vec2 corner = vec2((gl_VertexID & 1) == 0 ? -radius : radius,
+                     (gl_VertexID & 2) == 0 ? -radius : radius);
+  vec4 clip = u_projection * eye;
+  gl_Position = clip + vec4(corner * 2.0 / u_viewport * clip.w, 0.0, 0.0);
+  v_offset = corner;
+  v_conic = vec3(c, -b, a) / det;
+  v_color = vec4(texelFetch(u_colors, i).rgb, opacity);
+}
+)glsl";
+
+const char* const kGaussianFragmentShader = R"glsl(#version 330 core
+in vec2 v_offset;
+flat in vec3 v_conic;
+flat in vec4 v_color;
+out vec4 o_color;
+void main() {
+  float power = -0.5 * (v_conic.x * v_offset.x * v_offset.x + v_conic.z * v_offset.y * v_offset.y)
+                - v_conic.y * v_offset.x * v_offset.y;
+  if (power > 0.0) discard;
+  float alpha = min(0.99, v_color.a * exp(power));
+  if (alpha < 1.0 / 255.0) discard;
+  o_color = vec4(v_color.rgb * alpha, alpha);  // premultiplied
+}
+)glsl";
+
+}  // namespace
+
+void GaussianGlPass::draw(const splats::GaussianCloud& cloud, std::span<const std::uint32_t> order,
+                          const glm::mat4& modelView, const glm::mat4& projection,
+                          const glm::vec3& eye, const int viewport[4], float nearClip,
+                          float opacityScale) {
+  if (program_ == 0) {
+    program_ = buildProgram("gaussian splats", kGaussianVertexShader, kGaussianFragmentShader);
+    glGenVertexArrays(1, &vao_);
+    glGenBuffers(1, &orderBuffer_);
+    glGenBuffers(1, &splatBuffer_);
+    glGenBuffers(1, &colorBuffer_);
+    glGenTextures(1, &splatTexture_);
+    glGenTextures(1, &colorTexture_);
+    glBindVertexArray(vao_);
+    glBindBuffer(GL_ARRAY_BUFFER, orderBuffer_);
+    glEnableVertexAttribArray(0);
+    glVertexAttribIPointer(0, 1, GL_UNSIGNED_INT, sizeof(std::uint32_t), nullptr);
+    glVertexAttribDivisor(0, 1);
+    glBindVertexArray(0);
+  }
+  const std::size_t n = cloud.size();
+  if (uploaded_ != &cloud || uploadedSize_ != n) {
+    staging_.resize(n * 12);
+    for (std::size_t i = 0; i < n; ++i) {
+      const glm::mat3 s = splats::covariance(cloud.scales[i], cloud.rotations[i]);
+      float* t = &staging_[i * 12];
+      t[0] = cloud.positions[i].x;
+      t[1] = cloud.positions[i].y;
+      t[2] = cloud.positions[i].z;
+      t[3] = cloud.opacities[i];
+      t[4] = s[0][0];
+      t[5] = s[1][0];
+      t[6] = s[2][0];
+      t[7] = s[1][1];
+      t[8] = s[2][1];
+      t[9] = s[2][2];
+      t[10] = t[11] = 0.0f;
+    }
+    glBindBuffer(GL_TEXTURE_BUFFER, splatBuffer_);
+    glBufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(staging_.size() * sizeof(float)),
+                 staging_.data(), GL_STATIC_DRAW);
+    glBindTexture(GL_TEXTURE_BUFFER, splatTexture_);
+    glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, splatBuffer_);
+    uploaded_ = &cloud;
+    uploadedSize_ = n;
+    colorEye_ = glm::vec3(NAN);
+  }
+  // This view's colours: SH along the ray from the camera (once when the cloud has none).
+  const bool viewDependent = cloud.shDegree > 0;
+  if (!(colorEye_ == eye) && (viewDependent || std::isnan(colorEye_.x))) {
+    colors_.resize(n * 4);
+    for (std::size_t i = 0; i < n; ++i) {
+      const glm::vec3 toward = cloud.positions[i] - eye;
+      const float length = glm::length(toward);
+      const glm::vec3 c = splats::shColor(
+          cloud, i, length > 0.0f ? toward / length : glm::vec3(0.0f, 0.0f, -1.0f));
+      for (int k = 0; k < 3; ++k)
+        colors_[i * 4 + static_cast<std::size_t>(k)] =
+            static_cast<std::uint8_t>(std::clamp(c[k], 0.0f, 1.0f) * 255.0f + 0.5f);
+      colors_[i * 4 + 3] = 255;
+    }
+    glBindBuffer(GL_TEXTURE_BUFFER, colorBuffer_);
+    glBufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(colors_.size()), colors_.data(),
+                 GL_STREAM_DRAW);
+    glBindTexture(GL_TEXTURE_BUFFER, colorTexture_);
+    glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA8, colorBuffer_);
+    colorEye_ = eye;
+  }
+  glBindBuffer(GL_ARRAY_BUFFER, orderBuffer_);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(order.size() * sizeof(std::uint32_t)),
+               order.data(), GL_STREAM_DRAW);
+
+  glUseProgram(program_);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_BUFFER, splatTexture_);
+  glUniform1i(uniform(program_, "u_splats"), 0);
+  glActiveTexture(GL_TEXTURE1);
+  glBindTexture(GL_TEXTURE_BUFFER, colorTexture_);
+  glUniform1i(uniform(program_, "u_colors"), 1);
+  glActiveTexture(GL_TEXTURE0);
+  glUniformMatrix4fv(uniform(program_, "u_modelView"), 1, GL_FALSE, &modelView[0][0]);
+  glUniformMatrix4fv(uniform(program_, "u_projection"), 1, GL_FALSE, &projection[0][0]);
+  const float w = static_cast<float>(viewport[2]), h = static_cast<float>(viewport[3]);
+  glUniform2f(uniform(program_, "u_focal"), projection[0][0] * w * 0.5f,
+              projection[1][1] * h * 0.5f);
+  glUniform2f(uniform(program_, "u_viewport"), w, h);
+  glUniform1f(uniform(program_, "u_near"), nearClip);
+  glUniform1f(uniform(program_, "u_opacityScale"), opacityScale);
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  glEnable(GL_DEPTH_TEST);
+  glDepthMask(GL_FALSE);
+  glDisable(GL_CULL_FACE);
+  glBindVertexArray(vao_);
+  glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(order.size()));
+  glBindVertexArray(0);
+  glDepthMask(GL_TRUE);
+  glDisable(GL_BLEND);
+}
+
+void GaussianGlPass::release() {
+  if (program_ == 0) return;
+  glDeleteProgram(program_);
+  glDeleteVertexArrays(1, &vao_);
+  GLuint buffers[] = {orderBuffer_, splatBuffer_, colorBuffer_};
+  glDeleteBuffers(3, buffers);
+  GLuint textures[] = {splatTexture_, colorTexture_};
+  glDeleteTextures(2, textures);
+  program_ = 0;
+  uploaded_ = nullptr;
+}
+
+}  // namespace gs::render::detail

@@ -1,0 +1,56 @@
+// Private to render/: the GL path of anisotropic 3D Gaussians (splats/gaussian.hpp;
+// docs/splats.md), used where GL runs on a GPU. One instanced quad per Gaussian: the vertex
+// shader makes the EWA projection of splats::projectGaussian (Sigma' = J W Sigma W^T J^T
+// + 0.3 px, 3-sigma square), the fragment shader the profile alpha = min(0.99,
+// o exp(power)) with alpha < 1/255 discarded, blended back to front (ONE,
+// ONE_MINUS_SRC_ALPHA) in the order the CPU radix sort gives, depth-tested at the
+// centre's depth against the scene (no depth writes). The same picture as the CPU path
+// up to the framebuffer's 8-bit rounding.
+//
+// Data: the cloud's centres, opacities and covariances in one texture buffer (three
+// RGBA32F texels per Gaussian, uploaded once per cloud), the colours of this view
+// (spherical harmonics evaluated on the CPU, RGBA8) in another, refreshed when the view
+// moves and the cloud has SH bands; the order as an instanced attribute.
+#pragma once
+
+#include <glad/gl.h>
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "splats/gaussian.hpp"
+
+namespace gs::render::detail {
+
+class GaussianGlPass {
+ public:
+  GaussianGlPass() = default;
+  GaussianGlPass(const GaussianGlPass&) = delete;
+  GaussianGlPass& operator=(const GaussianGlPass&) = delete;
+
+  /// Draws `order` (indices into `cloud`, farthest first) into the current framebuffer's
+  /// viewport (`viewport`: x, y, width, height in pixels), the cloud placed by `modelView`,
+  /// projected by `projection`, its SH evaluated from `eye` (the camera in cloud
+  /// coordinates). Builds its program at the first call (throws std::runtime_error when it
+  /// does not compile). GL state: blending and the depth mask are restored as the splat
+  /// pass leaves them.
+  void draw(const splats::GaussianCloud& cloud, std::span<const std::uint32_t> order,
+            const glm::mat4& modelView, const glm::mat4& projection, const glm::vec3& eye,
+            const int viewport[4], float nearClip, float opacityScale);
+  /// Frees every GL object (context current).
+  void release();
+
+ private:
+  GLuint program_ = 0, vao_ = 0, orderBuffer_ = 0;
+  GLuint splatBuffer_ = 0, splatTexture_ = 0, colorBuffer_ = 0, colorTexture_ = 0;
+  const void* uploaded_ = nullptr;
+  std::size_t uploadedSize_ = 0;
+  glm::vec3 colorEye_{NAN};
+  std::vector<float> staging_;
+  std::vector<std::uint8_t> colors_;
+};
+
+}  // namespace gs::render::detail

@@ -1,0 +1,77 @@
+// Readers of 3D Gaussian splatting scenes (docs/splats.md, "Formats"): INRIA .ply,
+// PlayCanvas .compressed.ply, .splat, Niantic .spz (v2-v4), PlayCanvas SOG and glTF
+// KHR_gaussian_splatting. Each reads bytes already in memory, is safe for untrusted input
+// (every count and size checked before it is used; allocations bounded by the input's
+// size and kMaxSplats) and returns the cloud in the axes splat-transform 3.7 gives it
+// (docs/splats.md, "Axes"): the INRIA .ply's own axes, which the scene turns 180 degrees
+// about Z as SuperSplat and Spark show a capture.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+#include "splats/gaussian.hpp"
+
+namespace gs::splats {
+
+/// Thrown by every reader: what() names the input and says what is wrong, e.g.
+/// "scene.ply: property 'scale_2' missing", "garden.spz: unsupported SPZ version 9".
+struct FormatError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// The most splats a reader accepts (a larger count is a FormatError, not an allocation).
+inline constexpr std::size_t kMaxSplats = std::size_t{1} << 28;
+
+/// The splat scene formats.
+enum class SplatFormat { unknown, ply, compressedPly, splat, spz, sog, sogMeta, gltf };
+
+/// The format the leading bytes `head` and the name `name` say: a PLY header whose
+/// vertex element has Gaussian properties (f_dc_0 / scale_0 / rot_0 / opacity) is `ply`;
+/// one with the chunk element of PlayCanvas is `compressedPly`; gzip whose content starts
+/// with SPZ's magic, or NGSP (v4), is `spz`; a zip holding meta.json is `sog`; a JSON
+/// object with SOG's "means" is `sogMeta`; a glTF using KHR_gaussian_splatting is `gltf`;
+/// `.splat` by name only (it has no magic). unknown otherwise (a mesh PLY is unknown).
+SplatFormat detectSplatFormat(std::string_view head, std::string_view name);
+
+/// Reads further files a scene refers to (SOG's meta.json names its WebP images, a .gltf
+/// its buffers): `relative` is the name as the scene writes it. Returns false with `error`
+/// set when it cannot be read (the reader then throws FormatError naming it). Callers
+/// resolve names against the scene's folder and refuse what may not be read
+/// (base::mayReference).
+using SideFileReader =
+    std::function<bool(const std::string& relative, std::string& bytes, std::string& error)>;
+
+/// INRIA 3DGS .ply (binary little-endian or ascii; Kerbl et al.'s output): x y z,
+/// f_dc_0..2, f_rest_0..(3k-1) channel-major (k = 0, 3, 8 or 15), opacity (logit),
+/// scale_0..2 (log), rot_0..3 (w x y z, normalised here). Missing f_rest: degree 0.
+GaussianCloud readPlyGaussians(std::string_view bytes, std::string_view name);
+/// PlayCanvas .compressed.ply: chunk element (min/max of position, scale, colour) and
+/// packed vertex element (11-10-11 position and scale, 2-10-10-10 smallest-three rotation,
+/// 8888 colour and opacity), optional sh element (8-bit).
+GaussianCloud readCompressedPlyGaussians(std::string_view bytes, std::string_view name);
+/// antimatter15 .splat: 32 bytes per splat (float x y z, float linear scales,
+/// uint8 RGBA, uint8 rotation w x y z mapped from -1..1).
+GaussianCloud readSplatGaussians(std::string_view bytes, std::string_view name);
+/// Niantic .spz versions 2 to 4: gzip of a 16-byte header and packed attributes (v2-v3),
+/// or the NGSP header of v4 with zstd-compressed attribute streams.
+GaussianCloud readSpzGaussians(std::string_view bytes, std::string_view name);
+/// PlayCanvas SOG: `bytes` is a .sog zip bundle, or a meta.json whose WebP images
+/// `sideFiles` reads. WebP through libwebp.
+GaussianCloud readSogGaussians(std::string_view bytes, std::string_view name,
+                               const SideFileReader& sideFiles);
+/// glTF 2.0 (.gltf or .glb) with KHR_gaussian_splatting POINTS primitives: every such
+/// primitive of every mesh instance in the default scene, placed by its node's world
+/// transform, converted from glTF's axes to the .ply axes above.
+GaussianCloud readGltfGaussians(std::string_view bytes, std::string_view name,
+                                const SideFileReader& sideFiles);
+
+/// Any of the above by detectSplatFormat(bytes, name). Throws FormatError for an
+/// unknown format ("NAME: not a Gaussian splatting scene") and whatever the reader throws.
+GaussianCloud readGaussians(std::string_view bytes, std::string_view name,
+                            const SideFileReader& sideFiles);
+
+}  // namespace gs::splats

@@ -1,0 +1,89 @@
+// Shared by the splat scene readers (splats/readers.hpp): errors naming the input, bounds
+// checked little-endian reads, the PLY header parser of readPlyGaussians and
+// readCompressedPlyGaussians (and of detectSplatFormat), and the conversions every reader
+// ends with (rotations normalised, PLY's channel-major f_rest made splat-major).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "splats/readers.hpp"
+
+namespace gs::splats::detail {
+
+/// Throws FormatError("NAME: WHAT").
+[[noreturn]] void fail(std::string_view name, const std::string& what);
+
+/// Throws FormatError "NAME: COUNT splats exceed the limit of kMaxSplats" when count is
+/// above kMaxSplats, and "NAME: expected BYTES bytes of WHAT, got HAVE" when
+/// count * recordBytes (overflow checked) exceeds `have`.
+void checkCount(std::string_view name, std::uint64_t count, std::uint64_t recordBytes,
+                std::uint64_t have, const char* what);
+
+/// SH degree (0..3) of `restPerChannel` higher coefficients per channel (0, 3, 8, 15);
+/// -1 for any other count.
+int shDegreeForRest(std::size_t restPerChannel);
+
+/// `q` (w, x, y, z) normalised; the identity when its length is 0 or not finite.
+glm::quat unitQuat(float w, float x, float y, float z);
+
+/// Sizes every array of `cloud` for `count` splats of SH degree `degree` (0..3).
+void allocate(GaussianCloud& cloud, std::size_t count, int degree);
+
+/// Stores splat `i`'s higher SH coefficients given channel-major (Kerbl et al.'s
+/// f_rest order: all red coefficients, then green, then blue; `rest` holds
+/// 3 * cloud.shRestPerSplat() values) as the cloud's splat-major RGB triples.
+void setChannelMajorRest(GaussianCloud& cloud, std::size_t i, const float* rest);
+
+/// The scalar types of a PLY property (PLY's char..double and their int8..float64 aliases).
+enum class PlyType : std::uint8_t { i8, u8, i16, u16, i32, u32, f32, f64 };
+
+/// Bytes of one value of type `t`.
+std::size_t plyTypeSize(PlyType t);
+
+struct PlyProperty {
+  std::string name;
+  PlyType type = PlyType::f32;
+  bool isList = false;  // a list property (faces); its count has countType
+  PlyType countType = PlyType::u8;
+  std::size_t offset = 0;  // bytes from the start of the record (fixed-size elements)
+};
+
+struct PlyElement {
+  std::string name;
+  std::uint64_t count = 0;
+  std::vector<PlyProperty> properties;
+  std::size_t rowBytes = 0;  // bytes of one record when no property is a list
+  bool hasList = false;
+  /// Index of the property `name`, -1 when absent.
+  int find(std::string_view property) const;
+};
+
+enum class PlyFormat : std::uint8_t { ascii, binaryLittleEndian, binaryBigEndian };
+
+struct PlyHeader {
+  PlyFormat format = PlyFormat::binaryLittleEndian;
+  std::vector<PlyElement> elements;
+  std::size_t dataOffset = 0;  // first byte after "end_header\n"
+  /// The element `name`, null when absent.
+  const PlyElement* find(std::string_view element) const;
+};
+
+/// Parses the PLY header at the start of `bytes` (at most its first 1 MiB). False with
+/// `error` set ("missing end_header", "bad element count 'x'", ...) when it is not one.
+/// Never throws.
+bool parsePlyHeader(std::string_view bytes, PlyHeader& header, std::string& error);
+
+/// The value of type `t` at `p` (little- or big-endian) as a double.
+double plyValue(const char* p, PlyType t, bool bigEndian);
+
+/// For binary PLY: the byte offset of `element`'s first record (elements before it must
+/// have no list property, else FormatError) and a check that its records lie within
+/// `bytes` (FormatError "NAME: expected N bytes of element 'E', got M").
+std::size_t plyElementOffset(std::string_view bytes, std::string_view name, const PlyHeader& header,
+                             const PlyElement& element);
+
+}  // namespace gs::splats::detail

@@ -1,0 +1,95 @@
+// 3D Gaussian splatting scenes through the whole program (docs/splats.md): the corpus's
+// captures drawn by `ghostspace --snapshot` against PlayCanvas splat-transform's own
+// rasterizer (pictures made by ../shared/peers/splat/render.sh, committed under
+// tests/data/splats/peer/), scored as the peer's README scores two renderers: PSNR over
+// the peer's foreground less a 1-pixel band around its silhouette.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "baseline.hpp"
+#include "process.hpp"
+#include "render/image.hpp"
+#include "test_support.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/// A world showing `scene` as the peer sees it: the scene turned 180 degrees about Z
+/// (as ghostspace opens a capture, and as render.sh draws it), a Viewpoint at `position`
+/// looking down -Z, vertical field of view 60 degrees (square pictures).
+std::string peerWorld(const std::string& name, const fs::path& scene, const std::string& position) {
+  const fs::path dir = fs::path(GS_BINARY_DIR) / "render-actual";
+  fs::create_directories(dir);
+  const fs::path world = dir / (name + ".wrl");
+  std::ofstream(world) << "#VRML V2.0 utf8\n"
+                       << "Viewpoint { position " << position
+                       << " fieldOfView 1.04719755 }\n"
+                       << "NavigationInfo { headlight FALSE }\n"
+                       << "Transform { rotation 0 0 1 3.14159265 children QuantizedNormalVectors "
+                          "{ url \""
+                       << scene.string() << "\" } }\n";
+  return world.string();
+}
+
+/// PSNR (dB) of `ours` against `peer` over the pixels where the peer drew something
+/// (a channel above 8), less those within one pixel of a pixel where it did not.
+double foregroundPsnr(const std::string& ours, const std::string& peer) {
+  const gs::render::Image a = gs::render::readPng(ours), b = gs::render::readPng(peer);
+  REQUIRE(a.width == b.width);
+  REQUIRE(a.height == b.height);
+  const auto lit = [&](int x, int y) {
+    if (x < 0 || y < 0 || x >= b.width || y >= b.height) return false;
+    const std::size_t i = (static_cast<std::size_t>(y) * b.width + x) * 4;
+    return b.rgba[i] > 8 || b.rgba[i + 1] > 8 || b.rgba[i + 2] > 8;
+  };
+  double squared = 0.0;
+  std::size_t count = 0;
+  for (int y = 0; y < b.height; ++y) {
+    for (int x = 0; x < b.width; ++x) {
+      bool inside = true;
+      for (int dy = -1; dy <= 1 && inside; ++dy)
+        for (int dx = -1; dx <= 1 && inside; ++dx) inside = lit(x + dx, y + dy);
+      if (!inside) continue;
+      const std::size_t i = (static_cast<std::size_t>(y) * b.width + x) * 4;
+      for (int c = 0; c < 3; ++c) {
+        const double d = double(a.rgba[i + c]) - double(b.rgba[i + c]);
+        squared += d * d;
+      }
+      count += 3;
+    }
+  }
+  REQUIRE(count > 300);  // the peer drew a picture
+  if (squared == 0.0) return INFINITY;
+  return 10.0 * std::log10(255.0 * 255.0 / (squared / double(count)));
+}
+
+}  // namespace
+
+TEST_CASE("the corpus's Gaussian splatting scenes look as PlayCanvas draws them",
+          "[app][render][splat][corpus]") {
+  if (!gs::test::haveCorpus("splat")) return;
+  const fs::path peer = gs::test::sourceDir() / "tests/data/splats/peer";
+  struct Case {
+    const char* name;
+    const char* file;
+    const char* position;
+    double minimum;  // dB
+  };
+  for (const Case& c : {Case{"bunny", "bunny.spz", "0.017 -0.11 0.3", 40.0},
+                        Case{"cthead", "cthead.spz", "0 0 2.6", 38.0}}) {
+    SECTION(c.name) {
+      const std::string world = peerWorld(std::string("gaussians_") + c.name,
+                                          gs::test::corpusDir() / "splat" / c.file, c.position);
+      const std::string ours =
+          gs::test::snapshot(std::string("gaussians_") + c.name, {"--size", "400x400", world});
+      const double psnr = foregroundPsnr(ours, (peer / (std::string(c.name) + ".png")).string());
+      WARN(c.name << ": " << psnr << " dB against the peer");
+      CHECK(psnr >= c.minimum);
+    }
+  }
+}
