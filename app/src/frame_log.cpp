@@ -50,6 +50,18 @@ void FrameLog::beginFrame() {
 }
 
 void FrameLog::endFrame(const WindowState& state) {
+  std::uint64_t vectors[4] = {0, 0, 0, 0};
+  double lods[4] = {0.0, 0.0, 0.0, 0.0};
+  for (std::size_t i = 0; i < state.viewports.size() && i < 4; ++i) {
+    const Viewport& v = state.viewports[i];
+    if (!v.renderer()) continue;
+    vectors[i] = v.renderer()->statistics().splats;
+    lods[i] = v.options.lod;
+  }
+  endFrame(vectors, lods);
+}
+
+void FrameLog::endFrame(std::span<const std::uint64_t> vectors, std::span<const double> lods) {
   if (!file_) return;
   const auto now = Clock::now();
   auto ms = [](Clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); };
@@ -58,12 +70,8 @@ void FrameLog::endFrame(const WindowState& state) {
   s.frameMs = ms(now - lastEnd_);
   s.workMs = ms(now - begin_);
   s.rssKib = residentKib();
-  for (std::size_t i = 0; i < state.viewports.size() && i < 4; ++i) {
-    const Viewport& v = state.viewports[i];
-    if (!v.renderer()) continue;
-    s.vectors[i] = v.renderer()->statistics().splats;
-    s.lod[i] = v.options.lod;
-  }
+  for (std::size_t i = 0; i < vectors.size() && i < 4; ++i) s.vectors[i] = vectors[i];
+  for (std::size_t i = 0; i < lods.size() && i < 4; ++i) s.lod[i] = lods[i];
   lastEnd_ = now;
   std::fprintf(file_, "%s\n", formatFrameLine(s).c_str());
   std::fflush(file_);

@@ -134,8 +134,9 @@ const std::vector<OptionSpec>& table() {
        .names = "--frame-log",
        .valueName = "FILE",
        .field = GS_FIELD(std::string, options.frameLog),
-       .help = "Window: write one CSV line per frame (seconds, frame and work ms, resident "
-               "KiB, vectors and level of detail per viewport) to FILE",
+       .help = "Write one CSV line per frame (seconds, frame and work ms, resident KiB, "
+               "splats drawn and level of detail per viewport) to FILE: every frame of the "
+               "window, and with --snapshot every frame written (one per --time frame)",
        .more = "The frame time includes the wait for events, the work time does not "
                "(app/include/app/frame_log.hpp; the soak test uses it, docs/soak.md)."},
       {.scope = main,

@@ -3,6 +3,7 @@
 // docs/progressive-loading.md); the picture is taken when everything asked for arrived,
 // or at --snapshot-at.
 #include "app/commands.hpp"
+#include "app/frame_log.hpp"
 #include "app/layout.hpp"
 #include "app/progress_bar.hpp"
 #include "render/context.hpp"
@@ -167,9 +168,18 @@ int runSnapshot(const Options& options) {
   // a Script set, a LOD level chosen at T) is asked for while drawing: frames at the same
   // time repeat until a pump finds nothing arriving and nothing more was asked for.
   // Transfers end (arrive, fail or stall past --stall-timeout), so this ends.
+  std::unique_ptr<FrameLog> frameLog;
+  if (!options.frameLog.empty()) {
+    frameLog = std::make_unique<FrameLog>(options.frameLog);
+    if (!frameLog->ok()) {
+      std::fprintf(stderr, "ghostspace: cannot write --frame-log %s\n", options.frameLog.c_str());
+      return 1;
+    }
+  }
   render::Image image;
   for (int frame = 0; frame < time.frames; ++frame) {
     const double at = time.start + time.interval * frame;
+    if (frameLog) frameLog->beginFrame();
     for (;;) {
       clear();
       bool changed = false;
@@ -179,6 +189,15 @@ int runSnapshot(const Options& options) {
       session.loader().wait(0.01);
     }
     image = render::readPixels(0, 0, options.width, options.height);
+    if (frameLog) {
+      std::vector<std::uint64_t> drawn;
+      std::vector<double> lods;
+      for (std::size_t i = 0; i < views.size(); ++i) {
+        drawn.push_back(views[i]->renderer().statistics().splats);
+        lods.push_back(viewportLod(options, i));
+      }
+      frameLog->endFrame(drawn, lods);
+    }
     if (time.frames > 1)
       render::writePng(session::framePath(options.snapshotPath, frame, time.frames), image);
   }

@@ -21,12 +21,12 @@ constexpr float kMaxAlpha = 0.99f;
 
 /// One visible Gaussian, ready for its pixels.
 struct Prepared {
-  float cx, cy;          // centre, pixels (pixel i's centre at i + 0.5)
-  float ca, cb, cc;      // conic: power = -0.5 (ca dx^2 + cc dy^2) - cb dx dy
-  float opacity;         // 0..1
-  float depth;           // eye depth of the centre
-  float r, g, b;         // colour (sRGB, >= 0)
-  int x0, y0, x1, y1;    // pixel box, inclusive, inside the viewport
+  float cx, cy;        // centre, pixels (pixel i's centre at i + 0.5)
+  float ca, cb, cc;    // conic: power = -0.5 (ca dx^2 + cc dy^2) - cb dx dy
+  float opacity;       // 0..1
+  float depth;         // eye depth of the centre
+  float r, g, b;       // colour (sRGB, >= 0)
+  int x0, y0, x1, y1;  // pixel box, inclusive, inside the viewport
 };
 
 /// A covariance's six distinct entries (xx, xy, xz, yy, yz, zz).
@@ -47,9 +47,13 @@ F4 load4(const float* p) {
   return v;
 }
 
-void store4(float* p, F4 v) { std::memcpy(p, &v, sizeof v); }
+void store4(float* p, F4 v) {
+  std::memcpy(p, &v, sizeof v);
+}
 
-F4 select4(I4 mask, F4 v) { return reinterpret_cast<F4>(mask & reinterpret_cast<I4>(v)); }
+F4 select4(I4 mask, F4 v) {
+  return reinterpret_cast<F4>(mask & reinterpret_cast<I4>(v));
+}
 
 /// exp(x) for x in [-8, 0]: 2^n 2^f with a degree-6 polynomial for 2^f (relative error
 /// below 3e-6).
@@ -82,9 +86,10 @@ void composite(const Prepared p, int tx0, int ty0, int tw, int th, TileBuffers& 
       if ((open[0] | open[1] | open[2] | open[3]) == 0) continue;
       const F4 dx = (static_cast<float>(x) - p.cx) + lane;
       const F4 power = (-0.5f * p.ca) * dx * dx + rowB * dx + rowC;
-      const I4 column = (dx >= static_cast<float>(xs) - p.cx) & (dx < static_cast<float>(xe + 1) - p.cx);
-      const I4 inside = column & (power <= 0.0f) & (power > -8.0f) & open &
-                        (p.depth <= load4(&tile.limit[i]));
+      const I4 column =
+          (dx >= static_cast<float>(xs) - p.cx) & (dx < static_cast<float>(xe + 1) - p.cx);
+      const I4 inside =
+          column & (power <= 0.0f) & (power > -8.0f) & open & (p.depth <= load4(&tile.limit[i]));
       F4 alpha = p.opacity * exp4(select4(inside, power));
       alpha = alpha < kMaxAlpha ? alpha : kMaxAlpha;
       alpha = select4(inside & (alpha >= kMinAlpha), alpha);
@@ -186,7 +191,8 @@ void CpuGaussianRasterizer::draw(const splats::GaussianCloud& cloud,
       prepared.x0 = std::max(0, static_cast<int>(std::floor(g.center.x - g.extent.x)));
       prepared.x1 = std::min(view.width - 1, static_cast<int>(std::floor(g.center.x + g.extent.x)));
       prepared.y0 = std::max(0, static_cast<int>(std::floor(g.center.y - g.extent.y)));
-      prepared.y1 = std::min(view.height - 1, static_cast<int>(std::floor(g.center.y + g.extent.y)));
+      prepared.y1 =
+          std::min(view.height - 1, static_cast<int>(std::floor(g.center.y + g.extent.y)));
       if (prepared.x0 > prepared.x1 || prepared.y0 > prepared.y1) continue;
       sh[0] = cloud.shDc[index];
       for (int j = 0; j < rest; ++j)

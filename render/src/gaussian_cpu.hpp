@@ -33,7 +33,7 @@ struct CpuGaussianView {
   int width = 0, height = 0;   // viewport, pixels
   float nearClip = 0.1f;       // eye depths drawn: [nearClip, farClip]
   float farClip = 100.0f;
-  float opacityScale = 1.0f;   // multiplies every opacity (a node's opacityScale)
+  float opacityScale = 1.0f;  // multiplies every opacity (a node's opacityScale)
 };
 
 class CpuGaussianRasterizer {

@@ -129,8 +129,8 @@ void GaussianGlPass::draw(const splats::GaussianCloud& cloud, std::span<const st
     for (std::size_t i = 0; i < n; ++i) {
       const glm::vec3 toward = cloud.positions[i] - eye;
       const float length = glm::length(toward);
-      const glm::vec3 c = splats::shColor(
-          cloud, i, length > 0.0f ? toward / length : glm::vec3(0.0f, 0.0f, -1.0f));
+      const glm::vec3 c =
+          splats::shColor(cloud, i, length > 0.0f ? toward / length : glm::vec3(0.0f, 0.0f, -1.0f));
       for (int k = 0; k < 3; ++k)
         colors_[i * 4 + static_cast<std::size_t>(k)] =
             static_cast<std::uint8_t>(std::clamp(c[k], 0.0f, 1.0f) * 255.0f + 0.5f);

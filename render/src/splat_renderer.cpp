@@ -9,10 +9,10 @@
 #include <stdexcept>
 #include <string_view>
 
-#include "gl_program.hpp"
-#include "render/splat_sort.hpp"
 #include "gaussian_cpu.hpp"
 #include "gaussian_gl.hpp"
+#include "gl_program.hpp"
+#include "render/splat_sort.hpp"
 #include "splat_cpu.hpp"
 #include "splat_glsl.hpp"
 #include "splat_points.hpp"
@@ -140,7 +140,8 @@ struct SplatUniforms {
 /// The scene's depth of the current viewport (window depths, rows bottom to top), as the
 /// GL paths' depth test sees it; empty when there is no depth buffer to read.
 std::span<const float> readSceneDepth(std::vector<float>& depth, const GLint viewport[4]) {
-  const std::size_t pixels = static_cast<std::size_t>(viewport[2]) * static_cast<std::size_t>(viewport[3]);
+  const std::size_t pixels =
+      static_cast<std::size_t>(viewport[2]) * static_cast<std::size_t>(viewport[3]);
   GLint drawFramebuffer = 0, readFramebuffer = 0;
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawFramebuffer);
   glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &readFramebuffer);

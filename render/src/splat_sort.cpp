@@ -74,13 +74,12 @@ void DepthSorter::sortFrontToBack(std::span<const qnv::DecodedVector> vectors,
 void DepthSorter::sortFrontToBack(std::span<const glm::vec3> positions, const glm::mat4& view,
                                   std::vector<std::uint32_t>& order, std::size_t count) {
   const std::size_t n = std::min(count, positions.size());
-  sort(reinterpret_cast<const unsigned char*>(positions.data()), sizeof(glm::vec3), n, view,
-       order, true);
+  sort(reinterpret_cast<const unsigned char*>(positions.data()), sizeof(glm::vec3), n, view, order,
+       true);
 }
 
 void DepthSorter::sort(const unsigned char* positions, std::size_t stride, std::size_t n,
-                       const glm::mat4& view, std::vector<std::uint32_t>& order,
-                       bool frontToBack) {
+                       const glm::mat4& view, std::vector<std::uint32_t>& order, bool frontToBack) {
   reserve(n);
   if (order.size() != n) order.resize(n);
   if (n == 0) return;

@@ -7,6 +7,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -70,5 +71,45 @@ TEST_CASE("the window writes one frame log line per frame", "[app][window][frame
       {"--frames", "1", "--frame-log", "/nonexistent/dir/f.csv", world.string()},
       {"DISPLAY=" + x.display()});
   CHECK(bad.exitCode == 2);
+  CHECK(bad.err.find("--frame-log") != std::string::npos);
+}
+
+TEST_CASE("--snapshot --frame-log writes one line per frame written, as the window does",
+          "[app][frame-log]") {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(GS_BINARY_DIR) / "render-actual";
+  fs::create_directories(dir);
+  const fs::path log = dir / "snapshot_frame_log.csv";
+  fs::remove(log);
+  const auto r = gs::test::runGhostspace(
+      {"--snapshot", (dir / "snapshot_frame_log.png").string(), "--size", "64x64", "--layout",
+       "2x1", "--lod", "1,0.5", "--time", "0:1:3", "--frame-log", log.string(),
+       (gs::test::sourceDir() / "assets/volumes/sphere.nrrd").string()});
+  INFO(r.err);
+  REQUIRE(r.exitCode == 0);
+  std::ifstream in(log);
+  std::string line;
+  REQUIRE(std::getline(in, line));
+  CHECK(line == gs::app::frameLogHeader());
+  int lines = 0;
+  while (std::getline(in, line)) {
+    const auto f = fields(line);
+    REQUIRE(f.size() == 12);
+    const double all = std::stod(f[4]), half = std::stod(f[5]);
+    CHECK(all > 0);
+    CHECK(half > 0);
+    CHECK(half < all);  // viewport 1 draws half the vectors of viewport 0
+    CHECK(std::stod(f[6]) == 0);
+    CHECK(std::stod(f[8]) == Approx(1.0));
+    CHECK(std::stod(f[9]) == Approx(0.5));
+    ++lines;
+  }
+  CHECK(lines == 3);
+  // A log that cannot be written is an error, not a silent success.
+  const auto bad =
+      gs::test::runGhostspace({"--snapshot", (dir / "snapshot_frame_log_bad.png").string(),
+                               "--size", "32x32", "--frame-log", "/nonexistent-dir/log.csv",
+                               (gs::test::sourceDir() / "assets/volumes/sphere.nrrd").string()});
+  CHECK(bad.exitCode == 1);
   CHECK(bad.err.find("--frame-log") != std::string::npos);
 }

@@ -27,8 +27,7 @@ std::string peerWorld(const std::string& name, const fs::path& scene, const std:
   fs::create_directories(dir);
   const fs::path world = dir / (name + ".wrl");
   std::ofstream(world) << "#VRML V2.0 utf8\n"
-                       << "Viewpoint { position " << position
-                       << " fieldOfView 1.04719755 }\n"
+                       << "Viewpoint { position " << position << " fieldOfView 1.04719755 }\n"
                        << "NavigationInfo { headlight FALSE }\n"
                        << "Transform { rotation 0 0 1 3.14159265 children QuantizedNormalVectors "
                           "{ url \""

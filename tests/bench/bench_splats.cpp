@@ -7,7 +7,8 @@
 // llvmpipe threads and the cpu path's workers), less sensitive to other work on a shared
 // machine than the wall time.
 //
-//   bench_splats [WxH] [--millions 1,4] [--frames N] [--path P] [FILE.qnv ...]
+//   bench_splats [WxH] [--millions 1,4] [--frames N] [--path P] [FILE.qnv|SCENE ...]
+//   (SCENE: a Gaussian splatting scene, docs/splats.md: .ply, .spz, .splat, .sog, .glb ...)
 //   (default 512x512; --path geometry|points|cpu measures only that path)
 #include <glad/gl.h>
 
@@ -22,9 +23,11 @@
 #include <thread>
 #include <vector>
 
+#include "base/file.hpp"
 #include "render/context.hpp"
 #include "render/splat_renderer.hpp"
 #include "render/splat_source.hpp"
+#include "splats/readers.hpp"
 
 using namespace gs;
 using Clock = std::chrono::steady_clock;
@@ -74,7 +77,7 @@ Figure measure(const render::SplatSet& set, render::SplatPath path, int width, i
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     const auto t0 = Clock::now();
     const double c0 = processSeconds();
-    renderer.draw(set, set.vectors.size(), glm::mat4(1.0f), camera, aspect, lights);
+    renderer.draw(set, set.size(), glm::mat4(1.0f), camera, aspect, lights);
     glFinish();
     const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     const double cpu = processSeconds() - c0;
@@ -90,7 +93,7 @@ Figure measure(const render::SplatSet& set, render::SplatPath path, int width, i
 std::string only;  // --path: measure only that path
 
 void report(const char* name, const render::SplatSet& set, int width, int height, int frames) {
-  const double n = static_cast<double>(set.vectors.size());
+  const double n = static_cast<double>(set.size());
   constexpr int kPaths = 3;
   Figure figures[kPaths];
   const render::SplatPath paths[kPaths] = {render::SplatPath::geometry, render::SplatPath::points,
@@ -140,7 +143,8 @@ int main(int argc, char** argv) {
     } else if (a.find(".qnv") == std::string::npos &&
                std::sscanf(a.c_str(), "%dx%d", &width, &height) == 2) {
       // the size
-    } else if (a.size() > 4 && a.substr(a.size() - 4) == ".qnv") {
+    } else if ((a.size() > 4 && a.substr(a.size() - 4) == ".qnv") ||
+               gs::splats::detectSplatFormat("", a) != gs::splats::SplatFormat::unknown) {
       files.push_back(a);
     } else {
       std::fprintf(stderr,
@@ -160,7 +164,24 @@ int main(int argc, char** argv) {
               load[0], load[1], load[2]);
   for (const std::string& file : files) {
     std::string error;
-    const auto set = render::loadQnvFile(file, error);
+    std::shared_ptr<const render::SplatSet> set;
+    if (file.size() > 4 && file.substr(file.size() - 4) == ".qnv") {
+      set = render::loadQnvFile(file, error);
+    } else {
+      // A Gaussian splatting scene, in importance order.
+      std::string bytes;
+      if (gs::base::readFile(file, bytes, error, std::size_t{16} << 30)) {
+        try {
+          auto gaussians = std::make_shared<render::SplatSet>();
+          gaussians->gaussians = std::make_shared<const gs::splats::GaussianCloud>(
+              gs::splats::sortByImportance(gs::splats::readGaussians(bytes, file, nullptr)));
+          gaussians->computeBounds();
+          set = gaussians;
+        } catch (const gs::splats::FormatError& e) {
+          error = e.what();
+        }
+      }
+    }
     if (!set) {
       std::fprintf(stderr, "%s\n", error.c_str());
       return 1;

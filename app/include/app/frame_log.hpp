@@ -15,6 +15,7 @@
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
+#include <span>
 #include <string>
 
 namespace gs::app {
@@ -51,6 +52,10 @@ class FrameLog {
   void beginFrame();
   /// The frame was swapped: writes its line (vectors and lods from `state`'s viewports).
   void endFrame(const WindowState& state);
+  /// The frame was drawn: writes its line with the splats drawn and the level of detail of
+  /// each viewport (at most 4 of each are written; missing ones are 0). The window's
+  /// endFrame(state) and `--snapshot --frame-log` both write through it.
+  void endFrame(std::span<const std::uint64_t> vectors, std::span<const double> lods);
 
  private:
   using Clock = std::chrono::steady_clock;

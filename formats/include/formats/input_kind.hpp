@@ -56,9 +56,9 @@ constexpr bool isVolume(InputKind k) {
   return k == InputKind::nrrd || k == InputKind::nifti;
 }
 /// Inputs shown as QNV splats or as a world made for them (no Viewpoint of their own):
-/// QNV streams and tilesets, PLY and OBJ meshes, volumes and Gaussian splatting scenes. glTF opens as a world of its
-/// own (its nodes, materials, cameras, lights and animations; docs/gltf.md), though
-/// `encode` still reads it as a mesh.
+/// QNV streams and tilesets, PLY and OBJ meshes, volumes and Gaussian splatting scenes. glTF opens
+/// as a world of its own (its nodes, materials, cameras, lights and animations; docs/gltf.md),
+/// though `encode` still reads it as a mesh.
 constexpr bool isSplatKind(InputKind k) {
   return k == InputKind::qnv || k == InputKind::qnvTileset || k == InputKind::ply ||
          k == InputKind::obj || isVolume(k) || k == InputKind::gaussianSplats;
