@@ -116,6 +116,7 @@ struct CpuGaussianRasterizer::Scratch {
   std::vector<std::vector<std::vector<Prepared>>> bins;  // per chunk, per tile
   const void* cloudKey = nullptr;
   std::size_t cloudSize = 0;
+  std::uint64_t cloudRevision = 0;
   std::vector<Covariance6> covariances;
 };
 
@@ -127,7 +128,8 @@ CpuGaussianRasterizer::~CpuGaussianRasterizer() = default;
 
 void CpuGaussianRasterizer::draw(const splats::GaussianCloud& cloud,
                                  std::span<const std::uint32_t> order, const CpuGaussianView& view,
-                                 std::span<const float> depth, std::vector<std::uint8_t>& out) {
+                                 std::span<const float> depth, std::vector<std::uint8_t>& out,
+                                 std::uint64_t revision) {
   if (view.width <= 0 || view.height <= 0) return;
   const std::size_t pixels =
       static_cast<std::size_t>(view.width) * static_cast<std::size_t>(view.height);
@@ -137,7 +139,7 @@ void CpuGaussianRasterizer::draw(const splats::GaussianCloud& cloud,
 
   // Covariances once per cloud (they do not depend on the view).
   const std::size_t n = cloud.size();
-  if (s.cloudKey != &cloud || s.cloudSize != n) {
+  if (s.cloudKey != &cloud || s.cloudSize != n || s.cloudRevision != revision) {
     s.covariances.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
       const glm::mat3 m = splats::covariance(cloud.scales[i], cloud.rotations[i]);
@@ -145,6 +147,7 @@ void CpuGaussianRasterizer::draw(const splats::GaussianCloud& cloud,
     }
     s.cloudKey = &cloud;
     s.cloudSize = n;
+    s.cloudRevision = revision;
   }
 
   splats::ProjectionView pv;

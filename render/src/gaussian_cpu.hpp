@@ -48,10 +48,11 @@ class CpuGaussianRasterizer {
   /// bottom to top. `depth` is empty or width * height window depths of the scene (0..1,
   /// rows bottom to top, glReadPixels' order): a Gaussian is drawn at a pixel when its
   /// centre's window depth is below the scene's there (GL_LESS). Covariances are cached
-  /// per cloud (address and size), so a cloud must not change while drawn by this object.
+  /// per cloud (address, size and `revision`): a cloud that changes in place must come
+  /// with a new revision.
   void draw(const splats::GaussianCloud& cloud, std::span<const std::uint32_t> order,
             const CpuGaussianView& view, std::span<const float> depth,
-            std::vector<std::uint8_t>& out);
+            std::vector<std::uint8_t>& out, std::uint64_t revision = 0);
 
   /// Threads a frame uses (at least 2).
   int threads() const { return threads_; }

@@ -79,7 +79,7 @@ void main() {
 void GaussianGlPass::draw(const splats::GaussianCloud& cloud, std::span<const std::uint32_t> order,
                           const glm::mat4& modelView, const glm::mat4& projection,
                           const glm::vec3& eye, const int viewport[4], float nearClip,
-                          float opacityScale) {
+                          float opacityScale, std::uint64_t revision) {
   if (program_ == 0) {
     program_ = buildProgram("gaussian splats", kGaussianVertexShader, kGaussianFragmentShader);
     glGenVertexArrays(1, &vao_);
@@ -96,7 +96,7 @@ void GaussianGlPass::draw(const splats::GaussianCloud& cloud, std::span<const st
     glBindVertexArray(0);
   }
   const std::size_t n = cloud.size();
-  if (uploaded_ != &cloud || uploadedSize_ != n) {
+  if (uploaded_ != &cloud || uploadedSize_ != n || uploadedRevision_ != revision) {
     staging_.resize(n * 12);
     for (std::size_t i = 0; i < n; ++i) {
       const glm::mat3 s = splats::covariance(cloud.scales[i], cloud.rotations[i]);
@@ -120,6 +120,7 @@ void GaussianGlPass::draw(const splats::GaussianCloud& cloud, std::span<const st
     glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, splatBuffer_);
     uploaded_ = &cloud;
     uploadedSize_ = n;
+    uploadedRevision_ = revision;
     colorEye_ = glm::vec3(NAN);
   }
   // This view's colours: SH along the ray from the camera (once when the cloud has none).

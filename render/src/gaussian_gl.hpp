@@ -36,10 +36,11 @@ class GaussianGlPass {
   /// projected by `projection`, its SH evaluated from `eye` (the camera in cloud
   /// coordinates). Builds its program at the first call (throws std::runtime_error when it
   /// does not compile). GL state: blending and the depth mask are restored as the splat
-  /// pass leaves them.
+  /// pass leaves them. The cloud's data are uploaded again when its address, size or
+  /// `revision` changed.
   void draw(const splats::GaussianCloud& cloud, std::span<const std::uint32_t> order,
             const glm::mat4& modelView, const glm::mat4& projection, const glm::vec3& eye,
-            const int viewport[4], float nearClip, float opacityScale);
+            const int viewport[4], float nearClip, float opacityScale, std::uint64_t revision = 0);
   /// Frees every GL object (context current).
   void release();
 
@@ -48,6 +49,7 @@ class GaussianGlPass {
   GLuint splatBuffer_ = 0, splatTexture_ = 0, colorBuffer_ = 0, colorTexture_ = 0;
   const void* uploaded_ = nullptr;
   std::size_t uploadedSize_ = 0;
+  std::uint64_t uploadedRevision_ = 0;
   glm::vec3 colorEye_{NAN};
   std::vector<float> staging_;
   std::vector<std::uint8_t> colors_;

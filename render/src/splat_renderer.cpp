@@ -251,6 +251,13 @@ struct SplatRenderer::Gpu {
   detail::CpuGaussianRasterizer gaussianRasterizer;
   detail::GaussianGlPass gaussianPass;
   std::vector<std::uint32_t> backToFront;  // the GL path's order of Gaussians
+  // The last cut of a level-of-detail tree: of which tree, view, budget and height.
+  splats::GaussianCloud cutCloud;
+  const void* cutSet = nullptr;
+  glm::mat4 cutView{0.0f};
+  std::size_t cutBudget = 0;
+  int cutHeight = 0;
+  std::uint64_t cutRevision = 0;
   std::vector<std::uint8_t> pixels;
   std::vector<float> depth;
   GLuint cpuTexture = 0, emptyVao = 0;
@@ -557,10 +564,37 @@ void SplatRenderer::drawGaussians(const SplatSet& set, std::size_t count, const 
                                   const scene::Camera& camera, float aspect, SplatBlend blend,
                                   const SplatStyle& style) {
   Gpu& g = *gpu_;
-  const splats::GaussianCloud& cloud = *set.gaussians;
   const glm::mat4 modelView = scene::viewMatrix(camera) * model;
+  const glm::mat4 projection = scene::projectionMatrix(camera, aspect);
+  GLint viewport[4];
+  glGetIntegerv(GL_VIEWPORT, viewport);
+  const int width = viewport[2], height = viewport[3];
+  if (width <= 0 || height <= 0) return;
+  const glm::vec3 eye(glm::inverse(modelView) * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+  // What this view draws: a prefix of the cloud, or the cut of its level-of-detail tree
+  // (nodes below one pixel merged) under the same budget, chosen again when the view moves.
+  const splats::GaussianCloud* drawn = set.gaussians.get();
+  std::uint64_t revision = set.revision;
+  if (set.lodTree) {
+    if (g.cutSet != set.lodTree.get() || g.cutView != projection * modelView ||
+        g.cutBudget != count || g.cutHeight != height) {
+      const splats::CutView view = splats::cutViewFromViewProjection(
+          projection * modelView, eye, 0.5f * static_cast<float>(height) * projection[1][1]);
+      const splats::LodCut cut = splats::selectCut(*set.lodTree, view, count);
+      splats::assembleCut(*set.lodTree, *set.gaussians, cut, g.cutCloud);
+      g.cutSet = set.lodTree.get();
+      g.cutView = projection * modelView;
+      g.cutBudget = count;
+      g.cutHeight = height;
+      ++g.cutRevision;
+    }
+    drawn = &g.cutCloud;
+    revision = g.cutRevision;
+    count = g.cutCloud.size();
+  }
+  const splats::GaussianCloud& cloud = *drawn;
   if (g.sortedData != static_cast<const void*>(&cloud) || g.sortedSize != cloud.size() ||
-      g.sortedRevision != set.revision || g.sortedCount != count || g.sortedView != modelView ||
+      g.sortedRevision != revision || g.sortedCount != count || g.sortedView != modelView ||
       !g.sortedFrontToBack) {
     const auto t0 = std::chrono::steady_clock::now();
     g.sorter.sortFrontToBack(std::span<const glm::vec3>(cloud.positions.data(), count), modelView,
@@ -570,26 +604,20 @@ void SplatRenderer::drawGaussians(const SplatSet& set, std::size_t count, const 
     statistics_.sorted = true;
     g.sortedData = static_cast<const void*>(&cloud);
     g.sortedSize = cloud.size();
-    g.sortedRevision = set.revision;
+    g.sortedRevision = revision;
     g.sortedCount = count;
     g.sortedView = modelView;
     g.sortedFrontToBack = true;
     g.orderOnGpu = false;
   }
   statistics_.splats = count;
-  GLint viewport[4];
-  glGetIntegerv(GL_VIEWPORT, viewport);
-  const int width = viewport[2], height = viewport[3];
-  if (width <= 0 || height <= 0) return;
-  const glm::mat4 projection = scene::projectionMatrix(camera, aspect);
-  const glm::vec3 eye(glm::inverse(modelView) * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
   const SplatPath path = path_ == SplatPath::automatic ? g.automaticPath : path_;
   if (path != SplatPath::cpu) {
     // The GL path (one program for `geometry` and `points`), back to front.
     statistics_.path = SplatPath::geometry;
     g.backToFront.assign(g.order.rbegin(), g.order.rend());
     g.gaussianPass.draw(cloud, g.backToFront, modelView, projection, eye, viewport,
-                        std::max(camera.nearClip, 1e-6f), style.opacityScale);
+                        std::max(camera.nearClip, 1e-6f), style.opacityScale, revision);
     return;
   }
   statistics_.path = SplatPath::cpu;
@@ -604,7 +632,7 @@ void SplatRenderer::drawGaussians(const SplatSet& set, std::size_t count, const 
   v.nearClip = std::max(camera.nearClip, 1e-6f);
   v.farClip = std::max(camera.farClip, v.nearClip * 1.001f);
   v.opacityScale = style.opacityScale;
-  g.gaussianRasterizer.draw(cloud, g.order, v, depth, g.pixels);
+  g.gaussianRasterizer.draw(cloud, g.order, v, depth, g.pixels, revision);
   drawImage(width, height);
 }
 

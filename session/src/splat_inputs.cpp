@@ -12,6 +12,7 @@
 #include "qnv/error.hpp"
 #include "session/mesh_input.hpp"
 #include "session/volume_input.hpp"
+#include "splats/lod_tree.hpp"
 #include "splats/readers.hpp"
 
 namespace gs::session {
@@ -118,6 +119,7 @@ std::shared_ptr<const render::SplatSet> gaussianSet(const std::string& bytes,
     auto set = std::make_shared<render::SplatSet>();
     set->gaussians = std::make_shared<const splats::GaussianCloud>(
         splats::sortByImportance(splats::readGaussians(bytes, name, sideFiles)));
+    set->lodTree = std::make_shared<const splats::LodTree>(splats::buildLodTree(*set->gaussians));
     set->computeBounds();
     return set;
   } catch (const splats::FormatError& e) {

@@ -24,7 +24,9 @@ float unorm(std::uint32_t v, int bits) {
   return static_cast<float>(v & mask) / static_cast<float>(mask);
 }
 
-float lerp(float a, float b, float t) { return a * (1.0f - t) + b * t; }
+float lerp(float a, float b, float t) {
+  return a * (1.0f - t) + b * t;
+}
 
 }  // namespace
 
@@ -67,7 +69,8 @@ GaussianCloud readCompressedPlyGaussians(std::string_view bytes, std::string_vie
   const char* colorNames[] = {"min_r", "min_g", "min_b", "max_r", "max_g", "max_b"};
   int colorBounds[6];
   bool hasColor = true;
-  for (int k = 0; k < 6; ++k) hasColor = (colorBounds[k] = chunkColumn(colorNames[k], false)) >= 0 && hasColor;
+  for (int k = 0; k < 6; ++k)
+    hasColor = (colorBounds[k] = chunkColumn(colorNames[k], false)) >= 0 && hasColor;
 
   const std::size_t vertexOffset = detail::plyElementOffset(bytes, name, header, *vertex);
   const std::size_t chunkOffset = detail::plyElementOffset(bytes, name, header, *chunk);
@@ -103,7 +106,7 @@ GaussianCloud readCompressedPlyGaussians(std::string_view bytes, std::string_vie
   const char* data = bytes.data();
   auto chunkValue = [&](std::size_t c, int column) {
     const auto& p = chunk->properties[static_cast<std::size_t>(column)];
-    return static_cast<float>(
+    return detail::toFloat(
         detail::plyValue(data + chunkOffset + c * chunk->rowBytes + p.offset, p.type, false));
   };
   constexpr float kRotNorm = 1.41421356237309505f;  // 1 / (sqrt(2) / 2)
@@ -123,9 +126,9 @@ GaussianCloud readCompressedPlyGaussians(std::string_view bytes, std::string_vie
     const std::uint32_t pr = base::loadLe<std::uint32_t>(row + pRot);
     const std::uint32_t ps = base::loadLe<std::uint32_t>(row + pScale);
     const std::uint32_t pc = base::loadLe<std::uint32_t>(row + pColor);
-    cloud.positions[i] = glm::vec3(lerp(b[0], b[3], unorm(pp >> 21, 11)),
-                                   lerp(b[1], b[4], unorm(pp >> 11, 10)),
-                                   lerp(b[2], b[5], unorm(pp, 11)));
+    cloud.positions[i] =
+        glm::vec3(lerp(b[0], b[3], unorm(pp >> 21, 11)), lerp(b[1], b[4], unorm(pp >> 11, 10)),
+                  lerp(b[2], b[5], unorm(pp, 11)));
     const float ra = (unorm(pr >> 20, 10) - 0.5f) * kRotNorm;
     const float rb = (unorm(pr >> 10, 10) - 0.5f) * kRotNorm;
     const float rc = (unorm(pr, 10) - 0.5f) * kRotNorm;
@@ -149,7 +152,8 @@ GaussianCloud readCompressedPlyGaussians(std::string_view bytes, std::string_vie
     cloud.opacities[i] = unorm(pc, 8);
     glm::vec3 rgb(unorm(pc >> 24, 8), unorm(pc >> 16, 8), unorm(pc >> 8, 8));
     if (hasColor)
-      rgb = glm::vec3(lerp(cb[0], cb[3], rgb.x), lerp(cb[1], cb[4], rgb.y), lerp(cb[2], cb[5], rgb.z));
+      rgb = glm::vec3(lerp(cb[0], cb[3], rgb.x), lerp(cb[1], cb[4], rgb.y),
+                      lerp(cb[2], cb[5], rgb.z));
     cloud.shDc[i] = (rgb - 0.5f) / kShC0;
     if (!rest.empty()) {
       const char* s = data + shOffset + i * sh->rowBytes;

@@ -34,9 +34,10 @@ void GaussianCloud::append(const GaussianCloud& other, std::size_t i) {
   shDc.push_back(other.shDc[i]);
   const int mine = shRestPerSplat(), theirs = other.shRestPerSplat();
   for (int k = 0; k < mine; ++k) {
-    shRest.push_back(k < theirs ? other.shRest[i * static_cast<std::size_t>(theirs) +
-                                               static_cast<std::size_t>(k)]
-                                : glm::vec3(0.0f));
+    shRest.push_back(
+        k < theirs
+            ? other.shRest[i * static_cast<std::size_t>(theirs) + static_cast<std::size_t>(k)]
+            : glm::vec3(0.0f));
   }
 }
 
@@ -47,7 +48,8 @@ void GaussianCloud::setShDegree(int degree) {
   const std::size_t mine = static_cast<std::size_t>(shCoefficients(degree) - 1);
   std::vector<glm::vec3> rest(size() * mine, glm::vec3(0.0f));
   for (std::size_t i = 0; i < size(); ++i)
-    for (std::size_t k = 0; k < std::min(mine, theirs); ++k) rest[i * mine + k] = shRest[i * theirs + k];
+    for (std::size_t k = 0; k < std::min(mine, theirs); ++k)
+      rest[i * mine + k] = shRest[i * theirs + k];
   shRest = std::move(rest);
   shDegree = degree;
 }
@@ -88,7 +90,7 @@ namespace {
 constexpr float kShC1 = 0.4886025119029199f;
 constexpr float kShC2[] = {1.0925484305920792f, -1.0925484305920792f, 0.31539156525252005f,
                            -1.0925484305920792f, 0.5462742152960396f};
-constexpr float kShC3[] = {-0.5900435899266435f, 2.890611442640554f, -0.4570457994644658f,
+constexpr float kShC3[] = {-0.5900435899266435f, 2.890611442640554f,   -0.4570457994644658f,
                            0.3731763325901154f,  -0.4570457994644658f, 1.445305721320277f,
                            -0.5900435899266435f};
 
@@ -106,8 +108,9 @@ glm::vec3 evaluateSh(int degree, const glm::vec3* sh, const glm::vec3& d) {
   result += -kShC1 * y * sh[1] + kShC1 * z * sh[2] - kShC1 * x * sh[3];
   if (degree < 2) return result;
   const float xx = x * x, yy = y * y, zz = z * z, xy = x * y, yz = y * z, xz = x * z;
-  result += kShC2[0] * xy * sh[4] + kShC2[1] * yz * sh[5] + kShC2[2] * (2.0f * zz - xx - yy) * sh[6] +
-            kShC2[3] * xz * sh[7] + kShC2[4] * (xx - yy) * sh[8];
+  result += kShC2[0] * xy * sh[4] + kShC2[1] * yz * sh[5] +
+            kShC2[2] * (2.0f * zz - xx - yy) * sh[6] + kShC2[3] * xz * sh[7] +
+            kShC2[4] * (xx - yy) * sh[8];
   if (degree < 3) return result;
   result += kShC3[0] * y * (3.0f * xx - yy) * sh[9] + kShC3[1] * xy * z * sh[10] +
             kShC3[2] * y * (4.0f * zz - xx - yy) * sh[11] +

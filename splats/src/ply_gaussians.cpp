@@ -54,7 +54,8 @@ Columns findColumns(std::string_view name, const PlyElement& v) {
   c.degree = total % 3 == 0 ? detail::shDegreeForRest(total / 3) : -1;
   if (c.degree < 0)
     fail(name, "expected 0, 9, 24 or 45 f_rest properties, got " + std::to_string(total));
-  for (std::size_t k = 0; k < total; ++k) c.rest.push_back(need(("f_rest_" + std::to_string(k)).c_str()));
+  for (std::size_t k = 0; k < total; ++k)
+    c.rest.push_back(need(("f_rest_" + std::to_string(k)).c_str()));
   for (const auto& p : v.properties)
     if (p.isList) fail(name, "vertex property '" + p.name + "' is a list");
   return c;
@@ -65,7 +66,7 @@ template <typename Value>
 void fill(GaussianCloud& cloud, const Columns& c, std::size_t count, Value&& value) {
   std::vector<float> rest(c.rest.size());
   for (std::size_t i = 0; i < count; ++i) {
-    auto f = [&](int column) { return static_cast<float>(value(i, column)); };
+    auto f = [&](int column) { return detail::toFloat(value(i, column)); };
     cloud.positions[i] = glm::vec3(f(c.pos[0]), f(c.pos[1]), f(c.pos[2]));
     cloud.shDc[i] = glm::vec3(f(c.dc[0]), f(c.dc[1]), f(c.dc[2]));
     cloud.scales[i] = glm::vec3(std::exp(f(c.scale[0])), std::exp(f(c.scale[1])),
@@ -108,15 +109,15 @@ std::vector<double> asciiValues(std::string_view bytes, std::string_view name, s
         double v = 0.0;
         const auto res = std::from_chars(p, e, v);
         if (res.ec != std::errc{})
-          fail(name, "bad number in record " + std::to_string(r) + " of element '" +
-                         element.name + "'");
+          fail(name,
+               "bad number in record " + std::to_string(r) + " of element '" + element.name + "'");
         p = res.ptr;
         if (++n > element.properties.size()) break;
         values.push_back(v);
       }
       if (n != element.properties.size())
-        fail(name, "expected " + std::to_string(element.properties.size()) +
-                       " values in record " + std::to_string(r) + ", got " + std::to_string(n));
+        fail(name, "expected " + std::to_string(element.properties.size()) + " values in record " +
+                       std::to_string(r) + ", got " + std::to_string(n));
     }
     pos = end + 1;
   }

@@ -28,6 +28,12 @@ void checkCount(std::string_view name, std::uint64_t count, std::uint64_t record
                    std::to_string(have));
 }
 
+float toFloat(double v) {
+  constexpr double kMax = std::numeric_limits<float>::max();
+  return std::isnan(v) ? std::numeric_limits<float>::quiet_NaN()
+                       : static_cast<float>(std::clamp(v, -kMax, kMax));
+}
+
 int shDegreeForRest(std::size_t restPerChannel) {
   for (int d = 0; d <= kMaxShDegree; ++d)
     if (restPerChannel == static_cast<std::size_t>(shCoefficients(d) - 1)) return d;
@@ -89,10 +95,10 @@ bool parseType(std::string_view word, PlyType& t) {
     PlyType t;
   };
   static constexpr Name kNames[] = {
-      {"char", "int8", PlyType::i8},       {"uchar", "uint8", PlyType::u8},
-      {"short", "int16", PlyType::i16},    {"ushort", "uint16", PlyType::u16},
-      {"int", "int32", PlyType::i32},      {"uint", "uint32", PlyType::u32},
-      {"float", "float32", PlyType::f32},  {"double", "float64", PlyType::f64}};
+      {"char", "int8", PlyType::i8},      {"uchar", "uint8", PlyType::u8},
+      {"short", "int16", PlyType::i16},   {"ushort", "uint16", PlyType::u16},
+      {"int", "int32", PlyType::i32},     {"uint", "uint32", PlyType::u32},
+      {"float", "float32", PlyType::f32}, {"double", "float64", PlyType::f64}};
   for (const Name& n : kNames)
     if (word == n.a || word == n.b) {
       t = n.t;
@@ -250,7 +256,8 @@ std::size_t plyElementOffset(std::string_view bytes, std::string_view name, cons
     if (e.hasList)
       fail(name, "element '" + e.name + "' with a list property precedes '" + element.name + "'");
     // Earlier elements must fit in the file too (count * rowBytes bounded by the bytes).
-    checkCount(name, e.count, e.rowBytes, bytes.size() - std::min<std::uint64_t>(offset, bytes.size()),
+    checkCount(name, e.count, e.rowBytes,
+               bytes.size() - std::min<std::uint64_t>(offset, bytes.size()),
                ("element '" + e.name + "'").c_str());
     offset += e.count * e.rowBytes;
   }

@@ -23,6 +23,10 @@ namespace gs::splats::detail {
 void checkCount(std::string_view name, std::uint64_t count, std::uint64_t recordBytes,
                 std::uint64_t have, const char* what);
 
+/// `v` as a float, clamped to +-FLT_MAX (converting a double outside float's range is
+/// undefined behaviour); NaN stays NaN.
+float toFloat(double v);
+
 /// SH degree (0..3) of `restPerChannel` higher coefficients per channel (0, 3, 8, 15);
 /// -1 for any other count.
 int shDegreeForRest(std::size_t restPerChannel);

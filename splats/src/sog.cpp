@@ -29,7 +29,9 @@ constexpr std::size_t kMaxImageBytes = std::size_t{1} << 30;
 struct Image {
   int width = 0, height = 0;
   std::vector<std::uint8_t> rgba;
-  std::size_t pixels() const { return static_cast<std::size_t>(width) * static_cast<std::size_t>(height); }
+  std::size_t pixels() const {
+    return static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  }
 };
 
 /// Decodes WebP `bytes` to RGBA, refusing (FormatError naming `file`) a picture of more
@@ -38,7 +40,8 @@ Image decodeWebp(const std::string& bytes, std::size_t maxPixels, std::string_vi
                  const std::string& file) {
   Image img;
   const auto* data = reinterpret_cast<const std::uint8_t*>(bytes.data());
-  if (!WebPGetInfo(data, bytes.size(), &img.width, &img.height) || img.width <= 0 || img.height <= 0)
+  if (!WebPGetInfo(data, bytes.size(), &img.width, &img.height) || img.width <= 0 ||
+      img.height <= 0)
     fail(name, "'" + file + "' is not a WebP image");
   if (img.pixels() > maxPixels)
     fail(name, "'" + file + "' is " + std::to_string(img.width) + "x" + std::to_string(img.height) +
@@ -52,11 +55,12 @@ Image decodeWebp(const std::string& bytes, std::size_t maxPixels, std::string_vi
 /// Numbers of the JSON array `j` (exactly `n` of them unless n is 0), else FormatError.
 std::vector<float> numbers(const json& j, std::size_t n, std::string_view name, const char* what) {
   if (!j.is_array() || (n != 0 && j.size() != n))
-    fail(name, std::string("meta.json: '") + what + "' must be an array of " + std::to_string(n) + " numbers");
+    fail(name, std::string("meta.json: '") + what + "' must be an array of " + std::to_string(n) +
+                   " numbers");
   std::vector<float> out;
   for (const json& v : j) {
     if (!v.is_number()) fail(name, std::string("meta.json: '") + what + "' holds a non-number");
-    out.push_back(v.get<float>());
+    out.push_back(detail::toFloat(v.get<double>()));
   }
   return out;
 }
@@ -64,12 +68,14 @@ std::vector<float> numbers(const json& j, std::size_t n, std::string_view name, 
 std::string fileName(const json& group, std::size_t k, std::string_view name, const char* what) {
   if (!group.is_object() || !group.contains("files") || !group["files"].is_array() ||
       group["files"].size() <= k || !group["files"][k].is_string())
-    fail(name, std::string("meta.json: '") + what + ".files' must name " + std::to_string(k + 1) + " file(s)");
+    fail(name, std::string("meta.json: '") + what + ".files' must name " + std::to_string(k + 1) +
+                   " file(s)");
   return group["files"][k].get<std::string>();
 }
 
 const json& member(const json& meta, const char* key, std::string_view name) {
-  if (!meta.contains(key) || !meta[key].is_object()) fail(name, std::string("meta.json: '") + key + "' missing");
+  if (!meta.contains(key) || !meta[key].is_object())
+    fail(name, std::string("meta.json: '") + key + "' missing");
   return meta[key];
 }
 
@@ -83,7 +89,8 @@ GaussianCloud decodeSog(std::string_view metaText, std::string_view name,
   if (metaText.size() > kMaxMetaBytes) fail(name, "meta.json is larger than 16 MiB");
   const json meta = json::parse(metaText.begin(), metaText.end(), nullptr, false);
   if (meta.is_discarded() || !meta.is_object()) fail(name, "meta.json is not a JSON object");
-  if (!meta.contains("version")) fail(name, "SOG version 1 (no 'version' in meta.json) is not supported");
+  if (!meta.contains("version"))
+    fail(name, "SOG version 1 (no 'version' in meta.json) is not supported");
   if (!meta["version"].is_number_integer() || meta["version"].get<std::int64_t>() != 2)
     fail(name, "unsupported SOG version " + meta["version"].dump());
   if (!meta.contains("count") || !meta["count"].is_number_integer())
@@ -91,29 +98,35 @@ GaussianCloud decodeSog(std::string_view metaText, std::string_view name,
   const std::int64_t count64 = meta["count"].get<std::int64_t>();
   if (count64 <= 0) fail(name, "expected at least one splat, got " + std::to_string(count64));
   if (static_cast<std::uint64_t>(count64) > kMaxSplats)
-    fail(name, std::to_string(count64) + " splats exceed the limit of " + std::to_string(kMaxSplats));
+    fail(name,
+         std::to_string(count64) + " splats exceed the limit of " + std::to_string(kMaxSplats));
   const std::size_t count = static_cast<std::size_t>(count64);
 
   const json& means = member(meta, "means", name);
   const std::vector<float> mins = numbers(means.value("mins", json()), 3, name, "means.mins");
   const std::vector<float> maxs = numbers(means.value("maxs", json()), 3, name, "means.maxs");
   const json& scales = member(meta, "scales", name);
-  const std::vector<float> scaleBook = numbers(scales.value("codebook", json()), 256, name, "scales.codebook");
+  const std::vector<float> scaleBook =
+      numbers(scales.value("codebook", json()), 256, name, "scales.codebook");
   const json& sh0 = member(meta, "sh0", name);
-  const std::vector<float> colorBook = numbers(sh0.value("codebook", json()), 256, name, "sh0.codebook");
+  const std::vector<float> colorBook =
+      numbers(sh0.value("codebook", json()), 256, name, "sh0.codebook");
   const json& quats = member(meta, "quats", name);
 
   // Per-splat textures: the writer makes them about sqrt(count) square, padded to 4.
-  const std::size_t maxPixels = 2 * count + 4096 + 64 * static_cast<std::size_t>(std::sqrt(static_cast<double>(count)));
+  const std::size_t maxPixels =
+      2 * count + 4096 + 64 * static_cast<std::size_t>(std::sqrt(static_cast<double>(count)));
   auto texture = [&](const json& group, std::size_t k, const char* what) {
     const std::string file = fileName(group, k, name, what);
     Image img = decodeWebp(load(file), maxPixels, name, file);
     if (img.pixels() < count)
-      fail(name, "'" + file + "' holds " + std::to_string(img.pixels()) + " texels for " + std::to_string(count) + " splats");
+      fail(name, "'" + file + "' holds " + std::to_string(img.pixels()) + " texels for " +
+                     std::to_string(count) + " splats");
     return img;
   };
   const Image lo = texture(means, 0, "means"), hi = texture(means, 1, "means");
-  const Image q = texture(quats, 0, "quats"), s = texture(scales, 0, "scales"), c0 = texture(sh0, 0, "sh0");
+  const Image q = texture(quats, 0, "quats"), s = texture(scales, 0, "scales"),
+              c0 = texture(sh0, 0, "sh0");
 
   int degree = 0;
   std::size_t paletteCount = 0, coeffs = 0;
@@ -121,12 +134,12 @@ GaussianCloud decodeSog(std::string_view metaText, std::string_view name,
   Image centroids, labels;
   if (meta.contains("shN") && !meta["shN"].is_null()) {
     const json& shN = member(meta, "shN", name);
-    if (!shN.contains("bands") || !shN["bands"].is_number_integer() || shN["bands"].get<std::int64_t>() < 0 ||
-        shN["bands"].get<std::int64_t>() > 3)
+    if (!shN.contains("bands") || !shN["bands"].is_number_integer() ||
+        shN["bands"].get<std::int64_t>() < 0 || shN["bands"].get<std::int64_t>() > 3)
       fail(name, "meta.json: 'shN.bands' must be 0..3");
     degree = static_cast<int>(shN["bands"].get<std::int64_t>());
-    if (!shN.contains("count") || !shN["count"].is_number_integer() || shN["count"].get<std::int64_t>() < 0 ||
-        shN["count"].get<std::int64_t>() > 65536)
+    if (!shN.contains("count") || !shN["count"].is_number_integer() ||
+        shN["count"].get<std::int64_t>() < 0 || shN["count"].get<std::int64_t>() > 65536)
       fail(name, "meta.json: 'shN.count' must be 0..65536");
     paletteCount = static_cast<std::size_t>(shN["count"].get<std::int64_t>());
     if (degree > 0) {
@@ -135,8 +148,8 @@ GaussianCloud decodeSog(std::string_view metaText, std::string_view name,
       const std::string cFile = fileName(shN, 0, name, "shN");
       centroids = decodeWebp(load(cFile), 64 * coeffs * 1024, name, cFile);
       if (static_cast<std::size_t>(centroids.width) != 64 * coeffs)
-        fail(name, "expected '" + cFile + "' " + std::to_string(64 * coeffs) + " texels wide, got " +
-                       std::to_string(centroids.width));
+        fail(name, "expected '" + cFile + "' " + std::to_string(64 * coeffs) +
+                       " texels wide, got " + std::to_string(centroids.width));
       labels = texture(shN, 1, "shN");
     }
   }
@@ -166,8 +179,10 @@ GaussianCloud decodeSog(std::string_view metaText, std::string_view name,
       wxyz[tag - 252] = std::sqrt(std::max(0.0f, 1.0f - sum));
       cloud.rotations[i] = detail::unitQuat(wxyz[0], wxyz[1], wxyz[2], wxyz[3]);
     }  // else the identity allocate() left
-    cloud.scales[i] = glm::exp(glm::vec3(scaleBook[s.rgba[o]], scaleBook[s.rgba[o + 1]], scaleBook[s.rgba[o + 2]]));
-    cloud.shDc[i] = glm::vec3(colorBook[c0.rgba[o]], colorBook[c0.rgba[o + 1]], colorBook[c0.rgba[o + 2]]);
+    cloud.scales[i] = glm::exp(
+        glm::vec3(scaleBook[s.rgba[o]], scaleBook[s.rgba[o + 1]], scaleBook[s.rgba[o + 2]]));
+    cloud.shDc[i] =
+        glm::vec3(colorBook[c0.rgba[o]], colorBook[c0.rgba[o + 1]], colorBook[c0.rgba[o + 2]]);
     cloud.opacities[i] = static_cast<float>(c0.rgba[o + 3]) / 255.0f;
     if (coeffs == 0) continue;
     const std::size_t label = labels.rgba[o] | (static_cast<std::size_t>(labels.rgba[o + 1]) << 8);
@@ -177,7 +192,8 @@ GaussianCloud decodeSog(std::string_view metaText, std::string_view name,
     for (std::size_t j = 0; j < coeffs; ++j) {
       if (cy >= static_cast<std::size_t>(centroids.height)) break;
       const std::size_t t = (cy * static_cast<std::size_t>(centroids.width) + cxBase + j) * 4;
-      rest[j] = glm::vec3(shBook[centroids.rgba[t]], shBook[centroids.rgba[t + 1]], shBook[centroids.rgba[t + 2]]);
+      rest[j] = glm::vec3(shBook[centroids.rgba[t]], shBook[centroids.rgba[t + 1]],
+                          shBook[centroids.rgba[t + 2]]);
     }
   }
   return cloud;
@@ -190,7 +206,8 @@ GaussianCloud readSogGaussians(std::string_view bytes, std::string_view name,
   if (detail::ZipArchive::isZip(bytes)) {
     const detail::ZipArchive zip(bytes, name);
     const std::string meta = zip.read("meta.json", kMaxMetaBytes);
-    return decodeSog(meta, name, [&](const std::string& file) { return zip.read(file, kMaxImageBytes); });
+    return decodeSog(meta, name,
+                     [&](const std::string& file) { return zip.read(file, kMaxImageBytes); });
   }
   return decodeSog(bytes, name, [&](const std::string& file) {
     std::string data, error;

@@ -27,7 +27,11 @@ constexpr std::size_t kSpzShPerChannel[] = {0, 3, 8, 15, 24};
 /// Byte sizes of the attribute blocks of `count` splats, in file order: positions,
 /// alphas, colours, scales, rotations, SH.
 std::array<std::uint64_t, 6> blockSizes(std::uint64_t count, int version, int degree) {
-  return {count * 9, count, count * 3, count * 3, count * (version == 2 ? 3u : 4u),
+  return {count * 9,
+          count,
+          count * 3,
+          count * 3,
+          count * (version == 2 ? 3u : 4u),
           count * 3 * kSpzShPerChannel[degree]};
 }
 
@@ -57,7 +61,7 @@ std::string unzstd(std::string_view in, std::uint64_t expected, std::string_view
     if (out.size() > expected)
       fail(name, "stream " + std::to_string(stream) + " decompresses to more than " +
                      std::to_string(expected) + " bytes");
-    if (last == 0 && input.pos == input.size) break;  // frame complete, input used
+    if (last == 0 && input.pos == input.size) break;        // frame complete, input used
     if (input.pos == input.size && output.pos == 0) break;  // truncated: no progress
   }
   if (last != 0) fail(name, "stream " + std::to_string(stream) + ": truncated zstd data");
@@ -73,11 +77,14 @@ struct Header {
 };
 
 Header parseHeader(std::string_view h, std::string_view name) {
-  if (h.size() < 16) fail(name, "expected a 16-byte SPZ header, got " + std::to_string(h.size()) + " bytes");
-  if (base::loadLe<std::uint32_t>(h.data()) != kMagic) fail(name, "not an SPZ file (no NGSP magic)");
+  if (h.size() < 16)
+    fail(name, "expected a 16-byte SPZ header, got " + std::to_string(h.size()) + " bytes");
+  if (base::loadLe<std::uint32_t>(h.data()) != kMagic)
+    fail(name, "not an SPZ file (no NGSP magic)");
   Header r;
   r.version = base::loadLe<std::uint32_t>(h.data() + 4);
-  if (r.version < 2 || r.version > 4) fail(name, "unsupported SPZ version " + std::to_string(r.version));
+  if (r.version < 2 || r.version > 4)
+    fail(name, "unsupported SPZ version " + std::to_string(r.version));
   r.count = base::loadLe<std::uint32_t>(h.data() + 8);
   r.degree = static_cast<std::uint8_t>(h[12]);
   r.fractionalBits = static_cast<std::uint8_t>(h[13]);
@@ -85,7 +92,8 @@ Header parseHeader(std::string_view h, std::string_view name) {
   if (r.degree > 4) fail(name, "unsupported SPZ SH degree " + std::to_string(r.degree));
   if (r.count == 0) fail(name, "expected at least one splat, got 0");
   if (r.count > kMaxSplats)
-    fail(name, std::to_string(r.count) + " splats exceed the limit of " + std::to_string(kMaxSplats));
+    fail(name,
+         std::to_string(r.count) + " splats exceed the limit of " + std::to_string(kMaxSplats));
   return r;
 }
 
@@ -144,7 +152,8 @@ GaussianCloud decode(const Header& h, const std::array<std::string_view, 6>& b) 
     const char* s = b[5].data() + i * fileRest * 3;
     for (std::size_t k = 0; k < keep; ++k)
       for (int c = 0; c < 3; ++c)
-        rest[k][c] = (static_cast<float>(static_cast<std::uint8_t>(s[k * 3 + c])) - 128.0f) / 128.0f;
+        rest[k][c] =
+            (static_cast<float>(static_cast<std::uint8_t>(s[k * 3 + c])) - 128.0f) / 128.0f;
   }
   return cloud;
 }
@@ -153,7 +162,9 @@ GaussianCloud readLegacy(std::string_view bytes, std::string_view name) {
   const std::string head = base::gunzipPrefix(bytes, 16);
   const Header h = parseHeader(head, name);
   if (h.version == 4) fail(name, "SPZ version 4 must not be gzip-compressed");
-  if (h.flags & 0x2) fail(name, "SPZ header extensions in a version " + std::to_string(h.version) + " file are not supported");
+  if (h.flags & 0x2)
+    fail(name, "SPZ header extensions in a version " + std::to_string(h.version) +
+                   " file are not supported");
   const auto sizes = blockSizes(h.count, static_cast<int>(h.version), h.degree);
   std::uint64_t total = 16;
   for (std::uint64_t s : sizes) total += s;
@@ -169,21 +180,25 @@ GaussianCloud readLegacy(std::string_view bytes, std::string_view name) {
   std::array<std::string_view, 6> blocks;
   std::size_t at = 16;
   for (int k = 0; k < 6; ++k) {
-    blocks[static_cast<std::size_t>(k)] = std::string_view(data).substr(at, static_cast<std::size_t>(sizes[static_cast<std::size_t>(k)]));
+    blocks[static_cast<std::size_t>(k)] = std::string_view(data).substr(
+        at, static_cast<std::size_t>(sizes[static_cast<std::size_t>(k)]));
     at += static_cast<std::size_t>(sizes[static_cast<std::size_t>(k)]);
   }
   return decode(h, blocks);
 }
 
 GaussianCloud readV4(std::string_view bytes, std::string_view name) {
-  if (bytes.size() < 32) fail(name, "expected a 32-byte SPZ v4 header, got " + std::to_string(bytes.size()) + " bytes");
+  if (bytes.size() < 32)
+    fail(name, "expected a 32-byte SPZ v4 header, got " + std::to_string(bytes.size()) + " bytes");
   const Header h = parseHeader(bytes.substr(0, 16), name);
-  if (h.version != 4) fail(name, "an uncompressed SPZ file must be version 4, got " + std::to_string(h.version));
+  if (h.version != 4)
+    fail(name, "an uncompressed SPZ file must be version 4, got " + std::to_string(h.version));
   const unsigned streams = static_cast<std::uint8_t>(bytes[15]);
   const std::uint32_t toc = base::loadLe<std::uint32_t>(bytes.data() + 16);
   const unsigned expectedStreams = h.degree == 0 ? 5 : 6;
   if (streams != expectedStreams)
-    fail(name, "expected " + std::to_string(expectedStreams) + " SPZ streams, got " + std::to_string(streams));
+    fail(name, "expected " + std::to_string(expectedStreams) + " SPZ streams, got " +
+                   std::to_string(streams));
   if (toc < 32 || static_cast<std::uint64_t>(toc) + streams * 16ull > bytes.size())
     fail(name, "SPZ table of contents at " + std::to_string(toc) + " lies outside the " +
                    std::to_string(bytes.size()) + " bytes");
@@ -197,12 +212,14 @@ GaussianCloud readV4(std::string_view bytes, std::string_view name) {
     const std::uint64_t uncompressed = base::loadLe<std::uint64_t>(entry + 8);
     if (uncompressed != sizes[k])
       fail(name, "stream " + std::to_string(k) + ": expected " + std::to_string(sizes[k]) +
-                     " bytes for " + std::to_string(h.count) + " splats, got " + std::to_string(uncompressed));
+                     " bytes for " + std::to_string(h.count) + " splats, got " +
+                     std::to_string(uncompressed));
     if (compressed > bytes.size() - at)
       fail(name, "stream " + std::to_string(k) + ": expected " + std::to_string(compressed) +
                      " compressed bytes, got " + std::to_string(bytes.size() - at));
-    data[k] = unzstd(bytes.substr(static_cast<std::size_t>(at), static_cast<std::size_t>(compressed)),
-                     uncompressed, name, static_cast<int>(k));
+    data[k] =
+        unzstd(bytes.substr(static_cast<std::size_t>(at), static_cast<std::size_t>(compressed)),
+               uncompressed, name, static_cast<int>(k));
     blocks[k] = data[k];
     at += compressed;
   }
@@ -213,7 +230,8 @@ GaussianCloud readV4(std::string_view bytes, std::string_view name) {
 
 GaussianCloud readSpzGaussians(std::string_view bytes, std::string_view name) {
   if (base::isGzip(bytes)) return readLegacy(bytes, name);
-  if (bytes.size() >= 4 && base::loadLe<std::uint32_t>(bytes.data()) == kMagic) return readV4(bytes, name);
+  if (bytes.size() >= 4 && base::loadLe<std::uint32_t>(bytes.data()) == kMagic)
+    return readV4(bytes, name);
   fail(name, "not an SPZ file (neither gzip nor NGSP)");
 }
 

@@ -18,6 +18,7 @@
 #include "render/splat_model.hpp"
 #include "scene/camera.hpp"
 #include "splats/gaussian.hpp"
+#include "splats/lod_tree.hpp"
 #include "vrml/geometry.hpp"
 
 namespace gs::render {
@@ -97,6 +98,11 @@ struct SplatSet {
   /// vectors: when set, `vectors` is empty and the set draws these Gaussians, in their
   /// importance order (splats::sortByImportance), so the first N are the level of detail N.
   std::shared_ptr<const splats::GaussianCloud> gaussians;
+  /// The level-of-detail tree of merged Gaussians over `gaussians` (splats/lod_tree.hpp;
+  /// docs/splats-lod.md), or null: with it, each view draws the cut of the tree whose
+  /// nodes project below one pixel, under the view's budget (the level of detail's share
+  /// of the splats), instead of a prefix.
+  std::shared_ptr<const splats::LodTree> lodTree;
   /// Vectors of the whole stream: expectedVectors, or the vectors (or Gaussians) present.
   std::uint64_t total() const {
     if (expectedVectors > 0) return expectedVectors;

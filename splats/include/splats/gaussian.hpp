@@ -25,7 +25,9 @@ namespace gs::splats {
 inline constexpr int kMaxShDegree = 3;
 
 /// Coefficients per colour channel of degree `degree` (0..3): (degree + 1)^2.
-constexpr int shCoefficients(int degree) { return (degree + 1) * (degree + 1); }
+constexpr int shCoefficients(int degree) {
+  return (degree + 1) * (degree + 1);
+}
 
 /// The colour space the SH colours evaluate in (glTF KHR_gaussian_splatting `colorSpace`):
 /// display sRGB (every 3DGS file format; the default) or linear Rec. 709, turned into sRGB
@@ -90,7 +92,9 @@ GaussianCloud sortByImportance(const GaussianCloud& cloud);
 inline constexpr float kShC0 = 0.28209479177387814f;
 
 /// The logistic function: PLY opacities are logits.
-inline float sigmoid(float x) { return 1.0f / (1.0f + std::exp(-x)); }
+inline float sigmoid(float x) {
+  return 1.0f / (1.0f + std::exp(-x));
+}
 /// Its inverse, clamped away from 0 and 1 so that the result is finite.
 inline float logit(float p) {
   p = std::clamp(p, 1e-7f, 1.0f - 1e-7f);

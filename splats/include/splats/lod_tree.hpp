@@ -87,8 +87,7 @@ SymmetricEigen symmetricEigen(const glm::dmat3& m);
 /// scale + rotation: scale = sqrt of the eigenvalues (descending, negative rounding noise
 /// clamped to 0, so a flat covariance gives a 0 scale) and rotation = the eigenvectors'
 /// proper rotation, so that covariance(scale, rotation) reproduces it.
-void covarianceToScaleRotation(const glm::dmat3& covariance, glm::vec3& scale,
-                               glm::quat& rotation);
+void covarianceToScaleRotation(const glm::dmat3& covariance, glm::vec3& scale, glm::quat& rotation);
 
 /// The opacity of a merged Gaussian of standard deviations `scale` standing for summed
 /// coverage `weight`: min(1, weight / meanProjectedArea(scale)), so that its own coverage
@@ -117,8 +116,12 @@ struct LodNode {
   /// The axis-aligned box of the 3-sigma ellipsoids of every splat below, cloud coordinates.
   glm::vec3 boundsMin{0.0f};
   glm::vec3 boundsMax{0.0f};
-  /// The node's granularity for the screen-space error: the longest side of its box
-  /// (Kerbl et al. 2024's node size), scene units.
+  /// The node's granularity for the screen-space error: the diameter of its merged
+  /// Gaussian's 1-sigma ellipsoid along its longest axis (2 x its largest scale), which
+  /// holds both the members' own extent and their spread; scene units. 0 for a leaf of one
+  /// splat (nothing to refine). Drawn at projected size <= 1 pixel, a merged Gaussian's
+  /// standard deviation is <= 0.5 pixel, below the 0.55 pixel of the rasterizer's own
+  /// low-pass filter (0.3 pixel^2): a point on screen, as its members are.
   float size = 0.0f;
   /// Interior: index of the first child in LodTree::nodes (children are consecutive).
   /// Leaf: index of the first splat in LodTree::leafSplats (its splats are consecutive).
@@ -159,7 +162,8 @@ struct LodTree {
 };
 
 /// Builds the tree: a bounding-volume hierarchy by median split of the splat centres on
-/// the longest axis of their box (std::nth_element, O(n log n)), nodes breadth first; then
+/// the longest axis of their box (std::nth_element, O(n log n); the median rounded to whole
+/// leaves, so that all leaves but about one per split are full), nodes breadth first; then
 /// bottom-up, each node's moments from its children's (mergeMoments, exact for the whole
 /// subtree), its merged Gaussian (covarianceToScaleRotation, mergedOpacity, SH as the
 /// coverage-weighted mean of its members') and its box. One thread.
@@ -182,8 +186,9 @@ struct CutView {
   /// Pixels per scene unit of lateral size at unit distance: viewport height /
   /// (2 tan(fovY / 2)) for a symmetric perspective. > 0.
   float focalPixels = 1.0f;
-  /// A node is refined while its projected size exceeds this (pixels, > 0; 1..2 usual).
-  float pixelThreshold = 1.5f;
+  /// A node is refined while its projected size exceeds this (pixels; 1 by default: see
+  /// LodNode::size). A negative threshold refines every node in view.
+  float pixelThreshold = 1.0f;
 };
 
 /// The view of a ProjectionView (modelView cloud -> eye, focal lengths and principal point
@@ -191,14 +196,14 @@ struct CutView {
 /// viewport's four side planes and the near and far planes (far dropped past 1e29),
 /// focalPixels = max(fx, fy). modelView may scale uniformly (planes are renormalised;
 /// projected sizes do not change with a uniform scale).
-CutView cutViewFromProjection(const ProjectionView& view, float pixelThreshold = 1.5f);
+CutView cutViewFromProjection(const ProjectionView& view, float pixelThreshold = 1.0f);
 
 /// The view of an OpenGL view-projection matrix (cloud -> clip, visible when -w <= x, y, z
 /// <= w): planes by Gribb and Hartmann's method (a far plane at infinity is dropped), the
 /// eye given (cloud coordinates) and focalPixels = viewport height / (2 tan(fovY / 2)),
 /// i.e. 0.5 x height x projection[1][1].
 CutView cutViewFromViewProjection(const glm::mat4& viewProjection, const glm::vec3& eye,
-                                  float focalPixels, float pixelThreshold = 1.5f);
+                                  float focalPixels, float pixelThreshold = 1.0f);
 
 /// What a cut draws: originals index the cloud the tree was built from, merged index
 /// LodTree::merged. Each splat of the cloud is represented exactly once: by itself or by

@@ -57,15 +57,24 @@ GaussianCloud readCompressedPlyGaussians(std::string_view bytes, std::string_vie
 /// uint8 RGBA, uint8 rotation w x y z mapped from -1..1).
 GaussianCloud readSplatGaussians(std::string_view bytes, std::string_view name);
 /// Niantic .spz versions 2 to 4: gzip of a 16-byte header and packed attributes (v2-v3),
-/// or the NGSP header of v4 with zstd-compressed attribute streams.
+/// or the NGSP header of v4 with zstd-compressed attribute streams. Decoded raw, as
+/// splat-transform does (no coordinate conversion; SH bytes as (b - 128) / 128, Adobe's SH
+/// quantisation extension not applied). SH degree 4 keeps degrees 1-3; the header
+/// extensions of v4 are skipped; a v2/v3 file with extensions (flag 0x2) is refused.
 GaussianCloud readSpzGaussians(std::string_view bytes, std::string_view name);
-/// PlayCanvas SOG: `bytes` is a .sog zip bundle, or a meta.json whose WebP images
-/// `sideFiles` reads. WebP through libwebp.
+/// PlayCanvas SOG version 2: `bytes` is a .sog zip bundle (stored or deflated entries), or
+/// a meta.json whose WebP images `sideFiles` reads. WebP through libwebp. The legacy
+/// version 1 layout (no "version" in meta.json) is refused.
 GaussianCloud readSogGaussians(std::string_view bytes, std::string_view name,
                                const SideFileReader& sideFiles);
 /// glTF 2.0 (.gltf or .glb) with KHR_gaussian_splatting POINTS primitives: every such
 /// primitive of every mesh instance in the default scene, placed by its node's world
-/// transform, converted from glTF's axes to the .ply axes above.
+/// transform (SH rotated with it), converted from glTF's axes to the .ply axes above (180
+/// degrees about Z). SCALE is linear and OPACITY 0..1 (the ratified extension; what
+/// splat-transform writes); COLOR_0 stands in for a missing SH_DEGREE_0_COEF_0.
+/// colorSpace "srgb_rec709_display" or "lin_rec709_display" (another is a FormatError);
+/// every kernel is read as "ellipse" (the extension's fallback). At most one splat per
+/// byte of the file and its buffers (instancing cannot multiply memory).
 GaussianCloud readGltfGaussians(std::string_view bytes, std::string_view name,
                                 const SideFileReader& sideFiles);
 

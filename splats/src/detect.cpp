@@ -1,0 +1,109 @@
+// Telling the splat scene formats apart (readers.hpp: detectSplatFormat) and reading any
+// of them (readGaussians).
+#include <algorithm>
+#include <cctype>
+#include <string>
+
+#include "base/byte_order.hpp"
+#include "base/gzip.hpp"
+#include "gltf/detect.hpp"
+#include "reader_support.hpp"
+#include "zip_reader.hpp"
+
+namespace gs::splats {
+
+namespace {
+
+bool endsWith(std::string_view name, std::string_view suffix) {
+  if (name.size() < suffix.size()) return false;
+  const std::string_view tail = name.substr(name.size() - suffix.size());
+  return std::equal(tail.begin(), tail.end(), suffix.begin(), [](char a, char b) {
+    return std::tolower(static_cast<unsigned char>(a)) == b;
+  });
+}
+
+bool isNgsp(std::string_view b) {
+  return b.size() >= 4 && base::loadLe<std::uint32_t>(b.data()) == 0x5053474eu;
+}
+
+/// The first non-blank character of `text` is '{' and, within its first 64 KiB, the key
+/// `"means"` and (to tell SOG from other JSON) `"quats"` occur.
+bool looksLikeSogMeta(std::string_view text) {
+  std::size_t i = text.starts_with("\xEF\xBB\xBF") ? 3 : 0;
+  while (i < text.size() && std::isspace(static_cast<unsigned char>(text[i]))) ++i;
+  if (i >= text.size() || text[i] != '{') return false;
+  const std::string_view head = text.substr(0, 65536);
+  return head.find("\"means\"") != std::string_view::npos &&
+         head.find("\"quats\"") != std::string_view::npos;
+}
+
+/// A glTF asset (GLB or JSON) naming KHR_gaussian_splatting in its JSON.
+bool gltfWithSplats(std::string_view head) {
+  std::string_view json;
+  if (gltf::isGlb(head)) {
+    if (head.size() < 20) return false;
+    const std::size_t length = base::loadLe<std::uint32_t>(head.data() + 12);
+    json = head.substr(20, length);
+  } else if (gltf::looksLikeGltfJson(head)) {
+    json = head;
+  } else {
+    return false;
+  }
+  return json.find("\"KHR_gaussian_splatting\"") != std::string_view::npos;
+}
+
+}  // namespace
+
+SplatFormat detectSplatFormat(std::string_view head, std::string_view name) {
+  if (head.starts_with("ply")) {
+    detail::PlyHeader header;
+    std::string error;
+    if (!detail::parsePlyHeader(head, header, error)) return SplatFormat::unknown;
+    const detail::PlyElement* vertex = header.find("vertex");
+    if (!vertex) return SplatFormat::unknown;
+    if (header.find("chunk") && vertex->find("packed_position") >= 0)
+      return SplatFormat::compressedPly;
+    for (const char* p : {"f_dc_0", "scale_0", "rot_0", "opacity"})
+      if (vertex->find(p) >= 0) return SplatFormat::ply;
+    return SplatFormat::unknown;
+  }
+  if (base::isGzip(head))
+    return isNgsp(base::gunzipPrefix(head, 4)) ? SplatFormat::spz : SplatFormat::unknown;
+  if (isNgsp(head)) return SplatFormat::spz;
+  if (detail::ZipArchive::isZip(head)) {
+    try {
+      if (detail::ZipArchive(head, name).has("meta.json")) return SplatFormat::sog;
+    } catch (const FormatError&) {
+      // Only the start of the archive: judge by the name.
+    }
+    return endsWith(name, ".sog") ? SplatFormat::sog : SplatFormat::unknown;
+  }
+  if (gltfWithSplats(head)) return SplatFormat::gltf;
+  if (looksLikeSogMeta(head)) return SplatFormat::sogMeta;
+  if (endsWith(name, ".splat")) return SplatFormat::splat;
+  return SplatFormat::unknown;
+}
+
+GaussianCloud readGaussians(std::string_view bytes, std::string_view name,
+                            const SideFileReader& sideFiles) {
+  switch (detectSplatFormat(bytes, name)) {
+    case SplatFormat::ply:
+      return readPlyGaussians(bytes, name);
+    case SplatFormat::compressedPly:
+      return readCompressedPlyGaussians(bytes, name);
+    case SplatFormat::splat:
+      return readSplatGaussians(bytes, name);
+    case SplatFormat::spz:
+      return readSpzGaussians(bytes, name);
+    case SplatFormat::sog:
+    case SplatFormat::sogMeta:
+      return readSogGaussians(bytes, name, sideFiles);
+    case SplatFormat::gltf:
+      return readGltfGaussians(bytes, name, sideFiles);
+    case SplatFormat::unknown:
+      break;
+  }
+  detail::fail(name, "not a Gaussian splatting scene");
+}
+
+}  // namespace gs::splats

@@ -1,0 +1,350 @@
+// glTF 2.0 KHR_gaussian_splatting (readers.hpp; Khronos extension README, release
+// candidate): POINTS primitives whose attributes are POSITION,
+// KHR_gaussian_splatting:ROTATION (x y z w), :SCALE (linear), :OPACITY (0..1) and
+// :SH_DEGREE_l_COEF_n (RGB), with `kernel` and `colorSpace` on the extension object. Every
+// such primitive of every mesh instance of the default scene is placed by its node's world
+// transform M (covariance M C C^T M^T, SH rotated by M's rotation) and then turned from
+// glTF's axes to the .ply axes: 180 degrees about Z, the inverse of what splat-transform
+// 3.7's writeGlb applies (Transform.PLY to IDENTITY).
+#include <array>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "gltf/accessors.hpp"
+#include "gltf/document.hpp"
+#include "reader_support.hpp"
+
+namespace gs::splats {
+
+namespace {
+
+using detail::fail;
+
+constexpr const char* kExt = "KHR_gaussian_splatting";
+
+/// Real SH of band `band` (1..3) at unit `d`, in the project's basis (evaluateSh).
+std::vector<double> basis(int band, const glm::vec3& d) {
+  std::vector<double> y;
+  const int first = shCoefficients(band - 1), last = shCoefficients(band);
+  for (int k = first; k < last; ++k) {
+    std::array<glm::vec3, 16> c{};
+    c[static_cast<std::size_t>(k)] = glm::vec3(1.0f, 0.0f, 0.0f);
+    y.push_back(evaluateSh(3, c.data(), d).x);
+  }
+  return y;
+}
+
+/// The matrix D of band `band` with c' = D c for coefficients c of a function f and c' of
+/// g(d) = f(R^T d) (the function turned by R): least squares over 64 directions spread
+/// over the sphere (a Fibonacci lattice), which determine each band exactly.
+std::vector<double> shRotation(int band, const glm::mat3& r) {
+  const int n = 2 * band + 1;
+  constexpr int kSamples = 64;
+  std::vector<double> ata(static_cast<std::size_t>(n * n), 0.0),
+      atb(static_cast<std::size_t>(n * n), 0.0);
+  for (int s = 0; s < kSamples; ++s) {
+    const double z = 1.0 - (2.0 * s + 1.0) / kSamples, rad = std::sqrt(1.0 - z * z);
+    const double phi = s * 2.399963229728653;  // golden angle
+    const glm::vec3 d(static_cast<float>(rad * std::cos(phi)),
+                      static_cast<float>(rad * std::sin(phi)), static_cast<float>(z));
+    const std::vector<double> a = basis(band, d), b = basis(band, glm::transpose(r) * d);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) {
+        ata[static_cast<std::size_t>(i * n + j)] +=
+            a[static_cast<std::size_t>(i)] * a[static_cast<std::size_t>(j)];
+        atb[static_cast<std::size_t>(i * n + j)] +=
+            a[static_cast<std::size_t>(i)] * b[static_cast<std::size_t>(j)];
+      }
+  }
+  // Solve ata * D = atb by Gauss-Jordan elimination with partial pivoting (ata is SPD).
+  for (int col = 0; col < n; ++col) {
+    int pivot = col;
+    for (int row = col + 1; row < n; ++row)
+      if (std::fabs(ata[static_cast<std::size_t>(row * n + col)]) >
+          std::fabs(ata[static_cast<std::size_t>(pivot * n + col)]))
+        pivot = row;
+    for (int j = 0; j < n; ++j) {
+      std::swap(ata[static_cast<std::size_t>(col * n + j)],
+                ata[static_cast<std::size_t>(pivot * n + j)]);
+      std::swap(atb[static_cast<std::size_t>(col * n + j)],
+                atb[static_cast<std::size_t>(pivot * n + j)]);
+    }
+    const double p = ata[static_cast<std::size_t>(col * n + col)];
+    for (int j = 0; j < n; ++j) {
+      ata[static_cast<std::size_t>(col * n + j)] /= p;
+      atb[static_cast<std::size_t>(col * n + j)] /= p;
+    }
+    for (int row = 0; row < n; ++row) {
+      if (row == col) continue;
+      const double f = ata[static_cast<std::size_t>(row * n + col)];
+      for (int j = 0; j < n; ++j) {
+        ata[static_cast<std::size_t>(row * n + j)] -=
+            f * ata[static_cast<std::size_t>(col * n + j)];
+        atb[static_cast<std::size_t>(row * n + j)] -=
+            f * atb[static_cast<std::size_t>(col * n + j)];
+      }
+    }
+  }
+  return atb;  // D, row-major
+}
+
+/// Eigen-decomposition of the symmetric `a` by cyclic Jacobi rotations: eigenvalues in
+/// `values`, eigenvectors the columns of the returned rotation (determinant +1).
+glm::dmat3 eigenSymmetric(glm::dmat3 a, glm::dvec3& values) {
+  glm::dmat3 v(1.0);
+  for (int sweep = 0; sweep < 32; ++sweep) {
+    const double off = a[1][0] * a[1][0] + a[2][0] * a[2][0] + a[2][1] * a[2][1];
+    if (!(off > 1e-30)) break;
+    for (int p = 0; p < 2; ++p)
+      for (int q = p + 1; q < 3; ++q) {
+        if (a[q][p] == 0.0) continue;
+        const double theta = (a[q][q] - a[p][p]) / (2.0 * a[q][p]);
+        const double t =
+            (theta >= 0 ? 1.0 : -1.0) / (std::fabs(theta) + std::sqrt(theta * theta + 1.0));
+        const double c = 1.0 / std::sqrt(t * t + 1.0), s = t * c;
+        glm::dmat3 j(1.0);
+        j[p][p] = c;
+        j[q][q] = c;
+        j[q][p] = s;   // column q, row p
+        j[p][q] = -s;  // column p, row q
+        a = glm::transpose(j) * a * j;
+        v = v * j;
+      }
+  }
+  values = glm::dvec3(a[0][0], a[1][1], a[2][2]);
+  if (glm::determinant(v) < 0.0) v[2] = -v[2];
+  return v;
+}
+
+struct Reader {
+  const tinygltf::Model& model;
+  std::string name;
+  std::size_t budget;  // splats still allowed (instancing must not multiply memory)
+  GaussianCloud cloud;
+  bool haveColorSpace = false;
+
+  std::vector<float> floats(int accessor, int components, const char* what, std::size_t count) {
+    std::vector<float> v = gltf::readFloats(model, accessor, components, name, what, kMaxSplats);
+    if (v.size() != count * static_cast<std::size_t>(components))
+      fail(name, std::string(what) + ": expected " + std::to_string(count) + " elements, got " +
+                     std::to_string(v.size() / static_cast<std::size_t>(components)));
+    return v;
+  }
+
+  int attribute(const tinygltf::Primitive& p, const std::string& semantic) const {
+    const auto it = p.attributes.find(semantic);
+    return it == p.attributes.end() ? -1 : it->second;
+  }
+
+  void primitive(const tinygltf::Primitive& prim, const tinygltf::Value& ext,
+                 const glm::dmat4& world) {
+    if (prim.mode != TINYGLTF_MODE_POINTS)
+      fail(name, "a KHR_gaussian_splatting primitive must be POINTS");
+    // colorSpace (required) and kernel (unknown kernels fall back to the ellipse).
+    ColorSpace space = ColorSpace::srgb;
+    if (ext.IsObject() && ext.Has("colorSpace") && ext.Get("colorSpace").IsString()) {
+      const std::string cs = ext.Get("colorSpace").Get<std::string>();
+      if (cs == "lin_rec709_display")
+        space = ColorSpace::linear;
+      else if (cs != "srgb_rec709_display")
+        fail(name, "unsupported KHR_gaussian_splatting colorSpace '" + cs + "'");
+    }
+    if (haveColorSpace && space != cloud.colorSpace) fail(name, "primitives differ in colorSpace");
+    cloud.colorSpace = space;
+    cloud.kernel = Kernel::ellipse;
+    haveColorSpace = true;
+
+    const int posIndex = attribute(prim, "POSITION");
+    if (posIndex < 0) fail(name, "a KHR_gaussian_splatting primitive lacks POSITION");
+    const std::vector<float> pos =
+        gltf::readFloats(model, posIndex, 3, name, "POSITION", kMaxSplats);
+    const std::size_t count = pos.size() / 3;
+    if (count == 0) return;
+    if (count > budget)
+      fail(name, "more splats than the file's bytes can hold (instanced " + std::to_string(count) +
+                     " more)");
+    budget -= count;
+    const std::string pre = std::string(kExt) + ":";
+    auto required = [&](const char* semantic, int components) {
+      const int a = attribute(prim, pre + semantic);
+      if (a < 0) fail(name, "attribute " + pre + semantic + " missing");
+      return floats(a, components, semantic, count);
+    };
+    const std::vector<float> rot = required("ROTATION", 4), scale = required("SCALE", 3),
+                             opacity = required("OPACITY", 1);
+    std::vector<float> dc;
+    if (attribute(prim, pre + "SH_DEGREE_0_COEF_0") >= 0) {
+      dc = required("SH_DEGREE_0_COEF_0", 3);
+    } else if (const int c = attribute(prim, "COLOR_0"); c >= 0) {  // fallback colour
+      const gltf::AccessorView v = gltf::accessorView(model, c, name, "COLOR_0", true);
+      std::vector<float> rgba = floats(c, v.components, "COLOR_0", count);
+      for (std::size_t i = 0; i < count; ++i)
+        for (int k = 0; k < 3; ++k)
+          dc.push_back(
+              (rgba[i * static_cast<std::size_t>(v.components) + static_cast<std::size_t>(k)] -
+               0.5f) /
+              kShC0);
+    } else {
+      fail(name, "attribute " + pre + "SH_DEGREE_0_COEF_0 missing");
+    }
+    // Degrees 1..3, each complete or absent (lower degrees first).
+    int degree = 0;
+    std::vector<std::vector<float>> rest;  // coefficient k (1..15) -> RGB per splat
+    for (int l = 1; l <= kMaxShDegree; ++l) {
+      std::vector<std::vector<float>> band;
+      for (int m = 0; m < 2 * l + 1; ++m) {
+        const std::string semantic =
+            "SH_DEGREE_" + std::to_string(l) + "_COEF_" + std::to_string(m);
+        if (attribute(prim, pre + semantic) < 0) break;
+        band.push_back(required(semantic.c_str(), 3));
+      }
+      if (band.empty()) break;
+      if (band.size() != static_cast<std::size_t>(2 * l + 1))
+        fail(name, "SH degree " + std::to_string(l) + " is only partly defined");
+      for (auto& b : band) rest.push_back(std::move(b));
+      degree = l;
+    }
+
+    // Cloud axes = F * world, F = 180 degrees about Z (glTF -> .ply axes).
+    const glm::dmat4 f = glm::rotate(glm::dmat4(1.0), glm::pi<double>(), glm::dvec3(0, 0, 1));
+    const glm::dmat4 toCloud = f * world;
+    const glm::dmat3 m(toCloud);
+    // A similarity (orthogonal columns of one length, det > 0) keeps a scale + rotation;
+    // anything else goes through the covariance.
+    const double s0 = glm::length(m[0]), s1 = glm::length(m[1]), s2 = glm::length(m[2]);
+    const double det = glm::determinant(m);
+    if (!(s0 > 0.0) || !(s1 > 0.0) || !(s2 > 0.0) || !std::isfinite(det) || !(det > 0.0))
+      fail(name, "a node's transform is not decomposable (zero, negative or infinite scale)");
+    const double tol = 1e-6 * s0;
+    const bool similar = std::fabs(s0 - s1) < tol && std::fabs(s0 - s2) < tol &&
+                         std::fabs(glm::dot(m[0], m[1])) < tol * s0 &&
+                         std::fabs(glm::dot(m[0], m[2])) < tol * s0 &&
+                         std::fabs(glm::dot(m[1], m[2])) < tol * s0;
+    glm::dmat3 rotation = similar ? m / s0 : glm::dmat3(1.0);
+    if (!similar) {  // the rotation part of M for the SH: Gram-Schmidt of its columns
+      rotation[0] = glm::normalize(m[0]);
+      rotation[1] = glm::normalize(m[1] - glm::dot(m[1], rotation[0]) * rotation[0]);
+      rotation[2] = glm::cross(rotation[0], rotation[1]);
+    }
+    const glm::quat turn = glm::quat_cast(glm::mat3(rotation));
+
+    const std::size_t base = cloud.size();
+    GaussianCloud part;
+    detail::allocate(part, count, degree);
+    std::vector<std::vector<double>> d;  // per band
+    for (int l = 1; l <= degree; ++l) d.push_back(shRotation(l, glm::mat3(rotation)));
+    for (std::size_t i = 0; i < count; ++i) {
+      part.positions[i] =
+          glm::vec3(toCloud * glm::dvec4(pos[i * 3], pos[i * 3 + 1], pos[i * 3 + 2], 1.0));
+      const glm::quat q =
+          detail::unitQuat(rot[i * 4 + 3], rot[i * 4], rot[i * 4 + 1], rot[i * 4 + 2]);
+      const glm::vec3 sc = glm::abs(glm::vec3(scale[i * 3], scale[i * 3 + 1], scale[i * 3 + 2]));
+      if (similar) {
+        part.rotations[i] = glm::normalize(turn * q);
+        part.scales[i] = sc * static_cast<float>(s0);
+      } else {
+        const glm::dmat3 sigma = m * glm::dmat3(covariance(sc, q)) * glm::transpose(m);
+        glm::dvec3 values;
+        const glm::dmat3 axes = eigenSymmetric(sigma, values);
+        part.rotations[i] = glm::normalize(glm::quat_cast(glm::mat3(axes)));
+        part.scales[i] = glm::vec3(glm::sqrt(glm::max(values, glm::dvec3(0.0))));
+      }
+      part.opacities[i] = std::clamp(opacity[i], 0.0f, 1.0f);
+      part.shDc[i] = glm::vec3(dc[i * 3], dc[i * 3 + 1], dc[i * 3 + 2]);
+      glm::vec3* out = part.shRest.data() + i * static_cast<std::size_t>(part.shRestPerSplat());
+      for (int l = 1, k0 = 0; l <= degree; ++l) {
+        const int n = 2 * l + 1;
+        const std::vector<double>& dl = d[static_cast<std::size_t>(l - 1)];
+        for (int a = 0; a < n; ++a) {
+          glm::dvec3 sum(0.0);
+          for (int b = 0; b < n; ++b) {
+            const std::vector<float>& src = rest[static_cast<std::size_t>(k0 + b)];
+            sum += dl[static_cast<std::size_t>(a * n + b)] *
+                   glm::dvec3(src[i * 3], src[i * 3 + 1], src[i * 3 + 2]);
+          }
+          out[k0 + a] = glm::vec3(sum);
+        }
+        k0 += n;
+      }
+    }
+    // Primitives of different degrees: the cloud keeps the highest, others padded.
+    if (base == 0) {
+      const ColorSpace keep = cloud.colorSpace;
+      cloud = std::move(part);
+      cloud.colorSpace = keep;
+      return;
+    }
+    if (part.shDegree > cloud.shDegree) cloud.setShDegree(part.shDegree);
+    cloud.reserve(base + count);
+    for (std::size_t i = 0; i < count; ++i) cloud.append(part, i);
+  }
+};
+
+}  // namespace
+
+GaussianCloud readGltfGaussians(std::string_view bytes, std::string_view name,
+                                const SideFileReader& sideFiles) {
+  const std::string n(name);
+  const gltf::BufferLoader loader = [&](const std::string& uri) -> std::optional<std::string> {
+    std::string data, error;
+    if (!sideFiles || !sideFiles(uri, data, error)) return std::nullopt;
+    return data;
+  };
+  tinygltf::Model model;
+  try {
+    model = gltf::load(bytes, n, loader);
+  } catch (const gltf::Error& e) {
+    throw FormatError(e.what());
+  }
+  std::size_t budget = bytes.size();
+  for (const auto& b : model.buffers) budget += b.data.size();
+  Reader r{model, n, std::min(budget, kMaxSplats), {}, false};
+  try {
+    std::vector<char> visited(model.nodes.size(), 0);
+    std::vector<std::pair<int, glm::dmat4>> stack;
+    const std::vector<int> roots = gltf::sceneRoots(model);
+    for (auto it = roots.rbegin(); it != roots.rend(); ++it)
+      stack.emplace_back(*it, glm::dmat4(1.0));
+    while (!stack.empty()) {
+      const auto [index, parent] = stack.back();
+      stack.pop_back();
+      if (index < 0 || static_cast<std::size_t>(index) >= model.nodes.size())
+        fail(n, "node " + std::to_string(index) + " does not exist");
+      if (visited[static_cast<std::size_t>(index)]++)
+        fail(n, "node " + std::to_string(index) + " is reached twice (not a tree)");
+      const tinygltf::Node& node = model.nodes[static_cast<std::size_t>(index)];
+      glm::dmat4 local(1.0);
+      if (node.matrix.size() == 16) {
+        local = glm::make_mat4(node.matrix.data());
+      } else {
+        if (node.translation.size() == 3)
+          local = glm::translate(
+              local, glm::dvec3(node.translation[0], node.translation[1], node.translation[2]));
+        if (node.rotation.size() == 4)
+          local =
+              local * glm::mat4_cast(glm::normalize(glm::dquat(
+                          node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2])));
+        if (node.scale.size() == 3)
+          local = glm::scale(local, glm::dvec3(node.scale[0], node.scale[1], node.scale[2]));
+      }
+      const glm::dmat4 world = parent * local;
+      if (node.mesh >= 0 && static_cast<std::size_t>(node.mesh) < model.meshes.size())
+        for (const auto& prim : model.meshes[static_cast<std::size_t>(node.mesh)].primitives)
+          if (const auto e = prim.extensions.find(kExt); e != prim.extensions.end())
+            r.primitive(prim, e->second, world);
+      for (auto it = node.children.rbegin(); it != node.children.rend(); ++it)
+        stack.emplace_back(*it, world);
+    }
+  } catch (const gltf::Error& e) {
+    throw FormatError(e.what());
+  }
+  if (r.cloud.empty())
+    fail(n, "no KHR_gaussian_splatting primitive with splats in the default scene");
+  return std::move(r.cloud);
+}
+
+}  // namespace gs::splats

@@ -1,0 +1,139 @@
+// The Gaussian splat paths (docs/splats.md): every encoding of one scene draws the same
+// picture; the cpu and GL paths agree; the level-of-detail tree's cut of a far view draws
+// few splats and the picture of all of them (docs/splats-lod.md).
+#include <catch2/catch.hpp>
+
+#include <glad/gl.h>
+
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include <glm/gtc/quaternion.hpp>
+
+#include "base/file.hpp"
+#include "render/context.hpp"
+#include "render/image.hpp"
+#include "render/splat_renderer.hpp"
+#include "splats/lod_tree.hpp"
+#include "splats/readers.hpp"
+#include "test_support.hpp"
+
+namespace fs = std::filesystem;
+using namespace gs::render;
+
+namespace {
+
+constexpr int kGaussianSize = 160;
+
+std::shared_ptr<SplatSet> gaussianScene(const fs::path& file, bool tree) {
+  std::string bytes, error;
+  REQUIRE(gs::base::readFile(file.string(), bytes, error, std::size_t{1} << 30));
+  const fs::path folder = file.parent_path();
+  const gs::splats::SideFileReader side = [&](const std::string& name, std::string& out,
+                                              std::string& why) {
+    return gs::base::readFile((folder / name).string(), out, why, std::size_t{1} << 30);
+  };
+  auto set = std::make_shared<SplatSet>();
+  set->gaussians = std::make_shared<const gs::splats::GaussianCloud>(
+      gs::splats::sortByImportance(gs::splats::readGaussians(bytes, file.string(), side)));
+  if (tree)
+    set->lodTree =
+        std::make_shared<const gs::splats::LodTree>(gs::splats::buildLodTree(*set->gaussians));
+  set->computeBounds();
+  return set;
+}
+
+/// Looks at the set's centre from `distance` bounding-box diagonals along +Z.
+gs::scene::Camera gaussianCamera(const SplatSet& set, float distance) {
+  gs::scene::Camera cam;
+  const glm::vec3 centre = set.bounds.center();
+  const float diagonal = glm::length(set.bounds.size());
+  cam.position = centre + glm::vec3(0.0f, 0.0f, distance * diagonal);
+  cam.orientation = glm::quat(1.0f, 0.0f, 0.0f, 0.0f);
+  cam.fieldOfView = 0.6f;
+  cam.nearClip = 0.01f * diagonal;
+  cam.farClip = (distance + 2.0f) * diagonal;
+  return cam;
+}
+
+Image drawGaussians(const SplatSet& set, const gs::scene::Camera& cam, SplatPath path,
+                    std::size_t* drawn = nullptr) {
+  static auto context = createOffscreenContext(kGaussianSize, kGaussianSize);
+  context->makeCurrent();
+  SplatRenderer renderer;
+  renderer.setPath(path);
+  glViewport(0, 0, kGaussianSize, kGaussianSize);
+  glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  renderer.draw(set, set.size(), glm::mat4(1.0f), cam, 1.0f, {});
+  if (drawn) *drawn = renderer.statistics().splats;
+  Image image = readPixels(0, 0, kGaussianSize, kGaussianSize);
+  renderer.release();
+  return image;
+}
+
+std::size_t litPixels(const Image& image) {
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < image.rgba.size(); i += 4)
+    n += image.rgba[i] > 8 || image.rgba[i + 1] > 8 || image.rgba[i + 2] > 8;
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("every encoding of a Gaussian scene draws the picture of its .ply",
+          "[render][splat][gaussian]") {
+  const fs::path dir = gs::test::sourceDir() / "tests/data/splats";
+  const auto ply = gaussianScene(dir / "bunny_small.ply", false);
+  const gs::scene::Camera cam = gaussianCamera(*ply, 1.2f);
+  const Image reference = drawGaussians(*ply, cam, SplatPath::cpu);
+  REQUIRE(litPixels(reference) > 1000);  // the bunny fills a good part of the picture
+  for (const char* name :
+       {"bunny_small.compressed.ply", "bunny_small.spz", "bunny_small_v3.spz", "bunny_small.splat",
+        "bunny_small.sog", "bunny_small_sog/meta.json", "bunny_small.glb"}) {
+    SECTION(name) {
+      const auto set = gaussianScene(dir / name, false);
+      REQUIRE(set->size() == ply->size());
+      const ImageDifference d = compareImages(drawGaussians(*set, cam, SplatPath::cpu), reference);
+      WARN(name << ": PSNR " << d.psnr << " dB, " << d.fractionDiffering * 100
+                << "% of pixels more than 16 levels off");
+      // Quantised encodings (8-bit colours, 11-bit positions ...) move pixels a little.
+      CHECK(d.fractionDiffering <= 0.02);
+      CHECK(d.psnr >= 30.0);
+    }
+  }
+}
+
+TEST_CASE("the GL path draws the cpu path's Gaussians", "[render][splat][gaussian]") {
+  const auto set =
+      gaussianScene(gs::test::sourceDir() / "tests/data/splats/bunny_small.ply", false);
+  const gs::scene::Camera cam = gaussianCamera(*set, 1.2f);
+  const ImageDifference d = compareImages(drawGaussians(*set, cam, SplatPath::geometry),
+                                          drawGaussians(*set, cam, SplatPath::cpu));
+  WARN("GL against cpu: PSNR " << d.psnr << " dB");
+  CHECK(d.fractionDiffering <= 0.01);
+  CHECK(d.psnr >= 35.0);
+}
+
+TEST_CASE("a far view draws a small cut of the tree that looks like every splat",
+          "[render][splat][gaussian][corpus]") {
+  if (!gs::test::haveCorpus("splat")) return;
+  const fs::path file = gs::test::corpusDir() / "splat/cthead.spz";
+  const auto all = gaussianScene(file, false);
+  const auto tree = gaussianScene(file, true);
+  for (const float distance : {3.0f, 12.0f}) {
+    const gs::scene::Camera cam = gaussianCamera(*all, distance);
+    std::size_t drawn = 0;
+    const Image full = drawGaussians(*all, cam, SplatPath::cpu);
+    const Image cut = drawGaussians(*tree, cam, SplatPath::cpu, &drawn);
+    const ImageDifference d = compareImages(cut, full);
+    const double share = double(drawn) / double(all->size());
+    WARN("CThead at " << distance << " diagonals, " << kGaussianSize << " px: the cut draws "
+                      << drawn << " of " << all->size() << " (" << share * 100 << "%), "
+                      << d.fractionDiffering * 100 << "% of pixels differ, PSNR " << d.psnr);
+    REQUIRE(litPixels(full) > 50);
+    CHECK(d.fractionDiffering <= 0.02);  // within 2% of the pixels of the full picture
+    if (distance >= 12.0f) CHECK(share <= 0.05);
+  }
+}
