@@ -210,9 +210,17 @@ int runSnapshot(const Options& options) {
   for (const net::StreamProgress& p : session.loader().progress())
     failed |= p.state == net::StreamState::failed;
   for (const auto& [isError, text] : messages) std::fprintf(stderr, "%s\n", text.c_str());
+  bool drawError = false;
   for (const auto& v : views)
-    for (const auto& d : v->renderer().diagnostics().items)
+    for (const auto& d : v->renderer().diagnostics().items) {
       std::fprintf(stderr, "%s\n", d.format().c_str());
+      drawError |= d.severity == vrml::Severity::error;
+    }
+  // An input that is one splat scene, stream or volume (a world made for it) shows nothing
+  // when its node could not be loaded: that is a failure, not a black picture.
+  bool onlySplatInputs = true;
+  for (const std::string& input : options.inputs) onlySplatInputs &= session::isSplatInput(input);
+  if (drawError && onlySplatInputs) return 1;
   bool anyError = failed;
   for (const auto& m : messages) anyError |= m.first;
   bool anyNodes = false;

@@ -169,6 +169,8 @@ float mergedOpacity(double weight, const glm::vec3& scale) {
 // ---------------------------------------------------------------------------------------
 // The tree
 
+static_assert(sizeof(LodNode) == 40, "LodNode is documented as 40 bytes");
+
 std::size_t LodTree::memoryBytes() const {
   return nodes.capacity() * sizeof(LodNode) + leafSplats.capacity() * sizeof(std::uint32_t) +
          merged.positions.capacity() * sizeof(glm::vec3) +

@@ -53,6 +53,7 @@ ZipArchive::ZipArchive(std::string_view bytes, std::string_view name) : bytes_(b
     Entry e;
     const std::uint16_t flags = u16(bytes, at + 8);
     e.method = u16(bytes, at + 10);
+    e.crc = u32(bytes, at + 16);
     e.compressed = u32(bytes, at + 20);
     e.size = u32(bytes, at + 24);
     const std::size_t n = u16(bytes, at + 28), extra = u16(bytes, at + 30),
@@ -89,9 +90,15 @@ std::string ZipArchive::read(std::string_view entry, std::size_t maxBytes) const
     fail(name_,
          what + ": expected " + std::to_string(e.compressed) + " bytes, the archive ends first");
   const std::string_view in = bytes_.substr(static_cast<std::size_t>(data), e.compressed);
+  auto checked = [&](std::string out) {
+    const uLong crc = crc32(crc32(0L, Z_NULL, 0), reinterpret_cast<const Bytef*>(out.data()),
+                            static_cast<uInt>(out.size()));
+    if (crc != e.crc) fail(name_, what + ": CRC-32 mismatch (damaged data)");
+    return out;
+  };
   if (e.method == 0) {
     if (e.compressed != e.size) fail(name_, what + ": stored sizes differ");
-    return std::string(in);
+    return checked(std::string(in));
   }
   if (e.method != 8)
     fail(name_, what + ": unsupported compression method " + std::to_string(e.method));
@@ -108,7 +115,7 @@ std::string ZipArchive::read(std::string_view entry, std::size_t maxBytes) const
   const std::size_t produced = out.size() - zs.avail_out;
   inflateEnd(&zs);
   if (rc != Z_STREAM_END || produced != e.size) fail(name_, what + ": damaged deflate data");
-  return out;
+  return checked(std::move(out));
 }
 
 }  // namespace gs::splats::detail

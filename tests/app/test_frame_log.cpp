@@ -74,7 +74,7 @@ TEST_CASE("the window writes one frame log line per frame", "[app][window][frame
   CHECK(bad.err.find("--frame-log") != std::string::npos);
 }
 
-TEST_CASE("--snapshot --frame-log writes one line per frame written, as the window does",
+TEST_CASE("a snapshot writes the frame log as the window does, a line per frame written",
           "[app][frame-log]") {
   namespace fs = std::filesystem;
   const fs::path dir = fs::path(GS_BINARY_DIR) / "render-actual";

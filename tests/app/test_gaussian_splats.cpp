@@ -92,3 +92,25 @@ TEST_CASE("the corpus's Gaussian splatting scenes look as PlayCanvas draws them"
     }
   }
 }
+
+TEST_CASE("a Gaussian splatting file opens on its own, and a broken one is an error",
+          "[app][render][splat]") {
+  const fs::path data = gs::test::sourceDir() / "tests/data/splats";
+  // A .ply with Gaussian properties is a splat scene, never a mesh drawn as a black frame.
+  const std::string ours = gs::test::snapshot(
+      "gaussians_bunny_small", {"--size", "96x96", (data / "bunny_small.ply").string()});
+  const gs::render::Image image = gs::render::readPng(ours);
+  std::size_t lit = 0;
+  for (std::size_t i = 0; i < image.rgba.size(); i += 4)
+    lit += image.rgba[i] > 16 || image.rgba[i + 1] > 16 || image.rgba[i + 2] > 16;
+  CHECK(lit > 500);  // framed whole: the bunny fills a good part of the picture
+
+  const fs::path dir = fs::path(GS_BINARY_DIR) / "render-actual";
+  fs::create_directories(dir);
+  const fs::path bad = dir / "broken.spz";
+  std::ofstream(bad, std::ios::binary) << "NGSP\x04 not really a splat scene";
+  const auto r = gs::test::runGhostspace(
+      {"--snapshot", (dir / "broken.png").string(), "--size", "32x32", bad.string()});
+  CHECK(r.exitCode == 1);
+  CHECK(r.err.find("broken.spz") != std::string::npos);
+}

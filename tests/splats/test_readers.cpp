@@ -157,6 +157,51 @@ std::string editGlb(const std::string& glb, const std::function<void(std::string
   return out;
 }
 
+/// A ZIP archive of `files` (name, bytes), every entry deflated: the raw deflate data cut
+/// out of gs::test::gzip's member (10-byte header, 8-byte trailer of CRC-32 and size).
+std::string deflatedZip(const std::vector<std::pair<std::string, std::string>>& files) {
+  std::string zip, central;
+  for (const auto& [name, bytes] : files) {
+    const std::string member = gs::test::gzip(bytes);
+    REQUIRE(member.size() > 18);
+    const std::string raw = member.substr(10, member.size() - 18);
+    const std::uint32_t crc = gs::base::loadLe<std::uint32_t>(member.data() + member.size() - 8);
+    const auto offset = static_cast<std::uint32_t>(zip.size());
+    auto common = [&](std::string& out) {  // version needed .. extra length
+      for (std::uint16_t v : {std::uint16_t{20}, std::uint16_t{0}, std::uint16_t{8},
+                              std::uint16_t{0}, std::uint16_t{0}})
+        gs::base::appendLe(out, v);
+      gs::base::appendLe(out, crc);
+      gs::base::appendLe(out, static_cast<std::uint32_t>(raw.size()));
+      gs::base::appendLe(out, static_cast<std::uint32_t>(bytes.size()));
+      gs::base::appendLe(out, static_cast<std::uint16_t>(name.size()));
+      gs::base::appendLe(out, std::uint16_t{0});
+    };
+    gs::base::appendLe(zip, std::uint32_t{0x04034b50});
+    common(zip);
+    zip += name + raw;
+    gs::base::appendLe(central, std::uint32_t{0x02014b50});
+    gs::base::appendLe(central, std::uint16_t{20});
+    common(central);
+    for (std::uint16_t v : {std::uint16_t{0}, std::uint16_t{0}, std::uint16_t{0}})
+      gs::base::appendLe(central, v);
+    gs::base::appendLe(central, std::uint32_t{0});
+    gs::base::appendLe(central, offset);
+    central += name;
+  }
+  const auto cdOffset = static_cast<std::uint32_t>(zip.size());
+  zip += central;
+  gs::base::appendLe(zip, std::uint32_t{0x06054b50});
+  for (std::uint16_t v :
+       {std::uint16_t{0}, std::uint16_t{0}, static_cast<std::uint16_t>(files.size()),
+        static_cast<std::uint16_t>(files.size())})
+    gs::base::appendLe(zip, v);
+  gs::base::appendLe(zip, static_cast<std::uint32_t>(central.size()));
+  gs::base::appendLe(zip, cdOffset);
+  gs::base::appendLe(zip, std::uint16_t{0});
+  return zip;
+}
+
 void replace(std::string& text, const std::string& from, const std::string& to) {
   const std::size_t at = text.find(from);
   REQUIRE(at != std::string::npos);
@@ -309,6 +354,28 @@ TEST_CASE("readSpzGaussians: version 2 (first-three rotations) reads as version 
   bad[4] = 2;
   bad.resize(16 + n * (9 + 1 + 3 + 3 + 3) + n * 9 - 1);
   CHECK_THROWS_AS(readSpzGaussians(gs::test::gzip(bad), "short.spz"), FormatError);
+}
+
+TEST_CASE("readSogGaussians: a .sog of deflated entries reads as the stored one") {
+  std::vector<std::pair<std::string, std::string>> files;
+  for (const char* f : {"means_l.webp", "means_u.webp", "quats.webp", "scales.webp", "sh0.webp",
+                        "shN_centroids.webp", "shN_labels.webp", "meta.json"})
+    files.emplace_back(f, data(std::string("bunny_small_sog/") + f));
+  const std::string zip = deflatedZip(files);
+  REQUIRE(detectSplatFormat(zip, "x") == SplatFormat::sog);
+  const GaussianCloud deflated = readSogGaussians(zip, "deflated.sog", kNoFiles);
+  const GaussianCloud folder =
+      readSogGaussians(data("bunny_small_sog/meta.json"), "meta.json", sogFolder());
+  REQUIRE(deflated.size() == folder.size());
+  CHECK(deflated.positions == folder.positions);
+  CHECK(deflated.shRest == folder.shRest);
+  // Damage in the deflate data is an error, not garbage.
+  std::string damaged = zip;
+  damaged[60] = static_cast<char>(damaged[60] ^ 0x55);  // in means_l.webp's data
+  CHECK_THROWS_AS(readSogGaussians(damaged, "damaged.sog", kNoFiles), FormatError);
+  files.pop_back();  // no meta.json
+  CHECK_THROWS_WITH(readSogGaussians(deflatedZip(files), "nometa.sog", kNoFiles),
+                    Catch::Contains("ZIP entry 'meta.json' missing"));
 }
 
 TEST_CASE("readSogGaussians: a meta.json without its files names the missing one") {

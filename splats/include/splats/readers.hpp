@@ -47,7 +47,9 @@ using SideFileReader =
 
 /// INRIA 3DGS .ply (binary little-endian or ascii; Kerbl et al.'s output): x y z,
 /// f_dc_0..2, f_rest_0..(3k-1) channel-major (k = 0, 3, 8 or 15), opacity (logit),
-/// scale_0..2 (log), rot_0..3 (w x y z, normalised here). Missing f_rest: degree 0.
+/// scale_0..2 (log), rot_0..3 (w x y z, normalised here). Missing f_rest: degree 0; a
+/// missing scale_2 (a 2DGS surfel) gives a flat Gaussian. Any numeric property type, either
+/// byte order. A PlayCanvas compressed PLY given here is read as readCompressedPlyGaussians.
 GaussianCloud readPlyGaussians(std::string_view bytes, std::string_view name);
 /// PlayCanvas .compressed.ply: chunk element (min/max of position, scale, colour) and
 /// packed vertex element (11-10-11 position and scale, 2-10-10-10 smallest-three rotation,
