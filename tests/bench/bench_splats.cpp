@@ -17,6 +17,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <ctime>
+#include <filesystem>
 #include <memory>
 #include <random>
 #include <string>
@@ -144,7 +145,7 @@ int main(int argc, char** argv) {
                std::sscanf(a.c_str(), "%dx%d", &width, &height) == 2) {
       // the size
     } else if ((a.size() > 4 && a.substr(a.size() - 4) == ".qnv") ||
-               gs::splats::detectSplatFormat("", a) != gs::splats::SplatFormat::unknown) {
+               std::filesystem::is_regular_file(a)) {  // a scene: readGaussians decides
       files.push_back(a);
     } else {
       std::fprintf(stderr,
