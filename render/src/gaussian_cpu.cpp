@@ -2,6 +2,8 @@
 // to back (see gaussian_cpu.hpp).
 #include "gaussian_cpu.hpp"
 
+#include "simd4.hpp"
+
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -38,38 +40,6 @@ struct TileBuffers {
   alignas(16) std::array<float, kTile * kTile> r, g, b, t, limit;
 };
 
-using F4 = float __attribute__((vector_size(16)));
-using I4 = std::int32_t __attribute__((vector_size(16)));
-
-F4 load4(const float* p) {
-  F4 v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-
-void store4(float* p, F4 v) {
-  std::memcpy(p, &v, sizeof v);
-}
-
-F4 select4(I4 mask, F4 v) {
-  return reinterpret_cast<F4>(mask & reinterpret_cast<I4>(v));
-}
-
-/// exp(x) for x in [-8, 0]: 2^n 2^f with a degree-6 polynomial for 2^f (relative error
-/// below 3e-6).
-F4 exp4(F4 x) {
-  const F4 t = x * 1.44269504f;
-  I4 n = __builtin_convertvector(t, I4);
-  n += reinterpret_cast<I4>(t < __builtin_convertvector(n, F4));
-  const F4 f = t - __builtin_convertvector(n, F4);
-  const F4 p =
-      1.0f + f * (0.693147181f +
-                  f * (0.240226507f +
-                       f * (0.0555041087f +
-                            f * (0.00961812911f + f * (0.00133335581f + f * 0.000154035304f)))));
-  return p * reinterpret_cast<F4>((n + 127) << 23);
-}
-
 void composite(const Prepared p, int tx0, int ty0, int tw, int th, TileBuffers& tile, int& live) {
   const int xs = std::max(p.x0, tx0), xe = std::min(p.x1, tx0 + tw - 1);
   const int ys = std::max(p.y0, ty0), ye = std::min(p.y1, ty0 + th - 1);
@@ -103,11 +73,6 @@ void composite(const Prepared p, int tx0, int ty0, int tw, int th, TileBuffers& 
       live += done[0] + done[1] + done[2] + done[3];
     }
   }
-}
-
-std::uint8_t level(float c) {
-  if (!(c > 0.0f)) return 0;
-  return static_cast<std::uint8_t>(std::min(c, 1.0f) * 255.0f + 0.5f);
 }
 
 }  // namespace
@@ -261,10 +226,10 @@ void CpuGaussianRasterizer::draw(const splats::GaussianCloud& cloud,
         std::uint8_t* row = &out[(static_cast<std::size_t>(ty0 + j) * view.width + tx0) * 4];
         for (int i = 0; i < tw; ++i) {
           const auto at = static_cast<std::size_t>(j * kTile + i);
-          row[4 * i + 0] = level(tile.r[at]);
-          row[4 * i + 1] = level(tile.g[at]);
-          row[4 * i + 2] = level(tile.b[at]);
-          row[4 * i + 3] = level(1.0f - tile.t[at]);
+          row[4 * i + 0] = level8(tile.r[at]);
+          row[4 * i + 1] = level8(tile.g[at]);
+          row[4 * i + 2] = level8(tile.b[at]);
+          row[4 * i + 3] = level8(1.0f - tile.t[at]);
         }
       }
     }

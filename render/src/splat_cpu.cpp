@@ -2,6 +2,8 @@
 // (see splat_cpu.hpp for the algorithm and splat_reference.hpp for the definitions).
 #include "splat_cpu.hpp"
 
+#include "simd4.hpp"
+
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -157,40 +159,6 @@ struct TileBuffers {
   alignas(16) std::array<float, kTile * kTile> r, g, b, t, limit;
 };
 
-// Four pixels at a time (GCC and Clang vector extensions: SSE on x86-64, NEON on ARM,
-// plain code elsewhere).
-using F4 = float __attribute__((vector_size(16)));
-using I4 = std::int32_t __attribute__((vector_size(16)));
-
-F4 load4(const float* p) {
-  F4 v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-
-void store4(float* p, F4 v) {
-  std::memcpy(p, &v, sizeof v);
-}
-
-F4 select4(I4 mask, F4 v) {
-  return reinterpret_cast<F4>(mask & reinterpret_cast<I4>(v));
-}
-
-/// exp(x) for x in [-4.5, 0] (the profile exp(-r2 / 2)): 2^n 2^f with a degree-6
-/// polynomial for 2^f, relative error below 3e-6.
-F4 exp4(F4 x) {
-  const F4 t = x * 1.44269504f;                                   // log2(e)
-  I4 n = __builtin_convertvector(t, I4);                          // truncates towards 0: t <= 0
-  n += reinterpret_cast<I4>(t < __builtin_convertvector(n, F4));  // floor: -1 where t < n
-  const F4 f = t - __builtin_convertvector(n, F4);                // [0, 1)
-  const F4 p =
-      1.0f + f * (0.693147181f +
-                  f * (0.240226507f +
-                       f * (0.0555041087f +
-                            f * (0.00961812911f + f * (0.00133335581f + f * 0.000154035304f)))));
-  return p * reinterpret_cast<F4>((n + 127) << 23);
-}
-
 /// Composites splat `p` into the tile at (tx0, ty0) of size tw x th; `live` counts the
 /// tile's unsaturated pixels. `p` is a copy: the tile's float stores cannot alias it, so
 /// its fields stay in registers.
@@ -269,11 +237,6 @@ void composite(const Prepared p, int tx0, int ty0, int tw, int th, float nearCli
       live += done[0] + done[1] + done[2] + done[3];
     }
   }
-}
-
-std::uint8_t level(float c) {
-  if (!(c > 0.0f)) return 0;
-  return static_cast<std::uint8_t>(std::min(c, 1.0f) * 255.0f + 0.5f);
 }
 
 }  // namespace
@@ -390,10 +353,10 @@ void CpuSplatRasterizer::draw(std::span<const qnv::DecodedVector> vectors,
         std::uint8_t* row = &out[(static_cast<std::size_t>(ty0 + j) * view.width + tx0) * 4];
         for (int i = 0; i < tw; ++i) {
           const auto at = static_cast<std::size_t>(j * kTile + i);
-          row[4 * i + 0] = level(tile.r[at]);
-          row[4 * i + 1] = level(tile.g[at]);
-          row[4 * i + 2] = level(tile.b[at]);
-          row[4 * i + 3] = level(1.0f - tile.t[at]);
+          row[4 * i + 0] = level8(tile.r[at]);
+          row[4 * i + 1] = level8(tile.g[at]);
+          row[4 * i + 2] = level8(tile.b[at]);
+          row[4 * i + 3] = level8(1.0f - tile.t[at]);
         }
       }
     }

@@ -17,6 +17,7 @@
 #include "gltf/accessors.hpp"
 #include "gltf/document.hpp"
 #include "reader_support.hpp"
+#include "splats/lod_tree.hpp"
 
 namespace gs::splats {
 
@@ -90,34 +91,6 @@ std::vector<double> shRotation(int band, const glm::mat3& r) {
     }
   }
   return atb;  // D, row-major
-}
-
-/// Eigen-decomposition of the symmetric `a` by cyclic Jacobi rotations: eigenvalues in
-/// `values`, eigenvectors the columns of the returned rotation (determinant +1).
-glm::dmat3 eigenSymmetric(glm::dmat3 a, glm::dvec3& values) {
-  glm::dmat3 v(1.0);
-  for (int sweep = 0; sweep < 32; ++sweep) {
-    const double off = a[1][0] * a[1][0] + a[2][0] * a[2][0] + a[2][1] * a[2][1];
-    if (!(off > 1e-30)) break;
-    for (int p = 0; p < 2; ++p)
-      for (int q = p + 1; q < 3; ++q) {
-        if (a[q][p] == 0.0) continue;
-        const double theta = (a[q][q] - a[p][p]) / (2.0 * a[q][p]);
-        const double t =
-            (theta >= 0 ? 1.0 : -1.0) / (std::fabs(theta) + std::sqrt(theta * theta + 1.0));
-        const double c = 1.0 / std::sqrt(t * t + 1.0), s = t * c;
-        glm::dmat3 j(1.0);
-        j[p][p] = c;
-        j[q][q] = c;
-        j[q][p] = s;   // column q, row p
-        j[p][q] = -s;  // column p, row q
-        a = glm::transpose(j) * a * j;
-        v = v * j;
-      }
-  }
-  values = glm::dvec3(a[0][0], a[1][1], a[2][2]);
-  if (glm::determinant(v) < 0.0) v[2] = -v[2];
-  return v;
 }
 
 struct Reader {
@@ -248,10 +221,7 @@ struct Reader {
         part.scales[i] = sc * static_cast<float>(s0);
       } else {
         const glm::dmat3 sigma = m * glm::dmat3(covariance(sc, q)) * glm::transpose(m);
-        glm::dvec3 values;
-        const glm::dmat3 axes = eigenSymmetric(sigma, values);
-        part.rotations[i] = glm::normalize(glm::quat_cast(glm::mat3(axes)));
-        part.scales[i] = glm::vec3(glm::sqrt(glm::max(values, glm::dvec3(0.0))));
+        covarianceToScaleRotation(sigma, part.scales[i], part.rotations[i]);
       }
       part.opacities[i] = std::clamp(opacity[i], 0.0f, 1.0f);
       part.shDc[i] = glm::vec3(dc[i * 3], dc[i * 3 + 1], dc[i * 3 + 2]);
