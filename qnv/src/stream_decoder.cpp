@@ -93,6 +93,8 @@ bool StreamDecoder::parsePackets(const Sink& sink) {
   const StreamHeader& h = *header_;
   const std::uint32_t capacity = h.recordsPerPacket();
   const std::uint64_t packetCount = h.packetCount();
+  const std::uint32_t perElement = h.recordsPerElement();
+  const bool gaussian = h.kind == StreamKind::gaussian;
   auto skipDamaged = [&](const char* what) {
     if (!resyncing_) {
       resyncing_ = true;
@@ -125,12 +127,12 @@ bool StreamDecoder::parsePackets(const Sink& sink) {
     const auto sequence = loadLe<std::uint32_t>(p + 4);
     const auto payloadBytes = loadLe<std::uint16_t>(p + 8);
     const auto encoding = static_cast<std::uint8_t>(p[10]);
-    const bool plausible = count >= 1 && count <= capacity && encoding <= 2 && p[11] == 0 &&
-                           payloadBytes <= std::size_t{count} * 8 &&
-                           (encoding != 0 || payloadBytes == std::size_t{count} * 8) &&
-                           sequence < packetCount &&
-                           std::uint64_t{sequence} * capacity + count <= h.vectorCount &&
-                           (count == capacity || sequence + 1 == packetCount);
+    const bool plausible =
+        count >= 1 && count <= capacity && encoding <= (gaussian ? 1 : 2) &&
+        count % perElement == 0 && p[11] == 0 && payloadBytes <= std::size_t{count} * 8 &&
+        (encoding != 0 || payloadBytes == std::size_t{count} * 8) && sequence < packetCount &&
+        std::uint64_t{sequence} * capacity + count <= h.vectorCount &&
+        (count == capacity || sequence + 1 == packetCount);
     if (!plausible) {
       skipDamaged("impossible packet header");
       continue;
@@ -147,8 +149,18 @@ bool StreamDecoder::parsePackets(const Sink& sink) {
       skipDamaged("CRC mismatch");
       continue;
     }
-    scratch_.resize(count);
-    if (encoding == 2 && detail::isFastLayout(payload)) {
+    scratch_.resize(gaussian ? 0 : count);
+    if (gaussian) {
+      records_.resize(count);
+      if (encoding == 0) {
+        for (std::size_t i = 0; i < count; ++i)
+          records_[i] = loadLe<std::uint64_t>(payload.data() + 8 * i);
+      } else if (!detail::decodeGaussianCompactPayload(payload, count, perElement, h,
+                                                       records_.data())) {
+        skipDamaged("undecodable compact payload");
+        continue;
+      }
+    } else if (encoding == 2 && detail::isFastLayout(payload)) {
       // Straight to vectors, no records between (docs/qnv-format.md, "Fast layout").
       if (!detail::decodeFastVectors(payload, count, *grid_, *vectorTables_, scratch_.data())) {
         skipDamaged("undecodable entropy payload");
@@ -174,7 +186,11 @@ bool StreamDecoder::parsePackets(const Sink& sink) {
     anyPacket_ = true;
     stats_.packetsMissing =
         highestSequence_ + 1 > packetsReceived_ ? highestSequence_ + 1 - packetsReceived_ : 0;
-    if (sink) sink(std::uint64_t{sequence} * capacity, std::span<const DecodedVector>(scratch_));
+    if (gaussian && recordSink_)
+      recordSink_(std::uint64_t{sequence} * capacity,
+                  std::span<const std::uint64_t>(records_.data(), count));
+    if (sink && !gaussian)
+      sink(std::uint64_t{sequence} * capacity, std::span<const DecodedVector>(scratch_));
   }
   return true;
 }

@@ -45,7 +45,8 @@ std::string serializeHeader(const StreamHeader& h) {
   for (int i = 0; i < 3; ++i) appendFloatLe(out, h.boundsMax[i]);
   appendLe<std::uint8_t>(out, static_cast<std::uint8_t>(h.mapping));
   appendLe<std::uint8_t>(out, 1);  // opacity profile kind: 1 = Gaussian
-  appendLe<std::uint16_t>(out, 0);
+  appendLe<std::uint8_t>(out, h.kind == StreamKind::gaussian ? h.shDegree : 0);
+  appendLe<std::uint8_t>(out, 0);
   appendFloatLe(out, h.magnitudeMin);
   appendFloatLe(out, h.magnitudeMax);
   appendFloatLe(out, h.profile.sigma);
@@ -100,6 +101,7 @@ std::optional<StreamHeader> parseHeader(std::string_view bytes, const std::strin
   for (int i = 0; i < 3; ++i) h.boundsMax[i] = loadFloatLe(p + 36 + 4 * i);
   const auto mapping = loadLe<std::uint8_t>(p + 48);
   const auto profileKind = loadLe<std::uint8_t>(p + 49);
+  const auto shDegree = loadLe<std::uint8_t>(p + 50);
   h.magnitudeMin = loadFloatLe(p + 52);
   h.magnitudeMax = loadFloatLe(p + 56);
   h.profile.sigma = loadFloatLe(p + 60);
@@ -113,7 +115,11 @@ std::optional<StreamHeader> parseHeader(std::string_view bytes, const std::strin
     for (int c = 0; c < 4; ++c)
       h.palette[i][c] = static_cast<std::uint8_t>(p[kPaletteOffset + 4 * i + c]);
 
-  if (kind != 1 && kind != 2) return fail("unknown stream kind " + std::to_string(kind));
+  if (kind < 1 || kind > 3) return fail("unknown stream kind " + std::to_string(kind));
+  if (kind == 3 && (shDegree > 3 || encoding == 2))
+    return fail(shDegree > 3 ? "impossible SH degree " + std::to_string(shDegree)
+                             : std::string("a Gaussian stream cannot use the entropy encoding"));
+  const std::uint32_t perElement = kind == 3 ? gaussianWordsPerSplat(shDegree) : 1u;
   if (encoding > 2) return fail("unknown packet encoding " + std::to_string(encoding));
   if (headerBytes != kHeaderBytes && (encoding != 2 || headerBytes < kHeaderBytes + 9 ||
                                       headerBytes > kHeaderBytes + 8 + kMaxModelBytes))
@@ -131,8 +137,12 @@ std::optional<StreamHeader> parseHeader(std::string_view bytes, const std::strin
       return fail("QNV stream model is damaged (CRC mismatch)");
     h.model.assign(section.substr(4, modelBytes));
   }
-  if (h.packetBytes < kMinPacketBytes || h.packetBytes > kMaxPacketBytes || h.packetBytes % 8)
+  if (h.packetBytes < kMinPacketBytes || h.packetBytes > kMaxPacketBytes ||
+      h.packetBytes % (8 * perElement))
     return fail("impossible packet size " + std::to_string(h.packetBytes) + " bytes");
+  if (h.vectorCount % perElement)
+    return fail("a Gaussian stream's record count " + std::to_string(h.vectorCount) +
+                " is not a multiple of its " + std::to_string(perElement) + " words per splat");
   if (h.vectorCount > kMaxVectorCount)
     return fail("impossible vector count " + std::to_string(h.vectorCount) +
                 " (more than the limit of " + std::to_string(kMaxVectorCount) +
@@ -154,6 +164,7 @@ std::optional<StreamHeader> parseHeader(std::string_view bytes, const std::strin
   if (!finite3(h.voxelSpacing) || !std::isfinite(h.valueMin) || !std::isfinite(h.valueMax))
     return fail("impossible volume parameters");
   h.kind = static_cast<StreamKind>(kind);
+  h.shDegree = kind == 3 ? shDegree : 0;
   h.encoding = static_cast<PacketEncoding>(encoding);
   return h;
 }

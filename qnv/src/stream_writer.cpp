@@ -15,7 +15,8 @@ namespace {
 
 void appendPacketOnGrid(std::string& out, std::uint32_t sequence,
                         std::span<const std::uint64_t> records, PacketEncoding encoding,
-                        const detail::PositionGrid& grid, bool fastEntropy) {
+                        const detail::PositionGrid& grid, bool fastEntropy,
+                        const StreamHeader* gaussian = nullptr) {
   const std::size_t start = out.size();
   out.append("QP");
   appendLe<std::uint16_t>(out, static_cast<std::uint16_t>(records.size()));
@@ -26,7 +27,9 @@ void appendPacketOnGrid(std::string& out, std::uint32_t sequence,
   appendLe<std::uint32_t>(out, 0);  // CRC, patched below
   const std::size_t payloadStart = out.size();
   if (encoding == PacketEncoding::compact || encoding == PacketEncoding::entropy) {
-    if (encoding == PacketEncoding::compact)
+    if (gaussian)
+      detail::appendGaussianCompactPayload(out, records, gaussian->recordsPerElement(), *gaussian);
+    else if (encoding == PacketEncoding::compact)
       detail::appendCompactPayload(out, records);
     else
       detail::appendEntropyPayload(out, records, grid, nullptr, fastEntropy);
@@ -58,7 +61,8 @@ void appendPacket(std::string& out, std::uint32_t sequence, std::span<const std:
                   PacketEncoding encoding, const StreamHeader* header, bool fastEntropy) {
   appendPacketOnGrid(out, sequence, records, encoding,
                      header ? detail::PositionGrid::forHeader(*header) : detail::PositionGrid{},
-                     fastEntropy);
+                     fastEntropy,
+                     header && header->kind == StreamKind::gaussian ? header : nullptr);
 }
 
 namespace {
@@ -73,7 +77,8 @@ std::string writePackets(const StreamHeader& header, std::span<const std::uint64
   std::uint32_t sequence = 0;
   for (std::size_t first = 0; first < all.size(); first += per, ++sequence)
     appendPacketOnGrid(out, sequence, all.subspan(first, std::min(per, all.size() - first)),
-                       header.encoding, grid, fastEntropy);
+                       header.encoding, grid, fastEntropy,
+                       header.kind == StreamKind::gaussian ? &header : nullptr);
   return out;
 }
 
@@ -89,6 +94,16 @@ std::string writeStream(const EncodedVectors& vectors, const WriteOptions& optio
   header.packetBytes = options.packetBytes;
   header.encoding = options.encoding;
   header.vectorCount = vectors.records.size();
+  if (header.kind == StreamKind::gaussian) {
+    const std::uint32_t words = header.recordsPerElement();
+    if (options.packetBytes % (8 * words) != 0 || header.vectorCount % words != 0)
+      throw InputError("packet size " + std::to_string(options.packetBytes) +
+                       " bytes does not hold whole splats of " + std::to_string(8 * words) +
+                       " bytes");
+    if (header.encoding == PacketEncoding::entropy) header.encoding = PacketEncoding::compact;
+    header.model.clear();
+    return writePackets(header, vectors.records, false);
+  }
   // A model the caller gives (say, one shared by the bricks of a space) is kept for
   // entropy packets when it decodes and no model is to be built; packets whose blocks
   // it lacks do without it.

@@ -16,6 +16,7 @@
 #include "render/image.hpp"
 #include "render/splat_renderer.hpp"
 #include "splats/lod_tree.hpp"
+#include "splats/qnv_gaussians.hpp"
 #include "splats/readers.hpp"
 #include "test_support.hpp"
 
@@ -135,5 +136,54 @@ TEST_CASE("a far view draws a small cut of the tree that looks like every splat"
     REQUIRE(litPixels(full) > 50);
     CHECK(d.fractionDiffering <= 0.02);  // within 2% of the pixels of the full picture
     if (distance >= 12.0f) CHECK(share <= 0.05);
+  }
+}
+
+namespace {
+
+std::shared_ptr<SplatSet> setOf(gs::splats::GaussianCloud cloud) {
+  auto set = std::make_shared<SplatSet>();
+  set->gaussians = std::make_shared<const gs::splats::GaussianCloud>(std::move(cloud));
+  set->computeBounds();
+  return set;
+}
+
+}  // namespace
+
+TEST_CASE("a QNV Gaussian stream draws the picture of its .ply, and its prefixes a close one",
+          "[render][splat][gaussian][qnv]") {
+  const fs::path dir = gs::test::sourceDir() / "tests/data/splats";
+  const auto ply = gaussianScene(dir / "bunny_small.ply", false);
+  const gs::scene::Camera cam = gaussianCamera(*ply, 1.2f);
+  const Image reference = drawGaussians(*ply, cam, SplatPath::cpu);
+  const gs::qnv::EncodedVectors encoded = gs::splats::encodeGaussianStream(*ply->gaussians);
+  REQUIRE(encoded.header.shDegree == ply->gaussians->shDegree);
+  for (const auto coding : {gs::qnv::PacketEncoding::plain, gs::qnv::PacketEncoding::compact}) {
+    const std::string bytes = gs::qnv::writeStream(encoded, {encoded.header.packetBytes, coding});
+    const auto set = setOf(gs::splats::readQnvGaussians(bytes, "bunny_small.qnv"));
+    REQUIRE(set->size() == ply->size());
+    const ImageDifference d = compareImages(drawGaussians(*set, cam, SplatPath::cpu), reference);
+    WARN("QNV Gaussian stream (" << (coding == gs::qnv::PacketEncoding::plain ? "plain" : "compact")
+                                 << "): " << double(bytes.size()) / double(set->size())
+                                 << " bytes per splat, PSNR " << d.psnr << " dB, "
+                                 << d.fractionDiffering * 100 << "% of pixels off");
+    CHECK(d.fractionDiffering <= 0.02);
+    CHECK(d.psnr >= 35.0);
+    if (coding == gs::qnv::PacketEncoding::compact) {
+      // A quarter of the bytes: the largest quarter of the splats, already the bunny.
+      const auto prefix = setOf(gs::splats::readQnvGaussians(
+          std::string_view(bytes).substr(0, bytes.size() / 4), "bunny_small.qnv"));
+      CHECK(prefix->size() > 0);
+      CHECK(prefix->size() < set->size());
+      const ImageDifference p =
+          compareImages(drawGaussians(*prefix, cam, SplatPath::cpu), reference);
+      Image black = reference;
+      std::fill(black.rgba.begin(), black.rgba.end(), std::uint8_t{0});
+      const double blackPsnr = compareImages(black, reference).psnr;
+      WARN("its first quarter of bytes: " << prefix->size() << " splats, PSNR " << p.psnr
+                                          << " (an empty picture: " << blackPsnr << ")");
+      CHECK(p.psnr >= blackPsnr + 3.0);
+      CHECK(p.psnr < d.psnr);
+    }
   }
 }

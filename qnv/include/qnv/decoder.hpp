@@ -93,8 +93,17 @@ class StreamDecoder {
   /// records in spatial (Morton) order. The span is valid only during the call.
   using Sink = std::function<void(std::uint64_t firstIndex, std::span<const DecodedVector>)>;
 
+  /// Receives each good packet of a Gaussian stream (StreamKind::gaussian, whose packets
+  /// give the vectors' Sink nothing): its records (host-order 64-bit words), whole splats
+  /// of header()->recordsPerElement() records (in Morton order in compact packets), and
+  /// the stream index of its first record. Streams of other kinds never call it.
+  using RecordSink = std::function<void(std::uint64_t firstIndex, std::span<const std::uint64_t>)>;
+
   /// `name` (a path or URL) prefixes every message.
   explicit StreamDecoder(std::string name);
+
+  /// Sets the record sink (Gaussian streams).
+  void setRecordSink(RecordSink sink) { recordSink_ = std::move(sink); }
 
   /// Consumes `chunk` (any size, including 0). Returns false once the stream is unusable:
   /// the header was rejected (wrong signature, unknown version, damaged or impossible
@@ -137,6 +146,7 @@ class StreamDecoder {
   std::vector<std::string> warnings_;
   std::vector<DecodedVector> scratch_;
   std::vector<std::uint64_t> records_;
+  RecordSink recordSink_;
   bool resyncing_ = false;
   std::uint64_t packetsReceived_ = 0;
   std::uint64_t highestSequence_ = 0;

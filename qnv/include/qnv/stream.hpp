@@ -23,7 +23,25 @@ namespace gs::qnv {
 enum class StreamKind : std::uint8_t {
   surface = 1,  // one vector per triangle: A = triangle area
   volume = 2,   // one vector per voxel: A = gradient magnitude
+  /// One anisotropic 3D Gaussian per splat (docs/splats.md, "QNV Gaussian streams"):
+  /// wordsPerSplat() consecutive records, the first a figure-6 record (position, the
+  /// normal of the thinnest axis, A = importance, C = opacity), then scales, rotation,
+  /// colour and SH. A = opacity times the largest cross-section's area.
+  gaussian = 3,
 };
+
+/// Records (64-bit words) per splat of a Gaussian stream of SH degree `shDegree` (0..3):
+/// 2, 3, 4 or 5 (docs/splats.md, "QNV Gaussian streams").
+constexpr std::uint32_t gaussianWordsPerSplat(int shDegree) {
+  return 2u + static_cast<std::uint32_t>(shDegree);
+}
+
+/// The importance of a Gaussian stream's splat from its quantized fields (docs/splats.md,
+/// "QNV Gaussian streams"): opacity C / 255 times pi times the two largest scales, each
+/// exp(valueMin + q (valueMax - valueMin) / 255) for its 8-bit code q in the second word.
+/// Square metres. The encoder sets A to its code, so compact packets need not store A.
+struct StreamHeader;
+float gaussianImportance(std::uint64_t first, std::uint64_t second, const StreamHeader& header);
 
 /// How a packet's records are stored.
 enum class PacketEncoding : std::uint8_t {
@@ -79,6 +97,9 @@ struct StreamHeader {
   float valueMin = 0.0f;            // volumes: palette entry c holds values from
   float valueMax = 0.0f;            //   valueMin + c * (valueMax - valueMin) / 256 upwards
   std::array<Rgba8, kPaletteSize> palette{};
+  /// Gaussian streams: the SH degree of every splat, 0..3 (header byte 50; 0 for the other
+  /// kinds). Their valueMin, valueMax hold the natural-log range of the scales (metres).
+  std::uint8_t shDegree = 0;
   /// Bytes of the whole header: kHeaderBytes, or kHeaderBytes + 8 + model.size() when the
   /// stream carries a model block (only with PacketEncoding::entropy).
   std::uint32_t headerBytes = static_cast<std::uint32_t>(kHeaderBytes);
@@ -89,6 +110,11 @@ struct StreamHeader {
 
   /// Records in one full packet (packetBytes / 8).
   std::uint32_t recordsPerPacket() const { return packetBytes / 8; }
+  /// Records per element: 1, or gaussianWordsPerSplat(shDegree) for a Gaussian stream,
+  /// whose packetBytes and vectorCount are multiples of it (a splat never spans packets).
+  std::uint32_t recordsPerElement() const {
+    return kind == StreamKind::gaussian ? gaussianWordsPerSplat(shDegree) : 1u;
+  }
   /// Packets in the whole stream: ceil(vectorCount / recordsPerPacket()).
   std::uint64_t packetCount() const;
 };
@@ -132,7 +158,10 @@ struct WriteOptions {
 
 /// The whole .qnv file: header (vectorCount, packetBytes and encoding set from the
 /// arguments), then packets 0, 1, ... each holding the next recordsPerPacket() records
-/// (the last one fewer). Throws InputError on a packetBytes outside the range.
+/// (the last one fewer). Throws InputError on a packetBytes outside the range, or (a
+/// Gaussian stream) not a multiple of 8 * recordsPerElement(). A Gaussian stream asked for
+/// the entropy coding gets the compact one (zstd over byte planes: its words are not
+/// figure-6 records).
 std::string writeStream(const EncodedVectors& vectors, const WriteOptions& options = {});
 
 /// Appends one packet (header + payload) for `records` with sequence number `sequence`.

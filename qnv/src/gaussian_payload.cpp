@@ -1,0 +1,189 @@
+// The compact payload of Gaussian streams (StreamKind::gaussian): docs/splats.md,
+// "QNV Gaussian streams". Planes as the vector's compact payload, then the further words
+// byte by byte, most significant first, so that each plane holds one field's byte.
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include <zstd.h>
+
+#include "compact_payload.hpp"
+#include "morton.hpp"
+#include "qnv/record.hpp"
+#include "qnv/stream.hpp"
+
+namespace gs::qnv {
+
+float gaussianImportance(std::uint64_t first, std::uint64_t second, const StreamHeader& h) {
+  const float step = (h.valueMax - h.valueMin) / 255.0f;
+  const float lnArea = 2.0f * h.valueMin +
+                       step * static_cast<float>(((second >> 32) & 255u) + ((second >> 24) & 255u));
+  const float value =
+      static_cast<float>(first & 255u) / 255.0f * std::numbers::pi_v<float> * std::exp(lnArea);
+  return std::isfinite(value) ? value : 0.0f;
+}
+
+}  // namespace gs::qnv
+
+namespace gs::qnv::detail {
+
+namespace {
+
+constexpr int kZstdLevel = 22;
+
+// The SH words (record 2 on) hold coefficients from the top bit down: 9 of 5 bits (SH
+// degree 1), then 4 bits each (15 of degree 2, 21 of degree 3). Each becomes a plane.
+int shPlanes(std::uint32_t words) {
+  constexpr int kCoefficients[] = {0, 0, 0, 9, 24, 45};  // by words: SH degree + 2
+  return words <= 5 ? kCoefficients[words] : 45;
+}
+int shBits(int coefficient) {
+  return coefficient < 9 ? 5 : 4;
+}
+
+std::uint32_t takeBits(const std::uint64_t* words, int& bit, int bits) {
+  std::uint32_t v = 0;
+  for (int b = 0; b < bits; ++b, ++bit)
+    v = (v << 1) | static_cast<std::uint32_t>((words[bit / 64] >> (63 - bit % 64)) & 1u);
+  return v;
+}
+
+void putBits(std::uint64_t* words, int& bit, std::uint32_t value, int bits) {
+  for (int b = bits - 1; b >= 0; --b, ++bit)
+    if ((value >> b) & 1u) words[bit / 64] |= std::uint64_t{1} << (63 - bit % 64);
+}
+
+std::uint32_t predictedCode(std::uint64_t first, std::uint64_t second, const StreamHeader& h) {
+  return quantizeMagnitude(gaussianImportance(first, second, h), h.mapping, h.magnitudeMin,
+                           h.magnitudeMax);
+}
+
+void appendVarint(std::string& out, std::uint32_t d) {
+  while (d >= 0x80) {
+    out.push_back(static_cast<char>((d & 0x7f) | 0x80));
+    d >>= 7;
+  }
+  out.push_back(static_cast<char>(d));
+}
+
+}  // namespace
+
+void appendGaussianCompactPayload(std::string& out, std::span<const std::uint64_t> records,
+                                  std::uint32_t words, const StreamHeader& header) {
+  const std::size_t n = records.size() / words;
+  std::vector<std::pair<std::uint32_t, std::size_t>> sorted;
+  sorted.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) sorted.emplace_back(recordMorton(records[i * words]), i);
+  std::sort(sorted.begin(), sorted.end());
+  std::string planes;
+  planes.reserve(n * (5 + 8 * words));
+  std::uint32_t previous = 0;
+  for (const auto& [code, i] : sorted) {
+    appendVarint(planes, code - previous);
+    previous = code;
+  }
+  auto appendPlane = [&](auto field, bool delta = false) {
+    unsigned char last = 0;
+    for (const auto& entry : sorted) {
+      const auto b = static_cast<unsigned char>(field(entry.second) & 0xffu);
+      planes.push_back(static_cast<char>(delta ? static_cast<unsigned char>(b - last) : b));
+      last = b;
+    }
+  };
+  appendPlane([&](std::size_t i) { return directionCell(records[i * words]) >> 8; });
+  appendPlane([&](std::size_t i) { return directionCell(records[i * words]); });
+  // A as its difference from the importance of the quantized splat (0 as our encoder
+  // writes it), so that it costs nearly nothing.
+  std::vector<std::uint16_t> residual(n);
+  for (std::size_t i = 0; i < n; ++i)
+    residual[i] = static_cast<std::uint16_t>(
+        magnitudeCode(records[i * words]) -
+        predictedCode(records[i * words], records[i * words + 1], header));
+  appendPlane([&](std::size_t i) { return residual[i] >> 8u; });
+  appendPlane([&](std::size_t i) { return residual[i]; });
+  appendPlane([&](std::size_t i) { return static_cast<std::uint32_t>(records[i * words]); });
+  for (int shift = 56; shift >= 0; shift -= 8)
+    appendPlane(
+        [&](std::size_t i) { return static_cast<std::uint32_t>(records[i * words + 1] >> shift); },
+        shift >= 16);  // colour and scales: as their Morton neighbours'
+  const int sh = shPlanes(words);
+  std::vector<int> cursor(n, 0);
+  for (int c = 0; c < sh; ++c)
+    appendPlane(
+        [&](std::size_t i) { return takeBits(&records[i * words + 2], cursor[i], shBits(c)); });
+  const std::size_t bound = ZSTD_compressBound(planes.size());
+  const std::size_t start = out.size();
+  out.resize(start + bound);
+  const std::size_t written =
+      ZSTD_compress(out.data() + start, bound, planes.data(), planes.size(), kZstdLevel);
+  out.resize(ZSTD_isError(written) ? start : start + written);
+}
+
+bool decodeGaussianCompactPayload(std::string_view payload, std::size_t count, std::uint32_t words,
+                                  const StreamHeader& header, std::uint64_t* out) {
+  if (words < 2 || count == 0 || count % words != 0) return false;
+  const std::size_t n = count / words;
+  const int sh = shPlanes(words);
+  const std::size_t fixedPlanes = 5 + 8 + static_cast<std::size_t>(sh);
+  std::vector<unsigned char> planes(n * (5 + fixedPlanes));  // varints at most 5 bytes
+  const std::size_t got =
+      ZSTD_decompress(planes.data(), planes.size(), payload.data(), payload.size());
+  if (ZSTD_isError(got) || got < n * (1 + fixedPlanes)) return false;
+  std::size_t pos = 0;
+  std::uint32_t code = 0;
+  std::vector<std::uint32_t> morton(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    std::uint32_t d = 0;
+    for (int shift = 0;; shift += 7) {
+      if (pos >= got || shift > 28) return false;
+      const unsigned char b = planes[pos++];
+      d |= static_cast<std::uint32_t>(b & 0x7f) << shift;
+      if (!(b & 0x80)) break;
+    }
+    code += d;
+    morton[i] = code;
+  }
+  if (got - pos != n * fixedPlanes) return false;
+  const unsigned char* plane = planes.data() + pos;
+  unsigned char last[6] = {};
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t m = morton[i];
+    RecordFields f;
+    f.x = static_cast<std::uint16_t>(compact3(m));
+    f.y = static_cast<std::uint16_t>(compact3(m >> 1));
+    f.z = static_cast<std::uint16_t>(compact3(m >> 2));
+    const std::uint32_t dir = (std::uint32_t{plane[i]} << 8) | plane[n + i];
+    f.theta = static_cast<std::uint8_t>(dir >> 6);
+    f.phi = static_cast<std::uint8_t>(dir & 63u);
+    f.c = plane[4 * n + i];
+    if (m >= (1u << 30) || dir >= kDirectionCells) return false;
+    std::uint64_t word = 0;
+    for (int b = 0; b < 8; ++b) {
+      unsigned char v = plane[(5 + b) * n + i];
+      if (b < 6) {  // colour and scales: differences from the previous splat's
+        last[b] = static_cast<unsigned char>(last[b] + v);
+        v = last[b];
+      }
+      word = (word << 8) | v;
+    }
+    f.a = 0;
+    const std::uint32_t a = (predictedCode(packRecord(f), word, header) +
+                             ((std::uint32_t{plane[2 * n + i]} << 8) | plane[3 * n + i])) &
+                            0xffffu;
+    if (a >= kMagnitudeSteps) return false;
+    f.a = static_cast<std::uint16_t>(a);
+    out[i * words] = packRecord(f);
+    out[i * words + 1] = word;
+    std::fill(out + i * words + 2, out + (i + 1) * words, std::uint64_t{0});
+    int bit = 0;
+    for (int c = 0; c < sh; ++c) {
+      const std::uint32_t v = plane[(13 + c) * n + i];
+      if (v >> shBits(c)) return false;
+      putBits(out + i * words + 2, bit, v, shBits(c));
+    }
+  }
+  return true;
+}
+
+}  // namespace gs::qnv::detail

@@ -1,0 +1,43 @@
+// Gaussian splats as a QNV stream (docs/splats.md, "QNV Gaussian streams"): each splat is
+// a figure-6 record of Nagasawa's paper (position, the normal of its thinnest axis, A =
+// importance, C = opacity) followed by words for its scales, rotation, colour and SH, and
+// the stream is sorted by importance, largest first (the paper's magnitude order, here
+// opacity times projected area), so every prefix is the best picture of its size and a
+// progressive load shows the scene long before its last byte.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "qnv/stream.hpp"
+#include "splats/gaussian.hpp"
+#include "splats/readers.hpp"
+
+namespace gs::splats {
+
+/// The records of `cloud` as a Gaussian stream (qnv::StreamKind::gaussian) in stream
+/// order: by importance (splats::importance) largest first, ties in cloud order.
+/// Splats of zero opacity or importance are left out. Header: the centres' box, the
+/// importance range (logarithmic A), the natural-log range of the scales (valueMin,
+/// valueMax), cloud.shDegree. Quantization (docs/splats.md): positions 12 bits per axis,
+/// the thin axis' normal 6 + 7 bits, the major axis' angle about it 8 bits, log scales
+/// 8 bits, opacity and DC colour 8 bits, SH degree 1 at 5 bits, higher at 4 bits.
+/// An empty cloud gives no records and a unit box.
+qnv::EncodedVectors encodeGaussianStream(const GaussianCloud& cloud);
+
+/// Appends the splats of `records` (whole splats of header.recordsPerElement() records,
+/// as a Gaussian stream's packet gives them) to `cloud`, whose shDegree becomes the
+/// header's when it is empty. Inverse of encodeGaussianStream up to quantization. Safe
+/// for any words: every field decodes to a finite splat.
+void appendGaussianRecords(const qnv::StreamHeader& header, std::span<const std::uint64_t> records,
+                           GaussianCloud& cloud);
+
+/// Decodes a whole Gaussian stream (a .qnv file of kind 3) in memory with
+/// qnv::StreamDecoder: damaged packets are skipped (their splats missing), a cut-off
+/// stream gives what arrived. Throws FormatError naming `name` when the header is
+/// rejected or the stream is of another kind.
+GaussianCloud readQnvGaussians(std::string_view bytes, std::string_view name);
+
+}  // namespace gs::splats

@@ -1,0 +1,302 @@
+// Gaussian splats as a QNV stream: the bits are in docs/splats.md, "QNV Gaussian streams".
+#include "splats/qnv_gaussians.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "qnv/decoder.hpp"
+#include "qnv/record.hpp"
+
+namespace gs::splats {
+
+namespace {
+
+constexpr float kPi = std::numbers::pi_v<float>;
+constexpr int kFinePositionBits = 12;
+constexpr std::uint32_t kFineSteps = 1u << kFinePositionBits;  // 4096 per axis
+constexpr float kColorScale = 0.15f;                           // as SPZ: byte = dc * 0.15 + 0.5
+constexpr float kSmallestScale = 1e-7f;                        // ln floor for zero scales
+
+std::uint32_t fineCoordinate(float v, float lo, float hi) {
+  if (!(hi > lo)) return 0;
+  const double t = (static_cast<double>(v) - lo) / (static_cast<double>(hi) - lo) * kFineSteps;
+  return static_cast<std::uint32_t>(std::clamp(std::floor(t), 0.0, double{kFineSteps - 1}));
+}
+
+float fineReconstruct(std::uint32_t q, float lo, float hi) {
+  if (!(hi > lo)) return lo;
+  return lo + (static_cast<float>(q) + 0.5f) * (hi - lo) / static_cast<float>(kFineSteps);
+}
+
+std::uint8_t byteOf(float t) {  // t in 0..1, rounded
+  return static_cast<std::uint8_t>(std::clamp(std::lround(t * 255.0f), 0L, 255L));
+}
+
+// The plane frame about a unit normal: u, v with u x v = n.
+void planeFrame(const glm::vec3& n, glm::vec3& u, glm::vec3& v) {
+  const glm::vec3 ref = std::abs(n.z) < 0.9f ? glm::vec3(0, 0, 1) : glm::vec3(1, 0, 0);
+  u = glm::normalize(glm::cross(ref, n));
+  v = glm::cross(n, u);
+}
+
+// Normal at 6 bits of theta over [0, pi] and 7 of phi over [0, 2 pi), cell centres.
+void quantizeNormal(const glm::vec3& n, std::uint32_t& t6, std::uint32_t& p7) {
+  const float theta = std::acos(std::clamp(n.z, -1.0f, 1.0f));
+  float phi = std::atan2(n.y, n.x);
+  if (phi < 0.0f) phi += 2.0f * kPi;
+  t6 = std::min<std::uint32_t>(static_cast<std::uint32_t>(theta / kPi * 64.0f), 63u);
+  p7 = static_cast<std::uint32_t>(phi / (2.0f * kPi) * 128.0f) & 127u;
+}
+
+glm::vec3 reconstructNormal(std::uint32_t t6, std::uint32_t p7) {
+  const float theta = (static_cast<float>(t6) + 0.5f) * kPi / 64.0f;
+  const float phi = (static_cast<float>(p7) + 0.5f) * 2.0f * kPi / 128.0f;
+  return {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
+}
+
+std::uint32_t logScaleCode(float s, float lo, float hi) {
+  if (!(hi > lo)) return 0;
+  const float l = std::log(std::max(s, kSmallestScale));
+  return static_cast<std::uint32_t>(
+      std::clamp(std::lround((l - lo) / (hi - lo) * 255.0f), 0L, 255L));
+}
+
+float logScaleValue(std::uint32_t q, float lo, float hi) {
+  return std::exp(hi > lo ? lo + static_cast<float>(q) * (hi - lo) / 255.0f : lo);
+}
+
+// SH coefficients beyond DC: degree 1 at 5 bits (step 1/16), higher at 4 (step 1/8).
+std::uint32_t shCode(float x, int bits) {
+  const float scale = bits == 5 ? 16.0f : 8.0f;
+  const long half = 1L << (bits - 1);
+  return static_cast<std::uint32_t>(
+      std::clamp(std::lround(x * scale) + half, 0L, (1L << bits) - 1));
+}
+
+float shValue(std::uint32_t q, int bits) {
+  const float scale = bits == 5 ? 16.0f : 8.0f;
+  return (static_cast<float>(q) - static_cast<float>(1u << (bits - 1))) / scale;
+}
+
+// Bits of the SH words, written from the top of word 2 down.
+struct BitCursor {
+  std::uint64_t* words;
+  int bit = 63;  // next bit of *words
+  void put(std::uint32_t value, int bits) {
+    for (int b = bits - 1; b >= 0; --b) {
+      if ((value >> b) & 1u) *words |= std::uint64_t{1} << bit;
+      if (--bit < 0) {
+        ++words;
+        bit = 63;
+      }
+    }
+  }
+};
+
+struct BitReader {
+  const std::uint64_t* words;
+  int bit = 63;
+  std::uint32_t get(int bits) {
+    std::uint32_t v = 0;
+    for (int b = 0; b < bits; ++b) {
+      v = (v << 1) | static_cast<std::uint32_t>((*words >> bit) & 1u);
+      if (--bit < 0) {
+        ++words;
+        bit = 63;
+      }
+    }
+    return v;
+  }
+};
+
+}  // namespace
+
+qnv::EncodedVectors encodeGaussianStream(const GaussianCloud& cloud) {
+  qnv::EncodedVectors out;
+  qnv::StreamHeader& h = out.header;
+  h.kind = qnv::StreamKind::gaussian;
+  h.shDegree = static_cast<std::uint8_t>(std::clamp(cloud.shDegree, 0, 3));
+  h.mapping = qnv::MagnitudeMapping::logarithmic;
+  const std::uint32_t words = h.recordsPerElement();
+  h.packetBytes = 8 * words * (qnv::kMaxPacketBytes / (8 * words));  // zstd wants room
+
+  // The splats kept: some opacity and importance, a finite centre.
+  std::vector<std::uint32_t> kept;
+  kept.reserve(cloud.size());
+  float scaleLo = INFINITY, scaleHi = -INFINITY;
+  glm::vec3 lo(INFINITY), hi(-INFINITY);
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const glm::vec3 p = cloud.positions[i];
+    if (!(importance(cloud, i) > 0.0f) || !(cloud.opacities[i] >= 0.5f / 255.0f) ||
+        !std::isfinite(p.x + p.y + p.z))
+      continue;
+    kept.push_back(static_cast<std::uint32_t>(i));
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+    for (int k = 0; k < 3; ++k) {
+      const float l = std::log(std::max(std::abs(cloud.scales[i][k]), kSmallestScale));
+      scaleLo = std::min(scaleLo, l);
+      scaleHi = std::max(scaleHi, l);
+    }
+  }
+  if (kept.empty()) {
+    h.boundsMin = glm::vec3(0.0f);
+    h.boundsMax = glm::vec3(1.0f);
+    return out;
+  }
+  h.boundsMin = lo;
+  h.boundsMax = hi;
+  h.valueMin = scaleLo;
+  h.valueMax = scaleHi;
+
+  const int rest = cloud.shRestPerSplat();
+  std::vector<std::uint64_t> records(kept.size() * words, 0);
+  std::vector<std::pair<float, std::uint32_t>> order(kept.size());
+  for (std::size_t k = 0; k < kept.size(); ++k) {
+    const std::uint32_t i = kept[k];
+    std::uint64_t* w = records.data() + k * words;
+    // The axes by scale: major, middle, thin.
+    const glm::mat3 r = glm::mat3_cast(glm::normalize(cloud.rotations[i]));
+    const glm::vec3 s = glm::abs(cloud.scales[i]);
+    int axis[3] = {0, 1, 2};
+    std::sort(axis, axis + 3, [&](int a, int b) { return s[a] > s[b]; });
+    std::uint32_t t6 = 0, p7 = 0;
+    quantizeNormal(glm::normalize(r[axis[2]]), t6, p7);
+    const glm::vec3 n = reconstructNormal(t6, p7);
+    glm::vec3 u, v;
+    planeFrame(n, u, v);
+    const glm::vec3 major = r[axis[0]];
+    float angle = std::atan2(glm::dot(major, v), glm::dot(major, u));
+    if (angle < 0.0f) angle += kPi;
+    const std::uint32_t angleCode =
+        static_cast<std::uint32_t>(std::lround(angle / kPi * 256.0f)) & 255u;
+    std::uint32_t fine[3];
+    for (int a = 0; a < 3; ++a) fine[a] = fineCoordinate(cloud.positions[i][a], lo[a], hi[a]);
+    qnv::RecordFields f;
+    f.x = static_cast<std::uint16_t>(fine[0] >> 2);
+    f.y = static_cast<std::uint16_t>(fine[1] >> 2);
+    f.z = static_cast<std::uint16_t>(fine[2] >> 2);
+    f.theta = static_cast<std::uint8_t>(t6 >> 1);
+    f.phi = static_cast<std::uint8_t>(p7 >> 1);
+    f.a = 0;  // below, from the quantized splat
+    f.c = byteOf(cloud.opacities[i]);
+    w[0] = qnv::packRecord(f);
+    const glm::vec3 dc = cloud.shDc[i];
+    w[1] = std::uint64_t{byteOf(dc.r * kColorScale + 0.5f)} << 56 |
+           std::uint64_t{byteOf(dc.g * kColorScale + 0.5f)} << 48 |
+           std::uint64_t{byteOf(dc.b * kColorScale + 0.5f)} << 40 |
+           std::uint64_t{logScaleCode(s[axis[0]], scaleLo, scaleHi)} << 32 |
+           std::uint64_t{logScaleCode(s[axis[1]], scaleLo, scaleHi)} << 24 |
+           std::uint64_t{logScaleCode(s[axis[2]], scaleLo, scaleHi)} << 16 |
+           std::uint64_t{angleCode} << 8 | std::uint64_t{fine[0] & 3u} << 6 |
+           std::uint64_t{fine[1] & 3u} << 4 | std::uint64_t{fine[2] & 3u} << 2 |
+           std::uint64_t{t6 & 1u} << 1 | std::uint64_t{p7 & 1u};
+    BitCursor bits{w + 2};
+    for (int c = 0; c < rest; ++c)
+      for (int ch = 0; ch < 3; ++ch)
+        bits.put(shCode(cloud.shRest[std::size_t{i} * rest + c][ch], c < 3 ? 5 : 4), c < 3 ? 5 : 4);
+    order[k] = {qnv::gaussianImportance(w[0], w[1], h), static_cast<std::uint32_t>(k)};
+  }
+  // By the importance of the quantized splat, largest first: A is that importance's code.
+  std::stable_sort(order.begin(), order.end(),
+                   [](const auto& a, const auto& b) { return a.first > b.first; });
+  h.magnitudeMax = std::max(order.front().first, 1e-30f);
+  h.magnitudeMin = std::clamp(order.back().first, h.magnitudeMax * 1e-12f, h.magnitudeMax);
+  out.records.resize(records.size());
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const std::uint64_t* from = records.data() + std::size_t{order[k].second} * words;
+    std::uint64_t* to = out.records.data() + k * words;
+    std::copy(from, from + words, to);
+    to[0] |= std::uint64_t{qnv::quantizeMagnitude(order[k].first, h.mapping, h.magnitudeMin,
+                                                  h.magnitudeMax)}
+             << 8;
+  }
+  out.header.vectorCount = out.records.size();
+  return out;
+}
+
+void appendGaussianRecords(const qnv::StreamHeader& h, std::span<const std::uint64_t> records,
+                           GaussianCloud& cloud) {
+  const std::uint32_t words = h.recordsPerElement();
+  if (h.kind != qnv::StreamKind::gaussian || words < 2) return;
+  if (cloud.empty()) cloud.setShDegree(h.shDegree);
+  const int rest = cloud.shRestPerSplat();
+  const int have = shCoefficients(h.shDegree) - 1;  // coefficients the words hold
+  const std::size_t n = records.size() / words;
+  cloud.reserve(cloud.size() + n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::uint64_t* w = records.data() + k * words;
+    const qnv::RecordFields f = qnv::unpackRecord(w[0]);
+    const std::uint64_t e = w[1];
+    glm::vec3 position;
+    const std::uint32_t coarse[3] = {f.x, f.y, f.z};
+    for (int a = 0; a < 3; ++a) {
+      const std::uint32_t fine =
+          (coarse[a] << 2) | static_cast<std::uint32_t>((e >> (6 - 2 * a)) & 3u);
+      position[a] = fineReconstruct(fine, h.boundsMin[a], h.boundsMax[a]);
+    }
+    const std::uint32_t t6 =
+        (std::uint32_t{f.theta} << 1) | static_cast<std::uint32_t>((e >> 1) & 1u);
+    const std::uint32_t p7 = (std::uint32_t{f.phi} << 1) | static_cast<std::uint32_t>(e & 1u);
+    const glm::vec3 n3 = reconstructNormal(t6, p7);
+    glm::vec3 u, v;
+    planeFrame(n3, u, v);
+    const float angle = static_cast<float>((e >> 8) & 255u) * kPi / 256.0f;
+    const glm::vec3 major = std::cos(angle) * u + std::sin(angle) * v;
+    const glm::vec3 middle = glm::cross(n3, major);
+    const glm::quat q = glm::normalize(glm::quat_cast(glm::mat3(major, middle, n3)));
+    const glm::vec3 scales(logScaleValue((e >> 32) & 255u, h.valueMin, h.valueMax),
+                           logScaleValue((e >> 24) & 255u, h.valueMin, h.valueMax),
+                           logScaleValue((e >> 16) & 255u, h.valueMin, h.valueMax));
+    const glm::vec3 dc(((static_cast<float>((e >> 56) & 255u) / 255.0f) - 0.5f) / kColorScale,
+                       ((static_cast<float>((e >> 48) & 255u) / 255.0f) - 0.5f) / kColorScale,
+                       ((static_cast<float>((e >> 40) & 255u) / 255.0f) - 0.5f) / kColorScale);
+    cloud.positions.push_back(position);
+    cloud.scales.push_back(scales);
+    cloud.rotations.push_back(q);
+    cloud.opacities.push_back(static_cast<float>(f.c) / 255.0f);
+    cloud.shDc.push_back(dc);
+    BitReader bits{w + 2};
+    for (int c = 0; c < rest; ++c) {
+      glm::vec3 coefficient(0.0f);
+      if (c < have)
+        for (int ch = 0; ch < 3; ++ch)
+          coefficient[ch] = shValue(bits.get(c < 3 ? 5 : 4), c < 3 ? 5 : 4);
+      cloud.shRest.push_back(coefficient);
+    }
+  }
+}
+
+GaussianCloud readQnvGaussians(std::string_view bytes, std::string_view name) {
+  qnv::StreamDecoder decoder{std::string(name)};
+  GaussianCloud cloud;
+  bool kindChecked = false;
+  std::string wrongKind;
+  decoder.setRecordSink([&](std::uint64_t, std::span<const std::uint64_t> records) {
+    appendGaussianRecords(*decoder.header(), records, cloud);
+  });
+  // Feed in slices so that a stream of another kind is refused before its packets decode.
+  for (std::size_t at = 0; at < bytes.size();) {
+    const std::size_t n = std::min<std::size_t>(bytes.size() - at, 1 << 20);
+    if (!decoder.feed(bytes.substr(at, n), {})) break;
+    at += n;
+    if (!kindChecked && decoder.header()) {
+      kindChecked = true;
+      if (decoder.header()->kind != qnv::StreamKind::gaussian)
+        throw FormatError(std::string(name) +
+                          ": a QNV stream of normal vectors, not of Gaussian splats");
+    }
+  }
+  decoder.finish({});
+  if (!decoder.header()) throw FormatError(decoder.error());
+  if (decoder.header()->kind != qnv::StreamKind::gaussian)
+    throw FormatError(std::string(name) +
+                      ": a QNV stream of normal vectors, not of Gaussian splats");
+  return cloud;
+}
+
+}  // namespace gs::splats

@@ -1,0 +1,151 @@
+// Gaussian splats as a QNV stream (splats/qnv_gaussians.hpp; docs/splats.md, "QNV Gaussian
+// streams"): every field comes back within its quantization step, in importance order,
+// any prefix decodes, damaged and hostile streams are refused or skipped.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <string>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "qnv/decoder.hpp"
+#include "splats/qnv_gaussians.hpp"
+#include "splats/readers.hpp"
+#include "test_support.hpp"
+
+using namespace gs::splats;
+
+namespace {
+
+GaussianCloud bunnySmall() {
+  const std::string bytes =
+      gs::test::readBytes(gs::test::sourceDir() / "tests/data/splats/bunny_small.ply");
+  REQUIRE(!bytes.empty());
+  return sortByImportance(readPlyGaussians(bytes, "bunny_small.ply"));
+}
+
+glm::mat3 covarianceOf(const GaussianCloud& c, std::size_t i) {
+  const glm::mat3 r = glm::mat3_cast(c.rotations[i]);
+  const glm::vec3 s = c.scales[i];
+  return r * glm::mat3(s.x * s.x, 0, 0, 0, s.y * s.y, 0, 0, 0, s.z * s.z) * glm::transpose(r);
+}
+
+}  // namespace
+
+TEST_CASE("a Gaussian stream gives back every splat within its quantization", "[splats][qnv]") {
+  const GaussianCloud cloud = bunnySmall();
+  REQUIRE(cloud.shDegree == 1);
+  const gs::qnv::EncodedVectors encoded = encodeGaussianStream(cloud);
+  CHECK(encoded.header.kind == gs::qnv::StreamKind::gaussian);
+  CHECK(encoded.header.recordsPerElement() == 3);
+  REQUIRE(encoded.records.size() == cloud.size() * 3);
+  for (const auto coding : {gs::qnv::PacketEncoding::plain, gs::qnv::PacketEncoding::compact}) {
+    const std::string bytes = gs::qnv::writeStream(encoded, {24 * 100, coding});
+    GaussianCloud back = readQnvGaussians(bytes, "bunny.qnv");
+    REQUIRE(back.size() == cloud.size());
+    REQUIRE(back.shDegree == 1);
+    // Compact packets give their splats in Morton order: match each back by position.
+    back = sortByImportance(back);
+    const glm::vec3 box = encoded.header.boundsMax - encoded.header.boundsMin;
+    double worstPosition = 0, worstColor = 0, worstSh = 0, worstCovariance = 0, worstOpacity = 0;
+    std::size_t matched = 0;
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+      // The same splat: the nearest decoded centre among those of about its importance.
+      std::size_t best = 0;
+      float bestDistance = INFINITY;
+      for (std::size_t j = 0; j < back.size(); ++j) {
+        const float d = glm::length(back.positions[j] - cloud.positions[i]);
+        if (d < bestDistance && std::abs(back.opacities[j] - cloud.opacities[i]) < 0.01f &&
+            glm::length(back.shDc[j] - cloud.shDc[i]) < 0.05f) {
+          bestDistance = d;
+          best = j;
+        }
+      }
+      if (bestDistance == INFINITY) continue;
+      ++matched;
+      for (int a = 0; a < 3; ++a)
+        worstPosition =
+            std::max(worstPosition,
+                     double(std::abs(back.positions[best][a] - cloud.positions[i][a]) / box[a]));
+      worstOpacity =
+          std::max(worstOpacity, double(std::abs(back.opacities[best] - cloud.opacities[i])));
+      worstColor = std::max(worstColor, double(glm::length(back.shDc[best] - cloud.shDc[i])));
+      for (int k = 0; k < 3; ++k)
+        worstSh = std::max(
+            worstSh, double(glm::length(back.shRest[best * 3 + k] -
+                                        glm::clamp(cloud.shRest[i * 3 + k], -1.0f, 0.9375f))));
+      const glm::mat3 a = covarianceOf(cloud, i), b = covarianceOf(back, best);
+      const float largest = std::max({cloud.scales[i].x, cloud.scales[i].y, cloud.scales[i].z});
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+          worstCovariance =
+              std::max(worstCovariance, double(std::abs(a[c][r] - b[c][r]) / (largest * largest)));
+    }
+    INFO("matched " << matched << " of " << cloud.size());
+    CHECK(matched >= cloud.size() * 99 / 100);
+    CHECK(worstPosition <= 0.5 / 4096 + 1e-6);  // half a 12-bit step of the box
+    CHECK(worstOpacity <= 0.5 / 255 + 1e-6);
+    CHECK(worstColor <= 0.5 / 255 / 0.15 * std::sqrt(3.0) + 1e-4);
+    CHECK(worstSh <= 0.5 / 16 * std::sqrt(3.0) + 1e-4);
+    // Scales at 8 bits of their log range and the axes at about a degree: the covariance
+    // within a few per cent of the largest variance.
+    CHECK(worstCovariance <= 0.15);
+    WARN("worst covariance error " << worstCovariance << " of the largest variance");
+  }
+}
+
+TEST_CASE("a Gaussian stream is in importance order and every prefix decodes", "[splats][qnv]") {
+  const GaussianCloud cloud = bunnySmall();
+  const gs::qnv::EncodedVectors encoded = encodeGaussianStream(cloud);
+  for (std::size_t k = 3; k < encoded.records.size(); k += 3)
+    REQUIRE(gs::qnv::magnitudeCode(encoded.records[k]) <=
+            gs::qnv::magnitudeCode(encoded.records[k - 3]));
+  const std::string bytes =
+      gs::qnv::writeStream(encoded, {24 * 50, gs::qnv::PacketEncoding::compact});
+  std::size_t previous = 0;
+  for (std::size_t cut = 1132; cut <= bytes.size(); cut += bytes.size() / 17) {
+    const GaussianCloud prefix = readQnvGaussians(bytes.substr(0, cut), "bunny.qnv");
+    CHECK(prefix.size() % 50 == 0);
+    CHECK(prefix.size() >= previous);
+    previous = prefix.size();
+  }
+}
+
+TEST_CASE("a damaged Gaussian stream loses only its damaged packets", "[splats][qnv]") {
+  const GaussianCloud cloud = bunnySmall();
+  const std::string bytes = gs::qnv::writeStream(encodeGaussianStream(cloud),
+                                                 {24 * 100, gs::qnv::PacketEncoding::compact});
+  std::string damaged = bytes;
+  damaged[damaged.size() / 2] ^= 0x40;
+  const GaussianCloud back = readQnvGaussians(damaged, "bunny.qnv");
+  CHECK(back.size() == cloud.size() - 100);
+  // Records of another kind, or no stream at all, are errors that name the input.
+  CHECK_THROWS_WITH(readQnvGaussians("not a stream", "x.qnv"), Catch::Contains("x.qnv"));
+  gs::qnv::EncodedVectors vectors;
+  vectors.header.boundsMax = glm::vec3(1.0f);
+  vectors.records = {gs::qnv::packRecord({1, 2, 3, 4, 5, 6, 7})};
+  CHECK_THROWS_WITH(readQnvGaussians(gs::qnv::writeStream(vectors), "v.qnv"),
+                    Catch::Contains("not of Gaussian splats"));
+}
+
+TEST_CASE("hostile Gaussian words decode to finite splats", "[splats][qnv]") {
+  gs::qnv::StreamHeader h;
+  h.kind = gs::qnv::StreamKind::gaussian;
+  h.shDegree = 3;
+  h.boundsMax = glm::vec3(1.0f);
+  h.valueMin = -80.0f;
+  h.valueMax = 80.0f;
+  std::vector<std::uint64_t> words(5 * 64);
+  std::uint64_t x = 0x9e3779b97f4a7c15ull;
+  for (auto& w : words) w = (x = x * 6364136223846793005ull + 1442695040888963407ull);
+  GaussianCloud cloud;
+  appendGaussianRecords(h, words, cloud);
+  REQUIRE(cloud.size() == 64);
+  REQUIRE(cloud.shRest.size() == 64 * 15);
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    CHECK(std::isfinite(glm::length(cloud.positions[i])));
+    CHECK(std::isfinite(glm::length(glm::vec4(cloud.rotations[i].x, cloud.rotations[i].y,
+                                              cloud.rotations[i].z, cloud.rotations[i].w))));
+  }
+}
