@@ -27,6 +27,21 @@ QnvStream::QnvStream(FetchRequest request, Sink sink, std::uint64_t firstSliceBy
 
 QnvStream::~QnvStream() = default;
 
+void QnvStream::setRecordSink(qnv::StreamDecoder::RecordSink sink) {
+  decoder_.setRecordSink(
+      [this, sink = std::move(sink)](std::uint64_t first, std::span<const std::uint64_t> records) {
+        // As for vectors, with a splat (its records together) at least 2 bytes.
+        const std::uint64_t limit =
+            ((fed_ + chunkBytes_) / 2 + 65536) * decoder_.header()->recordsPerElement();
+        if (first + records.size() > limit) {
+          ++packetsDropped_;
+          return;
+        }
+        coveredEnd_ = std::max<std::uint64_t>(coveredEnd_, first + records.size());
+        sink(first, records);
+      });
+}
+
 void QnvStream::want(std::uint64_t vectors) {
   progress_.wantedVectors = std::max(progress_.wantedVectors, vectors);
 }

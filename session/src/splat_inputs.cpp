@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 
 #include "base/fetch.hpp"
 #include "base/file.hpp"
@@ -88,6 +89,14 @@ std::string meshWorldText(const qnv::TriangleMesh& mesh) {
 
 }  // namespace
 
+bool isGaussianQnvFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  char head[11] = {};
+  return in.read(head, sizeof head) &&
+         splats::detectSplatFormat(std::string_view(head, sizeof head), path) ==
+             splats::SplatFormat::qnv;
+}
+
 std::string gaussianWorldText(const std::string& path) {
   std::string escaped;
   for (char c : path) {
@@ -105,6 +114,7 @@ std::string gaussianWorldText(const std::string& path) {
 bool isGaussianSplatFile(const std::string& path) {
   const formats::InputKind kind = formats::classifyFile(path);
   if (kind == formats::InputKind::gaussianSplats) return true;
+  if (kind == formats::InputKind::qnv) return isGaussianQnvFile(path);
   if (kind != formats::InputKind::gltf) return false;
   std::string bytes, error;
   if (!base::readFile(path, bytes, error, std::size_t{1} << 30)) return false;

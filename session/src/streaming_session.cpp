@@ -10,6 +10,7 @@
 #include "formats/input_kind.hpp"
 #include "session/splat_inputs.hpp"
 #include "session/world.hpp"
+#include "splats/qnv_gaussians.hpp"
 #include "vrml/parser.hpp"
 
 namespace gs::session {
@@ -90,7 +91,7 @@ std::shared_ptr<const render::SplatSet> StreamingSession::splatSet(const std::st
   const formats::InputKind kind =
       path.empty() ? formats::InputKind::unknown : formats::classifyFile(path);
   if ((path.empty() && formats::kindFromName(url) == formats::InputKind::gaussianSplats) ||
-      (!path.empty() && isGaussianSplatFile(path))) {
+      (!path.empty() && kind != formats::InputKind::qnv && isGaussianSplatFile(path))) {
     // A Gaussian splatting scene: read whole (local or HTTP), under the loader's rules.
     base::Fetched fetched = loader_.fetch(url, referrer, base::FetchMode::whole);
     if (!fetched.ready()) {
@@ -118,6 +119,14 @@ std::shared_ptr<const render::SplatSet> StreamingSession::splatSet(const std::st
   };
   entry.stream = loader_.qnv(url, referrer, std::move(sink), error);
   if (!entry.stream) return nullptr;
+  // A Gaussian stream (splats/qnv_gaussians.hpp): each packet's splats at their place in
+  // stream order (largest first), as for vectors.
+  entry.gaussians = std::make_shared<splats::GaussianCloud>();
+  entry.stream->setRecordSink([cloud = entry.gaussians, stream = entry.stream.get(), set](
+                                  std::uint64_t first, std::span<const std::uint64_t> records) {
+    if (splats::placeGaussianRecords(*stream->header(), first, records, *cloud))
+      ++set->revision;  // a gap filled late
+  });
   auto result = entry.set;
   qnv_[url] = std::move(entry);
   return result;
@@ -141,7 +150,10 @@ render::SceneRendererOptions StreamingSession::rendererOptions(render::SceneRend
 }
 
 bool StreamingSession::pump() {
-  for (auto& [url, e] : qnv_) e.stream->want(e.set->wantedVectors);
+  for (auto& [url, e] : qnv_) {
+    const auto& header = e.stream->header();
+    e.stream->want(e.set->wantedVectors * (header ? header->recordsPerElement() : 1u));
+  }
   bool changed = loader_.pump();
   for (auto& [url, t] : tilesets_) changed |= t->pump();
   for (auto& [url, e] : qnv_) {
@@ -150,7 +162,8 @@ bool StreamingSession::pump() {
     e.haveHeader = true;
     render::SplatSet& set = *e.set;
     set.style = render::SplatStyle::fromHeader(*header);
-    set.expectedVectors = header->vectorCount;
+    set.expectedVectors = header->vectorCount / header->recordsPerElement();
+    if (header->kind == qnv::StreamKind::gaussian) set.gaussians = e.gaussians;
     set.bounds = vrml::Bounds{};
     set.bounds.extend(header->boundsMin);
     set.bounds.extend(header->boundsMax);

@@ -8,6 +8,7 @@
 #include "base/gzip.hpp"
 #include "gltf/detect.hpp"
 #include "reader_support.hpp"
+#include "splats/qnv_gaussians.hpp"
 #include "zip_reader.hpp"
 
 namespace gs::splats {
@@ -55,6 +56,9 @@ bool gltfWithSplats(std::string_view head) {
 }  // namespace
 
 SplatFormat detectSplatFormat(std::string_view head, std::string_view name) {
+  if (head.size() > 10 && head.starts_with("\x89QNV\r\n\x1a\n"))
+    return head[10] == static_cast<char>(qnv::StreamKind::gaussian) ? SplatFormat::qnv
+                                                                    : SplatFormat::unknown;
   if (head.starts_with("ply")) {
     detail::PlyHeader header;
     std::string error;
@@ -100,6 +104,8 @@ GaussianCloud readGaussians(std::string_view bytes, std::string_view name,
       return readSogGaussians(bytes, name, sideFiles);
     case SplatFormat::gltf:
       return readGltfGaussians(bytes, name, sideFiles);
+    case SplatFormat::qnv:
+      return readQnvGaussians(bytes, name);
     case SplatFormat::unknown:
       break;
   }

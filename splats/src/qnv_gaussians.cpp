@@ -122,7 +122,11 @@ qnv::EncodedVectors encodeGaussianStream(const GaussianCloud& cloud) {
   h.shDegree = static_cast<std::uint8_t>(std::clamp(cloud.shDegree, 0, 3));
   h.mapping = qnv::MagnitudeMapping::logarithmic;
   const std::uint32_t words = h.recordsPerElement();
-  h.packetBytes = 8 * words * (qnv::kMaxPacketBytes / (8 * words));  // zstd wants room
+  // Packets as large as the format allows (zstd wants room), but at least 64 of them, so
+  // that the first picture comes within the first few per cent of the bytes.
+  const std::uint64_t perPacket =
+      std::clamp<std::uint64_t>(cloud.size() / 64, 256, qnv::kMaxPacketBytes / (8 * words));
+  h.packetBytes = static_cast<std::uint32_t>(8 * words * perPacket);
 
   // The splats kept: some opacity and importance, a finite centre.
   std::vector<std::uint32_t> kept;
@@ -271,13 +275,47 @@ void appendGaussianRecords(const qnv::StreamHeader& h, std::span<const std::uint
   }
 }
 
+bool placeGaussianRecords(const qnv::StreamHeader& header, std::uint64_t firstRecord,
+                          std::span<const std::uint64_t> records, GaussianCloud& cloud) {
+  GaussianCloud packet;
+  packet.setShDegree(cloud.empty() ? header.shDegree : cloud.shDegree);
+  appendGaussianRecords(header, records, packet);
+  const std::size_t first = static_cast<std::size_t>(firstRecord / header.recordsPerElement());
+  const bool over = first < cloud.size();
+  if (cloud.empty()) cloud.setShDegree(packet.shDegree);
+  if (cloud.size() < first + packet.size()) {
+    const std::size_t before = cloud.size();
+    cloud.resize(first + packet.size());
+    std::fill(cloud.opacities.begin() + static_cast<std::ptrdiff_t>(before), cloud.opacities.end(),
+              0.0f);
+  }
+  const int rest = cloud.shRestPerSplat();
+  for (std::size_t k = 0; k < packet.size(); ++k) {
+    const std::size_t i = first + k;
+    cloud.positions[i] = packet.positions[k];
+    cloud.scales[i] = packet.scales[k];
+    cloud.rotations[i] = packet.rotations[k];
+    cloud.opacities[i] = packet.opacities[k];
+    cloud.shDc[i] = packet.shDc[k];
+    for (int c = 0; c < rest; ++c)
+      cloud.shRest[i * static_cast<std::size_t>(rest) + static_cast<std::size_t>(c)] =
+          packet.shRest[k * static_cast<std::size_t>(rest) + static_cast<std::size_t>(c)];
+  }
+  return over;
+}
+
 GaussianCloud readQnvGaussians(std::string_view bytes, std::string_view name) {
   qnv::StreamDecoder decoder{std::string(name)};
   GaussianCloud cloud;
   bool kindChecked = false;
   std::string wrongKind;
-  decoder.setRecordSink([&](std::uint64_t, std::span<const std::uint64_t> records) {
-    appendGaussianRecords(*decoder.header(), records, cloud);
+  decoder.setRecordSink([&](std::uint64_t first, std::span<const std::uint64_t> records) {
+    // A packet's place comes from its sequence number: believe it only as far as the
+    // bytes could hold (a splat takes at least 2 bytes, as net::QnvStream assumes), so
+    // that a hostile stream cannot size the cloud.
+    const std::uint64_t words = decoder.header()->recordsPerElement();
+    if (first + records.size() > (bytes.size() / 2 + 65536) * words) return;
+    placeGaussianRecords(*decoder.header(), first, records, cloud);
   });
   // Feed in slices so that a stream of another kind is refused before its packets decode.
   for (std::size_t at = 0; at < bytes.size();) {

@@ -114,3 +114,51 @@ TEST_CASE("a Gaussian splatting file opens on its own, and a broken one is an er
   CHECK(r.exitCode == 1);
   CHECK(r.err.find("broken.spz") != std::string::npos);
 }
+
+TEST_CASE("the corpus's scenes as QNV Gaussian streams: fewer bytes than SPZ, the peer's picture",
+          "[app][render][splat][corpus][qnv]") {
+  if (!gs::test::haveCorpus("splat")) return;
+  const fs::path peer = gs::test::sourceDir() / "tests/data/splats/peer";
+  const fs::path dir = fs::path(GS_BINARY_DIR) / "render-actual";
+  fs::create_directories(dir);
+  struct Case {
+    const char* name;
+    const char* position;
+    double minimum;  // dB against the peer, as its SPZ
+  };
+  for (const Case& c : {Case{"bunny", "0.017 -0.11 0.3", 40.0}, Case{"cthead", "0 0 2.6", 38.0}}) {
+    SECTION(c.name) {
+      const fs::path spz = gs::test::corpusDir() / "splat" / (std::string(c.name) + ".spz");
+      const fs::path qnv = dir / (std::string(c.name) + "_gaussians.qnv");
+      const auto r = gs::test::runGhostspace({"encode", spz.string(), "-o", qnv.string()});
+      REQUIRE(r.exitCode == 0);
+      const auto qnvBytes = fs::file_size(qnv), spzBytes = fs::file_size(spz);
+      const std::string world = peerWorld(std::string("gaussians_qnv_") + c.name, qnv, c.position);
+      const std::string ours =
+          gs::test::snapshot(std::string("gaussians_qnv_") + c.name, {"--size", "400x400", world});
+      const double psnr = foregroundPsnr(ours, (peer / (std::string(c.name) + ".png")).string());
+      WARN(c.name << " as a QNV Gaussian stream: " << qnvBytes << " bytes (SPZ " << spzBytes
+                  << "), " << psnr << " dB against the peer");
+      CHECK(qnvBytes < spzBytes);
+      CHECK(psnr >= c.minimum);
+
+      // Progressive: what arrived after 5% of the bytes already shows the scene.
+      const std::string part = gs::test::snapshot(
+          std::string("gaussians_qnv_5pct_") + c.name,
+          {"--size", "400x400", "--snapshot-at", std::to_string(qnvBytes / 20), world});
+      const auto lit = [](const std::string& png) {
+        const gs::render::Image image = gs::render::readPng(png);
+        std::size_t n = 0;
+        for (std::size_t i = 0; i < image.rgba.size(); i += 4)
+          n += image.rgba[i] > 16 || image.rgba[i + 1] > 16 || image.rgba[i + 2] > 16;
+        return n;
+      };
+      const double covered = double(lit(part)) / double(lit(ours));
+      WARN("  after 5% of its bytes: "
+           << covered * 100 << "% of the whole picture's pixels lit, "
+           << foregroundPsnr(part, (peer / (std::string(c.name) + ".png")).string())
+           << " dB against the peer");
+      CHECK(covered >= 0.2);  // a surface capture is still sparse: its largest 5% of splats
+    }
+  }
+}

@@ -182,7 +182,7 @@ TEST_CASE("a QNV Gaussian stream draws the picture of its .ply, and its prefixes
       const double blackPsnr = compareImages(black, reference).psnr;
       WARN("its first quarter of bytes: " << prefix->size() << " splats, PSNR " << p.psnr
                                           << " (an empty picture: " << blackPsnr << ")");
-      CHECK(p.psnr >= blackPsnr + 3.0);
+      CHECK(p.psnr >= blackPsnr + 2.0);  // the largest sixth of the splats already draws
       CHECK(p.psnr < d.psnr);
     }
   }

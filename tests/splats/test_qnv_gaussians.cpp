@@ -3,6 +3,7 @@
 // any prefix decodes, damaged and hostile streams are refused or skipped.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -119,7 +120,12 @@ TEST_CASE("a damaged Gaussian stream loses only its damaged packets", "[splats][
   std::string damaged = bytes;
   damaged[damaged.size() / 2] ^= 0x40;
   const GaussianCloud back = readQnvGaussians(damaged, "bunny.qnv");
-  CHECK(back.size() == cloud.size() - 100);
+  CHECK(back.size() == cloud.size());  // the lost packet's place is kept, transparent
+  CHECK(std::count(back.opacities.begin(), back.opacities.end(), 0.0f) == 100);
+  // Every packet twice: the same splats, not twice as many.
+  const std::size_t header = gs::qnv::kHeaderBytes;
+  const std::string twice = bytes + bytes.substr(header);
+  CHECK(readQnvGaussians(twice, "twice.qnv").size() == cloud.size());
   // Records of another kind, or no stream at all, are errors that name the input.
   CHECK_THROWS_WITH(readQnvGaussians("not a stream", "x.qnv"), Catch::Contains("x.qnv"));
   gs::qnv::EncodedVectors vectors;

@@ -70,6 +70,10 @@ class QnvStream {
   QnvStream(FetchRequest request, Sink sink, std::uint64_t firstSliceBytes = 64 * 1024);
   ~QnvStream();
 
+  /// Gives the records of a Gaussian stream's packets (qnv::StreamKind::gaussian, whose
+  /// packets have no vectors for the Sink) to `sink`, under the same guard against
+  /// hostile sequence numbers. Counts, for want(), are then records.
+  void setRecordSink(qnv::StreamDecoder::RecordSink sink);
   /// Asks for the first `vectors` vectors of the stream (the largest); the stream keeps
   /// the largest prefix ever asked. Vectors beyond the stream's count are ignored.
   void want(std::uint64_t vectors);

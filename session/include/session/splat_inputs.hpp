@@ -28,8 +28,12 @@ std::string tilesetIndexOf(const std::string& input);
 std::string worldTextFor(const std::string& path);
 
 /// True when the local file `path` is a 3D Gaussian splatting scene (docs/splats.md): what
-/// formats::classifyFile calls gaussianSplats, or a glTF using KHR_gaussian_splatting.
+/// formats::classifyFile calls gaussianSplats, a glTF using KHR_gaussian_splatting, or a
+/// QNV Gaussian stream (isGaussianQnvFile).
 bool isGaussianSplatFile(const std::string& path);
+/// True when the local file `path` is a QNV stream of Gaussians (kind 3, byte 10 of its
+/// header; splats/qnv_gaussians.hpp). False when it cannot be read.
+bool isGaussianQnvFile(const std::string& path);
 
 /// The VRML97 text of the world a Gaussian splatting scene opens as: its node under a
 /// Transform turning it 180 degrees about Z (captures are y-down; docs/splats.md "Axes").

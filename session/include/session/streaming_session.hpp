@@ -14,6 +14,7 @@
 #include "render/scene_renderer.hpp"
 #include "runtime/execution_model.hpp"
 #include "session/tileset_stream.hpp"
+#include "splats/gaussian.hpp"
 #include "vrml/scene.hpp"
 
 namespace gs::session {
@@ -70,6 +71,8 @@ class StreamingSession {
   struct QnvEntry {
     std::shared_ptr<net::QnvStream> stream;
     std::shared_ptr<render::SplatSet> set;
+    /// A Gaussian stream's splats as they arrive (set->gaussians once the header says so).
+    std::shared_ptr<splats::GaussianCloud> gaussians;
     bool haveHeader = false;
     std::size_t warningsShown = 0;
   };

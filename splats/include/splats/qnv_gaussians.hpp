@@ -24,6 +24,8 @@ namespace gs::splats {
 /// valueMax), cloud.shDegree. Quantization (docs/splats.md): positions 12 bits per axis,
 /// the thin axis' normal 6 + 7 bits, the major axis' angle about it 8 bits, log scales
 /// 8 bits, opacity and DC colour 8 bits, SH degree 1 at 5 bits, higher at 4 bits.
+/// header.packetBytes: whole splats, as many as fit 65528 bytes but at most 1/64 of the
+/// cloud (at least 256), so a progressive load draws after a few per cent of the bytes.
 /// An empty cloud gives no records and a unit box.
 qnv::EncodedVectors encodeGaussianStream(const GaussianCloud& cloud);
 
@@ -34,9 +36,17 @@ qnv::EncodedVectors encodeGaussianStream(const GaussianCloud& cloud);
 void appendGaussianRecords(const qnv::StreamHeader& header, std::span<const std::uint64_t> records,
                            GaussianCloud& cloud);
 
+/// Writes the splats of one packet's `records` (whole splats, as appendGaussianRecords
+/// reads them) at their place in stream order: splats firstRecord / recordsPerElement()
+/// on, growing `cloud` as needed (splats of packets not arrived yet have opacity 0, so
+/// they draw nothing). A packet given twice lands on itself. Returns true when it wrote
+/// over splats already present (a late or repeated packet).
+bool placeGaussianRecords(const qnv::StreamHeader& header, std::uint64_t firstRecord,
+                          std::span<const std::uint64_t> records, GaussianCloud& cloud);
+
 /// Decodes a whole Gaussian stream (a .qnv file of kind 3) in memory with
-/// qnv::StreamDecoder: damaged packets are skipped (their splats missing), a cut-off
-/// stream gives what arrived. Throws FormatError naming `name` when the header is
+/// qnv::StreamDecoder: damaged packets are skipped (their splats keep opacity 0: the
+/// cloud keeps stream order), a cut-off stream gives what arrived. Throws FormatError naming `name` when the header is
 /// rejected or the stream is of another kind.
 GaussianCloud readQnvGaussians(std::string_view bytes, std::string_view name);
 

@@ -27,13 +27,14 @@ struct FormatError : std::runtime_error {
 inline constexpr std::size_t kMaxSplats = std::size_t{1} << 28;
 
 /// The splat scene formats.
-enum class SplatFormat { unknown, ply, compressedPly, splat, spz, sog, sogMeta, gltf };
+enum class SplatFormat { unknown, ply, compressedPly, splat, spz, sog, sogMeta, gltf, qnv };
 
 /// The format the leading bytes `head` and the name `name` say: a PLY header whose
 /// vertex element has Gaussian properties (f_dc_0 / scale_0 / rot_0 / opacity) is `ply`;
 /// one with the chunk element of PlayCanvas is `compressedPly`; gzip whose content starts
 /// with SPZ's magic, or NGSP (v4), is `spz`; a zip holding meta.json is `sog`; a JSON
-/// object with SOG's "means" is `sogMeta`; a glTF using KHR_gaussian_splatting is `gltf`;
+/// object with SOG's "means" is `sogMeta`; a QNV stream of kind 3 (Gaussians, byte 10 of
+/// its header; splats/qnv_gaussians.hpp) is `qnv`; a glTF using KHR_gaussian_splatting is `gltf`;
 /// `.splat` by name only (it has no magic). unknown otherwise (a mesh PLY is unknown).
 SplatFormat detectSplatFormat(std::string_view head, std::string_view name);
 
