@@ -21,7 +21,9 @@ namespace {
 constexpr int kHistogramBins = 10;
 
 const char* kindName(qnv::StreamKind kind) {
-  return kind == qnv::StreamKind::volume ? "volume" : "surface";
+  return kind == qnv::StreamKind::volume     ? "volume"
+         : kind == qnv::StreamKind::gaussian ? "Gaussian splat"
+                                             : "surface";
 }
 
 }  // namespace
@@ -63,6 +65,18 @@ int runQnvInfo(const std::string& path) {
         ++magnitudeBits;
     }
   };
+  // A Gaussian stream's importance is the A of each splat's first record.
+  decoder.setRecordSink([&](std::uint64_t, std::span<const std::uint64_t> records) {
+    const qnv::StreamHeader& h = *decoder.header();
+    std::vector<qnv::DecodedVector> firsts;
+    for (std::size_t i = 0; i < records.size(); i += h.recordsPerElement()) {
+      qnv::DecodedVector v{};
+      v.magnitude = qnv::reconstructMagnitude(qnv::magnitudeCode(records[i]), h.mapping,
+                                              h.magnitudeMin, h.magnitudeMax);
+      firsts.push_back(v);
+    }
+    sink(0, firsts);
+  });
   std::string chunk(1 << 20, '\0');
   while (in) {
     in.read(chunk.data(), static_cast<std::streamsize>(chunk.size()));
@@ -91,6 +105,10 @@ int runQnvInfo(const std::string& path) {
                   : 0.0);
   std::printf("  bounds      %g %g %g .. %g %g %g\n", h.boundsMin.x, h.boundsMin.y, h.boundsMin.z,
               h.boundsMax.x, h.boundsMax.y, h.boundsMax.z);
+  if (h.kind == qnv::StreamKind::gaussian)
+    std::printf("  splats      %llu of %u records each, SH degree %u, scales %g .. %g\n",
+                static_cast<unsigned long long>(h.vectorCount / h.recordsPerElement()),
+                h.recordsPerElement(), h.shDegree, std::exp(h.valueMin), std::exp(h.valueMax));
   if (h.kind == qnv::StreamKind::volume)
     std::printf("  volume      %u x %u x %u voxels, spacing %g %g %g, values %g .. %g\n",
                 h.volumeDims.x, h.volumeDims.y, h.volumeDims.z, h.voxelSpacing.x, h.voxelSpacing.y,
