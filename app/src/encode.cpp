@@ -285,6 +285,14 @@ int runEncode(const Options& options) {
     std::fprintf(stderr, "ghostspace: %s\n", error.what());
     return 1;
   }
+  if (summary.kept == 0) {  // never a silent success: nothing written, exit 1
+    bar.finish();
+    std::fprintf(stderr,
+                 "ghostspace: %s: nothing to encode: %s %s, none with a non-zero magnitude%s\n",
+                 input.c_str(), withCommas(summary.elements).c_str(), elements,
+                 summary.elements ? " in the selection" : "");
+    return 1;
+  }
   qnv::coarsenMagnitudes(vectors.records, options.encode.magnitudeBits);
   const std::string bytes = tileset ? std::string() : qnv::writeStream(vectors, s.write);
   bar.finish();

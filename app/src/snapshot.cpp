@@ -6,6 +6,7 @@
 #include "app/frame_log.hpp"
 #include "app/layout.hpp"
 #include "app/progress_bar.hpp"
+#include "formats/input_kind.hpp"
 #include "render/context.hpp"
 #include "render/movie_players.hpp"
 #include "session/splat_inputs.hpp"
@@ -221,6 +222,22 @@ int runSnapshot(const Options& options) {
   bool onlySplatInputs = true;
   for (const std::string& input : options.inputs) onlySplatInputs &= session::isSplatInput(input);
   if (drawError && onlySplatInputs) return 1;
+  // Splat inputs that arrived whole but hold nothing to draw (an empty stream, a scene of
+  // no splats): never a silent black picture.
+  std::size_t splatsDrawn = 0;
+  for (const auto& v : views) splatsDrawn += v->renderer().statistics().splats;
+  bool onlyStreams = true;  // QNV streams and Gaussian scenes: what draws splats alone
+  for (const std::string& input : options.inputs) {
+    const formats::InputKind kind = formats::classifyFile(input);
+    onlyStreams &= kind == formats::InputKind::qnv || kind == formats::InputKind::gaussianSplats;
+  }
+  if (onlyStreams && splatsDrawn == 0 && options.snapshotAtBytes == 0 &&
+      options.snapshotAtSeconds == 0.0 && !failed) {
+    for (const std::string& input : options.inputs)
+      std::fprintf(stderr, "ghostspace: %s: nothing to draw: it holds no vectors or splats\n",
+                   input.c_str());
+    return 1;
+  }
   bool anyError = failed;
   for (const auto& m : messages) anyError |= m.first;
   bool anyNodes = false;

@@ -59,6 +59,10 @@ std::shared_ptr<const vrml::Scene> StreamingSession::open(const std::string& inp
     error = "cannot open '" + path + "': " + std::strerror(errno);
     return nullptr;
   }
+  if (const std::string why = unsupportedFormat(path); !why.empty()) {
+    error = path + ": " + why;
+    return nullptr;
+  }
   if (isSplatInput(path)) {
     // Read (and for meshes and volumes, encoded) here; a .qnv world streams the file.
     LoadedWorld w = loadWorld(path);

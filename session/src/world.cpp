@@ -1,16 +1,33 @@
 #include "session/world.hpp"
 
 #include "base/file.hpp"
+#include "formats/input_kind.hpp"
 #include "qnv/error.hpp"
 #include "session/splat_inputs.hpp"
 #include "vrml/parser.hpp"
 
+#include <cctype>
 #include <chrono>
 #include <filesystem>
 #include <unordered_set>
 #include <vector>
 
 namespace gs::session {
+
+std::string unsupportedFormat(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) return {};  // a tileset folder, or an error later
+  if (formats::classifyFile(path) != formats::InputKind::unknown) return {};
+  std::string extension = std::filesystem::path(path).extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  std::string shown;  // printable ASCII only
+  for (char c : extension.substr(0, 16))
+    if (c > 0x20 && c < 0x7f) shown += c;
+  return "unsupported format" + (shown.empty() ? std::string() : " (" + shown + ")") +
+         ": not a VRML97 or X3D world, a mesh (.ply .obj .glb .gltf), a volume (.nrrd .nhdr "
+         ".nii), a QNV stream or tileset, or a Gaussian splatting scene (.ply .spz .sog "
+         ".splat); README.md lists the formats";
+}
 
 LoadedWorld loadWorld(const std::string& path) {
   LoadedWorld w;
@@ -25,7 +42,12 @@ LoadedWorld loadWorld(const std::string& path) {
     w.bytes = bytes.size();
     // A stream, mesh or volume opens as a world made for it (session/splat_inputs.hpp).
     std::string text;
-    if (isSplatInput(path)) {
+    if (const std::string why = unsupportedFormat(path); !why.empty()) {
+      w.readable = false;
+      w.scene = std::make_shared<vrml::Scene>();
+      w.scene->url = path;
+      w.scene->diagnostics.error({path, 0, 0}, why);
+    } else if (isSplatInput(path)) {
       try {
         text = worldTextFor(path);
       } catch (const qnv::InputError& e) {

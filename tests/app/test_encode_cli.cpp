@@ -187,3 +187,54 @@ TEST_CASE("encode keeps the paper's top 9.1% of CThead's voxels", "[app][encode]
   auto info = runGhostspace({"info", out.string()});
   CHECK_THAT(info.out, Catch::Contains("256 x 256 x 113 voxels, spacing 1 1 2"));
 }
+
+TEST_CASE(
+    "encoding bytes of no format the program reads fails, writes nothing, quotes no raw "
+    "bytes",
+    "[app][encode]") {
+  // Found on a first day: random bytes were parsed as VRML, an empty stream was written
+  // and the exit status was 0 (issue 42, frictions 1 and 2).
+  const auto garbage = scratch("garbage.bin");
+  std::string bytes;
+  for (int i = 0; i < 4096; ++i) bytes.push_back(static_cast<char>((i * 7919 + 13) % 256));
+  std::ofstream(garbage, std::ios::binary) << bytes;
+  const auto out = scratch("garbage.qnv");
+  std::filesystem::remove(out);
+  const auto r = runGhostspace({"encode", garbage.string(), "-o", out.string()});
+  CHECK(r.exitCode == 1);
+  CHECK_FALSE(std::filesystem::exists(out));
+  CHECK(r.err.find("unsupported format (.bin)") != std::string::npos);
+  for (char c : r.err + r.out) {
+    const auto b = static_cast<unsigned char>(c);
+    CHECK((b == '\n' || (b >= 0x20 && b < 0x7f)));
+  }
+  // A mesh file GhostSpace does not read, opened as a snapshot: the same sentence, exit 1.
+  const auto stl = scratch("landscape.stl");
+  std::ofstream(stl, std::ios::binary) << "solid landscape\n facet normal 0 0 1\n\x1b[31m\x01";
+  const auto s = runGhostspace(
+      {"--snapshot", scratch("landscape.png").string(), "--size", "16x16", stl.string()});
+  CHECK(s.exitCode == 1);
+  CHECK(s.err.find("unsupported format (.stl)") != std::string::npos);
+  CHECK(s.err.find('\x1b') == std::string::npos);
+
+  // A mesh whose every triangle is degenerate: nothing to encode, exit 1, no file.
+  const auto flat = scratch("flat.obj");
+  std::ofstream(flat) << "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n";
+  const auto flatOut = scratch("flat.qnv");
+  std::filesystem::remove(flatOut);
+  const auto f = runGhostspace({"encode", flat.string(), "-o", flatOut.string()});
+  CHECK(f.exitCode == 1);
+  CHECK(f.err.find("nothing to encode") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(flatOut));
+}
+
+TEST_CASE("a snapshot of a stream that holds no vectors fails", "[app][encode]") {
+  gs::qnv::EncodedVectors none;
+  none.header.boundsMax = glm::vec3(1.0f);
+  const auto empty = scratch("empty.qnv");
+  std::ofstream(empty, std::ios::binary) << gs::qnv::writeStream(none);
+  const auto r = runGhostspace(
+      {"--snapshot", scratch("empty.png").string(), "--size", "16x16", empty.string()});
+  CHECK(r.exitCode == 1);
+  CHECK(r.err.find("nothing to draw") != std::string::npos);
+}

@@ -501,3 +501,11 @@ TEST_CASE("node table: every entry builds through the interface parser", "[parse
   CHECK(fs->fields[static_cast<std::size_t>(fs->findExact("family"))]
             .defaultValue.get<FieldType::MFString>() == std::vector<std::string>{"SERIF"});
 }
+
+TEST_CASE("a missing header quotes the first bytes with the unprintable ones escaped",
+          "[vrml][parser]") {
+  const auto scene = gs::vrml::parseVrml(std::string("solid \x1b[31m\xff\x01", 13), "x.stl");
+  REQUIRE(!scene.diagnostics.items.empty());
+  CHECK(scene.diagnostics.items.front().message ==
+        "expected '#VRML V2.0 utf8' or '#X3D V4.0 utf8' header, got 'solid \\x1b[31m\\xff\\x01'");
+}

@@ -704,9 +704,20 @@ std::string headerProblem(std::string_view line, std::string& x3dVersion) {
     x3dVersion = v;
     return {};
   }
+  // Quoted with every byte that is not printable ASCII escaped, so that a binary file's
+  // bytes never reach the terminal as control sequences.
   std::string got;
-  for (char c : line.substr(0, 40))
-    got += (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? '?' : c;
+  static constexpr char kHex[] = "0123456789abcdef";
+  for (char c : line.substr(0, 40)) {
+    const auto b = static_cast<unsigned char>(c);
+    if (b < 0x20 || b >= 0x7f) {
+      got += "\\x";
+      got += kHex[b >> 4];
+      got += kHex[b & 15];
+    } else {
+      got += c;
+    }
+  }
   if (line.size() > 40) got += "...";
   return "expected '#VRML V2.0 utf8' or '#X3D V4.0 utf8' header, got '" + got + "'";
 }

@@ -18,9 +18,17 @@ struct LoadedWorld {
   bool readable = false;               // false when the file could not be read at all
 };
 
+/// The sentence "unsupported format (.stl): not a VRML97 or X3D world, ..." when the local
+/// file `path` is none of the inputs GhostSpace reads (formats::classifyFile finds no kind
+/// from its leading bytes or its name: a world without its '#VRML' or '#X3D' header and
+/// without a world's extension is not a world either), else "". Only printable ASCII of
+/// the extension is quoted.
+std::string unsupportedFormat(const std::string& path);
+
 /// Reads and parses the VRML97 world at the local path `path` (gzip or not); a mesh,
 /// volume or .qnv file opens as the world splat_inputs.hpp makes for it. Never throws
-/// for bad content: problems are in scene->diagnostics.
+/// for bad content: problems are in scene->diagnostics. A file of an unsupported format
+/// (unsupportedFormat) is not readable: its one diagnostic says so.
 LoadedWorld loadWorld(const std::string& path);
 
 /// Distinct nodes reachable from the scene's roots through SFNode/MFNode fields, counted
