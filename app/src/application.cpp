@@ -70,9 +70,10 @@ namespace {
 constexpr const char* kDescription =
     "GhostSpace " GS_VERSION
     ": an extended VRML97 browser for remote visualization of large 3D data.\n"
-    "Opens VRML97 worlds (.wrl, .wrl.gz, .wrz), X3D worlds (.x3dv, .x3d, .x3dz, .x3dvz) and\n"
-    "QNV streams from files or http(s) URLs in a\n"
-    "window, showing them while they arrive, or renders them headless.";
+    "Opens VRML97 worlds (.wrl, .wrl.gz, .wrz), X3D worlds (.x3dv, .x3d, .x3dj, .x3dz,\n"
+    ".x3dvz), QNV streams and tilesets, meshes, volumes and Gaussian splatting scenes from\n"
+    "files or http(s) URLs in a window, showing them while they arrive, or renders them\n"
+    "headless.";
 
 struct Parsed {
   Options options;
@@ -97,9 +98,10 @@ Parsed parseArguments(int argc, char** argv) {
   registerOptions(OptionScope::main, cli, a);
   cli.add_option("INPUT", a.options.inputs,
                  "Worlds to open, files or http(s):// URLs: VRML97 (.wrl, .wrl.gz, .wrz), X3D "
-                 "(.x3dv, .x3d, .x3dz, .x3dvz), QNV "
-                 "streams (.qnv), and local meshes (.ply, .obj, .gltf, .glb) or volumes "
-                 "(.nrrd, .nhdr, .nii, .nii.gz)");
+                 "(.x3dv, .x3d, .x3dj, .x3dz, .x3dvz), QNV streams (.qnv) and tilesets "
+                 "(index.qnvt or its folder), Gaussian splatting scenes (.ply, "
+                 ".compressed.ply, .splat, .spz, .sog, .glb), and local meshes (.ply, .obj, "
+                 ".gltf, .glb) or volumes (.nrrd, .nhdr, .nii, .nii.gz)");
 
   CLI::App* info = cli.add_subcommand("info",
                                       "Print what was read from INPUT: node counts, "

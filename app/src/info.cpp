@@ -1,7 +1,10 @@
 // `ghostspace info INPUT`: what was read, how big it is, how long parsing took.
 #include "app/commands.hpp"
+#include "base/file.hpp"
 #include "formats/input_kind.hpp"
+#include "qnv/tileset.hpp"
 #include "scene/traversal.hpp"
+#include "session/splat_inputs.hpp"
 #include "session/world.hpp"
 #include "vrml/node_support.hpp"
 
@@ -10,11 +13,62 @@
 
 namespace gs::app {
 
+namespace {
+
+// `info index.qnvt` (or its folder): the tileset's bounds, vectors, bricks and levels
+// (docs/tilesets.md; issue 42, friction 7).
+int runTilesetInfo(const std::string& path) {
+  std::string bytes, error;
+  if (!base::readFile(path, bytes, error)) {
+    std::fprintf(stderr, "ghostspace: %s\n", error.c_str());
+    return 1;
+  }
+  const std::optional<qnv::TilesetIndex> index = qnv::parseTilesetIndex(bytes, path, error);
+  if (!index) {
+    std::fprintf(stderr, "ghostspace: %s\n", error.c_str());
+    return 1;
+  }
+  const qnv::StreamHeader& h = index->header;
+  std::printf("%s: QNV tileset, %s\n", path.c_str(),
+              h.kind == qnv::StreamKind::volume ? "volume" : "surface");
+  std::printf("  bounds      %g %g %g .. %g %g %g\n", h.boundsMin.x, h.boundsMin.y, h.boundsMin.z,
+              h.boundsMax.x, h.boundsMax.y, h.boundsMax.z);
+  if (h.kind == qnv::StreamKind::volume)
+    std::printf("  volume      %u x %u x %u voxels, spacing %g %g %g\n", h.volumeDims.x,
+                h.volumeDims.y, h.volumeDims.z, h.voxelSpacing.x, h.voxelSpacing.y,
+                h.voxelSpacing.z);
+  std::uint64_t brickBytes = 0;
+  for (const qnv::TilesetBrick& b : index->bricks) brickBytes += b.fileBytes;
+  std::printf("  vectors     %llu in %zu bricks, depth %u (levels 0..%u)\n",
+              static_cast<unsigned long long>(h.vectorCount), index->bricks.size(),
+              static_cast<unsigned>(index->depth), static_cast<unsigned>(index->depth));
+  std::printf("  bytes       %llu in bricks, %zu in the index\n",
+              static_cast<unsigned long long>(brickBytes), bytes.size());
+  for (unsigned level = 0; level <= index->depth; ++level) {
+    std::size_t bricks = 0;
+    std::uint64_t vectors = 0;
+    for (const qnv::TilesetBrick& b : index->bricks)
+      if (b.level == level) {
+        ++bricks;
+        vectors += b.vectorCount;
+      }
+    std::printf("  level %-4u  %zu bricks, %llu vectors\n", level, bricks,
+                static_cast<unsigned long long>(vectors));
+  }
+  return 0;
+}
+
+}  // namespace
+
 int runInfo(const Options& options) {
   int status = 0;
   for (const std::string& input : options.inputs) {
     if (formats::classifyFile(input) == formats::InputKind::qnv) {
       status = std::max(status, runQnvInfo(input));
+      continue;
+    }
+    if (const std::string index = session::tilesetIndexOf(input); !index.empty()) {
+      status = std::max(status, runTilesetInfo(index));
       continue;
     }
     const session::LoadedWorld w = session::loadWorld(input);

@@ -14,12 +14,6 @@ namespace gs::app {
 
 namespace {
 
-// Files the open dialog lists: worlds by name (VRML97 .wrl, .wrl.gz, .wrz; X3D .x3d, .x3dv,
-// .x3dz, .x3dvz, ...; any case).
-bool isWorldFile(const std::filesystem::path& p) {
-  return formats::kindFromName(p.filename().string()) == formats::InputKind::world;
-}
-
 void drawOpenDialog(WindowState& state) {
   if (!state.showOpenDialog) return;
   ImGui::SetNextWindowSize(ImVec2(520, 380), ImGuiCond_FirstUseEver);
@@ -27,7 +21,7 @@ void drawOpenDialog(WindowState& state) {
     ImGui::End();
     return;
   }
-  ImGui::TextUnformatted("Path or http(s):// URL of a world (.wrl, .x3d, .x3dv, .qnv, ...):");
+  ImGui::TextUnformatted("Path or http(s):// URL of a world, stream, mesh, volume or splat scene:");
   const bool entered = ImGui::InputText("##path", state.openPath, sizeof state.openPath,
                                         ImGuiInputTextFlags_EnterReturnsTrue);
   ImGui::SameLine();
@@ -58,7 +52,7 @@ void drawOpenDialog(WindowState& state) {
   std::sort(entries.begin(), entries.end());
   for (const auto& e : entries) {
     const bool folder = e.is_directory(ec);
-    if (!folder && !isWorldFile(e.path())) continue;
+    if (!folder && !formats::isOpenableName(e.path().filename().string())) continue;
     const std::string label = e.path().filename().string() + (folder ? "/" : "");
     if (ImGui::Selectable(label.c_str())) {
       std::snprintf(state.openPath, sizeof state.openPath, "%s%s", e.path().string().c_str(),

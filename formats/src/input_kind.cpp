@@ -110,6 +110,10 @@ InputKind sniffPlain(std::string_view head) {
 
 }  // namespace
 
+bool isOpenableName(std::string_view name) {
+  return kindFromName(name) != InputKind::unknown;
+}
+
 InputKind kindFromName(std::string_view name) {
   name = base::withoutQueryOrFragment(name);
   for (const Suffix& s : kSuffixes)

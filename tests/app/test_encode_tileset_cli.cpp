@@ -115,3 +115,17 @@ TEST_CASE("tileset encodes and merges refuse bad options and missing shares",
   CHECK(r.exitCode == 1);
   CHECK_THAT(r.err, Catch::Contains("holds no shares to merge"));
 }
+
+TEST_CASE("info on a tileset gives its bounds, vectors, bricks and levels", "[app][tileset]") {
+  // Issue 42, friction 7: it said "bounding box: empty, triangles: 0".
+  const fs::path golden = gs::test::sourceDir() / "tests/qnv/golden/tileset_blob";
+  for (const fs::path& input : {golden / "index.qnvt", golden}) {
+    const auto r = runGhostspace({"info", input.string()});
+    INFO(r.out << r.err);
+    CHECK(r.exitCode == 0);
+    CHECK(r.out.find("QNV tileset, volume") != std::string::npos);
+    CHECK(r.out.find("vectors     120 in 23 bricks, depth 2") != std::string::npos);
+    CHECK(r.out.find("level 2") != std::string::npos);
+    CHECK(r.out.find("triangles") == std::string::npos);
+  }
+}

@@ -67,3 +67,14 @@ TEST_CASE("classify: content wins over a missing or lying extension", "[formats]
   CHECK(classifyFile((dir.path / "missing.ply").string()) == InputKind::ply);
   CHECK(classifyFile((dir.path / "missing").string()) == InputKind::unknown);
 }
+
+TEST_CASE("the open dialog lists every kind of file the program opens", "[formats][kind]") {
+  // Issue 42, friction 6: it listed worlds only and hid the streams, meshes and volumes.
+  for (const char* name :
+       {"w.wrl", "w.x3d", "w.x3dv", "w.x3dj", "w.x3dvz", "head.qnv", "index.qnvt", "bunny.ply",
+        "m.obj", "a.glb", "a.gltf", "ct.nhdr", "ct.nrrd", "brain.nii", "brain.nii.gz", "s.spz",
+        "s.sog", "s.splat", "s.compressed.ply"})
+    CHECK(gs::formats::isOpenableName(name));
+  for (const char* name : {"notes.txt", "landscape.stl", "photo.jpg", "Makefile"})
+    CHECK_FALSE(gs::formats::isOpenableName(name));
+}

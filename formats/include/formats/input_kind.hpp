@@ -32,6 +32,11 @@ enum class InputKind {
 /// after removing "?query" and "#fragment") decides. unknown when none matches.
 InputKind kindFromName(std::string_view name);
 
+/// Whether a file of this name is one the program opens, by name alone (kindFromName is
+/// not unknown): what the window's File > Open dialog lists (worlds, QNV streams and
+/// tilesets, meshes, volumes, Gaussian splatting scenes; issue 42, friction 6).
+bool isOpenableName(std::string_view name);
+
 /// The kind the leading bytes `head` say (at least 352 bytes are needed to see NIfTI-1;
 /// fewer are fine for the others). gzip data are inflated (their first bytes only) and
 /// the result sniffed. unknown when nothing is recognised.
