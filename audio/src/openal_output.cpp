@@ -6,7 +6,11 @@
 #include <AL/alc.h>
 
 #include <cmath>
+#include <cstdio>
 #include <unordered_map>
+
+#include <fcntl.h>
+#include <unistd.h>
 
 namespace gs::audio {
 
@@ -95,6 +99,32 @@ class OpenAlOutput final : public AudioOutput {
   std::unordered_map<const formats::AudioData*, ALuint> buffers_;
 };
 
+// While the device opens, stderr points at /dev/null: OpenAL Soft and ALSA print every
+// backend they try (about ten lines on a machine without a sound card), and the caller's
+// one-line note already says what matters (issue 42, friction 5).
+class QuietStderr {
+ public:
+  QuietStderr() {
+    std::fflush(stderr);
+    saved_ = ::dup(2);
+    const int null = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
+    if (saved_ >= 0 && null >= 0) ::dup2(null, 2);
+    if (null >= 0) ::close(null);
+  }
+  ~QuietStderr() {
+    std::fflush(stderr);
+    if (saved_ >= 0) {
+      ::dup2(saved_, 2);
+      ::close(saved_);
+    }
+  }
+  QuietStderr(const QuietStderr&) = delete;
+  QuietStderr& operator=(const QuietStderr&) = delete;
+
+ private:
+  int saved_ = -1;
+};
+
 }  // namespace
 
 std::unique_ptr<AudioOutput> openAudioOutput(bool wanted, std::string& note) {
@@ -102,12 +132,17 @@ std::unique_ptr<AudioOutput> openAudioOutput(bool wanted, std::string& note) {
     note = "sound is off";
     return std::make_unique<NullAudioOutput>();
   }
-  ALCdevice* device = alcOpenDevice(nullptr);
+  ALCdevice* device = nullptr;
+  ALCcontext* context = nullptr;
+  {
+    const QuietStderr quiet;
+    device = alcOpenDevice(nullptr);
+    if (device != nullptr) context = alcCreateContext(device, nullptr);
+  }
   if (device == nullptr) {
     note = "no audio device: sound is not played";
     return std::make_unique<NullAudioOutput>();
   }
-  ALCcontext* context = alcCreateContext(device, nullptr);
   if (context == nullptr) {
     alcCloseDevice(device);
     note = "the audio device has no context: sound is not played";

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <set>
 
 #include "base/url.hpp"
 #include "formats/input_kind.hpp"
@@ -209,12 +210,18 @@ std::vector<const TilesetStream*> StreamingSession::tilesets() const {
 
 void StreamingSession::drainMessages(std::vector<std::pair<bool, std::string>>& out) {
   for (auto& [url, t] : tilesets_) t->drainMessages(out);
+  // A stream that ends short says so in its decoder's warnings, shown below: its end
+  // message repeats the last of them and is not shown twice.
+  std::set<std::string> warned;
+  for (const auto& [url, e] : qnv_)
+    warned.insert(e.stream->warnings().begin(), e.stream->warnings().end());
   for (const net::StreamProgress& p : loader_.progress()) {
     if (!p.settled() || p.state == net::StreamState::idle) continue;
     const std::string state = net::toString(p.state);
     if (endShown_[p.url] == state) continue;
     endShown_[p.url] = state;
-    if (!p.error.empty()) out.push_back({p.state == net::StreamState::failed, p.error});
+    if (!p.error.empty() && (p.state == net::StreamState::failed || !warned.count(p.error)))
+      out.push_back({p.state == net::StreamState::failed, p.error});
   }
   std::vector<const vrml::Scene*> scenes;
   for (const auto& s : localScenes_) scenes.push_back(s.get());

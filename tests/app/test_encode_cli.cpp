@@ -238,3 +238,22 @@ TEST_CASE("a snapshot of a stream that holds no vectors fails", "[app][encode]")
   CHECK(r.exitCode == 1);
   CHECK(r.err.find("nothing to draw") != std::string::npos);
 }
+
+TEST_CASE("a truncated stream says so once", "[app][encode]") {
+  // Issue 42, friction 8: the decoder's "stream ends after ..." came twice.
+  const auto obj = scratch("quad.obj");
+  std::ofstream(obj) << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
+  for (int i = 0; i < 200; ++i) std::ofstream(obj, std::ios::app) << "f 1 2 3\nf 1 3 4\n";
+  const auto full = scratch("quad.qnv");
+  REQUIRE(runGhostspace({"encode", obj.string(), "-o", full.string(), "--packet-bytes", "48"})
+              .exitCode == 0);
+  const std::string bytes = gs::test::readBytes(full);
+  const auto cut = scratch("quad_cut.qnv");
+  std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+  const auto r =
+      runGhostspace({"--snapshot", scratch("cut.png").string(), "--size", "16x16", cut.string()});
+  const std::string line = "stream ends after";
+  const std::size_t first = r.err.find(line);
+  REQUIRE(first != std::string::npos);
+  CHECK(r.err.find(line, first + 1) == std::string::npos);
+}

@@ -4,7 +4,13 @@
 
 #include <catch2/catch.hpp>
 
+#include <cstdio>
 #include <cstdlib>
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include "test_support.hpp"
 
 using namespace gs;
 
@@ -59,4 +65,30 @@ TEST_CASE("Sound: without an audio device the output is the null one", "[audio][
   CHECK(none->isNull());
   CHECK(note.find("no audio device") != std::string::npos);
   none->update({});
+}
+
+TEST_CASE("Sound: opening the device prints nothing but the program's own note", "[audio][sound]") {
+  // Issue 42, friction 5: without a sound card, OpenAL Soft and ALSA printed about ten
+  // lines at every window launch before the one-line "no audio device".
+  ::unsetenv("ALSOFT_DRIVERS");  // every backend OpenAL Soft tries
+  std::fflush(stderr);
+  char path[] = "/tmp/gs_audio_stderr_XXXXXX";
+  const int file = ::mkstemp(path);
+  REQUIRE(file >= 0);
+  const int saved = ::dup(2);
+  ::dup2(file, 2);
+  std::string note;
+  {
+    auto output = audio::openAudioOutput(true, note);
+    REQUIRE(output);
+  }
+  std::fflush(stderr);
+  ::dup2(saved, 2);
+  ::close(saved);
+  const off_t printed = ::lseek(file, 0, SEEK_END);
+  ::close(file);
+  std::string text = gs::test::readBytes(path);
+  ::unlink(path);
+  INFO("stderr while opening: " << text);
+  CHECK(printed == 0);
 }
