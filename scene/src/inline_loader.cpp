@@ -11,9 +11,11 @@ namespace gs::scene {
 
 const SceneTraversal::InlineScene* SceneTraversal::inlineScene(const vrml::Node& inlineNode,
                                                                const std::string& baseUrl) {
-  if (auto it = inlinesByNode_.find(&inlineNode); it != inlinesByNode_.end())
-    return it->second.get();
   const std::vector<std::string>& urls = mfString(inlineNode, "url");
+  if (auto it = inlinesByNode_.find(&inlineNode);
+      it != inlinesByNode_.end() && inlineUrlsByNode_[&inlineNode] == urls)
+    return it->second.get();
+  inlineUrlsByNode_[&inlineNode] = urls;
   std::shared_ptr<InlineScene> result;
   std::string failures;
   for (const std::string& reference : urls) {
@@ -77,9 +79,10 @@ const SceneTraversal::InlineScene* SceneTraversal::inlineScene(const vrml::Node&
     failures += (failures.empty() ? "" : "; ") + url + ": " + reason;
   }
   if (!result) {
-    report(vrml::Severity::warning, inlineNode.location,
-           urls.empty() ? std::string("Inline has no url: nothing drawn")
-                        : "cannot load Inline (" + failures + "): nothing drawn");
+    // An Inline without a url draws nothing, quietly: a Script may set it later.
+    if (!failures.empty())
+      report(vrml::Severity::warning, inlineNode.location,
+             "cannot load Inline (" + failures + "): nothing drawn");
     result = std::make_shared<InlineScene>();
   }
   inlinesByNode_[&inlineNode] = result;

@@ -105,3 +105,27 @@ ROUTE S.choice TO SW.set_whichChoice
   CHECK(c[1] < 60);
   CHECK(c[2] < 60);
 }
+
+TEST_CASE("an Inline whose url a Script sets in initialize() is fetched by --snapshot",
+          "[app][script]") {
+  // Issue 42, friction 3: the Inline stayed empty with "Inline has no url"; the node's
+  // first (empty) resolution was cached and never made again for the new url.
+  gs::test::TempDir dir("inline_set_url");
+  dir.write("box.wrl",
+            "#VRML V2.0 utf8\nShape { appearance Appearance { material Material { diffuseColor "
+            "1 0 0 } } geometry Box { size 2 2 2 } }\n");
+  const std::string world =
+      dir.write("world.wrl",
+                "#VRML V2.0 utf8\nViewpoint { position 0 0 8 }\nDEF I Inline { }\nDEF S Script {\n"
+                "  eventOut MFString u\n"
+                "  url \"javascript: function initialize() { u = new MFString('box.wrl'); }\"\n}\n"
+                "ROUTE S.u TO I.set_url\n");
+  const fs::path png = dir.path / "out.png";
+  const auto r = runGhostspace({"--snapshot", png.string(), "--size", "64x64", world});
+  INFO(r.err);
+  REQUIRE(r.exitCode == 0);
+  const auto c = gs::test::centrePixel(png.string());
+  CHECK(c[0] > 100);  // the red box of the Inline
+  CHECK(c[1] < 40);
+  CHECK(r.err.find("Inline has no url") == std::string::npos);
+}

@@ -427,6 +427,9 @@ class SceneTraversal {
   std::unordered_map<const vrml::Scene*, std::unordered_set<std::int32_t>> filledGroups_;
   std::map<std::string, std::shared_ptr<InlineScene>> inlinesByUrl_;
   std::unordered_map<const vrml::Node*, std::shared_ptr<InlineScene>> inlinesByNode_;
+  /// The url field each node's entry was resolved from: a url changed since (a Script
+  /// routing to set_url, clause 6.25) resolves the node again.
+  std::unordered_map<const vrml::Node*, std::vector<std::string>> inlineUrlsByNode_;
   std::vector<std::shared_ptr<const vrml::Scene>> inlineScenesLoaded_;
   std::size_t boundViewpoint_ = 0;
   std::optional<BoundNodes> runtimeBound_;  // set: the execution model decides
