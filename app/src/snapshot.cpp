@@ -112,6 +112,7 @@ int runSnapshot(const Options& options) {
                                                                          float aspect) {
       scene::Camera c = r.boundViewpointCamera();
       const bool gltf = scene->x3d.encoding == "glTF";
+      if (fit && r.viewpoints().empty()) c.orientation = r.defaultOrientation();
       if (fit) c = r.fitToScene(aspect, c);
       if (!fit && (gltf || castle) && r.viewpoints().empty())
         c = scene::wholeSceneCamera(r.bounds(), c);

@@ -195,13 +195,20 @@ void SceneRenderer::setLod(double lod) {
   splats_->setLod(lod);
 }
 
+glm::quat SceneRenderer::defaultOrientation() {
+  bounds();  // loads the QNV nodes
+  return splats_->showsVolumesOnly() ? volumeFrontOrientation() : scene::Camera{}.orientation;
+}
+
 scene::Camera SceneRenderer::initialCamera(float aspect) {
   if (!viewpoints().empty() || bounds().empty()) return boundViewpointCamera();
   // A glTF asset starts where castle-model-viewer starts it (docs/gltf.md); other worlds
   // are fitted to the viewport.
   const bool gltf = traversal_.sharedScene()->x3d.encoding == "glTF";
-  scene::Camera camera = gltf ? scene::wholeSceneCamera(bounds(), scene::Camera{})
-                              : scene::fitCamera(bounds(), aspect, scene::Camera{});
+  scene::Camera start;
+  start.orientation = defaultOrientation();
+  scene::Camera camera =
+      gltf ? scene::wholeSceneCamera(bounds(), start) : scene::fitCamera(bounds(), aspect, start);
   if (navigation().visibilityLimit > 0.0f)
     camera.farClip = std::max(navigation().visibilityLimit, camera.nearClip * 2.0f);
   return camera;

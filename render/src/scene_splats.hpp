@@ -45,6 +45,17 @@ class SceneSplats {
   std::size_t draw(const scene::TraversalFrame& frame, scene::SceneTraversal& traversal,
                    const scene::Camera& camera, float aspect, bool headlight, int heightPixels = 0);
   scene::RenderMode mode() const { return mode_; }
+  /// True when the QNV nodes loaded so far (bounds() loads them) all show volumes (their
+  /// sets' stream kind, as their headers say) and there is at least one.
+  bool showsVolumesOnly() const {
+    bool any = false;
+    for (const auto& [node, entry] : sets_) {
+      if (!entry.set) continue;
+      if (entry.set->gaussians || entry.set->style.kind != qnv::StreamKind::volume) return false;
+      any = true;
+    }
+    return any;
+  }
   /// The scene grew (progressive loading): the splats-mode world set is built again when
   /// root nodes were added.
   void sceneChanged() {

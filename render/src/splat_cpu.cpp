@@ -148,7 +148,7 @@ bool prepare(const qnv::DecodedVector& vector, const Frame& f, Prepared& out) {
   glm::vec3 light(f.style->ambient);
   for (int i = 0; i < f.lightCount; ++i) {
     const SplatLight& l = f.lights[static_cast<std::size_t>(i)];
-    light += std::abs(glm::dot(world, l.direction)) * l.color;
+    light += (1.0f - f.style->ambient) * std::abs(glm::dot(world, l.direction)) * l.color;
   }
   out.color = glm::min(glm::vec3(rgba) * light, glm::vec3(1.0f));
   return finite(out.color);

@@ -46,7 +46,7 @@ vec3 splatLit(vec3 n, vec3 rgb) {
   vec3 wn = normalize(u_normalMatrix * n);
   vec3 light = vec3(u_ambient);
   for (int k = 0; k < u_lightCount; ++k)
-    light += abs(dot(wn, u_lightDirection[k])) * u_lightColor[k];
+    light += (1.0 - u_ambient) * abs(dot(wn, u_lightDirection[k])) * u_lightColor[k];
   return min(rgb * light, vec3(1.0));
 }
 )glsl";

@@ -10,6 +10,7 @@
 
 #include "baseline.hpp"
 #include "process.hpp"
+#include "render/image.hpp"
 #include "test_support.hpp"
 
 namespace fs = std::filesystem;
@@ -113,4 +114,28 @@ TEST_CASE("a KiCad world as polygons and as splats", "[app][render][splat][corpu
   REQUIRE(r.exitCode == 0);
   checkBaseline("kicad_cp_elec_outlines",
                 {"--size", "200x200", "--fit", "--mode", "outlines", outlined.string()});
+}
+
+TEST_CASE("a volume opens in the front view: along +Y, slices upright", "[app][render][splat]") {
+  // Issue 42, friction 9: a CT stack opened looking down its slice axis (CThead from
+  // above). A slab of the rows' plane (y = 1..3 of 16, its gradients along y) fills the
+  // front view and is a thin line from above.
+  gs::test::TempDir dir("front_view");
+  std::string voxels(16 * 16 * 16, '\0');
+  for (int z = 0; z < 16; ++z)
+    for (int x = 0; x < 16; ++x)
+      for (const auto& [y, value] : {std::pair{1, '\x80'}, {2, '\xff'}, {3, '\x80'}})
+        voxels[static_cast<std::size_t>(x + 16 * (y + 16 * z))] = value;
+  const std::string volume =
+      dir.write("slab.nrrd",
+                "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 16 16 16\nencoding: raw\n\n" + voxels);
+  const std::string png = (dir.path / "slab.png").string();
+  const auto r = gs::test::runGhostspace({"--snapshot", png, "--size", "64x64", volume});
+  INFO(r.err);
+  REQUIRE(r.exitCode == 0);
+  const gs::render::Image image = gs::render::readPng(png);
+  std::size_t lit = 0;
+  for (std::size_t i = 0; i < image.rgba.size(); i += 4)
+    lit += image.rgba[i] > 16 || image.rgba[i + 1] > 16 || image.rgba[i + 2] > 16;
+  CHECK(lit > 64 * 64 / 4);  // seen face on, not edge on
 }

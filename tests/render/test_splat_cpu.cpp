@@ -76,10 +76,11 @@ SplatStyle volumeStyle(float opacity) {
   return s;
 }
 
-/// A light along the view direction: shadeSplat gives rgb * (0.2 ambient + 0.8) = rgb for
-/// a volume splat (volumeStyle) facing the camera, rgb * 0.8 for a surface splat (no
-/// ambient).
-const std::vector<SplatLight> kHeadLight = {SplatLight{{0.0f, 0.0f, -1.0f}, glm::vec3(0.8f)}};
+/// A light along the view direction: shadeSplat gives rgb * (0.2 ambient + 0.8 * 1) = rgb
+/// for a volume splat (volumeStyle) facing the camera (the diffuse share is 1 - ambient),
+/// rgb * 0.8 for a surface splat (no ambient).
+const std::vector<SplatLight> kHeadLight = {SplatLight{{0.0f, 0.0f, -1.0f}, glm::vec3(1.0f)}};
+const std::vector<SplatLight> kSurfaceLight = {SplatLight{{0.0f, 0.0f, -1.0f}, glm::vec3(0.8f)}};
 
 constexpr int kSize = 65;  // odd: the centre pixel's ray is the view axis
 constexpr int kMid = kSize / 2;
@@ -284,7 +285,7 @@ TEST_CASE("a surface splat has the area-preserving profile", "[render][splat]") 
   const std::vector<DecodedVector> v = {vec({0, 0, 0}, {0, 0, -1}, kGreen, area)};
   SplatStyle style;  // surface, sigma 0.5, ambient 0
   const Image image =
-      gs::render::renderSplatsReference(v, style, kHeadLight, Camera{}, kSize, kSize, kBlue);
+      gs::render::renderSplatsReference(v, style, kSurfaceLight, Camera{}, kSize, kSize, kBlue);
   CHECK(pixelIs(image, kMid, kMid, glm::vec3(0, 0.4f, 0.5f)));  // two-sided shading
 }
 

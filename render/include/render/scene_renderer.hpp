@@ -7,6 +7,8 @@
 #include "render/splat_renderer.hpp"
 #include "render/splat_source.hpp"
 #include "scene/camera.hpp"
+
+#include <glm/gtc/quaternion.hpp>
 #include "scene/traversal.hpp"
 #include "vrml/parser.hpp"
 #include "vrml/scene.hpp"
@@ -20,6 +22,15 @@
 #include <vector>
 
 namespace gs::render {
+
+/// The front view of a volume (issue 42, friction 9): a CT stack opened looking down its
+/// slice axis showed CThead from above, where 3D Slicer's anterior view shows the face.
+/// For a stack laid out as CThead is (rows from the face, row 0, to the back of the head;
+/// slices from the top of the head down) the camera looks along +Y with -Z up: a turn of
+/// pi about (0, 1, -1) / sqrt 2.
+inline glm::quat volumeFrontOrientation() {
+  return glm::quat(0.0f, 0.0f, 0.70710678f, -0.70710678f);
+}
 
 class MoviePlayers;
 
@@ -120,6 +131,10 @@ class SceneRenderer {
   void setVectorBudget(std::uint64_t vectors);
   /// Changes the level of detail of every QNV stream (SceneRendererOptions::lod).
   void setLod(double lod);
+  /// The view a world without a Viewpoint starts in: VRML97's default (looking down -Z,
+  /// +Y up), or, when everything it shows is QNV volumes, the anatomical front view
+  /// (volumeFrontOrientation). Loads the scene's QNV nodes (bounds()).
+  glm::quat defaultOrientation();
   /// A camera looking along `direction`'s view direction that frames the whole scene in a
   /// viewport of aspect width / height (fitCamera on bounds()).
   scene::Camera fitToScene(float aspect, const scene::Camera& direction) {

@@ -86,12 +86,16 @@ struct SplatLight {
 };
 
 /// Flat shading of one splat, two-sided (a volume gradient has no outside; a surface
-/// splat is seen from either side): rgb * (ambient + sum of |n . L| * light), clamped
-/// to 1. `ambient` is SplatStyle::ambient.
+/// splat is seen from either side): rgb * (ambient + (1 - ambient) * sum of |n . L| *
+/// light), clamped to 1. `ambient` is SplatStyle::ambient. The diffuse share is 1 - ambient
+/// so that a white volume under the headlight reaches white only where it faces the light:
+/// with ambient added on top, every face within 37 degrees of the light clipped to flat
+/// white (issue 42, friction 9: the engine's near faces).
 inline glm::vec3 shadeSplat(const glm::vec3& normal, const glm::vec3& rgb,
                             std::span<const SplatLight> lights, float ambient) {
   glm::vec3 light(ambient);
-  for (const SplatLight& l : lights) light += std::abs(glm::dot(normal, l.direction)) * l.color;
+  for (const SplatLight& l : lights)
+    light += (1.0f - ambient) * std::abs(glm::dot(normal, l.direction)) * l.color;
   return glm::min(rgb * light, glm::vec3(1.0f));
 }
 
