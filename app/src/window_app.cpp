@@ -15,6 +15,7 @@
 #include <imgui_impl_opengl3.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <exception>
 
@@ -128,6 +129,18 @@ void navigate(WindowState& state, int menuHeight, int viewportHeight) {
 
 }  // namespace
 
+namespace {
+
+// A key held down (WALK and FLY move while it is): the window keeps drawing.
+bool anyKeyDown() {
+  const ImGuiIO& io = ImGui::GetIO();
+  for (bool down : io.KeysDown)
+    if (down) return true;
+  return false;
+}
+
+}  // namespace
+
 int runWindow(const Options& options) {
   // The web-browser helper's second launch: the running window opens the inputs.
   if (!options.newInstance && !options.inputs.empty() && options.script.empty() &&
@@ -178,8 +191,33 @@ int runWindow(const Options& options) {
 
   int frame = 0;
   GLFWwindow* window = context->glfwHandle();
+  // Frames are drawn only when something changes (issue 42, friction 4): input, a world
+  // that moves by itself, streams arriving, a window script, a frame log or --frames N
+  // (N frames asked for). At rest the
+  // loop wakes four times a second to let the worlds' clocks run and to look for inputs
+  // handed over by another launch, and draws nothing unless that changed something.
+  // A few frames follow every input so that ImGui settles (hover, menus closing).
+  constexpr int kSettleFrames = 3;
+  int settle = kSettleFrames;
+  std::vector<std::string> handedOver;
   while (!glfwWindowShouldClose(window) && !state.quitRequested) {
-    glfwWaitEventsTimeout(1.0 / 60.0);
+    const bool busy = state.restless() || !script.empty() || frameLog || options.frames > 0 ||
+                      settle > 0 || ImGui::IsAnyMouseDown() || anyKeyDown();
+    const double wait = busy ? 1.0 / 60.0 : 0.25;
+    const auto waitStart = std::chrono::steady_clock::now();
+    glfwWaitEventsTimeout(wait);
+    const bool input =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - waitStart).count() <
+        0.9 * wait;
+    if (instances)
+      for (std::string& in : instances->poll()) handedOver.push_back(std::move(in));
+    if (input || !handedOver.empty()) settle = kSettleFrames;
+    if (!busy && !input && handedOver.empty()) {
+      // A quiet tick: the clocks run; draw only when that woke something.
+      state.update();
+      if (!state.restless()) continue;
+    }
+    if (settle > 0) --settle;
     if (frameLog) frameLog->beginFrame();
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
@@ -187,8 +225,8 @@ int runWindow(const Options& options) {
 
     const int width = context->width(), height = context->height();
     const int menuHeight = drawMenuBar(state, static_cast<float>(width) / std::max(1, height));
-    if (instances)
-      for (const std::string& input : instances->poll()) state.openInNewViewport(input);
+    for (const std::string& in : handedOver) state.openInNewViewport(in);
+    handedOver.clear();
     state.update();
     // Keys go to the active viewport's world, but not while a panel takes the typing
     // (releases always do: the world forgets keys it did not see go down).

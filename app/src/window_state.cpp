@@ -259,6 +259,16 @@ void WindowState::home(Viewport& v) {
   v.navigator.setHome(camera, center);
 }
 
+bool WindowState::restless() const {
+  if (session && !session->settled()) return true;
+  if (runtimes && runtimes->animating()) return true;
+  for (const Viewport& v : viewports) {
+    if (v.transition.start >= 0.0) return true;
+    if (v.navigator.mode() == scene::NavigationMode::walk && !v.gravity.settled) return true;
+  }
+  return false;
+}
+
 void WindowState::resetView() {
   view().autoFrame = true;
   home(view());

@@ -160,6 +160,10 @@ struct WindowState {
   /// Once per frame: moves arrived bytes into the worlds and streams, redraws what grew,
   /// logs messages.
   void update();
+  /// Whether the window must go on drawing without input (issue 42, friction 4): streams
+  /// still arriving, a world that may change by itself (WorldRuntimes::animating), a
+  /// Viewpoint transition or a WALK fall under way. At rest the window waits for input.
+  bool restless() const;
   /// Returns the active viewport's camera to its world's bound Viewpoint.
   void resetView();
   /// Frames the active viewport's whole scene keeping the view direction.

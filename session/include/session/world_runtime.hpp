@@ -97,6 +97,14 @@ class WorldRuntimes {
   render::MediaClock mediaClock(const vrml::Scene* scene) const;
   void setMediaDurations(const vrml::Scene* scene,
                          const std::vector<std::pair<const vrml::Node*, double>>& durations);
+  /// Whether any world may change without input (runtime::ExecutionModel::animating:
+  /// an active TimeSensor or media node, a Script with pending work, a LoadSensor's
+  /// timeOut still to pass): the window keeps drawing while true.
+  bool animating() const {
+    for (const auto& [scene, e] : worlds_)
+      if (e.model && e.model->animating()) return true;
+    return false;
+  }
   /// Diagnostics of every world not returned before, formatted, appended to `out`.
   void drainMessages(std::vector<std::string>& out);
 
