@@ -234,6 +234,7 @@ int runWindow(const Options& options) {
     for (const KeyInput& k : keyboard.take())
       if (!k.press || !panelsTyping) state.keyInput(k.key, k.press);
     drawPanels(state);
+    drawActiveViewportFrame(state, height);
     navigate(state, menuHeight, std::max(1, height - menuHeight));
 
     context->makeCurrent();

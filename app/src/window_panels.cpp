@@ -116,21 +116,30 @@ void drawAnimationsMenu(WindowState& state) {
 /// Every stream of the session: state, bytes, vectors, packets lost, rate, error.
 static void drawStreams(WindowState& state) {
   if (!state.showStreams) return;
-  ImGui::SetNextWindowSize(ImVec2(640, 220), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(900, 240), ImGuiCond_FirstUseEver);
   if (!ImGui::Begin("Streams", &state.showStreams)) {
     ImGui::End();
     return;
   }
   const auto streams = state.session->loader().progress();
-  if (ImGui::BeginTable("streams", 6, ImGuiTableFlags_Borders | ImGuiTableFlags_Resizable)) {
-    for (const char* h : {"URL", "state", "bytes", "kB/s", "vectors", "lost"})
-      ImGui::TableSetupColumn(h);
+  // The numbers keep their width; the URL column takes what is left and shows the file
+  // name, the whole URL (and any error) in its tooltip (issue 42, friction 8: at the
+  // default size the columns were cut off).
+  if (ImGui::BeginTable(
+          "streams", 6,
+          ImGuiTableFlags_Borders | ImGuiTableFlags_Resizable | ImGuiTableFlags_SizingFixedFit)) {
+    ImGui::TableSetupColumn("URL", ImGuiTableColumnFlags_WidthStretch);
+    for (const char* h : {"state", "bytes", "kB/s", "vectors", "lost"})
+      ImGui::TableSetupColumn(h, ImGuiTableColumnFlags_WidthFixed);
     ImGui::TableHeadersRow();
     for (const net::StreamProgress& p : streams) {
       ImGui::TableNextRow();
       ImGui::TableNextColumn();
-      ImGui::TextUnformatted(p.url.c_str());
-      if (!p.error.empty() && ImGui::IsItemHovered()) ImGui::SetTooltip("%s", p.error.c_str());
+      const std::size_t slash = p.url.find_last_of('/', p.url.size() > 1 ? p.url.size() - 2 : 0);
+      const std::string name = slash == std::string::npos ? p.url : p.url.substr(slash + 1);
+      ImGui::TextUnformatted(name.c_str());
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("%s%s%s", p.url.c_str(), p.error.empty() ? "" : "\n", p.error.c_str());
       ImGui::TableNextColumn();
       ImGui::Text("%s %.0f%%", net::toString(p.state), p.fraction() * 100.0);
       ImGui::TableNextColumn();
@@ -156,6 +165,19 @@ static void drawStreams(WindowState& state) {
   ImGui::Text("%u requests, %.1f MB in all", budget.requests(),
               static_cast<double>(budget.totalBytes()) / 1e6);
   ImGui::End();
+}
+
+void drawActiveViewportFrame(const WindowState& state, int windowHeight) {
+  // With several viewports, the one the menus and keys act on has a frame (issue 42,
+  // friction 8). Its rectangle has a lower-left origin; ImGui's an upper-left one.
+  if (state.viewports.size() < 2 || state.active >= state.viewports.size()) return;
+  const ViewportRect& r = state.viewports[state.active].rect;
+  if (r.width <= 0 || r.height <= 0) return;
+  const float top = static_cast<float>(windowHeight - (r.y + r.height));
+  ImGui::GetBackgroundDrawList()->AddRect(
+      ImVec2(static_cast<float>(r.x) + 1.0f, top + 1.0f),
+      ImVec2(static_cast<float>(r.x + r.width) - 1.0f, top + static_cast<float>(r.height) - 1.0f),
+      IM_COL32(255, 200, 60, 255), 0.0f, 0, 2.0f);
 }
 
 int drawMenuBar(WindowState& state, float aspect) {

@@ -247,5 +247,8 @@ struct WindowState {
 int drawMenuBar(WindowState& state, float aspect);
 /// Draws the open-file dialog, the stream panel and the log panel when they are shown.
 void drawPanels(WindowState& state);
+/// With several viewports, a frame around the active one (ImGui's background draw list,
+/// over the scene, under the panels). `windowHeight`: the framebuffer's height in pixels.
+void drawActiveViewportFrame(const WindowState& state, int windowHeight);
 
 }  // namespace gs::app
