@@ -29,6 +29,8 @@ constexpr std::array kSuffixes = {
     Suffix{".splat", InputKind::gaussianSplats},
     Suffix{".spz", InputKind::gaussianSplats},
     Suffix{".sog", InputKind::gaussianSplats},
+    Suffix{".las", InputKind::gaussianSplats},
+    Suffix{".laz", InputKind::gaussianSplats},
     Suffix{".ply", InputKind::ply},
     Suffix{".ply.gz", InputKind::ply},
     Suffix{".obj", InputKind::obj},
@@ -97,6 +99,7 @@ InputKind sniffPlain(std::string_view head) {
     return InputKind::ply;
   }
   if (head.starts_with("NGSP")) return InputKind::gaussianSplats;  // SPZ (v4 raw; v2-v3 gzip)
+  if (head.starts_with("LASF")) return InputKind::gaussianSplats;  // LAS / LAZ point clouds
   if (head.starts_with("glTF")) return InputKind::gltf;
   if (head.size() >= 8 && head.starts_with("NRRD000") && head[7] >= '1' && head[7] <= '5')
     return InputKind::nrrd;

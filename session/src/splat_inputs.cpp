@@ -97,7 +97,7 @@ bool isGaussianQnvFile(const std::string& path) {
              splats::SplatFormat::qnv;
 }
 
-std::string gaussianWorldText(const std::string& path) {
+std::string gaussianWorldText(const std::string& path, bool turned) {
   std::string escaped;
   for (char c : path) {
     if (c == '"' || c == '\\') escaped.push_back('\\');
@@ -107,7 +107,8 @@ std::string gaussianWorldText(const std::string& path) {
   // as SuperSplat and Spark show them.
   return "#VRML V2.0 utf8\n# A 3D Gaussian splatting scene opened by ghostspace.\n"
          "NavigationInfo { type [\"EXAMINE\", \"ANY\"] }\n"
-         "Transform { rotation 0 0 1 3.14159265\n  children QuantizedNormalVectors { url \"" +
+         "Transform { rotation 0 0 1 " +
+         std::string(turned ? "3.14159265" : "0") + "\n  children QuantizedNormalVectors { url \"" +
          escaped + "\" }\n}\n";
 }
 
@@ -167,8 +168,13 @@ splats::SideFileReader sideFileReader(base::Fetcher& fetcher, const std::string&
 }
 
 std::string worldTextFor(const std::string& path) {
-  if (isGaussianSplatFile(path))
-    return gaussianWorldText(std::filesystem::path(path).filename().string());
+  if (isGaussianSplatFile(path)) {
+    // A LAS point cloud is z up already: not turned as a capture is.
+    std::ifstream in(path, std::ios::binary);
+    char magic[4] = {};
+    const bool las = in.read(magic, 4) && std::string_view(magic, 4) == "LASF";
+    return gaussianWorldText(std::filesystem::path(path).filename().string(), !las);
+  }
   if (formats::isMesh(formats::classifyFile(path))) return meshWorldText(loadMeshFile(path));
   return splatWorldText(std::filesystem::path(path).filename().string());  // resolves to itself
 }

@@ -56,6 +56,7 @@ bool gltfWithSplats(std::string_view head) {
 }  // namespace
 
 SplatFormat detectSplatFormat(std::string_view head, std::string_view name) {
+  if (head.starts_with("LASF")) return SplatFormat::las;
   if (head.size() > 10 && head.starts_with("\x89QNV\r\n\x1a\n"))
     return head[10] == static_cast<char>(qnv::StreamKind::gaussian) ? SplatFormat::qnv
                                                                     : SplatFormat::unknown;
@@ -106,6 +107,8 @@ GaussianCloud readGaussians(std::string_view bytes, std::string_view name,
       return readGltfGaussians(bytes, name, sideFiles);
     case SplatFormat::qnv:
       return readQnvGaussians(bytes, name);
+    case SplatFormat::las:
+      return readLasPoints(bytes, name);
     case SplatFormat::unknown:
       break;
   }

@@ -23,7 +23,8 @@ enum class InputKind {
   nifti,       // .nii, .nii.gz; content "n+1\0" or "ni1\0" at byte 344
   /// A 3D Gaussian splatting scene (docs/splats.md): a PLY whose header (in the sniffed
   /// bytes) has Gaussian properties (f_dc_0, scale_0, rot_0) or PlayCanvas's chunk element,
-  /// SPZ (content "NGSP", raw or gzip), .splat, .spz, .sog, .compressed.ply by name.
+  /// SPZ (content "NGSP", raw or gzip), .splat, .spz, .sog, .compressed.ply by name; an
+  /// ASPRS LAS point cloud (content "LASF"; .las, .laz), drawn as splats too.
   /// A glTF using KHR_gaussian_splatting is `gltf` here (session/ looks inside).
   gaussianSplats,
 };

@@ -36,8 +36,9 @@ bool isGaussianSplatFile(const std::string& path);
 bool isGaussianQnvFile(const std::string& path);
 
 /// The VRML97 text of the world a Gaussian splatting scene opens as: its node under a
-/// Transform turning it 180 degrees about Z (captures are y-down; docs/splats.md "Axes").
-std::string gaussianWorldText(const std::string& path);
+/// Transform turning it 180 degrees about Z (captures are y-down; docs/splats.md "Axes"),
+/// or, `turned` false (a LAS point cloud, z up), not turned.
+std::string gaussianWorldText(const std::string& path, bool turned = true);
 
 /// Side files of the scene at `sceneUrl` (SOG images, glTF buffers) through `fetcher`
 /// (which must outlive the reader), named by the scene, so the rules of what content may

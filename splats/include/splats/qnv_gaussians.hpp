@@ -46,8 +46,8 @@ bool placeGaussianRecords(const qnv::StreamHeader& header, std::uint64_t firstRe
 
 /// Decodes a whole Gaussian stream (a .qnv file of kind 3) in memory with
 /// qnv::StreamDecoder: damaged packets are skipped (their splats keep opacity 0: the
-/// cloud keeps stream order), a cut-off stream gives what arrived. Throws FormatError naming `name` when the header is
-/// rejected or the stream is of another kind.
+/// cloud keeps stream order), a cut-off stream gives what arrived. Throws FormatError naming `name`
+/// when the header is rejected or the stream is of another kind.
 GaussianCloud readQnvGaussians(std::string_view bytes, std::string_view name);
 
 }  // namespace gs::splats

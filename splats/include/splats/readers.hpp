@@ -27,14 +27,15 @@ struct FormatError : std::runtime_error {
 inline constexpr std::size_t kMaxSplats = std::size_t{1} << 28;
 
 /// The splat scene formats.
-enum class SplatFormat { unknown, ply, compressedPly, splat, spz, sog, sogMeta, gltf, qnv };
+enum class SplatFormat { unknown, ply, compressedPly, splat, spz, sog, sogMeta, gltf, qnv, las };
 
 /// The format the leading bytes `head` and the name `name` say: a PLY header whose
 /// vertex element has Gaussian properties (f_dc_0 / scale_0 / rot_0 / opacity) is `ply`;
 /// one with the chunk element of PlayCanvas is `compressedPly`; gzip whose content starts
 /// with SPZ's magic, or NGSP (v4), is `spz`; a zip holding meta.json is `sog`; a JSON
 /// object with SOG's "means" is `sogMeta`; a QNV stream of kind 3 (Gaussians, byte 10 of
-/// its header; splats/qnv_gaussians.hpp) is `qnv`; a glTF using KHR_gaussian_splatting is `gltf`;
+/// its header; splats/qnv_gaussians.hpp) is `qnv`; "LASF" (an ASPRS LAS or LAZ point
+/// cloud) is `las`; a glTF using KHR_gaussian_splatting is `gltf`;
 /// `.splat` by name only (it has no magic). unknown otherwise (a mesh PLY is unknown).
 SplatFormat detectSplatFormat(std::string_view head, std::string_view name);
 
@@ -80,6 +81,18 @@ GaussianCloud readSogGaussians(std::string_view bytes, std::string_view name,
 /// byte of the file and its buffers (instancing cannot multiply memory).
 GaussianCloud readGltfGaussians(std::string_view bytes, std::string_view name,
                                 const SideFileReader& sideFiles);
+
+/// An ASPRS LAS 1.0-1.4 point cloud (point formats 0-10, uncompressed): one opaque,
+/// isotropic Gaussian per point, as wide (standard deviation) as half the points' mean
+/// spacing over the bounding box's largest face, coloured by its RGB (8- or 16-bit, as
+/// the file holds them) or, without RGB, by its intensity as grey. Positions are
+/// X * scale + offset in double precision, minus the header's minimum corner (written to
+/// `origin` when given), in the file's axes (z up, metres as the file says). A LAZ file
+/// (point format with bit 7 or 6 set) is a FormatError that says how to decompress it:
+/// no Debian library decodes LAZ here. Throws FormatError for a truncated file, an
+/// unknown version or format, or impossible scales.
+GaussianCloud readLasPoints(std::string_view bytes, std::string_view name,
+                            glm::dvec3* origin = nullptr);
 
 /// Any of the above by detectSplatFormat(bytes, name). Throws FormatError for an
 /// unknown format ("NAME: not a Gaussian splatting scene") and whatever the reader throws.
