@@ -16,6 +16,15 @@ constexpr int kZstdLevel = 9;
 
 }  // namespace
 
+void appendZstd(std::string& out, const std::string& planes, int level) {
+  const std::size_t bound = ZSTD_compressBound(planes.size());
+  const std::size_t start = out.size();
+  out.resize(start + bound);
+  const std::size_t written =
+      ZSTD_compress(out.data() + start, bound, planes.data(), planes.size(), level);
+  out.resize(ZSTD_isError(written) ? start : start + written);
+}
+
 void appendCompactPayload(std::string& out, std::span<const std::uint64_t> records) {
   std::vector<std::pair<std::uint32_t, std::uint64_t>> sorted;
   sorted.reserve(records.size());
@@ -27,13 +36,8 @@ void appendCompactPayload(std::string& out, std::span<const std::uint64_t> recor
   planes.reserve(n * 9);
   std::uint32_t previous = 0;
   for (const auto& [code, r] : sorted) {  // Morton deltas, LEB128
-    std::uint32_t d = code - previous;
+    appendVarint(planes, code - previous);
     previous = code;
-    while (d >= 0x80) {
-      planes.push_back(static_cast<char>((d & 0x7f) | 0x80));
-      d >>= 7;
-    }
-    planes.push_back(static_cast<char>(d));
   }
   auto appendPlane = [&](auto field) {
     for (const auto& entry : sorted)
@@ -44,12 +48,7 @@ void appendCompactPayload(std::string& out, std::span<const std::uint64_t> recor
   appendPlane([](std::uint64_t r) { return magnitudeCode(r) >> 8; });
   appendPlane([](std::uint64_t r) { return magnitudeCode(r); });
   appendPlane([](std::uint64_t r) { return static_cast<std::uint32_t>(r); });
-  const std::size_t bound = ZSTD_compressBound(planes.size());
-  const std::size_t start = out.size();
-  out.resize(start + bound);
-  const std::size_t written =
-      ZSTD_compress(out.data() + start, bound, planes.data(), planes.size(), kZstdLevel);
-  out.resize(ZSTD_isError(written) ? start : start + written);
+  appendZstd(out, planes, kZstdLevel);
 }
 
 bool decodeCompactPayload(std::string_view payload, std::size_t count, std::uint64_t* out) {
@@ -59,34 +58,16 @@ bool decodeCompactPayload(std::string_view payload, std::size_t count, std::uint
   const std::size_t got =
       ZSTD_decompress(planes.data(), planes.size(), payload.data(), payload.size());
   if (ZSTD_isError(got) || got < count * 6) return false;
-  std::size_t pos = 0;
-  std::uint32_t code = 0;
-  for (std::size_t i = 0; i < count; ++i) {
-    std::uint32_t d = 0;
-    for (int shift = 0;; shift += 7) {
-      if (pos >= got || shift > 28) return false;
-      const unsigned char b = planes[pos++];
-      d |= static_cast<std::uint32_t>(b & 0x7f) << shift;
-      if (!(b & 0x80)) break;
-    }
-    code += d;
-    out[i] = code;  // Morton code for now; the fields follow
-  }
+  std::size_t pos = 0;  // Morton codes into out[] for now; the fields follow
+  if (!readMortonGaps(planes.data(), got, pos, count, out)) return false;
   if (got - pos != count * 5) return false;
   const unsigned char* plane = planes.data() + pos;
   for (std::size_t i = 0; i < count; ++i) {
-    const std::uint32_t m = static_cast<std::uint32_t>(out[i]);
     RecordFields f;
-    f.x = static_cast<std::uint16_t>(compact3(m));
-    f.y = static_cast<std::uint16_t>(compact3(m >> 1));
-    f.z = static_cast<std::uint16_t>(compact3(m >> 2));
-    const std::uint32_t dir = (std::uint32_t{plane[i]} << 8) | plane[count + i];
-    f.theta = static_cast<std::uint8_t>(dir >> 6);
-    f.phi = static_cast<std::uint8_t>(dir & 63u);
+    if (!planeFields(static_cast<std::uint32_t>(out[i]), plane, count, i, f)) return false;
     f.a = static_cast<std::uint16_t>((std::uint32_t{plane[2 * count + i]} << 8) |
                                      plane[3 * count + i]);
-    f.c = plane[4 * count + i];
-    if (m >= (1u << 30) || dir >= kDirectionCells || f.a >= kMagnitudeSteps) return false;
+    if (f.a >= kMagnitudeSteps) return false;
     out[i] = packRecord(f);
   }
   return true;

@@ -10,11 +10,65 @@
 #include <string>
 #include <string_view>
 
+#include "morton.hpp"
+#include "qnv/record.hpp"
+
 namespace gs::qnv {
 struct StreamHeader;
 }
 
 namespace gs::qnv::detail {
+
+/// Appends `d` as an unsigned LEB128 varint (7 bits a byte, low first).
+inline void appendVarint(std::string& out, std::uint32_t d) {
+  while (d >= 0x80) {
+    out.push_back(static_cast<char>((d & 0x7f) | 0x80));
+    d >>= 7;
+  }
+  out.push_back(static_cast<char>(d));
+}
+
+/// Reads `count` LEB128 varints from data[pos..size) as the gaps between sorted Morton
+/// codes and writes their running sums to out[0..count), advancing `pos`. False on a
+/// varint that runs past `size` or beyond 32 bits.
+template <typename T>
+bool readMortonGaps(const unsigned char* data, std::size_t size, std::size_t& pos,
+                    std::size_t count, T* out) {
+  std::uint32_t code = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    std::uint32_t d = 0;
+    for (int shift = 0;; shift += 7) {
+      if (pos >= size || shift > 28) return false;
+      const unsigned char b = data[pos++];
+      d |= static_cast<std::uint32_t>(b & 0x7f) << shift;
+      if (!(b & 0x80)) break;
+    }
+    code += d;
+    out[i] = code;
+  }
+  return true;
+}
+
+/// The fields of record `i` that both compact layouts keep the same way: position from
+/// its Morton code `m`, direction (planes 0 and 1: high and low byte of theta * 64 + phi)
+/// and C (plane 4), each plane `n` bytes. A stays 0. False for a code or direction out of
+/// range.
+inline bool planeFields(std::uint32_t m, const unsigned char* plane, std::size_t n, std::size_t i,
+                        RecordFields& f) {
+  const std::uint32_t dir = (std::uint32_t{plane[i]} << 8) | plane[n + i];
+  f.x = static_cast<std::uint16_t>(compact3(m));
+  f.y = static_cast<std::uint16_t>(compact3(m >> 1));
+  f.z = static_cast<std::uint16_t>(compact3(m >> 2));
+  f.theta = static_cast<std::uint8_t>(dir >> 6);
+  f.phi = static_cast<std::uint8_t>(dir & 63u);
+  f.a = 0;
+  f.c = plane[4 * n + i];
+  return m < (1u << 30) && dir < kDirectionCells;
+}
+
+/// Appends `planes` compressed with zstd at `level`; appends nothing on a zstd failure
+/// (the caller then writes the packet plain).
+void appendZstd(std::string& out, const std::string& planes, int level);
 
 /// Appends the compact payload of `records` (1..8191 records) to `out`.
 void appendCompactPayload(std::string& out, std::span<const std::uint64_t> records);

@@ -59,14 +59,6 @@ std::uint32_t predictedCode(std::uint64_t first, std::uint64_t second, const Str
                            h.magnitudeMax);
 }
 
-void appendVarint(std::string& out, std::uint32_t d) {
-  while (d >= 0x80) {
-    out.push_back(static_cast<char>((d & 0x7f) | 0x80));
-    d >>= 7;
-  }
-  out.push_back(static_cast<char>(d));
-}
-
 }  // namespace
 
 void appendGaussianCompactPayload(std::string& out, std::span<const std::uint64_t> records,
@@ -112,12 +104,7 @@ void appendGaussianCompactPayload(std::string& out, std::span<const std::uint64_
   for (int c = 0; c < sh; ++c)
     appendPlane(
         [&](std::size_t i) { return takeBits(&records[i * words + 2], cursor[i], shBits(c)); });
-  const std::size_t bound = ZSTD_compressBound(planes.size());
-  const std::size_t start = out.size();
-  out.resize(start + bound);
-  const std::size_t written =
-      ZSTD_compress(out.data() + start, bound, planes.data(), planes.size(), kZstdLevel);
-  out.resize(ZSTD_isError(written) ? start : start + written);
+  appendZstd(out, planes, kZstdLevel);
 }
 
 bool decodeGaussianCompactPayload(std::string_view payload, std::size_t count, std::uint32_t words,
@@ -131,33 +118,14 @@ bool decodeGaussianCompactPayload(std::string_view payload, std::size_t count, s
       ZSTD_decompress(planes.data(), planes.size(), payload.data(), payload.size());
   if (ZSTD_isError(got) || got < n * (1 + fixedPlanes)) return false;
   std::size_t pos = 0;
-  std::uint32_t code = 0;
   std::vector<std::uint32_t> morton(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    std::uint32_t d = 0;
-    for (int shift = 0;; shift += 7) {
-      if (pos >= got || shift > 28) return false;
-      const unsigned char b = planes[pos++];
-      d |= static_cast<std::uint32_t>(b & 0x7f) << shift;
-      if (!(b & 0x80)) break;
-    }
-    code += d;
-    morton[i] = code;
-  }
+  if (!readMortonGaps(planes.data(), got, pos, n, morton.data())) return false;
   if (got - pos != n * fixedPlanes) return false;
   const unsigned char* plane = planes.data() + pos;
   unsigned char last[6] = {};
   for (std::size_t i = 0; i < n; ++i) {
-    const std::uint32_t m = morton[i];
     RecordFields f;
-    f.x = static_cast<std::uint16_t>(compact3(m));
-    f.y = static_cast<std::uint16_t>(compact3(m >> 1));
-    f.z = static_cast<std::uint16_t>(compact3(m >> 2));
-    const std::uint32_t dir = (std::uint32_t{plane[i]} << 8) | plane[n + i];
-    f.theta = static_cast<std::uint8_t>(dir >> 6);
-    f.phi = static_cast<std::uint8_t>(dir & 63u);
-    f.c = plane[4 * n + i];
-    if (m >= (1u << 30) || dir >= kDirectionCells) return false;
+    if (!planeFields(morton[i], plane, n, i, f)) return false;
     std::uint64_t word = 0;
     for (int b = 0; b < 8; ++b) {
       unsigned char v = plane[(5 + b) * n + i];
