@@ -45,6 +45,10 @@ void planeFrame(const glm::vec3& n, glm::vec3& u, glm::vec3& v) {
 
 // Normal at 6 bits of theta over [0, pi] and 7 of phi over [0, 2 pi), cell centres.
 void quantizeNormal(const glm::vec3& n, std::uint32_t& t6, std::uint32_t& p7) {
+  if (!std::isfinite(n.x + n.y + n.z)) {
+    t6 = p7 = 0;
+    return;
+  }
   const float theta = std::acos(std::clamp(n.z, -1.0f, 1.0f));
   float phi = std::atan2(n.y, n.x);
   if (phi < 0.0f) phi += 2.0f * kPi;
@@ -135,9 +139,13 @@ qnv::EncodedVectors encodeGaussianStream(const GaussianCloud& cloud) {
   glm::vec3 lo(INFINITY), hi(-INFINITY);
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     const glm::vec3 p = cloud.positions[i];
+    const glm::vec3 sc = cloud.scales[i], dc = cloud.shDc[i];
+    const glm::quat q = cloud.rotations[i];
     if (!(importance(cloud, i) > 0.0f) || !(cloud.opacities[i] >= 0.5f / 255.0f) ||
-        !std::isfinite(p.x + p.y + p.z))
-      continue;
+        !std::isfinite(p.x + p.y + p.z) || !std::isfinite(sc.x + sc.y + sc.z) ||
+        !std::isfinite(dc.x + dc.y + dc.z) || !std::isfinite(q.w + q.x + q.y + q.z) ||
+        !(glm::dot(q, q) > 0.0f))
+      continue;  // nothing to draw, or no finite splat to quantize
     kept.push_back(static_cast<std::uint32_t>(i));
     lo = glm::min(lo, p);
     hi = glm::max(hi, p);
