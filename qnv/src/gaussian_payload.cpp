@@ -30,7 +30,7 @@ namespace gs::qnv::detail {
 
 namespace {
 
-constexpr int kZstdLevel = 22;
+constexpr int kGaussianZstdLevel = 19;
 
 // The SH words (record 2 on) hold coefficients from the top bit down: 9 of 5 bits (SH
 // degree 1), then 4 bits each (15 of degree 2, 21 of degree 3). Each becomes a plane.
@@ -104,7 +104,7 @@ void appendGaussianCompactPayload(std::string& out, std::span<const std::uint64_
   for (int c = 0; c < sh; ++c)
     appendPlane(
         [&](std::size_t i) { return takeBits(&records[i * words + 2], cursor[i], shBits(c)); });
-  appendZstd(out, planes, kZstdLevel);
+  appendZstd(out, planes, kGaussianZstdLevel);
 }
 
 bool decodeGaussianCompactPayload(std::string_view payload, std::size_t count, std::uint32_t words,

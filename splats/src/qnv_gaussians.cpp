@@ -129,7 +129,7 @@ qnv::EncodedVectors encodeGaussianStream(const GaussianCloud& cloud) {
   // Packets as large as the format allows (zstd wants room), but at least 64 of them, so
   // that the first picture comes within the first few per cent of the bytes.
   const std::uint64_t perPacket =
-      std::clamp<std::uint64_t>(cloud.size() / 64, 256, qnv::kMaxPacketBytes / (8 * words));
+      std::clamp<std::uint64_t>(cloud.size() / 64, 1024, qnv::kMaxPacketBytes / (8 * words));
   h.packetBytes = static_cast<std::uint32_t>(8 * words * perPacket);
 
   // The splats kept: some opacity and importance, a finite centre.

@@ -25,7 +25,8 @@ namespace gs::splats {
 /// the thin axis' normal 6 + 7 bits, the major axis' angle about it 8 bits, log scales
 /// 8 bits, opacity and DC colour 8 bits, SH degree 1 at 5 bits, higher at 4 bits.
 /// header.packetBytes: whole splats, as many as fit 65528 bytes but at most 1/64 of the
-/// cloud (at least 256), so a progressive load draws after a few per cent of the bytes.
+/// cloud (at least 1,024: zstd needs room), so a progressive load of a large scene draws
+/// after a few per cent of the bytes.
 /// An empty cloud gives no records and a unit box.
 qnv::EncodedVectors encodeGaussianStream(const GaussianCloud& cloud);
 
