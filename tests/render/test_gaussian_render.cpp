@@ -181,7 +181,7 @@ TEST_CASE("a QNV Gaussian stream draws the picture of its .ply, and its prefixes
       std::fill(black.rgba.begin(), black.rgba.end(), std::uint8_t{0});
       const double blackPsnr = compareImages(black, reference).psnr;
       WARN("its first half of the bytes: " << prefix->size() << " splats, PSNR " << p.psnr
-                                          << " (an empty picture: " << blackPsnr << ")");
+                                           << " (an empty picture: " << blackPsnr << ")");
       CHECK(p.psnr >= blackPsnr + 2.0);  // the largest splats already draw
       CHECK(p.psnr < d.psnr);
     }
