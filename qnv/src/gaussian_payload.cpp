@@ -38,25 +38,11 @@ int shPlanes(std::uint32_t words) {
   constexpr int kCoefficients[] = {0, 0, 0, 9, 24, 45};  // by words: SH degree + 2
   return words <= 5 ? kCoefficients[words] : 45;
 }
-int shBits(int coefficient) {
-  return coefficient < 9 ? 5 : 4;
-}
-
-std::uint32_t takeBits(const std::uint64_t* words, int& bit, int bits) {
-  std::uint32_t v = 0;
-  for (int b = 0; b < bits; ++b, ++bit)
-    v = (v << 1) | static_cast<std::uint32_t>((words[bit / 64] >> (63 - bit % 64)) & 1u);
-  return v;
-}
-
-void putBits(std::uint64_t* words, int& bit, std::uint32_t value, int bits) {
-  for (int b = bits - 1; b >= 0; --b, ++bit)
-    if ((value >> b) & 1u) words[bit / 64] |= std::uint64_t{1} << (63 - bit % 64);
-}
-
-std::uint32_t predictedCode(std::uint64_t first, std::uint64_t second, const StreamHeader& h) {
-  return quantizeMagnitude(gaussianImportance(first, second, h), h.mapping, h.magnitudeMin,
-                           h.magnitudeMax);
+// The A code of the quantized splat's importance; `quantize` is made once per packet from
+// the stream's magnitude range (two logarithms a splat saved).
+std::uint32_t predictedCode(std::uint64_t first, std::uint64_t second, const StreamHeader& h,
+                            const MagnitudeQuantizer& quantize) {
+  return quantize(gaussianImportance(first, second, h));
 }
 
 }  // namespace
@@ -87,11 +73,12 @@ void appendGaussianCompactPayload(std::string& out, std::span<const std::uint64_
   appendPlane([&](std::size_t i) { return directionCell(records[i * words]); });
   // A as its difference from the importance of the quantized splat (0 as our encoder
   // writes it), so that it costs nearly nothing.
+  const MagnitudeQuantizer quantize(header.mapping, header.magnitudeMin, header.magnitudeMax);
   std::vector<std::uint16_t> residual(n);
   for (std::size_t i = 0; i < n; ++i)
     residual[i] = static_cast<std::uint16_t>(
         magnitudeCode(records[i * words]) -
-        predictedCode(records[i * words], records[i * words + 1], header));
+        predictedCode(records[i * words], records[i * words + 1], header, quantize));
   appendPlane([&](std::size_t i) { return residual[i] >> 8u; });
   appendPlane([&](std::size_t i) { return residual[i]; });
   appendPlane([&](std::size_t i) { return static_cast<std::uint32_t>(records[i * words]); });
@@ -100,10 +87,10 @@ void appendGaussianCompactPayload(std::string& out, std::span<const std::uint64_
         [&](std::size_t i) { return static_cast<std::uint32_t>(records[i * words + 1] >> shift); },
         shift >= 16);  // colour and scales: as their Morton neighbours'
   const int sh = shPlanes(words);
-  std::vector<int> cursor(n, 0);
-  for (int c = 0; c < sh; ++c)
-    appendPlane(
-        [&](std::size_t i) { return takeBits(&records[i * words + 2], cursor[i], shBits(c)); });
+  for (int c = 0, at = 0; c < sh; at += gaussianShBits(c), ++c)
+    appendPlane([&](std::size_t i) {
+      return readWordBits(&records[i * words + 2], at, gaussianShBits(c));
+    });
   appendZstd(out, planes, kGaussianZstdLevel);
 }
 
@@ -111,6 +98,7 @@ bool decodeGaussianCompactPayload(std::string_view payload, std::size_t count, s
                                   const StreamHeader& header, std::uint64_t* out) {
   if (words < 2 || count == 0 || count % words != 0) return false;
   const std::size_t n = count / words;
+  const MagnitudeQuantizer quantize(header.mapping, header.magnitudeMin, header.magnitudeMax);
   const int sh = shPlanes(words);
   const std::size_t fixedPlanes = 5 + 8 + static_cast<std::size_t>(sh);
   std::vector<unsigned char> planes(n * (5 + fixedPlanes));  // varints at most 5 bytes
@@ -136,7 +124,7 @@ bool decodeGaussianCompactPayload(std::string_view payload, std::size_t count, s
       word = (word << 8) | v;
     }
     f.a = 0;
-    const std::uint32_t a = (predictedCode(packRecord(f), word, header) +
+    const std::uint32_t a = (predictedCode(packRecord(f), word, header, quantize) +
                              ((std::uint32_t{plane[2 * n + i]} << 8) | plane[3 * n + i])) &
                             0xffffu;
     if (a >= kMagnitudeSteps) return false;
@@ -144,11 +132,10 @@ bool decodeGaussianCompactPayload(std::string_view payload, std::size_t count, s
     out[i * words] = packRecord(f);
     out[i * words + 1] = word;
     std::fill(out + i * words + 2, out + (i + 1) * words, std::uint64_t{0});
-    int bit = 0;
-    for (int c = 0; c < sh; ++c) {
+    for (int c = 0, at = 0; c < sh; at += gaussianShBits(c), ++c) {
       const std::uint32_t v = plane[(13 + c) * n + i];
-      if (v >> shBits(c)) return false;
-      putBits(out + i * words + 2, bit, v, shBits(c));
+      if (v >> gaussianShBits(c)) return false;
+      writeWordBits(out + i * words + 2, at, v, gaussianShBits(c));
     }
   }
   return true;

@@ -3,6 +3,7 @@
 #include "gaussian_cpu.hpp"
 
 #include "simd4.hpp"
+#include "tile_raster.hpp"
 
 #include <algorithm>
 #include <array>
@@ -36,11 +37,9 @@ struct Covariance6 {
   float xx, xy, xz, yy, yz, zz;
 };
 
-struct TileBuffers {
-  alignas(16) std::array<float, kTile * kTile> r, g, b, t, limit;
-};
+using Tile = TileBuffers<kTile>;
 
-void composite(const Prepared p, int tx0, int ty0, int tw, int th, TileBuffers& tile, int& live) {
+void composite(const Prepared p, int tx0, int ty0, int tw, int th, Tile& tile, int& live) {
   const int xs = std::max(p.x0, tx0), xe = std::min(p.x1, tx0 + tw - 1);
   const int ys = std::max(p.y0, ty0), ye = std::min(p.y1, ty0 + th - 1);
   const F4 lane = {0.5f, 1.5f, 2.5f, 3.5f};
@@ -193,7 +192,7 @@ void CpuGaussianRasterizer::draw(const splats::GaussianCloud& cloud,
     }
     sync.arrive_and_wait();
 
-    TileBuffers tile;
+    Tile tile;
     for (int t = nextTile.fetch_add(1); t < tiles; t = nextTile.fetch_add(1)) {
       const int tx0 = (t % tilesX) * kTile, ty0 = (t / tilesX) * kTile;
       const int tw = std::min(kTile, view.width - tx0), th = std::min(kTile, view.height - ty0);
@@ -222,24 +221,11 @@ void CpuGaussianRasterizer::draw(const splats::GaussianCloud& cloud,
           if (live <= 0) break;
         }
       }
-      for (int j = 0; j < th; ++j) {
-        std::uint8_t* row = &out[(static_cast<std::size_t>(ty0 + j) * view.width + tx0) * 4];
-        for (int i = 0; i < tw; ++i) {
-          const auto at = static_cast<std::size_t>(j * kTile + i);
-          row[4 * i + 0] = level8(tile.r[at]);
-          row[4 * i + 1] = level8(tile.g[at]);
-          row[4 * i + 2] = level8(tile.b[at]);
-          row[4 * i + 3] = level8(1.0f - tile.t[at]);
-        }
-      }
+      writeTile(tile, out.data(), view.width, tx0, ty0, tw, th);
     }
   };
 
-  std::vector<std::thread> workers;
-  workers.reserve(static_cast<std::size_t>(threads_ - 1));
-  for (int c = 1; c < threads_; ++c) workers.emplace_back(work, c);
-  work(0);
-  for (std::thread& worker : workers) worker.join();
+  runOnThreads(threads_, work);
 }
 
 }  // namespace gs::render::detail

@@ -3,6 +3,7 @@
 #include "splat_cpu.hpp"
 
 #include "simd4.hpp"
+#include "tile_raster.hpp"
 
 #include <algorithm>
 #include <array>
@@ -154,16 +155,13 @@ bool prepare(const qnv::DecodedVector& vector, const Frame& f, Prepared& out) {
   return finite(out.color);
 }
 
-/// One tile's accumulation buffers (premultiplied colour, transmittance, depth limit).
-struct TileBuffers {
-  alignas(16) std::array<float, kTile * kTile> r, g, b, t, limit;
-};
+using Tile = TileBuffers<kTile>;
 
 /// Composites splat `p` into the tile at (tx0, ty0) of size tw x th; `live` counts the
 /// tile's unsaturated pixels. `p` is a copy: the tile's float stores cannot alias it, so
 /// its fields stay in registers.
-void composite(const Prepared p, int tx0, int ty0, int tw, int th, float nearClip,
-               TileBuffers& tile, int& live) {
+void composite(const Prepared p, int tx0, int ty0, int tw, int th, float nearClip, Tile& tile,
+               int& live) {
   const int xs = std::max(p.x0, tx0), xe = std::min(p.x1, tx0 + tw - 1);
   const int ys = std::max(p.y0, ty0), ye = std::min(p.y1, ty0 + th - 1);
   // Each row's span of the disk u^2 + v^2 <= 9: with D = d . N, U = (C . N)(d . T*) -
@@ -318,7 +316,7 @@ void CpuSplatRasterizer::draw(std::span<const qnv::DecodedVector> vectors,
     sync.arrive_and_wait();
 
     // 2. Tiles, front to back.
-    TileBuffers tile;
+    Tile tile;
     for (int t = nextTile.fetch_add(1); t < tiles; t = nextTile.fetch_add(1)) {
       const int tx0 = (t % tilesX) * kTile, ty0 = (t / tilesX) * kTile;
       const int tw = std::min(kTile, view.width - tx0), th = std::min(kTile, view.height - ty0);
@@ -349,24 +347,11 @@ void CpuSplatRasterizer::draw(std::span<const qnv::DecodedVector> vectors,
           if (live <= 0) break;
         }
       }
-      for (int j = 0; j < th; ++j) {
-        std::uint8_t* row = &out[(static_cast<std::size_t>(ty0 + j) * view.width + tx0) * 4];
-        for (int i = 0; i < tw; ++i) {
-          const auto at = static_cast<std::size_t>(j * kTile + i);
-          row[4 * i + 0] = level8(tile.r[at]);
-          row[4 * i + 1] = level8(tile.g[at]);
-          row[4 * i + 2] = level8(tile.b[at]);
-          row[4 * i + 3] = level8(1.0f - tile.t[at]);
-        }
-      }
+      writeTile(tile, out.data(), view.width, tx0, ty0, tw, th);
     }
   };
 
-  std::vector<std::thread> workers;
-  workers.reserve(static_cast<std::size_t>(threads_ - 1));
-  for (int c = 1; c < threads_; ++c) workers.emplace_back(work, c);
-  work(0);
-  for (std::thread& worker : workers) worker.join();
+  runOnThreads(threads_, work);
 }
 
 }  // namespace gs::render::detail

@@ -230,12 +230,15 @@ struct SplatRenderer::Gpu {
   std::size_t orderCapacity = 0;
   // The last depth order: of which set, count and view, which direction, whether it is in
   // orderBuffer.
-  const void* sortedData = nullptr;  // the set's vectors or its Gaussian cloud
-  std::size_t sortedSize = 0;
-  std::uint64_t sortedRevision = 0;
-  glm::mat4 sortedView{0.0f};
-  std::size_t sortedCount = 0;
-  bool sortedFrontToBack = false;
+  struct SortKey {
+    const void* data = nullptr;  // the set's vectors or its Gaussian cloud
+    std::size_t size = 0;
+    std::uint64_t revision = 0;
+    std::size_t count = 0;
+    glm::mat4 view{0.0f};
+    bool frontToBack = false;
+    bool operator==(const SortKey&) const = default;
+  } sorted;
   bool orderOnGpu = false;
   DepthSorter sorter;
   std::vector<std::uint32_t> order;
@@ -385,9 +388,9 @@ void SplatRenderer::draw(const SplatSet& set, std::size_t count, const glm::mat4
   const glm::mat4 view = scene::viewMatrix(camera);
   const glm::mat4 modelView = view * model;
   const bool frontToBack = cpu || blend == SplatBlend::frontToBack;
-  if (g.sortedData != set.vectors.data() || g.sortedSize != set.vectors.size() ||
-      g.sortedRevision != set.revision || g.sortedCount != count || g.sortedView != modelView ||
-      g.sortedFrontToBack != frontToBack) {
+  const Gpu::SortKey key{set.vectors.data(), set.vectors.size(), set.revision, count,
+                         modelView,          frontToBack};
+  if (g.sorted != key) {
     const auto t0 = std::chrono::steady_clock::now();
     const std::span<const qnv::DecodedVector> first(set.vectors.data(), count);
     if (frontToBack)
@@ -397,12 +400,7 @@ void SplatRenderer::draw(const SplatSet& set, std::size_t count, const glm::mat4
     statistics_.sortSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     statistics_.sorted = true;
-    g.sortedData = set.vectors.data();
-    g.sortedSize = set.vectors.size();
-    g.sortedRevision = set.revision;
-    g.sortedCount = count;
-    g.sortedView = modelView;
-    g.sortedFrontToBack = frontToBack;
+    g.sorted = key;
     g.orderOnGpu = false;
   }
   if (!cpu && !g.orderOnGpu) {
@@ -593,21 +591,15 @@ void SplatRenderer::drawGaussians(const SplatSet& set, std::size_t count, const 
     count = g.cutCloud.size();
   }
   const splats::GaussianCloud& cloud = *drawn;
-  if (g.sortedData != static_cast<const void*>(&cloud) || g.sortedSize != cloud.size() ||
-      g.sortedRevision != revision || g.sortedCount != count || g.sortedView != modelView ||
-      !g.sortedFrontToBack) {
+  const Gpu::SortKey key{&cloud, cloud.size(), revision, count, modelView, true};
+  if (g.sorted != key) {
     const auto t0 = std::chrono::steady_clock::now();
     g.sorter.sortFrontToBack(std::span<const glm::vec3>(cloud.positions.data(), count), modelView,
                              g.order);
     statistics_.sortSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     statistics_.sorted = true;
-    g.sortedData = static_cast<const void*>(&cloud);
-    g.sortedSize = cloud.size();
-    g.sortedRevision = revision;
-    g.sortedCount = count;
-    g.sortedView = modelView;
-    g.sortedFrontToBack = true;
+    g.sorted = key;
     g.orderOnGpu = false;
   }
   statistics_.splats = count;

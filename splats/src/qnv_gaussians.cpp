@@ -86,37 +86,6 @@ float shValue(std::uint32_t q, int bits) {
   return (static_cast<float>(q) - static_cast<float>(1u << (bits - 1))) / scale;
 }
 
-// Bits of the SH words, written from the top of word 2 down.
-struct BitCursor {
-  std::uint64_t* words;
-  int bit = 63;  // next bit of *words
-  void put(std::uint32_t value, int bits) {
-    for (int b = bits - 1; b >= 0; --b) {
-      if ((value >> b) & 1u) *words |= std::uint64_t{1} << bit;
-      if (--bit < 0) {
-        ++words;
-        bit = 63;
-      }
-    }
-  }
-};
-
-struct BitReader {
-  const std::uint64_t* words;
-  int bit = 63;
-  std::uint32_t get(int bits) {
-    std::uint32_t v = 0;
-    for (int b = 0; b < bits; ++b) {
-      v = (v << 1) | static_cast<std::uint32_t>((*words >> bit) & 1u);
-      if (--bit < 0) {
-        ++words;
-        bit = 63;
-      }
-    }
-    return v;
-  }
-};
-
 }  // namespace
 
 qnv::EncodedVectors encodeGaussianStream(const GaussianCloud& cloud) {
@@ -207,10 +176,13 @@ qnv::EncodedVectors encodeGaussianStream(const GaussianCloud& cloud) {
            std::uint64_t{angleCode} << 8 | std::uint64_t{fine[0] & 3u} << 6 |
            std::uint64_t{fine[1] & 3u} << 4 | std::uint64_t{fine[2] & 3u} << 2 |
            std::uint64_t{t6 & 1u} << 1 | std::uint64_t{p7 & 1u};
-    BitCursor bits{w + 2};
-    for (int c = 0; c < rest; ++c)
-      for (int ch = 0; ch < 3; ++ch)
-        bits.put(shCode(cloud.shRest[std::size_t{i} * rest + c][ch], c < 3 ? 5 : 4), c < 3 ? 5 : 4);
+    for (int c = 0, at = 0; c < rest; ++c)
+      for (int ch = 0; ch < 3; ++ch) {
+        const int bits = qnv::gaussianShBits(3 * c + ch);
+        qnv::writeWordBits(w + 2, at, shCode(cloud.shRest[std::size_t{i} * rest + c][ch], bits),
+                           bits);
+        at += bits;
+      }
     order[k] = {qnv::gaussianImportance(w[0], w[1], h), static_cast<std::uint32_t>(k)};
   }
   // By the importance of the quantized splat, largest first: A is that importance's code.
@@ -272,12 +244,14 @@ void appendGaussianRecords(const qnv::StreamHeader& h, std::span<const std::uint
     cloud.rotations.push_back(q);
     cloud.opacities.push_back(static_cast<float>(f.c) / 255.0f);
     cloud.shDc.push_back(dc);
-    BitReader bits{w + 2};
-    for (int c = 0; c < rest; ++c) {
+    for (int c = 0, at = 0; c < rest; ++c) {
       glm::vec3 coefficient(0.0f);
       if (c < have)
-        for (int ch = 0; ch < 3; ++ch)
-          coefficient[ch] = shValue(bits.get(c < 3 ? 5 : 4), c < 3 ? 5 : 4);
+        for (int ch = 0; ch < 3; ++ch) {
+          const int bits = qnv::gaussianShBits(3 * c + ch);
+          coefficient[ch] = shValue(qnv::readWordBits(w + 2, at, bits), bits);
+          at += bits;
+        }
       cloud.shRest.push_back(coefficient);
     }
   }

@@ -17,6 +17,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "../splats/lod_views.hpp"
 #include "splats/lod_tree.hpp"
 
 namespace {
@@ -28,10 +29,7 @@ double since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-glm::quat randomRotation(std::mt19937& rng) {
-  std::normal_distribution<float> g;
-  return glm::normalize(glm::quat(g(rng), g(rng), g(rng), g(rng)));
-}
+using gs::test::randomRotation;
 
 /// A synthetic cloud in the box [-0.5, 0.5]^3: `surface` of the splats flat, nearly opaque
 /// discs on the sphere of radius 0.5 and the plane y = -0.5 (a capture's surfaces), the rest
@@ -79,41 +77,11 @@ GaussianCloud syntheticCloud(std::size_t n, double surface, int shDegree, std::u
   return cloud;
 }
 
-struct View {
-  CutView cut;
-  glm::mat4 view{1.0f};
-  float focal = 1.0f;
-};
+using View = gs::test::LodTestView;
+using gs::test::projectedCoverage;
 
 View viewAt(double diagonals, int pixels, float fovY) {
-  View out;
-  const glm::vec3 eye = glm::normalize(glm::vec3(0.3f, 0.4f, 0.866f)) *
-                        static_cast<float>(diagonals) * std::sqrt(3.0f);
-  out.view = glm::lookAt(eye, glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f));
-  out.focal = 0.5f * static_cast<float>(pixels) / std::tan(0.5f * fovY);
-  out.cut = cutViewFromViewProjection(glm::perspective(fovY, 1.0f, 0.01f, 1000.0f) * out.view, eye,
-                                      out.focal, 1.0f);
-  return out;
-}
-
-/// Sum of opacity x 2 pi sqrt(det Sigma'), pixels^2, Sigma' the EWA projection without the
-/// rasterizer's low-pass: the footprints' integrated opacity.
-double projectedCoverage(const GaussianCloud& cloud, const View& view) {
-  const glm::dmat3 w(view.view);
-  double sum = 0.0;
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    const glm::dvec3 t = glm::dvec3(view.view * glm::vec4(cloud.positions[i], 1.0f));
-    const double z = -t.z;
-    if (!(z > 0.0)) continue;
-    const double f = view.focal;
-    const glm::dvec3 j0(f / z, 0.0, f * t.x / (z * z)), j1(0.0, f / z, f * t.y / (z * z));
-    const glm::dmat3 sigma =
-        w * glm::dmat3(covariance(cloud.scales[i], cloud.rotations[i])) * glm::transpose(w);
-    const double a = glm::dot(j0, sigma * j0), b = glm::dot(j0, sigma * j1),
-                 c = glm::dot(j1, sigma * j1);
-    sum += cloud.opacities[i] * 2.0 * std::numbers::pi * std::sqrt(std::max(a * c - b * b, 0.0));
-  }
-  return sum;
+  return gs::test::lodViewAt(diagonals, pixels, fovY);
 }
 
 /// The alpha image (1 - transmittance, order-independent) of `cloud` as Kerbl et al.'s

@@ -12,17 +12,16 @@
 #include <catch2/catch.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "lod_views.hpp"
 #include "splats/lod_tree.hpp"
 
 using namespace gs::splats;
 
 namespace {
 
-glm::quat randomRotation(std::mt19937& rng) {
-  std::normal_distribution<float> g;
-  glm::quat q(g(rng), g(rng), g(rng), g(rng));
-  return glm::normalize(q);
-}
+using TestView = gs::test::LodTestView;
+using gs::test::projectedCoverage;
+using gs::test::randomRotation;
 
 /// n weak splats (anisotropic, about the mean spacing in size) filling the cube
 /// [-0.5, 0.5]^3: a haze. Each splat's opacity is `opacity` x 0.5..1.5 / cbrt(n), so that
@@ -68,48 +67,9 @@ GaussianCloud sceneCloud(std::size_t n, std::uint32_t seed, double surface = 0.5
   return cloud;
 }
 
-struct TestView {
-  CutView cut;
-  glm::mat4 view{1.0f};
-  float focal = 1.0f;
-  int pixels = 0;
-};
-
-/// A camera at `distance` x the cloud box's diagonal from the centre of the box
-/// [-0.5, 0.5]^3, looking at it, `pixels` square, vertical field of view `fovY` radians.
 TestView viewAt(double distance, int pixels = 512, float fovY = glm::radians(60.0f),
                 float threshold = 1.0f, glm::vec3 direction = {0.3f, 0.4f, 0.866f}) {
-  TestView out;
-  const float diagonal = std::sqrt(3.0f);
-  const glm::vec3 eye = glm::normalize(direction) * static_cast<float>(distance) * diagonal;
-  out.view = glm::lookAt(eye, glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f));
-  const glm::mat4 projection = glm::perspective(fovY, 1.0f, 0.01f, 1000.0f);
-  out.focal = 0.5f * static_cast<float>(pixels) / std::tan(0.5f * fovY);
-  out.pixels = pixels;
-  out.cut = cutViewFromViewProjection(projection * out.view, eye, out.focal, threshold);
-  return out;
-}
-
-/// The sum over a cloud of opacity x the integral of its projected footprint, 2 pi
-/// sqrt(det Sigma'), pixels^2: the EWA projection J W Sigma W^T J^T without the
-/// rasterizer's 0.3-pixel low-pass, for splats in front of the camera.
-double projectedCoverage(const GaussianCloud& cloud, const TestView& view) {
-  const glm::dmat3 w(view.view);
-  double sum = 0.0;
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    const glm::dvec3 t = glm::dvec3(view.view * glm::vec4(cloud.positions[i], 1.0f));
-    const double z = -t.z;
-    if (!(z > 0.0)) continue;
-    const double f = view.focal;
-    const glm::dvec3 j0(f / z, 0.0, f * t.x / (z * z));  // d/d(eye x, y, eye z)
-    const glm::dvec3 j1(0.0, f / z, f * t.y / (z * z));
-    const glm::dmat3 sigma =
-        w * glm::dmat3(covariance(cloud.scales[i], cloud.rotations[i])) * glm::transpose(w);
-    const double a = glm::dot(j0, sigma * j0), b = glm::dot(j0, sigma * j1),
-                 c = glm::dot(j1, sigma * j1);
-    sum += cloud.opacities[i] * 2.0 * std::numbers::pi * std::sqrt(std::max(a * c - b * b, 0.0));
-  }
-  return sum;
+  return gs::test::lodViewAt(distance, pixels, fovY, threshold, direction);
 }
 
 double maxAbs(const glm::dmat3& m) {

@@ -36,6 +36,39 @@ constexpr std::uint32_t gaussianWordsPerSplat(int shDegree) {
   return 2u + static_cast<std::uint32_t>(shDegree);
 }
 
+/// The SH words of a Gaussian splat (its records 2 on) hold the coefficients beyond DC, R G
+/// B of each coefficient in turn, from the top bit of record 2 down: value `k` (0-based)
+/// takes 5 bits when it belongs to degree 1 (k < 9), 4 bits above (docs/splats.md).
+constexpr int gaussianShBits(int k) {
+  return k < 9 ? 5 : 4;
+}
+
+/// `bits` (1..32) bits of `words` from bit `at` on, counted from the top bit of words[0]
+/// down (a field may span two words).
+inline std::uint32_t readWordBits(const std::uint64_t* words, int at, int bits) {
+  const int offset = at & 63;
+  const std::uint64_t* w = words + (at >> 6);
+  const std::uint64_t mask = (std::uint64_t{1} << bits) - 1;
+  if (offset + bits <= 64) return static_cast<std::uint32_t>((w[0] >> (64 - offset - bits)) & mask);
+  const int low = offset + bits - 64;  // bits in w[1]
+  return static_cast<std::uint32_t>(((w[0] << low) | (w[1] >> (64 - low))) & mask);
+}
+
+/// ORs the low `bits` (1..32) bits of `value` into `words` at bit `at` (as readWordBits
+/// reads them); the bits there must be 0.
+inline void writeWordBits(std::uint64_t* words, int at, std::uint32_t value, int bits) {
+  const int offset = at & 63;
+  std::uint64_t* w = words + (at >> 6);
+  const std::uint64_t v = value & ((std::uint64_t{1} << bits) - 1);
+  if (offset + bits <= 64) {
+    w[0] |= v << (64 - offset - bits);
+    return;
+  }
+  const int low = offset + bits - 64;
+  w[0] |= v >> low;
+  w[1] |= v << (64 - low);
+}
+
 /// The importance of a Gaussian stream's splat from its quantized fields (docs/splats.md,
 /// "QNV Gaussian streams"): opacity C / 255 times pi times the two largest scales, each
 /// exp(valueMin + q (valueMax - valueMin) / 255) for its 8-bit code q in the second word.

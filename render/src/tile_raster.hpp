@@ -1,0 +1,50 @@
+// Private to render/: what the two tiled CPU rasterizers (splat_cpu.cpp for QNV vectors,
+// gaussian_cpu.cpp for 3D Gaussians) share: a tile's accumulation buffers, writing a
+// finished tile into the RGBA8 image, and running the per-thread work.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <thread>
+#include <vector>
+
+#include "simd4.hpp"
+
+namespace gs::render::detail {
+
+/// One tile's accumulation buffers, kSide x kSide pixels row by row: premultiplied colour,
+/// transmittance, depth limit.
+template <int kSide>
+struct TileBuffers {
+  alignas(16) std::array<float, kSide * kSide> r, g, b, t, limit;
+};
+
+/// Writes the tw x th corner of `tile` as RGBA8 (alpha = 1 - transmittance) at pixel
+/// (tx0, ty0) of `out`, an image `width` pixels wide, rows from the bottom.
+template <int kSide>
+void writeTile(const TileBuffers<kSide>& tile, std::uint8_t* out, int width, int tx0, int ty0,
+               int tw, int th) {
+  for (int j = 0; j < th; ++j) {
+    std::uint8_t* row = &out[(static_cast<std::size_t>(ty0 + j) * width + tx0) * 4];
+    for (int i = 0; i < tw; ++i) {
+      const auto at = static_cast<std::size_t>(j * kSide + i);
+      row[4 * i + 0] = level8(tile.r[at]);
+      row[4 * i + 1] = level8(tile.g[at]);
+      row[4 * i + 2] = level8(tile.b[at]);
+      row[4 * i + 3] = level8(1.0f - tile.t[at]);
+    }
+  }
+}
+
+/// Runs work(0) .. work(threads - 1), work(0) on the calling thread, and waits for all.
+template <typename Work>
+void runOnThreads(int threads, const Work& work) {
+  std::vector<std::thread> workers;
+  workers.reserve(static_cast<std::size_t>(threads > 1 ? threads - 1 : 0));
+  for (int c = 1; c < threads; ++c) workers.emplace_back(work, c);
+  work(0);
+  for (std::thread& worker : workers) worker.join();
+}
+
+}  // namespace gs::render::detail
