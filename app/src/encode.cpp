@@ -187,6 +187,13 @@ int encodeGaussianScene(const Options& options, Settings s, const std::string& i
                                                         : qnv::PacketEncoding::compact;
     const std::string stream = qnv::writeStream(vectors, s.write);
     const std::size_t kept = vectors.records.size() / (splatBytes / 8);
+    if (kept == 0) {  // never a silent success: nothing written, exit 1
+      std::fprintf(stderr,
+                   "ghostspace: %s: nothing to encode: %s Gaussians, none with an opacity and "
+                   "a size\n",
+                   input.c_str(), withCommas(cloud.size()).c_str());
+      return 1;
+    }
     std::printf("%s: %s Gaussians (SH degree %d), kept %s\n", input.c_str(),
                 withCommas(cloud.size()).c_str(), cloud.shDegree, withCommas(kept).c_str());
     if (!writeOutput(options.encode.output, stream)) return 1;

@@ -5,7 +5,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <set>
 
 #include "base/url.hpp"
 #include "formats/input_kind.hpp"
@@ -212,15 +211,19 @@ void StreamingSession::drainMessages(std::vector<std::pair<bool, std::string>>& 
   for (auto& [url, t] : tilesets_) t->drainMessages(out);
   // A stream that ends short says so in its decoder's warnings, shown below: its end
   // message repeats the last of them and is not shown twice.
-  std::set<std::string> warned;
-  for (const auto& [url, e] : qnv_)
-    warned.insert(e.stream->warnings().begin(), e.stream->warnings().end());
+  const auto warned = [this](const std::string& message) {
+    for (const auto& [url, e] : qnv_) {
+      const auto& w = e.stream->warnings();
+      if (std::find(w.begin(), w.end(), message) != w.end()) return true;
+    }
+    return false;
+  };
   for (const net::StreamProgress& p : loader_.progress()) {
     if (!p.settled() || p.state == net::StreamState::idle) continue;
     const std::string state = net::toString(p.state);
     if (endShown_[p.url] == state) continue;
     endShown_[p.url] = state;
-    if (!p.error.empty() && (p.state == net::StreamState::failed || !warned.count(p.error)))
+    if (!p.error.empty() && (p.state == net::StreamState::failed || !warned(p.error)))
       out.push_back({p.state == net::StreamState::failed, p.error});
   }
   std::vector<const vrml::Scene*> scenes;

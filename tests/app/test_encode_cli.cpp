@@ -257,3 +257,21 @@ TEST_CASE("a truncated stream says so once", "[app][encode]") {
   REQUIRE(first != std::string::npos);
   CHECK(r.err.find(line, first + 1) == std::string::npos);
 }
+
+TEST_CASE("encoding a splat scene with nothing to draw fails and writes nothing", "[app][encode]") {
+  // Two Gaussians, both transparent (logit opacity -100).
+  const auto ply = scratch("transparent.ply");
+  std::ofstream(ply) << "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\n"
+                        "property float y\nproperty float z\nproperty float f_dc_0\n"
+                        "property float f_dc_1\nproperty float f_dc_2\nproperty float opacity\n"
+                        "property float scale_0\nproperty float scale_1\nproperty float scale_2\n"
+                        "property float rot_0\nproperty float rot_1\nproperty float rot_2\n"
+                        "property float rot_3\nend_header\n"
+                        "0 0 0 0 0 0 -100 -3 -3 -3 1 0 0 0\n1 0 0 0 0 0 -100 -3 -3 -3 1 0 0 0\n";
+  const auto out = scratch("transparent.qnv");
+  std::filesystem::remove(out);
+  const auto r = runGhostspace({"encode", ply.string(), "-o", out.string()});
+  CHECK(r.exitCode == 1);
+  CHECK(r.err.find("nothing to encode") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(out));
+}
