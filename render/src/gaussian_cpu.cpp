@@ -196,23 +196,7 @@ void CpuGaussianRasterizer::draw(const splats::GaussianCloud& cloud,
     for (int t = nextTile.fetch_add(1); t < tiles; t = nextTile.fetch_add(1)) {
       const int tx0 = (t % tilesX) * kTile, ty0 = (t / tilesX) * kTile;
       const int tw = std::min(kTile, view.width - tx0), th = std::min(kTile, view.height - ty0);
-      tile.r.fill(0.0f);
-      tile.g.fill(0.0f);
-      tile.b.fill(0.0f);
-      tile.t.fill(0.0f);
-      tile.limit.fill(0.0f);
-      for (int j = 0; j < th; ++j) {
-        for (int i = 0; i < tw; ++i) {
-          const auto at = static_cast<std::size_t>(j * kTile + i);
-          tile.t[at] = 1.0f;
-          float limit = view.farClip;
-          if (!depth.empty()) {
-            const float d = depth[static_cast<std::size_t>(ty0 + j) * view.width + tx0 + i];
-            if (d < 1.0f) limit = std::min(limit, depthB / (2.0f * d - 1.0f + depthA));
-          }
-          tile.limit[at] = limit;
-        }
-      }
+      startTile(tile, tx0, ty0, tw, th, view.width, view.farClip, depth, depthA, depthB);
       int live = tw * th;
       for (int c = 0; c < chunks && live > 0; ++c) {
         for (const Prepared& binned :

@@ -3,9 +3,11 @@
 // finished tile into the RGBA8 image, and running the per-thread work.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <thread>
 #include <vector>
 
@@ -19,6 +21,34 @@ template <int kSide>
 struct TileBuffers {
   alignas(16) std::array<float, kSide * kSide> r, g, b, t, limit;
 };
+
+/// Starts the tile at pixel (tx0, ty0), tw x th pixels of it inside the viewport: colour 0
+/// and transmittance 1 there, transmittance 0 past the viewport (saturated, never drawn).
+/// Each pixel's depth limit (eye distance) is `farClip`, or nearer where `depth` (the
+/// scene's depth buffer, window depths 0..1, `width` pixels a row; empty: none) holds
+/// geometry: depthB / (2 d - 1 + depthA), depthA and depthB the projection's [2][2] and
+/// [3][2].
+template <int kSide>
+void startTile(TileBuffers<kSide>& tile, int tx0, int ty0, int tw, int th, int width, float farClip,
+               std::span<const float> depth, float depthA, float depthB) {
+  tile.r.fill(0.0f);
+  tile.g.fill(0.0f);
+  tile.b.fill(0.0f);
+  tile.t.fill(0.0f);
+  tile.limit.fill(0.0f);
+  for (int j = 0; j < th; ++j) {
+    for (int i = 0; i < tw; ++i) {
+      const auto at = static_cast<std::size_t>(j * kSide + i);
+      tile.t[at] = 1.0f;
+      float limit = farClip;
+      if (!depth.empty()) {
+        const float d = depth[static_cast<std::size_t>(ty0 + j) * width + tx0 + i];
+        if (d < 1.0f) limit = std::min(limit, depthB / (2.0f * d - 1.0f + depthA));
+      }
+      tile.limit[at] = limit;
+    }
+  }
+}
 
 /// Writes the tw x th corner of `tile` as RGBA8 (alpha = 1 - transmittance) at pixel
 /// (tx0, ty0) of `out`, an image `width` pixels wide, rows from the bottom.
