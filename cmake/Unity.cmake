@@ -12,14 +12,17 @@ set(GS_UNITY_ALONE
   render/src/splat_cpu.cpp
   render/src/surface_programs.cpp
   session/src/volume_input.cpp
-  vrml/src/geometry_indexed.cpp
-  vrml/src/geometry_primitives.cpp
+  geometry/src/geometry_indexed.cpp
+  geometry/src/geometry_primitives.cpp
   vrml/src/node_model_data_0.cpp
   vrml/src/node_model_data_1.cpp
   vrml/src/node_model_data_2.cpp
   vrml/src/node_model_data_3.cpp
   vrml/src/node_model_data_4.cpp
   vrml/src/node_model_data_5.cpp
+  tests/encodings/test_x3d_json.cpp
+  tests/encodings/test_x3d_xml.cpp
+  tests/geometry/test_texcoord_3d.cpp
   tests/formats/test_mesh_readers.cpp
   tests/formats/test_ply_stream.cpp
   tests/formats/test_volume_readers.cpp
@@ -50,11 +53,11 @@ set(GS_UNITY_ALONE
   tests/scene/test_picking.cpp
   tests/scene/test_text_mesh.cpp
   tests/session/test_volume_input.cpp
-  tests/vrml/test_geometry_x3d.cpp
-  tests/vrml/test_x3d_json.cpp
-  tests/vrml/test_x3d_xml.cpp
+  tests/geometry/test_geometry_x3d.cpp
+  tests/encodings/test_x3d_json.cpp
+  tests/encodings/test_x3d_xml.cpp
   tests/render/test_worlds.cpp
-  tests/vrml/test_gltf_scene.cpp
+  tests/gltf/test_gltf_scene.cpp
   tests/app/test_ooc_tileset_cli.cpp
   tests/app/test_progressive.cpp)
 

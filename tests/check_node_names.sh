@@ -13,7 +13,9 @@ pattern="(==|!=) *\"($names)\"|\"($names)\" *(==|!=)|\\{ *\"($names)\" *,"
 hits=$(git ls-files 'app/*.cpp' 'app/*.hpp' 'audio/*.cpp' 'audio/*.hpp' 'base/*.cpp' 'base/*.hpp' \
          'formats/*.cpp' 'formats/*.hpp' 'net/*.cpp' 'net/*.hpp' 'outline/*.cpp' 'outline/*.hpp' \
          'qnv/*.cpp' 'qnv/*.hpp' 'render/*.cpp' 'render/*.hpp' 'scene/*.cpp' 'scene/*.hpp' 'runtime/*.cpp' 'runtime/*.hpp' \
-         'session/*.cpp' 'session/*.hpp' 'vrml/*.cpp' 'vrml/*.hpp' |
+         'session/*.cpp' 'session/*.hpp' 'vrml/*.cpp' 'vrml/*.hpp' 'encodings/*.cpp' 'encodings/*.hpp' \
+         'geometry/*.cpp' 'geometry/*.hpp' 'gltf/*.cpp' 'gltf/*.hpp' 'splats/*.cpp' 'splats/*.hpp' \
+         'encode/*.cpp' 'encode/*.hpp' |
        grep -v -e '^vrml/src/node_table_data.cpp$' -e '^vrml/src/node_model_data_[0-9]*.cpp$' |
        xargs grep -nE "$pattern" || true)
 if [ -n "$hits" ]; then

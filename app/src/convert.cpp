@@ -1,8 +1,8 @@
-// `ghostspace convert IN -o OUT`: a world from one encoding to another (vrml/writer.hpp,
+// `ghostspace convert IN -o OUT`: a world from one encoding to another (encodings/writer.hpp,
 // docs/x3d.md "Conversion").
 #include "app/commands.hpp"
+#include "encodings/writer.hpp"
 #include "session/world.hpp"
-#include "vrml/writer.hpp"
 
 #include <cstdio>
 #include <fstream>

@@ -91,9 +91,9 @@ const std::vector<OptionSpec>& table() {
        .field = GS_FIELD(std::string, splatPath),
        .help = "How splats are drawn: auto (cpu where GL is llvmpipe or softpipe, else "
                "geometry), geometry (a geometry shader makes each patch), points (point "
-               "sprites) or cpu (a multi-threaded CPU rasterizer; render/README.md)",
+               "sprites) or cpu (a multi-threaded CPU rasterizer; docs/rendering.md)",
        .more = "The cpu path draws its image as one quad, about 3x faster on llvmpipe; every "
-               "path gives the same picture, measured in render/README.md.",
+               "path gives the same picture, measured in docs/rendering.md.",
        .check = CLI::IsMember(std::vector<std::string>{"auto", "geometry", "points", "cpu"})},
       {.scope = main,
        .names = "--fit",

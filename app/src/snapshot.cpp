@@ -32,7 +32,7 @@ render::SceneRendererOptions rendererOptions(const Options& options) {
   r.lod = options.lod;
   r.splatPath = options.splatPath;
   r.traversal.mode = options.mode;
-  // GS_SHADER_VARIANTS=0: one generic surface program (benchmarks' "before"; render/README.md).
+  // GS_SHADER_VARIANTS=0: one generic surface program (benchmarks' "before"; docs/rendering.md).
   if (const char* v = std::getenv("GS_SHADER_VARIANTS"); v != nullptr && std::string_view(v) == "0")
     r.shaderVariants = false;
   // One player per movie for all the viewports made with these options (docs/media.md).

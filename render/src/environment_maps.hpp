@@ -2,7 +2,7 @@
 // for the physically based program (shaders_physical.cpp): a mipmapped GL cube map of the
 // specular environment and the nine spherical-harmonic coefficients of its irradiance
 // (R. Ramamoorthi, P. Hanrahan, "An Efficient Representation for Irradiance Environment
-// Maps", SIGGRAPH 2001). render/README.md, "Image-based lighting", says what is
+// Maps", SIGGRAPH 2001). docs/rendering.md, "Image-based lighting", says what is
 // approximated.
 #pragma once
 

@@ -4,13 +4,13 @@
 
 #include <glad/gl.h>
 
+#include "encodings/parser.hpp"
 #include "formats/movie.hpp"
+#include "geometry/geometry.hpp"
 #include "render/image.hpp"
 #include "render/movie_players.hpp"
 #include "render/scene_renderer.hpp"
 #include "scene/traversal.hpp"
-#include "vrml/geometry.hpp"
-#include "vrml/parser.hpp"
 
 #include <array>
 #include <memory>

@@ -90,7 +90,7 @@ bool writePngRows(std::FILE* file, const Image& image, png_bytep* rows, PngError
   // Speed over size (frame sequences of --snapshot --time T0:DT:N spent most of their
   // time in zlib at the default level 6 with adaptive filtering): zlib level 1 with the
   // Sub filter writes a 1280x960 frame several times faster, files somewhat larger
-  // (render/README.md, "Writing frames"). Still a valid PNG for every reader.
+  // (docs/rendering.md, "Writing frames"). Still a valid PNG for every reader.
   png_set_compression_level(png, 1);
   png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
   png_write_info(png, info);

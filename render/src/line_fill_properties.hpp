@@ -5,7 +5,7 @@
 // shader.
 #pragma once
 
-#include "vrml/geometry.hpp"
+#include "geometry/geometry.hpp"
 #include "vrml/node.hpp"
 
 #include <glm/vec3.hpp>

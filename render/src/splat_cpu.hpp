@@ -1,6 +1,6 @@
 // Private to render/: the CPU splat path (SplatPath::cpu, splat_renderer.hpp), a
 // multi-threaded rasterizer of the splat model (splat_model.hpp) for machines whose GL is
-// software (llvmpipe, softpipe), where it beats both GL paths (render/README.md).
+// software (llvmpipe, softpipe), where it beats both GL paths (docs/rendering.md).
 //
 // It draws exactly the picture of the CPU reference of equation (1) (splat_reference.hpp)
 // and of the geometry path: every vector is the square patch of +-3 spreads in the plane

@@ -10,7 +10,7 @@
 // fragments the geometry path's two triangles shade. One point per splat instead of a
 // geometry-shader invocation and two triangles; but a square sprite over an oblique
 // ellipse covers more pixels than the patch, and on llvmpipe the covered pixel blocks
-// dominate the cost: measured in render/README.md, it is not the default anywhere.
+// dominate the cost: measured in docs/rendering.md, it is not the default anywhere.
 //
 // A sprite cannot cross the near plane nor exceed the largest point size, so the pass
 // checks the view first (pointsFit) and draws with the geometry path when some splat

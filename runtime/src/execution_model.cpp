@@ -4,7 +4,7 @@
 
 #include "base/data_url.hpp"
 #include "base/url.hpp"
-#include "vrml/parser.hpp"
+#include "encodings/parser.hpp"
 #include "vrml/proto.hpp"
 
 #include <algorithm>

@@ -5,7 +5,7 @@
 #include "runtime/interpolators_nurbs.hpp"
 
 #include "execution_state.hpp"
-#include "vrml/nurbs.hpp"
+#include "geometry/nurbs.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,11 +1,11 @@
 // The X3D ECMAScript binding's host side (ISO/IEC 19777-1): X3D field values <-> objects
 // of the classes of script_prelude_x3d.cpp, and the natives behind X3DScene,
 // SFNode.getFieldDefinitions and getNodeName (__gsX3D, taken by that prelude).
+#include "encodings/writer.hpp"
 #include "script_ecmascript_internal.hpp"
 #include "vrml/node_model.hpp"
 #include "vrml/proto.hpp"
 #include "vrml/scene.hpp"
-#include "vrml/writer.hpp"
 
 #include <array>
 #include <cctype>

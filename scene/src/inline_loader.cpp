@@ -3,9 +3,9 @@
 // streamed through TraversalOptions::inlineSource or read whole through its fetcher;
 // results and failures cached by URL and by node.
 #include "base/url.hpp"
+#include "encodings/parser.hpp"
 #include "scene/node_access.hpp"
 #include "scene/traversal.hpp"
-#include "vrml/parser.hpp"
 
 namespace gs::scene {
 

@@ -7,11 +7,11 @@
 #include <fstream>
 
 #include "base/url.hpp"
+#include "encodings/parser.hpp"
 #include "formats/input_kind.hpp"
 #include "session/splat_inputs.hpp"
 #include "session/world.hpp"
 #include "splats/qnv_gaussians.hpp"
-#include "vrml/parser.hpp"
 
 namespace gs::session {
 

@@ -1,10 +1,10 @@
 #include "session/world.hpp"
 
 #include "base/file.hpp"
+#include "encodings/parser.hpp"
 #include "formats/input_kind.hpp"
 #include "qnv/error.hpp"
 #include "session/splat_inputs.hpp"
-#include "vrml/parser.hpp"
 
 #include <cctype>
 #include <chrono>

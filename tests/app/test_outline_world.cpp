@@ -1,11 +1,11 @@
 // `ghostspace encode --outline`: the outline-group world writer (paper section 1.1), end to
 // end with the real binary: reparse, triangle counts, outlines first, same picture.
+#include "encodings/parser.hpp"
 #include "outline/outline_world.hpp"
 #include "process.hpp"
 #include "render/image.hpp"
 #include "scene/traversal.hpp"
 #include "test_support.hpp"
-#include "vrml/parser.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -73,7 +73,7 @@ const RenderCase kCases[] = {
      "gltf/castle/blender/custom_properties/blender_custom_properties.gltf", true},
     {"gltf_custom_properties_2",
      "gltf/castle/blender/custom_properties_2/blender_custom_properties.gltf", true},
-    // X3D 4.1 EnvironmentLight: image-based light on PhysicalMaterial (render/README.md).
+    // X3D 4.1 EnvironmentLight: image-based light on PhysicalMaterial (docs/rendering.md).
     {"environment_light", "assets/worlds/environment_light.x3dv", false},
     // X3D VolumeData and IsoSurfaceVolumeData drawn as QNV splats (docs/x3d.md).
     {"volume_data", "assets/worlds/volume_data.x3dv", false},

@@ -3,9 +3,9 @@
 
 #include <glm/geometric.hpp>
 
+#include "encodings/parser.hpp"
 #include "qnv/encoder.hpp"
 #include "scene/world_triangles.hpp"
-#include "vrml/parser.hpp"
 
 namespace {
 

@@ -4,8 +4,8 @@
 
 #include "audio/audio_output.hpp"
 #include "audio/sound_scene.hpp"
+#include "encodings/parser.hpp"
 #include "runtime/execution_model.hpp"
-#include "vrml/parser.hpp"
 
 #include <memory>
 #include <string>

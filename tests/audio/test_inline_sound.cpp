@@ -1,8 +1,8 @@
 // Sounds inside Inline worlds (ISO/IEC 14772-1:1997 6.25, 6.42) are heard: SoundScene
 // walks the worlds its InlineQuery gives (in the window, the renderer's loaded Inlines),
 // in the Inline's coordinate system, their clip URLs relative to the inlined world.
+#include "encodings/parser.hpp"
 #include "sound_world.hpp"
-#include "vrml/parser.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -3,9 +3,9 @@
 // milliseconds per cascade), and whether the chains redraw without re-tessellation.
 //
 //   bench_events [chains] [frames]      (default 10000 chains, 300 frames)
+#include "encodings/parser.hpp"
 #include "runtime/execution_model.hpp"
 #include "scene/traversal.hpp"
-#include "vrml/parser.hpp"
 
 #include <chrono>
 #include <cstdio>

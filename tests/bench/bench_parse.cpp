@@ -14,8 +14,8 @@
 // figure is the best pass, in wall-clock time and in the thread's CPU time. With XMLONLY=1
 // in the environment as well, only the XML reader runs (for a profiler) and nothing is
 // printed.
-#include "vrml/parser.hpp"
-#include "vrml/writer.hpp"
+#include "encodings/parser.hpp"
+#include "encodings/writer.hpp"
 
 #include <expat.h>
 

@@ -5,10 +5,10 @@
 // After the first frame, 10 untimed warm-up frames, then FRAMES timed ones (default 10).
 // --generic draws every frame with the one generic surface program (no shader variants:
 // SceneRendererOptions::shaderVariants false), the "before" of issue 22's variants.
+#include "encodings/parser.hpp"
 #include "render/context.hpp"
 #include "render/image.hpp"
 #include "render/scene_renderer.hpp"
-#include "vrml/parser.hpp"
 
 #include <chrono>
 #include <cstdio>

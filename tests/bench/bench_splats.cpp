@@ -1,7 +1,7 @@
 // Splat pass throughput on the headless path (OSMesa), the three SplatPaths in one run:
 // M splats/s of a whole frame (depth sort, upload of the order, draw, glFinish) for
 // synthetic sphere shells of a few sizes and for .qnv files given on the command line
-// (e.g. the bunny and CThead's top 9.1%, render/README.md), each seen whole by a fitted
+// (e.g. the bunny and CThead's top 9.1%, docs/rendering.md), each seen whole by a fitted
 // camera. Each figure is the best of FRAMES frames (the camera moves a little every
 // frame, so each frame sorts again); "cpu" is the process's CPU time per frame (all
 // llvmpipe threads and the cpu path's workers), less sensitive to other work on a shared

@@ -3,11 +3,11 @@
 // drawn off-screen at 300x300.
 //
 //   bench_text [characters]      (default 10000)
+#include "encodings/parser.hpp"
 #include "render/context.hpp"
 #include "render/image.hpp"
 #include "render/scene_renderer.hpp"
 #include "scene/text_mesh.hpp"
-#include "vrml/parser.hpp"
 
 #include <chrono>
 #include <cstdio>

@@ -18,11 +18,11 @@
 // printed: the fraction of foreground (non-background) pixels in the reference and in ours.
 // --out DIR writes our images as DIR/NAME_{snap,fit,castle}.png (NAME: the
 // world's path below CASTLE_DIR with '/' turned into '__').
+#include "encodings/parser.hpp"
 #include "image_metrics.hpp"
 #include "render/context.hpp"
 #include "render/image.hpp"
 #include "render/scene_renderer.hpp"
-#include "vrml/parser.hpp"
 
 #include <algorithm>
 #include <cmath>

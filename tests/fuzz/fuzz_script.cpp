@@ -3,11 +3,11 @@
 // field holding a node; the world is loaded (initialize()), then time advances a few
 // frames so that a TimeSensor's events reach the Script. Small limits: 50 ms per call,
 // 16 MiB of heap.
+#include "encodings/parser.hpp"
 #include "fuzz_no_files.hpp"
 #include "fuzz_support.hpp"
 #include "runtime/execution_model.hpp"
 #include "runtime/script_ecmascript.hpp"
-#include "vrml/parser.hpp"
 
 #include <memory>
 

@@ -1,8 +1,8 @@
 // vrml::parseVrml (lexer, parser, node table, PROTO expansion, ROUTEs) on any bytes.
 // EXTERNPROTO URLs are refused, so the fuzzer never reads the machine's files.
+#include "encodings/parser.hpp"
 #include "fuzz_no_files.hpp"
 #include "fuzz_support.hpp"
-#include "vrml/parser.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   gs::vrml::ParseOptions options;

@@ -1,8 +1,8 @@
 // PROTO and EXTERNPROTO expansion: the input is a world and, after the first NUL byte,
 // the text every EXTERNPROTO URL loads (so EXTERNPROTO files naming others, cycles and
 // depth limits are reached). Both get a VRML header unless they start with '#'.
+#include "encodings/parser.hpp"
 #include "fuzz_support.hpp"
-#include "vrml/parser.hpp"
 
 namespace {
 std::string withHeader(std::string_view s) {

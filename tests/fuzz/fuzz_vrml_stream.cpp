@@ -7,10 +7,10 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "encodings/parser.hpp"
+#include "encodings/streaming_parser.hpp"
 #include "fuzz_no_files.hpp"
 #include "fuzz_support.hpp"
-#include "vrml/parser.hpp"
-#include "vrml/streaming_parser.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   FuzzedDataProvider in(data, size);

@@ -4,10 +4,10 @@
 // machine's files.
 #pragma once
 
+#include "encodings/parser.hpp"
+#include "encodings/streaming_parser.hpp"
 #include "fuzz_no_files.hpp"
 #include "fuzz_support.hpp"
-#include "vrml/parser.hpp"
-#include "vrml/streaming_parser.hpp"
 
 #include <string>
 

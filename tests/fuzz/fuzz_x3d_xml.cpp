@@ -1,4 +1,4 @@
-// The X3D XML encoding (vrml/src/x3d_xml.cpp: expat, the translation into Classic VRML
+// The X3D XML encoding (encodings/src/x3d_xml.cpp: expat, the translation into Classic VRML
 // text, the diagnostics moved back onto the XML) on any bytes, whole and streamed in two
 // pieces (fuzz_x3d.hpp); every input starts '<'.
 #include "fuzz_x3d.hpp"

@@ -3,9 +3,9 @@
 // table) and a small tessellator for the test geometry types.
 #pragma once
 
+#include "geometry/geometry.hpp"
 #include "render/scene_renderer.hpp"
 #include "vrml/field.hpp"
-#include "vrml/geometry.hpp"
 #include "vrml/node.hpp"
 #include "vrml/scene.hpp"
 

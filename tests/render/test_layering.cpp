@@ -1,8 +1,8 @@
 // X3D Layering (X3D 4.0 clause 35): a root LayerSet's layers drawn in its `order`, each
 // over the previous with the depth buffer cleared, a Layer's Viewport clipping it to its
 // clipBoundary; drawn off-screen at 64x64 (world_files.hpp).
+#include "encodings/parser.hpp"
 #include "scene/traversal.hpp"
-#include "vrml/parser.hpp"
 #include "world_files.hpp"
 
 #include <catch2/catch.hpp>

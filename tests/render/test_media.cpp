@@ -1,10 +1,10 @@
 // Issue 12: images (GIF through giflib, grey and alpha PNGs as ISO/IEC 14772-1 4.14 /
 // table 4.6 says), Background colours and panoramas (6.5), and exact bounds of rotated
 // shapes. Worlds are written at test time and rendered off-screen at 64x64.
+#include "encodings/parser.hpp"
 #include "render/context.hpp"
 #include "render/image.hpp"
 #include "render/scene_renderer.hpp"
-#include "vrml/parser.hpp"
 
 #include <catch2/catch.hpp>
 

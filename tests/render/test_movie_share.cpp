@@ -3,11 +3,11 @@
 // time through one render::MoviePlayers; the movie is opened and decoded once, copied
 // into one texture once per frame, and both show the frame of that time. colours.mpg: 16 x 16, 24
 // frames at 24 fps, red, green, blue and white for 6 frames each.
+#include "encodings/parser.hpp"
 #include "render/context.hpp"
 #include "render/image.hpp"
 #include "render/movie_players.hpp"
 #include "render/scene_renderer.hpp"
-#include "vrml/parser.hpp"
 
 #include <catch2/catch.hpp>
 

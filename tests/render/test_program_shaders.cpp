@@ -3,8 +3,8 @@
 // PackagedShader passed over with a warning, FloatVertexAttribute and
 // Matrix4VertexAttribute values reaching the shader per vertex; drawn off-screen at
 // 64x64.
+#include "geometry/geometry.hpp"
 #include "test_support.hpp"
-#include "vrml/geometry.hpp"
 #include "world_files.hpp"
 
 #include <catch2/catch.hpp>

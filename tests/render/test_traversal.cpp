@@ -1,8 +1,8 @@
 // Scene traversal on the CPU: node maths, grouping nodes, LOD, lights, bindables, Inline.
+#include "encodings/parser.hpp"
 #include "render_test_util.hpp"
 #include "scene/picking.hpp"
 #include "scene/traversal.hpp"
-#include "vrml/parser.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -1,10 +1,10 @@
 // Whole worlds through the real parser and tessellator, rendered off-screen at 64x64:
 // ImageTexture files, Inline with relative URLs, Fog, PointLight radius.
+#include "encodings/parser.hpp"
 #include "render/context.hpp"
 #include "render/image.hpp"
 #include "render/scene_renderer.hpp"
 #include "test_support.hpp"
-#include "vrml/parser.hpp"
 #include "world_files.hpp"
 
 #include <catch2/catch.hpp>

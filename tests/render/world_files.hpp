@@ -3,10 +3,10 @@
 // world's initial camera (test_worlds.cpp, test_multi_texture.cpp).
 #pragma once
 
+#include "encodings/parser.hpp"
 #include "render/context.hpp"
 #include "render/image.hpp"
 #include "render/scene_renderer.hpp"
-#include "vrml/parser.hpp"
 
 #include <catch2/catch.hpp>
 

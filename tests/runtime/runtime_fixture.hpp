@@ -1,9 +1,9 @@
 // Test helpers for the execution model: a world from VRML text and a recorded trace.
 #pragma once
 
+#include "encodings/parser.hpp"
 #include "runtime/execution_model.hpp"
 #include "runtime/trace.hpp"
-#include "vrml/parser.hpp"
 
 #include <memory>
 #include <string>

@@ -2,8 +2,8 @@
 // Script nodes from VRML text, for the ECMAScript host's tests.
 #pragma once
 
+#include "encodings/parser.hpp"
 #include "runtime/script_ecmascript.hpp"
-#include "vrml/parser.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -1,8 +1,8 @@
 // X3D's CADGeometry structure (X3D 4.0 clause 32) in the traversal: CADAssembly and
 // CADLayer group, CADPart places its children as a Transform does, CADFace draws the
 // node in its `shape` field.
+#include "encodings/parser.hpp"
 #include "scene/traversal.hpp"
-#include "vrml/parser.hpp"
 
 #include <catch2/catch.hpp>
 

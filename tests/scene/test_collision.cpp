@@ -2,9 +2,9 @@
 // avatarSize[0], WALK falls to avatarSize[1] above the ground and climbs steps up to
 // avatarSize[2]; Collision.collide FALSE lets the avatar through, a proxy blocks in place
 // of the children (ISO/IEC 14772-1:1997 6.8, 6.29).
+#include "encodings/parser.hpp"
 #include "scene/collision.hpp"
 #include "scene/picking.hpp"
-#include "vrml/parser.hpp"
 
 #include <catch2/catch.hpp>
 

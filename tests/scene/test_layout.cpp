@@ -2,10 +2,10 @@
 // (scene/layout.hpp) worked by hand, and a LayoutLayer's and a ScreenGroup's shapes at the
 // pixels they ask for, at two window sizes, through the traversal and the camera's
 // projection.
+#include "encodings/parser.hpp"
 #include "scene/camera.hpp"
 #include "scene/layout.hpp"
 #include "scene/traversal.hpp"
-#include "vrml/parser.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -1,8 +1,8 @@
 // The OutlineGroup extension node (docs/vrml-extensions.md) in the traversal: outlines
 // shown until their group's polygons arrive, RenderMode::outlines, hole tessellation.
+#include "encodings/parser.hpp"
+#include "geometry/geometry.hpp"
 #include "scene/traversal.hpp"
-#include "vrml/geometry.hpp"
-#include "vrml/parser.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -1,7 +1,7 @@
 // CPU picking (scene/picking.hpp): the nearest triangle, the path of grouping nodes with
 // their matrices, misses, rays through pixels.
+#include "encodings/parser.hpp"
 #include "scene/picking.hpp"
-#include "vrml/parser.hpp"
 
 #include <catch2/catch.hpp>
 

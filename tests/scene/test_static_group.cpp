@@ -1,7 +1,7 @@
 // X3D's StaticGroup (X3D 4.0 clause 10.4.3) and ViewpointGroup (23.4.6) in the traversal:
 // neither is an X3DGroupingNode, both walk their children (shapes drawn, viewpoints bound).
+#include "encodings/parser.hpp"
 #include "scene/traversal.hpp"
-#include "vrml/parser.hpp"
 
 #include <catch2/catch.hpp>
 

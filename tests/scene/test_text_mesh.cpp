@@ -1,9 +1,9 @@
 // Text (6.47) as triangles (scene/text_mesh.hpp): holes, texture coordinates, the glyph
 // cache, diagnostics, picking and worldTriangles.
+#include "encodings/parser.hpp"
 #include "scene/picking.hpp"
 #include "scene/text_mesh.hpp"
 #include "scene/world_triangles.hpp"
-#include "vrml/parser.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -1,8 +1,8 @@
 // A world's animations as the window's Animations menu starts and stops them
 // (session/animations.hpp), on the corpus's Fox (three glTF animations).
+#include "encodings/parser.hpp"
 #include "session/animations.hpp"
 #include "test_support.hpp"
-#include "vrml/parser.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -13,11 +13,11 @@
 
 #include <unistd.h>
 
+#include "encodings/parser.hpp"
 #include "formats/input_kind.hpp"
 #include "qnv/error.hpp"
 #include "session/volume_input.hpp"
 #include "test_support.hpp"
-#include "vrml/parser.hpp"
 
 using namespace gs;
 using Catch::Matchers::Contains;

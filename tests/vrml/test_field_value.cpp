@@ -1,6 +1,7 @@
 // FieldValue keeps its large alternatives (matrices, SFImage, SFString, SFVec4d, MFBool)
 // boxed on the heap: copies must stay deep, a value moved from or never written must read
 // as the type's default, and comparing compares values, not boxes.
+#include "encodings/node_types.hpp"
 #include "vrml/field.hpp"
 #include "vrml/field_name.hpp"
 #include "vrml/node.hpp"

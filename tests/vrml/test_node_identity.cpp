@@ -1,5 +1,6 @@
 // Node identity: caches of per-node data are keyed by NodeKey (address and serial), so a
 // node allocated where a freed one lived never finds the freed one's entry.
+#include "encodings/node_types.hpp"
 #include "vrml/node.hpp"
 #include "vrml/node_table.hpp"
 

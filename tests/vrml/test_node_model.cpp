@@ -1,8 +1,9 @@
 // The node model (vrml/node_model.hpp): generated from X3DUOM 4.0, checked here against
 // the VRML97 node table and the abstract types every module decides classes by.
+#include "encodings/node_types.hpp"
+#include "encodings/parser.hpp"
 #include "vrml/node_model.hpp"
 #include "vrml/node_table.hpp"
-#include "vrml/parser.hpp"
 
 #include <catch2/catch.hpp>
 

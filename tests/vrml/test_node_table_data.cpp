@@ -1,6 +1,7 @@
 // Checks of the declarative node table's text (vrml/src/node_table_data.cpp): the 54 VRML97
 // nodes of ISO/IEC 14772-1:1997 clause 6, their declarations' syntax and well-known defaults.
 // These look only at the text; parsing it into NodeTypes is tested with builtInNodeType.
+#include "encodings/node_types.hpp"
 #include "vrml/field.hpp"
 #include "vrml/node_table.hpp"
 

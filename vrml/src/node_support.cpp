@@ -47,17 +47,17 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::LayoutLayer,
     NodeTypeId::ScreenGroup,
     NodeTypeId::ScreenFontStyle,  // scene/src/text_mesh.cpp: pointSize
-    NodeTypeId::NurbsCurve,       // vrml/src/geometry_nurbs.cpp
+    NodeTypeId::NurbsCurve,       // geometry/src/geometry_nurbs.cpp
     NodeTypeId::NurbsPatchSurface,
     NodeTypeId::NurbsTrimmedSurface,        // untrimmed
-    NodeTypeId::NurbsTextureCoordinate,     // vrml/src/geometry_nurbs.cpp
+    NodeTypeId::NurbsTextureCoordinate,     // geometry/src/geometry_nurbs.cpp
     NodeTypeId::NurbsPositionInterpolator,  // runtime/src/interpolators_nurbs.cpp
     NodeTypeId::NurbsOrientationInterpolator,
     NodeTypeId::NurbsSurfaceInterpolator,
     NodeTypeId::PixelTexture3D,  // render/src/textures_3d.cpp; volume data too
     NodeTypeId::ComposedTexture3D,
     NodeTypeId::ImageTexture3D,
-    NodeTypeId::TextureCoordinate3D,  // vrml/src/geometry.cpp (Mesh::texCoordsStrq)
+    NodeTypeId::TextureCoordinate3D,  // geometry/src/geometry.cpp (Mesh::texCoordsStrq)
     NodeTypeId::TextureCoordinate4D,
     NodeTypeId::VolumeData,  // render/src/volume_data.cpp: QNV splats
     NodeTypeId::IsoSurfaceVolumeData,
@@ -114,16 +114,16 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::LineProperties,  // render/src/line_fill_properties.cpp
     NodeTypeId::FillProperties,
     NodeTypeId::PointProperties,
-    NodeTypeId::ProtoInstance,      // the XML encoding's PROTO instance (vrml/src/x3d_xml.cpp)
+    NodeTypeId::ProtoInstance,      // the XML encoding's PROTO instance (encodings/src/x3d_xml.cpp)
     NodeTypeId::TextureBackground,  // render/src/background.cpp
     NodeTypeId::LocalFog,           // scene/src/traversal.cpp (ShapeInstance::localFog)
-    NodeTypeId::FogCoordinate,      // vrml/src/geometry.cpp (Mesh::fogDepths)
+    NodeTypeId::FogCoordinate,      // geometry/src/geometry.cpp (Mesh::fogDepths)
     NodeTypeId::ComposedShader,     // render/src/composed_shaders.cpp (GLSL)
     NodeTypeId::ShaderPart,
     NodeTypeId::ProgramShader,  // render/src/composed_shaders.cpp (GLSL)
     NodeTypeId::ShaderProgram,
     NodeTypeId::PackagedShader,          // passed over with a warning (31.2.2)
-    NodeTypeId::FloatVertexAttribute,    // vrml/src/geometry_attributes.cpp (Mesh::attributes)
+    NodeTypeId::FloatVertexAttribute,    // geometry/src/geometry_attributes.cpp (Mesh::attributes)
     NodeTypeId::Matrix3VertexAttribute,  // and GpuMesh::bindAttributes
     NodeTypeId::Matrix4VertexAttribute,
     NodeTypeId::LoadSensor,                // runtime/src/load_sensors.cpp
@@ -144,7 +144,7 @@ constexpr std::array kImplementedX3d = {
 bool nodeImplemented(NodeTypeId id) {
   const NodeModel* m = nodeModel(id);
   if (m == nullptr) return false;
-  if (builtInNodeType(m->name)) return true;  // VRML97's nodes and the extensions
+  if (inNodeTable(m->name)) return true;  // VRML97's nodes and the extensions
   return std::find(kImplementedX3d.begin(), kImplementedX3d.end(), id) != kImplementedX3d.end();
 }
 

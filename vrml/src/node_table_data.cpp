@@ -436,4 +436,10 @@ std::size_t vrml97NodeTypeCount() {
   return kVrml97Count;
 }
 
+bool inNodeTable(std::string_view name) {
+  for (const NodeTableEntry& e : kEntries)
+    if (e.name == name) return true;
+  return false;
+}
+
 }  // namespace gs::vrml

@@ -21,7 +21,7 @@ std::uint64_t autoLodBudget(std::uint64_t userBudget, double splatRate, double t
 double autoLodRatio(double targetSeconds, double takenSeconds);
 
 /// The cap before any frame was measured: 250,000 vectors (about 0.1 s through llvmpipe
-/// on two cores at 512x512, render/README.md).
+/// on two cores at 512x512, docs/rendering.md).
 inline constexpr std::uint64_t kFirstFrameVectors = 250'000;
 /// The smallest cap the rate gives: 1,000 vectors.
 inline constexpr std::uint64_t kMinAutoVectors = 1'000;

@@ -59,7 +59,7 @@ struct Options {
   bool newInstance = false;        // --new-instance: do not hand INPUTs to a running window
   std::string frameLog;            // --frame-log FILE: a line per window frame (frame_log.hpp)
   scene::RenderMode mode = scene::RenderMode::polygons;        // --mode polygons|splats|outlines
-  render::SplatPath splatPath = render::SplatPath::automatic;  // --splat-path (render/README.md)
+  render::SplatPath splatPath = render::SplatPath::automatic;  // --splat-path (docs/rendering.md)
   bool fit = false;           // --fit: frame the whole scene, not the Viewpoint
   bool castleCamera = false;  // --castle-camera: castle's camera for a world without Viewpoint
   double maxRate = 0.0;       // --max-rate BYTES_PER_S: emulate a slow link (0: off)

@@ -10,10 +10,10 @@
 #include <optional>
 #include <string>
 
+#include "encodings/streaming_parser.hpp"
 #include "net/progress.hpp"
 #include "net/transfer.hpp"
 #include "qnv/decoder.hpp"
-#include "vrml/streaming_parser.hpp"
 
 namespace gs::net {
 

@@ -9,8 +9,8 @@
 #include "scene/camera.hpp"
 
 #include <glm/gtc/quaternion.hpp>
+#include "encodings/parser.hpp"
 #include "scene/traversal.hpp"
-#include "vrml/parser.hpp"
 #include "vrml/scene.hpp"
 
 #include <cstddef>
@@ -58,7 +58,7 @@ struct SceneRendererOptions {
   /// fraction or count), 0..1. traversal.mode = RenderMode::splats draws the polygon
   /// world as splats.
   double lod = 1.0;
-  /// How the splat pass turns vectors into pixels (`--splat-path`; render/README.md).
+  /// How the splat pass turns vectors into pixels (`--splat-path`; docs/rendering.md).
   SplatPath splatPath = SplatPath::automatic;
   /// MovieTexture players (render/movie_players.hpp) shared with the other renderers
   /// given the same registry: renderers of one world then decode each movie once. Null: a
@@ -66,7 +66,7 @@ struct SceneRendererOptions {
   std::shared_ptr<MoviePlayers> movies;
   /// Draw Phong shapes with shader variants specialized to what each uses (lights, texture,
   /// fog, colours), compiled a few per frame from the second frame on; false: always the
-  /// one generic program (the same pixels, more work per pixel). render/README.md.
+  /// one generic program (the same pixels, more work per pixel). docs/rendering.md.
   bool shaderVariants = true;
 };
 

@@ -14,12 +14,12 @@
 
 #include <glm/glm.hpp>
 
+#include "geometry/geometry.hpp"
 #include "qnv/decoder.hpp"
 #include "render/splat_model.hpp"
 #include "scene/camera.hpp"
 #include "splats/gaussian.hpp"
 #include "splats/lod_tree.hpp"
-#include "vrml/geometry.hpp"
 
 namespace gs::render {
 
@@ -123,7 +123,7 @@ enum class SplatBlend { backToFront, frontToBack };
 
 /// How the pass turns a vector into pixels. All shade the same splats (the picture agrees
 /// with the CPU reference of equation (1) on each); they differ in speed
-/// (render/README.md, bench_splats).
+/// (docs/rendering.md, bench_splats).
 enum class SplatPath {
   /// One point sprite per splat covering its projected patch, culled outside the view;
   /// the fragment shader intersects each pixel's ray with the patch plane. A view where

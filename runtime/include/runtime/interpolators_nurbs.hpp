@@ -1,7 +1,7 @@
 // X3D's NURBS interpolators (ISO/IEC 19775-1 X3D 4.0 clause 27) as pure functions of their
 // node's fields and a fraction: 27.4.6 NurbsPositionInterpolator, 27.4.5
 // NurbsOrientationInterpolator and 27.4.9 NurbsSurfaceInterpolator. The curve and surface
-// are evaluated as NurbsCurve and NurbsPatchSurface are (vrml/nurbs.hpp), exactly (not
+// are evaluated as NurbsCurve and NurbsPatchSurface are (geometry/nurbs.hpp), exactly (not
 // through a tessellation). Where the standard leaves a choice X_ITE's reading is followed
 // (docs/x3d.md "NURBS" says where):
 // - The curves' set_fraction is the curve parameter itself, a knot value (X_ITE and

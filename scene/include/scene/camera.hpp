@@ -3,7 +3,7 @@
 // OpenGL conventions (right-handed eye space looking down -Z, clip z in -1..1).
 #pragma once
 
-#include "vrml/geometry.hpp"
+#include "geometry/geometry.hpp"
 
 #include <string>
 #include <vector>

@@ -4,8 +4,8 @@
 #pragma once
 
 #include "formats/font.hpp"
+#include "geometry/geometry.hpp"
 #include "vrml/diagnostic.hpp"
-#include "vrml/geometry.hpp"
 #include "vrml/node.hpp"
 
 namespace gs::scene {

@@ -6,9 +6,9 @@
 #pragma once
 
 #include "base/fetch.hpp"
+#include "geometry/geometry.hpp"
 #include "scene/camera.hpp"
 #include "vrml/diagnostic.hpp"
-#include "vrml/geometry.hpp"
 #include "vrml/node.hpp"
 #include "vrml/scene.hpp"
 #include "vrml/transform.hpp"
@@ -51,7 +51,7 @@ struct LightInstance {
 };
 
 /// An EnvironmentLight (X3D 4.1 clause 17.4.2): image-based lighting of the
-/// PhysicalMaterial shapes it lights (render/README.md, "Image-based lighting").
+/// PhysicalMaterial shapes it lights (docs/rendering.md, "Image-based lighting").
 struct EnvironmentLightInstance {
   const vrml::Node* node = nullptr;
   /// Environment (cube map) coordinates to world: the light's transform's rotation times

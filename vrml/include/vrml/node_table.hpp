@@ -1,6 +1,7 @@
 // The declarative table of built-in node types: the 54 VRML97 nodes of clause 6 plus
-// GhostSpace's extension nodes. The parser, default values and checks all derive from
-// it; tests iterate over every entry.
+// GhostSpace's extension nodes, as the text of PROTO interface declarations. The node
+// types themselves (encodings/node_types.hpp: builtInNodeType, x3dNodeType) are read from
+// it by the Classic parser; tests iterate over every entry.
 #pragma once
 
 #include "vrml/node.hpp"
@@ -23,19 +24,10 @@ struct NodeTableEntry {
 /// All built-in entries (54 VRML97 nodes first, in clause 6 order, then extensions).
 std::span<const NodeTableEntry> nodeTableEntries();
 
-/// The built-in type called `name`, or nullptr. Built once, on first use, thread-safe.
-std::shared_ptr<const NodeType> builtInNodeType(std::string_view name);
-
-/// The type called `name` as an X3D world sees it (ISO/IEC 19775-1:2023): for a VRML97
-/// node (and the extensions) its VRML97 interface, field names and defaults unchanged,
-/// followed by the fields X3D 4.0 adds to it (metadata, solid, visible, ...); for a node
-/// X3D added, its X3D 4.0 interface from the node model (node_model.hpp), defaults
-/// included. Switch's and LOD's X3D `children` and Collision's `enabled` are not added:
-/// the parser reads them as VRML97's `choice`, `level` and `collide`. nullptr when the
-/// name is no node of either. Built once, on first use, thread-safe.
-std::shared_ptr<const NodeType> x3dNodeType(std::string_view name);
-
 /// Number of VRML97 (non-extension) node types in the table: 54.
 std::size_t vrml97NodeTypeCount();
+
+/// True when `name` is an entry of the table (a VRML97 node or an extension).
+bool inNodeTable(std::string_view name);
 
 }  // namespace gs::vrml

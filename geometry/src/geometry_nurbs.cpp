@@ -1,0 +1,262 @@
+// X3D's NURBS component (ISO/IEC 19775-1 X3D 4.0 clause 27): NurbsCurve as a line strip,
+// NurbsPatchSurface and NurbsTrimmedSurface as a grid of triangles, evaluated as rational
+// B-splines (geometry/nurbs.hpp, shared with the runtime's NURBS interpolators: L. Piegl,
+// W. Tiller, "The NURBS Book", 2nd ed., algorithms A2.1 FindSpan and A2.2 BasisFuns,
+// equation 4.15 for surfaces).
+//
+// - Knots: the node's when there are dimension + order of them, non-decreasing; otherwise
+//   (and when absent) the uniform clamped vector 0 (order times), 1, 2, ..., n - order + 1
+//   (order times), with a warning when some were given.
+// - Weights: the node's when there is one per control point and all are > 0; otherwise
+//   1 (a warning when some were given).
+// - Tessellation (27.2.3): t > 0 gives t segments, t < 0 gives -t times the control
+//   points, 0 gives 2 x the control points (a browser's choice; castle-model-viewer's).
+// - Surfaces: texture coordinates are the parameters scaled to [0, 1] (the clause's
+//   default), a NurbsTextureCoordinate's 2D NURBS surface evaluated at the same fractions
+//   of its own parameter range (27.4.10; a warning and the default when its fields do not
+//   make a surface), or a TextureCoordinate's points interpolated bilinearly over the grid
+//   (one per control point); normals come from the grid (central differences), pointing as
+//   u x v. NurbsTrimmedSurface's trimming contours are not applied (a warning).
+#include "geometry/nurbs.hpp"
+#include "geometry_internal.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace gs::vrml::geometry_detail {
+
+namespace {
+
+using nurbs::Axis;
+
+/// The most segments one direction is cut into.
+constexpr int kMaxNurbsSegments = 1024;
+constexpr int kMaxNurbsControlPoints = nurbs::kMaxControlPoints;
+
+/// The axis of `count` control points of order `order` with knots `given` (checked; the
+/// uniform knots with a warning when they are not right).
+Axis nurbsAxis(int count, int order, const std::vector<double>& given, const char* what,
+               ProblemLog& log) {
+  std::string problem;
+  Axis a = nurbs::lenientAxis(count, order, given, what, problem);
+  if (!problem.empty()) log.add(problem);
+  return a;
+}
+
+int nurbsSegments(int tessellation, int count) {
+  const int t = tessellation > 0   ? tessellation
+                : tessellation < 0 ? -tessellation * count
+                                   : 2 * count;
+  return std::clamp(t, 1, kMaxNurbsSegments);
+}
+
+/// The weights of `count` control points (1 when not one per point, all > 0).
+std::vector<double> nurbsWeights(const Node& node, std::size_t count, ProblemLog& log) {
+  std::vector<double> w = nurbs::doubles(node, "weight");
+  const bool ok = w.size() == count && std::all_of(w.begin(), w.end(), [](double x) {
+                    return std::isfinite(x) && x > 0;
+                  });
+  if (ok) return w;
+  if (!w.empty())
+    log.addLazy([&] {
+      return "weight has " + std::to_string(w.size()) + " values for " + std::to_string(count) +
+             " control points (or one is not > 0): weights of 1 used";
+    });
+  return std::vector<double>(count, 1.0);
+}
+
+/// The points of the surface of `points` (ua.count x va.count, u fastest) with weights
+/// `w` at su + 1 by sv + 1 evenly spaced parameters, u fastest.
+std::vector<glm::dvec3> nurbsGrid(const Axis& ua, const Axis& va,
+                                  const std::vector<glm::dvec3>& points,
+                                  const std::vector<double>& w, int su, int sv) {
+  const auto gu = static_cast<std::size_t>(su + 1), gv = static_cast<std::size_t>(sv + 1);
+  std::vector<glm::dvec3> grid(gu * gv);
+  std::vector<std::vector<double>> bu(gu), bv(gv);
+  std::vector<int> ku(gu), kv(gv);
+  for (std::size_t i = 0; i < gu; ++i) {
+    const double u = ua.at(static_cast<double>(i) / su);
+    ku[i] = ua.span(u);
+    ua.basis(ku[i], u, bu[i]);
+  }
+  for (std::size_t j = 0; j < gv; ++j) {
+    const double v = va.at(static_cast<double>(j) / sv);
+    kv[j] = va.span(v);
+    va.basis(kv[j], v, bv[j]);
+  }
+  for (std::size_t j = 0; j < gv; ++j)
+    for (std::size_t i = 0; i < gu; ++i) {
+      glm::dvec3 sum(0.0);
+      double weight = 0.0;
+      for (int s = 0; s < va.order; ++s) {
+        const auto pj = static_cast<std::size_t>(kv[j] - va.order + 1 + s);
+        for (int r = 0; r < ua.order; ++r) {
+          const auto pi = static_cast<std::size_t>(ku[i] - ua.order + 1 + r);
+          const std::size_t c = pi + pj * static_cast<std::size_t>(ua.count);
+          const double f =
+              bu[i][static_cast<std::size_t>(r)] * bv[j][static_cast<std::size_t>(s)] * w[c];
+          sum += f * points[c];
+          weight += f;
+        }
+      }
+      grid[i + j * gu] = weight != 0.0 ? sum / weight : points.front();
+    }
+  return grid;
+}
+
+/// A NurbsTextureCoordinate's (27.4.10) texture coordinates at su + 1 by sv + 1 evenly
+/// spaced parameters of its own surface (X_ITE samples it so: the host's parameter range
+/// mapped onto the texture surface's), as (s, t, 0), u fastest; empty (a warning) when its
+/// fields do not make a surface.
+std::vector<glm::dvec3> nurbsTextureGrid(const Node& tc, int su, int sv, ProblemLog& log) {
+  const int nu = tc.get<FieldType::SFInt32>("uDimension", 0);
+  const int nv = tc.get<FieldType::SFInt32>("vDimension", 0);
+  const auto given = tc.get<FieldType::MFVec2f>("controlPoint", std::vector<glm::vec2>{});
+  std::string problem;
+  std::optional<Axis> ua, va;
+  std::optional<std::vector<double>> w;
+  if (nu < 1 || nv < 1 ||
+      given.size() != static_cast<std::size_t>(nu) * static_cast<std::size_t>(nv))
+    problem = "controlPoint has " + std::to_string(given.size()) +
+              " points, uDimension x vDimension asks for " + std::to_string(std::max(nu, 0)) +
+              " x " + std::to_string(std::max(nv, 0));
+  else if (!(ua = nurbs::strictAxis(nu, tc.get<FieldType::SFInt32>("uOrder", 3),
+                                    nurbs::doubles(tc, "uKnot"), problem)))
+    problem = "u: " + problem;
+  else if (!(va = nurbs::strictAxis(nv, tc.get<FieldType::SFInt32>("vOrder", 3),
+                                    nurbs::doubles(tc, "vKnot"), problem)))
+    problem = "v: " + problem;
+  else
+    w = nurbs::strictWeights(nurbs::doubles(tc, "weight"), given.size(), problem);
+  if (!w) {
+    log.add("NurbsTextureCoordinate: " + problem + ": the (u, v) parameters used");
+    return {};
+  }
+  std::vector<glm::dvec3> points;
+  points.reserve(given.size());
+  for (const glm::vec2& p : given) points.emplace_back(p.x, p.y, 0.0);
+  return nurbsGrid(*ua, *va, points, *w, su, sv);
+}
+
+}  // namespace
+
+Mesh tessellateNurbsCurve(const Node& node, ProblemLog& log) {
+  const std::vector<glm::dvec3> points = nurbs::controlPoints(node);
+  const int n = static_cast<int>(points.size());
+  if (n < 2 || n > kMaxNurbsControlPoints) return {};
+  const Axis axis = nurbsAxis(n, node.get<FieldType::SFInt32>("order", 3),
+                              nurbs::doubles(node, "knot"), "knot", log);
+  const std::vector<double> w = nurbsWeights(node, points.size(), log);
+  const int segments = nurbsSegments(node.get<FieldType::SFInt32>("tessellation", 0), n);
+  MeshBuilder b(Primitive::lines, false, false, false);
+  b.reserve(static_cast<std::size_t>(segments) + 1, 2 * static_cast<std::size_t>(segments));
+  std::vector<double> basis;
+  for (int s = 0; s <= segments; ++s) {
+    const double u = axis.start() + (axis.end() - axis.start()) * s / segments;
+    const int k = axis.span(u);
+    axis.basis(k, u, basis);
+    glm::dvec3 sum(0.0);
+    double weight = 0.0;
+    for (int r = 0; r < axis.order; ++r) {
+      const auto i = static_cast<std::size_t>(k - axis.order + 1 + r);
+      const double c = basis[static_cast<std::size_t>(r)] * w[i];
+      sum += c * points[i];
+      weight += c;
+    }
+    Vertex v;
+    v.position = glm::vec3(weight != 0.0 ? sum / weight : points.front());
+    const std::uint32_t index = b.push(v);
+    if (s > 0) {
+      b.index(index - 1);
+      b.index(index);
+    }
+  }
+  return b.finish(false);
+}
+
+Mesh tessellateNurbsSurface(const Node& node, ProblemLog& log) {
+  const std::vector<glm::dvec3> points = nurbs::controlPoints(node);
+  const int nu = node.get<FieldType::SFInt32>("uDimension", 0);
+  const int nv = node.get<FieldType::SFInt32>("vDimension", 0);
+  if (nu < 2 || nv < 2 || nu > kMaxNurbsControlPoints || nv > kMaxNurbsControlPoints) return {};
+  const auto count = static_cast<std::size_t>(nu) * static_cast<std::size_t>(nv);
+  if (points.size() < count) {
+    log.add("controlPoint has " + std::to_string(points.size()) + " points, uDimension x " +
+            "vDimension asks for " + std::to_string(count));
+    return {};
+  }
+  if (node.typeId() == NodeTypeId::NurbsTrimmedSurface && !node.mfnode("trimmingContour").empty())
+    log.add("NurbsTrimmedSurface: trimming contours are not applied (the whole patch is drawn)");
+  const Axis ua = nurbsAxis(nu, node.get<FieldType::SFInt32>("uOrder", 3),
+                            nurbs::doubles(node, "uKnot"), "uKnot", log);
+  const Axis va = nurbsAxis(nv, node.get<FieldType::SFInt32>("vOrder", 3),
+                            nurbs::doubles(node, "vKnot"), "vKnot", log);
+  const std::vector<double> w = nurbsWeights(node, count, log);
+  const int su = nurbsSegments(node.get<FieldType::SFInt32>("uTessellation", 0), nu);
+  const int sv = nurbsSegments(node.get<FieldType::SFInt32>("vTessellation", 0), nv);
+  const auto gu = static_cast<std::size_t>(su + 1), gv = static_cast<std::size_t>(sv + 1);
+
+  const std::vector<glm::dvec3> grid = nurbsGrid(ua, va, points, w, su, sv);
+
+  // Texture coordinates: a NurbsTextureCoordinate's surface over the same grid of
+  // parameters (27.4.10), or a TextureCoordinate per control point, bilinear over the
+  // parameter grid; else the parameters scaled to [0, 1].
+  const NodePtr& tc = node.sfnode("texCoord");
+  const std::vector<glm::vec2>* texPoints = nullptr;
+  std::vector<glm::vec2> texHeld;
+  std::vector<glm::dvec3> texGrid;
+  if (tc && !tc->unresolved && tc->typeId() == NodeTypeId::TextureCoordinate) {
+    texHeld = tc->get<FieldType::MFVec2f>("point", std::vector<glm::vec2>{});
+    if (texHeld.size() >= count) texPoints = &texHeld;
+  } else if (tc && !tc->unresolved && tc->typeId() == NodeTypeId::NurbsTextureCoordinate) {
+    texGrid = nurbsTextureGrid(*tc, su, sv, log);
+  }
+  const auto texAt = [&](double s, double t) {
+    if (!texGrid.empty()) {
+      const auto i = static_cast<std::size_t>(std::lround(s * su));
+      const auto j = static_cast<std::size_t>(std::lround(t * sv));
+      return glm::vec2(texGrid[i + j * static_cast<std::size_t>(su + 1)]);
+    }
+    if (texPoints == nullptr) return glm::vec2(static_cast<float>(s), static_cast<float>(t));
+    const double x = s * (nu - 1), y = t * (nv - 1);
+    const auto x0 = static_cast<std::size_t>(std::min(std::floor(x), double(nu - 2)));
+    const auto y0 = static_cast<std::size_t>(std::min(std::floor(y), double(nv - 2)));
+    const auto fx = static_cast<float>(x - static_cast<double>(x0));
+    const auto fy = static_cast<float>(y - static_cast<double>(y0));
+    const auto at = [&](std::size_t a, std::size_t b) {
+      return (*texPoints)[a + b * static_cast<std::size_t>(nu)];
+    };
+    return glm::mix(glm::mix(at(x0, y0), at(x0 + 1, y0), fx),
+                    glm::mix(at(x0, y0 + 1), at(x0 + 1, y0 + 1), fx), fy);
+  };
+
+  MeshBuilder b(Primitive::triangles, true, false, true);
+  b.reserve(gu * gv, 6 * static_cast<std::size_t>(su) * static_cast<std::size_t>(sv));
+  for (std::size_t j = 0; j < gv; ++j)
+    for (std::size_t i = 0; i < gu; ++i) {
+      const glm::dvec3 du =
+          grid[std::min(i + 1, gu - 1) + j * gu] - grid[(i > 0 ? i - 1 : 0) + j * gu];
+      const glm::dvec3 dv =
+          grid[i + std::min(j + 1, gv - 1) * gu] - grid[i + (j > 0 ? j - 1 : 0) * gu];
+      glm::dvec3 n = glm::cross(du, dv);
+      const double len = glm::length(n);
+      Vertex v;
+      v.position = glm::vec3(grid[i + j * gu]);
+      v.normal = len > 0.0 ? glm::vec3(n / len) : glm::vec3(0.0f, 0.0f, 1.0f);
+      v.texCoord = texAt(static_cast<double>(i) / su, static_cast<double>(j) / sv);
+      b.push(v);
+    }
+  for (std::size_t j = 0; j + 1 < gv; ++j)
+    for (std::size_t i = 0; i + 1 < gu; ++i) {
+      const auto a = static_cast<std::uint32_t>(i + j * gu);
+      const auto c = static_cast<std::uint32_t>(i + (j + 1) * gu);
+      b.triangle(a, a + 1, c + 1);
+      b.triangle(a, c + 1, c);
+    }
+  return b.finish(node.get<FieldType::SFBool>("solid", true));
+}
+
+}  // namespace gs::vrml::geometry_detail
