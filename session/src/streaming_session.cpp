@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "base/text.hpp"
 #include "base/url.hpp"
 #include "encodings/parser.hpp"
 #include "formats/input_kind.hpp"
@@ -19,8 +20,9 @@ StreamingSession::StreamingSession(net::LoaderOptions options) : loader_(options
 
 StreamingSession::~StreamingSession() = default;
 
-std::shared_ptr<const vrml::Scene> StreamingSession::open(const std::string& input,
-                                                          std::string& error) {
+std::shared_ptr<const vrml::Scene> StreamingSession::inputWorld(const std::string& input,
+                                                                bool& handled, std::string& error) {
+  handled = true;
   if (const std::string index = tilesetIndexOf(input); !index.empty()) {
     // A world of one QNV node naming the index; a local one names it by its file name
     // (the world's url is the index itself, so the name resolves to it).
@@ -30,12 +32,18 @@ std::shared_ptr<const vrml::Scene> StreamingSession::open(const std::string& inp
     localScenes_.push_back(scene);
     return scene;
   }
-  const bool remote = base::isHttpUrl(input);
-  if (remote) {
+  if (base::isHttpUrl(input)) {
     // Nothing has arrived yet: the name decides (a world when it says nothing).
     const formats::InputKind kind = formats::kindFromName(input);
-    if (kind == formats::InputKind::qnv) {
-      auto scene = std::make_shared<vrml::Scene>(vrml::parseVrml(splatWorldText(input), input));
+    if (kind == formats::InputKind::qnv || kind == formats::InputKind::gaussianSplats) {
+      // A QNV stream, or a splat scene read whole (StreamingSession::splatSet); a LAS
+      // point cloud is z up already, a capture is turned (docs/splats.md, "Axes").
+      const std::string text =
+          kind == formats::InputKind::qnv
+              ? splatWorldText(input)
+              : gaussianWorldText(input, !(base::endsWithNoCase(input, ".las") ||
+                                           base::endsWithNoCase(input, ".laz")));
+      auto scene = std::make_shared<vrml::Scene>(vrml::parseVrml(text, input));
       localScenes_.push_back(scene);
       return scene;
     }
@@ -45,33 +53,45 @@ std::shared_ptr<const vrml::Scene> StreamingSession::open(const std::string& inp
               "(ghostspace encode) to stream them";
       return nullptr;
     }
-    auto stream = loader_.world(input, "", error);
-    if (!stream) return nullptr;
-    worlds_.push_back(stream);
-    return stream->scene();
-  }
-  const std::string path = base::localPathOfUrl(input);
-  if (path.empty()) {
-    error = "cannot open '" + input + "': only local files and http(s) URLs can be opened";
+    handled = false;
     return nullptr;
   }
-  if (std::ifstream probe(path, std::ios::binary); !probe) {
-    error = "cannot open '" + path + "': " + std::strerror(errno);
+  const std::string path = base::localPathOfUrl(input);
+  if (path.empty() || !std::ifstream(path, std::ios::binary)) {
+    handled = false;  // the caller says why
     return nullptr;
   }
   if (const std::string why = unsupportedFormat(path); !why.empty()) {
     error = path + ": " + why;
     return nullptr;
   }
-  if (isSplatInput(path)) {
-    // Read (and for meshes and volumes, encoded) here; a .qnv world streams the file.
-    LoadedWorld w = loadWorld(path);
-    if (!w.readable) {
-      for (const auto& d : w.scene->diagnostics.items) error = d.format();
-      return nullptr;
-    }
-    localScenes_.push_back(w.scene);
-    return w.scene;
+  if (!isSplatInput(path)) {
+    handled = false;
+    return nullptr;
+  }
+  // Read (and for meshes and volumes, encoded) here; a .qnv world streams the file.
+  LoadedWorld w = loadWorld(path);
+  if (!w.readable) {
+    for (const auto& d : w.scene->diagnostics.items) error = d.format();
+    return nullptr;
+  }
+  localScenes_.push_back(w.scene);
+  return w.scene;
+}
+
+std::shared_ptr<const vrml::Scene> StreamingSession::open(const std::string& input,
+                                                          std::string& error) {
+  bool handled = false;
+  if (auto scene = inputWorld(input, handled, error); handled) return scene;
+  const bool remote = base::isHttpUrl(input);
+  const std::string path = remote ? input : base::localPathOfUrl(input);
+  if (path.empty()) {
+    error = "cannot open '" + input + "': only local files and http(s) URLs can be opened";
+    return nullptr;
+  }
+  if (std::ifstream probe(path, std::ios::binary); !remote && !probe) {
+    error = "cannot open '" + path + "': " + std::strerror(errno);
+    return nullptr;
   }
   auto stream = loader_.world(path, "", error);
   if (!stream) return nullptr;
@@ -139,6 +159,17 @@ std::shared_ptr<const render::SplatSet> StreamingSession::splatSet(const std::st
 render::SceneRendererOptions StreamingSession::rendererOptions(render::SceneRendererOptions base) {
   base.traversal.inlineSource = [this](const std::string& url, const std::string& referrer,
                                        std::string& error) -> std::shared_ptr<const vrml::Scene> {
+    // An Inline opens every file a session opens (X3D 4.0 clause 9.4.2 lets it load what
+    // the browser reads): a capture, a QNV stream or tileset, a mesh or a volume is the
+    // world open() makes of it, placed where the Inline is; only what the referrer may
+    // reference (a remote world never reads local files).
+    if (!base::mayReference(referrer, url, error)) return nullptr;
+    if (auto it = inlineInputs_.find(url); it != inlineInputs_.end()) return it->second;
+    bool handled = false;
+    if (auto scene = inputWorld(url, handled, error); handled) {
+      if (scene) inlineInputs_[url] = scene;
+      return scene;
+    }
     auto stream = loader_.world(url, referrer, error);
     if (!stream) return nullptr;
     if (std::find(worlds_.begin(), worlds_.end(), stream) == worlds_.end())

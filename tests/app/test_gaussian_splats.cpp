@@ -162,3 +162,42 @@ TEST_CASE("the corpus's scenes as QNV Gaussian streams: fewer bytes than SPZ, th
     }
   }
 }
+
+TEST_CASE("an Inline opens splat scenes, QNV streams and meshes beside polygons",
+          "[app][render][splat]") {
+  // As X3D 4.0's Inline opens glTF, an Inline opens every file ghostspace opens: each is
+  // the world that file opens as, placed under the Inline's Transform. Each picture must
+  // differ from the same world without the Inline.
+  const fs::path dir = fs::path(GS_BINARY_DIR) / "render-actual";
+  fs::create_directories(dir);
+  const fs::path qnv = dir / "inline_cube.qnv";
+  const auto encoded = gs::test::runGhostspace(
+      {"encode", (gs::test::sourceDir() / "assets/meshes/cube_ascii.ply").string(), "-o",
+       qnv.string()});
+  REQUIRE(encoded.exitCode == 0);
+  const auto world = [&](const std::string& name, const std::string& inlined,
+                         const std::string& scale) {
+    const fs::path path = dir / (name + ".wrl");
+    std::ofstream(path) << "#VRML V2.0 utf8\nViewpoint { position 0 0 6 }\n"
+                        << "Transform { translation -1.5 0 0 children Shape { appearance "
+                           "Appearance { material Material { diffuseColor 0 0 1 } } geometry "
+                           "Box { size 1 1 1 } } }\n"
+                        << "Transform { translation 1.2 0 0 scale " << scale << " " << scale << " "
+                        << scale << " children " << inlined << " }\n";
+    return path.string();
+  };
+  const fs::path splats = gs::test::sourceDir() / "tests/data/splats";
+  const std::vector<std::array<std::string, 3>> inputs = {
+      {"inline_spz", (splats / "bunny_small.spz").string(), "8"},
+      {"inline_ply_capture", (splats / "bunny_small.ply").string(), "8"},
+      {"inline_qnv", qnv.string(), "1"},
+      {"inline_mesh", (gs::test::sourceDir() / "assets/meshes/cube_ascii.ply").string(), "1"}};
+  for (const auto& [name, url, scale] : inputs) {
+    INFO(name);
+    const std::string with = gs::test::snapshot(
+        name, {"--size", "128x96", world(name, "Inline { url \"" + url + "\" }", scale)});
+    const std::string without = gs::test::snapshot(
+        name + "_none", {"--size", "128x96", world(name + "_none", "Group {}", scale)});
+    CHECK(gs::test::fractionDiffering(with, without) > 0.01);
+  }
+}

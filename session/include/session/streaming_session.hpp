@@ -65,6 +65,13 @@ class StreamingSession {
   void drainMessages(std::vector<std::pair<bool, std::string>>& out);
 
  private:
+  /// What an input that is no VRML world opens as: a QNV tileset or stream, a Gaussian
+  /// splatting scene, a mesh or a volume, each a world of one node showing it (local files
+  /// by content, URLs by name). `handled` false when `input` is a world (or a local file
+  /// that cannot be read: the caller says why); true with null and `error` when it is no
+  /// world and cannot be shown.
+  std::shared_ptr<const vrml::Scene> inputWorld(const std::string& input, bool& handled,
+                                                std::string& error);
   std::shared_ptr<const render::SplatSet> splatSet(const std::string& url,
                                                    const std::string& referrer, std::string& error);
   net::Loader loader_;
@@ -85,6 +92,7 @@ class StreamingSession {
   std::map<std::string, std::size_t> diagnosticsShown_;             // per world url
   std::map<std::string, std::string> endShown_;                     // url -> state shown
   std::vector<std::shared_ptr<const vrml::Scene>> localScenes_;
+  std::map<std::string, std::shared_ptr<const vrml::Scene>> inlineInputs_;  // by URL
 };
 
 }  // namespace gs::session
