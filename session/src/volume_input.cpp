@@ -10,6 +10,7 @@
 #include "base/file.hpp"
 #include "base/gzip.hpp"
 #include "base/text.hpp"
+#include "formats/dicom_reader.hpp"
 #include "formats/input_kind.hpp"
 #include "qnv/error.hpp"
 
@@ -86,6 +87,8 @@ qnv::Volume loadNrrd(const std::string& path, const std::string& bytes) {
 }  // namespace
 
 qnv::Volume loadVolumeFile(const std::string& path) {
+  if (formats::classifyFile(path) == formats::InputKind::dicom)
+    return formats::loadDicom(path).volume;  // a file, a folder or a DICOMDIR
   const std::string bytes = readOrThrow(path);
   if (formats::classifyInput(path, bytes) == formats::InputKind::nrrd) return loadNrrd(path, bytes);
   if (!base::isGzip(bytes)) return formats::readNifti(bytes, path);

@@ -29,11 +29,18 @@ std::string unsupportedFormat(const std::string& path) {
          ".splat); README.md lists the formats";
 }
 
-LoadedWorld loadWorld(const std::string& path) {
+LoadedWorld loadWorld(const std::string& input) {
   LoadedWorld w;
   const auto t0 = std::chrono::steady_clock::now();
+  std::string path = input;
   std::string bytes, error;
-  if (!base::readFile(path, bytes, error)) {
+  // A folder that holds a DICOM series opens as its volume (formats/dicom_reader.hpp); its
+  // name without the trailing '/' so that the world made for it resolves to it.
+  std::error_code ec;
+  const bool folder = std::filesystem::is_directory(path, ec) &&
+                      formats::classifyFile(path) == formats::InputKind::dicom;
+  while (folder && path.size() > 1 && path.back() == '/') path.pop_back();
+  if (!folder && !base::readFile(path, bytes, error)) {
     w.scene = std::make_shared<vrml::Scene>();
     w.scene->url = path;
     w.scene->diagnostics.error({path, 0, 0}, error);

@@ -11,6 +11,8 @@
 //     forward with zlib's streaming inflate, never whole; reading backwards restarts the
 //     stream. ascii data are read whole (bounded by qnv::kMaxVoxels).
 //   - NIfTI-1 single files (.nii and .nii.gz), readNifti's rules.
+//   - DICOM files, series folders and DICOMDIRs (formats/dicom_reader.hpp), read whole
+//     (GDCM decodes whole frames) and served as slabs; bounded by qnv::kMaxVoxels.
 //   - headerless raw files laid out as a RawLayout says (.gz: inflated forward).
 //   - stacks of 2-D slices, one image per z: a folder (every .png, .tif, .tiff file in
 //     it, in natural name order: "s2" before "s10"), a printf-style pattern
@@ -37,7 +39,8 @@ using qnv::VolumeGridInfo;
 using qnv::VolumeSlabReader;
 
 /// Opens `path` for reading slab by slab. With `raw`, the file is a headerless raw grid
-/// laid out as *raw says. Otherwise: a folder or a path containing '%' is a slice stack;
+/// laid out as *raw says. Otherwise: a DICOM input (classifyFile says dicom) is read
+/// whole by loadDicom; a folder or a path containing '%' is a slice stack;
 /// .png / .tif / .tiff is a one-file stack (a multi-page TIFF gives one slice per page);
 /// anything else is classified by formats::classifyFile (NRRD or NIfTI-1). Headers are
 /// read at once, and the data files' sizes checked against the header (an uncompressed
