@@ -3,14 +3,17 @@
 #include "base/file.hpp"
 #include "formats/dicom_reader.hpp"
 #include "formats/input_kind.hpp"
+#include "formats/tiff_reader.hpp"
 #include "qnv/tileset.hpp"
 #include "scene/traversal.hpp"
 #include "session/splat_inputs.hpp"
+#include "session/volume_input.hpp"
 #include "session/world.hpp"
 #include "vrml/node_support.hpp"
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 
 namespace gs::app {
 
@@ -98,6 +101,48 @@ int runDicomInfo(const std::string& path) {
   return 0;
 }
 
+// `info` on a TIFF or OME-TIFF file or a folder of TIFF slices: the volume's grid, sample
+// type, values and what the OME-XML says (formats/tiff_reader.hpp).
+int runTiffInfo(const std::string& path) {
+  qnv::Volume v;
+  formats::OmePixels ome;
+  std::uint32_t pages = 0;
+  try {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) {
+      v = session::loadVolumeFile(path);
+    } else {
+      std::string bytes, error;
+      if (!base::readFile(path, bytes, error)) throw qnv::InputError(error);
+      formats::TiffVolume t = formats::readTiff(bytes, path);
+      v = std::move(t.volume);
+      ome = t.ome;
+      pages = t.pages;
+    }
+  } catch (const qnv::InputError& e) {
+    std::fprintf(stderr, "ghostspace: %s\n", e.what());
+    return 1;
+  }
+  float lo = 0.0f, hi = 0.0f;
+  if (!v.samples.empty()) {
+    const auto [a, b] = std::minmax_element(v.samples.begin(), v.samples.end());
+    lo = *a, hi = *b;
+  }
+  std::printf("%s\n", path.c_str());
+  std::printf("  TIFF volume: %u x %u x %u voxels", v.dims.x, v.dims.y, v.dims.z);
+  if (pages > 0) std::printf(" from %u page%s", pages, pages == 1 ? "" : "s");
+  std::printf(", %s, spacing %g %g %g%s\n", formats::scalarTypeName(v.sourceType), v.spacing.x,
+              v.spacing.y, v.spacing.z, ome.found ? " um" : "");
+  std::printf("  values: %g .. %g\n", lo, hi);
+  if (ome.found)
+    std::printf(
+        "  OME-XML: SizeZ %llu, SizeC %llu, SizeT %llu, DimensionOrder %s (channel 0, "
+        "time 0 read)\n",
+        static_cast<unsigned long long>(ome.sizeZ), static_cast<unsigned long long>(ome.sizeC),
+        static_cast<unsigned long long>(ome.sizeT), ome.dimensionOrder.c_str());
+  return 0;
+}
+
 }  // namespace
 
 int runInfo(const Options& options) {
@@ -105,6 +150,10 @@ int runInfo(const Options& options) {
   for (const std::string& input : options.inputs) {
     if (formats::classifyFile(input) == formats::InputKind::dicom) {
       status = std::max(status, runDicomInfo(input));
+      continue;
+    }
+    if (formats::classifyFile(input) == formats::InputKind::tiff) {
+      status = std::max(status, runTiffInfo(input));
       continue;
     }
     if (formats::classifyFile(input) == formats::InputKind::qnv) {

@@ -8,6 +8,7 @@
 #include "base/text.hpp"
 #include "base/url.hpp"
 #include "formats/dicom_reader.hpp"
+#include "formats/tiff_reader.hpp"
 #include "qnv/stream.hpp"
 #include "qnv/tileset.hpp"
 
@@ -47,6 +48,8 @@ constexpr std::array kSuffixes = {
     Suffix{".nii.gz", InputKind::nifti},
     Suffix{".dcm", InputKind::dicom},
     Suffix{".dicom", InputKind::dicom},
+    Suffix{".tif", InputKind::tiff},
+    Suffix{".tiff", InputKind::tiff},
     // X3D (ISO/IEC 19776-1, -2, -5): XML, Classic VRML, JSON, and their gzip forms.
     Suffix{".x3d", InputKind::world},
     Suffix{".x3dv", InputKind::world},
@@ -108,6 +111,7 @@ InputKind sniffPlain(std::string_view head) {
   if (head.size() >= 8 && head.starts_with("NRRD000") && head[7] >= '1' && head[7] <= '5')
     return InputKind::nrrd;
   if (hasDicomMagic(head)) return InputKind::dicom;  // DICOM PS3.10 7.1
+  if (hasTiffMagic(head)) return InputKind::tiff;    // TIFF 6.0 section 2, BigTIFF
   if (head.size() >= 348) {
     const std::string_view m = head.substr(344, 4);
     if (m == std::string_view("n+1\0", 4) || m == std::string_view("ni1\0", 4))
@@ -146,8 +150,16 @@ InputKind classifyInput(std::string_view name, std::string_view head) {
 
 InputKind classifyFile(const std::string& path) {
   std::error_code ec;
-  if (std::filesystem::is_directory(path, ec))
-    return isDicomPath(path) ? InputKind::dicom : kindFromName(path);
+  if (std::filesystem::is_directory(path, ec)) {
+    if (isDicomPath(path)) return InputKind::dicom;
+    std::size_t looked = 0;
+    for (std::filesystem::directory_iterator it(path, ec), end; !ec && it != end && looked < 4096;
+         it.increment(ec), ++looked) {
+      const std::string name = it->path().filename().string();
+      if (!name.starts_with(".") && kindFromName(name) == InputKind::tiff) return InputKind::tiff;
+    }
+    return kindFromName(path);
+  }
   std::string head(kSniffBytes, '\0');
   std::ifstream in(path, std::ios::binary);
   if (in) {

@@ -18,7 +18,7 @@ shift
 build=${GS_FUZZ_BUILD:-$top/build-fuzz}
 jobs=${GS_FUZZ_JOBS:-1}
 all=(fuzz_vrml_parse fuzz_vrml_stream fuzz_vrml_proto fuzz_x3d_xml fuzz_x3d_json fuzz_qnv_stream fuzz_qnv_compact fuzz_qnv_entropy fuzz_tileset_index
-     fuzz_ply fuzz_obj fuzz_gltf fuzz_gltf_scene fuzz_nrrd fuzz_nifti fuzz_dicom fuzz_image fuzz_dds fuzz_http_response
+     fuzz_ply fuzz_obj fuzz_gltf fuzz_gltf_scene fuzz_nrrd fuzz_nifti fuzz_dicom fuzz_tiff fuzz_image fuzz_dds fuzz_http_response
      fuzz_instance_message fuzz_script fuzz_splats)
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=("${all[@]}")
@@ -65,6 +65,7 @@ seeds_of() {
     fuzz_ply | fuzz_obj | fuzz_gltf | fuzz_gltf_scene) s=("$here/seeds/mesh") ;;
     fuzz_nrrd | fuzz_nifti) s=("$here/seeds/volume") ;;
     fuzz_dicom) s=("$here/seeds/dicom") ;;
+    fuzz_tiff) s=("$here/seeds/tiff") ;;
     fuzz_image) s=("$here/seeds/image" "$top/assets/worlds/textures") ;;
     fuzz_http_response) s=("$here/seeds/http") ;;
     fuzz_instance_message) s=("$here/seeds/instance") ;;

@@ -20,7 +20,9 @@
 //     gaps), or one multi-page TIFF (one page per slice). PNG through libpng (grey, 1 to
 //     16 bits; grey + alpha drops the alpha), TIFF through libtiff (one sample per pixel:
 //     8/16/32-bit unsigned or signed integers, 32/64-bit floats). All slices must have
-//     the first one's size and type. Spacing 1, origin 0.
+//     the first one's size and type. Spacing 1, origin 0, except for OME-TIFF
+//     (formats/tiff_reader.hpp): the physical sizes in micrometres, and for a multi-page
+//     file the Z planes of channel 0 at time 0 in its DimensionOrder.
 // Untrusted input: every size is checked against the file before any allocation; a grid
 // may have up to qnv::kMaxSlabVolumeVoxels voxels and qnv::kMaxSliceVoxels per slice.
 // Every error is qnv::InputError naming the file (and the byte offset of a bad read).
