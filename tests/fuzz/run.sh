@@ -110,6 +110,8 @@ run_one() {
 
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:allocator_may_return_null=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+# Leaks of linked libraries on their error paths (GDCM and the codecs it calls), not ours: tests/fuzz/lsan.supp.
+export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$here/lsan.supp}
 results="$build/logs/results.txt"
 : > "$results"
 running=0
