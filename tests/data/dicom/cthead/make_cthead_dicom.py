@@ -14,7 +14,9 @@ series, spacing, rescale and compression tests and the README picture.
              (gdcmconv --rle; gdcmconv makes it an Enhanced CT Image).
   mixed/     a.dcm, b.dcm (32 x 32) and c.dcm (16 x 16) of one series: the size error.
 
-Needs python3-pydicom, python3-numpy and libgdcm-tools (gdcmconv). Run from anywhere:
+Needs python3-pydicom, python3-numpy and libgdcm-tools (gdcmconv; it also installs
+pvrg-jpeg, which GDCM then runs on JPEG data libjpeg rejects: docs/volumes.md; remove both
+afterwards). Run from anywhere:
   /usr/bin/python3 tests/data/dicom/cthead/make_cthead_dicom.py
 """
 import gzip
