@@ -96,12 +96,14 @@ Parsed parseArguments(int argc, char** argv) {
       "  ghostspace info head.qnv                      header, packets, magnitude histogram\n"
       "  ghostspace convert world.x3dv -o world.x3d    X3D Classic VRML to XML");
   registerOptions(OptionScope::main, cli, a);
-  cli.add_option("INPUT", a.options.inputs,
-                 "Worlds to open, files or http(s):// URLs: VRML97 (.wrl, .wrl.gz, .wrz), X3D "
-                 "(.x3dv, .x3d, .x3dj, .x3dz, .x3dvz), QNV streams (.qnv) and tilesets "
-                 "(index.qnvt or its folder), Gaussian splatting scenes (.ply, "
-                 ".compressed.ply, .splat, .spz, .sog, .glb), and local meshes (.ply, .obj, "
-                 ".gltf, .glb) or volumes (.nrrd, .nhdr, .nii, .nii.gz)");
+  cli.add_option(
+      "INPUT", a.options.inputs,
+      "Worlds to open, files or http(s):// URLs: VRML97 (.wrl, .wrl.gz, .wrz), X3D "
+      "(.x3dv, .x3d, .x3dj, .x3dz, .x3dvz), QNV streams (.qnv) and tilesets "
+      "(index.qnvt or its folder), Gaussian splatting scenes (.ply, "
+      ".compressed.ply, .splat, .spz, .sog, .glb), and local meshes (.ply, .obj, "
+      ".gltf, .glb) or volumes (.nrrd, .nhdr, .nii, .nii.gz; DICOM: .dcm, a series folder "
+      "or a DICOMDIR; TIFF and OME-TIFF: .tif, .tiff, or a folder of slices)");
 
   CLI::App* info = cli.add_subcommand("info",
                                       "Print what was read from INPUT: node counts, "
@@ -113,7 +115,8 @@ Parsed parseArguments(int argc, char** argv) {
   CLI::App* encode = cli.add_subcommand(
       "encode",
       "Encode INPUT as a QNV stream (docs/qnv-format.md): a VRML97 world, a mesh (.ply, .obj, "
-      ".gltf, .glb) or a volume (.nrrd, .nhdr, .nii, .nii.gz, or raw with --raw-dims)");
+      ".gltf, .glb) or a volume (.nrrd, .nhdr, .nii, .nii.gz, DICOM .dcm, series folder or "
+      "DICOMDIR, TIFF .tif/.tiff or a folder of slices, or raw with --raw-dims)");
   std::string encodeInput;
   encode->add_option("INPUT", encodeInput, "World, mesh or volume")->required();
   registerOptions(OptionScope::encode, *encode, a);

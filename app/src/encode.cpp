@@ -129,6 +129,7 @@ void printSummary(const std::string& input, const qnv::EncodeSummary& summary,
 // A stack of 2-D slices (formats/volume_slabs.hpp): a folder, a printf-style pattern, or
 // one PNG or TIFF file.
 bool isSliceStack(const std::string& input) {
+  if (formats::classifyFile(input) == formats::InputKind::dicom) return false;  // a series
   std::error_code ec;
   if (std::filesystem::is_directory(input, ec) || input.find('%') != std::string::npos) return true;
   std::string ext = std::filesystem::path(input).extension().string();

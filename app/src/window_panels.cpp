@@ -2,6 +2,7 @@
 #include "app/window_state.hpp"
 #include "formats/input_kind.hpp"
 #include "session/animations.hpp"
+#include "session/splat_inputs.hpp"
 
 #include <imgui.h>
 
@@ -14,6 +15,12 @@ namespace gs::app {
 
 namespace {
 
+// A folder that opens as one input: a DICOM series or TIFF slices (formats::classifyFile
+// says a volume kind) or a QNV tileset (it holds index.qnvt).
+bool folderOpensAsInput(const std::string& path) {
+  return formats::isVolume(formats::classifyFile(path)) || !session::tilesetIndexOf(path).empty();
+}
+
 void drawOpenDialog(WindowState& state) {
   if (!state.showOpenDialog) return;
   ImGui::SetNextWindowSize(ImVec2(520, 380), ImGuiCond_FirstUseEver);
@@ -21,14 +28,15 @@ void drawOpenDialog(WindowState& state) {
     ImGui::End();
     return;
   }
-  ImGui::TextUnformatted("Path or http(s):// URL of a world, stream, mesh, volume or splat scene:");
+  ImGui::TextUnformatted("Path or http(s):// URL of a world, stream, mesh, volume or splat scene");
+  ImGui::TextUnformatted("(a DICOM series, TIFF slices or tileset folder: type it, then Open):");
   const bool entered = ImGui::InputText("##path", state.openPath, sizeof state.openPath,
                                         ImGuiInputTextFlags_EnterReturnsTrue);
   ImGui::SameLine();
   if (ImGui::Button("Open") || entered) {
     std::error_code ec;
     const std::filesystem::path p(state.openPath);
-    if (std::filesystem::is_directory(p, ec)) {
+    if (std::filesystem::is_directory(p, ec) && !folderOpensAsInput(state.openPath)) {
       // A folder: list it below.
     } else {
       state.open(state.openPath);

@@ -1,11 +1,14 @@
 #include "formats/input_kind.hpp"
 
 #include <array>
+#include <filesystem>
 #include <fstream>
 
 #include "base/gzip.hpp"
 #include "base/text.hpp"
 #include "base/url.hpp"
+#include "formats/dicom_reader.hpp"
+#include "formats/tiff_reader.hpp"
 #include "qnv/stream.hpp"
 #include "qnv/tileset.hpp"
 
@@ -43,6 +46,10 @@ constexpr std::array kSuffixes = {
     Suffix{".nhdr", InputKind::nrrd},
     Suffix{".nii", InputKind::nifti},
     Suffix{".nii.gz", InputKind::nifti},
+    Suffix{".dcm", InputKind::dicom},
+    Suffix{".dicom", InputKind::dicom},
+    Suffix{".tif", InputKind::tiff},
+    Suffix{".tiff", InputKind::tiff},
     // X3D (ISO/IEC 19776-1, -2, -5): XML, Classic VRML, JSON, and their gzip forms.
     Suffix{".x3d", InputKind::world},
     Suffix{".x3dv", InputKind::world},
@@ -103,6 +110,8 @@ InputKind sniffPlain(std::string_view head) {
   if (head.starts_with("glTF")) return InputKind::gltf;
   if (head.size() >= 8 && head.starts_with("NRRD000") && head[7] >= '1' && head[7] <= '5')
     return InputKind::nrrd;
+  if (hasDicomMagic(head)) return InputKind::dicom;  // DICOM PS3.10 7.1
+  if (hasTiffMagic(head)) return InputKind::tiff;    // TIFF 6.0 section 2, BigTIFF
   if (head.size() >= 348) {
     const std::string_view m = head.substr(344, 4);
     if (m == std::string_view("n+1\0", 4) || m == std::string_view("ni1\0", 4))
@@ -119,6 +128,11 @@ bool isOpenableName(std::string_view name) {
 
 InputKind kindFromName(std::string_view name) {
   name = base::withoutQueryOrFragment(name);
+  // A DICOMDIR (DICOM PS3.10 8.6) has no extension; the name is fixed.
+  if (const std::size_t slash = name.find_last_of("/\\");
+      base::endsWithNoCase(name, "DICOMDIR") &&
+      (name.size() == 8 || (slash != std::string_view::npos && name.size() - slash == 9)))
+    return InputKind::dicom;
   for (const Suffix& s : kSuffixes)
     if (name.size() > s.text.size() && base::endsWithNoCase(name, s.text)) return s.kind;
   return InputKind::unknown;
@@ -135,6 +149,17 @@ InputKind classifyInput(std::string_view name, std::string_view head) {
 }
 
 InputKind classifyFile(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    if (isDicomPath(path)) return InputKind::dicom;
+    std::size_t looked = 0;
+    for (std::filesystem::directory_iterator it(path, ec), end; !ec && it != end && looked < 4096;
+         it.increment(ec), ++looked) {
+      const std::string name = it->path().filename().string();
+      if (!name.starts_with(".") && kindFromName(name) == InputKind::tiff) return InputKind::tiff;
+    }
+    return kindFromName(path);
+  }
   std::string head(kSniffBytes, '\0');
   std::ifstream in(path, std::ios::binary);
   if (in) {

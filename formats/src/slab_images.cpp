@@ -1,14 +1,12 @@
 // Stacks of 2-D slices read slab by slab (formats/volume_slabs.hpp): PNG through libpng,
 // TIFF through libtiff, one image (or TIFF page) per z slice.
 #include <png.h>
-#include <tiffio.h>
 
 #include <algorithm>
 #include <bit>
 #include <cctype>
 #include <cmath>
 #include <csetjmp>
-#include <cstdarg>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -16,8 +14,10 @@
 #include <vector>
 
 #include "base/text.hpp"
+#include "formats/tiff_reader.hpp"
 #include "formats/volume_slabs.hpp"
 #include "slab_io.hpp"
+#include "tiff_io.hpp"
 
 namespace gs::formats::detail {
 
@@ -41,19 +41,6 @@ void checkGrid(const VolumeGridInfo& info, const std::string& name) {
 }
 
 namespace {
-
-constexpr bool kNativeBig = std::endian::native == std::endian::big;
-
-// The size and sample type of one slice image.
-struct SliceShape {
-  std::uint32_t width = 0, height = 0;
-  ScalarType type = ScalarType::uint8;
-  bool operator==(const SliceShape&) const = default;
-};
-
-std::string shapeText(const SliceShape& s) {
-  return std::to_string(s.width) + " x " + std::to_string(s.height) + " " + scalarTypeName(s.type);
-}
 
 // ------------------------------------------------------------------------------- PNG
 
@@ -132,124 +119,12 @@ void readPng(const std::string& path, SliceShape& shape, const SliceShape* expec
   std::fclose(f);
 }
 
-// ------------------------------------------------------------------------------ TIFF
-
-int tiffError(TIFF*, void* user, const char* module, const char* fmt, va_list ap) {
-  char buffer[512];
-  std::vsnprintf(buffer, sizeof buffer, fmt, ap);
-  auto* message = static_cast<std::string*>(user);
-  if (message->empty()) *message = std::string(module ? module : "libtiff") + ": " + buffer;
-  return 1;
+OmePixels omeOfDescription(const std::string& description) {
+  if (description.find("<OME") == std::string::npos &&
+      description.find(":OME") == std::string::npos)
+    return {};
+  return parseOmeXml(description);
 }
-
-int tiffWarning(TIFF*, void*, const char*, const char*, va_list) {
-  return 1;
-}
-
-// A TIFF file open through libtiff, its errors collected instead of printed.
-class TiffFile {
- public:
-  explicit TiffFile(const std::string& path) : path_(path) {
-    TIFFOpenOptions* options = TIFFOpenOptionsAlloc();
-    TIFFOpenOptionsSetErrorHandlerExtR(options, tiffError, &message_);
-    TIFFOpenOptionsSetWarningHandlerExtR(options, tiffWarning, nullptr);
-    TIFFOpenOptionsSetMaxSingleMemAlloc(options, tmsize_t{1} << 30);
-    tif_ = TIFFOpenExt(path.c_str(), "r", options);
-    TIFFOpenOptionsFree(options);
-    if (!tif_) fail("cannot open as TIFF");
-  }
-  ~TiffFile() {
-    if (tif_) TIFFClose(tif_);
-  }
-  TiffFile(const TiffFile&) = delete;
-  TiffFile& operator=(const TiffFile&) = delete;
-
-  [[noreturn]] void fail(const std::string& what) const {
-    throw InputError(path_ + ": " + what + (message_.empty() ? "" : " (" + message_ + ")"));
-  }
-  TIFF* get() const { return tif_; }
-
-  std::uint32_t pages() {
-    const tdir_t n = TIFFNumberOfDirectories(tif_);
-    return n;
-  }
-
-  SliceShape shape(std::uint32_t page) {
-    if (!TIFFSetDirectory(tif_, static_cast<tdir_t>(page)))
-      fail("cannot read page " + std::to_string(page));
-    std::uint32_t w = 0, h = 0;
-    std::uint16_t bits = 0, samples = 1, format = SAMPLEFORMAT_UINT;
-    TIFFGetField(tif_, TIFFTAG_IMAGEWIDTH, &w);
-    TIFFGetField(tif_, TIFFTAG_IMAGELENGTH, &h);
-    TIFFGetFieldDefaulted(tif_, TIFFTAG_BITSPERSAMPLE, &bits);
-    TIFFGetFieldDefaulted(tif_, TIFFTAG_SAMPLESPERPIXEL, &samples);
-    TIFFGetFieldDefaulted(tif_, TIFFTAG_SAMPLEFORMAT, &format);
-    if (samples != 1)
-      fail("TIFF slices with " + std::to_string(samples) +
-           " samples per pixel are not supported (expected one grey sample)");
-    SliceShape s;
-    s.width = w;
-    s.height = h;
-    const bool ok = [&] {
-      if (format == SAMPLEFORMAT_UINT && bits == 8) return s.type = ScalarType::uint8, true;
-      if (format == SAMPLEFORMAT_UINT && bits == 16) return s.type = ScalarType::uint16, true;
-      if (format == SAMPLEFORMAT_UINT && bits == 32) return s.type = ScalarType::uint32, true;
-      if (format == SAMPLEFORMAT_INT && bits == 8) return s.type = ScalarType::int8, true;
-      if (format == SAMPLEFORMAT_INT && bits == 16) return s.type = ScalarType::int16, true;
-      if (format == SAMPLEFORMAT_INT && bits == 32) return s.type = ScalarType::int32, true;
-      if (format == SAMPLEFORMAT_IEEEFP && bits == 32) return s.type = ScalarType::float32, true;
-      if (format == SAMPLEFORMAT_IEEEFP && bits == 64) return s.type = ScalarType::float64, true;
-      return false;
-    }();
-    if (!ok)
-      fail("TIFF samples of " + std::to_string(bits) + " bits in sample format " +
-           std::to_string(format) + " are not supported");
-    if (w == 0 || h == 0 || std::uint64_t{w} * h > qnv::kMaxSliceVoxels)
-      fail("page of " + std::to_string(w) + " x " + std::to_string(h) +
-           " pixels is empty or over the slice limit");
-    return s;
-  }
-
-  void read(std::uint32_t page, const SliceShape& expect, float* out) {
-    const SliceShape s = shape(page);
-    if (!(s == expect))
-      fail("page " + std::to_string(page) + " is " + shapeText(s) + ", expected " +
-           shapeText(expect) + " as the first slice");
-    const std::size_t bytes = scalarBytes(s.type);
-    if (TIFFIsTiled(tif_)) {
-      std::uint32_t tw = 0, th = 0;
-      TIFFGetField(tif_, TIFFTAG_TILEWIDTH, &tw);
-      TIFFGetField(tif_, TIFFTAG_TILELENGTH, &th);
-      if (tw == 0 || th == 0 || std::uint64_t{tw} * th > qnv::kMaxSliceVoxels)
-        fail("bad tile size " + std::to_string(tw) + " x " + std::to_string(th));
-      std::vector<char> tile(static_cast<std::size_t>(TIFFTileSize(tif_)));
-      if (tile.size() < std::size_t{tw} * th * bytes) fail("bad tile size");
-      for (std::uint32_t y0 = 0; y0 < s.height; y0 += th)
-        for (std::uint32_t x0 = 0; x0 < s.width; x0 += tw) {
-          if (TIFFReadTile(tif_, tile.data(), x0, y0, 0, 0) < 0)
-            fail("cannot read the tile at (" + std::to_string(x0) + ", " + std::to_string(y0) +
-                 ")");
-          const std::uint32_t cw = std::min(tw, s.width - x0);
-          for (std::uint32_t y = y0; y < std::min(y0 + th, s.height); ++y)
-            convertSamples(tile.data() + std::size_t{tw} * (y - y0) * bytes, cw, s.type, kNativeBig,
-                           out + std::size_t{s.width} * y + x0);
-        }
-      return;
-    }
-    std::vector<char> row(static_cast<std::size_t>(TIFFScanlineSize(tif_)));
-    if (row.size() < std::size_t{s.width} * bytes) fail("bad scanline size");
-    for (std::uint32_t y = 0; y < s.height; ++y) {
-      if (TIFFReadScanline(tif_, row.data(), y, 0) < 0)
-        fail("cannot read row " + std::to_string(y) + " of page " + std::to_string(page));
-      convertSamples(row.data(), s.width, s.type, kNativeBig, out + std::size_t{s.width} * y);
-    }
-  }
-
- private:
-  std::string path_;
-  std::string message_;
-  TIFF* tif_ = nullptr;
-};
 
 bool isTiff(const std::string& name) {
   return base::endsWithNoCase(name, ".tif") || base::endsWithNoCase(name, ".tiff");
@@ -266,16 +141,32 @@ class SliceStackReader final : public VolumeSlabReader {
   SliceStackReader(std::vector<std::string> files, std::uint32_t pages)
       : files_(std::move(files)), pages_(pages) {
     SliceShape first;
+    std::uint64_t slices = pages_ > 0 ? pages_ : files_.size();
     if (pages_ > 0) {
       tiff_ = std::make_unique<TiffFile>(files_.front());
       first = tiff_->shape(0);
+      // OME-TIFF (formats/tiff_reader.hpp): channel 0 at time 0, physical sizes.
+      ome_ = omeOfDescription(tiff_->description());
+      if (ome_.found) {
+        const std::uint64_t planes = ome_.sizeZ * ome_.sizeC * ome_.sizeT;
+        if (planes > pages_)
+          throw InputError(files_.front() + ": the OME-XML describes " + std::to_string(planes) +
+                           " planes, the file has " + std::to_string(pages_) +
+                           " pages (multi-file OME-TIFF is not supported)");
+        slices = ome_.sizeZ;
+        info_.spacing = ome_.spacing;
+      }
     } else if (isTiff(files_.front())) {
-      first = TiffFile(files_.front()).shape(0);
+      TiffFile tiff(files_.front());
+      first = tiff.shape(0);
+      // Single-page OME-TIFFs in a folder: the first one's physical sizes.
+      if (const OmePixels ome = omeOfDescription(tiff.description()); ome.found)
+        info_.spacing = ome.spacing;
     } else {
       readPng(files_.front(), first, nullptr, nullptr);
     }
     shape_ = first;
-    info_.dims = {first.width, first.height, pages_ > 0 ? pages_ : files_.size()};
+    info_.dims = {first.width, first.height, static_cast<std::uint32_t>(slices)};
     info_.sourceType = first.type;
     checkGrid(info_, files_.front());
   }
@@ -292,7 +183,7 @@ class SliceStackReader final : public VolumeSlabReader {
     for (std::uint32_t z = z0; z < z1; ++z) {
       float* dst = out.data() + slice * (z - z0);
       if (pages_ > 0) {
-        tiff_->read(z, shape_, dst);
+        tiff_->read(static_cast<std::uint32_t>(ome_.found ? ome_.pageOfSlice(z) : z), shape_, dst);
       } else if (isTiff(files_[z])) {
         TiffFile(files_[z]).read(0, shape_, dst);
       } else {
@@ -306,6 +197,7 @@ class SliceStackReader final : public VolumeSlabReader {
   std::vector<std::string> files_;
   std::uint32_t pages_;
   std::unique_ptr<TiffFile> tiff_;
+  OmePixels ome_;  // found = false unless a multi-page OME-TIFF
   SliceShape shape_;
   VolumeGridInfo info_;
 };

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "base/text.hpp"
+#include "formats/dicom_reader.hpp"
 #include "formats/input_kind.hpp"
 #include "formats/volume_slabs.hpp"
 #include "slab_io.hpp"
@@ -328,6 +329,8 @@ std::unique_ptr<VolumeSlabReader> openRaw(const std::string& path, const RawLayo
 
 std::unique_ptr<VolumeSlabReader> openVolumeSlabs(const std::string& path, const RawLayout* raw) {
   if (raw) return openRaw(path, *raw);
+  if (classifyFile(path) == InputKind::dicom)  // read whole: GDCM decodes whole frames
+    return std::make_unique<OwnedVolumeSlabs>(loadDicom(path).volume);
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec) || path.find('%') != std::string::npos ||
       base::endsWithNoCase(path, ".png") || base::endsWithNoCase(path, ".tif") ||
@@ -345,7 +348,7 @@ std::unique_ptr<VolumeSlabReader> openVolumeSlabs(const std::string& path, const
     throw InputError("cannot open " + path + ": no such file or folder");
   throw InputError(path +
                    ": not a volume the slab reader knows (NRRD .nrrd/.nhdr, NIfTI-1 .nii, a "
-                   "raw file with its layout, or PNG/TIFF slices)");
+                   "raw file with its layout, DICOM, or PNG/TIFF slices)");
 }
 
 }  // namespace gs::formats

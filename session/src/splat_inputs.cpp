@@ -32,8 +32,13 @@ std::string tilesetIndexOf(const std::string& input) {
   if (path.empty()) return "";
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) {
+    // A folder is a tileset when it holds an index (classifyFile alone would take the
+    // missing file's name for one: a DICOM series folder is not a tileset).
     const std::string index = (std::filesystem::path(path) / "index.qnvt").string();
-    return formats::classifyFile(index) == formats::InputKind::qnvTileset ? index : "";
+    return std::filesystem::is_regular_file(index, ec) &&
+                   formats::classifyFile(index) == formats::InputKind::qnvTileset
+               ? index
+               : "";
   }
   return formats::classifyFile(path) == formats::InputKind::qnvTileset ? input : "";
 }

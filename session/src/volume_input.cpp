@@ -10,7 +10,10 @@
 #include "base/file.hpp"
 #include "base/gzip.hpp"
 #include "base/text.hpp"
+#include "formats/dicom_reader.hpp"
 #include "formats/input_kind.hpp"
+#include "formats/tiff_reader.hpp"
+#include "formats/volume_slabs.hpp"
 #include "qnv/error.hpp"
 
 namespace gs::session {
@@ -86,6 +89,13 @@ qnv::Volume loadNrrd(const std::string& path, const std::string& bytes) {
 }  // namespace
 
 qnv::Volume loadVolumeFile(const std::string& path) {
+  const formats::InputKind kind = formats::classifyFile(path);
+  if (kind == formats::InputKind::dicom)
+    return formats::loadDicom(path).volume;  // a file, a folder or a DICOMDIR
+  std::error_code ec;
+  if (kind == formats::InputKind::tiff && std::filesystem::is_directory(path, ec))
+    return qnv::readWholeVolume(*formats::openVolumeSlabs(path));  // single-page slices
+  if (kind == formats::InputKind::tiff) return formats::readTiff(readOrThrow(path), path).volume;
   const std::string bytes = readOrThrow(path);
   if (formats::classifyInput(path, bytes) == formats::InputKind::nrrd) return loadNrrd(path, bytes);
   if (!base::isGzip(bytes)) return formats::readNifti(bytes, path);

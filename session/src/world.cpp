@@ -25,15 +25,22 @@ std::string unsupportedFormat(const std::string& path) {
     if (c > 0x20 && c < 0x7f) shown += c;
   return "unsupported format" + (shown.empty() ? std::string() : " (" + shown + ")") +
          ": not a VRML97 or X3D world, a mesh (.ply .obj .glb .gltf), a volume (.nrrd .nhdr "
-         ".nii), a QNV stream or tileset, or a Gaussian splatting scene (.ply .spz .sog "
+         ".nii .dcm .tif), a QNV stream or tileset, or a Gaussian splatting scene (.ply .spz .sog "
          ".splat); README.md lists the formats";
 }
 
-LoadedWorld loadWorld(const std::string& path) {
+LoadedWorld loadWorld(const std::string& input) {
   LoadedWorld w;
   const auto t0 = std::chrono::steady_clock::now();
+  std::string path = input;
   std::string bytes, error;
-  if (!base::readFile(path, bytes, error)) {
+  // A folder that holds a DICOM series or TIFF slices opens as its volume; its
+  // name without the trailing '/' so that the world made for it resolves to it.
+  std::error_code ec;
+  const bool folder =
+      std::filesystem::is_directory(path, ec) && formats::isVolume(formats::classifyFile(path));
+  while (folder && path.size() > 1 && path.back() == '/') path.pop_back();
+  if (!folder && !base::readFile(path, bytes, error)) {
     w.scene = std::make_shared<vrml::Scene>();
     w.scene->url = path;
     w.scene->diagnostics.error({path, 0, 0}, error);

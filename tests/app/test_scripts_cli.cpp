@@ -3,6 +3,7 @@
 // naming the world's file:line while the picture is still written.
 #include "baseline.hpp"
 #include "process.hpp"
+#include "test_support.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -1,5 +1,6 @@
 // Reader throughput in MB/s of file bytes (issue 42: each reader beside the NRRD
-// reader's, on the same machine): volumes through session::loadVolumeFile (NRRD, NIfTI),
+// reader's, on the same machine): volumes through session::loadVolumeFile (NRRD, NIfTI,
+// DICOM files, series folders and DICOMDIRs through GDCM),
 // splat scenes and point clouds through splats::readGaussians (LAS, SPZ, PLY, ...). Each
 // file is read from memory (the file's bytes loaded first, not timed) ROUNDS times; the
 // best round is printed. Volumes are read from their file (the loader opens it itself),
@@ -39,11 +40,11 @@ int main(int argc, char** argv) {
   std::printf("%-48s %12s %10s %10s %10s\n", "file", "bytes", "elements", "best s", "MB/s");
   for (const std::string& file : files) {
     std::string bytes, error;
-    if (!base::readFile(file, bytes, error, std::size_t{8} << 30)) {
+    const bool volume = formats::isVolume(formats::classifyFile(file));  // maybe a folder
+    if (!volume && !base::readFile(file, bytes, error, std::size_t{8} << 30)) {
       std::fprintf(stderr, "bench_readers: %s\n", error.c_str());
       return 1;
     }
-    const bool volume = formats::isVolume(formats::classifyFile(file));
     double best = 1e30;
     std::size_t elements = 0, measured = bytes.size();
     for (int r = 0; r < rounds; ++r) {

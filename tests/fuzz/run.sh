@@ -18,7 +18,7 @@ shift
 build=${GS_FUZZ_BUILD:-$top/build-fuzz}
 jobs=${GS_FUZZ_JOBS:-1}
 all=(fuzz_vrml_parse fuzz_vrml_stream fuzz_vrml_proto fuzz_x3d_xml fuzz_x3d_json fuzz_qnv_stream fuzz_qnv_compact fuzz_qnv_entropy fuzz_tileset_index
-     fuzz_ply fuzz_obj fuzz_gltf fuzz_gltf_scene fuzz_nrrd fuzz_nifti fuzz_image fuzz_dds fuzz_http_response
+     fuzz_ply fuzz_obj fuzz_gltf fuzz_gltf_scene fuzz_nrrd fuzz_nifti fuzz_dicom fuzz_tiff fuzz_image fuzz_dds fuzz_http_response
      fuzz_instance_message fuzz_script fuzz_splats)
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=("${all[@]}")
@@ -64,6 +64,8 @@ seeds_of() {
     fuzz_tileset_index) s=("$top/tests/qnv/golden/tileset_blob") ;;
     fuzz_ply | fuzz_obj | fuzz_gltf | fuzz_gltf_scene) s=("$here/seeds/mesh") ;;
     fuzz_nrrd | fuzz_nifti) s=("$here/seeds/volume") ;;
+    fuzz_dicom) s=("$here/seeds/dicom") ;;
+    fuzz_tiff) s=("$here/seeds/tiff") ;;
     fuzz_image) s=("$here/seeds/image" "$top/assets/worlds/textures") ;;
     fuzz_http_response) s=("$here/seeds/http") ;;
     fuzz_instance_message) s=("$here/seeds/instance") ;;
@@ -83,7 +85,7 @@ dict_of() {
 }
 max_len_of() {
   case "$1" in
-    fuzz_qnv_stream | fuzz_image | fuzz_gltf | fuzz_gltf_scene | fuzz_nifti | fuzz_splats) echo 200000 ;;
+    fuzz_qnv_stream | fuzz_image | fuzz_gltf | fuzz_gltf_scene | fuzz_nifti | fuzz_dicom | fuzz_splats) echo 200000 ;;
     *) echo 65536 ;;
   esac
 }
@@ -108,6 +110,8 @@ run_one() {
 
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:allocator_may_return_null=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+# Leaks of linked libraries on their error paths (GDCM and the codecs it calls), not ours: tests/fuzz/lsan.supp.
+export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$here/lsan.supp}
 results="$build/logs/results.txt"
 : > "$results"
 running=0

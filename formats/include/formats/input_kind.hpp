@@ -21,6 +21,13 @@ enum class InputKind {
   gltf,        // .gltf[.gz], .glb[.gz]; content "glTF" (GLB)
   nrrd,        // .nrrd, .nhdr; content "NRRD0001".."NRRD0005"
   nifti,       // .nii, .nii.gz; content "n+1\0" or "ni1\0" at byte 344
+  /// DICOM (formats/dicom_reader.hpp): .dcm, .dicom, a file named DICOMDIR; content "DICM"
+  /// at byte 128; classifyFile also takes a folder holding DICOM files or a DICOMDIR.
+  dicom,
+  /// TIFF and OME-TIFF volumes (formats/tiff_reader.hpp): .tif, .tiff (.ome.tif, .ome.tiff);
+  /// content "II*\0", "MM\0*" or BigTIFF's "II+\0", "MM\0+"; classifyFile also takes a
+  /// folder holding .tif or .tiff files (a stack of single-page slices).
+  tiff,
   /// A 3D Gaussian splatting scene (docs/splats.md): a PLY whose header (in the sniffed
   /// bytes) has Gaussian properties (f_dc_0, scale_0, rot_0) or PlayCanvas's chunk element,
   /// SPZ (content "NGSP", raw or gzip), .splat, .spz, .sog, .compressed.ply by name; an
@@ -47,7 +54,9 @@ InputKind kindFromContent(std::string_view head);
 InputKind classifyInput(std::string_view name, std::string_view head);
 
 /// classifyInput for the local file `path` (its first bytes are read; a file that cannot
-/// be read is classified by name alone). Never throws.
+/// be read is classified by name alone); a folder is dicom when it holds a DICOMDIR or a
+/// DICOM file (formats::isDicomPath), else tiff when it holds a .tif or .tiff file, else
+/// classified by name. Never throws.
 InputKind classifyFile(const std::string& path);
 
 /// How many leading bytes kindFromContent wants.
@@ -57,9 +66,10 @@ inline constexpr std::size_t kSniffBytes = 512;
 constexpr bool isMesh(InputKind k) {
   return k == InputKind::ply || k == InputKind::obj || k == InputKind::gltf;
 }
-/// NRRD and NIfTI-1.
+/// NRRD, NIfTI-1, DICOM and TIFF.
 constexpr bool isVolume(InputKind k) {
-  return k == InputKind::nrrd || k == InputKind::nifti;
+  return k == InputKind::nrrd || k == InputKind::nifti || k == InputKind::dicom ||
+         k == InputKind::tiff;
 }
 /// Inputs shown as QNV splats or as a world made for them (no Viewpoint of their own):
 /// QNV streams and tilesets, PLY and OBJ meshes, volumes and Gaussian splatting scenes. glTF opens
