@@ -140,16 +140,26 @@ class DicomWalker {
     el.vr[1] = b_[pos + 5];
     if (el.vr[0] < 'A' || el.vr[0] > 'Z' || el.vr[1] < 'A' || el.vr[1] > 'Z')
       fail(pos, "element " + dicomTagText(el.g, el.e) + " without a value representation");
+    // PS3.5 7.1.2: these value representations have a 4-byte length after 2 reserved bytes,
+    // the others of PS3.5 table 6.2-1 a 2-byte length. Any other pair of letters is refused:
+    // GDCM reads an unknown one with a 4-byte length, and the walk must read each element
+    // as GDCM will, or a length it did not check reaches GDCM's allocation.
     static constexpr std::string_view kLong[] = {"OB", "OD", "OF", "OL", "OV", "OW", "SQ",
                                                  "SV", "UC", "UN", "UR", "UT", "UV"};
+    static constexpr std::string_view kShort[] = {"AE", "AS", "AT", "CS", "DA", "DS", "DT",
+                                                  "FD", "FL", "IS", "LO", "LT", "PN", "SH",
+                                                  "SL", "SS", "ST", "TM", "UI", "UL", "US"};
     const std::string_view vr(el.vr, 2);
     if (std::find(std::begin(kLong), std::end(kLong), vr) != std::end(kLong)) {
       if (b_.size() - pos < 12) fail(pos, "element header cut short");
       el.length = u32(pos + 8, big);
       el.value = pos + 12;
-    } else {
+    } else if (std::find(std::begin(kShort), std::end(kShort), vr) != std::end(kShort)) {
       el.length = u16(pos + 6, big);
       el.value = pos + 8;
+    } else {
+      fail(pos, "element " + dicomTagText(el.g, el.e) + " with the unknown value representation '" +
+                    std::string(vr) + "'");
     }
     return el;
   }

@@ -164,6 +164,17 @@ TEST_CASE("DICOM errors name the file and say what was expected", "[dicom]") {
   huge[pixel + 8] = huge[pixel + 9] = huge[pixel + 10] = huge[pixel + 11] = '\xF0';
   CHECK_THROWS_WITH(readDicom(huge, "huge.dcm"), Contains("huge.dcm: element (7FE0,0010)") &&
                                                      Contains("claims 4042322160 bytes"));
+  // An element whose value representation is no VR of PS3.5 table 6.2-1 is refused: GDCM
+  // reads an unknown one with a 4-byte length, which the walk would not have checked (CI's
+  // fuzz_dicom found a 3.9 KB file, CT_small mutated, that made GDCM allocate 3.26 GB).
+  std::string unknown = ct;
+  const std::size_t rows = unknown.find(std::string("\x28\x00\x10\x00US", 6));
+  REQUIRE(rows != std::string::npos);
+  unknown[rows + 4] = 'D';
+  unknown[rows + 5] = 'L';
+  CHECK_THROWS_WITH(
+      readDicom(unknown, "vr.dcm"),
+      Contains("vr.dcm: element (0028,0010) with the unknown value representation 'DL'"));
 }
 
 TEST_CASE("DICOM is recognised by its magic, its extension and its folder", "[dicom]") {

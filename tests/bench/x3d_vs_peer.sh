@@ -1,0 +1,95 @@
+#!/usr/bin/env bash
+# Every X3D world of the corpus drawn by GhostSpace and by a peer browser at the same size and
+# simulated time, compared with the project's image metric:
+#
+#   tests/bench/x3d_vs_peer.sh castle|xite BUILD_DIR [OUT_DIR] [WIDTHxHEIGHT] [TIMES]
+#
+# castle: castle-model-viewer (`view3dscene WORLD --screenshot T`, under xvfb-run), with
+#   `ghostspace --castle-camera` (castle places its own camera where a world has none);
+#   issue 20's judge (docs/castle-comparison.md).
+# xite: X_ITE 15 in headless Chromium (../shared/peers/xite/shot.mjs; set up once with its
+#   setup.sh, in XITE_PEER, default /tmp/peer/xite), the world's own camera (X_ITE's default
+#   0 0 10 when it has none, as VRML's); issue 41's judge of X3D 4.
+# TIMES: the simulated times to compare, e.g. "0 2.5" (default "0"): X_ITE loads at SFTime
+#   720720 = lcm(1..16) and runs T seconds in fixed steps, so a looping TimeSensor is at the
+#   phase `ghostspace --time T` gives.
+#
+# For each .x3d / .x3dv / .x3dz / .x3dvz (and, for X_ITE, .x3dj) file below
+# ../shared/corpus/x3d and each T:
+# both pictures, then BUILD_DIR/bin/compare_png --markdown (`differ` at a tolerance of 16 of
+# 255, and the background-masked `differ`, where pixels that show each program's own
+# background, its corner colour, count as equal). Prints one markdown row per world and time
+# and a summary per time: how many are within 1% and 5% masked `differ`. A world either
+# program cannot draw is listed as such. Both images stay in OUT_DIR (default: a temporary
+# folder, removed) to be looked at. A measurement, not a test.
+set -euo pipefail
+peer=${1:?usage: $0 castle|xite BUILD_DIR [OUT_DIR] [WIDTHxHEIGHT] [TIMES]}
+build=${2:?usage: $0 castle|xite BUILD_DIR [OUT_DIR] [WIDTHxHEIGHT] [TIMES]}
+top=$(cd "$(dirname "$0")/../.." && pwd)
+corpus=${CORPUS:-$top/../shared/corpus/x3d}
+out=${3:-}
+size=${4:-300x300}
+times=${5:-0}
+xite=${XITE_PEER:-/tmp/peer/xite}
+case $peer in
+  castle) camera=(--castle-camera) ;;
+  xite)
+    camera=()
+    [ -f "$xite/node_modules/x_ite/package.json" ] ||
+      { echo "$0: X_ITE is not set up in $xite (copy ../shared/peers/xite there, run setup.sh)" >&2; exit 1; } ;;
+  *) echo "$0: unknown peer '$peer' (castle or xite)" >&2; exit 2 ;;
+esac
+if [ -z "$out" ]; then
+  out=$(mktemp -d)
+  trap 'rm -rf "$out"' EXIT
+fi
+mkdir -p "$out"
+ghostspace=$build/bin/ghostspace
+compare=$build/bin/compare_png
+
+# The peer's picture of world $1 at time $2 in $3.
+peer_shot() {
+  if [ "$peer" = castle ]; then
+    timeout 60 xvfb-run -a view3dscene "$1" --screenshot "$2" "$3" --geometry "$size" \
+      > /dev/null 2>&1 || true
+  else
+    timeout 120 node "$xite/shot.mjs" "$1" "$3" --size "$size" --time "$2" --timeout 90 \
+      > /dev/null 2>&1 || true
+  fi
+}
+
+# (castle-model-viewer reads no X3D JSON: its .x3dj worlds are compared with X_ITE only.)
+json=()
+[ "$peer" = xite ] && json=(-o -name '*.x3dj')
+mapfile -t worlds < <(find "$corpus" -type f \( -name '*.x3d' -o -name '*.x3dv' -o -name '*.x3dz' \
+  -o -name '*.x3dvz' "${json[@]}" \) | LC_ALL=C sort)
+for time in $times; do
+  echo "### T = $time s, $size, against $peer"
+  echo
+  echo "| world | differ % | meanAbs | PSNR | masked differ % | masked PSNR | fg ours % | fg $peer % |"
+  echo "|---|--:|--:|--:|--:|--:|--:|--:|"
+  within1=0 within5=0 total=0 failed=0
+  for world in "${worlds[@]}"; do
+    name=${world#"$corpus"/}
+    key=${name//\//__}.t$time
+    total=$((total + 1))
+    ours=$out/$key.ours.png
+    theirs=$out/$key.$peer.png
+    timeout 60 "$ghostspace" --snapshot "$ours" --size "$size" --time "$time" "${camera[@]}" \
+      "$world" > /dev/null 2>&1 || true
+    peer_shot "$world" "$time" "$theirs"
+    if [ ! -s "$ours" ] || [ ! -s "$theirs" ]; then
+      failed=$((failed + 1))
+      echo "| $name | (not drawn by $([ -s "$ours" ] && echo "$peer" || echo GhostSpace)) | | | | | | |"
+      continue
+    fi
+    row=$("$compare" --markdown "$ours" "$theirs")
+    echo "| $name | $row |"
+    masked=$(echo "$row" | awk -F'|' '{gsub(/ /, "", $4); print $4}')
+    awk -v m="$masked" 'BEGIN { exit !(m <= 1.0) }' && within1=$((within1 + 1))
+    awk -v m="$masked" 'BEGIN { exit !(m <= 5.0) }' && within5=$((within5 + 1))
+  done
+  echo
+  echo "T = $time: $total worlds: masked differ <= 1%: $within1; <= 5%: $within5; not drawn by one program: $failed"
+  echo
+done
