@@ -46,4 +46,10 @@ DicomMeta scanDicomFile(std::string_view bytes, const std::string& name);
 /// The Media Storage SOP Class of a DICOMDIR (PS3.10 8.6).
 inline constexpr std::string_view kDicomdirSopClass = "1.2.840.10008.1.3.10";
 
+/// Runs `step(argument)`, a call into GDCM, so that a failed assertion inside GDCM ends it
+/// (returns false) instead of aborting the program (dicom_assert_guard.cpp). `step` must
+/// catch every exception itself. After false, the GDCM objects `step` used are in no known
+/// state: the caller leaks them rather than destroy them.
+bool runGdcmGuarded(void (*step)(void*), void* argument);
+
 }  // namespace gs::formats::detail

@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <cstring>
 #include <istream>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <streambuf>
@@ -377,15 +378,34 @@ DicomSlice readDicomSlice(std::string_view bytes, const std::string& name) {
   quietGdcm();
   DicomViewBuf buf(bytes);
   std::istream in(&buf);
-  gdcm::ImageReader reader;
+  // A reader whose GDCM call failed an assertion is leaked, never destroyed (its state is
+  // unknown: runGdcmGuarded).
+  auto owned = std::make_unique<gdcm::ImageReader>();
+  gdcm::ImageReader& reader = *owned;
   reader.SetStream(in);
+  struct ReadStep {
+    gdcm::ImageReader* reader;
+    bool read = false;
+  } readStep{&reader};
   bool read = false;
-  try {
+  {
     const DicomQuietStderr quiet;
-    read = reader.Read();
-  } catch (...) {
-    read = false;
+    read = runGdcmGuarded(
+        [](void* p) {
+          auto* s = static_cast<ReadStep*>(p);
+          try {
+            s->read = s->reader->Read();
+          } catch (...) {
+            s->read = false;
+          }
+        },
+        &readStep);
   }
+  if (!read) {
+    (void)owned.release();
+    throw InputError(name + ": GDCM cannot read this DICOM file (an internal check failed)");
+  }
+  read = readStep.read;
   if (!read)
     throw InputError(name + ": not a DICOM image GDCM can read (transfer syntax " +
                      (meta.transferSyntax.empty() ? "unknown" : meta.transferSyntax) + ")");
@@ -425,13 +445,27 @@ DicomSlice readDicomSlice(std::string_view bytes, const std::string& name) {
                      std::to_string(need) + " expected (" + std::to_string(pf.GetBitsAllocated()) +
                      " bits allocated)");
   std::vector<char> raw(static_cast<std::size_t>(need));
-  bool decoded = false;
-  try {
+  struct DecodeStep {
+    const gdcm::Image* image;
+    char* out;
+    bool decoded = false;
+  } decodeStep{&image, raw.data()};
+  bool finished = false;
+  {
     const DicomQuietStderr quiet;
-    decoded = image.GetBuffer(raw.data());
-  } catch (...) {
-    decoded = false;
+    finished = runGdcmGuarded(
+        [](void* p) {
+          auto* s = static_cast<DecodeStep*>(p);
+          try {
+            s->decoded = s->image->GetBuffer(s->out);
+          } catch (...) {
+            s->decoded = false;
+          }
+        },
+        &decodeStep);
   }
+  if (!finished) (void)owned.release();
+  const bool decoded = finished && decodeStep.decoded;
   if (!decoded)
     throw InputError(name + ": cannot decode pixel data in transfer syntax " + meta.transferSyntax +
                      "; the data are damaged or the codec is missing");

@@ -193,3 +193,16 @@ TEST_CASE("DICOM is recognised by its magic, its extension and its folder", "[di
         InputKind::dicom);
   CHECK(classifyFile((gs::test::sourceDir() / "assets").string()) != InputKind::dicom);
 }
+
+TEST_CASE("GDCM's assertions on a malformed file are errors, never an abort", "[dicom]") {
+  // Debian builds GDCM with assertions on; these two mutated files fail one each inside
+  // gdcm::ImageReader::Read (tests/data/dicom/regressions/README.md). Without the guard of
+  // formats/src/dicom_assert_guard.cpp the test process aborts here.
+  for (const char* file : {"gdcm_assert_bits_allocated.dcm", "gdcm_assert_spacing.dcm"}) {
+    INFO(file);
+    CHECK_THROWS_WITH(readDicomData(std::string("regressions/") + file),
+                      Contains("GDCM cannot read this DICOM file (an internal check failed)"));
+  }
+  // The guard is left as it was found: a later good file still reads.
+  CHECK(readDicomData("pydicom/CT_small.dcm").volume.dims.x == 128);
+}

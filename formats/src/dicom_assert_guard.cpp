@@ -1,0 +1,42 @@
+// GDCM's assertions, made errors (formats/src/dicom_internal.hpp, runGdcmGuarded). Debian
+// builds GDCM with assertions on, and some of them fire on malformed files (CI's fuzz_dicom
+// found two: gdcm::Attribute<0028,0100>::SetFromDataSet and ImageHelper::GetSpacingValue on
+// a mutated CT_small): left alone, a hostile file would abort the program. This file
+// defines __assert_fail, which the executable exports to the shared libraries it links (it
+// interposes glibc's, as a malloc linked into an executable does): inside runGdcmGuarded it
+// jumps back out of GDCM, elsewhere it does what glibc's does (print, abort).
+#include "dicom_internal.hpp"
+
+#include <csetjmp>
+#include <cstdio>
+#include <cstdlib>
+
+namespace gs::formats::detail {
+namespace {
+
+thread_local sigjmp_buf* tGdcmAssertJump = nullptr;
+
+}  // namespace
+
+bool runGdcmGuarded(void (*step)(void*), void* argument) {
+  sigjmp_buf jump;
+  sigjmp_buf* const outer = tGdcmAssertJump;
+  if (sigsetjmp(jump, 0) != 0) {
+    tGdcmAssertJump = outer;
+    return false;
+  }
+  tGdcmAssertJump = &jump;
+  step(argument);
+  tGdcmAssertJump = outer;
+  return true;
+}
+
+}  // namespace gs::formats::detail
+
+extern "C" [[noreturn]] void __assert_fail(const char* assertion, const char* file,
+                                           unsigned int line, const char* function) noexcept {
+  if (sigjmp_buf* const jump = gs::formats::detail::tGdcmAssertJump) siglongjmp(*jump, 1);
+  std::fprintf(stderr, "%s:%u: %s: Assertion `%s' failed.\n", file, line,
+               function != nullptr ? function : "?", assertion);
+  std::abort();
+}
