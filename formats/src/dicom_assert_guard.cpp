@@ -33,8 +33,11 @@ bool runGdcmGuarded(void (*step)(void*), void* argument) {
 
 }  // namespace gs::formats::detail
 
-extern "C" [[noreturn]] void __assert_fail(const char* assertion, const char* file,
-                                           unsigned int line, const char* function) noexcept {
+// (The GNU attribute, as glibc's <assert.h> declares it: a unity batch may have seen that
+// declaration first.)
+extern "C" __attribute__((__noreturn__)) void __assert_fail(const char* assertion, const char* file,
+                                                            unsigned int line,
+                                                            const char* function) noexcept {
   if (sigjmp_buf* const jump = gs::formats::detail::tGdcmAssertJump) siglongjmp(*jump, 1);
   std::fprintf(stderr, "%s:%u: %s: Assertion `%s' failed.\n", file, line,
                function != nullptr ? function : "?", assertion);
