@@ -52,4 +52,8 @@ inline constexpr std::string_view kDicomdirSopClass = "1.2.840.10008.1.3.10";
 /// state: the caller leaks them rather than destroy them.
 bool runGdcmGuarded(void (*step)(void*), void* argument);
 
+/// Marks `object`, a GDCM object left by a failed assertion, as leaked on purpose (for
+/// LeakSanitizer; nothing in other builds).
+void leakGdcmObject(const void* object);
+
 }  // namespace gs::formats::detail

@@ -402,7 +402,7 @@ DicomSlice readDicomSlice(std::string_view bytes, const std::string& name) {
         &readStep);
   }
   if (!read) {
-    (void)owned.release();
+    leakGdcmObject(owned.release());
     throw InputError(name + ": GDCM cannot read this DICOM file (an internal check failed)");
   }
   read = readStep.read;
@@ -464,7 +464,7 @@ DicomSlice readDicomSlice(std::string_view bytes, const std::string& name) {
         },
         &decodeStep);
   }
-  if (!finished) (void)owned.release();
+  if (!finished) leakGdcmObject(owned.release());
   const bool decoded = finished && decodeStep.decoded;
   if (!decoded)
     throw InputError(name + ": cannot decode pixel data in transfer syntax " + meta.transferSyntax +
