@@ -422,7 +422,29 @@ DicomSlice readDicomSlice(std::string_view bytes, const std::string& name) {
   if (pf.GetSamplesPerPixel() != 1)
     throw InputError(name + ": colour images (" + std::to_string(pf.GetSamplesPerPixel()) +
                      " samples per pixel) are not read as volumes; expected greyscale");
-  const std::optional<ScalarType> type = dicomScalarType(pf.GetScalarType());
+  // GDCM asserts on some bit layouts (GetScalarType): asked under the guard.
+  struct TypeStep {
+    const gdcm::PixelFormat* format;
+    gdcm::PixelFormat::ScalarType type = gdcm::PixelFormat::UNKNOWN;
+  } typeStep{&pf};
+  bool typed = false;
+  {
+    const DicomQuietStderr quiet;  // GDCM prints its assertion before it fails it
+    typed = runGdcmGuarded(
+        [](void* p) {
+          auto* s = static_cast<TypeStep*>(p);
+          s->type = s->format->GetScalarType();
+        },
+        &typeStep);
+  }
+  if (!typed) {
+    leakGdcmObject(owned.release());
+    throw InputError(name + ": GDCM cannot read this DICOM file's pixel format (" +
+                     std::to_string(pf.GetBitsAllocated()) + " bits allocated, " +
+                     std::to_string(pf.GetBitsStored()) + " stored, high bit " +
+                     std::to_string(pf.GetHighBit()) + ")");
+  }
+  const std::optional<ScalarType> type = dicomScalarType(typeStep.type);
   if (!type)
     throw InputError(name + ": pixel data of " + std::to_string(pf.GetBitsAllocated()) +
                      " bits allocated are not supported; expected 8, 16, 32 or 64");
