@@ -419,12 +419,12 @@ DicomSlice readDicomSlice(std::string_view bytes, const std::string& name) {
                      " pixels, " + std::to_string(frames) +
                      " frames; expected 1..65535 columns and rows and at least one frame");
   const gdcm::PixelFormat& pf = image.GetPixelFormat();
-  if (pf.GetSamplesPerPixel() != 1)
-    throw InputError(name + ": colour images (" + std::to_string(pf.GetSamplesPerPixel()) +
-                     " samples per pixel) are not read as volumes; expected greyscale");
-  // GDCM asserts on some bit layouts (GetScalarType): asked under the guard.
-  struct TypeStep {
+  // GDCM asserts on some bit layouts, in GetScalarType and in the getters its header
+  // defines (GetSamplesPerPixel, GetBitsStored, GetHighBit: live in builds without NDEBUG):
+  // all asked under the guard.
+  struct FormatStep {
     const gdcm::PixelFormat* format;
+    unsigned samples = 0, bitsAllocated = 0;
     gdcm::PixelFormat::ScalarType type = gdcm::PixelFormat::UNKNOWN;
   } typeStep{&pf};
   bool typed = false;
@@ -432,21 +432,25 @@ DicomSlice readDicomSlice(std::string_view bytes, const std::string& name) {
     const DicomQuietStderr quiet;  // GDCM prints its assertion before it fails it
     typed = runGdcmGuarded(
         [](void* p) {
-          auto* s = static_cast<TypeStep*>(p);
+          auto* s = static_cast<FormatStep*>(p);
+          s->samples = s->format->GetSamplesPerPixel();
+          s->bitsAllocated = s->format->GetBitsAllocated();
           s->type = s->format->GetScalarType();
         },
         &typeStep);
   }
   if (!typed) {
     leakGdcmObject(owned.release());
-    throw InputError(name + ": GDCM cannot read this DICOM file's pixel format (" +
-                     std::to_string(pf.GetBitsAllocated()) + " bits allocated, " +
-                     std::to_string(pf.GetBitsStored()) + " stored, high bit " +
-                     std::to_string(pf.GetHighBit()) + ")");
+    throw InputError(name +
+                     ": GDCM cannot read this DICOM file's pixel format (samples per pixel, "
+                     "bits allocated, stored and high bit that do not fit together)");
   }
+  if (typeStep.samples != 1)
+    throw InputError(name + ": colour images (" + std::to_string(typeStep.samples) +
+                     " samples per pixel) are not read as volumes; expected greyscale");
   const std::optional<ScalarType> type = dicomScalarType(typeStep.type);
   if (!type)
-    throw InputError(name + ": pixel data of " + std::to_string(pf.GetBitsAllocated()) +
+    throw InputError(name + ": pixel data of " + std::to_string(typeStep.bitsAllocated) +
                      " bits allocated are not supported; expected 8, 16, 32 or 64");
   const std::uint64_t voxels = cols * rows * frames;
   if (voxels > kMaxVoxels)
