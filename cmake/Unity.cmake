@@ -6,6 +6,7 @@
 # unity build reports "redefinition of" or "ambiguous" for a name in an anonymous namespace.
 set(GS_UNITY_ALONE
   formats/src/ply_reader.cpp
+  formats/src/vdb_child.cpp
   qnv/src/position_model.cpp
   qnv/src/tileset_index.cpp
   qnv/src/volume_slabs.cpp

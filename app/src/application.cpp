@@ -103,7 +103,7 @@ Parsed parseArguments(int argc, char** argv) {
       "(index.qnvt or its folder), Gaussian splatting scenes (.ply, "
       ".compressed.ply, .splat, .spz, .sog, .glb), and local meshes (.ply, .obj, "
       ".gltf, .glb) or volumes (.nrrd, .nhdr, .nii, .nii.gz; DICOM: .dcm, a series folder "
-      "or a DICOMDIR; TIFF and OME-TIFF: .tif, .tiff, or a folder of slices)");
+      "or a DICOMDIR; TIFF and OME-TIFF: .tif, .tiff, or a folder of slices; OpenVDB: .vdb)");
 
   CLI::App* info = cli.add_subcommand("info",
                                       "Print what was read from INPUT: node counts, "
@@ -116,7 +116,7 @@ Parsed parseArguments(int argc, char** argv) {
       "encode",
       "Encode INPUT as a QNV stream (docs/qnv-format.md): a VRML97 world, a mesh (.ply, .obj, "
       ".gltf, .glb) or a volume (.nrrd, .nhdr, .nii, .nii.gz, DICOM .dcm, series folder or "
-      "DICOMDIR, TIFF .tif/.tiff or a folder of slices, or raw with --raw-dims)");
+      "DICOMDIR, TIFF .tif/.tiff or a folder of slices, OpenVDB .vdb, or raw with --raw-dims)");
   std::string encodeInput;
   encode->add_option("INPUT", encodeInput, "World, mesh or volume")->required();
   registerOptions(OptionScope::encode, *encode, a);

@@ -4,6 +4,7 @@
 #include "formats/dicom_reader.hpp"
 #include "formats/input_kind.hpp"
 #include "formats/tiff_reader.hpp"
+#include "formats/vdb_reader.hpp"
 #include "qnv/tileset.hpp"
 #include "scene/traversal.hpp"
 #include "session/splat_inputs.hpp"
@@ -143,6 +144,28 @@ int runTiffInfo(const std::string& path) {
   return 0;
 }
 
+// `info` on an OpenVDB file: the grid read and its active box (formats/vdb_reader.hpp).
+int runVdbInfo(const std::string& path) {
+  try {
+    const auto reader = formats::openVdb(path);
+    const formats::VdbGridSummary& s = reader->summary();
+    const qnv::VolumeGridInfo& g = reader->info();
+    std::printf("%s\n", path.c_str());
+    std::printf("  OpenVDB grid '%s' (%s%s), 1 of %u grid%s, %llu active voxels\n", s.name.c_str(),
+                s.valueType.c_str(), s.levelSet ? ", level set read as fog" : "", s.grids,
+                s.grids == 1 ? "" : "s", static_cast<unsigned long long>(s.activeVoxels));
+    std::printf("  active box: %u x %u x %u voxels, spacing %g %g %g, origin %g %g %g\n", g.dims.x,
+                g.dims.y, g.dims.z, g.spacing.x, g.spacing.y, g.spacing.z, g.origin.x, g.origin.y,
+                g.origin.z);
+    if (g.valueRange)
+      std::printf("  values: %g .. %g\n", g.valueRange->first, g.valueRange->second);
+  } catch (const qnv::InputError& e) {
+    std::fprintf(stderr, "ghostspace: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
+
 }  // namespace
 
 int runInfo(const Options& options) {
@@ -154,6 +177,10 @@ int runInfo(const Options& options) {
     }
     if (formats::classifyFile(input) == formats::InputKind::tiff) {
       status = std::max(status, runTiffInfo(input));
+      continue;
+    }
+    if (formats::classifyFile(input) == formats::InputKind::vdb) {
+      status = std::max(status, runVdbInfo(input));
       continue;
     }
     if (formats::classifyFile(input) == formats::InputKind::qnv) {

@@ -28,6 +28,11 @@ struct DicomSlice {
 /// Reads one DICOM PS3.10 file (readDicom's rules).
 DicomSlice readDicomSlice(std::string_view bytes, const std::string& name);
 
+/// readDicom and loadDicom in this process; the public ones run these in a child process
+/// (dicom_isolated.cpp): GDCM allocates lengths read from a file before it reads them.
+DicomVolume readDicomHere(std::string_view bytes, const std::string& name);
+DicomVolume loadDicomHere(const std::string& path);
+
 /// What the file meta information says, after a walk over every element of the file that
 /// checks each value length against the bytes left (see dicom_reader.hpp).
 struct DicomMeta {

@@ -590,8 +590,8 @@ bool hasDicomMagic(std::string_view head) {
   return head.size() >= 132 && head.substr(128, 4) == "DICM";
 }
 
-DicomVolume readDicom(std::string_view bytes, const std::string& name) {
-  return detail::readDicomSlice(bytes, name).image;
+DicomVolume detail::readDicomHere(std::string_view bytes, const std::string& name) {
+  return readDicomSlice(bytes, name).image;
 }
 
 }  // namespace gs::formats

@@ -210,7 +210,7 @@ DicomVolume stackDicomSeries(const std::string& path, std::vector<detail::DicomS
 
 }  // namespace
 
-DicomVolume loadDicom(const std::string& path) {
+DicomVolume detail::loadDicomHere(const std::string& path) {
   std::error_code ec;
   std::vector<fs::path> files;
   const std::string where = path;
@@ -221,7 +221,7 @@ DicomVolume loadDicom(const std::string& path) {
   } else {
     const std::string bytes = dicomReadWhole(path);
     const detail::DicomMeta meta = detail::scanDicomFile(bytes, path);
-    if (meta.sopClass != detail::kDicomdirSopClass) return readDicom(bytes, path);
+    if (meta.sopClass != detail::kDicomdirSopClass) return readDicomHere(bytes, path);
     files = dicomdirFiles(path);
   }
 

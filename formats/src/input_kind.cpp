@@ -9,6 +9,7 @@
 #include "base/url.hpp"
 #include "formats/dicom_reader.hpp"
 #include "formats/tiff_reader.hpp"
+#include "formats/vdb_reader.hpp"
 #include "qnv/stream.hpp"
 #include "qnv/tileset.hpp"
 
@@ -50,6 +51,7 @@ constexpr std::array kSuffixes = {
     Suffix{".dicom", InputKind::dicom},
     Suffix{".tif", InputKind::tiff},
     Suffix{".tiff", InputKind::tiff},
+    Suffix{".vdb", InputKind::vdb},
     // X3D (ISO/IEC 19776-1, -2, -5): XML, Classic VRML, JSON, and their gzip forms.
     Suffix{".x3d", InputKind::world},
     Suffix{".x3dv", InputKind::world},
@@ -112,6 +114,7 @@ InputKind sniffPlain(std::string_view head) {
     return InputKind::nrrd;
   if (hasDicomMagic(head)) return InputKind::dicom;  // DICOM PS3.10 7.1
   if (hasTiffMagic(head)) return InputKind::tiff;    // TIFF 6.0 section 2, BigTIFF
+  if (hasVdbMagic(head)) return InputKind::vdb;      // OpenVDB io::Archive's magic number
   if (head.size() >= 348) {
     const std::string_view m = head.substr(344, 4);
     if (m == std::string_view("n+1\0", 4) || m == std::string_view("ni1\0", 4))

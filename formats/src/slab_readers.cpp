@@ -11,6 +11,7 @@
 #include "base/text.hpp"
 #include "formats/dicom_reader.hpp"
 #include "formats/input_kind.hpp"
+#include "formats/vdb_reader.hpp"
 #include "formats/volume_slabs.hpp"
 #include "slab_io.hpp"
 
@@ -341,6 +342,8 @@ std::unique_ptr<VolumeSlabReader> openVolumeSlabs(const std::string& path, const
       return openNrrd(path);
     case InputKind::nifti:
       return openNifti(path);
+    case InputKind::vdb:
+      return openVdb(path);
     default:
       break;
   }
@@ -348,7 +351,7 @@ std::unique_ptr<VolumeSlabReader> openVolumeSlabs(const std::string& path, const
     throw InputError("cannot open " + path + ": no such file or folder");
   throw InputError(path +
                    ": not a volume the slab reader knows (NRRD .nrrd/.nhdr, NIfTI-1 .nii, a "
-                   "raw file with its layout, DICOM, or PNG/TIFF slices)");
+                   "raw file with its layout, DICOM, OpenVDB, or PNG/TIFF slices)");
 }
 
 }  // namespace gs::formats

@@ -13,6 +13,7 @@
 #include "formats/dicom_reader.hpp"
 #include "formats/input_kind.hpp"
 #include "formats/tiff_reader.hpp"
+#include "formats/vdb_reader.hpp"
 #include "formats/volume_slabs.hpp"
 #include "qnv/error.hpp"
 
@@ -96,6 +97,7 @@ qnv::Volume loadVolumeFile(const std::string& path) {
   if (kind == formats::InputKind::tiff && std::filesystem::is_directory(path, ec))
     return qnv::readWholeVolume(*formats::openVolumeSlabs(path));  // single-page slices
   if (kind == formats::InputKind::tiff) return formats::readTiff(readOrThrow(path), path).volume;
+  if (kind == formats::InputKind::vdb) return qnv::readWholeVolume(*formats::openVdb(path));
   const std::string bytes = readOrThrow(path);
   if (formats::classifyInput(path, bytes) == formats::InputKind::nrrd) return loadNrrd(path, bytes);
   if (!base::isGzip(bytes)) return formats::readNifti(bytes, path);

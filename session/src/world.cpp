@@ -25,7 +25,8 @@ std::string unsupportedFormat(const std::string& path) {
     if (c > 0x20 && c < 0x7f) shown += c;
   return "unsupported format" + (shown.empty() ? std::string() : " (" + shown + ")") +
          ": not a VRML97 or X3D world, a mesh (.ply .obj .glb .gltf), a volume (.nrrd .nhdr "
-         ".nii .dcm .tif), a QNV stream or tileset, or a Gaussian splatting scene (.ply .spz .sog "
+         ".nii .dcm .tif .vdb), a QNV stream or tileset, or a Gaussian splatting scene (.ply .spz "
+         ".sog "
          ".splat); README.md lists the formats";
 }
 

@@ -1,6 +1,7 @@
-// DICOM and TIFF volumes through the real binary (docs/volumes.md): --snapshot of a series
-// folder and of an OME-TIFF, info's window presets and physical sizes, encode of a folder
-// of TIFF slices, and errors that name the file and exit 1.
+// DICOM, TIFF and OpenVDB volumes through the real binary (docs/volumes.md): --snapshot of a
+// series folder, an OME-TIFF and VDB fog and level-set grids, info's window presets,
+// physical sizes and grids, encode of a folder of TIFF slices and of a VDB file, and errors
+// that name the file and exit 1.
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -63,4 +64,32 @@ TEST_CASE("encode reads a folder of TIFF slices; bad DICOM exits 1 naming the fi
       {"--snapshot", (dir.path / "m.png").string(), volumeFormatData("dicom/cthead/mixed")});
   CHECK(mixed.exitCode == 1);
   CHECK_THAT(mixed.err, Contains("series has slices of different sizes: a.dcm 32x32, c.dcm 16x16"));
+}
+
+TEST_CASE("OpenVDB fog volumes and level sets open, encode and say what they are",
+          "[app][snapshot]") {
+  for (const std::string& input :
+       {volumeFormatData("vdb/cthead_fog.vdb"), volumeFormatData("vdb/cthead_skin_ls.vdb")}) {
+    INFO(input);
+    const std::string png =
+        gs::test::snapshot("volume_format_" + std::filesystem::path(input).stem().string(),
+                           {"--size", "160x160", input});
+    // The front view of CThead's face.
+    const auto c = gs::test::centrePixel(png);
+    CHECK(c[0] + c[1] + c[2] > 60);
+  }
+  const auto info = runGhostspace({"info", volumeFormatData("vdb/cthead_skin_ls.vdb")});
+  CHECK(info.exitCode == 0);
+  CHECK_THAT(info.out, Contains("OpenVDB grid 'ls_skin' (float, level set read as fog), 1 of 2 "
+                                "grids, 57250 active voxels"));
+  const gs::test::TempDir dir("vdb");
+  const std::string out = (dir.path / "fog.qnv").string();
+  const auto r = runGhostspace({"encode", volumeFormatData("vdb/cthead_fog.vdb"), "-o", out});
+  CHECK(r.exitCode == 0);
+  CHECK(std::filesystem::file_size(out) > 1000);
+  const std::string junk =
+      dir.write("junk.vdb", std::string("\x20\x42\x44\x56\0\0\0\0", 8) + std::string(300, 'x'));
+  const auto bad = runGhostspace({"--snapshot", (dir.path / "junk.png").string(), junk});
+  CHECK(bad.exitCode == 1);
+  CHECK_THAT(bad.err, Contains("junk.vdb: cannot open as OpenVDB ("));
 }

@@ -17,12 +17,8 @@ seconds=${1:?usage: run.sh SECONDS [TARGET...]}
 shift
 build=${GS_FUZZ_BUILD:-$top/build-fuzz}
 jobs=${GS_FUZZ_JOBS:-1}
-# fuzz_dicom is left out of the default list (run it by name: `run.sh 60 fuzz_dicom`): it
-# still finds GDCM defects within seconds, an encapsulated Pixel Data fragment whose length
-# GDCM allocates unchecked among them (docs/fuzzing.md, "DICOM"), and CI must not fail at
-# random on a known defect that is written down and being fixed.
 all=(fuzz_vrml_parse fuzz_vrml_stream fuzz_vrml_proto fuzz_x3d_xml fuzz_x3d_json fuzz_qnv_stream fuzz_qnv_compact fuzz_qnv_entropy fuzz_tileset_index
-     fuzz_ply fuzz_obj fuzz_gltf fuzz_gltf_scene fuzz_nrrd fuzz_nifti fuzz_tiff fuzz_image fuzz_dds fuzz_http_response
+     fuzz_ply fuzz_obj fuzz_gltf fuzz_gltf_scene fuzz_nrrd fuzz_nifti fuzz_dicom fuzz_tiff fuzz_vdb fuzz_image fuzz_dds fuzz_http_response
      fuzz_instance_message fuzz_script fuzz_splats)
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=("${all[@]}")
@@ -70,6 +66,7 @@ seeds_of() {
     fuzz_nrrd | fuzz_nifti) s=("$here/seeds/volume") ;;
     fuzz_dicom) s=("$here/seeds/dicom") ;;
     fuzz_tiff) s=("$here/seeds/tiff") ;;
+    fuzz_vdb) s=("$here/seeds/vdb") ;;
     fuzz_image) s=("$here/seeds/image" "$top/assets/worlds/textures") ;;
     fuzz_http_response) s=("$here/seeds/http") ;;
     fuzz_instance_message) s=("$here/seeds/instance") ;;

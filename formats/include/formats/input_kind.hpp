@@ -28,6 +28,9 @@ enum class InputKind {
   /// content "II*\0", "MM\0*" or BigTIFF's "II+\0", "MM\0+"; classifyFile also takes a
   /// folder holding .tif or .tiff files (a stack of single-page slices).
   tiff,
+  /// OpenVDB sparse grids (formats/vdb_reader.hpp): .vdb; content OpenVDB's magic number
+  /// (bytes 20 42 44 56 00 00 00 00).
+  vdb,
   /// A 3D Gaussian splatting scene (docs/splats.md): a PLY whose header (in the sniffed
   /// bytes) has Gaussian properties (f_dc_0, scale_0, rot_0) or PlayCanvas's chunk element,
   /// SPZ (content "NGSP", raw or gzip), .splat, .spz, .sog, .compressed.ply by name; an
@@ -66,10 +69,10 @@ inline constexpr std::size_t kSniffBytes = 512;
 constexpr bool isMesh(InputKind k) {
   return k == InputKind::ply || k == InputKind::obj || k == InputKind::gltf;
 }
-/// NRRD, NIfTI-1, DICOM and TIFF.
+/// NRRD, NIfTI-1, DICOM, TIFF and OpenVDB.
 constexpr bool isVolume(InputKind k) {
   return k == InputKind::nrrd || k == InputKind::nifti || k == InputKind::dicom ||
-         k == InputKind::tiff;
+         k == InputKind::tiff || k == InputKind::vdb;
 }
 /// Inputs shown as QNV splats or as a world made for them (no Viewpoint of their own):
 /// QNV streams and tilesets, PLY and OBJ meshes, volumes and Gaussian splatting scenes. glTF opens

@@ -13,6 +13,8 @@
 //   - NIfTI-1 single files (.nii and .nii.gz), readNifti's rules.
 //   - DICOM files, series folders and DICOMDIRs (formats/dicom_reader.hpp), read whole
 //     (GDCM decodes whole frames) and served as slabs; bounded by qnv::kMaxVoxels.
+//   - OpenVDB grids (formats/vdb_reader.hpp): a child process reads the file and sends
+//     the active box's slices forward; reading backwards starts it again.
 //   - headerless raw files laid out as a RawLayout says (.gz: inflated forward).
 //   - stacks of 2-D slices, one image per z: a folder (every .png, .tif, .tiff file in
 //     it, in natural name order: "s2" before "s10"), a printf-style pattern
