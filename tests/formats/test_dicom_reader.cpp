@@ -212,7 +212,6 @@ TEST_CASE("GDCM's allocations on a malformed file stay in the reader process", "
   // GDCM allocates the 4.28 GB an encapsulated fragment of this 7.8 KB file claims before it
   // reads it; the child process that runs GDCM (formats/src/dicom_isolated.cpp) may not
   // grow that far, so the read fails there and only an error comes back.
-  CHECK_THROWS_WITH(readDicomData("regressions/fragment_oom.dcm"),
-                    Contains("fragment_oom.dcm: "));
+  CHECK_THROWS_WITH(readDicomData("regressions/fragment_oom.dcm"), Contains("fragment_oom.dcm: "));
   CHECK(readDicomData("pydicom/CT_small.dcm").volume.dims.x == 128);
 }
