@@ -4,6 +4,7 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -51,7 +52,12 @@ void writeFrame(int fd, char kind, std::string_view bytes) {
 }
 
 [[noreturn]] void runChild(int fd, const std::function<void(FrameWriter&)>& work,
-                           const IsolationLimits& limits, std::uint64_t inherited) {
+                           const IsolationLimits& limits, std::uint64_t inherited,
+                           pid_t parent) {
+  // The child ends with the caller, even one that ends without its destructors (a
+  // fuzzer's time-out, a crash).
+  ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+  if (::getppid() != parent) ::_exit(1);
   ::signal(SIGPIPE, SIG_IGN);
   // A crash ends the child, which the caller reports: not the handlers the caller's
   // process installed (a test framework's, a sanitizer's), which would report it as the
@@ -109,6 +115,7 @@ IsolatedProcess::IsolatedProcess(const std::function<void(FrameWriter&)>& work,
     throw IsolationError(std::string("cannot start the reader process: pipe: ") +
                          std::strerror(errno));
   const std::uint64_t inherited = virtualSize();
+  const pid_t parent = ::getpid();
   const pid_t pid = ::fork();
   if (pid < 0) {
     const int err = errno;
@@ -119,7 +126,7 @@ IsolatedProcess::IsolatedProcess(const std::function<void(FrameWriter&)>& work,
   }
   if (pid == 0) {
     ::close(fds[0]);
-    runChild(fds[1], work, limits, inherited);
+    runChild(fds[1], work, limits, inherited, parent);
   }
   ::close(fds[1]);
   fd_ = fds[0];

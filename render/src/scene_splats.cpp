@@ -49,7 +49,9 @@ const SceneSplats::NodeSet& SceneSplats::nodeSet(const vrml::Node& node, const s
     entry.set = std::move(volume.set);
     return sets_[&node] = entry;
   }
-  std::shared_ptr<const SplatSet> set = inlineSplatSet(node);
+  const bool gaussianNode = node.typeId() == vrml::NodeTypeId::GaussianSplats;
+  std::shared_ptr<const SplatSet> set =
+      gaussianNode ? inlineGaussianSet(node) : inlineSplatSet(node);
   if (!set) {
     const auto urls = node.get<vrml::FieldType::MFString>("url", std::vector<std::string>{});
     std::string errors;
@@ -69,7 +71,7 @@ const SceneSplats::NodeSet& SceneSplats::nodeSet(const vrml::Node& node, const s
     }
     if (!set && !urls.empty())
       traversal.report(vrml::Severity::error, node.location,
-                       "QuantizedNormalVectors: no url could be loaded: " + errors);
+                       node.typeName() + ": no url could be loaded: " + errors);
   }
   NodeSet entry;
   entry.set = set;

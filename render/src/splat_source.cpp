@@ -1,9 +1,16 @@
 #include "render/splat_source.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <string>
+
 #include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
 
 #include "base/file.hpp"
 #include "scene/world_triangles.hpp"
+#include "splats/gaussian.hpp"
+#include "splats/lod_tree.hpp"
 
 namespace gs::render {
 
@@ -77,6 +84,68 @@ std::shared_ptr<SplatSet> inlineSplatSet(const vrml::Node& node) {
                    });
   set->style.kind = qnv::StreamKind::surface;
   set->style.magnitudeMax = std::max(largest, 1e-30f);
+  set->computeBounds();
+  return set;
+}
+
+std::shared_ptr<SplatSet> inlineGaussianSet(const vrml::Node& node) {
+  using vrml::FieldType;
+  const auto positions = node.get<FieldType::MFVec3f>("positions", std::vector<glm::vec3>{});
+  if (positions.empty()) return nullptr;
+  const auto orientations = node.get<FieldType::MFVec4f>("orientations", std::vector<glm::vec4>{});
+  const auto scales = node.get<FieldType::MFVec3f>("scales", std::vector<glm::vec3>{});
+  const auto opacities = node.get<FieldType::MFFloat>("opacities", std::vector<float>{});
+  const std::size_t n = positions.size();
+  auto coefficients = [&](int degree, int coef) {
+    return node.get<FieldType::MFVec3f>(
+        "sphericalHarmonicsDegree" + std::to_string(degree) + "Coef" + std::to_string(coef),
+        std::vector<glm::vec3>{});
+  };
+  // The highest degree whose coefficients, and all lower ones', cover every splat.
+  int degree = -1;
+  for (int l = 0; l <= 3; ++l) {
+    bool filled = true;
+    for (int c = 0; c < 2 * l + 1 && filled; ++c) filled = coefficients(l, c).size() >= n;
+    if (!filled) break;
+    degree = l;
+  }
+  splats::GaussianCloud cloud;
+  cloud.shDegree = std::max(degree, 0);
+  cloud.resize(n);
+  cloud.colorSpace =
+      node.get<FieldType::SFString>("colorSpace", std::string()) == "LIN_REC709_DISPLAY"
+          ? splats::ColorSpace::linear
+          : splats::ColorSpace::srgb;
+  for (std::size_t i = 0; i < n; ++i) {
+    cloud.positions[i] = positions[i];
+    cloud.scales[i] = i < scales.size() ? glm::max(scales[i], glm::vec3(0.0f)) : glm::vec3(0.01f);
+    glm::quat q(1, 0, 0, 0);
+    if (i < orientations.size()) {
+      const glm::vec4 o = orientations[i];
+      const float len = glm::length(o);
+      if (len > 0.0f && std::isfinite(len))
+        q = glm::quat(o.w / len, o.x / len, o.y / len, o.z / len);
+    }
+    cloud.rotations[i] = q;
+    cloud.opacities[i] = i < opacities.size() ? std::clamp(opacities[i], 0.0f, 1.0f) : 1.0f;
+    cloud.shDc[i] = glm::vec3(0.0f);
+  }
+  if (degree >= 0) {
+    const auto dc = coefficients(0, 0);
+    for (std::size_t i = 0; i < n; ++i) cloud.shDc[i] = dc[i];
+  }
+  const int rest = cloud.shRestPerSplat();
+  for (int l = 1; l <= degree; ++l)
+    for (int c = 0; c < 2 * l + 1; ++c) {
+      const auto values = coefficients(l, c);
+      const int k = l * l + c;  // 1..15, Kerbl et al.'s order within a channel
+      for (std::size_t i = 0; i < n; ++i)
+        cloud.shRest[i * static_cast<std::size_t>(rest) + static_cast<std::size_t>(k - 1)] =
+            values[i];
+    }
+  auto set = std::make_shared<SplatSet>();
+  set->gaussians = std::make_shared<const splats::GaussianCloud>(splats::sortByImportance(cloud));
+  set->lodTree = std::make_shared<const splats::LodTree>(splats::buildLodTree(*set->gaussians));
   set->computeBounds();
   return set;
 }

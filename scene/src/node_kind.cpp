@@ -74,6 +74,8 @@ NodeKind nodeKind(const vrml::Node& node) {
     case NodeTypeId::OutlineGroup:
       return NodeKind::OutlineGroup;
     case NodeTypeId::QuantizedNormalVectors:
+    // A 3D Gaussian splatting cloud (X_ITE's GaussianSplats node; render/src/scene_splats.cpp).
+    case NodeTypeId::GaussianSplats:
     // X3D's volume data nodes are drawn as QNV vectors of their voxels
     // (render/src/volume_data.hpp).
     case NodeTypeId::VolumeData:

@@ -115,6 +115,49 @@ EXTENSIONS = [
             ("shadows", "SFBool", "inputOutput", "false", ""),
             ("specularTexture", "SFNode", "inputOutput", "NULL", "X3DEnvironmentTextureNode"),
         ],
+    },    # X_ITE's experimental GaussianSplats node (X3D 4.1 draft component "GaussianSplats",
+    # create3000/x_ite src/x_ite/Components/GaussianSplats/GaussianSplats.js): one 3D
+    # Gaussian splatting cloud as fields, the attributes of glTF's KHR_gaussian_splatting
+    # (linear scales, linear opacities, quaternions x y z w, SH coefficients by degree).
+    # X_ITE's `orientations` is an MFQuaternion, a 4.1 type: here MFVec4f, the same four
+    # numbers per value in every encoding. GhostSpace adds `url` (a capture file, any
+    # format of docs/splats.md) so that a world places a scene under a Transform.
+    {
+        "name": "GaussianSplats",
+        "extension": False,
+        "component": "GaussianSplats",
+        "level": 1,
+        "bases": ["X3DChildNode", "X3DBoundedObject"],
+        "containerField": "children",
+        "fields": [
+            ("metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject"),
+            ("url", "MFString", "inputOutput", "", ""),
+            ("colorSpace", "SFString", "inputOutput", "SRGB_REC709_DISPLAY", ""),
+            ("positions", "MFVec3f", "inputOutput", "", ""),
+            ("orientations", "MFVec4f", "inputOutput", "", ""),
+            ("scales", "MFVec3f", "inputOutput", "", ""),
+            ("opacities", "MFFloat", "inputOutput", "", ""),
+            ("sphericalHarmonicsDegree0Coef0", "MFVec3f", "inputOutput", "", ""),
+            ("sphericalHarmonicsDegree1Coef0", "MFVec3f", "inputOutput", "", ""),
+            ("sphericalHarmonicsDegree1Coef1", "MFVec3f", "inputOutput", "", ""),
+            ("sphericalHarmonicsDegree1Coef2", "MFVec3f", "inputOutput", "", ""),
+            ("sphericalHarmonicsDegree2Coef0", "MFVec3f", "inputOutput", "", ""),
+            ("sphericalHarmonicsDegree2Coef1", "MFVec3f", "inputOutput", "", ""),
+            ("sphericalHarmonicsDegree2Coef2", "MFVec3f", "inputOutput", "", ""),
+            ("sphericalHarmonicsDegree2Coef3", "MFVec3f", "inputOutput", "", ""),
+            ("sphericalHarmonicsDegree2Coef4", "MFVec3f", "inputOutput", "", ""),
+            ("sphericalHarmonicsDegree3Coef0", "MFVec3f", "inputOutput", "", ""),
+            ("sphericalHarmonicsDegree3Coef1", "MFVec3f", "inputOutput", "", ""),
+            ("sphericalHarmonicsDegree3Coef2", "MFVec3f", "inputOutput", "", ""),
+            ("sphericalHarmonicsDegree3Coef3", "MFVec3f", "inputOutput", "", ""),
+            ("sphericalHarmonicsDegree3Coef4", "MFVec3f", "inputOutput", "", ""),
+            ("sphericalHarmonicsDegree3Coef5", "MFVec3f", "inputOutput", "", ""),
+            ("sphericalHarmonicsDegree3Coef6", "MFVec3f", "inputOutput", "", ""),
+            ("visible", "SFBool", "inputOutput", "true", ""),
+            ("bboxDisplay", "SFBool", "inputOutput", "false", ""),
+            ("bboxCenter", "SFVec3f", "initializeOnly", "0 0 0", ""),
+            ("bboxSize", "SFVec3f", "initializeOnly", "-1 -1 -1", ""),
+        ],
     },
 ]
 

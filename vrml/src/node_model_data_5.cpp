@@ -23,9 +23,39 @@ constexpr NodeFieldModel kFieldsEnvironmentLight[] = {
     F{"shadows", "SFBool", "inputOutput", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"specularTexture", "SFNode", "inputOutput", "NULL", "X3DEnvironmentTextureNode", AbstractTypeSet{0x0000000000004000ULL, 0x0000000000000000ULL}, {}},
 };
+constexpr NodeFieldModel kFieldsGaussianSplats[] = {
+    F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
+    F{"url", "MFString", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"colorSpace", "SFString", "inputOutput", "SRGB_REC709_DISPLAY", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"positions", "MFVec3f", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"orientations", "MFVec4f", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"scales", "MFVec3f", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"opacities", "MFFloat", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"sphericalHarmonicsDegree0Coef0", "MFVec3f", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"sphericalHarmonicsDegree1Coef0", "MFVec3f", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"sphericalHarmonicsDegree1Coef1", "MFVec3f", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"sphericalHarmonicsDegree1Coef2", "MFVec3f", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"sphericalHarmonicsDegree2Coef0", "MFVec3f", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"sphericalHarmonicsDegree2Coef1", "MFVec3f", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"sphericalHarmonicsDegree2Coef2", "MFVec3f", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"sphericalHarmonicsDegree2Coef3", "MFVec3f", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"sphericalHarmonicsDegree2Coef4", "MFVec3f", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"sphericalHarmonicsDegree3Coef0", "MFVec3f", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"sphericalHarmonicsDegree3Coef1", "MFVec3f", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"sphericalHarmonicsDegree3Coef2", "MFVec3f", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"sphericalHarmonicsDegree3Coef3", "MFVec3f", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"sphericalHarmonicsDegree3Coef4", "MFVec3f", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"sphericalHarmonicsDegree3Coef5", "MFVec3f", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"sphericalHarmonicsDegree3Coef6", "MFVec3f", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"visible", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"bboxDisplay", "SFBool", "inputOutput", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"bboxCenter", "SFVec3f", "initializeOnly", "0 0 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"bboxSize", "SFVec3f", "initializeOnly", "-1 -1 -1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+};
 
 constexpr NodeModel kModels[] = {
     {"EnvironmentLight", NodeTypeId::EnvironmentLight, "Lighting", 4, AbstractTypeSet{0x0000000410000080ULL, 0x0000000000000000ULL}, "children", kFieldsEnvironmentLight, false},
+    {"GaussianSplats", NodeTypeId::GaussianSplats, "GaussianSplats", 1, AbstractTypeSet{0x00000004000000a0ULL, 0x0000000000000000ULL}, "children", kFieldsGaussianSplats, false},
 };
 
 }  // namespace

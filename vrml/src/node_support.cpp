@@ -93,6 +93,7 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::TwoSidedMaterial,
     NodeTypeId::ClipPlane,
     NodeTypeId::EnvironmentLight,  // X3D 4.1 (vrml/gen/gen_node_model.py)
+    NodeTypeId::GaussianSplats,    // X_ITE's, X3D 4.1 draft (vrml/gen/gen_node_model.py)
     NodeTypeId::TextureProperties,
     NodeTypeId::TransformSensor,
     NodeTypeId::ColorChaser,

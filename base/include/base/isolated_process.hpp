@@ -8,9 +8,13 @@
 // runs out of memory, crashes, or sends nothing for too long ends the work with an
 // IsolationError; the caller's process is never at risk.
 //
-// POSIX only (fork, pipe, setrlimit RLIMIT_AS, poll, waitpid). The child must not rely
-// on other threads of the caller (only the forking thread exists in it): it may allocate,
-// read files and start threads of its own.
+// Linux (fork, pipe, setrlimit RLIMIT_AS, poll, waitpid, PR_SET_PDEATHSIG: the child dies
+// with the caller). The child must not rely on other threads of the caller (only the
+// forking thread exists in it): it may allocate, read files and start threads of its own.
+// glibc's malloc is safe across fork; AddressSanitizer's allocator in clang/gcc 14 and
+// earlier is not while another thread allocates (the child may wait forever on its lock,
+// until the idle time-out stops it), which is why the fuzz targets that fork run without
+// libFuzzer's RSS thread (tests/fuzz/run.sh).
 #pragma once
 
 #include <cstddef>

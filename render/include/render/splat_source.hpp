@@ -37,6 +37,17 @@ std::shared_ptr<SplatSet> splatSetFromEncoded(const qnv::EncodedVectors& encoded
 /// color (MFColor, missing: white), as a surface set. Null when `position` is empty.
 std::shared_ptr<SplatSet> inlineSplatSet(const vrml::Node& node);
 
+/// The inline cloud of a GaussianSplats node (X_ITE's experimental node, the attributes of
+/// glTF's KHR_gaussian_splatting; docs/splats.md, "The GaussianSplats node"): positions
+/// (MFVec3f, scene units), orientations (MFVec4f, unit quaternions x y z w; missing:
+/// identity), scales (MFVec3f, linear standard deviations; missing: 0.01), opacities
+/// (MFFloat, 0..1; missing: 1), sphericalHarmonicsDegreeLCoefN (MFVec3f, the SH
+/// coefficients; degree L counts when every coefficient of it and of the lower degrees has
+/// a value per splat, as X_ITE decides), colorSpace "SRGB_REC709_DISPLAY" (default) or
+/// "LIN_REC709_DISPLAY". Sorted by importance, with its level-of-detail tree, as a splat
+/// scene file gives. Null when `positions` is empty.
+std::shared_ptr<SplatSet> inlineGaussianSet(const vrml::Node& node);
+
 /// A polygon world as splats: every triangle drawn (worldTriangles) through the surface
 /// encoder and decoder, so it is exactly what `ghostspace encode` of the world shows.
 std::shared_ptr<SplatSet> worldSplatSet(std::shared_ptr<const vrml::Scene> scene);
