@@ -20,9 +20,8 @@ using qnv::InputError;
 class IsolatedVdbReader final : public VdbSlabReader {
  public:
   IsolatedVdbReader(std::function<void(base::FrameWriter&)> work, std::string name,
-                    std::uint64_t memoryBytes)
-      : work_(std::move(work)), name_(std::move(name)) {
-    limits_.memoryBytes = memoryBytes;
+                    base::IsolationLimits limits)
+      : work_(std::move(work)), name_(std::move(name)), limits_(limits) {
     start();
   }
 
@@ -133,19 +132,21 @@ std::unique_ptr<VdbSlabReader> openVdb(const std::string& path, const std::strin
     if (!in) throw std::runtime_error("cannot open the file");
     detail::sendVdbGrid(in, gridName, out);
   };
-  return std::make_unique<IsolatedVdbReader>(work, path, memoryBytes);
+  base::IsolationLimits limits;
+  limits.memoryBytes = memoryBytes;
+  return std::make_unique<IsolatedVdbReader>(work, path, limits);
 }
 
 std::unique_ptr<VdbSlabReader> openVdbBytes(std::string bytes, const std::string& name,
                                             const std::string& gridName,
-                                            std::uint64_t memoryBytes) {
-  if (memoryBytes == 0) memoryBytes = base::isolationMemoryFor(bytes.size());
+                                            base::IsolationLimits limits) {
+  if (limits.memoryBytes == 0) limits.memoryBytes = base::isolationMemoryFor(bytes.size());
   auto shared = std::make_shared<const std::string>(std::move(bytes));
   auto work = [shared, gridName](base::FrameWriter& out) {
     std::istringstream in(*shared, std::ios::binary);
     detail::sendVdbGrid(in, gridName, out);
   };
-  return std::make_unique<IsolatedVdbReader>(work, name, memoryBytes);
+  return std::make_unique<IsolatedVdbReader>(work, name, limits);
 }
 
 }  // namespace gs::formats

@@ -25,6 +25,7 @@
 #include <string>
 #include <string_view>
 
+#include "base/isolated_process.hpp"
 #include "qnv/volume_slabs.hpp"
 
 namespace gs::formats {
@@ -62,9 +63,11 @@ class VdbSlabReader : public qnv::VolumeSlabReader {
 std::unique_ptr<VdbSlabReader> openVdb(const std::string& path, const std::string& gridName = {},
                                        std::uint64_t memoryBytes = 0);
 
-/// openVdb over the bytes of a file in memory (`name` names it in errors).
+/// openVdb over the bytes of a file in memory (`name` names it in errors), the child
+/// bounded by `limits` (memoryBytes 0: base::isolationMemoryFor the bytes; idleSeconds:
+/// how long the child may take to send its next frame).
 std::unique_ptr<VdbSlabReader> openVdbBytes(std::string bytes, const std::string& name,
                                             const std::string& gridName = {},
-                                            std::uint64_t memoryBytes = 0);
+                                            base::IsolationLimits limits = {0, 120});
 
 }  // namespace gs::formats
