@@ -163,7 +163,7 @@ TEST_CASE("the corpus's scenes as QNV Gaussian streams: fewer bytes than SPZ, th
   }
 }
 
-TEST_CASE("an Inline opens splat scenes, QNV streams and meshes beside polygons",
+TEST_CASE("an Inline opens splat scenes, QNV streams, meshes and volumes beside polygons",
           "[app][render][splat]") {
   // As X3D 4.0's Inline opens glTF, an Inline opens every file ghostspace opens: each is
   // the world that file opens as, placed under the Inline's Transform. Each picture must
@@ -191,7 +191,9 @@ TEST_CASE("an Inline opens splat scenes, QNV streams and meshes beside polygons"
       {"inline_spz", (splats / "bunny_small.spz").string(), "8"},
       {"inline_ply_capture", (splats / "bunny_small.ply").string(), "8"},
       {"inline_qnv", qnv.string(), "1"},
-      {"inline_mesh", (gs::test::sourceDir() / "assets/meshes/cube_ascii.ply").string(), "1"}};
+      {"inline_mesh", (gs::test::sourceDir() / "assets/meshes/cube_ascii.ply").string(), "1"},
+      {"inline_vdb", (gs::test::sourceDir() / "tests/data/vdb/cthead_skin_ls.vdb").string(),
+       "0.01"}};
   for (const auto& [name, url, scale] : inputs) {
     INFO(name);
     const std::string with = gs::test::snapshot(
