@@ -52,8 +52,7 @@ void writeFrame(int fd, char kind, std::string_view bytes) {
 }
 
 [[noreturn]] void runChild(int fd, const std::function<void(FrameWriter&)>& work,
-                           const IsolationLimits& limits, std::uint64_t inherited,
-                           pid_t parent) {
+                           const IsolationLimits& limits, std::uint64_t inherited, pid_t parent) {
   // The child ends with the caller, even one that ends without its destructors (a
   // fuzzer's time-out, a crash).
   ::prctl(PR_SET_PDEATHSIG, SIGKILL);

@@ -7,11 +7,18 @@
 // llvmpipe threads and the cpu path's workers), less sensitive to other work on a shared
 // machine than the wall time.
 //
-//   bench_splats [WxH] [--millions 1,4] [--frames N] [--path P] [FILE.qnv|SCENE ...]
+// With --distances, each Gaussian scene is also seen through its level-of-detail tree
+// (splats/lod_tree.hpp) from D box diagonals away (the fitted camera moved back along its
+// view): the cut's size (splats drawn, and their share of the scene) and the M splats/s of
+// the cut, best of FRAMES frames, each frame a new view (a new cut, assembled and sorted).
+//
+//   bench_splats [WxH] [--millions 1,4] [--frames N] [--path P] [--distances 1.5,3,12]
+//                [FILE.qnv|SCENE ...]
 //   (SCENE: a Gaussian splatting scene, docs/splats.md: .ply, .spz, .splat, .sog, .glb ...)
 //   (default 512x512; --path geometry|points|cpu measures only that path)
 #include <glad/gl.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -24,10 +31,13 @@
 #include <thread>
 #include <vector>
 
+#include <glm/geometric.hpp>
+
 #include "base/file.hpp"
 #include "render/context.hpp"
 #include "render/splat_renderer.hpp"
 #include "render/splat_source.hpp"
+#include "splats/lod_tree.hpp"
 #include "splats/readers.hpp"
 
 using namespace gs;
@@ -91,7 +101,53 @@ Figure measure(const render::SplatSet& set, render::SplatPath path, int width, i
   return f;
 }
 
-std::string only;  // --path: measure only that path
+std::string only;               // --path: measure only that path
+std::vector<double> distances;  // --distances: box diagonals for the cut figures
+
+// The cut figures of a Gaussian scene with its tree (see the top of this file).
+void reportCuts(const char* name, const render::SplatSet& set, int width, int height, int frames) {
+  const float aspect = float(width) / float(height);
+  const float diagonal = glm::length(set.bounds.size());
+  const glm::vec3 centre = (set.bounds.min + set.bounds.max) * 0.5f;
+  scene::Camera direction;
+  const scene::Camera fitted = scene::fitCamera(set.bounds, aspect, direction);
+  const glm::vec3 back = -fitted.forward();
+  const render::SplatPath paths[3] = {render::SplatPath::geometry, render::SplatPath::points,
+                                      render::SplatPath::cpu};
+  for (const render::SplatPath path : paths) {
+    if (!only.empty() && only != render::splatPathName(path)) continue;
+    for (const double d : distances) {
+      scene::Camera camera = fitted;
+      camera.farClip = std::max(fitted.farClip, static_cast<float>(d + 2.0) * diagonal);
+      const glm::vec3 start = centre + back * (static_cast<float>(d) * diagonal);
+      const float step = 0.003f * diagonal * static_cast<float>(d);
+      const render::SplatLight lights[] = {{camera.forward(), glm::vec3(1.0f)}};
+      render::SplatRenderer renderer;
+      renderer.setPath(path);
+      double best = 1e9;
+      std::size_t drawn = 0;
+      for (int frame = 0; frame <= frames; ++frame) {
+        camera.position = start + glm::vec3(step * static_cast<float>(frame), 0.0f, 0.0f);
+        glViewport(0, 0, width, height);
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        const auto t0 = Clock::now();
+        renderer.draw(set, set.size(), glm::mat4(1.0f), camera, aspect, lights);
+        glFinish();
+        const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+        if (frame == 0) continue;  // upload and shader compilation
+        if (seconds < best) drawn = renderer.statistics().splats;
+        best = std::min(best, seconds);
+      }
+      std::printf(
+          "%-14s %-8s %5.1f diagonals: cut %9zu splats (%6.2f%%)  frame %7.4f s  %6.2f M "
+          "splats/s\n",
+          name, render::splatPathName(path), d, drawn,
+          100.0 * static_cast<double>(drawn) / static_cast<double>(set.size()), best,
+          static_cast<double>(drawn) / best / 1e6);
+      std::fflush(stdout);
+    }
+  }
+}
 
 void report(const char* name, const render::SplatSet& set, int width, int height, int frames) {
   const double n = static_cast<double>(set.size());
@@ -131,6 +187,13 @@ int main(int argc, char** argv) {
     const std::string a = argv[i];
     if (a == "--path" && i + 1 < argc) {
       only = argv[++i];
+    } else if (a == "--distances" && i + 1 < argc) {
+      for (char* p = argv[++i]; *p != '\0';) {
+        char* end = nullptr;
+        distances.push_back(std::strtod(p, &end));
+        if (end == p) break;
+        p = *end == ',' ? end + 1 : end;
+      }
     } else if (a == "--frames" && i + 1 < argc) {
       frames = std::max(1, std::atoi(argv[++i]));
     } else if (a == "--millions" && i + 1 < argc) {
@@ -188,8 +251,16 @@ int main(int argc, char** argv) {
       return 1;
     }
     const std::size_t slash = file.find_last_of('/');
-    report(file.substr(slash == std::string::npos ? 0 : slash + 1).c_str(), *set, width, height,
-           frames);
+    const std::string name = file.substr(slash == std::string::npos ? 0 : slash + 1);
+    report(name.c_str(), *set, width, height, frames);
+    if (!distances.empty() && set->gaussians) {
+      auto withTree = std::make_shared<render::SplatSet>();
+      withTree->gaussians = set->gaussians;
+      withTree->computeBounds();
+      withTree->lodTree = std::make_shared<const gs::splats::LodTree>(
+          gs::splats::buildLodTree(*withTree->gaussians));
+      reportCuts(name.c_str(), *withTree, width, height, frames);
+    }
   }
   for (const double m : millions) {
     const auto set = shell(static_cast<std::size_t>(m * 1e6));
