@@ -21,7 +21,8 @@ TEST_CASE("node model: X3D 4.0's 260 concrete nodes and the extensions", "[node_
     CHECK(!m.component.empty());
     CHECK(m.level >= 1);
   }
-  CHECK(x3d == 261);       // and X3D 4.1's EnvironmentLight (vrml/gen/gen_node_model.py)
+  // and X3D 4.1's EnvironmentLight and X_ITE's GaussianSplats (vrml/gen/gen_node_model.py)
+  CHECK(x3d == 262);
   CHECK(extensions == 3);  // OutlineGroup, QuantizedNormalVectors, Skin
   CHECK(nodeModel("NoSuchNode") == nullptr);
   CHECK(nodeModel(NodeTypeId::unknown) == nullptr);
