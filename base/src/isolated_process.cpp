@@ -133,25 +133,24 @@ IsolatedProcess::IsolatedProcess(const std::function<void(FrameWriter&)>& work,
 }
 
 IsolatedProcess::~IsolatedProcess() {
+  (void)reap(true);
+}
+
+int IsolatedProcess::reap(bool kill) {
   if (fd_ >= 0) ::close(fd_);
-  if (pid_ > 0) {
-    ::kill(pid_, SIGKILL);
-    int status = 0;
-    while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
-    }
+  fd_ = -1;
+  if (pid_ <= 0) return -1;
+  if (kill) ::kill(pid_, SIGKILL);
+  int status = 0;
+  pid_t w;
+  while ((w = ::waitpid(pid_, &status, 0)) < 0 && errno == EINTR) {
   }
+  pid_ = -1;
+  return w > 0 ? status : -1;
 }
 
 void IsolatedProcess::fail(const std::string& why) {
-  if (fd_ >= 0) ::close(fd_);
-  fd_ = -1;
-  if (pid_ > 0) {
-    ::kill(pid_, SIGKILL);
-    int status = 0;
-    while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
-    }
-    pid_ = -1;
-  }
+  (void)reap(true);
   throw IsolationError(why);
 }
 
@@ -171,14 +170,8 @@ void IsolatedProcess::readExactly(char* dst, std::size_t n) {
       continue;
     }
     // The child closed its end: it exited or died. Say how.
-    ::close(fd_);
-    fd_ = -1;
-    int status = 0;
-    pid_t w;
-    while ((w = ::waitpid(pid_, &status, 0)) < 0 && errno == EINTR) {
-    }
-    pid_ = -1;
-    if (w > 0 && WIFSIGNALED(status))
+    const int status = reap(false);
+    if (status >= 0 && WIFSIGNALED(status))
       throw IsolationError("the reader ended by signal " + std::to_string(WTERMSIG(status)) + " (" +
                            strsignal(WTERMSIG(status)) + ")");
     throw IsolationError("the reader ended without an answer");

@@ -43,8 +43,7 @@ void sendGrid(GridT& grid, std::uint32_t gridCount, base::FrameWriter& out) {
     dims[i] = static_cast<std::uint64_t>(static_cast<std::int64_t>(hi[i]) - lo[i] + 1);
   const std::uint64_t slice = dims[0] * dims[1];
   if (dims[0] > UINT32_MAX || dims[1] > UINT32_MAX || dims[2] > UINT32_MAX ||
-      slice > qnv::kMaxSliceVoxels || slice * dims[2] > qnv::kMaxSlabVolumeVoxels ||
-      slice * dims[2] / slice != dims[2])
+      slice > qnv::kMaxSliceVoxels || slice * dims[2] > qnv::kMaxSlabVolumeVoxels)
     throw std::runtime_error("the active box of grid '" + grid.getName() + "' is " +
                              std::to_string(dims[0]) + " x " + std::to_string(dims[1]) + " x " +
                              std::to_string(dims[2]) +

@@ -122,7 +122,6 @@ bool hasVdbMagic(std::string_view head) {
 
 std::unique_ptr<VdbSlabReader> openVdb(const std::string& path, const std::string& gridName,
                                        std::uint64_t memoryBytes) {
-  std::error_code ec;
   std::ifstream probe(path, std::ios::binary | std::ios::ate);
   if (!probe) throw InputError("cannot open " + path + ": no such file or not readable");
   const auto size = static_cast<std::uint64_t>(std::max<std::streamoff>(0, probe.tellg()));

@@ -96,16 +96,19 @@ std::shared_ptr<SplatSet> inlineGaussianSet(const vrml::Node& node) {
   const auto scales = node.get<FieldType::MFVec3f>("scales", std::vector<glm::vec3>{});
   const auto opacities = node.get<FieldType::MFFloat>("opacities", std::vector<float>{});
   const std::size_t n = positions.size();
-  auto coefficients = [&](int degree, int coef) {
-    return node.get<FieldType::MFVec3f>(
-        "sphericalHarmonicsDegree" + std::to_string(degree) + "Coef" + std::to_string(coef),
-        std::vector<glm::vec3>{});
-  };
+  // The SH coefficients, k = l * l + c (degree l, coefficient c): Kerbl et al.'s order
+  // within a channel, 0 the dc term.
+  std::vector<glm::vec3> coefficients[16];
+  for (int l = 0; l <= 3; ++l)
+    for (int c = 0; c < 2 * l + 1; ++c)
+      coefficients[l * l + c] = node.get<FieldType::MFVec3f>(
+          "sphericalHarmonicsDegree" + std::to_string(l) + "Coef" + std::to_string(c),
+          std::vector<glm::vec3>{});
   // The highest degree whose coefficients, and all lower ones', cover every splat.
   int degree = -1;
   for (int l = 0; l <= 3; ++l) {
     bool filled = true;
-    for (int c = 0; c < 2 * l + 1 && filled; ++c) filled = coefficients(l, c).size() >= n;
+    for (int c = 0; c < 2 * l + 1 && filled; ++c) filled = coefficients[l * l + c].size() >= n;
     if (!filled) break;
     degree = l;
   }
@@ -130,19 +133,11 @@ std::shared_ptr<SplatSet> inlineGaussianSet(const vrml::Node& node) {
     cloud.opacities[i] = i < opacities.size() ? std::clamp(opacities[i], 0.0f, 1.0f) : 1.0f;
     cloud.shDc[i] = glm::vec3(0.0f);
   }
-  if (degree >= 0) {
-    const auto dc = coefficients(0, 0);
-    for (std::size_t i = 0; i < n; ++i) cloud.shDc[i] = dc[i];
-  }
-  const int rest = cloud.shRestPerSplat();
-  for (int l = 1; l <= degree; ++l)
-    for (int c = 0; c < 2 * l + 1; ++c) {
-      const auto values = coefficients(l, c);
-      const int k = l * l + c;  // 1..15, Kerbl et al.'s order within a channel
-      for (std::size_t i = 0; i < n; ++i)
-        cloud.shRest[i * static_cast<std::size_t>(rest) + static_cast<std::size_t>(k - 1)] =
-            values[i];
-    }
+  if (degree >= 0)
+    for (std::size_t i = 0; i < n; ++i) cloud.shDc[i] = coefficients[0][i];
+  const auto rest = static_cast<std::size_t>(cloud.shRestPerSplat());
+  for (std::size_t k = 1; k < rest + 1; ++k)
+    for (std::size_t i = 0; i < n; ++i) cloud.shRest[i * rest + k - 1] = coefficients[k][i];
   auto set = std::make_shared<SplatSet>();
   set->gaussians = std::make_shared<const splats::GaussianCloud>(splats::sortByImportance(cloud));
   set->lodTree = std::make_shared<const splats::LodTree>(splats::buildLodTree(*set->gaussians));

@@ -69,15 +69,15 @@ std::shared_ptr<render::SplatSet> shell(std::size_t n) {
 struct Figure {
   double wall = 1e9, cpu = 1e9, sort = 0.0;
   render::SplatPath drew = render::SplatPath::geometry;
+  std::size_t drawn = 0;  // splats drawn in the best frame
 };
 
-Figure measure(const render::SplatSet& set, render::SplatPath path, int width, int height,
-               int frames) {
+// The best of `frames` frames of `set` seen from `camera`, moved by `step` along x each
+// frame (so each frame sorts, and cuts a tree, again).
+Figure measureFrom(const render::SplatSet& set, render::SplatPath path, int width, int height,
+                   int frames, scene::Camera camera, float step) {
   const float aspect = float(width) / float(height);
-  scene::Camera direction;
-  scene::Camera camera = scene::fitCamera(set.bounds, aspect, direction);
   const glm::vec3 start = camera.position;
-  const float step = 0.003f * glm::length(set.bounds.size());
   const render::SplatLight lights[] = {{camera.forward(), glm::vec3(1.0f)}};
   render::SplatRenderer renderer;
   renderer.setPath(path);
@@ -93,12 +93,25 @@ Figure measure(const render::SplatSet& set, render::SplatPath path, int width, i
     const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     const double cpu = processSeconds() - c0;
     if (frame == 0) continue;  // upload and shader compilation
-    if (seconds < f.wall) f.sort = renderer.statistics().sortSeconds;
+    if (seconds < f.wall) {
+      f.sort = renderer.statistics().sortSeconds;
+      f.drawn = renderer.statistics().splats;
+    }
     f.wall = std::min(f.wall, seconds);
     f.cpu = std::min(f.cpu, cpu);
     f.drew = renderer.statistics().path;
   }
   return f;
+}
+
+// The whole set seen by the fitted camera.
+Figure measure(const render::SplatSet& set, render::SplatPath path, int width, int height,
+               int frames) {
+  scene::Camera direction;
+  const scene::Camera camera =
+      scene::fitCamera(set.bounds, float(width) / float(height), direction);
+  return measureFrom(set, path, width, height, frames, camera,
+                     0.003f * glm::length(set.bounds.size()));
 }
 
 std::string only;               // --path: measure only that path
@@ -119,25 +132,11 @@ void reportCuts(const char* name, const render::SplatSet& set, int width, int he
     for (const double d : distances) {
       scene::Camera camera = fitted;
       camera.farClip = std::max(fitted.farClip, static_cast<float>(d + 2.0) * diagonal);
-      const glm::vec3 start = centre + back * (static_cast<float>(d) * diagonal);
-      const float step = 0.003f * diagonal * static_cast<float>(d);
-      const render::SplatLight lights[] = {{camera.forward(), glm::vec3(1.0f)}};
-      render::SplatRenderer renderer;
-      renderer.setPath(path);
-      double best = 1e9;
-      std::size_t drawn = 0;
-      for (int frame = 0; frame <= frames; ++frame) {
-        camera.position = start + glm::vec3(step * static_cast<float>(frame), 0.0f, 0.0f);
-        glViewport(0, 0, width, height);
-        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-        const auto t0 = Clock::now();
-        renderer.draw(set, set.size(), glm::mat4(1.0f), camera, aspect, lights);
-        glFinish();
-        const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-        if (frame == 0) continue;  // upload and shader compilation
-        if (seconds < best) drawn = renderer.statistics().splats;
-        best = std::min(best, seconds);
-      }
+      camera.position = centre + back * (static_cast<float>(d) * diagonal);
+      const Figure f = measureFrom(set, path, width, height, frames, camera,
+                                   0.003f * diagonal * static_cast<float>(d));
+      const std::size_t drawn = f.drawn;
+      const double best = f.wall;
       std::printf(
           "%-14s %-8s %5.1f diagonals: cut %9zu splats (%6.2f%%)  frame %7.4f s  %6.2f M "
           "splats/s\n",

@@ -74,6 +74,9 @@ class IsolatedProcess {
 
  private:
   [[noreturn]] void fail(const std::string& why);
+  /// Closes the pipe and waits for the child (killing it first when `kill`); its wait
+  /// status, or -1 when there was none to wait for.
+  int reap(bool kill);
   void readExactly(char* dst, std::size_t n);
 
   int fd_ = -1;

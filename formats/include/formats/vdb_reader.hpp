@@ -45,7 +45,6 @@ struct VdbGridSummary {
 /// A VolumeSlabReader over one scalar grid of a VDB file, read by a child process.
 class VdbSlabReader : public qnv::VolumeSlabReader {
  public:
-  const qnv::VolumeGridInfo& info() const override = 0;
   /// The grid the reader chose.
   virtual const VdbGridSummary& summary() const = 0;
 };
