@@ -26,6 +26,8 @@ bool tilesetTarget(const EncodeOptions& e, const qnv::WriteOptions& write,
   target.cut.brickVoxels = e.brickVoxels;
   target.cut.brickVectors = e.brickVectors;
   target.cut.write = write;
+  target.cut.mergedCellsLog2 = 0;  // --merged-cells R: log2 R (0: no merged levels)
+  for (unsigned r = e.mergedCells; r > 1; r /= 2) ++target.cut.mergedCellsLog2;
   return true;
 }
 

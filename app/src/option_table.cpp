@@ -370,6 +370,15 @@ const std::vector<OptionSpec>& table() {
        .more = "For surfaces also the leaf size that sets the depth.",
        .check = CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 32)},
       {.scope = encode,
+       .names = "--merged-cells",
+       .valueName = "R",
+       .field = GS_FIELD(unsigned, options.encode.mergedCells),
+       .help = "Tilesets: merged levels of R^3 cells per interior node (0: none)",
+       .more = "Each interior node gets `OUT/merged/L/X_Y_Z.qnv`, a Gaussian stream of its "
+               "region merged cell by cell (coverage kept), which a far view draws instead of "
+               "the region's vectors (docs/tilesets.md, \"Merged levels\").",
+       .check = CLI::IsMember(std::vector<unsigned>{0, 2, 4, 8, 16, 32, 64, 128})},
+      {.scope = encode,
        .names = "--memory",
        .valueName = "MB",
        .field = GS_FIELD(double, options.encode.memoryMB),

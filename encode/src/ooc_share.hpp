@@ -25,6 +25,7 @@
 #include "encode/tileset.hpp"
 #include "qnv/error.hpp"
 #include "qnv/tileset_writer.hpp"
+#include "splats/merged_levels.hpp"
 
 namespace gs::encode::ooc {
 
@@ -109,9 +110,13 @@ class ShareEncoder {
         interiorBudget_(memoryBytes / 8),
         threads_(threads),
         leafSpill_(part / "leaves.spill"),
-        interiorSpill_(part / "interior.spill") {}
+        interiorSpill_(part / "interior.spill") {
+    if (layout.options().mergedCellsLog2 > 0 && layout.depth() > 0)
+      merged_.emplace(layout, layout.options().mergedCellsLog2);
+  }
 
   void add(std::uint64_t leaf, const qnv::SourceVector& v) {
+    if (merged_) merged_->add(v);
     if (!last_ || lastLeaf_ != leaf) {  // consecutive vectors mostly share a leaf
       last_ = &open_[leaf];
       lastLeaf_ = leaf;
@@ -242,6 +247,11 @@ class ShareEncoder {
         });
     ok = std::fclose(out) == 0 && ok;
     if (!ok) return "cannot write '" + path.string() + "'";
+    if (merged_) {
+      const std::string bytes = merged_->serialize();
+      partBytes_ += bytes.size();
+      return writeFile(part / "merged.qnvm", bytes);
+    }
     return {};
   }
 
@@ -290,6 +300,8 @@ class ShareEncoder {
 
   fs::path dir_;
   const qnv::TilesetLayout& layout_;
+  // The merged levels' sums (held whole: about 300 bytes per cell with vectors).
+  std::optional<splats::MergedLevelBuilder> merged_;
   qnv::TilesetShareWriter writer_;
   std::pair<std::uint64_t, std::uint64_t> range_;
   std::uint64_t leafBudget_, interiorBudget_;
@@ -321,6 +333,7 @@ inline void removeStale(const fs::path& dir) {
   std::error_code ec;
   fs::remove_all(dir / "bricks", ec);
   fs::remove_all(dir / "parts", ec);
+  fs::remove_all(dir / "merged", ec);
   fs::remove(dir / "index.qnvt", ec);
 }
 

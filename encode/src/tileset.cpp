@@ -16,6 +16,8 @@
 
 #include "qnv/error.hpp"
 #include "qnv/tileset_writer.hpp"
+#include "splats/merged_levels.hpp"
+#include "splats/qnv_gaussians.hpp"
 
 namespace gs::encode {
 
@@ -60,7 +62,10 @@ std::string writeShare(const fs::path& dir, const qnv::TilesetLayout& layout,
                        const qnv::TilesetOptions& cut, const qnv::SelectedVectors& selected,
                        std::uint32_t share, std::uint32_t shares, std::uint64_t& bytes) {
   qnv::TilesetShareWriter writer(layout, share, shares);
-  for (const qnv::SourceVector& v : selected.vectors) writer.add(v);
+  std::optional<splats::MergedLevelBuilder> merged;
+  if (cut.mergedCellsLog2 > 0 && layout.depth() > 0) merged.emplace(layout, cut.mergedCellsLog2);
+  for (const qnv::SourceVector& v : selected.vectors)
+    if (writer.add(v) && merged) merged->add(v);
   std::vector<qnv::TilesetBrick> leaves;
   for (const glm::uvec3& leaf : writer.openLeaves()) {
     std::optional<qnv::BrickFile> brick = writer.finishLeaf(leaf);
@@ -75,7 +80,56 @@ std::string writeShare(const fs::path& dir, const qnv::TilesetLayout& layout,
   const std::string interior = serializeInteriorParts(writer.interior(), cut);
   bytes += index.size() + interior.size();
   if (std::string error = writeFile(part / "leaves.qnvt", index); !error.empty()) return error;
+  if (merged) {
+    const std::string sums = merged->serialize();
+    bytes += sums.size();
+    if (std::string error = writeFile(part / "merged.qnvm", sums); !error.empty()) return error;
+  }
   return writeFile(part / "interior.qnvp", interior);
+}
+
+// The merged bricks (splats/merged_levels.hpp) from every share's merged.qnvm, one per
+// interior brick of `index` (an empty stream where a node's vectors merge to nothing);
+// sets index.mergedCellsLog2. Nothing when no share wrote one. "" or the error.
+std::string writeMergedLevels(const fs::path& dir, const std::map<std::uint32_t, fs::path>& found,
+                              const qnv::TilesetLayout& layout, qnv::TilesetIndex& index,
+                              std::uint64_t& bytes) {
+  std::optional<splats::MergedLevelBuilder> merged;
+  std::uint8_t cellsLog2 = 0;
+  for (const auto& [i, folder] : found) {
+    const fs::path path = folder / "merged.qnvm";
+    std::error_code ec;
+    if (!fs::exists(path, ec)) {
+      if (merged) return "'" + path.string() + "' is missing (the other shares have one)";
+      continue;
+    }
+    const auto sums = readFile(path);
+    if (!sums) return "cannot read '" + path.string() + "'";
+    if (!merged) {
+      if (i != found.begin()->first) return "'" + path.string() + "' has no match in share 0";
+      if (sums->size() < 9) return "'" + path.string() + "' is truncated";
+      cellsLog2 = static_cast<std::uint8_t>((*sums)[8]);
+      merged.emplace(layout, cellsLog2);
+    }
+    std::string error;
+    if (!merged->addSerialized(*sums, path.string(), error)) return error;
+  }
+  if (!merged) return {};
+  std::map<qnv::TilesetCell, splats::GaussianCloud> clouds = merged->build();
+  for (const qnv::TilesetBrick& b : index.bricks) {
+    if (b.level >= index.depth) continue;
+    const auto it = clouds.find(qnv::TilesetCell{b.level, glm::uvec3(b.x, b.y, b.z)});
+    const qnv::EncodedVectors vectors =
+        splats::encodeGaussianStream(it != clouds.end() ? it->second : splats::GaussianCloud{});
+    qnv::WriteOptions write;
+    write.packetBytes = vectors.header.packetBytes;
+    write.encoding = qnv::PacketEncoding::compact;
+    const std::string stream = qnv::writeStream(vectors, write);
+    if (std::string error = writeFile(dir / b.mergedPath(), stream); !error.empty()) return error;
+    bytes += stream.size();
+  }
+  index.mergedCellsLog2 = cellsLog2;
+  return {};
 }
 
 // The template header without its vector count, to compare shares.
@@ -134,7 +188,7 @@ std::string mergeShares(const fs::path& dir, Merged& merged) {
   std::vector<SharePart> interior;
   std::optional<qnv::TilesetIndex> first;
   qnv::TilesetOptions cut;
-  std::uint64_t total = 0;
+  std::uint64_t total = 0, mergedBytes = 0;
   try {
     for (const auto& [i, folder] : found) {
       std::string error;
@@ -199,6 +253,9 @@ std::string mergeShares(const fs::path& dir, Merged& merged) {
       bricks.push_back(b.brick);
     }
     merged.index = qnv::assembleTilesetIndex(layout, std::move(bricks));
+    if (std::string error = writeMergedLevels(dir, found, layout, merged.index, mergedBytes);
+        !error.empty())
+      return error;
   } catch (const qnv::InputError& e) {
     return e.what();
   }
@@ -208,7 +265,7 @@ std::string mergeShares(const fs::path& dir, Merged& merged) {
   if (!qnv::parseTilesetIndex(bytes, (dir / "index.qnvt").string(), error)) return error;
   if (std::string e = writeFile(dir / "index.qnvt", bytes); !e.empty()) return e;
   merged.indexBytes = bytes.size();
-  merged.totalBytes = bytes.size();
+  merged.totalBytes = bytes.size() + mergedBytes;
   for (const qnv::TilesetBrick& b : merged.index.bricks) merged.totalBytes += b.fileBytes;
   fs::remove_all(partsDir, ec);
   return {};
@@ -227,6 +284,7 @@ TilesetResult writeTileset(const TilesetTarget& target, const qnv::SelectedVecto
     if (target.whole) {  // the whole output: nothing stale may remain
       fs::remove_all(dir / "bricks", ec);
       fs::remove_all(dir / "parts", ec);
+      fs::remove_all(dir / "merged", ec);
       fs::remove(dir / "index.qnvt", ec);
     }
     std::string error = writeShare(dir, layout, target.cut, selected, target.share, target.shares,

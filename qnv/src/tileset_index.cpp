@@ -39,11 +39,16 @@ std::string TilesetBrick::path() const {
          "_" + std::to_string(z) + ".qnv";
 }
 
+std::string TilesetBrick::mergedPath() const {
+  return "merged/" + std::to_string(level) + "/" + std::to_string(x) + "_" + std::to_string(y) +
+         "_" + std::to_string(z) + ".qnv";
+}
+
 std::string serializeTilesetIndex(const TilesetIndex& index) {
   std::string out(reinterpret_cast<const char*>(kTilesetMagic.data()), kTilesetMagic.size());
   appendLe<std::uint16_t>(out, kTilesetVersion);
   appendLe<std::uint8_t>(out, index.depth);
-  appendLe<std::uint8_t>(out, 0);
+  appendLe<std::uint8_t>(out, index.mergedCellsLog2);
   appendLe<std::uint32_t>(out, static_cast<std::uint32_t>(index.bricks.size()));
   out += serializeHeader(index.header);
   for (const TilesetBrick& b : index.bricks) {
@@ -92,7 +97,10 @@ std::optional<TilesetIndex> parseTilesetIndex(std::string_view bytes, const std:
   if (index.depth > kTilesetMaxDepth)
     return fail("octree depth " + std::to_string(index.depth) + " is more than " +
                 std::to_string(kTilesetMaxDepth));
-  if (p[11] != 0) return fail("reserved byte 11 is not 0");
+  index.mergedCellsLog2 = p[11];
+  if (index.mergedCellsLog2 > kTilesetMaxMergedLog2)
+    return fail("merged cells byte 11 is " + std::to_string(index.mergedCellsLog2) +
+                ", more than " + std::to_string(kTilesetMaxMergedLog2));
   const auto brickCount = loadLe<std::uint32_t>(p + 12);
   if (brickCount > kTilesetMaxBricks)
     return fail(std::to_string(brickCount) + " bricks are more than the limit of " +

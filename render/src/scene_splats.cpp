@@ -176,6 +176,12 @@ std::size_t SceneSplats::draw(const scene::TraversalFrame& frame, scene::SceneTr
       if (!request) request = entry.set->viewRequests->request();
       request->update({camera, s.model, aspect, heightPixels, wantedPrefix(s.node, *entry.set)});
     }
+    if (const SplatSet* merged = entry.set->merged.get(); merged && merged->size() > 0) {
+      SplatStyle style = merged->style;  // a node's opacityScale applies to it too
+      if (entry.ownStyle && entry.set->style.opacityScale > 0.0f)
+        style.opacityScale *= entry.style.opacityScale / entry.set->style.opacityScale;
+      drawSet(*merged, merged->size(), s.model, &style);
+    }
     drawSet(*entry.set, count, s.model, entry.ownStyle ? &entry.style : nullptr);
   }
   return drawn;

@@ -26,7 +26,7 @@ constexpr float kSaturated = 1.0f / 2048.0f;  // transmittance below which a pix
 // vanish; the cpu path drops them too, so both show the same picture (without it the
 // millions of faint gradients of a whole CT stream add up to a haze the GL paths never
 // show), and a splat whose peak is below it is not drawn at all.
-constexpr float kVisibleAlpha = 0.5f / 255.0f;
+constexpr float kVisibleAlpha = splats::kVisiblePeak;
 constexpr float kExtent2 = kSplatExtent * kSplatExtent;  // 9: r2 beyond it is cut
 constexpr int kMaxLights = 8;
 

@@ -165,8 +165,8 @@ double opacityRecords(const qnv::TilesetBrick& b, const std::array<double, qnv::
 std::vector<BrickChoice> walk(const qnv::TilesetIndex& index,
                               const std::unordered_map<std::uint64_t, std::size_t>& byCell,
                               const OpticalDepths& depths, const TilesetView& view,
-                              const TilesetBudget& budget, std::uint64_t limit,
-                              double threshold = 0.0) {
+                              const TilesetBudget& budget, std::span<const std::uint8_t> skip,
+                              std::uint64_t limit, double threshold = 0.0) {
   std::vector<BrickChoice> out;
   const auto& bricks = index.bricks;
   const double ppv = std::max(budget.pixelsPerVector, 1e-6);
@@ -177,6 +177,7 @@ std::vector<BrickChoice> walk(const qnv::TilesetIndex& index,
   // A child's priority is capped by its parent's, so that ancestors come first in every
   // merge of views too.
   auto consider = [&](std::size_t i, double cap) {
+    if (!skip.empty() && skip[i] != 0) return;
     const Projected p = project(bricks[i], view);
     if (!p.visible || bricks[i].vectorCount == 0) return;
     seen[i] = p;
@@ -231,24 +232,76 @@ std::vector<BrickChoice> walk(const qnv::TilesetIndex& index,
   return out;
 }
 
-}  // namespace
-
-std::vector<BrickChoice> selectBricks(const qnv::TilesetIndex& index, const TilesetView& view,
-                                      const TilesetBudget& budget) {
-  const std::uint64_t limit = std::min(budget.vectors, budget.memoryVectors);
+std::unordered_map<std::uint64_t, std::size_t> bricksByCell(const qnv::TilesetIndex& index) {
   std::unordered_map<std::uint64_t, std::size_t> byCell;
   byCell.reserve(index.bricks.size());
   for (std::size_t i = 0; i < index.bricks.size(); ++i) {
     const auto& b = index.bricks[i];
     byCell.emplace(cellKey(b.level, b.x, b.y, b.z), i);
   }
+  return byCell;
+}
+
+}  // namespace
+
+MergedChoice chooseMerged(const qnv::TilesetIndex& index, const std::vector<TilesetView>& views,
+                          double mergedPixels) {
+  MergedChoice out;
+  if (index.mergedCellsLog2 == 0 || index.bricks.empty()) return out;
+  const auto byCell = bricksByCell(index);
+  const auto& bricks = index.bricks;
+  const double cells = static_cast<double>(1u << index.mergedCellsLog2);
+  enum : std::uint8_t { unseen = 0, merged = 1, refined = 2 };
+  std::vector<std::uint8_t> state(bricks.size(), unseen);
+  for (const TilesetView& view : views) {
+    std::vector<std::size_t> stack;
+    for (std::size_t i = 0; i < bricks.size() && bricks[i].level == 0; ++i) stack.push_back(i);
+    while (!stack.empty()) {
+      const std::size_t i = stack.back();
+      stack.pop_back();
+      const qnv::TilesetBrick& b = bricks[i];
+      const Projected p = project(b, view);
+      if (!p.visible) continue;
+      if (b.level < index.depth && p.pixels / cells <= mergedPixels) {
+        if (state[i] == unseen) state[i] = merged;
+        continue;
+      }
+      state[i] = refined;
+      for (std::uint32_t k = 0; k < 8; ++k) {
+        const auto it = byCell.find(cellKey(b.level + 1u, b.x * 2 + (k & 1),
+                                            b.y * 2 + ((k >> 1) & 1), b.z * 2 + ((k >> 2) & 1)));
+        if (it != byCell.end()) stack.push_back(it->second);
+      }
+    }
+  }
+  // Bricks are sorted by level: a parent's skip is known before its children's.
+  out.skip.assign(bricks.size(), 0);
+  for (std::size_t i = 0; i < bricks.size(); ++i) {
+    const qnv::TilesetBrick& b = bricks[i];
+    bool under = false;
+    if (b.level > 0)
+      if (const auto parent = byCell.find(cellKey(b.level - 1u, b.x / 2, b.y / 2, b.z / 2));
+          parent != byCell.end())
+        under = out.skip[parent->second] != 0;
+    if (under || state[i] == merged) out.skip[i] = 1;
+    if (!under && state[i] == merged) out.merged.push_back(i);
+  }
+  if (out.merged.empty()) out.skip.clear();
+  return out;
+}
+
+std::vector<BrickChoice> selectBricks(const qnv::TilesetIndex& index, const TilesetView& view,
+                                      const TilesetBudget& budget,
+                                      std::span<const std::uint8_t> skip) {
+  const std::uint64_t limit = std::min(budget.vectors, budget.memoryVectors);
+  const auto byCell = bricksByCell(index);
   const OpticalDepths depths = opticalDepths(index, byCell);
   auto records = [](const std::vector<BrickChoice>& choices) {
     std::uint64_t n = 0;
     for (const BrickChoice& c : choices) n += c.records;
     return n;
   };
-  std::vector<BrickChoice> out = walk(index, byCell, depths, view, budget, UINT64_MAX);
+  std::vector<BrickChoice> out = walk(index, byCell, depths, view, budget, skip, UINT64_MAX);
   if (records(out) <= limit) return out;
   // Over budget: keep the vectors above one magnitude threshold over every visible brick
   // (read from the histograms), as the single stream's prefix keeps the largest vectors
@@ -256,10 +309,11 @@ std::vector<BrickChoice> selectBricks(const qnv::TilesetIndex& index, const Tile
   double low = 0.0, high = 16.0;
   for (int i = 0; i < 30; ++i) {
     const double mid = (low + high) / 2.0;
-    (records(walk(index, byCell, depths, view, budget, UINT64_MAX, mid)) > limit ? low : high) =
+    (records(walk(index, byCell, depths, view, budget, skip, UINT64_MAX, mid)) > limit ? low
+                                                                                       : high) =
         mid;
   }
-  return walk(index, byCell, depths, view, budget, limit, high);
+  return walk(index, byCell, depths, view, budget, skip, limit, high);
 }
 
 std::vector<BrickChoice> mergeChoices(const std::vector<std::vector<BrickChoice>>& views) {

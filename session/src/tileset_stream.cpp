@@ -4,6 +4,7 @@
 
 #include "base/url.hpp"
 #include "scene/camera.hpp"
+#include "splats/qnv_gaussians.hpp"
 
 namespace gs::session {
 
@@ -23,7 +24,21 @@ struct TilesetStream::Brick {
   std::size_t warningsShown = 0;
 };
 
+struct TilesetStream::MergedBrick {
+  std::unique_ptr<net::Transfer> transfer;
+  std::string bytes;
+  std::shared_ptr<const splats::GaussianCloud> cloud;  // once decoded
+  bool failed = false;
+};
+
 namespace {
+
+// Whether brick `a` lies above brick `b` in the octree.
+bool isAncestor(const qnv::TilesetBrick& a, const qnv::TilesetBrick& b) {
+  if (a.level >= b.level) return false;
+  const unsigned d = b.level - a.level;
+  return (b.x >> d) == a.x && (b.y >> d) == a.y && (b.z >> d) == a.z;
+}
 
 bool sameView(const render::SplatSet::View& a, const render::SplatSet::View& b) {
   return a.camera.position == b.camera.position && a.camera.orientation == b.camera.orientation &&
@@ -53,8 +68,11 @@ TilesetStream::TilesetStream(net::Loader& loader, std::string indexUrl, std::str
       url_(std::move(indexUrl)),
       referrer_(std::move(referrer)),
       options_(options),
-      set_(std::make_shared<render::SplatSet>()) {
+      set_(std::make_shared<render::SplatSet>()),
+      mergedSet_(std::make_shared<render::SplatSet>()) {
   set_->viewDependent = true;
+  mergedSet_->gaussians = std::make_shared<splats::GaussianCloud>();
+  set_->merged = mergedSet_;
   takeIndex();  // starts the fetch
 }
 
@@ -78,6 +96,7 @@ bool TilesetStream::takeIndex() {
     return false;
   }
   bricks_.resize(index_->bricks.size());
+  merged_.resize(index_->bricks.size());
   render::SplatSet& set = *set_;
   set.style = render::SplatStyle::fromHeader(index_->header);
   set.expectedVectors = index_->header.vectorCount;
@@ -107,9 +126,14 @@ void TilesetStream::choose() {
   TilesetBudget budget;
   budget.memoryVectors = options_.memoryBytes / sizeof(qnv::DecodedVector);
   budget.pixelsPerVector = options_.pixelsPerVector;
-  for (const auto& [key, view] : views) {
-    budget.vectors = view.vectors;
-    perView.push_back(selectBricks(*index_, tilesetView(view), budget));
+  std::vector<TilesetView> tilesetViews;
+  for (const auto& [key, view] : views) tilesetViews.push_back(tilesetView(view));
+  const MergedChoice mergedChoice = chooseMerged(*index_, tilesetViews);
+  mergedChoice_ = mergedChoice.merged;
+  stats_.mergedBricks = mergedChoice_.size();
+  for (std::size_t v = 0; v < views.size(); ++v) {
+    budget.vectors = views[v].second.vectors;
+    perView.push_back(selectBricks(*index_, tilesetViews[v], budget, mergedChoice.skip));
   }
   choice_ = mergeChoices(perView);
   for (Brick& b : bricks_) b.wantedBytes = 0;
@@ -213,6 +237,53 @@ bool TilesetStream::pumpBricks() {
   return changed;
 }
 
+bool TilesetStream::pumpMerged() {
+  bool changed = false;
+  int running = 0;
+  for (std::size_t i : mergedChoice_) {
+    MergedBrick& m = merged_[i];
+    if (m.cloud || m.failed) continue;
+    const qnv::TilesetBrick& info = index_->bricks[i];
+    const std::string url = base::resolveUrl(url_, info.mergedPath());
+    if (!m.transfer) {  // merged bricks are small: fetched whole, before the vectors
+      if (running >= options_.parallelFetches) continue;
+      std::string error;
+      net::FetchRequest r = loader_.requestFor(url, referrer_, error);
+      if (r.url.empty()) {
+        m.failed = true;
+        messages_.push_back({false, error});
+        continue;
+      }
+      m.transfer = net::startTransfer(std::move(r));
+      ++stats_.requests;
+    }
+    const net::TransferStatus s = m.transfer->status();
+    const std::size_t before = m.bytes.size();
+    m.transfer->take(m.bytes);
+    stats_.mergedBytes += m.bytes.size() - before;
+    if (!s.finished()) {
+      ++running;
+      continue;
+    }
+    m.transfer.reset();
+    changed = true;
+    if (s.state != net::TransferState::done) {
+      m.failed = true;
+      messages_.push_back({false, s.error});
+      continue;
+    }
+    try {
+      m.cloud = std::make_shared<const splats::GaussianCloud>(
+          splats::readQnvGaussians(m.bytes, url_ + " " + info.mergedPath()));
+    } catch (const std::exception& e) {
+      m.failed = true;
+      messages_.push_back({false, e.what()});
+    }
+    m.bytes = {};
+  }
+  return changed;
+}
+
 void TilesetStream::evict() {
   const std::uint64_t limit = options_.memoryBytes / sizeof(qnv::DecodedVector);
   std::uint64_t resident = 0;
@@ -251,20 +322,52 @@ void TilesetStream::evict() {
 void TilesetStream::rebuild() {
   render::SplatSet& set = *set_;
   set.vectors.clear();
+  // A volume's vectors sit on voxel centres: a merged node's region reaches half a voxel
+  // past its brick's box of centres.
+  const glm::vec3 margin = index_->header.kind == qnv::StreamKind::volume
+                               ? 0.5f * index_->header.voxelSpacing
+                               : glm::vec3(0.0f);
+  std::vector<std::pair<glm::vec3, glm::vec3>> regions;  // merged regions below a brick
   for (const BrickChoice& c : choice_) {
     const Brick& b = bricks_[c.brick];
     const std::size_t n =
         std::min<std::size_t>(static_cast<std::size_t>(c.records), b.vectors.size());
-    set.vectors.insert(set.vectors.end(), b.vectors.begin(),
-                       b.vectors.begin() + static_cast<std::ptrdiff_t>(n));
+    regions.clear();
+    for (std::size_t m : mergedChoice_)
+      if (isAncestor(index_->bricks[c.brick], index_->bricks[m]))
+        regions.push_back(
+            {index_->bricks[m].boundsMin - margin, index_->bricks[m].boundsMax + margin});
+    if (regions.empty()) {
+      set.vectors.insert(set.vectors.end(), b.vectors.begin(),
+                         b.vectors.begin() + static_cast<std::ptrdiff_t>(n));
+      continue;
+    }
+    // An ancestor of merged nodes: its vectors inside them are drawn by the merged bricks.
+    for (std::size_t k = 0; k < n; ++k) {
+      const glm::vec3 p = b.vectors[k].position;
+      const bool inMerged = std::any_of(regions.begin(), regions.end(), [&](const auto& r) {
+        return glm::all(glm::greaterThanEqual(p, r.first)) && glm::all(glm::lessThan(p, r.second));
+      });
+      if (!inMerged) set.vectors.push_back(b.vectors[k]);
+    }
   }
   ++set.revision;
+  auto cloud = std::make_shared<splats::GaussianCloud>();
+  cloud->shDegree = 2;
+  for (std::size_t m : mergedChoice_)
+    if (const auto& part = merged_[m].cloud)
+      for (std::size_t i = 0; i < part->size(); ++i) cloud->append(*part, i);
+  stats_.mergedSplats = cloud->size();
+  mergedSet_->gaussians = std::move(cloud);
+  mergedSet_->computeBounds();
+  ++mergedSet_->revision;
 }
 
 bool TilesetStream::pump() {
   bool changed = takeIndex();
   if (!index_) return changed;
   choose();
+  if (pumpMerged()) dirty_ = true;
   if (pumpBricks()) dirty_ = true;
   if (dirty_) {
     evict();
@@ -279,6 +382,8 @@ bool TilesetStream::settled() const {
   if (indexFailed_) return true;
   if (!index_) return false;
   if (viewsChanged()) return false;
+  for (std::size_t m : mergedChoice_)
+    if (!merged_[m].cloud && !merged_[m].failed) return false;
   for (const BrickChoice& c : choice_) {
     const Brick& b = bricks_[c.brick];
     if (b.transfer || (!b.failed && b.fed < b.wantedBytes)) return false;

@@ -101,22 +101,36 @@ float linearToSrgb(float c) {
 
 }  // namespace
 
-glm::vec3 evaluateSh(int degree, const glm::vec3* sh, const glm::vec3& d) {
-  glm::vec3 result = kShC0 * sh[0];
-  if (degree < 1) return result;
+int shBasis(int degree, const glm::vec3& d, float* out) {
+  out[0] = kShC0;
+  if (degree < 1) return 1;
   const float x = d.x, y = d.y, z = d.z;
-  result += -kShC1 * y * sh[1] + kShC1 * z * sh[2] - kShC1 * x * sh[3];
-  if (degree < 2) return result;
+  out[1] = -kShC1 * y;
+  out[2] = kShC1 * z;
+  out[3] = -kShC1 * x;
+  if (degree < 2) return 4;
   const float xx = x * x, yy = y * y, zz = z * z, xy = x * y, yz = y * z, xz = x * z;
-  result += kShC2[0] * xy * sh[4] + kShC2[1] * yz * sh[5] +
-            kShC2[2] * (2.0f * zz - xx - yy) * sh[6] + kShC2[3] * xz * sh[7] +
-            kShC2[4] * (xx - yy) * sh[8];
-  if (degree < 3) return result;
-  result += kShC3[0] * y * (3.0f * xx - yy) * sh[9] + kShC3[1] * xy * z * sh[10] +
-            kShC3[2] * y * (4.0f * zz - xx - yy) * sh[11] +
-            kShC3[3] * z * (2.0f * zz - 3.0f * xx - 3.0f * yy) * sh[12] +
-            kShC3[4] * x * (4.0f * zz - xx - yy) * sh[13] + kShC3[5] * z * (xx - yy) * sh[14] +
-            kShC3[6] * x * (xx - 3.0f * yy) * sh[15];
+  out[4] = kShC2[0] * xy;
+  out[5] = kShC2[1] * yz;
+  out[6] = kShC2[2] * (2.0f * zz - xx - yy);
+  out[7] = kShC2[3] * xz;
+  out[8] = kShC2[4] * (xx - yy);
+  if (degree < 3) return 9;
+  out[9] = kShC3[0] * y * (3.0f * xx - yy);
+  out[10] = kShC3[1] * xy * z;
+  out[11] = kShC3[2] * y * (4.0f * zz - xx - yy);
+  out[12] = kShC3[3] * z * (2.0f * zz - 3.0f * xx - 3.0f * yy);
+  out[13] = kShC3[4] * x * (4.0f * zz - xx - yy);
+  out[14] = kShC3[5] * z * (xx - yy);
+  out[15] = kShC3[6] * x * (xx - 3.0f * yy);
+  return 16;
+}
+
+glm::vec3 evaluateSh(int degree, const glm::vec3* sh, const glm::vec3& d) {
+  float basis[16];
+  const int n = shBasis(degree, d, basis);
+  glm::vec3 result = basis[0] * sh[0];
+  for (int k = 1; k < n; ++k) result += basis[k] * sh[k];
   return result;
 }
 

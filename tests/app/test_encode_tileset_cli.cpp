@@ -1,5 +1,6 @@
 // `ghostspace encode --tileset` and `ghostspace tileset index` end to end: a split run
-// merged is byte-identical to the single run (docs/qnv-format.md, "Tilesets").
+// merged is byte-identical to the single run, its merged levels included (docs/qnv-format.md,
+// "Tilesets").
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -64,7 +65,17 @@ void checkSplitMatchesSingle(const std::string& input, const std::vector<std::st
   std::string error;
   const auto index = gs::qnv::parseTilesetIndex(a.at("index.qnvt"), "index.qnvt", error);
   REQUIRE(index);
-  CHECK(index->bricks.size() + 1 == a.size());
+  // Bricks, the index, and a merged brick (docs/tilesets.md, "Merged levels") beside each
+  // interior brick, all byte for byte the same from the shares.
+  CHECK(index->mergedCellsLog2 > 0);
+  std::size_t interior = 0;
+  for (const gs::qnv::TilesetBrick& brick : index->bricks)
+    if (brick.level < index->depth) {
+      ++interior;
+      CHECK(a.count(brick.mergedPath()) == 1);
+    }
+  CHECK(interior > 0);
+  CHECK(index->bricks.size() + 1 + interior == a.size());
 }
 
 }  // namespace

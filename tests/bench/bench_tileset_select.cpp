@@ -2,15 +2,20 @@
 // reads a tileset's index.qnvt and prints, for a view along -Z at 1.5 to 48 times the
 // box's diagonal (400 pixels high, 45 degrees), how many vectors the screen-space rule
 // alone chooses and how many the opacity-aware rule (volume tilesets) chooses, against
-// the tileset's count. Pure computation: no fetching, no drawing.
+// the tileset's count; with merged levels (docs/tilesets.md, "Merged levels"), the nodes
+// drawn merged, their splats (read from the merged bricks' headers) and the vectors still
+// chosen beside them. Pure computation: no fetching, no drawing.
 //
 //   bench_tileset_select INDEX.qnvt
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
+#include "qnv/stream.hpp"
 #include "qnv/tileset.hpp"
 #include "session/tileset_selection.hpp"
 
@@ -34,9 +39,21 @@ int main(int argc, char** argv) {
   std::printf("%s: %zu bricks, %llu vectors, %s\n", argv[1], index->bricks.size(),
               static_cast<unsigned long long>(index->header.vectorCount),
               index->header.kind == gs::qnv::StreamKind::volume ? "volume" : "surface");
+  // Splats of each interior brick's merged brick (0 where there is none).
+  std::vector<std::uint64_t> mergedSplats(index->bricks.size(), 0);
+  const std::filesystem::path folder = std::filesystem::path(argv[1]).parent_path();
+  for (std::size_t i = 0; i < index->bricks.size() && index->mergedCellsLog2 > 0; ++i) {
+    if (index->bricks[i].level >= index->depth) continue;
+    std::ifstream m(folder / index->bricks[i].mergedPath(), std::ios::binary);
+    std::string head(gs::qnv::kHeaderBytes, '\0');
+    m.read(head.data(), static_cast<std::streamsize>(head.size()));
+    if (const auto h = gs::qnv::parseHeader(head, "merged", error); h)
+      mergedSplats[i] = h->vectorCount / std::max(1u, h->recordsPerElement());
+  }
   std::printf(
-      "| distance / diagonal | screen-space rule | opacity-aware rule | selection time |\n");
-  std::printf("|---|---|---|---|\n");
+      "| distance / diagonal | screen-space rule | opacity-aware rule | selection time | "
+      "merged nodes | merged splats | vectors beside them | drawn in all |\n");
+  std::printf("|---|---|---|---|---|---|---|---|\n");
   for (const double factor : {1.5, 3.0, 6.0, 12.0, 24.0, 48.0}) {
     gs::session::TilesetView view;
     view.position = centre + glm::vec3(0.0f, 0.0f, static_cast<float>(factor) * diagonal);
@@ -51,9 +68,18 @@ int main(int argc, char** argv) {
         counts[rule] += c.records;
       seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     }
-    std::printf("| %.1f | %llu | %llu | %.2f ms |\n", factor,
+    const gs::session::MergedChoice merged = gs::session::chooseMerged(*index, {view});
+    std::uint64_t splats = 0, beside = 0;
+    for (std::size_t i : merged.merged) splats += mergedSplats[i];
+    for (const auto& c : gs::session::selectBricks(*index, view, {}, merged.skip))
+      beside += c.records;
+    std::printf("| %.1f | %llu | %llu | %.2f ms | %zu | %llu | %llu | %llu (%.2f%%) |\n", factor,
                 static_cast<unsigned long long>(counts[0]),
-                static_cast<unsigned long long>(counts[1]), seconds * 1e3);
+                static_cast<unsigned long long>(counts[1]), seconds * 1e3, merged.merged.size(),
+                static_cast<unsigned long long>(splats), static_cast<unsigned long long>(beside),
+                static_cast<unsigned long long>(splats + beside),
+                100.0 * static_cast<double>(splats + beside) /
+                    static_cast<double>(std::max<std::uint64_t>(index->header.vectorCount, 1)));
   }
   return 0;
 }

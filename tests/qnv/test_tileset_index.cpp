@@ -196,8 +196,14 @@ TEST_CASE("hostile tileset indexes are rejected with a sentence", "[qnv][tileset
           i.header.packetBytes = 12;
         })).find("(template header)") != std::string::npos);
   bad = good;
-  bad[11] = 1;
-  CHECK(rejection(fixCrc(bad)).find("reserved byte") != std::string::npos);
+  bad[11] = 8;  // merged cells per axis: 2^8 is more than kTilesetMaxMergedLog2 allows
+  CHECK(rejection(fixCrc(bad)).find("merged cells byte 11 is 8") != std::string::npos);
+  bad[11] = 4;  // 16 merged cells per axis: read back as such
+  std::string error;
+  const auto merged = parseTilesetIndex(fixCrc(bad), "t/index.qnvt", error);
+  REQUIRE(merged);
+  CHECK(merged->mergedCellsLog2 == 4);
+  CHECK(serializeTilesetIndex(*merged) == fixCrc(bad));
 }
 
 TEST_CASE("truncated and bit-flipped tileset indexes never crash", "[qnv][tileset][hostile]") {

@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <set>
 
 #include "session/tileset_selection.hpp"
@@ -191,4 +192,44 @@ TEST_CASE("tileset selection: vectors too faint to see are still left to the scr
   // Surface tilesets have no haze: the rule does not apply to them.
   const auto surface = test::syntheticTileset(2, 4096);
   CHECK(chosenRecords(surface, far, 0.02) == chosenRecords(surface, far, 0.0));
+}
+
+TEST_CASE("tileset selection: far interior nodes are drawn by their merged bricks",
+          "[tileset][selection][merged]") {
+  // docs/tilesets.md, "Merged levels": a node whose projected size over its cells per axis
+  // is at most kMergedPixels is merged, and nothing below it is chosen.
+  auto index = test::syntheticTileset(2, 4096);
+  CHECK(session::chooseMerged(index, {wholeView()}).merged.empty());  // no merged levels
+  index.mergedCellsLog2 = 4;
+  session::TilesetView far = wholeView();
+  far.position = {0.5f, 0.5f, 300.0f};  // the cube about 3 pixels across
+  const session::MergedChoice m = session::chooseMerged(index, {far});
+  REQUIRE(m.merged.size() == 1);
+  CHECK(index.bricks[m.merged[0]].level == 0);
+  REQUIRE(m.skip.size() == index.bricks.size());
+  CHECK(std::count(m.skip.begin(), m.skip.end(), 1) == static_cast<long>(index.bricks.size()));
+  CHECK(session::selectBricks(index, far, {}, m.skip).empty());
+  // Close: every brick is refined, nothing merged.
+  const session::MergedChoice close = session::chooseMerged(index, {wholeView()});
+  CHECK(close.merged.empty());
+  CHECK(close.skip.empty());
+}
+
+TEST_CASE("tileset selection: a middle distance merges level-1 nodes under a refined root",
+          "[tileset][selection][merged]") {
+  auto index = test::syntheticTileset(2, 4096);
+  index.mergedCellsLog2 = 4;
+  session::TilesetView mid = wholeView();
+  // The root's bounding sphere (diameter sqrt 3) about 48 pixels, a level-1 node's 24:
+  // root 3 px a cell (refined), level 1 1.5 px a cell (merged).
+  mid.position = {0.5f, 0.5f, 0.5f + 0.866f + 1.732f * 512.0f / (2.0f * 0.41421f * 48.0f)};
+  const session::MergedChoice m = session::chooseMerged(index, {mid});
+  REQUIRE(m.merged.size() == 8);
+  for (std::size_t i : m.merged) CHECK(index.bricks[i].level == 1);
+  const auto choices = session::selectBricks(index, mid, {}, m.skip);
+  REQUIRE(choices.size() == 1);  // the root's own vectors; the merged regions hide them
+  CHECK(index.bricks[choices[0].brick].level == 0);
+  // A second, close view refines every node: then nothing is merged for either.
+  const session::MergedChoice both = session::chooseMerged(index, {mid, wholeView()});
+  CHECK(both.merged.empty());
 }

@@ -32,6 +32,8 @@ inline constexpr std::size_t kTilesetBands = 16;
 /// Bytes before the first brick record: signature, version, depth, reserved, brick count
 /// (16) and the template stream header (kHeaderBytes).
 inline constexpr std::size_t kTilesetPreambleBytes = 16 + kHeaderBytes;
+/// Largest log2 of the merged cells per axis an index may declare (128 cells).
+inline constexpr std::uint8_t kTilesetMaxMergedLog2 = 7;
 /// Bytes of one brick record (without its packet offsets).
 inline constexpr std::size_t kTilesetBrickRecordBytes = 124;
 
@@ -52,11 +54,18 @@ struct TilesetBrick {
 
   /// The brick file's path relative to the tileset folder: "bricks/L/X_Y_Z.qnv".
   std::string path() const;
+  /// The path of the node's merged brick (a Gaussian stream of its region's merged
+  /// splats, docs/tilesets.md "Merged levels"): "merged/L/X_Y_Z.qnv". Only interior
+  /// nodes (level < depth) of an index with mergedCellsLog2 > 0 have one.
+  std::string mergedPath() const;
 };
 
 /// The whole index.
 struct TilesetIndex {
-  std::uint8_t depth = 0;            // the leaves' level, 0 .. kTilesetMaxDepth
+  std::uint8_t depth = 0;  // the leaves' level, 0 .. kTilesetMaxDepth
+  /// Byte 11: 0, or log2 of the cells per axis (1 .. kTilesetMaxMergedLog2) of the merged
+  /// brick every interior node has (splats/merged_levels.hpp; docs/tilesets.md).
+  std::uint8_t mergedCellsLog2 = 0;
   StreamHeader header;               // the template: whole box, total vectorCount, mapping
   std::vector<TilesetBrick> bricks;  // sorted by (level, z, y, x), no duplicates
 };
@@ -67,7 +76,8 @@ std::string serializeTilesetIndex(const TilesetIndex& index);
 
 /// Parses and checks index.qnvt bytes; safe for untrusted input (every count is checked
 /// against the bytes before anything is allocated). Returns nullopt and sets `error` to a
-/// sentence naming `name` on: a wrong signature or version, a CRC mismatch, a damaged
+/// sentence naming `name` on: a wrong signature or version, a merged-cells byte above
+/// kTilesetMaxMergedLog2, a CRC mismatch, a damaged
 /// template header (qnv::parseHeader's sentences), counts that do not fit the bytes or
 /// trailing bytes, more than kTilesetMaxBricks bricks, a level above the depth, a cell
 /// coordinate >= 2^level, bricks out of order or duplicated, bounds that are non-finite,

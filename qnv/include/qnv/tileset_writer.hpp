@@ -31,6 +31,10 @@ struct TilesetOptions {
   std::uint32_t brickVoxels = 64;      // volumes: leaf block side in voxels, >= 1
   std::uint64_t brickVectors = 16384;  // K: vectors a node aims at (surfaces: leaf size), >= 1
   WriteOptions write;                  // packet size and coding of every brick
+  /// log2 of the cells per axis of the merged bricks the encode adds beside the interior
+  /// bricks (splats/merged_levels.hpp; encode/tileset.hpp), 0: none. Not used by this
+  /// module's own functions.
+  std::uint8_t mergedCellsLog2 = 0;
 };
 
 /// An octree node: level (0 = root) and cell (each coordinate < 2^level).
@@ -77,6 +81,8 @@ class TilesetLayout {
   glm::uvec3 blockStart(const TilesetCell& node) const;
   /// The whole template (packetBytes and encoding from the options; vectorCount as given).
   const StreamHeader& templateHeader() const { return whole_; }
+  /// The cut and coding it was made with.
+  const TilesetOptions& options() const { return options_; }
 
  private:
   StreamHeader whole_;

@@ -12,6 +12,7 @@
 
 #include "qnv/decoder.hpp"
 #include "qnv/stream.hpp"
+#include "splats/vector_splat.hpp"
 
 namespace gs::render {
 
@@ -62,21 +63,10 @@ struct SplatProfile {
 /// opacityScale * transfer alpha * sqrt(A / magnitudeMax) (clamped to 1): strong
 /// gradients of opaque materials are opaque.
 inline SplatProfile splatProfile(const SplatStyle& style, float magnitude, float transferAlpha) {
-  SplatProfile p;
-  if (style.kind == qnv::StreamKind::surface) {
-    const float radius = std::sqrt(std::max(magnitude, 0.0f) / 3.14159265f);
-    p.spread = 2.0f * style.sigma * radius;
-    p.peak = p.spread > 0.0f
-                 ? style.opacityScale * magnitude / (2.0f * 3.14159265f * p.spread * p.spread)
-                 : 0.0f;
-    p.peak *= transferAlpha;
-  } else {
-    p.spread = 2.0f * style.sigma * style.voxelSize;
-    p.peak = style.opacityScale * transferAlpha *
-             std::sqrt(std::clamp(magnitude / style.magnitudeMax, 0.0f, 1.0f));
-  }
-  p.peak = std::clamp(p.peak, 0.0f, 1.0f);
-  return p;
+  const splats::VectorProfile v =
+      splats::vectorProfile(style.kind == qnv::StreamKind::surface, style.sigma, style.opacityScale,
+                            style.voxelSize, style.magnitudeMax, magnitude, transferAlpha);
+  return {v.spread, v.peak};
 }
 
 /// A directional light for splat shading (world direction the light travels, unit).

@@ -103,6 +103,10 @@ struct SplatSet {
   /// nodes project below one pixel, under the view's budget (the level of detail's share
   /// of the splats), instead of a prefix.
   std::shared_ptr<const splats::LodTree> lodTree;
+  /// A QNV tileset's merged levels (docs/tilesets.md, "Merged levels"), or null: the merged
+  /// Gaussians of the nodes the views draw merged, a set of `gaussians` drawn whole, before
+  /// (behind) this set's vectors, each depth-tested at its centre.
+  std::shared_ptr<const SplatSet> merged;
   /// Vectors of the whole stream: expectedVectors, or the vectors (or Gaussians) present.
   std::uint64_t total() const {
     if (expectedVectors > 0) return expectedVectors;

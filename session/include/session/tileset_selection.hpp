@@ -35,6 +35,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -78,8 +79,31 @@ struct BrickChoice {
 };
 
 /// The bricks to draw for `view`, in priority order (ancestors before descendants).
+/// `skip` (empty, or one entry per brick): bricks with a non-zero entry are never chosen
+/// (they lie in a region drawn by its merged brick, chooseMerged).
 std::vector<BrickChoice> selectBricks(const qnv::TilesetIndex& index, const TilesetView& view,
-                                      const TilesetBudget& budget);
+                                      const TilesetBudget& budget,
+                                      std::span<const std::uint8_t> skip = {});
+
+/// Projected cell size (pixels) at or below which an interior node is drawn by its merged
+/// brick: the node's projected diameter (as above) over its cells per axis.
+inline constexpr double kMergedPixels = 2.0;
+
+/// Which interior nodes the views draw by their merged bricks (docs/tilesets.md, "Merged
+/// levels"; an index with mergedCellsLog2 > 0). For each view, from the root: a visible
+/// interior brick whose projected diameter over 2^mergedCellsLog2 is at most
+/// `mergedPixels` is merged and nothing below it is visited; a larger one is refined
+/// (its children visited); leaves are never merged. Over several views a node is merged
+/// when some view merges it and none refines it.
+struct MergedChoice {
+  /// Bricks drawn by their merged brick (index order), none inside another.
+  std::vector<std::size_t> merged;
+  /// Per brick (all of the index, or empty when nothing is merged): 1 for a merged brick
+  /// and every brick below one, which selectBricks must not choose.
+  std::vector<std::uint8_t> skip;
+};
+MergedChoice chooseMerged(const qnv::TilesetIndex& index, const std::vector<TilesetView>& views,
+                          double mergedPixels = kMergedPixels);
 
 /// Merges the choices of several views: per brick the largest prefix, ordered by the
 /// largest priority any view gave it.

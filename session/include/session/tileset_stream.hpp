@@ -4,7 +4,9 @@
 // priority order through the session's net::Loader rules and limits, each brick decoded
 // incrementally by its own qnv::StreamDecoder. The splat set handed to the renderers holds
 // the chosen prefixes one after the other in priority order (ancestors first) and is
-// rebuilt whenever vectors arrive or the choice changes. Every viewport of a session draws
+// rebuilt whenever vectors arrive or the choice changes. Far interior nodes of a tileset
+// with merged levels are drawn by their merged bricks (Gaussian streams fetched whole)
+// instead of their region's vectors. Every viewport of a session draws
 // the same set: they share one fetch queue and one brick cache. Bricks no view chose are
 // dropped, farthest first, when the decoded vectors exceed the memory budget.
 // Runs on the thread that draws; transfers run on their own threads.
@@ -45,6 +47,9 @@ struct TilesetStatistics {
   /// eviction); within one pump the bricks that just arrived are counted before eviction.
   std::uint64_t peakResidentVectors = 0;
   std::uint64_t evictedBricks = 0;
+  std::uint64_t mergedBricks = 0;  // drawn by their merged brick in the last choice
+  std::uint64_t mergedSplats = 0;  // merged Gaussians in the set now
+  std::uint64_t mergedBytes = 0;   // bytes of merged bricks taken from transfers
 };
 
 class TilesetStream {
@@ -76,7 +81,9 @@ class TilesetStream {
 
  private:
   struct Brick;
+  struct MergedBrick;
   bool takeIndex();
+  bool pumpMerged();
   bool viewsChanged() const;
   void choose();
   bool pumpBricks();
@@ -91,6 +98,11 @@ class TilesetStream {
   bool indexFailed_ = false;
   std::vector<Brick> bricks_;
   std::vector<BrickChoice> choice_;
+  // Merged levels (docs/tilesets.md, "Merged levels"): per brick, its merged brick once
+  // asked for; the bricks the last choice draws merged; the set of their Gaussians.
+  std::vector<MergedBrick> merged_;
+  std::vector<std::size_t> mergedChoice_;
+  std::shared_ptr<render::SplatSet> mergedSet_;
   std::vector<std::pair<std::uint64_t, render::SplatSet::View>> lastViews_;
   bool dirty_ = false;
   TilesetStatistics stats_;

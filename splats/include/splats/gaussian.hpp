@@ -110,6 +110,11 @@ glm::mat3 covariance(const glm::vec3& scale, const glm::quat& rotation);
 /// al.'s computeColorFromSH), in sRGB (linear-space clouds converted). Not clamped above.
 glm::vec3 shColor(const GaussianCloud& cloud, std::size_t i, const glm::vec3& direction);
 
+/// The real SH basis of Kerbl et al.'s computeColorFromSH (their constants and signs, an
+/// orthonormal basis) along `direction` (unit): writes shCoefficients(degree) values to
+/// `out` (room for 16) and returns how many.
+int shBasis(int degree, const glm::vec3& direction, float* out);
+
 /// The SH sum of degree `degree` of `coefficients` (dc then the rest, RGB triples, at
 /// least shCoefficients(degree) of them) along `direction` (unit), without the 0.5 offset.
 glm::vec3 evaluateSh(int degree, const glm::vec3* coefficients, const glm::vec3& direction);

@@ -1,0 +1,93 @@
+// The merged levels of a QNV tileset (issue 40 item 3; docs/tilesets.md, "Merged levels"):
+// every interior node of the octree gets, beside its brick of original vectors, a small
+// Gaussian stream of its whole region merged cell by cell, so that a far view draws a few
+// wide, faint splats that keep the region's coverage instead of every weak vector.
+//
+// A QNV vector is one case of the Gaussian model (splats/gaussian.hpp): a flat disc whose
+// normal is the vector's direction, isotropic in its plane with the paper's opacity
+// profile (Nagasawa, section 3.1; vectorProfile below). A node of level L is cut into R^3
+// cells (R = cells per axis, a power of two); the vectors of a cell merge by moment
+// matching (splats/lod_tree.hpp: weights = opacity x mean projected area, merged mean and
+// covariance, opacity keeping the summed coverage). Colours: the palette colour's weighted
+// mean times the headlight's flat shading (render/splat_model.hpp shadeSplat) as spherical
+// harmonics of degree 2: the member normals' |n . d| as its Legendre series 1/2 + 5/8
+// P2(n . d) on SH bands 0 and 2, so the merged splat brightens where its members face the
+// viewer, as the vectors would under the headlight.
+//
+// Sums are kept in 128-bit fixed point (2^-40 of each cell's own units), so they are exact
+// and do not depend on the order vectors arrive: shares of a split encode sum to the bytes
+// of the unsplit one.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <utility>
+
+#include <glm/glm.hpp>
+
+#include "qnv/encoder.hpp"
+#include "qnv/tileset_writer.hpp"
+#include "splats/gaussian.hpp"
+#include "splats/vector_splat.hpp"
+
+namespace gs::splats {
+
+/// One cell's sums (fixed point, see the file comment).
+struct MergedCell {
+  static constexpr int kFields = 18;  // weight, mean 3, second moment 6, rgb 3, SH band 2: 5
+  __extension__ using Wide = __int128;
+  __extension__ using UnsignedWide = unsigned __int128;
+  Wide sums[kFields] = {};
+  std::uint64_t count = 0;
+};
+
+/// Builds the merged bricks of a tileset from its vectors, in any order, in any share.
+class MergedLevelBuilder {
+ public:
+  /// `layout` (which must outlive the builder) gives the octree; cellsLog2 in
+  /// 1..qnv::kTilesetMaxMergedLog2. Merged cells exist for levels 0 .. depth - 1.
+  MergedLevelBuilder(const qnv::TilesetLayout& layout, std::uint8_t cellsLog2);
+
+  /// Adds `v` (a selected vector of the tileset) to its cell at every interior level.
+  void add(const qnv::SourceVector& v);
+  /// Adds another builder's sums (a share's parts) into this one's.
+  void merge(const MergedLevelBuilder& other);
+  /// Cells holding vectors.
+  std::size_t cellCount() const { return cells_.size(); }
+
+  /// The bytes of the sums (parts/I-of-N/merged.qnvm): signature 0x89 "QNM" CR LF 0x1A LF,
+  /// u8 cellsLog2, u8[3] 0, u64 cell count, then per cell (by key) u64 key (level << 60 |
+  /// x << 40 | y << 20 | z, global cell coordinates), u64 count, 18 x i128 sums; CRC-32
+  /// last. Little-endian.
+  std::string serialize() const;
+  /// Parses those bytes (signature, sizes, CRC, levels below the depth, coordinates
+  /// inside the level's grid) into this builder's sums (added to what it holds); false
+  /// and a sentence naming `name` in `error` otherwise.
+  bool addSerialized(std::string_view bytes, const std::string& name, std::string& error);
+
+  /// The merged Gaussians of every interior node holding vectors, by node (splats in
+  /// (z, y, x) cell order, SH degree 2, positions in world units).
+  std::map<qnv::TilesetCell, GaussianCloud> build() const;
+
+ private:
+  struct CellFrame {
+    glm::dvec3 origin{0.0};
+    double size = 1.0;  // the cell's largest side, world units
+  };
+  /// The global cell of `v` at `level` and its frame.
+  glm::uvec3 cellOf(const qnv::SourceVector& v, std::uint8_t level) const;
+  CellFrame frameOf(std::uint8_t level, glm::uvec3 cell) const;
+  std::uint32_t cellsPerAxis(std::uint8_t level) const;
+
+  const qnv::TilesetLayout& layout_;
+  std::uint8_t cellsLog2_;
+  std::uint32_t brickVoxels_ = 0;
+  double weightUnit_ = 1.0;  // world units^2: the largest weight a vector can have
+  std::unordered_map<std::uint64_t, MergedCell> cells_;
+};
+
+}  // namespace gs::splats
