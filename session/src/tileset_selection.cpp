@@ -245,7 +245,7 @@ std::unordered_map<std::uint64_t, std::size_t> bricksByCell(const qnv::TilesetIn
 }  // namespace
 
 MergedChoice chooseMerged(const qnv::TilesetIndex& index, const std::vector<TilesetView>& views,
-                          double mergedPixels) {
+                          double mergedPixels, std::span<const std::uint8_t> unavailable) {
   MergedChoice out;
   if (index.mergedCellsLog2 == 0 || index.bricks.empty()) return out;
   const auto byCell = bricksByCell(index);
@@ -262,7 +262,8 @@ MergedChoice chooseMerged(const qnv::TilesetIndex& index, const std::vector<Tile
       const qnv::TilesetBrick& b = bricks[i];
       const Projected p = project(b, view);
       if (!p.visible) continue;
-      if (b.level < index.depth && p.pixels / cells <= mergedPixels) {
+      const bool readable = unavailable.empty() || unavailable[i] == 0;
+      if (b.level < index.depth && readable && p.pixels / cells <= mergedPixels) {
         if (state[i] == unseen) state[i] = merged;
         continue;
       }

@@ -128,7 +128,9 @@ void TilesetStream::choose() {
   budget.pixelsPerVector = options_.pixelsPerVector;
   std::vector<TilesetView> tilesetViews;
   for (const auto& [key, view] : views) tilesetViews.push_back(tilesetView(view));
-  const MergedChoice mergedChoice = chooseMerged(*index_, tilesetViews);
+  std::vector<std::uint8_t> unavailable(merged_.size(), 0);
+  for (std::size_t i = 0; i < merged_.size(); ++i) unavailable[i] = merged_[i].failed;
+  const MergedChoice mergedChoice = chooseMerged(*index_, tilesetViews, kMergedPixels, unavailable);
   mergedChoice_ = mergedChoice.merged;
   stats_.mergedBricks = mergedChoice_.size();
   for (std::size_t v = 0; v < views.size(); ++v) {
@@ -269,17 +271,18 @@ bool TilesetStream::pumpMerged() {
     changed = true;
     if (s.state != net::TransferState::done) {
       m.failed = true;
-      messages_.push_back({false, s.error});
-      continue;
-    }
-    try {
-      m.cloud = std::make_shared<const splats::GaussianCloud>(
-          splats::readQnvGaussians(m.bytes, url_ + " " + info.mergedPath()));
-    } catch (const std::exception& e) {
-      m.failed = true;
-      messages_.push_back({false, e.what()});
+      messages_.push_back({false, s.error + " (its region is drawn from its vectors)"});
+    } else {
+      try {
+        m.cloud = std::make_shared<const splats::GaussianCloud>(
+            splats::readQnvGaussians(m.bytes, url_ + " " + info.mergedPath()));
+      } catch (const std::exception& e) {
+        m.failed = true;
+        messages_.push_back({false, std::string(e.what()) + " (its region is drawn from its vectors)"});
+      }
     }
     m.bytes = {};
+    if (m.failed) lastViews_.clear();  // choose again: the node is refined instead
   }
   return changed;
 }
@@ -367,7 +370,10 @@ bool TilesetStream::pump() {
   bool changed = takeIndex();
   if (!index_) return changed;
   choose();
-  if (pumpMerged()) dirty_ = true;
+  if (pumpMerged()) {
+    dirty_ = true;
+    choose();  // a merged brick that failed: its region's vectors now
+  }
   if (pumpBricks()) dirty_ = true;
   if (dirty_) {
     evict();

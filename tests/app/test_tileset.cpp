@@ -220,6 +220,22 @@ TEST_CASE("CThead as a tileset looks like its single stream: the haze of weak ve
 
 namespace {
 
+/// A world looking down -z at the centre of the tileset `index` (its index.qnvt) from
+/// `diagonals` times its box's diagonal, 45 degrees high, showing `url`.
+std::string farWorld(const fs::path& index, double diagonals, const std::string& url) {
+  std::string bytes, error;
+  REQUIRE(gs::base::readFile(index.string(), bytes, error));
+  const auto parsed = gs::qnv::parseTilesetIndex(bytes, index.string(), error);
+  REQUIRE(parsed);
+  const glm::vec3 lo = parsed->header.boundsMin, hi = parsed->header.boundsMax;
+  const glm::vec3 eye = (lo + hi) * 0.5f +
+                        glm::vec3(0.0f, 0.0f, static_cast<float>(diagonals) * glm::length(hi - lo));
+  std::ostringstream world;
+  world << "#VRML V2.0 utf8\nViewpoint { position " << eye.x << ' ' << eye.y << ' ' << eye.z
+        << " fieldOfView 0.785398 }\nQuantizedNormalVectors { url \"" << url << "\" }\n";
+  return world.str();
+}
+
 /// The drawn vectors (column vectors0) of the last line of a --frame-log CSV, or -1.
 long long lastFrameVectors(const fs::path& csv) {
   std::ifstream in(csv);
@@ -295,25 +311,19 @@ TEST_CASE("a far CThead tileset draws its merged levels: few splats, the stream'
   const auto index = gs::qnv::parseTilesetIndex(bytes, "index.qnvt", error);
   REQUIRE(index);
   REQUIRE(index->mergedCellsLog2 > 0);
-  const glm::vec3 lo = index->header.boundsMin, hi = index->header.boundsMax;
-  const glm::vec3 centre = (lo + hi) * 0.5f;
   const double total = static_cast<double>(index->header.vectorCount);
   for (const int diagonals : {12, 24}) {
-    const glm::vec3 eye = centre + glm::vec3(0.0f, 0.0f, diagonals * glm::length(hi - lo));
-    std::ostringstream world;
-    world << "#VRML V2.0 utf8\nViewpoint { position " << eye.x << ' ' << eye.y << ' ' << eye.z
-          << " fieldOfView 0.785398 }\n";
     long long drawn[2] = {0, 0};
     int k = 0;
     for (const auto& [name, url] : {std::pair{"stream", stream.string()},
                                     std::pair{"tileset", (dir / "index.qnvt").string()}}) {
       const std::string tag = "cthead_far" + std::to_string(diagonals) + "_" + name;
       const fs::path wrl = outDir() / (tag + ".wrl");
-      std::ofstream(wrl) << world.str() << "QuantizedNormalVectors { url \"" << url << "\" }\n";
+      std::ofstream(wrl) << farWorld(dir / "index.qnvt", diagonals, url);
       const fs::path csv = outDir() / (tag + ".csv");
-      const auto r =
-          runGhostspace({"--snapshot", (outDir() / (tag + ".png")).string(), "--size", "400x400",
-                         "--no-progress", "--frame-log", csv.string(), wrl.string()});
+      const auto r = runGhostspace({"--snapshot", (outDir() / (tag + ".png")).string(), "--size",
+                                    "400x400", "--no-progress", "--frame-log", csv.string(),
+                                    wrl.string()});
       INFO(r.err);
       REQUIRE(r.exitCode == 0);
       drawn[k++] = lastFrameVectors(csv);
@@ -338,4 +348,33 @@ TEST_CASE("a far CThead tileset draws its merged levels: few splats, the stream'
     CHECK(static_cast<double>(c.coveredB) <= 1.7 * static_cast<double>(c.coveredA));
     CHECK(c.meanDifference <= 28.0);
   }
+}
+
+TEST_CASE("a tileset whose merged bricks are missing draws the far region from its vectors",
+          "[app][tileset]") {
+  // docs/tilesets.md, "Merged levels": a merged brick that cannot be read is a warning
+  // naming it, and its node is refined instead, so the region still shows.
+  const std::string sphere = (gs::test::sourceDir() / "assets/volumes/sphere.nrrd").string();
+  const fs::path dir = outDir() / "sphere_merged";
+  fs::remove_all(dir);
+  REQUIRE(runGhostspace({"encode", sphere, "--no-progress", "--tileset", dir.string(),
+                         "--brick-voxels", "2"})
+              .exitCode == 0);
+  REQUIRE(fs::exists(dir / "merged/0/0_0_0.qnv"));
+  const fs::path wrl = outDir() / "sphere_far.wrl";
+  std::ofstream(wrl) << farWorld(dir / "index.qnvt", 12, (dir / "index.qnvt").string());
+  const auto merged = runGhostspace({"--snapshot", (outDir() / "sphere_far_merged.png").string(),
+                                     "--size", "200x200", "--no-progress", wrl.string()});
+  INFO(merged.err);
+  REQUIRE(merged.exitCode == 0);
+  CHECK(merged.err.find("merged") == std::string::npos);
+  fs::remove_all(dir / "merged");
+  const auto vectors = runGhostspace({"--snapshot", (outDir() / "sphere_far_vectors.png").string(),
+                                      "--size", "200x200", "--no-progress", wrl.string()});
+  INFO(vectors.err);
+  CHECK(vectors.exitCode == 0);
+  CHECK(vectors.err.find("merged/0/0_0_0.qnv") != std::string::npos);
+  CHECK(covered("sphere_far_vectors") > 0.0);
+  CHECK(covered("sphere_far_merged") > 0.0);
+  CHECK(covered("sphere_far_vectors") > 0.5 * covered("sphere_far_merged"));
 }

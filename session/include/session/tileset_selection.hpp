@@ -102,8 +102,11 @@ struct MergedChoice {
   /// and every brick below one, which selectBricks must not choose.
   std::vector<std::uint8_t> skip;
 };
+/// `unavailable` (empty, or one entry per brick): bricks whose merged brick could not be
+/// read; they are refined instead, so a missing merged brick costs vectors, not the region.
 MergedChoice chooseMerged(const qnv::TilesetIndex& index, const std::vector<TilesetView>& views,
-                          double mergedPixels = kMergedPixels);
+                          double mergedPixels = kMergedPixels,
+                          std::span<const std::uint8_t> unavailable = {});
 
 /// Merges the choices of several views: per brick the largest prefix, ordered by the
 /// largest priority any view gave it.
