@@ -196,6 +196,7 @@ void CpuGaussianRasterizer::draw(const splats::GaussianCloud& cloud,
     for (int t = nextTile.fetch_add(1); t < tiles; t = nextTile.fetch_add(1)) {
       const int tx0 = (t % tilesX) * kTile, ty0 = (t / tilesX) * kTile;
       const int tw = std::min(kTile, view.width - tx0), th = std::min(kTile, view.height - ty0);
+      if (clearIfEmpty(s.bins, chunks, t, out.data(), view.width, tx0, ty0, tw, th)) continue;
       startTile(tile, tx0, ty0, tw, th, view.width, view.farClip, depth, depthA, depthB);
       int live = tw * th;
       for (int c = 0; c < chunks && live > 0; ++c) {

@@ -7,6 +7,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <span>
 #include <thread>
 #include <vector>
@@ -65,6 +66,26 @@ void writeTile(const TileBuffers<kSide>& tile, std::uint8_t* out, int width, int
       row[4 * i + 3] = level8(1.0f - tile.t[at]);
     }
   }
+}
+
+/// Writes the tw x th pixels at (tx0, ty0) of `out` (RGBA8, `width` pixels wide) as
+/// transparent black: what writeTile writes for a tile no splat reached.
+inline void clearTile(std::uint8_t* out, int width, int tx0, int ty0, int tw, int th) {
+  for (int j = 0; j < th; ++j)
+    std::memset(&out[(static_cast<std::size_t>(ty0 + j) * width + tx0) * 4], 0,
+                static_cast<std::size_t>(tw) * 4);
+}
+
+/// When no chunk binned a splat into tile `t` (`bins[chunk][t]`, every chunk's list
+/// empty), clears its pixels (clearTile) and returns true: the tile's float buffers are
+/// not needed. Far views leave most tiles empty.
+template <typename Bins>
+bool clearIfEmpty(const Bins& bins, int chunks, int t, std::uint8_t* out, int width, int tx0,
+                  int ty0, int tw, int th) {
+  for (int c = 0; c < chunks; ++c)
+    if (!bins[static_cast<std::size_t>(c)][static_cast<std::size_t>(t)].empty()) return false;
+  clearTile(out, width, tx0, ty0, tw, th);
+  return true;
 }
 
 /// Runs work(0) .. work(threads - 1), work(0) on the calling thread, and waits for all.
