@@ -116,8 +116,9 @@ std::string writeMergedLevels(const fs::path& dir, const std::map<std::uint32_t,
   }
   if (!merged) return {};
   std::map<qnv::TilesetCell, splats::GaussianCloud> clouds = merged->build();
+  index.mergedCellsLog2 = cellsLog2;
   for (const qnv::TilesetBrick& b : index.bricks) {
-    if (b.level >= index.depth) continue;
+    if (!index.hasMerged(b.level)) continue;
     const auto it = clouds.find(qnv::TilesetCell{b.level, glm::uvec3(b.x, b.y, b.z)});
     const qnv::EncodedVectors vectors =
         splats::encodeGaussianStream(it != clouds.end() ? it->second : splats::GaussianCloud{});
@@ -128,7 +129,6 @@ std::string writeMergedLevels(const fs::path& dir, const std::map<std::uint32_t,
     if (std::string error = writeFile(dir / b.mergedPath(), stream); !error.empty()) return error;
     bytes += stream.size();
   }
-  index.mergedCellsLog2 = cellsLog2;
   return {};
 }
 

@@ -263,7 +263,7 @@ MergedChoice chooseMerged(const qnv::TilesetIndex& index, const std::vector<Tile
       const Projected p = project(b, view);
       if (!p.visible) continue;
       const bool readable = unavailable.empty() || unavailable[i] == 0;
-      if (b.level < index.depth && readable && p.pixels / cells <= mergedPixels) {
+      if (index.hasMerged(b.level) && readable && p.pixels / cells <= mergedPixels) {
         if (state[i] == unseen) state[i] = merged;
         continue;
       }

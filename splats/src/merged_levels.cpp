@@ -120,7 +120,8 @@ void MergedLevelBuilder::add(const qnv::SourceVector& v) {
   float basis[16];
   shBasis(2, glm::vec3(normal), basis);
   const glm::dvec3 color(rgba.r / 255.0, rgba.g / 255.0, rgba.b / 255.0);
-  for (std::uint8_t level = 0; level < layout_.depth(); ++level) {
+  const int levels = std::min<int>(layout_.depth(), qnv::deepestMergedLevel(cellsLog2_) + 1);
+  for (std::uint8_t level = 0; level < levels; ++level) {
     const glm::uvec3 c = cellOf(v, level);
     const CellFrame f = frameOf(level, c);
     const glm::dvec3 q = (glm::dvec3(v.position) - f.origin) / f.size;
@@ -195,7 +196,8 @@ bool MergedLevelBuilder::addSerialized(std::string_view bytes, const std::string
     const auto level = static_cast<std::uint8_t>(key >> 60);
     const std::uint64_t grid = std::uint64_t{cellsPerAxis(0)} << level;
     const std::uint64_t x = (key >> 40) & 0xfffffu, y = (key >> 20) & 0xfffffu, z = key & 0xfffffu;
-    if (level >= layout_.depth() || x >= grid || y >= grid || z >= grid)
+    if (level >= layout_.depth() || level > qnv::deepestMergedLevel(cellsLog2_) || x >= grid ||
+        y >= grid || z >= grid)
       return fail("cell " + std::to_string(i) + " lies outside the octree");
     MergedCell& cell = cells_[key];
     cell.count += base::loadLe<std::uint64_t>(c + 8);

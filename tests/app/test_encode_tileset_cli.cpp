@@ -70,7 +70,7 @@ void checkSplitMatchesSingle(const std::string& input, const std::vector<std::st
   CHECK(index->mergedCellsLog2 > 0);
   std::size_t interior = 0;
   for (const gs::qnv::TilesetBrick& brick : index->bricks)
-    if (brick.level < index->depth) {
+    if (index->hasMerged(brick.level)) {
       ++interior;
       CHECK(a.count(brick.mergedPath()) == 1);
     }

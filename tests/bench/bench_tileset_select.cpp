@@ -43,7 +43,7 @@ int main(int argc, char** argv) {
   std::vector<std::uint64_t> mergedSplats(index->bricks.size(), 0);
   const std::filesystem::path folder = std::filesystem::path(argv[1]).parent_path();
   for (std::size_t i = 0; i < index->bricks.size() && index->mergedCellsLog2 > 0; ++i) {
-    if (index->bricks[i].level >= index->depth) continue;
+    if (!index->hasMerged(index->bricks[i].level)) continue;
     std::ifstream m(folder / index->bricks[i].mergedPath(), std::ios::binary);
     std::string head(gs::qnv::kHeaderBytes, '\0');
     m.read(head.data(), static_cast<std::streamsize>(head.size()));

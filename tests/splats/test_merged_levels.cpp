@@ -148,3 +148,21 @@ TEST_CASE("merged levels: a flat wall's merged splat is lit as its vectors, brig
     CHECK(sigma[2][2] < 0.25f * sigma[0][0]);
   }
 }
+
+TEST_CASE("merged levels: only the top levels are summed, so the sums stay bounded",
+          "[splats][merged]") {
+  // qnv::deepestMergedLevel: 8^L R^3 <= 2^18 cells, levels 0..2 for R = 16.
+  CHECK(qnv::deepestMergedLevel(4) == 2);
+  CHECK(qnv::deepestMergedLevel(5) == 1);
+  CHECK(qnv::deepestMergedLevel(7) == 0);
+  const qnv::SelectedVectors selected = ballVectors();
+  qnv::TilesetOptions o;
+  o.brickVoxels = 2;  // depth 4
+  const qnv::TilesetLayout layout(selected.header, o);
+  REQUIRE(layout.depth() == 4);
+  splats::MergedLevelBuilder builder(layout, 4);
+  for (const qnv::SourceVector& v : selected.vectors) builder.add(v);
+  int deepest = -1;
+  for (const auto& [node, cloud] : builder.build()) deepest = std::max(deepest, int{node.level});
+  CHECK(deepest == 2);
+}

@@ -34,6 +34,15 @@ inline constexpr std::size_t kTilesetBands = 16;
 inline constexpr std::size_t kTilesetPreambleBytes = 16 + kHeaderBytes;
 /// Largest log2 of the merged cells per axis an index may declare (128 cells).
 inline constexpr std::uint8_t kTilesetMaxMergedLog2 = 7;
+/// The deepest level with merged bricks for cells per axis 2^cellsLog2: the levels whose
+/// nodes hold at most 2^18 cells in all (8^L R^3 <= 2^18), at least the root. With the
+/// default R = 16: levels 0, 1 and 2. This bounds what an encode sums in memory (about
+/// 300 bytes a cell with vectors) however large the data.
+constexpr int deepestMergedLevel(std::uint8_t cellsLog2) {
+  const int level = (18 - 3 * static_cast<int>(cellsLog2)) / 3;
+  return level > 0 ? level : 0;
+}
+
 /// Bytes of one brick record (without its packet offsets).
 inline constexpr std::size_t kTilesetBrickRecordBytes = 124;
 
@@ -56,7 +65,8 @@ struct TilesetBrick {
   std::string path() const;
   /// The path of the node's merged brick (a Gaussian stream of its region's merged
   /// splats, docs/tilesets.md "Merged levels"): "merged/L/X_Y_Z.qnv". Only interior
-  /// nodes (level < depth) of an index with mergedCellsLog2 > 0 have one.
+  /// nodes (level < depth, level <= deepestMergedLevel) of an index with
+  /// mergedCellsLog2 > 0 have one (TilesetIndex::hasMerged).
   std::string mergedPath() const;
 };
 
@@ -68,6 +78,10 @@ struct TilesetIndex {
   std::uint8_t mergedCellsLog2 = 0;
   StreamHeader header;               // the template: whole box, total vectorCount, mapping
   std::vector<TilesetBrick> bricks;  // sorted by (level, z, y, x), no duplicates
+  /// Whether a brick of `level` has a merged brick.
+  bool hasMerged(std::uint8_t level) const {
+    return mergedCellsLog2 > 0 && level < depth && level <= deepestMergedLevel(mergedCellsLog2);
+  }
 };
 
 /// The bytes of index.qnvt for `index` (little-endian, CRC-32 last). The caller keeps

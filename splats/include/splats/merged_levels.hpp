@@ -49,7 +49,8 @@ struct MergedCell {
 class MergedLevelBuilder {
  public:
   /// `layout` (which must outlive the builder) gives the octree; cellsLog2 in
-  /// 1..qnv::kTilesetMaxMergedLog2. Merged cells exist for levels 0 .. depth - 1.
+  /// 1..qnv::kTilesetMaxMergedLog2. Merged cells exist for the interior levels 0 ..
+  /// min(depth - 1, qnv::deepestMergedLevel(cellsLog2)).
   MergedLevelBuilder(const qnv::TilesetLayout& layout, std::uint8_t cellsLog2);
 
   /// Adds `v` (a selected vector of the tileset) to its cell at every interior level.
