@@ -275,16 +275,34 @@ MergedChoice chooseMerged(const qnv::TilesetIndex& index, const std::vector<Tile
       }
     }
   }
-  // Bricks are sorted by level: a parent's skip is known before its children's.
+  // A refined brick all of whose children are merged, or out of every view (its vectors
+  // lie in its children's regions), has nothing left to draw: it is skipped too. Bottom
+  // up: bricks are sorted by level.
+  std::vector<std::uint8_t> covered(bricks.size(), 0);
+  for (std::size_t i = bricks.size(); i-- > 0;) {
+    const qnv::TilesetBrick& b = bricks[i];
+    if (state[i] == merged) covered[i] = 1;
+    if (state[i] != refined || b.level >= index.depth) continue;
+    bool all = true;
+    for (std::uint32_t k = 0; k < 8 && all; ++k) {
+      const auto it = byCell.find(cellKey(b.level + 1u, b.x * 2 + (k & 1), b.y * 2 + ((k >> 1) & 1),
+                                          b.z * 2 + ((k >> 2) & 1)));
+      all = it == byCell.end() || state[it->second] == unseen || covered[it->second] != 0;
+    }
+    covered[i] = all;
+  }
+  // Top down: whether a merged brick lies above is known for a parent before its children.
   out.skip.assign(bricks.size(), 0);
+  std::vector<std::uint8_t> belowMerged(bricks.size(), 0);
   for (std::size_t i = 0; i < bricks.size(); ++i) {
     const qnv::TilesetBrick& b = bricks[i];
     bool under = false;
     if (b.level > 0)
       if (const auto parent = byCell.find(cellKey(b.level - 1u, b.x / 2, b.y / 2, b.z / 2));
           parent != byCell.end())
-        under = out.skip[parent->second] != 0;
-    if (under || state[i] == merged) out.skip[i] = 1;
+        under = belowMerged[parent->second] != 0 || state[parent->second] == merged;
+    belowMerged[i] = under;
+    if (under || covered[i] != 0) out.skip[i] = 1;
     if (!under && state[i] == merged) out.merged.push_back(i);
   }
   if (out.merged.empty()) out.skip.clear();

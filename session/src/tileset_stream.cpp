@@ -256,6 +256,10 @@ bool TilesetStream::pumpMerged() {
         messages_.push_back({false, error});
         continue;
       }
+      // At most R^3 splats of 4 records: twice that in bytes, and the header, is the most
+      // a merged brick can hold, whatever the server sends.
+      const std::uint64_t cells = std::uint64_t{1} << (3 * index_->mergedCellsLog2);
+      r.maxBytes = std::min(r.maxBytes, qnv::kHeaderBytes + cells * 64 + 65536);
       m.transfer = net::startTransfer(std::move(r));
       ++stats_.requests;
     }
@@ -278,7 +282,8 @@ bool TilesetStream::pumpMerged() {
             splats::readQnvGaussians(m.bytes, url_ + " " + info.mergedPath()));
       } catch (const std::exception& e) {
         m.failed = true;
-        messages_.push_back({false, std::string(e.what()) + " (its region is drawn from its vectors)"});
+        messages_.push_back(
+            {false, std::string(e.what()) + " (its region is drawn from its vectors)"});
       }
     }
     m.bytes = {};

@@ -321,9 +321,9 @@ TEST_CASE("a far CThead tileset draws its merged levels: few splats, the stream'
       const fs::path wrl = outDir() / (tag + ".wrl");
       std::ofstream(wrl) << farWorld(dir / "index.qnvt", diagonals, url);
       const fs::path csv = outDir() / (tag + ".csv");
-      const auto r = runGhostspace({"--snapshot", (outDir() / (tag + ".png")).string(), "--size",
-                                    "400x400", "--no-progress", "--frame-log", csv.string(),
-                                    wrl.string()});
+      const auto r =
+          runGhostspace({"--snapshot", (outDir() / (tag + ".png")).string(), "--size", "400x400",
+                         "--no-progress", "--frame-log", csv.string(), wrl.string()});
       INFO(r.err);
       REQUIRE(r.exitCode == 0);
       drawn[k++] = lastFrameVectors(csv);
@@ -357,8 +357,8 @@ TEST_CASE("a tileset whose merged bricks are missing draws the far region from i
   const std::string sphere = (gs::test::sourceDir() / "assets/volumes/sphere.nrrd").string();
   const fs::path dir = outDir() / "sphere_merged";
   fs::remove_all(dir);
-  REQUIRE(runGhostspace({"encode", sphere, "--no-progress", "--tileset", dir.string(),
-                         "--brick-voxels", "2"})
+  REQUIRE(runGhostspace(
+              {"encode", sphere, "--no-progress", "--tileset", dir.string(), "--brick-voxels", "2"})
               .exitCode == 0);
   REQUIRE(fs::exists(dir / "merged/0/0_0_0.qnv"));
   const fs::path wrl = outDir() / "sphere_far.wrl";

@@ -226,9 +226,17 @@ TEST_CASE("tileset selection: a middle distance merges level-1 nodes under a ref
   const session::MergedChoice m = session::chooseMerged(index, {mid});
   REQUIRE(m.merged.size() == 8);
   for (std::size_t i : m.merged) CHECK(index.bricks[i].level == 1);
-  const auto choices = session::selectBricks(index, mid, {}, m.skip);
-  REQUIRE(choices.size() == 1);  // the root's own vectors; the merged regions hide them
-  CHECK(index.bricks[choices[0].brick].level == 0);
+  // The root's own vectors lie in its children's regions, all merged: nothing to fetch.
+  CHECK(m.skip[0] == 1);
+  CHECK(session::selectBricks(index, mid, {}, m.skip).empty());
+  // Half the cube out of view (the eye moved along x): the visible children are merged,
+  // the others culled, so the root still has nothing to draw.
+  session::TilesetView side = mid;
+  side.position.x = 0.55f + 0.41421f * side.position.z;  // the left half wholly outside
+  const session::MergedChoice s = session::chooseMerged(index, {side});
+  CHECK(!s.merged.empty());
+  CHECK(s.merged.size() < 8);
+  CHECK(session::selectBricks(index, side, {}, s.skip).empty());
   // A second, close view refines every node: then nothing is merged for either.
   const session::MergedChoice both = session::chooseMerged(index, {mid, wholeView()});
   CHECK(both.merged.empty());

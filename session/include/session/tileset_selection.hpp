@@ -98,8 +98,9 @@ inline constexpr double kMergedPixels = 2.0;
 struct MergedChoice {
   /// Bricks drawn by their merged brick (index order), none inside another.
   std::vector<std::size_t> merged;
-  /// Per brick (all of the index, or empty when nothing is merged): 1 for a merged brick
-  /// and every brick below one, which selectBricks must not choose.
+  /// Per brick (all of the index, or empty when nothing is merged): 1 for a merged brick,
+  /// every brick below one, and every refined brick whose children are all merged or out
+  /// of view (nothing of its own is left to draw), which selectBricks must not choose.
   std::vector<std::uint8_t> skip;
 };
 /// `unavailable` (empty, or one entry per brick): bricks whose merged brick could not be
