@@ -142,14 +142,6 @@ void MergedLevelBuilder::add(const qnv::SourceVector& v) {
   }
 }
 
-void MergedLevelBuilder::merge(const MergedLevelBuilder& other) {
-  for (const auto& [key, cell] : other.cells_) {
-    MergedCell& into = cells_[key];
-    into.count += cell.count;
-    for (int i = 0; i < MergedCell::kFields; ++i) into.sums[i] += cell.sums[i];
-  }
-}
-
 std::string MergedLevelBuilder::serialize() const {
   std::vector<std::uint64_t> keys;
   keys.reserve(cells_.size());

@@ -55,8 +55,6 @@ class MergedLevelBuilder {
 
   /// Adds `v` (a selected vector of the tileset) to its cell at every interior level.
   void add(const qnv::SourceVector& v);
-  /// Adds another builder's sums (a share's parts) into this one's.
-  void merge(const MergedLevelBuilder& other);
   /// Cells holding vectors.
   std::size_t cellCount() const { return cells_.size(); }
 
