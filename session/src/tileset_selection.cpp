@@ -1,6 +1,7 @@
 #include "session/tileset_selection.hpp"
 
 #include "qnv/record.hpp"
+#include "splats/vector_splat.hpp"
 
 #include <algorithm>
 #include <array>
@@ -89,19 +90,15 @@ struct OpticalDepths {
 };
 
 /// Optical depth of one vector of band `band` times the area it covers (world units^2):
-/// the integral of splatProfile's volume Gaussian, peak * 2 pi s^2, with s = 2 sigma
+/// the integral of a volume vector's disc (splats::vectorProfile), peak * 2 pi s^2, s = 2 sigma
 /// voxelSize and peak = opacityScale * sqrt(A / magnitudeMax) (clamped to 1) at the band's
 /// centre code; the transfer function's alpha is taken as 1 (an upper bound).
 double bandOpacityArea(const qnv::StreamHeader& h, std::size_t band) {
   const float a = qnv::reconstructMagnitude(static_cast<std::uint32_t>(band) * 2048u + 1024u,
                                             h.mapping, h.magnitudeMin, h.magnitudeMax);
-  const double voxel = std::max({h.voxelSpacing.x, h.voxelSpacing.y, h.voxelSpacing.z, 1e-6f});
-  const double spread = 2.0 * h.profile.sigma * voxel;
-  const double peak =
-      std::clamp(h.profile.opacityScale *
-                     std::sqrt(std::clamp(a / std::max(h.magnitudeMax, 1e-30f), 0.0f, 1.0f)),
-                 0.0f, 1.0f);
-  return peak * 2.0 * 3.14159265358979 * spread * spread;
+  const splats::VectorProfile p = splats::vectorProfile(h, a, 1.0f);
+  const double spread = p.spread;
+  return p.peak * 2.0 * 3.14159265358979 * spread * spread;
 }
 
 /// Mean projected area of a brick's box over all directions: a quarter of its surface

@@ -132,7 +132,7 @@ void TilesetStream::choose() {
   for (std::size_t i = 0; i < merged_.size(); ++i) unavailable[i] = merged_[i].failed;
   const MergedChoice mergedChoice = chooseMerged(*index_, tilesetViews, kMergedPixels, unavailable);
   mergedChoice_ = mergedChoice.merged;
-  stats_.mergedBricks = mergedChoice_.size();
+  mergedDirty_ = true;
   for (std::size_t v = 0; v < views.size(); ++v) {
     budget.vectors = views[v].second.vectors;
     perView.push_back(selectBricks(*index_, tilesetViews[v], budget, mergedChoice.skip));
@@ -264,15 +264,13 @@ bool TilesetStream::pumpMerged() {
       ++stats_.requests;
     }
     const net::TransferStatus s = m.transfer->status();
-    const std::size_t before = m.bytes.size();
     m.transfer->take(m.bytes);
-    stats_.mergedBytes += m.bytes.size() - before;
     if (!s.finished()) {
       ++running;
       continue;
     }
     m.transfer.reset();
-    changed = true;
+    changed = mergedDirty_ = true;
     if (s.state != net::TransferState::done) {
       m.failed = true;
       messages_.push_back({false, s.error + " (its region is drawn from its vectors)"});
@@ -360,12 +358,13 @@ void TilesetStream::rebuild() {
     }
   }
   ++set.revision;
+  if (!mergedDirty_) return;  // the merged splats only change with the choice or arrivals
+  mergedDirty_ = false;
   auto cloud = std::make_shared<splats::GaussianCloud>();
   cloud->shDegree = 2;
   for (std::size_t m : mergedChoice_)
     if (const auto& part = merged_[m].cloud)
       for (std::size_t i = 0; i < part->size(); ++i) cloud->append(*part, i);
-  stats_.mergedSplats = cloud->size();
   mergedSet_->gaussians = std::move(cloud);
   mergedSet_->computeBounds();
   ++mergedSet_->revision;

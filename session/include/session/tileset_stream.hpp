@@ -47,9 +47,6 @@ struct TilesetStatistics {
   /// eviction); within one pump the bricks that just arrived are counted before eviction.
   std::uint64_t peakResidentVectors = 0;
   std::uint64_t evictedBricks = 0;
-  std::uint64_t mergedBricks = 0;  // drawn by their merged brick in the last choice
-  std::uint64_t mergedSplats = 0;  // merged Gaussians in the set now
-  std::uint64_t mergedBytes = 0;   // bytes of merged bricks taken from transfers
 };
 
 class TilesetStream {
@@ -103,6 +100,7 @@ class TilesetStream {
   std::vector<MergedBrick> merged_;
   std::vector<std::size_t> mergedChoice_;
   std::shared_ptr<render::SplatSet> mergedSet_;
+  bool mergedDirty_ = false;  // mergedSet_ is to be assembled again
   std::vector<std::pair<std::uint64_t, render::SplatSet::View>> lastViews_;
   bool dirty_ = false;
   TilesetStatistics stats_;
