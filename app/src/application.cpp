@@ -203,6 +203,14 @@ Parsed parseArguments(int argc, char** argv) {
     r.exitCode = 2;
     return r;
   }
+  if (o.time.load >= 0.0 && o.time.load > o.time.start) {
+    std::fprintf(stderr,
+                 "ghostspace: --load-time %g is after --time's %g: a world is shown "
+                 "after it loads\n",
+                 o.time.load, o.time.start);
+    r.exitCode = 2;
+    return r;
+  }
   if (!a.snapshotAt.empty() &&
       !parseSnapshotAt(a.snapshotAt, o.snapshotAtBytes, o.snapshotAtSeconds)) {
     std::fprintf(stderr,

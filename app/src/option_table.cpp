@@ -189,6 +189,16 @@ const std::vector<OptionSpec>& table() {
        .more = "In the window the clock starts at T, then follows the wall clock. The same "
                "command gives the same pixels on any machine (docs/runtime.md)."},
       {.scope = main,
+       .names = "--load-time",
+       .valueName = "S",
+       .field = GS_FIELD(double, options.time.load),
+       .help = "With --snapshot: SFTime the world is loaded at, then run to --time's T at "
+               "--time-step (S <= T). Default: loaded at T",
+       .more = "What has moved since the load shows at T: particles, followers (X_ITE's "
+               "pictures at T are of a world loaded T seconds before: docs/x3d.md).",
+       .shownDefault = "T",
+       .check = CLI::NonNegativeNumber},
+      {.scope = main,
        .names = "--time-step",
        .valueName = "S",
        .field = GS_FIELD(double, options.time.step),

@@ -159,13 +159,14 @@ int runSnapshot(const Options& options) {
   }
   bar.finish();
 
-  // Life (docs/runtime.md): each world is loaded at --time T (0 by default) and moved
+  // Life (docs/runtime.md): each world is loaded at --load-time or --time T (0 by default)
+  // and moved
   // through T0 + i * DT at the fixed --time-step, so a frame's pixels depend on the
   // command alone.
   session::WorldRuntimes runtimes(options.time, &session.loader());
   const session::RuntimeOptions& time = options.time;
   // MovieTextures show the frame of their media time, waiting for it (docs/media.md).
-  group.attachRuntimes(runtimes, time.start, true);
+  group.attachRuntimes(runtimes, time.load >= 0.0 ? time.load : time.start, true);
   // What the new state references (an Inline a Switch now shows, an Inline or texture url
   // a Script set, a LOD level chosen at T) is asked for while drawing: frames at the same
   // time repeat until a pump finds nothing arriving and nothing more was asked for.

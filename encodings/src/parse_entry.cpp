@@ -8,6 +8,12 @@
 
 namespace gs::vrml::parsing {
 
+void applyX3d3Defaults(Node& node) {
+  if (node.typeId() == NodeTypeId::WindPhysicsModel)
+    if (FieldValue* d = node.field("direction"); d && d->type() == FieldType::SFVec3f)
+      d->get<FieldType::SFVec3f>() = glm::vec3(0.0f);
+}
+
 std::string headerProblem(std::string_view line, std::string& x3dVersion) {
   x3dVersion.clear();
   if (line.starts_with("#VRML V2.0 utf8")) return {};
@@ -98,10 +104,11 @@ void parseInto(std::string_view bytes, const std::string& url, Context& ctx, int
     scene.diagnostics.error({url, 1, 1}, std::move(msg));
     return;
   }
-  const bool wasX3d = ctx.x3d;
+  const bool wasX3d = ctx.x3d, wasVersion3 = ctx.x3dVersion3;
   const Context::Units wasUnits = ctx.units;
   ctx.units = {};
   ctx.x3d = !version.empty();
+  ctx.x3dVersion3 = version.starts_with("3");
   if (ctx.x3d) {
     scene.x3d.version = version;
     scene.x3d.encoding = "Classic VRML";
@@ -110,6 +117,7 @@ void parseInto(std::string_view bytes, const std::string& url, Context& ctx, int
                 scene.diagnostics, externDepth, origin);
   parser.parseScene(scene);
   ctx.x3d = wasX3d;
+  ctx.x3dVersion3 = wasVersion3;
   ctx.units = wasUnits;
 }
 

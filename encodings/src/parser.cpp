@@ -311,6 +311,7 @@ NodePtr Parser::parseNode(Scope& scope, const Token& t, int depth, int& height,
   countNode(t.offset);
   auto node = std::make_shared<Node>(std::move(type));
   node->location = lex_.locationAt(t.offset);
+  if (ctx_.x3dVersion3) applyX3d3Defaults(*node);
   if (!defName.empty()) {
     node->defName = defName;
     define(scope, defName, DefEntry{node, node->typePtr(), nullptr, 1, true});
@@ -475,6 +476,19 @@ void Parser::parseScriptDeclaration(Scope& scope, const NodePtr& node, const Tok
     // first, as Coin3D and castle-model-viewer do.
     severity = Severity::warning;
     problem = "'" + name + "' is declared twice in this Script node; the second is ignored";
+  } else if (const int own = base.findField(name);
+             own >= 0 && earlier == script.names.end() && ctx_.x3d && !isRef &&
+             base.fields[static_cast<std::size_t>(own)].type == ft) {
+    // A declaration of one of X3D 4's own Script fields (`description`, in X_ITE's test
+    // worlds written before X3D 4 gave Script one) with its type: its value is the field's.
+    report(Severity::warning, nt.offset,
+           "'" + name + "' is the Script node's own field in X3D 4: the declaration sets it");
+    if (hasValue) {
+      int h = 0;
+      parseValue(ft, node->fieldAt(static_cast<std::size_t>(own)), scope, depth, h);
+      height = std::max(height, h);
+    }
+    return;
   } else if (earlier != script.names.end() || base.findField(name) >= 0) {
     problem = "'" + name + "' is already declared in this Script node";
   } else if (script.names.size() >= kMaxScriptMembers)

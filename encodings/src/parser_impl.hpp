@@ -103,6 +103,9 @@ struct Context {
   /// The file being parsed is X3D (its header said #X3D): X3D node types and interfaces,
   /// the X3D statements. Set per file by parseInto / StreamingParser.
   bool x3d = false;
+  /// The X3D file's header says version 3.x: the fields whose default X3D 4 changed take
+  /// X3D 3's (applyX3d3Defaults). Per file, like `x3d`.
+  bool x3dVersion3 = false;
   /// The file's UNIT conversion factors (X3D clause 4.3.6) for length and angle: what a
   /// value the file writes is in metres and radians. Set by its UNIT statements; 1 in a
   /// VRML97 file. Per file, like `x3d`.
@@ -153,6 +156,12 @@ gltf::ImportOptions gltfImportOptions(const ParseOptions& options);
 
 class Parser {
  public:
+  /// The member an X3D field-name alias stands for in `type`: Switch/LOD `children`
+  /// (VRML97's choice/level), Collision `enabled` (collide), ComposedCubeMapTexture's X3D 3
+  /// face names (back ... top for X3D 4's backTexture ... topTexture), LoadSensor's X3D 3
+  /// `watchList` (X3D 4's `children`), ParticleSystem's X3D 3 `colorRamp` and
+  /// `texCoordRamp` (X3D 4's `color` and `texCoord`); -1 when none.
+  static int x3dFieldAlias(const NodeType& type, std::string_view name);
   /// `text` is the whole file; parsing starts at byte `start` (after the header).
   /// `origin`: the text is a translation of X3D XML or JSON, whose locations it gives.
   Parser(std::string_view text, std::string file, std::size_t start, Context& ctx,
@@ -301,11 +310,6 @@ class Parser {
   /// `n` inside a Transform scaled by the file's length unit (Context::units.length), so
   /// that its lengths are metres; `n` itself when the unit is the metre or n is no child.
   NodePtr applyLengthUnit(const NodePtr& n) const;
-  /// The member an X3D field-name alias stands for in `type`: Switch/LOD `children`
-  /// (VRML97's choice/level), Collision `enabled` (collide), ComposedCubeMapTexture's X3D 3
-  /// face names (back ... top for X3D 4's backTexture ... topTexture), LoadSensor's X3D 3
-  /// `watchList` (X3D 4's `children`); -1 when none.
-  static int x3dFieldAlias(const NodeType& type, std::string_view name);
 
   // route.cpp: ROUTE (clause 4.10)
   void parseRoute(Scope& scope);
@@ -398,6 +402,11 @@ void gunzipInto(std::string_view bytes, const std::string& url, std::size_t maxB
 /// Classic VRML header ("#X3D V3.3 utf8", versions 3.0 to 4.x), whose version ("3.3") is
 /// then put in `x3dVersion` (cleared otherwise).
 std::string headerProblem(std::string_view line, std::string& x3dVersion);
+
+/// Gives a node just made for an X3D 3.x file the defaults X3D 3.3 had where X3D 4.0
+/// changed them (before its fields are read): WindPhysicsModel.direction 0 0 0 (X3D 3.3
+/// clause 40.4.11; 4.0: 1 0 0), as X_ITE reads 3.3 files.
+void applyX3d3Defaults(Node& node);
 
 /// Parses `bytes` (a whole file, gzip or not) into `scene` with shared context `ctx`.
 /// `origin`: `bytes` is the Classic translation of X3D XML or JSON, whose locations it gives.

@@ -211,6 +211,7 @@ NodePtr Parser::xmlNode(XmlBuild& b, const XNode& n, int depth, int& height) {
   ++ctx_.nodeCount;
   auto node = std::make_shared<Node>(std::move(type));
   node->location = SourceLocation{lex_.sourceFile(), n.line, n.column};
+  if (ctx_.x3dVersion3) applyX3d3Defaults(*node);
   const NodeType& ty = node->type();
   if (const std::string* def = n.attr("DEF"); def != nullptr && !blank(*def)) {
     node->defName = xmlIdent(*def);
@@ -433,6 +434,7 @@ class XmlDocument final : public XmlStatementBuilder {
     }
     ctx_.units = {};
     ctx_.x3d = !version.empty();
+    ctx_.x3dVersion3 = version.starts_with("3");
     if (ctx_.x3d) scene_.x3d.version = version;
     parser_ = std::make_unique<Parser>(all, url_, eol == std::string_view::npos ? all.size() : eol,
                                        ctx_, scene_.diagnostics, externDepth_, &xml_.origin());

@@ -339,6 +339,7 @@ bool StreamingParser::Impl::readHeader(bool final) {
     return false;
   }
   ctx.x3d = !version.empty();
+  ctx.x3dVersion3 = version.starts_with("3");
   if (ctx.x3d) {
     scene.x3d.version = version;
     if (scene.x3d.encoding.empty()) scene.x3d.encoding = "Classic VRML";

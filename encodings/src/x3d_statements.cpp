@@ -39,6 +39,9 @@ int Parser::x3dFieldAlias(const NodeType& type, std::string_view name) {
       return -1;
     case NodeTypeId::LoadSensor:  // X3D 3's name of `children` (X3D 4.0 clause 9.4.3)
       return name == "watchList" ? type.findExact("children") : -1;
+    case NodeTypeId::ParticleSystem:  // X3D 3's names of `color` and `texCoord` (clause 40.4.7)
+      if (name == "colorRamp") return type.findExact("color");
+      return name == "texCoordRamp" ? type.findExact("texCoord") : -1;
     default:
       return -1;
   }

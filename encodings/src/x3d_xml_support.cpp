@@ -2,6 +2,7 @@
 // telling XML from the other encodings, the offset-to-XML-location map, the field types of
 // built-in nodes as the translation writes them, and which raw text keeps the Classic
 // translation's statements apart.
+#include "parser_impl.hpp"
 #include "x3d_numbers.hpp"
 #include "x3d_xml.hpp"
 #include "x3d_xml_tree.hpp"
@@ -51,12 +52,9 @@ std::pair<int, int> OffsetLocations::at(std::size_t offset) {
 
 std::optional<FieldType> findBuiltInFieldType(const NodeType& type, std::string_view f) {
   int i = type.findField(f);
-  // X3D's names for VRML97's fields (Parser::x3dFieldAlias).
-  if (i < 0 && type.id() == NodeTypeId::Collision && f == "enabled") i = type.findExact("collide");
-  // X3D 3's names of ComposedCubeMapTexture's faces (Parser::x3dFieldAlias).
-  if (i < 0 && type.id() == NodeTypeId::ComposedCubeMapTexture &&
-      (f == "back" || f == "bottom" || f == "front" || f == "left" || f == "right" || f == "top"))
-    i = type.findExact(std::string(f) + "Texture");
+  // X3D's names for VRML97's fields, X3D 3's names (Parser::x3dFieldAlias). (Switch's and
+  // LOD's `children` are MFNode below.)
+  if (i < 0 && f != "children") i = parsing::Parser::x3dFieldAlias(type, f);
   if (i >= 0) return type.fields[static_cast<std::size_t>(i)].type;
   if (f == "children" && (type.id() == NodeTypeId::Switch || type.id() == NodeTypeId::LOD))
     return FieldType::MFNode;

@@ -269,6 +269,7 @@ void ExecutionModel::advanceTo(double time) {
   }
   for (NodeState* m : s_->mediaNodes) s_->evaluateMedia(*m);
   for (NodeState* f : s_->followers) s_->evaluateFollower(*f);
+  s_->evaluateParticleSystems();
   s_->startNewLoadSensors();  // made since (createVrmlFromString, addChildren)
   s_->evaluateLoadSensors();  // their timeOuts
   s_->evaluateEnvironmentSensors();
@@ -335,6 +336,8 @@ bool ExecutionModel::animating() const {
     if (t->time.active) return true;
   for (const NodeState* m : s_->mediaNodes)
     if (m->media->state.active) return true;
+  for (const NodeState* p : s_->particleSystems)
+    if (p->particles->simulation.active()) return true;
   for (const NodeState* l : s_->loadSensors)  // a timeOut still to pass
     if (l->load->watching && l->load->timeOut >= 0 &&
         l->node->fieldAt(static_cast<std::size_t>(l->load->timeOut)).get<FieldType::SFTime>() > 0.0)

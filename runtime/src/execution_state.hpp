@@ -7,6 +7,8 @@
 #include "runtime/interpolators_x3d.hpp"
 #include "runtime/time_dependent.hpp"
 
+#include "particles/particle_system.hpp"
+
 #include <glm/mat4x4.hpp>
 
 #include <array>
@@ -90,6 +92,15 @@ struct SkinState {
   std::unordered_map<const vrml::Node*, glm::mat4> bindInverse;
   std::vector<glm::vec3> sum;
   std::vector<float> weight;
+};
+
+/// A ParticleSystem's simulation (particle_systems.cpp).
+struct ParticleSystemState {
+  ParticleSystemState(std::uint64_t seed, double loadTime) : simulation(seed, loadTime) {}
+  particles::ParticleSimulation simulation;
+  int isActive = -1;  // field index of isActive
+  bool sentActive = false;
+  bool reportedClamp = false;
 };
 
 /// A damper's or chaser's motion (followers.cpp); values as flat lists of numbers.
@@ -223,12 +234,13 @@ struct NodeState {
   glm::vec3 lastPosition{0.0f};
   vrml::Rotation lastOrientation{0.0f};
   std::unique_ptr<ScriptInstance> script;
-  std::unique_ptr<MediaNode> media;             // role media
-  std::unique_ptr<EventUtilityFields> utility;  // role eventUtility
-  std::unique_ptr<FollowerState> follower;      // role follower
-  std::unique_ptr<SkinState> skin;              // a Skin (role plain)
-  std::unique_ptr<KeySensorState> keys;         // role keySensor
-  std::unique_ptr<LoadSensorState> load;        // role loadSensor
+  std::unique_ptr<MediaNode> media;                // role media
+  std::unique_ptr<EventUtilityFields> utility;     // role eventUtility
+  std::unique_ptr<FollowerState> follower;         // role follower
+  std::unique_ptr<SkinState> skin;                 // a Skin (role plain)
+  std::unique_ptr<KeySensorState> keys;            // role keySensor
+  std::unique_ptr<LoadSensorState> load;           // role loadSensor
+  std::unique_ptr<ParticleSystemState> particles;  // a ParticleSystem (role plain)
   bool scriptHadEvents = false;
   bool problemReported = false;
 };
@@ -265,6 +277,7 @@ struct ExecutionModel::State {
   std::vector<NodeState*> transformSensors;  // X3D TransformSensors (environment_sensors.cpp)
   std::vector<NodeState*> keySensors;        // KeySensors, StringSensors (key_sensors.cpp)
   std::vector<NodeState*> loadSensors;       // LoadSensors (load_sensors.cpp)
+  std::vector<NodeState*> particleSystems;   // ParticleSystems (particle_systems.cpp)
   std::vector<NodeState*> newLoadSensors;    // registered, their first watch not started
   /// What loaders reported of url objects (ExecutionModel::setUrlObjectState).
   std::unordered_map<const vrml::Node*, UrlLoadState> urlStates;
@@ -372,6 +385,12 @@ struct ExecutionModel::State {
   /// set_fraction `value` of a NURBS interpolator: value_changed (position_changed and
   /// normal_changed), or one error for the node (its fields make no curve) and no output.
   void deliverNurbsInterpolator(NodeState& ns, vrml::FieldValue value);
+
+  // ---- ParticleSystem (particle_systems.cpp) ----
+  /// Makes `ns` a particle system when it is a ParticleSystem (its events stay plain).
+  bool classifyParticleSystem(NodeState& ns);
+  /// Moves every particle system to the clock's time; isActive on change.
+  void evaluateParticleSystems();
 
   // ---- environmental sensors (environment_sensors.cpp) ----
   void evaluateEnvironmentSensors();

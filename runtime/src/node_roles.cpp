@@ -118,6 +118,7 @@ void ExecutionModel::State::classify(NodeState& ns) {
   if (classifyEventUtility(ns)) return;
   if (classifyFollower(ns)) return;
   if (classifySkin(ns)) return;
+  if (classifyParticleSystem(ns)) return;
   if (classifyHumanoid(ns)) return;
   if (classifyKeySensor(ns)) return;
   if (classifyLoadSensor(ns)) return;

@@ -60,6 +60,20 @@ duk_ret_t getCurrentFrameRate(duk_context* c) {
   return 1;
 }
 
+// ISO/IEC 19777-1 clause 7.2.3's browser options and properties (SHADING, TEXTURE_QUALITY
+// ...; X_ITE's test worlds ask for PHONG shading): GhostSpace has no option a world may
+// change and reports no property: getBrowserProperty and setBrowserOption answer false,
+// getBrowserOption undefined.
+duk_ret_t answerFalse(duk_context* c) {
+  duk_push_false(c);
+  return 1;
+}
+
+duk_ret_t answerUndefined(duk_context* c) {
+  duk_push_undefined(c);
+  return 1;
+}
+
 duk_ret_t getCurrentSpeed(duk_context* c) {
   duk_push_number(c, 0.0);  // the viewer's speed is not known to the runtime
   return 1;
@@ -259,6 +273,9 @@ void EsScript::installBrowser(duk_context* c) {
       {"println", print, DUK_VARARGS},
       {"createX3DFromString", createX3DFromString, 1},
       {"createX3DFromURL", createX3DFromURL, 3},
+      {"getBrowserProperty", answerFalse, 1},
+      {"getBrowserOption", answerUndefined, 1},
+      {"setBrowserOption", answerFalse, 2},
   };
   duk_push_global_object(c);
   duk_push_object(c);

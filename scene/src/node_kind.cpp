@@ -49,6 +49,8 @@ NodeKind nodeKind(const vrml::Node& node) {
       return NodeKind::Inline;
     case NodeTypeId::Shape:
       return NodeKind::Shape;
+    case NodeTypeId::ParticleSystem:
+      return NodeKind::ParticleSystem;
     case NodeTypeId::DirectionalLight:
       return NodeKind::DirectionalLight;
     case NodeTypeId::PointLight:

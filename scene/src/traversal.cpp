@@ -1,6 +1,8 @@
 // Per-frame scene-graph traversal: shapes with world matrices and scoped lights.
 #include "scene/traversal.hpp"
 
+#include "particles/particle_system.hpp"
+
 #include "scene/layout.hpp"
 
 #include "scene/node_access.hpp"
@@ -272,6 +274,25 @@ struct SceneTraversal::Walk {
     addShape(n, *geometry, m, baseUrl);
   }
 
+  /// A ParticleSystem (X3D 4.0 clause 40): a shape of its appearance whose geometry is its
+  /// particles (one mesh), or for geometryType GEOMETRY its `geometry` node once per
+  /// visible particle, translated there (as X_ITE draws them: no rotation, no scale).
+  void particleSystem(const vrml::Node& n, const glm::mat4& m, const std::string* baseUrl) {
+    if (!self.particleSource_ || !sfBool(n, "visible", true)) return;
+    const particles::ParticleSimulation* simulation = self.particleSource_(n);
+    if (simulation == nullptr) return;
+    if (particles::geometryTypeOf(sfString(n, "geometryType")) ==
+        particles::GeometryType::geometry) {
+      const vrml::NodePtr& geometry = n.sfnode("geometry");
+      if (!geometry || geometry->unresolved) return;
+      for (const particles::Particle& p : simulation->particles())
+        if (p.visible) addShape(n, *geometry, glm::translate(m, p.position), baseUrl);
+      return;
+    }
+    if (const vrml::Node* g = self.particleGeometry(n, *simulation, worldToEye * m))
+      addShape(n, *g, m, baseUrl);
+  }
+
   /// An OutlineGroup (docs/vrml-extensions.md): children as a Group (not in outlines
   /// mode), and its outline as a shape whose geometry is the node itself while shown.
   void outlineGroup(const vrml::Node& n, const glm::mat4& m, const std::string* baseUrl) {
@@ -522,6 +543,9 @@ struct SceneTraversal::Walk {
       }
       case NodeKind::Shape:
         shape(n, m, baseUrl);
+        break;
+      case NodeKind::ParticleSystem:
+        particleSystem(n, m, baseUrl);
         break;
       case NodeKind::QuantizedNormalVectors:
         frame.splats.push_back({&n, m, &n.urlBaseOr(*baseUrl)});  // its file's base

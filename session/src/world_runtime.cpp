@@ -227,6 +227,14 @@ render::MediaClock WorldRuntimes::mediaClock(const vrml::Scene* scene) const {
   };
 }
 
+scene::ParticleSource WorldRuntimes::particleSource(const vrml::Scene* scene) const {
+  return [this, scene](const vrml::Node& node) -> const particles::ParticleSimulation* {
+    const auto it = worlds_.find(scene);
+    if (it == worlds_.end()) return nullptr;
+    return it->second.model->particleSimulation(node);
+  };
+}
+
 void WorldRuntimes::setMediaDurations(
     const vrml::Scene* scene, const std::vector<std::pair<const vrml::Node*, double>>& durations) {
   const auto it = worlds_.find(scene);

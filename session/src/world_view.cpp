@@ -15,6 +15,7 @@ void ViewGroup::attachRuntimes(WorldRuntimes& runtimes, double time, bool waitFo
     runtimes.addInlines(v->scene_.get(), v->renderer_->traversal());
     // MovieTextures show the frame of their media time (docs/media.md).
     v->renderer_->setMediaClock(runtimes.mediaClock(v->scene_.get()), waitForMedia);
+    v->renderer_->traversal().setParticleSource(runtimes.particleSource(v->scene_.get()));
     runtimes.setMediaDurations(v->scene_.get(), v->renderer_->takeMediaDurations());
     runtimes.setUrlObjectLoads(v->scene_.get(), v->renderer_->takeUrlObjectLoads());
   }
@@ -51,8 +52,10 @@ WorldView::WorldView(ViewGroup& group, std::shared_ptr<const vrml::Scene> scene,
                                                         group.session().rendererOptions(options))),
       generationSeen_(group.generation()) {
   group_.views_.push_back(this);
-  if (WorldRuntimes* runtimes = group_.runtimes())
+  if (WorldRuntimes* runtimes = group_.runtimes()) {
     renderer_->setMediaClock(runtimes->mediaClock(scene_.get()), group_.waitForMedia_);
+    renderer_->traversal().setParticleSource(runtimes->particleSource(scene_.get()));
+  }
 }
 
 WorldView::~WorldView() {

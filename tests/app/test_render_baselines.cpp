@@ -20,7 +20,8 @@ struct RenderCase {
   const char* name;   // baseline file stem
   const char* world;  // relative to the corpus (corpus = true) or the source folder
   bool corpus;
-  const char* time = nullptr;  // --time, for animated worlds
+  const char* time = nullptr;      // --time, for animated worlds
+  const char* loadTime = nullptr;  // --load-time, for what runs from the load (particles)
 };
 
 const RenderCase kCases[] = {
@@ -83,6 +84,9 @@ const RenderCase kCases[] = {
     // X3D Layout (docs/x3d.md): a LayoutLayer's 200x60-pixel panel with ScreenFontStyle text
     // 10 pixels from the top left corner, a ScreenGroup's 16-pixel square on a box.
     {"layout", "assets/worlds/layout.x3dv", false},
+    // X3D particle systems (docs/x3d.md) 1.5 s after the load: SPRITE with a colour ramp and
+    // wind, LINE falling and bouncing, POINT in a volume, QUAD from a surface, GEOMETRY.
+    {"particles_t1.5", "assets/worlds/particles.x3dv", false, "1.5", "0"},
 };
 
 void checkAgainstBaseline(const RenderCase& c) {
@@ -92,6 +96,7 @@ void checkAgainstBaseline(const RenderCase& c) {
       c.corpus ? gs::test::corpusDir() / c.world : gs::test::sourceDir() / c.world;
   std::vector<std::string> args = {"--size", "300x300", world.string()};
   if (c.time != nullptr) args.insert(args.end(), {"--time", c.time});
+  if (c.loadTime != nullptr) args.insert(args.end(), {"--load-time", c.loadTime});
   gs::test::checkBaseline(c.name, args);
 }
 

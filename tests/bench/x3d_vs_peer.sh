@@ -12,7 +12,8 @@
 #   0 0 10 when it has none, as VRML's); issue 41's judge of X3D 4.
 # TIMES: the simulated times to compare, e.g. "0 2.5" (default "0"): X_ITE loads at SFTime
 #   720720 = lcm(1..16) and runs T seconds in fixed steps, so a looping TimeSensor is at the
-#   phase `ghostspace --time T` gives.
+#   phase `ghostspace --time T` gives; against X_ITE ours is loaded there too
+#   (`--load-time 720720 --time 720720+T`), so what runs from the load has run as long.
 #
 # For each .x3d / .x3dv / .x3dz / .x3dvz (and, for X_ITE, .x3dj) file below
 # ../shared/corpus/x3d and each T:
@@ -75,7 +76,11 @@ for time in $times; do
     total=$((total + 1))
     ours=$out/$key.ours.png
     theirs=$out/$key.$peer.png
-    timeout 60 "$ghostspace" --snapshot "$ours" --size "$size" --time "$time" "${camera[@]}" \
+    # X_ITE's picture at T is of a world loaded T seconds before, at SFTime 720720: ours too
+    # (--load-time), so particles, followers and physics have run as long.
+    when=(--time "$time")
+    [ "$peer" = xite ] && when=(--load-time 720720 --time "$(awk -v t="$time" 'BEGIN { printf "%.6f", 720720 + t }')")
+    timeout 60 "$ghostspace" --snapshot "$ours" --size "$size" "${when[@]}" "${camera[@]}" \
       "$world" > /dev/null 2>&1 || true
     peer_shot "$world" "$time" "$theirs"
     if [ ! -s "$ours" ] || [ ! -s "$theirs" ]; then

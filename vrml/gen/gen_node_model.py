@@ -179,6 +179,14 @@ CASTLE_PRIMITIVE_FIELDS = {
 }
 
 
+# X3D 4.1 fields X_ITE 15 reads on X3D 4.0 nodes (the 4.1 draft's interfaces; X3DUOM 4.0
+# lacks them): BoundedPhysicsModel's `damping` (clause 40.4.1 of the 4.1 draft: the factor
+# a bounce keeps of the speed), which X_ITE's Waterfall test world sets.
+X3D41_FIELDS = {
+    "BoundedPhysicsModel": [("damping", "SFFloat", "inputOutput", "1", "")],
+}
+
+
 def add_castle_fields(concrete, extra):
     """Appends castle-engine's extension fields `extra` (node name -> field rows) to the
     models in `concrete`; a field the standard already declares is an error."""
@@ -238,6 +246,7 @@ def read_uom(path):
         if c["name"] in SINGLE_TEXTURE_TRANSFORMS:
             c["bases"] = ["X3DSingleTextureTransformNode"]
     add_castle_fields(concrete, CASTLE_PRIMITIVE_FIELDS)
+    add_castle_fields(concrete, X3D41_FIELDS)
     return abstract, concrete
 
 

@@ -241,6 +241,7 @@ constexpr NodeFieldModel kFieldsBoundedPhysicsModel[] = {
     F{"enabled", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"geometry", "SFNode", "inputOutput", "NULL", "X3DGeometryNode", AbstractTypeSet{0x0000000000200000ULL, 0x0000000000000000ULL}, {}},
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
+    F{"damping", "SFFloat", "inputOutput", "1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
 };
 constexpr NodeFieldModel kFieldsBox[] = {
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},

@@ -135,6 +135,16 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::SplinePositionInterpolator2D,
     NodeTypeId::SplineScalarInterpolator,
     NodeTypeId::SquadOrientationInterpolator,
+    NodeTypeId::ParticleSystem,  // particles/, runtime/src/particle_systems.cpp, scene/
+    NodeTypeId::ConeEmitter,
+    NodeTypeId::ExplosionEmitter,
+    NodeTypeId::PointEmitter,
+    NodeTypeId::PolylineEmitter,
+    NodeTypeId::SurfaceEmitter,
+    NodeTypeId::VolumeEmitter,
+    NodeTypeId::ForcePhysicsModel,
+    NodeTypeId::WindPhysicsModel,
+    NodeTypeId::BoundedPhysicsModel,
     NodeTypeId::LayerSet,  // scene/src/traversal.cpp, render/src/scene_renderer.cpp
     NodeTypeId::Layer,
     NodeTypeId::Viewport,

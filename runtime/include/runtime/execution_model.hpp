@@ -7,6 +7,7 @@
 #pragma once
 
 #include "base/fetch.hpp"
+#include "particles/particle_system.hpp"
 #include "runtime/clock.hpp"
 #include "runtime/keys.hpp"
 #include "runtime/media_time.hpp"
@@ -186,6 +187,9 @@ class ExecutionModel final : public ScriptContext {
   /// media(node)->mediaTime when `node` is a media node of this world: the seconds into
   /// the clip to show or play now.
   std::optional<double> mediaTime(const vrml::Node& node) const;
+  /// The simulation of ParticleSystem `node` of this world (X3D 4.0 clause 40; moved by
+  /// every advanceTo(), runtime/src/particle_systems.cpp), or null when `node` is none.
+  const particles::ParticleSimulation* particleSimulation(const vrml::Node& node) const;
 
   /// X3D LoadSensor (X3D 4.0 clause 9.4.3, runtime/src/load_sensors.cpp): whoever loads
   /// `node`'s url (session::WorldRuntimes for Inlines and textures; setMediaDuration for

@@ -28,15 +28,16 @@ enum class NodeKind : std::uint8_t {
   NavigationInfo,
   Background,
   Fog,
-  LocalFog,       // X3D EnvironmentalEffects: fogs its siblings and their descendants
-  CADFace,        // X3D CADGeometry: its `shape` field is drawn
-  LayerSet,       // X3D Layering (clause 35): drawn at the world's root only
-  Layer,          // X3D Layering: one of a LayerSet's `layers`
-  HAnimHumanoid,  // X3D H-Anim (clause 26): its `skeleton` and `skin` in its own coordinates
-  ScreenGroup,    // X3D Layout (clause 36): children in pixels of the view
-  LayoutGroup,    // X3D Layout: children placed by its Layout in the enclosing rectangle
-  LayoutLayer,    // X3D Layout: a layer of a LayerSet, seen by its own orthographic view
-  OutlineGroup,   // GhostSpace extensions (docs/vrml-extensions.md)
+  LocalFog,        // X3D EnvironmentalEffects: fogs its siblings and their descendants
+  CADFace,         // X3D CADGeometry: its `shape` field is drawn
+  LayerSet,        // X3D Layering (clause 35): drawn at the world's root only
+  Layer,           // X3D Layering: one of a LayerSet's `layers`
+  HAnimHumanoid,   // X3D H-Anim (clause 26): its `skeleton` and `skin` in its own coordinates
+  ScreenGroup,     // X3D Layout (clause 36): children in pixels of the view
+  LayoutGroup,     // X3D Layout: children placed by its Layout in the enclosing rectangle
+  LayoutLayer,     // X3D Layout: a layer of a LayerSet, seen by its own orthographic view
+  ParticleSystem,  // X3D ParticleSystems (clause 40): a shape whose geometry is its particles
+  OutlineGroup,    // GhostSpace extensions (docs/vrml-extensions.md)
   QuantizedNormalVectors,
 };
 

@@ -28,7 +28,15 @@
 #include <unordered_set>
 #include <vector>
 
+namespace gs::particles {
+class ParticleSimulation;
+}
+
 namespace gs::scene {
+
+/// The simulation of a ParticleSystem node (runtime::ExecutionModel::particleSimulation),
+/// or null when none runs it.
+using ParticleSource = std::function<const particles::ParticleSimulation*(const vrml::Node&)>;
 
 enum class LightType : std::uint8_t { directional, point, spot };
 
@@ -323,6 +331,10 @@ class SceneTraversal {
   /// scene is closer than that), far = visibilityLimit, or just beyond the scene's
   /// bounding sphere when that is 0. Computes worldBounds() (loading Inlines).
   Camera viewpointCamera(std::size_t index);
+  /// Where ParticleSystems' particles come from (X3D 4.0 clause 40; session::WorldView
+  /// gives the world's execution model). Without one a ParticleSystem draws nothing.
+  void setParticleSource(ParticleSource source) { particleSource_ = std::move(source); }
+
   /// The camera of the bound Viewpoint (the first one until setBoundNodes() says
   /// otherwise), or the default one.
   Camera boundViewpointCamera() { return viewpointCamera(boundViewpoint_); }
@@ -412,6 +424,13 @@ class SceneTraversal {
   void findBindables();
   const InlineScene* inlineScene(const vrml::Node& inlineNode, const std::string& baseUrl);
   CachedMesh& cachedMesh(const vrml::Node& geometry);
+  /// The geometry node that stands for ParticleSystem `system`'s particles drawn as its
+  /// geometryType (not GEOMETRY) seen with `localToEye` (the modelview), its mesh made
+  /// (particles/particle_mesh.hpp) and put in the tessellation cache; null when no
+  /// simulation runs it (scene/src/traversal_particles.cpp).
+  const vrml::Node* particleGeometry(const vrml::Node& system,
+                                     const particles::ParticleSimulation& simulation,
+                                     const glm::mat4& localToEye);
   /// The groupIds (>= 0) of the OutlineGroups of `scene` that have children, computed
   /// once per scene (every node reachable from its root nodes).
   const std::unordered_set<std::int32_t>& filledGroups(const vrml::Scene& scene);
@@ -433,6 +452,15 @@ class SceneTraversal {
   std::vector<std::shared_ptr<const vrml::Scene>> inlineScenesLoaded_;
   std::size_t boundViewpoint_ = 0;
   std::optional<BoundNodes> runtimeBound_;  // set: the execution model decides
+  ParticleSource particleSource_;
+  /// Per ParticleSystem: the node its mesh is cached under and what that mesh was made of.
+  struct ParticleDraw {
+    vrml::NodePtr geometry;
+    std::uint64_t simulationRevision = ~std::uint64_t{0};
+    glm::mat3 eyeToLocal{0.0f};
+    int type = -1;
+  };
+  vrml::NodeMap<ParticleDraw> particleDraws_;
   std::uint64_t boundRevision_ = 0;
   std::uint64_t tessellations_ = 0;
   vrml::Bounds worldBounds_;

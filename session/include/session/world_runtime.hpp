@@ -21,10 +21,13 @@ namespace gs::session {
 /// --time, --time-step, --trace-events and the Script limits (README.md, "Animation,
 /// interaction and Scripts").
 struct RuntimeOptions {
-  bool set = false;          // --time was given
-  double start = 0.0;        // T or T0: SFTime seconds (since 1970-01-01 UTC)
-  double interval = 0.0;     // DT of T0:DT:N, seconds between frames
-  int frames = 1;            // N of T0:DT:N; 1 for a single time
+  bool set = false;       // --time was given
+  double start = 0.0;     // T or T0: SFTime seconds (since 1970-01-01 UTC)
+  double interval = 0.0;  // DT of T0:DT:N, seconds between frames
+  int frames = 1;         // N of T0:DT:N; 1 for a single time
+  /// --load-time S: SFTime the worlds load at with --snapshot, then run to T (or T0) at
+  /// the fixed step; negative: they load at T (T0). Never after T.
+  double load = -1.0;
   double step = 1.0 / 60.0;  // --time-step S: the cascade's fixed step, seconds, > 0
   std::string traceFile;     // --trace-events FILE: one JSON line per event
   bool scripts = true;       // --no-scripts: Script nodes do not run
@@ -97,6 +100,9 @@ class WorldRuntimes {
   render::MediaClock mediaClock(const vrml::Scene* scene) const;
   void setMediaDurations(const vrml::Scene* scene,
                          const std::vector<std::pair<const vrml::Node*, double>>& durations);
+  /// ParticleSystems (X3D 4.0 clause 40): where a traversal of `scene` finds their
+  /// particles (runtime::ExecutionModel::particleSimulation; none before the world runs).
+  scene::ParticleSource particleSource(const vrml::Scene* scene) const;
   /// Whether any world may change without input (runtime::ExecutionModel::animating:
   /// an active TimeSensor or media node, a Script with pending work, a LoadSensor's
   /// timeOut still to pass): the window keeps drawing while true.
