@@ -3,6 +3,7 @@
 #include "geometry/geometry.hpp"
 
 #include "geometry_internal.hpp"
+#include "vrml/geo_nodes.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -117,6 +118,15 @@ std::span<const glm::vec3> coordPoints(const Node& geometry, std::vector<glm::ve
   if (f->type() == FieldType::MFVec3f) return f->get<FieldType::MFVec3f>();
   if (f->type() != FieldType::MFVec3d) return {};
   const auto& d = f->get<FieldType::MFVec3d>();
+  if (coord->typeId() == NodeTypeId::GeoCoordinate) {
+    // X3D 4.0 clause 25.4.2: geo coordinates of its geoSystem, made local (its geoOrigin).
+    const geospatial::GeoSystem system = geoSystemOf(*coord);
+    const geospatial::LocalFrame frame = geoFrameOf(*coord);
+    scratch.resize(d.size());
+    for (std::size_t i = 0; i < d.size(); ++i)
+      scratch[i] = glm::vec3(geospatial::toLocal(frame, geospatial::toGeocentric(system, d[i])));
+    return scratch;
+  }
   scratch.assign(d.begin(), d.end());  // glm converts dvec3 -> vec3 explicitly per element
   return scratch;
 }
@@ -322,6 +332,7 @@ Mesh tessellate(const Node& geometry, Diagnostics* diag) {
       m = tessellatePointSet(geometry, log);
       break;
     case NodeTypeId::ElevationGrid:
+    case NodeTypeId::GeoElevationGrid:
       m = tessellateElevationGrid(geometry, log);
       break;
     case NodeTypeId::Extrusion:

@@ -3,6 +3,8 @@
 // buildPolygonMesh, so creaseAngle, ccw and degenerate quads behave as in IndexedFaceSet.
 #include "geometry_internal.hpp"
 
+#include "vrml/geo_nodes.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -33,32 +35,64 @@ bool positiveSpacing(float v, const char* name, ProblemLog& log) {
 }  // namespace
 
 Mesh tessellateElevationGrid(const Node& node, ProblemLog& log) {
+  // X3D's GeoElevationGrid (clause 25.4.3): the same grid in geo coordinates, its spacings
+  // and heights doubles, each point converted to local coordinates (vrml/geo_nodes.hpp).
+  const bool geo = node.typeId() == NodeTypeId::GeoElevationGrid;
   const std::int32_t xDim = node.get<FieldType::SFInt32>("xDimension", 0);
   const std::int32_t zDim = node.get<FieldType::SFInt32>("zDimension", 0);
-  const float xSpacing = node.get<FieldType::SFFloat>("xSpacing", 1.0f);
-  const float zSpacing = node.get<FieldType::SFFloat>("zSpacing", 1.0f);
-  const auto& height = fieldOr<FieldType::MFFloat>(node, "height");
+  const double xSpacing = geo ? node.get<FieldType::SFDouble>("xSpacing", 1.0)
+                              : node.get<FieldType::SFFloat>("xSpacing", 1.0f);
+  const double zSpacing = geo ? node.get<FieldType::SFDouble>("zSpacing", 1.0)
+                              : node.get<FieldType::SFFloat>("zSpacing", 1.0f);
+  const auto& floatHeight = fieldOr<FieldType::MFFloat>(node, "height");
+  const auto& doubleHeight = fieldOr<FieldType::MFDouble>(node, "height");
+  const std::size_t heights = geo ? doubleHeight.size() : floatHeight.size();
+  const auto height = [&](std::size_t k) {
+    return geo ? doubleHeight[k] : static_cast<double>(floatHeight[k]);
+  };
   if (xDim < 0 || zDim < 0) log.add("xDimension and zDimension must be >= 0");
   if (xDim < 2 || zDim < 2) return {};
-  if (!positiveSpacing(xSpacing, "xSpacing", log) || !positiveSpacing(zSpacing, "zSpacing", log))
+  if (!positiveSpacing(static_cast<float>(xSpacing), "xSpacing", log) ||
+      !positiveSpacing(static_cast<float>(zSpacing), "zSpacing", log))
     return {};
 
   // Use only the rows the height array really has (never trust xDimension * zDimension).
   const auto nx = static_cast<std::size_t>(xDim);
   std::size_t nz = static_cast<std::size_t>(zDim);
-  if (static_cast<std::uint64_t>(xDim) * static_cast<std::uint64_t>(zDim) > height.size()) {
-    log.add("height has " + std::to_string(height.size()) + " values but xDimension * " +
+  if (static_cast<std::uint64_t>(xDim) * static_cast<std::uint64_t>(zDim) > heights) {
+    log.add("height has " + std::to_string(heights) + " values but xDimension * " +
             "zDimension = " + std::to_string(static_cast<std::int64_t>(xDim) * zDim) +
             "; only complete rows are used");
-    nz = height.size() / nx;
+    nz = heights / nx;
     if (nz < 2) return {};
   }
 
   std::vector<glm::vec3> points(nx * nz);
-  for (std::size_t j = 0; j < nz; ++j)
-    for (std::size_t i = 0; i < nx; ++i)
-      points[i + j * nx] = {xSpacing * static_cast<float>(i), height[i + j * nx],
-                            zSpacing * static_cast<float>(j)};
+  if (geo) {
+    // Columns go east (longitude, easting), rows north (latitude, northing), heights are
+    // elevations times yScale; the standard order puts latitude or northing first.
+    const geospatial::GeoSystem system = geoSystemOf(node);
+    const geospatial::LocalFrame frame = geoFrameOf(node);
+    const glm::dvec3 origin = node.get<FieldType::SFVec3d>("geoGridOrigin", glm::dvec3(0.0));
+    const double yScale = node.get<FieldType::SFFloat>("yScale", 1.0f);
+    for (std::size_t j = 0; j < nz; ++j)
+      for (std::size_t i = 0; i < nx; ++i) {
+        const double east = static_cast<double>(i) * xSpacing;
+        const double north = static_cast<double>(j) * zSpacing;
+        const glm::dvec3 at = system.standardOrder ? origin + glm::dvec3(north, east, 0.0)
+                                                   : origin + glm::dvec3(east, north, 0.0);
+        const glm::dvec3 p = geospatial::toLocal(
+            frame,
+            geospatial::toGeocentric(system, {at.x, at.y, origin.z + height(i + j * nx) * yScale}));
+        points[i + j * nx] = glm::vec3(p);
+      }
+  } else {
+    for (std::size_t j = 0; j < nz; ++j)
+      for (std::size_t i = 0; i < nx; ++i)
+        points[i + j * nx] = {static_cast<float>(xSpacing * static_cast<double>(i)),
+                              static_cast<float>(height(i + j * nx)),
+                              static_cast<float>(zSpacing * static_cast<double>(j))};
+  }
 
   PolygonSoup soup = polygonSoupOf(node, points);
   const ColorSource colors(node);  // Color or X3D ColorRGBA
@@ -84,8 +118,12 @@ Mesh tessellateElevationGrid(const Node& node, ProblemLog& log) {
   bool skipped = false;
   for (std::size_t j = 0; j + 1 < nz; ++j) {
     for (std::size_t i = 0; i + 1 < nx; ++i) {
-      // Counterclockwise seen from +Y: normals point up when ccw is TRUE.
-      const std::size_t ci[4] = {i, i, i + 1, i + 1}, cj[4] = {j, j + 1, j + 1, j};
+      // Counterclockwise seen from +Y: normals point up when ccw is TRUE (a geo grid's rows
+      // go north, -Z in the up frame: its corners go the other way round).
+      const std::size_t plainI[4] = {i, i, i + 1, i + 1}, plainJ[4] = {j, j + 1, j + 1, j};
+      const std::size_t geoI[4] = {i, i + 1, i + 1, i}, geoJ[4] = {j, j, j + 1, j + 1};
+      const std::size_t* ci = geo ? geoI : plainI;
+      const std::size_t* cj = geo ? geoJ : plainJ;
       const auto id = [&](int c) { return static_cast<std::uint32_t>(ci[c] + cj[c] * nx); };
       if (!addFace(soup, {id(0), id(1), id(2), id(3)})) {
         skipped = true;

@@ -2,6 +2,7 @@
 // the sensors' coordinate systems; X3D's TransformSensor (X3D 4.0 clause 22.4.3): a target
 // node's coordinate system against the box. Evaluated once a frame when the world has any.
 #include "execution_state.hpp"
+#include "vrml/geo_nodes.hpp"
 
 #include "vrml/transform.hpp"
 
@@ -102,6 +103,11 @@ void ExecutionModel::State::evaluateEnvironmentSensors() {
         ns.lastOrientation = r;
         emitOwn(ns, idx("position_changed"), FieldValue::make<FieldType::SFVec3f>(local));
         emitOwn(ns, idx("orientation_changed"), FieldValue::make<FieldType::SFRotation>(r));
+        if (n.typeId() == vrml::NodeTypeId::GeoProximitySensor)  // X3D 4.0 25.4.7
+          emitOwn(ns, idx("geoCoord_changed"),
+                  FieldValue::make<FieldType::SFVec3d>(geospatial::fromGeocentric(
+                      vrml::geoSystemOf(n),
+                      geospatial::fromLocal(vrml::geoFrameOf(n), glm::dvec3(local)))));
       }
     }
   };
@@ -113,7 +119,12 @@ void ExecutionModel::State::evaluateEnvironmentSensors() {
     if (!viewer) return;
     const vrml::Node& n = *ns.node;
     const bool enabled = n.get<FieldType::SFBool>("enabled", true);
-    const glm::vec3 center = vec3Field(n, "center"), size = vec3Field(n, "size");
+    glm::vec3 center = vec3Field(n, "center");
+    const glm::vec3 size = vec3Field(n, "size");
+    if (n.typeId() == vrml::NodeTypeId::GeoProximitySensor)  // its box centred at geoCenter
+      if (const glm::dvec3 g = n.get<FieldType::SFVec3d>("geoCenter", glm::dvec3(0.0));
+          g != glm::dvec3(0.0))
+        center = glm::vec3(vrml::geoToLocal(n, g));
     bool inside = false;
     glm::vec3 local(0.0f);
     glm::quat localOrientation(1.0f, 0.0f, 0.0f, 0.0f);
@@ -156,7 +167,8 @@ void ExecutionModel::State::evaluateEnvironmentSensors() {
           } else if (c->is(vrml::AbstractType::X3DGroupingNode)) {
             walk(c->mfnode("children"), m, depth + 1);
           } else if (type == NodeTypeId::ProximitySensor || type == NodeTypeId::VisibilitySensor ||
-                     type == NodeTypeId::TransformSensor) {
+                     type == NodeTypeId::TransformSensor ||
+                     type == NodeTypeId::GeoProximitySensor) {
             const auto it = nodes.find(c.get());
             if (it != nodes.end()) sensor(*it->second, m);
           }

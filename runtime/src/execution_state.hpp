@@ -39,6 +39,7 @@ enum class NodeRole : std::uint8_t {
   loadSensor,       // X3D LoadSensor (X3D 4.0 clause 9.4.3): load_sensors.cpp
   // X3D NURBS interpolators (X3D 4.0 27.4.5, 27.4.6, 27.4.9): interpolators_nurbs.cpp
   nurbsInterpolator,
+  geoInterpolator,  // X3D GeoPositionInterpolator (X3D 4.0 25.4.9): geo_interpolator.cpp
 };
 
 /// The X3D event-utility nodes (X3D 4.0 clause 30).
@@ -385,6 +386,11 @@ struct ExecutionModel::State {
   /// set_fraction `value` of a NURBS interpolator: value_changed (position_changed and
   /// normal_changed), or one error for the node (its fields make no curve) and no output.
   void deliverNurbsInterpolator(NodeState& ns, vrml::FieldValue value);
+
+  // ---- GeoPositionInterpolator (geo_interpolator.cpp) ----
+  bool classifyGeoInterpolator(NodeState& ns);
+  /// set_fraction of a GeoPositionInterpolator: geovalue_changed and value_changed.
+  void deliverGeoInterpolator(NodeState& ns, const vrml::FieldValue& value);
 
   // ---- ParticleSystem (particle_systems.cpp) ----
   /// Makes `ns` a particle system when it is a ParticleSystem (its events stay plain).

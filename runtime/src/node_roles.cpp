@@ -56,6 +56,7 @@ std::optional<BindableKind> bindableKind(vrml::NodeTypeId id) {
   switch (id) {
     case NodeTypeId::Viewpoint:
     case NodeTypeId::OrthoViewpoint:  // X3D: one viewpoint stack (clause 23.2.1)
+    case NodeTypeId::GeoViewpoint:
       return BindableKind::Viewpoint;
     case NodeTypeId::NavigationInfo:
       return BindableKind::NavigationInfo;
@@ -123,6 +124,7 @@ void ExecutionModel::State::classify(NodeState& ns) {
   if (classifyKeySensor(ns)) return;
   if (classifyLoadSensor(ns)) return;
   if (classifyNurbsInterpolator(ns)) return;
+  if (classifyGeoInterpolator(ns)) return;
   if (id == NodeTypeId::TimeSensor) {
     ns.role = NodeRole::timeSensor;
     TimeSensorFields& f = ns.timeFields;
@@ -163,8 +165,9 @@ void ExecutionModel::State::classify(NodeState& ns) {
     return;
   }
   if (id == NodeTypeId::ProximitySensor || id == NodeTypeId::VisibilitySensor ||
-      id == NodeTypeId::TransformSensor) {
-    ns.role = id == NodeTypeId::ProximitySensor    ? NodeRole::proximity
+      id == NodeTypeId::TransformSensor || id == NodeTypeId::GeoProximitySensor) {
+    ns.role = id == NodeTypeId::ProximitySensor || id == NodeTypeId::GeoProximitySensor
+                  ? NodeRole::proximity
               : id == NodeTypeId::VisibilitySensor ? NodeRole::visibility
                                                    : NodeRole::transformSensor;
     if (ns.role == NodeRole::transformSensor) transformSensors.push_back(&ns);
@@ -352,6 +355,12 @@ void ExecutionModel::State::deliver(NodeState& ns, int field, vrml::FieldValue v
         return;
       }
       break;  // order, knot, weight, controlPoint: exposedFields
+    case NodeRole::geoInterpolator:
+      if (field == ns.setFraction) {
+        deliverGeoInterpolator(ns, value);
+        return;
+      }
+      break;  // key, keyValue: exposedFields
     case NodeRole::plain:
     case NodeRole::transformSensor:
     case NodeRole::proximity:

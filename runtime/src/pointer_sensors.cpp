@@ -9,6 +9,7 @@
 // (a plane, a sphere, a cylinder or disk fixed at activation) even off the real geometry.
 // Every pointer() call is one timestamp at the clock's now().
 #include "execution_state.hpp"
+#include "vrml/geo_nodes.hpp"
 
 #include <glm/gtc/quaternion.hpp>
 
@@ -29,6 +30,7 @@ bool sensorKindOf(const vrml::Node& n, SensorKind& kind) {
   using vrml::NodeTypeId;
   switch (n.typeId()) {
     case NodeTypeId::TouchSensor:
+    case NodeTypeId::GeoTouchSensor:  // X3D 4.0 25.4.11: and hitGeoCoord_changed
       kind = SensorKind::touch;
       return true;
     case NodeTypeId::PlaneSensor:
@@ -240,6 +242,13 @@ struct PointerRun {
     send(*sensor.ns, "hitPoint_changed", FieldValue::make<FieldType::SFVec3f>(point));
     send(*sensor.ns, "hitNormal_changed", FieldValue::make<FieldType::SFVec3f>(normal));
     send(*sensor.ns, "hitTexCoord_changed", FieldValue::make<FieldType::SFVec2f>(hit.texCoord));
+    if (sensor.ns->node->typeId() == vrml::NodeTypeId::GeoTouchSensor) {
+      // The hit point's geo coordinates in the sensor's geoSystem (its geoOrigin's frame).
+      const vrml::Node& n = *sensor.ns->node;
+      const glm::dvec3 geo = geospatial::fromGeocentric(
+          vrml::geoSystemOf(n), geospatial::fromLocal(vrml::geoFrameOf(n), glm::dvec3(point)));
+      send(*sensor.ns, "hitGeoCoord_changed", FieldValue::make<FieldType::SFVec3d>(geo));
+    }
   }
 
   /// TouchSensors' isOver (and hit events) when no sensor holds the pointer.

@@ -47,6 +47,10 @@ void fitClipPlanes(Camera& camera, const vrml::Bounds& bounds, float maxNear) {
   const float farClip = (distance + radius) * 1.05f;
   float nearClip = std::max((distance - radius) * 0.95f, farClip / 10000.0f);
   if (maxNear > 0.0f) nearClip = std::min(nearClip, maxNear);
+  // A 24-bit depth buffer tells depths apart only while far / near stays well below 2^24:
+  // a world of Earth's size (X3D Geospatial) seen from orbit would have every depth round
+  // to the far plane's. At most 1e6, the near plane moved out.
+  nearClip = std::max(nearClip, farClip / kMaxFarNearRatio);
   camera.nearClip = nearClip;
   camera.farClip = std::max(farClip, nearClip * 2.0f);
 }

@@ -26,6 +26,9 @@ NodeKind nodeKind(const vrml::Node& node) {
     case NodeTypeId::HAnimJoint:
     case NodeTypeId::HAnimSegment:
     case NodeTypeId::HAnimSite:
+    // X3D Geospatial (clause 25): their frames are vrml::transformMatrix's too.
+    case NodeTypeId::GeoLocation:
+    case NodeTypeId::GeoTransform:
       return NodeKind::Transform;
     case NodeTypeId::HAnimHumanoid:
       return NodeKind::HAnimHumanoid;
@@ -51,6 +54,8 @@ NodeKind nodeKind(const vrml::Node& node) {
       return NodeKind::Shape;
     case NodeTypeId::ParticleSystem:
       return NodeKind::ParticleSystem;
+    case NodeTypeId::GeoLOD:
+      return NodeKind::GeoLOD;
     case NodeTypeId::DirectionalLight:
       return NodeKind::DirectionalLight;
     case NodeTypeId::PointLight:
@@ -63,6 +68,7 @@ NodeKind nodeKind(const vrml::Node& node) {
       return NodeKind::ClipPlane;
     case NodeTypeId::Viewpoint:
     case NodeTypeId::OrthoViewpoint:  // Camera::orthographic (X3D 4.0 clause 23.4.5)
+    case NodeTypeId::GeoViewpoint:    // geo position, orientation in its up frame (25.4.10)
       return NodeKind::Viewpoint;
     case NodeTypeId::NavigationInfo:
       return NodeKind::NavigationInfo;

@@ -2,6 +2,7 @@
 #include "scene/traversal.hpp"
 
 #include "particles/particle_system.hpp"
+#include "vrml/geo_nodes.hpp"
 
 #include "scene/layout.hpp"
 
@@ -272,6 +273,33 @@ struct SceneTraversal::Walk {
     const vrml::NodePtr geometry = n.sfnode("geometry");
     if (!geometry || geometry->unresolved) return;
     addShape(n, *geometry, m, baseUrl);
+  }
+
+  /// A GeoLOD (X3D 4.0 clause 25.4.4): within `range` metres of its center the worlds of
+  /// child1Url ... child4Url once all four have loaded (each shown as an Inline), else its
+  /// rootNode, or the world of rootUrl.
+  void geoLod(const vrml::Node& n, const glm::mat4& m, const std::string* baseUrl) {
+    const glm::vec3 center =
+        glm::vec3(vrml::geoToLocal(n, n.get<vrml::FieldType::SFVec3d>("center", glm::dvec3(0.0))));
+    const glm::vec3 viewer = glm::vec3(glm::inverse(m) * glm::vec4(viewerPosition, 1.0f));
+    if (glm::length(viewer - center) < sfFloat(n, "range", 10.0f)) {
+      bool loaded = true;
+      for (int k = 1; k <= 4; ++k) {
+        const vrml::Node& child = self.geoLodInline(n, k);
+        if (mfString(child, "url").empty()) continue;
+        const InlineScene* inl = self.inlineScene(child, n.urlBaseOr(*baseUrl));
+        loaded = loaded && inl != nullptr && inl->scene != nullptr;
+      }
+      if (loaded) {
+        for (int k = 1; k <= 4; ++k) node(self.geoLodInline(n, k), m, baseUrl);
+        return;
+      }
+    }
+    if (const auto& root = n.mfnode("rootNode"); !root.empty()) {
+      group(&n, root, m, baseUrl, nullptr);
+      return;
+    }
+    node(self.geoLodInline(n, 0), m, baseUrl);
   }
 
   /// A ParticleSystem (X3D 4.0 clause 40): a shape of its appearance whose geometry is its
@@ -546,6 +574,9 @@ struct SceneTraversal::Walk {
         break;
       case NodeKind::ParticleSystem:
         particleSystem(n, m, baseUrl);
+        break;
+      case NodeKind::GeoLOD:
+        geoLod(n, m, baseUrl);
         break;
       case NodeKind::QuantizedNormalVectors:
         frame.splats.push_back({&n, m, &n.urlBaseOr(*baseUrl)});  // its file's base

@@ -4,6 +4,7 @@
 #include "scene/node_access.hpp"
 #include "scene/node_kind.hpp"
 #include "scene/traversal.hpp"
+#include "vrml/geo_nodes.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -99,8 +100,17 @@ void SceneTraversal::findBindables() {
           info.description = "Viewpoint " + std::to_string(viewpoints_.size() + 1);
         info.camera.position =
             glm::vec3(m * glm::vec4(sfVec3(n, "position", glm::vec3(0, 0, 10)), 1.0f));
-        const glm::quat local = glm::quat_cast(
+        glm::quat local = glm::quat_cast(
             glm::mat3(rotationMatrix(sfRotation(n, "orientation", vrml::Rotation(0, 0, 1, 0)))));
+        if (n.typeId() == vrml::NodeTypeId::GeoViewpoint) {
+          // X3D 4.0 clause 25.4.10: a geo position; the orientation is relative to the up
+          // frame there (+Y up, +X east), as X_ITE turns it.
+          const glm::dvec3 geo =
+              n.get<vrml::FieldType::SFVec3d>("position", glm::dvec3(0.0, 0.0, 100000.0));
+          const glm::dmat4 location = vrml::geoLocationMatrix(n, geo);
+          info.camera.position = glm::vec3(m * glm::vec4(glm::vec3(location[3]), 1.0f));
+          local = glm::normalize(glm::quat_cast(glm::mat3(location)) * local);
+        }
         info.camera.orientation = glm::normalize(glm::quat_cast(rotationPart(m)) * local);
         if (n.typeId() == vrml::NodeTypeId::OrthoViewpoint) {
           // X3D 4.0 clause 23.4.5: fieldOfView (minX, minY, maxX, maxY), default -1 -1 1 1.

@@ -87,6 +87,10 @@ const RenderCase kCases[] = {
     // X3D particle systems (docs/x3d.md) 1.5 s after the load: SPRITE with a colour ramp and
     // wind, LINE falling and bouncing, POINT in a volume, QUAD from a surface, GEOMETRY.
     {"particles_t1.5", "assets/worlds/particles.x3dv", false, "1.5", "0"},
+    // X3D Geospatial (docs/x3d.md): X_ITE's YUp test, a GD globe (GeoElevationGrid), UTM
+    // grids in both orders, a GeoTransform, seen from a GeoViewpoint 10,000 km up in a
+    // rotateYUp GeoOrigin's frame.
+    {"geospatial_yup", "x3d/create3000/Tests/Components/Geospatial/YUp.x3d", true},
 };
 
 void checkAgainstBaseline(const RenderCase& c) {

@@ -135,6 +135,17 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::SplinePositionInterpolator2D,
     NodeTypeId::SplineScalarInterpolator,
     NodeTypeId::SquadOrientationInterpolator,
+    NodeTypeId::GeoCoordinate,  // geospatial/, vrml/geo_nodes.hpp: clause 25
+    NodeTypeId::GeoElevationGrid,
+    NodeTypeId::GeoLOD,  // scene/src/traversal.cpp
+    NodeTypeId::GeoLocation,
+    NodeTypeId::GeoMetadata,
+    NodeTypeId::GeoOrigin,
+    NodeTypeId::GeoPositionInterpolator,  // runtime/src/geo_interpolator.cpp
+    NodeTypeId::GeoProximitySensor,
+    NodeTypeId::GeoTouchSensor,
+    NodeTypeId::GeoTransform,
+    NodeTypeId::GeoViewpoint,
     NodeTypeId::ParticleSystem,  // particles/, runtime/src/particle_systems.cpp, scene/
     NodeTypeId::ConeEmitter,
     NodeTypeId::ExplosionEmitter,

@@ -1,5 +1,7 @@
 #include "vrml/transform.hpp"
 
+#include "vrml/geo_nodes.hpp"
+
 #include <glm/gtc/matrix_transform.hpp>
 
 namespace gs::vrml {
@@ -12,6 +14,11 @@ glm::mat4 rotationMatrix(const Rotation& rotation) {
 }
 
 glm::mat4 transformMatrix(const Node& t) {
+  if (t.typeId() == NodeTypeId::GeoLocation)
+    return glm::mat4(geoLocationMatrix(t, t.get<FieldType::SFVec3d>("geoCoords", glm::dvec3(0.0))));
+  glm::dmat4 location(1.0);  // GeoTransform: the transform in the frame at geoCenter
+  if (t.typeId() == NodeTypeId::GeoTransform)
+    location = geoLocationMatrix(t, t.get<FieldType::SFVec3d>("geoCenter", glm::dvec3(0.0)));
   const glm::vec3 translation = t.get<FieldType::SFVec3f>("translation", glm::vec3(0.0f));
   const glm::vec3 center = t.get<FieldType::SFVec3f>("center", glm::vec3(0.0f));
   const glm::vec3 scale = t.get<FieldType::SFVec3f>("scale", glm::vec3(1.0f));
@@ -23,7 +30,10 @@ glm::mat4 transformMatrix(const Node& t) {
   m = m * r * sr;
   m = glm::scale(m, scale);
   m = m * glm::transpose(sr);  // -SR: the inverse of a rotation is its transpose
-  return glm::translate(m, -center);
+  m = glm::translate(m, -center);
+  if (t.typeId() == NodeTypeId::GeoTransform)
+    return glm::mat4(location * glm::dmat4(m) * glm::inverse(location));
+  return m;
 }
 
 }  // namespace gs::vrml

@@ -65,8 +65,10 @@ Camera wholeSceneCamera(const vrml::Bounds& bounds, const Camera& defaults);
 /// Sets `camera`'s near and far planes to enclose the sphere around `bounds` seen from
 /// the camera's position: far just beyond the sphere's far side, near the sphere's near
 /// side (at least far / 10000, so the depth buffer keeps precision; at most `maxNear`
-/// when positive, e.g. NavigationInfo avatarSize[0] / 2). An empty box leaves the
-/// camera unchanged.
+/// when positive, e.g. NavigationInfo avatarSize[0] / 2, but never below far /
+/// kMaxFarNearRatio: a 24-bit depth buffer keeps nothing beyond that). An empty box leaves
+/// the camera unchanged.
+inline constexpr float kMaxFarNearRatio = 1e6f;
 void fitClipPlanes(Camera& camera, const vrml::Bounds& bounds, float maxNear = 0.0f);
 
 /// The navigation types of NavigationInfo (clause 6.29).

@@ -461,6 +461,11 @@ class SceneTraversal {
     int type = -1;
   };
   vrml::NodeMap<ParticleDraw> particleDraws_;
+  /// Per GeoLOD: Inline nodes of its rootUrl and child1Url ... child4Url (what the
+  /// Inline loading reads), made when first met.
+  vrml::NodeMap<std::array<vrml::NodePtr, 5>> geoLodInlines_;
+  /// GeoLOD `n`'s Inline standing for url field `k` (0: rootUrl, 1..4: childKUrl).
+  const vrml::Node& geoLodInline(const vrml::Node& n, int k);
   std::uint64_t boundRevision_ = 0;
   std::uint64_t tessellations_ = 0;
   vrml::Bounds worldBounds_;
