@@ -273,6 +273,7 @@ void ExecutionModel::advanceTo(double time) {
   s_->startNewLoadSensors();  // made since (createVrmlFromString, addChildren)
   s_->evaluateLoadSensors();  // their timeOuts
   s_->evaluateEnvironmentSensors();
+  s_->evaluatePickSensors();
   for (PendingEvent& e : s_->posted) s_->queue.push_back(std::move(e));
   s_->posted.clear();
   s_->runCascade();

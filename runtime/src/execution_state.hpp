@@ -95,6 +95,13 @@ struct SkinState {
   std::vector<float> weight;
 };
 
+/// What an X3D pick sensor last sent (pick_sensors.cpp).
+struct PickSensorState {
+  bool active = false;
+  std::vector<const vrml::Node*> picked;  // the pickTarget members picked
+  std::vector<glm::vec3> points;          // pickedPoint (Point and Line sensors)
+};
+
 /// A ParticleSystem's simulation (particle_systems.cpp).
 struct ParticleSystemState {
   ParticleSystemState(std::uint64_t seed, double loadTime) : simulation(seed, loadTime) {}
@@ -242,6 +249,7 @@ struct NodeState {
   std::unique_ptr<KeySensorState> keys;            // role keySensor
   std::unique_ptr<LoadSensorState> load;           // role loadSensor
   std::unique_ptr<ParticleSystemState> particles;  // a ParticleSystem (role plain)
+  std::unique_ptr<PickSensorState> pick;           // an X3D pick sensor (role plain)
   bool scriptHadEvents = false;
   bool problemReported = false;
 };
@@ -279,6 +287,7 @@ struct ExecutionModel::State {
   std::vector<NodeState*> keySensors;        // KeySensors, StringSensors (key_sensors.cpp)
   std::vector<NodeState*> loadSensors;       // LoadSensors (load_sensors.cpp)
   std::vector<NodeState*> particleSystems;   // ParticleSystems (particle_systems.cpp)
+  std::vector<NodeState*> pickSensors;       // X3D pick sensors (pick_sensors.cpp)
   std::vector<NodeState*> newLoadSensors;    // registered, their first watch not started
   /// What loaders reported of url objects (ExecutionModel::setUrlObjectState).
   std::unordered_map<const vrml::Node*, UrlLoadState> urlStates;
@@ -391,6 +400,13 @@ struct ExecutionModel::State {
   bool classifyGeoInterpolator(NodeState& ns);
   /// set_fraction of a GeoPositionInterpolator: geovalue_changed and value_changed.
   void deliverGeoInterpolator(NodeState& ns, const vrml::FieldValue& value);
+
+  // ---- Picking (pick_sensors.cpp) ----
+  /// Makes `ns` a pick sensor when it is a Point, Line, Primitive or VolumePickSensor.
+  bool classifyPickSensor(NodeState& ns);
+  /// Tests every enabled pick sensor's pickingGeometry against its pickTargets (after
+  /// the time-dependent nodes moved); isActive, pickedGeometry, pickedPoint on change.
+  void evaluatePickSensors();
 
   // ---- ParticleSystem (particle_systems.cpp) ----
   /// Makes `ns` a particle system when it is a ParticleSystem (its events stay plain).

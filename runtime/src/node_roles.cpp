@@ -120,6 +120,7 @@ void ExecutionModel::State::classify(NodeState& ns) {
   if (classifyFollower(ns)) return;
   if (classifySkin(ns)) return;
   if (classifyParticleSystem(ns)) return;
+  if (classifyPickSensor(ns)) return;
   if (classifyHumanoid(ns)) return;
   if (classifyKeySensor(ns)) return;
   if (classifyLoadSensor(ns)) return;

@@ -35,7 +35,7 @@ void runTo(RunningWorld& w, double t) {
   w.model->advanceBy(t - w.model->now(), 1.0 / 60.0);
 }
 
-bool saw(const std::vector<std::string>& events, const std::string& e) {
+bool sawParticleEvent(const std::vector<std::string>& events, const std::string& e) {
   return std::find(events.begin(), events.end(), e) != events.end();
 }
 
@@ -95,7 +95,7 @@ DEF PS ParticleSystem { maxParticles 20 particleLifetime 1 lifetimeVariation 0 }
 )"),
                  0.0);
   runTo(w, 0.5);
-  CHECK(saw(w.take(), "PS.isActive=TRUE"));
+  CHECK(sawParticleEvent(w.take(), "PS.isActive=TRUE"));
   CHECK(particlesOf(w).size() >= 7);  // 20 a second less the dropped remainders
   CHECK(particlesOf(w).size() <= 10);
   // createParticles FALSE: the living live on, the reborn are hidden.
@@ -112,12 +112,12 @@ DEF PS ParticleSystem { maxParticles 20 particleLifetime 1 lifetimeVariation 0 }
   w.send("PS", "enabled", FieldValue::make<FieldType::SFBool>(false));
   runTo(w, 3.6);
   CHECK(particlesOf(w).empty());
-  CHECK(saw(w.take(), "PS.isActive=FALSE"));
+  CHECK(sawParticleEvent(w.take(), "PS.isActive=FALSE"));
   // Enabled again: emission starts from none.
   w.send("PS", "enabled", FieldValue::make<FieldType::SFBool>(true));
   runTo(w, 3.8);
   CHECK(particlesOf(w).size() <= 4);
-  CHECK(saw(w.take(), "PS.isActive=TRUE"));
+  CHECK(sawParticleEvent(w.take(), "PS.isActive=TRUE"));
 }
 
 TEST_CASE("particles: an ExplosionEmitter gives every particle at once, again after a life",

@@ -146,6 +146,11 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::GeoTouchSensor,
     NodeTypeId::GeoTransform,
     NodeTypeId::GeoViewpoint,
+    NodeTypeId::PickableGroup,  // runtime/src/pick_sensors.cpp: X3D clause 38
+    NodeTypeId::PointPickSensor,
+    NodeTypeId::LinePickSensor,
+    NodeTypeId::PrimitivePickSensor,
+    NodeTypeId::VolumePickSensor,
     NodeTypeId::ParticleSystem,  // particles/, runtime/src/particle_systems.cpp, scene/
     NodeTypeId::ConeEmitter,
     NodeTypeId::ExplosionEmitter,

@@ -1,0 +1,304 @@
+// X3D Picking (ISO/IEC 19775-1:2023, X3D 4.0 clause 38): PointPickSensor, LinePickSensor,
+// PrimitivePickSensor and VolumePickSensor test their pickingGeometry, in their own
+// coordinate system, against the shapes under their pickTarget nodes each time the clock
+// moves (after the time-dependent nodes, so a target an interpolator moved is seen where
+// it now is); PickableGroup's `pickable` FALSE hides its shapes from every sensor.
+// intersectionType BOUNDS tests the targets' world bounding boxes, GEOMETRY their
+// triangles: a point is picked inside a closed target (ray parity), a line where it
+// crosses a triangle, a primitive or volume when one of its points lies inside a target,
+// a target's point lies inside it, or one of its edges crosses a target's triangle.
+// sortOrder CLOSEST and ANY keep one target (the nearest to the sensor's origin for
+// CLOSEST), ALL and ALL_SORTED every one (nearest first for ALL_SORTED). Events:
+// isActive when some target is picked or none any more, pickedGeometry (the pickTarget
+// members picked) and pickedPoint (Point and Line sensors, the sensor's coordinates) when
+// they change; LinePickSensor also pickedNormal and pickedTextureCoordinate (0 0 0).
+// objectType and matchCriterion are not used: every pickable target matches.
+#include "execution_state.hpp"
+
+#include "geometry/geometry.hpp"
+#include "vrml/transform.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+
+namespace gs::runtime {
+
+using vrml::FieldType;
+using vrml::FieldValue;
+
+namespace {
+
+/// Triangles visited per sensor and step at most: a hostile world cannot stall a frame.
+constexpr std::size_t kMaxTriangles = 2'000'000;
+
+struct WorldMesh {
+  std::vector<glm::vec3> triangles;  // 3 per triangle, world coordinates
+  std::vector<glm::vec3> points;     // every vertex (points, lines' ends, triangles' corners)
+  std::vector<glm::vec3> segments;   // 2 per line segment
+  vrml::Bounds bounds;
+};
+
+void addMesh(const vrml::Mesh& mesh, const glm::mat4& m, WorldMesh& out) {
+  std::vector<glm::vec3> world(mesh.positions.size());
+  for (std::size_t i = 0; i < world.size(); ++i) {
+    world[i] = glm::vec3(m * glm::vec4(mesh.positions[i], 1.0f));
+    out.bounds.extend(world[i]);
+  }
+  out.points.insert(out.points.end(), world.begin(), world.end());
+  auto& list = mesh.primitive == vrml::Primitive::triangles ? out.triangles : out.segments;
+  if (mesh.primitive == vrml::Primitive::points) return;
+  for (std::uint32_t i : mesh.indices)
+    if (i < world.size() && list.size() < kMaxTriangles * 3) list.push_back(world[i]);
+}
+
+/// Segment p + t (q - p), t in [0, 1], against triangle a b c (both faces): t, or -1.
+float segmentHitsTriangle(const glm::vec3& p, const glm::vec3& q, const glm::vec3& a,
+                          const glm::vec3& b, const glm::vec3& c) {
+  const glm::vec3 d = q - p, e1 = b - a, e2 = c - a;
+  const glm::vec3 h = glm::cross(d, e2);
+  const float det = glm::dot(e1, h);
+  if (std::abs(det) < 1e-20f) return -1.0f;
+  const float inv = 1.0f / det;
+  const glm::vec3 s = p - a;
+  const float u = glm::dot(s, h) * inv;
+  if (u < 0.0f || u > 1.0f) return -1.0f;
+  const glm::vec3 qv = glm::cross(s, e1);
+  const float v = glm::dot(d, qv) * inv;
+  if (v < 0.0f || u + v > 1.0f) return -1.0f;
+  const float t = glm::dot(e2, qv) * inv;
+  return t >= 0.0f && t <= 1.0f ? t : -1.0f;
+}
+
+bool insideBox(const glm::vec3& p, const vrml::Bounds& b) {
+  return !b.empty() && glm::all(glm::greaterThanEqual(p, b.min)) &&
+         glm::all(glm::lessThanEqual(p, b.max));
+}
+
+/// Whether `p` is inside the closed triangle mesh `tris`: crossings of a ray along a fixed,
+/// skew direction are odd.
+bool insideMesh(const glm::vec3& p, const std::vector<glm::vec3>& tris, const vrml::Bounds& b) {
+  if (!insideBox(p, b)) return false;
+  const glm::vec3 far =
+      p + glm::vec3(0.5773f, 0.5774f, 0.5775f) * (glm::length(b.size()) * 4.0f + 1.0f);
+  int crossings = 0;
+  for (std::size_t i = 0; i + 2 < tris.size(); i += 3)
+    if (segmentHitsTriangle(p, far, tris[i], tris[i + 1], tris[i + 2]) >= 0.0f) ++crossings;
+  return crossings % 2 == 1;
+}
+
+bool boxesOverlap(const vrml::Bounds& a, const vrml::Bounds& b) {
+  return !a.empty() && !b.empty() && glm::all(glm::lessThanEqual(a.min, b.max)) &&
+         glm::all(glm::lessThanEqual(b.min, a.max));
+}
+
+/// Whether segment p q meets box b (slab test).
+bool segmentHitsBox(const glm::vec3& p, const glm::vec3& q, const vrml::Bounds& b) {
+  if (b.empty()) return false;
+  float t0 = 0.0f, t1 = 1.0f;
+  const glm::vec3 d = q - p;
+  for (int a = 0; a < 3; ++a) {
+    if (std::abs(d[a]) < 1e-20f) {
+      if (p[a] < b.min[a] || p[a] > b.max[a]) return false;
+      continue;
+    }
+    float u = (b.min[a] - p[a]) / d[a], v = (b.max[a] - p[a]) / d[a];
+    if (u > v) std::swap(u, v);
+    t0 = std::max(t0, u);
+    t1 = std::min(t1, v);
+    if (t0 > t1) return false;
+  }
+  return true;
+}
+
+enum class PickKind { point, line, primitive, volume };
+
+}  // namespace
+
+bool ExecutionModel::State::classifyPickSensor(NodeState& ns) {
+  using vrml::NodeTypeId;
+  const NodeTypeId id = ns.node->typeId();
+  if (id != NodeTypeId::PointPickSensor && id != NodeTypeId::LinePickSensor &&
+      id != NodeTypeId::PrimitivePickSensor && id != NodeTypeId::VolumePickSensor)
+    return false;
+  ns.pick = std::make_unique<PickSensorState>();
+  pickSensors.push_back(&ns);
+  return true;
+}
+
+void ExecutionModel::State::evaluatePickSensors() {
+  if (pickSensors.empty() || !scene) return;
+  using vrml::NodeTypeId;
+  // The world matrices of the drawn graph (first instance of each node), as the
+  // environmental sensors find theirs.
+  // Each node's parent matrix, and whether it is pickable (under no PickableGroup whose
+  // pickable is FALSE).
+  struct Place {
+    glm::mat4 parent;
+    bool pickable;
+  };
+  vrml::NodeMap<Place> matrices;
+  std::function<void(const std::vector<vrml::NodePtr>&, const glm::mat4&, bool, int)> walk =
+      [&](const std::vector<vrml::NodePtr>& list, const glm::mat4& m, bool pickable, int depth) {
+        if (depth > 1000) return;
+        for (const vrml::NodePtr& c : list) {
+          if (!c || c->unresolved) continue;
+          const bool places = vrml::placesChildren(c->typeId());
+          const glm::mat4 cm = places ? m * vrml::transformMatrix(*c) : m;
+          if (!matrices.try_emplace(c.get(), Place{m, pickable}).second) continue;
+          const bool inner = pickable && (c->typeId() != NodeTypeId::PickableGroup ||
+                                          c->get<FieldType::SFBool>("pickable", true));
+          if (c->typeId() == NodeTypeId::Switch) {
+            const auto& choice = c->mfnode("choice");
+            const int which = c->get<FieldType::SFInt32>("whichChoice", -1);
+            if (which >= 0 && static_cast<std::size_t>(which) < choice.size())
+              walk({choice[static_cast<std::size_t>(which)]}, m, inner, depth + 1);
+          } else if (c->typeId() == NodeTypeId::LOD) {
+            const auto& level = c->mfnode("level");
+            if (!level.empty()) walk({level.front()}, m, inner, depth + 1);
+          } else if (places || c->is(vrml::AbstractType::X3DGroupingNode)) {
+            walk(c->mfnode("children"), cm, inner, depth + 1);
+          }
+        }
+      };
+  walk(scene->rootNodes, glm::mat4(1.0f), true, 0);
+
+  for (NodeState* ns : pickSensors) {
+    const vrml::Node& n = *ns->node;
+    PickSensorState& st = *ns->pick;
+    const auto where = matrices.find(&n);
+    const vrml::NodePtr& picking = n.sfnode("pickingGeometry");
+    std::vector<const vrml::Node*> picked;
+    std::vector<vrml::NodePtr> pickedNodes;
+    std::vector<glm::vec3> points, normals;
+    if (n.get<FieldType::SFBool>("enabled", true) && where != matrices.end() && picking &&
+        !picking->unresolved) {
+      const glm::mat4 sensorToWorld = where->second.parent;
+      const glm::mat4 worldToSensor = glm::inverse(sensorToWorld);
+      const PickKind kind = n.typeId() == NodeTypeId::PointPickSensor       ? PickKind::point
+                            : n.typeId() == NodeTypeId::LinePickSensor      ? PickKind::line
+                            : n.typeId() == NodeTypeId::PrimitivePickSensor ? PickKind::primitive
+                                                                            : PickKind::volume;
+      const bool bounds =
+          n.get<FieldType::SFString>("intersectionType", std::string("BOUNDS")) != "GEOMETRY";
+      WorldMesh probe;
+      addMesh(vrml::tessellate(*picking), sensorToWorld, probe);
+      const glm::vec3 origin(sensorToWorld[3]);
+      struct Hit {
+        vrml::NodePtr target;
+        float distance;
+        std::vector<glm::vec3> points, normals;
+      };
+      std::vector<Hit> hits;
+      for (const vrml::NodePtr& target : n.mfnode("pickTarget")) {
+        if (!target || target->unresolved) continue;
+        const auto t = matrices.find(target.get());
+        if (t == matrices.end() || !t->second.pickable) continue;  // not drawn, not pickable
+        // The target's shapes, outside PickableGroups whose pickable is FALSE.
+        WorldMesh mesh;
+        std::function<void(const vrml::Node&, const glm::mat4&, int)> gather =
+            [&](const vrml::Node& node, const glm::mat4& m, int depth) {
+              if (depth > 1000 || mesh.triangles.size() >= kMaxTriangles * 3) return;
+              if (node.typeId() == NodeTypeId::PickableGroup &&
+                  !node.get<FieldType::SFBool>("pickable", true))
+                return;
+              if (node.typeId() == NodeTypeId::Shape) {
+                if (const vrml::NodePtr& g = node.sfnode("geometry"); g && !g->unresolved)
+                  addMesh(vrml::tessellate(*g), m, mesh);
+                return;
+              }
+              const bool places = vrml::placesChildren(node.typeId());
+              if (!places && !node.is(vrml::AbstractType::X3DGroupingNode)) return;
+              const glm::mat4 cm = places ? m * vrml::transformMatrix(node) : m;
+              for (const vrml::NodePtr& c : node.mfnode("children"))
+                if (c && !c->unresolved) gather(*c, cm, depth + 1);
+            };
+        gather(*target, t->second.parent, 0);
+        if (mesh.bounds.empty()) continue;
+        Hit hit{target, glm::length(mesh.bounds.center() - origin), {}, {}};
+        bool any = false;
+        if (kind == PickKind::point) {
+          for (const glm::vec3& p : probe.points)
+            if (bounds ? insideBox(p, mesh.bounds) : insideMesh(p, mesh.triangles, mesh.bounds)) {
+              hit.points.push_back(glm::vec3(worldToSensor * glm::vec4(p, 1.0f)));
+              any = true;
+            }
+        } else if (kind == PickKind::line) {
+          for (std::size_t s = 0; s + 1 < probe.segments.size(); s += 2) {
+            const glm::vec3 p = probe.segments[s], q = probe.segments[s + 1];
+            if (bounds) {
+              any = any || segmentHitsBox(p, q, mesh.bounds);
+              continue;
+            }
+            for (std::size_t i = 0; i + 2 < mesh.triangles.size(); i += 3) {
+              const glm::vec3 &a = mesh.triangles[i], &b = mesh.triangles[i + 1],
+                              &c = mesh.triangles[i + 2];
+              const float at = segmentHitsTriangle(p, q, a, b, c);
+              if (at < 0.0f) continue;
+              any = true;
+              const glm::vec3 point(worldToSensor * glm::vec4(p + at * (q - p), 1.0f));
+              // (A line through a shared edge crosses both its triangles: one point.)
+              if (std::any_of(hit.points.begin(), hit.points.end(),
+                              [&](const glm::vec3& o) { return glm::length(o - point) < 1e-5f; }))
+                continue;
+              hit.points.push_back(point);
+              glm::vec3 normal =
+                  glm::mat3(glm::transpose(sensorToWorld)) * glm::cross(b - a, c - a);
+              hit.normals.push_back(glm::length(normal) > 0.0f ? glm::normalize(normal) : normal);
+            }
+          }
+        } else if (bounds) {
+          any = boxesOverlap(probe.bounds, mesh.bounds);
+        } else if (boxesOverlap(probe.bounds, mesh.bounds)) {
+          for (const glm::vec3& p : probe.points)
+            if ((any = insideMesh(p, mesh.triangles, mesh.bounds))) break;
+          for (std::size_t i = 0; !any && i < mesh.points.size(); ++i)
+            any = insideMesh(mesh.points[i], probe.triangles, probe.bounds);
+          for (std::size_t i = 0; !any && i + 2 < probe.triangles.size(); i += 3)
+            for (std::size_t j = 0; !any && j + 2 < mesh.triangles.size(); j += 3)
+              for (int e = 0; !any && e < 3; ++e)
+                any = segmentHitsTriangle(probe.triangles[i + e], probe.triangles[i + (e + 1) % 3],
+                                          mesh.triangles[j], mesh.triangles[j + 1],
+                                          mesh.triangles[j + 2]) >= 0.0f;
+        }
+        if (any) hits.push_back(std::move(hit));
+      }
+      const std::string order = n.get<FieldType::SFString>("sortOrder", std::string("CLOSEST"));
+      if (order != "ALL")
+        std::stable_sort(hits.begin(), hits.end(),
+                         [](const Hit& a, const Hit& b) { return a.distance < b.distance; });
+      if ((order == "CLOSEST" || order == "ANY") && hits.size() > 1) hits.resize(1);
+      for (Hit& h : hits) {
+        picked.push_back(h.target.get());
+        pickedNodes.push_back(h.target);
+        points.insert(points.end(), h.points.begin(), h.points.end());
+        normals.insert(normals.end(), h.normals.begin(), h.normals.end());
+      }
+    }
+    const auto idx = [&](const char* name) { return n.type().findExact(name); };
+    const bool active = !picked.empty();
+    if (active && picked != st.picked) {
+      emitOwn(*ns, idx("pickedGeometry"), FieldValue::make<FieldType::MFNode>(pickedNodes));
+      if (n.typeId() != NodeTypeId::PrimitivePickSensor &&
+          n.typeId() != NodeTypeId::VolumePickSensor)
+        emitOwn(*ns, idx("pickedPoint"), FieldValue::make<FieldType::MFVec3f>(points));
+      if (n.typeId() == NodeTypeId::LinePickSensor) {
+        emitOwn(*ns, idx("pickedNormal"), FieldValue::make<FieldType::MFVec3f>(normals));
+        emitOwn(*ns, idx("pickedTextureCoordinate"),
+                FieldValue::make<FieldType::MFVec3f>(std::vector<glm::vec3>(points.size())));
+      }
+    } else if (active && points != st.points && n.typeId() != NodeTypeId::PrimitivePickSensor &&
+               n.typeId() != NodeTypeId::VolumePickSensor) {
+      emitOwn(*ns, idx("pickedPoint"), FieldValue::make<FieldType::MFVec3f>(points));
+    }
+    if (active != st.active) {
+      st.active = active;
+      emitOwn(*ns, idx("isActive"), FieldValue::make<FieldType::SFBool>(active));
+    }
+    st.picked = std::move(picked);
+    st.points = std::move(points);
+  }
+}
+
+}  // namespace gs::runtime

@@ -1,0 +1,111 @@
+// X3D Picking (X3D 4.0 clause 38) in the execution model: the four pick sensors against
+// their pickTargets, PickableGroup's pickable, sortOrder, and their events.
+#include "../test_support.hpp"
+#include "runtime_fixture.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+
+using gs::test::RunningWorld;
+using gs::test::x3dWorld;
+using gs::vrml::FieldType;
+using gs::vrml::FieldValue;
+
+namespace {
+
+bool sawPick(const std::vector<std::string>& events, const std::string& prefix) {
+  return std::any_of(events.begin(), events.end(),
+                     [&](const std::string& e) { return e.rfind(prefix, 0) == 0; });
+}
+
+const char* kTargets = R"(
+DEF A Transform { children Shape { geometry Box { size 2 2 2 } } }
+DEF B Transform { translation 10 0 0 children Shape { geometry Box { size 2 2 2 } } }
+PickableGroup { pickable FALSE children DEF HIDDEN Transform { translation 0 10 0
+  children Shape { geometry Box { size 2 2 2 } } } }
+)";
+
+}  // namespace
+
+TEST_CASE("picking: a PointPickSensor picks the targets its points are inside",
+          "[runtime][x3d][picking]") {
+  RunningWorld w(x3dWorld(std::string(kTargets) + R"(
+DEF S PointPickSensor {
+  intersectionType "GEOMETRY" sortOrder "ALL_SORTED"
+  pickingGeometry PointSet { coord Coordinate { point [ 0.5 0 0, 3 0 0, 10 0.5 0, 0 10 0 ] } }
+  pickTarget [ USE A USE B USE HIDDEN ]
+}
+)"),
+                 0.0);
+  w.model->advanceTo(0.1);
+  const auto events = w.take();
+  CHECK(sawPick(events, "S.isActive=TRUE"));
+  CHECK(sawPick(events, "S.pickedPoint="));
+  // Not 3 0 0 (outside every box), not 0 10 0 (HIDDEN is not pickable).
+  CHECK(w.node("S").field("pickedPoint")->get<FieldType::MFVec3f>() ==
+        std::vector<glm::vec3>{{0.5f, 0, 0}, {10, 0.5f, 0}});
+  const auto& picked = w.node("S").field("pickedGeometry")->get<FieldType::MFNode>();
+  REQUIRE(picked.size() == 2);
+  CHECK(picked[0].get() == &w.node("A"));  // nearest first
+  CHECK(picked[1].get() == &w.node("B"));
+  // The targets move away: nothing picked.
+  w.send("A", "set_translation", FieldValue::make<FieldType::SFVec3f>(glm::vec3(0, -20, 0)));
+  w.send("B", "set_translation", FieldValue::make<FieldType::SFVec3f>(glm::vec3(0, -30, 0)));
+  w.take();
+  w.model->advanceTo(0.2);
+  CHECK(sawPick(w.take(), "S.isActive=FALSE"));
+}
+
+TEST_CASE("picking: a LinePickSensor gives its crossings with normals; CLOSEST keeps one",
+          "[runtime][x3d][picking]") {
+  RunningWorld w(x3dWorld(std::string(kTargets) + R"(
+DEF S LinePickSensor {
+  intersectionType "GEOMETRY"
+  pickingGeometry LineSet { vertexCount 2 coord Coordinate { point [ -5 0 0, 15 0 0 ] } }
+  pickTarget [ USE B USE A ]
+}
+)"),
+                 0.0);
+  w.model->advanceTo(0.1);
+  const auto events = w.take();
+  CHECK(sawPick(events, "S.isActive=TRUE"));
+  const auto& points = w.node("S").field("pickedPoint")->get<FieldType::MFVec3f>();
+  REQUIRE(points.size() == 2);  // A's two faces at x = -1 and 1 (the closest target)
+  CHECK(std::min(points[0].x, points[1].x) == Approx(-1.0f));
+  CHECK(std::max(points[0].x, points[1].x) == Approx(1.0f));
+  const auto& normals = w.node("S").field("pickedNormal")->get<FieldType::MFVec3f>();
+  REQUIRE(normals.size() == 2);
+  CHECK(std::abs(normals[0].x) == Approx(1.0f));
+  const auto& picked = w.node("S").field("pickedGeometry")->get<FieldType::MFNode>();
+  REQUIRE(picked.size() == 1);
+  CHECK(picked[0].get() == &w.node("A"));
+}
+
+TEST_CASE("picking: primitive and volume sensors by bounds and by geometry",
+          "[runtime][x3d][picking]") {
+  RunningWorld w(x3dWorld(std::string(kTargets) + R"(
+Transform { translation 2.5 0 0 children [
+  DEF P PrimitivePickSensor { pickingGeometry Sphere { radius 1 } pickTarget [ USE A ]
+    intersectionType "BOUNDS" }
+  DEF V VolumePickSensor { pickingGeometry Sphere { radius 1 } pickTarget [ USE A ]
+    intersectionType "GEOMETRY" }
+  DEF FAR VolumePickSensor { pickingGeometry Sphere { radius 0.2 } pickTarget [ USE A ]
+    intersectionType "GEOMETRY" }
+] }
+)"),
+                 0.0);
+  w.model->advanceTo(0.1);
+  const auto events = w.take();
+  // The sphere (centre 2.5, radius 1) overlaps A's box (to x = 1) in neither bounds nor
+  // geometry: it starts at 1.5.
+  CHECK(!sawPick(events, "P.isActive"));
+  CHECK(!sawPick(events, "V.isActive"));
+  w.send("A", "set_translation", FieldValue::make<FieldType::SFVec3f>(glm::vec3(1, 0, 0)));
+  w.take();
+  w.model->advanceTo(0.2);
+  const auto moved = w.take();
+  CHECK(sawPick(moved, "P.isActive=TRUE"));
+  CHECK(sawPick(moved, "V.isActive=TRUE"));
+  CHECK(!sawPick(moved, "FAR.isActive"));  // radius 0.2 at 2.5: outside the box (to 2)
+}
