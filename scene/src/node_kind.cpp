@@ -56,6 +56,9 @@ NodeKind nodeKind(const vrml::Node& node) {
       return NodeKind::ParticleSystem;
     case NodeTypeId::GeoLOD:
       return NodeKind::GeoLOD;
+    case NodeTypeId::CollidableShape:
+    case NodeTypeId::CollidableOffset:
+      return NodeKind::Collidable;
     case NodeTypeId::DirectionalLight:
       return NodeKind::DirectionalLight;
     case NodeTypeId::PointLight:

@@ -578,6 +578,17 @@ struct SceneTraversal::Walk {
       case NodeKind::GeoLOD:
         geoLod(n, m, baseUrl);
         break;
+      case NodeKind::Collidable: {
+        // X3D 4.0 clauses 37.4.3, 37.4.4: a CollidableShape draws its `shape`, a
+        // CollidableOffset its `collidable`, moved by their translation and rotation (where
+        // a RigidBody would put them; no physics runs yet: they stay there).
+        if (!sfBool(n, "enabled", true)) break;
+        const vrml::NodePtr& c = n.typeId() == vrml::NodeTypeId::CollidableShape
+                                     ? n.sfnode("shape")
+                                     : n.sfnode("collidable");
+        if (c && !c->unresolved) node(*c, m * transformMatrix(n), baseUrl);
+        break;
+      }
       case NodeKind::QuantizedNormalVectors:
         frame.splats.push_back({&n, m, &n.urlBaseOr(*baseUrl)});  // its file's base
         break;

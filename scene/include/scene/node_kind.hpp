@@ -36,6 +36,7 @@ enum class NodeKind : std::uint8_t {
   ScreenGroup,     // X3D Layout (clause 36): children in pixels of the view
   LayoutGroup,     // X3D Layout: children placed by its Layout in the enclosing rectangle
   LayoutLayer,     // X3D Layout: a layer of a LayerSet, seen by its own orthographic view
+  Collidable,      // X3D RigidBodyPhysics' CollidableShape / CollidableOffset: placed shape
   GeoLOD,          // X3D Geospatial (clause 25.4.4): root or four children by range
   ParticleSystem,  // X3D ParticleSystems (clause 40): a shape whose geometry is its particles
   OutlineGroup,    // GhostSpace extensions (docs/vrml-extensions.md)
