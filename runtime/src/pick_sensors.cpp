@@ -30,8 +30,10 @@ using vrml::FieldValue;
 
 namespace {
 
-/// Triangles visited per sensor and step at most: a hostile world cannot stall a frame.
+/// Triangles kept per target, and triangle tests made per sensor and step, at most: a
+/// hostile world cannot stall a frame (past the budget a sensor picks nothing more).
 constexpr std::size_t kMaxTriangles = 2'000'000;
+constexpr std::size_t kMaxTests = 50'000'000;
 
 struct WorldMesh {
   std::vector<glm::vec3> triangles;  // 3 per triangle, world coordinates
@@ -78,8 +80,14 @@ bool insideBox(const glm::vec3& p, const vrml::Bounds& b) {
 
 /// Whether `p` is inside the closed triangle mesh `tris`: crossings of a ray along a fixed,
 /// skew direction are odd.
-bool insideMesh(const glm::vec3& p, const std::vector<glm::vec3>& tris, const vrml::Bounds& b) {
+bool insideMesh(const glm::vec3& p, const std::vector<glm::vec3>& tris, const vrml::Bounds& b,
+                std::size_t& budget) {
   if (!insideBox(p, b)) return false;
+  if (budget < tris.size() / 3) {
+    budget = 0;
+    return false;
+  }
+  budget -= tris.size() / 3;
   const glm::vec3 far =
       p + glm::vec3(0.5773f, 0.5774f, 0.5775f) * (glm::length(b.size()) * 4.0f + 1.0f);
   int crossings = 0;
@@ -191,6 +199,7 @@ void ExecutionModel::State::evaluatePickSensors() {
         std::vector<glm::vec3> points, normals;
       };
       std::vector<Hit> hits;
+      std::size_t budget = kMaxTests;
       for (const vrml::NodePtr& target : n.mfnode("pickTarget")) {
         if (!target || target->unresolved) continue;
         const auto t = matrices.find(target.get());
@@ -220,7 +229,8 @@ void ExecutionModel::State::evaluatePickSensors() {
         bool any = false;
         if (kind == PickKind::point) {
           for (const glm::vec3& p : probe.points)
-            if (bounds ? insideBox(p, mesh.bounds) : insideMesh(p, mesh.triangles, mesh.bounds)) {
+            if (bounds ? insideBox(p, mesh.bounds)
+                       : insideMesh(p, mesh.triangles, mesh.bounds, budget)) {
               hit.points.push_back(glm::vec3(worldToSensor * glm::vec4(p, 1.0f)));
               any = true;
             }
@@ -231,6 +241,11 @@ void ExecutionModel::State::evaluatePickSensors() {
               any = any || segmentHitsBox(p, q, mesh.bounds);
               continue;
             }
+            if (budget < mesh.triangles.size() / 3) {
+              budget = 0;
+              break;
+            }
+            budget -= mesh.triangles.size() / 3;
             for (std::size_t i = 0; i + 2 < mesh.triangles.size(); i += 3) {
               const glm::vec3 &a = mesh.triangles[i], &b = mesh.triangles[i + 1],
                               &c = mesh.triangles[i + 2];
@@ -252,17 +267,24 @@ void ExecutionModel::State::evaluatePickSensors() {
           any = boxesOverlap(probe.bounds, mesh.bounds);
         } else if (boxesOverlap(probe.bounds, mesh.bounds)) {
           for (const glm::vec3& p : probe.points)
-            if ((any = insideMesh(p, mesh.triangles, mesh.bounds))) break;
+            if ((any = insideMesh(p, mesh.triangles, mesh.bounds, budget))) break;
           for (std::size_t i = 0; !any && i < mesh.points.size(); ++i)
-            any = insideMesh(mesh.points[i], probe.triangles, probe.bounds);
-          for (std::size_t i = 0; !any && i + 2 < probe.triangles.size(); i += 3)
-            for (std::size_t j = 0; !any && j + 2 < mesh.triangles.size(); j += 3)
+            any = insideMesh(mesh.points[i], probe.triangles, probe.bounds, budget);
+          for (std::size_t i = 0; !any && budget > 0 && i + 2 < probe.triangles.size(); i += 3)
+            for (std::size_t j = 0; !any && budget > 0 && j + 2 < mesh.triangles.size();
+                 j += 3, --budget)
               for (int e = 0; !any && e < 3; ++e)
                 any = segmentHitsTriangle(probe.triangles[i + e], probe.triangles[i + (e + 1) % 3],
                                           mesh.triangles[j], mesh.triangles[j + 1],
                                           mesh.triangles[j + 2]) >= 0.0f;
         }
         if (any) hits.push_back(std::move(hit));
+      }
+      if (budget == 0 && !ns->problemReported) {
+        ns->problemReported = true;
+        report(vrml::Severity::warning, n,
+               "more than " + std::to_string(kMaxTests) +
+                   " triangle tests in one step: the rest of its targets are not tested");
       }
       const std::string order = n.get<FieldType::SFString>("sortOrder", std::string("CLOSEST"));
       if (order != "ALL")
