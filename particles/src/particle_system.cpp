@@ -248,7 +248,7 @@ struct ParticleSimulation::Emitters {
     const glm::vec3 u = glm::normalize(glm::cross(helper, n)), w = glm::cross(n, u);
     const glm::vec3 dir = local.x * u + local.y * w + local.z * n;
     hits.clear();
-    triangles.intersectLine(q, dir, [this](float t, const glm::vec3&, const glm::vec3&) {
+    triangles.intersectLine(q, dir, budget, [this](float t, const glm::vec3&, const glm::vec3&) {
       if (hits.size() < 4096) hits.push_back(t);
     });
     const std::size_t k = hits.size() - hits.size() % 2;
@@ -259,6 +259,9 @@ struct ParticleSimulation::Emitters {
     return q + dir * glm::mix(hits[pair], hits[pair + 1], random.uniform());
   }
   std::vector<float> hits;
+  /// Triangle tests left in this step (VolumeEmitter births, bounces): past them the step
+  /// places and bounces no more by geometry (kMaxTestsPerStep).
+  std::size_t budget = 0;
 
   /// X_ITE's bounce: the first crossing ahead of `from` along the velocity; when the step
   /// from `from` to `p` crossed its plane, the velocity is reflected (times the damping)
@@ -269,13 +272,14 @@ struct ParticleSimulation::Emitters {
     const glm::vec3 dir = v / std::sqrt(speed2);
     float best = std::numeric_limits<float>::infinity();
     glm::vec3 hitPoint{0.0f}, hitNormal{0.0f};
-    bounds.intersectLine(from, dir, [&](float t, const glm::vec3& point, const glm::vec3& normal) {
-      if (t >= 0.0f && t < best) {
-        best = t;
-        hitPoint = point;
-        hitNormal = normal;
-      }
-    });
+    bounds.intersectLine(from, dir, budget,
+                         [&](float t, const glm::vec3& point, const glm::vec3& normal) {
+                           if (t >= 0.0f && t < best) {
+                             best = t;
+                             hitPoint = point;
+                             hitNormal = normal;
+                           }
+                         });
     const float damping = glm::length(hitNormal);
     if (!std::isfinite(best) || !(damping > 0.0f)) return;
     const glm::vec3 nn = hitNormal / damping;
@@ -311,6 +315,7 @@ void ParticleSimulation::advance(const vrml::Node& system, double now) {
   if (particles_.size() > maxParticles) particles_.resize(maxParticles);
   const vrml::Node* emitter = usable(system.sfnode("emitter"));
   Emitters& e = *emitters_;
+  e.budget = kMaxTestsPerStep;
   e.prepare(emitter);
   const std::vector<vrml::NodePtr>& physics = system.mfnode("physics");
   e.prepareBounds(physics);
@@ -401,6 +406,7 @@ void ParticleSimulation::advance(const vrml::Node& system, double now) {
     e.bounce(from, p.position, p.velocity);
     if (!std::isfinite(p.position.x + p.position.y + p.position.z)) p.visible = false;
   }
+  clamped_ = clamped_ || e.budget == 0;
   ++revision_;
 }
 

@@ -146,7 +146,7 @@ bool lineMeetsBox(const glm::vec3& origin, const glm::vec3& dir, const glm::vec3
 }  // namespace
 
 void Triangles::intersectLine(
-    const glm::vec3& origin, const glm::vec3& dir,
+    const glm::vec3& origin, const glm::vec3& dir, std::size_t& budget,
     const std::function<void(float, const glm::vec3&, const glm::vec3&)>& visit) const {
   if (nodes_.empty()) return;
   std::uint32_t stack[64];
@@ -162,6 +162,8 @@ void Triangles::intersectLine(
       continue;
     }
     for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
+      if (budget == 0) return;
+      --budget;
       // Moller-Trumbore, both faces, any t.
       const Triangle& t = triangles_[i];
       const glm::vec3 e1 = t.p[1] - t.p[0], e2 = t.p[2] - t.p[0];

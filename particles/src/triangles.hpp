@@ -38,8 +38,10 @@ class Triangles {
 
   /// Every intersection of the infinite line origin + t dir (dir need not be unit) with
   /// the triangles, both faces: visit(t, point, interpolated normal) in no particular order.
+  /// Each triangle tested takes one from `budget`; at 0 the search stops (a hostile mesh
+  /// and particle count cannot stall a step).
   void intersectLine(
-      const glm::vec3& origin, const glm::vec3& dir,
+      const glm::vec3& origin, const glm::vec3& dir, std::size_t& budget,
       const std::function<void(float, const glm::vec3&, const glm::vec3&)>& visit) const;
 
  private:

@@ -27,7 +27,9 @@ void ExecutionModel::State::evaluateParticleSystems() {
       report(vrml::Severity::warning, *ns->node,
              "maxParticles above " + std::to_string(particles::kMaxParticles) +
                  ", or emitter or bounding geometry above " +
-                 std::to_string(particles::kMaxTriangles) + " triangles: limited");
+                 std::to_string(particles::kMaxTriangles) + " triangles, or more than " +
+                 std::to_string(particles::kMaxTestsPerStep) +
+                 " triangle tests in one step: limited");
     }
     if (p.isActive >= 0 && p.simulation.active() != p.sentActive) {
       p.sentActive = p.simulation.active();

@@ -48,6 +48,9 @@ struct Particle {
 /// kMaxTriangles triangles is not used.
 inline constexpr std::size_t kMaxParticles = 1'000'000;
 inline constexpr std::size_t kMaxTriangles = 1'000'000;
+/// Triangle tests one advance() makes at most (VolumeEmitter births, bounces): past them
+/// the step places and bounces no more by geometry, and clamped() is set.
+inline constexpr std::size_t kMaxTestsPerStep = 50'000'000;
 
 /// The state of one ParticleSystem: its particle slots and what its emitter and physics
 /// models were made of. Deterministic: the same seed and the same sequence of advance()
@@ -89,8 +92,8 @@ class ParticleSimulation {
   std::uint64_t revision() const { return revision_; }
   /// isActive (clause 40.4.7): enabled and maxParticles > 0 at the last advance().
   bool active() const { return active_; }
-  /// Whether maxParticles was above kMaxParticles (or emitter geometry above
-  /// kMaxTriangles) at the last advance().
+  /// Whether maxParticles was above kMaxParticles, emitter geometry above kMaxTriangles,
+  /// or the step needed more than kMaxTestsPerStep triangle tests at the last advance().
   bool clamped() const { return clamped_; }
 
   struct Emitters;  // private to particles/
