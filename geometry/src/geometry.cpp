@@ -405,6 +405,16 @@ Mesh tessellate(const Node& geometry, Diagnostics* diag) {
       break;
   }
   assignFogDepths(geometry, m);
+  // An X3D geoSystem word not understood (X3D 4.0 clause 25.2.2) is left out: said once.
+  const Node* geo = geometry.typeId() == NodeTypeId::GeoElevationGrid ? &geometry : nullptr;
+  if (const NodePtr& coord = geometry.sfnode("coord");
+      coord && coord->typeId() == NodeTypeId::GeoCoordinate)
+    geo = coord.get();
+  if (geo != nullptr) {
+    std::string problem;
+    geoSystemOf(*geo, &problem);
+    if (!problem.empty()) log.add(problem + "; read without it");
+  }
   assignVertexAttributes(geometry, m, log);
   log.flush();
   return m;

@@ -1,5 +1,7 @@
 #include "triangles.hpp"
 
+#include "geometry/intersect.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -25,9 +27,12 @@ glm::vec3 Random::unitVectorInCone(const glm::vec3& axis, float angle) {
 
 bool Triangles::assign(const vrml::Mesh& mesh, float normalScale, std::size_t maxTriangles) {
   triangles_.clear();
-  if (mesh.primitive != vrml::Primitive::triangles) return build(), true;
-  const std::size_t count = mesh.indices.size() / 3;
-  if (count > maxTriangles) return build(), false;
+  const std::size_t count =
+      mesh.primitive == vrml::Primitive::triangles ? mesh.indices.size() / 3 : 0;
+  if (count > maxTriangles) {
+    build();
+    return false;
+  }
   triangles_.reserve(count);
   for (std::size_t t = 0; t < count; ++t) {
     Triangle tri;
@@ -75,13 +80,8 @@ std::uint32_t Triangles::buildNode(std::uint32_t first, std::uint32_t count, int
   const auto index = static_cast<std::uint32_t>(nodes_.size());
   nodes_.emplace_back();
   Node node;
-  node.lo = glm::vec3(std::numeric_limits<float>::max());
-  node.hi = glm::vec3(-std::numeric_limits<float>::max());
   for (std::uint32_t i = first; i < first + count; ++i)
-    for (const glm::vec3& p : triangles_[i].p) {
-      node.lo = glm::min(node.lo, p);
-      node.hi = glm::max(node.hi, p);
-    }
+    for (const glm::vec3& p : triangles_[i].p) node.box.extend(p);
   if (count <= 4 || depth >= 40) {
     node.first = first;
     node.count = count;
@@ -89,7 +89,7 @@ std::uint32_t Triangles::buildNode(std::uint32_t first, std::uint32_t count, int
     return index;
   }
   // Median split along the longest axis of the box (by triangle centroid).
-  const glm::vec3 extent = node.hi - node.lo;
+  const glm::vec3 extent = node.box.size();
   const int axis =
       extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
   const auto begin = triangles_.begin() + first;
@@ -122,29 +122,6 @@ bool Triangles::sample(Random& random, glm::vec3& point, glm::vec3& normal) cons
   return true;
 }
 
-namespace {
-
-/// Whether the infinite line origin + t dir meets the box [lo, hi] (slab test).
-bool lineMeetsBox(const glm::vec3& origin, const glm::vec3& dir, const glm::vec3& lo,
-                  const glm::vec3& hi) {
-  float tMin = -std::numeric_limits<float>::infinity();
-  float tMax = std::numeric_limits<float>::infinity();
-  for (int a = 0; a < 3; ++a) {
-    if (std::abs(dir[a]) < 1e-20f) {
-      if (origin[a] < lo[a] || origin[a] > hi[a]) return false;
-      continue;
-    }
-    float t0 = (lo[a] - origin[a]) / dir[a], t1 = (hi[a] - origin[a]) / dir[a];
-    if (t0 > t1) std::swap(t0, t1);
-    tMin = std::max(tMin, t0);
-    tMax = std::min(tMax, t1);
-    if (tMin > tMax) return false;
-  }
-  return true;
-}
-
-}  // namespace
-
 void Triangles::intersectLine(
     const glm::vec3& origin, const glm::vec3& dir, std::size_t& budget,
     const std::function<void(float, const glm::vec3&, const glm::vec3&)>& visit) const {
@@ -154,7 +131,9 @@ void Triangles::intersectLine(
   stack[top++] = 0;
   while (top > 0) {
     const Node& node = nodes_[stack[--top]];
-    if (!lineMeetsBox(origin, dir, node.lo, node.hi)) continue;
+    if (!vrml::lineMeetsBox(origin, dir, node.box, -std::numeric_limits<float>::infinity(),
+                            std::numeric_limits<float>::infinity()))
+      continue;
     if (node.count == 0) {
       if (top + 2 > 64) continue;  // (depth is limited to 40: never)
       stack[top++] = node.left;
@@ -164,21 +143,10 @@ void Triangles::intersectLine(
     for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
       if (budget == 0) return;
       --budget;
-      // Moller-Trumbore, both faces, any t.
-      const Triangle& t = triangles_[i];
-      const glm::vec3 e1 = t.p[1] - t.p[0], e2 = t.p[2] - t.p[0];
-      const glm::vec3 p = glm::cross(dir, e2);
-      const float det = glm::dot(e1, p);
-      if (std::abs(det) < 1e-20f) continue;
-      const float inv = 1.0f / det;
-      const glm::vec3 s = origin - t.p[0];
-      const float u = glm::dot(s, p) * inv;
-      if (u < 0.0f || u > 1.0f) continue;
-      const glm::vec3 q = glm::cross(s, e1);
-      const float v = glm::dot(dir, q) * inv;
-      if (v < 0.0f || u + v > 1.0f) continue;
-      const float tt = glm::dot(e2, q) * inv;
-      visit(tt, origin + tt * dir, (1.0f - u - v) * t.n[0] + u * t.n[1] + v * t.n[2]);
+      const Triangle& tri = triangles_[i];
+      float t = 0.0f, u = 0.0f, v = 0.0f;  // both faces, any t
+      if (!vrml::lineTriangle(origin, dir, tri.p[0], tri.p[1], tri.p[2], t, u, v)) continue;
+      visit(t, origin + t * dir, (1.0f - u - v) * tri.n[0] + u * tri.n[1] + v * tri.n[2]);
     }
   }
 }

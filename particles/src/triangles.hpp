@@ -46,7 +46,7 @@ class Triangles {
 
  private:
   struct Node {
-    glm::vec3 lo{0.0f}, hi{0.0f};
+    vrml::Bounds box;
     std::uint32_t first = 0, count = 0;  // a leaf's triangles (count > 0)
     std::uint32_t left = 0, right = 0;   // an inner node's children
   };

@@ -7,6 +7,7 @@
 #include "runtime/interpolators_x3d.hpp"
 #include "runtime/time_dependent.hpp"
 
+#include "geometry/geometry.hpp"
 #include "particles/particle_system.hpp"
 
 #include <glm/mat4x4.hpp>
@@ -17,6 +18,7 @@
 #include <string>
 #include <unordered_map>
 #include <unordered_set>
+#include <utility>
 #include <vector>
 
 namespace gs::runtime {
@@ -288,7 +290,10 @@ struct ExecutionModel::State {
   std::vector<NodeState*> loadSensors;       // LoadSensors (load_sensors.cpp)
   std::vector<NodeState*> particleSystems;   // ParticleSystems (particle_systems.cpp)
   std::vector<NodeState*> pickSensors;       // X3D pick sensors (pick_sensors.cpp)
-  std::vector<NodeState*> newLoadSensors;    // registered, their first watch not started
+  /// The tessellations the pick sensors test, with the revisionWithFields they were made
+  /// at (made again only when their geometry changed).
+  vrml::NodeMap<std::pair<std::uint64_t, vrml::Mesh>> pickMeshes;
+  std::vector<NodeState*> newLoadSensors;  // registered, their first watch not started
   /// What loaders reported of url objects (ExecutionModel::setUrlObjectState).
   std::unordered_map<const vrml::Node*, UrlLoadState> urlStates;
   std::size_t environmentSensors = 0;  // ProximitySensors and VisibilitySensors met

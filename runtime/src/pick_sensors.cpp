@@ -16,6 +16,7 @@
 #include "execution_state.hpp"
 
 #include "geometry/geometry.hpp"
+#include "geometry/intersect.hpp"
 #include "vrml/transform.hpp"
 
 #include <algorithm>
@@ -58,19 +59,8 @@ void addMesh(const vrml::Mesh& mesh, const glm::mat4& m, WorldMesh& out) {
 /// Segment p + t (q - p), t in [0, 1], against triangle a b c (both faces): t, or -1.
 float segmentHitsTriangle(const glm::vec3& p, const glm::vec3& q, const glm::vec3& a,
                           const glm::vec3& b, const glm::vec3& c) {
-  const glm::vec3 d = q - p, e1 = b - a, e2 = c - a;
-  const glm::vec3 h = glm::cross(d, e2);
-  const float det = glm::dot(e1, h);
-  if (std::abs(det) < 1e-20f) return -1.0f;
-  const float inv = 1.0f / det;
-  const glm::vec3 s = p - a;
-  const float u = glm::dot(s, h) * inv;
-  if (u < 0.0f || u > 1.0f) return -1.0f;
-  const glm::vec3 qv = glm::cross(s, e1);
-  const float v = glm::dot(d, qv) * inv;
-  if (v < 0.0f || u + v > 1.0f) return -1.0f;
-  const float t = glm::dot(e2, qv) * inv;
-  return t >= 0.0f && t <= 1.0f ? t : -1.0f;
+  float t = 0.0f, u = 0.0f, v = 0.0f;
+  return vrml::lineTriangle(p, q - p, a, b, c, t, u, v) && t >= 0.0f && t <= 1.0f ? t : -1.0f;
 }
 
 bool insideBox(const glm::vec3& p, const vrml::Bounds& b) {
@@ -99,25 +89,6 @@ bool insideMesh(const glm::vec3& p, const std::vector<glm::vec3>& tris, const vr
 bool boxesOverlap(const vrml::Bounds& a, const vrml::Bounds& b) {
   return !a.empty() && !b.empty() && glm::all(glm::lessThanEqual(a.min, b.max)) &&
          glm::all(glm::lessThanEqual(b.min, a.max));
-}
-
-/// Whether segment p q meets box b (slab test).
-bool segmentHitsBox(const glm::vec3& p, const glm::vec3& q, const vrml::Bounds& b) {
-  if (b.empty()) return false;
-  float t0 = 0.0f, t1 = 1.0f;
-  const glm::vec3 d = q - p;
-  for (int a = 0; a < 3; ++a) {
-    if (std::abs(d[a]) < 1e-20f) {
-      if (p[a] < b.min[a] || p[a] > b.max[a]) return false;
-      continue;
-    }
-    float u = (b.min[a] - p[a]) / d[a], v = (b.max[a] - p[a]) / d[a];
-    if (u > v) std::swap(u, v);
-    t0 = std::max(t0, u);
-    t1 = std::min(t1, v);
-    if (t0 > t1) return false;
-  }
-  return true;
 }
 
 enum class PickKind { point, line, primitive, volume };
@@ -171,6 +142,12 @@ void ExecutionModel::State::evaluatePickSensors() {
         }
       };
   walk(scene->rootNodes, glm::mat4(1.0f), true, 0);
+  const auto meshOf = [&](const vrml::Node& geometry) -> const vrml::Mesh& {
+    const std::uint64_t revision = vrml::revisionWithFields(geometry);
+    auto [it, added] = pickMeshes.try_emplace(&geometry);
+    if (added || it->second.first != revision) it->second = {revision, vrml::tessellate(geometry)};
+    return it->second.second;
+  };
 
   for (NodeState* ns : pickSensors) {
     const vrml::Node& n = *ns->node;
@@ -191,7 +168,7 @@ void ExecutionModel::State::evaluatePickSensors() {
       const bool bounds =
           n.get<FieldType::SFString>("intersectionType", std::string("BOUNDS")) != "GEOMETRY";
       WorldMesh probe;
-      addMesh(vrml::tessellate(*picking), sensorToWorld, probe);
+      addMesh(meshOf(*picking), sensorToWorld, probe);
       const glm::vec3 origin(sensorToWorld[3]);
       struct Hit {
         vrml::NodePtr target;
@@ -214,7 +191,7 @@ void ExecutionModel::State::evaluatePickSensors() {
                 return;
               if (node.typeId() == NodeTypeId::Shape) {
                 if (const vrml::NodePtr& g = node.sfnode("geometry"); g && !g->unresolved)
-                  addMesh(vrml::tessellate(*g), m, mesh);
+                  addMesh(meshOf(*g), m, mesh);
                 return;
               }
               const bool places = vrml::placesChildren(node.typeId());
@@ -238,7 +215,7 @@ void ExecutionModel::State::evaluatePickSensors() {
           for (std::size_t s = 0; s + 1 < probe.segments.size(); s += 2) {
             const glm::vec3 p = probe.segments[s], q = probe.segments[s + 1];
             if (bounds) {
-              any = any || segmentHitsBox(p, q, mesh.bounds);
+              any = any || vrml::lineMeetsBox(p, q - p, mesh.bounds, 0.0f, 1.0f);
               continue;
             }
             if (budget < mesh.triangles.size() / 3) {

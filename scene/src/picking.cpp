@@ -1,6 +1,8 @@
 // CPU picking: rays against the tessellations of the shapes collect() draws.
 #include "scene/picking.hpp"
 
+#include "geometry/intersect.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -27,41 +29,8 @@ Ray rayThroughPixel(const Camera& camera, int width, int height, float x, float 
 bool intersectTriangle(const glm::vec3& origin, const glm::vec3& direction, const glm::vec3& a,
                        const glm::vec3& b, const glm::vec3& c, float& t, float& u, float& v,
                        float minT) {
-  const glm::vec3 e1 = b - a, e2 = c - a;
-  const glm::vec3 p = glm::cross(direction, e2);
-  const float det = glm::dot(e1, p);
-  if (std::abs(det) < 1e-20f) return false;  // parallel or degenerate
-  const float inv = 1.0f / det;
-  const glm::vec3 s = origin - a;
-  u = glm::dot(s, p) * inv;
-  if (u < 0.0f || u > 1.0f) return false;
-  const glm::vec3 q = glm::cross(s, e1);
-  v = glm::dot(direction, q) * inv;
-  if (v < 0.0f || u + v > 1.0f) return false;
-  t = glm::dot(e2, q) * inv;
-  return t > minT;
+  return vrml::lineTriangle(origin, direction, a, b, c, t, u, v) && t > minT;
 }
-
-namespace {
-
-/// Slab test of a ray against a box; false when it misses or the box lies behind.
-bool hitsBox(const glm::vec3& o, const glm::vec3& d, const vrml::Bounds& box, float maxT) {
-  float lo = 0.0f, hi = maxT;
-  for (int i = 0; i < 3; ++i) {
-    if (std::abs(d[i]) < 1e-30f) {
-      if (o[i] < box.min[i] || o[i] > box.max[i]) return false;
-      continue;
-    }
-    float t0 = (box.min[i] - o[i]) / d[i], t1 = (box.max[i] - o[i]) / d[i];
-    if (t0 > t1) std::swap(t0, t1);
-    lo = std::max(lo, t0);
-    hi = std::min(hi, t1);
-    if (lo > hi) return false;
-  }
-  return true;
-}
-
-}  // namespace
 
 std::optional<PickHit> pick(SceneTraversal& traversal, const Camera& viewer, const Ray& ray) {
   TraversalFrame frame;
@@ -82,7 +51,7 @@ std::optional<PickHit> pickInFrame(SceneTraversal& traversal, const TraversalFra
     const glm::vec3 o = glm::vec3(inverse * glm::vec4(ray.origin, 1.0f));
     const glm::vec3 d = glm::mat3(inverse) * ray.direction;
     const vrml::Bounds& bounds = traversal.meshBounds(*s.geometry);
-    if (bounds.empty() || !hitsBox(o, d, bounds, bestT)) continue;
+    if (!vrml::lineMeetsBox(o, d, bounds, 0.0f, bestT)) continue;
     const vrml::Mesh& mesh = traversal.mesh(*s.geometry);
     if (mesh.primitive != vrml::Primitive::triangles) continue;
     const std::size_t count = mesh.indices.size() / 3;

@@ -162,3 +162,18 @@ GeoViewpoint {
   // Turned -90 degrees about X: looking straight down.
   CHECK(c.forward().y == Approx(-1.0f).margin(1e-4));
 }
+
+TEST_CASE("geospatial: a geoSystem word not understood is a warning at the geometry",
+          "[geospatial]") {
+  const vrml::Scene scene = vrml::parseVrml(R"(#X3D V4.0 utf8
+PROFILE Full
+Shape { geometry DEF G GeoElevationGrid { geoSystem [ "GD" "XX" ] xDimension 2 zDimension 2
+  height [ 0 0 0 0 ] } }
+)",
+                                            "bad.x3dv");
+  vrml::Diagnostics diag;
+  const vrml::Mesh mesh = vrml::tessellate(named(scene, "G"), &diag);
+  CHECK(mesh.triangleCount() == 2);  // still drawn, in GD WE
+  REQUIRE(diag.items.size() == 1);
+  CHECK(diag.items[0].message.find("'XX'") != std::string::npos);
+}
