@@ -207,6 +207,7 @@ ExecutionModel::ExecutionModel(std::shared_ptr<const vrml::Scene> scene, double 
   if (s_->scene) s_->takeScene(*s_->scene, s_->rootsSeen, s_->hiddenSeen, s_->routesSeen, true);
   s_->bindFirstCandidates();
   s_->startNewLoadSensors();  // X3D 9.4.3: a LoadSensor starts watching when the world loads
+  s_->startNewRigidBodyCollections();
   s_->runCascade();
   s_->initializeScripts();
   for (NodeState* t : s_->timeSensors) s_->evaluateTimeSensor(*t);
@@ -277,6 +278,11 @@ void ExecutionModel::advanceTo(double time) {
   for (PendingEvent& e : s_->posted) s_->queue.push_back(std::move(e));
   s_->posted.clear();
   s_->runCascade();
+  if (!s_->rigidBodyCollections.empty() || !s_->collisionSensors.empty()) {
+    // X_ITE's sensor phase: physics after the frame's time events, drawn this frame.
+    s_->evaluateRigidBodyPhysics();
+    s_->runCascade();
+  }
   s_->startArrivedScripts();  // a Script whose file arrived starts now (initialize())
   s_->evaluateSkins();
 }

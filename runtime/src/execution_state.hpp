@@ -9,6 +9,7 @@
 
 #include "geometry/geometry.hpp"
 #include "particles/particle_system.hpp"
+#include "physics/rigid_body_world.hpp"
 
 #include <glm/mat4x4.hpp>
 
@@ -111,6 +112,24 @@ struct ParticleSystemState {
   int isActive = -1;  // field index of isActive
   bool sentActive = false;
   bool reportedClamp = false;
+};
+
+/// A RigidBodyCollection's Bullet world (rigid_body_physics.cpp).
+struct RigidBodyCollectionState {
+  std::unique_ptr<physics::RigidBodyWorld> world;
+  double lastTime = 0.0;  // SFTime of the last step (or of the build)
+  /// Each body's revision() after the world last wrote its outputs: another means an event
+  /// set its fields (resetBody).
+  std::unordered_map<const vrml::Node*, std::uint64_t> bodyRevisions;
+  std::size_t warningsReported = 0;
+};
+
+/// What a CollisionSensor last sent (rigid_body_physics.cpp), and the Contact nodes it
+/// reuses from frame to frame.
+struct CollisionSensorState {
+  int isActive = -1, contacts = -1, intersections = -1;
+  bool active = false;
+  std::vector<vrml::NodePtr> contactNodes;
 };
 
 /// A damper's or chaser's motion (followers.cpp); values as flat lists of numbers.
@@ -244,14 +263,16 @@ struct NodeState {
   glm::vec3 lastPosition{0.0f};
   vrml::Rotation lastOrientation{0.0f};
   std::unique_ptr<ScriptInstance> script;
-  std::unique_ptr<MediaNode> media;                // role media
-  std::unique_ptr<EventUtilityFields> utility;     // role eventUtility
-  std::unique_ptr<FollowerState> follower;         // role follower
-  std::unique_ptr<SkinState> skin;                 // a Skin (role plain)
-  std::unique_ptr<KeySensorState> keys;            // role keySensor
-  std::unique_ptr<LoadSensorState> load;           // role loadSensor
-  std::unique_ptr<ParticleSystemState> particles;  // a ParticleSystem (role plain)
-  std::unique_ptr<PickSensorState> pick;           // an X3D pick sensor (role plain)
+  std::unique_ptr<MediaNode> media;                       // role media
+  std::unique_ptr<EventUtilityFields> utility;            // role eventUtility
+  std::unique_ptr<FollowerState> follower;                // role follower
+  std::unique_ptr<SkinState> skin;                        // a Skin (role plain)
+  std::unique_ptr<KeySensorState> keys;                   // role keySensor
+  std::unique_ptr<LoadSensorState> load;                  // role loadSensor
+  std::unique_ptr<ParticleSystemState> particles;         // a ParticleSystem (role plain)
+  std::unique_ptr<PickSensorState> pick;                  // an X3D pick sensor (role plain)
+  std::unique_ptr<RigidBodyCollectionState> rigidBodies;  // a RigidBodyCollection (plain)
+  std::unique_ptr<CollisionSensorState> collision;        // a CollisionSensor (plain)
   bool scriptHadEvents = false;
   bool problemReported = false;
 };
@@ -290,6 +311,9 @@ struct ExecutionModel::State {
   std::vector<NodeState*> loadSensors;       // LoadSensors (load_sensors.cpp)
   std::vector<NodeState*> particleSystems;   // ParticleSystems (particle_systems.cpp)
   std::vector<NodeState*> pickSensors;       // X3D pick sensors (pick_sensors.cpp)
+  // RigidBodyCollections and CollisionSensors (rigid_body_physics.cpp); the collections
+  // whose world is not built yet.
+  std::vector<NodeState*> rigidBodyCollections, collisionSensors, newRigidBodyCollections;
   /// The tessellations the pick sensors test, with the revisionWithFields they were made
   /// at (made again only when their geometry changed).
   vrml::NodeMap<std::pair<std::uint64_t, vrml::Mesh>> pickMeshes;
@@ -418,6 +442,17 @@ struct ExecutionModel::State {
   bool classifyParticleSystem(NodeState& ns);
   /// Moves every particle system to the clock's time; isActive on change.
   void evaluateParticleSystems();
+
+  // ---- Rigid body physics (rigid_body_physics.cpp) ----
+  /// Makes `ns` a RigidBodyCollection or CollisionSensor record (their events stay plain).
+  bool classifyRigidBodyPhysics(NodeState& ns);
+  /// Builds the worlds of the collections met since the last call: each body's
+  /// collidables are placed at its position and orientation (X3D 4.0 clause 37.4.8).
+  void startNewRigidBodyCollections();
+  /// One physics frame of every collection (after the cascade of the frame's time
+  /// events, as X_ITE's sensor phase); the bodies' outputs, the collidables moved, the
+  /// joints' forceOutput values and the CollisionSensors' contacts, as events.
+  void evaluateRigidBodyPhysics();
 
   // ---- environmental sensors (environment_sensors.cpp) ----
   void evaluateEnvironmentSensors();

@@ -121,6 +121,7 @@ void ExecutionModel::State::classify(NodeState& ns) {
   if (classifySkin(ns)) return;
   if (classifyParticleSystem(ns)) return;
   if (classifyPickSensor(ns)) return;
+  if (classifyRigidBodyPhysics(ns)) return;
   if (classifyHumanoid(ns)) return;
   if (classifyKeySensor(ns)) return;
   if (classifyLoadSensor(ns)) return;

@@ -581,8 +581,8 @@ struct SceneTraversal::Walk {
       case NodeKind::Collidable: {
         // X3D 4.0 clauses 37.4.3, 37.4.4: a CollidableShape draws its `shape`, a
         // CollidableOffset its `collidable`, moved by their translation and rotation (where
-        // a RigidBody would put them; no physics runs yet: they stay there).
-        if (!sfBool(n, "enabled", true)) break;
+        // its RigidBody puts them, runtime/src/rigid_body_physics.cpp). `enabled` says
+        // whether it collides, not whether it shows (as X_ITE draws it).
         const vrml::NodePtr& c = n.typeId() == vrml::NodeTypeId::CollidableShape
                                      ? n.sfnode("shape")
                                      : n.sfnode("collidable");

@@ -1,6 +1,7 @@
 // X3D RigidBodyPhysics' collidables in the traversal (X3D 4.0 clauses 37.4.3, 37.4.4): a
 // CollidableShape draws its shape, a CollidableOffset its collidable, each moved by its
-// translation and rotation; a disabled one draws nothing.
+// translation and rotation; a disabled one (it collides with nothing) still shows, as X_ITE
+// draws it.
 #include "encodings/parser.hpp"
 #include "scene/traversal.hpp"
 
@@ -20,7 +21,7 @@ CollidableShape { enabled FALSE shape Shape { geometry Sphere {} } }
   gs::scene::SceneTraversal t(scene);
   gs::scene::TraversalFrame frame;
   t.collect(t.boundViewpointCamera(), frame);
-  REQUIRE(frame.shapes.size() == 1);
+  REQUIRE(frame.shapes.size() == 2);
   const glm::mat4& m = frame.shapes[0].model;
   CHECK(m[3].x == Approx(2.0f));
   CHECK(m[3].y == Approx(5.0f));
