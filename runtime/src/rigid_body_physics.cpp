@@ -17,7 +17,7 @@ namespace {
 using vrml::FieldType;
 using vrml::FieldValue;
 
-int fieldIndex(const vrml::Node& n, std::string_view name) {
+int rigidFieldIndex(const vrml::Node& n, std::string_view name) {
   return n.type().findExact(name);
 }
 
@@ -43,9 +43,9 @@ bool ExecutionModel::State::classifyRigidBodyPhysics(NodeState& ns) {
   }
   if (id == vrml::NodeTypeId::CollisionSensor) {
     ns.collision = std::make_unique<CollisionSensorState>();
-    ns.collision->isActive = fieldIndex(*ns.node, "isActive");
-    ns.collision->contacts = fieldIndex(*ns.node, "contacts");
-    ns.collision->intersections = fieldIndex(*ns.node, "intersections");
+    ns.collision->isActive = rigidFieldIndex(*ns.node, "isActive");
+    ns.collision->contacts = rigidFieldIndex(*ns.node, "contacts");
+    ns.collision->intersections = rigidFieldIndex(*ns.node, "intersections");
     collisionSensors.push_back(&ns);
     return true;
   }
@@ -57,13 +57,13 @@ namespace {
 /// Sends `value` from field `name` of `ns` when it differs from the field's value.
 template <class Emit>
 void sendVec3(NodeState& ns, std::string_view name, const glm::vec3& v, Emit&& emitOwn) {
-  const int i = fieldIndex(*ns.node, name);
+  const int i = rigidFieldIndex(*ns.node, name);
   if (i < 0 || sameVec3(*ns.node, i, v)) return;
   emitOwn(ns, i, FieldValue::make<FieldType::SFVec3f>(v));
 }
 template <class Emit>
 void sendRotation(NodeState& ns, std::string_view name, const vrml::Rotation& r, Emit&& emitOwn) {
-  const int i = fieldIndex(*ns.node, name);
+  const int i = rigidFieldIndex(*ns.node, name);
   if (i < 0 || sameRotation(*ns.node, i, r)) return;
   emitOwn(ns, i, FieldValue::make<FieldType::SFRotation>(r));
 }
@@ -134,7 +134,7 @@ void ExecutionModel::State::evaluateRigidBodyPhysics() {
       r.bodyRevisions[p.body] = p.body->revision();
     }
     for (physics::JointOutput& o : world.jointOutputs()) {
-      const int i = fieldIndex(*o.joint, o.field);
+      const int i = rigidFieldIndex(*o.joint, o.field);
       if (i >= 0 && o.joint->type().fields[static_cast<std::size_t>(i)].type == o.value.type())
         emitOwn(reach(*o.joint, false), i, std::move(o.value));
     }
@@ -179,7 +179,7 @@ void ExecutionModel::State::evaluateRigidBodyPhysics() {
       vrml::Node& contact = *cs.contactNodes[k];
       const physics::ContactPoint& p = points[k];
       auto set = [&](std::string_view field, FieldValue v) {
-        const int i = fieldIndex(contact, field);
+        const int i = rigidFieldIndex(contact, field);
         if (i >= 0 && contact.type().fields[static_cast<std::size_t>(i)].type == v.type())
           contact.setField(static_cast<std::size_t>(i), std::move(v));
       };
