@@ -74,10 +74,11 @@ struct GpuMesh {
 /// A texture ready for sampling.
 struct GpuTexture {
   GLuint id = 0;
-  int components = 0;     // 1..4 as VRML97 counts them; 0 = no usable texture
-  bool hasAlpha = false;  // some texel is not fully opaque
-  bool cube = false;      // a GL_TEXTURE_CUBE_MAP (ComposedCubeMapTexture), else 2D
-  bool volume = false;    // a GL_TEXTURE_3D (X3D Texturing3D)
+  int components = 0;         // 1..4 as VRML97 counts them; 0 = no usable texture
+  bool hasAlpha = false;      // some texel is not fully opaque
+  bool cube = false;          // a GL_TEXTURE_CUBE_MAP (ComposedCubeMapTexture), else 2D
+  bool volume = false;        // a GL_TEXTURE_3D (X3D Texturing3D)
+  int width = 0, height = 0;  // pixels of a 2D image (0 when not known: movies)
 };
 
 /// The texels of an X3D Texturing3D texture (clause 33): RGBA8, s fastest, then t (rows

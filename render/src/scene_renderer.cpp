@@ -635,6 +635,22 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     // Lines and points are unlit: emissiveColor with a Material or a PhysicalMaterial (as
     // castle-model-viewer draws them; 6.24, 6.36), else white; an UnlitMaterial gives
     // emissiveColor.
+    // X3D 4.0 clause 42: the TextureProjectors that reach the shape, global ones first (the
+    // count is set for every draw: a program keeps the last one it was given).
+    {
+      ShapeProjectors projectors;
+      auto addProjector = [&](std::uint32_t index) {
+        const scene::TextureProjectorInstance& p = g.frame.projectors[index];
+        const vrml::NodePtr& texture = p.node->sfnode("texture");
+        if (p.layer == s.layer && texture)
+          projectors.add(p, g.textures.get(*texture, *p.baseUrl, traversal_, options_.fetcher),
+                         view);
+      };
+      for (std::uint32_t index : g.frame.globalProjectors) addProjector(index);
+      for (std::uint32_t i = 0; i < s.projectorCount; ++i)
+        addProjector(g.frame.scopedProjectors[s.projectorBegin + i]);
+      uploadProjectors(u.projectors, projectors);
+    }
     glm::vec3 unlit = (!triangles && sh.hasMaterial) ? sh.emissiveColor : glm::vec3(1.0f);
     if (sh.model == ShadingModel::unlit) unlit = sh.emissiveColor;
     glUniform3fv(u.unlitColor, 1, glm::value_ptr(unlit));

@@ -24,6 +24,7 @@
 // "previous" being the diffuse colour and 1 - transparency; the last result is the diffuse
 // colour and alpha the lighting uses.
 #include "gl_program.hpp"
+#include "texture_projectors.hpp"
 
 namespace gs::render::detail {
 
@@ -370,6 +371,7 @@ vec4 applyStages(vec4 diffuse, vec3 specular) {
   return previous;
 }
 
+)glsl" GS_TEXTURE_PROJECTOR_GLSL R"glsl(
 void main() {
   if (LINE_TYPE > 1 && !linePatternOn()) discard;
   bool back = SEPARATE_BACK && !gl_FrontFacing;
@@ -397,6 +399,9 @@ void main() {
     diffuse = combined.rgb;
     alpha = combined.a;
   }
+  // X3D 4.0 clause 42: projected textures multiply the colour before lighting.
+  if (u_projectorCount > 0)
+    diffuse *= projectedColor(v_position, gl_FrontFacing ? v_normal : -v_normal, false);
 
   vec3 color = diffuse;
   if (LIT) {

@@ -24,6 +24,7 @@
 // Mobile", 2014). Without one the only ambient term is the lights' ambientIntensity
 // (docs/gltf.md, "Lighting").
 #include "gl_program.hpp"
+#include "texture_projectors.hpp"
 
 namespace gs::render::detail {
 
@@ -144,6 +145,7 @@ vec2 environmentBrdf(float roughness, float nDotV) {
   return vec2(-1.04, 1.04) * a004 + r.zw;
 }
 
+)glsl" GS_TEXTURE_PROJECTOR_GLSL R"glsl(
 void main() {
   vec3 base = u_diffuseColor;
   float alpha = 1.0 - u_transparency;
@@ -156,6 +158,9 @@ void main() {
     base *= u_textureComponents <= 2 ? vec3(t.r) : toLinear(t.rgb);
     if (u_textureComponents == 2 || u_textureComponents == 4) alpha *= t.a;
   }
+  // X3D 4.0 clause 42: projected textures multiply the base colour (linear light).
+  if (u_projectorCount > 0)
+    base *= projectedColor(v_position, gl_FrontFacing ? v_normal : -v_normal, true);
   if (u_alphaMode == 1) alpha = 1.0;
   if (u_alphaMode == 2) {
     if (alpha < u_alphaCutoff) discard;

@@ -102,6 +102,7 @@ void SurfaceUniforms::find(GLuint p) {
   fogColor = uniform(p, "u_fogColor");
   fogVisibilityRange = uniform(p, "u_fogVisibilityRange");
   fogPlane = uniform(p, "u_fogPlane");
+  projectors.find(p);
 }
 
 std::uint64_t SurfaceVariant::key() const {

@@ -14,6 +14,7 @@
 #pragma once
 
 #include "gl_program.hpp"
+#include "texture_projectors.hpp"
 
 #include <array>
 #include <cstddef>
@@ -52,6 +53,7 @@ struct SurfaceUniforms {
   GLint pointScale, pointSizeRange, pointAttenuation;                       // PointProperties
   GLint separateBack, backDiffuseColor, backAmbientIntensity, backSpecularColor, backEmissiveColor,
       backShininess, backTransparency;
+  ProjectorUniformLocations projectors;  // X3D TextureProjectors (texture_projectors.hpp)
 
   /// Looks every location up in linked program `p`.
   void find(GLuint p);

@@ -160,6 +160,8 @@ GpuTexture uploadSampled(const LoadedImage& loaded, const Sampling& sampling) {
   texture.id = uploadRgba(flipped.data(), image.width, image.height, sampling);
   texture.components = loaded.components;
   texture.hasAlpha = loaded.hasAlpha;
+  texture.width = image.width;
+  texture.height = image.height;
   return texture;
 }
 
@@ -231,6 +233,8 @@ const GpuTexture& TextureCache::get(const vrml::Node& node, const std::string& i
       texture.id = uploadRgba(rgba.data(), image.width, image.height, sampling);
       texture.components = image.components;
       texture.hasAlpha = hasAlpha;
+      texture.width = image.width;
+      texture.height = image.height;
     } else {
       traversal.report(vrml::Severity::warning, node.location,
                        "PixelTexture image is inconsistent: drawn untextured");

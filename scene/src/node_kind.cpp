@@ -69,6 +69,9 @@ NodeKind nodeKind(const vrml::Node& node) {
       return NodeKind::EnvironmentLight;
     case NodeTypeId::ClipPlane:
       return NodeKind::ClipPlane;
+    case NodeTypeId::TextureProjector:
+    case NodeTypeId::TextureProjectorParallel:
+      return NodeKind::TextureProjector;
     case NodeTypeId::Viewpoint:
     case NodeTypeId::OrthoViewpoint:  // Camera::orthographic (X3D 4.0 clause 23.4.5)
     case NodeTypeId::GeoViewpoint:    // geo position, orientation in its up frame (25.4.10)

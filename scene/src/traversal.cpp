@@ -51,6 +51,10 @@ struct SceneTraversal::Walk {
   std::vector<glm::vec4>* clipScope = nullptr;
   bool clipScopeChanged = true;
   std::uint32_t lastClipBegin = 0;
+  /// The TextureProjectors with global FALSE in scope (indices into frame.projectors).
+  std::vector<std::uint32_t> projectorScope{};
+  bool projectorScopeChanged = true;
+  std::uint32_t lastProjectorBegin = 0;
   /// groupIds with children in the file being walked (SceneTraversal::filledGroups).
   const std::unordered_set<std::int32_t>* filled = nullptr;
   /// The grouping nodes above the current one when frame.recordPaths (picking).
@@ -139,6 +143,7 @@ struct SceneTraversal::Walk {
     // ClipPlanes clip them (X3D 4.0 clause 11.4.1).
     const std::size_t scopeSize = scope.size();
     const std::size_t clipSize = clipScope->size();
+    const std::size_t projectorSize = projectorScope.size();
     const std::int32_t outerEnvironment = environmentScope;
     const std::int32_t outerFog = fogScope;
     for (const vrml::NodePtr& n : list) {
@@ -153,6 +158,7 @@ struct SceneTraversal::Walk {
         pointOrSpotLight(*n, m, kind == NodeKind::SpotLight, true);
       if (kind == NodeKind::EnvironmentLight) environmentLight(*n, m, baseUrl);
       if (kind == NodeKind::ClipPlane) clipPlane(*n, m);
+      if (kind == NodeKind::TextureProjector) textureProjector(*n, m, baseUrl);
       if (kind == NodeKind::LocalFog) localFog(*n, m);
     }
     for (const vrml::NodePtr& n : list)
@@ -166,6 +172,26 @@ struct SceneTraversal::Walk {
     if (clipScope->size() != clipSize) {
       clipScope->resize(clipSize);
       clipScopeChanged = true;
+    }
+    if (projectorScope.size() != projectorSize) {
+      projectorScope.resize(projectorSize);
+      projectorScopeChanged = true;
+    }
+  }
+
+  // X3D 4.0 clause 42.2: a projector reaches the shapes a light with its `global` would.
+  void textureProjector(const vrml::Node& n, const glm::mat4& m, const std::string* baseUrl) {
+    TextureProjectorInstance p;
+    if (!textureProjectorInstance(n, m, p)) return;
+    p.baseUrl = baseUrl;
+    p.layer = layer;
+    const auto index = static_cast<std::uint32_t>(frame.projectors.size());
+    frame.projectors.push_back(p);
+    if (sfBool(n, "global", true)) {
+      frame.globalProjectors.push_back(index);
+    } else {
+      projectorScope.push_back(index);
+      projectorScopeChanged = true;
     }
   }
 
@@ -362,6 +388,14 @@ struct SceneTraversal::Walk {
     }
     s.clipPlaneBegin = lastClipBegin;
     s.clipPlaneCount = static_cast<std::uint32_t>(clipScope->size());
+    if (projectorScopeChanged) {
+      lastProjectorBegin = static_cast<std::uint32_t>(frame.scopedProjectors.size());
+      frame.scopedProjectors.insert(frame.scopedProjectors.end(), projectorScope.begin(),
+                                    projectorScope.end());
+      projectorScopeChanged = false;
+    }
+    s.projectorBegin = lastProjectorBegin;
+    s.projectorCount = static_cast<std::uint32_t>(projectorScope.size());
     if (frame.recordPaths) {
       s.pathBegin = static_cast<std::uint32_t>(frame.paths.size());
       frame.paths.insert(frame.paths.end(), path.begin(), path.end());

@@ -91,6 +91,12 @@ const RenderCase kCases[] = {
     // grids in both orders, a GeoTransform, seen from a GeoViewpoint 10,000 km up in a
     // rotateYUp GeoOrigin's frame.
     {"geospatial_yup", "x3d/create3000/Tests/Components/Geospatial/YUp.x3d", true},
+    // X3D Texture projection (docs/x3d.md): a global perspective projector, a scoped parallel
+    // one, a lit and an unlit shape (1.4% from X_ITE's picture); X_ITE's apple thrown into a
+    // corner (0.5% from X_ITE's).
+    {"texture_projection", "assets/worlds/texture_projection.x3dv", false},
+    {"texture_projector_apple", "x3d/create3000/Tests/Components/TextureProjection/apple.x3d",
+     true},
 };
 
 void checkAgainstBaseline(const RenderCase& c) {

@@ -175,6 +175,9 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::SingleAxisHingeJoint,
     NodeTypeId::SliderJoint,
     NodeTypeId::UniversalJoint,
+    NodeTypeId::TextureProjector,  // scene/src/texture_projectors.cpp,
+                                   // render/src/texture_projectors.cpp
+    NodeTypeId::TextureProjectorParallel,
     NodeTypeId::LayerSet,  // scene/src/traversal.cpp, render/src/scene_renderer.cpp
     NodeTypeId::Layer,
     NodeTypeId::Viewport,

@@ -24,6 +24,7 @@ enum class NodeKind : std::uint8_t {
   SpotLight,
   EnvironmentLight,  // X3D 4.1: image-based lighting of physical materials
   ClipPlane,         // X3D Rendering: clips its siblings and their descendants
+  TextureProjector,  // X3D TextureProjection (clause 42): projects onto shapes, like a light
   Viewpoint,
   NavigationInfo,
   Background,

@@ -70,6 +70,40 @@ struct EnvironmentLightInstance {
   const std::string* baseUrl = nullptr;  // the base for its textures' urls; never null
 };
 
+/// A TextureProjector or TextureProjectorParallel (X3D 4.0 clause 42) that is on and has a
+/// texture, in world coordinates: it multiplies the colour of the shapes in its scope
+/// (global: every shape of its layer; else its siblings and their descendants) by its
+/// texture where they lie in its frustum and face it (docs/x3d.md "Texture projection").
+struct TextureProjectorInstance {
+  const vrml::Node* node = nullptr;      // its `texture` is projected
+  const std::string* baseUrl = nullptr;  // the base for the texture's urls; never null
+  std::uint32_t layer = 0;               // as LightInstance::layer
+  /// Projector coordinates to world: the projector's transform times translation to
+  /// `location` times the rotation that turns -Z onto `direction` with +Y towards
+  /// `upVector` (the projector looks down -Z, image top at +Y, like a Viewpoint).
+  glm::mat4 projectorToWorld{1.0f};
+  bool parallel = false;                     // TextureProjectorParallel
+  float fieldOfView = 0.785398f;             // radians, of the image's shorter side (perspective)
+  glm::vec4 area{-1.0f, -1.0f, 1.0f, 1.0f};  // parallel: min x, min y, max x, max y (metres)
+  float nearDistance = -1.0f;                // metres in projector coordinates; < 0: no near limit
+  float farDistance = -1.0f;                 // < 0: no far limit
+  glm::vec3 color{1.0f};                     // multiplies the texels
+  float intensity = 1.0f;                    // > 0: how much of the texel colour replaces white
+};
+
+/// The instance of TextureProjector or TextureProjectorParallel `node` under transform `m`,
+/// or false when it projects nothing (on FALSE, intensity <= 0, no texture, a zero
+/// direction). clause 42.4.1, 42.4.2; scene/src/texture_projectors.cpp.
+bool textureProjectorInstance(const vrml::Node& node, const glm::mat4& m,
+                              TextureProjectorInstance& out);
+
+/// The projection of `p` for an image of `width` x `height` pixels (either 0: square):
+/// projector coordinates to clip coordinates (OpenGL's, x and y in [-1, 1] inside the
+/// frustum, z in [-1, 1] between the near and far planes, which are 0.125 and 100000 when
+/// not given). Perspective: fieldOfView spans the image's shorter side; parallel: the
+/// area widened about its centre along one axis to the image's aspect.
+glm::mat4 textureProjection(const TextureProjectorInstance& p, int width, int height);
+
 /// One grouping node on the way from the root to a Shape (recorded when
 /// TraversalFrame::recordPaths is set; scene/picking.hpp).
 struct PathStep {
@@ -116,6 +150,10 @@ struct ShapeInstance {
   /// the innermost scoped one (global FALSE: its siblings and their descendants), else the
   /// first global one; -1 for none.
   std::int32_t environmentLight = -1;
+  /// Range in TraversalFrame::scopedProjectors of the TextureProjectors whose global is
+  /// FALSE that project onto it (the global ones of its layer do too).
+  std::uint32_t projectorBegin = 0;
+  std::uint32_t projectorCount = 0;
   /// Range in TraversalFrame::scopedClipPlanes of the ClipPlanes that clip it.
   std::uint32_t clipPlaneBegin = 0;
   std::uint32_t clipPlaneCount = 0;
@@ -166,6 +204,10 @@ struct TraversalFrame {
   /// lights; the others are in scopedLights (clause 17.2.1.1).
   std::vector<std::uint32_t> globalLights;
   std::vector<EnvironmentLightInstance> environmentLights;  // every one that is on
+  /// Every TextureProjector that projects, and indices into it: the global ones (each for
+  /// its layer's shapes) and the scoped ones (ShapeInstance ranges).
+  std::vector<TextureProjectorInstance> projectors;
+  std::vector<std::uint32_t> globalProjectors, scopedProjectors;
   /// Enabled ClipPlanes (X3D 4.0 clause 11.4.1) in world coordinates, as (a, b, c, d): a
   /// point p is kept where a p.x + b p.y + c p.z + d >= 0 (ShapeInstance ranges).
   std::vector<glm::vec4> scopedClipPlanes;
@@ -191,6 +233,9 @@ struct TraversalFrame {
     scopedLights.clear();
     globalLights.clear();
     environmentLights.clear();
+    projectors.clear();
+    globalProjectors.clear();
+    scopedProjectors.clear();
     scopedClipPlanes.clear();
     localFogs.clear();
   }
