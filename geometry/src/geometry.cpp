@@ -368,6 +368,12 @@ Mesh tessellate(const Node& geometry, Diagnostics* diag) {
     case NodeTypeId::NurbsCurve:  // X3D 4.0 clause 27, NURBS (geometry_nurbs.cpp)
       m = tessellateNurbsCurve(geometry, log);
       break;
+    case NodeTypeId::NurbsSweptSurface:  // geometry_nurbs_swept.cpp
+      m = tessellateNurbsSweptSurface(geometry, log);
+      break;
+    case NodeTypeId::NurbsSwungSurface:
+      m = tessellateNurbsSwungSurface(geometry, log);
+      break;
     case NodeTypeId::NurbsPatchSurface:
     case NodeTypeId::NurbsTrimmedSurface:
       m = tessellateNurbsSurface(geometry, log);

@@ -239,7 +239,7 @@ std::vector<glm::dmat3> spineFrames(const std::vector<glm::dvec3>& spine, bool c
 
 /// Cumulative length along a polyline, normalized to [0, 1] (uniform when it has none).
 template <class V>
-std::vector<float> arcLength(const std::vector<V>& p, std::size_t n) {
+std::vector<float> arcLength(std::span<const V> p, std::size_t n) {
   std::vector<double> d(n, 0.0);
   for (std::size_t i = 1; i < n; ++i) {
     using D = glm::vec<V::length(), double>;
@@ -260,10 +260,24 @@ Mesh tessellateExtrusion(const Node& node, ProblemLog& log) {
   static const std::vector<glm::vec2> kSquare = {{1, 1}, {1, -1}, {-1, -1}, {-1, 1}, {1, 1}};
   static const std::vector<glm::vec2> kScale = {{1, 1}};
   static const std::vector<Rotation> kOrientation = {{0, 0, 1, 0}};
-  const auto& spineIn = fieldOr<FieldType::MFVec3f>(node, "spine", kSpine);
-  const auto& cs = fieldOr<FieldType::MFVec2f>(node, "crossSection", kSquare);
-  const auto& scale = fieldOr<FieldType::MFVec2f>(node, "scale", kScale);
-  const auto& orientation = fieldOr<FieldType::MFRotation>(node, "orientation", kOrientation);
+  ExtrusionInput in;
+  in.spine = fieldOr<FieldType::MFVec3f>(node, "spine", kSpine);
+  in.crossSection = fieldOr<FieldType::MFVec2f>(node, "crossSection", kSquare);
+  in.scale = fieldOr<FieldType::MFVec2f>(node, "scale", kScale);
+  in.orientation = fieldOr<FieldType::MFRotation>(node, "orientation", kOrientation);
+  in.beginCap = node.get<FieldType::SFBool>("beginCap", true);
+  in.endCap = node.get<FieldType::SFBool>("endCap", true);
+  return extrude(
+      in, [&](std::span<const glm::vec3> points) { return polygonSoupOf(node, points); }, log);
+}
+
+Mesh extrude(const ExtrusionInput& in,
+             const std::function<PolygonSoup(std::span<const glm::vec3>)>& soupOf,
+             ProblemLog& log) {
+  const std::span<const glm::vec3> spineIn = in.spine;
+  const std::span<const glm::vec2> cs = in.crossSection;
+  const std::span<const glm::vec2> scale = in.scale;
+  const std::span<const Rotation> orientation = in.orientation;
   std::size_t ns = spineIn.size();
   const std::size_t nc = cs.size();
   if (ns < 2 || nc < 2) return {};
@@ -316,8 +330,8 @@ Mesh tessellateExtrusion(const Node& node, ProblemLog& log) {
     return static_cast<std::uint32_t>((i % rings) * cols + (j % cols));
   };
 
-  PolygonSoup soup = polygonSoupOf(node, points);
-  const std::vector<float> s = arcLength(cs, nc), t = arcLength(spine, ns);
+  PolygonSoup soup = soupOf(points);
+  const std::vector<float> s = arcLength<glm::vec2>(cs, nc), t = arcLength<glm::dvec3>(spine, ns);
   bool skipped = false;
   soup.corners.reserve(4 * (ns - 1) * (nc - 1) + 2 * cols);
   // Sides: with the crossSection counterclockwise seen from +Y (as the default square
@@ -352,8 +366,8 @@ Mesh tessellateExtrusion(const Node& node, ProblemLog& log) {
     }
   };
   if (cols >= 3) {
-    if (node.get<FieldType::SFBool>("beginCap", true)) cap(0, true);
-    if (node.get<FieldType::SFBool>("endCap", true)) cap(ns - 1, false);
+    if (in.beginCap) cap(0, true);
+    if (in.endCap) cap(ns - 1, false);
   }
   if (skipped) log.add("spine, scale or orientation give points that are not finite numbers");
   return buildPolygonMesh(soup);

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -291,6 +292,28 @@ Mesh tessellateIndexedLineSet(const Node& node, ProblemLog& log);
 Mesh tessellatePointSet(const Node& node, ProblemLog& log);
 Mesh tessellateElevationGrid(const Node& node, ProblemLog& log);
 Mesh tessellateExtrusion(const Node& node, ProblemLog& log);
+
+/// What an Extrusion is made of (clause 6.19's fields).
+struct ExtrusionInput {
+  std::span<const glm::vec3> spine;
+  std::span<const glm::vec2> crossSection, scale;
+  std::span<const Rotation> orientation;
+  bool beginCap = true, endCap = true;
+};
+/// The Extrusion of `in` (clause 6.19), its grid points made a soup by `soupOf` (which
+/// sets ccw, solid, convex and creaseAngle): Extrusion nodes and the NURBS swept and swung
+/// surfaces (geometry_nurbs_swept.cpp).
+Mesh extrude(const ExtrusionInput& in,
+             const std::function<PolygonSoup(std::span<const glm::vec3>)>& soupOf, ProblemLog& log);
+/// The points of the NURBS curve of `node`'s order, knot, weight, closed and tessellation
+/// fields through control points `points` (X3D 4.0 27.2.3: tessellation segments; a closed
+/// curve periodic, as X_ITE makes it), or none when there are fewer than 2 or too many
+/// control points: geometry_nurbs.cpp.
+std::vector<glm::dvec3> nurbsCurvePoints(const Node& node, const std::vector<glm::dvec3>& points,
+                                         ProblemLog& log);
+// X3D NURBS swept and swung surfaces (X3D 4.0 27.4.11, 27.4.12): geometry_nurbs_swept.cpp.
+Mesh tessellateNurbsSweptSurface(const Node& node, ProblemLog& log);
+Mesh tessellateNurbsSwungSurface(const Node& node, ProblemLog& log);
 
 // X3D 4.0 Rendering (clause 11) and CADGeometry (clause 32): geometry_x3d.cpp.
 Mesh tessellateIndexedTriangleSet(const Node& node, ProblemLog& log);

@@ -143,16 +143,50 @@ std::vector<glm::dvec3> nurbsTextureGrid(const Node& tc, int su, int sv, Problem
 
 }  // namespace
 
-Mesh tessellateNurbsCurve(const Node& node, ProblemLog& log) {
-  const std::vector<glm::dvec3> points = nurbs::controlPoints(node);
+/// A closed curve (27.4.2 `closed` TRUE, its first and last control points and weights
+/// the same) made periodic as X_ITE makes it: the order - 2 control points after the first
+/// repeated at the end, the knots (the node's when usable, else uniform over [0, 1])
+/// continued by the same steps. False (nothing changed) when the curve cannot close.
+bool closeCurve(const Node& node, int order, std::vector<glm::dvec3>& points,
+                std::vector<double>& weights, std::vector<double>& knots) {
+  const std::size_t n = points.size();
+  if (!node.get<FieldType::SFBool>("closed", false) || order < 3 || n < 3 ||
+      n < static_cast<std::size_t>(order) || points.front() != points.back() ||
+      weights.front() != weights.back())
+    return false;
+  const std::size_t length = n + static_cast<std::size_t>(order);
+  std::string problem;
+  if (knots.size() != length || !nurbs::strictAxis(static_cast<int>(n), order, knots, problem)) {
+    knots.resize(length);
+    for (std::size_t i = 0; i < length; ++i)
+      knots[i] = static_cast<double>(i) / static_cast<double>(length - 1);
+  }
+  for (int i = 1; i < order - 1; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    knots.push_back(knots.back() + (knots[k] - knots[k - 1]));
+    points.push_back(points[k]);
+    weights.push_back(weights[k]);
+  }
+  return true;
+}
+
+std::vector<glm::dvec3> nurbsCurvePoints(const Node& node, const std::vector<glm::dvec3>& given,
+                                         ProblemLog& log) {
+  if (given.size() < 2 || given.size() > static_cast<std::size_t>(kMaxNurbsControlPoints))
+    return {};
+  std::vector<glm::dvec3> points = given;
+  // The weights as nurbsWeights() reads them (it reports their problem after the knots').
+  ProblemLog quiet(node, nullptr);
+  std::vector<double> w = nurbsWeights(node, points.size(), quiet);
+  std::vector<double> knots = nurbs::doubles(node, "knot");
+  const int order = node.get<FieldType::SFInt32>("order", 3);
+  closeCurve(node, order, points, w, knots);
   const int n = static_cast<int>(points.size());
-  if (n < 2 || n > kMaxNurbsControlPoints) return {};
-  const Axis axis = nurbsAxis(n, node.get<FieldType::SFInt32>("order", 3),
-                              nurbs::doubles(node, "knot"), "knot", log);
-  const std::vector<double> w = nurbsWeights(node, points.size(), log);
+  const Axis axis = nurbsAxis(n, order, knots, "knot", log);
+  nurbsWeights(node, given.size(), log);
   const int segments = nurbsSegments(node.get<FieldType::SFInt32>("tessellation", 0), n);
-  MeshBuilder b(Primitive::lines, false, false, false);
-  b.reserve(static_cast<std::size_t>(segments) + 1, 2 * static_cast<std::size_t>(segments));
+  std::vector<glm::dvec3> out;
+  out.reserve(static_cast<std::size_t>(segments) + 1);
   std::vector<double> basis;
   for (int s = 0; s <= segments; ++s) {
     const double u = axis.start() + (axis.end() - axis.start()) * s / segments;
@@ -166,8 +200,19 @@ Mesh tessellateNurbsCurve(const Node& node, ProblemLog& log) {
       sum += c * points[i];
       weight += c;
     }
+    out.push_back(weight != 0.0 ? sum / weight : points.front());
+  }
+  return out;
+}
+
+Mesh tessellateNurbsCurve(const Node& node, ProblemLog& log) {
+  const std::vector<glm::dvec3> curve = nurbsCurvePoints(node, nurbs::controlPoints(node), log);
+  if (curve.empty()) return {};
+  MeshBuilder b(Primitive::lines, false, false, false);
+  b.reserve(curve.size(), 2 * curve.size());
+  for (std::size_t s = 0; s < curve.size(); ++s) {
     Vertex v;
-    v.position = glm::vec3(weight != 0.0 ? sum / weight : points.front());
+    v.position = glm::vec3(curve[s]);
     const std::uint32_t index = b.push(v);
     if (s > 0) {
       b.index(index - 1);

@@ -95,6 +95,9 @@ const RenderCase kCases[] = {
     // one, a lit and an unlit shape (1.4% from X_ITE's picture); X_ITE's apple thrown into a
     // corner (0.5% from X_ITE's).
     {"texture_projection", "assets/worlds/texture_projection.x3dv", false},
+    // NURBS swept surface (docs/x3d.md): a closed NurbsCurve2D swept along a closed cubic
+    // NurbsCurve, 1.1% from X_ITE's picture.
+    {"nurbs_swept_b", "x3d/create3000/Tests/Components/NURBS/B.x3d", true},
     {"texture_projector_apple", "x3d/create3000/Tests/Components/TextureProjection/apple.x3d",
      true},
 };

@@ -210,3 +210,60 @@ TEST_CASE("NURBS corpus worlds load and tessellate with no diagnostic", "[vrml][
     CHECK(shapes >= 3);
   }
 }
+
+TEST_CASE("NurbsCurve closed: periodic, smooth through the seam (as X_ITE makes it)",
+          "[vrml][nurbs]") {
+  Diagnostics diag;
+  // A closed quadratic over the square's corners: it passes the edges' midpoints, not the
+  // corners, and its ends meet.
+  const Mesh m = nurbsMesh(
+      "NurbsCurve { closed TRUE tessellation 40 controlPoint Coordinate { "
+      "point [ 1 1 0, -1 1 0, -1 -1 0, 1 -1 0, 1 1 0 ] } }",
+      diag);
+  CHECK(diag.items.empty());
+  REQUIRE(m.positions.size() == 41);
+  CHECK(glm::length(m.positions.front() - m.positions.back()) < 1e-5f);
+  for (const glm::vec3& p : m.positions) {
+    CHECK(std::max(std::abs(p.x), std::abs(p.y)) <= 1.0f + 1e-5f);
+    CHECK(glm::length(glm::vec2(p)) > 0.7f);                    // no corner cut to the centre
+    CHECK(glm::length(glm::vec2(p) - glm::vec2(1, 1)) > 0.3f);  // the corner is cut
+  }
+  // Not closed: the same points give a curve from corner to corner.
+  const Mesh open = nurbsMesh(
+      "NurbsCurve { tessellation 40 controlPoint Coordinate { "
+      "point [ 1 1 0, -1 1 0, -1 -1 0, 1 -1 0, 1 1 0 ] } }",
+      diag);
+  CHECK(open.positions.front() == glm::vec3(1, 1, 0));
+}
+
+TEST_CASE("NurbsSweptSurface and NurbsSwungSurface: extrusions of their curves", "[vrml][nurbs]") {
+  Diagnostics diag;
+  // A 2 x 2 square (order 2: its polyline) swept along a straight 3D curve from y 0 to 4.
+  const Mesh swept = nurbsMesh(
+      "NurbsSweptSurface { solid FALSE"
+      " crossSectionCurve NurbsCurve2D { order 2 controlPoint [ 1 1, 1 -1, -1 -1, -1 1, 1 1 ] }"
+      " trajectoryCurve NurbsCurve { order 2 tessellation 2"
+      "   controlPoint Coordinate { point [ 0 0 0, 0 4 0 ] } } }",
+      diag);
+  CHECK(diag.items.empty());
+  REQUIRE(swept.triangleCount() > 0);
+  CHECK(swept.bounds.min.x == Approx(-1.0f));
+  CHECK(swept.bounds.max.z == Approx(1.0f));
+  CHECK(swept.bounds.min.y == Approx(0.0f));
+  CHECK(swept.bounds.max.y == Approx(4.0f));
+  CHECK_FALSE(swept.solid);
+  // A profile (x, y) swung along a trajectory laid in XZ: a ring between radii 1 and 3.
+  const Mesh swung = nurbsMesh(
+      "NurbsSwungSurface {"
+      " profileCurve ContourPolyline2D { controlPoint [ 1 -1, 1 1, -1 1, -1 -1, 1 -1 ] }"
+      " trajectoryCurve NurbsCurve2D { closed TRUE tessellation 64"
+      "   controlPoint [ 2 2, -2 2, -2 -2, 2 -2, 2 2 ] } }",
+      diag);
+  REQUIRE(swung.triangleCount() > 0);
+  CHECK(swung.bounds.max.y == Approx(1.0f).margin(0.05));
+  CHECK(swung.bounds.min.y == Approx(-1.0f).margin(0.05));
+  CHECK(swung.bounds.max.x > 2.0f);
+  CHECK(swung.bounds.max.x < 3.01f);
+  // Without a trajectory: nothing.
+  CHECK(nurbsMesh("NurbsSweptSurface { }", diag).triangleCount() == 0);
+}

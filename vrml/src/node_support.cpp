@@ -175,6 +175,10 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::SingleAxisHingeJoint,
     NodeTypeId::SliderJoint,
     NodeTypeId::UniversalJoint,
+    NodeTypeId::NurbsSweptSurface,  // geometry/src/geometry_nurbs_swept.cpp
+    NodeTypeId::NurbsSwungSurface,
+    NodeTypeId::NurbsCurve2D,  // their control curves (not as trimming contours)
+    NodeTypeId::ContourPolyline2D,
     NodeTypeId::TextureProjector,  // scene/src/texture_projectors.cpp,
                                    // render/src/texture_projectors.cpp
     NodeTypeId::TextureProjectorParallel,
