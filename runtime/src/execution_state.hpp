@@ -94,6 +94,10 @@ struct SkinState {
   int skinCoord = -1, skinNormal = -1;
   std::vector<glm::vec3> bindPoints, bindNormals;
   std::unordered_map<const vrml::Node*, glm::mat4> bindInverse;
+  /// HAnimSegments with displacers: their coord's points as first seen, and the
+  /// displacers' revisions they were displaced for.
+  std::unordered_map<const vrml::Node*, std::pair<std::vector<glm::vec3>, std::uint64_t>>
+      segmentRest;
   std::vector<glm::vec3> sum;
   std::vector<float> weight;
 };

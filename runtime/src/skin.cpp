@@ -189,6 +189,8 @@ void ExecutionModel::State::evaluateSkin(NodeState& ns) {
 //   point_v = sum_j w_vj * M_j * bind_v + (1 - sum_j w_vj) * bind_v
 // where matrix_j is joint j's matrix relative to the humanoid (its skeleton's roots); a
 // weight missing from skinCoordWeight is 1. skinNormal's vectors turn with the upper 3x3.
+// The joints' HAnimDisplacers then move the points they list (26.4.2, as X_ITE 15 does):
+//   point_v += sum over displacers d of joint j: mat3(M_j) displacement_dv weight_d
 
 bool ExecutionModel::State::classifyHumanoid(NodeState& ns) {
   const vrml::Node& n = *ns.node;
@@ -204,9 +206,66 @@ bool ExecutionModel::State::classifyHumanoid(NodeState& ns) {
   return true;
 }
 
+namespace {
+
+/// The HAnimDisplacers of `owner` (a joint or segment) added to `out` (one entry per point
+/// of a coord of `count` points), each displacement turned by `turn` and times its weight.
+void addDisplacements(const vrml::Node& owner, const glm::mat3& turn, std::vector<glm::vec3>& out) {
+  for (const vrml::NodePtr& d : owner.mfnode("displacers")) {
+    if (!d || d->type().id() != vrml::NodeTypeId::HAnimDisplacer) continue;
+    const float w = d->get<FieldType::SFFloat>("weight", 0.0f);
+    const vrml::FieldValue* ci = d->field("coordIndex");
+    const vrml::FieldValue* dv = d->field("displacements");
+    if (!std::isfinite(w) || ci == nullptr || dv == nullptr || ci->type() != FieldType::MFInt32 ||
+        dv->type() != FieldType::MFVec3f)
+      continue;
+    const auto& coordIndex = ci->get<FieldType::MFInt32>();
+    const auto& displacements = dv->get<FieldType::MFVec3f>();
+    for (std::size_t k = 0; k < coordIndex.size() && k < displacements.size(); ++k) {
+      const std::int32_t v = coordIndex[k];
+      if (v >= 0 && static_cast<std::size_t>(v) < out.size())
+        out[static_cast<std::size_t>(v)] += turn * (displacements[k] * w);
+    }
+  }
+}
+
+/// A hash of the revisions of `owner`'s displacers (0 when it has none).
+std::uint64_t displacerRevisions(const vrml::Node& owner) {
+  std::uint64_t h = 0;
+  for (const vrml::NodePtr& d : owner.mfnode("displacers"))
+    if (d) h = h * 1099511628211ULL + d->revision() + 1;
+  return h;
+}
+
+// An HAnimSegment's displacers move the points of its own `coord` (26.4.2, as X_ITE 15 does:
+// in the segment's coordinates, not turned): point_v = rest_v + sum_d displacement_dv w_d.
+void evaluateSegmentDisplacers(const vrml::Node& humanoid, SkinState& st) {
+  for (const vrml::NodePtr& segment : humanoid.mfnode("segments")) {
+    if (!segment || segment->type().id() != vrml::NodeTypeId::HAnimSegment) continue;
+    const std::uint64_t revisions = displacerRevisions(*segment);
+    const vrml::NodePtr& coord = segment->sfnode("coord");
+    if (revisions == 0 || !coord) continue;
+    const int point = fieldIndex(*coord, "point", FieldType::MFVec3f);
+    if (point < 0) continue;
+    auto& points = coord->fieldAt(static_cast<std::size_t>(point)).get<FieldType::MFVec3f>();
+    auto [it, added] = st.segmentRest.try_emplace(segment.get(), points, 0);
+    if (!added && it->second.second == revisions) continue;
+    it->second.second = revisions;
+    const std::vector<glm::vec3>& rest = it->second.first;
+    std::vector<glm::vec3> moved(rest.size(), glm::vec3(0.0f));
+    addDisplacements(*segment, glm::mat3(1.0f), moved);
+    points.resize(rest.size());
+    for (std::size_t v = 0; v < rest.size(); ++v) points[v] = rest[v] + moved[v];
+    coord->markChanged();
+  }
+}
+
+}  // namespace
+
 void ExecutionModel::State::evaluateHumanoid(NodeState& ns) {
   const vrml::Node& humanoid = *ns.node;
   SkinState& st = *ns.skin;
+  evaluateSegmentDisplacers(humanoid, st);
   const vrml::NodePtr& coord = fieldOr<FieldType::SFNode>(humanoid, st.skinCoord);
   if (!coord) return;  // no skin to deform
   const int point = fieldIndex(*coord, "point", FieldType::MFVec3f);
@@ -219,17 +278,25 @@ void ExecutionModel::State::evaluateHumanoid(NodeState& ns) {
   std::vector<glm::vec3>* normals =
       vector >= 0 ? &normal->fieldAt(static_cast<std::size_t>(vector)).get<FieldType::MFVec3f>()
                   : nullptr;
+  // The joints' HAnimDisplacers (26.3.2): their weights are part of the pose.
+  const std::vector<vrml::NodePtr>& joints = fieldOr<FieldType::MFNode>(humanoid, st.joints);
+  std::uint64_t displacers = 0;
+  for (const vrml::NodePtr& joint : joints)
+    if (joint && joint->type().id() == vrml::NodeTypeId::HAnimJoint)
+      displacers = displacers * 31 + displacerRevisions(*joint);
+  const std::uint64_t pose = signature ^ (displacers * 0x9e3779b97f4a7c15ULL);
   if (!st.evaluated) {  // the bind pose
     st.evaluated = true;
-    st.signature = signature;
+    st.signature = pose;
     st.bindPoints = points;
     if (normals != nullptr) st.bindNormals = *normals;
     st.bindInverse.clear();
     for (const auto& [node, m] : st.matrices) st.bindInverse.emplace(node, glm::inverse(m));
-    return;
+    if (displacers == 0) return;
+  } else {
+    if (pose == st.signature) return;
+    st.signature = pose;
   }
-  if (signature == st.signature) return;
-  st.signature = signature;
 
   const std::size_t count = st.bindPoints.size();
   st.sum.assign(count, glm::vec3(0.0f));
@@ -237,12 +304,16 @@ void ExecutionModel::State::evaluateHumanoid(NodeState& ns) {
   std::vector<glm::vec3> normalSum;
   const bool withNormals = normals != nullptr && st.bindNormals.size() == count;
   if (withNormals) normalSum.assign(count, glm::vec3(0.0f));
-  for (const vrml::NodePtr& joint : fieldOr<FieldType::MFNode>(humanoid, st.joints)) {
+  std::vector<glm::vec3> displaced(displacers != 0 ? count : 0, glm::vec3(0.0f));
+  for (const vrml::NodePtr& joint : joints) {
     if (!joint || joint->type().id() != vrml::NodeTypeId::HAnimJoint) continue;
     const auto now = st.matrices.find(joint.get());
     const auto bind = st.bindInverse.find(joint.get());
     if (now == st.matrices.end() || bind == st.bindInverse.end()) continue;
     const glm::mat4 m = now->second * bind->second;
+    // Displacements (26.4.2), turned as the joint turns the skin (X_ITE 15's skinning):
+    // point v += mat3(M_j) * displacement * weight, on top of the skinned point.
+    if (!displaced.empty()) addDisplacements(*joint, glm::mat3(m), displaced);
     const auto& index = fieldOr<FieldType::MFInt32>(
         *joint, fieldIndex(*joint, "skinCoordIndex", FieldType::MFInt32));
     const auto& weight = fieldOr<FieldType::MFFloat>(
@@ -261,7 +332,8 @@ void ExecutionModel::State::evaluateHumanoid(NodeState& ns) {
   // Written in place (the change contract: markChanged after a write through fieldAt).
   points.resize(count);
   for (std::size_t v = 0; v < count; ++v)
-    points[v] = st.sum[v] + (1.0f - st.weight[v]) * st.bindPoints[v];
+    points[v] = st.sum[v] + (1.0f - st.weight[v]) * st.bindPoints[v] +
+                (displaced.empty() ? glm::vec3(0.0f) : displaced[v]);
   coord->markChanged();
   if (withNormals) {
     normals->resize(count);

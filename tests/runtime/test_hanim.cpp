@@ -46,3 +46,37 @@ DEF H HAnimHumanoid {
   w.send("J", "set_translation", FieldValue::make<FieldType::SFVec3f>(glm::vec3(0, 0, 0)));
   CHECK(near(points()[2], {3, 0, 0}));
 }
+
+TEST_CASE("H-Anim: displacers move the points they list by weight, turned with their joint",
+          "[runtime][hanim]") {
+  RunningWorld w(x3dWorld(R"(
+DEF H HAnimHumanoid {
+  skinCoord DEF SC Coordinate { point [ 1 0 0, 2 0 0 ] }
+  skeleton DEF J HAnimJoint {
+    skinCoordIndex [ 1 ] skinCoordWeight [ 1 ]
+    displacers DEF D HAnimDisplacer { coordIndex [ 0 1 ] displacements [ 0 2 0, 1 0 0 ] weight 0.5 }
+  }
+  joints USE J
+  segments DEF S HAnimSegment {
+    coord DEF SEG Coordinate { point [ 0 0 0, 5 5 5 ] }
+    displacers DEF E HAnimDisplacer { coordIndex [ 1 ] displacements [ 0 0 -4 ] weight 0 }
+  }
+  skin Shape { geometry PointSet { coord USE SC } }
+}
+)"));
+  const auto skin = [&] { return w.node("SC").field("point")->get<FieldType::MFVec3f>(); };
+  const auto seg = [&] { return w.node("SEG").field("point")->get<FieldType::MFVec3f>(); };
+  // At load: displaced by half their displacements.
+  CHECK(near(skin()[0], {1, 1, 0}));
+  CHECK(near(skin()[1], {2.5f, 0, 0}));
+  CHECK(near(seg()[1], {5, 5, 5}));  // weight 0
+  w.send("D", "set_weight", FieldValue::make<FieldType::SFFloat>(1.0f));
+  w.send("E", "set_weight", FieldValue::make<FieldType::SFFloat>(0.25f));
+  CHECK(near(skin()[0], {1, 2, 0}));
+  CHECK(near(seg()[1], {5, 5, 4}));
+  // The joint turns a quarter about z: point 1 (weighed by it) and its displacement turn.
+  w.send("J", "set_rotation",
+         FieldValue::make<FieldType::SFRotation>(vrml::Rotation(0, 0, 1, glm::half_pi<float>())));
+  CHECK(near(skin()[1], {0, 3, 0}));   // (2, 0, 0) turned, plus (1, 0, 0) turned
+  CHECK(near(skin()[0], {-1, 0, 0}));  // rest (1, 0, 0) + (0, 2, 0) turned to (-2, 0, 0)
+}

@@ -175,6 +175,7 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::SingleAxisHingeJoint,
     NodeTypeId::SliderJoint,
     NodeTypeId::UniversalJoint,
+    NodeTypeId::HAnimDisplacer,     // runtime/src/skin.cpp
     NodeTypeId::NurbsSweptSurface,  // geometry/src/geometry_nurbs_swept.cpp
     NodeTypeId::NurbsSwungSurface,
     NodeTypeId::NurbsCurve2D,  // their control curves (not as trimming contours)
