@@ -275,6 +275,7 @@ void ExecutionModel::advanceTo(double time) {
   s_->evaluateLoadSensors();  // their timeOuts
   s_->evaluateEnvironmentSensors();
   s_->evaluatePickSensors();
+  if (!s_->espduTransforms.empty()) s_->evaluateDis();
   for (PendingEvent& e : s_->posted) s_->queue.push_back(std::move(e));
   s_->posted.clear();
   s_->runCascade();

@@ -7,6 +7,7 @@
 #include "runtime/interpolators_x3d.hpp"
 #include "runtime/time_dependent.hpp"
 
+#include "dis/udp_socket.hpp"
 #include "geometry/geometry.hpp"
 #include "particles/particle_system.hpp"
 #include "physics/rigid_body_world.hpp"
@@ -126,6 +127,16 @@ struct RigidBodyCollectionState {
   /// set its fields (resetBody).
   std::unordered_map<const vrml::Node*, std::uint64_t> bodyRevisions;
   std::size_t warningsReported = 0;
+};
+
+/// An EspduTransform's record (dis_nodes.cpp): the UDP port it reads, when it last read.
+struct EspduState {
+  std::string key;            // its receiver in State::disReceivers ("address:port"), "" none
+  double lastRead = -1e300;   // SFTime of the last read (readInterval apart)
+  bool reported = false;      // a problem with its socket was reported
+  bool dropReported = false;  // datagrams that did not decode were reported
+  bool announced = false;     // isNetworkReader / isStandAlone sent
+  bool active = false;        // isActive TRUE sent
 };
 
 /// What a CollisionSensor last sent (rigid_body_physics.cpp), and the Contact nodes it
@@ -277,6 +288,7 @@ struct NodeState {
   std::unique_ptr<PickSensorState> pick;                  // an X3D pick sensor (role plain)
   std::unique_ptr<RigidBodyCollectionState> rigidBodies;  // a RigidBodyCollection (plain)
   std::unique_ptr<CollisionSensorState> collision;        // a CollisionSensor (plain)
+  std::unique_ptr<EspduState> espdu;                      // an EspduTransform (plain)
   bool scriptHadEvents = false;
   bool problemReported = false;
 };
@@ -318,6 +330,9 @@ struct ExecutionModel::State {
   // RigidBodyCollections and CollisionSensors (rigid_body_physics.cpp); the collections
   // whose world is not built yet.
   std::vector<NodeState*> rigidBodyCollections, collisionSensors, newRigidBodyCollections;
+  /// EspduTransforms (dis_nodes.cpp) and the UDP receivers they read, by "address:port".
+  std::vector<NodeState*> espduTransforms;
+  std::unordered_map<std::string, std::unique_ptr<dis::UdpReceiver>> disReceivers;
   /// The tessellations the pick sensors test, with the revisionWithFields they were made
   /// at (made again only when their geometry changed).
   vrml::NodeMap<std::pair<std::uint64_t, vrml::Mesh>> pickMeshes;
@@ -457,6 +472,13 @@ struct ExecutionModel::State {
   /// events, as X_ITE's sensor phase); the bodies' outputs, the collidables moved, the
   /// joints' forceOutput values and the CollisionSensors' contacts, as events.
   void evaluateRigidBodyPhysics();
+
+  // ---- DIS (dis_nodes.cpp) ----
+  /// Makes `ns` an EspduTransform record (its events stay plain).
+  bool classifyDis(NodeState& ns);
+  /// Reads the PDUs waiting for each networkReader EspduTransform (every readInterval) and
+  /// sends what its Entity State PDUs say, in the cascade under way.
+  void evaluateDis();
 
   // ---- environmental sensors (environment_sensors.cpp) ----
   void evaluateEnvironmentSensors();

@@ -122,6 +122,7 @@ void ExecutionModel::State::classify(NodeState& ns) {
   if (classifyParticleSystem(ns)) return;
   if (classifyPickSensor(ns)) return;
   if (classifyRigidBodyPhysics(ns)) return;
+  if (classifyDis(ns)) return;
   if (classifyHumanoid(ns)) return;
   if (classifyKeySensor(ns)) return;
   if (classifyLoadSensor(ns)) return;

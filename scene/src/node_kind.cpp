@@ -29,6 +29,8 @@ NodeKind nodeKind(const vrml::Node& node) {
     // X3D Geospatial (clause 25): their frames are vrml::transformMatrix's too.
     case NodeTypeId::GeoLocation:
     case NodeTypeId::GeoTransform:
+    // X3D DIS (clause 28.4.3): a Transform its PDUs move (runtime/src/dis_nodes.cpp).
+    case NodeTypeId::EspduTransform:
       return NodeKind::Transform;
     case NodeTypeId::HAnimHumanoid:
       return NodeKind::HAnimHumanoid;

@@ -19,7 +19,7 @@ build=${GS_FUZZ_BUILD:-$top/build-fuzz}
 jobs=${GS_FUZZ_JOBS:-1}
 all=(fuzz_vrml_parse fuzz_vrml_stream fuzz_vrml_proto fuzz_x3d_xml fuzz_x3d_json fuzz_qnv_stream fuzz_qnv_compact fuzz_qnv_entropy fuzz_tileset_index
      fuzz_ply fuzz_obj fuzz_gltf fuzz_gltf_scene fuzz_nrrd fuzz_nifti fuzz_dicom fuzz_tiff fuzz_vdb fuzz_image fuzz_dds fuzz_http_response
-     fuzz_instance_message fuzz_script fuzz_splats)
+     fuzz_instance_message fuzz_script fuzz_splats fuzz_dis)
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=("${all[@]}")
 
@@ -72,6 +72,7 @@ seeds_of() {
     fuzz_instance_message) s=("$here/seeds/instance") ;;
     fuzz_script) s=("$here/seeds/script") ;;
     fuzz_splats) s=("$here/seeds/splats") ;;
+    fuzz_dis) s=("$here/seeds/dis") ;;
   esac
   for d in "${s[@]}"; do [ -d "$d" ] && echo "$d"; done
   return 0

@@ -176,6 +176,7 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::SliderJoint,
     NodeTypeId::UniversalJoint,
     NodeTypeId::HAnimDisplacer,     // runtime/src/skin.cpp
+    NodeTypeId::EspduTransform,     // dis/, runtime/src/dis_nodes.cpp (networkReader)
     NodeTypeId::NurbsSweptSurface,  // geometry/src/geometry_nurbs_swept.cpp
     NodeTypeId::NurbsSwungSurface,
     NodeTypeId::NurbsCurve2D,  // their control curves (not as trimming contours)

@@ -1,0 +1,34 @@
+// A UDP socket that receives DIS PDUs (IEEE 1278.2: DIS over UDP, port given by the world):
+// bound to a port on every local address (or the address given), non-blocking. POSIX.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace gs::dis {
+
+class UdpReceiver {
+ public:
+  UdpReceiver() = default;
+  ~UdpReceiver();
+  UdpReceiver(const UdpReceiver&) = delete;
+  UdpReceiver& operator=(const UdpReceiver&) = delete;
+
+  /// Binds to UDP `port` (1..65535) of `address` ("" or "localhost": the loopback; "*" or
+  /// "0.0.0.0": every address; else a dotted IPv4 address). False, and `error` says which
+  /// port and why, when it cannot (a port in use, a bad address).
+  bool open(int port, const std::string& address, std::string& error);
+  bool isOpen() const { return fd_ >= 0; }
+  /// The datagrams waiting, oldest first, at most `maxDatagrams` of them (each at most
+  /// 8192 bytes: a longer one is cut there); never blocks.
+  std::vector<std::vector<std::uint8_t>> receive(std::size_t maxDatagrams);
+  /// Sends `bytes` to UDP `port` of the loopback (tests and networkWriter); false when it
+  /// could not.
+  static bool sendToLoopback(int port, const std::vector<std::uint8_t>& bytes);
+
+ private:
+  int fd_ = -1;
+};
+
+}  // namespace gs::dis

@@ -1,0 +1,76 @@
+// The DIS UDP receiver (dis/udp_socket.hpp) over POSIX sockets.
+#include "dis/udp_socket.hpp"
+
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+#include <cerrno>
+#include <cstring>
+
+namespace gs::dis {
+
+UdpReceiver::~UdpReceiver() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+bool UdpReceiver::open(int port, const std::string& address, std::string& error) {
+  if (port < 1 || port > 65535) {
+    error = "DIS port " + std::to_string(port) + " is not a UDP port (1 to 65535)";
+    return false;
+  }
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_port = htons(static_cast<std::uint16_t>(port));
+  if (address.empty() || address == "localhost") {
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  } else if (address == "*" || address == "0.0.0.0") {
+    a.sin_addr.s_addr = htonl(INADDR_ANY);
+  } else if (::inet_pton(AF_INET, address.c_str(), &a.sin_addr) != 1) {
+    error = "DIS address \"" + address + "\" is not an IPv4 address or localhost";
+    return false;
+  }
+  const int fd = ::socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
+  if (fd < 0) {
+    error = std::string("cannot make a UDP socket: ") + std::strerror(errno);
+    return false;
+  }
+  const int yes = 1;
+  ::setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+  if (::bind(fd, reinterpret_cast<const sockaddr*>(&a), sizeof a) != 0) {
+    error = "cannot listen for DIS PDUs on UDP port " + std::to_string(port) + " of " +
+            (address.empty() ? std::string("localhost") : address) + ": " + std::strerror(errno);
+    ::close(fd);
+    return false;
+  }
+  fd_ = fd;
+  return true;
+}
+
+std::vector<std::vector<std::uint8_t>> UdpReceiver::receive(std::size_t maxDatagrams) {
+  std::vector<std::vector<std::uint8_t>> out;
+  if (fd_ < 0) return out;
+  std::vector<std::uint8_t> buffer(8192);
+  while (out.size() < maxDatagrams) {
+    const ssize_t n = ::recv(fd_, buffer.data(), buffer.size(), 0);
+    if (n < 0) break;  // EAGAIN: nothing more waits (or an error: try again next frame)
+    out.emplace_back(buffer.begin(), buffer.begin() + n);
+  }
+  return out;
+}
+
+bool UdpReceiver::sendToLoopback(int port, const std::vector<std::uint8_t>& bytes) {
+  const int fd = ::socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+  if (fd < 0) return false;
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_port = htons(static_cast<std::uint16_t>(port));
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  const ssize_t sent =
+      ::sendto(fd, bytes.data(), bytes.size(), 0, reinterpret_cast<const sockaddr*>(&a), sizeof a);
+  ::close(fd);
+  return sent == static_cast<ssize_t>(bytes.size());
+}
+
+}  // namespace gs::dis
