@@ -33,15 +33,14 @@ class Reader {
     const float x = f32(), y = f32(), z = f32();
     return {x, y, z};
   }
-  void skip(std::size_t n) { unsignedOfSkip(n); }
-
- private:
-  void unsignedOfSkip(std::size_t n) {
+  void skip(std::size_t n) {
     if (at_ + n > b_.size())
       ok_ = false;
     else
       at_ += n;
   }
+
+ private:
   std::span<const std::uint8_t> b_;
   std::size_t at_ = 0;
   bool ok_ = true;

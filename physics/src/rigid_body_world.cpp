@@ -122,16 +122,19 @@ std::vector<const vrml::Node*> collidablesOf(const vrml::Node& node, int maxDept
 }
 
 std::uint64_t RigidBodyWorld::signature(const vrml::Node& collection) {
+  // Read straight from the fields (no lists made): the execution model asks every frame.
   std::uint64_t h = 0x5eedULL;
-  for (const auto& [body, collidables] : bodyCollidables(collection)) {
-    h = mix(h, reinterpret_cast<std::uintptr_t>(body));
+  for (const vrml::NodePtr& body : collection.mfnode("bodies")) {
+    if (!body || body->typeId() != vrml::NodeTypeId::RigidBody) continue;
+    h = mix(h, reinterpret_cast<std::uintptr_t>(body.get()));
     h = mix(h, body->get<FieldType::SFBool>("enabled", true) ? 1 : 2);
     h = mix(h, body->get<FieldType::SFBool>("fixed", false) ? 3 : 4);
     const float mass = body->get<FieldType::SFFloat>("mass", 1.0f);
     std::uint32_t bits = 0;
     std::memcpy(&bits, &mass, sizeof bits);
     h = mix(h, bits);
-    for (const vrml::Node* c : collidables) h = mix(h, reinterpret_cast<std::uintptr_t>(c));
+    for (const vrml::NodePtr& c : body->mfnode("geometry"))
+      h = mix(h, reinterpret_cast<std::uintptr_t>(c.get()));
   }
   for (const vrml::NodePtr& j : collection.mfnode("joints"))
     h = mix(h, reinterpret_cast<std::uintptr_t>(j.get()));
@@ -271,6 +274,7 @@ void RigidBodyWorld::Impl::readPoses() {
     p.orientation = toRotation(t.getRotation());
     p.linearVelocity = toGlm(b->rigid->getLinearVelocity());
     p.angularVelocity = toGlm(b->rigid->getAngularVelocity());
+    p.collidables = &b->collidables;
     poses.push_back(p);
   }
 }

@@ -130,6 +130,7 @@ struct SceneRenderer::Gpu {
   // Reused from frame to frame.
   scene::TraversalFrame frame;
   std::vector<scene::LightInstance> eyeLights;
+  std::vector<EyeProjector> eyeProjectors;  // frame.projectors, each with its texture
   std::vector<glm::vec4> eyeClipPlanes;
   std::vector<DrawItem> opaque, transparent;
 
@@ -299,6 +300,16 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     l.location = glm::vec3(view * glm::vec4(l.location, 1.0f));
     l.direction = glm::normalize(viewRotation * l.direction);
     g.eyeLights[i] = l;
+  }
+  // TextureProjectors in eye coordinates, their textures loaded (X3D 4.0 clause 42).
+  g.eyeProjectors.resize(g.frame.projectors.size());
+  for (std::size_t i = 0; i < g.frame.projectors.size(); ++i) {
+    const scene::TextureProjectorInstance& p = g.frame.projectors[i];
+    const vrml::NodePtr& texture = p.node->sfnode("texture");
+    static const GpuTexture kNone;
+    g.eyeProjectors[i] = eyeProjector(
+        p, texture ? g.textures.get(*texture, *p.baseUrl, traversal_, options_.fetcher) : kNone,
+        view);
   }
   // ClipPlanes in eye coordinates (a plane maps by the inverse transpose of the view).
   const glm::mat4 planeToEye = glm::transpose(glm::inverse(view));
@@ -640,11 +651,7 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     {
       ShapeProjectors projectors;
       auto addProjector = [&](std::uint32_t index) {
-        const scene::TextureProjectorInstance& p = g.frame.projectors[index];
-        const vrml::NodePtr& texture = p.node->sfnode("texture");
-        if (p.layer == s.layer && texture)
-          projectors.add(p, g.textures.get(*texture, *p.baseUrl, traversal_, options_.fetcher),
-                         view);
+        if (g.eyeProjectors[index].layer == s.layer) projectors.add(g.eyeProjectors[index]);
       };
       for (std::uint32_t index : g.frame.globalProjectors) addProjector(index);
       for (std::uint32_t i = 0; i < s.projectorCount; ++i)

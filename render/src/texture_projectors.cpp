@@ -20,39 +20,51 @@ void ProjectorUniformLocations::find(GLuint p) {
     texture[i] = glGetUniformLocation(p, kTextures[i]);
 }
 
-void ShapeProjectors::add(const scene::TextureProjectorInstance& p, const GpuTexture& t,
+EyeProjector eyeProjector(const scene::TextureProjectorInstance& p, const GpuTexture& t,
                           const glm::mat4& view) {
-  if (count >= kMaxTextureProjectors || t.components == 0 || t.id == 0) return;
-  const auto i = static_cast<std::size_t>(count++);
+  EyeProjector e;
+  e.layer = p.layer;
+  if (t.components == 0 || t.id == 0) return e;
   // NDC to [0, 1]: s, t and the depth p (X_ITE's bias matrix).
   glm::mat4 bias(0.5f);
   bias[3] = glm::vec4(0.5f, 0.5f, 0.5f, 1.0f);
-  matrix[i] = bias * scene::textureProjection(p, t.width, t.height) *
-              glm::inverse(view * p.projectorToWorld);
-  location[i] = glm::vec3(view * p.projectorToWorld[3]);
-  color[i] = p.color;
-  intensity[i] = p.intensity;
+  e.matrix = bias * scene::textureProjection(p, t.width, t.height) *
+             glm::inverse(view * p.projectorToWorld);
+  e.location = glm::vec3(view * p.projectorToWorld[3]);
+  e.color = p.color;
+  e.intensity = p.intensity;
   // A near or far distance given clips there; without one nothing is clipped on that side.
-  depthRange[i] = {p.nearDistance < 0.0f ? 0.0f : -1.0f, p.farDistance < 0.0f ? 1.0f : 2.0f};
-  texture[i] = t.id;
+  e.depthRange = {p.nearDistance < 0.0f ? 0.0f : -1.0f, p.farDistance < 0.0f ? 1.0f : 2.0f};
+  e.texture = t.id;
+  return e;
 }
 
 void uploadProjectors(const ProjectorUniformLocations& u, const ShapeProjectors& s) {
   if (u.count < 0) return;
   glUniform1i(u.count, s.count);
   if (s.count == 0) return;
-  glUniformMatrix4fv(u.matrix, s.count, GL_FALSE, glm::value_ptr(s.matrix[0]));
-  glUniform3fv(u.location, s.count, glm::value_ptr(s.location[0]));
-  glUniform3fv(u.color, s.count, glm::value_ptr(s.color[0]));
-  glUniform1fv(u.intensity, s.count, s.intensity.data());
-  glUniform2fv(u.depthRange, s.count, glm::value_ptr(s.depthRange[0]));
+  std::array<glm::mat4, kMaxTextureProjectors> matrix{};
+  std::array<glm::vec3, kMaxTextureProjectors> location{}, color{};
+  std::array<float, kMaxTextureProjectors> intensity{};
+  std::array<glm::vec2, kMaxTextureProjectors> depthRange{};
   for (int i = 0; i < s.count; ++i) {
     const auto k = static_cast<std::size_t>(i);
+    const EyeProjector& p = *s.projector[k];
+    matrix[k] = p.matrix;
+    location[k] = p.location;
+    color[k] = p.color;
+    intensity[k] = p.intensity;
+    depthRange[k] = p.depthRange;
     glUniform1i(u.texture[k], kFirstProjectorUnit + i);
     glActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(kFirstProjectorUnit + i));
-    glBindTexture(GL_TEXTURE_2D, s.texture[k]);
+    glBindTexture(GL_TEXTURE_2D, p.texture);
   }
   glActiveTexture(GL_TEXTURE0);
+  glUniformMatrix4fv(u.matrix, s.count, GL_FALSE, glm::value_ptr(matrix[0]));
+  glUniform3fv(u.location, s.count, glm::value_ptr(location[0]));
+  glUniform3fv(u.color, s.count, glm::value_ptr(color[0]));
+  glUniform1fv(u.intensity, s.count, intensity.data());
+  glUniform2fv(u.depthRange, s.count, glm::value_ptr(depthRange[0]));
 }
 
 }  // namespace gs::render::detail

@@ -61,18 +61,31 @@ struct ProjectorUniformLocations {
   void find(GLuint program);
 };
 
+/// One projector in eye coordinates, made once per frame (eyeProjector); texture 0: it
+/// projects nothing (its texture has not loaded or could not be).
+struct EyeProjector {
+  glm::mat4 matrix{1.0f};    // eye -> texture (s, t, p, q)
+  glm::vec3 location{0.0f};  // eye coordinates
+  glm::vec3 color{1.0f};
+  float intensity = 0.0f;
+  glm::vec2 depthRange{0.0f, 1.0f};  // the projected depth p is clamped to it
+  GLuint texture = 0;
+  std::uint32_t layer = 0;  // scene::TextureProjectorInstance::layer
+};
+
+/// Projector `p` whose texture is `t`, for a view `view` (world to eye).
+EyeProjector eyeProjector(const scene::TextureProjectorInstance& p, const GpuTexture& t,
+                          const glm::mat4& view);
+
 /// The projectors of one shape, ready to upload.
 struct ShapeProjectors {
   int count = 0;
-  std::array<glm::mat4, kMaxTextureProjectors> matrix{};    // eye -> texture (s, t, p, q)
-  std::array<glm::vec3, kMaxTextureProjectors> location{};  // eye coordinates
-  std::array<glm::vec3, kMaxTextureProjectors> color{};
-  std::array<float, kMaxTextureProjectors> intensity{};
-  std::array<glm::vec2, kMaxTextureProjectors> depthRange{};
-  std::array<GLuint, kMaxTextureProjectors> texture{};
-  /// Adds projector `p` whose texture is `t` (loaded) for a view `view` (world to eye),
-  /// unless kMaxTextureProjectors are in already.
-  void add(const scene::TextureProjectorInstance& p, const GpuTexture& t, const glm::mat4& view);
+  std::array<const EyeProjector*, kMaxTextureProjectors> projector{};
+  /// Adds `p` unless it projects nothing or kMaxTextureProjectors are in already.
+  void add(const EyeProjector& p) {
+    if (count < kMaxTextureProjectors && p.texture != 0)
+      projector[static_cast<std::size_t>(count++)] = &p;
+  }
 };
 
 /// Sets the uniforms of `s` in the program in use and binds its textures (units

@@ -116,20 +116,16 @@ void ExecutionModel::State::evaluateRigidBodyPhysics() {
     const auto& warnings = world.warnings();
     for (; r.warningsReported < warnings.size(); ++r.warningsReported)
       report(vrml::Severity::warning, *c->node, warnings[r.warningsReported]);
-    const auto collidables = physics::bodyCollidables(*c->node);
     for (const physics::BodyPose& p : world.poses()) {
       NodeState& b = reach(*p.body, false);
       sendVec3(b, "position", p.position, emitter);
       sendRotation(b, "orientation", p.orientation, emitter);
       sendVec3(b, "linearVelocity", p.linearVelocity, emitter);
       sendVec3(b, "angularVelocity", p.angularVelocity, emitter);
-      for (const auto& [body, list] : collidables) {
-        if (body != p.body) continue;
-        for (vrml::Node* collidable : list) {
-          NodeState& cs = reach(*collidable, false);
-          sendVec3(cs, "translation", p.position, emitter);
-          sendRotation(cs, "rotation", p.orientation, emitter);
-        }
+      for (vrml::Node* collidable : *p.collidables) {
+        NodeState& cs = reach(*collidable, false);
+        sendVec3(cs, "translation", p.position, emitter);
+        sendRotation(cs, "rotation", p.orientation, emitter);
       }
       r.bodyRevisions[p.body] = p.body->revision();
     }

@@ -25,6 +25,8 @@ struct BodyPose {
   vrml::Rotation orientation{0.0f, 0.0f, 1.0f, 0.0f};  // axis (unit) and angle (radians)
   glm::vec3 linearVelocity{0.0f};                      // metres per second
   glm::vec3 angularVelocity{0.0f};                     // radians per second, about the axes
+  /// The CollidableShapes and CollidableOffsets of its `geometry`, which stand where it is.
+  const std::vector<vrml::Node*>* collidables = nullptr;
 };
 
 /// One contact point of the last step (the values of a Contact node, clause 37.4.6).
