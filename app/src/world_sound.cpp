@@ -15,7 +15,7 @@ void WorldSounds::update(const std::shared_ptr<const vrml::Scene>& scene,
   if (!s) s = std::make_unique<audio::SoundScene>(scene, fetcher_);
   runtime::ExecutionModel& model = runtimes.of(scene, now);
   s->update(
-      scene::viewMatrix(camera),
+      scene::viewMatrix(camera), now,
       [&model](const vrml::Node& clip) -> std::optional<audio::ClipTime> {
         const auto m = model.media(clip);
         if (!m) return std::nullopt;

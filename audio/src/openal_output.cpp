@@ -2,12 +2,17 @@
 // ellipsoid model of 6.42 sets each source's gain, so OpenAL's own distance model is off.
 #include "audio/audio_output.hpp"
 
+#include "audio/audio_graph.hpp"
+
 #include <AL/al.h>
 #include <AL/alc.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <unordered_map>
+#include <vector>
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -27,6 +32,15 @@ class OpenAlOutput final : public AudioOutput {
   ~OpenAlOutput() override {
     alcMakeContextCurrent(context_);
     for (auto& [key, s] : sources_) alDeleteSources(1, &s.id);
+    if (stream_ != 0) {
+      alSourceStop(stream_);
+      ALint queued = 0;
+      alGetSourcei(stream_, AL_BUFFERS_QUEUED, &queued);
+      std::vector<ALuint> ids(static_cast<std::size_t>(queued));
+      if (queued > 0) alSourceUnqueueBuffers(stream_, queued, ids.data());
+      alDeleteBuffers(queued, ids.data());
+      alDeleteSources(1, &stream_);
+    }
     for (auto& [clip, b] : buffers_) alDeleteBuffers(1, &b);
     alcMakeContextCurrent(nullptr);
     alcDestroyContext(context_);
@@ -76,6 +90,42 @@ class OpenAlOutput final : public AudioOutput {
     }
   }
 
+  void stream(const std::vector<float>& stereo) override {
+    if (stereo.size() < 2) return;
+    alcMakeContextCurrent(context_);
+    if (stream_ == 0) {
+      alGenSources(1, &stream_);
+      alSourcei(stream_, AL_SOURCE_RELATIVE, AL_TRUE);
+    }
+    // Buffers the device has played are deleted; what is still queued bounds the latency.
+    ALint processed = 0, queued = 0;
+    alGetSourcei(stream_, AL_BUFFERS_PROCESSED, &processed);
+    if (processed > 0) {
+      std::vector<ALuint> done(static_cast<std::size_t>(processed));
+      alSourceUnqueueBuffers(stream_, processed, done.data());
+      alDeleteBuffers(processed, done.data());
+      for (ALuint b : done) queuedFrames_.erase(b);
+    }
+    std::size_t ahead = 0;
+    for (const auto& [b, frames] : queuedFrames_) ahead += frames;
+    const std::size_t frames = stereo.size() / 2;
+    if (ahead + frames > kGraphSampleRate / 4) return;  // the clock ran ahead: dropped
+    std::vector<std::int16_t> pcm(2 * frames);
+    for (std::size_t i = 0; i < pcm.size(); ++i)
+      pcm[i] =
+          static_cast<std::int16_t>(std::lround(std::clamp(stereo[i], -1.0f, 1.0f) * 32767.0f));
+    ALuint b = 0;
+    alGenBuffers(1, &b);
+    alBufferData(b, AL_FORMAT_STEREO16, pcm.data(),
+                 static_cast<ALsizei>(pcm.size() * sizeof(std::int16_t)), kGraphSampleRate);
+    alSourceQueueBuffers(stream_, 1, &b);
+    queuedFrames_[b] = frames;
+    ALint state = AL_STOPPED;
+    alGetSourcei(stream_, AL_SOURCE_STATE, &state);
+    alGetSourcei(stream_, AL_BUFFERS_QUEUED, &queued);
+    if (state != AL_PLAYING && queued > 0) alSourcePlay(stream_);
+  }
+
  private:
   struct Source {
     ALuint id = 0;
@@ -97,6 +147,8 @@ class OpenAlOutput final : public AudioOutput {
   std::string name_;
   std::unordered_map<const void*, Source> sources_;
   std::unordered_map<const formats::AudioData*, ALuint> buffers_;
+  ALuint stream_ = 0;  // the audio graph's streaming source
+  std::unordered_map<ALuint, std::size_t> queuedFrames_;
 };
 
 // While the device opens, stderr points at /dev/null: OpenAL Soft and ALSA print every

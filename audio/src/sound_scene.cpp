@@ -23,6 +23,7 @@ struct FoundSound {
 struct Walk {
   const InlineQuery& inlines;
   std::vector<FoundSound>& out;
+  std::vector<SoundScene::GraphRoot>& graph;
   std::vector<std::shared_ptr<const vrml::Scene>> keep;  // inline worlds met this frame
   std::vector<const vrml::Scene*> path;                  // the worlds being walked
 
@@ -32,6 +33,11 @@ struct Walk {
     const NodeTypeId type = n->typeId();
     if (type == NodeTypeId::Sound) {
       out.push_back({n.get(), m, scene});
+      return;
+    }
+    if (type == NodeTypeId::AudioDestination || type == NodeTypeId::StreamAudioDestination ||
+        type == NodeTypeId::SpatialSound || type == NodeTypeId::ListenerPointSource) {
+      graph.push_back({n.get(), m, n->urlBaseOr(scene->url)});
       return;
     }
     if (vrml::placesChildren(type)) {
@@ -125,11 +131,12 @@ std::size_t SoundScene::clipsLoading() const {
   return loading_.size();
 }
 
-void SoundScene::update(const glm::mat4& worldToListener, const ClipTimeQuery& clipTime,
+void SoundScene::update(const glm::mat4& worldToListener, double now, const ClipTimeQuery& clipTime,
                         AudioOutput& output, const InlineQuery& inlines) {
   install();  // clips decoded since the last frame
   std::vector<FoundSound> found;
-  Walk walk{inlines, found, {}, {scene_.get()}};
+  std::vector<GraphRoot> graph;
+  Walk walk{inlines, found, graph, {}, {scene_.get()}};
   if (scene_)
     for (const vrml::NodePtr& n : scene_->rootNodes) walk.node(n, glm::mat4(1.0f), scene_.get(), 0);
   // Inline worlds stay alive while their nodes key clips_ (a renderer made anew loads new
@@ -189,6 +196,7 @@ void SoundScene::update(const glm::mat4& worldToListener, const ClipTimeQuery& c
     chosen.push_back(std::move(voices[i]));
   }
   output.update(chosen);
+  updateGraph(graph, worldToListener, now, clipTime, output);
 }
 
 std::vector<std::pair<const vrml::Node*, double>> SoundScene::takeDurations() {

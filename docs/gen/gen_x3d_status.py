@@ -12,6 +12,9 @@ status in GhostSpace:
                nodes of kImplementedX3d in vrml/src/node_support.cpp (nodeImplemented)
   read         parsed with its X3D 4.0 interface (fields, defaults, ROUTEs, Scripts see it)
                but without its own behaviour yet: it draws nothing and sends no events
+  not applicable: WHY
+               read, and its behaviour cannot apply to a desktop browser (NOT_APPLICABLE
+               below gives the clause)
 
 With --check nothing is written: exit 1 when docs/x3d.md's table differs (keeps it true).
 """
@@ -44,6 +47,17 @@ def implemented():
     return names
 
 
+# Nodes whose behaviour cannot apply to a desktop browser, with the clause that says why.
+NOT_APPLICABLE = {
+    "StreamAudioSource": "its streamIdentifier names a MediaStream of the web page that holds "
+                         "the scene (ISO/IEC 19775-1:2023 clause 16); a desktop browser has none "
+                         "(X_ITE 15 plays none either); read, silent, its time events sent",
+    "StreamAudioDestination": "its output is a MediaStream for the web page that holds the "
+                              "scene (clause 16); a desktop browser has none (X_ITE 15 neither); "
+                              "read, silent",
+}
+
+
 def table(uom):
     root = ET.parse(uom).getroot()
     rows = []
@@ -54,11 +68,14 @@ def table(uom):
     IMPLEMENTED = implemented()
     out = ["| component | level | node | status |", "|---|---|---|---|"]
     for comp, level, name in rows:
-        status = "implemented" if name in IMPLEMENTED else "read"
+        status = ("implemented" if name in IMPLEMENTED else
+                  "not applicable: " + NOT_APPLICABLE[name] if name in NOT_APPLICABLE else "read")
         out.append(f"| {comp} | {level} | {name} | {status} |")
     done = sum(1 for r in rows if r[2] in IMPLEMENTED)
     out.append("")
-    out.append(f"{done} of {len(rows)} X3D 4.0 nodes implemented; every one is read.")
+    na = sum(1 for r in rows if r[2] in NOT_APPLICABLE and r[2] not in IMPLEMENTED)
+    out.append(f"{done} of {len(rows)} X3D 4.0 nodes implemented, {na} not applicable to a "
+               "desktop browser; every one is read.")
     return "\n".join(out)
 
 

@@ -1,10 +1,17 @@
 // MovieTexture (6.28) and AudioClip (6.3) as time-dependent nodes (4.6.9): the rules of
 // time_dependent.cpp with a cycle of duration / |rate|, duration_changed once the
 // application knows the duration, and the media time the renderer and the audio output
-// read (runtime/media_time.hpp).
+// read (runtime/media_time.hpp). The X3D 4 sound sources and processing nodes (clause 16)
+// are time-dependent nodes too (X3DTimeDependentNode, 8.3.1): BufferAudioSource as an
+// AudioClip whose duration its `buffer` gives, the others without an end; all of them
+// paused and resumed by pauseTime and resumeTime (isPaused), with elapsedTime sent each frame
+// while active and not paused, the paused seconds not counted.
 #include "execution_state.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
+#include <vector>
 
 namespace gs::runtime {
 
@@ -24,21 +31,61 @@ double rateOf(const vrml::Node& n, const MediaNode& m) {
   return static_cast<double>(fieldOr<FieldType::SFFloat>(n, m.rate, 1.0f));
 }
 
+/// The X3D 4 sound nodes that are time-dependent without a duration of their own.
+bool unboundedSoundNode(vrml::NodeTypeId id) {
+  using vrml::NodeTypeId;
+  switch (id) {
+    case NodeTypeId::OscillatorSource:
+    case NodeTypeId::MicrophoneSource:
+    case NodeTypeId::StreamAudioSource:
+    case NodeTypeId::ListenerPointSource:
+    case NodeTypeId::Analyser:
+    case NodeTypeId::BiquadFilter:
+    case NodeTypeId::Convolver:
+    case NodeTypeId::Delay:
+    case NodeTypeId::DynamicsCompressor:
+    case NodeTypeId::Gain:
+    case NodeTypeId::WaveShaper:
+      return true;
+    default:
+      return false;
+  }
+}
+
+/// A BufferAudioSource's duration from its `buffer` (channel-major, numberOfChannels
+/// channels at sampleRate); empty when it has no buffer data (its url gives it).
+std::optional<double> bufferDuration(const vrml::Node& n) {
+  const auto& data = n.get<FieldType::MFFloat>("buffer", std::vector<float>{});
+  if (data.empty()) return std::nullopt;
+  const int channels = std::clamp(n.get<FieldType::SFInt32>("numberOfChannels", 1), 1, 8);
+  const float rate = n.get<FieldType::SFFloat>("sampleRate", 0.0f);
+  const double sampleRate = rate > 0.0f ? std::clamp(rate, 3000.0f, 768000.0f) : 44100.0;
+  return static_cast<double>(data.size() / static_cast<std::size_t>(channels)) / sampleRate;
+}
+
 }  // namespace
 
 bool ExecutionModel::State::classifyMedia(NodeState& ns) {
   const vrml::NodeType& type = ns.node->type();
   const bool movie = type.id() == vrml::NodeTypeId::MovieTexture;
-  if (!movie && type.id() != vrml::NodeTypeId::AudioClip) return false;
+  const bool buffer = type.id() == vrml::NodeTypeId::BufferAudioSource;
+  const bool unbounded = unboundedSoundNode(type.id());
+  if (!movie && !buffer && !unbounded && type.id() != vrml::NodeTypeId::AudioClip) return false;
   ns.role = NodeRole::media;
   ns.media = std::make_unique<MediaNode>();
   MediaNode& m = *ns.media;
+  m.unbounded = unbounded;
   m.loop = type.findExact("loop");
   m.startTime = type.findExact("startTime");
   m.stopTime = type.findExact("stopTime");
-  m.rate = type.findExact(movie ? "speed" : "pitch");
+  m.rate = type.findExact(movie ? "speed" : buffer ? "playbackRate" : "pitch");
   m.durationChanged = type.findExact("duration_changed");
   m.isActive = type.findExact("isActive");
+  m.enabled = type.findExact("enabled");
+  m.pauseTime = type.findExact("pauseTime");
+  m.resumeTime = type.findExact("resumeTime");
+  m.isPaused = type.findExact("isPaused");
+  m.elapsedTime = type.findExact("elapsedTime");
   m.state.movie = movie;
   m.state.rate = rateOf(*ns.node, m);
   m.state.mediaTime = 0.0;
@@ -56,18 +103,49 @@ void ExecutionModel::State::evaluateMedia(NodeState& ns) {
   }
   // The rate is read when the node is inactive and kept while it plays (6.28: set_speed is
   // ignored while the movie plays; a changed pitch takes effect at the next start).
-  if (!m.time.active) st.rate = rateOf(n, m);
-  const double duration = st.duration && *st.duration > 0.0 ? *st.duration : 0.0;
+  if (!m.time.active) st.rate = m.unbounded ? 1.0 : rateOf(n, m);
+  if (n.typeId() == vrml::NodeTypeId::BufferAudioSource)
+    if (const std::optional<double> d = bufferDuration(n)) st.duration = *d;
+  const double duration = m.unbounded                         ? 1.0e15
+                          : st.duration && *st.duration > 0.0 ? *st.duration
+                                                              : 0.0;
+  const double now = model.now();
   TimeFields f;
   f.startTime = fieldOr<FieldType::SFTime>(n, m.startTime, 0.0);
   f.stopTime = fieldOr<FieldType::SFTime>(n, m.stopTime, 0.0);
   f.loop = fieldOr<FieldType::SFBool>(n, m.loop, false);
+  f.enabled = fieldOr<FieldType::SFBool>(n, m.enabled, true);
   // No known duration, speed 0 or a pitch <= 0 (6.3: undefined): a node that never starts.
   const bool playable =
       duration > 0.0 && std::isfinite(st.rate) && (st.movie ? st.rate != 0.0 : st.rate > 0.0);
   f.cycleInterval = playable ? duration / std::fabs(st.rate) : 0.0;
-  const TimeStep step = evaluateTime(m.time, f, model.now());
-  if (step.activated) emitOwn(ns, m.isActive, FieldValue::make<FieldType::SFBool>(true));
+  // Paused seconds do not count: the node's clock is `now` less them (X3D 8.3.1); stopTime
+  // stays on the world's clock.
+  const double pausedNow = m.paused ? now - m.pausedSince : 0.0;
+  if (f.stopTime > f.startTime) f.stopTime -= m.pausedFor + pausedNow;
+  const TimeStep step = evaluateTime(m.time, f, now - m.pausedFor - pausedNow);
+  if (step.activated) {
+    m.activatedAt = now;
+    m.pausedFor = 0.0;
+    emitOwn(ns, m.isActive, FieldValue::make<FieldType::SFBool>(true));
+  }
+  if (m.pauseTime >= 0 && m.resumeTime >= 0 && m.time.active) {
+    const double pauseAt = fieldOr<FieldType::SFTime>(n, m.pauseTime, 0.0);
+    const double resumeAt = fieldOr<FieldType::SFTime>(n, m.resumeTime, 0.0);
+    const bool pause = pauseAt > resumeAt && now >= pauseAt && pauseAt >= m.activatedAt;
+    if (pause && !m.paused) {
+      m.paused = true;
+      m.pausedSince = now;
+      emitOwn(ns, m.isPaused, FieldValue::make<FieldType::SFBool>(true));
+    } else if (!pause && m.paused) {
+      m.paused = false;
+      m.pausedFor += now - m.pausedSince;
+      emitOwn(ns, m.isPaused, FieldValue::make<FieldType::SFBool>(false));
+    }
+  }
+  if (m.time.active && !m.paused && m.elapsedTime >= 0)
+    emitOwn(ns, m.elapsedTime,
+            FieldValue::make<FieldType::SFTime>(now - m.activatedAt - m.pausedFor));
   if (step.output) {
     st.mediaTime = mediaTimeAt(step.fraction, duration, st.rate);
   } else if (!m.everStarted) {
@@ -75,8 +153,15 @@ void ExecutionModel::State::evaluateMedia(NodeState& ns) {
     st.mediaTime = st.movie && st.rate < 0.0 ? duration : 0.0;
   }
   if (step.activated) m.everStarted = true;
-  if (step.deactivated) emitOwn(ns, m.isActive, FieldValue::make<FieldType::SFBool>(false));
-  st.active = m.time.active;
+  if (step.deactivated) {
+    if (m.paused) {
+      m.paused = false;
+      emitOwn(ns, m.isPaused, FieldValue::make<FieldType::SFBool>(false));
+    }
+    emitOwn(ns, m.isActive, FieldValue::make<FieldType::SFBool>(false));
+  }
+  // What the audio graph hears: an active node that is not paused.
+  st.active = m.time.active && !m.paused;
 }
 
 void ExecutionModel::State::deliverMedia(NodeState& ns, int field, FieldValue value) {

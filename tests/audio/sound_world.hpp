@@ -36,7 +36,7 @@ struct SoundWorld {
     glm::mat4 view(1.0f);
     view[3] = glm::vec4(-listener, 1.0f);
     sounds.update(
-        view,
+        view, time,
         [this](const vrml::Node& n) -> std::optional<audio::ClipTime> {
           const auto m = model->media(n);
           if (!m) return std::nullopt;

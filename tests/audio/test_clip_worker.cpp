@@ -24,7 +24,7 @@ std::string clipDir() {
 void frameWithoutWaiting(test::SoundWorld& w, double time) {
   w.model->advanceTo(time);
   w.sounds.update(
-      glm::mat4(1.0f),
+      glm::mat4(1.0f), time,
       [&w](const vrml::Node& n) -> std::optional<audio::ClipTime> {
         const auto m = w.model->media(n);
         if (!m) return std::nullopt;

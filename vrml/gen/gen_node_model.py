@@ -182,8 +182,13 @@ CASTLE_PRIMITIVE_FIELDS = {
 # X3D 4.1 fields X_ITE 15 reads on X3D 4.0 nodes (the 4.1 draft's interfaces; X3DUOM 4.0
 # lacks them): BoundedPhysicsModel's `damping` (clause 40.4.1 of the 4.1 draft: the factor
 # a bounce keeps of the speed), which X_ITE's Waterfall test world sets.
+# The 4.1 draft's sound fields X_ITE 15 plays (clause 16): OscillatorSource's
+# `periodicWave` (its wave; 4.0 has no way to choose one) and WaveShaper's `curve` (its
+# transfer curve; 4.0 has none, so a 4.0 WaveShaper could only pass its input on).
 X3D41_FIELDS = {
     "BoundedPhysicsModel": [("damping", "SFFloat", "inputOutput", "1", "")],
+    "OscillatorSource": [("periodicWave", "SFNode", "inputOutput", "", "PeriodicWave")],
+    "WaveShaper": [("curve", "MFFloat", "inputOutput", "", "")],
 }
 
 

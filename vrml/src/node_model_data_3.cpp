@@ -9,17 +9,17 @@ namespace {
 using F = NodeFieldModel;
 
 constexpr NodeTypeId kAccept0[] = {NodeTypeId::NavigationInfo};
-constexpr NodeTypeId kAccept1[] = {NodeTypeId::TextureCoordinate, NodeTypeId::TextureCoordinateGenerator};
-constexpr NodeTypeId kAccept2[] = {NodeTypeId::TextureProperties};
-constexpr NodeTypeId kAccept3[] = {NodeTypeId::Inline};
-constexpr NodeTypeId kAccept4[] = {NodeTypeId::FogCoordinate};
-constexpr NodeTypeId kAccept5[] = {NodeTypeId::ShaderProgram};
-constexpr NodeTypeId kAccept6[] = {NodeTypeId::MultiTextureCoordinate};
-constexpr NodeTypeId kAccept7[] = {NodeTypeId::Sphere, NodeTypeId::Box, NodeTypeId::Cone};
-constexpr NodeTypeId kAccept8[] = {NodeTypeId::RigidBody};
-constexpr NodeTypeId kAccept9[] = {NodeTypeId::CollisionCollection};
-constexpr NodeTypeId kAccept10[] = {NodeTypeId::Contact};
-constexpr NodeTypeId kAccept11[] = {NodeTypeId::Analyser, NodeTypeId::AudioClip, NodeTypeId::AudioDestination, NodeTypeId::BiquadFilter, NodeTypeId::BufferAudioSource, NodeTypeId::ChannelMerger, NodeTypeId::ChannelSelector, NodeTypeId::ChannelSplitter, NodeTypeId::Convolver, NodeTypeId::Delay, NodeTypeId::DynamicsCompressor, NodeTypeId::Gain, NodeTypeId::ListenerPointSource, NodeTypeId::MicrophoneSource, NodeTypeId::MovieTexture, NodeTypeId::OscillatorSource, NodeTypeId::Sound, NodeTypeId::SpatialSound, NodeTypeId::StreamAudioDestination, NodeTypeId::StreamAudioSource, NodeTypeId::WaveShaper};
+constexpr NodeTypeId kAccept1[] = {NodeTypeId::PeriodicWave};
+constexpr NodeTypeId kAccept2[] = {NodeTypeId::TextureCoordinate, NodeTypeId::TextureCoordinateGenerator};
+constexpr NodeTypeId kAccept3[] = {NodeTypeId::TextureProperties};
+constexpr NodeTypeId kAccept4[] = {NodeTypeId::Inline};
+constexpr NodeTypeId kAccept5[] = {NodeTypeId::FogCoordinate};
+constexpr NodeTypeId kAccept6[] = {NodeTypeId::ShaderProgram};
+constexpr NodeTypeId kAccept7[] = {NodeTypeId::MultiTextureCoordinate};
+constexpr NodeTypeId kAccept8[] = {NodeTypeId::Sphere, NodeTypeId::Box, NodeTypeId::Cone};
+constexpr NodeTypeId kAccept9[] = {NodeTypeId::RigidBody};
+constexpr NodeTypeId kAccept10[] = {NodeTypeId::CollisionCollection};
+constexpr NodeTypeId kAccept11[] = {NodeTypeId::Contact};
 
 constexpr NodeFieldModel kFieldsOrthoViewpoint[] = {
     F{"bindTime", "SFTime", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -53,6 +53,7 @@ constexpr NodeFieldModel kFieldsOscillatorSource[] = {
     F{"resumeTime", "SFTime", "inputOutput", "0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"startTime", "SFTime", "inputOutput", "0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"stopTime", "SFTime", "inputOutput", "0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"periodicWave", "SFNode", "inputOutput", "", "PeriodicWave", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept1},
 };
 constexpr NodeFieldModel kFieldsPackagedShader[] = {
     F{"activate", "SFBool", "inputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -87,7 +88,7 @@ constexpr NodeFieldModel kFieldsParticleSystem[] = {
     F{"particleLifetime", "SFFloat", "inputOutput", "5", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"particleSize", "SFVec2f", "inputOutput", "0.02 0.02", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"physics", "MFNode", "initializeOnly", "", "X3DParticlePhysicsModelNode", AbstractTypeSet{0x0000020000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"texCoord", "SFNode", "initializeOnly", "NULL", "TextureCoordinate|TextureCoordinateGenerator", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept1},
+    F{"texCoord", "SFNode", "initializeOnly", "NULL", "TextureCoordinate|TextureCoordinateGenerator", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept2},
     F{"texCoordKey", "MFFloat", "initializeOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"visible", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
 };
@@ -138,7 +139,7 @@ constexpr NodeFieldModel kFieldsPixelTexture[] = {
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
     F{"repeatS", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"repeatT", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"textureProperties", "SFNode", "initializeOnly", "NULL", "TextureProperties", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept2},
+    F{"textureProperties", "SFNode", "initializeOnly", "NULL", "TextureProperties", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept3},
 };
 constexpr NodeFieldModel kFieldsPixelTexture3D[] = {
     F{"description", "SFString", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -147,7 +148,7 @@ constexpr NodeFieldModel kFieldsPixelTexture3D[] = {
     F{"repeatR", "SFBool", "initializeOnly", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"repeatS", "SFBool", "initializeOnly", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"repeatT", "SFBool", "initializeOnly", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"textureProperties", "SFNode", "initializeOnly", "NULL", "TextureProperties", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept2},
+    F{"textureProperties", "SFNode", "initializeOnly", "NULL", "TextureProperties", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept3},
 };
 constexpr NodeFieldModel kFieldsPlaneSensor[] = {
     F{"autoOffset", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -197,7 +198,7 @@ constexpr NodeFieldModel kFieldsPointPickSensor[] = {
     F{"pickedGeometry", "MFNode", "outputOnly", "", "X3DChildNode", AbstractTypeSet{0x0000000000000080ULL, 0x0000000000000000ULL}, {}},
     F{"pickedPoint", "MFVec3f", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"pickingGeometry", "SFNode", "inputOutput", "NULL", "X3DGeometryNode", AbstractTypeSet{0x0000000000200000ULL, 0x0000000000000000ULL}, {}},
-    F{"pickTarget", "MFNode", "inputOutput", "", "X3DGroupingNode|X3DShapeNode|Inline", AbstractTypeSet{0x0020000000400000ULL, 0x0000000000000000ULL}, kAccept3},
+    F{"pickTarget", "MFNode", "inputOutput", "", "X3DGroupingNode|X3DShapeNode|Inline", AbstractTypeSet{0x0020000000400000ULL, 0x0000000000000000ULL}, kAccept4},
     F{"sortOrder", "SFString", "initializeOnly", "CLOSEST", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
 };
 constexpr NodeFieldModel kFieldsPointProperties[] = {
@@ -211,7 +212,7 @@ constexpr NodeFieldModel kFieldsPointSet[] = {
     F{"attrib", "MFNode", "inputOutput", "", "X3DVertexAttributeNode", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000200ULL}, {}},
     F{"color", "SFNode", "inputOutput", "NULL", "X3DColorNode", AbstractTypeSet{0x0000000000000100ULL, 0x0000000000000000ULL}, {}},
     F{"coord", "SFNode", "inputOutput", "NULL", "X3DCoordinateNode", AbstractTypeSet{0x0000000000000800ULL, 0x0000000000000000ULL}, {}},
-    F{"fogCoord", "SFNode", "inputOutput", "NULL", "FogCoordinate", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept4},
+    F{"fogCoord", "SFNode", "inputOutput", "NULL", "FogCoordinate", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept5},
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
     F{"normal", "SFNode", "inputOutput", "NULL", "X3DNormalNode", AbstractTypeSet{0x0000000800000000ULL, 0x0000000000000000ULL}, {}},
 };
@@ -303,7 +304,7 @@ constexpr NodeFieldModel kFieldsPrimitivePickSensor[] = {
     F{"objectType", "MFString", "inputOutput", "\"ALL\"", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"pickedGeometry", "MFNode", "outputOnly", "", "X3DChildNode", AbstractTypeSet{0x0000000000000080ULL, 0x0000000000000000ULL}, {}},
     F{"pickingGeometry", "SFNode", "inputOutput", "NULL", "X3DGeometryNode", AbstractTypeSet{0x0000000000200000ULL, 0x0000000000000000ULL}, {}},
-    F{"pickTarget", "MFNode", "inputOutput", "", "X3DGroupingNode|X3DShapeNode|Inline", AbstractTypeSet{0x0020000000400000ULL, 0x0000000000000000ULL}, kAccept3},
+    F{"pickTarget", "MFNode", "inputOutput", "", "X3DGroupingNode|X3DShapeNode|Inline", AbstractTypeSet{0x0020000000400000ULL, 0x0000000000000000ULL}, kAccept4},
     F{"sortOrder", "SFString", "initializeOnly", "CLOSEST", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
 };
 constexpr NodeFieldModel kFieldsProgramShader[] = {
@@ -312,7 +313,7 @@ constexpr NodeFieldModel kFieldsProgramShader[] = {
     F{"isValid", "SFBool", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"language", "SFString", "initializeOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
-    F{"programs", "MFNode", "inputOutput", "", "ShaderProgram", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept5},
+    F{"programs", "MFNode", "inputOutput", "", "ShaderProgram", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept6},
 };
 constexpr NodeFieldModel kFieldsProjectionVolumeStyle[] = {
     F{"enabled", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -344,12 +345,12 @@ constexpr NodeFieldModel kFieldsQuadSet[] = {
     F{"color", "SFNode", "inputOutput", "NULL", "X3DColorNode", AbstractTypeSet{0x0000000000000100ULL, 0x0000000000000000ULL}, {}},
     F{"colorPerVertex", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"coord", "SFNode", "inputOutput", "NULL", "X3DCoordinateNode", AbstractTypeSet{0x0000000000000800ULL, 0x0000000000000000ULL}, {}},
-    F{"fogCoord", "SFNode", "inputOutput", "NULL", "FogCoordinate", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept4},
+    F{"fogCoord", "SFNode", "inputOutput", "NULL", "FogCoordinate", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept5},
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
     F{"normal", "SFNode", "inputOutput", "NULL", "X3DNormalNode", AbstractTypeSet{0x0000000800000000ULL, 0x0000000000000000ULL}, {}},
     F{"normalPerVertex", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"solid", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"texCoord", "SFNode", "inputOutput", "NULL", "X3DSingleTextureCoordinateNode|MultiTextureCoordinate", AbstractTypeSet{0x0040000000000000ULL, 0x0000000000000000ULL}, kAccept6},
+    F{"texCoord", "SFNode", "inputOutput", "NULL", "X3DSingleTextureCoordinateNode|MultiTextureCoordinate", AbstractTypeSet{0x0040000000000000ULL, 0x0000000000000000ULL}, kAccept7},
 };
 constexpr NodeFieldModel kFieldsReceiverPdu[] = {
     F{"address", "SFString", "inputOutput", "localhost", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -413,7 +414,7 @@ constexpr NodeFieldModel kFieldsRigidBody[] = {
     F{"linearDampingFactor", "SFFloat", "inputOutput", "0.001", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"linearVelocity", "SFVec3f", "inputOutput", "0 0 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"mass", "SFFloat", "inputOutput", "1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"massDensityModel", "SFNode", "inputOutput", "NULL", "Sphere|Box|Cone", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept7},
+    F{"massDensityModel", "SFNode", "inputOutput", "NULL", "Sphere|Box|Cone", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept8},
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
     F{"orientation", "SFRotation", "inputOutput", "0 0 1 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"position", "SFVec3f", "inputOutput", "0 0 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -427,8 +428,8 @@ constexpr NodeFieldModel kFieldsRigidBodyCollection[] = {
     F{"bboxCenter", "SFVec3f", "initializeOnly", "0 0 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"bboxDisplay", "SFBool", "inputOutput", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"bboxSize", "SFVec3f", "initializeOnly", "-1 -1 -1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"bodies", "MFNode", "inputOutput", "", "RigidBody", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept8},
-    F{"collider", "SFNode", "initializeOnly", "NULL", "CollisionCollection", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept9},
+    F{"bodies", "MFNode", "inputOutput", "", "RigidBody", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept9},
+    F{"collider", "SFNode", "initializeOnly", "NULL", "CollisionCollection", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept10},
     F{"constantForceMix", "SFFloat", "inputOutput", "0.0001", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"contactSurfaceThickness", "SFFloat", "inputOutput", "0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"disableAngularSpeed", "SFFloat", "inputOutput", "0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -442,7 +443,7 @@ constexpr NodeFieldModel kFieldsRigidBodyCollection[] = {
     F{"maxCorrectionSpeed", "SFFloat", "inputOutput", "-1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
     F{"preferAccuracy", "SFBool", "inputOutput", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"set_contacts", "MFNode", "inputOnly", "", "Contact", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept10},
+    F{"set_contacts", "MFNode", "inputOnly", "", "Contact", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept11},
     F{"visible", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
 };
 constexpr NodeFieldModel kFieldsScalarChaser[] = {
@@ -609,9 +610,9 @@ constexpr NodeFieldModel kFieldsSingleAxisHingeJoint[] = {
     F{"angle", "SFFloat", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"angleRate", "SFFloat", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"axis", "SFVec3f", "inputOutput", "0 1 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"body1", "SFNode", "inputOutput", "NULL", "RigidBody", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept8},
+    F{"body1", "SFNode", "inputOutput", "NULL", "RigidBody", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept9},
     F{"body1AnchorPoint", "SFVec3f", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"body2", "SFNode", "inputOutput", "NULL", "RigidBody", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept8},
+    F{"body2", "SFNode", "inputOutput", "NULL", "RigidBody", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept9},
     F{"body2AnchorPoint", "SFVec3f", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"forceOutput", "MFString", "inputOutput", "\"NONE\"", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"maxAngle", "SFFloat", "inputOutput", "3.141592653", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -622,8 +623,8 @@ constexpr NodeFieldModel kFieldsSingleAxisHingeJoint[] = {
 };
 constexpr NodeFieldModel kFieldsSliderJoint[] = {
     F{"axis", "SFVec3f", "inputOutput", "0 1 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"body1", "SFNode", "inputOutput", "NULL", "RigidBody", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept8},
-    F{"body2", "SFNode", "inputOutput", "NULL", "RigidBody", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept8},
+    F{"body1", "SFNode", "inputOutput", "NULL", "RigidBody", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept9},
+    F{"body2", "SFNode", "inputOutput", "NULL", "RigidBody", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept9},
     F{"forceOutput", "MFString", "inputOutput", "\"NONE\"", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"maxSeparation", "SFFloat", "inputOutput", "1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
@@ -647,27 +648,6 @@ constexpr NodeFieldModel kFieldsSound[] = {
     F{"minFront", "SFFloat", "inputOutput", "1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"priority", "SFFloat", "inputOutput", "0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"source", "SFNode", "inputOutput", "NULL", "X3DSoundSourceNode", AbstractTypeSet{0x2000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"spatialize", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-};
-constexpr NodeFieldModel kFieldsSpatialSound[] = {
-    F{"children", "MFNode", "inputOutput", "", "Analyser|AudioClip|AudioDestination|BiquadFilter|BufferAudioSource|ChannelMerger|ChannelSelector|ChannelSplitter|Convolver|Delay|DynamicsCompressor|Gain|ListenerPointSource|MicrophoneSource|MovieTexture|OscillatorSource|Sound|SpatialSound|StreamAudioDestination|StreamAudioSource|WaveShaper", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept11},
-    F{"coneInnerAngle", "SFFloat", "inputOutput", "6.2832", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"coneOuterAngle", "SFFloat", "inputOutput", "6.2832", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"coneOuterGain", "SFFloat", "inputOutput", "0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"description", "SFString", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"direction", "SFVec3f", "inputOutput", "0 0 1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"distanceModel", "SFString", "inputOutput", "INVERSE", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"dopplerEnabled", "SFBool", "inputOutput", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"enabled", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"enableHRTF", "SFBool", "inputOutput", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"gain", "SFFloat", "inputOutput", "1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"intensity", "SFFloat", "inputOutput", "1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"location", "SFVec3f", "inputOutput", "0 0 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"maxDistance", "SFFloat", "inputOutput", "10000", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
-    F{"priority", "SFFloat", "inputOutput", "0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"referenceDistance", "SFFloat", "inputOutput", "1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"rolloffFactor", "SFFloat", "inputOutput", "1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"spatialize", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
 };
 
@@ -722,7 +702,6 @@ constexpr NodeModel kModels[] = {
     {"SingleAxisHingeJoint", NodeTypeId::SingleAxisHingeJoint, "RigidBodyPhysics", 2, AbstractTypeSet{0x0001000400000000ULL, 0x0000000000000000ULL}, "joints", kFieldsSingleAxisHingeJoint, false},
     {"SliderJoint", NodeTypeId::SliderJoint, "RigidBodyPhysics", 2, AbstractTypeSet{0x0001000400000000ULL, 0x0000000000000000ULL}, "joints", kFieldsSliderJoint, false},
     {"Sound", NodeTypeId::Sound, "Sound", 1, AbstractTypeSet{0x0800000400000080ULL, 0x0000000000000000ULL}, "children", kFieldsSound, false},
-    {"SpatialSound", NodeTypeId::SpatialSound, "Sound", 2, AbstractTypeSet{0x0800000400000080ULL, 0x0000000000000000ULL}, "children", kFieldsSpatialSound, false},
 };
 
 }  // namespace

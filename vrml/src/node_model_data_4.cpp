@@ -8,8 +8,8 @@ namespace {
 
 using F = NodeFieldModel;
 
-constexpr NodeTypeId kAccept0[] = {NodeTypeId::TextureCoordinateGenerator};
-constexpr NodeTypeId kAccept1[] = {NodeTypeId::Analyser, NodeTypeId::AudioClip, NodeTypeId::AudioDestination, NodeTypeId::BiquadFilter, NodeTypeId::BufferAudioSource, NodeTypeId::ChannelMerger, NodeTypeId::ChannelSelector, NodeTypeId::ChannelSplitter, NodeTypeId::Convolver, NodeTypeId::Delay, NodeTypeId::DynamicsCompressor, NodeTypeId::Gain, NodeTypeId::ListenerPointSource, NodeTypeId::MicrophoneSource, NodeTypeId::MovieTexture, NodeTypeId::OscillatorSource, NodeTypeId::Sound, NodeTypeId::SpatialSound, NodeTypeId::StreamAudioDestination, NodeTypeId::StreamAudioSource, NodeTypeId::WaveShaper};
+constexpr NodeTypeId kAccept0[] = {NodeTypeId::Analyser, NodeTypeId::AudioClip, NodeTypeId::AudioDestination, NodeTypeId::BiquadFilter, NodeTypeId::BufferAudioSource, NodeTypeId::ChannelMerger, NodeTypeId::ChannelSelector, NodeTypeId::ChannelSplitter, NodeTypeId::Convolver, NodeTypeId::Delay, NodeTypeId::DynamicsCompressor, NodeTypeId::Gain, NodeTypeId::ListenerPointSource, NodeTypeId::MicrophoneSource, NodeTypeId::MovieTexture, NodeTypeId::OscillatorSource, NodeTypeId::Sound, NodeTypeId::SpatialSound, NodeTypeId::StreamAudioDestination, NodeTypeId::StreamAudioSource, NodeTypeId::WaveShaper};
+constexpr NodeTypeId kAccept1[] = {NodeTypeId::TextureCoordinateGenerator};
 constexpr NodeTypeId kAccept2[] = {NodeTypeId::MultiTexture};
 constexpr NodeTypeId kAccept3[] = {NodeTypeId::FogCoordinate};
 constexpr NodeTypeId kAccept4[] = {NodeTypeId::MultiTextureCoordinate};
@@ -18,11 +18,32 @@ constexpr NodeTypeId kAccept6[] = {NodeTypeId::NavigationInfo};
 constexpr NodeTypeId kAccept7[] = {NodeTypeId::ViewpointGroup};
 constexpr NodeTypeId kAccept8[] = {NodeTypeId::Inline};
 
+constexpr NodeFieldModel kFieldsSpatialSound[] = {
+    F{"children", "MFNode", "inputOutput", "", "Analyser|AudioClip|AudioDestination|BiquadFilter|BufferAudioSource|ChannelMerger|ChannelSelector|ChannelSplitter|Convolver|Delay|DynamicsCompressor|Gain|ListenerPointSource|MicrophoneSource|MovieTexture|OscillatorSource|Sound|SpatialSound|StreamAudioDestination|StreamAudioSource|WaveShaper", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept0},
+    F{"coneInnerAngle", "SFFloat", "inputOutput", "6.2832", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"coneOuterAngle", "SFFloat", "inputOutput", "6.2832", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"coneOuterGain", "SFFloat", "inputOutput", "0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"description", "SFString", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"direction", "SFVec3f", "inputOutput", "0 0 1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"distanceModel", "SFString", "inputOutput", "INVERSE", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"dopplerEnabled", "SFBool", "inputOutput", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"enabled", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"enableHRTF", "SFBool", "inputOutput", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"gain", "SFFloat", "inputOutput", "1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"intensity", "SFFloat", "inputOutput", "1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"location", "SFVec3f", "inputOutput", "0 0 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"maxDistance", "SFFloat", "inputOutput", "10000", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
+    F{"priority", "SFFloat", "inputOutput", "0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"referenceDistance", "SFFloat", "inputOutput", "1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"rolloffFactor", "SFFloat", "inputOutput", "1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"spatialize", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+};
 constexpr NodeFieldModel kFieldsSphere[] = {
     F{"metadata", "SFNode", "inputOutput", "NULL", "X3DMetadataObject", AbstractTypeSet{0x0000000040000000ULL, 0x0000000000000000ULL}, {}},
     F{"radius", "SFFloat", "initializeOnly", "1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"solid", "SFBool", "initializeOnly", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"texCoord", "SFNode", "inputOutput", "NULL", "TextureCoordinateGenerator", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept0},
+    F{"texCoord", "SFNode", "inputOutput", "NULL", "TextureCoordinateGenerator", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept1},
 };
 constexpr NodeFieldModel kFieldsSphereSensor[] = {
     F{"autoOffset", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -101,7 +122,7 @@ constexpr NodeFieldModel kFieldsStreamAudioDestination[] = {
     F{"channelCount", "SFInt32", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"channelCountMode", "SFString", "inputOutput", "MAX", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"channelInterpretation", "SFString", "inputOutput", "SPEAKERS", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"children", "MFNode", "inputOutput", "", "Analyser|AudioClip|AudioDestination|BiquadFilter|BufferAudioSource|ChannelMerger|ChannelSelector|ChannelSplitter|Convolver|Delay|DynamicsCompressor|Gain|ListenerPointSource|MicrophoneSource|MovieTexture|OscillatorSource|Sound|SpatialSound|StreamAudioDestination|StreamAudioSource|WaveShaper", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept1},
+    F{"children", "MFNode", "inputOutput", "", "Analyser|AudioClip|AudioDestination|BiquadFilter|BufferAudioSource|ChannelMerger|ChannelSelector|ChannelSplitter|Convolver|Delay|DynamicsCompressor|Gain|ListenerPointSource|MicrophoneSource|MovieTexture|OscillatorSource|Sound|SpatialSound|StreamAudioDestination|StreamAudioSource|WaveShaper", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept0},
     F{"description", "SFString", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"enabled", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"gain", "SFFloat", "inputOutput", "1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -187,7 +208,7 @@ constexpr NodeFieldModel kFieldsText[] = {
     F{"solid", "SFBool", "initializeOnly", "false", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"string", "MFString", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"textBounds", "SFVec2f", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"texCoord", "SFNode", "inputOutput", "NULL", "TextureCoordinateGenerator", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept0},
+    F{"texCoord", "SFNode", "inputOutput", "NULL", "TextureCoordinateGenerator", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept1},
 };
 constexpr NodeFieldModel kFieldsTextureBackground[] = {
     F{"backTexture", "SFNode", "inputOutput", "NULL", "X3DTexture2DNode|MultiTexture", AbstractTypeSet{0x8000000000000000ULL, 0x0000000000000000ULL}, kAccept2},
@@ -597,7 +618,7 @@ constexpr NodeFieldModel kFieldsWaveShaper[] = {
     F{"channelCount", "SFInt32", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"channelCountMode", "SFString", "inputOutput", "MAX", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"channelInterpretation", "SFString", "inputOutput", "SPEAKERS", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"children", "MFNode", "inputOutput", "", "Analyser|AudioClip|AudioDestination|BiquadFilter|BufferAudioSource|ChannelMerger|ChannelSelector|ChannelSplitter|Convolver|Delay|DynamicsCompressor|Gain|ListenerPointSource|MicrophoneSource|MovieTexture|OscillatorSource|Sound|SpatialSound|StreamAudioDestination|StreamAudioSource|WaveShaper", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept1},
+    F{"children", "MFNode", "inputOutput", "", "Analyser|AudioClip|AudioDestination|BiquadFilter|BufferAudioSource|ChannelMerger|ChannelSelector|ChannelSplitter|Convolver|Delay|DynamicsCompressor|Gain|ListenerPointSource|MicrophoneSource|MovieTexture|OscillatorSource|Sound|SpatialSound|StreamAudioDestination|StreamAudioSource|WaveShaper", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, kAccept0},
     F{"description", "SFString", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"elapsedTime", "SFTime", "outputOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"enabled", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -611,6 +632,7 @@ constexpr NodeFieldModel kFieldsWaveShaper[] = {
     F{"startTime", "SFTime", "inputOutput", "0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"stopTime", "SFTime", "inputOutput", "0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"tailTime", "SFTime", "inputOutput", "0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"curve", "MFFloat", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
 };
 constexpr NodeFieldModel kFieldsWindPhysicsModel[] = {
     F{"direction", "SFVec3f", "inputOutput", "1 0 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -636,33 +658,9 @@ constexpr NodeFieldModel kFieldsOutlineGroup[] = {
     F{"bboxCenter", "SFVec3f", "initializeOnly", "0 0 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"bboxSize", "SFVec3f", "initializeOnly", "-1 -1 -1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
 };
-constexpr NodeFieldModel kFieldsQuantizedNormalVectors[] = {
-    F{"url", "MFString", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"fraction", "SFFloat", "inputOutput", "1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"count", "SFInt32", "inputOutput", "-1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"opacityScale", "SFFloat", "inputOutput", "1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"mode", "SFString", "inputOutput", "\"\"", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"position", "MFVec3f", "initializeOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"direction", "MFVec3f", "initializeOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"magnitude", "MFFloat", "initializeOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"color", "MFColor", "initializeOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"bboxCenter", "SFVec3f", "initializeOnly", "0 0 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"bboxSize", "SFVec3f", "initializeOnly", "-1 -1 -1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-};
-constexpr NodeFieldModel kFieldsSkin[] = {
-    F{"skeleton", "MFNode", "inputOutput", "", "X3DGroupingNode", AbstractTypeSet{0x0000000000400000ULL, 0x0000000000000000ULL}, {}},
-    F{"joints", "MFNode", "inputOutput", "", "X3DGroupingNode", AbstractTypeSet{0x0000000000400000ULL, 0x0000000000000000ULL}, {}},
-    F{"inverseBindMatrices", "MFFloat", "initializeOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"skinnedTransform", "SFNode", "inputOutput", "NULL", "X3DGroupingNode", AbstractTypeSet{0x0000000000400000ULL, 0x0000000000000000ULL}, {}},
-    F{"coord", "SFNode", "inputOutput", "NULL", "X3DCoordinateNode", AbstractTypeSet{0x0000000000000800ULL, 0x0000000000000000ULL}, {}},
-    F{"normal", "SFNode", "inputOutput", "NULL", "X3DNormalNode", AbstractTypeSet{0x0000000800000000ULL, 0x0000000000000000ULL}, {}},
-    F{"restPoint", "MFVec3f", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"restNormal", "MFVec3f", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"vertexJoints", "MFInt32", "initializeOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-    F{"vertexWeights", "MFFloat", "initializeOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
-};
 
 constexpr NodeModel kModels[] = {
+    {"SpatialSound", NodeTypeId::SpatialSound, "Sound", 2, AbstractTypeSet{0x0800000400000080ULL, 0x0000000000000000ULL}, "children", kFieldsSpatialSound, false},
     {"Sphere", NodeTypeId::Sphere, "Geometry3D", 1, AbstractTypeSet{0x0000000400200000ULL, 0x0000000000000000ULL}, "geometry", kFieldsSphere, false},
     {"SphereSensor", NodeTypeId::SphereSensor, "PointingDeviceSensor", 1, AbstractTypeSet{0x0004100400002080ULL, 0x0000000000000000ULL}, "children", kFieldsSphereSensor, false},
     {"SplinePositionInterpolator", NodeTypeId::SplinePositionInterpolator, "Interpolation", 4, AbstractTypeSet{0x0000000401000080ULL, 0x0000000000000000ULL}, "children", kFieldsSplinePositionInterpolator, false},
@@ -715,8 +713,6 @@ constexpr NodeModel kModels[] = {
     {"WindPhysicsModel", NodeTypeId::WindPhysicsModel, "ParticleSystems", 1, AbstractTypeSet{0x0000020400000000ULL, 0x0000000000000000ULL}, "physics", kFieldsWindPhysicsModel, false},
     {"WorldInfo", NodeTypeId::WorldInfo, "Core", 1, AbstractTypeSet{0x0000000400800080ULL, 0x0000000000000000ULL}, "children", kFieldsWorldInfo, false},
     {"OutlineGroup", NodeTypeId::OutlineGroup, "GhostSpace", 1, AbstractTypeSet{0x00000004004000a0ULL, 0x0000000000000000ULL}, "children", kFieldsOutlineGroup, true},
-    {"QuantizedNormalVectors", NodeTypeId::QuantizedNormalVectors, "GhostSpace", 1, AbstractTypeSet{0x00000004000000a0ULL, 0x0000000000000100ULL}, "children", kFieldsQuantizedNormalVectors, true},
-    {"Skin", NodeTypeId::Skin, "GhostSpace", 1, AbstractTypeSet{0x0000000400000080ULL, 0x0000000000000000ULL}, "children", kFieldsSkin, true},
 };
 
 }  // namespace

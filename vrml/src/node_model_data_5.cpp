@@ -9,6 +9,31 @@ namespace {
 using F = NodeFieldModel;
 
 
+constexpr NodeFieldModel kFieldsQuantizedNormalVectors[] = {
+    F{"url", "MFString", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"fraction", "SFFloat", "inputOutput", "1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"count", "SFInt32", "inputOutput", "-1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"opacityScale", "SFFloat", "inputOutput", "1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"mode", "SFString", "inputOutput", "\"\"", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"position", "MFVec3f", "initializeOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"direction", "MFVec3f", "initializeOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"magnitude", "MFFloat", "initializeOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"color", "MFColor", "initializeOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"bboxCenter", "SFVec3f", "initializeOnly", "0 0 0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"bboxSize", "SFVec3f", "initializeOnly", "-1 -1 -1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+};
+constexpr NodeFieldModel kFieldsSkin[] = {
+    F{"skeleton", "MFNode", "inputOutput", "", "X3DGroupingNode", AbstractTypeSet{0x0000000000400000ULL, 0x0000000000000000ULL}, {}},
+    F{"joints", "MFNode", "inputOutput", "", "X3DGroupingNode", AbstractTypeSet{0x0000000000400000ULL, 0x0000000000000000ULL}, {}},
+    F{"inverseBindMatrices", "MFFloat", "initializeOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"skinnedTransform", "SFNode", "inputOutput", "NULL", "X3DGroupingNode", AbstractTypeSet{0x0000000000400000ULL, 0x0000000000000000ULL}, {}},
+    F{"coord", "SFNode", "inputOutput", "NULL", "X3DCoordinateNode", AbstractTypeSet{0x0000000000000800ULL, 0x0000000000000000ULL}, {}},
+    F{"normal", "SFNode", "inputOutput", "NULL", "X3DNormalNode", AbstractTypeSet{0x0000000800000000ULL, 0x0000000000000000ULL}, {}},
+    F{"restPoint", "MFVec3f", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"restNormal", "MFVec3f", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"vertexJoints", "MFInt32", "initializeOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"vertexWeights", "MFFloat", "initializeOnly", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+};
 constexpr NodeFieldModel kFieldsEnvironmentLight[] = {
     F{"ambientIntensity", "SFFloat", "inputOutput", "0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
     F{"color", "SFColor", "inputOutput", "1 1 1", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -54,6 +79,8 @@ constexpr NodeFieldModel kFieldsGaussianSplats[] = {
 };
 
 constexpr NodeModel kModels[] = {
+    {"QuantizedNormalVectors", NodeTypeId::QuantizedNormalVectors, "GhostSpace", 1, AbstractTypeSet{0x00000004000000a0ULL, 0x0000000000000100ULL}, "children", kFieldsQuantizedNormalVectors, true},
+    {"Skin", NodeTypeId::Skin, "GhostSpace", 1, AbstractTypeSet{0x0000000400000080ULL, 0x0000000000000000ULL}, "children", kFieldsSkin, true},
     {"EnvironmentLight", NodeTypeId::EnvironmentLight, "Lighting", 4, AbstractTypeSet{0x0000000410000080ULL, 0x0000000000000000ULL}, "children", kFieldsEnvironmentLight, false},
     {"GaussianSplats", NodeTypeId::GaussianSplats, "GaussianSplats", 1, AbstractTypeSet{0x00000004000000a0ULL, 0x0000000000000000ULL}, "children", kFieldsGaussianSplats, false},
 };

@@ -187,6 +187,23 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::LayerSet,  // scene/src/traversal.cpp, render/src/scene_renderer.cpp
     NodeTypeId::Layer,
     NodeTypeId::Viewport,
+    NodeTypeId::AudioDestination,  // audio/src/sound_graph_scene.cpp, audio/audio_graph.hpp,
+                                   // runtime/src/media_nodes.cpp (time-dependent)
+    NodeTypeId::SpatialSound,
+    NodeTypeId::ListenerPointSource,
+    NodeTypeId::OscillatorSource,
+    NodeTypeId::PeriodicWave,
+    NodeTypeId::BufferAudioSource,
+    NodeTypeId::Analyser,
+    NodeTypeId::BiquadFilter,
+    NodeTypeId::Convolver,
+    NodeTypeId::Delay,
+    NodeTypeId::DynamicsCompressor,
+    NodeTypeId::Gain,
+    NodeTypeId::WaveShaper,
+    NodeTypeId::ChannelMerger,
+    NodeTypeId::ChannelSelector,
+    NodeTypeId::ChannelSplitter,
 };
 
 }  // namespace

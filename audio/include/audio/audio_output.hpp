@@ -38,6 +38,11 @@ class AudioOutput {
   virtual void update(const std::vector<Voice>& voices) = 0;
   /// How many voices can play at once.
   virtual std::size_t maxVoices() const = 0;
+  /// Queues `stereo` (interleaved left, right; kGraphSampleRate frames per second, -1..1,
+  /// clipped beyond) after what was queued before: the X3D 4 audio graph's output
+  /// (audio/audio_graph.hpp), rendered as simulated time passes. Sound queued more than a
+  /// quarter of a second ahead of the device is dropped (the graph's clock leads).
+  virtual void stream(const std::vector<float>& stereo) = 0;
 };
 
 /// The null output: plays nothing, remembers what it was asked to play.
@@ -47,11 +52,19 @@ class NullAudioOutput final : public AudioOutput {
   std::string name() const override { return "null"; }
   void update(const std::vector<Voice>& voices) override { playing_ = voices; }
   std::size_t maxVoices() const override { return 32; }
+  void stream(const std::vector<float>& stereo) override {
+    streamed_.insert(streamed_.end(), stereo.begin(), stereo.end());
+  }
   /// The voices of the last update.
   const std::vector<Voice>& playing() const { return playing_; }
+  /// Every frame streamed so far (interleaved stereo).
+  const std::vector<float>& streamed() const { return streamed_; }
+  /// Forgets the frames streamed so far (a test's window on the stream).
+  void clearStreamed() { streamed_.clear(); }
 
  private:
   std::vector<Voice> playing_;
+  std::vector<float> streamed_;
 };
 
 /// OpenAL Soft's default device; the null output when `wanted` is false or no device

@@ -7,6 +7,7 @@
 // plays them at the media time the execution model gives (docs/media.md).
 #pragma once
 
+#include "audio/audio_graph.hpp"
 #include "audio/audio_output.hpp"
 #include "audio/sound_model.hpp"
 #include "base/fetch.hpp"
@@ -67,13 +68,18 @@ class SoundScene {
   SoundScene(const SoundScene&) = delete;
   SoundScene& operator=(const SoundScene&) = delete;
 
-  /// One frame: `worldToListener` is the viewer's view matrix (world to eye coordinates).
-  /// Walks the scene (and, through `inlines`, the Inline worlds loaded so far), loads new
-  /// clips, computes every Sound's gain, chooses voices and hands them to `output`.
-  /// A MovieTexture source plays its audio stream (formats/movie_audio.hpp) at its media
+  /// One frame at simulated time `now` (seconds): `worldToListener` is the viewer's view
+  /// matrix (world to eye coordinates). Walks the scene (and, through `inlines`, the Inline worlds
+  /// loaded so far), loads new clips, computes every Sound's gain, chooses voices and hands them to
+  /// `output`. A MovieTexture source plays its audio stream (formats/movie_audio.hpp) at its media
   /// time, at `speed` as the pitch; a movie played backwards (speed < 0) is silent.
-  void update(const glm::mat4& worldToListener, const ClipTimeQuery& clipTime, AudioOutput& output,
-              const InlineQuery& inlines = {});
+  /// The X3D 4 audio graph (AudioDestinations and SpatialSounds and what they take in,
+  /// audio/audio_graph.hpp) is rendered from the last update's time to `now` (at most half
+  /// a second; nothing on the first update) and streamed to `output`; its sources play
+  /// while `clipTime` says they are active (the execution model's X3DTimeDependentNode
+  /// state) and are silent while it does not know them.
+  void update(const glm::mat4& worldToListener, double now, const ClipTimeQuery& clipTime,
+              AudioOutput& output, const InlineQuery& inlines = {});
 
   /// Durations (seconds; -1: unreadable) of clips loaded since the last call, for
   /// runtime::ExecutionModel::setMediaDuration (a MovieTexture's is its video's, the one
@@ -92,8 +98,29 @@ class SoundScene {
   const std::vector<HeardSound>& heard() const { return heard_; }
   /// Clips that could not be read, each once ("URL: why").
   const vrml::Diagnostics& diagnostics() const { return diagnostics_; }
+  /// The X3D 4 audio graph of the last update (sound_graph_scene.cpp).
+  const AudioGraph& graph() const { return graph_; }
+
+  /// An AudioDestination, SpatialSound or ListenerPointSource met in the scene graph, with
+  /// its coordinate system and the url its clips resolve against.
+  struct GraphRoot {
+    const vrml::Node* node = nullptr;
+    glm::mat4 world{1.0f};
+    std::string base;
+  };
 
  private:
+  /// Sets the graph from `roots` and renders it to `now` (sound_graph_scene.cpp).
+  void updateGraph(const std::vector<GraphRoot>& roots, const glm::mat4& worldToListener,
+                   double now, const ClipTimeQuery& clipTime, AudioOutput& output);
+  /// Sets the processor of `n` (a sound source, processing or channel node) and those of its
+  /// children, once per update (`seen`).
+  void setProcessor(const vrml::Node& n, const std::string& base, const ClipTimeQuery& clipTime,
+                    std::unordered_set<const vrml::Node*>& seen, int depth);
+  /// The sampled sound of an AudioClip or BufferAudioSource (its `buffer` data, or its url
+  /// decoded like an AudioClip's); null while decoding or when it has none.
+  std::shared_ptr<const SampledSound> sampledOf(const vrml::Node& n, const std::string& base);
+
   /// The clip's sound once decoded; null while on the worker (the first call starts it) or
   /// when it cannot be played. Its urls resolve against clip.urlBaseOr(base).
   std::shared_ptr<const formats::AudioData> clipOf(const vrml::Node& clip, const std::string& base);
@@ -109,6 +136,13 @@ class SoundScene {
   std::vector<HeardSound> heard_;
   std::unordered_map<const vrml::Scene*, std::shared_ptr<const vrml::Scene>> inlineWorlds_;
   vrml::Diagnostics diagnostics_;
+  AudioGraph graph_;
+  double graphTime_ = -1.0;  // the simulated time rendered up to; < 0 before the first update
+  std::unordered_map<const formats::AudioData*, std::shared_ptr<const SampledSound>> sampled_;
+  /// BufferAudioSources' `buffer` data as sampled sound, with the revision it was made at.
+  std::unordered_map<const vrml::Node*,
+                     std::pair<std::uint64_t, std::shared_ptr<const SampledSound>>>
+      buffers_;
   std::unique_ptr<detail::ClipLoads> loads_;  // last: its worker stops first
 };
 

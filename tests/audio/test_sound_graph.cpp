@@ -1,0 +1,161 @@
+// X3D 4 audio graph worlds (clause 16) through the execution model, SoundScene and the null
+// output, frame by frame as the window moves them: what the sources' time fields start,
+// pause and stop is what is streamed.
+#include "audio/audio_output.hpp"
+#include "audio/sound_scene.hpp"
+#include "encodings/parser.hpp"
+#include "runtime/execution_model.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <memory>
+#include <string>
+
+using namespace gs;
+
+namespace {
+
+struct GraphWorld {
+  std::shared_ptr<vrml::Scene> scene;
+  std::unique_ptr<runtime::ExecutionModel> model;
+  audio::SoundScene sounds;
+  audio::NullAudioOutput out;
+
+  explicit GraphWorld(const std::string& body)
+      : scene(std::make_shared<vrml::Scene>(
+            vrml::parseVrml("#X3D V4.0 utf8\nPROFILE Full\n" + body,
+                            std::string(GS_SOURCE_DIR) + "/assets/media/graph.x3dv"))),
+        model(std::make_unique<runtime::ExecutionModel>(scene, 0.0)),
+        sounds(scene, nullptr) {}
+
+  /// One frame at `time`, heard from the origin looking down -Z.
+  void frame(double time) {
+    model->advanceTo(time);
+    sounds.update(
+        glm::mat4(1.0f), time,
+        [this](const vrml::Node& n) -> std::optional<audio::ClipTime> {
+          const auto m = model->media(n);
+          if (!m) return std::nullopt;
+          return audio::ClipTime{m->active, m->mediaTime};
+        },
+        out);
+    sounds.waitForClips();
+    for (const auto& [node, seconds] : sounds.takeDurations())
+      model->setMediaDuration(*node, seconds);
+  }
+  /// Frames from `from` to `to` every 1/50 s, the stream of the last `seconds` kept.
+  void play(double from, double to) {
+    for (double t = from; t <= to + 1e-9; t += 0.02) frame(t);
+  }
+  /// The node DEFed `name` (anywhere below the root nodes).
+  vrml::Node& def(const std::string& name) {
+    vrml::Node* found = nullptr;
+    std::function<void(const vrml::NodePtr&)> visit = [&](const vrml::NodePtr& n) {
+      if (!n || found) return;
+      if (n->defName == name) found = n.get();
+      for (std::size_t i = 0; i < n->fieldCount() && !found; ++i) {
+        const vrml::FieldValue& v = n->fieldAt(i);
+        if (v.type() == vrml::FieldType::SFNode) visit(v.get<vrml::FieldType::SFNode>());
+        if (v.type() == vrml::FieldType::MFNode)
+          for (const vrml::NodePtr& c : v.get<vrml::FieldType::MFNode>()) visit(c);
+      }
+    };
+    for (const vrml::NodePtr& n : scene->rootNodes) visit(n);
+    REQUIRE(found != nullptr);
+    return *found;
+  }
+  /// Sends `value` to `field` of the node DEFed `name`, processed at the next frame.
+  void send(const std::string& name, const std::string& field, vrml::FieldValue value) {
+    vrml::Node& n = def(name);
+    REQUIRE(model->postEvent(n, n.type().findField(field), std::move(value)));
+  }
+  float peakOfLast(std::size_t frames, int channel) const {
+    const std::vector<float>& s = out.streamed();
+    float m = 0.0f;
+    const std::size_t n = s.size() / 2;
+    for (std::size_t i = n > frames ? n - frames : 0; i < n; ++i)
+      m = std::max(m, std::fabs(s[2 * i + static_cast<std::size_t>(channel)]));
+    return m;
+  }
+};
+
+}  // namespace
+
+TEST_CASE("Sound graph: an oscillator through a Gain to the AudioDestination", "[audio][graph]") {
+  GraphWorld w(R"(AudioDestination { children [
+    DEF G Gain { gain 0.5 children [ DEF O OscillatorSource { frequency 441 startTime 1 } ] } ] })");
+  w.play(0.0, 0.5);
+  CHECK(w.out.streamed().size() == 2 * 22050);  // half a second rendered
+  CHECK(w.peakOfLast(22050, 0) == 0.0f);        // before startTime: silent
+  REQUIRE(w.model->media(w.def("O")));
+  CHECK_FALSE(w.model->media(w.def("O"))->active);
+  w.play(0.52, 1.5);
+  CHECK(w.model->media(w.def("O"))->active);
+  // X_ITE's default wave (PeriodicWave's SQUARE), peak 1, through gain 0.5.
+  CHECK(w.peakOfLast(4410, 0) == Approx(0.5f).margin(0.01));
+  CHECK(w.peakOfLast(4410, 1) == Approx(0.5f).margin(0.01));
+  CHECK(w.def("O").get<vrml::FieldType::SFTime>("elapsedTime", -1.0) == Approx(0.5).margin(0.021));
+  // The Gain node's gain event is heard from the next frame on.
+  w.send("G", "gain", vrml::FieldValue::make<vrml::FieldType::SFFloat>(0.25f));
+  w.play(1.52, 1.6);
+  CHECK(w.peakOfLast(2205, 0) == Approx(0.25f).margin(0.01));
+}
+
+TEST_CASE("Sound graph: pauseTime, resumeTime and stopTime", "[audio][graph]") {
+  GraphWorld w(R"(AudioDestination { children [ DEF O OscillatorSource { stopTime 3 } ] })");
+  w.play(0.0, 0.98);
+  CHECK(w.peakOfLast(2205, 0) > 0.9f);
+  w.send("O", "pauseTime", vrml::FieldValue::make<vrml::FieldType::SFTime>(1.0));
+  w.play(1.0, 1.5);
+  CHECK(w.def("O").get<vrml::FieldType::SFBool>("isPaused", false));
+  CHECK(w.peakOfLast(4410, 0) == 0.0f);
+  const double elapsedAtPause = w.def("O").get<vrml::FieldType::SFTime>("elapsedTime", -1.0);
+  CHECK(elapsedAtPause == Approx(1.0).margin(0.021));
+  w.send("O", "resumeTime", vrml::FieldValue::make<vrml::FieldType::SFTime>(2.0));
+  w.play(2.0, 2.5);
+  CHECK_FALSE(w.def("O").get<vrml::FieldType::SFBool>("isPaused", true));
+  CHECK(w.peakOfLast(2205, 0) > 0.9f);
+  // Paused seconds are not counted.
+  CHECK(w.def("O").get<vrml::FieldType::SFTime>("elapsedTime", -1.0) == Approx(1.5).margin(0.03));
+  w.play(2.52, 3.5);
+  CHECK_FALSE(w.def("O").get<vrml::FieldType::SFBool>("isActive", true));
+  CHECK(w.peakOfLast(4410, 0) == 0.0f);
+}
+
+TEST_CASE("Sound graph: a BufferAudioSource's buffer plays once, for its duration",
+          "[audio][graph]") {
+  // 3000 frames at 3000 Hz, channel-major stereo: one second, left 0.25, right -0.5.
+  std::string buffer;
+  for (int i = 0; i < 3000; ++i) buffer += "0.25 ";
+  for (int i = 0; i < 3000; ++i) buffer += "-0.5 ";
+  GraphWorld w(
+      "AudioDestination { children [ DEF B BufferAudioSource { load FALSE "
+      "numberOfChannels 2 sampleRate 3000 startTime 0.5 buffer [ " +
+      buffer + "] } ] }");
+  w.play(0.0, 1.0);
+  CHECK(w.model->media(w.def("B"))->active);
+  CHECK(w.peakOfLast(4410, 0) == Approx(0.25f));
+  CHECK(w.peakOfLast(4410, 1) == Approx(0.5f));
+  w.play(1.02, 1.8);
+  CHECK(w.model->media(w.def("B"))->duration == Approx(1.0));
+  w.play(1.82, 2.0);  // past startTime + 1 s: stopped
+  CHECK_FALSE(w.model->media(w.def("B"))->active);
+  CHECK(w.peakOfLast(4410, 0) == 0.0f);
+}
+
+TEST_CASE("Sound graph: a SpatialSound under a Transform, an AudioClip in a filter",
+          "[audio][graph]") {
+  // tone.wav: 0.5 s of 440 Hz at 8 kHz, peak 0.125. Placed 2 m to the right: heard in the
+  // right ear only, at the inverse model's 1/2.
+  GraphWorld w(R"(Transform { translation 2 0 0 children [
+    SpatialSound { children [ BiquadFilter { type "HIGHPASS" frequency 20 children [
+      DEF C AudioClip { url "tone.wav" loop TRUE } ] } ] } ] })");
+  w.play(0.0, 0.5);
+  REQUIRE(w.model->media(w.def("C")));
+  CHECK(w.model->media(w.def("C"))->active);
+  CHECK(w.peakOfLast(4410, 0) < 1e-4f);
+  CHECK(w.peakOfLast(4410, 1) == Approx(0.0625f).margin(0.003));
+}
