@@ -1,6 +1,7 @@
 // DIS PDUs (IEEE 1278.1-2012) to and from their big-endian bytes (dis/pdu.hpp).
 #include "dis/pdu.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -90,6 +91,67 @@ bool finite(const glm::vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
+bool finite(const glm::dvec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+EntityID entityID(Reader& r) {
+  EntityID e;
+  e.site = r.u16();
+  e.application = r.u16();
+  e.entity = r.u16();
+  return e;
+}
+
+void entityID(Writer& w, const EntityID& e) {
+  w.u16(e.site);
+  w.u16(e.application);
+  w.u16(e.entity);
+}
+
+RadioID radioID(Reader& r) {
+  RadioID id;
+  id.entity = entityID(r);
+  id.radio = r.u16();
+  return id;
+}
+
+void radioID(Writer& w, const RadioID& id) {
+  entityID(w, id.entity);
+  w.u16(id.radio);
+}
+
+/// The header of `bytes` when it decodes and names PDU type `type`, else nothing and
+/// `error` says why (`name`: the PDU's name for the message).
+std::optional<PduHeader> headerOf(std::span<const std::uint8_t> bytes, PduType type,
+                                  const char* name, std::string* error) {
+  std::optional<PduHeader> header = decodeHeader(bytes, error);
+  if (header && header->pduType != static_cast<std::uint8_t>(type)) {
+    if (error)
+      *error = "PDU type " + std::to_string(header->pduType) + ", not " + name + " (" +
+               std::to_string(static_cast<int>(type)) + ")";
+    return std::nullopt;
+  }
+  return header;
+}
+
+void writeHeader(Writer& w, const PduHeader& h, PduType type, std::uint8_t family,
+                 std::size_t length) {
+  w.u8(h.protocolVersion);
+  w.u8(h.exerciseID);
+  w.u8(static_cast<std::uint8_t>(type));
+  w.u8(family);
+  w.u32(h.timestamp);
+  w.u16(static_cast<std::uint16_t>(length));
+  w.u16(0);
+}
+
+void shortError(std::string* error, const char* name, std::size_t length, std::size_t needed) {
+  if (error)
+    *error = std::string(name) + " of " + std::to_string(length) + " bytes, short of the " +
+             std::to_string(needed) + " its fields announce";
+}
+
 }  // namespace
 
 std::optional<PduHeader> decodeHeader(std::span<const std::uint8_t> bytes, std::string* error) {
@@ -119,20 +181,14 @@ std::optional<PduHeader> decodeHeader(std::span<const std::uint8_t> bytes, std::
 
 std::optional<EntityStatePdu> decodeEntityState(std::span<const std::uint8_t> bytes,
                                                 std::string* error) {
-  const std::optional<PduHeader> header = decodeHeader(bytes, error);
+  const std::optional<PduHeader> header =
+      headerOf(bytes, PduType::entityState, "an Entity State PDU", error);
   if (!header) return std::nullopt;
-  if (header->pduType != static_cast<std::uint8_t>(PduType::entityState)) {
-    if (error)
-      *error = "PDU type " + std::to_string(header->pduType) + ", not an Entity State PDU (1)";
-    return std::nullopt;
-  }
   Reader r(bytes.first(header->length));
   r.skip(12);
   EntityStatePdu p;
   p.header = *header;
-  p.entityID.site = r.u16();
-  p.entityID.application = r.u16();
-  p.entityID.entity = r.u16();
+  p.entityID = entityID(r);
   p.forceID = r.u8();
   const std::size_t parameters = r.u8();
   p.entityType = entityType(r);
@@ -188,16 +244,9 @@ std::vector<std::uint8_t> encodeEntityState(const EntityStatePdu& p) {
   Writer w;
   const std::size_t parameters =
       std::min(p.articulationParameters.size(), kMaxArticulationParameters);
-  w.u8(p.header.protocolVersion);
-  w.u8(p.header.exerciseID);
-  w.u8(static_cast<std::uint8_t>(PduType::entityState));
-  w.u8(p.header.protocolFamily);
-  w.u32(p.header.timestamp);
-  w.u16(static_cast<std::uint16_t>(kEntityStateSize + 16 * parameters));
-  w.u16(0);
-  w.u16(p.entityID.site);
-  w.u16(p.entityID.application);
-  w.u16(p.entityID.entity);
+  writeHeader(w, p.header, PduType::entityState, p.header.protocolFamily,
+              kEntityStateSize + 16 * parameters);
+  entityID(w, p.entityID);
   w.u8(p.forceID);
   w.u8(static_cast<std::uint8_t>(parameters));
   entityType(w, p.entityType);
@@ -230,6 +279,203 @@ std::vector<std::uint8_t> encodeEntityState(const EntityStatePdu& p) {
     }
   }
   return std::move(w.out);
+}
+
+std::optional<TransmitterPdu> decodeTransmitter(std::span<const std::uint8_t> bytes,
+                                                std::string* error) {
+  const std::optional<PduHeader> header =
+      headerOf(bytes, PduType::transmitter, "a Transmitter PDU", error);
+  if (!header) return std::nullopt;
+  Reader r(bytes.first(header->length));
+  r.skip(12);
+  TransmitterPdu p;
+  p.header = *header;
+  p.radio = radioID(r);
+  p.radioEntityType.kind = r.u8();
+  p.radioEntityType.domain = r.u8();
+  p.radioEntityType.country = r.u16();
+  p.radioEntityType.category = r.u8();
+  p.radioEntityType.nomenclatureVersion = r.u8();
+  p.radioEntityType.nomenclature = r.u16();
+  p.transmitState = r.u8();
+  p.inputSource = r.u8();
+  r.skip(2);  // number of Variable Transmitter Parameters records (1998: padding)
+  p.antennaLocation.x = r.f64();
+  p.antennaLocation.y = r.f64();
+  p.antennaLocation.z = r.f64();
+  p.relativeAntennaLocation = r.vec3f();
+  p.antennaPatternType = r.u16();
+  const std::size_t patternLength = r.u16();
+  p.frequency = r.unsignedOf(8);
+  p.transmitFrequencyBandwidth = r.f32();
+  p.power = r.f32();
+  p.modulationType.spreadSpectrum = r.u16();
+  p.modulationType.major = r.u16();
+  p.modulationType.detail = r.u16();
+  p.modulationType.radioSystem = r.u16();
+  p.cryptoSystem = r.u16();
+  p.cryptoKeyID = r.u16();
+  const std::size_t modulationLength = r.u8();
+  r.skip(3);  // padding
+  const std::size_t needed = kTransmitterSize + modulationLength + patternLength;
+  if (!r.ok() || header->length < needed) {
+    shortError(error, "Transmitter PDU", header->length, needed);
+    return std::nullopt;
+  }
+  // Both lengths are now known to lie inside the datagram: what is allocated is read.
+  p.modulationParameters.resize(modulationLength);
+  for (std::uint8_t& b : p.modulationParameters) b = r.u8();
+  p.antennaPattern.resize(patternLength);
+  for (std::uint8_t& b : p.antennaPattern) b = r.u8();
+  if (!r.ok() || !finite(p.antennaLocation) || !finite(p.relativeAntennaLocation) ||
+      !std::isfinite(p.transmitFrequencyBandwidth) || !std::isfinite(p.power)) {
+    if (error) *error = "Transmitter PDU with a number that is not finite";
+    return std::nullopt;
+  }
+  return p;
+}
+
+std::vector<std::uint8_t> encodeTransmitter(const TransmitterPdu& p) {
+  Writer w;
+  const std::size_t modulationLength = std::min<std::size_t>(p.modulationParameters.size(), 255);
+  const std::size_t patternLength = std::min(p.antennaPattern.size(), kMaxAntennaPattern);
+  writeHeader(w, p.header, PduType::transmitter, kRadioCommunicationsFamily,
+              kTransmitterSize + modulationLength + patternLength);
+  radioID(w, p.radio);
+  w.u8(p.radioEntityType.kind);
+  w.u8(p.radioEntityType.domain);
+  w.u16(p.radioEntityType.country);
+  w.u8(p.radioEntityType.category);
+  w.u8(p.radioEntityType.nomenclatureVersion);
+  w.u16(p.radioEntityType.nomenclature);
+  w.u8(p.transmitState);
+  w.u8(p.inputSource);
+  w.u16(0);  // no Variable Transmitter Parameters records
+  w.f64(p.antennaLocation.x);
+  w.f64(p.antennaLocation.y);
+  w.f64(p.antennaLocation.z);
+  w.vec3f(p.relativeAntennaLocation);
+  w.u16(p.antennaPatternType);
+  w.u16(static_cast<std::uint16_t>(patternLength));
+  w.unsignedOf(p.frequency, 8);
+  w.f32(p.transmitFrequencyBandwidth);
+  w.f32(p.power);
+  w.u16(p.modulationType.spreadSpectrum);
+  w.u16(p.modulationType.major);
+  w.u16(p.modulationType.detail);
+  w.u16(p.modulationType.radioSystem);
+  w.u16(p.cryptoSystem);
+  w.u16(p.cryptoKeyID);
+  w.u8(static_cast<std::uint8_t>(modulationLength));
+  w.u8(0);
+  w.u16(0);
+  for (std::size_t i = 0; i < modulationLength; ++i) w.u8(p.modulationParameters[i]);
+  for (std::size_t i = 0; i < patternLength; ++i) w.u8(p.antennaPattern[i]);
+  return std::move(w.out);
+}
+
+std::optional<SignalPdu> decodeSignal(std::span<const std::uint8_t> bytes, std::string* error) {
+  const std::optional<PduHeader> header = headerOf(bytes, PduType::signal, "a Signal PDU", error);
+  if (!header) return std::nullopt;
+  Reader r(bytes.first(header->length));
+  r.skip(12);
+  SignalPdu p;
+  p.header = *header;
+  p.radio = radioID(r);
+  p.encodingScheme = r.u16();
+  p.tdlType = r.u16();
+  p.sampleRate = r.u32();
+  p.dataLength = r.u16();
+  p.samples = r.u16();
+  const std::size_t dataBytes = (static_cast<std::size_t>(p.dataLength) + 7) / 8;
+  if (!r.ok() || header->length < kSignalSize + dataBytes) {
+    shortError(error, "Signal PDU", header->length, kSignalSize + dataBytes);
+    return std::nullopt;
+  }
+  p.data.resize(dataBytes);  // inside the datagram: checked above
+  for (std::uint8_t& b : p.data) b = r.u8();
+  if (!r.ok()) {
+    shortError(error, "Signal PDU", header->length, kSignalSize + dataBytes);
+    return std::nullopt;
+  }
+  return p;
+}
+
+std::vector<std::uint8_t> encodeSignal(const SignalPdu& p) {
+  Writer w;
+  const std::size_t announced = (static_cast<std::size_t>(p.dataLength) + 7) / 8;
+  const std::size_t dataBytes = std::min({p.data.size(), kMaxSignalData, announced});
+  const std::size_t bits = std::min<std::size_t>(p.dataLength, 8 * dataBytes);
+  const std::size_t padded = (dataBytes + 3) / 4 * 4;
+  writeHeader(w, p.header, PduType::signal, kRadioCommunicationsFamily, kSignalSize + padded);
+  radioID(w, p.radio);
+  w.u16(p.encodingScheme);
+  w.u16(p.tdlType);
+  w.u32(p.sampleRate);
+  w.u16(static_cast<std::uint16_t>(bits));
+  w.u16(p.samples);
+  for (std::size_t i = 0; i < padded; ++i) w.u8(i < dataBytes ? p.data[i] : 0);
+  return std::move(w.out);
+}
+
+std::optional<ReceiverPdu> decodeReceiver(std::span<const std::uint8_t> bytes, std::string* error) {
+  const std::optional<PduHeader> header =
+      headerOf(bytes, PduType::receiver, "a Receiver PDU", error);
+  if (!header) return std::nullopt;
+  Reader r(bytes.first(header->length));
+  r.skip(12);
+  ReceiverPdu p;
+  p.header = *header;
+  p.radio = radioID(r);
+  p.receiverState = r.u16();
+  r.skip(2);  // padding
+  p.receivedPower = r.f32();
+  p.transmitter = radioID(r);
+  if (!r.ok()) {
+    shortError(error, "Receiver PDU", header->length, kReceiverSize);
+    return std::nullopt;
+  }
+  if (!std::isfinite(p.receivedPower)) {
+    if (error) *error = "Receiver PDU with a received power that is not finite";
+    return std::nullopt;
+  }
+  return p;
+}
+
+std::vector<std::uint8_t> encodeReceiver(const ReceiverPdu& p) {
+  Writer w;
+  writeHeader(w, p.header, PduType::receiver, kRadioCommunicationsFamily, kReceiverSize);
+  radioID(w, p.radio);
+  w.u16(p.receiverState);
+  w.u16(0);
+  w.f32(p.receivedPower);
+  radioID(w, p.transmitter);
+  return std::move(w.out);
+}
+
+std::optional<Pdu> decodePdu(std::span<const std::uint8_t> bytes, std::string* error) {
+  const std::optional<PduHeader> header = decodeHeader(bytes, error);
+  if (!header) return std::nullopt;
+  switch (header->pduType) {
+    case static_cast<std::uint8_t>(PduType::entityState):
+      if (auto p = decodeEntityState(bytes, error)) return Pdu(std::move(*p));
+      return std::nullopt;
+    case static_cast<std::uint8_t>(PduType::transmitter):
+      if (auto p = decodeTransmitter(bytes, error)) return Pdu(std::move(*p));
+      return std::nullopt;
+    case static_cast<std::uint8_t>(PduType::signal):
+      if (auto p = decodeSignal(bytes, error)) return Pdu(std::move(*p));
+      return std::nullopt;
+    case static_cast<std::uint8_t>(PduType::receiver):
+      if (auto p = decodeReceiver(bytes, error)) return Pdu(std::move(*p));
+      return std::nullopt;
+    default:
+      break;
+  }
+  if (error)
+    *error = "PDU type " + std::to_string(header->pduType) +
+             " is not read (only Entity State 1, Transmitter 25, Signal 26, Receiver 27)";
+  return std::nullopt;
 }
 
 glm::dquat eulerToQuaternion(const glm::vec3& e) {

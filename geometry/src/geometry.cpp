@@ -304,7 +304,7 @@ void assignFogDepths(const Node& geometry, Mesh& m) {
 
 }  // namespace geometry_detail
 
-Mesh tessellate(const Node& geometry, Diagnostics* diag) {
+Mesh tessellate(const Node& geometry, Diagnostics* diag, float nurbsTessellationScale) {
   using namespace geometry_detail;
   if (geometry.unresolved) return {};
   ProblemLog log(geometry, diag);
@@ -376,7 +376,7 @@ Mesh tessellate(const Node& geometry, Diagnostics* diag) {
       break;
     case NodeTypeId::NurbsPatchSurface:
     case NodeTypeId::NurbsTrimmedSurface:
-      m = tessellateNurbsSurface(geometry, log);
+      m = tessellateNurbsSurface(geometry, log, nurbsTessellationScale);
       break;
     case NodeTypeId::Arc2D:  // X3D 4.0 clause 14, Geometry2D (geometry_2d.cpp)
       m = tessellateArc2D(geometry, log);

@@ -311,6 +311,9 @@ Mesh extrude(const ExtrusionInput& in,
 /// control points: geometry_nurbs.cpp.
 std::vector<glm::dvec3> nurbsCurvePoints(const Node& node, const std::vector<glm::dvec3>& points,
                                          ProblemLog& log);
+/// The points of a NurbsCurve2D (tessellated as a NurbsCurve is) or ContourPolyline2D (its
+/// controlPoint), X3DNurbsControlCurveNode of X3D 4.0 27.3.1; none for other nodes.
+std::vector<glm::dvec2> nurbsCurve2DPoints(const NodePtr& node, ProblemLog& log);
 // X3D NURBS swept and swung surfaces (X3D 4.0 27.4.11, 27.4.12): geometry_nurbs_swept.cpp.
 Mesh tessellateNurbsSweptSurface(const Node& node, ProblemLog& log);
 Mesh tessellateNurbsSwungSurface(const Node& node, ProblemLog& log);
@@ -330,7 +333,8 @@ Mesh tessellateLineSet(const Node& node, ProblemLog& log);
 /// X3D NURBS (geometry_nurbs.cpp): NurbsCurve as lines; NurbsPatchSurface and
 /// NurbsTrimmedSurface (untrimmed) as triangles.
 Mesh tessellateNurbsCurve(const Node& node, ProblemLog& log);
-Mesh tessellateNurbsSurface(const Node& node, ProblemLog& log);
+/// `scale`: the NurbsSet's tessellationScale (segments times it, rounded down, >= 1).
+Mesh tessellateNurbsSurface(const Node& node, ProblemLog& log, float scale = 1.0f);
 Mesh tessellateArc2D(const Node& node, ProblemLog& log);
 Mesh tessellateArcClose2D(const Node& node, ProblemLog& log);
 Mesh tessellateCircle2D(const Node& node, ProblemLog& log);

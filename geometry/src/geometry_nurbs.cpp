@@ -16,7 +16,12 @@
 //   of its own parameter range (27.4.10; a warning and the default when its fields do not
 //   make a surface), or a TextureCoordinate's points interpolated bilinearly over the grid
 //   (one per control point); normals come from the grid (central differences), pointing as
-//   u x v. NurbsTrimmedSurface's trimming contours are not applied (a warning).
+//   u x v.
+// - NurbsTrimmedSurface (27.4.9): as X_ITE 15 trims it, each Contour2D's curves joined into
+//   one closed polygon of the parameter space (u, v); the part of the patch kept is inside
+//   an odd number of contours (the odd winding rule: an outer contour keeps its inside, a
+//   contour inside it cuts a hole). Triangles of the grid are kept by their centre (the
+//   trimmed edge follows the grid's cells).
 #include "geometry/nurbs.hpp"
 #include "geometry_internal.hpp"
 
@@ -222,7 +227,39 @@ Mesh tessellateNurbsCurve(const Node& node, ProblemLog& log) {
   return b.finish(false);
 }
 
-Mesh tessellateNurbsSurface(const Node& node, ProblemLog& log) {
+/// NurbsTrimmedSurface's trimming contours (27.4.9): each Contour2D's children
+/// (NurbsCurve2D, ContourPolyline2D) joined end to end, a polygon of (u, v) parameters.
+std::vector<std::vector<glm::dvec2>> trimmingLoops(const Node& node, ProblemLog& log) {
+  std::vector<std::vector<glm::dvec2>> loops;
+  if (node.typeId() != NodeTypeId::NurbsTrimmedSurface) return loops;
+  for (const NodePtr& contour : node.mfnode("trimmingContour")) {
+    if (!contour || contour->unresolved || contour->typeId() != NodeTypeId::Contour2D) continue;
+    std::vector<glm::dvec2> loop;
+    for (const NodePtr& curve : contour->mfnode("children"))
+      for (const glm::dvec2& p : nurbsCurve2DPoints(curve, log))
+        if (loop.empty() || p != loop.back()) loop.push_back(p);
+    if (loop.size() >= 3) loops.push_back(std::move(loop));
+  }
+  return loops;
+}
+
+/// Whether (u, v) is kept: inside an odd number of `loops` (even-odd crossings per loop),
+/// as X_ITE 15 trims.
+bool keptByTrimming(const std::vector<std::vector<glm::dvec2>>& loops, glm::dvec2 p) {
+  bool kept = false;
+  for (const std::vector<glm::dvec2>& loop : loops) {
+    bool inside = false;
+    for (std::size_t i = 0, j = loop.size() - 1; i < loop.size(); j = i++) {
+      const glm::dvec2 a = loop[i], b = loop[j];
+      if ((a.y > p.y) != (b.y > p.y) && p.x < (b.x - a.x) * (p.y - a.y) / (b.y - a.y) + a.x)
+        inside = !inside;
+    }
+    if (inside) kept = !kept;
+  }
+  return kept;
+}
+
+Mesh tessellateNurbsSurface(const Node& node, ProblemLog& log, float scale) {
   const std::vector<glm::dvec3> points = nurbs::controlPoints(node);
   const int nu = node.get<FieldType::SFInt32>("uDimension", 0);
   const int nv = node.get<FieldType::SFInt32>("vDimension", 0);
@@ -233,15 +270,18 @@ Mesh tessellateNurbsSurface(const Node& node, ProblemLog& log) {
             "vDimension asks for " + std::to_string(count));
     return {};
   }
-  if (node.typeId() == NodeTypeId::NurbsTrimmedSurface && !node.mfnode("trimmingContour").empty())
-    log.add("NurbsTrimmedSurface: trimming contours are not applied (the whole patch is drawn)");
   const Axis ua = nurbsAxis(nu, node.get<FieldType::SFInt32>("uOrder", 3),
                             nurbs::doubles(node, "uKnot"), "uKnot", log);
   const Axis va = nurbsAxis(nv, node.get<FieldType::SFInt32>("vOrder", 3),
                             nurbs::doubles(node, "vKnot"), "vKnot", log);
   const std::vector<double> w = nurbsWeights(node, count, log);
-  const int su = nurbsSegments(node.get<FieldType::SFInt32>("uTessellation", 0), nu);
-  const int sv = nurbsSegments(node.get<FieldType::SFInt32>("vTessellation", 0), nv);
+  // A NurbsSet's tessellationScale: floor(segments x scale), as X_ITE 15.
+  const auto scaled = [&](int segments) {
+    const double s = std::floor(segments * std::clamp(static_cast<double>(scale), 0.0, 64.0));
+    return std::clamp(static_cast<int>(s), 1, kMaxNurbsSegments);
+  };
+  const int su = scaled(nurbsSegments(node.get<FieldType::SFInt32>("uTessellation", 0), nu));
+  const int sv = scaled(nurbsSegments(node.get<FieldType::SFInt32>("vTessellation", 0), nv));
   const auto gu = static_cast<std::size_t>(su + 1), gv = static_cast<std::size_t>(sv + 1);
 
   const std::vector<glm::dvec3> grid = nurbsGrid(ua, va, points, w, su, sv);
@@ -294,12 +334,21 @@ Mesh tessellateNurbsSurface(const Node& node, ProblemLog& log) {
       v.texCoord = texAt(static_cast<double>(i) / su, static_cast<double>(j) / sv);
       b.push(v);
     }
+  const std::vector<std::vector<glm::dvec2>> loops = trimmingLoops(node, log);
+  // The parameters of grid point (i, j) plus a fraction of a cell.
+  const auto param = [&](double i, double j) {
+    return glm::dvec2(ua.start() + (ua.end() - ua.start()) * i / su,
+                      va.start() + (va.end() - va.start()) * j / sv);
+  };
   for (std::size_t j = 0; j + 1 < gv; ++j)
     for (std::size_t i = 0; i + 1 < gu; ++i) {
       const auto a = static_cast<std::uint32_t>(i + j * gu);
       const auto c = static_cast<std::uint32_t>(i + (j + 1) * gu);
-      b.triangle(a, a + 1, c + 1);
-      b.triangle(a, c + 1, c);
+      const auto di = static_cast<double>(i), dj = static_cast<double>(j);
+      if (loops.empty() || keptByTrimming(loops, param(di + 2.0 / 3.0, dj + 1.0 / 3.0)))
+        b.triangle(a, a + 1, c + 1);
+      if (loops.empty() || keptByTrimming(loops, param(di + 1.0 / 3.0, dj + 2.0 / 3.0)))
+        b.triangle(a, c + 1, c);
     }
   return b.finish(node.get<FieldType::SFBool>("solid", true));
 }

@@ -11,10 +11,7 @@
 
 namespace gs::vrml::geometry_detail {
 
-namespace {
-
-/// The points of a NurbsCurve2D or ContourPolyline2D (X3DNurbsControlCurveNode), or none.
-std::vector<glm::dvec2> curve2D(const NodePtr& node, ProblemLog& log) {
+std::vector<glm::dvec2> nurbsCurve2DPoints(const NodePtr& node, ProblemLog& log) {
   if (!node) return {};
   const FieldValue* f = node->field("controlPoint");
   if (f == nullptr || f->type() != FieldType::MFVec2d) return {};
@@ -29,6 +26,8 @@ std::vector<glm::dvec2> curve2D(const NodePtr& node, ProblemLog& log) {
   for (const glm::dvec3& p : nurbsCurvePoints(*node, points, log)) out.emplace_back(p.x, p.y);
   return out;
 }
+
+namespace {
 
 Mesh sweep(const Node& node, const std::vector<glm::dvec2>& section,
            const std::vector<glm::dvec3>& trajectory, ProblemLog& log) {
@@ -62,15 +61,15 @@ Mesh sweep(const Node& node, const std::vector<glm::dvec2>& section,
 Mesh tessellateNurbsSweptSurface(const Node& node, ProblemLog& log) {
   const NodePtr& trajectory = node.sfnode("trajectoryCurve");
   if (!trajectory || trajectory->typeId() != NodeTypeId::NurbsCurve) return {};
-  return sweep(node, curve2D(node.sfnode("crossSectionCurve"), log),
+  return sweep(node, nurbsCurve2DPoints(node.sfnode("crossSectionCurve"), log),
                nurbsCurvePoints(*trajectory, nurbs::controlPoints(*trajectory), log), log);
 }
 
 Mesh tessellateNurbsSwungSurface(const Node& node, ProblemLog& log) {
   std::vector<glm::dvec3> trajectory;
-  for (const glm::dvec2& p : curve2D(node.sfnode("trajectoryCurve"), log))
+  for (const glm::dvec2& p : nurbsCurve2DPoints(node.sfnode("trajectoryCurve"), log))
     trajectory.emplace_back(p.x, 0.0, p.y);
-  return sweep(node, curve2D(node.sfnode("profileCurve"), log), trajectory, log);
+  return sweep(node, nurbsCurve2DPoints(node.sfnode("profileCurve"), log), trajectory, log);
 }
 
 }  // namespace gs::vrml::geometry_detail

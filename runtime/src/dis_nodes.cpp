@@ -1,18 +1,36 @@
-// X3D DIS (X3D 4.0 clause 28) in the execution model: an EspduTransform whose networkMode is
-// "networkReader" listens on UDP `port` of `address` (dis/udp_socket.hpp) and, every
-// readInterval seconds, takes the Entity State PDUs (dis/pdu.hpp) of its entity (siteID,
-// applicationID, entityID): its translation becomes the PDU's location, its rotation the
-// PDU's orientation (DIS Euler angles), and the entity's velocity, acceleration, type,
-// force, marking and articulation parameters are sent as its fields' events, with
-// timestamp and isActive. Bytes from the network are untrusted: a PDU that does not decode
-// is dropped (counted in a warning once), at most kMaxDatagrams are read per frame.
+// X3D DIS (X3D 4.0 clause 28) in the execution model. Every DIS node listens on UDP `port`
+// of `address` (dis/udp_socket.hpp); the datagrams of each address:port are read once per
+// frame, decoded (dis/pdu.hpp) and shared by the nodes listening there.
+//
+// - EspduTransform, networkMode "networkReader": every readInterval seconds the latest
+//   Entity State PDU of its entity (siteID, applicationID, entityID) since its last read
+//   sets its translation (the PDU's location), its rotation (its DIS Euler angles) and
+//   sends the entity's velocity, acceleration, type, force, marking and articulation
+//   parameters as its fields' events, with timestamp and isActive.
+// - ReceiverPdu, SignalPdu, TransmitterPdu, networkMode "networkReader": the same with the
+//   Receiver, Signal and Transmitter PDUs of their radio (siteID, applicationID, entityID,
+//   radioID): each field the X3D node has for a PDU field is sent.
+// - DISEntityManager: each Entity State PDU of an entity it has not seen (from siteID /
+//   applicationID when they are not 0) makes an EspduTransform (networkReader on the same
+//   address and port, for that entity) whose child is an Inline of the url of the
+//   DISEntityTypeMapping (its `children`, X3D 3's `mapping`) that best matches the entity
+//   type, sent in addedEntities. An entity whose PDUs stop for kDisEntityTimeout seconds, or
+//   whose PDU says it is deactivated (appearance bit 23), is sent in removedEntities.
+//
+// Bytes from the network are untrusted: a datagram that does not decode is dropped
+// (counted in a warning once per node), at most kDisMaxDatagrams are read per port per frame,
+// and a manager makes at most kDisMaxEntities entities.
 #include "execution_state.hpp"
 
 #include "dis/pdu.hpp"
+#include "encodings/node_types.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
+#include <type_traits>
+#include <variant>
 
 namespace gs::runtime {
 
@@ -20,17 +38,259 @@ namespace {
 
 using vrml::FieldType;
 using vrml::FieldValue;
+using DisModel = ExecutionModel::State;
 
-constexpr std::size_t kMaxDatagrams = 1024;
+constexpr std::size_t kDisMaxDatagrams = 1024;
+/// Most entities one DISEntityManager makes (a flood of entity IDs makes no more nodes).
+constexpr std::size_t kDisMaxEntities = 1024;
+/// Seconds without an Entity State PDU after which a DISEntityManager removes an entity:
+/// IEEE 1278.1's entity state timeout, 2.4 (HBT_TIMEOUT_MPLIER) x the 5 s heartbeat.
+constexpr double kDisEntityTimeout = 12.0;
+/// Entity State PDU appearance bit 23 (IEEE 1278.1 / SISO-REF-010 "State"): deactivated.
+constexpr std::uint32_t kDisDeactivated = 1u << 23;
 
-int disField(const vrml::Node& n, std::string_view name) {
-  return n.type().findExact(name);
+std::uint64_t disEntityKey(const dis::EntityID& e) {
+  return (std::uint64_t{e.site} << 32) | (std::uint64_t{e.application} << 16) | e.entity;
+}
+
+std::uint64_t disRadioKey(const dis::RadioID& r) {
+  return (disEntityKey(r.entity) << 16) | r.radio;
+}
+
+/// The alternative of dis::Pdu a DIS node reads (-1: a DISEntityManager, which reads
+/// Entity State PDUs of every entity).
+int disPduIndex(vrml::NodeTypeId id) {
+  switch (id) {
+    case vrml::NodeTypeId::EspduTransform:
+      return 0;
+    case vrml::NodeTypeId::TransmitterPdu:
+      return 1;
+    case vrml::NodeTypeId::SignalPdu:
+      return 2;
+    case vrml::NodeTypeId::ReceiverPdu:
+      return 3;
+    default:
+      return -1;
+  }
+}
+
+std::uint16_t disId(const vrml::Node& n, std::string_view field) {
+  const int i = n.type().findExact(field);
+  if (i < 0) return 0;
+  const FieldValue& v = n.fieldAt(static_cast<std::size_t>(i));
+  return v.type() == FieldType::SFInt32 ? static_cast<std::uint16_t>(v.get<FieldType::SFInt32>())
+                                        : std::uint16_t{0};
+}
+
+dis::EntityID disEntityOf(const vrml::Node& n) {
+  return {disId(n, "siteID"), disId(n, "applicationID"), disId(n, "entityID")};
+}
+
+/// Sends `v` from field `name` of `ns` when the node has that field with v's type.
+void disEmit(DisModel& s, NodeState& ns, std::string_view name, FieldValue v) {
+  const int i = ns.node->type().findExact(name);
+  if (i >= 0 && ns.node->type().fields[static_cast<std::size_t>(i)].type == v.type())
+    s.emitOwn(ns, i, std::move(v));
+}
+
+void disEmitInt(DisModel& s, NodeState& ns, std::string_view name, std::int64_t v) {
+  constexpr std::int64_t kMax = std::numeric_limits<std::int32_t>::max();
+  disEmit(s, ns, name,
+          FieldValue::make<FieldType::SFInt32>(static_cast<std::int32_t>(std::min(v, kMax))));
+}
+
+/// Writes `v` into field `name` of a node the execution model made (no event).
+void disSet(vrml::Node& n, std::string_view name, FieldValue v) {
+  const int i = n.type().findExact(name);
+  if (i >= 0 && n.type().fields[static_cast<std::size_t>(i)].type == v.type())
+    n.setField(static_cast<std::size_t>(i), std::move(v));
+}
+
+void disSendEntityState(DisModel& s, NodeState& ns, const dis::EntityStatePdu& p) {
+  disEmit(s, ns, "translation", FieldValue::make<FieldType::SFVec3f>(glm::vec3(p.location)));
+  const glm::dquat q = dis::eulerToQuaternion(p.orientation);
+  const double angle = 2.0 * std::acos(std::clamp(q.w, -1.0, 1.0));
+  const double sine = std::sqrt(std::max(0.0, 1.0 - q.w * q.w));
+  const vrml::Rotation r = sine > 1e-9 ? vrml::Rotation(q.x / sine, q.y / sine, q.z / sine, angle)
+                                       : vrml::Rotation(0, 0, 1, 0);
+  disEmit(s, ns, "rotation", FieldValue::make<FieldType::SFRotation>(r));
+  disEmit(s, ns, "linearVelocity", FieldValue::make<FieldType::SFVec3f>(p.linearVelocity));
+  disEmit(s, ns, "linearAcceleration", FieldValue::make<FieldType::SFVec3f>(p.linearAcceleration));
+  disEmitInt(s, ns, "forceID", p.forceID);
+  disEmitInt(s, ns, "entityKind", p.entityType.kind);
+  disEmitInt(s, ns, "entityDomain", p.entityType.domain);
+  disEmitInt(s, ns, "entityCountry", p.entityType.country);
+  disEmitInt(s, ns, "entityCategory", p.entityType.category);
+  disEmitInt(s, ns, "entitySubcategory", p.entityType.subcategory);
+  disEmitInt(s, ns, "entitySpecific", p.entityType.specific);
+  disEmitInt(s, ns, "entityExtra", p.entityType.extra);
+  disEmitInt(s, ns, "deadReckoning", p.deadReckoningAlgorithm);
+  disEmit(s, ns, "marking", FieldValue::make<FieldType::SFString>(p.marking));
+  disEmitInt(s, ns, "articulationParameterCount",
+             static_cast<std::int64_t>(p.articulationParameters.size()));
+  static constexpr std::array<const char*, 8> kValues = {
+      "articulationParameterValue0_changed", "articulationParameterValue1_changed",
+      "articulationParameterValue2_changed", "articulationParameterValue3_changed",
+      "articulationParameterValue4_changed", "articulationParameterValue5_changed",
+      "articulationParameterValue6_changed", "articulationParameterValue7_changed"};
+  for (std::size_t k = 0; k < kValues.size() && k < p.articulationParameters.size(); ++k)
+    disEmit(s, ns, kValues[k],
+            FieldValue::make<FieldType::SFFloat>(
+                static_cast<float>(p.articulationParameters[k].value)));
+}
+
+void disSendTransmitter(DisModel& s, NodeState& ns, const dis::TransmitterPdu& p) {
+  disEmit(s, ns, "antennaLocation",
+          FieldValue::make<FieldType::SFVec3f>(glm::vec3(p.antennaLocation)));
+  disEmit(s, ns, "relativeAntennaLocation",
+          FieldValue::make<FieldType::SFVec3f>(p.relativeAntennaLocation));
+  disEmitInt(s, ns, "antennaPatternType", p.antennaPatternType);
+  disEmitInt(s, ns, "antennaPatternLength", static_cast<std::int64_t>(p.antennaPattern.size()));
+  disEmitInt(s, ns, "cryptoSystem", p.cryptoSystem);
+  disEmitInt(s, ns, "cryptoKeyID", p.cryptoKeyID);
+  // SFInt32 hertz: a frequency above 2^31 - 1 Hz (2.1 GHz) is sent as 2^31 - 1.
+  disEmitInt(s, ns, "frequency",
+             static_cast<std::int64_t>(std::min<std::uint64_t>(p.frequency, 0x7fffffffu)));
+  disEmitInt(s, ns, "inputSource", p.inputSource);
+  disEmitInt(s, ns, "lengthOfModulationParameters",
+             static_cast<std::int64_t>(p.modulationParameters.size()));
+  disEmitInt(s, ns, "modulationTypeDetail", p.modulationType.detail);
+  disEmitInt(s, ns, "modulationTypeMajor", p.modulationType.major);
+  disEmitInt(s, ns, "modulationTypeSpreadSpectrum", p.modulationType.spreadSpectrum);
+  disEmitInt(s, ns, "modulationTypeSystem", p.modulationType.radioSystem);
+  disEmit(s, ns, "power", FieldValue::make<FieldType::SFFloat>(p.power));
+  disEmitInt(s, ns, "radioEntityTypeCategory", p.radioEntityType.category);
+  disEmitInt(s, ns, "radioEntityTypeCountry", p.radioEntityType.country);
+  disEmitInt(s, ns, "radioEntityTypeDomain", p.radioEntityType.domain);
+  disEmitInt(s, ns, "radioEntityTypeKind", p.radioEntityType.kind);
+  disEmitInt(s, ns, "radioEntityTypeNomenclature", p.radioEntityType.nomenclature);
+  disEmitInt(s, ns, "radioEntityTypeNomenclatureVersion", p.radioEntityType.nomenclatureVersion);
+  disEmit(s, ns, "transmitFrequencyBandwidth",
+          FieldValue::make<FieldType::SFFloat>(p.transmitFrequencyBandwidth));
+  disEmitInt(s, ns, "transmitState", p.transmitState);
+}
+
+void disSendSignal(DisModel& s, NodeState& ns, const dis::SignalPdu& p) {
+  // One MFInt32 value per data byte (0..255), in the order received.
+  std::vector<std::int32_t> data(p.data.begin(), p.data.end());
+  disEmit(s, ns, "data", FieldValue::make<FieldType::MFInt32>(std::move(data)));
+  disEmitInt(s, ns, "dataLength", p.dataLength);
+  disEmitInt(s, ns, "encodingScheme", p.encodingScheme);
+  disEmitInt(s, ns, "sampleRate", p.sampleRate);
+  disEmitInt(s, ns, "samples", p.samples);
+  disEmitInt(s, ns, "tdlType", p.tdlType);
+}
+
+void disSendReceiver(DisModel& s, NodeState& ns, const dis::ReceiverPdu& p) {
+  disEmit(s, ns, "receivedPower", FieldValue::make<FieldType::SFFloat>(p.receivedPower));
+  disEmitInt(s, ns, "receiverState", p.receiverState);
+  disEmitInt(s, ns, "transmitterSiteID", p.transmitter.entity.site);
+  disEmitInt(s, ns, "transmitterApplicationID", p.transmitter.entity.application);
+  disEmitInt(s, ns, "transmitterEntityID", p.transmitter.entity.entity);
+  disEmitInt(s, ns, "transmitterRadioID", p.transmitter.radio);
+}
+
+/// The DISEntityTypeMapping of `manager` that best matches `type`, or null. X3D 4.0
+/// 28.4.3 (and X_ITE's documentation) compare kind, domain, country, category,
+/// subcategory, specific, extra in that order; here a mapping's field of 0 matches any
+/// value (a wildcard), any other value must equal the entity's, and of the mappings that
+/// match, the one whose fields match exactly the furthest down that list wins (the first
+/// listed on a tie).
+const vrml::NodePtr* disBestMapping(const vrml::Node& manager, const dis::EntityType& type) {
+  const std::array<int, 7> wanted = {type.kind,        type.domain,   type.country, type.category,
+                                     type.subcategory, type.specific, type.extra};
+  static constexpr std::array<std::string_view, 7> kFields = {
+      "kind", "domain", "country", "category", "subcategory", "specific", "extra"};
+  const vrml::NodePtr* best = nullptr;
+  int bestDepth = -1;
+  for (const vrml::NodePtr& m : manager.mfnode("children")) {
+    if (!m || m->typeId() != vrml::NodeTypeId::DISEntityTypeMapping) continue;
+    int depth = 0;
+    bool matches = true, exact = true;
+    for (std::size_t k = 0; k < kFields.size() && matches; ++k) {
+      const int v = m->get<FieldType::SFInt32>(kFields[k], 0);
+      if (v != 0 && v != wanted[k]) matches = false;
+      exact = exact && v == wanted[k];
+      if (exact) depth = static_cast<int>(k) + 1;
+    }
+    if (matches && depth > bestDepth) {
+      best = &m;
+      bestDepth = depth;
+    }
+  }
+  return best;
+}
+
+/// A networkReader EspduTransform for `pdu`'s entity on the manager's address and port,
+/// its child an Inline of the best mapping's url (none when no mapping matches).
+vrml::NodePtr disMakeEntity(const vrml::Node& manager, const dis::EntityStatePdu& pdu) {
+  static const std::shared_ptr<const vrml::NodeType> kEspdu = vrml::x3dNodeType("EspduTransform");
+  static const std::shared_ptr<const vrml::NodeType> kInline = vrml::x3dNodeType("Inline");
+  auto t = std::make_shared<vrml::Node>(kEspdu);
+  disSet(*t, "networkMode", FieldValue::make<FieldType::SFString>(std::string("networkReader")));
+  for (std::string_view f : {"address", "port"})
+    if (const FieldValue* v = manager.field(f)) disSet(*t, f, *v);
+  disSet(*t, "siteID", FieldValue::make<FieldType::SFInt32>(pdu.entityID.site));
+  disSet(*t, "applicationID", FieldValue::make<FieldType::SFInt32>(pdu.entityID.application));
+  disSet(*t, "entityID", FieldValue::make<FieldType::SFInt32>(pdu.entityID.entity));
+  disSet(*t, "marking", FieldValue::make<FieldType::SFString>(pdu.marking));
+  if (const vrml::NodePtr* m = disBestMapping(manager, pdu.entityType)) {
+    auto model = std::make_shared<vrml::Node>(kInline);
+    model->urlBase = (*m)->urlBase;  // its url resolves as the mapping's would
+    if (const FieldValue* url = (*m)->field("url")) disSet(*model, "url", *url);
+    disSet(*t, "children", FieldValue::make<FieldType::MFNode>(std::vector<vrml::NodePtr>{model}));
+  }
+  return t;
+}
+
+/// The receiver of `ns` (opened on first use), or null when the node does not listen
+/// (not a networkReader, disabled) or its socket could not open (reported once).
+DisInbox* disInboxOf(DisModel& s, NodeState& ns) {
+  const vrml::Node& n = *ns.node;
+  EspduState& st = *ns.espdu;
+  const int port = n.get<FieldType::SFInt32>("port", 0);
+  const std::string address = n.get<FieldType::SFString>("address", std::string("localhost"));
+  st.key = address + ":" + std::to_string(port);
+  DisInbox& inbox = s.disReceivers[st.key];
+  if (!inbox.socket) {
+    inbox.socket = std::make_unique<dis::UdpReceiver>();
+    std::string error;
+    if (!inbox.socket->open(port, address, error) && !st.reported) {
+      st.reported = true;
+      s.report(vrml::Severity::error, n, error + ": " + n.typeName() + " reads no PDUs");
+    }
+  }
+  return inbox.socket->isOpen() ? &inbox : nullptr;
+}
+
+/// Reads the datagrams waiting on `inbox` and decodes them (this frame's PDUs).
+void disDrain(DisInbox& inbox) {
+  inbox.pdus.clear();
+  for (auto& m : inbox.latest) m.clear();
+  for (const std::vector<std::uint8_t>& d : inbox.socket->receive(kDisMaxDatagrams)) {
+    std::optional<dis::Pdu> p = dis::decodePdu(d, nullptr);
+    if (!p) {
+      ++inbox.dropped;
+      continue;
+    }
+    const std::uint64_t key = std::visit(
+        [](const auto& pdu) -> std::uint64_t {
+          if constexpr (std::is_same_v<std::decay_t<decltype(pdu)>, dis::EntityStatePdu>)
+            return disEntityKey(pdu.entityID);
+          else
+            return disRadioKey(pdu.radio);
+        },
+        *p);
+    inbox.latest[p->index()][key] = inbox.pdus.size();
+    inbox.pdus.push_back(std::move(*p));
+  }
 }
 
 }  // namespace
 
 bool ExecutionModel::State::classifyDis(NodeState& ns) {
-  if (ns.node->typeId() != vrml::NodeTypeId::EspduTransform) return false;
+  const vrml::NodeTypeId id = ns.node->typeId();
+  if (disPduIndex(id) < 0 && id != vrml::NodeTypeId::DISEntityManager) return false;
   ns.espdu = std::make_unique<EspduState>();
   espduTransforms.push_back(&ns);
   return true;
@@ -38,101 +298,113 @@ bool ExecutionModel::State::classifyDis(NodeState& ns) {
 
 void ExecutionModel::State::evaluateDis() {
   const double now = model.now();
-  // The datagrams of each receiver, read once per frame and shared by its nodes.
-  std::unordered_map<std::string, std::vector<dis::EntityStatePdu>> arrived;
-  std::unordered_map<std::string, std::size_t> dropped;
-  auto emitIf = [this](NodeState& ns, std::string_view name, FieldValue v) {
-    const int i = disField(*ns.node, name);
-    if (i >= 0 && ns.node->type().fields[static_cast<std::size_t>(i)].type == v.type())
-      emitOwn(ns, i, std::move(v));
-  };
-  for (NodeState* ns : espduTransforms) {
-    const vrml::Node& n = *ns->node;
-    EspduState& st = *ns->espdu;
+  std::unordered_set<DisInbox*> drained;
+  // By index: a DISEntityManager's new EspduTransforms join the list, and are read, now.
+  for (std::size_t i = 0; i < espduTransforms.size(); ++i) {
+    NodeState& ns = *espduTransforms[i];
+    const vrml::Node& n = *ns.node;
+    EspduState& st = *ns.espdu;
+    const int index = disPduIndex(n.typeId());
+    const bool manager = index < 0;
     const bool reader =
         n.get<FieldType::SFString>("networkMode", std::string("standAlone")) == "networkReader";
-    if (!st.announced) {
+    if (!st.announced && !manager) {
       st.announced = true;
-      emitIf(*ns, "isNetworkReader", FieldValue::make<FieldType::SFBool>(reader));
-      emitIf(*ns, "isStandAlone", FieldValue::make<FieldType::SFBool>(!reader));
+      disEmit(*this, ns, "isNetworkReader", FieldValue::make<FieldType::SFBool>(reader));
+      disEmit(*this, ns, "isStandAlone", FieldValue::make<FieldType::SFBool>(!reader));
     }
-    if (!reader || !n.get<FieldType::SFBool>("enabled", true)) continue;
-    const int port = n.get<FieldType::SFInt32>("port", 0);
-    const std::string address = n.get<FieldType::SFString>("address", std::string("localhost"));
-    const std::string key = address + ":" + std::to_string(port);
-    auto& receiver = disReceivers[key];
-    if (!receiver) {
-      receiver = std::make_unique<dis::UdpReceiver>();
-      std::string error;
-      if (!receiver->open(port, address, error) && !st.reported) {
-        st.reported = true;
-        report(vrml::Severity::error, n, error + ": EspduTransform reads no PDUs");
-      }
-    }
-    if (!receiver->isOpen()) continue;
-    const double interval = std::max(0.0, n.get<FieldType::SFTime>("readInterval", 0.1));
-    if (now - st.lastRead < interval) continue;
-    st.lastRead = now;
-    if (!arrived.contains(key)) {
-      std::vector<dis::EntityStatePdu>& pdus = arrived[key];
-      for (const std::vector<std::uint8_t>& d : receiver->receive(kMaxDatagrams)) {
-        std::optional<dis::EntityStatePdu> p = dis::decodeEntityState(d, nullptr);
-        if (p)
-          pdus.push_back(std::move(*p));
-        else
-          ++dropped[key];
-      }
-    }
-    if (dropped[key] > 0 && !st.dropReported) {
+    if (!manager && (!reader || !n.get<FieldType::SFBool>("enabled", true))) continue;
+    DisInbox* inbox = disInboxOf(*this, ns);
+    if (inbox == nullptr) continue;
+    if (drained.insert(inbox).second) disDrain(*inbox);
+    if (inbox->dropped > 0 && !st.dropReported) {
       st.dropReported = true;
       report(vrml::Severity::warning, n,
-             std::to_string(dropped[key]) + " datagram(s) on UDP " + key +
-                 " were not Entity State PDUs that decode: dropped (reported once)");
+             std::to_string(inbox->dropped) + " datagram(s) on UDP " + st.key +
+                 " were not Entity State, Transmitter, Signal or Receiver PDUs that decode: "
+                 "dropped (reported once)");
     }
-    const dis::EntityID me{
-        static_cast<std::uint16_t>(n.get<FieldType::SFInt32>("siteID", 0)),
-        static_cast<std::uint16_t>(n.get<FieldType::SFInt32>("applicationID", 0)),
-        static_cast<std::uint16_t>(n.get<FieldType::SFInt32>("entityID", 0))};
-    const dis::EntityStatePdu* latest = nullptr;
-    for (const dis::EntityStatePdu& p : arrived[key])
-      if (p.entityID == me) latest = &p;
-    if (latest == nullptr) continue;
-    const dis::EntityStatePdu& p = *latest;
-    emitIf(*ns, "translation", FieldValue::make<FieldType::SFVec3f>(glm::vec3(p.location)));
-    const glm::dquat q = dis::eulerToQuaternion(p.orientation);
-    const double angle = 2.0 * std::acos(std::clamp(q.w, -1.0, 1.0));
-    const double s = std::sqrt(std::max(0.0, 1.0 - q.w * q.w));
-    const vrml::Rotation r =
-        s > 1e-9 ? vrml::Rotation(q.x / s, q.y / s, q.z / s, angle) : vrml::Rotation(0, 0, 1, 0);
-    emitIf(*ns, "rotation", FieldValue::make<FieldType::SFRotation>(r));
-    emitIf(*ns, "linearVelocity", FieldValue::make<FieldType::SFVec3f>(p.linearVelocity));
-    emitIf(*ns, "linearAcceleration", FieldValue::make<FieldType::SFVec3f>(p.linearAcceleration));
-    emitIf(*ns, "forceID", FieldValue::make<FieldType::SFInt32>(p.forceID));
-    emitIf(*ns, "entityKind", FieldValue::make<FieldType::SFInt32>(p.entityType.kind));
-    emitIf(*ns, "entityDomain", FieldValue::make<FieldType::SFInt32>(p.entityType.domain));
-    emitIf(*ns, "entityCountry", FieldValue::make<FieldType::SFInt32>(p.entityType.country));
-    emitIf(*ns, "entityCategory", FieldValue::make<FieldType::SFInt32>(p.entityType.category));
-    emitIf(*ns, "entitySubcategory",
-           FieldValue::make<FieldType::SFInt32>(p.entityType.subcategory));
-    emitIf(*ns, "entitySpecific", FieldValue::make<FieldType::SFInt32>(p.entityType.specific));
-    emitIf(*ns, "entityExtra", FieldValue::make<FieldType::SFInt32>(p.entityType.extra));
-    emitIf(*ns, "deadReckoning", FieldValue::make<FieldType::SFInt32>(p.deadReckoningAlgorithm));
-    emitIf(*ns, "marking", FieldValue::make<FieldType::SFString>(p.marking));
-    const auto count = static_cast<std::int32_t>(p.articulationParameters.size());
-    emitIf(*ns, "articulationParameterCount", FieldValue::make<FieldType::SFInt32>(count));
-    static constexpr std::array<const char*, 8> kValues = {
-        "articulationParameterValue0_changed", "articulationParameterValue1_changed",
-        "articulationParameterValue2_changed", "articulationParameterValue3_changed",
-        "articulationParameterValue4_changed", "articulationParameterValue5_changed",
-        "articulationParameterValue6_changed", "articulationParameterValue7_changed"};
-    for (std::size_t k = 0; k < kValues.size() && k < p.articulationParameters.size(); ++k)
-      emitIf(*ns, kValues[k],
-             FieldValue::make<FieldType::SFFloat>(
-                 static_cast<float>(p.articulationParameters[k].value)));
-    emitIf(*ns, "timestamp", FieldValue::make<FieldType::SFTime>(now));
+    if (manager) {
+      // New entities, entities heard again, entities deactivated; then the silent ones.
+      const auto site = static_cast<std::uint16_t>(n.get<FieldType::SFInt32>("siteID", 0));
+      const auto application =
+          static_cast<std::uint16_t>(n.get<FieldType::SFInt32>("applicationID", 0));
+      std::vector<vrml::NodePtr> added, removed;
+      for (const dis::Pdu& any : inbox->pdus) {
+        const auto* p = std::get_if<dis::EntityStatePdu>(&any);
+        if (p == nullptr || (site != 0 && p->entityID.site != site) ||
+            (application != 0 && p->entityID.application != application))
+          continue;
+        const std::uint64_t key = disEntityKey(p->entityID);
+        const bool deactivated = (p->appearance & kDisDeactivated) != 0;
+        auto it = st.entities.find(key);
+        if (it != st.entities.end()) {
+          it->second.lastHeard = now;
+          if (deactivated) {
+            disSet(*it->second.transform, "enabled", FieldValue::make<FieldType::SFBool>(false));
+            removed.push_back(it->second.transform);
+            st.entities.erase(it);
+          }
+          continue;
+        }
+        if (deactivated) continue;
+        if (st.entities.size() >= kDisMaxEntities) {
+          if (!st.limitReported) {
+            st.limitReported = true;
+            report(vrml::Severity::warning, n,
+                   "more than " + std::to_string(kDisMaxEntities) +
+                       " DIS entities: the others get no EspduTransform (reported once)");
+          }
+          continue;
+        }
+        vrml::NodePtr t = disMakeEntity(n, *p);
+        reach(t, false);  // joins espduTransforms: read later in this loop
+        st.entities.emplace(key, DisEntityRecord{t, now});
+        added.push_back(std::move(t));
+      }
+      for (auto it = st.entities.begin(); it != st.entities.end();) {
+        if (now - it->second.lastHeard > kDisEntityTimeout) {
+          disSet(*it->second.transform, "enabled", FieldValue::make<FieldType::SFBool>(false));
+          removed.push_back(it->second.transform);
+          it = st.entities.erase(it);
+        } else {
+          ++it;
+        }
+      }
+      if (!added.empty())
+        disEmit(*this, ns, "addedEntities", FieldValue::make<FieldType::MFNode>(std::move(added)));
+      if (!removed.empty())
+        disEmit(*this, ns, "removedEntities",
+                FieldValue::make<FieldType::MFNode>(std::move(removed)));
+      continue;
+    }
+    // The latest PDU of this node's entity or radio this frame waits for its next read.
+    const dis::EntityID me = disEntityOf(n);
+    const std::uint64_t key =
+        index == 0 ? disEntityKey(me) : disRadioKey({me, disId(n, "radioID")});
+    const auto& latest = inbox->latest[static_cast<std::size_t>(index)];
+    if (auto it = latest.find(key); it != latest.end()) st.pending = inbox->pdus[it->second];
+    const double interval = std::max(0.0, n.get<FieldType::SFTime>("readInterval", 0.1));
+    if (!st.pending || now - st.lastRead < interval) continue;
+    st.lastRead = now;
+    std::visit(
+        [&](const auto& p) {
+          using P = std::decay_t<decltype(p)>;
+          if constexpr (std::is_same_v<P, dis::EntityStatePdu>)
+            disSendEntityState(*this, ns, p);
+          else if constexpr (std::is_same_v<P, dis::TransmitterPdu>)
+            disSendTransmitter(*this, ns, p);
+          else if constexpr (std::is_same_v<P, dis::SignalPdu>)
+            disSendSignal(*this, ns, p);
+          else
+            disSendReceiver(*this, ns, p);
+        },
+        *st.pending);
+    st.pending.reset();
+    disEmit(*this, ns, "timestamp", FieldValue::make<FieldType::SFTime>(now));
     if (!st.active) {
       st.active = true;
-      emitIf(*ns, "isActive", FieldValue::make<FieldType::SFBool>(true));
+      disEmit(*this, ns, "isActive", FieldValue::make<FieldType::SFBool>(true));
     }
   }
 }

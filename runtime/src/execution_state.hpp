@@ -7,6 +7,7 @@
 #include "runtime/interpolators_x3d.hpp"
 #include "runtime/time_dependent.hpp"
 
+#include "dis/pdu.hpp"
 #include "dis/udp_socket.hpp"
 #include "geometry/geometry.hpp"
 #include "particles/particle_system.hpp"
@@ -21,6 +22,7 @@
 #include <unordered_map>
 #include <unordered_set>
 #include <utility>
+#include <variant>
 #include <vector>
 
 namespace gs::runtime {
@@ -129,14 +131,39 @@ struct RigidBodyCollectionState {
   std::size_t warningsReported = 0;
 };
 
-/// An EspduTransform's record (dis_nodes.cpp): the UDP port it reads, when it last read.
+/// The datagrams that arrived on one UDP address:port (dis_nodes.cpp): read once per
+/// frame, decoded, and shared by every DIS node listening there.
+struct DisInbox {
+  std::unique_ptr<dis::UdpReceiver> socket;
+  std::vector<dis::Pdu> pdus;  // this frame's, oldest first
+  /// Per alternative of dis::Pdu: the index in `pdus` of the latest PDU of each entity
+  /// (Entity State) or radio (Transmitter, Signal, Receiver), by disEntityKey/disRadioKey.
+  std::array<std::unordered_map<std::uint64_t, std::size_t>, std::variant_size_v<dis::Pdu>> latest;
+  std::size_t dropped = 0;  // datagrams that did not decode, since the socket opened
+};
+
+/// An entity a DISEntityManager made an EspduTransform for (dis_nodes.cpp).
+struct DisEntityRecord {
+  vrml::NodePtr transform;  // the EspduTransform sent in addedEntities
+  double lastHeard = 0.0;   // SFTime of its latest Entity State PDU
+};
+
+/// A DIS node's record (dis_nodes.cpp): an EspduTransform, ReceiverPdu, SignalPdu or
+/// TransmitterPdu (the UDP port it reads, when it last read, the latest PDU of its entity
+/// or radio not yet sent), or a DISEntityManager (the entities it made).
 struct EspduState {
-  std::string key;            // its receiver in State::disReceivers ("address:port"), "" none
-  double lastRead = -1e300;   // SFTime of the last read (readInterval apart)
-  bool reported = false;      // a problem with its socket was reported
-  bool dropReported = false;  // datagrams that did not decode were reported
-  bool announced = false;     // isNetworkReader / isStandAlone sent
-  bool active = false;        // isActive TRUE sent
+  /// Its receiver in State::disReceivers ("address:port"), "" none.
+  std::string key;
+  double lastRead = -1e300;    // SFTime of the last read (readInterval apart)
+  bool reported = false;       // a problem with its socket was reported
+  bool dropReported = false;   // datagrams that did not decode were reported
+  bool announced = false;      // isNetworkReader / isStandAlone sent
+  bool active = false;         // isActive TRUE sent
+  bool limitReported = false;  // a DISEntityManager: its entity limit was reported
+  /// The latest PDU of its entity or radio since its last read.
+  std::optional<dis::Pdu> pending;
+  /// A DISEntityManager: the entities it made, by entity (site, application, entity).
+  std::unordered_map<std::uint64_t, DisEntityRecord> entities;
 };
 
 /// What a CollisionSensor last sent (rigid_body_physics.cpp), and the Contact nodes it
@@ -330,9 +357,11 @@ struct ExecutionModel::State {
   // RigidBodyCollections and CollisionSensors (rigid_body_physics.cpp); the collections
   // whose world is not built yet.
   std::vector<NodeState*> rigidBodyCollections, collisionSensors, newRigidBodyCollections;
-  /// EspduTransforms (dis_nodes.cpp) and the UDP receivers they read, by "address:port".
+  /// The DIS nodes (dis_nodes.cpp: EspduTransforms, ReceiverPdus, SignalPdus,
+  /// TransmitterPdus, DISEntityManagers, and the EspduTransforms the managers made) and
+  /// the UDP receivers they read, by "address:port".
   std::vector<NodeState*> espduTransforms;
-  std::unordered_map<std::string, std::unique_ptr<dis::UdpReceiver>> disReceivers;
+  std::unordered_map<std::string, DisInbox> disReceivers;
   /// The tessellations the pick sensors test, with the revisionWithFields they were made
   /// at (made again only when their geometry changed).
   vrml::NodeMap<std::pair<std::uint64_t, vrml::Mesh>> pickMeshes;
@@ -474,10 +503,13 @@ struct ExecutionModel::State {
   void evaluateRigidBodyPhysics();
 
   // ---- DIS (dis_nodes.cpp) ----
-  /// Makes `ns` an EspduTransform record (its events stay plain).
+  /// Makes `ns` a DIS node record (its events stay plain): an EspduTransform, ReceiverPdu,
+  /// SignalPdu, TransmitterPdu or DISEntityManager.
   bool classifyDis(NodeState& ns);
-  /// Reads the PDUs waiting for each networkReader EspduTransform (every readInterval) and
-  /// sends what its Entity State PDUs say, in the cascade under way.
+  /// Reads the PDUs waiting on each DIS node's UDP port (once per frame); each
+  /// networkReader node sends what the latest PDU of its entity or radio says (every
+  /// readInterval), each DISEntityManager its added and removed entities, in the cascade
+  /// under way.
   void evaluateDis();
 
   // ---- environmental sensors (environment_sensors.cpp) ----

@@ -111,9 +111,10 @@ vrml::Mesh tessellateText(const vrml::Node& text, vrml::Diagnostics* diag,
   return mesh;
 }
 
-vrml::Mesh tessellateGeometry(const vrml::Node& geometry, vrml::Diagnostics* diag) {
+vrml::Mesh tessellateGeometry(const vrml::Node& geometry, vrml::Diagnostics* diag,
+                              float nurbsTessellationScale) {
   if (geometry.typeId() == vrml::NodeTypeId::Text) return tessellateText(geometry, diag);
-  return vrml::tessellate(geometry, diag);
+  return vrml::tessellate(geometry, diag, nurbsTessellationScale);
 }
 
 std::size_t cachedGlyphMeshCount() {

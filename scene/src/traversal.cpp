@@ -639,6 +639,9 @@ struct SceneTraversal::Walk {
         if (sfBool(n, "global", false)) directionalLight(n, m, false);
         break;
       default:  // others draw nothing
+        // A NurbsSet (X3D 4.0 27.4.6) draws nothing itself: its surfaces, drawn where
+        // Shapes hold them, take its tessellationScale.
+        if (n.typeId() == vrml::NodeTypeId::NurbsSet) self.noteNurbsSet(n);
         break;
     }
   }

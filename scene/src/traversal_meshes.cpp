@@ -77,15 +77,32 @@ float NavigationSettings::nearClip() const {
   return avatar > 0.0f ? avatar * 0.5f : 0.125f;
 }
 
+void SceneTraversal::noteNurbsSet(const vrml::Node& set) {
+  for (const vrml::NodePtr& g : set.mfnode("geometry"))
+    if (g && (g->typeId() == vrml::NodeTypeId::NurbsPatchSurface ||
+              g->typeId() == vrml::NodeTypeId::NurbsTrimmedSurface))
+      nurbsSets_[g.get()] = &set;
+}
+
+float SceneTraversal::nurbsScaleOf(const vrml::Node& geometry) const {
+  if (nurbsSets_.empty()) return 1.0f;
+  const auto it = nurbsSets_.find(&geometry);
+  if (it == nurbsSets_.end()) return 1.0f;
+  return std::max(0.0f, it->second->get<vrml::FieldType::SFFloat>("tessellationScale", 1.0f));
+}
+
 SceneTraversal::CachedMesh& SceneTraversal::cachedMesh(const vrml::Node& geometry) {
   auto [it, inserted] = meshes_.try_emplace(&geometry);
   const std::uint64_t revision = vrml::revisionWithFields(geometry);
-  if (inserted || it->second.arraysDropped || it->second.revision != revision) {
+  const float nurbsScale = nurbsScaleOf(geometry);
+  if (inserted || it->second.arraysDropped || it->second.revision != revision ||
+      it->second.nurbsScale != nurbsScale) {
     ++tessellations_;
     it->second.revision = revision;
+    it->second.nurbsScale = nurbsScale;
     vrml::Diagnostics diag;
     it->second.mesh = options_.tessellator ? options_.tessellator(geometry, &diag)
-                                           : tessellateGeometry(geometry, &diag);
+                                           : tessellateGeometry(geometry, &diag, nurbsScale);
     it->second.arraysDropped = false;
     for (const vrml::Diagnostic& d : diag.items) report(d.severity, d.location, d.message);
   }
@@ -98,7 +115,8 @@ const vrml::Mesh& SceneTraversal::mesh(const vrml::Node& geometry) {
 
 const vrml::Bounds& SceneTraversal::meshBounds(const vrml::Node& geometry) {
   auto it = meshes_.find(&geometry);
-  if (it != meshes_.end() && it->second.revision == vrml::revisionWithFields(geometry))
+  if (it != meshes_.end() && it->second.revision == vrml::revisionWithFields(geometry) &&
+      it->second.nurbsScale == nurbsScaleOf(geometry))
     return it->second.mesh.bounds;
   return cachedMesh(geometry).mesh.bounds;
 }

@@ -6,6 +6,8 @@
 
 #include <glm/gtc/constants.hpp>
 
+#include <variant>
+
 using namespace gs::dis;
 
 namespace {
@@ -75,4 +77,191 @@ TEST_CASE("DIS: Euler angles psi, theta, phi turn about z, then y, then x", "[di
   CHECK(x.y == Approx(1.0).margin(1e-6));  // heading a quarter turn: x onto y
   const glm::dquat pitch = eulerToQuaternion({0.0f, glm::half_pi<float>(), 0.0f});
   CHECK((pitch * glm::dvec3(1, 0, 0)).z == Approx(-1.0).margin(1e-6));
+}
+
+namespace {
+
+TransmitterPdu radioTransmitter() {
+  TransmitterPdu p;
+  p.header.timestamp = 1234;
+  p.radio = {{1, 2, 3}, 4};
+  p.radioEntityType = {7, 1, 225, 2, 1, 300};
+  p.transmitState = 2;
+  p.inputSource = 1;
+  p.antennaLocation = {1e6, -2.5e6, 6.3e6};
+  p.relativeAntennaLocation = {0.5f, 1.0f, -2.0f};
+  p.antennaPatternType = 1;
+  p.frequency = 5'000'000'000ull;  // 5 GHz: more than 32 bits
+  p.transmitFrequencyBandwidth = 25000.0f;
+  p.power = 40.5f;
+  p.modulationType = {3, 2, 1, 4};
+  p.cryptoSystem = 5;
+  p.cryptoKeyID = 0x8001;
+  p.modulationParameters = {1, 2, 3, 4, 5, 6, 7, 8};
+  p.antennaPattern = {9, 10, 11, 12};
+  return p;
+}
+
+/// `bytes` with its 16-bit big-endian field at `at` set to `v`.
+std::vector<std::uint8_t> withU16(std::vector<std::uint8_t> bytes, std::size_t at,
+                                  std::uint16_t v) {
+  bytes[at] = static_cast<std::uint8_t>(v >> 8);
+  bytes[at + 1] = static_cast<std::uint8_t>(v);
+  return bytes;
+}
+
+}  // namespace
+
+TEST_CASE("DIS: a Transmitter PDU survives encoding and decoding", "[dis]") {
+  const std::vector<std::uint8_t> bytes = encodeTransmitter(radioTransmitter());
+  REQUIRE(bytes.size() == kTransmitterSize + 8 + 4);
+  CHECK(bytes[2] == 25);  // PDU type
+  CHECK(bytes[3] == 4);   // radio communications family
+  CHECK(((bytes[8] << 8) | bytes[9]) == 116);
+  std::string error;
+  const std::optional<TransmitterPdu> p = decodeTransmitter(bytes, &error);
+  REQUIRE(p);
+  CHECK(error.empty());
+  CHECK(p->header.timestamp == 1234);
+  CHECK(p->radio == RadioID{{1, 2, 3}, 4});
+  CHECK(p->radioEntityType.kind == 7);
+  CHECK(p->radioEntityType.country == 225);
+  CHECK(p->radioEntityType.nomenclatureVersion == 1);
+  CHECK(p->radioEntityType.nomenclature == 300);
+  CHECK(p->transmitState == 2);
+  CHECK(p->inputSource == 1);
+  CHECK(p->antennaLocation == glm::dvec3(1e6, -2.5e6, 6.3e6));
+  CHECK(p->relativeAntennaLocation == glm::vec3(0.5f, 1.0f, -2.0f));
+  CHECK(p->antennaPatternType == 1);
+  CHECK(p->frequency == 5'000'000'000ull);
+  CHECK(p->transmitFrequencyBandwidth == 25000.0f);
+  CHECK(p->power == 40.5f);
+  CHECK(p->modulationType.spreadSpectrum == 3);
+  CHECK(p->modulationType.major == 2);
+  CHECK(p->modulationType.detail == 1);
+  CHECK(p->modulationType.radioSystem == 4);
+  CHECK(p->cryptoSystem == 5);
+  CHECK(p->cryptoKeyID == 0x8001);
+  CHECK(p->modulationParameters == std::vector<std::uint8_t>{1, 2, 3, 4, 5, 6, 7, 8});
+  CHECK(p->antennaPattern == std::vector<std::uint8_t>{9, 10, 11, 12});
+  // Through the dispatcher too.
+  const std::optional<Pdu> any = decodePdu(bytes, &error);
+  REQUIRE(any);
+  CHECK(std::holds_alternative<TransmitterPdu>(*any));
+}
+
+TEST_CASE("DIS: a Transmitter PDU whose lengths overrun the datagram is an error", "[dis]") {
+  const std::vector<std::uint8_t> bytes = encodeTransmitter(radioTransmitter());
+  std::string error;
+  // Every cut of the datagram, header length fixed up to match: never decodes.
+  for (std::size_t n = 0; n < bytes.size(); ++n) {
+    std::vector<std::uint8_t> cut(bytes.begin(), bytes.begin() + static_cast<long>(n));
+    if (n >= 10) cut = withU16(cut, 8, static_cast<std::uint16_t>(n));
+    CHECK_FALSE(decodeTransmitter(cut, &error));
+  }
+  // Antenna pattern length (offset 70) beyond the PDU.
+  CHECK_FALSE(decodeTransmitter(withU16(bytes, 70, 60000), &error));
+  CHECK(error.find("short of") != std::string::npos);
+  // Modulation parameter length (offset 100) beyond the PDU.
+  std::vector<std::uint8_t> lying = bytes;
+  lying[100] = 200;
+  CHECK_FALSE(decodeTransmitter(lying, &error));
+  CHECK(error.find("short of") != std::string::npos);
+  // A power that is not a number.
+  std::vector<std::uint8_t> nan = bytes;
+  for (int i = 0; i < 4; ++i) nan[84 + i] = 0xff;
+  CHECK_FALSE(decodeTransmitter(nan, &error));
+  CHECK(error.find("finite") != std::string::npos);
+  // Another PDU type.
+  CHECK_FALSE(decodeTransmitter(encodeEntityState(tank()), &error));
+  CHECK(error.find("type 1") != std::string::npos);
+}
+
+TEST_CASE("DIS: a Signal PDU survives encoding and decoding", "[dis]") {
+  SignalPdu s;
+  s.radio = {{1, 2, 3}, 4};
+  s.encodingScheme = 0x4001;
+  s.tdlType = 7;
+  s.sampleRate = 8000;
+  s.samples = 5;
+  s.dataLength = 37;  // 5 bytes, the last one partly used
+  s.data = {10, 20, 30, 40, 50};
+  const std::vector<std::uint8_t> bytes = encodeSignal(s);
+  REQUIRE(bytes.size() == kSignalSize + 8);  // 5 data bytes padded to 8
+  CHECK(bytes[2] == 26);
+  std::string error;
+  const std::optional<SignalPdu> p = decodeSignal(bytes, &error);
+  REQUIRE(p);
+  CHECK(p->radio == RadioID{{1, 2, 3}, 4});
+  CHECK(p->encodingScheme == 0x4001);
+  CHECK(p->tdlType == 7);
+  CHECK(p->sampleRate == 8000);
+  CHECK(p->samples == 5);
+  CHECK(p->dataLength == 37);
+  CHECK(p->data == std::vector<std::uint8_t>{10, 20, 30, 40, 50});
+  // More data than dataLength announces: cut to what it announces.
+  s.dataLength = 16;
+  const std::optional<SignalPdu> cut = decodeSignal(encodeSignal(s), &error);
+  REQUIRE(cut);
+  CHECK(cut->data == std::vector<std::uint8_t>{10, 20});
+  const std::optional<Pdu> any = decodePdu(bytes, &error);
+  REQUIRE(any);
+  CHECK(std::holds_alternative<SignalPdu>(*any));
+}
+
+TEST_CASE("DIS: a Signal PDU whose data overruns the datagram is an error", "[dis]") {
+  SignalPdu s;
+  s.dataLength = 64;
+  s.data = {1, 2, 3, 4, 5, 6, 7, 8};
+  const std::vector<std::uint8_t> bytes = encodeSignal(s);
+  std::string error;
+  for (std::size_t n = 0; n < bytes.size(); ++n) {
+    std::vector<std::uint8_t> cut(bytes.begin(), bytes.begin() + static_cast<long>(n));
+    if (n >= 10) cut = withU16(cut, 8, static_cast<std::uint16_t>(n));
+    CHECK_FALSE(decodeSignal(cut, &error));
+  }
+  // dataLength (offset 28) announcing 65535 bits in a 40-byte PDU.
+  CHECK_FALSE(decodeSignal(withU16(bytes, 28, 65535), &error));
+  CHECK(error.find("8224") != std::string::npos);  // 32 + 8192 bytes needed
+}
+
+TEST_CASE("DIS: a Receiver PDU survives encoding and decoding", "[dis]") {
+  ReceiverPdu r;
+  r.radio = {{1, 2, 3}, 4};
+  r.receiverState = 2;
+  r.receivedPower = -60.5f;
+  r.transmitter = {{5, 6, 7}, 8};
+  const std::vector<std::uint8_t> bytes = encodeReceiver(r);
+  REQUIRE(bytes.size() == kReceiverSize);
+  CHECK(bytes[2] == 27);
+  std::string error;
+  const std::optional<ReceiverPdu> p = decodeReceiver(bytes, &error);
+  REQUIRE(p);
+  CHECK(p->radio == RadioID{{1, 2, 3}, 4});
+  CHECK(p->receiverState == 2);
+  CHECK(p->receivedPower == -60.5f);
+  CHECK(p->transmitter == RadioID{{5, 6, 7}, 8});
+  for (std::size_t n = 0; n < bytes.size(); ++n) {
+    std::vector<std::uint8_t> cut(bytes.begin(), bytes.begin() + static_cast<long>(n));
+    if (n >= 10) cut = withU16(cut, 8, static_cast<std::uint16_t>(n));
+    CHECK_FALSE(decodeReceiver(cut, &error));
+  }
+  std::vector<std::uint8_t> nan = bytes;
+  for (int i = 0; i < 4; ++i) nan[24 + i] = 0xff;
+  CHECK_FALSE(decodeReceiver(nan, &error));
+  const std::optional<Pdu> any = decodePdu(bytes, &error);
+  REQUIRE(any);
+  CHECK(std::holds_alternative<ReceiverPdu>(*any));
+}
+
+TEST_CASE("DIS: decodePdu reads the PDU its header names and no other type", "[dis]") {
+  std::string error;
+  const std::optional<Pdu> es = decodePdu(encodeEntityState(tank()), &error);
+  REQUIRE(es);
+  CHECK(std::get<EntityStatePdu>(*es).marking == "TANK1");
+  std::vector<std::uint8_t> fire = encodeEntityState(tank());
+  fire[2] = 2;
+  CHECK_FALSE(decodePdu(fire, &error));
+  CHECK(error.find("not read") != std::string::npos);
+  CHECK_FALSE(decodePdu(std::vector<std::uint8_t>{7, 1}, &error));
 }

@@ -1,10 +1,25 @@
-// dis::decodeHeader and dis::decodeEntityState on any bytes (a datagram from the network).
+// dis::decodeHeader, dis::decodePdu and each PDU decoder (Entity State, Transmitter,
+// Signal, Receiver) on any bytes (a datagram from the network).
 #include "dis/pdu.hpp"
 
 #include <cstddef>
 #include <cstdint>
 #include <span>
 #include <string>
+#include <variant>
+
+namespace {
+
+/// What decodes encodes again to a PDU that decodes to the same radio.
+template <class P>
+void roundTrip(const P& pdu, std::vector<std::uint8_t> (*encode)(const P&),
+               std::optional<P> (*decode)(std::span<const std::uint8_t>, std::string*)) {
+  const std::vector<std::uint8_t> again = encode(pdu);
+  const std::optional<P> back = decode(again, nullptr);
+  if (!back || !(back->radio == pdu.radio)) __builtin_trap();
+}
+
+}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::span<const std::uint8_t> bytes(data, size);
@@ -15,6 +30,24 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const std::vector<std::uint8_t> again = gs::dis::encodeEntityState(*pdu);
     auto back = gs::dis::decodeEntityState(again, nullptr);
     if (!back || !(back->entityID == pdu->entityID)) __builtin_trap();
+  }
+  if (auto pdu = gs::dis::decodeTransmitter(bytes, &error)) {
+    if (pdu->modulationParameters.size() + pdu->antennaPattern.size() > size) __builtin_trap();
+    roundTrip(*pdu, &gs::dis::encodeTransmitter, &gs::dis::decodeTransmitter);
+  }
+  if (auto pdu = gs::dis::decodeSignal(bytes, &error)) {
+    if (pdu->data.size() > size) __builtin_trap();
+    roundTrip(*pdu, &gs::dis::encodeSignal, &gs::dis::decodeSignal);
+  }
+  if (auto pdu = gs::dis::decodeReceiver(bytes, &error))
+    roundTrip(*pdu, &gs::dis::encodeReceiver, &gs::dis::decodeReceiver);
+  // The dispatcher agrees with the decoder of the type it names.
+  if (auto pdu = gs::dis::decodePdu(bytes, &error)) {
+    const std::size_t index = pdu->index();
+    const std::uint8_t type = bytes[2];
+    const bool agrees = (type == 1 && index == 0) || (type == 25 && index == 1) ||
+                        (type == 26 && index == 2) || (type == 27 && index == 3);
+    if (!agrees) __builtin_trap();
   }
   return 0;
 }

@@ -267,3 +267,33 @@ TEST_CASE("NurbsSweptSurface and NurbsSwungSurface: extrusions of their curves",
   // Without a trajectory: nothing.
   CHECK(nurbsMesh("NurbsSweptSurface { }", diag).triangleCount() == 0);
 }
+
+TEST_CASE("NurbsTrimmedSurface: kept inside an odd number of contours (as X_ITE trims)",
+          "[vrml][nurbs]") {
+  // A flat bilinear patch over [0, 1]^2 cut into 20 x 20 cells: an outer square contour
+  // (0.2 .. 0.8, two polylines joined) and a hole (0.4 .. 0.6, a NurbsCurve2D of order 2).
+  const std::string patch =
+      "uDimension 2 vDimension 2 uOrder 2 vOrder 2 uTessellation 20 vTessellation 20 "
+      "controlPoint Coordinate { point [ 0 0 0, 1 0 0, 0 1 0, 1 1 0 ] } ";
+  Diagnostics diag;
+  const Mesh whole = nurbsMesh("NurbsTrimmedSurface { " + patch + "}", diag);
+  CHECK(whole.triangleCount() == 800);
+  const Mesh m = nurbsMesh(
+      "NurbsTrimmedSurface { " + patch +
+          "trimmingContour [ Contour2D { children [ "
+          "ContourPolyline2D { controlPoint [ 0.2 0.2, 0.8 0.2, 0.8 0.8 ] } "
+          "ContourPolyline2D { controlPoint [ 0.8 0.8, 0.2 0.8, 0.2 0.2 ] } ] } "
+          "Contour2D { children NurbsCurve2D { order 2 tessellation 8 controlPoint [ 0.4 0.4, "
+          "0.6 0.4, 0.6 0.6, 0.4 0.6, 0.4 0.4 ] } } ] }",
+      diag);
+  CHECK(diag.items.empty());
+  // 12 x 12 cells kept, less the 4 x 4 of the hole: 128 cells, 256 triangles.
+  CHECK(m.triangleCount() == 256);
+  for (std::size_t t = 0; t < m.triangleCount(); ++t) {
+    glm::vec3 c(0.0f);
+    for (int k = 0; k < 3; ++k) c += m.positions[m.indices[3 * t + static_cast<std::size_t>(k)]];
+    c /= 3.0f;
+    CHECK((c.x > 0.2f && c.x < 0.8f && c.y > 0.2f && c.y < 0.8f));
+    CHECK_FALSE((c.x > 0.4f && c.x < 0.6f && c.y > 0.4f && c.y < 0.6f));
+  }
+}

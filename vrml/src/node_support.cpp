@@ -175,12 +175,19 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::SingleAxisHingeJoint,
     NodeTypeId::SliderJoint,
     NodeTypeId::UniversalJoint,
-    NodeTypeId::HAnimDisplacer,     // runtime/src/skin.cpp
-    NodeTypeId::EspduTransform,     // dis/, runtime/src/dis_nodes.cpp (networkReader)
+    NodeTypeId::HAnimDisplacer,  // runtime/src/skin.cpp
+    NodeTypeId::EspduTransform,  // dis/, runtime/src/dis_nodes.cpp (networkReader)
+    NodeTypeId::ReceiverPdu,
+    NodeTypeId::SignalPdu,
+    NodeTypeId::TransmitterPdu,
+    NodeTypeId::DISEntityManager,
+    NodeTypeId::DISEntityTypeMapping,
     NodeTypeId::NurbsSweptSurface,  // geometry/src/geometry_nurbs_swept.cpp
     NodeTypeId::NurbsSwungSurface,
-    NodeTypeId::NurbsCurve2D,  // their control curves (not as trimming contours)
+    NodeTypeId::NurbsCurve2D,  // their control curves, and trimming contours' curves
     NodeTypeId::ContourPolyline2D,
+    NodeTypeId::Contour2D,  // geometry/src/geometry_nurbs.cpp (NurbsTrimmedSurface's trimming)
+    NodeTypeId::NurbsSet,   // scene/src/traversal_meshes.cpp (its tessellationScale)
     NodeTypeId::TextureProjector,  // scene/src/texture_projectors.cpp,
                                    // render/src/texture_projectors.cpp
     NodeTypeId::TextureProjectorParallel,

@@ -1,7 +1,10 @@
 // DIS protocol data units (IEEE 1278.1-2012, "Distributed Interactive Simulation —
 // Application protocols"; X3D 4.0 clause 28 names the PDUs its DIS nodes read): the PDU
-// header and the Entity State PDU (type 1), decoded from and encoded to their big-endian
-// bytes. Pure computation on bytes: no sockets (dis/udp_socket.hpp), no nodes (runtime/).
+// header, the Entity State PDU (type 1) and the radio communications PDUs (Transmitter 25,
+// Signal 26, Receiver 27), decoded from and encoded to their big-endian bytes. Pure
+// computation on bytes: no sockets (dis/udp_socket.hpp), no nodes (runtime/). Every
+// decoder treats its bytes as untrusted: each length field is checked against the
+// datagram before anything is read or allocated by it.
 #pragma once
 
 #include <glm/glm.hpp>
@@ -12,6 +15,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <variant>
 #include <vector>
 
 namespace gs::dis {
@@ -27,12 +31,17 @@ enum class PduType : std::uint8_t {
   receiver = 27,
 };
 
+/// Protocol families (IEEE 1278.1 table 8, "Protocol family"): the header's
+/// protocolFamily of the PDUs this reader knows.
+inline constexpr std::uint8_t kEntityInformationFamily = 1;    // Entity State PDU
+inline constexpr std::uint8_t kRadioCommunicationsFamily = 4;  // Transmitter, Signal, Receiver
+
 /// The 12-byte PDU header (IEEE 1278.1 clause 6.2.66).
 struct PduHeader {
   std::uint8_t protocolVersion = 7;  // 6: IEEE 1278.1a-1998, 7: IEEE 1278.1-2012
   std::uint8_t exerciseID = 1;
   std::uint8_t pduType = 1;         // PduType
-  std::uint8_t protocolFamily = 1;  // 1: entity information/interaction
+  std::uint8_t protocolFamily = 1;  // 1: entity information/interaction, 4: radio
   std::uint32_t timestamp = 0;      // DIS time units (2^31 per hour), bit 0: absolute
   std::uint16_t length = 0;         // bytes of the whole PDU, header included
 };
@@ -85,6 +94,90 @@ inline constexpr std::size_t kMaxArticulationParameters = 255;
 /// The Entity State PDU's fixed part, in bytes.
 inline constexpr std::size_t kEntityStateSize = 144;
 
+/// A radio's identity (IEEE 1278.1 clause 7.7.1): the entity (or object) it belongs to,
+/// the Radio Reference ID, and its Radio Number within that entity.
+struct RadioID {
+  EntityID entity;
+  std::uint16_t radio = 0;
+  bool operator==(const RadioID&) const = default;
+};
+
+/// A Radio Entity Type record (IEEE 1278.1 clause 6.2.71, 8 bytes): what kind of radio.
+struct RadioEntityType {
+  std::uint8_t kind = 0, domain = 0;
+  std::uint16_t country = 0;
+  std::uint8_t category = 0, nomenclatureVersion = 0;
+  std::uint16_t nomenclature = 0;
+};
+
+/// A Modulation Type record (IEEE 1278.1 clause 6.2.59, 8 bytes).
+struct ModulationType {
+  std::uint16_t spreadSpectrum = 0;  // a bit field of spread spectrum techniques
+  std::uint16_t major = 0;           // major modulation (amplitude, angle, ...)
+  std::uint16_t detail = 0;          // detail within the major modulation
+  std::uint16_t radioSystem = 0;     // radio system (generic, HQ, SINCGARS, ...)
+};
+
+/// The Transmitter PDU (IEEE 1278.1 clause 7.7.2; 104 bytes, then the modulation
+/// parameters and the antenna pattern, whose lengths the fixed part gives). The
+/// Variable Transmitter Parameters records IEEE 1278.1-2012 allows after them are skipped
+/// on decoding and not written on encoding (their count is written as 0).
+struct TransmitterPdu {
+  PduHeader header;
+  RadioID radio;
+  RadioEntityType radioEntityType;
+  std::uint8_t transmitState = 0;   // 0: off, 1: on but not transmitting, 2: on and transmitting
+  std::uint8_t inputSource = 0;     // 0: other, 1: pilot, 2: copilot, ...
+  glm::dvec3 antennaLocation{0.0};  // metres, world (geocentric) coordinates
+  glm::vec3 relativeAntennaLocation{0.0f};  // metres, the entity's body axes
+  std::uint16_t antennaPatternType = 0;     // 0: omnidirectional, 1: beam, ...
+  std::uint64_t frequency = 0;              // centre frequency, hertz
+  float transmitFrequencyBandwidth = 0.0f;  // hertz
+  float power = 0.0f;                       // average power, decibel-milliwatts (dBm)
+  ModulationType modulationType;
+  std::uint16_t cryptoSystem = 0;                  // 0: none
+  std::uint16_t cryptoKeyID = 0;                   // bit 15: baseband encryption; bits 0-14 key
+  std::vector<std::uint8_t> modulationParameters;  // at most 255 bytes
+  std::vector<std::uint8_t> antennaPattern;        // at most kMaxAntennaPattern bytes
+};
+
+/// The Signal PDU (IEEE 1278.1 clause 7.7.3; 32 bytes, then the data: dataLength bits,
+/// padded with zeros to a 32-bit boundary).
+struct SignalPdu {
+  PduHeader header;
+  RadioID radio;
+  std::uint16_t encodingScheme = 0;  // bits 14-15: encoding class, bits 0-13: type or TDL
+  std::uint16_t tdlType = 0;         // tactical data link type, 0: other
+  std::uint32_t sampleRate = 0;      // samples per second (audio) or bits per second (data)
+  std::uint16_t dataLength = 0;      // bits of data (0..65535)
+  std::uint16_t samples = 0;         // samples in this PDU (encoded audio), else 0
+  std::vector<std::uint8_t> data;    // ceil(dataLength / 8) bytes
+};
+
+/// The Receiver PDU (IEEE 1278.1 clause 7.7.4; 36 bytes).
+struct ReceiverPdu {
+  PduHeader header;
+  RadioID radio;
+  std::uint16_t receiverState = 0;  // 0: off, 1: on but not receiving, 2: on and receiving
+  float receivedPower = 0.0f;       // decibel-milliwatts (dBm), after losses and gains
+  RadioID transmitter;              // the transmitter it receives
+};
+
+/// The Transmitter PDU's fixed part, in bytes.
+inline constexpr std::size_t kTransmitterSize = 104;
+/// The Signal PDU's fixed part, in bytes.
+inline constexpr std::size_t kSignalSize = 32;
+/// The Receiver PDU's size, in bytes.
+inline constexpr std::size_t kReceiverSize = 36;
+/// Most antenna pattern bytes a Transmitter PDU may carry: what its 16-bit length field
+/// leaves after the fixed part and the longest modulation parameters.
+inline constexpr std::size_t kMaxAntennaPattern = 65535 - kTransmitterSize - 255;
+/// Most data bytes a Signal PDU may carry (65535 bits, rounded up to whole bytes).
+inline constexpr std::size_t kMaxSignalData = 8192;
+
+/// Any PDU this reader decodes (decodePdu).
+using Pdu = std::variant<EntityStatePdu, TransmitterPdu, SignalPdu, ReceiverPdu>;
+
 /// The header of `bytes`, or nothing (and `error` says why) when there are fewer than 12
 /// bytes or its length field is below 12 or above the bytes given.
 std::optional<PduHeader> decodeHeader(std::span<const std::uint8_t> bytes, std::string* error);
@@ -98,6 +191,45 @@ std::optional<EntityStatePdu> decodeEntityState(std::span<const std::uint8_t> by
 /// The bytes of `pdu` (header length set to what is written; at most
 /// kMaxArticulationParameters parameters, the marking cut to 11 characters).
 std::vector<std::uint8_t> encodeEntityState(const EntityStatePdu& pdu);
+
+/// The Transmitter PDU in `bytes` (one datagram), or nothing and `error` (when not null)
+/// says why: too short for the header (see decodeHeader), another PDU type, a length
+/// short of 104 bytes plus the modulation parameter and antenna pattern lengths the PDU
+/// gives, a location, power or bandwidth that is not finite. Never reads outside `bytes`;
+/// allocates at most the bytes the datagram holds (IEEE 1278.1 clause 7.7.2).
+std::optional<TransmitterPdu> decodeTransmitter(std::span<const std::uint8_t> bytes,
+                                                std::string* error);
+
+/// The bytes of `pdu` (IEEE 1278.1 clause 7.7.2): header type 25, family 4, length set to
+/// what is written; at most 255 modulation parameter bytes and kMaxAntennaPattern
+/// antenna pattern bytes (longer ones are cut); no Variable Transmitter Parameters.
+std::vector<std::uint8_t> encodeTransmitter(const TransmitterPdu& pdu);
+
+/// The Signal PDU in `bytes` (one datagram), or nothing and `error` (when not null) says
+/// why: too short for the header, another PDU type, a length short of 32 bytes plus the
+/// ceil(dataLength / 8) data bytes its dataLength field announces. The padding after the
+/// data may be absent. Never reads outside `bytes`; allocates at most the data bytes the
+/// datagram holds (IEEE 1278.1 clause 7.7.3).
+std::optional<SignalPdu> decodeSignal(std::span<const std::uint8_t> bytes, std::string* error);
+
+/// The bytes of `pdu` (IEEE 1278.1 clause 7.7.3): header type 26, family 4; the data cut
+/// to kMaxSignalData bytes and to ceil(dataLength / 8) bytes, the dataLength written cut
+/// to the data's bits (8 x data.size()), the data padded with zeros to a 32-bit boundary.
+std::vector<std::uint8_t> encodeSignal(const SignalPdu& pdu);
+
+/// The Receiver PDU in `bytes` (one datagram), or nothing and `error` (when not null) says
+/// why: too short for the header, another PDU type, a length short of 36 bytes, a received
+/// power that is not finite. Never reads outside `bytes` (IEEE 1278.1 clause 7.7.4).
+std::optional<ReceiverPdu> decodeReceiver(std::span<const std::uint8_t> bytes, std::string* error);
+
+/// The bytes of `pdu` (IEEE 1278.1 clause 7.7.4): header type 27, family 4, 36 bytes.
+std::vector<std::uint8_t> encodeReceiver(const ReceiverPdu& pdu);
+
+/// The PDU in `bytes` (one datagram) by its header's type: an Entity State, Transmitter,
+/// Signal or Receiver PDU, decoded as the functions above do; nothing, and `error` (when
+/// not null) says why, for a PDU that does not decode or of a type not listed (Fire,
+/// Detonation, Collision, ... are not read).
+std::optional<Pdu> decodePdu(std::span<const std::uint8_t> bytes, std::string* error);
 
 /// The rotation (axis and angle, radians) of DIS Euler angles (psi about z, then theta
 /// about the new y, then phi about the new x: IEEE 1278.1 annex B, the body's x forward,

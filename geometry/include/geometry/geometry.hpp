@@ -147,7 +147,11 @@ struct Mesh {
 ///   limited to kMaxExtrusionPoints.
 /// - Text gives an empty mesh (scene::tessellateGeometry draws it through FreeType).
 /// Safe for untrusted nodes: time and memory stay proportional to the node's arrays.
-Mesh tessellate(const Node& geometry, Diagnostics* diag = nullptr);
+/// `nurbsTessellationScale` (>= 0) multiplies a NurbsPatchSurface's or NurbsTrimmedSurface's
+/// segments (rounded down, at least 1): the tessellationScale of the NurbsSet that holds it
+/// (X3D 4.0 27.4.6, as X_ITE 15 applies it); other geometry ignores it.
+Mesh tessellate(const Node& geometry, Diagnostics* diag = nullptr,
+                float nurbsTessellationScale = 1.0f);
 
 /// The filled polygon of an outline (the GhostSpace OutlineGroup extension node,
 /// docs/vrml-extensions.md; tessellate() of an OutlineGroup node calls this with its

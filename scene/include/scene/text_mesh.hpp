@@ -26,7 +26,8 @@ vrml::Mesh tessellateText(const vrml::Node& text, vrml::Diagnostics* diag = null
 
 /// vrml::tessellate, with Text nodes tessellated by tessellateText: what the renderer,
 /// picking and worldTriangles use when TraversalOptions::tessellator is empty.
-vrml::Mesh tessellateGeometry(const vrml::Node& geometry, vrml::Diagnostics* diag = nullptr);
+vrml::Mesh tessellateGeometry(const vrml::Node& geometry, vrml::Diagnostics* diag = nullptr,
+                              float nurbsTessellationScale = 1.0f);
 
 /// Glyph triangulations made so far (each face and glyph once), for tests of the cache.
 std::size_t cachedGlyphMeshCount();

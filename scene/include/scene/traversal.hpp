@@ -465,7 +465,15 @@ class SceneTraversal {
     bool rotatedUse = false;                 // worldBounds() needed its points
     std::vector<glm::vec3> boundsPositions;  // the positions kept by dropMeshArrays()
     std::uint64_t revision = 0;              // vrml::revisionWithFields of the geometry
+    float nurbsScale = 1.0f;                 // the NurbsSet tessellationScale it was made at
   };
+  /// NurbsSets met (X3D 4.0 27.4.6): each NURBS surface of their `geometry` to the set,
+  /// whose tessellationScale its mesh is made at (traversal_meshes.cpp).
+  std::unordered_map<const vrml::Node*, const vrml::Node*> nurbsSets_;
+  /// A NurbsSet met in the scene graph: its surfaces take its tessellationScale.
+  void noteNurbsSet(const vrml::Node& set);
+  /// The tessellationScale of the NurbsSet that holds `geometry` (>= 0), 1 for none.
+  float nurbsScaleOf(const vrml::Node& geometry) const;
   void findBindables();
   const InlineScene* inlineScene(const vrml::Node& inlineNode, const std::string& baseUrl);
   CachedMesh& cachedMesh(const vrml::Node& geometry);
