@@ -211,6 +211,7 @@ ExecutionModel::ExecutionModel(std::shared_ptr<const vrml::Scene> scene, double 
   s_->runCascade();
   s_->initializeScripts();
   for (NodeState* t : s_->timeSensors) s_->evaluateTimeSensor(*t);
+  if (!s_->skins.empty()) s_->evaluateHAnimMotions();  // their cycles start at the load
   s_->runCascade();
   s_->evaluateSkins();
   ++stats_.cascades;
@@ -276,6 +277,7 @@ void ExecutionModel::advanceTo(double time) {
   s_->evaluateEnvironmentSensors();
   s_->evaluatePickSensors();
   if (!s_->espduTransforms.empty()) s_->evaluateDis();
+  if (!s_->skins.empty()) s_->evaluateHAnimMotions();
   for (PendingEvent& e : s_->posted) s_->queue.push_back(std::move(e));
   s_->posted.clear();
   s_->runCascade();

@@ -13,6 +13,7 @@
 #include "particles/particle_system.hpp"
 #include "physics/rigid_body_world.hpp"
 
+#include <glm/gtc/quaternion.hpp>
 #include <glm/mat4x4.hpp>
 
 #include <array>
@@ -268,6 +269,23 @@ struct OutPort {
   }
 };
 
+/// One joint's key frames of an HAnimMotion (hanim_motion.cpp); empty: not driven.
+struct HAnimMotionJointKeys {
+  std::string joint;  // the joint's name
+  std::vector<glm::vec3> translation, scale;
+  std::vector<glm::quat> rotation;
+};
+
+/// What the execution model keeps of one HAnimMotion (hanim_motion.cpp).
+struct HAnimMotionState {
+  std::uint64_t revision = ~std::uint64_t{0};  // of the fields the keys were made from
+  std::vector<HAnimMotionJointKeys> keys;
+  std::size_t frameCount = 0;
+  std::optional<double> startedAt;  // when the cycle started (the first evaluation)
+  bool stopped = false;             // a motion that does not loop, after its last frame
+  bool frameCountSent = false;
+};
+
 /// Field indices of a TimeSensor (6.50), -1 when absent.
 struct TimeSensorFields {
   int cycleInterval = -1, enabled = -1, loop = -1, startTime = -1, stopTime = -1;
@@ -316,6 +334,7 @@ struct NodeState {
   std::unique_ptr<RigidBodyCollectionState> rigidBodies;  // a RigidBodyCollection (plain)
   std::unique_ptr<CollisionSensorState> collision;        // a CollisionSensor (plain)
   std::unique_ptr<EspduState> espdu;                      // an EspduTransform (plain)
+  std::unique_ptr<HAnimMotionState> motion;               // an HAnimMotion (plain)
   bool scriptHadEvents = false;
   bool problemReported = false;
 };
@@ -435,6 +454,9 @@ struct ExecutionModel::State {
   bool classifySkin(NodeState& ns);
   /// Makes `ns` a skinned humanoid when it is an HAnimHumanoid (skin.cpp).
   bool classifyHumanoid(NodeState& ns);
+  /// The HAnimMotions of every humanoid (hanim_motion.cpp): their joints' translation,
+  /// rotation and scale at the current time, queued as events for the frame's cascade.
+  void evaluateHAnimMotions();
   void evaluateHumanoid(NodeState& ns);
   /// After a cascade: re-skins every Skin whose skeleton or own fields changed.
   void evaluateSkins();

@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include <glm/gtc/constants.hpp>
+#include <glm/gtc/quaternion.hpp>
 
 using namespace gs;
 using namespace gs::test;
@@ -79,4 +80,58 @@ DEF H HAnimHumanoid {
          FieldValue::make<FieldType::SFRotation>(vrml::Rotation(0, 0, 1, glm::half_pi<float>())));
   CHECK(near(skin()[1], {0, 3, 0}));   // (2, 0, 0) turned, plus (1, 0, 0) turned
   CHECK(near(skin()[0], {-1, 0, 0}));  // rest (1, 0, 0) + (0, 2, 0) turned to (-2, 0, 0)
+}
+
+TEST_CASE("H-Anim: an HAnimMotion drives its joints by name, frame by frame", "[runtime][hanim]") {
+  // Three frames 0.5 s apart: the root moves 1 m along x per frame, l_shoulder turns 90
+  // degrees about z per frame; looping, the cycle is 1 s long from the load (time 0).
+  RunningWorld w(x3dWorld(R"(
+DEF H HAnimHumanoid {
+  skeleton DEF R HAnimJoint { name "humanoid_root" children DEF A HAnimJoint { name " l_shoulder " } }
+  joints [ USE R USE A ]
+  motions DEF M HAnimMotion { joints "HumanoidRoot l_shoulder" loop TRUE frameDuration 0.5
+    channels "3 Xposition Yposition Zposition 1 Zrotation"
+    values [ 0 0 0 0,  1 0 0 90,  2 0 0 180 ] }
+}
+)"));
+  const auto translation = [&] {
+    return w.node("R").get<FieldType::SFVec3f>("translation", glm::vec3(-1));
+  };
+  const auto rotation = [&] {
+    const vrml::Rotation r = w.node("A").get<FieldType::SFRotation>("rotation", vrml::Rotation{});
+    return glm::angleAxis(r.w, glm::normalize(glm::vec3(r.x, r.y, r.z)));
+  };
+  w.model->advanceTo(0.25);  // a quarter of the cycle: halfway between frames 0 and 1
+  CHECK(near(translation(), {0.5f, 0, 0}));
+  CHECK(std::abs(glm::dot(rotation(), glm::angleAxis(glm::radians(45.0f), glm::vec3(0, 0, 1)))) ==
+        Approx(1.0f).margin(1e-5));
+  CHECK(w.node("M").get<FieldType::SFInt32>("frameCount", 0) == 3);
+  w.model->advanceTo(0.75);  // between frames 1 and 2
+  CHECK(near(translation(), {1.5f, 0, 0}));
+  CHECK(std::abs(glm::dot(rotation(), glm::angleAxis(glm::radians(135.0f), glm::vec3(0, 0, 1)))) ==
+        Approx(1.0f).margin(1e-5));
+  w.model->advanceTo(1.25);  // looped: a quarter into the second cycle
+  CHECK(near(translation(), {0.5f, 0, 0}));
+  // motionsEnabled FALSE: the joints stay where they are.
+  w.send("H", "motionsEnabled", FieldValue::make<FieldType::MFBool>(std::vector<bool>{false}));
+  w.model->advanceTo(1.5);
+  CHECK(near(translation(), {0.5f, 0, 0}));
+}
+
+TEST_CASE("H-Anim: an HAnimMotion that does not loop stops on its end frame", "[runtime][hanim]") {
+  RunningWorld w(x3dWorld(R"(
+DEF H HAnimHumanoid {
+  skeleton DEF R HAnimJoint { name "humanoid_root" }
+  joints USE R
+  motions HAnimMotion { joints "humanoid_root" frameDuration 1 startFrame 1 endFrame 2
+    channels "1 Yposition" values [ 5 10 20 30 ] }
+}
+)"));
+  const auto y = [&] {
+    return w.node("R").get<FieldType::SFVec3f>("translation", glm::vec3(-1)).y;
+  };
+  w.model->advanceTo(0.5);  // from frame 1 (10) towards frame 2 (20)
+  CHECK(y() == Approx(15.0f));
+  w.model->advanceTo(3.0);  // past the end: on frame 2
+  CHECK(y() == Approx(20.0f));
 }

@@ -176,6 +176,7 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::SliderJoint,
     NodeTypeId::UniversalJoint,
     NodeTypeId::HAnimDisplacer,  // runtime/src/skin.cpp
+    NodeTypeId::HAnimMotion,     // runtime/src/hanim_motion.cpp
     NodeTypeId::EspduTransform,  // dis/, runtime/src/dis_nodes.cpp (networkReader)
     NodeTypeId::ReceiverPdu,
     NodeTypeId::SignalPdu,
