@@ -735,7 +735,8 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
 
   if (!g.frame.splats.empty() || splats_->mode() == scene::RenderMode::splats) {
     glDisable(GL_SCISSOR_TEST);
-    statistics_.splats = splats_->draw(g.frame, traversal_, camera, aspect, headlight_, height);
+    statistics_.splats =
+        splats_->draw(g.frame, traversal_, camera, aspect, headlight_, g.textures, height);
     glEnable(GL_SCISSOR_TEST);
     glUseProgram(g.programs.generic().id);
   }

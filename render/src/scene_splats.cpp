@@ -1,6 +1,7 @@
 #include "scene_splats.hpp"
 
 #include "volume_data.hpp"
+#include "volume_style_glsl.hpp"
 
 #include "base/url.hpp"
 
@@ -37,6 +38,11 @@ std::shared_ptr<const SplatSet> SceneSplats::setOf(const vrml::Node& node,
 const SceneSplats::NodeSet& SceneSplats::nodeSet(const vrml::Node& node, const std::string& baseUrl,
                                                  scene::SceneTraversal& traversal) {
   if (auto it = sets_.find(&node); it != sets_.end()) return it->second;
+  if (isVolumeDataNode(node) && needsVolumeRaycast(node)) {
+    NodeSet entry;
+    entry.raycast = true;
+    return sets_[&node] = entry;
+  }
   if (isVolumeDataNode(node)) {
     VolumeDataSet volume = volumeDataSet(node, baseUrl, fetcher_);
     if (volume.pending) {
@@ -115,12 +121,22 @@ vrml::Bounds SceneSplats::bounds(scene::SceneTraversal& traversal) {
   scene::TraversalFrame frame;
   traversal.collect(traversal.boundViewpointCamera(), frame);
   for (const scene::SplatInstance& s : frame.splats) {
-    const auto set = setOf(*s.node, *s.baseUrl, traversal);
-    if (!set || set->bounds.empty()) continue;
+    const NodeSet& entry = nodeSet(*s.node, *s.baseUrl, traversal);
+    vrml::Bounds local;
+    if (entry.raycast) {  // the box `dimensions`
+      const glm::vec3 half =
+          0.5f * s.node->get<vrml::FieldType::SFVec3f>("dimensions", glm::vec3(1.0f));
+      local.extend(-half);
+      local.extend(half);
+    } else if (entry.set && !entry.set->bounds.empty()) {
+      local = entry.set->bounds;
+    } else {
+      continue;
+    }
     for (int corner = 0; corner < 8; ++corner) {
-      const glm::vec3 p((corner & 1) ? set->bounds.max.x : set->bounds.min.x,
-                        (corner & 2) ? set->bounds.max.y : set->bounds.min.y,
-                        (corner & 4) ? set->bounds.max.z : set->bounds.min.z);
+      const glm::vec3 p((corner & 1) ? local.max.x : local.min.x,
+                        (corner & 2) ? local.max.y : local.min.y,
+                        (corner & 4) ? local.max.z : local.min.z);
       b.extend(glm::vec3(s.model * glm::vec4(p, 1.0f)));
     }
   }
@@ -129,7 +145,7 @@ vrml::Bounds SceneSplats::bounds(scene::SceneTraversal& traversal) {
 
 std::size_t SceneSplats::draw(const scene::TraversalFrame& frame, scene::SceneTraversal& traversal,
                               const scene::Camera& camera, float aspect, bool headlight,
-                              int heightPixels) {
+                              TextureCache& textures, int heightPixels) {
   SplatLight lights[8];
   std::size_t lightCount = 0;
   if (headlight) lights[lightCount++] = {camera.forward(), glm::vec3(1.0f)};
@@ -169,6 +185,11 @@ std::size_t SceneSplats::draw(const scene::TraversalFrame& frame, scene::SceneTr
   }
   for (const scene::SplatInstance& s : frame.splats) {
     const NodeSet& entry = nodeSet(*s.node, *s.baseUrl, traversal);
+    if (entry.raycast) {
+      raycaster_.draw(*s.node, *s.baseUrl, s.model, camera, aspect, frame.lights, headlight,
+                      textures, traversal, fetcher_);
+      continue;
+    }
     if (!entry.set) continue;
     const std::size_t count = drawCount(s.node, *entry.set);
     if (entry.set->viewDependent) {
@@ -188,6 +209,7 @@ std::size_t SceneSplats::draw(const scene::TraversalFrame& frame, scene::SceneTr
 }
 
 void SceneSplats::release() {
+  raycaster_.release();
   for (auto& [set, renderer] : renderers_) renderer->release();
   renderers_.clear();
 }

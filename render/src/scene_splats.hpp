@@ -9,9 +9,11 @@
 #include <string>
 #include <unordered_map>
 
+#include "gpu_resources.hpp"
 #include "render/splat_renderer.hpp"
 #include "render/splat_source.hpp"
 #include "scene/traversal.hpp"
+#include "volume_raycast.hpp"
 
 namespace gs::base {
 class Fetcher;
@@ -40,10 +42,12 @@ class SceneSplats {
   /// polygon world.
   vrml::Bounds bounds(scene::SceneTraversal& traversal);
   /// Draws the frame's QNV nodes (and the world's splats in splats mode) over what is in
-  /// the framebuffer. Returns the number of splats drawn.
-  /// `heightPixels` is the viewport's height (recorded for view-dependent sets).
+  /// the framebuffer, and the volume data nodes whose styles need the ray caster
+  /// (volume_raycast.hpp; their textures from `textures`). Returns the number of splats
+  /// drawn. `heightPixels` is the viewport's height (recorded for view-dependent sets).
   std::size_t draw(const scene::TraversalFrame& frame, scene::SceneTraversal& traversal,
-                   const scene::Camera& camera, float aspect, bool headlight, int heightPixels = 0);
+                   const scene::Camera& camera, float aspect, bool headlight,
+                   TextureCache& textures, int heightPixels = 0);
   scene::RenderMode mode() const { return mode_; }
   /// True when the QNV nodes loaded so far (bounds() loads them) all show volumes (their
   /// sets' stream kind, as their headers say) and there is at least one.
@@ -84,6 +88,7 @@ class SceneSplats {
     std::shared_ptr<const SplatSet> set;
     SplatStyle style;
     bool ownStyle = false;
+    bool raycast = false;  // a volume data node drawn by the ray caster, not as splats
   };
   const NodeSet& nodeSet(const vrml::Node& node, const std::string& baseUrl,
                          scene::SceneTraversal& traversal);
@@ -93,6 +98,7 @@ class SceneSplats {
   bool worldBuilt_ = false;
   std::size_t worldRoots_ = 0;  // root nodes of the scene when world_ was built
   std::unordered_map<const SplatSet*, std::unique_ptr<SplatRenderer>> renderers_;
+  VolumeRaycaster raycaster_;
   /// This renderer's view request on each view-dependent set it drew (released with it:
   /// a closed viewport stops asking for bricks). The sets are kept alive by sets_.
   std::unordered_map<const SplatSet*, std::unique_ptr<SplatViewRequests::Request>> viewRequests_;

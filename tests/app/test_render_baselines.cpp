@@ -100,6 +100,10 @@ const RenderCase kCases[] = {
     {"nurbs_swept_b", "x3d/create3000/Tests/Components/NURBS/B.x3d", true},
     {"texture_projector_apple", "x3d/create3000/Tests/Components/TextureProjection/apple.x3d",
      true},
+    // X3D volume render styles (docs/x3d.md "Volume render styles: a ray caster"): the nine
+    // styles on a 32^3 ball, each volume turned (X_ITE shades turned volumes in the wrong
+    // frame: unturned, each style is 6-15% from X_ITE's picture, docs/x3d.md).
+    {"volume_styles", "assets/worlds/volume_styles.x3dv", false},
 };
 
 void checkAgainstBaseline(const RenderCase& c) {

@@ -195,6 +195,16 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::LayerSet,  // scene/src/traversal.cpp, render/src/scene_renderer.cpp
     NodeTypeId::Layer,
     NodeTypeId::Viewport,
+    NodeTypeId::BoundaryEnhancementVolumeStyle,  // render/src/volume_raycast.cpp,
+                                                 // render/src/volume_style_glsl*.cpp
+    NodeTypeId::EdgeEnhancementVolumeStyle,
+    NodeTypeId::SilhouetteEnhancementVolumeStyle,
+    NodeTypeId::ToneMappedVolumeStyle,
+    NodeTypeId::CartoonVolumeStyle,
+    NodeTypeId::ShadedVolumeStyle,
+    NodeTypeId::ProjectionVolumeStyle,
+    NodeTypeId::ComposedVolumeStyle,
+    NodeTypeId::BlendedVolumeStyle,
     NodeTypeId::AudioDestination,  // audio/src/sound_graph_scene.cpp, audio/audio_graph.hpp,
                                    // runtime/src/media_nodes.cpp (time-dependent)
     NodeTypeId::SpatialSound,
