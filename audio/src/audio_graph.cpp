@@ -49,7 +49,7 @@ const SignalBlock& silentBlock() {
 
 bool isSource(ProcessorType t) {
   return t == ProcessorType::oscillator || t == ProcessorType::buffer ||
-         t == ProcessorType::silence;
+         t == ProcessorType::captured || t == ProcessorType::silence;
 }
 
 void scaleBlock(SignalBlock& b, float g) {
@@ -100,6 +100,14 @@ void AudioGraph::State::process(const void* key, Processor& p) {
     }
     if (q.type == ProcessorType::oscillator) detail::renderOscillator(q, p.oscillator, p.out);
     if (q.type == ProcessorType::buffer) detail::renderBuffer(q, p.buffer, p.out);
+    if (q.type == ProcessorType::captured) {
+      silence(p.out, 1);
+      std::deque<float>* fifo = q.captured.get();
+      for (std::size_t i = 0; fifo != nullptr && i < kGraphBlock && !fifo->empty(); ++i) {
+        p.out.channel[0][i] = fifo->front();
+        fifo->pop_front();
+      }
+    }
     scaleBlock(p.out, q.gain);
     return;
   }

@@ -30,6 +30,10 @@ class OpenAlOutput final : public AudioOutput {
     name_ = std::string("OpenAL Soft: ") + (name != nullptr ? name : "default device");
   }
   ~OpenAlOutput() override {
+    if (capture_ != nullptr) {
+      alcCaptureStop(capture_);
+      alcCaptureCloseDevice(capture_);
+    }
     alcMakeContextCurrent(context_);
     for (auto& [key, s] : sources_) alDeleteSources(1, &s.id);
     if (stream_ != 0) {
@@ -126,6 +130,29 @@ class OpenAlOutput final : public AudioOutput {
     if (state != AL_PLAYING && queued > 0) alSourcePlay(stream_);
   }
 
+  std::size_t capture(std::vector<float>& mono, std::size_t maxFrames, std::string& note) override {
+    if (capture_ == nullptr && !captureTried_) {
+      captureTried_ = true;
+      // Half a second of ring buffer, mono 16-bit at the graph's rate.
+      capture_ =
+          alcCaptureOpenDevice(nullptr, kGraphSampleRate, AL_FORMAT_MONO16, kGraphSampleRate / 2);
+      if (capture_ == nullptr)
+        note = "no capture device (OpenAL Soft opened none): MicrophoneSource is silent";
+      else
+        alcCaptureStart(capture_);
+    }
+    if (capture_ == nullptr) return 0;
+    ALCint available = 0;
+    alcGetIntegerv(capture_, ALC_CAPTURE_SAMPLES, 1, &available);
+    const auto frames =
+        std::min<std::size_t>(static_cast<std::size_t>(std::max(available, 0)), maxFrames);
+    if (frames == 0) return 0;
+    std::vector<std::int16_t> pcm(frames);
+    alcCaptureSamples(capture_, pcm.data(), static_cast<ALCsizei>(frames));
+    for (std::int16_t v : pcm) mono.push_back(static_cast<float>(v) / 32768.0f);
+    return frames;
+  }
+
  private:
   struct Source {
     ALuint id = 0;
@@ -147,7 +174,9 @@ class OpenAlOutput final : public AudioOutput {
   std::string name_;
   std::unordered_map<const void*, Source> sources_;
   std::unordered_map<const formats::AudioData*, ALuint> buffers_;
-  ALuint stream_ = 0;  // the audio graph's streaming source
+  ALuint stream_ = 0;             // the audio graph's streaming source
+  ALCdevice* capture_ = nullptr;  // the microphone, opened by the first capture()
+  bool captureTried_ = false;
   std::unordered_map<ALuint, std::size_t> queuedFrames_;
 };
 

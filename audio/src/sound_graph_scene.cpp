@@ -153,7 +153,16 @@ void SoundScene::setProcessor(const vrml::Node& n, const std::string& base,
       p.loopEnd = clip ? 0.0 : std::max(0.0f, n.get<FieldType::SFFloat>("loopEnd", 0.0f));
       break;
     }
-    case NodeTypeId::MicrophoneSource:
+    case NodeTypeId::MicrophoneSource: {
+      // The default capture device's sound (mediaDeviceID is not matched: one microphone),
+      // queued for it by updateGraph.
+      p.type = ProcessorType::captured;
+      auto& fifo = microphones_[&n];
+      if (!fifo) fifo = std::make_shared<std::deque<float>>();
+      p.captured = fifo;
+      if (p.enabled && p.running) microphoneLocation_ = &n.location;
+      break;
+    }
     case NodeTypeId::StreamAudioSource:
     case NodeTypeId::ListenerPointSource:
       p.type = ProcessorType::silence;
@@ -279,6 +288,19 @@ void SoundScene::updateGraph(const std::vector<GraphRoot>& roots, const glm::mat
       std::llround(now * kGraphSampleRate) - std::llround(graphTime_ * kGraphSampleRate), 0,
       kGraphSampleRate / 2));
   graphTime_ = now;
+  // MicrophoneSources: what the capture device recorded since the last frame, to each
+  // playing one (at most half a second kept: the oldest is dropped).
+  if (microphoneLocation_ != nullptr) {
+    std::vector<float> captured;
+    std::string note;
+    output.capture(captured, kGraphSampleRate / 2, note);
+    if (!note.empty()) diagnostics_.warning(*microphoneLocation_, note);
+    for (auto& [node, fifo] : microphones_) {
+      fifo->insert(fifo->end(), captured.begin(), captured.end());
+      while (fifo->size() > kGraphSampleRate / 2) fifo->pop_front();
+    }
+  }
+  microphoneLocation_ = nullptr;
   std::vector<float> stereo;
   graph_.render(frames, stereo);
   if (!stereo.empty()) output.stream(stereo);

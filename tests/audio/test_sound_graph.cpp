@@ -159,3 +159,63 @@ TEST_CASE("Sound graph: a SpatialSound under a Transform, an AudioClip in a filt
   CHECK(w.peakOfLast(4410, 0) < 1e-4f);
   CHECK(w.peakOfLast(4410, 1) == Approx(0.0625f).margin(0.003));
 }
+
+namespace {
+
+/// An output whose "microphone" recorded a constant 0.25 since the last call (as much as
+/// asked for), and that keeps what is streamed to it.
+class ConstantMicrophone final : public audio::AudioOutput {
+ public:
+  bool isNull() const override { return true; }
+  std::string name() const override { return "constant microphone"; }
+  void update(const std::vector<audio::Voice>&) override {}
+  std::size_t maxVoices() const override { return 32; }
+  void stream(const std::vector<float>& stereo) override {
+    streamed.insert(streamed.end(), stereo.begin(), stereo.end());
+  }
+  std::size_t capture(std::vector<float>& mono, std::size_t maxFrames, std::string&) override {
+    const std::size_t n = std::min<std::size_t>(maxFrames, 882);  // 1/50 s
+    mono.insert(mono.end(), n, 0.25f);
+    ++captures;
+    return n;
+  }
+  std::vector<float> streamed;
+  int captures = 0;
+};
+
+}  // namespace
+
+TEST_CASE("Sound graph: a MicrophoneSource plays what the capture device recorded",
+          "[audio][graph]") {
+  GraphWorld w(R"(AudioDestination { children [
+    Gain { gain 2 children [ DEF MIC MicrophoneSource { stopTime 1 } ] } ] })");
+  ConstantMicrophone mic;
+  const auto frameWith = [&](double t) {
+    w.model->advanceTo(t);
+    w.sounds.update(
+        glm::mat4(1.0f), t,
+        [&](const vrml::Node& n) -> std::optional<audio::ClipTime> {
+          const auto m = w.model->media(n);
+          if (!m) return std::nullopt;
+          return audio::ClipTime{m->active, m->mediaTime};
+        },
+        mic);
+  };
+  for (double t = 0.0; t <= 0.5; t += 0.02) frameWith(t);
+  CHECK(mic.captures > 20);
+  REQUIRE(mic.streamed.size() > 2 * 4410);
+  // Past the first block: 0.25 times the Gain's 2, in both ears.
+  const std::size_t at = mic.streamed.size() - 2 * 1000;
+  CHECK(mic.streamed[at] == Approx(0.5f));
+  CHECK(mic.streamed[at + 1] == Approx(0.5f));
+  // Stopped: nothing is captured any more, and nothing heard.
+  const int before = mic.captures;
+  for (double t = 1.0; t <= 1.2; t += 0.02) frameWith(t);
+  CHECK(mic.captures == before);
+  CHECK(mic.streamed.back() == 0.0f);
+  // The null output has no microphone: a warning, once, and silence.
+  GraphWorld silent(R"(AudioDestination { children [ MicrophoneSource { } ] })");
+  silent.play(0.0, 0.2);
+  CHECK(silent.sounds.diagnostics().items.size() == 1);
+  CHECK(silent.peakOfLast(4410, 0) == 0.0f);
+}

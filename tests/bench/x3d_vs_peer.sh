@@ -22,7 +22,10 @@
 # background, its corner colour, count as equal). Prints one markdown row per world and time
 # and a summary per time: how many are within 1% and 5% masked `differ`. A world either
 # program cannot draw is listed as such. Both images stay in OUT_DIR (default: a temporary
-# folder, removed) to be looked at. A measurement, not a test.
+# folder, removed) to be looked at. With KEEP_PEER=1 a peer picture already in OUT_DIR is
+# used again (the peers do not change between runs: only ours is drawn anew); with
+# KEEP_PEER=only the peer is never run (a world it did not draw before stays not drawn). A
+# measurement, not a test.
 set -euo pipefail
 peer=${1:?usage: $0 castle|xite BUILD_DIR [OUT_DIR] [WIDTHxHEIGHT] [TIMES]}
 build=${2:?usage: $0 castle|xite BUILD_DIR [OUT_DIR] [WIDTHxHEIGHT] [TIMES]}
@@ -82,7 +85,11 @@ for time in $times; do
     [ "$peer" = xite ] && when=(--load-time 720720 --time "$(awk -v t="$time" 'BEGIN { printf "%.6f", 720720 + t }')")
     timeout 60 "$ghostspace" --snapshot "$ours" --size "$size" "${when[@]}" "${camera[@]}" \
       "$world" > /dev/null 2>&1 || true
-    peer_shot "$world" "$time" "$theirs"
+    case ${KEEP_PEER:-0} in
+      only) ;;
+      1) [ -s "$theirs" ] || peer_shot "$world" "$time" "$theirs" ;;
+      *) peer_shot "$world" "$time" "$theirs" ;;
+    esac
     if [ ! -s "$ours" ] || [ ! -s "$theirs" ]; then
       failed=$((failed + 1))
       echo "| $name | (not drawn by $([ -s "$ours" ] && echo "$peer" || echo GhostSpace)) | | | | | | |"

@@ -210,6 +210,7 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::SpatialSound,
     NodeTypeId::ListenerPointSource,
     NodeTypeId::OscillatorSource,
+    NodeTypeId::MicrophoneSource,
     NodeTypeId::PeriodicWave,
     NodeTypeId::BufferAudioSource,
     NodeTypeId::Analyser,

@@ -17,6 +17,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <deque>
 #include <memory>
 #include <unordered_map>
 #include <vector>
@@ -45,7 +46,8 @@ enum class ProcessorType : std::uint8_t {
   channelSplitter,     // ChannelSplitter: channel i goes to its outputs[i]
   oscillator,          // OscillatorSource
   buffer,              // BufferAudioSource, AudioClip: sampled sound
-  silence,             // MicrophoneSource, StreamAudioSource, ListenerPointSource: no signal
+  captured,            // MicrophoneSource: the samples of `captured`, mono
+  silence,             // StreamAudioSource, ListenerPointSource: no signal
 };
 
 /// OscillatorSource's wave (PeriodicWave.type, X3D 4.1).
@@ -102,6 +104,10 @@ struct ProcessorParams {
   float playbackRate = 1.0f;  // > 0 (detune in cents scales it by 2^(detune/1200))
   bool loop = false;
   double loopStart = 0.0, loopEnd = 0.0;  // seconds; loopEnd <= loopStart: the whole sound
+
+  // MicrophoneSource: the samples captured so far and not yet heard (mono, -1..1, at
+  // kGraphSampleRate), taken from the front as blocks are rendered; silence when it runs dry.
+  std::shared_ptr<std::deque<float>> captured;
 
   // BiquadFilter: frequency above, qualityFactor the Q, filterGain in dB (X3D 4.0 has no
   // field for it: 0, so LOWSHELF, HIGHSHELF and PEAKING pass the signal on, as in X_ITE 15).

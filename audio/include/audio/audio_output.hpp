@@ -43,6 +43,12 @@ class AudioOutput {
   /// (audio/audio_graph.hpp), rendered as simulated time passes. Sound queued more than a
   /// quarter of a second ahead of the device is dropped (the graph's clock leads).
   virtual void stream(const std::vector<float>& stereo) = 0;
+  /// Appends to `mono` what the capture device (the default microphone) recorded since the
+  /// last call, at most `maxFrames` frames (mono, -1..1, kGraphSampleRate frames per second),
+  /// opening the device on the first call: MicrophoneSource's sound. Returns the frames
+  /// appended; 0 when there is no capture device (then `note` says why, once).
+  virtual std::size_t capture(std::vector<float>& mono, std::size_t maxFrames,
+                              std::string& note) = 0;
 };
 
 /// The null output: plays nothing, remembers what it was asked to play.
@@ -55,6 +61,11 @@ class NullAudioOutput final : public AudioOutput {
   void stream(const std::vector<float>& stereo) override {
     streamed_.insert(streamed_.end(), stereo.begin(), stereo.end());
   }
+  std::size_t capture(std::vector<float>&, std::size_t, std::string& note) override {
+    if (!noted_) note = "no capture device (null audio output): MicrophoneSource is silent";
+    noted_ = true;
+    return 0;
+  }
   /// The voices of the last update.
   const std::vector<Voice>& playing() const { return playing_; }
   /// Every frame streamed so far (interleaved stereo).
@@ -65,6 +76,7 @@ class NullAudioOutput final : public AudioOutput {
  private:
   std::vector<Voice> playing_;
   std::vector<float> streamed_;
+  bool noted_ = false;
 };
 
 /// OpenAL Soft's default device; the null output when `wanted` is false or no device

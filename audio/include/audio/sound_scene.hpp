@@ -139,6 +139,10 @@ class SoundScene {
   AudioGraph graph_;
   double graphTime_ = -1.0;  // the simulated time rendered up to; < 0 before the first update
   std::unordered_map<const formats::AudioData*, std::shared_ptr<const SampledSound>> sampled_;
+  /// Each MicrophoneSource's captured samples not yet heard, and where the last playing one
+  /// is (null: none this frame, nothing captured).
+  std::unordered_map<const vrml::Node*, std::shared_ptr<std::deque<float>>> microphones_;
+  const vrml::SourceLocation* microphoneLocation_ = nullptr;
   /// BufferAudioSources' `buffer` data as sampled sound, with the revision it was made at.
   std::unordered_map<const vrml::Node*,
                      std::pair<std::uint64_t, std::shared_ptr<const SampledSound>>>
