@@ -48,6 +48,7 @@ Mesh tessellateElevationGrid(const Node& node, ProblemLog& log) {
   const auto& doubleHeight = fieldOr<FieldType::MFDouble>(node, "height");
   const std::size_t heights = geo ? doubleHeight.size() : floatHeight.size();
   const auto height = [&](std::size_t k) {
+    if (k >= heights) return 0.0;
     return geo ? doubleHeight[k] : static_cast<double>(floatHeight[k]);
   };
   if (xDim < 0 || zDim < 0) log.add("xDimension and zDimension must be >= 0");
@@ -56,15 +57,23 @@ Mesh tessellateElevationGrid(const Node& node, ProblemLog& log) {
       !positiveSpacing(static_cast<float>(zSpacing), "zSpacing", log))
     return {};
 
-  // Use only the rows the height array really has (never trust xDimension * zDimension).
+  // Heights missing at the end are 0, as X_ITE 15 reads them (an ElevationGrid without
+  // heights is a flat grid), for grids up to kMaxElevationGridPoints; a larger grid uses
+  // only the rows its height array really has (never trust xDimension * zDimension).
+  constexpr std::uint64_t kMaxElevationGridPoints = std::uint64_t{1} << 22;
   const auto nx = static_cast<std::size_t>(xDim);
   std::size_t nz = static_cast<std::size_t>(zDim);
-  if (static_cast<std::uint64_t>(xDim) * static_cast<std::uint64_t>(zDim) > heights) {
+  const std::uint64_t wanted = static_cast<std::uint64_t>(xDim) * static_cast<std::uint64_t>(zDim);
+  if (wanted > heights && wanted > kMaxElevationGridPoints) {
     log.add("height has " + std::to_string(heights) + " values but xDimension * " +
             "zDimension = " + std::to_string(static_cast<std::int64_t>(xDim) * zDim) +
             "; only complete rows are used");
     nz = heights / nx;
     if (nz < 2) return {};
+  } else if (wanted > heights && heights > 0) {
+    log.add("height has " + std::to_string(heights) + " values but xDimension * " +
+            "zDimension = " + std::to_string(static_cast<std::int64_t>(xDim) * zDim) +
+            "; the missing heights are 0");
   }
 
   std::vector<glm::vec3> points(nx * nz);

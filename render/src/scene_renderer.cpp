@@ -280,9 +280,10 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
   glDepthMask(GL_TRUE);
   glClearDepth(1.0);
   glClear(GL_DEPTH_BUFFER_BIT);
-  // With X3D layers (clause 35) the root layer's Background is drawn under every layer
-  // when the LayerSet's order draws the root layer; without it the default black shows.
-  if (g.frame.layerOrder.empty() ||
+  // With X3D layers (clause 35) the bound Background (the root layer's, or the active
+  // layer's) is drawn under every layer; the default black when none is bound and the
+  // LayerSet's order does not draw the root layer.
+  if (g.frame.layerOrder.empty() || traversal_.background().node != nullptr ||
       std::any_of(g.frame.layerOrder.begin(), g.frame.layerOrder.end(),
                   [](const scene::LayerInstance& l) { return l.number == 0; })) {
     g.background.draw(traversal_.background(), view, projection, traversal_, options_.fetcher,

@@ -31,10 +31,28 @@ NodeState& ExecutionModel::State::reach(vrml::Node& node, bool bindables) {
   classify(ns);
   if (ns.role == NodeRole::bindable && bindables)
     candidates[static_cast<std::size_t>(ns.bindable)].push_back(&ns);
-  // Children and other node-valued fields, depth first in file order. The bindable nodes
-  // inside a LayerSet's Layers are not bound: every layer shares the world's camera,
-  // background and fog (docs/x3d.md, "Layering").
-  if (node.typeId() == vrml::NodeTypeId::LayerSet) bindables = false;
+  // Children and other node-valued fields, depth first in file order. Inside a LayerSet
+  // only the active layer's bindable nodes are bound (X3D 4.0 clause 35.4.2: activeLayer
+  // 1..N is layers[activeLayer - 1], 0 the root layer); every layer is drawn with the
+  // bound camera, background and fog (docs/x3d.md, "Layering").
+  if (node.typeId() == vrml::NodeTypeId::LayerSet) {
+    const int active = node.get<FieldType::SFInt32>("activeLayer", 0);
+    const int layersField = node.type().findExact("layers");
+    for (std::size_t i = 0; i < n; ++i) {
+      const vrml::FieldValue& v = node.fieldAt(i);
+      if (v.type() != FieldType::MFNode && v.type() != FieldType::SFNode) continue;
+      if (v.type() == FieldType::SFNode) {
+        if (const vrml::NodePtr& c = v.get<FieldType::SFNode>()) reach(c, false);
+        continue;
+      }
+      const auto& list = v.get<FieldType::MFNode>();
+      for (std::size_t k = 0; k < list.size(); ++k)
+        if (list[k])
+          reach(list[k], bindables && static_cast<int>(i) == layersField &&
+                             static_cast<int>(k) + 1 == active);
+    }
+    return ns;
+  }
   for (std::size_t i = 0; i < n; ++i) {
     const vrml::FieldValue& v = node.fieldAt(i);
     if (v.type() == FieldType::SFNode) {

@@ -14,7 +14,8 @@ namespace gs::scene {
 namespace {
 
 // Depth-first search for bindable nodes through every child list (all Switch choices and
-// LOD levels: binding does not depend on what is drawn), not into Inline files.
+// LOD levels: binding does not depend on what is drawn; a LayerSet's active layer), not into
+// Inline files.
 template <class Visit>
 void forEachBindable(const std::vector<vrml::NodePtr>& list, const glm::mat4& m, int depth,
                      Visit& visit) {
@@ -41,6 +42,18 @@ void forEachBindable(const std::vector<vrml::NodePtr>& list, const glm::mat4& m,
       case NodeKind::LOD:
         forEachBindable(n->mfnode("level"), m, depth + 1, visit);
         break;
+      case NodeKind::LayerSet: {
+        // X3D 4.0 clause 35.4.2: the bindables the user meets are the active layer's
+        // (activeLayer 1..N: layers[activeLayer - 1]; 0: the root layer, the nodes outside
+        // the LayerSet, met anyway). Other layers' bindables are not bound here.
+        const auto& layers = n->mfnode("layers");
+        const int active = n->get<vrml::FieldType::SFInt32>("activeLayer", 0);
+        if (active >= 1 && static_cast<std::size_t>(active) <= layers.size()) {
+          const vrml::NodePtr& layer = layers[static_cast<std::size_t>(active - 1)];
+          if (layer) forEachBindable(layer->mfnode("children"), m, depth + 1, visit);
+        }
+        break;
+      }
       case NodeKind::Viewpoint:
       case NodeKind::NavigationInfo:
       case NodeKind::Background:

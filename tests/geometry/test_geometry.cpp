@@ -636,6 +636,18 @@ TEST_CASE("ElevationGrid: dimensions larger than the height array", "[geometry]"
   set<FieldType::MFFloat>(holed, "height", h);
   CHECK(tessellate(*holed, &d).triangleCount() == 0);  // every quad touches the centre
   CHECK(d.warningCount() == 4);
+  // A grid of a few million points or less takes its missing heights as 0 (X_ITE 15): no
+  // height at all is a flat grid, without a warning; a short array, one warning.
+  Diagnostics flat;
+  const Mesh none = mesh("ElevationGrid { xDimension 20 zDimension 20 }", &flat);
+  CHECK(none.triangleCount() == 2 * 19 * 19);
+  CHECK(none.bounds.max.y == 0.0f);
+  CHECK(flat.items.empty());
+  const Mesh shortGrid =
+      mesh("ElevationGrid { xDimension 3 zDimension 3 height [ 1 1 1 ] }", &flat);
+  CHECK(shortGrid.triangleCount() == 8);
+  CHECK(shortGrid.bounds.max.y == 1.0f);
+  CHECK(flat.warningCount() == 1);
 }
 
 // ---- Extrusion --------------------------------------------------------------------------
