@@ -436,7 +436,9 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     if (p.frameSet != g.programs.frame()) {
       const SurfaceUniforms& u = p.u;
       glUniformMatrix4fv(u.projection, 1, GL_FALSE, glm::value_ptr(projection));
-      glUniform1f(u.pointSize, options_.pointSize);
+      glUniform1f(u.pointSize, options_.pointSize > 0.0f                ? options_.pointSize
+                               : traversal_.scene().x3d.version.empty() ? 2.0f
+                                                                        : 1.0f);
       glUniform1i(u.texture, 0);
       for (std::size_t i = 0; i < kPhysicalMaps; ++i)
         glUniform1i(u.map[i], static_cast<GLint>(i + 1));

@@ -172,7 +172,8 @@ TEST_CASE("An unsupported linetype draws solid with a warning at the node",
 namespace {
 
 /// One red point at the origin seen from 1 m, with `points` as the Appearance's
-/// pointProperties (may be empty); the renderer's nominal point size is 2 pixels.
+/// pointProperties (may be empty); the renderer's nominal point size for an X3D world is 1
+/// pixel (X_ITE's).
 int pointPixels(const std::string& name, const std::string& points, int frames) {
   const fs::path file = worldDir() / (name + ".x3dv");
   writeText(file, R"(#X3D V4.0 utf8
@@ -196,20 +197,20 @@ TEST_CASE("PointProperties scales, attenuates and clamps the point size",
           "[render][offscreen][world][point]") {
   for (int frames : {1, 3}) {
     INFO("frames " << frames);
-    CHECK(pointPixels("point_plain", "", frames) == 4);  // 2 x 2
+    CHECK(pointPixels("point_plain", "", frames) == 1);  // 1 x 1 (X_ITE's nominal size)
     CHECK(pointPixels("point_scaled",
                       "pointProperties PointProperties { pointSizeScaleFactor 3 "
                       "pointSizeMaxValue 10 }",
-                      frames) == 36);  // 2 * 3 = 6 pixels wide
-    // Attenuation 2 r^2 at r = 1 halves it.
+                      frames) == 9);  // 1 * 3 = 3 pixels wide
+    // Attenuation 2 r^2 at r = 1 halves it: 4 / 2 = 2 pixels wide.
     CHECK(pointPixels("point_attenuated",
-                      "pointProperties PointProperties { pointSizeScaleFactor 3 "
+                      "pointProperties PointProperties { pointSizeScaleFactor 4 "
                       "pointSizeMaxValue 10 attenuation 0 0 2 }",
-                      frames) == 9);
+                      frames) == 4);
     // The minimum wins over a smaller computed size; the default maximum (1) caps a scale.
     CHECK(pointPixels("point_minimum", "pointProperties PointProperties { pointSizeMinValue 4 }",
-                      frames) == 64);
+                      frames) == 16);
     CHECK(pointPixels("point_capped", "pointProperties PointProperties { pointSizeScaleFactor 3 }",
-                      frames) == 4);
+                      frames) == 1);
   }
 }

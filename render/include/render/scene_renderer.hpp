@@ -50,8 +50,9 @@ struct SceneRendererOptions {
   /// files and data: URLs only.
   base::Fetcher* fetcher = nullptr;
   scene::TraversalOptions traversal;
-  /// Diameter of PointSet points in pixels.
-  float pointSize = 2.0f;
+  /// Diameter of PointSet points in pixels; 0: the world's default, 1 pixel for X3D worlds
+  /// (X_ITE 15's, the reference for X3D) and 2 for VRML97 worlds.
+  float pointSize = 0.0f;
   /// Loads the vectors of QuantizedNormalVectors urls. Empty: local .qnv files.
   SplatLoader splatLoader;
   /// Level of detail: the fraction of every QNV stream drawn (times the node's own
