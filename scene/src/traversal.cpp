@@ -433,14 +433,20 @@ struct SceneTraversal::Walk {
       const NodeKind k = nodeKind(l);
       return (k == NodeKind::Layer || k == NodeKind::LayoutLayer) && sfBool(l, "visible", true);
     };
+    const int active = set->get<vrml::FieldType::SFInt32>("activeLayer", 0);
     for (std::size_t i = 0; i < list.size(); ++i) {
       if (!list[i] || !isLayer(*list[i])) continue;
       layer = static_cast<std::uint32_t>(i + 1);
       const auto& children = list[i]->mfnode("children");
-      if (nodeKind(*list[i]) == NodeKind::LayoutLayer)
+      if (nodeKind(*list[i]) == NodeKind::LayoutLayer) {
         layoutLayer(*list[i], children);
-      else
+      } else if (static_cast<int>(i) + 1 == active) {
         group(list[i].get(), children, glm::mat4(1.0f), &self.mainUrl_, &children);
+      } else if (const std::optional<Camera> own = firstViewpointCamera(children)) {
+        layerWithOwnView(*list[i], children, *own);
+      } else {
+        group(list[i].get(), children, glm::mat4(1.0f), &self.mainUrl_, &children);
+      }
     }
     layer = 0;
     for (const std::int32_t index : fieldRef<vrml::FieldType::MFInt32>(*set, "order", kNoOrder)) {
@@ -462,6 +468,44 @@ struct SceneTraversal::Walk {
     }
   }
   static inline const std::vector<std::int32_t> kNoOrder{};
+
+  /// A Layer that is not the active one and holds a Viewpoint (clause 35.2: each layer is
+  /// seen through its own bound Viewpoint, as X_ITE draws a HUD layer): its children placed
+  /// so that the world's camera sees them as that viewpoint would. A perspective viewpoint:
+  /// the layer's eye coordinates are the world camera's, x and y scaled by the ratio of the
+  /// two fields of view. An OrthoViewpoint: its region put square in front of the world
+  /// camera at twice the near distance, depths compressed, as layoutLayer does. Restores
+  /// the walk's view afterwards.
+  void layerWithOwnView(const vrml::Node& l, const std::vector<vrml::NodePtr>& children,
+                        const Camera& own) {
+    const glm::mat4 outerEyeToWorld = eyeToWorld, outerWorldToEye = worldToEye;
+    const bool outerOrtho = orthographic;
+    glm::mat4 layerEyeToWorldEye(1.0f);
+    if (own.orthographic || camera.orthographic) {
+      const glm::vec4 r = own.orthographic ? own.orthoRegion : glm::vec4(-1, -1, 1, 1);
+      const float half = std::max(std::min(r.z - r.x, r.w - r.y) / 2.0f, 1e-6f);
+      const float distance = 2.0f * camera.nearClip;
+      const float k = camera.orthographic ? std::min(camera.orthoRegion.z - camera.orthoRegion.x,
+                                                     camera.orthoRegion.w - camera.orthoRegion.y) /
+                                                2.0f
+                                          : distance * tanHalfFov;
+      layerEyeToWorldEye =
+          glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, -distance)) *
+          glm::scale(glm::mat4(1.0f), glm::vec3(k / half, k / half, k / half * 1e-3f)) *
+          glm::translate(glm::mat4(1.0f),
+                         glm::vec3(-(r.x + r.z) / 2.0f, -(r.y + r.w) / 2.0f, 0.0f));
+      orthographic = true;
+    } else {
+      const float s = tanHalfFov / std::tan(std::clamp(own.fieldOfView, 0.001f, 3.1f) / 2.0f);
+      layerEyeToWorldEye = glm::scale(glm::mat4(1.0f), glm::vec3(s, s, 1.0f));
+    }
+    eyeToWorld = outerEyeToWorld * layerEyeToWorldEye;
+    worldToEye = glm::inverse(eyeToWorld);
+    group(&l, children, eyeToWorld * viewMatrix(own), &self.mainUrl_, &children);
+    eyeToWorld = outerEyeToWorld;
+    worldToEye = outerWorldToEye;
+    orthographic = outerOrtho;
+  }
 
   /// X3D Layout's LayoutLayer (clause 36.4.2): its children seen by a view of its own,
   /// X_ITE's default OrthoViewpoint (at 0 0 10, the region -1 -1 1 1 on the smaller

@@ -72,6 +72,43 @@ std::vector<glm::vec3> colorsOr(const std::vector<glm::vec3>& colors, glm::vec3 
 
 }  // namespace
 
+Camera viewpointCamera(const vrml::Node& n, const glm::mat4& m) {
+  Camera camera;
+  camera.position = glm::vec3(m * glm::vec4(sfVec3(n, "position", glm::vec3(0, 0, 10)), 1.0f));
+  glm::quat local = glm::quat_cast(
+      glm::mat3(rotationMatrix(sfRotation(n, "orientation", vrml::Rotation(0, 0, 1, 0)))));
+  if (n.typeId() == vrml::NodeTypeId::GeoViewpoint) {
+    // X3D 4.0 clause 25.4.10: a geo position; the orientation is relative to the up
+    // frame there (+Y up, +X east), as X_ITE turns it.
+    const glm::dvec3 geo =
+        n.get<vrml::FieldType::SFVec3d>("position", glm::dvec3(0.0, 0.0, 100000.0));
+    const glm::dmat4 location = vrml::geoLocationMatrix(n, geo);
+    camera.position = glm::vec3(m * glm::vec4(glm::vec3(location[3]), 1.0f));
+    local = glm::normalize(glm::quat_cast(glm::mat3(location)) * local);
+  }
+  camera.orientation = glm::normalize(glm::quat_cast(rotationPart(m)) * local);
+  if (n.typeId() == vrml::NodeTypeId::OrthoViewpoint) {
+    // X3D 4.0 clause 23.4.5: fieldOfView (minX, minY, maxX, maxY), default -1 -1 1 1.
+    const std::vector<float>& f = mfFloat(n, "fieldOfView");
+    camera.orthographic = true;
+    if (f.size() >= 4 && std::isfinite(f[0]) && std::isfinite(f[1]) && std::isfinite(f[2]) &&
+        std::isfinite(f[3]) && f[2] != f[0] && f[3] != f[1])
+      camera.orthoRegion = glm::vec4(f[0], f[1], f[2], f[3]);
+  } else {
+    camera.fieldOfView = sfFloat(n, "fieldOfView", 0.785398f);
+  }
+  return camera;
+}
+
+std::optional<Camera> firstViewpointCamera(const std::vector<vrml::NodePtr>& nodes) {
+  std::optional<Camera> found;
+  auto visit = [&](const vrml::Node& n, NodeKind kind, const glm::mat4& m) {
+    if (kind == NodeKind::Viewpoint && !found) found = viewpointCamera(n, m);
+  };
+  forEachBindable(nodes, glm::mat4(1.0f), 0, visit);
+  return found;
+}
+
 SceneTraversal::SceneTraversal(std::shared_ptr<const vrml::Scene> scene, TraversalOptions options)
     : scene_(std::move(scene)), options_(std::move(options)) {
   if (!scene_) scene_ = std::make_shared<const vrml::Scene>();
@@ -111,30 +148,7 @@ void SceneTraversal::findBindables() {
         info.description = sfString(n, "description");
         if (info.description.empty())
           info.description = "Viewpoint " + std::to_string(viewpoints_.size() + 1);
-        info.camera.position =
-            glm::vec3(m * glm::vec4(sfVec3(n, "position", glm::vec3(0, 0, 10)), 1.0f));
-        glm::quat local = glm::quat_cast(
-            glm::mat3(rotationMatrix(sfRotation(n, "orientation", vrml::Rotation(0, 0, 1, 0)))));
-        if (n.typeId() == vrml::NodeTypeId::GeoViewpoint) {
-          // X3D 4.0 clause 25.4.10: a geo position; the orientation is relative to the up
-          // frame there (+Y up, +X east), as X_ITE turns it.
-          const glm::dvec3 geo =
-              n.get<vrml::FieldType::SFVec3d>("position", glm::dvec3(0.0, 0.0, 100000.0));
-          const glm::dmat4 location = vrml::geoLocationMatrix(n, geo);
-          info.camera.position = glm::vec3(m * glm::vec4(glm::vec3(location[3]), 1.0f));
-          local = glm::normalize(glm::quat_cast(glm::mat3(location)) * local);
-        }
-        info.camera.orientation = glm::normalize(glm::quat_cast(rotationPart(m)) * local);
-        if (n.typeId() == vrml::NodeTypeId::OrthoViewpoint) {
-          // X3D 4.0 clause 23.4.5: fieldOfView (minX, minY, maxX, maxY), default -1 -1 1 1.
-          const std::vector<float>& f = mfFloat(n, "fieldOfView");
-          info.camera.orthographic = true;
-          if (f.size() >= 4 && std::isfinite(f[0]) && std::isfinite(f[1]) && std::isfinite(f[2]) &&
-              std::isfinite(f[3]) && f[2] != f[0] && f[3] != f[1])
-            info.camera.orthoRegion = glm::vec4(f[0], f[1], f[2], f[3]);
-        } else {
-          info.camera.fieldOfView = sfFloat(n, "fieldOfView", 0.785398f);
-        }
+        info.camera = gs::scene::viewpointCamera(n, m);
         viewpoints_.push_back(std::move(info));
         break;
       }

@@ -182,6 +182,16 @@ struct LayerInstance {
   const vrml::Node* node = nullptr;  // the Layer, null for the root layer
 };
 
+/// The camera of viewpoint node `viewpoint` (Viewpoint, OrthoViewpoint, GeoViewpoint:
+/// position, orientation, fieldOfView or the orthographic region; clauses 6.53, 23.4.5,
+/// 25.4.10) placed by `m`, its parents' transform (local to world). Clip planes are the
+/// defaults.
+Camera viewpointCamera(const vrml::Node& viewpoint, const glm::mat4& m);
+/// The camera of the first viewpoint among `nodes` and below them (depth first, through
+/// grouping nodes, every Switch choice and LOD level, not into Inlines); none when they hold
+/// none.
+std::optional<Camera> firstViewpointCamera(const std::vector<vrml::NodePtr>& nodes);
+
 /// The pixel rectangle (x, y, width, height; origin bottom left, as glScissor takes it) of
 /// a clipBoundary (left, right, bottom, top fractions, clause 35.4.4) inside the viewport
 /// rectangle (x, y, width, height) in pixels; width and height are never negative.
