@@ -6,7 +6,9 @@
 #include "audio_processors.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <utility>
 
 namespace gs::audio {
 
@@ -24,6 +26,7 @@ struct AudioGraph::State {
     detail::CompressorState compressor;
     detail::ConvolverState convolver;
     SignalBlock out;
+    SignalBlock in;              // the sum of the inputs, for process()
     std::uint64_t outBlock = 0;  // the block `out` was computed for
     bool visiting = false;       // on the path being computed: a cycle
   };
@@ -111,7 +114,7 @@ void AudioGraph::State::process(const void* key, Processor& p) {
     scaleBlock(p.out, q.gain);
     return;
   }
-  SignalBlock in;
+  SignalBlock& in = p.in;  // kept with the processor: its buffers are reused block to block
   input(key, p, in);
   if (q.type == ProcessorType::destination) {
     if (!q.enabled) {
@@ -121,7 +124,7 @@ void AudioGraph::State::process(const void* key, Processor& p) {
     scaleBlock(in, q.gain);
     in.channel.resize(static_cast<std::size_t>(
         std::min(in.channels(), std::clamp(q.maxChannelCount, 1, kGraphMaxChannels))));
-    p.out = std::move(in);
+    std::swap(p.out, in);
     return;
   }
   if (q.type == ProcessorType::spatialSound) {
@@ -131,7 +134,7 @@ void AudioGraph::State::process(const void* key, Processor& p) {
   // Processing and channel nodes: a disabled one passes its input on unchanged (X_ITE 15);
   // `gain` scales the input before the processing (X_ITE's input GainNode).
   if (!q.enabled) {
-    p.out = std::move(in);
+    std::swap(p.out, in);
     return;
   }
   scaleBlock(in, q.gain);
@@ -173,7 +176,7 @@ void AudioGraph::State::process(const void* key, Processor& p) {
       break;
     }
     default:  // gain, analyser, channelSplitter: the (scaled) input
-      p.out = std::move(in);
+      std::swap(p.out, in);
       break;
   }
 }
@@ -220,9 +223,11 @@ void AudioGraph::render(std::size_t frames, std::vector<float>& stereo) {
     if (q.type == ProcessorType::buffer)
       detail::placeBuffer(q, p.buffer, static_cast<double>(frames) / kGraphSampleRate);
   }
+  std::array<float, kGraphBlock> left{}, right{};
   while (s.pending.size() < 2 * frames) {
     ++s.block;
-    std::vector<float> left(kGraphBlock, 0.0f), right(kGraphBlock, 0.0f);
+    left.fill(0.0f);
+    right.fill(0.0f);
     for (const void* root : roots) {
       const SignalBlock& out = s.output(root);
       if (out.channels() == 0) continue;

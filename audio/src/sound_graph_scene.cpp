@@ -20,30 +20,14 @@ namespace {
 using vrml::FieldType;
 using vrml::NodeTypeId;
 
-/// The types `children` takes in (X_ITE: X3DSoundChannelNode, X3DSoundProcessingNode and
-/// X3DSoundSourceNode; any other child is ignored).
-bool feedsGraph(NodeTypeId t) {
-  switch (t) {
-    case NodeTypeId::AudioClip:
-    case NodeTypeId::BufferAudioSource:
-    case NodeTypeId::OscillatorSource:
-    case NodeTypeId::MicrophoneSource:
-    case NodeTypeId::StreamAudioSource:
-    case NodeTypeId::ListenerPointSource:
-    case NodeTypeId::Analyser:
-    case NodeTypeId::BiquadFilter:
-    case NodeTypeId::Convolver:
-    case NodeTypeId::Delay:
-    case NodeTypeId::DynamicsCompressor:
-    case NodeTypeId::Gain:
-    case NodeTypeId::WaveShaper:
-    case NodeTypeId::ChannelMerger:
-    case NodeTypeId::ChannelSelector:
-    case NodeTypeId::ChannelSplitter:
-      return true;
-    default:
-      return false;
-  }
+/// Whether `children` takes `n` in (X_ITE: X3DSoundChannelNode, X3DSoundProcessingNode and
+/// X3DSoundSourceNode; any other child is ignored). A MovieTexture, a sound source in X3D 4,
+/// is not (its sound plays through a Sound node).
+bool feedsGraph(const vrml::Node& n) {
+  using vrml::AbstractType;
+  return n.typeId() != NodeTypeId::MovieTexture &&
+         (n.is(AbstractType::X3DSoundChannelNode) || n.is(AbstractType::X3DSoundProcessingNode) ||
+          n.is(AbstractType::X3DSoundSourceNode));
 }
 
 BiquadType biquadType(const std::string& s) {
@@ -210,7 +194,7 @@ void SoundScene::setProcessor(const vrml::Node& n, const std::string& base,
     case NodeTypeId::ChannelSplitter:
       p.type = ProcessorType::channelSplitter;
       for (const vrml::NodePtr& o : n.mfnode("outputs"))
-        if (o && feedsGraph(o->typeId())) p.outputs.push_back(o.get());
+        if (o && feedsGraph(*o)) p.outputs.push_back(o.get());
       break;
     default:  // Gain
       p.type = ProcessorType::gain;
@@ -218,7 +202,7 @@ void SoundScene::setProcessor(const vrml::Node& n, const std::string& base,
   }
   if (n.type().findExact("children") >= 0)
     for (const vrml::NodePtr& c : n.mfnode("children"))
-      if (c && feedsGraph(c->typeId())) {
+      if (c && feedsGraph(*c)) {
         p.inputs.push_back(c.get());
         setProcessor(*c, base, clipTime, seen, depth + 1);
       }
@@ -276,7 +260,7 @@ void SoundScene::updateGraph(const std::vector<GraphRoot>& roots, const glm::mat
       if (n.typeId() == NodeTypeId::StreamAudioDestination) p.enabled = false;
     }
     for (const vrml::NodePtr& c : n.mfnode("children"))
-      if (c && feedsGraph(c->typeId())) {
+      if (c && feedsGraph(*c)) {
         p.inputs.push_back(c.get());
         setProcessor(*c, r.base, clipTime, seen, 1);
       }

@@ -305,23 +305,7 @@ VolumeStyleGlsl volumeStyleIsoSurface(const vrml::Node& data) {
     functions += "   if (length (texture (gradients_" + id + ", texCoord) .xyz * 2.0 - 1.0) < " +
                  surfaceTolerance + ")\n      discard;\n";
   } else {
-    uniforms += volumeStyleText(R"(
-vec4
-getNormal_@ (in vec3 texCoord)
-{
-   vec4  offset = vec4 (1.0 / vec3 (textureSize (x3d_Texture3D [0], 0)), 0.0);
-   float i0     = texture (x3d_Texture3D [0], texCoord + offset .xww) .r;
-   float i1     = texture (x3d_Texture3D [0], texCoord - offset .xww) .r;
-   float i2     = texture (x3d_Texture3D [0], texCoord + offset .wyw) .r;
-   float i3     = texture (x3d_Texture3D [0], texCoord - offset .wyw) .r;
-   float i4     = texture (x3d_Texture3D [0], texCoord + offset .wwz) .r;
-   float i5     = texture (x3d_Texture3D [0], texCoord - offset .wwz) .r;
-   vec3  n      = vec3 (i1 - i0, i3 - i2, i5 - i4);
-
-   return vec4 (normalize (x3d_TextureNormalMatrix * n), length (n));
-}
-)",
-                                id);
+    uniforms += volumeStyleText(kVolumeStyleGradientNormal, id);
     functions +=
         "   if (getNormal_" + id + " (texCoord) .w < " + surfaceTolerance + ")\n      discard;\n";
   }

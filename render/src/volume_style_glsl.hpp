@@ -78,6 +78,24 @@ bool needsVolumeRaycast(const vrml::Node& volumeData);
 /// reads back as it, always with a '.' or an exponent (NaN reads as 0, infinities as the
 /// largest float).
 std::string volumeStyleFloat(double v, bool single = true);
+/// X_ITE's getNormal_@ from the voxels: central differences one texel apart, pointing to
+/// lower values, turned to eye space by x3d_TextureNormalMatrix; w the difference's length.
+inline constexpr std::string_view kVolumeStyleGradientNormal = R"(
+vec4
+getNormal_@ (in vec3 texCoord)
+{
+   vec4  offset = vec4 (1.0 / vec3 (textureSize (x3d_Texture3D [0], 0)), 0.0);
+   float i0     = texture (x3d_Texture3D [0], texCoord + offset .xww) .r;
+   float i1     = texture (x3d_Texture3D [0], texCoord - offset .xww) .r;
+   float i2     = texture (x3d_Texture3D [0], texCoord + offset .wyw) .r;
+   float i3     = texture (x3d_Texture3D [0], texCoord - offset .wyw) .r;
+   float i4     = texture (x3d_Texture3D [0], texCoord + offset .wwz) .r;
+   float i5     = texture (x3d_Texture3D [0], texCoord - offset .wwz) .r;
+   vec3  n      = vec3 (i1 - i0, i3 - i2, i5 - i4);
+
+   return vec4 (normalize (x3d_TextureNormalMatrix * n), length (n));
+}
+)";
 /// `text` with every '@' replaced by `id` (the style's number where X_ITE puts getId()).
 std::string volumeStyleText(std::string_view text, const std::string& id);
 /// The node of `p` when X_ITE's X3DCast to abstract type `t` keeps it (not NULL, resolved,

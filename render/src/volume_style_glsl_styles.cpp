@@ -40,6 +40,14 @@ float volumeStyleFloatField(const vrml::Node& n, vrml::FieldName name, float fal
   return n.get<vrml::FieldType::SFFloat>(name, fallback);
 }
 
+/// The GLSL constant of SFFloat field `name` of style `n` (its value, or `fallback`):
+/// "const float NAME_ID = VALUE;", X_ITE's uniform of that field baked in.
+std::string volumeStyleFloatConst(const vrml::Node& n, const std::string& name, float fallback,
+                                  const std::string& id) {
+  return "const float " + name + "_" + id + " = " +
+         volumeStyleFloat(volumeStyleFloatField(n, name, fallback)) + ";\n";
+}
+
 glm::vec4 volumeStyleRgba(const vrml::Node& n, vrml::FieldName name, glm::vec4 fallback) {
   return n.get<vrml::FieldType::SFColorRGBA>(name, fallback);
 }
@@ -180,23 +188,7 @@ getNormal_@ (in vec3 texCoord)
 )",
                                                                           id);
   }
-  return volumeStyleText(R"(
-vec4
-getNormal_@ (in vec3 texCoord)
-{
-   vec4  offset = vec4 (1.0 / vec3 (textureSize (x3d_Texture3D [0], 0)), 0.0);
-   float i0     = texture (x3d_Texture3D [0], texCoord + offset .xww) .r;
-   float i1     = texture (x3d_Texture3D [0], texCoord - offset .xww) .r;
-   float i2     = texture (x3d_Texture3D [0], texCoord + offset .wyw) .r;
-   float i3     = texture (x3d_Texture3D [0], texCoord - offset .wyw) .r;
-   float i4     = texture (x3d_Texture3D [0], texCoord + offset .wwz) .r;
-   float i5     = texture (x3d_Texture3D [0], texCoord - offset .wwz) .r;
-   vec3  n      = vec3 (i1 - i0, i3 - i2, i5 - i4);
-
-   return vec4 (normalize (x3d_TextureNormalMatrix * n), length (n));
-}
-)",
-                         id);
+  return volumeStyleText(kVolumeStyleGradientNormal, id);
 }
 
 VolumeStyleCode VolumeStyleWriter::blended(const vrml::Node& node, int depth) {
@@ -206,10 +198,8 @@ VolumeStyleCode VolumeStyleWriter::blended(const vrml::Node& node, int depth) {
   const std::string id = nextId();
   VolumeStyleCode c;
   c.uniforms = "\n// BlendedVolumeStyle\n\n";
-  c.uniforms += "const float weightConstant1_" + id + " = " +
-                volumeStyleFloat(volumeStyleFloatField(node, "weightConstant1", 0.5f)) + ";\n";
-  c.uniforms += "const float weightConstant2_" + id + " = " +
-                volumeStyleFloat(volumeStyleFloatField(node, "weightConstant2", 0.5f)) + ";\n";
+  c.uniforms += volumeStyleFloatConst(node, "weightConstant1", 0.5f, id);
+  c.uniforms += volumeStyleFloatConst(node, "weightConstant2", 0.5f, id);
   // X_ITE declares a weight table whenever there is one; here only when TABLE reads it.
   const vrml::Node* table1 =
       volumeStyleCast(node.sfnode("weightTransferFunction1"), vrml::AbstractType::X3DTexture2DNode);
@@ -256,12 +246,9 @@ VolumeStyleCode VolumeStyleWriter::boundaryEnhancement(const vrml::Node& node) {
   const std::string id = nextId();
   VolumeStyleCode c;
   c.uniforms = "\n// BoundaryEnhancementVolumeStyle\n\n";
-  c.uniforms += "const float retainedOpacity_" + id + " = " +
-                volumeStyleFloat(volumeStyleFloatField(node, "retainedOpacity", 0.2f)) + ";\n";
-  c.uniforms += "const float boundaryOpacity_" + id + " = " +
-                volumeStyleFloat(volumeStyleFloatField(node, "boundaryOpacity", 0.9f)) + ";\n";
-  c.uniforms += "const float opacityFactor_" + id + " = " +
-                volumeStyleFloat(volumeStyleFloatField(node, "opacityFactor", 2.0f)) + ";\n";
+  c.uniforms += volumeStyleFloatConst(node, "retainedOpacity", 0.2f, id);
+  c.uniforms += volumeStyleFloatConst(node, "boundaryOpacity", 0.9f, id);
+  c.uniforms += volumeStyleFloatConst(node, "opacityFactor", 2.0f, id);
   // X_ITE's one-sided difference along r, not the gradient's magnitude.
   c.uniforms += volumeStyleText(R"(
 vec4
@@ -357,8 +344,7 @@ VolumeStyleCode VolumeStyleWriter::edgeEnhancement(const vrml::Node& node) {
   c.uniforms += "const vec4  edgeColor_" + id + " = " +
                 volumeStyleVec4(volumeStyleRgba(node, "edgeColor", {0.0f, 0.0f, 0.0f, 1.0f})) +
                 ";\n";
-  c.uniforms += "const float gradientThreshold_" + id + " = " +
-                volumeStyleFloat(volumeStyleFloatField(node, "gradientThreshold", 0.4f)) + ";\n";
+  c.uniforms += volumeStyleFloatConst(node, "gradientThreshold", 0.4f, id);
   c.uniforms += normalText(node, id);
   c.uniforms += volumeStyleText(R"(
 vec4
@@ -392,8 +378,7 @@ VolumeStyleCode VolumeStyleWriter::projectionStyle(const vrml::Node& node) {
   const bool min = type == "MIN", average = type == "AVERAGE";  // else MAX
   VolumeStyleCode c;
   c.uniforms = "\n// ProjectionVolumeStyle\n\n";
-  c.uniforms += "const float intensityThreshold_" + id + " = " +
-                volumeStyleFloat(volumeStyleFloatField(node, "intensityThreshold", 0.0f)) + ";\n";
+  c.uniforms += volumeStyleFloatConst(node, "intensityThreshold", 0.0f, id);
   c.uniforms += volumeStyleText(R"(
 vec4
 getProjectionStyle_@(in vec4 originalColor, in vec3 texCoord)
@@ -554,14 +539,9 @@ VolumeStyleCode VolumeStyleWriter::silhouetteEnhancement(const vrml::Node& node)
   const std::string id = nextId();
   VolumeStyleCode c;
   c.uniforms = "\n// SilhouetteEnhancementVolumeStyle\n\n";
-  c.uniforms += "const float silhouetteRetainedOpacity_" + id + " = " +
-                volumeStyleFloat(volumeStyleFloatField(node, "silhouetteRetainedOpacity", 1.0f)) +
-                ";\n";
-  c.uniforms += "const float silhouetteBoundaryOpacity_" + id + " = " +
-                volumeStyleFloat(volumeStyleFloatField(node, "silhouetteBoundaryOpacity", 0.0f)) +
-                ";\n";
-  c.uniforms += "const float silhouetteSharpness_" + id + " = " +
-                volumeStyleFloat(volumeStyleFloatField(node, "silhouetteSharpness", 0.5f)) + ";\n";
+  c.uniforms += volumeStyleFloatConst(node, "silhouetteRetainedOpacity", 1.0f, id);
+  c.uniforms += volumeStyleFloatConst(node, "silhouetteBoundaryOpacity", 0.0f, id);
+  c.uniforms += volumeStyleFloatConst(node, "silhouetteSharpness", 0.5f, id);
   c.uniforms += normalText(node, id);
   c.uniforms += volumeStyleText(R"(
 vec4

@@ -22,6 +22,8 @@
 // and a manager makes at most kDisMaxEntities entities.
 #include "execution_state.hpp"
 
+#include "vrml/transform.hpp"
+
 #include "dis/pdu.hpp"
 #include "encodings/node_types.hpp"
 
@@ -108,12 +110,9 @@ void disSet(vrml::Node& n, std::string_view name, FieldValue v) {
 
 void disSendEntityState(DisModel& s, NodeState& ns, const dis::EntityStatePdu& p) {
   disEmit(s, ns, "translation", FieldValue::make<FieldType::SFVec3f>(glm::vec3(p.location)));
-  const glm::dquat q = dis::eulerToQuaternion(p.orientation);
-  const double angle = 2.0 * std::acos(std::clamp(q.w, -1.0, 1.0));
-  const double sine = std::sqrt(std::max(0.0, 1.0 - q.w * q.w));
-  const vrml::Rotation r = sine > 1e-9 ? vrml::Rotation(q.x / sine, q.y / sine, q.z / sine, angle)
-                                       : vrml::Rotation(0, 0, 1, 0);
-  disEmit(s, ns, "rotation", FieldValue::make<FieldType::SFRotation>(r));
+  disEmit(s, ns, "rotation",
+          FieldValue::make<FieldType::SFRotation>(
+              vrml::rotationFromQuaternion(dis::eulerToQuaternion(p.orientation))));
   disEmit(s, ns, "linearVelocity", FieldValue::make<FieldType::SFVec3f>(p.linearVelocity));
   disEmit(s, ns, "linearAcceleration", FieldValue::make<FieldType::SFVec3f>(p.linearAcceleration));
   disEmitInt(s, ns, "forceID", p.forceID);

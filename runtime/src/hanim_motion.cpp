@@ -20,6 +20,8 @@
 // channel (it is per joint, as X_ITE reads it), `loa`.
 #include "execution_state.hpp"
 
+#include "vrml/transform.hpp"
+
 #include <glm/gtc/quaternion.hpp>
 
 #include <algorithm>
@@ -231,11 +233,8 @@ void ExecutionModel::State::evaluateHAnimMotions() {
           const glm::quat q = keyAt(
               k.rotation, fraction,
               [](const glm::quat& a, const glm::quat& b, float t) { return glm::slerp(a, b, t); });
-          const float angle = glm::angle(q);
-          glm::vec3 axis = glm::axis(q);
-          if (!(glm::length(axis) > 0.0f) || !std::isfinite(angle)) axis = glm::vec3(0, 0, 1);
-          set("rotation", FieldValue::make<FieldType::SFRotation>(vrml::Rotation{
-                              axis.x, axis.y, axis.z, std::isfinite(angle) ? angle : 0.0f}));
+          set("rotation",
+              FieldValue::make<FieldType::SFRotation>(vrml::rotationFromQuaternion(glm::dquat(q))));
         }
       }
     }

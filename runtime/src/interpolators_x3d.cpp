@@ -4,6 +4,8 @@
 // src/x_ite/Browser/Interpolation/*.js); each place says so.
 #include "runtime/interpolators_x3d.hpp"
 
+#include "vrml/transform.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -130,13 +132,7 @@ glm::dquat quatOf(const vrml::Rotation& r) {
 }
 
 vrml::Rotation rotationOf(glm::dquat q) {
-  q = glm::normalize(q);
-  if (q.w < 0.0) q = -q;
-  const double s = std::sqrt(std::max(0.0, 1.0 - q.w * q.w));
-  if (s < 1e-9) return {0.0f, 0.0f, 1.0f, 0.0f};
-  const double angle = 2.0 * std::acos(std::clamp(q.w, -1.0, 1.0));
-  return {static_cast<float>(q.x / s), static_cast<float>(q.y / s), static_cast<float>(q.z / s),
-          static_cast<float>(angle)};
+  return vrml::rotationFromQuaternion(q);
 }
 
 /// log of a unit quaternion (cos a, sin a n): the pure quaternion (0, a n).

@@ -31,25 +31,16 @@ double rateOf(const vrml::Node& n, const MediaNode& m) {
   return static_cast<double>(fieldOr<FieldType::SFFloat>(n, m.rate, 1.0f));
 }
 
-/// The X3D 4 sound nodes that are time-dependent without a duration of their own.
-bool unboundedSoundNode(vrml::NodeTypeId id) {
+/// The X3D 4 sound nodes that are time-dependent without a duration of their own: the
+/// sources and processing nodes but the sampled ones (AudioClip, BufferAudioSource) and
+/// MovieTexture.
+bool unboundedSoundNode(const vrml::NodeType& type) {
   using vrml::NodeTypeId;
-  switch (id) {
-    case NodeTypeId::OscillatorSource:
-    case NodeTypeId::MicrophoneSource:
-    case NodeTypeId::StreamAudioSource:
-    case NodeTypeId::ListenerPointSource:
-    case NodeTypeId::Analyser:
-    case NodeTypeId::BiquadFilter:
-    case NodeTypeId::Convolver:
-    case NodeTypeId::Delay:
-    case NodeTypeId::DynamicsCompressor:
-    case NodeTypeId::Gain:
-    case NodeTypeId::WaveShaper:
-      return true;
-    default:
-      return false;
-  }
+  const NodeTypeId id = type.id();
+  return (type.is(vrml::AbstractType::X3DSoundSourceNode) ||
+          type.is(vrml::AbstractType::X3DSoundProcessingNode)) &&
+         id != NodeTypeId::AudioClip && id != NodeTypeId::BufferAudioSource &&
+         id != NodeTypeId::MovieTexture;
 }
 
 /// A BufferAudioSource's duration from its `buffer` (channel-major, numberOfChannels
@@ -69,7 +60,7 @@ bool ExecutionModel::State::classifyMedia(NodeState& ns) {
   const vrml::NodeType& type = ns.node->type();
   const bool movie = type.id() == vrml::NodeTypeId::MovieTexture;
   const bool buffer = type.id() == vrml::NodeTypeId::BufferAudioSource;
-  const bool unbounded = unboundedSoundNode(type.id());
+  const bool unbounded = unboundedSoundNode(type);
   if (!movie && !buffer && !unbounded && type.id() != vrml::NodeTypeId::AudioClip) return false;
   ns.role = NodeRole::media;
   ns.media = std::make_unique<MediaNode>();

@@ -4,6 +4,9 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
+#include <cmath>
+
 namespace gs::vrml {
 
 glm::mat4 rotationMatrix(const Rotation& rotation) {
@@ -11,6 +14,18 @@ glm::mat4 rotationMatrix(const Rotation& rotation) {
   const float len = glm::length(axis);
   if (!(len > 0.0f) || rotation.w == 0.0f) return glm::mat4(1.0f);
   return glm::rotate(glm::mat4(1.0f), rotation.w, axis / len);
+}
+
+Rotation rotationFromQuaternion(glm::dquat q) {
+  const double length = glm::length(q);
+  if (!(length > 0.0) || !std::isfinite(length)) return {0.0f, 0.0f, 1.0f, 0.0f};
+  q /= length;
+  if (q.w < 0.0) q = -q;
+  const double s = std::sqrt(std::max(0.0, 1.0 - q.w * q.w));
+  if (s < 1e-9) return {0.0f, 0.0f, 1.0f, 0.0f};
+  const double angle = 2.0 * std::acos(std::clamp(q.w, -1.0, 1.0));
+  return {static_cast<float>(q.x / s), static_cast<float>(q.y / s), static_cast<float>(q.z / s),
+          static_cast<float>(angle)};
 }
 
 glm::mat4 transformMatrix(const Node& t) {

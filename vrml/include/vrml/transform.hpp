@@ -7,12 +7,17 @@
 #include "vrml/node.hpp"
 
 #include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
 
 namespace gs::vrml {
 
 /// A rotation matrix from an SFRotation (axis x, y, z, any length, and angle in radians);
 /// identity for a zero axis or angle.
 glm::mat4 rotationMatrix(const Rotation& rotation);
+
+/// The SFRotation of quaternion `q` (any length; normalised first): a unit axis and an
+/// angle in [0, pi] radians; 0 0 1 0 for no rotation (or a zero or non-finite `q`).
+Rotation rotationFromQuaternion(glm::dquat q);
 
 /// The matrix of a Transform node (6.52): T x C x R x SR x S x -SR x -C, from its
 /// translation, center, rotation, scale and scaleOrientation fields (defaults for
