@@ -266,7 +266,7 @@ namespace {
 
 /// X_ITE's IsoSurfaceVolumeData.createShader: the surfaces of surfaceValues (with
 /// contourStepSize, the contours around a single value), each coloured by its value and
-/// then by its style; every other sample discarded.
+/// then by its style; every other sample transparent (X_ITE discards it).
 VolumeStyleGlsl volumeStyleIsoSurface(const vrml::Node& data) {
   VolumeStyleWriter w;
   VolumeStyleCode base = w.opacityMap(nullptr);
@@ -303,18 +303,18 @@ VolumeStyleGlsl volumeStyleIsoSurface(const vrml::Node& data) {
           volumeStyleCast(data.sfnode("gradients"), vrml::AbstractType::X3DTexture3DNode)) {
     uniforms += "\n" + w.sampler("gradients_" + id, *gradients, 3);
     functions += "   if (length (texture (gradients_" + id + ", texCoord) .xyz * 2.0 - 1.0) < " +
-                 surfaceTolerance + ")\n      discard;\n";
+                 surfaceTolerance + ")\n      return vec4 (0.0);\n";
   } else {
     uniforms += volumeStyleText(kVolumeStyleGradientNormal, id);
-    functions +=
-        "   if (getNormal_" + id + " (texCoord) .w < " + surfaceTolerance + ")\n      discard;\n";
+    functions += "   if (getNormal_" + id + " (texCoord) .w < " + surfaceTolerance +
+                 ")\n      return vec4 (0.0);\n";
   }
   functions += "\n   float intensity = textureColor .r;\n\n";
 
   const auto styleOf = [&styles](std::size_t i) {
     return styles.empty() ? std::string() : styles[std::min(i, styles.size() - 1)].functions;
   };
-  const std::string otherwise = "   else\n   {\n      discard;\n   }\n\n";
+  const std::string otherwise = "   else\n   {\n      return vec4 (0.0);\n   }\n\n";
   if (values.size() == 1) {
     const float step = std::abs(data.get<vrml::FieldType::SFFloat>("contourStepSize", 0.0f));
     if (step == 0.0f) {
@@ -356,7 +356,7 @@ VolumeStyleGlsl volumeStyleIsoSurface(const vrml::Node& data) {
 }
 
 /// X_ITE's SegmentedVolumeData.createShader: segment s (segmentIdentifiers' value times
-/// 255, else 0) takes style s of renderStyle, or is discarded when segmentEnabled[s] is
+/// 255, else 0) takes style s of renderStyle, or is transparent when segmentEnabled[s] is
 /// FALSE; a segment without a style keeps the default opacity map's colour.
 VolumeStyleGlsl volumeStyleSegmented(const vrml::Node& data) {
   VolumeStyleWriter w;
@@ -384,7 +384,7 @@ VolumeStyleGlsl volumeStyleSegmented(const vrml::Node& data) {
         uniforms += code.uniforms;
         functions += code.functions + "         break;\n";
       } else {
-        functions += "         discard;\n";
+        functions += "         return vec4 (0.0);\n";
       }
       functions += "      }\n";
     }

@@ -18,6 +18,9 @@
 //   `uniforms` when a style needs them.
 // - X_ITE's default transfer function (a 256 x 1 luminance-alpha texture, texel i = (i, i))
 //   is a formula: what its linear filter reads at level 0.
+// - Where X_ITE discards a sample (IsoSurfaceVolumeData away from its surfaces, a disabled
+//   segment), the code returns transparent black instead: X_ITE discards one slice's
+//   fragment, while in the ray caster's march a discard would end the whole ray.
 // - Where X_ITE's GLSL would not compile (BlendedVolumeStyle's ALPHA1 weight; the
 //   defines of a style inside a BlendedVolumeStyle), the code is what X_ITE evidently
 //   meant; the .cpp says where.

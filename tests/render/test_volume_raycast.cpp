@@ -94,3 +94,22 @@ TEST_CASE("Volume ray caster: disabled styles are the default map, drawn as spla
   const std::uint8_t* centre = r.image.pixel(32, 32);
   CHECK(centre[0] + centre[1] + centre[2] > 30);
 }
+
+TEST_CASE("Volume ray caster: an IsoSurfaceVolumeData with a style draws its surface",
+          "[render][offscreen][world][volume]") {
+  // X_ITE discards the samples away from the surface, one slice at a time; in the march they
+  // are transparent (a discard there would end the whole ray and draw nothing).
+  const Rendered r = drawStyled(
+      "vr_iso",
+      "IsoSurfaceVolumeData { dimensions 1.6 1.6 1.6 surfaceValues [ 0.5 ] "
+      "surfaceTolerance 0.1 voxels " +
+          ball() + " renderStyle [ EdgeEnhancementVolumeStyle { edgeColor 1 0 0 1 } ] }");
+  CHECK(r.diagnostics.items.empty());
+  int lit = 0;
+  for (int y = 0; y < gs::test::kWorldSize; ++y)
+    for (int x = 0; x < gs::test::kWorldSize; ++x) {
+      const std::uint8_t* p = r.image.pixel(x, y);
+      lit += p[0] + p[1] + p[2] > 30;
+    }
+  CHECK(lit > 200);
+}
