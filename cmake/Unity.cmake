@@ -10,7 +10,6 @@ set(GS_UNITY_ALONE
   qnv/src/position_model.cpp
   qnv/src/tileset_index.cpp
   qnv/src/volume_slabs.cpp
-  render/src/splat_cpu.cpp
   render/src/surface_programs.cpp
   session/src/volume_input.cpp
   geometry/src/geometry_indexed.cpp

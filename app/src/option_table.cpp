@@ -89,12 +89,15 @@ const std::vector<OptionSpec>& table() {
        .names = "--splat-path",
        .valueName = "NAME",
        .field = GS_FIELD(std::string, splatPath),
-       .help = "How splats are drawn: auto (cpu where GL is llvmpipe or softpipe, else "
-               "geometry), geometry (a geometry shader makes each patch), points (point "
-               "sprites) or cpu (a multi-threaded CPU rasterizer; docs/rendering.md)",
+       .help = "How splats (3D Gaussians and QNV vectors, one model: docs/splats.md) are "
+               "drawn: auto (cpu where GL is llvmpipe or softpipe, else gpu), gpu (instanced "
+               "quads, depth order by a radix sort in compute shaders, OpenGL 4.3), geometry "
+               "(instanced quads, depth order sorted on the CPU; points is the same) or cpu (a "
+               "multi-threaded CPU rasterizer; docs/rendering.md)",
        .more = "The cpu path draws its image as one quad, about 3x faster on llvmpipe; every "
-               "path gives the same picture, measured in docs/rendering.md.",
-       .check = CLI::IsMember(std::vector<std::string>{"auto", "geometry", "points", "cpu"})},
+               "path gives the same picture, measured in docs/splats.md.",
+       .check =
+           CLI::IsMember(std::vector<std::string>{"auto", "gpu", "geometry", "points", "cpu"})},
       {.scope = main,
        .names = "--fit",
        .valueName = "",

@@ -39,7 +39,8 @@ struct Covariance6 {
 
 using Tile = TileBuffers<kTile>;
 
-void composite(const Prepared p, int tx0, int ty0, int tw, int th, Tile& tile, int& live) {
+void composite(const Prepared p, float minAlpha, int tx0, int ty0, int tw, int th, Tile& tile,
+               int& live) {
   const int xs = std::max(p.x0, tx0), xe = std::min(p.x1, tx0 + tw - 1);
   const int ys = std::max(p.y0, ty0), ye = std::min(p.y1, ty0 + th - 1);
   const F4 lane = {0.5f, 1.5f, 2.5f, 3.5f};
@@ -61,7 +62,7 @@ void composite(const Prepared p, int tx0, int ty0, int tw, int th, Tile& tile, i
           column & (power <= 0.0f) & (power > -8.0f) & open & (p.depth <= load4(&tile.limit[i]));
       F4 alpha = p.opacity * exp4(select4(inside, power));
       alpha = alpha < kMaxAlpha ? alpha : kMaxAlpha;
-      alpha = select4(inside & (alpha >= kMinAlpha), alpha);
+      alpha = select4(inside & (alpha >= minAlpha), alpha);
       const F4 weight = transmittance * alpha;
       store4(&tile.r[i], load4(&tile.r[i]) + weight * p.r);
       store4(&tile.g[i], load4(&tile.g[i]) + weight * p.g);
@@ -73,6 +74,79 @@ void composite(const Prepared p, int tx0, int ty0, int tw, int th, Tile& tile, i
     }
   }
 }
+
+/// What the setup reads of one splat of a source: its centre and covariance (source
+/// coordinates) and peak opacity, or false when it draws nothing.
+struct SplatInput {
+  glm::vec3 position;
+  glm::mat3 sigma;
+  float opacity;
+};
+
+/// A GaussianCloud's splats: covariances cached per cloud, colours from the SH.
+struct CloudSource {
+  const splats::GaussianCloud& cloud;
+  const Covariance6* covariances;
+  glm::vec3 eye;
+  float opacityScale;
+  static constexpr float minAlpha = kMinAlpha;
+  static constexpr bool keepIntegral = false;  // captures keep Kerbl et al.'s opacity
+
+  std::size_t size() const { return cloud.size(); }
+  bool input(std::uint32_t index, SplatInput& in) const {
+    in.opacity = std::min(cloud.opacities[index] * opacityScale, 1.0f);
+    if (!(in.opacity >= minAlpha)) return false;
+    const Covariance6& c = covariances[index];
+    in.sigma = glm::mat3(c.xx, c.xy, c.xz, c.xy, c.yy, c.yz, c.xz, c.yz, c.zz);
+    in.position = cloud.positions[index];
+    return true;
+  }
+  bool color(std::uint32_t index, const SplatInput& in, glm::vec3& out) const {
+    std::array<glm::vec3, 16> sh;
+    const int rest = cloud.shRestPerSplat();
+    sh[0] = cloud.shDc[index];
+    for (int j = 0; j < rest; ++j)
+      sh[static_cast<std::size_t>(j + 1)] =
+          cloud.shRest[index * static_cast<std::size_t>(rest) + static_cast<std::size_t>(j)];
+    const glm::vec3 toward = in.position - eye;
+    const float length = glm::length(toward);
+    const glm::vec3 direction = length > 0.0f ? toward / length : glm::vec3(0.0f, 0.0f, -1.0f);
+    out =
+        glm::max(splats::evaluateSh(cloud.shDegree, sh.data(), direction) + 0.5f, glm::vec3(0.0f));
+    if (cloud.colorSpace == splats::ColorSpace::linear) {
+      for (int ch = 0; ch < 3; ++ch)
+        out[ch] = out[ch] <= 0.0031308f ? 12.92f * out[ch]
+                                        : 1.055f * std::pow(out[ch], 1.0f / 2.4f) - 0.055f;
+    }
+    return std::isfinite(out.r) && std::isfinite(out.g) && std::isfinite(out.b);
+  }
+};
+
+/// QNV vectors as the flat-disc Gaussians of vectorGaussian, lit flat (shadeSplat).
+struct VectorSource {
+  std::span<const qnv::DecodedVector> vectors;
+  const SplatStyle& style;
+  std::span<const SplatLight> lights;
+  glm::mat3 normalMatrix;
+  static constexpr float minAlpha = splats::kVisiblePeak;
+  static constexpr bool keepIntegral = true;  // the paper's profile conserves its integral
+
+  std::size_t size() const { return vectors.size(); }
+  bool input(std::uint32_t index, SplatInput& in) const {
+    VectorGaussian g;
+    if (!vectorGaussian(vectors[index], style, g)) return false;
+    in.position = g.position;
+    in.sigma = g.covariance;
+    in.opacity = g.opacity;
+    return true;
+  }
+  bool color(std::uint32_t index, const SplatInput&, glm::vec3& out) const {
+    const qnv::DecodedVector& v = vectors[index];
+    const glm::vec3 world = glm::normalize(normalMatrix * v.normal);
+    out = shadeSplat(world, glm::vec3(unpackRgba(v.rgba)), lights, style.ambient);
+    return std::isfinite(out.r) && std::isfinite(out.g) && std::isfinite(out.b);
+  }
+};
 
 }  // namespace
 
@@ -94,13 +168,7 @@ void CpuGaussianRasterizer::draw(const splats::GaussianCloud& cloud,
                                  std::span<const std::uint32_t> order, const CpuGaussianView& view,
                                  std::span<const float> depth, std::vector<std::uint8_t>& out,
                                  std::uint64_t revision) {
-  if (view.width <= 0 || view.height <= 0) return;
-  const std::size_t pixels =
-      static_cast<std::size_t>(view.width) * static_cast<std::size_t>(view.height);
-  out.resize(pixels * 4);
-  if (depth.size() < pixels) depth = {};
   Scratch& s = *scratch_;
-
   // Covariances once per cloud (they do not depend on the view).
   const std::size_t n = cloud.size();
   if (s.cloudKey != &cloud || s.cloudSize != n || s.cloudRevision != revision) {
@@ -113,6 +181,32 @@ void CpuGaussianRasterizer::draw(const splats::GaussianCloud& cloud,
     s.cloudSize = n;
     s.cloudRevision = revision;
   }
+  rasterize(CloudSource{cloud, s.covariances.data(), view.eye, view.opacityScale}, order, view,
+            depth, out);
+}
+
+void CpuGaussianRasterizer::drawVectors(std::span<const qnv::DecodedVector> vectors,
+                                        std::span<const std::uint32_t> order,
+                                        const SplatStyle& style, std::span<const SplatLight> lights,
+                                        const glm::mat3& normalMatrix, const CpuGaussianView& view,
+                                        std::span<const float> depth,
+                                        std::vector<std::uint8_t>& out) {
+  rasterize(VectorSource{vectors, style, lights.first(std::min<std::size_t>(lights.size(), 8)),
+                         normalMatrix},
+            order, view, depth, out);
+}
+
+template <typename Source>
+void CpuGaussianRasterizer::rasterize(const Source& source, std::span<const std::uint32_t> order,
+                                      const CpuGaussianView& view, std::span<const float> depth,
+                                      std::vector<std::uint8_t>& out) {
+  if (view.width <= 0 || view.height <= 0) return;
+  const std::size_t pixels =
+      static_cast<std::size_t>(view.width) * static_cast<std::size_t>(view.height);
+  out.resize(pixels * 4);
+  if (depth.size() < pixels) depth = {};
+  Scratch& s = *scratch_;
+  const std::size_t n = source.size();
 
   splats::ProjectionView pv;
   pv.modelView = view.modelView;
@@ -134,7 +228,7 @@ void CpuGaussianRasterizer::draw(const splats::GaussianCloud& cloud,
   s.bins.resize(static_cast<std::size_t>(chunks));
   std::atomic<int> nextTile{0};
   std::barrier sync(threads_);
-  const int rest = cloud.shRestPerSplat();
+  constexpr float minAlpha = Source::minAlpha;
 
   const auto work = [&](int chunk) {
     std::vector<std::vector<Prepared>>& bins = s.bins[static_cast<std::size_t>(chunk)];
@@ -142,46 +236,30 @@ void CpuGaussianRasterizer::draw(const splats::GaussianCloud& cloud,
     for (auto& bin : bins) bin.clear();
     const std::size_t begin = order.size() * static_cast<std::size_t>(chunk) / chunks;
     const std::size_t end = order.size() * static_cast<std::size_t>(chunk + 1) / chunks;
-    std::array<glm::vec3, 16> sh;
     for (std::size_t k = begin; k < end; ++k) {
       const std::uint32_t index = order[k];
       if (index >= n) continue;
-      const float opacity = std::min(cloud.opacities[index] * view.opacityScale, 1.0f);
-      if (!(opacity >= kMinAlpha)) continue;
-      const Covariance6& c = s.covariances[index];
-      const glm::mat3 sigma(c.xx, c.xy, c.xz, c.xy, c.yy, c.yz, c.xz, c.yz, c.zz);
+      SplatInput in;
+      if (!source.input(index, in)) continue;
       splats::ProjectedGaussian g;
-      const glm::vec3& position = cloud.positions[index];
-      if (!splats::projectGaussian(position, sigma, pv, g)) continue;
-      // The box of pixels whose centres lie within the 3-sigma square.
+      if (!splats::projectGaussian(in.position, in.sigma, pv, g)) continue;
       Prepared prepared;
+      prepared.opacity = Source::keepIntegral ? in.opacity * g.lowPassKeep : in.opacity;
+      if (!(prepared.opacity >= minAlpha)) continue;
+      // The box of pixels whose centres lie within the 3-sigma square.
       prepared.x0 = std::max(0, static_cast<int>(std::floor(g.center.x - g.extent.x)));
       prepared.x1 = std::min(view.width - 1, static_cast<int>(std::floor(g.center.x + g.extent.x)));
       prepared.y0 = std::max(0, static_cast<int>(std::floor(g.center.y - g.extent.y)));
       prepared.y1 =
           std::min(view.height - 1, static_cast<int>(std::floor(g.center.y + g.extent.y)));
       if (prepared.x0 > prepared.x1 || prepared.y0 > prepared.y1) continue;
-      sh[0] = cloud.shDc[index];
-      for (int j = 0; j < rest; ++j)
-        sh[static_cast<std::size_t>(j + 1)] =
-            cloud.shRest[index * static_cast<std::size_t>(rest) + static_cast<std::size_t>(j)];
-      const glm::vec3 toward = position - view.eye;
-      const float length = glm::length(toward);
-      const glm::vec3 direction = length > 0.0f ? toward / length : glm::vec3(0.0f, 0.0f, -1.0f);
-      glm::vec3 color = glm::max(splats::evaluateSh(cloud.shDegree, sh.data(), direction) + 0.5f,
-                                 glm::vec3(0.0f));
-      if (cloud.colorSpace == splats::ColorSpace::linear) {
-        for (int ch = 0; ch < 3; ++ch)
-          color[ch] = color[ch] <= 0.0031308f ? 12.92f * color[ch]
-                                              : 1.055f * std::pow(color[ch], 1.0f / 2.4f) - 0.055f;
-      }
-      if (!std::isfinite(color.r) || !std::isfinite(color.g) || !std::isfinite(color.b)) continue;
+      glm::vec3 color;
+      if (!source.color(index, in, color)) continue;
       prepared.cx = g.center.x;
       prepared.cy = g.center.y;
       prepared.ca = g.conic.x;
       prepared.cb = g.conic.y;
       prepared.cc = g.conic.z;
-      prepared.opacity = opacity;
       prepared.depth = g.depth;
       prepared.r = color.r;
       prepared.g = color.g;
@@ -202,7 +280,7 @@ void CpuGaussianRasterizer::draw(const splats::GaussianCloud& cloud,
       for (int c = 0; c < chunks && live > 0; ++c) {
         for (const Prepared& binned :
              s.bins[static_cast<std::size_t>(c)][static_cast<std::size_t>(t)]) {
-          composite(binned, tx0, ty0, tw, th, tile, live);
+          composite(binned, minAlpha, tx0, ty0, tw, th, tile, live);
           if (live <= 0) break;
         }
       }

@@ -1,13 +1,17 @@
 // Private to render/: the CPU rasterizer of anisotropic 3D Gaussians (the splat model of
-// splats/gaussian.hpp; docs/splats.md), the cpu path of SplatRenderer for sets that hold a
-// splats::GaussianCloud. It draws what Kerbl et al. 2023's rasterizer draws:
+// splats/gaussian.hpp; docs/splats.md), the cpu path of SplatRenderer for every set: a
+// splats::GaussianCloud, or QNV vectors as the flat-disc Gaussians of
+// render/splat_model.hpp (vectorGaussian). It draws what Kerbl et al. 2023's rasterizer
+// draws:
 //
 // 1. Setup (the order split into one contiguous chunk per thread): each Gaussian's EWA
 //    projection (splats::projectGaussian: Sigma' = J W Sigma W^T J^T + 0.3 px, 3-sigma box),
-//    its colour from its spherical harmonics along the ray from the camera, binned to 16x16
-//    pixel tiles in order.
+//    its colour (a cloud: its spherical harmonics along the ray from the camera; a vector:
+//    shadeSplat's flat two-sided lighting of its normal), binned to 16x16 pixel tiles in
+//    order.
 // 2. Compositing: threads take tiles; per pixel, front to back, alpha = min(0.99,
-//    o exp(-0.5 d^T Sigma'^-1 d)), fragments with alpha < 1/255 skipped, C += T alpha c,
+//    o exp(-0.5 d^T Sigma'^-1 d)), fragments with alpha < 1/255 skipped (vectors: below
+//    half a level, 0.5/255, what an 8-bit framebuffer can still show), C += T alpha c,
 //    T *= 1 - alpha (the paper's equation (1)); a pixel whose transmittance falls below
 //    1e-4 is done. Four pixels at a time (vector extensions).
 // 3. Output: premultiplied RGBA8 (C, 1 - T), rows bottom to top (OpenGL's order).
@@ -21,6 +25,8 @@
 
 #include <glm/glm.hpp>
 
+#include "qnv/decoder.hpp"
+#include "render/splat_model.hpp"
 #include "splats/gaussian.hpp"
 
 namespace gs::render::detail {
@@ -54,12 +60,29 @@ class CpuGaussianRasterizer {
             const CpuGaussianView& view, std::span<const float> depth,
             std::vector<std::uint8_t>& out, std::uint64_t revision = 0);
 
+  /// Composites the QNV vectors `vectors[order[i]]` (order[0] nearest; indices outside
+  /// skipped) as the flat-disc Gaussians of vectorGaussian under `style`, shaded by
+  /// shadeSplat with `lights` (world directions, at most 8 used) and each normal turned by
+  /// `normalMatrix` (model to world), each opacity scaled by the projection's lowPassKeep.
+  /// `view.eye` and `view.opacityScale` are not used (the style holds the opacity scale).
+  /// Output and depth as draw().
+  void drawVectors(std::span<const qnv::DecodedVector> vectors,
+                   std::span<const std::uint32_t> order, const SplatStyle& style,
+                   std::span<const SplatLight> lights, const glm::mat3& normalMatrix,
+                   const CpuGaussianView& view, std::span<const float> depth,
+                   std::vector<std::uint8_t>& out);
+
   /// Threads a frame uses (at least 2).
   int threads() const { return threads_; }
 
   struct Scratch;
 
  private:
+  template <typename Source>
+  void rasterize(const Source& source, std::span<const std::uint32_t> order,
+                 const CpuGaussianView& view, std::span<const float> depth,
+                 std::vector<std::uint8_t>& out);
+
   int threads_;
   std::unique_ptr<Scratch> scratch_;
 };

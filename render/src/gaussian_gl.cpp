@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "gl_program.hpp"
 
@@ -20,6 +21,8 @@ uniform vec2 u_focal;     // fx, fy, pixels
 uniform vec2 u_viewport;  // width, height, pixels
 uniform float u_near;
 uniform float u_opacityScale;
+uniform float u_minAlpha;      // fragments below it are not drawn (1/255; vectors 0.5/255)
+uniform float u_keepIntegral;  // 1: the peak keeps the integrated opacity (QNV vectors)
 out vec2 v_offset;  // pixels from the centre, y up
 flat out vec3 v_conic;
 flat out vec4 v_color;
@@ -33,7 +36,7 @@ void main() {
   float depth = -eye.z;
   gl_Position = vec4(0.0, 0.0, 2.0, 1.0);  // outside the clip volume: nothing drawn
   float opacity = min(t0.w * u_opacityScale, 1.0);
-  if (!(depth >= u_near) || !(opacity >= 1.0 / 255.0)) return;
+  if (!(depth >= u_near) || !(opacity >= u_minAlpha)) return;
   mat3 sigma = mat3(t1.x, t1.y, t1.z, t1.y, t1.w, t2.x, t1.z, t2.x, t2.y);
   mat3 w = mat3(u_modelView);
   w[0].z = -w[0].z; w[1].z = -w[1].z; w[2].z = -w[2].z;  // eye z forward
@@ -47,6 +50,9 @@ void main() {
   float c = dot(j1, cov * j1) + 0.3;
   float det = a * c - b * b;
   if (!(det > 0.0)) return;
+  float keep = sqrt(clamp(((a - 0.3) * (c - 0.3) - b * b) / det, 0.0, 1.0));
+  opacity *= mix(1.0, keep, u_keepIntegral);
+  if (!(opacity >= u_minAlpha)) return;
   float mid = 0.5 * (a + c);
   float radius = ceil(3.0 * sqrt(mid + sqrt(max(0.1, mid * mid - det))));
   vec2 corner = vec2((gl_VertexID & 1) == 0 ? -radius : radius,
@@ -63,90 +69,199 @@ const char* const kGaussianFragmentShader = R"glsl(#version 330 core
 in vec2 v_offset;
 flat in vec3 v_conic;
 flat in vec4 v_color;
+uniform float u_minAlpha;
 out vec4 o_color;
 void main() {
   float power = -0.5 * (v_conic.x * v_offset.x * v_offset.x + v_conic.z * v_offset.y * v_offset.y)
                 - v_conic.y * v_offset.x * v_offset.y;
   if (power > 0.0) discard;
   float alpha = min(0.99, v_color.a * exp(power));
-  if (alpha < 1.0 / 255.0) discard;
+  if (alpha < u_minAlpha) discard;
   o_color = vec4(v_color.rgb * alpha, alpha);  // premultiplied
 }
 )glsl";
 
 }  // namespace
 
-void GaussianGlPass::draw(const splats::GaussianCloud& cloud, std::span<const std::uint32_t> order,
-                          const glm::mat4& modelView, const glm::mat4& projection,
-                          const glm::vec3& eye, const int viewport[4], float nearClip,
-                          float opacityScale, std::uint64_t revision) {
-  if (program_ == 0) {
-    program_ = buildProgram("gaussian splats", kGaussianVertexShader, kGaussianFragmentShader);
-    glGenVertexArrays(1, &vao_);
-    glGenBuffers(1, &orderBuffer_);
-    glGenBuffers(1, &splatBuffer_);
-    glGenBuffers(1, &colorBuffer_);
-    glGenTextures(1, &splatTexture_);
-    glGenTextures(1, &colorTexture_);
-    glBindVertexArray(vao_);
-    glBindBuffer(GL_ARRAY_BUFFER, orderBuffer_);
-    glEnableVertexAttribArray(0);
-    glVertexAttribIPointer(0, 1, GL_UNSIGNED_INT, sizeof(std::uint32_t), nullptr);
-    glVertexAttribDivisor(0, 1);
-    glBindVertexArray(0);
-  }
+void GaussianGlPass::create() {
+  if (program_ != 0) return;
+  program_ = buildProgram("gaussian splats", kGaussianVertexShader, kGaussianFragmentShader);
+  glGenVertexArrays(1, &vao_);
+  glGenBuffers(1, &orderBuffer_);
+  glGenBuffers(1, &splatBuffer_);
+  glGenBuffers(1, &colorBuffer_);
+  glGenTextures(1, &splatTexture_);
+  glGenTextures(1, &colorTexture_);
+  glBindVertexArray(vao_);
+  glBindBuffer(GL_ARRAY_BUFFER, orderBuffer_);
+  glEnableVertexAttribArray(0);
+  glVertexAttribIPointer(0, 1, GL_UNSIGNED_INT, sizeof(std::uint32_t), nullptr);
+  glVertexAttribDivisor(0, 1);
+  glBindVertexArray(0);
+}
+
+void GaussianGlPass::uploadSplats() {
+  glBindBuffer(GL_TEXTURE_BUFFER, splatBuffer_);
+  glBufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(staging_.size() * sizeof(float)),
+               staging_.data(), GL_STATIC_DRAW);
+  glBindTexture(GL_TEXTURE_BUFFER, splatTexture_);
+  glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, splatBuffer_);
+}
+
+void GaussianGlPass::uploadColors() {
+  glBindBuffer(GL_TEXTURE_BUFFER, colorBuffer_);
+  glBufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(colors_.size()), colors_.data(),
+               GL_STREAM_DRAW);
+  glBindTexture(GL_TEXTURE_BUFFER, colorTexture_);
+  glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA8, colorBuffer_);
+}
+
+namespace {
+
+/// Splat i's three texels: centre and opacity, then the covariance's six entries.
+void writeTexels(float* t, const glm::vec3& position, float opacity, const glm::mat3& s) {
+  t[0] = position.x;
+  t[1] = position.y;
+  t[2] = position.z;
+  t[3] = opacity;
+  t[4] = s[0][0];
+  t[5] = s[1][0];
+  t[6] = s[2][0];
+  t[7] = s[1][1];
+  t[8] = s[2][1];
+  t[9] = s[2][2];
+  t[10] = t[11] = 0.0f;
+}
+
+void writeColor(std::uint8_t* out, const glm::vec3& c) {
+  for (int k = 0; k < 3; ++k)
+    out[k] = static_cast<std::uint8_t>(std::clamp(c[k], 0.0f, 1.0f) * 255.0f + 0.5f);
+  out[3] = 255;
+}
+
+}  // namespace
+
+void GaussianGlPass::uploadCloud(const splats::GaussianCloud& cloud, const glm::vec3& eye,
+                                 std::uint64_t revision) {
+  create();
   const std::size_t n = cloud.size();
   if (uploaded_ != &cloud || uploadedSize_ != n || uploadedRevision_ != revision) {
     staging_.resize(n * 12);
-    for (std::size_t i = 0; i < n; ++i) {
-      const glm::mat3 s = splats::covariance(cloud.scales[i], cloud.rotations[i]);
-      float* t = &staging_[i * 12];
-      t[0] = cloud.positions[i].x;
-      t[1] = cloud.positions[i].y;
-      t[2] = cloud.positions[i].z;
-      t[3] = cloud.opacities[i];
-      t[4] = s[0][0];
-      t[5] = s[1][0];
-      t[6] = s[2][0];
-      t[7] = s[1][1];
-      t[8] = s[2][1];
-      t[9] = s[2][2];
-      t[10] = t[11] = 0.0f;
-    }
-    glBindBuffer(GL_TEXTURE_BUFFER, splatBuffer_);
-    glBufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(staging_.size() * sizeof(float)),
-                 staging_.data(), GL_STATIC_DRAW);
-    glBindTexture(GL_TEXTURE_BUFFER, splatTexture_);
-    glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, splatBuffer_);
+    for (std::size_t i = 0; i < n; ++i)
+      writeTexels(&staging_[i * 12], cloud.positions[i], cloud.opacities[i],
+                  splats::covariance(cloud.scales[i], cloud.rotations[i]));
+    uploadSplats();
     uploaded_ = &cloud;
     uploadedSize_ = n;
     uploadedRevision_ = revision;
-    colorEye_ = glm::vec3(NAN);
+    colorKey_.clear();
   }
   // This view's colours: SH along the ray from the camera (once when the cloud has none).
   const bool viewDependent = cloud.shDegree > 0;
-  if (!(colorEye_ == eye) && (viewDependent || std::isnan(colorEye_.x))) {
+  if (colorKey_.empty() || (viewDependent && !(colorEye_ == eye))) {
     colors_.resize(n * 4);
     for (std::size_t i = 0; i < n; ++i) {
       const glm::vec3 toward = cloud.positions[i] - eye;
       const float length = glm::length(toward);
-      const glm::vec3 c =
-          splats::shColor(cloud, i, length > 0.0f ? toward / length : glm::vec3(0.0f, 0.0f, -1.0f));
-      for (int k = 0; k < 3; ++k)
-        colors_[i * 4 + static_cast<std::size_t>(k)] =
-            static_cast<std::uint8_t>(std::clamp(c[k], 0.0f, 1.0f) * 255.0f + 0.5f);
-      colors_[i * 4 + 3] = 255;
+      writeColor(&colors_[i * 4],
+                 splats::shColor(cloud, i,
+                                 length > 0.0f ? toward / length : glm::vec3(0.0f, 0.0f, -1.0f)));
     }
-    glBindBuffer(GL_TEXTURE_BUFFER, colorBuffer_);
-    glBufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(colors_.size()), colors_.data(),
-                 GL_STREAM_DRAW);
-    glBindTexture(GL_TEXTURE_BUFFER, colorTexture_);
-    glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA8, colorBuffer_);
+    uploadColors();
     colorEye_ = eye;
+    colorKey_.assign(1, 0.0f);
   }
-  glBindBuffer(GL_ARRAY_BUFFER, orderBuffer_);
-  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(order.size() * sizeof(std::uint32_t)),
-               order.data(), GL_STREAM_DRAW);
+}
+
+void GaussianGlPass::draw(const splats::GaussianCloud& cloud, std::span<const std::uint32_t> order,
+                          const glm::mat4& modelView, const glm::mat4& projection,
+                          const glm::vec3& eye, const int viewport[4], float nearClip,
+                          float opacityScale, std::uint64_t revision) {
+  uploadCloud(cloud, eye, revision);
+  drawUploaded(order, order.size(), modelView, projection, viewport, nearClip, opacityScale,
+               1.0f / 255.0f, false);
+}
+
+void GaussianGlPass::drawGpuSorted(const splats::GaussianCloud& cloud, std::size_t count,
+                                   const glm::mat4& modelView, const glm::mat4& projection,
+                                   const glm::vec3& eye, const int viewport[4], float nearClip,
+                                   float opacityScale, std::uint64_t revision) {
+  uploadCloud(cloud, eye, revision);
+  drawUploaded({}, std::min(count, cloud.size()), modelView, projection, viewport, nearClip,
+               opacityScale, 1.0f / 255.0f, false);
+}
+
+void GaussianGlPass::drawVectors(std::span<const qnv::DecodedVector> vectors,
+                                 std::uint64_t revision, std::span<const std::uint32_t> order,
+                                 std::size_t count, const SplatStyle& style,
+                                 std::span<const SplatLight> lights, const glm::mat3& normalMatrix,
+                                 const glm::mat4& modelView, const glm::mat4& projection,
+                                 const int viewport[4], float nearClip) {
+  create();
+  const std::size_t n = vectors.size();
+  if (uploaded_ != vectors.data() || uploadedSize_ != n || uploadedRevision_ != revision ||
+      std::memcmp(&uploadedStyle_, &style, sizeof style) != 0) {
+    staging_.resize(n * 12);
+    for (std::size_t i = 0; i < n; ++i) {
+      VectorGaussian g;
+      if (!vectorGaussian(vectors[i], style, g)) g = {};  // opacity 0: not drawn
+      writeTexels(&staging_[i * 12], g.position, g.opacity, g.covariance);
+    }
+    uploadSplats();
+    uploaded_ = vectors.data();
+    uploadedSize_ = n;
+    uploadedRevision_ = revision;
+    uploadedStyle_ = style;
+    colorKey_.clear();
+  }
+  // The flat shading of every vector, again when the lights or the placement change.
+  std::vector<float> key;
+  key.reserve(3 + 9 + 48);
+  key.push_back(static_cast<float>(n));
+  key.push_back(static_cast<float>(revision));
+  key.push_back(style.ambient);
+  for (int c = 0; c < 3; ++c)
+    for (int r = 0; r < 3; ++r) key.push_back(normalMatrix[c][r]);
+  const std::size_t lightCount = std::min<std::size_t>(lights.size(), 8);
+  for (std::size_t i = 0; i < lightCount; ++i)
+    for (int k = 0; k < 3; ++k) {
+      key.push_back(lights[i].direction[k]);
+      key.push_back(lights[i].color[k]);
+    }
+  if (key != colorKey_) {
+    colors_.resize(n * 4);
+    for (std::size_t i = 0; i < n; ++i) {
+      const qnv::DecodedVector& v = vectors[i];
+      const float length = glm::length(normalMatrix * v.normal);
+      const glm::vec3 world = length > 0.0f ? normalMatrix * v.normal / length : glm::vec3(0.0f);
+      writeColor(&colors_[i * 4], shadeSplat(world, glm::vec3(unpackRgba(v.rgba)),
+                                             lights.first(lightCount), style.ambient));
+    }
+    uploadColors();
+    colorKey_ = std::move(key);
+  }
+  drawUploaded(order, order.empty() ? count : order.size(), modelView, projection, viewport,
+               nearClip, 1.0f, splats::kVisiblePeak, true);
+}
+
+void GaussianGlPass::drawUploaded(std::span<const std::uint32_t> order, std::size_t count,
+                                  const glm::mat4& modelView, const glm::mat4& projection,
+                                  const int viewport[4], float nearClip, float opacityScale,
+                                  float minAlpha, bool keepIntegral) {
+  if (count == 0) return;
+  GLuint orderBuffer = orderBuffer_;
+  if (order.empty()) {
+    gpuSort_.sort(splatTexture_, count, modelView);
+    orderBuffer = gpuSort_.order();
+  } else {
+    glBindBuffer(GL_ARRAY_BUFFER, orderBuffer_);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(order.size() * sizeof(std::uint32_t)),
+                 order.data(), GL_STREAM_DRAW);
+  }
+  glBindVertexArray(vao_);
+  glBindBuffer(GL_ARRAY_BUFFER, orderBuffer);
+  glVertexAttribIPointer(0, 1, GL_UNSIGNED_INT, sizeof(std::uint32_t), nullptr);
+  glBindVertexArray(0);
 
   glUseProgram(program_);
   glActiveTexture(GL_TEXTURE0);
@@ -164,13 +279,15 @@ void GaussianGlPass::draw(const splats::GaussianCloud& cloud, std::span<const st
   glUniform2f(uniform(program_, "u_viewport"), w, h);
   glUniform1f(uniform(program_, "u_near"), nearClip);
   glUniform1f(uniform(program_, "u_opacityScale"), opacityScale);
+  glUniform1f(uniform(program_, "u_minAlpha"), minAlpha);
+  glUniform1f(uniform(program_, "u_keepIntegral"), keepIntegral ? 1.0f : 0.0f);
   glEnable(GL_BLEND);
   glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
   glEnable(GL_DEPTH_TEST);
   glDepthMask(GL_FALSE);
   glDisable(GL_CULL_FACE);
   glBindVertexArray(vao_);
-  glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(order.size()));
+  glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(count));
   glBindVertexArray(0);
   glDepthMask(GL_TRUE);
   glDisable(GL_BLEND);
@@ -186,6 +303,8 @@ void GaussianGlPass::release() {
   glDeleteTextures(2, textures);
   program_ = 0;
   uploaded_ = nullptr;
+  colorKey_.clear();
+  gpuSort_.release();
 }
 
 }  // namespace gs::render::detail

@@ -21,6 +21,9 @@
 
 #include <glm/glm.hpp>
 
+#include "gpu_sort.hpp"
+#include "qnv/decoder.hpp"
+#include "render/splat_model.hpp"
 #include "splats/gaussian.hpp"
 
 namespace gs::render::detail {
@@ -41,16 +44,51 @@ class GaussianGlPass {
   void draw(const splats::GaussianCloud& cloud, std::span<const std::uint32_t> order,
             const glm::mat4& modelView, const glm::mat4& projection, const glm::vec3& eye,
             const int viewport[4], float nearClip, float opacityScale, std::uint64_t revision = 0);
+  /// As draw(), the order sorted on the GPU instead (GpuDepthSort, OpenGL 4.3): the first
+  /// `count` splats of the cloud, back to front.
+  void drawGpuSorted(const splats::GaussianCloud& cloud, std::size_t count,
+                     const glm::mat4& modelView, const glm::mat4& projection, const glm::vec3& eye,
+                     const int viewport[4], float nearClip, float opacityScale,
+                     std::uint64_t revision = 0);
+  /// Draws the QNV vectors `order` (indices into `vectors`, farthest first) as the
+  /// flat-disc Gaussians of vectorGaussian under `style`, shaded by shadeSplat with
+  /// `lights` (world directions, at most 8) and normals turned by `normalMatrix` (model to
+  /// world), each peak scaled by the projection's low-pass keep (as the cpu path does),
+  /// fragments below half an 8-bit level not drawn. The vectors are uploaded again when
+  /// their address, size, `revision` or the style changed; their colours when the lights
+  /// or `normalMatrix` changed. An empty `order` draws the first `count` vectors in the
+  /// order the GPU sort makes (GpuDepthSort). Otherwise as draw().
+  void drawVectors(std::span<const qnv::DecodedVector> vectors, std::uint64_t revision,
+                   std::span<const std::uint32_t> order, std::size_t count, const SplatStyle& style,
+                   std::span<const SplatLight> lights, const glm::mat3& normalMatrix,
+                   const glm::mat4& modelView, const glm::mat4& projection, const int viewport[4],
+                   float nearClip);
+  /// Whether the GPU sort can run here (GpuDepthSort::available). Context current.
+  static bool gpuSortAvailable() { return GpuDepthSort::available(); }
   /// Frees every GL object (context current).
   void release();
 
  private:
+  void create();
+  void uploadSplats();  // staging_ to the splat texture buffer
+  void uploadColors();  // colors_ to the colour texture buffer
+  void uploadCloud(const splats::GaussianCloud& cloud, const glm::vec3& eye,
+                   std::uint64_t revision);
+  /// Draws `count` instances in `order`, or, when `order` is empty, in the order the GPU
+  /// sort makes of the first `count` splats.
+  void drawUploaded(std::span<const std::uint32_t> order, std::size_t count,
+                    const glm::mat4& modelView, const glm::mat4& projection, const int viewport[4],
+                    float nearClip, float opacityScale, float minAlpha, bool keepIntegral);
+  GpuDepthSort gpuSort_;
+
   GLuint program_ = 0, vao_ = 0, orderBuffer_ = 0;
   GLuint splatBuffer_ = 0, splatTexture_ = 0, colorBuffer_ = 0, colorTexture_ = 0;
   const void* uploaded_ = nullptr;
   std::size_t uploadedSize_ = 0;
   std::uint64_t uploadedRevision_ = 0;
+  SplatStyle uploadedStyle_;
   glm::vec3 colorEye_{NAN};
+  std::vector<float> colorKey_;  // what the uploaded colours were made for (empty: none)
   std::vector<float> staging_;
   std::vector<std::uint8_t> colors_;
 };

@@ -33,6 +33,21 @@ GLuint compile(const char* name, GLenum stage, const char* source) {
   return shader;
 }
 
+/// `program` after glLinkProgram; deletes it and throws with the log when it did not link.
+GLuint linked(const char* name, GLuint program) {
+  GLint ok = GL_FALSE;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (ok != GL_TRUE) {
+    GLint length = 0;
+    glGetProgramiv(program, GL_INFO_LOG_LENGTH, &length);
+    std::vector<char> log(static_cast<std::size_t>(std::max(length, 1)));
+    glGetProgramInfoLog(program, static_cast<GLsizei>(log.size()), nullptr, log.data());
+    glDeleteProgram(program);
+    throw std::runtime_error(std::string("cannot link the ") + name + " program: " + log.data());
+  }
+  return program;
+}
+
 }  // namespace
 
 GLuint buildProgram(const char* name, const char* vertexSource, const char* fragmentSource,
@@ -55,17 +70,16 @@ GLuint buildProgram(const char* name, const char* vertexSource, const char* frag
   glDeleteShader(vs);
   glDeleteShader(fs);
   if (gs != 0) glDeleteShader(gs);
-  GLint ok = GL_FALSE;
-  glGetProgramiv(program, GL_LINK_STATUS, &ok);
-  if (ok != GL_TRUE) {
-    GLint length = 0;
-    glGetProgramiv(program, GL_INFO_LOG_LENGTH, &length);
-    std::vector<char> log(static_cast<std::size_t>(std::max(length, 1)));
-    glGetProgramInfoLog(program, static_cast<GLsizei>(log.size()), nullptr, log.data());
-    glDeleteProgram(program);
-    throw std::runtime_error(std::string("cannot link the ") + name + " program: " + log.data());
-  }
-  return program;
+  return linked(name, program);
+}
+
+GLuint buildComputeProgram(const char* name, const char* source) {
+  const GLuint cs = compile(name, GL_COMPUTE_SHADER, source);
+  const GLuint program = glCreateProgram();
+  glAttachShader(program, cs);
+  glLinkProgram(program);
+  glDeleteShader(cs);
+  return linked(name, program);
 }
 
 }  // namespace gs::render::detail

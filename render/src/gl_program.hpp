@@ -13,6 +13,10 @@ namespace gs::render::detail {
 GLuint buildProgram(const char* name, const char* vertexSource, const char* fragmentSource,
                     const char* geometrySource = nullptr);
 
+/// Compiles and links a compute program (OpenGL 4.3). Throws std::runtime_error with the
+/// compiler's log (prefixed by `name`) on failure.
+GLuint buildComputeProgram(const char* name, const char* source);
+
 /// Location of uniform `name` in `program` (-1 when the compiler dropped it).
 inline GLint uniform(GLuint program, const char* name) {
   return glGetUniformLocation(program, name);

@@ -177,6 +177,8 @@ bool projectGaussian(const glm::vec3& position, const glm::mat3& sigma, const Pr
   const float c = glm::dot(j1, cj1) + 0.3f;
   const float det = a * c - b * b;
   if (!(det > 0.0f) || !std::isfinite(det)) return false;
+  const float sharp = (a - 0.3f) * (c - 0.3f) - b * b;
+  out.lowPassKeep = std::sqrt(std::clamp(sharp / det, 0.0f, 1.0f));
   out.conic = glm::vec3(c / det, -b / det, a / det);
   const float mid = 0.5f * (a + c);
   const float lambda = mid + std::sqrt(std::max(0.1f, mid * mid - det));

@@ -253,18 +253,23 @@ TEST_CASE("one splat facing the camera: alpha colour over the background", "[ren
                                                         kSize, kSize, kBlue);
   REQUIRE(image.width == kSize);
   REQUIRE(image.height == kSize);
-  // Centre: r = 0, alpha = peak.
-  CHECK(pixelIs(image, kMid, kMid, peak * glm::vec3(1, 0, 0) + (1.0f - peak) * kBlue));
-  // 16 pixels right and up: r from the pixel's ray, alpha = peak exp(-r^2 / 2) (s = 1).
-  const float unitsPerPixel = 2.0f * 10.0f * std::tan(camera.fieldOfView / 2.0f) / kSize;
+  // The EWA projection of a disc of spread s = 1 unit facing the camera at distance 10:
+  // a circular Gaussian of s_px = f / 10 pixels (f the focal length in pixels), widened by
+  // the 0.3-pixel low-pass to s'^2 = s_px^2 + 0.3, its peak scaled by s_px^2 / s'^2 so the
+  // integrated opacity is kept: alpha(d) = peak keep exp(-d^2 / (2 s'^2)), d in pixels.
+  const float focal = 0.5f * kSize / std::tan(camera.fieldOfView / 2.0f);
+  const float spx2 = (focal / 10.0f) * (focal / 10.0f), wide2 = spx2 + 0.3f;
+  const float keep = spx2 / wide2;
+  CHECK(
+      pixelIs(image, kMid, kMid, peak * keep * glm::vec3(1, 0, 0) + (1.0f - peak * keep) * kBlue));
   for (const glm::ivec2 offset : {glm::ivec2(16, 0), glm::ivec2(0, -16), glm::ivec2(-11, 9)}) {
-    const float r = unitsPerPixel * glm::length(glm::vec2(offset));
-    const float alpha = peak * std::exp(-r * r / 2.0f);
+    const float d2 = glm::dot(glm::vec2(offset), glm::vec2(offset));
+    const float alpha = peak * keep * std::exp(-d2 / (2.0f * wide2));
     CHECK(pixelIs(image, kMid + offset.x, kMid + offset.y,
                   alpha * glm::vec3(1, 0, 0) + (1.0f - alpha) * kBlue));
   }
-  // Beyond 3 s = 3 units (about 23.5 pixels): the background exactly.
-  const int beyond = int(std::ceil(3.0f / unitsPerPixel)) + 1;
+  // Beyond the 3-sigma box, ceil(3 s') pixels: the background exactly.
+  const int beyond = int(std::ceil(3.0f * std::sqrt(wide2))) + 1;
   CHECK(pixelIs(image, kMid + beyond, kMid, kBlue, 0));
   CHECK(pixelIs(image, kMid, kMid - beyond, kBlue, 0));
   CHECK(pixelIs(image, 0, 0, kBlue, 0));
@@ -274,7 +279,7 @@ TEST_CASE("one splat facing the camera: alpha colour over the background", "[ren
   const std::vector<DecodedVector> dim = {vec({0, 0, 0}, {0, 0, 1}, 0x800000ffu)};
   const Image unlit =
       gs::render::renderSplatsReference(dim, volumeStyle(1.0f), {}, camera, kSize, kSize, kBlue);
-  const float a = 128.0f / 255.0f;
+  const float a = 128.0f / 255.0f * keep;
   CHECK(pixelIs(unlit, kMid, kMid, a * glm::vec3(0.2f, 0, 0) + (1.0f - a) * kBlue));
 }
 

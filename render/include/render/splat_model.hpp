@@ -1,6 +1,8 @@
-// How one decoded QNV vector becomes a textured square patch (Nagasawa, "Beyond VRML",
-// sections 3.1 and 3.5), shared by the OpenGL splat pass and the CPU reference of
-// equation (1) so both draw exactly the same splats. Units: world units (metres), radians.
+// How one decoded QNV vector becomes a splat of the one splat model (splats/gaussian.hpp,
+// docs/splats.md): the flat-disc Gaussian across the vector with the paper's opacity
+// profile (Nagasawa, "Beyond VRML", sections 3.1 and 3.5), shaded flat by the lights.
+// Shared by the CPU rasterizer, the GL pass and the CPU reference of equation (1), so all
+// draw exactly the same splats. Units: world units (metres), radians.
 #pragma once
 
 #include <algorithm>
@@ -40,6 +42,11 @@ struct SplatStyle {
     return s;
   }
 };
+
+/// RGBA8 packed little-endian (R in the low byte) to 0..1 floats.
+inline glm::vec4 unpackRgba(std::uint32_t rgba) {
+  return glm::vec4(rgba & 255u, (rgba >> 8) & 255u, (rgba >> 16) & 255u, rgba >> 24) / 255.0f;
+}
 
 /// Half-size of the square patch in Gaussian standard deviations: beyond 3 sigma the
 /// profile is below 1.2% of its peak and is cut to zero.
@@ -89,9 +96,46 @@ inline glm::vec3 shadeSplat(const glm::vec3& normal, const glm::vec3& rgb,
   return glm::min(rgb * light, glm::vec3(1.0f));
 }
 
-/// RGBA8 packed little-endian (R in the low byte) to 0..1 floats.
-inline glm::vec4 unpackRgba(std::uint32_t rgba) {
-  return glm::vec4(rgba & 255u, (rgba >> 8) & 255u, (rgba >> 16) & 255u, rgba >> 24) / 255.0f;
+/// The largest alpha one Gaussian fragment has (Kerbl et al. 2023's 0.99: a splat never
+/// closes a pixel alone).
+inline constexpr float kGaussianMaxAlpha = 0.99f;
+
+/// A QNV vector as a 3D Gaussian of the splat model (issue 40 item 1): centre the vector's
+/// position, covariance spread^2 (I - n n^T) (a flat disc across the unit normal n whose
+/// in-plane profile is splatProfile's exp(-r^2 / (2 spread^2))), peak opacity the profile's
+/// peak. Model coordinates. Projected as every Gaussian is (splats::projectGaussian: EWA,
+/// 0.3-pixel low-pass, 3-sigma box); a vector's opacity keeps its integrated value through
+/// the low-pass (ProjectedGaussian::lowPassKeep), as the paper's profile conserves area.
+struct VectorGaussian {
+  glm::vec3 position{0.0f};
+  glm::mat3 covariance{0.0f};
+  float opacity = 0.0f;                // 0..1
+  glm::vec3 normal{0.0f, 0.0f, 1.0f};  // unit, model coordinates
+  glm::vec3 rgb{1.0f};                 // the vector's colour before shading, 0..1
+};
+
+/// Fills `out` for `vector` under `style`. False when the vector draws nothing: a zero or
+/// non-finite normal or position, a peak below splats::kVisiblePeak (half an 8-bit level),
+/// a spread that is not positive and finite.
+inline bool vectorGaussian(const qnv::DecodedVector& vector, const SplatStyle& style,
+                           VectorGaussian& out) {
+  const float length = glm::length(vector.normal);
+  if (!(length > 0.0f) || !std::isfinite(length)) return false;
+  if (!std::isfinite(vector.position.x) || !std::isfinite(vector.position.y) ||
+      !std::isfinite(vector.position.z))
+    return false;
+  const glm::vec4 rgba = unpackRgba(vector.rgba);
+  const SplatProfile profile = splatProfile(style, vector.magnitude, rgba.a);
+  if (!(profile.peak >= splats::kVisiblePeak) || !(profile.spread > 0.0f) ||
+      !std::isfinite(profile.spread))
+    return false;
+  out.normal = vector.normal / length;
+  const float s2 = profile.spread * profile.spread;
+  out.covariance = s2 * (glm::mat3(1.0f) - glm::outerProduct(out.normal, out.normal));
+  out.position = vector.position;
+  out.opacity = std::min(profile.peak, 1.0f);
+  out.rgb = glm::vec3(rgba);
+  return true;
 }
 
 /// Two unit vectors spanning the patch plane perpendicular to `normal` (unit): the same

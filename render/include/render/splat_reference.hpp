@@ -1,28 +1,26 @@
 // The CPU reference of the splat pass: a plain implementation of equation (1) of
-// Nagasawa, "Beyond VRML", section 3.1, used to test the OpenGL splat pass and the
-// splat model (splat_model.hpp). Pure CPU code, no OpenGL; slow but exact.
+// Nagasawa, "Beyond VRML", section 3.1, over the one splat model (splats/gaussian.hpp,
+// docs/splats.md), used to test the cpu and GL paths. Pure CPU code, no OpenGL; slow but
+// exact.
 //
-// Definitions (the GPU pass follows them exactly):
+// Definitions (both paths follow them):
 //
-// - Camera: P = projectionMatrix(camera, width / height) and V = viewMatrix(camera).
-//   Pixel (x, y), y counted from the top row, has its centre at (x + 0.5, y + 0.5), i.e.
-//   NDC (2 (x + 0.5) / width - 1, 1 - 2 (y + 0.5) / height); its ray leaves the eye (the
-//   eye-space origin: a perspective camera) through the point of the near plane that P
-//   maps to that NDC position.
-// - Splat k of vector k: centre x_k = position, unit normal n_k = normalize(normal) (a
-//   zero normal draws nothing), axes t_k, b_k = splatAxes(n_k); profile =
-//   splatProfile(style, magnitude, transferAlpha) with transferAlpha =
-//   unpackRgba(rgba).a; colour c_k = shadeSplat(n_k, unpackRgba(rgba).rgb, lights,
-//   style.ambient), flat over the splat.
-// - alpha_k(u) = profile.alphaAt(r), r = |p - x_k|, where p is the intersection of the
-//   ray of pixel u with the plane through x_k perpendicular to n_k. alpha_k(u) = 0 when
-//   the ray is parallel to the plane, when p is behind the eye or outside the clip range
-//   (eye depth -p_eye.z below camera.nearClip or above camera.farClip: what the GPU's
-//   clipping of the patch does), or when p is outside the square patch
-//   |(p - x_k) . t_k| <= 3 s and |(p - x_k) . b_k| <= 3 s (s = profile.spread,
-//   kSplatExtent = 3; the disk cut of alphaAt lies inside it anyway).
+// - Camera: P = projectionMatrix(camera, width / height) and V = viewMatrix(camera); the
+//   focal lengths fx = P[0][0] width / 2, fy = P[1][1] height / 2 (pixels). Pixel (x, y),
+//   y counted from the top row, has its centre at (x + 0.5, height - y - 0.5) in the y-up
+//   pixel frame of splats::projectGaussian.
+// - Splat k of vector k: vectorGaussian(vector, style) (splat_model.hpp): centre x_k, the
+//   flat-disc covariance spread^2 (I - n n^T), peak o_k (a vector that draws nothing is
+//   skipped); colour c_k = shadeSplat(n_k, rgb, lights, style.ambient), flat over the
+//   splat.
+// - Its projection: splats::projectGaussian (EWA: Sigma' = J W Sigma W^T J^T + 0.3 px, the
+//   Jacobian at the centre, centres outside [nearClip, farClip] not drawn), the peak scaled
+//   by lowPassKeep so that the integrated opacity survives the low-pass.
+// - alpha_k(u) = min(0.99, o_k keep exp(power)), power = -1/2 d^T Sigma'^-1 d for the
+//   pixel's offset d from the projected centre, inside the 3-sigma box, power in (-8, 0];
+//   alpha below splats::kVisiblePeak (half an 8-bit level) is 0.
 // - Depth order: the eye-space z of the centres x_k (DepthSorter), one order for the
-//   whole image, not a per-pixel depth: the GPU sorts and draws whole splats too.
+//   whole image, not a per-pixel depth: every path sorts and draws whole splats too.
 // - Compositing, per pixel, front to back: C = 0, T = 1; for each splat nearest first
 //   C += T alpha_k c_k, T *= 1 - alpha_k; finally C += T background. That is
 //   C(u) = sum_k c_k alpha_k(u) prod_{m in front of k} (1 - alpha_m(u)) + background T.
@@ -31,18 +29,13 @@
 // - Output: opaque RGBA8 (alpha 255), rows top to bottom as Image, each channel
 //   round(255 clamp(C, 0, 1)).
 //
-// Arithmetic is float per pixel (the accumulation too). Expected agreement with the GPU:
-// the GPU blends in an 8-bit framebuffer, rounding colour and transmittance to 1/255 at
-// every splat, and rasterizes in its own float precision, so where many splats overlap
-// its result can differ from this reference by a few levels per channel (compare with
-// compareImages and a channel tolerance of about 8, not for equality); where at most one
-// or two splats cover a pixel it agrees within 1 or 2 levels. Front to back and back to
-// front here agree within float rounding (1e-5 in 0..1, at most 1 level after rounding).
+// Arithmetic is float per pixel (the accumulation too). The cpu path composites in float
+// too (a pixel stops at T < 1e-4) and agrees within 1-2 levels; the GL path blends in an
+// 8-bit framebuffer, rounding at every splat, so where many splats overlap it differs by a
+// few levels per channel (compare with compareImages and a channel tolerance of about 8).
+// Front to back and back to front here agree within float rounding.
 //
-// Implementation: splat-centric. Each splat's square patch is clipped against the near
-// plane, its corners projected to find the pixel bounding box (clipped to the viewport),
-// and only the pixels in that box are evaluated. Cost: O(width height) + the sum over
-// splats of their box areas; single thread.
+// Cost: O(width height) + the sum over splats of their 3-sigma boxes; single thread.
 #pragma once
 
 #include <cstddef>

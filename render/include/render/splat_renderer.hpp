@@ -1,8 +1,9 @@
-// The splat pass (Nagasawa, "Beyond VRML", sections 3.1 and 3.5): every decoded QNV
-// vector becomes a square patch perpendicular to its normal, textured with the Gaussian
-// opacity profile of render/splat_model.hpp, shaded flat by the lights, and composited in
-// view-depth order as equation (1) says. OpenGL 3.3 core; the same code draws into a
-// window or an OSMesa framebuffer.
+// The splat pass (Nagasawa, "Beyond VRML", sections 3.1 and 3.5) over the one splat model
+// (splats/gaussian.hpp, docs/splats.md): a 3D Gaussian splatting scene's anisotropic
+// Gaussians, and every decoded QNV vector as the flat-disc Gaussian across its normal with
+// the paper's opacity profile (render/splat_model.hpp, vectorGaussian), shaded flat by the
+// lights; each projected by EWA and composited in view-depth order as equation (1) says.
+// OpenGL 3.3 core; the same code draws into a window or an OSMesa framebuffer.
 #pragma once
 
 #include <cstddef>
@@ -119,46 +120,55 @@ struct SplatSet {
   void computeBounds();
 };
 
-/// Compositing direction. Both give the same image up to 8-bit rounding:
-/// backToFront blends each splat over the framebuffer (C = a c + (1 - a) C);
-/// frontToBack accumulates under an off-screen layer (C += T a c, T *= 1 - a) that is
-/// then composited over the framebuffer.
+/// Whether the scene's depth hides splats. backToFront: each splat is depth-tested at its
+/// centre against the framebuffer's depth (the GL path blends it over the framebuffer, C =
+/// a c + (1 - a) C, farthest first; the cpu path composites front to back and reads the
+/// depth back). frontToBack: nothing hides the splats (the GL path still blends back to
+/// front, with an empty depth buffer's result; the cpu path composites front to back,
+/// C += T a c, T *= 1 - a). Both give the same image up to 8-bit rounding.
 enum class SplatBlend { backToFront, frontToBack };
 
-/// How the pass turns a vector into pixels. All shade the same splats (the picture agrees
-/// with the CPU reference of equation (1) on each); they differ in speed
+/// How the pass turns splats into pixels. Both draw the same model (the picture agrees with
+/// the CPU reference of equation (1), splat_reference.hpp); they differ in speed
 /// (docs/rendering.md, bench_splats).
 enum class SplatPath {
-  /// One point sprite per splat covering its projected patch, culled outside the view;
-  /// the fragment shader intersects each pixel's ray with the patch plane. A view where
-  /// some patch crosses the near plane or needs a sprite larger than the largest point
-  /// size is drawn with `geometry` instead (SplatStatistics::path says which ran).
+  /// The GL path (src/gaussian_gl.hpp): one instanced quad per Gaussian, projected in the
+  /// vertex shader, back to front in the CPU's radix-sort order. `points` is an older name
+  /// of it (until 2026-11 a point-sprite path for QNV vectors); statistics report
+  /// `geometry`.
   points,
-  /// A geometry shader expands each point into its square patch (two triangles).
+  /// The GL path, as `points`.
   geometry,
-  /// A multi-threaded CPU rasterizer (src/splat_cpu.hpp) composites the splats front to
+  /// The GL path with its depth order sorted on the GPU (src/gpu_sort.hpp: a radix sort in
+  /// OpenGL 4.3 compute shaders; the order never comes back to the CPU). Where the context
+  /// lacks compute shaders it draws as `geometry` (SplatStatistics::path says which ran).
+  gpu,
+  /// A multi-threaded CPU rasterizer (src/gaussian_cpu.hpp) composites the splats front to
   /// back into a premultiplied RGBA8 image, depth-tested against the framebuffer's depth
   /// (read once per draw), then drawn as one textured quad over the framebuffer. The
   /// fastest path where GL itself runs on the CPU (llvmpipe, softpipe).
   cpu,
-  /// `cpu` when the GL renderer (GL_RENDERER) is llvmpipe or softpipe, else `geometry`;
-  /// resolved at the first draw. Only a setting: SplatStatistics::path is never automatic.
+  /// `cpu` when the GL renderer (GL_RENDERER) is llvmpipe or softpipe, else `gpu` (or
+  /// `geometry` without compute shaders); resolved at the first draw. Only a setting:
+  /// SplatStatistics::path is never automatic.
   automatic,
 };
 
-/// "points", "geometry", "cpu" or "auto"; parseSplatPath returns false for any other text.
+/// "points", "geometry", "gpu", "cpu" or "auto"; parseSplatPath returns false for any other
+/// text.
 const char* splatPathName(SplatPath path);
 bool parseSplatPath(const char* text, SplatPath& path);
 /// What `automatic` means for a GL_RENDERER string: `cpu` when it contains "llvmpipe" or
-/// "softpipe", else `geometry` (a null string: `geometry`).
+/// "softpipe", else `gpu` (a null string: `gpu`); SplatRenderer draws `gpu` as `geometry`
+/// where compute shaders are missing.
 SplatPath automaticSplatPath(const char* glRenderer);
 
 /// What the last draw() did.
 struct SplatStatistics {
-  std::size_t splats = 0;              // vectors drawn
-  bool sorted = false;                 // whether the view moved and the depth sort ran
-  double sortSeconds = 0.0;            // CPU time of that sort
-  SplatPath path = SplatPath::points;  // the path that drew (never automatic)
+  std::size_t splats = 0;                // vectors drawn
+  bool sorted = false;                   // whether the view moved and the depth sort ran
+  double sortSeconds = 0.0;              // CPU time of that sort
+  SplatPath path = SplatPath::geometry;  // the path that drew (cpu, geometry or gpu)
 };
 
 /// GPU resources for drawing splat sets. Create, draw and destroy with the same context
@@ -192,17 +202,13 @@ class SplatRenderer {
   void release();
 
  private:
-  /// The cpu path of draw(), after the depth sort (front to back, in gpu_->order).
-  /// draw() for a set of Gaussians: front-to-back order, then the CPU rasterizer
-  /// (src/gaussian_cpu.hpp) on llvmpipe, or the GL program (src/gaussian_gl.hpp).
+  /// draw() for a set of Gaussians: a prefix or its tree's cut, front-to-back order, then
+  /// the CPU rasterizer (src/gaussian_cpu.hpp) or the GL pass (src/gaussian_gl.hpp).
   void drawGaussians(const SplatSet& set, std::size_t count, const glm::mat4& model,
                      const scene::Camera& camera, float aspect, SplatBlend blend,
                      const SplatStyle& style);
-  /// Puts the premultiplied RGBA8 image of the cpu paths over the framebuffer's viewport.
+  /// Puts the premultiplied RGBA8 image of the cpu path over the framebuffer's viewport.
   void drawImage(int width, int height);
-  void drawCpu(const SplatSet& set, std::size_t count, const glm::mat4& model,
-               const glm::mat4& modelView, const scene::Camera& camera, const glm::mat4& projection,
-               std::span<const SplatLight> lights, SplatBlend blend, const SplatStyle& style);
 
   struct Gpu;
   std::unique_ptr<Gpu> gpu_;

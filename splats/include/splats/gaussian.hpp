@@ -129,6 +129,11 @@ struct ProjectedGaussian {
   glm::vec3 conic{0.0f};
   glm::vec2 extent{0.0f};  // half-size of the 3-sigma box, pixels, per axis
   float depth = 0.0f;      // eye depth of the centre (positive in front), scene units
+  /// sqrt(det(Sigma' without the low-pass) / det(Sigma')), 0..1: the share of the peak
+  /// opacity that keeps a splat's integrated opacity through the 0.3-pixel low-pass
+  /// (Yu et al. 2024, Mip-Splatting, eq. 13: the "antialiased" mode). 1 for a splat much
+  /// wider than a pixel; used for QNV vectors (render/splat_model.hpp), not for captures.
+  float lowPassKeep = 1.0f;
 };
 
 /// The viewing transform of a projection: eye = view * model position, perspective with
