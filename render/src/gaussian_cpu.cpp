@@ -27,6 +27,8 @@ struct Prepared {
   float cx, cy;        // centre, pixels (pixel i's centre at i + 0.5)
   float ca, cb, cc;    // conic: power = -0.5 (ca dx^2 + cc dy^2) - cb dx dy
   float opacity;       // 0..1
+  float minAlpha;      // fragments below it are not drawn
+  float cut;           // the least power drawn: max(-8, ln(minAlpha / opacity)) less 0.01
   float depth;         // eye depth of the centre
   float r, g, b;       // colour (sRGB, >= 0)
   int x0, y0, x1, y1;  // pixel box, inclusive, inside the viewport
@@ -39,8 +41,7 @@ struct Covariance6 {
 
 using Tile = TileBuffers<kTile>;
 
-void composite(const Prepared p, float minAlpha, int tx0, int ty0, int tw, int th, Tile& tile,
-               int& live) {
+void composite(const Prepared p, int tx0, int ty0, int tw, int th, Tile& tile, int& live) {
   const int xs = std::max(p.x0, tx0), xe = std::min(p.x1, tx0 + tw - 1);
   const int ys = std::max(p.y0, ty0), ye = std::min(p.y1, ty0 + th - 1);
   const F4 lane = {0.5f, 1.5f, 2.5f, 3.5f};
@@ -48,8 +49,22 @@ void composite(const Prepared p, float minAlpha, int tx0, int ty0, int tw, int t
     const float dy = static_cast<float>(y) + 0.5f - p.cy;
     const float rowC = -0.5f * p.cc * dy * dy;
     const float rowB = -p.cb * dy;
+    // The row's span where the power reaches the cut (elsewhere alpha is below minAlpha or
+    // past the -8 cut: nothing is drawn): -0.5 ca dx^2 + rowB dx + rowC >= cut between
+    // the roots (rowB -+ sqrt(rowB^2 + 2 ca (rowC - cut))) / ca, one pixel of margin (each
+    // pixel is still tested exactly below). Anisotropic and faint splats skip most of
+    // their 3-sigma box.
+    const float disc = rowB * rowB + 2.0f * p.ca * (rowC - p.cut);
+    if (!(disc >= 0.0f)) continue;
+    const float root = std::sqrt(disc);
+    const float from = p.cx - 0.5f + (rowB - root) / p.ca;
+    const float to = p.cx - 0.5f + (rowB + root) / p.ca;
+    if (!(to >= static_cast<float>(xs) - 1.0f) || !(from <= static_cast<float>(xe) + 1.0f))
+      continue;
+    const int rowStart = std::max(xs, static_cast<int>(std::floor(from)) - 1);
+    const int rowEnd = std::min(xe, static_cast<int>(std::ceil(to)) + 1);
     const int row = (y - ty0) * kTile;
-    for (int x = tx0 + ((xs - tx0) & ~3); x <= xe; x += 4) {
+    for (int x = tx0 + ((rowStart - tx0) & ~3); x <= rowEnd; x += 4) {
       const auto i = static_cast<std::size_t>(row + x - tx0);
       const F4 transmittance = load4(&tile.t[i]);
       const I4 open = transmittance > kSaturated;
@@ -62,7 +77,7 @@ void composite(const Prepared p, float minAlpha, int tx0, int ty0, int tw, int t
           column & (power <= 0.0f) & (power > -8.0f) & open & (p.depth <= load4(&tile.limit[i]));
       F4 alpha = p.opacity * exp4(select4(inside, power));
       alpha = alpha < kMaxAlpha ? alpha : kMaxAlpha;
-      alpha = select4(inside & (alpha >= minAlpha), alpha);
+      alpha = select4(inside & (alpha >= p.minAlpha), alpha);
       const F4 weight = transmittance * alpha;
       store4(&tile.r[i], load4(&tile.r[i]) + weight * p.r);
       store4(&tile.g[i], load4(&tile.g[i]) + weight * p.g);
@@ -244,14 +259,27 @@ void CpuGaussianRasterizer::rasterize(const Source& source, std::span<const std:
       splats::ProjectedGaussian g;
       if (!splats::projectGaussian(in.position, in.sigma, pv, g)) continue;
       Prepared prepared;
-      prepared.opacity = Source::keepIntegral ? in.opacity * g.lowPassKeep : in.opacity;
-      if (!(prepared.opacity >= minAlpha)) continue;
-      // The box of pixels whose centres lie within the 3-sigma square.
-      prepared.x0 = std::max(0, static_cast<int>(std::floor(g.center.x - g.extent.x)));
-      prepared.x1 = std::min(view.width - 1, static_cast<int>(std::floor(g.center.x + g.extent.x)));
-      prepared.y0 = std::max(0, static_cast<int>(std::floor(g.center.y - g.extent.y)));
-      prepared.y1 =
-          std::min(view.height - 1, static_cast<int>(std::floor(g.center.y + g.extent.y)));
+      // A vector's peak scaled to keep its integral, and its fragments' cut with it: a
+      // fragment is drawn where the unfiltered profile would reach minAlpha, so that the
+      // many faint fragments of far sub-pixel vectors add up to what their point-sampled
+      // peaks did (docs/splats.md, "One model").
+      const float keep = Source::keepIntegral ? g.lowPassKeep : 1.0f;
+      prepared.opacity = in.opacity * keep;
+      prepared.minAlpha = minAlpha * keep;
+      if (!(prepared.opacity >= prepared.minAlpha) || !(prepared.opacity > 0.0f)) continue;
+      // The box of pixels of the 3-sigma square (as Kerbl et al.'s), narrowed to the box of
+      // the ellipse where the power reaches the cut (the 2D covariance's diagonal times
+      // -2 cut, one pixel of margin): no pixel outside it is drawn.
+      prepared.cut = std::max(-8.0f, std::log(prepared.minAlpha / prepared.opacity)) - 0.01f;
+      const float conicDet = g.conic.x * g.conic.z - g.conic.y * g.conic.y;
+      const float reachX = std::sqrt(-2.0f * prepared.cut * g.conic.z / conicDet) + 1.0f;
+      const float reachY = std::sqrt(-2.0f * prepared.cut * g.conic.x / conicDet) + 1.0f;
+      const float ex = std::isfinite(reachX) ? std::min(g.extent.x, reachX) : g.extent.x;
+      const float ey = std::isfinite(reachY) ? std::min(g.extent.y, reachY) : g.extent.y;
+      prepared.x0 = std::max(0, static_cast<int>(std::floor(g.center.x - ex)));
+      prepared.x1 = std::min(view.width - 1, static_cast<int>(std::floor(g.center.x + ex)));
+      prepared.y0 = std::max(0, static_cast<int>(std::floor(g.center.y - ey)));
+      prepared.y1 = std::min(view.height - 1, static_cast<int>(std::floor(g.center.y + ey)));
       if (prepared.x0 > prepared.x1 || prepared.y0 > prepared.y1) continue;
       glm::vec3 color;
       if (!source.color(index, in, color)) continue;
@@ -280,7 +308,7 @@ void CpuGaussianRasterizer::rasterize(const Source& source, std::span<const std:
       for (int c = 0; c < chunks && live > 0; ++c) {
         for (const Prepared& binned :
              s.bins[static_cast<std::size_t>(c)][static_cast<std::size_t>(t)]) {
-          composite(binned, minAlpha, tx0, ty0, tw, th, tile, live);
+          composite(binned, tx0, ty0, tw, th, tile, live);
           if (live <= 0) break;
         }
       }

@@ -26,6 +26,7 @@ uniform float u_keepIntegral;  // 1: the peak keeps the integrated opacity (QNV 
 out vec2 v_offset;  // pixels from the centre, y up
 flat out vec3 v_conic;
 flat out vec4 v_color;
+flat out float v_minAlpha;  // u_minAlpha scaled as the peak (QNV vectors)
 
 void main() {
   int i = int(a_index);
@@ -51,8 +52,9 @@ void main() {
   float det = a * c - b * b;
   if (!(det > 0.0)) return;
   float keep = sqrt(clamp(((a - 0.3) * (c - 0.3) - b * b) / det, 0.0, 1.0));
-  opacity *= mix(1.0, keep, u_keepIntegral);
-  if (!(opacity >= u_minAlpha)) return;
+  keep = mix(1.0, keep, u_keepIntegral);
+  opacity *= keep;
+  if (!(opacity > 0.0)) return;
   float mid = 0.5 * (a + c);
   float radius = ceil(3.0 * sqrt(mid + sqrt(max(0.1, mid * mid - det))));
   vec2 corner = vec2((gl_VertexID & 1) == 0 ? -radius : radius,
@@ -62,6 +64,7 @@ void main() {
   v_offset = corner;
   v_conic = vec3(c, -b, a) / det;
   v_color = vec4(texelFetch(u_colors, i).rgb, opacity);
+  v_minAlpha = u_minAlpha * keep;
 }
 )glsl";
 
@@ -69,14 +72,14 @@ const char* const kGaussianFragmentShader = R"glsl(#version 330 core
 in vec2 v_offset;
 flat in vec3 v_conic;
 flat in vec4 v_color;
-uniform float u_minAlpha;
+flat in float v_minAlpha;
 out vec4 o_color;
 void main() {
   float power = -0.5 * (v_conic.x * v_offset.x * v_offset.x + v_conic.z * v_offset.y * v_offset.y)
                 - v_conic.y * v_offset.x * v_offset.y;
   if (power > 0.0) discard;
   float alpha = min(0.99, v_color.a * exp(power));
-  if (alpha < u_minAlpha) discard;
+  if (alpha < v_minAlpha) discard;
   o_color = vec4(v_color.rgb * alpha, alpha);  // premultiplied
 }
 )glsl";

@@ -46,7 +46,8 @@ std::vector<glm::vec3> compositeSplats(std::span<const qnv::DecodedVector> vecto
     splats::ProjectedGaussian p;
     if (!splats::projectGaussian(g.position, g.covariance, view, p)) continue;
     const float opacity = g.opacity * p.lowPassKeep;
-    if (!(opacity >= splats::kVisiblePeak)) continue;
+    const float minAlpha = splats::kVisiblePeak * p.lowPassKeep;
+    if (!(opacity > 0.0f)) continue;
     const glm::vec3 c = shadeSplat(g.normal, g.rgb, lights, style.ambient);
     // The 3-sigma box, pixel centres (i + 0.5, j + 0.5) in a y-up frame.
     const int x0 = std::max(0, static_cast<int>(std::floor(p.center.x - p.extent.x)));
@@ -61,7 +62,7 @@ std::vector<glm::vec3> compositeSplats(std::span<const qnv::DecodedVector> vecto
             -0.5f * (p.conic.x * dx * dx + p.conic.z * dy * dy) - p.conic.y * dx * dy;
         if (!(power <= 0.0f) || !(power > -8.0f)) continue;
         const float alpha = std::min(kGaussianMaxAlpha, opacity * std::exp(power));
-        if (!(alpha >= splats::kVisiblePeak)) continue;
+        if (!(alpha >= minAlpha)) continue;
         const std::size_t at = static_cast<std::size_t>(height - 1 - yUp) * width + x;
         if (frontToBack) {
           color[at] += transmittance[at] * alpha * c;

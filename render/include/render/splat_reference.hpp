@@ -18,7 +18,8 @@
 //   by lowPassKeep so that the integrated opacity survives the low-pass.
 // - alpha_k(u) = min(0.99, o_k keep exp(power)), power = -1/2 d^T Sigma'^-1 d for the
 //   pixel's offset d from the projected centre, inside the 3-sigma box, power in (-8, 0];
-//   alpha below splats::kVisiblePeak (half an 8-bit level) is 0.
+//   alpha below keep times splats::kVisiblePeak (half an 8-bit level) is 0: the cut
+//   follows the peak, so where the unfiltered profile o_k exp(power) reaches half a level.
 // - Depth order: the eye-space z of the centres x_k (DepthSorter), one order for the
 //   whole image, not a per-pixel depth: every path sorts and draws whole splats too.
 // - Compositing, per pixel, front to back: C = 0, T = 1; for each splat nearest first
