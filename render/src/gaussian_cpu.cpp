@@ -49,22 +49,8 @@ void composite(const Prepared p, int tx0, int ty0, int tw, int th, Tile& tile, i
     const float dy = static_cast<float>(y) + 0.5f - p.cy;
     const float rowC = -0.5f * p.cc * dy * dy;
     const float rowB = -p.cb * dy;
-    // The row's span where the power reaches the cut (elsewhere alpha is below minAlpha or
-    // past the -8 cut: nothing is drawn): -0.5 ca dx^2 + rowB dx + rowC >= cut between
-    // the roots (rowB -+ sqrt(rowB^2 + 2 ca (rowC - cut))) / ca, one pixel of margin (each
-    // pixel is still tested exactly below). Anisotropic and faint splats skip most of
-    // their 3-sigma box.
-    const float disc = rowB * rowB + 2.0f * p.ca * (rowC - p.cut);
-    if (!(disc >= 0.0f)) continue;
-    const float root = std::sqrt(disc);
-    const float from = p.cx - 0.5f + (rowB - root) / p.ca;
-    const float to = p.cx - 0.5f + (rowB + root) / p.ca;
-    if (!(to >= static_cast<float>(xs) - 1.0f) || !(from <= static_cast<float>(xe) + 1.0f))
-      continue;
-    const int rowStart = std::max(xs, static_cast<int>(std::floor(from)) - 1);
-    const int rowEnd = std::min(xe, static_cast<int>(std::ceil(to)) + 1);
     const int row = (y - ty0) * kTile;
-    for (int x = tx0 + ((rowStart - tx0) & ~3); x <= rowEnd; x += 4) {
+    for (int x = tx0 + ((xs - tx0) & ~3); x <= xe; x += 4) {
       const auto i = static_cast<std::size_t>(row + x - tx0);
       const F4 transmittance = load4(&tile.t[i]);
       const I4 open = transmittance > kSaturated;
