@@ -1,4 +1,5 @@
-// Splat pass throughput on the headless path (OSMesa), both SplatPaths (GL, cpu) in one run:
+// Splat pass throughput on the headless path (OSMesa), the three SplatPaths (geometry: GL with
+// the CPU's sort; gpu: GL with the compute-shader sort; cpu) in one run:
 // M splats/s of a whole frame (depth sort, upload of the order, draw, glFinish) for
 // synthetic sphere shells of a few sizes and for .qnv files given on the command line
 // (e.g. the bunny and CThead's top 9.1%, docs/rendering.md), each seen whole by a fitted
@@ -15,7 +16,7 @@
 //   bench_splats [WxH] [--millions 1,4] [--frames N] [--path P] [--distances 1.5,3,12]
 //                [FILE.qnv|SCENE ...]
 //   (SCENE: a Gaussian splatting scene, docs/splats.md: .ply, .spz, .splat, .sog, .glb ...)
-//   (default 512x512; --path geometry|cpu measures only that path)
+//   (default 512x512; --path geometry|gpu|cpu measures only that path)
 #include <glad/gl.h>
 
 #include <algorithm>
@@ -125,7 +126,8 @@ void reportCuts(const char* name, const render::SplatSet& set, int width, int he
   scene::Camera direction;
   const scene::Camera fitted = scene::fitCamera(set.bounds, aspect, direction);
   const glm::vec3 back = -fitted.forward();
-  const render::SplatPath paths[2] = {render::SplatPath::geometry, render::SplatPath::cpu};
+  const render::SplatPath paths[3] = {render::SplatPath::geometry, render::SplatPath::gpu,
+                                      render::SplatPath::cpu};
   for (const render::SplatPath path : paths) {
     if (!only.empty() && only != render::splatPathName(path)) continue;
     for (const double d : distances) {
@@ -149,9 +151,10 @@ void reportCuts(const char* name, const render::SplatSet& set, int width, int he
 
 void report(const char* name, const render::SplatSet& set, int width, int height, int frames) {
   const double n = static_cast<double>(set.size());
-  constexpr int kPaths = 2;
+  constexpr int kPaths = 3;
   Figure figures[kPaths];
-  const render::SplatPath paths[kPaths] = {render::SplatPath::geometry, render::SplatPath::cpu};
+  const render::SplatPath paths[kPaths] = {render::SplatPath::geometry, render::SplatPath::gpu,
+                                           render::SplatPath::cpu};
   for (int i = 0; i < kPaths; ++i) {
     if (!only.empty() && only != render::splatPathName(paths[i])) continue;  // --path
     figures[i] = measure(set, paths[i], width, height, frames);
@@ -165,8 +168,10 @@ void report(const char* name, const render::SplatSet& set, int width, int height
         name, n, render::splatPathName(paths[i]), f.wall, n / f.wall / 1e6, f.cpu, f.sort, "");
   }
   if (!only.empty()) return;
-  std::printf("%-14s cpu / geometry: %.2fx (wall), %.2fx (cpu)\n", name,
-              figures[0].wall / figures[1].wall, figures[0].cpu / figures[1].cpu);
+  std::printf(
+      "%-14s cpu / geometry: %.2fx (wall), %.2fx (cpu); gpu sort / geometry: %.2fx (wall)\n", name,
+      figures[0].wall / figures[2].wall, figures[0].cpu / figures[2].cpu,
+      figures[0].wall / figures[1].wall);
   std::fflush(stdout);
 }
 
