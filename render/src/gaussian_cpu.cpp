@@ -262,10 +262,14 @@ void CpuGaussianRasterizer::rasterize(const Source& source, std::span<const std:
       const float reachY = std::sqrt(-2.0f * prepared.cut * g.conic.x / conicDet) + 1.0f;
       const float ex = std::isfinite(reachX) ? std::min(g.extent.x, reachX) : g.extent.x;
       const float ey = std::isfinite(reachY) ? std::min(g.extent.y, reachY) : g.extent.y;
-      prepared.x0 = std::max(0, static_cast<int>(std::floor(g.center.x - ex)));
-      prepared.x1 = std::min(view.width - 1, static_cast<int>(std::floor(g.center.x + ex)));
-      prepared.y0 = std::max(0, static_cast<int>(std::floor(g.center.y - ey)));
-      prepared.y1 = std::min(view.height - 1, static_cast<int>(std::floor(g.center.y + ey)));
+      // Clamped in float before the conversion (a huge splat's box must not overflow int).
+      const auto pixel = [](float v, int size) {
+        return static_cast<int>(std::floor(std::clamp(v, -1.0f, static_cast<float>(size))));
+      };
+      prepared.x0 = std::max(0, pixel(g.center.x - ex, view.width));
+      prepared.x1 = std::min(view.width - 1, pixel(g.center.x + ex, view.width));
+      prepared.y0 = std::max(0, pixel(g.center.y - ey, view.height));
+      prepared.y1 = std::min(view.height - 1, pixel(g.center.y + ey, view.height));
       if (prepared.x0 > prepared.x1 || prepared.y0 > prepared.y1) continue;
       glm::vec3 color;
       if (!source.color(index, in, color)) continue;

@@ -50,10 +50,13 @@ std::vector<glm::vec3> compositeSplats(std::span<const qnv::DecodedVector> vecto
     if (!(opacity > 0.0f)) continue;
     const glm::vec3 c = shadeSplat(g.normal, g.rgb, lights, style.ambient);
     // The 3-sigma box, pixel centres (i + 0.5, j + 0.5) in a y-up frame.
-    const int x0 = std::max(0, static_cast<int>(std::floor(p.center.x - p.extent.x)));
-    const int x1 = std::min(width - 1, static_cast<int>(std::floor(p.center.x + p.extent.x)));
-    const int y0 = std::max(0, static_cast<int>(std::floor(p.center.y - p.extent.y)));
-    const int y1 = std::min(height - 1, static_cast<int>(std::floor(p.center.y + p.extent.y)));
+    const auto pixel = [](float v, int size) {  // clamped before the conversion to int
+      return static_cast<int>(std::floor(std::clamp(v, -1.0f, static_cast<float>(size))));
+    };
+    const int x0 = std::max(0, pixel(p.center.x - p.extent.x, width));
+    const int x1 = std::min(width - 1, pixel(p.center.x + p.extent.x, width));
+    const int y0 = std::max(0, pixel(p.center.y - p.extent.y, height));
+    const int y1 = std::min(height - 1, pixel(p.center.y + p.extent.y, height));
     for (int yUp = y0; yUp <= y1; ++yUp) {
       const float dy = static_cast<float>(yUp) + 0.5f - p.center.y;
       for (int x = x0; x <= x1; ++x) {
