@@ -103,20 +103,37 @@ void GaussianGlPass::create() {
   glBindVertexArray(0);
 }
 
-void GaussianGlPass::uploadSplats() {
-  glBindBuffer(GL_TEXTURE_BUFFER, splatBuffer_);
-  glBufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(staging_.size() * sizeof(float)),
-               staging_.data(), GL_STATIC_DRAW);
-  glBindTexture(GL_TEXTURE_BUFFER, splatTexture_);
-  glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, splatBuffer_);
+namespace {
+
+/// Puts `bytes` (the whole array) into `buffer` from byte `from` on: only the tail
+/// [from, size) when the buffer's store (`capacity` bytes) already holds it, else a new
+/// store of at least twice the old capacity with everything. Rebinds `texture` to it.
+void uploadTail(GLuint buffer, GLuint texture, GLenum format, const void* bytes, std::size_t size,
+                std::size_t from, std::size_t& capacity, GLenum usage) {
+  glBindBuffer(GL_TEXTURE_BUFFER, buffer);
+  if (from > 0 && from <= size && size <= capacity) {
+    glBufferSubData(GL_TEXTURE_BUFFER, static_cast<GLintptr>(from),
+                    static_cast<GLsizeiptr>(size - from), static_cast<const char*>(bytes) + from);
+  } else {
+    capacity = std::max(size, from > 0 ? 2 * capacity : size);
+    glBufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(capacity), nullptr, usage);
+    glBufferSubData(GL_TEXTURE_BUFFER, 0, static_cast<GLsizeiptr>(size), bytes);
+  }
+  glBindTexture(GL_TEXTURE_BUFFER, texture);
+  glTexBuffer(GL_TEXTURE_BUFFER, format, buffer);
 }
 
-void GaussianGlPass::uploadColors() {
-  glBindBuffer(GL_TEXTURE_BUFFER, colorBuffer_);
-  glBufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(colors_.size()), colors_.data(),
-               GL_STREAM_DRAW);
-  glBindTexture(GL_TEXTURE_BUFFER, colorTexture_);
-  glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA8, colorBuffer_);
+}  // namespace
+
+void GaussianGlPass::uploadSplats(std::size_t from) {
+  uploadTail(splatBuffer_, splatTexture_, GL_RGBA32F, staging_.data(),
+             staging_.size() * sizeof(float), from * 12 * sizeof(float), splatCapacity_,
+             GL_STATIC_DRAW);
+}
+
+void GaussianGlPass::uploadColors(std::size_t from) {
+  uploadTail(colorBuffer_, colorTexture_, GL_RGBA8, colors_.data(), colors_.size(), from * 4,
+             colorCapacity_, GL_STREAM_DRAW);
 }
 
 namespace {
@@ -153,7 +170,7 @@ void GaussianGlPass::uploadCloud(const splats::GaussianCloud& cloud, const glm::
     for (std::size_t i = 0; i < n; ++i)
       writeTexels(&staging_[i * 12], cloud.positions[i], cloud.opacities[i],
                   splats::covariance(cloud.scales[i], cloud.rotations[i]));
-    uploadSplats();
+    uploadSplats(0);
     uploaded_ = &cloud;
     uploadedSize_ = n;
     uploadedRevision_ = revision;
@@ -170,7 +187,7 @@ void GaussianGlPass::uploadCloud(const splats::GaussianCloud& cloud, const glm::
                  splats::shColor(cloud, i,
                                  length > 0.0f ? toward / length : glm::vec3(0.0f, 0.0f, -1.0f)));
     }
-    uploadColors();
+    uploadColors(0);
     colorEye_ = eye;
     colorKey_.assign(1, 0.0f);
   }
@@ -202,26 +219,29 @@ void GaussianGlPass::drawVectors(std::span<const qnv::DecodedVector> vectors,
                                  const int viewport[4], float nearClip) {
   create();
   const std::size_t n = vectors.size();
-  if (uploaded_ != vectors.data() || uploadedSize_ != n || uploadedRevision_ != revision ||
-      std::memcmp(&uploadedStyle_, &style, sizeof style) != 0) {
+  // A set that grew (a progressive stream: vectors are only appended, SplatSet) sends only
+  // its new tail; anything else is uploaded whole.
+  const bool same = uploaded_ == vectors.data() && uploadedRevision_ == revision &&
+                    std::memcmp(&uploadedStyle_, &style, sizeof style) == 0 && n >= uploadedSize_;
+  if (!same || n != uploadedSize_) {
+    const std::size_t from = same ? uploadedSize_ : 0;
     staging_.resize(n * 12);
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t i = from; i < n; ++i) {
       VectorGaussian g;
       if (!vectorGaussian(vectors[i], style, g)) g = {};  // opacity 0: not drawn
       writeTexels(&staging_[i * 12], g.position, g.opacity, g.covariance);
     }
-    uploadSplats();
+    uploadSplats(from);
     uploaded_ = vectors.data();
     uploadedSize_ = n;
     uploadedRevision_ = revision;
     uploadedStyle_ = style;
-    colorKey_.clear();
+    if (!same) colorKey_.clear();
   }
-  // The flat shading of every vector, again when the lights or the placement change.
+  // The flat shading of every vector, again when the lights or the placement change; only
+  // the new tail's when the set grew under the same lights.
   std::vector<float> key;
-  key.reserve(3 + 9 + 48);
-  key.push_back(static_cast<float>(n));
-  key.push_back(static_cast<float>(revision));
+  key.reserve(1 + 9 + 48);
   key.push_back(style.ambient);
   for (int c = 0; c < 3; ++c)
     for (int r = 0; r < 3; ++r) key.push_back(normalMatrix[c][r]);
@@ -231,17 +251,19 @@ void GaussianGlPass::drawVectors(std::span<const qnv::DecodedVector> vectors,
       key.push_back(lights[i].direction[k]);
       key.push_back(lights[i].color[k]);
     }
-  if (key != colorKey_) {
+  if (key != colorKey_ || coloredSize_ != n) {
+    const std::size_t from = key == colorKey_ && coloredSize_ < n ? coloredSize_ : 0;
     colors_.resize(n * 4);
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t i = from; i < n; ++i) {
       const qnv::DecodedVector& v = vectors[i];
       const float length = glm::length(normalMatrix * v.normal);
       const glm::vec3 world = length > 0.0f ? normalMatrix * v.normal / length : glm::vec3(0.0f);
       writeColor(&colors_[i * 4], shadeSplat(world, glm::vec3(unpackRgba(v.rgba)),
                                              lights.first(lightCount), style.ambient));
     }
-    uploadColors();
+    uploadColors(from);
     colorKey_ = std::move(key);
+    coloredSize_ = n;
   }
   drawUploaded(order, order.empty() ? count : order.size(), modelView, projection, viewport,
                nearClip, 1.0f, splats::kVisiblePeak, true);
@@ -307,6 +329,7 @@ void GaussianGlPass::release() {
   program_ = 0;
   uploaded_ = nullptr;
   colorKey_.clear();
+  splatCapacity_ = colorCapacity_ = coloredSize_ = 0;
   gpuSort_.release();
 }
 

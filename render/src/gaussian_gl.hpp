@@ -55,9 +55,10 @@ class GaussianGlPass {
   /// `lights` (world directions, at most 8) and normals turned by `normalMatrix` (model to
   /// world), each peak scaled by the projection's low-pass keep (as the cpu path does),
   /// fragments below half an 8-bit level not drawn. The vectors are uploaded again when
-  /// their address, size, `revision` or the style changed; their colours when the lights
-  /// or `normalMatrix` changed. An empty `order` draws the first `count` vectors in the
-  /// order the GPU sort makes (GpuDepthSort). Otherwise as draw().
+  /// their address, `revision` or the style changed, only the new tail when the set grew
+  /// (a progressive stream); their colours when the lights or `normalMatrix` changed. An empty
+  /// `order` draws the first `count` vectors in the order the GPU sort makes (GpuDepthSort).
+  /// Otherwise as draw().
   void drawVectors(std::span<const qnv::DecodedVector> vectors, std::uint64_t revision,
                    std::span<const std::uint32_t> order, std::size_t count, const SplatStyle& style,
                    std::span<const SplatLight> lights, const glm::mat3& normalMatrix,
@@ -70,8 +71,10 @@ class GaussianGlPass {
 
  private:
   void create();
-  void uploadSplats();  // staging_ to the splat texture buffer
-  void uploadColors();  // colors_ to the colour texture buffer
+  /// staging_ (colors_) to the splat (colour) texture buffer, from splat `from` on when
+  /// the buffer already holds the rest (a grown set), else whole.
+  void uploadSplats(std::size_t from);
+  void uploadColors(std::size_t from);
   void uploadCloud(const splats::GaussianCloud& cloud, const glm::vec3& eye,
                    std::uint64_t revision);
   /// Draws `count` instances in `order`, or, when `order` is empty, in the order the GPU
@@ -89,6 +92,8 @@ class GaussianGlPass {
   SplatStyle uploadedStyle_;
   glm::vec3 colorEye_{NAN};
   std::vector<float> colorKey_;  // what the uploaded colours were made for (empty: none)
+  std::size_t coloredSize_ = 0;  // vectors whose colours are uploaded under colorKey_
+  std::size_t splatCapacity_ = 0, colorCapacity_ = 0;  // bytes of the buffers' stores
   std::vector<float> staging_;
   std::vector<std::uint8_t> colors_;
 };

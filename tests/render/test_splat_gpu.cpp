@@ -237,3 +237,39 @@ TEST_CASE("splat path names and the automatic choice", "[splat]") {
   CHECK(automaticSplatPath("NVIDIA GeForce RTX 3080/PCIe/SSE2") == SplatPath::gpu);
   CHECK(automaticSplatPath(nullptr) == SplatPath::gpu);
 }
+
+TEST_CASE("a growing set on the GL path uploads its tail and draws what a fresh upload draws",
+          "[splat][gpu]") {
+  // A progressive stream appends vectors to the same storage (SplatSet): the GL pass sends
+  // only the new ones, texels and colours. The picture must equal a fresh renderer's.
+  const SplatSet whole = shell(3000);
+  SplatSet growing;
+  growing.style = whole.style;
+  growing.vectors.reserve(whole.vectors.size());  // the same address while it grows
+  const SplatLight lights[] = {{glm::normalize(glm::vec3(-0.3f, -0.5f, -1.0f)), glm::vec3(0.8f)}};
+  drawGpu(whole, 1, lights, SplatBlend::backToFront);  // makes the test context current
+  SplatRenderer renderer;
+  renderer.setPath(SplatPath::geometry);
+  const auto draw = [&](SplatRenderer& r, const SplatSet& set) {
+    glViewport(0, 0, kSize, kSize);
+    glClearColor(kBackground.r, kBackground.g, kBackground.b, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    r.draw(set, set.vectors.size(), glm::mat4(1.0f), camera(), 1.0f, lights);
+    return readPixels(0, 0, kSize, kSize);
+  };
+  // 1,000 then 500 at a time: the buffers double when full, so the steps to 2,000 and
+  // 3,000 go through the tail upload and the others through a new store.
+  for (std::size_t size = 1000; size <= 3000; size += 500) {
+    while (growing.vectors.size() < size)
+      growing.vectors.push_back(whole.vectors[growing.vectors.size()]);
+    growing.computeBounds();
+    const Image grown = draw(renderer, growing);
+    SplatRenderer fresh;
+    fresh.setPath(SplatPath::geometry);
+    const Image once = draw(fresh, growing);
+    fresh.release();
+    INFO("vectors " << growing.vectors.size());
+    CHECK(grown.rgba == once.rgba);
+  }
+  renderer.release();
+}
