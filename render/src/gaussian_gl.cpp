@@ -240,8 +240,8 @@ void GaussianGlPass::drawVectors(std::span<const qnv::DecodedVector> vectors,
   }
   // The flat shading of every vector, again when the lights or the placement change; only
   // the new tail's when the set grew under the same lights.
-  std::vector<float> key;
-  key.reserve(1 + 9 + 48);
+  std::vector<float>& key = nextColorKey_;  // kept: no allocation per frame
+  key.clear();
   key.push_back(style.ambient);
   for (int c = 0; c < 3; ++c)
     for (int r = 0; r < 3; ++r) key.push_back(normalMatrix[c][r]);
@@ -262,7 +262,7 @@ void GaussianGlPass::drawVectors(std::span<const qnv::DecodedVector> vectors,
                                              lights.first(lightCount), style.ambient));
     }
     uploadColors(from);
-    colorKey_ = std::move(key);
+    colorKey_.swap(key);
     coloredSize_ = n;
   }
   drawUploaded(order, order.empty() ? count : order.size(), modelView, projection, viewport,

@@ -91,8 +91,9 @@ class GaussianGlPass {
   std::uint64_t uploadedRevision_ = 0;
   SplatStyle uploadedStyle_;
   glm::vec3 colorEye_{NAN};
-  std::vector<float> colorKey_;  // what the uploaded colours were made for (empty: none)
-  std::size_t coloredSize_ = 0;  // vectors whose colours are uploaded under colorKey_
+  std::vector<float> colorKey_;      // what the uploaded colours were made for (empty: none)
+  std::vector<float> nextColorKey_;  // this draw's key, built in place
+  std::size_t coloredSize_ = 0;      // vectors whose colours are uploaded under colorKey_
   std::size_t splatCapacity_ = 0, colorCapacity_ = 0;  // bytes of the buffers' stores
   std::vector<float> staging_;
   std::vector<std::uint8_t> colors_;

@@ -17,11 +17,14 @@ constexpr GLuint kBlock = kGroup * kItems;  // elements per block
 constexpr GLuint kMaxGroupsX = 65535;       // the least GL_MAX_COMPUTE_WORK_GROUP_COUNT
 constexpr GLuint kMaxSplats = 0xffffffffu;  // indices are uint32
 
-// The index of this invocation's first element over a 2D grid of workgroups.
-const char* const kCommon = R"glsl(#version 430 core
-layout(local_size_x = 256) in;
-uint groupIndex() { return gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x; }
-)glsl";
+// What every program starts with: the version, the workgroup (kGroup threads), the block
+// (kItems elements a thread, kBlock in all) and the workgroup's index over a 2D grid.
+std::string commonSource() {
+  return "#version 430 core\n#define GROUP " + std::to_string(kGroup) + "u\n#define ITEMS " +
+         std::to_string(kItems) + "u\n#define BLOCK " + std::to_string(kBlock) +
+         "u\nlayout(local_size_x = GROUP) in;\n"
+         "uint groupIndex() { return gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x; }\n";
+}
 
 // Keys: eye z made an order-preserving unsigned integer (DepthSorter's depthKey), values
 // the identity.
@@ -32,7 +35,7 @@ uniform uint u_count;
 layout(std430, binding = 0) writeonly buffer Keys { uint keys[]; };
 layout(std430, binding = 1) writeonly buffer Values { uint values[]; };
 void main() {
-  uint i = groupIndex() * 256u + gl_LocalInvocationID.x;
+  uint i = groupIndex() * GROUP + gl_LocalInvocationID.x;
   if (i >= u_count) return;
   vec3 p = texelFetch(u_splats, int(3u * i)).xyz;
   float z = (u_row.x * p.x + u_row.y * p.y) + (u_row.z * p.z + u_row.w) + 0.0;
@@ -52,16 +55,16 @@ uniform uint u_shift;
 uniform uint u_blocks;
 layout(std430, binding = 0) readonly buffer Keys { uint keys[]; };
 layout(std430, binding = 2) writeonly buffer Counts { uint counts[]; };
-shared uint hist[256];
+shared uint hist[GROUP];
 void main() {
   uint t = gl_LocalInvocationID.x;
   uint block = groupIndex();
   hist[t] = 0u;
   barrier();
-  uint begin = block * 4096u;
-  for (uint k = 0u; k < 16u; ++k) {
-    uint i = begin + k * 256u + t;
-    if (i < u_count) atomicAdd(hist[(keys[i] >> u_shift) & 255u], 1u);
+  uint begin = block * BLOCK;
+  for (uint k = 0u; k < ITEMS; ++k) {
+    uint i = begin + k * GROUP + t;
+    if (i < u_count) atomicAdd(hist[(keys[i] >> u_shift) & (GROUP - 1u)], 1u);
   }
   barrier();
   if (block < u_blocks) counts[t * u_blocks + block] = hist[t];
@@ -73,10 +76,10 @@ void main() {
 const char* const kScanShader = R"glsl(
 uniform uint u_length;
 layout(std430, binding = 2) buffer Counts { uint counts[]; };
-shared uint sums[256];
+shared uint sums[GROUP];
 void main() {
   uint t = gl_LocalInvocationID.x;
-  uint per = (u_length + 255u) / 256u;
+  uint per = (u_length + GROUP - 1u) / GROUP;
   uint begin = min(t * per, u_length);
   uint end = min(begin + per, u_length);
   uint sum = 0u;
@@ -85,7 +88,7 @@ void main() {
   barrier();
   if (t == 0u) {
     uint run = 0u;
-    for (uint k = 0u; k < 256u; ++k) {
+    for (uint k = 0u; k < GROUP; ++k) {
       uint s = sums[k];
       sums[k] = run;
       run += s;
@@ -113,20 +116,20 @@ layout(std430, binding = 1) readonly buffer ValuesIn { uint valuesIn[]; };
 layout(std430, binding = 2) readonly buffer Counts { uint counts[]; };
 layout(std430, binding = 3) writeonly buffer KeysOut { uint keysOut[]; };
 layout(std430, binding = 4) writeonly buffer ValuesOut { uint valuesOut[]; };
-shared uint offsets[256];
-shared uint digits[256];
-shared uint added[256];
+shared uint offsets[GROUP];
+shared uint digits[GROUP];
+shared uint added[GROUP];
 void main() {
   uint t = gl_LocalInvocationID.x;
   uint block = groupIndex();
   if (block >= u_blocks) return;  // uniform per workgroup
   offsets[t] = counts[t * u_blocks + block];
-  uint begin = block * 4096u;
-  for (uint k = 0u; k < 16u; ++k) {
-    uint i = begin + k * 256u + t;
+  uint begin = block * BLOCK;
+  for (uint k = 0u; k < ITEMS; ++k) {
+    uint i = begin + k * GROUP + t;
     bool live = i < u_count;
     uint key = live ? keysIn[i] : 0u;
-    uint d = live ? ((key >> u_shift) & 255u) : 256u;
+    uint d = live ? ((key >> u_shift) & (GROUP - 1u)) : GROUP;
     digits[t] = d;
     added[t] = 0u;
     barrier();
@@ -146,7 +149,7 @@ void main() {
 )glsl";
 
 GLuint buildCompute(const char* name, const char* body) {
-  const std::string source = std::string(kCommon) + body;
+  const std::string source = commonSource() + body;
   return buildComputeProgram(name, source.c_str());
 }
 

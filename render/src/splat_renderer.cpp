@@ -56,6 +56,20 @@ std::span<const float> readSceneDepth(std::vector<float>& depth, const GLint vie
   return result;
 }
 
+/// The cpu path's view of a viewport of width x height pixels: the clip range that
+/// projectionMatrix really uses.
+detail::CpuGaussianView cpuView(const glm::mat4& modelView, const glm::mat4& projection,
+                                const scene::Camera& camera, int width, int height) {
+  detail::CpuGaussianView v;
+  v.modelView = modelView;
+  v.projection = projection;
+  v.width = width;
+  v.height = height;
+  v.nearClip = std::max(camera.nearClip, 1e-6f);
+  v.farClip = std::max(camera.farClip, v.nearClip * 1.001f);
+  return v;
+}
+
 }  // namespace
 
 const char* splatPathName(SplatPath path) {
@@ -248,15 +262,8 @@ void SplatRenderer::draw(const SplatSet& set, std::size_t count, const glm::mat4
   // The scene's depth, as the GL path's depth test sees it (front to back: none).
   std::span<const float> depth;
   if (blend == SplatBlend::backToFront) depth = readSceneDepth(g.depth, viewport);
-  detail::CpuGaussianView v;
-  v.modelView = modelView;
-  v.projection = projection;
-  v.width = width;
-  v.height = height;
-  v.nearClip = nearClip;
-  v.farClip = std::max(camera.farClip, v.nearClip * 1.001f);
-  g.rasterizer.drawVectors({set.vectors.data(), count}, g.order, s, lights, normalMatrix, v, depth,
-                           g.pixels);
+  g.rasterizer.drawVectors({set.vectors.data(), count}, g.order, s, lights, normalMatrix,
+                           cpuView(modelView, projection, camera, width, height), depth, g.pixels);
   drawImage(width, height);
 }
 
@@ -317,14 +324,8 @@ void SplatRenderer::drawGaussians(const SplatSet& set, std::size_t count, const 
   }
   std::span<const float> depth;
   if (blend == SplatBlend::backToFront) depth = readSceneDepth(g.depth, viewport);
-  detail::CpuGaussianView v;
-  v.modelView = modelView;
-  v.projection = projection;
+  detail::CpuGaussianView v = cpuView(modelView, projection, camera, width, height);
   v.eye = eye;
-  v.width = width;
-  v.height = height;
-  v.nearClip = std::max(camera.nearClip, 1e-6f);
-  v.farClip = std::max(camera.farClip, v.nearClip * 1.001f);
   v.opacityScale = style.opacityScale;
   g.rasterizer.draw(cloud, g.order, v, depth, g.pixels, revision);
   drawImage(width, height);

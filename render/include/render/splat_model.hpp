@@ -48,32 +48,18 @@ inline glm::vec4 unpackRgba(std::uint32_t rgba) {
   return glm::vec4(rgba & 255u, (rgba >> 8) & 255u, (rgba >> 16) & 255u, rgba >> 24) / 255.0f;
 }
 
-/// Half-size of the square patch in Gaussian standard deviations: beyond 3 sigma the
-/// profile is below 1.2% of its peak and is cut to zero.
-inline constexpr float kSplatExtent = 3.0f;
-
-/// The Gaussian opacity profile of one vector: alpha(r) = peak * exp(-r^2 / (2 s^2)) for
-/// r <= 3 s in the patch plane, else 0 (section 3.1: alpha ~ exp(-|u - x_k|^2 / A)).
-struct SplatProfile {
-  float spread = 0.0f;  // s, world units
-  float peak = 0.0f;    // 0..1
-  float alphaAt(float r) const {
-    if (!(r <= kSplatExtent * spread) || spread <= 0.0f) return 0.0f;
-    return peak * std::exp(-r * r / (2.0f * spread * spread));
-  }
-};
-
 /// Surfaces: the disk of the triangle's area has radius R = sqrt(A / pi); s = 2 sigma R
 /// (s = R for the default sigma 0.5) and peak = opacityScale * A / (2 pi s^2), so that the
 /// integrated opacity is A: the paper's "exact conservation of integrated surface area"
 /// (clamped to 1). Volumes: s = 2 sigma * voxelSize (one voxel by default) and peak =
 /// opacityScale * transfer alpha * sqrt(A / magnitudeMax) (clamped to 1): strong
 /// gradients of opaque materials are opaque.
-inline SplatProfile splatProfile(const SplatStyle& style, float magnitude, float transferAlpha) {
-  const splats::VectorProfile v =
-      splats::vectorProfile(style.kind == qnv::StreamKind::surface, style.sigma, style.opacityScale,
-                            style.voxelSize, style.magnitudeMax, magnitude, transferAlpha);
-  return {v.spread, v.peak};
+/// The profile's spread s (world units) and peak (0..1): splats::vectorProfile for a style.
+inline splats::VectorProfile splatProfile(const SplatStyle& style, float magnitude,
+                                          float transferAlpha) {
+  return splats::vectorProfile(style.kind == qnv::StreamKind::surface, style.sigma,
+                               style.opacityScale, style.voxelSize, style.magnitudeMax, magnitude,
+                               transferAlpha);
 }
 
 /// A directional light for splat shading (world direction the light travels, unit).
@@ -125,7 +111,7 @@ inline bool vectorGaussian(const qnv::DecodedVector& vector, const SplatStyle& s
       !std::isfinite(vector.position.z))
     return false;
   const glm::vec4 rgba = unpackRgba(vector.rgba);
-  const SplatProfile profile = splatProfile(style, vector.magnitude, rgba.a);
+  const splats::VectorProfile profile = splatProfile(style, vector.magnitude, rgba.a);
   if (!(profile.peak >= splats::kVisiblePeak) || !(profile.spread > 0.0f) ||
       !std::isfinite(profile.spread))
     return false;
@@ -136,15 +122,6 @@ inline bool vectorGaussian(const qnv::DecodedVector& vector, const SplatStyle& s
   out.opacity = std::min(profile.peak, 1.0f);
   out.rgb = glm::vec3(rgba);
   return true;
-}
-
-/// Two unit vectors spanning the patch plane perpendicular to `normal` (unit): the same
-/// construction on the CPU and in the shader, so both orient the square identically.
-inline void splatAxes(const glm::vec3& normal, glm::vec3& tangent, glm::vec3& bitangent) {
-  const glm::vec3 helper =
-      std::abs(normal.z) < 0.9f ? glm::vec3(0.0f, 0.0f, 1.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
-  tangent = glm::normalize(glm::cross(helper, normal));
-  bitangent = glm::cross(normal, tangent);
 }
 
 }  // namespace gs::render
