@@ -5,6 +5,8 @@
 #include "render/context.hpp"
 
 #include <cstdio>
+#include <cstdlib>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -21,6 +23,16 @@ void setGlFunctionsLoadedFor(const void* context) {
   gLoadedFor = context;
 }
 }  // namespace detail
+
+std::unique_ptr<GlContext> createOffscreenContext(int width, int height) {
+  const char* choice = std::getenv("GHOSTSPACE_GL");
+  const std::string gl = choice == nullptr ? std::string() : std::string(choice);
+  if (gl.empty() || gl == "osmesa") return detail::createOsMesaContext(width, height);
+  if (gl == "egl") return detail::createEglContext(width, height);
+  throw std::runtime_error("GHOSTSPACE_GL=" + gl +
+                           ": expected osmesa (the default, llvmpipe on the CPU) or egl (the "
+                           "GPU's driver, no window system)");
+}
 
 void loadGlFunctions(GLADloadfunc getProcAddress) {
   detail::setGlFunctionsLoadedFor(nullptr);

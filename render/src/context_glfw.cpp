@@ -42,13 +42,18 @@ class GlfwContext final : public WindowContext {
       gGlfwInitialized = true;
     }
     ++gWindowCount;
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
     // Not forward-compatible: that would refuse glLineWidth above 1 (LineProperties).
     glfwWindowHint(GLFW_DEPTH_BITS, 24);
     glfwWindowHint(GLFW_STENCIL_BITS, 8);
-    window_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
+    // OpenGL 4.5 core (the GPU sort's compute shaders need 4.3; a driver may give the
+    // version asked for and no more), else 3.3 core.
+    for (const int minor : {5, 3}) {
+      glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, minor == 5 ? 4 : 3);
+      glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, minor);
+      window_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
+      if (window_ != nullptr) break;
+    }
     if (window_ == nullptr) {
       const std::string reason = glfwLastError();
       release();

@@ -1,5 +1,12 @@
-// Private to render/: bookkeeping shared by the OSMesa and GLFW context implementations.
+// Private to render/: bookkeeping shared by the OSMesa, EGL and GLFW context implementations,
+// and the off-screen contexts' constructors.
 #pragma once
+
+#include <memory>
+
+namespace gs::render {
+class GlContext;
+}
 
 namespace gs::render::detail {
 
@@ -7,5 +14,10 @@ namespace gs::render::detail {
 bool glFunctionsLoadedFor(const void* context);
 /// Records that glad's function pointers now belong to `context` (nullptr: unknown).
 void setGlFunctionsLoadedFor(const void* context);
+
+/// The OSMesa off-screen context (context_osmesa.cpp); createOffscreenContext's default.
+std::unique_ptr<GlContext> createOsMesaContext(int width, int height);
+/// The EGL off-screen context (context_egl.cpp), for GHOSTSPACE_GL=egl.
+std::unique_ptr<GlContext> createEglContext(int width, int height);
 
 }  // namespace gs::render::detail

@@ -103,8 +103,10 @@ class OsMesaContext final : public GlContext {
 
 }  // namespace
 
-std::unique_ptr<GlContext> createOffscreenContext(int width, int height) {
+namespace detail {
+std::unique_ptr<GlContext> createOsMesaContext(int width, int height) {
   return std::make_unique<OsMesaContext>(width, height);
 }
+}  // namespace detail
 
 }  // namespace gs::render

@@ -106,7 +106,8 @@ void main() {
 
 // The stable scatter: each block walks its elements 256 at a time, in order; an element's
 // place is its digit's running offset plus the number of earlier elements of the same
-// 256 with the same digit.
+// 256 with the same digit: each element sets its bit in its digit's 256-bit mask (8
+// words), and its rank is the population count of the mask's bits below its own.
 const char* const kScatterShader = R"glsl(
 uniform uint u_count;
 uniform uint u_shift;
@@ -117,32 +118,38 @@ layout(std430, binding = 2) readonly buffer Counts { uint counts[]; };
 layout(std430, binding = 3) writeonly buffer KeysOut { uint keysOut[]; };
 layout(std430, binding = 4) writeonly buffer ValuesOut { uint valuesOut[]; };
 shared uint offsets[GROUP];
-shared uint digits[GROUP];
 shared uint added[GROUP];
+shared uint masks[GROUP * (GROUP / 32u)];  // digit d's bits: masks[d * 8 .. d * 8 + 7]
 void main() {
   uint t = gl_LocalInvocationID.x;
   uint block = groupIndex();
   if (block >= u_blocks) return;  // uniform per workgroup
   offsets[t] = counts[t * u_blocks + block];
+  added[t] = 0u;
+  for (uint w = 0u; w < GROUP / 32u; ++w) masks[t * (GROUP / 32u) + w] = 0u;
+  uint word = t / 32u, bit = 1u << (t % 32u);
+  barrier();
   uint begin = block * BLOCK;
   for (uint k = 0u; k < ITEMS; ++k) {
     uint i = begin + k * GROUP + t;
     bool live = i < u_count;
     uint key = live ? keysIn[i] : 0u;
-    uint d = live ? ((key >> u_shift) & (GROUP - 1u)) : GROUP;
-    digits[t] = d;
-    added[t] = 0u;
+    uint d = (key >> u_shift) & (GROUP - 1u);
+    uint row = d * (GROUP / 32u);
+    if (live) atomicOr(masks[row + word], bit);
     barrier();
     if (live) {
-      uint rank = 0u;
-      for (uint s = 0u; s < t; ++s) rank += digits[s] == d ? 1u : 0u;
+      uint rank = bitCount(masks[row + word] & (bit - 1u));
+      for (uint w = 0u; w < word; ++w) rank += bitCount(masks[row + w]);
       uint at = offsets[d] + rank;
       keysOut[at] = key;
       valuesOut[at] = valuesIn[i];
       atomicAdd(added[d], 1u);
     }
     barrier();
+    if (live) masks[row + word] = 0u;
     offsets[t] += added[t];
+    added[t] = 0u;
     barrier();
   }
 }

@@ -13,14 +13,19 @@
 // view): the cut's size (splats drawn, and their share of the scene) and the M splats/s of
 // the cut, best of FRAMES frames, each frame a new view (a new cut, assembled and sorted).
 //
+// Each path's last frame is kept: the geometry and gpu paths' PSNR against the cpu path's
+// picture is printed (the same model drawn three ways: about 40 dB or more, docs/splats.md),
+// and with --pictures DIR each is written as DIR/NAME_PATH.png.
+//
 //   bench_splats [WxH] [--millions 1,4] [--frames N] [--path P] [--distances 1.5,3,12]
-//                [FILE.qnv|SCENE ...]
+//                [--pictures DIR] [FILE.qnv|SCENE ...]
 //   (SCENE: a Gaussian splatting scene, docs/splats.md: .ply, .spz, .splat, .sog, .glb ...)
 //   (default 512x512; --path geometry|gpu|cpu measures only that path)
 #include <glad/gl.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -36,6 +41,7 @@
 
 #include "base/file.hpp"
 #include "render/context.hpp"
+#include "render/image.hpp"
 #include "render/splat_renderer.hpp"
 #include "render/splat_source.hpp"
 #include "splats/lod_tree.hpp"
@@ -71,6 +77,7 @@ struct Figure {
   double wall = 1e9, cpu = 1e9, sort = 0.0;
   render::SplatPath drew = render::SplatPath::geometry;
   std::size_t drawn = 0;  // splats drawn in the best frame
+  render::Image picture;  // the last frame
 };
 
 // The best of `frames` frames of `set` seen from `camera`, moved by `step` along x each
@@ -102,6 +109,7 @@ Figure measureFrom(const render::SplatSet& set, render::SplatPath path, int widt
     f.cpu = std::min(f.cpu, cpu);
     f.drew = renderer.statistics().path;
   }
+  f.picture = render::readPixels(0, 0, width, height);
   return f;
 }
 
@@ -115,7 +123,21 @@ Figure measure(const render::SplatSet& set, render::SplatPath path, int width, i
                      0.003f * glm::length(set.bounds.size()));
 }
 
-std::string only;               // --path: measure only that path
+std::string only;      // --path: measure only that path
+std::string pictures;  // --pictures: where each path's last frame is written
+
+// PSNR (dB) of a's RGB against b's, over every pixel; 99 when they are equal.
+double psnr(const render::Image& a, const render::Image& b) {
+  if (a.rgba.size() != b.rgba.size() || a.rgba.empty()) return 0.0;
+  double squared = 0.0;
+  for (std::size_t i = 0; i < a.rgba.size(); ++i) {
+    if (i % 4 == 3) continue;
+    const double d = double(a.rgba[i]) - double(b.rgba[i]);
+    squared += d * d;
+  }
+  const double mse = squared / (double(a.rgba.size()) * 0.75);
+  return mse <= 0.0 ? 99.0 : 10.0 * std::log10(255.0 * 255.0 / mse);
+}
 std::vector<double> distances;  // --distances: box diagonals for the cut figures
 
 // The cut figures of a Gaussian scene with its tree (see the top of this file).
@@ -140,10 +162,11 @@ void reportCuts(const char* name, const render::SplatSet& set, int width, int he
       const double best = f.wall;
       std::printf(
           "%-14s %-8s %5.1f diagonals: cut %9zu splats (%6.2f%%)  frame %7.4f s  %6.2f M "
-          "splats/s\n",
+          "splats/s%s%s\n",
           name, render::splatPathName(path), d, drawn,
           100.0 * static_cast<double>(drawn) / static_cast<double>(set.size()), best,
-          static_cast<double>(drawn) / best / 1e6);
+          static_cast<double>(drawn) / best / 1e6, f.drew == path ? "" : ", drawn by ",
+          f.drew == path ? "" : render::splatPathName(f.drew));
       std::fflush(stdout);
     }
   }
@@ -164,10 +187,22 @@ void report(const char* name, const render::SplatSet& set, int width, int height
     const Figure& f = figures[i];
     std::printf(
         "%-14s %9.0f splats  %-8s frame %7.3f s  %5.2f M splats/s  (cpu %.3f s, "
-        "sort %.3f s)%s\n",
-        name, n, render::splatPathName(paths[i]), f.wall, n / f.wall / 1e6, f.cpu, f.sort, "");
+        "sort %.3f s)%s%s\n",
+        name, n, render::splatPathName(paths[i]), f.wall, n / f.wall / 1e6, f.cpu, f.sort,
+        f.drew == paths[i] ? "" : ", drawn by ",
+        f.drew == paths[i] ? "" : render::splatPathName(f.drew));
+  }
+  for (int i = 0; i < kPaths && !pictures.empty(); ++i) {
+    if (figures[i].picture.empty()) continue;
+    std::string file = pictures + "/" + name + "_" + render::splatPathName(paths[i]) + ".png";
+    std::replace(file.begin() + static_cast<std::ptrdiff_t>(pictures.size()) + 1, file.end(), ' ',
+                 '_');
+    render::writePng(file, figures[i].picture);
   }
   if (!only.empty()) return;
+  std::printf("%-14s PSNR against the cpu path's picture: geometry %.1f dB, gpu %.1f dB\n", name,
+              psnr(figures[0].picture, figures[2].picture),
+              psnr(figures[1].picture, figures[2].picture));
   std::printf(
       "%-14s cpu / geometry: %.2fx (wall), %.2fx (cpu); gpu sort / geometry: %.2fx (wall)\n", name,
       figures[0].wall / figures[2].wall, figures[0].cpu / figures[2].cpu,
@@ -185,6 +220,8 @@ int main(int argc, char** argv) {
     const std::string a = argv[i];
     if (a == "--path" && i + 1 < argc) {
       only = argv[++i];
+    } else if (a == "--pictures" && i + 1 < argc) {
+      pictures = argv[++i];
     } else if (a == "--distances" && i + 1 < argc) {
       for (char* p = argv[++i]; *p != '\0';) {
         char* end = nullptr;
@@ -211,7 +248,7 @@ int main(int argc, char** argv) {
     } else {
       std::fprintf(stderr,
                    "usage: bench_splats [WxH] [--millions 1,4] [--frames N] [--path P] "
-                   "[FILE.qnv ...]\n");
+                   "[--pictures DIR] [FILE.qnv ...]\n");
       return 2;
     }
   }
@@ -221,9 +258,11 @@ int main(int argc, char** argv) {
     if (std::fscanf(f, "%lf %lf %lf", &load[0], &load[1], &load[2]) != 3) load[0] = -1;
     std::fclose(f);
   }
-  std::printf("%s; %dx%d; best of %d frames; %u hardware threads; load average %.2f %.2f %.2f\n",
-              glGetString(GL_RENDERER), width, height, frames, std::thread::hardware_concurrency(),
-              load[0], load[1], load[2]);
+  std::printf(
+      "%s, OpenGL %s; %dx%d; best of %d frames; %u hardware threads; load average %.2f %.2f "
+      "%.2f\n",
+      glGetString(GL_RENDERER), glGetString(GL_VERSION), width, height, frames,
+      std::thread::hardware_concurrency(), load[0], load[1], load[2]);
   for (const std::string& file : files) {
     std::string error;
     std::shared_ptr<const render::SplatSet> set;

@@ -4,11 +4,14 @@
 #include "render/image.hpp"
 #include "render/scene_renderer.hpp"
 #include "render_test_util.hpp"
+#include "test_support.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <cstdlib>
 #include <filesystem>
+#include <stdexcept>
+#include <string>
 
 using namespace gs::test;
 using gs::render::Image;
@@ -222,4 +225,63 @@ TEST_CASE("a texture with alpha is blended like a transparent material", "[rende
   const Image img = render({front, back}, "texture_alpha");
   INFO("blend " << str(at(img, 32, 32)));
   CHECK(close(at(img, 32, 32), {127, 0, 128}, 3));
+}
+
+namespace {
+// Sets GHOSTSPACE_GL for one scope (restores what was there).
+struct GlChoice {
+  explicit GlChoice(const char* value) {
+    if (const char* old = std::getenv("GHOSTSPACE_GL")) previous = old;
+    setenv("GHOSTSPACE_GL", value, 1);
+  }
+  ~GlChoice() {
+    if (previous.empty())
+      unsetenv("GHOSTSPACE_GL");
+    else
+      setenv("GHOSTSPACE_GL", previous.c_str(), 1);
+  }
+  std::string previous;
+};
+}  // namespace
+
+TEST_CASE("GHOSTSPACE_GL=egl draws through EGL what OSMesa draws", "[render][offscreen][egl]") {
+  auto sky = makeNode("Background", {{"skyColor", mfColor({{0, 0, 1}})}});
+  const std::vector<NodePtr> roots = {sky, emissive(makeNode("TestBox"), 1, 0, 0)};
+  const Image osmesa = render(roots, "red_box_osmesa");
+  std::unique_ptr<gs::render::GlContext> egl;
+  {
+    GlChoice choice("egl");
+    try {
+      egl = gs::render::createOffscreenContext(kSize, kSize);
+    } catch (const std::runtime_error& e) {
+      missingFixture(std::string("an EGL device (libEGL.so.1 and Mesa's or a GPU's driver): ") +
+                     e.what());
+      return;
+    }
+  }
+  egl->makeCurrent();
+  const auto info = gs::render::glInfo();
+  INFO(info.renderer << " / " << info.version);
+  Image drawn;
+  {
+    gs::render::SceneRenderer r(makeScene(roots), testRendererOptions());
+    r.draw(r.boundViewpointCamera(), 0, 0, kSize, kSize);
+    drawn = gs::render::readPixels(0, 0, kSize, kSize);
+  }
+  dump(drawn, "red_box_egl");
+  CHECK(close(at(drawn, 32, 32), {255, 0, 0}));
+  CHECK(close(at(drawn, 0, 0), {0, 0, 255}));
+  int off = 0;
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) off += close(at(drawn, x, y), at(osmesa, x, y)) ? 0 : 1;
+  CHECK(off == 0);
+  egl.reset();
+  context();  // OSMesa's again, for the cases after this one
+}
+
+TEST_CASE("an unknown GHOSTSPACE_GL is an error naming the choices", "[render][offscreen]") {
+  GlChoice choice("vulkan");
+  CHECK_THROWS_WITH(gs::render::createOffscreenContext(8, 8),
+                    Catch::Contains("GHOSTSPACE_GL=vulkan") && Catch::Contains("osmesa") &&
+                        Catch::Contains("egl"));
 }

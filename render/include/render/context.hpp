@@ -1,5 +1,5 @@
-// OpenGL contexts: an off-screen one (OSMesa, rendering on the CPU) and a window one
-// (GLFW). After creation both are used the same way: every GL entry point is a function
+// OpenGL contexts: an off-screen one (OSMesa, rendering on the CPU, or EGL on a GPU) and a
+// window one (GLFW). After creation both are used the same way: every GL entry point is a function
 // pointer loaded by glad through the context's own GetProcAddress (docs/architecture.md, "One
 // renderer for window and snapshot": libGL and libOSMesa both export gl*, so a direct call could
 // reach the wrong library).
@@ -43,11 +43,15 @@ class GlContext {
   GlContext() = default;
 };
 
-/// An off-screen context of `width` x `height` pixels (each 1..16384) made with OSMesa
-/// (OpenGL 3.3 core requested; llvmpipe gives 4.5). Drawing goes to a framebuffer object
-/// of that size with an RGBA8 colour and a 24-bit depth (+8 stencil) buffer. The context
-/// is current and its FBO bound when this returns. Throws std::runtime_error ("cannot
-/// create an OSMesa context: ...") when OSMesa or the FBO cannot be created.
+/// An off-screen context of `width` x `height` pixels (each 1..16384), OpenGL 3.3 core
+/// requested. Made with OSMesa (llvmpipe, which gives 4.5, on the CPU) unless the
+/// environment says GHOSTSPACE_GL=egl: then with EGL on the first EGL device (a GPU's
+/// driver, no window system; GHOSTSPACE_EGL_DEVICE=N picks device N), libEGL.so.1 opened
+/// at run time. Drawing goes to a framebuffer object of that size with an RGBA8 colour and
+/// a 24-bit depth (+8 stencil) buffer; the renderer is the same either way. The context is
+/// current and its FBO bound when this returns. Throws std::runtime_error ("cannot create
+/// an OSMesa context: ...", "cannot create an EGL context (GHOSTSPACE_GL=egl): ...", or
+/// "GHOSTSPACE_GL=X: expected osmesa or egl") when the context or the FBO cannot be made.
 std::unique_ptr<GlContext> createOffscreenContext(int width, int height);
 
 /// A context owned by a GLFW window.
