@@ -17,7 +17,7 @@ namespace gs::render::detail {
 
 namespace {
 
-constexpr int kTile = 16;                   // tile side, pixels (Kerbl et al.'s)
+constexpr int kTile = 32;                   // tile side, pixels (Kerbl et al.'s)
 constexpr float kSaturated = 1e-4f;         // transmittance below which a pixel is done
 constexpr float kMinAlpha = 1.0f / 255.0f;  // fragments below it are skipped (Kerbl et al.)
 constexpr float kMaxAlpha = 0.99f;
@@ -45,12 +45,29 @@ void composite(const Prepared p, int tx0, int ty0, int tw, int th, Tile& tile, i
   const int xs = std::max(p.x0, tx0), xe = std::min(p.x1, tx0 + tw - 1);
   const int ys = std::max(p.y0, ty0), ye = std::min(p.y1, ty0 + th - 1);
   const F4 lane = {0.5f, 1.5f, 2.5f, 3.5f};
+  const bool wide = xe - xs >= 8 && p.ca > 0.0f;
+  I4 closed = {0, 0, 0, 0};  // minus the pixels this splat saturated, per lane
   for (int y = ys; y <= ye; ++y) {
     const float dy = static_cast<float>(y) + 0.5f - p.cy;
     const float rowC = -0.5f * p.cc * dy * dy;
     const float rowB = -p.cb * dy;
     const int row = (y - ty0) * kTile;
-    for (int x = tx0 + ((xs - tx0) & ~3); x <= xe; x += 4) {
+    // A wide splat's row: only its pixels inside the ellipse where the power reaches the
+    // cut, 0.5 ca dx^2 - rowB dx - (rowC + cut) <= 0 (a margin of 0.01 px); none when it
+    // misses the row. (A narrow one's box is about its ellipse already: a root per row
+    // would cost more than it saves.)
+    int rs = xs, re = xe;
+    if (wide) {
+      const float disc = rowB * rowB + 2.0f * p.ca * (rowC - p.cut);
+      if (!(disc >= 0.0f)) continue;
+      const float root = std::sqrt(disc);
+      const float lo = p.cx - 0.5f + (rowB - root) / p.ca - 0.01f;
+      const float hi = p.cx - 0.5f + (rowB + root) / p.ca + 0.01f;
+      if (!(lo <= static_cast<float>(xe)) || !(hi >= static_cast<float>(xs))) continue;
+      rs = std::max(xs, static_cast<int>(std::ceil(lo)));
+      re = std::min(xe, static_cast<int>(std::floor(hi)));
+    }
+    for (int x = tx0 + ((rs - tx0) & ~3); x <= re; x += 4) {
       const auto i = static_cast<std::size_t>(row + x - tx0);
       const F4 transmittance = load4(&tile.t[i]);
       const I4 open = transmittance > kSaturated;
@@ -58,7 +75,7 @@ void composite(const Prepared p, int tx0, int ty0, int tw, int th, Tile& tile, i
       const F4 dx = (static_cast<float>(x) - p.cx) + lane;
       const F4 power = (-0.5f * p.ca) * dx * dx + rowB * dx + rowC;
       const I4 column =
-          (dx >= static_cast<float>(xs) - p.cx) & (dx < static_cast<float>(xe + 1) - p.cx);
+          (dx >= static_cast<float>(rs) - p.cx) & (dx < static_cast<float>(re + 1) - p.cx);
       const I4 inside =
           column & (power <= 0.0f) & (power > -8.0f) & open & (p.depth <= load4(&tile.limit[i]));
       F4 alpha = p.opacity * exp4(select4(inside, power));
@@ -70,10 +87,10 @@ void composite(const Prepared p, int tx0, int ty0, int tw, int th, Tile& tile, i
       store4(&tile.b[i], load4(&tile.b[i]) + weight * p.b);
       const F4 left = transmittance - weight;
       store4(&tile.t[i], left);
-      const I4 done = open & (left <= kSaturated);
-      live += done[0] + done[1] + done[2] + done[3];
+      closed += open & (left <= kSaturated);
     }
   }
+  live += closed[0] + closed[1] + closed[2] + closed[3];
 }
 
 /// What the setup reads of one splat of a source: its centre and covariance (source
@@ -153,6 +170,7 @@ struct VectorSource {
 
 struct CpuGaussianRasterizer::Scratch {
   std::vector<std::vector<std::vector<Prepared>>> bins;  // per chunk, per tile
+  std::vector<Prepared> prepared;                        // per splat index (x0 > x1: none)
   const void* cloudKey = nullptr;
   std::size_t cloudSize = 0;
   std::uint64_t cloudRevision = 0;
@@ -231,57 +249,81 @@ void CpuGaussianRasterizer::rasterize(const Source& source, std::span<const std:
   std::barrier sync(threads_);
   constexpr float minAlpha = Source::minAlpha;
 
+  // One splat's setup: its EWA projection, box and colour; false when it draws nothing.
+  const auto prepare = [&](std::uint32_t index, Prepared& prepared) {
+    SplatInput in;
+    if (!source.input(index, in)) return false;
+    splats::ProjectedGaussian g;
+    if (!splats::projectGaussian(in.position, in.sigma, pv, g)) return false;
+    // A vector's peak scaled to keep its integral, and its fragments' cut with it: a
+    // fragment is drawn where the unfiltered profile would reach minAlpha, so that the
+    // many faint fragments of far sub-pixel vectors add up to what their point-sampled
+    // peaks did (docs/splats.md, "One model").
+    const float keep = Source::keepIntegral ? g.lowPassKeep : 1.0f;
+    prepared.opacity = in.opacity * keep;
+    prepared.minAlpha = minAlpha * keep;
+    if (!(prepared.opacity >= prepared.minAlpha) || !(prepared.opacity > 0.0f)) return false;
+    // The box of pixels of the 3-sigma square (as Kerbl et al.'s), narrowed to the box of
+    // the ellipse where the power reaches the cut (the 2D covariance's diagonal times
+    // -2 cut, one pixel of margin): no pixel outside it is drawn.
+    prepared.cut = std::max(-8.0f, std::log(prepared.minAlpha / prepared.opacity)) - 0.01f;
+    const float conicDet = g.conic.x * g.conic.z - g.conic.y * g.conic.y;
+    const float reachX = std::sqrt(-2.0f * prepared.cut * g.conic.z / conicDet) + 1.0f;
+    const float reachY = std::sqrt(-2.0f * prepared.cut * g.conic.x / conicDet) + 1.0f;
+    const float ex = std::isfinite(reachX) ? std::min(g.extent.x, reachX) : g.extent.x;
+    const float ey = std::isfinite(reachY) ? std::min(g.extent.y, reachY) : g.extent.y;
+    // Clamped in float before the conversion (a huge splat's box must not overflow int).
+    const auto pixel = [](float v, int size) {
+      return static_cast<int>(std::floor(std::clamp(v, -1.0f, static_cast<float>(size))));
+    };
+    prepared.x0 = std::max(0, pixel(g.center.x - ex, view.width));
+    prepared.x1 = std::min(view.width - 1, pixel(g.center.x + ex, view.width));
+    prepared.y0 = std::max(0, pixel(g.center.y - ey, view.height));
+    prepared.y1 = std::min(view.height - 1, pixel(g.center.y + ey, view.height));
+    if (prepared.x0 > prepared.x1 || prepared.y0 > prepared.y1) return false;
+    glm::vec3 color;
+    if (!source.color(index, in, color)) return false;
+    prepared.cx = g.center.x;
+    prepared.cy = g.center.y;
+    prepared.ca = g.conic.x;
+    prepared.cb = g.conic.y;
+    prepared.cc = g.conic.z;
+    prepared.depth = g.depth;
+    prepared.r = color.r;
+    prepared.g = color.g;
+    prepared.b = color.b;
+    return true;
+  };
+  // The set-up runs in index order (the source's arrays read in sequence, not at the depth
+  // order's random places), for the splats [0, setUp) (the order's usual indices: a depth
+  // order of a prefix); an index beyond them is set up when binned.
+  const std::size_t setUp = std::min(n, order.size());
+  if (s.prepared.size() < setUp) s.prepared.resize(setUp);
+
   const auto work = [&](int chunk) {
     std::vector<std::vector<Prepared>>& bins = s.bins[static_cast<std::size_t>(chunk)];
     if (bins.size() < static_cast<std::size_t>(tiles)) bins.resize(static_cast<std::size_t>(tiles));
     for (auto& bin : bins) bin.clear();
+    for (std::size_t i = setUp * static_cast<std::size_t>(chunk) / chunks,
+                     last = setUp * static_cast<std::size_t>(chunk + 1) / chunks;
+         i < last; ++i) {
+      Prepared& prepared = s.prepared[i];
+      if (!prepare(static_cast<std::uint32_t>(i), prepared)) prepared.x0 = 1, prepared.x1 = 0;
+    }
+    sync.arrive_and_wait();
+    // Binning in depth order, each thread one contiguous share of the order.
     const std::size_t begin = order.size() * static_cast<std::size_t>(chunk) / chunks;
     const std::size_t end = order.size() * static_cast<std::size_t>(chunk + 1) / chunks;
+    constexpr std::size_t kAhead = 16;  // set-up splats prefetched ahead of the one binned
     for (std::size_t k = begin; k < end; ++k) {
+      if (k + kAhead < end && order[k + kAhead] < setUp)
+        __builtin_prefetch(&s.prepared[order[k + kAhead]]);
       const std::uint32_t index = order[k];
       if (index >= n) continue;
-      SplatInput in;
-      if (!source.input(index, in)) continue;
-      splats::ProjectedGaussian g;
-      if (!splats::projectGaussian(in.position, in.sigma, pv, g)) continue;
-      Prepared prepared;
-      // A vector's peak scaled to keep its integral, and its fragments' cut with it: a
-      // fragment is drawn where the unfiltered profile would reach minAlpha, so that the
-      // many faint fragments of far sub-pixel vectors add up to what their point-sampled
-      // peaks did (docs/splats.md, "One model").
-      const float keep = Source::keepIntegral ? g.lowPassKeep : 1.0f;
-      prepared.opacity = in.opacity * keep;
-      prepared.minAlpha = minAlpha * keep;
-      if (!(prepared.opacity >= prepared.minAlpha) || !(prepared.opacity > 0.0f)) continue;
-      // The box of pixels of the 3-sigma square (as Kerbl et al.'s), narrowed to the box of
-      // the ellipse where the power reaches the cut (the 2D covariance's diagonal times
-      // -2 cut, one pixel of margin): no pixel outside it is drawn.
-      prepared.cut = std::max(-8.0f, std::log(prepared.minAlpha / prepared.opacity)) - 0.01f;
-      const float conicDet = g.conic.x * g.conic.z - g.conic.y * g.conic.y;
-      const float reachX = std::sqrt(-2.0f * prepared.cut * g.conic.z / conicDet) + 1.0f;
-      const float reachY = std::sqrt(-2.0f * prepared.cut * g.conic.x / conicDet) + 1.0f;
-      const float ex = std::isfinite(reachX) ? std::min(g.extent.x, reachX) : g.extent.x;
-      const float ey = std::isfinite(reachY) ? std::min(g.extent.y, reachY) : g.extent.y;
-      // Clamped in float before the conversion (a huge splat's box must not overflow int).
-      const auto pixel = [](float v, int size) {
-        return static_cast<int>(std::floor(std::clamp(v, -1.0f, static_cast<float>(size))));
-      };
-      prepared.x0 = std::max(0, pixel(g.center.x - ex, view.width));
-      prepared.x1 = std::min(view.width - 1, pixel(g.center.x + ex, view.width));
-      prepared.y0 = std::max(0, pixel(g.center.y - ey, view.height));
-      prepared.y1 = std::min(view.height - 1, pixel(g.center.y + ey, view.height));
-      if (prepared.x0 > prepared.x1 || prepared.y0 > prepared.y1) continue;
-      glm::vec3 color;
-      if (!source.color(index, in, color)) continue;
-      prepared.cx = g.center.x;
-      prepared.cy = g.center.y;
-      prepared.ca = g.conic.x;
-      prepared.cb = g.conic.y;
-      prepared.cc = g.conic.z;
-      prepared.depth = g.depth;
-      prepared.r = color.r;
-      prepared.g = color.g;
-      prepared.b = color.b;
+      Prepared late;
+      if (index >= setUp && !prepare(index, late)) continue;
+      const Prepared& prepared = index < setUp ? s.prepared[index] : late;
+      if (prepared.x0 > prepared.x1) continue;
       for (int ty = prepared.y0 / kTile; ty <= prepared.y1 / kTile; ++ty)
         for (int tx = prepared.x0 / kTile; tx <= prepared.x1 / kTile; ++tx)
           bins[static_cast<std::size_t>(ty * tilesX + tx)].push_back(prepared);

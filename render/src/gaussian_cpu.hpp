@@ -4,11 +4,12 @@
 // render/splat_model.hpp (vectorGaussian). It draws what Kerbl et al. 2023's rasterizer
 // draws:
 //
-// 1. Setup (the order split into one contiguous chunk per thread): each Gaussian's EWA
-//    projection (splats::projectGaussian: Sigma' = J W Sigma W^T J^T + 0.3 px, 3-sigma box),
-//    its colour (a cloud: its spherical harmonics along the ray from the camera; a vector:
-//    shadeSplat's flat two-sided lighting of its normal), binned to 16x16 pixel tiles in
-//    order.
+// 1. Setup (the splats split into one contiguous index range per thread, read in
+//    sequence): each Gaussian's EWA projection (splats::projectGaussian: Sigma' = J W Sigma
+//    W^T J^T + 0.3 px, 3-sigma box), its colour (a cloud: its spherical harmonics along the
+//    ray from the camera; a vector: shadeSplat's flat two-sided lighting of its normal);
+//    then binned to 16x16 pixel tiles in depth order (the order split into one contiguous
+//    chunk per thread).
 // 2. Compositing: threads take tiles; per pixel, front to back, alpha = min(0.99,
 //    o exp(-0.5 d^T Sigma'^-1 d)), fragments with alpha < 1/255 skipped (vectors: below
 //    half a level, 0.5/255, what an 8-bit framebuffer can still show), C += T alpha c,

@@ -162,10 +162,11 @@ void writeColor(std::uint8_t* out, const glm::vec3& c) {
 }  // namespace
 
 void GaussianGlPass::uploadCloud(const splats::GaussianCloud& cloud, const glm::vec3& eye,
-                                 std::uint64_t revision) {
+                                 std::uint64_t revision, bool gpuColors) {
   create();
   const std::size_t n = cloud.size();
   if (uploaded_ != &cloud || uploadedSize_ != n || uploadedRevision_ != revision) {
+    shOnGpu_ = false;
     staging_.resize(n * 12);
     for (std::size_t i = 0; i < n; ++i)
       writeTexels(&staging_[i * 12], cloud.positions[i], cloud.opacities[i],
@@ -176,9 +177,31 @@ void GaussianGlPass::uploadCloud(const splats::GaussianCloud& cloud, const glm::
     uploadedRevision_ = revision;
     colorKey_.clear();
   }
-  // This view's colours: SH along the ray from the camera (once when the cloud has none).
+  // This view's colours: SH along the ray from the camera (once when the cloud has none),
+  // on the GPU when asked (the gpu path: nothing per splat on the CPU as the view moves).
   const bool viewDependent = cloud.shDegree > 0;
-  if (colorKey_.empty() || (viewDependent && !(colorEye_ == eye))) {
+  if (viewDependent && gpuColors && n > 0) {
+    if (!shOnGpu_) {
+      shColors_.upload(cloud);
+      shOnGpu_ = true;
+      colorKey_.clear();
+    }
+    if (colorKey_.empty() || !(colorEye_ == eye)) {
+      if (colorCapacity_ < n * 4) {
+        colorCapacity_ = n * 4;
+        glBindBuffer(GL_TEXTURE_BUFFER, colorBuffer_);
+        glBufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(colorCapacity_), nullptr,
+                     GL_STREAM_DRAW);
+        glBindTexture(GL_TEXTURE_BUFFER, colorTexture_);
+        glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA8, colorBuffer_);
+      }
+      shColors_.evaluate(splatTexture_, colorBuffer_, n, eye);
+      colorEye_ = eye;
+      colorKey_.assign(1, 1.0f);  // 1: made on the GPU
+    }
+    return;
+  }
+  if (colorKey_.empty() || colorKey_[0] != 0.0f || (viewDependent && !(colorEye_ == eye))) {
     colors_.resize(n * 4);
     for (std::size_t i = 0; i < n; ++i) {
       const glm::vec3 toward = cloud.positions[i] - eye;
@@ -197,7 +220,7 @@ void GaussianGlPass::draw(const splats::GaussianCloud& cloud, std::span<const st
                           const glm::mat4& modelView, const glm::mat4& projection,
                           const glm::vec3& eye, const int viewport[4], float nearClip,
                           float opacityScale, std::uint64_t revision) {
-  uploadCloud(cloud, eye, revision);
+  uploadCloud(cloud, eye, revision, false);
   drawUploaded(order, order.size(), modelView, projection, viewport, nearClip, opacityScale,
                1.0f / 255.0f, false);
 }
@@ -206,7 +229,7 @@ void GaussianGlPass::drawGpuSorted(const splats::GaussianCloud& cloud, std::size
                                    const glm::mat4& modelView, const glm::mat4& projection,
                                    const glm::vec3& eye, const int viewport[4], float nearClip,
                                    float opacityScale, std::uint64_t revision) {
-  uploadCloud(cloud, eye, revision);
+  uploadCloud(cloud, eye, revision, GpuDepthSort::available());
   drawUploaded({}, std::min(count, cloud.size()), modelView, projection, viewport, nearClip,
                opacityScale, 1.0f / 255.0f, false);
 }
@@ -331,6 +354,8 @@ void GaussianGlPass::release() {
   colorKey_.clear();
   splatCapacity_ = colorCapacity_ = coloredSize_ = 0;
   gpuSort_.release();
+  shColors_.release();
+  shOnGpu_ = false;
 }
 
 }  // namespace gs::render::detail

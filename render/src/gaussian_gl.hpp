@@ -9,8 +9,9 @@
 //
 // Data: the cloud's centres, opacities and covariances in one texture buffer (three
 // RGBA32F texels per Gaussian, uploaded once per cloud), the colours of this view
-// (spherical harmonics evaluated on the CPU, RGBA8) in another, refreshed when the view
-// moves and the cloud has SH bands; the order as an instanced attribute.
+// (spherical harmonics evaluated on the CPU, or on the GPU by GpuShColors for the
+// GPU-sorted path, RGBA8) in another, refreshed when the view moves and the cloud has SH
+// bands; the order as an instanced attribute.
 #pragma once
 
 #include <glad/gl.h>
@@ -24,6 +25,7 @@
 #include "gpu_sort.hpp"
 #include "qnv/decoder.hpp"
 #include "render/splat_model.hpp"
+#include "sh_colors_gl.hpp"
 #include "splats/gaussian.hpp"
 
 namespace gs::render::detail {
@@ -75,14 +77,18 @@ class GaussianGlPass {
   /// the buffer already holds the rest (a grown set), else whole.
   void uploadSplats(std::size_t from);
   void uploadColors(std::size_t from);
-  void uploadCloud(const splats::GaussianCloud& cloud, const glm::vec3& eye,
-                   std::uint64_t revision);
+  /// The cloud's texels (again when it changed) and this view's colours: with
+  /// `gpuColors` and SH bands, evaluated on the GPU (GpuShColors), else on the CPU.
+  void uploadCloud(const splats::GaussianCloud& cloud, const glm::vec3& eye, std::uint64_t revision,
+                   bool gpuColors);
   /// Draws `count` instances in `order`, or, when `order` is empty, in the order the GPU
   /// sort makes of the first `count` splats.
   void drawUploaded(std::span<const std::uint32_t> order, std::size_t count,
                     const glm::mat4& modelView, const glm::mat4& projection, const int viewport[4],
                     float nearClip, float opacityScale, float minAlpha, bool keepIntegral);
   GpuDepthSort gpuSort_;
+  GpuShColors shColors_;
+  bool shOnGpu_ = false;  // shColors_ holds the uploaded cloud's coefficients
 
   GLuint program_ = 0, vao_ = 0, orderBuffer_ = 0;
   GLuint splatBuffer_ = 0, splatTexture_ = 0, colorBuffer_ = 0, colorTexture_ = 0;

@@ -160,15 +160,14 @@ GLuint buildCompute(const char* name, const char* body) {
   return buildComputeProgram(name, source.c_str());
 }
 
-/// Dispatches `groups` workgroups over a 2D grid (at most kMaxGroupsX in x).
+}  // namespace
+
 void dispatch(GLuint groups) {
   if (groups == 0) return;
   const GLuint x = std::min(groups, kMaxGroupsX);
   const GLuint y = (groups + x - 1) / x;
   glDispatchCompute(x, y, 1);
 }
-
-}  // namespace
 
 bool GpuDepthSort::available() {
   GLint major = 0, minor = 0;

@@ -20,6 +20,12 @@
 
 namespace gs::render::detail {
 
+/// Dispatches `groups` workgroups of the bound compute program over a 2D grid (at most
+/// 65,535 in x, the least GL_MAX_COMPUTE_WORK_GROUP_COUNT), so a shader finds its
+/// workgroup's index as gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x and
+/// returns past the last. Nothing for 0 groups.
+void dispatch(GLuint groups);
+
 class GpuDepthSort {
  public:
   GpuDepthSort() = default;

@@ -162,4 +162,61 @@ TEST_CASE("the GL path sorted on the GPU draws the pixels of the CPU-sorted one"
   CHECK(compareImages(gpu, Image(kSize, kSize, 26, 51, 77), 16).fractionDiffering > 0.2);
 }
 
+TEST_CASE("the GPU-sorted path evaluates spherical harmonics on the GPU as the CPU does",
+          "[splat][gpu]") {
+  constexpr int kSize = 96;
+  auto context = createOffscreenContext(kSize, kSize);
+  if (!detail::GpuDepthSort::available()) {
+    test::missingFixture("an OpenGL 4.3 context (compute shaders) for the GPU sort");
+    return;
+  }
+  // Small opaque discs with strong view-dependent colour (SH degree 3), seen from two eyes:
+  // the gpu path's colours come from its compute shader, the geometry path's from
+  // splats::shColor on the CPU.
+  for (const splats::ColorSpace space : {splats::ColorSpace::srgb, splats::ColorSpace::linear}) {
+    splats::GaussianCloud cloud;
+    cloud.shDegree = 3;
+    cloud.colorSpace = space;
+    cloud.resize(1500);
+    std::mt19937 rng(11);
+    std::normal_distribution<float> g(0.0f, 1.0f);
+    std::uniform_real_distribution<float> u(-0.6f, 0.6f);
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+      cloud.positions[i] = glm::normalize(glm::vec3(g(rng), g(rng), g(rng)));
+      cloud.scales[i] = glm::vec3(0.05f, 0.05f, 0.01f);
+      cloud.rotations[i] = glm::normalize(glm::quat(g(rng), g(rng), g(rng), g(rng)));
+      cloud.opacities[i] = 0.9f;
+      cloud.shDc[i] = {u(rng), u(rng), u(rng)};
+      for (int k = 0; k < 15; ++k)
+        cloud.shRest[i * 15 + static_cast<std::size_t>(k)] = {u(rng), u(rng), u(rng)};
+    }
+    SplatSet set;
+    set.gaussians = std::make_shared<const splats::GaussianCloud>(std::move(cloud));
+    set.computeBounds();
+    for (const glm::vec3 eye : {glm::vec3(0.3f, 0.5f, 3.0f), glm::vec3(-2.5f, 0.4f, -1.5f)}) {
+      scene::Camera camera;
+      camera.position = eye;
+      camera.orientation = glm::quatLookAt(glm::normalize(-eye), glm::vec3(0, 1, 0));
+      const auto draw = [&](SplatPath path) {
+        SplatRenderer renderer;
+        renderer.setPath(path);
+        glViewport(0, 0, kSize, kSize);
+        glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        renderer.draw(set, set.size(), glm::mat4(1.0f), camera, 1.0f, {});
+        CHECK(renderer.statistics().path == path);
+        Image image = readPixels(0, 0, kSize, kSize);
+        renderer.release();
+        return image;
+      };
+      const Image gpu = draw(SplatPath::gpu);
+      const Image geometry = draw(SplatPath::geometry);
+      INFO("colour space " << static_cast<int>(space) << ", eye " << eye.x << " " << eye.y << " "
+                           << eye.z);
+      CHECK(compareImages(gpu, geometry, 2).fractionDiffering <= 0.002);
+      CHECK(compareImages(gpu, Image(kSize, kSize, 0, 0, 0), 16).fractionDiffering > 0.2);
+    }
+  }
+}
+
 }  // namespace gs::render
