@@ -8,7 +8,7 @@
 //    sequence): each Gaussian's EWA projection (splats::projectGaussian: Sigma' = J W Sigma
 //    W^T J^T + 0.3 px, 3-sigma box), its colour (a cloud: its spherical harmonics along the
 //    ray from the camera; a vector: shadeSplat's flat two-sided lighting of its normal);
-//    then binned to 16x16 pixel tiles in depth order (the order split into one contiguous
+//    then binned to 32x32 pixel tiles in depth order (the order split into one contiguous
 //    chunk per thread).
 // 2. Compositing: threads take tiles; per pixel, front to back, alpha = min(0.99,
 //    o exp(-0.5 d^T Sigma'^-1 d)), fragments with alpha < 1/255 skipped (vectors: below
