@@ -187,7 +187,7 @@ CpuGaussianRasterizer::~CpuGaussianRasterizer() = default;
 void CpuGaussianRasterizer::draw(const splats::GaussianCloud& cloud,
                                  std::span<const std::uint32_t> order, const CpuGaussianView& view,
                                  std::span<const float> depth, std::vector<std::uint8_t>& out,
-                                 std::uint64_t revision) {
+                                 std::uint64_t revision, std::span<const std::uint32_t> subset) {
   Scratch& s = *scratch_;
   // Covariances once per cloud (they do not depend on the view).
   const std::size_t n = cloud.size();
@@ -202,7 +202,7 @@ void CpuGaussianRasterizer::draw(const splats::GaussianCloud& cloud,
     s.cloudRevision = revision;
   }
   rasterize(CloudSource{cloud, s.covariances.data(), view.eye, view.opacityScale}, order, view,
-            depth, out);
+            depth, out, subset);
 }
 
 void CpuGaussianRasterizer::drawVectors(std::span<const qnv::DecodedVector> vectors,
@@ -213,13 +213,14 @@ void CpuGaussianRasterizer::drawVectors(std::span<const qnv::DecodedVector> vect
                                         std::vector<std::uint8_t>& out) {
   rasterize(VectorSource{vectors, style, lights.first(std::min<std::size_t>(lights.size(), 8)),
                          normalMatrix},
-            order, view, depth, out);
+            order, view, depth, out, {});
 }
 
 template <typename Source>
 void CpuGaussianRasterizer::rasterize(const Source& source, std::span<const std::uint32_t> order,
                                       const CpuGaussianView& view, std::span<const float> depth,
-                                      std::vector<std::uint8_t>& out) {
+                                      std::vector<std::uint8_t>& out,
+                                      std::span<const std::uint32_t> subset) {
   if (view.width <= 0 || view.height <= 0) return;
   const std::size_t pixels =
       static_cast<std::size_t>(view.width) * static_cast<std::size_t>(view.height);
@@ -297,8 +298,9 @@ void CpuGaussianRasterizer::rasterize(const Source& source, std::span<const std:
   };
   // The set-up runs in index order (the source's arrays read in sequence, not at the depth
   // order's random places), for the splats [0, setUp) (the order's usual indices: a depth
-  // order of a prefix); an index beyond them is set up when binned.
-  const std::size_t setUp = std::min(n, order.size());
+  // order of a prefix); an index beyond them is set up when binned. With a subset, for
+  // its splats, the order holding places in it.
+  const std::size_t setUp = subset.empty() ? std::min(n, order.size()) : subset.size();
   if (s.prepared.size() < setUp) s.prepared.resize(setUp);
 
   const auto work = [&](int chunk) {
@@ -309,7 +311,8 @@ void CpuGaussianRasterizer::rasterize(const Source& source, std::span<const std:
                      last = setUp * static_cast<std::size_t>(chunk + 1) / chunks;
          i < last; ++i) {
       Prepared& prepared = s.prepared[i];
-      if (!prepare(static_cast<std::uint32_t>(i), prepared)) prepared.x0 = 1, prepared.x1 = 0;
+      const std::uint32_t index = subset.empty() ? static_cast<std::uint32_t>(i) : subset[i];
+      if (index >= n || !prepare(index, prepared)) prepared.x0 = 1, prepared.x1 = 0;
     }
     sync.arrive_and_wait();
     // Binning in depth order, each thread one contiguous share of the order.
@@ -320,7 +323,7 @@ void CpuGaussianRasterizer::rasterize(const Source& source, std::span<const std:
       if (k + kAhead < end && order[k + kAhead] < setUp)
         __builtin_prefetch(&s.prepared[order[k + kAhead]]);
       const std::uint32_t index = order[k];
-      if (index >= n) continue;
+      if (index >= (subset.empty() ? n : setUp)) continue;
       Prepared late;
       if (index >= setUp && !prepare(index, late)) continue;
       const Prepared& prepared = index < setUp ? s.prepared[index] : late;

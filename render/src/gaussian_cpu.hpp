@@ -57,9 +57,13 @@ class CpuGaussianRasterizer {
   /// centre's window depth is below the scene's there (GL_LESS). Covariances are cached
   /// per cloud (address, size and `revision`): a cloud that changes in place must come
   /// with a new revision.
+  /// With a `subset` (indices into the cloud, best ascending: a level-of-detail cut of a
+  /// cloud that holds the tree's every node), `order` holds places in the subset instead:
+  /// the Gaussians cloud[subset[order[i]]] are drawn (places outside the subset skipped).
   void draw(const splats::GaussianCloud& cloud, std::span<const std::uint32_t> order,
             const CpuGaussianView& view, std::span<const float> depth,
-            std::vector<std::uint8_t>& out, std::uint64_t revision = 0);
+            std::vector<std::uint8_t>& out, std::uint64_t revision = 0,
+            std::span<const std::uint32_t> subset = {});
 
   /// Composites the QNV vectors `vectors[order[i]]` (order[0] nearest; indices outside
   /// skipped) as the flat-disc Gaussians of vectorGaussian under `style`, shaded by
@@ -82,7 +86,7 @@ class CpuGaussianRasterizer {
   template <typename Source>
   void rasterize(const Source& source, std::span<const std::uint32_t> order,
                  const CpuGaussianView& view, std::span<const float> depth,
-                 std::vector<std::uint8_t>& out);
+                 std::vector<std::uint8_t>& out, std::span<const std::uint32_t> subset);
 
   int threads_;
   std::unique_ptr<Scratch> scratch_;

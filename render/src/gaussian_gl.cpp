@@ -93,6 +93,7 @@ void GaussianGlPass::create() {
   glGenBuffers(1, &orderBuffer_);
   glGenBuffers(1, &splatBuffer_);
   glGenBuffers(1, &colorBuffer_);
+  glGenBuffers(1, &subsetBuffer_);
   glGenTextures(1, &splatTexture_);
   glGenTextures(1, &colorTexture_);
   glBindVertexArray(vao_);
@@ -228,10 +229,29 @@ void GaussianGlPass::draw(const splats::GaussianCloud& cloud, std::span<const st
 void GaussianGlPass::drawGpuSorted(const splats::GaussianCloud& cloud, std::size_t count,
                                    const glm::mat4& modelView, const glm::mat4& projection,
                                    const glm::vec3& eye, const int viewport[4], float nearClip,
-                                   float opacityScale, std::uint64_t revision) {
+                                   float opacityScale, std::uint64_t revision,
+                                   std::span<const std::uint32_t> subset,
+                                   std::uint64_t subsetRevision) {
   uploadCloud(cloud, eye, revision, GpuDepthSort::available());
-  drawUploaded({}, std::min(count, cloud.size()), modelView, projection, viewport, nearClip,
-               opacityScale, 1.0f / 255.0f, false);
+  if (subset.empty()) {
+    drawUploaded({}, std::min(count, cloud.size()), modelView, projection, viewport, nearClip,
+                 opacityScale, 1.0f / 255.0f, false);
+    return;
+  }
+  // A cut: its indices sent when it changed (a few bytes a splat), the cloud kept.
+  if (subsetSent_ != subset.data() || subsetSize_ != subset.size() ||
+      subsetRevision_ != subsetRevision) {
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, subsetBuffer_);
+    glBufferData(GL_SHADER_STORAGE_BUFFER,
+                 static_cast<GLsizeiptr>(subset.size() * sizeof(std::uint32_t)), subset.data(),
+                 GL_STREAM_DRAW);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    subsetSent_ = subset.data();
+    subsetSize_ = subset.size();
+    subsetRevision_ = subsetRevision;
+  }
+  drawUploaded({}, subset.size(), modelView, projection, viewport, nearClip, opacityScale,
+               1.0f / 255.0f, false, subsetBuffer_);
 }
 
 void GaussianGlPass::drawVectors(std::span<const qnv::DecodedVector> vectors,
@@ -295,11 +315,11 @@ void GaussianGlPass::drawVectors(std::span<const qnv::DecodedVector> vectors,
 void GaussianGlPass::drawUploaded(std::span<const std::uint32_t> order, std::size_t count,
                                   const glm::mat4& modelView, const glm::mat4& projection,
                                   const int viewport[4], float nearClip, float opacityScale,
-                                  float minAlpha, bool keepIntegral) {
+                                  float minAlpha, bool keepIntegral, GLuint subset) {
   if (count == 0) return;
   GLuint orderBuffer = orderBuffer_;
   if (order.empty()) {
-    gpuSort_.sort(splatTexture_, count, modelView);
+    gpuSort_.sort(splatTexture_, count, modelView, subset);
     orderBuffer = gpuSort_.order();
   } else {
     glBindBuffer(GL_ARRAY_BUFFER, orderBuffer_);
@@ -345,8 +365,10 @@ void GaussianGlPass::release() {
   if (program_ == 0) return;
   glDeleteProgram(program_);
   glDeleteVertexArrays(1, &vao_);
-  GLuint buffers[] = {orderBuffer_, splatBuffer_, colorBuffer_};
-  glDeleteBuffers(3, buffers);
+  GLuint buffers[] = {orderBuffer_, splatBuffer_, colorBuffer_, subsetBuffer_};
+  glDeleteBuffers(4, buffers);
+  subsetSent_ = nullptr;
+  subsetSize_ = 0;
   GLuint textures[] = {splatTexture_, colorTexture_};
   glDeleteTextures(2, textures);
   program_ = 0;

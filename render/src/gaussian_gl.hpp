@@ -47,11 +47,15 @@ class GaussianGlPass {
             const glm::mat4& modelView, const glm::mat4& projection, const glm::vec3& eye,
             const int viewport[4], float nearClip, float opacityScale, std::uint64_t revision = 0);
   /// As draw(), the order sorted on the GPU instead (GpuDepthSort, OpenGL 4.3): the first
-  /// `count` splats of the cloud, back to front.
+  /// `count` splats of the cloud, back to front; or, with a `subset` (indices into the
+  /// cloud: a level-of-detail cut of a cloud that holds the tree's every node), those
+  /// splats (`count` unused), the cloud uploaded once and the subset's indices again when
+  /// its address, size or `subsetRevision` changed.
   void drawGpuSorted(const splats::GaussianCloud& cloud, std::size_t count,
                      const glm::mat4& modelView, const glm::mat4& projection, const glm::vec3& eye,
                      const int viewport[4], float nearClip, float opacityScale,
-                     std::uint64_t revision = 0);
+                     std::uint64_t revision = 0, std::span<const std::uint32_t> subset = {},
+                     std::uint64_t subsetRevision = 0);
   /// Draws the QNV vectors `order` (indices into `vectors`, farthest first) as the
   /// flat-disc Gaussians of vectorGaussian under `style`, shaded by shadeSplat with
   /// `lights` (world directions, at most 8) and normals turned by `normalMatrix` (model to
@@ -82,16 +86,22 @@ class GaussianGlPass {
   void uploadCloud(const splats::GaussianCloud& cloud, const glm::vec3& eye, std::uint64_t revision,
                    bool gpuColors);
   /// Draws `count` instances in `order`, or, when `order` is empty, in the order the GPU
-  /// sort makes of the first `count` splats.
+  /// sort makes of the first `count` splats (of the `count` named by the buffer `subset`
+  /// when it is not 0).
   void drawUploaded(std::span<const std::uint32_t> order, std::size_t count,
                     const glm::mat4& modelView, const glm::mat4& projection, const int viewport[4],
-                    float nearClip, float opacityScale, float minAlpha, bool keepIntegral);
+                    float nearClip, float opacityScale, float minAlpha, bool keepIntegral,
+                    GLuint subset = 0);
   GpuDepthSort gpuSort_;
   GpuShColors shColors_;
   bool shOnGpu_ = false;  // shColors_ holds the uploaded cloud's coefficients
 
   GLuint program_ = 0, vao_ = 0, orderBuffer_ = 0;
   GLuint splatBuffer_ = 0, splatTexture_ = 0, colorBuffer_ = 0, colorTexture_ = 0;
+  GLuint subsetBuffer_ = 0;           // the last cut's indices (drawGpuSorted)
+  const void* subsetSent_ = nullptr;  // ... sent from this array
+  std::size_t subsetSize_ = 0;        // ... of this many
+  std::uint64_t subsetRevision_ = 0;  // ... at this revision
   const void* uploaded_ = nullptr;
   std::size_t uploadedSize_ = 0;
   std::uint64_t uploadedRevision_ = 0;

@@ -32,17 +32,20 @@ const char* const kKeysShader = R"glsl(
 uniform samplerBuffer u_splats;
 uniform vec4 u_row;  // row 2 of the model-view matrix: eye z = dot(u_row, (p, 1))
 uniform uint u_count;
+uniform bool u_subset;  // sort the splats subset[0 .. count) instead of 0 .. count
 layout(std430, binding = 0) writeonly buffer Keys { uint keys[]; };
 layout(std430, binding = 1) writeonly buffer Values { uint values[]; };
+layout(std430, binding = 5) readonly buffer Subset { uint subset[]; };
 void main() {
-  uint i = groupIndex() * GROUP + gl_LocalInvocationID.x;
-  if (i >= u_count) return;
+  uint k = groupIndex() * GROUP + gl_LocalInvocationID.x;
+  if (k >= u_count) return;
+  uint i = u_subset ? subset[k] : k;
   vec3 p = texelFetch(u_splats, int(3u * i)).xyz;
   float z = (u_row.x * p.x + u_row.y * p.y) + (u_row.z * p.z + u_row.w) + 0.0;
   uint bits = floatBitsToUint(z);
   uint key = (bits & 0x80000000u) != 0u ? ~bits : (bits | 0x80000000u);
-  keys[i] = isnan(z) ? 0u : key;
-  values[i] = i;
+  keys[k] = isnan(z) ? 0u : key;
+  values[k] = i;
 }
 )glsl";
 
@@ -206,7 +209,8 @@ void GpuDepthSort::reserve(std::size_t count) {
   capacity_ = count;
 }
 
-void GpuDepthSort::sort(GLuint splatTexture, std::size_t count, const glm::mat4& modelView) {
+void GpuDepthSort::sort(GLuint splatTexture, std::size_t count, const glm::mat4& modelView,
+                        GLuint subset) {
   create();
   count = std::min<std::size_t>(count, kMaxSplats);
   if (count == 0) return;
@@ -221,8 +225,11 @@ void GpuDepthSort::sort(GLuint splatTexture, std::size_t count, const glm::mat4&
   glUniform4f(uniform(keysProgram_, "u_row"), modelView[0][2], modelView[1][2], modelView[2][2],
               modelView[3][2]);
   glUniform1ui(uniform(keysProgram_, "u_count"), n);
+  glUniform1i(uniform(keysProgram_, "u_subset"), subset != 0 ? 1 : 0);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, keys_[0]);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, values_[0]);
+  // (Without a subset the binding holds a buffer the shader does not read.)
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, subset != 0 ? subset : keys_[1]);
   dispatch((n + kGroup - 1) / kGroup);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 
@@ -255,7 +262,7 @@ void GpuDepthSort::sort(GLuint splatTexture, std::size_t count, const glm::mat4&
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }
   // Four passes end where they began: the order is in values_[0].
-  for (GLuint b = 0; b < 5; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
+  for (GLuint b = 0; b < 6; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
   glUseProgram(0);
   glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }

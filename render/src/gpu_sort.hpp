@@ -38,10 +38,13 @@ class GpuDepthSort {
 
   /// Sorts the first `count` splats of `splatTexture` (a GL_TEXTURE_BUFFER of RGBA32F,
   /// GaussianGlPass's layout) back to front as seen through `modelView` (splat
-  /// coordinates to eye). Builds its programs at the first call (throws
-  /// std::runtime_error when one does not compile); buffers grow to the largest count and
-  /// are kept. Context current; leaves no program or storage binding that other code uses.
-  void sort(GLuint splatTexture, std::size_t count, const glm::mat4& modelView);
+  /// coordinates to eye); with `subset` (a GL buffer of at least `count` uint32 splat
+  /// indices, each inside the texture), the splats it names instead (a level-of-detail
+  /// cut), equal depths in the subset's order. Builds its programs at the first call
+  /// (throws std::runtime_error when one does not compile); buffers grow to the largest
+  /// count and are kept. Context current; leaves no program or storage binding that other
+  /// code uses.
+  void sort(GLuint splatTexture, std::size_t count, const glm::mat4& modelView, GLuint subset = 0);
 
   /// The buffer holding the last sort's order (count uint32 indices), 0 before a sort.
   GLuint order() const { return values_[0]; }

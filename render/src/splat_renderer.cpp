@@ -166,7 +166,33 @@ struct SplatRenderer::Gpu {
   glm::mat4 cutView{0.0f};
   std::size_t cutBudget = 0;
   int cutHeight = 0;
+  bool cutByIndex = false;  // the cut is cutIndices (gpu, cpu), else cutCloud (geometry)
   std::uint64_t cutRevision = 0;
+  // The tree's every node as one cloud (the source's splats, then LodTree::merged), for
+  // the paths that draw a cut by index: of which tree, cloud and revision.
+  splats::GaussianCloud treeCloud;
+  const void* treeOf = nullptr;
+  const void* treeCloudOf = nullptr;
+  std::uint64_t treeSourceRevision = 0;
+  std::uint64_t treeRevision = 0;
+  std::vector<std::uint32_t> cutIndices;  // into treeCloud, ascending
+  std::vector<glm::vec3> cutPositions;    // their centres, for the cpu path's depth sort
+
+  /// Makes treeCloud for `set` (a SplatSet with a tree) unless it is made already.
+  void holdTree(const SplatSet& set) {
+    if (treeOf == set.lodTree.get() && treeCloudOf == set.gaussians.get() &&
+        treeSourceRevision == set.revision)
+      return;
+    const splats::GaussianCloud& source = *set.gaussians;
+    const splats::GaussianCloud& merged = set.lodTree->merged;
+    treeCloud = source;
+    treeCloud.reserve(source.size() + merged.size());
+    for (std::size_t i = 0; i < merged.size(); ++i) treeCloud.append(merged, i);
+    treeOf = set.lodTree.get();
+    treeCloudOf = set.gaussians.get();
+    treeSourceRevision = set.revision;
+    ++treeRevision;
+  }
   // The cpu path: its image, the scene's depth, the texture and an empty VAO.
   std::vector<std::uint8_t> pixels;
   std::vector<float> depth;
@@ -280,20 +306,64 @@ void SplatRenderer::drawGaussians(const SplatSet& set, std::size_t count, const 
   const glm::vec3 eye(glm::inverse(modelView) * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
   // What this view draws: a prefix of the cloud, or the cut of its level-of-detail tree
   // (nodes below one pixel merged) under the same budget, chosen again when the view moves.
+  // The gpu and cpu paths draw the cut by index from one cloud of the tree's every node,
+  // made once (nothing copied or sent again as the view moves but the cut's indices); the
+  // geometry path draws the cut assembled into a cloud of its own.
   const splats::GaussianCloud* drawn = set.gaussians.get();
   std::uint64_t revision = set.revision;
+  const SplatPath path = g.resolve(path_);
+  statistics_.path = path;
   if (set.lodTree) {
+    const bool byIndex = path != SplatPath::geometry;
     if (g.cutSet != set.lodTree.get() || g.cutView != projection * modelView ||
-        g.cutBudget != count || g.cutHeight != height) {
+        g.cutBudget != count || g.cutHeight != height || g.cutByIndex != byIndex) {
       const splats::CutView view = splats::cutViewFromViewProjection(
           projection * modelView, eye, 0.5f * static_cast<float>(height) * projection[1][1]);
       const splats::LodCut cut = splats::selectCut(*set.lodTree, view, count);
-      splats::assembleCut(*set.lodTree, *set.gaussians, cut, g.cutCloud);
+      if (byIndex) {
+        g.holdTree(set);
+        g.cutIndices.assign(cut.originals.begin(), cut.originals.end());
+        const auto n = static_cast<std::uint32_t>(set.gaussians->size());
+        for (const std::uint32_t m : cut.merged) g.cutIndices.push_back(n + m);
+        std::sort(g.cutIndices.begin(), g.cutIndices.end());  // the set-up reads in sequence
+        g.cutPositions.resize(g.cutIndices.size());
+        for (std::size_t k = 0; k < g.cutIndices.size(); ++k)
+          g.cutPositions[k] = g.treeCloud.positions[g.cutIndices[k]];
+      } else {
+        splats::assembleCut(*set.lodTree, *set.gaussians, cut, g.cutCloud);
+      }
       g.cutSet = set.lodTree.get();
       g.cutView = projection * modelView;
       g.cutBudget = count;
       g.cutHeight = height;
+      g.cutByIndex = byIndex;
       ++g.cutRevision;
+    }
+    if (byIndex) {
+      statistics_.splats = g.cutIndices.size();
+      if (path == SplatPath::gpu) {
+        g.gaussianPass.drawGpuSorted(g.treeCloud, 0, modelView, projection, eye, viewport,
+                                     std::max(camera.nearClip, 1e-6f), style.opacityScale,
+                                     g.treeRevision, g.cutIndices, g.cutRevision);
+        return;
+      }
+      // cpu: the cut's places sorted by depth, the tree cloud's covariances kept.
+      const auto t0 = std::chrono::steady_clock::now();
+      const Gpu::SortKey key{g.cutPositions.data(), g.cutPositions.size(), g.cutRevision,
+                             g.cutPositions.size(), modelView};
+      if (g.sort(key, std::span<const glm::vec3>(g.cutPositions), modelView)) {
+        statistics_.sortSeconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        statistics_.sorted = true;
+      }
+      std::span<const float> depth;
+      if (blend == SplatBlend::backToFront) depth = readSceneDepth(g.depth, viewport);
+      detail::CpuGaussianView v = cpuView(modelView, projection, camera, width, height);
+      v.eye = eye;
+      v.opacityScale = style.opacityScale;
+      g.rasterizer.draw(g.treeCloud, g.order, v, depth, g.pixels, g.treeRevision, g.cutIndices);
+      drawImage(width, height);
+      return;
     }
     drawn = &g.cutCloud;
     revision = g.cutRevision;
@@ -301,8 +371,6 @@ void SplatRenderer::drawGaussians(const SplatSet& set, std::size_t count, const 
   }
   const splats::GaussianCloud& cloud = *drawn;
   statistics_.splats = count;
-  const SplatPath path = g.resolve(path_);
-  statistics_.path = path;
   if (path == SplatPath::gpu) {
     g.gaussianPass.drawGpuSorted(cloud, count, modelView, projection, eye, viewport,
                                  std::max(camera.nearClip, 1e-6f), style.opacityScale, revision);

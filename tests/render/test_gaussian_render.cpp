@@ -117,6 +117,35 @@ TEST_CASE("the GL path draws the cpu path's Gaussians", "[render][splat][gaussia
   CHECK(d.psnr >= 35.0);
 }
 
+TEST_CASE("the gpu and cpu paths draw a tree's cut by index as the geometry path draws it",
+          "[render][splat][gaussian]") {
+  // The geometry path draws the cut assembled into a cloud of its own; the gpu and cpu
+  // paths draw it by index from one cloud of the tree's every node (originals, then the
+  // merged Gaussians): the same splats, so the same picture.
+  const auto tree =
+      gaussianScene(gs::test::sourceDir() / "tests/data/splats/bunny_small.ply", true);
+  for (const float distance : {1.2f, 6.0f, 12.0f}) {
+    const gs::scene::Camera cam = gaussianCamera(*tree, distance);
+    std::size_t assembled = 0, gpu = 0, cpu = 0;
+    const Image geometryImage = drawGaussians(*tree, cam, SplatPath::geometry, &assembled);
+    const Image gpuImage = drawGaussians(*tree, cam, SplatPath::gpu, &gpu);
+    const Image cpuImage = drawGaussians(*tree, cam, SplatPath::cpu, &cpu);
+    INFO(distance << " diagonals: the cut draws " << assembled << " of " << tree->size());
+    CHECK(gpu == assembled);
+    CHECK(cpu == assembled);
+    if (distance > 5.0f) CHECK(assembled < tree->size());  // merged Gaussians drawn
+    if (distance > 10.0f) CHECK(assembled < tree->size() / 2);
+    REQUIRE(litPixels(geometryImage) > 10);
+    const ImageDifference g = compareImages(gpuImage, geometryImage);
+    const ImageDifference c = compareImages(cpuImage, geometryImage);
+    WARN(distance << " diagonals: gpu against geometry PSNR " << g.psnr << " dB, cpu " << c.psnr
+                  << " dB");
+    CHECK(g.fractionDiffering <= 0.002);
+    CHECK(c.fractionDiffering <= 0.01);
+    CHECK(c.psnr >= 35.0);
+  }
+}
+
 TEST_CASE("a far view draws a small cut of the tree that looks like every splat",
           "[render][splat][gaussian][corpus]") {
   if (!gs::test::haveCorpus("splat")) return;
