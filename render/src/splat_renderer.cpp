@@ -166,7 +166,7 @@ struct SplatRenderer::Gpu {
   glm::mat4 cutView{0.0f};
   std::size_t cutBudget = 0;
   int cutHeight = 0;
-  bool cutByIndex = false;  // the cut is cutIndices (gpu, cpu), else cutCloud (geometry)
+  SplatPath cutPath = SplatPath::automatic;  // the path the cut was made for
   std::uint64_t cutRevision = 0;
   // The tree's every node as one cloud (the source's splats, then LodTree::merged), for
   // the paths that draw a cut by index: of which tree, cloud and revision.
@@ -175,7 +175,7 @@ struct SplatRenderer::Gpu {
   const void* treeCloudOf = nullptr;
   std::uint64_t treeSourceRevision = 0;
   std::uint64_t treeRevision = 0;
-  std::vector<std::uint32_t> cutIndices;  // into treeCloud, ascending
+  std::vector<std::uint32_t> cutIndices;  // into treeCloud (ascending for the cpu path)
   std::vector<glm::vec3> cutPositions;    // their centres, for the cpu path's depth sort
 
   /// Makes treeCloud for `set` (a SplatSet with a tree) unless it is made already.
@@ -316,7 +316,7 @@ void SplatRenderer::drawGaussians(const SplatSet& set, std::size_t count, const 
   if (set.lodTree) {
     const bool byIndex = path != SplatPath::geometry;
     if (g.cutSet != set.lodTree.get() || g.cutView != projection * modelView ||
-        g.cutBudget != count || g.cutHeight != height || g.cutByIndex != byIndex) {
+        g.cutBudget != count || g.cutHeight != height || g.cutPath != path) {
       const splats::CutView view = splats::cutViewFromViewProjection(
           projection * modelView, eye, 0.5f * static_cast<float>(height) * projection[1][1]);
       const splats::LodCut cut = splats::selectCut(*set.lodTree, view, count);
@@ -325,10 +325,14 @@ void SplatRenderer::drawGaussians(const SplatSet& set, std::size_t count, const 
         g.cutIndices.assign(cut.originals.begin(), cut.originals.end());
         const auto n = static_cast<std::uint32_t>(set.gaussians->size());
         for (const std::uint32_t m : cut.merged) g.cutIndices.push_back(n + m);
-        std::sort(g.cutIndices.begin(), g.cutIndices.end());  // the set-up reads in sequence
-        g.cutPositions.resize(g.cutIndices.size());
-        for (std::size_t k = 0; k < g.cutIndices.size(); ++k)
-          g.cutPositions[k] = g.treeCloud.positions[g.cutIndices[k]];
+        if (path == SplatPath::cpu) {
+          // Ascending, so that the set-up reads the cloud in sequence; the centres for the
+          // depth sort. (The GPU sorts the indices as they come.)
+          std::sort(g.cutIndices.begin(), g.cutIndices.end());
+          g.cutPositions.resize(g.cutIndices.size());
+          for (std::size_t k = 0; k < g.cutIndices.size(); ++k)
+            g.cutPositions[k] = g.treeCloud.positions[g.cutIndices[k]];
+        }
       } else {
         splats::assembleCut(*set.lodTree, *set.gaussians, cut, g.cutCloud);
       }
@@ -336,7 +340,7 @@ void SplatRenderer::drawGaussians(const SplatSet& set, std::size_t count, const 
       g.cutView = projection * modelView;
       g.cutBudget = count;
       g.cutHeight = height;
-      g.cutByIndex = byIndex;
+      g.cutPath = path;
       ++g.cutRevision;
     }
     if (byIndex) {
