@@ -7,6 +7,7 @@
 extern "C" {
 #include <libavcodec/avcodec.h>
 #include <libavutil/imgutils.h>
+#include <libavutil/pixdesc.h>
 #include <libswscale/swscale.h>
 }
 
@@ -234,6 +235,15 @@ bool MovieDecoder::decodeFrame(std::int64_t index, VideoFrame& out, std::string&
   std::uint8_t* planes[4] = {out.rgba.data(), nullptr, nullptr, nullptr};
   int strides[4] = {w * 4, 0, 0, 0};
   sws_scale(d.sws, d.shown->data, d.shown->linesize, 0, h, planes, strides);
+  out.translucent = false;
+  const AVPixFmtDescriptor* format =
+      av_pix_fmt_desc_get(static_cast<AVPixelFormat>(d.shown->format));
+  if (format != nullptr && (format->flags & (AV_PIX_FMT_FLAG_ALPHA | AV_PIX_FMT_FLAG_PAL)) != 0)
+    for (std::size_t i = 3; i < out.rgba.size(); i += 4)
+      if (out.rgba[i] != 255) {
+        out.translucent = true;
+        break;
+      }
   out.bottomRowFirst = d.bottomFirst;
   if (d.bottomFirst) {  // swap rows in place: one row of scratch
     const std::size_t row = static_cast<std::size_t>(w) * 4;

@@ -125,8 +125,6 @@ const GpuTexture& MovieTextures::get(const vrml::Node& node, const std::string& 
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, repeatT ? GL_REPEAT : GL_CLAMP_TO_EDGE);
     gl.width = frame->width;
     gl.height = frame->height;
-    gl.texture.components = 3;  // 6.28: movies are RGB
-    gl.texture.hasAlpha = false;
   } else {
     glBindTexture(GL_TEXTURE_2D, gl.texture.id);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
@@ -134,6 +132,10 @@ const GpuTexture& MovieTextures::get(const vrml::Node& node, const std::string& 
                     pixels);
   }
   glBindTexture(GL_TEXTURE_2D, 0);
+  // VRML97 6.28's movies are RGB; a frame with transparent pixels (an animated GIF's
+  // transparent colour, a video with alpha) is RGBA, as X3D 4 browsers draw it.
+  gl.texture.components = frame->translucent ? 4 : 3;
+  gl.texture.hasAlpha = frame->translucent;
   gl.frame = frame->index;
   ++uploads_;
   return gl.texture;

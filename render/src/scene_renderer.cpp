@@ -451,7 +451,7 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     return true;
   };
   glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
+  glDepthFunc(GL_LEQUAL);
   glEnable(GL_PROGRAM_POINT_SIZE);
   glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
   glFrontFace(GL_CCW);
@@ -722,7 +722,10 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
   if (g.frame.layerOrder.empty()) drawLayer(-1);
   // X3D layers (clause 35.4.2): in the LayerSet's order, each over the previous (the depth
   // buffer cleared), a Layer's Viewport clipping it to its clipBoundary (scissor only: the
-  // projection stays the window's, as X_ITE draws it). Every layer sees the world's camera.
+  // projection stays the window's; X_ITE 15 draws the layer into the rectangle with a
+  // projection of its own, docs/xite-comparison.md). The active layer is seen by the
+  // world's camera, the others from their own Viewpoint or the default one
+  // (scene/src/traversal.cpp, Walk::layers).
   for (const scene::LayerInstance& l : g.frame.layerOrder) {
     const glm::ivec4 r = scene::layerRectangle(l.clipBoundary, x, y, width, height);
     glScissor(r.x, r.y, r.z, r.w);

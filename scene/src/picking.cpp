@@ -2,6 +2,7 @@
 #include "scene/picking.hpp"
 
 #include "geometry/intersect.hpp"
+#include "scene/node_access.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -44,6 +45,8 @@ std::optional<PickHit> pickInFrame(SceneTraversal& traversal, const TraversalFra
   std::optional<PickHit> best;
   float bestT = maxT;
   for (const ShapeInstance& s : frame.shapes) {
+    // X3D 4.1's Shape.pointerEvents FALSE: the pointer passes through to what lies behind.
+    if (s.shape != nullptr && !sfBool(*s.shape, "pointerEvents", true)) continue;
     const float det = glm::determinant(glm::mat3(s.model));
     if (!std::isfinite(det) || std::abs(det) < 1e-30f) continue;  // scaled flat: invisible
     const glm::mat4 inverse = glm::inverse(s.model);

@@ -442,10 +442,12 @@ struct SceneTraversal::Walk {
         layoutLayer(*list[i], children);
       } else if (static_cast<int>(i) + 1 == active) {
         group(list[i].get(), children, glm::mat4(1.0f), &self.mainUrl_, &children);
-      } else if (const std::optional<Camera> own = firstViewpointCamera(children)) {
-        layerWithOwnView(*list[i], children, *own);
       } else {
-        group(list[i].get(), children, glm::mat4(1.0f), &self.mainUrl_, &children);
+        // A layer other than the active one is seen from its own first Viewpoint, else
+        // from the default one (X3D 4.0 clause 35.2.1: each layer has its own bindable
+        // stacks; 23.4.6: the default Viewpoint at 0 0 10), not from the user's.
+        const std::optional<Camera> own = firstViewpointCamera(children);
+        layerWithOwnView(*list[i], children, own ? *own : Camera{});
       }
     }
     layer = 0;
@@ -547,6 +549,9 @@ struct SceneTraversal::Walk {
   }
 
   void node(const vrml::Node& n, const glm::mat4& m, const std::string* baseUrl) {
+    // X3D 4.0's X3DBoundedObject.visible (clause 10.3.1): FALSE draws neither the node nor
+    // its children, and the pointer does not reach them; collisions still see them.
+    if (!frame.collisionGeometry && n.type().builtIn && !sfBool(n, "visible", true)) return;
     switch (nodeKind(n)) {
       case NodeKind::Collision:  // the proxy is for collisions only: not drawn
         if (frame.collisionGeometry) {

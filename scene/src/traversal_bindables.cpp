@@ -172,6 +172,14 @@ void SceneTraversal::findBindables() {
         background_.skyAngle = mfFloat(n, "skyAngle");
         background_.groundColor = mfColor(n, "groundColor");
         background_.groundAngle = mfFloat(n, "groundAngle");
+        // One ground colour and no angle: VRML97's ground ends at the nadir (6.5, as
+        // castle-model-viewer draws it: none); X3D's, as X_ITE draws it, fills the lower
+        // hemisphere with that colour.
+        if (!scene_->x3d.version.empty() && background_.groundColor.size() == 1 &&
+            background_.groundAngle.empty()) {
+          background_.groundColor.push_back(background_.groundColor[0]);
+          background_.groundAngle.push_back(1.5707964f);
+        }
         background_.rotation = rotationPart(m);
         background_.baseUrl = mainUrl_;
         break;

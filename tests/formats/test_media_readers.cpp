@@ -44,6 +44,32 @@ TEST_CASE("MovieDecoder: the MPEG-1 clip's size, frame count and duration", "[fo
   CHECK(movie->frameIndexAt(5.0) == 23);  // clamped to the last frame
 }
 
+TEST_CASE("MovieDecoder: a GIF's transparent colour comes as alpha 0, an MPEG's frames opaque",
+          "[formats][movie]") {
+  // stripes.gif (assets/worlds/media/make_images.py): 32 x 32, columns x with (x / 4) odd
+  // are palette index 0, the transparent one; the others magenta (top) or black.
+  std::string bytes, error;
+  REQUIRE(gs::base::readFile(std::string(GS_SOURCE_DIR) + "/assets/worlds/media/stripes.gif", bytes,
+                             error));
+  auto gif = MovieDecoder::open(std::move(bytes), "stripes.gif", error);
+  REQUIRE(gif);
+  VideoFrame f;
+  REQUIRE(gif->decodeFrame(0, f, error));
+  REQUIRE(f.width == 32);
+  CHECK(f.translucent);
+  const auto alphaAt = [&](int x, int y) {
+    const int row = f.bottomRowFirst ? f.height - 1 - y : y;
+    return int(f.rgba[(static_cast<std::size_t>(row) * 32 + static_cast<std::size_t>(x)) * 4 + 3]);
+  };
+  CHECK(alphaAt(5, 4) == 0);     // a transparent column
+  CHECK(alphaAt(1, 4) == 255);   // magenta
+  CHECK(alphaAt(1, 28) == 255);  // black
+  auto mpeg = MovieDecoder::open(asset("colours.mpg"), "colours.mpg", error);
+  REQUIRE(mpeg);
+  REQUIRE(mpeg->decodeFrame(0, f, error));
+  CHECK_FALSE(f.translucent);
+}
+
 TEST_CASE("MovieDecoder: the frame at time t, forwards and after a rewind", "[formats][movie]") {
   std::string error;
   auto movie = MovieDecoder::open(asset("colours.mpg"), "colours.mpg", error);

@@ -146,6 +146,17 @@ TEST_CASE("transparent shapes blend over opaque ones", "[render][offscreen]") {
   CHECK(close(at(img, 32, 32), {128, 0, 128}, 3));
 }
 
+TEST_CASE("of two coplanar opaque shapes the later one shows", "[render][offscreen]") {
+  // The depth test passes equal depths (GL_LEQUAL), as X_ITE's and castle-engine's do: a
+  // button drawn on its panel in the same plane shows (X_ITE's PlayerControls test world).
+  auto panel = emissive(makeNode("TestQuad", {{"size", sfVec2(4, 4)}}), 1, 0, 0);
+  auto button = emissive(makeNode("TestQuad"), 0, 1, 0);
+  const Image img = render({panel, button}, "coplanar");
+  INFO("centre " << str(at(img, 32, 32)) << ", edge " << str(at(img, 20, 32)));
+  CHECK(close(at(img, 32, 32), {0, 255, 0}));
+  CHECK(close(at(img, 20, 32), {255, 0, 0}));
+}
+
 TEST_CASE("PixelTexture colours an unlit shape", "[render][offscreen]") {
   gs::vrml::SFImage image;
   image.width = 2;

@@ -150,3 +150,41 @@ TEST_CASE("picking: Moller-Trumbore", "[scene][picking]") {
   CHECK(!gs::scene::intersectTriangle({0.75f, 0.75f, 1}, {0, 0, -1}, {0, 0, 0}, {1, 0, 0},
                                       {0, 1, 0}, t, u, v));
 }
+
+TEST_CASE(
+    "picking: X3D's visible FALSE hides a node and its children, pointerEvents FALSE lets "
+    "the pointer through",
+    "[scene][picking]") {
+  const auto x3d = [](const std::string& glassPointerEvents) {
+    return std::make_shared<gs::vrml::Scene>(gs::vrml::parseVrml(
+        "#X3D V4.0 utf8\nPROFILE Full\n"
+        "DEF GLASS Transform { translation 0 0 2 children DEF GS Shape { pointerEvents " +
+            glassPointerEvents +
+            " geometry Box { size 4 4 0.1 } } }\n"
+            "DEF HIDDEN Transform { translation 0 0 1 visible FALSE children Shape {"
+            " geometry Box { size 4 4 0.1 } } }\n"
+            "Transform { translation 0 0 0.5 children DEF HS Shape { visible FALSE"
+            " geometry Box { size 4 4 0.1 } } }\n"
+            "DEF BACK Shape { geometry Box { size 4 4 0.1 } }\n",
+        "visible.x3dv"));
+  };
+  const Ray ray{{0.0f, 0.0f, 10.0f}, {0.0f, 0.0f, -1.0f}};
+  {
+    auto scene = x3d("FALSE");
+    REQUIRE(scene->diagnostics.items.empty());
+    SceneTraversal traversal(scene);
+    gs::scene::TraversalFrame frame;
+    traversal.collect(Camera{}, frame);
+    CHECK(frame.shapes.size() == 2);  // the glass and the back: nothing invisible is drawn
+    const auto hit = pick(traversal, Camera{}, ray);
+    REQUIRE(hit);
+    CHECK(hit->shape == def(*scene, "BACK"));  // through the glass and the invisible boxes
+  }
+  {
+    auto scene = x3d("TRUE");
+    SceneTraversal traversal(scene);
+    const auto hit = pick(traversal, Camera{}, ray);
+    REQUIRE(hit);
+    CHECK(hit->shape == def(*scene, "GS"));
+  }
+}

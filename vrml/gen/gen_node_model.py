@@ -186,6 +186,13 @@ CASTLE_PRIMITIVE_FIELDS = {
 # `periodicWave` (its wave; 4.0 has no way to choose one) and WaveShaper's `curve` (its
 # transfer curve; 4.0 has none, so a 4.0 WaveShaper could only pass its input on).
 X3D41_FIELDS = {
+    # X3D 4.1's `pointerEvents` (X3DShapeNode and X3DLayerNode): FALSE makes a shape (a
+    # layer) transparent to the pointing device. X_ITE 15 has it; its PlayerControls test
+    # world sets it on the shapes of its buttons.
+    "Shape": [("pointerEvents", "SFBool", "inputOutput", "true", "")],
+    "ParticleSystem": [("pointerEvents", "SFBool", "inputOutput", "true", "")],
+    "Layer": [("pointerEvents", "SFBool", "inputOutput", "true", "")],
+    "LayoutLayer": [("pointerEvents", "SFBool", "inputOutput", "true", "")],
     "BoundedPhysicsModel": [("damping", "SFFloat", "inputOutput", "1", "")],
     "OscillatorSource": [("periodicWave", "SFNode", "inputOutput", "", "PeriodicWave")],
     "WaveShaper": [("curve", "MFFloat", "inputOutput", "", "")],

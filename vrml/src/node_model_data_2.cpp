@@ -204,6 +204,7 @@ constexpr NodeFieldModel kFieldsLayer[] = {
     F{"removeChildren", "MFNode", "inputOnly", "", "X3DChildNode", AbstractTypeSet{0x0000000000000080ULL, 0x0000000000000000ULL}, {}},
     F{"viewport", "SFNode", "inputOutput", "NULL", "X3DViewportNode", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000800ULL}, {}},
     F{"visible", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"pointerEvents", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
 };
 constexpr NodeFieldModel kFieldsLayerSet[] = {
     F{"activeLayer", "SFInt32", "inputOutput", "0", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
@@ -242,6 +243,7 @@ constexpr NodeFieldModel kFieldsLayoutLayer[] = {
     F{"removeChildren", "MFNode", "inputOnly", "", "X3DChildNode", AbstractTypeSet{0x0000000000000080ULL, 0x0000000000000000ULL}, {}},
     F{"viewport", "SFNode", "inputOutput", "NULL", "X3DViewportNode", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000800ULL}, {}},
     F{"visible", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
+    F{"pointerEvents", "SFBool", "inputOutput", "true", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},
 };
 constexpr NodeFieldModel kFieldsLinePickSensor[] = {
     F{"description", "SFString", "inputOutput", "", "", AbstractTypeSet{0x0000000000000000ULL, 0x0000000000000000ULL}, {}},

@@ -23,8 +23,12 @@ struct VideoFrame {
   int width = 0, height = 0;       // pixels
   std::int64_t index = 0;          // frame number from 0
   double time = 0.0;               // seconds from the clip's start: index * frameDuration
-  std::vector<std::uint8_t> rgba;  // width * height * 4 bytes, alpha 255, rows in this order:
+  std::vector<std::uint8_t> rgba;  // width * height * 4 bytes, rows in this order:
   bool bottomRowFirst = false;     // false: top row first; true: bottom row first (OpenGL's)
+  /// Whether some pixel's alpha is below 255: a stream whose pixel format has alpha (an
+  /// animated GIF's transparent colour, VP8/VP9 or PNG with alpha) and uses it; alpha
+  /// is 255 everywhere otherwise.
+  bool translucent = false;
 };
 
 /// What a movie may be.

@@ -36,8 +36,8 @@ namespace gs::vrml {
     X(minAngle) X(minPosition) X(minificationFilter) X(mode) X(mustEvaluate) X(next) X(normal) \
     X(normalIndex) X(normalPerVertex) X(normalScale) X(normalTexture) X(occlusionStrength) \
     X(occlusionTexture) X(offset) X(on) X(opacityScale) X(orientation) X(orientation_changed) \
-    X(outerRadius) X(outline) X(outlineLengths) X(parameter) X(pitch) X(point) X(position) \
-    X(position_changed) X(previous) X(proxy) X(radius) X(range) X(removeChildren) X(repeatS) \
+    X(outerRadius) X(outline) X(outlineLengths) X(parameter) X(pitch) X(point) X(pointerEvents) \
+    X(position) X(position_changed) X(previous) X(proxy) X(radius) X(range) X(removeChildren) X(repeatS) \
     X(repeatT) X(restNormal) X(restPoint) X(rightUrl) X(rotation) X(rotation_changed) \
     X(roughness) X(scale) X(scaleOrientation) X(set_bind) X(set_boolean) X(set_fraction) \
     X(set_triggerTime) X(shininess) X(side) X(size) X(skeleton) X(skinnedTransform) X(skyAngle) \
@@ -47,7 +47,8 @@ namespace gs::vrml {
     X(top) X(topToBottom) X(topUrl) X(touchTime) X(trackPoint_changed) X(translation) \
     X(translation_changed) X(transparency) X(triggerTime) X(triggerTrue) X(triggerValue) X(type) \
     X(url) X(value_changed) X(vector) X(vertexCount) X(vertexJoints) X(vertexWeights) \
-    X(vertices) X(visibilityLimit) X(visibilityRange) X(whichChoice) X(xDimension) X(xSpacing) \
+    X(vertices) X(visibilityLimit) X(visibilityRange) X(visible) X(whichChoice) X(xDimension) \
+    X(xSpacing) \
     X(zDimension) X(zSpacing)
 // clang-format on
 
