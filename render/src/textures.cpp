@@ -39,6 +39,8 @@ GLint minificationFilter(const std::string& mode) {
   return GL_LINEAR_MIPMAP_LINEAR;  // AVG_PIXEL_AVG_MIPMAP, NICEST, DEFAULT
 }
 
+const vrml::NodePtr kNoNode;
+
 GLint magnificationFilter(const std::string& mode) {
   return mode == "NEAREST_PIXEL" || mode == "FASTEST" ? GL_NEAREST : GL_LINEAR;
 }
@@ -221,7 +223,17 @@ const GpuTexture& TextureCache::get(const vrml::Node& node, const std::string& i
     return movies.get(node, baseUrl, traversal, fetcher);
   if (auto it = textures_.find(&node); it != textures_.end()) return it->second;
   GpuTexture texture;
-  const Sampling sampling = samplingOf(node);
+  Sampling sampling = samplingOf(node);
+  // X_ITE 15 draws an X3D texture without TextureProperties whose sides are both under 16
+  // texels with nearest texels and no mipmaps (its Browser's getMinTextureSize), so a
+  // PixelTexture checkerboard stays crisp; VRML97's stay filtered, as castle draws them.
+  const bool x3dSmallDefaults =
+      !traversal.scene().x3d.version.empty() &&
+      !scene::fieldRef<vrml::FieldType::SFNode>(node, "textureProperties", kNoNode);
+  const auto smallTexture = [&](int width, int height) {
+    if (x3dSmallDefaults && std::max(width, height) < 16)
+      sampling.minFilter = sampling.magFilter = GL_NEAREST;
+  };
   if (node.typeId() == vrml::NodeTypeId::PixelTexture) {
     std::vector<std::uint8_t> rgba;
     static const vrml::SFImage kEmpty;
@@ -230,6 +242,7 @@ const GpuTexture& TextureCache::get(const vrml::Node& node, const std::string& i
     if (image.width == 0 || image.height == 0) {
       // An empty PixelTexture means no texture (clause 6.33).
     } else if (decodeSFImage(image, rgba, hasAlpha)) {
+      smallTexture(image.width, image.height);
       texture.id = uploadRgba(rgba.data(), image.width, image.height, sampling);
       texture.components = image.components;
       texture.hasAlpha = hasAlpha;
@@ -245,14 +258,16 @@ const GpuTexture& TextureCache::get(const vrml::Node& node, const std::string& i
       static const GpuTexture kNone;  // untextured until the bytes arrive
       return kNone;
     }
-    if (loaded.components > 0)
+    if (loaded.components > 0) {
+      smallTexture(loaded.image.width, loaded.image.height);
       texture = uploadSampled(loaded, sampling);
-    else
+    } else {
       traversal.report(
           vrml::Severity::warning, node.location,
           loaded.failures.empty()
               ? std::string("ImageTexture has no url: drawn untextured")
               : "cannot load ImageTexture (" + loaded.failures + "): drawn untextured");
+    }
   } else if (node.typeId() == vrml::NodeTypeId::PixelTexture3D ||
              node.typeId() == vrml::NodeTypeId::ComposedTexture3D ||
              node.typeId() == vrml::NodeTypeId::ImageTexture3D) {

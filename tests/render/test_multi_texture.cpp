@@ -6,6 +6,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <set>
 #include <string>
 
 namespace fs = std::filesystem;
@@ -157,4 +158,32 @@ TEST_CASE("MultiTexture: an unknown mode is one warning and reads as MODULATE",
   REQUIRE(r.diagnostics.items.size() == 1);
   CHECK(r.diagnostics.items[0].message.find("SPARKLE") != std::string::npos);
   CHECK(close(centre(r), 128, 128, 128, 3));
+}
+
+TEST_CASE("an X3D texture under 16 texels without TextureProperties is drawn with nearest texels",
+          "[render][texture][x3d]") {
+  // X_ITE 15's rule (its getMinTextureSize): a small X3D texture stays crisp. A VRML97
+  // world's is filtered (bilinear between texel centres), as castle-model-viewer draws it.
+  const std::string shape =
+      "Viewpoint { position 0 0 2.4 }\n"
+      "Shape { appearance Appearance { texture PixelTexture { image 2 2 1 0x99 0x66 0x66 0x99 }"
+      " } geometry IndexedFaceSet { coord Coordinate { point [-1 -1 0, 1 -1 0, 1 1 0, -1 1 0] }"
+      " coordIndex [0 1 2 3] texCoord TextureCoordinate { point [0 0, 1 0, 1 1, 0 1] }"
+      " texCoordIndex [0 1 2 3] } }\n";
+  // The levels a row of the picture holds, between the quad's edges.
+  const auto levels = [](const Rendered& r) {
+    std::set<int> seen;
+    const int y = gs::test::kWorldSize / 4;
+    for (int x = gs::test::kWorldSize / 4; x < 3 * gs::test::kWorldSize / 4; ++x)
+      seen.insert(r.image.pixel(x, y)[0]);
+    return seen;
+  };
+  const fs::path x3d = worldDir() / "small_texture.x3dv";
+  writeText(x3d, "#X3D V4.0 utf8\nPROFILE Interchange\n" + shape);
+  const std::set<int> crisp = levels(renderFile(x3d));
+  INFO("X3D levels: " << crisp.size());
+  CHECK(crisp == std::set<int>{0x66, 0x99});
+  const fs::path vrml = worldDir() / "small_texture.wrl";
+  writeText(vrml, "#VRML V2.0 utf8\n" + shape);
+  CHECK(levels(renderFile(vrml)).size() > 4);  // a ramp between the two greys
 }
