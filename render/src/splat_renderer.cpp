@@ -311,6 +311,10 @@ void SplatRenderer::drawGaussians(const SplatSet& set, std::size_t count, const 
   // geometry path draws the cut assembled into a cloud of its own.
   const splats::GaussianCloud* drawn = set.gaussians.get();
   std::uint64_t revision = set.revision;
+  std::span<const std::uint32_t> subset;  // a cut by index: its splats in the tree cloud
+  std::span<const glm::vec3> positions;   // the centres the depth sort orders
+  const void* sortData = nullptr;         // the sort's key: what and which revision
+  std::uint64_t sortRevision = 0;
   const SplatPath path = g.resolve(path_);
   statistics_.path = path;
   if (set.lodTree) {
@@ -344,45 +348,38 @@ void SplatRenderer::drawGaussians(const SplatSet& set, std::size_t count, const 
       ++g.cutRevision;
     }
     if (byIndex) {
-      statistics_.splats = g.cutIndices.size();
-      if (path == SplatPath::gpu) {
-        g.gaussianPass.drawGpuSorted(g.treeCloud, 0, modelView, projection, eye, viewport,
-                                     std::max(camera.nearClip, 1e-6f), style.opacityScale,
-                                     g.treeRevision, g.cutIndices, g.cutRevision);
-        return;
-      }
-      // cpu: the cut's places sorted by depth, the tree cloud's covariances kept.
-      const auto t0 = std::chrono::steady_clock::now();
-      const Gpu::SortKey key{g.cutPositions.data(), g.cutPositions.size(), g.cutRevision,
-                             g.cutPositions.size(), modelView};
-      if (g.sort(key, std::span<const glm::vec3>(g.cutPositions), modelView)) {
-        statistics_.sortSeconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        statistics_.sorted = true;
-      }
-      std::span<const float> depth;
-      if (blend == SplatBlend::backToFront) depth = readSceneDepth(g.depth, viewport);
-      detail::CpuGaussianView v = cpuView(modelView, projection, camera, width, height);
-      v.eye = eye;
-      v.opacityScale = style.opacityScale;
-      g.rasterizer.draw(g.treeCloud, g.order, v, depth, g.pixels, g.treeRevision, g.cutIndices);
-      drawImage(width, height);
-      return;
+      // The cut by index: the tree cloud, its cut's indices, their centres for the sort.
+      drawn = &g.treeCloud;
+      revision = g.treeRevision;
+      subset = g.cutIndices;
+      positions = g.cutPositions;
+      sortData = g.cutPositions.data();
+      sortRevision = g.cutRevision;
+      count = g.cutIndices.size();
+    } else {
+      drawn = &g.cutCloud;
+      revision = g.cutRevision;
+      count = g.cutCloud.size();
     }
-    drawn = &g.cutCloud;
-    revision = g.cutRevision;
-    count = g.cutCloud.size();
   }
   const splats::GaussianCloud& cloud = *drawn;
+  if (subset.empty()) {
+    positions = std::span<const glm::vec3>(cloud.positions.data(), count);
+    sortData = &cloud;
+    sortRevision = revision;
+  }
   statistics_.splats = count;
   if (path == SplatPath::gpu) {
     g.gaussianPass.drawGpuSorted(cloud, count, modelView, projection, eye, viewport,
-                                 std::max(camera.nearClip, 1e-6f), style.opacityScale, revision);
+                                 std::max(camera.nearClip, 1e-6f), style.opacityScale, revision,
+                                 subset, g.cutRevision);
     return;
   }
+  // (With a subset, the order holds places in it: the cpu path reads it so.)
   const auto t0 = std::chrono::steady_clock::now();
-  const Gpu::SortKey key{&cloud, cloud.size(), revision, count, modelView};
-  if (g.sort(key, std::span<const glm::vec3>(cloud.positions.data(), count), modelView)) {
+  const Gpu::SortKey key{sortData, subset.empty() ? cloud.size() : subset.size(), sortRevision,
+                         count, modelView};
+  if (g.sort(key, positions, modelView)) {
     statistics_.sortSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     statistics_.sorted = true;
@@ -399,7 +396,7 @@ void SplatRenderer::drawGaussians(const SplatSet& set, std::size_t count, const 
   detail::CpuGaussianView v = cpuView(modelView, projection, camera, width, height);
   v.eye = eye;
   v.opacityScale = style.opacityScale;
-  g.rasterizer.draw(cloud, g.order, v, depth, g.pixels, revision);
+  g.rasterizer.draw(cloud, g.order, v, depth, g.pixels, revision, subset);
   drawImage(width, height);
 }
 
