@@ -343,7 +343,7 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     auto [shadeIt, newShade] = g.shadings.try_emplace(s.appearance);
     const std::uint64_t shadeRevision = s.appearance ? vrml::revisionWithFields(*s.appearance) : 0;
     if (newShade || shadeIt->second.revision != shadeRevision) {
-      shadeIt->second = readShading(s.appearance);
+      shadeIt->second = readShading(s.appearance, !traversal_.scene().x3d.version.empty());
       shadeIt->second.revision = shadeRevision;
       for (const std::string& problem : shadeIt->second.multi.problems)
         traversal_.report(vrml::Severity::warning, shadeIt->second.multiTextureNode->location,

@@ -12,11 +12,12 @@
 // with textures and colours modulating O_D and the alpha per clause 4.14.3 (table 4.5):
 // 1- and 2-component textures multiply the diffuse (or Color) colour by their intensity,
 // 3- and 4-component ones replace it; 2- and 4-component textures give the alpha,
-// otherwise alpha = 1 - transparency. Unlit shapes (no Material, lines, points) take
-// u_unlitColor (white, or emissiveColor for lines and points) with the same texture and
-// colour rules. Fog (clause 6.19): f0 = (r - d) / r (LINEAR) or exp(-d / (r - d))
-// (EXPONENTIAL), 0 beyond the visibility range r, d the distance to the viewer, or the
-// vertex's X3D FogCoordinate depth where the geometry has one (X3D 4.0 clause 24.4.2).
+// otherwise alpha = 1 - transparency. In X3D worlds (u_textureModulates, X3D 4.0 clause
+// 17.2.2.4) 3- and 4-component textures multiply the colour and the alpha instead. Unlit shapes (no
+// Material, lines, points) take u_unlitColor (white, or emissiveColor for lines and points) with
+// the same texture and colour rules. Fog (clause 6.19): f0 = (r - d) / r (LINEAR) or exp(-d / (r -
+// d)) (EXPONENTIAL), 0 beyond the visibility range r, d the distance to the viewer, or the vertex's
+// X3D FogCoordinate depth where the geometry has one (X3D 4.0 clause 24.4.2).
 //
 // Multi-texturing (X3D 4.0 clause 18.4.3, multi_texture.hpp): a MultiTexture's stages, up
 // to 4, replace the single texture. Each combines its texture (Arg1, after its function)
@@ -392,7 +393,8 @@ void main() {
                             : texture(u_texture, v_texCoord / v_texQ);
     if (TEXTURE_COMPONENTS <= 2) diffuse *= t.r;
     else diffuse = TEXTURE_MODULATES ? diffuse * t.rgb : t.rgb;
-    if (TEXTURE_COMPONENTS == 2 || TEXTURE_COMPONENTS == 4) alpha = t.a;
+    if (TEXTURE_COMPONENTS == 2 || TEXTURE_COMPONENTS == 4)
+      alpha = TEXTURE_MODULATES ? alpha * t.a : t.a;
   }
   if (STAGE_COUNT > 0) {
     vec4 combined = applyStages(vec4(diffuse, alpha), specularColor);

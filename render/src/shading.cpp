@@ -87,8 +87,9 @@ void readBackMaterial(const vrml::Node& m, Shading& s) {
 
 }  // namespace
 
-Shading readShading(const vrml::Node* appearance) {
+Shading readShading(const vrml::Node* appearance, bool x3d) {
   Shading s;
+  s.textureModulates = x3d;
   if (appearance == nullptr) return s;
   // Only a Material (or X3D's TwoSidedMaterial) lights the shape (6.3); any other node
   // there leaves it unlit (4.14.1).
@@ -114,7 +115,7 @@ Shading readShading(const vrml::Node* appearance) {
       (m->typeId() == vrml::NodeTypeId::Material ||
        m->typeId() == vrml::NodeTypeId::TwoSidedMaterial)) {
     s.texture = sfnodeOf(*m, "diffuseTexture");
-    s.textureModulates = s.texture != nullptr;  // diffuseColor x texture (clause 17.2.2.4)
+    s.textureModulates = s.textureModulates || s.texture != nullptr;  // clause 17.2.2.4
   }
   if (const vrml::NodePtr m = appearance->sfnode("material");
       m && !m->unresolved &&

@@ -44,8 +44,10 @@ struct Shading {
   glm::vec3 backDiffuseColor{0.8f}, backSpecularColor{0.0f}, backEmissiveColor{0.0f};
   float backAmbientIntensity = 0.2f, backShininess = 0.2f, backTransparency = 0.0f;
   const vrml::Node* texture = nullptr;
-  /// An RGB(A) texture multiplies the diffuse colour (X3D 4 Material.diffuseTexture)
-  /// instead of replacing it (VRML97 table 4.5 for Appearance.texture).
+  /// An RGB(A) texture multiplies the diffuse (or Color) colour and its alpha the
+  /// material's (X3D 4.0 clause 17.2.2.4: Material.diffuseTexture and every texture of an
+  /// X3D world, as X_ITE and castle draw X3D 3 files too) instead of replacing them
+  /// (VRML97 table 4.5).
   bool textureModulates = false;
   glm::mat3 textureMatrix{1.0f};
   glm::mat4 textureMatrix3D{1.0f};  // the same transform for 3D texture coordinates
@@ -69,8 +71,9 @@ struct Shading {
   std::uint64_t revision = 0;  // vrml::revisionWithFields of the Appearance read
 };
 
-/// Reads `appearance` (null: no Appearance, an unlit white shape).
-Shading readShading(const vrml::Node* appearance);
+/// Reads `appearance` (null: no Appearance, an unlit white shape). `x3d`: the world is an
+/// X3D one (any version), whose RGB(A) textures modulate (`textureModulates`).
+Shading readShading(const vrml::Node* appearance, bool x3d = false);
 
 /// The texture coordinate set (0 or 1, GpuMesh's two) a texture with *TextureMapping
 /// `mapping` reads in `geometry`: the position of the TextureCoordinate whose `mapping`

@@ -187,3 +187,26 @@ TEST_CASE("an X3D texture under 16 texels without TextureProperties is drawn wit
   writeText(vrml, "#VRML V2.0 utf8\n" + shape);
   CHECK(levels(renderFile(vrml)).size() > 4);  // a ramp between the two greys
 }
+
+TEST_CASE(
+    "an X3D RGB(A) texture multiplies Material.diffuseColor and its alpha the material's; "
+    "VRML97's replaces them",
+    "[render][texture][x3d]") {
+  // X3D 4.0 clause 17.2.2.4, as X_ITE and castle-model-viewer draw X3D 3 files too; VRML97
+  // table 4.5 keeps the replacing rule. The headlight lights the quad head on (N . L = 1), so
+  // the pixel is diffuse x texture; a black Background shows the alpha.
+  const std::string shape =
+      "Viewpoint { position 0 0 1 fieldOfView 1.5708 }\n"
+      "Shape { appearance Appearance { material Material { diffuseColor 1 0.5 0 "
+      "transparency 0.5 } texture PixelTexture { image 1 1 4 0xFFFFFFFF } }\n"
+      "  geometry IndexedFaceSet { coord Coordinate { point [-1 -1 0, 1 -1 0, 1 1 0, -1 1 0] }"
+      " coordIndex [0 1 2 3 -1] } }\n";
+  const fs::path x3d = worldDir() / "texture_modulates.x3dv";
+  writeText(x3d, "#X3D V3.0 utf8\nPROFILE Interchange\n" + shape);
+  const Rendered modulated = renderFile(x3d);
+  // (1, 0.5, 0) x white at alpha 0.5 over black.
+  CHECK(close(centre(modulated), 128, 64, 0, 8));
+  const fs::path vrml = worldDir() / "texture_modulates.wrl";
+  writeText(vrml, "#VRML V2.0 utf8\n" + shape);
+  CHECK(close(centre(renderFile(vrml)), 255, 255, 255, 8));  // the texture's white, opaque
+}
