@@ -436,9 +436,12 @@ NrrdHeader parseNrrdHeader(std::string_view bytes, const std::string& name,
   if (dim == 2) {
     axis = {0, 1, -1};
   } else if (dim == 4) {
-    if (size[0] == 1)
+    if (size[0] == 1) {
       axis = {1, 2, 3};
-    else if (size[3] != 1)
+    } else if (options.componentAxis && size[0] <= 4) {
+      axis = {1, 2, 3};
+      h.components = static_cast<std::uint32_t>(size[0]);
+    } else if (size[3] != 1)
       failAt(name, sizes.line,
              "expected a 4-dimensional NRRD to have one axis of size 1 (first or last), got "
              "sizes '" +
@@ -446,6 +449,10 @@ NrrdHeader parseNrrdHeader(std::string_view bytes, const std::string& name,
   }
   for (int i = 0; i < 3; ++i)
     h.dims[i] = axis[i] < 0 ? 1u : static_cast<std::uint32_t>(size[axis[i]]);
+  if (static_cast<std::uint64_t>(h.dims.x) * h.components >
+      std::numeric_limits<std::uint32_t>::max())
+    failAt(name, sizes.line, "expected sizes below 2^32, got '" + shown(trim(sizes.value)) + "'");
+  h.dims.x *= h.components;
   checkedVoxels(h.dims, name + ":" + std::to_string(sizes.line), options.maxVoxels);
 
   if (spacings.present()) {
@@ -497,12 +504,14 @@ NrrdHeader parseNrrdHeader(std::string_view bytes, const std::string& name,
       h.encoding = NrrdHeader::Encoding::gzip;
     else if (e == "ascii" || e == "txt" || e == "text")
       h.encoding = NrrdHeader::Encoding::ascii;
-    else if (e == "hex" || e == "bzip2" || e == "bz2" || e == "zrl")
+    else if (e == "hex")
+      h.encoding = NrrdHeader::Encoding::hex;
+    else if (e == "bzip2" || e == "bz2" || e == "zrl")
       failAt(name, encoding.line, "unsupported NRRD encoding '" + e + "'");
     else
-      failAt(
-          name, encoding.line,
-          "expected a NRRD encoding (raw, gzip, ascii), got '" + shown(trim(encoding.value)) + "'");
+      failAt(name, encoding.line,
+             "expected a NRRD encoding (raw, gzip, ascii, hex), got '" +
+                 shown(trim(encoding.value)) + "'");
   }
   if (dataFile.present()) {
     const std::string_view f = trim(dataFile.value);
@@ -550,7 +559,48 @@ std::string_view skipNrrdLines(std::string_view bytes, std::size_t lines, const 
   return bytes.substr(pos);
 }
 
+namespace {
+
+/// The bytes of hex-encoded data: pairs of hexadecimal digits, white space between them
+/// skipped, at most `need` bytes (the rest is ignored).
+std::string decodeHex(std::string_view data, std::size_t need, const std::string& name) {
+  const auto digit = [](char c) {
+    if (c >= '0' && c <= '9') return c - '0';
+    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+    return -1;
+  };
+  std::string out;
+  out.reserve(std::min(need, data.size() / 2 + 1));
+  int high = -1;
+  for (std::size_t i = 0; i < data.size() && out.size() < need; ++i) {
+    if (isSpace(data[i])) continue;
+    const int d = digit(data[i]);
+    if (d < 0)
+      throw InputError(name + ": expected a hexadecimal digit in hex data, got '" +
+                       shown(data.substr(i, 1)) + "'");
+    if (high < 0) {
+      high = d;
+    } else {
+      out.push_back(static_cast<char>(high << 4 | d));
+      high = -1;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
 Volume decodeNrrdData(const NrrdHeader& header, std::string_view data, const std::string& name) {
+  if (header.encoding == NrrdHeader::Encoding::hex) {
+    NrrdHeader raw = header;
+    raw.encoding = NrrdHeader::Encoding::raw;
+    const std::string bytes =
+        decodeHex(skipNrrdLines(data, header.lineSkip, name),
+                  checkedVoxels(header.dims, name) * scalarBytes(header.type), name);
+    raw.lineSkip = 0;
+    return decodeNrrdData(raw, bytes, name);
+  }
   const std::size_t count = checkedVoxels(header.dims, name);
   const std::size_t need = count * scalarBytes(header.type);
   const bool ascii = header.encoding == NrrdHeader::Encoding::ascii;

@@ -222,13 +222,13 @@ std::unique_ptr<VolumeSlabReader> openNrrd(const std::string& path) {
   info.sourceType = h.type;
   detail::checkGrid(info, path);
 
-  if (h.encoding == NrrdHeader::Encoding::ascii) {
+  if (h.encoding == NrrdHeader::Encoding::ascii || h.encoding == NrrdHeader::Encoding::hex) {
     if (h.voxelCount() > kMaxVoxels)
-      throw InputError(path + ": ascii NRRD data are read whole, and " +
+      throw InputError(path + ": ascii and hex NRRD data are read whole, and " +
                        std::to_string(h.voxelCount()) + " voxels exceed the limit of " +
                        std::to_string(kMaxVoxels));
     if (!h.dataFiles.empty())
-      throw InputError(path + ": ascii NRRD data in several files are not supported");
+      throw InputError(path + ": ascii or hex NRRD data in several files are not supported");
     const std::string dataPath =
         h.dataFile.empty() ? path : detail::resolveBeside(path, h.dataFile);
     const RandomFile data(dataPath);

@@ -280,6 +280,7 @@ const GpuTexture& TextureCache::get(const vrml::Node& node, const std::string& i
       traversal.report(vrml::Severity::warning, node.location,
                        node.typeName() + ": " + texels.problem + ": drawn untextured");
     if (texels.depth > 0 && !texels.rgba.empty()) {
+      smallTexture(texels.width, texels.height);  // X_ITE: width and height, not depth
       texture.id = uploadRgba3D(texels, sampling);
       texture.components = texels.components;
       texture.hasAlpha = anyTranslucent(texels.rgba);

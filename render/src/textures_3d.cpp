@@ -43,26 +43,42 @@ Texels3D decodeDds(std::string_view b, const std::string& url) {
   return t;
 }
 
-/// A NRRD volume with attached data, its values stretched over 0..255 as grey.
+/// A NRRD volume with attached data, its values stretched over 0..255: grey, or with a
+/// first axis of 2..4 components grey-alpha, RGB or RGBA (as X_ITE reads NRRD textures).
 Texels3D decodeNrrdTexture(std::string_view b, const std::string& url) {
-  const formats::NrrdHeader h = formats::parseNrrdHeader(b, url);
+  formats::NrrdParseOptions options;
+  options.componentAxis = true;
+  const formats::NrrdHeader h = formats::parseNrrdHeader(b, url, options);
   if (!h.dataFile.empty() || h.encoding == formats::NrrdHeader::Encoding::gzip)
     throw std::runtime_error(url + ": only raw or ascii NRRD with attached data is a 3D texture");
   if (h.voxelCount() > kMaxTexels3D) throw std::runtime_error(url + ": NRRD too large");
   const qnv::Volume v = formats::decodeNrrdData(h, b.substr(std::min(h.dataOffset, b.size())), url);
+  const std::size_t components = h.components;
   Texels3D t;
-  t.width = static_cast<int>(v.dims.x);
+  t.width = static_cast<int>(v.dims.x / components);
   t.height = static_cast<int>(v.dims.y);
   t.depth = static_cast<int>(v.dims.z);
-  t.components = 1;
+  t.components = static_cast<int>(components);
   const auto [lo, hi] = std::minmax_element(v.samples.begin(), v.samples.end());
   const float range = *hi > *lo ? *hi - *lo : 1.0f;
-  t.rgba.resize(v.samples.size() * 4);
-  for (std::size_t i = 0; i < v.samples.size(); ++i) {
-    const auto g = static_cast<std::uint8_t>(
-        std::clamp((v.samples[i] - *lo) / range, 0.0f, 1.0f) * 255.0f + 0.5f);
-    t.rgba[4 * i] = t.rgba[4 * i + 1] = t.rgba[4 * i + 2] = g;
-    t.rgba[4 * i + 3] = 255;
+  const auto level = [&](std::size_t i) {
+    return static_cast<std::uint8_t>(std::clamp((v.samples[i] - *lo) / range, 0.0f, 1.0f) * 255.0f +
+                                     0.5f);
+  };
+  const std::size_t texels = v.samples.size() / components;
+  t.rgba.resize(texels * 4);
+  for (std::size_t i = 0; i < texels; ++i) {
+    std::uint8_t* p = &t.rgba[4 * i];
+    const std::size_t s = i * components;
+    if (components <= 2) {
+      p[0] = p[1] = p[2] = level(s);
+      p[3] = components == 2 ? level(s + 1) : 255;
+    } else {
+      p[0] = level(s);
+      p[1] = level(s + 1);
+      p[2] = level(s + 2);
+      p[3] = components == 4 ? level(s + 3) : 255;
+    }
   }
   return t;
 }

@@ -243,6 +243,9 @@ void EsScript::destroyHeap() {
   duk_ = nullptr;
   nodes_.clear();
   nodeIds_.clear();
+  live_.clear();
+  liveSlots_.clear();
+  liveStore_ = nullptr;
 }
 
 EsScript& EsScript::of(duk_context* c) {
@@ -472,6 +475,7 @@ duk_ret_t EsScript::callTrampoline(duk_context* c, void* udata) {
   Call& call = *static_cast<Call*>(udata);
   EsScript& self = *call.self;
   if (call.out != nullptr) {  // collect the eventOuts assigned or changed in place
+    if (self.depth_ == 1) self.flushLiveFields(c);  // and the node fields (outer call)
     std::vector<int> changed;
     changed.swap(self.changed_);
     for (int fi : changed) {
@@ -601,7 +605,7 @@ bool EsScript::run(const char* fn, const vrml::FieldValue* arg, double timestamp
     duk_pop(duk_);
   }
   std::vector<std::pair<int, vrml::FieldValue>> out;
-  if (!limitHit() && !loadFailed_ && !changed_.empty()) {
+  if (!limitHit() && !loadFailed_ && (!changed_.empty() || (depth_ == 1 && hasLiveFields()))) {
     Call collect;
     collect.self = this;
     collect.out = &out;
@@ -612,6 +616,7 @@ bool EsScript::run(const char* fn, const vrml::FieldValue* arg, double timestamp
   }
   --depth_;
   if (outer) {
+    forgetLiveFields();  // left by a limit or an error while they were sent
     guard_->active = false;
     assert(duk_get_top(duk_) == 0 && "a call left values on the Duktape stack");
   }

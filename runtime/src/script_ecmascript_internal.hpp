@@ -10,9 +10,12 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace gs::runtime::es {
@@ -88,6 +91,24 @@ class EsScript final : public ScriptInstance {
   /// After the prelude ran: remembers the prototypes of the SF/MF classes.
   void capturePrototypes(duk_context* c);
 
+  // ---- a node's fields as live values (script_live_fields.cpp) ----
+  /// Pushes field `i` of `n` as the running call sees it. An object-valued field (SF
+  /// vectors, colours, rotations, images, every MF type) is one object for the whole call,
+  /// its MF arrays filling grown elements with defaults (__gsLiveMF); what the Script
+  /// changes in place (v.push(p), v.length = 0, v[i].x = 1) is sent to the node when the
+  /// call returns, as X_ITE's fields are live objects (X3D 4.0 ECMAScript binding, ISO/IEC
+  /// 19777-1 5.2: field values of nodes are read and written through their objects).
+  void pushNodeField(duk_context* c, const vrml::NodePtr& n, std::size_t i);
+  /// After the Script sent `v` to field `i` of `n`: later reads in this call see `v`.
+  void assignedNodeField(duk_context* c, const vrml::NodePtr& n, std::size_t i,
+                         const vrml::FieldValue& v);
+  /// Sends each live field that differs from the node's value (or from the value last
+  /// assigned to it) to its node as an event, then forgets them all.
+  void flushLiveFields(duk_context* c);
+  /// Forgets the live fields without sending them (a call stopped by a limit).
+  void forgetLiveFields();
+  bool hasLiveFields() const { return !live_.empty(); }
+
   // ---- the X3D binding (script_x3d.cpp) ----
   /// Pushes a value of one of X3D's 22 types as an object of the X3D classes (SFDouble
   /// and MFDouble as numbers); undefined for a VRML97 type.
@@ -160,6 +181,16 @@ class EsScript final : public ScriptInstance {
   std::vector<void*> protoGetters_, protoSetters_;  // PROTO instance interface accessors
   std::vector<vrml::NodePtr> nodes_;                // SFNode objects' nodes, by id
   std::unordered_map<const vrml::Node*, std::uint32_t> nodeIds_;
+  /// A node field read as an object in this call; `assigned` holds what the Script last
+  /// sent to it (the node still has its old value until the event is delivered).
+  struct LiveField {
+    vrml::NodePtr node;
+    std::size_t field = 0;
+    std::optional<vrml::FieldValue> assigned;
+  };
+  std::vector<LiveField> live_;  // by slot of liveStore_
+  std::map<std::pair<const vrml::Node*, std::size_t>, std::uint32_t> liveSlots_;
+  void* liveStore_ = nullptr;        // array: slot -> the object the Script holds
   std::vector<char> warnedMissing_;  // eventIn without a function: warned once
 };
 

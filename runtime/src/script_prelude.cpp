@@ -162,7 +162,9 @@ method(SFRotation.prototype, 'toString', function () {
 });
 
 // ---- MF classes: Arrays with an MF prototype ----
-function mfClass(name, convert) {
+// `blank` makes an element's default: the value a grown array (v.length = n) is filled
+// with where the array is a node's field (__gsLiveMF).
+function mfClass(name, convert, blank) {
   var ctor = function () {
     var a = [];
     for (var i = 0; i < arguments.length; ++i) a.push(convert(arguments[i]));
@@ -176,9 +178,22 @@ function mfClass(name, convert) {
     for (var i = 0; i < this.length; ++i) parts.push(String(this[i]));
     return '[' + parts.join(', ') + ']';
   });
+  method(ctor.prototype, '__blank', blank);
   G[name] = ctor;
   return ctor;
 }
+// A node's MF field as a Script holds it (script_live_fields.cpp): growing it, by its
+// length or by an index past its end, fills the new elements with the type's default
+// (X_ITE's arrays do; a bare Array would leave holes that v[i].setHSV cannot use).
+var liveMFHandler = {
+  set: function (t, k, v) {
+    var end = k === 'length' ? v >>> 0 : (String(k >>> 0) === k ? (k >>> 0) : 0);
+    for (var i = t.length; i < end; ++i) t[i] = t.__blank();
+    t[k] = v;
+    return true;
+  }
+};
+G.__gsLiveMF = function (a) { return new Proxy(a, liveMFHandler); };
 function copyOf(C, v) {
   if (v instanceof C) { var c = Object.create(C.prototype); for (var k in v) c[k] = v[k]; return c; }
   if (v && typeof v === 'object' && !(v instanceof SFNode)) {
@@ -186,15 +201,15 @@ function copyOf(C, v) {
   }
   return v;
 }
-mfClass('MFFloat', function (v) { return +v; });
-mfClass('MFTime', function (v) { return +v; });
-mfClass('MFInt32', function (v) { return v | 0; });
-mfClass('MFString', function (v) { return String(v); });
-mfClass('MFNode', function (v) { return v; });
-mfClass('MFVec2f', function (v) { return copyOf(SFVec2f, v); });
-mfClass('MFVec3f', function (v) { return copyOf(SFVec3f, v); });
-mfClass('MFColor', function (v) { return copyOf(SFColor, v); });
-mfClass('MFRotation', function (v) { return copyOf(SFRotation, v); });
+mfClass('MFFloat', function (v) { return +v; }, function () { return 0; });
+mfClass('MFTime', function (v) { return +v; }, function () { return 0; });
+mfClass('MFInt32', function (v) { return v | 0; }, function () { return 0; });
+mfClass('MFString', function (v) { return String(v); }, function () { return ''; });
+mfClass('MFNode', function (v) { return v; }, function () { return null; });
+mfClass('MFVec2f', function (v) { return copyOf(SFVec2f, v); }, function () { return new SFVec2f(); });
+mfClass('MFVec3f', function (v) { return copyOf(SFVec3f, v); }, function () { return new SFVec3f(); });
+mfClass('MFColor', function (v) { return copyOf(SFColor, v); }, function () { return new SFColor(); });
+mfClass('MFRotation', function (v) { return copyOf(SFRotation, v); }, function () { return new SFRotation(); });
 
 // ---- SFImage ----
 function SFImage(x, y, comp, array) {

@@ -68,6 +68,16 @@ function vecClass(keys, math) {
 var SFVec2d = vecClass(['x', 'y'], true), SFVec3d = vecClass(['x', 'y', 'z'], true);
 var SFVec4f = vecClass(['x', 'y', 'z', 'w'], true), SFVec4d = vecClass(['x', 'y', 'z', 'w'], true);
 var SFColorRGBA = vecClass(['r', 'g', 'b', 'a'], false);
+// X3D's hue is in radians [0, 2 pi), as X_ITE takes and gives it (VRML97's prelude: degrees).
+var degreesSetHSV = SFColor.prototype.setHSV, degreesGetHSV = SFColor.prototype.getHSV;
+method(SFColor.prototype, 'setHSV', function (h, s, v) {
+  degreesSetHSV.call(this, n(h) * 180 / Math.PI, s, v);
+});
+method(SFColor.prototype, 'getHSV', function () {
+  var hsv = degreesGetHSV.call(this);
+  hsv[0] = hsv[0] * Math.PI / 180;
+  return hsv;
+});
 method(SFColorRGBA.prototype, 'setHSV', function (h, s, v) {
   var c = new SFColor();
   c.setHSV(h, s, v);
@@ -189,18 +199,18 @@ function copyMatrix(C, S, v) {
   return v;
 }
 
-mfClass('MFBool', function (v) { return !!v; });
-mfClass('MFDouble', function (v) { return +v; });
-mfClass('MFImage', function (v) { return v; });
-mfClass('MFVec2d', function (v) { return copyOf(SFVec2d, v); });
-mfClass('MFVec3d', function (v) { return copyOf(SFVec3d, v); });
-mfClass('MFVec4f', function (v) { return copyOf(SFVec4f, v); });
-mfClass('MFVec4d', function (v) { return copyOf(SFVec4d, v); });
-mfClass('MFColorRGBA', function (v) { return copyOf(SFColorRGBA, v); });
-mfClass('MFMatrix3f', function (v) { return copyMatrix(SFMatrix3f, 9, v); });
-mfClass('MFMatrix3d', function (v) { return copyMatrix(SFMatrix3d, 9, v); });
-mfClass('MFMatrix4f', function (v) { return copyMatrix(SFMatrix4f, 16, v); });
-mfClass('MFMatrix4d', function (v) { return copyMatrix(SFMatrix4d, 16, v); });
+mfClass('MFBool', function (v) { return !!v; }, function () { return false; });
+mfClass('MFDouble', function (v) { return +v; }, function () { return 0; });
+mfClass('MFImage', function (v) { return v; }, function () { return new SFImage(0, 0, 0); });
+mfClass('MFVec2d', function (v) { return copyOf(SFVec2d, v); }, function () { return new SFVec2d(); });
+mfClass('MFVec3d', function (v) { return copyOf(SFVec3d, v); }, function () { return new SFVec3d(); });
+mfClass('MFVec4f', function (v) { return copyOf(SFVec4f, v); }, function () { return new SFVec4f(); });
+mfClass('MFVec4d', function (v) { return copyOf(SFVec4d, v); }, function () { return new SFVec4d(); });
+mfClass('MFColorRGBA', function (v) { return copyOf(SFColorRGBA, v); }, function () { return new SFColorRGBA(); });
+mfClass('MFMatrix3f', function (v) { return copyMatrix(SFMatrix3f, 9, v); }, function () { return new SFMatrix3f(); });
+mfClass('MFMatrix3d', function (v) { return copyMatrix(SFMatrix3d, 9, v); }, function () { return new SFMatrix3d(); });
+mfClass('MFMatrix4f', function (v) { return copyMatrix(SFMatrix4f, 16, v); }, function () { return new SFMatrix4f(); });
+mfClass('MFMatrix4d', function (v) { return copyMatrix(SFMatrix4d, 16, v); }, function () { return new SFMatrix4d(); });
 
 // ---- X3DConstants: access types and field types (19777-1's numbering) ----
 var X3DConstants = {

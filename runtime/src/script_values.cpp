@@ -97,6 +97,16 @@ void EsScript::capturePrototypes(duk_context* c) {
   duk_push_bare_object(c);
   nodeCache_ = duk_get_heapptr(c, -1);
   duk_put_prop_string(c, -2, "gsNodes");
+  // The node fields read as objects in a call (script_live_fields.cpp), and the prelude's
+  // wrapper of their MF arrays, taken out of the global object.
+  duk_push_bare_array(c);
+  liveStore_ = duk_get_heapptr(c, -1);
+  duk_put_prop_string(c, -2, "gsLive");
+  duk_get_global_string(c, "__gsLiveMF");
+  duk_put_prop_string(c, -2, "gsLiveMF");
+  duk_pop(c);
+  duk_push_global_object(c);
+  duk_del_prop_string(c, -1, "__gsLiveMF");
   duk_pop(c);
 }
 
@@ -498,7 +508,7 @@ duk_ret_t EsScript::nodeFieldGetter(duk_context* c) {
   vrml::NodePtr n = self.nodeAt(c, -1);
   if (!n || i >= n->fieldCount() || n->type().fields[i].access == vrml::AccessType::eventIn)
     return 0;  // undefined
-  self.pushValue(c, n->fieldAt(i));
+  self.pushNodeField(c, n, i);
   return 1;
 }
 
@@ -515,6 +525,7 @@ duk_ret_t EsScript::nodeFieldSetter(duk_context* c) {
     GS_DUK_ERROR(c, DUK_ERR_TYPE_ERROR, "%s", msg.c_str());
   }
   FieldValue v = self.requireValue(c, 0, spec.type, spec.name.c_str());
+  self.assignedNodeField(c, n, i, v);
   // 4.12.4: sent to the node as an event at the current timestamp.
   self.ctx_.sendEvent(*n, static_cast<int>(i), std::move(v));
   return 0;

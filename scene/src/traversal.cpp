@@ -84,13 +84,19 @@ struct SceneTraversal::Walk {
   /// X3D Layout's ScreenGroup (clause 36.4.4): its children in pixels, one unit a pixel of
   /// the view at the group's depth, kept where the group's origin is and turned as it is.
   void screenGroup(const vrml::Node& n, const glm::mat4& m, const std::string* baseUrl) {
+    glm::mat4 placed;
+    if (pixelUnits(m, placed)) group(&n, n.mfnode("children"), placed, baseUrl, nullptr);
+  }
+  /// `m` (local to world) made to measure in pixels of the view at its origin's depth, its
+  /// origin and turn kept (X_ITE's getScreenScaleMatrix); false behind the viewer.
+  bool pixelUnits(const glm::mat4& m, glm::mat4& out) const {
     const glm::mat4 mv = worldToEye * m;
     const glm::vec3 t(mv[3]);
     float perPixel = 0.0f;
     if (orthographic) {
       perPixel = layoutPerPixel;
     } else {
-      if (t.z >= 0.0f) return;  // behind the viewer: no pixels to measure
+      if (t.z >= 0.0f) return false;  // behind the viewer: no pixels to measure
       perPixel = 2.0f * (-t.z) * tanHalfFov / std::min(viewPixels.x, viewPixels.y);
     }
     glm::mat4 placed(1.0f);
@@ -99,7 +105,17 @@ struct SceneTraversal::Walk {
       placed[i] = len > 0.0f ? mv[i] / len * perPixel : glm::vec4(0.0f);
     }
     placed[3] = mv[3];
-    group(&n, n.mfnode("children"), eyeToWorld * placed, baseUrl, nullptr);
+    out = eyeToWorld * placed;
+    return true;
+  }
+  /// Whether `shape` draws Text in a ScreenFontStyle: X3D 4.0 clause 36.4.5, sized in
+  /// points of the screen wherever it is (X_ITE's ScreenText measures it in pixels at the
+  /// text's depth, in a ScreenGroup or not).
+  static bool screenText(const vrml::Node& shape) {
+    const vrml::NodePtr& g = shape.sfnode("geometry");
+    if (!g || g->unresolved || g->typeId() != vrml::NodeTypeId::Text) return false;
+    const vrml::NodePtr& fs = g->sfnode("fontStyle");
+    return fs && !fs->unresolved && fs->typeId() == vrml::NodeTypeId::ScreenFontStyle;
   }
   float layoutPerPixel = 0.0f;  // an orthographic layer's metres per pixel
 
@@ -248,6 +264,7 @@ struct SceneTraversal::Walk {
 
   // VRML97 bounds intensity to [0, 1] (clause 6.16); X3D 4 lights (those with X3D's
   // `global` field) take any intensity >= 0 (X3D 4.0 clause 17.4.1), as glTF's do.
+  static constexpr float kUnboundedRadius = 1.0e30f;  // metres: a light without a bound
   static float lightIntensity(const vrml::Node& n) {
     const float i = std::max(sfFloat(n, "intensity", 1.0f), 0.0f);
     return n.type().findExact("global") >= 0 ? i : std::min(i, 1.0f);
@@ -285,7 +302,10 @@ struct SceneTraversal::Walk {
     light.ambientIntensity = std::clamp(sfFloat(n, "ambientIntensity", 0.0f), 0.0f, 1.0f);
     light.location = glm::vec3(m * glm::vec4(sfVec3(n, "location", glm::vec3(0.0f)), 1.0f));
     light.attenuation = glm::max(sfVec3(n, "attenuation", glm::vec3(1, 0, 0)), glm::vec3(0.0f));
-    light.radius = std::max(sfFloat(n, "radius", 100.0f), 0.0f) * meanScale(m);
+    // A negative radius reaches everywhere: glTF's lights, whose range is absent, come to
+    // X3D as radius -1 (castle-model-viewer writes them so; X_ITE lights them unbounded).
+    const float radius = sfFloat(n, "radius", 100.0f);
+    light.radius = radius < 0.0f ? kUnboundedRadius : radius * meanScale(m);
     if (spot) {
       const glm::vec3 d = glm::mat3(m) * sfVec3(n, "direction", glm::vec3(0, 0, -1));
       light.direction = glm::length(d) > 1e-12f ? glm::normalize(d) : glm::vec3(0, 0, -1);
@@ -653,7 +673,11 @@ struct SceneTraversal::Walk {
         break;
       }
       case NodeKind::Shape:
-        shape(n, m, baseUrl);
+        if (glm::mat4 placed; screenText(n)) {
+          if (pixelUnits(m, placed)) shape(n, placed, baseUrl);
+        } else {
+          shape(n, m, baseUrl);
+        }
         break;
       case NodeKind::ParticleSystem:
         particleSystem(n, m, baseUrl);

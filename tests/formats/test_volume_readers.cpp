@@ -303,6 +303,36 @@ TEST_CASE("NRRD header forms: dimensions 2 and 4, comments, unknown fields", "[v
   }
 }
 
+TEST_CASE("NRRD hex encoding and a first axis of components (ImageTexture3D's RGB)",
+          "[volume][nrrd]") {
+  // create3000's Texturing3D/hex.nrrd: two hex digits per byte, any white space between.
+  const std::string text =
+      "NRRD0001\ntype: unsigned char\ndimension: 4\nsizes: 3 2 1 1\nencoding: hex\n\n"
+      "ff 00 0a\n01F0 ab\n";
+  // Without componentAxis the first axis is x (the last, of size 1, dropped); RGB of 2 x 2 x 2
+  // voxels is an error.
+  CHECK(parseNrrdHeader(text, "c.nrrd").dims == glm::uvec3(3, 2, 1));
+  std::string cube = text;
+  cube.replace(cube.find("3 2 1 1"), 7, "3 2 2 2");
+  CHECK_THROWS_WITH(parseNrrdHeader(cube, "c.nrrd"), Contains("one axis of size 1"));
+  NrrdParseOptions options;
+  options.componentAxis = true;
+  const NrrdHeader h = parseNrrdHeader(text, "c.nrrd", options);
+  CHECK(h.encoding == NrrdHeader::Encoding::hex);
+  CHECK(h.components == 3);
+  CHECK(h.dims == glm::uvec3(6, 1, 1));  // 3 components x 2 voxels along x
+  const Volume v = decodeNrrdData(h, std::string_view(text).substr(h.dataOffset), "c.nrrd");
+  CHECK(v.samples == std::vector<float>{255, 0, 10, 1, 240, 171});
+  // A scalar hex volume, and a digit that is not one.
+  const std::string scalar = "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 2 1 1\nencoding: hex\n\n";
+  const NrrdHeader s = parseNrrdHeader(scalar + "7f80", "s.nrrd");
+  CHECK(s.components == 1);
+  CHECK(decodeNrrdData(s, "7f80", "s.nrrd").samples == std::vector<float>{127, 128});
+  CHECK_THROWS_WITH(decodeNrrdData(s, "7g80", "s.nrrd"),
+                    Contains("s.nrrd: expected a hexadecimal digit in hex data, got 'g'"));
+  CHECK_THROWS_WITH(decodeNrrdData(s, "7f", "s.nrrd"), Contains("s.nrrd"));  // too short
+}
+
 TEST_CASE("NRRD hostile headers give InputError", "[volume][nrrd][hostile]") {
   const std::string head = "NRRD0004\ntype: uint8\ndimension: 3\nencoding: raw\n";
   auto parse = [](const std::string& text) { return parseNrrdHeader(text, "h.nrrd"); };

@@ -596,3 +596,71 @@ TEST_CASE("Script: a Script written in an EXTERNPROTO's file reads its files bes
   REQUIRE_FALSE(remote.diagnostics.empty());
   CHECK_THAT(remote.diagnostics[0].message, Catch::Contains("may not reference"));
 }
+
+TEST_CASE("Script: a node's fields are live objects for a call, sent when it returns", "[script]") {
+  // X_ITE's scripts build geometry in place (create3000's Texturing3D/Volume.x3d,
+  // Follower/ColorDamper.x3dv): coord.point.push(...), color.length = n then
+  // color[i].setHSV(...), one element changed; each field changed is one event.
+  FakeScriptContext ctx;
+  std::string world = R"(#VRML V2.0 utf8
+DEF C Coordinate { point [ 9 9 9 ] }
+DEF K Color { }
+DEF T Transform { translation 1 2 3 }
+DEF S Script {
+  field SFNode coord USE C
+  field SFNode colors USE K
+  field SFNode target USE T
+  eventIn SFFloat go
+  eventIn SFFloat look
+  eventOut SFInt32 count
+  eventOut SFBool same
+  directOutput TRUE
+  url "javascript:
+    function go(v, t) {
+      coord.point.length = 0;
+      coord.point.push(new SFVec3f(1, 2, 3), new SFVec3f(4, 5, 6));
+      var c = colors.color;
+      c.length = 2;
+      c[1].setHSV(0, 1, v);
+      c[c.length] = c[1];
+      target.translation = new SFVec3f(v, 0, 0);
+      target.translation.y = 7;
+      count = coord.point.length;
+      same = coord.point === coord.point;
+    }
+    function look(v, t) { var n = coord.point.length + target.translation.x; }"
+}
+)";
+  ScriptWorld w = loadScript(ctx, world);
+  REQUIRE(w.instance);
+  INFO(ctx.diagnosticText());
+  w.instance->eventIn(w.field("go"), sfFloat(0.5f), 1.0);
+  CHECK(ctx.emittedFor(*w.script, "count").at(0).get<FieldType::SFInt32>() == 2);
+  CHECK(ctx.emittedFor(*w.script, "same").at(0).get<FieldType::SFBool>());
+  const vrml::Node& c = *w.scene.rootNodes[0];
+  const vrml::Node& k = *w.scene.rootNodes[1];
+  const vrml::Node& t = *w.scene.rootNodes[2];
+  const auto sentTo = [&](const vrml::Node& n, const std::string& field) {
+    std::vector<FieldValue> out;
+    for (const auto& e : ctx.sent)
+      if (e.node == &n && e.field == n.type().findExact(field)) out.push_back(e.value);
+    return out;
+  };
+  const auto points = sentTo(c, "point");
+  REQUIRE(points.size() == 1);
+  CHECK(points[0].get<FieldType::MFVec3f>() == std::vector<glm::vec3>{{1, 2, 3}, {4, 5, 6}});
+  const auto colorsSent = sentTo(k, "color");
+  REQUIRE(colorsSent.size() == 1);  // grown elements are SFColor defaults, not holes
+  CHECK(colorsSent[0].get<FieldType::MFColor>() ==
+        std::vector<glm::vec3>{{0, 0, 0}, {0.5f, 0, 0}, {0.5f, 0, 0}});
+  // The assignment is one event; the change after it, read back in the same call, another.
+  const auto translations = sentTo(t, "translation");
+  REQUIRE(translations.size() == 2);
+  CHECK(translations[0].get<FieldType::SFVec3f>() == glm::vec3(0.5f, 0, 0));
+  CHECK(translations[1].get<FieldType::SFVec3f>() == glm::vec3(0.5f, 7, 0));
+  // Reading without changing sends nothing.
+  ctx.sent.clear();
+  w.instance->eventIn(w.field("look"), sfFloat(0.0f), 2.0);
+  CHECK(ctx.sent.empty());
+  CHECK(ctx.diagnostics.empty());
+}

@@ -131,7 +131,7 @@ DEF S Script {
       total = s;
       second = colors[1];
       var g = new SFColorRGBA(0, 0, 0, 0.75);
-      g.setHSV(120, 1, 1);
+      g.setHSV(2 * Math.PI / 3, 1, 1);  // X3D's hue in radians (X_ITE)
       green = g;
       points = new MFVec2d(new SFVec2d(1, 2), new SFVec2d(3.5, 4));
       built = new MFColorRGBA(new SFColorRGBA(0.25, 0.5, 0.75, 1));

@@ -41,9 +41,12 @@ ScalarType parseScalarType(std::string_view text);
 
 /// What a NRRD header (teem's format, magics NRRD0001..NRRD0005) says about its volume.
 struct NrrdHeader {
-  enum class Encoding { raw, gzip, ascii };
+  enum class Encoding { raw, gzip, ascii, hex };
 
   glm::uvec3 dims{0, 0, 0};  // samples along x, y, z; each >= 1, product <= kMaxVoxels
+  /// Values per voxel (NrrdParseOptions::componentAxis): 2..4 when the first of 4 axes
+  /// holds a voxel's components (grey-alpha, RGB, RGBA), folded into dims.x (which is
+  /// then components x the voxels along x); 1 otherwise.
   ScalarType type = ScalarType::uint8;
   bool bigEndian = false;  // byte order of binary samples ("endian:", little when absent)
   Encoding encoding = Encoding::raw;
@@ -71,6 +74,7 @@ struct NrrdHeader {
   /// apply to every file. Empty otherwise.
   std::vector<std::string> dataFiles;
   std::uint64_t samplesPerDataFile = 0;
+  std::uint32_t components = 1;
 
   std::size_t voxelCount() const {
     return std::size_t{dims.x} * std::size_t{dims.y} * std::size_t{dims.z};
@@ -89,6 +93,10 @@ struct NrrdParseOptions {
   std::uint64_t maxVoxels = kMaxVoxels;
   /// The most files a multi-file header may name.
   std::size_t maxDataFiles = std::size_t{1} << 20;
+  /// Read the first axis of a 4-dimensional NRRD, when its size is 2..4, as each voxel's
+  /// components (an X3D ImageTexture3D's RGB volume): NrrdHeader::components. Off: that
+  /// axis must have size 1 unless the last one has (a volume of scalars is expected).
+  bool componentAxis = false;
 };
 
 /// Parses the NRRD header at the start of `bytes` (a .nrrd file or a .nhdr detached
@@ -101,13 +109,15 @@ struct NrrdParseOptions {
 ///     "int8", "uchar", "unsigned short int", "int16_t", "long long", "uint64", "float",
 ///     "double", ...). "block" and unknown names are InputError.
 ///   - dimension: 3; 4 when the first (or last) axis has size 1 (e.g. one scalar
-///     component); 2 for a single slice (dims.z = 1).
+///     component), or with options.componentAxis the first has size 2..4; 2 for a single
+///     slice (dims.z = 1).
 ///   - sizes: one integer >= 1 per axis, each < 2^32, product <= options.maxVoxels.
 ///   - spacings: one number per axis; nan/zero give 1, negatives their absolute value.
 ///   - space directions: one "(x,y,z)" vector (or "none") per axis; the vector lengths
 ///     become the spacings (they win over "spacings"). space origin "(x,y,z)" -> origin.
 ///   - endian: little | big.
-///   - encoding: raw | gzip, gz | ascii, txt, text. hex, bzip2 and zrl are InputError.
+///   - encoding: raw | gzip, gz | ascii, txt, text | hex (two hexadecimal digits per
+///     byte, white space between them ignored). bzip2 and zrl are InputError.
 ///   - data file / datafile: one file name; the list forms ("LIST", "fmt%03d.raw min max
 ///     step") only with options.multiFile (see NrrdHeader::dataFiles), else InputError
 ///     "... not supported".
