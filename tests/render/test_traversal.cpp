@@ -192,6 +192,17 @@ TEST_CASE("DirectionalLight lights only its siblings; point lights are global",
   CHECK(p.radius == Approx(10.0f));  // scaled with the Transform
 }
 
+TEST_CASE("a point light of negative radius reaches everywhere", "[render][traversal]") {
+  // glTF's lights without a range come to X3D as radius -1 (castle-model-viewer's
+  // blender_custom_properties.x3dv); X_ITE lights them at any distance.
+  auto point = makeNode("PointLight", {{"radius", sfFloat(-1)}});
+  SceneTraversal t(makeScene({point, shape()}), options());
+  TraversalFrame frame;
+  t.collect(Camera{}, frame);
+  REQUIRE(frame.globalLights.size() == 1);
+  CHECK(frame.lights[frame.globalLights[0]].radius > 1.0e20f);
+}
+
 TEST_CASE("the first Viewpoint, NavigationInfo, Background and Fog are bound",
           "[render][traversal]") {
   SECTION("defaults") {

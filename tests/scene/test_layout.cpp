@@ -136,3 +136,29 @@ Transform { translation 1 0 0 children ScreenGroup { children Shape {
     CHECK(b.x - a.x == Approx(16.0f).margin(0.01));
   }
 }
+
+TEST_CASE("Text in a ScreenFontStyle is measured in pixels outside a ScreenGroup too",
+          "[scene][x3d][layout]") {
+  // X3D 4.0 clause 36.4.5, as X_ITE's ScreenText draws it (create3000's
+  // EnvironmentalSensor/TransformSensor.x3d labels its axes so): 16 units of the text's
+  // coordinates are 16 pixels at any distance and any scale of its Transform. A FontStyle's
+  // text stays in the world's metres.
+  const auto world = [](const std::string& fontStyle) {
+    return "#X3D V4.0 utf8\nPROFILE Full\nViewpoint { position 0 0 6 }\n"
+           "Transform { translation 1 0 -4 scale 3 3 3 children Shape { geometry Text { "
+           "string \"A\" fontStyle " +
+           fontStyle + " } } }\n";
+  };
+  for (const int width : {400, 640}) {
+    INFO("width " << width);
+    const std::string screen = world("ScreenFontStyle { pointSize 12 }");
+    const glm::vec2 a = pixelOf(screen, width, 300, 0, {0, 0, 0});
+    const glm::vec2 b = pixelOf(screen, width, 300, 0, {16, 0, 0});
+    CHECK(b.x - a.x == Approx(16.0f).margin(0.01));
+    // A FontStyle of size 1 at 10 m, scaled 3: 16 units are far more than 16 pixels.
+    const std::string metres = world("FontStyle { }");
+    const float wide =
+        pixelOf(metres, width, 300, 0, {16, 0, 0}).x - pixelOf(metres, width, 300, 0, {0, 0, 0}).x;
+    CHECK(wide > 500.0f);
+  }
+}
