@@ -84,6 +84,11 @@ constexpr std::string_view kFunctions =
     "#define shadow2D texture\n#define texture2DProj textureProj\n"
     "#define texture2DLod textureLod\n#define textureCubeLod textureLod\n";
 
+constexpr std::array<std::pair<std::string_view, const char*>, 3> kX3dConstants = {
+    std::pair<std::string_view, const char*>{"x3d_MaxClipPlanes", "6"},
+    {"x3d_MaxLights", "8"},
+    {"x3d_MaxTextures", "4"}};
+
 // Vertex data locations of GpuMesh (mesh_gpu.cpp) and the names a shader may give them.
 struct AttributeNames {
   GLuint location;
@@ -304,6 +309,9 @@ std::string translateGlsl(std::string_view source, ShaderStage stage) {
   }
   head += vertex ? "#define attribute in\n#define varying out\n" : "#define varying in\n";
   head += kFunctions;
+  // X_ITE's built-in constants (its custom shaders' x3d_Max*: X_ITE 15's defaults).
+  for (const auto& [name, value] : kX3dConstants)
+    if (uses(source, name)) head += "#define " + std::string(name) + " " + value + "\n";
   if (vertex)
     for (const Builtin& b : kVertexInputs)
       if (uses(source, b.name)) head += b.declaration;
@@ -465,6 +473,14 @@ const UserProgram* UserPrograms::build(const vrml::Node& shader, Entry& entry,
   p.projection = locations("ProjectionMatrix");
   p.normalMatrix = locations("NormalMatrix");
   p.modelViewProjection = locations("ModelViewProjectionMatrix");
+  // X_ITE's texture uniforms (its custom shaders): the Appearance's texture, its count and
+  // its texture matrix, each as element 0 of X_ITE's arrays.
+  const auto located = [&](const char* name) { return glGetUniformLocation(id, name); };
+  p.numTextures = located("x3d_NumTextures");
+  p.textureMatrix = located("x3d_TextureMatrix[0]");
+  p.texture2D = located("x3d_Texture2D[0]");
+  p.texture3D = located("x3d_Texture3D[0]");
+  p.textureCube = located("x3d_TextureCube[0]");
   // The fields as uniforms (31.2.3): the ComposedShader's, or each ShaderProgram's own.
   GLint unit = 1;  // Appearance.texture is on 0
   const auto addFields = [&](const vrml::Node& node) {
@@ -476,7 +492,7 @@ const UserProgram* UserPrograms::build(const vrml::Node& shader, Entry& entry,
       const GLint location = glGetUniformLocation(id, specs[i].name.c_str());
       if (location < 0) continue;
       const bool texture = specs[i].type == vrml::FieldType::SFNode;
-      if (texture && unit >= 16) continue;
+      if (texture && unit >= kUserTexture3DUnit) continue;
       p.fields.push_back({&node, i, location, texture ? unit++ : -1});
     }
   };
@@ -489,8 +505,9 @@ const UserProgram* UserPrograms::build(const vrml::Node& shader, Entry& entry,
 
 void UserPrograms::use(const UserProgram& p, const glm::mat4& modelView,
                        const glm::mat4& projection, const GpuTexture* texture,
-                       TextureCache& textures, const std::string& baseUrl,
-                       scene::SceneTraversal& traversal, base::Fetcher* fetcher) {
+                       const glm::mat4& textureMatrix, TextureCache& textures,
+                       const std::string& baseUrl, scene::SceneTraversal& traversal,
+                       base::Fetcher* fetcher) {
   glUseProgram(p.id);
   const glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(modelView));
   const glm::mat4 modelViewProjection = projection * modelView;
@@ -637,6 +654,23 @@ void UserPrograms::use(const UserProgram& p, const glm::mat4& modelView,
   glActiveTexture(GL_TEXTURE0);
   if (texture != nullptr && !texture->volume && !texture->cube)
     glBindTexture(GL_TEXTURE_2D, texture->id);
+  // X_ITE's names for the Appearance's texture (units as the built-in programs use them).
+  const bool textured = texture != nullptr && texture->components > 0;
+  if (p.numTextures >= 0) glUniform1i(p.numTextures, textured ? 1 : 0);
+  if (p.textureMatrix >= 0)
+    glUniformMatrix4fv(p.textureMatrix, 1, GL_FALSE, glm::value_ptr(textureMatrix));
+  if (p.texture2D >= 0) glUniform1i(p.texture2D, 0);
+  if (textured && texture->volume && p.texture3D >= 0) {
+    glActiveTexture(GL_TEXTURE0 + kUserTexture3DUnit);
+    glBindTexture(GL_TEXTURE_3D, texture->id);
+    glUniform1i(p.texture3D, kUserTexture3DUnit);
+  }
+  if (textured && texture->cube && p.textureCube >= 0) {
+    glActiveTexture(GL_TEXTURE0 + kUserTextureCubeUnit);
+    glBindTexture(GL_TEXTURE_CUBE_MAP, texture->id);
+    glUniform1i(p.textureCube, kUserTextureCubeUnit);
+  }
+  glActiveTexture(GL_TEXTURE0);
 }
 
 void UserPrograms::release() {

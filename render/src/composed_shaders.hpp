@@ -45,10 +45,18 @@ std::string translateGlsl(std::string_view source, ShaderStage stage);
 
 /// A linked program of one ComposedShader or ProgramShader node and the uniforms and
 /// vertex attributes it takes.
+/// Texture units of X_ITE's x3d_Texture3D[0] and x3d_TextureCube[0] in a user program (the
+/// shader nodes' texture fields take units 1..13).
+inline constexpr GLint kUserTexture3DUnit = 14;
+inline constexpr GLint kUserTextureCubeUnit = 15;
+
 struct UserProgram {
   GLuint id = 0;
   const vrml::Node* shader = nullptr;  // the ComposedShader or ProgramShader
   std::vector<GLint> modelView, projection, normalMatrix, modelViewProjection;
+  /// X_ITE's x3d_NumTextures, x3d_TextureMatrix[0], x3d_Texture2D[0], x3d_Texture3D[0] and
+  /// x3d_TextureCube[0] (-1: the program has none).
+  GLint numTextures = -1, textureMatrix = -1, texture2D = -1, texture3D = -1, textureCube = -1;
   struct FieldUniform {
     const vrml::Node* node;  // the ComposedShader, or a ShaderProgram (read per draw)
     std::size_t field;       // index into that node's fields
@@ -80,11 +88,13 @@ class UserPrograms {
 
   /// Makes `program` current with the uniforms of one shape: the matrices (`modelView`
   /// and `projection` as column-major glm matrices), the shader node's field values and
-  /// textures (from `textures`), and `texture` (Appearance.texture, may be null) on unit
-  /// 0. Leaves texture unit 0 active.
+  /// textures (from `textures`, units 1..13), and `texture` (Appearance.texture, may be
+  /// null) on unit 0, or for X_ITE's x3d_Texture3D[0] / x3d_TextureCube[0] on units 14 /
+  /// 15, with `textureMatrix` (the Appearance's texture transform, column-major, acting
+  /// on (s, t, r, 1)) as x3d_TextureMatrix[0]. Leaves texture unit 0 active.
   void use(const UserProgram& program, const glm::mat4& modelView, const glm::mat4& projection,
-           const GpuTexture* texture, TextureCache& textures, const std::string& baseUrl,
-           scene::SceneTraversal& traversal, base::Fetcher* fetcher);
+           const GpuTexture* texture, const glm::mat4& textureMatrix, TextureCache& textures,
+           const std::string& baseUrl, scene::SceneTraversal& traversal, base::Fetcher* fetcher);
 
   /// Deletes every program.
   void release();

@@ -47,7 +47,8 @@ struct GpuMesh {
   vrml::Bounds bounds;
   std::uint64_t revision = 0;  // vrml::revisionWithFields of the geometry uploaded
   /// The mesh's vertex attributes (vrml::Mesh::attributes) in the vertex buffer: floats,
-  /// `components` per vertex, from byte `offset`.
+  /// `components` per vertex, from byte `offset`; then "x3d_TexCoord0", X_ITE's name for
+  /// the texture coordinates (the TextureCoordinate3D/4D array, else the 2D one).
   struct Attribute {
     std::string name;
     int components = 1;

@@ -53,6 +53,14 @@ void GpuMesh::upload(const vrml::Mesh& mesh) {
       total += a.values.size() * sizeof(float);
     }
 
+  // X_ITE's x3d_TexCoord0 (a vec4 in its custom shaders) reads the texture coordinates
+  // the geometry has: (s, t, r, q) of a TextureCoordinate3D/4D, else (s, t, 0, 1).
+  const std::size_t texOffset = positionBytes + normalBytes + colorBytes;
+  if (hasTexCoordsStrq)
+    attributes.push_back({"x3d_TexCoord0", 4, texOffset + texBytes + tex1Bytes + fogBytes});
+  else if (hasTexCoords)
+    attributes.push_back({"x3d_TexCoord0", 2, texOffset});
+
   glGenVertexArrays(1, &vao);
   glBindVertexArray(vao);
   glGenBuffers(1, &vertexBuffer);

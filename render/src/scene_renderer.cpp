@@ -51,6 +51,15 @@ struct DrawItem {
   const UserProgram* user = nullptr;  // the Appearance's user shader, null: none
 };
 
+/// The 2D texture transform `m` (acting on (s, t, 1)) as a 4x4 on (s, t, r, 1).
+glm::mat4 textureMatrix4(const glm::mat3& m) {
+  glm::mat4 out(1.0f);
+  out[0] = glm::vec4(m[0].x, m[0].y, 0.0f, 0.0f);
+  out[1] = glm::vec4(m[1].x, m[1].y, 0.0f, 0.0f);
+  out[3] = glm::vec4(m[2].x, m[2].y, 0.0f, 1.0f);
+  return out;
+}
+
 /// Texture unit of an EnvironmentLight's specular cube map (units 0..4 are 2D maps).
 constexpr GLint kEnvironmentUnit = 5;
 /// Texture unit of a shape's ComposedCubeMapTexture (samplers of two types never share one).
@@ -526,8 +535,11 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     const Shading& sh = *d.shading;
     const bool triangles = mesh.primitive == vrml::Primitive::triangles;
     if (d.user != nullptr) {  // a user shader draws the shape (composed_shaders.hpp)
-      g.userPrograms.use(*d.user, view * s.model, projection, d.texture, g.textures, *s.baseUrl,
-                         traversal_, options_.fetcher);
+      const glm::mat4 textureMatrix = d.texture != nullptr && d.texture->volume
+                                          ? sh.textureMatrix3D
+                                          : textureMatrix4(sh.textureMatrix);
+      g.userPrograms.use(*d.user, view * s.model, projection, d.texture, textureMatrix, g.textures,
+                         *s.baseUrl, traversal_, options_.fetcher);
       mesh.bindAttributes(d.user->attributes);  // the vertex attribute nodes (31.4)
       current = nullptr;
       for (; clipDistancesOn > 0; --clipDistancesOn)

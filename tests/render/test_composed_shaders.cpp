@@ -159,3 +159,62 @@ TEST_CASE("castle's shader type test: every field type reaches its uniform",
     white += close(r.image.pixel(x, 32), 255, 255, 255, 4) ? 1 : 0;
   CHECK(white == gs::test::kWorldSize);
 }
+
+TEST_CASE(
+    "X_ITE's shader built-ins: x3d_Max constants, x3d_TexCoord0, the texture and its "
+    "matrix",
+    "[render][offscreen][world][shaders]") {
+  // As create3000's Texturing3D/Volume.x3d writes them (#version 300 es): a 2 x 1 x 1
+  // PixelTexture3D, red | green, sampled at x3d_TextureMatrix[0] * x3d_TexCoord0, whose
+  // TextureTransform3D flips s (s' = -(s - 1), clause 33.4.9), so the left half of the
+  // square shows green.
+  const fs::path file = worldDir() / "xite_builtins.x3dv";
+  writeText(file, R"(#X3D V3.3 utf8
+PROFILE Immersive
+NavigationInfo { headlight FALSE }
+Viewpoint { position 0 0 1 fieldOfView 1.5708 }
+Transform { translation 0 0 -1 scale 2 2 1 children Shape {
+  appearance Appearance {
+    texture PixelTexture3D { image [ 3 2 1 1 0xFF0000 0x00FF00 ] }
+    textureTransform TextureTransform3D { scale -1 1 1 translation -1 0 0 }
+    shaders ComposedShader {
+      language "GLSL"
+      parts [
+        ShaderPart { type "VERTEX" url "data:x-shader/x-vertex,#version 300 es
+          precision mediump float;
+          uniform mat4 x3d_ProjectionMatrix;
+          uniform mat4 x3d_ModelViewMatrix;
+          uniform mat4 x3d_TextureMatrix [1];
+          in vec4 x3d_Vertex;
+          in vec4 x3d_TexCoord0;
+          out vec4 texCoord;
+          void main () {
+            texCoord = x3d_TextureMatrix [0] * x3d_TexCoord0;
+            gl_Position = x3d_ProjectionMatrix * x3d_ModelViewMatrix * x3d_Vertex;
+          }" }
+        ShaderPart { type "FRAGMENT" url "data:x-shader/x-fragment,#version 300 es
+          precision mediump float;
+          precision mediump sampler3D;
+          uniform int x3d_NumTextures;
+          uniform sampler3D x3d_Texture3D [1];
+          uniform vec4 x3d_ClipPlane [x3d_MaxClipPlanes];
+          in vec4 texCoord;
+          out vec4 x3d_FragColor;
+          void main () {
+            if (x3d_NumTextures != 1) discard;
+            x3d_FragColor = texture (x3d_Texture3D [0], texCoord.stp / texCoord.q);
+          }" }
+      ]
+    }
+  }
+  geometry QuadSet {
+    coord Coordinate { point [-1 -1 0, 1 -1 0, 1 1 0, -1 1 0] }
+    texCoord TextureCoordinate3D { point [0 0 0.5, 1 0 0.5, 1 1 0.5, 0 1 0.5] }
+  } } }
+)");
+  const Rendered r = renderFile(file);
+  INFO(r.diagnostics.items.size());
+  CHECK(r.diagnostics.items.empty());
+  CHECK(close(r.image.pixel(10, 32), 0, 255, 0, 8));
+  CHECK(close(r.image.pixel(54, 32), 255, 0, 0, 8));
+}
