@@ -16,8 +16,9 @@
 // 17.2.2.4) 3- and 4-component textures multiply the colour and the alpha instead. Unlit shapes (no
 // Material, lines, points) take u_unlitColor (white, or emissiveColor for lines and points) with
 // the same texture and colour rules. Fog (clause 6.19): f0 = (r - d) / r (LINEAR) or exp(-d / (r -
-// d)) (EXPONENTIAL), 0 beyond the visibility range r, d the distance to the viewer, or the vertex's
-// X3D FogCoordinate depth where the geometry has one (X3D 4.0 clause 24.4.2).
+// d)) (EXPONENTIAL), 0 beyond the visibility range r, d the distance to the viewer; where the
+// geometry has an X3D FogCoordinate (X3D 4.0 clause 24.4.2), f0 = 1 - its depth (the fog
+// amount, as X_ITE and castle-model-viewer read it).
 //
 // Multi-texturing (X3D 4.0 clause 18.4.3, multi_texture.hpp): a MultiTexture's stages, up
 // to 4, replace the single texture. Each combines its texture (Arg1, after its function)
@@ -450,12 +451,12 @@ void main() {
   else if (!FILLED) discard;
 
   if (FOG_TYPE != 0 && u_fogVisibilityRange > 0.0) {
-    float d = v_fogDepth >= 0.0        ? v_fogDepth
-              : u_fogPlane != vec4(0.0) ? dot(u_fogPlane, vec4(v_position, 1.0))
-                                        : length(v_position);
+    float d = u_fogPlane != vec4(0.0) ? dot(u_fogPlane, vec4(v_position, 1.0)) : length(v_position);
     float r = u_fogVisibilityRange;
     float f0 = 0.0;
     if (d < r) f0 = FOG_TYPE == 1 ? (r - d) / r : exp(-d / (r - d));
+    // A FogCoordinate's depth is the amount of fog itself, 0 none to 1 all.
+    if (v_fogDepth >= 0.0) f0 = 1.0 - v_fogDepth;
     color = mix(u_fogColor, color, clamp(f0, 0.0, 1.0));
   }
   fragColor = vec4(clamp(color, 0.0, 1.0), clamp(alpha, 0.0, 1.0));

@@ -78,10 +78,12 @@ Group { children [
   }
 }
 
-TEST_CASE("FogCoordinate depths replace the distance to the viewer in the fog equation",
+TEST_CASE("FogCoordinate depths are the amount of fog, 0 none to 1 all",
           "[render][offscreen][world][fog]") {
-  // A red LINEAR Fog of visibility range 2; three emissive blue quads 1 m away: without a
-  // FogCoordinate (half fogged), with depths 0 (not fogged) and with depths 1.5 (f0 1/4).
+  // As X_ITE and castle-model-viewer read them (castle's fog_coordinate.x3dv: "explicit fog
+  // amount"). A red LINEAR Fog of visibility range 2; three emissive blue quads 1 m away:
+  // without a FogCoordinate (half fogged by distance), with depths 0 (not fogged) and with
+  // depths 0.75 (f0 = 0.25), whatever the visibility range.
   const fs::path file = worldDir() / "fog_coordinate.x3dv";
   writeText(file, R"(#X3D V3.2 utf8
 PROFILE Immersive
@@ -97,7 +99,7 @@ Shape { appearance USE A geometry IndexedFaceSet { coordIndex [0 1 2 3 -1]
   fogCoord FogCoordinate { depth [0 0 0 0] } } }
 Shape { appearance USE A geometry IndexedFaceSet { coordIndex [0 1 2 3 -1]
   coord Coordinate { point [0.34 -1 0, 1 -1 0, 1 1 0, 0.34 1 0] }
-  fogCoord FogCoordinate { depth [1.5 1.5 1.5 1.5] } } }
+  fogCoord FogCoordinate { depth [0.75 0.75 0.75 0.75] } } }
 )");
   for (int frames : {1, 3}) {
     INFO("frames " << frames);
@@ -107,7 +109,7 @@ Shape { appearance USE A geometry IndexedFaceSet { coordIndex [0 1 2 3 -1]
     CHECK(close(r.image.pixel(32, 32), 0, 0, 255, 4));
     // Left quad at pixel 12: x = -0.609, distance 1.171, f0 = 0.4145.
     CHECK(close(r.image.pixel(12, 32), 149, 0, 106, 4));
-    // Right quad: depth 1.5, f0 = 0.25 (red 0.75, blue 0.25) wherever it is seen.
+    // Right quad: depth 0.75, f0 = 0.25 (red 0.75, blue 0.25) wherever it is seen.
     CHECK(close(r.image.pixel(52, 32), 191, 0, 64, 4));
     CHECK(close(r.image.pixel(52, 5), 191, 0, 64, 4));
   }
