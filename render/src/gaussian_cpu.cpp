@@ -176,11 +176,14 @@ struct CpuGaussianRasterizer::Scratch {
   std::size_t cloudSize = 0;
   std::uint64_t cloudRevision = 0;
   std::vector<Covariance6> covariances;
+  std::unique_ptr<WorkerPool> pool;  // the frame's threads, kept between frames
 };
 
 CpuGaussianRasterizer::CpuGaussianRasterizer()
     : threads_(std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 2, 64)),
-      scratch_(std::make_unique<Scratch>()) {}
+      scratch_(std::make_unique<Scratch>()) {
+  scratch_->pool = std::make_unique<WorkerPool>(threads_);
+}
 
 CpuGaussianRasterizer::~CpuGaussianRasterizer() = default;
 
@@ -221,6 +224,7 @@ void CpuGaussianRasterizer::rasterize(const Source& source, std::span<const std:
                                       const CpuGaussianView& view, std::span<const float> depth,
                                       std::vector<std::uint8_t>& out,
                                       std::span<const std::uint32_t> subset) {
+  touched_ = {};
   if (view.width <= 0 || view.height <= 0) return;
   const std::size_t pixels =
       static_cast<std::size_t>(view.width) * static_cast<std::size_t>(view.height);
@@ -249,6 +253,8 @@ void CpuGaussianRasterizer::rasterize(const Source& source, std::span<const std:
   s.bins.resize(static_cast<std::size_t>(chunks));
   std::atomic<int> nextTile{0};
   std::barrier sync(threads_);
+  std::vector<PixelRect> reached(static_cast<std::size_t>(chunks),
+                                 PixelRect{view.width, view.height, 0, 0});
   constexpr float minAlpha = Source::minAlpha;
 
   // One splat's setup: its EWA projection, box and colour; false when it draws nothing.
@@ -335,10 +341,13 @@ void CpuGaussianRasterizer::rasterize(const Source& source, std::span<const std:
     sync.arrive_and_wait();
 
     Tile tile;
+    PixelRect& mine = reached[static_cast<std::size_t>(chunk)];
     for (int t = nextTile.fetch_add(1); t < tiles; t = nextTile.fetch_add(1)) {
       const int tx0 = (t % tilesX) * kTile, ty0 = (t / tilesX) * kTile;
       const int tw = std::min(kTile, view.width - tx0), th = std::min(kTile, view.height - ty0);
       if (clearIfEmpty(s.bins, chunks, t, out.data(), view.width, tx0, ty0, tw, th)) continue;
+      mine = {std::min(mine.x0, tx0), std::min(mine.y0, ty0), std::max(mine.x1, tx0 + tw),
+              std::max(mine.y1, ty0 + th)};
       startTile(tile, tx0, ty0, tw, th, view.width, view.farClip, depth, depthA, depthB);
       int live = tw * th;
       for (int c = 0; c < chunks && live > 0; ++c) {
@@ -352,7 +361,11 @@ void CpuGaussianRasterizer::rasterize(const Source& source, std::span<const std:
     }
   };
 
-  runOnThreads(threads_, work);
+  s.pool->run(work);
+  touched_ = PixelRect{view.width, view.height, 0, 0};
+  for (const PixelRect& r : reached)
+    touched_ = {std::min(touched_.x0, r.x0), std::min(touched_.y0, r.y0),
+                std::max(touched_.x1, r.x1), std::max(touched_.y1, r.y1)};
 }
 
 }  // namespace gs::render::detail

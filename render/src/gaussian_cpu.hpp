@@ -80,6 +80,16 @@ class CpuGaussianRasterizer {
   /// Threads a frame uses (at least 2).
   int threads() const { return threads_; }
 
+  /// The pixels the last draw or drawVectors may have written something other than
+  /// transparent black to: x in [x0, x1), y in [y0, y1) (rows as `out`'s), whole 32-pixel
+  /// tiles clipped to the view; empty (x0 >= x1) when no splat reached a pixel. The caller
+  /// need only composite (and upload) this rectangle.
+  struct PixelRect {
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    bool empty() const { return x0 >= x1 || y0 >= y1; }
+  };
+  PixelRect touched() const { return touched_; }
+
   struct Scratch;
 
  private:
@@ -90,6 +100,7 @@ class CpuGaussianRasterizer {
 
   int threads_;
   std::unique_ptr<Scratch> scratch_;
+  PixelRect touched_;
 };
 
 }  // namespace gs::render::detail

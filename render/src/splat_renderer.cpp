@@ -408,6 +408,10 @@ void SplatRenderer::drawImage(int width, int height) {
     glGenTextures(1, &g.cpuTexture);
     glGenVertexArrays(1, &g.emptyVao);
   }
+  // Only the tiles some splat reached (a far cut covers few): the rest of the image is
+  // transparent black, which composites to nothing.
+  const detail::CpuGaussianRasterizer::PixelRect r = g.rasterizer.touched();
+  if (r.empty()) return;
   glBindTexture(GL_TEXTURE_2D, g.cpuTexture);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
   if (width != g.cpuWidth || height != g.cpuHeight) {
@@ -420,9 +424,28 @@ void SplatRenderer::drawImage(int width, int height) {
     g.cpuWidth = width;
     g.cpuHeight = height;
   } else {
-    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE,
-                    g.pixels.data());
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, width);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, r.x0, r.y0, r.x1 - r.x0, r.y1 - r.y0, GL_RGBA,
+                    GL_UNSIGNED_BYTE,
+                    g.pixels.data() + (static_cast<std::size_t>(r.y0) * width + r.x0) * 4);
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
   }
+  // The quad drawn within that rectangle (inside any scissor box already set).
+  GLint viewport[4], box[4];
+  glGetIntegerv(GL_VIEWPORT, viewport);
+  const GLboolean scissored = glIsEnabled(GL_SCISSOR_TEST);
+  glGetIntegerv(GL_SCISSOR_BOX, box);
+  GLint x0 = viewport[0] + r.x0, y0 = viewport[1] + r.y0;
+  GLint x1 = viewport[0] + r.x1, y1 = viewport[1] + r.y1;
+  if (scissored) {
+    x0 = std::max(x0, box[0]);
+    y0 = std::max(y0, box[1]);
+    x1 = std::min(x1, box[0] + box[2]);
+    y1 = std::min(y1, box[1] + box[3]);
+  }
+  if (x0 >= x1 || y0 >= y1) return;
+  glEnable(GL_SCISSOR_TEST);
+  glScissor(x0, y0, x1 - x0, y1 - y0);
   glUseProgram(g.layerProgram);
   glUniform1i(detail::uniform(g.layerProgram, "u_layer"), 0);
   glEnable(GL_BLEND);
@@ -436,6 +459,8 @@ void SplatRenderer::drawImage(int width, int height) {
   glDepthMask(GL_TRUE);
   glDisable(GL_BLEND);
   glEnable(GL_DEPTH_TEST);
+  glScissor(box[0], box[1], box[2], box[3]);
+  if (!scissored) glDisable(GL_SCISSOR_TEST);
 }
 
 }  // namespace gs::render

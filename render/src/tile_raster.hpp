@@ -1,13 +1,16 @@
 // Private to render/: what the two tiled CPU rasterizers (splat_cpu.cpp for QNV vectors,
 // gaussian_cpu.cpp for 3D Gaussians) share: a tile's accumulation buffers, writing a
-// finished tile into the RGBA8 image, and running the per-thread work.
+// finished tile into the RGBA8 image, and the threads that run the per-thread work.
 #pragma once
 
 #include <algorithm>
 #include <array>
+#include <condition_variable>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <functional>
+#include <mutex>
 #include <span>
 #include <thread>
 #include <vector>
@@ -88,14 +91,70 @@ bool clearIfEmpty(const Bins& bins, int chunks, int t, std::uint8_t* out, int wi
   return true;
 }
 
-/// Runs work(0) .. work(threads - 1), work(0) on the calling thread, and waits for all.
-template <typename Work>
-void runOnThreads(int threads, const Work& work) {
-  std::vector<std::thread> workers;
-  workers.reserve(static_cast<std::size_t>(threads > 1 ? threads - 1 : 0));
-  for (int c = 1; c < threads; ++c) workers.emplace_back(work, c);
-  work(0);
-  for (std::thread& worker : workers) worker.join();
-}
+/// Threads kept for a rasterizer's frames: run(work) runs work(0) .. work(threads - 1) at
+/// once, work(0) on the calling thread, and returns when all have returned. The workers
+/// start on the first run and wait between frames, so that a frame of a few splats (a far
+/// level-of-detail cut) does not pay for starting threads. `work` must not throw.
+class WorkerPool {
+ public:
+  explicit WorkerPool(int threads) : threads_(std::max(threads, 1)) {}
+  ~WorkerPool() {
+    {
+      std::lock_guard lock(mutex_);
+      stopping_ = true;
+    }
+    wake_.notify_all();
+    for (std::thread& t : workers_) t.join();
+  }
+  WorkerPool(const WorkerPool&) = delete;
+  WorkerPool& operator=(const WorkerPool&) = delete;
+
+  int threads() const { return threads_; }
+
+  template <typename Work>
+  void run(const Work& work) {
+    const std::function<void(int)> job = [&work](int c) { work(c); };
+    if (workers_.empty())
+      for (int c = 1; c < threads_; ++c) workers_.emplace_back([this, c] { serve(c); });
+    {
+      std::lock_guard lock(mutex_);
+      job_ = &job;
+      running_ = threads_ - 1;
+      ++generation_;
+    }
+    wake_.notify_all();
+    job(0);
+    std::unique_lock lock(mutex_);
+    done_.wait(lock, [this] { return running_ == 0; });
+    job_ = nullptr;
+  }
+
+ private:
+  void serve(int c) {
+    std::uint64_t seen = 0;
+    for (;;) {
+      const std::function<void(int)>* job = nullptr;
+      {
+        std::unique_lock lock(mutex_);
+        wake_.wait(lock, [&] { return stopping_ || generation_ != seen; });
+        if (stopping_) return;
+        seen = generation_;
+        job = job_;
+      }
+      (*job)(c);
+      std::lock_guard lock(mutex_);
+      if (--running_ == 0) done_.notify_one();
+    }
+  }
+
+  int threads_;
+  std::vector<std::thread> workers_;
+  std::mutex mutex_;
+  std::condition_variable wake_, done_;
+  const std::function<void(int)>* job_ = nullptr;
+  std::uint64_t generation_ = 0;
+  int running_ = 0;
+  bool stopping_ = false;
+};
 
 }  // namespace gs::render::detail

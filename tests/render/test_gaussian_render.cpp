@@ -216,3 +216,64 @@ TEST_CASE("a QNV Gaussian stream draws the picture of its .ply, and its prefixes
     }
   }
 }
+
+TEST_CASE(
+    "the cpu path composites only the tiles its splats reach, inside the caller's "
+    "scissor box",
+    "[render][splat][gaussian]") {
+  // Two small red Gaussians near opposite corners: the image is put down as the rectangle
+  // of the tiles they reach (a far cut's few splats cost a small upload). A scissor box the
+  // caller set (a layer's viewport) still clips it, and is left as it was.
+  auto cloud = std::make_shared<gs::splats::GaussianCloud>();
+  cloud->resize(2);
+  cloud->positions = {glm::vec3(-0.8f, -0.8f, 0.0f), glm::vec3(0.8f, 0.8f, 0.0f)};
+  cloud->scales = {glm::vec3(0.03f), glm::vec3(0.03f)};
+  cloud->shDc = {glm::vec3(1.5f, -1.8f, -1.8f), glm::vec3(1.5f, -1.8f, -1.8f)};
+  SplatSet set;
+  set.gaussians = cloud;
+  set.computeBounds();
+  gs::scene::Camera cam;
+  cam.position = glm::vec3(0.0f, 0.0f, 2.0f);
+  cam.fieldOfView = 1.0f;
+  const auto redAt = [](const Image& image, int x, int y) {
+    const std::uint8_t* p = &image.rgba[(static_cast<std::size_t>(y) * image.width + x) * 4];
+    return p[0] > 128 && p[1] < 64;
+  };
+  // Where each centre lands (x, y from the bottom left): found on the geometry path.
+  const Image reference = drawGaussians(set, cam, SplatPath::geometry);
+  int lowX = -1, lowY = -1, highX = -1, highY = -1;
+  for (int y = 0; y < kGaussianSize; ++y)
+    for (int x = 0; x < kGaussianSize; ++x)
+      if (redAt(reference, x, y)) {
+        if (x < kGaussianSize / 2)
+          lowX = x, lowY = y;
+        else
+          highX = x, highY = y;
+      }
+  REQUIRE(lowX >= 0);
+  REQUIRE(highX >= 0);
+  const Image whole = drawGaussians(set, cam, SplatPath::cpu);
+  CHECK(redAt(whole, lowX, lowY));
+  CHECK(redAt(whole, highX, highY));
+
+  static auto context = createOffscreenContext(kGaussianSize, kGaussianSize);
+  context->makeCurrent();
+  SplatRenderer renderer;
+  renderer.setPath(SplatPath::cpu);
+  glViewport(0, 0, kGaussianSize, kGaussianSize);
+  glDisable(GL_SCISSOR_TEST);
+  glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_SCISSOR_TEST);
+  glScissor(0, 0, kGaussianSize / 2, kGaussianSize / 2);  // the bottom left quarter
+  renderer.draw(set, set.size(), glm::mat4(1.0f), cam, 1.0f, {});
+  GLint box[4];
+  glGetIntegerv(GL_SCISSOR_BOX, box);
+  CHECK(glIsEnabled(GL_SCISSOR_TEST) == GL_TRUE);
+  CHECK(box[2] == kGaussianSize / 2);
+  glDisable(GL_SCISSOR_TEST);
+  const Image clipped = readPixels(0, 0, kGaussianSize, kGaussianSize);
+  renderer.release();
+  CHECK(redAt(clipped, lowX, lowY));
+  CHECK_FALSE(redAt(clipped, highX, highY));
+}
