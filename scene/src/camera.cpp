@@ -10,7 +10,11 @@ namespace gs::scene {
 
 glm::mat4 viewMatrix(const Camera& camera) {
   const glm::mat4 rotation = glm::mat4_cast(glm::conjugate(glm::normalize(camera.orientation)));
-  return glm::translate(rotation, -camera.position);
+  const glm::mat4 view = glm::translate(rotation, -camera.position);
+  if (camera.deform == glm::mat3(1.0f)) return view;
+  const float det = glm::determinant(camera.deform);
+  if (!(std::abs(det) > 1e-12f)) return view;  // a flattened Viewpoint: its turn only
+  return glm::mat4(glm::inverse(camera.deform)) * view;
 }
 
 float verticalFieldOfView(float fieldOfView, float aspect) {

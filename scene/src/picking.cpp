@@ -21,10 +21,11 @@ Ray rayThroughPixel(const Camera& camera, int width, int height, float x, float 
     const glm::mat4 inverse = glm::inverse(projectionMatrix(camera, aspect));
     const glm::vec4 onPlane = inverse * glm::vec4(ndcX, ndcY, -1.0f, 1.0f);
     const glm::vec3 offset(onPlane.x / onPlane.w, onPlane.y / onPlane.w, 0.0f);
-    return {camera.position + camera.orientation * offset, camera.forward()};
+    return {camera.position + camera.orientation * (camera.deform * offset),
+            glm::normalize(camera.orientation * (camera.deform * glm::vec3(0, 0, -1)))};
   }
   const glm::vec3 eye(ndcX * tanHalf * aspect, ndcY * tanHalf, -1.0f);
-  return {camera.position, glm::normalize(camera.orientation * eye)};
+  return {camera.position, glm::normalize(camera.orientation * (camera.deform * eye))};
 }
 
 bool intersectTriangle(const glm::vec3& origin, const glm::vec3& direction, const glm::vec3& a,

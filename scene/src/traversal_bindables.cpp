@@ -87,6 +87,16 @@ Camera viewpointCamera(const vrml::Node& n, const glm::mat4& m) {
     local = glm::normalize(glm::quat_cast(glm::mat3(location)) * local);
   }
   camera.orientation = glm::normalize(glm::quat_cast(rotationPart(m)) * local);
+  // The scale and shear the turn leaves (Camera::deform): orientation * deform is the
+  // Transforms' linear part times the Viewpoint's own orientation.
+  const glm::mat3 deform =
+      glm::transpose(glm::mat3_cast(camera.orientation)) * glm::mat3(m) * glm::mat3_cast(local);
+  constexpr float kSame = 1e-5f;
+  bool identity = true;
+  for (int c = 0; c < 3; ++c)
+    for (int r = 0; r < 3; ++r)
+      identity = identity && std::abs(deform[c][r] - (c == r ? 1.0f : 0.0f)) < kSame;
+  if (!identity) camera.deform = deform;
   if (n.typeId() == vrml::NodeTypeId::OrthoViewpoint) {
     // X3D 4.0 clause 23.4.5: fieldOfView (minX, minY, maxX, maxY), default -1 -1 1 1.
     const std::vector<float>& f = mfFloat(n, "fieldOfView");

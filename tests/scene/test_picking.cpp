@@ -6,6 +6,9 @@
 #include <catch2/catch.hpp>
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "vrml/transform.hpp"
 
 #include <memory>
 
@@ -186,5 +189,42 @@ TEST_CASE(
     const auto hit = pick(traversal, Camera{}, ray);
     REQUIRE(hit);
     CHECK(hit->shape == def(*scene, "GS"));
+  }
+}
+
+TEST_CASE("a Viewpoint under a scaled Transform sees that Transform's world unscaled",
+          "[scene][picking][camera]") {
+  // X_ITE's camera is the Viewpoint's whole matrix (create3000's Rendering/ClipPlane.x3d
+  // puts its Viewpoint and shapes under Transform { scale 1 2 3 scaleOrientation ... }):
+  // a point of the Transform's coordinates lands where it would with no Transform, and the
+  // ray through that pixel meets it.
+  const auto scene = world(R"(#X3D V4.0 utf8
+PROFILE Immersive
+DEF T Transform { translation 1 2 3 rotation 0.27 0.53 0.8 4 scale 1 2 3
+  scaleOrientation 0.71 0.29 -0.64 1.13
+  children Viewpoint { position 0.5 0.25 6 orientation 0 1 0 0.2 } }
+)");
+  SceneTraversal traversal(scene);
+  const Camera camera = traversal.boundViewpointCamera();
+  gs::scene::Camera plain;
+  plain.position = {0.5f, 0.25f, 6.0f};
+  plain.orientation = glm::angleAxis(0.2f, glm::vec3(0, 1, 0));
+  const gs::vrml::Node& t = *def(*scene, "T");
+  const glm::mat4 m = gs::vrml::transformMatrix(t);
+  const auto pixel = [](const Camera& c, glm::vec3 p) {
+    const glm::vec4 clip =
+        gs::scene::projectionMatrix(c, 1.0f) * gs::scene::viewMatrix(c) * glm::vec4(p, 1.0f);
+    return glm::vec2(clip) / clip.w;
+  };
+  for (const glm::vec3 local : {glm::vec3(0, 0, 0), glm::vec3(1, -0.5f, 0.5f)}) {
+    INFO("local " << local.x << " " << local.y << " " << local.z);
+    const glm::vec2 a = pixel(camera, glm::vec3(m * glm::vec4(local, 1.0f)));
+    const glm::vec2 b = pixel(plain, local);
+    CHECK(glm::length(a - b) < 1e-4f);
+    // The ray through that pixel (100 x 100) meets the world point.
+    const Ray ray =
+        gs::scene::rayThroughPixel(camera, 100, 100, (a.x + 1.0f) * 50.0f, (1.0f - a.y) * 50.0f);
+    const glm::vec3 to = glm::vec3(m * glm::vec4(local, 1.0f)) - ray.origin;
+    CHECK(glm::length(glm::cross(glm::normalize(to), ray.direction)) < 1e-3f);
   }
 }

@@ -26,6 +26,12 @@ struct Camera {
   /// shown whole and the viewport's longer axis sees more; fieldOfView is then unused.
   bool orthographic = false;
   glm::vec4 orthoRegion{-1.0f, -1.0f, 1.0f, 1.0f};
+  /// What the Viewpoint's coordinate system does beyond `orientation`: the scale and
+  /// shear of the Transforms above it, in the camera's axes (the camera's axes in the
+  /// world are orientation * deform). X_ITE views a Viewpoint under a scaled Transform
+  /// through that Transform's whole matrix, so a world scaled with its Viewpoint looks
+  /// unscaled. Identity when the Transforms only turn and move; kept while navigating.
+  glm::mat3 deform{1.0f};
 
   /// Unit vector the camera looks along (orientation applied to -Z).
   glm::vec3 forward() const { return orientation * glm::vec3(0.0f, 0.0f, -1.0f); }
