@@ -338,6 +338,20 @@ Mesh extrude(const ExtrusionInput& in,
   auto id = [&](std::size_t i, std::size_t j) {
     return static_cast<std::uint32_t>((i % rings) * cols + (j % cols));
   };
+  // The caps get points of their own: their normals are the caps' flat ones, never
+  // smoothed with the sides whatever the creaseAngle (as X_ITE builds them: it refines the
+  // body's normals only).
+  const bool caps = cols >= 3 && (in.beginCap || in.endCap);
+  const auto capBase = [&](std::size_t capRing) {
+    const auto base = static_cast<std::uint32_t>(points.size());
+    for (std::size_t j = 0; j < cols; ++j) {
+      const glm::vec3 p = points[id(capRing, j)];
+      points.push_back(p);
+    }
+    return base;
+  };
+  const std::uint32_t beginBase = caps && in.beginCap ? capBase(0) : 0;
+  const std::uint32_t endBase = caps && in.endCap ? capBase(ns - 1) : 0;
 
   PolygonSoup soup = soupOf(points);
   const std::vector<float> s = arcLength<glm::vec2>(cs, nc), t = arcLength<glm::dvec3>(spine, ns);
@@ -362,9 +376,10 @@ Mesh extrude(const ExtrusionInput& in,
   glm::vec2 lo = cs[0], hi = cs[0];
   for (std::size_t j = 0; j < cols; ++j) lo = glm::min(lo, cs[j]), hi = glm::max(hi, cs[j]);
   const float big = std::max(hi.x - lo.x, hi.y - lo.y);
-  auto cap = [&](std::size_t i, bool reversed) {
+  auto cap = [&](std::uint32_t base, bool reversed) {
     std::vector<std::uint32_t> ids(cols);
-    for (std::size_t k = 0; k < cols; ++k) ids[k] = id(i, reversed ? cols - 1 - k : k);
+    for (std::size_t k = 0; k < cols; ++k)
+      ids[k] = base + static_cast<std::uint32_t>(reversed ? cols - 1 - k : k);
     for (std::uint32_t p : ids)
       if (!finite(points[p])) return void(skipped = true);
     soup.corners.insert(soup.corners.end(), ids.begin(), ids.end());
@@ -374,9 +389,9 @@ Mesh extrude(const ExtrusionInput& in,
       soup.texCoords.push_back(big > 0.0f ? (c - lo) / big : glm::vec2(0.0f));
     }
   };
-  if (cols >= 3) {
-    if (in.beginCap) cap(0, true);
-    if (in.endCap) cap(ns - 1, false);
+  if (caps) {
+    if (in.beginCap) cap(beginBase, true);
+    if (in.endCap) cap(endBase, false);
   }
   if (skipped) log.add("spine, scale or orientation give points that are not finite numbers");
   return buildPolygonMesh(soup);

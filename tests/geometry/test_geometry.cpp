@@ -679,6 +679,30 @@ TEST_CASE("Extrusion: the default is a closed box with outward normals", "[geome
   CHECK(mesh("Extrusion { beginCap FALSE endCap FALSE }").triangleCount() == 8);
 }
 
+TEST_CASE("Extrusion: the caps are never smoothed with the sides", "[geometry]") {
+  // creaseAngle 3 smooths the box's sides across their corners; the caps keep their flat
+  // normals (X_ITE refines the body's normals only: create3000's Extrusion/gears42P.x3d).
+  const Mesh m = mesh("Extrusion { creaseAngle 3 }");
+  checkMesh(m);
+  std::size_t capCorners = 0, sideCorners = 0;
+  for (std::size_t t = 0; t < m.triangleCount(); ++t) {
+    const glm::dvec3 n = glm::normalize(triangleNormal(m, t));
+    for (int k = 0; k < 3; ++k) {
+      const glm::vec3 v = m.normals[m.indices[3 * t + k]];
+      if (std::abs(n.y) > 0.99) {  // a cap triangle: its corners' normals are its own
+        ++capCorners;
+        CHECK(std::abs(v.y) == Approx(1.0f));
+      } else {  // a side: smoothed across the corners, never towards the caps
+        ++sideCorners;
+        CHECK(v.y == Approx(0.0f).margin(1e-6));
+        CHECK(std::abs(v.x) == Approx(std::sqrt(0.5f)).margin(1e-5));
+      }
+    }
+  }
+  CHECK(capCorners == 4 * 3);
+  CHECK(sideCorners == 8 * 3);
+}
+
 TEST_CASE("Extrusion: bent spine, scale, orientation, non-convex caps", "[geometry]") {
   // An L-shaped crossSection (counterclockwise seen from +Y), swept along a bent spine.
   const Mesh m = mesh(
