@@ -572,6 +572,22 @@ struct SceneTraversal::Walk {
     // X3D 4.0's X3DBoundedObject.visible (clause 10.3.1): FALSE draws neither the node nor
     // its children, and the pointer does not reach them; collisions still see them.
     if (!frame.collisionGeometry && n.type().builtIn && !sfBool(n, "visible", true)) return;
+    // X3DBoundedObject.bboxDisplay: the node's box outlined after its children, in their
+    // coordinates (traversal_bbox.cpp); drawn only, never picked or collided with.
+    if (frame.collisionGeometry || frame.recordPaths || !n.type().builtIn ||
+        !sfBool(n, "bboxDisplay", false))
+      return nodeBody(n, m, baseUrl);
+    const std::size_t first = frame.shapes.size();
+    nodeBody(n, m, baseUrl);
+    const glm::mat4 inner = vrml::placesChildren(n.typeId()) ? m * transformMatrix(n) : m;
+    const vrml::Bounds box =
+        self.boundedBox(n, std::span<const ShapeInstance>(frame.shapes).subspan(first), inner);
+    if (box.empty()) return;
+    if (const BoxOutline o = self.boxOutline(n, box); o.shape != nullptr)
+      addShape(*o.shape, *o.geometry, inner, baseUrl);
+  }
+
+  void nodeBody(const vrml::Node& n, const glm::mat4& m, const std::string* baseUrl) {
     switch (nodeKind(n)) {
       case NodeKind::Collision:  // the proxy is for collisions only: not drawn
         if (frame.collisionGeometry) {
@@ -744,47 +760,6 @@ void SceneTraversal::collect(const Camera& viewer, TraversalFrame& frame) {
   if (firstGlobalEnvironment_ >= 0)
     for (ShapeInstance& s : frame.shapes)
       if (s.environmentLight < 0) s.environmentLight = firstGlobalEnvironment_;
-}
-
-glm::ivec4 layerRectangle(const glm::vec4& clipBoundary, int x, int y, int width, int height) {
-  // As X_ITE's Viewport.getRectangle: floor of each edge, an empty rectangle when reversed.
-  const auto edge = [](int origin, int size, float f) {
-    return origin + static_cast<int>(std::floor(static_cast<float>(size) * f));
-  };
-  const int left = edge(x, width, clipBoundary.x);
-  const int right = edge(x, width, clipBoundary.y);
-  const int bottom = edge(y, height, clipBoundary.z);
-  const int top = edge(y, height, clipBoundary.w);
-  return {left, bottom, std::max(right - left, 0), std::max(top - bottom, 0)};
-}
-
-const std::unordered_set<std::int32_t>& SceneTraversal::filledGroups(const vrml::Scene& scene) {
-  auto [it, inserted] = filledGroups_.try_emplace(&scene);
-  if (!inserted) return it->second;
-  // Every node reachable from the root nodes, shared (DEF/USE) nodes visited once.
-  std::unordered_set<const vrml::Node*> seen;
-  std::vector<const vrml::Node*> stack;
-  for (const vrml::NodePtr& n : scene.rootNodes)
-    if (n) stack.push_back(n.get());
-  while (!stack.empty()) {
-    const vrml::Node* n = stack.back();
-    stack.pop_back();
-    if (!seen.insert(n).second) continue;
-    if (nodeKind(*n) == NodeKind::OutlineGroup && !n->mfnode("children").empty()) {
-      const int id = sfInt(*n, "groupId", -1);
-      if (id >= 0) it->second.insert(id);
-    }
-    for (std::size_t i = 0; i < n->fieldCount(); ++i) {
-      const vrml::FieldValue& f = n->fieldAt(i);
-      if (f.type() == vrml::FieldType::SFNode) {
-        if (const vrml::NodePtr& c = f.get<vrml::FieldType::SFNode>()) stack.push_back(c.get());
-      } else if (f.type() == vrml::FieldType::MFNode) {
-        for (const vrml::NodePtr& c : f.get<vrml::FieldType::MFNode>())
-          if (c) stack.push_back(c.get());
-      }
-    }
-  }
-  return it->second;
 }
 
 void SceneTraversal::report(vrml::Severity severity, const vrml::SourceLocation& where,

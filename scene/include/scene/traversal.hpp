@@ -22,6 +22,7 @@
 #include <memory>
 #include <optional>
 #include <set>
+#include <span>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -494,6 +495,20 @@ class SceneTraversal {
   const vrml::Node* particleGeometry(const vrml::Node& system,
                                      const particles::ParticleSimulation& simulation,
                                      const glm::mat4& localToEye);
+  /// X3D 4.0's X3DBoundedObject.bboxDisplay (clause 10.3.1), as X_ITE draws it: the
+  /// Shape (no appearance: unlit white lines) and IndexedLineSet standing for the 12 edges
+  /// of `box` (the bounded node's box in its children's coordinates), cached per node and
+  /// remade when the box changes (scene/src/traversal_bbox.cpp).
+  struct BoxOutline {
+    const vrml::Node* shape = nullptr;
+    const vrml::Node* geometry = nullptr;
+  };
+  BoxOutline boxOutline(const vrml::Node& bounded, const vrml::Bounds& box);
+  /// The box of bounded node `n` in its children's coordinates (`inner`: those to world):
+  /// its bboxCenter and bboxSize when given (no component of the size -1), else the box
+  /// of the meshes of `shapes` (the shapes its traversal added) seen from there.
+  vrml::Bounds boundedBox(const vrml::Node& n, std::span<const ShapeInstance> shapes,
+                          const glm::mat4& inner);
   /// The groupIds (>= 0) of the OutlineGroups of `scene` that have children, computed
   /// once per scene (every node reachable from its root nodes).
   const std::unordered_set<std::int32_t>& filledGroups(const vrml::Scene& scene);
@@ -524,6 +539,12 @@ class SceneTraversal {
     int type = -1;
   };
   vrml::NodeMap<ParticleDraw> particleDraws_;
+  /// Per node with bboxDisplay TRUE: its outline's nodes and the box they were made of.
+  struct BoxDraw {
+    vrml::NodePtr shape, geometry;
+    vrml::Bounds box;
+  };
+  vrml::NodeMap<BoxDraw> boxDraws_;
   /// Per GeoLOD: Inline nodes of its rootUrl and child1Url ... child4Url (what the
   /// Inline loading reads), made when first met.
   vrml::NodeMap<std::array<vrml::NodePtr, 5>> geoLodInlines_;
