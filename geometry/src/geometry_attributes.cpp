@@ -36,6 +36,7 @@ bool copyPoint(const float* src, std::size_t count, std::size_t per, std::size_t
 void assignVertexAttributes(const Node& geometry, Mesh& m, ProblemLog& log) {
   if (m.pointIndices.empty() || m.pointIndices.size() != m.positions.size()) return;
   const std::size_t n = m.positions.size();
+  std::vector<float> fileOrder;  // a matrix attribute's values, row by row
   for (const NodePtr& node : fieldOr<FieldType::MFNode>(geometry, "attrib")) {
     if (!node || node->unresolved) continue;
     VertexAttribute a;
@@ -56,18 +57,29 @@ void assignVertexAttributes(const Node& geometry, Mesh& m, ProblemLog& log) {
         count = v.size();
         break;
       }
+      // A matrix's floats in file order (its rows one after another), which a shader's
+      // matN reads as its columns, as X_ITE passes them (create3000's
+      // Shaders/Matrix3VertexAttribute.x3d).
       case NodeTypeId::Matrix3VertexAttribute: {
         a.components = 9;
-        const std::vector<glm::mat3>& v = fieldOr<FieldType::MFMatrix3f>(*node, "value");
-        src = v.empty() ? nullptr : &v[0][0][0];
-        count = v.size() * 9;
+        fileOrder.clear();
+        for (const glm::mat3& v : fieldOr<FieldType::MFMatrix3f>(*node, "value")) {
+          const glm::mat3 rows = glm::transpose(v);
+          fileOrder.insert(fileOrder.end(), &rows[0][0], &rows[0][0] + 9);
+        }
+        src = fileOrder.data();
+        count = fileOrder.size();
         break;
       }
       case NodeTypeId::Matrix4VertexAttribute: {
         a.components = 16;
-        const std::vector<glm::mat4>& v = fieldOr<FieldType::MFMatrix4f>(*node, "value");
-        src = v.empty() ? nullptr : &v[0][0][0];
-        count = v.size() * 16;
+        fileOrder.clear();
+        for (const glm::mat4& v : fieldOr<FieldType::MFMatrix4f>(*node, "value")) {
+          const glm::mat4 rows = glm::transpose(v);
+          fileOrder.insert(fileOrder.end(), &rows[0][0], &rows[0][0] + 16);
+        }
+        src = fileOrder.data();
+        count = fileOrder.size();
         break;
       }
       default:

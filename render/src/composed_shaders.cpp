@@ -277,11 +277,17 @@ void setFloats(const A& a, GLint location, Set set) {
 }
 
 /// Sets uniform matrix array `location` from (double or float) matrices `a` as M.
+// An SF/MF matrix field reaches its uniform with GLSL's column k holding the field's
+// values k*N .. k*N+N-1 in file order (the file's rows: X3D 5.3.10 writes them row by
+// row), as X_ITE passes them: the matrix a row-vector convention writes is then the same
+// transformation in GLSL's column-vector one.
+constexpr GLboolean kFileOrder = GL_TRUE;
+
 template <class M, class A, class Set>
 void setMatrices(const A& a, GLint location, Set set) {
   if (a.empty()) return;
   std::vector<M> f(a.begin(), a.end());
-  set(location, static_cast<GLsizei>(f.size()), GL_FALSE, glm::value_ptr(f[0]));
+  set(location, static_cast<GLsizei>(f.size()), kFileOrder, glm::value_ptr(f[0]));
 }
 
 }  // namespace
@@ -564,16 +570,16 @@ void UserPrograms::use(const UserProgram& p, const glm::mat4& modelView,
         glUniform4fv(l, 1, glm::value_ptr(v.get<T::SFRotation>()));
         break;
       case T::SFMatrix3f:
-        glUniformMatrix3fv(l, 1, GL_FALSE, glm::value_ptr(v.get<T::SFMatrix3f>()));
+        glUniformMatrix3fv(l, 1, kFileOrder, glm::value_ptr(v.get<T::SFMatrix3f>()));
         break;
       case T::SFMatrix3d:
-        glUniformMatrix3fv(l, 1, GL_FALSE, glm::value_ptr(glm::mat3(v.get<T::SFMatrix3d>())));
+        glUniformMatrix3fv(l, 1, kFileOrder, glm::value_ptr(glm::mat3(v.get<T::SFMatrix3d>())));
         break;
       case T::SFMatrix4f:
-        glUniformMatrix4fv(l, 1, GL_FALSE, glm::value_ptr(v.get<T::SFMatrix4f>()));
+        glUniformMatrix4fv(l, 1, kFileOrder, glm::value_ptr(v.get<T::SFMatrix4f>()));
         break;
       case T::SFMatrix4d:
-        glUniformMatrix4fv(l, 1, GL_FALSE, glm::value_ptr(glm::mat4(v.get<T::SFMatrix4d>())));
+        glUniformMatrix4fv(l, 1, kFileOrder, glm::value_ptr(glm::mat4(v.get<T::SFMatrix4d>())));
         break;
       case T::MFFloat:
         setFloats<float>(v.get<T::MFFloat>(), l, glUniform1fv);

@@ -120,6 +120,15 @@ TEST_CASE("A ComposedShader draws the shape with its fields as uniforms",
                              "void main(void) { gl_FragColor = vec4(a[0], a[1], d.z, 1.0); }",
                              "initializeOnly MFFloat a [1 0.5] initializeOnly SFVec3d d 0 0 0.25"));
   CHECK(close(arrays.image.pixel(32, 32), 255, 128, 64, 4));
+  // A matrix field's values in file order fill the shader matrix column by column, as
+  // X_ITE passes them: the file's first row (0 0 1) is m[0], blue.
+  const Rendered matrix =
+      renderFile(shaderWorld("shader_matrix",
+                             "uniform mat3 m;\n"
+                             "void main(void) { gl_FragColor = vec4(m[0], 1.0); }",
+                             "initializeOnly SFMatrix3f m 0 0 1  0 0 0  0 0 0"));
+  CHECK(matrix.diagnostics.items.empty());
+  CHECK(close(matrix.image.pixel(32, 32), 0, 0, 255, 4));
 }
 
 TEST_CASE("A ComposedShader that does not compile leaves the built-in shading, with a warning",

@@ -250,9 +250,10 @@ TEST_CASE("A FloatVertexAttribute colours the vertices through the shader",
 
 TEST_CASE("A Matrix4VertexAttribute reaches the shader as a mat4 attribute",
           "[render][offscreen][world][shaders]") {
-  // The matrix's rows as written (X3D 5.3.10: row-major in the file): its third column is
-  // (0, 1, 0, 1), green, and its first (1, 0, 0, 0), red.
-  const std::string matrix = "1 0 0 0  0 0 1 0  0 0 0 0  0 0 1 0";
+  // The matrix's floats in file order reach the shader's columns, as X_ITE passes them
+  // (create3000's Shaders/Matrix3VertexAttribute.x3d "must show a 2x2 rectangle"): the
+  // file's third row (0, 1, 0, 1) is the shader's m[2], green.
+  const std::string matrix = "1 0 0 0  0 0 0 0  0 1 0 1  0 0 0 0";
   const Rendered r = renderFile(programShaderWorld(
       "matrix4_vertex_attribute",
       "ProgramShader { programs [ " + attributeVertexProgram("attribute mat4 m;", "m[2]") +
