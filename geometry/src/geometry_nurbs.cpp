@@ -259,8 +259,60 @@ bool keptByTrimming(const std::vector<std::vector<glm::dvec2>>& loops, glm::dvec
   return kept;
 }
 
+namespace {
+
+/// A surface closed in one direction (27.4.4 uClosed / vClosed TRUE, each row's first and
+/// last control points and weights the same) made periodic there as X_ITE makes it: the
+/// order - 2 points after each row's first repeated at its end, the knots (the node's when
+/// usable, else uniform over [0, 1]) continued by the same steps. `points` and `weights`
+/// are nu x nv, u fastest; `alongU` picks the direction. False (nothing changed) when the
+/// surface cannot close that way.
+bool closeSurface(bool alongU, int order, int& nu, int& nv, std::vector<glm::dvec3>& points,
+                  std::vector<double>& weights, std::vector<double>& knots) {
+  const int n = alongU ? nu : nv, rows = alongU ? nv : nu;
+  const auto at = [&](int along, int row) {
+    return static_cast<std::size_t>(alongU ? along + row * nu : row + along * nu);
+  };
+  if (order < 3 || n < order) return false;
+  for (int r = 0; r < rows; ++r)
+    if (points[at(0, r)] != points[at(n - 1, r)] || weights[at(0, r)] != weights[at(n - 1, r)])
+      return false;
+  const auto length = static_cast<std::size_t>(n + order);
+  std::string problem;
+  if (knots.size() != length || !nurbs::strictAxis(n, order, knots, problem)) {
+    knots.resize(length);
+    for (std::size_t i = 0; i < length; ++i)
+      knots[i] = static_cast<double>(i) / static_cast<double>(length - 1);
+  }
+  const int extra = order - 2;
+  for (int i = 1; i <= extra; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    knots.push_back(knots.back() + (knots[k] - knots[k - 1]));
+  }
+  const int n2 = n + extra;
+  std::vector<glm::dvec3> p2;
+  std::vector<double> w2;
+  p2.reserve(static_cast<std::size_t>(n2 * rows));
+  w2.reserve(p2.capacity());
+  const int nu2 = alongU ? n2 : nu, nv2 = alongU ? nv : n2;
+  for (int v = 0; v < nv2; ++v)
+    for (int u = 0; u < nu2; ++u) {
+      const int along = alongU ? u : v, row = alongU ? v : u;
+      const std::size_t from = at(along < n ? along : along - n + 1, row);
+      p2.push_back(points[from]);
+      w2.push_back(weights[from]);
+    }
+  points = std::move(p2);
+  weights = std::move(w2);
+  nu = nu2;
+  nv = nv2;
+  return true;
+}
+
+}  // namespace
+
 Mesh tessellateNurbsSurface(const Node& node, ProblemLog& log, float scale) {
-  const std::vector<glm::dvec3> points = nurbs::controlPoints(node);
+  std::vector<glm::dvec3> points = nurbs::controlPoints(node);
   const int nu = node.get<FieldType::SFInt32>("uDimension", 0);
   const int nv = node.get<FieldType::SFInt32>("vDimension", 0);
   if (nu < 2 || nv < 2 || nu > kMaxNurbsControlPoints || nv > kMaxNurbsControlPoints) return {};
@@ -270,11 +322,20 @@ Mesh tessellateNurbsSurface(const Node& node, ProblemLog& log, float scale) {
             "vDimension asks for " + std::to_string(count));
     return {};
   }
-  const Axis ua = nurbsAxis(nu, node.get<FieldType::SFInt32>("uOrder", 3),
-                            nurbs::doubles(node, "uKnot"), "uKnot", log);
-  const Axis va = nurbsAxis(nv, node.get<FieldType::SFInt32>("vOrder", 3),
-                            nurbs::doubles(node, "vKnot"), "vKnot", log);
-  const std::vector<double> w = nurbsWeights(node, count, log);
+  points.resize(count);
+  std::vector<double> w = nurbsWeights(node, count, log);
+  // uClosed / vClosed (a NurbsPatchSurface's): periodic in that direction, as X_ITE.
+  int eu = nu, ev = nv;
+  const int uOrder = node.get<FieldType::SFInt32>("uOrder", 3);
+  const int vOrder = node.get<FieldType::SFInt32>("vOrder", 3);
+  std::vector<double> uKnots = nurbs::doubles(node, "uKnot");
+  std::vector<double> vKnots = nurbs::doubles(node, "vKnot");
+  if (node.get<FieldType::SFBool>("uClosed", false))
+    closeSurface(true, uOrder, eu, ev, points, w, uKnots);
+  if (node.get<FieldType::SFBool>("vClosed", false))
+    closeSurface(false, vOrder, eu, ev, points, w, vKnots);
+  const Axis ua = nurbsAxis(eu, uOrder, uKnots, "uKnot", log);
+  const Axis va = nurbsAxis(ev, vOrder, vKnots, "vKnot", log);
   // A NurbsSet's tessellationScale: floor(segments x scale), as X_ITE 15.
   const auto scaled = [&](int segments) {
     const double s = std::floor(segments * std::clamp(static_cast<double>(scale), 0.0, 64.0));

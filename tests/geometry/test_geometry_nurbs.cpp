@@ -236,6 +236,39 @@ TEST_CASE("NurbsCurve closed: periodic, smooth through the seam (as X_ITE makes 
   CHECK(open.positions.front() == glm::vec3(1, 1, 0));
 }
 
+TEST_CASE("NurbsPatchSurface uClosed: periodic around, as X_ITE makes it", "[vrml][nurbs]") {
+  // A quadratic tube in u over the square's corners (first and last columns the same) at
+  // z = 0 and 1: closed, its rings cut the corners and pass the edges' midpoints, as the
+  // closed NurbsCurve does (create3000's NURBS/DefaultTextureCoordClosed.x3dv).
+  const std::string points =
+      "point [ 1 1 0, -1 1 0, -1 -1 0, 1 -1 0, 1 1 0,  1 1 1, -1 1 1, -1 -1 1, 1 -1 1, 1 1 1 ]";
+  const auto tube = [&](const char* closed) {
+    Diagnostics diag;
+    const Mesh m = nurbsMesh(std::string("NurbsPatchSurface { ") + closed +
+                                 " uDimension 5 vDimension 2 vOrder 2 uTessellation 40 "
+                                 "vTessellation 1 controlPoint Coordinate { " +
+                                 points + " } }",
+                             diag);
+    CHECK(diag.items.empty());
+    return m;
+  };
+  const Mesh closed = tube("uClosed TRUE");
+  REQUIRE(!closed.positions.empty());
+  float nearest = 10.0f;
+  for (const glm::vec3& p : closed.positions) {
+    CHECK(std::max(std::abs(p.x), std::abs(p.y)) <= 1.0f + 1e-5f);
+    CHECK(glm::length(glm::vec2(p)) > 0.7f);
+    nearest = std::min(nearest, glm::length(glm::vec2(p) - glm::vec2(1, 1)));
+  }
+  CHECK(nearest > 0.3f);  // the corner is cut
+  // Not closed: the surface starts at the corner.
+  const Mesh open = tube("uClosed FALSE");
+  float corner = 10.0f;
+  for (const glm::vec3& p : open.positions)
+    corner = std::min(corner, glm::length(glm::vec2(p) - glm::vec2(1, 1)));
+  CHECK(corner < 1e-5f);
+}
+
 TEST_CASE("NurbsSweptSurface and NurbsSwungSurface: extrusions of their curves", "[vrml][nurbs]") {
   Diagnostics diag;
   // A 2 x 2 square (order 2: its polyline) swept along a straight 3D curve from y 0 to 4.
