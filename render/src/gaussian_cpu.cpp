@@ -249,10 +249,11 @@ void CpuGaussianRasterizer::rasterize(const Source& source, std::span<const std:
 
   const int tilesX = (view.width + kTile - 1) / kTile, tilesY = (view.height + kTile - 1) / kTile;
   const int tiles = tilesX * tilesY;
-  const int chunks = threads_;
+  s.pool->start();
+  const int chunks = s.pool->threads();  // every one of them meets at the barriers
   s.bins.resize(static_cast<std::size_t>(chunks));
   std::atomic<int> nextTile{0};
-  std::barrier sync(threads_);
+  std::barrier sync(chunks);
   std::vector<PixelRect> reached(static_cast<std::size_t>(chunks),
                                  PixelRect{view.width, view.height, 0, 0});
   constexpr float minAlpha = Source::minAlpha;

@@ -12,6 +12,7 @@
 #include <functional>
 #include <mutex>
 #include <span>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -109,13 +110,23 @@ class WorkerPool {
   WorkerPool(const WorkerPool&) = delete;
   WorkerPool& operator=(const WorkerPool&) = delete;
 
+  /// Starts the workers (once): afterwards threads() is how many run() uses, fewer than
+  /// asked when the system refused to start some.
+  void start() {
+    if (started_) return;
+    started_ = true;
+    try {
+      for (int c = 1; c < threads_; ++c) workers_.emplace_back([this, c] { serve(c); });
+    } catch (const std::system_error&) {
+      threads_ = 1 + static_cast<int>(workers_.size());
+    }
+  }
   int threads() const { return threads_; }
 
   template <typename Work>
   void run(const Work& work) {
     const std::function<void(int)> job = [&work](int c) { work(c); };
-    if (workers_.empty())
-      for (int c = 1; c < threads_; ++c) workers_.emplace_back([this, c] { serve(c); });
+    start();
     {
       std::lock_guard lock(mutex_);
       job_ = &job;
@@ -148,6 +159,7 @@ class WorkerPool {
   }
 
   int threads_;
+  bool started_ = false;
   std::vector<std::thread> workers_;
   std::mutex mutex_;
   std::condition_variable wake_, done_;
