@@ -595,9 +595,11 @@ Volume decodeNrrdData(const NrrdHeader& header, std::string_view data, const std
   if (header.encoding == NrrdHeader::Encoding::hex) {
     NrrdHeader raw = header;
     raw.encoding = NrrdHeader::Encoding::raw;
+    // The byte skip applies to the decoded bytes: decode that many more.
+    const std::size_t skip = header.byteSkip > 0 ? static_cast<std::size_t>(header.byteSkip) : 0;
     const std::string bytes =
         decodeHex(skipNrrdLines(data, header.lineSkip, name),
-                  checkedVoxels(header.dims, name) * scalarBytes(header.type), name);
+                  checkedVoxels(header.dims, name) * scalarBytes(header.type) + skip, name);
     raw.lineSkip = 0;
     return decodeNrrdData(raw, bytes, name);
   }

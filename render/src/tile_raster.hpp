@@ -116,8 +116,9 @@ class WorkerPool {
     if (started_) return;
     started_ = true;
     try {
+      workers_.reserve(static_cast<std::size_t>(threads_ - 1));
       for (int c = 1; c < threads_; ++c) workers_.emplace_back([this, c] { serve(c); });
-    } catch (const std::system_error&) {
+    } catch (...) {  // std::system_error, std::bad_alloc: run with the workers there are
       threads_ = 1 + static_cast<int>(workers_.size());
     }
   }

@@ -475,7 +475,6 @@ duk_ret_t EsScript::callTrampoline(duk_context* c, void* udata) {
   Call& call = *static_cast<Call*>(udata);
   EsScript& self = *call.self;
   if (call.out != nullptr) {  // collect the eventOuts assigned or changed in place
-    if (self.depth_ == 1) self.flushLiveFields(c);  // and the node fields (outer call)
     std::vector<int> changed;
     changed.swap(self.changed_);
     for (int fi : changed) {
@@ -498,6 +497,9 @@ duk_ret_t EsScript::callTrampoline(duk_context* c, void* udata) {
         call.out->emplace_back(fi, std::move(v));
       }
     }
+    // Then the node fields changed in place (outer call only), so that an error reading
+    // one of them leaves this call's eventOuts collected.
+    if (self.depth_ == 1) self.flushLiveFields(c);
     return 0;
   }
   if (call.message != nullptr) {  // describe the error at the stack top

@@ -75,16 +75,21 @@ void EsScript::assignedNodeField(duk_context* c, const vrml::NodePtr& n, std::si
                                  const FieldValue& v) {
   if (!isObjectValued(v.type()) || liveStore_ == nullptr) return;
   const auto key = std::make_pair(static_cast<const vrml::Node*>(n.get()), i);
-  auto [it, added] = liveSlots_.emplace(key, static_cast<std::uint32_t>(live_.size()));
-  if (added)
-    live_.push_back({n, i, v});
-  else
-    live_[it->second].assigned = v;
+  const auto found = liveSlots_.find(key);
+  const auto slot =
+      found != liveSlots_.end() ? found->second : static_cast<std::uint32_t>(live_.size());
+  // The object stored first (this may throw into the Script), then the records.
   pushLiveObject(*this, c, v);
   duk_push_heapptr(c, liveStore_);
   duk_dup(c, -2);
-  duk_put_prop_index(c, -2, it->second);
+  duk_put_prop_index(c, -2, slot);
   duk_pop_2(c);
+  if (found != liveSlots_.end()) {
+    live_[slot].assigned = v;
+    return;
+  }
+  live_.push_back({n, i, v});
+  liveSlots_.emplace(key, slot);
 }
 
 void EsScript::flushLiveFields(duk_context* c) {

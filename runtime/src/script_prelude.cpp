@@ -185,10 +185,17 @@ function mfClass(name, convert, blank) {
 // A node's MF field as a Script holds it (script_live_fields.cpp): growing it, by its
 // length or by an index past its end, fills the new elements with the type's default
 // (X_ITE's arrays do; a bare Array would leave holes that v[i].setHSV cannot use).
+// Duktape gives a trap an index as a number or a string; a length that is no array
+// length, or past 2^24 elements, is left to the array itself (which throws a RangeError, or
+// holds holes the Script's limits then bound).
 var liveMFHandler = {
   set: function (t, k, v) {
-    var end = k === 'length' ? v >>> 0 : (String(k >>> 0) === k ? (k >>> 0) : 0);
-    for (var i = t.length; i < end; ++i) t[i] = t.__blank();
+    var end = 0;
+    if (k === 'length') end = typeof v === 'number' && v === (v >>> 0) ? v : 0;
+    else if (typeof k === 'number') end = k === (k >>> 0) ? k : 0;
+    else if (typeof k === 'string' && String(k >>> 0) === k) end = k >>> 0;
+    if (end <= 16777216)
+      for (var i = t.length; i < end; ++i) t[i] = t.__blank();
     t[k] = v;
     return true;
   }

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace gs::scene {
 
@@ -12,8 +13,6 @@ glm::mat4 viewMatrix(const Camera& camera) {
   const glm::mat4 rotation = glm::mat4_cast(glm::conjugate(glm::normalize(camera.orientation)));
   const glm::mat4 view = glm::translate(rotation, -camera.position);
   if (camera.deform == glm::mat3(1.0f)) return view;
-  const float det = glm::determinant(camera.deform);
-  if (!(std::abs(det) > 1e-12f)) return view;  // a flattened Viewpoint: its turn only
   return glm::mat4(glm::inverse(camera.deform)) * view;
 }
 
@@ -48,8 +47,31 @@ void fitClipPlanes(Camera& camera, const vrml::Bounds& bounds, float maxNear) {
   if (bounds.empty()) return;
   const float radius = std::max(glm::length(bounds.size()) * 0.5f, 1e-4f);
   const float distance = glm::length(bounds.center() - camera.position);
-  const float farClip = (distance + radius) * 1.05f;
+  float farClip = (distance + radius) * 1.05f;
   float nearClip = std::max((distance - radius) * 0.95f, farClip / 10000.0f);
+  if (camera.deform != glm::mat3(1.0f)) {
+    // A deformed camera (a Viewpoint under a scaled Transform) measures depths in its own
+    // units: the bounding sphere's centre seen through its view matrix, its radius
+    // stretched by the most the view stretches a length (the largest singular value of
+    // deform's inverse, by power iteration, 1% over).
+    const glm::mat3 inverse = glm::inverse(camera.deform);
+    const glm::mat3 gram = glm::transpose(inverse) * inverse;
+    glm::vec3 v = glm::normalize(glm::vec3(1.0f, 0.7f, 0.4f));
+    for (int k = 0; k < 24; ++k) {
+      const glm::vec3 next = gram * v;
+      const float len = glm::length(next);
+      if (!(len > 0.0f)) break;
+      v = next / len;
+    }
+    const float stretch = std::sqrt(std::max(glm::dot(v, gram * v), 0.0f)) * 1.01f;
+    const float eyeDistance =
+        glm::length(glm::vec3(viewMatrix(camera) * glm::vec4(bounds.center(), 1.0f)));
+    const float eyeRadius = radius * stretch;
+    if (std::isfinite(eyeDistance) && std::isfinite(eyeRadius) && eyeRadius > 0.0f) {
+      farClip = (eyeDistance + eyeRadius) * 1.05f;
+      nearClip = std::max((eyeDistance - eyeRadius) * 0.95f, farClip / 10000.0f);
+    }
+  }
   if (maxNear > 0.0f) nearClip = std::min(nearClip, maxNear);
   // A 24-bit depth buffer tells depths apart only while far / near stays well below 2^24:
   // a world of Earth's size (X3D Geospatial) seen from orbit would have every depth round

@@ -1,46 +1,60 @@
 // X3D 4.0's bboxDisplay (X3DBoundedObject, clause 10.3.1) for the traversal: the box of a
-// grouping node or Shape outlined in white, as X_ITE draws it, by a Shape and an
-// IndexedLineSet of the traversal's own whose mesh is put in the tessellation cache.
+// grouping node or Shape outlined in white, as X_ITE draws it, by a Shape, IndexedLineSet
+// and Coordinate of the traversal's own (tessellated as any geometry, so its mesh comes
+// back whenever the cache dropped or lost it).
 #include "encodings/node_types.hpp"
 #include "scene/node_access.hpp"
 #include "scene/traversal.hpp"
 
-#include <array>
+#include <cmath>
 
 namespace gs::scene {
 
+namespace {
+
+bool finiteBox(const vrml::Bounds& b) {
+  for (int k = 0; k < 3; ++k)
+    if (!std::isfinite(b.min[k]) || !std::isfinite(b.max[k])) return false;
+  return !b.empty();
+}
+
+}  // namespace
+
 SceneTraversal::BoxOutline SceneTraversal::boxOutline(const vrml::Node& bounded,
                                                       const vrml::Bounds& box) {
+  if (!finiteBox(box)) return {};
   BoxDraw& draw = boxDraws_[&bounded];
   if (!draw.shape) {
     const auto shapeType = vrml::x3dNodeType("Shape");
     const auto linesType = vrml::x3dNodeType("IndexedLineSet");
-    if (!shapeType || !linesType) return {};
-    draw.shape = std::make_shared<vrml::Node>(shapeType);
-    draw.geometry = std::make_shared<vrml::Node>(linesType);
-    draw.shape->location = draw.geometry->location = bounded.location;
-    draw.box = vrml::Bounds{};
+    const auto coordType = vrml::x3dNodeType("Coordinate");
+    if (!shapeType || !linesType || !coordType) return {};
+    auto shape = std::make_shared<vrml::Node>(shapeType);
+    auto lines = std::make_shared<vrml::Node>(linesType);
+    auto coord = std::make_shared<vrml::Node>(coordType);
+    const int coordField = lines->type().findExact("coord");
+    const int indexField = lines->type().findExact("coordIndex");
+    if (coordField < 0 || indexField < 0 || coord->type().findExact("point") < 0) return {};
+    // The 12 edges: the corners (x, y, z bits of their index) that differ in one bit.
+    std::vector<std::int32_t> index;
+    for (std::int32_t a = 0; a < 8; ++a)
+      for (const std::int32_t bit : {1, 2, 4})
+        if ((a & bit) == 0) index.insert(index.end(), {a, a | bit, -1});
+    lines->setField(static_cast<std::size_t>(indexField),
+                    vrml::FieldValue::make<vrml::FieldType::MFInt32>(std::move(index)));
+    lines->setField(static_cast<std::size_t>(coordField),
+                    vrml::FieldValue::make<vrml::FieldType::SFNode>(coord));
+    shape->location = lines->location = coord->location = bounded.location;
+    draw = BoxDraw{shape, lines, coord, vrml::Bounds{}};
   }
-  if (box.min != draw.box.min || box.max != draw.box.max || draw.box.empty()) {
+  if (box.min != draw.box.min || box.max != draw.box.max) {
     draw.box = box;
-    draw.geometry->markChanged();
-    CachedMesh& cached = meshes_[draw.geometry.get()];
-    vrml::Mesh& mesh = cached.mesh;
-    mesh = vrml::Mesh{};
-    mesh.primitive = vrml::Primitive::lines;
+    std::vector<glm::vec3> corners;
     for (int corner = 0; corner < 8; ++corner)
-      mesh.positions.push_back(glm::vec3(corner & 1 ? box.max.x : box.min.x,
-                                         corner & 2 ? box.max.y : box.min.y,
-                                         corner & 4 ? box.max.z : box.min.z));
-    // The 12 edges: corners that differ in one bit.
-    for (std::uint32_t a = 0; a < 8; ++a)
-      for (const std::uint32_t bit : {1u, 2u, 4u})
-        if ((a & bit) == 0) mesh.indices.insert(mesh.indices.end(), {a, a | bit});
-    mesh.bounds = box;
-    cached.arraysDropped = false;
-    cached.rotatedUse = false;
-    cached.boundsPositions.clear();
-    cached.revision = vrml::revisionWithFields(*draw.geometry);
+      corners.emplace_back(corner & 1 ? box.max.x : box.min.x, corner & 2 ? box.max.y : box.min.y,
+                           corner & 4 ? box.max.z : box.min.z);
+    draw.coord->setField(static_cast<std::size_t>(draw.coord->type().findExact("point")),
+                         vrml::FieldValue::make<vrml::FieldType::MFVec3f>(std::move(corners)));
   }
   return {draw.shape.get(), draw.geometry.get()};
 }

@@ -6,6 +6,7 @@
 #include "scene/traversal.hpp"
 #include "vrml/geo_nodes.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -96,7 +97,12 @@ Camera viewpointCamera(const vrml::Node& n, const glm::mat4& m) {
   for (int c = 0; c < 3; ++c)
     for (int r = 0; r < 3; ++r)
       identity = identity && std::abs(deform[c][r] - (c == r ? 1.0f : 0.0f)) < kSame;
-  if (!identity) camera.deform = deform;
+  // Kept only when it is usable: not flattened (a scale of 0 leaves the turn alone) and
+  // not a mirror (the renderer's winding is counterclockwise for every shape).
+  const float det = glm::determinant(deform);
+  const float size =
+      std::max({glm::length(deform[0]), glm::length(deform[1]), glm::length(deform[2])});
+  if (!identity && det > 1e-6f * size * size * size && std::isfinite(det)) camera.deform = deform;
   if (n.typeId() == vrml::NodeTypeId::OrthoViewpoint) {
     // X3D 4.0 clause 23.4.5: fieldOfView (minX, minY, maxX, maxY), default -1 -1 1 1.
     const std::vector<float>& f = mfFloat(n, "fieldOfView");

@@ -331,6 +331,11 @@ TEST_CASE("NRRD hex encoding and a first axis of components (ImageTexture3D's RG
   CHECK_THROWS_WITH(decodeNrrdData(s, "7g80", "s.nrrd"),
                     Contains("s.nrrd: expected a hexadecimal digit in hex data, got 'g'"));
   CHECK_THROWS_WITH(decodeNrrdData(s, "7f", "s.nrrd"), Contains("s.nrrd"));  // too short
+  // A byte skip skips decoded bytes.
+  const NrrdHeader skipped = parseNrrdHeader(
+      "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 2 1 1\nencoding: hex\nbyte skip: 2\n\n",
+      "k.nrrd");
+  CHECK(decodeNrrdData(skipped, "0000 7f80", "k.nrrd").samples == std::vector<float>{127, 128});
 }
 
 TEST_CASE("NRRD hostile headers give InputError", "[volume][nrrd][hostile]") {

@@ -612,6 +612,8 @@ DEF S Script {
   field SFNode target USE T
   eventIn SFFloat go
   eventIn SFFloat look
+  eventIn SFFloat grow
+  eventOut SFBool caught
   eventOut SFInt32 count
   eventOut SFBool same
   directOutput TRUE
@@ -628,7 +630,13 @@ DEF S Script {
       count = coord.point.length;
       same = coord.point === coord.point;
     }
-    function look(v, t) { var n = coord.point.length + target.translation.x; }"
+    function look(v, t) { var n = coord.point.length + target.translation.x; }
+    function grow(v, t) {
+      var c = colors.color;
+      c[4] = new SFColor(0, 0, 1);
+      c[3].r = 0.5;
+      try { coord.point.length = -1; } catch (e) { caught = e instanceof RangeError; }
+    }"
 }
 )";
   ScriptWorld w = loadScript(ctx, world);
@@ -662,5 +670,14 @@ DEF S Script {
   ctx.sent.clear();
   w.instance->eventIn(w.field("look"), sfFloat(0.0f), 2.0);
   CHECK(ctx.sent.empty());
+  // Growing by an index fills the elements before it (Duktape gives the trap a number);
+  // a length that is no array length is the array's own RangeError.
+  ctx.sent.clear();
+  w.instance->eventIn(w.field("grow"), sfFloat(0.0f), 3.0);
+  const auto grown = sentTo(k, "color");
+  REQUIRE(grown.size() == 1);
+  CHECK(grown[0].get<FieldType::MFColor>() ==
+        std::vector<glm::vec3>{{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0.5f, 0, 0}, {0, 0, 1}});
+  CHECK(ctx.emittedFor(*w.script, "caught").at(0).get<FieldType::SFBool>());
   CHECK(ctx.diagnostics.empty());
 }

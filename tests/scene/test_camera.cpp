@@ -171,3 +171,23 @@ TEST_CASE("wholeSceneCamera: castle-model-viewer's camera for a world without a 
   // An empty box leaves the camera as it was.
   CHECK(gs::scene::wholeSceneCamera(gs::vrml::Bounds{}, defaults).position == defaults.position);
 }
+
+TEST_CASE("a deformed camera's clip planes hold the scene in its own units", "[scene][camera]") {
+  // A Viewpoint under Transform { scale 0.5 0.5 0.5 } at (0 0 10) of that Transform: the
+  // camera sits at world z = 5 and measures depths in half metres, so the 2 m box at the
+  // origin is 9 to 11 units deep; near and far must hold that, not the world's 4 to 6.
+  Camera c;
+  c.position = {0, 0, 5};
+  c.deform = glm::mat3(0.5f);
+  gs::vrml::Bounds box;
+  box.extend(glm::vec3(-1.0f));
+  box.extend(glm::vec3(1.0f));
+  gs::scene::fitClipPlanes(c, box);
+  for (const float z : {-1.0f, 1.0f}) {
+    const glm::vec4 eye = gs::scene::viewMatrix(c) * glm::vec4(0, 0, z, 1);
+    CHECK(-eye.z > c.nearClip);
+    CHECK(-eye.z < c.farClip);
+  }
+  CHECK(project(c, 1.0f, {0, 0, 1}).z > -1.0f);
+  CHECK(project(c, 1.0f, {0, 0, -1}).z < 1.0f);
+}

@@ -228,3 +228,17 @@ DEF T Transform { translation 1 2 3 rotation 0.27 0.53 0.8 4 scale 1 2 3
     CHECK(glm::length(glm::cross(glm::normalize(to), ray.direction)) < 1e-3f);
   }
 }
+
+TEST_CASE("a Viewpoint under a mirroring or flattening Transform keeps its turn only",
+          "[scene][picking][camera]") {
+  // The renderer winds every shape counterclockwise: a mirrored view would show solid
+  // shapes inside out, and a flattened one has no inverse.
+  for (const char* scale : {"-1 1 1", "1 0 1"}) {
+    INFO(scale);
+    const auto scene = world(std::string("#X3D V4.0 utf8\nPROFILE Immersive\n"
+                                         "Transform { scale ") +
+                             scale + " children Viewpoint { position 0 0 6 } }\n");
+    SceneTraversal traversal(scene);
+    CHECK(traversal.boundViewpointCamera().deform == glm::mat3(1.0f));
+  }
+}

@@ -30,7 +30,8 @@ struct Camera {
   /// shear of the Transforms above it, in the camera's axes (the camera's axes in the
   /// world are orientation * deform). X_ITE views a Viewpoint under a scaled Transform
   /// through that Transform's whole matrix, so a world scaled with its Viewpoint looks
-  /// unscaled. Identity when the Transforms only turn and move; kept while navigating.
+  /// unscaled. Identity when the Transforms only turn and move, and for a flattening or
+  /// mirroring one (its turn alone is kept); kept while navigating. Invertible.
   glm::mat3 deform{1.0f};
 
   /// Unit vector the camera looks along (orientation applied to -Z).

@@ -497,8 +497,9 @@ class SceneTraversal {
                                      const glm::mat4& localToEye);
   /// X3D 4.0's X3DBoundedObject.bboxDisplay (clause 10.3.1), as X_ITE draws it: the
   /// Shape (no appearance: unlit white lines) and IndexedLineSet standing for the 12 edges
-  /// of `box` (the bounded node's box in its children's coordinates), cached per node and
-  /// remade when the box changes (scene/src/traversal_bbox.cpp).
+  /// of `box` (the bounded node's box in its children's coordinates), cached per node, its
+  /// Coordinate rewritten when the box changes (scene/src/traversal_bbox.cpp); none for a
+  /// box that is empty or not finite.
   struct BoxOutline {
     const vrml::Node* shape = nullptr;
     const vrml::Node* geometry = nullptr;
@@ -541,7 +542,7 @@ class SceneTraversal {
   vrml::NodeMap<ParticleDraw> particleDraws_;
   /// Per node with bboxDisplay TRUE: its outline's nodes and the box they were made of.
   struct BoxDraw {
-    vrml::NodePtr shape, geometry;
+    vrml::NodePtr shape, geometry, coord;
     vrml::Bounds box;
   };
   vrml::NodeMap<BoxDraw> boxDraws_;
