@@ -31,6 +31,16 @@ bool copyPoint(const float* src, std::size_t count, std::size_t per, std::size_t
   return true;
 }
 
+/// The floats of `matrices` row by row (the order the file wrote them), into `out`.
+template <typename Matrix>
+void rowsInFileOrder(const std::vector<Matrix>& matrices, std::vector<float>& out) {
+  out.clear();
+  for (const Matrix& m : matrices) {
+    const Matrix rows = glm::transpose(m);
+    out.insert(out.end(), &rows[0][0], &rows[0][0] + Matrix::length() * Matrix::length());
+  }
+}
+
 }  // namespace
 
 void assignVertexAttributes(const Node& geometry, Mesh& m, ProblemLog& log) {
@@ -60,28 +70,18 @@ void assignVertexAttributes(const Node& geometry, Mesh& m, ProblemLog& log) {
       // A matrix's floats in file order (its rows one after another), which a shader's
       // matN reads as its columns, as X_ITE passes them (create3000's
       // Shaders/Matrix3VertexAttribute.x3d).
-      case NodeTypeId::Matrix3VertexAttribute: {
+      case NodeTypeId::Matrix3VertexAttribute:
         a.components = 9;
-        fileOrder.clear();
-        for (const glm::mat3& v : fieldOr<FieldType::MFMatrix3f>(*node, "value")) {
-          const glm::mat3 rows = glm::transpose(v);
-          fileOrder.insert(fileOrder.end(), &rows[0][0], &rows[0][0] + 9);
-        }
+        rowsInFileOrder(fieldOr<FieldType::MFMatrix3f>(*node, "value"), fileOrder);
         src = fileOrder.data();
         count = fileOrder.size();
         break;
-      }
-      case NodeTypeId::Matrix4VertexAttribute: {
+      case NodeTypeId::Matrix4VertexAttribute:
         a.components = 16;
-        fileOrder.clear();
-        for (const glm::mat4& v : fieldOr<FieldType::MFMatrix4f>(*node, "value")) {
-          const glm::mat4 rows = glm::transpose(v);
-          fileOrder.insert(fileOrder.end(), &rows[0][0], &rows[0][0] + 16);
-        }
+        rowsInFileOrder(fieldOr<FieldType::MFMatrix4f>(*node, "value"), fileOrder);
         src = fileOrder.data();
         count = fileOrder.size();
         break;
-      }
       default:
         continue;  // not a vertex attribute node (the parser reported it)
     }

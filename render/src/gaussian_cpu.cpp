@@ -347,8 +347,7 @@ void CpuGaussianRasterizer::rasterize(const Source& source, std::span<const std:
       const int tx0 = (t % tilesX) * kTile, ty0 = (t / tilesX) * kTile;
       const int tw = std::min(kTile, view.width - tx0), th = std::min(kTile, view.height - ty0);
       if (clearIfEmpty(s.bins, chunks, t, out.data(), view.width, tx0, ty0, tw, th)) continue;
-      mine = {std::min(mine.x0, tx0), std::min(mine.y0, ty0), std::max(mine.x1, tx0 + tw),
-              std::max(mine.y1, ty0 + th)};
+      mine = mine.united({tx0, ty0, tx0 + tw, ty0 + th});
       startTile(tile, tx0, ty0, tw, th, view.width, view.farClip, depth, depthA, depthB);
       int live = tw * th;
       for (int c = 0; c < chunks && live > 0; ++c) {
@@ -364,9 +363,7 @@ void CpuGaussianRasterizer::rasterize(const Source& source, std::span<const std:
 
   s.pool->run(work);
   touched_ = PixelRect{view.width, view.height, 0, 0};
-  for (const PixelRect& r : reached)
-    touched_ = {std::min(touched_.x0, r.x0), std::min(touched_.y0, r.y0),
-                std::max(touched_.x1, r.x1), std::max(touched_.y1, r.y1)};
+  for (const PixelRect& r : reached) touched_ = touched_.united(r);
 }
 
 }  // namespace gs::render::detail

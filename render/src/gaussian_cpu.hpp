@@ -18,6 +18,7 @@
 // 3. Output: premultiplied RGBA8 (C, 1 - T), rows bottom to top (OpenGL's order).
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -87,6 +88,10 @@ class CpuGaussianRasterizer {
   struct PixelRect {
     int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
     bool empty() const { return x0 >= x1 || y0 >= y1; }
+    /// The smallest rectangle holding this one and `o` (an empty one as {w, h, 0, 0}).
+    PixelRect united(const PixelRect& o) const {
+      return {std::min(x0, o.x0), std::min(y0, o.y0), std::max(x1, o.x1), std::max(y1, o.y1)};
+    }
   };
   PixelRect touched() const { return touched_; }
 
