@@ -219,19 +219,23 @@ void SoundScene::updateGraph(const std::vector<GraphRoot>& roots, const glm::mat
   glm::mat4 listener = worldToListener;
   for (const GraphRoot& r : roots) {
     const vrml::Node& n = *r.node;
-    if (n.typeId() == NodeTypeId::ListenerPointSource) {
-      // Not tracking the view: the listener stands at its position and orientation.
-      if (n.get<FieldType::SFBool>("enabled", true) &&
-          !n.get<FieldType::SFBool>("trackCurrentView", false)) {
-        const glm::mat4 pose = r.world *
-                               glm::translate(glm::mat4(1.0f), n.get<FieldType::SFVec3f>(
-                                                                   "position", glm::vec3(0.0f))) *
-                               vrml::rotationMatrix(n.get<FieldType::SFRotation>(
-                                   "orientation", vrml::Rotation{0, 0, 1, 0}));
-        listener = glm::inverse(pose);
-      }
-      continue;
+    // A ListenerPointSource not tracking the view: the listener stands at its position and
+    // orientation (the last such one).
+    if (n.typeId() == NodeTypeId::ListenerPointSource &&
+        n.get<FieldType::SFBool>("enabled", true) &&
+        !n.get<FieldType::SFBool>("trackCurrentView", false)) {
+      const glm::mat4 pose =
+          r.world *
+          glm::translate(glm::mat4(1.0f), n.get<FieldType::SFVec3f>("position", glm::vec3(0.0f))) *
+          vrml::rotationMatrix(
+              n.get<FieldType::SFRotation>("orientation", vrml::Rotation{0, 0, 1, 0}));
+      listener = glm::inverse(pose);
     }
+  }
+  const glm::vec3 listenerPosition(glm::inverse(listener)[3]);
+  for (const GraphRoot& r : roots) {
+    const vrml::Node& n = *r.node;
+    if (n.typeId() == NodeTypeId::ListenerPointSource) continue;
     ProcessorParams p;
     p.enabled = n.get<FieldType::SFBool>("enabled", true);
     p.gain = n.get<FieldType::SFFloat>("gain", 1.0f);
@@ -253,6 +257,9 @@ void SoundScene::updateGraph(const std::vector<GraphRoot>& roots, const glm::mat
       p.maxDistance = n.get<FieldType::SFFloat>("maxDistance", 10000.0f);
       p.intensity = n.get<FieldType::SFFloat>("intensity", 1.0f);
       p.spatialize = n.get<FieldType::SFBool>("spatialize", true);
+      // Acoustic surfaces between it and the listener (audio/acoustics.hpp).
+      if (occlusion_.surfaceCount() > 0)
+        p.gain *= occlusion_.transmission(p.location, listenerPosition);
     } else {
       p.type = ProcessorType::destination;
       p.maxChannelCount = n.get<FieldType::SFInt32>("maxChannelCount", 2);

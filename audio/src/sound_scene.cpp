@@ -24,6 +24,7 @@ struct Walk {
   const InlineQuery& inlines;
   std::vector<FoundSound>& out;
   std::vector<SoundScene::GraphRoot>& graph;
+  std::vector<AcousticSurface>& surfaces;
   std::vector<std::shared_ptr<const vrml::Scene>> keep;  // inline worlds met this frame
   std::vector<const vrml::Scene*> path;                  // the worlds being walked
 
@@ -33,6 +34,11 @@ struct Walk {
     const NodeTypeId type = n->typeId();
     if (type == NodeTypeId::Sound) {
       out.push_back({n.get(), m, scene});
+      return;
+    }
+    if (type == NodeTypeId::Shape) {
+      AcousticSurface s;
+      if (acousticSurfaceOf(*n, m, s)) surfaces.push_back(s);
       return;
     }
     if (type == NodeTypeId::AudioDestination || type == NodeTypeId::StreamAudioDestination ||
@@ -136,12 +142,14 @@ void SoundScene::update(const glm::mat4& worldToListener, double now, const Clip
   install();  // clips decoded since the last frame
   std::vector<FoundSound> found;
   std::vector<GraphRoot> graph;
-  Walk walk{inlines, found, graph, {}, {scene_.get()}};
+  std::vector<AcousticSurface> surfaces;
+  Walk walk{inlines, found, graph, surfaces, {}, {scene_.get()}};
   if (scene_)
     for (const vrml::NodePtr& n : scene_->rootNodes) walk.node(n, glm::mat4(1.0f), scene_.get(), 0);
   // Inline worlds stay alive while their nodes key clips_ (a renderer made anew loads new
   // ones; the old nodes' addresses must not be reused under our keys).
   for (auto& w : walk.keep) inlineWorlds_.emplace(w.get(), std::move(w));
+  occlusion_.setSurfaces(std::move(surfaces));
   const glm::mat4 listenerToWorld = glm::inverse(worldToListener);
   const glm::vec3 listener(listenerToWorld[3]);
   heard_.clear();
@@ -163,6 +171,8 @@ void SoundScene::update(const glm::mat4& worldToListener, double now, const Clip
     HeardSound h;
     h.sound = &s;
     h.gain = soundGain(g, s.get<FieldType::SFFloat>("intensity", 1.0f), local);
+    if (h.gain > 0.0f && occlusion_.surfaceCount() > 0)  // acoustic surfaces in the way
+      h.gain *= occlusion_.transmission(glm::vec3(f.world * glm::vec4(g.location, 1.0f)), listener);
     Voice v;
     v.key = &s;
     const vrml::NodePtr source = s.sfnode("source");

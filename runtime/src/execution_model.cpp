@@ -28,6 +28,7 @@ NodeState& ExecutionModel::State::reach(vrml::Node& node, bool bindables) {
   ns.node = &node;
   const std::size_t n = node.fieldCount();
   ns.out.resize(n);
+  if (n > 0) ns.fieldsHint = &node.fieldAt(0);
   classify(ns);
   if (ns.role == NodeRole::bindable && bindables)
     candidates[static_cast<std::size_t>(ns.bindable)].push_back(&ns);
@@ -77,6 +78,7 @@ bool ExecutionModel::State::connect(vrml::Node& from, int fromField, vrml::Node&
   NodeState& b = reach(to, false);
   if (fromField < 0 || static_cast<std::size_t>(fromField) >= a.out.size()) return false;
   a.out[static_cast<std::size_t>(fromField)].add({&b, toField});  // a duplicate is ignored
+  if (fromField < 32) a.routedFields |= std::uint32_t{1} << fromField;
   return true;
 }
 
@@ -98,9 +100,67 @@ void ExecutionModel::State::takeScene(const vrml::Scene& s, std::size_t& roots, 
 
 // ---- events ----
 
+namespace {
+
+/// Prefetches the line of `node` that holds its type, fields and revision (vrml::Node
+/// keeps them first; 16-byte aligned, they may reach into the next line).
+[[gnu::always_inline]] inline void prefetchNode(const vrml::Node* node) {
+  __builtin_prefetch(node);
+  __builtin_prefetch(reinterpret_cast<const char*>(node) + 56);
+}
+
+/// Prefetches both lines a port may straddle (48 bytes, 16-byte aligned).
+[[gnu::always_inline]] inline void prefetchPort(const OutPort* port) {
+  __builtin_prefetch(port);
+  __builtin_prefetch(reinterpret_cast<const char*>(port + 1) - 1);
+}
+
+/// How many events (or TimeSensors) ahead runCascade() (advanceTo()) fetches a record, and
+/// how many what the record points to.
+constexpr std::size_t kStateAhead = 8, kDataAhead = 4;
+
+/// Prefetches the two lines of a record that an event reads (NodeState's layout).
+/// Whether eventOut `field` of `ns` may have routes (NodeState::routedFields).
+bool routed(const NodeState& ns, int field) {
+  return field >= 32 || (ns.routedFields >> field & 1u) != 0;
+}
+
+[[gnu::always_inline]] inline void prefetchState(const NodeState* ns) {
+  __builtin_prefetch(ns);
+  __builtin_prefetch(&ns->setFraction);
+}
+
+/// Prefetches what delivering an event to `field` of `to` reads and writes, from its
+/// record (which must have arrived): the node, the eventOut port its answer goes out on
+/// (an interpolator's value_changed, else the exposedField's own index), the fields it
+/// writes, and an interpolator's key and keyValue.
+[[gnu::always_inline]] inline void prefetchDelivery(const NodeState& to, int field) {
+  prefetchNode(to.node);
+  const bool interpolator = to.role == NodeRole::interpolator;
+  const int port = interpolator ? to.valueChanged : field;
+  if (port < 0 || static_cast<std::size_t>(port) >= to.out.size()) return;
+  if (routed(to, port)) prefetchPort(to.out.data() + port);
+  if (!interpolator) {
+    if (to.fieldsHint) __builtin_prefetch(to.fieldsHint + port);
+    return;
+  }
+  if (to.fieldsHint && to.key >= 0 && to.keyValue >= 0) {  // key and keyValue, then their data
+    __builtin_prefetch(to.fieldsHint + to.key);
+    __builtin_prefetch(to.fieldsHint + to.keyValue);
+  }
+  __builtin_prefetch(to.keysHint);
+  __builtin_prefetch(to.keyValuesHint);
+}
+
+}  // namespace
+
 void ExecutionModel::State::emit(NodeState& from, int field, const vrml::FieldValue& value) {
-  OutPort& port = from.out[static_cast<std::size_t>(field)];
   ExecutionStatistics& st = model.stats_;
+  if (!routed(from, field) && !model.options_.trace) {
+    ++st.eventsSent;  // never routed: nothing to send to, no loop to break (4.10.3)
+    return;
+  }
+  OutPort& port = from.out[static_cast<std::size_t>(field)];
   if (port.lastSent == stamp) {  // 4.10.3: one event per eventOut per timestamp ends loops
     ++st.eventsDropped;
     return;
@@ -134,10 +194,14 @@ void ExecutionModel::State::runCascade() {
         queueHead = 0;
         break;
       }
-      // Fetch the records of the events a few places ahead (a cascade over many nodes
-      // waits on memory, not on work): the state now, its node a little later.
-      if (queueHead + 8 < queue.size()) __builtin_prefetch(queue[queueHead + 8].to);
-      if (queueHead + 4 < queue.size()) __builtin_prefetch(queue[queueHead + 4].to->node);
+      // Fetch what the events a few places ahead will read (a cascade over many nodes
+      // waits on memory, not on work): their records first, what the records point to
+      // (node, ports, fields, keys) once the records have arrived.
+      if (queueHead + kStateAhead < queue.size()) prefetchState(queue[queueHead + kStateAhead].to);
+      if (queueHead + kDataAhead < queue.size()) {
+        const PendingEvent& ahead = queue[queueHead + kDataAhead];
+        prefetchDelivery(*ahead.to, ahead.field);
+      }
       // deliver() may append to the queue (and so move it): take the event out first.
       PendingEvent& next = queue[queueHead++];
       NodeState* to = next.to;
@@ -279,12 +343,22 @@ void ExecutionModel::advanceTo(double time) {
   s_->cascadeOverflow = false;
   const std::vector<NodeState*>& sensors = s_->timeSensors;
   for (std::size_t i = 0; i < sensors.size(); ++i) {
-    // As in runCascade: fetch the sensors' records and nodes ahead of their evaluation.
-    if (i + 8 < sensors.size()) __builtin_prefetch(sensors[i + 8]);
-    if (i + 4 < sensors.size()) __builtin_prefetch(sensors[i + 4]->node);
-    if (i + 2 < sensors.size() && sensors[i + 2]->timeFields.fraction >= 0)
-      __builtin_prefetch(&sensors[i + 2]->node->fieldAt(
-          static_cast<std::size_t>(sensors[i + 2]->timeFields.fraction)));
+    // As in runCascade: fetch the sensors' records, then their nodes, the ports
+    // fraction_changed and time go out on, and the fields they write.
+    if (i + kStateAhead < sensors.size()) {
+      __builtin_prefetch(sensors[i + kStateAhead]);
+      __builtin_prefetch(&sensors[i + kStateAhead]->timeFields);
+      __builtin_prefetch(&sensors[i + kStateAhead]->timeFieldsRevision);
+    }
+    if (i + kDataAhead < sensors.size()) {
+      const NodeState* ahead = sensors[i + kDataAhead];
+      prefetchNode(ahead->node);
+      for (const int port : {ahead->timeFields.fraction, ahead->timeFields.time})
+        if (port >= 0 && static_cast<std::size_t>(port) < ahead->out.size()) {
+          if (routed(*ahead, port)) prefetchPort(ahead->out.data() + port);
+          if (ahead->fieldsHint) __builtin_prefetch(ahead->fieldsHint + port);
+        }
+    }
     s_->evaluateTimeSensor(*sensors[i]);
   }
   for (NodeState* m : s_->mediaNodes) s_->evaluateMedia(*m);

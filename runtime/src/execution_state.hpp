@@ -17,6 +17,7 @@
 #include <glm/mat4x4.hpp>
 
 #include <array>
+#include <cstddef>
 #include <memory>
 #include <optional>
 #include <string>
@@ -292,20 +293,26 @@ struct TimeSensorFields {
   int cycleTime = -1, fraction = -1, isActive = -1, time = -1;
 };
 
-/// The execution model's record of one node.
-struct NodeState {
+/// The execution model's record of one node. Its first cache line holds what every event
+/// to it reads (node, role, ports, prefetch hints), its second the role's field indices:
+/// runCascade() prefetches both lines ahead of the event.
+struct alignas(64) NodeState {
   vrml::Node* node = nullptr;
-  /// The node, kept alive for as long as the execution model lives (node identity): once
-  /// registered, a node's address names that node and no other while this record exists,
-  /// so a node freed by a `children` assignment cannot lend its record (role, field
-  /// indices, routes) to a node later allocated at the same address. Null only for a node
-  /// first met without an owning pointer (an event to a node the caller owns).
-  vrml::NodePtr keepAlive;
   NodeRole role = NodeRole::plain;
-  InterpolatorKind interpolator = InterpolatorKind::Scalar;
-  BindableKind bindable = BindableKind::Viewpoint;
+  bool scriptHadEvents = false;
+  bool problemReported = false;
+  /// Bit i set: eventOut i (< 32) has had a route (set by connect(), never cleared). An
+  /// event from a field whose bit is clear is counted and goes nowhere without its port
+  /// being read (emit); fields from 32 on always read their port.
+  std::uint32_t routedFields = 0;
   /// Per field index: routes leaving it, and the stamp of the last event it sent.
   std::vector<OutPort> out;
+  /// Where the node's fields, and an interpolator's key and keyValue elements, were last
+  /// seen: addresses runCascade() prefetches ahead of the event (never read through: a
+  /// stale one costs a wasted prefetch, not a fault).
+  const vrml::FieldValue* fieldsHint = nullptr;
+  const void* keysHint = nullptr;
+  const void* keyValuesHint = nullptr;
   // Field indices used by the role (from the node table, found once).
   int setFraction = -1, key = -1, keyValue = -1, valueChanged = -1;  // interpolators
   int keyVelocity = -1, closed = -1, normalizeVelocity = -1;         // X3D spline interpolators
@@ -313,6 +320,14 @@ struct NodeState {
   int addChildren = -1, removeChildren = -1, children = -1;          // grouping
   // NurbsSurfaceInterpolator's normal_changed (valueChanged: its position_changed).
   int normalChanged = -1;
+  InterpolatorKind interpolator = InterpolatorKind::Scalar;
+  BindableKind bindable = BindableKind::Viewpoint;
+  /// The node, kept alive for as long as the execution model lives (node identity): once
+  /// registered, a node's address names that node and no other while this record exists,
+  /// so a node freed by a `children` assignment cannot lend its record (role, field
+  /// indices, routes) to a node later allocated at the same address. Null only for a node
+  /// first met without an owning pointer (an event to a node the caller owns).
+  vrml::NodePtr keepAlive;
   TimeSensorFields timeFields;
   TimeState time;
   /// TimeSensor: its time fields as last read, valid while node->revision() is
@@ -335,9 +350,8 @@ struct NodeState {
   std::unique_ptr<CollisionSensorState> collision;        // a CollisionSensor (plain)
   std::unique_ptr<EspduState> espdu;                      // an EspduTransform (plain)
   std::unique_ptr<HAnimMotionState> motion;               // an HAnimMotion (plain)
-  bool scriptHadEvents = false;
-  bool problemReported = false;
 };
+static_assert(offsetof(NodeState, setFraction) == 64, "NodeState's first line: see above");
 
 /// An event waiting to be delivered to eventIn `field` of `to`.
 struct PendingEvent {

@@ -248,6 +248,32 @@ void ExecutionModel::State::bindFirstCandidates() {
     if (stacks[k].empty() && !candidates[k].empty()) bind(*candidates[k].front(), true);
 }
 
+namespace {
+
+/// The first element of an interpolator's keyValue (its MF types), else null.
+const void* elementsOf(const vrml::FieldValue& v) {
+  switch (v.type()) {
+    case FieldType::MFFloat:
+      return v.get<FieldType::MFFloat>().data();
+    case FieldType::MFVec3f:
+      return v.get<FieldType::MFVec3f>().data();
+    case FieldType::MFColor:
+      return v.get<FieldType::MFColor>().data();
+    case FieldType::MFRotation:
+      return v.get<FieldType::MFRotation>().data();
+    case FieldType::MFVec2f:
+      return v.get<FieldType::MFVec2f>().data();
+    case FieldType::MFDouble:
+      return v.get<FieldType::MFDouble>().data();
+    case FieldType::MFVec3d:
+      return v.get<FieldType::MFVec3d>().data();
+    default:
+      return nullptr;
+  }
+}
+
+}  // namespace
+
 void ExecutionModel::State::deliver(NodeState& ns, int field, vrml::FieldValue value) {
   vrml::Node& node = *ns.node;
   if (field < 0 || static_cast<std::size_t>(field) >= node.fieldCount()) return;
@@ -273,6 +299,8 @@ void ExecutionModel::State::deliver(NodeState& ns, int field, vrml::FieldValue v
         const auto& key = node.fieldAt(static_cast<std::size_t>(ns.key)).get<FieldType::MFFloat>();
         const vrml::FieldValue& keyValue = node.fieldAt(static_cast<std::size_t>(ns.keyValue));
         const float fraction = value.get<FieldType::SFFloat>();
+        ns.keysHint = key.data();
+        ns.keyValuesHint = elementsOf(keyValue);
         std::optional<vrml::FieldValue> out;
         if (nonLinearInterpolator(ns.interpolator)) {
           SplineOptions options;

@@ -1,12 +1,14 @@
 // X3D 4 audio graph worlds (clause 16) through the execution model, SoundScene and the null
 // output, frame by frame as the window moves them: what the sources' time fields start,
 // pause and stop is what is streamed.
+#include "audio/acoustics.hpp"
 #include "audio/audio_output.hpp"
 #include "audio/sound_scene.hpp"
 #include "encodings/parser.hpp"
 #include "runtime/execution_model.hpp"
 
 #include <catch2/catch.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -218,4 +220,60 @@ TEST_CASE("Sound graph: a MicrophoneSource plays what the capture device recorde
   silent.play(0.0, 0.2);
   CHECK(silent.sounds.diagnostics().items.size() == 1);
   CHECK(silent.peakOfLast(4410, 0) == 0.0f);
+}
+
+TEST_CASE("Sound graph: acoustic surfaces between a SpatialSound and the listener",
+          "[audio][graph][acoustics]") {
+  // As above (the right ear hears 0.0625 from 2 m), with a 10 cm wall at x = 1: its two
+  // faces on the path each keep `refraction` of the sound (X3D 4.0 12.4.1).
+  const auto heard = [](const std::string& acoustics, const std::string& wallAt) {
+    GraphWorld w("Transform { translation " + wallAt +
+                 " children Shape { appearance Appearance { " + acoustics +
+                 " } geometry Box { size 0.1 4 4 } } }\n" +
+                 R"(Transform { translation 2 0 0 children [
+      SpatialSound { children [ AudioClip { url "tone.wav" loop TRUE } ] } ] })");
+    w.play(0.0, 0.5);
+    return w.peakOfLast(4410, 1);
+  };
+  CHECK(heard("", "1 0 0") == Approx(0.0625f).margin(0.003));  // no AcousticProperties
+  CHECK(heard("acousticProperties AcousticProperties { refraction 0.5 }", "1 0 0") ==
+        Approx(0.0625f * 0.25f).margin(0.001));
+  CHECK(heard("acousticProperties AcousticProperties { refraction 0.5 }", "1 0 5") ==
+        Approx(0.0625f).margin(0.003));  // beside the path
+  CHECK(heard("acousticProperties AcousticProperties { refraction 0.5 }", "3 0 0") ==
+        Approx(0.0625f).margin(0.003));  // behind the sound
+  CHECK(heard("acousticProperties AcousticProperties { refraction 0.5 enabled FALSE }", "1 0 0") ==
+        Approx(0.0625f).margin(0.003));
+  CHECK(heard("acousticProperties AcousticProperties { absorption 1 }", "1 0 0") < 1e-6f);
+}
+
+TEST_CASE("acoustic surfaces: crossings of the segment, each keeping its refraction",
+          "[audio][acoustics]") {
+  const auto scene = vrml::parseVrml(R"(#X3D V4.0 utf8
+PROFILE Full
+Shape { appearance Appearance { acousticProperties AcousticProperties { refraction 0.3 } }
+  geometry IndexedFaceSet { coord Coordinate { point [ -1 -1 0, 1 -1 0, 1 1 0, -1 1 0 ] }
+                            coordIndex [ 0 1 2 3 -1 ] } }
+Shape { geometry Box {} }
+)",
+                                     "quad.x3dv");
+  REQUIRE(scene.rootNodes.size() == 2);
+  audio::AcousticSurface quad;
+  // Two metres up: the quad at z = 2.
+  REQUIRE(audio::acousticSurfaceOf(*scene.rootNodes[0],
+                                   glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, 2)), quad));
+  CHECK(quad.refraction == Approx(0.3f));
+  audio::AcousticSurface none;
+  CHECK_FALSE(audio::acousticSurfaceOf(*scene.rootNodes[1], glm::mat4(1.0f), none));
+  audio::AcousticOcclusion o;
+  o.setSurfaces({quad});
+  CHECK(o.surfaceCount() == 1);
+  CHECK(o.transmission({0, 0, 0}, {0, 0, 5}) == Approx(0.3f));
+  CHECK(o.transmission({0, 0, 5}, {0.5f, 0.5f, -1}) == Approx(0.3f));  // either face
+  CHECK(o.transmission({0, 0, 0}, {0, 0, 1.9f}) == 1.0f);              // stops short
+  CHECK(o.transmission({3, 0, 0}, {3, 0, 5}) == 1.0f);                 // beside it
+  o.setSurfaces({quad, quad});                                         // two surfaces in the way
+  CHECK(o.transmission({0, 0, 0}, {0, 0, 5}) == Approx(0.09f));
+  o.setSurfaces({});
+  CHECK(o.transmission({0, 0, 0}, {0, 0, 5}) == 1.0f);
 }

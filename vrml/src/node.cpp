@@ -51,15 +51,15 @@ Node::Node(std::shared_ptr<const NodeType> type) : type_(std::move(type)), seria
 }
 
 Node::Node(const Node& other)
-    : defName(other.defName),
+    : type_(other.type_),
+      values_(other.values_),
+      revision_(other.revision_),
+      serial_(nextSerial()),
+      defName(other.defName),
       protoInstance(other.protoInstance),
       unresolved(other.unresolved),
       location(other.location),
-      urlBase(other.urlBase),
-      type_(other.type_),
-      values_(other.values_),
-      revision_(other.revision_),
-      serial_(nextSerial()) {}
+      urlBase(other.urlBase) {}
 
 Node& Node::operator=(const Node& other) {
   if (this == &other) return *this;

@@ -223,6 +223,8 @@ constexpr std::array kImplementedX3d = {
     NodeTypeId::ChannelMerger,
     NodeTypeId::ChannelSelector,
     NodeTypeId::ChannelSplitter,
+    // audio/acoustics.hpp: acoustic surfaces on the direct path
+    NodeTypeId::AcousticProperties,
 };
 
 }  // namespace

@@ -7,6 +7,7 @@
 // plays them at the media time the execution model gives (docs/media.md).
 #pragma once
 
+#include "audio/acoustics.hpp"
 #include "audio/audio_graph.hpp"
 #include "audio/audio_output.hpp"
 #include "audio/sound_model.hpp"
@@ -136,6 +137,7 @@ class SoundScene {
   std::vector<HeardSound> heard_;
   std::unordered_map<const vrml::Scene*, std::shared_ptr<const vrml::Scene>> inlineWorlds_;
   vrml::Diagnostics diagnostics_;
+  AcousticOcclusion occlusion_;  // this frame's acoustic surfaces (audio/acoustics.hpp)
   AudioGraph graph_;
   double graphTime_ = -1.0;  // the simulated time rendered up to; < 0 before the first update
   std::unordered_map<const formats::AudioData*, std::shared_ptr<const SampledSound>> sampled_;

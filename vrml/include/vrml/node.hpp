@@ -102,6 +102,13 @@ struct NodeType {
 /// EXTERNPROTO that could not be resolved keeps its declared interface as `type` and is
 /// not rendered (`unresolved` is true).
 class Node {
+  // First, so that the fields and the revision share the object's first cache line with
+  // its type (an event cascade reads them in that order; runtime prefetches that line).
+  std::shared_ptr<const NodeType> type_;
+  std::vector<FieldValue> values_;
+  std::uint64_t revision_ = 0;
+  std::uint64_t serial_;
+
  public:
   explicit Node(std::shared_ptr<const NodeType> type);
   /// A copy has the same type, fields and names as `other`, and a serial() of its own.
@@ -194,12 +201,6 @@ class Node {
   const std::string& urlBaseOr(const std::string& inherited) const {
     return urlBase ? *urlBase : inherited;
   }
-
- private:
-  std::shared_ptr<const NodeType> type_;
-  std::vector<FieldValue> values_;
-  std::uint64_t revision_ = 0;
-  std::uint64_t serial_;
 };
 
 /// The key of a cache of per-node data (tessellations, GPU buffers, textures, decoded
