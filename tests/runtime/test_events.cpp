@@ -170,3 +170,33 @@ DEF G Group { children [ DEF I PositionInterpolator { key [ 0 1 ] keyValue [ 0 0
   }
   CHECK_FALSE(reused);
 }
+
+TEST_CASE("runtime: untraced, an unrouted eventOut is counted and a route added later carries",
+          "[runtime]") {
+  // Without a trace hook, an eventOut that never had a route skips its port (the fast path
+  // of State::emit); a route added at run time must still carry the next event.
+  auto scene = std::make_shared<vrml::Scene>(vrml::parseVrml(R"(#VRML V2.0 utf8
+DEF A Transform {}
+DEF B Transform {}
+DEF C Transform {}
+ROUTE B.translation_changed TO C.set_translation
+)",
+                                                             "test.wrl"));
+  runtime::ExecutionModel model(scene, 0.0);
+  vrml::Node& a = *scene->rootNodes[0];
+  vrml::Node& b = *scene->rootNodes[1];
+  vrml::Node& c = *scene->rootNodes[2];
+  const int translation = a.type().findField("translation");
+  const auto sent = model.statistics().eventsSent;
+  model.postEvent(a, translation, vec3(1, 0, 0));
+  model.processEvents();
+  CHECK(model.statistics().eventsSent == sent + 1);  // A's, to nowhere
+  CHECK(b.field("translation")->get<FieldType::SFVec3f>() == glm::vec3(0, 0, 0));
+  REQUIRE(model.addRoute(scene->rootNodes[0], "translation_changed", scene->rootNodes[1],
+                         "set_translation"));
+  model.postEvent(a, translation, vec3(2, 0, 0));
+  model.processEvents();
+  CHECK(b.field("translation")->get<FieldType::SFVec3f>() == glm::vec3(2, 0, 0));
+  CHECK(c.field("translation")->get<FieldType::SFVec3f>() == glm::vec3(2, 0, 0));
+  CHECK(model.statistics().eventsSent == sent + 4);  // A's, then A's, B's and C's
+}
