@@ -478,9 +478,54 @@ float projectedSize(const LodNode& node, const CutView& view) {
   return node.size * view.focalPixels / distance;  // NaN stays NaN
 }
 
+namespace {
+
+/// Whether selectCut refines `node`: not a single splat, not wholly outside the frustum,
+/// and bigger than the threshold on screen (false for a NaN size).
+bool refines(const LodNode& node, const CutView& view) {
+  return (!node.isLeaf() || node.count > 1) && !outsideFrustum(node, view) &&
+         projectedSize(node, view) > view.pixelThreshold;
+}
+
+/// selectCut's cut when the budget does not bind: every node above the threshold refined,
+/// depth first with a stack (no priority queue: the order of refinement cannot change a
+/// cut that refines all it may). False, with `cut` partial, as soon as the cut would pass
+/// `budget`: then the best-first order decides and selectCut starts again.
+bool unboundedCut(const LodTree& tree, const CutView& view, std::size_t budget, LodCut& cut) {
+  std::vector<std::uint32_t> stack{0};
+  std::size_t cost = 1;
+  while (!stack.empty()) {
+    const std::uint32_t i = stack.back();
+    stack.pop_back();
+    const LodNode& node = tree.nodes[i];
+    if (!refines(node, view)) {
+      ++cut.nodes;
+      if (node.gaussian != LodNode::kNone)
+        cut.merged.push_back(node.gaussian);
+      else
+        cut.originals.push_back(tree.leafSplats[node.first]);
+      continue;
+    }
+    cost += static_cast<std::size_t>(node.count) - 1;
+    if (cost > budget) return false;
+    if (node.isLeaf()) {
+      ++cut.nodes;
+      cut.originals.insert(cut.originals.end(), tree.leafSplats.begin() + node.first,
+                           tree.leafSplats.begin() + node.first + node.count);
+    } else {
+      for (std::uint32_t k = node.count; k-- > 0;) stack.push_back(node.first + k);
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
 LodCut selectCut(const LodTree& tree, const CutView& view, std::size_t budget) {
   LodCut cut;
   if (tree.nodes.empty() || budget == 0) return cut;
+  if (unboundedCut(tree, view, budget, cut)) return cut;
+  cut = {};
   struct Entry {
     float error;
     std::uint32_t node;
@@ -500,12 +545,9 @@ LodCut selectCut(const LodTree& tree, const CutView& view, std::size_t budget) {
   };
   const auto consider = [&](std::uint32_t i) {
     const LodNode& node = tree.nodes[i];
-    if ((!node.isLeaf() || node.count > 1) && !outsideFrustum(node, view)) {
-      const float error = projectedSize(node, view);
-      if (error > view.pixelThreshold) {  // false for NaN
-        queue.push({error, i});
-        return;
-      }
+    if (refines(node, view)) {
+      queue.push({projectedSize(node, view), i});
+      return;
     }
     emit(i);
   };

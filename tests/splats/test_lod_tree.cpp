@@ -2,6 +2,7 @@
 // the moment matching, the eigen-decomposition, the tree's invariants and the cut.
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numbers>
 #include <numeric>
@@ -378,6 +379,70 @@ TEST_CASE("a cut never exceeds its budget and always covers every splat once", "
       CHECK(coversOnce(tree, cut, splatsOf));
       previous = cut.size();
     }
+  }
+}
+
+TEST_CASE("a cut the budget does not bind is the same whichever way it is found", "[splats][lod]") {
+  // The depth-first cut (budget not binding) against the best-first one: at a budget of
+  // exactly its size, and at one less, where the best-first order must decide.
+  const GaussianCloud cloud = sceneCloud(20000, 8);
+  const LodTree tree = buildLodTree(cloud, {.branching = 8, .leafSize = 6});
+  const auto splatsOf = splatsOfMerged(tree);
+  const auto sortedCut = [](LodCut c) {
+    std::sort(c.originals.begin(), c.originals.end());
+    std::sort(c.merged.begin(), c.merged.end());
+    return c;
+  };
+  // The reference: every node refined that is not one splat, not wholly outside a frustum
+  // plane and over the threshold on screen, recursively.
+  const auto reference = [&tree](const CutView& view) {
+    LodCut c;
+    const auto outside = [&view](const LodNode& n) {
+      for (int k = 0; k < view.planeCount; ++k) {
+        const glm::vec4& p = view.planes[static_cast<std::size_t>(k)];
+        const glm::vec3 corner(p.x >= 0.0f ? n.boundsMax.x : n.boundsMin.x,
+                               p.y >= 0.0f ? n.boundsMax.y : n.boundsMin.y,
+                               p.z >= 0.0f ? n.boundsMax.z : n.boundsMin.z);
+        if (glm::dot(glm::vec3(p), corner) + p.w < 0.0f) return true;
+      }
+      return false;
+    };
+    std::function<void(std::uint32_t)> visit = [&](std::uint32_t i) {
+      const LodNode& n = tree.nodes[i];
+      if ((n.isLeaf() && n.count <= 1) || outside(n) ||
+          !(projectedSize(n, view) > view.pixelThreshold)) {
+        if (n.gaussian != LodNode::kNone)
+          c.merged.push_back(n.gaussian);
+        else
+          c.originals.push_back(tree.leafSplats[n.first]);
+        return;
+      }
+      for (std::uint32_t k = 0; k < n.count; ++k) {
+        if (n.isLeaf())
+          c.originals.push_back(tree.leafSplats[n.first + k]);
+        else
+          visit(n.first + k);
+      }
+    };
+    visit(0);
+    return c;
+  };
+  for (const double distance : {0.3, 1.0, 4.0, 16.0}) {
+    CAPTURE(distance);
+    const CutView view = viewAt(distance, 1024, glm::radians(60.0f), 0.5f).cut;
+    const LodCut all = sortedCut(selectCut(tree, view, cloud.size()));
+    REQUIRE(all.size() > 1);
+    const LodCut expected = sortedCut(reference(view));
+    CHECK(all.originals == expected.originals);
+    CHECK(all.merged == expected.merged);
+    const LodCut exact = sortedCut(selectCut(tree, view, all.size()));
+    CHECK(exact.originals == all.originals);
+    CHECK(exact.merged == all.merged);
+    CHECK(exact.nodes == all.nodes);
+    const LodCut less = selectCut(tree, view, all.size() - 1);
+    CHECK(less.size() <= all.size() - 1);
+    CHECK(less.size() > 0);
+    CHECK(coversOnce(tree, less, splatsOf));
   }
 }
 

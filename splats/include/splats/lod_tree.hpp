@@ -229,7 +229,9 @@ float projectedSize(const LodNode& node, const CutView& view);
 /// would take the cut past `budget`, so the cut is a best-first prefix: cut.size() <=
 /// budget for every budget >= 1, and a budget of 0 gives an empty cut. With an unbounded
 /// budget and a threshold below every node's projected size, the cut is every original
-/// splat. O(k log k) for a cut of k nodes.
+/// splat. A cut that the budget does not bind is found depth first, in O(k) for k nodes
+/// (the same nodes, in another order); else O(k log k) best first, after a depth-first try
+/// of at most `budget` splats.
 LodCut selectCut(const LodTree& tree, const CutView& view, std::size_t budget);
 
 /// Fills `out` with the Gaussians of `cut`: first the originals (from `cloud`, the cloud the
