@@ -49,6 +49,7 @@ void AcousticOcclusion::setSurfaces(std::vector<AcousticSurface> surfaces) {
 
 float AcousticOcclusion::transmission(const glm::vec3& from, const glm::vec3& to) const {
   float kept = 1.0f;
+  std::vector<float> crossings;  // t of each triangle met between the two points
   for (const AcousticSurface& s : surfaces_) {
     const auto it = meshes_.find(s.geometry);
     if (it == meshes_.end()) continue;
@@ -59,7 +60,7 @@ float AcousticOcclusion::transmission(const glm::vec3& from, const glm::vec3& to
     const glm::vec3 a(toLocal * glm::vec4(from, 1.0f));
     const glm::vec3 d = glm::vec3(toLocal * glm::vec4(to, 1.0f)) - a;
     if (!vrml::lineMeetsBox(a, d, mesh.bounds, 0.0f, 1.0f)) continue;
-    std::vector<float> crossings;  // t of each triangle met between the two points
+    crossings.clear();
     for (std::size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
       const std::uint32_t i0 = mesh.indices[i], i1 = mesh.indices[i + 1], i2 = mesh.indices[i + 2];
       if (std::max({i0, i1, i2}) >= mesh.positions.size()) continue;

@@ -119,12 +119,12 @@ namespace {
 /// how many what the record points to.
 constexpr std::size_t kStateAhead = 8, kDataAhead = 4;
 
-/// Prefetches the two lines of a record that an event reads (NodeState's layout).
 /// Whether eventOut `field` of `ns` may have routes (NodeState::routedFields).
 bool routed(const NodeState& ns, int field) {
   return field >= 32 || (ns.routedFields >> field & 1u) != 0;
 }
 
+/// Prefetches the two lines of a record that an event reads (NodeState's layout).
 [[gnu::always_inline]] inline void prefetchState(const NodeState* ns) {
   __builtin_prefetch(ns);
   __builtin_prefetch(&ns->setFraction);

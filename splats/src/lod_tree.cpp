@@ -487,6 +487,22 @@ bool refines(const LodNode& node, const CutView& view) {
          projectedSize(node, view) > view.pixelThreshold;
 }
 
+/// Adds `node` to `cut` unrefined: its merged Gaussian, or a one-splat leaf's splat.
+void addCoarse(const LodTree& tree, const LodNode& node, LodCut& cut) {
+  ++cut.nodes;
+  if (node.gaussian != LodNode::kNone)
+    cut.merged.push_back(node.gaussian);
+  else
+    cut.originals.push_back(tree.leafSplats[node.first]);
+}
+
+/// Adds a refined leaf's original splats to `cut`.
+void addLeafSplats(const LodTree& tree, const LodNode& leaf, LodCut& cut) {
+  ++cut.nodes;
+  cut.originals.insert(cut.originals.end(), tree.leafSplats.begin() + leaf.first,
+                       tree.leafSplats.begin() + leaf.first + leaf.count);
+}
+
 /// selectCut's cut when the budget does not bind: every node above the threshold refined,
 /// depth first with a stack (no priority queue: the order of refinement cannot change a
 /// cut that refines all it may). False, with `cut` partial, as soon as the cut would pass
@@ -499,19 +515,13 @@ bool unboundedCut(const LodTree& tree, const CutView& view, std::size_t budget, 
     stack.pop_back();
     const LodNode& node = tree.nodes[i];
     if (!refines(node, view)) {
-      ++cut.nodes;
-      if (node.gaussian != LodNode::kNone)
-        cut.merged.push_back(node.gaussian);
-      else
-        cut.originals.push_back(tree.leafSplats[node.first]);
+      addCoarse(tree, node, cut);
       continue;
     }
     cost += static_cast<std::size_t>(node.count) - 1;
     if (cost > budget) return false;
     if (node.isLeaf()) {
-      ++cut.nodes;
-      cut.originals.insert(cut.originals.end(), tree.leafSplats.begin() + node.first,
-                           tree.leafSplats.begin() + node.first + node.count);
+      addLeafSplats(tree, node, cut);
     } else {
       for (std::uint32_t k = node.count; k-- > 0;) stack.push_back(node.first + k);
     }
@@ -535,21 +545,12 @@ LodCut selectCut(const LodTree& tree, const CutView& view, std::size_t budget) {
     }
   };
   std::priority_queue<Entry> queue;
-  const auto emit = [&](std::uint32_t i) {
-    const LodNode& node = tree.nodes[i];
-    ++cut.nodes;
-    if (node.gaussian != LodNode::kNone)
-      cut.merged.push_back(node.gaussian);
-    else
-      cut.originals.push_back(tree.leafSplats[node.first]);
-  };
   const auto consider = [&](std::uint32_t i) {
     const LodNode& node = tree.nodes[i];
-    if (refines(node, view)) {
+    if (refines(node, view))
       queue.push({projectedSize(node, view), i});
-      return;
-    }
-    emit(i);
+    else
+      addCoarse(tree, node, cut);
   };
   std::size_t cost = 1;
   consider(0);
@@ -560,14 +561,12 @@ LodCut selectCut(const LodTree& tree, const CutView& view, std::size_t budget) {
     queue.pop();
     cost += extra;
     if (node.isLeaf()) {
-      ++cut.nodes;
-      cut.originals.insert(cut.originals.end(), tree.leafSplats.begin() + node.first,
-                           tree.leafSplats.begin() + node.first + node.count);
+      addLeafSplats(tree, node, cut);
     } else {
       for (std::uint32_t k = 0; k < node.count; ++k) consider(node.first + k);
     }
   }
-  for (; !queue.empty(); queue.pop()) emit(queue.top().node);
+  for (; !queue.empty(); queue.pop()) addCoarse(tree, tree.nodes[queue.top().node], cut);
   return cut;
 }
 
