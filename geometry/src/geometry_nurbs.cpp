@@ -112,6 +112,78 @@ std::vector<glm::dvec3> nurbsGrid(const Axis& ua, const Axis& va,
   return grid;
 }
 
+/// The unit normals of a surface grid (gu x gv points, u fastest): the cross product of
+/// the central differences along u and v, wrapping around where a row or column closes on
+/// itself (its last point its first), so that a closed surface has no seam. A row or column that
+/// collapses to one point (a pole: the tip of a surface of revolution, the centre of a flat cap)
+/// has no tangent along it; its points take the mean of the next row's (column's) normals, the
+/// surface's normal there, as X_ITE's normals averaged over the faces around a point give it,
+/// instead of one made of a zero tangent. A point whose normal is still undefined gets +z.
+std::vector<glm::vec3> nurbsGridNormals(const std::vector<glm::dvec3>& grid, std::size_t gu,
+                                        std::size_t gv) {
+  double extent = 0.0;
+  for (const glm::dvec3& p : grid) extent = std::max(extent, glm::length(p - grid.front()));
+  // Files write control points to about 6 digits: a pole written as (0, 0.999999, 0) and,
+  // times its weight, (0, 0.707106, 0) is one point 1e-6 apart.
+  const double tiny = 1e-5 * extent;
+  const auto at = [&](std::size_t i, std::size_t j) { return grid[i + j * gu]; };
+  // Across a seam where a row (column) closes on itself, the differences wrap around.
+  const auto neighbours = [](std::size_t k, std::size_t count, bool closed) {
+    if (closed && count > 2 && (k == 0 || k + 1 == count))
+      return std::pair{count - 2, std::size_t{1}};
+    return std::pair{k > 0 ? k - 1 : 0, std::min(k + 1, count - 1)};
+  };
+  std::vector<glm::dvec3> n(grid.size());
+  for (std::size_t j = 0; j < gv; ++j)
+    for (std::size_t i = 0; i < gu; ++i) {
+      const bool rowClosed = glm::length(at(gu - 1, j) - at(0, j)) <= tiny;
+      const bool columnClosed = glm::length(at(i, gv - 1) - at(i, 0)) <= tiny;
+      const auto [ua, ub] = neighbours(i, gu, rowClosed);
+      const auto [va, vb] = neighbours(j, gv, columnClosed);
+      n[i + j * gu] = glm::cross(at(ub, j) - at(ua, j), at(i, vb) - at(i, va));
+    }
+  // Rows whose points coincide (no u tangent), then columns (no v tangent).
+  const auto collapsed = [&](std::size_t count, auto&& point) {
+    for (std::size_t k = 1; k < count; ++k)
+      if (glm::length(point(k) - point(0)) > tiny) return false;
+    return true;
+  };
+  const auto meanOf = [&](std::size_t count, auto&& normal) {
+    glm::dvec3 sum(0.0);
+    for (std::size_t k = 0; k < count; ++k) {
+      const double len = glm::length(normal(k));
+      if (len > 0.0) sum += normal(k) / len;
+    }
+    return sum;
+  };
+  // A closed ring's last point is its first again: counted once.
+  const auto ring = [&](std::size_t count, auto&& point) {
+    return count > 2 && glm::length(point(count - 1) - point(0)) <= tiny ? count - 1 : count;
+  };
+  if (gv > 1)
+    for (std::size_t j = 0; j < gv; ++j) {
+      if (!collapsed(gu, [&](std::size_t i) { return at(i, j); })) continue;
+      const std::size_t next = j + 1 < gv ? j + 1 : j - 1;
+      const std::size_t count = ring(gu, [&](std::size_t i) { return at(i, next); });
+      const glm::dvec3 mean = meanOf(count, [&](std::size_t i) { return n[i + next * gu]; });
+      for (std::size_t i = 0; i < gu; ++i) n[i + j * gu] = mean;
+    }
+  if (gu > 1)
+    for (std::size_t i = 0; i < gu; ++i) {
+      if (!collapsed(gv, [&](std::size_t j) { return at(i, j); })) continue;
+      const std::size_t next = i + 1 < gu ? i + 1 : i - 1;
+      const std::size_t count = ring(gv, [&](std::size_t j) { return at(next, j); });
+      const glm::dvec3 mean = meanOf(count, [&](std::size_t j) { return n[next + j * gu]; });
+      for (std::size_t j = 0; j < gv; ++j) n[i + j * gu] = mean;
+    }
+  std::vector<glm::vec3> unit(grid.size());
+  for (std::size_t k = 0; k < n.size(); ++k) {
+    const double len = glm::length(n[k]);
+    unit[k] = len > 0.0 ? glm::vec3(n[k] / len) : glm::vec3(0.0f, 0.0f, 1.0f);
+  }
+  return unit;
+}
+
 /// A NurbsTextureCoordinate's (27.4.10) texture coordinates at su + 1 by sv + 1 evenly
 /// spaced parameters of its own surface (X_ITE samples it so: the host's parameter range
 /// mapped onto the texture surface's), as (s, t, 0), u fastest; empty (a warning) when its
@@ -183,6 +255,7 @@ std::vector<glm::dvec3> nurbsCurvePoints(const Node& node, const std::vector<glm
   // The weights as nurbsWeights() reads them (it reports their problem after the knots').
   ProblemLog quiet(node, nullptr);
   std::vector<double> w = nurbsWeights(node, points.size(), quiet);
+  nurbs::fromHomogeneous(points, w);
   std::vector<double> knots = nurbs::doubles(node, "knot");
   const int order = node.get<FieldType::SFInt32>("order", 3);
   closeCurve(node, order, points, w, knots);
@@ -324,6 +397,7 @@ Mesh tessellateNurbsSurface(const Node& node, ProblemLog& log, float scale) {
   }
   points.resize(count);
   std::vector<double> w = nurbsWeights(node, count, log);
+  nurbs::fromHomogeneous(points, w);
   // uClosed / vClosed (a NurbsPatchSurface's): periodic in that direction, as X_ITE.
   int eu = nu, ev = nv;
   const int uOrder = node.get<FieldType::SFInt32>("uOrder", 3);
@@ -379,19 +453,14 @@ Mesh tessellateNurbsSurface(const Node& node, ProblemLog& log, float scale) {
                     glm::mix(at(x0, y0 + 1), at(x0 + 1, y0 + 1), fx), fy);
   };
 
+  const std::vector<glm::vec3> normals = nurbsGridNormals(grid, gu, gv);
   MeshBuilder b(Primitive::triangles, true, false, true);
   b.reserve(gu * gv, 6 * static_cast<std::size_t>(su) * static_cast<std::size_t>(sv));
   for (std::size_t j = 0; j < gv; ++j)
     for (std::size_t i = 0; i < gu; ++i) {
-      const glm::dvec3 du =
-          grid[std::min(i + 1, gu - 1) + j * gu] - grid[(i > 0 ? i - 1 : 0) + j * gu];
-      const glm::dvec3 dv =
-          grid[i + std::min(j + 1, gv - 1) * gu] - grid[i + (j > 0 ? j - 1 : 0) * gu];
-      glm::dvec3 n = glm::cross(du, dv);
-      const double len = glm::length(n);
       Vertex v;
       v.position = glm::vec3(grid[i + j * gu]);
-      v.normal = len > 0.0 ? glm::vec3(n / len) : glm::vec3(0.0f, 0.0f, 1.0f);
+      v.normal = normals[i + j * gu];
       v.texCoord = texAt(static_cast<double>(i) / su, static_cast<double>(j) / sv);
       b.push(v);
     }

@@ -199,6 +199,11 @@ std::optional<std::vector<double>> strictWeights(const std::vector<double>& give
   return given;
 }
 
+void fromHomogeneous(std::vector<glm::dvec3>& points, const std::vector<double>& weights) {
+  const std::size_t n = std::min(points.size(), weights.size());
+  for (std::size_t i = 0; i < n; ++i) points[i] /= weights[i];
+}
+
 CurveSample evaluateCurve(const Axis& axis, const std::vector<glm::dvec3>& points,
                           const std::vector<double>& weights, double u) {
   u = std::clamp(u, axis.start(), axis.end());

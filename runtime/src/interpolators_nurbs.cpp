@@ -41,6 +41,7 @@ std::optional<Curve> curveOf(const vrml::Node& node, std::string& problem) {
   if (!weights) return std::nullopt;
   c.axis = std::move(*axis);
   c.weights = std::move(*weights);
+  vrml::nurbs::fromHomogeneous(c.points, c.weights);
   // No knots: the uniform clamped ones scaled to [0, 1], so that fractions 0 to 1 run the
   // whole curve (castle-model-viewer's default; the curve is the same).
   if (defaultKnots)
@@ -119,7 +120,7 @@ std::optional<vrml::Rotation> nurbsOrientationAt(const vrml::Node& node, float f
 std::optional<NurbsSurfacePoint> nurbsSurfaceAt(const vrml::Node& node, glm::vec2 fraction,
                                                 std::string& problem) {
   using vrml::FieldType;
-  const std::vector<glm::dvec3> points = vrml::nurbs::controlPoints(node);
+  std::vector<glm::dvec3> points = vrml::nurbs::controlPoints(node);
   const int nu = node.get<FieldType::SFInt32>("uDimension", 0);
   const int nv = node.get<FieldType::SFInt32>("vDimension", 0);
   if (nu < 1 || nv < 1 || static_cast<double>(nu) * nv != static_cast<double>(points.size())) {
@@ -142,6 +143,7 @@ std::optional<NurbsSurfacePoint> nurbsSurfaceAt(const vrml::Node& node, glm::vec
   const auto w =
       vrml::nurbs::strictWeights(vrml::nurbs::doubles(node, "weight"), points.size(), problem);
   if (!w) return std::nullopt;
+  vrml::nurbs::fromHomogeneous(points, *w);
   const double fu = ua->at(fraction.x), fv = va->at(fraction.y);
   const auto s = vrml::nurbs::evaluateSurface(*ua, *va, points, *w, fu, fv);
   glm::dvec3 n = glm::cross(s.du, s.dv);

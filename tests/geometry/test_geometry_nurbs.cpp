@@ -47,14 +47,54 @@ TEST_CASE("NurbsCurve of order 2 is the polyline of its control points", "[vrml]
 
 TEST_CASE("NurbsCurve: a rational quadratic with weight cos 45 degrees is a circle's quarter",
           "[vrml][nurbs]") {
+  // Control points are homogeneous: the corner (1, 1, 0) of weight cos 45 degrees is written
+  // (0.70710678, 0.70710678, 0), as castle's and X_ITE's test worlds write it.
   Diagnostics diag;
   const Mesh m = nurbsMesh(
       "NurbsCurve { order 3 tessellation 16 weight [ 1 0.70710678 1 ] "
-      "controlPoint Coordinate { point [ 1 0 0, 1 1 0, 0 1 0 ] } }",
+      "controlPoint Coordinate { point [ 1 0 0, 0.70710678 0.70710678 0, 0 1 0 ] } }",
       diag);
   CHECK(diag.items.empty());
   REQUIRE(m.positions.size() == 17);
   for (const glm::vec3& p : m.positions) CHECK(glm::length(p) == Approx(1.0f).epsilon(1e-5));
+}
+
+TEST_CASE("NurbsCurve: control points are homogeneous coordinates, divided by their weight",
+          "[vrml][nurbs]") {
+  // castle's nurbs_weights.x3dv: a point of weight 1/4 written as a quarter of itself
+  // draws the curve that the point itself draws with weight 1 ... and the same point
+  // written whole is pulled four times further out. Quadratic, u = 0.5: the Bernstein
+  // values 0.25 0.5 0.25; (0.25 x 0 + 0.5 x (0, 2) + 0.25 x (2, 0)) / (0.25 + 0.5 w + 0.25).
+  Diagnostics diag;
+  const Mesh m = nurbsMesh("NurbsCurve { order 3 tessellation 2 weight [ 1 0.25 1 ] "
+                           "controlPoint Coordinate { point [ 0 0 0, 0 2 0, 2 0 0 ] } }",
+                           diag);
+  CHECK(diag.items.empty());
+  REQUIRE(m.positions.size() == 3);
+  CHECK(m.positions[1].x == Approx(0.5f / 0.625f));
+  CHECK(m.positions[1].y == Approx(1.0f / 0.625f));
+}
+
+TEST_CASE("NurbsPatchSurface: a pole's points take the surface's normal there, not a star",
+          "[vrml][nurbs]") {
+  // A cone: its first row of control points is the apex (0, 1, 0), its second a square
+  // ring around the y axis. Along u the apex row has no tangent; its normals are the mean
+  // of the next row's, the cone's axis.
+  Diagnostics diag;
+  const Mesh m = nurbsMesh(
+      "NurbsPatchSurface { uDimension 5 vDimension 2 uOrder 2 vOrder 2 uTessellation 8 "
+      "vTessellation 2 solid FALSE controlPoint Coordinate { point [ "
+      "0 1 0, 0 1 0, 0 1 0, 0 1 0, 0 1 0, 1 0 0, 0 0 -1, -1 0 0, 0 0 1, 1 0 0 ] } }",
+      diag);
+  CHECK(diag.items.empty());
+  REQUIRE(m.positions.size() == 27);  // 9 x 3
+  for (std::size_t i = 0; i < 9; ++i) {
+    INFO("apex point " << i);
+    CHECK(std::abs(m.normals[i].y) == Approx(1.0f).margin(1e-5));
+    CHECK(m.normals[i] == m.normals[0]);
+  }
+  // The ring's own normals lean out from the axis.
+  CHECK(std::abs(m.normals[18].y) < 0.9f);
 }
 
 TEST_CASE("NurbsPatchSurface: a bilinear patch, its grid, normals and parameters",

@@ -2,7 +2,8 @@
 // (27.4.6), NurbsOrientationInterpolator (27.4.5) and NurbsSurfaceInterpolator (27.4.9).
 // Expected values are worked out by hand in the comments: an order-2 curve is the polyline
 // of its control points, the rational quadratic (1 0 0, 1 1 0, 0 1 0) with weights
-// (1, cos 45 degrees, 1) is the unit circle's quarter in the XY plane, the bilinear patch
+// (1, cos 45 degrees, 1), its corner written times its weight (control points are
+// homogeneous, geometry/nurbs.hpp), is the unit circle's quarter in the XY plane, the bilinear patch
 // of (0 0 0, 1 0 0, 0 1 0, 1 1 1) is S(u, v) = (u, v, uv).
 #include "runtime/interpolators_nurbs.hpp"
 #include "runtime_fixture.hpp"
@@ -62,7 +63,8 @@ void nurbsInterpCheck(const glm::vec3& got, const glm::vec3& want) {
 constexpr float kNurbsInterpHalfRoot2 = 0.70710678f;
 
 const char* const kNurbsInterpQuarterCircle =
-    "order 3 weight [ 1 0.70710678 1 ] controlPoint Coordinate { point [ 1 0 0, 1 1 0, 0 1 0 ] }";
+    "order 3 weight [ 1 0.70710678 1 ] controlPoint Coordinate { point [ 1 0 0, "
+    "0.70710678 0.70710678 0, 0 1 0 ] }";  // homogeneous: the corner (1, 1, 0) times its weight
 
 }  // namespace
 

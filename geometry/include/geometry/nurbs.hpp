@@ -76,6 +76,16 @@ std::vector<double> doubles(const Node& node, FieldName name);
 std::optional<std::vector<double>> strictWeights(const std::vector<double>& given,
                                                  std::size_t count, std::string& problem);
 
+/// X3D's control points are homogeneous coordinates: a point with weight w is written
+/// (w x, w y, w z), its weight in the weight field, as castle-model-viewer documents it
+/// ("NURBS control points are expressed in homogeneous coordinates"; its
+/// nurbs_weights.x3dv divides a point by its weight of 1/4 "to make weight 1/4 behave
+/// intuitive") and X_ITE evaluates it (the B-spline of (x, y, z, w), then x / w). Divides
+/// each of `points` by its weight (`weights` has one per point, all > 0), which makes them
+/// the Euclidean points that evaluateCurve and evaluateSurface weight (The NURBS Book,
+/// equation 4.2). The same curve: sum N w (P / w) / sum N w = sum N P / sum N w.
+void fromHomogeneous(std::vector<glm::dvec3>& points, const std::vector<double>& weights);
+
 /// A point of a curve and its first derivative d/du (in the control points' units per unit
 /// of u).
 struct CurveSample {
