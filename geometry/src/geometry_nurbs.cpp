@@ -142,12 +142,8 @@ std::vector<glm::vec3> nurbsGridNormals(const std::vector<glm::dvec3>& grid, std
       const auto [va, vb] = neighbours(j, gv, columnClosed);
       n[i + j * gu] = glm::cross(at(ub, j) - at(ua, j), at(i, vb) - at(i, va));
     }
-  // Rows whose points coincide (no u tangent), then columns (no v tangent).
-  const auto collapsed = [&](std::size_t count, auto&& point) {
-    for (std::size_t k = 1; k < count; ++k)
-      if (glm::length(point(k) - point(0)) > tiny) return false;
-    return true;
-  };
+  // Rows whose points coincide (no u tangent), then columns (no v tangent): each takes the
+  // mean normal of the nearest row (column) that does not collapse.
   const auto meanOf = [&](std::size_t count, auto&& normal) {
     glm::dvec3 sum(0.0);
     for (std::size_t k = 0; k < count; ++k) {
@@ -156,26 +152,34 @@ std::vector<glm::vec3> nurbsGridNormals(const std::vector<glm::dvec3>& grid, std
     }
     return sum;
   };
-  // A closed ring's last point is its first again: counted once.
-  const auto ring = [&](std::size_t count, auto&& point) {
-    return count > 2 && glm::length(point(count - 1) - point(0)) <= tiny ? count - 1 : count;
+  // A line is a row (`lines` = gv of them, each `length` = gu long) or a column; point k of
+  // line l is grid[index(l, k)].
+  const auto fillPoles = [&](std::size_t lines, std::size_t length, auto&& index) {
+    if (lines < 2) return;
+    std::vector<bool> pole(lines, true);
+    for (std::size_t l = 0; l < lines; ++l)
+      for (std::size_t k = 1; k < length && pole[l]; ++k)
+        pole[l] = glm::length(grid[index(l, k)] - grid[index(l, 0)]) <= tiny;
+    for (std::size_t l = 0; l < lines; ++l) {
+      if (!pole[l]) continue;
+      std::size_t next = lines;
+      for (std::size_t d = 1; d < lines && next == lines; ++d) {
+        if (l + d < lines && !pole[l + d])
+          next = l + d;
+        else if (l >= d && !pole[l - d])
+          next = l - d;
+      }
+      if (next == lines) return;  // everything collapses: no normal to take
+      // A closed ring's last point is its first again: counted once.
+      const bool ring =
+          length > 2 && glm::length(grid[index(next, length - 1)] - grid[index(next, 0)]) <= tiny;
+      const glm::dvec3 mean =
+          meanOf(ring ? length - 1 : length, [&](std::size_t k) { return n[index(next, k)]; });
+      for (std::size_t k = 0; k < length; ++k) n[index(l, k)] = mean;
+    }
   };
-  if (gv > 1)
-    for (std::size_t j = 0; j < gv; ++j) {
-      if (!collapsed(gu, [&](std::size_t i) { return at(i, j); })) continue;
-      const std::size_t next = j + 1 < gv ? j + 1 : j - 1;
-      const std::size_t count = ring(gu, [&](std::size_t i) { return at(i, next); });
-      const glm::dvec3 mean = meanOf(count, [&](std::size_t i) { return n[i + next * gu]; });
-      for (std::size_t i = 0; i < gu; ++i) n[i + j * gu] = mean;
-    }
-  if (gu > 1)
-    for (std::size_t i = 0; i < gu; ++i) {
-      if (!collapsed(gv, [&](std::size_t j) { return at(i, j); })) continue;
-      const std::size_t next = i + 1 < gu ? i + 1 : i - 1;
-      const std::size_t count = ring(gv, [&](std::size_t j) { return at(next, j); });
-      const glm::dvec3 mean = meanOf(count, [&](std::size_t j) { return n[next + j * gu]; });
-      for (std::size_t j = 0; j < gv; ++j) n[i + j * gu] = mean;
-    }
+  fillPoles(gv, gu, [&](std::size_t j, std::size_t i) { return i + j * gu; });
+  fillPoles(gu, gv, [&](std::size_t i, std::size_t j) { return i + j * gu; });
   std::vector<glm::vec3> unit(grid.size());
   for (std::size_t k = 0; k < n.size(); ++k) {
     const double len = glm::length(n[k]);

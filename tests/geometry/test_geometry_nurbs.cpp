@@ -66,9 +66,10 @@ TEST_CASE("NurbsCurve: control points are homogeneous coordinates, divided by th
   // written whole is pulled four times further out. Quadratic, u = 0.5: the Bernstein
   // values 0.25 0.5 0.25; (0.25 x 0 + 0.5 x (0, 2) + 0.25 x (2, 0)) / (0.25 + 0.5 w + 0.25).
   Diagnostics diag;
-  const Mesh m = nurbsMesh("NurbsCurve { order 3 tessellation 2 weight [ 1 0.25 1 ] "
-                           "controlPoint Coordinate { point [ 0 0 0, 0 2 0, 2 0 0 ] } }",
-                           diag);
+  const Mesh m = nurbsMesh(
+      "NurbsCurve { order 3 tessellation 2 weight [ 1 0.25 1 ] "
+      "controlPoint Coordinate { point [ 0 0 0, 0 2 0, 2 0 0 ] } }",
+      diag);
   CHECK(diag.items.empty());
   REQUIRE(m.positions.size() == 3);
   CHECK(m.positions[1].x == Approx(0.5f / 0.625f));
@@ -95,6 +96,20 @@ TEST_CASE("NurbsPatchSurface: a pole's points take the surface's normal there, n
   }
   // The ring's own normals lean out from the axis.
   CHECK(std::abs(m.normals[18].y) < 0.9f);
+
+  // The apex twice: the grid's first three rows (v = 0, 0.25, 0.5) collapse; each takes the
+  // normals of the nearest row that does not.
+  const Mesh twice = nurbsMesh(
+      "NurbsPatchSurface { uDimension 5 vDimension 3 uOrder 2 vOrder 2 uTessellation 8 "
+      "vTessellation 4 solid FALSE controlPoint Coordinate { point [ "
+      "0 1 0, 0 1 0, 0 1 0, 0 1 0, 0 1 0, 0 1 0, 0 1 0, 0 1 0, 0 1 0, 0 1 0, "
+      "1 0 0, 0 0 -1, -1 0 0, 0 0 1, 1 0 0 ] } }",
+      diag);
+  REQUIRE(twice.positions.size() == 45);  // 9 x 5
+  for (std::size_t i = 0; i < 27; ++i) {
+    INFO("apex point " << i);
+    CHECK(std::abs(twice.normals[i].y) == Approx(1.0f).margin(1e-5));
+  }
 }
 
 TEST_CASE("NurbsPatchSurface: a bilinear patch, its grid, normals and parameters",
