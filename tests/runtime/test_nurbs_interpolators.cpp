@@ -3,8 +3,8 @@
 // Expected values are worked out by hand in the comments: an order-2 curve is the polyline
 // of its control points, the rational quadratic (1 0 0, 1 1 0, 0 1 0) with weights
 // (1, cos 45 degrees, 1), its corner written times its weight (control points are
-// homogeneous, geometry/nurbs.hpp), is the unit circle's quarter in the XY plane, the bilinear patch
-// of (0 0 0, 1 0 0, 0 1 0, 1 1 1) is S(u, v) = (u, v, uv).
+// homogeneous, geometry/nurbs.hpp), is the unit circle's quarter in the XY plane, the bilinear
+// patch of (0 0 0, 1 0 0, 0 1 0, 1 1 1) is S(u, v) = (u, v, uv).
 #include "runtime/interpolators_nurbs.hpp"
 #include "runtime_fixture.hpp"
 #include "test_support.hpp"
