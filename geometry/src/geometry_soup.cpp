@@ -38,7 +38,9 @@ PolygonSoup polygonSoupOf(const Node& node, std::span<const glm::vec3> points) {
   soup.ccw = node.get<FieldType::SFBool>("ccw", true);
   soup.convex = node.get<FieldType::SFBool>("convex", true);
   soup.solid = node.get<FieldType::SFBool>("solid", true);
-  soup.creaseAngle = node.get<FieldType::SFFloat>("creaseAngle", 0.0f);
+  // SFFloat, but SFDouble in GeoElevationGrid (X3D 4.0 clause 25.4.3).
+  soup.creaseAngle = node.get<FieldType::SFFloat>(
+      "creaseAngle", static_cast<float>(node.get<FieldType::SFDouble>("creaseAngle", 0.0)));
   soup.carryPoints = hasVertexAttributes(node);
   return soup;
 }

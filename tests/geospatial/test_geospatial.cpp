@@ -177,3 +177,38 @@ Shape { geometry DEF G GeoElevationGrid { geoSystem [ "GD" "XX" ] xDimension 2 z
   REQUIRE(diag.items.size() == 1);
   CHECK(diag.items[0].message.find("'XX'") != std::string::npos);
 }
+
+TEST_CASE("geospatial: a GeoElevationGrid's creaseAngle (an SFDouble) smooths its normals",
+          "[geospatial]") {
+  // A ridge along the grid's middle column: faceted, the two slopes' corners at the ridge
+  // keep their own slopes' normals; at creaseAngle 3.14 they share one, straight up.
+  const auto ridge = [](const char* crease) {
+    return std::string(R"(#X3D V4.0 utf8
+PROFILE Full
+Shape { geometry DEF G GeoElevationGrid {
+  geoOrigin GeoOrigin { geoCoords 45 -80 0 rotateYUp TRUE }
+  geoGridOrigin 45 -80 0 xDimension 3 zDimension 2 xSpacing 0.01 zSpacing 0.01
+  height [ 0 500 0, 0 500 0 ] )") +
+           crease + " } }\n";
+  };
+  const auto ridgeNormals = [](const vrml::Mesh& mesh) {
+    std::vector<glm::vec3> out;
+    const float top = mesh.bounds.max.y;
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i)
+      if (mesh.positions[i].y > top - 1.0f) out.push_back(mesh.normals[i]);
+    return out;
+  };
+  const vrml::Scene faceted = vrml::parseVrml(ridge(""), "faceted.x3dv");
+  const vrml::Scene smooth = vrml::parseVrml(ridge("creaseAngle 3.14"), "smooth.x3dv");
+  REQUIRE(faceted.diagnostics.items.empty());
+  REQUIRE(smooth.diagnostics.items.empty());
+  const auto sharp = ridgeNormals(vrml::tessellate(named(faceted, "G")));
+  const auto round = ridgeNormals(vrml::tessellate(named(smooth, "G")));
+  REQUIRE(sharp.size() >= 4);
+  REQUIRE(round.size() >= 2);  // smooth corners share their points
+  for (const glm::vec3& n : sharp) CHECK(std::abs(n.x) > 0.3f);  // a slope's normal
+  for (const glm::vec3& n : round) {
+    CHECK(std::abs(n.x) < 0.05f);  // the ridge's: up
+    CHECK(n.y > 0.99f);
+  }
+}
