@@ -268,18 +268,23 @@ Mesh MeshBuilder::finish(bool solid) {
   return m;
 }
 
-// X3D 4.0 clause 24.4.2: a FogCoordinate's depth i belongs to coordinate point i. Each
-// vertex takes the depth of the first point at its exact position (the tessellators copy
-// positions from the points; a vertex they made, such as a NURBS sample, takes 0).
+// X3D 4.0 clause 24.4.2: a FogCoordinate's depth i belongs to coordinate point i (an
+// ElevationGrid's grid point i). Each vertex takes the depth of the first point at its
+// exact position (the tessellators copy positions from the points; a vertex they made,
+// such as a NURBS sample, takes 0).
 void assignFogDepths(const Node& geometry, Mesh& m) {
   const NodePtr& fog = geometry.sfnode("fogCoord");
   if (!fog || fog->unresolved || fog->typeId() != NodeTypeId::FogCoordinate || m.positions.empty())
     return;
   const std::vector<float>& depth = fieldOr<FieldType::MFFloat>(*fog, "depth");
+  if (depth.empty()) return;
   const NodePtr& coord = geometry.sfnode("coord");
-  if (depth.empty() || !coord || coord->unresolved) return;
   std::vector<glm::vec3> points;
-  if (coord->typeId() == NodeTypeId::CoordinateDouble) {
+  if (geometry.typeId() == NodeTypeId::ElevationGrid) {
+    points = elevationGridPoints(geometry, depth.size());
+  } else if (!coord || coord->unresolved) {
+    return;
+  } else if (coord->typeId() == NodeTypeId::CoordinateDouble) {
     const std::vector<glm::dvec3>& d = fieldOr<FieldType::MFVec3d>(*coord, "point");
     points.assign(d.begin(), d.end());
   } else {

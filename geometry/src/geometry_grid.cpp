@@ -34,6 +34,28 @@ bool positiveSpacing(float v, const char* name, ProblemLog& log) {
 
 }  // namespace
 
+glm::vec3 elevationGridPoint(double xSpacing, double zSpacing, std::size_t i, std::size_t j,
+                             double height) {
+  return {static_cast<float>(xSpacing * static_cast<double>(i)), static_cast<float>(height),
+          static_cast<float>(zSpacing * static_cast<double>(j))};
+}
+
+std::vector<glm::vec3> elevationGridPoints(const Node& node, std::size_t count) {
+  const std::int32_t xDim = node.get<FieldType::SFInt32>("xDimension", 0);
+  const std::int32_t zDim = node.get<FieldType::SFInt32>("zDimension", 0);
+  if (xDim < 1 || zDim < 1) return {};
+  const double xSpacing = node.get<FieldType::SFFloat>("xSpacing", 1.0f);
+  const double zSpacing = node.get<FieldType::SFFloat>("zSpacing", 1.0f);
+  const auto& heights = fieldOr<FieldType::MFFloat>(node, "height");
+  const auto nx = static_cast<std::size_t>(xDim);
+  count = std::min(count, nx * static_cast<std::size_t>(zDim));
+  std::vector<glm::vec3> points(count);
+  for (std::size_t k = 0; k < count; ++k)
+    points[k] = elevationGridPoint(xSpacing, zSpacing, k % nx, k / nx,
+                                   k < heights.size() ? double{heights[k]} : 0.0);
+  return points;
+}
+
 Mesh tessellateElevationGrid(const Node& node, ProblemLog& log) {
   // X3D's GeoElevationGrid (clause 25.4.3): the same grid in geo coordinates, its spacings
   // and heights doubles, each point converted to local coordinates (vrml/geo_nodes.hpp).
@@ -98,9 +120,7 @@ Mesh tessellateElevationGrid(const Node& node, ProblemLog& log) {
   } else {
     for (std::size_t j = 0; j < nz; ++j)
       for (std::size_t i = 0; i < nx; ++i)
-        points[i + j * nx] = {static_cast<float>(xSpacing * static_cast<double>(i)),
-                              static_cast<float>(height(i + j * nx)),
-                              static_cast<float>(zSpacing * static_cast<double>(j))};
+        points[i + j * nx] = elevationGridPoint(xSpacing, zSpacing, i, j, height(i + j * nx));
   }
 
   PolygonSoup soup = polygonSoupOf(node, points);
@@ -134,12 +154,17 @@ Mesh tessellateElevationGrid(const Node& node, ProblemLog& log) {
       const std::size_t* ci = geo ? geoI : plainI;
       const std::size_t* cj = geo ? geoJ : plainJ;
       const auto id = [&](int c) { return static_cast<std::uint32_t>(ci[c] + cj[c] * nx); };
-      if (!addFace(soup, {id(0), id(1), id(2), id(3)})) {
+      // Two triangles across the diagonal from (i, j) to (i + 1, j + 1), as X_ITE splits
+      // the cell: a cell whose four heights are not in one plane is two facets.
+      if (!finite(points[id(0)]) || !finite(points[id(1)]) || !finite(points[id(2)]) ||
+          !finite(points[id(3)])) {
         skipped = true;
         continue;
       }
+      addFace(soup, {id(0), id(1), id(2)});
+      addFace(soup, {id(0), id(2), id(3)});
       const std::size_t q = i + j * (nx - 1);
-      for (int c = 0; c < 4; ++c) {
+      for (int c : {0, 1, 2, 0, 2, 3}) {
         const std::size_t v = id(c);
         if (haveColor) {
           const std::size_t k = colorPerVertex ? v : q;

@@ -291,6 +291,13 @@ Mesh tessellateIndexedFaceSet(const Node& node, ProblemLog& log);
 Mesh tessellateIndexedLineSet(const Node& node, ProblemLog& log);
 Mesh tessellatePointSet(const Node& node, ProblemLog& log);
 Mesh tessellateElevationGrid(const Node& node, ProblemLog& log);
+/// Point (i, j) of a plain ElevationGrid (VRML97 6.18; X3D 4.0 13.3.4): (xSpacing i,
+/// height, zSpacing j), rounded to float as the tessellator places it.
+glm::vec3 elevationGridPoint(double xSpacing, double zSpacing, std::size_t i, std::size_t j,
+                             double height);
+/// The first `count` points of a plain ElevationGrid (i fastest; a missing height is 0),
+/// at most xDimension x zDimension of them; empty when a dimension is < 1.
+std::vector<glm::vec3> elevationGridPoints(const Node& node, std::size_t count);
 Mesh tessellateExtrusion(const Node& node, ProblemLog& log);
 
 /// What an Extrusion is made of (clause 6.19's fields).

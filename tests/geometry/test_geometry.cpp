@@ -617,7 +617,28 @@ TEST_CASE("ElevationGrid: a ridge, colours per quad, creaseAngle", "[geometry]")
           (sharp.normals[i].x < 0 ? glm::vec4(1, 0, 0, 1) : glm::vec4(0, 0, 1, 1)));
   const Mesh smooth = grid("2");
   checkMesh(smooth);
-  CHECK(distinct(smooth.normals) == 3);  // the ridge vertices get (0, 1, 0)
+  for (std::size_t i = 0; i < smooth.positions.size(); ++i) {
+    const glm::vec3 n = smooth.normals[i];
+    if (smooth.positions[i].x == 1.0f) {  // the ridge vertices get (0, 1, 0)
+      CHECK(n.x == Approx(0.0f).margin(1e-5));
+      CHECK(n.y == Approx(1.0f).margin(1e-5));
+    } else {  // the slopes keep their own
+      CHECK(std::abs(n.x) == Approx(std::sqrt(0.5f)).margin(1e-5));
+    }
+  }
+}
+
+TEST_CASE("ElevationGrid: a cell whose heights are not in one plane is two facets",
+          "[geometry]") {
+  // Split across the diagonal from (0, 0) to (1, 1), as X_ITE splits it: the corner
+  // raised at (1, 0) tilts one triangle only.
+  const Mesh m = mesh("ElevationGrid { xDimension 2 zDimension 2 height [0 1 0 0] }");
+  checkMesh(m);
+  CHECK(m.triangleCount() == 2);
+  REQUIRE(distinct(m.normals) == 2);
+  bool flat = false;
+  for (const glm::vec3& n : m.normals) flat = flat || n == glm::vec3(0.0f, 1.0f, 0.0f);
+  CHECK(flat);
 }
 
 TEST_CASE("ElevationGrid: dimensions larger than the height array", "[geometry]") {
