@@ -70,7 +70,6 @@ void LineFillStyle::setUniforms(const SurfaceUniforms& u, vrml::Primitive primit
   const bool lines = primitive == vrml::Primitive::lines;
   const bool polygons = primitive == vrml::Primitive::triangles;
   glUniform1i(u.lineType, lines ? lineType : 1);
-  glUniform1f(u.lineWidth, lines ? lineWidth : 1.0f);
   glUniform1i(u.hatchStyle, polygons ? hatchStyle : 0);
   glUniform1i(u.filled, polygons && !filled ? 0 : 1);
   if (polygons && hatchStyle != 0)

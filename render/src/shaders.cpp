@@ -282,20 +282,22 @@ uniform vec4 u_fogPlane;
 out vec4 fragColor;
 
 // X3D LineProperties and FillProperties (clauses 12.4.6, 12.4.3; line_fill_properties.hpp):
-// dash patterns along each segment from its provoking vertex, in pixels scaled by the line
-// width, and hatch lines every 8 pixels of the window in hatchColor over the fill.
+// dash patterns along each segment from its provoking vertex, in points (4/3 pixel), and
+// hatch lines every 8 pixels of the window in hatchColor over the fill.
 noperspective in vec2 v_ndc;
 flat in vec2 v_lineStart;
 uniform vec2 u_viewportSize;  // pixels
-uniform float u_lineWidth;    // pixels
 uniform vec3 u_hatchColor;
 
 bool linePatternOn() {
-  float d = length((v_ndc - v_lineStart) * 0.5 * u_viewportSize) / max(u_lineWidth, 1.0);
-  if (LINE_TYPE == 2) return mod(d, 12.0) < 8.0;  // dashed
-  if (LINE_TYPE == 3) return mod(d, 4.0) < 2.0;   // dotted
-  float p = mod(d, LINE_TYPE == 4 ? 18.0 : 24.0);  // dash-dot, dash-dot-dot
-  return p < 8.0 || (p >= 11.0 && p < 13.0) || (LINE_TYPE == 5 && p >= 16.0 && p < 18.0);
+  // X_ITE 15's patterns (its assets/linetype/linetypes.png), one step a typographic point
+  // (4/3 pixel at 96 dpi) whatever the line's width.
+  float d = length((v_ndc - v_lineStart) * 0.5 * u_viewportSize) * 0.75;
+  if (LINE_TYPE == 3) return mod(d, 4.0) < 2.0;  // dotted: 2 on, 2 off
+  float p = mod(d, 16.0);
+  if (LINE_TYPE == 2) return p < 9.0;                              // dashed: 9 on, 7 off
+  if (LINE_TYPE == 4) return p < 8.0 || (p >= 11.0 && p < 13.0);  // dash-dot
+  return p < 6.0 || (p >= 8.0 && p < 10.0) || (p >= 12.0 && p < 14.0);  // dash-dot-dot
 }
 
 bool hatchOn(vec2 pixel) {

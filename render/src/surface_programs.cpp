@@ -49,7 +49,6 @@ void SurfaceUniforms::find(GLuint p) {
   pointScale = uniform(p, "u_pointScale");
   pointSizeRange = uniform(p, "u_pointSizeRange");
   pointAttenuation = uniform(p, "u_pointAttenuation");
-  lineWidth = uniform(p, "u_lineWidth");
   hatchStyle = uniform(p, "u_hatchStyle");
   filled = uniform(p, "u_filled");
   hatchColor = uniform(p, "u_hatchColor");

@@ -49,8 +49,8 @@ struct SurfaceUniforms {
   GLint texGen, texGenParameter, eyeToWorld;  // TextureCoordinateGenerator
   GLint cubeMap, cubeTexture;                 // a ComposedCubeMapTexture on unit 6
   GLint texture3DOn, texture3D, textureMatrix3D, texBoundsMin, texBoundsSize;  // unit 7
-  GLint lineType, lineWidth, hatchStyle, filled, hatchColor, viewportSize;  // line_fill_properties
-  GLint pointScale, pointSizeRange, pointAttenuation;                       // PointProperties
+  GLint lineType, hatchStyle, filled, hatchColor, viewportSize;  // line_fill_properties
+  GLint pointScale, pointSizeRange, pointAttenuation;            // PointProperties
   GLint separateBack, backDiffuseColor, backAmbientIntensity, backSpecularColor, backEmissiveColor,
       backShininess, backTransparency;
   ProjectorUniformLocations projectors;  // X3D TextureProjectors (texture_projectors.hpp)
