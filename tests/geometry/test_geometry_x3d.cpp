@@ -6,6 +6,7 @@
 
 #include "encodings/parser.hpp"
 #include "geometry/geometry.hpp"
+#include "geometry_checks.hpp"
 #include "test_support.hpp"
 
 #include <cmath>
@@ -19,6 +20,10 @@ using namespace gs::vrml;
 using gs::test::corpusDir;
 using gs::test::haveCorpus;
 using gs::test::readBytes;
+using gs::vrml::geometry_tests::area;
+using gs::vrml::geometry_tests::checkMesh;
+using gs::vrml::geometry_tests::P;
+using gs::vrml::geometry_tests::triangleNormal;
 
 namespace {
 
@@ -49,46 +54,6 @@ Mesh mesh(const std::string& text, Diagnostics* diag = nullptr) {
     CHECK(own.items.empty());
   }
   return m;
-}
-
-glm::dvec3 P(const Mesh& m, std::uint32_t i) {
-  return glm::dvec3(m.positions[i]);
-}
-
-/// Area-weighted normal of triangle t (length = area).
-glm::dvec3 triangleNormal(const Mesh& m, std::size_t t) {
-  const glm::dvec3 a = P(m, m.indices[3 * t]), b = P(m, m.indices[3 * t + 1]),
-                   c = P(m, m.indices[3 * t + 2]);
-  return glm::cross(b - a, c - a) * 0.5;
-}
-
-double area(const Mesh& m) {
-  double sum = 0.0;
-  for (std::size_t t = 0; t < m.triangleCount(); ++t) sum += glm::length(triangleNormal(m, t));
-  return sum;
-}
-
-/// Arrays consistent, indices in range, normals unit, bounds right, every triangle
-/// counter-clockwise about its vertex normals.
-void checkMesh(const Mesh& m) {
-  REQUIRE(m.primitive == Primitive::triangles);
-  REQUIRE(m.indices.size() % 3 == 0);
-  REQUIRE(m.normals.size() == m.positions.size());
-  if (!m.colors.empty()) REQUIRE(m.colors.size() == m.positions.size());
-  if (!m.texCoords.empty()) REQUIRE(m.texCoords.size() == m.positions.size());
-  for (std::uint32_t i : m.indices) REQUIRE(i < m.positions.size());
-  for (const glm::vec3& n : m.normals) REQUIRE(glm::length(n) == Approx(1.0).margin(1e-4));
-  Bounds b;
-  for (const glm::vec3& p : m.positions) b.extend(p);
-  REQUIRE(m.bounds.min == b.min);
-  REQUIRE(m.bounds.max == b.max);
-  for (std::size_t t = 0; t < m.triangleCount(); ++t) {
-    const glm::dvec3 fn = triangleNormal(m, t);
-    REQUIRE(glm::length(fn) > 0.0);
-    glm::dvec3 vn(0.0);
-    for (int k = 0; k < 3; ++k) vn += glm::dvec3(m.normals[m.indices[3 * t + k]]);
-    REQUIRE(glm::dot(fn, vn) > 0.0);
-  }
 }
 
 /// Lines or points: indices in range, no normals or texture coordinates, not solid.
