@@ -155,6 +155,57 @@ CubeFaces resampleCubeFaces(const std::array<const Image*, 6>& x3dFaces, int siz
   return out;
 }
 
+std::vector<Image> cubeFacesOfImage(const Image& image) {
+  if (image.empty()) return {};
+  const double aspect = static_cast<double>(image.width) / image.height;
+  std::vector<Image> faces;
+  if (std::abs(aspect - 4.0 / 3.0) < 0.01 * 4.0 / 3.0) {
+    // The cross: (column, row) of back, bottom, front, left, right, top.
+    static constexpr std::array<std::array<int, 2>, 6> kCell = {
+        {{3, 1}, {1, 2}, {1, 1}, {0, 1}, {2, 1}, {1, 0}}};
+    const int side = std::min(image.width / 4, image.height / 3);
+    if (side < 1) return {};
+    for (const auto& [column, row] : kCell) {
+      Image& face = faces.emplace_back(side, side);
+      for (int y = 0; y < side; ++y)
+        std::copy_n(image.pixel(column * side, row * side + y), 4 * side, face.pixel(0, y));
+    }
+    return faces;
+  }
+  if (std::abs(aspect - 2.0) >= 0.02) return {};
+  // The panorama: direction d is at column (1/2 + atan2(d.x, d.z) / 2 pi) x width and row
+  // acos(d.y) / pi x height, as X_ITE's Panorama2.fs and cube map lookups place it (its
+  // centre where a TextureCoordinate3D of +Z samples the map, measured).
+  const int side = std::clamp(image.height / 2, 1, 2048);
+  const auto sample = [&](float u, float v, int c) {
+    const float x = u * static_cast<float>(image.width) - 0.5f;
+    const float y = std::clamp(v * static_cast<float>(image.height) - 0.5f, 0.0f,
+                               static_cast<float>(image.height - 1));
+    const int x0 = static_cast<int>(std::floor(x)), y0 = static_cast<int>(y);
+    const int y1 = std::min(y0 + 1, image.height - 1);
+    const float fx = x - static_cast<float>(x0), fy = y - static_cast<float>(y0);
+    const auto wrap = [&](int i) { return ((i % image.width) + image.width) % image.width; };
+    const auto at = [&](int i, int j) { return static_cast<float>(image.pixel(wrap(i), j)[c]); };
+    return (at(x0, y0) * (1.0f - fx) + at(x0 + 1, y0) * fx) * (1.0f - fy) +
+           (at(x0, y1) * (1.0f - fx) + at(x0 + 1, y1) * fx) * fy;
+  };
+  for (const X3dFace& xf : kX3dFaces) {
+    Image& face = faces.emplace_back(side, side);
+    for (int y = 0; y < side; ++y)
+      for (int x = 0; x < side; ++x) {
+        const float a = 2.0f * (static_cast<float>(x) + 0.5f) / static_cast<float>(side) - 1.0f;
+        const float b = 1.0f - 2.0f * (static_cast<float>(y) + 0.5f) / static_cast<float>(side);
+        const glm::vec3 d = glm::normalize(xf.center + a * xf.right + b * xf.up);
+        const float u = 0.5f + std::atan2(d.x, d.z) / (2.0f * kPi);
+        const float v = std::acos(std::clamp(d.y, -1.0f, 1.0f)) / kPi;
+        std::uint8_t* p = face.pixel(x, y);
+        for (int c = 0; c < 4; ++c)
+          p[c] = static_cast<std::uint8_t>(std::clamp(std::lround(sample(u, v, c)), 0L, 255L));
+      }
+  }
+  return faces;
+}
+
 IrradianceSh irradianceOf(const CubeFaces& faces) {
   std::array<glm::vec3, 9> radiance{};
   const auto n = static_cast<std::size_t>(faces.size);
@@ -218,7 +269,8 @@ constexpr std::array<DdsFace, 6> kFromDds = {{{4, true, true},      // back: +Z,
                                               {3, false, false}}};  // top: -Y
 
 /// An ImageCubeMapTexture (X3D 4.0 clause 34.4.2): its first url that gives a DDS cube
-/// map, as six X3D faces.
+/// map, or an image that cubeFacesOfImage reads as one (a panorama or a cross), as six X3D
+/// faces.
 FaceImages loadImageCube(const vrml::Node& texture, const std::string& baseUrl,
                          base::Fetcher* fetcher) {
   FaceImages out;
@@ -235,9 +287,18 @@ FaceImages loadImageCube(const vrml::Node& texture, const std::string& baseUrl,
     std::string error = got.error;
     if (got.ready()) {
       try {
-        if (!got.bytes.starts_with("DDS "))
-          throw std::runtime_error(url +
-                                   ": not a DDS file (ImageCubeMapTexture reads DDS cube maps)");
+        if (!got.bytes.starts_with("DDS ")) {
+          const Image image = decodeImage(got.bytes, url);
+          std::vector<Image> faces = cubeFacesOfImage(image);
+          if (faces.size() != 6)
+            throw std::runtime_error(
+                url + ": a " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+                " image is no cube map (ImageCubeMapTexture reads DDS cube maps, 2:1 "
+                "panoramas and 4:3 crosses)");
+          for (std::size_t f = 0; f < 6; ++f) out.images[f] = std::move(faces[f]);
+          out.size = out.images[0].width;
+          return out;
+        }
         const DdsImages dds = decodeDdsImages(got.bytes, url);
         if (!dds.cube()) throw std::runtime_error(url + ": a DDS file but no cube map");
         const auto w = static_cast<std::size_t>(dds.width),

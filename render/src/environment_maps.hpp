@@ -43,6 +43,19 @@ struct CubeFaces {
 /// face with no pixels is black.
 CubeFaces resampleCubeFaces(const std::array<const Image*, 6>& x3dFaces, int size);
 
+/// The six X3D faces (back, bottom, front, left, right, top, as resampleCubeFaces takes
+/// them) of a cube map given as one 2D image (rows top to bottom), as X_ITE 15 reads an
+/// ImageCubeMapTexture's PNG or JPEG (X3D 4.0 clause 34.4.2 leaves the layout to the
+/// format):
+/// - width 2 x height (within 1%): an equirectangular panorama, its centre column in the
+///   direction +Z (the back face's centre: where X_ITE puts it), +X at 3/4 of its width, -X
+///   at 1/4, its top row straight up; faces of height / 2 texels (at most 2048), sampled
+///   bilinearly;
+/// - width 4/3 x height: a horizontal cross, left, front, right and back in its middle row,
+///   top above front, bottom below it, each face width / 4 texels;
+/// empty (no faces) for any other shape.
+std::vector<Image> cubeFacesOfImage(const Image& image);
+
 /// Projects the radiance of `faces` on the SH basis and convolves it with the clamped
 /// cosine (A0 = pi, A1 = 2 pi / 3, A2 = pi / 4), divided by pi.
 IrradianceSh irradianceOf(const CubeFaces& faces);

@@ -69,9 +69,11 @@ constexpr GLint kTexture3DUnit = 7;
 
 /// The Phong program's CUBE_MAP for a shape: 0 without a cube map texture, else the
 /// direction it is looked up by (shaders.cpp, cubeDirection), from the geometry's
-/// TextureCoordinateGenerator.
-int cubeMapMode(const DrawItem& d) {
+/// TextureCoordinateGenerator, or its TextureCoordinate3D / 4D when it has those
+/// (`texCoords3D`) and no generator (as X_ITE 15 reads them).
+int cubeMapMode(const DrawItem& d, bool texCoords3D) {
   if (d.texture == nullptr || !d.texture->cube) return 0;
+  if (d.texGen.mode == TexGenMode::none && texCoords3D) return 5;
   switch (d.texGen.mode) {
     case TexGenMode::cameraSpaceReflection:
       return 2;
@@ -575,7 +577,7 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
       v.clipPlanes = static_cast<int>(std::min(s.clipPlaneCount, kMaxClipPlanes));
       v.textureStages = d.stageCount;
       v.texGen = static_cast<int>(d.texGen.mode);
-      v.cubeMap = cubeMapMode(d);
+      v.cubeMap = cubeMapMode(d, mesh.hasTexCoordsStrq);
       v.texture3D = d.texture != nullptr && d.texture->volume;
       if (v.cubeMap != 0) v.texGen = 0;  // the fragment shader finds the direction
       sh.lineFill.specialize(v, mesh.primitive);
@@ -630,7 +632,7 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
       glUniform1f(u.backTransparency, sh.backTransparency);
     }
     glUniform1i(u.stageCount, d.stageCount);
-    const int cube = cubeMapMode(d);
+    const int cube = cubeMapMode(d, mesh.hasTexCoordsStrq);
     glUniform1i(u.cubeMap, cube);
     glUniform1i(u.texGen, cube != 0 ? 0 : static_cast<GLint>(d.texGen.mode));
     if (d.texGen.mode == TexGenMode::sphereRefract)

@@ -145,7 +145,8 @@ void main() {
     vec4 h = strq ? a_texCoordStrq : vec4(r, 1.0);
     v_texCoord3 = (u_textureMatrix3D * h).xyz;
   } else {
-    v_texCoord3 = vec3(0.0);
+    // A cube map texture's direction (CUBE_MAP 5) where the geometry has them.
+    v_texCoord3 = strq ? a_texCoordStrq.xyz : vec3(0.0);
   }
   float r = length(eye.xyz);
   float attenuation = max(dot(u_pointAttenuation, vec3(1.0, r, r * r)), 1e-6);
@@ -177,7 +178,8 @@ uniform sampler2D u_texture;  // also stage 0 of a MultiTexture
 // A ComposedCubeMapTexture (X3D 4.0 clause 34.4.1) on unit 6, looked up by the direction
 // CUBE_MAP names: 1 the world-space reflection (castle-model-viewer's
 // WORLDSPACEREFLECTIONVECTOR, and the default), 2 the eye-space one
-// (CAMERASPACEREFLECTIONVECTOR), 3 the eye-space normal, 4 the world-space normal.
+// (CAMERASPACEREFLECTIONVECTOR), 3 the eye-space normal, 4 the world-space normal, 5 the
+// geometry's TextureCoordinate3D (s, t, r) itself (X_ITE 15 reads a cube map there).
 uniform samplerCube u_cubeTexture;
 uniform mat3 u_eyeToWorld;
 // An X3D Texturing3D texture (clause 33) on unit 7, read at v_texCoord3.
@@ -320,6 +322,7 @@ vec3 cubeDirection() {
   if (CUBE_MAP == 2) return r;
   if (CUBE_MAP == 3) return n;
   if (CUBE_MAP == 4) return u_eyeToWorld * n;
+  if (CUBE_MAP == 5) return v_texCoord3;
   return u_eyeToWorld * r;
 }
 

@@ -2,6 +2,7 @@
 // maps; ImageCubeMapTexture (X3D 4.0 clause 34.4.2) drawn as castle-model-viewer draws
 // it, and bad files as warnings.
 #include "../../render/src/dds_images.hpp"
+#include "../../render/src/environment_maps.hpp"
 #include "test_support.hpp"
 #include "world_files.hpp"
 
@@ -184,4 +185,101 @@ Transform { rotation 0 1 0 1.5708 children Transform { translation 0 0 -1 childr
   REQUIRE(bad.diagnostics.items.size() == 1);
   CHECK(bad.diagnostics.items[0].message.find("a DDS file but no cube map") != std::string::npos);
   CHECK(close(bad.image.pixel(32, 32), 255, 255, 255, 4));  // untextured, unlit white
+}
+
+namespace {
+
+/// A 64 x 32 panorama: grey, with columns of red at its centre, green at 3/4 of its width
+/// and blue at 1/4, and a white top.
+gs::render::Image testPanorama() {
+  gs::render::Image pano(64, 32, 128, 128, 128);
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 64; ++x) {
+      std::uint8_t* p = pano.pixel(x, y);
+      const auto paint = [&](std::uint8_t r, std::uint8_t g, std::uint8_t b) {
+        p[0] = r;
+        p[1] = g;
+        p[2] = b;
+      };
+      if (y < 4)
+        paint(255, 255, 255);
+      else if (x >= 28 && x < 36)
+        paint(255, 0, 0);
+      else if (x >= 44 && x < 52)
+        paint(0, 255, 0);
+      else if (x >= 12 && x < 20)
+        paint(0, 0, 255);
+    }
+  return pano;
+}
+
+}  // namespace
+
+TEST_CASE("ImageCubeMapTexture: a 2:1 panorama and a 4:3 cross give the six X3D faces",
+          "[render][dds]") {
+  using gs::render::detail::cubeFacesOfImage;
+  // Faces in resampleCubeFaces' order: back (+Z), bottom, front (-Z), left (-X), right
+  // (+X), top. X_ITE puts the panorama's centre at +Z, +X at 3/4 of its width.
+  const std::vector<gs::render::Image> faces = cubeFacesOfImage(testPanorama());
+  REQUIRE(faces.size() == 6);
+  for (const auto& f : faces) CHECK(f.width == 16);
+  CHECK(close(faces[0].pixel(8, 8), 255, 0, 0, 8));      // back: the centre column
+  CHECK(close(faces[4].pixel(8, 8), 0, 255, 0, 8));      // right: 3/4
+  CHECK(close(faces[3].pixel(8, 8), 0, 0, 255, 8));      // left: 1/4
+  CHECK(close(faces[2].pixel(8, 8), 128, 128, 128, 8));  // front: the seam, grey
+  CHECK(close(faces[5].pixel(8, 8), 255, 255, 255, 8));  // top: the top rows
+  CHECK(close(faces[0].pixel(8, 0), 255, 0, 0,
+              8));  // back's top edge: 45 degrees up, below the white
+
+  // The cross: each cell of an 8 x 6 image its own colour.
+  gs::render::Image cross(8, 6);
+  for (int y = 0; y < 6; ++y)
+    for (int x = 0; x < 8; ++x) {
+      std::uint8_t* p = cross.pixel(x, y);
+      p[0] = static_cast<std::uint8_t>(40 * (x / 2));
+      p[1] = static_cast<std::uint8_t>(80 * (y / 2));
+      p[2] = 7;
+    }
+  const std::vector<gs::render::Image> cells = cubeFacesOfImage(cross);
+  REQUIRE(cells.size() == 6);
+  const std::array<std::array<int, 2>, 6> where = {
+      {{3, 1}, {1, 2}, {1, 1}, {0, 1}, {2, 1}, {1, 0}}};
+  for (std::size_t f = 0; f < 6; ++f) {
+    INFO("face " << f);
+    CHECK(cells[f].width == 2);
+    CHECK(close(cells[f].pixel(1, 1), 40 * where[f][0], 80 * where[f][1], 7, 0));
+  }
+  CHECK(cubeFacesOfImage(gs::render::Image(30, 20)).empty());  // 3:2: no cube map
+}
+
+TEST_CASE(
+    "ImageCubeMapTexture: a panorama PNG on a shape, read at its TextureCoordinate3D as "
+    "X_ITE reads it",
+    "[render][offscreen][world][dds]") {
+  const fs::path dir = worldDir();
+  gs::render::writePng((dir / "panorama.png").string(), testPanorama());
+  // The viewer looks at a quad whose four texture coordinates all point one way.
+  const auto world = [](const char* direction) {
+    return std::string(R"(#X3D V4.0 utf8
+PROFILE Interchange
+COMPONENT CubeMapTexturing:2
+COMPONENT Texturing3D:2
+Viewpoint { position 0 0 2 }
+Shape {
+  appearance Appearance { texture ImageCubeMapTexture { url "panorama.png" } }
+  geometry IndexedFaceSet { coord Coordinate { point [-1 -1 0, 1 -1 0, 1 1 0, -1 1 0] }
+    coordIndex [0 1 2 3 -1] texCoord TextureCoordinate3D { point [ )") +
+           direction + " " + direction + " " + direction + " " + direction + " ] } } }\n";
+  };
+  writeText(dir / "panorama_z.x3dv", world("0 0 1,"));
+  writeText(dir / "panorama_x.x3dv", world("1 0 0,"));
+  const Rendered z = renderFile(dir / "panorama_z.x3dv");
+  const Rendered x = renderFile(dir / "panorama_x.x3dv");
+  CHECK(z.diagnostics.items.empty());
+  CHECK(x.diagnostics.items.empty());
+  const auto pz = z.image.pixel(32, 32), px = x.image.pixel(32, 32);
+  INFO(int(pz[0]) << " " << int(pz[1]) << " " << int(pz[2]) << " / " << int(px[0]) << " "
+                  << int(px[1]) << " " << int(px[2]));
+  CHECK(close(pz, 255, 0, 0, 12));  // +Z: the panorama's centre
+  CHECK(close(px, 0, 255, 0, 12));  // +X: 3/4 of its width
 }
