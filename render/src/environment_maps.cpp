@@ -177,7 +177,8 @@ std::vector<Image> cubeFacesOfImage(const Image& image) {
   // acos(d.y) / pi x height, as X_ITE's Panorama2.fs and cube map lookups place it (its
   // centre where a TextureCoordinate3D of +Z samples the map, measured).
   const int side = std::clamp(image.height / 2, 1, 2048);
-  const auto sample = [&](float u, float v, int c) {
+  // Bilinear, wrapping around horizontally, into `out` (RGBA).
+  const auto sample = [&](float u, float v, std::uint8_t* out) {
     const float x = u * static_cast<float>(image.width) - 0.5f;
     const float y = std::clamp(v * static_cast<float>(image.height) - 0.5f, 0.0f,
                                static_cast<float>(image.height - 1));
@@ -185,9 +186,14 @@ std::vector<Image> cubeFacesOfImage(const Image& image) {
     const int y1 = std::min(y0 + 1, image.height - 1);
     const float fx = x - static_cast<float>(x0), fy = y - static_cast<float>(y0);
     const auto wrap = [&](int i) { return ((i % image.width) + image.width) % image.width; };
-    const auto at = [&](int i, int j) { return static_cast<float>(image.pixel(wrap(i), j)[c]); };
-    return (at(x0, y0) * (1.0f - fx) + at(x0 + 1, y0) * fx) * (1.0f - fy) +
-           (at(x0, y1) * (1.0f - fx) + at(x0 + 1, y1) * fx) * fy;
+    const std::uint8_t *a = image.pixel(wrap(x0), y0), *b = image.pixel(wrap(x0 + 1), y0),
+                       *c = image.pixel(wrap(x0), y1), *d = image.pixel(wrap(x0 + 1), y1);
+    for (int k = 0; k < 4; ++k) {
+      const float top = static_cast<float>(a[k]) * (1.0f - fx) + static_cast<float>(b[k]) * fx;
+      const float bottom = static_cast<float>(c[k]) * (1.0f - fx) + static_cast<float>(d[k]) * fx;
+      out[k] = static_cast<std::uint8_t>(
+          std::clamp(std::lround(top * (1.0f - fy) + bottom * fy), 0L, 255L));
+    }
   };
   for (const X3dFace& xf : kX3dFaces) {
     Image& face = faces.emplace_back(side, side);
@@ -196,11 +202,8 @@ std::vector<Image> cubeFacesOfImage(const Image& image) {
         const float a = 2.0f * (static_cast<float>(x) + 0.5f) / static_cast<float>(side) - 1.0f;
         const float b = 1.0f - 2.0f * (static_cast<float>(y) + 0.5f) / static_cast<float>(side);
         const glm::vec3 d = glm::normalize(xf.center + a * xf.right + b * xf.up);
-        const float u = 0.5f + std::atan2(d.x, d.z) / (2.0f * kPi);
-        const float v = std::acos(std::clamp(d.y, -1.0f, 1.0f)) / kPi;
-        std::uint8_t* p = face.pixel(x, y);
-        for (int c = 0; c < 4; ++c)
-          p[c] = static_cast<std::uint8_t>(std::clamp(std::lround(sample(u, v, c)), 0L, 255L));
+        sample(0.5f + std::atan2(d.x, d.z) / (2.0f * kPi),
+               std::acos(std::clamp(d.y, -1.0f, 1.0f)) / kPi, face.pixel(x, y));
       }
   }
   return faces;
