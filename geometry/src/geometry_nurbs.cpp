@@ -134,14 +134,17 @@ std::vector<glm::vec3> nurbsGridNormals(const std::vector<glm::dvec3>& grid, std
     return std::pair{k > 0 ? k - 1 : 0, std::min(k + 1, count - 1)};
   };
   std::vector<glm::dvec3> n(grid.size());
-  for (std::size_t j = 0; j < gv; ++j)
+  std::vector<bool> columnClosed(gu);
+  for (std::size_t i = 0; i < gu; ++i)
+    columnClosed[i] = glm::length(at(i, gv - 1) - at(i, 0)) <= tiny;
+  for (std::size_t j = 0; j < gv; ++j) {
+    const bool rowClosed = glm::length(at(gu - 1, j) - at(0, j)) <= tiny;
     for (std::size_t i = 0; i < gu; ++i) {
-      const bool rowClosed = glm::length(at(gu - 1, j) - at(0, j)) <= tiny;
-      const bool columnClosed = glm::length(at(i, gv - 1) - at(i, 0)) <= tiny;
       const auto [ua, ub] = neighbours(i, gu, rowClosed);
-      const auto [va, vb] = neighbours(j, gv, columnClosed);
+      const auto [va, vb] = neighbours(j, gv, columnClosed[i]);
       n[i + j * gu] = glm::cross(at(ub, j) - at(ua, j), at(i, vb) - at(i, va));
     }
+  }
   // Rows whose points coincide (no u tangent), then columns (no v tangent): each takes the
   // mean normal of the nearest row (column) that does not collapse.
   const auto meanOf = [&](std::size_t count, auto&& normal) {
