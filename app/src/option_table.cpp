@@ -99,6 +99,18 @@ const std::vector<OptionSpec>& table() {
        .check =
            CLI::IsMember(std::vector<std::string>{"auto", "gpu", "geometry", "points", "cpu"})},
       {.scope = main,
+       .names = "--samples",
+       .valueName = "N",
+       .field = GS_FIELD(int, options.samples),
+       .help = "Anti-aliasing: N samples per pixel (multisampling; 0 or 1: none). Default 4 "
+               "in the window, 1 with --snapshot",
+       .more = "On llvmpipe a frame of 4 samples takes 1.3-1.9x as long, so snapshots (tests, "
+               "batch work) are not anti-aliased unless asked; `--samples 4` gives the window's "
+               "picture "
+               "(docs/rendering.md, \"Anti-aliasing\").",
+       .shownDefault = "",
+       .check = CLI::Range(0, 16)},
+      {.scope = main,
        .names = "--fit",
        .valueName = "",
        .field = GS_FIELD(bool, options.fit),

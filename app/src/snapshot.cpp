@@ -91,7 +91,8 @@ int runSnapshot(const Options& options) {
     }
     scenes.push_back(scene);
   }
-  auto context = render::createOffscreenContext(options.width, options.height);
+  auto context = render::createOffscreenContext(options.width, options.height,
+                                                options.samples < 0 ? 1 : options.samples);
   // One WorldView per cell (session/world_view.hpp): the load below and every frame of
   // life are thin loops over them.
   session::ViewGroup group(session);

@@ -150,7 +150,8 @@ int runWindow(const Options& options) {
   }
   std::unique_ptr<render::WindowContext> context;
   try {
-    context = render::createWindowContext("GhostSpace", options.width, options.height);
+    context = render::createWindowContext("GhostSpace", options.width, options.height,
+                                          options.samples < 0 ? 4 : options.samples);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "ghostspace: %s\n", e.what());
     return 1;

@@ -1,9 +1,12 @@
-// Context-independent parts of context.hpp: the GL loader, GlInfo and Framebuffer.
+// Context-independent parts of context.hpp: the GL loader, GlInfo, Framebuffer and reading
+// the framebuffer (image.hpp's readPixels).
 #include <glad/gl.h>
 
 #include "context_internal.hpp"
 #include "render/context.hpp"
+#include "render/image.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
@@ -24,11 +27,11 @@ void setGlFunctionsLoadedFor(const void* context) {
 }
 }  // namespace detail
 
-std::unique_ptr<GlContext> createOffscreenContext(int width, int height) {
+std::unique_ptr<GlContext> createOffscreenContext(int width, int height, int samples) {
   const char* choice = std::getenv("GHOSTSPACE_GL");
   const std::string gl = choice == nullptr ? std::string() : std::string(choice);
-  if (gl.empty() || gl == "osmesa") return detail::createOsMesaContext(width, height);
-  if (gl == "egl") return detail::createEglContext(width, height);
+  if (gl.empty() || gl == "osmesa") return detail::createOsMesaContext(width, height, samples);
+  if (gl == "egl") return detail::createEglContext(width, height, samples);
   throw std::runtime_error("GHOSTSPACE_GL=" + gl +
                            ": expected osmesa (the default, llvmpipe on the CPU) or egl (the "
                            "GPU's driver, no window system)");
@@ -67,10 +70,16 @@ void checkSize(int width, int height) {
 }
 }  // namespace
 
-Framebuffer::Framebuffer(int width, int height) : width_(width), height_(height) {
+Framebuffer::Framebuffer(int width, int height, int samples)
+    : width_(width), height_(height), samples_(std::max(1, samples)) {
   checkSize(width, height);
   if (glad_glGenFramebuffers == nullptr)
     throw std::runtime_error("cannot create a framebuffer: OpenGL functions are not loaded");
+  if (samples_ > 1) {
+    GLint most = 1;
+    glGetIntegerv(GL_MAX_SAMPLES, &most);
+    samples_ = std::clamp(samples_, 1, std::max(1, static_cast<int>(most)));
+  }
   glGenFramebuffers(1, &fbo_);
   glGenRenderbuffers(1, &color_);
   glGenRenderbuffers(1, &depth_);
@@ -87,10 +96,12 @@ Framebuffer::~Framebuffer() {
 void Framebuffer::allocate() {
   GLint previous = 0;
   glGetIntegerv(GL_FRAMEBUFFER_BINDING, &previous);
+  // 0 samples: a single-sample renderbuffer, as glRenderbufferStorage makes.
+  const GLsizei samples = samples_ > 1 ? samples_ : 0;
   glBindRenderbuffer(GL_RENDERBUFFER, color_);
-  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width_, height_);
+  glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_RGBA8, width_, height_);
   glBindRenderbuffer(GL_RENDERBUFFER, depth_);
-  glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH24_STENCIL8, width_, height_);
+  glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_DEPTH24_STENCIL8, width_, height_);
   glBindRenderbuffer(GL_RENDERBUFFER, 0);
   glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color_);
@@ -116,6 +127,58 @@ void Framebuffer::resize(int width, int height) {
   width_ = width;
   height_ = height;
   allocate();
+}
+
+Image readPixels(int x, int y, int w, int h) {
+  if (w <= 0 || h <= 0)
+    throw std::runtime_error("readPixels: invalid size " + std::to_string(w) + "x" +
+                             std::to_string(h));
+  Image image(w, h);
+  std::vector<std::uint8_t> bottomUp(image.rgba.size());
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  readFramebufferPixels(x, y, w, h, GL_RGBA, GL_UNSIGNED_BYTE, bottomUp.data());
+  const std::size_t row = static_cast<std::size_t>(w) * 4;
+  for (int r = 0; r < h; ++r)
+    std::copy_n(bottomUp.data() + static_cast<std::size_t>(h - 1 - r) * row, row,
+                image.rgba.data() + static_cast<std::size_t>(r) * row);
+  return image;
+}
+
+void readFramebufferPixels(int x, int y, int width, int height, GLenum format, GLenum type,
+                           void* pixels) {
+  GLint sampleBuffers = 0;
+  glGetIntegerv(GL_SAMPLE_BUFFERS, &sampleBuffers);
+  if (sampleBuffers <= 0) {
+    glReadPixels(x, y, width, height, format, type, pixels);
+    return;
+  }
+  // Resolve the rectangle into a single-sample FBO of its size, then read that.
+  const bool depth = format == GL_DEPTH_COMPONENT;
+  GLint read = 0, draw = 0;
+  glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read);
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw);
+  GLuint fbo = 0, buffer = 0;
+  glGenFramebuffers(1, &fbo);
+  glGenRenderbuffers(1, &buffer);
+  glBindRenderbuffer(GL_RENDERBUFFER, buffer);
+  glRenderbufferStorage(GL_RENDERBUFFER, depth ? GL_DEPTH24_STENCIL8 : GL_RGBA8, width, height);
+  glBindRenderbuffer(GL_RENDERBUFFER, 0);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
+  glFramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER,
+                            depth ? GL_DEPTH_STENCIL_ATTACHMENT : GL_COLOR_ATTACHMENT0,
+                            GL_RENDERBUFFER, buffer);
+  // The scissor test clips blits: the resolve copies the whole rectangle.
+  const GLboolean scissor = glIsEnabled(GL_SCISSOR_TEST);
+  glDisable(GL_SCISSOR_TEST);
+  glBlitFramebuffer(x, y, x + width, y + height, 0, 0, width, height,
+                    depth ? GL_DEPTH_BUFFER_BIT : GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  if (scissor == GL_TRUE) glEnable(GL_SCISSOR_TEST);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+  glReadPixels(0, 0, width, height, format, type, pixels);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(read));
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
+  glDeleteFramebuffers(1, &fbo);
+  glDeleteRenderbuffers(1, &buffer);
 }
 
 }  // namespace gs::render

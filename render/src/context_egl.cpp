@@ -119,7 +119,7 @@ EGLDisplay openDisplay() {
 
 class EglContext final : public GlContext {
  public:
-  EglContext(int width, int height) : width_(width), height_(height) {
+  EglContext(int width, int height, int samples) : width_(width), height_(height) {
     if (width < 1 || height < 1 || width > 16384 || height > 16384)
       fail("invalid size " + std::to_string(width) + "x" + std::to_string(height) +
            " (each side must be 1..16384 pixels)");
@@ -165,7 +165,7 @@ class EglContext final : public GlContext {
       surface_ = a.createPbufferSurface(display_, config, pbufferAttribs);
       if (surface_ == EGL_NO_SURFACE) fail("eglCreatePbufferSurface failed, " + errorText());
       bindContext();
-      framebuffer_ = std::make_unique<Framebuffer>(width, height);
+      framebuffer_ = std::make_unique<Framebuffer>(width, height, samples);
       framebuffer_->bind();
     } catch (...) {
       release();
@@ -223,8 +223,8 @@ class EglContext final : public GlContext {
 }  // namespace
 
 namespace detail {
-std::unique_ptr<GlContext> createEglContext(int width, int height) {
-  return std::make_unique<EglContext>(width, height);
+std::unique_ptr<GlContext> createEglContext(int width, int height, int samples) {
+  return std::make_unique<EglContext>(width, height, samples);
 }
 }  // namespace detail
 

@@ -29,7 +29,7 @@ std::string glfwLastError() {
 
 class GlfwContext final : public WindowContext {
  public:
-  GlfwContext(const std::string& title, int width, int height) {
+  GlfwContext(const std::string& title, int width, int height, int samples) {
     if (width < 1 || height < 1)
       throw std::runtime_error("cannot open a window: invalid size " + std::to_string(width) + "x" +
                                std::to_string(height));
@@ -46,6 +46,7 @@ class GlfwContext final : public WindowContext {
     // Not forward-compatible: that would refuse glLineWidth above 1 (LineProperties).
     glfwWindowHint(GLFW_DEPTH_BITS, 24);
     glfwWindowHint(GLFW_STENCIL_BITS, 8);
+    glfwWindowHint(GLFW_SAMPLES, samples > 1 ? samples : 0);  // anti-aliasing
     // OpenGL 4.5 core (the GPU sort's compute shaders need 4.3; a driver may give the
     // version asked for and no more), else 3.3 core.
     for (const int minor : {5, 3}) {
@@ -119,9 +120,9 @@ bool terminateWindowSystem() {
   return true;
 }
 
-std::unique_ptr<WindowContext> createWindowContext(const std::string& title, int width,
-                                                   int height) {
-  return std::make_unique<GlfwContext>(title, width, height);
+std::unique_ptr<WindowContext> createWindowContext(const std::string& title, int width, int height,
+                                                   int samples) {
+  return std::make_unique<GlfwContext>(title, width, height, samples);
 }
 
 }  // namespace gs::render

@@ -16,8 +16,8 @@ bool glFunctionsLoadedFor(const void* context);
 void setGlFunctionsLoadedFor(const void* context);
 
 /// The OSMesa off-screen context (context_osmesa.cpp); createOffscreenContext's default.
-std::unique_ptr<GlContext> createOsMesaContext(int width, int height);
+std::unique_ptr<GlContext> createOsMesaContext(int width, int height, int samples);
 /// The EGL off-screen context (context_egl.cpp), for GHOSTSPACE_GL=egl.
-std::unique_ptr<GlContext> createEglContext(int width, int height);
+std::unique_ptr<GlContext> createEglContext(int width, int height, int samples);
 
 }  // namespace gs::render::detail

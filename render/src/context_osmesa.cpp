@@ -23,7 +23,7 @@ GLADapiproc osmesaGetProc(const char* name) {
 
 class OsMesaContext final : public GlContext {
  public:
-  OsMesaContext(int width, int height) : width_(width), height_(height) {
+  OsMesaContext(int width, int height, int samples) : width_(width), height_(height) {
     if (width < 1 || height < 1 || width > 16384 || height > 16384)
       throw std::runtime_error("cannot create an OSMesa context: invalid size " +
                                std::to_string(width) + "x" + std::to_string(height) +
@@ -51,7 +51,7 @@ class OsMesaContext final : public GlContext {
       // OSMesa needs a client buffer to make the context current; drawing goes to our FBO,
       // so a single pixel is enough.
       bindContext();
-      framebuffer_ = std::make_unique<Framebuffer>(width, height);
+      framebuffer_ = std::make_unique<Framebuffer>(width, height, samples);
       framebuffer_->bind();
     } catch (...) {
       detail::setGlFunctionsLoadedFor(nullptr);
@@ -104,8 +104,8 @@ class OsMesaContext final : public GlContext {
 }  // namespace
 
 namespace detail {
-std::unique_ptr<GlContext> createOsMesaContext(int width, int height) {
-  return std::make_unique<OsMesaContext>(width, height);
+std::unique_ptr<GlContext> createOsMesaContext(int width, int height, int samples) {
+  return std::make_unique<OsMesaContext>(width, height, samples);
 }
 }  // namespace detail
 

@@ -1,8 +1,6 @@
-// PNG files with libpng, and reading the framebuffer. libpng reports errors through
+// PNG files with libpng. libpng reports errors through
 // longjmp; everything that has a destructor lives outside the setjmp frames, and the
 // error callback only records the message before jumping.
-#include <glad/gl.h>
-
 #include "render/image.hpp"
 
 #include <png.h>
@@ -27,21 +25,6 @@ Image::Image(int w, int h, std::uint8_t r, std::uint8_t g, std::uint8_t b, std::
     rgba[i + 2] = b;
     rgba[i + 3] = a;
   }
-}
-
-Image readPixels(int x, int y, int w, int h) {
-  if (w <= 0 || h <= 0)
-    throw std::runtime_error("readPixels: invalid size " + std::to_string(w) + "x" +
-                             std::to_string(h));
-  Image image(w, h);
-  std::vector<std::uint8_t> bottomUp(image.rgba.size());
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(x, y, w, h, GL_RGBA, GL_UNSIGNED_BYTE, bottomUp.data());
-  const std::size_t row = static_cast<std::size_t>(w) * 4;
-  for (int r = 0; r < h; ++r)
-    std::copy_n(bottomUp.data() + static_cast<std::size_t>(h - 1 - r) * row, row,
-                image.rgba.data() + static_cast<std::size_t>(r) * row);
-  return image;
 }
 
 namespace {

@@ -12,6 +12,7 @@
 #include "gaussian_cpu.hpp"
 #include "gaussian_gl.hpp"
 #include "gl_program.hpp"
+#include "render/context.hpp"
 #include "render/splat_sort.hpp"
 
 namespace gs::render {
@@ -47,8 +48,8 @@ std::span<const float> readSceneDepth(std::vector<float>& depth, const GLint vie
     glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(drawFramebuffer));
   depth.resize(pixels);
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glReadPixels(viewport[0], viewport[1], viewport[2], viewport[3], GL_DEPTH_COMPONENT, GL_FLOAT,
-               depth.data());
+  readFramebufferPixels(viewport[0], viewport[1], viewport[2], viewport[3], GL_DEPTH_COMPONENT,
+                        GL_FLOAT, depth.data());
   std::span<const float> result;
   if (glGetError() == GL_NO_ERROR) result = depth;
   if (readFramebuffer != drawFramebuffer)

@@ -18,7 +18,7 @@
 // and with --pictures DIR each is written as DIR/NAME_PATH.png.
 //
 //   bench_splats [WxH] [--millions 1,4] [--frames N] [--path P] [--distances 1.5,3,12]
-//                [--pictures DIR] [FILE.qnv|SCENE ...]
+//                [--cuts-only] [--pictures DIR] [FILE.qnv|SCENE ...]
 //   (SCENE: a Gaussian splatting scene, docs/splats.md: .ply, .spz, .splat, .sog, .glb ...)
 //   (default 512x512; --path geometry|gpu|cpu measures only that path)
 #include <glad/gl.h>
@@ -81,7 +81,7 @@ struct Figure {
 };
 
 // The best of `frames` frames of `set` seen from `camera`, moved by `step` along x each
-// frame (so each frame sorts, and cuts a tree, again).
+// frame, back to the start every fourth (so each frame sorts, and cuts a tree, again).
 Figure measureFrom(const render::SplatSet& set, render::SplatPath path, int width, int height,
                    int frames, scene::Camera camera, float step) {
   const float aspect = float(width) / float(height);
@@ -91,7 +91,8 @@ Figure measureFrom(const render::SplatSet& set, render::SplatPath path, int widt
   renderer.setPath(path);
   Figure f;
   for (int frame = 0; frame <= frames; ++frame) {
-    camera.position = start + glm::vec3(step * static_cast<float>(frame), 0.0f, 0.0f);
+    // Four positions in turn: each frame differs from the last, and many frames stay near.
+    camera.position = start + glm::vec3(step * static_cast<float>(frame % 4), 0.0f, 0.0f);
     glViewport(0, 0, width, height);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     const auto t0 = Clock::now();
@@ -139,6 +140,7 @@ double psnr(const render::Image& a, const render::Image& b) {
   return mse <= 0.0 ? 99.0 : 10.0 * std::log10(255.0 * 255.0 / mse);
 }
 std::vector<double> distances;  // --distances: box diagonals for the cut figures
+bool cutsOnly = false;          // --cuts-only: with --distances, only the cut figures
 
 // The cut figures of a Gaussian scene with its tree (see the top of this file).
 void reportCuts(const char* name, const render::SplatSet& set, int width, int height, int frames) {
@@ -229,6 +231,8 @@ int main(int argc, char** argv) {
         if (end == p) break;
         p = *end == ',' ? end + 1 : end;
       }
+    } else if (a == "--cuts-only") {
+      cutsOnly = true;
     } else if (a == "--frames" && i + 1 < argc) {
       frames = std::max(1, std::atoi(argv[++i]));
     } else if (a == "--millions" && i + 1 < argc) {
@@ -248,7 +252,7 @@ int main(int argc, char** argv) {
     } else {
       std::fprintf(stderr,
                    "usage: bench_splats [WxH] [--millions 1,4] [--frames N] [--path P] "
-                   "[--pictures DIR] [FILE.qnv ...]\n");
+                   "[--distances D,...] [--cuts-only] [--pictures DIR] [FILE.qnv|SCENE ...]\n");
       return 2;
     }
   }
@@ -289,7 +293,7 @@ int main(int argc, char** argv) {
     }
     const std::size_t slash = file.find_last_of('/');
     const std::string name = file.substr(slash == std::string::npos ? 0 : slash + 1);
-    report(name.c_str(), *set, width, height, frames);
+    if (!cutsOnly || distances.empty()) report(name.c_str(), *set, width, height, frames);
     if (!distances.empty() && set->gaussians) {
       auto withTree = std::make_shared<render::SplatSet>();
       withTree->gaussians = set->gaussians;

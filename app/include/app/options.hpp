@@ -52,7 +52,9 @@ struct Options {
   std::string snapshotPath;         // --snapshot OUT.png
   int width = 800;                  // --size WxH, pixels
   int height = 600;
-  int frames = 0;                  // --frames N: window closes after N frames (0 = never)
+  int frames = 0;  // --frames N: window closes after N frames (0 = never)
+  int samples =
+      -1;  // --samples N: anti-aliasing samples per pixel (-1: 4 in the window, 1 off-screen)
   double lod = 1.0;                // --lod F: fraction of each QNV stream drawn, (0, 1]
   std::vector<double> lods;        // --lod F1,F2,...: per viewport (the last one repeats)
   Layout layout = Layout::single;  // --layout 1x1|2x1|2x2: viewports in the window or image

@@ -48,11 +48,13 @@ class GlContext {
 /// environment says GHOSTSPACE_GL=egl: then with EGL on the first EGL device (a GPU's
 /// driver, no window system; GHOSTSPACE_EGL_DEVICE=N picks device N), libEGL.so.1 opened
 /// at run time. Drawing goes to a framebuffer object of that size with an RGBA8 colour and
-/// a 24-bit depth (+8 stencil) buffer; the renderer is the same either way. The context is
+/// a 24-bit depth (+8 stencil) buffer; the renderer is the same either way. `samples` > 1
+/// makes that FBO multisampled (anti-aliasing, clamped to GL_MAX_SAMPLES; docs/rendering.md,
+/// "Anti-aliasing"): readFramebufferPixels resolves it. The context is
 /// current and its FBO bound when this returns. Throws std::runtime_error ("cannot create
 /// an OSMesa context: ...", "cannot create an EGL context (GHOSTSPACE_GL=egl): ...", or
 /// "GHOSTSPACE_GL=X: expected osmesa or egl") when the context or the FBO cannot be made.
-std::unique_ptr<GlContext> createOffscreenContext(int width, int height);
+std::unique_ptr<GlContext> createOffscreenContext(int width, int height, int samples = 1);
 
 /// A context owned by a GLFW window.
 class WindowContext : public GlContext {
@@ -63,11 +65,13 @@ class WindowContext : public GlContext {
 
 /// Opens a visible window titled `title` with a client area of `width` x `height` screen
 /// coordinates and an OpenGL 3.3 core forward-compatible context, initializing GLFW on
-/// first use (it stays initialized until terminateWindowSystem()). The context is
-/// current and its functions loaded when this returns; vsync is on. Throws
-/// std::runtime_error ("cannot open a window: ...", e.g. when there is no display: set
-/// DISPLAY or run under Xvfb, or use createOffscreenContext).
-std::unique_ptr<WindowContext> createWindowContext(const std::string& title, int width, int height);
+/// first use (it stays initialized until terminateWindowSystem()). `samples` > 1 asks for
+/// a multisampled window framebuffer (GLFW_SAMPLES, a soft constraint: a display without
+/// one gives fewer). The context is current and its functions loaded when this returns;
+/// vsync is on. Throws std::runtime_error ("cannot open a window: ...", e.g. when there is
+/// no display: set DISPLAY or run under Xvfb, or use createOffscreenContext).
+std::unique_ptr<WindowContext> createWindowContext(const std::string& title, int width, int height,
+                                                   int samples = 1);
 
 /// Terminates GLFW when no window context is alive (returns false and does nothing
 /// otherwise). Optional: the process may simply exit. Terminating unloads Mesa's GLX
@@ -96,8 +100,10 @@ GlInfo glInfo();
 class Framebuffer {
  public:
   /// Creates the FBO of `width` x `height` pixels (1..16384 each); does not bind it.
-  /// Throws std::runtime_error when the size is invalid or the FBO is incomplete.
-  Framebuffer(int width, int height);
+  /// `samples` > 1: multisampled renderbuffers of that many samples per pixel, clamped to
+  /// GL_MAX_SAMPLES (0 and 1: one sample). Throws std::runtime_error when the size is
+  /// invalid or the FBO is incomplete.
+  Framebuffer(int width, int height, int samples = 1);
   ~Framebuffer();
   Framebuffer(const Framebuffer&) = delete;
   Framebuffer& operator=(const Framebuffer&) = delete;
@@ -109,11 +115,24 @@ class Framebuffer {
   GLuint id() const { return fbo_; }
   int width() const { return width_; }
   int height() const { return height_; }
+  /// Samples per pixel of the renderbuffers (1 when not multisampled).
+  int samples() const { return samples_; }
 
  private:
   void allocate();
   GLuint fbo_ = 0, color_ = 0, depth_ = 0;
-  int width_ = 0, height_ = 0;
+  int width_ = 0, height_ = 0, samples_ = 1;
 };
+
+/// glReadPixels of the rectangle (`x`, `y`: bottom-left corner, window pixels; `width` x
+/// `height` >= 1) of the bound read framebuffer into `pixels`, rows bottom to top. A
+/// multisampled read framebuffer (GL_SAMPLE_BUFFERS > 0, an anti-aliased window or FBO,
+/// which glReadPixels cannot read) is first resolved into a single-sample one by
+/// glBlitFramebuffer: colour averaged over the samples, GL_DEPTH_COMPONENT one sample per
+/// pixel. `format` and `type` as glReadPixels takes them (GL_RGBA or GL_DEPTH_COMPONENT).
+/// The read framebuffer binding is restored. GL errors are left for the caller's
+/// glGetError (e.g. a window's depth format that the blit cannot copy).
+void readFramebufferPixels(int x, int y, int width, int height, GLenum format, GLenum type,
+                           void* pixels);
 
 }  // namespace gs::render
