@@ -14,17 +14,24 @@ namespace {
 
 struct Generic {
   std::string_view vrmlName;
+  const char* preferred;  // X_ITE's face, or its Debian successor (nullptr: none)
   const char* dejavu;
   const char* fontconfig;
   const char* path;
 };
 
-// The generic families of 6.20.2 and the DejaVu face each prefers (fonts-dejavu-core is
-// always installed, so a layout does not depend on what else a machine has).
+// The generic families of 6.20.2 and the faces each prefers: first the face X_ITE (the
+// reference browser of X3D 4) draws it with, where Debian has it (Droid Serif's successor
+// Noto Serif, fonts-noto-core; PT Sans, fonts-paratype; X_ITE's TYPEWRITER, Ubuntu Mono,
+// is not packaged), so that a Text is as wide as its author saw it there; then DejaVu
+// (fonts-dejavu-core is always installed, so a layout does not depend on what else a
+// machine has); then fontconfig's generic family; then the DejaVu file by path.
 constexpr std::array<Generic, 3> kGenerics = {{
-    {"SERIF", "DejaVu Serif", "serif", "/usr/share/fonts/truetype/dejavu/DejaVuSerif.ttf"},
-    {"SANS", "DejaVu Sans", "sans-serif", "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf"},
-    {"TYPEWRITER", "DejaVu Sans Mono", "monospace",
+    {"SERIF", "Noto Serif", "DejaVu Serif", "serif",
+     "/usr/share/fonts/truetype/dejavu/DejaVuSerif.ttf"},
+    {"SANS", "PT Sans", "DejaVu Sans", "sans-serif",
+     "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf"},
+    {"TYPEWRITER", nullptr, "DejaVu Sans Mono", "monospace",
      "/usr/share/fonts/truetype/dejavu/DejaVuSansMono.ttf"},
 }};
 
@@ -188,7 +195,9 @@ std::uint32_t FontLibrary::Impl::resolveLocked(const std::vector<std::string>& f
   for (const std::string& name : family) {
     if (name.empty()) continue;
     if (const Generic* g = genericFamily(name)) {
-      face = matchFamily(g->dejavu, bold, italic, language, exact);
+      exact = false;
+      if (g->preferred != nullptr) face = matchFamily(g->preferred, bold, italic, language, exact);
+      if (!exact) face = matchFamily(g->dejavu, bold, italic, language, exact);
       if (!exact) face = matchFamily(g->fontconfig, bold, italic, language, exact);
       if (face == kNoFace) face = openFace(g->path, 0, bold, italic);
     } else {
@@ -201,7 +210,9 @@ std::uint32_t FontLibrary::Impl::resolveLocked(const std::vector<std::string>& f
     if (face != kNoFace) break;
   }
   if (face == kNoFace) {  // 6.20.2: the default family SERIF
-    face = matchFamily("DejaVu Serif", bold, italic, language, exact);
+    const Generic& serif = kGenerics[0];
+    face = matchFamily(serif.preferred, bold, italic, language, exact);
+    if (!exact) face = matchFamily(serif.dejavu, bold, italic, language, exact);
     if (face == kNoFace) face = matchFamily("serif", bold, italic, language, exact);
     for (const Generic& g : kGenerics)
       if (face == kNoFace) face = openFace(g.path, 0, bold, italic);
