@@ -148,11 +148,12 @@ void readFramebufferPixels(int x, int y, int width, int height, GLenum format, G
                            void* pixels) {
   GLint sampleBuffers = 0;
   glGetIntegerv(GL_SAMPLE_BUFFERS, &sampleBuffers);
-  if (sampleBuffers <= 0) {
+  if (sampleBuffers <= 0 || x < 0 || y < 0) {  // (negative: GL's error, for the caller)
     glReadPixels(x, y, width, height, format, type, pixels);
     return;
   }
-  // Resolve the rectangle into a single-sample FBO of its size, then read that.
+  // Resolve the rectangle into a single-sample FBO, at the same place (OpenGL ES and some
+  // drivers resolve only between equal rectangles), then read it there.
   const bool depth = format == GL_DEPTH_COMPONENT;
   GLint read = 0, draw = 0;
   glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read);
@@ -161,7 +162,8 @@ void readFramebufferPixels(int x, int y, int width, int height, GLenum format, G
   glGenFramebuffers(1, &fbo);
   glGenRenderbuffers(1, &buffer);
   glBindRenderbuffer(GL_RENDERBUFFER, buffer);
-  glRenderbufferStorage(GL_RENDERBUFFER, depth ? GL_DEPTH24_STENCIL8 : GL_RGBA8, width, height);
+  glRenderbufferStorage(GL_RENDERBUFFER, depth ? GL_DEPTH24_STENCIL8 : GL_RGBA8, x + width,
+                        y + height);
   glBindRenderbuffer(GL_RENDERBUFFER, 0);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
   glFramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER,
@@ -170,11 +172,11 @@ void readFramebufferPixels(int x, int y, int width, int height, GLenum format, G
   // The scissor test clips blits: the resolve copies the whole rectangle.
   const GLboolean scissor = glIsEnabled(GL_SCISSOR_TEST);
   glDisable(GL_SCISSOR_TEST);
-  glBlitFramebuffer(x, y, x + width, y + height, 0, 0, width, height,
+  glBlitFramebuffer(x, y, x + width, y + height, x, y, x + width, y + height,
                     depth ? GL_DEPTH_BUFFER_BIT : GL_COLOR_BUFFER_BIT, GL_NEAREST);
   if (scissor == GL_TRUE) glEnable(GL_SCISSOR_TEST);
   glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
-  glReadPixels(0, 0, width, height, format, type, pixels);
+  glReadPixels(x, y, width, height, format, type, pixels);
   glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(read));
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
   glDeleteFramebuffers(1, &fbo);

@@ -124,8 +124,8 @@ class Framebuffer {
   int width_ = 0, height_ = 0, samples_ = 1;
 };
 
-/// glReadPixels of the rectangle (`x`, `y`: bottom-left corner, window pixels; `width` x
-/// `height` >= 1) of the bound read framebuffer into `pixels`, rows bottom to top. A
+/// glReadPixels of the rectangle (`x`, `y` >= 0: bottom-left corner, window pixels; `width`
+/// x `height` >= 1) of the bound read framebuffer into `pixels`, rows bottom to top. A
 /// multisampled read framebuffer (GL_SAMPLE_BUFFERS > 0, an anti-aliased window or FBO,
 /// which glReadPixels cannot read) is first resolved into a single-sample one by
 /// glBlitFramebuffer: colour averaged over the samples, GL_DEPTH_COMPONENT one sample per

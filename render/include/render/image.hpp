@@ -40,7 +40,8 @@ inline constexpr std::size_t kMaxImagePixelsPerByte = 16384;
 inline constexpr std::size_t kImagePixelsAlwaysAllowed = std::size_t{1} << 22;
 
 /// Reads the rectangle (x, y, w, h) of the current read framebuffer (x, y = its lower-left
-/// corner in GL window coordinates, pixels) and returns it with rows top to bottom.
+/// corner in GL window coordinates, pixels) and returns it with rows top to bottom; a
+/// multisampled framebuffer is resolved first (render/context.hpp, readFramebufferPixels).
 /// Needs a current context with loaded functions. Throws std::runtime_error for a
 /// non-positive size.
 Image readPixels(int x, int y, int w, int h);
