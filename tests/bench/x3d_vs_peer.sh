@@ -37,10 +37,10 @@ size=${4:-300x300}
 times=${5:-0}
 xite=${XITE_PEER:-/tmp/peer/xite}
 case $peer in
-  castle) camera=(--castle-camera) ;;
+  castle) ours_options=(--castle-camera) ;;
   xite)
     # X_ITE draws with WebGL's antialias (4 samples a pixel in its pictures): ours too.
-    camera=(--samples 4)
+    ours_options=(--samples 4)
     [ -f "$xite/node_modules/x_ite/package.json" ] ||
       { echo "$0: X_ITE is not set up in $xite (copy ../shared/peers/xite there, run setup.sh)" >&2; exit 1; } ;;
   *) echo "$0: unknown peer '$peer' (castle or xite)" >&2; exit 2 ;;
@@ -85,7 +85,7 @@ for time in $times; do
     # (--load-time), so particles, followers and physics have run as long.
     when=(--time "$time")
     [ "$peer" = xite ] && when=(--load-time 720720 --time "$(awk -v t="$time" 'BEGIN { printf "%.6f", 720720 + t }')")
-    timeout 60 "$ghostspace" --snapshot "$ours" --size "$size" "${when[@]}" "${camera[@]}" \
+    timeout 60 "$ghostspace" --snapshot "$ours" --size "$size" "${when[@]}" "${ours_options[@]}" \
       "$world" > /dev/null 2>&1 || true
     case ${KEEP_PEER:-0} in
       only) ;;

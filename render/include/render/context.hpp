@@ -115,8 +115,6 @@ class Framebuffer {
   GLuint id() const { return fbo_; }
   int width() const { return width_; }
   int height() const { return height_; }
-  /// Samples per pixel of the renderbuffers (1 when not multisampled).
-  int samples() const { return samples_; }
 
  private:
   void allocate();
