@@ -27,7 +27,11 @@ std::string commonSource() {
 }
 
 // Keys: eye z made an order-preserving unsigned integer (DepthSorter's depthKey), values
-// the identity.
+// the splats' indices, both written in reverse (splat k at count - 1 - k): the stable sort
+// then puts splats of equal depth in descending index order, so that the order is the exact
+// reverse of DepthSorter::sortFrontToBack's, which the geometry path draws reversed and the
+// cpu path composites front to back. Splats of equal depth (a voxel grid seen along an
+// axis) are then blended in the same sequence on every path.
 const char* const kKeysShader = R"glsl(
 uniform samplerBuffer u_splats;
 uniform vec4 u_row;  // row 2 of the model-view matrix: eye z = dot(u_row, (p, 1))
@@ -44,8 +48,9 @@ void main() {
   float z = (u_row.x * p.x + u_row.y * p.y) + (u_row.z * p.z + u_row.w) + 0.0;
   uint bits = floatBitsToUint(z);
   uint key = (bits & 0x80000000u) != 0u ? ~bits : (bits | 0x80000000u);
-  keys[k] = isnan(z) ? 0u : key;
-  values[k] = i;
+  uint at = u_count - 1u - k;
+  keys[at] = isnan(z) ? 0u : key;
+  values[at] = i;
 }
 )glsl";
 

@@ -4,8 +4,11 @@
 // a per-block digit histogram, one exclusive scan over (digit, block) and a stable scatter
 // (each block's elements ranked in order, 256 at a time). Keys are the splats' eye-space z
 // made order-preserving unsigned integers, so the result is back to front (farthest first,
-// ascending eye z; a NaN depth farthest), the order DepthSorter::sortBackToFront gives;
-// equal depths keep index order (stable), so the order is the same on every GPU.
+// ascending eye z; a NaN depth farthest). Equal depths come in descending index order: the
+// keys are laid out in reverse before the stable passes, so the order is the exact reverse
+// of DepthSorter::sortFrontToBack's, the one the geometry path draws (reversed) and the cpu
+// path composites (front to back). Ties are then blended in the same sequence on all three
+// paths and on every GPU.
 //
 // Input: the splat texture buffer of GaussianGlPass (3 RGBA32F texels per splat, the centre
 // in the first texel's xyz). Output: a GL buffer of uint32 indices, bound by the pass as
@@ -40,7 +43,7 @@ class GpuDepthSort {
   /// GaussianGlPass's layout) back to front as seen through `modelView` (splat
   /// coordinates to eye); with `subset` (a GL buffer of at least `count` uint32 splat
   /// indices, each inside the texture), the splats it names instead (a level-of-detail
-  /// cut), equal depths in the subset's order. Builds its programs at the first call
+  /// cut), equal depths in the subset's reverse order. Builds its programs at the first call
   /// (throws std::runtime_error when one does not compile); buffers grow to the largest
   /// count and are kept. Context current; leaves no program or storage binding that other
   /// code uses.

@@ -304,6 +304,7 @@ int main(int argc, char** argv) {
     }
   }
   for (const double m : millions) {
+    if (!(m > 0.0)) continue;  // --millions 0: the scenes only
     const auto set = shell(static_cast<std::size_t>(m * 1e6));
     char name[32];
     std::snprintf(name, sizeof name, "shell %.2g M", m);
