@@ -349,6 +349,9 @@ void GaussianGlPass::drawUploaded(std::span<const std::uint32_t> order, std::siz
   glUniform1f(uniform(program_, "u_opacityScale"), opacityScale);
   glUniform1f(uniform(program_, "u_minAlpha"), minAlpha);
   glUniform1f(uniform(program_, "u_keepIntegral"), keepIntegral ? 1.0f : 0.0f);
+  // Into the float layer (the scene's depth copied in), composited over the framebuffer
+  // once; straight into the framebuffer where the layer cannot take the scene's depth.
+  const bool layered = layer_.begin(viewport);
   glEnable(GL_BLEND);
   glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
   glEnable(GL_DEPTH_TEST);
@@ -359,6 +362,7 @@ void GaussianGlPass::drawUploaded(std::span<const std::uint32_t> order, std::siz
   glBindVertexArray(0);
   glDepthMask(GL_TRUE);
   glDisable(GL_BLEND);
+  if (layered) layer_.end();
 }
 
 void GaussianGlPass::release() {
@@ -377,6 +381,7 @@ void GaussianGlPass::release() {
   splatCapacity_ = colorCapacity_ = coloredSize_ = 0;
   gpuSort_.release();
   shColors_.release();
+  layer_.release();
   shOnGpu_ = false;
 }
 

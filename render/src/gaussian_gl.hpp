@@ -4,8 +4,9 @@
 // + 0.3 px, 3-sigma square), the fragment shader the profile alpha = min(0.99,
 // o exp(power)) with alpha < 1/255 discarded, blended back to front (ONE,
 // ONE_MINUS_SRC_ALPHA) in the order the CPU radix sort gives, depth-tested at the
-// centre's depth against the scene (no depth writes). The same picture as the CPU path
-// up to the framebuffer's 8-bit rounding.
+// centre's depth against the scene (no depth writes), into a float layer composited over
+// the framebuffer once (splat_layer_gl.hpp). The same picture as the CPU path up to
+// rounding.
 //
 // Data: the cloud's centres, opacities and covariances in one texture buffer (three
 // RGBA32F texels per Gaussian, uploaded once per cloud), the colours of this view
@@ -26,6 +27,7 @@
 #include "qnv/decoder.hpp"
 #include "render/splat_model.hpp"
 #include "sh_colors_gl.hpp"
+#include "splat_layer_gl.hpp"
 #include "splats/gaussian.hpp"
 
 namespace gs::render::detail {
@@ -94,6 +96,7 @@ class GaussianGlPass {
                     GLuint subset = 0);
   GpuDepthSort gpuSort_;
   GpuShColors shColors_;
+  FloatSplatLayer layer_;
   bool shOnGpu_ = false;  // shColors_ holds the uploaded cloud's coefficients
 
   GLuint program_ = 0, vao_ = 0, orderBuffer_ = 0;

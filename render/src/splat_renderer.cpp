@@ -14,27 +14,11 @@
 #include "gl_program.hpp"
 #include "render/context.hpp"
 #include "render/splat_sort.hpp"
+#include "splat_layer_gl.hpp"
 
 namespace gs::render {
 
 namespace {
-
-// Puts the cpu path's premultiplied image over the framebuffer.
-const char* const kLayerVertexShader = R"glsl(#version 330 core
-out vec2 v_uv;
-void main() {
-  vec2 p = vec2((gl_VertexID & 1) == 0 ? -1.0 : 1.0, (gl_VertexID & 2) == 0 ? -1.0 : 1.0);
-  v_uv = p * 0.5 + 0.5;
-  gl_Position = vec4(p, 0.0, 1.0);
-}
-)glsl";
-
-const char* const kLayerFragmentShader = R"glsl(#version 330 core
-in vec2 v_uv;
-uniform sampler2D u_layer;
-out vec4 o_color;
-void main() { o_color = texture(u_layer, v_uv); }
-)glsl";
 
 /// The scene's depth of the current viewport (window depths, rows bottom to top), as the
 /// GL paths' depth test sees it; empty when there is no depth buffer to read.
@@ -203,7 +187,7 @@ struct SplatRenderer::Gpu {
   void create() {
     automaticPath = automaticSplatPath(reinterpret_cast<const char*>(glGetString(GL_RENDERER)));
     gpuSort = detail::GaussianGlPass::gpuSortAvailable();
-    layerProgram = detail::buildProgram("splat layer", kLayerVertexShader, kLayerFragmentShader);
+    layerProgram = detail::buildLayerProgram();
   }
 
   void destroy() {

@@ -113,8 +113,39 @@ TEST_CASE("the GL path draws the cpu path's Gaussians", "[render][splat][gaussia
   const ImageDifference d = compareImages(drawGaussians(*set, cam, SplatPath::geometry),
                                           drawGaussians(*set, cam, SplatPath::cpu));
   WARN("GL against cpu: PSNR " << d.psnr << " dB");
-  CHECK(d.fractionDiffering <= 0.01);
-  CHECK(d.psnr >= 35.0);
+  // The GL paths blend into a float layer (render/src/splat_layer_gl.hpp): 59 dB measured;
+  // 52.4 dB when they blended into the 8-bit framebuffer.
+  CHECK(d.fractionDiffering <= 0.001);
+  CHECK(d.psnr >= 55.0);
+}
+
+TEST_CASE("a haze of faint Gaussians keeps its light on the GL paths",
+          "[render][splat][gaussian]") {
+  // Sixteen copies of the bunny's Gaussians, each made faint (opacity 0.012, three 8-bit
+  // levels): drawn straight into an 8-bit framebuffer, dst = src + dst (1 - alpha) rounds
+  // at each of the hundreds of steps a pixel sees, and the haze came out off by several
+  // levels; the float layer (render/src/splat_layer_gl.hpp) composites it as the cpu path
+  // does.
+  const auto scene =
+      gaussianScene(gs::test::sourceDir() / "tests/data/splats/bunny_small.ply", false);
+  auto cloud = std::make_shared<gs::splats::GaussianCloud>();
+  cloud->setShDegree(scene->gaussians->shDegree);
+  for (int copy = 0; copy < 16; ++copy)
+    for (std::size_t i = 0; i < scene->gaussians->size(); ++i) cloud->append(*scene->gaussians, i);
+  for (float& o : cloud->opacities) o = 0.012f;
+  SplatSet haze;
+  haze.gaussians = cloud;
+  haze.computeBounds();
+  const gs::scene::Camera cam = gaussianCamera(haze, 1.2f);
+  const Image cpu = drawGaussians(haze, cam, SplatPath::cpu);
+  REQUIRE(litPixels(cpu) > 1000);  // the haze shows
+  for (const SplatPath path : {SplatPath::geometry, SplatPath::gpu}) {
+    const ImageDifference d = compareImages(drawGaussians(haze, cam, path), cpu, 2);
+    WARN(splatPathName(path) << " against cpu, a faint haze: PSNR " << d.psnr << " dB, "
+                             << d.fractionDiffering * 100 << "% of pixels more than 2 levels off");
+    CHECK(d.psnr >= 50.0);
+    CHECK(d.fractionDiffering <= 0.001);
+  }
 }
 
 TEST_CASE("the gpu and cpu paths draw a tree's cut by index as the geometry path draws it",
@@ -141,8 +172,8 @@ TEST_CASE("the gpu and cpu paths draw a tree's cut by index as the geometry path
     WARN(distance << " diagonals: gpu against geometry PSNR " << g.psnr << " dB, cpu " << c.psnr
                   << " dB");
     CHECK(g.fractionDiffering <= 0.002);
-    CHECK(c.fractionDiffering <= 0.01);
-    CHECK(c.psnr >= 35.0);
+    CHECK(c.fractionDiffering <= 0.001);
+    CHECK(c.psnr >= 55.0);  // 59-79 dB measured (the float layer; 8-bit: 52-69 dB)
   }
 }
 

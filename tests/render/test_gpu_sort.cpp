@@ -183,7 +183,8 @@ TEST_CASE("the GL path sorted on the GPU draws the pixels of the CPU-sorted one"
       for (int y = 0; y < 24; ++y)
         for (int x = 0; x < 24; ++x) {
           const glm::vec3 p(-0.6f + 0.05f * static_cast<float>(x),
-                            -0.6f + 0.05f * static_cast<float>(y), -0.2f * static_cast<float>(layer));
+                            -0.6f + 0.05f * static_cast<float>(y),
+                            -0.2f * static_cast<float>(layer));
           const std::uint32_t colour = (x + y + layer) % 2 == 0 ? 0xff2020e0u : 0xff20e020u;
           set.vectors.push_back({p, 0.02f, glm::vec3(0, 0, 1), colour});
         }

@@ -1,0 +1,128 @@
+// The float layer of the GL splat paths (see splat_layer_gl.hpp).
+#include "splat_layer_gl.hpp"
+
+#include "gl_program.hpp"
+
+namespace gs::render::detail {
+
+namespace {
+
+const char* const kLayerVertexShader = R"glsl(#version 330 core
+out vec2 v_uv;
+void main() {
+  vec2 p = vec2((gl_VertexID & 1) == 0 ? -1.0 : 1.0, (gl_VertexID & 2) == 0 ? -1.0 : 1.0);
+  v_uv = p * 0.5 + 0.5;
+  gl_Position = vec4(p, 0.0, 1.0);
+}
+)glsl";
+
+const char* const kLayerFragmentShader = R"glsl(#version 330 core
+in vec2 v_uv;
+uniform sampler2D u_layer;
+out vec4 o_color;
+void main() { o_color = texture(u_layer, v_uv); }
+)glsl";
+
+}  // namespace
+
+GLuint buildLayerProgram() {
+  return buildProgram("splat layer", kLayerVertexShader, kLayerFragmentShader);
+}
+
+bool FloatSplatLayer::begin(const int viewport[4]) {
+  const int width = viewport[2], height = viewport[3];
+  if (width <= 0 || height <= 0) return false;
+  while (glGetError() != GL_NO_ERROR) {
+  }
+  if (framebuffer_ == 0) {
+    glGenFramebuffers(1, &framebuffer_);
+    glGenTextures(1, &color_);
+    glGenRenderbuffers(1, &depth_);
+  }
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawFramebuffer_);
+  glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &readFramebuffer_);
+  if (width != width_ || height != height_) {
+    glBindTexture(GL_TEXTURE_2D, color_);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width, height, 0, GL_RGBA, GL_FLOAT, nullptr);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glBindRenderbuffer(GL_RENDERBUFFER, depth_);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH24_STENCIL8, width, height);
+    glBindRenderbuffer(GL_RENDERBUFFER, 0);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer_);
+    glFramebufferTexture2D(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color_, 0);
+    glFramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER,
+                              depth_);
+    const bool complete = glCheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(drawFramebuffer_));
+    if (!complete || glGetError() != GL_NO_ERROR) {
+      width_ = height_ = 0;
+      return false;
+    }
+    width_ = width;
+    height_ = height;
+  }
+  scissored_ = glIsEnabled(GL_SCISSOR_TEST);
+  glDisable(GL_SCISSOR_TEST);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(drawFramebuffer_));
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer_);
+  const GLfloat transparent[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+  glClearBufferfv(GL_COLOR, 0, transparent);
+  glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
+  glBlitFramebuffer(viewport[0], viewport[1], viewport[0] + width, viewport[1] + height, 0, 0,
+                    width, height, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+  if (glGetError() != GL_NO_ERROR) {
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(drawFramebuffer_));
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(readFramebuffer_));
+    if (scissored_) glEnable(GL_SCISSOR_TEST);
+    return false;
+  }
+  for (int i = 0; i < 4; ++i) viewport_[i] = viewport[i];
+  glViewport(0, 0, width, height);
+  return true;
+}
+
+void FloatSplatLayer::end() {
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(drawFramebuffer_));
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(readFramebuffer_));
+  glViewport(viewport_[0], viewport_[1], viewport_[2], viewport_[3]);
+  if (scissored_) glEnable(GL_SCISSOR_TEST);
+  if (program_ == 0) {
+    program_ = buildLayerProgram();
+    glGenVertexArrays(1, &vao_);
+  }
+  glUseProgram(program_);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, color_);
+  glUniform1i(uniform(program_, "u_layer"), 0);
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  glDisable(GL_DEPTH_TEST);
+  glDepthMask(GL_FALSE);
+  glBindVertexArray(vao_);
+  glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+  glBindVertexArray(0);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  glDepthMask(GL_TRUE);
+  glDisable(GL_BLEND);
+  glEnable(GL_DEPTH_TEST);
+  glUseProgram(0);
+}
+
+void FloatSplatLayer::release() {
+  if (framebuffer_ != 0) {
+    glDeleteFramebuffers(1, &framebuffer_);
+    glDeleteTextures(1, &color_);
+    glDeleteRenderbuffers(1, &depth_);
+  }
+  if (program_ != 0) {
+    glDeleteProgram(program_);
+    glDeleteVertexArrays(1, &vao_);
+  }
+  framebuffer_ = color_ = depth_ = program_ = vao_ = 0;
+  width_ = height_ = 0;
+}
+
+}  // namespace gs::render::detail
