@@ -1,6 +1,9 @@
 // The float layer of the GL splat paths (see splat_layer_gl.hpp).
 #include "splat_layer_gl.hpp"
 
+#include <cstdlib>
+#include <cstring>
+
 #include "gl_program.hpp"
 
 namespace gs::render::detail {
@@ -25,13 +28,25 @@ void main() { o_color = texture(u_layer, v_uv); }
 
 }  // namespace
 
+GLenum splatLayerFormat() {
+  static const GLenum format = [] {
+    const char* name = std::getenv("GHOSTSPACE_SPLAT_LAYER");
+    if (name != nullptr && std::strcmp(name, "off") == 0) return static_cast<GLenum>(GL_NONE);
+    if (name != nullptr && std::strcmp(name, "float32") == 0)
+      return static_cast<GLenum>(GL_RGBA32F);
+    return static_cast<GLenum>(GL_RGBA16F);
+  }();
+  return format;
+}
+
 GLuint buildLayerProgram() {
   return buildProgram("splat layer", kLayerVertexShader, kLayerFragmentShader);
 }
 
 bool FloatSplatLayer::begin(const int viewport[4]) {
   const int width = viewport[2], height = viewport[3];
-  if (width <= 0 || height <= 0) return false;
+  const GLenum format = splatLayerFormat();
+  if (width <= 0 || height <= 0 || format == GL_NONE) return false;
   while (glGetError() != GL_NO_ERROR) {
   }
   if (framebuffer_ == 0) {
@@ -43,7 +58,8 @@ bool FloatSplatLayer::begin(const int viewport[4]) {
   glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &readFramebuffer_);
   if (width != width_ || height != height_) {
     glBindTexture(GL_TEXTURE_2D, color_);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width, height, 0, GL_RGBA, GL_FLOAT, nullptr);
+    glTexImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(format), width, height, 0, GL_RGBA, GL_FLOAT,
+                 nullptr);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);

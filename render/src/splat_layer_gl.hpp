@@ -3,10 +3,13 @@
 // rounding: dst = src + dst (1 - alpha) with alpha near 1/255 leaves dst unchanged and adds
 // src rounded, so a CT volume's haze came out redder and speckled (CThead's whole stream,
 // 5.9 M vectors: 29.8 dB from the cpu path's picture, which composites in float). The GL
-// paths therefore draw into this layer (RGBA32F, the viewport's size, cleared to
+// paths therefore draw into this layer (RGBA16F, the viewport's size, cleared to
 // transparent black, the scene's depth copied in so that the depth test sees the scene)
 // and composite it over the framebuffer once, premultiplied (ONE, ONE_MINUS_SRC_ALPHA):
 // mathematically the same picture as blending into the framebuffer directly, rounded once.
+// Measured (docs/rendering.md, "The GL paths' float layer"): CThead's whole stream 41.8 dB
+// from the cpu path with RGBA16F, 67.3 dB with RGBA32F; on an H200, RGBA16F costs 2-10% of
+// a frame (up to 37% for a small scene at 1080p), RGBA32F 1.7-4.5x, so half floats it is.
 // Where the scene's depth cannot be copied (a depth format other than DEPTH24_STENCIL8),
 // begin() says so and the caller draws into the framebuffer as before.
 #pragma once
@@ -14,6 +17,12 @@
 #include <glad/gl.h>
 
 namespace gs::render::detail {
+
+/// The layer's colour format: GL_RGBA16F (the default), GL_RGBA32F with
+/// GHOSTSPACE_SPLAT_LAYER=float32, GL_NONE (no layer: the splats blend straight into the
+/// framebuffer, as before) with GHOSTSPACE_SPLAT_LAYER=off; read once per process. A switch
+/// for measuring the layer (docs/rendering.md), not an option for users.
+GLenum splatLayerFormat();
 
 /// The premultiplied layer-over-framebuffer program shared with the cpu path: a quad over
 /// the viewport, `u_layer` (texture unit 0) sampled at each pixel's own texel. Throws
