@@ -9,7 +9,7 @@
 // mathematically the same picture as blending into the framebuffer directly, rounded once.
 // Measured (docs/rendering.md, "The GL paths' float layer"): CThead's whole stream 41.8 dB
 // from the cpu path with RGBA16F, 67.3 dB with RGBA32F; on an H200, RGBA16F costs 2-10% of
-// a frame (up to 37% for a small scene at 1080p), RGBA32F 1.7-4.5x, so half floats it is.
+// a frame (37% for a small scene at 1080p), RGBA32F 1.3-4.5x, so half floats it is.
 // Where the scene's depth cannot be copied (a depth format other than DEPTH24_STENCIL8),
 // begin() says so and the caller draws into the framebuffer as before.
 #pragma once
