@@ -1,6 +1,7 @@
 // The float layer of the GL splat paths (see splat_layer_gl.hpp).
 #include "splat_layer_gl.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 
@@ -11,19 +12,18 @@ namespace gs::render::detail {
 namespace {
 
 const char* const kLayerVertexShader = R"glsl(#version 330 core
-out vec2 v_uv;
 void main() {
   vec2 p = vec2((gl_VertexID & 1) == 0 ? -1.0 : 1.0, (gl_VertexID & 2) == 0 ? -1.0 : 1.0);
-  v_uv = p * 0.5 + 0.5;
   gl_Position = vec4(p, 0.0, 1.0);
 }
 )glsl";
 
+// Texel (x, y) of the layer is the pixel u_origin + (x, y) of the framebuffer.
 const char* const kLayerFragmentShader = R"glsl(#version 330 core
-in vec2 v_uv;
 uniform sampler2D u_layer;
+uniform ivec2 u_origin;
 out vec4 o_color;
-void main() { o_color = texture(u_layer, v_uv); }
+void main() { o_color = texelFetch(u_layer, ivec2(gl_FragCoord.xy) - u_origin, 0); }
 )glsl";
 
 }  // namespace
@@ -56,16 +56,18 @@ bool FloatSplatLayer::begin(const int viewport[4]) {
   }
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawFramebuffer_);
   glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &readFramebuffer_);
-  if (width != width_ || height != height_) {
+  if (width > width_ || height > height_) {
+    // Grown to the largest viewport seen, never shrunk: viewports of several sizes side by
+    // side use its lower left corner each.
+    const int w = std::max(width, width_), h = std::max(height, height_);
     glBindTexture(GL_TEXTURE_2D, color_);
-    glTexImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(format), width, height, 0, GL_RGBA, GL_FLOAT,
-                 nullptr);
+    glTexImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(format), w, h, 0, GL_RGBA, GL_FLOAT, nullptr);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     glBindRenderbuffer(GL_RENDERBUFFER, depth_);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH24_STENCIL8, width, height);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH24_STENCIL8, w, h);
     glBindRenderbuffer(GL_RENDERBUFFER, 0);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer_);
     glFramebufferTexture2D(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color_, 0);
@@ -77,16 +79,23 @@ bool FloatSplatLayer::begin(const int viewport[4]) {
       width_ = height_ = 0;
       return false;
     }
-    width_ = width;
-    height_ = height;
+    width_ = w;
+    height_ = h;
   }
   scissored_ = glIsEnabled(GL_SCISSOR_TEST);
   glDisable(GL_SCISSOR_TEST);
   glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(drawFramebuffer_));
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer_);
+  // Only the viewport's corner of the layer is cleared and drawn.
+  glEnable(GL_SCISSOR_TEST);
+  GLint box[4];
+  glGetIntegerv(GL_SCISSOR_BOX, box);
+  glScissor(0, 0, width, height);
   const GLfloat transparent[4] = {0.0f, 0.0f, 0.0f, 0.0f};
   glClearBufferfv(GL_COLOR, 0, transparent);
   glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
+  glScissor(box[0], box[1], box[2], box[3]);
+  glDisable(GL_SCISSOR_TEST);
   glBlitFramebuffer(viewport[0], viewport[1], viewport[0] + width, viewport[1] + height, 0, 0,
                     width, height, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
   if (glGetError() != GL_NO_ERROR) {
@@ -113,6 +122,7 @@ void FloatSplatLayer::end() {
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, color_);
   glUniform1i(uniform(program_, "u_layer"), 0);
+  glUniform2i(uniform(program_, "u_origin"), viewport_[0], viewport_[1]);
   glEnable(GL_BLEND);
   glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
   glDisable(GL_DEPTH_TEST);

@@ -25,7 +25,8 @@ namespace gs::render::detail {
 GLenum splatLayerFormat();
 
 /// The premultiplied layer-over-framebuffer program shared with the cpu path: a quad over
-/// the viewport, `u_layer` (texture unit 0) sampled at each pixel's own texel. Throws
+/// the viewport; pixel (x, y) of the framebuffer takes texel (x, y) - `u_origin` (ivec2,
+/// pixels: the viewport's lower left corner) of `u_layer` (texture unit 0). Throws
 /// std::runtime_error when it does not compile. Context current.
 GLuint buildLayerProgram();
 
@@ -36,8 +37,9 @@ class FloatSplatLayer {
   FloatSplatLayer& operator=(const FloatSplatLayer&) = delete;
 
   /// Makes the layer the draw target for the splats of `viewport` (x, y, width, height in
-  /// pixels of the current draw framebuffer): sized to it (kept between frames), colour
-  /// cleared to 0, depth copied from the framebuffer (cleared to 1 where it has none),
+  /// pixels of the current draw framebuffer): grown to hold it (kept between frames and
+  /// viewports; its lower left width x height used), that corner's colour cleared to 0,
+  /// depth copied from the framebuffer (cleared to 1 where it has none),
   /// the GL viewport (0, 0, width, height), scissor test off. Returns false and changes
   /// nothing when the depth could not be copied. Context current.
   bool begin(const int viewport[4]);

@@ -433,6 +433,7 @@ void SplatRenderer::drawImage(int width, int height) {
   glScissor(x0, y0, x1 - x0, y1 - y0);
   glUseProgram(g.layerProgram);
   glUniform1i(detail::uniform(g.layerProgram, "u_layer"), 0);
+  glUniform2i(detail::uniform(g.layerProgram, "u_origin"), viewport[0], viewport[1]);
   glEnable(GL_BLEND);
   glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
   glDisable(GL_DEPTH_TEST);

@@ -275,3 +275,50 @@ TEST_CASE("a growing set on the GL path uploads its tail and draws what a fresh 
   }
   renderer.release();
 }
+
+TEST_CASE("viewports of two sizes draw the cpu path's splats on the GL paths",
+          "[splat][gpu][viewport]") {
+  // One renderer draws the shell in a small viewport and then in a larger one beside it,
+  // each under its scissor box, as the window's side-by-side viewports do: the GL paths'
+  // float layer (render/src/splat_layer_gl.hpp) grows for the second and composites each
+  // viewport's corner of it at that viewport's place.
+  const SplatSet set = shell(3000);
+  const SplatLight lights[] = {{glm::normalize(glm::vec3(-0.3f, -0.5f, -1.0f)), glm::vec3(0.8f)}};
+  drawGpu(set, 1, lights, SplatBlend::backToFront);  // makes the test context current
+  const GLint viewports[2][4] = {{4, 40, 48, 48}, {56, 8, 70, 110}};
+  const auto draw = [&](SplatPath path) {
+    SplatRenderer renderer;
+    renderer.setPath(path);
+    glViewport(0, 0, kSize, kSize);
+    glClearColor(kBackground.r, kBackground.g, kBackground.b, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_SCISSOR_TEST);
+    for (const auto& v : viewports) {
+      glViewport(v[0], v[1], v[2], v[3]);
+      glScissor(v[0], v[1], v[2], v[3]);
+      renderer.draw(set, set.vectors.size(), glm::mat4(1.0f), camera(),
+                    static_cast<float>(v[2]) / static_cast<float>(v[3]), lights);
+      CHECK(renderer.statistics().path == path);
+    }
+    glDisable(GL_SCISSOR_TEST);
+    glViewport(0, 0, kSize, kSize);
+    Image image = readPixels(0, 0, kSize, kSize);
+    renderer.release();
+    return image;
+  };
+  const Image cpu = draw(SplatPath::cpu);
+  // Both viewports show the shell; nothing is drawn outside them.
+  const auto at = [&](int x, int y) {
+    const std::size_t i = (static_cast<std::size_t>(y) * kSize + static_cast<std::size_t>(x)) * 4;
+    return glm::ivec3(cpu.rgba[i], cpu.rgba[i + 1], cpu.rgba[i + 2]);
+  };
+  CHECK(at(28, 64) != at(1, 1));
+  CHECK(at(91, 63) != at(1, 1));
+  CHECK(at(28, 10) == at(1, 1));
+  for (const SplatPath path : {SplatPath::geometry, SplatPath::gpu}) {
+    const ImageDifference d = compareImages(draw(path), cpu, 2);
+    INFO(splatPathName(path) << " against cpu: differing " << d.fractionDiffering << ", mean "
+                             << d.meanAbsolute);
+    CHECK(d.fractionDiffering <= 0.001);
+  }
+}
