@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -206,11 +207,41 @@ bool StreamingSession::pump() {
     // header's count, which is untrusted.)
     changed = true;
   }
+  for (auto& [url, e] : qnv_) changed |= pumpTree(e);
   return changed;
+}
+
+bool StreamingSession::pumpTree(QnvEntry& e) {
+  const auto& header = e.stream->header();
+  if (!header || header->kind != qnv::StreamKind::gaussian) return false;
+  if (!e.treeStarted) {
+    // Once the whole stream is here, no packet changes the cloud any more: the tree's
+    // thread reads it alone.
+    if (e.stream->progress().state != net::StreamState::done || e.gaussians->empty()) return false;
+    e.treeStarted = true;
+    e.tree =
+        std::async(std::launch::async,
+                   [cloud = std::shared_ptr<const splats::GaussianCloud>(
+                        e.gaussians)]() -> std::shared_ptr<const splats::LodTree> {
+                     try {
+                       return std::make_shared<const splats::LodTree>(splats::buildLodTree(*cloud));
+                     } catch (const std::exception&) {
+                       return nullptr;  // drawn by its prefix, as before
+                     }
+                   });
+    return false;
+  }
+  if (!e.tree.valid() || e.tree.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
+    return false;
+  e.set->lodTree = e.tree.get();
+  ++e.set->revision;
+  return e.set->lodTree != nullptr;
 }
 
 bool StreamingSession::settled() const {
   if (!loader_.settled()) return false;
+  for (const auto& [url, e] : qnv_)
+    if (e.tree.valid()) return false;  // a tree being built, or built and not yet attached
   for (const auto& [url, t] : tilesets_)
     if (!t->settled()) return false;
   return true;

@@ -5,6 +5,7 @@
 // Everything runs on the thread that draws; transfers run on their own threads.
 #pragma once
 
+#include <future>
 #include <map>
 #include <memory>
 #include <string>
@@ -15,6 +16,7 @@
 #include "runtime/execution_model.hpp"
 #include "session/tileset_stream.hpp"
 #include "splats/gaussian.hpp"
+#include "splats/lod_tree.hpp"
 #include "vrml/scene.hpp"
 
 namespace gs::session {
@@ -41,10 +43,13 @@ class StreamingSession {
   render::SceneRendererOptions rendererOptions(render::SceneRendererOptions base);
 
   /// Tells each QNV stream the prefix its views asked for (SplatSet::wantedVectors),
-  /// then moves what arrived into parsers and decoders. Returns true when a scene or a
-  /// splat set changed: call SceneRenderer::sceneChanged() on the renderers.
+  /// then moves what arrived into parsers and decoders. A Gaussian stream that has arrived
+  /// whole gets its level-of-detail tree (splats/lod_tree.hpp; built on a thread of its
+  /// own, about 1.5 s per million splats, and attached at a later pump), so that far views
+  /// draw a cut of merged Gaussians as a capture read whole does. Returns true when a
+  /// scene or a splat set changed: call SceneRenderer::sceneChanged() on the renderers.
   bool pump();
-  /// Whether nothing is arriving and nothing more was asked for.
+  /// Whether nothing is arriving, nothing more was asked for and no tree is being built.
   bool settled() const;
   /// How far the loading of `scene` got, for X3D LoadSensors watching an Inline
   /// (runtime::ExecutionModel::setUrlObjectState): a world this session streams is loaded
@@ -80,10 +85,17 @@ class StreamingSession {
     std::shared_ptr<render::SplatSet> set;
     /// A Gaussian stream's splats as they arrive (set->gaussians once the header says so).
     std::shared_ptr<splats::GaussianCloud> gaussians;
+    /// Its level-of-detail tree, built on a thread of its own once the whole stream has
+    /// arrived (null when the build failed), then set->lodTree.
+    std::future<std::shared_ptr<const splats::LodTree>> tree;
+    bool treeStarted = false;
     bool haveHeader = false;
     std::size_t warningsShown = 0;
   };
   std::map<std::string, QnvEntry> qnv_;
+  /// pump()'s step for one stream's tree: starts its build once a Gaussian stream is done,
+  /// attaches it when built (true then: the set changed).
+  bool pumpTree(QnvEntry& e);
   /// Gaussian splatting scenes, read whole, by URL.
   std::map<std::string, std::shared_ptr<const render::SplatSet>> gaussians_;
   TilesetOptions tilesetOptions_;
