@@ -29,8 +29,8 @@ TEST_CASE("a Gaussian stream gets its level-of-detail tree once it has arrived w
   const fs::path qnv = fs::temp_directory_path() / "gs_gaussian_stream_tree.qnv";
   {
     std::ofstream out(qnv, std::ios::binary);
-    out << gs::qnv::writeStream(encoded, {encoded.header.packetBytes,
-                                          gs::qnv::PacketEncoding::compact});
+    out << gs::qnv::writeStream(encoded,
+                                {encoded.header.packetBytes, gs::qnv::PacketEncoding::compact});
   }
   gs::session::StreamingSession s;
   auto scene = s.open(qnv.string(), error);
