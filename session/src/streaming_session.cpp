@@ -19,7 +19,11 @@ namespace gs::session {
 
 StreamingSession::StreamingSession(net::LoaderOptions options) : loader_(options) {}
 
-StreamingSession::~StreamingSession() = default;
+StreamingSession::~StreamingSession() {
+  // A tree still building stops at its next check instead of holding the close up (its
+  // future's destructor waits for it): about a millisecond, not seconds per million splats.
+  for (auto& [url, e] : qnv_) e.cancelTree->store(true);
+}
 
 std::shared_ptr<const vrml::Scene> StreamingSession::inputWorld(const std::string& input,
                                                                 bool& handled, std::string& error) {
@@ -211,6 +215,23 @@ bool StreamingSession::pump() {
   return changed;
 }
 
+namespace {
+
+/// The level-of-detail tree of `cloud`, or null when it cannot be built or `cancel` became
+/// true (the stream is then drawn by its prefix, as before). On the tree's own thread.
+std::shared_ptr<const splats::LodTree> buildTree(std::shared_ptr<const splats::GaussianCloud> cloud,
+                                                 std::shared_ptr<std::atomic<bool>> cancel) {
+  try {
+    splats::LodTreeOptions options;
+    options.cancel = cancel.get();
+    return std::make_shared<const splats::LodTree>(splats::buildLodTree(*cloud, options));
+  } catch (const std::exception&) {
+    return nullptr;
+  }
+}
+
+}  // namespace
+
 bool StreamingSession::pumpTree(QnvEntry& e) {
   const auto& header = e.stream->header();
   if (!header || header->kind != qnv::StreamKind::gaussian) return false;
@@ -219,16 +240,8 @@ bool StreamingSession::pumpTree(QnvEntry& e) {
     // thread reads it alone.
     if (e.stream->progress().state != net::StreamState::done || e.gaussians->empty()) return false;
     e.treeStarted = true;
-    e.tree =
-        std::async(std::launch::async,
-                   [cloud = std::shared_ptr<const splats::GaussianCloud>(
-                        e.gaussians)]() -> std::shared_ptr<const splats::LodTree> {
-                     try {
-                       return std::make_shared<const splats::LodTree>(splats::buildLodTree(*cloud));
-                     } catch (const std::exception&) {
-                       return nullptr;  // drawn by its prefix, as before
-                     }
-                   });
+    e.tree = std::async(std::launch::async, buildTree,
+                        std::shared_ptr<const splats::GaussianCloud>(e.gaussians), e.cancelTree);
     return false;
   }
   if (!e.tree.valid() || e.tree.wait_for(std::chrono::seconds(0)) != std::future_status::ready)

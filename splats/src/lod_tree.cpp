@@ -279,7 +279,13 @@ LodTree buildLodTree(const GaussianCloud& cloud, const LodTreeOptions& options) 
   tree.nodes.emplace_back();
   ranges.push_back({0, n});
   std::size_t levelEnd = 1;
+  const auto checkCancel = [&options](std::size_t node) {
+    if (node % 4096 == 0 && options.cancel != nullptr &&
+        options.cancel->load(std::memory_order_relaxed))
+      throw LodTreeCancelled();
+  };
   for (std::size_t i = 0; i < tree.nodes.size(); ++i) {
+    checkCancel(i);
     if (i == levelEnd) {
       ++tree.depth;
       levelEnd = tree.nodes.size();
@@ -335,6 +341,7 @@ LodTree buildLodTree(const GaussianCloud& cloud, const LodTreeOptions& options) 
   double factors[64];
   const glm::vec3 emptyLo(std::numeric_limits<float>::infinity());
   for (std::size_t i = tree.nodes.size(); i-- > 0;) {
+    checkCancel(i);
     LodNode& node = tree.nodes[i];
     glm::vec3 lo = emptyLo, hi = -emptyLo;
     std::span<const GaussianMoments> parts;

@@ -562,3 +562,17 @@ TEST_CASE("edge cases: empty, one splat, bad input", "[splats][lod]") {
   all.pixelThreshold = -1.0f;
   CHECK(selectCut(tree, all, 10000).originals.size() == 1000);
 }
+
+TEST_CASE("a tree's build stops when it is cancelled", "[splats][lod]") {
+  // A session that closes while its stream's tree is building sets the flag
+  // (session::StreamingSession's destructor); the build must not run on to its end.
+  const GaussianCloud cloud = hazeCloud(20000, 5);
+  std::atomic<bool> cancel{true};
+  LodTreeOptions options;
+  options.cancel = &cancel;
+  CHECK_THROWS_AS(buildLodTree(cloud, options), LodTreeCancelled);
+  cancel = false;
+  const LodTree tree = buildLodTree(cloud, options);
+  CHECK(tree.splatCount == cloud.size());
+  CHECK(tree.merged.size() > 0);
+}

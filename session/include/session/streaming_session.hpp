@@ -5,6 +5,7 @@
 // Everything runs on the thread that draws; transfers run on their own threads.
 #pragma once
 
+#include <atomic>
 #include <future>
 #include <map>
 #include <memory>
@@ -88,6 +89,8 @@ class StreamingSession {
     /// Its level-of-detail tree, built on a thread of its own once the whole stream has
     /// arrived (null when the build failed), then set->lodTree.
     std::future<std::shared_ptr<const splats::LodTree>> tree;
+    /// Set when the session closes: the build stops (LodTreeOptions::cancel).
+    std::shared_ptr<std::atomic<bool>> cancelTree = std::make_shared<std::atomic<bool>>(false);
     bool treeStarted = false;
     bool haveHeader = false;
     std::size_t warningsShown = 0;

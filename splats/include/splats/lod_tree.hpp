@@ -10,9 +10,11 @@
 #pragma once
 
 #include <array>
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <stdexcept>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -107,6 +109,14 @@ struct LodTreeOptions {
   int branching = 4;
   /// The most splats a leaf holds, 1..64.
   int leafSize = 4;
+  /// When not null: read every 4,096 nodes, and once true the build stops by throwing
+  /// LodTreeCancelled (a session closed while its stream's tree was building).
+  const std::atomic<bool>* cancel = nullptr;
+};
+
+/// What buildLodTree throws when LodTreeOptions::cancel became true.
+struct LodTreeCancelled : std::runtime_error {
+  LodTreeCancelled() : std::runtime_error("buildLodTree: cancelled") {}
 };
 
 /// One node of a LodTree (40 bytes).
@@ -168,7 +178,7 @@ struct LodTree {
 /// subtree), its merged Gaussian (covarianceToScaleRotation, mergedOpacity, SH as the
 /// coverage-weighted mean of its members') and its box. One thread.
 /// Throws std::invalid_argument for bad options or a cloud whose arrays disagree in size,
-/// std::length_error past 2^32 - 2 splats.
+/// std::length_error past 2^32 - 2 splats, LodTreeCancelled when options.cancel became true.
 LodTree buildLodTree(const GaussianCloud& cloud, const LodTreeOptions& options = {});
 
 // ---------------------------------------------------------------------------------------
