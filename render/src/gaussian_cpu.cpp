@@ -42,6 +42,12 @@ struct Covariance6 {
 
 using Tile = TileBuffers<kTile>;
 
+// A frame whose splats reach fewer than kBandsBelow tiles per thread composites each tile
+// as kBands bands of rows, one job each: a far cut's few tiles would otherwise leave a
+// thread idle while another finishes the busiest tile.
+constexpr int kBands = 4;
+constexpr int kBandsBelow = 4;
+
 void composite(const Prepared p, int tx0, int ty0, int tw, int th, Tile& tile, int& live) {
   const int xs = std::max(p.x0, tx0), xe = std::min(p.x1, tx0 + tw - 1);
   const int ys = std::max(p.y0, ty0), ye = std::min(p.y1, ty0 + th - 1);
@@ -189,7 +195,7 @@ CpuGaussianRasterizer::~CpuGaussianRasterizer() = default;
 
 void CpuGaussianRasterizer::draw(const splats::GaussianCloud& cloud,
                                  std::span<const std::uint32_t> order, const CpuGaussianView& view,
-                                 std::span<const float> depth, std::vector<std::uint8_t>& out,
+                                 const SceneDepthReader& depth, std::vector<std::uint8_t>& out,
                                  std::uint64_t revision, std::span<const std::uint32_t> subset) {
   Scratch& s = *scratch_;
   // Covariances once per cloud (they do not depend on the view).
@@ -212,7 +218,7 @@ void CpuGaussianRasterizer::drawVectors(std::span<const qnv::DecodedVector> vect
                                         std::span<const std::uint32_t> order,
                                         const SplatStyle& style, std::span<const SplatLight> lights,
                                         const glm::mat3& normalMatrix, const CpuGaussianView& view,
-                                        std::span<const float> depth,
+                                        const SceneDepthReader& depth,
                                         std::vector<std::uint8_t>& out) {
   rasterize(VectorSource{vectors, style, lights.first(std::min<std::size_t>(lights.size(), 8)),
                          normalMatrix},
@@ -221,7 +227,7 @@ void CpuGaussianRasterizer::drawVectors(std::span<const qnv::DecodedVector> vect
 
 template <typename Source>
 void CpuGaussianRasterizer::rasterize(const Source& source, std::span<const std::uint32_t> order,
-                                      const CpuGaussianView& view, std::span<const float> depth,
+                                      const CpuGaussianView& view, const SceneDepthReader& depth,
                                       std::vector<std::uint8_t>& out,
                                       std::span<const std::uint32_t> subset) {
   touched_ = {};
@@ -229,7 +235,6 @@ void CpuGaussianRasterizer::rasterize(const Source& source, std::span<const std:
   const std::size_t pixels =
       static_cast<std::size_t>(view.width) * static_cast<std::size_t>(view.height);
   out.resize(pixels * 4);
-  if (depth.size() < pixels) depth = {};
   Scratch& s = *scratch_;
   const std::size_t n = source.size();
 
@@ -252,10 +257,14 @@ void CpuGaussianRasterizer::rasterize(const Source& source, std::span<const std:
   s.pool->start();
   const int chunks = s.pool->threads();  // every one of them meets at the barriers
   s.bins.resize(static_cast<std::size_t>(chunks));
-  std::atomic<int> nextTile{0};
+  std::atomic<int> nextJob{0};
   std::barrier sync(chunks);
-  std::vector<PixelRect> reached(static_cast<std::size_t>(chunks),
-                                 PixelRect{view.width, view.height, 0, 0});
+  // Set by chunk 0 once the splats are binned: the tiles they reached, the scene's depth
+  // under them, and the jobs the tiles are split into (a tile, or a band of its rows when
+  // there are too few tiles to keep every thread busy: a far cut reaches a handful).
+  PixelRect reached{view.width, view.height, 0, 0};
+  DepthWindow sceneDepth;
+  int bands = 1;
   constexpr float minAlpha = Source::minAlpha;
 
   // One splat's setup: its EWA projection, box and colour; false when it draws nothing.
@@ -274,11 +283,13 @@ void CpuGaussianRasterizer::rasterize(const Source& source, std::span<const std:
     if (!(prepared.opacity >= prepared.minAlpha) || !(prepared.opacity > 0.0f)) return false;
     // The box of pixels of the 3-sigma square (as Kerbl et al.'s), narrowed to the box of
     // the ellipse where the power reaches the cut (the 2D covariance's diagonal times
-    // -2 cut, one pixel of margin): no pixel outside it is drawn.
+    // -2 cut): no pixel outside it is drawn. The box holds the pixels from floor(centre -
+    // reach) to floor(centre + reach); half a pixel of margin (and 0.01 for rounding) takes
+    // in every pixel whose centre, at i + 0.5, lies within the ellipse's reach.
     prepared.cut = std::max(-8.0f, std::log(prepared.minAlpha / prepared.opacity)) - 0.01f;
     const float conicDet = g.conic.x * g.conic.z - g.conic.y * g.conic.y;
-    const float reachX = std::sqrt(-2.0f * prepared.cut * g.conic.z / conicDet) + 1.0f;
-    const float reachY = std::sqrt(-2.0f * prepared.cut * g.conic.x / conicDet) + 1.0f;
+    const float reachX = std::sqrt(-2.0f * prepared.cut * g.conic.z / conicDet) + 0.51f;
+    const float reachY = std::sqrt(-2.0f * prepared.cut * g.conic.x / conicDet) + 0.51f;
     const float ex = std::isfinite(reachX) ? std::min(g.extent.x, reachX) : g.extent.x;
     const float ey = std::isfinite(reachY) ? std::min(g.extent.y, reachY) : g.extent.y;
     // Clamped in float before the conversion (a huge splat's box must not overflow int).
@@ -341,19 +352,40 @@ void CpuGaussianRasterizer::rasterize(const Source& source, std::span<const std:
     }
     sync.arrive_and_wait();
 
+    if (chunk == 0) {
+      int busy = 0;
+      for (int t = 0; t < tiles; ++t) {
+        if (!binned(s.bins, chunks, t)) continue;
+        ++busy;
+        const int tx0 = (t % tilesX) * kTile, ty0 = (t / tilesX) * kTile;
+        reached = reached.united(
+            {tx0, ty0, std::min(tx0 + kTile, view.width), std::min(ty0 + kTile, view.height)});
+      }
+      if (depth && !reached.empty()) {
+        sceneDepth = {depth(reached), reached.x0, reached.y0, reached.width(), reached.height()};
+      }
+      bands = busy >= kBandsBelow * chunks ? 1 : kBands;
+    }
+    sync.arrive_and_wait();
+
     Tile tile;
-    PixelRect& mine = reached[static_cast<std::size_t>(chunk)];
-    for (int t = nextTile.fetch_add(1); t < tiles; t = nextTile.fetch_add(1)) {
-      const int tx0 = (t % tilesX) * kTile, ty0 = (t / tilesX) * kTile;
-      const int tw = std::min(kTile, view.width - tx0), th = std::min(kTile, view.height - ty0);
-      if (clearIfEmpty(s.bins, chunks, t, out.data(), view.width, tx0, ty0, tw, th)) continue;
-      mine = mine.united({tx0, ty0, tx0 + tw, ty0 + th});
-      startTile(tile, tx0, ty0, tw, th, view.width, view.farClip, depth, depthA, depthB);
+    const int bandRows = kTile / bands, jobs = tiles * bands;
+    for (int job = nextJob.fetch_add(1); job < jobs; job = nextJob.fetch_add(1)) {
+      const int t = job / bands, band = job % bands;
+      const int tx0 = (t % tilesX) * kTile, ty0 = (t / tilesX) * kTile + band * bandRows;
+      if (tx0 >= reached.x1 || tx0 < reached.x0 || ty0 >= reached.y1 || ty0 < reached.y0) continue;
+      const int tw = std::min(kTile, view.width - tx0), th = std::min(bandRows, view.height - ty0);
+      if (th <= 0) continue;
+      if (!binned(s.bins, chunks, t)) {
+        clearTile(out.data(), view.width, tx0, ty0, tw, th);
+        continue;
+      }
+      startTile(tile, tx0, ty0, tw, th, view.farClip, sceneDepth, depthA, depthB);
       int live = tw * th;
       for (int c = 0; c < chunks && live > 0; ++c) {
-        for (const Prepared& binned :
+        for (const Prepared& splat :
              s.bins[static_cast<std::size_t>(c)][static_cast<std::size_t>(t)]) {
-          composite(binned, tx0, ty0, tw, th, tile, live);
+          composite(splat, tx0, ty0, tw, th, tile, live);
           if (live <= 0) break;
         }
       }
@@ -362,8 +394,7 @@ void CpuGaussianRasterizer::rasterize(const Source& source, std::span<const std:
   };
 
   s.pool->run(work);
-  touched_ = PixelRect{view.width, view.height, 0, 0};
-  for (const PixelRect& r : reached) touched_ = touched_.united(r);
+  touched_ = reached;
 }
 
 }  // namespace gs::render::detail

@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 #include <vector>
@@ -32,6 +33,27 @@
 #include "splats/gaussian.hpp"
 
 namespace gs::render::detail {
+
+/// A rectangle of a view's pixels: x in [x0, x1), y in [y0, y1), rows from the bottom;
+/// empty when x0 >= x1 or y0 >= y1.
+struct PixelRect {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  bool empty() const { return x0 >= x1 || y0 >= y1; }
+  int width() const { return x1 - x0; }
+  int height() const { return y1 - y0; }
+  /// The smallest rectangle holding this one and `o` (an empty one as {w, h, 0, 0}).
+  PixelRect united(const PixelRect& o) const {
+    return {std::min(x0, o.x0), std::min(y0, o.y0), std::max(x1, o.x1), std::max(y1, o.y1)};
+  }
+};
+
+/// The scene's depth under `rect` of the view: rect.width() * rect.height() window depths
+/// (0..1, rows bottom to top, glReadPixels' order), or an empty span when there is none to
+/// read (then nothing hides a splat). The rasterizer calls it at most once a frame, on the
+/// thread that called draw or drawVectors (the one holding the GL context), with the
+/// pixels its splats reach: a far cut reads a few tiles of depth, not the whole view.
+/// The span must stay valid until the draw returns.
+using SceneDepthReader = std::function<std::span<const float>(const PixelRect& rect)>;
 
 /// The view of one CPU Gaussian frame.
 struct CpuGaussianView {
@@ -53,16 +75,17 @@ class CpuGaussianRasterizer {
 
   /// Composites the Gaussians `cloud[order[i]]`, order[0] nearest (indices outside the
   /// cloud skipped), into `out`: width * height * 4 bytes of premultiplied RGBA8, rows
-  /// bottom to top. `depth` is empty or width * height window depths of the scene (0..1,
-  /// rows bottom to top, glReadPixels' order): a Gaussian is drawn at a pixel when its
-  /// centre's window depth is below the scene's there (GL_LESS). Covariances are cached
+  /// bottom to top, of which only touched() is written (the rest keeps what it held; a
+  /// caller composites that rectangle alone). `depth`, when set, reads the scene's depth
+  /// under the pixels the splats reach (SceneDepthReader): a Gaussian is drawn at a pixel
+  /// when its centre's window depth is below the scene's there (GL_LESS). Covariances are cached
   /// per cloud (address, size and `revision`): a cloud that changes in place must come
   /// with a new revision.
   /// With a `subset` (indices into the cloud, best ascending: a level-of-detail cut of a
   /// cloud that holds the tree's every node), `order` holds places in the subset instead:
   /// the Gaussians cloud[subset[order[i]]] are drawn (places outside the subset skipped).
   void draw(const splats::GaussianCloud& cloud, std::span<const std::uint32_t> order,
-            const CpuGaussianView& view, std::span<const float> depth,
+            const CpuGaussianView& view, const SceneDepthReader& depth,
             std::vector<std::uint8_t>& out, std::uint64_t revision = 0,
             std::span<const std::uint32_t> subset = {});
 
@@ -75,24 +98,17 @@ class CpuGaussianRasterizer {
   void drawVectors(std::span<const qnv::DecodedVector> vectors,
                    std::span<const std::uint32_t> order, const SplatStyle& style,
                    std::span<const SplatLight> lights, const glm::mat3& normalMatrix,
-                   const CpuGaussianView& view, std::span<const float> depth,
+                   const CpuGaussianView& view, const SceneDepthReader& depth,
                    std::vector<std::uint8_t>& out);
 
   /// Threads a frame uses (at least 2).
   int threads() const { return threads_; }
 
   /// The pixels the last draw or drawVectors may have written something other than
-  /// transparent black to: x in [x0, x1), y in [y0, y1) (rows as `out`'s), whole 32-pixel
-  /// tiles clipped to the view; empty (x0 >= x1) when no splat reached a pixel. The caller
-  /// need only composite (and upload) this rectangle.
-  struct PixelRect {
-    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-    bool empty() const { return x0 >= x1 || y0 >= y1; }
-    /// The smallest rectangle holding this one and `o` (an empty one as {w, h, 0, 0}).
-    PixelRect united(const PixelRect& o) const {
-      return {std::min(x0, o.x0), std::min(y0, o.y0), std::max(x1, o.x1), std::max(y1, o.y1)};
-    }
-  };
+  /// transparent black to: whole 32-pixel tiles clipped to the view, the smallest
+  /// rectangle holding every tile a splat reached; empty when none reached a pixel. Every
+  /// pixel of it is written (transparent black where no splat is).
+  using PixelRect = detail::PixelRect;
   PixelRect touched() const { return touched_; }
 
   struct Scratch;
@@ -100,7 +116,7 @@ class CpuGaussianRasterizer {
  private:
   template <typename Source>
   void rasterize(const Source& source, std::span<const std::uint32_t> order,
-                 const CpuGaussianView& view, std::span<const float> depth,
+                 const CpuGaussianView& view, const SceneDepthReader& depth,
                  std::vector<std::uint8_t>& out, std::span<const std::uint32_t> subset);
 
   int threads_;

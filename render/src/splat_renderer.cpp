@@ -20,11 +20,12 @@ namespace gs::render {
 
 namespace {
 
-/// The scene's depth of the current viewport (window depths, rows bottom to top), as the
-/// GL paths' depth test sees it; empty when there is no depth buffer to read.
-std::span<const float> readSceneDepth(std::vector<float>& depth, const GLint viewport[4]) {
+/// The scene's depth under `rect` of the current viewport (window depths, rows bottom to
+/// top), as the GL paths' depth test sees it; empty when there is no depth buffer to read.
+std::span<const float> readSceneDepth(std::vector<float>& depth, const GLint viewport[4],
+                                      const detail::PixelRect& rect) {
   const std::size_t pixels =
-      static_cast<std::size_t>(viewport[2]) * static_cast<std::size_t>(viewport[3]);
+      static_cast<std::size_t>(rect.width()) * static_cast<std::size_t>(rect.height());
   GLint drawFramebuffer = 0, readFramebuffer = 0;
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawFramebuffer);
   glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &readFramebuffer);
@@ -32,13 +33,23 @@ std::span<const float> readSceneDepth(std::vector<float>& depth, const GLint vie
     glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(drawFramebuffer));
   depth.resize(pixels);
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  readFramebufferPixels(viewport[0], viewport[1], viewport[2], viewport[3], GL_DEPTH_COMPONENT,
-                        GL_FLOAT, depth.data());
+  readFramebufferPixels(viewport[0] + rect.x0, viewport[1] + rect.y0, rect.width(), rect.height(),
+                        GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
   std::span<const float> result;
   if (glGetError() == GL_NO_ERROR) result = depth;
   if (readFramebuffer != drawFramebuffer)
     glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(readFramebuffer));
   return result;
+}
+
+/// What the cpu path reads of the scene's depth: under back-to-front blending (splats in a
+/// scene) the depth buffer under the pixels the splats reach; front to back, none.
+detail::SceneDepthReader sceneDepthReader(SplatBlend blend, std::vector<float>& depth,
+                                          const GLint viewport[4]) {
+  if (blend != SplatBlend::backToFront) return {};
+  return [&depth, viewport](const detail::PixelRect& rect) {
+    return readSceneDepth(depth, viewport, rect);
+  };
 }
 
 /// The cpu path's view of a viewport of width x height pixels: the clip range that
@@ -271,10 +282,9 @@ void SplatRenderer::draw(const SplatSet& set, std::size_t count, const glm::mat4
     return;
   }
   // The scene's depth, as the GL path's depth test sees it (front to back: none).
-  std::span<const float> depth;
-  if (blend == SplatBlend::backToFront) depth = readSceneDepth(g.depth, viewport);
   g.rasterizer.drawVectors({set.vectors.data(), count}, g.order, s, lights, normalMatrix,
-                           cpuView(modelView, projection, camera, width, height), depth, g.pixels);
+                           cpuView(modelView, projection, camera, width, height),
+                           sceneDepthReader(blend, g.depth, viewport), g.pixels);
   drawImage(width, height);
 }
 
@@ -376,12 +386,11 @@ void SplatRenderer::drawGaussians(const SplatSet& set, std::size_t count, const 
                         std::max(camera.nearClip, 1e-6f), style.opacityScale, revision);
     return;
   }
-  std::span<const float> depth;
-  if (blend == SplatBlend::backToFront) depth = readSceneDepth(g.depth, viewport);
   detail::CpuGaussianView v = cpuView(modelView, projection, camera, width, height);
   v.eye = eye;
   v.opacityScale = style.opacityScale;
-  g.rasterizer.draw(cloud, g.order, v, depth, g.pixels, revision, subset);
+  g.rasterizer.draw(cloud, g.order, v, sceneDepthReader(blend, g.depth, viewport), g.pixels,
+                    revision, subset);
   drawImage(width, height);
 }
 

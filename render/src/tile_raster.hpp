@@ -1,6 +1,6 @@
-// Private to render/: what the two tiled CPU rasterizers (splat_cpu.cpp for QNV vectors,
-// gaussian_cpu.cpp for 3D Gaussians) share: a tile's accumulation buffers, writing a
-// finished tile into the RGBA8 image, and the threads that run the per-thread work.
+// Private to render/: the pieces of the tiled CPU rasterizer (gaussian_cpu.cpp): a tile's
+// accumulation buffers, the scene's depth under it, writing a finished tile into the RGBA8
+// image, and the threads that run the per-thread work.
 #pragma once
 
 #include <algorithm>
@@ -27,27 +27,39 @@ struct TileBuffers {
   alignas(16) std::array<float, kSide * kSide> r, g, b, t, limit;
 };
 
-/// Starts the tile at pixel (tx0, ty0), tw x th pixels of it inside the viewport: colour 0
-/// and transmittance 1 there, transmittance 0 past the viewport (saturated, never drawn).
-/// Each pixel's depth limit (eye distance) is `farClip`, or nearer where `depth` (the
-/// scene's depth buffer, window depths 0..1, `width` pixels a row; empty: none) holds
-/// geometry: depthB / (2 d - 1 + depthA), depthA and depthB the projection's [2][2] and
-/// [3][2].
+/// The scene's depth under a rectangle of the view: width x height window depths (0..1)
+/// for the pixels from (x0, y0), rows bottom to top; none (no limit) outside it or when
+/// `depths` is empty.
+struct DepthWindow {
+  std::span<const float> depths;
+  int x0 = 0, y0 = 0, width = 0, height = 0;
+};
+
+/// Starts the tw x th pixels at pixel (tx0, ty0) of the view (a tile, or a band of its
+/// rows), held in the first th rows of `tile`: colour 0 and transmittance 1 there,
+/// transmittance 0 past them (saturated, never drawn). Each pixel's depth limit (eye
+/// distance) is `farClip`, or nearer where `depth` holds geometry: depthB / (2 d - 1 +
+/// depthA), depthA and depthB the projection's [2][2] and [3][2].
 template <int kSide>
-void startTile(TileBuffers<kSide>& tile, int tx0, int ty0, int tw, int th, int width, float farClip,
-               std::span<const float> depth, float depthA, float depthB) {
-  tile.r.fill(0.0f);
-  tile.g.fill(0.0f);
-  tile.b.fill(0.0f);
-  tile.t.fill(0.0f);
-  tile.limit.fill(0.0f);
+void startTile(TileBuffers<kSide>& tile, int tx0, int ty0, int tw, int th, float farClip,
+               const DepthWindow& depth, float depthA, float depthB) {
+  const std::size_t used = static_cast<std::size_t>(th) * kSide;
+  std::fill_n(tile.r.begin(), used, 0.0f);
+  std::fill_n(tile.g.begin(), used, 0.0f);
+  std::fill_n(tile.b.begin(), used, 0.0f);
+  std::fill_n(tile.t.begin(), used, 0.0f);
+  std::fill_n(tile.limit.begin(), used, 0.0f);
+  const bool hasDepth = depth.depths.size() >= static_cast<std::size_t>(depth.width) *
+                                                   static_cast<std::size_t>(depth.height);
   for (int j = 0; j < th; ++j) {
+    const int y = ty0 + j - depth.y0;
     for (int i = 0; i < tw; ++i) {
       const auto at = static_cast<std::size_t>(j * kSide + i);
       tile.t[at] = 1.0f;
       float limit = farClip;
-      if (!depth.empty()) {
-        const float d = depth[static_cast<std::size_t>(ty0 + j) * width + tx0 + i];
+      const int x = tx0 + i - depth.x0;
+      if (hasDepth && x >= 0 && x < depth.width && y >= 0 && y < depth.height) {
+        const float d = depth.depths[static_cast<std::size_t>(y) * depth.width + x];
         if (d < 1.0f) limit = std::min(limit, depthB / (2.0f * d - 1.0f + depthA));
       }
       tile.limit[at] = limit;
@@ -55,8 +67,8 @@ void startTile(TileBuffers<kSide>& tile, int tx0, int ty0, int tw, int th, int w
   }
 }
 
-/// Writes the tw x th corner of `tile` as RGBA8 (alpha = 1 - transmittance) at pixel
-/// (tx0, ty0) of `out`, an image `width` pixels wide, rows from the bottom.
+/// Writes the tw x th corner of `tile` (a tile, or a band of its rows) as RGBA8 (alpha = 1 -
+/// transmittance) at pixel (tx0, ty0) of `out`, an image `width` pixels wide, rows from the bottom.
 template <int kSide>
 void writeTile(const TileBuffers<kSide>& tile, std::uint8_t* out, int width, int tx0, int ty0,
                int tw, int th) {
@@ -80,16 +92,12 @@ inline void clearTile(std::uint8_t* out, int width, int tx0, int ty0, int tw, in
                 static_cast<std::size_t>(tw) * 4);
 }
 
-/// When no chunk binned a splat into tile `t` (`bins[chunk][t]`, every chunk's list
-/// empty), clears its pixels (clearTile) and returns true: the tile's float buffers are
-/// not needed. Far views leave most tiles empty.
+/// Whether some chunk binned a splat into tile `t` (`bins[chunk][t]`).
 template <typename Bins>
-bool clearIfEmpty(const Bins& bins, int chunks, int t, std::uint8_t* out, int width, int tx0,
-                  int ty0, int tw, int th) {
+bool binned(const Bins& bins, int chunks, int t) {
   for (int c = 0; c < chunks; ++c)
-    if (!bins[static_cast<std::size_t>(c)][static_cast<std::size_t>(t)].empty()) return false;
-  clearTile(out, width, tx0, ty0, tw, th);
-  return true;
+    if (!bins[static_cast<std::size_t>(c)][static_cast<std::size_t>(t)].empty()) return true;
+  return false;
 }
 
 /// Threads kept for a rasterizer's frames: run(work) runs work(0) .. work(threads - 1) at
