@@ -755,8 +755,10 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
 
   if (!g.frame.splats.empty() || splats_->mode() == scene::RenderMode::splats) {
     glDisable(GL_SCISSOR_TEST);
-    statistics_.splats =
-        splats_->draw(g.frame, traversal_, camera, aspect, headlight_, g.textures, height);
+    // Only opaque shapes write depth (transparent ones, the Background and the ray caster
+    // do not): without them the splats need not be depth-tested.
+    statistics_.splats = splats_->draw(g.frame, traversal_, camera, aspect, headlight_, g.textures,
+                                       height, !g.opaque.empty());
     glEnable(GL_SCISSOR_TEST);
     glUseProgram(g.programs.generic().id);
   }

@@ -145,7 +145,7 @@ vrml::Bounds SceneSplats::bounds(scene::SceneTraversal& traversal) {
 
 std::size_t SceneSplats::draw(const scene::TraversalFrame& frame, scene::SceneTraversal& traversal,
                               const scene::Camera& camera, float aspect, bool headlight,
-                              TextureCache& textures, int heightPixels) {
+                              TextureCache& textures, int heightPixels, bool sceneDepth) {
   SplatLight lights[8];
   std::size_t lightCount = 0;
   if (headlight) lights[lightCount++] = {camera.forward(), glm::vec3(1.0f)};
@@ -171,7 +171,8 @@ std::size_t SceneSplats::draw(const scene::TraversalFrame& frame, scene::SceneTr
       renderer = std::make_unique<SplatRenderer>();
       renderer->setPath(path_);
     }
-    renderer->draw(set, count, model, camera, aspect, lit, SplatBlend::backToFront, style);
+    renderer->draw(set, count, model, camera, aspect, lit,
+                   sceneDepth ? SplatBlend::backToFront : SplatBlend::frontToBack, style);
     drawn += renderer->statistics().splats;
   };
   if (mode_ == scene::RenderMode::splats) {

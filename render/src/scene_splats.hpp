@@ -45,9 +45,12 @@ class SceneSplats {
   /// the framebuffer, and the volume data nodes whose styles need the ray caster
   /// (volume_raycast.hpp; their textures from `textures`). Returns the number of splats
   /// drawn. `heightPixels` is the viewport's height (recorded for view-dependent sets).
+  /// `sceneDepth`: whether shapes wrote the depth buffer before (the splats are then
+  /// depth-tested against it, SplatBlend::backToFront); without, nothing can hide them and
+  /// the cpu path reads no depth back (SplatBlend::frontToBack: the same picture).
   std::size_t draw(const scene::TraversalFrame& frame, scene::SceneTraversal& traversal,
                    const scene::Camera& camera, float aspect, bool headlight,
-                   TextureCache& textures, int heightPixels = 0);
+                   TextureCache& textures, int heightPixels = 0, bool sceneDepth = true);
   scene::RenderMode mode() const { return mode_; }
   /// True when the QNV nodes loaded so far (bounds() loads them) all show volumes (their
   /// sets' stream kind, as their headers say) and there is at least one.

@@ -30,15 +30,12 @@ inline F4 select4(I4 mask, F4 v) {
 /// exp(x) for x in [-8, 0]: 2^n 2^f with a degree-6 polynomial for 2^f, relative error
 /// below 3e-6.
 inline F4 exp4(F4 x) {
-  const F4 t = x * 1.44269504f;                                   // log2(e)
-  I4 n = __builtin_convertvector(t, I4);                          // truncates towards 0: t <= 0
-  n += reinterpret_cast<I4>(t < __builtin_convertvector(n, F4));  // floor: -1 where t < n
-  const F4 f = t - __builtin_convertvector(n, F4);                // [0, 1)
+  const F4 t = x * 1.44269504f;                        // log2(e); t <= 0
+  const I4 n = __builtin_convertvector(t - 0.5f, I4);  // truncated: the nearest
+  const F4 f = t - __builtin_convertvector(n, F4);     // [-0.5, 0.5]
+  const F4 f2 = f * f;
   const F4 p =
-      1.0f + f * (0.693147181f +
-                  f * (0.240226507f +
-                       f * (0.0555041087f +
-                            f * (0.00961812911f + f * (0.00133335581f + f * 0.000154035304f)))));
+      (1.0f + f * 0.693147181f) + f2 * ((0.240226507f + f * 0.0555041087f) + f2 * 0.00961812911f);
   return p * reinterpret_cast<F4>((n + 127) << 23);
 }
 

@@ -162,19 +162,24 @@ bool projectGaussian(const glm::vec3& position, const glm::mat3& sigma, const Pr
   const float txz = std::clamp(tx / tz, -limX, limX) * tz;
   const float tyz = std::clamp(ty / tz, -limY, limY) * tz;
   // Eye space with z pointing forward: (x, y, -z_gl); the y sign does not change the
-  // 2D covariance's form in a y-up pixel frame.
-  const glm::mat3 w = glm::mat3(view.modelView);
-  glm::mat3 flip(1.0f);
-  flip[2][2] = -1.0f;
-  const glm::mat3 wf = flip * w;
+  // 2D covariance's form in a y-up pixel frame. W is the model-view's rotation with its z
+  // row negated (that flip).
+  const glm::mat4& w = view.modelView;
   // J (2x3) rows: (fx / z, 0, -fx x / z^2), (0, fy / z, -fy y / z^2) for a y-up frame.
   const glm::vec3 j0(view.fx / tz, 0.0f, -view.fx * txz / (tz * tz));
   const glm::vec3 j1(0.0f, view.fy / tz, -view.fy * tyz / (tz * tz));
-  const glm::mat3 cov = wf * sigma * glm::transpose(wf);
-  const glm::vec3 cj0 = cov * j0, cj1 = cov * j1;
-  const float a = glm::dot(j0, cj0) + 0.3f;
-  const float b = glm::dot(j0, cj1);
-  const float c = glm::dot(j1, cj1) + 0.3f;
+  // Sigma' = J W Sigma W^T J^T, entry by entry: with u = W^T j (a row of J W), Sigma'_kl =
+  // u_k^T Sigma u_l (two matrix-vector products, not two matrix products).
+  const auto rowOfJW = [&w](const glm::vec3& j) {
+    return glm::vec3(w[0][0] * j.x + w[0][1] * j.y - w[0][2] * j.z,
+                     w[1][0] * j.x + w[1][1] * j.y - w[1][2] * j.z,
+                     w[2][0] * j.x + w[2][1] * j.y - w[2][2] * j.z);
+  };
+  const glm::vec3 u0 = rowOfJW(j0), u1 = rowOfJW(j1);
+  const glm::vec3 su0 = sigma * u0, su1 = sigma * u1;
+  const float a = glm::dot(u0, su0) + 0.3f;
+  const float b = glm::dot(u0, su1);
+  const float c = glm::dot(u1, su1) + 0.3f;
   const float det = a * c - b * b;
   if (!(det > 0.0f) || !std::isfinite(det)) return false;
   const float sharp = (a - 0.3f) * (c - 0.3f) - b * b;

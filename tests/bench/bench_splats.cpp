@@ -12,6 +12,10 @@
 // (splats/lod_tree.hpp) from D box diagonals away (the fitted camera moved back along its
 // view): the cut's size (splats drawn, and their share of the scene) and the M splats/s of
 // the cut, best of FRAMES frames, each frame a new view (a new cut, assembled and sorted).
+// Every figure is of splats depth-tested against the framebuffer's depth (a capture in a
+// world of shapes: the cpu path reads that depth back); the cpu path's cuts also
+// "alone", as the app draws a world of splats alone (no depth to read: SplatBlend::
+// frontToBack, render/src/scene_splats.hpp).
 //
 // Each path's last frame is kept: the geometry and gpu paths' PSNR against the cpu path's
 // picture is printed (the same model drawn three ways: about 40 dB or more, docs/splats.md),
@@ -83,7 +87,8 @@ struct Figure {
 // The best of `frames` frames of `set` seen from `camera`, moved by `step` along x each
 // frame, back to the start every fourth (so each frame sorts, and cuts a tree, again).
 Figure measureFrom(const render::SplatSet& set, render::SplatPath path, int width, int height,
-                   int frames, scene::Camera camera, float step) {
+                   int frames, scene::Camera camera, float step,
+                   render::SplatBlend blend = render::SplatBlend::backToFront) {
   const float aspect = float(width) / float(height);
   const glm::vec3 start = camera.position;
   const render::SplatLight lights[] = {{camera.forward(), glm::vec3(1.0f)}};
@@ -97,7 +102,7 @@ Figure measureFrom(const render::SplatSet& set, render::SplatPath path, int widt
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     const auto t0 = Clock::now();
     const double c0 = processSeconds();
-    renderer.draw(set, set.size(), glm::mat4(1.0f), camera, aspect, lights);
+    renderer.draw(set, set.size(), glm::mat4(1.0f), camera, aspect, lights, blend);
     glFinish();
     const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     const double cpu = processSeconds() - c0;
@@ -164,11 +169,21 @@ void reportCuts(const char* name, const render::SplatSet& set, int width, int he
       const double best = f.wall;
       std::printf(
           "%-14s %-8s %5.1f diagonals: cut %9zu splats (%6.2f%%)  frame %7.4f s  %6.2f M "
-          "splats/s%s%s\n",
+          "splats/s%s%s",
           name, render::splatPathName(path), d, drawn,
           100.0 * static_cast<double>(drawn) / static_cast<double>(set.size()), best,
           static_cast<double>(drawn) / best / 1e6, f.drew == path ? "" : ", drawn by ",
           f.drew == path ? "" : render::splatPathName(f.drew));
+      if (path == render::SplatPath::cpu) {
+        // The capture alone, as the app draws a world of splats without shapes: nothing
+        // can hide them, so the cpu path reads no depth back (SplatBlend::frontToBack).
+        const Figure alone =
+            measureFrom(set, path, width, height, frames, camera,
+                        0.003f * diagonal * static_cast<float>(d), render::SplatBlend::frontToBack);
+        std::printf("; alone %7.4f s  %6.2f M splats/s", alone.wall,
+                    static_cast<double>(alone.drawn) / alone.wall / 1e6);
+      }
+      std::printf("\n");
       std::fflush(stdout);
     }
   }
