@@ -2,6 +2,7 @@
 #include "splat_layer_gl.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 
@@ -31,9 +32,14 @@ void main() { o_color = texelFetch(u_layer, ivec2(gl_FragCoord.xy) - u_origin, 0
 GLenum splatLayerFormat() {
   static const GLenum format = [] {
     const char* name = std::getenv("GHOSTSPACE_SPLAT_LAYER");
-    if (name != nullptr && std::strcmp(name, "off") == 0) return static_cast<GLenum>(GL_NONE);
-    if (name != nullptr && std::strcmp(name, "float32") == 0)
-      return static_cast<GLenum>(GL_RGBA32F);
+    if (name == nullptr || std::strcmp(name, "float16") == 0)
+      return static_cast<GLenum>(GL_RGBA16F);
+    if (std::strcmp(name, "off") == 0) return static_cast<GLenum>(GL_NONE);
+    if (std::strcmp(name, "float32") == 0) return static_cast<GLenum>(GL_RGBA32F);
+    std::fprintf(stderr,
+                 "GHOSTSPACE_SPLAT_LAYER: expected off, float16 or float32, got \"%s\"; "
+                 "float16 used\n",
+                 name);
     return static_cast<GLenum>(GL_RGBA16F);
   }();
   return format;
@@ -46,7 +52,7 @@ GLuint buildLayerProgram() {
 bool FloatSplatLayer::begin(const int viewport[4]) {
   const int width = viewport[2], height = viewport[3];
   const GLenum format = splatLayerFormat();
-  if (width <= 0 || height <= 0 || format == GL_NONE) return false;
+  if (width <= 0 || height <= 0 || format == GL_NONE || refused_) return false;
   while (glGetError() != GL_NO_ERROR) {
   }
   if (framebuffer_ == 0) {
@@ -77,7 +83,13 @@ bool FloatSplatLayer::begin(const int viewport[4]) {
     const bool complete = glCheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(drawFramebuffer_));
     if (!complete || glGetError() != GL_NO_ERROR) {
+      // Not tried again each frame: the splats blend into the framebuffer from now on.
       width_ = height_ = 0;
+      refused_ = true;
+      std::fprintf(stderr,
+                   "the splat layer (%d x %d pixels, float) could not be made: splats blend "
+                   "straight into the framebuffer, 8 bits a channel\n",
+                   w, h);
       return false;
     }
     width_ = w;
@@ -150,6 +162,7 @@ void FloatSplatLayer::release() {
   }
   framebuffer_ = color_ = depth_ = program_ = vao_ = 0;
   width_ = height_ = 0;
+  refused_ = false;
 }
 
 }  // namespace gs::render::detail

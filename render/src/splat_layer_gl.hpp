@@ -20,8 +20,9 @@ namespace gs::render::detail {
 
 /// The layer's colour format: GL_RGBA16F (the default), GL_RGBA32F with
 /// GHOSTSPACE_SPLAT_LAYER=float32, GL_NONE (no layer: the splats blend straight into the
-/// framebuffer, as before) with GHOSTSPACE_SPLAT_LAYER=off; read once per process. A switch
-/// for measuring the layer (docs/rendering.md), not an option for users.
+/// framebuffer, as before) with GHOSTSPACE_SPLAT_LAYER=off; read once per process (another
+/// value: said on stderr, float16 used). A switch for measuring the layer
+/// (docs/rendering.md), not an option for users.
 GLenum splatLayerFormat();
 
 /// The premultiplied layer-over-framebuffer program shared with the cpu path: a quad over
@@ -41,7 +42,8 @@ class FloatSplatLayer {
   /// viewports; its lower left width x height used), that corner's colour cleared to 0,
   /// depth copied from the framebuffer (cleared to 1 where it has none),
   /// the GL viewport (0, 0, width, height), scissor test off. Returns false and changes
-  /// nothing when the depth could not be copied. Context current.
+  /// nothing when the depth could not be copied, or when the driver refused the layer
+  /// itself (said once on stderr; not tried again until release()). Context current.
   bool begin(const int viewport[4]);
   /// Binds the framebuffers, viewport and scissor test begin() found again and composites
   /// the layer over the viewport (inside any scissor box set), premultiplied; leaves
@@ -56,6 +58,7 @@ class FloatSplatLayer {
   GLint drawFramebuffer_ = 0, readFramebuffer_ = 0;
   GLint viewport_[4] = {0, 0, 0, 0};
   GLboolean scissored_ = GL_FALSE;
+  bool refused_ = false;  // the driver refused the layer's storage
 };
 
 }  // namespace gs::render::detail

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <utility>
 
 #include "base/text.hpp"
 #include "base/url.hpp"
@@ -217,16 +218,21 @@ bool StreamingSession::pump() {
 
 namespace {
 
-/// The level-of-detail tree of `cloud`, or null when it cannot be built or `cancel` became
-/// true (the stream is then drawn by its prefix, as before). On the tree's own thread.
-std::shared_ptr<const splats::LodTree> buildTree(std::shared_ptr<const splats::GaussianCloud> cloud,
-                                                 std::shared_ptr<std::atomic<bool>> cancel) {
+/// The level-of-detail tree of `cloud`; when it cannot be built, none and why (`url` names
+/// the stream), and neither when `cancel` became true (the session closing). On the tree's
+/// own thread.
+std::pair<std::shared_ptr<const splats::LodTree>, std::string> buildTree(
+    std::shared_ptr<const splats::GaussianCloud> cloud, std::shared_ptr<std::atomic<bool>> cancel,
+    const std::string& url) {
   try {
     splats::LodTreeOptions options;
     options.cancel = cancel.get();
-    return std::make_shared<const splats::LodTree>(splats::buildLodTree(*cloud, options));
-  } catch (const std::exception&) {
-    return nullptr;
+    return {std::make_shared<const splats::LodTree>(splats::buildLodTree(*cloud, options)), {}};
+  } catch (const splats::LodTreeCancelled&) {
+    return {};
+  } catch (const std::exception& e) {
+    return {nullptr, url + ": no level-of-detail tree for its " + std::to_string(cloud->size()) +
+                         " splats (" + e.what() + "): far views draw a prefix of the stream"};
   }
 }
 
@@ -241,14 +247,18 @@ bool StreamingSession::pumpTree(QnvEntry& e) {
     if (e.stream->progress().state != net::StreamState::done || e.gaussians->empty()) return false;
     e.treeStarted = true;
     e.tree = std::async(std::launch::async, buildTree,
-                        std::shared_ptr<const splats::GaussianCloud>(e.gaussians), e.cancelTree);
+                        std::shared_ptr<const splats::GaussianCloud>(e.gaussians), e.cancelTree,
+                        e.stream->progress().url);
     return false;
   }
   if (!e.tree.valid() || e.tree.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
     return false;
-  e.set->lodTree = e.tree.get();
+  auto [tree, problem] = e.tree.get();
+  e.treeProblem = std::move(problem);
+  if (!tree) return false;
+  e.set->lodTree = std::move(tree);
   ++e.set->revision;
-  return e.set->lodTree != nullptr;
+  return true;
 }
 
 bool StreamingSession::settled() const {
@@ -316,6 +326,7 @@ void StreamingSession::drainMessages(std::vector<std::pair<bool, std::string>>& 
     const auto& warnings = e.stream->warnings();
     for (; e.warningsShown < warnings.size(); ++e.warningsShown)
       out.push_back({false, warnings[e.warningsShown]});
+    if (!e.treeProblem.empty()) out.push_back({false, std::exchange(e.treeProblem, {})});
   }
 }
 

@@ -10,6 +10,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "net/loader.hpp"
@@ -87,8 +88,10 @@ class StreamingSession {
     /// A Gaussian stream's splats as they arrive (set->gaussians once the header says so).
     std::shared_ptr<splats::GaussianCloud> gaussians;
     /// Its level-of-detail tree, built on a thread of its own once the whole stream has
-    /// arrived (null when the build failed), then set->lodTree.
-    std::future<std::shared_ptr<const splats::LodTree>> tree;
+    /// arrived, then set->lodTree; or, when the build failed, why (shown once as a
+    /// warning: the stream is then drawn by its prefix). Neither when cancelled.
+    std::future<std::pair<std::shared_ptr<const splats::LodTree>, std::string>> tree;
+    std::string treeProblem;  // a failed build's warning, not yet drained
     /// Set when the session closes: the build stops (LodTreeOptions::cancel).
     std::shared_ptr<std::atomic<bool>> cancelTree = std::make_shared<std::atomic<bool>>(false);
     bool treeStarted = false;
