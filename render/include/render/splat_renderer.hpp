@@ -145,8 +145,9 @@ enum class SplatPath {
   gpu,
   /// A multi-threaded CPU rasterizer (src/gaussian_cpu.hpp) composites the splats front to
   /// back into a premultiplied RGBA8 image, depth-tested against the framebuffer's depth
-  /// (read once per draw), then drawn as one textured quad over the framebuffer. The
-  /// fastest path where GL itself runs on the CPU (llvmpipe, softpipe).
+  /// (under backToFront: read once per draw, under the tiles the splats reach), then
+  /// drawn as one textured quad over those tiles. The fastest path where GL itself runs
+  /// on the CPU (llvmpipe, softpipe).
   cpu,
   /// `cpu` when the GL renderer (GL_RENDERER) is llvmpipe or softpipe, else `gpu` (or
   /// `geometry` without compute shaders); resolved at the first draw. Only a setting:
@@ -185,8 +186,9 @@ class SplatRenderer {
   /// Draws the first `count` vectors of `set` (clamped to its size), placed by `model`
   /// (local to world), seen by `camera` in a viewport of aspect width / height, lit by
   /// `lights` (world directions; at most 8 are used). Depth-tested against what is in the
-  /// framebuffer, without writing depth (the cpu path reads that depth back with
-  /// glReadPixels). The viewport must already be set. `style`
+  /// framebuffer under `blend` = backToFront, without writing depth (the cpu path reads
+  /// that depth back with glReadPixels; frontToBack reads none: a world without opaque
+  /// shapes, render/src/scene_splats.hpp). The viewport must already be set. `style`
   /// (may be null) replaces set.style (a QNV node's mode and opacityScale). Throws
   /// std::runtime_error when a shader fails to compile.
   void draw(const SplatSet& set, std::size_t count, const glm::mat4& model,
