@@ -154,6 +154,10 @@ struct Reader {
       dc = required("SH_DEGREE_0_COEF_0", 3);
     } else if (const int c = attribute(prim, "COLOR_0"); c >= 0) {  // fallback colour
       const gltf::AccessorView v = gltf::accessorView(model, c, name, "COLOR_0", true);
+      // glTF 2.0 section 3.7.2.1: COLOR_0 is VEC3 or VEC4 (the red, green and blue read).
+      if (v.components != 3 && v.components != 4)
+        fail(name,
+             "COLOR_0: expected VEC3 or VEC4, got " + std::to_string(v.components) + " components");
       std::vector<float> rgba = floats(c, v.components, "COLOR_0", count);
       for (std::size_t i = 0; i < count; ++i)
         for (int k = 0; k < 3; ++k)
