@@ -16,13 +16,33 @@ constexpr int kZstdLevel = 9;
 
 }  // namespace
 
-void appendZstd(std::string& out, const std::string& planes, int level) {
-  const std::size_t bound = ZSTD_compressBound(planes.size());
+void appendZstd(std::string& out, const std::string& planes, int level,
+                std::span<const std::size_t> blockStarts) {
+  // Room for every block's 3-byte header on top of zstd's own bound.
+  const std::size_t bound = ZSTD_compressBound(planes.size()) + 3 * (blockStarts.size() + 1) + 16;
   const std::size_t start = out.size();
   out.resize(start + bound);
-  const std::size_t written =
-      ZSTD_compress(out.data() + start, bound, planes.data(), planes.size(), level);
-  out.resize(ZSTD_isError(written) ? start : start + written);
+  ZSTD_CCtx* context = ZSTD_createCCtx();
+  bool ok = context != nullptr &&
+            !ZSTD_isError(ZSTD_CCtx_setParameter(context, ZSTD_c_compressionLevel, level)) &&
+            !ZSTD_isError(ZSTD_CCtx_setPledgedSrcSize(context, planes.size()));
+  ZSTD_outBuffer to{out.data() + start, bound, 0};
+  std::size_t from = 0;
+  for (std::size_t b = 0; ok && b <= blockStarts.size(); ++b) {
+    const bool last = b == blockStarts.size();
+    const std::size_t end = last ? planes.size() : std::clamp(blockStarts[b], from, planes.size());
+    if (!last && end == from) continue;  // no bytes since the last block
+    ZSTD_inBuffer in{planes.data() + from, end - from, 0};
+    const ZSTD_EndDirective mode = last ? ZSTD_e_end : ZSTD_e_flush;
+    for (;;) {  // until this block's bytes are in and out
+      const std::size_t left = ZSTD_compressStream2(context, &to, &in, mode);
+      ok = !ZSTD_isError(left) && (left == 0 || to.pos < to.size);
+      if (!ok || (left == 0 && in.pos == in.size)) break;
+    }
+    from = end;
+  }
+  ZSTD_freeCCtx(context);
+  out.resize(ok ? start + to.pos : start);
 }
 
 void appendCompactPayload(std::string& out, std::span<const std::uint64_t> records) {
@@ -39,7 +59,9 @@ void appendCompactPayload(std::string& out, std::span<const std::uint64_t> recor
     appendVarint(planes, code - previous);
     previous = code;
   }
+  std::vector<std::size_t> blockStarts;
   auto appendPlane = [&](auto field) {
+    blockStarts.push_back(planes.size());  // a zstd block per plane
     for (const auto& entry : sorted)
       planes.push_back(static_cast<char>(field(entry.second) & 0xffu));
   };
@@ -48,7 +70,13 @@ void appendCompactPayload(std::string& out, std::span<const std::uint64_t> recor
   appendPlane([](std::uint64_t r) { return magnitudeCode(r) >> 8; });
   appendPlane([](std::uint64_t r) { return magnitudeCode(r); });
   appendPlane([](std::uint64_t r) { return static_cast<std::uint32_t>(r); });
-  appendZstd(out, planes, kZstdLevel);
+  // A zstd block per plane pays for its own literal table: more than it saves in the
+  // smallest packets (KiCad's, at 1376 bytes), so the smaller of the two is kept.
+  std::string split, whole;
+  appendZstd(split, planes, kZstdLevel, blockStarts);
+  appendZstd(whole, planes, kZstdLevel);
+  if (split.empty() || whole.empty()) return;  // zstd failed: the caller writes it plain
+  out += split.size() < whole.size() ? split : whole;
 }
 
 bool decodeCompactPayload(std::string_view payload, std::size_t count, std::uint64_t* out) {

@@ -66,9 +66,13 @@ inline bool planeFields(std::uint32_t m, const unsigned char* plane, std::size_t
   return m < (1u << 30) && dir < kDirectionCells;
 }
 
-/// Appends `planes` compressed with zstd at `level`; appends nothing on a zstd failure
-/// (the caller then writes the packet plain).
-void appendZstd(std::string& out, const std::string& planes, int level);
+/// Appends `planes` compressed with zstd at `level` as one frame (its content size set),
+/// ending a zstd block before each offset of `blockStarts` (ascending byte offsets into
+/// `planes`), so that each run of similar planes gets its own literal table; any zstd
+/// decoder reads the frame as one. Appends nothing on a zstd failure (the caller then
+/// writes the packet plain).
+void appendZstd(std::string& out, const std::string& planes, int level,
+                std::span<const std::size_t> blockStarts = {});
 
 /// Appends the compact payload of `records` (1..8191 records) to `out`.
 void appendCompactPayload(std::string& out, std::span<const std::uint64_t> records);

@@ -61,7 +61,11 @@ void appendGaussianCompactPayload(std::string& out, std::span<const std::uint64_
     appendVarint(planes, code - previous);
     previous = code;
   }
-  auto appendPlane = [&](auto field, bool delta = false) {
+  // zstd blocks: one per field, so that each gets its own literal table (a zstd frame's
+  // blocks decode as one; the splitting is the encoder's alone).
+  std::vector<std::size_t> blockStarts;
+  auto appendPlane = [&](auto field, bool delta = false, bool newBlock = true) {
+    if (newBlock) blockStarts.push_back(planes.size());
     unsigned char last = 0;
     for (const auto& entry : sorted) {
       const auto b = static_cast<unsigned char>(field(entry.second) & 0xffu);
@@ -80,18 +84,19 @@ void appendGaussianCompactPayload(std::string& out, std::span<const std::uint64_
         magnitudeCode(records[i * words]) -
         predictedCode(records[i * words], records[i * words + 1], header, quantize));
   appendPlane([&](std::size_t i) { return residual[i] >> 8u; });
-  appendPlane([&](std::size_t i) { return residual[i]; });
+  appendPlane([&](std::size_t i) { return residual[i]; }, false, false);
   appendPlane([&](std::size_t i) { return static_cast<std::uint32_t>(records[i * words]); });
   for (int shift = 56; shift >= 0; shift -= 8)
     appendPlane(
         [&](std::size_t i) { return static_cast<std::uint32_t>(records[i * words + 1] >> shift); },
-        shift >= 16);  // colour and scales: as their Morton neighbours'
+        shift >= 16,  // colour and scales: as their Morton neighbours'
+        shift != 48 && shift != 40 && shift != 24);  // blocks: colour, major and middle scale
   const int sh = shPlanes(words);
   for (int c = 0, at = 0; c < sh; at += gaussianShBits(c), ++c)
-    appendPlane([&](std::size_t i) {
-      return readWordBits(&records[i * words + 2], at, gaussianShBits(c));
-    });
-  appendZstd(out, planes, kGaussianZstdLevel);
+    appendPlane(
+        [&](std::size_t i) { return readWordBits(&records[i * words + 2], at, gaussianShBits(c)); },
+        false, c == 0 || c == 9 || c == 24);  // a block per SH degree
+  appendZstd(out, planes, kGaussianZstdLevel, blockStarts);
 }
 
 bool decodeGaussianCompactPayload(std::string_view payload, std::size_t count, std::uint32_t words,

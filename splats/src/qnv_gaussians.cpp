@@ -153,8 +153,15 @@ qnv::EncodedVectors encodeGaussianStream(const GaussianCloud& cloud) {
     const glm::vec3 major = r[axis[0]];
     float angle = std::atan2(glm::dot(major, v), glm::dot(major, u));
     if (angle < 0.0f) angle += kPi;
+    const std::uint32_t major8 = logScaleCode(s[axis[0]], scaleLo, scaleHi),
+                        middle8 = logScaleCode(s[axis[1]], scaleLo, scaleHi),
+                        thin8 = logScaleCode(s[axis[2]], scaleLo, scaleHi);
+    // A disc round in its plane comes back the same at any angle, and a sphere at any
+    // normal too: those bits are then 0, which the compact coding stores for almost nothing.
     const std::uint32_t angleCode =
-        static_cast<std::uint32_t>(std::lround(angle / kPi * 256.0f)) & 255u;
+        major8 == middle8 ? 0u
+                          : static_cast<std::uint32_t>(std::lround(angle / kPi * 256.0f)) & 255u;
+    if (major8 == thin8) t6 = p7 = 0;
     std::uint32_t fine[3];
     for (int a = 0; a < 3; ++a) fine[a] = fineCoordinate(cloud.positions[i][a], lo[a], hi[a]);
     qnv::RecordFields f;
@@ -169,10 +176,8 @@ qnv::EncodedVectors encodeGaussianStream(const GaussianCloud& cloud) {
     const glm::vec3 dc = cloud.shDc[i];
     w[1] = std::uint64_t{byteOf(dc.r * kColorScale + 0.5f)} << 56 |
            std::uint64_t{byteOf(dc.g * kColorScale + 0.5f)} << 48 |
-           std::uint64_t{byteOf(dc.b * kColorScale + 0.5f)} << 40 |
-           std::uint64_t{logScaleCode(s[axis[0]], scaleLo, scaleHi)} << 32 |
-           std::uint64_t{logScaleCode(s[axis[1]], scaleLo, scaleHi)} << 24 |
-           std::uint64_t{logScaleCode(s[axis[2]], scaleLo, scaleHi)} << 16 |
+           std::uint64_t{byteOf(dc.b * kColorScale + 0.5f)} << 40 | std::uint64_t{major8} << 32 |
+           std::uint64_t{middle8} << 24 | std::uint64_t{thin8} << 16 |
            std::uint64_t{angleCode} << 8 | std::uint64_t{fine[0] & 3u} << 6 |
            std::uint64_t{fine[1] & 3u} << 4 | std::uint64_t{fine[2] & 3u} << 2 |
            std::uint64_t{t6 & 1u} << 1 | std::uint64_t{p7 & 1u};

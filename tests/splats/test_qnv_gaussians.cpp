@@ -7,6 +7,7 @@
 #include <cmath>
 #include <string>
 
+#include <zstd.h>
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
@@ -111,6 +112,97 @@ TEST_CASE("a Gaussian stream is in importance order and every prefix decodes", "
     CHECK(prefix.size() >= previous);
     previous = prefix.size();
   }
+}
+
+TEST_CASE("round discs store no angle and spheres no normal, and come back the same",
+          "[splats][qnv]") {
+  // One round disc, one sphere and one flat ellipse, each turned at random.
+  GaussianCloud cloud;
+  cloud.setShDegree(0);
+  const glm::vec3 scales[] = {
+      {0.02f, 0.02f, 0.001f}, {0.01f, 0.01f, 0.01f}, {0.03f, 0.01f, 0.001f}};
+  for (int k = 0; k < 3; ++k) {
+    cloud.positions.push_back(glm::vec3(0.1f * static_cast<float>(k)));
+    cloud.scales.push_back(scales[k]);
+    cloud.rotations.push_back(glm::normalize(glm::quat(0.3f, 0.5f + 0.1f * k, -0.7f, 0.2f)));
+    cloud.opacities.push_back(0.8f);
+    cloud.shDc.push_back(glm::vec3(0.2f));
+  }
+  const gs::qnv::EncodedVectors encoded = encodeGaussianStream(cloud);
+  REQUIRE(encoded.records.size() == 6);
+  const GaussianCloud back = readQnvGaussians(gs::qnv::writeStream(encoded), "shapes.qnv");
+  REQUIRE(back.size() == 3);
+  int discs = 0, spheres = 0, ellipses = 0;
+  for (std::size_t k = 0; k < 3; ++k) {
+    const std::uint64_t word = encoded.records[2 * k + 1];
+    const std::uint32_t major = (word >> 32) & 255u, middle = (word >> 24) & 255u,
+                        thin = (word >> 16) & 255u, angle = (word >> 8) & 255u;
+    const gs::qnv::RecordFields f = gs::qnv::unpackRecord(encoded.records[2 * k]);
+    if (major == thin) {
+      ++spheres;
+      CHECK(angle == 0);
+      CHECK(f.theta == 0);
+      CHECK(f.phi == 0);
+      CHECK((word & 3u) == 0);  // the normal's low bits
+    } else if (major == middle) {
+      ++discs;
+      CHECK(angle == 0);
+    } else {
+      ++ellipses;
+      CHECK(angle != 0);  // this ellipse's major axis is not the frame's first axis
+    }
+    // The covariance comes back within the quantization, whatever the angle stored.
+    std::size_t i = 0;
+    while (i < 3 && glm::distance(cloud.positions[i], back.positions[k]) > 0.01f) ++i;
+    REQUIRE(i < 3);
+    const glm::mat3 a = covarianceOf(cloud, i), b = covarianceOf(back, k);
+    const float largest = std::max({a[0][0], a[1][1], a[2][2]});
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) CHECK(std::abs(a[c][r] - b[c][r]) < 0.05f * largest);
+  }
+  CHECK(discs == 1);
+  CHECK(spheres == 1);
+  CHECK(ellipses == 1);
+}
+
+TEST_CASE("compact Gaussian packets hold a zstd block per field", "[splats][qnv]") {
+  const GaussianCloud cloud = bunnySmall();
+  const std::string bytes = gs::qnv::writeStream(encodeGaussianStream(cloud),
+                                                 {24 * 1500, gs::qnv::PacketEncoding::compact});
+  // The first packet's payload: one zstd frame; walk its block headers (RFC 8878 3.1.1.2).
+  const std::size_t at = gs::qnv::kHeaderBytes + 16;
+  REQUIRE(bytes.size() > at + 32);
+  REQUIRE(static_cast<unsigned char>(bytes[gs::qnv::kHeaderBytes + 10]) == 1);  // compact
+  const unsigned char* p = reinterpret_cast<const unsigned char*>(bytes.data()) + at;
+  const std::size_t payload =
+      static_cast<unsigned char>(bytes[gs::qnv::kHeaderBytes + 8]) |
+      static_cast<std::size_t>(static_cast<unsigned char>(bytes[gs::qnv::kHeaderBytes + 9])) << 8;
+  // The frame header (RFC 8878 3.1.1.1): magic, descriptor, window, dictionary, size.
+  REQUIRE(payload > 6);
+  REQUIRE((p[0] | p[1] << 8 | p[2] << 16 | static_cast<std::uint32_t>(p[3]) << 24) ==
+          ZSTD_MAGICNUMBER);
+  const unsigned descriptor = p[4];
+  const bool singleSegment = (descriptor >> 5) & 1u;
+  const std::size_t sizeBytes[] = {singleSegment ? 1u : 0u, 2, 4, 8}, dictBytes[] = {0, 1, 2, 4};
+  const std::size_t frameHeader =
+      5 + (singleSegment ? 0 : 1) + dictBytes[descriptor & 3u] + sizeBytes[descriptor >> 6];
+  int blocks = 0;
+  for (std::size_t pos = frameHeader; pos + 3 <= payload; ++blocks) {
+    const std::uint32_t h =
+        p[pos] | (std::uint32_t{p[pos + 1]} << 8) | (std::uint32_t{p[pos + 2]} << 16);
+    const std::uint32_t type = (h >> 1) & 3u, size = h >> 3;
+    pos += 3 + (type == 1 ? 1 : size);  // an RLE block holds one byte
+    if (h & 1u) {
+      ++blocks;
+      break;
+    }
+  }
+  // Positions, direction twice, A, C, colour, two scale blocks, angle, low bits, SH degree 1.
+  CHECK(blocks >= 10);
+  // The blocks pay: bunny_small took 36,935 bytes in one block a packet (fifteenth session).
+  const std::string stream = gs::qnv::writeStream(encodeGaussianStream(cloud),
+                                                  {24 * 1024, gs::qnv::PacketEncoding::compact});
+  CHECK(stream.size() < 35500);
 }
 
 TEST_CASE("a damaged Gaussian stream loses only its damaged packets", "[splats][qnv]") {
