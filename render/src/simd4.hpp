@@ -27,8 +27,9 @@ inline F4 select4(I4 mask, F4 v) {
   return reinterpret_cast<F4>(mask & reinterpret_cast<I4>(v));
 }
 
-/// exp(x) for x in [-8, 0]: 2^n 2^f with a degree-6 polynomial for 2^f, relative error
-/// below 3e-6.
+/// exp(x) for x in [-8, 0]: 2^n 2^f, n the nearest integer to x log2(e) and f in
+/// [-0.5, 0.5], with a degree-4 polynomial for 2^f in Estrin's order; relative error below
+/// 6e-5 (5.6e-5 measured, tests/render/test_splat_cpu.cpp).
 inline F4 exp4(F4 x) {
   const F4 t = x * 1.44269504f;                        // log2(e); t <= 0
   const I4 n = __builtin_convertvector(t - 0.5f, I4);  // truncated: the nearest
