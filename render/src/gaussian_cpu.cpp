@@ -385,6 +385,7 @@ void CpuGaussianRasterizer::rasterize(const Source& source, std::span<const std:
       for (int c = 0; c < chunks && live > 0; ++c) {
         for (const Prepared& splat :
              s.bins[static_cast<std::size_t>(c)][static_cast<std::size_t>(t)]) {
+          if (splat.y1 < ty0 || splat.y0 >= ty0 + th) continue;  // not in this band's rows
           composite(splat, tx0, ty0, tw, th, tile, live);
           if (live <= 0) break;
         }
