@@ -45,6 +45,18 @@ void appendZstd(std::string& out, const std::string& planes, int level,
   out.resize(ok ? start + to.pos : start);
 }
 
+void appendZstdSmaller(std::string& out, const std::string& planes, int level,
+                       std::span<const std::size_t> blockStarts, bool tryOneBlock) {
+  std::string split, whole;
+  appendZstd(split, planes, level, blockStarts);
+  if (tryOneBlock) appendZstd(whole, planes, level);
+  // The smaller of those made; nothing when zstd failed both (the caller writes it plain).
+  if (whole.empty() || (!split.empty() && split.size() <= whole.size()))
+    out += split;
+  else
+    out += whole;
+}
+
 void appendCompactPayload(std::string& out, std::span<const std::uint64_t> records) {
   std::vector<std::pair<std::uint32_t, std::uint64_t>> sorted;
   sorted.reserve(records.size());
@@ -72,11 +84,7 @@ void appendCompactPayload(std::string& out, std::span<const std::uint64_t> recor
   appendPlane([](std::uint64_t r) { return static_cast<std::uint32_t>(r); });
   // A zstd block per plane pays for its own literal table: more than it saves in the
   // smallest packets (KiCad's, at 1376 bytes), so the smaller of the two is kept.
-  std::string split, whole;
-  appendZstd(split, planes, kZstdLevel, blockStarts);
-  appendZstd(whole, planes, kZstdLevel);
-  if (split.empty() || whole.empty()) return;  // zstd failed: the caller writes it plain
-  out += split.size() < whole.size() ? split : whole;
+  appendZstdSmaller(out, planes, kZstdLevel, blockStarts, true);
 }
 
 bool decodeCompactPayload(std::string_view payload, std::size_t count, std::uint64_t* out) {

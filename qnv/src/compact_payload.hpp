@@ -74,6 +74,11 @@ inline bool planeFields(std::uint32_t m, const unsigned char* plane, std::size_t
 void appendZstd(std::string& out, const std::string& planes, int level,
                 std::span<const std::size_t> blockStarts = {});
 
+/// Appends `planes` as appendZstd does with `blockStarts`, or, when `tryOneBlock` and that
+/// is smaller, as one block; appends nothing when zstd failed every time.
+void appendZstdSmaller(std::string& out, const std::string& planes, int level,
+                       std::span<const std::size_t> blockStarts, bool tryOneBlock);
+
 /// Appends the compact payload of `records` (1..8191 records) to `out`.
 void appendCompactPayload(std::string& out, std::span<const std::uint64_t> records);
 

@@ -31,6 +31,7 @@ namespace gs::qnv::detail {
 namespace {
 
 constexpr int kGaussianZstdLevel = 19;
+constexpr std::size_t kTryOneBlockBelow = 512;  // splats in a packet
 
 // The SH words (record 2 on) hold coefficients from the top bit down: 9 of 5 bits (SH
 // degree 1), then 4 bits each (15 of degree 2, 21 of degree 3). Each becomes a plane.
@@ -96,7 +97,10 @@ void appendGaussianCompactPayload(std::string& out, std::span<const std::uint64_
     appendPlane(
         [&](std::size_t i) { return readWordBits(&records[i * words + 2], at, gaussianShBits(c)); },
         false, c == 0 || c == 9 || c == 24);  // a block per SH degree
-  appendZstd(out, planes, kGaussianZstdLevel, blockStarts);
+  // The blocks' literal tables cost more than they save in a small packet (a stream's last
+  // one, or a small --packet-bytes: 8-64 splats took 2-16% more bytes): below
+  // kTryOneBlockBelow splats one block is tried too, and the smaller kept.
+  appendZstdSmaller(out, planes, kGaussianZstdLevel, blockStarts, n < kTryOneBlockBelow);
 }
 
 bool decodeGaussianCompactPayload(std::string_view payload, std::size_t count, std::uint32_t words,
