@@ -14,11 +14,13 @@ namespace {
 
 constexpr int kZstdLevel = 9;
 
-}  // namespace
-
+// Appends `planes` compressed with zstd at `level` as one frame (its content size set),
+// ending a zstd block before each offset of `blockStarts` (ascending byte offsets into
+// `planes`), so that each run of similar planes gets its own literal table; any zstd
+// decoder reads the frame as one. Appends nothing on a zstd failure.
 void appendZstd(std::string& out, const std::string& planes, int level,
                 std::span<const std::size_t> blockStarts) {
-  // Room for every block's 3-byte header on top of zstd's own bound.
+  // Room for every block's 3-byte header on top of zstd's own bound, and a little slack.
   const std::size_t bound = ZSTD_compressBound(planes.size()) + 3 * (blockStarts.size() + 1) + 16;
   const std::size_t start = out.size();
   out.resize(start + bound);
@@ -45,11 +47,13 @@ void appendZstd(std::string& out, const std::string& planes, int level,
   out.resize(ok ? start + to.pos : start);
 }
 
+}  // namespace
+
 void appendZstdSmaller(std::string& out, const std::string& planes, int level,
                        std::span<const std::size_t> blockStarts, bool tryOneBlock) {
   std::string split, whole;
   appendZstd(split, planes, level, blockStarts);
-  if (tryOneBlock) appendZstd(whole, planes, level);
+  if (tryOneBlock) appendZstd(whole, planes, level, {});
   // The smaller of those made; nothing when zstd failed both (the caller writes it plain).
   if (whole.empty() || (!split.empty() && split.size() <= whole.size()))
     out += split;

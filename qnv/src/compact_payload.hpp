@@ -69,13 +69,9 @@ inline bool planeFields(std::uint32_t m, const unsigned char* plane, std::size_t
 /// Appends `planes` compressed with zstd at `level` as one frame (its content size set),
 /// ending a zstd block before each offset of `blockStarts` (ascending byte offsets into
 /// `planes`), so that each run of similar planes gets its own literal table; any zstd
-/// decoder reads the frame as one. Appends nothing on a zstd failure (the caller then
+/// decoder reads the frame as one. With `tryOneBlock`, the frame is also made as one block
+/// and the smaller kept. Appends nothing when zstd failed every time (the caller then
 /// writes the packet plain).
-void appendZstd(std::string& out, const std::string& planes, int level,
-                std::span<const std::size_t> blockStarts = {});
-
-/// Appends `planes` as appendZstd does with `blockStarts`, or, when `tryOneBlock` and that
-/// is smaller, as one block; appends nothing when zstd failed every time.
 void appendZstdSmaller(std::string& out, const std::string& planes, int level,
                        std::span<const std::size_t> blockStarts, bool tryOneBlock);
 

@@ -169,7 +169,7 @@ TEST_CASE("compact Gaussian packets hold a zstd block per field", "[splats][qnv]
   const std::string bytes = gs::qnv::writeStream(encodeGaussianStream(cloud),
                                                  {24 * 1500, gs::qnv::PacketEncoding::compact});
   // The first packet's payload: one zstd frame; walk its block headers (RFC 8878 3.1.1.2).
-  const std::size_t at = gs::qnv::kHeaderBytes + 16;
+  const std::size_t at = gs::qnv::kHeaderBytes + gs::qnv::kPacketHeaderBytes;
   REQUIRE(bytes.size() > at + 32);
   REQUIRE(static_cast<unsigned char>(bytes[gs::qnv::kHeaderBytes + 10]) == 1);  // compact
   const unsigned char* p = reinterpret_cast<const unsigned char*>(bytes.data()) + at;
