@@ -111,6 +111,26 @@ const std::vector<OptionSpec>& table() {
        .shownDefault = "",
        .check = CLI::Range(0, 16)},
       {.scope = main,
+       .names = "--texture-quality",
+       .valueName = "NAME",
+       .field = GS_FIELD(std::string, textureQuality),
+       .help = "The X3D browser option TextureQuality: how textures without TextureProperties "
+               "are filtered when minified. high: trilinear mipmaps (castle-model-viewer's); "
+               "medium: the nearest texels of the two nearest mipmaps (X_ITE's default); low: "
+               "bilinear, no mipmaps",
+       .more = "docs/rendering.md, \"Browser options\".",
+       .check = CLI::IsMember(std::vector<std::string>{"low", "medium", "high"}, CLI::ignore_case)},
+      {.scope = main,
+       .names = "--shading",
+       .valueName = "NAME",
+       .field = GS_FIELD(std::string, shading),
+       .help = "The X3D browser option Shading, for Material shapes: phong (a texture colours "
+               "the diffuse term, X3D 4.0 clause 17.2.2.4) or gouraud (the texture multiplies "
+               "the lit colour, X_ITE's default)",
+       .more = "Both light every pixel, as X_ITE's GOURAUD does (docs/rendering.md, \"Browser "
+               "options\").",
+       .check = CLI::IsMember(std::vector<std::string>{"phong", "gouraud"}, CLI::ignore_case)},
+      {.scope = main,
        .names = "--fit",
        .valueName = "",
        .field = GS_FIELD(bool, options.fit),

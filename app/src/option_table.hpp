@@ -21,12 +21,14 @@ namespace gs::app {
 struct Arguments {
   Arguments();
   Options options;
-  std::string size;       // --size WxH
-  std::string lod;        // --lod F[,F...]
-  std::string layout;     // --layout NAME
-  std::string mode;       // --mode NAME
-  std::string splatPath;  // --splat-path NAME
-  std::string time;       // --time T|T0:DT:N
+  std::string size;                     // --size WxH
+  std::string lod;                      // --lod F[,F...]
+  std::string layout;                   // --layout NAME
+  std::string mode;                     // --mode NAME
+  std::string splatPath;                // --splat-path NAME
+  std::string textureQuality = "high";  // --texture-quality low|medium|high
+  std::string shading = "phong";        // --shading phong|gouraud
+  std::string time;                     // --time T|T0:DT:N
   std::string snapshotAt;
   double scriptMegabytes = 0.0;  // --script-memory-limit MB
   bool noScripts = false;

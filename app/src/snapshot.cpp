@@ -31,6 +31,8 @@ render::SceneRendererOptions rendererOptions(const Options& options) {
   r.splatLoader = session::splatLoader();
   r.lod = options.lod;
   r.splatPath = options.splatPath;
+  r.textureQuality = options.textureQuality;
+  r.shading = options.shading;
   r.traversal.mode = options.mode;
   // GS_SHADER_VARIANTS=0: one generic surface program (benchmarks' "before"; docs/rendering.md).
   if (const char* v = std::getenv("GS_SHADER_VARIANTS"); v != nullptr && std::string_view(v) == "0")

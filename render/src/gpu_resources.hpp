@@ -162,6 +162,9 @@ class TextureCache {
   const GpuTexture& get(const vrml::Node& node, const std::string& baseUrl,
                         scene::SceneTraversal& traversal, base::Fetcher* fetcher);
   void release();
+  /// The filter of textures without TextureProperties loaded from now on (the X3D browser
+  /// option TextureQuality; SceneRendererOptions::textureQuality). Default high.
+  void setQuality(TextureQuality quality) { quality_ = quality; }
   /// The ImageTextures and ImageTexture3Ds whose loading ended (true: loaded, false:
   /// failed) since the last call, for X3D LoadSensors (SceneRenderer::takeUrlObjectLoads).
   std::vector<std::pair<const vrml::Node*, bool>> takeLoads() {
@@ -174,6 +177,7 @@ class TextureCache {
  private:
   vrml::NodeMap<GpuTexture> textures_;
   std::vector<std::pair<const vrml::Node*, bool>> loads_;
+  TextureQuality quality_ = TextureQuality::high;
 };
 
 /// The first image of a URL list that could be read and decoded (ImageTexture.url,

@@ -171,6 +171,7 @@ SceneRenderer::SceneRenderer(std::shared_ptr<const vrml::Scene> scene, SceneRend
                                                     options_.splatPath)),
       headlight_(traversal_.navigation().headlight) {
   gpu_->textures.movies.setPlayers(options_.movies);
+  gpu_->textures.setQuality(options_.textureQuality);
   splats_->setFetcher(options_.fetcher);
 }
 
@@ -622,6 +623,7 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     glUniform1f(u.shininess, sh.shininess);
     glUniform1f(u.transparency, sh.transparency);
     glUniform1i(u.textureModulates, sh.textureModulates ? 1 : 0);
+    glUniform1i(u.textureAfterLighting, options_.shading == ShadingOption::gouraud ? 1 : 0);
     glUniform1i(u.separateBack, sh.separateBack ? 1 : 0);
     if (sh.separateBack) {
       glUniform3fv(u.backDiffuseColor, 1, glm::value_ptr(sh.backDiffuseColor));

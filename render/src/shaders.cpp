@@ -13,7 +13,9 @@
 // 1- and 2-component textures multiply the diffuse (or Color) colour by their intensity,
 // 3- and 4-component ones replace it; 2- and 4-component textures give the alpha,
 // otherwise alpha = 1 - transparency. In X3D worlds (u_textureModulates, X3D 4.0 clause
-// 17.2.2.4) 3- and 4-component textures multiply the colour and the alpha instead. Unlit shapes (no
+// 17.2.2.4) 3- and 4-component textures multiply the colour and the alpha instead; with the
+// browser option Shading GOURAUD (u_textureAfterLighting) the texture multiplies the lit
+// colour I (emissive and specular included), as X_ITE 15 draws by default. Unlit shapes (no
 // Material, lines, points) take u_unlitColor (white, or emissiveColor for lines and points) with
 // the same texture and colour rules. Fog (clause 6.19): f0 = (r - d) / r (LINEAR) or exp(-d / (r -
 // d)) (EXPONENTIAL), 0 beyond the visibility range r, d the distance to the viewer; where the
@@ -249,6 +251,9 @@ uniform int u_fogType;  // 0 none, 1 LINEAR, 2 EXPONENTIAL
 #define STAGE_COUNT u_stageCount
 #endif
 
+// The browser option Shading GOURAUD (scene_renderer.hpp ShadingOption): the texture (or
+// the MultiTexture's stages) multiplies the lit colour instead of the diffuse colour.
+uniform bool u_textureAfterLighting;
 uniform vec3 u_diffuseColor;
 uniform float u_ambientIntensity;
 uniform vec3 u_specularColor;
@@ -393,16 +398,19 @@ void main() {
     diffuse = v_color.rgb;
     alpha *= v_color.a;  // X3D ColorRGBA (clause 11.4.3); 1 for Color
   }
+  bool afterLighting = u_textureAfterLighting && LIT;
+  vec3 textureColor = vec3(1.0);  // what multiplies the lit colour (afterLighting)
   if (TEXTURE_COMPONENTS > 0) {
     vec4 t = TEXTURE_3D    ? texture(u_texture3D, v_texCoord3 / v_texQ)
              : CUBE_MAP > 0 ? vec4(texture(u_cubeTexture, cubeDirection()).rgb, 1.0)
                             : texture(u_texture, v_texCoord / v_texQ);
-    if (TEXTURE_COMPONENTS <= 2) diffuse *= t.r;
+    if (afterLighting) textureColor = TEXTURE_COMPONENTS <= 2 ? vec3(t.r) : t.rgb;
+    else if (TEXTURE_COMPONENTS <= 2) diffuse *= t.r;
     else diffuse = TEXTURE_MODULATES ? diffuse * t.rgb : t.rgb;
     if (TEXTURE_COMPONENTS == 2 || TEXTURE_COMPONENTS == 4)
-      alpha = TEXTURE_MODULATES ? alpha * t.a : t.a;
+      alpha = TEXTURE_MODULATES || afterLighting ? alpha * t.a : t.a;
   }
-  if (STAGE_COUNT > 0) {
+  if (STAGE_COUNT > 0 && !afterLighting) {
     vec4 combined = applyStages(vec4(diffuse, alpha), specularColor);
     diffuse = combined.rgb;
     alpha = combined.a;
@@ -449,6 +457,15 @@ void main() {
         specular = u_lightIntensity[i] * specularColor * pow(max(dot(n, h), 1e-6), exponent);
       }
       color += attenuation * spot * u_lightColor[i] * (ambient + lambert + specular);
+    }
+  }
+
+  if (afterLighting) {
+    color *= textureColor;
+    if (STAGE_COUNT > 0) {
+      vec4 combined = applyStages(vec4(color, alpha), specularColor);
+      color = combined.rgb;
+      alpha = combined.a;
     }
   }
 

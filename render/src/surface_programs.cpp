@@ -44,6 +44,7 @@ void SurfaceUniforms::find(GLuint p) {
   for (std::size_t i = 0; i < kStageTextures.size(); ++i)
     stageTexture[i] = uniform(p, kStageTextures[i]);
   textureModulates = uniform(p, "u_textureModulates");
+  textureAfterLighting = uniform(p, "u_textureAfterLighting");
   clipPlanes = uniform(p, "u_clipPlanes");
   lineType = uniform(p, "u_lineType");
   pointScale = uniform(p, "u_pointScale");

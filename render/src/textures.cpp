@@ -45,8 +45,12 @@ GLint magnificationFilter(const std::string& mode) {
   return mode == "NEAREST_PIXEL" || mode == "FASTEST" ? GL_NEAREST : GL_LINEAR;
 }
 
-Sampling samplingOf(const vrml::Node& texture) {
+/// `quality` picks the minification filter of a texture without TextureProperties.
+Sampling samplingOf(const vrml::Node& texture, TextureQuality quality) {
   Sampling s;
+  s.minFilter = quality == TextureQuality::low      ? GL_LINEAR
+                : quality == TextureQuality::medium ? GL_NEAREST_MIPMAP_LINEAR
+                                                    : GL_LINEAR_MIPMAP_LINEAR;
   s.wrapS = scene::sfBool(texture, "repeatS", true) ? GL_REPEAT : GL_CLAMP_TO_EDGE;
   s.wrapT = scene::sfBool(texture, "repeatT", true) ? GL_REPEAT : GL_CLAMP_TO_EDGE;
   s.wrapR = scene::sfBool(texture, "repeatR", true) ? GL_REPEAT : GL_CLAMP_TO_EDGE;
@@ -223,7 +227,7 @@ const GpuTexture& TextureCache::get(const vrml::Node& node, const std::string& i
     return movies.get(node, baseUrl, traversal, fetcher);
   if (auto it = textures_.find(&node); it != textures_.end()) return it->second;
   GpuTexture texture;
-  Sampling sampling = samplingOf(node);
+  Sampling sampling = samplingOf(node, quality_);
   // X_ITE 15 draws an X3D texture without TextureProperties whose sides are both under 16
   // texels with nearest texels and no mipmaps (its Browser's getMinTextureSize), so a
   // PixelTexture checkerboard stays crisp; VRML97's stay filtered, as castle draws them.

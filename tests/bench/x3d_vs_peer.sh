@@ -9,8 +9,9 @@
 #   issue 20's judge (docs/castle-comparison.md).
 # xite: X_ITE 15 in headless Chromium (../shared/peers/xite/shot.mjs; set up once with its
 #   setup.sh, in XITE_PEER, default /tmp/peer/xite), the world's own camera (X_ITE's default
-#   0 0 10 when it has none, as VRML's) and `ghostspace --samples 4` (X_ITE's WebGL canvas is
-#   anti-aliased); issue 41's judge of X3D 4.
+#   0 0 10 when it has none, as VRML's) and `ghostspace --samples 4 --texture-quality medium
+#   --shading gouraud` (X_ITE's WebGL canvas is anti-aliased, and those are its default
+#   browser options; docs/rendering.md, "Browser options"); issue 41's judge of X3D 4.
 # TIMES: the simulated times to compare, e.g. "0 2.5" (default "0"): X_ITE loads at SFTime
 #   720720 = lcm(1..16) and runs T seconds in fixed steps, so a looping TimeSensor is at the
 #   phase `ghostspace --time T` gives; against X_ITE ours is loaded there too
@@ -39,8 +40,9 @@ xite=${XITE_PEER:-/tmp/peer/xite}
 case $peer in
   castle) ours_options=(--castle-camera) ;;
   xite)
-    # X_ITE draws with WebGL's antialias (4 samples a pixel in its pictures): ours too.
-    ours_options=(--samples 4)
+    # X_ITE draws with WebGL's antialias (4 samples a pixel in its pictures) and at its
+    # default browser options TextureQuality MEDIUM and Shading GOURAUD: ours too.
+    ours_options=(--samples 4 --texture-quality medium --shading gouraud)
     [ -f "$xite/node_modules/x_ite/package.json" ] ||
       { echo "$0: X_ITE is not set up in $xite (copy ../shared/peers/xite there, run setup.sh)" >&2; exit 1; } ;;
   *) echo "$0: unknown peer '$peer' (castle or xite)" >&2; exit 2 ;;

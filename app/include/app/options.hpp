@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "app/layout.hpp"
+#include "render/browser_options.hpp"
 #include "render/splat_renderer.hpp"
 #include "scene/traversal.hpp"
 
@@ -63,6 +64,8 @@ struct Options {
   std::string frameLog;            // --frame-log FILE: a line per window frame (frame_log.hpp)
   scene::RenderMode mode = scene::RenderMode::polygons;        // --mode polygons|splats|outlines
   render::SplatPath splatPath = render::SplatPath::automatic;  // --splat-path (docs/rendering.md)
+  render::TextureQuality textureQuality = render::TextureQuality::high;  // --texture-quality
+  render::ShadingOption shading = render::ShadingOption::phong;          // --shading
   bool fit = false;           // --fit: frame the whole scene, not the Viewpoint
   bool castleCamera = false;  // --castle-camera: castle's camera for a world without Viewpoint
   double maxRate = 0.0;       // --max-rate BYTES_PER_S: emulate a slow link (0: off)

@@ -4,6 +4,7 @@
 // and the headlight. The same code draws into a window or an off-screen framebuffer.
 #pragma once
 
+#include "render/browser_options.hpp"
 #include "render/splat_renderer.hpp"
 #include "render/splat_source.hpp"
 #include "scene/camera.hpp"
@@ -69,6 +70,10 @@ struct SceneRendererOptions {
   /// fog, colours), compiled a few per frame from the second frame on; false: always the
   /// one generic program (the same pixels, more work per pixel). docs/rendering.md.
   bool shaderVariants = true;
+  /// `--texture-quality`: the filter of textures without TextureProperties.
+  TextureQuality textureQuality = TextureQuality::high;
+  /// `--shading`: where a Material shape's texture enters the lighting.
+  ShadingOption shading = ShadingOption::phong;
 };
 
 /// What the last draw() did.

@@ -1,0 +1,30 @@
+// The X3D browser options that change how a world is drawn (ISO/IEC 19775-1, the browser
+// options of the Networking component, which X_ITE sets with Browser.setBrowserOption):
+// TextureQuality and Shading. `--texture-quality` and `--shading` on the command line.
+#pragma once
+
+#include <string_view>
+
+namespace gs::render {
+
+/// The X3D browser option TextureQuality (ISO/IEC 19775-1, the browser options of the
+/// Networking component; X_ITE's `setBrowserOption("TextureQuality", ...)`): how a texture
+/// without TextureProperties is filtered. high: trilinear (GL_LINEAR_MIPMAP_LINEAR), as
+/// castle-model-viewer draws; medium: nearest texels of the two nearest mipmap levels
+/// (GL_NEAREST_MIPMAP_LINEAR), X_ITE 15's default; low: bilinear, no mipmaps. Magnified
+/// texels are bilinear in all three.
+enum class TextureQuality { low, medium, high };
+
+/// The X3D browser option Shading (the same table), for Material (Phong) shapes. phong: a
+/// texture colours the diffuse term before lighting (X3D 4.0 clause 17.2.2.4); gouraud: the
+/// texture multiplies the lit colour, emissive and specular included, as fixed-function
+/// Gouraud shading with a modulating texture did and as X_ITE 15's default GOURAUD draws.
+/// Both light every pixel (X_ITE's GOURAUD does too; docs/rendering.md, "Browser options").
+enum class ShadingOption { phong, gouraud };
+
+/// Reads "low" / "medium" / "high" and "phong" / "gouraud" in any case into `out`; false
+/// (`out` unchanged) for anything else.
+bool parseTextureQuality(std::string_view name, TextureQuality& out);
+bool parseShadingOption(std::string_view name, ShadingOption& out);
+
+}  // namespace gs::render
