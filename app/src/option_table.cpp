@@ -124,9 +124,10 @@ const std::vector<OptionSpec>& table() {
        .names = "--shading",
        .valueName = "NAME",
        .field = GS_FIELD(std::string, shading),
-       .help = "The X3D browser option Shading, for Material shapes: phong (a texture colours "
-               "the diffuse term, X3D 4.0 clause 17.2.2.4) or gouraud (the texture multiplies "
-               "the lit colour, X_ITE's default)",
+       .help = "The X3D browser option Shading, for Material shapes of VRML97 and X3D 3 "
+               "worlds: phong (a texture colours the diffuse term) or gouraud (the texture "
+               "multiplies the lit colour, X_ITE's default); X3D 4 worlds are always phong "
+               "(clause 17.2.2.4)",
        .more = "Both light every pixel, as X_ITE's GOURAUD does (docs/rendering.md, \"Browser "
                "options\").",
        .check = CLI::IsMember(std::vector<std::string>{"phong", "gouraud"}, CLI::ignore_case)},

@@ -15,12 +15,12 @@
 // otherwise alpha = 1 - transparency. In X3D worlds (u_textureModulates, X3D 4.0 clause
 // 17.2.2.4) 3- and 4-component textures multiply the colour and the alpha instead; with the
 // browser option Shading GOURAUD (u_textureAfterLighting) the texture multiplies the lit
-// colour I (emissive and specular included), as X_ITE 15 draws by default. Unlit shapes (no
-// Material, lines, points) take u_unlitColor (white, or emissiveColor for lines and points) with
-// the same texture and colour rules. Fog (clause 6.19): f0 = (r - d) / r (LINEAR) or exp(-d / (r -
-// d)) (EXPONENTIAL), 0 beyond the visibility range r, d the distance to the viewer; where the
-// geometry has an X3D FogCoordinate (X3D 4.0 clause 24.4.2), f0 = 1 - its depth (the fog
-// amount, as X_ITE and castle-model-viewer read it).
+// colour I (emissive and specular included) in VRML97 and X3D 3 worlds, as X_ITE 15 draws by
+// default. Unlit shapes (no Material, lines, points) take u_unlitColor (white, or emissiveColor for
+// lines and points) with the same texture and colour rules. Fog (clause 6.19): f0 = (r - d) / r
+// (LINEAR) or exp(-d / (r - d)) (EXPONENTIAL), 0 beyond the visibility range r, d the distance to
+// the viewer; where the geometry has an X3D FogCoordinate (X3D 4.0 clause 24.4.2), f0 = 1 - its
+// depth (the fog amount, as X_ITE and castle-model-viewer read it).
 //
 // Multi-texturing (X3D 4.0 clause 18.4.3, multi_texture.hpp): a MultiTexture's stages, up
 // to 4, replace the single texture. Each combines its texture (Arg1, after its function)
@@ -251,7 +251,7 @@ uniform int u_fogType;  // 0 none, 1 LINEAR, 2 EXPONENTIAL
 #define STAGE_COUNT u_stageCount
 #endif
 
-// The browser option Shading GOURAUD (scene_renderer.hpp ShadingOption): the texture (or
+// The browser option Shading GOURAUD (browser_options.hpp ShadingOption): the texture (or
 // the MultiTexture's stages) multiplies the lit colour instead of the diffuse colour.
 uniform bool u_textureAfterLighting;
 uniform vec3 u_diffuseColor;

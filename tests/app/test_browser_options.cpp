@@ -98,14 +98,15 @@ TEST_CASE(
 }
 
 TEST_CASE(
-    "the option Shading GOURAUD multiplies the lit colour by the texture, PHONG the diffuse "
-    "colour",
+    "the option Shading GOURAUD multiplies the lit colour by the texture in VRML97 and X3D 3 "
+    "worlds, PHONG the diffuse colour",
     "[app][render][texture]") {
   // A red emissive sphere without diffuse colour, textured pure blue: Phong's diffuse term
   // takes the texture (blue x 0 = nothing) and leaves the emissive red; Gouraud's texture
-  // multiplies the lit colour, red x blue = black.
-  const std::string world = writeOptionsWorld("emissive_textured.x3dv", R"(#X3D V4.0 utf8
-PROFILE Interchange
+  // multiplies the lit colour, red x blue = black. X3D 4's lighting equation fixes the
+  // texture's place (clause 17.2.2.4): such a world is red whatever the option.
+  const auto world = [](const std::string& name, const std::string& header) {
+    return writeOptionsWorld(name, header + R"(
 Viewpoint { position 0 0 4 }
 Background { skyColor [ 1 1 1 ] }
 Shape {
@@ -116,15 +117,24 @@ Shape {
   geometry Sphere { }
 }
 )")
-                                .string();
-  const std::string phong =
-      gs::test::snapshot("shading_phong", {"--size", "64x64", "--shading", "phong", world});
-  const std::string gouraud =
-      gs::test::snapshot("shading_gouraud", {"--size", "64x64", "--shading", "GOURAUD", world});
+        .string();
+  };
+  const std::string x3d3 = world("emissive_textured_3.x3dv", "#X3D V3.3 utf8\nPROFILE Interchange");
+  const std::string vrml97 = world("emissive_textured.wrl", "#VRML V2.0 utf8");
+  const std::string x3d4 = world("emissive_textured_4.x3dv", "#X3D V4.0 utf8\nPROFILE Interchange");
+  const auto shot = [](const std::string& name, const std::string& shading, const std::string& w) {
+    return gs::test::snapshot(name, {"--size", "64x64", "--shading", shading, w});
+  };
+  const std::string phong = shot("shading_phong", "phong", x3d3);
   CHECK(gs::test::centrePixel(phong) == std::array<int, 3>{255, 0, 0});
-  CHECK(gs::test::centrePixel(gouraud) == std::array<int, 3>{0, 0, 0});
+  CHECK(gs::test::centrePixel(shot("shading_gouraud", "GOURAUD", x3d3)) ==
+        std::array<int, 3>{0, 0, 0});
+  CHECK(gs::test::centrePixel(shot("shading_gouraud_97", "gouraud", vrml97)) ==
+        std::array<int, 3>{0, 0, 0});
+  CHECK(gs::test::centrePixel(shot("shading_gouraud_4", "gouraud", x3d4)) ==
+        std::array<int, 3>{255, 0, 0});
   CHECK(gs::test::fractionDiffering(
-            phong, gs::test::snapshot("shading_default", {"--size", "64x64", world})) == 0.0);
+            phong, gs::test::snapshot("shading_default", {"--size", "64x64", x3d3})) == 0.0);
 }
 
 TEST_CASE("the options TextureQuality and Shading refuse names they do not know", "[app][cli]") {

@@ -15,11 +15,13 @@ namespace gs::render {
 /// texels are bilinear in all three.
 enum class TextureQuality { low, medium, high };
 
-/// The X3D browser option Shading (the same table), for Material (Phong) shapes. phong: a
-/// texture colours the diffuse term before lighting (X3D 4.0 clause 17.2.2.4); gouraud: the
-/// texture multiplies the lit colour, emissive and specular included, as fixed-function
-/// Gouraud shading with a modulating texture did and as X_ITE 15's default GOURAUD draws.
-/// Both light every pixel (X_ITE's GOURAUD does too; docs/rendering.md, "Browser options").
+/// The X3D browser option Shading (the same table), for Material (Phong) shapes of VRML97
+/// and X3D 3.x worlds. phong: a texture colours the diffuse term before lighting; gouraud:
+/// the texture multiplies the lit colour, emissive and specular included, as fixed-function
+/// Gouraud shading with a modulating texture did and as X_ITE 15's default GOURAUD draws
+/// those worlds. X3D 4 worlds are always phong: clause 17.2.2.4 fixes the texture's place in
+/// the lighting equation (X_ITE 15 likewise). Both light every pixel (X_ITE's GOURAUD does
+/// too; docs/rendering.md, "Browser options").
 enum class ShadingOption { phong, gouraud };
 
 /// Reads "low" / "medium" / "high" and "phong" / "gouraud" in any case into `out`; false
