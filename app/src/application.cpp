@@ -159,10 +159,11 @@ Parsed parseArguments(int argc, char** argv) {
   }
   o.layout = layoutFromName(a.layout).value_or(Layout::single);  // checked by IsMember
   o.mode = scene::renderModeFromName(a.mode).value_or(scene::RenderMode::polygons);
+  // The names below were checked by IsMember.
+  render::parseTextureQuality(a.textureQuality, o.textureQuality);
+  render::parseShadingOption(a.shading, o.shading);
   if (render::SplatPath path; render::parseSplatPath(a.splatPath.c_str(), path))
     o.splatPath = path;  // checked by IsMember
-  render::parseTextureQuality(a.textureQuality, o.textureQuality);  // checked by IsMember
-  render::parseShadingOption(a.shading, o.shading);
   if (!a.size.empty() && !parseSize(a.size, o.width, o.height)) {
     std::fprintf(stderr, "ghostspace: --size: expected WxH such as 800x600, got '%s'\n",
                  a.size.c_str());
