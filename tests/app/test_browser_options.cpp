@@ -5,8 +5,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <string>
 #include <vector>
 
@@ -15,17 +13,7 @@
 #include "render/image.hpp"
 #include "test_support.hpp"
 
-namespace fs = std::filesystem;
-
 namespace {
-
-fs::path writeOptionsWorld(const std::string& name, const std::string& text) {
-  const fs::path dir = fs::path(GS_BINARY_DIR) / "browser_options";
-  fs::create_directories(dir);
-  const fs::path path = dir / name;
-  std::ofstream(path) << text;
-  return path;
-}
 
 // An unlit floor seen at a grazing angle, textured with a 32x32 black-and-white
 // checkerboard of 2-texel squares repeated 40 times: from the bottom of the picture up,
@@ -74,7 +62,8 @@ TEST_CASE(
     "the option TextureQuality picks the minification filter of textures without "
     "TextureProperties",
     "[app][render][texture]") {
-  const std::string world = writeOptionsWorld("checker_floor.x3dv", checkerFloor()).string();
+  const gs::test::TempDir dir("texture_quality");
+  const std::string world = dir.write("checker_floor.x3dv", checkerFloor());
   const auto shot = [&](const std::string& quality) {
     return gs::test::snapshot("texture_quality_" + quality,
                               {"--size", "160x160", "--texture-quality", quality, world});
@@ -105,8 +94,9 @@ TEST_CASE(
   // takes the texture (blue x 0 = nothing) and leaves the emissive red; Gouraud's texture
   // multiplies the lit colour, red x blue = black. X3D 4's lighting equation fixes the
   // texture's place (clause 17.2.2.4): such a world is red whatever the option.
-  const auto world = [](const std::string& name, const std::string& header) {
-    return writeOptionsWorld(name, header + R"(
+  const gs::test::TempDir dir("shading");
+  const auto world = [&](const std::string& name, const std::string& header) {
+    return dir.write(name, header + R"(
 Viewpoint { position 0 0 4 }
 Background { skyColor [ 1 1 1 ] }
 Shape {
@@ -116,8 +106,7 @@ Shape {
   }
   geometry Sphere { }
 }
-)")
-        .string();
+)");
   };
   const std::string x3d3 = world("emissive_textured_3.x3dv", "#X3D V3.3 utf8\nPROFILE Interchange");
   const std::string vrml97 = world("emissive_textured.wrl", "#VRML V2.0 utf8");
@@ -138,8 +127,8 @@ Shape {
 }
 
 TEST_CASE("the options TextureQuality and Shading refuse names they do not know", "[app][cli]") {
-  const std::string world =
-      writeOptionsWorld("empty.x3dv", "#X3D V4.0 utf8\nPROFILE Interchange\n").string();
+  const gs::test::TempDir dir("browser_options");
+  const std::string world = dir.write("empty.x3dv", "#X3D V4.0 utf8\nPROFILE Interchange\n");
   for (const std::vector<std::string>& bad : {std::vector<std::string>{"--texture-quality", "best"},
                                               std::vector<std::string>{"--shading", "flat"}}) {
     std::vector<std::string> args = bad;
