@@ -22,8 +22,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cstdlib>
-#include <string>
 #include <unordered_map>
 
 namespace gs::render {
@@ -287,10 +285,7 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
   // lighting equation (clause 17.2.2.4) fixes where a texture enters it whatever the
   // browser's Shading; X_ITE 15 likewise shades only older worlds GOURAUD. (Read each frame:
   // a world still loading has no header yet when the renderer is made.)
-  const std::string& version = traversal_.scene().x3d.version;
-  const bool textureAfterLighting =
-      options_.shading == ShadingOption::gouraud &&
-      (version.empty() || std::strtod(version.c_str(), nullptr) < 3.35);
+  const bool afterLighting = textureAfterLighting(options_.shading, traversal_.scene().x3d.version);
 
   const float aspect = float(width) / float(height);
   const glm::mat4 view = scene::viewMatrix(camera);
@@ -633,7 +628,7 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     glUniform1f(u.shininess, sh.shininess);
     glUniform1f(u.transparency, sh.transparency);
     glUniform1i(u.textureModulates, sh.textureModulates ? 1 : 0);
-    glUniform1i(u.textureAfterLighting, textureAfterLighting ? 1 : 0);
+    glUniform1i(u.textureAfterLighting, afterLighting ? 1 : 0);
     glUniform1i(u.separateBack, sh.separateBack ? 1 : 0);
     if (sh.separateBack) {
       glUniform3fv(u.backDiffuseColor, 1, glm::value_ptr(sh.backDiffuseColor));

@@ -1,14 +1,11 @@
 // An Appearance's values for the surface programs (shading.hpp).
 #include "shading.hpp"
 
-#include "render/browser_options.hpp"
 #include "scene/node_access.hpp"
 #include "scene/traversal.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <string_view>
-#include <utility>
 
 namespace gs::render::detail {
 
@@ -153,39 +150,3 @@ Shading readShading(const vrml::Node* appearance, bool x3d) {
 }
 
 }  // namespace gs::render::detail
-
-namespace gs::render {
-
-namespace {
-
-bool equalsIgnoringCase(std::string_view a, std::string_view b) {
-  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
-           return std::tolower(static_cast<unsigned char>(x)) ==
-                  std::tolower(static_cast<unsigned char>(y));
-         });
-}
-
-}  // namespace
-
-bool parseTextureQuality(std::string_view name, TextureQuality& out) {
-  for (const auto& [text, value] :
-       {std::pair{"low", TextureQuality::low}, std::pair{"medium", TextureQuality::medium},
-        std::pair{"high", TextureQuality::high}})
-    if (equalsIgnoringCase(name, text)) {
-      out = value;
-      return true;
-    }
-  return false;
-}
-
-bool parseShadingOption(std::string_view name, ShadingOption& out) {
-  for (const auto& [text, value] :
-       {std::pair{"phong", ShadingOption::phong}, std::pair{"gouraud", ShadingOption::gouraud}})
-    if (equalsIgnoringCase(name, text)) {
-      out = value;
-      return true;
-    }
-  return false;
-}
-
-}  // namespace gs::render

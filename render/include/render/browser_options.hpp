@@ -29,4 +29,9 @@ enum class ShadingOption { phong, gouraud };
 bool parseTextureQuality(std::string_view name, TextureQuality& out);
 bool parseShadingOption(std::string_view name, ShadingOption& out);
 
+/// Whether `shading` makes a Material shape's texture multiply the lit colour in a world of
+/// header version `x3dVersion` ("3.3", "4.0" ...; empty for VRML97): true for gouraud in
+/// VRML97 and X3D 3.x worlds, false otherwise (see ShadingOption).
+bool textureAfterLighting(ShadingOption shading, std::string_view x3dVersion);
+
 }  // namespace gs::render
