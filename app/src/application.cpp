@@ -197,6 +197,7 @@ Parsed parseArguments(int argc, char** argv) {
   }
   o.progress = !a.noProgress;
   o.time.scripts = !a.noScripts;
+  o.time.shading = o.shading;  // the Shading option a world's Scripts start from
   o.time.scriptLimits.heapBytes = static_cast<std::size_t>(a.scriptMegabytes * 1048576.0);
   if (!a.time.empty() && !session::parseTimeOption(a.time, o.time)) {
     std::fprintf(stderr,

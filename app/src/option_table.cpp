@@ -124,13 +124,16 @@ const std::vector<OptionSpec>& table() {
        .names = "--shading",
        .valueName = "NAME",
        .field = GS_FIELD(std::string, shading),
-       .help = "The X3D browser option Shading, for Material shapes of VRML97 and X3D 3 "
-               "worlds: phong (a texture colours the diffuse term) or gouraud (the texture "
-               "multiplies the lit colour, X_ITE's default); X3D 4 worlds are always phong "
-               "(clause 17.2.2.4)",
-       .more = "Both light every pixel, as X_ITE's GOURAUD does (docs/rendering.md, \"Browser "
-               "options\").",
-       .check = CLI::IsMember(std::vector<std::string>{"phong", "gouraud"}, CLI::ignore_case)},
+       .help = "The X3D browser option Shading that worlds start with: phong; gouraud (in "
+               "VRML97 and X3D 3 worlds a Material shape's texture multiplies the lit colour, "
+               "X_ITE's default; X3D 4 worlds stay phong, clause 17.2.2.4); flat (each "
+               "triangle's own normal); wireframe or point (polygons as edges or vertices)",
+       .more = "Every mode lights every pixel, as X_ITE's GOURAUD does; a world's Scripts "
+               "may change it with Browser.setBrowserOption(\"Shading\", ...) "
+               "(docs/rendering.md, \"Browser options\").",
+       .check = CLI::IsMember(
+           std::vector<std::string>{"phong", "gouraud", "flat", "wireframe", "point", "pointset"},
+           CLI::ignore_case)},
       {.scope = main,
        .names = "--fit",
        .valueName = "",

@@ -41,8 +41,26 @@ bool parseTextureQuality(std::string_view name, TextureQuality& out) {
 
 bool parseShadingOption(std::string_view name, ShadingOption& out) {
   static constexpr std::pair<const char*, ShadingOption> kNames[] = {
-      {"phong", ShadingOption::phong}, {"gouraud", ShadingOption::gouraud}};
+      {"point", ShadingOption::point},         {"pointset", ShadingOption::point},
+      {"wireframe", ShadingOption::wireframe}, {"flat", ShadingOption::flat},
+      {"gouraud", ShadingOption::gouraud},     {"phong", ShadingOption::phong}};
   return parseName(name, kNames, out);
+}
+
+std::string_view shadingName(ShadingOption shading) {
+  switch (shading) {
+    case ShadingOption::point:
+      return "POINT";
+    case ShadingOption::wireframe:
+      return "WIREFRAME";
+    case ShadingOption::flat:
+      return "FLAT";
+    case ShadingOption::gouraud:
+      return "GOURAUD";
+    case ShadingOption::phong:
+      break;
+  }
+  return "PHONG";
 }
 
 bool textureAfterLighting(ShadingOption shading, std::string_view x3dVersion) {

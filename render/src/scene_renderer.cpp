@@ -463,6 +463,7 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
       glUniform1i(u.cubeTexture, kCubeTextureUnit);
       glUniform1i(u.texture3D, kTexture3DUnit);
       glUniform2f(u.viewportSize, static_cast<float>(width), static_cast<float>(height));
+      glUniform1i(u.flatShading, options_.shading == ShadingOption::flat ? 1 : 0);
       p.frameSet = g.programs.frame();
     }
     return true;
@@ -740,6 +741,12 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     }
     glDepthMask(GL_TRUE);
   };
+  // The browser option Shading WIREFRAME and POINT: polygons as their edges or vertices
+  // (lines and points stay as they are; X_ITE 15 likewise, for WIREFRAME).
+  const GLenum polygonMode = options_.shading == ShadingOption::wireframe ? GL_LINE
+                             : options_.shading == ShadingOption::point   ? GL_POINT
+                                                                          : GL_FILL;
+  glPolygonMode(GL_FRONT_AND_BACK, polygonMode);
   if (g.frame.layerOrder.empty()) drawLayer(-1);
   // X3D layers (clause 35.4.2): in the LayerSet's order, each over the previous (the depth
   // buffer cleared), a Layer's Viewport clipping it to its clipBoundary (scissor only: the
@@ -754,6 +761,7 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     glClear(GL_DEPTH_BUFFER_BIT);
     drawLayer(l.number);
   }
+  glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
   glScissor(x, y, width, height);
   for (; clipDistancesOn > 0; --clipDistancesOn) glDisable(GL_CLIP_DISTANCE0 + clipDistancesOn - 1);
   statistics_.shaderVariants = g.programs.variantCount();

@@ -254,6 +254,8 @@ uniform int u_fogType;  // 0 none, 1 LINEAR, 2 EXPONENTIAL
 // The browser option Shading GOURAUD (browser_options.hpp ShadingOption): the texture (or
 // the MultiTexture's stages) multiplies the lit colour instead of the diffuse colour.
 uniform bool u_textureAfterLighting;
+// The browser option Shading FLAT: each triangle lit by its own normal.
+uniform bool u_flatShading;
 uniform vec3 u_diffuseColor;
 uniform float u_ambientIntensity;
 uniform vec3 u_specularColor;
@@ -320,9 +322,17 @@ bool hatchOn(vec2 pixel) {
   return positive || negative;
 }
 
-vec3 cubeDirection() {
+// The normal of the side seen, eye coordinates, unit length: the interpolated one (negated
+// on back faces: two-sided lighting), or with Shading FLAT the triangle's own, from the
+// screen derivatives of the position (it faces the viewer on either side).
+vec3 shadingNormal() {
+  if (u_flatShading) return normalize(cross(dFdx(v_position), dFdy(v_position)));
   vec3 n = normalize(v_normal);
-  if (!gl_FrontFacing) n = -n;
+  return gl_FrontFacing ? n : -n;
+}
+
+vec3 cubeDirection() {
+  vec3 n = shadingNormal();
   vec3 r = reflect(normalize(v_position), n);
   if (CUBE_MAP == 2) return r;
   if (CUBE_MAP == 3) return n;
@@ -421,8 +431,7 @@ void main() {
 
   vec3 color = diffuse;
   if (LIT) {
-    vec3 n = normalize(v_normal);
-    if (!gl_FrontFacing) n = -n;  // two-sided lighting (solid FALSE)
+    vec3 n = shadingNormal();  // two-sided lighting (solid FALSE)
     vec3 v = normalize(-v_position);
     color = emissiveColor;
     for (int i = 0; i < kMaxLights; ++i) {

@@ -42,6 +42,7 @@ in vec2 v_texCoord1;
 in float v_texQ;  // X3D TextureCoordinate4D's q (1 otherwise): v_texCoord / it
 
 uniform bool u_hasColor;
+uniform bool u_flatShading;  // the browser option Shading FLAT
 uniform int u_textureComponents;  // base colour texture: 0 none
 uniform sampler2D u_texture;
 uniform bool u_hasMetallicRoughnessTexture;
@@ -108,8 +109,9 @@ vec2 uvOf(int set) {
 }
 
 vec3 surfaceNormal() {
-  vec3 n = normalize(v_normal);
-  if (!gl_FrontFacing) n = -n;
+  // Shading FLAT (shaders.cpp's shadingNormal): the triangle's own normal.
+  vec3 n = u_flatShading ? normalize(cross(dFdx(v_position), dFdy(v_position)))
+                         : (gl_FrontFacing ? normalize(v_normal) : -normalize(v_normal));
   if (!u_hasNormalTexture) return n;
   vec3 dp1 = dFdx(v_position), dp2 = dFdy(v_position);
   vec2 uv = uvOf(u_mapTexCoordSet.y);

@@ -45,6 +45,7 @@ void SurfaceUniforms::find(GLuint p) {
     stageTexture[i] = uniform(p, kStageTextures[i]);
   textureModulates = uniform(p, "u_textureModulates");
   textureAfterLighting = uniform(p, "u_textureAfterLighting");
+  flatShading = uniform(p, "u_flatShading");
   clipPlanes = uniform(p, "u_clipPlanes");
   lineType = uniform(p, "u_lineType");
   pointScale = uniform(p, "u_pointScale");

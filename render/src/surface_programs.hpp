@@ -42,7 +42,7 @@ struct SurfaceUniforms {
   GLint hasEnvironment, hasEnvironmentMap, environmentMap, environmentSh, environmentColor,
       environmentAmbient, environmentMaxLod, eyeToEnvironment;
   GLint baseTexCoordSet, mapTexCoordSet;
-  GLint clipPlaneCount, clipPlanes, textureModulates, textureAfterLighting;
+  GLint clipPlaneCount, clipPlanes, textureModulates, textureAfterLighting, flatShading;
   // A MultiTexture's stages (multi_texture.hpp): units 1..3 for stages 1..3.
   GLint stageCount, stageMode, stageSource, stageFunction, stageTexCoord, stageMatrix, stageFactor;
   std::array<GLint, 3> stageTexture;

@@ -638,6 +638,19 @@ void ExecutionModel::setDescription(const std::string& text) {
   std::fprintf(stderr, "%s\n", text.c_str());
 }
 
+const std::string* ExecutionModel::browserOption(const std::string& name) const {
+  const auto it = options_.browserOptions.find(name);
+  return it == options_.browserOptions.end() ? nullptr : &it->second.value;
+}
+
+bool ExecutionModel::setBrowserOption(const std::string& name, const std::string& value) {
+  const auto it = options_.browserOptions.find(name);
+  if (it == options_.browserOptions.end()) return false;
+  if (it->second.accepts && !it->second.accepts(value)) return false;
+  it->second.value = value;
+  return true;
+}
+
 void ExecutionModel::print(const std::string& text) {
   std::fprintf(stderr, "%s\n", text.c_str());
 }

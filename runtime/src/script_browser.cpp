@@ -60,17 +60,28 @@ duk_ret_t getCurrentFrameRate(duk_context* c) {
   return 1;
 }
 
-// ISO/IEC 19777-1 clause 7.2.3's browser options and properties (SHADING, TEXTURE_QUALITY
-// ...; X_ITE's test worlds ask for PHONG shading): GhostSpace has no option a world may
-// change and reports no property: getBrowserProperty and setBrowserOption answer false,
-// getBrowserOption undefined.
+// ISO/IEC 19777-1 clause 7.2.3's browser properties: GhostSpace reports none
+// (getBrowserProperty answers false).
 duk_ret_t answerFalse(duk_context* c) {
   duk_push_false(c);
   return 1;
 }
 
-duk_ret_t answerUndefined(duk_context* c) {
-  duk_push_undefined(c);
+// Its browser options: those the host has (ExecutionOptions::browserOptions, "Shading";
+// X_ITE's test worlds switch it with buttons). getBrowserOption(name) gives the value, or
+// undefined for an option the browser has not; setBrowserOption(name, value) answers
+// whether the value was taken.
+duk_ret_t getBrowserOption(duk_context* c) {
+  const std::string* value = EsScript::of(c).context().browserOption(stringArg(c, 0));
+  if (value == nullptr)
+    duk_push_undefined(c);
+  else
+    duk_push_lstring(c, value->data(), value->size());
+  return 1;
+}
+
+duk_ret_t setBrowserOption(duk_context* c) {
+  duk_push_boolean(c, EsScript::of(c).context().setBrowserOption(stringArg(c, 0), stringArg(c, 1)));
   return 1;
 }
 
@@ -274,8 +285,8 @@ void EsScript::installBrowser(duk_context* c) {
       {"createX3DFromString", createX3DFromString, 1},
       {"createX3DFromURL", createX3DFromURL, 3},
       {"getBrowserProperty", answerFalse, 1},
-      {"getBrowserOption", answerUndefined, 1},
-      {"setBrowserOption", answerFalse, 2},
+      {"getBrowserOption", getBrowserOption, 1},
+      {"setBrowserOption", setBrowserOption, 2},
   };
   duk_push_global_object(c);
   duk_push_object(c);

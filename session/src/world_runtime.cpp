@@ -109,6 +109,12 @@ runtime::ExecutionModel& WorldRuntimes::of(const std::shared_ptr<const vrml::Sce
     if (options_.scripts) o.scripts = runtime::ecmascriptFactory();
     o.scriptLimits = options_.scriptLimits;
     o.fetcher = fetcher_;
+    // The browser options a Script may read and set (render/browser_options.hpp).
+    o.browserOptions["Shading"] = {std::string(render::shadingName(options_.shading)),
+                                   [](const std::string& value) {
+                                     render::ShadingOption parsed;
+                                     return render::parseShadingOption(value, parsed);
+                                   }};
     e.model = std::make_unique<runtime::ExecutionModel>(scene, time, std::move(o));
   }
   return *e.model;
@@ -217,6 +223,15 @@ scene::BoundNodes WorldRuntimes::bound(const vrml::Scene* scene) const {
   b.background = m.bound(runtime::BindableKind::Background);
   b.fog = m.bound(runtime::BindableKind::Fog);
   return b;
+}
+
+render::ShadingOption WorldRuntimes::shading(const vrml::Scene* scene) const {
+  render::ShadingOption shading = options_.shading;
+  const auto it = worlds_.find(scene);
+  if (it == worlds_.end() || !it->second.model) return shading;
+  if (const std::string* value = it->second.model->browserOption("Shading"))
+    render::parseShadingOption(*value, shading);
+  return shading;
 }
 
 render::MediaClock WorldRuntimes::mediaClock(const vrml::Scene* scene) const {

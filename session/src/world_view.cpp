@@ -103,6 +103,9 @@ bool WorldView::update(double time, const WorldView* last) {
 void WorldView::draw() {
   // 6. Drawing asks for what the state references (Inlines, textures, LOD levels, QNV
   // prefixes); it arrives through later pumps.
+  // The browser option Shading as the world's Scripts left it (WorldRuntimes::shading).
+  if (WorldRuntimes* runtimes = group_.runtimes())
+    renderer_->setShading(runtimes->shading(scene_.get()));
   renderer_->draw(camera(), x_, y_, width_, height_);
 }
 

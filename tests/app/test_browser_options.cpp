@@ -130,7 +130,7 @@ TEST_CASE("the options TextureQuality and Shading refuse names they do not know"
   const gs::test::TempDir dir("browser_options");
   const std::string world = dir.write("empty.x3dv", "#X3D V4.0 utf8\nPROFILE Interchange\n");
   for (const std::vector<std::string>& bad : {std::vector<std::string>{"--texture-quality", "best"},
-                                              std::vector<std::string>{"--shading", "flat"}}) {
+                                              std::vector<std::string>{"--shading", "smooth"}}) {
     std::vector<std::string> args = bad;
     args.push_back(world);
     const gs::test::ProcessResult r = gs::test::runGhostspace(args);

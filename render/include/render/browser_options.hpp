@@ -15,19 +15,32 @@ namespace gs::render {
 /// texels are bilinear in all three.
 enum class TextureQuality { low, medium, high };
 
-/// The X3D browser option Shading (the same table), for Material (Phong) shapes of VRML97
-/// and X3D 3.x worlds. phong: a texture colours the diffuse term before lighting; gouraud:
-/// the texture multiplies the lit colour, emissive and specular included, as fixed-function
-/// Gouraud shading with a modulating texture did and as X_ITE 15's default GOURAUD draws
-/// those worlds. X3D 4 worlds are always phong: clause 17.2.2.4 fixes the texture's place in
-/// the lighting equation (X_ITE 15 likewise). Both light every pixel (X_ITE's GOURAUD does
-/// too; docs/rendering.md, "Browser options").
-enum class ShadingOption { phong, gouraud };
+/// The X3D browser option Shading (the same table; a Script sets it with
+/// Browser.setBrowserOption("Shading", ...), ISO/IEC 19777-1 clause 7.2.3), as X_ITE 15 draws
+/// each value:
+/// - phong: a texture colours the diffuse term before lighting; every pixel lit.
+/// - gouraud: for Material (Phong) shapes of VRML97 and X3D 3.x worlds, the texture
+///   multiplies the lit colour, emissive and specular included, as fixed-function Gouraud
+///   shading with a modulating texture did and as X_ITE 15's default GOURAUD draws those
+///   worlds; every pixel still lit (X_ITE's GOURAUD is too). X3D 4 worlds are drawn phong:
+///   clause 17.2.2.4 fixes the texture's place in the lighting equation (X_ITE 15 likewise).
+/// - flat: phong with each triangle's own normal (from the screen derivatives of the
+///   position) in place of the geometry's normals: facets show.
+/// - wireframe: polygons drawn as their edges (glPolygonMode GL_LINE), lit as phong.
+/// - point: polygons drawn as their vertices (glPolygonMode GL_POINT), lit as phong.
+/// Lines and points are drawn as they are in every mode (docs/rendering.md, "Browser
+/// options").
+enum class ShadingOption { point, wireframe, flat, gouraud, phong };
 
-/// Reads "low" / "medium" / "high" and "phong" / "gouraud" in any case into `out`; false
-/// (`out` unchanged) for anything else.
+/// Reads "low" / "medium" / "high", and "point" (or X_ITE's "pointset") / "wireframe" /
+/// "flat" / "gouraud" / "phong", in any case into `out`; false (`out` unchanged) for
+/// anything else.
 bool parseTextureQuality(std::string_view name, TextureQuality& out);
 bool parseShadingOption(std::string_view name, ShadingOption& out);
+
+/// The X3D name of a Shading value, as Browser.getBrowserOption("Shading") gives it:
+/// "POINT", "WIREFRAME", "FLAT", "GOURAUD" or "PHONG".
+std::string_view shadingName(ShadingOption shading);
 
 /// Whether `shading` makes a Material shape's texture multiply the lit colour in a world of
 /// header version `x3dVersion` ("3.3", "4.0" ...; empty for VRML97): true for gouraud in

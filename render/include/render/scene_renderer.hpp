@@ -156,6 +156,12 @@ class SceneRenderer {
     headlightSet_ = true;
   }
 
+  /// The browser option Shading (browser_options.hpp) from the next draw() on: the
+  /// command line's `--shading` at first, then what a Script of the world sets with
+  /// Browser.setBrowserOption("Shading", ...) (session::WorldView::draw).
+  ShadingOption shading() const { return options_.shading; }
+  void setShading(ShadingOption shading) { options_.shading = shading; }
+
   /// Where MovieTextures take their media time from (docs/media.md). `waitForFrames`:
   /// draw() waits for the frame of that time (--snapshot: the same pixels every run);
   /// otherwise it shows the newest frame decoded so far and never waits (the window).

@@ -49,6 +49,14 @@ enum class UrlLoadState : std::uint8_t {
 enum class BindableKind { Viewpoint, NavigationInfo, Background, Fog };
 inline constexpr int kBindableKindCount = 4;
 
+/// One browser option of ExecutionOptions::browserOptions: its value and the values it takes.
+struct BrowserOption {
+  std::string value;
+  /// Whether `value` is one the option takes (the browser's own spelling, any case: the
+  /// caller's parser); empty: any.
+  std::function<bool(const std::string& value)> accepts;
+};
+
 struct ExecutionOptions {
   /// Called for every event sent (after loop breaking), in order. Empty: no tracing.
   std::function<void(const TraceEvent&)> trace;
@@ -65,6 +73,9 @@ struct ExecutionOptions {
   /// Limit on events handled in one timestamp; past it the cascade stops with a
   /// diagnostic (a guard against routes that multiply events).
   std::size_t maxEventsPerCascade = 1'000'000;
+  /// The browser options a Script may read and set (Browser.getBrowserOption /
+  /// setBrowserOption), by name ("Shading"), with their values at the load; empty: none.
+  std::unordered_map<std::string, BrowserOption> browserOptions;
 };
 
 /// Counters for benchmarks and tests.
@@ -240,6 +251,8 @@ class ExecutionModel final : public ScriptContext {
   bool fetchText(const std::string& url, std::string& text, std::string& error) override;
   void replaceWorld(const std::vector<vrml::NodePtr>& nodes) override;
   void setDescription(const std::string& text) override;
+  const std::string* browserOption(const std::string& name) const override;
+  bool setBrowserOption(const std::string& name, const std::string& value) override;
   void print(const std::string& text) override;
   void scriptDiagnostic(vrml::Severity severity, const vrml::SourceLocation& where,
                         const std::string& message) override;

@@ -86,6 +86,20 @@ class ScriptContext {
   virtual void replaceWorld(const std::vector<vrml::NodePtr>& nodes) = 0;
   /// Browser.setDescription(text).
   virtual void setDescription(const std::string& text) = 0;
+  /// Browser.getBrowserOption(name) (ISO/IEC 19777-1 clause 7.2.3; the option names of
+  /// ISO/IEC 19775-1's table of browser options, "Shading" ...): the option's value, or
+  /// null when the browser has no such option a world may read.
+  virtual const std::string* browserOption(const std::string& name) const {
+    (void)name;
+    return nullptr;
+  }
+  /// Browser.setBrowserOption(name, value): true when the browser has the option and takes
+  /// the value (from the next frame on); false, nothing changed, otherwise.
+  virtual bool setBrowserOption(const std::string& name, const std::string& value) {
+    (void)name;
+    (void)value;
+    return false;
+  }
   /// print() / Browser.print: a line for the console (stderr).
   virtual void print(const std::string& text) = 0;
   /// A problem of the Script (error, limit reached); `where` names the world's file:line

@@ -3,6 +3,7 @@
 // clock: the wall clock in a window, the virtual clock of --time for --snapshot.
 #pragma once
 
+#include "render/browser_options.hpp"
 #include "render/scene_renderer.hpp"
 #include "runtime/execution_model.hpp"
 #include "scene/traversal.hpp"
@@ -33,6 +34,9 @@ struct RuntimeOptions {
   bool scripts = true;       // --no-scripts: Script nodes do not run
   /// --script-time-limit S (seconds of one Script call) and --script-memory-limit MB.
   runtime::ScriptLimits scriptLimits;
+  /// --shading: the browser option Shading each world starts with; its Scripts may read it
+  /// and set it (Browser.getBrowserOption / setBrowserOption("Shading", ...)).
+  render::ShadingOption shading = render::ShadingOption::phong;
 };
 
 /// The viewer pose the execution model's sensors see for a camera drawn at `aspect`
@@ -103,6 +107,9 @@ class WorldRuntimes {
   /// ParticleSystems (X3D 4.0 clause 40): where a traversal of `scene` finds their
   /// particles (runtime::ExecutionModel::particleSimulation; none before the world runs).
   scene::ParticleSource particleSource(const vrml::Scene* scene) const;
+  /// The browser option Shading of `scene`'s world: what its Scripts set last, or
+  /// RuntimeOptions::shading (also before the world runs).
+  render::ShadingOption shading(const vrml::Scene* scene) const;
   /// Whether any world may change without input (runtime::ExecutionModel::animating:
   /// an active TimeSensor or media node, a Script with pending work, a LoadSensor's
   /// timeOut still to pass): the window keeps drawing while true.
