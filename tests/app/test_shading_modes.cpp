@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -51,16 +52,21 @@ Coverage coverage(const std::string& png) {
           pairs > 0.0 ? same / pairs : 0.0};
 }
 
+/// The lit sphere written in `dir`, and a function that snapshots it at 160x160 with a
+/// --shading value and measures the picture.
+std::function<Coverage(const std::string&)> litSphere(const gs::test::TempDir& dir) {
+  return [world = dir.write("lit_sphere.x3dv", kLitSphere)](const std::string& shading) {
+    return coverage(gs::test::snapshot("shading_mode_" + shading,
+                                       {"--size", "160x160", "--shading", shading, world}));
+  };
+}
+
 }  // namespace
 
 TEST_CASE("the option Shading FLAT lights each triangle by its own normal, PHONG smoothly",
           "[app][render]") {
   const gs::test::TempDir dir("shading_flat");
-  const std::string world = dir.write("lit_sphere.x3dv", kLitSphere);
-  const auto shot = [&](const std::string& shading) {
-    return coverage(gs::test::snapshot("shading_mode_" + shading,
-                                       {"--size", "160x160", "--shading", shading, world}));
-  };
+  const auto shot = litSphere(dir);
   const Coverage phong = shot("phong"), flat = shot("flat");
   INFO("lit: phong " << phong.lit << ", flat " << flat.lit << "; equal to the left neighbour: "
                      << "phong " << phong.sameAsLeft << ", flat " << flat.sameAsLeft);
@@ -73,11 +79,7 @@ TEST_CASE("the option Shading FLAT lights each triangle by its own normal, PHONG
 TEST_CASE("the option Shading WIREFRAME draws polygons as their edges, POINT as vertices",
           "[app][render]") {
   const gs::test::TempDir dir("shading_wire");
-  const std::string world = dir.write("lit_sphere.x3dv", kLitSphere);
-  const auto shot = [&](const std::string& shading) {
-    return coverage(gs::test::snapshot("shading_mode_" + shading,
-                                       {"--size", "160x160", "--shading", shading, world}));
-  };
+  const auto shot = litSphere(dir);
   const Coverage phong = shot("phong"), wireframe = shot("wireframe"), point = shot("point");
   INFO("lit: phong " << phong.lit << ", wireframe " << wireframe.lit << ", point " << point.lit);
   CHECK(phong.lit > 0.3);
