@@ -28,6 +28,7 @@
 // "previous" being the diffuse colour and 1 - transparency; the last result is the diffuse
 // colour and alpha the lighting uses.
 #include "gl_program.hpp"
+#include "shading_normal_glsl.hpp"
 #include "texture_projectors.hpp"
 
 namespace gs::render::detail {
@@ -254,8 +255,6 @@ uniform int u_fogType;  // 0 none, 1 LINEAR, 2 EXPONENTIAL
 // The browser option Shading GOURAUD (browser_options.hpp ShadingOption): the texture (or
 // the MultiTexture's stages) multiplies the lit colour instead of the diffuse colour.
 uniform bool u_textureAfterLighting;
-// The browser option Shading FLAT: each triangle lit by its own normal.
-uniform bool u_flatShading;
 uniform vec3 u_diffuseColor;
 uniform float u_ambientIntensity;
 uniform vec3 u_specularColor;
@@ -322,15 +321,7 @@ bool hatchOn(vec2 pixel) {
   return positive || negative;
 }
 
-// The normal of the side seen, eye coordinates, unit length: the interpolated one (negated
-// on back faces: two-sided lighting), or with Shading FLAT the triangle's own, from the
-// screen derivatives of the position (it faces the viewer on either side).
-vec3 shadingNormal() {
-  if (u_flatShading) return normalize(cross(dFdx(v_position), dFdy(v_position)));
-  vec3 n = normalize(v_normal);
-  return gl_FrontFacing ? n : -n;
-}
-
+)glsl" GS_SHADING_NORMAL_GLSL R"glsl(
 vec3 cubeDirection() {
   vec3 n = shadingNormal();
   vec3 r = reflect(normalize(v_position), n);

@@ -24,6 +24,7 @@
 // Mobile", 2014). Without one the only ambient term is the lights' ambientIntensity
 // (docs/gltf.md, "Lighting").
 #include "gl_program.hpp"
+#include "shading_normal_glsl.hpp"
 #include "texture_projectors.hpp"
 
 namespace gs::render::detail {
@@ -42,7 +43,6 @@ in vec2 v_texCoord1;
 in float v_texQ;  // X3D TextureCoordinate4D's q (1 otherwise): v_texCoord / it
 
 uniform bool u_hasColor;
-uniform bool u_flatShading;  // the browser option Shading FLAT
 uniform int u_textureComponents;  // base colour texture: 0 none
 uniform sampler2D u_texture;
 uniform bool u_hasMetallicRoughnessTexture;
@@ -108,10 +108,9 @@ vec2 uvOf(int set) {
   return set == 1 ? v_texCoord1 : v_texCoord / v_texQ;
 }
 
+)glsl" GS_SHADING_NORMAL_GLSL R"glsl(
 vec3 surfaceNormal() {
-  // Shading FLAT (shaders.cpp's shadingNormal): the triangle's own normal.
-  vec3 n = u_flatShading ? normalize(cross(dFdx(v_position), dFdy(v_position)))
-                         : (gl_FrontFacing ? normalize(v_normal) : -normalize(v_normal));
+  vec3 n = shadingNormal();
   if (!u_hasNormalTexture) return n;
   vec3 dp1 = dFdx(v_position), dp2 = dFdy(v_position);
   vec2 uv = uvOf(u_mapTexCoordSet.y);
