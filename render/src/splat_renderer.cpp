@@ -163,30 +163,41 @@ struct SplatRenderer::Gpu {
   std::size_t cutBudget = 0;
   int cutHeight = 0;
   SplatPath cutPath = SplatPath::automatic;  // the path the cut was made for
+  std::size_t cutSourceSize = 0;             // ... the source's size and revision then
+  std::uint64_t cutSourceRevision = 0;
   std::uint64_t cutRevision = 0;
-  // The tree's every node as one cloud (the source's splats, then LodTree::merged), for
-  // the paths that draw a cut by index: of which tree, cloud and revision.
+  // The tree's every node as one cloud (LodTree::merged, then the source's splats), for
+  // the paths that draw a cut by index: of which tree, cloud, revision and source size.
+  // (The source may have grown past the splats the tree was built over: a progressive
+  // stream's prefix tree. Its new splats are appended, nothing else is copied again.)
   splats::GaussianCloud treeCloud;
   const void* treeOf = nullptr;
   const void* treeCloudOf = nullptr;
   std::uint64_t treeSourceRevision = 0;
+  std::size_t treeSourceSize = 0;
   std::uint64_t treeRevision = 0;
   std::vector<std::uint32_t> cutIndices;  // into treeCloud (ascending for the cpu path)
   std::vector<glm::vec3> cutPositions;    // their centres, for the cpu path's depth sort
 
-  /// Makes treeCloud for `set` (a SplatSet with a tree) unless it is made already.
+  /// Makes treeCloud for `set` (a SplatSet with a tree) unless it is made already; appends
+  /// the source's new splats when only they changed.
   void holdTree(const SplatSet& set) {
-    if (treeOf == set.lodTree.get() && treeCloudOf == set.gaussians.get() &&
-        treeSourceRevision == set.revision)
-      return;
     const splats::GaussianCloud& source = *set.gaussians;
-    const splats::GaussianCloud& merged = set.lodTree->merged;
-    treeCloud = source;
-    treeCloud.reserve(source.size() + merged.size());
-    for (std::size_t i = 0; i < merged.size(); ++i) treeCloud.append(merged, i);
+    const bool same = treeOf == set.lodTree.get() && treeCloudOf == set.gaussians.get() &&
+                      treeSourceRevision == set.revision;
+    if (same && treeSourceSize == source.size()) return;
+    if (same && treeSourceSize < source.size()) {
+      for (std::size_t i = treeSourceSize; i < source.size(); ++i) treeCloud.append(source, i);
+    } else {
+      const splats::GaussianCloud& merged = set.lodTree->merged;
+      treeCloud = merged;
+      treeCloud.reserve(merged.size() + source.size());
+      for (std::size_t i = 0; i < source.size(); ++i) treeCloud.append(source, i);
+    }
     treeOf = set.lodTree.get();
     treeCloudOf = set.gaussians.get();
     treeSourceRevision = set.revision;
+    treeSourceSize = source.size();
     ++treeRevision;
   }
   // The cpu path: its image, the scene's depth, the texture and an empty VAO.
@@ -312,18 +323,26 @@ void SplatRenderer::drawGaussians(const SplatSet& set, std::size_t count, const 
   std::uint64_t sortRevision = 0;
   const SplatPath path = g.resolve(path_);
   statistics_.path = path;
-  if (set.lodTree) {
+  // (A tree over more splats than the cloud holds is not this cloud's: never drawn.)
+  if (set.lodTree && set.lodTree->splatCount <= set.gaussians->size()) {
     const bool byIndex = path != SplatPath::geometry;
+    const splats::GaussianCloud& source = *set.gaussians;
     if (g.cutSet != set.lodTree.get() || g.cutView != projection * modelView ||
-        g.cutBudget != count || g.cutHeight != height || g.cutPath != path) {
+        g.cutBudget != count || g.cutHeight != height || g.cutPath != path ||
+        g.cutSourceSize != source.size() || g.cutSourceRevision != set.revision) {
       const splats::CutView view = splats::cutViewFromViewProjection(
           projection * modelView, eye, 0.5f * static_cast<float>(height) * projection[1][1]);
       const splats::LodCut cut = splats::selectCut(*set.lodTree, view, count);
+      // A prefix tree (a stream still arriving): the splats after its prefix are drawn
+      // whole with the cut, until a tree over them is attached.
+      const std::size_t covered = std::min(set.lodTree->splatCount, source.size());
       if (byIndex) {
         g.holdTree(set);
-        g.cutIndices.assign(cut.originals.begin(), cut.originals.end());
-        const auto n = static_cast<std::uint32_t>(set.gaussians->size());
-        for (const std::uint32_t m : cut.merged) g.cutIndices.push_back(n + m);
+        g.cutIndices.assign(cut.merged.begin(), cut.merged.end());
+        const auto first = static_cast<std::uint32_t>(set.lodTree->merged.size());
+        for (const std::uint32_t i : cut.originals) g.cutIndices.push_back(first + i);
+        for (std::size_t i = covered; i < source.size(); ++i)
+          g.cutIndices.push_back(first + static_cast<std::uint32_t>(i));
         if (path == SplatPath::cpu) {
           // Ascending, so that the set-up reads the cloud in sequence; the centres for the
           // depth sort. (The GPU sorts the indices as they come.)
@@ -333,9 +352,12 @@ void SplatRenderer::drawGaussians(const SplatSet& set, std::size_t count, const 
             g.cutPositions[k] = g.treeCloud.positions[g.cutIndices[k]];
         }
       } else {
-        splats::assembleCut(*set.lodTree, *set.gaussians, cut, g.cutCloud);
+        splats::assembleCut(*set.lodTree, source, cut, g.cutCloud);
+        for (std::size_t i = covered; i < source.size(); ++i) g.cutCloud.append(source, i);
       }
       g.cutSet = set.lodTree.get();
+      g.cutSourceSize = source.size();
+      g.cutSourceRevision = set.revision;
       g.cutView = projection * modelView;
       g.cutBudget = count;
       g.cutHeight = height;

@@ -238,33 +238,54 @@ std::pair<std::shared_ptr<const splats::LodTree>, std::string> buildTree(
 
 }  // namespace
 
-bool StreamingSession::pumpTree(QnvEntry& e) {
+bool StreamingSession::wantsTree(const QnvEntry& e) {
   const auto& header = e.stream->header();
-  if (!header || header->kind != qnv::StreamKind::gaussian) return false;
-  if (!e.treeStarted) {
-    // Once the whole stream is here, no packet changes the cloud any more: the tree's
-    // thread reads it alone.
-    if (e.stream->progress().state != net::StreamState::done || e.gaussians->empty()) return false;
-    e.treeStarted = true;
-    e.tree = std::async(std::launch::async, buildTree,
-                        std::shared_ptr<const splats::GaussianCloud>(e.gaussians), e.cancelTree,
-                        e.stream->progress().url);
-    return false;
+  if (!header || header->kind != qnv::StreamKind::gaussian || e.tree.valid()) return false;
+  const std::size_t n = e.gaussians->size();
+  if (n == 0) return false;
+  // Resting: the whole stream, every splat asked for, or stopped; the tree must cover them.
+  if (e.stream->progress().settled())
+    return n != e.treeSplats || e.set->revision != e.treeRevision;
+  // Arriving: a tree each time the splats have doubled.
+  return n >= std::max<std::size_t>(1024, 2 * e.treeSplats);
+}
+
+bool StreamingSession::pumpTree(QnvEntry& e) {
+  bool changed = false;
+  if (e.tree.valid()) {
+    if (e.tree.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return false;
+    auto [tree, problem] = e.tree.get();
+    e.treeProblem = std::move(problem);
+    if (tree) {
+      // (A gap filled while it was built leaves the tree stale: its revision moved on.)
+      const bool current = e.set->revision == e.treeRevision;
+      e.set->lodTree = std::move(tree);
+      ++e.set->revision;
+      if (current) e.treeRevision = e.set->revision;
+      changed = true;
+    }
   }
-  if (!e.tree.valid() || e.tree.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
-    return false;
-  auto [tree, problem] = e.tree.get();
-  e.treeProblem = std::move(problem);
-  if (!tree) return false;
-  e.set->lodTree = std::move(tree);
-  ++e.set->revision;
-  return true;
+  if (!wantsTree(e)) return changed;
+  e.treeSplats = e.gaussians->size();
+  e.treeRevision = e.set->revision;
+  // A stream that has ended changes no more: the tree's thread reads its cloud. One that
+  // may still grow (its record sink appends on this thread) gives it a copy of its prefix.
+  const net::StreamState state = e.stream->progress().state;
+  const bool ended = state == net::StreamState::done || state == net::StreamState::stopped ||
+                     state == net::StreamState::failed;
+  std::shared_ptr<const splats::GaussianCloud> cloud =
+      ended ? std::shared_ptr<const splats::GaussianCloud>(e.gaussians)
+            : std::make_shared<const splats::GaussianCloud>(*e.gaussians);
+  e.tree = std::async(std::launch::async, buildTree, std::move(cloud), e.cancelTree,
+                      e.stream->progress().url);
+  return changed;
 }
 
 bool StreamingSession::settled() const {
   if (!loader_.settled()) return false;
   for (const auto& [url, e] : qnv_)
-    if (e.tree.valid()) return false;  // a tree being built, or built and not yet attached
+    // A tree being built, or built and not yet attached, or one to build.
+    if (e.tree.valid() || wantsTree(e)) return false;
   for (const auto& [url, t] : tilesets_)
     if (!t->settled()) return false;
   return true;

@@ -579,7 +579,7 @@ LodCut selectCut(const LodTree& tree, const CutView& view, std::size_t budget) {
 
 void assembleCut(const LodTree& tree, const GaussianCloud& cloud, const LodCut& cut,
                  GaussianCloud& out) {
-  if (cloud.size() != tree.splatCount)
+  if (cloud.size() < tree.splatCount)
     throw std::invalid_argument("assembleCut: the cloud has " + std::to_string(cloud.size()) +
                                 " splats, the tree was built from " +
                                 std::to_string(tree.splatCount));

@@ -210,6 +210,49 @@ std::shared_ptr<SplatSet> setOf(gs::splats::GaussianCloud cloud) {
 
 }  // namespace
 
+TEST_CASE("a tree over a stream's prefix draws its cut and every splat after the prefix",
+          "[render][splat][gaussian]") {
+  // A progressive stream's tree covers the splats that had arrived when it was built; the
+  // splats that came after are drawn whole beside the cut, by every path, until a tree over
+  // them replaces it (session/streaming_session.hpp).
+  const auto whole =
+      gaussianScene(gs::test::sourceDir() / "tests/data/splats/bunny_small.ply", false);
+  const gs::splats::GaussianCloud& cloud = *whole->gaussians;
+  const std::size_t prefix = cloud.size() / 2;
+  gs::splats::GaussianCloud first;
+  first.shDegree = cloud.shDegree;
+  for (std::size_t i = 0; i < prefix; ++i) first.append(cloud, i);
+  const auto prefixTree =
+      std::make_shared<const gs::splats::LodTree>(gs::splats::buildLodTree(first));
+  auto grown = std::make_shared<SplatSet>(*whole);
+  grown->lodTree = prefixTree;
+  auto prefixOnly = setOf(first);
+  prefixOnly->lodTree = prefixTree;
+  for (const float distance : {1.2f, 12.0f}) {
+    const gs::scene::Camera cam = gaussianCamera(*whole, distance);
+    std::size_t cutOnly = 0, geometry = 0, gpu = 0, cpu = 0;
+    const Image full = drawGaussians(*whole, cam, SplatPath::cpu);
+    const Image withoutTail = drawGaussians(*prefixOnly, cam, SplatPath::cpu, &cutOnly);
+    const Image geometryImage = drawGaussians(*grown, cam, SplatPath::geometry, &geometry);
+    const Image gpuImage = drawGaussians(*grown, cam, SplatPath::gpu, &gpu);
+    const Image cpuImage = drawGaussians(*grown, cam, SplatPath::cpu, &cpu);
+    INFO(distance << " diagonals: the prefix's cut draws " << cutOnly << ", with the rest "
+                  << cpu << " of " << cloud.size());
+    CHECK(cpu == cutOnly + (cloud.size() - prefix));
+    CHECK(gpu == cpu);
+    CHECK(geometry == cpu);
+    CHECK(compareImages(gpuImage, geometryImage).fractionDiffering <= 0.002);
+    CHECK(compareImages(cpuImage, geometryImage).fractionDiffering <= 0.002);
+    if (distance < 2.0f) {
+      // Near: the cut is the prefix's every splat, so the picture is the whole cloud's,
+      // where the prefix alone misses half of it.
+      CHECK(cutOnly == prefix);
+      CHECK(compareImages(cpuImage, full).psnr >= 55.0);
+      CHECK(compareImages(withoutTail, full).psnr < 45.0);
+    }
+  }
+}
+
 TEST_CASE("a QNV Gaussian stream draws the picture of its .ply, and its prefixes a close one",
           "[render][splat][gaussian][qnv]") {
   const fs::path dir = gs::test::sourceDir() / "tests/data/splats";

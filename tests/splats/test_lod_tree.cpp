@@ -544,8 +544,16 @@ TEST_CASE("edge cases: empty, one splat, bad input", "[splats][lod]") {
   GaussianCloud broken = one;
   broken.opacities.clear();
   CHECK_THROWS_AS(buildLodTree(broken), std::invalid_argument);
+  // A cloud grown past the tree's splats (a stream's prefix tree) gives the cut from its
+  // prefix; a cloud smaller than the tree's is not its cloud.
   GaussianCloud other = hazeCloud(10, 1);
-  CHECK_THROWS_AS(assembleCut(single, other, cut, broken), std::invalid_argument);
+  GaussianCloud assembled;
+  assembleCut(single, other, cut, assembled);
+  REQUIRE(assembled.size() == 1);
+  CHECK(assembled.positions[0] == other.positions[0]);
+  const LodTree ten = buildLodTree(other);
+  CHECK_THROWS_AS(assembleCut(ten, one, selectCut(ten, viewAt(1.0).cut, 100), assembled),
+                  std::invalid_argument);
 
   // A non-finite splat does not poison its ancestors; it is still a leaf of its own.
   GaussianCloud haze = hazeCloud(1000, 4);

@@ -102,7 +102,10 @@ struct SplatSet {
   /// The level-of-detail tree of merged Gaussians over `gaussians` (splats/lod_tree.hpp;
   /// docs/splats-lod.md), or null: with it, each view draws the cut of the tree whose
   /// nodes project below one pixel, under the view's budget (the level of detail's share
-  /// of the splats), instead of a prefix.
+  /// of the splats), instead of a prefix. A progressive stream's tree may cover only the
+  /// first LodTree::splatCount splats (the prefix that had arrived): the splats after them
+  /// are then drawn whole beside the cut until a tree over them replaces it. A tree over
+  /// more splats than `gaussians` holds is ignored.
   std::shared_ptr<const splats::LodTree> lodTree;
   /// A QNV tileset's merged levels (docs/tilesets.md, "Merged levels"), or null: the merged
   /// Gaussians of the nodes the views draw merged, a set of `gaussians` drawn whole, before

@@ -45,13 +45,18 @@ class StreamingSession {
   render::SceneRendererOptions rendererOptions(render::SceneRendererOptions base);
 
   /// Tells each QNV stream the prefix its views asked for (SplatSet::wantedVectors),
-  /// then moves what arrived into parsers and decoders. A Gaussian stream that has arrived
-  /// whole gets its level-of-detail tree (splats/lod_tree.hpp; built on a thread of its
-  /// own, about 1.5 s per million splats, and attached at a later pump), so that far views
-  /// draw a cut of merged Gaussians as a capture read whole does. Returns true when a
-  /// scene or a splat set changed: call SceneRenderer::sceneChanged() on the renderers.
+  /// then moves what arrived into parsers and decoders. A Gaussian stream gets a
+  /// level-of-detail tree (splats/lod_tree.hpp; built on a thread of its own, about 1.5 s
+  /// per million splats, and attached at a later pump) over what has arrived, so that far
+  /// views draw a cut of merged Gaussians as a capture read whole does: once the stream
+  /// rests (whole, or every splat its views asked for arrived, or stopped), and while it
+  /// arrives each time its splats have doubled (from 1,024), so that the builds of a
+  /// stream cost at most twice its last. The splats after a tree's prefix are drawn whole
+  /// until the next tree (SplatSet::lodTree). Returns true when a scene or a splat set
+  /// changed: call SceneRenderer::sceneChanged() on the renderers.
   bool pump();
-  /// Whether nothing is arriving, nothing more was asked for and no tree is being built.
+  /// Whether nothing is arriving, nothing more was asked for, no tree is being built and
+  /// every resting Gaussian stream's tree covers all its splats.
   bool settled() const;
   /// How far the loading of `scene` got, for X3D LoadSensors watching an Inline
   /// (runtime::ExecutionModel::setUrlObjectState): a world this session streams is loaded
@@ -87,21 +92,26 @@ class StreamingSession {
     std::shared_ptr<render::SplatSet> set;
     /// A Gaussian stream's splats as they arrive (set->gaussians once the header says so).
     std::shared_ptr<splats::GaussianCloud> gaussians;
-    /// Its level-of-detail tree, built on a thread of its own once the whole stream has
-    /// arrived, then set->lodTree; or, when the build failed, why (shown once as a
+    /// Its level-of-detail tree being built on a thread of its own (over the splats that
+    /// had arrived), then set->lodTree; or, when the build failed, why (shown once as a
     /// warning: the stream is then drawn by its prefix). Neither when cancelled.
     std::future<std::pair<std::shared_ptr<const splats::LodTree>, std::string>> tree;
     std::string treeProblem;  // a failed build's warning, not yet drained
     /// Set when the session closes: the build stops (LodTreeOptions::cancel).
     std::shared_ptr<std::atomic<bool>> cancelTree = std::make_shared<std::atomic<bool>>(false);
-    bool treeStarted = false;
+    /// The splats the last build started over (0 before any), and set->revision then: a
+    /// gap filled late after it (the revision moved) makes the tree stale.
+    std::size_t treeSplats = 0;
+    std::uint64_t treeRevision = 0;
     bool haveHeader = false;
     std::size_t warningsShown = 0;
   };
   std::map<std::string, QnvEntry> qnv_;
-  /// pump()'s step for one stream's tree: starts its build once a Gaussian stream is done,
-  /// attaches it when built (true then: the set changed).
+  /// pump()'s step for one stream's tree: attaches a tree built (true then: the set
+  /// changed), starts a build when wantsTree.
   bool pumpTree(QnvEntry& e);
+  /// Whether a Gaussian stream, no tree being built for it, needs one (pump()'s rule).
+  static bool wantsTree(const QnvEntry& e);
   /// Gaussian splatting scenes, read whole, by URL.
   std::map<std::string, std::shared_ptr<const render::SplatSet>> gaussians_;
   TilesetOptions tilesetOptions_;

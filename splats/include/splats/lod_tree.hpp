@@ -245,9 +245,9 @@ float projectedSize(const LodNode& node, const CutView& view);
 LodCut selectCut(const LodTree& tree, const CutView& view, std::size_t budget);
 
 /// Fills `out` with the Gaussians of `cut`: first the originals (from `cloud`, the cloud the
-/// tree was built from), then the merged ones, with cloud's shDegree, colorSpace and
-/// kernel. Reuses out's storage. Throws std::invalid_argument when cloud.size() is not
-/// tree.splatCount.
+/// tree was built from, or that cloud grown: a progressive stream's prefix tree), then the
+/// merged ones, with cloud's shDegree, colorSpace and kernel. Reuses out's storage. Throws
+/// std::invalid_argument when cloud.size() is below tree.splatCount.
 void assembleCut(const LodTree& tree, const GaussianCloud& cloud, const LodCut& cut,
                  GaussianCloud& out);
 
