@@ -244,8 +244,7 @@ bool StreamingSession::wantsTree(const QnvEntry& e) {
   const std::size_t n = e.gaussians->size();
   if (n == 0) return false;
   // Resting: the whole stream, every splat asked for, or stopped; the tree must cover them.
-  if (e.stream->progress().settled())
-    return n != e.treeSplats || e.set->revision != e.treeRevision;
+  if (e.stream->progress().settled()) return n != e.treeSplats || e.set->revision != e.treeRevision;
   // Arriving: a tree each time the splats have doubled.
   return n >= std::max<std::size_t>(1024, 2 * e.treeSplats);
 }

@@ -236,8 +236,8 @@ TEST_CASE("a tree over a stream's prefix draws its cut and every splat after the
     const Image geometryImage = drawGaussians(*grown, cam, SplatPath::geometry, &geometry);
     const Image gpuImage = drawGaussians(*grown, cam, SplatPath::gpu, &gpu);
     const Image cpuImage = drawGaussians(*grown, cam, SplatPath::cpu, &cpu);
-    INFO(distance << " diagonals: the prefix's cut draws " << cutOnly << ", with the rest "
-                  << cpu << " of " << cloud.size());
+    INFO(distance << " diagonals: the prefix's cut draws " << cutOnly << ", with the rest " << cpu
+                  << " of " << cloud.size());
     CHECK(cpu == cutOnly + (cloud.size() - prefix));
     CHECK(gpu == cpu);
     CHECK(geometry == cpu);

@@ -75,8 +75,8 @@ TEST_CASE("a Gaussian stream resting at its views' prefix gets a tree over that 
   {
     // Packets of 64 splats, so that a quarter of them is a prefix of several packets.
     std::ofstream out(qnv, std::ios::binary);
-    out << gs::qnv::writeStream(encoded, {8 * 64 * encoded.header.recordsPerElement(),
-                                          gs::qnv::PacketEncoding::compact});
+    out << gs::qnv::writeStream(
+        encoded, {8 * 64 * encoded.header.recordsPerElement(), gs::qnv::PacketEncoding::compact});
   }
   gs::session::StreamingSession s;
   auto scene = s.open(qnv.string(), error);
