@@ -267,14 +267,12 @@ bool StreamingSession::pumpTree(QnvEntry& e) {
   if (!wantsTree(e)) return changed;
   e.treeSplats = e.gaussians->size();
   e.treeRevision = e.set->revision;
-  // A stream that has ended changes no more: the tree's thread reads its cloud. One that
-  // may still grow (its record sink appends on this thread) gives it a copy of its prefix.
-  const net::StreamState state = e.stream->progress().state;
-  const bool ended = state == net::StreamState::done || state == net::StreamState::stopped ||
-                     state == net::StreamState::failed;
+  // A stream that is done changes no more: the tree's thread reads its cloud. Any other
+  // (its record sink appends on this thread) gives it a copy of its prefix.
+  const bool done = e.stream->progress().state == net::StreamState::done;
   std::shared_ptr<const splats::GaussianCloud> cloud =
-      ended ? std::shared_ptr<const splats::GaussianCloud>(e.gaussians)
-            : std::make_shared<const splats::GaussianCloud>(*e.gaussians);
+      done ? std::shared_ptr<const splats::GaussianCloud>(e.gaussians)
+           : std::make_shared<const splats::GaussianCloud>(*e.gaussians);
   e.tree = std::async(std::launch::async, buildTree, std::move(cloud), e.cancelTree,
                       e.stream->progress().url);
   return changed;
