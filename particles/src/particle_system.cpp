@@ -175,8 +175,11 @@ struct ParticleSimulation::Emitters {
   glm::vec3 directedVelocity(const vrml::Node& e, glm::vec3 fallbackDirection) {
     const glm::vec3 d = sfVec3(e, "direction", fallbackDirection);
     const float l = glm::length(d);
-    if (!(l > 0.0f)) return random.unitVector() * speed(e);
-    return d / l * speed(e);
+    // (Each draw in its own statement: the operands of one expression are evaluated in an
+    // order that differs between compilers, and so would the sequence of draws.)
+    const float s = speed(e);
+    if (!(l > 0.0f)) return random.unitVector() * s;
+    return d / l * s;
   }
 
   /// A newborn particle's position and velocity from `emitter` (null: X_ITE's default
@@ -190,17 +193,20 @@ struct ParticleSimulation::Emitters {
     switch (emitter->typeId()) {
       case vrml::NodeTypeId::ConeEmitter: {
         const glm::vec3 d = sfVec3(*emitter, "direction", {0, 1, 0});
+        const float s = speed(*emitter);  // (drawn first: see directedVelocity)
         if (glm::length(d) > 0.0f)
-          v = random.unitVectorInCone(d, sfFloat(*emitter, "angle", 0.785398f)) * speed(*emitter);
+          v = random.unitVectorInCone(d, sfFloat(*emitter, "angle", 0.785398f)) * s;
         else
-          v = random.unitVector() * speed(*emitter);
+          v = random.unitVector() * s;
         p = sfVec3(*emitter, "position", glm::vec3(0.0f));
         return true;
       }
-      case vrml::NodeTypeId::ExplosionEmitter:
-        v = random.unitVector() * speed(*emitter);
+      case vrml::NodeTypeId::ExplosionEmitter: {
+        const float s = speed(*emitter);  // (drawn first: see directedVelocity)
+        v = random.unitVector() * s;
         p = sfVec3(*emitter, "position", glm::vec3(0.0f));
         return true;
+      }
       case vrml::NodeTypeId::PolylineEmitter: {
         v = directedVelocity(*emitter, {0, 1, 0});
         if (cumulativeLength.empty() || !(cumulativeLength.back() > 0.0f)) return false;

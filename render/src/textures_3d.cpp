@@ -59,10 +59,12 @@ Texels3D decodeNrrdTexture(std::string_view b, const std::string& url) {
   t.height = static_cast<int>(v.dims.y);
   t.depth = static_cast<int>(v.dims.z);
   t.components = static_cast<int>(components);
-  const auto [lo, hi] = std::minmax_element(v.samples.begin(), v.samples.end());
-  const float range = *hi > *lo ? *hi - *lo : 1.0f;
+  const auto [lowest, highest] = std::minmax_element(v.samples.begin(), v.samples.end());
+  // (A plain copy: clang 14 cannot capture a structured binding in a lambda.)
+  const float lo = *lowest;
+  const float range = *highest > lo ? *highest - lo : 1.0f;
   const auto level = [&](std::size_t i) {
-    return static_cast<std::uint8_t>(std::clamp((v.samples[i] - *lo) / range, 0.0f, 1.0f) * 255.0f +
+    return static_cast<std::uint8_t>(std::clamp((v.samples[i] - lo) / range, 0.0f, 1.0f) * 255.0f +
                                      0.5f);
   };
   const std::size_t texels = v.samples.size() / components;

@@ -161,7 +161,9 @@ std::string editGlb(const std::string& glb, const std::function<void(std::string
 /// out of gs::test::gzip's member (10-byte header, 8-byte trailer of CRC-32 and size).
 std::string deflatedZip(const std::vector<std::pair<std::string, std::string>>& files) {
   std::string zip, central;
-  for (const auto& [name, bytes] : files) {
+  for (const auto& file : files) {
+    const std::string& name = file.first;  // (clang 14 cannot capture structured bindings)
+    const std::string& bytes = file.second;
     const std::string member = gs::test::gzip(bytes);
     REQUIRE(member.size() > 18);
     const std::string raw = member.substr(10, member.size() - 18);
