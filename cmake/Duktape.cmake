@@ -11,7 +11,8 @@
 #     so an error thrown through our native functions runs their destructors (longjmp
 #     would skip them);
 #   - the regular-expression step limit is 1e7 instead of 1e9 (a catastrophic
-#     backtracking pattern ends in well under a second; no interrupt runs inside it).
+#     backtracking pattern ends in well under a second; no interrupt runs inside it);
+#   - the compiler's recursion also checks the native stack (below).
 # Third-party code: no gs_warnings, warnings off.
 set(GS_DUKTAPE_SOURCE_DIR /usr/share/duktape CACHE PATH "Duktape source (duktape.c, duk_config.h)")
 set(_duk_out ${CMAKE_BINARY_DIR}/duktape)
@@ -51,6 +52,16 @@ if(_at EQUAL -1)
 endif()
 string(REPLACE "#define DUK_RE_EXECUTE_STEPS_LIMIT 1000000000L"
                "#define DUK_RE_EXECUTE_STEPS_LIMIT 10000000L" _duk_source "${_duk_source}")
+# The compiler's recursion (nested expressions and statements) checks the native stack too,
+# not only its depth limit (2500): a build with larger frames (clang's sanitizers with
+# libFuzzer's coverage: 100,000 nested parentheses overflowed 8 MiB) ends with a RangeError.
+set(_duk_from "DUK_LOCAL void duk__comp_recursion_increase(duk_compiler_ctx *comp_ctx) {\n\tDUK_ASSERT(comp_ctx != NULL);\n")
+string(FIND "${_duk_source}" "${_duk_from}" _at)
+if(_at EQUAL -1)
+  message(FATAL_ERROR "Duktape source: duk__comp_recursion_increase not found")
+endif()
+string(REPLACE "${_duk_from}" "${_duk_from}\tduk_native_stack_check(comp_ctx->thr);\n"
+               _duk_source "${_duk_source}")
 file(WRITE ${_duk_out}/duktape.cpp.tmp "${_duk_source}")
 configure_file(${_duk_out}/duktape.cpp.tmp ${_duk_out}/duktape.cpp COPYONLY)
 unset(_duk_source)
