@@ -239,24 +239,26 @@ DEF S Script {
 namespace {
 
 struct ThreadRun {
+  std::string source;
   std::vector<vrml::Diagnostic> diagnostics;
   std::vector<std::string> printed;
   bool made = false;
 };
 
+// The Script of runOnSmallStack: a getter calling itself (C recursion in Duktape's calls).
+const char* const kRecursiveGetter =
+    "function go(v) {\n"
+    "  var o = {}; Object.defineProperty(o, 'a', { get: function () { return this.a; } });\n"
+    "  try { o.a; } catch (e) { print('caught ' + e.name); }\n"
+    "  print('still running');\n"
+    "  o.a;\n"
+    "}";
+
+// Runs the Script `ThreadRun::source` (kRecursiveGetter by default) on this thread.
 void* runOnSmallStack(void* arg) {
   auto& r = *static_cast<ThreadRun*>(arg);
   FakeScriptContext ctx;
-  vrml::Scene scene = vrml::parseVrml(
-      scriptWorld(
-          "eventIn SFFloat go",
-          "function go(v) {\n"
-          "  var o = {}; Object.defineProperty(o, 'a', { get: function () { return this.a; } });\n"
-          "  try { o.a; } catch (e) { print('caught ' + e.name); }\n"
-          "  print('still running');\n"
-          "  o.a;\n"
-          "}"),
-      "thread.wrl");
+  vrml::Scene scene = vrml::parseVrml(scriptWorld("eventIn SFFloat go", r.source), "thread.wrl");
   vrml::NodePtr script = findScript(scene.rootNodes);
   if (script) {
     runtime::ScriptLimits limits;
@@ -273,20 +275,45 @@ void* runOnSmallStack(void* arg) {
   return nullptr;
 }
 
-}  // namespace
-
-TEST_CASE("hostile Script: C recursion on a thread with a small stack", "[script][hostile]") {
-  ThreadRun r;
+/// Runs `r` on a thread of `stackBytes`.
+void runOnThread(ThreadRun& r, std::size_t stackBytes) {
   pthread_attr_t attr;
   REQUIRE(pthread_attr_init(&attr) == 0);
-  REQUIRE(pthread_attr_setstacksize(&attr, 2u << 20) == 0);
+  REQUIRE(pthread_attr_setstacksize(&attr, stackBytes) == 0);
   pthread_t thread;
   REQUIRE(pthread_create(&thread, &attr, runOnSmallStack, &r) == 0);
   pthread_join(thread, nullptr);
   pthread_attr_destroy(&attr);
+}
+
+}  // namespace
+
+TEST_CASE("hostile Script: C recursion on a thread with a small stack", "[script][hostile]") {
+  ThreadRun r;
+  r.source = kRecursiveGetter;
+  runOnThread(r, 2u << 20);
   REQUIRE(r.made);
   CHECK(r.printed == std::vector<std::string>{"caught RangeError", "still running"});
   REQUIRE(r.diagnostics.size() == 1);
   CHECK_THAT(r.diagnostics[0].message,
              Catch::Contains("RangeError") && Catch::Contains("line 3"));  // the getter's line
+}
+
+TEST_CASE("hostile Script: nesting within the compiler's depth limit on a small stack",
+          "[script][hostile]") {
+  // 2,400 nested parentheses: under Duktape's compiler depth limit (2,500), past what a
+  // 512 KiB stack holds (the rest of its budget is the reserve kept for the error path):
+  // the compiler's recursion checks the native stack (cmake/Duktape.cmake), so the eval
+  // ends with a RangeError instead of overflowing the stack.
+  ThreadRun r;
+  r.source =
+      "function go(v) {\n"
+      "  var deep = new Array(2400).join('(') + '1' + new Array(2400).join(')');\n"
+      "  try { eval(deep); print('compiled'); } catch (e) { print('caught ' + e.name); }\n"
+      "  print('still running');\n"
+      "}";
+  runOnThread(r, 512u << 10);
+  REQUIRE(r.made);
+  CHECK(r.printed == std::vector<std::string>{"caught RangeError", "still running"});
+  CHECK(r.diagnostics.empty());
 }
