@@ -7,6 +7,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstring>
 #include <ctime>
 #include <filesystem>
@@ -247,6 +248,21 @@ int drawMenuBar(WindowState& state, float aspect) {
       state.setMode(scene::RenderMode::splats);
     if (ImGui::MenuItem("Outlines only", nullptr, mode == scene::RenderMode::outlines))
       state.setMode(scene::RenderMode::outlines);
+    // The browser option Shading of this viewport's world, as X_ITE's context menu sets it
+    // (and as the world's Scripts may: render/browser_options.hpp).
+    if (ImGui::BeginMenu("Shading", state.view().renderer() != nullptr)) {
+      const render::ShadingOption current = state.shading();
+      for (const render::ShadingOption s :
+           {render::ShadingOption::phong, render::ShadingOption::gouraud,
+            render::ShadingOption::flat, render::ShadingOption::wireframe,
+            render::ShadingOption::point}) {
+        std::string label(render::shadingName(s));
+        for (std::size_t i = 1; i < label.size(); ++i)
+          label[i] = static_cast<char>(std::tolower(static_cast<unsigned char>(label[i])));
+        if (ImGui::MenuItem(label.c_str(), nullptr, s == current)) state.setShading(s);
+      }
+      ImGui::EndMenu();
+    }
     float lod = static_cast<float>(state.view().options.lod);
     if (ImGui::SliderFloat("Level of detail", &lod, 0.001f, 1.0f, "%.3f",
                            ImGuiSliderFlags_Logarithmic))

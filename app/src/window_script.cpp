@@ -166,6 +166,19 @@ const std::vector<WindowScript::Verb>& WindowScript::verbs() {
            state.setMode(*scene::renderModeFromName(c.argument));
            return Next::go;
          }},
+        {"shading",
+         [](const Command& c) {
+           render::ShadingOption parsed;
+           return unless(render::parseShadingOption(c.argument, parsed),
+                         "shading phong, gouraud, flat, wireframe or point");
+         },
+         [](WindowScript&, WindowState& state, const Command& c, int, int) {
+           render::ShadingOption shading = render::ShadingOption::phong;
+           render::parseShadingOption(c.argument, shading);
+           if (!state.setShading(shading))
+             state.log.push_back({true, "shading: no world runs in the active viewport"});
+           return Next::go;
+         }},
         {"wait-loaded", anyArgument,
          [](WindowScript& s, WindowState& state, const Command& c, int, int) {
            // Settled for two frames running: the frame after a change has drawn (and so

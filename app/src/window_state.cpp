@@ -292,6 +292,18 @@ void WindowState::setMode(scene::RenderMode mode) {
   v.navigator.setCamera(camera);
 }
 
+render::ShadingOption WindowState::shading() const {
+  const Viewport& v = viewports[active];
+  if (!runtimes || v.world >= worlds.size()) return rendererOptions.shading;
+  return runtimes->shading(worlds[v.world].scene.get());
+}
+
+bool WindowState::setShading(render::ShadingOption shading) {
+  const Viewport& v = view();
+  if (!runtimes || v.world >= worlds.size()) return false;
+  return runtimes->setShading(worlds[v.world].scene.get(), shading);
+}
+
 void WindowState::setLod(double lod) {
   Viewport& v = view();
   v.options.lod = lod;

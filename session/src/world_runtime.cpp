@@ -234,6 +234,12 @@ render::ShadingOption WorldRuntimes::shading(const vrml::Scene* scene) const {
   return shading;
 }
 
+bool WorldRuntimes::setShading(const vrml::Scene* scene, render::ShadingOption shading) {
+  const auto it = worlds_.find(scene);
+  if (it == worlds_.end() || !it->second.model) return false;
+  return it->second.model->setBrowserOption("Shading", std::string(render::shadingName(shading)));
+}
+
 render::MediaClock WorldRuntimes::mediaClock(const vrml::Scene* scene) const {
   return [this, scene](const vrml::Node& node) -> std::optional<double> {
     const auto it = worlds_.find(scene);

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <cstdint>
+#include <fstream>
 #include <functional>
 #include <string>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "process.hpp"
 #include "render/image.hpp"
 #include "test_support.hpp"
+#include "xvfb.hpp"
 
 namespace {
 
@@ -123,4 +125,29 @@ function initialize () {
       gs::test::snapshot("shading_script_phong", {"--size", "160x160", plain});
   CHECK(gs::test::fractionDiffering(png, wireframe) == 0.0);
   CHECK(gs::test::fractionDiffering(png, phong) > 0.1);
+}
+
+TEST_CASE("the window's View > Shading sets the option for the viewport's world",
+          "[app][window][render]") {
+  // The window script's `shading` runs what the menu runs (WindowState::setShading).
+  gs::test::Xvfb x;
+  if (gs::test::skipWithoutXvfb(x)) return;
+  const gs::test::TempDir dir("shading_window");
+  const std::string world = dir.write("lit_sphere.x3dv", kLitSphere);
+  const std::string smooth = (dir.path / "window_phong.png").string();
+  const std::string edges = (dir.path / "window_wireframe.png").string();
+  const std::string script = (dir.path / "shading.script").string();
+  std::ofstream(script) << "wait-loaded\nscreenshot-viewport " << smooth
+                        << "\nshading wireframe\nframes 2\nscreenshot-viewport " << edges
+                        << "\nquit\n";
+  const gs::test::ProcessResult r =
+      gs::test::runGhostspace({"--size", "160x160", "--new-instance", "--script", script, world},
+                              {"DISPLAY=" + x.display()});
+  INFO(r.err);
+  REQUIRE(r.exitCode == 0);
+  const Coverage phong = coverage(smooth), wireframe = coverage(edges);
+  INFO("lit in the window: phong " << phong.lit << ", wireframe " << wireframe.lit);
+  CHECK(phong.lit > 0.2);
+  CHECK(wireframe.lit > 0.02);
+  CHECK(wireframe.lit < 0.8 * phong.lit);
 }

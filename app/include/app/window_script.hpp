@@ -7,6 +7,8 @@
 //   viewport I              click viewport I (0-based: left to right, top to bottom)
 //   lod F                   the active viewport's level of detail slider (0 < F <= 1)
 //   mode polygons|splats|outlines
+//   shading phong|gouraud|flat|wireframe|point   View > Shading: the browser option Shading
+//                           of the active viewport's world
 //   viewpoint N             Viewpoints > N (from 0): binds that Viewpoint (4.6.10)
 //   wait-loaded             until nothing is arriving (at most 60 s, then logged)
 //   wait-viewports N        until N viewports show a world (e.g. sent by another launch;

@@ -170,6 +170,12 @@ struct WindowState {
   void fitToScene();
   /// Draws the active viewport in `mode` (a new renderer; the view stays).
   void setMode(scene::RenderMode mode);
+  /// The browser option Shading of the active viewport's world (View > Shading), or the
+  /// command line's when no world runs there yet.
+  render::ShadingOption shading() const;
+  /// Sets it (session::WorldRuntimes::setShading): every viewport of that world draws with
+  /// it from the next frame. False when no world runs in the active viewport.
+  bool setShading(render::ShadingOption shading);
   /// Sets the active viewport's level of detail (fraction of every QNV stream, 0..1).
   void setLod(double lod);
   /// Sets the active viewport's vector budget (vectors per frame in all; 0: none).

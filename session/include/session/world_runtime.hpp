@@ -110,6 +110,11 @@ class WorldRuntimes {
   /// The browser option Shading of `scene`'s world: what its Scripts set last, or
   /// RuntimeOptions::shading (also before the world runs).
   render::ShadingOption shading(const vrml::Scene* scene) const;
+  /// Sets the browser option Shading of `scene`'s world, as its Scripts'
+  /// Browser.setBrowserOption("Shading", ...) does (the window's View > Shading): every
+  /// viewport of that world draws with it from the next frame, and its Scripts read it.
+  /// False when the world does not run yet (nothing changed).
+  bool setShading(const vrml::Scene* scene, render::ShadingOption shading);
   /// Whether any world may change without input (runtime::ExecutionModel::animating:
   /// an active TimeSensor or media node, a Script with pending work, a LoadSensor's
   /// timeOut still to pass): the window keeps drawing while true.
