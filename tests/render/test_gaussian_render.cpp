@@ -253,6 +253,54 @@ TEST_CASE("a tree over a stream's prefix draws its cut and every splat after the
   }
 }
 
+TEST_CASE("a renderer that drew a prefix tree draws the splats that arrive after it",
+          "[render][splat][gaussian]") {
+  // The session's cloud grows in place while a tree covers its prefix: the cpu and gpu
+  // paths append the new splats to the cloud of the tree's nodes they hold (holdTree)
+  // instead of making it again. One renderer drawing the cloud before and after it grew
+  // must give the picture a fresh renderer gives of the grown cloud.
+  const auto whole =
+      gaussianScene(gs::test::sourceDir() / "tests/data/splats/bunny_small.ply", false);
+  const gs::splats::GaussianCloud& all = *whole->gaussians;
+  auto growing = std::make_shared<gs::splats::GaussianCloud>();
+  growing->shDegree = all.shDegree;
+  const std::size_t prefix = all.size() / 3;
+  for (std::size_t i = 0; i < prefix; ++i) growing->append(all, i);
+  auto set = std::make_shared<SplatSet>(*whole);
+  set->gaussians = growing;
+  set->lodTree = std::make_shared<const gs::splats::LodTree>(gs::splats::buildLodTree(*growing));
+  const gs::scene::Camera cam = gaussianCamera(*whole, 1.2f);
+  const Image everySplat = drawGaussians(*whole, cam, SplatPath::cpu);
+  static auto context = createOffscreenContext(kGaussianSize, kGaussianSize);
+  for (const SplatPath path : {SplatPath::cpu, SplatPath::gpu}) {
+    INFO("path " << static_cast<int>(path));
+    context->makeCurrent();
+    growing->resize(prefix);
+    const auto frame = [&](SplatRenderer& renderer) {
+      glViewport(0, 0, kGaussianSize, kGaussianSize);
+      glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+      glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+      renderer.draw(*set, set->size(), glm::mat4(1.0f), cam, 1.0f, {});
+      return readPixels(0, 0, kGaussianSize, kGaussianSize);
+    };
+    SplatRenderer held;
+    held.setPath(path);
+    frame(held);  // the prefix alone
+    for (std::size_t i = prefix; i < all.size(); ++i) growing->append(all, i);
+    const Image grown = frame(held);
+    const std::size_t drawn = held.statistics().splats;
+    SplatRenderer fresh;
+    fresh.setPath(path);
+    const Image reference = frame(fresh);
+    CHECK(drawn == fresh.statistics().splats);
+    CHECK(drawn > prefix);
+    CHECK(compareImages(grown, reference).fractionDiffering == 0.0);
+    CHECK(compareImages(grown, everySplat).psnr >= 50.0);
+    held.release();
+    fresh.release();
+  }
+}
+
 TEST_CASE("a QNV Gaussian stream draws the picture of its .ply, and its prefixes a close one",
           "[render][splat][gaussian][qnv]") {
   const fs::path dir = gs::test::sourceDir() / "tests/data/splats";
