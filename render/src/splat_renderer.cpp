@@ -334,14 +334,16 @@ void SplatRenderer::drawGaussians(const SplatSet& set, std::size_t count, const 
           projection * modelView, eye, 0.5f * static_cast<float>(height) * projection[1][1]);
       const splats::LodCut cut = splats::selectCut(*set.lodTree, view, count);
       // A prefix tree (a stream still arriving): the splats after its prefix are drawn
-      // whole with the cut, until a tree over them is attached.
+      // whole with the cut, until a tree over them is attached; as a prefix is, only
+      // those the view's budget reaches (index below `count`).
       const std::size_t covered = std::min(set.lodTree->splatCount, source.size());
+      const std::size_t tailEnd = std::max(covered, std::min(source.size(), count));
       if (byIndex) {
         g.holdTree(set);
         g.cutIndices.assign(cut.merged.begin(), cut.merged.end());
         const auto first = static_cast<std::uint32_t>(set.lodTree->merged.size());
         for (const std::uint32_t i : cut.originals) g.cutIndices.push_back(first + i);
-        for (std::size_t i = covered; i < source.size(); ++i)
+        for (std::size_t i = covered; i < tailEnd; ++i)
           g.cutIndices.push_back(first + static_cast<std::uint32_t>(i));
         if (path == SplatPath::cpu) {
           // Ascending, so that the set-up reads the cloud in sequence; the centres for the
@@ -353,7 +355,7 @@ void SplatRenderer::drawGaussians(const SplatSet& set, std::size_t count, const 
         }
       } else {
         splats::assembleCut(*set.lodTree, source, cut, g.cutCloud);
-        for (std::size_t i = covered; i < source.size(); ++i) g.cutCloud.append(source, i);
+        for (std::size_t i = covered; i < tailEnd; ++i) g.cutCloud.append(source, i);
       }
       g.cutSet = set.lodTree.get();
       g.cutSourceSize = source.size();

@@ -238,14 +238,30 @@ std::pair<std::shared_ptr<const splats::LodTree>, std::string> buildTree(
 
 }  // namespace
 
+namespace {
+
+/// Whether a stream in `state` has ended: nothing more arrives (net::QnvStream).
+bool ended(net::StreamState state) {
+  return state == net::StreamState::done || state == net::StreamState::stopped ||
+         state == net::StreamState::failed;
+}
+
+}  // namespace
+
 bool StreamingSession::wantsTree(const QnvEntry& e) {
   const auto& header = e.stream->header();
   if (!header || header->kind != qnv::StreamKind::gaussian || e.tree.valid()) return false;
   const std::size_t n = e.gaussians->size();
   if (n == 0) return false;
-  // Resting: the whole stream, every splat asked for, or stopped; the tree must cover them.
-  if (e.stream->progress().settled()) return n != e.treeSplats || e.set->revision != e.treeRevision;
-  // Arriving: a tree each time the splats have doubled.
+  // A packet that filled a gap after the last build (while resting or ended).
+  const bool gapFilled = e.treeSplats > 0 && e.set->revision != e.treeRevision;
+  // Ended (whole, stopped or failed: nothing more comes): a tree over every splat.
+  if (ended(e.stream->progress().state)) return n != e.treeSplats || gapFilled;
+  // Resting at the prefix its views asked for: a first tree, then one each time a view's
+  // larger prefix has grown the splats by a quarter (so that a slider dragged up does not
+  // build a tree at each step); arriving: one each time the splats have doubled.
+  if (e.stream->progress().settled())
+    return e.treeSplats == 0 || 4 * n >= 5 * e.treeSplats || gapFilled;
   return n >= std::max<std::size_t>(1024, 2 * e.treeSplats);
 }
 
@@ -267,12 +283,13 @@ bool StreamingSession::pumpTree(QnvEntry& e) {
   if (!wantsTree(e)) return changed;
   e.treeSplats = e.gaussians->size();
   e.treeRevision = e.set->revision;
-  // A stream that is done changes no more: the tree's thread reads its cloud. Any other
-  // (its record sink appends on this thread) gives it a copy of its prefix.
-  const bool done = e.stream->progress().state == net::StreamState::done;
+  // A stream that has ended changes no more (QnvStream::pump does nothing once it is
+  // done, stopped or failed): the tree's thread reads its cloud. One that may grow (its
+  // record sink appends on this thread) gives it a copy of its prefix.
   std::shared_ptr<const splats::GaussianCloud> cloud =
-      done ? std::shared_ptr<const splats::GaussianCloud>(e.gaussians)
-           : std::make_shared<const splats::GaussianCloud>(*e.gaussians);
+      ended(e.stream->progress().state)
+          ? std::shared_ptr<const splats::GaussianCloud>(e.gaussians)
+          : std::make_shared<const splats::GaussianCloud>(*e.gaussians);
   e.tree = std::async(std::launch::async, buildTree, std::move(cloud), e.cancelTree,
                       e.stream->progress().url);
   return changed;

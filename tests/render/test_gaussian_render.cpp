@@ -5,6 +5,8 @@
 
 #include <glad/gl.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -58,8 +60,9 @@ gs::scene::Camera gaussianCamera(const SplatSet& set, float distance) {
   return cam;
 }
 
+/// `set` drawn by `path` under a budget of `count` splats (default: all of them).
 Image drawGaussians(const SplatSet& set, const gs::scene::Camera& cam, SplatPath path,
-                    std::size_t* drawn = nullptr) {
+                    std::size_t* drawn = nullptr, std::size_t count = SIZE_MAX) {
   static auto context = createOffscreenContext(kGaussianSize, kGaussianSize);
   context->makeCurrent();
   SplatRenderer renderer;
@@ -67,7 +70,7 @@ Image drawGaussians(const SplatSet& set, const gs::scene::Camera& cam, SplatPath
   glViewport(0, 0, kGaussianSize, kGaussianSize);
   glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  renderer.draw(set, set.size(), glm::mat4(1.0f), cam, 1.0f, {});
+  renderer.draw(set, std::min(count, set.size()), glm::mat4(1.0f), cam, 1.0f, {});
   if (drawn) *drawn = renderer.statistics().splats;
   Image image = readPixels(0, 0, kGaussianSize, kGaussianSize);
   renderer.release();
@@ -210,7 +213,7 @@ std::shared_ptr<SplatSet> setOf(gs::splats::GaussianCloud cloud) {
 
 }  // namespace
 
-TEST_CASE("a tree over a stream's prefix draws its cut and every splat after the prefix",
+TEST_CASE("a tree over a stream's prefix draws its cut and the splats after it, to the budget",
           "[render][splat][gaussian]") {
   // A progressive stream's tree covers the splats that had arrived when it was built; the
   // splats that came after are drawn whole beside the cut, by every path, until a tree over
@@ -249,6 +252,12 @@ TEST_CASE("a tree over a stream's prefix draws its cut and every splat after the
       CHECK(cutOnly == prefix);
       CHECK(compareImages(cpuImage, full).psnr >= 55.0);
       CHECK(compareImages(withoutTail, full).psnr < 45.0);
+      // Under a budget, only the splats after the prefix that it reaches, as a prefix.
+      for (const SplatPath path : {SplatPath::cpu, SplatPath::gpu, SplatPath::geometry}) {
+        std::size_t budgeted = 0;
+        drawGaussians(*grown, cam, path, &budgeted, prefix + 100);
+        CHECK(budgeted == prefix + 100);
+      }
     }
   }
 }

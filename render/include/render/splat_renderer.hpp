@@ -104,7 +104,8 @@ struct SplatSet {
   /// nodes project below one pixel, under the view's budget (the level of detail's share
   /// of the splats), instead of a prefix. A progressive stream's tree may cover only the
   /// first LodTree::splatCount splats (the prefix that had arrived): the splats after them
-  /// are then drawn whole beside the cut until a tree over them replaces it. A tree over
+  /// that the view's budget reaches (index below it, as a prefix) are then drawn whole
+  /// beside the cut until a tree over them replaces it. A tree over
   /// more splats than `gaussians` holds is ignored.
   std::shared_ptr<const splats::LodTree> lodTree;
   /// A QNV tileset's merged levels (docs/tilesets.md, "Merged levels"), or null: the merged

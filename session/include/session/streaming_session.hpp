@@ -48,15 +48,17 @@ class StreamingSession {
   /// then moves what arrived into parsers and decoders. A Gaussian stream gets a
   /// level-of-detail tree (splats/lod_tree.hpp; built on a thread of its own, about 1.5 s
   /// per million splats, and attached at a later pump) over what has arrived, so that far
-  /// views draw a cut of merged Gaussians as a capture read whole does: once the stream
-  /// rests (whole, or every splat its views asked for arrived, or stopped), and while it
-  /// arrives each time its splats have doubled (from 1,024), so that the builds of a
-  /// stream cost at most twice its last. The splats after a tree's prefix are drawn whole
-  /// until the next tree (SplatSet::lodTree). Returns true when a scene or a splat set
-  /// changed: call SceneRenderer::sceneChanged() on the renderers.
+  /// views draw a cut of merged Gaussians as a capture read whole does: over every splat
+  /// once the stream has ended (whole, stopped or failed); when it rests at the prefix its
+  /// views asked for, a first tree, then another each time a larger prefix has grown the
+  /// splats by a quarter; while it arrives, each time its splats have doubled (from
+  /// 1,024), so that the builds of a stream cost a few times its last; again after a gap
+  /// filled late. The splats after a tree's prefix are drawn whole, up to each view's
+  /// budget, until the next tree (SplatSet::lodTree). Returns true when a scene or a splat
+  /// set changed: call SceneRenderer::sceneChanged() on the renderers.
   bool pump();
   /// Whether nothing is arriving, nothing more was asked for, no tree is being built and
-  /// every resting Gaussian stream's tree covers all its splats.
+  /// none is due by pump()'s rule (an ended stream's tree covers all its splats).
   bool settled() const;
   /// How far the loading of `scene` got, for X3D LoadSensors watching an Inline
   /// (runtime::ExecutionModel::setUrlObjectState): a world this session streams is loaded
