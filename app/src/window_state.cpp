@@ -293,7 +293,7 @@ void WindowState::setMode(scene::RenderMode mode) {
 }
 
 render::ShadingOption WindowState::shading() const {
-  const Viewport& v = viewports[active];
+  const Viewport& v = view();
   if (!runtimes || v.world >= worlds.size()) return rendererOptions.shading;
   return runtimes->shading(worlds[v.world].scene.get());
 }

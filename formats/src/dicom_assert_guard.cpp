@@ -7,20 +7,15 @@
 // jumps back out of GDCM, elsewhere it does what glibc's does (print, abort).
 #include "dicom_internal.hpp"
 
+#include "base/sanitizers.hpp"
+
 #include <csetjmp>
 #include <cstdio>
 #include <cstdlib>
 
 // LeakSanitizer (the sanitizer and fuzz builds): what GDCM allocated in the frames a jump
 // skipped is never freed; it is not reported as a leak.
-#if defined(__SANITIZE_ADDRESS__)
-#define GS_LSAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(leak_sanitizer)
-#define GS_LSAN 1
-#endif
-#endif
-#ifdef GS_LSAN
+#ifdef GS_LEAK_SANITIZER
 #include <sanitizer/lsan_interface.h>
 #endif
 
@@ -34,12 +29,12 @@ thread_local sigjmp_buf* tGdcmAssertJump = nullptr;
 bool runGdcmGuarded(void (*step)(void*), void* argument) {
   sigjmp_buf jump;
   sigjmp_buf* const outer = tGdcmAssertJump;
-#ifdef GS_LSAN
+#ifdef GS_LEAK_SANITIZER
   __lsan_disable();  // allocations until __lsan_enable are never reported
 #endif
   if (sigsetjmp(jump, 0) != 0) {
     tGdcmAssertJump = outer;
-#ifdef GS_LSAN
+#ifdef GS_LEAK_SANITIZER
     __lsan_enable();
 #endif
     return false;
@@ -47,14 +42,14 @@ bool runGdcmGuarded(void (*step)(void*), void* argument) {
   tGdcmAssertJump = &jump;
   step(argument);
   tGdcmAssertJump = outer;
-#ifdef GS_LSAN
+#ifdef GS_LEAK_SANITIZER
   __lsan_enable();
 #endif
   return true;
 }
 
 void leakGdcmObject([[maybe_unused]] const void* object) {
-#ifdef GS_LSAN
+#ifdef GS_LEAK_SANITIZER
   __lsan_ignore_object(object);
 #endif
 }

@@ -187,12 +187,12 @@ struct SplatRenderer::Gpu {
                       treeSourceRevision == set.revision;
     if (same && treeSourceSize == source.size()) return;
     if (same && treeSourceSize < source.size()) {
-      for (std::size_t i = treeSourceSize; i < source.size(); ++i) treeCloud.append(source, i);
+      treeCloud.appendRange(source, treeSourceSize, source.size());
     } else {
       const splats::GaussianCloud& merged = set.lodTree->merged;
       treeCloud = merged;
       treeCloud.reserve(merged.size() + source.size());
-      for (std::size_t i = 0; i < source.size(); ++i) treeCloud.append(source, i);
+      treeCloud.appendRange(source, 0, source.size());
     }
     treeOf = set.lodTree.get();
     treeCloudOf = set.gaussians.get();
@@ -355,7 +355,7 @@ void SplatRenderer::drawGaussians(const SplatSet& set, std::size_t count, const 
         }
       } else {
         splats::assembleCut(*set.lodTree, source, cut, g.cutCloud);
-        for (std::size_t i = covered; i < tailEnd; ++i) g.cutCloud.append(source, i);
+        g.cutCloud.appendRange(source, covered, tailEnd);
       }
       g.cutSet = set.lodTree.get();
       g.cutSourceSize = source.size();

@@ -4,6 +4,7 @@
 // allocator, native stack depth through DUK_USE_NATIVE_STACK_CHECK; cmake/Duktape.cmake).
 #include "script_ecmascript_internal.hpp"
 
+#include "base/sanitizers.hpp"
 #include "base/url.hpp"
 
 #include <pthread.h>
@@ -25,14 +26,7 @@ using gs::runtime::es::HeapGuard;
 // DUK_USE_NATIVE_STACK_CHECK calls gs_duk_native_stack_check at each recursion point; it
 // fails below tStackLimit: `kStackBudget` bytes under the outermost entry into Duktape on
 // this thread, and never closer than `kStackReserve` to the end of the thread's stack.
-#if defined(__SANITIZE_ADDRESS__)  // GCC's
-#define GS_ASAN_FRAMES 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)  // clang's
-#define GS_ASAN_FRAMES 1
-#endif
-#endif
-#if defined(GS_ASAN_FRAMES)
+#if defined(GS_ADDRESS_SANITIZER)
 constexpr std::uintptr_t kStackBudget = 3u << 20;  // sanitizer frames are several times larger
 constexpr std::uintptr_t kStackReserve = 1u << 20;
 #else

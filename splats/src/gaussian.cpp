@@ -41,6 +41,23 @@ void GaussianCloud::append(const GaussianCloud& other, std::size_t i) {
   }
 }
 
+void GaussianCloud::appendRange(const GaussianCloud& other, std::size_t first, std::size_t last) {
+  if (other.shDegree != shDegree) {
+    for (std::size_t i = first; i < last; ++i) append(other, i);
+    return;
+  }
+  const auto range = [&](auto& to, const auto& from, std::size_t per) {
+    to.insert(to.end(), from.begin() + static_cast<std::ptrdiff_t>(first * per),
+              from.begin() + static_cast<std::ptrdiff_t>(last * per));
+  };
+  range(positions, other.positions, 1);
+  range(scales, other.scales, 1);
+  range(rotations, other.rotations, 1);
+  range(opacities, other.opacities, 1);
+  range(shDc, other.shDc, 1);
+  range(shRest, other.shRest, static_cast<std::size_t>(shRestPerSplat()));
+}
+
 void GaussianCloud::setShDegree(int degree) {
   degree = std::clamp(degree, 0, kMaxShDegree);
   if (degree == shDegree) return;

@@ -7,6 +7,8 @@
 
 #include <pthread.h>
 
+#include "base/sanitizers.hpp"
+
 using namespace gs;
 using namespace gs::test;
 using vrml::FieldType;
@@ -301,20 +303,13 @@ TEST_CASE("hostile Script: C recursion on a thread with a small stack", "[script
 
 TEST_CASE("hostile Script: nesting within the compiler's depth limit on a small stack",
           "[script][hostile]") {
-  // 2,400 nested parentheses: under Duktape's compiler depth limit (2,500), past what a
-  // 512 KiB stack holds (2 MiB under ASan) (the rest of its budget is the reserve kept for the
-  // error path): the compiler's recursion checks the native stack (cmake/Duktape.cmake), so the
-  // eval ends with a RangeError instead of overflowing the stack. Under AddressSanitizer the Script
-  // runtime keeps 1 MiB in reserve, not 256 KiB (runtime/src/script_ecmascript.cpp): the thread
-  // gets as much room above it.
-#if defined(__SANITIZE_ADDRESS__)
+  // 2,400 nested parentheses: under Duktape's compiler depth limit (2,500), past what the
+  // thread's stack holds above the reserve the Script runtime keeps for the error path
+  // (runtime/src/script_ecmascript.cpp: 256 KiB, 1 MiB under AddressSanitizer, whose
+  // frames are larger). The compiler's recursion checks the native stack
+  // (cmake/Duktape.cmake), so the eval ends with a RangeError instead of overflowing it.
+#if defined(GS_ADDRESS_SANITIZER)
   constexpr std::size_t kStack = 2u << 20;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-  constexpr std::size_t kStack = 2u << 20;
-#else
-  constexpr std::size_t kStack = 512u << 10;
-#endif
 #else
   constexpr std::size_t kStack = 512u << 10;
 #endif

@@ -246,3 +246,25 @@ TEST_CASE("hostile Gaussian words decode to finite splats", "[splats][qnv]") {
                                               cloud.rotations[i].z, cloud.rotations[i].w))));
   }
 }
+
+TEST_CASE("appendRange appends what append appends, splat by splat", "[splats][gaussian]") {
+  const GaussianCloud bunny = bunnySmall();
+  REQUIRE(bunny.shDegree > 0);
+  const auto sameAs = [](const GaussianCloud& a, const GaussianCloud& b) {
+    return a.shDegree == b.shDegree && a.positions == b.positions && a.scales == b.scales &&
+           a.rotations == b.rotations && a.opacities == b.opacities && a.shDc == b.shDc &&
+           a.shRest == b.shRest;
+  };
+  for (const int degree : {bunny.shDegree, 0, 3}) {
+    INFO("into a cloud of SH degree " << degree);
+    GaussianCloud ranged, single;
+    ranged.shDegree = single.shDegree = degree;
+    ranged.append(bunny, 0);
+    single.append(bunny, 0);
+    ranged.appendRange(bunny, 10, 400);
+    for (std::size_t i = 10; i < 400; ++i) single.append(bunny, i);
+    ranged.appendRange(bunny, 7, 7);  // nothing
+    CHECK(ranged.size() == 391);
+    CHECK(sameAs(ranged, single));
+  }
+}

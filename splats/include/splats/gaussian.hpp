@@ -74,6 +74,9 @@ struct GaussianCloud {
   /// Appends splat `i` of `other`, whose shDegree may differ (missing bands are zero,
   /// extra bands dropped).
   void append(const GaussianCloud& other, std::size_t i);
+  /// Appends splats [first, last) of `other` as append() does, copying each array at once
+  /// when the SH degrees agree. Requires first <= last <= other.size().
+  void appendRange(const GaussianCloud& other, std::size_t first, std::size_t last);
   /// Lowers (or raises, with zeros) the SH degree of every splat.
   void setShDegree(int degree);
 };
