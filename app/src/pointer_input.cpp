@@ -36,7 +36,10 @@ runtime::PointerEvent pointerEventAt(scene::SceneTraversal& traversal, const sce
   e.rayDirection = ray.direction;
   e.buttonDown = buttonDown;
   if (x >= 0.0f && y >= 0.0f && x < static_cast<float>(width) && y < static_cast<float>(height))
-    if (auto hit = scene::pick(traversal, camera, ray)) e.hit = toPickResult(*hit);
+    if (auto hit = scene::pick(
+            traversal, camera, ray,
+            glm::vec2(x / static_cast<float>(width), 1.0f - y / static_cast<float>(height))))
+      e.hit = toPickResult(*hit);
   return e;
 }
 

@@ -37,6 +37,9 @@ int Parser::x3dFieldAlias(const NodeType& type, std::string_view name) {
           name == "right" || name == "top")
         return type.findExact(std::string(name) + "Texture");
       return -1;
+    case NodeTypeId::Layer:  // X3D 3's name of `pickable` (X3D 4.0 clause 35.3.1)
+    case NodeTypeId::LayoutLayer:
+      return name == "isPickable" ? type.findExact("pickable") : -1;
     case NodeTypeId::LoadSensor:  // X3D 3's name of `children` (X3D 4.0 clause 9.4.3)
       return name == "watchList" ? type.findExact("children") : -1;
     case NodeTypeId::ParticleSystem:  // X3D 3's names of `color` and `texCoord` (clause 40.4.7)

@@ -73,6 +73,12 @@ NodeState& ExecutionModel::State::reach(const vrml::NodePtr& node, bool bindable
   return ns;
 }
 
+void ExecutionModel::State::takeInlineScene(InlineCursor& c) {
+  reachingInline = c.scene.get();
+  takeScene(*c.scene, c.roots, c.hidden, c.routes, false);
+  reachingInline = nullptr;
+}
+
 bool ExecutionModel::State::connect(vrml::Node& from, int fromField, vrml::Node& to, int toField) {
   NodeState& a = reach(from, false);
   NodeState& b = reach(to, false);
@@ -307,8 +313,7 @@ ExecutionModel::~ExecutionModel() {
 void ExecutionModel::sceneGrew() {
   ++s_->stamp;
   if (s_->scene) s_->takeScene(*s_->scene, s_->rootsSeen, s_->hiddenSeen, s_->routesSeen, true);
-  for (State::InlineCursor& c : s_->inlineScenes)
-    s_->takeScene(*c.scene, c.roots, c.hidden, c.routes, false);
+  for (State::InlineCursor& c : s_->inlineScenes) s_->takeInlineScene(c);
   s_->bindFirstCandidates();
   s_->startNewLoadSensors();
   s_->runCascade();
@@ -324,7 +329,7 @@ void ExecutionModel::addInlineScene(std::shared_ptr<const vrml::Scene> scene) {
   c.scene = std::move(scene);
   const std::size_t firstSensor = s_->timeSensors.size();
   ++s_->stamp;
-  s_->takeScene(*c.scene, c.roots, c.hidden, c.routes, false);
+  s_->takeInlineScene(c);
   s_->startNewLoadSensors();
   s_->initializeScripts();
   // The Inline's world starts now: its TimeSensors as at load (4.10.3's initial events).
@@ -558,22 +563,28 @@ bool ExecutionModel::deleteRoute(const vrml::NodePtr& from, const std::string& e
 }
 
 std::vector<vrml::NodePtr> ExecutionModel::createVrmlFromString(const std::string& text) {
+  return createSceneFromString(text)->rootNodes;
+}
+
+std::shared_ptr<vrml::Scene> ExecutionModel::createSceneFromString(const std::string& text) {
   std::string bytes = text;
   if (!bytes.starts_with("#VRML") && !bytes.starts_with("#X3D"))
     bytes = "#VRML V2.0 utf8\n" + bytes;
-  vrml::Scene made = vrml::parseVrml(bytes, worldUrl());
-  for (vrml::Diagnostic& d : made.diagnostics.items) diagnostics_.items.push_back(std::move(d));
+  auto made = std::make_shared<vrml::Scene>(vrml::parseVrml(bytes, worldUrl()));
+  for (vrml::Diagnostic& d : made->diagnostics.items) diagnostics_.items.push_back(std::move(d));
+  made->diagnostics.items.clear();
   std::size_t roots = 0, hidden = 0, routes = 0;
-  s_->takeScene(made, roots, hidden, routes, false);
-  for (const vrml::NodePtr& n : made.rootNodes)
-    if (n) s_->reach(n, false);
-  for (const vrml::NodePtr& n : made.hiddenNodes)
-    if (n) s_->reach(n, false);
-  return made.rootNodes;
+  s_->takeScene(*made, roots, hidden, routes, false);
+  return made;
 }
 
 const vrml::Scene* ExecutionModel::currentScene() const {
   return s_->scene.get();
+}
+
+const vrml::Scene* ExecutionModel::sceneOf(const vrml::Node& script) const {
+  const auto it = s_->scriptScenes.find(&script);
+  return it != s_->scriptScenes.end() ? it->second : s_->scene.get();
 }
 
 void ExecutionModel::setImportedNode(const std::string& localName, vrml::NodePtr node) {

@@ -375,6 +375,11 @@ struct ExecutionModel::State {
     std::size_t roots = 0, hidden = 0, routes = 0;
   };
   std::vector<InlineCursor> inlineScenes;
+  /// The Inline's world whose nodes takeScene is reaching (null for the main world and
+  /// createVrmlFromString's), and the world each Script of an Inline's world came from
+  /// (ScriptContext::sceneOf; the InlineCursor keeps the scene alive).
+  const vrml::Scene* reachingInline = nullptr;
+  std::unordered_map<const vrml::Node*, const vrml::Scene*> scriptScenes;
   std::unordered_set<const vrml::Scene*> inlineSceneSet;
   std::unordered_map<const vrml::Node*, std::unique_ptr<NodeState>> nodes;
   std::vector<NodeState*> timeSensors;
@@ -430,6 +435,8 @@ struct ExecutionModel::State {
   NodeState& reach(const vrml::NodePtr& node, bool bindables);
   void takeScene(const vrml::Scene& s, std::size_t& roots, std::size_t& hidden, std::size_t& routes,
                  bool bindables);
+  /// takeScene of an Inline's world: its Scripts are known to come from it.
+  void takeInlineScene(InlineCursor& c);
   bool connect(vrml::Node& from, int fromField, vrml::Node& to, int toField);
 
   // ---- events (execution_model.cpp) ----

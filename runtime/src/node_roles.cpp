@@ -99,6 +99,7 @@ void ExecutionModel::State::classify(NodeState& ns) {
   auto idx = [&](std::string_view name) { return type.findExact(name); };
   if (type.script) {
     ns.role = NodeRole::script;
+    if (reachingInline != nullptr) scriptScenes[ns.node] = reachingInline;
     if (model.options_.scripts && scriptFilesArriving(*ns.node)) {
       arrivingScripts.push_back(&ns);  // made when its file arrives (startArrivedScripts)
       return;

@@ -108,8 +108,15 @@ std::vector<std::string> stringsArg(EsScript& self, duk_context* c, duk_idx_t id
   return std::move(v.get<FieldType::MFString>());
 }
 
+// replaceWorld(nodes), or replaceWorld(scene) as 19777-1 takes it: an object with
+// rootNodes (createX3DFromString's X3DScene) is replaced by them.
 duk_ret_t replaceWorld(duk_context* c) {
   EsScript& self = EsScript::of(c);
+  if (duk_is_object(c, 0) && !duk_is_array(c, 0) && self.nodeAt(c, 0) == nullptr &&
+      duk_has_prop_string(c, 0, "rootNodes")) {
+    duk_get_prop_string(c, 0, "rootNodes");
+    duk_replace(c, 0);
+  }
   self.context().replaceWorld(nodesArg(self, c, 0, "Browser.replaceWorld"));
   return 0;
 }
@@ -193,9 +200,9 @@ duk_ret_t putDescription(duk_context* c) {
   return 0;
 }
 
-// createX3DFromString(text) (ISO/IEC 19777-1): as createVrmlFromString, for X3D Classic
-// VRML text ("#X3D V3.3 utf8" assumed when it has no header); returns a scene object
-// whose rootNodes is the MFNode.
+// createX3DFromString(text) (ISO/IEC 19777-1 clause 7.2.3): as createVrmlFromString, for
+// X3D Classic VRML text ("#X3D V3.3 utf8" assumed when it has no header); returns an
+// X3DScene of the text's whole scene (EsScript::pushCreatedScene).
 duk_ret_t createX3DFromString(duk_context* c) {
   EsScript& self = EsScript::of(c);
   std::string text = stringArg(c, 0);
@@ -205,10 +212,7 @@ duk_ret_t createX3DFromString(duk_context* c) {
                  "Browser.createX3DFromString: the text is longer than %lu bytes",
                  static_cast<unsigned long>(max));
   if (!text.starts_with("#X3D") && !text.starts_with("#VRML")) text = "#X3D V3.3 utf8\n" + text;
-  FieldValue nodes = FieldValue::make<FieldType::MFNode>(self.context().createVrmlFromString(text));
-  duk_push_object(c);
-  self.pushValue(c, nodes);
-  duk_put_prop_string(c, -2, "rootNodes");
+  self.pushCreatedScene(c, self.context().createSceneFromString(text));
   return 1;
 }
 
@@ -318,6 +322,11 @@ void EsScript::installBrowser(duk_context* c) {
     duk_get_prop_string(c, -3, "__gsScene");
     duk_def_prop(c, -3, DUK_DEFPROP_HAVE_VALUE | DUK_DEFPROP_SET_ENUMERABLE);
     duk_del_prop_string(c, -2, "__gsScene");
+    duk_push_global_stash(c);
+    duk_get_prop_string(c, -3, "__gsSceneMaker");
+    duk_put_prop_string(c, -2, kSceneMakerKey);
+    duk_pop(c);
+    duk_del_prop_string(c, -2, "__gsSceneMaker");
   }
   duk_put_prop_string(c, -2, "Browser");
   // print(), and addRoute / deleteRoute without "Browser." as FreeWRL's tests use them.

@@ -123,6 +123,15 @@ class EsScript final : public ScriptInstance {
   /// Installs the natives the X3D prelude takes (__gsX3D): scene, routes, field
   /// definitions.
   void installX3DHooks(duk_context* c);
+  /// Pushes what Browser.createX3DFromString returns for `scene` (ISO/IEC 19777-1 clause
+  /// 7.2.3): in an X3D Script an X3DScene over it (rootNodes, getNamedNode, protos,
+  /// createProto, addRootNode ... act on that scene, not the world); elsewhere an object
+  /// with its rootNodes. The scene is kept for the Script's life, as its nodes are.
+  void pushCreatedScene(duk_context* c, std::shared_ptr<vrml::Scene> scene);
+  /// The scene createX3DFromString made that the X3DScene object at `idx` stands for;
+  /// null for Browser.currentScene (the world's, ScriptContext::currentScene) or any
+  /// object that is no created scene.
+  vrml::Scene* createdSceneAt(duk_context* c, duk_idx_t idx);
 
   // ---- Browser object and print (script_browser.cpp) ----
   void installBrowser(duk_context* c);
@@ -177,9 +186,10 @@ class EsScript final : public ScriptInstance {
   std::vector<int> changed_;              // indexes dirty or touched in this call
   std::vector<vrml::FieldValue> last_;    // value each eventOut had when last sent/seen
   std::vector<void*> getters_, setters_;  // Script field accessors (by index)
-  std::vector<void*> nodeGetters_, nodeSetters_;    // SFNode field accessors (by index)
-  std::vector<void*> protoGetters_, protoSetters_;  // PROTO instance interface accessors
-  std::vector<vrml::NodePtr> nodes_;                // SFNode objects' nodes, by id
+  std::vector<void*> nodeGetters_, nodeSetters_;      // SFNode field accessors (by index)
+  std::vector<void*> protoGetters_, protoSetters_;    // PROTO instance interface accessors
+  std::vector<vrml::NodePtr> nodes_;                  // SFNode objects' nodes, by id
+  std::vector<std::shared_ptr<vrml::Scene>> scenes_;  // createX3DFromString's, by id - 1
   std::unordered_map<const vrml::Node*, std::uint32_t> nodeIds_;
   /// A node field read as an object in this call; `assigned` holds what the Script last
   /// sent to it (the node still has its old value until the event is delivered).
@@ -203,6 +213,11 @@ inline constexpr duk_errcode_t kNoBlameFileLine = 1L << 24;
 
 /// Hidden property of an SFNode object holding its node id.
 inline constexpr const char* kNodeIdKey = DUK_HIDDEN_SYMBOL("gsNode");
+/// The id of the scene an X3DScene object made by createX3DFromString stands for (1 is
+/// the first); absent on Browser.currentScene.
+inline constexpr const char* kSceneIdKey = DUK_HIDDEN_SYMBOL("gsScene");
+/// Global stash entry: the X3D prelude's function that makes an X3DScene object.
+inline constexpr const char* kSceneMakerKey = "gsSceneMaker";
 
 /// Component `k` of a vector-like script object (SFVec3f, SFVec3d, SFColorRGBA, an array):
 /// its property `name` ("x", "r" ...), else its index k, as a number (NaN when neither is

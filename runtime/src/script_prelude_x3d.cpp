@@ -252,13 +252,15 @@ function X3DScene() { throw new TypeError('X3DScene cannot be made by a Script')
 X3DScene.prototype = Object.create(X3DExecutionContext.prototype);
 var P = X3DScene.prototype;
 method(P, 'constructor', X3DScene);
-getter(P, 'specificationVersion', function () { return hooks.sceneInfo()[0]; });
-getter(P, 'encoding', function () { return hooks.sceneInfo()[1]; });
-getter(P, 'profile', function () { return hooks.sceneInfo()[2]; });
-getter(P, 'worldURL', function () { return hooks.sceneInfo()[3]; });
-getter(P, 'rootNodes', function () { return hooks.rootNodes(); });
+// Each hook takes the scene object first: Browser.currentScene (the world) or one that
+// Browser.createX3DFromString made (the host knows it by a hidden id).
+getter(P, 'specificationVersion', function () { return hooks.sceneInfo(this)[0]; });
+getter(P, 'encoding', function () { return hooks.sceneInfo(this)[1]; });
+getter(P, 'profile', function () { return hooks.sceneInfo(this)[2]; });
+getter(P, 'worldURL', function () { return hooks.sceneInfo(this)[3]; });
+getter(P, 'rootNodes', function () { return hooks.rootNodes(this); });
 method(P, 'getNamedNode', function (name) {
-  var node = hooks.namedNode(String(name));
+  var node = hooks.namedNode(this, String(name));
   if (node === null) throw new Error("getNamedNode: the scene has no node named '" + name + "'");
   return node;
 });
@@ -274,36 +276,43 @@ method(P, 'deleteRoute', function (a, af, b, bf) {
   return hooks.route(false, a, String(af), b, String(bf));
 });
 // X3DProtoDeclaration / X3DExternProtoDeclaration (19777-1 7.4.12, 7.4.13): read-only
-// views of the scene's declarations, newInstance() through createProto.
-function X3DProtoDeclaration(d) {
+// views of the scene's declarations, newInstance() through the scene's createProto.
+function X3DProtoDeclaration(d, scene) {
   var fields = [];
   for (var i = 0; i < d[3].length; ++i)
     fields.push(new X3DFieldDefinition(d[3][i][0], d[3][i][1], X3DConstants[d[3][i][2]]));
   Object.defineProperty(this, 'name', { value: d[0], enumerable: true });
   Object.defineProperty(this, 'fields', { value: fields, enumerable: true });
   Object.defineProperty(this, 'isExternProto', { value: d[1], enumerable: true });
+  Object.defineProperty(this, '__gsScene', { value: scene });
   if (d[1]) {
     var urls = new MFString();
     for (var u = 0; u < d[2].length; ++u) urls[u] = d[2][u];
     Object.defineProperty(this, 'urls', { value: urls, enumerable: true });
   }
 }
-method(X3DProtoDeclaration.prototype, 'newInstance', function () { return hooks.createProto(this.name); });
-function declarations(external) {
-  var all = hooks.protoDeclarations(), out = [];
+method(X3DProtoDeclaration.prototype, 'newInstance', function () { return hooks.createProto(this.__gsScene, this.name); });
+function declarations(scene, external) {
+  var all = hooks.protoDeclarations(scene), out = [];
   for (var i = 0; i < all.length; ++i)
-    if (all[i][1] === external) out.push(new X3DProtoDeclaration(all[i]));
+    if (all[i][1] === external) out.push(new X3DProtoDeclaration(all[i], scene));
   return out;
 }
-getter(P, 'protos', function () { return declarations(false); });
-getter(P, 'externprotos', function () { return declarations(true); });
-method(P, 'createProto', function (name) { return hooks.createProto(String(name)); });
-method(P, 'addRootNode', function (node) { hooks.rootNode(true, node); });
-method(P, 'removeRootNode', function (node) { hooks.rootNode(false, node); });
+getter(P, 'protos', function () { return declarations(this, false); });
+getter(P, 'externprotos', function () { return declarations(this, true); });
+method(P, 'createProto', function (name) { return hooks.createProto(this, String(name)); });
+method(P, 'addRootNode', function (node) { hooks.rootNode(this, true, node); });
+method(P, 'removeRootNode', function (node) { hooks.rootNode(this, false, node); });
 method(P, 'getImportedNode', function (name) {
-  var node = hooks.importedNode(String(name));
+  var node = hooks.importedNode(this, String(name));
   if (node === null)
     throw new Error("getImportedNode: no IMPORT '" + name + "' whose Inline has arrived and EXPORTs it");
+  return node;
+});
+// X3DScene.getExportedNode (19777-1): the node the scene EXPORTs as `name`.
+method(P, 'getExportedNode', function (name) {
+  var node = hooks.exportedNode(this, String(name));
+  if (node === null) throw new Error("getExportedNode: the scene EXPORTs no node as '" + name + "'");
   return node;
 });
 
@@ -314,6 +323,8 @@ G.X3DFieldDefinition = X3DFieldDefinition; G.X3DRoute = X3DRoute;
 G.X3DProtoDeclaration = X3DProtoDeclaration;
 G.X3DExecutionContext = X3DExecutionContext; G.X3DScene = X3DScene;
 G.__gsScene = Object.create(P);  // Browser.currentScene (installBrowser takes it)
+// Makes the X3DScene object of createX3DFromString (installBrowser keeps it in the stash).
+G.__gsSceneMaker = function () { return Object.create(P); };
 })(this);
 )JS";
 

@@ -645,7 +645,7 @@ void EsScript::installNodeHooks(duk_context* c) {
                      static_cast<unsigned long>(maxText));
       std::string body(text, len);
       // In an X3D world the text is X3D (its nodes and fields), as the world's version.
-      const vrml::Scene* world = self.ctx_.currentScene();
+      const vrml::Scene* world = self.ctx_.sceneOf(self.node_);
       if (world != nullptr && !world->x3d.version.empty() && !body.starts_with("#X3D") &&
           !body.starts_with("#VRML"))
         body = "#X3D V" + world->x3d.version + " utf8\n" + body;

@@ -7,6 +7,7 @@
 #include "vrml/proto.hpp"
 #include "vrml/scene.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cctype>
 #include <string_view>
@@ -287,16 +288,35 @@ std::string x3dString(duk_context* c, duk_idx_t idx) {
   return std::string(s, len);
 }
 
+// The scene of the X3DScene object at `idx` (a hook's first argument, the method's
+// `this`): one createX3DFromString made, else the Script's own (Browser.currentScene: the
+// world, or the Inline's world the Script is in).
+const vrml::Scene* x3dSceneOf(EsScript& self, duk_context* c, duk_idx_t idx) {
+  if (const vrml::Scene* made = self.createdSceneAt(c, idx)) return made;
+  return self.context().sceneOf(self.node());
+}
+
+// Whether the X3DScene object at `idx` is the Script's currentScene and that is an
+// Inline's world rather than the browser's.
+bool x3dInlineScene(EsScript& self, duk_context* c, duk_idx_t idx) {
+  return self.createdSceneAt(c, idx) == nullptr &&
+         self.context().sceneOf(self.node()) != self.context().currentScene();
+}
+
+// sceneInfo(scene): [specificationVersion, encoding, profile, worldURL]. A created
+// scene's worldURL is the world's, against which its URLs were resolved; an Inline's
+// world's is its own.
 duk_ret_t x3dSceneInfo(duk_context* c) {
   EsScript& self = EsScript::of(c);
-  const vrml::Scene* scene = self.context().currentScene();
+  const vrml::Scene* scene = x3dSceneOf(self, c, 0);
   std::string version =
       scene != nullptr && !scene->x3d.version.empty() ? scene->x3d.version : "2.0";
   std::string encoding = scene != nullptr && !scene->x3d.encoding.empty() ? scene->x3d.encoding
                          : scene != nullptr                               ? "VRML"
                                                                           : "";
   std::string profile = scene != nullptr ? scene->x3d.profile : "";
-  std::string url = self.context().worldUrl();
+  std::string url =
+      x3dInlineScene(self, c, 0) && scene != nullptr ? scene->url : self.context().worldUrl();
   duk_push_array(c);
   const std::string* parts[] = {&version, &encoding, &profile, &url};
   for (duk_uarridx_t i = 0; i < 4; ++i) {
@@ -308,7 +328,7 @@ duk_ret_t x3dSceneInfo(duk_context* c) {
 
 duk_ret_t x3dRootNodes(duk_context* c) {
   EsScript& self = EsScript::of(c);
-  const vrml::Scene* scene = self.context().currentScene();
+  const vrml::Scene* scene = x3dSceneOf(self, c, 0);
   self.pushValue(c, FieldValue::make<FieldType::MFNode>(
                         scene != nullptr ? scene->rootNodes : std::vector<vrml::NodePtr>()));
   return 1;
@@ -316,8 +336,8 @@ duk_ret_t x3dRootNodes(duk_context* c) {
 
 duk_ret_t x3dNamedNode(duk_context* c) {
   EsScript& self = EsScript::of(c);
-  const vrml::Scene* scene = self.context().currentScene();
-  std::string name = x3dString(c, 0);
+  const vrml::Scene* scene = x3dSceneOf(self, c, 0);
+  std::string name = x3dString(c, 1);
   X3dNamedWalk walk{self, c, {}};
   vrml::NodePtr n = scene != nullptr ? x3dFindNamed(scene->rootNodes, name, walk, 0) : nullptr;
   self.pushNode(c, n);
@@ -341,7 +361,7 @@ duk_ret_t x3dCreateNode(duk_context* c) {
   return 1;
 }
 
-// The PROTO or EXTERNPROTO the current scene declares by `name` (X3DExecutionContext's
+// The PROTO or EXTERNPROTO `scene` declares by `name` (X3DExecutionContext's
 // protos and externprotos: the file's top-level declarations); null when none.
 const vrml::NodeType* x3dDeclaredProto(const vrml::Scene* scene, std::string_view name) {
   if (scene == nullptr) return nullptr;
@@ -350,11 +370,11 @@ const vrml::NodeType* x3dDeclaredProto(const vrml::Scene* scene, std::string_vie
   return nullptr;
 }
 
-// protoDeclarations(): [[name, isExternProto, [url ...], [[field, access, type] ...]] ...]
-// of the current scene's top-level PROTO and EXTERNPROTO declarations, in file order.
+// protoDeclarations(scene): [[name, isExternProto, [url ...], [[field, access, type] ...]]
+// ...] of the scene's top-level PROTO and EXTERNPROTO declarations, in file order.
 duk_ret_t x3dProtoDeclarations(duk_context* c) {
   EsScript& self = EsScript::of(c);
-  const vrml::Scene* scene = self.context().currentScene();
+  const vrml::Scene* scene = x3dSceneOf(self, c, 0);
   duk_push_array(c);
   if (scene == nullptr) return 1;
   duk_uarridx_t k = 0;
@@ -390,14 +410,14 @@ duk_ret_t x3dProtoDeclarations(duk_context* c) {
   return 1;
 }
 
-// createProto(name): an instance of the current scene's PROTO or EXTERNPROTO `name`, its
+// createProto(scene, name): an instance of the scene's PROTO or EXTERNPROTO `name`, its
 // interface at the declared defaults (19777-1 X3DExecutionContext.createProto): the
 // scene's declarations written out again, with one instance, and read as createNode reads
 // its node.
 duk_ret_t x3dCreateProto(duk_context* c) {
   EsScript& self = EsScript::of(c);
-  const std::string name = x3dString(c, 0);
-  const vrml::Scene* scene = self.context().currentScene();
+  const std::string name = x3dString(c, 1);
+  const vrml::Scene* scene = x3dSceneOf(self, c, 0);
   if (x3dDeclaredProto(scene, name) == nullptr)
     GS_DUK_ERROR(c, DUK_ERR_ERROR, "createProto: the scene declares no PROTO or EXTERNPROTO '%s'",
                  name.substr(0, 64).c_str());
@@ -502,21 +522,59 @@ duk_ret_t x3dNodeType(duk_context* c) {
   return 1;
 }
 
-// importedNode(name): the node of the world's IMPORT `name`, or null.
+// importedNode(scene, name): the node of the world's IMPORT `name`, or null; null for a
+// scene createX3DFromString made and for an Inline's world (their IMPORTs are not
+// resolved).
 duk_ret_t x3dImportedNode(duk_context* c) {
   EsScript& self = EsScript::of(c);
-  self.pushNode(c, self.context().importedNode(x3dString(c, 0)));  // null when none
+  if (self.createdSceneAt(c, 0) != nullptr || x3dInlineScene(self, c, 0)) {
+    duk_push_null(c);
+    return 1;
+  }
+  self.pushNode(c, self.context().importedNode(x3dString(c, 1)));  // null when none
   return 1;
 }
 
-// rootNode(add, node): X3DScene.addRootNode / removeRootNode; whether the roots changed.
+// exportedNode(scene, name): the node the scene's EXPORT ... AS `name` names (X3D 4.0
+// clause 4.4.6; X3DScene.getExportedNode), or null.
+duk_ret_t x3dExportedNode(duk_context* c) {
+  EsScript& self = EsScript::of(c);
+  const vrml::Scene* scene = x3dSceneOf(self, c, 0);
+  const std::string name = x3dString(c, 1);
+  vrml::NodePtr found;
+  if (scene != nullptr)
+    for (const vrml::X3dExport& e : scene->x3d.exports)
+      if (e.exportedName == name && e.node) {
+        found = e.node;
+        break;
+      }
+  self.pushNode(c, found);
+  return 1;
+}
+
+// rootNode(scene, add, node): X3DScene.addRootNode / removeRootNode; whether the roots
+// changed. The world's roots change through the browser (its new nodes are drawn and run);
+// a created scene's list is its own (its nodes already run, as createVrmlFromString's do).
 duk_ret_t x3dRootNode(duk_context* c) {
   EsScript& self = EsScript::of(c);
-  const bool add = duk_to_boolean(c, 0) != 0;
-  FieldValue v = self.requireValue(c, 1, FieldType::SFNode, add ? "addRootNode" : "removeRootNode");
+  const bool add = duk_to_boolean(c, 1) != 0;
+  FieldValue v = self.requireValue(c, 2, FieldType::SFNode, add ? "addRootNode" : "removeRootNode");
   const vrml::NodePtr& n = v.get<FieldType::SFNode>();
   if (!n)
     GS_DUK_ERROR(c, DUK_ERR_TYPE_ERROR, "%s: the node is NULL",
+                 add ? "addRootNode" : "removeRootNode");
+  if (vrml::Scene* made = self.createdSceneAt(c, 0)) {
+    std::vector<vrml::NodePtr>& roots = made->rootNodes;
+    const auto it = std::find(roots.begin(), roots.end(), n);
+    const bool changed = add ? it == roots.end() : it != roots.end();
+    if (changed && add) roots.push_back(n);
+    if (changed && !add) roots.erase(it);
+    duk_push_boolean(c, changed);
+    return 1;
+  }
+  if (x3dInlineScene(self, c, 0))
+    GS_DUK_ERROR(c, DUK_ERR_ERROR,
+                 "%s: the Script's scene is an Inline's world, whose root nodes are its file's",
                  add ? "addRootNode" : "removeRootNode");
   duk_push_boolean(c, add ? self.context().addRootNode(n) : self.context().removeRootNode(n));
   return 1;
@@ -532,12 +590,38 @@ duk_ret_t x3dTypeName(duk_context* c) {
 
 }  // namespace
 
+void EsScript::pushCreatedScene(duk_context* c, std::shared_ptr<vrml::Scene> scene) {
+  duk_push_global_stash(c);
+  const bool x3d = duk_get_prop_string(c, -1, kSceneMakerKey) != 0;
+  duk_remove(c, -2);
+  if (!x3d) {  // a VRML97 Script: no X3DScene class
+    duk_pop(c);
+    duk_push_object(c);
+    pushValue(c, FieldValue::make<FieldType::MFNode>(scene->rootNodes));
+    duk_put_prop_string(c, -2, "rootNodes");
+    return;
+  }
+  duk_call(c, 0);  // a new X3DScene object
+  scenes_.push_back(std::move(scene));
+  duk_push_uint(c, static_cast<duk_uint_t>(scenes_.size()));
+  duk_put_prop_string(c, -2, kSceneIdKey);
+}
+
+vrml::Scene* EsScript::createdSceneAt(duk_context* c, duk_idx_t idx) {
+  if (!duk_is_object(c, idx)) return nullptr;
+  duk_get_prop_string(c, idx, kSceneIdKey);
+  const bool has = duk_is_number(c, -1) != 0;
+  const duk_uint_t id = has ? duk_get_uint(c, -1) : 0;
+  duk_pop(c);
+  return has && id >= 1 && id <= scenes_.size() ? scenes_[id - 1].get() : nullptr;
+}
+
 bool EsScript::wantsX3D() const {
   const vrml::NodeType& type = node_.type();
   if (type.findExact("metadata") >= 0) return true;
   for (const vrml::FieldSpec& f : type.fields)
     if (static_cast<int>(f.type) >= vrml::kVrml97FieldTypeCount) return true;
-  const vrml::Scene* scene = ctx_.currentScene();
+  const vrml::Scene* scene = ctx_.sceneOf(node_);
   return scene != nullptr && !scene->x3d.version.empty();
 }
 
@@ -548,19 +632,20 @@ void EsScript::installX3DHooks(duk_context* c) {
     duk_idx_t nargs;
   };
   static constexpr Entry kHooks[] = {
-      {"sceneInfo", x3dSceneInfo, 0},
-      {"rootNodes", x3dRootNodes, 0},
-      {"namedNode", x3dNamedNode, 1},
+      {"sceneInfo", x3dSceneInfo, 1},
+      {"rootNodes", x3dRootNodes, 1},
+      {"namedNode", x3dNamedNode, 2},
       {"createNode", x3dCreateNode, 1},
       {"route", x3dRoute, 5},
       {"fieldDefinitions", x3dFieldDefinitions, 1},
       {"typeName", x3dTypeName, 1},
       {"nodeTypeConstants", x3dNodeTypeConstants, 0},
       {"nodeType", x3dNodeType, 1},
-      {"importedNode", x3dImportedNode, 1},
-      {"protoDeclarations", x3dProtoDeclarations, 0},
-      {"rootNode", x3dRootNode, 2},
-      {"createProto", x3dCreateProto, 1},
+      {"importedNode", x3dImportedNode, 2},
+      {"exportedNode", x3dExportedNode, 2},
+      {"protoDeclarations", x3dProtoDeclarations, 1},
+      {"rootNode", x3dRootNode, 3},
+      {"createProto", x3dCreateProto, 2},
   };
   duk_push_global_object(c);
   duk_push_bare_object(c);

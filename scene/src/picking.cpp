@@ -34,18 +34,38 @@ bool intersectTriangle(const glm::vec3& origin, const glm::vec3& direction, cons
   return vrml::lineTriangle(origin, direction, a, b, c, t, u, v) && t > minT;
 }
 
-std::optional<PickHit> pick(SceneTraversal& traversal, const Camera& viewer, const Ray& ray) {
+std::optional<PickHit> pick(SceneTraversal& traversal, const Camera& viewer, const Ray& ray,
+                            const std::optional<glm::vec2>& pointer) {
   TraversalFrame frame;
   frame.recordPaths = true;
   traversal.collect(viewer, frame);
-  return pickInFrame(traversal, frame, ray);
+  if (frame.layerOrder.empty()) return pickInFrame(traversal, frame, ray);
+  // Top layer first, as drawn (a layer listed twice is on top where it was last drawn).
+  std::vector<std::uint32_t> tried;
+  for (auto it = frame.layerOrder.rbegin(); it != frame.layerOrder.rend(); ++it) {
+    const LayerInstance& layer = *it;
+    if (std::find(tried.begin(), tried.end(), layer.number) != tried.end()) continue;
+    tried.push_back(layer.number);
+    if (layer.node != nullptr &&
+        (!sfBool(*layer.node, "pickable", true) || !sfBool(*layer.node, "pointerEvents", true)))
+      continue;
+    const glm::vec4& clip = layer.clipBoundary;  // left, right, bottom, top
+    if (pointer &&
+        (pointer->x < clip.x || pointer->x > clip.y || pointer->y < clip.z || pointer->y > clip.w))
+      continue;
+    if (auto hit = pickInFrame(traversal, frame, ray, std::numeric_limits<float>::infinity(),
+                               layer.number))
+      return hit;
+  }
+  return std::nullopt;
 }
 
 std::optional<PickHit> pickInFrame(SceneTraversal& traversal, const TraversalFrame& frame,
-                                   const Ray& ray, float maxT) {
+                                   const Ray& ray, float maxT, std::optional<std::uint32_t> layer) {
   std::optional<PickHit> best;
   float bestT = maxT;
   for (const ShapeInstance& s : frame.shapes) {
+    if (layer && s.layer != *layer) continue;
     // X3D 4.1's Shape.pointerEvents FALSE: the pointer passes through to what lies behind.
     if (s.shape != nullptr && !sfBool(*s.shape, "pointerEvents", true)) continue;
     const float det = glm::determinant(glm::mat3(s.model));

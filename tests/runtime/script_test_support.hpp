@@ -61,11 +61,14 @@ struct FakeScriptContext : runtime::ScriptContext {
     return true;
   }
   std::vector<vrml::NodePtr> createVrmlFromString(const std::string& text) override {
+    return createSceneFromString(text)->rootNodes;
+  }
+  std::shared_ptr<vrml::Scene> createSceneFromString(const std::string& text) override {
     const bool header = text.starts_with("#VRML") || text.starts_with("#X3D");
     auto scene = std::make_shared<vrml::Scene>(
         vrml::parseVrml(header ? text : "#VRML V2.0 utf8\n" + text, "createVrmlFromString"));
     created.push_back(scene);
-    return scene->rootNodes;
+    return scene;
   }
   void loadUrl(const std::vector<std::string>& url,
                const std::vector<std::string>& parameter) override {

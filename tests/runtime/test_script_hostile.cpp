@@ -6,6 +6,8 @@
 #include <chrono>
 
 #include <pthread.h>
+#include <sys/mman.h>
+#include <unistd.h>
 
 #include "base/sanitizers.hpp"
 
@@ -277,15 +279,24 @@ void* runOnSmallStack(void* arg) {
   return nullptr;
 }
 
-/// Runs `r` on a thread of `stackBytes`.
+/// Runs `r` on a thread of exactly `stackBytes` (a multiple of the page size). The stack is
+/// this test's own mapping, under a guard page: with pthread_attr_setstacksize glibc may
+/// hand the thread a cached stack of an earlier thread up to four times larger, and the
+/// Script runtime (rightly) budgets by the stack the thread has.
 void runOnThread(ThreadRun& r, std::size_t stackBytes) {
+  const auto page = static_cast<std::size_t>(sysconf(_SC_PAGESIZE));
+  void* map = mmap(nullptr, stackBytes + page, PROT_READ | PROT_WRITE,
+                   MAP_PRIVATE | MAP_ANONYMOUS | MAP_STACK, -1, 0);
+  REQUIRE(map != MAP_FAILED);
+  REQUIRE(mprotect(map, page, PROT_NONE) == 0);  // the stack grows down onto this page
   pthread_attr_t attr;
   REQUIRE(pthread_attr_init(&attr) == 0);
-  REQUIRE(pthread_attr_setstacksize(&attr, stackBytes) == 0);
+  REQUIRE(pthread_attr_setstack(&attr, static_cast<char*>(map) + page, stackBytes) == 0);
   pthread_t thread;
   REQUIRE(pthread_create(&thread, &attr, runOnSmallStack, &r) == 0);
   pthread_join(thread, nullptr);
   pthread_attr_destroy(&attr);
+  munmap(map, stackBytes + page);
 }
 
 }  // namespace

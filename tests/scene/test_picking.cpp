@@ -242,3 +242,44 @@ TEST_CASE("a Viewpoint under a mirroring or flattening Transform keeps its turn 
     CHECK(traversal.boundViewpointCamera().deform == glm::mat3(1.0f));
   }
 }
+
+TEST_CASE("picking: layers are picked as drawn, the top layer first", "[scene][picking]") {
+  // Layer 1's box lies far behind the root layer's, but layer 1 is drawn over it; layer 2
+  // is on top and not pickable; layer 3 covers everything but only in the right half of
+  // the window (its clipBoundary); layer 4 is not in `order`. The camera is the default
+  // Viewpoint's, from which the layers without one are seen as they are.
+  auto scene = std::make_shared<gs::vrml::Scene>(gs::vrml::parseVrml(R"(#X3D V3.3 utf8
+PROFILE Full
+DEF BACK Shape { geometry Box { size 4 4 1 } }
+LayerSet { order [ 0 1 3 2 ] layers [
+  Layer { children Transform { translation 0 0 -20 children DEF FARBOX Shape { geometry Box { } } } }
+  Layer { isPickable FALSE children DEF UNPICKABLE Shape { geometry Box { size 8 8 1 } } }
+  Layer { viewport Viewport { clipBoundary [ 0.5 1 0 1 ] }
+          children Transform { translation 0 0 -30 children DEF RIGHT Shape { geometry Box { size 20 20 1 } } } }
+  Layer { children DEF UNLISTED Shape { geometry Box { size 9 9 1 } } }
+] }
+)",
+                                                                     "layers.x3dv"));
+  for (const auto& d : scene->diagnostics.items) INFO(d.format());
+  REQUIRE(scene->diagnostics.items.empty());
+  SceneTraversal traversal(scene);
+  const Camera viewer;
+  const Ray centre{{0.0f, 0.0f, 10.0f}, {0.0f, 0.0f, -1.0f}};
+  const Ray aside{{1.5f, 0.0f, 10.0f}, {0.0f, 0.0f, -1.0f}};
+  const glm::vec2 left(0.25f, 0.5f), right(0.75f, 0.5f);
+  // In the left half, layer 3 is not there: layer 1's far box, not the nearer root box.
+  auto hit = pick(traversal, viewer, centre, left);
+  REQUIRE(hit);
+  CHECK(hit->shape == def(*scene, "FARBOX"));
+  // Beside the far box, down to the root layer.
+  hit = pick(traversal, viewer, aside, left);
+  REQUIRE(hit);
+  CHECK(hit->shape == def(*scene, "BACK"));
+  // In the right half (or with no pointer position), layer 3 is over layers 0 and 1.
+  hit = pick(traversal, viewer, centre, right);
+  REQUIRE(hit);
+  CHECK(hit->shape == def(*scene, "RIGHT"));
+  hit = pick(traversal, viewer, aside);
+  REQUIRE(hit);
+  CHECK(hit->shape == def(*scene, "RIGHT"));
+}

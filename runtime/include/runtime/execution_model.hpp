@@ -240,7 +240,9 @@ class ExecutionModel final : public ScriptContext {
   bool deleteRoute(const vrml::NodePtr& from, const std::string& eventOut, const vrml::NodePtr& to,
                    const std::string& eventIn) override;
   std::vector<vrml::NodePtr> createVrmlFromString(const std::string& text) override;
+  std::shared_ptr<vrml::Scene> createSceneFromString(const std::string& text) override;
   const vrml::Scene* currentScene() const override;
+  const vrml::Scene* sceneOf(const vrml::Node& script) const override;
   vrml::NodePtr importedNode(const std::string& localName) const override;
   /// The world's Scene changes: it must not be an object defined const (the session makes
   /// it with std::make_shared<vrml::Scene>); Inline scenes are never changed.

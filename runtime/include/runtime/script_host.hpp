@@ -51,9 +51,25 @@ class ScriptContext {
   /// starts with a "#VRML" or "#X3D" header is parsed as that header says
   /// (createX3DFromString, X3DScene.createNode).
   virtual std::vector<vrml::NodePtr> createVrmlFromString(const std::string& text) = 0;
+  /// Browser.createX3DFromString (ISO/IEC 19777-1 clause 7.2.3): `text` read as
+  /// createVrmlFromString reads it, its nodes live in the same way, and the whole scene
+  /// returned: root nodes, DEF names, PROTO declarations, ROUTEs, header and EXPORTs. The
+  /// default keeps only the root nodes. Never null.
+  virtual std::shared_ptr<vrml::Scene> createSceneFromString(const std::string& text) {
+    auto scene = std::make_shared<vrml::Scene>();
+    scene->rootNodes = createVrmlFromString(text);
+    return scene;
+  }
   /// The world the Script is in (the X3D binding's Browser.currentScene: root nodes, DEF
   /// names, header); null when there is none. Not owned; valid during the call.
   virtual const vrml::Scene* currentScene() const { return nullptr; }
+  /// The world whose file holds `script` (the X3D binding's Browser.currentScene for that
+  /// Script, as X_ITE gives a Script its execution context): an Inline's world for a Script
+  /// inside it, else currentScene(). Not owned; valid during the call.
+  virtual const vrml::Scene* sceneOf(const vrml::Node& script) const {
+    (void)script;
+    return currentScene();
+  }
   /// The node an X3D IMPORT of the world names `localName` (X3D 4.0 clause 4.4.6) once
   /// its Inline's world has arrived and EXPORTs it; null before, or when there is none
   /// (X3DExecutionContext.getImportedNode).

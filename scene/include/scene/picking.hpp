@@ -43,15 +43,26 @@ Ray rayThroughPixel(const Camera& camera, int width, int height, float x, float 
 /// `ray` meets in front of its origin (Moller-Trumbore, both sides of every triangle).
 /// Lines and points are not picked; Text is (its glyph triangles). Tessellates the shapes whose
 /// bounds the ray meets when their arrays were dropped (SceneTraversal::mesh).
-std::optional<PickHit> pick(SceneTraversal& traversal, const Camera& viewer, const Ray& ray);
+///
+/// In a world with a LayerSet (X3D 4.0 clause 35) the layers are picked as they are drawn,
+/// each over the previous: the nearest hit of the topmost layer (the last in `order`) that
+/// the ray meets wins, however near a lower layer's shape is. A layer is passed over when its
+/// Layer's `pickable` (X3D 3: `isPickable`) or `pointerEvents` is FALSE, and when
+/// `pointer` (the pointing device as fractions of the viewport: x from the left, y from the
+/// bottom, each 0..1) lies outside its Viewport's clipBoundary. Without `pointer` the
+/// clipBoundary is not tested.
+std::optional<PickHit> pick(SceneTraversal& traversal, const Camera& viewer, const Ray& ray,
+                            const std::optional<glm::vec2>& pointer = std::nullopt);
 
-/// As pick(), among the shapes of a frame already collected (SceneTraversal::collect;
-/// with TraversalFrame::recordPaths for the paths, TraversalFrame::collisionGeometry for
-/// what the avatar collides with), nearer than `maxT` (in units of ray.direction). Lets
-/// one collect serve several rays.
+/// As pick() without layers, among the shapes of a frame already collected
+/// (SceneTraversal::collect; with TraversalFrame::recordPaths for the paths,
+/// TraversalFrame::collisionGeometry for what the avatar collides with), nearer than `maxT`
+/// (in units of ray.direction): the nearest of every layer's shapes, or of layer `layer`'s
+/// alone (ShapeInstance::layer) when given. Lets one collect serve several rays.
 std::optional<PickHit> pickInFrame(SceneTraversal& traversal, const TraversalFrame& frame,
                                    const Ray& ray,
-                                   float maxT = std::numeric_limits<float>::infinity());
+                                   float maxT = std::numeric_limits<float>::infinity(),
+                                   std::optional<std::uint32_t> layer = std::nullopt);
 
 /// Möller-Trumbore: the distance t along `direction` at which the ray meets the triangle
 /// (a, b, c), with barycentric (u, v) of b and c; false when it misses or t <= `minT`.

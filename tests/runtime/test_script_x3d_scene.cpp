@@ -1,0 +1,168 @@
+// Browser.createX3DFromString returns a whole X3DScene (ISO/IEC 19777-1 clause 7.2.3):
+// its header, root nodes, DEF names, PROTO declarations, EXPORTs and ROUTEs, apart from
+// the world's; its nodes placed in the world by Browser.currentScene.addRootNode, or the
+// world replaced by it (Browser.replaceWorld(scene)). Small X3D worlds run by the execution
+// model; the Scripts' outputs are read back from the Script node.
+#include "runtime_fixture.hpp"
+#include "script_test_support.hpp"
+
+using namespace gs;
+using namespace gs::test;
+using vrml::FieldType;
+using vrml::FieldValue;
+
+namespace {
+
+runtime::ExecutionOptions createdSceneScripts() {
+  runtime::ExecutionOptions o;
+  o.scripts = runtime::ecmascriptFactory();
+  o.scriptLimits = relaxedLimits();
+  return o;
+}
+
+std::string createdSceneDiagnostics(const RunningWorld& w) {
+  std::string s;
+  for (const auto& d : w.model->diagnostics().items) s += d.format() + "\n";
+  for (const auto& d : w.scene->diagnostics.items) s += d.format() + "\n";
+  return s;
+}
+
+const FieldValue& createdSceneOut(const RunningWorld& w, const std::string& field) {
+  const FieldValue* v = w.node("S").field(field);
+  REQUIRE(v != nullptr);
+  return *v;
+}
+
+}  // namespace
+
+TEST_CASE("X3D Script: createX3DFromString returns the text's whole X3DScene", "[script][x3d]") {
+  RunningWorld w(x3dWorld(R"(
+DEF G Group { }
+DEF S Script {
+  outputOnly SFString header
+  outputOnly SFString names
+  outputOnly SFString protos
+  outputOnly SFString roots
+  outputOnly SFString threw
+  inputOnly SFBool go
+  url "ecmascript:
+    var made;
+    function go(v) { made.getNamedNode('PI').set_fraction = 0.5; }
+    function initialize() {
+      made = Browser.createX3DFromString(
+        '#X3D V4.0 utf8\\nPROFILE Interchange\\n' +
+        'PROTO Dot [ initializeOnly SFFloat r 3 ] { Sphere { radius IS r } }\\n' +
+        'DEF A Transform { children Shape { geometry Dot { } } }\\n' +
+        'DEF B Group { }\\n' +
+        'DEF PI PositionInterpolator { key [ 0 1 ] keyValue [ 0 0 0, 4 0 0 ] }\\n' +
+        'ROUTE PI.value_changed TO A.set_translation\\n' +
+        'EXPORT A AS Moved\\n');
+      var world = Browser.currentScene;
+      header = (made instanceof X3DScene) + ' ' + made.specificationVersion + ' ' +
+               made.profile + ' ' + made.encoding + ' ' + (made !== world);
+      names = made.getNamedNode('B').getNodeName() + ' ' +
+              (made.getExportedNode('Moved') === made.getNamedNode('A'));
+      var p = made.protos;
+      protos = p.length + ' ' + p[0].name + ' ' + made.createProto('Dot').r + ' ' +
+               p[0].newInstance().getNodeName() + ' ' + world.protos.length;
+      var before = world.rootNodes.length;
+      made.removeRootNode(made.getNamedNode('B'));
+      var kept = made.rootNodes.length;
+      world.addRootNode(made.getNamedNode('A'));
+      roots = before + ' ' + made.rootNodes.length + ' ' + kept + ' ' + world.rootNodes.length;
+      threw = '';
+      try { made.getNamedNode('G'); } catch (e) { threw += 'G '; }
+      try { world.getNamedNode('B'); } catch (e) { threw += 'B '; }
+      try { made.getExportedNode('Nope'); } catch (e) { threw += 'Nope '; }
+      try { made.getImportedNode('Moved'); } catch (e) { threw += 'Moved'; }
+    }
+  "
+}
+)"),
+                 0.0, createdSceneScripts());
+  INFO(createdSceneDiagnostics(w));
+  CHECK(createdSceneOut(w, "header").get<FieldType::SFString>() ==
+        "true 4.0 Interchange Classic VRML true");
+  CHECK(createdSceneOut(w, "names").get<FieldType::SFString>() == "Group true");
+  // Its own declarations, not the world's (which has none).
+  CHECK(createdSceneOut(w, "protos").get<FieldType::SFString>() == "1 Dot 3 Dot 0");
+  // removeRootNode changed the made scene's roots (3 -> 2) and not the world's;
+  // addRootNode on the world added A to the world's (2 -> 3) and not to the scene's.
+  CHECK(createdSceneOut(w, "roots").get<FieldType::SFString>() == "2 2 2 3");
+  CHECK(createdSceneOut(w, "threw").get<FieldType::SFString>() == "G B Nope Moved");
+  REQUIRE(w.scene->rootNodes.size() == 3);
+  const vrml::NodePtr& a = w.scene->rootNodes.back();
+  CHECK(a->defName == "A");
+  // The text's ROUTE runs: the interpolator moves A, now drawn in the world.
+  w.send("S", "go", FieldValue::make<FieldType::SFBool>(true));
+  CHECK(a->field("translation")->get<FieldType::SFVec3f>() == glm::vec3(2, 0, 0));
+}
+
+TEST_CASE(
+    "X3D Script: replaceWorld takes createX3DFromString's scene; a VRML97 Script gets "
+    "its root nodes",
+    "[script][x3d]") {
+  const char* body = R"(
+DEF S Script {
+  %s
+  url "ecmascript:
+    function initialize() {
+      var made = Browser.createX3DFromString('Group { } Transform { } Shape { }');
+      kind = typeof X3DScene === 'undefined' ? 'plain ' + made.rootNodes.length
+                                              : String(made instanceof X3DScene);
+      Browser.replaceWorld(made);
+    }
+  "
+}
+)";
+  for (const bool x3d : {true, false}) {
+    FakeScriptContext ctx;
+    char text[1024];
+    std::snprintf(text, sizeof text, body,
+                  x3d ? "outputOnly SFString kind" : "eventOut SFString kind");
+    const std::string world = (x3d ? "#X3D V4.0 utf8\n" : "#VRML V2.0 utf8\n") + std::string(text);
+    ScriptWorld w = loadScript(ctx, world, relaxedLimits(), x3d ? "test.x3dv" : "test.wrl");
+    REQUIRE(w.instance);
+    w.instance->initialize(0.0);
+    INFO(ctx.diagnosticText());
+    auto kind = ctx.emittedFor(*w.script, "kind");
+    REQUIRE(kind.size() == 1);
+    CHECK(kind[0].get<FieldType::SFString>() == (x3d ? "true" : "plain 3"));
+    REQUIRE(ctx.replacedWith.size() == 3);
+    CHECK(ctx.replacedWith[1]->typeName() == "Transform");
+  }
+}
+
+TEST_CASE("X3D Script: a Script in an Inline's world has that world as its currentScene",
+          "[script][x3d]") {
+  RunningWorld w(x3dWorld("DEF Outer Group { }\nDEF Second Group { }\n"), 0.0,
+                 createdSceneScripts());
+  auto inner =
+      std::make_shared<const vrml::Scene>(vrml::parseVrml(R"(#X3D V4.0 utf8
+PROFILE Immersive
+DEF Inner Transform { }
+DEF S Script {
+  outputOnly SFString info
+  outputOnly SFString threw
+  url "ecmascript:
+    function initialize() {
+      var scene = Browser.currentScene;
+      info = scene.rootNodes.length + ' ' + scene.getNamedNode('Inner').getNodeName() + ' ' +
+             scene.worldURL + ' ' + scene.profile;
+      threw = '';
+      try { scene.getNamedNode('Outer'); } catch (e) { threw += 'Outer '; }
+      try { scene.addRootNode(scene.createNode('Group')); } catch (e) { threw += 'add'; }
+    }
+  "
+}
+)",
+                                                          "file:///worlds/sub/inner.x3dv"));
+  w.model->addInlineScene(inner);  // as session::WorldRuntimes::addInlines does
+  INFO(createdSceneDiagnostics(w));
+  const vrml::NodePtr& script = inner->rootNodes.at(1);
+  REQUIRE(script->field("info") != nullptr);
+  CHECK(script->field("info")->get<FieldType::SFString>() ==
+        "2 Transform file:///worlds/sub/inner.x3dv Immersive");
+  CHECK(script->field("threw")->get<FieldType::SFString>() == "Outer add");
+  CHECK(w.scene->rootNodes.size() == 2);  // the browser's world is unchanged
+}
