@@ -754,12 +754,33 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
   // projection of its own, docs/xite-comparison.md). The active layer is seen by the
   // world's camera, the others from their own Viewpoint or the default one
   // (scene/src/traversal.cpp, Walk::layers).
+  // Each layer's QNV and volume nodes are drawn after its shapes, against their depth and
+  // inside its clipBoundary (the splat paths composite inside the scissor box set).
+  const bool anySplats = !g.frame.splats.empty() || splats_->mode() == scene::RenderMode::splats;
+  const auto drawSplats = [&](std::optional<std::uint32_t> layer) {
+    if (!anySplats) return;
+    if (layer && layer != 0u &&
+        std::none_of(g.frame.splats.begin(), g.frame.splats.end(),
+                     [&](const scene::SplatInstance& s) { return s.layer == *layer; }))
+      return;
+    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    // Only opaque shapes write depth (transparent ones, the Background and the ray caster
+    // do not): without them the splats need not be depth-tested.
+    const bool depth = std::any_of(g.opaque.begin(), g.opaque.end(), [&](const DrawItem& d) {
+      return !layer || d.shape->layer == *layer;
+    });
+    statistics_.splats += splats_->draw(g.frame, traversal_, camera, aspect, headlight_, g.textures,
+                                        height, depth, layer);
+    glUseProgram(g.programs.generic().id);
+    glPolygonMode(GL_FRONT_AND_BACK, polygonMode);
+  };
   for (const scene::LayerInstance& l : g.frame.layerOrder) {
     const glm::ivec4 r = scene::layerRectangle(l.clipBoundary, x, y, width, height);
     glScissor(r.x, r.y, r.z, r.w);
     glDepthMask(GL_TRUE);
     glClear(GL_DEPTH_BUFFER_BIT);
     drawLayer(l.number);
+    drawSplats(l.number);
   }
   glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
   glScissor(x, y, width, height);
@@ -768,14 +789,10 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
   statistics_.movieFrames = g.textures.movies.framesShown();
   statistics_.movieUploads = g.textures.movies.framesUploaded();
 
-  if (!g.frame.splats.empty() || splats_->mode() == scene::RenderMode::splats) {
+  if (g.frame.layerOrder.empty() && anySplats) {
     glDisable(GL_SCISSOR_TEST);
-    // Only opaque shapes write depth (transparent ones, the Background and the ray caster
-    // do not): without them the splats need not be depth-tested.
-    statistics_.splats = splats_->draw(g.frame, traversal_, camera, aspect, headlight_, g.textures,
-                                       height, !g.opaque.empty());
+    drawSplats(std::nullopt);
     glEnable(GL_SCISSOR_TEST);
-    glUseProgram(g.programs.generic().id);
   }
 
   // Leave the state as other code (ImGui, the app) expects it.

@@ -145,7 +145,8 @@ vrml::Bounds SceneSplats::bounds(scene::SceneTraversal& traversal) {
 
 std::size_t SceneSplats::draw(const scene::TraversalFrame& frame, scene::SceneTraversal& traversal,
                               const scene::Camera& camera, float aspect, bool headlight,
-                              TextureCache& textures, int heightPixels, bool sceneDepth) {
+                              TextureCache& textures, int heightPixels, bool sceneDepth,
+                              std::optional<std::uint32_t> layer) {
   SplatLight lights[8];
   std::size_t lightCount = 0;
   if (headlight) lights[lightCount++] = {camera.forward(), glm::vec3(1.0f)};
@@ -175,7 +176,7 @@ std::size_t SceneSplats::draw(const scene::TraversalFrame& frame, scene::SceneTr
                    sceneDepth ? SplatBlend::backToFront : SplatBlend::frontToBack, style);
     drawn += renderer->statistics().splats;
   };
-  if (mode_ == scene::RenderMode::splats) {
+  if (mode_ == scene::RenderMode::splats && (!layer || *layer == 0)) {
     if (!worldBuilt_) {
       if (world_) renderers_.erase(world_.get());  // its address may be reused
       world_ = worldSplatSet(scene_);
@@ -185,6 +186,7 @@ std::size_t SceneSplats::draw(const scene::TraversalFrame& frame, scene::SceneTr
     if (world_) drawSet(*world_, drawCount(nullptr, *world_), glm::mat4(1.0f), nullptr);
   }
   for (const scene::SplatInstance& s : frame.splats) {
+    if (layer && s.layer != *layer) continue;
     const NodeSet& entry = nodeSet(*s.node, *s.baseUrl, traversal);
     if (entry.raycast) {
       raycaster_.draw(*s.node, *s.baseUrl, s.model, camera, aspect, frame.lights, headlight,

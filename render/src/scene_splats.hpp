@@ -4,8 +4,10 @@
 // is drawn as splats (its triangles through the QNV surface encoder).
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <unordered_map>
 
@@ -48,9 +50,13 @@ class SceneSplats {
   /// `sceneDepth`: whether shapes wrote the depth buffer before (the splats are then
   /// depth-tested against it, SplatBlend::backToFront); without, nothing can hide them and
   /// the cpu path reads no depth back (SplatBlend::frontToBack: the same picture).
+  /// `layer`: only the nodes of that X3D layer (SplatInstance::layer; the world's splats in
+  /// splats mode are layer 0's), so that each is drawn after its layer's shapes, against
+  /// their depth; every node when none is given.
   std::size_t draw(const scene::TraversalFrame& frame, scene::SceneTraversal& traversal,
                    const scene::Camera& camera, float aspect, bool headlight,
-                   TextureCache& textures, int heightPixels = 0, bool sceneDepth = true);
+                   TextureCache& textures, int heightPixels = 0, bool sceneDepth = true,
+                   std::optional<std::uint32_t> layer = std::nullopt);
   scene::RenderMode mode() const { return mode_; }
   /// True when the QNV nodes loaded so far (bounds() loads them) all show volumes (their
   /// sets' stream kind, as their headers say) and there is at least one.

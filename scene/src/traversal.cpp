@@ -713,7 +713,7 @@ struct SceneTraversal::Walk {
         break;
       }
       case NodeKind::QuantizedNormalVectors:
-        frame.splats.push_back({&n, m, &n.urlBaseOr(*baseUrl)});  // its file's base
+        frame.splats.push_back({&n, m, &n.urlBaseOr(*baseUrl), layer});  // its file's base
         break;
       case NodeKind::OutlineGroup:
         outlineGroup(n, m, baseUrl);

@@ -136,3 +136,46 @@ TEST_CASE("Layering: a Viewport's clipBoundary restricts its layer to that recta
   CHECK(close(half.image.pixel(58, 32), 0, 0, 0, 8));
   CHECK(close(half.image.pixel(58, 4), 0, 0, 0, 8));
 }
+
+TEST_CASE(
+    "Layering: a layer's Gaussian splats are drawn with its shapes, in its order and "
+    "clipBoundary",
+    "[render][offscreen][world][layering]") {
+  // A green Gaussian 2 m in front of the red box, in layer 1. Its layer is drawn first
+  // ([1 0]): the root layer's box is on top of it, nearer or not. Clipped to the left half
+  // ([0 1]): green only there.
+  const auto world = [](const std::string& order, const std::string& viewport) {
+    return R"(#X3D V4.0 utf8
+PROFILE Immersive
+COMPONENT Layering:1
+NavigationInfo { headlight FALSE }
+Viewpoint { position 0 0 10 fieldOfView 0.785398 }
+Shape {
+  appearance Appearance { material Material { diffuseColor 0 0 0 emissiveColor 1 0 0 } }
+  geometry Box { size 2 2 0.1 }
+}
+LayerSet { order [ )" +
+           order + R"( ] layers Layer { )" + viewport + R"(
+  children Transform { translation 0 0 2 children GaussianSplats {
+    positions [ 0 0 0 ] orientations [ 0 0 0 1 ] scales [ 1.5 1.5 0.1 ] opacities [ 1 ]
+    sphericalHarmonicsDegree0Coef0 [ -1.77 1.77 -1.77 ] } } } }
+)";
+  };
+  const fs::path under = worldDir() / "layers_splats_under.x3dv";
+  writeText(under, world("1 0", ""));
+  const Rendered a = renderFile(under);
+  CHECK(a.diagnostics.items.empty());
+  CHECK(close(a.image.pixel(32, 32), 255, 0, 0, 8));  // the box over the nearer splat
+  const auto g = a.image.pixel(32, 16);               // above the box: the splat's edge
+  CHECK(int(g[1]) > 100);
+  CHECK(int(g[0]) < 40);
+
+  const fs::path clipped = worldDir() / "layers_splats_clipped.x3dv";
+  writeText(clipped, world("0 1", "viewport Viewport { clipBoundary [ 0 0.5 0 1 ] }"));
+  const Rendered b = renderFile(clipped);
+  CHECK(b.diagnostics.items.empty());
+  const auto left = b.image.pixel(28, 32), right = b.image.pixel(36, 32);
+  CHECK(int(left[1]) > 200);  // the splat over the box
+  CHECK(int(left[0]) < 40);
+  CHECK(close(right, 255, 0, 0, 8));  // outside the Layer's rectangle: the box
+}

@@ -203,6 +203,7 @@ struct SplatInstance {
   const vrml::Node* node = nullptr;
   glm::mat4 model{1.0f};                 // local to world
   const std::string* baseUrl = nullptr;  // the base for its url; never null
+  std::uint32_t layer = 0;               // as ShapeInstance::layer
 };
 
 /// What one traversal collects. Reused from frame to frame: clear() keeps capacity.
