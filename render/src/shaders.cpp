@@ -28,6 +28,7 @@
 // "previous" being the diffuse colour and 1 - transparency; the last result is the diffuse
 // colour and alpha the lighting uses.
 #include "gl_program.hpp"
+#include "hatch_glsl.hpp"
 #include "shading_normal_glsl.hpp"
 #include "texture_projectors.hpp"
 
@@ -308,20 +309,8 @@ bool linePatternOn() {
   return p < 6.0 || (p >= 8.0 && p < 10.0) || (p >= 12.0 && p < 14.0);  // dash-dot-dot
 }
 
-bool hatchOn(vec2 pixel) {
-  bool horizontal = mod(pixel.y, 8.0) < 1.0;
-  bool vertical = mod(pixel.x, 8.0) < 1.0;
-  bool positive = mod(pixel.x - pixel.y, 8.0) < 1.0;
-  bool negative = mod(pixel.x + pixel.y, 8.0) < 1.0;
-  if (HATCH_STYLE == 1) return horizontal;
-  if (HATCH_STYLE == 2) return vertical;
-  if (HATCH_STYLE == 3) return positive;
-  if (HATCH_STYLE == 4) return negative;
-  if (HATCH_STYLE == 5) return horizontal || vertical;
-  return positive || negative;
-}
 
-)glsl" GS_SHADING_NORMAL_GLSL R"glsl(
+)glsl" GS_HATCH_GLSL GS_SHADING_NORMAL_GLSL R"glsl(
 vec3 cubeDirection() {
   vec3 n = shadingNormal();
   vec3 r = reflect(normalize(v_position), n);

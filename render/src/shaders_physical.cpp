@@ -24,6 +24,7 @@
 // Mobile", 2014). Without one the only ambient term is the lights' ambientIntensity
 // (docs/gltf.md, "Lighting").
 #include "gl_program.hpp"
+#include "hatch_glsl.hpp"
 #include "shading_normal_glsl.hpp"
 #include "texture_projectors.hpp"
 
@@ -41,6 +42,7 @@ in vec4 v_color;
 in vec2 v_texCoord;
 in vec2 v_texCoord1;
 in float v_texQ;  // X3D TextureCoordinate4D's q (1 otherwise): v_texCoord / it
+in float v_fogDepth;  // X3D FogCoordinate's depth, negative where the geometry has none
 
 uniform bool u_hasColor;
 uniform int u_textureComponents;  // base colour texture: 0 none
@@ -86,6 +88,12 @@ uniform vec3 u_fogColor;
 uniform float u_fogVisibilityRange;
 uniform vec4 u_fogPlane;  // volumetric fog: distance dot(plane, (eye, 1)); zero: eye distance
 
+// X3D FillProperties (clause 12.4.3), as the Phong program draws them.
+uniform int u_hatchStyle;  // 0 no hatches, 1 .. 6
+uniform bool u_filled;
+uniform vec3 u_hatchColor;
+#define HATCH_STYLE u_hatchStyle
+
 uniform bool u_hasEnvironment;
 uniform bool u_hasEnvironmentMap;
 uniform samplerCube u_environmentMap;
@@ -108,7 +116,7 @@ vec2 uvOf(int set) {
   return set == 1 ? v_texCoord1 : v_texCoord / v_texQ;
 }
 
-)glsl" GS_SHADING_NORMAL_GLSL R"glsl(
+)glsl" GS_HATCH_GLSL GS_SHADING_NORMAL_GLSL R"glsl(
 vec3 surfaceNormal() {
   vec3 n = shadingNormal();
   if (!u_hasNormalTexture) return n;
@@ -239,12 +247,16 @@ void main() {
     color += radiance * u_lightIntensity[i] * nDotL * brdf;
   }
   color = toSrgb(clamp(color, 0.0, 1.0));
+  if (u_hatchStyle > 0 && hatchOn(gl_FragCoord.xy)) color = u_hatchColor;
+  else if (!u_filled) discard;
 
   if (u_fogType != 0 && u_fogVisibilityRange > 0.0) {
     float d = u_fogPlane != vec4(0.0) ? dot(u_fogPlane, vec4(v_position, 1.0)) : length(v_position);
     float r = u_fogVisibilityRange;
     float f0g = 0.0;
     if (d < r) f0g = u_fogType == 1 ? (r - d) / r : exp(-d / (r - d));
+    // A FogCoordinate's depth is the amount of fog itself, 0 none to 1 all.
+    if (v_fogDepth >= 0.0) f0g = 1.0 - v_fogDepth;
     color = mix(u_fogColor, color, clamp(f0g, 0.0, 1.0));
   }
   fragColor = vec4(color, clamp(alpha, 0.0, 1.0));

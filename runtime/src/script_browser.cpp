@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <string_view>
+#include <utility>
 
 #ifndef GS_VERSION
 #define GS_VERSION "0"
@@ -60,10 +62,21 @@ duk_ret_t getCurrentFrameRate(duk_context* c) {
   return 1;
 }
 
-// ISO/IEC 19777-1 clause 7.2.3's browser properties: GhostSpace reports none
-// (getBrowserProperty answers false).
-duk_ret_t answerFalse(duk_context* c) {
-  duk_push_false(c);
+// getBrowserProperty(name) (ISO/IEC 19777-1 clause 7.2.3; the property names of ISO/IEC
+// 19775-2 6.3.12, as X_ITE answers them): whether this browser has the capability. What a
+// Script can do here: abstract node types (X3DConstants, getNodeType), concrete ones
+// (createNode), PROTO instances (createProto) and files of the Classic VRML and XML
+// encodings; no external SAI, no DOM import and no binary encoding. Any other name: false.
+duk_ret_t getBrowserProperty(duk_context* c) {
+  static constexpr std::pair<std::string_view, bool> kProperties[] = {
+      {"ABSTRACT_NODES", true},        {"CONCRETE_NODES", true},  {"EXTERNAL_INTERACTIONS", false},
+      {"PROTOTYPE_CREATE", true},      {"DOM_IMPORT", false},     {"XML_ENCODING", true},
+      {"CLASSIC_VRML_ENCODING", true}, {"BINARY_ENCODING", false}};
+  const std::string name = stringArg(c, 0);
+  bool has = false;
+  for (const auto& [key, value] : kProperties)
+    if (name == key) has = value;
+  duk_push_boolean(c, has);
   return 1;
 }
 
@@ -288,7 +301,7 @@ void EsScript::installBrowser(duk_context* c) {
       {"println", print, DUK_VARARGS},
       {"createX3DFromString", createX3DFromString, 1},
       {"createX3DFromURL", createX3DFromURL, 3},
-      {"getBrowserProperty", answerFalse, 1},
+      {"getBrowserProperty", getBrowserProperty, 1},
       {"getBrowserOption", getBrowserOption, 1},
       {"setBrowserOption", setBrowserOption, 2},
   };

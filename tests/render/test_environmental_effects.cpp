@@ -84,14 +84,18 @@ TEST_CASE("FogCoordinate depths are the amount of fog, 0 none to 1 all",
   // amount"). A red LINEAR Fog of visibility range 2; three emissive blue quads 1 m away:
   // without a FogCoordinate (half fogged by distance), with depths 0 (not fogged) and with
   // depths 0.75 (f0 = 0.25), whatever the visibility range.
-  const fs::path file = worldDir() / "fog_coordinate.x3dv";
-  writeText(file, R"(#X3D V3.2 utf8
+  // The same with a PhysicalMaterial (the physical program).
+  for (const char* material : {"Material { diffuseColor 0 0 0 emissiveColor 0 0 1 }",
+                               "PhysicalMaterial { baseColor 0 0 0 emissiveColor 0 0 1 }"}) {
+    const fs::path file = worldDir() / "fog_coordinate.x3dv";
+    writeText(file, R"(#X3D V4.0 utf8
 PROFILE Immersive
 COMPONENT EnvironmentalEffects:4
 NavigationInfo { headlight FALSE }
 Viewpoint { position 0 0 1 fieldOfView 1.5708 }
 Fog { color 1 0 0 visibilityRange 2 }
-DEF A Appearance { material Material { diffuseColor 0 0 0 emissiveColor 0 0 1 } }
+DEF A Appearance { material )" +
+                        std::string(material) + R"( }
 Shape { appearance USE A geometry IndexedFaceSet { coordIndex [0 1 2 3 -1]
   coord Coordinate { point [-1 -1 0, -0.34 -1 0, -0.34 1 0, -1 1 0] } } }
 Shape { appearance USE A geometry IndexedFaceSet { coordIndex [0 1 2 3 -1]
@@ -101,17 +105,18 @@ Shape { appearance USE A geometry IndexedFaceSet { coordIndex [0 1 2 3 -1]
   coord Coordinate { point [0.34 -1 0, 1 -1 0, 1 1 0, 0.34 1 0] }
   fogCoord FogCoordinate { depth [0.75 0.75 0.75 0.75] } } }
 )");
-  for (int frames : {1, 3}) {
-    INFO("frames " << frames);
-    const Rendered r = renderFile(file, frames);
-    CHECK(r.diagnostics.items.empty());
-    // Pixel 32 is at distance 1.0002: f0 = 0.4999 without a FogCoordinate; here depth 0.
-    CHECK(close(r.image.pixel(32, 32), 0, 0, 255, 4));
-    // Left quad at pixel 12: x = -0.609, distance 1.171, f0 = 0.4145.
-    CHECK(close(r.image.pixel(12, 32), 149, 0, 106, 4));
-    // Right quad: depth 0.75, f0 = 0.25 (red 0.75, blue 0.25) wherever it is seen.
-    CHECK(close(r.image.pixel(52, 32), 191, 0, 64, 4));
-    CHECK(close(r.image.pixel(52, 5), 191, 0, 64, 4));
+    for (int frames : {1, 3}) {
+      INFO(material << ", frames " << frames);
+      const Rendered r = renderFile(file, frames);
+      CHECK(r.diagnostics.items.empty());
+      // Pixel 32 is at distance 1.0002: f0 = 0.4999 without a FogCoordinate; here depth 0.
+      CHECK(close(r.image.pixel(32, 32), 0, 0, 255, 4));
+      // Left quad at pixel 12: x = -0.609, distance 1.171, f0 = 0.4145.
+      CHECK(close(r.image.pixel(12, 32), 149, 0, 106, 4));
+      // Right quad: depth 0.75, f0 = 0.25 (red 0.75, blue 0.25) wherever it is seen.
+      CHECK(close(r.image.pixel(52, 32), 191, 0, 64, 4));
+      CHECK(close(r.image.pixel(52, 5), 191, 0, 64, 4));
+    }
   }
 }
 

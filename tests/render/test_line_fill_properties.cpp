@@ -18,16 +18,23 @@ using gs::test::writeText;
 
 namespace {
 
-/// A square filling the 90-degree view from (0, 0, 1), unlit green (emissive), with
-/// `fill` as the Appearance's fillProperties (may be empty).
-fs::path hatchWorld(const std::string& name, const std::string& fill) {
+/// The two materials the hatches are drawn on: the Phong program's and the physical one's.
+constexpr const char* kHatchMaterials[] = {
+    "Material { diffuseColor 0 0 0 emissiveColor 0 1 0 }",
+    "PhysicalMaterial { baseColor 0 0 0 emissiveColor 0 1 0 }"};
+
+/// A square filling the 90-degree view from (0, 0, 1), unlit green (emissive `material`),
+/// with `fill` as the Appearance's fillProperties (may be empty).
+fs::path hatchWorld(const std::string& name, const std::string& fill,
+                    const std::string& material = kHatchMaterials[0]) {
   const fs::path file = worldDir() / (name + ".x3dv");
-  writeText(file, R"(#X3D V3.2 utf8
+  writeText(file, R"(#X3D V4.0 utf8
 PROFILE Interchange
 NavigationInfo { headlight FALSE }
 Viewpoint { position 0 0 1 fieldOfView 1.5708 }
 Transform { translation 0 0 -1 scale 2 2 1 children Shape {
-  appearance Appearance { material Material { diffuseColor 0 0 0 emissiveColor 0 1 0 }
+  appearance Appearance { material )" +
+                      material + R"(
     )" + fill + R"( }
   geometry IndexedFaceSet { coord Coordinate { point [-1 -1 0, 1 -1 0, 1 1 0, -1 1 0] }
     coordIndex [0 1 2 3 -1] } } }
@@ -75,52 +82,58 @@ int lineRows(const Rendered& r) {
 
 TEST_CASE("FillProperties hatches polygons every 8 pixels in hatchColor",
           "[render][offscreen][world][fill]") {
-  for (int frames : {1, 3}) {
-    INFO("frames " << frames);
-    // Style 1, horizontal lines: column 20 is red on 8 of 64 rows, 8 apart, green between.
-    const Rendered h =
-        renderFile(hatchWorld("fill_horizontal",
-                              "fillProperties FillProperties { hatchStyle 1 hatchColor 1 0 0 }"),
-                   frames);
-    CHECK(h.diagnostics.items.empty());
-    const std::vector<bool> red = pixelsOf(h, false, 20, 255, 0, 0);
-    CHECK(countOf(red) == 8);
-    CHECK(countOf(pixelsOf(h, false, 20, 0, 255, 0)) == 56);
-    for (int y = 0; y + 8 < 64; ++y) CHECK(red[static_cast<std::size_t>(y)] == red[y + 8u]);
-    // Every row is alike along x (the hatches are horizontal).
-    CHECK(countOf(pixelsOf(h, true, 7, 255, 0, 0)) + countOf(pixelsOf(h, true, 7, 0, 255, 0)) ==
-          64);
-    // Style 5, cross-hatch: both rows and columns.
-    const Rendered cross = renderFile(
-        hatchWorld("fill_cross", "fillProperties FillProperties { hatchStyle 5 hatchColor 1 0 0 }"),
-        frames);
-    const int crossRed = countOf(pixelsOf(cross, false, 20, 255, 0, 0));
-    CHECK((crossRed == 8 || crossRed == 64));  // a column on or off a vertical hatch line
-    int redColumns = 0;
-    for (int x = 0; x < 64; ++x) redColumns += countOf(pixelsOf(cross, false, x, 255, 0, 0)) == 64;
-    CHECK(redColumns == 8);
-  }
+  for (const char* material : kHatchMaterials)
+    for (int frames : {1, 3}) {
+      INFO(material << ", frames " << frames);
+      // Style 1, horizontal lines: column 20 is red on 8 of 64 rows, 8 apart, green between.
+      const Rendered h = renderFile(
+          hatchWorld("fill_horizontal",
+                     "fillProperties FillProperties { hatchStyle 1 hatchColor 1 0 0 }", material),
+          frames);
+      CHECK(h.diagnostics.items.empty());
+      const std::vector<bool> red = pixelsOf(h, false, 20, 255, 0, 0);
+      CHECK(countOf(red) == 8);
+      CHECK(countOf(pixelsOf(h, false, 20, 0, 255, 0)) == 56);
+      for (int y = 0; y + 8 < 64; ++y) CHECK(red[static_cast<std::size_t>(y)] == red[y + 8u]);
+      // Every row is alike along x (the hatches are horizontal).
+      CHECK(countOf(pixelsOf(h, true, 7, 255, 0, 0)) + countOf(pixelsOf(h, true, 7, 0, 255, 0)) ==
+            64);
+      // Style 5, cross-hatch: both rows and columns.
+      const Rendered cross = renderFile(
+          hatchWorld("fill_cross",
+                     "fillProperties FillProperties { hatchStyle 5 hatchColor 1 0 0 }", material),
+          frames);
+      const int crossRed = countOf(pixelsOf(cross, false, 20, 255, 0, 0));
+      CHECK((crossRed == 8 || crossRed == 64));  // a column on or off a vertical hatch line
+      int redColumns = 0;
+      for (int x = 0; x < 64; ++x)
+        redColumns += countOf(pixelsOf(cross, false, x, 255, 0, 0)) == 64;
+      CHECK(redColumns == 8);
+    }
 }
 
 TEST_CASE("FillProperties filled FALSE leaves only the hatches; neither draws nothing",
           "[render][offscreen][world][fill]") {
-  for (int frames : {1, 3}) {
-    INFO("frames " << frames);
-    const Rendered v = renderFile(
-        hatchWorld("fill_unfilled",
-                   "fillProperties FillProperties { filled FALSE hatchStyle 2 hatchColor 1 1 0 }"),
-        frames);
-    const std::vector<bool> row = pixelsOf(v, true, 30, 255, 255, 0);
-    CHECK(countOf(row) == 8);
-    CHECK(countOf(pixelsOf(v, true, 30, 0, 0, 0)) == 56);  // the background shows through
-    const Rendered none = renderFile(
-        hatchWorld("fill_none", "fillProperties FillProperties { filled FALSE hatched FALSE }"),
-        frames);
-    CHECK(countOf(pixelsOf(none, true, 30, 0, 0, 0)) == 64);
-    // Without FillProperties the square is filled green.
-    const Rendered plain = renderFile(hatchWorld("fill_default", ""), frames);
-    CHECK(countOf(pixelsOf(plain, true, 30, 0, 255, 0)) == 64);
-  }
+  for (const char* material : kHatchMaterials)
+    for (int frames : {1, 3}) {
+      INFO(material << ", frames " << frames);
+      const Rendered v = renderFile(
+          hatchWorld("fill_unfilled",
+                     "fillProperties FillProperties { filled FALSE hatchStyle 2 hatchColor 1 1 0 }",
+                     material),
+          frames);
+      const std::vector<bool> row = pixelsOf(v, true, 30, 255, 255, 0);
+      CHECK(countOf(row) == 8);
+      CHECK(countOf(pixelsOf(v, true, 30, 0, 0, 0)) == 56);  // the background shows through
+      const Rendered none = renderFile(
+          hatchWorld("fill_none", "fillProperties FillProperties { filled FALSE hatched FALSE }",
+                     material),
+          frames);
+      CHECK(countOf(pixelsOf(none, true, 30, 0, 0, 0)) == 64);
+      // Without FillProperties the square is filled green.
+      const Rendered plain = renderFile(hatchWorld("fill_default", "", material), frames);
+      CHECK(countOf(pixelsOf(plain, true, 30, 0, 255, 0)) == 64);
+    }
 }
 
 TEST_CASE("LineProperties widens lines and draws dash patterns",

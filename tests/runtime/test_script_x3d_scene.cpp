@@ -1,8 +1,9 @@
 // Browser.createX3DFromString returns a whole X3DScene (ISO/IEC 19777-1 clause 7.2.3):
 // its header, root nodes, DEF names, PROTO declarations, EXPORTs and ROUTEs, apart from
 // the world's; its nodes placed in the world by Browser.currentScene.addRootNode, or the
-// world replaced by it (Browser.replaceWorld(scene)). Small X3D worlds run by the execution
-// model; the Scripts' outputs are read back from the Script node.
+// world replaced by it (Browser.replaceWorld(scene)); a Script in an Inline's world sees
+// that world as its currentScene; getBrowserProperty. Small X3D worlds run by the
+// execution model; the Scripts' outputs are read back from the Script node.
 #include "runtime_fixture.hpp"
 #include "script_test_support.hpp"
 
@@ -165,4 +166,27 @@ DEF S Script {
         "2 Transform file:///worlds/sub/inner.x3dv Immersive");
   CHECK(script->field("threw")->get<FieldType::SFString>() == "Outer add");
   CHECK(w.scene->rootNodes.size() == 2);  // the browser's world is unchanged
+}
+
+TEST_CASE("X3D Script: getBrowserProperty answers what this browser can do", "[script][x3d]") {
+  FakeScriptContext ctx;
+  ScriptWorld w = loadScript(ctx, R"(#X3D V4.0 utf8
+DEF S Script {
+  outputOnly SFString answers
+  url "ecmascript:
+    function initialize() {
+      var names = ['ABSTRACT_NODES', 'CONCRETE_NODES', 'EXTERNAL_INTERACTIONS', 'PROTOTYPE_CREATE',
+                   'DOM_IMPORT', 'XML_ENCODING', 'CLASSIC_VRML_ENCODING', 'BINARY_ENCODING', 'NOPE'];
+      answers = names.map(function (n) { return Browser.getBrowserProperty(n) ? 1 : 0; }).join('');
+    }
+  "
+}
+)",
+                             relaxedLimits(), "test.x3dv");
+  REQUIRE(w.instance);
+  w.instance->initialize(0.0);
+  INFO(ctx.diagnosticText());
+  auto answers = ctx.emittedFor(*w.script, "answers");
+  REQUIRE(answers.size() == 1);
+  CHECK(answers[0].get<FieldType::SFString>() == "110101100");
 }
