@@ -19,10 +19,21 @@ using gs::test::writeText;
 
 namespace {
 
+/// The blue emissive wall 5 m behind the origin that fills the view (layeredWorld's).
+constexpr const char* kBlueWall = R"(Transform {
+        translation 0 0 -5
+        children Shape {
+          appearance Appearance { material Material { diffuseColor 0 0 0 emissiveColor 0 0 1 } }
+          geometry Box { size 100 100 0.1 }
+        }
+      })";
+
 /// A world with a small red emissive box at the origin (layer 0) and, in a LayerSet, one
-/// Layer holding a blue emissive wall 5 m behind it that fills the view; the viewer looks
-/// down -z from 10 m. `order` is the LayerSet's; `viewport` the Layer's viewport field.
-std::string layeredWorld(const std::string& order, const std::string& viewport = "") {
+/// Layer holding `children` (by default a blue emissive wall 5 m behind the box that fills
+/// the view); the viewer looks down -z from 10 m. `order` is the LayerSet's; `viewport`
+/// the Layer's viewport field.
+std::string layeredWorld(const std::string& order, const std::string& viewport = "",
+                         const std::string& children = kBlueWall) {
   return R"(#X3D V4.0 utf8
 PROFILE Immersive
 COMPONENT Layering:1
@@ -41,13 +52,8 @@ LayerSet {
       )" +
          viewport +
          R"(
-      children Transform {
-        translation 0 0 -5
-        children Shape {
-          appearance Appearance { material Material { diffuseColor 0 0 0 emissiveColor 0 0 1 } }
-          geometry Box { size 100 100 0.1 }
-        }
-      }
+      children )" +
+         children + R"(
     }
   ]
 }
@@ -145,21 +151,9 @@ TEST_CASE(
   // ([1 0]): the root layer's box is on top of it, nearer or not. Clipped to the left half
   // ([0 1]): green only there.
   const auto world = [](const std::string& order, const std::string& viewport) {
-    return R"(#X3D V4.0 utf8
-PROFILE Immersive
-COMPONENT Layering:1
-NavigationInfo { headlight FALSE }
-Viewpoint { position 0 0 10 fieldOfView 0.785398 }
-Shape {
-  appearance Appearance { material Material { diffuseColor 0 0 0 emissiveColor 1 0 0 } }
-  geometry Box { size 2 2 0.1 }
-}
-LayerSet { order [ )" +
-           order + R"( ] layers Layer { )" + viewport + R"(
-  children Transform { translation 0 0 2 children GaussianSplats {
-    positions [ 0 0 0 ] orientations [ 0 0 0 1 ] scales [ 1.5 1.5 0.1 ] opacities [ 1 ]
-    sphericalHarmonicsDegree0Coef0 [ -1.77 1.77 -1.77 ] } } } }
-)";
+    return layeredWorld(order, viewport, R"(Transform { translation 0 0 2 children GaussianSplats {
+        positions [ 0 0 0 ] orientations [ 0 0 0 1 ] scales [ 1.5 1.5 0.1 ] opacities [ 1 ]
+        sphericalHarmonicsDegree0Coef0 [ -1.77 1.77 -1.77 ] } })");
   };
   const fs::path under = worldDir() / "layers_splats_under.x3dv";
   writeText(under, world("1 0", ""));

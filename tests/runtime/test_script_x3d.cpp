@@ -5,8 +5,7 @@
 // getFieldDefinitions, url schemes in X3D worlds. Small X3D worlds run by the execution
 // model; the Scripts' outputs are read back from the Script node, with values worked out
 // by hand.
-#include "runtime_fixture.hpp"
-#include "script_test_support.hpp"
+#include "x3d_script_support.hpp"
 
 #include <glm/gtc/constants.hpp>
 
@@ -17,30 +16,6 @@ using namespace gs::test;
 using Catch::Detail::Approx;
 using vrml::FieldType;
 using vrml::FieldValue;
-
-namespace {
-
-runtime::ExecutionOptions x3dScripts() {
-  runtime::ExecutionOptions o;
-  o.scripts = runtime::ecmascriptFactory();
-  o.scriptLimits = relaxedLimits();
-  return o;
-}
-
-std::string modelDiagnostics(const RunningWorld& w) {
-  std::string s;
-  for (const auto& d : w.model->diagnostics().items) s += d.format() + "\n";
-  for (const auto& d : w.scene->diagnostics.items) s += d.format() + "\n";
-  return s;
-}
-
-const FieldValue& outOf(const RunningWorld& w, const std::string& field) {
-  const FieldValue* v = w.node("S").field(field);
-  REQUIRE(v != nullptr);
-  return *v;
-}
-
-}  // namespace
 
 TEST_CASE("X3D Script: SFVec3d, SFVec2d and SFVec4f methods keep doubles", "[script][x3d]") {
   RunningWorld w(x3dWorld(R"(

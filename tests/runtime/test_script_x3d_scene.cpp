@@ -4,37 +4,12 @@
 // world replaced by it (Browser.replaceWorld(scene)); a Script in an Inline's world sees
 // that world as its currentScene; getBrowserProperty. Small X3D worlds run by the
 // execution model; the Scripts' outputs are read back from the Script node.
-#include "runtime_fixture.hpp"
-#include "script_test_support.hpp"
+#include "x3d_script_support.hpp"
 
 using namespace gs;
 using namespace gs::test;
 using vrml::FieldType;
 using vrml::FieldValue;
-
-namespace {
-
-runtime::ExecutionOptions createdSceneScripts() {
-  runtime::ExecutionOptions o;
-  o.scripts = runtime::ecmascriptFactory();
-  o.scriptLimits = relaxedLimits();
-  return o;
-}
-
-std::string createdSceneDiagnostics(const RunningWorld& w) {
-  std::string s;
-  for (const auto& d : w.model->diagnostics().items) s += d.format() + "\n";
-  for (const auto& d : w.scene->diagnostics.items) s += d.format() + "\n";
-  return s;
-}
-
-const FieldValue& createdSceneOut(const RunningWorld& w, const std::string& field) {
-  const FieldValue* v = w.node("S").field(field);
-  REQUIRE(v != nullptr);
-  return *v;
-}
-
-}  // namespace
 
 TEST_CASE("X3D Script: createX3DFromString returns the text's whole X3DScene", "[script][x3d]") {
   RunningWorld w(x3dWorld(R"(
@@ -80,17 +55,16 @@ DEF S Script {
   "
 }
 )"),
-                 0.0, createdSceneScripts());
-  INFO(createdSceneDiagnostics(w));
-  CHECK(createdSceneOut(w, "header").get<FieldType::SFString>() ==
-        "true 4.0 Interchange Classic VRML true");
-  CHECK(createdSceneOut(w, "names").get<FieldType::SFString>() == "Group true");
+                 0.0, x3dScripts());
+  INFO(modelDiagnostics(w));
+  CHECK(outOf(w, "header").get<FieldType::SFString>() == "true 4.0 Interchange Classic VRML true");
+  CHECK(outOf(w, "names").get<FieldType::SFString>() == "Group true");
   // Its own declarations, not the world's (which has none).
-  CHECK(createdSceneOut(w, "protos").get<FieldType::SFString>() == "1 Dot 3 Dot 0");
+  CHECK(outOf(w, "protos").get<FieldType::SFString>() == "1 Dot 3 Dot 0");
   // removeRootNode changed the made scene's roots (3 -> 2) and not the world's;
   // addRootNode on the world added A to the world's (2 -> 3) and not to the scene's.
-  CHECK(createdSceneOut(w, "roots").get<FieldType::SFString>() == "2 2 2 3");
-  CHECK(createdSceneOut(w, "threw").get<FieldType::SFString>() == "G B Nope Moved");
+  CHECK(outOf(w, "roots").get<FieldType::SFString>() == "2 2 2 3");
+  CHECK(outOf(w, "threw").get<FieldType::SFString>() == "G B Nope Moved");
   REQUIRE(w.scene->rootNodes.size() == 3);
   const vrml::NodePtr& a = w.scene->rootNodes.back();
   CHECK(a->defName == "A");
@@ -136,8 +110,7 @@ DEF S Script {
 
 TEST_CASE("X3D Script: a Script in an Inline's world has that world as its currentScene",
           "[script][x3d]") {
-  RunningWorld w(x3dWorld("DEF Outer Group { }\nDEF Second Group { }\n"), 0.0,
-                 createdSceneScripts());
+  RunningWorld w(x3dWorld("DEF Outer Group { }\nDEF Second Group { }\n"), 0.0, x3dScripts());
   auto inner =
       std::make_shared<const vrml::Scene>(vrml::parseVrml(R"(#X3D V4.0 utf8
 PROFILE Immersive
@@ -159,7 +132,7 @@ DEF S Script {
 )",
                                                           "file:///worlds/sub/inner.x3dv"));
   w.model->addInlineScene(inner);  // as session::WorldRuntimes::addInlines does
-  INFO(createdSceneDiagnostics(w));
+  INFO(modelDiagnostics(w));
   const vrml::NodePtr& script = inner->rootNodes.at(1);
   REQUIRE(script->field("info") != nullptr);
   CHECK(script->field("info")->get<FieldType::SFString>() ==
