@@ -759,11 +759,14 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
   const bool anySplats = !g.frame.splats.empty() || splats_->mode() == scene::RenderMode::splats;
   const auto drawSplats = [&](std::optional<std::uint32_t> layer) {
     if (!anySplats) return;
-    if (layer && layer != 0u &&
+    const bool worldSplats = splats_->mode() == scene::RenderMode::splats;  // layer 0's
+    if (layer && !(worldSplats && *layer == 0) &&
         std::none_of(g.frame.splats.begin(), g.frame.splats.end(),
                      [&](const scene::SplatInstance& s) { return s.layer == *layer; }))
       return;
     glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    for (; clipDistancesOn > 0; --clipDistancesOn)  // a ClipPlane clips its shapes only
+      glDisable(GL_CLIP_DISTANCE0 + clipDistancesOn - 1);
     // Only opaque shapes write depth (transparent ones, the Background and the ray caster
     // do not): without them the splats need not be depth-tested.
     const bool depth = std::any_of(g.opaque.begin(), g.opaque.end(), [&](const DrawItem& d) {
@@ -771,8 +774,17 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     });
     statistics_.splats += splats_->draw(g.frame, traversal_, camera, aspect, headlight_, g.textures,
                                         height, depth, layer);
+    // The shapes of a later layer start from the state drawItem expects: no program bound
+    // as far as use() knows (the splat paths bound their own), the frame's GL state.
     glUseProgram(g.programs.generic().id);
+    current = nullptr;
     glPolygonMode(GL_FRONT_AND_BACK, polygonMode);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LEQUAL);
+    glDepthMask(GL_TRUE);
+    glFrontFace(GL_CCW);
+    glCullFace(GL_BACK);
+    glActiveTexture(GL_TEXTURE0);
   };
   for (const scene::LayerInstance& l : g.frame.layerOrder) {
     const glm::ivec4 r = scene::layerRectangle(l.clipBoundary, x, y, width, height);

@@ -299,6 +299,7 @@ bool VolumeRaycaster::draw(const vrml::Node& node, const std::string& baseUrl,
   glDepthMask(GL_TRUE);
   glEnable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
+  glCullFace(GL_BACK);
   glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
   return true;
 }

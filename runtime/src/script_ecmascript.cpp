@@ -243,6 +243,7 @@ void EsScript::destroyHeap() {
   duk_destroy_heap(duk_);
   duk_ = nullptr;
   nodes_.clear();
+  scenes_.clear();
   nodeIds_.clear();
   live_.clear();
   liveSlots_.clear();

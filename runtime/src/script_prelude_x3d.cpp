@@ -324,7 +324,8 @@ G.X3DProtoDeclaration = X3DProtoDeclaration;
 G.X3DExecutionContext = X3DExecutionContext; G.X3DScene = X3DScene;
 G.__gsScene = Object.create(P);  // Browser.currentScene (installBrowser takes it)
 // Makes the X3DScene object of createX3DFromString (installBrowser keeps it in the stash).
-G.__gsSceneMaker = function () { return Object.create(P); };
+var create = Object.create;  // as the prelude found it: a Script may replace Object.create
+G.__gsSceneMaker = function () { return create(P); };
 })(this);
 )JS";
 

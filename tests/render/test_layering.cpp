@@ -173,3 +173,36 @@ TEST_CASE(
   CHECK(int(left[0]) < 40);
   CHECK(close(right, 255, 0, 0, 8));  // outside the Layer's rectangle: the box
 }
+
+TEST_CASE("Layering: the shapes of a layer after one with splats are drawn by their own program",
+          "[render][offscreen][world][layering]") {
+  // PhysicalMaterial boxes in layers 0 and 2 (one program, bound once per layer when the
+  // renderer knows what is bound) and a Gaussian in layer 1 between them, whose paths bind
+  // programs of their own: the right box must still be drawn green, in every frame.
+  const fs::path file = worldDir() / "layers_programs.x3dv";
+  writeText(file, R"(#X3D V4.0 utf8
+PROFILE Immersive
+COMPONENT Layering:1
+NavigationInfo { headlight FALSE }
+Viewpoint { position 0 0 10 fieldOfView 0.785398 }
+Transform { translation -2 0 0 children Shape {
+  appearance Appearance { material PhysicalMaterial { baseColor 0 0 0 emissiveColor 1 0 0 } }
+  geometry Box { size 2 2 0.1 } } }
+LayerSet { order [ 0 1 2 ] layers [
+  Layer { children Transform { translation 0 3 0 children GaussianSplats {
+    positions [ 0 0 0 ] orientations [ 0 0 0 1 ] scales [ 0.3 0.3 0.1 ] opacities [ 1 ]
+    sphericalHarmonicsDegree0Coef0 [ -1.77 -1.77 1.77 ] } } }
+  Layer { children Transform { translation 2 0 0 children Shape {
+    appearance Appearance { material PhysicalMaterial { baseColor 0 0 0 emissiveColor 0 1 0 } }
+    geometry Box { size 2 2 0.1 } } } }
+] }
+)");
+  for (int frames : {1, 3}) {
+    INFO("frames " << frames);
+    const Rendered r = renderFile(file, frames);
+    CHECK(r.diagnostics.items.empty());
+    CHECK(close(r.image.pixel(17, 32), 255, 0, 0, 8));  // the left box, layer 0
+    CHECK(close(r.image.pixel(47, 32), 0, 255, 0, 8));  // the right box, layer 2
+    CHECK(int(r.image.pixel(32, 9)[2]) > 150);          // the splat, layer 1
+  }
+}

@@ -245,22 +245,26 @@ TEST_CASE("a Viewpoint under a mirroring or flattening Transform keeps its turn 
 
 TEST_CASE("picking: layers are picked as drawn, the top layer first", "[scene][picking]") {
   // Layer 1's box lies far behind the root layer's, but layer 1 is drawn over it; layer 2
-  // is on top and not pickable; layer 3 covers everything but only in the right half of
-  // the window (its clipBoundary); layer 4 is not in `order`. The camera is the default
+  // is not pickable, nor is layer 5 on top of all (pointerEvents FALSE); layer 3 covers
+  // everything but only in the right half of the window (its clipBoundary); layer 4 is not
+  // in `order`. The camera is the default
   // Viewpoint's, from which the layers without one are seen as they are.
   auto scene = std::make_shared<gs::vrml::Scene>(gs::vrml::parseVrml(R"(#X3D V3.3 utf8
 PROFILE Full
 DEF BACK Shape { geometry Box { size 4 4 1 } }
-LayerSet { order [ 0 1 3 2 ] layers [
+LayerSet { order [ 0 1 3 2 5 ] layers [
   Layer { children Transform { translation 0 0 -20 children DEF FARBOX Shape { geometry Box { } } } }
   Layer { isPickable FALSE children DEF UNPICKABLE Shape { geometry Box { size 8 8 1 } } }
   Layer { viewport Viewport { clipBoundary [ 0.5 1 0 1 ] }
           children Transform { translation 0 0 -30 children DEF RIGHT Shape { geometry Box { size 20 20 1 } } } }
   Layer { children DEF UNLISTED Shape { geometry Box { size 9 9 1 } } }
+  Layer { pointerEvents FALSE children DEF PASSED_THROUGH Shape { geometry Box { size 9 9 1 } } }
 ] }
 )",
                                                                      "layers.x3dv"));
-  for (const auto& d : scene->diagnostics.items) INFO(d.format());
+  std::string diagnostics;
+  for (const auto& d : scene->diagnostics.items) diagnostics += d.format() + "\n";
+  INFO(diagnostics);
   REQUIRE(scene->diagnostics.items.empty());
   SceneTraversal traversal(scene);
   const Camera viewer;
