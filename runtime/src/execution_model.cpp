@@ -641,8 +641,17 @@ bool ExecutionModel::fetchText(const std::string& url, std::string& text, std::s
   return true;
 }
 
-void ExecutionModel::replaceWorld(const std::vector<vrml::NodePtr>&) {
-  diagnostics_.warning({}, "Browser.replaceWorld is not supported yet; the call was ignored");
+void ExecutionModel::replaceWorld(const std::vector<vrml::NodePtr>& nodes) {
+  if (!s_->scene) return;
+  // The world's Scene is no const object (see the header): its root list may change.
+  auto& roots = const_cast<vrml::Scene&>(*s_->scene).rootNodes;
+  roots.clear();
+  for (const vrml::NodePtr& n : nodes)
+    if (n && std::find(roots.begin(), roots.end(), n) == roots.end()) roots.push_back(n);
+  for (const vrml::NodePtr& n : roots) s_->reach(n, false);
+  s_->rootsSeen = roots.size();
+  s_->rebindFrom(roots);
+  s_->startNewLoadSensors();
 }
 
 void ExecutionModel::setDescription(const std::string& text) {

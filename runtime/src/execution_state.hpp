@@ -458,6 +458,9 @@ struct ExecutionModel::State {
   void evaluateTimeSensor(NodeState& ns);
   void bind(NodeState& ns, bool on);
   void bindFirstCandidates();
+  /// Browser.replaceWorld: every stack emptied (its top sent isBound FALSE) and the
+  /// candidates made those reached from `roots`, in file order (node_roles.cpp).
+  void rebindFrom(const std::vector<vrml::NodePtr>& roots);
   // ---- MovieTexture and AudioClip (media_nodes.cpp) ----
   /// Makes `ns` a media node when it is a MovieTexture or AudioClip.
   bool classifyMedia(NodeState& ns);

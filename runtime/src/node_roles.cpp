@@ -249,6 +249,42 @@ void ExecutionModel::State::bindFirstCandidates() {
     if (stacks[k].empty() && !candidates[k].empty()) bind(*candidates[k].front(), true);
 }
 
+void ExecutionModel::State::rebindFrom(const std::vector<vrml::NodePtr>& roots) {
+  for (auto& stack : stacks) {
+    if (stack.empty()) continue;
+    emitOwn(*stack.back(), stack.back()->isBound, vrml::FieldValue::make<FieldType::SFBool>(false));
+    stack.clear();
+    ++model.bindingRevision_;
+  }
+  for (auto& c : candidates) c.clear();
+  // Depth first in file order, without recursion (a Script may have built a deep graph);
+  // not into Inlines, whose worlds bind nothing (4.6.10).
+  std::unordered_set<const vrml::Node*> seen;
+  std::vector<vrml::Node*> pending;
+  for (auto it = roots.rbegin(); it != roots.rend(); ++it)
+    if (*it) pending.push_back(it->get());
+  while (!pending.empty()) {
+    vrml::Node* n = pending.back();
+    pending.pop_back();
+    if (!seen.insert(n).second) continue;
+    NodeState& ns = reach(*n, false);
+    if (ns.role == NodeRole::bindable)
+      candidates[static_cast<std::size_t>(ns.bindable)].push_back(&ns);
+    const std::size_t before = pending.size();
+    for (std::size_t i = 0; i < n->fieldCount(); ++i) {
+      const vrml::FieldValue& v = n->fieldAt(i);
+      if (v.type() == FieldType::SFNode) {
+        if (const vrml::NodePtr& c = v.get<FieldType::SFNode>()) pending.push_back(c.get());
+      } else if (v.type() == FieldType::MFNode) {
+        for (const vrml::NodePtr& c : v.get<FieldType::MFNode>())
+          if (c) pending.push_back(c.get());
+      }
+    }
+    std::reverse(pending.begin() + static_cast<std::ptrdiff_t>(before), pending.end());
+  }
+  bindFirstCandidates();
+}
+
 namespace {
 
 /// The first element of an interpolator's keyValue (its MF types), else null.

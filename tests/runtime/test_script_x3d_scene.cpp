@@ -163,3 +163,39 @@ DEF S Script {
   REQUIRE(answers.size() == 1);
   CHECK(answers[0].get<FieldType::SFString>() == "110101100");
 }
+
+TEST_CASE("Browser.replaceWorld: the scene's nodes become the world, its first Viewpoint bound",
+          "[script][x3d]") {
+  RunningWorld w(x3dWorld(R"(
+DEF OLD Viewpoint { position 0 0 10 }
+DEF G Group { }
+DEF S Script {
+  inputOnly SFBool go
+  url "ecmascript:
+    function go(v) {
+      Browser.replaceWorld(Browser.createX3DFromString(
+        'DEF T Transform { children DEF NEW Viewpoint { position 0 0 3 } } ' +
+        'DEF LATER Viewpoint { position 0 0 7 }'));
+    }
+  "
+}
+)"),
+                 0.0, x3dScripts());
+  INFO(modelDiagnostics(w));
+  using gs::runtime::BindableKind;
+  REQUIRE(w.model->bound(BindableKind::Viewpoint) == &w.node("OLD"));
+  const std::uint64_t revision = w.model->bindingRevision();
+  w.take();
+  w.send("S", "go", FieldValue::make<FieldType::SFBool>(true));
+  REQUIRE(w.scene->rootNodes.size() == 2);
+  CHECK(w.scene->rootNodes[0]->defName == "T");
+  CHECK(w.scene->rootNodes[1]->defName == "LATER");
+  const vrml::Node* bound = w.model->bound(BindableKind::Viewpoint);
+  REQUIRE(bound != nullptr);
+  CHECK(bound->defName == "NEW");  // the first in file order, inside the Transform
+  CHECK(w.model->bindStack(BindableKind::Viewpoint).size() == 1);
+  CHECK(w.model->bindingRevision() > revision);
+  const std::vector<std::string> events = w.take();
+  CHECK(std::find(events.begin(), events.end(), "OLD.isBound=FALSE") != events.end());
+  CHECK(std::find(events.begin(), events.end(), "NEW.isBound=TRUE") != events.end());
+}

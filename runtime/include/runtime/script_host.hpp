@@ -98,7 +98,11 @@ class ScriptContext {
   /// against the world's URL under the loader's rules (remote content may name only
   /// http(s) URLs). False with `error` ("cannot read 'URL': why") when it cannot be read.
   virtual bool fetchText(const std::string& url, std::string& text, std::string& error) = 0;
-  /// Browser.replaceWorld(nodes).
+  /// Browser.replaceWorld(nodes) (annex C.6.1; ISO/IEC 19777-1 takes an X3DScene, whose
+  /// root nodes are passed): the world's root nodes become `nodes` (nulls and repeats
+  /// left out), the old ones are no longer drawn, every bindable stack is emptied (its top
+  /// sent isBound FALSE) and the first Viewpoint, NavigationInfo, Background and Fog among
+  /// the new nodes are bound, as when a world loads (4.6.10).
   virtual void replaceWorld(const std::vector<vrml::NodePtr>& nodes) = 0;
   /// Browser.setDescription(text).
   virtual void setDescription(const std::string& text) = 0;
