@@ -243,8 +243,12 @@ void ExecutionModel::State::initializeScripts() {
 }
 
 bool ExecutionModel::State::scriptFilesArriving(const vrml::Node& script) {
-  const std::string worldUrl = scene ? scene->url : std::string();
-  // Relative to the file that wrote the Script (an EXTERNPROTO's: vrml::Node::urlBase).
+  // Relative to the file that wrote the Script (an EXTERNPROTO's: vrml::Node::urlBase; an
+  // Inline's world's: scriptScenes), else the world's.
+  const auto inlineScene = scriptScenes.find(&script);
+  const std::string worldUrl = inlineScene != scriptScenes.end() ? inlineScene->second->url
+                               : scene                           ? scene->url
+                                                                 : std::string();
   const std::string world = script.urlBaseOr(worldUrl);
   const vrml::FieldValue* urls = script.field("url");
   if (urls == nullptr || urls->type() != vrml::FieldType::MFString) return false;

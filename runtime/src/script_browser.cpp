@@ -170,10 +170,14 @@ duk_ret_t createVrmlFromURL(duk_context* c) {
     GS_DUK_ERROR(c, DUK_ERR_TYPE_ERROR, "Browser.createVrmlFromURL: %s has no MFNode eventIn '%s'",
                  node->typeName().c_str(), event.c_str());
   for (const std::string& url : urls) {
-    std::string text, error;
+    std::string text, error, resolved;
+    if (!self.resolveOwnUrl(url, resolved, error)) {
+      self.warn("Browser.createVrmlFromURL: " + error);
+      continue;
+    }
     // Reading does not count against the call's time budget.
     auto start = std::chrono::steady_clock::now();
-    bool ok = self.context().fetchText(url, text, error);
+    bool ok = self.context().fetchText(resolved, text, error);
     self.extendDeadline(std::chrono::steady_clock::now() - start);
     if (!ok) {
       self.warn("Browser.createVrmlFromURL: " +

@@ -250,6 +250,18 @@ void EsScript::destroyHeap() {
   liveStore_ = nullptr;
 }
 
+bool EsScript::resolveOwnUrl(const std::string& url, std::string& target, std::string& error) {
+  const vrml::Scene* own = ctx_.sceneOf(node_);
+  const std::string* base = node_.urlBase ? node_.urlBase.get()
+                            : own != nullptr && own != ctx_.currentScene() && !own->url.empty()
+                                ? &own->url
+                                : nullptr;
+  target = url;
+  if (base == nullptr) return true;  // ScriptContext::fetchText resolves against the world
+  target = base::resolveUrl(*base, url);
+  return base::mayReference(*base, target, error);
+}
+
 EsScript& EsScript::of(duk_context* c) {
   duk_memory_functions funcs;
   duk_get_memory_functions(c, &funcs);
@@ -436,15 +448,10 @@ bool EsScript::load() {
       sourceName = std::string(e.scheme);
     } else {
       std::string error;
-      // A Script written in an EXTERNPROTO's file names its files relative to that file
-      // (vrml::Node::urlBase), under that file's rules (a remote one reads no local file).
-      std::string target = entry;
-      if (node_.urlBase) {
-        target = base::resolveUrl(*node_.urlBase, entry);
-        if (!base::mayReference(*node_.urlBase, target, error)) {
-          warn(error);
-          continue;
-        }
+      std::string target;
+      if (!resolveOwnUrl(entry, target, error)) {
+        warn(error);
+        continue;
       }
       if (!ctx_.fetchText(target, source, error)) {
         warn(error.empty() ? "cannot read '" + entry + "'" : error);

@@ -67,6 +67,11 @@ class EsScript final : public ScriptInstance {
   /// Moves the running call's deadline by `d` (time spent waiting for the browser).
   void extendDeadline(std::chrono::steady_clock::duration d) { guard_->deadline += d; }
   vrml::Node& node() { return node_; }
+  /// `url` as the Script's own file names it: a Script written in an EXTERNPROTO's file
+  /// (vrml::Node::urlBase) or in an Inline's world (ScriptContext::sceneOf) resolves it
+  /// against that file, under that file's rules (a remote one names no local file: false
+  /// with `error`); others leave it to ScriptContext::fetchText (`target` = `url`).
+  bool resolveOwnUrl(const std::string& url, std::string& target, std::string& error);
   duk_context* heap() { return duk_; }
   /// Throws a RangeError when the running call is past its deadline (long native loops).
   void checkDeadline(duk_context* c);

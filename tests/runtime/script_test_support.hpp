@@ -32,6 +32,7 @@ struct FakeScriptContext : runtime::ScriptContext {
   std::map<std::string, std::string> files;  // fetchText
   std::vector<std::shared_ptr<vrml::Scene>> created;
   const vrml::Scene* world = nullptr;  // currentScene
+  const vrml::Scene* own = nullptr;    // sceneOf: the Inline's world the Script is in
   double time = 1000.0;
   double fps = 0.0;
 
@@ -88,6 +89,7 @@ struct FakeScriptContext : runtime::ScriptContext {
   void replaceWorld(const std::vector<vrml::NodePtr>& nodes) override { replacedWith = nodes; }
   void setDescription(const std::string& text) override { description = text; }
   const vrml::Scene* currentScene() const override { return world; }
+  const vrml::Scene* sceneOf(const vrml::Node&) const override { return own ? own : world; }
   void print(const std::string& text) override { printed.push_back(text); }
   void scriptDiagnostic(vrml::Severity severity, const vrml::SourceLocation& where,
                         const std::string& message) override {

@@ -597,6 +597,40 @@ TEST_CASE("Script: a Script written in an EXTERNPROTO's file reads its files bes
   CHECK_THAT(remote.diagnostics[0].message, Catch::Contains("may not reference"));
 }
 
+TEST_CASE("Script: a Script in an Inline's world reads its files beside that world",
+          "[script][inline][url]") {
+  // ScriptContext::sceneOf names the Inline's world the Script is in: its URL is the base
+  // of the Script's file entries, and a remote one may not name a local file.
+  FakeScriptContext ctx;
+  ctx.files["/worlds/sub/good.js"] = "function initialize() { out = 'beside the Inline'; }";
+  ctx.files["good.js"] = "function initialize() { out = 'beside the world'; }";
+  ctx.files["file:///lib/good.js"] = "function initialize() { out = 'local'; }";
+  vrml::Scene world = vrml::parseVrml("#VRML V2.0 utf8\nGroup { }\n", "/worlds/main.wrl");
+  vrml::Scene inner =
+      vrml::parseVrml("#VRML V2.0 utf8\nDEF S Script { eventOut SFString out url \"good.js\" }\n",
+                      "/worlds/sub/inner.wrl");
+  vrml::NodePtr script = findScript(inner.rootNodes);
+  REQUIRE(script);
+  ctx.world = &world;
+  ctx.own = &inner;
+  auto instance = runtime::ecmascriptFactory()(*script, ctx, relaxedLimits());
+  REQUIRE(instance);
+  instance->initialize(0.0);
+  INFO(ctx.diagnosticText());
+  CHECK(ctx.emittedFor(*script, "out").at(0).get<FieldType::SFString>() == "beside the Inline");
+
+  FakeScriptContext remote;
+  remote.files = ctx.files;
+  inner.url = "http://example.com/w/inner.wrl";
+  remote.world = &world;
+  remote.own = &inner;
+  *script->field("url") =
+      FieldValue::make<FieldType::MFString>(std::vector<std::string>{"file:///lib/good.js"});
+  CHECK_FALSE(runtime::ecmascriptFactory()(*script, remote, relaxedLimits()));
+  REQUIRE_FALSE(remote.diagnostics.empty());
+  CHECK_THAT(remote.diagnostics[0].message, Catch::Contains("may not reference"));
+}
+
 TEST_CASE("Script: a node's fields are live objects for a call, sent when it returns", "[script]") {
   // X_ITE's scripts build geometry in place (create3000's Texturing3D/Volume.x3d,
   // Follower/ColorDamper.x3dv): coord.point.push(...), color.length = n then
