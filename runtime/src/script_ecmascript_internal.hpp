@@ -107,6 +107,11 @@ class EsScript final : public ScriptInstance {
   /// After the Script sent `v` to field `i` of `n`: later reads in this call see `v`.
   void assignedNodeField(duk_context* c, const vrml::NodePtr& n, std::size_t i,
                          const vrml::FieldValue& v);
+  /// Before the Script sends an event to `n`: sends each live field of `n` it changed in
+  /// place since (as flushLiveFields would at the call's end), so that the node gets the
+  /// events in the order the Script made them (`t.children.length = 0; t.addChildren = x`
+  /// empties the children, then adds x, as X_ITE runs it).
+  void sendChangedLiveFields(duk_context* c, const vrml::Node& n);
   /// Sends each live field that differs from the node's value (or from the value last
   /// assigned to it) to its node as an event, then forgets them all.
   void flushLiveFields(duk_context* c);

@@ -92,6 +92,27 @@ void EsScript::assignedNodeField(duk_context* c, const vrml::NodePtr& n, std::si
   liveSlots_.emplace(key, slot);
 }
 
+void EsScript::sendChangedLiveFields(duk_context* c, const vrml::Node& n) {
+  if (liveStore_ == nullptr) return;
+  for (auto it = liveSlots_.lower_bound({&n, 0}); it != liveSlots_.end() && it->first.first == &n;
+       ++it) {
+    LiveField& f = live_[it->second];
+    const vrml::FieldSpec& spec = f.node->type().fields[f.field];
+    if (!writable(spec.access)) continue;
+    duk_push_heapptr(c, liveStore_);
+    duk_get_prop_index(c, -1, static_cast<duk_uarridx_t>(it->second));
+    FieldValue v;
+    std::string why;
+    const bool ok = toValue(c, -1, spec.type, v, why);
+    duk_pop_2(c);
+    if (!ok) continue;  // flushLiveFields reports it at the call's end
+    const FieldValue& before = f.assigned ? *f.assigned : f.node->fieldAt(f.field);
+    if (v.storage() == before.storage()) continue;
+    f.assigned = v;  // flushLiveFields sends it again only if it changes again
+    ctx_.sendEvent(*f.node, static_cast<int>(f.field), std::move(v));
+  }
+}
+
 void EsScript::flushLiveFields(duk_context* c) {
   std::vector<LiveField> live;
   live.swap(live_);

@@ -525,6 +525,7 @@ duk_ret_t EsScript::nodeFieldSetter(duk_context* c) {
     GS_DUK_ERROR(c, DUK_ERR_TYPE_ERROR, "%s", msg.c_str());
   }
   FieldValue v = self.requireValue(c, 0, spec.type, spec.name.c_str());
+  self.sendChangedLiveFields(c, *n);  // what the Script changed in place before, first
   self.assignedNodeField(c, n, i, v);
   // 4.12.4: sent to the node as an event at the current timestamp.
   self.ctx_.sendEvent(*n, static_cast<int>(i), std::move(v));

@@ -199,3 +199,31 @@ DEF S Script {
   CHECK(std::find(events.begin(), events.end(), "OLD.isBound=FALSE") != events.end());
   CHECK(std::find(events.begin(), events.end(), "NEW.isBound=TRUE") != events.end());
 }
+
+TEST_CASE("X3D Script: a field changed in place reaches its node before a later event to it",
+          "[script][x3d]") {
+  // create3000's Core/EXPORT.x3d: `transform.children.length = 0; transform.addChildren =
+  // node.children` empties the children, then adds the exported node's (X_ITE runs the two
+  // in that order). The in-place change used to be sent at the call's end, after
+  // addChildren, leaving no children.
+  RunningWorld w(x3dWorld(R"(
+DEF T Transform { children [ Group { } Group { } ] }
+DEF E Transform { children DEF SHAPE Shape { geometry Box { } } }
+EXPORT E AS Exported
+DEF S Script {
+  initializeOnly SFNode transform USE T
+  url "ecmascript:
+    function initialize() {
+      var node = Browser.currentScene.getExportedNode('Exported');
+      transform.children.length = 0;
+      transform.addChildren = node.children;
+    }
+  "
+}
+)"),
+                 0.0, x3dScripts());
+  INFO(modelDiagnostics(w));
+  const auto& children = w.node("T").field("children")->get<FieldType::MFNode>();
+  REQUIRE(children.size() == 1);
+  CHECK(children[0]->defName == "SHAPE");
+}
