@@ -567,18 +567,26 @@ bool ExecutionModel::deleteRoute(const vrml::NodePtr& from, const std::string& e
 }
 
 std::vector<vrml::NodePtr> ExecutionModel::createVrmlFromString(const std::string& text) {
-  return createSceneFromString(text)->rootNodes;
+  return createSceneFromString(text, nullptr)->rootNodes;
 }
 
-std::shared_ptr<vrml::Scene> ExecutionModel::createSceneFromString(const std::string& text) {
+std::shared_ptr<vrml::Scene> ExecutionModel::createSceneFromString(const std::string& text,
+                                                                   const vrml::Node* script) {
   std::string bytes = text;
   if (!bytes.starts_with("#VRML") && !bytes.starts_with("#X3D"))
     bytes = "#VRML V2.0 utf8\n" + bytes;
-  auto made = std::make_shared<vrml::Scene>(vrml::parseVrml(bytes, worldUrl()));
+  // A Script in an Inline's world makes nodes of that world (its URL, its rules).
+  const vrml::Scene* own = script != nullptr ? sceneOf(*script) : nullptr;
+  if (own == s_->scene.get()) own = nullptr;
+  auto made =
+      std::make_shared<vrml::Scene>(vrml::parseVrml(bytes, own != nullptr ? own->url : worldUrl()));
   for (vrml::Diagnostic& d : made->diagnostics.items) diagnostics_.items.push_back(std::move(d));
   made->diagnostics.items.clear();
   std::size_t roots = 0, hidden = 0, routes = 0;
+  const vrml::Scene* outer = s_->reachingInline;
+  s_->reachingInline = own;
   s_->takeScene(*made, roots, hidden, routes, false);
+  s_->reachingInline = outer;
   return made;
 }
 

@@ -375,9 +375,10 @@ struct ExecutionModel::State {
     std::size_t roots = 0, hidden = 0, routes = 0;
   };
   std::vector<InlineCursor> inlineScenes;
-  /// The Inline's world whose nodes takeScene is reaching (null for the main world and
-  /// createVrmlFromString's), and the world each Script of an Inline's world came from
-  /// (ScriptContext::sceneOf; the InlineCursor keeps the scene alive).
+  /// The Inline's world whose nodes takeScene is reaching (null for the main world; for
+  /// createSceneFromString's, the asking Script's world), and the world each Script of an
+  /// Inline's world came from (ScriptContext::sceneOf; the InlineCursor keeps the scene
+  /// alive).
   const vrml::Scene* reachingInline = nullptr;
   std::unordered_map<const vrml::Node*, const vrml::Scene*> scriptScenes;
   std::unordered_set<const vrml::Scene*> inlineSceneSet;
@@ -458,8 +459,10 @@ struct ExecutionModel::State {
   void evaluateTimeSensor(NodeState& ns);
   void bind(NodeState& ns, bool on);
   void bindFirstCandidates();
-  /// Browser.replaceWorld: every stack emptied (its top sent isBound FALSE) and the
-  /// candidates made those reached from `roots`, in file order (node_roles.cpp).
+  /// Browser.replaceWorld: the candidates made those reached from `roots` in file order
+  /// (in a LayerSet, its active layer's only, as reach() takes them), every stack emptied
+  /// (its top sent isBound FALSE, unless it is the new first of its kind, which stays bound
+  /// without events) and the first of each kind bound (node_roles.cpp).
   void rebindFrom(const std::vector<vrml::NodePtr>& roots);
   // ---- MovieTexture and AudioClip (media_nodes.cpp) ----
   /// Makes `ns` a media node when it is a MovieTexture or AudioClip.

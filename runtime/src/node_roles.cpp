@@ -250,15 +250,9 @@ void ExecutionModel::State::bindFirstCandidates() {
 }
 
 void ExecutionModel::State::rebindFrom(const std::vector<vrml::NodePtr>& roots) {
-  for (auto& stack : stacks) {
-    if (stack.empty()) continue;
-    emitOwn(*stack.back(), stack.back()->isBound, vrml::FieldValue::make<FieldType::SFBool>(false));
-    stack.clear();
-    ++model.bindingRevision_;
-  }
   for (auto& c : candidates) c.clear();
-  // Depth first in file order, without recursion (a Script may have built a deep graph);
-  // not into Inlines, whose worlds bind nothing (4.6.10).
+  // Depth first in file order, with a list rather than recursion; not into Inlines, whose
+  // worlds bind nothing (4.6.10).
   std::unordered_set<const vrml::Node*> seen;
   std::vector<vrml::Node*> pending;
   for (auto it = roots.rbegin(); it != roots.rend(); ++it)
@@ -271,6 +265,16 @@ void ExecutionModel::State::rebindFrom(const std::vector<vrml::NodePtr>& roots) 
     if (ns.role == NodeRole::bindable)
       candidates[static_cast<std::size_t>(ns.bindable)].push_back(&ns);
     const std::size_t before = pending.size();
+    if (n->typeId() == vrml::NodeTypeId::LayerSet) {  // its active layer's only (35.4.2)
+      const int active = n->get<FieldType::SFInt32>("activeLayer", 0);
+      const vrml::FieldValue* layers = n->field("layers");
+      if (layers != nullptr && layers->type() == FieldType::MFNode) {
+        const auto& list = layers->get<FieldType::MFNode>();
+        if (active >= 1 && static_cast<std::size_t>(active) <= list.size() && list[active - 1u])
+          pending.push_back(list[active - 1u].get());
+      }
+      continue;
+    }
     for (std::size_t i = 0; i < n->fieldCount(); ++i) {
       const vrml::FieldValue& v = n->fieldAt(i);
       if (v.type() == FieldType::SFNode) {
@@ -281,6 +285,18 @@ void ExecutionModel::State::rebindFrom(const std::vector<vrml::NodePtr>& roots) 
       }
     }
     std::reverse(pending.begin() + static_cast<std::ptrdiff_t>(before), pending.end());
+  }
+  for (std::size_t k = 0; k < kBindableKindCount; ++k) {
+    auto& stack = stacks[k];
+    if (stack.empty()) continue;
+    NodeState* top = stack.back();
+    if (!candidates[k].empty() && candidates[k].front() == top) {  // stays bound
+      stack.assign(1, top);
+      continue;
+    }
+    emitOwn(*top, top->isBound, vrml::FieldValue::make<FieldType::SFBool>(false));
+    stack.clear();
+    ++model.bindingRevision_;
   }
   bindFirstCandidates();
 }

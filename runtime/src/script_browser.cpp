@@ -148,7 +148,7 @@ duk_ret_t createVrmlFromString(duk_context* c) {
     GS_DUK_ERROR(c, DUK_ERR_RANGE_ERROR,
                  "Browser.createVrmlFromString: the text is longer than %lu bytes",
                  static_cast<unsigned long>(max));
-  FieldValue nodes = FieldValue::make<FieldType::MFNode>(self.context().createVrmlFromString(text));
+  FieldValue nodes = FieldValue::make<FieldType::MFNode>(self.createFromText(text)->rootNodes);
   self.pushValue(c, nodes);
   return 1;
 }
@@ -188,9 +188,9 @@ duk_ret_t createVrmlFromURL(duk_context* c) {
       self.warn("Browser.createVrmlFromURL: '" + url + "' is too large for a Script");
       continue;
     }
-    self.context().sendEvent(
-        *node, field,
-        FieldValue::make<FieldType::MFNode>(self.context().createVrmlFromString(text)));
+    FieldValue nodes = FieldValue::make<FieldType::MFNode>(self.createFromText(text)->rootNodes);
+    self.sendChangedLiveFields(c, *node);  // what the Script changed in place before, first
+    self.context().sendEvent(*node, field, std::move(nodes));
     return 0;
   }
   return 0;
@@ -229,7 +229,7 @@ duk_ret_t createX3DFromString(duk_context* c) {
                  "Browser.createX3DFromString: the text is longer than %lu bytes",
                  static_cast<unsigned long>(max));
   if (!text.starts_with("#X3D") && !text.starts_with("#VRML")) text = "#X3D V3.3 utf8\n" + text;
-  self.pushCreatedScene(c, self.context().createSceneFromString(text));
+  self.pushCreatedScene(c, self.createFromText(text));
   return 1;
 }
 

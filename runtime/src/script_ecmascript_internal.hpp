@@ -67,6 +67,11 @@ class EsScript final : public ScriptInstance {
   /// Moves the running call's deadline by `d` (time spent waiting for the browser).
   void extendDeadline(std::chrono::steady_clock::duration d) { guard_->deadline += d; }
   vrml::Node& node() { return node_; }
+  /// ScriptContext::createSceneFromString for this Script (every Browser and X3DScene call
+  /// that makes nodes from text goes through it).
+  std::shared_ptr<vrml::Scene> createFromText(const std::string& text) {
+    return ctx_.createSceneFromString(text, &node_);
+  }
   /// `url` as the Script's own file names it: a Script written in an EXTERNPROTO's file
   /// (vrml::Node::urlBase) or in an Inline's world (ScriptContext::sceneOf) resolves it
   /// against that file, under that file's rules (a remote one names no local file: false
@@ -111,7 +116,10 @@ class EsScript final : public ScriptInstance {
   /// place since (as flushLiveFields would at the call's end), so that the node gets the
   /// events in the order the Script made them (`t.children.length = 0; t.addChildren = x`
   /// empties the children, then adds x, as X_ITE runs it).
-  void sendChangedLiveFields(duk_context* c, const vrml::Node& n);
+  /// `except`: a field left out (the one about to be assigned, whose live object the
+  /// assignment replaces).
+  void sendChangedLiveFields(duk_context* c, const vrml::Node& n,
+                             std::size_t except = static_cast<std::size_t>(-1));
   /// Sends each live field that differs from the node's value (or from the value last
   /// assigned to it) to its node as an event, then forgets them all.
   void flushLiveFields(duk_context* c);

@@ -92,24 +92,32 @@ void EsScript::assignedNodeField(duk_context* c, const vrml::NodePtr& n, std::si
   liveSlots_.emplace(key, slot);
 }
 
-void EsScript::sendChangedLiveFields(duk_context* c, const vrml::Node& n) {
+void EsScript::sendChangedLiveFields(duk_context* c, const vrml::Node& n, std::size_t except) {
   if (liveStore_ == nullptr) return;
+  // The slots first: toValue may run the Script's code (valueOf, getters), which may read
+  // more live fields (live_ grows: no reference into it is held across the call; the map
+  // is not iterated while it may grow).
+  std::vector<std::uint32_t> slots;
   for (auto it = liveSlots_.lower_bound({&n, 0}); it != liveSlots_.end() && it->first.first == &n;
-       ++it) {
-    LiveField& f = live_[it->second];
-    const vrml::FieldSpec& spec = f.node->type().fields[f.field];
+       ++it)
+    if (it->first.second != except) slots.push_back(it->second);
+  for (const std::uint32_t slot : slots) {
+    const vrml::NodePtr node = live_[slot].node;
+    const std::size_t field = live_[slot].field;
+    const vrml::FieldSpec& spec = node->type().fields[field];
     if (!writable(spec.access)) continue;
     duk_push_heapptr(c, liveStore_);
-    duk_get_prop_index(c, -1, static_cast<duk_uarridx_t>(it->second));
+    duk_get_prop_index(c, -1, static_cast<duk_uarridx_t>(slot));
     FieldValue v;
     std::string why;
     const bool ok = toValue(c, -1, spec.type, v, why);
     duk_pop_2(c);
-    if (!ok) continue;  // flushLiveFields reports it at the call's end
-    const FieldValue& before = f.assigned ? *f.assigned : f.node->fieldAt(f.field);
+    if (!ok || slot >= live_.size()) continue;  // flushLiveFields reports it at the call's end
+    LiveField& f = live_[slot];
+    const FieldValue& before = f.assigned ? *f.assigned : node->fieldAt(field);
     if (v.storage() == before.storage()) continue;
     f.assigned = v;  // flushLiveFields sends it again only if it changes again
-    ctx_.sendEvent(*f.node, static_cast<int>(f.field), std::move(v));
+    ctx_.sendEvent(*node, static_cast<int>(field), std::move(v));
   }
 }
 

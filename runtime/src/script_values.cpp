@@ -525,7 +525,7 @@ duk_ret_t EsScript::nodeFieldSetter(duk_context* c) {
     GS_DUK_ERROR(c, DUK_ERR_TYPE_ERROR, "%s", msg.c_str());
   }
   FieldValue v = self.requireValue(c, 0, spec.type, spec.name.c_str());
-  self.sendChangedLiveFields(c, *n);  // what the Script changed in place before, first
+  self.sendChangedLiveFields(c, *n, i);  // what the Script changed in place before, first
   self.assignedNodeField(c, n, i, v);
   // 4.12.4: sent to the node as an event at the current timestamp.
   self.ctx_.sendEvent(*n, static_cast<int>(i), std::move(v));
@@ -650,7 +650,7 @@ void EsScript::installNodeHooks(duk_context* c) {
       if (world != nullptr && !world->x3d.version.empty() && !body.starts_with("#X3D") &&
           !body.starts_with("#VRML"))
         body = "#X3D V" + world->x3d.version + " utf8\n" + body;
-      std::vector<vrml::NodePtr> nodes = self.ctx_.createVrmlFromString(body);
+      std::vector<vrml::NodePtr> nodes = self.createFromText(body)->rootNodes;
       if (nodes.empty() || !nodes.front())
         GS_DUK_ERROR(cx, DUK_ERR_ERROR, "SFNode: the VRML text holds no node");
       self.pushNode(cx, nodes.front());

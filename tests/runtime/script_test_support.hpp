@@ -62,9 +62,10 @@ struct FakeScriptContext : runtime::ScriptContext {
     return true;
   }
   std::vector<vrml::NodePtr> createVrmlFromString(const std::string& text) override {
-    return createSceneFromString(text)->rootNodes;
+    return createSceneFromString(text, nullptr)->rootNodes;
   }
-  std::shared_ptr<vrml::Scene> createSceneFromString(const std::string& text) override {
+  std::shared_ptr<vrml::Scene> createSceneFromString(const std::string& text,
+                                                     const vrml::Node*) override {
     const bool header = text.starts_with("#VRML") || text.starts_with("#X3D");
     auto scene = std::make_shared<vrml::Scene>(
         vrml::parseVrml(header ? text : "#VRML V2.0 utf8\n" + text, "createVrmlFromString"));

@@ -198,6 +198,11 @@ DEF S Script {
   const std::vector<std::string> events = w.take();
   CHECK(std::find(events.begin(), events.end(), "OLD.isBound=FALSE") != events.end());
   CHECK(std::find(events.begin(), events.end(), "NEW.isBound=TRUE") != events.end());
+  // The same world again: its first Viewpoint stays bound, without events.
+  const std::vector<vrml::NodePtr> same = w.scene->rootNodes;  // as a Script would pass them
+  w.model->replaceWorld(same);
+  CHECK(w.model->bound(BindableKind::Viewpoint) == bound);
+  for (const std::string& e : w.take()) CHECK(e.find("isBound") == std::string::npos);
 }
 
 TEST_CASE("X3D Script: a field changed in place reaches its node before a later event to it",
@@ -226,4 +231,43 @@ DEF S Script {
   const auto& children = w.node("T").field("children")->get<FieldType::MFNode>();
   REQUIRE(children.size() == 1);
   CHECK(children[0]->defName == "SHAPE");
+}
+
+TEST_CASE("X3D Script: live fields sent before an event, and then assigned", "[script][x3d]") {
+  // A field changed in place and then assigned: its routes see the assigned value last. A
+  // value whose valueOf reads many more live fields while the changed ones are being sent
+  // (the list of live fields grows under that loop).
+  RunningWorld w(x3dWorld(R"(
+DEF C Coordinate { point [ 1 1 1, 2 2 2 ] }
+DEF D Coordinate { }
+ROUTE C.point_changed TO D.set_point
+DEF T Transform { }
+DEF PI PositionInterpolator { key [ 0 1 ] keyValue [ 0 0 0, 1 1 1 ] }
+DEF S Script {
+  initializeOnly SFNode c USE C
+  initializeOnly SFNode t USE T
+  initializeOnly SFNode pi USE PI
+  url "ecmascript:
+    function initialize() {
+      c.point.length = 0;
+      c.point = new MFVec3f(new SFVec3f(7, 8, 9));
+      var others = [];
+      for (var i = 0; i < 200; ++i) others.push(Browser.currentScene.createNode('Transform'));
+      pi.key[1] = { valueOf: function () {
+        for (var i = 0; i < others.length; ++i) others[i].translation.x = 1;
+        return 2;
+      } };
+      pi.set_fraction = 0.5;
+    }
+  "
+}
+)"),
+                 0.0, x3dScripts());
+  INFO(modelDiagnostics(w));
+  const auto& point = w.node("D").field("point")->get<FieldType::MFVec3f>();
+  REQUIRE(point.size() == 1);
+  CHECK(point[0] == glm::vec3(7, 8, 9));
+  const auto& key = w.node("PI").field("key")->get<FieldType::MFFloat>();
+  REQUIRE(key.size() == 2);
+  CHECK(key[1] == 2.0f);
 }

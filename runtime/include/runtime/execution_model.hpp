@@ -240,7 +240,8 @@ class ExecutionModel final : public ScriptContext {
   bool deleteRoute(const vrml::NodePtr& from, const std::string& eventOut, const vrml::NodePtr& to,
                    const std::string& eventIn) override;
   std::vector<vrml::NodePtr> createVrmlFromString(const std::string& text) override;
-  std::shared_ptr<vrml::Scene> createSceneFromString(const std::string& text) override;
+  std::shared_ptr<vrml::Scene> createSceneFromString(const std::string& text,
+                                                     const vrml::Node* script) override;
   const vrml::Scene* currentScene() const override;
   const vrml::Scene* sceneOf(const vrml::Node& script) const override;
   vrml::NodePtr importedNode(const std::string& localName) const override;

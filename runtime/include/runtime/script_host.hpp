@@ -54,8 +54,12 @@ class ScriptContext {
   /// Browser.createX3DFromString (ISO/IEC 19777-1 clause 7.2.3): `text` read as
   /// createVrmlFromString reads it, its nodes live in the same way, and the whole scene
   /// returned: root nodes, DEF names, PROTO declarations, ROUTEs, header and EXPORTs. The
-  /// default keeps only the root nodes. Never null.
-  virtual std::shared_ptr<vrml::Scene> createSceneFromString(const std::string& text) {
+  /// default keeps only the root nodes. Never null. `script`: the Script that asks (null:
+  /// none); a Script in an Inline's world (sceneOf) makes nodes that belong to that world:
+  /// its URL is their base, and Scripts among them read their files under its rules.
+  virtual std::shared_ptr<vrml::Scene> createSceneFromString(const std::string& text,
+                                                             const vrml::Node* script) {
+    (void)script;
     auto scene = std::make_shared<vrml::Scene>();
     scene->rootNodes = createVrmlFromString(text);
     return scene;
