@@ -125,6 +125,10 @@ class EsScript final : public ScriptInstance {
   void flushLiveFields(duk_context* c);
   /// Forgets the live fields without sending them (a call stopped by a limit).
   void forgetLiveFields();
+  /// The value of the object the Script holds in live slot `slot`, as type `t` (toValue:
+  /// may run the Script's valueOf and getters); false with `why` when it is none.
+  bool liveSlotValue(duk_context* c, std::size_t slot, vrml::FieldType t, vrml::FieldValue& v,
+                     std::string& why);
   bool hasLiveFields() const { return !live_.empty(); }
 
   // ---- the X3D binding (script_x3d.cpp) ----

@@ -92,6 +92,15 @@ void EsScript::assignedNodeField(duk_context* c, const vrml::NodePtr& n, std::si
   liveSlots_.emplace(key, slot);
 }
 
+bool EsScript::liveSlotValue(duk_context* c, std::size_t slot, FieldType t, FieldValue& v,
+                             std::string& why) {
+  duk_push_heapptr(c, liveStore_);
+  duk_get_prop_index(c, -1, static_cast<duk_uarridx_t>(slot));
+  const bool ok = toValue(c, -1, t, v, why);
+  duk_pop_2(c);
+  return ok;
+}
+
 void EsScript::sendChangedLiveFields(duk_context* c, const vrml::Node& n, std::size_t except) {
   if (liveStore_ == nullptr) return;
   // The slots first: toValue may run the Script's code (valueOf, getters), which may read
@@ -106,12 +115,9 @@ void EsScript::sendChangedLiveFields(duk_context* c, const vrml::Node& n, std::s
     const std::size_t field = live_[slot].field;
     const vrml::FieldSpec& spec = node->type().fields[field];
     if (!writable(spec.access)) continue;
-    duk_push_heapptr(c, liveStore_);
-    duk_get_prop_index(c, -1, static_cast<duk_uarridx_t>(slot));
     FieldValue v;
     std::string why;
-    const bool ok = toValue(c, -1, spec.type, v, why);
-    duk_pop_2(c);
+    const bool ok = liveSlotValue(c, slot, spec.type, v, why);
     if (!ok || slot >= live_.size()) continue;  // flushLiveFields reports it at the call's end
     LiveField& f = live_[slot];
     const FieldValue& before = f.assigned ? *f.assigned : node->fieldAt(field);
@@ -129,12 +135,9 @@ void EsScript::flushLiveFields(duk_context* c) {
     LiveField& f = live[slot];
     const vrml::FieldSpec& spec = f.node->type().fields[f.field];
     if (!writable(spec.access)) continue;  // a read eventOut or initializeOnly field
-    duk_push_heapptr(c, liveStore_);
-    duk_get_prop_index(c, -1, static_cast<duk_uarridx_t>(slot));
     FieldValue v;
     std::string why;
-    const bool ok = toValue(c, -1, spec.type, v, why);
-    duk_pop_2(c);
+    const bool ok = liveSlotValue(c, slot, spec.type, v, why);
     if (!ok) {
       warn(spec.name + " of " + f.node->typeName() + " changed in place but not sent: " + why);
       continue;
