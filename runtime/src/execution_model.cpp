@@ -345,6 +345,7 @@ void ExecutionModel::addInlineScene(std::shared_ptr<const vrml::Scene> scene) {
 
 void ExecutionModel::advanceTo(double time) {
   if (time < now()) return;
+  if (!s_->replacedNodes.empty()) s_->unloadReplacedWorld();  // Browser.replaceWorld's
   clock_.set(time);
   ++s_->stamp;
   ++stats_.cascades;
@@ -566,6 +567,21 @@ bool ExecutionModel::deleteRoute(const vrml::NodePtr& from, const std::string& e
   return any;
 }
 
+bool ExecutionModel::hasRoute(const vrml::NodePtr& from, const std::string& eventOut,
+                              const vrml::NodePtr& to, const std::string& eventIn) const {
+  if (!from || !to) return false;
+  FieldType st = FieldType::SFBool, dt = FieldType::SFBool;
+  for (const RouteEndpoint& f : routeEndpoints(from, eventOut, true, st))
+    for (const RouteEndpoint& t : routeEndpoints(to, eventIn, false, dt)) {
+      const auto it = s_->nodes.find(f.node.get());
+      const auto jt = s_->nodes.find(t.node.get());
+      if (it == s_->nodes.end() || jt == s_->nodes.end()) continue;
+      if (it->second->out[static_cast<std::size_t>(f.field)].has({jt->second.get(), t.field}))
+        return true;
+    }
+  return false;
+}
+
 std::vector<vrml::NodePtr> ExecutionModel::createVrmlFromString(const std::string& text) {
   return createSceneFromString(text, nullptr)->rootNodes;
 }
@@ -625,6 +641,28 @@ bool ExecutionModel::removeRootNode(const vrml::NodePtr& node) {
   return true;
 }
 
+bool ExecutionModel::changeInlineRoots(const vrml::Scene& scene, const vrml::NodePtr& node,
+                                       bool add) {
+  if (!node || s_->inlineSceneSet.count(&scene) == 0) return false;
+  // Not an object defined const (see the header): an Inline's root list may change.
+  auto& roots = const_cast<vrml::Scene&>(scene).rootNodes;
+  const auto it = std::find(roots.begin(), roots.end(), node);
+  if (add == (it != roots.end())) return false;
+  for (State::InlineCursor& c : s_->inlineScenes) {
+    if (c.scene.get() != &scene) continue;
+    if (!add) {
+      if (static_cast<std::size_t>(it - roots.begin()) < c.roots) --c.roots;
+      roots.erase(it);
+      return true;
+    }
+    roots.push_back(node);
+    s_->takeInlineScene(c);  // reaches the new root (and any the file added since)
+    s_->startNewLoadSensors();
+    return true;
+  }
+  return false;
+}
+
 vrml::NodePtr ExecutionModel::importedNode(const std::string& localName) const {
   const auto it = imported_.find(localName);
   return it != imported_.end() ? it->second : nullptr;
@@ -657,6 +695,9 @@ void ExecutionModel::replaceWorld(const std::vector<vrml::NodePtr>& nodes) {
   if (!s_->scene) return;
   // The world's Scene is no const object (see the header): its root list may change.
   auto& roots = const_cast<vrml::Scene&>(*s_->scene).rootNodes;
+  s_->replacedNodes.insert(s_->replacedNodes.end(), roots.begin(), roots.end());
+  const auto& hidden = s_->scene->hiddenNodes;
+  s_->replacedNodes.insert(s_->replacedNodes.end(), hidden.begin(), hidden.end());
   roots.clear();
   for (const vrml::NodePtr& n : nodes)
     if (n && std::find(roots.begin(), roots.end(), n) == roots.end()) roots.push_back(n);

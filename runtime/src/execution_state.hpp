@@ -16,6 +16,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/mat4x4.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <memory>
@@ -250,6 +251,11 @@ struct OutPort {
     more.push_back(t);
     return true;
   }
+  /// Whether `t` is among the routes.
+  bool has(const RouteTarget& t) const {
+    if (first.to != nullptr && first == t) return true;
+    return std::find(more.begin(), more.end(), t) != more.end();
+  }
   /// Removes `t`; false when it is not there.
   bool remove(const RouteTarget& t) {
     if (first.to != nullptr && first == t) {
@@ -464,6 +470,17 @@ struct ExecutionModel::State {
   /// (its top sent isBound FALSE, unless it is the new first of its kind, which stays bound
   /// without events) and the first of each kind bound (node_roles.cpp).
   void rebindFrom(const std::vector<vrml::NodePtr>& roots);
+  /// The nodes of worlds Browser.replaceWorld replaced (their roots and the world's hidden
+  /// nodes), unloaded at the start of the next advanceTo (a Script that replaces the world
+  /// may be one of them, and is inside its call at replaceWorld).
+  std::vector<vrml::NodePtr> replacedNodes;
+  /// Unloads what replacedNodes reaches and the world's roots now do not (ISO/IEC 19775-2
+  /// replaceWorld: the old world is unloaded, its Scripts see shutdown()): its Scripts are
+  /// shut down and no longer run; its TimeSensors, media, key, load, pick, transform and
+  /// collision sensors, followers, skins, particle systems, rigid bodies and DIS nodes
+  /// stop. Nodes of its Inlines' worlds keep running (the model does not know which Inline
+  /// holds a world). Node records stay (routes may still name them).
+  void unloadReplacedWorld();
   // ---- MovieTexture and AudioClip (media_nodes.cpp) ----
   /// Makes `ns` a media node when it is a MovieTexture or AudioClip.
   bool classifyMedia(NodeState& ns);

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <optional>
 #include <string_view>
+#include <unordered_set>
+#include <vector>
 
 namespace gs::runtime {
 
@@ -461,6 +463,52 @@ void ExecutionModel::State::deliver(NodeState& ns, int field, vrml::FieldValue v
     if (target >= 0 && node.type().fields[static_cast<std::size_t>(target)].type == value.type())
       node.setField(static_cast<std::size_t>(target), std::move(value));
   }
+}
+
+namespace {
+
+/// Every node reachable from `from` through SFNode and MFNode fields (PROTO instances'
+/// interfaces included), depth first without recursion.
+std::unordered_set<const vrml::Node*> reachableFrom(const std::vector<vrml::NodePtr>& from) {
+  std::unordered_set<const vrml::Node*> seen;
+  std::vector<const vrml::Node*> pending;
+  for (const vrml::NodePtr& n : from)
+    if (n) pending.push_back(n.get());
+  while (!pending.empty()) {
+    const vrml::Node* n = pending.back();
+    pending.pop_back();
+    if (!seen.insert(n).second) continue;
+    for (std::size_t i = 0; i < n->fieldCount(); ++i) {
+      const vrml::FieldValue& v = n->fieldAt(i);
+      if (v.type() == FieldType::SFNode) {
+        if (const vrml::NodePtr& c = v.get<FieldType::SFNode>()) pending.push_back(c.get());
+      } else if (v.type() == FieldType::MFNode) {
+        for (const vrml::NodePtr& c : v.get<FieldType::MFNode>())
+          if (c) pending.push_back(c.get());
+      }
+    }
+  }
+  return seen;
+}
+
+}  // namespace
+
+void ExecutionModel::State::unloadReplacedWorld() {
+  std::vector<vrml::NodePtr> old;
+  old.swap(replacedNodes);
+  std::unordered_set<const vrml::Node*> gone = reachableFrom(old);
+  if (scene)
+    for (const vrml::Node* n : reachableFrom(scene->rootNodes)) gone.erase(n);
+  if (gone.empty()) return;
+  const auto unloaded = [&](const NodeState* ns) { return gone.count(ns->node) != 0; };
+  for (NodeState* s : scripts)
+    if (unloaded(s) && s->script && !s->script->stopped()) s->script->shutdown(model.now());
+  runCascade();  // what the shutdown() calls sent
+  for (auto* list :
+       {&timeSensors, &scripts, &mediaNodes, &skins, &followers, &transformSensors, &keySensors,
+        &loadSensors, &particleSystems, &pickSensors, &rigidBodyCollections, &collisionSensors,
+        &newRigidBodyCollections, &espduTransforms, &newLoadSensors, &newScripts, &arrivingScripts})
+    std::erase_if(*list, unloaded);
 }
 
 }  // namespace gs::runtime

@@ -659,6 +659,9 @@ void EsScript::eventsProcessed(double timestamp) {
 
 void EsScript::shutdown(double timestamp) {
   run("shutdown", nullptr, timestamp, "shutdown()", true);
+  // 4.12.3: the last call (the world that held the Script was unloaded): the heap goes, so
+  // any later call does nothing (stopped() stays false: no error or limit stopped it).
+  if (depth_ == 0) destroyHeap();
 }
 
 void EsScript::eventIn(int field, const vrml::FieldValue& value, double timestamp) {

@@ -241,6 +241,23 @@ inline constexpr const char* kSceneIdKey = DUK_HIDDEN_SYMBOL("gsScene");
 /// Global stash entry: the X3D prelude's function that makes an X3DScene object.
 inline constexpr const char* kSceneMakerKey = "gsSceneMaker";
 
+// ---- the X3DScene natives' shared helpers (script_x3d.cpp) ----
+
+/// The argument at `idx` as a string (ECMAScript's ToString).
+std::string x3dString(duk_context* c, duk_idx_t idx);
+/// The scene of the X3DScene object at `idx` (a hook's first argument, the method's
+/// `this`): one createX3DFromString made, else the Script's own (Browser.currentScene: the
+/// world, or the Inline's world the Script is in); null when there is none.
+const vrml::Scene* x3dSceneOf(EsScript& self, duk_context* c, duk_idx_t idx);
+/// x3dSceneOf's scene, to edit (its META statements, EXPORTs, names, ROUTE list).
+vrml::Scene* x3dEditableSceneOf(EsScript& self, duk_context* c, duk_idx_t idx);
+/// Whether the X3DScene object at `idx` is the Script's currentScene and that is an
+/// Inline's world rather than the browser's.
+bool x3dInlineScene(EsScript& self, duk_context* c, duk_idx_t idx);
+/// Puts the natives of X3DScene's named nodes, META statements, EXPORT edits and route
+/// list (script_x3d_scene.cpp) on the object at the top of the stack (__gsX3D).
+void installX3DSceneEdits(duk_context* c);
+
 /// Component `k` of a vector-like script object (SFVec3f, SFVec3d, SFColorRGBA, an array):
 /// its property `name` ("x", "r" ...), else its index k, as a number (NaN when neither is
 /// a number). Leaves the Duktape stack as it was (script_values.cpp).

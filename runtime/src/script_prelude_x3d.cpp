@@ -264,17 +264,41 @@ method(P, 'getNamedNode', function (name) {
   if (node === null) throw new Error("getNamedNode: the scene has no node named '" + name + "'");
   return node;
 });
+// Named nodes (X3DExecutionContext, 19777-1 7.4.11; as X_ITE 15): namedNodes lists the
+// scene's DEF names and those Scripts gave; add throws on a name in use, update gives a
+// node the name (its DEF name), remove takes a name away.
+getter(P, 'namedNodes', function () { return hooks.namedNodes(this); });
+method(P, 'addNamedNode', function (name, node) { hooks.editNamedNode(this, 0, String(name), node); });
+method(P, 'updateNamedNode', function (name, node) { hooks.editNamedNode(this, 1, String(name), node); });
+method(P, 'removeNamedNode', function (name) { hooks.editNamedNode(this, 2, String(name), null); });
 method(P, 'createNode', function (typeName) { return hooks.createNode(String(typeName)); });
 method(P, 'addRoute', function (a, af, b, bf) {
   af = String(af); bf = String(bf);
-  if (!hooks.route(true, a, af, b, bf))
+  if (!hooks.route(this, true, a, af, b, bf))
     throw new Error('addRoute: cannot route ' + af + ' to ' + bf);
   return new X3DRoute(a, af, b, bf);
 });
 method(P, 'deleteRoute', function (a, af, b, bf) {
-  if (a instanceof X3DRoute) return hooks.route(false, a.sourceNode, a.sourceField, a.destinationNode, a.destinationField);
-  return hooks.route(false, a, String(af), b, String(bf));
+  if (a instanceof X3DRoute) return hooks.route(this, false, a.sourceNode, a.sourceField, a.destinationNode, a.destinationField);
+  return hooks.route(this, false, a, String(af), b, String(bf));
 });
+// routes (19777-1 7.4.11): the scene's ROUTEs still in place, its file's and those its
+// addRoute made, in that order.
+getter(P, 'routes', function () {
+  var all = hooks.routes(this), out = [];
+  for (var i = 0; i < all.length; ++i) out.push(new X3DRoute(all[i][0], all[i][1], all[i][2], all[i][3]));
+  return out;
+});
+// META statements (X3DScene, as X_ITE 15): getMetaData(name) gives the values of `name`
+// (an Array of strings) or undefined; setMetaData replaces them (a value or an Array of
+// them), addMetaData adds one, removeMetaData removes the name.
+method(P, 'getMetaData', function (name) { return hooks.metaData(this, 0, String(name), null); });
+method(P, 'setMetaData', function (name, values) {
+  if (!Array.isArray(values)) values = [values];
+  hooks.metaData(this, 1, String(name), values.map(String));
+});
+method(P, 'addMetaData', function (name, value) { hooks.metaData(this, 2, String(name), [String(value)]); });
+method(P, 'removeMetaData', function (name) { hooks.metaData(this, 3, String(name), null); });
 // X3DProtoDeclaration / X3DExternProtoDeclaration (19777-1 7.4.12, 7.4.13): read-only
 // views of the scene's declarations, newInstance() through the scene's createProto.
 function X3DProtoDeclaration(d, scene) {
@@ -315,6 +339,11 @@ method(P, 'getExportedNode', function (name) {
   if (node === null) throw new Error("getExportedNode: the scene EXPORTs no node as '" + name + "'");
   return node;
 });
+// addExportedNode throws on a name in use (create3000's Core/EXPORT.x3d counts on it),
+// updateExportedNode sets it, removeExportedNode takes it away (X3DScene, as X_ITE 15).
+method(P, 'addExportedNode', function (name, node) { hooks.editExportedNode(this, 0, String(name), node); });
+method(P, 'updateExportedNode', function (name, node) { hooks.editExportedNode(this, 1, String(name), node); });
+method(P, 'removeExportedNode', function (name) { hooks.editExportedNode(this, 2, String(name), null); });
 
 G.SFVec2d = SFVec2d; G.SFVec3d = SFVec3d; G.SFVec4f = SFVec4f; G.SFVec4d = SFVec4d;
 G.SFColorRGBA = SFColorRGBA; G.SFMatrix3f = SFMatrix3f; G.SFMatrix3d = SFMatrix3d;

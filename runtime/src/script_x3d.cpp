@@ -282,26 +282,32 @@ vrml::NodePtr x3dFindNamed(const std::vector<vrml::NodePtr>& nodes, const std::s
   return nullptr;
 }
 
+}  // namespace
+
 std::string x3dString(duk_context* c, duk_idx_t idx) {
   duk_size_t len = 0;
   const char* s = duk_to_lstring(c, idx, &len);
   return std::string(s, len);
 }
 
-// The scene of the X3DScene object at `idx` (a hook's first argument, the method's
-// `this`): one createX3DFromString made, else the Script's own (Browser.currentScene: the
-// world, or the Inline's world the Script is in).
 const vrml::Scene* x3dSceneOf(EsScript& self, duk_context* c, duk_idx_t idx) {
   if (const vrml::Scene* made = self.createdSceneAt(c, idx)) return made;
   return self.context().sceneOf(self.node());
 }
 
-// Whether the X3DScene object at `idx` is the Script's currentScene and that is an
-// Inline's world rather than the browser's.
 bool x3dInlineScene(EsScript& self, duk_context* c, duk_idx_t idx) {
   return self.createdSceneAt(c, idx) == nullptr &&
          self.context().sceneOf(self.node()) != self.context().currentScene();
 }
+
+vrml::Scene* x3dEditableSceneOf(EsScript& self, duk_context* c, duk_idx_t idx) {
+  if (vrml::Scene* made = self.createdSceneAt(c, idx)) return made;
+  // The world's Scene and an Inline's world are no const objects (the session and the
+  // Inline loader make them): a Script edits its META statements, EXPORTs, names and ROUTEs.
+  return const_cast<vrml::Scene*>(self.context().sceneOf(self.node()));
+}
+
+namespace {
 
 // sceneInfo(scene): [specificationVersion, encoding, profile, worldURL]. A created
 // scene's worldURL is the world's, against which its URLs were resolved; an Inline's
@@ -338,8 +344,12 @@ duk_ret_t x3dNamedNode(duk_context* c) {
   EsScript& self = EsScript::of(c);
   const vrml::Scene* scene = x3dSceneOf(self, c, 0);
   std::string name = x3dString(c, 1);
+  vrml::NodePtr n;
+  if (scene != nullptr)
+    for (const auto& [given, node] : scene->x3d.namedNodes)
+      if (given == name) n = node;
   X3dNamedWalk walk{self, c, {}};
-  vrml::NodePtr n = scene != nullptr ? x3dFindNamed(scene->rootNodes, name, walk, 0) : nullptr;
+  if (!n && scene != nullptr) n = x3dFindNamed(scene->rootNodes, name, walk, 0);
   self.pushNode(c, n);
   return 1;
 }
@@ -437,18 +447,28 @@ duk_ret_t x3dCreateProto(duk_context* c) {
   return 1;
 }
 
-// route(add, fromNode, fromField, toNode, toField)
+// route(scene, add, fromNode, fromField, toNode, toField): X3DExecutionContext.addRoute /
+// deleteRoute. A route added is also kept in the scene's list (X3DScene.routes, which
+// lists the routes of that list still in place).
 duk_ret_t x3dRoute(duk_context* c) {
   EsScript& self = EsScript::of(c);
-  const bool add = duk_to_boolean(c, 0) != 0;
+  const bool add = duk_to_boolean(c, 1) != 0;
   const char* what = add ? "addRoute" : "deleteRoute";
-  FieldValue from = self.requireValue(c, 1, FieldType::SFNode, what);
-  FieldValue to = self.requireValue(c, 3, FieldType::SFNode, what);
+  FieldValue from = self.requireValue(c, 2, FieldType::SFNode, what);
+  FieldValue to = self.requireValue(c, 4, FieldType::SFNode, what);
   const vrml::NodePtr& a = from.get<FieldType::SFNode>();
   const vrml::NodePtr& b = to.get<FieldType::SFNode>();
   if (!a || !b) GS_DUK_ERROR(c, DUK_ERR_TYPE_ERROR, "%s: a node is NULL", what);
-  std::string af = x3dString(c, 2), bf = x3dString(c, 4);
+  std::string af = x3dString(c, 3), bf = x3dString(c, 5);
   bool ok = add ? self.context().addRoute(a, af, b, bf) : self.context().deleteRoute(a, af, b, bf);
+  vrml::Scene* scene = ok && add ? x3dEditableSceneOf(self, c, 0) : nullptr;
+  if (scene != nullptr) {
+    const auto same = [&](const vrml::Route& r) {
+      return r.fromNode == a && r.fromField == af && r.toNode == b && r.toField == bf;
+    };
+    if (std::none_of(scene->routes.begin(), scene->routes.end(), same))
+      scene->routes.push_back({a, af, b, bf, {}});
+  }
   duk_push_boolean(c, ok);
   return 1;
 }
@@ -553,8 +573,9 @@ duk_ret_t x3dExportedNode(duk_context* c) {
 }
 
 // rootNode(scene, add, node): X3DScene.addRootNode / removeRootNode; whether the roots
-// changed. The world's roots change through the browser (its new nodes are drawn and run);
-// a created scene's list is its own (its nodes already run, as createVrmlFromString's do).
+// changed. The world's roots and an Inline's world's change through the browser (the new
+// nodes are drawn and run); a created scene's list is its own (its nodes already run, as
+// createVrmlFromString's do).
 duk_ret_t x3dRootNode(duk_context* c) {
   EsScript& self = EsScript::of(c);
   const bool add = duk_to_boolean(c, 1) != 0;
@@ -572,10 +593,12 @@ duk_ret_t x3dRootNode(duk_context* c) {
     duk_push_boolean(c, changed);
     return 1;
   }
-  if (x3dInlineScene(self, c, 0))
-    GS_DUK_ERROR(c, DUK_ERR_ERROR,
-                 "%s: the Script's scene is an Inline's world, whose root nodes are its file's",
-                 add ? "addRootNode" : "removeRootNode");
+  if (x3dInlineScene(self, c, 0)) {
+    const vrml::Scene* inlineWorld = self.context().sceneOf(self.node());
+    duk_push_boolean(
+        c, inlineWorld != nullptr && self.context().changeInlineRoots(*inlineWorld, n, add));
+    return 1;
+  }
   duk_push_boolean(c, add ? self.context().addRootNode(n) : self.context().removeRootNode(n));
   return 1;
 }
@@ -636,7 +659,6 @@ void EsScript::installX3DHooks(duk_context* c) {
       {"rootNodes", x3dRootNodes, 1},
       {"namedNode", x3dNamedNode, 2},
       {"createNode", x3dCreateNode, 1},
-      {"route", x3dRoute, 5},
       {"fieldDefinitions", x3dFieldDefinitions, 1},
       {"typeName", x3dTypeName, 1},
       {"nodeTypeConstants", x3dNodeTypeConstants, 0},
@@ -646,6 +668,7 @@ void EsScript::installX3DHooks(duk_context* c) {
       {"protoDeclarations", x3dProtoDeclarations, 1},
       {"rootNode", x3dRootNode, 3},
       {"createProto", x3dCreateProto, 2},
+      {"route", x3dRoute, 6},
   };
   duk_push_global_object(c);
   duk_push_bare_object(c);
@@ -653,6 +676,7 @@ void EsScript::installX3DHooks(duk_context* c) {
     duk_push_c_function(c, e.fn, e.nargs);
     duk_put_prop_string(c, -2, e.name);
   }
+  installX3DSceneEdits(c);
   duk_put_prop_string(c, -2, "__gsX3D");
   duk_pop(c);
 }

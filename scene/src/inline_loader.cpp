@@ -69,7 +69,7 @@ const SceneTraversal::InlineScene* SceneTraversal::inlineScene(const vrml::Node&
       for (const vrml::Diagnostic& d : loaded.diagnostics.items)
         report(d.severity, d.location, d.message);
       if (loaded.url.empty()) loaded.url = url;
-      entry->scene = std::make_shared<const vrml::Scene>(std::move(loaded));
+      entry->scene = std::make_shared<vrml::Scene>(std::move(loaded));  // Scripts may edit it
       inlineScenesLoaded_.push_back(entry->scene);
       inlinesByUrl_[url] = entry;
       result = entry;

@@ -111,8 +111,7 @@ DEF S Script {
 TEST_CASE("X3D Script: a Script in an Inline's world has that world as its currentScene",
           "[script][x3d]") {
   RunningWorld w(x3dWorld("DEF Outer Group { }\nDEF Second Group { }\n"), 0.0, x3dScripts());
-  auto inner =
-      std::make_shared<const vrml::Scene>(vrml::parseVrml(R"(#X3D V4.0 utf8
+  auto inner = std::make_shared<vrml::Scene>(vrml::parseVrml(R"(#X3D V4.0 utf8
 PROFILE Immersive
 DEF Inner Transform { }
 DEF S Script {
@@ -125,19 +124,19 @@ DEF S Script {
              scene.worldURL + ' ' + scene.profile;
       threw = '';
       try { scene.getNamedNode('Outer'); } catch (e) { threw += 'Outer '; }
-      try { scene.addRootNode(scene.createNode('Group')); } catch (e) { threw += 'add'; }
+      try { scene.getImportedNode('Outer'); } catch (e) { threw += 'import'; }
     }
   "
 }
 )",
-                                                          "file:///worlds/sub/inner.x3dv"));
+                                                             "file:///worlds/sub/inner.x3dv"));
   w.model->addInlineScene(inner);  // as session::WorldRuntimes::addInlines does
   INFO(modelDiagnostics(w));
   const vrml::NodePtr& script = inner->rootNodes.at(1);
   REQUIRE(script->field("info") != nullptr);
   CHECK(script->field("info")->get<FieldType::SFString>() ==
         "2 Transform file:///worlds/sub/inner.x3dv Immersive");
-  CHECK(script->field("threw")->get<FieldType::SFString>() == "Outer add");
+  CHECK(script->field("threw")->get<FieldType::SFString>() == "Outer import");
   CHECK(w.scene->rootNodes.size() == 2);  // the browser's world is unchanged
 }
 

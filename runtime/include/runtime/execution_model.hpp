@@ -239,6 +239,8 @@ class ExecutionModel final : public ScriptContext {
                 const std::string& eventIn) override;
   bool deleteRoute(const vrml::NodePtr& from, const std::string& eventOut, const vrml::NodePtr& to,
                    const std::string& eventIn) override;
+  bool hasRoute(const vrml::NodePtr& from, const std::string& eventOut, const vrml::NodePtr& to,
+                const std::string& eventIn) const override;
   std::vector<vrml::NodePtr> createVrmlFromString(const std::string& text) override;
   std::shared_ptr<vrml::Scene> createSceneFromString(const std::string& text,
                                                      const vrml::Node* script) override;
@@ -246,9 +248,11 @@ class ExecutionModel final : public ScriptContext {
   const vrml::Scene* sceneOf(const vrml::Node& script) const override;
   vrml::NodePtr importedNode(const std::string& localName) const override;
   /// The world's Scene changes: it must not be an object defined const (the session makes
-  /// it with std::make_shared<vrml::Scene>); Inline scenes are never changed.
+  /// it with std::make_shared<vrml::Scene>); nor an Inline's world (the Inline loader
+  /// makes each with std::make_shared<vrml::Scene>), whose roots changeInlineRoots changes.
   bool addRootNode(const vrml::NodePtr& node) override;
   bool removeRootNode(const vrml::NodePtr& node) override;
+  bool changeInlineRoots(const vrml::Scene& scene, const vrml::NodePtr& node, bool add) override;
   void loadUrl(const std::vector<std::string>& url,
                const std::vector<std::string>& parameter) override;
   bool fetchText(const std::string& url, std::string& text, std::string& error) override;

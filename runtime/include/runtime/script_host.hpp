@@ -46,6 +46,16 @@ class ScriptContext {
                         const vrml::NodePtr& to, const std::string& eventIn) = 0;
   virtual bool deleteRoute(const vrml::NodePtr& from, const std::string& eventOut,
                            const vrml::NodePtr& to, const std::string& eventIn) = 0;
+  /// Whether the ROUTE from `eventOut` of `from` to `eventIn` of `to` is in place now
+  /// (X3DExecutionContext.routes lists only those): names as addRoute takes them.
+  virtual bool hasRoute(const vrml::NodePtr& from, const std::string& eventOut,
+                        const vrml::NodePtr& to, const std::string& eventIn) const {
+    (void)from;
+    (void)eventOut;
+    (void)to;
+    (void)eventIn;
+    return false;
+  }
   /// Browser.createVrmlFromString: the root nodes of `text` parsed as a VRML97 file
   /// (relative URLs against the world's URL); parse errors become diagnostics. Text that
   /// starts with a "#VRML" or "#X3D" header is parsed as that header says
@@ -92,6 +102,17 @@ class ScriptContext {
   /// place among them is removed); false when it was none.
   virtual bool removeRootNode(const vrml::NodePtr& node) {
     (void)node;
+    return false;
+  }
+  /// X3DScene.addRootNode (`add`) or removeRootNode on an Inline's world, `scene` (one
+  /// sceneOf gave for a Script inside it): as on the world, the node is drawn as the
+  /// Inline's last child, and its sensors, interpolators and Scripts run (their bindable
+  /// nodes are not bound, as an Inline's are not). False when nothing changed, or when
+  /// `scene` is no Inline's world this browser holds.
+  virtual bool changeInlineRoots(const vrml::Scene& scene, const vrml::NodePtr& node, bool add) {
+    (void)scene;
+    (void)node;
+    (void)add;
     return false;
   }
   /// Browser.loadURL(url, parameter) and Anchor activation: the browser follows the

@@ -76,6 +76,11 @@ struct X3dInfo {
   std::vector<X3dImport> imports;
   std::vector<X3dExport> exports;
   std::vector<X3dImportedRoute> importedRoutes;
+  /// Names a Script gave with X3DExecutionContext.addNamedNode / updateNamedNode (ISO/IEC
+  /// 19777-1 clause 7.4.11), in the order given: getNamedNode finds them first, whether
+  /// or not the node is in the scene graph. Not written by the writer (the node's own
+  /// defName is).
+  std::vector<std::pair<std::string, NodePtr>> namedNodes;
 };
 
 /// A world read from one file or URL.

@@ -1,0 +1,180 @@
+// A Script edits its scene's own tables (ISO/IEC 19777-1 clause 7.4.11, X3DExecutionContext
+// and X3DScene, with X_ITE 15's names): named nodes, META statements, EXPORTs, the ROUTE
+// list; Browser.replaceWorld unloads the old world (its Scripts see shutdown(), its
+// TimeSensors stop); a Script in an Inline's world adds root nodes to that world. Small X3D
+// worlds run by the execution model; the Scripts' outputs are read back from their nodes.
+#include "x3d_script_support.hpp"
+
+using namespace gs;
+using namespace gs::test;
+using vrml::FieldType;
+using vrml::FieldValue;
+
+TEST_CASE("X3D Script: named nodes, META statements and EXPORTs of its scene", "[script][x3d]") {
+  RunningWorld w(WorldText{R"(#X3D V4.0 utf8
+PROFILE Interchange
+META "author" "A"
+DEF G Group { children DEF H Transform { } }
+DEF S Script {
+  outputOnly SFString meta
+  outputOnly SFString names
+  outputOnly SFString exports
+  url "ecmascript:
+    function initialize() {
+      var s = Browser.currentScene;
+      var a = s.getMetaData('author');
+      s.setMetaData('k', ['1', '2']);
+      s.addMetaData('k', 3);
+      s.setMetaData('one', 'x');
+      s.removeMetaData('author');
+      meta = a.join() + ' ' + s.getMetaData('k').join() + ' ' + s.getMetaData('one').join() + ' ' +
+             (s.getMetaData('author') === undefined);
+      var made = s.createNode('Shape'), g = s.getNamedNode('G');
+      var keys = Object.keys(s.namedNodes).join();
+      names = keys + ';';
+      try { s.addNamedNode('H', made); } catch (e) { names += 'inUse '; }
+      s.addNamedNode('N', made);
+      s.updateNamedNode('G2', g);
+      names += (s.getNamedNode('N') === made) + ' ' + (s.getNamedNode('G2') === g) + ' ' +
+               g.getNodeName() + ';';
+      s.removeNamedNode('H');
+      try { s.getNamedNode('H'); } catch (e) { names += 'H gone'; }
+      s.addExportedNode('E', g);
+      exports = String(s.getExportedNode('E') === g);
+      try { s.addExportedNode('E', made); } catch (e) { exports += ' inUse'; }
+      s.updateExportedNode('E', made);
+      exports += ' ' + (s.getExportedNode('E') === made);
+      s.removeExportedNode('E');
+      try { s.getExportedNode('E'); } catch (e) { exports += ' gone'; }
+    }
+  "
+}
+)",
+                           "test.x3dv"},
+                 0.0, x3dScripts());
+  INFO(modelDiagnostics(w));
+  CHECK(outOf(w, "meta").get<FieldType::SFString>() == "A 1,2,3 x true");
+  CHECK(outOf(w, "names").get<FieldType::SFString>() == "G,H,S;inUse true true Group;H gone");
+  CHECK(outOf(w, "exports").get<FieldType::SFString>() == "true inUse true gone");
+  // The edits are the world's: its META statements, its nodes' DEF names.
+  std::vector<std::pair<std::string, std::string>> meta = w.scene->x3d.meta;
+  CHECK(meta == std::vector<std::pair<std::string, std::string>>{
+                    {"k", "1"}, {"k", "2"}, {"k", "3"}, {"one", "x"}});
+  CHECK(w.scene->rootNodes.at(0)->defName == "G2");
+  CHECK(w.scene->x3d.exports.empty());
+}
+
+TEST_CASE("X3D Script: routes lists the scene's ROUTEs still in place", "[script][x3d]") {
+  RunningWorld w(x3dWorld(R"(
+DEF T TimeSensor { }
+DEF P PositionInterpolator { key [ 0 1 ] keyValue [ 0 0 0, 1 0 0 ] }
+DEF X Transform { }
+DEF S Script {
+  outputOnly SFString listed
+  url "ecmascript:
+    function text(s) {
+      return s.routes.map(function (r) {
+        return r.sourceNode.getNodeName() + '.' + r.sourceField + '>' +
+               r.destinationNode.getNodeName() + '.' + r.destinationField;
+      }).join(' ');
+    }
+    function initialize() {
+      var s = Browser.currentScene;
+      listed = text(s) + ' | ';
+      var t = s.getNamedNode('T'), p = s.getNamedNode('P'), x = s.getNamedNode('X');
+      var r = s.addRoute(p, 'value_changed', x, 'set_scale');
+      s.deleteRoute(t, 'fraction_changed', p, 'set_fraction');
+      listed += text(s) + ' | ';
+      s.deleteRoute(r);
+      listed += s.routes.length;
+    }
+  "
+}
+ROUTE T.fraction_changed TO P.set_fraction
+ROUTE P.value_changed TO X.set_translation
+)"),
+                 0.0, x3dScripts());
+  INFO(modelDiagnostics(w));
+  CHECK(outOf(w, "listed").get<FieldType::SFString>() ==
+        "TimeSensor.fraction_changed>PositionInterpolator.set_fraction "
+        "PositionInterpolator.value_changed>Transform.set_translation | "
+        "PositionInterpolator.value_changed>Transform.set_translation "
+        "PositionInterpolator.value_changed>Transform.set_scale | 1");
+}
+
+TEST_CASE("Browser.replaceWorld unloads the old world: shutdown(), its TimeSensors stopped",
+          "[script][x3d]") {
+  RunningWorld w(x3dWorld(R"(
+DEF OLDT TimeSensor { loop TRUE cycleInterval 4 }
+DEF OLDP PositionInterpolator { key [ 0 1 ] keyValue [ 0 0 0, 4 0 0 ] }
+DEF OLDX Transform { }
+DEF S Script {
+  inputOnly SFBool go
+  outputOnly SFString down
+  url "ecmascript:
+    function go(v) {
+      Browser.replaceWorld(Browser.createX3DFromString(
+        'DEF NEWT TimeSensor { loop TRUE cycleInterval 4 }\\n' +
+        'DEF NEWP PositionInterpolator { key [ 0 1 ] keyValue [ 0 0 0, 0 4 0 ] }\\n' +
+        'DEF NEWX Transform { }\\n' +
+        'ROUTE NEWT.fraction_changed TO NEWP.set_fraction\\n' +
+        'ROUTE NEWP.value_changed TO NEWX.set_translation\\n'));
+    }
+    function shutdown() { down = 'old world unloaded'; }
+  "
+}
+ROUTE OLDT.fraction_changed TO OLDP.set_fraction
+ROUTE OLDP.value_changed TO OLDX.set_translation
+)"),
+                 0.0, x3dScripts());
+  INFO(modelDiagnostics(w));
+  const vrml::NodePtr oldX = w.scene->rootNodes.at(2);
+  const vrml::NodePtr script = w.scene->rootNodes.at(3);
+  w.model->advanceTo(1.0);
+  CHECK(oldX->field("translation")->get<FieldType::SFVec3f>() == glm::vec3(1, 0, 0));
+  w.send("S", "go", FieldValue::make<FieldType::SFBool>(true));
+  REQUIRE(w.scene->rootNodes.size() == 3);
+  const vrml::NodePtr newX = w.scene->rootNodes.at(2);
+  CHECK(script->field("down")->get<FieldType::SFString>().empty());  // not during its call
+  w.model->advanceTo(2.0);
+  CHECK(script->field("down")->get<FieldType::SFString>() == "old world unloaded");
+  // The old world's TimeSensor stopped with it; the new world's runs.
+  CHECK(oldX->field("translation")->get<FieldType::SFVec3f>() == glm::vec3(1, 0, 0));
+  CHECK(newX->field("translation")->get<FieldType::SFVec3f>() == glm::vec3(0, 2, 0));
+  // The Script gets no more events: it was shut down.
+  REQUIRE(w.model->postEvent(*script, RunningWorld::field(*script, "go"),
+                             FieldValue::make<FieldType::SFBool>(true)));
+  w.model->processEvents();
+  CHECK(w.scene->rootNodes.at(2) == newX);
+}
+
+TEST_CASE("X3D Script: a Script in an Inline's world adds and removes that world's roots",
+          "[script][x3d]") {
+  RunningWorld w(x3dWorld("DEF Outer Group { }\n"), 0.0, x3dScripts());
+  // Made as the Inline loader makes an Inline's world: no const object.
+  auto inner = std::make_shared<vrml::Scene>(vrml::parseVrml(R"(#X3D V4.0 utf8
+DEF Inner Transform { }
+DEF S Script {
+  outputOnly SFString counts
+  url "ecmascript:
+    function initialize() {
+      var scene = Browser.currentScene;
+      var added = scene.createNode('Group');
+      scene.addRootNode(added);
+      counts = scene.rootNodes.length + ' ';
+      scene.removeRootNode(scene.getNamedNode('Inner'));
+      counts += scene.rootNodes.length + ' ' + (scene.rootNodes[1] === added);
+    }
+  "
+}
+)",
+                                                             "file:///worlds/inner.x3dv"));
+  w.model->addInlineScene(inner);
+  INFO(modelDiagnostics(w));
+  const vrml::NodePtr& script = inner->rootNodes.at(0);
+  REQUIRE(script->field("counts") != nullptr);
+  CHECK(script->field("counts")->get<FieldType::SFString>() == "3 2 true");
+  REQUIRE(inner->rootNodes.size() == 2);
+  CHECK(inner->rootNodes[1]->typeName() == "Group");
+  CHECK(w.scene->rootNodes.size() == 1);  // the browser's world is unchanged
+}
