@@ -193,10 +193,16 @@ std::string localPathOfUrl(std::string_view url) {
 }
 
 bool mayReference(std::string_view baseUrl, std::string_view resolvedUrl, std::string& error) {
-  if (!isHttpUrl(baseUrl) || isHttpUrl(resolvedUrl)) return true;
+  // A data: URL's content came from whoever named it, which may be the network (a data:
+  // Inline in a remote world): it takes the network's rules, whoever that was.
+  const bool data = isDataUrl(baseUrl);
+  if ((!isHttpUrl(baseUrl) && !data) || isHttpUrl(resolvedUrl)) return true;
   if (isDataUrl(resolvedUrl)) return true;  // holds its bytes: reads nothing
-  error = std::string(baseUrl) + " may not reference '" + std::string(resolvedUrl) +
-          "': content from the network may only reference http(s) URLs";
+  const std::string base = data && baseUrl.size() > 48 ? std::string(baseUrl.substr(0, 48)) + "..."
+                                                       : std::string(baseUrl);
+  error = base + " may not reference '" + std::string(resolvedUrl) +
+          (data ? "': content of a data: URL, as from the network, may only reference http(s) URLs"
+                : "': content from the network may only reference http(s) URLs");
   return false;
 }
 

@@ -34,4 +34,13 @@ TEST_CASE("network content may reference data: URLs but not local files", "[base
   std::string error;
   CHECK(mayReference("http://example.com/a.gltf", "data:image/png;base64,AAAA", error));
   CHECK_FALSE(mayReference("http://example.com/a.gltf", "file:///etc/passwd", error));
+  // A data: URL's content (which a remote world may have named) takes the network's rules.
+  const std::string world = makeDataUrl("model/vrml", std::string(100, ' '));
+  CHECK(mayReference(world, "http://example.com/t.png", error));
+  CHECK(mayReference(world, "data:image/png;base64,AAAA", error));
+  error.clear();
+  CHECK_FALSE(mayReference(world, "file:///etc/passwd", error));
+  CHECK_FALSE(mayReference(world, "/etc/passwd", error));
+  CHECK(error.find("content of a data: URL, as from the network") != std::string::npos);
+  CHECK(error.size() < 200);  // the data: URL shown by its start
 }

@@ -1,4 +1,5 @@
 // Scene traversal on the CPU: node maths, grouping nodes, LOD, lights, bindables, Inline.
+#include "base/data_url.hpp"
 #include "encodings/parser.hpp"
 #include "render_test_util.hpp"
 #include "scene/picking.hpp"
@@ -373,4 +374,35 @@ TEST_CASE("an Inlined file keeps its own length unit inside a file in kilometres
   CHECK(b.min.x == Approx(-1.0f));
   CHECK(b.max.x == Approx(5.0f));
   CHECK(b.max.y == Approx(1.0f));
+}
+
+TEST_CASE("a data: Inline in a remote world reads no local file either",
+          "[render][traversal][url]") {
+  // A world from the network may name a data: URL (it holds its bytes), but the world in it
+  // is that remote content still: the local file its own Inline names is not read.
+  const auto local = std::filesystem::temp_directory_path() / "gs_data_inline_secret.wrl";
+  std::ofstream(local) << "#VRML V2.0 utf8\nShape { geometry Box { } }\n";
+  const std::string inner = "#VRML V2.0 utf8\nInline { url \"file://" + local.string() + "\" }\n";
+  auto dataInline =
+      makeNode("Inline", {{"url", mfString({gs::base::makeDataUrl("model/vrml", inner)})}});
+  SceneTraversal remote(makeScene({dataInline}, "http://example.com/w.wrl"), options());
+  TraversalFrame frame;
+  remote.collect(Camera{}, frame);
+  CHECK(frame.shapes.empty());
+  bool refused = false;
+  for (const auto& d : remote.diagnostics().items)
+    refused = refused || d.message.find("may only reference http(s) URLs") != std::string::npos;
+  CHECK(refused);
+  // A data: URL carries no trace of who named it: in a local world too, its world names
+  // http(s) and data: URLs only. The data: Inline in it is read.
+  const std::string nested =
+      "#VRML V2.0 utf8\nInline { url \"" +
+      gs::base::makeDataUrl("model/vrml", "#VRML V2.0 utf8\nShape { geometry Box { } }\n") +
+      "\" }\nInline { url \"file://" + local.string() + "\" }\n";
+  auto nestedInline =
+      makeNode("Inline", {{"url", mfString({gs::base::makeDataUrl("model/vrml", nested)})}});
+  SceneTraversal localWorld(makeScene({nestedInline}, "/w/main.wrl"), options());
+  localWorld.collect(Camera{}, frame);
+  CHECK(frame.shapes.size() == 1);
+  std::filesystem::remove(local);
 }

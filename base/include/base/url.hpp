@@ -47,8 +47,12 @@ std::string percentDecode(std::string_view s);
 
 /// Whether content read from `baseUrl` may reference `resolvedUrl`: always for local
 /// content; for content from http(s) only http(s) and data: URLs (docs/progressive-loading.md,
-/// "Safety"). False sets `error` to "<base> may not reference '<url>': content from the
-/// network may only reference http(s) URLs".
+/// "Safety"). Content of a data: URL is treated as content from the network (it carries no
+/// trace of who named it, and a remote world may name one): it too may name only http(s)
+/// and data: URLs. False sets `error` to "<base> may not reference '<url>': content from
+/// the network may only reference http(s) URLs" (a data: base shown by its first 48
+/// characters, "content of a data: URL, as from the network, may only reference http(s)
+/// URLs").
 bool mayReference(std::string_view baseUrl, std::string_view resolvedUrl, std::string& error);
 
 }  // namespace gs::base
