@@ -587,17 +587,24 @@ std::vector<vrml::NodePtr> ExecutionModel::createVrmlFromString(const std::strin
 }
 
 std::shared_ptr<vrml::Scene> ExecutionModel::createSceneFromString(const std::string& text,
-                                                                   const vrml::Node* script) {
+                                                                   const vrml::Node* script,
+                                                                   const std::string& url) {
   std::string bytes = text;
   if (!bytes.starts_with("#VRML") && !bytes.starts_with("#X3D"))
     bytes = "#VRML V2.0 utf8\n" + bytes;
-  // A Script in an Inline's world makes nodes of that world (its URL, its rules).
+  // A Script in an Inline's world makes nodes of that world (its URL, its rules); a text
+  // read from `url` makes nodes of its own scene, which the model keeps as their world.
   const vrml::Scene* own = script != nullptr ? sceneOf(*script) : nullptr;
   if (own == s_->scene.get()) own = nullptr;
-  auto made =
-      std::make_shared<vrml::Scene>(vrml::parseVrml(bytes, own != nullptr ? own->url : worldUrl()));
+  auto made = std::make_shared<vrml::Scene>(vrml::parseVrml(bytes, !url.empty()     ? url
+                                                                   : own != nullptr ? own->url
+                                                                                    : worldUrl()));
   for (vrml::Diagnostic& d : made->diagnostics.items) diagnostics_.items.push_back(std::move(d));
   made->diagnostics.items.clear();
+  if (!url.empty()) {
+    s_->urlScenes.push_back(made);
+    own = made.get();
+  }
   std::size_t roots = 0, hidden = 0, routes = 0;
   const vrml::Scene* outer = s_->reachingInline;
   s_->reachingInline = own;

@@ -388,6 +388,9 @@ struct ExecutionModel::State {
   const vrml::Scene* reachingInline = nullptr;
   std::unordered_map<const vrml::Node*, const vrml::Scene*> scriptScenes;
   std::unordered_set<const vrml::Scene*> inlineSceneSet;
+  /// The scenes of texts Scripts read from a URL (createVrmlFromURL): the world of the
+  /// Scripts among their nodes (scriptScenes), kept as long as the model.
+  std::vector<std::shared_ptr<const vrml::Scene>> urlScenes;
   std::unordered_map<const vrml::Node*, std::unique_ptr<NodeState>> nodes;
   std::vector<NodeState*> timeSensors;
   std::vector<NodeState*> scripts;

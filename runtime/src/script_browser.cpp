@@ -188,7 +188,10 @@ duk_ret_t createVrmlFromURL(duk_context* c) {
       self.warn("Browser.createVrmlFromURL: '" + url + "' is too large for a Script");
       continue;
     }
-    FieldValue nodes = FieldValue::make<FieldType::MFNode>(self.createFromText(text)->rootNodes);
+    // The text's own URL is its base and its rules (a text from the network names no local
+    // file, whatever world asked for it).
+    FieldValue nodes =
+        FieldValue::make<FieldType::MFNode>(self.createFromText(text, resolved)->rootNodes);
     self.sendChangedLiveFields(c, *node);  // what the Script changed in place before, first
     self.context().sendEvent(*node, field, std::move(nodes));
     return 0;

@@ -69,8 +69,10 @@ class EsScript final : public ScriptInstance {
   vrml::Node& node() { return node_; }
   /// ScriptContext::createSceneFromString for this Script (every Browser and X3DScene call
   /// that makes nodes from text goes through it).
-  std::shared_ptr<vrml::Scene> createFromText(const std::string& text) {
-    return ctx_.createSceneFromString(text, &node_);
+  /// `url`: where the text was read from (createVrmlFromURL), or empty.
+  std::shared_ptr<vrml::Scene> createFromText(const std::string& text,
+                                              const std::string& url = {}) {
+    return ctx_.createSceneFromString(text, &node_, url);
   }
   /// `url` as the Script's own file names it: a Script written in an EXTERNPROTO's file
   /// (vrml::Node::urlBase) or in an Inline's world (ScriptContext::sceneOf) resolves it

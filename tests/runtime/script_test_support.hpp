@@ -64,8 +64,8 @@ struct FakeScriptContext : runtime::ScriptContext {
   std::vector<vrml::NodePtr> createVrmlFromString(const std::string& text) override {
     return createSceneFromString(text, nullptr)->rootNodes;
   }
-  std::shared_ptr<vrml::Scene> createSceneFromString(const std::string& text,
-                                                     const vrml::Node*) override {
+  std::shared_ptr<vrml::Scene> createSceneFromString(const std::string& text, const vrml::Node*,
+                                                     const std::string& = {}) override {
     const bool header = text.starts_with("#VRML") || text.starts_with("#X3D");
     auto scene = std::make_shared<vrml::Scene>(
         vrml::parseVrml(header ? text : "#VRML V2.0 utf8\n" + text, "createVrmlFromString"));

@@ -178,3 +178,47 @@ DEF S Script {
   CHECK(inner->rootNodes[1]->typeName() == "Group");
   CHECK(w.scene->rootNodes.size() == 1);  // the browser's world is unchanged
 }
+
+TEST_CASE("createVrmlFromURL: the text read resolves and reads under its own URL's rules",
+          "[script][url]") {
+  // A local world's Script reads a text from the network: the Script in that text names a
+  // local file first, then a file beside the text. The text is remote content, so the
+  // local file is refused (before, the text took the asking world's URL and rules, and
+  // read it) and the relative name resolves beside the text.
+  std::vector<std::string> asked;
+  base::CallbackFetcher fetcher([&](const std::string& url, const std::string&, base::FetchMode) {
+    asked.push_back(url);
+    if (url == "http://example.com/r/made.wrl")
+      return base::fetchReady(
+          "#VRML V2.0 utf8\nDEF M Script { eventOut SFString out "
+          "url [ \"file:///tmp/gs_local_script.js\" \"ok.js\" ] }\n");
+    if (url == "file:///tmp/gs_local_script.js")
+      return base::fetchReady("function initialize() { out = 'a local file'; }");
+    if (url == "http://example.com/r/ok.js")
+      return base::fetchReady("function initialize() { out = 'beside the text'; }");
+    return base::fetchFailed("cannot read " + url);
+  });
+  runtime::ExecutionOptions options = x3dScripts();
+  options.fetcher = &fetcher;
+  RunningWorld w(WorldText{R"(#VRML V2.0 utf8
+DEF HOLDER Group { }
+DEF S Script {
+  field SFNode holder USE HOLDER
+  directOutput TRUE
+  url "javascript:
+    function initialize() {
+      Browser.createVrmlFromURL(new MFString('http://example.com/r/made.wrl'), holder, 'addChildren');
+    }
+  "
+}
+)",
+                           "/home/me/world.wrl"},
+                 0.0, options);
+  w.model->advanceTo(0.5);  // the made Script's files have answered: it starts
+  INFO(modelDiagnostics(w));
+  const vrml::Node& holder = w.node("HOLDER");
+  const auto& children = holder.field("children")->get<FieldType::MFNode>();
+  REQUIRE(children.size() == 1);
+  CHECK(children[0]->field("out")->get<FieldType::SFString>() == "beside the text");
+  CHECK(std::find(asked.begin(), asked.end(), "file:///tmp/gs_local_script.js") == asked.end());
+}

@@ -243,7 +243,8 @@ class ExecutionModel final : public ScriptContext {
                 const std::string& eventIn) const override;
   std::vector<vrml::NodePtr> createVrmlFromString(const std::string& text) override;
   std::shared_ptr<vrml::Scene> createSceneFromString(const std::string& text,
-                                                     const vrml::Node* script) override;
+                                                     const vrml::Node* script,
+                                                     const std::string& url = {}) override;
   const vrml::Scene* currentScene() const override;
   const vrml::Scene* sceneOf(const vrml::Node& script) const override;
   vrml::NodePtr importedNode(const std::string& localName) const override;

@@ -67,9 +67,15 @@ class ScriptContext {
   /// default keeps only the root nodes. Never null. `script`: the Script that asks (null:
   /// none); a Script in an Inline's world (sceneOf) makes nodes that belong to that world:
   /// its URL is their base, and Scripts among them read their files under its rules.
+  /// `url`: where the text was read from (createVrmlFromURL, createX3DFromURL), or empty;
+  /// when given, the nodes belong to the text's own scene: its relative URLs resolve
+  /// against `url`, and what it names is read under `url`'s rules (a text from the network
+  /// names no local file, whatever world asked for it).
   virtual std::shared_ptr<vrml::Scene> createSceneFromString(const std::string& text,
-                                                             const vrml::Node* script) {
+                                                             const vrml::Node* script,
+                                                             const std::string& url = {}) {
     (void)script;
+    (void)url;
     auto scene = std::make_shared<vrml::Scene>();
     scene->rootNodes = createVrmlFromString(text);
     return scene;
