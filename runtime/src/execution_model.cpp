@@ -244,11 +244,11 @@ void ExecutionModel::State::initializeScripts() {
 
 bool ExecutionModel::State::scriptFilesArriving(const vrml::Node& script) {
   // Relative to the file that wrote the Script (an EXTERNPROTO's: vrml::Node::urlBase; an
-  // Inline's world's: scriptScenes), else the world's.
-  const auto inlineScene = scriptScenes.find(&script);
-  const std::string worldUrl = inlineScene != scriptScenes.end() ? inlineScene->second->url
-                               : scene                           ? scene->url
-                                                                 : std::string();
+  // Inline's world's: nodeScenes), else the world's.
+  const auto inlineScene = nodeScenes.find(&script);
+  const std::string worldUrl = inlineScene != nodeScenes.end() ? inlineScene->second->url
+                               : scene                         ? scene->url
+                                                               : std::string();
   const std::string world = script.urlBaseOr(worldUrl);
   const vrml::FieldValue* urls = script.field("url");
   if (urls == nullptr || urls->type() != vrml::FieldType::MFString) return false;
@@ -618,8 +618,8 @@ const vrml::Scene* ExecutionModel::currentScene() const {
 }
 
 const vrml::Scene* ExecutionModel::sceneOf(const vrml::Node& script) const {
-  const auto it = s_->scriptScenes.find(&script);
-  return it != s_->scriptScenes.end() ? it->second : s_->scene.get();
+  const auto it = s_->nodeScenes.find(&script);
+  return it != s_->nodeScenes.end() ? it->second : s_->scene.get();
 }
 
 void ExecutionModel::setImportedNode(const std::string& localName, vrml::NodePtr node) {

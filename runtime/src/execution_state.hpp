@@ -386,10 +386,10 @@ struct ExecutionModel::State {
   /// Inline's world came from (ScriptContext::sceneOf; the InlineCursor keeps the scene
   /// alive).
   const vrml::Scene* reachingInline = nullptr;
-  std::unordered_map<const vrml::Node*, const vrml::Scene*> scriptScenes;
+  std::unordered_map<const vrml::Node*, const vrml::Scene*> nodeScenes;
   std::unordered_set<const vrml::Scene*> inlineSceneSet;
   /// The scenes of texts Scripts read from a URL (createVrmlFromURL): the world of the
-  /// Scripts among their nodes (scriptScenes), kept as long as the model.
+  /// Scripts among their nodes (nodeScenes), kept as long as the model.
   std::vector<std::shared_ptr<const vrml::Scene>> urlScenes;
   std::unordered_map<const vrml::Node*, std::unique_ptr<NodeState>> nodes;
   std::vector<NodeState*> timeSensors;
@@ -588,8 +588,13 @@ struct ExecutionModel::State {
 
   // ---- pointing-device sensors and Anchors (pointer_sensors.cpp) ----
   /// A url of Anchor or Browser.loadURL: `#Name` binds the Viewpoint DEFed Name (4.6.7,
-  /// 6.2); anything else goes to ExecutionOptions::loadUrl.
-  void requestUrl(const std::vector<std::string>& url, const std::vector<std::string>& parameter);
+  /// 6.2); anything else goes to ExecutionOptions::loadUrl. `anchor`: the Anchor asking,
+  /// whose URLs, when it is written in an Inline's world or an EXTERNPROTO's file, are
+  /// resolved against that file and kept only where its rules let it name them
+  /// (base::mayReference: a remote world's Anchor names no local file), each refused one
+  /// with a warning.
+  void requestUrl(const std::vector<std::string>& url, const std::vector<std::string>& parameter,
+                  const vrml::Node* anchor = nullptr);
 };
 
 }  // namespace gs::runtime

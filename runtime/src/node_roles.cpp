@@ -99,9 +99,12 @@ TimeFields timeFieldsOf(const vrml::Node& n, const TimeSensorFields& f) {
 void ExecutionModel::State::classify(NodeState& ns) {
   const vrml::NodeType& type = ns.node->type();
   auto idx = [&](std::string_view name) { return type.findExact(name); };
+  // The world a Script or an Anchor of an Inline's world came from: its URLs are that
+  // world's (EsScript::resolveOwnUrl, requestUrl).
+  if (reachingInline != nullptr && (type.script || ns.node->typeId() == vrml::NodeTypeId::Anchor))
+    nodeScenes[ns.node] = reachingInline;
   if (type.script) {
     ns.role = NodeRole::script;
-    if (reachingInline != nullptr) scriptScenes[ns.node] = reachingInline;
     if (model.options_.scripts && scriptFilesArriving(*ns.node)) {
       arrivingScripts.push_back(&ns);  // made when its file arrives (startArrivedScripts)
       return;

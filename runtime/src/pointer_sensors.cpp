@@ -8,6 +8,7 @@
 // (other sensors get nothing), the drag sensors following it on their virtual geometry
 // (a plane, a sphere, a cylinder or disk fixed at activation) even off the real geometry.
 // Every pointer() call is one timestamp at the clock's now().
+#include "base/url.hpp"
 #include "execution_state.hpp"
 #include "vrml/geo_nodes.hpp"
 
@@ -359,7 +360,7 @@ struct PointerRun {
         // 6.2: a click (press and release over its children) follows the link.
         if (event.hit && influences(&n, *event.hit))
           s.requestUrl(read<FieldType::MFString>(n, "url", std::vector<std::string>{}),
-                       read<FieldType::MFString>(n, "parameter", std::vector<std::string>{}));
+                       read<FieldType::MFString>(n, "parameter", std::vector<std::string>{}), &n);
         break;
       case SensorKind::plane:
       case SensorKind::sphere:
@@ -472,8 +473,26 @@ bool ExecutionModel::wantsPointer() const {
 }
 
 void ExecutionModel::State::requestUrl(const std::vector<std::string>& url,
-                                       const std::vector<std::string>& parameter) {
+                                       const std::vector<std::string>& parameter,
+                                       const vrml::Node* anchor) {
   if (url.empty()) return;
+  const auto from = anchor != nullptr ? nodeScenes.find(anchor) : nodeScenes.end();
+  const std::string inlineUrl = from != nodeScenes.end() ? from->second->url : std::string();
+  const std::string& base = anchor != nullptr ? anchor->urlBaseOr(inlineUrl) : inlineUrl;
+  if (!base.empty() && !url.front().starts_with("#")) {
+    // Written in another file than the world's: its URLs are that file's, under its rules.
+    std::vector<std::string> own;
+    for (const std::string& u : url) {
+      std::string error;
+      const std::string resolved = base::resolveUrl(base, u);
+      if (base::mayReference(base, resolved, error))
+        own.push_back(resolved);
+      else
+        model.diagnostics_.warning(anchor->location, "link not followed: " + error);
+    }
+    if (!own.empty() && model.options_.loadUrl) model.options_.loadUrl(own, parameter);
+    return;
+  }
   if (url.front().starts_with("#")) {
     // 6.2: "#Name" binds the Viewpoint DEFed Name of this world (file order first).
     const std::string name = url.front().substr(1);

@@ -271,7 +271,17 @@ duk_ret_t loadURL(duk_context* c) {
   std::vector<std::string> url = stringsArg(self, c, 0, "Browser.loadURL url");
   std::vector<std::string> parameter;
   if (!duk_is_undefined(c, 1)) parameter = stringsArg(self, c, 1, "Browser.loadURL parameter");
-  self.context().loadUrl(url, parameter);
+  // A Script written in an Inline's world or an EXTERNPROTO's file names that file's URLs,
+  // under its rules (a remote world's Script links to no local file).
+  std::vector<std::string> own;
+  for (const std::string& u : url) {
+    std::string resolved, error;
+    if (u.starts_with("#") || self.resolveOwnUrl(u, resolved, error))
+      own.push_back(u.starts_with("#") ? u : resolved);
+    else
+      self.warn("Browser.loadURL: link not followed: " + error);
+  }
+  if (!own.empty()) self.context().loadUrl(own, parameter);
   return 0;
 }
 

@@ -312,3 +312,34 @@ TEST_CASE("pointer: worlds without sensors need no picking", "[runtime][pointer]
   RunningWorld anchor("Anchor { url \"x.wrl\" }");
   CHECK(anchor.model->wantsPointer());
 }
+
+TEST_CASE("pointer: an Anchor in an Inline's world links under that world's URL and rules",
+          "[runtime][pointer][anchor][url]") {
+  // A remote Inline in a local world: its Anchor's relative URL is the Inline's file's
+  // neighbour, and its local file is refused (before, both took the local world's URL and
+  // rules).
+  std::vector<Strings> requests;
+  gs::runtime::ExecutionOptions options;
+  options.loadUrl = [&](const Strings& url, const Strings&) { requests.push_back(url); };
+  RunningWorld w("Group { }\n", 0.0, options);
+  auto inner = std::make_shared<gs::vrml::Scene>(gs::vrml::parseVrml(
+      "#VRML V2.0 utf8\nDEF A Anchor { url [ \"file:///home/me/secret.wrl\" \"next.wrl\" ] "
+      "children DEF SH Shape { geometry Box { } } }\n",
+      "http://example.com/w/inner.wrl"));
+  w.model->addInlineScene(inner);
+  gs::vrml::Node& anchor = *inner->rootNodes.at(0);
+  gs::vrml::Node& shape = *anchor.field("children")->get<FieldType::MFNode>().at(0);
+  PickResult hit;
+  hit.path.push_back({nullptr, glm::mat4(1.0f), &inner->rootNodes});
+  hit.path.push_back({&anchor, glm::mat4(1.0f), nullptr});
+  hit.path.push_back({&shape, glm::mat4(1.0f), nullptr});
+  hit.point = {0, 0, 1};
+  hit.normal = {0, 0, 1};
+  w.model->pointer(along(0, 0, true, hit));
+  w.model->pointer(along(0, 0, false, hit));
+  CHECK(requests == std::vector<Strings>{{"http://example.com/w/next.wrl"}});
+  bool refused = false;
+  for (const auto& d : w.model->diagnostics().items)
+    refused = refused || d.message.find("may only reference http(s) URLs") != std::string::npos;
+  CHECK(refused);
+}

@@ -222,3 +222,27 @@ DEF S Script {
   CHECK(children[0]->field("out")->get<FieldType::SFString>() == "beside the text");
   CHECK(std::find(asked.begin(), asked.end(), "file:///tmp/gs_local_script.js") == asked.end());
 }
+
+TEST_CASE("Browser.loadURL from a Script in an Inline's world links under that world's rules",
+          "[script][url]") {
+  FakeScriptContext ctx;
+  vrml::Scene world = vrml::parseVrml("#VRML V2.0 utf8\nGroup { }\n", "/home/me/main.wrl");
+  vrml::Scene inner = vrml::parseVrml(R"(#VRML V2.0 utf8
+DEF S Script {
+  url "javascript:
+    function initialize() { Browser.loadURL(new MFString('file:///home/me/x.wrl', 'next.wrl', '#V')); }
+  "
+}
+)",
+                                      "http://example.com/w/inner.wrl");
+  vrml::NodePtr script = findScript(inner.rootNodes);
+  REQUIRE(script);
+  ctx.world = &world;
+  ctx.own = &inner;
+  auto instance = runtime::ecmascriptFactory()(*script, ctx, relaxedLimits());
+  REQUIRE(instance);
+  instance->initialize(0.0);
+  CHECK(ctx.loaded ==
+        std::vector<std::vector<std::string>>{{"http://example.com/w/next.wrl", "#V"}});
+  CHECK_THAT(ctx.diagnosticText(), Catch::Contains("may only reference http(s) URLs"));
+}
