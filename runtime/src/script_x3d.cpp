@@ -466,7 +466,9 @@ duk_ret_t x3dRoute(duk_context* c) {
     const auto same = [&](const vrml::Route& r) {
       return r.fromNode == a && r.fromField == af && r.toNode == b && r.toField == bf;
     };
-    if (std::none_of(scene->routes.begin(), scene->routes.end(), same))
+    // The list is bounded apart from the Script's heap (the route itself is made anyway).
+    if (scene->routes.size() < (std::size_t{1} << 20) &&
+        std::none_of(scene->routes.begin(), scene->routes.end(), same))
       scene->routes.push_back({a, af, b, bf, {}});
   }
   duk_push_boolean(c, ok);

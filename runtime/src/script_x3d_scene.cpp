@@ -17,6 +17,24 @@ using vrml::FieldValue;
 
 namespace {
 
+// A scene's tables live outside the Script's heap, so what a Script puts in them is bounded
+// apart: at most kMaxTableEntries entries each, names of at most kMaxNameBytes, and META
+// values of at most a quarter of the heap's limit in all (a hostile Script adding values
+// in a loop gets a RangeError).
+constexpr std::size_t kMaxTableEntries = 16384;
+constexpr std::size_t kMaxNameBytes = 1024;
+
+// A RangeError when `entries` more would take a table of `size` past kMaxTableEntries.
+void x3dCheckTableRoom(duk_context* c, std::size_t size, std::size_t entries, const char* what,
+                       const std::string& name) {
+  if (name.size() > kMaxNameBytes)
+    GS_DUK_ERROR(c, DUK_ERR_RANGE_ERROR, "%s: the name is longer than %lu bytes", what,
+                 static_cast<unsigned long>(kMaxNameBytes));
+  if (size + entries > kMaxTableEntries)
+    GS_DUK_ERROR(c, DUK_ERR_RANGE_ERROR, "%s: the scene holds %lu entries already (the limit)",
+                 what, static_cast<unsigned long>(kMaxTableEntries));
+}
+
 // The operations of the edit hooks (their second argument).
 enum X3dEdit : int { kEditAdd = 0, kEditUpdate = 1, kEditRemove = 2 };
 // metaData's operations.
@@ -121,7 +139,12 @@ duk_ret_t x3dEditNamedNode(duk_context* c) {
   vrml::NodePtr node = x3dNodeArg(self, c, 3, what);
   if (op == kEditAdd && x3dNameInUse(self, c, scene, name))
     GS_DUK_ERROR(c, DUK_ERR_ERROR, "%s: the name '%s' is in use", what, name.substr(0, 64).c_str());
-  std::erase_if(table, [&](const auto& e) { return e.first == name || e.second == node; });
+  const auto replaced = [&](const auto& e) { return e.first == name || e.second == node; };
+  x3dCheckTableRoom(
+      c,
+      table.size() - static_cast<std::size_t>(std::count_if(table.begin(), table.end(), replaced)),
+      1, what, name);
+  std::erase_if(table, replaced);
   node->defName = name;
   table.emplace_back(name, std::move(node));
   return 0;
@@ -161,7 +184,22 @@ duk_ret_t x3dMetaData(duk_context* c) {
   FieldValue values = self.requireValue(c, 3, FieldType::MFString, what);
   const auto& list = values.get<FieldType::MFString>();
   if (list.empty()) GS_DUK_ERROR(c, DUK_ERR_ERROR, "%s: no value given", what);
-  if (op == kMetaSet) std::erase_if(meta, [&](const auto& m) { return m.first == name; });
+  // What stays (setMetaData replaces the name's values), then what comes: checked first,
+  // so a refused call changes nothing.
+  const auto replaced = [&](const auto& m) { return op == kMetaSet && m.first == name; };
+  std::size_t kept = 0, bytes = 0;
+  for (const auto& m : meta)
+    if (!replaced(m)) {
+      ++kept;
+      bytes += m.first.size() + m.second.size();
+    }
+  x3dCheckTableRoom(c, kept, list.size(), what, name);
+  for (const std::string& v : list) bytes += name.size() + v.size();
+  if (bytes > self.limits().heapBytes / 4)
+    GS_DUK_ERROR(c, DUK_ERR_RANGE_ERROR,
+                 "%s: the scene's META statements would hold more than %lu bytes", what,
+                 static_cast<unsigned long>(self.limits().heapBytes / 4));
+  std::erase_if(meta, replaced);
   for (const std::string& v : list) meta.emplace_back(name, v);
   return 0;
 }
@@ -187,6 +225,10 @@ duk_ret_t x3dEditExportedNode(duk_context* c) {
   if (op == kEditAdd && std::any_of(exports.begin(), exports.end(), named))
     GS_DUK_ERROR(c, DUK_ERR_ERROR, "%s: the exported name '%s' is in use", what,
                  name.substr(0, 64).c_str());
+  x3dCheckTableRoom(c,
+                    exports.size() - static_cast<std::size_t>(
+                                         std::count_if(exports.begin(), exports.end(), named)),
+                    1, what, name);
   std::erase_if(exports, named);
   exports.push_back({node->defName, name, std::move(node), {}});
   return 0;

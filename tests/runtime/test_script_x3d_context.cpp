@@ -246,3 +246,33 @@ DEF S Script {
         std::vector<std::vector<std::string>>{{"http://example.com/w/next.wrl", "#V"}});
   CHECK_THAT(ctx.diagnosticText(), Catch::Contains("may only reference http(s) URLs"));
 }
+
+TEST_CASE("hostile Script: a scene's META statements and names are bounded outside its heap",
+          "[script][x3d][hostile]") {
+  // The tables live outside the Script's heap: values added in a loop end in a RangeError
+  // at a quarter of the heap's limit, not in the browser's memory.
+  runtime::ExecutionOptions options = x3dScripts();
+  options.scriptLimits.heapBytes = 8u * 1024u * 1024u;
+  RunningWorld w(x3dWorld(R"(
+DEF S Script {
+  outputOnly SFString meta
+  outputOnly SFString names
+  url "ecmascript:
+    function initialize() {
+      var s = Browser.currentScene, big = new Array(65537).join('x'), i = 0;
+      try { for (;;) { s.addMetaData('k', big); ++i; } } catch (e) { meta = e.name + ' ' + i; }
+      names = '';
+      var node = s.createNode('Group'), long = new Array(1026).join('n');
+      try { s.addNamedNode(long, node); } catch (e) { names += e.name + ' '; }
+      try { s.addExportedNode(long, node); } catch (e) { names += e.name; }
+    }
+  "
+}
+)"),
+                 0.0, options);
+  INFO(modelDiagnostics(w));
+  // 2 MiB of values: 31 of 64 KiB (each with its name).
+  CHECK(outOf(w, "meta").get<FieldType::SFString>() == "RangeError 31");
+  CHECK(outOf(w, "names").get<FieldType::SFString>() == "RangeError RangeError");
+  CHECK(w.scene->x3d.namedNodes.empty());
+}
