@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <unordered_set>
 
 namespace gs::runtime {
 
@@ -74,9 +75,10 @@ NodeState& ExecutionModel::State::reach(const vrml::NodePtr& node, bool bindable
 }
 
 void ExecutionModel::State::takeInlineScene(InlineCursor& c) {
+  const vrml::Scene* outer = reachingInline;  // a Script's code may reach here from a take
   reachingInline = c.scene.get();
   takeScene(*c.scene, c.roots, c.hidden, c.routes, false);
-  reachingInline = nullptr;
+  reachingInline = outer;
 }
 
 bool ExecutionModel::State::connect(vrml::Node& from, int fromField, vrml::Node& to, int toField) {
@@ -90,10 +92,14 @@ bool ExecutionModel::State::connect(vrml::Node& from, int fromField, vrml::Node&
 
 void ExecutionModel::State::takeScene(const vrml::Scene& s, std::size_t& roots, std::size_t& hidden,
                                       std::size_t& routes, bool bindables) {
+  // A Script's code runs while its node is reached, and may add a root to this very scene
+  // (addRootNode, changeInlineRoots): the lists may grow under these loops, so each node is
+  // copied before it is reached, and a root added meanwhile is reached by this loop.
+  taking.push_back(&s);
   for (; roots < s.rootNodes.size(); ++roots)
-    if (s.rootNodes[roots]) reach(s.rootNodes[roots], bindables);
+    if (const vrml::NodePtr n = s.rootNodes[roots]) reach(n, bindables);
   for (; hidden < s.hiddenNodes.size(); ++hidden)
-    if (s.hiddenNodes[hidden]) reach(s.hiddenNodes[hidden], false);
+    if (const vrml::NodePtr n = s.hiddenNodes[hidden]) reach(n, false);
   for (; routes < s.routes.size(); ++routes) {
     const vrml::Route& r = s.routes[routes];
     if (!r.fromNode || !r.toNode) continue;
@@ -102,6 +108,7 @@ void ExecutionModel::State::takeScene(const vrml::Scene& s, std::size_t& roots, 
     if (from < 0 || to < 0) continue;  // the parser reported it
     connect(*r.fromNode, from, *r.toNode, to);
   }
+  taking.pop_back();
 }
 
 // ---- events ----
@@ -345,12 +352,12 @@ void ExecutionModel::addInlineScene(std::shared_ptr<const vrml::Scene> scene) {
 
 void ExecutionModel::advanceTo(double time) {
   if (time < now()) return;
-  if (!s_->replacedNodes.empty()) s_->unloadReplacedWorld();  // Browser.replaceWorld's
   clock_.set(time);
   ++s_->stamp;
   ++stats_.cascades;
   s_->eventsThisCascade = 0;
   s_->cascadeOverflow = false;
+  if (!s_->replacedNodes.empty()) s_->unloadReplacedWorld();  // Browser.replaceWorld's
   const std::vector<NodeState*>& sensors = s_->timeSensors;
   for (std::size_t i = 0; i < sensors.size(); ++i) {
     // As in runCascade: fetch the sensors' records, then their nodes, the ports
@@ -389,6 +396,7 @@ void ExecutionModel::advanceTo(double time) {
     s_->runCascade();
   }
   s_->startArrivedScripts();  // a Script whose file arrived starts now (initialize())
+  if (!s_->newScripts.empty()) s_->initializeScripts();  // made by Scripts this frame
   s_->evaluateSkins();
 }
 
@@ -582,6 +590,38 @@ bool ExecutionModel::hasRoute(const vrml::NodePtr& from, const std::string& even
   return false;
 }
 
+namespace {
+
+/// Gives every node of `scene` without a base of its own `base` (vrml::Node::urlBase, as
+/// an EXTERNPROTO's file gives its nodes): nodes made from a text that is not the world's
+/// file keep that text's URLs and rules wherever a Script puts them (the traversal resolves
+/// an Inline, texture or sound by them). Without recursion: the text may nest deeply.
+void markMadeNodes(const vrml::Scene& scene, const std::string& base) {
+  const auto shared = std::make_shared<const std::string>(base);
+  std::unordered_set<const vrml::Node*> seen;
+  std::vector<vrml::Node*> pending;
+  for (const auto* list : {&scene.rootNodes, &scene.hiddenNodes})
+    for (const vrml::NodePtr& n : *list)
+      if (n) pending.push_back(n.get());
+  while (!pending.empty()) {
+    vrml::Node* n = pending.back();
+    pending.pop_back();
+    if (!seen.insert(n).second) continue;
+    if (!n->urlBase) n->urlBase = shared;  // else from a file nested deeper: kept
+    for (std::size_t i = 0; i < n->fieldCount(); ++i) {
+      const vrml::FieldValue& v = n->fieldAt(i);
+      if (v.type() == FieldType::SFNode) {
+        if (const vrml::NodePtr& c = v.get<FieldType::SFNode>()) pending.push_back(c.get());
+      } else if (v.type() == FieldType::MFNode) {
+        for (const vrml::NodePtr& c : v.get<FieldType::MFNode>())
+          if (c) pending.push_back(c.get());
+      }
+    }
+  }
+}
+
+}  // namespace
+
 std::vector<vrml::NodePtr> ExecutionModel::createVrmlFromString(const std::string& text) {
   return createSceneFromString(text, nullptr)->rootNodes;
 }
@@ -596,11 +636,13 @@ std::shared_ptr<vrml::Scene> ExecutionModel::createSceneFromString(const std::st
   // read from `url` makes nodes of its own scene, which the model keeps as their world.
   const vrml::Scene* own = script != nullptr ? sceneOf(*script) : nullptr;
   if (own == s_->scene.get()) own = nullptr;
-  auto made = std::make_shared<vrml::Scene>(vrml::parseVrml(bytes, !url.empty()     ? url
-                                                                   : own != nullptr ? own->url
-                                                                                    : worldUrl()));
+  const std::string textUrl = !url.empty()     ? base::resolveUrl(worldUrl(), url)
+                              : own != nullptr ? own->url
+                                               : worldUrl();
+  auto made = std::make_shared<vrml::Scene>(vrml::parseVrml(bytes, textUrl));
   for (vrml::Diagnostic& d : made->diagnostics.items) diagnostics_.items.push_back(std::move(d));
   made->diagnostics.items.clear();
+  if (!url.empty() || own != nullptr) markMadeNodes(*made, textUrl);
   if (!url.empty()) {
     s_->urlScenes.push_back(made);
     own = made.get();
@@ -632,6 +674,7 @@ bool ExecutionModel::addRootNode(const vrml::NodePtr& node) {
   auto& roots = const_cast<vrml::Scene&>(*s_->scene).rootNodes;
   if (std::find(roots.begin(), roots.end(), node) != roots.end()) return false;
   roots.push_back(node);
+  if (s_->isTaking(*s_->scene)) return true;  // the take under way reaches it
   s_->reach(node, true);
   s_->rootsSeen = std::max(s_->rootsSeen, roots.size());
   s_->startNewLoadSensors();
@@ -642,7 +685,7 @@ bool ExecutionModel::removeRootNode(const vrml::NodePtr& node) {
   if (!node || !s_->scene) return false;
   auto& roots = const_cast<vrml::Scene&>(*s_->scene).rootNodes;
   const auto it = std::find(roots.begin(), roots.end(), node);
-  if (it == roots.end()) return false;
+  if (it == roots.end() || s_->isTaking(*s_->scene)) return false;  // not while it is read
   if (static_cast<std::size_t>(it - roots.begin()) < s_->rootsSeen) --s_->rootsSeen;
   roots.erase(it);
   return true;
@@ -655,6 +698,10 @@ bool ExecutionModel::changeInlineRoots(const vrml::Scene& scene, const vrml::Nod
   auto& roots = const_cast<vrml::Scene&>(scene).rootNodes;
   const auto it = std::find(roots.begin(), roots.end(), node);
   if (add == (it != roots.end())) return false;
+  if (s_->isTaking(scene)) {  // a Script's code while the world is read: that take reaches it
+    if (add) roots.push_back(node);
+    return add;
+  }
   for (State::InlineCursor& c : s_->inlineScenes) {
     if (c.scene.get() != &scene) continue;
     if (!add) {

@@ -382,12 +382,18 @@ struct ExecutionModel::State {
   };
   std::vector<InlineCursor> inlineScenes;
   /// The Inline's world whose nodes takeScene is reaching (null for the main world; for
-  /// createSceneFromString's, the asking Script's world), and the world each Script of an
-  /// Inline's world came from (ScriptContext::sceneOf; the InlineCursor keeps the scene
-  /// alive).
+  /// createSceneFromString's, the asking Script's world or the text's own scene), and the
+  /// world each Script and Anchor reached so came from (ScriptContext::sceneOf, requestUrl;
+  /// an InlineCursor or urlScenes keeps the scene alive).
   const vrml::Scene* reachingInline = nullptr;
   std::unordered_map<const vrml::Node*, const vrml::Scene*> nodeScenes;
   std::unordered_set<const vrml::Scene*> inlineSceneSet;
+  /// The scenes takeScene is reading now (innermost last): a root a Script adds to one of
+  /// them meanwhile is only appended (the take reaches it), and none is removed.
+  std::vector<const vrml::Scene*> taking;
+  bool isTaking(const vrml::Scene& s) const {
+    return std::find(taking.begin(), taking.end(), &s) != taking.end();
+  }
   /// The scenes of texts Scripts read from a URL (createVrmlFromURL): the world of the
   /// Scripts among their nodes (nodeScenes), kept as long as the model.
   std::vector<std::shared_ptr<const vrml::Scene>> urlScenes;

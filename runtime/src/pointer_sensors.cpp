@@ -483,6 +483,10 @@ void ExecutionModel::State::requestUrl(const std::vector<std::string>& url,
     // Written in another file than the world's: its URLs are that file's, under its rules.
     std::vector<std::string> own;
     for (const std::string& u : url) {
+      if (u.starts_with("#")) {  // a Viewpoint of the world: as written
+        own.push_back(u);
+        continue;
+      }
       std::string error;
       const std::string resolved = base::resolveUrl(base, u);
       if (base::mayReference(base, resolved, error))

@@ -448,8 +448,8 @@ duk_ret_t x3dCreateProto(duk_context* c) {
 }
 
 // route(scene, add, fromNode, fromField, toNode, toField): X3DExecutionContext.addRoute /
-// deleteRoute. A route added is also kept in the scene's list (X3DScene.routes, which
-// lists the routes of that list still in place).
+// deleteRoute. A route added is also kept in the scene's list of them (X3dInfo::scriptRoutes,
+// which X3DScene.routes lists while the route is in place).
 duk_ret_t x3dRoute(duk_context* c) {
   EsScript& self = EsScript::of(c);
   const bool add = duk_to_boolean(c, 1) != 0;
@@ -467,9 +467,9 @@ duk_ret_t x3dRoute(duk_context* c) {
       return r.fromNode == a && r.fromField == af && r.toNode == b && r.toField == bf;
     };
     // The list is bounded apart from the Script's heap (the route itself is made anyway).
-    if (scene->routes.size() < (std::size_t{1} << 20) &&
-        std::none_of(scene->routes.begin(), scene->routes.end(), same))
-      scene->routes.push_back({a, af, b, bf, {}});
+    auto& made = scene->x3d.scriptRoutes;
+    if (made.size() < (std::size_t{1} << 16) && std::none_of(made.begin(), made.end(), same))
+      made.push_back({a, af, b, bf, {}});
   }
   duk_push_boolean(c, ok);
   return 1;

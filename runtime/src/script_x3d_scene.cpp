@@ -8,6 +8,8 @@
 #include "vrml/scene.hpp"
 
 #include <algorithm>
+#include <cstdint>
+#include <string>
 #include <unordered_set>
 
 namespace gs::runtime::es {
@@ -234,35 +236,38 @@ duk_ret_t x3dEditExportedNode(duk_context* c) {
   return 0;
 }
 
-// routes(scene): [[fromNode, fromField, toNode, toField], ...] of the scene's ROUTE list
-// (its file's, then those its addRoute made) that are still in place, each once.
+// routes(scene): [[fromNode, fromField, toNode, toField], ...] of the scene's ROUTEs (its
+// file's, then those its addRoute made) that are still in place, each once; the walk
+// checks the Script's deadline.
 duk_ret_t x3dRoutes(duk_context* c) {
   EsScript& self = EsScript::of(c);
   const vrml::Scene* scene = x3dSceneOf(self, c, 0);
   duk_push_array(c);
   if (scene == nullptr) return 1;
   duk_uarridx_t k = 0;
-  std::vector<const vrml::Route*> listed;
-  for (const vrml::Route& r : scene->routes) {
-    if (!r.fromNode || !r.toNode) continue;
-    const auto same = [&](const vrml::Route* o) {
-      return o->fromNode == r.fromNode && o->fromField == r.fromField && o->toNode == r.toNode &&
-             o->toField == r.toField;
-    };
-    if (std::any_of(listed.begin(), listed.end(), same)) continue;
-    if (!self.context().hasRoute(r.fromNode, r.fromField, r.toNode, r.toField)) continue;
-    listed.push_back(&r);
-    duk_push_array(c);
-    self.pushNode(c, r.fromNode);
-    duk_put_prop_index(c, -2, 0);
-    duk_push_lstring(c, r.fromField.data(), r.fromField.size());
-    duk_put_prop_index(c, -2, 1);
-    self.pushNode(c, r.toNode);
-    duk_put_prop_index(c, -2, 2);
-    duk_push_lstring(c, r.toField.data(), r.toField.size());
-    duk_put_prop_index(c, -2, 3);
-    duk_put_prop_index(c, -2, k++);
-  }
+  std::unordered_set<std::string> listed;
+  std::size_t walked = 0;
+  for (const auto* list : {&scene->routes, &scene->x3d.scriptRoutes})
+    for (const vrml::Route& r : *list) {
+      if ((++walked & 1023u) == 0) self.checkDeadline(c);
+      if (!r.fromNode || !r.toNode) continue;
+      std::string key =
+          std::to_string(reinterpret_cast<std::uintptr_t>(r.fromNode.get())) + ' ' + r.fromField +
+          ' ' + std::to_string(reinterpret_cast<std::uintptr_t>(r.toNode.get())) + ' ' + r.toField;
+      if (listed.count(key) != 0) continue;
+      if (!self.context().hasRoute(r.fromNode, r.fromField, r.toNode, r.toField)) continue;
+      listed.insert(std::move(key));
+      duk_push_array(c);
+      self.pushNode(c, r.fromNode);
+      duk_put_prop_index(c, -2, 0);
+      duk_push_lstring(c, r.fromField.data(), r.fromField.size());
+      duk_put_prop_index(c, -2, 1);
+      self.pushNode(c, r.toNode);
+      duk_put_prop_index(c, -2, 2);
+      duk_push_lstring(c, r.toField.data(), r.toField.size());
+      duk_put_prop_index(c, -2, 3);
+      duk_put_prop_index(c, -2, k++);
+    }
   return 1;
 }
 

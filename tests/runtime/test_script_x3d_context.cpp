@@ -100,6 +100,12 @@ ROUTE P.value_changed TO X.set_translation
         "PositionInterpolator.value_changed>Transform.set_translation | "
         "PositionInterpolator.value_changed>Transform.set_translation "
         "PositionInterpolator.value_changed>Transform.set_scale | 1");
+  // The deleted route stays deleted when the world grows (the model reads the file's list
+  // again from where it was; the Script's routes are kept apart).
+  w.model->sceneGrew();
+  w.send("P", "set_fraction", FieldValue::make<FieldType::SFFloat>(0.5f));
+  CHECK(w.node("X").field("translation")->get<FieldType::SFVec3f>() == glm::vec3(0.5f, 0, 0));
+  CHECK(w.node("X").field("scale")->get<FieldType::SFVec3f>() == glm::vec3(1, 1, 1));
 }
 
 TEST_CASE("Browser.replaceWorld unloads the old world: shutdown(), its TimeSensors stopped",
@@ -220,6 +226,10 @@ DEF S Script {
   const auto& children = holder.field("children")->get<FieldType::MFNode>();
   REQUIRE(children.size() == 1);
   CHECK(children[0]->field("out")->get<FieldType::SFString>() == "beside the text");
+  // Its nodes keep the text's URL wherever they are put (an Inline or texture in them
+  // resolves and reads by it).
+  REQUIRE(children[0]->urlBase);
+  CHECK(*children[0]->urlBase == "http://example.com/r/made.wrl");
   CHECK(std::find(asked.begin(), asked.end(), "file:///tmp/gs_local_script.js") == asked.end());
 }
 
@@ -275,4 +285,41 @@ DEF S Script {
   CHECK(outOf(w, "meta").get<FieldType::SFString>() == "RangeError 31");
   CHECK(outOf(w, "names").get<FieldType::SFString>() == "RangeError RangeError");
   CHECK(w.scene->x3d.namedNodes.empty());
+}
+
+TEST_CASE("X3D Script: code run as its Inline's world loads may add a root to that world",
+          "[script][x3d][url]") {
+  // The Script's code runs while the world is read: its new root is appended and reached by
+  // that read, and the next Script of the (remote) world still has the world's rules.
+  base::CallbackFetcher fetcher([&](const std::string& url, const std::string&, base::FetchMode) {
+    if (url == "file:///tmp/gs_local_inline.js")
+      return base::fetchReady("function initialize() { out = 'a local file'; }");
+    return base::fetchFailed("cannot read " + url);
+  });
+  runtime::ExecutionOptions options = x3dScripts();
+  options.fetcher = &fetcher;
+  RunningWorld w(x3dWorld("DEF Outer Group { }\n"), 0.0, options);
+  auto inner = std::make_shared<vrml::Scene>(vrml::parseVrml(R"(#X3D V4.0 utf8
+DEF First Script {
+  url "ecmascript:
+    Browser.currentScene.addRootNode(Browser.currentScene.createNode('Transform'));
+  "
+}
+DEF Second Script { outputOnly SFString out url "file:///tmp/gs_local_inline.js" }
+)",
+                                                             "http://example.com/w/inner.x3dv"));
+  w.model->addInlineScene(inner);
+  INFO(modelDiagnostics(w));
+  REQUIRE(inner->rootNodes.size() == 3);
+  CHECK(inner->rootNodes[2]->typeName() == "Transform");
+  CHECK(inner->rootNodes[1]->field("out")->get<FieldType::SFString>().empty());
+  CHECK_THAT(modelDiagnostics(w), Catch::Contains("may only reference http(s) URLs"));
+  // The file goes on arriving: its next root is taken, not skipped.
+  vrml::Scene more = vrml::parseVrml(R"(#X3D V4.0 utf8
+DEF Third Script { outputOnly SFString out url "ecmascript: function initialize() { out = 'ran'; }" }
+)",
+                                     "http://example.com/w/inner.x3dv");
+  inner->rootNodes.push_back(more.rootNodes.at(0));
+  w.model->sceneGrew();
+  CHECK(inner->rootNodes[3]->field("out")->get<FieldType::SFString>() == "ran");
 }

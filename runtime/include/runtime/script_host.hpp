@@ -113,8 +113,10 @@ class ScriptContext {
   /// X3DScene.addRootNode (`add`) or removeRootNode on an Inline's world, `scene` (one
   /// sceneOf gave for a Script inside it): as on the world, the node is drawn as the
   /// Inline's last child, and its sensors, interpolators and Scripts run (their bindable
-  /// nodes are not bound, as an Inline's are not). False when nothing changed, or when
-  /// `scene` is no Inline's world this browser holds.
+  /// nodes are not bound, as an Inline's are not). False when nothing changed, when
+  /// `scene` is no Inline's world this browser holds, or for a removal while the world is
+  /// being read (a Script's code at its load). An Inline's world read once for several
+  /// Inlines of one URL is one scene: the change shows in each.
   virtual bool changeInlineRoots(const vrml::Scene& scene, const vrml::NodePtr& node, bool add) {
     (void)scene;
     (void)node;

@@ -81,6 +81,10 @@ struct X3dInfo {
   /// or not the node is in the scene graph. Not written by the writer (the node's own
   /// defName is).
   std::vector<std::pair<std::string, NodePtr>> namedNodes;
+  /// ROUTEs a Script's X3DExecutionContext.addRoute made, in order: X3DScene.routes lists
+  /// them after the file's. Kept apart from Scene::routes, which the execution model reads
+  /// as the file arrives (the route itself is made when it is added).
+  std::vector<Route> scriptRoutes;
 };
 
 /// A world read from one file or URL.
