@@ -608,15 +608,7 @@ void markMadeNodes(const vrml::Scene& scene, const std::string& base) {
     pending.pop_back();
     if (!seen.insert(n).second) continue;
     if (!n->urlBase) n->urlBase = shared;  // else from a file nested deeper: kept
-    for (std::size_t i = 0; i < n->fieldCount(); ++i) {
-      const vrml::FieldValue& v = n->fieldAt(i);
-      if (v.type() == FieldType::SFNode) {
-        if (const vrml::NodePtr& c = v.get<FieldType::SFNode>()) pending.push_back(c.get());
-      } else if (v.type() == FieldType::MFNode) {
-        for (const vrml::NodePtr& c : v.get<FieldType::MFNode>())
-          if (c) pending.push_back(c.get());
-      }
-    }
+    pushChildNodes(*n, pending);
   }
 }
 

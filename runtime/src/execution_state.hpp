@@ -223,6 +223,20 @@ struct LoadSensorState {
 
 struct NodeState;
 
+/// Appends the nodes of `n`'s SFNode and MFNode fields to `pending`, in field order (the
+/// walks over a world that keep their own list instead of recursing).
+inline void pushChildNodes(const vrml::Node& n, std::vector<vrml::Node*>& pending) {
+  for (std::size_t i = 0; i < n.fieldCount(); ++i) {
+    const vrml::FieldValue& v = n.fieldAt(i);
+    if (v.type() == vrml::FieldType::SFNode) {
+      if (const vrml::NodePtr& c = v.get<vrml::FieldType::SFNode>()) pending.push_back(c.get());
+    } else if (v.type() == vrml::FieldType::MFNode) {
+      for (const vrml::NodePtr& c : v.get<vrml::FieldType::MFNode>())
+        if (c) pending.push_back(c.get());
+    }
+  }
+}
+
 /// One route from an eventOut, resolved: the receiving node and its field index.
 struct RouteTarget {
   NodeState* to = nullptr;

@@ -280,15 +280,7 @@ void ExecutionModel::State::rebindFrom(const std::vector<vrml::NodePtr>& roots) 
       }
       continue;
     }
-    for (std::size_t i = 0; i < n->fieldCount(); ++i) {
-      const vrml::FieldValue& v = n->fieldAt(i);
-      if (v.type() == FieldType::SFNode) {
-        if (const vrml::NodePtr& c = v.get<FieldType::SFNode>()) pending.push_back(c.get());
-      } else if (v.type() == FieldType::MFNode) {
-        for (const vrml::NodePtr& c : v.get<FieldType::MFNode>())
-          if (c) pending.push_back(c.get());
-      }
-    }
+    pushChildNodes(*n, pending);
     std::reverse(pending.begin() + static_cast<std::ptrdiff_t>(before), pending.end());
   }
   for (std::size_t k = 0; k < kBindableKindCount; ++k) {
@@ -474,22 +466,14 @@ namespace {
 /// interfaces included), depth first without recursion.
 std::unordered_set<const vrml::Node*> reachableFrom(const std::vector<vrml::NodePtr>& from) {
   std::unordered_set<const vrml::Node*> seen;
-  std::vector<const vrml::Node*> pending;
+  std::vector<vrml::Node*> pending;
   for (const vrml::NodePtr& n : from)
     if (n) pending.push_back(n.get());
   while (!pending.empty()) {
     const vrml::Node* n = pending.back();
     pending.pop_back();
     if (!seen.insert(n).second) continue;
-    for (std::size_t i = 0; i < n->fieldCount(); ++i) {
-      const vrml::FieldValue& v = n->fieldAt(i);
-      if (v.type() == FieldType::SFNode) {
-        if (const vrml::NodePtr& c = v.get<FieldType::SFNode>()) pending.push_back(c.get());
-      } else if (v.type() == FieldType::MFNode) {
-        for (const vrml::NodePtr& c : v.get<FieldType::MFNode>())
-          if (c) pending.push_back(c.get());
-      }
-    }
+    pushChildNodes(*n, pending);
   }
   return seen;
 }

@@ -42,6 +42,11 @@ enum X3dEdit : int { kEditAdd = 0, kEditUpdate = 1, kEditRemove = 2 };
 // metaData's operations.
 enum X3dMetaOp : int { kMetaGet = 0, kMetaSet = 1, kMetaAdd = 2, kMetaRemove = 3 };
 
+// The function an edit hook's `op` stands for, for its messages.
+const char* x3dEditName(int op, const char* add, const char* update, const char* remove) {
+  return op == kEditAdd ? add : op == kEditUpdate ? update : remove;
+}
+
 // The editable scene of the hook's X3DScene object (argument 0); a TypeError when none.
 vrml::Scene& x3dEditedScene(EsScript& self, duk_context* c, const char* what) {
   vrml::Scene* scene = x3dEditableSceneOf(self, c, 0);
@@ -120,9 +125,7 @@ bool x3dNameInUse(EsScript& self, duk_context* c, const vrml::Scene& scene,
 duk_ret_t x3dEditNamedNode(duk_context* c) {
   EsScript& self = EsScript::of(c);
   const int op = duk_to_int(c, 1);
-  const char* what = op == kEditAdd      ? "addNamedNode"
-                     : op == kEditUpdate ? "updateNamedNode"
-                                         : "removeNamedNode";
+  const char* what = x3dEditName(op, "addNamedNode", "updateNamedNode", "removeNamedNode");
   vrml::Scene& scene = x3dEditedScene(self, c, what);
   const std::string name = x3dString(c, 2);
   auto& table = scene.x3d.namedNodes;
@@ -211,9 +214,7 @@ duk_ret_t x3dMetaData(duk_context* c) {
 duk_ret_t x3dEditExportedNode(duk_context* c) {
   EsScript& self = EsScript::of(c);
   const int op = duk_to_int(c, 1);
-  const char* what = op == kEditAdd      ? "addExportedNode"
-                     : op == kEditUpdate ? "updateExportedNode"
-                                         : "removeExportedNode";
+  const char* what = x3dEditName(op, "addExportedNode", "updateExportedNode", "removeExportedNode");
   vrml::Scene& scene = x3dEditedScene(self, c, what);
   const std::string name = x3dString(c, 2);
   auto& exports = scene.x3d.exports;

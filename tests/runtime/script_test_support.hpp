@@ -161,6 +161,30 @@ inline ScriptWorld loadScript(FakeScriptContext& ctx, const std::string& vrml,
   return w;
 }
 
+/// A Script in an Inline's world: the world (an empty Group) read from `worldUrl`, the
+/// Inline's world `inner` (a whole file) read from `innerUrl`, both given to `ctx` as the
+/// browser's world and the Script's own; the instance made from `inner`'s first Script
+/// (null when it could not be made). Kept behind a pointer: `ctx` points into it.
+struct InlineScript {
+  vrml::Scene world, inner;
+  vrml::NodePtr script;
+  std::unique_ptr<runtime::ScriptInstance> instance;
+};
+inline std::unique_ptr<InlineScript> loadInlineScript(FakeScriptContext& ctx,
+                                                      const std::string& worldUrl,
+                                                      const std::string& inner,
+                                                      const std::string& innerUrl) {
+  auto s = std::make_unique<InlineScript>();
+  s->world = vrml::parseVrml("#VRML V2.0 utf8\nGroup { }\n", worldUrl);
+  s->inner = vrml::parseVrml(inner, innerUrl);
+  s->script = findScript(s->inner.rootNodes);
+  REQUIRE(s->script);
+  ctx.world = &s->world;
+  ctx.own = &s->inner;
+  s->instance = runtime::ecmascriptFactory()(*s->script, ctx, relaxedLimits());
+  return s;
+}
+
 /// A world holding only `Script { <interface> url "javascript: <code>" }`.
 inline std::string scriptWorld(const std::string& interface, const std::string& code) {
   return "#VRML V2.0 utf8\nDEF S Script {\n" + interface + "\nurl \"javascript:\n" + code +

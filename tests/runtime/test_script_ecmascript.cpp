@@ -605,17 +605,15 @@ TEST_CASE("Script: a Script in an Inline's world reads its files beside that wor
   ctx.files["/worlds/sub/good.js"] = "function initialize() { out = 'beside the Inline'; }";
   ctx.files["good.js"] = "function initialize() { out = 'beside the world'; }";
   ctx.files["file:///lib/good.js"] = "function initialize() { out = 'local'; }";
-  vrml::Scene world = vrml::parseVrml("#VRML V2.0 utf8\nGroup { }\n", "/worlds/main.wrl");
-  vrml::Scene inner =
-      vrml::parseVrml("#VRML V2.0 utf8\nDEF S Script { eventOut SFString out url \"good.js\" }\n",
-                      "/worlds/sub/inner.wrl");
-  vrml::NodePtr script = findScript(inner.rootNodes);
-  REQUIRE(script);
-  ctx.world = &world;
-  ctx.own = &inner;
-  auto instance = runtime::ecmascriptFactory()(*script, ctx, relaxedLimits());
-  REQUIRE(instance);
-  instance->initialize(0.0);
+  auto s =
+      loadInlineScript(ctx, "/worlds/main.wrl",
+                       "#VRML V2.0 utf8\nDEF S Script { eventOut SFString out url \"good.js\" }\n",
+                       "/worlds/sub/inner.wrl");
+  REQUIRE(s->instance);
+  s->instance->initialize(0.0);
+  vrml::Scene& world = s->world;
+  vrml::Scene& inner = s->inner;
+  const vrml::NodePtr& script = s->script;
   INFO(ctx.diagnosticText());
   CHECK(ctx.emittedFor(*script, "out").at(0).get<FieldType::SFString>() == "beside the Inline");
 

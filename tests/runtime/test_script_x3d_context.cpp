@@ -236,22 +236,16 @@ DEF S Script {
 TEST_CASE("Browser.loadURL from a Script in an Inline's world links under that world's rules",
           "[script][url]") {
   FakeScriptContext ctx;
-  vrml::Scene world = vrml::parseVrml("#VRML V2.0 utf8\nGroup { }\n", "/home/me/main.wrl");
-  vrml::Scene inner = vrml::parseVrml(R"(#VRML V2.0 utf8
+  auto s = loadInlineScript(ctx, "/home/me/main.wrl", R"(#VRML V2.0 utf8
 DEF S Script {
   url "javascript:
     function initialize() { Browser.loadURL(new MFString('file:///home/me/x.wrl', 'next.wrl', '#V')); }
   "
 }
 )",
-                                      "http://example.com/w/inner.wrl");
-  vrml::NodePtr script = findScript(inner.rootNodes);
-  REQUIRE(script);
-  ctx.world = &world;
-  ctx.own = &inner;
-  auto instance = runtime::ecmascriptFactory()(*script, ctx, relaxedLimits());
-  REQUIRE(instance);
-  instance->initialize(0.0);
+                            "http://example.com/w/inner.wrl");
+  REQUIRE(s->instance);
+  s->instance->initialize(0.0);
   CHECK(ctx.loaded ==
         std::vector<std::vector<std::string>>{{"http://example.com/w/next.wrl", "#V"}});
   CHECK_THAT(ctx.diagnosticText(), Catch::Contains("may only reference http(s) URLs"));
