@@ -166,8 +166,9 @@ int runSnapshot(const Options& options) {
   // and moved
   // through T0 + i * DT at the fixed --time-step, so a frame's pixels depend on the
   // command alone.
-  session::WorldRuntimes runtimes(options.time, &session.loader());
-  const session::RuntimeOptions& time = options.time;
+  session::RuntimeOptions time = options.time;
+  time.samples = options.samples < 0 ? 1 : options.samples;
+  session::WorldRuntimes runtimes(time, &session.loader());
   // MovieTextures show the frame of their media time, waiting for it (docs/media.md).
   group.attachRuntimes(runtimes, time.load >= 0.0 ? time.load : time.start, true);
   // What the new state references (an Inline a Switch now shows, an Inline or texture url

@@ -1,6 +1,10 @@
 // The X3D browser options TextureQuality and Shading (browser_options.hpp).
 #include "render/browser_options.hpp"
 
+#include "gl_program.hpp"
+#include "multi_texture.hpp"
+#include "render/image.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
@@ -67,6 +71,10 @@ bool textureAfterLighting(ShadingOption shading, std::string_view x3dVersion) {
   if (shading != ShadingOption::gouraud) return false;
   if (x3dVersion.empty()) return true;                                  // VRML97
   return std::strtod(std::string(x3dVersion).c_str(), nullptr) < 3.35;  // "3.3" and older
+}
+
+RenderingLimits renderingLimits() {
+  return {kMaxImageSide, detail::kMaxTextureStages, detail::kMaxLights};
 }
 
 }  // namespace gs::render

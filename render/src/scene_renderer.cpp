@@ -1,21 +1,10 @@
 // SceneRenderer: per-frame drawing of a traversed scene.
-#include "render/scene_renderer.hpp"
+#include "scene_renderer_gpu.hpp"
 
 #include "base/url.hpp"
-
-#include "environment_maps.hpp"
-#include "scene_splats.hpp"
-
-#include "composed_shaders.hpp"
-#include "generated_cube_maps.hpp"
-#include "gl_program.hpp"
-#include "gpu_resources.hpp"
 #include "line_fill_properties.hpp"
-#include "multi_texture.hpp"
 #include "scene/node_access.hpp"
-#include "shading.hpp"
-#include "surface_programs.hpp"
-#include "texture_generation.hpp"
+#include "scene_splats.hpp"
 
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -29,27 +18,6 @@ namespace gs::render {
 using namespace detail;
 
 namespace {
-
-struct DrawItem {
-  const scene::ShapeInstance* shape;
-  const GpuMesh* mesh;
-  const Shading* shading;
-  const GpuTexture* texture;                          // null: untextured
-  std::array<const GpuTexture*, kPhysicalMaps> maps;  // PhysicalMaterial's other maps
-  float depth;                                        // along the view direction, for sorting
-  /// The EnvironmentLight of a PhysicalMaterial shape and its maps; null: none.
-  const scene::EnvironmentLightInstance* environmentLight = nullptr;
-  const GpuEnvironment* environment = nullptr;
-  /// The set each texture reads: base colour, then the maps (texCoordSetOf).
-  std::array<GLint, 1 + kPhysicalMaps> texCoordSets{};
-  /// A MultiTexture's stage textures (null: not loaded; the stage is then OFF) and the
-  /// texture coordinate set each reads.
-  std::array<const GpuTexture*, kMaxTextureStages> stageTextures{};
-  std::array<GLint, kMaxTextureStages> stageSets{};
-  int stageCount = 0;
-  TexGen texGen{};                    // the geometry's TextureCoordinateGenerator
-  const UserProgram* user = nullptr;  // the Appearance's user shader, null: none
-};
 
 /// The 2D texture transform `m` (acting on (s, t, 1)) as a 4x4 on (s, t, r, 1).
 glm::mat4 textureMatrix4(const glm::mat3& m) {
@@ -128,34 +96,6 @@ struct LightArrays {
 };
 
 }  // namespace
-
-struct SceneRenderer::Gpu {
-  SurfacePrograms programs;
-  vrml::NodeMap<GpuMesh> meshes;
-  vrml::NodeMap<Shading> shadings;
-  TextureCache textures;
-  EnvironmentMaps environments;
-  BackgroundPass background;
-  UserPrograms userPrograms;
-  GeneratedCubeMaps generatedCubes;
-  // Reused from frame to frame.
-  scene::TraversalFrame frame;
-  std::vector<scene::LightInstance> eyeLights;
-  std::vector<EyeProjector> eyeProjectors;  // frame.projectors, each with its texture
-  std::vector<glm::vec4> eyeClipPlanes;
-  std::vector<DrawItem> opaque, transparent;
-
-  void release() {
-    for (auto& [node, mesh] : meshes) mesh.release();
-    meshes.clear();
-    textures.release();
-    environments.release();
-    background.release();
-    userPrograms.release();
-    generatedCubes.release();
-    programs.release();
-  }
-};
 
 SceneRenderer::SceneRenderer(std::shared_ptr<const vrml::Scene> scene, SceneRendererOptions options)
     : options_(std::move(options)),
@@ -339,102 +279,7 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
   scene::LightInstance headlight;  // directional along the view direction, intensity 1, ambient 0
   headlight.direction = glm::vec3(0.0f, 0.0f, -1.0f);
 
-  // Sort shapes into the opaque and transparent passes.
-  g.opaque.clear();
-  g.transparent.clear();
-  const glm::vec3 forward = camera.forward();
-  for (const scene::ShapeInstance& s : g.frame.shapes) {
-    if (s.geometry == faceExcludes_) continue;  // (its own GeneratedCubeMapTexture's view)
-    auto [meshIt, newMesh] = g.meshes.try_emplace(s.geometry);
-    // The change contract (docs/runtime.md): a geometry whose fields or Coordinate /
-    // Normal / Color / TextureCoordinate changed is tessellated and uploaded again.
-    const std::uint64_t meshRevision = vrml::revisionWithFields(*s.geometry);
-    if (newMesh || meshIt->second.revision != meshRevision) {
-      if (!newMesh) meshIt->second.release();
-      meshIt->second.upload(traversal_.mesh(*s.geometry));
-      meshIt->second.revision = meshRevision;
-      traversal_.dropMeshArrays(*s.geometry);
-    }
-    const GpuMesh& mesh = meshIt->second;
-    if (mesh.count == 0) continue;
-    auto [shadeIt, newShade] = g.shadings.try_emplace(s.appearance);
-    const std::uint64_t shadeRevision = s.appearance ? vrml::revisionWithFields(*s.appearance) : 0;
-    if (newShade || shadeIt->second.revision != shadeRevision) {
-      shadeIt->second = readShading(s.appearance, !traversal_.scene().x3d.version.empty());
-      shadeIt->second.revision = shadeRevision;
-      for (const std::string& problem : shadeIt->second.multi.problems)
-        traversal_.report(vrml::Severity::warning, shadeIt->second.multiTextureNode->location,
-                          problem);
-      if (const LineFillStyle& lf = shadeIt->second.lineFill; !lf.problem.empty())
-        traversal_.report(vrml::Severity::warning, lf.problemNode->location, lf.problem);
-    }
-    const Shading& shading = shadeIt->second;
-    if (mesh.primitive == vrml::Primitive::triangles && shading.lineFill.invisible()) continue;
-    const GpuTexture* texture = nullptr;
-    if (shading.texture != nullptr && mesh.primitive == vrml::Primitive::triangles) {
-      if (shading.texture->typeId() == vrml::NodeTypeId::GeneratedCubeMapTexture) {
-        texture = g.generatedCubes.texture(*shading.texture);
-        generatedCubeMaps_ = true;
-      } else {
-        texture = &g.textures.get(*shading.texture, *s.baseUrl, traversal_, options_.fetcher);
-      }
-      if (texture->components == 0) texture = nullptr;
-    }
-    const glm::vec3 center = glm::vec3(s.model * glm::vec4(mesh.bounds.center(), 1.0f));
-    std::array<const GpuTexture*, kPhysicalMaps> maps{};
-    if (shading.model == ShadingModel::physical && mesh.primitive == vrml::Primitive::triangles)
-      for (std::size_t i = 0; i < kPhysicalMaps; ++i)
-        if (shading.maps[i] != nullptr) {
-          maps[i] = &g.textures.get(*shading.maps[i], *s.baseUrl, traversal_, options_.fetcher);
-          if (maps[i]->components == 0) maps[i] = nullptr;
-        }
-    DrawItem item{&s, &mesh, &shading, texture, maps, glm::dot(center - camera.position, forward)};
-    if (shading.model == ShadingModel::physical && mesh.primitive == vrml::Primitive::triangles &&
-        s.environmentLight >= 0) {
-      item.environmentLight =
-          &g.frame.environmentLights[static_cast<std::size_t>(s.environmentLight)];
-      item.environment = g.environments.get(*item.environmentLight, traversal_, options_.fetcher);
-    }
-    bool stageAlpha = false;
-    if (mesh.primitive == vrml::Primitive::triangles) {
-      const std::vector<TextureStage>& stages = shading.multi.stages;
-      item.stageCount = static_cast<int>(stages.size());
-      for (std::size_t i = 0; i < stages.size(); ++i) {
-        const GpuTexture* t =
-            &g.textures.get(*stages[i].texture, *s.baseUrl, traversal_, options_.fetcher);
-        item.stageTextures[i] = t->components > 0 ? t : nullptr;
-        // Translucent texels, or an alpha combination that can fall below 1 however
-        // opaque the textures are (SUBTRACT gives 1 - 1 = 0; DOTPRODUCT3).
-        stageAlpha = stageAlpha || (t->components > 0 && t->hasAlpha) ||
-                     stages[i].alphaMode == TextureMode::subtract ||
-                     stages[i].alphaMode == TextureMode::dotProduct3;
-        item.stageSets[i] = stageTexCoordSet(static_cast<int>(i), *s.geometry, mesh.hasTexCoords1);
-      }
-      stageAlpha = stageAlpha || (item.stageCount > 0 && shading.multi.factor.a < 1.0f);
-    }
-    if (texture != nullptr || item.stageCount > 0) {
-      item.texGen = texGenOf(*s.geometry);
-      if (!item.texGen.problem.empty())
-        traversal_.report(vrml::Severity::warning, s.geometry->sfnode("texCoord")->location,
-                          item.texGen.problem);
-    }
-    if (shading.hasShaders)
-      item.user =
-          g.userPrograms.find(*shading.appearance, *s.baseUrl, traversal_, options_.fetcher);
-    if (shading.anyMapping && mesh.hasTexCoords1)
-      for (std::size_t i = 0; i < item.texCoordSets.size(); ++i)
-        item.texCoordSets[i] = texCoordSetOf(shading.mappings[i], *s.geometry);
-    // Appearance.alphaMode (X3D 4.0 clause 12.4.2): OPAQUE and MASK never blend, BLEND
-    // always does, AUTO when the material or the texture is translucent.
-    const bool blended =
-        shading.alphaMode == 3 ||
-        (shading.alphaMode == 0 &&
-         (shading.transparency > 0.0f || shading.backTransparency > 0.0f ||
-          (texture != nullptr && texture->hasAlpha) || stageAlpha || mesh.colorAlpha));
-    (blended ? g.transparent : g.opaque).push_back(item);
-  }
-  std::sort(g.transparent.begin(), g.transparent.end(),
-            [](const DrawItem& a, const DrawItem& b) { return a.depth > b.depth; });
+  collectDrawItems(camera);  // the shapes sorted into the opaque and transparent passes
 
   // Per-frame uniforms, set in each program the first time this frame uses it.
   // The bound Fog, or per shape its innermost X3D LocalFog (set with the shape's uniforms).

@@ -309,6 +309,11 @@ ExecutionModel::ExecutionModel(std::shared_ptr<const vrml::Scene> scene, double 
   s_->startNewRigidBodyCollections();
   s_->runCascade();
   s_->initializeScripts();
+  // Browser callbacks for INITIALIZED_EVENT: once, after every Script of the load ran
+  // initialize() (those of files still arriving, and those of later Inlines, get none).
+  for (NodeState* s : s_->scripts)
+    if (s->script && !s->script->stopped()) s->script->worldInitialized(now());
+  s_->runCascade();
   for (NodeState* t : s_->timeSensors) s_->evaluateTimeSensor(*t);
   if (!s_->skins.empty()) s_->evaluateHAnimMotions();  // their cycles start at the load
   s_->runCascade();
@@ -768,6 +773,10 @@ bool ExecutionModel::setBrowserOption(const std::string& name, const std::string
   if (it->second.accepts && !it->second.accepts(value)) return false;
   it->second.value = value;
   return true;
+}
+
+const RenderingProperties* ExecutionModel::renderingProperties() const {
+  return options_.rendering.maxLights > 0 ? &options_.rendering : nullptr;
 }
 
 void ExecutionModel::print(const std::string& text) {

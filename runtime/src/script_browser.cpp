@@ -358,6 +358,12 @@ void EsScript::installBrowser(duk_context* c) {
     duk_pop(c);
     duk_del_prop_string(c, -2, "__gsSceneMaker");
   }
+  if (duk_get_prop_string(c, -2, "__gsBrowserX3D")) {  // X3D Scripts: 19777-1's additions
+    duk_dup(c, -2);
+    duk_call(c, 1);
+    duk_del_prop_string(c, -3, "__gsBrowserX3D");
+  }
+  duk_pop(c);
   duk_put_prop_string(c, -2, "Browser");
   // print(), and addRoute / deleteRoute without "Browser." as FreeWRL's tests use them.
   duk_push_c_function(c, print, DUK_VARARGS);

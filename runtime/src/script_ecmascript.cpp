@@ -657,7 +657,21 @@ void EsScript::eventsProcessed(double timestamp) {
   run("eventsProcessed", nullptr, timestamp, "eventsProcessed()", true);
 }
 
+// The X3D prelude's dispatcher of browser callbacks (addBrowserCallback,
+// addBrowserListener), called with X3DConstants' event number; absent in VRML97 Scripts.
+constexpr const char* kBrowserEventFunction = "__gsBrowserEvent";
+constexpr int kInitializedEvent = 2;  // X3DConstants.INITIALIZED_EVENT
+constexpr int kShutdownEvent = 3;     // X3DConstants.SHUTDOWN_EVENT
+
+void EsScript::worldInitialized(double timestamp) {
+  const vrml::FieldValue event =
+      vrml::FieldValue::make<vrml::FieldType::SFInt32>(kInitializedEvent);
+  run(kBrowserEventFunction, &event, timestamp, "a browser callback (INITIALIZED_EVENT)", true);
+}
+
 void EsScript::shutdown(double timestamp) {
+  const vrml::FieldValue event = vrml::FieldValue::make<vrml::FieldType::SFInt32>(kShutdownEvent);
+  run(kBrowserEventFunction, &event, timestamp, "a browser callback (SHUTDOWN_EVENT)", true);
   run("shutdown", nullptr, timestamp, "shutdown()", true);
   // 4.12.3: the last call (the world that held the Script was unloaded): the heap goes, so
   // any later call does nothing (stopped() stays false: no error or limit stopped it).

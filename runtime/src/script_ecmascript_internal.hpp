@@ -58,6 +58,7 @@ class EsScript final : public ScriptInstance {
   void eventIn(int field, const vrml::FieldValue& value, double timestamp) override;
   void eventsProcessed(double timestamp) override;
   void shutdown(double timestamp) override;
+  void worldInitialized(double timestamp) override;
   bool stopped() const override { return stopped_; }
 
   // ---- for the native functions ----
@@ -259,6 +260,10 @@ bool x3dInlineScene(EsScript& self, duk_context* c, duk_idx_t idx);
 /// Puts the natives of X3DScene's named nodes, META statements, EXPORT edits and route
 /// list (script_x3d_scene.cpp) on the object at the top of the stack (__gsX3D).
 void installX3DSceneEdits(duk_context* c);
+/// Puts the natives of the browser's profiles, components and rendering properties and of
+/// a scene's PROFILE, COMPONENT and UNIT statements (script_x3d_info.cpp) on the object at
+/// the top of the stack (__gsX3D).
+void installX3DInfo(duk_context* c);
 
 /// Component `k` of a vector-like script object (SFVec3f, SFVec3d, SFColorRGBA, an array):
 /// its property `name` ("x", "r" ...), else its index k, as a number (NaN when neither is

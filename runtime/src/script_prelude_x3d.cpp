@@ -215,7 +215,9 @@ mfClass('MFMatrix4d', function (v) { return copyMatrix(SFMatrix4d, 16, v); }, fu
 // ---- X3DConstants: access types and field types (19777-1's numbering) ----
 var X3DConstants = {
   initializeOnly: 0, inputOnly: 1, outputOnly: 2, inputOutput: 3,
-  NOT_STARTED_STATE: 0, IN_PROGRESS_STATE: 1, COMPLETE_STATE: 2, FAILED_STATE: 3
+  NOT_STARTED_STATE: 0, IN_PROGRESS_STATE: 1, COMPLETE_STATE: 2, FAILED_STATE: 3,
+  // Browser events (19777-1 7.2, the browser listeners; the numbers are this browser's)
+  CONNECTION_ERROR: 0, BROWSER_EVENT: 1, INITIALIZED_EVENT: 2, SHUTDOWN_EVENT: 3, INITIALIZED_ERROR: 4
 };
 var types = ['Bool', 'Color', 'ColorRGBA', 'Double', 'Float', 'Image', 'Int32', 'Matrix3d', 'Matrix3f',
              'Matrix4d', 'Matrix4f', 'Node', 'Rotation', 'String', 'Time', 'Vec2d', 'Vec2f', 'Vec3d',
@@ -256,7 +258,6 @@ method(P, 'constructor', X3DScene);
 // Browser.createX3DFromString made (the host knows it by a hidden id).
 getter(P, 'specificationVersion', function () { return hooks.sceneInfo(this)[0]; });
 getter(P, 'encoding', function () { return hooks.sceneInfo(this)[1]; });
-getter(P, 'profile', function () { return hooks.sceneInfo(this)[2]; });
 getter(P, 'worldURL', function () { return hooks.sceneInfo(this)[3]; });
 getter(P, 'rootNodes', function () { return hooks.rootNodes(this); });
 method(P, 'getNamedNode', function (name) {
@@ -344,6 +345,81 @@ method(P, 'getExportedNode', function (name) {
 method(P, 'addExportedNode', function (name, node) { hooks.editExportedNode(this, 0, String(name), node); });
 method(P, 'updateExportedNode', function (name, node) { hooks.editExportedNode(this, 1, String(name), node); });
 method(P, 'removeExportedNode', function (name) { hooks.editExportedNode(this, 2, String(name), null); });
+
+// ---- ComponentInfo, ProfileInfo, UnitInfo (19777-1 7.3: read-only objects) ----
+// The natives (script_x3d_info.cpp) give [name, level, title], [name, title, [component
+// ...]] and [category, name, conversionFactor]; the arrays made of them are frozen.
+function readOnly(o, props) {
+  for (var k in props) Object.defineProperty(o, k, { value: props[k], enumerable: true });
+  return o;
+}
+function ComponentInfo() { throw new TypeError('ComponentInfo cannot be made by a Script'); }
+function ProfileInfo() { throw new TypeError('ProfileInfo cannot be made by a Script'); }
+function UnitInfo() { throw new TypeError('UnitInfo cannot be made by a Script'); }
+// A profile reads as its name (X3DScene.profile was the name before it was an object).
+method(ProfileInfo.prototype, 'toString', function () { return this.name; });
+function componentInfo(d) {
+  return readOnly(Object.create(ComponentInfo.prototype), { name: d[0], level: d[1], title: d[2], providerURL: '' });
+}
+function componentInfos(all) { return Object.freeze(all.map(componentInfo)); }
+function profileInfo(d) {
+  if (d === null) return null;
+  return readOnly(Object.create(ProfileInfo.prototype),
+                  { name: d[0], level: 0, title: d[1], providerURL: '', components: componentInfos(d[2]) });
+}
+getter(P, 'profile', function () { return profileInfo(hooks.sceneProfile(this)); });
+getter(P, 'components', function () { return componentInfos(hooks.sceneComponents(this)); });
+getter(P, 'units', function () {
+  return Object.freeze(hooks.sceneUnits(this).map(function (u) {
+    return readOnly(Object.create(UnitInfo.prototype), { category: u[0], name: u[1], conversionFactor: u[2] });
+  }));
+});
+
+// ---- Browser's X3D additions (19777-1 7.2), put on Browser by installBrowser ----
+// Browser callbacks: X_ITE 15's addBrowserCallback(key, [event,] callback) and 19777-1's
+// addBrowserListener(listener); each is called with the event's number (X3DConstants
+// INITIALIZED_EVENT once the world's load ran every initialize(), SHUTDOWN_EVENT before
+// shutdown() when the world is unloaded).
+var callbacks = [];  // [key, event or -1 for every event, function]
+function removeCallbacks(key, event) {
+  callbacks = callbacks.filter(function (c) { return !(c[0] === key && (event === undefined || c[1] === event)); });
+}
+G.__gsBrowserEvent = function (event) {
+  var now = callbacks.slice();
+  for (var i = 0; i < now.length; ++i)
+    if (now[i][1] === -1 || now[i][1] === event) now[i][2].call(null, event);
+};
+G.__gsBrowserX3D = function (B) {
+  getter(B, 'supportedProfiles', function () { return Object.freeze(hooks.profiles().map(profileInfo)); });
+  getter(B, 'supportedComponents', function () { return componentInfos(hooks.components()); });
+  method(B, 'getProfile', function (name) {
+    var p = hooks.profile(String(name));
+    if (p === null) throw new Error("getProfile: profile '" + name + "' is not supported");
+    return profileInfo(p);
+  });
+  method(B, 'getComponent', function (name, level) {
+    var c = hooks.component(String(name), level);
+    if (c === null) throw new Error("getComponent: component '" + name + "' is not supported");
+    return componentInfo(c);
+  });
+  method(B, 'getRenderingProperty', function (name) { return hooks.renderingProperty(String(name)); });
+  method(B, 'addBrowserCallback', function (key, event, fn) {
+    if (arguments.length < 3) { fn = event; event = -1; }
+    if (typeof fn !== 'function') throw new TypeError('addBrowserCallback: the callback is no function');
+    removeCallbacks(key, event === -1 ? undefined : event);
+    callbacks.push([key, event === -1 ? -1 : Number(event), fn]);
+  });
+  method(B, 'removeBrowserCallback', function (key, event) {
+    removeCallbacks(key, event === undefined ? undefined : Number(event));
+  });
+  method(B, 'addBrowserListener', function (fn) {
+    if (typeof fn !== 'function') throw new TypeError('addBrowserListener: the listener is no function');
+    removeCallbacks(fn);
+    callbacks.push([fn, -1, fn]);
+  });
+  method(B, 'removeBrowserListener', function (fn) { removeCallbacks(fn); });
+};
+G.ComponentInfo = ComponentInfo; G.ProfileInfo = ProfileInfo; G.UnitInfo = UnitInfo;
 
 G.SFVec2d = SFVec2d; G.SFVec3d = SFVec3d; G.SFVec4f = SFVec4f; G.SFVec4d = SFVec4d;
 G.SFColorRGBA = SFColorRGBA; G.SFMatrix3f = SFMatrix3f; G.SFMatrix3d = SFMatrix3d;

@@ -679,6 +679,7 @@ void EsScript::installX3DHooks(duk_context* c) {
     duk_put_prop_string(c, -2, e.name);
   }
   installX3DSceneEdits(c);
+  installX3DInfo(c);
   duk_put_prop_string(c, -2, "__gsX3D");
   duk_pop(c);
 }

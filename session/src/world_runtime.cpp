@@ -115,6 +115,11 @@ runtime::ExecutionModel& WorldRuntimes::of(const std::shared_ptr<const vrml::Sce
                                      render::ShadingOption parsed;
                                      return render::parseShadingOption(value, parsed);
                                    }};
+    // What the renderer can do (Browser.getRenderingProperty): its fixed limits, the
+    // samples, and 8 bits per colour channel (the window's and the snapshot's RGB8).
+    const render::RenderingLimits limits = render::renderingLimits();
+    o.rendering = {limits.maxTextureSize, limits.textureUnits, limits.maxLights,
+                   options_.samples > 1, 24};
     e.model = std::make_unique<runtime::ExecutionModel>(scene, time, std::move(o));
   }
   return *e.model;

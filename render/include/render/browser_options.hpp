@@ -47,4 +47,13 @@ std::string_view shadingName(ShadingOption shading);
 /// VRML97 and X3D 3.x worlds, false otherwise (see ShadingOption).
 bool textureAfterLighting(ShadingOption shading, std::string_view x3dVersion);
 
+/// The renderer's fixed limits, as a Script reads them with Browser.getRenderingProperty
+/// (ISO/IEC 19775-2 clause 6.3.13): the same in the window and in --snapshot.
+struct RenderingLimits {
+  int maxTextureSize = 0;  // pixels per side of the largest image a texture reads (kMaxImageSide)
+  int textureUnits = 0;    // textures one MultiTexture combines; the rest are left out
+  int maxLights = 0;       // lights that light one shape; the first met are kept
+};
+RenderingLimits renderingLimits();
+
 }  // namespace gs::render

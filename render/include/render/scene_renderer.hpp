@@ -209,6 +209,10 @@ class SceneRenderer {
   /// Draws the faces of the due GeneratedCubeMapTextures of the shapes `camera` would
   /// draw, each from its shape's origin in the world, the shape itself left out.
   void generateCubeMaps(const scene::Camera& camera);
+  /// Sorts the frame's shapes (gpu_->frame) into gpu_->opaque and gpu_->transparent (back
+  /// to front along `camera`'s view), uploading meshes and loading textures as they come
+  /// (scene_draw_items.cpp).
+  void collectDrawItems(const scene::Camera& camera);
 };
 
 }  // namespace gs::render

@@ -76,6 +76,8 @@ struct ExecutionOptions {
   /// The browser options a Script may read and set (Browser.getBrowserOption /
   /// setBrowserOption), by name ("Shading"), with their values at the load; empty: none.
   std::unordered_map<std::string, BrowserOption> browserOptions;
+  /// What the renderer can do (Browser.getRenderingProperty); all zero: not known.
+  RenderingProperties rendering;
 };
 
 /// Counters for benchmarks and tests.
@@ -261,6 +263,7 @@ class ExecutionModel final : public ScriptContext {
   void setDescription(const std::string& text) override;
   const std::string* browserOption(const std::string& name) const override;
   bool setBrowserOption(const std::string& name, const std::string& value) override;
+  const RenderingProperties* renderingProperties() const override;
   void print(const std::string& text) override;
   void scriptDiagnostic(vrml::Severity severity, const vrml::SourceLocation& where,
                         const std::string& message) override;

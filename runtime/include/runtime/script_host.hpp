@@ -22,6 +22,17 @@ struct ScriptLimits {
   std::size_t heapBytes = 64u * 1024u * 1024u;  // memory of one Script's heap
 };
 
+/// What the renderer can do, as a Script reads it with Browser.getRenderingProperty
+/// (ISO/IEC 19775-2 clause 6.3.13, getRenderingProperties; the names X_ITE 15 answers).
+/// Zero: not known.
+struct RenderingProperties {
+  int maxTextureSize = 0;    // MaxTextureSize: pixels per side of the largest texture drawn
+  int textureUnits = 0;      // TextureUnits: textures one shape may combine (MultiTexture)
+  int maxLights = 0;         // MaxLights: lights that light one shape at a time
+  bool antialiased = false;  // Antialiased: the picture is multisampled
+  int colorDepth = 0;        // ColorDepth: bits per pixel of colour (24 for RGB8)
+};
+
 /// What a running Script may ask of the browser (annex C.6 "Browser object" and the
 /// eventOuts of its own node). Implemented by ExecutionModel.
 class ScriptContext {
@@ -153,6 +164,9 @@ class ScriptContext {
     (void)value;
     return false;
   }
+  /// Browser.getRenderingProperty's answers (Shading is the browser option's); null when
+  /// the host gives none (the property is then undefined to the Script).
+  virtual const RenderingProperties* renderingProperties() const { return nullptr; }
   /// print() / Browser.print: a line for the console (stderr).
   virtual void print(const std::string& text) = 0;
   /// A problem of the Script (error, limit reached); `where` names the world's file:line
@@ -172,8 +186,13 @@ class ScriptInstance {
   virtual void eventIn(int field, const vrml::FieldValue& value, double timestamp) = 0;
   /// eventsProcessed() after a cascade that delivered events to this Script (4.12.6).
   virtual void eventsProcessed(double timestamp) = 0;
-  /// shutdown() when the world is unloaded (4.12.3).
+  /// shutdown() when the world is unloaded (4.12.3). An X3D Script's browser callbacks
+  /// for SHUTDOWN_EVENT run first.
   virtual void shutdown(double timestamp) = 0;
+  /// The world finished its load (the first cascade after every Script of the load ran
+  /// initialize()): an X3D Script's browser callbacks for INITIALIZED_EVENT run (ISO/IEC
+  /// 19777-1 7.2, addBrowserListener; X_ITE 15's addBrowserCallback). None by default.
+  virtual void worldInitialized(double timestamp) { (void)timestamp; }
   /// Whether the Script was stopped (an error or a limit): no more calls are made.
   virtual bool stopped() const = 0;
 };

@@ -1,0 +1,168 @@
+// What an X3D Script learns of its browser and scene (ISO/IEC 19777-1 clause 7.2 and 7.4):
+// Browser.supportedProfiles, supportedComponents, getProfile, getComponent and
+// getRenderingProperty; X3DScene.profile, components and units; the browser callbacks
+// (addBrowserCallback as X_ITE 15 names it, addBrowserListener) for INITIALIZED_EVENT and
+// SHUTDOWN_EVENT. Small X3D worlds run by the execution model.
+#include "vrml/node_model.hpp"
+#include "x3d_script_support.hpp"
+
+#include <map>
+#include <sstream>
+
+using namespace gs;
+using namespace gs::test;
+using vrml::FieldType;
+using vrml::FieldValue;
+
+TEST_CASE("X3D Script: the browser's profiles and components", "[script][x3d]") {
+  RunningWorld w(x3dWorld(R"(
+DEF S Script {
+  outputOnly SFString profiles
+  outputOnly SFString components
+  outputOnly SFString asked
+  url "ecmascript:
+    function initialize() {
+      profiles = Browser.supportedProfiles.map(function (p) {
+        return p.name + ':' + p.components.length;
+      }).join(' ');
+      components = Browser.supportedComponents.map(function (c) {
+        return c.name + ':' + c.level;
+      }).join(' ');
+      var immersive = Browser.getProfile('Immersive');
+      var scripting = immersive.components.filter(function (c) { return c.name === 'Scripting'; });
+      asked = (immersive instanceof ProfileInfo) + ' ' + immersive.title + ' ' +
+              scripting[0].level + ' ' + Browser.getComponent('Rendering', 9).level + ' ' +
+              Browser.getComponent('Rendering', 2).level + ' ' +
+              Browser.getComponent('NURBS').title + ' ' + Browser.getProfile('MPEG-4').name;
+      try { Browser.getProfile('Nope'); } catch (e) { asked += ' noProfile'; }
+      try { Browser.getComponent('Nope', 1); } catch (e) { asked += ' noComponent'; }
+      try { Browser.supportedProfiles.push(1); } catch (e) { asked += ' frozen'; }
+    }
+  "
+}
+)"),
+                 0.0, x3dScripts());
+  INFO(modelDiagnostics(w));
+  CHECK(outOf(w, "profiles").get<FieldType::SFString>() ==
+        "CADInterchange:10 Core:1 Full:37 Immersive:20 Interactive:16 Interchange:12 "
+        "MedicalInterchange:17 MPEG4Interactive:14");
+  CHECK(outOf(w, "asked").get<FieldType::SFString>() ==
+        "true Immersive 1 5 2 NURBS MPEG4Interactive noProfile noComponent frozen");
+  // Every node type of X3D 4.0 is in a component the browser names, at a level it supports.
+  std::map<std::string, int> levels;
+  std::istringstream in(outOf(w, "components").get<FieldType::SFString>());
+  for (std::string entry; in >> entry;) {
+    const std::size_t colon = entry.find(':');
+    REQUIRE(colon != std::string::npos);
+    levels[entry.substr(0, colon)] = std::stoi(entry.substr(colon + 1));
+  }
+  CHECK(levels.size() == 37);
+  int nodes = 0;
+  for (const vrml::NodeModel& m : vrml::nodeModels()) {
+    if (m.extension) continue;
+    ++nodes;
+    INFO(m.name << " of " << m.component << " level " << m.level);
+    const auto it = levels.find(std::string(m.component));
+    REQUIRE(it != levels.end());
+    CHECK(m.level <= it->second);
+  }
+  CHECK(nodes >= 260);
+}
+
+TEST_CASE("X3D Script: a scene's profile, components and units", "[script][x3d]") {
+  RunningWorld w(WorldText{R"(#X3D V4.0 utf8
+PROFILE Immersive
+COMPONENT Geospatial:1
+COMPONENT HAnim:3
+UNIT angle degree 0.017453292519943295
+UNIT mass gram 0.001
+DEF S Script {
+  outputOnly SFString scene
+  outputOnly SFString made
+  url "ecmascript:
+    function initialize() {
+      var s = Browser.currentScene;
+      scene = s.profile + ' ' + (s.profile instanceof ProfileInfo) + ' ' +
+              s.profile.components.length + ' ' +
+              s.components.map(function (c) { return c.name + ':' + c.level + ':' + c.title; }).join() + ' ' +
+              s.units.map(function (u) { return u.category + ':' + u.name + ':' + u.conversionFactor.toFixed(4); }).join();
+      var x = Browser.createX3DFromString('#X3D V4.0 utf8\\nPROFILE Custom\\nGroup { }\\n');
+      var y = Browser.createX3DFromString('#X3D V4.0 utf8\\nGroup { }\\n');
+      made = x.profile.name + ' ' + x.profile.components.length + ' ' + y.profile + ' ' +
+             y.components.length + ' ' + y.units[2].name;
+    }
+  "
+}
+)",
+                           "test.x3dv"},
+                 0.0, x3dScripts());
+  INFO(modelDiagnostics(w));
+  CHECK(outOf(w, "scene").get<FieldType::SFString>() ==
+        "Immersive true 20 Geospatial:1:Geospatial,HAnim:3:Humanoid animation (HAnim) "
+        "angle:degree:0.0175,force:newton:1.0000,length:metre:1.0000,mass:gram:0.0010");
+  CHECK(outOf(w, "made").get<FieldType::SFString>() == "Custom 0 null 0 metre");
+}
+
+TEST_CASE("Browser.getRenderingProperty: the renderer's limits and the Shading option",
+          "[script][x3d]") {
+  const std::string world = R"(
+DEF S Script {
+  outputOnly SFString answers
+  url "ecmascript:
+    function initialize() {
+      answers = ['Shading', 'MaxTextureSize', 'TextureUnits', 'MaxLights', 'Antialiased',
+                 'ColorDepth', 'TextureMemory', 'Nope'].map(function (n) {
+        return String(Browser.getRenderingProperty(n));
+      }).join(' ');
+    }
+  "
+}
+)";
+  runtime::ExecutionOptions o = x3dScripts();
+  o.browserOptions["Shading"] = {"GOURAUD", {}};
+  o.rendering = {16384, 4, 8, true, 24};
+  RunningWorld given(x3dWorld(world), 0.0, std::move(o));
+  INFO(modelDiagnostics(given));
+  CHECK(outOf(given, "answers").get<FieldType::SFString>() ==
+        "GOURAUD 16384 4 8 true 24 undefined undefined");
+  // A host that gives none (a test's execution model): undefined, never a made-up value.
+  RunningWorld none(x3dWorld(world), 0.0, x3dScripts());
+  CHECK(outOf(none, "answers").get<FieldType::SFString>() ==
+        "undefined undefined undefined undefined undefined undefined undefined undefined");
+}
+
+TEST_CASE(
+    "X3D Script: browser callbacks see INITIALIZED_EVENT after the load and "
+    "SHUTDOWN_EVENT before shutdown()",
+    "[script][x3d]") {
+  RunningWorld w(x3dWorld(R"(
+DEF S Script {
+  inputOnly SFBool go
+  outputOnly SFString log
+  url "ecmascript:
+    var text = '';
+    function note(what) { text += what + ' '; log = text; }
+    function initialize() {
+      note('initialize');
+      Browser.addBrowserCallback('k', X3DConstants.INITIALIZED_EVENT, function (e) { note('init:' + e); });
+      Browser.addBrowserCallback('all', function (e) { note('all:' + e); });
+      Browser.addBrowserCallback('gone', function (e) { note('gone:' + e); });
+      Browser.removeBrowserCallback('gone');
+      Browser.addBrowserListener(function (e) { note('listener:' + e); });
+      Browser.addBrowserCallback('k', X3DConstants.SHUTDOWN_EVENT, function (e) { note('down:' + e); });
+    }
+    function go(v) { Browser.replaceWorld(Browser.createX3DFromString('Group { }')); }
+    function shutdown() { note('shutdown'); }
+  "
+}
+)"),
+                 0.0, x3dScripts());
+  INFO(modelDiagnostics(w));
+  const vrml::NodePtr script = w.scene->rootNodes.at(0);
+  // The 'k' callback for INITIALIZED_EVENT stays: one key may hold one callback per event.
+  CHECK(script->field("log")->get<FieldType::SFString>() == "initialize init:2 all:2 listener:2 ");
+  w.send("S", "go", FieldValue::make<FieldType::SFBool>(true));
+  w.model->advanceTo(1.0);
+  CHECK(script->field("log")->get<FieldType::SFString>() ==
+        "initialize init:2 all:2 listener:2 all:3 listener:3 down:3 shutdown ");
+}
