@@ -309,11 +309,6 @@ ExecutionModel::ExecutionModel(std::shared_ptr<const vrml::Scene> scene, double 
   s_->startNewRigidBodyCollections();
   s_->runCascade();
   s_->initializeScripts();
-  // Browser callbacks for INITIALIZED_EVENT: once, after every Script of the load ran
-  // initialize() (those of files still arriving, and those of later Inlines, get none).
-  for (NodeState* s : s_->scripts)
-    if (s->script && !s->script->stopped()) s->script->worldInitialized(now());
-  s_->runCascade();
   for (NodeState* t : s_->timeSensors) s_->evaluateTimeSensor(*t);
   if (!s_->skins.empty()) s_->evaluateHAnimMotions();  // their cycles start at the load
   s_->runCascade();
@@ -353,6 +348,17 @@ void ExecutionModel::addInlineScene(std::shared_ptr<const vrml::Scene> scene) {
     s_->evaluateTimeSensor(*s_->timeSensors[i]);
   s_->runCascade();
   s_->evaluateSkins();
+}
+
+void ExecutionModel::worldLoaded() {
+  if (s_->worldLoadedSent) return;
+  s_->worldLoadedSent = true;
+  s_->initializeScripts();                             // those the last growth made
+  const std::vector<NodeState*> loaded = s_->scripts;  // (a callback may make Scripts)
+  for (NodeState* s : loaded)
+    if (s->script && !s->script->stopped()) s->script->worldInitialized(now());
+  s_->runCascade();
+  s_->initializeScripts();  // those the callbacks made
 }
 
 void ExecutionModel::advanceTo(double time) {

@@ -402,6 +402,8 @@ struct ExecutionModel::State {
   const vrml::Scene* reachingInline = nullptr;
   std::unordered_map<const vrml::Node*, const vrml::Scene*> nodeScenes;
   std::unordered_set<const vrml::Scene*> inlineSceneSet;
+  /// ExecutionModel::worldLoaded was called (INITIALIZED_EVENT goes out once).
+  bool worldLoadedSent = false;
   /// The scenes takeScene is reading now (innermost last): a root a Script adds to one of
   /// them meanwhile is only appended (the take reaches it), and none is removed.
   std::vector<const vrml::Scene*> taking;

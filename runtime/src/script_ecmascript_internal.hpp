@@ -264,6 +264,9 @@ void installX3DSceneEdits(duk_context* c);
 /// a scene's PROFILE, COMPONENT and UNIT statements (script_x3d_info.cpp) on the object at
 /// the top of the stack (__gsX3D).
 void installX3DInfo(duk_context* c);
+/// Puts the natives that write a scene or a node as text (script_x3d_text.cpp) on the
+/// object at the top of the stack (__gsX3D).
+void installX3DText(duk_context* c);
 
 /// Component `k` of a vector-like script object (SFVec3f, SFVec3d, SFColorRGBA, an array):
 /// its property `name` ("x", "r" ...), else its index k, as a number (NaN when neither is

@@ -375,6 +375,14 @@ getter(P, 'units', function () {
   }));
 });
 
+// toVRMLString, toXMLString, toJSONString (X_ITE 15's names; 19777-1 has the node's first
+// two): the scene's whole file, or the node alone, in X3D's Classic VRML, XML or JSON
+// encoding, as `ghostspace convert` writes them.
+['toVRMLString', 'toXMLString', 'toJSONString'].forEach(function (name, encoding) {
+  method(P, name, function () { return hooks.sceneText(this, encoding); });
+  method(SFNode.prototype, name, function () { return hooks.nodeText(this, encoding); });
+});
+
 // ---- Browser's X3D additions (19777-1 7.2), put on Browser by installBrowser ----
 // Browser callbacks: X_ITE 15's addBrowserCallback(key, [event,] callback) and 19777-1's
 // addBrowserListener(listener); each is called with the event's number (X3DConstants
@@ -384,11 +392,15 @@ var callbacks = [];  // [key, event or -1 for every event, function]
 function removeCallbacks(key, event) {
   callbacks = callbacks.filter(function (c) { return !(c[0] === key && (event === undefined || c[1] === event)); });
 }
-G.__gsBrowserEvent = function (event) {
-  var now = callbacks.slice();
-  for (var i = 0; i < now.length; ++i)
-    if (now[i][1] === -1 || now[i][1] === event) now[i][2].call(null, event);
-};
+// Each callback runs even when one before it threw; the first error is then thrown.
+Object.defineProperty(G, '__gsBrowserEvent', { value: function (event) {
+  var now = callbacks.slice(), failed = null;
+  for (var i = 0; i < now.length; ++i) {
+    if (now[i][1] !== -1 && now[i][1] !== event) continue;
+    try { now[i][2].call(null, event); } catch (e) { if (failed === null) failed = e; }
+  }
+  if (failed !== null) throw failed;
+} });
 G.__gsBrowserX3D = function (B) {
   getter(B, 'supportedProfiles', function () { return Object.freeze(hooks.profiles().map(profileInfo)); });
   getter(B, 'supportedComponents', function () { return componentInfos(hooks.components()); });
@@ -404,10 +416,10 @@ G.__gsBrowserX3D = function (B) {
   });
   method(B, 'getRenderingProperty', function (name) { return hooks.renderingProperty(String(name)); });
   method(B, 'addBrowserCallback', function (key, event, fn) {
-    if (arguments.length < 3) { fn = event; event = -1; }
+    if (arguments.length < 3) { fn = event; event = -1; } else { event = Number(event); }
     if (typeof fn !== 'function') throw new TypeError('addBrowserCallback: the callback is no function');
     removeCallbacks(key, event === -1 ? undefined : event);
-    callbacks.push([key, event === -1 ? -1 : Number(event), fn]);
+    callbacks.push([key, event, fn]);
   });
   method(B, 'removeBrowserCallback', function (key, event) {
     removeCallbacks(key, event === undefined ? undefined : Number(event));

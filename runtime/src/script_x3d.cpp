@@ -680,6 +680,7 @@ void EsScript::installX3DHooks(duk_context* c) {
   }
   installX3DSceneEdits(c);
   installX3DInfo(c);
+  installX3DText(c);
   duk_put_prop_string(c, -2, "__gsX3D");
   duk_pop(c);
 }

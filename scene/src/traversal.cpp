@@ -70,6 +70,9 @@ struct SceneTraversal::Walk {
   glm::vec2 viewPixels{640.0f, 480.0f};
   std::vector<LayoutRectangle> layouts{};
   Camera camera{};  // the world's
+  /// Nodes entered and not yet left (node()): past kMaxWalkDepth the walk goes no deeper.
+  int depth = 0;
+  bool depthReported = false;
 
   /// The rectangle a top-level Layout of this layer lays out in: the orthographic region,
   /// or the viewport at the near distance as X_ITE takes it.
@@ -569,6 +572,24 @@ struct SceneTraversal::Walk {
   }
 
   void node(const vrml::Node& n, const glm::mat4& m, const std::string* baseUrl) {
+    // A node graph deeper than any file makes (a file nests at most 256 nodes,
+    // encodings::ParseLimits), or a cycle a Script made (a Group put among its own
+    // descendants' children): the walk stops there, said once, instead of exhausting the
+    // stack.
+    if (depth >= kMaxWalkDepth) {
+      if (!depthReported)
+        self.report(vrml::Severity::error, n.location,
+                    "the scene graph is deeper than " + std::to_string(kMaxWalkDepth) +
+                        " nodes here (a node among its own descendants?): not drawn below");
+      depthReported = true;
+      return;
+    }
+    ++depth;
+    nodeChecked(n, m, baseUrl);
+    --depth;
+  }
+
+  void nodeChecked(const vrml::Node& n, const glm::mat4& m, const std::string* baseUrl) {
     // X3D 4.0's X3DBoundedObject.visible (clause 10.3.1): FALSE draws neither the node nor
     // its children, and the pointer does not reach them; collisions still see them.
     if (!frame.collisionGeometry && n.type().builtIn && !sfBool(n, "visible", true)) return;

@@ -127,6 +127,11 @@ runtime::ExecutionModel& WorldRuntimes::of(const std::shared_ptr<const vrml::Sce
 
 void WorldRuntimes::advanceTo(double time) {
   for (auto& [key, e] : worlds_) {
+    if (!e.loaded &&
+        (!worldLoadState_ || worldLoadState_(*e.scene) != runtime::UrlLoadState::loading)) {
+      e.loaded = true;
+      e.model->worldLoaded();
+    }
     const double now = e.model->now();
     if (time > now) e.model->advanceBy(time - now, options_.step);
   }

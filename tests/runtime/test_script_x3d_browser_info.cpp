@@ -159,10 +159,100 @@ DEF S Script {
                  0.0, x3dScripts());
   INFO(modelDiagnostics(w));
   const vrml::NodePtr script = w.scene->rootNodes.at(0);
+  // Nothing until the world's file is read to its end (session::WorldRuntimes says so).
+  CHECK(script->field("log")->get<FieldType::SFString>() == "initialize ");
+  w.model->worldLoaded();
+  w.model->worldLoaded();  // once only
   // The 'k' callback for INITIALIZED_EVENT stays: one key may hold one callback per event.
   CHECK(script->field("log")->get<FieldType::SFString>() == "initialize init:2 all:2 listener:2 ");
   w.send("S", "go", FieldValue::make<FieldType::SFBool>(true));
   w.model->advanceTo(1.0);
   CHECK(script->field("log")->get<FieldType::SFString>() ==
         "initialize init:2 all:2 listener:2 all:3 listener:3 down:3 shutdown ");
+}
+
+TEST_CASE("X3D Script: a scene and a node written as Classic VRML, XML and JSON text",
+          "[script][x3d]") {
+  RunningWorld w(WorldText{R"(#X3D V4.0 utf8
+PROFILE Interchange
+DEF T Transform { translation 1 2 3 children Shape { geometry Box { } } }
+DEF S Script {
+  outputOnly SFString vrml
+  outputOnly SFString xml
+  outputOnly SFString json
+  outputOnly SFString scene
+  url "ecmascript:
+    function initialize() {
+      var t = Browser.currentScene.getNamedNode('T');
+      vrml = t.toVRMLString();
+      xml = t.toXMLString();
+      json = t.toJSONString();
+      var made = Browser.createX3DFromString('#X3D V4.0 utf8\\nPROFILE Immersive\\nGroup { }\\n');
+      scene = made.toVRMLString() + '|' + Browser.currentScene.toXMLString().indexOf('<Transform DEF=');
+    }
+  "
+}
+)",
+                           "test.x3dv"},
+                 0.0, x3dScripts());
+  INFO(modelDiagnostics(w));
+  CHECK(outOf(w, "vrml").get<FieldType::SFString>() ==
+        "DEF T Transform {\n  children [\n    Shape {\n      geometry Box { }\n    }\n  ]\n"
+        "  translation 1 2 3\n}\n");
+  CHECK(outOf(w, "xml").get<FieldType::SFString>() ==
+        "<Transform DEF=\"T\" translation=\"1 2 3\">\n  <Shape>\n    <Box/>\n  </Shape>\n"
+        "</Transform>\n");
+  CHECK(outOf(w, "json").get<FieldType::SFString>() ==
+        "{\"Transform\": {\n  \"@DEF\": \"T\",\n  \"@translation\": [1, 2, 3],\n"
+        "  \"-children\": [\n    {\"Shape\": {\n      \"-geometry\": {\"Box\": {}}\n    }}\n"
+        "  ]\n}}\n");
+  const std::string scene = outOf(w, "scene").get<FieldType::SFString>();
+  CHECK(scene.starts_with("#X3D V4.0 utf8\nPROFILE Immersive\n\nGroup { }\n|"));
+  CHECK(!scene.ends_with("|-1"));
+}
+
+TEST_CASE(
+    "X3D Script: toVRMLString refuses a node among its own descendants, a chain too "
+    "deep and a graph that would write too many nodes",
+    "[script][x3d]") {
+  RunningWorld w(x3dWorld(R"(
+DEF S Script {
+  inputOnly SFBool go
+  outputOnly SFString made
+  url "ecmascript:
+    var cycle, cycleB, shallow, deep, wide;
+    function group() { return Browser.currentScene.createNode('Group'); }
+    function chain(n) {
+      var top = group(), c = top;
+      for (var i = 1; i < n; ++i) { var d = group(); c.children = new MFNode(d); c = d; }
+      return top;
+    }
+    function initialize() {
+      cycle = group();
+      cycleB = group();
+      cycle.children = new MFNode(cycleB);
+      cycleB.children = new MFNode(cycle);
+      shallow = chain(200);
+      deep = chain(300);
+      // 30 levels of a pair of children that are one node: 2^30 nodes written out.
+      wide = group();
+      var c = wide;
+      for (var i = 0; i < 30; ++i) { var d = group(); c.children = new MFNode(d, d); c = d; }
+    }
+    function text(n, how) {
+      try { return String(n[how]().length > 0); } catch (e) { return e.name; }
+    }
+    function go(v) {
+      made = [text(cycle, 'toVRMLString'), text(cycle, 'toXMLString'), text(cycle, 'toJSONString'),
+              text(shallow, 'toVRMLString'), text(deep, 'toVRMLString'), text(wide, 'toXMLString')].join(' ');
+      cycleB.children = new MFNode();  // the cycle freed
+    }
+  "
+}
+)"),
+                 0.0, x3dScripts());
+  INFO(modelDiagnostics(w));
+  w.send("S", "go", FieldValue::make<FieldType::SFBool>(true));
+  CHECK(outOf(w, "made").get<FieldType::SFString>() ==
+        "RangeError RangeError RangeError true RangeError RangeError");
 }

@@ -111,6 +111,14 @@ class ExecutionModel final : public ScriptContext {
   /// An Inline scene that is still streaming is taken in further by sceneGrew().
   void addInlineScene(std::shared_ptr<const vrml::Scene> scene);
 
+  /// The world's own file was read to its end (or stopped: its stream failed): the X3D
+  /// Scripts' browser callbacks for INITIALIZED_EVENT run, once (ISO/IEC 19777-1 7.2; a
+  /// later call does nothing), after the Scripts made so far ran initialize(). Inline
+  /// worlds, textures and Script files still arriving do not hold it back (X_ITE 15's
+  /// load count waits for them too). session::WorldRuntimes calls it
+  /// when StreamingSession says the world's stream ended.
+  void worldLoaded();
+
   /// Moves the clock to `time` (ignored when earlier) and runs one cascade: every
   /// enabled TimeSensor is evaluated, then the events they send, the events queued by
   /// sendEvent() and the Scripts' eventsProcessed() run to completion.

@@ -189,9 +189,9 @@ class ScriptInstance {
   /// shutdown() when the world is unloaded (4.12.3). An X3D Script's browser callbacks
   /// for SHUTDOWN_EVENT run first.
   virtual void shutdown(double timestamp) = 0;
-  /// The world finished its load (the first cascade after every Script of the load ran
-  /// initialize()): an X3D Script's browser callbacks for INITIALIZED_EVENT run (ISO/IEC
-  /// 19777-1 7.2, addBrowserListener; X_ITE 15's addBrowserCallback). None by default.
+  /// The world's file finished loading (ExecutionModel::worldLoaded): an X3D Script's
+  /// browser callbacks for INITIALIZED_EVENT run (ISO/IEC 19777-1 7.2,
+  /// addBrowserListener; X_ITE 15's addBrowserCallback). None by default.
   virtual void worldInitialized(double timestamp) { (void)timestamp; }
   /// Whether the Script was stopped (an error or a limit): no more calls are made.
   virtual bool stopped() const = 0;

@@ -328,6 +328,14 @@ constexpr std::optional<RenderMode> renderModeFromName(std::string_view name) {
 }
 
 /// How a traversal reads Inline files and tessellates geometry.
+/// How many nodes deep a walk of the scene graph goes (SceneTraversal::collect and the
+/// walks made for bounds, picking and collisions): a file nests at most 256 nodes
+/// (encodings' ParseLimits::maxNesting), a chain of Inlines a few more; deeper, or a node
+/// a Script put among its own descendants (a cycle), is not walked below, with one error.
+/// Twice a file's nesting, and within an 8 MiB stack under AddressSanitizer (which went
+/// about 700 levels deep before it ran out, measured).
+inline constexpr int kMaxWalkDepth = 512;
+
 struct TraversalOptions {
   /// Reads Inline worlds whole (clause 6.25; FetchMode::whole, the Inline's world as the
   /// referrer) and their EXTERNPROTOs when inlineSource is empty; not owned, must outlive

@@ -68,7 +68,9 @@ class WorldRuntimes {
 
   /// The execution model of `scene`, made (loaded at `time`, seconds) on first use.
   runtime::ExecutionModel& of(const std::shared_ptr<const vrml::Scene>& scene, double time);
-  /// Every world's clock to `time` (seconds) in steps of at most the --time-step.
+  /// Every world's clock to `time` (seconds) in steps of at most the --time-step. First, a
+  /// world whose file has been read to its end (the world load state function; unset:
+  /// at once) hears so (runtime::ExecutionModel::worldLoaded).
   void advanceTo(double time);
   /// The Inline worlds `traversal` (a renderer of `scene`) loaded since the last call
   /// join `scene`'s execution model (their routes and sensors run), and the ROUTEs of
@@ -138,6 +140,7 @@ class WorldRuntimes {
   struct Entry {
     std::shared_ptr<const vrml::Scene> scene;
     std::unique_ptr<runtime::ExecutionModel> model;
+    bool loaded = false;  // ExecutionModel::worldLoaded was called
     std::size_t diagnosticsShown = 0;
     std::vector<char> importedRouteDone;  // per scene->x3d.importedRoutes
     std::vector<char> importKnown;        // per scene->x3d.imports: resolved or missing
