@@ -294,12 +294,7 @@ duk_ret_t setDescription(duk_context* c) {
 }  // namespace
 
 void EsScript::installBrowser(duk_context* c) {
-  struct Entry {
-    const char* name;
-    duk_c_function fn;
-    duk_idx_t nargs;
-  };
-  static constexpr Entry kBrowser[] = {
+  static constexpr NativeFunction kBrowser[] = {
       {"getName", getName, 0},
       {"getVersion", getVersion, 0},
       {"getCurrentTime", getCurrentTime, 0},
@@ -324,10 +319,7 @@ void EsScript::installBrowser(duk_context* c) {
   };
   duk_push_global_object(c);
   duk_push_object(c);
-  for (const Entry& e : kBrowser) {
-    duk_push_c_function(c, e.fn, e.nargs);
-    duk_put_prop_string(c, -2, e.name);
-  }
+  putNativeFunctions(c, kBrowser);
   // 19777-1's properties: name and version, currentSpeed and currentFrameRate (read as
   // the get* functions answer), currentScene (the X3DScene made by kPreludeX3D).
   duk_push_string(c, "name");

@@ -704,6 +704,13 @@ void EsScript::eventIn(int field, const vrml::FieldValue& value, double timestam
   }
 }
 
+void putNativeFunctions(duk_context* c, std::span<const NativeFunction> functions) {
+  for (const NativeFunction& f : functions) {
+    duk_push_c_function(c, f.fn, f.nargs);
+    duk_put_prop_string(c, -2, f.name);
+  }
+}
+
 }  // namespace es
 
 ScriptFactory ecmascriptFactory() {

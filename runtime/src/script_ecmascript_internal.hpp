@@ -13,6 +13,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -243,6 +244,16 @@ inline constexpr const char* kNodeIdKey = DUK_HIDDEN_SYMBOL("gsNode");
 inline constexpr const char* kSceneIdKey = DUK_HIDDEN_SYMBOL("gsScene");
 /// Global stash entry: the X3D prelude's function that makes an X3DScene object.
 inline constexpr const char* kSceneMakerKey = "gsSceneMaker";
+
+/// A native function a Script calls: its name, the C function and its argument count
+/// (DUK_VARARGS: any).
+struct NativeFunction {
+  const char* name;
+  duk_c_function fn;
+  duk_idx_t nargs;
+};
+/// Puts each of `functions` on the object at the top of the stack, under its name.
+void putNativeFunctions(duk_context* c, std::span<const NativeFunction> functions);
 
 // ---- the X3DScene natives' shared helpers (script_x3d.cpp) ----
 

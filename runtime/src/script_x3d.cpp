@@ -651,12 +651,7 @@ bool EsScript::wantsX3D() const {
 }
 
 void EsScript::installX3DHooks(duk_context* c) {
-  struct Entry {
-    const char* name;
-    duk_c_function fn;
-    duk_idx_t nargs;
-  };
-  static constexpr Entry kHooks[] = {
+  static constexpr NativeFunction kHooks[] = {
       {"sceneInfo", x3dSceneInfo, 1},
       {"rootNodes", x3dRootNodes, 1},
       {"namedNode", x3dNamedNode, 2},
@@ -674,10 +669,7 @@ void EsScript::installX3DHooks(duk_context* c) {
   };
   duk_push_global_object(c);
   duk_push_bare_object(c);
-  for (const Entry& e : kHooks) {
-    duk_push_c_function(c, e.fn, e.nargs);
-    duk_put_prop_string(c, -2, e.name);
-  }
+  putNativeFunctions(c, kHooks);
   installX3DSceneEdits(c);
   installX3DInfo(c);
   installX3DText(c);

@@ -361,21 +361,13 @@ duk_ret_t x3dRenderingProperty(duk_context* c) {
 }  // namespace
 
 void installX3DInfo(duk_context* c) {
-  struct Entry {
-    const char* name;
-    duk_c_function fn;
-    duk_idx_t nargs;
-  };
-  static constexpr Entry kHooks[] = {
+  static constexpr NativeFunction kHooks[] = {
       {"profiles", x3dProfiles, 0},         {"components", x3dComponents, 0},
       {"profile", x3dProfile, 1},           {"component", x3dComponent, 2},
       {"sceneProfile", x3dSceneProfile, 1}, {"sceneComponents", x3dSceneComponents, 1},
       {"sceneUnits", x3dSceneUnits, 1},     {"renderingProperty", x3dRenderingProperty, 1},
   };
-  for (const Entry& e : kHooks) {
-    duk_push_c_function(c, e.fn, e.nargs);
-    duk_put_prop_string(c, -2, e.name);
-  }
+  putNativeFunctions(c, kHooks);
 }
 
 }  // namespace gs::runtime::es

@@ -275,20 +275,12 @@ duk_ret_t x3dRoutes(duk_context* c) {
 }  // namespace
 
 void installX3DSceneEdits(duk_context* c) {
-  struct Entry {
-    const char* name;
-    duk_c_function fn;
-    duk_idx_t nargs;
-  };
-  static constexpr Entry kHooks[] = {
+  static constexpr NativeFunction kHooks[] = {
       {"namedNodes", x3dNamedNodes, 1}, {"editNamedNode", x3dEditNamedNode, 4},
       {"metaData", x3dMetaData, 4},     {"editExportedNode", x3dEditExportedNode, 4},
       {"routes", x3dRoutes, 1},
   };
-  for (const Entry& e : kHooks) {
-    duk_push_c_function(c, e.fn, e.nargs);
-    duk_put_prop_string(c, -2, e.name);
-  }
+  putNativeFunctions(c, kHooks);
 }
 
 }  // namespace gs::runtime::es
