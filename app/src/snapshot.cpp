@@ -95,6 +95,7 @@ int runSnapshot(const Options& options) {
   }
   auto context = render::createOffscreenContext(options.width, options.height,
                                                 options.samples < 0 ? 1 : options.samples);
+  const int samples = render::drawFramebufferSamples();  // what the context got
   // One WorldView per cell (session/world_view.hpp): the load below and every frame of
   // life are thin loops over them.
   session::ViewGroup group(session);
@@ -167,7 +168,7 @@ int runSnapshot(const Options& options) {
   // through T0 + i * DT at the fixed --time-step, so a frame's pixels depend on the
   // command alone.
   session::RuntimeOptions time = options.time;
-  time.samples = options.samples < 0 ? 1 : options.samples;
+  time.samples = samples;
   session::WorldRuntimes runtimes(time, &session.loader());
   // MovieTextures show the frame of their media time, waiting for it (docs/media.md).
   group.attachRuntimes(runtimes, time.load >= 0.0 ? time.load : time.start, true);

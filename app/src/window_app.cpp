@@ -165,7 +165,7 @@ int runWindow(const Options& options) {
   state.lastAspect = static_cast<float>(context->width()) / std::max(1, context->height());
   state.rendererOptions = rendererOptions(options);
   state.time = options.time;
-  state.time.samples = options.samples < 0 ? 4 : options.samples;
+  state.time.samples = render::drawFramebufferSamples();  // what the window got
   state.session = std::make_unique<session::StreamingSession>(loaderOptions(options));
   state.session->setTilesetOptions(tilesetOptions(options));
   state.setLayout(options.layout);

@@ -144,6 +144,12 @@ Image readPixels(int x, int y, int w, int h) {
   return image;
 }
 
+int drawFramebufferSamples() {
+  GLint samples = 0;
+  glGetIntegerv(GL_SAMPLES, &samples);
+  return std::max(1, static_cast<int>(samples));
+}
+
 void readFramebufferPixels(int x, int y, int width, int height, GLenum format, GLenum type,
                            void* pixels) {
   GLint sampleBuffers = 0;

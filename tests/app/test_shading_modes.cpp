@@ -151,3 +151,29 @@ TEST_CASE("the window's View > Shading sets the option for the viewport's world"
   CHECK(wireframe.lit > 0.02);
   CHECK(wireframe.lit < 0.8 * phong.lit);
 }
+
+TEST_CASE("a Script reads the renderer's properties and hears the world's load end",
+          "[app][script]") {
+  const gs::test::TempDir dir("rendering_properties");
+  const std::string world = dir.write("properties.x3dv", std::string(kLitSphere) + R"(
+DEF S Script {
+  url "ecmascript:
+function initialize () {
+  print (['Shading', 'MaxTextureSize', 'TextureUnits', 'MaxLights', 'Antialiased', 'ColorDepth'].map (
+    function (n) { return n + '=' + Browser .getRenderingProperty (n); }).join (' '));
+  Browser .addBrowserCallback ('k', X3DConstants .INITIALIZED_EVENT, function (e) { print ('loaded ' + e); });
+}"
+}
+)");
+  for (const char* samples : {"1", "4"}) {
+    const std::string png = (dir.path / (std::string("s") + samples + ".png")).string();
+    const gs::test::ProcessResult r = gs::test::runGhostspace(
+        {"--snapshot", png, "--size", "64x64", "--samples", samples, world});
+    INFO(r.err);
+    REQUIRE(r.exitCode == 0);
+    CHECK(r.err.find("Shading=PHONG MaxTextureSize=16384 TextureUnits=4 MaxLights=8 Antialiased=" +
+                     std::string(samples[0] == '4' ? "true" : "false") + " ColorDepth=24") !=
+          std::string::npos);
+    CHECK(r.err.find("loaded 2") != std::string::npos);
+  }
+}

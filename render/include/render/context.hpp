@@ -73,6 +73,11 @@ class WindowContext : public GlContext {
 std::unique_ptr<WindowContext> createWindowContext(const std::string& title, int width, int height,
                                                    int samples = 1);
 
+/// Samples per pixel of the draw framebuffer bound in the current context (GL_SAMPLES of
+/// a multisampled FBO or window; 1 for one sample, the driver's 0 included): what a
+/// context made with `samples` actually got (Browser.getRenderingProperty("Antialiased")).
+int drawFramebufferSamples();
+
 /// Terminates GLFW when no window context is alive (returns false and does nothing
 /// otherwise). Optional: the process may simply exit. Terminating unloads Mesa's GLX
 /// driver, whose own allocations LeakSanitizer then reports as leaks from an unloaded

@@ -37,8 +37,9 @@ struct RuntimeOptions {
   /// --shading: the browser option Shading each world starts with; its Scripts may read it
   /// and set it (Browser.getBrowserOption / setBrowserOption("Shading", ...)).
   render::ShadingOption shading = render::ShadingOption::phong;
-  /// The picture's samples per pixel (--samples as the window or the snapshot resolved
-  /// it): Browser.getRenderingProperty("Antialiased") is true above 1.
+  /// The picture's samples per pixel (what the window's or the snapshot's context got for
+  /// --samples, render::drawFramebufferSamples): Browser.getRenderingProperty("Antialiased")
+  /// is true above 1.
   int samples = 1;
 };
 
