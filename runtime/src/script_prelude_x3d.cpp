@@ -369,6 +369,20 @@ function profileInfo(d) {
 }
 getter(P, 'profile', function () { return profileInfo(hooks.sceneProfile(this)); });
 getter(P, 'components', function () { return componentInfos(hooks.sceneComponents(this)); });
+// Edits of the scene's COMPONENT and UNIT statements (as X_ITE 15 names them): the
+// statements only; what was read keeps its units.
+method(P, 'hasComponent', function (name, level) {
+  name = String(name); level = level === undefined ? 0 : Number(level);
+  return this.components.some(function (c) { return c.name === name && c.level >= level; });
+});
+method(P, 'addComponent', function (component) { hooks.editComponent(this, 0, String(component.name), component.level); });
+method(P, 'updateComponent', function (component) { hooks.editComponent(this, 1, String(component.name), component.level); });
+method(P, 'removeComponent', function (name) { hooks.editComponent(this, 2, String(name), 0); });
+method(P, 'updateUnit', function (category, name, factor) { hooks.editUnit(this, String(category), String(name), Number(factor)); });
+method(P, 'getUnit', function (category) {
+  category = String(category);
+  return this.units.filter(function (u) { return u.category === category; })[0] || null;
+});
 getter(P, 'units', function () {
   return Object.freeze(hooks.sceneUnits(this).map(function (u) {
     return readOnly(Object.create(UnitInfo.prototype), { category: u[0], name: u[1], conversionFactor: u[2] });

@@ -8,6 +8,7 @@
 #include "vrml/scene.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <unordered_set>
@@ -68,7 +69,7 @@ vrml::NodePtr x3dNodeArg(EsScript& self, duk_context* c, duk_idx_t idx, const ch
 void x3dCollectNamed(const std::vector<vrml::NodePtr>& nodes, EsScript& self, duk_context* c,
                      std::unordered_set<const vrml::Node*>& seen,
                      std::vector<std::pair<std::string, vrml::NodePtr>>& out, int depth) {
-  if (depth > 1024) return;
+  if (depth > 512) return;  // as deep as the traversal walks (scene::kMaxWalkDepth)
   for (const vrml::NodePtr& n : nodes) {
     if (!n || !seen.insert(n.get()).second) continue;
     if ((seen.size() & 4095u) == 0) self.checkDeadline(c);
@@ -272,13 +273,70 @@ duk_ret_t x3dRoutes(duk_context* c) {
   return 1;
 }
 
+// editUnit(scene, category, name, conversionFactor): X3DScene.updateUnit (as X_ITE 15
+// names it): the scene's UNIT statement of `category` (angle, force, length or mass) names
+// `name`, `conversionFactor` base units each. The values already read keep their units:
+// the statement is the scene's record (X3DScene.units, toVRMLString).
+duk_ret_t x3dEditUnit(duk_context* c) {
+  EsScript& self = EsScript::of(c);
+  vrml::Scene& scene = x3dEditedScene(self, c, "updateUnit");
+  const std::string category = x3dString(c, 1);
+  const std::string name = x3dString(c, 2);
+  const double factor = duk_to_number(c, 3);
+  if (category != "angle" && category != "force" && category != "length" && category != "mass")
+    GS_DUK_ERROR(c, DUK_ERR_ERROR,
+                 "updateUnit: no unit category '%s' (angle, force, length or mass)",
+                 category.substr(0, 64).c_str());
+  if (!std::isfinite(factor) || factor <= 0.0)
+    GS_DUK_ERROR(c, DUK_ERR_RANGE_ERROR, "updateUnit: the conversion factor is no positive number");
+  x3dCheckTableRoom(c, 0, 0, "updateUnit", name);
+  std::erase_if(scene.x3d.units, [&](const vrml::X3dUnit& u) { return u.category == category; });
+  scene.x3d.units.push_back({category, name, factor});
+  return 0;
+}
+
+// editComponent(scene, op, name, level): X3DScene.addComponent (a component the scene
+// names already: an Error), updateComponent (its level set, or it added) and
+// removeComponent (as X_ITE 15 names them): the scene's COMPONENT statements.
+duk_ret_t x3dEditComponent(duk_context* c) {
+  EsScript& self = EsScript::of(c);
+  const int op = duk_to_int(c, 1);
+  const char* what = x3dEditName(op, "addComponent", "updateComponent", "removeComponent");
+  vrml::Scene& scene = x3dEditedScene(self, c, what);
+  const std::string name = x3dString(c, 2);
+  auto& table = scene.x3d.components;
+  const auto it =
+      std::find_if(table.begin(), table.end(), [&](const auto& e) { return e.first == name; });
+  if (op == kEditRemove) {
+    if (it != table.end()) table.erase(it);
+    return 0;
+  }
+  const double level = duk_to_number(c, 3);
+  if (!(level >= 1.0 && level <= 100.0))
+    GS_DUK_ERROR(c, DUK_ERR_RANGE_ERROR, "%s: the level is no number from 1 to 100", what);
+  if (it != table.end()) {
+    if (op == kEditAdd)
+      GS_DUK_ERROR(c, DUK_ERR_ERROR, "addComponent: the scene names the component '%s' already",
+                   name.substr(0, 64).c_str());
+    it->second = static_cast<int>(level);
+    return 0;
+  }
+  x3dCheckTableRoom(c, table.size(), 1, what, name);
+  table.emplace_back(name, static_cast<int>(level));
+  return 0;
+}
+
 }  // namespace
 
 void installX3DSceneEdits(duk_context* c) {
   static constexpr NativeFunction kHooks[] = {
-      {"namedNodes", x3dNamedNodes, 1}, {"editNamedNode", x3dEditNamedNode, 4},
-      {"metaData", x3dMetaData, 4},     {"editExportedNode", x3dEditExportedNode, 4},
+      {"namedNodes", x3dNamedNodes, 1},
+      {"editNamedNode", x3dEditNamedNode, 4},
+      {"metaData", x3dMetaData, 4},
+      {"editExportedNode", x3dEditExportedNode, 4},
       {"routes", x3dRoutes, 1},
+      {"editUnit", x3dEditUnit, 4},
+      {"editComponent", x3dEditComponent, 4},
   };
   putNativeFunctions(c, kHooks);
 }

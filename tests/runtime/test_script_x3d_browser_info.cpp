@@ -256,3 +256,46 @@ DEF S Script {
   CHECK(outOf(w, "made").get<FieldType::SFString>() ==
         "RangeError RangeError RangeError true RangeError RangeError");
 }
+
+TEST_CASE("X3D Script: a scene's COMPONENT and UNIT statements edited", "[script][x3d]") {
+  RunningWorld w(WorldText{R"(#X3D V4.0 utf8
+PROFILE Interchange
+COMPONENT Geospatial:1
+UNIT mass gram 0.001
+DEF S Script {
+  outputOnly SFString edits
+  url "ecmascript:
+    function initialize() {
+      var s = Browser.currentScene, out = [];
+      out.push(s.hasComponent('Geospatial') + ' ' + s.hasComponent('Geospatial', 2) + ' ' +
+               s.hasComponent('NURBS'));
+      s.addComponent(Browser.getComponent('NURBS', 2));
+      try { s.addComponent(Browser.getComponent('NURBS', 4)); } catch (e) { out.push('inUse'); }
+      s.updateComponent(Browser.getComponent('Geospatial', 2));
+      s.removeComponent('Nope');
+      out.push(s.components.map(function (c) { return c.name + ':' + c.level; }).join());
+      s.removeComponent('Geospatial');
+      s.updateUnit('length', 'km', 1000);
+      s.updateUnit('mass', 'kilogram', 1);
+      try { s.updateUnit('time', 's', 1); } catch (e) { out.push('noCategory'); }
+      try { s.updateUnit('length', 'x', -1); } catch (e) { out.push(e.name); }
+      out.push(s.components.length + ' ' + s.getUnit('length').name + ' ' +
+               s.getUnit('length').conversionFactor + ' ' + s.getUnit('mass').name + ' ' +
+               s.getUnit('angle').name);
+      edits = out.join(';');
+    }
+  "
+}
+)",
+                           "test.x3dv"},
+                 0.0, x3dScripts());
+  INFO(modelDiagnostics(w));
+  CHECK(outOf(w, "edits").get<FieldType::SFString>() ==
+        "true false false;inUse;Geospatial:2,NURBS:2;noCategory;RangeError;1 km 1000 kilogram "
+        "radian");
+  // The edits are the world's statements.
+  CHECK(w.scene->x3d.components == std::vector<std::pair<std::string, int>>{{"NURBS", 2}});
+  REQUIRE(w.scene->x3d.units.size() == 2);
+  CHECK(w.scene->x3d.units[0].category == "length");
+  CHECK(w.scene->x3d.units[1].name == "kilogram");
+}
