@@ -258,7 +258,7 @@ method(P, 'constructor', X3DScene);
 // Browser.createX3DFromString made (the host knows it by a hidden id).
 getter(P, 'specificationVersion', function () { return hooks.sceneInfo(this)[0]; });
 getter(P, 'encoding', function () { return hooks.sceneInfo(this)[1]; });
-getter(P, 'worldURL', function () { return hooks.sceneInfo(this)[3]; });
+getter(P, 'worldURL', function () { return hooks.sceneInfo(this)[2]; });
 getter(P, 'rootNodes', function () { return hooks.rootNodes(this); });
 method(P, 'getNamedNode', function (name) {
   var node = hooks.namedNode(this, String(name));

@@ -309,7 +309,7 @@ vrml::Scene* x3dEditableSceneOf(EsScript& self, duk_context* c, duk_idx_t idx) {
 
 namespace {
 
-// sceneInfo(scene): [specificationVersion, encoding, profile, worldURL]. A created
+// sceneInfo(scene): [specificationVersion, encoding, worldURL]. A created
 // scene's worldURL is the world's, against which its URLs were resolved; an Inline's
 // world's is its own.
 duk_ret_t x3dSceneInfo(duk_context* c) {
@@ -320,12 +320,11 @@ duk_ret_t x3dSceneInfo(duk_context* c) {
   std::string encoding = scene != nullptr && !scene->x3d.encoding.empty() ? scene->x3d.encoding
                          : scene != nullptr                               ? "VRML"
                                                                           : "";
-  std::string profile = scene != nullptr ? scene->x3d.profile : "";
   std::string url =
       x3dInlineScene(self, c, 0) && scene != nullptr ? scene->url : self.context().worldUrl();
   duk_push_array(c);
-  const std::string* parts[] = {&version, &encoding, &profile, &url};
-  for (duk_uarridx_t i = 0; i < 4; ++i) {
+  const std::string* parts[] = {&version, &encoding, &url};
+  for (duk_uarridx_t i = 0; i < 3; ++i) {
     duk_push_lstring(c, parts[i]->data(), parts[i]->size());
     duk_put_prop_index(c, -2, i);
   }

@@ -77,7 +77,8 @@ constexpr ComponentEntry kComponents[] = {
 struct ProfileEntry {
   std::string_view name;
   std::string_view title;
-  std::span<const ComponentLevel> components;  // empty: every component at its highest level
+  std::span<const ComponentLevel> components;
+  bool full = false;  // every component at its highest level (the Full profile)
 };
 
 // The profiles of ISO/IEC 19775-1:2023 (annexes A to F, H and I: each profile's table of
@@ -156,7 +157,7 @@ constexpr ComponentLevel kMedicalInterchange[] = {
 constexpr ProfileEntry kProfiles[] = {
     {"CADInterchange", "Computer-Aided Design (CAD) interchange", kCadInterchange},
     {"Core", "Core", kCore},
-    {"Full", "Full", {}},
+    {"Full", "Full", {}, true},
     {"Immersive", "Immersive", kImmersive},
     {"Interactive", "Interactive", kInteractive},
     {"Interchange", "Interchange", kInterchange},
@@ -200,7 +201,7 @@ void pushProfile(duk_context* c, const ProfileEntry& p) {
   duk_put_prop_index(c, -2, 1);
   duk_push_array(c);
   duk_uarridx_t i = 0;
-  if (p.components.empty()) {
+  if (p.full) {
     for (const ComponentEntry& e : kComponents) {
       pushComponent(c, e.name, e.level);
       duk_put_prop_index(c, -2, i++);
@@ -272,13 +273,7 @@ duk_ret_t x3dSceneProfile(duk_context* c) {
   } else if (const ProfileEntry* p = profileNamed(name)) {
     pushProfile(c, *p);
   } else {
-    duk_push_array(c);
-    duk_push_lstring(c, name.data(), name.size());
-    duk_put_prop_index(c, -2, 0);
-    duk_push_string(c, "");
-    duk_put_prop_index(c, -2, 1);
-    duk_push_array(c);
-    duk_put_prop_index(c, -2, 2);
+    pushProfile(c, ProfileEntry{name, "", {}});  // a name this browser does not know
   }
   return 1;
 }
