@@ -73,10 +73,14 @@ void WindowState::followLinks() {
   for (const LinkRequest& r : requests) {
     const std::string worldUrl = r.scene != nullptr ? r.scene->url : std::string();
     const LinkDecision d = decideLink(worldUrl, r.url, r.parameter);
+    // A world link that is refused or cannot be opened: the asking world's Scripts hear
+    // INITIALIZED_ERROR (X_ITE 15's loadURL), and the world stays.
+    bool failed = false;
     switch (d.action) {
       case LinkAction::refused:
         log.push_back({true, "link not followed: " + d.reason});
         showLog = true;
+        failed = true;
         break;
       case LinkAction::external: {
         std::string error;
@@ -90,12 +94,14 @@ void WindowState::followLinks() {
         const std::size_t world = load(d.url);
         if (world != Viewport::kNone)  // Back returns to the world it replaces
           showLinked(world, r.viewport < viewports.size() ? r.viewport : active);
+        failed = world == Viewport::kNone;
         break;
       }
       case LinkAction::openWorldInNewViewport:
-        openInNewViewport(d.url);
+        failed = !openInNewViewport(d.url);
         break;
     }
+    if (failed && runtimes) runtimes->linkFailed(r.scene);
   }
 }
 

@@ -75,9 +75,9 @@ void WindowState::open(const std::string& path) {
   if (world != Viewport::kNone) show(world, active);
 }
 
-void WindowState::openInNewViewport(const std::string& path) {
+bool WindowState::openInNewViewport(const std::string& path) {
   const std::size_t world = load(path);
-  if (world == Viewport::kNone) return;
+  if (world == Viewport::kNone) return false;
   auto empty = [&] {
     for (std::size_t i = 0; i < viewports.size(); ++i)
       if (viewports[i].world == Viewport::kNone) return i;
@@ -93,6 +93,7 @@ void WindowState::openInNewViewport(const std::string& path) {
   if (target == Viewport::kNone) target = active;
   show(world, target);
   active = target;
+  return true;
 }
 
 void WindowState::openInputs(const std::vector<std::string>& inputs,

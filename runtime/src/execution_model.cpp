@@ -350,13 +350,21 @@ void ExecutionModel::addInlineScene(std::shared_ptr<const vrml::Scene> scene) {
   s_->evaluateSkins();
 }
 
-void ExecutionModel::worldLoaded() {
+void ExecutionModel::worldLoaded(bool complete) {
   if (s_->worldLoadedSent) return;
   s_->worldLoadedSent = true;
+  sendBrowserEvent(complete ? BrowserEvent::initialized : BrowserEvent::initializationError);
+}
+
+void ExecutionModel::linkFailed() {
+  sendBrowserEvent(BrowserEvent::initializationError);
+}
+
+void ExecutionModel::sendBrowserEvent(BrowserEvent event) {
   s_->initializeScripts();                             // those the last growth made
   const std::vector<NodeState*> loaded = s_->scripts;  // (a callback may make Scripts)
   for (NodeState* s : loaded)
-    if (s->script && !s->script->stopped()) s->script->worldInitialized(now());
+    if (s->script && !s->script->stopped()) s->script->browserEvent(event, now());
   s_->runCascade();
   s_->initializeScripts();  // those the callbacks made
 }

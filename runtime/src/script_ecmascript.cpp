@@ -660,13 +660,15 @@ void EsScript::eventsProcessed(double timestamp) {
 // The X3D prelude's dispatcher of browser callbacks (addBrowserCallback,
 // addBrowserListener), called with X3DConstants' event number; absent in VRML97 Scripts.
 constexpr const char* kBrowserEventFunction = "__gsBrowserEvent";
-constexpr int kInitializedEvent = 2;  // X3DConstants.INITIALIZED_EVENT
-constexpr int kShutdownEvent = 3;     // X3DConstants.SHUTDOWN_EVENT
+constexpr int kShutdownEvent = 3;  // X3DConstants.SHUTDOWN_EVENT
 
-void EsScript::worldInitialized(double timestamp) {
-  const vrml::FieldValue event =
-      vrml::FieldValue::make<vrml::FieldType::SFInt32>(kInitializedEvent);
-  run(kBrowserEventFunction, &event, timestamp, "a browser callback (INITIALIZED_EVENT)", true);
+void EsScript::browserEvent(BrowserEvent event, double timestamp) {
+  const vrml::FieldValue number =
+      vrml::FieldValue::make<vrml::FieldType::SFInt32>(static_cast<std::int32_t>(event));
+  run(kBrowserEventFunction, &number, timestamp,
+      event == BrowserEvent::initialized ? "a browser callback (INITIALIZED_EVENT)"
+                                         : "a browser callback (INITIALIZED_ERROR)",
+      true);
 }
 
 void EsScript::shutdown(double timestamp) {

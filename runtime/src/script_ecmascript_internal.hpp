@@ -59,7 +59,7 @@ class EsScript final : public ScriptInstance {
   void eventIn(int field, const vrml::FieldValue& value, double timestamp) override;
   void eventsProcessed(double timestamp) override;
   void shutdown(double timestamp) override;
-  void worldInitialized(double timestamp) override;
+  void browserEvent(BrowserEvent event, double timestamp) override;
   bool stopped() const override { return stopped_; }
 
   // ---- for the native functions ----

@@ -400,7 +400,8 @@ getter(P, 'units', function () {
 // ---- Browser's X3D additions (19777-1 7.2), put on Browser by installBrowser ----
 // Browser callbacks: X_ITE 15's addBrowserCallback(key, [event,] callback) and 19777-1's
 // addBrowserListener(listener); each is called with the event's number (X3DConstants
-// INITIALIZED_EVENT once the world's load ran every initialize(), SHUTDOWN_EVENT before
+// INITIALIZED_EVENT once the world's load ran every initialize(), INITIALIZED_ERROR when
+// its file ended short or a link it asked for could not open, SHUTDOWN_EVENT before
 // shutdown() when the world is unloaded).
 var callbacks = [];  // [key, event or -1 for every event, function]
 function removeCallbacks(key, event) {

@@ -127,14 +127,22 @@ runtime::ExecutionModel& WorldRuntimes::of(const std::shared_ptr<const vrml::Sce
 
 void WorldRuntimes::advanceTo(double time) {
   for (auto& [key, e] : worlds_) {
-    if (!e.loaded &&
-        (!worldLoadState_ || worldLoadState_(*e.scene) != runtime::UrlLoadState::loading)) {
-      e.loaded = true;
-      e.model->worldLoaded();
+    if (!e.loaded) {
+      const runtime::UrlLoadState state =
+          worldLoadState_ ? worldLoadState_(*e.scene) : runtime::UrlLoadState::loaded;
+      if (state != runtime::UrlLoadState::loading) {
+        e.loaded = true;
+        e.model->worldLoaded(state == runtime::UrlLoadState::loaded);
+      }
     }
     const double now = e.model->now();
     if (time > now) e.model->advanceBy(time - now, options_.step);
   }
+}
+
+void WorldRuntimes::linkFailed(const vrml::Scene* scene) {
+  const auto it = worlds_.find(scene);
+  if (it != worlds_.end()) it->second.model->linkFailed();
 }
 
 void WorldRuntimes::addInlines(const vrml::Scene* scene, const scene::SceneTraversal& traversal) {

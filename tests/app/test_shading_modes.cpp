@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "baseline.hpp"
+#include "http/fault_server.hpp"
 #include "process.hpp"
 #include "render/image.hpp"
 #include "test_support.hpp"
@@ -176,4 +177,28 @@ function initialize () {
           std::string::npos);
     CHECK(r.err.find("loaded 2") != std::string::npos);
   }
+}
+
+TEST_CASE("a Script hears INITIALIZED_ERROR when its world's transfer stops short",
+          "[app][script][http]") {
+  // The Script comes first; the transfer stalls after it, inside the sphere's Shape.
+  const std::string world = R"(#X3D V4.0 utf8
+PROFILE Immersive
+DEF S Script {
+  url "ecmascript:
+function initialize () {
+  Browser .addBrowserCallback ('k', function (e) { print ('browser event ' + e); });
+}"
+}
+)" + std::string(kLitSphere).substr(std::string(kLitSphere).find("NavigationInfo"));
+  gs::test::FaultServer server(world, gs::test::FaultServer::Behaviour::stall, world.size() - 20);
+  REQUIRE(server.ok());
+  const gs::test::TempDir dir("initialized_error");
+  const gs::test::ProcessResult r =
+      gs::test::runGhostspace({"--snapshot", (dir.path / "cut.png").string(), "--size", "64x64",
+                               "--stall-timeout", "1", server.url("/cut.x3dv")});
+  INFO(r.err);
+  CHECK(r.exitCode == 3);  // a picture from an incomplete input
+  CHECK(r.err.find("browser event 4") != std::string::npos);
+  CHECK(r.err.find("browser event 2") == std::string::npos);
 }

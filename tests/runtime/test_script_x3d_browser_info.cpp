@@ -171,6 +171,36 @@ DEF S Script {
         "initialize init:2 all:2 listener:2 all:3 listener:3 down:3 shutdown ");
 }
 
+TEST_CASE("X3D Script: INITIALIZED_ERROR when the world's file ends short or a link fails",
+          "[script][x3d]") {
+  const char* world = R"(
+DEF S Script {
+  outputOnly SFString log
+  url "ecmascript:
+    var text = '';
+    function initialize() {
+      Browser.addBrowserCallback('k', function (e) { text += e + ' '; log = text; });
+    }
+  "
+}
+)";
+  // The stream ended short (failed or stopped): INITIALIZED_ERROR in place of
+  // INITIALIZED_EVENT, once.
+  RunningWorld cut(x3dWorld(world), 0.0, x3dScripts());
+  INFO(modelDiagnostics(cut));
+  const vrml::NodePtr script = cut.scene->rootNodes.at(0);
+  cut.model->worldLoaded(false);
+  cut.model->worldLoaded(true);
+  CHECK(script->field("log")->get<FieldType::SFString>() == "4 ");
+  // A link the world asked for could not open: INITIALIZED_ERROR each time.
+  RunningWorld whole(x3dWorld(world), 0.0, x3dScripts());
+  const vrml::NodePtr other = whole.scene->rootNodes.at(0);
+  whole.model->worldLoaded();
+  whole.model->linkFailed();
+  whole.model->linkFailed();
+  CHECK(other->field("log")->get<FieldType::SFString>() == "2 4 4 ");
+}
+
 TEST_CASE("X3D Script: a scene and a node written as Classic VRML, XML and JSON text",
           "[script][x3d]") {
   RunningWorld w(WorldText{R"(#X3D V4.0 utf8

@@ -150,7 +150,8 @@ struct WindowState {
   void open(const std::string& path);
   /// As open(), but in the first empty viewport, growing the layout (1x1, 2x1, 2x2) when
   /// none is empty; with four full viewports, the active one (the web-browser helper).
-  void openInNewViewport(const std::string& path);
+  /// False when the world could not be opened (logged).
+  bool openInNewViewport(const std::string& path);
   /// Fills the viewports in order with `inputs` (a single input fills them all); viewport
   /// i draws at level of detail lods[i] (the last one repeats; none: rendererOptions.lod).
   void openInputs(const std::vector<std::string>& inputs, const std::vector<double>& lods);

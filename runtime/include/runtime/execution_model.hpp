@@ -111,13 +111,18 @@ class ExecutionModel final : public ScriptContext {
   /// An Inline scene that is still streaming is taken in further by sceneGrew().
   void addInlineScene(std::shared_ptr<const vrml::Scene> scene);
 
-  /// The world's own file was read to its end (or stopped: its stream failed): the X3D
-  /// Scripts' browser callbacks for INITIALIZED_EVENT run, once (ISO/IEC 19777-1 7.2; a
-  /// later call does nothing), after the Scripts made so far ran initialize(). Inline
-  /// worlds, textures and Script files still arriving do not hold it back (X_ITE 15's
-  /// load count waits for them too). session::WorldRuntimes calls it
-  /// when StreamingSession says the world's stream ended.
-  void worldLoaded();
+  /// The world's own file was read to its end (`complete`), or its stream ended short
+  /// (failed, or stopped): the X3D Scripts' browser callbacks for INITIALIZED_EVENT, or
+  /// for INITIALIZED_ERROR when not `complete`, run once (ISO/IEC 19777-1 7.2; a later
+  /// call does nothing), after the Scripts made so far ran initialize(). Inline worlds,
+  /// textures and Script files still arriving do not hold it back (X_ITE 15's load count
+  /// waits for them too). session::WorldRuntimes calls it when StreamingSession says the
+  /// world's stream ended.
+  void worldLoaded(bool complete = true);
+  /// A world this one asked for (Browser.loadURL, an Anchor) could not be opened: the X3D
+  /// Scripts' callbacks for INITIALIZED_ERROR run, as X_ITE 15's loadURL calls them when
+  /// its file fails (the world stays). Each call sends the event once more.
+  void linkFailed();
 
   /// Moves the clock to `time` (ignored when earlier) and runs one cascade: every
   /// enabled TimeSensor is evaluated, then the events they send, the events queued by
@@ -288,6 +293,8 @@ class ExecutionModel final : public ScriptContext {
   std::uint64_t bindingRevision_ = 0;
   double frameRate_ = 0.0;
   std::unordered_map<std::string, vrml::NodePtr> imported_;  // setImportedNode
+  /// Runs every Script's browser callbacks for `event`, then the cascade they start.
+  void sendBrowserEvent(BrowserEvent event);
   friend struct State;
 };
 

@@ -175,6 +175,14 @@ class ScriptContext {
                                 const std::string& message) = 0;
 };
 
+/// The browser events an X3D Script's browser callbacks hear (ISO/IEC 19777-1 7.2;
+/// the values are X3DConstants' numbers). SHUTDOWN_EVENT goes with shutdown(); this
+/// browser has no external connection to lose, so CONNECTION_ERROR (0) is never sent.
+enum class BrowserEvent : int {
+  initialized = 2,          // INITIALIZED_EVENT: the world's file was read to its end
+  initializationError = 4,  // INITIALIZED_ERROR: it was not, or a link could not open
+};
+
 /// One running Script node. Calls arrive on the drawing thread, in event order.
 class ScriptInstance {
  public:
@@ -189,10 +197,13 @@ class ScriptInstance {
   /// shutdown() when the world is unloaded (4.12.3). An X3D Script's browser callbacks
   /// for SHUTDOWN_EVENT run first.
   virtual void shutdown(double timestamp) = 0;
-  /// The world's file finished loading (ExecutionModel::worldLoaded): an X3D Script's
-  /// browser callbacks for INITIALIZED_EVENT run (ISO/IEC 19777-1 7.2,
-  /// addBrowserListener; X_ITE 15's addBrowserCallback). None by default.
-  virtual void worldInitialized(double timestamp) { (void)timestamp; }
+  /// A browser event (ExecutionModel::worldLoaded, linkFailed): an X3D Script's browser
+  /// callbacks for `event` run (ISO/IEC 19777-1 7.2, addBrowserListener; X_ITE 15's
+  /// addBrowserCallback). None by default.
+  virtual void browserEvent(BrowserEvent event, double timestamp) {
+    (void)event;
+    (void)timestamp;
+  }
   /// Whether the Script was stopped (an error or a limit): no more calls are made.
   virtual bool stopped() const = 0;
 };

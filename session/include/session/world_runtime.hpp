@@ -70,9 +70,14 @@ class WorldRuntimes {
   /// The execution model of `scene`, made (loaded at `time`, seconds) on first use.
   runtime::ExecutionModel& of(const std::shared_ptr<const vrml::Scene>& scene, double time);
   /// Every world's clock to `time` (seconds) in steps of at most the --time-step. First, a
-  /// world whose file has been read to its end (the world load state function; unset:
-  /// at once) hears so (runtime::ExecutionModel::worldLoaded).
+  /// world whose file has been read to its end, or whose stream ended short (the world
+  /// load state function; unset: read whole, at once) hears so
+  /// (runtime::ExecutionModel::worldLoaded: INITIALIZED_EVENT or INITIALIZED_ERROR).
   void advanceTo(double time);
+  /// A link `scene` asked for (a Script's Browser.loadURL, an Anchor) was refused or its
+  /// world could not be opened: its Scripts hear INITIALIZED_ERROR
+  /// (runtime::ExecutionModel::linkFailed). A scene without runtime is ignored.
+  void linkFailed(const vrml::Scene* scene);
   /// The Inline worlds `traversal` (a renderer of `scene`) loaded since the last call
   /// join `scene`'s execution model (their routes and sensors run), and the ROUTEs of
   /// `scene` to or from IMPORTed nodes (vrml::X3dImportedRoute, X3D clause 4.4.6) whose
