@@ -50,6 +50,42 @@ Node::Node(std::shared_ptr<const NodeType> type) : type_(std::move(type)), seria
   for (const FieldSpec& f : type_->fields) values_.push_back(f.defaultValue);
 }
 
+namespace {
+
+/// Moves every node value of `values` to the end of `out` (the fields keep NULL / empty).
+void takeNodeValues(std::vector<FieldValue>& values, std::vector<NodePtr>& out) {
+  for (FieldValue& v : values) {
+    if (v.type() == FieldType::SFNode) {
+      if (NodePtr& n = v.get<FieldType::SFNode>()) out.push_back(std::move(n));
+    } else if (v.type() == FieldType::MFNode) {
+      std::vector<NodePtr>& list = v.get<FieldType::MFNode>();
+      for (NodePtr& n : list)
+        if (n) out.push_back(std::move(n));
+      list.clear();
+    }
+  }
+}
+
+}  // namespace
+
+Node::~Node() {
+  // The interface first: its node values are the fields' too, mostly (an IS map), and
+  // this node's references keep them alive while it goes.
+  protoInstance.reset();
+  std::vector<NodePtr> pending;
+  takeNodeValues(values_, pending);
+  while (!pending.empty()) {
+    NodePtr n = std::move(pending.back());
+    pending.pop_back();
+    // The last owner: the node's own values join the list before it is destroyed, so its
+    // destructor finds none to release. (An alias without ownership counts 0: left alone.)
+    if (n.use_count() == 1) {
+      n->protoInstance.reset();
+      takeNodeValues(n->values_, pending);
+    }
+  }
+}
+
 Node::Node(const Node& other)
     : type_(other.type_),
       values_(other.values_),

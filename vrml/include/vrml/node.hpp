@@ -117,7 +117,12 @@ class Node {
   /// Moving keeps the moved-from node's serial() (the node it becomes is that node).
   Node(Node&& other) noexcept = default;
   Node& operator=(Node&& other) noexcept = default;
-  ~Node() = default;
+  /// Releases the node's SFNode and MFNode values without recursion: a child this node
+  /// owns alone gives up its own node values first, and so on down, from one list. A
+  /// chain of nodes deeper than the stack allows (a Script can build one, a node at a
+  /// time) is freed as a flat one. (Node values held only by a PROTO instance's
+  /// interface, or a Script type's defaults, are still freed by their own destructors.)
+  ~Node();
 
   /// A number no other Node of this process had or will have (1, 2, ...; never 0): what a
   /// cache keyed by a node's address stores beside its entry, so that a node allocated at
