@@ -223,6 +223,13 @@ struct LoadSensorState {
 
 struct NodeState;
 
+/// Whether writing `value` (an SFNode or MFNode) into field `field` of `target` would make
+/// `target` its own descendant: the value holds `target`, or a node whose node-valued
+/// fields lead to it (graph_cycles.cpp; fields that name nodes placed elsewhere, a
+/// Script's, TransformSensor.targetObject, pickTarget, LoadSensor's, are not followed,
+/// and a write into one is never refused). Other values: false.
+bool wouldContainItself(const vrml::Node& target, int field, const vrml::FieldValue& value);
+
 /// Appends the nodes of `n`'s SFNode and MFNode fields to `pending`, in field order (the
 /// walks over a world that keep their own list instead of recursing).
 inline void pushChildNodes(const vrml::Node& n, std::vector<vrml::Node*>& pending) {
@@ -321,6 +328,7 @@ struct alignas(64) NodeState {
   NodeRole role = NodeRole::plain;
   bool scriptHadEvents = false;
   bool problemReported = false;
+  bool cycleReported = false;  // an event that would make it its own descendant was refused
   /// Bit i set: eventOut i (< 32) has had a route (set by connect(), never cleared). An
   /// event from a field whose bit is clear is counted and goes nowhere without its port
   /// being read (emit); fields from 32 on always read their port.

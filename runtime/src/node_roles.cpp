@@ -329,6 +329,18 @@ void ExecutionModel::State::deliver(NodeState& ns, int field, vrml::FieldValue v
   if (field < 0 || static_cast<std::size_t>(field) >= node.fieldCount()) return;
   const vrml::FieldSpec& spec = node.type().fields[static_cast<std::size_t>(field)];
   if (spec.type != value.type()) return;
+  // The graph stays acyclic (X3D 4.0 clause 4.4.2.2): a value that holds the node itself
+  // or one of its ancestors is refused (graph_cycles.cpp), said once per node.
+  if ((spec.type == FieldType::SFNode || spec.type == FieldType::MFNode) &&
+      !spec.name.ends_with("removeChildren") && wouldContainItself(node, field, value)) {
+    if (!ns.cycleReported)
+      report(vrml::Severity::error, node,
+             spec.name +
+                 ": the value holds this node or a node above it (a node cannot be among its "
+                 "own descendants): the event is ignored");
+    ns.cycleReported = true;
+    return;
+  }
   switch (ns.role) {
     case NodeRole::timeSensor: {
       const TimeSensorFields& f = ns.timeFields;

@@ -3,13 +3,15 @@
 #include <catch2/catch.hpp>
 
 #include <functional>
+#include <unordered_set>
 
 namespace gs::test {
 
 vrml::Node& RunningWorld::node(const std::string& name) const {
   vrml::Node* found = nullptr;
+  std::unordered_set<const vrml::Node*> seen;  // a field may name an ancestor
   std::function<void(const vrml::NodePtr&)> visit = [&](const vrml::NodePtr& n) {
-    if (!n || found) return;
+    if (!n || found || !seen.insert(n.get()).second) return;
     if (n->defName == name) {
       found = n.get();
       return;

@@ -258,10 +258,12 @@ DEF S Script {
       return top;
     }
     function initialize() {
+      // A children cycle is refused (test_graph_cycles.cpp); a TransformSensor below the
+      // node it watches is a cycle too, through a field that names its target.
       cycle = group();
-      cycleB = group();
+      cycleB = Browser.currentScene.createNode('TransformSensor');
+      cycleB.targetObject = cycle;
       cycle.children = new MFNode(cycleB);
-      cycleB.children = new MFNode(cycle);
       shallow = chain(200);
       deep = chain(300);
       // 30 levels of a pair of children that are one node: 2^30 nodes written out.
@@ -275,7 +277,7 @@ DEF S Script {
     function go(v) {
       made = [text(cycle, 'toVRMLString'), text(cycle, 'toXMLString'), text(cycle, 'toJSONString'),
               text(shallow, 'toVRMLString'), text(deep, 'toVRMLString'), text(wide, 'toXMLString')].join(' ');
-      cycleB.children = new MFNode();  // the cycle freed
+      cycleB.targetObject = null;  // the cycle freed
     }
   "
 }
