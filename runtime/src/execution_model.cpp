@@ -23,8 +23,20 @@ using vrml::FieldType;
 
 NodeState& ExecutionModel::State::reach(vrml::Node& node, bool bindables) {
   auto [it, inserted] = nodes.try_emplace(&node);
-  if (!inserted) return *it->second;
-  it->second = std::make_unique<NodeState>();
+  if (inserted) {
+    it->second = std::make_unique<NodeState>();
+  } else if (it->second->unloaded && revivingUnloaded) {
+    // A node of an unloaded world that a world being taken holds again: a fresh record,
+    // whose routes, and whose owner, are the old one's (a route into it names this one).
+    NodeState& old = *it->second;
+    NodeState fresh;
+    fresh.out = std::move(old.out);
+    fresh.routedFields = old.routedFields;
+    fresh.keepAlive = std::move(old.keepAlive);
+    old = std::move(fresh);
+  } else {
+    return *it->second;
+  }
   NodeState& ns = *it->second;
   ns.node = &node;
   const std::size_t n = node.fieldCount();
@@ -96,6 +108,8 @@ void ExecutionModel::State::takeScene(const vrml::Scene& s, std::size_t& roots, 
   // (addRootNode, changeInlineRoots): the lists may grow under these loops, so each node is
   // copied before it is reached, and a root added meanwhile is reached by this loop.
   taking.push_back(&s);
+  const bool reviving = revivingUnloaded;
+  revivingUnloaded = true;
   for (; roots < s.rootNodes.size(); ++roots)
     if (const vrml::NodePtr n = s.rootNodes[roots]) reach(n, bindables);
   for (; hidden < s.hiddenNodes.size(); ++hidden)
@@ -108,6 +122,7 @@ void ExecutionModel::State::takeScene(const vrml::Scene& s, std::size_t& roots, 
     if (from < 0 || to < 0) continue;  // the parser reported it
     connect(*r.fromNode, from, *r.toNode, to);
   }
+  revivingUnloaded = reviving;
   taking.pop_back();
 }
 
@@ -333,9 +348,25 @@ void ExecutionModel::sceneGrew() {
   s_->evaluateSkins();
 }
 
+void ExecutionModel::noteInlineWorld(const vrml::Node& inlineNode, const vrml::Scene* scene) {
+  if (scene != nullptr) s_->inlineWorlds[&inlineNode] = scene;
+}
+
 void ExecutionModel::addInlineScene(std::shared_ptr<const vrml::Scene> scene) {
   if (!scene) return;
-  if (!s_->inlineSceneSet.insert(scene.get()).second) return;
+  if (s_->inlineSceneSet.contains(scene.get())) return;
+  if (s_->unloadedInlineScenes.contains(scene.get())) {
+    // Unloaded with the world that held its Inline: taken again once an Inline that was
+    // not unloaded (a node of the new world) shows it.
+    const auto live = [&](const auto& entry) {
+      if (entry.second != scene.get()) return false;
+      const auto it = s_->nodes.find(entry.first);
+      return it == s_->nodes.end() || !it->second->unloaded;
+    };
+    if (std::none_of(s_->inlineWorlds.begin(), s_->inlineWorlds.end(), live)) return;
+    s_->unloadedInlineScenes.erase(scene.get());
+  }
+  s_->inlineSceneSet.insert(scene.get());
   State::InlineCursor& c = s_->inlineScenes.emplace_back();
   c.scene = std::move(scene);
   const std::size_t firstSensor = s_->timeSensors.size();
@@ -766,7 +797,11 @@ void ExecutionModel::replaceWorld(const std::vector<vrml::NodePtr>& nodes) {
   roots.clear();
   for (const vrml::NodePtr& n : nodes)
     if (n && std::find(roots.begin(), roots.end(), n) == roots.end()) roots.push_back(n);
+  // A node of a world replaced before may come back: registered afresh.
+  const bool reviving = s_->revivingUnloaded;
+  s_->revivingUnloaded = true;
   for (const vrml::NodePtr& n : roots) s_->reach(n, false);
+  s_->revivingUnloaded = reviving;
   s_->rootsSeen = roots.size();
   s_->rebindFrom(roots);
   s_->startNewLoadSensors();

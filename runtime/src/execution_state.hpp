@@ -328,7 +328,6 @@ struct alignas(64) NodeState {
   NodeRole role = NodeRole::plain;
   bool scriptHadEvents = false;
   bool problemReported = false;
-  bool cycleReported = false;  // an event that would make it its own descendant was refused
   /// Bit i set: eventOut i (< 32) has had a route (set by connect(), never cleared). An
   /// event from a field whose bit is clear is counted and goes nowhere without its port
   /// being read (emit); fields from 32 on always read their port.
@@ -378,6 +377,12 @@ struct alignas(64) NodeState {
   std::unique_ptr<CollisionSensorState> collision;        // a CollisionSensor (plain)
   std::unique_ptr<EspduState> espdu;                      // an EspduTransform (plain)
   std::unique_ptr<HAnimMotionState> motion;               // an HAnimMotion (plain)
+  // Rarely read, so after the lines runCascade() fetches:
+  bool cycleReported = false;  // an event that would make it its own descendant was refused
+  /// Its world was unloaded (Browser.replaceWorld): in no list, its Script shut down. A take
+  /// of a world that holds it again (a new Inline of the same world, a replaceWorld with
+  /// it) registers it afresh (State::reach).
+  bool unloaded = false;
 };
 static_assert(offsetof(NodeState, setFraction) == 64, "NodeState's first line: see above");
 
@@ -410,6 +415,14 @@ struct ExecutionModel::State {
   const vrml::Scene* reachingInline = nullptr;
   std::unordered_map<const vrml::Node*, const vrml::Scene*> nodeScenes;
   std::unordered_set<const vrml::Scene*> inlineSceneSet;
+  /// The world each Inline node showed (ExecutionModel::noteInlineWorld), and the Inline
+  /// worlds unloaded with the world that held their Inline nodes: such a world is taken
+  /// again only when an Inline that was not unloaded shows it.
+  std::unordered_map<const vrml::Node*, const vrml::Scene*> inlineWorlds;
+  std::unordered_set<const vrml::Scene*> unloadedInlineScenes;
+  /// reach() registers afresh the nodes it meets that were unloaded (set while a world is
+  /// taken: takeScene, replaceWorld's new roots).
+  bool revivingUnloaded = false;
   /// ExecutionModel::worldLoaded was called (INITIALIZED_EVENT goes out once).
   bool worldLoadedSent = false;
   /// The scenes takeScene is reading now (innermost last): a root a Script adds to one of
@@ -511,8 +524,9 @@ struct ExecutionModel::State {
   /// replaceWorld: the old world is unloaded, its Scripts see shutdown()): its Scripts are
   /// shut down and no longer run; its TimeSensors, media, key, load, pick, transform and
   /// collision sensors, followers, skins, particle systems, rigid bodies and DIS nodes
-  /// stop. Nodes of its Inlines' worlds keep running (the model does not know which Inline
-  /// holds a world). Node records stay (routes may still name them).
+  /// stop. So do the worlds of its Inline nodes (inlineWorlds), and of theirs, unless an
+  /// Inline that stays shows the same world. Node records stay, marked unloaded (routes
+  /// may still name them).
   void unloadReplacedWorld();
   // ---- MovieTexture and AudioClip (media_nodes.cpp) ----
   /// Makes `ns` a media node when it is a MovieTexture or AudioClip.

@@ -499,6 +499,27 @@ void ExecutionModel::State::unloadReplacedWorld() {
   if (scene)
     for (const vrml::Node* n : reachableFrom(scene->rootNodes)) gone.erase(n);
   if (gone.empty()) return;
+  // The worlds of the Inline nodes that go, and of the Inlines inside those, go too,
+  // unless an Inline that stays shows the same world.
+  for (bool more = true; more;) {
+    more = false;
+    for (const auto& [inlineNode, world] : inlineWorlds) {
+      if (!gone.contains(inlineNode) || unloadedInlineScenes.contains(world)) continue;
+      const bool shownElsewhere = std::any_of(
+          inlineWorlds.begin(), inlineWorlds.end(),
+          [&, w = world](const auto& e) { return e.second == w && !gone.contains(e.first); });
+      if (shownElsewhere) continue;
+      std::vector<vrml::NodePtr> nodesOfWorld = world->rootNodes;
+      nodesOfWorld.insert(nodesOfWorld.end(), world->hiddenNodes.begin(), world->hiddenNodes.end());
+      gone.merge(reachableFrom(nodesOfWorld));
+      unloadedInlineScenes.insert(world);
+      more = true;
+    }
+  }
+  for (const vrml::Scene* world : unloadedInlineScenes) inlineSceneSet.erase(world);
+  std::erase_if(inlineScenes, [&](const InlineCursor& c) {
+    return unloadedInlineScenes.contains(c.scene.get());
+  });
   const auto unloaded = [&](const NodeState* ns) { return gone.count(ns->node) != 0; };
   for (NodeState* s : scripts)
     if (unloaded(s) && s->script && !s->script->stopped()) s->script->shutdown(model.now());
@@ -508,6 +529,10 @@ void ExecutionModel::State::unloadReplacedWorld() {
         &loadSensors, &particleSystems, &pickSensors, &rigidBodyCollections, &collisionSensors,
         &newRigidBodyCollections, &espduTransforms, &newLoadSensors, &newScripts, &arrivingScripts})
     std::erase_if(*list, unloaded);
+  for (const vrml::Node* n : gone) {
+    nodeScenes.erase(n);
+    if (const auto it = nodes.find(n); it != nodes.end()) it->second->unloaded = true;
+  }
 }
 
 }  // namespace gs::runtime

@@ -148,7 +148,10 @@ void WorldRuntimes::linkFailed(const vrml::Scene* scene) {
 void WorldRuntimes::addInlines(const vrml::Scene* scene, const scene::SceneTraversal& traversal) {
   const auto it = worlds_.find(scene);
   if (it == worlds_.end()) return;
-  // Each scene is taken once (addInlineScene ignores the ones it has).
+  // Which Inline shows which world (an Inline that Browser.replaceWorld unloads takes its
+  // world along), then each scene is taken once (addInlineScene ignores the ones it has).
+  for (const scene::SceneTraversal::InlineLoad& load : traversal.inlineLoads())
+    it->second.model->noteInlineWorld(*load.node, load.scene.get());
   for (const auto& s : traversal.inlineScenes()) it->second.model->addInlineScene(s);
   resolveImportedRoutes(it->second, traversal);
   // X3D LoadSensor (X3D 4.0 clause 9.4.3): each Inline's load state until it settles.

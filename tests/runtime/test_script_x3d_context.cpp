@@ -154,6 +154,68 @@ ROUTE OLDP.value_changed TO OLDX.set_translation
   CHECK(w.scene->rootNodes.at(2) == newX);
 }
 
+TEST_CASE(
+    "Browser.replaceWorld unloads the old world's Inline worlds; a new Inline of the "
+    "same world takes it again",
+    "[script][x3d]") {
+  RunningWorld w(x3dWorld(R"(
+DEF IN Inline { url "inner.x3dv" }
+DEF S Script {
+  inputOnly SFBool go
+  url "ecmascript:
+    function go(v) { Browser.replaceWorld(Browser.createX3DFromString('Group { }')); }
+  "
+}
+)"),
+                 0.0, x3dScripts());
+  auto inner = std::make_shared<vrml::Scene>(vrml::parseVrml(R"(#X3D V4.0 utf8
+DEF T TimeSensor { loop TRUE cycleInterval 4 }
+DEF P PositionInterpolator { key [ 0 1 ] keyValue [ 0 0 0, 4 0 0 ] }
+DEF X Transform { }
+DEF L Script {
+  outputOnly SFString log
+  url "ecmascript:
+    var text = '';
+    function initialize() { text += 'up '; log = text; }
+    function shutdown() { text += 'down '; log = text; }
+  "
+}
+ROUTE T.fraction_changed TO P.set_fraction
+ROUTE P.value_changed TO X.set_translation
+)",
+                                                             "file:///worlds/inner.x3dv"));
+  // As session::WorldRuntimes::addInlines does once a frame has loaded the Inline.
+  const vrml::NodePtr inlineNode = w.scene->rootNodes.at(0);
+  w.model->noteInlineWorld(*inlineNode, inner.get());
+  w.model->addInlineScene(inner);
+  INFO(modelDiagnostics(w));
+  const vrml::NodePtr x = inner->rootNodes.at(2), log = inner->rootNodes.at(3);
+  w.model->advanceTo(1.0);
+  CHECK(x->field("translation")->get<FieldType::SFVec3f>() == glm::vec3(1, 0, 0));
+  CHECK(log->field("log")->get<FieldType::SFString>() == "up ");
+  // The Inline goes with the world: its world's Script is shut down, its TimeSensor stops.
+  w.send("S", "go", FieldValue::make<FieldType::SFBool>(true));
+  w.model->advanceTo(2.0);
+  CHECK(log->field("log")->get<FieldType::SFString>() == "up down ");
+  CHECK(x->field("translation")->get<FieldType::SFVec3f>() == glm::vec3(1, 0, 0));
+  // The traversal still lists the world it loaded once: not taken again for that.
+  w.model->addInlineScene(inner);
+  w.model->advanceTo(3.0);
+  CHECK(x->field("translation")->get<FieldType::SFVec3f>() == glm::vec3(1, 0, 0));
+  // A new world whose Inline shows the same world (the session shares it): it runs again,
+  // its Script initialized afresh.
+  // (S went with the first world: the browser replaces this one.)
+  w.model->replaceWorld(w.model->createVrmlFromString("Inline { url \"inner.x3dv\" }"));
+  w.model->advanceTo(3.5);
+  REQUIRE(w.scene->rootNodes.size() == 1);
+  w.model->noteInlineWorld(*inlineNode, inner.get());  // the old node, still listed
+  w.model->noteInlineWorld(*w.scene->rootNodes.at(0), inner.get());
+  w.model->addInlineScene(inner);
+  CHECK(log->field("log")->get<FieldType::SFString>() == "up ");  // a new instance's text
+  w.model->advanceTo(4.5);
+  CHECK(x->field("translation")->get<FieldType::SFVec3f>() == glm::vec3(0.5f, 0, 0));
+}
+
 TEST_CASE("X3D Script: a Script in an Inline's world adds and removes that world's roots",
           "[script][x3d]") {
   RunningWorld w(x3dWorld("DEF Outer Group { }\n"), 0.0, x3dScripts());

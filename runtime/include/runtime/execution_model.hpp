@@ -110,6 +110,12 @@ class ExecutionModel final : public ScriptContext {
   /// routes and sensors run; its bindable nodes are not bound (the renderer's rule too).
   /// An Inline scene that is still streaming is taken in further by sceneGrew().
   void addInlineScene(std::shared_ptr<const vrml::Scene> scene);
+  /// Inline node `inlineNode` shows the world `scene` (null: none yet; ignored): when
+  /// Browser.replaceWorld unloads the Inline node, its world is unloaded too, unless an
+  /// Inline that stays shows it; a world so unloaded is taken again by addInlineScene()
+  /// only once an Inline that was not unloaded shows it. Call it before addInlineScene()
+  /// for the Inline nodes a frame met (session::WorldRuntimes::addInlines does).
+  void noteInlineWorld(const vrml::Node& inlineNode, const vrml::Scene* scene);
 
   /// The world's own file was read to its end (`complete`), or its stream ended short
   /// (failed, or stopped): the X3D Scripts' browser callbacks for INITIALIZED_EVENT, or
