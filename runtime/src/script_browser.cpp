@@ -148,7 +148,7 @@ duk_ret_t createVrmlFromString(duk_context* c) {
     GS_DUK_ERROR(c, DUK_ERR_RANGE_ERROR,
                  "Browser.createVrmlFromString: the text is longer than %lu bytes",
                  static_cast<unsigned long>(max));
-  FieldValue nodes = FieldValue::make<FieldType::MFNode>(self.createFromText(text)->rootNodes);
+  FieldValue nodes = FieldValue::make<FieldType::MFNode>(self.createFromText(c, text)->rootNodes);
   self.pushValue(c, nodes);
   return 1;
 }
@@ -191,7 +191,7 @@ duk_ret_t createVrmlFromURL(duk_context* c) {
     // The text's own URL is its base and its rules (a text from the network names no local
     // file, whatever world asked for it).
     FieldValue nodes =
-        FieldValue::make<FieldType::MFNode>(self.createFromText(text, resolved)->rootNodes);
+        FieldValue::make<FieldType::MFNode>(self.createFromText(c, text, resolved)->rootNodes);
     self.sendChangedLiveFields(c, *node);  // what the Script changed in place before, first
     self.context().sendEvent(*node, field, std::move(nodes));
     return 0;
@@ -232,7 +232,7 @@ duk_ret_t createX3DFromString(duk_context* c) {
                  "Browser.createX3DFromString: the text is longer than %lu bytes",
                  static_cast<unsigned long>(max));
   if (!text.starts_with("#X3D") && !text.starts_with("#VRML")) text = "#X3D V3.3 utf8\n" + text;
-  self.pushCreatedScene(c, self.createFromText(text));
+  self.pushCreatedScene(c, self.createFromText(c, text));
   return 1;
 }
 

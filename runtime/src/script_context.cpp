@@ -168,6 +168,41 @@ void markMadeNodes(const vrml::Scene& scene, const std::string& base) {
 
 }  // namespace
 
+void ExecutionModel::countMadeNodes(const vrml::Scene& made) {
+  // Every node the text made, each once (a DEF/USE shares one), without recursion.
+  std::vector<vrml::NodePtr> found;
+  std::unordered_set<const vrml::Node*> seen;
+  std::vector<vrml::NodePtr> pending = made.rootNodes;
+  pending.insert(pending.end(), made.hiddenNodes.begin(), made.hiddenNodes.end());
+  while (!pending.empty()) {
+    vrml::NodePtr n = std::move(pending.back());
+    pending.pop_back();
+    if (!n || !seen.insert(n.get()).second) continue;
+    for (std::size_t i = 0; i < n->fieldCount(); ++i) {
+      const vrml::FieldValue& v = n->fieldAt(i);
+      if (v.type() == FieldType::SFNode) {
+        pending.push_back(v.get<FieldType::SFNode>());
+      } else if (v.type() == FieldType::MFNode) {
+        const auto& list = v.get<FieldType::MFNode>();
+        pending.insert(pending.end(), list.begin(), list.end());
+      }
+    }
+    found.push_back(std::move(n));
+  }
+  std::vector<std::weak_ptr<const vrml::Node>>& list = s_->madeNodes;
+  const std::size_t limit = options_.scriptLimits.madeNodes;
+  if (list.size() + found.size() > limit || list.size() >= s_->madePruneAt) {
+    std::erase_if(list, [](const auto& w) { return w.expired(); });
+    s_->madePruneAt = std::max<std::size_t>(1024, 2 * list.size());
+  }
+  if (list.size() + found.size() > limit)
+    throw ScriptLimitError("the Scripts of this world hold " + std::to_string(list.size()) +
+                           " nodes they made; " + std::to_string(found.size()) +
+                           " more would pass the limit of " + std::to_string(limit) +
+                           " (ScriptLimits::madeNodes)");
+  for (const vrml::NodePtr& n : found) list.emplace_back(n);
+}
+
 std::vector<vrml::NodePtr> ExecutionModel::createVrmlFromString(const std::string& text) {
   return createSceneFromString(text, nullptr)->rootNodes;
 }
@@ -186,6 +221,7 @@ std::shared_ptr<vrml::Scene> ExecutionModel::createSceneFromString(const std::st
                               : own != nullptr ? own->url
                                                : worldUrl();
   auto made = std::make_shared<vrml::Scene>(vrml::parseVrml(bytes, textUrl));
+  countMadeNodes(*made);  // throws ScriptLimitError past ScriptLimits::madeNodes
   for (vrml::Diagnostic& d : made->diagnostics.items) diagnostics_.items.push_back(std::move(d));
   made->diagnostics.items.clear();
   if (!url.empty() || own != nullptr) markMadeNodes(*made, textUrl);

@@ -653,6 +653,18 @@ void EsScript::initialize(double timestamp) {
   run("initialize", nullptr, timestamp, "initialize()", true);
 }
 
+std::shared_ptr<vrml::Scene> EsScript::createFromText(duk_context* c, const std::string& text,
+                                                      const std::string& url) {
+  std::string refused;
+  try {
+    return ctx_.createSceneFromString(text, &node_, url);
+  } catch (const ScriptLimitError& e) {
+    refused = e.what();
+  }
+  GS_DUK_ERROR(c, DUK_ERR_RANGE_ERROR, "%s", refused.c_str());
+  return nullptr;  // not reached: GS_DUK_ERROR throws
+}
+
 void EsScript::eventsProcessed(double timestamp) {
   run("eventsProcessed", nullptr, timestamp, "eventsProcessed()", true);
 }

@@ -72,10 +72,9 @@ class EsScript final : public ScriptInstance {
   /// ScriptContext::createSceneFromString for this Script (every Browser and X3DScene call
   /// that makes nodes from text goes through it).
   /// `url`: where the text was read from (createVrmlFromURL), or empty.
-  std::shared_ptr<vrml::Scene> createFromText(const std::string& text,
-                                              const std::string& url = {}) {
-    return ctx_.createSceneFromString(text, &node_, url);
-  }
+  /// A ScriptLimitError becomes a RangeError of the Script (thrown through `c`).
+  std::shared_ptr<vrml::Scene> createFromText(duk_context* c, const std::string& text,
+                                              const std::string& url = {});
   /// `url` as the Script's own file names it: a Script written in an EXTERNPROTO's file
   /// (vrml::Node::urlBase) or in an Inline's world (ScriptContext::sceneOf) resolves it
   /// against that file, under that file's rules (a remote one names no local file: false

@@ -650,7 +650,7 @@ void EsScript::installNodeHooks(duk_context* c) {
       if (world != nullptr && !world->x3d.version.empty() && !body.starts_with("#X3D") &&
           !body.starts_with("#VRML"))
         body = "#X3D V" + world->x3d.version + " utf8\n" + body;
-      std::vector<vrml::NodePtr> nodes = self.createFromText(body)->rootNodes;
+      std::vector<vrml::NodePtr> nodes = self.createFromText(cx, body)->rootNodes;
       if (nodes.empty() || !nodes.front())
         GS_DUK_ERROR(cx, DUK_ERR_ERROR, "SFNode: the VRML text holds no node");
       self.pushNode(cx, nodes.front());

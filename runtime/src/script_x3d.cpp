@@ -363,7 +363,7 @@ duk_ret_t x3dCreateNode(duk_context* c) {
     GS_DUK_ERROR(c, DUK_ERR_TYPE_ERROR, "createNode: '%s' is not a node type name",
                  type.substr(0, 64).c_str());
   std::vector<vrml::NodePtr> made =
-      self.createFromText("#X3D V4.0 utf8\nPROFILE Full\n" + type + " { }\n")->rootNodes;
+      self.createFromText(c, "#X3D V4.0 utf8\nPROFILE Full\n" + type + " { }\n")->rootNodes;
   if (made.empty() || !made.front())
     GS_DUK_ERROR(c, DUK_ERR_ERROR, "createNode: there is no node type '%s'", type.c_str());
   self.pushNode(c, made.front());
@@ -438,7 +438,7 @@ duk_ret_t x3dCreateProto(duk_context* c) {
   options.encoding = vrml::Encoding::classic;
   std::string text = vrml::writeScene(declarations, options).text;
   text += "\n" + name + " { }\n";
-  std::vector<vrml::NodePtr> made = self.createFromText(text)->rootNodes;
+  std::vector<vrml::NodePtr> made = self.createFromText(c, text)->rootNodes;
   if (made.empty() || !made.back())
     GS_DUK_ERROR(c, DUK_ERR_ERROR, "createProto: '%s' could not be instantiated",
                  name.substr(0, 64).c_str());

@@ -2,6 +2,7 @@
 // recursion, a 1 GB allocation and friends end with a diagnostic naming the Script's
 // file:line; the process neither crashes nor hangs; a Script past a limit is stopped.
 #include "script_test_support.hpp"
+#include "x3d_script_support.hpp"
 
 #include <chrono>
 
@@ -335,4 +336,42 @@ TEST_CASE("hostile Script: nesting within the compiler's depth limit on a small 
   REQUIRE(r.made);
   CHECK(r.printed == std::vector<std::string>{"caught RangeError", "still running"});
   CHECK(r.diagnostics.empty());
+}
+
+TEST_CASE("hostile Script: the nodes a world's Scripts make are bounded", "[script][hostile]") {
+  // The execution model keeps every node it registered, so nodes made at every frame
+  // would grow the browser without end: past ScriptLimits::madeNodes a Script's request
+  // is a RangeError it may catch, and nothing of it is made.
+  runtime::ExecutionOptions options = x3dScripts();
+  options.scriptLimits.madeNodes = 1000;
+  RunningWorld w(x3dWorld(R"(
+DEF S Script {
+  inputOnly SFTime tick
+  outputOnly SFString log
+  url "ecmascript:
+    var text = '', parts = [];
+    function initialize() {
+      for (var i = 0; i < 400; ++i) parts.push('Group { }');
+      text = parts.join(' ');
+    }
+    function tick(t) {
+      try {
+        var made = Browser.createVrmlFromString(text).length;
+        made += Browser.currentScene.createNode('Transform') ? 1 : 0;
+        log += made + ' ';
+      } catch (e) {
+        log += e.name + ' ';
+        if (e.message.indexOf('ScriptLimits::madeNodes') < 0) log += '(' + e.message + ') ';
+      }
+    }
+  "
+}
+)"),
+                 0.0, options);
+  INFO(modelDiagnostics(w));
+  for (int frame = 1; frame <= 4; ++frame)
+    w.send("S", "tick", FieldValue::make<FieldType::SFTime>(frame));
+  // 401 nodes a frame: twice within 1000; the third text would pass it, and so would the
+  // fourth (the nodes made are kept: the model holds them).
+  CHECK(outOf(w, "log").get<FieldType::SFString>() == "401 401 RangeError RangeError ");
 }

@@ -301,6 +301,9 @@ class ExecutionModel final : public ScriptContext {
   std::unordered_map<std::string, vrml::NodePtr> imported_;  // setImportedNode
   /// Runs every Script's browser callbacks for `event`, then the cascade they start.
   void sendBrowserEvent(BrowserEvent event);
+  /// Counts the nodes of `made` (a Script's text, parsed) among the Scripts' made nodes;
+  /// throws ScriptLimitError, counting none, when they would pass ScriptLimits::madeNodes.
+  void countMadeNodes(const vrml::Scene& made);
   friend struct State;
 };
 

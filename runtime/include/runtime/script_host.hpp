@@ -11,6 +11,7 @@
 
 #include <functional>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,20 @@ namespace gs::runtime {
 struct ScriptLimits {
   double callSeconds = 0.5;                     // wall time of one call (initialize, an eventIn...)
   std::size_t heapBytes = 64u * 1024u * 1024u;  // memory of one Script's heap
+  /// Nodes the Scripts of one world made (createVrmlFromString, createX3DFromString,
+  /// createNode, createProto, `new SFNode(text)`) that are still alive. They live outside
+  /// the Scripts' heaps, and the execution model keeps every node it registered for the
+  /// world's life (node identity), so without this bound a Script that makes nodes at
+  /// every frame grows the browser's memory without end (about 600 bytes a node).
+  std::size_t madeNodes = std::size_t{1} << 21;
+};
+
+/// A Script asked for more than a ScriptLimits bound allows (ScriptContext::
+/// createSceneFromString): the Script gets a RangeError with this message; nothing was
+/// made.
+class ScriptLimitError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
 };
 
 /// What the renderer can do, as a Script reads it with Browser.getRenderingProperty
@@ -81,7 +96,8 @@ class ScriptContext {
   /// `url`: where the text was read from (createVrmlFromURL, createX3DFromURL), or empty;
   /// when given, the nodes belong to the text's own scene: its relative URLs resolve
   /// against `url`, and what it names is read under `url`'s rules (a text from the network
-  /// names no local file, whatever world asked for it).
+  /// names no local file, whatever world asked for it). Throws ScriptLimitError when the
+  /// nodes made would pass ScriptLimits::madeNodes (none is kept then).
   virtual std::shared_ptr<vrml::Scene> createSceneFromString(const std::string& text,
                                                              const vrml::Node* script,
                                                              const std::string& url = {}) {
