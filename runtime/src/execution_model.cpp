@@ -329,6 +329,11 @@ ExecutionModel::ExecutionModel(std::shared_ptr<const vrml::Scene> scene, double 
 ExecutionModel::~ExecutionModel() {
   for (NodeState* s : s_->scripts)
     if (s->script && !s->script->stopped()) s->script->shutdown(now());
+  // The world's nodes own one another through shared pointers: a field that names a node
+  // placed elsewhere and leads back to its own node (a Script's SFNode field naming its
+  // ancestor, a TransformSensor below the Transform it watches) would keep them all alive
+  // after the world. Such fields are emptied now; nothing reads them any more.
+  for (auto& [node, ns] : s_->nodes) breakReferenceCycles(*ns->node);
 }
 
 void ExecutionModel::sceneGrew() {

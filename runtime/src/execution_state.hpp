@@ -229,6 +229,10 @@ struct NodeState;
 /// Script's, TransformSensor.targetObject, pickTarget, LoadSensor's, are not followed,
 /// and a write into one is never refused). Other values: false.
 bool wouldContainItself(const vrml::Node& target, int field, const vrml::FieldValue& value);
+/// Empties each field of `node` that names nodes placed elsewhere (as above) and leads,
+/// through any node-valued fields, back to `node`: a cycle of owners that would outlive
+/// the world (graph_cycles.cpp). Other fields are left as they are.
+void breakReferenceCycles(vrml::Node& node);
 
 /// Appends the nodes of `n`'s SFNode and MFNode fields to `pending`, in field order (the
 /// walks over a world that keep their own list instead of recursing).

@@ -2,7 +2,8 @@
 // hierarchy"): an event that would make a node its own descendant (a Script's
 // `g.children = new MFNode(t)` where t holds g, a ROUTE of children_changed into a child)
 // is refused. Such a cycle is drawn only to the traversal's depth limit, and its nodes,
-// which own one another, would never be freed.
+// which own one another, would never be freed. Fields that name nodes placed elsewhere may
+// lead back to their node; when the world goes, those are emptied (breakReferenceCycles).
 #include "execution_state.hpp"
 
 #include <string_view>
@@ -26,10 +27,9 @@ bool namesNodesElsewhere(const vrml::Node& node, std::size_t field) {
   return name == "targetObject" || name == "pickTarget" || name == "watchList";
 }
 
-}  // namespace
-
-bool wouldContainItself(const vrml::Node& target, int field, const vrml::FieldValue& value) {
-  if (field < 0 || namesNodesElsewhere(target, static_cast<std::size_t>(field))) return false;
+/// Whether `target` is among the nodes `value` holds or leads to through node-valued fields,
+/// those that name nodes elsewhere followed too when `allFields`.
+bool leadsTo(const vrml::Node& target, const vrml::FieldValue& value, bool allFields) {
   std::vector<const vrml::Node*> pending;
   if (value.type() == FieldType::SFNode) {
     if (const vrml::NodePtr& n = value.get<FieldType::SFNode>()) pending.push_back(n.get());
@@ -47,7 +47,7 @@ bool wouldContainItself(const vrml::Node& target, int field, const vrml::FieldVa
     for (std::size_t i = 0; i < n->fieldCount(); ++i) {
       const vrml::FieldValue& v = n->fieldAt(i);
       if (v.type() != FieldType::SFNode && v.type() != FieldType::MFNode) continue;
-      if (namesNodesElsewhere(*n, i)) continue;
+      if (!allFields && namesNodesElsewhere(*n, i)) continue;
       if (v.type() == FieldType::SFNode) {
         if (const vrml::NodePtr& c = v.get<FieldType::SFNode>()) pending.push_back(c.get());
       } else {
@@ -57,6 +57,22 @@ bool wouldContainItself(const vrml::Node& target, int field, const vrml::FieldVa
     }
   }
   return false;
+}
+
+}  // namespace
+
+bool wouldContainItself(const vrml::Node& target, int field, const vrml::FieldValue& value) {
+  if (field < 0 || namesNodesElsewhere(target, static_cast<std::size_t>(field))) return false;
+  return leadsTo(target, value, false);
+}
+
+void breakReferenceCycles(vrml::Node& node) {
+  for (std::size_t i = 0; i < node.fieldCount(); ++i) {
+    const vrml::FieldValue& v = node.fieldAt(i);
+    if (v.type() != FieldType::SFNode && v.type() != FieldType::MFNode) continue;
+    if (!namesNodesElsewhere(node, i) || !leadsTo(node, v, true)) continue;
+    node.setField(i, vrml::FieldValue(v.type()));
+  }
 }
 
 }  // namespace gs::runtime

@@ -253,8 +253,7 @@ duk_ret_t route(duk_context* c, bool add) {
   const vrml::NodePtr& a = from.get<FieldType::SFNode>();
   const vrml::NodePtr& b = to.get<FieldType::SFNode>();
   if (!a || !b) GS_DUK_ERROR(c, DUK_ERR_TYPE_ERROR, "%s: a node is NULL", what);
-  bool ok = add ? self.context().addRoute(a, eventOut, b, eventIn)
-                : self.context().deleteRoute(a, eventOut, b, eventIn);
+  bool ok = self.route(c, add, a, eventOut, b, eventIn);
   duk_push_boolean(c, ok);
   return 1;
 }

@@ -100,7 +100,17 @@ bool mayGrow(HeapGuard& g, std::size_t grow) {
     g.overCap = true;
     return false;
   }
+  if (g.worldUsed != nullptr && (grow > g.worldCap || *g.worldUsed > g.worldCap - grow)) {
+    g.overCap = g.overWorldCap = true;
+    return false;
+  }
   return true;
+}
+
+// The heap's bytes and its world's change by `delta` bytes (grown or given back).
+void account(HeapGuard& g, std::size_t add, std::size_t remove) {
+  g.used = g.used + add - remove;
+  if (g.worldUsed != nullptr) *g.worldUsed = *g.worldUsed + add - remove;
 }
 
 void* esAlloc(void* udata, duk_size_t size) {
@@ -109,7 +119,7 @@ void* esAlloc(void* udata, duk_size_t size) {
   auto* base = static_cast<char*>(std::malloc(size + kHeader));
   if (base == nullptr) return nullptr;
   std::memcpy(base, &size, sizeof size);
-  g.used += size + kHeader;
+  account(g, size + kHeader, 0);
   return base + kHeader;
 }
 
@@ -121,14 +131,14 @@ void* esRealloc(void* udata, void* ptr, duk_size_t size) {
   auto* base = static_cast<char*>(std::realloc(static_cast<char*>(ptr) - kHeader, size + kHeader));
   if (base == nullptr) return nullptr;
   std::memcpy(base, &size, sizeof size);
-  g.used = g.used - old + size;
+  account(g, size, old);
   return base + kHeader;
 }
 
 void esFree(void* udata, void* ptr) {
   if (ptr == nullptr) return;
   auto& g = *static_cast<HeapGuard*>(udata);
-  g.used -= blockSize(ptr) + kHeader;
+  account(g, 0, blockSize(ptr) + kHeader);
   std::free(static_cast<char*>(ptr) - kHeader);
 }
 
@@ -224,6 +234,8 @@ struct EsScript::Call {
 EsScript::EsScript(vrml::Node& node, ScriptContext& ctx, const ScriptLimits& limits)
     : node_(node), ctx_(ctx), limits_(limits), guard_(std::make_unique<HeapGuard>()) {
   guard_->self = this;
+  guard_->worldUsed = &ctx_.scriptsInUse().heapBytes;
+  guard_->worldCap = limits_.worldHeapBytes;
   std::size_t n = node_.fieldCount();
   dirty_.assign(n, 0);
   touched_.assign(n, 0);
@@ -374,11 +386,26 @@ void EsScript::installFields(duk_context* c) {
 
 bool EsScript::load() {
   guard_->cap = limits_.heapBytes;
-  duk_ = duk_create_heap(esAlloc, esRealloc, esFree, guard_.get(), esFatal);
+  // Duktape cannot recover from an allocation refused while it builds its built-in objects
+  // (making the error for it needs another: it recursed until the stack ran out). A heap
+  // is started only with room for them, and for a prelude, under both bounds: a VRML97
+  // heap takes 0.3 MiB once set up, an X3D one 0.7 MiB.
+  constexpr std::size_t kHeapStartBytes = std::size_t{1} << 20;
+  const std::size_t worldLeft =
+      limits_.worldHeapBytes > *guard_->worldUsed ? limits_.worldHeapBytes - *guard_->worldUsed : 0;
+  guard_->overWorldCap = limits_.heapBytes >= kHeapStartBytes && worldLeft < kHeapStartBytes;
+  if (limits_.heapBytes >= kHeapStartBytes && !guard_->overWorldCap)
+    duk_ = duk_create_heap(esAlloc, esRealloc, esFree, guard_.get(), esFatal);
   if (duk_ == nullptr) {
-    ctx_.scriptDiagnostic(vrml::Severity::error, node_.location,
-                          name() + " cannot run: its memory limit (" + mib(limits_.heapBytes) +
-                              ") is too small for the engine");
+    // Past the world's bound, every later Script of the world is refused too: said once.
+    if (!guard_->overWorldCap || ctx_.scriptsInUse().refused++ == 0)
+      ctx_.scriptDiagnostic(
+          vrml::Severity::error, node_.location,
+          name() + " cannot run: " +
+              (guard_->overWorldCap ? "its heap would pass what " + overCapText() +
+                                          "; nor do the world's later Scripts that would"
+                                    : "its memory limit (" + mib(limits_.heapBytes) +
+                                          ") is too small for the engine"));
     stopped_ = true;
     return false;
   }
@@ -424,10 +451,11 @@ bool EsScript::load() {
     guard_->active = false;
     if (rc != DUK_EXEC_SUCCESS) {
       const char* msg = duk_safe_to_string(duk_, -1);
-      ctx_.scriptDiagnostic(vrml::Severity::error, node_.location,
-                            name() + " cannot run: setting up its globals failed (" +
-                                std::string(msg ? msg : "?") + "; memory limit " +
-                                mib(limits_.heapBytes) + ")");
+      ctx_.scriptDiagnostic(
+          vrml::Severity::error, node_.location,
+          name() + " cannot run: setting up its globals failed (" + std::string(msg ? msg : "?") +
+              "; " + (guard_->overCap ? overCapText() : "memory limit " + mib(limits_.heapBytes)) +
+              ")");
       stopped_ = true;
       destroyHeap();
       return false;
@@ -637,8 +665,7 @@ bool EsScript::run(const char* fn, const vrml::FieldValue* arg, double timestamp
     stop(std::string(what) + " ran longer than the time limit of " + buf +
          " (ScriptLimits::callSeconds, --script-time-limit)");
   } else if (guard_->overCap) {
-    stop(std::string(what) + " needed more memory than the limit of " + mib(limits_.heapBytes) +
-         " (ScriptLimits::heapBytes, --script-memory-limit)");
+    stop(std::string(what) + " needed more memory than " + overCapText());
   }
   if (stopped_) {
     if (depth_ == 0) destroyHeap();
@@ -651,6 +678,35 @@ bool EsScript::run(const char* fn, const vrml::FieldValue* arg, double timestamp
 
 void EsScript::initialize(double timestamp) {
   run("initialize", nullptr, timestamp, "initialize()", true);
+}
+
+std::string EsScript::overCapText() const {
+  if (guard_->overWorldCap)
+    return "the Scripts of its world may use together: " + mib(limits_.worldHeapBytes) +
+           " (ScriptLimits::worldHeapBytes; they use " + mib(*guard_->worldUsed) + ")";
+  return "the limit of " + mib(limits_.heapBytes) +
+         " (ScriptLimits::heapBytes, --script-memory-limit)";
+}
+
+bool EsScript::route(duk_context* c, bool add, const vrml::NodePtr& from,
+                     const std::string& eventOut, const vrml::NodePtr& to,
+                     const std::string& eventIn) {
+  std::size_t& routes = ctx_.scriptsInUse().routes;
+  if (!add) {
+    const bool removed = ctx_.deleteRoute(from, eventOut, to, eventIn);
+    if (removed && routes > 0) --routes;
+    return removed;
+  }
+  // A route in place already is not added again (true, and not counted).
+  if (ctx_.hasRoute(from, eventOut, to, eventIn)) return ctx_.addRoute(from, eventOut, to, eventIn);
+  if (routes >= limits_.addedRoutes)
+    GS_DUK_ERROR(c, DUK_ERR_RANGE_ERROR,
+                 "addRoute: the Scripts of this world added %lu routes, the limit "
+                 "(ScriptLimits::addedRoutes)",
+                 static_cast<unsigned long>(routes));
+  const bool added = ctx_.addRoute(from, eventOut, to, eventIn);
+  if (added) ++routes;
+  return added;
 }
 
 std::shared_ptr<vrml::Scene> EsScript::createFromText(duk_context* c, const std::string& text,

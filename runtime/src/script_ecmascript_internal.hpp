@@ -35,8 +35,13 @@ struct HeapGuard {
   EsScript* self = nullptr;  // the instance owning the heap (EsScript::of)
   std::size_t used = 0;      // bytes allocated by the heap (block headers included)
   std::size_t cap = 0;       // ScriptLimits::heapBytes
-  bool overCap = false;      // an allocation was refused for the cap
-  bool active = false;       // a call is running: the deadline applies
+  /// The bytes of all the heaps of the Script's world (ScriptContext::scriptsInUse), and
+  /// their bound (ScriptLimits::worldHeapBytes).
+  std::size_t* worldUsed = nullptr;
+  std::size_t worldCap = 0;
+  bool overCap = false;       // an allocation was refused for the cap (either of them)
+  bool overWorldCap = false;  // ... for the world's
+  bool active = false;        // a call is running: the deadline applies
   bool timedOut = false;
   std::chrono::steady_clock::time_point deadline;
   unsigned allocTick = 0;
@@ -75,6 +80,12 @@ class EsScript final : public ScriptInstance {
   /// A ScriptLimitError becomes a RangeError of the Script (thrown through `c`).
   std::shared_ptr<vrml::Scene> createFromText(duk_context* c, const std::string& text,
                                               const std::string& url = {});
+  /// What the Script's heap passed: its own limit or its world's (for diagnostics).
+  std::string overCapText() const;
+  /// ScriptContext::addRoute (`add`) or deleteRoute for this Script, the routes added
+  /// counted against ScriptLimits::addedRoutes: past it, a RangeError through `c`.
+  bool route(duk_context* c, bool add, const vrml::NodePtr& from, const std::string& eventOut,
+             const vrml::NodePtr& to, const std::string& eventIn);
   /// `url` as the Script's own file names it: a Script written in an EXTERNPROTO's file
   /// (vrml::Node::urlBase) or in an Inline's world (ScriptContext::sceneOf) resolves it
   /// against that file, under that file's rules (a remote one names no local file: false

@@ -459,7 +459,7 @@ duk_ret_t x3dRoute(duk_context* c) {
   const vrml::NodePtr& b = to.get<FieldType::SFNode>();
   if (!a || !b) GS_DUK_ERROR(c, DUK_ERR_TYPE_ERROR, "%s: a node is NULL", what);
   std::string af = x3dString(c, 3), bf = x3dString(c, 5);
-  bool ok = add ? self.context().addRoute(a, af, b, bf) : self.context().deleteRoute(a, af, b, bf);
+  bool ok = self.route(c, add, a, af, b, bf);
   vrml::Scene* scene = ok && add ? x3dEditableSceneOf(self, c, 0) : nullptr;
   if (scene != nullptr) {
     const auto same = [&](const vrml::Route& r) {

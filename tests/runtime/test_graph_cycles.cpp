@@ -95,3 +95,33 @@ DEF S Script {
   CHECK(w.node("P").mfnode("children").size() == 1);
   CHECK(cycleErrors(w) == 0);
 }
+
+TEST_CASE("graph cycles: a field that names an ancestor does not keep the world alive",
+          "[runtime][script][cycles]") {
+  std::weak_ptr<vrml::Node> watched, script;
+  {
+    RunningWorld w(x3dWorld(R"(
+DEF P Transform { children DEF G Group { } }
+DEF S Script {
+  inputOutput SFNode p USE P
+  inputOutput SFNode g USE G
+  url "ecmascript:
+    function initialize() {
+      var sensor = Browser.currentScene.createNode('TransformSensor');
+      sensor.targetObject = p;
+      g.children = new MFNode(sensor);
+      g.addChildren = new MFNode(Browser.currentScene.getNamedNode('S'));  // S names P
+    }
+  "
+}
+)"),
+                   0.0, x3dScripts());
+    INFO(modelDiagnostics(w));
+    REQUIRE(w.node("G").mfnode("children").size() == 2);
+    watched = w.scene->rootNodes.at(0);
+    script = w.scene->rootNodes.at(1);
+  }
+  // P holds the sensor and S, which both name P: emptied when the world went.
+  CHECK(watched.expired());
+  CHECK(script.expired());
+}

@@ -375,3 +375,68 @@ DEF S Script {
   // fourth (the nodes made are kept: the model holds them).
   CHECK(outOf(w, "log").get<FieldType::SFString>() == "401 401 RangeError RangeError ");
 }
+
+TEST_CASE("hostile Script: the heaps of a world's Scripts are bounded together",
+          "[script][hostile]") {
+  // A file of many Script nodes (each heap starts at 0.3-0.7 MiB) or many Scripts that
+  // each stay under their own limit: the world's bound stops the rest.
+  FakeScriptContext ctx;
+  runtime::ScriptLimits limits = relaxedLimits();
+  limits.worldHeapBytes = 4u * 1024u * 1024u;
+  std::vector<ScriptWorld> running;
+  std::string refused;
+  for (int i = 0; i < 40 && refused.empty(); ++i) {
+    ScriptWorld w = loadScript(ctx, scriptWorld("eventIn SFFloat go", "function go() { }"), limits);
+    if (!w.instance) refused = ctx.diagnostics.empty() ? "?" : ctx.diagnostics.back().message;
+    running.push_back(std::move(w));
+  }
+  INFO(refused);
+  CHECK(running.size() > 3);  // some run: VRML97 heaps of 0.3 MiB
+  CHECK(running.size() < 40);
+  CHECK_THAT(refused, Catch::Contains("ScriptLimits::worldHeapBytes"));
+  CHECK(ctx.scriptsInUse().heapBytes <= limits.worldHeapBytes);
+  // Their memory comes back when they go: one more runs, and a Script that grows past
+  // what its world has left is stopped, naming the world's bound.
+  running.clear();
+  CHECK(ctx.scriptsInUse().heapBytes == 0);
+  ScriptWorld big = loadScript(
+      ctx,
+      scriptWorld("eventIn SFFloat go",
+                  "var keep = []; function go() { for (;;) keep.push(new Array(1000)); }"),
+      limits);
+  REQUIRE(big.instance);
+  big.instance->eventIn(big.field("go"), FieldValue::make<FieldType::SFFloat>(1.0f), 1.0);
+  CHECK(big.instance->stopped());
+  CHECK_THAT(ctx.diagnostics.back().message, Catch::Contains("ScriptLimits::worldHeapBytes"));
+}
+
+TEST_CASE("hostile Script: the routes a world's Scripts add are bounded", "[script][hostile]") {
+  runtime::ExecutionOptions options = x3dScripts();
+  options.scriptLimits.addedRoutes = 3;
+  RunningWorld w(x3dWorld(R"(
+DEF A Transform { }
+DEF B Transform { }
+DEF S Script {
+  inputOutput SFNode a USE A
+  inputOutput SFNode b USE B
+  outputOnly SFString log
+  url "ecmascript:
+    function add(from, to) {
+      try { log += Browser.addRoute(a, from, b, to) + ' '; } catch (e) { log += e.name + ' '; }
+    }
+    function initialize() {
+      add('translation_changed', 'set_translation');
+      add('translation_changed', 'set_scale');
+      add('translation_changed', 'set_translation');  // the same route: in place, not counted
+      add('scale_changed', 'set_scale');
+      add('scale_changed', 'set_translation');        // a fourth: past the bound
+      Browser.deleteRoute(a, 'scale_changed', b, 'set_scale');
+      add('scale_changed', 'set_translation');        // room again
+    }
+  "
+}
+)"),
+                 0.0, options);
+  INFO(modelDiagnostics(w));
+  CHECK(outOf(w, "log").get<FieldType::SFString>() == "true true true true RangeError true ");
+}

@@ -27,6 +27,14 @@ struct ScriptLimits {
   /// world's life (node identity), so without this bound a Script that makes nodes at
   /// every frame grows the browser's memory without end (about 600 bytes a node).
   std::size_t madeNodes = std::size_t{1} << 21;
+  /// Memory of the heaps of all the Scripts of one world together (each is also held to
+  /// heapBytes). An X3D Script's heap starts at about 0.7 MiB, a VRML97 one's at 0.3 MiB,
+  /// so without it a file of 10,000 Script nodes (600 KB of text) would take 7 GB (500
+  /// took 362 MB more than none).
+  std::size_t worldHeapBytes = std::size_t{1} << 30;
+  /// Routes the Scripts of one world added (Browser.addRoute, X3DExecutionContext.addRoute)
+  /// and did not delete. Each costs about 24 bytes outside the heaps.
+  std::size_t addedRoutes = std::size_t{1} << 22;
 };
 
 /// A Script asked for more than a ScriptLimits bound allows (ScriptContext::
@@ -189,6 +197,19 @@ class ScriptContext {
   /// of the Script node; `message` the Script's own line where known.
   virtual void scriptDiagnostic(vrml::Severity severity, const vrml::SourceLocation& where,
                                 const std::string& message) = 0;
+
+  /// What the Scripts of this context's world use together, counted by the Script host
+  /// against ScriptLimits::worldHeapBytes and addedRoutes: the bytes of their heaps, and the
+  /// routes they added and did not delete.
+  struct ScriptsInUse {
+    std::size_t heapBytes = 0;
+    std::size_t routes = 0;
+    std::size_t refused = 0;  // Scripts that could not start for heapBytes (said once)
+  };
+  ScriptsInUse& scriptsInUse() { return inUse_; }
+
+ private:
+  ScriptsInUse inUse_;
 };
 
 /// The browser events an X3D Script's browser callbacks hear (ISO/IEC 19777-1 7.2;
