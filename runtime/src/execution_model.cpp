@@ -332,8 +332,10 @@ ExecutionModel::~ExecutionModel() {
   // The world's nodes own one another through shared pointers: a field that names a node
   // placed elsewhere and leads back to its own node (a Script's SFNode field naming its
   // ancestor, a TransformSensor below the Transform it watches) would keep them all alive
-  // after the world. Such fields are emptied now; nothing reads them any more.
-  for (auto& [node, ns] : s_->nodes) breakReferenceCycles(*ns->node);
+  // after the world. Such fields are emptied now; nothing reads them any more. Only nodes
+  // the model owns are read: one first met without an owning pointer may be gone.
+  for (auto& [node, ns] : s_->nodes)
+    if (ns->keepAlive) breakReferenceCycles(*ns->keepAlive);
 }
 
 void ExecutionModel::sceneGrew() {
