@@ -424,11 +424,10 @@ struct ExecutionModel::State {
   /// again only when an Inline that was not unloaded shows it.
   std::unordered_map<const vrml::Node*, const vrml::Scene*> inlineWorlds;
   std::unordered_set<const vrml::Scene*> unloadedInlineScenes;
-  /// The nodes the world's Scripts made (createSceneFromString), those still alive
-  /// counted against ScriptLimits::madeNodes; expired entries are dropped when the list
-  /// reaches madePruneAt (then twice the live count, so pruning costs O(1) a node).
-  std::vector<std::weak_ptr<const vrml::Node>> madeNodes;
-  std::size_t madePruneAt = 1024;
+  /// How many nodes the world's Scripts made (createSceneFromString), counted against
+  /// ScriptLimits::madeNodes. A count suffices: the model registers them, and keeps every
+  /// node it registered alive for the world's life.
+  std::size_t madeNodes = 0;
   /// reach() registers afresh the nodes it meets that were unloaded (set while a world is
   /// taken: takeScene, replaceWorld's new roots).
   bool revivingUnloaded = false;

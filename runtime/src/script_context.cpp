@@ -170,37 +170,23 @@ void markMadeNodes(const vrml::Scene& scene, const std::string& base) {
 
 void ExecutionModel::countMadeNodes(const vrml::Scene& made) {
   // Every node the text made, each once (a DEF/USE shares one), without recursion.
-  std::vector<vrml::NodePtr> found;
   std::unordered_set<const vrml::Node*> seen;
-  std::vector<vrml::NodePtr> pending = made.rootNodes;
-  pending.insert(pending.end(), made.hiddenNodes.begin(), made.hiddenNodes.end());
+  std::vector<vrml::Node*> pending;
+  for (const auto* list : {&made.rootNodes, &made.hiddenNodes})
+    for (const vrml::NodePtr& n : *list)
+      if (n) pending.push_back(n.get());
   while (!pending.empty()) {
-    vrml::NodePtr n = std::move(pending.back());
+    const vrml::Node* n = pending.back();
     pending.pop_back();
-    if (!n || !seen.insert(n.get()).second) continue;
-    for (std::size_t i = 0; i < n->fieldCount(); ++i) {
-      const vrml::FieldValue& v = n->fieldAt(i);
-      if (v.type() == FieldType::SFNode) {
-        pending.push_back(v.get<FieldType::SFNode>());
-      } else if (v.type() == FieldType::MFNode) {
-        const auto& list = v.get<FieldType::MFNode>();
-        pending.insert(pending.end(), list.begin(), list.end());
-      }
-    }
-    found.push_back(std::move(n));
+    if (seen.insert(n).second) pushChildNodes(*n, pending);
   }
-  std::vector<std::weak_ptr<const vrml::Node>>& list = s_->madeNodes;
   const std::size_t limit = options_.scriptLimits.madeNodes;
-  if (list.size() + found.size() > limit || list.size() >= s_->madePruneAt) {
-    std::erase_if(list, [](const auto& w) { return w.expired(); });
-    s_->madePruneAt = std::max<std::size_t>(1024, 2 * list.size());
-  }
-  if (list.size() + found.size() > limit)
-    throw ScriptLimitError("the Scripts of this world hold " + std::to_string(list.size()) +
-                           " nodes they made; " + std::to_string(found.size()) +
+  if (s_->madeNodes + seen.size() > limit)
+    throw ScriptLimitError("the Scripts of this world hold " + std::to_string(s_->madeNodes) +
+                           " nodes they made; " + std::to_string(seen.size()) +
                            " more would pass the limit of " + std::to_string(limit) +
                            " (ScriptLimits::madeNodes)");
-  for (const vrml::NodePtr& n : found) list.emplace_back(n);
+  s_->madeNodes += seen.size();
 }
 
 std::vector<vrml::NodePtr> ExecutionModel::createVrmlFromString(const std::string& text) {

@@ -698,7 +698,7 @@ bool EsScript::route(duk_context* c, bool add, const vrml::NodePtr& from,
     return removed;
   }
   // A route in place already is not added again (true, and not counted).
-  if (ctx_.hasRoute(from, eventOut, to, eventIn)) return ctx_.addRoute(from, eventOut, to, eventIn);
+  if (ctx_.hasRoute(from, eventOut, to, eventIn)) return true;
   if (routes >= limits_.addedRoutes)
     GS_DUK_ERROR(c, DUK_ERR_RANGE_ERROR,
                  "addRoute: the Scripts of this world added %lu routes, the limit "

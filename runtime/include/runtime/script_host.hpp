@@ -22,9 +22,9 @@ struct ScriptLimits {
   double callSeconds = 0.5;                     // wall time of one call (initialize, an eventIn...)
   std::size_t heapBytes = 64u * 1024u * 1024u;  // memory of one Script's heap
   /// Nodes the Scripts of one world made (createVrmlFromString, createX3DFromString,
-  /// createNode, createProto, `new SFNode(text)`) that are still alive. They live outside
-  /// the Scripts' heaps, and the execution model keeps every node it registered for the
-  /// world's life (node identity), so without this bound a Script that makes nodes at
+  /// createNode, createProto, `new SFNode(text)`), all the world's life: they live
+  /// outside the Scripts' heaps, and the execution model keeps every node it registered
+  /// until the world goes (node identity), so without this bound a Script that makes nodes at
   /// every frame grows the browser's memory without end (about 600 bytes a node).
   std::size_t madeNodes = std::size_t{1} << 21;
   /// Memory of the heaps of all the Scripts of one world together (each is also held to
