@@ -351,7 +351,10 @@ const UserProgram* UserPrograms::find(const vrml::Node& appearance, const std::s
     const NodeTypeId type = shader->typeId();
     if (type == NodeTypeId::PackagedShader) {
       Entry& e = programs_[shader.get()];
-      if (!e.failed) skipPackaged(*shader, traversal);
+      if (!e.failed) {
+        skipPackaged(*shader, traversal);
+        noteState(*shader, false, false);
+      }
       e.failed = true;
       continue;
     }
@@ -360,7 +363,10 @@ const UserProgram* UserPrograms::find(const vrml::Node& appearance, const std::s
       continue;
     Entry& e = programs_[shader.get()];
     const std::uint64_t revision = sourcesRevision(*shader, sourceHashes_);
-    if (e.program.id != 0 && e.partsRevision == revision) return &e.program;
+    if (e.program.id != 0 && e.partsRevision == revision) {
+      noteState(*shader, true, true);
+      return &e.program;
+    }
     if (e.failed && e.partsRevision == revision) continue;
     if (e.program.id != 0) glDeleteProgram(e.program.id);
     e = Entry{};
@@ -368,9 +374,25 @@ const UserProgram* UserPrograms::find(const vrml::Node& appearance, const std::s
     const UserProgram* p = build(*shader, e, baseUrl, traversal, fetcher, pending);
     if (pending) return nullptr;  // not yet: the built-in shading meanwhile
     e.partsRevision = revision;
+    noteState(*shader, p != nullptr, p != nullptr);
     if (p != nullptr) return p;
   }
   return nullptr;
+}
+
+void UserPrograms::noteState(const vrml::Node& shader, bool valid, bool selected) {
+  SentState& sent = sent_[&shader];
+  if (sent.valid != valid) {
+    sent.valid = valid;
+    outputs_.push_back(
+        {&shader, "isValid", vrml::FieldValue::make<vrml::FieldType::SFBool>(valid)});
+  }
+  // isSelected FALSE only for a shader that said TRUE.
+  if (sent.selected.value_or(false) != selected) {
+    sent.selected = selected;
+    outputs_.push_back(
+        {&shader, "isSelected", vrml::FieldValue::make<vrml::FieldType::SFBool>(selected)});
+  }
 }
 
 void UserPrograms::skipPackaged(const vrml::Node& shader, scene::SceneTraversal& traversal) {

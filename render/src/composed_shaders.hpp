@@ -21,11 +21,13 @@
 
 #include "base/fetch.hpp"
 #include "scene/traversal.hpp"
+#include "vrml/drawn_output.hpp"
 #include "vrml/node.hpp"
 
 #include <glm/mat4x4.hpp>
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -99,6 +101,12 @@ class UserPrograms {
   /// Deletes every program.
   void release();
 
+  /// The shaders' isValid and isSelected output events (X3D 4.0 clause 31.3.1) since the
+  /// last call, each when it changed: find() sends isValid TRUE and isSelected TRUE for the
+  /// shader whose program it returns, isValid FALSE (and isSelected FALSE after TRUE) for
+  /// one whose sources fail to compile or link, and for a PackagedShader.
+  vrml::DrawnOutputs takeOutputs() { return std::exchange(outputs_, {}); }
+
  private:
   struct Entry {
     std::uint64_t partsRevision = 0;
@@ -108,7 +116,14 @@ class UserPrograms {
   const UserProgram* build(const vrml::Node& shader, Entry& entry, const std::string& baseUrl,
                            scene::SceneTraversal& traversal, base::Fetcher* fetcher, bool& pending);
   static void skipPackaged(const vrml::Node& shader, scene::SceneTraversal& traversal);
+  /// Notes what `shader`'s isValid and isSelected now say: events for what changed.
+  void noteState(const vrml::Node& shader, bool valid, bool selected);
   vrml::NodeMap<Entry> programs_;
+  struct SentState {
+    std::optional<bool> valid, selected;
+  };
+  vrml::NodeMap<SentState> sent_;
+  vrml::DrawnOutputs outputs_;
   /// Per ShaderProgram: (its revision, the hash of its type and urls) (sourcesRevision).
   vrml::NodeMap<std::pair<std::uint64_t, std::uint64_t>> sourceHashes_;
 };

@@ -175,6 +175,7 @@ void SceneRenderer::releaseGpuResources() {
 
 void SceneRenderer::generateCubeMaps(const scene::Camera& camera) {
   Gpu& g = *gpu_;
+  g.frame.reportOutputs = false;
   traversal_.collect(camera, g.frame);
   struct Job {
     const vrml::Node* texture;
@@ -220,6 +221,7 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
   g.programs.enableVariants(options_.shaderVariants);
   g.programs.beginFrame();
   g.programs.generic();
+  g.frame.reportOutputs = !generatingFace_;  // the user's view, not a cube map's face
   traversal_.collect(camera, g.frame);
   // Shading GOURAUD in a VRML97 or X3D 3.x world: textures multiply the lit colour. X3D 4's
   // lighting equation (clause 17.2.2.4) fixes where a texture enters it whatever the
@@ -265,9 +267,19 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     const scene::TextureProjectorInstance& p = g.frame.projectors[i];
     const vrml::NodePtr& texture = p.node->sfnode("texture");
     static const GpuTexture kNone;
-    g.eyeProjectors[i] = eyeProjector(
-        p, texture ? g.textures.get(*texture, *p.baseUrl, traversal_, options_.fetcher) : kNone,
-        view);
+    const GpuTexture& t =
+        texture ? g.textures.get(*texture, *p.baseUrl, traversal_, options_.fetcher) : kNone;
+    g.eyeProjectors[i] = eyeProjector(p, t, view);
+    // aspectRatio: the texture's width over height, once it has loaded.
+    if (g.frame.reportOutputs && t.id != 0 && t.width > 0 && t.height > 0) {
+      const float ratio = static_cast<float>(t.width) / static_cast<float>(t.height);
+      const auto [it, added] = g.projectorAspects.try_emplace(p.node, ratio);
+      if (added || it->second != ratio) {
+        it->second = ratio;
+        g.outputs.push_back(
+            {p.node, "aspectRatio", vrml::FieldValue::make<vrml::FieldType::SFFloat>(ratio)});
+      }
+    }
   }
   // ClipPlanes in eye coordinates (a plane maps by the inverse transpose of the view).
   const glm::mat4 planeToEye = glm::transpose(glm::inverse(view));
@@ -680,6 +692,14 @@ std::vector<std::pair<const vrml::Node*, double>> SceneRenderer::takeMediaDurati
 
 std::vector<std::pair<const vrml::Node*, bool>> SceneRenderer::takeUrlObjectLoads() {
   return gpu_->textures.takeLoads();
+}
+
+vrml::DrawnOutputs SceneRenderer::takeDrawnOutputs() {
+  vrml::DrawnOutputs out = traversal_.takeDrawnOutputs();
+  for (vrml::DrawnOutput& o : gpu_->userPrograms.takeOutputs()) out.push_back(std::move(o));
+  for (vrml::DrawnOutput& o : gpu_->outputs) out.push_back(std::move(o));
+  gpu_->outputs.clear();
+  return out;
 }
 
 }  // namespace gs::render

@@ -64,6 +64,10 @@ struct SceneRenderer::Gpu {
   std::vector<detail::EyeProjector> eyeProjectors;  // frame.projectors, each with its texture
   std::vector<glm::vec4> eyeClipPlanes;
   std::vector<detail::DrawItem> opaque, transparent;
+  /// Each TextureProjector's aspectRatio as last sent (X3D 4.0 clause 42.4.1: its
+  /// texture's width over height), and the output events not taken yet.
+  vrml::NodeMap<float> projectorAspects;
+  vrml::DrawnOutputs outputs;
 
   void release() {
     for (auto& [node, mesh] : meshes) mesh.release();

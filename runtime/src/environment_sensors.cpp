@@ -13,6 +13,7 @@
 #include <cmath>
 #include <functional>
 #include <optional>
+#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -111,7 +112,9 @@ void ExecutionModel::State::evaluateEnvironmentSensors() {
       }
     }
   };
+  std::vector<NodeState*> met;  // each sensor the walk meets, in its order
   auto sensor = [&](NodeState& ns, const glm::mat4& m) {
+    met.push_back(&ns);
     if (ns.role == NodeRole::transformSensor) {
       metSensors.emplace_back(&ns, m);
       return;
@@ -141,8 +144,8 @@ void ExecutionModel::State::evaluateEnvironmentSensors() {
     }
     report(ns, inside, local, localOrientation);
   };
-  // The sensors' coordinate systems: a walk of the drawn graph (all Switch choices and
-  // LOD levels are not drawn: only whichChoice and the first level count).
+  // The sensors' coordinate systems: a walk of the drawn graph (whichChoice of a Switch,
+  // the level a LOD shows and the nodes a GeoLOD shows, as drawing last said).
   std::function<void(const std::vector<vrml::NodePtr>&, const glm::mat4&, int)> walk =
       [&](const std::vector<vrml::NodePtr>& list, const glm::mat4& m, int depth) {
         if (depth > 1000) return;
@@ -161,9 +164,9 @@ void ExecutionModel::State::evaluateEnvironmentSensors() {
             const int which = c->get<FieldType::SFInt32>("whichChoice", -1);
             if (which >= 0 && static_cast<std::size_t>(which) < choice.size())
               walk({choice[static_cast<std::size_t>(which)]}, m, depth + 1);
-          } else if (type == NodeTypeId::LOD) {
-            const auto& level = c->mfnode("level");
-            if (!level.empty()) walk({level.front()}, m, depth + 1);
+          } else if (type == NodeTypeId::LOD || type == NodeTypeId::GeoLOD) {
+            const std::span<const vrml::NodePtr> shown = shownNodes(*c);
+            walk({shown.begin(), shown.end()}, m, depth + 1);
           } else if (c->is(vrml::AbstractType::X3DGroupingNode)) {
             walk(c->mfnode("children"), m, depth + 1);
           } else if (type == NodeTypeId::ProximitySensor || type == NodeTypeId::VisibilitySensor ||
@@ -196,6 +199,19 @@ void ExecutionModel::State::evaluateEnvironmentSensors() {
     }
     report(*ns, inside, local, localOrientation);
   }
+  // A sensor the walk did not meet (its Switch choice, LOD level or GeoLOD children are
+  // no longer drawn) is outside.
+  std::vector<NodeState*> wasActive;
+  wasActive.swap(activeEnvironmentSensors);
+  if (!wasActive.empty()) {
+    const std::unordered_set<NodeState*> metSet(met.begin(), met.end());
+    for (NodeState* ns : wasActive)
+      if (ns->sensorActive && !ns->unloaded && !metSet.contains(ns))
+        report(*ns, false, glm::vec3(0.0f), glm::quat(1.0f, 0.0f, 0.0f, 0.0f));
+  }
+  std::unordered_set<NodeState*> listed;
+  for (NodeState* ns : met)
+    if (ns->sensorActive && listed.insert(ns).second) activeEnvironmentSensors.push_back(ns);
 }
 
 }  // namespace gs::runtime

@@ -21,6 +21,7 @@
 #include <cstddef>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <unordered_map>
 #include <unordered_set>
@@ -316,6 +317,10 @@ struct HAnimMotionState {
   std::optional<double> startedAt;  // when the cycle started (the first evaluation)
   bool stopped = false;             // a motion that does not loop, after its last frame
   bool frameCountSent = false;
+  bool enabled = true;          // `enabled` as last set (TRUE after FALSE restarts it)
+  double fraction = 0.0;        // of the frames, at the last evaluation
+  int frameSent = -1;           // the frameIndex last sent while it played
+  std::int64_t cycleSent = -1;  // the cycle whose cycleTime went out
 };
 
 /// Field indices of a TimeSensor (6.50), -1 when absent.
@@ -424,6 +429,11 @@ struct ExecutionModel::State {
   /// again only when an Inline that was not unloaded shows it.
   std::unordered_map<const vrml::Node*, const vrml::Scene*> inlineWorlds;
   std::unordered_set<const vrml::Scene*> unloadedInlineScenes;
+  /// The level each LOD shows as drawing last said (ExecutionModel::sendDrawnOutputs,
+  /// drawn_outputs.cpp; VRML97's LOD too, which has no level_changed): what the sensors'
+  /// walks follow. A LOD not listed shows its first level. (A GeoLOD's shown nodes are its
+  /// `children` output's value.)
+  std::unordered_map<const vrml::Node*, int> shownLevels;
   /// How many nodes the world's Scripts made (createSceneFromString), counted against
   /// ScriptLimits::madeNodes. A count suffices: the model registers them, and keeps every
   /// node it registered alive for the world's life.
@@ -468,6 +478,9 @@ struct ExecutionModel::State {
   /// What loaders reported of url objects (ExecutionModel::setUrlObjectState).
   std::unordered_map<const vrml::Node*, UrlLoadState> urlStates;
   std::size_t environmentSensors = 0;  // ProximitySensors and VisibilitySensors met
+  /// The ProximitySensors, VisibilitySensors and TransformSensors that the last walk found
+  /// active: one the next walk does not meet (a Switch or LOD turned away) goes inactive.
+  std::vector<NodeState*> activeEnvironmentSensors;
   std::optional<ViewerPose> viewer;
   std::vector<NodeState*> newScripts;  // registered, initialize() not yet called
   /// Scripts whose url files are still on their way (FetchMode::background): made and
@@ -556,6 +569,14 @@ struct ExecutionModel::State {
   /// The HAnimMotions of every humanoid (hanim_motion.cpp): their joints' translation,
   /// rotation and scale at the current time, queued as events for the frame's cascade.
   void evaluateHAnimMotions();
+  /// An HAnimMotion's `next` or `previous` (`direction` +1 or -1) TRUE: frameIndex steps
+  /// by |frameIncrement| (1 when 0) from the frame it shows, within startFrame..endFrame,
+  /// wrapping when it loops and ignored past an end otherwise (X_ITE 15's rule); a playing
+  /// motion goes on from there (hanim_motion.cpp).
+  void stepHAnimMotion(NodeState& ns, int direction);
+  /// An HAnimMotion's `enabled` was set: FALSE stops it where it is, TRUE after FALSE starts
+  /// it again from its start at now() (X_ITE 15 restarts its TimeSensor).
+  void enableHAnimMotion(NodeState& ns);
   void evaluateHumanoid(NodeState& ns);
   /// After a cascade: re-skins every Skin whose skeleton or own fields changed.
   void evaluateSkins();
@@ -635,6 +656,10 @@ struct ExecutionModel::State {
 
   // ---- environmental sensors (environment_sensors.cpp) ----
   void evaluateEnvironmentSensors();
+  /// The nodes a LOD or GeoLOD shows as drawing last said (drawn_outputs.cpp): a LOD's
+  /// level (its first until told), a GeoLOD's `children` output (its rootNode until told);
+  /// empty for other nodes and for a level that is empty or NULL.
+  std::span<const vrml::NodePtr> shownNodes(const vrml::Node& n) const;
 
   void report(vrml::Severity severity, const vrml::Node& node, const std::string& message);
 

@@ -16,8 +16,16 @@
 //   it on frameIndex. Each frame the joints' translation, rotation and scale are set as
 //   events (routes from them run), and elapsedTime is sent while it plays, frameCount
 //   once.
-// Not done: `next` and `previous` (X_ITE steps frameIndex with them), channelsEnabled per
-// channel (it is per joint, as X_ITE reads it), `loa`.
+// - While it plays, frameIndex says the frame shown, and cycleTime goes out when a cycle
+//   starts. frameIncrement < 0 plays from endFrame to startFrame. `enabled` FALSE stops
+//   it where it is; TRUE again starts it from the beginning (as X_ITE restarts its
+//   TimeSensor).
+// - `next` / `previous` TRUE step frameIndex by |frameIncrement| (1 when it is 0, where
+//   X_ITE 15 does not move), wrapping at startFrame / endFrame when it loops, ignored past
+//   them otherwise (X_ITE's rule); a playing motion goes on from the new frame.
+// Not done: channelsEnabled per channel (it is per joint, as X_ITE reads it); `loa` is
+// not used (the motion names its joints, whatever level of articulation they belong to;
+// X_ITE does not read it either).
 #include "execution_state.hpp"
 
 #include "vrml/transform.hpp"
@@ -27,7 +35,10 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
+#include <cstdlib>
 #include <optional>
+#include <string_view>
 
 namespace gs::runtime {
 
@@ -133,7 +144,89 @@ T keyAt(const std::vector<T>& keys, double fraction, Mix mix) {
   return mix(keys[k], keys[k + 1], static_cast<float>(at - static_cast<double>(k)));
 }
 
+/// When a motion's frames play (its fields read once): frame k is at fraction
+/// k / (frameCount - 1); startFrame..endFrame span `first`..`end`, played in `interval`
+/// seconds.
+struct MotionTiming {
+  double last = 1.0;  // frameCount - 1, at least 1
+  double first = 0.0, end = 1.0;
+  double interval = 0.0;  // seconds
+  int increment = 1;      // frameIncrement: 0 holds, < 0 plays backwards
+  bool loop = false;
+  std::size_t frameCount = 0;
+
+  bool playing() const { return increment != 0 && interval > 0.0 && frameCount > 1; }
+  double frameFraction(int frame) const {
+    return std::clamp(frame, 0, static_cast<int>(frameCount) - 1) / last;
+  }
+  /// The fraction shown after `played` (0..1) of the interval.
+  double fractionPlayed(double played) const {
+    return increment > 0 ? first + played * (end - first) : end - played * (end - first);
+  }
+  /// `fractionPlayed`'s inverse (0 when startFrame is endFrame).
+  double playedAt(double fraction) const {
+    if (end <= first) return 0.0;
+    const double p = (fraction - first) / (end - first);
+    return increment > 0 ? p : 1.0 - p;
+  }
+  int frameAt(double fraction) const {
+    return static_cast<int>(std::floor(fraction * last + 1e-6));
+  }
+};
+
+MotionTiming motionTiming(const vrml::Node& motion, std::size_t frameCount) {
+  MotionTiming t;
+  t.frameCount = frameCount;
+  t.last = static_cast<double>(std::max<std::size_t>(frameCount, 2) - 1);
+  const auto frameField = [&](std::string_view name) {
+    return std::clamp(motion.get<FieldType::SFInt32>(name, 0), 0, static_cast<int>(frameCount) - 1);
+  };
+  // endFrame 0, the field's default, is the last frame (X_ITE sets it so when it reads the
+  // values).
+  t.first = frameField("startFrame") / t.last;
+  const int endFrame = motion.get<FieldType::SFInt32>("endFrame", 0);
+  t.end = std::max(t.first, (endFrame > 0 ? frameField("endFrame") : t.last) / t.last);
+  const double cycle = t.last * std::max(0.0, motion.get<FieldType::SFTime>("frameDuration", 0.1));
+  t.interval = cycle * (t.end - t.first);
+  t.increment = motion.get<FieldType::SFInt32>("frameIncrement", 1);
+  t.loop = motion.get<FieldType::SFBool>("loop", false);
+  return t;
+}
+
 }  // namespace
+
+void ExecutionModel::State::stepHAnimMotion(NodeState& ns, int direction) {
+  if (!ns.motion || ns.motion->frameCount == 0) return;  // not met in a humanoid yet
+  HAnimMotionState& st = *ns.motion;
+  const vrml::Node& motion = *ns.node;
+  const MotionTiming t = motionTiming(motion, st.frameCount);
+  const int lo = t.frameAt(t.first), hi = t.frameAt(t.end);
+  const int step = std::max(1, std::abs(t.increment));
+  int frame = t.frameAt(st.fraction) + step * direction;
+  if (frame > hi || frame < lo) {
+    if (!t.loop) return;
+    frame = frame > hi ? lo : hi;
+  }
+  st.fraction = t.frameFraction(frame);
+  st.frameSent = frame;
+  emitOwn(ns, motion.type().findExact("frameIndex"), FieldValue::make<FieldType::SFInt32>(frame));
+  if (t.playing()) {  // it goes on from the new frame
+    st.startedAt = model.now() - t.playedAt(st.fraction) * t.interval;
+    st.stopped = false;
+  }
+}
+
+void ExecutionModel::State::enableHAnimMotion(NodeState& ns) {
+  if (!ns.motion) return;  // not met in a humanoid yet: it starts when it is
+  HAnimMotionState& st = *ns.motion;
+  const bool enabled = ns.node->get<FieldType::SFBool>("enabled", true);
+  if (enabled && !st.enabled) {
+    st.startedAt = model.now();
+    st.stopped = false;
+    st.cycleSent = -1;
+  }
+  st.enabled = enabled;
+}
 
 void ExecutionModel::State::evaluateHAnimMotions() {
   const double now = model.now();
@@ -167,36 +260,42 @@ void ExecutionModel::State::evaluateHAnimMotions() {
         out("frameCount", FieldValue::make<FieldType::SFInt32>(static_cast<int>(st.frameCount)));
       }
       if (st.frameCount == 0) continue;
-      const double last = static_cast<double>(std::max<std::size_t>(st.frameCount, 2) - 1);
-      const auto frameField = [&](std::string_view name, int fallback) {
-        return std::clamp(motion.get<FieldType::SFInt32>(name, fallback), 0,
-                          static_cast<int>(st.frameCount) - 1);
-      };
-      // endFrame 0, the field's default, is the last frame (X_ITE sets it so when it reads
-      // the values).
-      const int endFrame = motion.get<FieldType::SFInt32>("endFrame", 0);
-      const double first = frameField("startFrame", 0) / last;
-      const double end = std::max(first, (endFrame > 0 ? frameField("endFrame", 0) : last) / last);
-      const double cycle =
-          last * std::max(0.0, motion.get<FieldType::SFTime>("frameDuration", 0.1));
-      const double interval = cycle * (end - first);
-      double fraction = frameField("frameIndex", 0) / last;
+      const MotionTiming timing = motionTiming(motion, st.frameCount);
+      double fraction = timing.frameFraction(motion.get<FieldType::SFInt32>("frameIndex", 0));
       if (!st.startedAt) st.startedAt = now;
-      if (motion.get<FieldType::SFInt32>("frameIncrement", 1) != 0 && interval > 0.0 &&
-          st.frameCount > 1) {
+      if (timing.playing()) {
         const double elapsed = now - *st.startedAt;
-        if (motion.get<FieldType::SFBool>("loop", false)) {
-          fraction = first + (elapsed / interval - std::floor(elapsed / interval)) * (end - first);
+        double played = 0.0;  // of the interval from startFrame to endFrame
+        if (timing.loop) {
+          const double cycles = elapsed / timing.interval;
+          const auto cycle = static_cast<std::int64_t>(std::floor(cycles));
+          played = cycles - std::floor(cycles);
+          if (cycle != st.cycleSent) {
+            st.cycleSent = cycle;
+            out("cycleTime", FieldValue::make<FieldType::SFTime>(
+                                 *st.startedAt + static_cast<double>(cycle) * timing.interval));
+          }
           out("elapsedTime", FieldValue::make<FieldType::SFTime>(elapsed));
-        } else if (elapsed >= interval) {
-          fraction = end;
+        } else if (elapsed >= timing.interval) {
+          played = 1.0;
           if (st.stopped) continue;  // the last frame was set: the joints are left alone
           st.stopped = true;
         } else {
-          fraction = first + elapsed / interval * (end - first);
+          played = elapsed / timing.interval;
+          if (st.cycleSent != 0) {
+            st.cycleSent = 0;
+            out("cycleTime", FieldValue::make<FieldType::SFTime>(*st.startedAt));
+          }
           out("elapsedTime", FieldValue::make<FieldType::SFTime>(elapsed));
         }
+        fraction = timing.fractionPlayed(played);
+        // frameIndex says the frame shown while it plays (the nearest one at or before).
+        if (const int frame = timing.frameAt(fraction); frame != st.frameSent) {
+          st.frameSent = frame;
+          out("frameIndex", FieldValue::make<FieldType::SFInt32>(frame));
+        }
       }
+      st.fraction = fraction;
       // The joints by name (X_ITE: trimmed names, "HumanoidRoot" for humanoid_root).
       const std::vector<bool> channelsEnabled =
           motion.get<FieldType::MFBool>("channelsEnabled", std::vector<bool>{});

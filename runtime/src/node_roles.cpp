@@ -455,6 +455,17 @@ void ExecutionModel::State::deliver(NodeState& ns, int field, vrml::FieldValue v
       }
       break;  // key, keyValue: exposedFields
     case NodeRole::plain:
+      if (node.typeId() == vrml::NodeTypeId::HAnimMotion &&
+          (spec.name == "next" || spec.name == "previous")) {
+        if (value.get<FieldType::SFBool>()) stepHAnimMotion(ns, spec.name == "next" ? 1 : -1);
+        return;
+      }
+      if (node.typeId() == vrml::NodeTypeId::HAnimMotion && spec.name == "enabled") {
+        emitOwn(ns, field, std::move(value));
+        enableHAnimMotion(ns);
+        return;
+      }
+      break;
     case NodeRole::transformSensor:
     case NodeRole::proximity:
     case NodeRole::visibility:
@@ -527,7 +538,8 @@ void ExecutionModel::State::unloadReplacedWorld() {
   for (auto* list :
        {&timeSensors, &scripts, &mediaNodes, &skins, &followers, &transformSensors, &keySensors,
         &loadSensors, &particleSystems, &pickSensors, &rigidBodyCollections, &collisionSensors,
-        &newRigidBodyCollections, &espduTransforms, &newLoadSensors, &newScripts, &arrivingScripts})
+        &activeEnvironmentSensors, &newRigidBodyCollections, &espduTransforms, &newLoadSensors,
+        &newScripts, &arrivingScripts})
     std::erase_if(*list, unloaded);
   for (const vrml::Node* n : gone) {
     nodeScenes.erase(n);

@@ -133,9 +133,9 @@ void ExecutionModel::State::evaluatePickSensors() {
             const int which = c->get<FieldType::SFInt32>("whichChoice", -1);
             if (which >= 0 && static_cast<std::size_t>(which) < choice.size())
               walk({choice[static_cast<std::size_t>(which)]}, m, inner, depth + 1);
-          } else if (c->typeId() == NodeTypeId::LOD) {
-            const auto& level = c->mfnode("level");
-            if (!level.empty()) walk({level.front()}, m, inner, depth + 1);
+          } else if (c->typeId() == NodeTypeId::LOD || c->typeId() == NodeTypeId::GeoLOD) {
+            const std::span<const vrml::NodePtr> shown = shownNodes(*c);
+            walk({shown.begin(), shown.end()}, m, inner, depth + 1);
           } else if (places || c->is(vrml::AbstractType::X3DGroupingNode)) {
             walk(c->mfnode("children"), cm, inner, depth + 1);
           }

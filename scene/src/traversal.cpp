@@ -331,22 +331,43 @@ struct SceneTraversal::Walk {
     const glm::vec3 center =
         glm::vec3(vrml::geoToLocal(n, n.get<vrml::FieldType::SFVec3d>("center", glm::dvec3(0.0))));
     const glm::vec3 viewer = glm::vec3(glm::inverse(m) * glm::vec4(viewerPosition, 1.0f));
-    if (glm::length(viewer - center) < sfFloat(n, "range", 10.0f)) {
-      bool loaded = true;
+    const bool near = glm::length(viewer - center) < sfFloat(n, "range", 10.0f);
+    if (near) {
+      // The children replace the root once every child url has loaded (none: the root
+      // stays, as in X_ITE, whose Inlines without a url never finish loading).
+      bool loaded = false, missing = false;
       for (int k = 1; k <= 4; ++k) {
         const vrml::Node& child = self.geoLodInline(n, k);
         if (mfString(child, "url").empty()) continue;
         const InlineScene* inl = self.inlineScene(child, n.urlBaseOr(*baseUrl));
-        loaded = loaded && inl != nullptr && inl->scene != nullptr;
+        loaded = true;
+        missing = missing || inl == nullptr || inl->scene == nullptr;
       }
+      loaded = loaded && !missing;
       if (loaded) {
+        if (frame.reportOutputs) {
+          std::vector<vrml::NodePtr> shown;
+          for (int k = 1; k <= 4; ++k)
+            if (const InlineScene* inl =
+                    self.inlineScene(self.geoLodInline(n, k), n.urlBaseOr(*baseUrl));
+                inl != nullptr && inl->scene)
+              shown.insert(shown.end(), inl->scene->rootNodes.begin(), inl->scene->rootNodes.end());
+          self.noteShownLevel(n, 1, &shown);
+        }
         for (int k = 1; k <= 4; ++k) node(self.geoLodInline(n, k), m, baseUrl);
         return;
       }
     }
     if (const auto& root = n.mfnode("rootNode"); !root.empty()) {
+      if (frame.reportOutputs) self.noteShownLevel(n, near ? 1 : 0, &root);
       group(&n, root, m, baseUrl, nullptr);
       return;
+    }
+    if (frame.reportOutputs) {
+      const InlineScene* inl = self.inlineScene(self.geoLodInline(n, 0), n.urlBaseOr(*baseUrl));
+      const std::vector<vrml::NodePtr> none;
+      self.noteShownLevel(n, near ? 1 : 0,
+                          inl != nullptr && inl->scene ? &inl->scene->rootNodes : &none);
     }
     node(self.geoLodInline(n, 0), m, baseUrl);
   }
@@ -670,6 +691,7 @@ struct SceneTraversal::Walk {
         const glm::vec3 viewer = glm::vec3(glm::inverse(m) * glm::vec4(viewerPosition, 1.0f));
         const int chosen =
             selectLodLevel(mfFloat(n, "range"), glm::length(viewer - center), level.size());
+        if (frame.reportOutputs) self.noteShownLevel(n, chosen, nullptr);
         if (chosen >= 0 && level[static_cast<std::size_t>(chosen)])
           node(*level[static_cast<std::size_t>(chosen)], m, baseUrl);
         break;

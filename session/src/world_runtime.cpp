@@ -166,6 +166,12 @@ void WorldRuntimes::addInlines(const vrml::Scene* scene, const scene::SceneTrave
   }
 }
 
+void WorldRuntimes::sendDrawnOutputs(const vrml::Scene* scene, const vrml::DrawnOutputs& outputs) {
+  if (outputs.empty()) return;
+  const auto it = worlds_.find(scene);
+  if (it != worlds_.end()) it->second.model->sendDrawnOutputs(outputs);
+}
+
 void WorldRuntimes::setUrlObjectLoads(
     const vrml::Scene* scene, const std::vector<std::pair<const vrml::Node*, bool>>& loads) {
   const auto it = worlds_.find(scene);

@@ -94,6 +94,8 @@ bool WorldView::update(double time, const WorldView* last) {
     runtimes->setMediaDurations(scene_.get(), renderer_->takeMediaDurations());
     //    The textures whose loading ended, for LoadSensors.
     runtimes->setUrlObjectLoads(scene_.get(), renderer_->takeUrlObjectLoads());
+    //    What the last drawing computed: LOD levels, a GeoLOD's children.
+    runtimes->sendDrawnOutputs(scene_.get(), renderer_->takeDrawnOutputs());
     // 5. Bound nodes from the execution model to the renderer.
     renderer_->traversal().setBoundNodes(runtimes->bound(scene_.get()));
   }

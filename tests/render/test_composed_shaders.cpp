@@ -157,6 +157,37 @@ Transform { translation 0 0 -1 scale 2 2 1 children Shape {
   CHECK(close(other.image.pixel(32, 32), 0, 0, 255, 4));
 }
 
+TEST_CASE("Shaders say whether they compiled and which one the Appearance draws with",
+          "[render][offscreen][world][shaders]") {
+  // X3D 4.0 clause 31.3.1: the first shader does not compile (isValid FALSE), the second
+  // is selected (isValid and isSelected TRUE); the third is never tried.
+  const fs::path file = worldDir() / "shader_selection.x3dv";
+  writeText(file, R"(#X3D V4.0 utf8
+PROFILE Immersive
+Viewpoint { position 0 0 1 fieldOfView 1.5708 }
+Transform { translation 0 0 -1 scale 2 2 1 children Shape {
+  appearance Appearance { material Material { emissiveColor 0 0 1 }
+    shaders [
+      DEF Broken ComposedShader { language "GLSL" parts ShaderPart { type "FRAGMENT"
+        url "data:text/plain,void main(void) { gl_FragColor = undeclared; }" } }
+      DEF Green ComposedShader { language "GLSL" parts [
+        ShaderPart { type "VERTEX" url "data:text/plain,void main(void) { gl_Position = ftransform(); }" }
+        ShaderPart { type "FRAGMENT"
+          url "data:text/plain,void main(void) { gl_FragColor = vec4(0.0, 1.0, 0.0, 1.0); }" } ] }
+      DEF Spare ComposedShader { language "GLSL" parts ShaderPart { type "FRAGMENT"
+        url "data:text/plain,void main(void) { gl_FragColor = vec4(1.0); }" } }
+    ] }
+  geometry IndexedFaceSet { coord Coordinate { point [-1 -1 0, 1 -1 0, 1 1 0, -1 1 0] }
+    coordIndex [0 1 2 3 -1] } } }
+)");
+  const Rendered r = renderFile(file, 3);
+  for (const auto& d : r.diagnostics.items) INFO(d.format());
+  CHECK(r.diagnostics.items.size() == 1);
+  CHECK(close(r.image.pixel(32, 32), 0, 255, 0, 4));
+  CHECK(r.outputs == std::vector<std::string>{"Broken.isValid=FALSE", "Green.isValid=TRUE",
+                                              "Green.isSelected=TRUE"});
+}
+
 TEST_CASE("castle's shader type test: every field type reaches its uniform",
           "[render][offscreen][world][shaders][corpus]") {
   if (!gs::test::haveCorpus("x3d/castle/shaders")) return;

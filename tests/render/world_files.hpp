@@ -16,6 +16,7 @@
 #include <fstream>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace gs::test {
 
@@ -35,7 +36,28 @@ inline void writeText(const std::filesystem::path& p, const std::string& text) {
 struct Rendered {
   render::Image image;
   vrml::Diagnostics diagnostics;  // the renderer's (the parser's are WARNed)
+  /// The output events the drawing computed (SceneRenderer::takeDrawnOutputs), each as
+  /// "Type.field=value" (a node's DEF name for its type when it has one), SFBool, SFInt32
+  /// and SFFloat values written out (std::to_string), others as their type's name.
+  std::vector<std::string> outputs;
 };
+
+/// `outputs` as Rendered::outputs writes them.
+inline std::vector<std::string> drawnOutputText(const vrml::DrawnOutputs& outputs) {
+  std::vector<std::string> text;
+  for (const vrml::DrawnOutput& o : outputs) {
+    const vrml::Node& n = *o.node.node;
+    std::string value = o.value.type() == vrml::FieldType::SFBool
+                            ? (o.value.get<vrml::FieldType::SFBool>() ? "TRUE" : "FALSE")
+                        : o.value.type() == vrml::FieldType::SFInt32
+                            ? std::to_string(o.value.get<vrml::FieldType::SFInt32>())
+                        : o.value.type() == vrml::FieldType::SFFloat
+                            ? std::to_string(o.value.get<vrml::FieldType::SFFloat>())
+                            : std::string(vrml::fieldTypeName(o.value.type()));
+    text.push_back((n.defName.empty() ? n.typeName() : n.defName) + "." + o.field + "=" + value);
+  }
+  return text;
+}
 
 /// Loads `file` and draws `frames` frames (the first is drawn by the generic surface
 /// program, later ones by the shader variants: surface_programs.hpp), keeping the last.
@@ -48,7 +70,8 @@ inline Rendered renderFile(const std::filesystem::path& file, int frames = 1) {
   for (const auto& d : scene->diagnostics.items) WARN(d.format());
   render::SceneRenderer r(scene);
   for (int i = 0; i < frames; ++i) r.draw(r.initialCamera(1.0f), 0, 0, kWorldSize, kWorldSize);
-  Rendered out{render::readPixels(0, 0, kWorldSize, kWorldSize), r.diagnostics()};
+  Rendered out{render::readPixels(0, 0, kWorldSize, kWorldSize), r.diagnostics(),
+               drawnOutputText(r.takeDrawnOutputs())};
   if (const char* dir = std::getenv("GS_RENDER_TEST_DUMP"))
     render::writePng((std::filesystem::path(dir) / (file.stem().string() + ".png")).string(),
                      out.image);

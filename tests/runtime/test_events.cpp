@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <memory>
 
+using namespace gs;
 using gs::test::RunningWorld;
 using gs::vrml::FieldType;
 using gs::vrml::FieldValue;

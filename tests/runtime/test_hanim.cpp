@@ -135,3 +135,83 @@ DEF H HAnimHumanoid {
   w.model->advanceTo(3.0);  // past the end: on frame 2
   CHECK(y() == Approx(20.0f));
 }
+
+TEST_CASE("H-Anim: an HAnimMotion's next and previous step its frames", "[runtime][hanim]") {
+  // Held (frameIncrement 0) on frame 1 of four; frames 1 to 3 are its range.
+  RunningWorld w(x3dWorld(R"(
+DEF H HAnimHumanoid {
+  skeleton DEF R HAnimJoint { name "humanoid_root" }
+  joints USE R
+  motions DEF M HAnimMotion { joints "humanoid_root" frameIncrement 0 frameIndex 1
+    startFrame 1 endFrame 3 channels "1 Yposition" values [ 0 10 20 30 ] }
+}
+)"));
+  const auto y = [&] {
+    return w.node("R").get<FieldType::SFVec3f>("translation", glm::vec3(-1)).y;
+  };
+  const auto frameIndex = [&] { return w.node("M").get<FieldType::SFInt32>("frameIndex", -1); };
+  const auto step = [&](const char* field, double time) {
+    w.send("M", field, FieldValue::make<FieldType::SFBool>(true));
+    w.model->advanceTo(time);
+  };
+  w.model->advanceTo(0.1);
+  CHECK(y() == Approx(10.0f));
+  step("next", 0.2);  // frameIncrement 0 steps by 1
+  CHECK(frameIndex() == 2);
+  CHECK(y() == Approx(20.0f));
+  step("next", 0.3);
+  CHECK(y() == Approx(30.0f));
+  step("next", 0.4);  // past endFrame without loop: ignored
+  CHECK(frameIndex() == 3);
+  CHECK(y() == Approx(30.0f));
+  w.send("M", "loop", FieldValue::make<FieldType::SFBool>(true));
+  step("next", 0.5);  // looping: back to startFrame
+  CHECK(frameIndex() == 1);
+  CHECK(y() == Approx(10.0f));
+  step("previous", 0.6);  // and from startFrame back to endFrame
+  CHECK(frameIndex() == 3);
+  step("previous", 0.7);
+  CHECK(y() == Approx(20.0f));
+  // FALSE does nothing.
+  w.send("M", "next", FieldValue::make<FieldType::SFBool>(false));
+  w.model->advanceTo(0.8);
+  CHECK(frameIndex() == 2);
+}
+
+TEST_CASE("H-Anim: a playing HAnimMotion says its frame and cycles, and plays backwards",
+          "[runtime][hanim]") {
+  // Three frames 1 s apart, looping: a 2 s cycle from the load.
+  RunningWorld w(x3dWorld(R"(
+DEF H HAnimHumanoid {
+  skeleton DEF R HAnimJoint { name "humanoid_root" }
+  joints USE R
+  motions DEF M HAnimMotion { joints "humanoid_root" loop TRUE frameDuration 1
+    channels "1 Xposition" values [ 0 1 2 ] }
+}
+)"));
+  const auto x = [&] {
+    return w.node("R").get<FieldType::SFVec3f>("translation", glm::vec3(-1)).x;
+  };
+  const auto frameIndex = [&] { return w.node("M").get<FieldType::SFInt32>("frameIndex", -1); };
+  w.model->advanceTo(0.5);
+  CHECK(frameIndex() == 0);
+  CHECK(w.node("M").get<FieldType::SFTime>("cycleTime", -1.0) == Approx(0.0));
+  w.model->advanceTo(1.5);
+  CHECK(frameIndex() == 1);
+  CHECK(x() == Approx(1.5f));
+  w.model->advanceTo(2.25);  // the second cycle started at 2
+  CHECK(w.node("M").get<FieldType::SFTime>("cycleTime", -1.0) == Approx(2.0));
+  CHECK(x() == Approx(0.25f));
+  // next while it plays: from frame 0 to frame 1, and it goes on from there.
+  w.send("M", "next", FieldValue::make<FieldType::SFBool>(true));
+  w.model->advanceTo(2.5);
+  CHECK(x() == Approx(1.25f));
+  // frameIncrement -1: from the end frame back to the start.
+  w.send("M", "frameIncrement", FieldValue::make<FieldType::SFInt32>(-1));
+  w.send("M", "enabled", FieldValue::make<FieldType::SFBool>(false));
+  w.model->advanceTo(3.0);
+  w.send("M", "enabled", FieldValue::make<FieldType::SFBool>(true));  // starts again at 3
+  w.model->advanceTo(3.5);
+  CHECK(x() == Approx(1.5f));
+  CHECK(frameIndex() == 1);
+}

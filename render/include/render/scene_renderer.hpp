@@ -12,6 +12,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include "encodings/parser.hpp"
 #include "scene/traversal.hpp"
+#include "vrml/drawn_output.hpp"
 #include "vrml/scene.hpp"
 
 #include <cstddef>
@@ -174,6 +175,14 @@ class SceneRenderer {
   /// X3D LoadSensors (runtime::ExecutionModel::setUrlObjectState). A texture loads when
   /// first drawn.
   std::vector<std::pair<const vrml::Node*, bool>> takeUrlObjectLoads();
+  /// The output events drawing computed since the last call (vrml/drawn_output.hpp), for
+  /// runtime::ExecutionModel::sendDrawnOutputs: the levels LODs and GeoLODs show
+  /// (scene::SceneTraversal::takeDrawnOutputs), then the shaders' isValid and isSelected
+  /// (X3D 4.0 clause 31.3.1: TRUE for the shader an Appearance draws with, isValid FALSE
+  /// for one that does not compile or link), then the TextureProjectors' aspectRatio
+  /// (42.4.1: the texture's width over height, once it loaded), each in the order it
+  /// changed.
+  vrml::DrawnOutputs takeDrawnOutputs();
 
   /// Counts of the last draw().
   const DrawStatistics& statistics() const { return statistics_; }

@@ -15,6 +15,7 @@
 #include "runtime/script_host.hpp"
 #include "runtime/viewer.hpp"
 #include "vrml/diagnostic.hpp"
+#include "vrml/drawn_output.hpp"
 #include "vrml/node.hpp"
 #include "vrml/scene.hpp"
 
@@ -197,6 +198,15 @@ class ExecutionModel final : public ScriptContext {
   /// 6.8; scene::walkStep says which): one new timestamp at now() in which each sends
   /// collideTime = now(). Nodes that are not Collision nodes are ignored.
   void collided(const std::vector<vrml::Node*>& collisionNodes);
+
+  /// Output events that drawing computed (vrml/drawn_output.hpp: a LOD's or GeoLOD's
+  /// level_changed and children, a shader's isValid and isSelected, a TextureProjector's
+  /// aspectRatio): one new timestamp at now() in which each is sent by its node, in order.
+  /// An output of a node this world does not hold, of a field its type lacks, or of a value
+  /// of another type is ignored; nothing is sent when none is left. The levels a LOD and a
+  /// GeoLOD show are kept: the walks of ProximitySensor, VisibilitySensor, TransformSensor
+  /// and the picking sensors follow them (the first level, the root, until one is told).
+  void sendDrawnOutputs(const vrml::DrawnOutputs& outputs);
 
   /// The top of a bindable stack (4.6.10), or null when the stack is empty.
   vrml::Node* bound(BindableKind kind) const;

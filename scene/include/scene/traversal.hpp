@@ -9,6 +9,7 @@
 #include "geometry/geometry.hpp"
 #include "scene/camera.hpp"
 #include "vrml/diagnostic.hpp"
+#include "vrml/drawn_output.hpp"
 #include "vrml/node.hpp"
 #include "vrml/scene.hpp"
 #include "vrml/transform.hpp"
@@ -27,6 +28,7 @@
 #include <string_view>
 #include <unordered_map>
 #include <unordered_set>
+#include <utility>
 #include <vector>
 
 namespace gs::particles {
@@ -227,6 +229,10 @@ struct TraversalFrame {
   std::vector<FogSettings> localFogs;
   /// Set by the caller: collect() records each Shape's path of grouping nodes (picking).
   bool recordPaths = false;
+  /// Set by the caller that draws the user's view: collect() notes the levels LODs and
+  /// GeoLODs show, for SceneTraversal::takeDrawnOutputs (other cameras, such as the bound
+  /// Viewpoint's for bounds, leave them alone).
+  bool reportOutputs = false;
   /// Set by the caller: collect() gathers what the avatar collides with (clause 6.8)
   /// instead of what is drawn: the children of a Collision with collide FALSE are
   /// skipped, and a Collision's proxy (not drawn otherwise) replaces its children.
@@ -435,6 +441,15 @@ class SceneTraversal {
   /// (runtime::ExecutionModel::setUrlObjectState). Loads nothing.
   std::vector<InlineLoad> inlineLoads() const;
 
+  /// The output events of the collects that reported them (TraversalFrame::reportOutputs)
+  /// since the last call, for runtime::ExecutionModel::sendDrawnOutputs: a LOD's
+  /// level_changed when the level it shows changed (X3D 4.0 clause 10.4.2; the level
+  /// selectLodLevel chose), a GeoLOD's level_changed (25.4.5: 1 within `range` of its
+  /// center, else 0) and children (the root nodes of the four children's files once all
+  /// have loaded, else its rootNode, else the root nodes of its rootUrl's file) when they
+  /// changed. Each node's first report is an event.
+  vrml::DrawnOutputs takeDrawnOutputs() { return std::exchange(drawnOutputs_, {}); }
+
   /// How many tessellations collect() and mesh() made (a changed geometry is
   /// tessellated again; an animated Transform is not): for benchmarks and tests.
   std::uint64_t tessellationCount() const { return tessellations_; }
@@ -558,6 +573,17 @@ class SceneTraversal {
   /// Per GeoLOD: Inline nodes of its rootUrl and child1Url ... child4Url (what the
   /// Inline loading reads), made when first met.
   vrml::NodeMap<std::array<vrml::NodePtr, 5>> geoLodInlines_;
+  /// What each LOD and GeoLOD showed at the last report (traversal_levels.cpp), and the
+  /// events not taken yet.
+  struct ShownLevel {
+    int level = -1;
+    std::vector<const vrml::Node*> nodes;  // a GeoLOD's children output
+  };
+  vrml::NodeMap<ShownLevel> shownLevels_;
+  vrml::DrawnOutputs drawnOutputs_;
+  /// Notes that LOD or GeoLOD `n` shows `level` (and, for a GeoLOD, `shown`): events
+  /// into drawnOutputs_ for what changed.
+  void noteShownLevel(const vrml::Node& n, int level, const std::vector<vrml::NodePtr>* shown);
   /// GeoLOD `n`'s Inline standing for url field `k` (0: rootUrl, 1..4: childKUrl).
   const vrml::Node& geoLodInline(const vrml::Node& n, int k);
   std::uint64_t boundRevision_ = 0;

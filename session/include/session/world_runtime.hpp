@@ -7,6 +7,7 @@
 #include "render/scene_renderer.hpp"
 #include "runtime/execution_model.hpp"
 #include "scene/traversal.hpp"
+#include "vrml/drawn_output.hpp"
 #include "vrml/scene.hpp"
 
 #include <cstdio>
@@ -95,6 +96,10 @@ class WorldRuntimes {
   /// (runtime::ExecutionModel::setUrlObjectState); ignored when it has none yet.
   void setUrlObjectLoads(const vrml::Scene* scene,
                          const std::vector<std::pair<const vrml::Node*, bool>>& loads);
+  /// Output events that drawing computed (render::SceneRenderer::takeDrawnOutputs) go to
+  /// `scene`'s execution model (runtime::ExecutionModel::sendDrawnOutputs); ignored for a
+  /// scene without one.
+  void sendDrawnOutputs(const vrml::Scene* scene, const vrml::DrawnOutputs& outputs);
   /// The viewer of `scene`'s world (ProximitySensor, VisibilitySensor); ignored when the
   /// world has no execution model yet.
   void setViewer(const vrml::Scene* scene, const runtime::ViewerPose& viewer);
