@@ -94,7 +94,10 @@ void navigate(WindowState& state, int menuHeight, int viewportHeight) {
     navigator.dolly(-dy / 20.0f);
   }
   const auto& renderer = state.view().renderer();
-  const float speed = renderer ? std::max(renderer->navigation().speed, 1e-3f) : 1.0f;
+  // NavigationInfo.speed, times a bound GeoViewpoint's factor for its elevation.
+  const float speed =
+      renderer ? std::max(renderer->navigation().speed * renderer->navigation().speedFactor, 1e-3f)
+               : 1.0f;
   if (io.MouseWheel != 0.0f) {
     if (examine)
       navigator.dolly(io.MouseWheel);

@@ -62,10 +62,16 @@ NodeState& ExecutionModel::State::reach(vrml::Node& node, bool bindables) {
     }
     return ns;
   }
+  // A viewpoint's own NavigationInfo (X3D 4.0 clause 23.3.1) is bound with it, not as a
+  // candidate of the graph (X_ITE 15 finds bindables in the graph only).
+  const int ownNavigation = ns.role == NodeRole::bindable && ns.bindable == BindableKind::Viewpoint
+                                ? node.type().findExact("navigationInfo")
+                                : -1;
   for (std::size_t i = 0; i < n; ++i) {
     const vrml::FieldValue& v = node.fieldAt(i);
     if (v.type() == FieldType::SFNode) {
-      if (const vrml::NodePtr& c = v.get<FieldType::SFNode>()) reach(c, bindables);
+      if (const vrml::NodePtr& c = v.get<FieldType::SFNode>())
+        reach(c, bindables && static_cast<int>(i) != ownNavigation);
     } else if (v.type() == FieldType::MFNode) {
       for (const vrml::NodePtr& c : v.get<FieldType::MFNode>())
         if (c) reach(c, bindables);

@@ -230,6 +230,20 @@ void ExecutionModel::State::bind(NodeState& ns, bool on) {
   const auto sendBound = [&](NodeState& n, bool bound) {
     emitOwn(n, n.isBound, FieldValue::make<FieldType::SFBool>(bound));
     if (bound) emitOwn(n, n.bindTime, FieldValue::make<FieldType::SFTime>(model.now()));
+    // X3D 4.0 clause 23.3.1: a viewpoint's own NavigationInfo (its `navigationInfo`) gets
+    // set_bind TRUE when the viewpoint is bound and FALSE when it is unbound (X_ITE 15
+    // routes isBound to it).
+    if (n.bindable == BindableKind::Viewpoint)
+      if (const vrml::FieldValue* f = n.node->field("navigationInfo");
+          f != nullptr && f->type() == FieldType::SFNode) {
+        const vrml::NodePtr& nav = f->get<FieldType::SFNode>();
+        if (nav && !nav->unresolved && nav->typeId() == vrml::NodeTypeId::NavigationInfo) {
+          NodeState& navState = reach(nav, false);
+          if (navState.role == NodeRole::bindable && navState.setBind >= 0)
+            queue.push_back(
+                {&navState, navState.setBind, FieldValue::make<FieldType::SFBool>(bound)});
+        }
+      }
   };
   const auto pos = std::find(stack.begin(), stack.end(), &ns);
   if (on) {
@@ -281,6 +295,16 @@ void ExecutionModel::State::rebindFrom(const std::vector<vrml::NodePtr>& roots) 
       continue;
     }
     pushChildNodes(*n, pending);
+    // A viewpoint's own NavigationInfo (X3D 4.0 clause 23.3.1) is bound with it, not as a
+    // candidate of the graph (X_ITE 15 finds bindables in the graph only).
+    if (ns.role == NodeRole::bindable && ns.bindable == BindableKind::Viewpoint)
+      if (const vrml::FieldValue* f = n->field("navigationInfo");
+          f != nullptr && f->type() == FieldType::SFNode && f->get<FieldType::SFNode>()) {
+        const vrml::Node* own = f->get<FieldType::SFNode>().get();
+        pending.erase(
+            std::remove(pending.begin() + static_cast<std::ptrdiff_t>(before), pending.end(), own),
+            pending.end());
+      }
     std::reverse(pending.begin() + static_cast<std::ptrdiff_t>(before), pending.end());
   }
   for (std::size_t k = 0; k < kBindableKindCount; ++k) {

@@ -1,6 +1,7 @@
 // SceneTraversal set-up: the main URL and the bindable nodes (Viewpoint, NavigationInfo,
 // Background, Fog; clauses 4.6.10, 6.29, 6.5, 6.19, 6.53).
 #include "base/url.hpp"
+#include "geospatial/geo_system.hpp"
 #include "scene/node_access.hpp"
 #include "scene/node_kind.hpp"
 #include "scene/traversal.hpp"
@@ -156,6 +157,16 @@ void SceneTraversal::findBindables() {
   // dark grey (0.1), where X3D and VRML97 worlds without a Background keep clause 6.5's
   // black. A Background of the world (an X3D world inlining glTF) wins.
   if (scene_->x3d.encoding == "glTF") background_.skyColor = {glm::vec3(0.1f)};
+  const auto readNavigation = [&](const vrml::Node& n) {
+    navigation_.node = &n;
+    if (const auto* f = n.field("type"); f && f->type() == vrml::FieldType::MFString)
+      navigation_.type = f->get<vrml::FieldType::MFString>();
+    navigation_.headlight = sfBool(n, "headlight", true);
+    navigation_.speed = sfFloat(n, "speed", 1.0f);
+    if (const auto* f = n.field("avatarSize"); f && f->type() == vrml::FieldType::MFFloat)
+      navigation_.avatarSize = f->get<vrml::FieldType::MFFloat>();
+    navigation_.visibilityLimit = sfFloat(n, "visibilityLimit", 0.0f);
+  };
   auto visit = [&](const vrml::Node& n, NodeKind kind, const glm::mat4& m) {
     switch (kind) {
       case NodeKind::Viewpoint: {
@@ -171,14 +182,7 @@ void SceneTraversal::findBindables() {
       case NodeKind::NavigationInfo:
         if (runtimeBound_ ? &n != runtimeBound_->navigationInfo : haveNavigation) break;
         haveNavigation = true;
-        navigation_.node = &n;
-        if (const auto* f = n.field("type"); f && f->type() == vrml::FieldType::MFString)
-          navigation_.type = f->get<vrml::FieldType::MFString>();
-        navigation_.headlight = sfBool(n, "headlight", true);
-        navigation_.speed = sfFloat(n, "speed", 1.0f);
-        if (const auto* f = n.field("avatarSize"); f && f->type() == vrml::FieldType::MFFloat)
-          navigation_.avatarSize = f->get<vrml::FieldType::MFFloat>();
-        navigation_.visibilityLimit = sfFloat(n, "visibilityLimit", 0.0f);
+        readNavigation(n);
         break;
       case NodeKind::Background:
         if (runtimeBound_ ? &n != runtimeBound_->background : haveBackground) break;
@@ -214,12 +218,33 @@ void SceneTraversal::findBindables() {
     }
   };
   forEachBindable(scene_->rootNodes, glm::mat4(1.0f), 0, visit);
+  // A NavigationInfo bound outside the graph: a viewpoint's own (X3D 4.0 clause 23.3.1,
+  // its `navigationInfo` field), which the runtime binds with it.
+  if (runtimeBound_ && runtimeBound_->navigationInfo != nullptr && !haveNavigation)
+    readNavigation(*runtimeBound_->navigationInfo);
   boundViewpoint_ = 0;
   if (runtimeBound_) {
     boundViewpoint_ = viewpoints_.size();  // none bound: the default Viewpoint
     for (std::size_t i = 0; i < viewpoints_.size(); ++i)
       if (viewpoints_[i].node == runtimeBound_->viewpoint) boundViewpoint_ = i;
   }
+  if (boundViewpoint_ < viewpoints_.size())
+    navigation_.speedFactor = viewpointSpeedFactor(*viewpoints_[boundViewpoint_].node);
+}
+
+float viewpointSpeedFactor(const vrml::Node& viewpoint) {
+  if (viewpoint.typeId() != vrml::NodeTypeId::GeoViewpoint) return 1.0f;
+  const geospatial::GeoSystem system = vrml::geoSystemOf(viewpoint);
+  const glm::dvec3 position =
+      viewpoint.get<vrml::FieldType::SFVec3d>("position", glm::dvec3(0.0, 0.0, 100000.0));
+  geospatial::GeoSystem geodetic;  // GD on the same ellipsoid: (latitude, longitude, height)
+  geodetic.a = system.a;
+  geodetic.f = system.f;
+  const double elevation =
+      geospatial::fromGeocentric(geodetic, geospatial::toGeocentric(system, position)).z;
+  const double factor = (std::max(elevation, 0.0) + 10.0) / 10.0 *
+                        viewpoint.get<vrml::FieldType::SFFloat>("speedFactor", 1.0f);
+  return std::isfinite(factor) && factor > 0.0 ? static_cast<float>(factor) : 1.0f;
 }
 
 void SceneTraversal::setBoundNodes(const BoundNodes& bound) {

@@ -163,6 +163,28 @@ GeoViewpoint {
   CHECK(c.forward().y == Approx(-1.0f).margin(1e-4));
 }
 
+TEST_CASE("geospatial: a bound GeoViewpoint scales the navigation speed by its elevation",
+          "[geospatial]") {
+  // X_ITE 15's rule: (max(elevation, 0) + 10) / 10 times speedFactor.
+  auto scene = std::make_shared<vrml::Scene>(vrml::parseVrml(R"(#X3D V4.0 utf8
+PROFILE Full
+NavigationInfo { speed 3 }
+DEF High GeoViewpoint { position 45 -80 990 speedFactor 2 }
+DEF Orbit GeoViewpoint { geoSystem "GC" position 6378227 0 0 }
+DEF Under GeoViewpoint { position 10 20 -500 }
+DEF Plain Viewpoint { }
+)",
+                                                             "speed.x3dv"));
+  CHECK(scene::viewpointSpeedFactor(named(*scene, "High")) == Approx(200.0f).epsilon(1e-5));
+  CHECK(scene::viewpointSpeedFactor(named(*scene, "Orbit")) == Approx(10.0f).epsilon(1e-5));
+  CHECK(scene::viewpointSpeedFactor(named(*scene, "Under")) == Approx(1.0f));
+  CHECK(scene::viewpointSpeedFactor(named(*scene, "Plain")) == 1.0f);
+  // The first Viewpoint is bound: the world's navigation gets its factor.
+  scene::SceneTraversal traversal(scene);
+  CHECK(traversal.navigation().speed == 3.0f);
+  CHECK(traversal.navigation().speedFactor == Approx(200.0f).epsilon(1e-5));
+}
+
 TEST_CASE("geospatial: a geoSystem word not understood is a warning at the geometry",
           "[geospatial]") {
   const vrml::Scene scene = vrml::parseVrml(R"(#X3D V4.0 utf8

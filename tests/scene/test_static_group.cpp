@@ -31,3 +31,25 @@ StaticGroup { children [
   REQUIRE(t.viewpoints().size() == 1);
   CHECK(t.boundViewpointCamera().position.z == Approx(7.0f));
 }
+
+TEST_CASE("A viewpoint's own NavigationInfo, bound by the runtime, sets the navigation",
+          "[scene][x3d]") {
+  // X3D 4.0 clause 23.3.1: the NavigationInfo in a Viewpoint's navigationInfo field is in
+  // no grouping node; bound with its Viewpoint, it is the world's navigation.
+  const std::string world = R"(#X3D V4.0 utf8
+PROFILE Immersive
+NavigationInfo { speed 2 }
+Viewpoint { navigationInfo NavigationInfo { speed 7 type "FLY" } }
+)";
+  auto scene = std::make_shared<gs::vrml::Scene>(gs::vrml::parseVrml(world, "own_nav.x3dv"));
+  REQUIRE(scene->diagnostics.items.empty());
+  SceneTraversal t(scene);
+  CHECK(t.navigation().speed == 2.0f);  // the graph's first, without a runtime
+  const gs::vrml::Node& viewpoint = *scene->rootNodes.at(1);
+  gs::scene::BoundNodes bound;
+  bound.viewpoint = &viewpoint;
+  bound.navigationInfo = viewpoint.sfnode("navigationInfo").get();
+  t.setBoundNodes(bound);
+  CHECK(t.navigation().speed == 7.0f);
+  CHECK(t.navigation().type == std::vector<std::string>{"FLY"});
+}

@@ -190,6 +190,11 @@ struct LayerInstance {
 /// 25.4.10) placed by `m`, its parents' transform (local to world). Clip planes are the
 /// defaults.
 Camera viewpointCamera(const vrml::Node& viewpoint, const glm::mat4& m);
+/// NavigationSettings::speedFactor for viewpoint node `viewpoint`: for a GeoViewpoint
+/// (X3D 4.0 clause 25.4.10) (max(elevation, 0) + 10) / 10 times its speedFactor, where
+/// elevation is its position's height in metres above its geoSystem's ellipsoid (X_ITE
+/// 15's rule); 1 for other viewpoints and for a result that is not a positive number.
+float viewpointSpeedFactor(const vrml::Node& viewpoint);
 /// The camera of the first viewpoint among `nodes` and below them (depth first, through
 /// grouping nodes, every Switch choice and LOD level, not into Inlines); none when they hold
 /// none.
@@ -270,7 +275,12 @@ struct ViewpointInfo {
 struct NavigationSettings {
   std::vector<std::string> type{"WALK", "ANY"};
   bool headlight = true;
-  float speed = 1.0f;                                 // metres per second
+  float speed = 1.0f;  // metres per second
+  /// What `speed` is multiplied by for the bound Viewpoint: for a GeoViewpoint (X3D 4.0
+  /// clause 25.4.10, X_ITE 15's rule) (max(elevation, 0) + 10) / 10 times its speedFactor,
+  /// the elevation being its position's height above the ellipsoid in metres, so that
+  /// the Earth seen from orbit is crossed as fast as a street is walked; 1 otherwise.
+  float speedFactor = 1.0f;
   std::vector<float> avatarSize{0.25f, 1.6f, 0.75f};  // metres
   float visibilityLimit = 0.0f;                       // metres, 0 = infinite
   const vrml::Node* node = nullptr;
