@@ -22,7 +22,12 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <iterator>
 #include <limits>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
 
 namespace gs::runtime {
 
@@ -30,6 +35,41 @@ using vrml::FieldType;
 using vrml::FieldValue;
 
 namespace {
+
+/// Whether `node`'s objectType (MFString, "ALL" when it has none) lists `type`.
+bool hasObjectType(const vrml::Node& node, std::string_view type) {
+  const vrml::FieldValue* f = node.field("objectType");
+  if (f == nullptr || f->type() != FieldType::MFString) return type == "ALL";
+  const auto& types = f->get<FieldType::MFString>();
+  return std::find(types.begin(), types.end(), type) != types.end();
+}
+
+/// Whether pick sensor `sensor` may pick what lies under PickableGroup `group` (X3D 4.0
+/// clauses 38.3.1, 38.4.2): not when the group's objectType holds "NONE"; always when
+/// either holds "ALL"; otherwise by the sensor's matchCriterion over the types both list:
+/// MATCH_ANY (the default, and for a value not understood) at least one, MATCH_ONLY_ONE
+/// exactly one, MATCH_EVERY all of each's.
+bool objectTypesMatch(const vrml::Node& sensor, const vrml::Node& group) {
+  if (hasObjectType(group, "NONE")) return false;
+  if (hasObjectType(group, "ALL") || hasObjectType(sensor, "ALL")) return true;
+  const auto listOf = [](const vrml::Node& n) {
+    const vrml::FieldValue* f = n.field("objectType");
+    std::vector<std::string> types;
+    if (f != nullptr && f->type() == FieldType::MFString) types = f->get<FieldType::MFString>();
+    std::sort(types.begin(), types.end());
+    types.erase(std::unique(types.begin(), types.end()), types.end());
+    return types;
+  };
+  const std::vector<std::string> mine = listOf(sensor), theirs = listOf(group);
+  std::vector<std::string> both;
+  std::set_intersection(mine.begin(), mine.end(), theirs.begin(), theirs.end(),
+                        std::back_inserter(both));
+  const std::string criterion =
+      sensor.get<FieldType::SFString>("matchCriterion", std::string("MATCH_ANY"));
+  if (criterion == "MATCH_EVERY") return both.size() == mine.size() && both.size() == theirs.size();
+  if (criterion == "MATCH_ONLY_ONE") return both.size() == 1;
+  return !both.empty();
+}
 
 /// Triangles kept per target, and triangle tests made per sensor and step, at most: a
 /// hostile world cannot stall a frame (past the budget a sensor picks nothing more).
@@ -113,35 +153,52 @@ void ExecutionModel::State::evaluatePickSensors() {
   // environmental sensors find theirs.
   // Each node's parent matrix, and whether it is pickable (under no PickableGroup whose
   // pickable is FALSE).
+  // The innermost PickableGroup around it (null: none), whose objectType filters the
+  // sensors (pickableGroupParents: the group around each group).
   struct Place {
     glm::mat4 parent;
     bool pickable;
+    const vrml::Node* group;
   };
   vrml::NodeMap<Place> matrices;
-  std::function<void(const std::vector<vrml::NodePtr>&, const glm::mat4&, bool, int)> walk =
-      [&](const std::vector<vrml::NodePtr>& list, const glm::mat4& m, bool pickable, int depth) {
+  std::unordered_map<const vrml::Node*, const vrml::Node*> pickableGroupParents;
+  std::function<void(const std::vector<vrml::NodePtr>&, const glm::mat4&, bool, const vrml::Node*,
+                     int)>
+      walk = [&](const std::vector<vrml::NodePtr>& list, const glm::mat4& m, bool pickable,
+                 const vrml::Node* group, int depth) {
         if (depth > 1000) return;
         for (const vrml::NodePtr& c : list) {
           if (!c || c->unresolved) continue;
           const bool places = vrml::placesChildren(c->typeId());
           const glm::mat4 cm = places ? m * vrml::transformMatrix(*c) : m;
-          if (!matrices.try_emplace(c.get(), Place{m, pickable}).second) continue;
-          const bool inner = pickable && (c->typeId() != NodeTypeId::PickableGroup ||
-                                          c->get<FieldType::SFBool>("pickable", true));
+          if (!matrices.try_emplace(c.get(), Place{m, pickable, group}).second) continue;
+          const bool isGroup = c->typeId() == NodeTypeId::PickableGroup;
+          if (isGroup) pickableGroupParents.try_emplace(c.get(), group);
+          const vrml::Node* innerGroup = isGroup ? c.get() : group;
+          const bool inner = pickable && (!isGroup || c->get<FieldType::SFBool>("pickable", true));
           if (c->typeId() == NodeTypeId::Switch) {
             const auto& choice = c->mfnode("choice");
             const int which = c->get<FieldType::SFInt32>("whichChoice", -1);
             if (which >= 0 && static_cast<std::size_t>(which) < choice.size())
-              walk({choice[static_cast<std::size_t>(which)]}, m, inner, depth + 1);
+              walk({choice[static_cast<std::size_t>(which)]}, m, inner, innerGroup, depth + 1);
           } else if (c->typeId() == NodeTypeId::LOD || c->typeId() == NodeTypeId::GeoLOD) {
             const std::span<const vrml::NodePtr> shown = shownNodes(*c);
-            walk({shown.begin(), shown.end()}, m, inner, depth + 1);
+            walk({shown.begin(), shown.end()}, m, inner, innerGroup, depth + 1);
           } else if (places || c->is(vrml::AbstractType::X3DGroupingNode)) {
-            walk(c->mfnode("children"), cm, inner, depth + 1);
+            walk(c->mfnode("children"), cm, inner, innerGroup, depth + 1);
           }
         }
       };
-  walk(scene->rootNodes, glm::mat4(1.0f), true, 0);
+  walk(scene->rootNodes, glm::mat4(1.0f), true, nullptr, 0);
+  // Whether sensor `sensor` may pick under `group` and every PickableGroup around it.
+  const auto groupsAdmit = [&](const vrml::Node& sensor, const vrml::Node* group) {
+    for (int depth = 0; group != nullptr && depth <= 1000; ++depth) {
+      if (!objectTypesMatch(sensor, *group)) return false;
+      const auto up = pickableGroupParents.find(group);
+      group = up != pickableGroupParents.end() ? up->second : nullptr;
+    }
+    return true;
+  };
   const auto meshOf = [&](const vrml::Node& geometry) -> const vrml::Mesh& {
     const std::uint64_t revision = vrml::revisionWithFields(geometry);
     auto [it, added] = pickMeshes.try_emplace(&geometry);
@@ -158,7 +215,7 @@ void ExecutionModel::State::evaluatePickSensors() {
     std::vector<vrml::NodePtr> pickedNodes;
     std::vector<glm::vec3> points, normals;
     if (n.get<FieldType::SFBool>("enabled", true) && where != matrices.end() && picking &&
-        !picking->unresolved) {
+        !picking->unresolved && !hasObjectType(n, "NONE")) {
       const glm::mat4 sensorToWorld = where->second.parent;
       const glm::mat4 worldToSensor = glm::inverse(sensorToWorld);
       const PickKind kind = n.typeId() == NodeTypeId::PointPickSensor       ? PickKind::point
@@ -181,13 +238,16 @@ void ExecutionModel::State::evaluatePickSensors() {
         if (!target || target->unresolved) continue;
         const auto t = matrices.find(target.get());
         if (t == matrices.end() || !t->second.pickable) continue;  // not drawn, not pickable
+        // The objectType of the PickableGroups around it (its own, if it is one, and those
+        // inside it: gather below).
+        if (!groupsAdmit(n, t->second.group)) continue;
         // The target's shapes, outside PickableGroups whose pickable is FALSE.
         WorldMesh mesh;
         std::function<void(const vrml::Node&, const glm::mat4&, int)> gather =
             [&](const vrml::Node& node, const glm::mat4& m, int depth) {
               if (depth > 1000 || mesh.triangles.size() >= kMaxTriangles * 3) return;
               if (node.typeId() == NodeTypeId::PickableGroup &&
-                  !node.get<FieldType::SFBool>("pickable", true))
+                  (!node.get<FieldType::SFBool>("pickable", true) || !objectTypesMatch(n, node)))
                 return;
               if (node.typeId() == NodeTypeId::Shape) {
                 if (const vrml::NodePtr& g = node.sfnode("geometry"); g && !g->unresolved)

@@ -109,3 +109,51 @@ Transform { translation 2.5 0 0 children [
   CHECK(sawPick(moved, "V.isActive=TRUE"));
   CHECK(!sawPick(moved, "FAR.isActive"));  // radius 0.2 at 2.5: outside the box (to 2)
 }
+
+TEST_CASE("picking: objectType and matchCriterion choose what a sensor may pick",
+          "[runtime][x3d][picking]") {
+  // Three boxes at the origin, each in PickableGroups of other types; one point inside.
+  RunningWorld w(x3dWorld(R"(
+DEF BOXES PickableGroup { objectType [ "BOX" "SOLID" ] children DEF A Transform {
+  children Shape { geometry Box { size 2 2 2 } } } }
+DEF CONES PickableGroup { objectType "CONE" children DEF B Transform {
+  children Shape { geometry Box { size 2 2 2 } } } }
+DEF NONE PickableGroup { objectType "NONE" children DEF C Transform {
+  children Shape { geometry Box { size 2 2 2 } } } }
+DEF Any PointPickSensor { sortOrder "ALL" objectType [ "BOX" "CONE" ]
+  pickingGeometry PointSet { coord Coordinate { point 0 0 0 } }
+  pickTarget [ USE A USE B USE C ] }
+DEF Every PointPickSensor { sortOrder "ALL" objectType [ "BOX" "SOLID" ] matchCriterion "MATCH_EVERY"
+  pickingGeometry PointSet { coord Coordinate { point 0 0 0 } }
+  pickTarget [ USE A USE B USE C ] }
+DEF One PointPickSensor { sortOrder "ALL" objectType [ "SOLID" "CONE" ] matchCriterion "MATCH_ONLY_ONE"
+  pickingGeometry PointSet { coord Coordinate { point 0 0 0 } }
+  pickTarget [ USE BOXES USE B ] }
+DEF Two PointPickSensor { sortOrder "ALL" objectType [ "SOLID" "BOX" ] matchCriterion "MATCH_ONLY_ONE"
+  pickingGeometry PointSet { coord Coordinate { point 0 0 0 } }
+  pickTarget [ USE BOXES USE B ] }
+DEF All PointPickSensor { sortOrder "ALL"
+  pickingGeometry PointSet { coord Coordinate { point 0 0 0 } }
+  pickTarget [ USE A USE B USE C ] }
+DEF Off PointPickSensor { sortOrder "ALL" objectType "NONE"
+  pickingGeometry PointSet { coord Coordinate { point 0 0 0 } }
+  pickTarget [ USE A USE B ] }
+)"),
+                 0.0);
+  w.model->advanceTo(0.1);
+  const auto picked = [&](const char* sensor) {
+    std::vector<std::string> names;
+    for (const auto& n : w.node(sensor).field("pickedGeometry")->get<FieldType::MFNode>())
+      names.push_back(n ? n->defName : "NULL");
+    std::sort(names.begin(), names.end());
+    return names;
+  };
+  using Names = std::vector<std::string>;
+  CHECK(picked("Any") == Names{"A", "B"});      // MATCH_ANY; never under "NONE"
+  CHECK(picked("Every") == Names{"A"});         // both of BOXES' types, and only those
+  CHECK(picked("One") == Names{"B", "BOXES"});  // one type shared with each
+  CHECK(picked("Two").empty());                 // BOXES shares two types with it, CONES none
+  CHECK(picked("All") == Names{"A", "B"});      // "ALL", the default
+  CHECK(picked("Off").empty());                 // a sensor of "NONE" picks nothing
+  CHECK_FALSE(w.node("Off").get<FieldType::SFBool>("isActive", true));
+}
