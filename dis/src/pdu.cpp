@@ -485,4 +485,13 @@ glm::dquat eulerToQuaternion(const glm::vec3& e) {
   return psi * theta * phi;
 }
 
+glm::vec3 quaternionToEuler(const glm::dquat& q0) {
+  const glm::dquat q = glm::normalize(q0);
+  // R = Rz(psi) Ry(theta) Rx(phi): the z-y-x Tait-Bryan angles.
+  const double psi = std::atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z));
+  const double theta = std::asin(std::clamp(2.0 * (q.w * q.y - q.z * q.x), -1.0, 1.0));
+  const double phi = std::atan2(2.0 * (q.w * q.x + q.y * q.z), 1.0 - 2.0 * (q.x * q.x + q.y * q.y));
+  return {static_cast<float>(psi), static_cast<float>(theta), static_cast<float>(phi)};
+}
+
 }  // namespace gs::dis

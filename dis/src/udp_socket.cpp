@@ -61,16 +61,40 @@ std::vector<std::vector<std::uint8_t>> UdpReceiver::receive(std::size_t maxDatag
 }
 
 bool UdpReceiver::sendToLoopback(int port, const std::vector<std::uint8_t>& bytes) {
-  const int fd = ::socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
-  if (fd < 0) return false;
+  std::string error;
+  return sendTo("localhost", port, bytes, error);
+}
+
+bool UdpReceiver::sendTo(const std::string& address, int port,
+                         const std::vector<std::uint8_t>& bytes, std::string& error) {
+  const std::string where = "UDP port " + std::to_string(port) + " of " +
+                            (address.empty() ? std::string("localhost") : address);
+  if (port < 1 || port > 65535) {
+    error = "DIS port " + std::to_string(port) + " is not a UDP port (1 to 65535)";
+    return false;
+  }
   sockaddr_in a{};
   a.sin_family = AF_INET;
   a.sin_port = htons(static_cast<std::uint16_t>(port));
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  if (address.empty() || address == "localhost") {
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  } else if (::inet_pton(AF_INET, address.c_str(), &a.sin_addr) != 1) {
+    error = "DIS address \"" + address + "\" is not an IPv4 address or localhost";
+    return false;
+  }
+  const int fd = ::socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
+  if (fd < 0) {
+    error = std::string("cannot make a UDP socket: ") + std::strerror(errno);
+    return false;
+  }
   const ssize_t sent =
       ::sendto(fd, bytes.data(), bytes.size(), 0, reinterpret_cast<const sockaddr*>(&a), sizeof a);
+  const int why = errno;
   ::close(fd);
-  return sent == static_cast<ssize_t>(bytes.size());
+  if (sent == static_cast<ssize_t>(bytes.size())) return true;
+  error = "cannot send a DIS PDU to " + where + ": " +
+          (sent < 0 ? std::strerror(why) : "the datagram was cut");
+  return false;
 }
 
 }  // namespace gs::dis

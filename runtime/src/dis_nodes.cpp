@@ -7,6 +7,8 @@
 //   sets its translation (the PDU's location), its rotation (its DIS Euler angles) and
 //   sends the entity's velocity, acceleration, type, force, marking and articulation
 //   parameters as its fields' events, with timestamp and isActive.
+// - EspduTransform, networkMode "networkWriter": every writeInterval seconds an Entity State
+//   PDU of its fields is sent (disWriteEntityState).
 // - ReceiverPdu, SignalPdu, TransmitterPdu, networkMode "networkReader": the same with the
 //   Receiver, Signal and Transmitter PDUs of their radio (siteID, applicationID, entityID,
 //   radioID): each field the X3D node has for a PDU field is sent.
@@ -25,12 +27,16 @@
 #include "vrml/transform.hpp"
 
 #include "dis/pdu.hpp"
+#include "dis/udp_socket.hpp"
 #include "encodings/node_types.hpp"
+
+#include <glm/gtc/quaternion.hpp>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
+#include <string>
 #include <type_traits>
 #include <variant>
 
@@ -285,6 +291,80 @@ void disDrain(DisInbox& inbox) {
   }
 }
 
+/// An EspduTransform in "networkWriter" mode (X3D 4.0 clause 28.4.3): every writeInterval
+/// seconds (1 by default; 0: every frame) one Entity State PDU of its fields goes to UDP
+/// `port` of `address`: its entity and type, forceID, translation as the location,
+/// rotation as DIS Euler angles, linearVelocity, linearAcceleration, deadReckoning,
+/// marking (11 characters) and its articulation parameter arrays (at most
+/// articulationParameterCount of them, as many as every array holds). A world read from
+/// the network sends to the loopback only, whatever its address says. A PDU that cannot be
+/// sent is one error at the node; then timestamp, and isActive TRUE the first time.
+void disWriteEntityState(DisModel& s, NodeState& ns, double now) {
+  const vrml::Node& n = *ns.node;
+  EspduState& st = *ns.espdu;
+  if (now - st.lastWrite < std::max(0.0, n.get<FieldType::SFTime>("writeInterval", 1.0))) return;
+  st.lastWrite = now;
+  const auto u8 = [&](std::string_view field) {
+    return static_cast<std::uint8_t>(disId(n, field));
+  };
+  dis::EntityStatePdu p;
+  // DIS relative time: 2^31 units per hour past the hour, bit 0 clear.
+  const double pastHour = std::fmod(std::max(now, 0.0), 3600.0) / 3600.0;
+  p.header.timestamp = static_cast<std::uint32_t>(pastHour * 2147483647.0) << 1;
+  p.entityID = disEntityOf(n);
+  p.forceID = u8("forceID");
+  p.entityType = {u8("entityKind"),     u8("entityDomain"),      disId(n, "entityCountry"),
+                  u8("entityCategory"), u8("entitySubcategory"), u8("entitySpecific"),
+                  u8("entityExtra")};
+  p.location = glm::dvec3(n.get<FieldType::SFVec3f>("translation", glm::vec3(0.0f)));
+  const vrml::Rotation r = n.get<FieldType::SFRotation>("rotation", vrml::Rotation{});
+  const glm::dvec3 axis(r.x, r.y, r.z);
+  if (glm::length(axis) > 0.0)
+    p.orientation =
+        dis::quaternionToEuler(glm::angleAxis(static_cast<double>(r.w), glm::normalize(axis)));
+  p.linearVelocity = n.get<FieldType::SFVec3f>("linearVelocity", glm::vec3(0.0f));
+  p.linearAcceleration = n.get<FieldType::SFVec3f>("linearAcceleration", glm::vec3(0.0f));
+  p.deadReckoningAlgorithm = u8("deadReckoning");
+  p.marking = n.get<FieldType::SFString>("marking", std::string()).substr(0, 11);
+  const auto ints = [&](std::string_view field) {
+    return n.get<FieldType::MFInt32>(vrml::FieldName(field), std::vector<std::int32_t>{});
+  };
+  const std::vector<float> values =
+      n.get<FieldType::MFFloat>("articulationParameterArray", std::vector<float>{});
+  const std::vector<std::int32_t> designators = ints("articulationParameterDesignatorArray"),
+                                  changes = ints("articulationParameterChangeIndicatorArray"),
+                                  attached = ints("articulationParameterIdPartAttachedToArray"),
+                                  types = ints("articulationParameterTypeArray");
+  const std::size_t count =
+      std::min({static_cast<std::size_t>(
+                    std::max(0, n.get<FieldType::SFInt32>("articulationParameterCount", 0))),
+                values.size(), designators.size(), changes.size(), attached.size(), types.size(),
+                dis::kMaxArticulationParameters});
+  for (std::size_t i = 0; i < count; ++i)
+    p.articulationParameters.push_back(
+        {static_cast<std::uint8_t>(designators[i]), static_cast<std::uint8_t>(changes[i]),
+         static_cast<std::uint16_t>(attached[i]), static_cast<std::uint32_t>(types[i]),
+         static_cast<double>(values[i])});
+  std::string address = n.get<FieldType::SFString>("address", std::string("localhost"));
+  const auto world = s.nodeScenes.find(&n);
+  const vrml::Scene* scene = world != s.nodeScenes.end() ? world->second : s.scene.get();
+  if (scene != nullptr && (scene->url.starts_with("http://") || scene->url.starts_with("https://")))
+    address = "localhost";  // remote content reaches no other host through the browser
+  std::string error;
+  if (!dis::UdpReceiver::sendTo(address, n.get<FieldType::SFInt32>("port", 0),
+                                dis::encodeEntityState(p), error)) {
+    if (!st.reported)
+      s.report(vrml::Severity::error, n, error + ": the EspduTransform writes no PDUs");
+    st.reported = true;
+    return;
+  }
+  disEmit(s, ns, "timestamp", FieldValue::make<FieldType::SFTime>(now));
+  if (!st.active) {
+    st.active = true;
+    disEmit(s, ns, "isActive", FieldValue::make<FieldType::SFBool>(true));
+  }
+}
+
 }  // namespace
 
 bool ExecutionModel::State::classifyDis(NodeState& ns) {
@@ -305,12 +385,18 @@ void ExecutionModel::State::evaluateDis() {
     EspduState& st = *ns.espdu;
     const int index = disPduIndex(n.typeId());
     const bool manager = index < 0;
-    const bool reader =
-        n.get<FieldType::SFString>("networkMode", std::string("standAlone")) == "networkReader";
+    const std::string mode = n.get<FieldType::SFString>("networkMode", std::string("standAlone"));
+    const bool reader = mode == "networkReader";
+    const bool writer = mode == "networkWriter" && index == 0;  // EspduTransform only
     if (!st.announced && !manager) {
       st.announced = true;
       disEmit(*this, ns, "isNetworkReader", FieldValue::make<FieldType::SFBool>(reader));
-      disEmit(*this, ns, "isStandAlone", FieldValue::make<FieldType::SFBool>(!reader));
+      disEmit(*this, ns, "isNetworkWriter", FieldValue::make<FieldType::SFBool>(writer));
+      disEmit(*this, ns, "isStandAlone", FieldValue::make<FieldType::SFBool>(!reader && !writer));
+    }
+    if (writer) {
+      if (n.get<FieldType::SFBool>("enabled", true)) disWriteEntityState(*this, ns, now);
+      continue;
     }
     if (!manager && (!reader || !n.get<FieldType::SFBool>("enabled", true))) continue;
     DisInbox* inbox = disInboxOf(*this, ns);

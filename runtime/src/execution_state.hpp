@@ -159,6 +159,7 @@ struct EspduState {
   /// Its receiver in State::disReceivers ("address:port"), "" none.
   std::string key;
   double lastRead = -1e300;    // SFTime of the last read (readInterval apart)
+  double lastWrite = -1e300;   // SFTime of the last PDU written (writeInterval apart)
   bool reported = false;       // a problem with its socket was reported
   bool dropReported = false;   // datagrams that did not decode were reported
   bool announced = false;      // isNetworkReader / isStandAlone sent

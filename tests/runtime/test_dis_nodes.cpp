@@ -317,3 +317,62 @@ TEST_CASE("DIS: a DISEntityManager removes silent and deactivated entities",
   REQUIRE(m.mfnode("addedEntities").size() == 1);
   CHECK(m.mfnode("addedEntities")[0] != nodeB);
 }
+
+TEST_CASE("DIS: a networkWriter EspduTransform sends its Entity State every writeInterval",
+          "[runtime][x3d][dis]") {
+  const int port = disTestPort(5);
+  gs::dis::UdpReceiver listener;  // what another simulation would hear
+  std::string error;
+  REQUIRE(listener.open(port, "localhost", error));
+  RunningWorld w(x3dWorld("DEF W EspduTransform { networkMode \"networkWriter\" writeInterval 0.5\n"
+                          "  port " +
+                          std::to_string(port) +
+                          " siteID 4 applicationID 5 entityID 6 forceID 2\n"
+                          "  entityKind 1 entityDomain 2 entityCountry 225 marking \"WRITER\"\n"
+                          "  translation 1 2 3 rotation 0 0 1 0.5 linearVelocity 0 0 7\n"
+                          "  articulationParameterCount 1 articulationParameterArray 0.25\n"
+                          "  articulationParameterDesignatorArray 0\n"
+                          "  articulationParameterChangeIndicatorArray 1\n"
+                          "  articulationParameterIdPartAttachedToArray 0\n"
+                          "  articulationParameterTypeArray 4096 }\n"),
+                 0.0);
+  w.model->advanceTo(0.1);
+  const gs::vrml::Node& writer = w.node("W");
+  CHECK(writer.get<FieldType::SFBool>("isNetworkWriter", false));
+  CHECK_FALSE(writer.get<FieldType::SFBool>("isStandAlone", true));
+  CHECK(writer.get<FieldType::SFBool>("isActive", false));
+  std::vector<std::vector<std::uint8_t>> got = listener.receive(16);
+  REQUIRE(got.size() == 1);
+  const auto pdu = gs::dis::decodeEntityState(got[0], nullptr);
+  REQUIRE(pdu);
+  CHECK(pdu->entityID == gs::dis::EntityID{4, 5, 6});
+  CHECK(pdu->forceID == 2);
+  CHECK(pdu->entityType.kind == 1);
+  CHECK(pdu->entityType.country == 225);
+  CHECK(pdu->marking == "WRITER");
+  CHECK(pdu->location == glm::dvec3(1, 2, 3));
+  CHECK(pdu->orientation.x == Approx(0.5f));  // psi: about z
+  CHECK(pdu->orientation.y == Approx(0.0f).margin(1e-6));
+  CHECK(pdu->linearVelocity == glm::vec3(0, 0, 7));
+  REQUIRE(pdu->articulationParameters.size() == 1);
+  CHECK(pdu->articulationParameters[0].parameterType == 4096);
+  CHECK(pdu->articulationParameters[0].value == Approx(0.25));
+  // The next PDU half a second later, with the field's new value; none between.
+  w.send("W", "set_translation",
+         gs::vrml::FieldValue::make<FieldType::SFVec3f>(glm::vec3(8, 0, 0)));
+  w.model->advanceTo(0.4);
+  CHECK(listener.receive(16).empty());
+  w.model->advanceTo(0.6);
+  got = listener.receive(16);
+  REQUIRE(got.size() == 1);
+  CHECK(gs::dis::decodeEntityState(got[0], nullptr)->location == glm::dvec3(8, 0, 0));
+}
+
+TEST_CASE("DIS: Euler angles and rotations convert both ways", "[runtime][dis]") {
+  for (const glm::vec3 e : {glm::vec3(0.3f, -0.4f, 1.2f), glm::vec3(-2.5f, 1.0f, -0.1f)}) {
+    const glm::vec3 back = gs::dis::quaternionToEuler(gs::dis::eulerToQuaternion(e));
+    CHECK(back.x == Approx(e.x).margin(1e-5));
+    CHECK(back.y == Approx(e.y).margin(1e-5));
+    CHECK(back.z == Approx(e.z).margin(1e-5));
+  }
+}

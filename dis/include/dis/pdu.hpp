@@ -235,5 +235,8 @@ std::optional<Pdu> decodePdu(std::span<const std::uint8_t> bytes, std::string* e
 /// about the new y, then phi about the new x: IEEE 1278.1 annex B, the body's x forward,
 /// y right, z down), as a quaternion (x, y, z, w).
 glm::dquat eulerToQuaternion(const glm::vec3& psiThetaPhi);
+/// The inverse of eulerToQuaternion: the DIS Euler angles (psi, theta, phi; radians, psi
+/// and phi in [-pi, pi], theta in [-pi/2, pi/2]) of rotation `q` (any length but 0).
+glm::vec3 quaternionToEuler(const glm::dquat& q);
 
 }  // namespace gs::dis

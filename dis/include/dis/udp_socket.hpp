@@ -1,5 +1,6 @@
 // A UDP socket that receives DIS PDUs (IEEE 1278.2: DIS over UDP, port given by the world):
-// bound to a port on every local address (or the address given), non-blocking. POSIX.
+// bound to a port on every local address (or the address given), non-blocking; and the
+// sending of one datagram. POSIX.
 #pragma once
 
 #include <cstdint>
@@ -23,9 +24,14 @@ class UdpReceiver {
   /// The datagrams waiting, oldest first, at most `maxDatagrams` of them (each at most
   /// 8192 bytes: a longer one is cut there); never blocks.
   std::vector<std::vector<std::uint8_t>> receive(std::size_t maxDatagrams);
-  /// Sends `bytes` to UDP `port` of the loopback (tests and networkWriter); false when it
-  /// could not.
+  /// Sends `bytes` to UDP `port` of the loopback (tests); false when it could not.
   static bool sendToLoopback(int port, const std::vector<std::uint8_t>& bytes);
+  /// Sends `bytes` as one datagram to UDP `port` (1..65535) of `address` ("" or
+  /// "localhost": the loopback; else a dotted IPv4 address, multicast ones included:
+  /// EspduTransform's networkWriter). False, and `error` says where to and why, when it
+  /// could not. Never blocks.
+  static bool sendTo(const std::string& address, int port, const std::vector<std::uint8_t>& bytes,
+                     std::string& error);
 
  private:
   int fd_ = -1;
