@@ -297,9 +297,16 @@ int drawMenuBar(WindowState& state, float aspect) {
   const bool haveViewpoints = renderer && !renderer->viewpoints().empty();
   if (ImGui::BeginMenu("Viewpoints", haveViewpoints)) {
     const auto& vps = renderer->viewpoints();
+    // X3D ViewpointGroups (clause 23.4.6): a group not displayed, or whose box does not
+    // hold the viewer, hides its viewpoints; the groups' descriptions lead the label.
+    const glm::vec3 viewer = state.view().navigator.camera().position;
     for (std::size_t i = 0; i < vps.size(); ++i) {
+      if (!vps[i].listedAt(viewer)) continue;
+      std::string label;
+      for (const std::string& g : vps[i].groups) label += g + " / ";
+      label += vps[i].description;
       ImGui::PushID(static_cast<int>(i));
-      if (ImGui::MenuItem(vps[i].description.c_str())) state.jumpToViewpoint(i);
+      if (ImGui::MenuItem(label.c_str())) state.jumpToViewpoint(i);
       ImGui::PopID();
     }
     ImGui::EndMenu();

@@ -18,31 +18,41 @@ namespace {
 // Depth-first search for bindable nodes through every child list (all Switch choices and
 // LOD levels: binding does not depend on what is drawn; a LayerSet's active layer), not into
 // Inline files.
+// `groups` holds the ViewpointGroups around the node visited, outermost first, each with
+// the transform its children are under.
+using ViewpointGroups = std::vector<std::pair<const vrml::Node*, glm::mat4>>;
+
 template <class Visit>
 void forEachBindable(const std::vector<vrml::NodePtr>& list, const glm::mat4& m, int depth,
-                     Visit& visit) {
+                     Visit& visit, ViewpointGroups& groups) {
   if (depth > 1000) return;
   for (const vrml::NodePtr& n : list) {
     if (!n) continue;
+    if (n->typeId() == vrml::NodeTypeId::ViewpointGroup) {  // X3D 4.0 clause 23.4.6
+      groups.emplace_back(n.get(), m);
+      forEachBindable(n->mfnode("children"), m, depth + 1, visit, groups);
+      groups.pop_back();
+      continue;
+    }
     const NodeKind kind = nodeKind(*n);
     switch (kind) {
       case NodeKind::Transform:
-        forEachBindable(n->mfnode("children"), m * transformMatrix(*n), depth + 1, visit);
+        forEachBindable(n->mfnode("children"), m * transformMatrix(*n), depth + 1, visit, groups);
         break;
       case NodeKind::HAnimHumanoid:  // viewpoints in its skeleton's sites
-        forEachBindable(n->mfnode("skeleton"), m * transformMatrix(*n), depth + 1, visit);
+        forEachBindable(n->mfnode("skeleton"), m * transformMatrix(*n), depth + 1, visit, groups);
         break;
       case NodeKind::Anchor:
       case NodeKind::Billboard:  // its rotation depends on the viewer: ignored here
       case NodeKind::Collision:
       case NodeKind::Group:
-        forEachBindable(n->mfnode("children"), m, depth + 1, visit);
+        forEachBindable(n->mfnode("children"), m, depth + 1, visit, groups);
         break;
       case NodeKind::Switch:
-        forEachBindable(n->mfnode("choice"), m, depth + 1, visit);
+        forEachBindable(n->mfnode("choice"), m, depth + 1, visit, groups);
         break;
       case NodeKind::LOD:
-        forEachBindable(n->mfnode("level"), m, depth + 1, visit);
+        forEachBindable(n->mfnode("level"), m, depth + 1, visit, groups);
         break;
       case NodeKind::LayerSet: {
         // X3D 4.0 clause 35.4.2: the bindables the user meets are the active layer's
@@ -52,7 +62,7 @@ void forEachBindable(const std::vector<vrml::NodePtr>& list, const glm::mat4& m,
         const int active = n->get<vrml::FieldType::SFInt32>("activeLayer", 0);
         if (active >= 1 && static_cast<std::size_t>(active) <= layers.size()) {
           const vrml::NodePtr& layer = layers[static_cast<std::size_t>(active - 1)];
-          if (layer) forEachBindable(layer->mfnode("children"), m, depth + 1, visit);
+          if (layer) forEachBindable(layer->mfnode("children"), m, depth + 1, visit, groups);
         }
         break;
       }
@@ -60,7 +70,7 @@ void forEachBindable(const std::vector<vrml::NodePtr>& list, const glm::mat4& m,
       case NodeKind::NavigationInfo:
       case NodeKind::Background:
       case NodeKind::Fog:
-        visit(*n, kind, m);
+        visit(*n, kind, m, groups);
         break;
       default:
         break;
@@ -119,10 +129,11 @@ Camera viewpointCamera(const vrml::Node& n, const glm::mat4& m) {
 
 std::optional<Camera> firstViewpointCamera(const std::vector<vrml::NodePtr>& nodes) {
   std::optional<Camera> found;
-  auto visit = [&](const vrml::Node& n, NodeKind kind, const glm::mat4& m) {
+  auto visit = [&](const vrml::Node& n, NodeKind kind, const glm::mat4& m, const ViewpointGroups&) {
     if (kind == NodeKind::Viewpoint && !found) found = viewpointCamera(n, m);
   };
-  forEachBindable(nodes, glm::mat4(1.0f), 0, visit);
+  ViewpointGroups groups;
+  forEachBindable(nodes, glm::mat4(1.0f), 0, visit, groups);
   return found;
 }
 
@@ -167,7 +178,8 @@ void SceneTraversal::findBindables() {
       navigation_.avatarSize = f->get<vrml::FieldType::MFFloat>();
     navigation_.visibilityLimit = sfFloat(n, "visibilityLimit", 0.0f);
   };
-  auto visit = [&](const vrml::Node& n, NodeKind kind, const glm::mat4& m) {
+  auto visit = [&](const vrml::Node& n, NodeKind kind, const glm::mat4& m,
+                   const ViewpointGroups& groups) {
     switch (kind) {
       case NodeKind::Viewpoint: {
         ViewpointInfo info;
@@ -176,6 +188,15 @@ void SceneTraversal::findBindables() {
         if (info.description.empty())
           info.description = "Viewpoint " + std::to_string(viewpoints_.size() + 1);
         info.camera = gs::scene::viewpointCamera(n, m);
+        for (const auto& [group, groupMatrix] : groups) {
+          if (const std::string& d = sfString(*group, "description"); !d.empty())
+            info.groups.push_back(d);
+          info.displayed = info.displayed && sfBool(*group, "displayed", true);
+          const glm::vec3 size = sfVec3(*group, "size", glm::vec3(0.0f));
+          if (size != glm::vec3(0.0f))
+            info.groupBoxes.push_back(
+                {glm::inverse(groupMatrix), sfVec3(*group, "center", glm::vec3(0.0f)), size});
+        }
         viewpoints_.push_back(std::move(info));
         break;
       }
@@ -217,7 +238,8 @@ void SceneTraversal::findBindables() {
         break;
     }
   };
-  forEachBindable(scene_->rootNodes, glm::mat4(1.0f), 0, visit);
+  ViewpointGroups groups;
+  forEachBindable(scene_->rootNodes, glm::mat4(1.0f), 0, visit, groups);
   // A NavigationInfo bound outside the graph: a viewpoint's own (X3D 4.0 clause 23.3.1,
   // its `navigationInfo` field), which the runtime binds with it.
   if (runtimeBound_ && runtimeBound_->navigationInfo != nullptr && !haveNavigation)
@@ -271,6 +293,16 @@ void readVolumetricFog(const vrml::Node& node, float scale, FogSettings& fog) {
   fog.volumetric = true;
   fog.volumetricDirection = d / length;
   fog.volumetricStart = start;
+}
+
+bool ViewpointInfo::listedAt(const glm::vec3& viewer) const {
+  if (!displayed) return false;
+  for (const GroupBox& box : groupBoxes) {
+    const glm::vec3 local = glm::vec3(box.worldToGroup * glm::vec4(viewer, 1.0f));
+    const glm::vec3 d = glm::abs(local - box.center);
+    if (d.x > box.size.x * 0.5f || d.y > box.size.y * 0.5f || d.z > box.size.z * 0.5f) return false;
+  }
+  return true;
 }
 
 }  // namespace gs::scene

@@ -53,3 +53,32 @@ Viewpoint { navigationInfo NavigationInfo { speed 7 type "FLY" } }
   CHECK(t.navigation().speed == 7.0f);
   CHECK(t.navigation().type == std::vector<std::string>{"FLY"});
 }
+
+TEST_CASE("ViewpointGroup: displayed, size and center decide whether its viewpoints are listed",
+          "[scene][x3d]") {
+  // X3D 4.0 clause 23.4.6, X_ITE 15's rule: listed when every group around is displayed
+  // and holds the viewer in its box (a size of 0 0 0: everywhere).
+  const std::string world = R"(#X3D V4.0 utf8
+PROFILE Immersive
+Transform { translation 50 0 0 children ViewpointGroup { description "Outside" children [
+  Viewpoint { description "Free" }
+  ViewpointGroup { description "House" center 50 0 0 size 10 10 10
+    children Viewpoint { description "Kitchen" } }
+  ViewpointGroup { displayed FALSE children Viewpoint { description "Hidden" } }
+] } }
+)";
+  auto scene = std::make_shared<gs::vrml::Scene>(gs::vrml::parseVrml(world, "groups.x3dv"));
+  REQUIRE(scene->diagnostics.items.empty());
+  SceneTraversal t(scene);
+  const auto& vps = t.viewpoints();
+  REQUIRE(vps.size() == 3);  // all bindable
+  CHECK(vps[0].groups == std::vector<std::string>{"Outside"});
+  CHECK(vps[1].groups == std::vector<std::string>{"Outside", "House"});
+  // The house's box is centred at 50 0 0 in the group, 100 0 0 in the world.
+  const glm::vec3 far(0.0f, 0.0f, 10.0f), inHouse(102.0f, 0.0f, 1.0f);
+  CHECK(vps[0].listedAt(far));
+  CHECK_FALSE(vps[1].listedAt(far));  // the viewer is outside the house's box
+  CHECK(vps[1].listedAt(inHouse));
+  CHECK_FALSE(vps[2].listedAt(far));  // displayed FALSE
+  CHECK_FALSE(vps[2].listedAt(inHouse));
+}

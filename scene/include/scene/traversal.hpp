@@ -269,6 +269,21 @@ struct ViewpointInfo {
   std::string description;  // the node's description, or "Viewpoint N" if empty
   Camera camera;            // position, orientation, fieldOfView; clip planes unset
   const vrml::Node* node = nullptr;
+  /// The ViewpointGroups around it (X3D 4.0 clause 23.4.6), outermost first: the
+  /// descriptions of those that have one (a menu's levels), whether all are `displayed`,
+  /// and the boxes (`center`, `size`, in the group's coordinates) of those whose size is
+  /// not 0 0 0, inside which the viewer must be for it to be listed.
+  std::vector<std::string> groups;
+  bool displayed = true;
+  struct GroupBox {
+    glm::mat4 worldToGroup{1.0f};
+    glm::vec3 center{0.0f}, size{0.0f};
+  };
+  std::vector<GroupBox> groupBoxes;
+  /// Whether a viewpoint menu lists it for a viewer at `viewer` (world coordinates):
+  /// every ViewpointGroup around it is displayed and holds the viewer in its box (X_ITE
+  /// 15's rule). Binding it does not depend on this.
+  bool listedAt(const glm::vec3& viewer) const;
 };
 
 /// The bound NavigationInfo (clause 6.29), or its defaults when the scene has none.
