@@ -189,8 +189,12 @@ std::size_t SceneSplats::draw(const scene::TraversalFrame& frame, scene::SceneTr
     if (layer && s.layer != *layer) continue;
     const NodeSet& entry = nodeSet(*s.node, *s.baseUrl, traversal);
     if (entry.raycast) {
+      const std::span<const glm::vec4> clipPlanes(frame.scopedClipPlanes.data() + s.clipPlaneBegin,
+                                                  s.clipPlaneCount);
+      const scene::FogSettings& fog =
+          s.localFog >= 0 ? frame.localFogs[static_cast<std::size_t>(s.localFog)] : traversal.fog();
       raycaster_.draw(*s.node, *s.baseUrl, s.model, camera, aspect, frame.lights, headlight,
-                      textures, traversal, fetcher_);
+                      {clipPlanes, fog}, textures, traversal, fetcher_);
       continue;
     }
     if (!entry.set) continue;

@@ -63,7 +63,30 @@ uniform vec3 u_dimensions;
 uniform vec3 u_sliceNormal;
 uniform float u_sliceSize;
 uniform int u_slices;
+// ClipPlanes in the box's local coordinates (a sample p is kept where dot(plane, (p, 1))
+// >= 0); fog as the surface programs have it (eye coordinates).
+uniform int u_clipPlaneCount;
+uniform vec4 u_clipPlanes[8];
+uniform int u_fogType;  // 0 none, 1 LINEAR, 2 EXPONENTIAL
+uniform vec3 u_fogColor;
+uniform float u_fogVisibilityRange;
+uniform vec4 u_fogPlane;  // volumetric fog: the distance is dot(plane, (eye position, 1))
 out vec4 fragColor;
+
+bool clippedAway(vec3 p) {
+  for (int k = 0; k < u_clipPlaneCount; ++k)
+    if (dot(u_clipPlanes[k], vec4(p, 1.0)) < 0.0) return true;
+  return false;
+}
+
+vec3 fogged(vec3 color, vec3 eye) {
+  if (u_fogType == 0 || u_fogVisibilityRange <= 0.0) return color;
+  float d = u_fogPlane != vec4(0.0) ? dot(u_fogPlane, vec4(eye, 1.0)) : length(eye);
+  float r = u_fogVisibilityRange;
+  float f = 0.0;
+  if (d < r) f = u_fogType == 1 ? (r - d) / r : exp(-d / (r - d));
+  return mix(u_fogColor, color, clamp(f, 0.0, 1.0));
+}
 
 void main() {
   vec2 ndc = (gl_FragCoord.xy - u_viewport.xy) / u_viewport.zw * 2.0 - 1.0;
@@ -99,9 +122,10 @@ void main() {
     float s = (offset - on) / dn;
     vec3 p = o + s * d;
     vec3 texCoord = p / u_dimensions + 0.5;
-    if (any(greaterThan(abs(texCoord - 0.5), vec3(0.5)))) continue;
+    if (any(greaterThan(abs(texCoord - 0.5), vec3(0.5))) || clippedAway(p)) continue;
     vertex = (u_modelView * vec4(p, 1.0)).xyz;
     vec4 c = clamp(getTextureColor(texCoord), 0.0, 1.0);
+    c.rgb = fogged(c.rgb, vertex);
     color += transmittance * c.a * c.rgb;
     transmittance *= 1.0 - c.a;
     if (transmittance < 1.0 / 1024.0) break;
@@ -162,8 +186,8 @@ void setLight(GLuint program, int i, int type, const glm::vec3& color, float int
 bool VolumeRaycaster::draw(const vrml::Node& node, const std::string& baseUrl,
                            const glm::mat4& model, const scene::Camera& camera, float aspect,
                            std::span<const scene::LightInstance> lights, bool headlight,
-                           TextureCache& textures, scene::SceneTraversal& traversal,
-                           base::Fetcher* fetcher) {
+                           const VolumeSurroundings& around, TextureCache& textures,
+                           scene::SceneTraversal& traversal, base::Fetcher* fetcher) {
   const vrml::NodePtr& voxels = node.sfnode("voxels");
   if (!voxels || voxels->unresolved) return false;
   const GpuTexture& volume = textures.get(*voxels, baseUrl, traversal, fetcher);
@@ -227,6 +251,24 @@ bool VolumeRaycaster::draw(const vrml::Node& node, const std::string& baseUrl,
   glUniform3fv(uniform(program, "x3d_TextureViewDirection"), 1,
                glm::value_ptr(glm::normalize(sliceNormal / dimensions)));
   glUniform1i(uniform(program, "u_slices"), kVolumeSlices);
+  // ClipPlanes to the box's local coordinates (a plane maps by the transpose of the point
+  // transform), the fog as a shape's (scene_renderer.cpp).
+  std::array<glm::vec4, 8> planes{};
+  const std::size_t planeCount = std::min(around.clipPlanes.size(), planes.size());
+  for (std::size_t i = 0; i < planeCount; ++i)
+    planes[i] = glm::transpose(model) * around.clipPlanes[i];
+  glUniform1i(uniform(program, "u_clipPlaneCount"), static_cast<GLint>(planeCount));
+  glUniform4fv(uniform(program, "u_clipPlanes[0]"), 8, glm::value_ptr(planes[0]));
+  const scene::FogSettings& fog = around.fog;
+  glUniform1i(uniform(program, "u_fogType"),
+              fog.visibilityRange > 0.0f ? (fog.exponential ? 2 : 1) : 0);
+  glUniform3fv(uniform(program, "u_fogColor"), 1, glm::value_ptr(fog.color));
+  glUniform1f(uniform(program, "u_fogVisibilityRange"), fog.visibilityRange);
+  const glm::vec4 fogPlane = fog.volumetric
+                                 ? glm::transpose(glm::inverse(view)) *
+                                       glm::vec4(fog.volumetricDirection, -fog.volumetricStart)
+                                 : glm::vec4(0.0f);
+  glUniform4fv(uniform(program, "u_fogPlane"), 1, glm::value_ptr(fogPlane));
   // Texture-space gradients to eye space: X_ITE's x3d_TextureNormalMatrix (the inverse of
   // the texture transform's 3x3, position / dimensions) under the normal matrix.
   const glm::mat3 textureNormal = glm::inverseTranspose(glm::mat3(modelView)) *

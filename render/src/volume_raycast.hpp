@@ -27,6 +27,14 @@
 
 namespace gs::render::detail {
 
+/// What else acts on a volume's samples, as on a shape's fragments: the ClipPlanes in
+/// scope (world coordinates, (a, b, c, d) keeping a p.x + b p.y + c p.z + d >= 0; at most
+/// 8 are used) and the fog (the bound Fog or the innermost LocalFog).
+struct VolumeSurroundings {
+  std::span<const glm::vec4> clipPlanes;
+  const scene::FogSettings& fog;
+};
+
 /// The ray caster's GL objects: the box and one program per generated style code.
 class VolumeRaycaster {
  public:
@@ -40,12 +48,14 @@ class VolumeRaycaster {
   /// and not writing depth. Its textures come from `textures` (their urls resolve against
   /// `baseUrl`; a texture still loading draws nothing this frame). `lights` are the
   /// frame's lights in world coordinates; `headlight` adds X_ITE's (directional, along
-  /// the view). A style program that does not compile is reported to `traversal` once and
-  /// the node is not drawn. Returns whether anything was drawn.
+  /// the view). Samples outside a clip plane of `around` are skipped, and each sample's
+  /// colour is fogged by its eye distance as a shape's fragment is (X_ITE 15 clips and
+  /// fogs each slice's fragments). A style program that does not compile is reported to
+  /// `traversal` once and the node is not drawn. Returns whether anything was drawn.
   bool draw(const vrml::Node& node, const std::string& baseUrl, const glm::mat4& model,
             const scene::Camera& camera, float aspect, std::span<const scene::LightInstance> lights,
-            bool headlight, TextureCache& textures, scene::SceneTraversal& traversal,
-            base::Fetcher* fetcher);
+            bool headlight, const VolumeSurroundings& around, TextureCache& textures,
+            scene::SceneTraversal& traversal, base::Fetcher* fetcher);
   /// Deletes the GL objects (the context must be current).
   void release();
 

@@ -228,6 +228,18 @@ struct SceneTraversal::Walk {
 
   // X3D 4.0 clause 24.4.4: Fog's fields, for the siblings and their descendants; the
   // visibility range in the LocalFog's coordinate system.
+  /// Where the ClipPlanes now in scope start in frame.scopedClipPlanes (appended there
+  /// when the scope changed since the last call).
+  std::uint32_t clipScopeBegin() {
+    if (clipScopeChanged) {
+      lastClipBegin = static_cast<std::uint32_t>(frame.scopedClipPlanes.size());
+      frame.scopedClipPlanes.insert(frame.scopedClipPlanes.end(), clipScope->begin(),
+                                    clipScope->end());
+      clipScopeChanged = false;
+    }
+    return lastClipBegin;
+  }
+
   void localFog(const vrml::Node& n, const glm::mat4& m) {
     if (!sfBool(n, "enabled", true)) return;
     FogSettings f;
@@ -424,13 +436,7 @@ struct SceneTraversal::Walk {
     s.scopedLightCount = static_cast<std::uint32_t>(scope.size());
     s.environmentLight = environmentScope;
     s.localFog = fogScope;
-    if (clipScopeChanged) {
-      lastClipBegin = static_cast<std::uint32_t>(frame.scopedClipPlanes.size());
-      frame.scopedClipPlanes.insert(frame.scopedClipPlanes.end(), clipScope->begin(),
-                                    clipScope->end());
-      clipScopeChanged = false;
-    }
-    s.clipPlaneBegin = lastClipBegin;
+    s.clipPlaneBegin = clipScopeBegin();
     s.clipPlaneCount = static_cast<std::uint32_t>(clipScope->size());
     if (projectorScopeChanged) {
       lastProjectorBegin = static_cast<std::uint32_t>(frame.scopedProjectors.size());
@@ -755,9 +761,14 @@ struct SceneTraversal::Walk {
         if (c && !c->unresolved) node(*c, m * transformMatrix(n), baseUrl);
         break;
       }
-      case NodeKind::QuantizedNormalVectors:
-        frame.splats.push_back({&n, m, &n.urlBaseOr(*baseUrl), layer});  // its file's base
+      case NodeKind::QuantizedNormalVectors: {
+        scene::SplatInstance splat{&n, m, &n.urlBaseOr(*baseUrl), layer};  // its file's base
+        splat.clipPlaneBegin = clipScopeBegin();
+        splat.clipPlaneCount = static_cast<std::uint32_t>(clipScope->size());
+        splat.localFog = fogScope;
+        frame.splats.push_back(splat);
         break;
+      }
       case NodeKind::OutlineGroup:
         outlineGroup(n, m, baseUrl);
         break;

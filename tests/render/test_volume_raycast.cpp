@@ -113,3 +113,28 @@ TEST_CASE("Volume ray caster: an IsoSurfaceVolumeData with a style draws its sur
     }
   CHECK(lit > 200);
 }
+
+TEST_CASE("Volume ray caster: ClipPlanes cut the samples and fog colours them",
+          "[render][offscreen][world][volume]") {
+  // The constant MAX projection (grey 128) under a ClipPlane keeping x >= 0: the left half
+  // is the black background, the right half grey.
+  const std::string volume = "VolumeData { dimensions 1 1 1 voxels " + constantVoxels(4, 128) +
+                             " renderStyle ProjectionVolumeStyle { type \"MAX\" } }";
+  const Rendered clipped =
+      drawStyled("vr_clipped", "Group { children [ ClipPlane { plane 1 0 0 0 } " + volume + " ] }");
+  CHECK(clipped.diagnostics.items.empty());
+  const std::uint8_t* left = clipped.image.pixel(24, 32);
+  const std::uint8_t* right = clipped.image.pixel(40, 32);
+  CHECK(left[0] + left[1] + left[2] == 0);
+  CHECK(int(right[0]) == Approx(128).margin(3));
+  // A red linear fog whose range is 4 m, the box 2-3 m away: about 40% of the colour
+  // is left, the rest is the fog's red.
+  const Rendered fogged =
+      drawStyled("vr_fogged", "Fog { color 1 0 0 visibilityRange 4 } " + volume);
+  CHECK(fogged.diagnostics.items.empty());
+  const std::uint8_t* centre = fogged.image.pixel(32, 32);
+  INFO(int(centre[0]) << " " << int(centre[1]) << " " << int(centre[2]));
+  CHECK(centre[0] > 180);
+  CHECK(centre[1] > 30);
+  CHECK(centre[1] < 90);
+}

@@ -211,6 +211,11 @@ struct SplatInstance {
   glm::mat4 model{1.0f};                 // local to world
   const std::string* baseUrl = nullptr;  // the base for its url; never null
   std::uint32_t layer = 0;               // as ShapeInstance::layer
+  /// The ClipPlanes and the LocalFog around it, as ShapeInstance's (the volume ray caster
+  /// clips and fogs its samples with them).
+  std::uint32_t clipPlaneBegin = 0;
+  std::uint32_t clipPlaneCount = 0;
+  std::int32_t localFog = -1;
 };
 
 /// What one traversal collects. Reused from frame to frame: clear() keeps capacity.
