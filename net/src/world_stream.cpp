@@ -80,6 +80,16 @@ void WorldStream::stop(const std::string& why) {
   end(StreamState::stopped, why);
 }
 
+void WorldStream::abandon(const std::string& why) {
+  if (!transfer_ && !endWhenArrived_) return;  // ended already
+  if (transfer_) transfer_->cancel();
+  transfer_.reset();
+  endWhenArrived_.reset();
+  progress_.rootNodes = parser_->scene().rootNodes.size();
+  progress_.state = StreamState::stopped;
+  progress_.error = why;
+}
+
 void WorldStream::end(StreamState state, const std::string& message) {
   transfer_.reset();
   if (state == StreamState::done && parser_->waitingForExternProto()) {

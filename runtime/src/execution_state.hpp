@@ -430,6 +430,7 @@ struct ExecutionModel::State {
   /// again only when an Inline that was not unloaded shows it.
   std::unordered_map<const vrml::Node*, const vrml::Scene*> inlineWorlds;
   std::unordered_set<const vrml::Scene*> unloadedInlineScenes;
+  bool worldReplaced = false;  // Browser.replaceWorld was called (ExecutionModel::worldReplaced)
   /// The level each LOD shows as drawing last said (ExecutionModel::sendDrawnOutputs,
   /// drawn_outputs.cpp; VRML97's LOD too, which has no level_changed): what the sensors'
   /// walks follow. A LOD not listed shows its first level. (A GeoLOD's shown nodes are its

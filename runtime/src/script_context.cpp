@@ -313,8 +313,13 @@ bool ExecutionModel::fetchText(const std::string& url, std::string& text, std::s
   return true;
 }
 
+bool ExecutionModel::worldReplaced() const {
+  return s_->worldReplaced;
+}
+
 void ExecutionModel::replaceWorld(const std::vector<vrml::NodePtr>& nodes) {
   if (!s_->scene) return;
+  s_->worldReplaced = true;
   // The world's Scene is no const object (see the header): its root list may change.
   auto& roots = const_cast<vrml::Scene&>(*s_->scene).rootNodes;
   s_->replacedNodes.insert(s_->replacedNodes.end(), roots.begin(), roots.end());

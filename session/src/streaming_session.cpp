@@ -321,6 +321,11 @@ runtime::UrlLoadState StreamingSession::worldLoadState(const vrml::Scene& scene)
   return runtime::UrlLoadState::loaded;
 }
 
+void StreamingSession::abandonWorld(const vrml::Scene& scene, const std::string& why) {
+  for (const auto& w : worlds_)
+    if (w->scene().get() == &scene) w->abandon(why);
+}
+
 std::vector<const TilesetStream*> StreamingSession::tilesets() const {
   std::vector<const TilesetStream*> out;
   for (const auto& [url, t] : tilesets_) out.push_back(t.get());

@@ -137,6 +137,11 @@ void WorldRuntimes::advanceTo(double time) {
     }
     const double now = e.model->now();
     if (time > now) e.model->advanceBy(time - now, options_.step);
+    if (!e.replaced && e.model->worldReplaced()) {
+      e.replaced = true;
+      e.loaded = true;  // its stream's end is no event of the new world
+      if (worldStop_) worldStop_(*e.scene);
+    }
   }
 }
 

@@ -10,6 +10,10 @@ void ViewGroup::attachRuntimes(WorldRuntimes& runtimes, double time, bool waitFo
   // LoadSensors watching an Inline hear of its end once its stream is done.
   runtimes.setWorldLoadState(
       [s = &session_](const vrml::Scene& scene) { return s->worldLoadState(scene); });
+  // A world a Script replaced adds no more of its file's nodes.
+  runtimes.setWorldStop([s = &session_](const vrml::Scene& scene) {
+    s->abandonWorld(scene, "Browser.replaceWorld replaced the world while it arrived");
+  });
   for (WorldView* v : views_) {
     runtimes.of(v->scene_, time);
     runtimes.addInlines(v->scene_.get(), v->renderer_->traversal());

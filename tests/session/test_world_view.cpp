@@ -1,5 +1,6 @@
 // session::WorldView without a window: an off-screen context, a StreamingSession and
 // WorldRuntimes, frames at fixed times, pixels read back.
+#include "http/fault_server.hpp"
 #include "http/nginx_server.hpp"
 #include "render/context.hpp"
 #include "render/image.hpp"
@@ -284,4 +285,47 @@ TEST_CASE("An IMPORT's node reaches Scripts' getImportedNode once its Inline arr
   CHECK(imported->defName == "Inner");
   CHECK_FALSE(model.importedNode("Nothing"));
   CHECK_FALSE(model.importedNode("Inner"));  // the Inline's own name is not the world's
+}
+
+TEST_CASE("a world a Script replaced while it streams adds no more of its file's nodes",
+          "[session][offscreen][world_view][script][http]") {
+  // The window's order: the world runs while it arrives. Its Script replaces it at once;
+  // the rest of the file (a padding comment, then a red Sphere) arrives slowly after.
+  context();
+  const std::string world =
+      "#VRML V2.0 utf8\n"
+      "DEF S Script { url \"javascript: function initialize() {\n"
+      "  Browser.replaceWorld(Browser.createVrmlFromString(\n"
+      "    'Shape { geometry Box { } }')); }\" }\n" +
+      std::string("#") + std::string(6000, '-') + "\n" + "Shape { geometry Sphere { } }\n";
+  gs::test::FaultServer::Config config;
+  config.body = world;
+  config.bytesPerSecond = 20000.0;  // 0.3 s for the whole file
+  gs::test::FaultServer server(config);
+  REQUIRE(server.ok());
+  StreamingSession session;
+  ViewGroup group{session};
+  WorldRuntimes runtimes{gs::session::RuntimeOptions{}, &session.loader()};
+  std::string error;
+  auto scene = session.open(server.url("/replaced.wrl"), error);
+  REQUIRE(scene);
+  WorldView view(group, scene, gs::render::SceneRendererOptions{});
+  view.setRect(0, 0, kSize, kSize);
+  group.attachRuntimes(runtimes, 0.0, false);
+  double time = 0.0;
+  for (int i = 0; i < 2000 && !(group.settled() && time > 1.0); ++i) {
+    time += 0.01;
+    view.frame(time);
+    session.loader().wait(0.005);
+  }
+  REQUIRE(group.settled());
+  // Only the Script's Box: the Sphere that arrived later was not added.
+  REQUIRE(scene->rootNodes.size() == 1);
+  CHECK(scene->rootNodes[0]->sfnode("geometry")->typeName() == "Box");
+  std::vector<std::pair<bool, std::string>> messages;
+  session.drainMessages(messages);
+  bool said = false;
+  for (const auto& [isError, text] : messages)
+    said |= text.find("replaceWorld") != std::string::npos;
+  CHECK(said);
 }

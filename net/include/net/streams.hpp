@@ -43,6 +43,10 @@ class WorldStream {
   /// Ends the stream on purpose: the parse finishes with what arrived and the state is
   /// StreamState::stopped with `why` as its message.
   void stop(const std::string& why);
+  /// Ends the stream and drops what has not been parsed: no root node is added after this
+  /// call (the world was replaced: Browser.replaceWorld). The state is StreamState::stopped
+  /// with `why`; a stream that already ended is left as it is.
+  void abandon(const std::string& why);
 
  private:
   void end(StreamState state, const std::string& message);

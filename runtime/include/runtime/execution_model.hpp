@@ -289,6 +289,10 @@ class ExecutionModel final : public ScriptContext {
                const std::vector<std::string>& parameter) override;
   bool fetchText(const std::string& url, std::string& text, std::string& error) override;
   void replaceWorld(const std::vector<vrml::NodePtr>& nodes) override;
+  /// Whether a Script replaced the world (Browser.replaceWorld): the world's own file,
+  /// if it still streams, must add no more root nodes (session::WorldRuntimes then stops
+  /// its stream).
+  bool worldReplaced() const;
   void setDescription(const std::string& text) override;
   const std::string* browserOption(const std::string& name) const override;
   bool setBrowserOption(const std::string& name, const std::string& value) override;

@@ -66,6 +66,9 @@ class StreamingSession {
   /// stopped (--snapshot-at), loading before; a world it does not stream (read whole) is
   /// loaded.
   runtime::UrlLoadState worldLoadState(const vrml::Scene& scene) const;
+  /// A Script replaced world `scene` (Browser.replaceWorld): its stream, if it still
+  /// arrives, ends and adds nothing more (net::WorldStream::abandon), saying `why`.
+  void abandonWorld(const vrml::Scene& scene, const std::string& why);
   /// Options of the tilesets opened from now on (--tileset-memory).
   void setTilesetOptions(const TilesetOptions& options) { tilesetOptions_ = options; }
   /// Every tileset opened, in URL order (statistics for tests and the progress display).

@@ -91,6 +91,11 @@ class WorldRuntimes {
   /// How far an Inline's world got while it streams in (StreamingSession::worldLoadState).
   using WorldLoadState = std::function<runtime::UrlLoadState(const vrml::Scene&)>;
   void setWorldLoadState(WorldLoadState state) { worldLoadState_ = std::move(state); }
+  /// What stops the stream of a world whose Script replaced it (Browser.replaceWorld;
+  /// StreamingSession::abandonWorld), called once per world after the advance that
+  /// replaced it; the world then counts as loaded (no INITIALIZED_ERROR for its stream).
+  using WorldStop = std::function<void(const vrml::Scene&)>;
+  void setWorldStop(WorldStop stop) { worldStop_ = std::move(stop); }
   /// X3D LoadSensor: the url objects whose loading ended (true: loaded, false: failed;
   /// render::SceneRenderer::takeUrlObjectLoads) go to `scene`'s execution model
   /// (runtime::ExecutionModel::setUrlObjectState); ignored when it has none yet.
@@ -148,10 +153,12 @@ class WorldRuntimes {
   std::FILE* trace_ = nullptr;
   LinkHandler link_;
   WorldLoadState worldLoadState_;
+  WorldStop worldStop_;
   struct Entry {
     std::shared_ptr<const vrml::Scene> scene;
     std::unique_ptr<runtime::ExecutionModel> model;
-    bool loaded = false;  // ExecutionModel::worldLoaded was called
+    bool loaded = false;    // ExecutionModel::worldLoaded was called
+    bool replaced = false;  // a Script replaced the world: its stream was stopped
     std::size_t diagnosticsShown = 0;
     std::vector<char> importedRouteDone;  // per scene->x3d.importedRoutes
     std::vector<char> importKnown;        // per scene->x3d.imports: resolved or missing
