@@ -12,13 +12,8 @@ void ExecutionModel::collided(const std::vector<vrml::Node*>& collisionNodes) {
     if (n == nullptr || n->typeId() != vrml::NodeTypeId::Collision) continue;
     const int field = n->type().findExact("collideTime");
     if (field < 0) continue;
-    if (!any) {  // one timestamp for all of them
-      ++s.stamp;
-      ++stats_.cascades;
-      s.eventsThisCascade = 0;
-      s.cascadeOverflow = false;
-      any = true;
-    }
+    if (!any) s.beginTimestamp();  // one timestamp for all of them
+    any = true;
     NodeState& ns = s.reach(*n, false);
     s.emitOwn(ns, field, vrml::FieldValue::make<vrml::FieldType::SFTime>(now()));
   }

@@ -31,13 +31,8 @@ void ExecutionModel::sendDrawnOutputs(const vrml::DrawnOutputs& outputs) {
     if (spec.type != out.value.type() || spec.access == vrml::AccessType::eventIn ||
         spec.access == vrml::AccessType::field)
       continue;
-    if (!any) {  // one timestamp for all of them
-      ++s.stamp;
-      ++stats_.cascades;
-      s.eventsThisCascade = 0;
-      s.cascadeOverflow = false;
-      any = true;
-    }
+    if (!any) s.beginTimestamp();  // one timestamp for all of them
+    any = true;
     s.emitOwn(*it->second, field, out.value);
   }
   if (!any) return;

@@ -658,6 +658,14 @@ struct ExecutionModel::State {
 
   // ---- environmental sensors (environment_sensors.cpp) ----
   void evaluateEnvironmentSensors();
+  /// Opens a new timestamp at now() for events from outside the graph: the stamp and the
+  /// cascade count move on, the cascade's event count and overflow start afresh.
+  void beginTimestamp() {
+    ++stamp;
+    ++model.stats_.cascades;
+    eventsThisCascade = 0;
+    cascadeOverflow = false;
+  }
   /// The nodes a LOD or GeoLOD shows as drawing last said (drawn_outputs.cpp): a LOD's
   /// level (its first until told), a GeoLOD's `children` output (its rootNode until told);
   /// empty for other nodes and for a level that is empty or NULL.
