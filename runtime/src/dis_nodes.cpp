@@ -7,8 +7,8 @@
 //   sets its translation (the PDU's location), its rotation (its DIS Euler angles) and
 //   sends the entity's velocity, acceleration, type, force, marking and articulation
 //   parameters as its fields' events, with timestamp and isActive.
-// - EspduTransform, networkMode "networkWriter": every writeInterval seconds an Entity State
-//   PDU of its fields is sent (disWriteEntityState).
+// - EspduTransform, TransmitterPdu, SignalPdu, ReceiverPdu, networkMode "networkWriter":
+//   every writeInterval seconds a PDU of its fields is sent (disWrite).
 // - ReceiverPdu, SignalPdu, TransmitterPdu, networkMode "networkReader": the same with the
 //   Receiver, Signal and Transmitter PDUs of their radio (siteID, applicationID, entityID,
 //   radioID): each field the X3D node has for a PDU field is sent.
@@ -291,26 +291,30 @@ void disDrain(DisInbox& inbox) {
   }
 }
 
-/// An EspduTransform in "networkWriter" mode (X3D 4.0 clause 28.4.3): every writeInterval
-/// seconds (1 by default; 0: every frame) one Entity State PDU of its fields goes to UDP
-/// `port` of `address`: its entity and type, forceID, translation as the location,
-/// rotation as DIS Euler angles, linearVelocity, linearAcceleration, deadReckoning,
-/// marking (11 characters) and its articulation parameter arrays (at most
-/// articulationParameterCount of them, as many as every array holds). A world read from
-/// the network sends to the loopback only, whatever its address says. A PDU that cannot be
-/// sent is one error at the node; then timestamp, and isActive TRUE the first time.
-void disWriteEntityState(DisModel& s, NodeState& ns, double now) {
-  const vrml::Node& n = *ns.node;
-  EspduState& st = *ns.espdu;
-  if (now - st.lastWrite < std::max(0.0, n.get<FieldType::SFTime>("writeInterval", 1.0))) return;
-  st.lastWrite = now;
+/// DIS relative time at SFTime `now`: 2^31 units per hour past the hour, bit 0 clear.
+std::uint32_t disTimestamp(double now) {
+  const double pastHour = std::fmod(std::max(now, 0.0), 3600.0) / 3600.0;
+  return static_cast<std::uint32_t>(pastHour * 2147483647.0) << 1;
+}
+
+std::int32_t disInt(const vrml::Node& n, vrml::FieldName field) {
+  return n.get<FieldType::SFInt32>(field, 0);
+}
+
+dis::RadioID disRadioOf(const vrml::Node& n) {
+  return {disEntityOf(n), disId(n, "radioID")};
+}
+
+/// The Entity State PDU of an EspduTransform's fields: its entity and type, forceID,
+/// translation as the location, rotation as DIS Euler angles, linearVelocity,
+/// linearAcceleration, deadReckoning, marking (11 characters) and its articulation
+/// parameter arrays (at most articulationParameterCount, as many as every array holds).
+std::vector<std::uint8_t> disEntityStateBytes(const vrml::Node& n, double now) {
   const auto u8 = [&](std::string_view field) {
     return static_cast<std::uint8_t>(disId(n, field));
   };
   dis::EntityStatePdu p;
-  // DIS relative time: 2^31 units per hour past the hour, bit 0 clear.
-  const double pastHour = std::fmod(std::max(now, 0.0), 3600.0) / 3600.0;
-  p.header.timestamp = static_cast<std::uint32_t>(pastHour * 2147483647.0) << 1;
+  p.header.timestamp = disTimestamp(now);
   p.entityID = disEntityOf(n);
   p.forceID = u8("forceID");
   p.entityType = {u8("entityKind"),     u8("entityDomain"),      disId(n, "entityCountry"),
@@ -345,16 +349,94 @@ void disWriteEntityState(DisModel& s, NodeState& ns, double now) {
         {static_cast<std::uint8_t>(designators[i]), static_cast<std::uint8_t>(changes[i]),
          static_cast<std::uint16_t>(attached[i]), static_cast<std::uint32_t>(types[i]),
          static_cast<double>(values[i])});
+  return dis::encodeEntityState(p);
+}
+
+/// The Transmitter PDU of a TransmitterPdu node's fields (those disSendTransmitter sends;
+/// no modulation parameters or antenna pattern bytes).
+std::vector<std::uint8_t> disTransmitterBytes(const vrml::Node& n, double now) {
+  dis::TransmitterPdu p;
+  p.header.timestamp = disTimestamp(now);
+  p.radio = disRadioOf(n);
+  p.radioEntityType = {static_cast<std::uint8_t>(disInt(n, "radioEntityTypeKind")),
+                       static_cast<std::uint8_t>(disInt(n, "radioEntityTypeDomain")),
+                       disId(n, "radioEntityTypeCountry"),
+                       static_cast<std::uint8_t>(disInt(n, "radioEntityTypeCategory")),
+                       static_cast<std::uint8_t>(disInt(n, "radioEntityTypeNomenclatureVersion")),
+                       disId(n, "radioEntityTypeNomenclature")};
+  p.transmitState = static_cast<std::uint8_t>(disInt(n, "transmitState"));
+  p.inputSource = static_cast<std::uint8_t>(disInt(n, "inputSource"));
+  p.antennaLocation = glm::dvec3(n.get<FieldType::SFVec3f>("antennaLocation", glm::vec3(0.0f)));
+  p.relativeAntennaLocation = n.get<FieldType::SFVec3f>("relativeAntennaLocation", glm::vec3(0.0f));
+  p.antennaPatternType = disId(n, "antennaPatternType");
+  p.frequency = static_cast<std::uint64_t>(std::max(0, disInt(n, "frequency")));
+  p.transmitFrequencyBandwidth = n.get<FieldType::SFFloat>("transmitFrequencyBandwidth", 0.0f);
+  p.power = n.get<FieldType::SFFloat>("power", 0.0f);
+  p.modulationType = {disId(n, "modulationTypeSpreadSpectrum"), disId(n, "modulationTypeMajor"),
+                      disId(n, "modulationTypeDetail"), disId(n, "modulationTypeSystem")};
+  p.cryptoSystem = disId(n, "cryptoSystem");
+  p.cryptoKeyID = disId(n, "cryptoKeyID");
+  return dis::encodeTransmitter(p);
+}
+
+/// The Signal PDU of a SignalPdu node's fields: `data` one byte per value (at most
+/// dis::kMaxSignalData), dataLength bits of it (at most its bytes' bits).
+std::vector<std::uint8_t> disSignalBytes(const vrml::Node& n, double now) {
+  dis::SignalPdu p;
+  p.header.timestamp = disTimestamp(now);
+  p.radio = disRadioOf(n);
+  p.encodingScheme = disId(n, "encodingScheme");
+  p.tdlType = disId(n, "tdlType");
+  p.sampleRate = static_cast<std::uint32_t>(std::max(0, disInt(n, "sampleRate")));
+  p.samples = disId(n, "samples");
+  const std::vector<std::int32_t> data =
+      n.get<FieldType::MFInt32>("data", std::vector<std::int32_t>{});
+  for (std::size_t i = 0; i < data.size() && i < dis::kMaxSignalData; ++i)
+    p.data.push_back(static_cast<std::uint8_t>(data[i]));
+  const std::int64_t bits = std::min<std::int64_t>(
+      {std::max(0, disInt(n, "dataLength")), static_cast<std::int64_t>(p.data.size()) * 8, 65535});
+  p.dataLength = static_cast<std::uint16_t>(bits);
+  p.data.resize((static_cast<std::size_t>(bits) + 7) / 8);
+  return dis::encodeSignal(p);
+}
+
+/// The Receiver PDU of a ReceiverPdu node's fields.
+std::vector<std::uint8_t> disReceiverBytes(const vrml::Node& n, double now) {
+  dis::ReceiverPdu p;
+  p.header.timestamp = disTimestamp(now);
+  p.radio = disRadioOf(n);
+  p.receiverState = disId(n, "receiverState");
+  p.receivedPower = n.get<FieldType::SFFloat>("receivedPower", 0.0f);
+  p.transmitter = {{disId(n, "transmitterSiteID"), disId(n, "transmitterApplicationID"),
+                    disId(n, "transmitterEntityID")},
+                   disId(n, "transmitterRadioID")};
+  return dis::encodeReceiver(p);
+}
+
+/// A DIS node in "networkWriter" mode (X3D 4.0 clauses 28.4.3 to 28.4.6): every
+/// writeInterval seconds (1 by default; 0: every frame) one PDU of its fields (an
+/// EspduTransform's Entity State, a TransmitterPdu's, SignalPdu's or ReceiverPdu's) goes to
+/// UDP `port` of `address`. A world read from the network sends to the loopback only,
+/// whatever its address says. A PDU that cannot be sent is one error at the node; then
+/// timestamp, and isActive TRUE the first time.
+void disWrite(DisModel& s, NodeState& ns, double now, int index) {
+  const vrml::Node& n = *ns.node;
+  EspduState& st = *ns.espdu;
+  if (now - st.lastWrite < std::max(0.0, n.get<FieldType::SFTime>("writeInterval", 1.0))) return;
+  st.lastWrite = now;
+  const std::vector<std::uint8_t> bytes = index == 0   ? disEntityStateBytes(n, now)
+                                          : index == 1 ? disTransmitterBytes(n, now)
+                                          : index == 2 ? disSignalBytes(n, now)
+                                                       : disReceiverBytes(n, now);
   std::string address = n.get<FieldType::SFString>("address", std::string("localhost"));
   const auto world = s.nodeScenes.find(&n);
   const vrml::Scene* scene = world != s.nodeScenes.end() ? world->second : s.scene.get();
   if (scene != nullptr && (scene->url.starts_with("http://") || scene->url.starts_with("https://")))
     address = "localhost";  // remote content reaches no other host through the browser
   std::string error;
-  if (!dis::UdpReceiver::sendTo(address, n.get<FieldType::SFInt32>("port", 0),
-                                dis::encodeEntityState(p), error)) {
+  if (!dis::UdpReceiver::sendTo(address, n.get<FieldType::SFInt32>("port", 0), bytes, error)) {
     if (!st.reported)
-      s.report(vrml::Severity::error, n, error + ": the EspduTransform writes no PDUs");
+      s.report(vrml::Severity::error, n, error + ": " + n.typeName() + " writes no PDUs");
     st.reported = true;
     return;
   }
@@ -387,7 +469,7 @@ void ExecutionModel::State::evaluateDis() {
     const bool manager = index < 0;
     const std::string mode = n.get<FieldType::SFString>("networkMode", std::string("standAlone"));
     const bool reader = mode == "networkReader";
-    const bool writer = mode == "networkWriter" && index == 0;  // EspduTransform only
+    const bool writer = mode == "networkWriter" && !manager;
     if (!st.announced && !manager) {
       st.announced = true;
       disEmit(*this, ns, "isNetworkReader", FieldValue::make<FieldType::SFBool>(reader));
@@ -395,7 +477,7 @@ void ExecutionModel::State::evaluateDis() {
       disEmit(*this, ns, "isStandAlone", FieldValue::make<FieldType::SFBool>(!reader && !writer));
     }
     if (writer) {
-      if (n.get<FieldType::SFBool>("enabled", true)) disWriteEntityState(*this, ns, now);
+      if (n.get<FieldType::SFBool>("enabled", true)) disWrite(*this, ns, now, index);
       continue;
     }
     if (!manager && (!reader || !n.get<FieldType::SFBool>("enabled", true))) continue;

@@ -376,3 +376,47 @@ TEST_CASE("DIS: Euler angles and rotations convert both ways", "[runtime][dis]")
     CHECK(back.z == Approx(e.z).margin(1e-5));
   }
 }
+
+TEST_CASE("DIS: radio PDU nodes as networkWriters send their Transmitter, Signal, Receiver PDUs",
+          "[runtime][x3d][dis]") {
+  const int port = disTestPort(6);
+  gs::dis::UdpReceiver listener;
+  std::string error;
+  REQUIRE(listener.open(port, "localhost", error));
+  const std::string common = " networkMode \"networkWriter\" writeInterval 0 port " +
+                             std::to_string(port) +
+                             " siteID 1 applicationID 2 entityID 3 radioID 4";
+  RunningWorld w(x3dWorld("TransmitterPdu {" + common +
+                          " frequency 30000000 power 10 transmitState 2\n"
+                          "  antennaLocation 5 6 7 radioEntityTypeCountry 225 }\n"
+                          "SignalPdu {" +
+                          common +
+                          " sampleRate 8000 data [ 1 2 3 ] dataLength 20 }\n"
+                          "ReceiverPdu {" +
+                          common + " receiverState 2 receivedPower -50 transmitterEntityID 9 }\n"),
+                 0.0);
+  w.model->advanceTo(0.1);
+  const auto datagrams = listener.receive(16);
+  REQUIRE(datagrams.size() == 3);
+  const gs::dis::RadioID radio{{1, 2, 3}, 4};
+  const auto t = gs::dis::decodeTransmitter(datagrams[0], nullptr);
+  REQUIRE(t);
+  CHECK(t->radio == radio);
+  CHECK(t->frequency == 30000000u);
+  CHECK(t->power == 10.0f);
+  CHECK(t->transmitState == 2);
+  CHECK(t->antennaLocation == glm::dvec3(5, 6, 7));
+  CHECK(t->radioEntityType.country == 225);
+  const auto s = gs::dis::decodeSignal(datagrams[1], nullptr);
+  REQUIRE(s);
+  CHECK(s->radio == radio);
+  CHECK(s->sampleRate == 8000u);
+  CHECK(s->dataLength == 20);  // 20 of the 24 bits given
+  CHECK(s->data == std::vector<std::uint8_t>{1, 2, 3});
+  const auto r = gs::dis::decodeReceiver(datagrams[2], nullptr);
+  REQUIRE(r);
+  CHECK(r->radio == radio);
+  CHECK(r->receiverState == 2);
+  CHECK(r->receivedPower == -50.0f);
+  CHECK(r->transmitter.entity.entity == 9);
+}
