@@ -414,7 +414,8 @@ std::vector<std::uint8_t> disReceiverBytes(const vrml::Node& n, double now) {
 }
 
 /// A DIS node in "networkWriter" mode (X3D 4.0 clauses 28.4.3 to 28.4.6): every
-/// writeInterval seconds (1 by default; 0: every frame) one PDU of its fields (an
+/// writeInterval seconds (1 by default; 0: no writing, as the field says) one PDU of its
+/// fields (an
 /// EspduTransform's Entity State, a TransmitterPdu's, SignalPdu's or ReceiverPdu's) goes to
 /// UDP `port` of `address`. A world read from the network sends to the loopback only,
 /// whatever its address says. A PDU that cannot be sent is one error at the node; then
@@ -422,7 +423,8 @@ std::vector<std::uint8_t> disReceiverBytes(const vrml::Node& n, double now) {
 void disWrite(DisModel& s, NodeState& ns, double now, int index) {
   const vrml::Node& n = *ns.node;
   EspduState& st = *ns.espdu;
-  if (now - st.lastWrite < std::max(0.0, n.get<FieldType::SFTime>("writeInterval", 1.0))) return;
+  const double interval = n.get<FieldType::SFTime>("writeInterval", 1.0);
+  if (!(interval > 0.0) || now - st.lastWrite < interval) return;  // 0: no writing
   st.lastWrite = now;
   const std::vector<std::uint8_t> bytes = index == 0   ? disEntityStateBytes(n, now)
                                           : index == 1 ? disTransmitterBytes(n, now)
@@ -551,8 +553,9 @@ void ExecutionModel::State::evaluateDis() {
         index == 0 ? disEntityKey(me) : disRadioKey({me, disId(n, "radioID")});
     const auto& latest = inbox->latest[static_cast<std::size_t>(index)];
     if (auto it = latest.find(key); it != latest.end()) st.pending = inbox->pdus[it->second];
-    const double interval = std::max(0.0, n.get<FieldType::SFTime>("readInterval", 0.1));
-    if (!st.pending || now - st.lastRead < interval) continue;
+    // readInterval 0 means no reading (X3D 4.0 clause 28.4.3's field description).
+    const double interval = n.get<FieldType::SFTime>("readInterval", 0.1);
+    if (!st.pending || !(interval > 0.0) || now - st.lastRead < interval) continue;
     st.lastRead = now;
     std::visit(
         [&](const auto& p) {

@@ -20,12 +20,13 @@ using gs::vrml::FieldType;
 TEST_CASE("DIS: an EspduTransform follows the Entity State PDUs of its entity",
           "[runtime][x3d][dis]") {
   const int port = 20000 + static_cast<int>(::getpid() % 20000);
-  RunningWorld w(x3dWorld("DEF E EspduTransform { networkMode \"networkReader\" readInterval 0\n"
-                          "  port " +
-                          std::to_string(port) +
-                          " siteID 1 applicationID 2 entityID 3\n"
-                          "  children Shape { geometry Box { } } }\n"),
-                 0.0);
+  RunningWorld w(
+      x3dWorld("DEF E EspduTransform { networkMode \"networkReader\" readInterval 0.001\n"
+               "  port " +
+               std::to_string(port) +
+               " siteID 1 applicationID 2 entityID 3\n"
+               "  children Shape { geometry Box { } } }\n"),
+      0.0);
   w.model->advanceTo(0.1);  // opens the socket
   const gs::vrml::Node& e = w.node("E");
   CHECK(e.get<FieldType::SFBool>("isNetworkReader", false));
@@ -87,10 +88,10 @@ TEST_CASE("DIS: radio PDU nodes follow the Transmitter, Signal and Receiver PDUs
   const int port = disTestPort(1);
   const std::string ids = " port " + std::to_string(port) +
                           " siteID 1 applicationID 2 entityID 3 radioID 4"
-                          " networkMode \"networkReader\" readInterval 0 }\n";
+                          " networkMode \"networkReader\" readInterval 0.001 }\n";
   RunningWorld w(x3dWorld("DEF T TransmitterPdu {" + ids + "DEF S SignalPdu {" + ids +
                           "DEF R ReceiverPdu {" + ids +
-                          "DEF E EspduTransform { networkMode \"networkReader\" readInterval 0"
+                          "DEF E EspduTransform { networkMode \"networkReader\" readInterval 0.001"
                           " port " +
                           std::to_string(port) + " siteID 1 applicationID 2 entityID 3 }\n"),
                  0.0);
@@ -383,7 +384,7 @@ TEST_CASE("DIS: radio PDU nodes as networkWriters send their Transmitter, Signal
   gs::dis::UdpReceiver listener;
   std::string error;
   REQUIRE(listener.open(port, "localhost", error));
-  const std::string common = " networkMode \"networkWriter\" writeInterval 0 port " +
+  const std::string common = " networkMode \"networkWriter\" writeInterval 0.001 port " +
                              std::to_string(port) +
                              " siteID 1 applicationID 2 entityID 3 radioID 4";
   RunningWorld w(x3dWorld("TransmitterPdu {" + common +
@@ -419,4 +420,30 @@ TEST_CASE("DIS: radio PDU nodes as networkWriters send their Transmitter, Signal
   CHECK(r->receiverState == 2);
   CHECK(r->receivedPower == -50.0f);
   CHECK(r->transmitter.entity.entity == 9);
+}
+
+TEST_CASE("DIS: readInterval 0 reads nothing, writeInterval 0 writes nothing",
+          "[runtime][x3d][dis]") {
+  // X3D 4.0 clause 28.4.3's field descriptions: "0 means no reading", "no writing".
+  const int port = disTestPort(7);
+  gs::dis::UdpReceiver listener;
+  std::string error;
+  REQUIRE(listener.open(port + 1, "localhost", error));
+  RunningWorld w(x3dWorld("DEF R EspduTransform { networkMode \"networkReader\" readInterval 0"
+                          " port " +
+                          std::to_string(port) +
+                          " entityID 3 }\n"
+                          "DEF W EspduTransform { networkMode \"networkWriter\" writeInterval 0"
+                          " port " +
+                          std::to_string(port + 1) + " entityID 4 }\n"),
+                 0.0);
+  w.model->advanceTo(0.1);
+  gs::dis::EntityStatePdu pdu;
+  pdu.entityID = {0, 0, 3};
+  pdu.location = {10, 20, 30};
+  REQUIRE(gs::dis::UdpReceiver::sendToLoopback(port, gs::dis::encodeEntityState(pdu)));
+  w.model->advanceTo(0.5);
+  CHECK(w.node("R").get<FieldType::SFVec3f>("translation", glm::vec3(-1)) == glm::vec3(0.0f));
+  CHECK_FALSE(w.node("R").get<FieldType::SFBool>("isActive", true));
+  CHECK(listener.receive(16).empty());
 }
