@@ -291,6 +291,37 @@ void disDrain(DisInbox& inbox) {
   }
 }
 
+/// An EspduTransform reader between Entity State PDUs (IEEE 1278.1 annex E): from the last
+/// PDU read, `dt` seconds ago, its dead reckoning algorithm moves the translation (2, 3, 6,
+/// 7: P + V dt; 4, 5, 8, 9: P + V dt + A dt^2 / 2; 6 to 9 take V and A in the entity's body
+/// axes) and turns the rotation by the angular velocity (body axes; 3, 4, 7, 8). 1
+/// (static), 0 (other) and unknown values leave it where the PDU put it.
+void disDeadReckon(DisModel& s, NodeState& ns, double now) {
+  const EspduState& st = *ns.espdu;
+  const dis::EntityStatePdu& p = *st.reckoned;
+  const int algorithm = p.deadReckoningAlgorithm;
+  if (algorithm < 2 || algorithm > 9) return;
+  const double dt = now - st.reckonedAt;
+  const glm::dquat orientation = dis::eulerToQuaternion(p.orientation);
+  const bool body = algorithm >= 6;
+  const bool rotates = algorithm == 3 || algorithm == 4 || algorithm == 7 || algorithm == 8;
+  const bool accelerates = algorithm == 4 || algorithm == 5 || algorithm == 8 || algorithm == 9;
+  glm::dvec3 v(p.linearVelocity), a(p.linearAcceleration);
+  if (body) {
+    v = orientation * v;
+    a = orientation * a;
+  }
+  glm::dvec3 position = p.location + v * dt;
+  if (accelerates) position += 0.5 * a * dt * dt;
+  disEmit(s, ns, "translation", FieldValue::make<FieldType::SFVec3f>(glm::vec3(position)));
+  const glm::dvec3 w(p.angularVelocity);
+  if (rotates && glm::length(w) > 0.0) {
+    const glm::dquat turned = orientation * glm::angleAxis(glm::length(w) * dt, glm::normalize(w));
+    disEmit(s, ns, "rotation",
+            FieldValue::make<FieldType::SFRotation>(vrml::rotationFromQuaternion(turned)));
+  }
+}
+
 /// DIS relative time at SFTime `now`: 2^31 units per hour past the hour, bit 0 clear.
 std::uint32_t disTimestamp(double now) {
   const double pastHour = std::fmod(std::max(now, 0.0), 3600.0) / 3600.0;
@@ -555,8 +586,17 @@ void ExecutionModel::State::evaluateDis() {
     if (auto it = latest.find(key); it != latest.end()) st.pending = inbox->pdus[it->second];
     // readInterval 0 means no reading (X3D 4.0 clause 28.4.3's field description).
     const double interval = n.get<FieldType::SFTime>("readInterval", 0.1);
-    if (!st.pending || !(interval > 0.0) || now - st.lastRead < interval) continue;
+    if (!(interval > 0.0)) continue;
+    if (!st.pending || now - st.lastRead < interval) {
+      // Between PDUs the entity moves as its dead reckoning algorithm says.
+      if (st.reckoned) disDeadReckon(*this, ns, now);
+      continue;
+    }
     st.lastRead = now;
+    if (const auto* e = std::get_if<dis::EntityStatePdu>(&*st.pending)) {
+      st.reckoned = *e;
+      st.reckonedAt = now;
+    }
     std::visit(
         [&](const auto& p) {
           using P = std::decay_t<decltype(p)>;

@@ -167,6 +167,10 @@ struct EspduState {
   bool limitReported = false;  // a DISEntityManager: its entity limit was reported
   /// The latest PDU of its entity or radio since its last read.
   std::optional<dis::Pdu> pending;
+  /// An EspduTransform reader: the last Entity State PDU read and when, which dead
+  /// reckoning moves on from between reads.
+  std::optional<dis::EntityStatePdu> reckoned;
+  double reckonedAt = 0.0;
   /// A DISEntityManager: the entities it made, by entity (site, application, entity).
   std::unordered_map<std::uint64_t, DisEntityRecord> entities;
 };

@@ -447,3 +447,40 @@ TEST_CASE("DIS: readInterval 0 reads nothing, writeInterval 0 writes nothing",
   CHECK_FALSE(w.node("R").get<FieldType::SFBool>("isActive", true));
   CHECK(listener.receive(16).empty());
 }
+
+TEST_CASE("DIS: an EspduTransform dead-reckons its entity between PDUs", "[runtime][x3d][dis]") {
+  // IEEE 1278.1 annex E: algorithm 5 (FVW) moves P + V dt + A dt^2 / 2 in world axes;
+  // algorithm 3 (RPW) moves P + V dt and turns by the angular velocity.
+  const int port = disTestPort(8);
+  RunningWorld w(x3dWorld("DEF A EspduTransform { networkMode \"networkReader\" readInterval 0.001"
+                          " port " +
+                          std::to_string(port) +
+                          " entityID 1 }\n"
+                          "DEF B EspduTransform { networkMode \"networkReader\" readInterval 0.001"
+                          " port " +
+                          std::to_string(port) + " entityID 2 }\n"),
+                 0.0);
+  w.model->advanceTo(0.1);
+  gs::dis::EntityStatePdu a;
+  a.entityID = {0, 0, 1};
+  a.deadReckoningAlgorithm = 5;
+  a.linearVelocity = {1, 0, 0};
+  a.linearAcceleration = {0, 2, 0};
+  gs::dis::EntityStatePdu b;
+  b.entityID = {0, 0, 2};
+  b.deadReckoningAlgorithm = 3;
+  b.location = {0, 0, 5};
+  b.angularVelocity = {0, 0, 1};
+  REQUIRE(gs::dis::UdpReceiver::sendToLoopback(port, gs::dis::encodeEntityState(a)));
+  REQUIRE(gs::dis::UdpReceiver::sendToLoopback(port, gs::dis::encodeEntityState(b)));
+  w.model->advanceTo(0.2);  // read at 0.2
+  w.model->advanceTo(1.2);  // one second later, no PDU since
+  const glm::vec3 at = w.node("A").get<FieldType::SFVec3f>("translation", glm::vec3(-1));
+  CHECK(at.x == Approx(1.0f));
+  CHECK(at.y == Approx(1.0f));
+  CHECK(w.node("B").get<FieldType::SFVec3f>("translation", glm::vec3(-1)) == glm::vec3(0, 0, 5));
+  const gs::vrml::Rotation r =
+      w.node("B").get<FieldType::SFRotation>("rotation", gs::vrml::Rotation(0.0f));
+  CHECK(r.z == Approx(1.0f));
+  CHECK(r.w == Approx(1.0f));  // one radian about z
+}
