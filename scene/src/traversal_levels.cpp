@@ -3,11 +3,23 @@
 #include "scene/traversal.hpp"
 
 #include <algorithm>
+#include <cstddef>
 
 namespace gs::scene {
 
+namespace {
+
+/// Most output events kept for takeDrawnOutputs(): a caller that never takes them (a
+/// benchmark flying through LODs, `info`) keeps the newest half when this many wait.
+constexpr std::size_t kMaxPendingOutputs = 65536;
+
+}  // namespace
+
 void SceneTraversal::noteShownLevel(const vrml::Node& n, int level,
                                     const std::vector<vrml::NodePtr>* shown) {
+  if (drawnOutputs_.size() >= kMaxPendingOutputs)
+    drawnOutputs_.erase(drawnOutputs_.begin(), drawnOutputs_.begin() + static_cast<std::ptrdiff_t>(
+                                                                           kMaxPendingOutputs / 2));
   auto [it, added] = shownLevels_.try_emplace(&n);
   ShownLevel& last = it->second;
   if (level >= 0 && (added || last.level != level)) {

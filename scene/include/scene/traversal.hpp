@@ -477,7 +477,8 @@ class SceneTraversal {
   /// selectLodLevel chose), a GeoLOD's level_changed (25.4.5: 1 within `range` of its
   /// center, else 0) and children (the root nodes of the four children's files once all
   /// have loaded, else its rootNode, else the root nodes of its rootUrl's file) when they
-  /// changed. Each node's first report is an event.
+  /// changed. Each node's first report is an event. At most 65,536 wait: past that the
+  /// oldest half is dropped (a caller that never takes them).
   vrml::DrawnOutputs takeDrawnOutputs() { return std::exchange(drawnOutputs_, {}); }
 
   /// How many tessellations collect() and mesh() made (a changed geometry is
