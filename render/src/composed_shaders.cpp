@@ -364,7 +364,8 @@ const UserProgram* UserPrograms::find(const vrml::Node& appearance, const std::s
     Entry& e = programs_[shader.get()];
     const std::uint64_t revision = sourcesRevision(*shader, sourceHashes_);
     if (e.program.id != 0 && e.partsRevision == revision) {
-      noteState(*shader, true, true);
+      if (!e.selectedNoted) noteState(*shader, true, true);  // once, not per shape and frame
+      e.selectedNoted = true;
       return &e.program;
     }
     if (e.failed && e.partsRevision == revision) continue;

@@ -111,6 +111,7 @@ class UserPrograms {
   struct Entry {
     std::uint64_t partsRevision = 0;
     bool failed = false;
+    bool selectedNoted = false;  // noteState(valid, selected) ran for this program
     UserProgram program;
   };
   const UserProgram* build(const vrml::Node& shader, Entry& entry, const std::string& baseUrl,

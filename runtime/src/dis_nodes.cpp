@@ -332,6 +332,11 @@ std::int32_t disInt(const vrml::Node& n, vrml::FieldName field) {
   return n.get<FieldType::SFInt32>(field, 0);
 }
 
+/// An SFInt32 field as a PDU's byte (its low 8 bits).
+std::uint8_t disByte(const vrml::Node& n, vrml::FieldName field) {
+  return static_cast<std::uint8_t>(disInt(n, field));
+}
+
 dis::RadioID disRadioOf(const vrml::Node& n) {
   return {disEntityOf(n), disId(n, "radioID")};
 }
@@ -341,16 +346,14 @@ dis::RadioID disRadioOf(const vrml::Node& n) {
 /// linearAcceleration, deadReckoning, marking (11 characters) and its articulation
 /// parameter arrays (at most articulationParameterCount, as many as every array holds).
 std::vector<std::uint8_t> disEntityStateBytes(const vrml::Node& n, double now) {
-  const auto u8 = [&](std::string_view field) {
-    return static_cast<std::uint8_t>(disId(n, field));
-  };
   dis::EntityStatePdu p;
   p.header.timestamp = disTimestamp(now);
   p.entityID = disEntityOf(n);
-  p.forceID = u8("forceID");
-  p.entityType = {u8("entityKind"),     u8("entityDomain"),      disId(n, "entityCountry"),
-                  u8("entityCategory"), u8("entitySubcategory"), u8("entitySpecific"),
-                  u8("entityExtra")};
+  p.forceID = disByte(n, "forceID");
+  p.entityType = {disByte(n, "entityKind"),        disByte(n, "entityDomain"),
+                  disId(n, "entityCountry"),       disByte(n, "entityCategory"),
+                  disByte(n, "entitySubcategory"), disByte(n, "entitySpecific"),
+                  disByte(n, "entityExtra")};
   p.location = glm::dvec3(n.get<FieldType::SFVec3f>("translation", glm::vec3(0.0f)));
   const vrml::Rotation r = n.get<FieldType::SFRotation>("rotation", vrml::Rotation{});
   const glm::dvec3 axis(r.x, r.y, r.z);
@@ -359,7 +362,7 @@ std::vector<std::uint8_t> disEntityStateBytes(const vrml::Node& n, double now) {
         dis::quaternionToEuler(glm::angleAxis(static_cast<double>(r.w), glm::normalize(axis)));
   p.linearVelocity = n.get<FieldType::SFVec3f>("linearVelocity", glm::vec3(0.0f));
   p.linearAcceleration = n.get<FieldType::SFVec3f>("linearAcceleration", glm::vec3(0.0f));
-  p.deadReckoningAlgorithm = u8("deadReckoning");
+  p.deadReckoningAlgorithm = disByte(n, "deadReckoning");
   p.marking = n.get<FieldType::SFString>("marking", std::string()).substr(0, 11);
   const auto ints = [&](std::string_view field) {
     return n.get<FieldType::MFInt32>(vrml::FieldName(field), std::vector<std::int32_t>{});
@@ -389,14 +392,14 @@ std::vector<std::uint8_t> disTransmitterBytes(const vrml::Node& n, double now) {
   dis::TransmitterPdu p;
   p.header.timestamp = disTimestamp(now);
   p.radio = disRadioOf(n);
-  p.radioEntityType = {static_cast<std::uint8_t>(disInt(n, "radioEntityTypeKind")),
-                       static_cast<std::uint8_t>(disInt(n, "radioEntityTypeDomain")),
+  p.radioEntityType = {disByte(n, "radioEntityTypeKind"),
+                       disByte(n, "radioEntityTypeDomain"),
                        disId(n, "radioEntityTypeCountry"),
-                       static_cast<std::uint8_t>(disInt(n, "radioEntityTypeCategory")),
-                       static_cast<std::uint8_t>(disInt(n, "radioEntityTypeNomenclatureVersion")),
+                       disByte(n, "radioEntityTypeCategory"),
+                       disByte(n, "radioEntityTypeNomenclatureVersion"),
                        disId(n, "radioEntityTypeNomenclature")};
-  p.transmitState = static_cast<std::uint8_t>(disInt(n, "transmitState"));
-  p.inputSource = static_cast<std::uint8_t>(disInt(n, "inputSource"));
+  p.transmitState = disByte(n, "transmitState");
+  p.inputSource = disByte(n, "inputSource");
   p.antennaLocation = glm::dvec3(n.get<FieldType::SFVec3f>("antennaLocation", glm::vec3(0.0f)));
   p.relativeAntennaLocation = n.get<FieldType::SFVec3f>("relativeAntennaLocation", glm::vec3(0.0f));
   p.antennaPatternType = disId(n, "antennaPatternType");

@@ -112,7 +112,8 @@ void ExecutionModel::State::evaluateEnvironmentSensors() {
       }
     }
   };
-  std::vector<NodeState*> met;  // each sensor the walk meets, in its order
+  std::vector<NodeState*>& met = sensorsMet;  // each sensor the walk meets, in its order
+  met.clear();
   auto sensor = [&](NodeState& ns, const glm::mat4& m) {
     met.push_back(&ns);
     if (ns.role == NodeRole::transformSensor) {
@@ -203,15 +204,17 @@ void ExecutionModel::State::evaluateEnvironmentSensors() {
   // no longer drawn) is outside.
   std::vector<NodeState*> wasActive;
   wasActive.swap(activeEnvironmentSensors);
+  std::unordered_set<NodeState*>& seen = sensorScratch;  // kept: no allocation per frame
   if (!wasActive.empty()) {
-    const std::unordered_set<NodeState*> metSet(met.begin(), met.end());
+    seen.clear();
+    seen.insert(met.begin(), met.end());
     for (NodeState* ns : wasActive)
-      if (ns->sensorActive && !ns->unloaded && !metSet.contains(ns))
+      if (ns->sensorActive && !ns->unloaded && !seen.contains(ns))
         report(*ns, false, glm::vec3(0.0f), glm::quat(1.0f, 0.0f, 0.0f, 0.0f));
   }
-  std::unordered_set<NodeState*> listed;
+  seen.clear();
   for (NodeState* ns : met)
-    if (ns->sensorActive && listed.insert(ns).second) activeEnvironmentSensors.push_back(ns);
+    if (ns->sensorActive && seen.insert(ns).second) activeEnvironmentSensors.push_back(ns);
 }
 
 }  // namespace gs::runtime

@@ -487,6 +487,8 @@ struct ExecutionModel::State {
   /// The ProximitySensors, VisibilitySensors and TransformSensors that the last walk found
   /// active: one the next walk does not meet (a Switch or LOD turned away) goes inactive.
   std::vector<NodeState*> activeEnvironmentSensors;
+  std::unordered_set<NodeState*> sensorScratch;  // evaluateEnvironmentSensors' sets, reused
+  std::vector<NodeState*> sensorsMet;            // and the sensors its walk met, reused
   std::optional<ViewerPose> viewer;
   std::vector<NodeState*> newScripts;  // registered, initialize() not yet called
   /// Scripts whose url files are still on their way (FetchMode::background): made and
