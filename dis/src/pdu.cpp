@@ -1,6 +1,8 @@
 // DIS PDUs (IEEE 1278.1-2012) to and from their big-endian bytes (dis/pdu.hpp).
 #include "dis/pdu.hpp"
 
+#include "pdu_bytes.hpp"
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -8,151 +10,7 @@
 
 namespace gs::dis {
 
-namespace {
-
-/// Reads big-endian values from a span; past its end every read gives 0 and ok() is false.
-class Reader {
- public:
-  explicit Reader(std::span<const std::uint8_t> b) : b_(b) {}
-  bool ok() const { return ok_; }
-  std::uint64_t unsignedOf(std::size_t n) {
-    if (at_ + n > b_.size()) {
-      ok_ = false;
-      return 0;
-    }
-    std::uint64_t v = 0;
-    for (std::size_t i = 0; i < n; ++i) v = (v << 8) | b_[at_ + i];
-    at_ += n;
-    return v;
-  }
-  std::uint8_t u8() { return static_cast<std::uint8_t>(unsignedOf(1)); }
-  std::uint16_t u16() { return static_cast<std::uint16_t>(unsignedOf(2)); }
-  std::uint32_t u32() { return static_cast<std::uint32_t>(unsignedOf(4)); }
-  float f32() { return std::bit_cast<float>(u32()); }
-  double f64() { return std::bit_cast<double>(unsignedOf(8)); }
-  glm::vec3 vec3f() {
-    const float x = f32(), y = f32(), z = f32();
-    return {x, y, z};
-  }
-  void skip(std::size_t n) {
-    if (at_ + n > b_.size())
-      ok_ = false;
-    else
-      at_ += n;
-  }
-
- private:
-  std::span<const std::uint8_t> b_;
-  std::size_t at_ = 0;
-  bool ok_ = true;
-};
-
-class Writer {
- public:
-  void unsignedOf(std::uint64_t v, std::size_t n) {
-    for (std::size_t i = n; i-- > 0;) out.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
-  }
-  void u8(std::uint8_t v) { unsignedOf(v, 1); }
-  void u16(std::uint16_t v) { unsignedOf(v, 2); }
-  void u32(std::uint32_t v) { unsignedOf(v, 4); }
-  void f32(float v) { u32(std::bit_cast<std::uint32_t>(v)); }
-  void f64(double v) { unsignedOf(std::bit_cast<std::uint64_t>(v), 8); }
-  void vec3f(const glm::vec3& v) {
-    f32(v.x);
-    f32(v.y);
-    f32(v.z);
-  }
-  std::vector<std::uint8_t> out;
-};
-
-EntityType entityType(Reader& r) {
-  EntityType t;
-  t.kind = r.u8();
-  t.domain = r.u8();
-  t.country = r.u16();
-  t.category = r.u8();
-  t.subcategory = r.u8();
-  t.specific = r.u8();
-  t.extra = r.u8();
-  return t;
-}
-
-void entityType(Writer& w, const EntityType& t) {
-  w.u8(t.kind);
-  w.u8(t.domain);
-  w.u16(t.country);
-  w.u8(t.category);
-  w.u8(t.subcategory);
-  w.u8(t.specific);
-  w.u8(t.extra);
-}
-
-bool finite(const glm::vec3& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
-bool finite(const glm::dvec3& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
-EntityID entityID(Reader& r) {
-  EntityID e;
-  e.site = r.u16();
-  e.application = r.u16();
-  e.entity = r.u16();
-  return e;
-}
-
-void entityID(Writer& w, const EntityID& e) {
-  w.u16(e.site);
-  w.u16(e.application);
-  w.u16(e.entity);
-}
-
-RadioID radioID(Reader& r) {
-  RadioID id;
-  id.entity = entityID(r);
-  id.radio = r.u16();
-  return id;
-}
-
-void radioID(Writer& w, const RadioID& id) {
-  entityID(w, id.entity);
-  w.u16(id.radio);
-}
-
-/// The header of `bytes` when it decodes and names PDU type `type`, else nothing and
-/// `error` says why (`name`: the PDU's name for the message).
-std::optional<PduHeader> headerOf(std::span<const std::uint8_t> bytes, PduType type,
-                                  const char* name, std::string* error) {
-  std::optional<PduHeader> header = decodeHeader(bytes, error);
-  if (header && header->pduType != static_cast<std::uint8_t>(type)) {
-    if (error)
-      *error = "PDU type " + std::to_string(header->pduType) + ", not " + name + " (" +
-               std::to_string(static_cast<int>(type)) + ")";
-    return std::nullopt;
-  }
-  return header;
-}
-
-void writeHeader(Writer& w, const PduHeader& h, PduType type, std::uint8_t family,
-                 std::size_t length) {
-  w.u8(h.protocolVersion);
-  w.u8(h.exerciseID);
-  w.u8(static_cast<std::uint8_t>(type));
-  w.u8(family);
-  w.u32(h.timestamp);
-  w.u16(static_cast<std::uint16_t>(length));
-  w.u16(0);
-}
-
-void shortError(std::string* error, const char* name, std::size_t length, std::size_t needed) {
-  if (error)
-    *error = std::string(name) + " of " + std::to_string(length) + " bytes, short of the " +
-             std::to_string(needed) + " its fields announce";
-}
-
-}  // namespace
+using namespace detail;
 
 std::optional<PduHeader> decodeHeader(std::span<const std::uint8_t> bytes, std::string* error) {
   Reader r(bytes);
@@ -194,9 +52,7 @@ std::optional<EntityStatePdu> decodeEntityState(std::span<const std::uint8_t> by
   p.entityType = entityType(r);
   p.alternativeEntityType = entityType(r);
   p.linearVelocity = r.vec3f();
-  p.location.x = r.f64();
-  p.location.y = r.f64();
-  p.location.z = r.f64();
+  p.location = vec3d(r);
   p.orientation = r.vec3f();
   p.appearance = r.u32();
   p.deadReckoningAlgorithm = r.u8();
@@ -221,19 +77,10 @@ std::optional<EntityStatePdu> decodeEntityState(std::span<const std::uint8_t> by
     return std::nullopt;
   }
   p.articulationParameters.reserve(parameters);
-  for (std::size_t i = 0; i < parameters; ++i) {
-    ArticulationParameter a;
-    a.typeDesignator = r.u8();
-    a.changeIndicator = r.u8();
-    a.idAttachedTo = r.u16();
-    a.parameterType = r.u32();
-    a.value = a.typeDesignator == 0 ? static_cast<double>(r.f32()) : r.f64();
-    if (a.typeDesignator == 0) r.skip(4);
-    p.articulationParameters.push_back(a);
-  }
-  if (!r.ok() || !finite(p.linearVelocity) || !finite(p.orientation) ||
-      !std::isfinite(p.location.x) || !std::isfinite(p.location.y) ||
-      !std::isfinite(p.location.z) || !finite(p.linearAcceleration) || !finite(p.angularVelocity)) {
+  for (std::size_t i = 0; i < parameters; ++i)
+    p.articulationParameters.push_back(articulationParameter(r));
+  if (!r.ok() || !finite(p.linearVelocity) || !finite(p.orientation) || !finite(p.location) ||
+      !finite(p.linearAcceleration) || !finite(p.angularVelocity)) {
     if (error) *error = "Entity State PDU with a number that is not finite";
     return std::nullopt;
   }
@@ -252,9 +99,7 @@ std::vector<std::uint8_t> encodeEntityState(const EntityStatePdu& p) {
   entityType(w, p.entityType);
   entityType(w, p.alternativeEntityType);
   w.vec3f(p.linearVelocity);
-  w.f64(p.location.x);
-  w.f64(p.location.y);
-  w.f64(p.location.z);
+  vec3d(w, p.location);
   w.vec3f(p.orientation);
   w.u32(p.appearance);
   w.u8(p.deadReckoningAlgorithm);
@@ -265,19 +110,8 @@ std::vector<std::uint8_t> encodeEntityState(const EntityStatePdu& p) {
   for (std::size_t i = 0; i < 11; ++i)
     w.u8(i < p.marking.size() ? static_cast<std::uint8_t>(p.marking[i]) : 0);
   w.u32(p.capabilities);
-  for (std::size_t i = 0; i < parameters; ++i) {
-    const ArticulationParameter& a = p.articulationParameters[i];
-    w.u8(a.typeDesignator);
-    w.u8(a.changeIndicator);
-    w.u16(a.idAttachedTo);
-    w.u32(a.parameterType);
-    if (a.typeDesignator == 0) {
-      w.f32(static_cast<float>(a.value));
-      w.u32(0);
-    } else {
-      w.f64(a.value);
-    }
-  }
+  for (std::size_t i = 0; i < parameters; ++i)
+    articulationParameter(w, p.articulationParameters[i]);
   return std::move(w.out);
 }
 
@@ -300,9 +134,7 @@ std::optional<TransmitterPdu> decodeTransmitter(std::span<const std::uint8_t> by
   p.transmitState = r.u8();
   p.inputSource = r.u8();
   r.skip(2);  // number of Variable Transmitter Parameters records (1998: padding)
-  p.antennaLocation.x = r.f64();
-  p.antennaLocation.y = r.f64();
-  p.antennaLocation.z = r.f64();
+  p.antennaLocation = vec3d(r);
   p.relativeAntennaLocation = r.vec3f();
   p.antennaPatternType = r.u16();
   const std::size_t patternLength = r.u16();
@@ -351,9 +183,7 @@ std::vector<std::uint8_t> encodeTransmitter(const TransmitterPdu& p) {
   w.u8(p.transmitState);
   w.u8(p.inputSource);
   w.u16(0);  // no Variable Transmitter Parameters records
-  w.f64(p.antennaLocation.x);
-  w.f64(p.antennaLocation.y);
-  w.f64(p.antennaLocation.z);
+  vec3d(w, p.antennaLocation);
   w.vec3f(p.relativeAntennaLocation);
   w.u16(p.antennaPatternType);
   w.u16(static_cast<std::uint16_t>(patternLength));
@@ -469,12 +299,22 @@ std::optional<Pdu> decodePdu(std::span<const std::uint8_t> bytes, std::string* e
     case static_cast<std::uint8_t>(PduType::receiver):
       if (auto p = decodeReceiver(bytes, error)) return Pdu(std::move(*p));
       return std::nullopt;
+    case static_cast<std::uint8_t>(PduType::fire):
+      if (auto p = decodeFire(bytes, error)) return Pdu(std::move(*p));
+      return std::nullopt;
+    case static_cast<std::uint8_t>(PduType::detonation):
+      if (auto p = decodeDetonation(bytes, error)) return Pdu(std::move(*p));
+      return std::nullopt;
+    case static_cast<std::uint8_t>(PduType::collision):
+      if (auto p = decodeCollision(bytes, error)) return Pdu(std::move(*p));
+      return std::nullopt;
     default:
       break;
   }
   if (error)
     *error = "PDU type " + std::to_string(header->pduType) +
-             " is not read (only Entity State 1, Transmitter 25, Signal 26, Receiver 27)";
+             " is not read (only Entity State 1, Fire 2, Detonation 3, Collision 4, "
+             "Transmitter 25, Signal 26, Receiver 27)";
   return std::nullopt;
 }
 

@@ -22,7 +22,7 @@
 // Bytes from the network are untrusted: a datagram that does not decode is dropped
 // (counted in a warning once per node), at most kDisMaxDatagrams are read per port per frame,
 // and a manager makes at most kDisMaxEntities entities.
-#include "execution_state.hpp"
+#include "dis_fields.hpp"
 
 #include "vrml/transform.hpp"
 
@@ -46,7 +46,6 @@ namespace {
 
 using vrml::FieldType;
 using vrml::FieldValue;
-using DisModel = ExecutionModel::State;
 
 constexpr std::size_t kDisMaxDatagrams = 1024;
 /// Most entities one DISEntityManager makes (a flood of entity IDs makes no more nodes).
@@ -56,14 +55,6 @@ constexpr std::size_t kDisMaxEntities = 1024;
 constexpr double kDisEntityTimeout = 12.0;
 /// Entity State PDU appearance bit 23 (IEEE 1278.1 / SISO-REF-010 "State"): deactivated.
 constexpr std::uint32_t kDisDeactivated = 1u << 23;
-
-std::uint64_t disEntityKey(const dis::EntityID& e) {
-  return (std::uint64_t{e.site} << 32) | (std::uint64_t{e.application} << 16) | e.entity;
-}
-
-std::uint64_t disRadioKey(const dis::RadioID& r) {
-  return (disEntityKey(r.entity) << 16) | r.radio;
-}
 
 /// The alternative of dis::Pdu a DIS node reads (-1: a DISEntityManager, which reads
 /// Entity State PDUs of every entity).
@@ -94,19 +85,6 @@ dis::EntityID disEntityOf(const vrml::Node& n) {
   return {disId(n, "siteID"), disId(n, "applicationID"), disId(n, "entityID")};
 }
 
-/// Sends `v` from field `name` of `ns` when the node has that field with v's type.
-void disEmit(DisModel& s, NodeState& ns, std::string_view name, FieldValue v) {
-  const int i = ns.node->type().findExact(name);
-  if (i >= 0 && ns.node->type().fields[static_cast<std::size_t>(i)].type == v.type())
-    s.emitOwn(ns, i, std::move(v));
-}
-
-void disEmitInt(DisModel& s, NodeState& ns, std::string_view name, std::int64_t v) {
-  constexpr std::int64_t kMax = std::numeric_limits<std::int32_t>::max();
-  disEmit(s, ns, name,
-          FieldValue::make<FieldType::SFInt32>(static_cast<std::int32_t>(std::min(v, kMax))));
-}
-
 /// Writes `v` into field `name` of a node the execution model made (no event).
 void disSet(vrml::Node& n, std::string_view name, FieldValue v) {
   const int i = n.type().findExact(name);
@@ -119,6 +97,7 @@ void disSendEntityState(DisModel& s, NodeState& ns, const dis::EntityStatePdu& p
   disEmit(s, ns, "rotation",
           FieldValue::make<FieldType::SFRotation>(
               vrml::rotationFromQuaternion(dis::eulerToQuaternion(p.orientation))));
+  disSendGeoCoords(s, ns, p.location);
   disEmit(s, ns, "linearVelocity", FieldValue::make<FieldType::SFVec3f>(p.linearVelocity));
   disEmit(s, ns, "linearAcceleration", FieldValue::make<FieldType::SFVec3f>(p.linearAcceleration));
   disEmitInt(s, ns, "forceID", p.forceID);
@@ -280,8 +259,14 @@ void disDrain(DisInbox& inbox) {
     }
     const std::uint64_t key = std::visit(
         [](const auto& pdu) -> std::uint64_t {
-          if constexpr (std::is_same_v<std::decay_t<decltype(pdu)>, dis::EntityStatePdu>)
+          using P = std::decay_t<decltype(pdu)>;
+          if constexpr (std::is_same_v<P, dis::EntityStatePdu>)
             return disEntityKey(pdu.entityID);
+          else if constexpr (std::is_same_v<P, dis::FirePdu> ||
+                             std::is_same_v<P, dis::DetonationPdu>)
+            return disEntityKey(pdu.firingEntityID);
+          else if constexpr (std::is_same_v<P, dis::CollisionPdu>)
+            return disEntityKey(pdu.issuingEntityID);
           else
             return disRadioKey(pdu.radio);
         },
@@ -314,6 +299,7 @@ void disDeadReckon(DisModel& s, NodeState& ns, double now) {
   glm::dvec3 position = p.location + v * dt;
   if (accelerates) position += 0.5 * a * dt * dt;
   disEmit(s, ns, "translation", FieldValue::make<FieldType::SFVec3f>(glm::vec3(position)));
+  disSendGeoCoords(s, ns, position);
   const glm::dvec3 w(p.angularVelocity);
   if (rotates && glm::length(w) > 0.0) {
     const glm::dquat turned = orientation * glm::angleAxis(glm::length(w) * dt, glm::normalize(w));
@@ -483,6 +469,25 @@ void disWrite(DisModel& s, NodeState& ns, double now, int index) {
   }
 }
 
+/// The latest Fire, Detonation and Collision PDUs of entity `key` this frame, sent as an
+/// EspduTransform's events (dis_events.cpp).
+void disSendWarfare(DisModel& s, NodeState& ns, const DisInbox& inbox, std::uint64_t key,
+                    double now) {
+  static_assert(std::is_same_v<std::variant_alternative_t<4, dis::Pdu>, dis::FirePdu> &&
+                std::is_same_v<std::variant_alternative_t<5, dis::Pdu>, dis::DetonationPdu> &&
+                std::is_same_v<std::variant_alternative_t<6, dis::Pdu>, dis::CollisionPdu>);
+  const auto latestOf = [&](std::size_t alternative) -> const dis::Pdu* {
+    const auto& latest = inbox.latest[alternative];
+    const auto it = latest.find(key);
+    return it == latest.end() ? nullptr : &inbox.pdus[it->second];
+  };
+  if (const dis::Pdu* p = latestOf(4)) disSendFire(s, ns, std::get<dis::FirePdu>(*p), now);
+  if (const dis::Pdu* p = latestOf(5))
+    disSendDetonation(s, ns, std::get<dis::DetonationPdu>(*p), now);
+  if (const dis::Pdu* p = latestOf(6))
+    disSendCollision(s, ns, std::get<dis::CollisionPdu>(*p), now);
+}
+
 }  // namespace
 
 bool ExecutionModel::State::classifyDis(NodeState& ns) {
@@ -524,8 +529,8 @@ void ExecutionModel::State::evaluateDis() {
       st.dropReported = true;
       report(vrml::Severity::warning, n,
              std::to_string(inbox->dropped) + " datagram(s) on UDP " + st.key +
-                 " were not Entity State, Transmitter, Signal or Receiver PDUs that decode: "
-                 "dropped (reported once)");
+                 " were not Entity State, Fire, Detonation, Collision, Transmitter, Signal "
+                 "or Receiver PDUs that decode: dropped (reported once)");
     }
     if (manager) {
       // New entities, entities heard again, entities deactivated; then the silent ones.
@@ -590,6 +595,9 @@ void ExecutionModel::State::evaluateDis() {
     // readInterval 0 means no reading (X3D 4.0 clause 28.4.3's field description).
     const double interval = n.get<FieldType::SFTime>("readInterval", 0.1);
     if (!(interval > 0.0)) continue;
+    // An EspduTransform's entity fired, its munition detonated, it collided: events sent
+    // the frame their PDU arrives, not held for the next read.
+    if (index == 0) disSendWarfare(*this, ns, *inbox, key, now);
     if (!st.pending || now - st.lastRead < interval) {
       // Between PDUs the entity moves as its dead reckoning algorithm says.
       if (st.reckoned) disDeadReckon(*this, ns, now);
@@ -609,7 +617,7 @@ void ExecutionModel::State::evaluateDis() {
             disSendTransmitter(*this, ns, p);
           else if constexpr (std::is_same_v<P, dis::SignalPdu>)
             disSendSignal(*this, ns, p);
-          else
+          else if constexpr (std::is_same_v<P, dis::ReceiverPdu>)
             disSendReceiver(*this, ns, p);
         },
         *st.pending);

@@ -259,9 +259,84 @@ TEST_CASE("DIS: decodePdu reads the PDU its header names and no other type", "[d
   const std::optional<Pdu> es = decodePdu(encodeEntityState(tank()), &error);
   REQUIRE(es);
   CHECK(std::get<EntityStatePdu>(*es).marking == "TANK1");
-  std::vector<std::uint8_t> fire = encodeEntityState(tank());
-  fire[2] = 2;
-  CHECK_FALSE(decodePdu(fire, &error));
+  std::vector<std::uint8_t> serviceRequest = encodeEntityState(tank());
+  serviceRequest[2] = 5;  // a Service Request PDU: not read
+  CHECK_FALSE(decodePdu(serviceRequest, &error));
   CHECK(error.find("not read") != std::string::npos);
   CHECK_FALSE(decodePdu(std::vector<std::uint8_t>{7, 1}, &error));
+}
+
+TEST_CASE("DIS: Fire, Detonation and Collision PDUs survive encoding and decoding", "[dis]") {
+  std::string error;
+  FirePdu fire;
+  fire.firingEntityID = {1, 2, 3};
+  fire.targetEntityID = {4, 5, 6};
+  fire.munitionID = {1, 2, 77};
+  fire.eventID = {1, 2, 500};
+  fire.fireMissionIndex = 9;
+  fire.location = {1e6, -2e6, 3e6};
+  fire.descriptor = {{2, 9, 225, 1, 2, 3, 4}, 1000, 2000, 3, 600};
+  fire.velocity = {100, 0, -5};
+  fire.range = 1500.0f;
+  const std::vector<std::uint8_t> fireBytes = encodeFire(fire);
+  REQUIRE(fireBytes.size() == kFireSize);
+  CHECK(fireBytes[2] == 2);  // PDU type
+  CHECK(fireBytes[3] == 2);  // the warfare family
+  const std::optional<Pdu> anyFire = decodePdu(fireBytes, &error);
+  REQUIRE(anyFire);
+  const FirePdu& f = std::get<FirePdu>(*anyFire);
+  CHECK(f.targetEntityID == EntityID{4, 5, 6});
+  CHECK(f.eventID == EventID{1, 2, 500});
+  CHECK(f.location == fire.location);
+  CHECK(f.descriptor.munitionType.country == 225);
+  CHECK(f.descriptor.rate == 600);
+  CHECK(f.velocity == fire.velocity);
+  CHECK(f.range == 1500.0f);
+
+  DetonationPdu detonation;
+  detonation.firingEntityID = {1, 2, 3};
+  detonation.location = {1e6, -2e6, 3e6};
+  detonation.locationInEntity = {0.5f, 1, 2};
+  detonation.detonationResult = 5;
+  detonation.articulationParameters.push_back({1, 0, 0, 4096, 2.5});
+  const std::vector<std::uint8_t> detonationBytes = encodeDetonation(detonation);
+  REQUIRE(detonationBytes.size() == kDetonationSize + 16);
+  const std::optional<DetonationPdu> d = decodeDetonation(detonationBytes, &error);
+  REQUIRE(d);
+  CHECK(d->locationInEntity == detonation.locationInEntity);
+  CHECK(d->detonationResult == 5);
+  REQUIRE(d->articulationParameters.size() == 1);
+  CHECK(d->articulationParameters[0].value == 2.5);
+  // A record announced past the datagram's length.
+  std::vector<std::uint8_t> lying = detonationBytes;
+  lying[9] = static_cast<std::uint8_t>(kDetonationSize);
+  CHECK_FALSE(decodeDetonation(std::span(lying).first(kDetonationSize), &error));
+  CHECK(error.find("short of the 120") != std::string::npos);
+
+  CollisionPdu collision;
+  collision.issuingEntityID = {1, 2, 3};
+  collision.collidingEntityID = {1, 2, 4};
+  collision.collisionType = 1;
+  collision.mass = 12000.0f;
+  const std::vector<std::uint8_t> collisionBytes = encodeCollision(collision);
+  REQUIRE(collisionBytes.size() == kCollisionSize);
+  const std::optional<CollisionPdu> c = decodeCollision(collisionBytes, &error);
+  REQUIRE(c);
+  CHECK(c->collidingEntityID == EntityID{1, 2, 4});
+  CHECK(c->mass == 12000.0f);
+  // Every cut of each PDU is an error, never a read past it.
+  for (const std::vector<std::uint8_t>* bytes : {&fireBytes, &detonationBytes, &collisionBytes})
+    for (std::size_t n = 0; n < bytes->size(); ++n) {
+      std::vector<std::uint8_t> cut(bytes->begin(), bytes->begin() + static_cast<long>(n));
+      if (n >= 10) {
+        cut[8] = static_cast<std::uint8_t>(n >> 8);
+        cut[9] = static_cast<std::uint8_t>(n);
+      }
+      CHECK_FALSE(decodePdu(cut, &error));
+    }
+  // A number that is not finite.
+  std::vector<std::uint8_t> nan = collisionBytes;
+  for (int i = 0; i < 4; ++i) nan[44 + i] = 0xff;  // the mass
+  CHECK_FALSE(decodeCollision(nan, &error));
+  CHECK(error.find("not finite") != std::string::npos);
 }

@@ -1,5 +1,5 @@
-// dis::decodeHeader, dis::decodePdu and each PDU decoder (Entity State, Transmitter,
-// Signal, Receiver) on any bytes (a datagram from the network).
+// dis::decodeHeader, dis::decodePdu and each PDU decoder (Entity State, Fire, Detonation,
+// Collision, Transmitter, Signal, Receiver) on any bytes (a datagram from the network).
 #include "dis/pdu.hpp"
 
 #include <cstddef>
@@ -41,12 +41,27 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   if (auto pdu = gs::dis::decodeReceiver(bytes, &error))
     roundTrip(*pdu, &gs::dis::encodeReceiver, &gs::dis::decodeReceiver);
+  if (auto pdu = gs::dis::decodeFire(bytes, &error)) {
+    const auto back = gs::dis::decodeFire(gs::dis::encodeFire(*pdu), nullptr);
+    if (!back || !(back->eventID == pdu->eventID)) __builtin_trap();
+  }
+  if (auto pdu = gs::dis::decodeDetonation(bytes, &error)) {
+    if (16 * pdu->articulationParameters.size() > size) __builtin_trap();
+    const auto back = gs::dis::decodeDetonation(gs::dis::encodeDetonation(*pdu), nullptr);
+    if (!back || !(back->firingEntityID == pdu->firingEntityID)) __builtin_trap();
+  }
+  if (auto pdu = gs::dis::decodeCollision(bytes, &error)) {
+    const auto back = gs::dis::decodeCollision(gs::dis::encodeCollision(*pdu), nullptr);
+    if (!back || !(back->issuingEntityID == pdu->issuingEntityID)) __builtin_trap();
+  }
   // The dispatcher agrees with the decoder of the type it names.
   if (auto pdu = gs::dis::decodePdu(bytes, &error)) {
     const std::size_t index = pdu->index();
     const std::uint8_t type = bytes[2];
     const bool agrees = (type == 1 && index == 0) || (type == 25 && index == 1) ||
-                        (type == 26 && index == 2) || (type == 27 && index == 3);
+                        (type == 26 && index == 2) || (type == 27 && index == 3) ||
+                        (type == 2 && index == 4) || (type == 3 && index == 5) ||
+                        (type == 4 && index == 6);
     if (!agrees) __builtin_trap();
   }
   return 0;

@@ -1,7 +1,8 @@
 // DIS protocol data units (IEEE 1278.1-2012, "Distributed Interactive Simulation —
 // Application protocols"; X3D 4.0 clause 28 names the PDUs its DIS nodes read): the PDU
-// header, the Entity State PDU (type 1) and the radio communications PDUs (Transmitter 25,
-// Signal 26, Receiver 27), decoded from and encoded to their big-endian bytes. Pure
+// header, the Entity State PDU (type 1), the warfare PDUs (Fire 2, Detonation 3), the
+// Collision PDU (4) and the radio communications PDUs (Transmitter 25, Signal 26,
+// Receiver 27), decoded from and encoded to their big-endian bytes. Pure
 // computation on bytes: no sockets (dis/udp_socket.hpp), no nodes (runtime/). Every
 // decoder treats its bytes as untrusted: each length field is checked against the
 // datagram before anything is read or allocated by it.
@@ -33,7 +34,8 @@ enum class PduType : std::uint8_t {
 
 /// Protocol families (IEEE 1278.1 table 8, "Protocol family"): the header's
 /// protocolFamily of the PDUs this reader knows.
-inline constexpr std::uint8_t kEntityInformationFamily = 1;    // Entity State PDU
+inline constexpr std::uint8_t kEntityInformationFamily = 1;    // Entity State, Collision PDUs
+inline constexpr std::uint8_t kWarfareFamily = 2;              // Fire, Detonation PDUs
 inline constexpr std::uint8_t kRadioCommunicationsFamily = 4;  // Transmitter, Signal, Receiver
 
 /// The 12-byte PDU header (IEEE 1278.1 clause 6.2.66).
@@ -93,6 +95,73 @@ struct EntityStatePdu {
 inline constexpr std::size_t kMaxArticulationParameters = 255;
 /// The Entity State PDU's fixed part, in bytes.
 inline constexpr std::size_t kEntityStateSize = 144;
+
+/// An event's identity (IEEE 1278.1 clause 6.2.33): the site and application that issued
+/// it and its event number there.
+struct EventID {
+  std::uint16_t site = 0, application = 0, eventNumber = 0;
+  bool operator==(const EventID&) const = default;
+};
+
+/// A Munition Descriptor record (IEEE 1278.1 clause 6.2.19.2; DIS 6's Burst Descriptor,
+/// 16 bytes): what was fired or detonated.
+struct MunitionDescriptor {
+  EntityType munitionType;
+  std::uint16_t warhead = 0;   // SISO-REF-010 warhead enumeration
+  std::uint16_t fuse = 0;      // SISO-REF-010 fuse enumeration
+  std::uint16_t quantity = 0;  // rounds in the burst
+  std::uint16_t rate = 0;      // rounds per minute
+};
+
+/// The Fire PDU (IEEE 1278.1 clause 7.3.2; 96 bytes): an entity fired a munition.
+struct FirePdu {
+  PduHeader header;
+  EntityID firingEntityID;
+  EntityID targetEntityID;  // 0 0 0: no target
+  EntityID munitionID;      // the munition entity, 0 0 0 when it is not tracked
+  EventID eventID;
+  std::uint32_t fireMissionIndex = 0;
+  glm::dvec3 location{0.0};  // where it was fired, metres, world (geocentric) coordinates
+  MunitionDescriptor descriptor;
+  glm::vec3 velocity{0.0f};  // the munition's at launch, metres per second, world axes
+  float range = 0.0f;        // metres the fire control assumed, 0 if none
+};
+
+/// The Detonation PDU (IEEE 1278.1 clause 7.3.3; 104 bytes plus 16 per variable
+/// parameter record): a munition detonated or hit.
+struct DetonationPdu {
+  PduHeader header;
+  EntityID firingEntityID;
+  EntityID targetEntityID;
+  EntityID munitionID;       // DIS 7's exploding entity
+  EventID eventID;           // the Fire PDU's event
+  glm::vec3 velocity{0.0f};  // the munition's before impact, metres per second, world axes
+  glm::dvec3 location{0.0};  // metres, world (geocentric) coordinates
+  MunitionDescriptor descriptor;
+  glm::vec3 locationInEntity{0.0f};   // metres, the target entity's body axes
+  std::uint8_t detonationResult = 0;  // SISO-REF-010 detonation result
+  std::vector<ArticulationParameter> articulationParameters;
+};
+
+/// The Collision PDU (IEEE 1278.1 clause 7.2.3; 60 bytes): an entity collided with another
+/// entity or with an object.
+struct CollisionPdu {
+  PduHeader header;
+  EntityID issuingEntityID;    // the entity that reports the collision
+  EntityID collidingEntityID;  // what it collided with, 0 0 0 when not an entity
+  EventID eventID;
+  std::uint8_t collisionType = 0;  // 0: inelastic, 1: elastic, 55: boom nozzle
+  glm::vec3 velocity{0.0f};        // the issuing entity's, metres per second, world axes
+  float mass = 0.0f;               // kilograms
+  glm::vec3 location{0.0f};        // metres, the issuing entity's body axes
+};
+
+/// The Fire PDU's size, in bytes.
+inline constexpr std::size_t kFireSize = 96;
+/// The Detonation PDU's fixed part, in bytes.
+inline constexpr std::size_t kDetonationSize = 104;
+/// The Collision PDU's size, in bytes.
+inline constexpr std::size_t kCollisionSize = 60;
 
 /// A radio's identity (IEEE 1278.1 clause 7.7.1): the entity (or object) it belongs to,
 /// the Radio Reference ID, and its Radio Number within that entity.
@@ -176,7 +245,8 @@ inline constexpr std::size_t kMaxAntennaPattern = 65535 - kTransmitterSize - 255
 inline constexpr std::size_t kMaxSignalData = 8192;
 
 /// Any PDU this reader decodes (decodePdu).
-using Pdu = std::variant<EntityStatePdu, TransmitterPdu, SignalPdu, ReceiverPdu>;
+using Pdu = std::variant<EntityStatePdu, TransmitterPdu, SignalPdu, ReceiverPdu, FirePdu,
+                         DetonationPdu, CollisionPdu>;
 
 /// The header of `bytes`, or nothing (and `error` says why) when there are fewer than 12
 /// bytes or its length field is below 12 or above the bytes given.
@@ -225,10 +295,39 @@ std::optional<ReceiverPdu> decodeReceiver(std::span<const std::uint8_t> bytes, s
 /// The bytes of `pdu` (IEEE 1278.1 clause 7.7.4): header type 27, family 4, 36 bytes.
 std::vector<std::uint8_t> encodeReceiver(const ReceiverPdu& pdu);
 
+/// The Fire PDU in `bytes` (one datagram), or nothing and `error` (when not null) says
+/// why: too short for the header (see decodeHeader), another PDU type, a length short of
+/// 96 bytes, a location, velocity or range that is not finite. Never reads outside `bytes`
+/// (IEEE 1278.1 clause 7.3.2).
+std::optional<FirePdu> decodeFire(std::span<const std::uint8_t> bytes, std::string* error);
+
+/// The bytes of `pdu` (IEEE 1278.1 clause 7.3.2): header type 2, family 2, 96 bytes.
+std::vector<std::uint8_t> encodeFire(const FirePdu& pdu);
+
+/// The Detonation PDU in `bytes` (one datagram), or nothing and `error` (when not null)
+/// says why: too short for the header, another PDU type, a length short of 104 + 16 x its
+/// variable parameter records, a number that is not finite. Never reads outside `bytes`;
+/// allocates at most the records the datagram holds (IEEE 1278.1 clause 7.3.3).
+std::optional<DetonationPdu> decodeDetonation(std::span<const std::uint8_t> bytes,
+                                              std::string* error);
+
+/// The bytes of `pdu` (IEEE 1278.1 clause 7.3.3): header type 3, family 2, at most
+/// kMaxArticulationParameters records.
+std::vector<std::uint8_t> encodeDetonation(const DetonationPdu& pdu);
+
+/// The Collision PDU in `bytes` (one datagram), or nothing and `error` (when not null)
+/// says why: too short for the header, another PDU type, a length short of 60 bytes, a
+/// number that is not finite. Never reads outside `bytes` (IEEE 1278.1 clause 7.2.3).
+std::optional<CollisionPdu> decodeCollision(std::span<const std::uint8_t> bytes,
+                                            std::string* error);
+
+/// The bytes of `pdu` (IEEE 1278.1 clause 7.2.3): header type 4, family 1, 60 bytes.
+std::vector<std::uint8_t> encodeCollision(const CollisionPdu& pdu);
+
 /// The PDU in `bytes` (one datagram) by its header's type: an Entity State, Transmitter,
-/// Signal or Receiver PDU, decoded as the functions above do; nothing, and `error` (when
-/// not null) says why, for a PDU that does not decode or of a type not listed (Fire,
-/// Detonation, Collision, ... are not read).
+/// Signal, Receiver, Fire, Detonation or Collision PDU, decoded as the functions above do;
+/// nothing, and `error` (when not null) says why, for a PDU that does not decode or of a
+/// type not listed (Service Request, Data, ... are not read).
 std::optional<Pdu> decodePdu(std::span<const std::uint8_t> bytes, std::string* error);
 
 /// The rotation (axis and angle, radians) of DIS Euler angles (psi about z, then theta

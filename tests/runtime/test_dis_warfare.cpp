@@ -1,0 +1,124 @@
+// X3D DIS (X3D 4.0 clause 28.4.3): an EspduTransform reader's events of the Fire,
+// Detonation and Collision PDUs of its entity, and its geoCoords from the Entity State
+// PDU's geocentric location.
+#include "runtime_fixture.hpp"
+
+#include "dis/pdu.hpp"
+#include "dis/udp_socket.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <unistd.h>
+
+using gs::test::RunningWorld;
+using gs::test::x3dWorld;
+using gs::vrml::FieldType;
+
+namespace {
+
+/// A UDP port of the loopback for one test of this file (`offset` 1..9), apart from
+/// test_dis_nodes.cpp's (offsets 1..8 there) and from another test process's.
+int warfareTestPort(int offset) {
+  return 20000 + static_cast<int>(::getpid() % 20000) + 100 * (20 + offset);
+}
+
+std::string warfareReader(int port, const std::string& extra) {
+  return x3dWorld(
+      "DEF E EspduTransform { networkMode \"networkReader\" readInterval 0.001"
+      " port " +
+      std::to_string(port) + " siteID 1 applicationID 2 entityID 3 " + extra + " }\n");
+}
+
+}  // namespace
+
+TEST_CASE("DIS: an EspduTransform sends the Fire, Detonation and Collision PDUs of its entity",
+          "[runtime][x3d][dis]") {
+  const int port = warfareTestPort(1);
+  RunningWorld w(warfareReader(port, ""), 0.0);
+  w.model->advanceTo(0.1);  // opens the socket
+  const gs::vrml::Node& e = w.node("E");
+  CHECK_FALSE(e.get<FieldType::SFBool>("fired1", true));
+  gs::dis::FirePdu fire;
+  fire.firingEntityID = {1, 2, 3};
+  fire.munitionID = {1, 2, 77};
+  fire.eventID = {1, 2, 500};
+  fire.fireMissionIndex = 9;
+  fire.location = {10, 20, 30};
+  fire.descriptor.warhead = 1000;
+  fire.descriptor.fuse = 2000;
+  fire.descriptor.quantity = 3;
+  fire.descriptor.rate = 600;
+  fire.range = 1500.0f;
+  gs::dis::FirePdu othersFire = fire;  // another entity's: not this node's
+  othersFire.firingEntityID = {1, 2, 4};
+  othersFire.fireMissionIndex = 1;
+  REQUIRE(gs::dis::UdpReceiver::sendToLoopback(port, gs::dis::encodeFire(fire)));
+  REQUIRE(gs::dis::UdpReceiver::sendToLoopback(port, gs::dis::encodeFire(othersFire)));
+  w.model->advanceTo(0.2);
+  CHECK(e.get<FieldType::SFBool>("fired1", false));
+  CHECK(e.get<FieldType::SFTime>("firedTime", 0.0) == Approx(0.2));
+  CHECK(e.get<FieldType::SFVec3f>("munitionStartPoint", glm::vec3(0)) == glm::vec3(10, 20, 30));
+  CHECK(e.get<FieldType::SFInt32>("munitionEntityID", 0) == 77);
+  CHECK(e.get<FieldType::SFInt32>("eventNumber", 0) == 500);
+  CHECK(e.get<FieldType::SFInt32>("fireMissionIndex", 0) == 9);
+  CHECK(e.get<FieldType::SFInt32>("warhead", 0) == 1000);
+  CHECK(e.get<FieldType::SFInt32>("fuse", 0) == 2000);
+  CHECK(e.get<FieldType::SFInt32>("munitionQuantity", 0) == 3);
+  CHECK(e.get<FieldType::SFInt32>("firingRate", 0) == 600);
+  CHECK(e.get<FieldType::SFFloat>("firingRange", 0.0f) == 1500.0f);
+  CHECK_FALSE(e.get<FieldType::SFBool>("isDetonated", true));
+
+  gs::dis::DetonationPdu detonation;
+  detonation.firingEntityID = {1, 2, 3};
+  detonation.munitionID = {1, 2, 77};
+  detonation.eventID = {1, 2, 500};
+  detonation.location = {110, 20, 30};
+  detonation.locationInEntity = {0.5f, 0, 0};
+  detonation.detonationResult = 5;
+  gs::dis::CollisionPdu collision;
+  collision.issuingEntityID = {1, 2, 3};
+  collision.collidingEntityID = {1, 2, 4};
+  collision.eventID = {1, 2, 501};
+  collision.collisionType = 1;
+  REQUIRE(gs::dis::UdpReceiver::sendToLoopback(port, gs::dis::encodeDetonation(detonation)));
+  REQUIRE(gs::dis::UdpReceiver::sendToLoopback(port, gs::dis::encodeCollision(collision)));
+  w.model->advanceTo(0.3);
+  CHECK(e.get<FieldType::SFBool>("isDetonated", false));
+  CHECK(e.get<FieldType::SFTime>("detonateTime", 0.0) == Approx(0.3));
+  CHECK(e.get<FieldType::SFVec3f>("munitionEndPoint", glm::vec3(0)) == glm::vec3(110, 20, 30));
+  CHECK(e.get<FieldType::SFVec3f>("detonationLocation", glm::vec3(0)) == glm::vec3(110, 20, 30));
+  CHECK(e.get<FieldType::SFVec3f>("detonationRelativeLocation", glm::vec3(0)) ==
+        glm::vec3(0.5f, 0, 0));
+  CHECK(e.get<FieldType::SFInt32>("detonationResult", 0) == 5);
+  CHECK(e.get<FieldType::SFBool>("isCollided", false));
+  CHECK(e.get<FieldType::SFTime>("collideTime", 0.0) == Approx(0.3));
+  CHECK(e.get<FieldType::SFInt32>("collisionType", 0) == 1);
+  CHECK(e.get<FieldType::SFInt32>("eventNumber", 0) == 501);  // the collision's, sent last
+  // The fire was sent once: its time stays that of its frame.
+  CHECK(e.get<FieldType::SFTime>("firedTime", 0.0) == Approx(0.2));
+}
+
+TEST_CASE("DIS: an EspduTransform's geoCoords are its entity's location in its geoSystem",
+          "[runtime][x3d][dis]") {
+  const int port = warfareTestPort(2);
+  // Two readers of the same entity: the default GD WE, and GC.
+  RunningWorld w(warfareReader(port, "") +
+                     "DEF C EspduTransform { networkMode \"networkReader\" readInterval 0.001"
+                     " port " +
+                     std::to_string(port) +
+                     " siteID 1 applicationID 2 entityID 3 geoSystem \"GC\" }\n",
+                 0.0);
+  w.model->advanceTo(0.1);
+  gs::dis::EntityStatePdu p;
+  p.entityID = {1, 2, 3};
+  // On the equator at longitude 90 degrees east, 100 m above the WGS84 ellipsoid.
+  p.location = {0.0, 6378137.0 + 100.0, 0.0};
+  REQUIRE(gs::dis::UdpReceiver::sendToLoopback(port, gs::dis::encodeEntityState(p)));
+  w.model->advanceTo(0.2);
+  const glm::dvec3 gd = w.node("E").get<FieldType::SFVec3d>("geoCoords", glm::dvec3(-1));
+  CHECK(gd.x == Approx(0.0).margin(1e-9));  // latitude, degrees
+  CHECK(gd.y == Approx(90.0));              // longitude, degrees
+  CHECK(gd.z == Approx(100.0).margin(1e-6));
+  const glm::dvec3 gc = w.node("C").get<FieldType::SFVec3d>("geoCoords", glm::dvec3(-1));
+  CHECK(gc == p.location);
+}
