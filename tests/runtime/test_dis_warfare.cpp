@@ -22,11 +22,10 @@ int warfareTestPort(int offset) {
   return 20000 + static_cast<int>(::getpid() % 20000) + 100 * (20 + offset);
 }
 
+/// An EspduTransform reader of entity 1 2 3 on `port`, DEF E, with `extra` fields.
 std::string warfareReader(int port, const std::string& extra) {
-  return x3dWorld(
-      "DEF E EspduTransform { networkMode \"networkReader\" readInterval 0.001"
-      " port " +
-      std::to_string(port) + " siteID 1 applicationID 2 entityID 3 " + extra + " }\n");
+  return "DEF E EspduTransform { networkMode \"networkReader\" readInterval 0.001 port " +
+         std::to_string(port) + " siteID 1 applicationID 2 entityID 3 " + extra + " }\n";
 }
 
 }  // namespace
@@ -34,7 +33,7 @@ std::string warfareReader(int port, const std::string& extra) {
 TEST_CASE("DIS: an EspduTransform sends the Fire, Detonation and Collision PDUs of its entity",
           "[runtime][x3d][dis]") {
   const int port = warfareTestPort(1);
-  RunningWorld w(warfareReader(port, ""), 0.0);
+  RunningWorld w(x3dWorld(warfareReader(port, "")), 0.0);
   w.model->advanceTo(0.1);  // opens the socket
   const gs::vrml::Node& e = w.node("E");
   CHECK_FALSE(e.get<FieldType::SFBool>("fired1", true));
@@ -102,12 +101,9 @@ TEST_CASE("DIS: an EspduTransform's geoCoords are its entity's location in its g
           "[runtime][x3d][dis]") {
   const int port = warfareTestPort(2);
   // Two readers of the same entity: the default GD WE, and GC.
-  RunningWorld w(warfareReader(port, "") +
-                     "DEF C EspduTransform { networkMode \"networkReader\" readInterval 0.001"
-                     " port " +
-                     std::to_string(port) +
-                     " siteID 1 applicationID 2 entityID 3 geoSystem \"GC\" }\n",
-                 0.0);
+  std::string geocentricReader = warfareReader(port, "geoSystem \"GC\"");
+  geocentricReader.replace(0, 5, "DEF C");
+  RunningWorld w(x3dWorld(warfareReader(port, "") + geocentricReader), 0.0);
   w.model->advanceTo(0.1);
   gs::dis::EntityStatePdu p;
   p.entityID = {1, 2, 3};
