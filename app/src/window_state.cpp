@@ -206,21 +206,35 @@ bool WindowState::updateViews() {
       // A newly bound or animated Viewpoint takes the camera (4.6.10, 6.53).
       const bool first = v.viewpointSeen == nullptr && v.bindingSeen == 0;
       const bool newlyBound = vp != v.viewpointSeen;
+      if (v.offsetsWorld != v.world) {
+        v.userOffsets.clear();
+        v.offsetsWorld = v.world;
+      } else if (newlyBound && v.viewpointSeen != nullptr) {
+        // Where the user had moved from the viewpoint now unbound (23.3.5).
+        v.userOffsets[v.viewpointSeen] = scene::userOffset(v.navigator.camera(), v.viewpointCamera);
+      }
       v.bindingSeen = model.bindingRevision();
       v.viewpointSeen = vp;
       v.viewpointRevisionSeen = revision;
+      const scene::Camera defined = v.renderer()->boundViewpointCamera();
       if (!first && vp != nullptr) {
         v.autoFrame = false;
         if (newlyBound) {
-          // A Viewpoint bound from the menu, an Anchor or a Script: an animated move.
+          // A Viewpoint bound from the menu, an Anchor or a Script: an animated move, to
+          // where the user had left it when it retains user offsets, else to itself.
           v.transition.from = v.navigator.camera();
-          v.transition.to = v.renderer()->boundViewpointCamera();
+          const auto kept = v.userOffsets.find(vp);
+          v.transition.to = kept != v.userOffsets.end() &&
+                                    vp->get<vrml::FieldType::SFBool>("retainUserOffsets", false)
+                                ? scene::withUserOffset(defined, kept->second)
+                                : defined;
           v.transition.start = secondsNow();
         } else {  // the bound Viewpoint itself moves (a route into its fields)
           v.transition.start = -1.0;
-          v.navigator.setCamera(v.renderer()->boundViewpointCamera());
+          v.navigator.setCamera(defined);
         }
       }
+      if (vp != nullptr) v.viewpointCamera = defined;
     }
   }
   if (sounds && active < viewports.size() && viewports[active].world < worlds.size())

@@ -71,6 +71,8 @@ uniform int u_fogType;  // 0 none, 1 LINEAR, 2 EXPONENTIAL
 uniform vec3 u_fogColor;
 uniform float u_fogVisibilityRange;
 uniform vec4 u_fogPlane;  // volumetric fog: the distance is dot(plane, (eye position, 1))
+uniform bool u_sceneDepthUsed;  // the opaque scene's depth stops the rays
+uniform sampler2D u_sceneDepth;  // window depth (0..1) at each framebuffer pixel
 out vec4 fragColor;
 
 bool clippedAway(vec3 p) {
@@ -102,6 +104,14 @@ void main() {
   vec3 lo = min(t0, t1), hi = max(t0, t1);
   float s0 = max(max(lo.x, lo.y), max(lo.z, 0.0));
   float s1 = min(min(hi.x, hi.y), min(hi.z, 1.0));
+  // An opaque surface inside the box (or in front of it, seen from inside) ends the ray.
+  if (u_sceneDepthUsed) {
+    float z = texelFetch(u_sceneDepth, ivec2(gl_FragCoord.xy), 0).r;
+    if (z < 1.0) {
+      vec4 c = u_inverseModelViewProjection * vec4(ndc, z * 2.0 - 1.0, 1.0);
+      s1 = min(s1, dot(c.xyz / c.w - o, d) / dot(d, d));
+    }
+  }
   if (!(s0 < s1)) discard;  // missed (or NaN)
   float dn = dot(d, u_sliceNormal);
   if (abs(dn) < 1e-12) discard;
@@ -323,6 +333,12 @@ bool VolumeRaycaster::draw(const vrml::Node& node, const std::string& baseUrl,
     glBindSampler(static_cast<GLuint>(unit), identifiers ? nearestSampler_ : linearSampler_);
     glUniform1i(uniform(program, s->uniform.c_str()), unit++);
   }
+  const bool sceneDepth = copySceneDepth(viewport);
+  glUniform1i(uniform(program, "u_sceneDepthUsed"), sceneDepth ? 1 : 0);
+  glActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(unit));
+  glBindTexture(GL_TEXTURE_2D, sceneDepth ? depthTexture_ : 0);
+  glBindSampler(static_cast<GLuint>(unit), nearestSampler_);
+  glUniform1i(uniform(program, "u_sceneDepth"), unit++);
   glActiveTexture(GL_TEXTURE0);
   // Front faces, depth-tested: what is in front of the box hides it; from inside the box,
   // its back faces without the test.
@@ -346,6 +362,65 @@ bool VolumeRaycaster::draw(const vrml::Node& node, const std::string& baseUrl,
   return true;
 }
 
+bool VolumeRaycaster::copySceneDepth(const GLint viewport[4]) {
+  GLint read = 0, draw = 0;
+  glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read);
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw);
+  // A blit copies depth between equal formats only: the framebuffer's must be 24-bit depth
+  // with 8-bit stencil, as this renderer's framebuffers and GLFW's default window are.
+  // (Each attachment's type first: asking the size of one that is absent is a GL error.)
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(draw));
+  const auto bits = [](GLenum attachment, GLenum size) {
+    GLint type = GL_NONE, value = 0;
+    glGetFramebufferAttachmentParameteriv(GL_READ_FRAMEBUFFER, attachment,
+                                          GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
+    if (type != GL_NONE)
+      glGetFramebufferAttachmentParameteriv(GL_READ_FRAMEBUFFER, attachment, size, &value);
+    return value;
+  };
+  const GLint depthBits =
+      bits(draw == 0 ? GL_DEPTH : GL_DEPTH_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_DEPTH_SIZE);
+  const GLint stencilBits =
+      bits(draw == 0 ? GL_STENCIL : GL_STENCIL_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_STENCIL_SIZE);
+  const int width = viewport[0] + viewport[2], height = viewport[1] + viewport[3];
+  if (depthBits != 24 || stencilBits != 8 || viewport[0] < 0 || viewport[1] < 0 || width <= 0 ||
+      height <= 0) {
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(read));
+    return false;
+  }
+  if (depthFbo_ == 0) {
+    glGenFramebuffers(1, &depthFbo_);
+    glGenTextures(1, &depthTexture_);
+  }
+  if (width != depthWidth_ || height != depthHeight_) {
+    glBindTexture(GL_TEXTURE_2D, depthTexture_);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH24_STENCIL8, width, height, 0, GL_DEPTH_STENCIL,
+                 GL_UNSIGNED_INT_24_8, nullptr);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, depthFbo_);
+    glFramebufferTexture2D(GL_DRAW_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D,
+                           depthTexture_, 0);
+    depthWidth_ = width;
+    depthHeight_ = height;
+  }
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, depthFbo_);
+  const bool complete = glCheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+  if (complete) {
+    // The same rectangle at the same place (a multisampled framebuffer is resolved so);
+    // the scissor test would clip it.
+    const GLboolean scissor = glIsEnabled(GL_SCISSOR_TEST);
+    glDisable(GL_SCISSOR_TEST);
+    glBlitFramebuffer(viewport[0], viewport[1], width, height, viewport[0], viewport[1], width,
+                      height, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+    if (scissor == GL_TRUE) glEnable(GL_SCISSOR_TEST);
+  }
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(read));
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw));
+  return complete;
+}
+
 void VolumeRaycaster::release() {
   for (auto& [source, program] : programs_)
     if (program != 0) glDeleteProgram(program);
@@ -354,6 +429,10 @@ void VolumeRaycaster::release() {
   if (linearSampler_ != 0) glDeleteSamplers(1, &linearSampler_);
   if (nearestSampler_ != 0) glDeleteSamplers(1, &nearestSampler_);
   linearSampler_ = nearestSampler_ = 0;
+  if (depthFbo_ != 0) glDeleteFramebuffers(1, &depthFbo_);
+  if (depthTexture_ != 0) glDeleteTextures(1, &depthTexture_);
+  depthFbo_ = depthTexture_ = 0;
+  depthWidth_ = depthHeight_ = 0;
   if (vao_ != 0) glDeleteVertexArrays(1, &vao_);
   vao_ = vbo_ = 0;
 }

@@ -50,7 +50,9 @@ class VolumeRaycaster {
   /// frame's lights in world coordinates; `headlight` adds X_ITE's (directional, along
   /// the view). Samples outside a clip plane of `around` are skipped, and each sample's
   /// colour is fogged by its eye distance as a shape's fragment is (X_ITE 15 clips and
-  /// fogs each slice's fragments). A style program that does not compile is reported to
+  /// fogs each slice's fragments). An opaque surface the framebuffer's depth holds ends
+  /// the rays there, inside the box too (X_ITE depth-tests each of its slices). A style
+  /// program that does not compile is reported to
   /// `traversal` once and the node is not drawn. Returns whether anything was drawn.
   bool draw(const vrml::Node& node, const std::string& baseUrl, const glm::mat4& model,
             const scene::Camera& camera, float aspect, std::span<const scene::LightInstance> lights,
@@ -60,7 +62,15 @@ class VolumeRaycaster {
   void release();
 
  private:
+  /// Copies the depth of the framebuffer being drawn, in `viewport` (x, y, width, height;
+  /// pixels), to depthTexture_ at the same pixels (resolving a multisampled one). False,
+  /// and nothing copied, when its depth is not 24 bits with 8 of stencil (a blit needs
+  /// equal formats) or the copy's framebuffer is incomplete: the rays then run through.
+  bool copySceneDepth(const GLint viewport[4]);
+
   GLuint vao_ = 0, vbo_ = 0;
+  GLuint depthFbo_ = 0, depthTexture_ = 0;  // the opaque scene's depth (copySceneDepth)
+  int depthWidth_ = 0, depthHeight_ = 0;
   GLuint linearSampler_ = 0, nearestSampler_ = 0;  // sampler objects: no mipmaps
   std::map<std::string, GLuint> programs_;         // by fragment source; 0: did not compile
 };

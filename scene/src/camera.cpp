@@ -122,4 +122,16 @@ Camera fitCamera(const vrml::Bounds& bounds, float aspect, const Camera& directi
   return camera;
 }
 
+UserOffset userOffset(const Camera& user, const Camera& defined) {
+  const glm::quat inverse = glm::inverse(defined.orientation);
+  return {inverse * (user.position - defined.position), glm::normalize(inverse * user.orientation)};
+}
+
+Camera withUserOffset(const Camera& defined, const UserOffset& offset) {
+  Camera c = defined;
+  c.position = defined.position + defined.orientation * offset.translation;
+  c.orientation = glm::normalize(defined.orientation * offset.rotation);
+  return c;
+}
+
 }  // namespace gs::scene

@@ -138,3 +138,26 @@ TEST_CASE("Volume ray caster: ClipPlanes cut the samples and fog colours them",
   CHECK(centre[1] > 30);
   CHECK(centre[1] < 90);
 }
+
+TEST_CASE("Volume ray caster: an opaque shape inside the box ends the rays",
+          "[render][offscreen][world][volume]") {
+  // A faint volume (3 / 255 of opacity per sample, drawn by the ray caster) around a red box whose front face is at
+  // z = 0.15. The box's red shows through the samples in front of it only: the same red as
+  // with a ClipPlane that removes every sample behind that face, and far more than the
+  // whole depth of the volume would leave (about 40% of 255 against 7%).
+  const std::string volume = "VolumeData { dimensions 1 1 1 voxels " + constantVoxels(4, 3) +
+                             " renderStyle ProjectionVolumeStyle { type \"MAX\" } }";
+  const std::string box =
+      "Shape { appearance Appearance { material Material { diffuseColor 0 0 0 emissiveColor 1 0 "
+      "0 } } geometry Box { size 0.3 0.3 0.3 } }";
+  const Rendered inside = drawStyled("vr_inside", box + " " + volume);
+  const Rendered front = drawStyled(
+      "vr_front", box + " Group { children [ ClipPlane { plane 0 0 1 -0.15 } " + volume + " ] }");
+  CHECK(inside.diagnostics.items.empty());
+  const std::uint8_t* a = inside.image.pixel(32, 32);
+  const std::uint8_t* b = front.image.pixel(32, 32);
+  INFO(int(a[0]) << " " << int(a[1]) << " " << int(b[0]) << " " << int(b[1]));
+  CHECK(int(a[0]) > 70);
+  CHECK(int(a[0]) == Approx(int(b[0])).margin(3));
+  CHECK(int(a[1]) == Approx(int(b[1])).margin(3));
+}

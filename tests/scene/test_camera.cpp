@@ -191,3 +191,31 @@ TEST_CASE("a deformed camera's clip planes hold the scene in its own units", "[s
   CHECK(project(c, 1.0f, {0, 0, 1}).z > -1.0f);
   CHECK(project(c, 1.0f, {0, 0, -1}).z < 1.0f);
 }
+
+TEST_CASE("a user offset from a viewpoint applies again after the viewpoint turned",
+          "[scene][camera]") {
+  Camera defined;
+  defined.position = {0, 0, 10};
+  Camera user = defined;
+  user.position = {1, 0, 8};  // a step right and two forward
+  user.orientation = glm::angleAxis(0.5f, glm::vec3(0, 1, 0));
+  const gs::scene::UserOffset offset = gs::scene::userOffset(user, defined);
+  CHECK(offset.translation.x == Approx(1.0f));
+  CHECK(offset.translation.z == Approx(-2.0f));
+  // The same viewpoint: the user's camera again.
+  const Camera back = gs::scene::withUserOffset(defined, offset);
+  CHECK(glm::length(back.position - user.position) < 1e-5f);
+  CHECK(std::abs(glm::dot(back.orientation, user.orientation)) == Approx(1.0f));
+  // The viewpoint moved to x = 5 and turned a quarter left: the step right is now a step
+  // towards -Z, and the turn adds to its own.
+  Camera turned = defined;
+  turned.position = {5, 0, 0};
+  turned.orientation = glm::angleAxis(1.5707963f, glm::vec3(0, 1, 0));
+  turned.fieldOfView = 0.5f;
+  const Camera moved = gs::scene::withUserOffset(turned, offset);
+  CHECK(moved.position.x == Approx(5.0f - 2.0f).margin(1e-5));
+  CHECK(moved.position.z == Approx(-1.0f).margin(1e-5));
+  const glm::quat expected = glm::angleAxis(1.5707963f + 0.5f, glm::vec3(0, 1, 0));
+  CHECK(std::abs(glm::dot(moved.orientation, expected)) == Approx(1.0f));
+  CHECK(moved.fieldOfView == 0.5f);
+}

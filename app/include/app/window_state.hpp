@@ -17,6 +17,7 @@
 #include <cstddef>
 #include <memory>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace gs::app {
@@ -63,6 +64,14 @@ struct Viewport {
   std::uint64_t bindingSeen = 0;
   std::uint64_t viewpointRevisionSeen = 0;
   const vrml::Node* viewpointSeen = nullptr;
+  /// The camera the bound Viewpoint itself gives, as last seen: the user's offset from it
+  /// is kept when another viewpoint is bound.
+  scene::Camera viewpointCamera;
+  /// The user's offset from each viewpoint unbound here (X3D 4.0 clause 23.3.5): one bound
+  /// again with retainUserOffsets TRUE goes back to it; with FALSE, to its own camera.
+  /// Cleared when the viewport shows another world (`offsetsWorld`).
+  std::unordered_map<const vrml::Node*, scene::UserOffset> userOffsets;
+  std::size_t offsetsWorld = kNone;
   /// An animated move to a Viewpoint (1 s, position and orientation interpolated).
   struct Transition {
     scene::Camera from, to;

@@ -78,6 +78,23 @@ Camera wholeSceneCamera(const vrml::Bounds& bounds, const Camera& defaults);
 inline constexpr float kMaxFarNearRatio = 1e6f;
 void fitClipPlanes(Camera& camera, const vrml::Bounds& bounds, float maxNear = 0.0f);
 
+/// Where the user has moved from a Viewpoint's own camera (X3D 4.0 clause 23.3.5,
+/// `retainUserOffsets`): the move and turn in the viewpoint's own axes, so that they apply
+/// again when the viewpoint has moved or turned since.
+struct UserOffset {
+  glm::vec3 translation{0.0f};                 // metres, in the viewpoint's axes
+  glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};  // after the viewpoint's orientation
+};
+
+/// The offset of camera `user` from the camera `defined` that its Viewpoint gives:
+/// translation = inverse(defined.orientation) (user.position - defined.position), rotation
+/// = inverse(defined.orientation) user.orientation.
+UserOffset userOffset(const Camera& user, const Camera& defined);
+
+/// `defined` moved and turned by `offset` (the inverse of userOffset): its lens, clip
+/// planes and deform kept.
+Camera withUserOffset(const Camera& defined, const UserOffset& offset);
+
 /// The navigation types of NavigationInfo (clause 6.29).
 enum class NavigationMode {
   examine,  // orbit around a centre, pan, dolly
