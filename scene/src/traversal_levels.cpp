@@ -3,6 +3,7 @@
 #include "scene/traversal.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 
 namespace gs::scene {
@@ -17,6 +18,12 @@ constexpr std::size_t kMaxPendingOutputs = 65536;
 
 void SceneTraversal::noteShownLevel(const vrml::Node& n, int level,
                                     const std::vector<vrml::NodePtr>* shown) {
+  const std::array<const std::vector<vrml::NodePtr>*, 1> one = {shown};
+  noteShownLevel(n, level, shown != nullptr ? std::span(one) : std::span(one).first(0));
+}
+
+void SceneTraversal::noteShownLevel(const vrml::Node& n, int level,
+                                    std::span<const std::vector<vrml::NodePtr>* const> shown) {
   if (drawnOutputs_.size() >= kMaxPendingOutputs)
     drawnOutputs_.erase(drawnOutputs_.begin(), drawnOutputs_.begin() + static_cast<std::ptrdiff_t>(
                                                                            kMaxPendingOutputs / 2));
@@ -27,16 +34,26 @@ void SceneTraversal::noteShownLevel(const vrml::Node& n, int level,
     drawnOutputs_.push_back(
         {&n, "level_changed", vrml::FieldValue::make<vrml::FieldType::SFInt32>(level)});
   }
-  if (shown == nullptr) return;
-  const bool same =
-      !added && last.nodes.size() == shown->size() &&
-      std::equal(last.nodes.begin(), last.nodes.end(), shown->begin(),
-                 [](const vrml::Node* a, const vrml::NodePtr& b) { return a == b.get(); });
-  if (same) return;
+  if (shown.empty()) return;
+  // The same nodes as last time, compared list by list without a copy (every frame).
+  bool same = !added;
+  std::size_t at = 0;
+  for (const std::vector<vrml::NodePtr>* list : shown)
+    for (const vrml::NodePtr& p : *list) {
+      if (!same) break;
+      same = at < last.nodes.size() && last.nodes[at] == p.get();
+      ++at;
+    }
+  if (same && at == last.nodes.size()) return;
   last.nodes.clear();
-  for (const vrml::NodePtr& p : *shown) last.nodes.push_back(p.get());
+  std::vector<vrml::NodePtr> nodes;
+  for (const std::vector<vrml::NodePtr>* list : shown)
+    for (const vrml::NodePtr& p : *list) {
+      last.nodes.push_back(p.get());
+      nodes.push_back(p);
+    }
   drawnOutputs_.push_back(
-      {&n, "children", vrml::FieldValue::make<vrml::FieldType::MFNode>(*shown)});
+      {&n, "children", vrml::FieldValue::make<vrml::FieldType::MFNode>(std::move(nodes))});
 }
 
 }  // namespace gs::scene

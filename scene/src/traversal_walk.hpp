@@ -17,7 +17,9 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <span>
 
 namespace gs::scene {
 
@@ -357,13 +359,14 @@ struct SceneTraversal::Walk {
       loaded = loaded && !missing;
       if (loaded) {
         if (frame.reportOutputs) {
-          std::vector<vrml::NodePtr> shown;
+          std::array<const std::vector<vrml::NodePtr>*, 4> shown{};
+          std::size_t lists = 0;
           for (int k = 1; k <= 4; ++k)
             if (const InlineScene* inl =
                     self.inlineScene(self.geoLodInline(n, k), n.urlBaseOr(*baseUrl));
                 inl != nullptr && inl->scene)
-              shown.insert(shown.end(), inl->scene->rootNodes.begin(), inl->scene->rootNodes.end());
-          self.noteShownLevel(n, 1, &shown);
+              shown[lists++] = &inl->scene->rootNodes;
+          self.noteShownLevel(n, 1, std::span(shown).first(lists));
         }
         for (int k = 1; k <= 4; ++k) node(self.geoLodInline(n, k), m, baseUrl);
         return;

@@ -70,7 +70,7 @@ double foregroundPsnr(const std::string& ours, const std::string& peer) {
 }  // namespace
 
 TEST_CASE("the corpus's Gaussian splatting scenes look as PlayCanvas draws them",
-          "[app][render][splat][corpus]") {
+          "[heavy][app][render][splat][corpus]") {
   if (!gs::test::haveCorpus("splat")) return;
   const fs::path peer = gs::test::sourceDir() / "tests/data/splats/peer";
   struct Case {
@@ -116,7 +116,7 @@ TEST_CASE("a Gaussian splatting file opens on its own, and a broken one is an er
 }
 
 TEST_CASE("the corpus's scenes as QNV Gaussian streams: fewer bytes than SPZ, the peer's picture",
-          "[app][render][splat][corpus][qnv]") {
+          "[heavy][app][render][splat][corpus][qnv]") {
   if (!gs::test::haveCorpus("splat")) return;
   const fs::path peer = gs::test::sourceDir() / "tests/data/splats/peer";
   const fs::path dir = fs::path(GS_BINARY_DIR) / "render-actual";

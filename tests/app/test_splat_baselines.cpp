@@ -84,7 +84,8 @@ TEST_CASE("a volume snapshots straight from its NRRD file", "[heavy][app][render
   CHECK(gs::test::fractionDiffering(direct, viaStream) <= gs::test::kMaxFractionDiffering);
 }
 
-TEST_CASE("the bunny as splats looks like the bunny as polygons", "[app][render][splat][corpus]") {
+TEST_CASE("the bunny as splats looks like the bunny as polygons",
+          "[heavy][app][render][splat][corpus]") {
   if (!gs::test::haveCorpus("mesh/bunny")) return;
   const std::string bunny = (gs::test::corpusDir() / "mesh/bunny/bun_zipper.ply").string();
   checkBaseline("bunny_polygons", {"--size", "200x200", bunny});

@@ -6,6 +6,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <filesystem>
+#include <fstream>
 #include <memory>
 #include <string>
 
@@ -84,4 +86,37 @@ DEF G GeoLOD { geoSystem [ "GC" ] center 0 0 0 range 100
   t.collect(cameraAt(50.0f), frame);  // within range: level 1, the same children
   CHECK(outputText(t.takeDrawnOutputs()) == std::vector<std::string>{"level_changed=1"});
   CHECK(frame.shapes.size() == 2);
+}
+
+TEST_CASE("Drawing reports a GeoLOD's loaded child files as its children, once",
+          "[scene][x3d][geospatial]") {
+  // Two child files (one root node, then two): within range they replace the rootNode, and
+  // their three root nodes are the children output; the same frame again sends nothing.
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "gs_drawn_outputs";
+  fs::create_directories(dir);
+  std::ofstream(dir / "c1.x3dv") << "#X3D V4.0 utf8\nShape { geometry Box {} }\n";
+  std::ofstream(dir / "c2.x3dv")
+      << "#X3D V4.0 utf8\nShape { geometry Sphere {} }\nShape { geometry Cone {} }\n";
+  auto scene = std::make_shared<gs::vrml::Scene>(gs::vrml::parseVrml(
+      "#X3D V4.0 utf8\nPROFILE Full\nDEF G GeoLOD { geoSystem [ \"GC\" ] range 100\n"
+      "  child1Url \"c1.x3dv\" child2Url \"c2.x3dv\"\n"
+      "  rootNode [ Shape { geometry Box {} } ] }\n",
+      (dir / "world.x3dv").string()));
+  REQUIRE(scene->diagnostics.items.empty());
+  SceneTraversal t(scene);
+  TraversalFrame frame;
+  frame.reportOutputs = true;
+  t.collect(cameraAt(50.0f), frame);
+  CHECK(outputText(t.takeDrawnOutputs()) ==
+        std::vector<std::string>{"level_changed=1", "children=3 nodes"});
+  CHECK(frame.shapes.size() == 3);
+  t.collect(cameraAt(40.0f), frame);
+  CHECK(t.takeDrawnOutputs().empty());
+  t.collect(cameraAt(500.0f), frame);  // out of range: the rootNode again
+  CHECK(outputText(t.takeDrawnOutputs()) ==
+        std::vector<std::string>{"level_changed=0", "children=1 nodes"});
+  t.collect(cameraAt(50.0f), frame);
+  CHECK(outputText(t.takeDrawnOutputs()) ==
+        std::vector<std::string>{"level_changed=1", "children=3 nodes"});
 }

@@ -612,8 +612,11 @@ class SceneTraversal {
   };
   vrml::NodeMap<ShownLevel> shownLevels_;
   vrml::DrawnOutputs drawnOutputs_;
-  /// Notes that LOD or GeoLOD `n` shows `level` (and, for a GeoLOD, `shown`): events
-  /// into drawnOutputs_ for what changed.
+  /// Notes that LOD or GeoLOD `n` shows `level` (and, for a GeoLOD, the nodes of the lists
+  /// `shown` points to, in order; null: no children output): events into drawnOutputs_
+  /// for what changed. The lists are compared in place; a children event copies them.
+  void noteShownLevel(const vrml::Node& n, int level,
+                      std::span<const std::vector<vrml::NodePtr>* const> shown);
   void noteShownLevel(const vrml::Node& n, int level, const std::vector<vrml::NodePtr>* shown);
   /// GeoLOD `n`'s Inline standing for url field `k` (0: rootUrl, 1..4: childKUrl).
   const vrml::Node& geoLodInline(const vrml::Node& n, int k);
