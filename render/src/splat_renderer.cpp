@@ -54,6 +54,20 @@ detail::SceneDepthReader sceneDepthReader(SplatBlend blend, std::vector<float>& 
 
 /// The cpu path's view of a viewport of width x height pixels: the clip range that
 /// projectionMatrix really uses.
+/// The path drawn with clip planes set: the gpu path sorts on the GPU, where the clipped
+/// order is not; the geometry path draws the same splats from the CPU's order.
+SplatPath clipResolved(SplatPath path, const std::vector<glm::vec4>& planes) {
+  return path == SplatPath::gpu && !planes.empty() ? SplatPath::geometry : path;
+}
+
+glm::vec3 centreOf(const glm::vec3& p) {
+  return p;
+}
+
+glm::vec3 centreOf(const qnv::DecodedVector& v) {
+  return v.position;
+}
+
 detail::CpuGaussianView cpuView(const glm::mat4& modelView, const glm::mat4& projection,
                                 const scene::Camera& camera, int width, int height) {
   detail::CpuGaussianView v;
@@ -230,6 +244,24 @@ struct SplatRenderer::Gpu {
   }
 };
 
+template <typename Positions>
+const std::vector<std::uint32_t>& SplatRenderer::clippedOrder(
+    const std::vector<std::uint32_t>& order, const Positions& positions, const glm::mat4& model) {
+  if (clipPlanes_.empty()) return order;
+  // Each plane in local coordinates: (a, b, c, d) . (model p, 1) = (transpose(model) plane) . p.
+  std::vector<glm::vec4> local(clipPlanes_.size());
+  for (std::size_t k = 0; k < clipPlanes_.size(); ++k)
+    local[k] = glm::transpose(model) * clipPlanes_[k];
+  clipped_.clear();
+  for (const std::uint32_t place : order) {
+    const glm::vec4 p(centreOf(positions[place]), 1.0f);
+    bool kept = true;
+    for (const glm::vec4& plane : local) kept = kept && glm::dot(plane, p) >= 0.0f;
+    if (kept) clipped_.push_back(place);
+  }
+  return clipped_;
+}
+
 SplatRenderer::SplatRenderer() : path_(SplatPath::automatic) {}
 
 SplatRenderer::~SplatRenderer() {
@@ -267,7 +299,7 @@ void SplatRenderer::draw(const SplatSet& set, std::size_t count, const glm::mat4
   statistics_.splats = count;
   const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(model)));
   const float nearClip = std::max(camera.nearClip, 1e-6f);
-  const SplatPath path = g.resolve(path_);
+  const SplatPath path = clipResolved(g.resolve(path_), clipPlanes_);
   statistics_.path = path;
   if (path == SplatPath::gpu) {
     // The GL path, its order sorted on the GPU.
@@ -284,16 +316,18 @@ void SplatRenderer::draw(const SplatSet& set, std::size_t count, const glm::mat4
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     statistics_.sorted = true;
   }
+  const std::vector<std::uint32_t>& order =
+      clippedOrder(g.order, std::span<const qnv::DecodedVector>(set.vectors.data(), count), model);
   if (path != SplatPath::cpu) {
     // The GL path, back to front.
-    g.backToFront.assign(g.order.rbegin(), g.order.rend());
+    g.backToFront.assign(order.rbegin(), order.rend());
     g.gaussianPass.drawVectors({set.vectors.data(), set.vectors.size()}, set.revision,
                                g.backToFront, count, s, lights, normalMatrix, modelView, projection,
                                viewport, nearClip);
     return;
   }
   // The scene's depth, as the GL path's depth test sees it (front to back: none).
-  g.rasterizer.drawVectors({set.vectors.data(), count}, g.order, s, lights, normalMatrix,
+  g.rasterizer.drawVectors({set.vectors.data(), count}, order, s, lights, normalMatrix,
                            cpuView(modelView, projection, camera, width, height),
                            sceneDepthReader(blend, g.depth, viewport), g.pixels);
   drawImage(width, height);
@@ -321,7 +355,7 @@ void SplatRenderer::drawGaussians(const SplatSet& set, std::size_t count, const 
   std::span<const glm::vec3> positions;   // the centres the depth sort orders
   const void* sortData = nullptr;         // the sort's key: what and which revision
   std::uint64_t sortRevision = 0;
-  const SplatPath path = g.resolve(path_);
+  const SplatPath path = clipResolved(g.resolve(path_), clipPlanes_);
   statistics_.path = path;
   // (A tree over more splats than the cloud holds is not this cloud's: never drawn.)
   if (set.lodTree && set.lodTree->splatCount <= set.gaussians->size()) {
@@ -403,9 +437,10 @@ void SplatRenderer::drawGaussians(const SplatSet& set, std::size_t count, const 
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     statistics_.sorted = true;
   }
+  const std::vector<std::uint32_t>& order = clippedOrder(g.order, positions, model);
   if (path != SplatPath::cpu) {
     // The GL path, back to front.
-    g.backToFront.assign(g.order.rbegin(), g.order.rend());
+    g.backToFront.assign(order.rbegin(), order.rend());
     g.gaussianPass.draw(cloud, g.backToFront, modelView, projection, eye, viewport,
                         std::max(camera.nearClip, 1e-6f), style.opacityScale, revision);
     return;
@@ -413,8 +448,8 @@ void SplatRenderer::drawGaussians(const SplatSet& set, std::size_t count, const 
   detail::CpuGaussianView v = cpuView(modelView, projection, camera, width, height);
   v.eye = eye;
   v.opacityScale = style.opacityScale;
-  g.rasterizer.draw(cloud, g.order, v, sceneDepthReader(blend, g.depth, viewport), g.pixels,
-                    revision, subset);
+  g.rasterizer.draw(cloud, order, v, sceneDepthReader(blend, g.depth, viewport), g.pixels, revision,
+                    subset);
   drawImage(width, height);
 }
 

@@ -204,6 +204,14 @@ class SplatRenderer {
   /// SceneRendererOptions::splatPath for a SceneRenderer's splats).
   void setPath(SplatPath path) { path_ = path; }
   SplatPath path() const { return path_; }
+  /// The ClipPlanes in scope of what the next draw() calls draw (X3D 4.0 clause 11.4.1;
+  /// world coordinates, (a, b, c, d) keeping a x + b y + c z + d >= 0; at most 8 used;
+  /// empty: none). A splat whose centre a plane removes is not drawn, as crop boxes of
+  /// splat editors cut by centre. The gpu path, which sorts on the GPU, gives way to the
+  /// geometry path while planes are set.
+  void setClipPlanes(std::span<const glm::vec4> planes) {
+    clipPlanes_.assign(planes.begin(), planes.begin() + std::min<std::ptrdiff_t>(planes.size(), 8));
+  }
   /// Frees every GL object (context current).
   void release();
 
@@ -216,10 +224,19 @@ class SplatRenderer {
   /// Puts the premultiplied RGBA8 image of the cpu path over the framebuffer's viewport.
   void drawImage(int width, int height);
 
+  /// The front-to-back order `order` (places in `positions`, local centres placed by
+  /// `model`) without the splats clipPlanes_ remove: `order` itself when none are set.
+  template <typename Positions>
+  const std::vector<std::uint32_t>& clippedOrder(const std::vector<std::uint32_t>& order,
+                                                 const Positions& positions,
+                                                 const glm::mat4& model);
+
   struct Gpu;
   std::unique_ptr<Gpu> gpu_;
   SplatStatistics statistics_;
   SplatPath path_;
+  std::vector<glm::vec4> clipPlanes_;
+  std::vector<std::uint32_t> clipped_;  // clippedOrder's result
 };
 
 }  // namespace gs::render
