@@ -52,8 +52,6 @@ detail::SceneDepthReader sceneDepthReader(SplatBlend blend, std::vector<float>& 
   };
 }
 
-/// The cpu path's view of a viewport of width x height pixels: the clip range that
-/// projectionMatrix really uses.
 /// The path drawn with clip planes set: the gpu path sorts on the GPU, where the clipped
 /// order is not; the geometry path draws the same splats from the CPU's order.
 SplatPath clipResolved(SplatPath path, const std::vector<glm::vec4>& planes) {
@@ -68,6 +66,8 @@ glm::vec3 centreOf(const qnv::DecodedVector& v) {
   return v.position;
 }
 
+/// The cpu path's view of a viewport of width x height pixels: the clip range that
+/// projectionMatrix really uses.
 detail::CpuGaussianView cpuView(const glm::mat4& modelView, const glm::mat4& projection,
                                 const scene::Camera& camera, int width, int height) {
   detail::CpuGaussianView v;

@@ -4,9 +4,11 @@
 //
 // - EspduTransform, networkMode "networkReader": every readInterval seconds the latest
 //   Entity State PDU of its entity (siteID, applicationID, entityID) since its last read
-//   sets its translation (the PDU's location), its rotation (its DIS Euler angles) and
-//   sends the entity's velocity, acceleration, type, force, marking and articulation
-//   parameters as its fields' events, with timestamp and isActive.
+//   sets its translation (the PDU's location), its rotation (its DIS Euler angles), its
+//   geoCoords (that location in its geoSystem) and sends the entity's velocity,
+//   acceleration, type, force, marking and articulation parameters as its fields' events,
+//   with timestamp and isActive. The Fire, Detonation and Collision PDUs of its entity are
+//   sent as events the frame they arrive (dis_events.cpp).
 // - EspduTransform, TransmitterPdu, SignalPdu, ReceiverPdu, networkMode "networkWriter":
 //   every writeInterval seconds a PDU of its fields is sent (disWrite).
 // - ReceiverPdu, SignalPdu, TransmitterPdu, networkMode "networkReader": the same with the
