@@ -303,6 +303,8 @@ void CpuGaussianRasterizer::rasterize(const Source& source, std::span<const std:
     if (prepared.x0 > prepared.x1 || prepared.y0 > prepared.y1) return false;
     glm::vec3 color;
     if (!source.color(index, in, color)) return false;
+    if (view.fog.type != 0)
+      color = fogged(view.fog, color, glm::vec3(view.modelView * glm::vec4(in.position, 1.0f)));
     prepared.cx = g.center.x;
     prepared.cy = g.center.y;
     prepared.ca = g.conic.x;

@@ -64,6 +64,7 @@ struct CpuGaussianView {
   float nearClip = 0.1f;       // eye depths drawn: [nearClip, farClip]
   float farClip = 100.0f;
   float opacityScale = 1.0f;  // multiplies every opacity (a node's opacityScale)
+  SplatFog fog;               // what each splat's colour goes through (by its centre)
 };
 
 class CpuGaussianRasterizer {

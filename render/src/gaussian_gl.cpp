@@ -23,6 +23,10 @@ uniform float u_near;
 uniform float u_opacityScale;
 uniform float u_minAlpha;      // fragments below it are not drawn (1/255; vectors 0.5/255)
 uniform float u_keepIntegral;  // 1: the peak keeps the integrated opacity (QNV vectors)
+uniform int u_fogType;         // render::SplatFog
+uniform vec3 u_fogColor;
+uniform float u_fogVisibilityRange;
+uniform vec4 u_fogPlane;
 out vec2 v_offset;  // pixels from the centre, y up
 flat out vec3 v_conic;
 flat out vec4 v_color;
@@ -64,6 +68,12 @@ void main() {
   v_offset = corner;
   v_conic = vec3(c, -b, a) / det;
   v_color = vec4(texelFetch(u_colors, i).rgb, opacity);
+  if (u_fogType != 0 && u_fogVisibilityRange > 0.0) {  // render::fogged
+    float d = u_fogPlane != vec4(0.0) ? dot(u_fogPlane, eye) : length(eye.xyz);
+    float r = u_fogVisibilityRange;
+    float f = d < r ? (u_fogType == 1 ? (r - d) / r : exp(-d / (r - d))) : 0.0;
+    v_color.rgb = mix(u_fogColor, v_color.rgb, clamp(f, 0.0, 1.0));
+  }
   v_minAlpha = u_minAlpha * keep;
 }
 )glsl";
@@ -349,6 +359,10 @@ void GaussianGlPass::drawUploaded(std::span<const std::uint32_t> order, std::siz
   glUniform1f(uniform(program_, "u_opacityScale"), opacityScale);
   glUniform1f(uniform(program_, "u_minAlpha"), minAlpha);
   glUniform1f(uniform(program_, "u_keepIntegral"), keepIntegral ? 1.0f : 0.0f);
+  glUniform1i(uniform(program_, "u_fogType"), fog_.type);
+  glUniform3fv(uniform(program_, "u_fogColor"), 1, &fog_.color[0]);
+  glUniform1f(uniform(program_, "u_fogVisibilityRange"), fog_.visibilityRange);
+  glUniform4fv(uniform(program_, "u_fogPlane"), 1, &fog_.eyePlane[0]);
   // Into the float layer (the scene's depth copied in), composited over the framebuffer
   // once; straight into the framebuffer where the layer cannot take the scene's depth.
   const bool layered = layer_.begin(viewport);

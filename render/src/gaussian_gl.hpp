@@ -38,6 +38,10 @@ class GaussianGlPass {
   GaussianGlPass(const GaussianGlPass&) = delete;
   GaussianGlPass& operator=(const GaussianGlPass&) = delete;
 
+  /// The fog every later draw's splat colours go through (by each centre's eye distance;
+  /// SplatFog's default: none).
+  void setFog(const SplatFog& fog) { fog_ = fog; }
+
   /// Draws `order` (indices into `cloud`, farthest first) into the current framebuffer's
   /// viewport (`viewport`: x, y, width, height in pixels), the cloud placed by `modelView`,
   /// projected by `projection`, its SH evaluated from `eye` (the camera in cloud
@@ -78,6 +82,7 @@ class GaussianGlPass {
   void release();
 
  private:
+  SplatFog fog_;
   void create();
   /// staging_ (colors_) to the splat (colour) texture buffer, from splat `from` on when
   /// the buffer already holds the rest (a grown set), else whole.

@@ -165,14 +165,17 @@ std::size_t SceneSplats::draw(const scene::TraversalFrame& frame, scene::SceneTr
     if (mode_ == scene::RenderMode::splats && world_) total += static_cast<double>(world_->total());
     if (total > 0.0) drawLod_ = std::min(lod_, static_cast<double>(budget_) / total);
   }
+  const glm::mat4 view = scene::viewMatrix(camera);
   auto drawSet = [&](const SplatSet& set, std::size_t count, const glm::mat4& model,
-                     const SplatStyle* style, std::span<const glm::vec4> clipPlanes) {
+                     const SplatStyle* style, std::span<const glm::vec4> clipPlanes,
+                     const SplatFog& fog) {
     auto& renderer = renderers_[&set];
     if (!renderer) {
       renderer = std::make_unique<SplatRenderer>();
       renderer->setPath(path_);
     }
     renderer->setClipPlanes(clipPlanes);
+    renderer->setFog(fog);
     renderer->draw(set, count, model, camera, aspect, lit,
                    sceneDepth ? SplatBlend::backToFront : SplatBlend::frontToBack, style);
     drawn += renderer->statistics().splats;
@@ -184,16 +187,19 @@ std::size_t SceneSplats::draw(const scene::TraversalFrame& frame, scene::SceneTr
       worldBuilt_ = true;
       worldRoots_ = scene_->rootNodes.size();
     }
-    if (world_) drawSet(*world_, drawCount(nullptr, *world_), glm::mat4(1.0f), nullptr, {});
+    if (world_)
+      drawSet(*world_, drawCount(nullptr, *world_), glm::mat4(1.0f), nullptr, {},
+              splatFogOf(traversal.fog(), view));
   }
   for (const scene::SplatInstance& s : frame.splats) {
     if (layer && s.layer != *layer) continue;
     const NodeSet& entry = nodeSet(*s.node, *s.baseUrl, traversal);
     const std::span<const glm::vec4> clipPlanes(frame.scopedClipPlanes.data() + s.clipPlaneBegin,
                                                 s.clipPlaneCount);
+    const SplatFog fog = splatFogOf(
+        s.localFog >= 0 ? frame.localFogs[static_cast<std::size_t>(s.localFog)] : traversal.fog(),
+        view);
     if (entry.raycast) {
-      const scene::FogSettings& fog =
-          s.localFog >= 0 ? frame.localFogs[static_cast<std::size_t>(s.localFog)] : traversal.fog();
       raycaster_.draw(*s.node, *s.baseUrl, s.model, camera, aspect, frame.lights, headlight,
                       {clipPlanes, fog}, textures, traversal, fetcher_);
       continue;
@@ -209,9 +215,9 @@ std::size_t SceneSplats::draw(const scene::TraversalFrame& frame, scene::SceneTr
       SplatStyle style = merged->style;  // a node's opacityScale applies to it too
       if (entry.ownStyle && entry.set->style.opacityScale > 0.0f)
         style.opacityScale *= entry.style.opacityScale / entry.set->style.opacityScale;
-      drawSet(*merged, merged->size(), s.model, &style, clipPlanes);
+      drawSet(*merged, merged->size(), s.model, &style, clipPlanes, fog);
     }
-    drawSet(*entry.set, count, s.model, entry.ownStyle ? &entry.style : nullptr, clipPlanes);
+    drawSet(*entry.set, count, s.model, entry.ownStyle ? &entry.style : nullptr, clipPlanes, fog);
   }
   return drawn;
 }

@@ -67,10 +67,12 @@ glm::vec3 centreOf(const qnv::DecodedVector& v) {
 }
 
 /// The cpu path's view of a viewport of width x height pixels: the clip range that
-/// projectionMatrix really uses.
+/// projectionMatrix really uses, and `fog`.
 detail::CpuGaussianView cpuView(const glm::mat4& modelView, const glm::mat4& projection,
-                                const scene::Camera& camera, int width, int height) {
+                                const scene::Camera& camera, int width, int height,
+                                const SplatFog& fog) {
   detail::CpuGaussianView v;
+  v.fog = fog;
   v.modelView = modelView;
   v.projection = projection;
   v.width = width;
@@ -289,6 +291,7 @@ void SplatRenderer::draw(const SplatSet& set, std::size_t count, const glm::mat4
     return;
   }
   Gpu& g = *gpu_;
+  g.gaussianPass.setFog(fog_);
   const SplatStyle& s = style != nullptr ? *style : set.style;
   const glm::mat4 modelView = scene::viewMatrix(camera) * model;
   const glm::mat4 projection = scene::projectionMatrix(camera, aspect);
@@ -328,7 +331,7 @@ void SplatRenderer::draw(const SplatSet& set, std::size_t count, const glm::mat4
   }
   // The scene's depth, as the GL path's depth test sees it (front to back: none).
   g.rasterizer.drawVectors({set.vectors.data(), count}, order, s, lights, normalMatrix,
-                           cpuView(modelView, projection, camera, width, height),
+                           cpuView(modelView, projection, camera, width, height, fog_),
                            sceneDepthReader(blend, g.depth, viewport), g.pixels);
   drawImage(width, height);
 }
@@ -337,6 +340,7 @@ void SplatRenderer::drawGaussians(const SplatSet& set, std::size_t count, const 
                                   const scene::Camera& camera, float aspect, SplatBlend blend,
                                   const SplatStyle& style) {
   Gpu& g = *gpu_;
+  g.gaussianPass.setFog(fog_);
   const glm::mat4 modelView = scene::viewMatrix(camera) * model;
   const glm::mat4 projection = scene::projectionMatrix(camera, aspect);
   GLint viewport[4];
@@ -445,7 +449,7 @@ void SplatRenderer::drawGaussians(const SplatSet& set, std::size_t count, const 
                         std::max(camera.nearClip, 1e-6f), style.opacityScale, revision);
     return;
   }
-  detail::CpuGaussianView v = cpuView(modelView, projection, camera, width, height);
+  detail::CpuGaussianView v = cpuView(modelView, projection, camera, width, height, fog_);
   v.eye = eye;
   v.opacityScale = style.opacityScale;
   g.rasterizer.draw(cloud, order, v, sceneDepthReader(blend, g.depth, viewport), g.pixels, revision,

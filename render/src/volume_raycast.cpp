@@ -269,16 +269,11 @@ bool VolumeRaycaster::draw(const vrml::Node& node, const std::string& baseUrl,
     planes[i] = glm::transpose(model) * around.clipPlanes[i];
   glUniform1i(uniform(program, "u_clipPlaneCount"), static_cast<GLint>(planeCount));
   glUniform4fv(uniform(program, "u_clipPlanes[0]"), 8, glm::value_ptr(planes[0]));
-  const scene::FogSettings& fog = around.fog;
-  glUniform1i(uniform(program, "u_fogType"),
-              fog.visibilityRange > 0.0f ? (fog.exponential ? 2 : 1) : 0);
+  const SplatFog& fog = around.fog;
+  glUniform1i(uniform(program, "u_fogType"), fog.type);
   glUniform3fv(uniform(program, "u_fogColor"), 1, glm::value_ptr(fog.color));
   glUniform1f(uniform(program, "u_fogVisibilityRange"), fog.visibilityRange);
-  const glm::vec4 fogPlane = fog.volumetric
-                                 ? glm::transpose(glm::inverse(view)) *
-                                       glm::vec4(fog.volumetricDirection, -fog.volumetricStart)
-                                 : glm::vec4(0.0f);
-  glUniform4fv(uniform(program, "u_fogPlane"), 1, glm::value_ptr(fogPlane));
+  glUniform4fv(uniform(program, "u_fogPlane"), 1, glm::value_ptr(fog.eyePlane));
   // Texture-space gradients to eye space: X_ITE's x3d_TextureNormalMatrix (the inverse of
   // the texture transform's 3x3, position / dimensions) under the normal matrix.
   const glm::mat3 textureNormal = glm::inverseTranspose(glm::mat3(modelView)) *
@@ -360,6 +355,17 @@ bool VolumeRaycaster::draw(const vrml::Node& node, const std::string& baseUrl,
   glCullFace(GL_BACK);
   glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
   return true;
+}
+
+SplatFog splatFogOf(const scene::FogSettings& fog, const glm::mat4& view) {
+  SplatFog f;
+  f.type = fog.visibilityRange > 0.0f ? (fog.exponential ? 2 : 1) : 0;
+  f.color = fog.color;
+  f.visibilityRange = fog.visibilityRange;
+  if (fog.volumetric)
+    f.eyePlane = glm::transpose(glm::inverse(view)) *
+                 glm::vec4(fog.volumetricDirection, -fog.volumetricStart);
+  return f;
 }
 
 bool VolumeRaycaster::copySceneDepth(const GLint viewport[4]) {

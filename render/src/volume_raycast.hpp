@@ -32,8 +32,12 @@ namespace gs::render::detail {
 /// 8 are used) and the fog (the bound Fog or the innermost LocalFog).
 struct VolumeSurroundings {
   std::span<const glm::vec4> clipPlanes;
-  const scene::FogSettings& fog;
+  const SplatFog& fog;
 };
+
+/// The fog of `fog` (a Fog or LocalFog's settings) seen through `view` (world to eye), as
+/// the splats and the ray caster apply it: a volumetric fog's plane in eye coordinates.
+SplatFog splatFogOf(const scene::FogSettings& fog, const glm::mat4& view);
 
 /// The ray caster's GL objects: the box and one program per generated style code.
 class VolumeRaycaster {

@@ -1,6 +1,7 @@
-// ClipPlanes on splats (render::SplatRenderer::setClipPlanes): a splat whose centre a
-// ClipPlane in scope removes is not drawn, on the cpu path and the geometry path, for
-// Gaussian splats and for the paper's QNV vectors of a volume.
+// ClipPlanes and fog on splats (render::SplatRenderer::setClipPlanes, setFog): a splat
+// whose centre a ClipPlane in scope removes is not drawn, and a splat's colour is fogged by
+// its centre's distance, on the cpu path and the geometry path, for Gaussian splats and
+// for the paper's QNV vectors of a volume.
 #include "test_support.hpp"
 #include "world_files.hpp"
 
@@ -78,4 +79,37 @@ TEST_CASE("ClipPlanes remove the splats whose centres they cut", "[render][offsc
   CHECK(leftWhole > 1000);
   CHECK(leftClipped * 50 < leftWhole);
   CHECK(rightClipped > rightWhole / 2);
+}
+
+TEST_CASE("Fog colours splats by their centres' distance", "[render][offscreen][splat]") {
+  // A red LINEAR fog whose range is 12 m and splats about 6.1 m away: half the colour is
+  // left (f = (12 - 6.08) / 12 = 0.49), the rest is the fog's red.
+  const std::string splats =
+      "GaussianSplats { positions [ -1 0 0, 1 0 0 ] orientations [ 0 0 0 1, 0 0 0 1 ]"
+      " scales [ 0.3 0.3 0.3, 0.3 0.3 0.3 ] opacities [ 1 1 ]"
+      " sphericalHarmonicsDegree0Coef0 [ 1.77 1.77 1.77, 1.77 1.77 1.77 ] }\n";
+  const std::string fog = "Fog { color 1 0 0 visibilityRange 12 }\n";
+  for (const gs::render::SplatPath path :
+       {gs::render::SplatPath::cpu, gs::render::SplatPath::geometry}) {
+    INFO(gs::render::splatPathName(path));
+    const gs::render::Image clear = drawClipWorld("fog_none", splats, path);
+    const gs::render::Image fogged = drawClipWorld("fog_red", fog + splats, path);
+    const std::uint8_t* a = clear.pixel(43, 32);
+    const std::uint8_t* b = fogged.pixel(43, 32);
+    INFO(int(a[0]) << " " << int(a[1]) << " " << int(b[0]) << " " << int(b[1]));
+    CHECK(int(b[0]) >= int(a[0]) - 2);
+    CHECK(double(b[1]) / double(a[1]) == Approx(0.49).margin(0.05));
+    CHECK(double(b[2]) / double(a[2]) == Approx(0.49).margin(0.05));
+  }
+  // A volume's QNV vectors on the cpu path: the fogged ball is redder.
+  const std::string ball = "VolumeData { dimensions 3 3 3 voxels ImageTexture3D { url \"" +
+                           (gs::test::sourceDir() / "assets/volumes/ball32.nrrd").string() +
+                           "\" } }\n";
+  const gs::render::Image ballClear = drawClipWorld("fog_ball", ball, gs::render::SplatPath::cpu);
+  const gs::render::Image ballFogged =
+      drawClipWorld("fog_ball_red", fog + ball, gs::render::SplatPath::cpu);
+  const std::uint8_t* c = ballClear.pixel(32, 32);
+  const std::uint8_t* d = ballFogged.pixel(32, 32);
+  INFO(int(c[0]) << " " << int(c[1]) << " " << int(d[0]) << " " << int(d[1]));
+  CHECK(int(d[0]) - int(d[1]) > int(c[0]) - int(c[1]) + 20);
 }

@@ -18,6 +18,29 @@
 
 namespace gs::render {
 
+/// The fog a splat's colour goes through (X3D 4.0 clause 24.2.1, as a shape's fragment:
+/// the bound Fog or the innermost LocalFog), by its centre's distance from the eye.
+struct SplatFog {
+  int type = 0;               // 0: none, 1: LINEAR, 2: EXPONENTIAL
+  glm::vec3 color{1.0f};      // the fog's colour (the splat colours' space)
+  float visibilityRange = 0;  // eye metres; where the fog is whole
+  /// Volumetric fog (castle-engine's): the distance is dot(eyePlane, (eye position, 1));
+  /// all 0: the distance to the eye.
+  glm::vec4 eyePlane{0.0f};
+};
+
+/// `color` fogged at eye position `eye` (metres, eye coordinates): mixed towards the fog's
+/// colour by f = (r - d) / r (LINEAR) or exp(-d / (r - d)) (EXPONENTIAL), 0 beyond r.
+inline glm::vec3 fogged(const SplatFog& fog, const glm::vec3& color, const glm::vec3& eye) {
+  if (fog.type == 0 || !(fog.visibilityRange > 0.0f)) return color;
+  const float d = fog.eyePlane != glm::vec4(0.0f) ? glm::dot(fog.eyePlane, glm::vec4(eye, 1.0f))
+                                                  : glm::length(eye);
+  const float r = fog.visibilityRange;
+  float f = 0.0f;
+  if (d < r) f = fog.type == 1 ? (r - d) / r : std::exp(-d / (r - d));
+  return glm::mix(fog.color, color, std::clamp(f, 0.0f, 1.0f));
+}
+
 /// Per-stream parameters of the splat model.
 struct SplatStyle {
   qnv::StreamKind kind = qnv::StreamKind::surface;

@@ -209,6 +209,9 @@ class SplatRenderer {
   /// empty: none). A splat whose centre a plane removes is not drawn, as crop boxes of
   /// splat editors cut by centre. The gpu path, which sorts on the GPU, gives way to the
   /// geometry path while planes are set.
+  /// The fog the splats of the next draw() calls go through (a shape's fragments' fog, by
+  /// each splat's centre; SplatFog's default: none).
+  void setFog(const SplatFog& fog) { fog_ = fog; }
   void setClipPlanes(std::span<const glm::vec4> planes) {
     clipPlanes_.assign(planes.begin(), planes.begin() + std::min<std::ptrdiff_t>(planes.size(), 8));
   }
@@ -236,6 +239,7 @@ class SplatRenderer {
   SplatStatistics statistics_;
   SplatPath path_;
   std::vector<glm::vec4> clipPlanes_;
+  SplatFog fog_;
   std::vector<std::uint32_t> clipped_;  // clippedOrder's result
 };
 
