@@ -4,6 +4,7 @@
 // the X3D 4.0 node model decide what each carries.
 #include "dis_fields.hpp"
 
+#include "dis/udp_socket.hpp"
 #include "geospatial/geo_system.hpp"
 
 namespace gs::runtime {
@@ -62,6 +63,26 @@ void disSendCollision(DisModel& s, NodeState& ns, const dis::CollisionPdu& p, do
   disEmitInt(s, ns, "collisionType", p.collisionType);
   disEmit(s, ns, "isCollided", FieldValue::make<FieldType::SFBool>(true));
   disEmit(s, ns, "collideTime", FieldValue::make<FieldType::SFTime>(now));
+}
+
+std::vector<std::uint8_t> disFireBytes(const vrml::Node& n, std::uint32_t timestamp) {
+  const auto id = [&](std::string_view field) {
+    return static_cast<std::uint16_t>(n.get<FieldType::SFInt32>(vrml::FieldName(field), 0));
+  };
+  dis::FirePdu p;
+  p.header.timestamp = timestamp;
+  p.firingEntityID = {id("siteID"), id("applicationID"), id("entityID")};
+  p.munitionID = {id("munitionSiteID"), id("munitionApplicationID"), id("munitionEntityID")};
+  p.eventID = {id("eventSiteID"), id("eventApplicationID"), id("eventNumber")};
+  p.fireMissionIndex =
+      static_cast<std::uint32_t>(std::max(0, n.get<FieldType::SFInt32>("fireMissionIndex", 0)));
+  p.location = glm::dvec3(n.get<FieldType::SFVec3f>("munitionStartPoint", glm::vec3(0.0f)));
+  p.descriptor.warhead = id("warhead");
+  p.descriptor.fuse = id("fuse");
+  p.descriptor.quantity = id("munitionQuantity");
+  p.descriptor.rate = id("firingRate");
+  p.range = n.get<FieldType::SFFloat>("firingRange", 0.0f);
+  return dis::encodeFire(p);
 }
 
 void disSendGeoCoords(DisModel& s, NodeState& ns, const glm::dvec3& location) {

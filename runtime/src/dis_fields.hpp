@@ -53,6 +53,12 @@ void disSendDetonation(DisModel& s, NodeState& ns, const dis::DetonationPdu& p, 
 /// collideTime, collisionType and the event's IDs.
 void disSendCollision(DisModel& s, NodeState& ns, const dis::CollisionPdu& p, double now);
 
+/// The Fire PDU of an EspduTransform networkWriter's fields (IEEE 1278.1 clause 7.3.2): its
+/// entity firing, the munition's and the event's IDs, fireMissionIndex, munitionStartPoint
+/// as the location, warhead, fuse, munitionQuantity, firingRate, firingRange; `timestamp`
+/// in DIS time units.
+std::vector<std::uint8_t> disFireBytes(const vrml::Node& n, std::uint32_t timestamp);
+
 /// An EspduTransform reader's geoCoords: `location` (geocentric metres, as a PDU gives
 /// it) in the node's geoSystem (X3D 4.0 clause 25.2.2; GD WE by default).
 void disSendGeoCoords(DisModel& s, NodeState& ns, const glm::dvec3& location);

@@ -442,16 +442,11 @@ std::vector<std::uint8_t> disReceiverBytes(const vrml::Node& n, double now) {
 /// UDP `port` of `address`. A world read from the network sends to the loopback only,
 /// whatever its address says. A PDU that cannot be sent is one error at the node; then
 /// timestamp, and isActive TRUE the first time.
-void disWrite(DisModel& s, NodeState& ns, double now, int index) {
+/// Sends `bytes` to the node's UDP `port` of `address` (the loopback for a world read from
+/// the network); false, and one error at the node, when it cannot.
+bool disSend(DisModel& s, NodeState& ns, const std::vector<std::uint8_t>& bytes) {
   const vrml::Node& n = *ns.node;
   EspduState& st = *ns.espdu;
-  const double interval = n.get<FieldType::SFTime>("writeInterval", 1.0);
-  if (!(interval > 0.0) || now - st.lastWrite < interval) return;  // 0: no writing
-  st.lastWrite = now;
-  const std::vector<std::uint8_t> bytes = index == 0   ? disEntityStateBytes(n, now)
-                                          : index == 1 ? disTransmitterBytes(n, now)
-                                          : index == 2 ? disSignalBytes(n, now)
-                                                       : disReceiverBytes(n, now);
   std::string address = n.get<FieldType::SFString>("address", std::string("localhost"));
   const auto world = s.nodeScenes.find(&n);
   const vrml::Scene* scene = world != s.nodeScenes.end() ? world->second : s.scene.get();
@@ -462,8 +457,39 @@ void disWrite(DisModel& s, NodeState& ns, double now, int index) {
     if (!st.reported)
       s.report(vrml::Severity::error, n, error + ": " + n.typeName() + " writes no PDUs");
     st.reported = true;
-    return;
+    return false;
   }
+  return true;
+}
+
+/// An EspduTransform writer whose fired1 or fired2 turned TRUE sends one Fire PDU of its
+/// fields (disFireBytes) and firedTime, at once (not held for writeInterval, though 0 there
+/// still means no writing); another once both were FALSE and one is TRUE again.
+void disWriteFire(DisModel& s, NodeState& ns, double now) {
+  const vrml::Node& n = *ns.node;
+  EspduState& st = *ns.espdu;
+  const bool fired =
+      n.get<FieldType::SFBool>("fired1", false) || n.get<FieldType::SFBool>("fired2", false);
+  if (!fired) st.fireSent = false;
+  if (!fired || st.fireSent) return;
+  st.fireSent = true;
+  if (disSend(s, ns, disFireBytes(n, disTimestamp(now))))
+    disEmit(s, ns, "firedTime", FieldValue::make<FieldType::SFTime>(now));
+}
+
+void disWrite(DisModel& s, NodeState& ns, double now, int index) {
+  const vrml::Node& n = *ns.node;
+  EspduState& st = *ns.espdu;
+  const double interval = n.get<FieldType::SFTime>("writeInterval", 1.0);
+  if (!(interval > 0.0)) return;  // 0: no writing
+  if (index == 0) disWriteFire(s, ns, now);
+  if (now - st.lastWrite < interval) return;
+  st.lastWrite = now;
+  const std::vector<std::uint8_t> bytes = index == 0   ? disEntityStateBytes(n, now)
+                                          : index == 1 ? disTransmitterBytes(n, now)
+                                          : index == 2 ? disSignalBytes(n, now)
+                                                       : disReceiverBytes(n, now);
+  if (!disSend(s, ns, bytes)) return;
   disEmit(s, ns, "timestamp", FieldValue::make<FieldType::SFTime>(now));
   if (!st.active) {
     st.active = true;

@@ -165,6 +165,7 @@ struct EspduState {
   bool announced = false;      // isNetworkReader / isStandAlone sent
   bool active = false;         // isActive TRUE sent
   bool limitReported = false;  // a DISEntityManager: its entity limit was reported
+  bool fireSent = false;       // a networkWriter: the Fire PDU of fired1/fired2 TRUE went
   /// The latest PDU of its entity or radio since its last read.
   std::optional<dis::Pdu> pending;
   /// An EspduTransform reader: the last Entity State PDU read and when, which dead

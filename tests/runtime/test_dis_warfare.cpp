@@ -118,3 +118,47 @@ TEST_CASE("DIS: an EspduTransform's geoCoords are its entity's location in its g
   const glm::dvec3 gc = w.node("C").get<FieldType::SFVec3d>("geoCoords", glm::dvec3(-1));
   CHECK(gc == p.location);
 }
+
+TEST_CASE("DIS: a networkWriter EspduTransform sends a Fire PDU when fired1 turns TRUE",
+          "[runtime][x3d][dis]") {
+  const int port = warfareTestPort(3);
+  gs::dis::UdpReceiver listener;
+  std::string error;
+  REQUIRE(listener.open(port, "localhost", error));
+  RunningWorld w(x3dWorld("DEF W EspduTransform { networkMode \"networkWriter\" writeInterval 10"
+                          " port " +
+                          std::to_string(port) +
+                          " siteID 4 applicationID 5 entityID 6 munitionEntityID 77"
+                          " eventNumber 9 munitionStartPoint 1 2 3 warhead 1000 fuse 2000"
+                          " munitionQuantity 2 firingRate 600 firingRange 1500 }\n"),
+                 0.0);
+  w.model->advanceTo(0.1);
+  auto kinds = [&]() {
+    std::vector<int> types;
+    for (const auto& d : listener.receive(16)) types.push_back(d.size() > 2 ? d[2] : -1);
+    return types;
+  };
+  CHECK(kinds() == std::vector<int>{1});  // the Entity State PDU, and no Fire PDU
+  w.send("W", "set_fired1", gs::vrml::FieldValue::make<FieldType::SFBool>(true));
+  w.model->advanceTo(0.2);
+  std::vector<std::vector<std::uint8_t>> got = listener.receive(16);
+  REQUIRE(got.size() == 1);  // at once, not at the next writeInterval
+  const auto fire = gs::dis::decodeFire(got[0], nullptr);
+  REQUIRE(fire);
+  CHECK(fire->firingEntityID == gs::dis::EntityID{4, 5, 6});
+  CHECK(fire->munitionID.entity == 77);
+  CHECK(fire->eventID.eventNumber == 9);
+  CHECK(fire->location == glm::dvec3(1, 2, 3));
+  CHECK(fire->descriptor.warhead == 1000);
+  CHECK(fire->descriptor.rate == 600);
+  CHECK(fire->range == 1500.0f);
+  CHECK(w.node("W").get<FieldType::SFTime>("firedTime", 0.0) == Approx(0.2));
+  // Still TRUE: no second PDU; FALSE then TRUE again: one more.
+  w.model->advanceTo(0.3);
+  CHECK(kinds().empty());
+  w.send("W", "set_fired1", gs::vrml::FieldValue::make<FieldType::SFBool>(false));
+  w.model->advanceTo(0.4);
+  w.send("W", "set_fired1", gs::vrml::FieldValue::make<FieldType::SFBool>(true));
+  w.model->advanceTo(0.5);
+  CHECK(kinds() == std::vector<int>{2});
+}
