@@ -66,9 +66,7 @@ void disSendCollision(DisModel& s, NodeState& ns, const dis::CollisionPdu& p, do
 }
 
 std::vector<std::uint8_t> disFireBytes(const vrml::Node& n, std::uint32_t timestamp) {
-  const auto id = [&](std::string_view field) {
-    return static_cast<std::uint16_t>(n.get<FieldType::SFInt32>(vrml::FieldName(field), 0));
-  };
+  const auto id = [&](std::string_view field) { return disId(n, field); };
   dis::FirePdu p;
   p.header.timestamp = timestamp;
   p.firingEntityID = {id("siteID"), id("applicationID"), id("entityID")};

@@ -23,6 +23,16 @@ inline std::uint64_t disRadioKey(const dis::RadioID& r) {
   return (disEntityKey(r.entity) << 16) | r.radio;
 }
 
+/// An SFInt32 field of `n` as a PDU's 16-bit ID (its low 16 bits; 0 when absent).
+inline std::uint16_t disId(const vrml::Node& n, std::string_view field) {
+  const int i = n.type().findExact(field);
+  if (i < 0) return 0;
+  const vrml::FieldValue& v = n.fieldAt(static_cast<std::size_t>(i));
+  return v.type() == vrml::FieldType::SFInt32
+             ? static_cast<std::uint16_t>(v.get<vrml::FieldType::SFInt32>())
+             : std::uint16_t{0};
+}
+
 /// Sends `v` from field `name` of `ns` when the node has that field with v's type.
 inline void disEmit(DisModel& s, NodeState& ns, std::string_view name, vrml::FieldValue v) {
   const int i = ns.node->type().findExact(name);

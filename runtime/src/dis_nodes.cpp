@@ -75,14 +75,6 @@ int disPduIndex(vrml::NodeTypeId id) {
   }
 }
 
-std::uint16_t disId(const vrml::Node& n, std::string_view field) {
-  const int i = n.type().findExact(field);
-  if (i < 0) return 0;
-  const FieldValue& v = n.fieldAt(static_cast<std::size_t>(i));
-  return v.type() == FieldType::SFInt32 ? static_cast<std::uint16_t>(v.get<FieldType::SFInt32>())
-                                        : std::uint16_t{0};
-}
-
 dis::EntityID disEntityOf(const vrml::Node& n) {
   return {disId(n, "siteID"), disId(n, "applicationID"), disId(n, "entityID")};
 }
