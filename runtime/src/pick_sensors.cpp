@@ -12,12 +12,18 @@
 // isActive when some target is picked or none any more, pickedGeometry (the pickTarget
 // members picked) and pickedPoint (Point and Line sensors, the sensor's coordinates) when
 // they change; LinePickSensor also pickedNormal and pickedTextureCoordinate (0 0 0).
-// objectType and matchCriterion are not used: every pickable target matches.
+// objectType and matchCriterion choose the PickableGroups a sensor may pick in (38.3.1,
+// 38.4.2). A ParticleSystem among the targets' shapes is picked by its particles as they
+// are drawn at that step (clause 40.4.7: X3DShapeNode).
 #include "execution_state.hpp"
 
 #include "geometry/geometry.hpp"
 #include "geometry/intersect.hpp"
+#include "particles/particle_mesh.hpp"
 #include "vrml/transform.hpp"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -27,6 +33,7 @@
 #include <string>
 #include <string_view>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace gs::runtime {
@@ -76,15 +83,24 @@ bool objectTypesMatch(const vrml::Node& sensor, const vrml::Node& group) {
 constexpr std::size_t kMaxTriangles = 2'000'000;
 constexpr std::size_t kMaxTests = 50'000'000;
 
+/// A piece of a WorldMesh that is closed by itself (one shape's mesh, one particle's
+/// geometry): its triangles end before `end` (an index into WorldMesh::triangles).
+struct ClosedPart {
+  std::size_t end = 0;
+  vrml::Bounds bounds;
+};
+
 struct WorldMesh {
   std::vector<glm::vec3> triangles;  // 3 per triangle, world coordinates
   std::vector<glm::vec3> points;     // every vertex (points, lines' ends, triangles' corners)
   std::vector<glm::vec3> segments;   // 2 per line segment
+  std::vector<ClosedPart> parts;     // the triangles of each addMesh() call, in order
   vrml::Bounds bounds;
 };
 
 void addMesh(const vrml::Mesh& mesh, const glm::mat4& m, WorldMesh& out) {
   std::vector<glm::vec3> world(mesh.positions.size());
+  ClosedPart part;
   for (std::size_t i = 0; i < world.size(); ++i) {
     world[i] = glm::vec3(m * glm::vec4(mesh.positions[i], 1.0f));
     out.bounds.extend(world[i]);
@@ -93,7 +109,13 @@ void addMesh(const vrml::Mesh& mesh, const glm::mat4& m, WorldMesh& out) {
   auto& list = mesh.primitive == vrml::Primitive::triangles ? out.triangles : out.segments;
   if (mesh.primitive == vrml::Primitive::points) return;
   for (std::uint32_t i : mesh.indices)
-    if (i < world.size() && list.size() < kMaxTriangles * 3) list.push_back(world[i]);
+    if (i < world.size() && list.size() < kMaxTriangles * 3) {
+      list.push_back(world[i]);
+      part.bounds.extend(world[i]);
+    }
+  if (&list != &out.triangles || part.bounds.empty()) return;
+  part.end = out.triangles.size();
+  out.parts.push_back(part);
 }
 
 /// Segment p + t (q - p), t in [0, 1], against triangle a b c (both faces): t, or -1.
@@ -108,22 +130,30 @@ bool insideBox(const glm::vec3& p, const vrml::Bounds& b) {
          glm::all(glm::lessThanEqual(p, b.max));
 }
 
-/// Whether `p` is inside the closed triangle mesh `tris`: crossings of a ray along a fixed,
-/// skew direction are odd.
-bool insideMesh(const glm::vec3& p, const std::vector<glm::vec3>& tris, const vrml::Bounds& b,
-                std::size_t& budget) {
-  if (!insideBox(p, b)) return false;
-  if (budget < tris.size() / 3) {
-    budget = 0;
-    return false;
-  }
-  budget -= tris.size() / 3;
+/// Whether `p` is inside one of the closed parts of `mesh`: crossings of a ray along a
+/// fixed, skew direction with that part's triangles are odd. (Parts are tested one by one:
+/// two overlapping closed shapes, or coincident particles, would cancel in one count.)
+bool insideMesh(const glm::vec3& p, const WorldMesh& mesh, std::size_t& budget) {
+  if (!insideBox(p, mesh.bounds)) return false;
   const glm::vec3 far =
-      p + glm::vec3(0.5773f, 0.5774f, 0.5775f) * (glm::length(b.size()) * 4.0f + 1.0f);
-  int crossings = 0;
-  for (std::size_t i = 0; i + 2 < tris.size(); i += 3)
-    if (segmentHitsTriangle(p, far, tris[i], tris[i + 1], tris[i + 2]) >= 0.0f) ++crossings;
-  return crossings % 2 == 1;
+      p + glm::vec3(0.5773f, 0.5774f, 0.5775f) * (glm::length(mesh.bounds.size()) * 4.0f + 1.0f);
+  std::size_t begin = 0;
+  for (const ClosedPart& part : mesh.parts) {
+    const std::size_t first = std::exchange(begin, part.end);
+    if (!insideBox(p, part.bounds)) continue;
+    if (budget < (part.end - first) / 3) {
+      budget = 0;
+      return false;
+    }
+    budget -= (part.end - first) / 3;
+    int crossings = 0;
+    for (std::size_t i = first; i + 2 < part.end; i += 3)
+      if (segmentHitsTriangle(p, far, mesh.triangles[i], mesh.triangles[i + 1],
+                              mesh.triangles[i + 2]) >= 0.0f)
+        ++crossings;
+    if (crossings % 2 == 1) return true;
+  }
+  return false;
 }
 
 bool boxesOverlap(const vrml::Bounds& a, const vrml::Bounds& b) {
@@ -132,6 +162,35 @@ bool boxesOverlap(const vrml::Bounds& a, const vrml::Bounds& b) {
 }
 
 enum class PickKind { point, line, primitive, volume };
+
+/// Adds the visible particles of ParticleSystem `system` (its coordinates to world: `m`) as
+/// they are drawn (scene/src/traversal_walk.hpp): geometryType GEOMETRY its `geometry`
+/// node's mesh (`meshOf`) translated to each particle, the other types the mesh
+/// particles::particleMesh makes (SPRITE facing the viewer: `viewToWorld` its turn), up to
+/// kMaxTriangles triangles.
+template <class MeshOf>
+void addParticles(const vrml::Node& system, const particles::ParticleSimulation& simulation,
+                  const glm::mat4& m, const glm::mat3& viewToWorld, const MeshOf& meshOf,
+                  WorldMesh& out) {
+  if (!system.get<FieldType::SFBool>("visible", true)) return;
+  const particles::GeometryType type = particles::geometryTypeOf(
+      system.get<FieldType::SFString>("geometryType", std::string("QUAD")));
+  if (type != particles::GeometryType::geometry) {
+    addMesh(particles::particleMesh(system, type, simulation.particles(),
+                                    glm::inverse(glm::mat3(m)) * viewToWorld),
+            m, out);
+    return;
+  }
+  const vrml::NodePtr& geometry = system.sfnode("geometry");
+  if (!geometry || geometry->unresolved) return;
+  const vrml::Mesh& mesh = meshOf(*geometry);
+  for (const particles::Particle& p : simulation.particles()) {
+    if (out.triangles.size() + out.segments.size() >= kMaxTriangles * 3 ||
+        out.points.size() >= kMaxTriangles * 3)
+      return;
+    if (p.visible) addMesh(mesh, glm::translate(m, p.position), out);
+  }
+}
 
 }  // namespace
 
@@ -206,6 +265,10 @@ void ExecutionModel::State::evaluatePickSensors() {
     return it->second.second;
   };
 
+  // The viewer's turn, which SPRITE particles face (none known: the world's axes).
+  const glm::mat3 viewToWorld =
+      viewer ? glm::mat3_cast(viewer->orientation) : glm::mat3(1.0f);
+
   for (NodeState* ns : pickSensors) {
     const vrml::Node& n = *ns->node;
     PickSensorState& st = *ns->pick;
@@ -254,6 +317,13 @@ void ExecutionModel::State::evaluatePickSensors() {
                   addMesh(meshOf(*g), m, mesh);
                 return;
               }
+              if (node.typeId() == NodeTypeId::ParticleSystem) {
+                const auto it = nodes.find(&node);
+                if (it != nodes.end() && it->second->particles)
+                  addParticles(node, it->second->particles->simulation, m, viewToWorld, meshOf,
+                               mesh);
+                return;
+              }
               const bool places = vrml::placesChildren(node.typeId());
               if (!places && !node.is(vrml::AbstractType::X3DGroupingNode)) return;
               const glm::mat4 cm = places ? m * vrml::transformMatrix(node) : m;
@@ -267,7 +337,7 @@ void ExecutionModel::State::evaluatePickSensors() {
         if (kind == PickKind::point) {
           for (const glm::vec3& p : probe.points)
             if (bounds ? insideBox(p, mesh.bounds)
-                       : insideMesh(p, mesh.triangles, mesh.bounds, budget)) {
+                       : insideMesh(p, mesh, budget)) {
               hit.points.push_back(glm::vec3(worldToSensor * glm::vec4(p, 1.0f)));
               any = true;
             }
@@ -304,9 +374,9 @@ void ExecutionModel::State::evaluatePickSensors() {
           any = boxesOverlap(probe.bounds, mesh.bounds);
         } else if (boxesOverlap(probe.bounds, mesh.bounds)) {
           for (const glm::vec3& p : probe.points)
-            if ((any = insideMesh(p, mesh.triangles, mesh.bounds, budget))) break;
+            if ((any = insideMesh(p, mesh, budget))) break;
           for (std::size_t i = 0; !any && i < mesh.points.size(); ++i)
-            any = insideMesh(mesh.points[i], probe.triangles, probe.bounds, budget);
+            any = insideMesh(mesh.points[i], probe, budget);
           for (std::size_t i = 0; !any && budget > 0 && i + 2 < probe.triangles.size(); i += 3)
             for (std::size_t j = 0; !any && budget > 0 && j + 2 < mesh.triangles.size();
                  j += 3, --budget)

@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
 
 using gs::test::RunningWorld;
 using gs::test::x3dWorld;
@@ -156,4 +157,61 @@ DEF Off PointPickSensor { sortOrder "ALL" objectType "NONE"
   CHECK(picked("All") == Names{"A", "B"});      // "ALL", the default
   CHECK(picked("Off").empty());                 // a sensor of "NONE" picks nothing
   CHECK_FALSE(w.node("Off").get<FieldType::SFBool>("isActive", true));
+}
+
+TEST_CASE("picking: a ParticleSystem is picked by its particles as they are drawn",
+          "[runtime][x3d][picking][particles]") {
+  // Particles that stay where they are born: QUADs of 1 m at the origin, and GEOMETRY
+  // boxes of 2 m at x = 10. Nothing lives before the first step.
+  RunningWorld w(x3dWorld(R"(
+DEF QUADS Transform { children DEF PS ParticleSystem { geometryType "QUAD"
+  maxParticles 10 particleLifetime 1 particleSize 1 1
+  emitter PointEmitter { speed 0 variation 0 } } }
+DEF BOXES Transform { translation 10 0 0 children DEF PB ParticleSystem {
+  geometryType "GEOMETRY" geometry Box { size 2 2 2 }
+  maxParticles 10 particleLifetime 1
+  emitter PointEmitter { speed 0 variation 0 } } }
+DEF LINE LinePickSensor { intersectionType "GEOMETRY" sortOrder "ALL"
+  pickingGeometry LineSet { vertexCount 2 coord Coordinate { point [ 0.2 0.1 -5, 0.2 0.1 5 ] } }
+  pickTarget [ USE QUADS USE BOXES ] }
+DEF POINT PointPickSensor { intersectionType "GEOMETRY" sortOrder "ALL"
+  pickingGeometry PointSet { coord Coordinate { point [ 10.5 0.5 0.5, 12 0 0 ] } }
+  pickTarget [ USE QUADS USE BOXES ] }
+)"),
+                 0.0);
+  w.model->advanceBy(0.5, 1.0 / 60.0);
+  const auto events = w.take();
+  CHECK(sawPick(events, "LINE.isActive=TRUE"));
+  CHECK(sawPick(events, "POINT.isActive=TRUE"));
+  // The line crosses each quad at its own point; they are all at the origin.
+  const auto& line = w.node("LINE").field("pickedPoint")->get<FieldType::MFVec3f>();
+  REQUIRE(!line.empty());
+  CHECK(line[0].x == Approx(0.2f));
+  CHECK(line[0].y == Approx(0.1f));
+  CHECK(line[0].z == Approx(0.0f).margin(1e-6));
+  const auto& lineNormals = w.node("LINE").field("pickedNormal")->get<FieldType::MFVec3f>();
+  REQUIRE(!lineNormals.empty());
+  CHECK(std::abs(lineNormals[0].z) == Approx(1.0f));
+  const auto& lineTargets = w.node("LINE").field("pickedGeometry")->get<FieldType::MFNode>();
+  REQUIRE(lineTargets.size() == 1);
+  CHECK(lineTargets[0].get() == &w.node("QUADS"));
+  // The point inside the particles' boxes is picked, however many of them coincide there
+  // (each box is closed by itself: an even count of them must not cancel); 12 0 0 is past
+  // them. It stays picked at every step.
+  CHECK(!sawPick(events, "POINT.isActive=FALSE"));
+  REQUIRE(w.model->particleSimulation(w.node("PB")) != nullptr);
+  CHECK(w.model->particleSimulation(w.node("PB"))->particles().size() >= 2);
+  CHECK(w.node("POINT").field("pickedPoint")->get<FieldType::MFVec3f>() ==
+        std::vector<glm::vec3>{{10.5f, 0.5f, 0.5f}});
+  const auto& pointTargets = w.node("POINT").field("pickedGeometry")->get<FieldType::MFNode>();
+  REQUIRE(pointTargets.size() == 1);
+  CHECK(pointTargets[0].get() == &w.node("BOXES"));
+  // No particles, nothing picked.
+  w.send("PS", "set_enabled", FieldValue::make<FieldType::SFBool>(false));
+  w.send("PB", "set_enabled", FieldValue::make<FieldType::SFBool>(false));
+  w.take();
+  w.model->advanceBy(0.1, 1.0 / 60.0);
+  const auto off = w.take();
+  CHECK(sawPick(off, "LINE.isActive=FALSE"));
+  CHECK(sawPick(off, "POINT.isActive=FALSE"));
 }
