@@ -308,13 +308,16 @@ std::optional<Pdu> decodePdu(std::span<const std::uint8_t> bytes, std::string* e
     case static_cast<std::uint8_t>(PduType::collision):
       if (auto p = decodeCollision(bytes, error)) return Pdu(std::move(*p));
       return std::nullopt;
+    case static_cast<std::uint8_t>(PduType::removeEntity):
+      if (auto p = decodeRemoveEntity(bytes, error)) return Pdu(std::move(*p));
+      return std::nullopt;
     default:
       break;
   }
   if (error)
     *error = "PDU type " + std::to_string(header->pduType) +
              " is not read (only Entity State 1, Fire 2, Detonation 3, Collision 4, "
-             "Transmitter 25, Signal 26, Receiver 27)";
+             "Remove Entity 12, Transmitter 25, Signal 26, Receiver 27)";
   return std::nullopt;
 }
 

@@ -1,5 +1,5 @@
-// The Fire, Detonation (IEEE 1278.1-2012 clauses 7.3.2, 7.3.3) and Collision (7.2.3) PDUs
-// to and from their big-endian bytes (dis/pdu.hpp).
+// The Fire, Detonation (IEEE 1278.1-2012 clauses 7.3.2, 7.3.3), Collision (7.2.3) and
+// Remove Entity (7.5.3) PDUs to and from their big-endian bytes (dis/pdu.hpp).
 #include "dis/pdu.hpp"
 
 #include "pdu_bytes.hpp"
@@ -188,6 +188,34 @@ std::vector<std::uint8_t> encodeCollision(const CollisionPdu& p) {
   w.vec3f(p.velocity);
   w.f32(p.mass);
   w.vec3f(p.location);
+  return std::move(w.out);
+}
+
+std::optional<RemoveEntityPdu> decodeRemoveEntity(std::span<const std::uint8_t> bytes,
+                                                  std::string* error) {
+  const std::optional<PduHeader> header =
+      headerOf(bytes, PduType::removeEntity, "a Remove Entity PDU", error);
+  if (!header) return std::nullopt;
+  Reader r(bytes.first(header->length));
+  r.skip(12);
+  RemoveEntityPdu p;
+  p.header = *header;
+  p.originatingID = entityID(r);
+  p.receivingID = entityID(r);
+  p.requestID = r.u32();
+  if (!r.ok()) {
+    shortError(error, "Remove Entity PDU", header->length, kRemoveEntitySize);
+    return std::nullopt;
+  }
+  return p;
+}
+
+std::vector<std::uint8_t> encodeRemoveEntity(const RemoveEntityPdu& p) {
+  Writer w;
+  writeHeader(w, p.header, PduType::removeEntity, kSimulationManagementFamily, kRemoveEntitySize);
+  entityID(w, p.originatingID);
+  entityID(w, p.receivingID);
+  w.u32(p.requestID);
   return std::move(w.out);
 }
 

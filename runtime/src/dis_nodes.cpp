@@ -18,8 +18,12 @@
 //   applicationID when they are not 0) makes an EspduTransform (networkReader on the same
 //   address and port, for that entity) whose child is an Inline of the url of the
 //   DISEntityTypeMapping (its `children`, X3D 3's `mapping`) that best matches the entity
-//   type, sent in addedEntities. An entity whose PDUs stop for kDisEntityTimeout seconds, or
-//   whose PDU says it is deactivated (appearance bit 23), is sent in removedEntities.
+//   type, sent in addedEntities. An entity whose PDUs stop for kDisEntityTimeout seconds,
+//   whose PDU says it is deactivated (appearance bit 23), or that a Remove Entity PDU names,
+//   is sent in removedEntities.
+// - A datagram may carry its PDU behind an RTP header (dis/rtp.hpp); a writer whose
+//   rtpHeaderExpected is TRUE puts one before each PDU it sends. A multicast `address` is
+//   joined as a group (dis/udp_socket.hpp).
 //
 // Bytes from the network are untrusted: a datagram that does not decode is dropped
 // (counted in a warning once per node), at most kDisMaxDatagrams are read per port per frame,
@@ -29,6 +33,7 @@
 #include "vrml/transform.hpp"
 
 #include "dis/pdu.hpp"
+#include "dis/rtp.hpp"
 #include "dis/udp_socket.hpp"
 #include "encodings/node_types.hpp"
 
@@ -246,7 +251,8 @@ void disDrain(DisInbox& inbox) {
   inbox.pdus.clear();
   for (auto& m : inbox.latest) m.clear();
   for (const std::vector<std::uint8_t>& d : inbox.socket->receive(kDisMaxDatagrams)) {
-    std::optional<dis::Pdu> p = dis::decodePdu(d, nullptr);
+    // A PDU behind an RTP header (rtpHeaderExpected) or bare: the first byte tells.
+    std::optional<dis::Pdu> p = dis::decodePdu(dis::withoutRtpHeader(d), nullptr);
     if (!p) {
       ++inbox.dropped;
       continue;
@@ -261,6 +267,8 @@ void disDrain(DisInbox& inbox) {
             return disEntityKey(pdu.firingEntityID);
           else if constexpr (std::is_same_v<P, dis::CollisionPdu>)
             return disEntityKey(pdu.issuingEntityID);
+          else if constexpr (std::is_same_v<P, dis::RemoveEntityPdu>)
+            return disEntityKey(pdu.receivingID);
           else
             return disRadioKey(pdu.radio);
         },
@@ -444,8 +452,20 @@ bool disSend(DisModel& s, NodeState& ns, const std::vector<std::uint8_t>& bytes)
   const vrml::Scene* scene = world != s.nodeScenes.end() ? world->second : s.scene.get();
   if (scene != nullptr && (scene->url.starts_with("http://") || scene->url.starts_with("https://")))
     address = "localhost";  // remote content reaches no other host through the browser
+  // rtpHeaderExpected: an RTP header before the PDU (RFC 3550), numbered per node; its
+  // timestamp the PDU header's, its SSRC the node's site and application numbers.
+  std::vector<std::uint8_t> datagram;
+  if (n.get<FieldType::SFBool>("rtpHeaderExpected", false) && bytes.size() >= 8) {
+    const std::uint32_t timestamp = (std::uint32_t{bytes[4]} << 24) |
+                                    (std::uint32_t{bytes[5]} << 16) |
+                                    (std::uint32_t{bytes[6]} << 8) | bytes[7];
+    const dis::EntityID me = disEntityOf(n);
+    datagram = dis::rtpHeader(st.rtpSequence++, timestamp,
+                              (std::uint32_t{me.site} << 16) | me.application);
+  }
+  datagram.insert(datagram.end(), bytes.begin(), bytes.end());
   std::string error;
-  if (!dis::UdpReceiver::sendTo(address, n.get<FieldType::SFInt32>("port", 0), bytes, error)) {
+  if (!dis::UdpReceiver::sendTo(address, n.get<FieldType::SFInt32>("port", 0), datagram, error)) {
     if (!st.reported)
       s.report(vrml::Severity::error, n, error + ": " + n.typeName() + " writes no PDUs");
     st.reported = true;
@@ -559,6 +579,15 @@ void ExecutionModel::State::evaluateDis() {
           static_cast<std::uint16_t>(n.get<FieldType::SFInt32>("applicationID", 0));
       std::vector<vrml::NodePtr> added, removed;
       for (const dis::Pdu& any : inbox->pdus) {
+        // A Remove Entity PDU (IEEE 1278.1 clause 7.5.3) naming one of its entities removes it.
+        if (const auto* r = std::get_if<dis::RemoveEntityPdu>(&any)) {
+          auto it = st.entities.find(disEntityKey(r->receivingID));
+          if (it == st.entities.end()) continue;
+          disSet(*it->second.transform, "enabled", FieldValue::make<FieldType::SFBool>(false));
+          removed.push_back(it->second.transform);
+          st.entities.erase(it);
+          continue;
+        }
         const auto* p = std::get_if<dis::EntityStatePdu>(&any);
         if (p == nullptr || (site != 0 && p->entityID.site != site) ||
             (application != 0 && p->entityID.application != application))

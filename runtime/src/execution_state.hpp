@@ -166,6 +166,7 @@ struct EspduState {
   bool active = false;         // isActive TRUE sent
   bool limitReported = false;  // a DISEntityManager: its entity limit was reported
   bool fireSent = false;       // a networkWriter: the Fire PDU of fired1/fired2 TRUE went
+  std::uint16_t rtpSequence = 0;  // a networkWriter with rtpHeaderExpected: the next RTP one
   /// The latest PDU of its entity or radio since its last read.
   std::optional<dis::Pdu> pending;
   /// An EspduTransform reader: the last Entity State PDU read and when, which dead

@@ -1,11 +1,13 @@
 // DIS PDUs (IEEE 1278.1; dis/pdu.hpp): the Entity State PDU to bytes and back, and what a
 // malformed datagram gives (an error, never a read outside it).
 #include "dis/pdu.hpp"
+#include "dis/rtp.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <glm/gtc/constants.hpp>
 
+#include <algorithm>
 #include <variant>
 
 using namespace gs::dis;
@@ -339,4 +341,63 @@ TEST_CASE("DIS: Fire, Detonation and Collision PDUs survive encoding and decodin
   for (int i = 0; i < 4; ++i) nan[44 + i] = 0xff;  // the mass
   CHECK_FALSE(decodeCollision(nan, &error));
   CHECK(error.find("not finite") != std::string::npos);
+}
+
+TEST_CASE("DIS: a Remove Entity PDU survives encoding and decoding; every cut is an error",
+          "[dis]") {
+  RemoveEntityPdu remove;
+  remove.originatingID = {9, 8, 7};
+  remove.receivingID = {1, 2, 3};
+  remove.requestID = 0xDEADBEEF;
+  const std::vector<std::uint8_t> bytes = encodeRemoveEntity(remove);
+  REQUIRE(bytes.size() == kRemoveEntitySize);
+  CHECK(bytes[2] == 12);  // PDU type
+  CHECK(bytes[3] == 5);   // the simulation management family
+  std::string error;
+  const std::optional<Pdu> any = decodePdu(bytes, &error);
+  REQUIRE(any);
+  const RemoveEntityPdu& r = std::get<RemoveEntityPdu>(*any);
+  CHECK(r.originatingID == EntityID{9, 8, 7});
+  CHECK(r.receivingID == EntityID{1, 2, 3});
+  CHECK(r.requestID == 0xDEADBEEF);
+  for (std::size_t n = 0; n < bytes.size(); ++n) {
+    std::vector<std::uint8_t> cut(bytes.begin(), bytes.begin() + static_cast<long>(n));
+    if (n >= 10) {
+      cut[8] = 0;
+      cut[9] = static_cast<std::uint8_t>(n);
+    }
+    CHECK_FALSE(decodePdu(cut, &error));
+  }
+  CHECK(error.find("short of the 28") != std::string::npos);
+}
+
+TEST_CASE("DIS: an RTP header is told from a PDU and taken off, CSRCs, extension, padding",
+          "[dis]") {
+  const std::vector<std::uint8_t> pdu = encodeEntityState(tank());
+  CHECK_FALSE(startsWithRtpHeader(pdu));  // version 7 in the first byte
+  CHECK(withoutRtpHeader(pdu).size() == pdu.size());
+  std::vector<std::uint8_t> d = rtpHeader(0x0102, 0x03040506, 0x0708090A, 96);
+  REQUIRE(d.size() == 12);
+  CHECK(d == std::vector<std::uint8_t>{0x80, 96, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10});
+  d.insert(d.end(), pdu.begin(), pdu.end());
+  std::span<const std::uint8_t> payload = withoutRtpHeader(d);
+  REQUIRE(payload.size() == pdu.size());
+  CHECK(decodeEntityState(payload, nullptr)->marking == "TANK1");
+  // Two CSRCs, an extension of one word, four bytes of padding.
+  std::vector<std::uint8_t> full{0x80 | 0x20 | 0x10 | 2, 96, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0};
+  full.resize(full.size() + 8, 0xAA);                 // the CSRCs
+  full.insert(full.end(), {0xBE, 0xDE, 0, 1, 1, 2, 3, 4});  // extension, one word
+  full.insert(full.end(), pdu.begin(), pdu.end());
+  full.insert(full.end(), {0, 0, 0, 4});
+  payload = withoutRtpHeader(full);
+  REQUIRE(payload.size() == pdu.size());
+  CHECK(std::equal(payload.begin(), payload.end(), pdu.begin()));
+  // Headers that run past the datagram give nothing.
+  for (std::size_t n = 1; n < 12 + 8 + 8; ++n)
+    CHECK(withoutRtpHeader(std::span(full).first(n)).empty());
+  std::vector<std::uint8_t> overPadded = full;
+  overPadded.back() = 255;
+  CHECK(withoutRtpHeader(overPadded).empty());
+  overPadded.back() = 0;
+  CHECK(withoutRtpHeader(overPadded).empty());
 }

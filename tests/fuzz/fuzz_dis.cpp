@@ -1,6 +1,8 @@
 // dis::decodeHeader, dis::decodePdu and each PDU decoder (Entity State, Fire, Detonation,
-// Collision, Transmitter, Signal, Receiver) on any bytes (a datagram from the network).
+// Collision, Remove Entity, Transmitter, Signal, Receiver) on any bytes (a datagram from
+// the network), and dis::withoutRtpHeader before the dispatcher, as a reader takes them.
 #include "dis/pdu.hpp"
+#include "dis/rtp.hpp"
 
 #include <cstddef>
 #include <cstdint>
@@ -54,6 +56,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const auto back = gs::dis::decodeCollision(gs::dis::encodeCollision(*pdu), nullptr);
     if (!back || !(back->issuingEntityID == pdu->issuingEntityID)) __builtin_trap();
   }
+  if (auto pdu = gs::dis::decodeRemoveEntity(bytes, &error)) {
+    const auto back = gs::dis::decodeRemoveEntity(gs::dis::encodeRemoveEntity(*pdu), nullptr);
+    if (!back || !(back->receivingID == pdu->receivingID) || back->requestID != pdu->requestID)
+      __builtin_trap();
+  }
+  // An RTP header is taken off inside the datagram, or the datagram is left whole.
+  const std::span<const std::uint8_t> payload = gs::dis::withoutRtpHeader(bytes);
+  if (!payload.empty() && (payload.data() < data || payload.data() + payload.size() > data + size))
+    __builtin_trap();
+  if (gs::dis::startsWithRtpHeader(bytes) && !payload.empty()) (void)gs::dis::decodePdu(payload, &error);
   // The dispatcher agrees with the decoder of the type it names.
   if (auto pdu = gs::dis::decodePdu(bytes, &error)) {
     const std::size_t index = pdu->index();
@@ -61,7 +73,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const bool agrees = (type == 1 && index == 0) || (type == 25 && index == 1) ||
                         (type == 26 && index == 2) || (type == 27 && index == 3) ||
                         (type == 2 && index == 4) || (type == 3 && index == 5) ||
-                        (type == 4 && index == 6);
+                        (type == 4 && index == 6) || (type == 12 && index == 7);
     if (!agrees) __builtin_trap();
   }
   return 0;

@@ -27,6 +27,7 @@ enum class PduType : std::uint8_t {
   fire = 2,
   detonation = 3,
   collision = 4,
+  removeEntity = 12,
   transmitter = 25,
   signal = 26,
   receiver = 27,
@@ -37,6 +38,7 @@ enum class PduType : std::uint8_t {
 inline constexpr std::uint8_t kEntityInformationFamily = 1;    // Entity State, Collision PDUs
 inline constexpr std::uint8_t kWarfareFamily = 2;              // Fire, Detonation PDUs
 inline constexpr std::uint8_t kRadioCommunicationsFamily = 4;  // Transmitter, Signal, Receiver
+inline constexpr std::uint8_t kSimulationManagementFamily = 5;  // Remove Entity PDU
 
 /// The 12-byte PDU header (IEEE 1278.1 clause 6.2.66).
 struct PduHeader {
@@ -156,6 +158,17 @@ struct CollisionPdu {
   glm::vec3 location{0.0f};        // metres, the issuing entity's body axes
 };
 
+/// The Remove Entity PDU (IEEE 1278.1 clause 7.5.3; 28 bytes): simulation application
+/// `originatingID` asks that the entity `receivingID` be removed from the exercise.
+struct RemoveEntityPdu {
+  PduHeader header;
+  EntityID originatingID;  // who asks (a simulation manager)
+  EntityID receivingID;    // the entity to remove
+  std::uint32_t requestID = 0;
+};
+
+/// The Remove Entity PDU's size, in bytes.
+inline constexpr std::size_t kRemoveEntitySize = 28;
 /// The Fire PDU's size, in bytes.
 inline constexpr std::size_t kFireSize = 96;
 /// The Detonation PDU's fixed part, in bytes.
@@ -246,7 +259,7 @@ inline constexpr std::size_t kMaxSignalData = 8192;
 
 /// Any PDU this reader decodes (decodePdu).
 using Pdu = std::variant<EntityStatePdu, TransmitterPdu, SignalPdu, ReceiverPdu, FirePdu,
-                         DetonationPdu, CollisionPdu>;
+                         DetonationPdu, CollisionPdu, RemoveEntityPdu>;
 
 /// The header of `bytes`, or nothing (and `error` says why) when there are fewer than 12
 /// bytes or its length field is below 12 or above the bytes given.
@@ -324,8 +337,18 @@ std::optional<CollisionPdu> decodeCollision(std::span<const std::uint8_t> bytes,
 /// The bytes of `pdu` (IEEE 1278.1 clause 7.2.3): header type 4, family 1, 60 bytes.
 std::vector<std::uint8_t> encodeCollision(const CollisionPdu& pdu);
 
+/// The Remove Entity PDU in `bytes` (one datagram), or nothing and `error` (when not null)
+/// says why: too short for the header, another PDU type, a length short of 28 bytes. Never
+/// reads outside `bytes` (IEEE 1278.1 clause 7.5.3).
+std::optional<RemoveEntityPdu> decodeRemoveEntity(std::span<const std::uint8_t> bytes,
+                                                  std::string* error);
+
+/// The bytes of `pdu` (IEEE 1278.1 clause 7.5.3): header type 12, family 5, 28 bytes.
+std::vector<std::uint8_t> encodeRemoveEntity(const RemoveEntityPdu& pdu);
+
 /// The PDU in `bytes` (one datagram) by its header's type: an Entity State, Transmitter,
-/// Signal, Receiver, Fire, Detonation or Collision PDU, decoded as the functions above do;
+/// Signal, Receiver, Fire, Detonation, Collision or Remove Entity PDU, decoded as the
+/// functions above do;
 /// nothing, and `error` (when not null) says why, for a PDU that does not decode or of a
 /// type not listed (Service Request, Data, ... are not read).
 std::optional<Pdu> decodePdu(std::span<const std::uint8_t> bytes, std::string* error);
