@@ -23,8 +23,9 @@
 // - `next` / `previous` TRUE step frameIndex by |frameIncrement| (1 when it is 0, where
 //   X_ITE 15 does not move), wrapping at startFrame / endFrame when it loops, ignored past
 //   them otherwise (X_ITE's rule); a playing motion goes on from the new frame.
-// Not done: channelsEnabled per channel (it is per joint, as X_ITE reads it); `loa` is
-// not used (the motion names its joints, whatever level of articulation they belong to;
+// - channelsEnabled is read per channel when it has a value for each (motionKeys), else
+//   per joint, as X_ITE reads it.
+// `loa` is not used (the motion names its joints, whatever level of articulation they belong to;
 // X_ITE does not read it either).
 #include "execution_state.hpp"
 
@@ -93,25 +94,37 @@ glm::quat eulerRotation(const glm::vec3& degrees, std::string order) {
   return q;
 }
 
-/// The key frames of every joint of `motion` and its frame count.
+/// The key frames of every joint of `motion` and its frame count. `channelsEnabled`
+/// ("boolean values for each channel", X3D 4.0 26.3.5) is read per channel when it has one
+/// value for each channel a frame holds (and the joints have more channels than one each):
+/// a FALSE channel is read as if `channels` did not list it (a position or scale axis
+/// keeps 0 or 1, a rotation axis turns by nothing; a joint left with none is not set).
+/// Otherwise it is read per joint, as X_ITE 15 reads it: a FALSE joint is not set.
+/// Missing values are TRUE.
 std::vector<HAnimMotionJointKeys> motionKeys(const vrml::Node& motion, std::size_t& frameCount) {
   const std::vector<std::string> joints =
       motionWords(motion.get<FieldType::SFString>("joints", std::string()));
   const std::vector<std::vector<std::string>> channels =
       motionChannels(motion.get<FieldType::SFString>("channels", std::string()));
   const std::vector<float>& values = motion.get<FieldType::MFFloat>("values", std::vector<float>{});
+  const std::vector<bool>& enabled =
+      motion.get<FieldType::MFBool>("channelsEnabled", std::vector<bool>{});
   std::size_t perFrame = 0;
   for (const auto& c : channels) perFrame += c.size();
   frameCount = perFrame > 0 ? values.size() / perFrame : 0;
+  const bool perChannel = enabled.size() == perFrame && perFrame != channels.size();
+  const auto on = [&](std::size_t i) { return i >= enabled.size() || enabled[i]; };
   std::vector<HAnimMotionJointKeys> keys(channels.size());
   std::size_t v = 0;
   for (std::size_t frame = 0; frame < frameCount; ++frame)
-    for (std::size_t j = 0; j < channels.size(); ++j) {
+    for (std::size_t j = 0, channel = 0; j < channels.size(); ++j) {
       glm::vec3 position(0.0f), rotation(0.0f), scale(1.0f);
       bool hasPosition = false, hasScale = false;
       std::string order;
+      const bool jointOn = perChannel || on(j);
       for (const std::string& c : channels[j]) {
         const float x = values[v++];
+        if (!jointOn || (perChannel && !on(channel++))) continue;
         if (c.size() != 9 && c.size() != 6) continue;
         const int axis = c[0] - 'X';
         if (axis < 0 || axis > 2) continue;
@@ -297,11 +310,9 @@ void ExecutionModel::State::evaluateHAnimMotions() {
       }
       st.fraction = fraction;
       // The joints by name (X_ITE: trimmed names, "HumanoidRoot" for humanoid_root).
-      const std::vector<bool> channelsEnabled =
-          motion.get<FieldType::MFBool>("channelsEnabled", std::vector<bool>{});
       for (std::size_t j = 0; j < st.keys.size(); ++j) {
-        if (j < channelsEnabled.size() && !channelsEnabled[j]) continue;
         const HAnimMotionJointKeys& k = st.keys[j];
+        if (k.translation.empty() && k.rotation.empty() && k.scale.empty()) continue;
         vrml::Node* joint = nullptr;
         for (const vrml::NodePtr& candidate : humanoid.mfnode("joints")) {
           if (!candidate) continue;

@@ -215,3 +215,50 @@ DEF H HAnimHumanoid {
   CHECK(x() == Approx(1.5f));
   CHECK(frameIndex() == 1);
 }
+
+TEST_CASE("H-Anim: channelsEnabled turns off single channels, or whole joints as X_ITE reads it",
+          "[runtime][hanim]") {
+  // Root: X, Y and Z position; shoulder: Z then X rotation. Frame 1 holds (1, 2, 3) and
+  // 90 degrees about z and x; the motion is held there (frameIncrement 0, frameIndex 1).
+  const auto world = [](const std::string& enabled) {
+    return x3dWorld(R"(
+DEF H HAnimHumanoid {
+  skeleton DEF R HAnimJoint { name "humanoid_root" children DEF A HAnimJoint { name "l_shoulder" } }
+  joints [ USE R USE A ]
+  motions DEF M HAnimMotion { joints "humanoid_root l_shoulder" frameIncrement 0 frameIndex 1
+    channels "3 Xposition Yposition Zposition 2 Zrotation Xrotation"
+    values [ 0 0 0 0 0,  1 2 3 90 90 ] channelsEnabled [ )" +
+                    enabled + R"( ] }
+}
+)");
+  };
+  const auto pose = [](RunningWorld& w) {
+    w.model->advanceTo(0.1);
+    const vrml::Rotation r = w.node("A").get<FieldType::SFRotation>("rotation", vrml::Rotation{});
+    return std::pair{w.node("R").get<FieldType::SFVec3f>("translation", glm::vec3(-1)),
+                     glm::angleAxis(r.w, glm::normalize(glm::vec3(r.x, r.y, r.z)))};
+  };
+  const glm::quat z90 = glm::angleAxis(glm::radians(90.0f), glm::vec3(0, 0, 1));
+  const glm::quat x90 = glm::angleAxis(glm::radians(90.0f), glm::vec3(1, 0, 0));
+  const auto same = [](const glm::quat& a, const glm::quat& b) {
+    return std::abs(glm::dot(a, b)) == Approx(1.0f).margin(1e-5);
+  };
+  {  // Every channel on (five values): the whole frame.
+    RunningWorld w(world("TRUE TRUE TRUE TRUE TRUE"));
+    const auto [t, r] = pose(w);
+    CHECK(near(t, {1, 2, 3}));
+    CHECK(same(r, z90 * x90));
+  }
+  {  // Y position and X rotation off: read as if the channels were not listed.
+    RunningWorld w(world("TRUE FALSE TRUE TRUE FALSE"));
+    const auto [t, r] = pose(w);
+    CHECK(near(t, {1, 0, 3}));
+    CHECK(same(r, z90));
+  }
+  {  // Two values for two joints: per joint (X_ITE): the root is left alone.
+    RunningWorld w(world("FALSE TRUE"));
+    const auto [t, r] = pose(w);
+    CHECK(near(t, {0, 0, 0}));
+    CHECK(same(r, z90 * x90));
+  }
+}
