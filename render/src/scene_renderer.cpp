@@ -290,6 +290,8 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
 
   scene::LightInstance headlight;  // directional along the view direction, intensity 1, ambient 0
   headlight.direction = glm::vec3(0.0f, 0.0f, -1.0f);
+  // Whether the layer being drawn has the headlight (scene::LayerInstance::headlight).
+  bool layerHeadlight = headlight_;
 
   collectDrawItems(camera);  // the shapes sorted into the opaque and transparent passes
 
@@ -419,7 +421,7 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
         (lastLightsOf == nullptr || lastLightsOf->scopedLightBegin != s.scopedLightBegin ||
          lastLightsOf->scopedLightCount != s.scopedLightCount || lastLightsOf->layer != s.layer)) {
       lights = LightArrays{};
-      if (headlight_) lights.add(headlight);
+      if (layerHeadlight) lights.add(headlight);
       for (std::uint32_t i = 0; i < s.scopedLightCount; ++i)
         lights.add(g.eyeLights[g.frame.scopedLights[s.scopedLightBegin + i]]);
       for (std::uint32_t index : g.frame.globalLights)  // global in its own layer (35.2.1)
@@ -629,7 +631,7 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     const bool depth = std::any_of(g.opaque.begin(), g.opaque.end(), [&](const DrawItem& d) {
       return !layer || d.shape->layer == *layer;
     });
-    statistics_.splats += splats_->draw(g.frame, traversal_, camera, aspect, headlight_, g.textures,
+    statistics_.splats += splats_->draw(g.frame, traversal_, camera, aspect, layerHeadlight, g.textures,
                                         height, depth, layer);
     // The shapes of a later layer start from the state drawItem expects: no program bound
     // as far as use() knows (the splat paths bound their own), the frame's GL state.
@@ -648,9 +650,11 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     glScissor(r.x, r.y, r.z, r.w);
     glDepthMask(GL_TRUE);
     glClear(GL_DEPTH_BUFFER_BIT);
+    layerHeadlight = l.headlight < 0 ? headlight_ : l.headlight != 0;
     drawLayer(l.number);
     drawSplats(l.number);
   }
+  layerHeadlight = headlight_;
   glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
   glScissor(x, y, width, height);
   for (; clipDistancesOn > 0; --clipDistancesOn) glDisable(GL_CLIP_DISTANCE0 + clipDistancesOn - 1);

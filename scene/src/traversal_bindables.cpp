@@ -137,6 +137,16 @@ std::optional<Camera> firstViewpointCamera(const std::vector<vrml::NodePtr>& nod
   return found;
 }
 
+bool firstNavigationHeadlight(const std::vector<vrml::NodePtr>& nodes) {
+  std::optional<bool> found;
+  auto visit = [&](const vrml::Node& n, NodeKind kind, const glm::mat4&, const ViewpointGroups&) {
+    if (kind == NodeKind::NavigationInfo && !found) found = sfBool(n, "headlight", true);
+  };
+  ViewpointGroups groups;
+  forEachBindable(nodes, glm::mat4(1.0f), 0, visit, groups);
+  return found.value_or(true);
+}
+
 SceneTraversal::SceneTraversal(std::shared_ptr<const vrml::Scene> scene, TraversalOptions options)
     : scene_(std::move(scene)), options_(std::move(options)) {
   if (!scene_) scene_ = std::make_shared<const vrml::Scene>();

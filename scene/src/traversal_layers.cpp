@@ -44,6 +44,7 @@ void SceneTraversal::Walk::layers() {
       const vrml::NodePtr& n = list[static_cast<std::size_t>(index) - 1];
       if (!n || !isLayer(*n)) continue;
       l.node = n.get();
+      if (index != active) l.headlight = firstNavigationHeadlight(n->mfnode("children")) ? 1 : 0;
       if (const vrml::NodePtr& v = n->sfnode("viewport"); v && !v->unresolved) {
         const std::vector<float>& c = mfFloat(*v, "clipBoundary");
         for (std::size_t k = 0; k < 4 && k < c.size(); ++k)

@@ -206,3 +206,30 @@ LayerSet { order [ 0 1 2 ] layers [
     CHECK(int(r.image.pixel(32, 9)[2]) > 150);          // the splat, layer 1
   }
 }
+
+TEST_CASE("Layering: a layer other than the active one has its own NavigationInfo's headlight",
+          "[render][offscreen][world][layering]") {
+  // The world's NavigationInfo turns the headlight off. A grey wall lit only by a headlight
+  // in layer 1 (not the active layer): with no NavigationInfo of its own the layer has the
+  // default one's headlight (X3D 4.0 clause 35.2.1, as X_ITE 15 lights a HUD layer); with
+  // its own NavigationInfo { headlight FALSE } it is dark.
+  const std::string wall = R"(Transform {
+        translation 0 0 -5
+        children Shape {
+          appearance Appearance { material Material { diffuseColor 0.5 0.5 0.5 ambientIntensity 0 } }
+          geometry Box { size 100 100 0.1 }
+        }
+      })";
+  const fs::path litFile = worldDir() / "layers_own_headlight.x3dv";
+  writeText(litFile, layeredWorld("0 1", "", wall));
+  const Rendered lit = renderFile(litFile);
+  CHECK(lit.diagnostics.items.empty());
+  CHECK(close(lit.image.pixel(2, 2), 128, 128, 128, 12));
+  const fs::path darkFile = worldDir() / "layers_own_headlight_off.x3dv";
+  writeText(darkFile,
+            layeredWorld("0 1", "", "[ NavigationInfo { headlight FALSE } " + wall + " ]"));
+  const Rendered dark = renderFile(darkFile);
+  CHECK(close(dark.image.pixel(2, 2), 0, 0, 0, 8));
+  // Layer 1, drawn after the root layer, covers its red box there too.
+  CHECK(close(dark.image.pixel(32, 32), 0, 0, 0, 8));
+}

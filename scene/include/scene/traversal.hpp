@@ -183,6 +183,10 @@ struct LayerInstance {
   /// fractions of the render surface, clamped to [0, 1]; the whole surface without one.
   glm::vec4 clipBoundary{0.0f, 1.0f, 0.0f, 1.0f};
   const vrml::Node* node = nullptr;  // the Layer, null for the root layer
+  /// Whether its shapes have a headlight: -1 the world's (the bound NavigationInfo's, or the
+  /// user's choice) for the root and the active layer; 0 or 1 another layer's own, from its
+  /// first NavigationInfo (X3D 4.0 clause 35.2.1: each layer has its own bindable stacks).
+  std::int8_t headlight = -1;
 };
 
 /// The camera of viewpoint node `viewpoint` (Viewpoint, OrthoViewpoint, GeoViewpoint:
@@ -199,6 +203,10 @@ float viewpointSpeedFactor(const vrml::Node& viewpoint);
 /// grouping nodes, every Switch choice and LOD level, not into Inlines); none when they hold
 /// none.
 std::optional<Camera> firstViewpointCamera(const std::vector<vrml::NodePtr>& nodes);
+/// The `headlight` of the first NavigationInfo among `nodes` and below them (found as
+/// firstViewpointCamera finds a viewpoint); TRUE, the default NavigationInfo's (X3D 4.0
+/// clause 23.4.4), when they hold none.
+bool firstNavigationHeadlight(const std::vector<vrml::NodePtr>& nodes);
 
 /// The pixel rectangle (x, y, width, height; origin bottom left, as glScissor takes it) of
 /// a clipBoundary (left, right, bottom, top fractions, clause 35.4.4) inside the viewport
