@@ -38,7 +38,9 @@ bool udpAddress(int port, const std::string& address, bool any, sockaddr_in& a,
 }
 
 /// Whether `a` is an IPv4 multicast group (224.0.0.0/4, RFC 5771).
-bool isMulticast(const sockaddr_in& a) { return (ntohl(a.sin_addr.s_addr) >> 28) == 0xE; }
+bool isMulticast(const sockaddr_in& a) {
+  return (ntohl(a.sin_addr.s_addr) >> 28) == 0xE;
+}
 
 /// Joins multicast group `group` on `fd` on the loopback and on the interface the routing
 /// table picks (RFC 1112 host membership): datagrams for the group sent on this host (to

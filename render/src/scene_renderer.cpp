@@ -631,8 +631,8 @@ void SceneRenderer::draw(const scene::Camera& camera, int x, int y, int width, i
     const bool depth = std::any_of(g.opaque.begin(), g.opaque.end(), [&](const DrawItem& d) {
       return !layer || d.shape->layer == *layer;
     });
-    statistics_.splats += splats_->draw(g.frame, traversal_, camera, aspect, layerHeadlight, g.textures,
-                                        height, depth, layer);
+    statistics_.splats += splats_->draw(g.frame, traversal_, camera, aspect, layerHeadlight,
+                                        g.textures, height, depth, layer);
     // The shapes of a later layer start from the state drawItem expects: no program bound
     // as far as use() knows (the splat paths bound their own), the frame's GL state.
     glUseProgram(g.programs.generic().id);

@@ -266,8 +266,7 @@ void ExecutionModel::State::evaluatePickSensors() {
   };
 
   // The viewer's turn, which SPRITE particles face (none known: the world's axes).
-  const glm::mat3 viewToWorld =
-      viewer ? glm::mat3_cast(viewer->orientation) : glm::mat3(1.0f);
+  const glm::mat3 viewToWorld = viewer ? glm::mat3_cast(viewer->orientation) : glm::mat3(1.0f);
 
   for (NodeState* ns : pickSensors) {
     const vrml::Node& n = *ns->node;
@@ -336,8 +335,7 @@ void ExecutionModel::State::evaluatePickSensors() {
         bool any = false;
         if (kind == PickKind::point) {
           for (const glm::vec3& p : probe.points)
-            if (bounds ? insideBox(p, mesh.bounds)
-                       : insideMesh(p, mesh, budget)) {
+            if (bounds ? insideBox(p, mesh.bounds) : insideMesh(p, mesh, budget)) {
               hit.points.push_back(glm::vec3(worldToSensor * glm::vec4(p, 1.0f)));
               any = true;
             }

@@ -25,7 +25,12 @@ void SceneTraversal::Walk::layers() {
     layer = static_cast<std::uint32_t>(i + 1);
     const auto& children = list[i]->mfnode("children");
     if (nodeKind(*list[i]) == NodeKind::LayoutLayer) {
-      layoutLayer(*list[i], children);
+      // Seen through its own first Viewpoint or OrthoViewpoint when it holds one (35.2.1),
+      // else through X_ITE's default OrthoViewpoint.
+      if (const std::optional<Camera> own = firstViewpointCamera(children))
+        layerWithOwnView(*list[i], children, *own);
+      else
+        layoutLayer(*list[i], children);
     } else if (static_cast<int>(i) + 1 == active) {
       group(list[i].get(), children, glm::mat4(1.0f), &self.mainUrl_, &children);
     } else {
@@ -82,10 +87,32 @@ void SceneTraversal::Walk::layerWithOwnView(const vrml::Node& l,
   }
   eyeToWorld = outerEyeToWorld * layerEyeToWorldEye;
   worldToEye = glm::inverse(eyeToWorld);
-  group(&l, children, eyeToWorld * viewMatrix(own), &self.mainUrl_, &children);
+  // The layer's own field of view measures its pixels (ScreenGroup, PIXEL layouts).
+  const float outerTanHalfFov = tanHalfFov;
+  const float outerPerPixel = layoutPerPixel;
+  auto outerLayouts = std::move(layouts);
+  if (!orthographic) tanHalfFov = std::tan(std::clamp(own.fieldOfView, 0.001f, 3.1f) / 2.0f);
+  // Its top-level layouts lay out in its own view: the orthographic region, or the viewport
+  // at the near distance (viewRegion's rule, with the layer's view).
+  const glm::vec4 region = own.orthographic ? own.orthoRegion : glm::vec4(-1, -1, 1, 1);
+  layouts.assign(
+      1, viewRectangle(viewPixels, orthographic ? std::min(region.z - region.x, region.w - region.y)
+                                                : 2.0f * camera.nearClip * tanHalfFov));
+  if (orthographic) layoutPerPixel = layouts.front().metresPerPixel.x;
+  const glm::mat4 layerToWorld = eyeToWorld * viewMatrix(own);
+  if (nodeKind(l) == NodeKind::LayoutLayer) {
+    const vrml::NodePtr& layout = l.sfnode("layout");
+    layoutGroup(&l, layout && !layout->unresolved ? layout.get() : nullptr, children, layerToWorld,
+                &self.mainUrl_);
+  } else {
+    group(&l, children, layerToWorld, &self.mainUrl_, &children);
+  }
   eyeToWorld = outerEyeToWorld;
   worldToEye = outerWorldToEye;
   orthographic = outerOrtho;
+  tanHalfFov = outerTanHalfFov;
+  layoutPerPixel = outerPerPixel;
+  layouts = std::move(outerLayouts);
 }
 
 void SceneTraversal::Walk::layoutLayer(const vrml::Node& l,

@@ -480,8 +480,10 @@ struct SceneTraversal::Walk {
   /// so that the world's camera sees them as that viewpoint would. A perspective viewpoint:
   /// the layer's eye coordinates are the world camera's, x and y scaled by the ratio of the
   /// two fields of view. An OrthoViewpoint: its region put square in front of the world
-  /// camera at twice the near distance, depths compressed, as layoutLayer does. Restores
-  /// the walk's view afterwards.
+  /// camera at twice the near distance, depths compressed, as layoutLayer does. A
+  /// LayoutLayer holding a viewpoint is seen so too, its `layout` laying out in that view
+  /// (the region, or the viewport at the near distance). Inside, pixels are the layer's
+  /// (its own field of view). Restores the walk's view afterwards.
   void layerWithOwnView(const vrml::Node& l, const std::vector<vrml::NodePtr>& children,
                         const Camera& own);
 

@@ -385,7 +385,7 @@ TEST_CASE("DIS: an RTP header is told from a PDU and taken off, CSRCs, extension
   CHECK(decodeEntityState(payload, nullptr)->marking == "TANK1");
   // Two CSRCs, an extension of one word, four bytes of padding.
   std::vector<std::uint8_t> full{0x80 | 0x20 | 0x10 | 2, 96, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0};
-  full.resize(full.size() + 8, 0xAA);                 // the CSRCs
+  full.resize(full.size() + 8, 0xAA);                       // the CSRCs
   full.insert(full.end(), {0xBE, 0xDE, 0, 1, 1, 2, 3, 4});  // extension, one word
   full.insert(full.end(), pdu.begin(), pdu.end());
   full.insert(full.end(), {0, 0, 0, 4});

@@ -65,7 +65,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::span<const std::uint8_t> payload = gs::dis::withoutRtpHeader(bytes);
   if (!payload.empty() && (payload.data() < data || payload.data() + payload.size() > data + size))
     __builtin_trap();
-  if (gs::dis::startsWithRtpHeader(bytes) && !payload.empty()) (void)gs::dis::decodePdu(payload, &error);
+  if (gs::dis::startsWithRtpHeader(bytes) && !payload.empty())
+    (void)gs::dis::decodePdu(payload, &error);
   // The dispatcher agrees with the decoder of the type it names.
   if (auto pdu = gs::dis::decodePdu(bytes, &error)) {
     const std::size_t index = pdu->index();

@@ -26,7 +26,9 @@ int networkTestPort(int offset) {
 }
 
 /// A multicast group of the organisation-local scope (RFC 2365) for this process.
-std::string testGroup() { return "239.255.77." + std::to_string(1 + ::getpid() % 250); }
+std::string testGroup() {
+  return "239.255.77." + std::to_string(1 + ::getpid() % 250);
+}
 
 std::vector<std::uint8_t> withRtp(std::uint16_t sequence, const std::vector<std::uint8_t>& pdu) {
   std::vector<std::uint8_t> d = gs::dis::rtpHeader(sequence, 1234, 99);
@@ -36,8 +38,7 @@ std::vector<std::uint8_t> withRtp(std::uint16_t sequence, const std::vector<std:
 
 }  // namespace
 
-TEST_CASE("DIS: a Remove Entity PDU removes a DISEntityManager's entity",
-          "[runtime][x3d][dis]") {
+TEST_CASE("DIS: a Remove Entity PDU removes a DISEntityManager's entity", "[runtime][x3d][dis]") {
   const int port = networkTestPort(1);
   RunningWorld w(x3dWorld("DEF M DISEntityManager { port " + std::to_string(port) + " }\n"), 0.0);
   w.model->advanceTo(0.1);
@@ -88,8 +89,8 @@ TEST_CASE("DIS: a reader on a multicast group hears PDUs, bare or behind RTP hea
   // The same entity behind an RTP header (rtpHeaderExpected is the writer's: a reader
   // tells an RTP header from a PDU by its first byte).
   p.location = {8, 9, 10};
-  REQUIRE(gs::dis::UdpReceiver::sendTo(group, port, withRtp(1, gs::dis::encodeEntityState(p)),
-                                       error));
+  REQUIRE(
+      gs::dis::UdpReceiver::sendTo(group, port, withRtp(1, gs::dis::encodeEntityState(p)), error));
   w.model->advanceTo(0.3);
   CHECK(w.node("E").get<FieldType::SFVec3f>("translation", glm::vec3(0)) == glm::vec3(8, 9, 10));
 }

@@ -137,6 +137,61 @@ Transform { translation 1 0 0 children ScreenGroup { children Shape {
   }
 }
 
+TEST_CASE("A LayoutLayer holding a viewpoint is seen through it, its layout in that view",
+          "[scene][x3d][layout]") {
+  // An OrthoViewpoint whose region is 4 m high (1 m is 75 of 300 pixels), 1 m right of the
+  // layer's origin. Depths in a layer are compressed in front of the world's camera, so a
+  // shape 10 m from the layer's viewpoint lands within a pixel of its orthographic place
+  // (traversal_walk.hpp layerWithOwnView).
+  const std::string world = R"(#X3D V4.0 utf8
+PROFILE Full
+Viewpoint { position 0 0 6 }
+LayerSet { order [ 0 1 ] layers LayoutLayer {
+  layout Layout { align [ "LEFT" "TOP" ] offsetUnits "PIXEL" offset [ 10 -10 ]
+                  sizeUnits "PIXEL" size [ 200 60 ] scaleMode "PIXEL" }
+  children [
+    OrthoViewpoint { position 1 0 10 fieldOfView [ -2 -2 2 2 ] }
+    Shape { geometry Rectangle2D { size 200 60 } } ] } }
+)";
+  for (const int width : {300, 400}) {
+    INFO("width " << width);
+    // The PIXEL layout places its child by pixels from the view's top left corner, from
+    // the layer's origin as the viewpoint sees it (X_ITE's Layout keeps the model-view
+    // origin): 75 pixels left of where the default view puts it.
+    const glm::vec2 topLeft = pixelOf(world, width, 300, 0, {-100, 30, 0});
+    const glm::vec2 bottomRight = pixelOf(world, width, 300, 0, {100, -30, 0});
+    CHECK(topLeft.x == Approx(10.0f - 75.0f).margin(1.0));
+    CHECK(topLeft.y == Approx(10.0f).margin(1.0));
+    CHECK(bottomRight.x - topLeft.x == Approx(200.0f).margin(1.0));
+    CHECK(bottomRight.y - topLeft.y == Approx(60.0f).margin(1.0));
+  }
+  // Without a layout: the layer's metres are the OrthoViewpoint's, seen from 1 m right.
+  const std::string plain = R"(#X3D V4.0 utf8
+PROFILE Full
+Viewpoint { position 0 0 6 }
+LayerSet { order [ 0 1 ] layers LayoutLayer { children [
+  OrthoViewpoint { position 1 0 10 fieldOfView [ -2 -2 2 2 ] }
+  Shape { geometry Rectangle2D { size 1 1 } } ] } }
+)";
+  const glm::vec2 a = pixelOf(plain, 300, 300, 0, {-0.5f, 0.5f, 0});
+  const glm::vec2 b = pixelOf(plain, 300, 300, 0, {0.5f, -0.5f, 0});
+  CHECK(b.x - a.x == Approx(75.0f).margin(0.5));
+  CHECK(b.y - a.y == Approx(75.0f).margin(0.5));
+  CHECK((a.x + b.x) / 2.0f == Approx(150.0f - 75.0f).margin(0.5));
+  CHECK((a.y + b.y) / 2.0f == Approx(150.0f).margin(0.5));
+  // The default view (no viewpoint in the layer): the region -1 .. 1, the square centred.
+  const std::string none = R"(#X3D V4.0 utf8
+PROFILE Full
+Viewpoint { position 0 0 6 }
+LayerSet { order [ 0 1 ] layers LayoutLayer { children
+  Shape { geometry Rectangle2D { size 1 1 } } } }
+)";
+  const glm::vec2 c = pixelOf(none, 300, 300, 0, {-0.5f, 0.5f, 0});
+  const glm::vec2 d = pixelOf(none, 300, 300, 0, {0.5f, -0.5f, 0});
+  CHECK(d.x - c.x == Approx(150.0f).margin(0.01));
+  CHECK((c.x + d.x) / 2.0f == Approx(150.0f).margin(0.01));
+}
+
 TEST_CASE("Text in a ScreenFontStyle is measured in pixels outside a ScreenGroup too",
           "[scene][x3d][layout]") {
   // X3D 4.0 clause 36.4.5, as X_ITE's ScreenText draws it (create3000's

@@ -287,3 +287,38 @@ LayerSet { order [ 0 1 3 2 5 ] layers [
   REQUIRE(hit);
   CHECK(hit->shape == def(*scene, "RIGHT"));
 }
+
+TEST_CASE("picking: a LayoutLayer's shapes are picked where its view draws them",
+          "[scene][picking][layout]") {
+  // A LayoutLayer over the root's box: its layout is the top right quarter of its region
+  // -1 .. 1, and the panel fills the middle half of it (the FRACTION scale: a unit is the
+  // rectangle), 0.625 .. 0.875 of the window on each axis. A bearing through the window's
+  // centre meets the root's box, one through the panel's centre the panel.
+  auto scene = std::make_shared<gs::vrml::Scene>(gs::vrml::parseVrml(R"(#X3D V4.0 utf8
+PROFILE Full
+DEF BACK Shape { geometry Box { size 20 20 1 } }
+LayerSet { order [ 0 1 ] layers LayoutLayer {
+  layout Layout { align [ "RIGHT" "TOP" ] size [ 0.25 0.25 ] }
+  children DEF PANEL Shape { geometry Rectangle2D { size 0.5 0.5 } } } }
+)",
+                                                                     "layout_pick.x3dv"));
+  REQUIRE(scene->diagnostics.items.empty());
+  SceneTraversal traversal(scene);
+  traversal.setViewportSize(100, 100);
+  const Camera viewer;  // at 0 0 10, a field of view of 45 degrees
+  const float edge = std::tan(viewer.fieldOfView / 2.0f);
+  const auto through = [&](float x, float y) {  // window fractions, 0 0 the bottom left
+    const glm::vec3 d((2.0f * x - 1.0f) * edge, (2.0f * y - 1.0f) * edge, -1.0f);
+    return Ray{{0.0f, 0.0f, 10.0f}, glm::normalize(d)};
+  };
+  auto hit = pick(traversal, viewer, through(0.5f, 0.5f), glm::vec2(0.5f, 0.5f));
+  REQUIRE(hit);
+  CHECK(hit->shape == def(*scene, "BACK"));
+  hit = pick(traversal, viewer, through(0.875f, 0.875f), glm::vec2(0.875f, 0.875f));
+  REQUIRE(hit);
+  CHECK(hit->shape == def(*scene, "PANEL"));
+  // Beside the panel, in its layout's rectangle but not on the shape: the root's box.
+  hit = pick(traversal, viewer, through(0.97f, 0.97f), glm::vec2(0.97f, 0.97f));
+  REQUIRE(hit);
+  CHECK(hit->shape == def(*scene, "BACK"));
+}

@@ -35,9 +35,9 @@ enum class PduType : std::uint8_t {
 
 /// Protocol families (IEEE 1278.1 table 8, "Protocol family"): the header's
 /// protocolFamily of the PDUs this reader knows.
-inline constexpr std::uint8_t kEntityInformationFamily = 1;    // Entity State, Collision PDUs
-inline constexpr std::uint8_t kWarfareFamily = 2;              // Fire, Detonation PDUs
-inline constexpr std::uint8_t kRadioCommunicationsFamily = 4;  // Transmitter, Signal, Receiver
+inline constexpr std::uint8_t kEntityInformationFamily = 1;     // Entity State, Collision PDUs
+inline constexpr std::uint8_t kWarfareFamily = 2;               // Fire, Detonation PDUs
+inline constexpr std::uint8_t kRadioCommunicationsFamily = 4;   // Transmitter, Signal, Receiver
 inline constexpr std::uint8_t kSimulationManagementFamily = 5;  // Remove Entity PDU
 
 /// The 12-byte PDU header (IEEE 1278.1 clause 6.2.66).
