@@ -140,11 +140,13 @@ bool insideMesh(const glm::vec3& p, const WorldMesh& mesh, std::size_t& budget) 
   std::size_t begin = 0;
   for (const ClosedPart& part : mesh.parts) {
     const std::size_t first = std::exchange(begin, part.end);
-    if (!insideBox(p, part.bounds)) continue;
-    if (budget < (part.end - first) / 3) {
+    // Each part's box test counts as a test too: a million particles' boxes are bounded.
+    if (budget < 1 + (part.end - first) / 3) {
       budget = 0;
       return false;
     }
+    --budget;
+    if (!insideBox(p, part.bounds)) continue;
     budget -= (part.end - first) / 3;
     int crossings = 0;
     for (std::size_t i = first; i + 2 < part.end; i += 3)
