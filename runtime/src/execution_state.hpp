@@ -158,14 +158,14 @@ struct DisEntityRecord {
 struct EspduState {
   /// Its receiver in State::disReceivers ("address:port"), "" none.
   std::string key;
-  double lastRead = -1e300;    // SFTime of the last read (readInterval apart)
-  double lastWrite = -1e300;   // SFTime of the last PDU written (writeInterval apart)
-  bool reported = false;       // a problem with its socket was reported
-  bool dropReported = false;   // datagrams that did not decode were reported
-  bool announced = false;      // isNetworkReader / isStandAlone sent
-  bool active = false;         // isActive TRUE sent
-  bool limitReported = false;  // a DISEntityManager: its entity limit was reported
-  bool fireSent = false;       // a networkWriter: the Fire PDU of fired1/fired2 TRUE went
+  double lastRead = -1e300;       // SFTime of the last read (readInterval apart)
+  double lastWrite = -1e300;      // SFTime of the last PDU written (writeInterval apart)
+  bool reported = false;          // a problem with its socket was reported
+  bool dropReported = false;      // datagrams that did not decode were reported
+  bool announced = false;         // isNetworkReader / isStandAlone sent
+  bool active = false;            // isActive TRUE sent
+  bool limitReported = false;     // a DISEntityManager: its entity limit was reported
+  bool fireSent = false;          // a networkWriter: the Fire PDU of fired1/fired2 TRUE went
   std::uint16_t rtpSequence = 0;  // a networkWriter with rtpHeaderExpected: the next RTP one
   /// The latest PDU of its entity or radio since its last read.
   std::optional<dis::Pdu> pending;

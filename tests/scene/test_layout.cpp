@@ -47,6 +47,16 @@ glm::vec2 pixelOf(const std::string& world, int w, int h, std::size_t i, glm::ve
   return {(ndc.x + 1.0f) / 2.0f * float(w), (1.0f - ndc.y) / 2.0f * float(h)};
 }
 
+/// A world's first lines: a LayoutLayer whose PIXEL layout is a 200x60-pixel panel 10
+/// pixels in from the top left corner; the layer's `children` field and its closing braces
+/// follow.
+constexpr const char* kPanelLayer = R"(#X3D V4.0 utf8
+PROFILE Full
+Viewpoint { position 0 0 6 }
+LayerSet { order [ 0 1 ] layers LayoutLayer {
+  layout Layout { align [ "LEFT" "TOP" ] offsetUnits "PIXEL" offset [ 10 -10 ]
+                  sizeUnits "PIXEL" size [ 200 60 ] scaleMode "PIXEL" })";
+
 }  // namespace
 
 TEST_CASE("Layout: a view's rectangle spans its smaller side, the larger sees more",
@@ -111,12 +121,7 @@ TEST_CASE("Layout: the defaults fill the parent; WORLD units and NONE inside ano
 
 TEST_CASE("LayoutLayer and ScreenGroup shapes land on the pixels their layout names",
           "[scene][x3d][layout]") {
-  const std::string world = R"(#X3D V4.0 utf8
-PROFILE Full
-Viewpoint { position 0 0 6 }
-LayerSet { order [ 0 1 ] layers LayoutLayer {
-  layout Layout { align [ "LEFT" "TOP" ] offsetUnits "PIXEL" offset [ 10 -10 ]
-                  sizeUnits "PIXEL" size [ 200 60 ] scaleMode "PIXEL" }
+  const std::string world = std::string(kPanelLayer) + R"(
   children Shape { geometry Rectangle2D { size 200 60 } } } }
 Transform { translation 1 0 0 children ScreenGroup { children Shape {
   geometry Rectangle2D { size 16 16 } } } }
@@ -143,12 +148,7 @@ TEST_CASE("A LayoutLayer holding a viewpoint is seen through it, its layout in t
   // layer's origin. Depths in a layer are compressed in front of the world's camera, so a
   // shape 10 m from the layer's viewpoint lands within a pixel of its orthographic place
   // (traversal_walk.hpp layerWithOwnView).
-  const std::string world = R"(#X3D V4.0 utf8
-PROFILE Full
-Viewpoint { position 0 0 6 }
-LayerSet { order [ 0 1 ] layers LayoutLayer {
-  layout Layout { align [ "LEFT" "TOP" ] offsetUnits "PIXEL" offset [ 10 -10 ]
-                  sizeUnits "PIXEL" size [ 200 60 ] scaleMode "PIXEL" }
+  const std::string world = std::string(kPanelLayer) + R"(
   children [
     OrthoViewpoint { position 1 0 10 fieldOfView [ -2 -2 2 2 ] }
     Shape { geometry Rectangle2D { size 200 60 } } ] } }
