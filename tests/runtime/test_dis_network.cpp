@@ -1,6 +1,7 @@
 // X3D DIS (X3D 4.0 clause 28) on the network: a multicast `address` joined as a group, PDUs
 // behind RTP headers (rtpHeaderExpected) read and written, and the Remove Entity PDU
 // (IEEE 1278.1 clause 7.5.3) removing a DISEntityManager's entity.
+#include "dis_test_port.hpp"
 #include "runtime_fixture.hpp"
 
 #include "dis/pdu.hpp"
@@ -13,17 +14,12 @@
 
 #include <algorithm>
 
+using gs::test::disTestPort;
 using gs::test::RunningWorld;
 using gs::test::x3dWorld;
 using gs::vrml::FieldType;
 
 namespace {
-
-/// A UDP port for one test of this file (`offset` 1..9), apart from test_dis_nodes.cpp's
-/// and test_dis_warfare.cpp's, and from another test process's.
-int networkTestPort(int offset) {
-  return 20000 + static_cast<int>(::getpid() % 20000) + 100 * (40 + offset);
-}
 
 /// A multicast group of the organisation-local scope (RFC 2365) for this process.
 std::string testGroup() {
@@ -39,7 +35,7 @@ std::vector<std::uint8_t> withRtp(std::uint16_t sequence, const std::vector<std:
 }  // namespace
 
 TEST_CASE("DIS: a Remove Entity PDU removes a DISEntityManager's entity", "[runtime][x3d][dis]") {
-  const int port = networkTestPort(1);
+  const int port = disTestPort(40 + 1);
   RunningWorld w(x3dWorld("DEF M DISEntityManager { port " + std::to_string(port) + " }\n"), 0.0);
   w.model->advanceTo(0.1);
   gs::dis::EntityStatePdu a;
@@ -70,7 +66,7 @@ TEST_CASE("DIS: a Remove Entity PDU removes a DISEntityManager's entity", "[runt
 
 TEST_CASE("DIS: a reader on a multicast group hears PDUs, bare or behind RTP headers",
           "[runtime][x3d][dis]") {
-  const int port = networkTestPort(2);
+  const int port = disTestPort(40 + 2);
   const std::string group = testGroup();
   RunningWorld w(x3dWorld("DEF E EspduTransform { networkMode \"networkReader\" readInterval 0.001"
                           " address \"" +
@@ -97,7 +93,7 @@ TEST_CASE("DIS: a reader on a multicast group hears PDUs, bare or behind RTP hea
 
 TEST_CASE("DIS: a writer with rtpHeaderExpected puts a numbered RTP header before each PDU",
           "[runtime][x3d][dis]") {
-  const int port = networkTestPort(3);
+  const int port = disTestPort(40 + 3);
   const std::string group = testGroup();
   gs::dis::UdpReceiver listener;  // another simulation, a member of the group
   std::string error;

@@ -2,6 +2,7 @@
 // mode takes the Entity State PDUs of its entity sent to its UDP port on the loopback; the
 // TransmitterPdu, SignalPdu and ReceiverPdu nodes the radio PDUs of their radio; a
 // DISEntityManager makes an EspduTransform for each new entity.
+#include "dis_test_port.hpp"
 #include "runtime_fixture.hpp"
 
 #include "dis/pdu.hpp"
@@ -9,17 +10,16 @@
 
 #include <catch2/catch.hpp>
 
-#include <unistd.h>
-
 #include <algorithm>
 
+using gs::test::disTestPort;
 using gs::test::RunningWorld;
 using gs::test::x3dWorld;
 using gs::vrml::FieldType;
 
 TEST_CASE("DIS: an EspduTransform follows the Entity State PDUs of its entity",
           "[runtime][x3d][dis]") {
-  const int port = 20000 + static_cast<int>(::getpid() % 20000);
+  const int port = disTestPort(0);
   RunningWorld w(
       x3dWorld("DEF E EspduTransform { networkMode \"networkReader\" readInterval 0.001\n"
                "  port " +
@@ -69,12 +69,6 @@ TEST_CASE("DIS: a standAlone EspduTransform opens no socket and says so", "[runt
 }
 
 namespace {
-
-/// A UDP port of the loopback for one test (`offset` 1..99 apart from the others), apart
-/// from another test process's by its process id.
-int disTestPort(int offset) {
-  return 20000 + static_cast<int>(::getpid() % 20000) + 100 * offset;
-}
 
 std::size_t disEventCount(const std::vector<std::string>& events, const std::string& prefix) {
   return static_cast<std::size_t>(std::count_if(

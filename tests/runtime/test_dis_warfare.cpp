@@ -1,6 +1,7 @@
 // X3D DIS (X3D 4.0 clause 28.4.3): an EspduTransform reader's events of the Fire,
 // Detonation and Collision PDUs of its entity, and its geoCoords from the Entity State
 // PDU's geocentric location.
+#include "dis_test_port.hpp"
 #include "runtime_fixture.hpp"
 
 #include "dis/pdu.hpp"
@@ -8,19 +9,12 @@
 
 #include <catch2/catch.hpp>
 
-#include <unistd.h>
-
+using gs::test::disTestPort;
 using gs::test::RunningWorld;
 using gs::test::x3dWorld;
 using gs::vrml::FieldType;
 
 namespace {
-
-/// A UDP port of the loopback for one test of this file (`offset` 1..9), apart from
-/// test_dis_nodes.cpp's (offsets 1..8 there) and from another test process's.
-int warfareTestPort(int offset) {
-  return 20000 + static_cast<int>(::getpid() % 20000) + 100 * (20 + offset);
-}
 
 /// An EspduTransform reader of entity 1 2 3 on `port`, DEF E, with `extra` fields.
 std::string warfareReader(int port, const std::string& extra) {
@@ -32,7 +26,7 @@ std::string warfareReader(int port, const std::string& extra) {
 
 TEST_CASE("DIS: an EspduTransform sends the Fire, Detonation and Collision PDUs of its entity",
           "[runtime][x3d][dis]") {
-  const int port = warfareTestPort(1);
+  const int port = disTestPort(20 + 1);
   RunningWorld w(x3dWorld(warfareReader(port, "")), 0.0);
   w.model->advanceTo(0.1);  // opens the socket
   const gs::vrml::Node& e = w.node("E");
@@ -99,7 +93,7 @@ TEST_CASE("DIS: an EspduTransform sends the Fire, Detonation and Collision PDUs 
 
 TEST_CASE("DIS: an EspduTransform's geoCoords are its entity's location in its geoSystem",
           "[runtime][x3d][dis]") {
-  const int port = warfareTestPort(2);
+  const int port = disTestPort(20 + 2);
   // Two readers of the same entity: the default GD WE, and GC.
   std::string geocentricReader = warfareReader(port, "geoSystem \"GC\"");
   geocentricReader.replace(0, 5, "DEF C");
@@ -121,7 +115,7 @@ TEST_CASE("DIS: an EspduTransform's geoCoords are its entity's location in its g
 
 TEST_CASE("DIS: a networkWriter EspduTransform sends a Fire PDU when fired1 turns TRUE",
           "[runtime][x3d][dis]") {
-  const int port = warfareTestPort(3);
+  const int port = disTestPort(20 + 3);
   gs::dis::UdpReceiver listener;
   std::string error;
   REQUIRE(listener.open(port, "localhost", error));
