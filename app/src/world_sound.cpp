@@ -26,6 +26,7 @@ void WorldSounds::update(const std::shared_ptr<const vrml::Scene>& scene,
                       [traversal](const vrml::Node& inl) { return traversal->loadedInline(inl); })
                 : audio::InlineQuery());
   runtimes.setMediaDurations(scene.get(), s->takeDurations());
+  runtimes.sendDrawnOutputs(scene.get(), s->takeOutputs());
   // Clips that cannot be read: each once, as the renderer's diagnostics.
   std::size_t& shown = shown_[scene.get()];
   for (; shown < s->diagnostics().items.size(); ++shown)

@@ -170,6 +170,7 @@ void SoundScene::setProcessor(const vrml::Node& n, const std::string& base,
       break;
     case NodeTypeId::DynamicsCompressor:
       p.type = ProcessorType::dynamicsCompressor;
+      compressors_.push_back(&n);
       p.attack = n.get<FieldType::SFTime>("attack", 0.003);
       p.knee = n.get<FieldType::SFFloat>("knee", 30.0f);
       p.ratio = n.get<FieldType::SFFloat>("ratio", 12.0f);
@@ -216,6 +217,7 @@ void SoundScene::updateGraph(const std::vector<GraphRoot>& roots, const glm::mat
     return;
   }
   std::unordered_set<const vrml::Node*> seen;
+  compressors_.clear();
   glm::mat4 listener = worldToListener;
   for (const GraphRoot& r : roots) {
     const vrml::Node& n = *r.node;
@@ -295,6 +297,15 @@ void SoundScene::updateGraph(const std::vector<GraphRoot>& roots, const glm::mat
   std::vector<float> stereo;
   graph_.render(frames, stereo);
   if (!stereo.empty()) output.stream(stereo);
+  // The compressors' reduction events (takeOutputs).
+  for (const vrml::Node* c : compressors_) {
+    const float reduction = graph_.reduction(c);
+    float& sent = sentReductions_.try_emplace(vrml::NodeKey(c), 0.0f).first->second;
+    if (!(std::fabs(reduction - sent) >= 0.01f)) continue;
+    sent = reduction;
+    outputs_.push_back(
+        {vrml::NodeKey(c), "reduction", vrml::FieldValue::make<FieldType::SFFloat>(reduction)});
+  }
 }
 
 }  // namespace gs::audio

@@ -47,6 +47,7 @@ struct GraphWorld {
     sounds.waitForClips();
     for (const auto& [node, seconds] : sounds.takeDurations())
       model->setMediaDuration(*node, seconds);
+    model->sendDrawnOutputs(sounds.takeOutputs());  // as app::WorldSounds sends them
   }
   /// Frames from `from` to `to` every 1/50 s, the stream of the last `seconds` kept.
   void play(double from, double to) {
@@ -104,6 +105,27 @@ TEST_CASE("Sound graph: an oscillator through a Gain to the AudioDestination", "
   w.send("G", "gain", vrml::FieldValue::make<vrml::FieldType::SFFloat>(0.25f));
   w.play(1.52, 1.6);
   CHECK(w.peakOfLast(2205, 0) == Approx(0.25f).margin(0.01));
+}
+
+TEST_CASE("Sound graph: a DynamicsCompressor sends its reduction", "[audio][graph]") {
+  GraphWorld w(R"(AudioDestination { children [ DEF C DynamicsCompressor { children [
+      DEF O OscillatorSource { frequency 441 stopTime 2 } ] } ] }
+    DEF G Gain { gain 1 }
+    ROUTE C.reduction TO G.set_gain)");
+  w.frame(0.0);
+  CHECK(w.sounds.takeOutputs().empty());  // nothing rendered yet: no event
+  w.play(0.02, 1.0);
+  // A full-scale tone over the default -24 dB threshold at ratio 12: pulled down by about
+  // 20 dB (Web Audio's curve); the event reached the Gain through the ROUTE.
+  const float held = w.def("C").get<vrml::FieldType::SFFloat>("reduction", 0.0f);
+  CHECK(held < -10.0f);
+  CHECK(held > -30.0f);
+  CHECK(w.def("G").get<vrml::FieldType::SFFloat>("gain", 1.0f) == held);
+  CHECK(w.peakOfLast(2205, 0) < 0.5f);
+  // Silence after stopTime: the reduction is released (0.25 s) back towards 0 dB.
+  w.play(2.0, 3.5);
+  CHECK(w.def("C").get<vrml::FieldType::SFFloat>("reduction", -99.0f) > -0.5f);
+  CHECK(w.def("G").get<vrml::FieldType::SFFloat>("gain", -99.0f) > -0.5f);
 }
 
 TEST_CASE("Sound graph: pauseTime, resumeTime and stopTime", "[audio][graph]") {

@@ -14,6 +14,7 @@
 #include "base/fetch.hpp"
 #include "formats/audio.hpp"
 #include "vrml/diagnostic.hpp"
+#include "vrml/drawn_output.hpp"
 #include "vrml/node.hpp"
 #include "vrml/scene.hpp"
 
@@ -101,6 +102,12 @@ class SoundScene {
   const vrml::Diagnostics& diagnostics() const { return diagnostics_; }
   /// The X3D 4 audio graph of the last update (sound_graph_scene.cpp).
   const AudioGraph& graph() const { return graph_; }
+  /// The output events the updates since the last call computed, for
+  /// runtime::ExecutionModel::sendDrawnOutputs: each DynamicsCompressor's `reduction` (X3D
+  /// 4.0 clause 16, Sound: the gain reduction the compressor applies now, in dB, <= 0, as Web
+  /// Audio's DynamicsCompressorNode.reduction) once it is 0.01 dB or more from the value
+  /// last sent (0, the field's initial value, before any).
+  vrml::DrawnOutputs takeOutputs() { return std::exchange(outputs_, {}); }
 
   /// An AudioDestination, SpatialSound or ListenerPointSource met in the scene graph, with
   /// its coordinate system and the url its clips resolve against.
@@ -139,6 +146,9 @@ class SoundScene {
   vrml::Diagnostics diagnostics_;
   AcousticOcclusion occlusion_;  // this frame's acoustic surfaces (audio/acoustics.hpp)
   AudioGraph graph_;
+  std::vector<const vrml::Node*> compressors_;  // the DynamicsCompressors of the last update
+  vrml::NodeMap<float> sentReductions_;         // each one's `reduction` as last sent
+  vrml::DrawnOutputs outputs_;                  // not yet taken (takeOutputs)
   double graphTime_ = -1.0;  // the simulated time rendered up to; < 0 before the first update
   std::unordered_map<const formats::AudioData*, std::shared_ptr<const SampledSound>> sampled_;
   /// Each MicrophoneSource's captured samples not yet heard, and where the last playing one
