@@ -1,6 +1,8 @@
 // Splat pass throughput on the headless path (OSMesa), the three SplatPaths (geometry: GL with
 // the CPU's sort; gpu: GL with the compute-shader sort; cpu) in one run:
-// M splats/s of a whole frame (depth sort, upload of the order, draw, glFinish) for
+// M splats/s of a whole frame (depth sort, upload of the order, draw, glFinish; the
+// framebuffer's clear is finished before the clock starts: it is the world's, not the
+// splat pass's, and llvmpipe would otherwise do it inside the timed glFinish) for
 // synthetic sphere shells of a few sizes and for .qnv files given on the command line
 // (e.g. the bunny and CThead's top 9.1%, docs/rendering.md), each seen whole by a fitted
 // camera. Each figure is the best of FRAMES frames (the camera moves a little every
@@ -100,6 +102,7 @@ Figure measureFrom(const render::SplatSet& set, render::SplatPath path, int widt
     camera.position = start + glm::vec3(step * static_cast<float>(frame % 4), 0.0f, 0.0f);
     glViewport(0, 0, width, height);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glFinish();  // the clear is the world's, not the splat pass's
     const auto t0 = Clock::now();
     const double c0 = processSeconds();
     renderer.draw(set, set.size(), glm::mat4(1.0f), camera, aspect, lights, blend);
