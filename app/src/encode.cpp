@@ -180,7 +180,8 @@ int encodeGaussianScene(const Options& options, Settings s, const std::string& i
   try {
     const splats::GaussianCloud cloud =
         splats::readGaussians(bytes, input, session::sideFileReader(fetcher, input));
-    const qnv::EncodedVectors vectors = splats::encodeGaussianStream(cloud);
+    const qnv::EncodedVectors vectors =
+        splats::encodeGaussianStream(cloud, {.shBits = options.encode.shBits});
     const std::uint32_t splatBytes = 8 * vectors.header.recordsPerElement();
     if (options.encode.packetBytes == EncodeOptions{}.packetBytes)
       s.write.packetBytes = vectors.header.packetBytes;
@@ -235,6 +236,14 @@ int runEncode(const Options& options) {
   const char* elements = "triangles";
   if (!tileset && !s.raw && session::isGaussianSplatFile(input))
     return encodeGaussianScene(options, s, input);  // below
+  if (options.encode.shBits != EncodeOptions{}.shBits) {
+    bar.finish();
+    std::fprintf(stderr,
+                 "ghostspace: encode: --sh-bits is for streams of Gaussian splatting scenes "
+                 "(.ply with Gaussian properties, .spz, .splat, .sog, .glb ...), not '%s'%s\n",
+                 input.c_str(), tileset ? " as a --tileset" : "");
+    return 2;
+  }
   try {
     const bool stack = !s.raw && isSliceStack(input);
     const formats::InputKind kind =

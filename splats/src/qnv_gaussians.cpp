@@ -73,12 +73,21 @@ float logScaleValue(std::uint32_t q, float lo, float hi) {
   return std::exp(hi > lo ? lo + static_cast<float>(q) * (hi - lo) / 255.0f : lo);
 }
 
-// SH coefficients beyond DC: degree 1 at 5 bits (step 1/16), higher at 4 (step 1/8).
-std::uint32_t shCode(float x, int bits) {
+// SH coefficients beyond DC: degree 1 at 5 bits (step 1/16), higher at 4 (step 1/8);
+// `dropped` low bits (0..bits - 1) make the step 2^dropped times coarser: the code is a
+// multiple of 2^dropped from the middle code, within the field. A value halfway between
+// two coarse steps goes to the one nearer 0 (the commonest value): a capture already on
+// the fine grid (SPZ's steps are these) has many such values.
+std::uint32_t shCode(float x, int bits, int dropped) {
   const float scale = bits == 5 ? 16.0f : 8.0f;
-  const long half = 1L << (bits - 1);
-  return static_cast<std::uint32_t>(
-      std::clamp(std::lround(x * scale) + half, 0L, (1L << bits) - 1));
+  const long half = 1L << (bits - 1), step = 1L << dropped;
+  const float v = x * scale / static_cast<float>(step);
+  long k = std::lround(v);
+  if (dropped > 0 && std::isfinite(v))
+    k = v >= 0.0f ? static_cast<long>(std::ceil(std::min(v, 1e6f) - 0.5f))
+                  : -static_cast<long>(std::ceil(std::min(-v, 1e6f) - 0.5f));
+  k = std::clamp(k, -half / step, (half - 1) / step);
+  return static_cast<std::uint32_t>(k * step + half);
 }
 
 float shValue(std::uint32_t q, int bits) {
@@ -88,7 +97,9 @@ float shValue(std::uint32_t q, int bits) {
 
 }  // namespace
 
-qnv::EncodedVectors encodeGaussianStream(const GaussianCloud& cloud) {
+qnv::EncodedVectors encodeGaussianStream(const GaussianCloud& cloud,
+                                         const GaussianStreamOptions& options) {
+  const int dropped = 5 - std::clamp(options.shBits, 1, 5);
   qnv::EncodedVectors out;
   qnv::StreamHeader& h = out.header;
   h.kind = qnv::StreamKind::gaussian;
@@ -184,8 +195,10 @@ qnv::EncodedVectors encodeGaussianStream(const GaussianCloud& cloud) {
     for (int c = 0, at = 0; c < rest; ++c)
       for (int ch = 0; ch < 3; ++ch) {
         const int bits = qnv::gaussianShBits(3 * c + ch);
-        qnv::writeWordBits(w + 2, at, shCode(cloud.shRest[std::size_t{i} * rest + c][ch], bits),
-                           bits);
+        qnv::writeWordBits(
+            w + 2, at,
+            shCode(cloud.shRest[std::size_t{i} * rest + c][ch], bits, std::min(dropped, bits - 1)),
+            bits);
         at += bits;
       }
     order[k] = {qnv::gaussianImportance(w[0], w[1], h), static_cast<std::uint32_t>(k)};

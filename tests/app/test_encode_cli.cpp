@@ -172,6 +172,33 @@ TEST_CASE("encode rejects bad options and unreadable inputs with a reason", "[ap
   CHECK_THAT(missing.err, Catch::Contains("/nonexistent/none.wrl"));
   auto notQnv = runGhostspace({"info", scratch("not.qnv").string()});
   CHECK(notQnv.exitCode == 1);
+  // --sh-bits is for Gaussian splatting scenes only, and within 1..5.
+  auto shBitsWorld =
+      runGhostspace({"encode", world, "-o", scratch("x.qnv").string(), "--sh-bits", "4"});
+  CHECK(shBitsWorld.exitCode == 2);
+  CHECK_THAT(shBitsWorld.err, Catch::Contains("--sh-bits is for streams of Gaussian"));
+  const auto splats = (gs::test::sourceDir() / "tests/data/splats/bunny_small.ply").string();
+  auto shBitsRange =
+      runGhostspace({"encode", splats, "-o", scratch("x.qnv").string(), "--sh-bits", "6"});
+  CHECK(shBitsRange.exitCode == 2);
+}
+
+TEST_CASE("encode --sh-bits writes a smaller Gaussian stream that opens as any other",
+          "[app][encode][splat][corpus]") {
+  if (!gs::test::haveCorpus("splat")) return;
+  // CThead's capture: SH bands 1-3, on SPZ's grid (the bunny's SH are all 0).
+  const auto splats = (gs::test::corpusDir() / "splat/cthead.spz").string();
+  const auto full = scratch("cthead_sh5.qnv"), coarse = scratch("cthead_sh4.qnv");
+  REQUIRE(runGhostspace({"encode", splats, "-o", full.string()}).exitCode == 0);
+  const auto r = runGhostspace({"encode", splats, "-o", coarse.string(), "--sh-bits", "4"});
+  REQUIRE(r.exitCode == 0);
+  // 19.9 -> 12.2 bytes per splat (docs/splats.md, "Bytes and pictures").
+  CHECK(std::filesystem::file_size(coarse) < std::filesystem::file_size(full) * 3 / 4);
+  const auto info = runGhostspace({"info", coarse.string()});
+  CHECK(info.exitCode == 0);
+  const auto shot = runGhostspace(
+      {"--snapshot", scratch("cthead_sh4.png").string(), "--size", "64x64", coarse.string()});
+  CHECK(shot.exitCode == 0);
 }
 
 TEST_CASE("encode keeps the paper's top 9.1% of CThead's voxels", "[app][encode][corpus]") {

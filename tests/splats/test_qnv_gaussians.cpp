@@ -97,6 +97,48 @@ TEST_CASE("a Gaussian stream gives back every splat within its quantization", "[
   }
 }
 
+TEST_CASE("fewer SH bits: coarser steps, the same layout, smaller compact packets",
+          "[splats][qnv]") {
+  // The bunny with degree-1 SH of a capture's spread (its own are about 0): uniform in
+  // [-0.6, 0.6], fixed seed.
+  GaussianCloud cloud = bunnySmall();
+  REQUIRE(cloud.shDegree == 1);
+  std::uint32_t seed = 12345;
+  for (glm::vec3& v : cloud.shRest)
+    for (int ch = 0; ch < 3; ++ch) {
+      seed = seed * 1664525u + 1013904223u;
+      v[ch] = (static_cast<float>(seed >> 8) / 16777216.0f - 0.5f) * 1.2f;
+    }
+  std::size_t previous = 0;
+  for (const int bits : {5, 4, 3}) {
+    INFO("--sh-bits " << bits);
+    const gs::qnv::EncodedVectors encoded = encodeGaussianStream(cloud, {.shBits = bits});
+    REQUIRE(encoded.records.size() == cloud.size() * 3);  // the layout is unchanged
+    const std::string bytes = gs::qnv::writeStream(
+        encoded,
+        {static_cast<std::uint32_t>(encoded.header.packetBytes), gs::qnv::PacketEncoding::compact});
+    const GaussianCloud back = readQnvGaussians(bytes, "bunny.qnv");
+    REQUIRE(back.size() == cloud.size());
+    // Every degree-1 value is a multiple of the step 2^(5 - bits) / 16, and the values of
+    // all splats together are within half a step of the source's (clamped to the field).
+    const float step = static_cast<float>(1 << (5 - bits)) / 16.0f;
+    double sourceSum = 0.0, backSum = 0.0;
+    for (std::size_t i = 0; i < back.size(); ++i)
+      for (int k = 0; k < 3; ++k)
+        for (int ch = 0; ch < 3; ++ch) {
+          const float v = back.shRest[i * 3 + k][ch];
+          CHECK(std::abs(v / step - std::round(v / step)) < 1e-4f);
+          backSum += std::abs(v);
+          sourceSum += std::abs(glm::clamp(cloud.shRest[i * 3 + k][ch], -1.0f, 1.0f));
+        }
+    CHECK(std::abs(backSum - sourceSum) <= 0.5 * step * double(back.size()) * 9);
+    CHECK(backSum > 0.2 * double(back.size()) * 9);  // values, not zeros
+    // Coarser values pack tighter.
+    if (previous != 0) CHECK(bytes.size() < previous);
+    previous = bytes.size();
+  }
+}
+
 TEST_CASE("a Gaussian stream is in importance order and every prefix decodes", "[splats][qnv]") {
   const GaussianCloud cloud = bunnySmall();
   const gs::qnv::EncodedVectors encoded = encodeGaussianStream(cloud);

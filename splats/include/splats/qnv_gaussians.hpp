@@ -17,6 +17,16 @@
 
 namespace gs::splats {
 
+/// What encodeGaussianStream may give up for fewer bytes.
+struct GaussianStreamOptions {
+  /// Bits kept of each degree-1 SH code, 1..5 (5: all, step 1/16); each bit dropped
+  /// doubles the step (4: 1/8, 3: 1/4 ...). Degree 2 and 3 codes (4 bits, step 1/8) drop
+  /// as many, keeping at least one. The layout is unchanged, so every reader reads the
+  /// stream; the coarser values are fewer distinct bytes, which zstd packs tighter
+  /// (docs/splats.md, "Bytes and pictures"). Values outside 1..5 are clamped.
+  int shBits = 5;
+};
+
 /// The records of `cloud` as a Gaussian stream (qnv::StreamKind::gaussian) in stream
 /// order: by importance (splats::importance) largest first, ties in cloud order.
 /// Splats of zero opacity or importance are left out. Header: the centres' box, the
@@ -27,8 +37,10 @@ namespace gs::splats {
 /// header.packetBytes: whole splats, as many as fit 65528 bytes but at most 1/64 of the
 /// cloud (at least 1,024: zstd needs room), so a progressive load of a large scene draws
 /// after a few per cent of the bytes.
-/// An empty cloud gives no records and a unit box.
-qnv::EncodedVectors encodeGaussianStream(const GaussianCloud& cloud);
+/// An empty cloud gives no records and a unit box. `options.shBits` below 5 rounds the SH
+/// codes to coarser steps (lossy).
+qnv::EncodedVectors encodeGaussianStream(const GaussianCloud& cloud,
+                                         const GaussianStreamOptions& options = {});
 
 /// Appends the splats of `records` (whole splats of header.recordsPerElement() records,
 /// as a Gaussian stream's packet gives them) to `cloud`, whose shDegree becomes the
