@@ -126,10 +126,18 @@ Mesh tessellateElevationGrid(const Node& node, ProblemLog& log) {
   PolygonSoup soup = polygonSoupOf(node, points);
   const ColorSource colors(node);  // Color or X3D ColorRGBA
   const auto& normals = childArray<FieldType::MFVec3f>(node, "normal", "vector");
-  const auto& texPoints = childArray<FieldType::MFVec2f>(node, "texCoord", "point");
+  // A TextureCoordinate, an X3D TextureCoordinate3D / 4D (Mesh::texCoordsStrq), or a
+  // MultiTextureCoordinate's first set and second (Mesh::texCoords1), as IndexedFaceSet
+  // reads them; a TextureCoordinateGenerator is computed when drawn (the grid's own
+  // coordinates stay for what reads none).
+  TexSource texKind = TexSource::none;
+  const StrqPoints strq = strqTexCoordPoints(node);
+  const auto& texPoints = strq.present ? strq.st : texCoordPoints(node, texKind);
+  if (strq.present) texKind = TexSource::points;
   const bool haveColor = colors.present();
   const bool haveNormal = node.sfnode("normal") != nullptr;
-  const bool haveTex = node.sfnode("texCoord") != nullptr;
+  const bool haveTex = texKind == TexSource::points;
+  const std::vector<glm::vec2>* tex1 = haveTex ? secondTexCoordPoints(node) : nullptr;
   const bool colorPerVertex = node.get<FieldType::SFBool>("colorPerVertex", true);
   const bool normalPerVertex = node.get<FieldType::SFBool>("normalPerVertex", true);
   const std::size_t quads = (nx - 1) * (nz - 1);
@@ -174,12 +182,18 @@ Mesh tessellateElevationGrid(const Node& node, ProblemLog& log) {
           const std::size_t k = normalPerVertex ? v : q;
           soup.normals.push_back(k < normals.size() ? normals[k] : kNoNormal);
         }
-        if (haveTex)
-          soup.texCoords.push_back(v < texPoints.size() && finite(texPoints[v]) ? texPoints[v]
-                                                                                : glm::vec2(0.0f));
-        else
+        if (haveTex) {
+          const bool ok = v < texPoints.size() && finite(texPoints[v]);
+          soup.texCoords.push_back(ok ? texPoints[v] : glm::vec2(0.0f));
+          if (strq.present)
+            soup.texCoordsStrq.push_back(ok ? strq.strq[v] : glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+          if (tex1 != nullptr)
+            soup.texCoords1.push_back(v < tex1->size() && finite((*tex1)[v]) ? (*tex1)[v]
+                                                                             : glm::vec2(0.0f));
+        } else {
           soup.texCoords.emplace_back(static_cast<float>(ci[c]) / static_cast<float>(nx - 1),
                                       static_cast<float>(cj[c]) / static_cast<float>(nz - 1));
+        }
       }
     }
   }

@@ -112,6 +112,36 @@ TEST_CASE("TextureCoordinate4D: (s, t, r, q) kept, 2D coordinates divided by q",
   CHECK(m.texCoords[static_cast<std::size_t>(c)] == glm::vec2(0, 0));
 }
 
+TEST_CASE("ElevationGrid: TextureCoordinate4D per grid point; a generator is no missing point",
+          "[geometry][x3d][texcoord3d]") {
+  // A 2 x 2 grid, 1 m apart: grid point k = i + 2 j at (i, 0, j).
+  const std::string grid = "ElevationGrid { xDimension 2 zDimension 2 height [0 0 0 0] ";
+  const std::array<glm::vec3, 4> at = {glm::vec3(0, 0, 0), glm::vec3(1, 0, 0), glm::vec3(0, 0, 1),
+                                       glm::vec3(1, 0, 1)};
+  {
+    const Mesh m = strqMesh(grid +
+                            "texCoord TextureCoordinate4D { point [0 0 0 1, 2 0 1 2, 0 4 0 2, "
+                            "1 1 0.5 1] } }");
+    REQUIRE(m.texCoordsStrq.size() == m.positions.size());
+    const std::array<glm::vec4, 4> want = {glm::vec4(0, 0, 0, 1), glm::vec4(2, 0, 1, 2),
+                                           glm::vec4(0, 4, 0, 2), glm::vec4(1, 1, 0.5f, 1)};
+    for (std::size_t k = 0; k < 4; ++k) {
+      const int v = strqVertexAt(m, at[k]);
+      REQUIRE(v >= 0);
+      CHECK(m.texCoordsStrq[static_cast<std::size_t>(v)] == want[k]);
+      CHECK(m.texCoords[static_cast<std::size_t>(v)] == glm::vec2(want[k]) / want[k].w);
+    }
+  }
+  {
+    // Generated when drawn: no "fewer points" warning (strqMesh allows none); the grid's
+    // own coordinates stay.
+    const Mesh m = strqMesh(grid + "texCoord TextureCoordinateGenerator { mode \"COORD\" } }");
+    const int v = strqVertexAt(m, at[3]);
+    REQUIRE(v >= 0);
+    CHECK(m.texCoords[static_cast<std::size_t>(v)] == glm::vec2(1.0f, 1.0f));
+  }
+}
+
 TEST_CASE("castle's Box.ccw FALSE turns the box inside out", "[geometry][x3d][castle]") {
   const Mesh out = strqMesh("Box { }");
   const Mesh in = strqMesh("Box { ccw FALSE }");
