@@ -2,6 +2,7 @@
 
 #include "base/url.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <thread>
 
@@ -179,7 +180,14 @@ std::vector<StreamProgress> Loader::progress() const {
   return out;
 }
 
+std::uint64_t Loader::grant(std::uint64_t wanted) {
+  const std::uint64_t n = std::min(wanted, allowance_.remaining);
+  allowance_.remaining -= n;
+  return n;
+}
+
 void Loader::stopAll(const std::string& why) {
+  if (stopReason_.empty()) stopReason_ = why;
   for (auto& [url, f] : fetches_)
     if (f.transfer) {
       f.transfer->cancel();

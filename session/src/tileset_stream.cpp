@@ -89,6 +89,7 @@ bool TilesetStream::takeIndex() {
     return false;
   }
   stats_.indexBytes = bytes.size();
+  loader_.grant(bytes.size());  // counted as the streams' bytes are; taken whole
   index_ = qnv::parseTilesetIndex(bytes, url_, error);
   if (!index_) {
     indexFailed_ = true;
@@ -167,6 +168,14 @@ bool TilesetStream::pumpBricks() {
     const net::TransferStatus s = b.transfer->status();
     chunk.clear();
     b.transfer->take(chunk);
+    // Under --snapshot-at's cap, the bytes past it are not used (the loader stops all at
+    // its next pump).
+    const std::uint64_t granted = loader_.grant(chunk.size());
+    const bool cut = granted < chunk.size();
+    if (cut) {
+      chunk.resize(static_cast<std::size_t>(granted));
+      stopped_ = true;
+    }
     if (!chunk.empty()) {
       stats_.brickBytes += chunk.size();
       if (!b.decoder) b.decoder = std::make_unique<qnv::StreamDecoder>(url_ + " " + info.path());
@@ -195,6 +204,11 @@ bool TilesetStream::pumpBricks() {
         continue;
       }
     }
+    if (cut) {  // the cap: this brick's prefix ends here, not short of its file
+      b.transfer.reset();
+      changed = true;
+      continue;
+    }
     if (s.finished()) {
       if (s.state == net::TransferState::failed) {
         b.failed = true;
@@ -213,6 +227,7 @@ bool TilesetStream::pumpBricks() {
   }
   // Start transfers in priority order for the prefixes not yet fetched.
   for (const BrickChoice& c : choice_) {
+    if (stopped_) break;
     if (running >= options_.parallelFetches) break;
     Brick& b = bricks_[c.brick];
     if (b.failed || b.transfer || b.fed >= b.wantedBytes) continue;
@@ -248,7 +263,7 @@ bool TilesetStream::pumpMerged() {
     const qnv::TilesetBrick& info = index_->bricks[i];
     const std::string url = base::resolveUrl(url_, info.mergedPath());
     if (!m.transfer) {  // merged bricks are small: fetched whole, before the vectors
-      if (running >= options_.parallelFetches) continue;
+      if (running >= options_.parallelFetches || stopped_) continue;
       std::string error;
       net::FetchRequest r = loader_.requestFor(url, referrer_, error);
       if (r.url.empty()) {
@@ -271,6 +286,12 @@ bool TilesetStream::pumpMerged() {
     }
     m.transfer.reset();
     changed = mergedDirty_ = true;
+    // Under --snapshot-at's cap a merged brick is used whole or not at all.
+    if (s.state == net::TransferState::done && loader_.grant(m.bytes.size()) < m.bytes.size()) {
+      stopped_ = true;
+      m.bytes = {};
+      continue;
+    }
     if (s.state != net::TransferState::done) {
       m.failed = true;
       messages_.push_back({false, s.error + " (its region is drawn from its vectors)"});
@@ -373,6 +394,7 @@ void TilesetStream::rebuild() {
 bool TilesetStream::pump() {
   bool changed = takeIndex();
   if (!index_) return changed;
+  if (!loader_.stopReason().empty()) stop();  // again each pump: cheap, and idempotent
   choose();
   if (pumpMerged()) {
     dirty_ = true;
@@ -388,9 +410,19 @@ bool TilesetStream::pump() {
   return changed;
 }
 
+void TilesetStream::stop() {
+  stopped_ = true;
+  for (Brick& b : bricks_) b.transfer.reset();
+  for (MergedBrick& m : merged_) {
+    m.transfer.reset();
+    m.bytes = {};
+  }
+}
+
 bool TilesetStream::settled() const {
   if (indexFailed_) return true;
   if (!index_) return false;
+  if (stopped_ && !loader_.stopReason().empty()) return true;
   if (viewsChanged()) return false;
   for (std::size_t m : mergedChoice_)
     if (!merged_[m].cloud && !merged_[m].failed) return false;

@@ -190,6 +190,32 @@ TEST_CASE(
   }
 }
 
+TEST_CASE("--snapshot-at BYTES cuts a tileset's bricks as it cuts a stream: a part, no warning",
+          "[app][tileset]") {
+  const fs::path dir = ballTileset("ball_cut");
+  std::uint64_t total = 0;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    if (e.is_regular_file()) total += e.file_size();
+  const auto whole = shoot("ball_cut_whole", dir.string());
+  REQUIRE(whole.exitCode == 0);
+  // A tenth of the bytes (the index counted): a part of the ball, the bricks cut short
+  // by the cap and not reported as shorter than their index says.
+  const auto part =
+      runGhostspace({"--snapshot", (outDir() / "ball_cut_part.png").string(), "--size", "300x300",
+                     "--no-progress", "--snapshot-at", std::to_string(total / 10), dir.string()});
+  INFO(part.err);
+  CHECK(part.exitCode == 0);
+  CHECK(part.err.find("ends after") == std::string::npos);
+  CHECK(covered("ball_cut_part") > 0.0);
+  CHECK(covered("ball_cut_part") < covered("ball_cut_whole") * 0.9);
+  // Past its size, the whole picture.
+  const auto all =
+      runGhostspace({"--snapshot", (outDir() / "ball_cut_all.png").string(), "--size", "300x300",
+                     "--no-progress", "--snapshot-at", std::to_string(total * 2), dir.string()});
+  CHECK(all.exitCode == 0);
+  CHECK(differing("ball_cut_all", "ball_cut_whole") == 0.0);
+}
+
 TEST_CASE("CThead as a tileset looks like its single stream: the haze of weak vectors stays",
           "[heavy][app][tileset][corpus]") {
   // docs/tilesets.md, "Choosing bricks": the opacity-aware rule. The top 10% of CThead's

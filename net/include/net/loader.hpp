@@ -76,6 +76,14 @@ class Loader final : public base::Fetcher {
   std::vector<StreamProgress> progress() const;
   /// Ends every stream now (StreamState::stopped with `why`).
   void stopAll(const std::string& why);
+  /// Why stopAll() ended the loads ("" before it did): consumers that run their own
+  /// transfers (session::TilesetStream) end theirs too.
+  const std::string& stopReason() const { return stopReason_; }
+  /// How many of `wanted` bytes arrived at a consumer's own transfers may be used under
+  /// LoaderOptions::stopAfterBytes (all without it): taken from the same allowance as the
+  /// loader's own streams, so that --snapshot-at counts every byte. When the allowance is
+  /// spent the next pump() stops every stream.
+  std::uint64_t grant(std::uint64_t wanted);
   const LoaderOptions& options() const { return options_; }
   const FetchBudget& budget() const { return *budget_; }
   /// The request this loader would make for `url` referenced by `referrer`, under its
@@ -90,6 +98,7 @@ class Loader final : public base::Fetcher {
   std::shared_ptr<FetchBudget> budget_;
   Allowance allowance_;
   bool capReached_ = false;
+  std::string stopReason_;
   std::map<std::string, std::shared_ptr<WorldStream>> worlds_;
   std::map<std::string, std::shared_ptr<QnvStream>> qnvs_;
   /// One stream the loader opened: which map holds it, under which URL.

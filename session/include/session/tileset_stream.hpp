@@ -1,7 +1,8 @@
 // A QNV tileset viewed progressively (issue 13 part 1; docs/tilesets.md): its index is
 // fetched whole, then the views that draw it choose bricks and prefixes
 // (session/tileset_selection.hpp), fetched as HTTP range requests (or file reads) in
-// priority order through the session's net::Loader rules and limits, each brick decoded
+// priority order through the session's net::Loader rules and limits (its --snapshot-at
+// byte allowance and stop included), each brick decoded
 // incrementally by its own qnv::StreamDecoder. The splat set handed to the renderers holds
 // the chosen prefixes one after the other in priority order (ancestors first) and is
 // rebuilt whenever vectors arrive or the choice changes. Far interior nodes of a tileset
@@ -66,7 +67,8 @@ class TilesetStream {
   /// (re)starts transfers in priority order, decodes what arrived, drops far bricks over
   /// the memory budget and rebuilds the set. True when the set changed.
   bool pump();
-  /// Nothing arriving and nothing more wanted for the views seen so far.
+  /// Nothing arriving and nothing more wanted for the views seen so far, or the loader
+  /// stopped the loads (net::Loader::stopReason: --snapshot-at's bytes or seconds).
   bool settled() const;
   /// Failures (the index, naming its URL) and warnings (bricks) not returned before;
   /// error = true for failures.
@@ -86,6 +88,8 @@ class TilesetStream {
   bool pumpBricks();
   void evict();
   void rebuild();
+  /// Ends every transfer for good (the loader stopped): what arrived stays drawn.
+  void stop();
 
   net::Loader& loader_;
   std::string url_, referrer_, base_;
@@ -103,6 +107,7 @@ class TilesetStream {
   bool mergedDirty_ = false;  // mergedSet_ is to be assembled again
   std::vector<std::pair<std::uint64_t, render::SplatSet::View>> lastViews_;
   bool dirty_ = false;
+  bool stopped_ = false;  // the loader stopped the loads: no transfer starts again
   TilesetStatistics stats_;
   std::vector<std::pair<bool, std::string>> messages_;
   std::size_t messagesShown_ = 0;
