@@ -66,9 +66,9 @@ double secondsSince(Clock::time_point t0) {
 }
 
 /// Bytes arrived and expected over every stream, for the progress bar.
-double loadFraction(const net::Loader& loader) {
+double loadFraction(const session::StreamingSession& session) {
   double have = 0.0, want = 0.0;
-  for (const net::StreamProgress& p : loader.progress()) {
+  for (const net::StreamProgress& p : session.progress()) {
     have += p.fraction();
     want += 1.0;
   }
@@ -158,7 +158,7 @@ int runSnapshot(const Options& options) {
       drewSincePump = true;
     }
     if (settled && !needDraw && !drewSincePump) break;
-    bar.update(loadFraction(session.loader()));
+    bar.update(loadFraction(session));
     if (!drewSincePump) session.loader().wait(0.01);
   }
   bar.finish();

@@ -130,7 +130,7 @@ static void drawStreams(WindowState& state) {
     ImGui::End();
     return;
   }
-  const auto streams = state.session->loader().progress();
+  const auto streams = state.session->progress();
   // The numbers keep their width; the URL column takes what is left and shows the file
   // name, the whole URL (and any error) in its tooltip (issue 42, friction 8: at the
   // default size the columns were cut off).
@@ -322,7 +322,7 @@ int drawMenuBar(WindowState& state, float aspect) {
   if (!state.session->settled()) {
     std::uint64_t bytes = 0;
     double fraction = 0.0, rate = 0.0;
-    const auto streams = state.session->loader().progress();
+    const auto streams = state.session->progress();
     for (const net::StreamProgress& p : streams) {
       bytes += p.bytes;
       fraction += p.fraction() / static_cast<double>(streams.size());

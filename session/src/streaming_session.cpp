@@ -332,6 +332,12 @@ std::vector<const TilesetStream*> StreamingSession::tilesets() const {
   return out;
 }
 
+std::vector<net::StreamProgress> StreamingSession::progress() const {
+  std::vector<net::StreamProgress> out = loader_.progress();
+  for (const auto& [url, t] : tilesets_) out.push_back(t->progress());
+  return out;
+}
+
 void StreamingSession::drainMessages(std::vector<std::pair<bool, std::string>>& out) {
   for (auto& [url, t] : tilesets_) t->drainMessages(out);
   // A stream that ends short says so in its decoder's warnings, shown below: its end

@@ -279,7 +279,9 @@ bool TilesetStream::pumpMerged() {
       ++stats_.requests;
     }
     const net::TransferStatus s = m.transfer->status();
+    const std::size_t before = m.bytes.size();
     m.transfer->take(m.bytes);
+    stats_.mergedBytes += m.bytes.size() - before;
     if (!s.finished()) {
       ++running;
       continue;
@@ -431,6 +433,36 @@ bool TilesetStream::settled() const {
     if (b.transfer || (!b.failed && b.fed < b.wantedBytes)) return false;
   }
   return true;
+}
+
+net::StreamProgress TilesetStream::progress() const {
+  net::StreamProgress p;
+  p.url = url_;
+  p.kind = net::StreamKind::qnv;
+  p.bytes = stats_.indexBytes + stats_.brickBytes + stats_.mergedBytes;
+  p.vectors = stats_.residentVectors;
+  p.wantedVectors = stats_.chosenVectors;
+  if (indexFailed_) {
+    p.state = net::StreamState::failed;
+    for (const auto& [error, text] : messages_)
+      if (error) {
+        p.error = text;
+        break;
+      }
+    return p;
+  }
+  if (!index_) return p;  // waiting for the index
+  p.expectedVectors = index_->header.vectorCount;
+  std::uint64_t files = stats_.indexBytes;
+  for (const qnv::TilesetBrick& b : index_->bricks) files += b.fileBytes;
+  p.expectedBytes = static_cast<std::int64_t>(std::min<std::uint64_t>(files, INT64_MAX));
+  if (stopped_ && !loader_.stopReason().empty()) {
+    p.state = net::StreamState::stopped;
+    p.error = url_ + ": " + loader_.stopReason();
+  } else {
+    p.state = settled() ? net::StreamState::idle : net::StreamState::loading;
+  }
+  return p;
 }
 
 void TilesetStream::drainMessages(std::vector<std::pair<bool, std::string>>& out) {

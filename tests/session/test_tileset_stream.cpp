@@ -35,10 +35,12 @@ struct Loaded {
   session::TilesetStatistics stats;
   std::vector<qnv::DecodedVector> vectors;
   std::vector<std::pair<bool, std::string>> messages;
+  net::StreamProgress progress;  // the tileset's line of StreamingSession::progress()
 };
 
-Loaded load(const std::string& input, const scene::Camera* camera) {
-  session::StreamingSession s;
+Loaded load(const std::string& input, const scene::Camera* camera,
+            net::LoaderOptions loaderOptions = {}) {
+  session::StreamingSession s(loaderOptions);
   std::string error;
   auto scene = s.open(input, error);
   REQUIRE(scene);
@@ -59,6 +61,8 @@ Loaded load(const std::string& input, const scene::Camera* camera) {
   out.stats = s.tilesets()[0]->statistics();
   out.vectors = set->vectors;
   s.drainMessages(out.messages);
+  REQUIRE(!s.progress().empty());
+  out.progress = s.progress().back();
   return out;
 }
 
@@ -90,6 +94,14 @@ TEST_CASE("tileset stream: the whole view at full refinement holds the single st
     std::uint64_t files = 0;
     for (const auto& b : index.bricks) files += b.fileBytes;
     CHECK(l.stats.brickBytes == files);
+    // Its line in the Streams panel: every byte of the tileset's files, every vector.
+    CHECK(l.progress.url.find("index.qnvt") != std::string::npos);
+    CHECK(l.progress.state == net::StreamState::idle);
+    CHECK(l.progress.bytes == l.stats.indexBytes + files);
+    CHECK(l.progress.expectedBytes == static_cast<std::int64_t>(l.stats.indexBytes + files));
+    CHECK(l.progress.vectors == encoded.records.size());
+    CHECK(l.progress.expectedVectors == encoded.records.size());
+    CHECK(l.progress.fraction() == 1.0);
     auto a = l.vectors, b = whole->vectors;
     std::sort(a.begin(), a.end(), byValue);
     std::sort(b.begin(), b.end(), byValue);
@@ -120,6 +132,24 @@ TEST_CASE("tileset stream: a zoom into one corner fetches far fewer bytes", "[ti
   CHECK(!corner.vectors.empty());
 }
 
+TEST_CASE("tileset stream: the loader's byte cap cuts the bricks and stops the tileset",
+          "[tileset][session]") {
+  const auto encoded = ballVectors(24);
+  const fs::path dir = freshDir("ball24_cap");
+  const auto index = test::writeTestTileset(encoded, dir, 512);
+  std::uint64_t files = 0;
+  for (const auto& b : index.bricks) files += b.fileBytes;
+  net::LoaderOptions capped;
+  capped.stopAfterBytes = files / 3;
+  const Loaded l = load(dir.string(), nullptr, capped);
+  CHECK(l.messages.empty());  // a cut is no error: no brick "ends after" its bytes
+  CHECK(l.stats.indexBytes + l.stats.brickBytes <= capped.stopAfterBytes);
+  CHECK(l.stats.brickBytes > 0);
+  CHECK(l.vectors.size() < encoded.records.size());
+  CHECK(l.progress.state == net::StreamState::stopped);
+  CHECK(l.progress.error.find("--snapshot-at") != std::string::npos);
+}
+
 TEST_CASE("tileset stream: a hostile index is refused with a message naming it",
           "[tileset][session]") {
   const fs::path dir = freshDir("hostile");
@@ -140,6 +170,9 @@ TEST_CASE("tileset stream: a hostile index is refused with a message naming it",
   CHECK(messages[0].first);
   CHECK(messages[0].second.find(url) != std::string::npos);
   CHECK(set->vectors.empty());
+  REQUIRE(s.progress().size() >= 1);
+  CHECK(s.progress().back().state == net::StreamState::failed);
+  CHECK(s.progress().back().error.find(url) != std::string::npos);
 }
 
 TEST_CASE("tileset stream: a new view re-chooses, and far bricks go over the memory budget",

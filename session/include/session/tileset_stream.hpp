@@ -40,6 +40,7 @@ struct TilesetOptions {
 struct TilesetStatistics {
   std::uint64_t indexBytes = 0;
   std::uint64_t brickBytes = 0;       // bytes of bricks taken from transfers
+  std::uint64_t mergedBytes = 0;      // bytes of merged bricks taken whole
   std::uint64_t requests = 0;         // brick range requests started
   std::uint64_t chosenBricks = 0;     // in the last choice
   std::uint64_t chosenVectors = 0;    // records of the last choice
@@ -75,6 +76,13 @@ class TilesetStream {
   void drainMessages(std::vector<std::pair<bool, std::string>>& out);
   const std::optional<qnv::TilesetIndex>& index() const { return index_; }
   const TilesetStatistics& statistics() const { return stats_; }
+  /// The tileset as one line of the window's Streams panel and the progress bars (kind
+  /// qnv): bytes of the index, bricks and merged bricks taken, of the whole tileset's
+  /// files (known with the index); vectors decoded and held, of the tileset's, the last
+  /// choice's as the wanted prefix; `loading` while a transfer runs or a chosen prefix
+  /// is missing, `idle` once settled (a new view may ask for more), `stopped` once the
+  /// loader stopped the loads, `failed` when the index could not be read (`error`).
+  net::StreamProgress progress() const;
   /// The URL of the index.
   const std::string& url() const { return url_; }
 
