@@ -190,7 +190,7 @@ TEST_CASE(
   }
 }
 
-TEST_CASE("--snapshot-at BYTES cuts a tileset's bricks as it cuts a stream: a part, no warning",
+TEST_CASE("a tileset under --snapshot-at BYTES is cut as a stream is: a part, no warning",
           "[app][tileset]") {
   const fs::path dir = ballTileset("ball_cut");
   std::uint64_t total = 0;
