@@ -236,6 +236,15 @@ int runEncode(const Options& options) {
   const char* elements = "triangles";
   if (!tileset && !s.raw && session::isGaussianSplatFile(input))
     return encodeGaussianScene(options, s, input);  // below
+  if (tileset && !s.raw && session::isGaussianSplatFile(input)) {
+    bar.finish();
+    std::fprintf(stderr,
+                 "ghostspace: encode: %s is a Gaussian splatting scene: --tileset is for "
+                 "volumes, meshes and worlds; write one stream (-o OUT.qnv), whose "
+                 "level-of-detail tree is built when it opens (docs/splats.md)\n",
+                 input.c_str());
+    return 2;
+  }
   if (options.encode.shBits != EncodeOptions{}.shBits) {
     bar.finish();
     std::fprintf(stderr,
