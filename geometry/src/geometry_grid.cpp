@@ -183,13 +183,7 @@ Mesh tessellateElevationGrid(const Node& node, ProblemLog& log) {
           soup.normals.push_back(k < normals.size() ? normals[k] : kNoNormal);
         }
         if (haveTex) {
-          const bool ok = v < texPoints.size() && finite(texPoints[v]);
-          soup.texCoords.push_back(ok ? texPoints[v] : glm::vec2(0.0f));
-          if (strq.present)
-            soup.texCoordsStrq.push_back(ok ? strq.strq[v] : glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
-          if (tex1 != nullptr)
-            soup.texCoords1.push_back(v < tex1->size() && finite((*tex1)[v]) ? (*tex1)[v]
-                                                                             : glm::vec2(0.0f));
+          addTexCorner(soup, texPoints, strq, tex1, v);
         } else {
           soup.texCoords.emplace_back(static_cast<float>(ci[c]) / static_cast<float>(nx - 1),
                                       static_cast<float>(cj[c]) / static_cast<float>(nz - 1));

@@ -119,16 +119,9 @@ Mesh tessellateIndexedFaceSet(const Node& node, ProblemLog& log) {
       const bool ok =
           inRange(t, texPoints.size()) && finite(texPoints[static_cast<std::size_t>(t)]);
       if (!ok) log.addLazy([&] { return badIndex("texCoordIndex", i, t, texPoints.size()); });
-      soup.texCoords.push_back(ok ? texPoints[static_cast<std::size_t>(t)] : glm::vec2(0.0f));
-      if (strq.present)
-        soup.texCoordsStrq.push_back(ok ? strq.strq[static_cast<std::size_t>(t)]
-                                        : glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
       // The second set shares texCoordIndex (X3D 4.0 clause 18.4.3).
-      if (tex1 != nullptr)
-        soup.texCoords1.push_back(inRange(t, tex1->size()) &&
-                                          finite((*tex1)[static_cast<std::size_t>(t)])
-                                      ? (*tex1)[static_cast<std::size_t>(t)]
-                                      : glm::vec2(0.0f));
+      addTexCorner(soup, texPoints, strq, tex1,
+                   t >= 0 ? static_cast<std::size_t>(t) : std::numeric_limits<std::size_t>::max());
     }
   };
 

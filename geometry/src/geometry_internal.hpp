@@ -268,6 +268,14 @@ struct PolygonSoup {
 /// longest (0 to its length / the longest); ties prefer X, then Y, then Z.
 void defaultTexCoords(PolygonSoup& soup);
 
+/// Appends one corner's texture coordinates to `soup`: point `index` of `texPoints` (the
+/// geometry's texCoord, or its 3D / 4D points' (s / q, t / q)) to texCoords, of `strq` to
+/// texCoordsStrq when present, of `second` (a MultiTextureCoordinate's second set; null
+/// when none) to texCoords1. An index past a list or a point that is not finite gives
+/// (0, 0) (and (0, 0, 0, 1)).
+void addTexCorner(PolygonSoup& soup, std::span<const glm::vec2> texPoints, const StrqPoints& strq,
+                  const std::vector<glm::vec2>* second, std::size_t index);
+
 /// A soup over `points` with the node's ccw, convex, solid and creaseAngle fields
 /// (IndexedFaceSet 6.23, ElevationGrid 6.18, Extrusion 6.19; an absent field keeps its
 /// VRML97 default: TRUE, TRUE, TRUE, 0 radians); carryPoints when the node has vertex

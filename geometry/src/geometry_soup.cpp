@@ -32,6 +32,18 @@ bool usableNormal(const glm::vec3& n) {
 
 }  // namespace
 
+void addTexCorner(PolygonSoup& soup, std::span<const glm::vec2> texPoints, const StrqPoints& strq,
+                  const std::vector<glm::vec2>* second, std::size_t index) {
+  const bool ok = index < texPoints.size() && finite(texPoints[index]);
+  soup.texCoords.push_back(ok ? texPoints[index] : glm::vec2(0.0f));
+  if (strq.present)
+    soup.texCoordsStrq.push_back(
+        ok && index < strq.strq.size() ? strq.strq[index] : glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+  if (second != nullptr)
+    soup.texCoords1.push_back(index < second->size() && finite((*second)[index]) ? (*second)[index]
+                                                                                 : glm::vec2(0.0f));
+}
+
 PolygonSoup polygonSoupOf(const Node& node, std::span<const glm::vec3> points) {
   PolygonSoup soup;
   soup.points = points;

@@ -127,15 +127,9 @@ Mesh buildComposed(const Node& node, ProblemLog& log, std::span<const glm::vec3>
             k < normals.size() ? normals[k] : glm::vec3(std::numeric_limits<float>::quiet_NaN()));
       }
       if (haveTex) {
-        const bool ok = v < texPoints.size() && finite(texPoints[v]);
         if (v >= texPoints.size())
           log.addLazy([&] { return missing("texCoord", v, texPoints.size()); });
-        soup.texCoords.push_back(ok ? texPoints[v] : glm::vec2(0.0f));
-        if (strq.present)
-          soup.texCoordsStrq.push_back(ok ? strq.strq[v] : glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
-        if (tex1 != nullptr)
-          soup.texCoords1.push_back(v < tex1->size() && finite((*tex1)[v]) ? (*tex1)[v]
-                                                                           : glm::vec2(0.0f));
+        addTexCorner(soup, texPoints, strq, tex1, v);
       }
     }
   }
