@@ -180,8 +180,8 @@ int encodeGaussianScene(const Options& options, Settings s, const std::string& i
   try {
     const splats::GaussianCloud cloud =
         splats::readGaussians(bytes, input, session::sideFileReader(fetcher, input));
-    const qnv::EncodedVectors vectors =
-        splats::encodeGaussianStream(cloud, {.shBits = options.encode.shBits});
+    const qnv::EncodedVectors vectors = splats::encodeGaussianStream(
+        cloud, {.shBits = options.encode.shBits, .shFullFraction = options.encode.shFull});
     const std::uint32_t splatBytes = 8 * vectors.header.recordsPerElement();
     if (options.encode.packetBytes == EncodeOptions{}.packetBytes)
       s.write.packetBytes = vectors.header.packetBytes;
@@ -245,10 +245,12 @@ int runEncode(const Options& options) {
                  input.c_str());
     return 2;
   }
-  if (options.encode.shBits != EncodeOptions{}.shBits) {
+  if (options.encode.shBits != EncodeOptions{}.shBits ||
+      options.encode.shFull != EncodeOptions{}.shFull) {
     bar.finish();
     std::fprintf(stderr,
-                 "ghostspace: encode: --sh-bits is for streams of Gaussian splatting scenes "
+                 "ghostspace: encode: --sh-bits and --sh-full are for streams of Gaussian "
+                 "splatting scenes "
                  "(.ply with Gaussian properties, .spz, .splat, .sog, .glb ...), not '%s'%s\n",
                  input.c_str(), tileset ? " as a --tileset" : "");
     return 2;

@@ -357,11 +357,19 @@ const std::vector<OptionSpec>& table() {
        .help = "Gaussian splatting scenes: keep the top N of the 5 bits of each degree-1 SH "
                "code (1..5; 5: all). Lossy; smaller streams",
        .more = "Each bit dropped doubles the SH step (5 bits: 1/16); degree 2 and 3 codes "
-               "(4 bits, step 1/8) drop as many, keeping one. Every reader reads the stream. "
-               "CThead's capture at 4: 12.2 instead of 19.9 bytes per splat, its picture "
-               "41.0 dB from the source's instead of 54.2 (docs/splats.md, \"Bytes and "
-               "pictures\"). Streams of Gaussian scenes only.",
+               "(4 bits, step 1/8) drop as many, keeping one; a value halfway goes towards 0. "
+               "Every reader reads the stream. Streams of Gaussian scenes only.",
        .check = CLI::Range(1, 5)},
+      {.scope = encode,
+       .names = "--sh-full",
+       .valueName = "F",
+       .field = GS_FIELD(double, options.encode.shFull),
+       .help = "With --sh-bits: the most important F of the splats (0..1, the stream's first) "
+               "keep every SH bit",
+       .more = "CThead's capture at --sh-bits 4: 12.2 bytes per splat, 41.0 dB from the "
+               "source's picture; with --sh-full 0.4, 15.3 and 47.0 dB; all bits, 19.9 and "
+               "54.2 dB; its SOG, 19.0 and 40.8 dB (docs/splats.md, \"Bytes and pictures\").",
+       .check = CLI::Range(0.0, 1.0)},
       {.scope = encode,
        .names = "--raw-dims",
        .valueName = "X,Y,Z",

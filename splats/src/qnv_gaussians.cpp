@@ -192,20 +192,29 @@ qnv::EncodedVectors encodeGaussianStream(const GaussianCloud& cloud,
            std::uint64_t{angleCode} << 8 | std::uint64_t{fine[0] & 3u} << 6 |
            std::uint64_t{fine[1] & 3u} << 4 | std::uint64_t{fine[2] & 3u} << 2 |
            std::uint64_t{t6 & 1u} << 1 | std::uint64_t{p7 & 1u};
-    for (int c = 0, at = 0; c < rest; ++c)
-      for (int ch = 0; ch < 3; ++ch) {
-        const int bits = qnv::gaussianShBits(3 * c + ch);
-        qnv::writeWordBits(
-            w + 2, at,
-            shCode(cloud.shRest[std::size_t{i} * rest + c][ch], bits, std::min(dropped, bits - 1)),
-            bits);
-        at += bits;
-      }
     order[k] = {qnv::gaussianImportance(w[0], w[1], h), static_cast<std::uint32_t>(k)};
   }
   // By the importance of the quantized splat, largest first: A is that importance's code.
   std::stable_sort(order.begin(), order.end(),
                    [](const auto& a, const auto& b) { return a.first > b.first; });
+  // The SH words (not part of the importance), the most important splats with every bit
+  // (options.shFullFraction), the rest at options.shBits.
+  const auto fullCount = static_cast<std::size_t>(std::llround(
+      std::clamp(options.shFullFraction, 0.0, 1.0) * static_cast<double>(order.size())));
+  for (std::size_t r = 0; r < order.size(); ++r) {
+    const std::size_t k = order[r].second;
+    const std::size_t i = kept[k];
+    std::uint64_t* w = records.data() + k * words;
+    const int drop = r < fullCount ? 0 : dropped;
+    for (int c = 0, at = 0; c < rest; ++c)
+      for (int ch = 0; ch < 3; ++ch) {
+        const int bits = qnv::gaussianShBits(3 * c + ch);
+        qnv::writeWordBits(w + 2, at,
+                           shCode(cloud.shRest[i * rest + c][ch], bits, std::min(drop, bits - 1)),
+                           bits);
+        at += bits;
+      }
+  }
   h.magnitudeMax = std::max(order.front().first, 1e-30f);
   h.magnitudeMin = std::clamp(order.back().first, h.magnitudeMax * 1e-12f, h.magnitudeMax);
   out.records.resize(records.size());

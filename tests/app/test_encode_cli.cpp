@@ -176,7 +176,7 @@ TEST_CASE("encode rejects bad options and unreadable inputs with a reason", "[ap
   auto shBitsWorld =
       runGhostspace({"encode", world, "-o", scratch("x.qnv").string(), "--sh-bits", "4"});
   CHECK(shBitsWorld.exitCode == 2);
-  CHECK_THAT(shBitsWorld.err, Catch::Contains("--sh-bits is for streams of Gaussian"));
+  CHECK_THAT(shBitsWorld.err, Catch::Contains("--sh-bits and --sh-full are for streams"));
   const auto splats = (gs::test::sourceDir() / "tests/data/splats/bunny_small.ply").string();
   auto shBitsRange =
       runGhostspace({"encode", splats, "-o", scratch("x.qnv").string(), "--sh-bits", "6"});
@@ -199,6 +199,13 @@ TEST_CASE("encode --sh-bits writes a smaller Gaussian stream that opens as any o
   REQUIRE(r.exitCode == 0);
   // 19.9 -> 12.2 bytes per splat (docs/splats.md, "Bytes and pictures").
   CHECK(std::filesystem::file_size(coarse) < std::filesystem::file_size(full) * 3 / 4);
+  // The most important 40% with every bit: between the two (15.3 bytes per splat).
+  const auto mixed = scratch("cthead_sh4_full40.qnv");
+  REQUIRE(
+      runGhostspace({"encode", splats, "-o", mixed.string(), "--sh-bits", "4", "--sh-full", "0.4"})
+          .exitCode == 0);
+  CHECK(std::filesystem::file_size(mixed) > std::filesystem::file_size(coarse));
+  CHECK(std::filesystem::file_size(mixed) < std::filesystem::file_size(full));
   const auto info = runGhostspace({"info", coarse.string()});
   CHECK(info.exitCode == 0);
   const auto shot = runGhostspace(

@@ -137,6 +137,22 @@ TEST_CASE("fewer SH bits: coarser steps, the same layout, smaller compact packet
     if (previous != 0) CHECK(bytes.size() < previous);
     previous = bytes.size();
   }
+  // shFullFraction: the stream's first splats keep every bit, the rest are coarser. All of
+  // them: the records of shBits 5; none: those of the coarse setting.
+  const auto whole = encodeGaussianStream(cloud);
+  const auto coarse = encodeGaussianStream(cloud, {.shBits = 3});
+  CHECK(encodeGaussianStream(cloud, {.shBits = 3, .shFullFraction = 1.0}).records == whole.records);
+  CHECK(encodeGaussianStream(cloud, {.shBits = 3, .shFullFraction = 0.0}).records ==
+        coarse.records);
+  const auto half = encodeGaussianStream(cloud, {.shBits = 3, .shFullFraction = 0.5});
+  REQUIRE(half.records.size() == whole.records.size());
+  const std::size_t splats = whole.records.size() / 3, first = (splats + 1) / 2;
+  for (std::size_t k = 0; k < splats; ++k) {
+    INFO("splat " << k << " of the stream");
+    const auto& want = k < first ? whole.records : coarse.records;
+    CHECK(half.records[3 * k + 2] == want[3 * k + 2]);   // the SH word
+    CHECK(half.records[3 * k] == whole.records[3 * k]);  // the rest: the same splat
+  }
 }
 
 TEST_CASE("a Gaussian stream is in importance order and every prefix decodes", "[splats][qnv]") {

@@ -29,6 +29,7 @@ struct EncodeOptions {
   std::string magnitude = "log";     // --magnitude log|linear
   int magnitudeBits = 15;            // --magnitude-bits N: A codes rounded to N bits (lossy)
   int shBits = 5;                    // --sh-bits N: Gaussian scenes' SH codes to N bits (lossy)
+  double shFull = 0.0;               // --sh-full F: the most important F keep every SH bit
   std::string rawDims;               // --raw-dims X,Y,Z: INPUT is raw voxels
   std::string rawType = "uint8";     // --raw-type int16 ...
   std::string rawSpacing = "1,1,1";  // --raw-spacing SX,SY,SZ

@@ -25,6 +25,9 @@ struct GaussianStreamOptions {
   /// stream; the coarser values are fewer distinct bytes, which zstd packs tighter
   /// (docs/splats.md, "Bytes and pictures"). Values outside 1..5 are clamped.
   int shBits = 5;
+  /// The share of the splats, the most important first (the stream's order), that keep
+  /// every SH bit whatever shBits says, 0..1.
+  double shFullFraction = 0.0;
 };
 
 /// The records of `cloud` as a Gaussian stream (qnv::StreamKind::gaussian) in stream
