@@ -216,6 +216,41 @@ int encodeGaussianScene(const Options& options, Settings s, const std::string& i
   return 1;
 }
 
+// A 3D Gaussian splatting scene as a QNV tileset of Gaussian bricks
+// (splats/gaussian_tileset.hpp; docs/tilesets.md, "Gaussian tilesets").
+int encodeGaussianTileset(const Options& options, const Settings& s, const std::string& input) {
+  const auto t0 = std::chrono::steady_clock::now();
+  std::string bytes, error;
+  if (!base::readFile(input, bytes, error, std::size_t{16} << 30)) {
+    std::fprintf(stderr, "ghostspace: %s\n", error.c_str());
+    return 1;
+  }
+  encode::TilesetTarget target;
+  if (!tilesetTarget(options.encode, s.write, target)) return 2;
+  base::LocalFetcher fetcher;
+  try {
+    const splats::GaussianCloud cloud =
+        splats::readGaussians(bytes, input, session::sideFileReader(fetcher, input));
+    const encode::TilesetResult r = encode::writeGaussianTileset(
+        target, cloud, {.shBits = options.encode.shBits, .shFullFraction = options.encode.shFull});
+    if (!r.ok()) {
+      // As writeTileset: bad options or input 2, a file not written 1.
+      std::fprintf(stderr, "ghostspace: encode: %s: %s\n", input.c_str(), r.error.c_str());
+      return r.failure == encode::Failure::input ? 2 : 1;
+    }
+    const std::uint64_t words = r.merged.index.header.recordsPerElement();
+    std::printf("%s: %s Gaussians (SH degree %d), kept %s\n", input.c_str(),
+                withCommas(cloud.size()).c_str(), cloud.shDegree,
+                withCommas(r.merged.index.header.vectorCount / words).c_str());
+    printMerged(target.dir, r.merged);
+    std::printf("%s: encoded in %.3f s\n", input.c_str(), secondsSince(t0));
+    return 0;
+  } catch (const splats::FormatError& e) {
+    std::fprintf(stderr, "ghostspace: %s\n", e.what());
+  }
+  return 1;
+}
+
 }  // namespace
 
 int runEncode(const Options& options) {
@@ -238,12 +273,7 @@ int runEncode(const Options& options) {
     return encodeGaussianScene(options, s, input);  // below
   if (tileset && !s.raw && session::isGaussianSplatFile(input)) {
     bar.finish();
-    std::fprintf(stderr,
-                 "ghostspace: encode: %s is a Gaussian splatting scene: --tileset is for "
-                 "volumes, meshes and worlds; write one stream (-o OUT.qnv), whose "
-                 "level-of-detail tree is built when it opens (docs/splats.md)\n",
-                 input.c_str());
-    return 2;
+    return encodeGaussianTileset(options, s, input);  // below
   }
   if (options.encode.shBits != EncodeOptions{}.shBits ||
       options.encode.shFull != EncodeOptions{}.shFull) {

@@ -34,13 +34,16 @@ bool tilesetTarget(const EncodeOptions& e, const qnv::WriteOptions& write,
 void printMerged(const fs::path& dir, const encode::Merged& m) {
   std::uint64_t leaves = 0;
   for (const qnv::TilesetBrick& b : m.index.bricks) leaves += b.level == m.index.depth;
+  const bool gaussian = m.index.header.kind == qnv::StreamKind::gaussian;
   std::printf(
-      "%s: %zu bricks (%llu leaves, depth %u), %llu vectors, index %llu bytes, %llu bytes in "
+      "%s: %zu bricks (%llu leaves, depth %u), %llu %s, index %llu bytes, %llu bytes in "
       "all\n",
       dir.string().c_str(), m.index.bricks.size(), static_cast<unsigned long long>(leaves),
       static_cast<unsigned>(m.index.depth),
-      static_cast<unsigned long long>(m.index.header.vectorCount),
-      static_cast<unsigned long long>(m.indexBytes), static_cast<unsigned long long>(m.totalBytes));
+      static_cast<unsigned long long>(m.index.header.vectorCount /
+                                      m.index.header.recordsPerElement()),
+      gaussian ? "splats" : "vectors", static_cast<unsigned long long>(m.indexBytes),
+      static_cast<unsigned long long>(m.totalBytes));
 }
 
 namespace {

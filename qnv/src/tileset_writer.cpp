@@ -164,7 +164,11 @@ BrickFile writeBrick(const TilesetCell& node, const StreamHeader& header,
                  h.encoding, &h);
     b.packetEnds.push_back(out.bytes.size());
   }
-  for (std::uint64_t r : records) ++b.histogram[tilesetBand(magnitudeCode(r))];
+  // A Gaussian splat's words all count in the band of its first word's A code.
+  const std::size_t step = h.kind == StreamKind::gaussian ? h.recordsPerElement() : 1;
+  for (std::size_t i = 0; i < records.size(); i += step)
+    b.histogram[tilesetBand(magnitudeCode(records[i]))] +=
+        static_cast<std::uint32_t>(std::min(step, records.size() - i));
   b.fileBytes = out.bytes.size();
   return out;
 }

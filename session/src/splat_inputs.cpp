@@ -102,6 +102,13 @@ bool isGaussianQnvFile(const std::string& path) {
              splats::SplatFormat::qnv;
 }
 
+bool isGaussianTilesetIndex(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  char head[27] = {};  // the template header's kind: byte 10 of the header at byte 16
+  return in.read(head, sizeof head) && head[0] == '\x89' && head[1] == 'Q' && head[2] == 'N' &&
+         head[3] == 'T' && head[26] == static_cast<char>(qnv::StreamKind::gaussian);
+}
+
 std::string gaussianWorldText(const std::string& path, bool turned) {
   std::string escaped;
   for (char c : path) {

@@ -6,12 +6,14 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <thread>
 #include <utility>
 
 #include "base/text.hpp"
 #include "base/url.hpp"
 #include "encodings/parser.hpp"
 #include "formats/input_kind.hpp"
+#include "net/transfer.hpp"
 #include "session/splat_inputs.hpp"
 #include "session/world.hpp"
 #include "splats/qnv_gaussians.hpp"
@@ -26,6 +28,23 @@ StreamingSession::~StreamingSession() {
   for (auto& [url, e] : qnv_) e.cancelTree->store(true);
 }
 
+bool StreamingSession::remoteKindIs(const std::string& url, std::size_t kindByte) {
+  std::string error;
+  net::FetchRequest r = loader_.requestFor(url, "", error);
+  if (r.url.empty()) return false;  // the stream's own fetch says why
+  r.length = kindByte + 1;
+  r.maxBytes = std::max<std::uint64_t>(r.length, 1u << 20);  // a server ignoring the range
+  const std::unique_ptr<net::Transfer> t = net::startTransfer(std::move(r));
+  std::string head;
+  while (!t->status().finished() && head.size() <= kindByte) {
+    t->take(head);
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  t->take(head);
+  return head.size() > kindByte && static_cast<std::uint8_t>(head[kindByte]) ==
+                                       static_cast<std::uint8_t>(qnv::StreamKind::gaussian);
+}
+
 std::shared_ptr<const vrml::Scene> StreamingSession::inputWorld(const std::string& input,
                                                                 bool& handled, std::string& error) {
   handled = true;
@@ -34,7 +53,11 @@ std::shared_ptr<const vrml::Scene> StreamingSession::inputWorld(const std::strin
     // (the world's url is the index itself, so the name resolves to it).
     const bool remote = base::isHttpUrl(index);
     const std::string name = remote ? index : std::filesystem::path(index).filename().string();
-    auto scene = std::make_shared<vrml::Scene>(vrml::parseVrml(splatWorldText(name), index));
+    // A tileset of Gaussians is a capture: turned as its scene file is.
+    const bool gaussian = remote ? remoteKindIs(index, kTilesetKindByte)
+                                 : isGaussianTilesetIndex(base::localPathOfUrl(index));
+    const std::string text = gaussian ? gaussianWorldText(name, true) : splatWorldText(name);
+    auto scene = std::make_shared<vrml::Scene>(vrml::parseVrml(text, index));
     localScenes_.push_back(scene);
     return scene;
   }
@@ -44,9 +67,11 @@ std::shared_ptr<const vrml::Scene> StreamingSession::inputWorld(const std::strin
     if (kind == formats::InputKind::qnv || kind == formats::InputKind::gaussianSplats) {
       // A QNV stream, or a splat scene read whole (StreamingSession::splatSet); a LAS
       // point cloud is z up already, a capture is turned (docs/splats.md, "Axes").
+      // A QNV stream of Gaussians is a capture too: its header's kind byte decides.
       const std::string text =
           kind == formats::InputKind::qnv
-              ? splatWorldText(input)
+              ? (remoteKindIs(input, kStreamKindByte) ? gaussianWorldText(input, true)
+                                                      : splatWorldText(input))
               : gaussianWorldText(input, !(base::endsWithNoCase(input, ".las") ||
                                            base::endsWithNoCase(input, ".laz")));
       auto scene = std::make_shared<vrml::Scene>(vrml::parseVrml(text, input));

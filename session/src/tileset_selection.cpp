@@ -79,9 +79,9 @@ double aboveThreshold(const qnv::TilesetBrick& b, double threshold) {
   return n;
 }
 
-/// What the opacity-aware part of the rule knows of each brick of a volume tileset (empty
-/// for surfaces): the optical depth its vectors of each band add, averaged over the brick's
-/// mean projected area, and the optical depth all its descendants add, averaged over the
+/// What the opacity-aware part of the rule knows of each brick of a volume or Gaussian
+/// tileset (empty for surfaces): the optical depth its vectors of each band add, averaged over the
+/// brick's mean projected area, and the optical depth all its descendants add, averaged over the
 /// same area. Both are independent of the view (a splat's opacity and its footprint shrink
 /// together with distance).
 struct OpticalDepths {
@@ -111,11 +111,18 @@ double meanProjectedArea(const qnv::TilesetBrick& b) {
 OpticalDepths opticalDepths(const qnv::TilesetIndex& index,
                             const std::unordered_map<std::uint64_t, std::size_t>& byCell) {
   OpticalDepths d;
-  if (index.header.kind != qnv::StreamKind::volume) return d;
+  const qnv::StreamHeader& h = index.header;
+  if (h.kind != qnv::StreamKind::volume && h.kind != qnv::StreamKind::gaussian) return d;
   const auto& bricks = index.bricks;
   std::array<double, qnv::kTilesetBands> perVector{};
   for (std::size_t band = 0; band < qnv::kTilesetBands; ++band)
-    perVector[band] = bandOpacityArea(index.header, band);
+    // A Gaussian's A is its coverage, opacity times area, shared by its records.
+    perVector[band] =
+        h.kind == qnv::StreamKind::volume
+            ? bandOpacityArea(h, band)
+            : qnv::reconstructMagnitude(static_cast<std::uint32_t>(band) * 2048u + 1024u, h.mapping,
+                                        h.magnitudeMin, h.magnitudeMax) /
+                  h.recordsPerElement();
   d.own.resize(bricks.size());
   d.below.assign(bricks.size(), 0.0);
   std::vector<double> total(bricks.size(), 0.0);  // opacity-area of the brick and below
@@ -166,7 +173,8 @@ std::vector<BrickChoice> walk(const qnv::TilesetIndex& index,
                               std::uint64_t limit, double threshold = 0.0) {
   std::vector<BrickChoice> out;
   const auto& bricks = index.bricks;
-  const double ppv = std::max(budget.pixelsPerVector, 1e-6);
+  // A Gaussian tileset's splat is recordsPerElement() records: the threshold counts splats.
+  const double ppv = std::max(budget.pixelsPerVector, 1e-6) / index.header.recordsPerElement();
   const bool opacityAware = !depths.own.empty() && budget.maxLostOpticalDepth > 0.0;
   using Entry = std::pair<double, std::size_t>;  // priority, brick
   std::priority_queue<Entry> queue;

@@ -11,7 +11,10 @@ namespace gs::session {
 struct TilesetStream::Brick {
   std::unique_ptr<qnv::StreamDecoder> decoder;
   std::vector<qnv::DecodedVector> vectors;  // in brick order (largest first)
-  std::uint64_t fed = 0;                    // bytes given to the decoder, from offset 0
+  /// A Gaussian tileset's brick: its splats in brick order (opacity 0 where a packet has
+  /// not arrived), instead of `vectors`.
+  std::shared_ptr<splats::GaussianCloud> splats;
+  std::uint64_t fed = 0;  // bytes given to the decoder, from offset 0
   std::unique_ptr<net::Transfer> transfer;
   std::uint64_t transferEnd = 0;    // end of the bytes the running transfer asked for
   std::uint64_t wantedBytes = 0;    // end of the prefix chosen (0: not chosen)
@@ -45,6 +48,11 @@ bool sameView(const render::SplatSet::View& a, const render::SplatSet::View& b) 
          a.camera.fieldOfView == b.camera.fieldOfView && a.camera.nearClip == b.camera.nearClip &&
          a.model == b.model && a.aspect == b.aspect && a.heightPixels == b.heightPixels &&
          a.vectors == b.vectors;
+}
+
+// Records a brick holds decoded (a Gaussian splat counts its recordsPerElement()).
+std::uint64_t heldRecords(const TilesetStream::Brick& b, std::uint32_t words) {
+  return b.splats ? std::uint64_t{b.splats->size()} * words : b.vectors.size();
 }
 
 TilesetView tilesetView(const render::SplatSet::View& v) {
@@ -100,7 +108,8 @@ bool TilesetStream::takeIndex() {
   merged_.resize(index_->bricks.size());
   render::SplatSet& set = *set_;
   set.style = render::SplatStyle::fromHeader(index_->header);
-  set.expectedVectors = index_->header.vectorCount;
+  words_ = index_->header.recordsPerElement();
+  set.expectedVectors = index_->header.vectorCount / words_;  // splats, for a Gaussian one
   set.bounds = vrml::Bounds{};
   set.bounds.extend(index_->header.boundsMin);
   set.bounds.extend(index_->header.boundsMax);
@@ -125,7 +134,7 @@ void TilesetStream::choose() {
   lastViews_ = views;
   std::vector<std::vector<BrickChoice>> perView;
   TilesetBudget budget;
-  budget.memoryVectors = options_.memoryBytes / sizeof(qnv::DecodedVector);
+  budget.memoryVectors = memoryRecords();
   budget.pixelsPerVector = options_.pixelsPerVector;
   std::vector<TilesetView> tilesetViews;
   for (const auto& [key, view] : views) tilesetViews.push_back(tilesetView(view));
@@ -135,7 +144,9 @@ void TilesetStream::choose() {
   mergedChoice_ = mergedChoice.merged;
   mergedDirty_ = true;
   for (std::size_t v = 0; v < views.size(); ++v) {
-    budget.vectors = views[v].second.vectors;
+    budget.vectors = views[v].second.vectors > UINT64_MAX / words_
+                         ? UINT64_MAX
+                         : views[v].second.vectors * words_;
     perView.push_back(selectBricks(*index_, tilesetViews[v], budget, mergedChoice.skip));
   }
   choice_ = mergeChoices(perView);
@@ -178,8 +189,20 @@ bool TilesetStream::pumpBricks() {
     }
     if (!chunk.empty()) {
       stats_.brickBytes += chunk.size();
-      if (!b.decoder) b.decoder = std::make_unique<qnv::StreamDecoder>(url_ + " " + info.path());
       const std::uint64_t limit = info.vectorCount;
+      if (!b.decoder) {
+        b.decoder = std::make_unique<qnv::StreamDecoder>(url_ + " " + info.path());
+        if (header.kind == qnv::StreamKind::gaussian) {
+          b.splats = std::make_shared<splats::GaussianCloud>();
+          b.splats->setShDegree(header.shDegree);
+          b.decoder->setRecordSink(
+              [&b, &changed, limit](std::uint64_t first, std::span<const std::uint64_t> records) {
+                if (first + records.size() > limit) return;  // a sequence the index does not allow
+                splats::placeGaussianRecords(*b.decoder->header(), first, records, *b.splats);
+                changed = true;
+              });
+        }
+      }
       auto sink = [&](std::uint64_t first, std::span<const qnv::DecodedVector> v) {
         if (first + v.size() > limit) return;  // a sequence number the index does not allow
         if (b.vectors.size() < first + v.size())
@@ -192,7 +215,8 @@ bool TilesetStream::pumpBricks() {
       std::string why = b.decoder->error();
       if (const auto& h = b.decoder->header();
           !bad && h &&
-          (h->packetBytes != header.packetBytes || h->vectorCount != info.vectorCount)) {
+          (h->packetBytes != header.packetBytes || h->vectorCount != info.vectorCount ||
+           h->kind != header.kind || h->shDegree != header.shDegree)) {
         bad = true;
         why = url_ + " " + info.path() + ": the brick's header disagrees with the index";
       }
@@ -313,22 +337,31 @@ bool TilesetStream::pumpMerged() {
   return changed;
 }
 
+std::uint64_t TilesetStream::memoryRecords() const {
+  if (!index_ || index_->header.kind != qnv::StreamKind::gaussian)
+    return options_.memoryBytes / sizeof(qnv::DecodedVector);
+  // A decoded splat: centre, scales, rotation, opacity, DC colour and its SH coefficients.
+  const std::uint64_t splatBytes =
+      56 + 12 * static_cast<std::uint64_t>(splats::shCoefficients(index_->header.shDegree) - 1);
+  return options_.memoryBytes / splatBytes * words_;
+}
+
 void TilesetStream::evict() {
-  const std::uint64_t limit = options_.memoryBytes / sizeof(qnv::DecodedVector);
+  const std::uint64_t limit = memoryRecords();
   std::uint64_t resident = 0;
-  for (const Brick& b : bricks_) resident += b.vectors.size();
+  for (const Brick& b : bricks_) resident += heldRecords(b, words_);
   if (resident > limit) {
     // Bricks no view chose, lowest priority (farthest, smallest on screen) first.
     std::vector<std::size_t> order;
     for (std::size_t i = 0; i < bricks_.size(); ++i)
-      if (bricks_[i].wantedBytes == 0 && !bricks_[i].vectors.empty()) order.push_back(i);
+      if (bricks_[i].wantedBytes == 0 && heldRecords(bricks_[i], words_) > 0) order.push_back(i);
     std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
       return bricks_[a].priority < bricks_[b].priority;
     });
     for (std::size_t i : order) {
       if (resident <= limit) break;
       Brick& b = bricks_[i];
-      resident -= b.vectors.size();
+      resident -= heldRecords(b, words_);
       b = Brick{};
       ++stats_.evictedBricks;
     }
@@ -336,10 +369,18 @@ void TilesetStream::evict() {
     // earlier view that chose more of them) keep only that prefix.
     for (Brick& b : bricks_) {
       if (resident <= limit) break;
-      if (b.wantedBytes == 0 || b.transfer || b.vectors.size() <= b.wantedRecords) continue;
-      resident -= b.vectors.size() - b.wantedRecords;
-      b.vectors.resize(static_cast<std::size_t>(b.wantedRecords));
-      b.vectors.shrink_to_fit();
+      const std::uint64_t held = heldRecords(b, words_);
+      if (b.wantedBytes == 0 || b.transfer || held <= b.wantedRecords) continue;
+      resident -= held - b.wantedRecords;
+      if (b.splats) {
+        auto kept = std::make_shared<splats::GaussianCloud>();
+        kept->setShDegree(b.splats->shDegree);
+        kept->appendRange(*b.splats, 0, static_cast<std::size_t>(b.wantedRecords / words_));
+        b.splats = std::move(kept);
+      } else {
+        b.vectors.resize(static_cast<std::size_t>(b.wantedRecords));
+        b.vectors.shrink_to_fit();
+      }
       b.fed = b.wantedBytes;
       b.trimmed = true;
     }
@@ -351,6 +392,11 @@ void TilesetStream::evict() {
 void TilesetStream::rebuild() {
   render::SplatSet& set = *set_;
   set.vectors.clear();
+  std::shared_ptr<splats::GaussianCloud> cloud;  // a Gaussian tileset's splats
+  if (index_->header.kind == qnv::StreamKind::gaussian) {
+    cloud = std::make_shared<splats::GaussianCloud>();
+    cloud->setShDegree(index_->header.shDegree);
+  }
   // A volume's vectors sit on voxel centres: a merged node's region reaches half a voxel
   // past its brick's box of centres.
   const glm::vec3 margin = index_->header.kind == qnv::StreamKind::volume
@@ -359,36 +405,43 @@ void TilesetStream::rebuild() {
   std::vector<std::pair<glm::vec3, glm::vec3>> regions;  // merged regions below a brick
   for (const BrickChoice& c : choice_) {
     const Brick& b = bricks_[c.brick];
-    const std::size_t n =
-        std::min<std::size_t>(static_cast<std::size_t>(c.records), b.vectors.size());
+    const std::size_t n = std::min<std::size_t>(static_cast<std::size_t>(c.records / words_),
+                                                b.splats ? b.splats->size() : b.vectors.size());
     regions.clear();
     for (std::size_t m : mergedChoice_)
       if (isAncestor(index_->bricks[c.brick], index_->bricks[m]))
         regions.push_back(
             {index_->bricks[m].boundsMin - margin, index_->bricks[m].boundsMax + margin});
+    const auto inMerged = [&](const glm::vec3& p) {
+      return std::any_of(regions.begin(), regions.end(), [&](const auto& r) {
+        return glm::all(glm::greaterThanEqual(p, r.first)) && glm::all(glm::lessThan(p, r.second));
+      });
+    };
+    if (cloud) {
+      if (!b.splats) continue;
+      for (std::size_t k = 0; k < n; ++k)
+        if (regions.empty() || !inMerged(b.splats->positions[k])) cloud->append(*b.splats, k);
+      continue;
+    }
     if (regions.empty()) {
       set.vectors.insert(set.vectors.end(), b.vectors.begin(),
                          b.vectors.begin() + static_cast<std::ptrdiff_t>(n));
       continue;
     }
     // An ancestor of merged nodes: its vectors inside them are drawn by the merged bricks.
-    for (std::size_t k = 0; k < n; ++k) {
-      const glm::vec3 p = b.vectors[k].position;
-      const bool inMerged = std::any_of(regions.begin(), regions.end(), [&](const auto& r) {
-        return glm::all(glm::greaterThanEqual(p, r.first)) && glm::all(glm::lessThan(p, r.second));
-      });
-      if (!inMerged) set.vectors.push_back(b.vectors[k]);
-    }
+    for (std::size_t k = 0; k < n; ++k)
+      if (!inMerged(b.vectors[k].position)) set.vectors.push_back(b.vectors[k]);
   }
+  if (cloud) set.gaussians = std::move(cloud);
   ++set.revision;
   if (!mergedDirty_) return;  // the merged splats only change with the choice or arrivals
   mergedDirty_ = false;
-  auto cloud = std::make_shared<splats::GaussianCloud>();
-  cloud->shDegree = 2;
+  auto mergedCloud = std::make_shared<splats::GaussianCloud>();
+  mergedCloud->shDegree = 2;
   for (std::size_t m : mergedChoice_)
     if (const auto& part = merged_[m].cloud)
-      for (std::size_t i = 0; i < part->size(); ++i) cloud->append(*part, i);
-  mergedSet_->gaussians = std::move(cloud);
+      for (std::size_t i = 0; i < part->size(); ++i) mergedCloud->append(*part, i);
+  mergedSet_->gaussians = std::move(mergedCloud);
   mergedSet_->computeBounds();
   ++mergedSet_->revision;
 }
@@ -440,8 +493,8 @@ net::StreamProgress TilesetStream::progress() const {
   p.url = url_;
   p.kind = net::StreamKind::qnv;
   p.bytes = stats_.indexBytes + stats_.brickBytes + stats_.mergedBytes;
-  p.vectors = stats_.residentVectors;
-  p.wantedVectors = stats_.chosenVectors;
+  p.vectors = stats_.residentVectors / words_;  // splats, for a Gaussian tileset
+  p.wantedVectors = stats_.chosenVectors / words_;
   if (indexFailed_) {
     p.state = net::StreamState::failed;
     for (const auto& [error, text] : messages_)
@@ -452,7 +505,7 @@ net::StreamProgress TilesetStream::progress() const {
     return p;
   }
   if (!index_) return p;  // waiting for the index
-  p.expectedVectors = index_->header.vectorCount;
+  p.expectedVectors = index_->header.vectorCount / words_;
   std::uint64_t files = stats_.indexBytes;
   for (const qnv::TilesetBrick& b : index_->bricks) files += b.fileBytes;
   p.expectedBytes = static_cast<std::int64_t>(std::min<std::uint64_t>(files, INT64_MAX));

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <vector>
 
+#include <glm/gtc/quaternion.hpp>
+
 #include "base/byte_order.hpp"
 #include "qnv/error.hpp"
 #include "splats/lod_tree.hpp"
@@ -43,8 +45,12 @@ MergedLevelBuilder::MergedLevelBuilder(const qnv::TilesetLayout& layout, std::ui
     throw qnv::InputError("merged cells per axis must be 2 to 128 (log2 " +
                           std::to_string(cellsLog2) + ")");
   const qnv::StreamHeader& h = layout.templateHeader();
-  const float spread = vectorProfile(h, h.magnitudeMax, 1.0f).spread;
-  weightUnit_ = meanProjectedArea(glm::vec3(spread, spread, 0.0f));
+  if (h.kind == qnv::StreamKind::gaussian) {
+    weightUnit_ = h.magnitudeMax;  // the largest importance: opacity times area
+  } else {
+    const float spread = vectorProfile(h, h.magnitudeMax, 1.0f).spread;
+    weightUnit_ = meanProjectedArea(glm::vec3(spread, spread, 0.0f));
+  }
   if (!(weightUnit_ > 0.0) || !std::isfinite(weightUnit_)) weightUnit_ = 1.0;
 }
 
@@ -139,6 +145,36 @@ void MergedLevelBuilder::add(const qnv::SourceVector& v) {
             fixedOf(weight * (s2 * ((a == b ? 1.0 : 0.0) - normal[a] * normal[b]) + q[a] * q[b]));
     for (int a = 0; a < 3; ++a) sum[kColor + a] += fixedOf(weight * color[a]);
     for (int m = 0; m < 5; ++m) sum[kBand2 + m] += fixedOf(weight * kBand2Scale * basis[4 + m]);
+  }
+}
+
+void MergedLevelBuilder::addGaussian(const GaussianCloud& cloud, std::size_t i) {
+  const glm::vec3 scale = glm::abs(cloud.scales[i]);
+  const double weight = double{cloud.opacities[i]} * meanProjectedArea(scale) / weightUnit_;
+  if (!(weight > 0.0) || !std::isfinite(weight)) return;
+  const glm::dmat3 r(glm::mat3_cast(glm::normalize(cloud.rotations[i])));
+  glm::dmat3 s2(0.0);
+  for (int a = 0; a < 3; ++a) s2[a][a] = double{scale[a]} * scale[a];
+  const glm::dmat3 sigma = r * s2 * glm::transpose(r);
+  // The colour seen from every side alike: SH band 0 (the higher bands average to 0).
+  const glm::dvec3 color = glm::dvec3(0.5) + double{kShC0} * glm::dvec3(cloud.shDc[i]);
+  qnv::SourceVector v;
+  v.position = cloud.positions[i];
+  const int levels = std::min<int>(layout_.depth(), qnv::deepestMergedLevel(cellsLog2_) + 1);
+  for (std::uint8_t level = 0; level < levels; ++level) {
+    const glm::uvec3 c = cellOf(v, level);
+    const CellFrame f = frameOf(level, c);
+    const glm::dvec3 q = (glm::dvec3(v.position) - f.origin) / f.size;
+    MergedCell& cell = cells_[cellKey(level, c)];
+    ++cell.count;
+    MergedCell::Wide* sum = cell.sums;
+    sum[kWeight] += fixedOf(weight);
+    for (int a = 0; a < 3; ++a) sum[kMean + a] += fixedOf(weight * q[a]);
+    int k = kSecond;  // the splat's own covariance plus the centre's q q^T, in cell units
+    for (int a = 0; a < 3; ++a)
+      for (int b = a; b < 3; ++b)
+        sum[k++] += fixedOf(weight * (sigma[a][b] / (f.size * f.size) + q[a] * q[b]));
+    for (int a = 0; a < 3; ++a) sum[kColor + a] += fixedOf(weight * color[a]);
   }
 }
 
@@ -251,7 +287,10 @@ std::map<qnv::TilesetCell, GaussianCloud> MergedLevelBuilder::build() const {
     // colour(d) = rgb (ambient + (1 - ambient) shade(d)), shade's band 0 being 1/2.
     glm::dvec3 rgb;
     for (int a = 0; a < 3; ++a) rgb[a] = valueOf(cell.sums[kColor + a]) / w;
-    const glm::dvec3 dc = (rgb * (ambient + (1.0 - ambient) * 0.5) - 0.5) / double{kShC0};
+    // A Gaussian scene's colours are not shaded: rgb is the members' band-0 colour.
+    const double shade =
+        h.kind == qnv::StreamKind::gaussian ? 1.0 : ambient + (1.0 - ambient) * 0.5;
+    const glm::dvec3 dc = (rgb * shade - 0.5) / double{kShC0};
     cloud.shDc.push_back(glm::vec3(dc));
     for (int m = 0; m < 3; ++m) cloud.shRest.push_back(glm::vec3(0.0f));
     for (int m = 0; m < 5; ++m)

@@ -95,13 +95,57 @@ float shValue(std::uint32_t q, int bits) {
   return (static_cast<float>(q) - static_cast<float>(1u << (bits - 1))) / scale;
 }
 
+// The first two words of splat `i` in the box and scale range of `h` (A left 0).
+void quantizeSplat(const GaussianCloud& cloud, std::size_t i, const qnv::StreamHeader& h,
+                   std::uint64_t* w) {
+  const float scaleLo = h.valueMin, scaleHi = h.valueMax;
+  const glm::vec3 lo = h.boundsMin, hi = h.boundsMax;
+  // The axes by scale: major, middle, thin.
+  const glm::mat3 r = glm::mat3_cast(glm::normalize(cloud.rotations[i]));
+  const glm::vec3 s = glm::abs(cloud.scales[i]);
+  int axis[3] = {0, 1, 2};
+  std::sort(axis, axis + 3, [&](int a, int b) { return s[a] > s[b]; });
+  std::uint32_t t6 = 0, p7 = 0;
+  quantizeNormal(glm::normalize(r[axis[2]]), t6, p7);
+  const glm::vec3 n = reconstructNormal(t6, p7);
+  glm::vec3 u, v;
+  planeFrame(n, u, v);
+  const glm::vec3 major = r[axis[0]];
+  float angle = std::atan2(glm::dot(major, v), glm::dot(major, u));
+  if (angle < 0.0f) angle += kPi;
+  const std::uint32_t major8 = logScaleCode(s[axis[0]], scaleLo, scaleHi),
+                      middle8 = logScaleCode(s[axis[1]], scaleLo, scaleHi),
+                      thin8 = logScaleCode(s[axis[2]], scaleLo, scaleHi);
+  // A disc round in its plane comes back the same at any angle, and a sphere at any
+  // normal too: those bits are then 0, which the compact coding stores for almost nothing.
+  const std::uint32_t angleCode =
+      major8 == middle8 ? 0u : static_cast<std::uint32_t>(std::lround(angle / kPi * 256.0f)) & 255u;
+  if (major8 == thin8) t6 = p7 = 0;
+  std::uint32_t fine[3];
+  for (int a = 0; a < 3; ++a) fine[a] = fineCoordinate(cloud.positions[i][a], lo[a], hi[a]);
+  qnv::RecordFields f;
+  f.x = static_cast<std::uint16_t>(fine[0] >> 2);
+  f.y = static_cast<std::uint16_t>(fine[1] >> 2);
+  f.z = static_cast<std::uint16_t>(fine[2] >> 2);
+  f.theta = static_cast<std::uint8_t>(t6 >> 1);
+  f.phi = static_cast<std::uint8_t>(p7 >> 1);
+  f.a = 0;  // set by the caller, from the quantized splat's importance
+  f.c = byteOf(cloud.opacities[i]);
+  w[0] = qnv::packRecord(f);
+  const glm::vec3 dc = cloud.shDc[i];
+  w[1] = std::uint64_t{byteOf(dc.r * kColorScale + 0.5f)} << 56 |
+         std::uint64_t{byteOf(dc.g * kColorScale + 0.5f)} << 48 |
+         std::uint64_t{byteOf(dc.b * kColorScale + 0.5f)} << 40 | std::uint64_t{major8} << 32 |
+         std::uint64_t{middle8} << 24 | std::uint64_t{thin8} << 16 | std::uint64_t{angleCode} << 8 |
+         std::uint64_t{fine[0] & 3u} << 6 | std::uint64_t{fine[1] & 3u} << 4 |
+         std::uint64_t{fine[2] & 3u} << 2 | std::uint64_t{t6 & 1u} << 1 | std::uint64_t{p7 & 1u};
+}
+
 }  // namespace
 
-qnv::EncodedVectors encodeGaussianStream(const GaussianCloud& cloud,
-                                         const GaussianStreamOptions& options) {
-  const int dropped = 5 - std::clamp(options.shBits, 1, 5);
-  qnv::EncodedVectors out;
-  qnv::StreamHeader& h = out.header;
+GaussianFrame gaussianFrame(const GaussianCloud& cloud) {
+  GaussianFrame frame;
+  qnv::StreamHeader& h = frame.header;
   h.kind = qnv::StreamKind::gaussian;
   h.shDegree = static_cast<std::uint8_t>(std::clamp(cloud.shDegree, 0, 3));
   h.mapping = qnv::MagnitudeMapping::logarithmic;
@@ -113,7 +157,7 @@ qnv::EncodedVectors encodeGaussianStream(const GaussianCloud& cloud,
   h.packetBytes = static_cast<std::uint32_t>(8 * words * perPacket);
 
   // The splats kept: some opacity and importance, a finite centre.
-  std::vector<std::uint32_t> kept;
+  std::vector<std::uint32_t>& kept = frame.kept;
   kept.reserve(cloud.size());
   float scaleLo = INFINITY, scaleHi = -INFINITY;
   glm::vec3 lo(INFINITY), hi(-INFINITY);
@@ -138,73 +182,45 @@ qnv::EncodedVectors encodeGaussianStream(const GaussianCloud& cloud,
   if (kept.empty()) {
     h.boundsMin = glm::vec3(0.0f);
     h.boundsMax = glm::vec3(1.0f);
-    return out;
+    return frame;
   }
   h.boundsMin = lo;
   h.boundsMax = hi;
   h.valueMin = scaleLo;
   h.valueMax = scaleHi;
-
-  const int rest = cloud.shRestPerSplat();
-  std::vector<std::uint64_t> records(kept.size() * words, 0);
-  std::vector<std::pair<float, std::uint32_t>> order(kept.size());
+  frame.importance.resize(kept.size());
+  std::uint64_t w[2];
+  float top = 0.0f, bottom = INFINITY;
   for (std::size_t k = 0; k < kept.size(); ++k) {
-    const std::uint32_t i = kept[k];
-    std::uint64_t* w = records.data() + k * words;
-    // The axes by scale: major, middle, thin.
-    const glm::mat3 r = glm::mat3_cast(glm::normalize(cloud.rotations[i]));
-    const glm::vec3 s = glm::abs(cloud.scales[i]);
-    int axis[3] = {0, 1, 2};
-    std::sort(axis, axis + 3, [&](int a, int b) { return s[a] > s[b]; });
-    std::uint32_t t6 = 0, p7 = 0;
-    quantizeNormal(glm::normalize(r[axis[2]]), t6, p7);
-    const glm::vec3 n = reconstructNormal(t6, p7);
-    glm::vec3 u, v;
-    planeFrame(n, u, v);
-    const glm::vec3 major = r[axis[0]];
-    float angle = std::atan2(glm::dot(major, v), glm::dot(major, u));
-    if (angle < 0.0f) angle += kPi;
-    const std::uint32_t major8 = logScaleCode(s[axis[0]], scaleLo, scaleHi),
-                        middle8 = logScaleCode(s[axis[1]], scaleLo, scaleHi),
-                        thin8 = logScaleCode(s[axis[2]], scaleLo, scaleHi);
-    // A disc round in its plane comes back the same at any angle, and a sphere at any
-    // normal too: those bits are then 0, which the compact coding stores for almost nothing.
-    const std::uint32_t angleCode =
-        major8 == middle8 ? 0u
-                          : static_cast<std::uint32_t>(std::lround(angle / kPi * 256.0f)) & 255u;
-    if (major8 == thin8) t6 = p7 = 0;
-    std::uint32_t fine[3];
-    for (int a = 0; a < 3; ++a) fine[a] = fineCoordinate(cloud.positions[i][a], lo[a], hi[a]);
-    qnv::RecordFields f;
-    f.x = static_cast<std::uint16_t>(fine[0] >> 2);
-    f.y = static_cast<std::uint16_t>(fine[1] >> 2);
-    f.z = static_cast<std::uint16_t>(fine[2] >> 2);
-    f.theta = static_cast<std::uint8_t>(t6 >> 1);
-    f.phi = static_cast<std::uint8_t>(p7 >> 1);
-    f.a = 0;  // below, from the quantized splat
-    f.c = byteOf(cloud.opacities[i]);
-    w[0] = qnv::packRecord(f);
-    const glm::vec3 dc = cloud.shDc[i];
-    w[1] = std::uint64_t{byteOf(dc.r * kColorScale + 0.5f)} << 56 |
-           std::uint64_t{byteOf(dc.g * kColorScale + 0.5f)} << 48 |
-           std::uint64_t{byteOf(dc.b * kColorScale + 0.5f)} << 40 | std::uint64_t{major8} << 32 |
-           std::uint64_t{middle8} << 24 | std::uint64_t{thin8} << 16 |
-           std::uint64_t{angleCode} << 8 | std::uint64_t{fine[0] & 3u} << 6 |
-           std::uint64_t{fine[1] & 3u} << 4 | std::uint64_t{fine[2] & 3u} << 2 |
-           std::uint64_t{t6 & 1u} << 1 | std::uint64_t{p7 & 1u};
-    order[k] = {qnv::gaussianImportance(w[0], w[1], h), static_cast<std::uint32_t>(k)};
+    quantizeSplat(cloud, kept[k], h, w);
+    frame.importance[k] = qnv::gaussianImportance(w[0], w[1], h);
+    top = std::max(top, frame.importance[k]);
+    bottom = std::min(bottom, frame.importance[k]);
   }
-  // By the importance of the quantized splat, largest first: A is that importance's code.
-  std::stable_sort(order.begin(), order.end(),
-                   [](const auto& a, const auto& b) { return a.first > b.first; });
-  // The SH words (not part of the importance), the most important splats with every bit
-  // (options.shFullFraction), the rest at options.shBits.
+  h.magnitudeMax = std::max(top, 1e-30f);
+  h.magnitudeMin = std::clamp(bottom, h.magnitudeMax * 1e-12f, h.magnitudeMax);
+  return frame;
+}
+
+std::vector<std::uint64_t> encodeGaussianSplats(const GaussianCloud& cloud,
+                                                std::span<const std::uint32_t> order,
+                                                const qnv::StreamHeader& h,
+                                                const GaussianStreamOptions& options) {
+  const int dropped = 5 - std::clamp(options.shBits, 1, 5);
+  const std::uint32_t words = h.recordsPerElement();
+  const int rest = cloud.shRestPerSplat();
+  // The most important splats keep every SH bit (options.shFullFraction), the rest
+  // options.shBits.
   const auto fullCount = static_cast<std::size_t>(std::llround(
       std::clamp(options.shFullFraction, 0.0, 1.0) * static_cast<double>(order.size())));
+  std::vector<std::uint64_t> records(order.size() * words, 0);
   for (std::size_t r = 0; r < order.size(); ++r) {
-    const std::size_t k = order[r].second;
-    const std::size_t i = kept[k];
-    std::uint64_t* w = records.data() + k * words;
+    const std::size_t i = order[r];
+    std::uint64_t* w = records.data() + r * words;
+    quantizeSplat(cloud, i, h, w);
+    w[0] |= std::uint64_t{qnv::quantizeMagnitude(qnv::gaussianImportance(w[0], w[1], h), h.mapping,
+                                                 h.magnitudeMin, h.magnitudeMax)}
+            << 8;
     const int drop = r < fullCount ? 0 : dropped;
     for (int c = 0, at = 0; c < rest; ++c)
       for (int ch = 0; ch < 3; ++ch) {
@@ -215,17 +231,22 @@ qnv::EncodedVectors encodeGaussianStream(const GaussianCloud& cloud,
         at += bits;
       }
   }
-  h.magnitudeMax = std::max(order.front().first, 1e-30f);
-  h.magnitudeMin = std::clamp(order.back().first, h.magnitudeMax * 1e-12f, h.magnitudeMax);
-  out.records.resize(records.size());
-  for (std::size_t k = 0; k < order.size(); ++k) {
-    const std::uint64_t* from = records.data() + std::size_t{order[k].second} * words;
-    std::uint64_t* to = out.records.data() + k * words;
-    std::copy(from, from + words, to);
-    to[0] |= std::uint64_t{qnv::quantizeMagnitude(order[k].first, h.mapping, h.magnitudeMin,
-                                                  h.magnitudeMax)}
-             << 8;
-  }
+  return records;
+}
+
+qnv::EncodedVectors encodeGaussianStream(const GaussianCloud& cloud,
+                                         const GaussianStreamOptions& options) {
+  GaussianFrame frame = gaussianFrame(cloud);
+  qnv::EncodedVectors out;
+  out.header = frame.header;
+  // By the importance of the quantized splat, largest first, ties in cloud order.
+  std::vector<std::uint32_t> order(frame.kept.size());
+  for (std::uint32_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return frame.importance[a] > frame.importance[b];
+  });
+  for (std::uint32_t& k : order) k = frame.kept[k];
+  out.records = encodeGaussianSplats(cloud, order, out.header, options);
   out.header.vectorCount = out.records.size();
   return out;
 }

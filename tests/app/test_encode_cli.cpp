@@ -181,11 +181,11 @@ TEST_CASE("encode rejects bad options and unreadable inputs with a reason", "[ap
   auto shBitsRange =
       runGhostspace({"encode", splats, "-o", scratch("x.qnv").string(), "--sh-bits", "6"});
   CHECK(shBitsRange.exitCode == 2);
-  // A Gaussian splatting scene is one stream, not a tileset: said so, not "0 triangles".
-  auto splatTileset =
-      runGhostspace({"encode", splats, "--tileset", scratch("splat_tileset").string()});
-  CHECK(splatTileset.exitCode == 2);
-  CHECK_THAT(splatTileset.err, Catch::Contains("is a Gaussian splatting scene"));
+  // A Gaussian splatting scene's tileset is written whole: no shares to merge.
+  auto splatShare = runGhostspace(
+      {"encode", splats, "--tileset", scratch("splat_tileset").string(), "--bricks", "0/2"});
+  CHECK(splatShare.exitCode == 2);
+  CHECK_THAT(splatShare.err, Catch::Contains("written whole"));
 }
 
 TEST_CASE("encode --sh-bits writes a smaller Gaussian stream that opens as any other",

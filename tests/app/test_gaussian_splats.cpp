@@ -163,6 +163,52 @@ TEST_CASE("the corpus's scenes as QNV Gaussian streams: fewer bytes than SPZ, th
   }
 }
 
+TEST_CASE("a Gaussian splatting scene as a QNV tileset draws the scene's picture, by view",
+          "[app][render][splat][tileset]") {
+  const fs::path ply = gs::test::sourceDir() / "tests/data/splats/bunny_small.ply";
+  const fs::path dir = fs::path(GS_BINARY_DIR) / "render-actual" / "bunny_small_tileset";
+  // 512 splats a brick: depth 1, a merged root of 16^3 cells.
+  const auto r = gs::test::runGhostspace(
+      {"encode", ply.string(), "--tileset", dir.string() + "/", "--brick-vectors", "512"});
+  REQUIRE(r.exitCode == 0);
+  CHECK_THAT(r.out, Catch::Contains("3000 splats"));
+  REQUIRE(fs::is_regular_file(dir / "merged/0/0_0_0.qnv"));
+  // Near, every splat is fetched: the scene file's picture (measured 49.7 dB). Far, the
+  // merged root stands for the scene (29.6 dB over its few pixels).
+  struct View {
+    const char* name;
+    const char* position;
+    double minimum;
+  };
+  for (const View& v :
+       {View{"near", "0.017 -0.11 0.3", 40.0}, View{"far", "0.017 -0.11 3", 24.0}}) {
+    const std::string name = std::string("bunny_small_tileset_") + v.name;
+    const std::string scene = gs::test::snapshot(
+        name + "_ply", {"--size", "400x400", peerWorld(name + "_ply", ply, v.position)});
+    const std::string tileset = gs::test::snapshot(
+        name, {"--size", "400x400", peerWorld(name, dir / "index.qnvt", v.position)});
+    const double psnr = foregroundPsnr(tileset, scene);
+    WARN(v.name << ": the tileset's picture " << psnr << " dB against the scene file's");
+    CHECK(psnr >= v.minimum);
+  }
+}
+
+TEST_CASE("CThead's capture as a QNV tileset looks as PlayCanvas draws it",
+          "[heavy][app][render][splat][corpus][tileset]") {
+  if (!gs::test::haveCorpus("splat")) return;
+  const fs::path spz = gs::test::corpusDir() / "splat/cthead.spz";
+  const fs::path dir = fs::path(GS_BINARY_DIR) / "render-actual" / "cthead_tileset";
+  const auto r = gs::test::runGhostspace({"encode", spz.string(), "--tileset", dir.string() + "/"});
+  REQUIRE(r.exitCode == 0);
+  const std::string ours = gs::test::snapshot(
+      "cthead_tileset",
+      {"--size", "400x400", peerWorld("cthead_tileset", dir / "index.qnvt", "0 0 2.6")});
+  const double psnr =
+      foregroundPsnr(ours, (gs::test::sourceDir() / "tests/data/splats/peer/cthead.png").string());
+  WARN("CThead as a Gaussian tileset: " << psnr << " dB against the peer");
+  CHECK(psnr >= 38.0);  // as its stream
+}
+
 TEST_CASE("an Inline opens splat scenes, QNV streams, meshes and volumes beside polygons",
           "[app][render][splat]") {
   // As X3D 4.0's Inline opens glTF, an Inline opens every file ghostspace opens: each is

@@ -169,6 +169,38 @@ TEST_CASE("a QNV stream over HTTP fetches only the prefix its level of detail dr
   CHECK(differing("sphere_local_all", "sphere_http_all", 0) == 0.0);
 }
 
+TEST_CASE("a Gaussian stream and tileset over HTTP are turned as the local capture is",
+          "[app][http][qnv][splat]") {
+  NginxServer nginx;
+  if (!nginx.ok()) return;
+  // Captures are y-down (docs/splats.md, "Axes"): a URL says nothing of the kind, so the
+  // header's kind byte decides, as a local file's does.
+  const fs::path ply = gs::test::sourceDir() / "tests/data/splats/bunny_small.ply";
+  const fs::path qnv = outDir() / "bunny_small_http.qnv", tileset = outDir() / "bunny_small_http";
+  REQUIRE(gs::test::runGhostspace({"encode", ply.string(), "-o", qnv.string()}).exitCode == 0);
+  REQUIRE(gs::test::runGhostspace({"encode", ply.string(), "--tileset", tileset.string() + "/",
+                                   "--brick-vectors", "512"})
+              .exitCode == 0);
+  nginx.writeFile("bunny.qnv", gs::test::readBytes(qnv));
+  for (const auto& entry : fs::recursive_directory_iterator(tileset))
+    if (entry.is_regular_file())
+      nginx.writeFile("t/" + fs::relative(entry.path(), tileset).string(),
+                      gs::test::readBytes(entry.path()));
+  REQUIRE(shoot("bunny_qnv_local", qnv.string()).exitCode == 0);
+  REQUIRE(shoot("bunny_tileset_local", (tileset / "index.qnvt").string()).exitCode == 0);
+  const auto stream = shoot("bunny_qnv_http", nginx.url("/bunny.qnv"));
+  INFO(stream.err);
+  REQUIRE(stream.exitCode == 0);
+  const auto index = shoot("bunny_tileset_http", nginx.url("/t/"));
+  INFO(index.err);
+  REQUIRE(index.exitCode == 0);
+  CHECK(covered("bunny_qnv_local") > 0.05);
+  CHECK(differing("bunny_qnv_local", "bunny_qnv_http", 0) == 0.0);
+  CHECK(differing("bunny_tileset_local", "bunny_tileset_http", 0) == 0.0);
+  // And the tileset shows what the stream shows.
+  CHECK(differing("bunny_qnv_local", "bunny_tileset_local", 16) < 0.002);
+}
+
 TEST_CASE("a server that ignores ranges still gives the whole QNV picture", "[app][http][qnv]") {
   const fs::path qnv = outDir() / "ball_ir.qnv";
   ballStream("ball_ir.qnv");

@@ -16,6 +16,8 @@
 #include "qnv/tileset.hpp"
 #include "qnv/tileset_writer.hpp"
 #include "qnv/volume_slabs.hpp"
+#include "splats/gaussian.hpp"
+#include "splats/qnv_gaussians.hpp"
 
 namespace gs::encode {
 
@@ -73,6 +75,15 @@ struct TilesetResult {
 
 /// Writes `selected` (qnv::selectVolumeVectors / selectSurfaceVectors) as `target` asks.
 TilesetResult writeTileset(const TilesetTarget& target, const qnv::SelectedVectors& selected);
+
+/// Writes the tileset of the Gaussian splatting scene `cloud`
+/// (splats::buildGaussianTileset: bricks of Gaussian streams, merged bricks from the
+/// Gaussians when target.cut.mergedCellsLog2 > 0, the index), whole: a target that is a
+/// share (!target.whole) is Failure::input, as is a scene with no splat to keep or a K of
+/// 0. Stale bricks/, merged/, parts/ and index.qnvt are removed first.
+/// result.merged.index.header.vectorCount counts records (recordsPerElement() a splat).
+TilesetResult writeGaussianTileset(const TilesetTarget& target, const splats::GaussianCloud& cloud,
+                                   const splats::GaussianStreamOptions& options);
 
 /// The memory and threads of an out-of-core encode.
 struct OutOfCoreOptions {

@@ -35,6 +35,11 @@ bool isGaussianSplatFile(const std::string& path);
 /// header; splats/qnv_gaussians.hpp). False when it cannot be read.
 bool isGaussianQnvFile(const std::string& path);
 
+/// True when the local file `path` is the index of a tileset of Gaussians (its template's
+/// kind, byte 26, is qnv::StreamKind::gaussian; splats/gaussian_tileset.hpp). False when
+/// it cannot be read.
+bool isGaussianTilesetIndex(const std::string& path);
+
 /// The VRML97 text of the world a Gaussian splatting scene opens as: its node under a
 /// Transform turning it 180 degrees about Z (captures are y-down; docs/splats.md "Axes"),
 /// or, `turned` false (a LAS point cloud, z up), not turned.

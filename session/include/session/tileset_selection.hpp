@@ -11,10 +11,14 @@
 //   refinement. Its screen area is s^2 pixels.
 // - A brick drawn alone gives s^2 / vectorCount pixels per vector. It is refined (its
 //   visible children are considered too) while that exceeds `pixelsPerVector` (default 1:
-//   about one vector per pixel of the brick's footprint).
+//   about one vector per pixel of the brick's footprint). A Gaussian tileset (template
+//   of kind gaussian) counts splats, each recordsPerElement() records: records and
+//   budgets stay in records.
 // - A brick's own prefix is min(vectorCount, ceil(s^2 / pixelsPerVector)) records, rounded
 //   up to whole packets, so a small far brick sends only its largest vectors.
-// - Opacity (volume tilesets, issue 22 item 3): the prefix is at least all but the
+// - Opacity (volume tilesets, issue 22 item 3; Gaussian tilesets, whose A is a splat's
+//   coverage, opacity times area, so a band's optical depth is its count times the band's
+//   centre A over the brick's mean projected area): the prefix is at least all but the
 //   brick's weakest vectors whose optical depth, averaged over the brick's mean projected
 //   area, stays within `maxLostOpticalDepth`, and a brick is also refined while its
 //   descendants add more than that; this optical depth does not depend on the view, so

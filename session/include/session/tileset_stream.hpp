@@ -86,8 +86,10 @@ class TilesetStream {
   /// The URL of the index.
   const std::string& url() const { return url_; }
 
+ public:
+  struct Brick;  // one brick's decoder and what it decoded (tileset_stream.cpp)
+
  private:
-  struct Brick;
   struct MergedBrick;
   bool takeIndex();
   bool pumpMerged();
@@ -95,6 +97,9 @@ class TilesetStream {
   void choose();
   bool pumpBricks();
   void evict();
+  /// options_.memoryBytes in records: 32 bytes a decoded vector; a Gaussian tileset's
+  /// splat takes its decoded size for its recordsPerElement() records.
+  std::uint64_t memoryRecords() const;
   void rebuild();
   /// Ends every transfer for good (the loader stopped): what arrived stays drawn.
   void stop();
@@ -104,6 +109,7 @@ class TilesetStream {
   TilesetOptions options_;
   std::shared_ptr<render::SplatSet> set_;
   std::optional<qnv::TilesetIndex> index_;
+  std::uint32_t words_ = 1;  // records per element: 1, or a Gaussian splat's
   bool indexFailed_ = false;
   std::vector<Brick> bricks_;
   std::vector<BrickChoice> choice_;

@@ -55,6 +55,12 @@ class MergedLevelBuilder {
 
   /// Adds `v` (a selected vector of the tileset) to its cell at every interior level.
   void add(const qnv::SourceVector& v);
+  /// Adds splat `i` of `cloud` (a splat the tileset of a Gaussian scene keeps,
+  /// splats/gaussian_tileset.hpp; the layout's template is then of kind gaussian) to its
+  /// cell at every interior level: weight = opacity x meanProjectedArea(scale), its own
+  /// covariance added to the second moment, its band-0 colour (0.5 + kShC0 dc) to the
+  /// colour; the merged splat's higher SH bands stay 0 (a view-independent average).
+  void addGaussian(const GaussianCloud& cloud, std::size_t i);
   /// Cells holding vectors.
   std::size_t cellCount() const { return cells_.size(); }
 

@@ -10,6 +10,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "qnv/stream.hpp"
 #include "splats/gaussian.hpp"
@@ -44,6 +45,29 @@ struct GaussianStreamOptions {
 /// codes to coarser steps (lossy).
 qnv::EncodedVectors encodeGaussianStream(const GaussianCloud& cloud,
                                          const GaussianStreamOptions& options = {});
+
+/// The frame of a Gaussian stream of `cloud`, before its splats are ordered: which splats
+/// it keeps (those encodeGaussianStream keeps, in cloud order), the importance of each as
+/// quantized (qnv::gaussianImportance, square metres; same order), and the header
+/// encodeGaussianStream writes but for vectorCount (0).
+struct GaussianFrame {
+  qnv::StreamHeader header;
+  std::vector<std::uint32_t> kept;  // indices into the cloud
+  std::vector<float> importance;    // per kept splat
+};
+GaussianFrame gaussianFrame(const GaussianCloud& cloud);
+
+/// The records of splats `order` of `cloud` (indices of splats gaussianFrame keeps, in the
+/// order given, recordsPerElement() words each) quantized in `header`'s box, scale and
+/// importance ranges (the splats' centres and scales should lie inside them; outside,
+/// they are clamped). A is each quantized splat's importance code. `options` as for
+/// encodeGaussianStream, shFullFraction counting the first splats of `order`. A QNV
+/// tileset of Gaussians (splats/gaussian_tileset.hpp) writes every brick with it, the
+/// brick's box in a header sharing the whole scene's ranges.
+std::vector<std::uint64_t> encodeGaussianSplats(const GaussianCloud& cloud,
+                                                std::span<const std::uint32_t> order,
+                                                const qnv::StreamHeader& header,
+                                                const GaussianStreamOptions& options = {});
 
 /// Appends the splats of `records` (whole splats of header.recordsPerElement() records,
 /// as a Gaussian stream's packet gives them) to `cloud`, whose shDegree becomes the

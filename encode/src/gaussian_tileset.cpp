@@ -1,0 +1,73 @@
+// The files of a Gaussian splatting scene's tileset (splats/gaussian_tileset.hpp;
+// docs/tilesets.md, "Gaussian tilesets"): the bricks, the merged bricks and the index,
+// written whole (the scene is in memory: no shares to merge).
+#include <chrono>
+#include <filesystem>
+
+#include "encode/tileset.hpp"
+#include "qnv/error.hpp"
+#include "splats/gaussian_tileset.hpp"
+
+namespace gs::encode {
+
+namespace fs = std::filesystem;
+
+TilesetResult writeGaussianTileset(const TilesetTarget& target, const splats::GaussianCloud& cloud,
+                                   const splats::GaussianStreamOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  TilesetResult result;
+  const auto fail = [&](Failure failure, std::string error) {
+    result.failure = failure;
+    result.error = std::move(error);
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return result;
+  };
+  if (!target.whole)
+    return fail(Failure::input,
+                "a Gaussian splatting scene's tileset is written whole, in one run: --bricks "
+                "I/N is for volumes and meshes");
+  splats::GaussianTilesetFiles files;
+  try {
+    files = splats::buildGaussianTileset(cloud, target.cut, options);
+  } catch (const qnv::InputError& error) {
+    return fail(Failure::input, error.what());
+  }
+  const fs::path& dir = target.dir;
+  std::error_code ec;
+  fs::remove_all(dir / "bricks", ec);
+  fs::remove_all(dir / "parts", ec);
+  fs::remove_all(dir / "merged", ec);
+  fs::remove(dir / "index.qnvt", ec);
+  Merged& merged = result.merged;
+  for (const qnv::BrickFile& b : files.bricks) {
+    if (std::string error = writeFile(dir / b.brick.path(), b.bytes); !error.empty())
+      return fail(Failure::write, error);
+    merged.totalBytes += b.bytes.size();
+  }
+  for (std::size_t i = 0, m = 0; i < files.index.bricks.size() && m < files.merged.size(); ++i) {
+    const qnv::TilesetBrick& b = files.index.bricks[i];
+    if (!files.index.hasMerged(b.level)) continue;
+    const std::string& stream = files.merged[m++].second;
+    if (std::string error = writeFile(dir / b.mergedPath(), stream); !error.empty())
+      return fail(Failure::write, error);
+    merged.totalBytes += stream.size();
+  }
+  const std::string index = qnv::serializeTilesetIndex(files.index);
+  std::string error;
+  // The reader's checks on what is about to be published.
+  if (!qnv::parseTilesetIndex(index, (dir / "index.qnvt").string(), error))
+    return fail(Failure::write, error);
+  if (error = writeFile(dir / "index.qnvt", index); !error.empty())
+    return fail(Failure::write, error);
+  merged.indexBytes = index.size();
+  merged.totalBytes += index.size();
+  merged.index = std::move(files.index);
+  result.depth = merged.index.depth;
+  result.leafCount = std::uint64_t{1} << (3 * result.depth);
+  result.leaves = {0, result.leafCount};
+  result.shareBytes = merged.totalBytes;
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return result;
+}
+
+}  // namespace gs::encode

@@ -1,0 +1,57 @@
+// A 3D Gaussian splatting scene as a QNV tileset (issue 40 items 3 and 4; docs/tilesets.md,
+// "Gaussian tilesets"): the octree, assignment and index of a surface tileset
+// (qnv/tileset_writer.hpp) over the splats' centres, each brick a QNV Gaussian stream
+// (splats/qnv_gaussians.hpp) of its splats, importance first, and every interior node's
+// merged brick moment-matched from the Gaussians of its region (splats/merged_levels.hpp).
+// A viewer fetches, from the view alone, the bricks and the prefix of each it needs, so a
+// scene far larger than memory or than one download streams by view, several viewports
+// at their own level of detail. Pure computation on buffers: encode/src/gaussian_tileset.cpp
+// writes the files.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "qnv/tileset.hpp"
+#include "qnv/tileset_writer.hpp"
+#include "splats/gaussian.hpp"
+#include "splats/qnv_gaussians.hpp"
+
+namespace gs::splats {
+
+/// A whole Gaussian tileset in memory.
+struct GaussianTilesetFiles {
+  /// The index: template of kind gaussian (the scene's box, log-scale and importance
+  /// ranges, SH degree; vectorCount = records, recordsPerElement() per splat), bricks in
+  /// index order, mergedCellsLog2 as asked.
+  qnv::TilesetIndex index;
+  std::vector<qnv::BrickFile> bricks;  // index order
+  /// The merged brick (a whole Gaussian stream's bytes) of every brick of `index` that
+  /// hasMerged, in index order; a node whose splats merge to nothing has an empty stream.
+  std::vector<std::pair<qnv::TilesetCell, std::string>> merged;
+  std::uint64_t splats = 0;  // splats kept (gaussianFrame), over all bricks
+};
+
+/// The tileset of `cloud`:
+/// - the splats kept are gaussianFrame's (some opacity and size, finite);
+/// - the octree is a surface tileset's over their centres (cut.brickVectors K counts
+///   splats: depth D the smallest with 8^D K >= splats, at most 8);
+/// - within each leaf the splats are ranked by quantized importance (descending, ties by
+///   cloud index); the first q_0 go to the root, the next q_1 to the level-1 ancestor ...
+///   (q_L = ceil(K / 8^(D - L))), the rest stay in the leaf: every node is an even,
+///   importance-first sample of its region;
+/// - each brick is encodeGaussianSplats of its splats in rank order, in the node's cell
+///   box and the scene's scale and importance ranges, compact packets of whole splats
+///   (K / 16 splats, 128 to 1,024 and at most 64 KiB);
+/// - cut.mergedCellsLog2 > 0: each interior node down to qnv::deepestMergedLevel has a
+///   merged brick (MergedLevelBuilder::addGaussian, R = 2^cellsLog2 cells per axis).
+/// `options` (SH bits) applies to every brick, shFullFraction to each brick's first
+/// splats. cut.brickVoxels and cut.write are not used. Throws qnv::InputError when K is 0
+/// or no splat is kept ("nothing to encode").
+GaussianTilesetFiles buildGaussianTileset(const GaussianCloud& cloud,
+                                          const qnv::TilesetOptions& cut,
+                                          const GaussianStreamOptions& options = {});
+
+}  // namespace gs::splats

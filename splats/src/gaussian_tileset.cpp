@@ -1,0 +1,98 @@
+// A Gaussian splatting scene as a QNV tileset: the rules are in
+// splats/gaussian_tileset.hpp and docs/tilesets.md, "Gaussian tilesets".
+#include "splats/gaussian_tileset.hpp"
+
+#include <algorithm>
+#include <map>
+#include <optional>
+
+#include "qnv/error.hpp"
+#include "splats/merged_levels.hpp"
+
+namespace gs::splats {
+
+GaussianTilesetFiles buildGaussianTileset(const GaussianCloud& cloud,
+                                          const qnv::TilesetOptions& cut,
+                                          const GaussianStreamOptions& options) {
+  if (cut.brickVectors == 0) throw qnv::InputError("--brick-vectors must be at least 1");
+  const GaussianFrame frame = gaussianFrame(cloud);
+  if (frame.kept.empty())
+    throw qnv::InputError("nothing to encode: " + std::to_string(cloud.size()) +
+                          " Gaussians, none with an opacity and a size");
+  qnv::StreamHeader whole = frame.header;
+  whole.vectorCount = frame.kept.size();  // the octree's depth counts splats
+  const std::uint32_t words = whole.recordsPerElement();
+  qnv::TilesetOptions layoutCut = cut;
+  const std::uint64_t perPacket =
+      std::clamp<std::uint64_t>(cut.brickVectors / 16, 128,
+                                std::min<std::uint64_t>(1024, qnv::kMaxPacketBytes / (8 * words)));
+  layoutCut.write.packetBytes = static_cast<std::uint32_t>(8 * words * perPacket);
+  layoutCut.write.encoding = qnv::PacketEncoding::compact;
+  const qnv::TilesetLayout layout(whole, layoutCut);
+  const std::uint8_t depth = layout.depth();
+
+  // Splats by leaf (index into frame.kept), then ranked within each leaf.
+  std::map<std::uint64_t, std::vector<std::uint32_t>> leaves;
+  qnv::SourceVector at;
+  for (std::uint32_t k = 0; k < frame.kept.size(); ++k) {
+    at.position = cloud.positions[frame.kept[k]];
+    leaves[layout.leafIndex(layout.leafOf(at))].push_back(k);
+  }
+  const auto rankedBefore = [&](std::uint32_t a, std::uint32_t b) {
+    return frame.importance[a] > frame.importance[b] ||
+           (frame.importance[a] == frame.importance[b] && a < b);
+  };
+  std::map<qnv::TilesetCell, std::vector<std::uint32_t>> nodes;
+  for (auto& [index, members] : leaves) {
+    std::sort(members.begin(), members.end(), rankedBefore);
+    const glm::uvec3 leaf = layout.leafAt(index);
+    std::size_t next = 0;
+    for (std::uint8_t level = 0; level <= depth && next < members.size(); ++level) {
+      const unsigned shift = depth - level;
+      const qnv::TilesetCell node{level, leaf >> glm::uvec3(shift)};
+      const std::size_t end = level == depth ? members.size()
+                                             : static_cast<std::size_t>(std::min<std::uint64_t>(
+                                                   members.size(), next + layout.quota(level)));
+      std::vector<std::uint32_t>& to = nodes[node];
+      to.insert(to.end(), members.begin() + static_cast<std::ptrdiff_t>(next),
+                members.begin() + static_cast<std::ptrdiff_t>(end));
+      next = end;
+    }
+  }
+
+  GaussianTilesetFiles out;
+  out.splats = frame.kept.size();
+  std::vector<qnv::TilesetBrick> bricks;
+  for (auto& [node, members] : nodes) {                       // (level, z, y, x): index order
+    std::sort(members.begin(), members.end(), rankedBefore);  // an interior node's leaves
+    std::vector<std::uint32_t> order(members.size());
+    for (std::size_t r = 0; r < members.size(); ++r) order[r] = frame.kept[members[r]];
+    const qnv::StreamHeader h = layout.brickHeader(node, order.size() * words);
+    const std::vector<std::uint64_t> records = encodeGaussianSplats(cloud, order, h, options);
+    qnv::BrickFile file = qnv::writeBrick(node, h, records);
+    bricks.push_back(file.brick);
+    out.bricks.push_back(std::move(file));
+  }
+  out.index = qnv::assembleTilesetIndex(layout, std::move(bricks));
+
+  if (cut.mergedCellsLog2 > 0 && depth > 0) {
+    MergedLevelBuilder merged(layout, cut.mergedCellsLog2);
+    for (const std::uint32_t i : frame.kept) merged.addGaussian(cloud, i);
+    std::map<qnv::TilesetCell, GaussianCloud> clouds = merged.build();
+    out.index.mergedCellsLog2 = cut.mergedCellsLog2;
+    for (const qnv::TilesetBrick& b : out.index.bricks) {
+      if (!out.index.hasMerged(b.level)) continue;
+      const qnv::TilesetCell node{b.level, glm::uvec3(b.x, b.y, b.z)};
+      const auto it = clouds.find(node);
+      const qnv::EncodedVectors vectors =
+          encodeGaussianStream(it != clouds.end() ? it->second : GaussianCloud{});
+      qnv::WriteOptions write;
+      write.packetBytes = vectors.header.packetBytes;
+      write.encoding = qnv::PacketEncoding::compact;
+      out.merged.emplace_back(node, qnv::writeStream(vectors, write));
+    }
+  }
+  return out;
+}
+
+}  // namespace gs::splats

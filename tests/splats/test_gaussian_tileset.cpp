@@ -1,0 +1,166 @@
+// A Gaussian splatting scene as a QNV tileset (splats/gaussian_tileset.hpp; docs/tilesets.md
+// "Gaussian tilesets"): every kept splat in exactly one brick, each brick importance
+// first, ancestors holding each leaf's most important splats, an index the reader takes,
+// and merged bricks that keep the region's place and coverage.
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "qnv/decoder.hpp"
+#include "qnv/error.hpp"
+#include "qnv/record.hpp"
+#include "qnv/tileset.hpp"
+#include "splats/gaussian_tileset.hpp"
+#include "splats/lod_tree.hpp"
+#include "splats/qnv_gaussians.hpp"
+
+using namespace gs;
+
+namespace {
+
+/// 4,000 random splats in a 2 x 1 x 1 box, SH degree 1, a few of them invisible.
+splats::GaussianCloud randomGaussians() {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  splats::GaussianCloud c;
+  c.setShDegree(1);
+  for (int i = 0; i < 4000; ++i) {
+    c.positions.push_back({2.0f * unit(random), unit(random), unit(random)});
+    c.scales.push_back(glm::vec3(0.002f + 0.02f * unit(random), 0.002f + 0.02f * unit(random),
+                                 0.001f + 0.004f * unit(random)));
+    c.rotations.push_back(glm::normalize(
+        glm::quat(unit(random) - 0.5f, unit(random) - 0.5f, unit(random) - 0.5f, 0.3f)));
+    c.opacities.push_back(i % 100 == 0 ? 0.0f : 0.05f + 0.9f * unit(random));
+    c.shDc.push_back({unit(random) - 0.5f, unit(random) - 0.5f, unit(random) - 0.5f});
+    for (int k = 0; k < 3; ++k) c.shRest.push_back(glm::vec3(0.1f * (unit(random) - 0.5f)));
+  }
+  return c;
+}
+
+qnv::TilesetOptions gaussianCut() {
+  qnv::TilesetOptions o;
+  o.brickVectors = 128;  // 3,960 splats: depth 2 (8^2 x 128 >= 3,960)
+  o.mergedCellsLog2 = 2;
+  return o;
+}
+
+}  // namespace
+
+TEST_CASE("a Gaussian tileset puts every kept splat in one brick, importance first",
+          "[splats][tileset]") {
+  const splats::GaussianCloud cloud = randomGaussians();
+  const splats::GaussianTilesetFiles files = splats::buildGaussianTileset(cloud, gaussianCut());
+  const qnv::TilesetIndex& index = files.index;
+  CHECK(files.splats == 3960);  // the 40 of opacity 0 are left out
+  CHECK(index.depth == 2);
+  CHECK(index.header.kind == qnv::StreamKind::gaussian);
+  const std::uint32_t words = index.header.recordsPerElement();
+  CHECK(index.header.vectorCount == files.splats * words);
+
+  // The reader takes the index as written.
+  std::string error;
+  const auto parsed = qnv::parseTilesetIndex(qnv::serializeTilesetIndex(index), "t", error);
+  REQUIRE(parsed);
+  CHECK(parsed->bricks.size() == files.bricks.size());
+
+  // Every brick decodes as a Gaussian stream of its records, A codes never increasing,
+  // centres inside its box; all together hold each kept splat once.
+  std::size_t total = 0;
+  std::vector<float> opacities;
+  std::uint64_t rootTopCode = 0;
+  for (std::size_t b = 0; b < files.bricks.size(); ++b) {
+    const qnv::BrickFile& f = files.bricks[b];
+    CHECK(f.brick.vectorCount % words == 0);
+    const splats::GaussianCloud part = splats::readQnvGaussians(f.bytes, f.brick.path());
+    REQUIRE(part.size() == f.brick.vectorCount / words);
+    total += part.size();
+    std::uint64_t histogram = 0;
+    for (const std::uint32_t n : f.brick.histogram) histogram += n;
+    CHECK(histogram == f.brick.vectorCount);
+    for (std::size_t i = 0; i < part.size(); ++i) {
+      const glm::vec3 p = part.positions[i];
+      CHECK(glm::all(glm::greaterThanEqual(p, f.brick.boundsMin - glm::vec3(1e-5f))));
+      CHECK(glm::all(glm::lessThanEqual(p, f.brick.boundsMax + glm::vec3(1e-5f))));
+      opacities.push_back(part.opacities[i]);
+    }
+    // The records in brick order: A (bits 8..22 of the first word) never increases.
+    qnv::StreamDecoder decoder("brick");
+    std::vector<std::uint64_t> firsts;
+    decoder.setRecordSink([&](std::uint64_t first, std::span<const std::uint64_t> records) {
+      (void)first;
+      for (std::size_t r = 0; r < records.size(); r += words) firsts.push_back(records[r]);
+    });
+    REQUIRE(decoder.feed(f.bytes, {}));
+    // Compact packets give a packet's splats in spatial order: compare packet maxima.
+    const std::uint32_t perPacket = index.header.recordsPerPacket() / words;
+    std::uint32_t previous = 0xffffu;
+    for (std::size_t first = 0; first < firsts.size(); first += perPacket) {
+      std::uint32_t top = 0, bottom = 0xffffu;
+      for (std::size_t k = first; k < std::min<std::size_t>(firsts.size(), first + perPacket);
+           ++k) {
+        top = std::max(top, qnv::magnitudeCode(firsts[k]));
+        bottom = std::min(bottom, qnv::magnitudeCode(firsts[k]));
+      }
+      CHECK(top <= previous);
+      previous = bottom;
+    }
+    if (f.brick.level == 0) rootTopCode = firsts.empty() ? 0 : qnv::magnitudeCode(firsts[0]);
+  }
+  CHECK(total == files.splats);
+  CHECK(std::count(opacities.begin(), opacities.end(), 0.0f) == 0);
+  // The root holds each leaf's most important splats: the scene's largest A code too.
+  std::uint32_t top = 0;
+  for (const qnv::BrickFile& f : files.bricks)
+    for (std::size_t band = qnv::kTilesetBands; band-- > 0;)
+      if (f.brick.histogram[band] > 0) {
+        top = std::max<std::uint32_t>(top, static_cast<std::uint32_t>(band));
+        break;
+      }
+  CHECK(qnv::tilesetBand(static_cast<std::uint32_t>(rootTopCode)) == top);
+}
+
+TEST_CASE("a Gaussian tileset's merged bricks keep their region's place and coverage",
+          "[splats][tileset][merged]") {
+  const splats::GaussianCloud cloud = randomGaussians();
+  const splats::GaussianTilesetFiles files = splats::buildGaussianTileset(cloud, gaussianCut());
+  // Interior levels 0 and 1 of depth 2 have merged bricks: the root and its 8 children.
+  REQUIRE(files.merged.size() == 9);
+  CHECK(files.index.mergedCellsLog2 == 2);
+  double sourceCoverage = 0.0;
+  glm::dvec3 sourceCentre(0.0);
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const double w = splats::splatCoverage(cloud.scales[i], cloud.opacities[i]);
+    sourceCoverage += w;
+    sourceCentre += w * glm::dvec3(cloud.positions[i]);
+  }
+  sourceCentre /= sourceCoverage;
+  const auto& [node, bytes] = files.merged.front();
+  CHECK(node.level == 0);
+  const splats::GaussianCloud root = splats::readQnvGaussians(bytes, "merged root");
+  CHECK(root.size() > 0);
+  CHECK(root.size() <= 64);  // 4^3 cells at most
+  double coverage = 0.0;
+  glm::dvec3 centre(0.0);
+  for (std::size_t i = 0; i < root.size(); ++i) {
+    const double w = splats::splatCoverage(root.scales[i], root.opacities[i]);
+    coverage += w;
+    centre += w * glm::dvec3(root.positions[i]);
+  }
+  centre /= coverage;
+  // Quantized to 8-bit opacities and log scales: within a few per cent.
+  CHECK(coverage == Approx(sourceCoverage).epsilon(0.1));
+  CHECK(glm::length(centre - sourceCentre) < 0.05);
+}
+
+TEST_CASE("a Gaussian tileset of nothing, or with bricks of 0 splats, is refused",
+          "[splats][tileset]") {
+  splats::GaussianCloud empty;
+  CHECK_THROWS_AS(splats::buildGaussianTileset(empty, gaussianCut()), qnv::InputError);
+  qnv::TilesetOptions zero = gaussianCut();
+  zero.brickVectors = 0;
+  CHECK_THROWS_AS(splats::buildGaussianTileset(randomGaussians(), zero), qnv::InputError);
+}
