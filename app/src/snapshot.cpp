@@ -215,7 +215,7 @@ int runSnapshot(const Options& options) {
   runtimes.drainMessages(runtimeMessages);
   for (std::string& m : runtimeMessages) messages.emplace_back(false, std::move(m));
   bool failed = false;
-  for (const net::StreamProgress& p : session.loader().progress())
+  for (const net::StreamProgress& p : session.progress())  // tilesets' indexes too
     failed |= p.state == net::StreamState::failed;
   for (const auto& [isError, text] : messages) std::fprintf(stderr, "%s\n", text.c_str());
   bool drawError = false;

@@ -13,7 +13,6 @@
 #include "base/url.hpp"
 #include "encodings/parser.hpp"
 #include "formats/input_kind.hpp"
-#include "net/transfer.hpp"
 #include "session/splat_inputs.hpp"
 #include "session/world.hpp"
 #include "splats/qnv_gaussians.hpp"
@@ -28,21 +27,23 @@ StreamingSession::~StreamingSession() {
   for (auto& [url, e] : qnv_) e.cancelTree->store(true);
 }
 
-bool StreamingSession::remoteKindIs(const std::string& url, std::size_t kindByte) {
+bool StreamingSession::remoteIsGaussian(const std::string& url, bool tileset) {
   std::string error;
-  net::FetchRequest r = loader_.requestFor(url, "", error);
-  if (r.url.empty()) return false;  // the stream's own fetch says why
-  r.length = kindByte + 1;
-  r.maxBytes = std::max<std::uint64_t>(r.length, 1u << 20);  // a server ignoring the range
-  const std::unique_ptr<net::Transfer> t = net::startTransfer(std::move(r));
-  std::string head;
-  while (!t->status().finished() && head.size() <= kindByte) {
-    t->take(head);
+  if (!splatSet(url, "", error)) return false;  // the world's node asks again and says why
+  for (;;) {
+    loader_.pump();
+    if (tileset) {
+      TilesetStream& t = *tilesets_.at(url);
+      t.pump();
+      if (const auto& index = t.index()) return index->header.kind == qnv::StreamKind::gaussian;
+      if (t.settled()) return false;  // the index failed: the stream says why
+    } else {
+      const QnvEntry& e = qnv_.at(url);
+      if (const auto& header = e.stream->header()) return header->kind == qnv::StreamKind::gaussian;
+      if (loader_.settled()) return false;
+    }
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
-  t->take(head);
-  return head.size() > kindByte && static_cast<std::uint8_t>(head[kindByte]) ==
-                                       static_cast<std::uint8_t>(qnv::StreamKind::gaussian);
 }
 
 std::shared_ptr<const vrml::Scene> StreamingSession::inputWorld(const std::string& input,
@@ -54,7 +55,7 @@ std::shared_ptr<const vrml::Scene> StreamingSession::inputWorld(const std::strin
     const bool remote = base::isHttpUrl(index);
     const std::string name = remote ? index : std::filesystem::path(index).filename().string();
     // A tileset of Gaussians is a capture: turned as its scene file is.
-    const bool gaussian = remote ? remoteKindIs(index, kTilesetKindByte)
+    const bool gaussian = remote ? remoteIsGaussian(index, true)
                                  : isGaussianTilesetIndex(base::localPathOfUrl(index));
     const std::string text = gaussian ? gaussianWorldText(name, true) : splatWorldText(name);
     auto scene = std::make_shared<vrml::Scene>(vrml::parseVrml(text, index));
@@ -70,8 +71,8 @@ std::shared_ptr<const vrml::Scene> StreamingSession::inputWorld(const std::strin
       // A QNV stream of Gaussians is a capture too: its header's kind byte decides.
       const std::string text =
           kind == formats::InputKind::qnv
-              ? (remoteKindIs(input, kStreamKindByte) ? gaussianWorldText(input, true)
-                                                      : splatWorldText(input))
+              ? (remoteIsGaussian(input, false) ? gaussianWorldText(input, true)
+                                                : splatWorldText(input))
               : gaussianWorldText(input, !(base::endsWithNoCase(input, ".las") ||
                                            base::endsWithNoCase(input, ".laz")));
       auto scene = std::make_shared<vrml::Scene>(vrml::parseVrml(text, input));

@@ -437,7 +437,9 @@ void TilesetStream::rebuild() {
   if (!mergedDirty_) return;  // the merged splats only change with the choice or arrivals
   mergedDirty_ = false;
   auto mergedCloud = std::make_shared<splats::GaussianCloud>();
-  mergedCloud->shDegree = 2;
+  // Merged bricks of vectors hold SH degree 2 (shading); of Gaussians the scene's degree.
+  mergedCloud->setShDegree(
+      index_->header.kind == qnv::StreamKind::gaussian ? index_->header.shDegree : 2);
   for (std::size_t m : mergedChoice_)
     if (const auto& part = merged_[m].cloud)
       for (std::size_t i = 0; i < part->size(); ++i) mergedCloud->append(*part, i);

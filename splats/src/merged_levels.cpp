@@ -47,6 +47,7 @@ MergedLevelBuilder::MergedLevelBuilder(const qnv::TilesetLayout& layout, std::ui
   const qnv::StreamHeader& h = layout.templateHeader();
   if (h.kind == qnv::StreamKind::gaussian) {
     weightUnit_ = h.magnitudeMax;  // the largest importance: opacity times area
+    shDegree_ = h.shDegree;
   } else {
     const float spread = vectorProfile(h, h.magnitudeMax, 1.0f).spread;
     weightUnit_ = meanProjectedArea(glm::vec3(spread, spread, 0.0f));
@@ -156,8 +157,10 @@ void MergedLevelBuilder::addGaussian(const GaussianCloud& cloud, std::size_t i) 
   glm::dmat3 s2(0.0);
   for (int a = 0; a < 3; ++a) s2[a][a] = double{scale[a]} * scale[a];
   const glm::dmat3 sigma = r * s2 * glm::transpose(r);
-  // The colour seen from every side alike: SH band 0 (the higher bands average to 0).
+  // The colour: band 0 in the fixed-point sums, the higher bands (linear in the
+  // coefficients, so the members' weighted mean is the mean of their colours) beside.
   const glm::dvec3 color = glm::dvec3(0.5) + double{kShC0} * glm::dvec3(cloud.shDc[i]);
+  const int rest = std::min(cloud.shRestPerSplat(), shCoefficients(shDegree_) - 1);
   qnv::SourceVector v;
   v.position = cloud.positions[i];
   const int levels = std::min<int>(layout_.depth(), qnv::deepestMergedLevel(cellsLog2_) + 1);
@@ -175,6 +178,14 @@ void MergedLevelBuilder::addGaussian(const GaussianCloud& cloud, std::size_t i) 
       for (int b = a; b < 3; ++b)
         sum[k++] += fixedOf(weight * (sigma[a][b] / (f.size * f.size) + q[a] * q[b]));
     for (int a = 0; a < 3; ++a) sum[kColor + a] += fixedOf(weight * color[a]);
+    if (rest > 0) {
+      std::vector<glm::dvec3>& sh = shSums_[cellKey(level, c)];
+      sh.resize(static_cast<std::size_t>(rest), glm::dvec3(0.0));
+      for (int j = 0; j < rest; ++j)
+        sh[static_cast<std::size_t>(j)] +=
+            weight * glm::dvec3(cloud.shRest[i * static_cast<std::size_t>(cloud.shRestPerSplat()) +
+                                             static_cast<std::size_t>(j)]);
+    }
   }
 }
 
@@ -279,7 +290,8 @@ std::map<qnv::TilesetCell, GaussianCloud> MergedLevelBuilder::build() const {
     if (!(opacity > 0.0f)) continue;
     const qnv::TilesetCell node{level, c / cellsPerAxis(level)};
     GaussianCloud& cloud = nodes[node];
-    if (cloud.empty()) cloud.shDegree = 2;
+    const bool gaussian = h.kind == qnv::StreamKind::gaussian;
+    if (cloud.empty()) cloud.setShDegree(gaussian ? shDegree_ : 2);
     cloud.positions.push_back(glm::vec3(f.origin + mean * f.size));
     cloud.scales.push_back(scale);
     cloud.rotations.push_back(rotation);
@@ -292,6 +304,14 @@ std::map<qnv::TilesetCell, GaussianCloud> MergedLevelBuilder::build() const {
         h.kind == qnv::StreamKind::gaussian ? 1.0 : ambient + (1.0 - ambient) * 0.5;
     const glm::dvec3 dc = (rgb * shade - 0.5) / double{kShC0};
     cloud.shDc.push_back(glm::vec3(dc));
+    if (gaussian) {  // the members' weighted mean of each higher coefficient
+      const auto sh = shSums_.find(key);
+      for (int j = 0; j < cloud.shRestPerSplat(); ++j)
+        cloud.shRest.push_back(sh != shSums_.end()
+                                   ? glm::vec3(sh->second[static_cast<std::size_t>(j)] / w)
+                                   : glm::vec3(0.0f));
+      continue;
+    }
     for (int m = 0; m < 3; ++m) cloud.shRest.push_back(glm::vec3(0.0f));
     for (int m = 0; m < 5; ++m)
       cloud.shRest.push_back(glm::vec3(rgb * (1.0 - ambient) * valueOf(cell.sums[kBand2 + m]) / w));

@@ -199,6 +199,11 @@ TEST_CASE("a Gaussian stream and tileset over HTTP are turned as the local captu
   CHECK(differing("bunny_tileset_local", "bunny_tileset_http", 0) == 0.0);
   // And the tileset shows what the stream shows.
   CHECK(differing("bunny_qnv_local", "bunny_tileset_local", 16) < 0.002);
+  // A tileset whose index cannot be fetched: the picture of an incomplete input, exit 3
+  // (it exited 0 before: only the loader's own streams were counted), the URL named.
+  const auto missing = shoot("bunny_tileset_missing", nginx.url("/missing/"));
+  CHECK(missing.exitCode == 3);
+  CHECK_THAT(missing.err, Catch::Contains("/missing/index.qnvt") && Catch::Contains("404"));
 }
 
 TEST_CASE("a server that ignores ranges still gives the whole QNV picture", "[app][http][qnv]") {

@@ -94,15 +94,13 @@ class StreamingSession {
                                                 std::string& error);
   std::shared_ptr<const render::SplatSet> splatSet(const std::string& url,
                                                    const std::string& referrer, std::string& error);
-  /// Byte 10 of a QNV stream's header, and of a tileset index's template (16 bytes on),
-  /// is its kind (qnv::StreamKind).
-  static constexpr std::size_t kStreamKindByte = 10, kTilesetKindByte = 26;
-  /// Whether byte `kindByte` of the remote `url` says qnv::StreamKind::gaussian: one range
-  /// request for the first kindByte + 1 bytes under the loader's rules, waited for (its
-  /// connect and stall timeouts bound the wait), before the world naming it is made, so a
-  /// capture streamed over HTTP is turned as a local one (docs/splats.md, "Axes"). False
-  /// when it cannot be read: the stream's own fetch then reports why.
-  bool remoteKindIs(const std::string& url, std::size_t kindByte);
+  /// Whether the remote QNV stream (or, `tileset`, the tileset index) `url` holds
+  /// Gaussians: its stream is opened (splatSet, the one the world's node then draws) and
+  /// the loader pumped until its header (or index) arrives or it fails (false; its own
+  /// messages say why), bounded by the transfer's connect and stall timeouts. Called
+  /// before the world naming it is made, so a capture streamed over HTTP is turned as a
+  /// local one (docs/splats.md, "Opening a scene"); no byte is fetched twice.
+  bool remoteIsGaussian(const std::string& url, bool tileset);
   net::Loader loader_;
   struct QnvEntry {
     std::shared_ptr<net::QnvStream> stream;

@@ -26,6 +26,7 @@
 #include <string_view>
 #include <unordered_map>
 #include <utility>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -59,7 +60,9 @@ class MergedLevelBuilder {
   /// splats/gaussian_tileset.hpp; the layout's template is then of kind gaussian) to its
   /// cell at every interior level: weight = opacity x meanProjectedArea(scale), its own
   /// covariance added to the second moment, its band-0 colour (0.5 + kShC0 dc) to the
-  /// colour; the merged splat's higher SH bands stay 0 (a view-independent average).
+  /// colour, and its higher SH coefficients (up to the template's shDegree) to sums of
+  /// their own: the merged splat's SH is its members' weighted mean (colour is linear in
+  /// them). Not part of serialize(): Gaussian tilesets are built whole.
   void addGaussian(const GaussianCloud& cloud, std::size_t i);
   /// Cells holding vectors.
   std::size_t cellCount() const { return cells_.size(); }
@@ -75,7 +78,8 @@ class MergedLevelBuilder {
   bool addSerialized(std::string_view bytes, const std::string& name, std::string& error);
 
   /// The merged Gaussians of every interior node holding vectors, by node (splats in
-  /// (z, y, x) cell order, SH degree 2, positions in world units).
+  /// (z, y, x) cell order, SH degree 2 for vectors, the scene's for Gaussians, positions in world
+  /// units).
   std::map<qnv::TilesetCell, GaussianCloud> build() const;
 
  private:
@@ -93,6 +97,11 @@ class MergedLevelBuilder {
   std::uint32_t brickVoxels_ = 0;
   double weightUnit_ = 1.0;  // world units^2: the largest weight a vector can have
   std::unordered_map<std::uint64_t, MergedCell> cells_;
+  /// Gaussian scenes: the SH degree, and per cell the weighted sums of the members' SH
+  /// coefficients above band 0 (kept in double beside the fixed-point sums: a Gaussian
+  /// tileset is built in one run, never summed from shares).
+  int shDegree_ = 0;
+  std::unordered_map<std::uint64_t, std::vector<glm::dvec3>> shSums_;
 };
 
 }  // namespace gs::splats
