@@ -269,6 +269,13 @@ int runEncode(const Options& options) {
   const bool tileset = !options.encode.tileset.empty();
   qnv::EncodeSummary summary;
   const char* elements = "triangles";
+  if (options.encode.shFull != EncodeOptions{}.shFull && options.encode.shBits == 5) {
+    bar.finish();  // never a silent no-op: every splat keeps every bit without --sh-bits
+    std::fprintf(stderr,
+                 "ghostspace: encode: --sh-full keeps the bits --sh-bits drops: give --sh-bits "
+                 "N (1..4) with it\n");
+    return 2;
+  }
   if (!tileset && !s.raw && session::isGaussianSplatFile(input))
     return encodeGaussianScene(options, s, input);  // below
   if (tileset && !s.raw && session::isGaussianSplatFile(input)) {

@@ -358,14 +358,14 @@ const std::vector<OptionSpec>& table() {
                "code (1..5; 5: all). Lossy; smaller streams",
        .more = "Each bit dropped doubles the SH step (5 bits: 1/16); degree 2 and 3 codes "
                "(4 bits, step 1/8) drop as many, keeping one; a value halfway goes towards 0. "
-               "Every reader reads the stream. Streams of Gaussian scenes only.",
+               "Every reader reads the stream. Streams and tilesets of Gaussian scenes only.",
        .check = CLI::Range(1, 5)},
       {.scope = encode,
        .names = "--sh-full",
        .valueName = "F",
        .field = GS_FIELD(double, options.encode.shFull),
-       .help = "With --sh-bits: the most important F of the splats (0..1, the stream's first) "
-               "keep every SH bit",
+       .help = "With --sh-bits: the most important F of the splats (0..1, the stream's or "
+               "each brick's first) keep every SH bit",
        .more = "CThead's capture at --sh-bits 4: 12.2 bytes per splat, 41.0 dB from the "
                "source's picture; with --sh-full 0.4, 15.3 and 47.0 dB; all bits, 19.9 and "
                "54.2 dB; its SOG, 19.0 and 40.8 dB (docs/splats.md, \"Bytes and pictures\").",
@@ -424,7 +424,9 @@ const std::vector<OptionSpec>& table() {
                "\"Tilesets\") instead of one stream",
        .more = "One brick per octree node, `OUT/bricks/L/X_Y_Z.qnv`, each an ordinary stream "
                "sorted largest first. `--fraction`, `--count`, `--window`, `--coding` and "
-               "`--packet-bytes` mean what they mean for a stream."},
+               "`--packet-bytes` mean what they mean for a stream. A Gaussian splatting "
+               "scene's bricks are Gaussian streams, importance first, written in one run "
+               "(docs/tilesets.md, \"Gaussian tilesets\")."},
       {.scope = encode,
        .names = "--brick-voxels",
        .valueName = "B",
@@ -435,8 +437,8 @@ const std::vector<OptionSpec>& table() {
        .names = "--brick-vectors",
        .valueName = "K",
        .field = GS_FIELD(std::uint64_t, options.encode.brickVectors),
-       .help = "Tilesets: vectors an octree node aims at",
-       .more = "For surfaces also the leaf size that sets the depth.",
+       .help = "Tilesets: vectors (or splats) an octree node aims at",
+       .more = "For surfaces and splat scenes also the leaf size that sets the depth.",
        .check = CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 32)},
       {.scope = encode,
        .names = "--merged-cells",
@@ -470,8 +472,8 @@ const std::vector<OptionSpec>& table() {
        .names = "--bricks",
        .valueName = "I/N",
        .field = GS_FIELD(std::string, options.encode.bricks),
-       .help = "Tilesets: write only share I of N (0 <= I < N) of a split encode; "
-               "`ghostspace tileset index OUT/` merges the shares",
+       .help = "Tilesets of volumes and meshes: write only share I of N (0 <= I < N) of a "
+               "split encode; `ghostspace tileset index OUT/` merges the shares",
        .more = "A share is the leaf bricks of the I-th contiguous range of leaves and "
                "`OUT/parts/I-of-N/`; run the shares anywhere (a SLURM array, Kubernetes "
                "Jobs, GNU parallel); the merge writes the interior bricks and `index.qnvt`, "

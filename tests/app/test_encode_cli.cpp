@@ -181,6 +181,11 @@ TEST_CASE("encode rejects bad options and unreadable inputs with a reason", "[ap
   auto shBitsRange =
       runGhostspace({"encode", splats, "-o", scratch("x.qnv").string(), "--sh-bits", "6"});
   CHECK(shBitsRange.exitCode == 2);
+  // --sh-full alone would change nothing: said so.
+  auto shFullAlone =
+      runGhostspace({"encode", splats, "-o", scratch("x.qnv").string(), "--sh-full", "0.5"});
+  CHECK(shFullAlone.exitCode == 2);
+  CHECK_THAT(shFullAlone.err, Catch::Contains("give --sh-bits"));
   // A Gaussian splatting scene's tileset is written whole: no shares to merge.
   auto splatShare = runGhostspace(
       {"encode", splats, "--tileset", scratch("splat_tileset").string(), "--bricks", "0/2"});
