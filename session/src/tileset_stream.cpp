@@ -1,6 +1,7 @@
 #include "session/tileset_stream.hpp"
 
 #include <algorithm>
+#include <chrono>
 
 #include "base/url.hpp"
 #include "scene/camera.hpp"
@@ -449,6 +450,11 @@ void TilesetStream::rebuild() {
 }
 
 bool TilesetStream::pump() {
+  // The rate's clock runs while a transfer of this tileset runs (between pumps).
+  const auto now = std::chrono::steady_clock::now();
+  if (transferring_) activeSeconds_ += std::chrono::duration<double>(now - lastPump_).count();
+  lastPump_ = now;
+  transferring_ = false;
   bool changed = takeIndex();
   if (!index_) return changed;
   if (!loader_.stopReason().empty()) stop();  // again each pump: cheap, and idempotent
@@ -464,6 +470,8 @@ bool TilesetStream::pump() {
     dirty_ = false;
     changed = true;
   }
+  for (const Brick& b : bricks_) transferring_ |= static_cast<bool>(b.transfer);
+  for (const MergedBrick& m : merged_) transferring_ |= static_cast<bool>(m.transfer);
   return changed;
 }
 
@@ -495,6 +503,12 @@ net::StreamProgress TilesetStream::progress() const {
   p.url = url_;
   p.kind = net::StreamKind::qnv;
   p.bytes = stats_.indexBytes + stats_.brickBytes + stats_.mergedBytes;
+  // Bricks and merged bricks over the time their transfers ran (the index is fetched
+  // before the clock starts).
+  p.bytesPerSecond =
+      activeSeconds_ > 0.0
+          ? static_cast<double>(stats_.brickBytes + stats_.mergedBytes) / activeSeconds_
+          : 0.0;
   p.vectors = stats_.residentVectors / words_;  // splats, for a Gaussian tileset
   p.wantedVectors = stats_.chosenVectors / words_;
   if (indexFailed_) {

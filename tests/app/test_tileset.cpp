@@ -143,7 +143,9 @@ TEST_CASE("a hostile tileset index named by a world is reported and the world st
                   "QuantizedNormalVectors { url \"bad/index.qnvt\" }\n");
   const auto r = shoot("hostile_index", nginx.url("/world.wrl"));
   INFO(r.err);
-  CHECK(r.exitCode == 0);
+  // The picture of an incomplete input, as for a stream that fails (before the
+  // twenty-eighth session a failed tileset was not counted and this exited 0).
+  CHECK(r.exitCode == 3);
   CHECK(r.err.find(nginx.url("/bad/index.qnvt")) != std::string::npos);
   CHECK(covered("hostile_index") > 0.05);
 }

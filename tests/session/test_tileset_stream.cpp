@@ -10,6 +10,8 @@
 #include "qnv/volume.hpp"
 #include "scene/camera.hpp"
 #include "session/streaming_session.hpp"
+#include "splats/gaussian_tileset.hpp"
+#include "splats/readers.hpp"
 #include "test_support.hpp"
 #include "tileset_fixture.hpp"
 
@@ -34,12 +36,14 @@ fs::path freshDir(const std::string& name) {
 struct Loaded {
   session::TilesetStatistics stats;
   std::vector<qnv::DecodedVector> vectors;
+  std::size_t splats = 0;  // a Gaussian tileset's splats drawn
+  std::size_t mergedSplats = 0;
   std::vector<std::pair<bool, std::string>> messages;
   net::StreamProgress progress;  // the tileset's line of StreamingSession::progress()
 };
 
 Loaded load(const std::string& input, const scene::Camera* camera,
-            net::LoaderOptions loaderOptions = {}) {
+            net::LoaderOptions loaderOptions = {}, float distanceScale = 1.0f) {
   session::StreamingSession s(loaderOptions);
   std::string error;
   auto scene = s.open(input, error);
@@ -51,6 +55,9 @@ Loaded load(const std::string& input, const scene::Camera* camera,
     s.loader().wait(0.01);
   render::SplatSet::View view;
   view.camera = camera ? *camera : scene::fitCamera(set->bounds, 1.0f, scene::Camera{});
+  if (!camera)  // farther along the same line of sight
+    view.camera.position =
+        set->bounds.center() + (view.camera.position - set->bounds.center()) * distanceScale;
   view.heightPixels = 512;
   view.vectors = set->total();
   const auto request = set->viewRequests->request();
@@ -60,6 +67,8 @@ Loaded load(const std::string& input, const scene::Camera* camera,
   REQUIRE(s.tilesets().size() == 1);
   out.stats = s.tilesets()[0]->statistics();
   out.vectors = set->vectors;
+  out.splats = set->gaussians ? set->gaussians->size() : 0;
+  out.mergedSplats = set->merged ? set->merged->size() : 0;
   s.drainMessages(out.messages);
   REQUIRE(!s.progress().empty());
   out.progress = s.progress().back();
@@ -224,4 +233,44 @@ TEST_CASE("tileset stream: a new view re-chooses, and far bricks go over the mem
   CHECK(set->viewRequests->views().empty());
   settle();
   CHECK(s.tilesets()[0]->statistics().chosenBricks == 0);
+}
+
+TEST_CASE("tileset stream: a Gaussian tileset draws its splats and counts splats",
+          "[tileset][session][splat]") {
+  const std::string ply = test::readBytes(test::sourceDir() / "tests/data/splats/bunny_small.ply");
+  const splats::GaussianCloud cloud = splats::readPlyGaussians(ply, "bunny_small.ply");
+  qnv::TilesetOptions cut;
+  cut.brickVectors = 512;
+  cut.mergedCellsLog2 = 4;
+  const splats::GaussianTilesetFiles files = splats::buildGaussianTileset(cloud, cut);
+  const fs::path dir = freshDir("bunny_small_gaussians");
+  for (const qnv::BrickFile& b : files.bricks) {
+    fs::create_directories((dir / b.brick.path()).parent_path());
+    std::ofstream(dir / b.brick.path(), std::ios::binary) << b.bytes;
+  }
+  for (std::size_t i = 0, m = 0; i < files.index.bricks.size(); ++i)
+    if (files.index.hasMerged(files.index.bricks[i].level)) {
+      const fs::path path = dir / files.index.bricks[i].mergedPath();
+      fs::create_directories(path.parent_path());
+      std::ofstream(path, std::ios::binary) << files.merged[m++].second;
+    }
+  std::ofstream(dir / "index.qnvt", std::ios::binary) << qnv::serializeTilesetIndex(files.index);
+
+  // Near: every splat of every brick, and the Streams panel counts splats.
+  const Loaded near = load(dir.string(), nullptr);
+  CHECK(near.messages.empty());
+  CHECK(near.splats == 3000);
+  CHECK(near.vectors.empty());
+  CHECK(near.mergedSplats == 0);
+  CHECK(near.progress.vectors == 3000);
+  CHECK(near.progress.expectedVectors == 3000);
+  CHECK(near.progress.fraction() == 1.0);
+  CHECK(near.progress.bytesPerSecond > 0.0);  // the bricks' bytes over their transfers' time
+  // Far: the merged root stands for the scene, a few hundred splats and no brick.
+  const Loaded far = load(dir.string(), nullptr, {}, 40.0f);
+  CHECK(far.messages.empty());
+  CHECK(far.splats == 0);
+  CHECK(far.mergedSplats > 100);
+  CHECK(far.mergedSplats < 3000);
+  CHECK(far.stats.brickBytes == 0);
 }

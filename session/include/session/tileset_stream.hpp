@@ -13,6 +13,7 @@
 // Runs on the thread that draws; transfers run on their own threads.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -78,10 +79,11 @@ class TilesetStream {
   const TilesetStatistics& statistics() const { return stats_; }
   /// The tileset as one line of the window's Streams panel and the progress bars (kind
   /// qnv): bytes of the index, bricks and merged bricks taken, of the whole tileset's
-  /// files (known with the index); vectors decoded and held, of the tileset's, the last
-  /// choice's as the wanted prefix; `loading` while a transfer runs or a chosen prefix
-  /// is missing, `idle` once settled (a new view may ask for more), `stopped` once the
-  /// loader stopped the loads, `failed` when the index could not be read (`error`).
+  /// files (known with the index); bytesPerSecond, the bricks' bytes over the seconds
+  /// their transfers ran; vectors (a Gaussian tileset: splats) decoded and held, of the tileset's,
+  /// the last choice's as the wanted prefix; `loading` while a transfer runs or a chosen prefix is
+  /// missing, `idle` once settled (a new view may ask for more), `stopped` once the loader stopped
+  /// the loads, `failed` when the index could not be read (`error`).
   net::StreamProgress progress() const;
   /// The URL of the index.
   const std::string& url() const { return url_; }
@@ -122,6 +124,10 @@ class TilesetStream {
   std::vector<std::pair<std::uint64_t, render::SplatSet::View>> lastViews_;
   bool dirty_ = false;
   bool stopped_ = false;  // the loader stopped the loads: no transfer starts again
+  // progress()'s rate: seconds during which a transfer ran, as seen from pump to pump.
+  double activeSeconds_ = 0.0;
+  std::chrono::steady_clock::time_point lastPump_{};
+  bool transferring_ = false;  // a transfer ran at the end of the last pump
   TilesetStatistics stats_;
   std::vector<std::pair<bool, std::string>> messages_;
   std::size_t messagesShown_ = 0;
