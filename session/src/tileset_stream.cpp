@@ -196,14 +196,20 @@ bool TilesetStream::pumpBricks() {
         if (header.kind == qnv::StreamKind::gaussian) {
           b.splats = std::make_shared<splats::GaussianCloud>();
           b.splats->setShDegree(header.shDegree);
-          b.decoder->setRecordSink(
-              [&b, &changed, limit](std::uint64_t first, std::span<const std::uint64_t> records) {
-                if (first + records.size() > limit) return;  // a sequence the index does not allow
-                splats::placeGaussianRecords(*b.decoder->header(), first, records, *b.splats);
-                changed = true;
-              });
         }
       }
+      if (b.splats)  // set for each feed: it reports to this pump's `changed`
+        b.decoder->setRecordSink(
+            [&b, &changed, limit](std::uint64_t first, std::span<const std::uint64_t> records) {
+              if (first + records.size() > limit) return;  // a sequence the index does not allow
+              // Believe a packet's place only as far as the bytes fed could hold (a splat
+              // takes at least 2 bytes), as readQnvGaussians does: a hostile index and brick
+              // cannot size the cloud.
+              const std::uint64_t words = b.decoder->header()->recordsPerElement();
+              if (first / words > b.fed / 2 + 65536) return;
+              splats::placeGaussianRecords(*b.decoder->header(), first, records, *b.splats);
+              changed = true;
+            });
       auto sink = [&](std::uint64_t first, std::span<const qnv::DecodedVector> v) {
         if (first + v.size() > limit) return;  // a sequence number the index does not allow
         if (b.vectors.size() < first + v.size())
