@@ -34,8 +34,13 @@ int runTilesetInfo(const std::string& path) {
     return 1;
   }
   const qnv::StreamHeader& h = index->header;
+  const bool gaussian = h.kind == qnv::StreamKind::gaussian;
+  const std::uint64_t words = h.recordsPerElement();  // records a splat (1: a vector)
+  const char* unit = gaussian ? "splats" : "vectors";
   std::printf("%s: QNV tileset, %s\n", path.c_str(),
-              h.kind == qnv::StreamKind::volume ? "volume" : "surface");
+              h.kind == qnv::StreamKind::volume ? "volume"
+              : gaussian ? ("Gaussian splats, SH degree " + std::to_string(h.shDegree)).c_str()
+                         : "surface");
   std::printf("  bounds      %g %g %g .. %g %g %g\n", h.boundsMin.x, h.boundsMin.y, h.boundsMin.z,
               h.boundsMax.x, h.boundsMax.y, h.boundsMax.z);
   if (h.kind == qnv::StreamKind::volume)
@@ -44,8 +49,8 @@ int runTilesetInfo(const std::string& path) {
                 h.voxelSpacing.z);
   std::uint64_t brickBytes = 0;
   for (const qnv::TilesetBrick& b : index->bricks) brickBytes += b.fileBytes;
-  std::printf("  vectors     %llu in %zu bricks, depth %u (levels 0..%u)\n",
-              static_cast<unsigned long long>(h.vectorCount), index->bricks.size(),
+  std::printf("  %-10s  %llu in %zu bricks, depth %u (levels 0..%u)\n", unit,
+              static_cast<unsigned long long>(h.vectorCount / words), index->bricks.size(),
               static_cast<unsigned>(index->depth), static_cast<unsigned>(index->depth));
   std::printf("  bytes       %llu in bricks, %zu in the index\n",
               static_cast<unsigned long long>(brickBytes), bytes.size());
@@ -57,8 +62,8 @@ int runTilesetInfo(const std::string& path) {
         ++bricks;
         vectors += b.vectorCount;
       }
-    std::printf("  level %-4u  %zu bricks, %llu vectors\n", level, bricks,
-                static_cast<unsigned long long>(vectors));
+    std::printf("  level %-4u  %zu bricks, %llu %s\n", level, bricks,
+                static_cast<unsigned long long>(vectors / words), unit);
   }
   return 0;
 }

@@ -173,6 +173,10 @@ TEST_CASE("a Gaussian splatting scene as a QNV tileset draws the scene's picture
   REQUIRE(r.exitCode == 0);
   CHECK_THAT(r.out, Catch::Contains("3000 splats"));
   REQUIRE(fs::is_regular_file(dir / "merged/0/0_0_0.qnv"));
+  const auto info = gs::test::runGhostspace({"info", (dir / "index.qnvt").string()});
+  CHECK(info.exitCode == 0);
+  CHECK_THAT(info.out, Catch::Contains("QNV tileset, Gaussian splats, SH degree 1") &&
+                           Catch::Contains("splats      3000 in 9 bricks, depth 1"));
   // Near, every splat is fetched: the scene file's picture (measured 49.7 dB). Far, the
   // merged root stands for the scene (29.6 dB over its few pixels).
   struct View {
