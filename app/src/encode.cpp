@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <optional>
 
 #include "app/commands.hpp"
 #include "app/progress_bar.hpp"
@@ -166,20 +167,32 @@ bool writeOutput(const std::string& path, const std::string& bytes) {
   return static_cast<bool>(out);
 }
 
+// The Gaussian splatting scene `input` (any format splats::readGaussians reads, with its
+// side files); nullopt, the reason printed, when it cannot be read.
+std::optional<splats::GaussianCloud> readSplatScene(const std::string& input) {
+  std::string bytes, error;
+  if (!base::readFile(input, bytes, error, std::size_t{16} << 30)) {
+    std::fprintf(stderr, "ghostspace: %s\n", error.c_str());
+    return std::nullopt;
+  }
+  base::LocalFetcher fetcher;
+  try {
+    return splats::readGaussians(bytes, input, session::sideFileReader(fetcher, input));
+  } catch (const splats::FormatError& e) {
+    std::fprintf(stderr, "ghostspace: %s\n", e.what());
+  }
+  return std::nullopt;
+}
+
 // A 3D Gaussian splatting scene as a QNV Gaussian stream (splats/qnv_gaussians.hpp),
 // importance first. Packets: compact unless --coding plain; as large as --packet-bytes
 // allows in whole splats (the default, 1376, gives the largest: zstd needs room).
 int encodeGaussianScene(const Options& options, Settings s, const std::string& input) {
   const auto t0 = std::chrono::steady_clock::now();
-  std::string bytes, error;
-  if (!base::readFile(input, bytes, error, std::size_t{16} << 30)) {
-    std::fprintf(stderr, "ghostspace: %s\n", error.c_str());
-    return 1;
-  }
-  base::LocalFetcher fetcher;
+  const std::optional<splats::GaussianCloud> scene = readSplatScene(input);
+  if (!scene) return 1;
+  const splats::GaussianCloud& cloud = *scene;
   try {
-    const splats::GaussianCloud cloud =
-        splats::readGaussians(bytes, input, session::sideFileReader(fetcher, input));
     const qnv::EncodedVectors vectors = splats::encodeGaussianStream(
         cloud, {.shBits = options.encode.shBits, .shFullFraction = options.encode.shFull});
     const std::uint32_t splatBytes = 8 * vectors.header.recordsPerElement();
@@ -208,8 +221,6 @@ int encodeGaussianScene(const Options& options, Settings s, const std::string& i
             .c_str(),
         secondsSince(t0));
     return 0;
-  } catch (const splats::FormatError& e) {
-    std::fprintf(stderr, "ghostspace: %s\n", e.what());
   } catch (const qnv::InputError& e) {
     std::fprintf(stderr, "ghostspace: %s\n", e.what());
   }
@@ -220,35 +231,24 @@ int encodeGaussianScene(const Options& options, Settings s, const std::string& i
 // (splats/gaussian_tileset.hpp; docs/tilesets.md, "Gaussian tilesets").
 int encodeGaussianTileset(const Options& options, const Settings& s, const std::string& input) {
   const auto t0 = std::chrono::steady_clock::now();
-  std::string bytes, error;
-  if (!base::readFile(input, bytes, error, std::size_t{16} << 30)) {
-    std::fprintf(stderr, "ghostspace: %s\n", error.c_str());
-    return 1;
-  }
   encode::TilesetTarget target;
   if (!tilesetTarget(options.encode, s.write, target)) return 2;
-  base::LocalFetcher fetcher;
-  try {
-    const splats::GaussianCloud cloud =
-        splats::readGaussians(bytes, input, session::sideFileReader(fetcher, input));
-    const encode::TilesetResult r = encode::writeGaussianTileset(
-        target, cloud, {.shBits = options.encode.shBits, .shFullFraction = options.encode.shFull});
-    if (!r.ok()) {
-      // As writeTileset: bad options or input 2, a file not written 1.
-      std::fprintf(stderr, "ghostspace: encode: %s: %s\n", input.c_str(), r.error.c_str());
-      return r.failure == encode::Failure::input ? 2 : 1;
-    }
-    const std::uint64_t words = r.merged.index.header.recordsPerElement();
-    std::printf("%s: %s Gaussians (SH degree %d), kept %s\n", input.c_str(),
-                withCommas(cloud.size()).c_str(), cloud.shDegree,
-                withCommas(r.merged.index.header.vectorCount / words).c_str());
-    printMerged(target.dir, r.merged);
-    std::printf("%s: encoded in %.3f s\n", input.c_str(), secondsSince(t0));
-    return 0;
-  } catch (const splats::FormatError& e) {
-    std::fprintf(stderr, "ghostspace: %s\n", e.what());
+  const std::optional<splats::GaussianCloud> cloud = readSplatScene(input);
+  if (!cloud) return 1;
+  const encode::TilesetResult r = encode::writeGaussianTileset(
+      target, *cloud, {.shBits = options.encode.shBits, .shFullFraction = options.encode.shFull});
+  if (!r.ok()) {
+    // As writeTileset: bad options or input 2, a file not written 1.
+    std::fprintf(stderr, "ghostspace: encode: %s: %s\n", input.c_str(), r.error.c_str());
+    return r.failure == encode::Failure::input ? 2 : 1;
   }
-  return 1;
+  const std::uint64_t words = r.merged.index.header.recordsPerElement();
+  std::printf("%s: %s Gaussians (SH degree %d), kept %s\n", input.c_str(),
+              withCommas(cloud->size()).c_str(), cloud->shDegree,
+              withCommas(r.merged.index.header.vectorCount / words).c_str());
+  printMerged(target.dir, r.merged);
+  std::printf("%s: encoded in %.3f s\n", input.c_str(), secondsSince(t0));
+  return 0;
 }
 
 }  // namespace

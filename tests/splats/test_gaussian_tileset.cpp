@@ -130,27 +130,26 @@ TEST_CASE("a Gaussian tileset's merged bricks keep their region's place and cove
   // Interior levels 0 and 1 of depth 2 have merged bricks: the root and its 8 children.
   REQUIRE(files.merged.size() == 9);
   CHECK(files.index.mergedCellsLog2 == 2);
-  double sourceCoverage = 0.0;
-  glm::dvec3 sourceCentre(0.0);
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    const double w = splats::splatCoverage(cloud.scales[i], cloud.opacities[i]);
-    sourceCoverage += w;
-    sourceCentre += w * glm::dvec3(cloud.positions[i]);
-  }
-  sourceCentre /= sourceCoverage;
+  // Summed coverage and coverage-weighted centre.
+  const auto moments = [](const splats::GaussianCloud& c, double& coverage, glm::dvec3& centre) {
+    coverage = 0.0;
+    centre = glm::dvec3(0.0);
+    for (std::size_t i = 0; i < c.size(); ++i) {
+      const double w = splats::splatCoverage(c.scales[i], c.opacities[i]);
+      coverage += w;
+      centre += w * glm::dvec3(c.positions[i]);
+    }
+    centre /= coverage;
+  };
+  double sourceCoverage = 0.0, coverage = 0.0;
+  glm::dvec3 sourceCentre, centre;
+  moments(cloud, sourceCoverage, sourceCentre);
   const auto& [node, bytes] = files.merged.front();
   CHECK(node.level == 0);
   const splats::GaussianCloud root = splats::readQnvGaussians(bytes, "merged root");
   CHECK(root.size() > 0);
   CHECK(root.size() <= 64);  // 4^3 cells at most
-  double coverage = 0.0;
-  glm::dvec3 centre(0.0);
-  for (std::size_t i = 0; i < root.size(); ++i) {
-    const double w = splats::splatCoverage(root.scales[i], root.opacities[i]);
-    coverage += w;
-    centre += w * glm::dvec3(root.positions[i]);
-  }
-  centre /= coverage;
+  moments(root, coverage, centre);
   // Quantized to 8-bit opacities and log scales: within a few per cent.
   CHECK(coverage == Approx(sourceCoverage).epsilon(0.1));
   CHECK(glm::length(centre - sourceCentre) < 0.05);
