@@ -231,6 +231,13 @@ int encodeGaussianScene(const Options& options, Settings s, const std::string& i
 // (splats/gaussian_tileset.hpp; docs/tilesets.md, "Gaussian tilesets").
 int encodeGaussianTileset(const Options& options, const Settings& s, const std::string& input) {
   const auto t0 = std::chrono::steady_clock::now();
+  if (options.encode.memoryMB > 0) {  // never silently in memory when asked otherwise
+    std::fprintf(stderr,
+                 "ghostspace: encode: --memory MB is for volumes and PLY meshes; %s is a "
+                 "Gaussian splatting scene, whose tileset is written from memory\n",
+                 input.c_str());
+    return 2;
+  }
   encode::TilesetTarget target;
   if (!tilesetTarget(options.encode, s.write, target)) return 2;
   const std::optional<splats::GaussianCloud> cloud = readSplatScene(input);

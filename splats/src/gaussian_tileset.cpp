@@ -27,7 +27,10 @@ GaussianTilesetFiles buildGaussianTileset(const GaussianCloud& cloud,
       std::clamp<std::uint64_t>(cut.brickVectors / 16, 128,
                                 std::min<std::uint64_t>(1024, qnv::kMaxPacketBytes / (8 * words)));
   layoutCut.write.packetBytes = static_cast<std::uint32_t>(8 * words * perPacket);
-  layoutCut.write.encoding = qnv::PacketEncoding::compact;
+  // Gaussian streams are plain or compact (entropy coding is for vectors).
+  layoutCut.write.encoding = cut.write.encoding == qnv::PacketEncoding::plain
+                                 ? qnv::PacketEncoding::plain
+                                 : qnv::PacketEncoding::compact;
   const qnv::TilesetLayout layout(whole, layoutCut);
   const std::uint8_t depth = layout.depth();
 

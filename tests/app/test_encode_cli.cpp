@@ -191,6 +191,10 @@ TEST_CASE("encode rejects bad options and unreadable inputs with a reason", "[ap
       {"encode", splats, "--tileset", scratch("splat_tileset").string(), "--bricks", "0/2"});
   CHECK(splatShare.exitCode == 2);
   CHECK_THAT(splatShare.err, Catch::Contains("written whole"));
+  auto splatMemory = runGhostspace(
+      {"encode", splats, "--tileset", scratch("splat_tileset").string(), "--memory", "64"});
+  CHECK(splatMemory.exitCode == 2);
+  CHECK_THAT(splatMemory.err, Catch::Contains("--memory MB is for volumes and PLY meshes"));
 }
 
 TEST_CASE("encode --sh-bits writes a smaller Gaussian stream that opens as any other",

@@ -43,13 +43,14 @@ struct GaussianTilesetFiles {
 ///   (q_L = ceil(K / 8^(D - L))), the rest stay in the leaf: every node is an even,
 ///   importance-first sample of its region;
 /// - each brick is encodeGaussianSplats of its splats in rank order, in the node's cell
-///   box and the scene's scale and importance ranges, compact packets of whole splats
-///   (K / 16 splats, 128 to 1,024 and at most 64 KiB);
+///   box and the scene's scale and importance ranges, compact packets (plain when
+///   cut.write.encoding is plain) of whole splats (K / 16 splats, 128 to 1,024 and at most
+///   64 KiB);
 /// - cut.mergedCellsLog2 > 0: each interior node down to qnv::deepestMergedLevel has a
 ///   merged brick (MergedLevelBuilder::addGaussian, R = 2^cellsLog2 cells per axis).
 /// `options` (SH bits) applies to every brick, shFullFraction to each brick's first
-/// splats. cut.brickVoxels and cut.write are not used. Throws qnv::InputError when K is 0
-/// or no splat is kept ("nothing to encode").
+/// splats. cut.brickVoxels and cut.write.packetBytes are not used. Throws qnv::InputError when K is
+/// 0 or no splat is kept ("nothing to encode").
 GaussianTilesetFiles buildGaussianTileset(const GaussianCloud& cloud,
                                           const qnv::TilesetOptions& cut,
                                           const GaussianStreamOptions& options = {});
