@@ -184,6 +184,12 @@ std::optional<splats::GaussianCloud> readSplatScene(const std::string& input) {
   return std::nullopt;
 }
 
+// The packets of a Gaussian stream or tileset: compact unless --coding plain (entropy
+// coding is for vectors; --compact's default of plain is the vectors' too).
+qnv::PacketEncoding gaussianEncoding(const EncodeOptions& e) {
+  return e.coding == "plain" ? qnv::PacketEncoding::plain : qnv::PacketEncoding::compact;
+}
+
 // A 3D Gaussian splatting scene as a QNV Gaussian stream (splats/qnv_gaussians.hpp),
 // importance first. Packets: compact unless --coding plain; as large as --packet-bytes
 // allows in whole splats (the default, 1376, gives the largest: zstd needs room).
@@ -198,8 +204,7 @@ int encodeGaussianScene(const Options& options, Settings s, const std::string& i
     const std::uint32_t splatBytes = 8 * vectors.header.recordsPerElement();
     if (options.encode.packetBytes == EncodeOptions{}.packetBytes)
       s.write.packetBytes = vectors.header.packetBytes;
-    s.write.encoding = options.encode.coding == "plain" ? qnv::PacketEncoding::plain
-                                                        : qnv::PacketEncoding::compact;
+    s.write.encoding = gaussianEncoding(options.encode);
     const std::string stream = qnv::writeStream(vectors, s.write);
     const std::size_t kept = vectors.records.size() / (splatBytes / 8);
     if (kept == 0) {  // never a silent success: nothing written, exit 1
@@ -239,7 +244,9 @@ int encodeGaussianTileset(const Options& options, const Settings& s, const std::
     return 2;
   }
   encode::TilesetTarget target;
-  if (!tilesetTarget(options.encode, s.write, target)) return 2;
+  qnv::WriteOptions write = s.write;
+  write.encoding = gaussianEncoding(options.encode);
+  if (!tilesetTarget(options.encode, write, target)) return 2;
   const std::optional<splats::GaussianCloud> cloud = readSplatScene(input);
   if (!cloud) return 1;
   const encode::TilesetResult r = encode::writeGaussianTileset(

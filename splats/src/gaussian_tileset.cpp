@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <map>
-#include <optional>
 
 #include "qnv/error.hpp"
 #include "splats/merged_levels.hpp"

@@ -4,8 +4,6 @@
 #include <cmath>
 #include <vector>
 
-#include <glm/gtc/quaternion.hpp>
-
 #include "base/byte_order.hpp"
 #include "qnv/error.hpp"
 #include "splats/lod_tree.hpp"
@@ -151,12 +149,9 @@ void MergedLevelBuilder::add(const qnv::SourceVector& v) {
 
 void MergedLevelBuilder::addGaussian(const GaussianCloud& cloud, std::size_t i) {
   const glm::vec3 scale = glm::abs(cloud.scales[i]);
-  const double weight = double{cloud.opacities[i]} * meanProjectedArea(scale) / weightUnit_;
+  const double weight = splatCoverage(scale, cloud.opacities[i]) / weightUnit_;
   if (!(weight > 0.0) || !std::isfinite(weight)) return;
-  const glm::dmat3 r(glm::mat3_cast(glm::normalize(cloud.rotations[i])));
-  glm::dmat3 s2(0.0);
-  for (int a = 0; a < 3; ++a) s2[a][a] = double{scale[a]} * scale[a];
-  const glm::dmat3 sigma = r * s2 * glm::transpose(r);
+  const glm::dmat3 sigma(covariance(scale, glm::normalize(cloud.rotations[i])));
   // The colour: band 0 in the fixed-point sums, the higher bands (linear in the
   // coefficients, so the members' weighted mean is the mean of their colours) beside.
   const glm::dvec3 color = glm::dvec3(0.5) + double{kShC0} * glm::dvec3(cloud.shDc[i]);
