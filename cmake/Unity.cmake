@@ -1,7 +1,8 @@
-# Unity ("jumbo") builds: CI's sanitizer build compiles each target's sources in batches
-# of 8 per translation unit (-DCMAKE_UNITY_BUILD=ON, docs/ci.md), which halves its
-# compile time; the strict build batches only the test suites (-DGS_UNITY_TESTS=ON), so
-# every source of the program is still compiled alone and a missing #include is caught. Files whose file-local names (anonymous namespaces) collide with a neighbour's
+# Unity ("jumbo") builds: CI's strict and sanitizer builds compile each target's sources in
+# batches of 8 per translation unit (-DCMAKE_UNITY_BUILD=ON, docs/ci.md), which halves the
+# compile time; -DGS_UNITY_TESTS=ON batches only the test suites. A plain configure (the
+# README's first command, .ci/demo) compiles every file alone, where a missing #include
+# shows. Files whose file-local names (anonymous namespaces) collide with a neighbour's
 # in one batch are compiled alone: list them here, relative to the project root, when a
 # unity build reports "redefinition of" or "ambiguous" for a name in an anonymous namespace.
 set(GS_UNITY_ALONE

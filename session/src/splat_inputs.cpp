@@ -134,6 +134,21 @@ bool isGaussianSplatFile(const std::string& path) {
   return splats::detectSplatFormat(bytes, path) == splats::SplatFormat::gltf;
 }
 
+std::pair<std::shared_ptr<const splats::LodTree>, std::string> buildTreeOf(
+    std::shared_ptr<const splats::GaussianCloud> cloud, std::shared_ptr<std::atomic<bool>> cancel,
+    const std::string& url) {
+  try {
+    splats::LodTreeOptions options;
+    options.cancel = cancel.get();
+    return {std::make_shared<const splats::LodTree>(splats::buildLodTree(*cloud, options)), {}};
+  } catch (const splats::LodTreeCancelled&) {
+    return {};
+  } catch (const std::exception& e) {
+    return {nullptr, url + ": no level-of-detail tree for its " + std::to_string(cloud->size()) +
+                         " splats (" + e.what() + "): far views draw a prefix of the stream"};
+  }
+}
+
 std::shared_ptr<const render::SplatSet> gaussianSet(const std::string& bytes,
                                                     const std::string& name,
                                                     const splats::SideFileReader& sideFiles,

@@ -244,28 +244,6 @@ bool StreamingSession::pump() {
 
 namespace {
 
-/// The level-of-detail tree of `cloud`; when it cannot be built, none and why (`url` names
-/// the stream), and neither when `cancel` became true (the session closing). On the tree's
-/// own thread.
-std::pair<std::shared_ptr<const splats::LodTree>, std::string> buildTree(
-    std::shared_ptr<const splats::GaussianCloud> cloud, std::shared_ptr<std::atomic<bool>> cancel,
-    const std::string& url) {
-  try {
-    splats::LodTreeOptions options;
-    options.cancel = cancel.get();
-    return {std::make_shared<const splats::LodTree>(splats::buildLodTree(*cloud, options)), {}};
-  } catch (const splats::LodTreeCancelled&) {
-    return {};
-  } catch (const std::exception& e) {
-    return {nullptr, url + ": no level-of-detail tree for its " + std::to_string(cloud->size()) +
-                         " splats (" + e.what() + "): far views draw a prefix of the stream"};
-  }
-}
-
-}  // namespace
-
-namespace {
-
 /// Whether a stream in `state` has ended: nothing more arrives (net::QnvStream).
 bool ended(net::StreamState state) {
   return state == net::StreamState::done || state == net::StreamState::stopped ||
@@ -316,7 +294,7 @@ bool StreamingSession::pumpTree(QnvEntry& e) {
       ended(e.stream->progress().state)
           ? std::shared_ptr<const splats::GaussianCloud>(e.gaussians)
           : std::make_shared<const splats::GaussianCloud>(*e.gaussians);
-  e.tree = std::async(std::launch::async, buildTree, std::move(cloud), e.cancelTree,
+  e.tree = std::async(std::launch::async, buildTreeOf, std::move(cloud), e.cancelTree,
                       e.stream->progress().url);
   return changed;
 }

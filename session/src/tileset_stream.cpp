@@ -5,6 +5,7 @@
 
 #include "base/url.hpp"
 #include "scene/camera.hpp"
+#include "session/splat_inputs.hpp"
 #include "splats/qnv_gaussians.hpp"
 
 namespace gs::session {
@@ -85,7 +86,9 @@ TilesetStream::TilesetStream(net::Loader& loader, std::string indexUrl, std::str
   takeIndex();  // starts the fetch
 }
 
-TilesetStream::~TilesetStream() = default;
+TilesetStream::~TilesetStream() {
+  if (cancelTree_) cancelTree_->store(true);  // the future's destructor waits for its end
+}
 
 bool TilesetStream::takeIndex() {
   if (index_ || indexFailed_) return false;
@@ -439,7 +442,11 @@ void TilesetStream::rebuild() {
     for (std::size_t k = 0; k < n; ++k)
       if (!inMerged(b.vectors[k].position)) set.vectors.push_back(b.vectors[k]);
   }
-  if (cloud) set.gaussians = std::move(cloud);
+  if (cloud) {
+    set.gaussians = std::move(cloud);
+    set.lodTree = nullptr;  // the old tree indexes the old splats; a new one when settled
+    if (tree_.valid()) cancelTree_->store(true);
+  }
   ++set.revision;
   if (!mergedDirty_) return;  // the merged splats only change with the choice or arrivals
   mergedDirty_ = false;
@@ -451,6 +458,13 @@ void TilesetStream::rebuild() {
     if (const auto& part = merged_[m].cloud)
       for (std::size_t i = 0; i < part->size(); ++i) mergedCloud->append(*part, i);
   mergedSet_->gaussians = std::move(mergedCloud);
+  // Merged Gaussians far below a pixel would each be widened to the rasterizer's low-pass
+  // filter at their full opacity (a far Gaussian tileset became an opaque disc): their own
+  // tree merges them further, to the pixel, their coverage kept, as a stream's far cut does.
+  // (A few thousand Gaussians: milliseconds, on this thread.)
+  mergedSet_->lodTree = mergedSet_->gaussians->size() > 1
+                            ? buildTreeOf(mergedSet_->gaussians, nullptr, url_).first
+                            : nullptr;
   mergedSet_->computeBounds();
   ++mergedSet_->revision;
 }
@@ -476,9 +490,39 @@ bool TilesetStream::pump() {
     dirty_ = false;
     changed = true;
   }
+  changed |= pumpTree();
   for (const Brick& b : bricks_) transferring_ |= static_cast<bool>(b.transfer);
   for (const MergedBrick& m : merged_) transferring_ |= static_cast<bool>(m.transfer);
   return changed;
+}
+
+bool TilesetStream::treePending() const {
+  if (tree_.valid()) return true;
+  const auto& cloud = set_->gaussians;
+  return index_ && index_->header.kind == qnv::StreamKind::gaussian && cloud &&
+         cloud->size() > 1 && treeCloud_ != cloud;
+}
+
+bool TilesetStream::pumpTree() {
+  bool attached = false;
+  if (tree_.valid()) {
+    if (tree_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return false;
+    auto [tree, problem] = tree_.get();
+    if (!problem.empty()) messages_.push_back({false, problem});
+    if (tree && treeCloud_ == set_->gaussians) {
+      set_->lodTree = std::move(tree);
+      ++set_->revision;
+      attached = true;
+    }
+  }
+  // One build per settled set: while bricks arrive the set changes at every pump, and its
+  // splats are drawn whole until it settles.
+  if (treePending() && bricksSettled()) {
+    treeCloud_ = set_->gaussians;
+    cancelTree_ = std::make_shared<std::atomic<bool>>(false);
+    tree_ = std::async(std::launch::async, buildTreeOf, treeCloud_, cancelTree_, url_);
+  }
+  return attached;
 }
 
 void TilesetStream::stop() {
@@ -490,7 +534,9 @@ void TilesetStream::stop() {
   }
 }
 
-bool TilesetStream::settled() const {
+bool TilesetStream::settled() const { return bricksSettled() && !treePending(); }
+
+bool TilesetStream::bricksSettled() const {
   if (indexFailed_) return true;
   if (!index_) return false;
   if (stopped_ && !loader_.stopReason().empty()) return true;

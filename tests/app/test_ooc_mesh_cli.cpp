@@ -143,7 +143,7 @@ std::vector<std::string> with(std::vector<std::string> a, const std::vector<std:
 }  // namespace
 
 TEST_CASE("an out-of-core mesh tileset is the in-memory tileset, byte for byte",
-          "[app][encode][tileset][ooc]") {
+          "[heavy][app][encode][tileset][ooc]") {
   gs::test::TempDir dir("oocmesh");
   const std::vector<std::string> meshes = {
       writeMesh(dir.path / "vertex.ply", Format::ascii, Colors::vertex).string(),

@@ -123,7 +123,7 @@ std::vector<std::string> with(std::vector<std::string> a, const std::vector<std:
 }  // namespace
 
 TEST_CASE("an out-of-core volume tileset is the in-memory tileset, byte for byte",
-          "[app][encode][tileset][ooc]") {
+          "[heavy][app][encode][tileset][ooc]") {
   gs::test::TempDir dir("ooc");
   const std::string nrrd = writeMultiFileNrrd(dir.path / "nrrd").string();
   const std::vector<std::vector<std::string>> cases = {

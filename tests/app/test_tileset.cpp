@@ -77,7 +77,7 @@ std::string cornerWorld(const std::string& url) {
 }  // namespace
 
 TEST_CASE("a tileset at full refinement looks like the single stream of its vectors",
-          "[app][tileset]") {
+          "[heavy][app][tileset]") {
   const fs::path dir = ballTileset("ball48");
   REQUIRE(shoot("ball48_single", (outDir() / "ball48.qnv").string()).exitCode == 0);
   for (const auto& [name, input] : {std::pair{"ball48_folder", dir.string()},
@@ -91,7 +91,7 @@ TEST_CASE("a tileset at full refinement looks like the single stream of its vect
 }
 
 TEST_CASE("a tileset over HTTP: the corner zoom fetches far fewer bytes than the whole view",
-          "[app][tileset][http]") {
+          "[heavy][app][tileset][http]") {
   NginxServer nginx;
   if (!nginx.ok()) return;
   const fs::path dir = ballTileset("ball48_http");
@@ -153,7 +153,7 @@ TEST_CASE("a hostile tileset index named by a world is reported and the world st
 TEST_CASE(
     "ghostspace encode --tileset: the snapshot equals the single stream's, full and at "
     "--lod 0.1",
-    "[app][tileset]") {
+    "[heavy][app][tileset]") {
   // A ball whose gradient grows towards its centre (magnitudes spread over many bands;
   // a field of equal magnitudes would leave the stream's prefix to its tie-break order).
   const fs::path raw = outDir() / "ball40.raw";

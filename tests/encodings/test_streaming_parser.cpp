@@ -245,7 +245,7 @@ TEST_CASE("streaming: project worlds in any split equal parseVrml", "[streaming]
   }
 }
 
-TEST_CASE("streaming: corpus worlds in any split equal parseVrml", "[streaming][corpus]") {
+TEST_CASE("streaming: corpus worlds in any split equal parseVrml", "[heavy][streaming][corpus]") {
   if (!gs::test::haveCorpus("vrml/castle") || !gs::test::haveCorpus("vrml/openvrml")) return;
   std::vector<fs::path> files =
       gs::test::filesWithSuffix(gs::test::corpusDir() / "vrml/castle", ".wrl");

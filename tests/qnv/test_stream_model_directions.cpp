@@ -316,13 +316,16 @@ TEST_CASE("a cut or damaged payload with flag bit 3 under a valid CRC is rejecte
       const std::size_t stride = bytes == 4096 ? 7 : 1;  // every 7th cut and byte there
       EncodedVectors e = dirShellVectors();
       e.records.resize(std::min<std::size_t>(e.records.size(), 1100));
-      const std::string s = writeStream(e, dirOptions(bytes, fast));
-      const std::vector<std::size_t> starts = directionPackets(s);
+      const std::string whole = writeStream(e, dirOptions(bytes, fast));
+      const std::vector<std::size_t> starts = directionPackets(whole);
       REQUIRE(starts.size() >= 2);
+      REQUIRE(decodeStream(whole).vectors == e.records.size());
+      // The damaged packet and the two around it: the packets after them would only be
+      // decoded again on every try (seconds under the sanitizers).
+      const std::string s = starts.size() > 3 ? whole.substr(0, starts[3]) : whole;
       const std::size_t at = starts[1];
       const std::size_t payload = payloadBytes(s, at);
       const std::size_t total = decodeStream(s).vectors;
-      REQUIRE(total == e.records.size());
       const std::size_t lost =
           static_cast<unsigned char>(s[at + 2]) + 256u * static_cast<unsigned char>(s[at + 3]);
       INFO("packet bytes " << bytes << ", fast " << fast << ", payload " << payload);

@@ -38,6 +38,8 @@ struct Loaded {
   std::vector<qnv::DecodedVector> vectors;
   std::size_t splats = 0;  // a Gaussian tileset's splats drawn
   std::size_t mergedSplats = 0;
+  // Splats under the level-of-detail trees of the set and of its merged set (0: none).
+  std::size_t treeSplats = 0, mergedTreeSplats = 0;
   std::vector<std::pair<bool, std::string>> messages;
   net::StreamProgress progress;  // the tileset's line of StreamingSession::progress()
 };
@@ -69,6 +71,8 @@ Loaded load(const std::string& input, const scene::Camera* camera,
   out.vectors = set->vectors;
   out.splats = set->gaussians ? set->gaussians->size() : 0;
   out.mergedSplats = set->merged ? set->merged->size() : 0;
+  out.treeSplats = set->lodTree ? set->lodTree->splatCount : 0;
+  out.mergedTreeSplats = set->merged && set->merged->lodTree ? set->merged->lodTree->splatCount : 0;
   s.drainMessages(out.messages);
   REQUIRE(!s.progress().empty());
   out.progress = s.progress().back();
@@ -266,6 +270,9 @@ TEST_CASE("tileset stream: a Gaussian tileset draws its splats and counts splats
   CHECK(near.progress.expectedVectors == 3000);
   CHECK(near.progress.fraction() == 1.0);
   CHECK(near.progress.bytesPerSecond > 0.0);  // the bricks' bytes over their transfers' time
+  // Settled means the level-of-detail tree over the set's splats is attached: each view
+  // draws its cut.
+  CHECK(near.treeSplats == 3000);
   // Far: the merged root stands for the scene, a few hundred splats and no brick.
   const Loaded far = load(dir.string(), nullptr, {}, 40.0f);
   CHECK(far.messages.empty());
@@ -273,4 +280,6 @@ TEST_CASE("tileset stream: a Gaussian tileset draws its splats and counts splats
   CHECK(far.mergedSplats > 100);
   CHECK(far.mergedSplats < 3000);
   CHECK(far.stats.brickBytes == 0);
+  // The merged Gaussians have a tree of their own (merged further below a pixel).
+  CHECK(far.mergedTreeSplats == far.mergedSplats);
 }

@@ -3,10 +3,14 @@
 // node (docs/vrml-extensions.md).
 #pragma once
 
+#include <atomic>
+#include <memory>
 #include <string>
+#include <utility>
 
 #include "base/fetch.hpp"
 #include "render/splat_source.hpp"
+#include "splats/lod_tree.hpp"
 #include "splats/readers.hpp"
 
 namespace gs::session {
@@ -64,6 +68,15 @@ std::shared_ptr<const render::SplatSet> gaussianSet(const std::string& bytes,
 /// and the reason when it cannot be read.
 std::shared_ptr<const render::SplatSet> loadGaussianFile(const std::string& path,
                                                          std::string& error);
+
+/// The level-of-detail tree of `cloud` (splats::buildLodTree, default options), for a thread
+/// of its own: a progressive stream's prefix or a Gaussian tileset's chosen splats. When it
+/// cannot be built (too many splats, no memory): no tree and why, naming `url` ("URL: no
+/// level-of-detail tree for its N splats (reason): far views draw a prefix of the stream").
+/// Neither when `cancel` became true (a session closing, a set replaced). Never throws.
+std::pair<std::shared_ptr<const splats::LodTree>, std::string> buildTreeOf(
+    std::shared_ptr<const splats::GaussianCloud> cloud, std::shared_ptr<std::atomic<bool>> cancel,
+    const std::string& url);
 
 /// The VRML97 text of a world holding one QuantizedNormalVectors node whose url is
 /// `path` (a world named after the file itself uses its file name, which resolves to it) (quotes

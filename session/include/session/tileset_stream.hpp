@@ -10,11 +10,16 @@
 // instead of their region's vectors. Every viewport of a session draws
 // the same set: they share one fetch queue and one brick cache. Bricks no view chose are
 // dropped, farthest first, when the decoded vectors exceed the memory budget.
-// Runs on the thread that draws; transfers run on their own threads.
+// A Gaussian tileset's set gets a level-of-detail tree over its splats once it settles
+// (built on a thread of its own), so that each view draws the tree's cut by screen-space
+// error (render::SplatSet::lodTree) rather than every chosen splat.
+// Runs on the thread that draws; transfers and the tree's build run on their own threads.
 #pragma once
 
+#include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <future>
 #include <memory>
 #include <optional>
 #include <string>
@@ -70,7 +75,9 @@ class TilesetStream {
   /// the memory budget and rebuilds the set. True when the set changed.
   bool pump();
   /// Nothing arriving and nothing more wanted for the views seen so far, or the loader
-  /// stopped the loads (net::Loader::stopReason: --snapshot-at's bytes or seconds).
+  /// stopped the loads (net::Loader::stopReason: --snapshot-at's bytes or seconds); and,
+  /// for a Gaussian tileset, the level-of-detail tree over the set's splats attached (or
+  /// found impossible).
   bool settled() const;
   /// Failures (the index, naming its URL) and warnings (bricks) not returned before;
   /// error = true for failures.
@@ -103,6 +110,13 @@ class TilesetStream {
   /// splat takes its decoded size for its recordsPerElement() records.
   std::uint64_t memoryRecords() const;
   void rebuild();
+  /// settled() but for the tree: nothing arriving and nothing more wanted.
+  bool bricksSettled() const;
+  /// A Gaussian tileset: attaches a finished tree to the set when it is still the set's,
+  /// and starts one over the set's splats once the bricks have settled. True when attached.
+  bool pumpTree();
+  /// A tree is being built, or is still to be built for the set's splats.
+  bool treePending() const;
   /// Ends every transfer for good (the loader stopped): what arrived stays drawn.
   void stop();
 
@@ -128,6 +142,11 @@ class TilesetStream {
   double activeSeconds_ = 0.0;
   std::chrono::steady_clock::time_point lastPump_{};
   bool transferring_ = false;  // a transfer ran at the end of the last pump
+  // The level-of-detail tree of a Gaussian tileset's set: the build running (or done, not
+  // yet taken), its cancel flag, and the cloud it is (or was last) built over.
+  std::future<std::pair<std::shared_ptr<const splats::LodTree>, std::string>> tree_;
+  std::shared_ptr<std::atomic<bool>> cancelTree_;
+  std::shared_ptr<const splats::GaussianCloud> treeCloud_;
   TilesetStatistics stats_;
   std::vector<std::pair<bool, std::string>> messages_;
   std::size_t messagesShown_ = 0;
