@@ -256,12 +256,16 @@ int encodeGaussianTileset(const Options& options, const Settings& s, const std::
     std::fprintf(stderr, "ghostspace: encode: %s: %s\n", input.c_str(), r.error.c_str());
     return r.failure == encode::Failure::input ? 2 : 1;
   }
-  const std::uint64_t words = r.merged.index.header.recordsPerElement();
-  std::printf("%s: %s Gaussians (SH degree %d), kept %s\n", input.c_str(),
-              withCommas(cloud->size()).c_str(), cloud->shDegree,
-              withCommas(r.merged.index.header.vectorCount / words).c_str());
-  printMerged(target.dir, r.merged);
-  std::printf("%s: encoded in %.3f s\n", input.c_str(), secondsSince(t0));
+  if (target.whole) {
+    const std::uint64_t words = r.merged.index.header.recordsPerElement();
+    std::printf("%s: %s Gaussians (SH degree %d), kept %s\n", input.c_str(),
+                withCommas(cloud->size()).c_str(), cloud->shDegree,
+                withCommas(r.merged.index.header.vectorCount / words).c_str());
+  } else {
+    std::printf("%s: %s Gaussians (SH degree %d)\n", input.c_str(),
+                withCommas(cloud->size()).c_str(), cloud->shDegree);
+  }
+  printEncodeResult(target, input, r, secondsSince(t0));
   return 0;
 }
 

@@ -46,11 +46,6 @@ void printMerged(const fs::path& dir, const encode::Merged& m) {
       static_cast<unsigned long long>(m.totalBytes));
 }
 
-namespace {
-
-// The last line of a tileset encode: the merged tileset when the run was the whole
-// encode, else which leaves the share wrote and the merge command to run after every
-// share. `seconds`: the whole command's time.
 void printEncodeResult(const encode::TilesetTarget& target, const std::string& input,
                        const encode::TilesetResult& r, double seconds) {
   const fs::path& dir = target.dir;
@@ -68,6 +63,8 @@ void printEncodeResult(const encode::TilesetTarget& target, const std::string& i
       static_cast<unsigned long long>(r.leafCount), r.depth,
       static_cast<unsigned long long>(r.shareBytes), seconds, dir.string().c_str());
 }
+
+namespace {
 
 encode::OutOfCoreOptions outOfCore(const EncodeOptions& e) {
   encode::OutOfCoreOptions ooc;

@@ -47,4 +47,10 @@ int writeMeshTilesetOutOfCore(const Options& options, const std::string& input,
 /// Prints a merged tileset's sizes on stdout.
 void printMerged(const std::filesystem::path& dir, const encode::Merged& merged);
 
+/// The last line of a tileset encode on stdout: the merged tileset's sizes and `seconds`
+/// (the whole command's time) when the run was the whole encode, else which leaves the
+/// share wrote and the merge command to run after every share.
+void printEncodeResult(const encode::TilesetTarget& target, const std::string& input,
+                       const encode::TilesetResult& result, double seconds);
+
 }  // namespace gs::app

@@ -425,7 +425,7 @@ const std::vector<OptionSpec>& table() {
        .more = "One brick per octree node, `OUT/bricks/L/X_Y_Z.qnv`, each an ordinary stream "
                "sorted largest first. `--fraction`, `--count`, `--window`, `--coding` and "
                "`--packet-bytes` mean what they mean for a stream. A Gaussian splatting "
-               "scene's bricks are Gaussian streams, importance first, written in one run "
+               "scene's bricks are Gaussian streams, importance first (the scene is read whole) "
                "(docs/tilesets.md, \"Gaussian tilesets\")."},
       {.scope = encode,
        .names = "--brick-voxels",
@@ -472,12 +472,13 @@ const std::vector<OptionSpec>& table() {
        .names = "--bricks",
        .valueName = "I/N",
        .field = GS_FIELD(std::string, options.encode.bricks),
-       .help = "Tilesets of volumes and meshes: write only share I of N (0 <= I < N) of a "
-               "split encode; `ghostspace tileset index OUT/` merges the shares",
+       .help = "Tilesets: write only share I of N (0 <= I < N) of a split encode; "
+               "`ghostspace tileset index OUT/` merges the shares",
        .more = "A share is the leaf bricks of the I-th contiguous range of leaves and "
                "`OUT/parts/I-of-N/`; run the shares anywhere (a SLURM array, Kubernetes "
                "Jobs, GNU parallel); the merge writes the interior bricks and `index.qnvt`, "
-               "byte-identical to an unsplit run."},
+               "byte-identical to an unsplit run. Each share of a Gaussian splatting scene "
+               "reads the whole scene, and share 0 writes the interior and merged bricks."},
       {.scope = convert,
        .names = "-o,--output",
        .valueName = "OUT",

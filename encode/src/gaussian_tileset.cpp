@@ -1,6 +1,6 @@
 // The files of a Gaussian splatting scene's tileset (splats/gaussian_tileset.hpp;
-// docs/tilesets.md, "Gaussian tilesets"): the bricks, the merged bricks and the index,
-// written whole (the scene is in memory: no shares to merge).
+// docs/tilesets.md, "Gaussian tilesets"): the bricks, the merged bricks and the index; or,
+// for a share (--bricks I/N), its bricks and its parts, which mergeShares indexes.
 #include <chrono>
 #include <filesystem>
 
@@ -22,22 +22,23 @@ TilesetResult writeGaussianTileset(const TilesetTarget& target, const splats::Ga
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return result;
   };
-  if (!target.whole)
-    return fail(Failure::input,
-                "a Gaussian splatting scene's tileset is written whole, in one run: --bricks "
-                "I/N is for volumes and meshes");
   splats::GaussianTilesetFiles files;
   try {
-    files = splats::buildGaussianTileset(cloud, target.cut, options);
+    files = splats::buildGaussianTileset(cloud, target.cut, options, target.share, target.shares);
   } catch (const qnv::InputError& error) {
     return fail(Failure::input, error.what());
   }
+  result.depth = files.depth;
+  result.leafCount = files.leafCount;
+  result.leaves = files.leaves;
   const fs::path& dir = target.dir;
   std::error_code ec;
-  fs::remove_all(dir / "bricks", ec);
-  fs::remove_all(dir / "parts", ec);
-  fs::remove_all(dir / "merged", ec);
-  fs::remove(dir / "index.qnvt", ec);
+  if (target.whole) {  // the whole output: nothing stale may remain
+    fs::remove_all(dir / "bricks", ec);
+    fs::remove_all(dir / "parts", ec);
+    fs::remove_all(dir / "merged", ec);
+    fs::remove(dir / "index.qnvt", ec);
+  }
   Merged& merged = result.merged;
   for (const qnv::BrickFile& b : files.bricks) {
     if (std::string error = writeFile(dir / b.brick.path(), b.bytes); !error.empty())
@@ -53,6 +54,19 @@ TilesetResult writeGaussianTileset(const TilesetTarget& target, const splats::Ga
     merged.totalBytes += stream.size();
   }
   const std::string index = qnv::serializeTilesetIndex(files.index);
+  if (!target.whole) {
+    // The share's index of its bricks and an interior part without entries (the bricks
+    // are whole already), which carries the brick options: mergeShares indexes them all.
+    const fs::path part = dir / "parts" / shareName(target.share, target.shares);
+    const std::string interior = qnv::serializeInteriorParts({}, target.cut);
+    if (std::string error = writeFile(part / "leaves.qnvt", index); !error.empty())
+      return fail(Failure::write, error);
+    if (std::string error = writeFile(part / "interior.qnvp", interior); !error.empty())
+      return fail(Failure::write, error);
+    result.shareBytes = merged.totalBytes + index.size() + interior.size();
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return result;
+  }
   std::string error;
   // The reader's checks on what is about to be published.
   if (!qnv::parseTilesetIndex(index, (dir / "index.qnvt").string(), error))
@@ -62,9 +76,6 @@ TilesetResult writeGaussianTileset(const TilesetTarget& target, const splats::Ga
   merged.indexBytes = index.size();
   merged.totalBytes += index.size();
   merged.index = std::move(files.index);
-  result.depth = merged.index.depth;
-  result.leafCount = std::uint64_t{1} << (3 * result.depth);
-  result.leaves = {0, result.leafCount};
   result.shareBytes = merged.totalBytes;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return result;

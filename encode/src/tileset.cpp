@@ -16,6 +16,7 @@
 
 #include "qnv/error.hpp"
 #include "qnv/tileset_writer.hpp"
+#include "splats/gaussian_tileset.hpp"
 #include "splats/merged_levels.hpp"
 #include "splats/qnv_gaussians.hpp"
 
@@ -228,34 +229,53 @@ std::string mergeShares(const fs::path& dir, Merged& merged) {
       interior.push_back(std::move(part));
     }
 
-    qnv::StreamHeader whole = first->header;
-    whole.vectorCount = total;
-    cut.write.packetBytes = whole.packetBytes;
-    cut.write.encoding = whole.encoding;
-    const qnv::TilesetLayout layout(whole, cut);
-    if (layout.depth() != first->depth)
-      return "the shares' octree depth does not fit their vectors";
-    std::map<qnv::TilesetCell, std::vector<std::pair<const SharePart*, qnv::InteriorPartSpan>>>
-        nodes;
-    for (const SharePart& part : interior)
-      for (const qnv::InteriorPartSpan& span : part.spans)
-        nodes[span.node].push_back({&part, span});
-    for (const auto& [node, spans] : nodes) {
-      std::vector<qnv::InteriorEntry> entries;
-      for (const auto& [part, span] : spans) {
-        std::vector<qnv::InteriorEntry> more = qnv::loadInteriorEntries(span, readerOf(*part));
-        entries.insert(entries.end(), more.begin(), more.end());
+    if (first->header.kind == qnv::StreamKind::gaussian) {
+      // A Gaussian scene's shares wrote every brick, share 0 the interior and merged ones
+      // (splats/gaussian_tileset.hpp): the merge indexes them.
+      qnv::StreamHeader whole = first->header;
+      whole.vectorCount = total;
+      const qnv::TilesetLayout layout = splats::gaussianTilesetLayout(whole, cut);
+      if (layout.depth() != first->depth)
+        return "the shares' octree depth does not fit their splats";
+      merged.index = qnv::assembleTilesetIndex(layout, std::move(bricks));
+      merged.index.mergedCellsLog2 = first->mergedCellsLog2;
+      for (const qnv::TilesetBrick& b : merged.index.bricks) {
+        if (!merged.index.hasMerged(b.level)) continue;
+        const fs::path path = dir / b.mergedPath();
+        const std::uintmax_t size = fs::file_size(path, ec);
+        if (ec) return "'" + path.string() + "' is missing (share 0 writes the merged bricks)";
+        mergedBytes += size;
       }
-      if (entries.empty()) continue;
-      const qnv::BrickFile b = qnv::mergeInteriorNode(node, std::move(entries), layout);
-      if (std::string error = writeFile(dir / b.brick.path(), b.bytes); !error.empty())
+    } else {
+      qnv::StreamHeader whole = first->header;
+      whole.vectorCount = total;
+      cut.write.packetBytes = whole.packetBytes;
+      cut.write.encoding = whole.encoding;
+      const qnv::TilesetLayout layout(whole, cut);
+      if (layout.depth() != first->depth)
+        return "the shares' octree depth does not fit their vectors";
+      std::map<qnv::TilesetCell, std::vector<std::pair<const SharePart*, qnv::InteriorPartSpan>>>
+          nodes;
+      for (const SharePart& part : interior)
+        for (const qnv::InteriorPartSpan& span : part.spans)
+          nodes[span.node].push_back({&part, span});
+      for (const auto& [node, spans] : nodes) {
+        std::vector<qnv::InteriorEntry> entries;
+        for (const auto& [part, span] : spans) {
+          std::vector<qnv::InteriorEntry> more = qnv::loadInteriorEntries(span, readerOf(*part));
+          entries.insert(entries.end(), more.begin(), more.end());
+        }
+        if (entries.empty()) continue;
+        const qnv::BrickFile b = qnv::mergeInteriorNode(node, std::move(entries), layout);
+        if (std::string error = writeFile(dir / b.brick.path(), b.bytes); !error.empty())
+          return error;
+        bricks.push_back(b.brick);
+      }
+      merged.index = qnv::assembleTilesetIndex(layout, std::move(bricks));
+      if (std::string error = writeMergedLevels(dir, found, layout, merged.index, mergedBytes);
+          !error.empty())
         return error;
-      bricks.push_back(b.brick);
     }
-    merged.index = qnv::assembleTilesetIndex(layout, std::move(bricks));
-    if (std::string error = writeMergedLevels(dir, found, layout, merged.index, mergedBytes);
-        !error.empty())
-      return error;
   } catch (const qnv::InputError& e) {
     return e.what();
   }

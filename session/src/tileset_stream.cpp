@@ -499,8 +499,8 @@ bool TilesetStream::pump() {
 bool TilesetStream::treePending() const {
   if (tree_.valid()) return true;
   const auto& cloud = set_->gaussians;
-  return index_ && index_->header.kind == qnv::StreamKind::gaussian && cloud &&
-         cloud->size() > 1 && treeCloud_ != cloud;
+  return index_ && index_->header.kind == qnv::StreamKind::gaussian && cloud && cloud->size() > 1 &&
+         treeCloud_ != cloud;
 }
 
 bool TilesetStream::pumpTree() {
@@ -534,7 +534,9 @@ void TilesetStream::stop() {
   }
 }
 
-bool TilesetStream::settled() const { return bricksSettled() && !treePending(); }
+bool TilesetStream::settled() const {
+  return bricksSettled() && !treePending();
+}
 
 bool TilesetStream::bricksSettled() const {
   if (indexFailed_) return true;

@@ -10,10 +10,24 @@
 
 namespace gs::splats {
 
+qnv::TilesetLayout gaussianTilesetLayout(const qnv::StreamHeader& whole,
+                                         const qnv::TilesetOptions& cut) {
+  qnv::StreamHeader splats = whole;
+  splats.vectorCount = whole.vectorCount / whole.recordsPerElement();  // depth counts splats
+  qnv::TilesetOptions layoutCut = cut;
+  layoutCut.write.packetBytes = whole.packetBytes;
+  layoutCut.write.encoding = whole.encoding;
+  return qnv::TilesetLayout(splats, layoutCut);
+}
+
 GaussianTilesetFiles buildGaussianTileset(const GaussianCloud& cloud,
                                           const qnv::TilesetOptions& cut,
-                                          const GaussianStreamOptions& options) {
+                                          const GaussianStreamOptions& options, std::uint32_t share,
+                                          std::uint32_t shares) {
   if (cut.brickVectors == 0) throw qnv::InputError("--brick-vectors must be at least 1");
+  if (shares == 0 || shares > qnv::kMaxTilesetShares || share >= shares)
+    throw qnv::InputError("share " + std::to_string(share) + " of " + std::to_string(shares) +
+                          " does not exist");
   const GaussianFrame frame = gaussianFrame(cloud);
   if (frame.kept.empty())
     throw qnv::InputError("nothing to encode: " + std::to_string(cloud.size()) +
@@ -64,8 +78,17 @@ GaussianTilesetFiles buildGaussianTileset(const GaussianCloud& cloud,
 
   GaussianTilesetFiles out;
   out.splats = frame.kept.size();
+  out.depth = depth;
+  out.leafCount = layout.leafCount();
+  out.leaves = layout.shareLeaves(share, shares);
+  const auto mine = [&](const qnv::TilesetCell& node) {
+    if (node.level < depth) return share == 0;  // interior bricks: share 0's
+    const std::uint64_t leaf = layout.leafIndex(node.cell);
+    return leaf >= out.leaves.first && leaf < out.leaves.second;
+  };
   std::vector<qnv::TilesetBrick> bricks;
-  for (auto& [node, members] : nodes) {                       // (level, z, y, x): index order
+  for (auto& [node, members] : nodes) {  // (level, z, y, x): index order
+    if (!mine(node)) continue;
     std::sort(members.begin(), members.end(), rankedBefore);  // an interior node's leaves
     std::vector<std::uint32_t> order(members.size());
     for (std::size_t r = 0; r < members.size(); ++r) order[r] = frame.kept[members[r]];
@@ -77,11 +100,11 @@ GaussianTilesetFiles buildGaussianTileset(const GaussianCloud& cloud,
   }
   out.index = qnv::assembleTilesetIndex(layout, std::move(bricks));
 
-  if (cut.mergedCellsLog2 > 0 && depth > 0) {
+  if (cut.mergedCellsLog2 > 0 && depth > 0) out.index.mergedCellsLog2 = cut.mergedCellsLog2;
+  if (cut.mergedCellsLog2 > 0 && depth > 0 && share == 0) {
     MergedLevelBuilder merged(layout, cut.mergedCellsLog2);
     for (const std::uint32_t i : frame.kept) merged.addGaussian(cloud, i);
     std::map<qnv::TilesetCell, GaussianCloud> clouds = merged.build();
-    out.index.mergedCellsLog2 = cut.mergedCellsLog2;
     for (const qnv::TilesetBrick& b : out.index.bricks) {
       if (!out.index.hasMerged(b.level)) continue;
       const qnv::TilesetCell node{b.level, glm::uvec3(b.x, b.y, b.z)};

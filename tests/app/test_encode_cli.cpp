@@ -4,6 +4,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "process.hpp"
@@ -186,15 +187,53 @@ TEST_CASE("encode rejects bad options and unreadable inputs with a reason", "[ap
       runGhostspace({"encode", splats, "-o", scratch("x.qnv").string(), "--sh-full", "0.5"});
   CHECK(shFullAlone.exitCode == 2);
   CHECK_THAT(shFullAlone.err, Catch::Contains("give --sh-bits"));
-  // A Gaussian splatting scene's tileset is written whole: no shares to merge.
-  auto splatShare = runGhostspace(
-      {"encode", splats, "--tileset", scratch("splat_tileset").string(), "--bricks", "0/2"});
-  CHECK(splatShare.exitCode == 2);
-  CHECK_THAT(splatShare.err, Catch::Contains("written whole"));
+  // A Gaussian splatting scene is read whole: no out-of-core encode of it.
   auto splatMemory = runGhostspace(
       {"encode", splats, "--tileset", scratch("splat_tileset").string(), "--memory", "64"});
   CHECK(splatMemory.exitCode == 2);
   CHECK_THAT(splatMemory.err, Catch::Contains("--memory MB is for volumes and PLY meshes"));
+}
+
+TEST_CASE("a Gaussian tileset encoded in shares merges to the unsplit run's files",
+          "[app][encode][splat][tileset]") {
+  const auto splats = (gs::test::sourceDir() / "tests/data/splats/bunny_small.ply").string();
+  const auto whole = scratch("splat_whole"), split = scratch("splat_split");
+  std::filesystem::remove_all(whole);
+  std::filesystem::remove_all(split);
+  // 512 splats a brick: 8 leaves under a root with a merged brick.
+  REQUIRE(
+      runGhostspace({"encode", splats, "--tileset", whole.string() + "/", "--brick-vectors", "512"})
+          .exitCode == 0);
+  for (const char* share : {"2/3", "0/3", "1/3"}) {
+    const auto r = runGhostspace({"encode", splats, "--tileset", split.string() + "/",
+                                  "--brick-vectors", "512", "--bricks", share});
+    INFO(r.err);
+    REQUIRE(r.exitCode == 0);
+    CHECK_THAT(r.out, Catch::Contains("After every share: ghostspace tileset index"));
+  }
+  const auto merge = runGhostspace({"tileset", "index", split.string() + "/"});
+  INFO(merge.err);
+  REQUIRE(merge.exitCode == 0);
+  CHECK_THAT(merge.out, Catch::Contains("3000 splats"));
+  const auto files = [](const std::filesystem::path& dir) {
+    std::map<std::string, std::string> out;
+    for (const auto& e : std::filesystem::recursive_directory_iterator(dir))
+      if (e.is_regular_file())
+        out[std::filesystem::relative(e.path(), dir).string()] = gs::test::readBytes(e.path());
+    return out;
+  };
+  const auto a = files(whole), b = files(split);
+  CHECK(a.size() == 11);  // the index, 9 bricks (the root and 8 leaves), the merged root
+  CHECK(a.count("merged/0/0_0_0.qnv") == 1);
+  CHECK(a == b);  // byte for byte; the parts are removed
+  // A share missing: the merge names it.
+  std::filesystem::remove_all(split);
+  REQUIRE(runGhostspace({"encode", splats, "--tileset", split.string() + "/", "--brick-vectors",
+                         "512", "--bricks", "1/2"})
+              .exitCode == 0);
+  const auto missing = runGhostspace({"tileset", "index", split.string() + "/"});
+  CHECK(missing.exitCode != 0);
+  CHECK_THAT(missing.err, Catch::Contains("share 0 of 2 is missing"));
 }
 
 TEST_CASE("encode --sh-bits writes a smaller Gaussian stream that opens as any other",

@@ -175,6 +175,12 @@ TEST_CASE("a Gaussian splatting scene as a QNV tileset draws the scene's picture
   REQUIRE(r.exitCode == 0);
   CHECK_THAT(r.out, Catch::Contains("3000 splats"));
   REQUIRE(fs::is_regular_file(dir / "merged/0/0_0_0.qnv"));
+  // Compact packets by default (64,195 bytes in all; plain ones, --coding plain, take about
+  // twice that: a default that became plain went unnoticed once).
+  std::uintmax_t bytes = 0;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    if (e.is_regular_file()) bytes += e.file_size();
+  CHECK(bytes < 80000);
   const auto info = gs::test::runGhostspace({"info", (dir / "index.qnvt").string()});
   CHECK(info.exitCode == 0);
   CHECK_THAT(info.out, Catch::Contains("QNV tileset, Gaussian splats, SH degree 1") &&

@@ -22,7 +22,8 @@ std::string volumeFormatData(const std::string& rel) {
 
 }  // namespace
 
-TEST_CASE("a DICOM series folder and an OME-TIFF render with --snapshot", "[heavy][app][snapshot]") {
+TEST_CASE("a DICOM series folder and an OME-TIFF render with --snapshot",
+          "[heavy][app][snapshot]") {
   for (const std::string& input :
        {volumeFormatData("dicom/cthead/series/"), volumeFormatData("tiff/cthead/cthead.ome.tif")}) {
     INFO(input);

@@ -278,7 +278,8 @@ CorpusFigures sweep(const std::string& sub, const std::vector<std::string>& suff
 
 }  // namespace
 
-TEST_CASE("writer: the castle X3D corpus round-trips in every X3D encoding", "[heavy][writer][corpus]") {
+TEST_CASE("writer: the castle X3D corpus round-trips in every X3D encoding",
+          "[heavy][writer][corpus]") {
   if (!gs::test::haveCorpus("x3d/castle")) return;
   // Known differences (docs/x3d.md, "Conversion"): UNIT statements are not written (the
   // values are in base units already), and PROTOs declared inside an MFNode value are

@@ -21,17 +21,22 @@
 
 namespace gs::splats {
 
-/// A whole Gaussian tileset in memory.
+/// A Gaussian tileset in memory: the whole of it, or one share's part.
 struct GaussianTilesetFiles {
   /// The index: template of kind gaussian (the scene's box, log-scale and importance
   /// ranges, SH degree; vectorCount = records, recordsPerElement() per splat), bricks in
-  /// index order, mergedCellsLog2 as asked.
+  /// index order, mergedCellsLog2 as asked. A share's: its own bricks only (vectorCount
+  /// theirs), mergedCellsLog2 as asked.
   qnv::TilesetIndex index;
   std::vector<qnv::BrickFile> bricks;  // index order
   /// The merged brick (a whole Gaussian stream's bytes) of every brick of `index` that
   /// hasMerged, in index order; a node whose splats merge to nothing has an empty stream.
   std::vector<std::pair<qnv::TilesetCell, std::string>> merged;
   std::uint64_t splats = 0;  // splats kept (gaussianFrame), over all bricks
+  /// The octree's depth, its leaves, and the share's range of them [first, end).
+  std::uint8_t depth = 0;
+  std::uint64_t leafCount = 1;
+  std::pair<std::uint64_t, std::uint64_t> leaves{0, 1};
 };
 
 /// The tileset of `cloud`:
@@ -49,10 +54,24 @@ struct GaussianTilesetFiles {
 /// - cut.mergedCellsLog2 > 0: each interior node down to qnv::deepestMergedLevel has a
 ///   merged brick (MergedLevelBuilder::addGaussian, R = 2^cellsLog2 cells per axis).
 /// `options` (SH bits) applies to every brick, shFullFraction to each brick's first
-/// splats. cut.brickVoxels and cut.write.packetBytes are not used. Throws qnv::InputError when K is
-/// 0 or no splat is kept ("nothing to encode").
+/// splats. cut.brickVoxels and cut.write.packetBytes are not used.
+/// Share `share` of `shares` (--bricks I/N; 0 <= share < shares <= qnv::kMaxTilesetShares)
+/// encodes only the leaf bricks of its leaves (TilesetLayout::shareLeaves), and share 0 the
+/// interior and merged bricks too: every share reads the whole scene (the quantization
+/// frame and the assignment are the scene's), and the shares' bricks together are the
+/// unsplit run's, byte for byte (encode::mergeShares writes their index).
+/// Throws qnv::InputError when K is 0, the share is out of range or no splat is kept
+/// ("nothing to encode").
 GaussianTilesetFiles buildGaussianTileset(const GaussianCloud& cloud,
                                           const qnv::TilesetOptions& cut,
-                                          const GaussianStreamOptions& options = {});
+                                          const GaussianStreamOptions& options = {},
+                                          std::uint32_t share = 0, std::uint32_t shares = 1);
+
+/// The layout buildGaussianTileset builds its octree with, from the tileset's index
+/// template `whole` (vectorCount = the splats' records) and the encode's `cut` (brickVectors
+/// and mergedCellsLog2 as given; the packets' size and coding are the template's): for the
+/// merge of shares. Throws qnv::InputError as TilesetLayout does.
+qnv::TilesetLayout gaussianTilesetLayout(const qnv::StreamHeader& whole,
+                                         const qnv::TilesetOptions& cut);
 
 }  // namespace gs::splats
