@@ -2,6 +2,7 @@
 // docs/tilesets.md, "Gaussian tilesets"): the bricks, the merged bricks and the index; or,
 // for a share (--bricks I/N), its bricks and its parts, which mergeShares indexes.
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 
 #include "encode/tileset.hpp"
@@ -11,6 +12,13 @@
 namespace gs::encode {
 
 namespace fs = std::filesystem;
+
+std::string gaussianShareOptions(const splats::GaussianStreamOptions& options) {
+  char text[96];
+  std::snprintf(text, sizeof text, "sh-bits %d sh-full %.17g\n", options.shBits,
+                options.shFullFraction);
+  return text;
+}
 
 TilesetResult writeGaussianTileset(const TilesetTarget& target, const splats::GaussianCloud& cloud,
                                    const splats::GaussianStreamOptions& options) {
@@ -59,11 +67,15 @@ TilesetResult writeGaussianTileset(const TilesetTarget& target, const splats::Ga
     // are whole already), which carries the brick options: mergeShares indexes them all.
     const fs::path part = dir / "parts" / shareName(target.share, target.shares);
     const std::string interior = qnv::serializeInteriorParts({}, target.cut);
+    // The SH options change the bricks' bytes but not their headers: the merge compares.
+    const std::string shOptions = gaussianShareOptions(options);
     if (std::string error = writeFile(part / "leaves.qnvt", index); !error.empty())
       return fail(Failure::write, error);
     if (std::string error = writeFile(part / "interior.qnvp", interior); !error.empty())
       return fail(Failure::write, error);
-    result.shareBytes = merged.totalBytes + index.size() + interior.size();
+    if (std::string error = writeFile(part / "gaussian.txt", shOptions); !error.empty())
+      return fail(Failure::write, error);
+    result.shareBytes = merged.totalBytes + index.size() + interior.size() + shOptions.size();
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return result;
   }

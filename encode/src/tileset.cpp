@@ -232,6 +232,22 @@ std::string mergeShares(const fs::path& dir, Merged& merged) {
     if (first->header.kind == qnv::StreamKind::gaussian) {
       // A Gaussian scene's shares wrote every brick, share 0 the interior and merged ones
       // (splats/gaussian_tileset.hpp): the merge indexes them.
+      std::optional<std::string> shOptions;
+      for (const auto& [i, folder] : found) {
+        const fs::path path = folder / "gaussian.txt";
+        const auto text = readFile(path);
+        if (!text) return "cannot read '" + path.string() + "'";
+        if (shOptions && *text != *shOptions) {
+          const auto line = [](const std::string& s) { return s.substr(0, s.find('\n')); };
+          return "'" + path.string() + "' says other SH options than share 0's (" + line(*text) +
+                 ", not " + line(*shOptions) +
+                 "): encode every share with the same --sh-bits and --sh-full";
+        }
+        shOptions = text;
+      }
+      for (const SharePart& part : interior)
+        if (!part.spans.empty())
+          return "'" + part.path.string() + "' has interior entries: not a Gaussian share's";
       qnv::StreamHeader whole = first->header;
       whole.vectorCount = total;
       const qnv::TilesetLayout layout = splats::gaussianTilesetLayout(whole, cut);

@@ -145,7 +145,7 @@ std::pair<std::shared_ptr<const splats::LodTree>, std::string> buildTreeOf(
     return {};
   } catch (const std::exception& e) {
     return {nullptr, url + ": no level-of-detail tree for its " + std::to_string(cloud->size()) +
-                         " splats (" + e.what() + "): far views draw a prefix of the stream"};
+                         " splats (" + e.what() + ")"};
   }
 }
 

@@ -274,7 +274,7 @@ bool StreamingSession::pumpTree(QnvEntry& e) {
   if (e.tree.valid()) {
     if (e.tree.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return false;
     auto [tree, problem] = e.tree.get();
-    e.treeProblem = std::move(problem);
+    e.treeProblem = problem.empty() ? "" : problem + ": far views draw a prefix of the stream";
     if (tree) {
       // (A gap filled while it was built leaves the tree stale: its revision moved on.)
       const bool current = e.set->revision == e.treeRevision;

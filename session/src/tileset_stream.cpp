@@ -1,7 +1,10 @@
 #include "session/tileset_stream.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
+#include <cstdint>
+#include <tuple>
 
 #include "base/url.hpp"
 #include "scene/camera.hpp"
@@ -145,8 +148,10 @@ void TilesetStream::choose() {
   std::vector<std::uint8_t> unavailable(merged_.size(), 0);
   for (std::size_t i = 0; i < merged_.size(); ++i) unavailable[i] = merged_[i].failed;
   const MergedChoice mergedChoice = chooseMerged(*index_, tilesetViews, kMergedPixels, unavailable);
-  mergedChoice_ = mergedChoice.merged;
-  mergedDirty_ = true;
+  if (mergedChoice.merged != mergedChoice_) {  // else the merged set stays as it is
+    mergedChoice_ = mergedChoice.merged;
+    mergedDirty_ = true;
+  }
   for (std::size_t v = 0; v < views.size(); ++v) {
     budget.vectors = views[v].second.vectors > UINT64_MAX / words_
                          ? UINT64_MAX
@@ -401,12 +406,32 @@ void TilesetStream::evict() {
 
 void TilesetStream::rebuild() {
   render::SplatSet& set = *set_;
-  set.vectors.clear();
   std::shared_ptr<splats::GaussianCloud> cloud;  // a Gaussian tileset's splats
   if (index_->header.kind == qnv::StreamKind::gaussian) {
+    // What the set is made of: the chosen prefixes (and the bytes their bricks were fed,
+    // which change their splats) and the merged regions. A view that moves without
+    // changing them keeps the set, and so its level-of-detail tree, whose cut does not
+    // depend on the set's order (the choice's priorities may change it).
+    std::vector<std::array<std::uint64_t, 5>> prefixes;
+    for (const BrickChoice& c : choice_) {
+      const Brick& b = bricks_[c.brick];
+      prefixes.push_back({c.brick, c.records, b.fed, b.splats ? b.splats->size() : 0,
+                          reinterpret_cast<std::uintptr_t>(b.splats.get())});
+    }
+    std::sort(prefixes.begin(), prefixes.end());
+    std::vector<std::uint64_t> made;
+    for (const auto& p : prefixes) made.insert(made.end(), p.begin(), p.end());
+    made.push_back(UINT64_MAX);
+    made.insert(made.end(), mergedChoice_.begin(), mergedChoice_.end());
+    if (set.gaussians && made == setMadeOf_) {
+      rebuildMerged();
+      return;
+    }
+    setMadeOf_ = std::move(made);
     cloud = std::make_shared<splats::GaussianCloud>();
     cloud->setShDegree(index_->header.shDegree);
   }
+  set.vectors.clear();
   // A volume's vectors sit on voxel centres: a merged node's region reaches half a voxel
   // past its brick's box of centres.
   const glm::vec3 margin = index_->header.kind == qnv::StreamKind::volume
@@ -445,9 +470,14 @@ void TilesetStream::rebuild() {
   if (cloud) {
     set.gaussians = std::move(cloud);
     set.lodTree = nullptr;  // the old tree indexes the old splats; a new one when settled
+    treeCloud_.reset();     // (a build in flight holds its own)
     if (tree_.valid()) cancelTree_->store(true);
   }
   ++set.revision;
+  rebuildMerged();
+}
+
+void TilesetStream::rebuildMerged() {
   if (!mergedDirty_) return;  // the merged splats only change with the choice or arrivals
   mergedDirty_ = false;
   auto mergedCloud = std::make_shared<splats::GaussianCloud>();
@@ -461,10 +491,14 @@ void TilesetStream::rebuild() {
   // Merged Gaussians far below a pixel would each be widened to the rasterizer's low-pass
   // filter at their full opacity (a far Gaussian tileset became an opaque disc): their own
   // tree merges them further, to the pixel, their coverage kept, as a stream's far cut does.
-  // (A few thousand Gaussians: milliseconds, on this thread.)
-  mergedSet_->lodTree = mergedSet_->gaussians->size() > 1
-                            ? buildTreeOf(mergedSet_->gaussians, nullptr, url_).first
-                            : nullptr;
+  // (A few thousand Gaussians: milliseconds, on this thread, when the merged nodes drawn
+  // or their bricks change.) Without it (no memory) they are drawn as they are.
+  std::string problem;
+  std::tie(mergedSet_->lodTree, problem) =
+      mergedSet_->gaussians->size() > 1
+          ? buildTreeOf(mergedSet_->gaussians, nullptr, url_ + " (merged levels)")
+          : std::pair<std::shared_ptr<const splats::LodTree>, std::string>{};
+  if (!problem.empty()) messages_.push_back({false, problem + ": drawn as they are"});
   mergedSet_->computeBounds();
   ++mergedSet_->revision;
 }
@@ -508,7 +542,8 @@ bool TilesetStream::pumpTree() {
   if (tree_.valid()) {
     if (tree_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return false;
     auto [tree, problem] = tree_.get();
-    if (!problem.empty()) messages_.push_back({false, problem});
+    if (!problem.empty())  // once per set: a new build waits for a new set
+      messages_.push_back({false, problem + ": its views draw every splat chosen"});
     if (tree && treeCloud_ == set_->gaussians) {
       set_->lodTree = std::move(tree);
       ++set_->revision;

@@ -226,6 +226,17 @@ TEST_CASE("a Gaussian tileset encoded in shares merges to the unsplit run's file
   CHECK(a.size() == 11);  // the index, 9 bricks (the root and 8 leaves), the merged root
   CHECK(a.count("merged/0/0_0_0.qnv") == 1);
   CHECK(a == b);  // byte for byte; the parts are removed
+  // Shares encoded with other SH options: the bricks differ, the headers do not.
+  std::filesystem::remove_all(split);
+  for (const char* share : {"0/2", "1/2"}) {
+    std::vector<std::string> args{"encode",          splats, "--tileset", split.string() + "/",
+                                  "--brick-vectors", "512",  "--bricks",  share};
+    if (share[0] == '1') args.insert(args.end(), {"--sh-bits", "3"});
+    REQUIRE(runGhostspace(args).exitCode == 0);
+  }
+  const auto mixed = runGhostspace({"tileset", "index", split.string() + "/"});
+  CHECK(mixed.exitCode != 0);
+  CHECK_THAT(mixed.err, Catch::Contains("other SH options than share 0's (sh-bits 3"));
   // A share missing: the merge names it.
   std::filesystem::remove_all(split);
   REQUIRE(runGhostspace({"encode", splats, "--tileset", split.string() + "/", "--brick-vectors",

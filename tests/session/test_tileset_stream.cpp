@@ -239,8 +239,9 @@ TEST_CASE("tileset stream: a new view re-chooses, and far bricks go over the mem
   CHECK(s.tilesets()[0]->statistics().chosenBricks == 0);
 }
 
-TEST_CASE("tileset stream: a Gaussian tileset draws its splats and counts splats",
-          "[tileset][session][splat]") {
+// bunny_small (3,000 splats) as a Gaussian tileset of 512-splat bricks with a merged root,
+// written under the build folder; returns its folder.
+fs::path bunnyGaussianTileset() {
   const std::string ply = test::readBytes(test::sourceDir() / "tests/data/splats/bunny_small.ply");
   const splats::GaussianCloud cloud = splats::readPlyGaussians(ply, "bunny_small.ply");
   qnv::TilesetOptions cut;
@@ -259,7 +260,12 @@ TEST_CASE("tileset stream: a Gaussian tileset draws its splats and counts splats
       std::ofstream(path, std::ios::binary) << files.merged[m++].second;
     }
   std::ofstream(dir / "index.qnvt", std::ios::binary) << qnv::serializeTilesetIndex(files.index);
+  return dir;
+}
 
+TEST_CASE("tileset stream: a Gaussian tileset draws its splats and counts splats",
+          "[tileset][session][splat]") {
+  const fs::path dir = bunnyGaussianTileset();
   // Near: every splat of every brick, and the Streams panel counts splats.
   const Loaded near = load(dir.string(), nullptr);
   CHECK(near.messages.empty());
@@ -282,4 +288,36 @@ TEST_CASE("tileset stream: a Gaussian tileset draws its splats and counts splats
   CHECK(far.stats.brickBytes == 0);
   // The merged Gaussians have a tree of their own (merged further below a pixel).
   CHECK(far.mergedTreeSplats == far.mergedSplats);
+}
+
+TEST_CASE("tileset stream: a view that moves without changing the choice keeps the tree",
+          "[tileset][session][splat]") {
+  const fs::path dir = bunnyGaussianTileset();
+  session::StreamingSession s;
+  std::string error;
+  REQUIRE(s.open(dir.string(), error));
+  auto set = s.rendererOptions({}).splatLoader(dir.string(), "", error);
+  REQUIRE(set);
+  const auto settle = [&] {
+    for (int i = 0; i < 100000 && !(s.pump(), s.settled() && !set->bounds.empty()); ++i)
+      s.loader().wait(0.01);
+  };
+  settle();
+  render::SplatSet::View view;
+  view.camera = scene::fitCamera(set->bounds, 1.0f, scene::Camera{});
+  view.heightPixels = 512;
+  view.vectors = set->total();
+  const auto request = set->viewRequests->request();
+  request->update(view);
+  settle();
+  const std::shared_ptr<const splats::LodTree> tree = set->lodTree;
+  REQUIRE(tree);
+  const auto cloud = set->gaussians;
+  // Near, every splat is chosen from anywhere about as close: a step sideways changes
+  // nothing the set is made of, so neither its splats nor their tree are made again.
+  view.camera.position += 0.01f * glm::length(set->bounds.size()) * glm::vec3(1, 0, 0);
+  request->update(view);
+  settle();
+  CHECK(set->gaussians == cloud);
+  CHECK(set->lodTree == tree);
 }

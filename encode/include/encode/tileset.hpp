@@ -78,12 +78,17 @@ TilesetResult writeTileset(const TilesetTarget& target, const qnv::SelectedVecto
 
 /// Writes the tileset of the Gaussian splatting scene `cloud`
 /// (splats::buildGaussianTileset: bricks of Gaussian streams, merged bricks from the
-/// Gaussians when target.cut.mergedCellsLog2 > 0, the index), whole: a target that is a
-/// share (!target.whole) is Failure::input, as is a scene with no splat to keep or a K of
-/// 0. Stale bricks/, merged/, parts/ and index.qnvt are removed first.
+/// Gaussians when target.cut.mergedCellsLog2 > 0, the index). Whole (target.whole): stale
+/// bricks/, merged/, parts/ and index.qnvt are removed first. A share: its bricks (share 0
+/// the interior and merged ones too) and OUT/parts/I-of-N/ (leaves.qnvt, its bricks'
+/// index; interior.qnvp without entries, the brick options; gaussian.txt, the SH options),
+/// which mergeShares indexes. Failure::input for a scene with no splat to keep or a K of 0,
+/// Failure::write for a file not written.
 /// result.merged.index.header.vectorCount counts records (recordsPerElement() a splat).
 TilesetResult writeGaussianTileset(const TilesetTarget& target, const splats::GaussianCloud& cloud,
                                    const splats::GaussianStreamOptions& options);
+/// The text of a Gaussian share's parts/I-of-N/gaussian.txt: "sh-bits B sh-full F\n".
+std::string gaussianShareOptions(const splats::GaussianStreamOptions& options);
 
 /// The memory and threads of an out-of-core encode.
 struct OutOfCoreOptions {

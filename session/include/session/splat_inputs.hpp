@@ -72,7 +72,7 @@ std::shared_ptr<const render::SplatSet> loadGaussianFile(const std::string& path
 /// The level-of-detail tree of `cloud` (splats::buildLodTree, default options), for a thread
 /// of its own: a progressive stream's prefix or a Gaussian tileset's chosen splats. When it
 /// cannot be built (too many splats, no memory): no tree and why, naming `url` ("URL: no
-/// level-of-detail tree for its N splats (reason): far views draw a prefix of the stream").
+/// level-of-detail tree for its N splats (reason)"; the caller says what is drawn instead).
 /// Neither when `cancel` became true (a session closing, a set replaced). Never throws.
 std::pair<std::shared_ptr<const splats::LodTree>, std::string> buildTreeOf(
     std::shared_ptr<const splats::GaussianCloud> cloud, std::shared_ptr<std::atomic<bool>> cancel,

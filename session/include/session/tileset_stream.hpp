@@ -110,6 +110,8 @@ class TilesetStream {
   /// splat takes its decoded size for its recordsPerElement() records.
   std::uint64_t memoryRecords() const;
   void rebuild();
+  /// The merged set again, when mergedDirty_ (with its own level-of-detail tree).
+  void rebuildMerged();
   /// settled() but for the tree: nothing arriving and nothing more wanted.
   bool bricksSettled() const;
   /// A Gaussian tileset: attaches a finished tree to the set when it is still the set's,
@@ -147,6 +149,8 @@ class TilesetStream {
   std::future<std::pair<std::shared_ptr<const splats::LodTree>, std::string>> tree_;
   std::shared_ptr<std::atomic<bool>> cancelTree_;
   std::shared_ptr<const splats::GaussianCloud> treeCloud_;
+  // What a Gaussian tileset's set was last made of (rebuild()): unchanged, it is kept.
+  std::vector<std::uint64_t> setMadeOf_;
   TilesetStatistics stats_;
   std::vector<std::pair<bool, std::string>> messages_;
   std::size_t messagesShown_ = 0;
