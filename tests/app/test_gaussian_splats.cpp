@@ -269,8 +269,13 @@ TEST_CASE("an Inline opens splat scenes, QNV streams, meshes and volumes beside 
     return path.string();
   };
   const fs::path splats = gs::test::sourceDir() / "tests/data/splats";
+  const fs::path tileset = dir / "inline_bunny_tileset";
+  REQUIRE(gs::test::runGhostspace({"encode", (splats / "bunny_small.ply").string(), "--tileset",
+                                   tileset.string() + "/", "--brick-vectors", "512"})
+              .exitCode == 0);
   const std::vector<std::array<std::string, 3>> inputs = {
       {"inline_spz", (splats / "bunny_small.spz").string(), "8"},
+      {"inline_gaussian_tileset", (tileset / "index.qnvt").string(), "8"},
       {"inline_ply_capture", (splats / "bunny_small.ply").string(), "8"},
       {"inline_qnv", qnv.string(), "1"},
       {"inline_mesh", (gs::test::sourceDir() / "assets/meshes/cube_ascii.ply").string(), "1"},
