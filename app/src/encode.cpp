@@ -23,6 +23,7 @@
 #include "session/splat_inputs.hpp"
 #include "session/volume_input.hpp"
 #include "session/world.hpp"
+#include "splats/gaussian_tileset.hpp"
 #include "splats/qnv_gaussians.hpp"
 #include "splats/readers.hpp"
 
@@ -249,6 +250,8 @@ int encodeGaussianTileset(const Options& options, const Settings& s, const std::
   if (!tilesetTarget(options.encode, write, target)) return 2;
   const std::optional<splats::GaussianCloud> cloud = readSplatScene(input);
   if (!cloud) return 1;
+  if (options.encode.mergedCells == 1)  // --merged-cells not given: 16 or 32, by the scene
+    target.cut.mergedCellsLog2 = splats::defaultGaussianMergedCellsLog2(*cloud);
   const encode::TilesetResult r = encode::writeGaussianTileset(
       target, *cloud, {.shBits = options.encode.shBits, .shFullFraction = options.encode.shFull});
   if (!r.ok()) {

@@ -27,7 +27,9 @@ bool tilesetTarget(const EncodeOptions& e, const qnv::WriteOptions& write,
   target.cut.brickVectors = e.brickVectors;
   target.cut.write = write;
   target.cut.mergedCellsLog2 = 0;  // --merged-cells R: log2 R (0: no merged levels)
-  for (unsigned r = e.mergedCells; r > 1; r /= 2) ++target.cut.mergedCellsLog2;
+  // (Not given: 16; encodeGaussianTileset picks its own.)
+  for (unsigned r = e.mergedCells == 1 ? 16 : e.mergedCells; r > 1; r /= 2)
+    ++target.cut.mergedCellsLog2;
   return true;
 }
 

@@ -447,7 +447,10 @@ const std::vector<OptionSpec>& table() {
        .help = "Tilesets: merged levels of R^3 cells per interior node (0: none)",
        .more = "Each interior node gets `OUT/merged/L/X_Y_Z.qnv`, a Gaussian stream of its "
                "region merged cell by cell (coverage kept), which a far view draws instead of "
-               "the region's vectors (docs/tilesets.md, \"Merged levels\").",
+               "the region's vectors (docs/tilesets.md, \"Merged levels\"). Not given, a "
+               "Gaussian splatting scene gets 32 where the root's 32^3 cells are at most one "
+               "per 8 splats (docs/tilesets.md, \"Gaussian tilesets\").",
+       .shownDefault = "16",
        .check = CLI::IsMember(std::vector<unsigned>{0, 2, 4, 8, 16, 32, 64, 128})},
       {.scope = encode,
        .names = "--memory",

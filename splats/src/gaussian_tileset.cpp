@@ -10,6 +10,27 @@
 
 namespace gs::splats {
 
+std::uint8_t defaultGaussianMergedCellsLog2(const GaussianCloud& cloud) {
+  const GaussianFrame frame = gaussianFrame(cloud);
+  constexpr std::uint32_t kFine = 32;
+  const glm::dvec3 lo(frame.header.boundsMin);
+  const glm::dvec3 extent = glm::max(glm::dvec3(frame.header.boundsMax) - lo, glm::dvec3(1e-12));
+  std::vector<std::uint32_t> cells;
+  cells.reserve(frame.kept.size());
+  for (const std::uint32_t i : frame.kept) {
+    const glm::dvec3 q = glm::clamp(
+        glm::floor((glm::dvec3(cloud.positions[i]) - lo) / extent * static_cast<double>(kFine)),
+        glm::dvec3(0.0), glm::dvec3(kFine - 1));
+    cells.push_back(
+        static_cast<std::uint32_t>(q.x) +
+        kFine * (static_cast<std::uint32_t>(q.y) + kFine * static_cast<std::uint32_t>(q.z)));
+  }
+  std::sort(cells.begin(), cells.end());
+  const auto occupied =
+      static_cast<std::size_t>(std::unique(cells.begin(), cells.end()) - cells.begin());
+  return !frame.kept.empty() && 8 * occupied <= frame.kept.size() ? 5 : 4;
+}
+
 qnv::TilesetLayout gaussianTilesetLayout(const qnv::StreamHeader& whole,
                                          const qnv::TilesetOptions& cut) {
   qnv::StreamHeader splats = whole;

@@ -163,3 +163,17 @@ TEST_CASE("a Gaussian tileset of nothing, or with bricks of 0 splats, is refused
   zero.brickVectors = 0;
   CHECK_THROWS_AS(splats::buildGaussianTileset(randomGaussians(), zero), qnv::InputError);
 }
+
+TEST_CASE("a Gaussian tileset's merged cells, not given, are 32 only where they are few",
+          "[splats][tileset][merged]") {
+  // 3,960 splats spread over a 2 x 1 x 1 box: the root's 32^3 grid has nearly one cell per
+  // splat, so 16^3 stays.
+  splats::GaussianCloud cloud = randomGaussians();
+  CHECK(splats::defaultGaussianMergedCellsLog2(cloud) == 4);
+  // The same splats moved onto 128 points of the box (eight along x, four along y and z):
+  // at most 128 cells of 32^3 hold them, one per 31 splats: 32^3.
+  for (glm::vec3& p : cloud.positions) p = glm::floor(p * 4.0f) / 4.0f;
+  CHECK(splats::defaultGaussianMergedCellsLog2(cloud) == 5);
+  // No splat kept: the default.
+  CHECK(splats::defaultGaussianMergedCellsLog2(splats::GaussianCloud{}) == 4);
+}

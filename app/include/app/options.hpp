@@ -43,10 +43,10 @@ struct EncodeOptions {
   std::string tileset;                    // --tileset OUT/: a tileset folder, not a stream
   std::uint32_t brickVoxels = 64;         // --brick-voxels B: volume leaf block side
   std::uint64_t brickVectors = 1u << 14;  // --brick-vectors K: vectors a node aims at
-  unsigned mergedCells = 16;              // --merged-cells R: merged levels' cells per axis
-  std::string bricks;                     // --bricks I/N: write share I of N only
-  double memoryMB = 0;                    // --memory MB: volumes out of core (0: in memory)
-  unsigned threads = 0;                   // --threads N: out-of-core workers (0: all cores)
+  unsigned mergedCells = 1;  // --merged-cells R; 1, not given: 16 (a splat scene: 16 or 32)
+  std::string bricks;        // --bricks I/N: write share I of N only
+  double memoryMB = 0;       // --memory MB: volumes out of core (0: in memory)
+  unsigned threads = 0;      // --threads N: out-of-core workers (0: all cores)
 };
 
 struct Options {

@@ -67,6 +67,16 @@ GaussianTilesetFiles buildGaussianTileset(const GaussianCloud& cloud,
                                           const GaussianStreamOptions& options = {},
                                           std::uint32_t share = 0, std::uint32_t shares = 1);
 
+/// The merged levels' cells per axis a Gaussian tileset gets when the encode is not told
+/// (`--merged-cells` not given), as log2: 5 (32^3 cells a node) when the root's 32^3 grid
+/// over the kept splats' centres (gaussianFrame's box) holds at most one occupied cell per
+/// 8 splats, else 4 (16^3, the default of volumes and meshes). A finer merged root stands
+/// in for the scene from nearer, but only pays while it is far smaller than the splats it
+/// stands for: CThead's capture (122,000 splats) gets 32^3, whose merged root (86 KB, 3.4%
+/// of the tileset) draws its 30-unit view at 33.3 dB against the stream's picture (16^3:
+/// 33 KB, 26.2 dB); bunny_small (3,000) keeps 16^3. 4 for a cloud with no splat kept.
+std::uint8_t defaultGaussianMergedCellsLog2(const GaussianCloud& cloud);
+
 /// The layout buildGaussianTileset builds its octree with, from the tileset's index
 /// template `whole` (vectorCount = the splats' records) and the encode's `cut` (brickVectors
 /// and mergedCellsLog2 as given; the packets' size and coding are the template's): for the
