@@ -259,15 +259,12 @@ int encodeGaussianTileset(const Options& options, const Settings& s, const std::
     std::fprintf(stderr, "ghostspace: encode: %s: %s\n", input.c_str(), r.error.c_str());
     return r.failure == encode::Failure::input ? 2 : 1;
   }
-  if (target.whole) {
-    const std::uint64_t words = r.merged.index.header.recordsPerElement();
-    std::printf("%s: %s Gaussians (SH degree %d), kept %s\n", input.c_str(),
-                withCommas(cloud->size()).c_str(), cloud->shDegree,
-                withCommas(r.merged.index.header.vectorCount / words).c_str());
-  } else {
-    std::printf("%s: %s Gaussians (SH degree %d)\n", input.c_str(),
-                withCommas(cloud->size()).c_str(), cloud->shDegree);
-  }
+  // (A share's index is its own bricks': the splats kept are the merge's to count.)
+  const qnv::StreamHeader& h = r.merged.index.header;
+  const std::string kept =
+      target.whole ? ", kept " + withCommas(h.vectorCount / h.recordsPerElement()) : "";
+  std::printf("%s: %s Gaussians (SH degree %d)%s\n", input.c_str(),
+              withCommas(cloud->size()).c_str(), cloud->shDegree, kept.c_str());
   printEncodeResult(target, input, r, secondsSince(t0));
   return 0;
 }

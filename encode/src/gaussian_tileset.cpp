@@ -13,12 +13,17 @@ namespace gs::encode {
 
 namespace fs = std::filesystem;
 
-std::string gaussianShareOptions(const splats::GaussianStreamOptions& options) {
+namespace {
+
+// The text of a share's parts/I-of-N/gaussian.txt, which mergeShares compares.
+std::string shareShOptions(const splats::GaussianStreamOptions& options) {
   char text[96];
   std::snprintf(text, sizeof text, "sh-bits %d sh-full %.17g\n", options.shBits,
                 options.shFullFraction);
   return text;
 }
+
+}  // namespace
 
 TilesetResult writeGaussianTileset(const TilesetTarget& target, const splats::GaussianCloud& cloud,
                                    const splats::GaussianStreamOptions& options) {
@@ -68,7 +73,7 @@ TilesetResult writeGaussianTileset(const TilesetTarget& target, const splats::Ga
     const fs::path part = dir / "parts" / shareName(target.share, target.shares);
     const std::string interior = qnv::serializeInteriorParts({}, target.cut);
     // The SH options change the bricks' bytes but not their headers: the merge compares.
-    const std::string shOptions = gaussianShareOptions(options);
+    const std::string shOptions = shareShOptions(options);
     if (std::string error = writeFile(part / "leaves.qnvt", index); !error.empty())
       return fail(Failure::write, error);
     if (std::string error = writeFile(part / "interior.qnvp", interior); !error.empty())

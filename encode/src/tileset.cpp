@@ -133,6 +133,24 @@ std::string writeMergedLevels(const fs::path& dir, const std::map<std::uint32_t,
   return {};
 }
 
+// Every Gaussian share's gaussian.txt (encode/src/gaussian_tileset.cpp) says share 0's SH
+// options: "" or why not, naming the file.
+std::string sameShOptions(const std::map<std::uint32_t, fs::path>& found) {
+  std::optional<std::string> first;
+  const auto line = [](const std::string& s) { return s.substr(0, s.find('\n')); };
+  for (const auto& [i, folder] : found) {
+    const fs::path path = folder / "gaussian.txt";
+    const auto text = readFile(path);
+    if (!text) return "cannot read '" + path.string() + "'";
+    if (!first) first = text;
+    if (*text != *first)
+      return "'" + path.string() + "' says other SH options than share 0's (" + line(*text) +
+             ", not " + line(*first) +
+             "): encode every share with the same --sh-bits and --sh-full";
+  }
+  return {};
+}
+
 // The template header without its vector count, to compare shares.
 std::string templateKey(qnv::StreamHeader h) {
   h.vectorCount = 0;
@@ -232,19 +250,7 @@ std::string mergeShares(const fs::path& dir, Merged& merged) {
     if (first->header.kind == qnv::StreamKind::gaussian) {
       // A Gaussian scene's shares wrote every brick, share 0 the interior and merged ones
       // (splats/gaussian_tileset.hpp): the merge indexes them.
-      std::optional<std::string> shOptions;
-      for (const auto& [i, folder] : found) {
-        const fs::path path = folder / "gaussian.txt";
-        const auto text = readFile(path);
-        if (!text) return "cannot read '" + path.string() + "'";
-        if (shOptions && *text != *shOptions) {
-          const auto line = [](const std::string& s) { return s.substr(0, s.find('\n')); };
-          return "'" + path.string() + "' says other SH options than share 0's (" + line(*text) +
-                 ", not " + line(*shOptions) +
-                 "): encode every share with the same --sh-bits and --sh-full";
-        }
-        shOptions = text;
-      }
+      if (std::string error = sameShOptions(found); !error.empty()) return error;
       for (const SharePart& part : interior)
         if (!part.spans.empty())
           return "'" + part.path.string() + "' has interior entries: not a Gaussian share's";

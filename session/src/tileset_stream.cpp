@@ -4,7 +4,6 @@
 #include <array>
 #include <chrono>
 #include <cstdint>
-#include <tuple>
 
 #include "base/url.hpp"
 #include "scene/camera.hpp"
@@ -493,12 +492,12 @@ void TilesetStream::rebuildMerged() {
   // tree merges them further, to the pixel, their coverage kept, as a stream's far cut does.
   // (A few thousand Gaussians: milliseconds, on this thread, when the merged nodes drawn
   // or their bricks change.) Without it (no memory) they are drawn as they are.
-  std::string problem;
-  std::tie(mergedSet_->lodTree, problem) =
-      mergedSet_->gaussians->size() > 1
-          ? buildTreeOf(mergedSet_->gaussians, nullptr, url_ + " (merged levels)")
-          : std::pair<std::shared_ptr<const splats::LodTree>, std::string>{};
-  if (!problem.empty()) messages_.push_back({false, problem + ": drawn as they are"});
+  mergedSet_->lodTree = nullptr;
+  if (mergedSet_->gaussians->size() > 1) {
+    auto [tree, problem] = buildTreeOf(mergedSet_->gaussians, nullptr, url_ + " (merged levels)");
+    mergedSet_->lodTree = std::move(tree);
+    if (!problem.empty()) messages_.push_back({false, problem + ": drawn as they are"});
+  }
   mergedSet_->computeBounds();
   ++mergedSet_->revision;
 }

@@ -87,8 +87,6 @@ TilesetResult writeTileset(const TilesetTarget& target, const qnv::SelectedVecto
 /// result.merged.index.header.vectorCount counts records (recordsPerElement() a splat).
 TilesetResult writeGaussianTileset(const TilesetTarget& target, const splats::GaussianCloud& cloud,
                                    const splats::GaussianStreamOptions& options);
-/// The text of a Gaussian share's parts/I-of-N/gaussian.txt: "sh-bits B sh-full F\n".
-std::string gaussianShareOptions(const splats::GaussianStreamOptions& options);
 
 /// The memory and threads of an out-of-core encode.
 struct OutOfCoreOptions {
