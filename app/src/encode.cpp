@@ -237,17 +237,12 @@ int encodeGaussianScene(const Options& options, Settings s, const std::string& i
 // (splats/gaussian_tileset.hpp; docs/tilesets.md, "Gaussian tilesets").
 int encodeGaussianTileset(const Options& options, const Settings& s, const std::string& input) {
   const auto t0 = std::chrono::steady_clock::now();
-  if (options.encode.memoryMB > 0) {  // never silently in memory when asked otherwise
-    std::fprintf(stderr,
-                 "ghostspace: encode: --memory MB is for volumes and PLY meshes; %s is a "
-                 "Gaussian splatting scene, whose tileset is written from memory\n",
-                 input.c_str());
-    return 2;
-  }
   encode::TilesetTarget target;
   qnv::WriteOptions write = s.write;
   write.encoding = gaussianEncoding(options.encode);
   if (!tilesetTarget(options.encode, write, target)) return 2;
+  if (options.encode.memoryMB > 0)  // out of core: encode/src/ooc_gaussian.cpp
+    return writeGaussianTilesetOutOfCore(options, target, input);
   const std::optional<splats::GaussianCloud> cloud = readSplatScene(input);
   if (!cloud) return 1;
   if (options.encode.mergedCells == 1)  // --merged-cells not given: 16 or 32, by the scene
@@ -336,8 +331,9 @@ int runEncode(const Options& options) {
     } else {
       if (options.encode.memoryMB > 0 && kind != formats::InputKind::ply)
         throw qnv::InputError(
-            "--memory: out-of-core encoding reads volumes and PLY meshes only, not '" + input +
-            "' (docs/out-of-core.md)");
+            "--memory: out-of-core encoding reads volumes, PLY meshes and Gaussian splatting "
+            "scenes (binary .ply, .splat) only, not '" +
+            input + "' (docs/out-of-core.md)");
       if (options.encode.memoryMB > 0) {  // out of core: encode/src/ooc_mesh.cpp
         bar.finish();
         qnv::SurfaceEncodeOptions v;

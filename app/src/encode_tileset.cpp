@@ -4,6 +4,7 @@
 #include "encode_tileset.hpp"
 
 #include <cstdio>
+#include <memory>
 
 #include "app/commands.hpp"
 
@@ -158,6 +159,43 @@ int writeMeshTilesetOutOfCore(const Options& options, const std::string& input,
       static_cast<unsigned long long>(r.copiedBytes), r.copySeconds, r.passes,
       r.passes > 1 ? "es" : "", r.planSeconds, r.vectorSeconds,
       static_cast<unsigned long long>(r.cacheMisses),
+      static_cast<unsigned long long>(r.leafSpillBytes),
+      static_cast<unsigned long long>(r.interiorSpillBytes));
+  printEncodeResult(target, input, r.tileset, r.tileset.seconds);
+  return 0;
+}
+
+int writeGaussianTilesetOutOfCore(const Options& options, const encode::TilesetTarget& target,
+                                  const std::string& input) {
+  const EncodeOptions& e = options.encode;
+  encode::GaussianOutOfCoreResult r;
+  try {
+    const std::unique_ptr<splats::GaussianBatchReader> reader = splats::openGaussianBatches(input);
+    r = encode::writeGaussianTilesetOutOfCore(target, *reader,
+                                              {.shBits = e.shBits, .shFullFraction = e.shFull},
+                                              e.mergedCells == 1, outOfCore(e));
+  } catch (const splats::NotPiecewiseError& error) {  // a usage error: the format
+    std::fprintf(stderr,
+                 "ghostspace: encode: --memory: %s; without --memory the tileset is written "
+                 "from memory (docs/out-of-core.md)\n",
+                 error.what());
+    return 2;
+  } catch (const splats::FormatError& error) {
+    std::fprintf(stderr, "ghostspace: encode: %s\n", error.what());
+    return 1;
+  }
+  if (!r.tileset.ok()) {
+    std::fprintf(stderr, "ghostspace: encode: %s: %s\n", input.c_str(), r.tileset.error.c_str());
+    return 1;
+  }
+  std::printf(
+      "%s: %llu Gaussians (SH degree %d), kept %llu; out of core in %g MiB: %u passes over the "
+      "scene, frame %.3f s, leaves %.3f s, bricks %.3f s, merged levels %.3f s (%llu cells, "
+      "%u^3 a node), spilled %llu + %llu bytes\n",
+      input.c_str(), static_cast<unsigned long long>(r.splats), r.shDegree,
+      static_cast<unsigned long long>(r.kept), e.memoryMB, r.passes, r.frameSeconds,
+      r.bucketSeconds, r.brickSeconds, r.mergedSeconds,
+      static_cast<unsigned long long>(r.mergedCells), 1u << r.mergedCellsLog2,
       static_cast<unsigned long long>(r.leafSpillBytes),
       static_cast<unsigned long long>(r.interiorSpillBytes));
   printEncodeResult(target, input, r.tileset, r.tileset.seconds);

@@ -44,6 +44,14 @@ int writeMeshTilesetOutOfCore(const Options& options, const std::string& input,
                               const qnv::SurfaceEncodeOptions& encode,
                               const qnv::WriteOptions& write);
 
+/// `encode SCENE --tileset OUT/ --memory MB` of a Gaussian splatting scene (binary INRIA
+/// .ply or .splat, read piecewise): encode::writeGaussianTilesetOutOfCore into `target`,
+/// with --sh-bits, --sh-full, --memory and --merged-cells (not given: the scene's
+/// default). Returns 0; 1 when the scene cannot be read or a file not written; 2 for a
+/// scene of another format (which the in-memory encode reads).
+int writeGaussianTilesetOutOfCore(const Options& options, const encode::TilesetTarget& target,
+                                  const std::string& input);
+
 /// Prints a merged tileset's sizes on stdout.
 void printMerged(const std::filesystem::path& dir, const encode::Merged& merged);
 

@@ -456,12 +456,15 @@ const std::vector<OptionSpec>& table() {
        .names = "--memory",
        .valueName = "MB",
        .field = GS_FIELD(double, options.encode.memoryMB),
-       .help = "Tilesets of volumes and PLY meshes: encode out of core in about MB "
-               "mebibytes (fractions allowed; 0: in memory; docs/out-of-core.md)",
+       .help = "Tilesets of volumes, PLY meshes and Gaussian splatting scenes: encode out "
+               "of core in about MB mebibytes (fractions allowed; 0: in memory; "
+               "docs/out-of-core.md)",
        .more = "Volumes slab by slab, meshes triangle by triangle (bricked by centroid), "
+               "Gaussian scenes (binary INRIA .ply, .splat) a batch of splats at a time, "
                "spilling to `OUT/parts/I-of-N/` past it; the files are the in-memory "
-               "encode's byte for byte (docs/out-of-core.md, \"Tileset encoding\" and "
-               "\"Meshes\"). Volumes and meshes may then be larger than memory, and `INPUT` "
+               "encode's byte for byte (docs/out-of-core.md, \"Tileset encoding\", "
+               "\"Meshes\" and \"Gaussian splatting scenes\"). Volumes, meshes and "
+               "scenes may then be larger than memory, and `INPUT` "
                "may also be a folder or `%04d` pattern of PNG/TIFF slices or a multi-file "
                "NRRD.",
        .check = CLI::Range(0.001, 1048576.0 * 1024.0)},

@@ -6,6 +6,8 @@
 #include <filesystem>
 
 #include "encode/tileset.hpp"
+#include "gaussian_files.hpp"
+#include "ooc_share.hpp"
 #include "qnv/error.hpp"
 #include "splats/gaussian_tileset.hpp"
 
@@ -24,6 +26,57 @@ std::string shareShOptions(const splats::GaussianStreamOptions& options) {
 }
 
 }  // namespace
+
+TilesetResult& finishGaussianTileset(
+    const TilesetTarget& target, const splats::GaussianStreamOptions& options,
+    qnv::TilesetIndex index,
+    const std::vector<std::pair<qnv::TilesetCell, std::string>>& mergedBricks,
+    std::chrono::steady_clock::time_point t0, TilesetResult& result) {
+  const auto fail = [&](std::string error) -> TilesetResult& {
+    result.failure = Failure::write;
+    result.error = std::move(error);
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return result;
+  };
+  const fs::path& dir = target.dir;
+  Merged& merged = result.merged;
+  for (std::size_t i = 0, m = 0; i < index.bricks.size() && m < mergedBricks.size(); ++i) {
+    const qnv::TilesetBrick& b = index.bricks[i];
+    if (!index.hasMerged(b.level)) continue;
+    const std::string& stream = mergedBricks[m++].second;
+    if (std::string error = writeFile(dir / b.mergedPath(), stream); !error.empty())
+      return fail(error);
+    merged.totalBytes += stream.size();
+  }
+  const std::string indexBytes = qnv::serializeTilesetIndex(index);
+  if (!target.whole) {
+    // The share's index of its bricks and an interior part without entries (the bricks
+    // are whole already), which carries the brick options: mergeShares indexes them all.
+    const fs::path part = dir / "parts" / shareName(target.share, target.shares);
+    const std::string interior = qnv::serializeInteriorParts({}, target.cut);
+    // The SH options change the bricks' bytes but not their headers: the merge compares.
+    const std::string shOptions = shareShOptions(options);
+    if (std::string error = writeFile(part / "leaves.qnvt", indexBytes); !error.empty())
+      return fail(error);
+    if (std::string error = writeFile(part / "interior.qnvp", interior); !error.empty())
+      return fail(error);
+    if (std::string error = writeFile(part / "gaussian.txt", shOptions); !error.empty())
+      return fail(error);
+    result.shareBytes = merged.totalBytes + indexBytes.size() + interior.size() + shOptions.size();
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return result;
+  }
+  std::string error;
+  // The reader's checks on what is about to be published.
+  if (!qnv::parseTilesetIndex(indexBytes, (dir / "index.qnvt").string(), error)) return fail(error);
+  if (error = writeFile(dir / "index.qnvt", indexBytes); !error.empty()) return fail(error);
+  merged.indexBytes = indexBytes.size();
+  merged.totalBytes += indexBytes.size();
+  merged.index = std::move(index);
+  result.shareBytes = merged.totalBytes;
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return result;
+}
 
 TilesetResult writeGaussianTileset(const TilesetTarget& target, const splats::GaussianCloud& cloud,
                                    const splats::GaussianStreamOptions& options) {
@@ -44,57 +97,13 @@ TilesetResult writeGaussianTileset(const TilesetTarget& target, const splats::Ga
   result.depth = files.depth;
   result.leafCount = files.leafCount;
   result.leaves = files.leaves;
-  const fs::path& dir = target.dir;
-  std::error_code ec;
-  if (target.whole) {  // the whole output: nothing stale may remain
-    fs::remove_all(dir / "bricks", ec);
-    fs::remove_all(dir / "parts", ec);
-    fs::remove_all(dir / "merged", ec);
-    fs::remove(dir / "index.qnvt", ec);
-  }
-  Merged& merged = result.merged;
+  if (target.whole) ooc::removeStale(target.dir);  // the whole output: nothing stale may remain
   for (const qnv::BrickFile& b : files.bricks) {
-    if (std::string error = writeFile(dir / b.brick.path(), b.bytes); !error.empty())
+    if (std::string error = writeFile(target.dir / b.brick.path(), b.bytes); !error.empty())
       return fail(Failure::write, error);
-    merged.totalBytes += b.bytes.size();
+    result.merged.totalBytes += b.bytes.size();
   }
-  for (std::size_t i = 0, m = 0; i < files.index.bricks.size() && m < files.merged.size(); ++i) {
-    const qnv::TilesetBrick& b = files.index.bricks[i];
-    if (!files.index.hasMerged(b.level)) continue;
-    const std::string& stream = files.merged[m++].second;
-    if (std::string error = writeFile(dir / b.mergedPath(), stream); !error.empty())
-      return fail(Failure::write, error);
-    merged.totalBytes += stream.size();
-  }
-  const std::string index = qnv::serializeTilesetIndex(files.index);
-  if (!target.whole) {
-    // The share's index of its bricks and an interior part without entries (the bricks
-    // are whole already), which carries the brick options: mergeShares indexes them all.
-    const fs::path part = dir / "parts" / shareName(target.share, target.shares);
-    const std::string interior = qnv::serializeInteriorParts({}, target.cut);
-    // The SH options change the bricks' bytes but not their headers: the merge compares.
-    const std::string shOptions = shareShOptions(options);
-    if (std::string error = writeFile(part / "leaves.qnvt", index); !error.empty())
-      return fail(Failure::write, error);
-    if (std::string error = writeFile(part / "interior.qnvp", interior); !error.empty())
-      return fail(Failure::write, error);
-    if (std::string error = writeFile(part / "gaussian.txt", shOptions); !error.empty())
-      return fail(Failure::write, error);
-    result.shareBytes = merged.totalBytes + index.size() + interior.size() + shOptions.size();
-    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    return result;
-  }
-  std::string error;
-  // The reader's checks on what is about to be published.
-  if (!qnv::parseTilesetIndex(index, (dir / "index.qnvt").string(), error))
-    return fail(Failure::write, error);
-  if (error = writeFile(dir / "index.qnvt", index); !error.empty())
-    return fail(Failure::write, error);
-  merged.indexBytes = index.size();
-  merged.totalBytes += index.size();
-  merged.index = std::move(files.index);
-  result.shareBytes = merged.totalBytes;
-  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  finishGaussianTileset(target, options, std::move(files.index), files.merged, t0, result);
   return result;
 }
 

@@ -2,6 +2,7 @@
 // of them (readGaussians).
 #include <algorithm>
 #include <cctype>
+#include <memory>
 #include <string>
 
 #include "base/byte_order.hpp"
@@ -113,6 +114,25 @@ GaussianCloud readGaussians(std::string_view bytes, std::string_view name,
       break;
   }
   detail::fail(name, "not a Gaussian splatting scene");
+}
+
+std::unique_ptr<GaussianBatchReader> openGaussianBatches(const std::string& path) {
+  std::string head;
+  {
+    const detail::PieceFile file(path);
+    head.resize(static_cast<std::size_t>(std::min<std::uint64_t>(file.size(), 64u << 10)));
+    file.read(0, head.data(), head.size());
+  }
+  const SplatFormat format = detectSplatFormat(head, path);
+  if (format == SplatFormat::ply || format == SplatFormat::compressedPly)
+    return openPlyGaussianBatches(path);  // which refuses the compressed one, naming it
+  if (format == SplatFormat::splat) return openSplatGaussianBatches(path);
+  const char* kinds[] = {"an unknown format", "a PLY",        "a PlayCanvas compressed PLY",
+                         "a .splat",          "an SPZ file",  "an SOG bundle",
+                         "an SOG meta.json",  "a glTF scene", "a QNV Gaussian stream",
+                         "a LAS point cloud"};
+  throw NotPiecewiseError(path + ": read piecewise are binary INRIA .ply and .splat, not " +
+                          kinds[static_cast<int>(format)]);
 }
 
 }  // namespace gs::splats

@@ -10,25 +10,84 @@
 
 namespace gs::splats {
 
+std::uint32_t gaussianRootCell(const qnv::StreamHeader& frame, glm::vec3 position) {
+  const glm::dvec3 lo(frame.boundsMin);
+  const glm::dvec3 extent = glm::max(glm::dvec3(frame.boundsMax) - lo, glm::dvec3(1e-12));
+  const double fine = kGaussianRootCells;
+  const glm::dvec3 q = glm::clamp(glm::floor((glm::dvec3(position) - lo) / extent * fine),
+                                  glm::dvec3(0.0), glm::dvec3(fine - 1.0));
+  return static_cast<std::uint32_t>(q.x) +
+         kGaussianRootCells * (static_cast<std::uint32_t>(q.y) +
+                               kGaussianRootCells * static_cast<std::uint32_t>(q.z));
+}
+
+std::uint8_t gaussianMergedCellsLog2For(std::uint64_t occupiedCells, std::uint64_t kept) {
+  return kept > 0 && 8 * occupiedCells <= kept ? 5 : 4;
+}
+
 std::uint8_t defaultGaussianMergedCellsLog2(const GaussianCloud& cloud) {
   const GaussianFrame frame = gaussianFrame(cloud);
-  constexpr std::uint32_t kFine = 32;
-  const glm::dvec3 lo(frame.header.boundsMin);
-  const glm::dvec3 extent = glm::max(glm::dvec3(frame.header.boundsMax) - lo, glm::dvec3(1e-12));
   std::vector<std::uint32_t> cells;
   cells.reserve(frame.kept.size());
-  for (const std::uint32_t i : frame.kept) {
-    const glm::dvec3 q = glm::clamp(
-        glm::floor((glm::dvec3(cloud.positions[i]) - lo) / extent * static_cast<double>(kFine)),
-        glm::dvec3(0.0), glm::dvec3(kFine - 1));
-    cells.push_back(
-        static_cast<std::uint32_t>(q.x) +
-        kFine * (static_cast<std::uint32_t>(q.y) + kFine * static_cast<std::uint32_t>(q.z)));
-  }
+  for (const std::uint32_t i : frame.kept)
+    cells.push_back(gaussianRootCell(frame.header, cloud.positions[i]));
   std::sort(cells.begin(), cells.end());
   const auto occupied =
       static_cast<std::size_t>(std::unique(cells.begin(), cells.end()) - cells.begin());
-  return !frame.kept.empty() && 8 * occupied <= frame.kept.size() ? 5 : 4;
+  return gaussianMergedCellsLog2For(occupied, frame.kept.size());
+}
+
+qnv::TilesetLayout gaussianLayoutForSplats(const qnv::StreamHeader& frame, std::uint64_t kept,
+                                           const qnv::TilesetOptions& cut) {
+  if (cut.brickVectors == 0) throw qnv::InputError("--brick-vectors must be at least 1");
+  qnv::StreamHeader whole = frame;
+  whole.vectorCount = kept;  // the octree's depth counts splats
+  const std::uint32_t words = whole.recordsPerElement();
+  qnv::TilesetOptions layoutCut = cut;
+  const std::uint64_t perPacket =
+      std::clamp<std::uint64_t>(cut.brickVectors / 16, 128,
+                                std::min<std::uint64_t>(1024, qnv::kMaxPacketBytes / (8 * words)));
+  layoutCut.write.packetBytes = static_cast<std::uint32_t>(8 * words * perPacket);
+  // Gaussian streams are plain or compact (entropy coding is for vectors).
+  layoutCut.write.encoding = cut.write.encoding == qnv::PacketEncoding::plain
+                                 ? qnv::PacketEncoding::plain
+                                 : qnv::PacketEncoding::compact;
+  return qnv::TilesetLayout(whole, layoutCut);
+}
+
+std::vector<std::pair<qnv::TilesetCell, std::size_t>> splitGaussianLeaf(
+    const qnv::TilesetLayout& layout, glm::uvec3 leaf, std::size_t count) {
+  std::vector<std::pair<qnv::TilesetCell, std::size_t>> parts;
+  const std::uint8_t depth = layout.depth();
+  std::size_t next = 0;
+  for (std::uint8_t level = 0; level <= depth && next < count; ++level) {
+    const unsigned shift = depth - level;
+    const std::size_t end =
+        level == depth
+            ? count
+            : static_cast<std::size_t>(std::min<std::uint64_t>(count, next + layout.quota(level)));
+    parts.emplace_back(qnv::TilesetCell{level, leaf >> glm::uvec3(shift)}, end);
+    next = end;
+  }
+  return parts;
+}
+
+std::vector<std::pair<qnv::TilesetCell, std::string>> gaussianMergedBricks(
+    const MergedLevelBuilder& merged, const qnv::TilesetIndex& index) {
+  std::vector<std::pair<qnv::TilesetCell, std::string>> out;
+  const std::map<qnv::TilesetCell, GaussianCloud> clouds = merged.build();
+  for (const qnv::TilesetBrick& b : index.bricks) {
+    if (!index.hasMerged(b.level)) continue;
+    const qnv::TilesetCell node{b.level, glm::uvec3(b.x, b.y, b.z)};
+    const auto it = clouds.find(node);
+    const qnv::EncodedVectors vectors =
+        encodeGaussianStream(it != clouds.end() ? it->second : GaussianCloud{});
+    qnv::WriteOptions write;
+    write.packetBytes = vectors.header.packetBytes;
+    write.encoding = qnv::PacketEncoding::compact;
+    out.emplace_back(node, qnv::writeStream(vectors, write));
+  }
+  return out;
 }
 
 qnv::TilesetLayout gaussianTilesetLayout(const qnv::StreamHeader& whole,
@@ -45,7 +104,6 @@ GaussianTilesetFiles buildGaussianTileset(const GaussianCloud& cloud,
                                           const qnv::TilesetOptions& cut,
                                           const GaussianStreamOptions& options, std::uint32_t share,
                                           std::uint32_t shares) {
-  if (cut.brickVectors == 0) throw qnv::InputError("--brick-vectors must be at least 1");
   if (shares == 0 || shares > qnv::kMaxTilesetShares || share >= shares)
     throw qnv::InputError("share " + std::to_string(share) + " of " + std::to_string(shares) +
                           " does not exist");
@@ -53,20 +111,9 @@ GaussianTilesetFiles buildGaussianTileset(const GaussianCloud& cloud,
   if (frame.kept.empty())
     throw qnv::InputError("nothing to encode: " + std::to_string(cloud.size()) +
                           " Gaussians, none with an opacity and a size");
-  qnv::StreamHeader whole = frame.header;
-  whole.vectorCount = frame.kept.size();  // the octree's depth counts splats
-  const std::uint32_t words = whole.recordsPerElement();
-  qnv::TilesetOptions layoutCut = cut;
-  const std::uint64_t perPacket =
-      std::clamp<std::uint64_t>(cut.brickVectors / 16, 128,
-                                std::min<std::uint64_t>(1024, qnv::kMaxPacketBytes / (8 * words)));
-  layoutCut.write.packetBytes = static_cast<std::uint32_t>(8 * words * perPacket);
-  // Gaussian streams are plain or compact (entropy coding is for vectors).
-  layoutCut.write.encoding = cut.write.encoding == qnv::PacketEncoding::plain
-                                 ? qnv::PacketEncoding::plain
-                                 : qnv::PacketEncoding::compact;
-  const qnv::TilesetLayout layout(whole, layoutCut);
+  const qnv::TilesetLayout layout = gaussianLayoutForSplats(frame.header, frame.kept.size(), cut);
   const std::uint8_t depth = layout.depth();
+  const std::uint32_t words = layout.templateHeader().recordsPerElement();
 
   // Splats by leaf (index into frame.kept), then ranked within each leaf.
   std::map<std::uint64_t, std::vector<std::uint32_t>> leaves;
@@ -82,14 +129,9 @@ GaussianTilesetFiles buildGaussianTileset(const GaussianCloud& cloud,
   std::map<qnv::TilesetCell, std::vector<std::uint32_t>> nodes;
   for (auto& [index, members] : leaves) {
     std::sort(members.begin(), members.end(), rankedBefore);
-    const glm::uvec3 leaf = layout.leafAt(index);
     std::size_t next = 0;
-    for (std::uint8_t level = 0; level <= depth && next < members.size(); ++level) {
-      const unsigned shift = depth - level;
-      const qnv::TilesetCell node{level, leaf >> glm::uvec3(shift)};
-      const std::size_t end = level == depth ? members.size()
-                                             : static_cast<std::size_t>(std::min<std::uint64_t>(
-                                                   members.size(), next + layout.quota(level)));
+    for (const auto& [node, end] :
+         splitGaussianLeaf(layout, layout.leafAt(index), members.size())) {
       std::vector<std::uint32_t>& to = nodes[node];
       to.insert(to.end(), members.begin() + static_cast<std::ptrdiff_t>(next),
                 members.begin() + static_cast<std::ptrdiff_t>(end));
@@ -125,18 +167,7 @@ GaussianTilesetFiles buildGaussianTileset(const GaussianCloud& cloud,
   if (cut.mergedCellsLog2 > 0 && depth > 0 && share == 0) {
     MergedLevelBuilder merged(layout, cut.mergedCellsLog2);
     for (const std::uint32_t i : frame.kept) merged.addGaussian(cloud, i);
-    std::map<qnv::TilesetCell, GaussianCloud> clouds = merged.build();
-    for (const qnv::TilesetBrick& b : out.index.bricks) {
-      if (!out.index.hasMerged(b.level)) continue;
-      const qnv::TilesetCell node{b.level, glm::uvec3(b.x, b.y, b.z)};
-      const auto it = clouds.find(node);
-      const qnv::EncodedVectors vectors =
-          encodeGaussianStream(it != clouds.end() ? it->second : GaussianCloud{});
-      qnv::WriteOptions write;
-      write.packetBytes = vectors.header.packetBytes;
-      write.encoding = qnv::PacketEncoding::compact;
-      out.merged.emplace_back(node, qnv::writeStream(vectors, write));
-    }
+    out.merged = gaussianMergedBricks(merged, out.index);
   }
   return out;
 }

@@ -2,8 +2,10 @@
 // vertex element with x y z, f_dc_0..2, f_rest_* (channel-major), opacity (logit),
 // scale_0..2 (log) and rot_0..3 (w x y z). Binary (either byte order) or ascii. Read in
 // the file's own axes, as splat-transform holds a .ply (Transform.PLY, no conversion).
+#include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -124,7 +126,61 @@ std::vector<double> asciiValues(std::string_view bytes, std::string_view name, s
   return values;
 }
 
+/// A binary INRIA .ply read a batch of rows at a time.
+class PlyGaussianBatches final : public GaussianBatchReader {
+ public:
+  explicit PlyGaussianBatches(const std::string& path) : file_(path) {
+    std::string head(static_cast<std::size_t>(std::min<std::uint64_t>(file_.size(), 1u << 20)),
+                     '\0');
+    file_.read(0, head.data(), head.size());
+    std::string error;
+    if (!detail::parsePlyHeader(head, header_, error)) fail(path, error);
+    const PlyElement* vertex = header_.find("vertex");
+    if (!vertex) fail(path, "no vertex element");
+    if (vertex->find("packed_position") >= 0 || header_.format == detail::PlyFormat::ascii)
+      throw NotPiecewiseError(path + ": read piecewise are binary INRIA .ply and .splat, not " +
+                              (header_.format == detail::PlyFormat::ascii
+                                   ? "an ascii PLY"
+                                   : "a PlayCanvas compressed PLY"));
+    if (vertex->count == 0) fail(path, "expected at least one splat, got 0");
+    columns_ = findColumns(path, *vertex);
+    vertex_ = vertex;
+    offset_ = detail::plyElementOffset(file_.size(), path, header_, *vertex);
+  }
+  std::uint64_t size() const override { return vertex_->count; }
+  int shDegree() const override { return columns_.degree; }
+  std::size_t read(GaussianCloud& batch, std::size_t max) override {
+    const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(max, size() - next_));
+    const std::size_t rowBytes = vertex_->rowBytes;
+    rows_.resize(n * rowBytes);
+    file_.read(offset_ + next_ * rowBytes, rows_.data(), rows_.size());
+    next_ += n;
+    batch = GaussianCloud{};
+    detail::allocate(batch, n, columns_.degree);
+    const bool bigEndian = header_.format == detail::PlyFormat::binaryBigEndian;
+    const auto& props = vertex_->properties;
+    fill(batch, columns_, n, [&](std::size_t i, int col) {
+      const auto& p = props[static_cast<std::size_t>(col)];
+      return detail::plyValue(rows_.data() + i * rowBytes + p.offset, p.type, bigEndian);
+    });
+    return n;
+  }
+  void rewind() override { next_ = 0; }
+
+ private:
+  detail::PieceFile file_;
+  PlyHeader header_;
+  const PlyElement* vertex_ = nullptr;
+  Columns columns_;
+  std::uint64_t offset_ = 0, next_ = 0;
+  std::vector<char> rows_;
+};
+
 }  // namespace
+
+std::unique_ptr<GaussianBatchReader> openPlyGaussianBatches(const std::string& path) {
+  return std::make_unique<PlyGaussianBatches>(path);
+}
 
 GaussianCloud readPlyGaussians(std::string_view bytes, std::string_view name) {
   PlyHeader header;

@@ -143,62 +143,84 @@ void quantizeSplat(const GaussianCloud& cloud, std::size_t i, const qnv::StreamH
 
 }  // namespace
 
-GaussianFrame gaussianFrame(const GaussianCloud& cloud) {
-  GaussianFrame frame;
-  qnv::StreamHeader& h = frame.header;
+bool keptInGaussianStream(const GaussianCloud& cloud, std::size_t i) {
+  const glm::vec3 p = cloud.positions[i];
+  const glm::vec3 sc = cloud.scales[i], dc = cloud.shDc[i];
+  const glm::quat q = cloud.rotations[i];
+  // Something to draw, and a finite splat to quantize.
+  return importance(cloud, i) > 0.0f && cloud.opacities[i] >= 0.5f / 255.0f &&
+         std::isfinite(p.x + p.y + p.z) && std::isfinite(sc.x + sc.y + sc.z) &&
+         std::isfinite(dc.x + dc.y + dc.z) && std::isfinite(q.w + q.x + q.y + q.z) &&
+         glm::dot(q, q) > 0.0f;
+}
+
+GaussianFrameBuilder::GaussianFrameBuilder(int shDegree, std::uint64_t splatCount) {
+  qnv::StreamHeader& h = header_;
   h.kind = qnv::StreamKind::gaussian;
-  h.shDegree = static_cast<std::uint8_t>(std::clamp(cloud.shDegree, 0, 3));
+  h.shDegree = static_cast<std::uint8_t>(std::clamp(shDegree, 0, 3));
   h.mapping = qnv::MagnitudeMapping::logarithmic;
   const std::uint32_t words = h.recordsPerElement();
   // Packets as large as the format allows (zstd wants room), but at least 64 of them, so
   // that the first picture comes within the first few per cent of the bytes.
   const std::uint64_t perPacket =
-      std::clamp<std::uint64_t>(cloud.size() / 64, 1024, qnv::kMaxPacketBytes / (8 * words));
+      std::clamp<std::uint64_t>(splatCount / 64, 1024, qnv::kMaxPacketBytes / (8 * words));
   h.packetBytes = static_cast<std::uint32_t>(8 * words * perPacket);
+}
 
-  // The splats kept: some opacity and importance, a finite centre.
-  std::vector<std::uint32_t>& kept = frame.kept;
-  kept.reserve(cloud.size());
-  float scaleLo = INFINITY, scaleHi = -INFINITY;
-  glm::vec3 lo(INFINITY), hi(-INFINITY);
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    const glm::vec3 p = cloud.positions[i];
-    const glm::vec3 sc = cloud.scales[i], dc = cloud.shDc[i];
-    const glm::quat q = cloud.rotations[i];
-    if (!(importance(cloud, i) > 0.0f) || !(cloud.opacities[i] >= 0.5f / 255.0f) ||
-        !std::isfinite(p.x + p.y + p.z) || !std::isfinite(sc.x + sc.y + sc.z) ||
-        !std::isfinite(dc.x + dc.y + dc.z) || !std::isfinite(q.w + q.x + q.y + q.z) ||
-        !(glm::dot(q, q) > 0.0f))
-      continue;  // nothing to draw, or no finite splat to quantize
-    kept.push_back(static_cast<std::uint32_t>(i));
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
-    for (int k = 0; k < 3; ++k) {
-      const float l = std::log(std::max(std::abs(cloud.scales[i][k]), kSmallestScale));
-      scaleLo = std::min(scaleLo, l);
-      scaleHi = std::max(scaleHi, l);
-    }
+bool GaussianFrameBuilder::addExtent(const GaussianCloud& cloud, std::size_t i) {
+  if (!keptInGaussianStream(cloud, i)) return false;
+  ++kept_;
+  lo_ = glm::min(lo_, cloud.positions[i]);
+  hi_ = glm::max(hi_, cloud.positions[i]);
+  for (int k = 0; k < 3; ++k) {
+    const float l = std::log(std::max(std::abs(cloud.scales[i][k]), kSmallestScale));
+    scaleLo_ = std::min(scaleLo_, l);
+    scaleHi_ = std::max(scaleHi_, l);
   }
-  if (kept.empty()) {
+  return true;
+}
+
+void GaussianFrameBuilder::finishExtent() {
+  qnv::StreamHeader& h = header_;
+  if (kept_ == 0) {
     h.boundsMin = glm::vec3(0.0f);
     h.boundsMax = glm::vec3(1.0f);
-    return frame;
+    return;
   }
-  h.boundsMin = lo;
-  h.boundsMax = hi;
-  h.valueMin = scaleLo;
-  h.valueMax = scaleHi;
-  frame.importance.resize(kept.size());
+  h.boundsMin = lo_;
+  h.boundsMax = hi_;
+  h.valueMin = scaleLo_;
+  h.valueMax = scaleHi_;
+}
+
+float GaussianFrameBuilder::importanceOf(const GaussianCloud& cloud, std::size_t i) {
   std::uint64_t w[2];
-  float top = 0.0f, bottom = INFINITY;
-  for (std::size_t k = 0; k < kept.size(); ++k) {
-    quantizeSplat(cloud, kept[k], h, w);
-    frame.importance[k] = qnv::gaussianImportance(w[0], w[1], h);
-    top = std::max(top, frame.importance[k]);
-    bottom = std::min(bottom, frame.importance[k]);
+  quantizeSplat(cloud, i, header_, w);
+  const float a = qnv::gaussianImportance(w[0], w[1], header_);
+  top_ = std::max(top_, a);
+  bottom_ = std::min(bottom_, a);
+  return a;
+}
+
+const qnv::StreamHeader& GaussianFrameBuilder::finish() {
+  if (kept_ > 0) {
+    header_.magnitudeMax = std::max(top_, 1e-30f);
+    header_.magnitudeMin = std::clamp(bottom_, header_.magnitudeMax * 1e-12f, header_.magnitudeMax);
   }
-  h.magnitudeMax = std::max(top, 1e-30f);
-  h.magnitudeMin = std::clamp(bottom, h.magnitudeMax * 1e-12f, h.magnitudeMax);
+  return header_;
+}
+
+GaussianFrame gaussianFrame(const GaussianCloud& cloud) {
+  GaussianFrame frame;
+  GaussianFrameBuilder builder(cloud.shDegree, cloud.size());
+  frame.kept.reserve(cloud.size());
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    if (builder.addExtent(cloud, i)) frame.kept.push_back(static_cast<std::uint32_t>(i));
+  builder.finishExtent();
+  frame.importance.resize(frame.kept.size());
+  for (std::size_t k = 0; k < frame.kept.size(); ++k)
+    frame.importance[k] = builder.importanceOf(cloud, frame.kept[k]);
+  frame.header = builder.finish();
   return frame;
 }
 

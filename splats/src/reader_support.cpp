@@ -1,10 +1,16 @@
 // Helpers shared by the splat scene readers (reader_support.hpp).
 #include "reader_support.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <bit>
+#include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "base/byte_order.hpp"
@@ -248,24 +254,52 @@ double plyValue(const char* p, PlyType t, bool bigEndian) {
   return 0.0;
 }
 
-std::size_t plyElementOffset(std::string_view bytes, std::string_view name, const PlyHeader& header,
-                             const PlyElement& element) {
+std::uint64_t plyElementOffset(std::uint64_t fileBytes, std::string_view name,
+                               const PlyHeader& header, const PlyElement& element) {
   std::uint64_t offset = header.dataOffset;
   for (const PlyElement& e : header.elements) {
     if (&e == &element) break;
     if (e.hasList)
       fail(name, "element '" + e.name + "' with a list property precedes '" + element.name + "'");
     // Earlier elements must fit in the file too (count * rowBytes bounded by the bytes).
-    checkCount(name, e.count, e.rowBytes,
-               bytes.size() - std::min<std::uint64_t>(offset, bytes.size()),
+    checkCount(name, e.count, e.rowBytes, fileBytes - std::min(offset, fileBytes),
                ("element '" + e.name + "'").c_str());
     offset += e.count * e.rowBytes;
   }
   if (element.hasList) fail(name, "element '" + element.name + "' has a list property");
-  const std::uint64_t have = bytes.size() - std::min<std::uint64_t>(offset, bytes.size());
+  const std::uint64_t have = fileBytes - std::min(offset, fileBytes);
   checkCount(name, element.count, element.rowBytes, have,
              ("element '" + element.name + "'").c_str());
-  return static_cast<std::size_t>(offset);
+  return offset;
+}
+
+std::size_t plyElementOffset(std::string_view bytes, std::string_view name, const PlyHeader& header,
+                             const PlyElement& element) {
+  return static_cast<std::size_t>(plyElementOffset(bytes.size(), name, header, element));
+}
+
+PieceFile::PieceFile(const std::string& path) : path_(path) {
+  fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  struct stat st {};
+  if (fd_ < 0 || ::fstat(fd_, &st) != 0 || !S_ISREG(st.st_mode))
+    fail(path, std::string("cannot open: ") + (fd_ < 0 ? std::strerror(errno) : "not a file"));
+  size_ = static_cast<std::uint64_t>(st.st_size);
+}
+
+PieceFile::~PieceFile() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+void PieceFile::read(std::uint64_t offset, char* out, std::size_t bytes) const {
+  for (std::size_t done = 0; done < bytes;) {
+    const ssize_t n = ::pread(fd_, out + done, bytes - done, static_cast<off_t>(offset + done));
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) fail(path_, std::string("cannot read: ") + std::strerror(errno));
+    if (n == 0)
+      fail(path_, "expected " + std::to_string(bytes) + " bytes at byte " + std::to_string(offset) +
+                      ", got " + std::to_string(done));
+    done += static_cast<std::size_t>(n);
+  }
 }
 
 }  // namespace gs::splats::detail

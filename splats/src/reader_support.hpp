@@ -89,5 +89,36 @@ double plyValue(const char* p, PlyType t, bool bigEndian);
 /// `bytes` (FormatError "NAME: expected N bytes of element 'E', got M").
 std::size_t plyElementOffset(std::string_view bytes, std::string_view name, const PlyHeader& header,
                              const PlyElement& element);
+/// The same for a file of `fileBytes` bytes whose header `header` is (read piecewise).
+std::uint64_t plyElementOffset(std::uint64_t fileBytes, std::string_view name,
+                               const PlyHeader& header, const PlyElement& element);
+
+/// A file read by offset, piece by piece (the piecewise readers, GaussianBatchReader).
+/// Closed when destroyed.
+class PieceFile {
+ public:
+  /// Throws FormatError "PATH: cannot open: REASON".
+  explicit PieceFile(const std::string& path);
+  ~PieceFile();
+  PieceFile(const PieceFile&) = delete;
+  PieceFile& operator=(const PieceFile&) = delete;
+  /// The file's size, bytes.
+  std::uint64_t size() const { return size_; }
+  /// Reads `bytes` bytes at `offset` into `out`; FormatError "PATH: expected N bytes at
+  /// byte OFFSET, got M" when the file ends before (or "cannot read: REASON").
+  void read(std::uint64_t offset, char* out, std::size_t bytes) const;
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+  int fd_ = -1;
+  std::uint64_t size_ = 0;
+};
 
 }  // namespace gs::splats::detail
+
+namespace gs::splats {
+/// openGaussianBatches for a .ply (ply_gaussians.cpp) and a .splat (splat_format.cpp).
+std::unique_ptr<GaussianBatchReader> openPlyGaussianBatches(const std::string& path);
+std::unique_ptr<GaussianBatchReader> openSplatGaussianBatches(const std::string& path);
+}  // namespace gs::splats

@@ -221,7 +221,7 @@ TEST_CASE("out-of-core mesh encodes refuse other mesh formats and report bad PLY
   auto r = runGhostspace(
       {"encode", obj, "--tileset", (dir.path / "t").string(), "--memory", "64", "--no-progress"});
   CHECK(r.exitCode == 1);
-  CHECK_THAT(r.err, Catch::Contains("volumes and PLY meshes only"));
+  CHECK_THAT(r.err, Catch::Contains("volumes, PLY meshes and Gaussian splatting scenes"));
   const fs::path bad = dir.path / "bad.ply";
   std::ofstream(bad) << "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
                         "property float y\nproperty float z\nelement face 1\n"

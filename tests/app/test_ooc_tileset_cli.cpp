@@ -2,7 +2,8 @@
 // gives the in-memory tileset encode's files byte for byte (keep all, --fraction with ties
 // at the threshold, --count, --window), spills under a tiny bound, and split runs merge
 // to the single run's bytes; inputs made at test time as a multi-file NRRD and a folder
-// of PNG slices (docs/out-of-core.md, "Tileset encoding").
+// of PNG slices (docs/out-of-core.md, "Tileset encoding"). The same for a Gaussian
+// splatting scene (.ply and .splat read piecewise), and its errors.
 #include <catch2/catch.hpp>
 
 #include <png.h>
@@ -11,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <utility>
 
 #include "process.hpp"
 #include "test_support.hpp"
@@ -185,5 +187,85 @@ TEST_CASE("encode refuses --memory without a tileset and for worlds",
   r = runGhostspace(
       {"encode", world, "--tileset", (dir.path / "t").string(), "--memory", "64", "--no-progress"});
   CHECK(r.exitCode == 1);
-  CHECK_THAT(r.err, Catch::Contains("volumes and PLY meshes only"));
+  CHECK_THAT(r.err, Catch::Contains("volumes, PLY meshes and Gaussian splatting scenes"));
+}
+
+namespace {
+
+// The bytes "spilled A + B bytes" of an out-of-core Gaussian encode's summary line.
+std::pair<long long, long long> spilled(const std::string& out) {
+  const std::size_t at = out.find("spilled ");
+  REQUIRE(at != std::string::npos);
+  long long a = -1, b = -1;
+  REQUIRE(std::sscanf(out.c_str() + at, "spilled %lld + %lld", &a, &b) == 2);
+  return {a, b};
+}
+
+}  // namespace
+
+TEST_CASE("an out-of-core Gaussian tileset is the in-memory tileset, byte for byte",
+          "[app][encode][tileset][ooc][splat]") {
+  gs::test::TempDir dir("ooc_gaussian");
+  const fs::path data = gs::test::sourceDir() / "tests/data/splats";
+  // Depth 2 (K = 64 of 3,000 splats), merged levels at the scene's default and at 8^3.
+  for (const char* scene : {"bunny_small.ply", "bunny_small.splat"}) {
+    for (const std::vector<std::string>& options :
+         {std::vector<std::string>{"--brick-vectors", "64"},
+          std::vector<std::string>{"--brick-vectors", "64", "--merged-cells", "8", "--sh-bits", "3",
+                                   "--sh-full", "0.25"}}) {
+      const std::string input = (data / scene).string();
+      INFO(scene << " " << options.size());
+      const fs::path memory = dir.path / "memory", ooc = dir.path / "ooc", tiny = dir.path / "tiny";
+      encode(input, memory, options);
+      const auto r = encode(input, ooc, with(options, {"--memory", "64"}));
+      CHECK_THAT(r.out, Catch::Contains("3 passes over the scene"));
+      CHECK(spilled(r.out) == std::pair<long long, long long>{0, 0});
+      checkSameTree(memory, ooc);
+      // A bound far below the scene's 300 KB: leaves and interior nodes spilled.
+      const auto t = encode(input, tiny, with(options, {"--memory", "0.01"}));
+      CHECK(spilled(t.out).first > 0);
+      CHECK(spilled(t.out).second > 0);
+      checkSameTree(memory, tiny);
+      CHECK_FALSE(fs::exists(tiny / "parts"));  // the spill files and their folder gone
+    }
+  }
+  // Shares under --memory, given out of order, merge to the unsplit run's files.
+  const std::string ply = (data / "bunny_small.ply").string();
+  const fs::path memory = dir.path / "memory3", split = dir.path / "split";
+  encode(ply, memory, {"--brick-vectors", "64"});
+  for (const char* share : {"2/3", "0/3", "1/3"})
+    encode(ply, split, {"--brick-vectors", "64", "--memory", "0.01", "--bricks", share});
+  const auto m = runGhostspace({"tileset", "index", split.string()});
+  INFO(m.err);
+  REQUIRE(m.exitCode == 0);
+  checkSameTree(memory, split);
+}
+
+TEST_CASE("an out-of-core Gaussian encode refuses other formats and reports a short file",
+          "[app][encode][tileset][ooc][splat]") {
+  gs::test::TempDir dir("ooc_gaussian_bad");
+  const fs::path data = gs::test::sourceDir() / "tests/data/splats";
+  // SPZ is read whole: a usage error that says which formats are read piecewise.
+  auto r = runGhostspace({"encode", (data / "bunny_small.spz").string(), "--tileset",
+                          (dir.path / "spz").string(), "--memory", "64", "--no-progress"});
+  CHECK(r.exitCode == 2);
+  CHECK_THAT(r.err, Catch::Contains("read piecewise are binary INRIA .ply and .splat, not an SPZ"));
+  CHECK_FALSE(fs::exists(dir.path / "spz" / "index.qnvt"));
+  // A PLY cut short: its header promises 3,000 rows. An error value, nothing published.
+  const std::string bytes = gs::test::readBytes(data / "bunny_small.ply");
+  const fs::path cut = dir.path / "cut.ply";
+  std::ofstream(cut, std::ios::binary)
+      .write(bytes.data(), static_cast<std::streamsize>(bytes.size() / 2));
+  r = runGhostspace({"encode", cut.string(), "--tileset", (dir.path / "cut").string(), "--memory",
+                     "64", "--no-progress"});
+  CHECK(r.exitCode == 1);
+  CHECK_THAT(r.err, Catch::Contains("cut.ply: expected"));
+  CHECK_FALSE(fs::exists(dir.path / "cut" / "index.qnvt"));
+  // A .splat of a size that is not whole records.
+  const fs::path odd = dir.path / "odd.splat";
+  std::ofstream(odd, std::ios::binary).write("0123456789", 10);
+  r = runGhostspace({"encode", odd.string(), "--tileset", (dir.path / "odd").string(), "--memory",
+                     "64", "--no-progress"});
+  CHECK(r.exitCode == 1);
+  CHECK_THAT(r.err, Catch::Contains("multiple of 32 bytes"));
 }

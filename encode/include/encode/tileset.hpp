@@ -139,4 +139,36 @@ MeshOutOfCoreResult writeMeshTilesetOutOfCore(const TilesetTarget& target,
                                               const qnv::SurfaceEncodeOptions& encode,
                                               const OutOfCoreOptions& ooc);
 
+/// What an out-of-core Gaussian tileset encode did, beyond the tileset.
+struct GaussianOutOfCoreResult {
+  TilesetResult tileset;
+  std::uint64_t splats = 0, kept = 0;  // the scene's, and those the stream keeps
+  int shDegree = 0;
+  std::uint8_t mergedCellsLog2 = 0;  // as used (the scene's default when asked)
+  std::uint64_t mergedCells = 0;     // cells of the merged levels' sums (share 0)
+  unsigned passes = 0;               // reads of the scene
+  double frameSeconds = 0, bucketSeconds = 0, brickSeconds = 0, mergedSeconds = 0;
+  std::uint64_t leafSpillBytes = 0, interiorSpillBytes = 0;
+};
+
+/// Encodes the Gaussian splatting scene `reader` reads into `target`, piecewise
+/// (docs/out-of-core.md, "Gaussian splatting scenes"): pass 1 the stream frame
+/// (splats::GaussianFrameBuilder), pass 2 each kept splat's importance and leaf, its
+/// floats (16 + 3 x 15 words at SH degree 3: 244 bytes) held by leaf in half the bound and
+/// spilled to OUT/parts/I-of-N/leaves.spill past it, then each leaf ranked and split
+/// (splats::splitGaussianLeaf; a leaf is held whole while it is ranked), the interior
+/// nodes' splats held in a quarter of the bound (interior.spill past it), pass 3 (share 0,
+/// merged levels) the merged sums, whose cells are held whole. A batch read is at most an
+/// eighth of the bound. `defaultMergedCells`: target.cut.mergedCellsLog2 is the scene's
+/// (splats::gaussianMergedCellsLog2For, from pass 2's occupancy). Shares as
+/// writeGaussianTileset's: share 0 also reads every other leaf, for the interior nodes.
+/// The files are writeGaussianTileset's for the whole scene read at once, byte for byte.
+/// Failure::input for a scene that cannot be read (its sentence), no splat kept or a bad
+/// cut; Failure::write for a file not written.
+GaussianOutOfCoreResult writeGaussianTilesetOutOfCore(const TilesetTarget& target,
+                                                      splats::GaussianBatchReader& reader,
+                                                      const splats::GaussianStreamOptions& options,
+                                                      bool defaultMergedCells,
+                                                      const OutOfCoreOptions& ooc);
+
 }  // namespace gs::encode

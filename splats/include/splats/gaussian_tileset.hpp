@@ -17,6 +17,7 @@
 #include "qnv/tileset.hpp"
 #include "qnv/tileset_writer.hpp"
 #include "splats/gaussian.hpp"
+#include "splats/merged_levels.hpp"
 #include "splats/qnv_gaussians.hpp"
 
 namespace gs::splats {
@@ -76,6 +77,32 @@ GaussianTilesetFiles buildGaussianTileset(const GaussianCloud& cloud,
 /// of the tileset) draws its 30-unit view at 33.3 dB against the stream's picture (16^3:
 /// 33 KB, 26.2 dB); bunny_small (3,000) keeps 16^3. 4 for a cloud with no splat kept.
 std::uint8_t defaultGaussianMergedCellsLog2(const GaussianCloud& cloud);
+
+/// The root cells a Gaussian scene's default merged cells are judged on, per axis.
+inline constexpr std::uint32_t kGaussianRootCells = 32;
+/// The cell (x + 32 (y + 32 z)) of the 32^3 grid over `frame`'s box (the kept splats'
+/// centres, GaussianFrame::header) holding `position` (clamped into the grid).
+std::uint32_t gaussianRootCell(const qnv::StreamHeader& frame, glm::vec3 position);
+/// defaultGaussianMergedCellsLog2's rule from the count of distinct gaussianRootCell of
+/// the `kept` splats: 5 when 8 occupiedCells <= kept (and kept > 0), else 4.
+std::uint8_t gaussianMergedCellsLog2For(std::uint64_t occupiedCells, std::uint64_t kept);
+
+/// The octree buildGaussianTileset builds over `kept` splats in the stream frame `frame`
+/// (gaussianFrame's header): depth from `kept` and cut.brickVectors; packets of whole
+/// splats (K / 16 of them, 128 to 1,024, at most 64 KiB), compact unless cut asks for plain.
+/// Throws qnv::InputError when cut.brickVectors is 0.
+qnv::TilesetLayout gaussianLayoutForSplats(const qnv::StreamHeader& frame, std::uint64_t kept,
+                                           const qnv::TilesetOptions& cut);
+/// Where the `count` splats of leaf `leaf`, ranked, go: (node, end) pairs, root first; the
+/// splats [previous end, end) go to the node (q_0 to the root, q_1 to the level-1 ancestor
+/// ..., the rest to the leaf itself). Fewer pairs when the splats run out.
+std::vector<std::pair<qnv::TilesetCell, std::size_t>> splitGaussianLeaf(
+    const qnv::TilesetLayout& layout, glm::uvec3 leaf, std::size_t count);
+/// The merged brick (a whole compact Gaussian stream) of every brick of `index` whose
+/// level hasMerged, in index order, from `merged`'s sums; an empty stream for a node
+/// without merged splats.
+std::vector<std::pair<qnv::TilesetCell, std::string>> gaussianMergedBricks(
+    const MergedLevelBuilder& merged, const qnv::TilesetIndex& index);
 
 /// The layout buildGaussianTileset builds its octree with, from the tileset's index
 /// template `whole` (vectorCount = the splats' records) and the encode's `cut` (brickVectors

@@ -6,6 +6,7 @@
 // progressive load shows the scene long before its last byte.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -56,6 +57,42 @@ struct GaussianFrame {
   std::vector<float> importance;    // per kept splat
 };
 GaussianFrame gaussianFrame(const GaussianCloud& cloud);
+
+/// Whether a Gaussian stream keeps splat `i` of `cloud`: a peak opacity of at least half
+/// an 8-bit step, an importance above 0, and finite centre, scales, band-0 colour and a
+/// non-zero finite rotation.
+bool keptInGaussianStream(const GaussianCloud& cloud, std::size_t i);
+
+/// gaussianFrame's work on a scene read piecewise, batch after batch (an out-of-core
+/// tileset encode: encode/src/ooc_gaussian.cpp), in two passes over the splats in scene
+/// order. The header it finishes is gaussianFrame's for the whole scene, bit for bit.
+class GaussianFrameBuilder {
+ public:
+  /// `shDegree` (clamped to 0..3) and `splatCount` (every splat of the scene, kept or not:
+  /// it sizes the packets) are the scene's.
+  GaussianFrameBuilder(int shDegree, std::uint64_t splatCount);
+  /// Pass 1, every splat in scene order: true when it is kept (keptInGaussianStream);
+  /// the kept splats' box and natural-log scale range grow by it.
+  bool addExtent(const GaussianCloud& cloud, std::size_t i);
+  /// Between the passes: the box and the scale range fixed (a unit box when none is kept).
+  void finishExtent();
+  /// Pass 2, the kept splats only: the importance of splat `i` as quantized in the box
+  /// and ranges (qnv::gaussianImportance, square metres); the importance range grows by it.
+  float importanceOf(const GaussianCloud& cloud, std::size_t i);
+  /// After pass 2: the header (vectorCount 0).
+  const qnv::StreamHeader& finish();
+  /// Splats kept in pass 1.
+  std::uint64_t keptCount() const { return kept_; }
+  /// The header as it stands (the box and ranges are final after finishExtent).
+  const qnv::StreamHeader& header() const { return header_; }
+
+ private:
+  qnv::StreamHeader header_;
+  std::uint64_t kept_ = 0;
+  glm::vec3 lo_{INFINITY}, hi_{-INFINITY};
+  float scaleLo_ = INFINITY, scaleHi_ = -INFINITY;
+  float top_ = 0.0f, bottom_ = INFINITY;
+};
 
 /// The records of splats `order` of `cloud` (indices of splats gaussianFrame keeps, in the
 /// order given, recordsPerElement() words each) quantized in `header`'s box, scale and

@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -46,6 +47,37 @@ SplatFormat detectSplatFormat(std::string_view head, std::string_view name);
 /// (base::mayReference).
 using SideFileReader =
     std::function<bool(const std::string& relative, std::string& bytes, std::string& error)>;
+
+/// A Gaussian splatting scene read piecewise, a batch of splats at a time, for scenes
+/// larger than memory (an out-of-core tileset encode: encode/src/ooc_gaussian.cpp). Each
+/// batch holds exactly the splats the whole-file reader gives at those places.
+class GaussianBatchReader {
+ public:
+  virtual ~GaussianBatchReader() = default;
+  /// The scene's splats (<= kMaxSplats) and SH degree (0..3).
+  virtual std::uint64_t size() const = 0;
+  virtual int shDegree() const = 0;
+  /// Reads the next min(max, left) splats into `batch` (resized to them; its shDegree the
+  /// scene's) and returns how many; 0 at the end. Throws FormatError on a short or
+  /// unreadable file.
+  virtual std::size_t read(GaussianCloud& batch, std::size_t max) = 0;
+  /// Back to the first splat, for another pass.
+  virtual void rewind() = 0;
+};
+
+/// openGaussianBatches's error for a scene of a format it does not read piecewise (which
+/// the whole-file readers do read).
+struct NotPiecewiseError : FormatError {
+  using FormatError::FormatError;
+};
+
+/// Opens the scene at `path` for piecewise reading: a binary INRIA .ply (either byte
+/// order; the vertex element after no element with a list) or a .splat, whose splats are
+/// rows of a fixed size. Throws NotPiecewiseError naming the file for an ascii PLY, a
+/// PlayCanvas compressed PLY and the other formats ("PATH: read piecewise are binary INRIA
+/// .ply and .splat, not ..."), and FormatError for what readPlyGaussians /
+/// readSplatGaussians refuse in the header or size (or a file that cannot be opened).
+std::unique_ptr<GaussianBatchReader> openGaussianBatches(const std::string& path);
 
 /// INRIA 3DGS .ply (binary little-endian or ascii; Kerbl et al.'s output): x y z,
 /// f_dc_0..2, f_rest_0..(3k-1) channel-major (k = 0, 3, 8 or 15), opacity (logit),

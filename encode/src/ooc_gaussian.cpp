@@ -1,0 +1,338 @@
+// The out-of-core tileset encode of a Gaussian splatting scene (docs/out-of-core.md,
+// "Gaussian splatting scenes"). The scene is read piecewise (splats::GaussianBatchReader:
+// binary INRIA .ply, .splat) in up to three passes, a batch of splats at a time:
+//   1. the stream frame: which splats are kept, their box and scale range;
+//   2. each kept splat's importance, its leaf and the root's occupied cells: the splat's
+//      floats go to its leaf's bucket (OUT/parts/I-of-N/leaves.spill past the bound);
+//   3. share 0 only, with merged levels: the merged sums, in scene order.
+// Then each leaf is ranked and split as buildGaussianTileset splits it: its own brick is
+// written at once, what its ancestors receive goes to their buckets (interior.spill past
+// the bound), and the interior bricks are written last. The files are writeGaussianTileset's
+// for the whole scene, byte for byte.
+#include <algorithm>
+#include <bit>
+#include <map>
+#include <numeric>
+
+#include "encode/tileset.hpp"
+#include "gaussian_files.hpp"
+#include "ooc_share.hpp"
+#include "splats/gaussian_tileset.hpp"
+#include "splats/merged_levels.hpp"
+
+namespace gs::encode {
+
+namespace fs = std::filesystem;
+using ooc::since;
+
+namespace {
+
+// One kept splat as the buckets hold it: its importance, its rank among the kept splats
+// (the ties' order), then its floats: centre 3, scales 3, rotation w x y z, opacity,
+// band-0 colour 3, higher SH 3 x shRestPerSplat().
+constexpr std::size_t kHead = 2, kFixed = 14;
+
+std::size_t recordWords(int shDegree) {
+  return kHead + kFixed + 3 * static_cast<std::size_t>(splats::shCoefficients(shDegree) - 1);
+}
+
+void storeSplat(const splats::GaussianCloud& c, std::size_t i, float importance, std::uint32_t k,
+                std::vector<std::uint32_t>& to) {
+  const auto f = [&](float v) { to.push_back(std::bit_cast<std::uint32_t>(v)); };
+  f(importance);
+  to.push_back(k);
+  for (int a = 0; a < 3; ++a) f(c.positions[i][a]);
+  for (int a = 0; a < 3; ++a) f(c.scales[i][a]);
+  const glm::quat q = c.rotations[i];
+  f(q.w), f(q.x), f(q.y), f(q.z);
+  f(c.opacities[i]);
+  for (int a = 0; a < 3; ++a) f(c.shDc[i][a]);
+  const auto rest = static_cast<std::size_t>(c.shRestPerSplat());
+  for (std::size_t j = 0; j < rest; ++j)
+    for (int a = 0; a < 3; ++a) f(c.shRest[i * rest + j][a]);
+}
+
+// Splats [first, end) of `records` (recordWords each) as a cloud, in their order.
+splats::GaussianCloud cloudOf(const std::vector<std::uint32_t>& records, std::size_t first,
+                              std::size_t end, int shDegree) {
+  const std::size_t words = recordWords(shDegree);
+  splats::GaussianCloud c;
+  c.shDegree = shDegree;
+  c.resize(end - first);
+  const auto rest = static_cast<std::size_t>(c.shRestPerSplat());
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    const std::uint32_t* r = records.data() + (first + i) * words + kHead;
+    const auto f = [&](std::size_t at) { return std::bit_cast<float>(r[at]); };
+    c.positions[i] = glm::vec3(f(0), f(1), f(2));
+    c.scales[i] = glm::vec3(f(3), f(4), f(5));
+    c.rotations[i] = glm::quat(f(6), f(7), f(8), f(9));
+    c.opacities[i] = f(10);
+    c.shDc[i] = glm::vec3(f(11), f(12), f(13));
+    for (std::size_t j = 0; j < rest; ++j)
+      c.shRest[i * rest + j] = glm::vec3(f(14 + 3 * j), f(15 + 3 * j), f(16 + 3 * j));
+  }
+  return c;
+}
+
+// Records ranked as buildGaussianTileset ranks splats: importance descending, then rank.
+void rankRecords(std::vector<std::uint32_t>& records, std::size_t words) {
+  const std::size_t n = records.size() / words;
+  std::vector<std::uint32_t> order(n);
+  std::iota(order.begin(), order.end(), 0u);
+  const auto at = [&](std::uint32_t r) { return records.data() + std::size_t{r} * words; };
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    const float ia = std::bit_cast<float>(at(a)[0]), ib = std::bit_cast<float>(at(b)[0]);
+    return ia > ib || (ia == ib && at(a)[1] < at(b)[1]);
+  });
+  std::vector<std::uint32_t> ranked;
+  ranked.reserve(records.size());
+  for (const std::uint32_t r : order) ranked.insert(ranked.end(), at(r), at(r) + words);
+  records = std::move(ranked);
+}
+
+// Records of `words` words by key: appended into one buffer of a fixed size (the bound)
+// and, when it is full, written to the spill file sorted by key, one run per key; then
+// taken back key by key in ascending order. One buffer, allocated once, so the memory
+// held is the bound whatever the keys (a vector per key fragmented the heap to 9 times it).
+template <typename Key>
+class Buckets {
+ public:
+  Buckets(const fs::path& spill, std::uint64_t bound, std::size_t words)
+      : spill_(spill),
+        words_(words),
+        capacity_(std::max<std::size_t>(
+            1, static_cast<std::size_t>(bound / (4 * words + sizeof(Held))))) {}
+
+  // Adds the `count` records at `records`.
+  void add(const Key& key, const std::uint32_t* records, std::size_t count) {
+    for (std::size_t r = 0; r < count; ++r) {
+      if (keys_.size() == capacity_) spill();
+      if (arena_.empty()) arena_.reserve(capacity_ * words_);
+      keys_.push_back({key, static_cast<std::uint32_t>(keys_.size())});
+      arena_.insert(arena_.end(), records + r * words_, records + (r + 1) * words_);
+    }
+  }
+  // Every key with records, ascending; ends the adding (what is held is sorted by key).
+  std::vector<Key> keys() {
+    std::stable_sort(keys_.begin(), keys_.end(), byKey);
+    std::vector<Key> out;
+    for (const auto& [key, chunks] : chunks_) out.push_back(key);
+    for (const Held& h : keys_) out.push_back(h.key);
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+  // Key's records (those spilled first, in the order they came, then those held).
+  std::vector<std::uint32_t> take(const Key& key) {
+    std::vector<std::uint32_t> out;
+    if (auto c = chunks_.find(key); c != chunks_.end()) ooc::readChunks(spill_, c->second, out);
+    auto h = std::lower_bound(keys_.begin(), keys_.end(), Held{key, 0}, byKey);
+    for (; h != keys_.end() && !(key < h->key); ++h)
+      out.insert(out.end(), arena_.begin() + static_cast<std::ptrdiff_t>(h->at * words_),
+                 arena_.begin() + static_cast<std::ptrdiff_t>((h->at + 1) * words_));
+    return out;
+  }
+  std::uint64_t spilledBytes() const { return spill_.size(); }
+
+ private:
+  struct Held {
+    Key key;
+    std::uint32_t at;  // record index in arena_
+  };
+  static bool byKey(const Held& a, const Held& b) { return a.key < b.key; }
+
+  // Writes what is held, sorted by key, through a 1 MiB buffer: one chunk per key.
+  void spill() {
+    std::stable_sort(keys_.begin(), keys_.end(), byKey);
+    std::vector<std::uint32_t> out;
+    out.reserve(std::max<std::size_t>(words_, (1u << 18) / words_ * words_));
+    std::uint64_t at = spill_.size();
+    const auto flush = [&] {
+      if (!out.empty()) spill_.append(out.data(), out.size() * 4);
+      out.clear();
+    };
+    for (std::size_t i = 0; i < keys_.size();) {
+      std::size_t j = i;
+      for (; j < keys_.size() && !(keys_[i].key < keys_[j].key); ++j) {
+        if (out.size() + words_ > out.capacity()) flush();
+        const std::uint32_t* r = arena_.data() + std::size_t{keys_[j].at} * words_;
+        out.insert(out.end(), r, r + words_);
+      }
+      chunks_[keys_[i].key].push_back({at, (j - i) * words_});
+      at += (j - i) * words_ * 4;
+      i = j;
+    }
+    flush();
+    keys_.clear();
+    arena_.clear();
+  }
+
+  ooc::SpillFile spill_;
+  std::size_t words_, capacity_;
+  std::vector<std::uint32_t> arena_;
+  std::vector<Held> keys_;
+  std::map<Key, std::vector<ooc::Chunk>> chunks_;
+};
+
+}  // namespace
+
+GaussianOutOfCoreResult writeGaussianTilesetOutOfCore(const TilesetTarget& target,
+                                                      splats::GaussianBatchReader& reader,
+                                                      const splats::GaussianStreamOptions& options,
+                                                      bool defaultMergedCells,
+                                                      const OutOfCoreOptions& ooc) {
+  const auto t0 = std::chrono::steady_clock::now();
+  GaussianOutOfCoreResult out;
+  TilesetResult& result = out.tileset;
+  const auto fail = [&](Failure failure, std::string error) -> GaussianOutOfCoreResult& {
+    result.failure = failure;
+    result.error = std::move(error);
+    result.seconds = since(t0);
+    return out;
+  };
+  const std::uint32_t share = target.share, shares = target.shares;
+  if (shares == 0 || shares > qnv::kMaxTilesetShares || share >= shares)
+    return fail(Failure::input, "share " + std::to_string(share) + " of " + std::to_string(shares) +
+                                    " does not exist");
+  const int degree = reader.shDegree();
+  const std::size_t words = recordWords(degree);
+  out.splats = reader.size();
+  out.shDegree = degree;
+  // A batch's cloud and its records: at most an eighth of the bound (and 1 to 65,536).
+  const std::size_t batchSplats = static_cast<std::size_t>(std::clamp<std::uint64_t>(
+      ooc.memoryBytes / 8 / (words * 4 + sizeof(float) * words), 1, 65536));
+  const fs::path& dir = target.dir;
+  const fs::path part = dir / "parts" / shareName(share, shares);
+  try {
+    if (target.whole) ooc::removeStale(dir);  // the whole output: nothing stale may remain
+    splats::GaussianCloud batch;
+    // Pass 1: the frame.
+    splats::GaussianFrameBuilder frame(degree, reader.size());
+    reader.rewind();
+    while (const std::size_t n = reader.read(batch, batchSplats))
+      for (std::size_t i = 0; i < n; ++i) frame.addExtent(batch, i);
+    frame.finishExtent();
+    out.kept = frame.keptCount();
+    out.passes = 1;
+    if (out.kept == 0)
+      return fail(Failure::input, "nothing to encode: " + std::to_string(out.splats) +
+                                      " Gaussians, none with an opacity and a size");
+    if (out.kept > 0xffffffffu)
+      return fail(Failure::input, std::to_string(out.kept) + " splats kept exceed 2^32 - 1");
+    const qnv::TilesetLayout byPosition =
+        splats::gaussianLayoutForSplats(frame.header(), out.kept, target.cut);
+    const std::uint8_t depth = byPosition.depth();
+    result.depth = depth;
+    result.leafCount = byPosition.leafCount();
+    result.leaves = byPosition.shareLeaves(share, shares);
+    out.frameSeconds = since(t0);
+
+    // Pass 2: importance, leaves, occupancy.
+    Buckets<std::uint64_t> leaves(part / "leaves.spill", ooc.memoryBytes / 2, words);
+    std::vector<std::uint32_t> record;
+    std::vector<bool> occupied(std::size_t{splats::kGaussianRootCells} *
+                               splats::kGaussianRootCells * splats::kGaussianRootCells);
+    std::uint64_t occupiedCount = 0;
+    std::uint32_t k = 0;
+    qnv::SourceVector at;
+    reader.rewind();
+    while (const std::size_t n = reader.read(batch, batchSplats)) {
+      for (std::size_t i = 0; i < n; ++i) {
+        if (!splats::keptInGaussianStream(batch, i)) continue;
+        const float a = frame.importanceOf(batch, i);
+        const std::uint32_t cell = splats::gaussianRootCell(frame.header(), batch.positions[i]);
+        if (!occupied[cell]) ++occupiedCount;
+        occupied[cell] = true;
+        at.position = batch.positions[i];
+        const std::uint64_t leaf = byPosition.leafIndex(byPosition.leafOf(at));
+        const bool mine = leaf >= result.leaves.first && leaf < result.leaves.second;
+        if (share == 0 || mine) {  // share 0 gives every leaf's best to the interior
+          record.clear();
+          storeSplat(batch, i, a, k, record);
+          leaves.add(leaf, record.data(), 1);
+        }
+        ++k;
+      }
+    }
+    out.passes = 2;
+    const qnv::StreamHeader& header = frame.finish();
+    qnv::TilesetOptions cut = target.cut;
+    if (defaultMergedCells)
+      cut.mergedCellsLog2 = splats::gaussianMergedCellsLog2For(occupiedCount, out.kept);
+    out.mergedCellsLog2 = cut.mergedCellsLog2;
+    const qnv::TilesetLayout layout = splats::gaussianLayoutForSplats(header, out.kept, cut);
+    out.bucketSeconds = since(t0) - out.frameSeconds;
+
+    // The bricks: each leaf's own, then the interior nodes'.
+    Buckets<qnv::TilesetCell> interior(part / "interior.spill", ooc.memoryBytes / 4, words);
+    std::vector<qnv::TilesetBrick> bricks;
+    const auto writeBrick = [&](const qnv::TilesetCell& node,
+                                const std::vector<std::uint32_t>& records, std::size_t first,
+                                std::size_t end) {
+      const splats::GaussianCloud c = cloudOf(records, first, end, degree);
+      std::vector<std::uint32_t> order(c.size());
+      std::iota(order.begin(), order.end(), 0u);
+      const qnv::StreamHeader h = layout.brickHeader(node, c.size() * header.recordsPerElement());
+      const qnv::BrickFile file =
+          qnv::writeBrick(node, h, splats::encodeGaussianSplats(c, order, h, options));
+      if (std::string error = writeFile(dir / file.brick.path(), file.bytes); !error.empty())
+        return error;
+      bricks.push_back(file.brick);
+      result.merged.totalBytes += file.bytes.size();
+      return std::string();
+    };
+    for (const std::uint64_t leaf : leaves.keys()) {
+      std::vector<std::uint32_t> records = leaves.take(leaf);
+      rankRecords(records, words);
+      const std::size_t count = records.size() / words;
+      std::size_t next = 0;
+      for (const auto& [node, end] :
+           splats::splitGaussianLeaf(layout, layout.leafAt(leaf), count)) {
+        if (node.level < depth && share == 0) {
+          interior.add(node, records.data() + next * words, end - next);
+        }
+        if (node.level == depth && leaf >= result.leaves.first && leaf < result.leaves.second)
+          if (std::string error = writeBrick(node, records, next, end); !error.empty())
+            return fail(Failure::write, error);
+        next = end;
+      }
+    }
+    for (const qnv::TilesetCell& node : interior.keys()) {
+      std::vector<std::uint32_t> records = interior.take(node);
+      rankRecords(records, words);
+      if (std::string error = writeBrick(node, records, 0, records.size() / words); !error.empty())
+        return fail(Failure::write, error);
+    }
+    out.leafSpillBytes = leaves.spilledBytes();
+    out.interiorSpillBytes = interior.spilledBytes();
+    qnv::TilesetIndex index = qnv::assembleTilesetIndex(layout, std::move(bricks));
+    if (cut.mergedCellsLog2 > 0 && depth > 0) index.mergedCellsLog2 = cut.mergedCellsLog2;
+    out.brickSeconds = since(t0) - out.frameSeconds - out.bucketSeconds;
+
+    // Pass 3 (share 0): the merged levels, from the kept splats in scene order.
+    std::vector<std::pair<qnv::TilesetCell, std::string>> mergedBricks;
+    if (cut.mergedCellsLog2 > 0 && depth > 0 && share == 0) {
+      splats::MergedLevelBuilder merged(layout, cut.mergedCellsLog2);
+      reader.rewind();
+      while (const std::size_t n = reader.read(batch, batchSplats))
+        for (std::size_t i = 0; i < n; ++i)
+          if (splats::keptInGaussianStream(batch, i)) merged.addGaussian(batch, i);
+      out.passes = 3;
+      out.mergedCells = merged.cellCount();
+      mergedBricks = splats::gaussianMergedBricks(merged, index);
+    }
+    out.mergedSeconds = since(t0) - out.frameSeconds - out.bucketSeconds - out.brickSeconds;
+    finishGaussianTileset(target, options, std::move(index), mergedBricks, t0, result);
+  } catch (const splats::FormatError& error) {
+    return fail(Failure::input, error.what());
+  } catch (const qnv::InputError& error) {
+    return fail(Failure::input, error.what());
+  }
+  if (target.whole) {  // the spill files are gone; their folder too
+    std::error_code ec;
+    fs::remove_all(dir / "parts", ec);
+  }
+  return out;
+}
+
+}  // namespace gs::encode
