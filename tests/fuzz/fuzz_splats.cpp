@@ -1,8 +1,31 @@
 // splats::readGaussians on any bytes: every splat scene reader (PLY, compressed PLY, SPZ,
 // SOG bundles, glTF) by content, and .splat, which has no magic, by the name given here.
 // Side files (SOG's WebP images beside a meta.json, a .gltf's buffers) are never found.
+// The same bytes are then read piecewise (splats::openGaussianBatches, the out-of-core
+// encode's reader) from a file named .ply or .splat by the input's size, in batches of
+// 97 splats, twice (rewound between).
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
 #include "fuzz_support.hpp"
 #include "splats/readers.hpp"
+
+namespace {
+
+// A file of this process for the piecewise reader (removed at exit with its folder).
+struct ScratchFolder {
+  std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("gs-fuzz-splats-" + std::to_string(::getpid()));
+  ScratchFolder() { std::filesystem::create_directories(dir); }
+  ~ScratchFolder() {
+    std::error_code ec;
+    std::filesystem::remove_all(dir, ec);
+  }
+};
+
+}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const gs::splats::SideFileReader noFiles = [](const std::string&, std::string&,
@@ -12,5 +35,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   };
   gs::fuzz::expectingErrors(
       [&] { (void)gs::splats::readGaussians(gs::fuzz::view(data, size), "fuzz.splat", noFiles); });
+  static const ScratchFolder scratch;
+  const std::filesystem::path file = scratch.dir / (size % 2 ? "scene.ply" : "scene.splat");
+  {
+    std::ofstream out(file, std::ios::binary | std::ios::trunc);
+    out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
+  }
+  gs::fuzz::expectingErrors([&] {
+    const auto reader = gs::splats::openGaussianBatches(file.string());
+    gs::splats::GaussianCloud batch;
+    for (int pass = 0; pass < 2; ++pass, reader->rewind())
+      while (reader->read(batch, 97) > 0) {
+      }
+  });
   return 0;
 }

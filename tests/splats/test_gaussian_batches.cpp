@@ -78,14 +78,14 @@ TEST_CASE("openGaussianBatches gives the whole reader's splats for every batch s
   gs::test::TempDir dir("gaussian_batches");
   const fs::path be = dir.path / "bunny_be.ply";
   std::ofstream(be, std::ios::binary) << bigEndian(plyBytes);
-  for (const auto& [path, whole] : {std::pair{ply, &wholePly}, std::pair{splat, &wholeSplat},
-                                    std::pair{be, &wholePly}}) {
+  for (const auto& [path, whole] :
+       {std::pair{ply, &wholePly}, std::pair{splat, &wholeSplat}, std::pair{be, &wholePly}}) {
     INFO(path.string());
     const auto reader = openGaussianBatches(path.string());
     CHECK(reader->size() == whole->size());
     CHECK(reader->shDegree() == whole->shDegree);
-    for (const std::size_t size : {std::size_t{1}, std::size_t{7}, std::size_t{1000},
-                                   std::size_t{1u << 20}}) {
+    for (const std::size_t size :
+         {std::size_t{1}, std::size_t{7}, std::size_t{1000}, std::size_t{1u << 20}}) {
       INFO(size);
       checkSameBits(readInBatches(*reader, size), *whole);
     }
@@ -119,8 +119,8 @@ TEST_CASE("GaussianFrameBuilder over batches is gaussianFrame of the whole scene
 
 TEST_CASE("openGaussianBatches refuses what it does not read piecewise, naming the file",
           "[splats][ooc]") {
-  for (const char* file : {"bunny_small.spz", "bunny_small.compressed.ply", "bunny_small.sog",
-                           "bunny_small.glb"}) {
+  for (const char* file :
+       {"bunny_small.spz", "bunny_small.compressed.ply", "bunny_small.sog", "bunny_small.glb"}) {
     INFO(file);
     CHECK_THROWS_AS(openGaussianBatches(splatData(file).string()), NotPiecewiseError);
     CHECK_THROWS_WITH(openGaussianBatches(splatData(file).string()),
