@@ -247,6 +247,9 @@ int encodeGaussianTileset(const Options& options, const Settings& s, const std::
   if (!cloud) return 1;
   if (options.encode.mergedCells == 1)  // --merged-cells not given: 16 or 32, by the scene
     target.cut.mergedCellsLog2 = splats::defaultGaussianMergedCellsLog2(*cloud);
+  if (options.encode.brickVectors == 0)  // --brick-vectors not given: by the splats kept
+    target.cut.brickVectors =
+        splats::defaultGaussianBrickVectors(splats::gaussianFrame(*cloud).kept.size());
   const encode::TilesetResult r = encode::writeGaussianTileset(
       target, *cloud, {.shBits = options.encode.shBits, .shFullFraction = options.encode.shFull});
   if (!r.ok()) {

@@ -25,7 +25,9 @@ bool tilesetTarget(const EncodeOptions& e, const qnv::WriteOptions& write,
     return false;
   }
   target.cut.brickVoxels = e.brickVoxels;
-  target.cut.brickVectors = e.brickVectors;
+  // (Not given: 16384; encodeGaussianTileset picks its own.)
+  target.cut.brickVectors =
+      e.brickVectors == 0 ? qnv::TilesetOptions{}.brickVectors : e.brickVectors;
   target.cut.write = write;
   target.cut.mergedCellsLog2 = 0;  // --merged-cells R: log2 R (0: no merged levels)
   // (Not given: 16; encodeGaussianTileset picks its own.)
@@ -171,9 +173,9 @@ int writeGaussianTilesetOutOfCore(const Options& options, const encode::TilesetT
   encode::GaussianOutOfCoreResult r;
   try {
     const std::unique_ptr<splats::GaussianBatchReader> reader = splats::openGaussianBatches(input);
-    r = encode::writeGaussianTilesetOutOfCore(target, *reader,
-                                              {.shBits = e.shBits, .shFullFraction = e.shFull},
-                                              e.mergedCells == 1, outOfCore(e));
+    r = encode::writeGaussianTilesetOutOfCore(
+        target, *reader, {.shBits = e.shBits, .shFullFraction = e.shFull},
+        {.brickVectors = e.brickVectors == 0, .mergedCells = e.mergedCells == 1}, outOfCore(e));
   } catch (const splats::NotPiecewiseError& error) {  // a usage error: the format
     std::fprintf(stderr,
                  "ghostspace: encode: --memory: %s; without --memory the tileset is written "
@@ -189,12 +191,13 @@ int writeGaussianTilesetOutOfCore(const Options& options, const encode::TilesetT
     return 1;
   }
   std::printf(
-      "%s: %llu Gaussians (SH degree %d), kept %llu; out of core in %g MiB: %u passes over the "
-      "scene, frame %.3f s, leaves %.3f s, bricks %.3f s, merged levels %.3f s (%llu cells, "
+      "%s: %llu Gaussians (SH degree %d), kept %llu, K %llu; out of core in %g MiB: %u passes "
+      "over the scene, frame %.3f s, leaves %.3f s, bricks %.3f s, merged levels %.3f s (%llu "
+      "cells, "
       "%u^3 a node), spilled %llu + %llu bytes\n",
       input.c_str(), static_cast<unsigned long long>(r.splats), r.shDegree,
-      static_cast<unsigned long long>(r.kept), e.memoryMB, r.passes, r.frameSeconds,
-      r.bucketSeconds, r.brickSeconds, r.mergedSeconds,
+      static_cast<unsigned long long>(r.kept), static_cast<unsigned long long>(r.brickVectors),
+      e.memoryMB, r.passes, r.frameSeconds, r.bucketSeconds, r.brickSeconds, r.mergedSeconds,
       static_cast<unsigned long long>(r.mergedCells), 1u << r.mergedCellsLog2,
       static_cast<unsigned long long>(r.leafSpillBytes),
       static_cast<unsigned long long>(r.interiorSpillBytes));

@@ -438,7 +438,11 @@ const std::vector<OptionSpec>& table() {
        .valueName = "K",
        .field = GS_FIELD(std::uint64_t, options.encode.brickVectors),
        .help = "Tilesets: vectors (or splats) an octree node aims at",
-       .more = "For surfaces and splat scenes also the leaf size that sets the depth.",
+       .more = "For surfaces and splat scenes also the leaf size that sets the depth. Not "
+               "given, 16384; a Gaussian splatting scene of 16,385 to 131,072 splats gets the "
+               "K that makes its octree 2 deep, so that its level-1 nodes have merged bricks "
+               "(docs/tilesets.md, \"Gaussian tilesets\").",
+       .shownDefault = "16384",
        .check = CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 32)},
       {.scope = encode,
        .names = "--merged-cells",

@@ -179,7 +179,7 @@ class Buckets {
 GaussianOutOfCoreResult writeGaussianTilesetOutOfCore(const TilesetTarget& target,
                                                       splats::GaussianBatchReader& reader,
                                                       const splats::GaussianStreamOptions& options,
-                                                      bool defaultMergedCells,
+                                                      const GaussianCutDefaults& defaults,
                                                       const OutOfCoreOptions& ooc) {
   const auto t0 = std::chrono::steady_clock::now();
   GaussianOutOfCoreResult out;
@@ -219,8 +219,11 @@ GaussianOutOfCoreResult writeGaussianTilesetOutOfCore(const TilesetTarget& targe
                                       " Gaussians, none with an opacity and a size");
     if (out.kept > 0xffffffffu)
       return fail(Failure::input, std::to_string(out.kept) + " splats kept exceed 2^32 - 1");
+    qnv::TilesetOptions cut = target.cut;
+    if (defaults.brickVectors) cut.brickVectors = splats::defaultGaussianBrickVectors(out.kept);
+    out.brickVectors = cut.brickVectors;
     const qnv::TilesetLayout byPosition =
-        splats::gaussianLayoutForSplats(frame.header(), out.kept, target.cut);
+        splats::gaussianLayoutForSplats(frame.header(), out.kept, cut);
     const std::uint8_t depth = byPosition.depth();
     result.depth = depth;
     result.leafCount = byPosition.leafCount();
@@ -256,8 +259,7 @@ GaussianOutOfCoreResult writeGaussianTilesetOutOfCore(const TilesetTarget& targe
     }
     out.passes = 2;
     const qnv::StreamHeader& header = frame.finish();
-    qnv::TilesetOptions cut = target.cut;
-    if (defaultMergedCells)
+    if (defaults.mergedCells)
       cut.mergedCellsLog2 = splats::gaussianMergedCellsLog2For(occupiedCount, out.kept);
     out.mergedCellsLog2 = cut.mergedCellsLog2;
     const qnv::TilesetLayout layout = splats::gaussianLayoutForSplats(header, out.kept, cut);
@@ -322,7 +324,9 @@ GaussianOutOfCoreResult writeGaussianTilesetOutOfCore(const TilesetTarget& targe
       mergedBricks = splats::gaussianMergedBricks(merged, index);
     }
     out.mergedSeconds = since(t0) - out.frameSeconds - out.bucketSeconds - out.brickSeconds;
-    finishGaussianTileset(target, options, std::move(index), mergedBricks, t0, result);
+    TilesetTarget used = target;  // the parts record the cut the bricks were made with
+    used.cut = cut;
+    finishGaussianTileset(used, options, std::move(index), mergedBricks, t0, result);
   } catch (const splats::FormatError& error) {
     return fail(Failure::input, error.what());
   } catch (const qnv::InputError& error) {

@@ -10,6 +10,14 @@
 
 namespace gs::splats {
 
+std::uint64_t defaultGaussianBrickVectors(std::uint64_t kept) {
+  constexpr std::uint64_t kDefault = 16384, kSmallest = 2048;
+  if (kept <= 8 * kSmallest || kept > 8 * kDefault) return kDefault;
+  std::uint64_t k = kDefault;
+  while (8 * k >= kept) k /= 2;
+  return k;
+}
+
 std::uint32_t gaussianRootCell(const qnv::StreamHeader& frame, glm::vec3 position) {
   const glm::dvec3 lo(frame.boundsMin);
   const glm::dvec3 extent = glm::max(glm::dvec3(frame.boundsMax) - lo, glm::dvec3(1e-12));

@@ -177,3 +177,23 @@ TEST_CASE("a Gaussian tileset's merged cells, not given, are 32 only where they 
   // No splat kept: the default.
   CHECK(splats::defaultGaussianMergedCellsLog2(splats::GaussianCloud{}) == 4);
 }
+
+TEST_CASE("a Gaussian tileset's K, not given, makes a mid-sized scene's octree 2 deep",
+          "[splats][tileset][merged]") {
+  // 16,384 splats or fewer, and more than 131,072: the default K.
+  CHECK(splats::defaultGaussianBrickVectors(0) == 16384);
+  CHECK(splats::defaultGaussianBrickVectors(3000) == 16384);
+  CHECK(splats::defaultGaussianBrickVectors(16384) == 16384);
+  CHECK(splats::defaultGaussianBrickVectors(131073) == 16384);
+  CHECK(splats::defaultGaussianBrickVectors(6000000) == 16384);
+  // Between: the largest power of two K with 8 K < splats, so 8 K < splats <= 64 K.
+  CHECK(splats::defaultGaussianBrickVectors(16385) == 2048);
+  CHECK(splats::defaultGaussianBrickVectors(122000) == 8192);  // CThead's capture
+  CHECK(splats::defaultGaussianBrickVectors(131072) == 8192);
+  for (std::uint64_t kept : {16385u, 40000u, 65536u, 65537u, 100000u, 131072u}) {
+    INFO(kept);
+    const std::uint64_t k = splats::defaultGaussianBrickVectors(kept);
+    CHECK(8 * k < kept);
+    CHECK(kept <= 64 * k);
+  }
+}

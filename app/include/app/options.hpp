@@ -40,9 +40,11 @@ struct EncodeOptions {
   double maxAngle = 30.0;            // --max-angle DEG: outline groups' normal spread
 
   // Tilesets (docs/qnv-format.md, "Tilesets"; app/src/encode_tileset.cpp).
-  std::string tileset;                    // --tileset OUT/: a tileset folder, not a stream
-  std::uint32_t brickVoxels = 64;         // --brick-voxels B: volume leaf block side
-  std::uint64_t brickVectors = 1u << 14;  // --brick-vectors K: vectors a node aims at
+  std::string tileset;             // --tileset OUT/: a tileset folder, not a stream
+  std::uint32_t brickVoxels = 64;  // --brick-voxels B: volume leaf block side
+  /// --brick-vectors K: vectors a node aims at; 0 = not given (16384; a Gaussian scene's
+  /// own default, splats::defaultGaussianBrickVectors).
+  std::uint64_t brickVectors = 0;
   unsigned mergedCells = 1;  // --merged-cells R; 1, not given: 16 (a splat scene: 16 or 32)
   std::string bricks;        // --bricks I/N: write share I of N only
   double memoryMB = 0;       // --memory MB: volumes out of core (0: in memory)

@@ -139,11 +139,19 @@ MeshOutOfCoreResult writeMeshTilesetOutOfCore(const TilesetTarget& target,
                                               const qnv::SurfaceEncodeOptions& encode,
                                               const OutOfCoreOptions& ooc);
 
+/// Which parts of a Gaussian tileset's cut the encode was not told (the CLI's
+/// `--brick-vectors` and `--merged-cells` not given): the scene's defaults replace them.
+struct GaussianCutDefaults {
+  bool brickVectors = false;  // splats::defaultGaussianBrickVectors
+  bool mergedCells = false;   // splats::defaultGaussianMergedCellsLog2
+};
+
 /// What an out-of-core Gaussian tileset encode did, beyond the tileset.
 struct GaussianOutOfCoreResult {
   TilesetResult tileset;
   std::uint64_t splats = 0, kept = 0;  // the scene's, and those the stream keeps
   int shDegree = 0;
+  std::uint64_t brickVectors = 0;    // K as used (the scene's default when asked)
   std::uint8_t mergedCellsLog2 = 0;  // as used (the scene's default when asked)
   std::uint64_t mergedCells = 0;     // cells of the merged levels' sums (share 0)
   unsigned passes = 0;               // reads of the scene
@@ -159,8 +167,9 @@ struct GaussianOutOfCoreResult {
 /// (splats::splitGaussianLeaf; a leaf is held whole while it is ranked), the interior
 /// nodes' splats held in a quarter of the bound (interior.spill past it), pass 3 (share 0,
 /// merged levels) the merged sums, whose cells are held whole. A batch read is at most an
-/// eighth of the bound. `defaultMergedCells`: target.cut.mergedCellsLog2 is the scene's
-/// (splats::gaussianMergedCellsLog2For, from pass 2's occupancy). Shares as
+/// eighth of the bound. `defaults`: the cut's K is the scene's
+/// (splats::defaultGaussianBrickVectors of the splats kept in pass 1), its merged cells the
+/// scene's (splats::gaussianMergedCellsLog2For, from pass 2's occupancy). Shares as
 /// writeGaussianTileset's: share 0 also reads every other leaf, for the interior nodes.
 /// The files are writeGaussianTileset's for the whole scene read at once, byte for byte.
 /// Failure::input for a scene that cannot be read (its sentence), no splat kept or a bad
@@ -168,7 +177,7 @@ struct GaussianOutOfCoreResult {
 GaussianOutOfCoreResult writeGaussianTilesetOutOfCore(const TilesetTarget& target,
                                                       splats::GaussianBatchReader& reader,
                                                       const splats::GaussianStreamOptions& options,
-                                                      bool defaultMergedCells,
+                                                      const GaussianCutDefaults& defaults,
                                                       const OutOfCoreOptions& ooc);
 
 }  // namespace gs::encode

@@ -78,6 +78,16 @@ GaussianTilesetFiles buildGaussianTileset(const GaussianCloud& cloud,
 /// 33 KB, 26.2 dB); bunny_small (3,000) keeps 16^3. 4 for a cloud with no splat kept.
 std::uint8_t defaultGaussianMergedCellsLog2(const GaussianCloud& cloud);
 
+/// The K (splats a node aims at) a Gaussian tileset gets when the encode is not told
+/// (`--brick-vectors` not given), from the splats it keeps: 16384, but for 16,385 to
+/// 131,072 kept splats the largest power of two K with 8 K < kept, so that the octree is 2
+/// deep and its level-1 nodes have merged bricks. With depth 1 (the leaves at level 1) a
+/// view that refines the merged root fetches the leaves' prefixes: CThead's capture
+/// (122,000 splats) at 10 units read 1.84 MB of its 2.57 MB tileset (30.7 dB against the
+/// stream's picture); with K = 8192 it reads 0.45 MB of 3.13 MB (35.1 dB), near views the
+/// same bytes (2.49 MB).
+std::uint64_t defaultGaussianBrickVectors(std::uint64_t kept);
+
 /// The root cells a Gaussian scene's default merged cells are judged on, per axis.
 inline constexpr std::uint32_t kGaussianRootCells = 32;
 /// The cell (x + 32 (y + 32 z)) of the 32^3 grid over `frame`'s box (the kept splats'
