@@ -212,6 +212,8 @@ const std::vector<OptionSpec>& table() {
        .field = GS_FIELD(double, options.tilesetMemoryMb),
        .help = "Megabytes of decoded vectors a QNV tileset keeps at most; bricks far from "
                "every view are dropped beyond it (docs/tilesets.md)",
+       .more = "A Gaussian tileset's splat counts its decoded size and its share of the "
+               "level-of-detail tree drawn from them (about 0.4 of it again).",
        .check = CLI::PositiveNumber},
       {.scope = main,
        .names = "--no-progress",

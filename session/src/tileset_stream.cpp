@@ -354,10 +354,14 @@ bool TilesetStream::pumpMerged() {
 std::uint64_t TilesetStream::memoryRecords() const {
   if (!index_ || index_->header.kind != qnv::StreamKind::gaussian)
     return options_.memoryBytes / sizeof(qnv::DecodedVector);
-  // A decoded splat: centre, scales, rotation, opacity, DC colour and its SH coefficients.
+  // A decoded splat: centre, scales, rotation, opacity, DC colour and its SH coefficients;
+  // and its share of the level-of-detail tree built over the settled set (docs/splats-lod.md:
+  // 0.34 nodes a splat, each a 40-byte node, a merged Gaussian and its coverage, and a
+  // 4-byte leaf entry: 38 bytes a splat at SH degree 0, 98 at degree 3).
   const std::uint64_t splatBytes =
       56 + 12 * static_cast<std::uint64_t>(splats::shCoefficients(index_->header.shDegree) - 1);
-  return options_.memoryBytes / splatBytes * words_;
+  const std::uint64_t treeBytes = 4 + (44 + splatBytes) * 34 / 100;
+  return options_.memoryBytes / (splatBytes + treeBytes) * words_;
 }
 
 void TilesetStream::evict() {

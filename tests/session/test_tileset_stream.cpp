@@ -45,8 +45,10 @@ struct Loaded {
 };
 
 Loaded load(const std::string& input, const scene::Camera* camera,
-            net::LoaderOptions loaderOptions = {}, float distanceScale = 1.0f) {
+            net::LoaderOptions loaderOptions = {}, float distanceScale = 1.0f,
+            const session::TilesetOptions* tileset = nullptr) {
   session::StreamingSession s(loaderOptions);
+  if (tileset) s.setTilesetOptions(*tileset);
   std::string error;
   auto scene = s.open(input, error);
   REQUIRE(scene);
@@ -288,6 +290,22 @@ TEST_CASE("tileset stream: a Gaussian tileset draws its splats and counts splats
   CHECK(far.stats.brickBytes == 0);
   // The merged Gaussians have a tree of their own (merged further below a pixel).
   CHECK(far.mergedTreeSplats == far.mergedSplats);
+}
+
+TEST_CASE("tileset stream: a Gaussian tileset's memory budget counts the splats' tree too",
+          "[tileset][session][splat]") {
+  const fs::path dir = bunnyGaussianTileset();
+  // bunny_small's splats (SH degree 1) decode to 92 bytes each, and their share of the
+  // level-of-detail tree is 4 + 0.34 (44 + 92) = 50 more: 142 bytes, so this budget holds
+  // 1,500 of the 3,000 splats (2,315 at their decoded size alone).
+  session::TilesetOptions options;
+  options.memoryBytes = 1500 * 142;
+  const Loaded near = load(dir.string(), nullptr, {}, 1.0f, &options);
+  CHECK(near.messages.empty());
+  INFO(near.splats);
+  CHECK(near.splats > 1000);
+  CHECK(near.splats <= 1500 + 128);  // whole packets of 128 splats may pass it by less than one
+  CHECK(near.treeSplats == near.splats);
 }
 
 TEST_CASE("tileset stream: a view that moves without changing the choice keeps the tree",

@@ -107,7 +107,8 @@ class TilesetStream {
   bool pumpBricks();
   void evict();
   /// options_.memoryBytes in records: 32 bytes a decoded vector; a Gaussian tileset's
-  /// splat takes its decoded size for its recordsPerElement() records.
+  /// splat takes its decoded size and its share of the level-of-detail tree (about 0.4
+  /// of that again) for its recordsPerElement() records.
   std::uint64_t memoryRecords() const;
   void rebuild();
   /// The merged set again, when mergedDirty_ (with its own level-of-detail tree).
