@@ -187,8 +187,10 @@ int writeGaussianTilesetOutOfCore(const Options& options, const encode::TilesetT
     return 1;
   }
   if (!r.tileset.ok()) {
+    // As the in-memory encode: a scene that cannot be read or a file not written 1, a
+    // scene with nothing to encode or a bad cut 2.
     std::fprintf(stderr, "ghostspace: encode: %s: %s\n", input.c_str(), r.tileset.error.c_str());
-    return 1;
+    return r.tileset.failure == encode::Failure::input && !r.unreadable ? 2 : 1;
   }
   std::printf(
       "%s: %llu Gaussians (SH degree %d), kept %llu, K %llu; out of core in %g MiB: %u passes "

@@ -13,6 +13,7 @@
 #include <bit>
 #include <map>
 #include <numeric>
+#include <stdexcept>
 
 #include "encode/tileset.hpp"
 #include "gaussian_files.hpp"
@@ -94,20 +95,30 @@ void rankRecords(std::vector<std::uint32_t>& records, std::size_t words) {
 // and, when it is full, written to the spill file sorted by key, one run per key; then
 // taken back key by key in ascending order. One buffer, allocated once, so the memory
 // held is the bound whatever the keys (a vector per key fragmented the heap to 9 times it).
+// A spill file that could not be written or read back (a full disk): the encode's write
+// failure, not its input's.
+struct SpillFailure : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 template <typename Key>
 class Buckets {
  public:
-  Buckets(const fs::path& spill, std::uint64_t bound, std::size_t words)
+  // At most `bound` bytes held, for at most `most` records of `words` words in all.
+  Buckets(const fs::path& spill, std::uint64_t bound, std::size_t words, std::uint64_t most)
       : spill_(spill),
         words_(words),
-        capacity_(std::max<std::size_t>(
-            1, static_cast<std::size_t>(bound / (4 * words + sizeof(Held))))) {}
+        capacity_(static_cast<std::size_t>(std::clamp<std::uint64_t>(
+            bound / (4 * words + sizeof(Held)), 1, std::max<std::uint64_t>(most, 1)))) {}
 
   // Adds the `count` records at `records`.
   void add(const Key& key, const std::uint32_t* records, std::size_t count) {
     for (std::size_t r = 0; r < count; ++r) {
       if (keys_.size() == capacity_) spill();
-      if (arena_.empty()) arena_.reserve(capacity_ * words_);
+      if (arena_.empty()) {  // once: the buffer and its keys, then reused
+        arena_.reserve(capacity_ * words_);
+        keys_.reserve(capacity_);
+      }
       keys_.push_back({key, static_cast<std::uint32_t>(keys_.size())});
       arena_.insert(arena_.end(), records + r * words_, records + (r + 1) * words_);
     }
@@ -125,7 +136,11 @@ class Buckets {
   // Key's records (those spilled first, in the order they came, then those held).
   std::vector<std::uint32_t> take(const Key& key) {
     std::vector<std::uint32_t> out;
-    if (auto c = chunks_.find(key); c != chunks_.end()) ooc::readChunks(spill_, c->second, out);
+    if (auto c = chunks_.find(key); c != chunks_.end()) try {
+        ooc::readChunks(spill_, c->second, out);
+      } catch (const qnv::InputError& e) {
+        throw SpillFailure(e.what());
+      }
     auto h = std::lower_bound(keys_.begin(), keys_.end(), Held{key, 0}, byKey);
     for (; h != keys_.end() && !(key < h->key); ++h)
       out.insert(out.end(), arena_.begin() + static_cast<std::ptrdiff_t>(h->at * words_),
@@ -148,7 +163,11 @@ class Buckets {
     out.reserve(std::max<std::size_t>(words_, (1u << 18) / words_ * words_));
     std::uint64_t at = spill_.size();
     const auto flush = [&] {
-      if (!out.empty()) spill_.append(out.data(), out.size() * 4);
+      try {
+        if (!out.empty()) spill_.append(out.data(), out.size() * 4);
+      } catch (const qnv::InputError& e) {
+        throw SpillFailure(e.what());
+      }
       out.clear();
     };
     for (std::size_t i = 0; i < keys_.size();) {
@@ -198,13 +217,21 @@ GaussianOutOfCoreResult writeGaussianTilesetOutOfCore(const TilesetTarget& targe
   const std::size_t words = recordWords(degree);
   out.splats = reader.size();
   out.shDegree = degree;
-  // A batch's cloud and its records: at most an eighth of the bound (and 1 to 65,536).
-  const std::size_t batchSplats = static_cast<std::size_t>(std::clamp<std::uint64_t>(
-      ooc.memoryBytes / 8 / (words * 4 + sizeof(float) * words), 1, 65536));
+  // A batch's rows and its cloud: at most an eighth of the bound (and 1 to 65,536 splats).
+  const std::size_t batchSplats = static_cast<std::size_t>(
+      std::clamp<std::uint64_t>(ooc.memoryBytes / 8 / (reader.rowBytes() + words * 4), 1, 65536));
   const fs::path& dir = target.dir;
   const fs::path part = dir / "parts" / shareName(share, shares);
+  // A whole run's spill folder goes when it ends, whether it succeeded or not (its spill
+  // files, still open, are unlinked with it).
+  struct RemoveParts {
+    fs::path parts;
+    ~RemoveParts() {
+      std::error_code ec;
+      if (!parts.empty()) fs::remove_all(parts, ec);
+    }
+  } removeParts{target.whole ? dir / "parts" : fs::path()};
   try {
-    if (target.whole) ooc::removeStale(dir);  // the whole output: nothing stale may remain
     splats::GaussianCloud batch;
     // Pass 1: the frame.
     splats::GaussianFrameBuilder frame(degree, reader.size());
@@ -219,6 +246,9 @@ GaussianOutOfCoreResult writeGaussianTilesetOutOfCore(const TilesetTarget& targe
                                       " Gaussians, none with an opacity and a size");
     if (out.kept > 0xffffffffu)
       return fail(Failure::input, std::to_string(out.kept) + " splats kept exceed 2^32 - 1");
+    // The scene read and something kept: the old files may go (not before: a scene that
+    // cannot be encoded leaves a tileset already there as it was).
+    if (target.whole) ooc::removeStale(dir);
     qnv::TilesetOptions cut = target.cut;
     if (defaults.brickVectors) cut.brickVectors = splats::defaultGaussianBrickVectors(out.kept);
     out.brickVectors = cut.brickVectors;
@@ -231,7 +261,7 @@ GaussianOutOfCoreResult writeGaussianTilesetOutOfCore(const TilesetTarget& targe
     out.frameSeconds = since(t0);
 
     // Pass 2: importance, leaves, occupancy.
-    Buckets<std::uint64_t> leaves(part / "leaves.spill", ooc.memoryBytes / 2, words);
+    Buckets<std::uint64_t> leaves(part / "leaves.spill", ooc.memoryBytes / 2, words, out.kept);
     std::vector<std::uint32_t> record;
     std::vector<bool> occupied(std::size_t{splats::kGaussianRootCells} *
                                splats::kGaussianRootCells * splats::kGaussianRootCells);
@@ -266,7 +296,8 @@ GaussianOutOfCoreResult writeGaussianTilesetOutOfCore(const TilesetTarget& targe
     out.bucketSeconds = since(t0) - out.frameSeconds;
 
     // The bricks: each leaf's own, then the interior nodes'.
-    Buckets<qnv::TilesetCell> interior(part / "interior.spill", ooc.memoryBytes / 4, words);
+    Buckets<qnv::TilesetCell> interior(part / "interior.spill", ooc.memoryBytes / 4, words,
+                                       out.kept);
     std::vector<qnv::TilesetBrick> bricks;
     const auto writeBrick = [&](const qnv::TilesetCell& node,
                                 const std::vector<std::uint32_t>& records, std::size_t first,
@@ -327,14 +358,13 @@ GaussianOutOfCoreResult writeGaussianTilesetOutOfCore(const TilesetTarget& targe
     TilesetTarget used = target;  // the parts record the cut the bricks were made with
     used.cut = cut;
     finishGaussianTileset(used, options, std::move(index), mergedBricks, t0, result);
-  } catch (const splats::FormatError& error) {
+  } catch (const splats::FormatError& error) {  // the scene, read again, is not what it was
+    out.unreadable = true;
     return fail(Failure::input, error.what());
+  } catch (const SpillFailure& error) {
+    return fail(Failure::write, error.what());
   } catch (const qnv::InputError& error) {
     return fail(Failure::input, error.what());
-  }
-  if (target.whole) {  // the spill files are gone; their folder too
-    std::error_code ec;
-    fs::remove_all(dir / "parts", ec);
   }
   return out;
 }

@@ -357,7 +357,7 @@ std::uint64_t TilesetStream::memoryRecords() const {
   // A decoded splat: centre, scales, rotation, opacity, DC colour and its SH coefficients;
   // and its share of the level-of-detail tree built over the settled set (docs/splats-lod.md:
   // 0.34 nodes a splat, each a 40-byte node, a merged Gaussian and its coverage, and a
-  // 4-byte leaf entry: 38 bytes a splat at SH degree 0, 98 at degree 3).
+  // 4-byte leaf entry: 38 bytes a splat at SH degree 0, 99 at degree 3).
   const std::uint64_t splatBytes =
       56 + 12 * static_cast<std::uint64_t>(splats::shCoefficients(index_->header.shDegree) - 1);
   const std::uint64_t treeBytes = 4 + (44 + splatBytes) * 34 / 100;

@@ -120,7 +120,8 @@ std::unique_ptr<GaussianBatchReader> openGaussianBatches(const std::string& path
   std::string head;
   {
     const detail::PieceFile file(path);
-    head.resize(static_cast<std::size_t>(std::min<std::uint64_t>(file.size(), 64u << 10)));
+    // As much as a PLY header may take (parsePlyHeader reads up to 1 MiB).
+    head.resize(static_cast<std::size_t>(std::min<std::uint64_t>(file.size(), 1u << 20)));
     file.read(0, head.data(), head.size());
   }
   const SplatFormat format = detectSplatFormat(head, path);

@@ -149,6 +149,7 @@ class PlyGaussianBatches final : public GaussianBatchReader {
   }
   std::uint64_t size() const override { return vertex_->count; }
   int shDegree() const override { return columns_.degree; }
+  std::size_t rowBytes() const override { return vertex_->rowBytes; }
   std::size_t read(GaussianCloud& batch, std::size_t max) override {
     const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(max, size() - next_));
     const std::size_t rowBytes = vertex_->rowBytes;

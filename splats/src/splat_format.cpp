@@ -48,6 +48,7 @@ class SplatBatches final : public GaussianBatchReader {
   }
   std::uint64_t size() const override { return file_.size() / kRecord; }
   int shDegree() const override { return 0; }
+  std::size_t rowBytes() const override { return kRecord; }
   std::size_t read(GaussianCloud& batch, std::size_t max) override {
     const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(max, size() - next_));
     if (n == 0) {

@@ -192,6 +192,30 @@ TEST_CASE("encode refuses --memory without a tileset and for worlds",
 
 namespace {
 
+// A binary little-endian INRIA .ply of `count` Gaussians (SH degree 0) at pseudo-random
+// places in a unit cube, each of peak opacity sigmoid(`opacityLogit`).
+fs::path writeGaussianPly(const fs::path& path, std::uint32_t count, float opacityLogit) {
+  std::ofstream out(path, std::ios::binary);
+  out << "ply\nformat binary_little_endian 1.0\nelement vertex " << count << "\n";
+  for (const char* p : {"x", "y", "z", "f_dc_0", "f_dc_1", "f_dc_2", "opacity", "scale_0",
+                        "scale_1", "scale_2", "rot_0", "rot_1", "rot_2", "rot_3"})
+    out << "property float " << p << "\n";
+  out << "end_header\n";
+  std::uint32_t state = 12345;
+  const auto next = [&] {
+    state = state * 1664525u + 1013904223u;
+    return static_cast<float>(state >> 8) / 16777216.0f;
+  };
+  for (std::uint32_t i = 0; i < count; ++i) {
+    const float row[14] = {next(),         next(),        next(),       next() - 0.5f,
+                           next() - 0.5f,  next() - 0.5f, opacityLogit, -4.0f - next(),
+                           -4.0f - next(), -5.0f,         1.0f,         next() * 0.1f,
+                           0.0f,           0.0f};
+    out.write(reinterpret_cast<const char*>(row), sizeof row);  // little-endian hosts
+  }
+  return path;
+}
+
 // The bytes "spilled A + B bytes" of an out-of-core Gaussian encode's summary line.
 std::pair<long long, long long> spilled(const std::string& out) {
   const std::size_t at = out.find("spilled ");
@@ -229,6 +253,17 @@ TEST_CASE("an out-of-core Gaussian tileset is the in-memory tileset, byte for by
       CHECK_FALSE(fs::exists(tiny / "parts"));  // the spill files and their folder gone
     }
   }
+  // 20,000 splats and no --brick-vectors: both encodes pick K = 2048, a 2-deep octree
+  // (splats::defaultGaussianBrickVectors).
+  {
+    const std::string scene = writeGaussianPly(dir.path / "cube.ply", 20000, 2.0f).string();
+    const fs::path memory = dir.path / "cube_memory", ooc = dir.path / "cube_ooc";
+    const auto m = encode(scene, memory, {});
+    CHECK_THAT(m.out, Catch::Contains("depth 2"));
+    const auto o = encode(scene, ooc, {"--memory", "0.5"});
+    CHECK_THAT(o.out, Catch::Contains("kept 20000, K 2048"));
+    checkSameTree(memory, ooc);
+  }
   // Shares under --memory, given out of order, merge to the unsplit run's files.
   const std::string ply = (data / "bunny_small.ply").string();
   const fs::path memory = dir.path / "memory3", split = dir.path / "split";
@@ -261,6 +296,18 @@ TEST_CASE("an out-of-core Gaussian encode refuses other formats and reports a sh
   CHECK(r.exitCode == 1);
   CHECK_THAT(r.err, Catch::Contains("cut.ply: expected"));
   CHECK_FALSE(fs::exists(dir.path / "cut" / "index.qnvt"));
+  // Nothing kept (every splat nearly transparent): a usage error (2, as in memory), and
+  // the tileset already in OUT/ is left as it was.
+  const fs::path kept = dir.path / "kept";
+  encode((data / "bunny_small.ply").string(), kept, {"--memory", "64"});
+  const std::string before = gs::test::readBytes(kept / "index.qnvt");
+  const std::string faint = writeGaussianPly(dir.path / "faint.ply", 100, -20.0f).string();
+  r = runGhostspace(
+      {"encode", faint, "--tileset", kept.string(), "--memory", "64", "--no-progress"});
+  CHECK(r.exitCode == 2);
+  CHECK_THAT(r.err, Catch::Contains("nothing to encode"));
+  CHECK(gs::test::readBytes(kept / "index.qnvt") == before);
+  CHECK_FALSE(fs::exists(kept / "parts"));
   // A .splat of a size that is not whole records.
   const fs::path odd = dir.path / "odd.splat";
   std::ofstream(odd, std::ios::binary).write("0123456789", 10);

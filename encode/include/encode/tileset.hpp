@@ -157,6 +157,9 @@ struct GaussianOutOfCoreResult {
   unsigned passes = 0;               // reads of the scene
   double frameSeconds = 0, bucketSeconds = 0, brickSeconds = 0, mergedSeconds = 0;
   std::uint64_t leafSpillBytes = 0, interiorSpillBytes = 0;
+  /// Failure::input because the scene could not be read (a short or changed file, its
+  /// FormatError's sentence), not because of what it holds or the cut.
+  bool unreadable = false;
 };
 
 /// Encodes the Gaussian splatting scene `reader` reads into `target`, piecewise
@@ -172,8 +175,10 @@ struct GaussianOutOfCoreResult {
 /// scene's (splats::gaussianMergedCellsLog2For, from pass 2's occupancy). Shares as
 /// writeGaussianTileset's: share 0 also reads every other leaf, for the interior nodes.
 /// The files are writeGaussianTileset's for the whole scene read at once, byte for byte.
-/// Failure::input for a scene that cannot be read (its sentence), no splat kept or a bad
-/// cut; Failure::write for a file not written.
+/// Failure::input for a scene that cannot be read (its sentence; `unreadable` set), no
+/// splat kept or a bad cut; Failure::write for a file (or spill file) not written. A whole
+/// run removes the old tileset only once the scene was read and something kept, and its
+/// OUT/parts/ whatever happens; no index.qnvt is written unless every brick was.
 GaussianOutOfCoreResult writeGaussianTilesetOutOfCore(const TilesetTarget& target,
                                                       splats::GaussianBatchReader& reader,
                                                       const splats::GaussianStreamOptions& options,

@@ -57,6 +57,8 @@ class GaussianBatchReader {
   /// The scene's splats (<= kMaxSplats) and SH degree (0..3).
   virtual std::uint64_t size() const = 0;
   virtual int shDegree() const = 0;
+  /// Bytes of one splat's row in the file (a read of n splats holds n of them at once).
+  virtual std::size_t rowBytes() const = 0;
   /// Reads the next min(max, left) splats into `batch` (resized to them; its shDegree the
   /// scene's) and returns how many; 0 at the end. Throws FormatError on a short or
   /// unreadable file.
