@@ -11,7 +11,10 @@
 // for the whole scene, byte for byte.
 #include <algorithm>
 #include <bit>
+#include <deque>
+#include <future>
 #include <map>
+#include <memory>
 #include <numeric>
 #include <stdexcept>
 
@@ -193,6 +196,58 @@ class Buckets {
   std::map<Key, std::vector<ooc::Chunk>> chunks_;
 };
 
+// A brick a job wrote: its index entry, its bytes, and "" or the write's error.
+struct WrittenBrick {
+  qnv::TilesetBrick brick;
+  std::uint64_t bytes = 0;
+  std::string error;
+};
+
+// Brick jobs on threads of their own, at most `threads` in flight (each holds its splats):
+// submit() waits for the oldest first when that many run.
+class BrickJobs {
+ public:
+  explicit BrickJobs(unsigned threads) : threads_(std::max(1u, threads)) {}
+  BrickJobs(const BrickJobs&) = delete;
+  BrickJobs& operator=(const BrickJobs&) = delete;
+  ~BrickJobs() {  // an early return: the jobs in flight end before what they use goes
+    for (auto& job : inFlight_)
+      if (job.valid()) job.wait();
+  }
+
+  template <typename Job>
+  void submit(Job&& job) {
+    if (inFlight_.size() >= threads_) collectOldest();
+    inFlight_.push_back(std::async(std::launch::async, std::forward<Job>(job)));
+  }
+  // Waits for every job; a job's exception is rethrown here.
+  void finish() {
+    while (!inFlight_.empty()) collectOldest();
+  }
+  const std::string& error() const { return error_; }  // the first write that failed
+  std::uint64_t bytes() const { return bytes_; }
+  std::vector<qnv::TilesetBrick> takeBricks() { return std::move(bricks_); }
+
+ private:
+  void collectOldest() {
+    std::future<WrittenBrick> job = std::move(inFlight_.front());
+    inFlight_.pop_front();
+    const WrittenBrick written = job.get();
+    if (!written.error.empty()) {
+      if (error_.empty()) error_ = written.error;
+      return;
+    }
+    bricks_.push_back(written.brick);
+    bytes_ += written.bytes;
+  }
+
+  unsigned threads_;
+  std::deque<std::future<WrittenBrick>> inFlight_;
+  std::vector<qnv::TilesetBrick> bricks_;
+  std::uint64_t bytes_ = 0;
+  std::string error_;
+};
+
 }  // namespace
 
 GaussianOutOfCoreResult writeGaussianTilesetOutOfCore(const TilesetTarget& target,
@@ -298,47 +353,50 @@ GaussianOutOfCoreResult writeGaussianTilesetOutOfCore(const TilesetTarget& targe
     // The bricks: each leaf's own, then the interior nodes'.
     Buckets<qnv::TilesetCell> interior(part / "interior.spill", ooc.memoryBytes / 4, words,
                                        out.kept);
-    std::vector<qnv::TilesetBrick> bricks;
+    // Each brick encoded and written by a job of its own, --threads of them at once; the
+    // ranking and the buckets stay on this thread (the interior nodes' buckets receive in
+    // leaf order, though their ranking would not depend on it).
+    BrickJobs jobs(ooc::workerThreads(ooc));
     const auto writeBrick = [&](const qnv::TilesetCell& node,
-                                const std::vector<std::uint32_t>& records, std::size_t first,
-                                std::size_t end) {
-      const splats::GaussianCloud c = cloudOf(records, first, end, degree);
-      std::vector<std::uint32_t> order(c.size());
-      std::iota(order.begin(), order.end(), 0u);
-      const qnv::StreamHeader h = layout.brickHeader(node, c.size() * header.recordsPerElement());
-      const qnv::BrickFile file =
-          qnv::writeBrick(node, h, splats::encodeGaussianSplats(c, order, h, options));
-      if (std::string error = writeFile(dir / file.brick.path(), file.bytes); !error.empty())
-        return error;
-      bricks.push_back(file.brick);
-      result.merged.totalBytes += file.bytes.size();
-      return std::string();
+                                std::shared_ptr<const std::vector<std::uint32_t>> records,
+                                std::size_t first, std::size_t end) {
+      jobs.submit([&, node, records, first, end] {
+        const splats::GaussianCloud c = cloudOf(*records, first, end, degree);
+        std::vector<std::uint32_t> order(c.size());
+        std::iota(order.begin(), order.end(), 0u);
+        const qnv::StreamHeader h = layout.brickHeader(node, c.size() * header.recordsPerElement());
+        const qnv::BrickFile file =
+            qnv::writeBrick(node, h, splats::encodeGaussianSplats(c, order, h, options));
+        WrittenBrick written{file.brick, file.bytes.size(),
+                             writeFile(dir / file.brick.path(), file.bytes)};
+        return written;
+      });
     };
     for (const std::uint64_t leaf : leaves.keys()) {
-      std::vector<std::uint32_t> records = leaves.take(leaf);
-      rankRecords(records, words);
-      const std::size_t count = records.size() / words;
+      auto records = std::make_shared<std::vector<std::uint32_t>>(leaves.take(leaf));
+      rankRecords(*records, words);
+      const std::size_t count = records->size() / words;
       std::size_t next = 0;
       for (const auto& [node, end] :
            splats::splitGaussianLeaf(layout, layout.leafAt(leaf), count)) {
-        if (node.level < depth && share == 0) {
-          interior.add(node, records.data() + next * words, end - next);
-        }
+        if (node.level < depth && share == 0)
+          interior.add(node, records->data() + next * words, end - next);
         if (node.level == depth && leaf >= result.leaves.first && leaf < result.leaves.second)
-          if (std::string error = writeBrick(node, records, next, end); !error.empty())
-            return fail(Failure::write, error);
+          writeBrick(node, records, next, end);
         next = end;
       }
     }
     for (const qnv::TilesetCell& node : interior.keys()) {
-      std::vector<std::uint32_t> records = interior.take(node);
-      rankRecords(records, words);
-      if (std::string error = writeBrick(node, records, 0, records.size() / words); !error.empty())
-        return fail(Failure::write, error);
+      auto records = std::make_shared<std::vector<std::uint32_t>>(interior.take(node));
+      rankRecords(*records, words);
+      writeBrick(node, records, 0, records->size() / words);
     }
+    jobs.finish();
+    if (!jobs.error().empty()) return fail(Failure::write, jobs.error());
+    result.merged.totalBytes += jobs.bytes();
     out.leafSpillBytes = leaves.spilledBytes();
     out.interiorSpillBytes = interior.spilledBytes();
-    qnv::TilesetIndex index = qnv::assembleTilesetIndex(layout, std::move(bricks));
+    qnv::TilesetIndex index = qnv::assembleTilesetIndex(layout, jobs.takeBricks());
     if (cut.mergedCellsLog2 > 0 && depth > 0) index.mergedCellsLog2 = cut.mergedCellsLog2;
     out.brickSeconds = since(t0) - out.frameSeconds - out.bucketSeconds;
 

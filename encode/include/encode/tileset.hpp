@@ -167,7 +167,9 @@ struct GaussianOutOfCoreResult {
 /// (splats::GaussianFrameBuilder), pass 2 each kept splat's importance and leaf, its
 /// floats (16 + 3 x 15 words at SH degree 3: 244 bytes) held by leaf in half the bound and
 /// spilled to OUT/parts/I-of-N/leaves.spill past it, then each leaf ranked and split
-/// (splats::splitGaussianLeaf; a leaf is held whole while it is ranked), the interior
+/// (splats::splitGaussianLeaf; a leaf is held whole while it is ranked; each brick
+/// encoded and written by a job, ooc.threads of them at once, each holding its node's
+/// splats), the interior
 /// nodes' splats held in a quarter of the bound (interior.spill past it), pass 3 (share 0,
 /// merged levels) the merged sums, whose cells are held whole. A batch read is at most an
 /// eighth of the bound. `defaults`: the cut's K is the scene's
