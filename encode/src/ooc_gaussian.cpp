@@ -5,10 +5,11 @@
 //   2. each kept splat's importance, its leaf and the root's occupied cells: the splat's
 //      floats go to its leaf's bucket (OUT/parts/I-of-N/leaves.spill past the bound);
 //   3. share 0 only, with merged levels: the merged sums, in scene order.
-// Then each leaf is ranked and split as buildGaussianTileset splits it: its own brick is
-// written at once, what its ancestors receive goes to their buckets (interior.spill past
-// the bound), and the interior bricks are written last. The files are writeGaussianTileset's
-// for the whole scene, byte for byte.
+// Then each leaf is ranked and split as buildGaussianTileset splits it: its own brick goes
+// to a job that encodes and writes it (--threads jobs at once), what its ancestors receive
+// goes to their buckets (interior.spill past the bound), and the interior bricks are
+// written last, by jobs too. The files are writeGaussianTileset's for the whole scene,
+// byte for byte.
 #include <algorithm>
 #include <bit>
 #include <deque>
