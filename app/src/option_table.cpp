@@ -478,7 +478,7 @@ const std::vector<OptionSpec>& table() {
        .names = "--threads",
        .valueName = "N",
        .field = GS_FIELD(unsigned, options.encode.threads),
-       .help = "Out-of-core encodes: worker threads (0: every core)",
+       .help = "Out-of-core and Gaussian tileset encodes: worker threads (0: every core)",
        .check = CLI::Range(1u, 256u)},
       {.scope = encode,
        .names = "--bricks",

@@ -79,7 +79,7 @@ TilesetResult& finishGaussianTileset(
 }
 
 TilesetResult writeGaussianTileset(const TilesetTarget& target, const splats::GaussianCloud& cloud,
-                                   const splats::GaussianStreamOptions& options) {
+                                   const splats::GaussianStreamOptions& options, unsigned threads) {
   const auto t0 = std::chrono::steady_clock::now();
   TilesetResult result;
   const auto fail = [&](Failure failure, std::string error) {
@@ -90,7 +90,8 @@ TilesetResult writeGaussianTileset(const TilesetTarget& target, const splats::Ga
   };
   splats::GaussianTilesetFiles files;
   try {
-    files = splats::buildGaussianTileset(cloud, target.cut, options, target.share, target.shares);
+    files = splats::buildGaussianTileset(cloud, target.cut, options, target.share, target.shares,
+                                         threads);
   } catch (const qnv::InputError& error) {
     return fail(Failure::input, error.what());
   }

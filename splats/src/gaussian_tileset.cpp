@@ -3,6 +3,8 @@
 #include "splats/gaussian_tileset.hpp"
 
 #include <algorithm>
+#include <atomic>
+#include <future>
 #include <map>
 
 #include "qnv/error.hpp"
@@ -111,7 +113,7 @@ qnv::TilesetLayout gaussianTilesetLayout(const qnv::StreamHeader& whole,
 GaussianTilesetFiles buildGaussianTileset(const GaussianCloud& cloud,
                                           const qnv::TilesetOptions& cut,
                                           const GaussianStreamOptions& options, std::uint32_t share,
-                                          std::uint32_t shares) {
+                                          std::uint32_t shares, unsigned threads) {
   if (shares == 0 || shares > qnv::kMaxTilesetShares || share >= shares)
     throw qnv::InputError("share " + std::to_string(share) + " of " + std::to_string(shares) +
                           " does not exist");
@@ -157,18 +159,30 @@ GaussianTilesetFiles buildGaussianTileset(const GaussianCloud& cloud,
     const std::uint64_t leaf = layout.leafIndex(node.cell);
     return leaf >= out.leaves.first && leaf < out.leaves.second;
   };
+  std::vector<std::pair<qnv::TilesetCell, std::vector<std::uint32_t>*>> work;
+  for (auto& [node, members] : nodes)  // (level, z, y, x): index order
+    if (mine(node)) work.emplace_back(node, &members);
+  out.bricks.resize(work.size());
+  // Each brick on its own, `threads` at a time: the same bytes in the same slots.
+  std::atomic<std::size_t> next{0};
+  const auto encodeBricks = [&] {
+    for (std::size_t i; (i = next++) < work.size();) {
+      const qnv::TilesetCell& node = work[i].first;
+      std::vector<std::uint32_t>& members = *work[i].second;
+      std::sort(members.begin(), members.end(), rankedBefore);  // an interior node's leaves
+      std::vector<std::uint32_t> order(members.size());
+      for (std::size_t r = 0; r < members.size(); ++r) order[r] = frame.kept[members[r]];
+      const qnv::StreamHeader h = layout.brickHeader(node, order.size() * words);
+      out.bricks[i] = qnv::writeBrick(node, h, encodeGaussianSplats(cloud, order, h, options));
+    }
+  };
+  std::vector<std::future<void>> helpers;
+  for (unsigned t = 1; t < std::max(1u, threads); ++t)
+    helpers.push_back(std::async(std::launch::async, encodeBricks));
+  encodeBricks();
+  for (std::future<void>& helper : helpers) helper.get();
   std::vector<qnv::TilesetBrick> bricks;
-  for (auto& [node, members] : nodes) {  // (level, z, y, x): index order
-    if (!mine(node)) continue;
-    std::sort(members.begin(), members.end(), rankedBefore);  // an interior node's leaves
-    std::vector<std::uint32_t> order(members.size());
-    for (std::size_t r = 0; r < members.size(); ++r) order[r] = frame.kept[members[r]];
-    const qnv::StreamHeader h = layout.brickHeader(node, order.size() * words);
-    const std::vector<std::uint64_t> records = encodeGaussianSplats(cloud, order, h, options);
-    qnv::BrickFile file = qnv::writeBrick(node, h, records);
-    bricks.push_back(file.brick);
-    out.bricks.push_back(std::move(file));
-  }
+  for (const qnv::BrickFile& file : out.bricks) bricks.push_back(file.brick);
   out.index = qnv::assembleTilesetIndex(layout, std::move(bricks));
 
   if (cut.mergedCellsLog2 > 0 && depth > 0) out.index.mergedCellsLog2 = cut.mergedCellsLog2;

@@ -197,3 +197,21 @@ TEST_CASE("a Gaussian tileset's K, not given, makes a mid-sized scene's octree 2
     CHECK(kept <= 64 * k);
   }
 }
+
+TEST_CASE("a Gaussian tileset's bricks are the same bytes on any number of threads",
+          "[splats][tileset]") {
+  const splats::GaussianCloud cloud = randomGaussians();
+  const splats::GaussianTilesetFiles one = splats::buildGaussianTileset(cloud, gaussianCut());
+  REQUIRE(one.bricks.size() > 8);  // a tree with interior and leaf bricks
+  for (const unsigned threads : {2u, 5u}) {
+    INFO(threads);
+    const splats::GaussianTilesetFiles many =
+        splats::buildGaussianTileset(cloud, gaussianCut(), {}, 0, 1, threads);
+    REQUIRE(many.bricks.size() == one.bricks.size());
+    for (std::size_t i = 0; i < one.bricks.size(); ++i) {
+      CHECK(many.bricks[i].bytes == one.bricks[i].bytes);
+      CHECK(many.bricks[i].brick.path() == one.bricks[i].brick.path());
+    }
+    CHECK(qnv::serializeTilesetIndex(many.index) == qnv::serializeTilesetIndex(one.index));
+  }
+}

@@ -85,8 +85,11 @@ TilesetResult writeTileset(const TilesetTarget& target, const qnv::SelectedVecto
 /// which mergeShares indexes. Failure::input for a scene with no splat to keep or a K of 0,
 /// Failure::write for a file not written.
 /// result.merged.index.header.vectorCount counts records (recordsPerElement() a splat).
+/// The bricks are encoded on `threads` threads (at least 1), the same bytes whatever the
+/// count.
 TilesetResult writeGaussianTileset(const TilesetTarget& target, const splats::GaussianCloud& cloud,
-                                   const splats::GaussianStreamOptions& options);
+                                   const splats::GaussianStreamOptions& options,
+                                   unsigned threads = 1);
 
 /// The memory and threads of an out-of-core encode.
 struct OutOfCoreOptions {

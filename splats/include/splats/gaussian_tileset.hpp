@@ -61,12 +61,14 @@ struct GaussianTilesetFiles {
 /// interior and merged bricks too: every share reads the whole scene (the quantization
 /// frame and the assignment are the scene's), and the shares' bricks together are the
 /// unsplit run's, byte for byte (encode::mergeShares writes their index).
-/// Throws qnv::InputError when K is 0, the share is out of range or no splat is kept
-/// ("nothing to encode").
+/// The bricks are encoded on `threads` threads (at least 1), the same bytes whatever the
+/// count. Throws qnv::InputError when K is 0, the share is out of range or no splat is
+/// kept ("nothing to encode").
 GaussianTilesetFiles buildGaussianTileset(const GaussianCloud& cloud,
                                           const qnv::TilesetOptions& cut,
                                           const GaussianStreamOptions& options = {},
-                                          std::uint32_t share = 0, std::uint32_t shares = 1);
+                                          std::uint32_t share = 0, std::uint32_t shares = 1,
+                                          unsigned threads = 1);
 
 /// The merged levels' cells per axis a Gaussian tileset gets when the encode is not told
 /// (`--merged-cells` not given), as log2: 5 (32^3 cells a node) when the root's 32^3 grid
