@@ -5,6 +5,7 @@
 
 #include <cstdio>
 #include <memory>
+#include <string>
 
 #include "app/commands.hpp"
 
@@ -192,15 +193,17 @@ int writeGaussianTilesetOutOfCore(const Options& options, const encode::TilesetT
     std::fprintf(stderr, "ghostspace: encode: %s: %s\n", input.c_str(), r.tileset.error.c_str());
     return r.tileset.failure == encode::Failure::input && !r.unreadable ? 2 : 1;
   }
+  const std::string mergedCells = r.mergedCellsLog2 == 0
+                                      ? std::string("none")
+                                      : std::to_string(1u << r.mergedCellsLog2) + "^3 a node";
   std::printf(
       "%s: %llu Gaussians (SH degree %d), kept %llu, K %llu; out of core in %g MiB: %u passes "
       "over the scene, frame %.3f s, leaves %.3f s, bricks %.3f s, merged levels %.3f s (%llu "
-      "cells, "
-      "%u^3 a node), spilled %llu + %llu bytes\n",
+      "cells, %s), spilled %llu + %llu bytes\n",
       input.c_str(), static_cast<unsigned long long>(r.splats), r.shDegree,
       static_cast<unsigned long long>(r.kept), static_cast<unsigned long long>(r.brickVectors),
       e.memoryMB, r.passes, r.frameSeconds, r.bucketSeconds, r.brickSeconds, r.mergedSeconds,
-      static_cast<unsigned long long>(r.mergedCells), 1u << r.mergedCellsLog2,
+      static_cast<unsigned long long>(r.mergedCells), mergedCells.c_str(),
       static_cast<unsigned long long>(r.leafSpillBytes),
       static_cast<unsigned long long>(r.interiorSpillBytes));
   printEncodeResult(target, input, r.tileset, r.tileset.seconds);
