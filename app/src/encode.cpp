@@ -7,7 +7,6 @@
 #include <fstream>
 #include <memory>
 #include <optional>
-#include <thread>
 
 #include "app/commands.hpp"
 #include "app/progress_bar.hpp"
@@ -251,12 +250,9 @@ int encodeGaussianTileset(const Options& options, const Settings& s, const std::
   if (options.encode.brickVectors == 0)  // --brick-vectors not given: by the splats kept
     target.cut.brickVectors =
         splats::defaultGaussianBrickVectors(splats::gaussianFrame(*cloud).kept.size());
-  const unsigned threads = options.encode.threads > 0
-                               ? options.encode.threads
-                               : std::max(1u, std::thread::hardware_concurrency());
   const encode::TilesetResult r = encode::writeGaussianTileset(
       target, *cloud, {.shBits = options.encode.shBits, .shFullFraction = options.encode.shFull},
-      threads);
+      options.encode.threads);
   if (!r.ok()) {
     // As writeTileset: bad options or input 2, a file not written 1.
     std::fprintf(stderr, "ghostspace: encode: %s: %s\n", input.c_str(), r.error.c_str());

@@ -91,7 +91,7 @@ TilesetResult writeGaussianTileset(const TilesetTarget& target, const splats::Ga
   splats::GaussianTilesetFiles files;
   try {
     files = splats::buildGaussianTileset(cloud, target.cut, options, target.share, target.shares,
-                                         threads);
+                                         ooc::workerThreads({.threads = threads}));
   } catch (const qnv::InputError& error) {
     return fail(Failure::input, error.what());
   }

@@ -85,8 +85,8 @@ TilesetResult writeTileset(const TilesetTarget& target, const qnv::SelectedVecto
 /// which mergeShares indexes. Failure::input for a scene with no splat to keep or a K of 0,
 /// Failure::write for a file not written.
 /// result.merged.index.header.vectorCount counts records (recordsPerElement() a splat).
-/// The bricks are encoded on `threads` threads (at least 1), the same bytes whatever the
-/// count.
+/// The bricks are encoded on `threads` threads (0: every core, as OutOfCoreOptions), the
+/// same bytes whatever the count.
 TilesetResult writeGaussianTileset(const TilesetTarget& target, const splats::GaussianCloud& cloud,
                                    const splats::GaussianStreamOptions& options,
                                    unsigned threads = 1);
