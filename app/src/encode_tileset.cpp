@@ -199,11 +199,12 @@ int writeGaussianTilesetOutOfCore(const Options& options, const encode::TilesetT
   std::printf(
       "%s: %llu Gaussians (SH degree %d), kept %llu, K %llu; out of core in %g MiB: %u passes "
       "over the scene, frame %.3f s, leaves %.3f s, bricks %.3f s, merged levels %.3f s (%llu "
-      "cells, %s), spilled %llu + %llu bytes\n",
+      "cells, %s, at most %llu held), spilled %llu + %llu bytes\n",
       input.c_str(), static_cast<unsigned long long>(r.splats), r.shDegree,
       static_cast<unsigned long long>(r.kept), static_cast<unsigned long long>(r.brickVectors),
       e.memoryMB, r.passes, r.frameSeconds, r.bucketSeconds, r.brickSeconds, r.mergedSeconds,
       static_cast<unsigned long long>(r.mergedCells), mergedCells.c_str(),
+      static_cast<unsigned long long>(r.mergedPeakCells),
       static_cast<unsigned long long>(r.leafSpillBytes),
       static_cast<unsigned long long>(r.interiorSpillBytes));
   printEncodeResult(target, input, r.tileset, r.tileset.seconds);

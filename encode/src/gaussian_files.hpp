@@ -13,8 +13,11 @@
 
 namespace gs::encode {
 
+/// The path of node `node`'s merged brick in a tileset folder: "merged/L/X_Y_Z.qnv".
+std::string mergedPathOf(const qnv::TilesetCell& node);
+
 /// After the bricks are written (their bytes counted in result.merged.totalBytes): writes
-/// `mergedBricks` (splats::gaussianMergedBricks of `index`), then, whole, the checked
+/// `mergedBricks` (each node's merged brick, at mergedPathOf), then, whole, the checked
 /// index.qnvt (result.merged.index becomes `index`), or, a share, its parts (leaves.qnvt,
 /// an interior.qnvp without entries, gaussian.txt). Sets result's sizes and seconds since
 /// `t0`; Failure::write and the sentence naming the file when one is not written.

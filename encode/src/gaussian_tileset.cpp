@@ -27,6 +27,13 @@ std::string shareShOptions(const splats::GaussianStreamOptions& options) {
 
 }  // namespace
 
+std::string mergedPathOf(const qnv::TilesetCell& node) {
+  qnv::TilesetBrick brick;
+  brick.level = node.level;
+  brick.x = node.cell.x, brick.y = node.cell.y, brick.z = node.cell.z;
+  return brick.mergedPath();
+}
+
 TilesetResult& finishGaussianTileset(
     const TilesetTarget& target, const splats::GaussianStreamOptions& options,
     qnv::TilesetIndex index,
@@ -40,11 +47,8 @@ TilesetResult& finishGaussianTileset(
   };
   const fs::path& dir = target.dir;
   Merged& merged = result.merged;
-  for (std::size_t i = 0, m = 0; i < index.bricks.size() && m < mergedBricks.size(); ++i) {
-    const qnv::TilesetBrick& b = index.bricks[i];
-    if (!index.hasMerged(b.level)) continue;
-    const std::string& stream = mergedBricks[m++].second;
-    if (std::string error = writeFile(dir / b.mergedPath(), stream); !error.empty())
+  for (const auto& [node, stream] : mergedBricks) {
+    if (std::string error = writeFile(dir / mergedPathOf(node), stream); !error.empty())
       return fail(error);
     merged.totalBytes += stream.size();
   }

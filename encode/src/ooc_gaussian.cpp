@@ -4,12 +4,13 @@
 //   1. the stream frame: which splats are kept, their box and scale range;
 //   2. each kept splat's importance, its leaf and the root's occupied cells: the splat's
 //      floats go to its leaf's bucket (OUT/parts/I-of-N/leaves.spill past the bound);
-//   3. share 0 only, with merged levels: the merged sums, in scene order.
-// Then each leaf is ranked and split as buildGaussianTileset splits it: its own brick goes
-// to a job that encodes and writes it (--threads jobs at once), what its ancestors receive
-// goes to their buckets (interior.spill past the bound), and the interior bricks are
-// written last, by jobs too. The files are writeGaussianTileset's for the whole scene,
-// byte for byte.
+// Then each leaf, in Morton order, is (share 0, with merged levels) added to the merged
+// levels' open nodes (splats::GaussianMergedLevels: one node a level, written when the
+// leaves under it are done), then ranked and split as buildGaussianTileset splits it: its
+// own brick goes to a job that encodes and writes it (--threads jobs at once), what its
+// ancestors receive goes to their buckets (interior.spill past the bound), and the
+// interior bricks are written last, by jobs too. The files are writeGaussianTileset's for
+// the whole scene, byte for byte.
 #include <algorithm>
 #include <bit>
 #include <deque>
@@ -17,6 +18,7 @@
 #include <map>
 #include <memory>
 #include <numeric>
+#include <set>
 #include <stdexcept>
 
 #include "encode/tileset.hpp"
@@ -343,7 +345,7 @@ GaussianOutOfCoreResult writeGaussianTilesetOutOfCore(const TilesetTarget& targe
         ++k;
       }
     }
-    out.passes = 2;
+    out.passes = 2;  // the merged levels are summed from the leaves' buckets
     const qnv::StreamHeader& header = frame.finish();
     if (defaults.mergedCells)
       cut.mergedCellsLog2 = splats::gaussianMergedCellsLog2For(occupiedCount, out.kept);
@@ -373,19 +375,52 @@ GaussianOutOfCoreResult writeGaussianTilesetOutOfCore(const TilesetTarget& targe
         return written;
       });
     };
-    for (const std::uint64_t leaf : leaves.keys()) {
+    // The merged levels (share 0): each node's merged brick written once the leaves under
+    // it are done, if the node has a brick (some leaf gave it splats).
+    const bool merged = cut.mergedCellsLog2 > 0 && depth > 0 && share == 0;
+    std::set<qnv::TilesetCell> interiorNodes, mergedWritten;
+    std::string mergedError;
+    double mergedSeconds = 0;
+    std::optional<splats::GaussianMergedLevels> mergedLevels;
+    if (merged)
+      mergedLevels.emplace(layout, cut.mergedCellsLog2,
+                           [&](const qnv::TilesetCell& node, splats::GaussianCloud&& cloud) {
+                             if (!interiorNodes.count(node) || !mergedError.empty()) return;
+                             const std::string bytes = splats::encodeMergedBrick(cloud);
+                             mergedError = writeFile(dir / mergedPathOf(node), bytes);
+                             result.merged.totalBytes += bytes.size();
+                             mergedWritten.insert(node);
+                           });
+    std::vector<std::uint32_t> members;
+    for (const std::uint64_t leaf : splats::leavesInMortonOrder(layout, leaves.keys())) {
       auto records = std::make_shared<std::vector<std::uint32_t>>(leaves.take(leaf));
-      rankRecords(*records, words);
       const std::size_t count = records->size() / words;
+      if (mergedLevels) {  // the leaf's splats in scene order, before they are ranked
+        const auto t = std::chrono::steady_clock::now();
+        members.resize(count);
+        std::iota(members.begin(), members.end(), 0u);
+        mergedLevels->addLeaf(layout.leafAt(leaf), cloudOf(*records, 0, count, degree), members);
+        mergedSeconds += since(t);
+      }
+      rankRecords(*records, words);
       std::size_t next = 0;
       for (const auto& [node, end] :
            splats::splitGaussianLeaf(layout, layout.leafAt(leaf), count)) {
-        if (node.level < depth && share == 0)
+        if (node.level < depth && share == 0) {
           interior.add(node, records->data() + next * words, end - next);
+          interiorNodes.insert(node);
+        }
         if (node.level == depth && leaf >= result.leaves.first && leaf < result.leaves.second)
           writeBrick(node, records, next, end);
         next = end;
       }
+    }
+    if (mergedLevels) {
+      const auto t = std::chrono::steady_clock::now();
+      mergedLevels->finish();
+      mergedSeconds += since(t);
+      out.mergedCells = mergedLevels->cellsMerged();
+      out.mergedPeakCells = mergedLevels->peakCells();
     }
     for (const qnv::TilesetCell& node : interior.keys()) {
       auto records = std::make_shared<std::vector<std::uint32_t>>(interior.take(node));
@@ -398,22 +433,21 @@ GaussianOutOfCoreResult writeGaussianTilesetOutOfCore(const TilesetTarget& targe
     out.leafSpillBytes = leaves.spilledBytes();
     out.interiorSpillBytes = interior.spilledBytes();
     qnv::TilesetIndex index = qnv::assembleTilesetIndex(layout, jobs.takeBricks());
-    if (cut.mergedCellsLog2 > 0 && depth > 0) index.mergedCellsLog2 = cut.mergedCellsLog2;
-    out.brickSeconds = since(t0) - out.frameSeconds - out.bucketSeconds;
-
-    // Pass 3 (share 0): the merged levels, from the kept splats in scene order.
-    std::vector<std::pair<qnv::TilesetCell, std::string>> mergedBricks;
-    if (cut.mergedCellsLog2 > 0 && depth > 0 && share == 0) {
-      splats::MergedLevelBuilder merged(layout, cut.mergedCellsLog2);
-      reader.rewind();
-      while (const std::size_t n = reader.read(batch, batchSplats))
-        for (std::size_t i = 0; i < n; ++i)
-          if (splats::keptInGaussianStream(batch, i)) merged.addGaussian(batch, i);
-      out.passes = 3;
-      out.mergedCells = merged.cellCount();
-      mergedBricks = splats::gaussianMergedBricks(merged, index);
+    if (cut.mergedCellsLog2 > 0 && depth > 0) {
+      index.mergedCellsLog2 = cut.mergedCellsLog2;
+      index.mergedEveryLevel = true;
     }
-    out.mergedSeconds = since(t0) - out.frameSeconds - out.bucketSeconds - out.brickSeconds;
+    out.brickSeconds = since(t0) - out.frameSeconds - out.bucketSeconds - mergedSeconds;
+    out.mergedSeconds = mergedSeconds;
+    if (!mergedError.empty()) return fail(Failure::write, mergedError);
+    // A node with a brick whose splats merged to nothing: an empty merged stream.
+    std::vector<std::pair<qnv::TilesetCell, std::string>> mergedBricks;
+    if (merged)
+      for (const qnv::TilesetBrick& b : index.bricks) {
+        const qnv::TilesetCell node{b.level, glm::uvec3(b.x, b.y, b.z)};
+        if (index.hasMerged(b.level) && !mergedWritten.count(node))
+          mergedBricks.emplace_back(node, splats::encodeMergedBrick({}));
+      }
     TilesetTarget used = target;  // the parts record the cut the bricks were made with
     used.cut = cut;
     finishGaussianTileset(used, options, std::move(index), mergedBricks, t0, result);

@@ -261,6 +261,7 @@ std::string mergeShares(const fs::path& dir, Merged& merged) {
         return "the shares' octree depth does not fit their splats";
       merged.index = qnv::assembleTilesetIndex(layout, std::move(bricks));
       merged.index.mergedCellsLog2 = first->mergedCellsLog2;
+      merged.index.mergedEveryLevel = first->mergedEveryLevel;
       for (const qnv::TilesetBrick& b : merged.index.bricks) {
         if (!merged.index.hasMerged(b.level)) continue;
         const fs::path path = dir / b.mergedPath();

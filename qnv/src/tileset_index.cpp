@@ -48,7 +48,9 @@ std::string serializeTilesetIndex(const TilesetIndex& index) {
   std::string out(reinterpret_cast<const char*>(kTilesetMagic.data()), kTilesetMagic.size());
   appendLe<std::uint16_t>(out, kTilesetVersion);
   appendLe<std::uint8_t>(out, index.depth);
-  appendLe<std::uint8_t>(out, index.mergedCellsLog2);
+  appendLe<std::uint8_t>(
+      out, static_cast<std::uint8_t>(index.mergedCellsLog2 |
+                                     (index.mergedEveryLevel ? kTilesetMergedEveryLevel : 0)));
   appendLe<std::uint32_t>(out, static_cast<std::uint32_t>(index.bricks.size()));
   out += serializeHeader(index.header);
   for (const TilesetBrick& b : index.bricks) {
@@ -97,10 +99,16 @@ std::optional<TilesetIndex> parseTilesetIndex(std::string_view bytes, const std:
   if (index.depth > kTilesetMaxDepth)
     return fail("octree depth " + std::to_string(index.depth) + " is more than " +
                 std::to_string(kTilesetMaxDepth));
-  index.mergedCellsLog2 = p[11];
+  const auto mergedByte = static_cast<std::uint8_t>(p[11]);
+  index.mergedCellsLog2 = mergedByte & static_cast<std::uint8_t>(~kTilesetMergedEveryLevel);
+  index.mergedEveryLevel = (mergedByte & kTilesetMergedEveryLevel) != 0;
   if (index.mergedCellsLog2 > kTilesetMaxMergedLog2)
-    return fail("merged cells byte 11 is " + std::to_string(index.mergedCellsLog2) +
-                ", more than " + std::to_string(kTilesetMaxMergedLog2));
+    return fail("merged cells byte 11 is " + std::to_string(mergedByte) + ": log2 " +
+                std::to_string(index.mergedCellsLog2) + " cells per axis, more than " +
+                std::to_string(kTilesetMaxMergedLog2));
+  if (index.mergedEveryLevel && index.mergedCellsLog2 == 0)
+    return fail("merged cells byte 11 is " + std::to_string(mergedByte) +
+                ": merged bricks at every level, of no cells");
   const auto brickCount = loadLe<std::uint32_t>(p + 12);
   if (brickCount > kTilesetMaxBricks)
     return fail(std::to_string(brickCount) + " bricks are more than the limit of " +

@@ -90,6 +90,7 @@ TilesetStream::TilesetStream(net::Loader& loader, std::string indexUrl, std::str
 
 TilesetStream::~TilesetStream() {
   if (cancelTree_) cancelTree_->store(true);  // the future's destructor waits for its end
+  if (cancelMergedTree_) cancelMergedTree_->store(true);
 }
 
 bool TilesetStream::takeIndex() {
@@ -160,6 +161,7 @@ void TilesetStream::choose() {
   choice_ = mergeChoices(perView);
   for (Brick& b : bricks_) b.wantedBytes = 0;
   stats_.chosenBricks = choice_.size();
+  stats_.chosenMerged = mergedChoice_.size();
   stats_.chosenVectors = 0;
   for (const BrickChoice& c : choice_) {
     Brick& b = bricks_[c.brick];
@@ -494,12 +496,17 @@ void TilesetStream::rebuildMerged() {
   // Merged Gaussians far below a pixel would each be widened to the rasterizer's low-pass
   // filter at their full opacity (a far Gaussian tileset became an opaque disc): their own
   // tree merges them further, to the pixel, their coverage kept, as a stream's far cut does.
-  // (A few thousand Gaussians: milliseconds, on this thread, when the merged nodes drawn
-  // or their bricks change.) Without it (no memory) they are drawn as they are.
+  // A few thousand (the merged root's and its children's) get it at once, on this thread,
+  // in milliseconds; more (deeper merged levels: hundreds of thousands) on a thread of
+  // their own once the bricks settle (pumpTree), drawn as they are until then. Without it
+  // (no memory) they are drawn as they are.
   mergedSet_->lodTree = nullptr;
-  if (mergedSet_->gaussians->size() > 1) {
+  if (mergedTree_.valid()) cancelMergedTree_->store(true);
+  const std::size_t mergedSplats = mergedSet_->gaussians->size();
+  if (mergedSplats > 1 && mergedSplats <= options_.mergedTreeOnThisThread) {
     auto [tree, problem] = buildTreeOf(mergedSet_->gaussians, nullptr, url_ + " (merged levels)");
     mergedSet_->lodTree = std::move(tree);
+    mergedTreeCloud_ = mergedSet_->gaussians;
     if (!problem.empty()) messages_.push_back({false, problem + ": drawn as they are"});
   }
   mergedSet_->computeBounds();
@@ -540,10 +547,32 @@ bool TilesetStream::treePending() const {
          treeCloud_ != cloud;
 }
 
+bool TilesetStream::mergedTreePending() const {
+  return mergedTree_.valid() || (mergedSet_->gaussians &&
+                                 mergedSet_->gaussians->size() > options_.mergedTreeOnThisThread &&
+                                 mergedTreeCloud_ != mergedSet_->gaussians);
+}
+
 bool TilesetStream::pumpTree() {
   bool attached = false;
+  if (mergedTree_.valid() &&
+      mergedTree_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+    auto [tree, problem] = mergedTree_.get();
+    if (!problem.empty()) messages_.push_back({false, problem + ": drawn as they are"});
+    if (tree && mergedTreeCloud_ == mergedSet_->gaussians) {
+      mergedSet_->lodTree = std::move(tree);
+      ++mergedSet_->revision;
+      attached = true;
+    }
+  }
+  if (!mergedTree_.valid() && mergedTreePending() && bricksSettled()) {
+    mergedTreeCloud_ = mergedSet_->gaussians;
+    cancelMergedTree_ = std::make_shared<std::atomic<bool>>(false);
+    mergedTree_ = std::async(std::launch::async, buildTreeOf, mergedTreeCloud_, cancelMergedTree_,
+                             url_ + " (merged levels)");
+  }
   if (tree_.valid()) {
-    if (tree_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return false;
+    if (tree_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return attached;
     auto [tree, problem] = tree_.get();
     if (!problem.empty())  // once per set: a new build waits for a new set
       messages_.push_back({false, problem + ": its views draw every splat chosen"});
@@ -573,7 +602,7 @@ void TilesetStream::stop() {
 }
 
 bool TilesetStream::settled() const {
-  return bricksSettled() && !treePending();
+  return bricksSettled() && !treePending() && !mergedTreePending();
 }
 
 bool TilesetStream::bricksSettled() const {

@@ -82,22 +82,35 @@ std::vector<std::pair<qnv::TilesetCell, std::size_t>> splitGaussianLeaf(
   return parts;
 }
 
+std::string encodeMergedBrick(const GaussianCloud& merged) {
+  const qnv::EncodedVectors vectors = encodeGaussianStream(merged);
+  qnv::WriteOptions write;
+  write.packetBytes = vectors.header.packetBytes;
+  write.encoding = qnv::PacketEncoding::compact;
+  return qnv::writeStream(vectors, write);
+}
+
 std::vector<std::pair<qnv::TilesetCell, std::string>> gaussianMergedBricks(
-    const MergedLevelBuilder& merged, const qnv::TilesetIndex& index) {
+    const std::map<qnv::TilesetCell, GaussianCloud>& merged, const qnv::TilesetIndex& index) {
   std::vector<std::pair<qnv::TilesetCell, std::string>> out;
-  const std::map<qnv::TilesetCell, GaussianCloud> clouds = merged.build();
   for (const qnv::TilesetBrick& b : index.bricks) {
     if (!index.hasMerged(b.level)) continue;
     const qnv::TilesetCell node{b.level, glm::uvec3(b.x, b.y, b.z)};
-    const auto it = clouds.find(node);
-    const qnv::EncodedVectors vectors =
-        encodeGaussianStream(it != clouds.end() ? it->second : GaussianCloud{});
-    qnv::WriteOptions write;
-    write.packetBytes = vectors.header.packetBytes;
-    write.encoding = qnv::PacketEncoding::compact;
-    out.emplace_back(node, qnv::writeStream(vectors, write));
+    const auto it = merged.find(node);
+    out.emplace_back(node, encodeMergedBrick(it != merged.end() ? it->second : GaussianCloud{}));
   }
   return out;
+}
+
+std::vector<std::uint64_t> leavesInMortonOrder(const qnv::TilesetLayout& layout,
+                                               std::vector<std::uint64_t> leaves) {
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> coded;
+  coded.reserve(leaves.size());
+  for (const std::uint64_t leaf : leaves)
+    coded.emplace_back(mortonOfCell(layout.leafAt(leaf)), leaf);
+  std::sort(coded.begin(), coded.end());
+  for (std::size_t i = 0; i < coded.size(); ++i) leaves[i] = coded[i].second;
+  return leaves;
 }
 
 qnv::TilesetLayout gaussianTilesetLayout(const qnv::StreamHeader& whole,
@@ -136,6 +149,26 @@ GaussianTilesetFiles buildGaussianTileset(const GaussianCloud& cloud,
     return frame.importance[a] > frame.importance[b] ||
            (frame.importance[a] == frame.importance[b] && a < b);
   };
+  GaussianTilesetFiles out;
+  // The merged levels (share 0): leaf by leaf in Morton order, each leaf's splats in
+  // scene order, as the out-of-core encode adds them.
+  std::map<qnv::TilesetCell, GaussianCloud> mergedClouds;
+  const bool merged = cut.mergedCellsLog2 > 0 && depth > 0;
+  if (merged && share == 0) {
+    GaussianMergedLevels levels(layout, cut.mergedCellsLog2,
+                                [&](const qnv::TilesetCell& node, GaussianCloud&& c) {
+                                  mergedClouds.emplace(node, std::move(c));
+                                });
+    std::vector<std::uint64_t> keys;
+    for (const auto& [index, members] : leaves) keys.push_back(index);
+    std::vector<std::uint32_t> inCloud;
+    for (const std::uint64_t index : leavesInMortonOrder(layout, std::move(keys))) {
+      inCloud.clear();
+      for (const std::uint32_t k : leaves.at(index)) inCloud.push_back(frame.kept[k]);
+      levels.addLeaf(layout.leafAt(index), cloud, inCloud);
+    }
+    levels.finish();
+  }
   std::map<qnv::TilesetCell, std::vector<std::uint32_t>> nodes;
   for (auto& [index, members] : leaves) {
     std::sort(members.begin(), members.end(), rankedBefore);
@@ -149,7 +182,6 @@ GaussianTilesetFiles buildGaussianTileset(const GaussianCloud& cloud,
     }
   }
 
-  GaussianTilesetFiles out;
   out.splats = frame.kept.size();
   out.depth = depth;
   out.leafCount = layout.leafCount();
@@ -185,12 +217,11 @@ GaussianTilesetFiles buildGaussianTileset(const GaussianCloud& cloud,
   for (const qnv::BrickFile& file : out.bricks) bricks.push_back(file.brick);
   out.index = qnv::assembleTilesetIndex(layout, std::move(bricks));
 
-  if (cut.mergedCellsLog2 > 0 && depth > 0) out.index.mergedCellsLog2 = cut.mergedCellsLog2;
-  if (cut.mergedCellsLog2 > 0 && depth > 0 && share == 0) {
-    MergedLevelBuilder merged(layout, cut.mergedCellsLog2);
-    for (const std::uint32_t i : frame.kept) merged.addGaussian(cloud, i);
-    out.merged = gaussianMergedBricks(merged, out.index);
+  if (merged) {
+    out.index.mergedCellsLog2 = cut.mergedCellsLog2;
+    out.index.mergedEveryLevel = true;
   }
+  if (merged && share == 0) out.merged = gaussianMergedBricks(mergedClouds, out.index);
   return out;
 }
 

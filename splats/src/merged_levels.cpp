@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 #include "base/byte_order.hpp"
@@ -38,10 +39,27 @@ std::uint64_t cellKey(std::uint8_t level, glm::uvec3 c) {
 }  // namespace
 
 MergedLevelBuilder::MergedLevelBuilder(const qnv::TilesetLayout& layout, std::uint8_t cellsLog2)
-    : layout_(layout), cellsLog2_(cellsLog2), brickVoxels_(layout.options().brickVoxels) {
+    : MergedLevelBuilder(
+          layout, cellsLog2, 0,
+          static_cast<std::uint8_t>(std::clamp<int>(
+              std::min<int>(layout.depth() - 1, qnv::deepestMergedLevel(cellsLog2)), 0, 255))) {}
+
+MergedLevelBuilder::MergedLevelBuilder(const qnv::TilesetLayout& layout, std::uint8_t cellsLog2,
+                                       std::uint8_t firstLevel, std::uint8_t lastLevel)
+    : layout_(layout),
+      cellsLog2_(cellsLog2),
+      firstLevel_(firstLevel),
+      levelEnd_(static_cast<std::uint8_t>(std::min<int>(lastLevel + 1, layout.depth()))),
+      brickVoxels_(layout.options().brickVoxels) {
   if (cellsLog2 < 1 || cellsLog2 > qnv::kTilesetMaxMergedLog2)
     throw qnv::InputError("merged cells per axis must be 2 to 128 (log2 " +
                           std::to_string(cellsLog2) + ")");
+  // A tileset of depth 0 has no interior level: nothing is summed (the whole-range
+  // constructor's case); a range asked for must be interior levels.
+  if (firstLevel > lastLevel || (layout.depth() > 0 && lastLevel >= layout.depth()))
+    throw qnv::InputError("merged levels " + std::to_string(firstLevel) + " to " +
+                          std::to_string(lastLevel) + " are not interior levels of depth " +
+                          std::to_string(layout.depth()));
   const qnv::StreamHeader& h = layout.templateHeader();
   if (h.kind == qnv::StreamKind::gaussian) {
     weightUnit_ = h.magnitudeMax;  // the largest importance: opacity times area
@@ -125,8 +143,7 @@ void MergedLevelBuilder::add(const qnv::SourceVector& v) {
   float basis[16];
   shBasis(2, glm::vec3(normal), basis);
   const glm::dvec3 color(rgba.r / 255.0, rgba.g / 255.0, rgba.b / 255.0);
-  const int levels = std::min<int>(layout_.depth(), qnv::deepestMergedLevel(cellsLog2_) + 1);
-  for (std::uint8_t level = 0; level < levels; ++level) {
+  for (std::uint8_t level = firstLevel_; level < levelEnd_; ++level) {
     const glm::uvec3 c = cellOf(v, level);
     const CellFrame f = frameOf(level, c);
     const glm::dvec3 q = (glm::dvec3(v.position) - f.origin) / f.size;
@@ -158,8 +175,7 @@ void MergedLevelBuilder::addGaussian(const GaussianCloud& cloud, std::size_t i) 
   const int rest = std::min(cloud.shRestPerSplat(), shCoefficients(shDegree_) - 1);
   qnv::SourceVector v;
   v.position = cloud.positions[i];
-  const int levels = std::min<int>(layout_.depth(), qnv::deepestMergedLevel(cellsLog2_) + 1);
-  for (std::uint8_t level = 0; level < levels; ++level) {
+  for (std::uint8_t level = firstLevel_; level < levelEnd_; ++level) {
     const glm::uvec3 c = cellOf(v, level);
     const CellFrame f = frameOf(level, c);
     const glm::dvec3 q = (glm::dvec3(v.position) - f.origin) / f.size;
@@ -230,8 +246,7 @@ bool MergedLevelBuilder::addSerialized(std::string_view bytes, const std::string
     const auto level = static_cast<std::uint8_t>(key >> 60);
     const std::uint64_t grid = std::uint64_t{cellsPerAxis(0)} << level;
     const std::uint64_t x = (key >> 40) & 0xfffffu, y = (key >> 20) & 0xfffffu, z = key & 0xfffffu;
-    if (level >= layout_.depth() || level > qnv::deepestMergedLevel(cellsLog2_) || x >= grid ||
-        y >= grid || z >= grid)
+    if (level < firstLevel_ || level >= levelEnd_ || x >= grid || y >= grid || z >= grid)
       return fail("cell " + std::to_string(i) + " lies outside the octree");
     MergedCell& cell = cells_[key];
     cell.count += base::loadLe<std::uint64_t>(c + 8);
@@ -312,6 +327,57 @@ std::map<qnv::TilesetCell, GaussianCloud> MergedLevelBuilder::build() const {
       cloud.shRest.push_back(glm::vec3(rgb * (1.0 - ambient) * valueOf(cell.sums[kBand2 + m]) / w));
   }
   return nodes;
+}
+
+std::uint64_t mortonOfCell(glm::uvec3 cell) {
+  std::uint64_t code = 0;
+  for (unsigned bit = 0; bit < 21; ++bit)
+    for (unsigned a = 0; a < 3; ++a)
+      code |= std::uint64_t{(cell[static_cast<int>(a)] >> bit) & 1u} << (3 * bit + a);
+  return code;
+}
+
+GaussianMergedLevels::GaussianMergedLevels(const qnv::TilesetLayout& layout, std::uint8_t cellsLog2,
+                                           Sink sink)
+    : layout_(layout), sink_(std::move(sink)) {
+  if (layout.depth() == 0) throw qnv::InputError("a tileset of depth 0 has no merged levels");
+  for (std::uint8_t level = 0; level < layout.depth(); ++level)
+    levels_.emplace_back(layout, cellsLog2, level, level);
+  open_.resize(levels_.size());
+}
+
+void GaussianMergedLevels::flush(std::size_t level) {
+  if (!open_[level]) return;
+  open_[level].reset();
+  MergedLevelBuilder& cells = levels_[level];
+  cellsMerged_ += cells.cellCount();
+  std::map<qnv::TilesetCell, GaussianCloud> built = cells.build();
+  cells.clear();
+  for (auto& [node, cloud] : built) sink_(node, std::move(cloud));  // one node
+}
+
+void GaussianMergedLevels::addLeaf(glm::uvec3 leaf, const GaussianCloud& cloud,
+                                   std::span<const std::uint32_t> members) {
+  const std::uint64_t code = mortonOfCell(leaf);
+  if (lastLeaf_ && code <= *lastLeaf_)
+    throw std::logic_error("GaussianMergedLevels: leaves must come in increasing Morton order");
+  lastLeaf_ = code;
+  const std::uint8_t depth = layout_.depth();
+  for (std::size_t level = levels_.size(); level-- > 0;) {  // deepest first
+    const glm::uvec3 node = leaf >> glm::uvec3(depth - level);
+    if (open_[level] && *open_[level] != node) flush(level);
+    open_[level] = node;
+  }
+  std::size_t held = 0;
+  for (MergedLevelBuilder& cells : levels_) {
+    for (const std::uint32_t i : members) cells.addGaussian(cloud, i);
+    held += cells.cellCount();
+  }
+  peakCells_ = std::max(peakCells_, held);
+}
+
+void GaussianMergedLevels::finish() {
+  for (std::size_t level = levels_.size(); level-- > 0;) flush(level);
 }
 
 }  // namespace gs::splats

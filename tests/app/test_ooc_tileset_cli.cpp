@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "process.hpp"
+#include "qnv/tileset.hpp"
 #include "test_support.hpp"
 
 using gs::test::runGhostspace;
@@ -231,18 +232,33 @@ TEST_CASE("an out-of-core Gaussian tileset is the in-memory tileset, byte for by
           "[app][encode][tileset][ooc][splat]") {
   gs::test::TempDir dir("ooc_gaussian");
   const fs::path data = gs::test::sourceDir() / "tests/data/splats";
-  // Depth 2 (K = 64 of 3,000 splats), merged levels at the scene's default and at 8^3.
+  // Depth 2 (K = 64 of 3,000 splats), merged levels at the scene's default and at 8^3;
+  // depth 3 (K = 8) with 32^3 cells, whose level 2 lies below qnv::deepestMergedLevel (1):
+  // merged bricks at every interior level all the same (kTilesetMergedEveryLevel).
   for (const char* scene : {"bunny_small.ply", "bunny_small.splat"}) {
     for (const std::vector<std::string>& options :
          {std::vector<std::string>{"--brick-vectors", "64"},
           std::vector<std::string>{"--brick-vectors", "64", "--merged-cells", "8", "--sh-bits", "3",
-                                   "--sh-full", "0.25"}}) {
+                                   "--sh-full", "0.25"},
+          std::vector<std::string>{"--brick-vectors", "8", "--merged-cells", "32"}}) {
       const std::string input = (data / scene).string();
       INFO(scene << " " << options.size());
       const fs::path memory = dir.path / "memory", ooc = dir.path / "ooc", tiny = dir.path / "tiny";
       encode(input, memory, options);
       const auto r = encode(input, ooc, with(options, {"--memory", "64"}));
-      CHECK_THAT(r.out, Catch::Contains("3 passes over the scene"));
+      // The merged levels are summed from the leaves' buckets: no third pass.
+      CHECK_THAT(r.out, Catch::Contains("2 passes over the scene"));
+      if (options[1] == "8") {
+        CHECK_THAT(r.out, Catch::Contains("depth 3"));
+        CHECK(fs::is_directory(ooc / "merged/2"));
+        std::string error;
+        const auto index =
+            gs::qnv::parseTilesetIndex(gs::test::readBytes(ooc / "index.qnvt"), "index", error);
+        REQUIRE(index);
+        CHECK(index->mergedEveryLevel);
+        for (const gs::qnv::TilesetBrick& b : index->bricks)
+          if (b.level < 3) CHECK(fs::is_regular_file(ooc / b.mergedPath()));
+      }
       CHECK(spilled(r.out) == std::pair<long long, long long>{0, 0});
       checkSameTree(memory, ooc);
       // A bound far below the scene's 300 KB: leaves and interior nodes spilled.

@@ -203,7 +203,27 @@ TEST_CASE("hostile tileset indexes are rejected with a sentence", "[qnv][tileset
   const auto merged = parseTilesetIndex(fixCrc(bad), "t/index.qnvt", error);
   REQUIRE(merged);
   CHECK(merged->mergedCellsLog2 == 4);
+  CHECK_FALSE(merged->mergedEveryLevel);
   CHECK(serializeTilesetIndex(*merged) == fixCrc(bad));
+  // Bit 7: merged bricks at every interior level (Gaussian tilesets).
+  bad[11] = static_cast<char>(0x85);
+  auto every = parseTilesetIndex(fixCrc(bad), "t/index.qnvt", error);
+  REQUIRE(every);
+  CHECK(every->mergedCellsLog2 == 5);
+  CHECK(every->mergedEveryLevel);
+  CHECK(serializeTilesetIndex(*every) == fixCrc(bad));
+  // deepestMergedLevel(5) is 1; with bit 7 every level below the depth has one.
+  every->depth = 4;
+  CHECK(every->hasMerged(3));
+  CHECK_FALSE(every->hasMerged(4));
+  every->mergedEveryLevel = false;
+  CHECK_FALSE(every->hasMerged(2));
+  CHECK(every->hasMerged(1));
+  bad[11] = static_cast<char>(0x80);  // every level of no cells
+  CHECK(rejection(fixCrc(bad)).find("byte 11 is 128: merged bricks at every level, of no cells") !=
+        std::string::npos);
+  bad[11] = static_cast<char>(0x88);
+  CHECK(rejection(fixCrc(bad)).find("byte 11 is 136: log2 8") != std::string::npos);
 }
 
 TEST_CASE("truncated and bit-flipped tileset indexes never crash", "[qnv][tileset][hostile]") {

@@ -241,16 +241,18 @@ TEST_CASE("tileset stream: a new view re-chooses, and far bricks go over the mem
   CHECK(s.tilesets()[0]->statistics().chosenBricks == 0);
 }
 
-// bunny_small (3,000 splats) as a Gaussian tileset of 512-splat bricks with a merged root,
-// written under the build folder; returns its folder.
-fs::path bunnyGaussianTileset() {
+// bunny_small (3,000 splats) as a Gaussian tileset of K-splat bricks (512: depth 1, a
+// merged root) with 2^cellsLog2 merged cells a node, written under the build folder;
+// returns its folder.
+fs::path bunnyGaussianTileset(std::uint64_t brickVectors = 512, std::uint8_t cellsLog2 = 4) {
   const std::string ply = test::readBytes(test::sourceDir() / "tests/data/splats/bunny_small.ply");
   const splats::GaussianCloud cloud = splats::readPlyGaussians(ply, "bunny_small.ply");
   qnv::TilesetOptions cut;
-  cut.brickVectors = 512;
-  cut.mergedCellsLog2 = 4;
+  cut.brickVectors = brickVectors;
+  cut.mergedCellsLog2 = cellsLog2;
   const splats::GaussianTilesetFiles files = splats::buildGaussianTileset(cloud, cut);
-  const fs::path dir = freshDir("bunny_small_gaussians");
+  const fs::path dir = freshDir("bunny_small_gaussians_" + std::to_string(brickVectors) + "_" +
+                                std::to_string(cellsLog2));
   for (const qnv::BrickFile& b : files.bricks) {
     fs::create_directories((dir / b.brick.path()).parent_path());
     std::ofstream(dir / b.brick.path(), std::ios::binary) << b.bytes;
@@ -290,6 +292,32 @@ TEST_CASE("tileset stream: a Gaussian tileset draws its splats and counts splats
   CHECK(far.stats.brickBytes == 0);
   // The merged Gaussians have a tree of their own (merged further below a pixel).
   CHECK(far.mergedTreeSplats == far.mergedSplats);
+}
+
+TEST_CASE("tileset stream: a deep Gaussian tileset draws merged bricks below level 1",
+          "[tileset][session][splat]") {
+  // K = 8: depth 3; 32^3 cells a node, so qnv::deepestMergedLevel is 1, yet level 2 has
+  // merged bricks too (the index's mergedEveryLevel). Levels 0 and 1 have at most 1 + 8
+  // nodes, so a choice of more than 8 merged nodes holds level 2's (3 times the fitting
+  // distance: 45 nodes; 6 times: level 1's 8; 2 times: the leaves' splats).
+  const fs::path dir = bunnyGaussianTileset(8, 5);
+  session::TilesetOptions options;
+  options.mergedTreeOnThisThread = 0;  // every merged set's tree on a thread of its own
+  bool deep = false;
+  for (const float scale : {2.0f, 3.0f, 6.0f}) {
+    INFO("distance scale " << scale);
+    const Loaded l = load(dir.string(), nullptr, {}, scale, &options);
+    CHECK(l.messages.empty());
+    if (l.stats.chosenMerged == 0) continue;
+    // Settled waits for the merged set's tree built on its own thread.
+    CHECK(l.mergedTreeSplats == l.mergedSplats);
+    if (l.stats.chosenMerged > 8 && l.splats == 0) {
+      deep = true;
+      CHECK(l.stats.brickBytes == 0);
+      CHECK(l.mergedSplats < 3000);
+    }
+  }
+  CHECK(deep);
 }
 
 TEST_CASE("tileset stream: a Gaussian tileset's memory budget counts the splats' tree too",

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,7 @@
 #include "qnv/tileset.hpp"
 #include "splats/gaussian_tileset.hpp"
 #include "splats/lod_tree.hpp"
+#include "splats/merged_levels.hpp"
 #include "splats/qnv_gaussians.hpp"
 
 using namespace gs;
@@ -153,6 +155,55 @@ TEST_CASE("a Gaussian tileset's merged bricks keep their region's place and cove
   // Quantized to 8-bit opacities and log scales: within a few per cent.
   CHECK(coverage == Approx(sourceCoverage).epsilon(0.1));
   CHECK(glm::length(centre - sourceCentre) < 0.05);
+}
+
+TEST_CASE("a Gaussian tileset has merged bricks at every interior level, summed node by node",
+          "[splats][tileset][merged]") {
+  const splats::GaussianCloud cloud = randomGaussians();
+  qnv::TilesetOptions cut = gaussianCut();
+  cut.brickVectors = 8;     // 3,960 splats: depth 3
+  cut.mergedCellsLog2 = 5;  // 32^3 cells a node: qnv::deepestMergedLevel is 1
+  const splats::GaussianTilesetFiles files = splats::buildGaussianTileset(cloud, cut);
+  const qnv::TilesetIndex& index = files.index;
+  REQUIRE(index.depth == 3);
+  CHECK(index.mergedEveryLevel);
+  std::size_t interior = 0;
+  for (const qnv::TilesetBrick& b : index.bricks) interior += b.level < 3 ? 1 : 0;
+  REQUIRE(files.merged.size() == interior);
+  // Every node's merged brick is the merge of all the splats of its region: the same as
+  // one builder of levels 0 to 2 fed the whole scene in scene order gives (the fixed-point
+  // sums do not depend on the order; the SH sums, doubles, to rounding).
+  const splats::GaussianFrame frame = splats::gaussianFrame(cloud);
+  const qnv::TilesetLayout layout =
+      splats::gaussianLayoutForSplats(frame.header, frame.kept.size(), cut);
+  splats::MergedLevelBuilder whole(layout, 5, 0, 2);
+  for (const std::uint32_t i : frame.kept) whole.addGaussian(cloud, i);
+  const auto expected = whole.build();
+  std::size_t deep = 0;
+  for (const auto& [node, bytes] : files.merged) {
+    INFO("node " << int(node.level) << " " << node.cell.x << " " << node.cell.y << " "
+                 << node.cell.z);
+    const splats::GaussianCloud merged = splats::readQnvGaussians(bytes, "merged");
+    const auto it = expected.find(node);
+    REQUIRE(it != expected.end());
+    CHECK(merged.size() == it->second.size());
+    const splats::GaussianCloud exact =
+        splats::readQnvGaussians(splats::encodeMergedBrick(it->second), "expected");
+    REQUIRE(exact.size() == merged.size());
+    for (std::size_t i = 0; i < merged.size(); ++i) {
+      CHECK(merged.positions[i] == exact.positions[i]);
+      CHECK(merged.opacities[i] == exact.opacities[i]);
+    }
+    deep += node.level == 2 ? 1 : 0;
+  }
+  CHECK(deep > 8);  // level 2's nodes, below deepestMergedLevel(5)
+  // Leaves out of Morton order are refused; what is held is one node a level.
+  splats::GaussianMergedLevels levels(layout, 5,
+                                      [](const qnv::TilesetCell&, splats::GaussianCloud&&) {});
+  const std::uint32_t first[] = {frame.kept[0]};
+  levels.addLeaf(glm::uvec3(1, 1, 0), cloud, first);
+  CHECK_THROWS_AS(levels.addLeaf(glm::uvec3(0, 1, 0), cloud, first), std::logic_error);
+  CHECK(levels.peakCells() == 3);  // the splat's cell at levels 0, 1 and 2
 }
 
 TEST_CASE("a Gaussian tileset of nothing, or with bricks of 0 splats, is refused",

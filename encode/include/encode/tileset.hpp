@@ -154,10 +154,11 @@ struct GaussianOutOfCoreResult {
   TilesetResult tileset;
   std::uint64_t splats = 0, kept = 0;  // the scene's, and those the stream keeps
   int shDegree = 0;
-  std::uint64_t brickVectors = 0;    // K as used (the scene's default when asked)
-  std::uint8_t mergedCellsLog2 = 0;  // as used (the scene's default when asked)
-  std::uint64_t mergedCells = 0;     // cells of the merged levels' sums (share 0)
-  unsigned passes = 0;               // reads of the scene
+  std::uint64_t brickVectors = 0;     // K as used (the scene's default when asked)
+  std::uint8_t mergedCellsLog2 = 0;   // as used (the scene's default when asked)
+  std::uint64_t mergedCells = 0;      // cells of the merged levels' sums (share 0), in all
+  std::uint64_t mergedPeakCells = 0;  // the most held at once (one node a level)
+  unsigned passes = 0;                // reads of the scene
   double frameSeconds = 0, bucketSeconds = 0, brickSeconds = 0, mergedSeconds = 0;
   std::uint64_t leafSpillBytes = 0, interiorSpillBytes = 0;
   /// Failure::input because the scene could not be read (a short or changed file, its
@@ -173,9 +174,11 @@ struct GaussianOutOfCoreResult {
 /// (splats::splitGaussianLeaf; a leaf is held whole while it is ranked; each brick
 /// encoded and written by a job, ooc.threads of them at once, each holding its node's
 /// splats), the interior
-/// nodes' splats held in a quarter of the bound (interior.spill past it), pass 3 (share 0,
-/// merged levels) the merged sums, whose cells are held whole. A batch read is at most an
-/// eighth of the bound. `defaults`: the cut's K is the scene's
+/// nodes' splats held in a quarter of the bound (interior.spill past it); share 0 with
+/// merged levels adds each leaf, before it is ranked (leaves in Morton order), to the
+/// merged levels' open nodes (splats::GaussianMergedLevels: at most depth x R^3 cells
+/// held, each node's merged brick written when its leaves are done). A batch read is at
+/// most an eighth of the bound. `defaults`: the cut's K is the scene's
 /// (splats::defaultGaussianBrickVectors of the splats kept in pass 1), its merged cells the
 /// scene's (splats::gaussianMergedCellsLog2For, from pass 2's occupancy). Shares as
 /// writeGaussianTileset's: share 0 also reads every other leaf, for the interior nodes.

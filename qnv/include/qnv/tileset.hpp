@@ -43,6 +43,12 @@ constexpr int deepestMergedLevel(std::uint8_t cellsLog2) {
   return level > 0 ? level : 0;
 }
 
+/// Byte 11's flag (bit 7) saying that every interior level has merged bricks, not only
+/// those down to deepestMergedLevel: Gaussian tilesets since the thirty-first session,
+/// whose merged sums are built node by node (splats/merged_levels.hpp,
+/// GaussianMergedLevels), so their memory does not grow with the levels.
+inline constexpr std::uint8_t kTilesetMergedEveryLevel = 0x80;
+
 /// Bytes of one brick record (without its packet offsets).
 inline constexpr std::size_t kTilesetBrickRecordBytes = 124;
 
@@ -65,22 +71,27 @@ struct TilesetBrick {
   std::string path() const;
   /// The path of the node's merged brick (a Gaussian stream of its region's merged
   /// splats, docs/tilesets.md "Merged levels"): "merged/L/X_Y_Z.qnv". Only interior
-  /// nodes (level < depth, level <= deepestMergedLevel) of an index with
-  /// mergedCellsLog2 > 0 have one (TilesetIndex::hasMerged).
+  /// nodes (level < depth, and level <= deepestMergedLevel unless the index says every
+  /// level) of an index with mergedCellsLog2 > 0 have one (TilesetIndex::hasMerged).
   std::string mergedPath() const;
 };
 
 /// The whole index.
 struct TilesetIndex {
   std::uint8_t depth = 0;  // the leaves' level, 0 .. kTilesetMaxDepth
-  /// Byte 11: 0, or log2 of the cells per axis (1 .. kTilesetMaxMergedLog2) of the merged
-  /// brick every interior node has (splats/merged_levels.hpp; docs/tilesets.md).
+  /// Byte 11, bits 0-6: 0, or log2 of the cells per axis (1 .. kTilesetMaxMergedLog2) of
+  /// the merged bricks (splats/merged_levels.hpp; docs/tilesets.md, "Merged levels").
   std::uint8_t mergedCellsLog2 = 0;
+  /// Byte 11, bit 7 (kTilesetMergedEveryLevel): every interior node has a merged brick;
+  /// without it, those of levels 0 .. deepestMergedLevel(mergedCellsLog2). Only with
+  /// mergedCellsLog2 > 0.
+  bool mergedEveryLevel = false;
   StreamHeader header;               // the template: whole box, total vectorCount, mapping
   std::vector<TilesetBrick> bricks;  // sorted by (level, z, y, x), no duplicates
   /// Whether a brick of `level` has a merged brick.
   bool hasMerged(std::uint8_t level) const {
-    return mergedCellsLog2 > 0 && level < depth && level <= deepestMergedLevel(mergedCellsLog2);
+    return mergedCellsLog2 > 0 && level < depth &&
+           (mergedEveryLevel || level <= deepestMergedLevel(mergedCellsLog2));
   }
 };
 
@@ -90,8 +101,8 @@ std::string serializeTilesetIndex(const TilesetIndex& index);
 
 /// Parses and checks index.qnvt bytes; safe for untrusted input (every count is checked
 /// against the bytes before anything is allocated). Returns nullopt and sets `error` to a
-/// sentence naming `name` on: a wrong signature or version, a merged-cells byte above
-/// kTilesetMaxMergedLog2, a CRC mismatch, a damaged
+/// sentence naming `name` on: a wrong signature or version, merged cells (byte 11 without
+/// its bit 7) above kTilesetMaxMergedLog2, bit 7 without merged cells, a CRC mismatch, a damaged
 /// template header (qnv::parseHeader's sentences), counts that do not fit the bytes or
 /// trailing bytes, more than kTilesetMaxBricks bricks, a level above the depth, a cell
 /// coordinate >= 2^level, bricks out of order or duplicated, bounds that are non-finite,

@@ -40,6 +40,11 @@ struct TilesetOptions {
   double pixelsPerVector = 1.0;
   /// Brick transfers running at once.
   int parallelFetches = 4;
+  /// Merged splats up to which their level-of-detail tree is built at once, on the
+  /// drawing thread (a few milliseconds); more (merged levels deep in a big capture:
+  /// hundreds of thousands) are drawn as they are until a tree built on a thread of its
+  /// own is attached, once the bricks settle.
+  std::size_t mergedTreeOnThisThread = 16384;
 };
 
 /// Counters for tests, benchmarks and the progress display (all since opening).
@@ -49,6 +54,7 @@ struct TilesetStatistics {
   std::uint64_t mergedBytes = 0;      // bytes of merged bricks taken whole
   std::uint64_t requests = 0;         // brick range requests started
   std::uint64_t chosenBricks = 0;     // in the last choice
+  std::uint64_t chosenMerged = 0;     // nodes drawn by their merged bricks, in the last choice
   std::uint64_t chosenVectors = 0;    // records of the last choice
   std::uint64_t residentVectors = 0;  // decoded and held now
   /// The most residentVectors has been after any pump (held between frames, after its
@@ -120,6 +126,9 @@ class TilesetStream {
   bool pumpTree();
   /// A tree is being built, or is still to be built for the set's splats.
   bool treePending() const;
+  /// The same for the merged set's tree, when it is built on a thread of its own (more
+  /// than options_.mergedTreeOnThisThread merged splats).
+  bool mergedTreePending() const;
   /// Ends every transfer for good (the loader stopped): what arrived stays drawn.
   void stop();
 
@@ -150,6 +159,11 @@ class TilesetStream {
   std::future<std::pair<std::shared_ptr<const splats::LodTree>, std::string>> tree_;
   std::shared_ptr<std::atomic<bool>> cancelTree_;
   std::shared_ptr<const splats::GaussianCloud> treeCloud_;
+  // The same for the merged set's tree (merged levels deep enough to hold more than
+  // options_.mergedTreeOnThisThread splats).
+  std::future<std::pair<std::shared_ptr<const splats::LodTree>, std::string>> mergedTree_;
+  std::shared_ptr<std::atomic<bool>> cancelMergedTree_;
+  std::shared_ptr<const splats::GaussianCloud> mergedTreeCloud_;
   // What a Gaussian tileset's set was last made of (rebuild()): unchanged, it is kept.
   std::vector<std::uint64_t> setMadeOf_;
   TilesetStatistics stats_;

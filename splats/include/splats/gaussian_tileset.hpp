@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -52,8 +53,9 @@ struct GaussianTilesetFiles {
 ///   box and the scene's scale and importance ranges, compact packets (plain when
 ///   cut.write.encoding is plain) of whole splats (K / 16 splats, 128 to 1,024 and at most
 ///   64 KiB);
-/// - cut.mergedCellsLog2 > 0: each interior node down to qnv::deepestMergedLevel has a
-///   merged brick (MergedLevelBuilder::addGaussian, R = 2^cellsLog2 cells per axis).
+/// - cut.mergedCellsLog2 > 0: every interior node has a merged brick (the index's
+///   mergedEveryLevel; GaussianMergedLevels, R = 2^cellsLog2 cells per axis, fed the
+///   leaves in Morton order, each leaf's splats in scene order).
 /// `options` (SH bits) applies to every brick, shFullFraction to each brick's first
 /// splats. cut.brickVoxels and cut.write.packetBytes are not used.
 /// Share `share` of `shares` (--bricks I/N; 0 <= share < shares <= qnv::kMaxTilesetShares)
@@ -110,11 +112,18 @@ qnv::TilesetLayout gaussianLayoutForSplats(const qnv::StreamHeader& frame, std::
 /// ..., the rest to the leaf itself). Fewer pairs when the splats run out.
 std::vector<std::pair<qnv::TilesetCell, std::size_t>> splitGaussianLeaf(
     const qnv::TilesetLayout& layout, glm::uvec3 leaf, std::size_t count);
-/// The merged brick (a whole compact Gaussian stream) of every brick of `index` whose
-/// level hasMerged, in index order, from `merged`'s sums; an empty stream for a node
-/// without merged splats.
+/// A merged brick's bytes: `merged` (a node's merged Gaussians) as a whole Gaussian
+/// stream (encodeGaussianStream, compact packets).
+std::string encodeMergedBrick(const GaussianCloud& merged);
+/// The merged brick (encodeMergedBrick) of every brick of `index` whose level hasMerged,
+/// in index order, from the nodes' merged Gaussians (GaussianMergedLevels' sink); an
+/// empty stream for a node without merged splats.
 std::vector<std::pair<qnv::TilesetCell, std::string>> gaussianMergedBricks(
-    const MergedLevelBuilder& merged, const qnv::TilesetIndex& index);
+    const std::map<qnv::TilesetCell, GaussianCloud>& merged, const qnv::TilesetIndex& index);
+/// `leaves` (TilesetLayout::leafIndex values) sorted by mortonOfCell of their cells: the
+/// order GaussianMergedLevels takes them in.
+std::vector<std::uint64_t> leavesInMortonOrder(const qnv::TilesetLayout& layout,
+                                               std::vector<std::uint64_t> leaves);
 
 /// The layout buildGaussianTileset builds its octree with, from the tileset's index
 /// template `whole` (vectorCount = the splats' records) and the encode's `cut` (brickVectors

@@ -20,8 +20,10 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -53,6 +55,12 @@ class MergedLevelBuilder {
   /// 1..qnv::kTilesetMaxMergedLog2. Merged cells exist for the interior levels 0 ..
   /// min(depth - 1, qnv::deepestMergedLevel(cellsLog2)).
   MergedLevelBuilder(const qnv::TilesetLayout& layout, std::uint8_t cellsLog2);
+  /// The same for the levels firstLevel .. lastLevel only (lastLevel < depth; any interior
+  /// level, the bound of deepestMergedLevel not applied: GaussianMergedLevels holds one
+  /// node per level). Throws qnv::InputError as above, or when the range is empty or
+  /// reaches the leaves.
+  MergedLevelBuilder(const qnv::TilesetLayout& layout, std::uint8_t cellsLog2,
+                     std::uint8_t firstLevel, std::uint8_t lastLevel);
 
   /// Adds `v` (a selected vector of the tileset) to its cell at every interior level.
   void add(const qnv::SourceVector& v);
@@ -66,6 +74,11 @@ class MergedLevelBuilder {
   void addGaussian(const GaussianCloud& cloud, std::size_t i);
   /// Cells holding vectors.
   std::size_t cellCount() const { return cells_.size(); }
+  /// Forgets every sum (the levels and the layout stay).
+  void clear() {
+    cells_.clear();
+    shSums_.clear();
+  }
 
   /// The bytes of the sums (parts/I-of-N/merged.qnvm): signature 0x89 "QNM" CR LF 0x1A LF,
   /// u8 cellsLog2, u8[3] 0, u64 cell count, then per cell (by key) u64 key (level << 60 |
@@ -94,6 +107,7 @@ class MergedLevelBuilder {
 
   const qnv::TilesetLayout& layout_;
   std::uint8_t cellsLog2_;
+  std::uint8_t firstLevel_ = 0, levelEnd_ = 0;  // the levels summed: [firstLevel_, levelEnd_)
   std::uint32_t brickVoxels_ = 0;
   double weightUnit_ = 1.0;  // world units^2: the largest weight a vector can have
   std::unordered_map<std::uint64_t, MergedCell> cells_;
@@ -103,5 +117,48 @@ class MergedLevelBuilder {
   int shDegree_ = 0;
   std::unordered_map<std::uint64_t, std::vector<glm::dvec3>> shSums_;
 };
+
+/// The merged bricks of a Gaussian tileset at every interior level (the index's
+/// qnv::kTilesetMergedEveryLevel; docs/tilesets.md, "Merged levels of Gaussian tilesets"),
+/// built node by node so that what is held does not grow with the scene or the depth:
+/// fed the kept splats leaf by leaf, leaves in increasing mortonOfCell order (so the
+/// leaves under any node come together), it holds the cells of one node per level (at
+/// most depth x R^3) and hands a node's merged Gaussians (MergedLevelBuilder::build of its
+/// cells: positions in world units, the scene's SH degree) to `sink` once the leaves
+/// under it are done, deepest first. A node whose splats merge to nothing is not handed.
+/// The SH sums are doubles, added in the order given: the in-memory and the out-of-core
+/// encodes both give leaves in Morton order and each leaf's splats in scene order, so
+/// their merged bricks are the same bytes.
+class GaussianMergedLevels {
+ public:
+  using Sink = std::function<void(const qnv::TilesetCell& node, GaussianCloud&& merged)>;
+  /// `layout` (of kind gaussian, outliving this) with depth >= 1; cellsLog2 in
+  /// 1..qnv::kTilesetMaxMergedLog2 (qnv::InputError otherwise).
+  GaussianMergedLevels(const qnv::TilesetLayout& layout, std::uint8_t cellsLog2, Sink sink);
+  /// Adds splats `members` of `cloud` (each kept by the stream), all of leaf `leaf`'s.
+  /// Throws std::logic_error when `leaf` does not come after the last leaf in Morton order.
+  void addLeaf(glm::uvec3 leaf, const GaussianCloud& cloud, std::span<const std::uint32_t> members);
+  /// Hands the nodes still open to the sink (call once, after the last leaf).
+  void finish();
+  /// The most cells held at once, and the cells handed to the sink's nodes in all.
+  std::size_t peakCells() const { return peakCells_; }
+  std::uint64_t cellsMerged() const { return cellsMerged_; }
+
+ private:
+  void flush(std::size_t level);
+
+  const qnv::TilesetLayout& layout_;
+  Sink sink_;
+  std::vector<MergedLevelBuilder> levels_;  // level L's open node's cells
+  std::vector<std::optional<glm::uvec3>> open_;
+  std::optional<std::uint64_t> lastLeaf_;  // its Morton code
+  std::size_t peakCells_ = 0;
+  std::uint64_t cellsMerged_ = 0;
+};
+
+/// The Morton code of an octree cell (bit 3 i of x, 3 i + 1 of y, 3 i + 2 of z; 21 bits
+/// an axis): the order of a depth-first walk of the octree, in which the cells under any
+/// node come together.
+std::uint64_t mortonOfCell(glm::uvec3 cell);
 
 }  // namespace gs::splats
