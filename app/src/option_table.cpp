@@ -451,9 +451,11 @@ const std::vector<OptionSpec>& table() {
        .valueName = "R",
        .field = GS_FIELD(unsigned, options.encode.mergedCells),
        .help = "Tilesets: merged levels of R^3 cells per interior node (0: none)",
-       .more = "Each interior node gets `OUT/merged/L/X_Y_Z.qnv`, a Gaussian stream of its "
-               "region merged cell by cell (coverage kept), which a far view draws instead of "
-               "the region's vectors (docs/tilesets.md, \"Merged levels\"). Not given, a "
+       .more = "Each interior node of the top levels (8^L R^3 <= 2^18 cells; of a Gaussian "
+               "splatting scene every interior node) gets `OUT/merged/L/X_Y_Z.qnv`, a Gaussian "
+               "stream of its region merged cell by cell (coverage kept), which a far view "
+               "draws instead of the region's vectors (docs/tilesets.md, \"Merged levels\"). "
+               "Not given, a "
                "Gaussian splatting scene gets 32 where the root's 32^3 cells are at most one "
                "per 8 splats (docs/tilesets.md, \"Gaussian tilesets\").",
        .shownDefault = "16",
