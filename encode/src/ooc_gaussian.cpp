@@ -15,7 +15,6 @@
 #include <bit>
 #include <deque>
 #include <future>
-#include <map>
 #include <memory>
 #include <numeric>
 #include <set>
@@ -24,6 +23,7 @@
 #include "encode/tileset.hpp"
 #include "gaussian_files.hpp"
 #include "ooc_share.hpp"
+#include "spill_buckets.hpp"
 #include "splats/gaussian_tileset.hpp"
 #include "splats/merged_levels.hpp"
 
@@ -97,107 +97,14 @@ void rankRecords(std::vector<std::uint32_t>& records, std::size_t words) {
   records = std::move(ranked);
 }
 
-// Records of `words` words by key: appended into one buffer of a fixed size (the bound)
-// and, when it is full, written to the spill file sorted by key, one run per key; then
-// taken back key by key in ascending order. One buffer, allocated once, so the memory
-// held is the bound whatever the keys (a vector per key fragmented the heap to 9 times it).
-// A spill file that could not be written or read back (a full disk): the encode's write
-// failure, not its input's.
-struct SpillFailure : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-template <typename Key>
-class Buckets {
- public:
-  // At most `bound` bytes held, for at most `most` records of `words` words in all.
-  Buckets(const fs::path& spill, std::uint64_t bound, std::size_t words, std::uint64_t most)
-      : spill_(spill),
-        words_(words),
-        capacity_(static_cast<std::size_t>(std::clamp<std::uint64_t>(
-            bound / (4 * words + sizeof(Held)), 1, std::max<std::uint64_t>(most, 1)))) {}
-
-  // Adds the `count` records at `records`.
-  void add(const Key& key, const std::uint32_t* records, std::size_t count) {
-    for (std::size_t r = 0; r < count; ++r) {
-      if (keys_.size() == capacity_) spill();
-      if (arena_.empty()) {  // once: the buffer and its keys, then reused
-        arena_.reserve(capacity_ * words_);
-        keys_.reserve(capacity_);
-      }
-      keys_.push_back({key, static_cast<std::uint32_t>(keys_.size())});
-      arena_.insert(arena_.end(), records + r * words_, records + (r + 1) * words_);
-    }
-  }
-  // Every key with records, ascending; ends the adding (what is held is sorted by key).
-  std::vector<Key> keys() {
-    std::stable_sort(keys_.begin(), keys_.end(), byKey);
-    std::vector<Key> out;
-    for (const auto& [key, chunks] : chunks_) out.push_back(key);
-    for (const Held& h : keys_) out.push_back(h.key);
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
-    return out;
-  }
-  // Key's records (those spilled first, in the order they came, then those held).
-  std::vector<std::uint32_t> take(const Key& key) {
-    std::vector<std::uint32_t> out;
-    if (auto c = chunks_.find(key); c != chunks_.end()) try {
-        ooc::readChunks(spill_, c->second, out);
-      } catch (const qnv::InputError& e) {
-        throw SpillFailure(e.what());
-      }
-    auto h = std::lower_bound(keys_.begin(), keys_.end(), Held{key, 0}, byKey);
-    for (; h != keys_.end() && !(key < h->key); ++h)
-      out.insert(out.end(), arena_.begin() + static_cast<std::ptrdiff_t>(h->at * words_),
-                 arena_.begin() + static_cast<std::ptrdiff_t>((h->at + 1) * words_));
-    return out;
-  }
-  std::uint64_t spilledBytes() const { return spill_.size(); }
-
- private:
-  struct Held {
-    Key key;
-    std::uint32_t at;  // record index in arena_
-  };
-  static bool byKey(const Held& a, const Held& b) { return a.key < b.key; }
-
-  // Writes what is held, sorted by key, through a 1 MiB buffer: one chunk per key.
-  void spill() {
-    std::stable_sort(keys_.begin(), keys_.end(), byKey);
-    std::vector<std::uint32_t> out;
-    out.reserve(std::max<std::size_t>(words_, (1u << 18) / words_ * words_));
-    std::uint64_t at = spill_.size();
-    const auto flush = [&] {
-      try {
-        if (!out.empty()) spill_.append(out.data(), out.size() * 4);
-      } catch (const qnv::InputError& e) {
-        throw SpillFailure(e.what());
-      }
-      out.clear();
-    };
-    for (std::size_t i = 0; i < keys_.size();) {
-      std::size_t j = i;
-      for (; j < keys_.size() && !(keys_[i].key < keys_[j].key); ++j) {
-        if (out.size() + words_ > out.capacity()) flush();
-        const std::uint32_t* r = arena_.data() + std::size_t{keys_[j].at} * words_;
-        out.insert(out.end(), r, r + words_);
-      }
-      chunks_[keys_[i].key].push_back({at, (j - i) * words_});
-      at += (j - i) * words_ * 4;
-      i = j;
-    }
-    flush();
-    keys_.clear();
-    arena_.clear();
-  }
-
-  ooc::SpillFile spill_;
-  std::size_t words_, capacity_;
-  std::vector<std::uint32_t> arena_;
-  std::vector<Held> keys_;
-  std::map<Key, std::vector<ooc::Chunk>> chunks_;
-};
+// An interior node's bucket key: its level above its cell's Morton code.
+std::uint64_t nodeKey(const qnv::TilesetCell& node) {
+  return std::uint64_t{node.level} << 60 | splats::mortonOfCell(node.cell);
+}
+qnv::TilesetCell nodeOfKey(std::uint64_t key) {
+  return {static_cast<std::uint8_t>(key >> 60),
+          splats::cellOfMorton(key & ((std::uint64_t{1} << 60) - 1))};
+}
 
 // A brick a job wrote: its index entry, its bytes, and "" or the write's error.
 struct WrittenBrick {
@@ -319,7 +226,9 @@ GaussianOutOfCoreResult writeGaussianTilesetOutOfCore(const TilesetTarget& targe
     out.frameSeconds = since(t0);
 
     // Pass 2: importance, leaves, occupancy.
-    Buckets<std::uint64_t> leaves(part / "leaves.spill", ooc.memoryBytes / 2, words, out.kept);
+    // The leaves' bucket is keyed by the leaf's Morton code: taken back in ascending key,
+    // the leaves come in the order the merged levels take them.
+    SpillBuckets leaves(part / "leaves.spill", ooc.memoryBytes / 2, words, out.kept);
     std::vector<std::uint32_t> record;
     std::vector<bool> occupied(std::size_t{splats::kGaussianRootCells} *
                                splats::kGaussianRootCells * splats::kGaussianRootCells);
@@ -335,12 +244,13 @@ GaussianOutOfCoreResult writeGaussianTilesetOutOfCore(const TilesetTarget& targe
         if (!occupied[cell]) ++occupiedCount;
         occupied[cell] = true;
         at.position = batch.positions[i];
-        const std::uint64_t leaf = byPosition.leafIndex(byPosition.leafOf(at));
+        const glm::uvec3 leafCell = byPosition.leafOf(at);
+        const std::uint64_t leaf = byPosition.leafIndex(leafCell);
         const bool mine = leaf >= result.leaves.first && leaf < result.leaves.second;
         if (share == 0 || mine) {  // share 0 gives every leaf's best to the interior
           record.clear();
           storeSplat(batch, i, a, k, record);
-          leaves.add(leaf, record.data(), 1);
+          leaves.add(splats::mortonOfCell(leafCell), record.data(), 1);
         }
         ++k;
       }
@@ -354,8 +264,7 @@ GaussianOutOfCoreResult writeGaussianTilesetOutOfCore(const TilesetTarget& targe
     out.bucketSeconds = since(t0) - out.frameSeconds;
 
     // The bricks: each leaf's own, then the interior nodes'.
-    Buckets<qnv::TilesetCell> interior(part / "interior.spill", ooc.memoryBytes / 4, words,
-                                       out.kept);
+    SpillBuckets interior(part / "interior.spill", ooc.memoryBytes / 4, words, out.kept);
     // Each brick encoded and written by a job of its own, --threads of them at once; the
     // ranking and the buckets stay on this thread (the interior nodes' buckets receive in
     // leaf order, though their ranking would not depend on it).
@@ -392,8 +301,9 @@ GaussianOutOfCoreResult writeGaussianTilesetOutOfCore(const TilesetTarget& targe
                              mergedWritten.insert(node);
                            });
     std::vector<std::uint32_t> members;
-    for (const std::uint64_t leaf : splats::leavesInMortonOrder(layout, leaves.keys())) {
-      auto records = std::make_shared<std::vector<std::uint32_t>>(leaves.take(leaf));
+    for (const std::uint64_t code : leaves.keys()) {  // Morton order
+      auto records = std::make_shared<std::vector<std::uint32_t>>(leaves.take(code));
+      const std::uint64_t leaf = layout.leafIndex(splats::cellOfMorton(code));
       const std::size_t count = records->size() / words;
       if (mergedLevels) {  // the leaf's splats in scene order, before they are ranked
         const auto t = std::chrono::steady_clock::now();
@@ -407,7 +317,7 @@ GaussianOutOfCoreResult writeGaussianTilesetOutOfCore(const TilesetTarget& targe
       for (const auto& [node, end] :
            splats::splitGaussianLeaf(layout, layout.leafAt(leaf), count)) {
         if (node.level < depth && share == 0) {
-          interior.add(node, records->data() + next * words, end - next);
+          interior.add(nodeKey(node), records->data() + next * words, end - next);
           interiorNodes.insert(node);
         }
         if (node.level == depth && leaf >= result.leaves.first && leaf < result.leaves.second)
@@ -422,8 +332,9 @@ GaussianOutOfCoreResult writeGaussianTilesetOutOfCore(const TilesetTarget& targe
       out.mergedCells = mergedLevels->cellsMerged();
       out.mergedPeakCells = mergedLevels->peakCells();
     }
-    for (const qnv::TilesetCell& node : interior.keys()) {
-      auto records = std::make_shared<std::vector<std::uint32_t>>(interior.take(node));
+    for (const std::uint64_t key : interior.keys()) {
+      const qnv::TilesetCell node = nodeOfKey(key);
+      auto records = std::make_shared<std::vector<std::uint32_t>>(interior.take(key));
       rankRecords(*records, words);
       writeBrick(node, records, 0, records->size() / words);
     }

@@ -337,6 +337,14 @@ std::uint64_t mortonOfCell(glm::uvec3 cell) {
   return code;
 }
 
+glm::uvec3 cellOfMorton(std::uint64_t code) {
+  glm::uvec3 cell(0);
+  for (unsigned bit = 0; bit < 21; ++bit)
+    for (unsigned a = 0; a < 3; ++a)
+      cell[static_cast<int>(a)] |= static_cast<std::uint32_t>((code >> (3 * bit + a)) & 1u) << bit;
+  return cell;
+}
+
 GaussianMergedLevels::GaussianMergedLevels(const qnv::TilesetLayout& layout, std::uint8_t cellsLog2,
                                            Sink sink)
     : layout_(layout), sink_(std::move(sink)) {

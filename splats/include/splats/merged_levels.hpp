@@ -160,5 +160,7 @@ class GaussianMergedLevels {
 /// an axis): the order of a depth-first walk of the octree, in which the cells under any
 /// node come together.
 std::uint64_t mortonOfCell(glm::uvec3 cell);
+/// The cell of Morton code `code` (mortonOfCell's inverse for cells below 2^21 an axis).
+glm::uvec3 cellOfMorton(std::uint64_t code);
 
 }  // namespace gs::splats
