@@ -1,6 +1,6 @@
 // The out-of-core tileset encode of a Gaussian splatting scene (docs/out-of-core.md,
 // "Gaussian splatting scenes"). The scene is read piecewise (splats::GaussianBatchReader:
-// binary INRIA .ply, .splat) in up to three passes, a batch of splats at a time:
+// binary INRIA .ply, .splat) in two passes, a batch of splats at a time:
 //   1. the stream frame: which splats are kept, their box and scale range;
 //   2. each kept splat's importance, its leaf and the root's occupied cells: the splat's
 //      floats go to its leaf's bucket (OUT/parts/I-of-N/leaves.spill past the bound);

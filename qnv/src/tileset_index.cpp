@@ -122,6 +122,9 @@ std::optional<TilesetIndex> parseTilesetIndex(std::string_view bytes, const std:
   }
   index.header = *header;
   const StreamHeader& h = index.header;
+  if (index.mergedEveryLevel && h.kind != StreamKind::gaussian)
+    return fail("merged cells byte 11 is " + std::to_string(mergedByte) +
+                ": merged bricks at every level are for Gaussian tilesets only");
   const std::uint64_t recordsEnd =
       kTilesetPreambleBytes + std::uint64_t{brickCount} * kTilesetBrickRecordBytes;
   if (recordsEnd > crcAt)

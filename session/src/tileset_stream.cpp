@@ -548,7 +548,7 @@ bool TilesetStream::treePending() const {
 }
 
 bool TilesetStream::mergedTreePending() const {
-  return mergedTree_.valid() || (mergedSet_->gaussians &&
+  return mergedTree_.valid() || (mergedSet_->gaussians && mergedSet_->gaussians->size() > 1 &&
                                  mergedSet_->gaussians->size() > options_.mergedTreeOnThisThread &&
                                  mergedTreeCloud_ != mergedSet_->gaussians);
 }
@@ -558,18 +558,21 @@ bool TilesetStream::pumpTree() {
   if (mergedTree_.valid() &&
       mergedTree_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
     auto [tree, problem] = mergedTree_.get();
+    const auto builtFor = std::move(mergedTreeBuilding_);
     if (!problem.empty()) messages_.push_back({false, problem + ": drawn as they are"});
-    if (tree && mergedTreeCloud_ == mergedSet_->gaussians) {
+    // Only the tree of the set drawn now (not one of a set replaced while it was built,
+    // whose build had ended before its cancel flag was set).
+    if (tree && builtFor == mergedSet_->gaussians) {
       mergedSet_->lodTree = std::move(tree);
       ++mergedSet_->revision;
       attached = true;
     }
   }
   if (!mergedTree_.valid() && mergedTreePending() && bricksSettled()) {
-    mergedTreeCloud_ = mergedSet_->gaussians;
+    mergedTreeCloud_ = mergedTreeBuilding_ = mergedSet_->gaussians;
     cancelMergedTree_ = std::make_shared<std::atomic<bool>>(false);
-    mergedTree_ = std::async(std::launch::async, buildTreeOf, mergedTreeCloud_, cancelMergedTree_,
-                             url_ + " (merged levels)");
+    mergedTree_ = std::async(std::launch::async, buildTreeOf, mergedTreeBuilding_,
+                             cancelMergedTree_, url_ + " (merged levels)");
   }
   if (tree_.valid()) {
     if (tree_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return attached;

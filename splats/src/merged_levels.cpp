@@ -329,12 +329,21 @@ std::map<qnv::TilesetCell, GaussianCloud> MergedLevelBuilder::build() const {
   return nodes;
 }
 
+namespace {
+// The 21 low bits of `v` spread to every third bit.
+std::uint64_t spreadBits(std::uint32_t v) {
+  std::uint64_t x = v & 0x1fffffu;
+  x = (x | x << 32) & 0x1f00000000ffffULL;
+  x = (x | x << 16) & 0x1f0000ff0000ffULL;
+  x = (x | x << 8) & 0x100f00f00f00f00fULL;
+  x = (x | x << 4) & 0x10c30c30c30c30c3ULL;
+  x = (x | x << 2) & 0x1249249249249249ULL;
+  return x;
+}
+}  // namespace
+
 std::uint64_t mortonOfCell(glm::uvec3 cell) {
-  std::uint64_t code = 0;
-  for (unsigned bit = 0; bit < 21; ++bit)
-    for (unsigned a = 0; a < 3; ++a)
-      code |= std::uint64_t{(cell[static_cast<int>(a)] >> bit) & 1u} << (3 * bit + a);
-  return code;
+  return spreadBits(cell.x) | spreadBits(cell.y) << 1 | spreadBits(cell.z) << 2;
 }
 
 glm::uvec3 cellOfMorton(std::uint64_t code) {
@@ -356,12 +365,18 @@ GaussianMergedLevels::GaussianMergedLevels(const qnv::TilesetLayout& layout, std
 
 void GaussianMergedLevels::flush(std::size_t level) {
   if (!open_[level]) return;
-  open_[level].reset();
   MergedLevelBuilder& cells = levels_[level];
   cellsMerged_ += cells.cellCount();
+  const qnv::TilesetCell open{static_cast<std::uint8_t>(level), *open_[level]};
+  open_[level].reset();
   std::map<qnv::TilesetCell, GaussianCloud> built = cells.build();
   cells.clear();
-  for (auto& [node, cloud] : built) sink_(node, std::move(cloud));  // one node
+  for (auto& [node, cloud] : built) {
+    // Every cell of a splat lies in the node the octree puts it in (cellOf clamps it).
+    if (!(node == open))
+      throw std::logic_error("GaussianMergedLevels: a merged cell outside its open node");
+    sink_(node, std::move(cloud));
+  }
 }
 
 void GaussianMergedLevels::addLeaf(glm::uvec3 leaf, const GaussianCloud& cloud,

@@ -204,6 +204,17 @@ TEST_CASE("a Gaussian tileset has merged bricks at every interior level, summed 
   levels.addLeaf(glm::uvec3(1, 1, 0), cloud, first);
   CHECK_THROWS_AS(levels.addLeaf(glm::uvec3(0, 1, 0), cloud, first), std::logic_error);
   CHECK(levels.peakCells() == 3);  // the splat's cell at levels 0, 1 and 2
+  // Morton codes: bit 3 i of x, 3 i + 1 of y, 3 i + 2 of z, and back.
+  std::mt19937 random(11);
+  for (int n = 0; n < 1000; ++n) {
+    const glm::uvec3 cell(random() & 0x1fffffu, random() & 0x1fffffu, random() & 0x1fffffu);
+    std::uint64_t naive = 0;
+    for (unsigned bit = 0; bit < 21; ++bit)
+      for (int a = 0; a < 3; ++a)
+        naive |= std::uint64_t{(cell[a] >> bit) & 1u} << (3 * bit + static_cast<unsigned>(a));
+    CHECK(splats::mortonOfCell(cell) == naive);
+    CHECK(splats::cellOfMorton(naive) == cell);
+  }
 }
 
 TEST_CASE("a Gaussian tileset of nothing, or with bricks of 0 splats, is refused",

@@ -102,7 +102,8 @@ std::string serializeTilesetIndex(const TilesetIndex& index);
 /// Parses and checks index.qnvt bytes; safe for untrusted input (every count is checked
 /// against the bytes before anything is allocated). Returns nullopt and sets `error` to a
 /// sentence naming `name` on: a wrong signature or version, merged cells (byte 11 without
-/// its bit 7) above kTilesetMaxMergedLog2, bit 7 without merged cells, a CRC mismatch, a damaged
+/// its bit 7) above kTilesetMaxMergedLog2, bit 7 without merged cells or in a tileset
+/// not of Gaussians, a CRC mismatch, a damaged
 /// template header (qnv::parseHeader's sentences), counts that do not fit the bytes or
 /// trailing bytes, more than kTilesetMaxBricks bricks, a level above the depth, a cell
 /// coordinate >= 2^level, bricks out of order or duplicated, bounds that are non-finite,

@@ -163,7 +163,9 @@ class TilesetStream {
   // options_.mergedTreeOnThisThread splats).
   std::future<std::pair<std::shared_ptr<const splats::LodTree>, std::string>> mergedTree_;
   std::shared_ptr<std::atomic<bool>> cancelMergedTree_;
-  std::shared_ptr<const splats::GaussianCloud> mergedTreeCloud_;
+  // The merged set a tree was last made (or started) for, and the one the build in
+  // flight is for: a build that ends after its set was replaced is not attached.
+  std::shared_ptr<const splats::GaussianCloud> mergedTreeCloud_, mergedTreeBuilding_;
   // What a Gaussian tileset's set was last made of (rebuild()): unchanged, it is kept.
   std::vector<std::uint64_t> setMadeOf_;
   TilesetStatistics stats_;

@@ -27,8 +27,8 @@ namespace gs::splats {
 struct GaussianTilesetFiles {
   /// The index: template of kind gaussian (the scene's box, log-scale and importance
   /// ranges, SH degree; vectorCount = records, recordsPerElement() per splat), bricks in
-  /// index order, mergedCellsLog2 as asked. A share's: its own bricks only (vectorCount
-  /// theirs), mergedCellsLog2 as asked.
+  /// index order, mergedCellsLog2 as asked and mergedEveryLevel set with it. A share's: its
+  /// own bricks only (vectorCount theirs), the same merged fields.
   qnv::TilesetIndex index;
   std::vector<qnv::BrickFile> bricks;  // index order
   /// The merged brick (a whole Gaussian stream's bytes) of every brick of `index` that

@@ -16,7 +16,9 @@
 //
 // Sums are kept in 128-bit fixed point (2^-40 of each cell's own units), so they are exact
 // and do not depend on the order vectors arrive: shares of a split encode sum to the bytes
-// of the unsplit one.
+// of the unsplit one. A Gaussian scene's higher SH coefficients are summed in doubles
+// beside them, which do depend on the order: its encodes feed the splats in one order
+// (GaussianMergedLevels).
 #pragma once
 
 #include <cstdint>
@@ -48,7 +50,8 @@ struct MergedCell {
   std::uint64_t count = 0;
 };
 
-/// Builds the merged bricks of a tileset from its vectors, in any order, in any share.
+/// Builds the merged bricks of a tileset from its vectors, in any order, in any share (a
+/// Gaussian scene's splats: the same bytes for the same order, see the file comment).
 class MergedLevelBuilder {
  public:
   /// `layout` (which must outlive the builder) gives the octree; cellsLog2 in
@@ -58,7 +61,7 @@ class MergedLevelBuilder {
   /// The same for the levels firstLevel .. lastLevel only (lastLevel < depth; any interior
   /// level, the bound of deepestMergedLevel not applied: GaussianMergedLevels holds one
   /// node per level). Throws qnv::InputError as above, or when the range is empty or
-  /// reaches the leaves.
+  /// reaches the leaves of a layout of depth >= 1 (of depth 0 nothing is summed).
   MergedLevelBuilder(const qnv::TilesetLayout& layout, std::uint8_t cellsLog2,
                      std::uint8_t firstLevel, std::uint8_t lastLevel);
 
