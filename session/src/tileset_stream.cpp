@@ -366,10 +366,35 @@ std::uint64_t TilesetStream::memoryRecords() const {
   return options_.memoryBytes / (splatBytes + treeBytes) * words_;
 }
 
+std::uint64_t TilesetStream::mergedRecords(const splats::GaussianCloud& merged) const {
+  if (index_->header.kind == qnv::StreamKind::gaussian) return merged.size() * words_;
+  // A vector tileset's merged splat (SH degree 2) and its tree share, in 32-byte records.
+  const std::uint64_t splatBytes =
+      56 + 12 * static_cast<std::uint64_t>(splats::shCoefficients(merged.shDegree) - 1);
+  const std::uint64_t treeBytes = 4 + (44 + splatBytes) * 34 / 100;
+  return merged.size() *
+         ((splatBytes + treeBytes + sizeof(qnv::DecodedVector) - 1) / sizeof(qnv::DecodedVector));
+}
+
 void TilesetStream::evict() {
   const std::uint64_t limit = memoryRecords();
   std::uint64_t resident = 0;
   for (const Brick& b : bricks_) resident += heldRecords(b, words_);
+  for (const MergedBrick& m : merged_)
+    if (m.cloud) resident += mergedRecords(*m.cloud);
+  if (resident > limit) {
+    // Merged bricks no view draws first: small, and fetched again whole when wanted (a
+    // fly-through over a capture's deep merged levels would otherwise keep them all).
+    std::vector<std::uint8_t> drawn(merged_.size(), 0);
+    for (std::size_t m : mergedChoice_) drawn[m] = 1;
+    for (std::size_t i = 0; i < merged_.size() && resident > limit; ++i) {
+      MergedBrick& m = merged_[i];
+      if (drawn[i] || !m.cloud) continue;
+      resident -= mergedRecords(*m.cloud);
+      m.cloud.reset();
+      ++stats_.evictedMerged;
+    }
+  }
   if (resident > limit) {
     // Bricks no view chose, lowest priority (farthest, smallest on screen) first.
     std::vector<std::size_t> order;

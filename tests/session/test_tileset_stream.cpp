@@ -336,6 +336,51 @@ TEST_CASE("tileset stream: a Gaussian tileset's memory budget counts the splats'
   CHECK(near.treeSplats == near.splats);
 }
 
+TEST_CASE("tileset stream: merged bricks no view draws are let go under the memory budget",
+          "[tileset][session][splat]") {
+  // The deep tileset above: from 3 times the fitting distance 45 merged nodes (2,994 merged
+  // splats), from 6 the 8 of level 1, from 12 the root's. A budget of 2,000 bunny splats
+  // (142 bytes each) holds the first choice but not all three.
+  const fs::path dir = bunnyGaussianTileset(8, 5);
+  std::uint64_t resident[2] = {0, 0};
+  for (const bool tight : {false, true}) {
+    INFO((tight ? "tight" : "unbounded") << " budget");
+    session::StreamingSession s;
+    session::TilesetOptions options;
+    if (tight) options.memoryBytes = 2000 * 142;
+    s.setTilesetOptions(options);
+    std::string error;
+    REQUIRE(s.open(dir.string(), error));
+    auto set = s.rendererOptions({}).splatLoader(dir.string(), "", error);
+    REQUIRE(set);
+    const auto settle = [&] {
+      for (int i = 0; i < 100000 && !(s.pump(), s.settled() && !set->bounds.empty()); ++i)
+        s.loader().wait(0.01);
+    };
+    settle();
+    render::SplatSet::View view;
+    const scene::Camera fitted = scene::fitCamera(set->bounds, 1.0f, scene::Camera{});
+    view.heightPixels = 512;
+    view.vectors = set->total();
+    const auto request = set->viewRequests->request();
+    for (const float scale : {3.0f, 6.0f, 12.0f}) {
+      view.camera = fitted;
+      view.camera.position =
+          set->bounds.center() + (fitted.position - set->bounds.center()) * scale;
+      request->update(view);
+      settle();
+      CHECK(set->merged->size() > 0);
+      CHECK(set->gaussians->empty());
+    }
+    const session::TilesetStatistics stats = s.tilesets()[0]->statistics();
+    CHECK((stats.evictedMerged > 0) == tight);
+    resident[tight] = stats.residentVectors;
+  }
+  // Unbounded, every merged brick fetched stays (those of levels 0 to 2); held to the
+  // budget, those of the last views only.
+  CHECK(resident[1] < resident[0]);
+}
+
 TEST_CASE("tileset stream: a view that moves without changing the choice keeps the tree",
           "[tileset][session][splat]") {
   const fs::path dir = bunnyGaussianTileset();

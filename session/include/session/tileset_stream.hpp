@@ -34,7 +34,9 @@
 namespace gs::session {
 
 struct TilesetOptions {
-  /// Decoded vectors held at most, in bytes (--tileset-memory MB); 32 bytes a vector.
+  /// Decoded vectors held at most, in bytes (--tileset-memory MB); 32 bytes a vector (a
+  /// Gaussian tileset's splat, a merged brick's: mergedRecords). Merged bricks no view
+  /// draws go first, then bricks no view chose.
   std::uint64_t memoryBytes = std::uint64_t{512} << 20;
   /// Screen-space error threshold (TilesetBudget::pixelsPerVector).
   double pixelsPerVector = 1.0;
@@ -56,11 +58,12 @@ struct TilesetStatistics {
   std::uint64_t chosenBricks = 0;     // in the last choice
   std::uint64_t chosenMerged = 0;     // nodes drawn by their merged bricks, in the last choice
   std::uint64_t chosenVectors = 0;    // records of the last choice
-  std::uint64_t residentVectors = 0;  // decoded and held now
+  std::uint64_t residentVectors = 0;  // decoded and held now, merged bricks' splats charged too
   /// The most residentVectors has been after any pump (held between frames, after its
   /// eviction); within one pump the bricks that just arrived are counted before eviction.
   std::uint64_t peakResidentVectors = 0;
   std::uint64_t evictedBricks = 0;
+  std::uint64_t evictedMerged = 0;  // merged bricks let go (no view drew them)
 };
 
 class TilesetStream {
@@ -116,6 +119,10 @@ class TilesetStream {
   /// splat takes its decoded size and its share of the level-of-detail tree (about 0.4
   /// of that again) for its recordsPerElement() records.
   std::uint64_t memoryRecords() const;
+  /// What a decoded merged brick is charged, in the same records: a Gaussian tileset's
+  /// merged splat as one of its splats; a vector tileset's (SH degree 2, 152 bytes and its
+  /// tree's share) as 7 decoded vectors.
+  std::uint64_t mergedRecords(const splats::GaussianCloud& merged) const;
   void rebuild();
   /// The merged set again, when mergedDirty_ (with its own level-of-detail tree).
   void rebuildMerged();
