@@ -336,6 +336,36 @@ TEST_CASE("tileset stream: a Gaussian tileset's memory budget counts the splats'
   CHECK(near.treeSplats == near.splats);
 }
 
+namespace {
+
+/// A session that has opened the tileset in `dir` and settled on it: its set, a view that
+/// fits it (512 pixels high), and that view's request to update.
+struct OpenTileset {
+  explicit OpenTileset(const fs::path& dir, const session::TilesetOptions& options = {}) {
+    s.setTilesetOptions(options);
+    std::string error;
+    REQUIRE(s.open(dir.string(), error));
+    set = s.rendererOptions({}).splatLoader(dir.string(), "", error);
+    REQUIRE(set);
+    settle();
+    view.camera = scene::fitCamera(set->bounds, 1.0f, scene::Camera{});
+    view.heightPixels = 512;
+    view.vectors = set->total();
+    request = set->viewRequests->request();
+  }
+  /// Pumps until the session has settled.
+  void settle() {
+    for (int i = 0; i < 100000 && !(s.pump(), s.settled() && !set->bounds.empty()); ++i)
+      s.loader().wait(0.01);
+  }
+  session::StreamingSession s;
+  std::shared_ptr<const render::SplatSet> set;
+  render::SplatSet::View view;
+  decltype(set->viewRequests->request()) request;
+};
+
+}  // namespace
+
 TEST_CASE("tileset stream: merged bricks no view draws are let go under the memory budget",
           "[tileset][session][splat]") {
   // The deep tileset above: from 3 times the fitting distance 45 merged nodes (2,994 merged
@@ -345,34 +375,21 @@ TEST_CASE("tileset stream: merged bricks no view draws are let go under the memo
   std::uint64_t resident[2] = {0, 0};
   for (const bool tight : {false, true}) {
     INFO((tight ? "tight" : "unbounded") << " budget");
-    session::StreamingSession s;
     session::TilesetOptions options;
     if (tight) options.memoryBytes = 2000 * 142;
-    s.setTilesetOptions(options);
-    std::string error;
-    REQUIRE(s.open(dir.string(), error));
-    auto set = s.rendererOptions({}).splatLoader(dir.string(), "", error);
-    REQUIRE(set);
-    const auto settle = [&] {
-      for (int i = 0; i < 100000 && !(s.pump(), s.settled() && !set->bounds.empty()); ++i)
-        s.loader().wait(0.01);
-    };
-    settle();
-    render::SplatSet::View view;
-    const scene::Camera fitted = scene::fitCamera(set->bounds, 1.0f, scene::Camera{});
-    view.heightPixels = 512;
-    view.vectors = set->total();
-    const auto request = set->viewRequests->request();
+    OpenTileset t(dir, options);
+    const scene::Camera fitted = t.view.camera;
+    const auto& set = t.set;
     for (const float scale : {3.0f, 6.0f, 12.0f}) {
-      view.camera = fitted;
-      view.camera.position =
+      t.view.camera = fitted;
+      t.view.camera.position =
           set->bounds.center() + (fitted.position - set->bounds.center()) * scale;
-      request->update(view);
-      settle();
+      t.request->update(t.view);
+      t.settle();
       CHECK(set->merged->size() > 0);
       CHECK(set->gaussians->empty());
     }
-    const session::TilesetStatistics stats = s.tilesets()[0]->statistics();
+    const session::TilesetStatistics stats = t.s.tilesets()[0]->statistics();
     CHECK((stats.evictedMerged > 0) == tight);
     resident[tight] = stats.residentVectors;
   }
@@ -383,32 +400,18 @@ TEST_CASE("tileset stream: merged bricks no view draws are let go under the memo
 
 TEST_CASE("tileset stream: a view that moves without changing the choice keeps the tree",
           "[tileset][session][splat]") {
-  const fs::path dir = bunnyGaussianTileset();
-  session::StreamingSession s;
-  std::string error;
-  REQUIRE(s.open(dir.string(), error));
-  auto set = s.rendererOptions({}).splatLoader(dir.string(), "", error);
-  REQUIRE(set);
-  const auto settle = [&] {
-    for (int i = 0; i < 100000 && !(s.pump(), s.settled() && !set->bounds.empty()); ++i)
-      s.loader().wait(0.01);
-  };
-  settle();
-  render::SplatSet::View view;
-  view.camera = scene::fitCamera(set->bounds, 1.0f, scene::Camera{});
-  view.heightPixels = 512;
-  view.vectors = set->total();
-  const auto request = set->viewRequests->request();
-  request->update(view);
-  settle();
+  OpenTileset t(bunnyGaussianTileset());
+  const auto& set = t.set;
+  t.request->update(t.view);
+  t.settle();
   const std::shared_ptr<const splats::LodTree> tree = set->lodTree;
   REQUIRE(tree);
   const auto cloud = set->gaussians;
   // Near, every splat is chosen from anywhere about as close: a step sideways changes
   // nothing the set is made of, so neither its splats nor their tree are made again.
-  view.camera.position += 0.01f * glm::length(set->bounds.size()) * glm::vec3(1, 0, 0);
-  request->update(view);
-  settle();
+  t.view.camera.position += 0.01f * glm::length(set->bounds.size()) * glm::vec3(1, 0, 0);
+  t.request->update(t.view);
+  t.settle();
   CHECK(set->gaussians == cloud);
   CHECK(set->lodTree == tree);
 }
