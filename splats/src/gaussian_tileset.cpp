@@ -91,13 +91,13 @@ std::string encodeMergedBrick(const GaussianCloud& merged) {
 }
 
 std::vector<std::pair<qnv::TilesetCell, std::string>> gaussianMergedBricks(
-    const std::map<qnv::TilesetCell, GaussianCloud>& merged, const qnv::TilesetIndex& index) {
+    const std::map<qnv::TilesetCell, std::string>& merged, const qnv::TilesetIndex& index) {
   std::vector<std::pair<qnv::TilesetCell, std::string>> out;
   for (const qnv::TilesetBrick& b : index.bricks) {
     if (!index.hasMerged(b.level)) continue;
     const qnv::TilesetCell node{b.level, glm::uvec3(b.x, b.y, b.z)};
     const auto it = merged.find(node);
-    out.emplace_back(node, encodeMergedBrick(it != merged.end() ? it->second : GaussianCloud{}));
+    out.emplace_back(node, it != merged.end() ? it->second : encodeMergedBrick({}));
   }
   return out;
 }
@@ -151,24 +151,33 @@ GaussianTilesetFiles buildGaussianTileset(const GaussianCloud& cloud,
   };
   GaussianTilesetFiles out;
   // The merged levels (share 0): leaf by leaf in Morton order, each leaf's splats in
-  // scene order, as the out-of-core encode adds them.
-  std::map<qnv::TilesetCell, GaussianCloud> mergedClouds;
+  // scene order, as the out-of-core encode adds them; each node's merged brick encoded as
+  // it is done. On a thread of its own beside the bricks' when there are threads.
   const bool merged = cut.mergedCellsLog2 > 0 && depth > 0;
+  std::vector<std::pair<glm::uvec3, std::vector<std::uint32_t>>> mergedLeaves;
   if (merged && share == 0) {
-    GaussianMergedLevels levels(layout, cut.mergedCellsLog2,
-                                [&](const qnv::TilesetCell& node, GaussianCloud&& c) {
-                                  mergedClouds.emplace(node, std::move(c));
-                                });
     std::vector<std::uint64_t> keys;
     for (const auto& [index, members] : leaves) keys.push_back(index);
-    std::vector<std::uint32_t> inCloud;
     for (const std::uint64_t index : leavesInMortonOrder(layout, std::move(keys))) {
-      inCloud.clear();
+      std::vector<std::uint32_t> inCloud;
       for (const std::uint32_t k : leaves.at(index)) inCloud.push_back(frame.kept[k]);
-      levels.addLeaf(layout.leafAt(index), cloud, inCloud);
+      mergedLeaves.emplace_back(layout.leafAt(index), std::move(inCloud));
     }
-    levels.finish();
   }
+  const auto mergeLevels = [&] {
+    std::map<qnv::TilesetCell, std::string> bricks;
+    if (mergedLeaves.empty()) return bricks;
+    GaussianMergedLevels levels(layout, cut.mergedCellsLog2,
+                                [&](const qnv::TilesetCell& node, GaussianCloud&& c) {
+                                  bricks.emplace(node, encodeMergedBrick(c));
+                                });
+    for (const auto& [leaf, members] : mergedLeaves) levels.addLeaf(leaf, cloud, members);
+    levels.finish();
+    return bricks;
+  };
+  std::future<std::map<qnv::TilesetCell, std::string>> mergedTask;
+  if (threads > 1 && !mergedLeaves.empty())
+    mergedTask = std::async(std::launch::async, mergeLevels);
   std::map<qnv::TilesetCell, std::vector<std::uint32_t>> nodes;
   for (auto& [index, members] : leaves) {
     std::sort(members.begin(), members.end(), rankedBefore);
@@ -221,7 +230,9 @@ GaussianTilesetFiles buildGaussianTileset(const GaussianCloud& cloud,
     out.index.mergedCellsLog2 = cut.mergedCellsLog2;
     out.index.mergedEveryLevel = true;
   }
-  if (merged && share == 0) out.merged = gaussianMergedBricks(mergedClouds, out.index);
+  if (merged && share == 0)
+    out.merged =
+        gaussianMergedBricks(mergedTask.valid() ? mergedTask.get() : mergeLevels(), out.index);
   return out;
 }
 

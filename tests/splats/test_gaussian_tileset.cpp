@@ -260,8 +260,9 @@ TEST_CASE("a Gaussian tileset's K, not given, makes a mid-sized scene's octree 2
   }
 }
 
-TEST_CASE("a Gaussian tileset's bricks are the same bytes on any number of threads",
-          "[splats][tileset]") {
+TEST_CASE(
+    "a Gaussian tileset's bricks and merged bricks are the same bytes on any number of threads",
+    "[splats][tileset]") {
   const splats::GaussianCloud cloud = randomGaussians();
   const splats::GaussianTilesetFiles one = splats::buildGaussianTileset(cloud, gaussianCut());
   REQUIRE(one.bricks.size() > 8);  // a tree with interior and leaf bricks
@@ -275,5 +276,8 @@ TEST_CASE("a Gaussian tileset's bricks are the same bytes on any number of threa
       CHECK(many.bricks[i].brick.path() == one.bricks[i].brick.path());
     }
     CHECK(qnv::serializeTilesetIndex(many.index) == qnv::serializeTilesetIndex(one.index));
+    // The merged levels, summed on a thread of their own beside the bricks': the same.
+    REQUIRE(many.merged.size() == one.merged.size());
+    CHECK(many.merged == one.merged);
   }
 }

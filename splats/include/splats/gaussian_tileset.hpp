@@ -63,8 +63,9 @@ struct GaussianTilesetFiles {
 /// interior and merged bricks too: every share reads the whole scene (the quantization
 /// frame and the assignment are the scene's), and the shares' bricks together are the
 /// unsplit run's, byte for byte (encode::mergeShares writes their index).
-/// The bricks are encoded on `threads` threads (at least 1), the same bytes whatever the
-/// count. Throws qnv::InputError when K is 0, the share is out of range or no splat is
+/// The bricks are encoded on `threads` threads (at least 1), and with more than one the
+/// merged levels are summed and encoded on one more beside them: the same bytes whatever
+/// the count. Throws qnv::InputError when K is 0, the share is out of range or no splat is
 /// kept ("nothing to encode").
 GaussianTilesetFiles buildGaussianTileset(const GaussianCloud& cloud,
                                           const qnv::TilesetOptions& cut,
@@ -115,11 +116,11 @@ std::vector<std::pair<qnv::TilesetCell, std::size_t>> splitGaussianLeaf(
 /// A merged brick's bytes: `merged` (a node's merged Gaussians) as a whole Gaussian
 /// stream (encodeGaussianStream, compact packets).
 std::string encodeMergedBrick(const GaussianCloud& merged);
-/// The merged brick (encodeMergedBrick) of every brick of `index` whose level hasMerged,
-/// in index order, from the nodes' merged Gaussians (GaussianMergedLevels' sink); an
-/// empty stream for a node without merged splats.
+/// The merged brick of every brick of `index` whose level hasMerged, in index order, from
+/// the nodes' encoded merged bricks (encodeMergedBrick of GaussianMergedLevels' clouds);
+/// an empty stream for a node without merged splats.
 std::vector<std::pair<qnv::TilesetCell, std::string>> gaussianMergedBricks(
-    const std::map<qnv::TilesetCell, GaussianCloud>& merged, const qnv::TilesetIndex& index);
+    const std::map<qnv::TilesetCell, std::string>& merged, const qnv::TilesetIndex& index);
 /// `leaves` (TilesetLayout::leafIndex values) sorted by mortonOfCell of their cells: the
 /// order GaussianMergedLevels takes them in.
 std::vector<std::uint64_t> leavesInMortonOrder(const qnv::TilesetLayout& layout,
