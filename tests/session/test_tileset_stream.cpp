@@ -242,17 +242,17 @@ TEST_CASE("tileset stream: a new view re-chooses, and far bricks go over the mem
 }
 
 // bunny_small (3,000 splats) as a Gaussian tileset of K-splat bricks (512: depth 1, a
-// merged root) with 2^cellsLog2 merged cells a node, written under the build folder;
-// returns its folder.
-fs::path bunnyGaussianTileset(std::uint64_t brickVectors = 512, std::uint8_t cellsLog2 = 4) {
+// merged root) with 2^cellsLog2 merged cells a node, written under the build folder in a
+// folder named for `test` (ctest runs the cases at once: each writes its own); returns it.
+fs::path bunnyGaussianTileset(const std::string& test, std::uint64_t brickVectors = 512,
+                              std::uint8_t cellsLog2 = 4) {
   const std::string ply = test::readBytes(test::sourceDir() / "tests/data/splats/bunny_small.ply");
   const splats::GaussianCloud cloud = splats::readPlyGaussians(ply, "bunny_small.ply");
   qnv::TilesetOptions cut;
   cut.brickVectors = brickVectors;
   cut.mergedCellsLog2 = cellsLog2;
   const splats::GaussianTilesetFiles files = splats::buildGaussianTileset(cloud, cut);
-  const fs::path dir = freshDir("bunny_small_gaussians_" + std::to_string(brickVectors) + "_" +
-                                std::to_string(cellsLog2));
+  const fs::path dir = freshDir("bunny_small_gaussians_" + test);
   for (const qnv::BrickFile& b : files.bricks) {
     fs::create_directories((dir / b.brick.path()).parent_path());
     std::ofstream(dir / b.brick.path(), std::ios::binary) << b.bytes;
@@ -269,7 +269,7 @@ fs::path bunnyGaussianTileset(std::uint64_t brickVectors = 512, std::uint8_t cel
 
 TEST_CASE("tileset stream: a Gaussian tileset draws its splats and counts splats",
           "[tileset][session][splat]") {
-  const fs::path dir = bunnyGaussianTileset();
+  const fs::path dir = bunnyGaussianTileset("draws");
   // Near: every splat of every brick, and the Streams panel counts splats.
   const Loaded near = load(dir.string(), nullptr);
   CHECK(near.messages.empty());
@@ -300,7 +300,7 @@ TEST_CASE("tileset stream: a deep Gaussian tileset draws merged bricks below lev
   // merged bricks too (the index's mergedEveryLevel). Levels 0 and 1 have at most 1 + 8
   // nodes, so a choice of more than 8 merged nodes holds level 2's (3 times the fitting
   // distance: 45 nodes; 6 times: level 1's 8; 2 times: the leaves' splats).
-  const fs::path dir = bunnyGaussianTileset(8, 5);
+  const fs::path dir = bunnyGaussianTileset("deep", 8, 5);
   session::TilesetOptions options;
   options.mergedTreeOnThisThread = 0;  // every merged set's tree on a thread of its own
   bool deep = false;
@@ -322,7 +322,7 @@ TEST_CASE("tileset stream: a deep Gaussian tileset draws merged bricks below lev
 
 TEST_CASE("tileset stream: a Gaussian tileset's memory budget counts the splats' tree too",
           "[tileset][session][splat]") {
-  const fs::path dir = bunnyGaussianTileset();
+  const fs::path dir = bunnyGaussianTileset("budget");
   // bunny_small's splats (SH degree 1) decode to 92 bytes each, and their share of the
   // level-of-detail tree is 4 + 0.34 (44 + 92) = 50 more: 142 bytes, so this budget holds
   // 1,500 of the 3,000 splats (2,315 at their decoded size alone).
@@ -371,7 +371,7 @@ TEST_CASE("tileset stream: merged bricks no view draws are let go under the memo
   // The deep tileset above: from 3 times the fitting distance 45 merged nodes (2,994 merged
   // splats), from 6 the 8 of level 1, from 12 the root's. A budget of 2,000 bunny splats
   // (142 bytes each) holds the first choice but not all three.
-  const fs::path dir = bunnyGaussianTileset(8, 5);
+  const fs::path dir = bunnyGaussianTileset("evicted", 8, 5);
   std::uint64_t resident[2] = {0, 0};
   for (const bool tight : {false, true}) {
     INFO((tight ? "tight" : "unbounded") << " budget");
@@ -400,7 +400,7 @@ TEST_CASE("tileset stream: merged bricks no view draws are let go under the memo
 
 TEST_CASE("tileset stream: a view that moves without changing the choice keeps the tree",
           "[tileset][session][splat]") {
-  OpenTileset t(bunnyGaussianTileset());
+  OpenTileset t(bunnyGaussianTileset("moves"));
   const auto& set = t.set;
   t.request->update(t.view);
   t.settle();
