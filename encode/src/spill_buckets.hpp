@@ -107,6 +107,7 @@ class SpillBuckets {
   };
 
   // Appends spill `s`'s run of `key`, if it has one, to `out`, passing runs of smaller keys.
+  // A run's data is read with the next run's header behind it (one read a run).
   void readRun(Spill& s, std::uint64_t key, std::vector<std::uint32_t>& out) {
     const std::uint64_t runHeaderBytes = 4 * kRunHeaderWords;
     while (s.next < s.end) {
@@ -114,21 +115,36 @@ class SpillBuckets {
         std::uint32_t header[kRunHeaderWords];
         if (s.end - s.next < runHeaderBytes) damaged();
         spill_.read(s.next, header, sizeof header);
-        s.key = header[0] | std::uint64_t{header[1]} << 32;
-        s.count = header[2] | std::uint64_t{header[3]} << 32;
-        if (s.count == 0 || s.count > (s.end - s.next - runHeaderBytes) / (4 * words_)) damaged();
-        s.peeked = true;
+        peek(s, header);
       }
       if (s.key > key) return;
       const std::uint64_t bytes = s.count * words_ * 4;
+      const std::uint64_t after = s.next + runHeaderBytes + bytes;  // the next run
       if (s.key == key) {
+        const bool ahead = s.end - after >= runHeaderBytes;
         const std::size_t at = out.size();
-        out.resize(at + s.count * words_);
-        spill_.read(s.next + runHeaderBytes, out.data() + at, bytes);
+        out.resize(at + s.count * words_ + (ahead ? kRunHeaderWords : 0));
+        spill_.read(s.next + runHeaderBytes, out.data() + at, bytes + (ahead ? runHeaderBytes : 0));
+        s.next = after;
+        s.peeked = false;
+        if (ahead) {
+          std::uint32_t header[kRunHeaderWords];
+          std::copy(out.end() - kRunHeaderWords, out.end(), header);
+          out.resize(out.size() - kRunHeaderWords);
+          peek(s, header);
+        }
+        return;  // one run a key in a spill
       }
-      s.next += runHeaderBytes + bytes;
+      s.next = after;
       s.peeked = false;
     }
+  }
+  // Takes `header` as spill `s`'s next run's, checking that the run fits the spill.
+  void peek(Spill& s, const std::uint32_t* header) {
+    s.key = header[0] | std::uint64_t{header[1]} << 32;
+    s.count = header[2] | std::uint64_t{header[3]} << 32;
+    if (s.count == 0 || s.count > (s.end - s.next - 4 * kRunHeaderWords) / (4 * words_)) damaged();
+    s.peeked = true;
   }
   [[noreturn]] void damaged() const {
     throw SpillFailure("a spill file of this encode is damaged (its runs do not fit it)");
