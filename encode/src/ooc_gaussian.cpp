@@ -303,19 +303,19 @@ GaussianOutOfCoreResult writeGaussianTilesetOutOfCore(const TilesetTarget& targe
     std::vector<std::uint32_t> members;
     for (const std::uint64_t code : leaves.keys()) {  // Morton order
       auto records = std::make_shared<std::vector<std::uint32_t>>(leaves.take(code));
-      const std::uint64_t leaf = layout.leafIndex(splats::cellOfMorton(code));
+      const glm::uvec3 leafCell = splats::cellOfMorton(code);
+      const std::uint64_t leaf = layout.leafIndex(leafCell);
       const std::size_t count = records->size() / words;
       if (mergedLevels) {  // the leaf's splats in scene order, before they are ranked
         const auto t = std::chrono::steady_clock::now();
         members.resize(count);
         std::iota(members.begin(), members.end(), 0u);
-        mergedLevels->addLeaf(layout.leafAt(leaf), cloudOf(*records, 0, count, degree), members);
+        mergedLevels->addLeaf(leafCell, cloudOf(*records, 0, count, degree), members);
         mergedSeconds += since(t);
       }
       rankRecords(*records, words);
       std::size_t next = 0;
-      for (const auto& [node, end] :
-           splats::splitGaussianLeaf(layout, layout.leafAt(leaf), count)) {
+      for (const auto& [node, end] : splats::splitGaussianLeaf(layout, leafCell, count)) {
         if (node.level < depth && share == 0) {
           interior.add(nodeKey(node), records->data() + next * words, end - next);
           interiorNodes.insert(node);

@@ -102,6 +102,20 @@ std::vector<std::pair<qnv::TilesetCell, std::string>> gaussianMergedBricks(
   return out;
 }
 
+qnv::TilesetLayout gaussianTilesetLayout(const qnv::StreamHeader& whole,
+                                         const qnv::TilesetOptions& cut) {
+  qnv::StreamHeader splats = whole;
+  splats.vectorCount = whole.vectorCount / whole.recordsPerElement();  // depth counts splats
+  qnv::TilesetOptions layoutCut = cut;
+  layoutCut.write.packetBytes = whole.packetBytes;
+  layoutCut.write.encoding = whole.encoding;
+  return qnv::TilesetLayout(splats, layoutCut);
+}
+
+namespace {
+
+// `leaves` (TilesetLayout::leafIndex values) sorted by mortonOfCell of their cells: the
+// order GaussianMergedLevels takes them in, as the out-of-core encode's buckets give them.
 std::vector<std::uint64_t> leavesInMortonOrder(const qnv::TilesetLayout& layout,
                                                std::vector<std::uint64_t> leaves) {
   std::vector<std::pair<std::uint64_t, std::uint64_t>> coded;
@@ -113,15 +127,7 @@ std::vector<std::uint64_t> leavesInMortonOrder(const qnv::TilesetLayout& layout,
   return leaves;
 }
 
-qnv::TilesetLayout gaussianTilesetLayout(const qnv::StreamHeader& whole,
-                                         const qnv::TilesetOptions& cut) {
-  qnv::StreamHeader splats = whole;
-  splats.vectorCount = whole.vectorCount / whole.recordsPerElement();  // depth counts splats
-  qnv::TilesetOptions layoutCut = cut;
-  layoutCut.write.packetBytes = whole.packetBytes;
-  layoutCut.write.encoding = whole.encoding;
-  return qnv::TilesetLayout(splats, layoutCut);
-}
+}  // namespace
 
 GaussianTilesetFiles buildGaussianTileset(const GaussianCloud& cloud,
                                           const qnv::TilesetOptions& cut,

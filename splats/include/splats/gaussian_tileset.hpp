@@ -121,10 +121,6 @@ std::string encodeMergedBrick(const GaussianCloud& merged);
 /// an empty stream for a node without merged splats.
 std::vector<std::pair<qnv::TilesetCell, std::string>> gaussianMergedBricks(
     const std::map<qnv::TilesetCell, std::string>& merged, const qnv::TilesetIndex& index);
-/// `leaves` (TilesetLayout::leafIndex values) sorted by mortonOfCell of their cells: the
-/// order GaussianMergedLevels takes them in.
-std::vector<std::uint64_t> leavesInMortonOrder(const qnv::TilesetLayout& layout,
-                                               std::vector<std::uint64_t> leaves);
 
 /// The layout buildGaussianTileset builds its octree with, from the tileset's index
 /// template `whole` (vectorCount = the splats' records) and the encode's `cut` (brickVectors
