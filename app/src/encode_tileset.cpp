@@ -8,6 +8,8 @@
 #include <string>
 
 #include "app/commands.hpp"
+#include "base/fetch.hpp"
+#include "session/splat_inputs.hpp"
 
 namespace gs::app {
 
@@ -173,7 +175,9 @@ int writeGaussianTilesetOutOfCore(const Options& options, const encode::TilesetT
   const EncodeOptions& e = options.encode;
   encode::GaussianOutOfCoreResult r;
   try {
-    const std::unique_ptr<splats::GaussianBatchReader> reader = splats::openGaussianBatches(input);
+    base::LocalFetcher fetcher;  // SOG's meta.json names its textures beside it
+    const std::unique_ptr<splats::GaussianBatchReader> reader =
+        splats::openGaussianBatches(input, session::sideFileReader(fetcher, input));
     r = encode::writeGaussianTilesetOutOfCore(
         target, *reader, {.shBits = e.shBits, .shFullFraction = e.shFull},
         {.brickVectors = e.brickVectors == 0, .mergedCells = e.mergedCells == 1}, outOfCore(e));

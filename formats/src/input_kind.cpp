@@ -86,6 +86,11 @@ InputKind sniffPlain(std::string_view head) {
       const std::size_t key = json.find_first_not_of(" \t\r\n", brace + 1);
       if (key != std::string_view::npos && json.substr(key).starts_with("\"X3D\""))
         return InputKind::world;
+      // PlayCanvas SOG's meta.json (its textures beside it): "count" and "means" come
+      // first, before the codebooks (splats/readers.hpp, detectSplatFormat).
+      if (head.find("\"means\"") != std::string_view::npos &&
+          head.find("\"count\"") != std::string_view::npos)
+        return InputKind::gaussianSplats;
     }
   }
   const auto& magic = qnv::kMagic;

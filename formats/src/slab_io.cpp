@@ -4,12 +4,12 @@
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
-#include <zlib.h>
 
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
 
+#include "base/gzip.hpp"
 #include "qnv/error.hpp"
 
 namespace gs::formats::detail {
@@ -82,91 +82,32 @@ std::uint64_t offsetAfterLines(const RandomFile& file, std::uint64_t start, std:
   return pos;
 }
 
-struct GzipStream::Z {
-  z_stream s{};
-  bool initialized = false;
-  ~Z() {
-    if (initialized) inflateEnd(&s);
-  }
-};
-
 GzipStream::GzipStream(std::string path, std::uint64_t compressedOffset)
-    : file_(std::move(path)), begin_(compressedOffset), input_(256 * 1024) {
-  start();
-}
+    : file_(std::move(path)),
+      inflate_([this](std::uint64_t offset, char* dst,
+                      std::size_t n) { return file_.readSome(offset, dst, n); },
+               compressedOffset) {}
 
 GzipStream::~GzipStream() = default;
 
-void GzipStream::start() {
-  z_ = std::make_unique<Z>();
-  // 15 + 32: a gzip or a zlib header, detected.
-  if (inflateInit2(&z_->s, 15 + 32) != Z_OK)
-    throw InputError(file_.path() + ": cannot start zlib's inflate");
-  z_->initialized = true;
-  inputOffset_ = begin_;
-  position_ = 0;
-  ended_ = false;
-}
-
 void GzipStream::rewind() {
-  start();
+  inflate_.rewind();
 }
 
 std::size_t GzipStream::read(char* dst, std::size_t n) {
-  std::size_t done = 0;
-  z_stream& s = z_->s;
-  while (done < n && !ended_) {
-    if (s.avail_in == 0) {
-      const std::size_t got =
-          file_.readSome(inputOffset_, reinterpret_cast<char*>(input_.data()), input_.size());
-      if (got == 0) {
-        throw InputError(file_.path() + ": corrupt gzip data at compressed byte offset " +
-                         std::to_string(inputOffset_) + ": truncated");
-      }
-      inputOffset_ += got;
-      s.next_in = input_.data();
-      s.avail_in = static_cast<uInt>(got);
-    }
-    const std::size_t want = std::min<std::size_t>(n - done, 1u << 30);
-    s.next_out = reinterpret_cast<Bytef*>(dst + done);
-    s.avail_out = static_cast<uInt>(want);
-    const int rc = inflate(&s, Z_NO_FLUSH);
-    const std::size_t produced = want - s.avail_out;
-    done += produced;
-    position_ += produced;
-    if (rc == Z_STREAM_END) {
-      // Another gzip member may follow (RFC 1952 2.2); anything else ends the data.
-      if (s.avail_in == 0) {
-        const std::size_t got =
-            file_.readSome(inputOffset_, reinterpret_cast<char*>(input_.data()), input_.size());
-        inputOffset_ += got;
-        s.next_in = input_.data();
-        s.avail_in = static_cast<uInt>(got);
-      }
-      if (s.avail_in >= 2 && s.next_in[0] == 0x1f && s.next_in[1] == 0x8b)
-        inflateReset(&s);
-      else
-        ended_ = true;
-    } else if (rc != Z_OK && !(rc == Z_BUF_ERROR && produced > 0)) {
-      const std::uint64_t at = inputOffset_ - s.avail_in;
-      throw InputError(file_.path() + ": corrupt gzip data at compressed byte offset " +
-                       std::to_string(at) + ": " + (s.msg ? s.msg : zError(rc)));
-    }
+  try {
+    return inflate_.read(dst, n);
+  } catch (const base::GzipError& e) {
+    throw InputError(file_.path() + ": " + e.what());
   }
-  return done;
 }
 
 std::uint64_t GzipStream::skip(std::uint64_t n) {
-  std::vector<char> scratch(std::min<std::uint64_t>(n, 1u << 20));
-  std::uint64_t done = 0;
-  while (done < n) {
-    const std::size_t got =
-        read(scratch.data(),
-             static_cast<std::size_t>(std::min<std::uint64_t>(n - done, scratch.size())));
-    if (got == 0) break;
-    done += got;
+  try {
+    return inflate_.skip(n);
+  } catch (const base::GzipError& e) {
+    throw InputError(file_.path() + ": " + e.what());
   }
-  return done;
 }
 
 std::string resolveBeside(const std::string& headerPath, const std::string& relative) {

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "base/inflate_stream.hpp"
+
 namespace gs::formats::detail {
 
 /// A file open for positioned reads.
@@ -40,8 +42,8 @@ class RandomFile {
 std::uint64_t offsetAfterLines(const RandomFile& file, std::uint64_t start, std::uint64_t lines);
 
 /// The decompressed bytes of the gzip (or zlib) data of a file from a compressed offset
-/// on, read forward; concatenated gzip members are one stream. Memory: zlib's state plus
-/// a 256 KiB input buffer.
+/// on, read forward (base::InflateStream over the file); concatenated gzip members are one
+/// stream. Memory: zlib's state plus a 256 KiB input buffer.
 class GzipStream {
  public:
   GzipStream(std::string path, std::uint64_t compressedOffset);
@@ -51,7 +53,7 @@ class GzipStream {
 
   const std::string& path() const { return file_.path(); }
   /// Decompressed bytes handed out (or skipped) so far.
-  std::uint64_t position() const { return position_; }
+  std::uint64_t position() const { return inflate_.position(); }
   /// Up to `n` decompressed bytes; fewer only at the end of the data. Throws InputError
   /// "PATH: corrupt gzip data at compressed byte offset O: REASON".
   std::size_t read(char* dst, std::size_t n);
@@ -61,15 +63,8 @@ class GzipStream {
   void rewind();
 
  private:
-  void start();
   RandomFile file_;
-  std::uint64_t begin_;
-  std::uint64_t inputOffset_ = 0;  // next compressed byte to read from the file
-  std::uint64_t position_ = 0;
-  bool ended_ = false;
-  std::vector<unsigned char> input_;
-  struct Z;
-  std::unique_ptr<Z> z_;
+  base::InflateStream inflate_;
 };
 
 /// `relative` resolved against the folder of `headerPath`; absolute paths and ".."

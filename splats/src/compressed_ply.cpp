@@ -5,6 +5,7 @@
 // uint8 f_rest_*. Decoded as splat-transform 3.7's readCompressedChunked does (the file's
 // own axes, Transform.PLY).
 #include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -28,104 +29,118 @@ float lerp(float a, float b, float t) {
   return a * (1.0f - t) + b * t;
 }
 
-}  // namespace
+/// Where a compressed PLY's values lie: its elements, the packed words' and bounds'
+/// columns, the SH properties. Points into the PlyHeader it was made from.
+struct Layout {
+  const PlyElement* chunk = nullptr;
+  const PlyElement* vertex = nullptr;
+  const PlyElement* sh = nullptr;
+  std::size_t pPos = 0, pRot = 0, pScale = 0, pColor = 0;
+  int bounds[12] = {};
+  int colorBounds[6] = {};
+  bool hasColor = true;
+  int degree = 0;
+  std::vector<std::size_t> shOffsets;  // byte of f_rest_k within an sh record
+};
 
-GaussianCloud readCompressedPlyGaussians(std::string_view bytes, std::string_view name) {
-  PlyHeader header;
-  std::string error;
-  if (!detail::parsePlyHeader(bytes, header, error)) fail(name, error);
+/// The layout of `header`, or FormatError naming `name` for what the format does not allow
+/// (a missing element or property, a wrong type, too few chunks or sh records).
+Layout layoutOf(const PlyHeader& header, std::string_view name) {
   if (header.format != detail::PlyFormat::binaryLittleEndian)
     fail(name, "a compressed PLY must be binary_little_endian");
-  const PlyElement* chunk = header.find("chunk");
-  const PlyElement* vertex = header.find("vertex");
-  const PlyElement* sh = header.find("sh");
-  if (!chunk) fail(name, "no chunk element");
-  if (!vertex) fail(name, "no vertex element");
-  if (vertex->count == 0) fail(name, "expected at least one splat, got 0");
+  Layout L;
+  L.chunk = header.find("chunk");
+  L.vertex = header.find("vertex");
+  L.sh = header.find("sh");
+  if (!L.chunk) fail(name, "no chunk element");
+  if (!L.vertex) fail(name, "no vertex element");
+  const PlyElement& vertex = *L.vertex;
+  const PlyElement& chunk = *L.chunk;
+  if (vertex.count == 0) fail(name, "expected at least one splat, got 0");
 
   // Packed vertex words: any integer type of 4 bytes.
   auto word = [&](const char* property) {
-    const int i = vertex->find(property);
+    const int i = vertex.find(property);
     if (i < 0) fail(name, std::string("property '") + property + "' missing");
-    const auto& p = vertex->properties[static_cast<std::size_t>(i)];
+    const auto& p = vertex.properties[static_cast<std::size_t>(i)];
     if (p.type != detail::PlyType::u32 && p.type != detail::PlyType::i32)
       fail(name, std::string("property '") + property + "' is not a 32-bit integer");
     return p.offset;
   };
-  const std::size_t pPos = word("packed_position"), pRot = word("packed_rotation"),
-                    pScale = word("packed_scale"), pColor = word("packed_color");
+  L.pPos = word("packed_position");
+  L.pRot = word("packed_rotation");
+  L.pScale = word("packed_scale");
+  L.pColor = word("packed_color");
 
   // Chunk bounds, any numeric type.
   auto chunkColumn = [&](const char* property, bool required) -> int {
-    const int i = chunk->find(property);
+    const int i = chunk.find(property);
     if (i < 0 && required) fail(name, std::string("chunk property '") + property + "' missing");
     return i;
   };
   const char* boundNames[] = {"min_x",       "min_y",       "min_z",       "max_x",
                               "max_y",       "max_z",       "min_scale_x", "min_scale_y",
                               "min_scale_z", "max_scale_x", "max_scale_y", "max_scale_z"};
-  int bounds[12];
-  for (int k = 0; k < 12; ++k) bounds[k] = chunkColumn(boundNames[k], true);
+  for (int k = 0; k < 12; ++k) L.bounds[k] = chunkColumn(boundNames[k], true);
   const char* colorNames[] = {"min_r", "min_g", "min_b", "max_r", "max_g", "max_b"};
-  int colorBounds[6];
-  bool hasColor = true;
   for (int k = 0; k < 6; ++k)
-    hasColor = (colorBounds[k] = chunkColumn(colorNames[k], false)) >= 0 && hasColor;
-
-  const std::size_t vertexOffset = detail::plyElementOffset(bytes, name, header, *vertex);
-  const std::size_t chunkOffset = detail::plyElementOffset(bytes, name, header, *chunk);
-  const std::uint64_t needChunks = (vertex->count + 255) / 256;
-  if (chunk->count < needChunks)
+    L.hasColor = (L.colorBounds[k] = chunkColumn(colorNames[k], false)) >= 0 && L.hasColor;
+  const std::uint64_t needChunks = (vertex.count + 255) / 256;
+  if (chunk.count < needChunks)
     fail(name, "expected " + std::to_string(needChunks) + " chunks for " +
-                   std::to_string(vertex->count) + " splats, got " + std::to_string(chunk->count));
+                   std::to_string(vertex.count) + " splats, got " + std::to_string(chunk.count));
+  if (vertex.count > kMaxSplats)
+    fail(name, std::to_string(vertex.count) + " splats exceed the limit of " +
+                   std::to_string(kMaxSplats));
 
-  int degree = 0;
-  std::vector<std::size_t> shOffsets;  // byte of f_rest_k within an sh record
-  std::size_t shOffset = 0;
-  if (sh) {
-    const std::size_t total = sh->properties.size();
-    degree = total % 3 == 0 ? detail::shDegreeForRest(total / 3) : -1;
-    if (degree < 0)
+  if (L.sh) {
+    const std::size_t total = L.sh->properties.size();
+    L.degree = total % 3 == 0 ? detail::shDegreeForRest(total / 3) : -1;
+    if (L.degree < 0)
       fail(name, "expected 0, 9, 24 or 45 sh properties, got " + std::to_string(total));
-    if (sh->count != vertex->count)
-      fail(name, "expected " + std::to_string(vertex->count) + " sh records, got " +
-                     std::to_string(sh->count));
+    if (L.sh->count != vertex.count)
+      fail(name, "expected " + std::to_string(vertex.count) + " sh records, got " +
+                     std::to_string(L.sh->count));
     for (std::size_t k = 0; k < total; ++k) {
-      const int i = sh->find("f_rest_" + std::to_string(k));
+      const int i = L.sh->find("f_rest_" + std::to_string(k));
       if (i < 0) fail(name, "sh property 'f_rest_" + std::to_string(k) + "' missing");
-      const auto& p = sh->properties[static_cast<std::size_t>(i)];
+      const auto& p = L.sh->properties[static_cast<std::size_t>(i)];
       if (p.type != detail::PlyType::u8) fail(name, "sh property '" + p.name + "' is not uchar");
-      shOffsets.push_back(p.offset);
+      L.shOffsets.push_back(p.offset);
     }
-    shOffset = detail::plyElementOffset(bytes, name, header, *sh);
   }
+  return L;
+}
 
-  const std::size_t count = static_cast<std::size_t>(vertex->count);
-  GaussianCloud cloud;
-  detail::allocate(cloud, count, degree);
-  const char* data = bytes.data();
+/// Decodes splats [first, first + n) into `cloud` (allocated for n at L.degree) from the
+/// records of chunks first / 256 on (`chunks`), and those splats' vertex and sh records
+/// (`vertices`, `shRecords`; the latter null without sh).
+void decode(const Layout& L, const char* chunks, const char* vertices, const char* shRecords,
+            std::size_t first, std::size_t n, GaussianCloud& cloud) {
+  const std::size_t c0 = first >> 8;
   auto chunkValue = [&](std::size_t c, int column) {
-    const auto& p = chunk->properties[static_cast<std::size_t>(column)];
+    const auto& p = L.chunk->properties[static_cast<std::size_t>(column)];
     return detail::toFloat(
-        detail::plyValue(data + chunkOffset + c * chunk->rowBytes + p.offset, p.type, false));
+        detail::plyValue(chunks + (c - c0) * L.chunk->rowBytes + p.offset, p.type, false));
   };
   constexpr float kRotNorm = 1.41421356237309505f;  // 1 / (sqrt(2) / 2)
-  std::vector<float> rest(shOffsets.size());
+  std::vector<float> rest(L.shOffsets.size());
   float b[12], cb[6];
   std::size_t loaded = static_cast<std::size_t>(-1);
-  for (std::size_t i = 0; i < count; ++i) {
-    const std::size_t c = i >> 8;
+  for (std::size_t j = 0; j < n; ++j) {
+    const std::size_t c = (first + j) >> 8;
     if (c != loaded) {
-      for (int k = 0; k < 12; ++k) b[k] = chunkValue(c, bounds[k]);
-      if (hasColor)
-        for (int k = 0; k < 6; ++k) cb[k] = chunkValue(c, colorBounds[k]);
+      for (int k = 0; k < 12; ++k) b[k] = chunkValue(c, L.bounds[k]);
+      if (L.hasColor)
+        for (int k = 0; k < 6; ++k) cb[k] = chunkValue(c, L.colorBounds[k]);
       loaded = c;
     }
-    const char* row = data + vertexOffset + i * vertex->rowBytes;
-    const std::uint32_t pp = base::loadLe<std::uint32_t>(row + pPos);
-    const std::uint32_t pr = base::loadLe<std::uint32_t>(row + pRot);
-    const std::uint32_t ps = base::loadLe<std::uint32_t>(row + pScale);
-    const std::uint32_t pc = base::loadLe<std::uint32_t>(row + pColor);
+    const char* row = vertices + j * L.vertex->rowBytes;
+    const std::uint32_t pp = base::loadLe<std::uint32_t>(row + L.pPos);
+    const std::uint32_t pr = base::loadLe<std::uint32_t>(row + L.pRot);
+    const std::uint32_t ps = base::loadLe<std::uint32_t>(row + L.pScale);
+    const std::uint32_t pc = base::loadLe<std::uint32_t>(row + L.pColor);
+    const std::size_t i = j;
     cloud.positions[i] =
         glm::vec3(lerp(b[0], b[3], unorm(pp >> 21, 11)), lerp(b[1], b[4], unorm(pp >> 11, 10)),
                   lerp(b[2], b[5], unorm(pp, 11)));
@@ -151,20 +166,93 @@ GaussianCloud readCompressedPlyGaussians(std::string_view bytes, std::string_vie
                                 std::exp(lerp(b[8], b[11], unorm(ps, 11))));
     cloud.opacities[i] = unorm(pc, 8);
     glm::vec3 rgb(unorm(pc >> 24, 8), unorm(pc >> 16, 8), unorm(pc >> 8, 8));
-    if (hasColor)
+    if (L.hasColor)
       rgb = glm::vec3(lerp(cb[0], cb[3], rgb.x), lerp(cb[1], cb[4], rgb.y),
                       lerp(cb[2], cb[5], rgb.z));
     cloud.shDc[i] = (rgb - 0.5f) / kShC0;
     if (!rest.empty()) {
-      const char* s = data + shOffset + i * sh->rowBytes;
+      const char* s = shRecords + j * L.sh->rowBytes;
       for (std::size_t k = 0; k < rest.size(); ++k) {
-        const unsigned v = static_cast<std::uint8_t>(s[shOffsets[k]]);
-        const float n = v == 0 ? 0.0f : v == 255 ? 1.0f : (static_cast<float>(v) + 0.5f) / 256.0f;
-        rest[k] = (n - 0.5f) * 8.0f;
+        const unsigned v = static_cast<std::uint8_t>(s[L.shOffsets[k]]);
+        const float u = v == 0 ? 0.0f : v == 255 ? 1.0f : (static_cast<float>(v) + 0.5f) / 256.0f;
+        rest[k] = (u - 0.5f) * 8.0f;
       }
       detail::setChannelMajorRest(cloud, i, rest.data());
     }
   }
+}
+
+/// A compressed PLY read a batch of splats at a time: the batch's chunk, vertex and sh
+/// records read by offset.
+class CompressedPlyBatches final : public GaussianBatchReader {
+ public:
+  explicit CompressedPlyBatches(const std::string& path) : file_(path) {
+    std::string head(static_cast<std::size_t>(std::min<std::uint64_t>(file_.size(), 1u << 20)),
+                     '\0');
+    file_.read(0, head.data(), head.size());
+    std::string error;
+    if (!detail::parsePlyHeader(head, header_, error)) fail(path, error);
+    layout_ = layoutOf(header_, path);
+    vertexOffset_ = detail::plyElementOffset(file_.size(), path, header_, *layout_.vertex);
+    chunkOffset_ = detail::plyElementOffset(file_.size(), path, header_, *layout_.chunk);
+    if (layout_.sh) shOffset_ = detail::plyElementOffset(file_.size(), path, header_, *layout_.sh);
+  }
+  std::uint64_t size() const override { return layout_.vertex->count; }
+  int shDegree() const override { return layout_.degree; }
+  std::size_t rowBytes() const override {
+    return layout_.vertex->rowBytes + (layout_.sh ? layout_.sh->rowBytes : 0) +
+           layout_.chunk->rowBytes / 256 + 1;
+  }
+  std::size_t read(GaussianCloud& batch, std::size_t max) override {
+    const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(max, size() - next_));
+    batch = GaussianCloud{};
+    detail::allocate(batch, n, layout_.degree);
+    if (n == 0) return 0;
+    const std::uint64_t c0 = next_ >> 8, c1 = (next_ + n - 1) >> 8;
+    const std::size_t chunkBytes = layout_.chunk->rowBytes;
+    chunks_.resize(static_cast<std::size_t>(c1 - c0 + 1) * chunkBytes);
+    file_.read(chunkOffset_ + c0 * chunkBytes, chunks_.data(), chunks_.size());
+    vertices_.resize(n * layout_.vertex->rowBytes);
+    file_.read(vertexOffset_ + next_ * layout_.vertex->rowBytes, vertices_.data(),
+               vertices_.size());
+    if (layout_.sh) {
+      sh_.resize(n * layout_.sh->rowBytes);
+      file_.read(shOffset_ + next_ * layout_.sh->rowBytes, sh_.data(), sh_.size());
+    }
+    decode(layout_, chunks_.data(), vertices_.data(), layout_.sh ? sh_.data() : nullptr,
+           static_cast<std::size_t>(next_), n, batch);
+    next_ += n;
+    return n;
+  }
+  void rewind() override { next_ = 0; }
+
+ private:
+  detail::PieceFile file_;
+  PlyHeader header_;
+  Layout layout_;
+  std::uint64_t vertexOffset_ = 0, chunkOffset_ = 0, shOffset_ = 0, next_ = 0;
+  std::vector<char> chunks_, vertices_, sh_;
+};
+
+}  // namespace
+
+std::unique_ptr<GaussianBatchReader> openCompressedPlyGaussianBatches(const std::string& path) {
+  return std::make_unique<CompressedPlyBatches>(path);
+}
+
+GaussianCloud readCompressedPlyGaussians(std::string_view bytes, std::string_view name) {
+  PlyHeader header;
+  std::string error;
+  if (!detail::parsePlyHeader(bytes, header, error)) fail(name, error);
+  const Layout L = layoutOf(header, name);
+  const std::size_t vertexOffset = detail::plyElementOffset(bytes, name, header, *L.vertex);
+  const std::size_t chunkOffset = detail::plyElementOffset(bytes, name, header, *L.chunk);
+  const std::size_t shOffset = L.sh ? detail::plyElementOffset(bytes, name, header, *L.sh) : 0;
+  const std::size_t count = static_cast<std::size_t>(L.vertex->count);
+  GaussianCloud cloud;
+  detail::allocate(cloud, count, L.degree);
+  decode(L, bytes.data() + chunkOffset, bytes.data() + vertexOffset,
+         L.sh ? bytes.data() + shOffset : nullptr, 0, count, cloud);
   return cloud;
 }
 

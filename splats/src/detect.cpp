@@ -116,7 +116,8 @@ GaussianCloud readGaussians(std::string_view bytes, std::string_view name,
   detail::fail(name, "not a Gaussian splatting scene");
 }
 
-std::unique_ptr<GaussianBatchReader> openGaussianBatches(const std::string& path) {
+std::unique_ptr<GaussianBatchReader> openGaussianBatches(const std::string& path,
+                                                         const SideFileReader& sideFiles) {
   std::string head;
   {
     const detail::PieceFile file(path);
@@ -124,16 +125,29 @@ std::unique_ptr<GaussianBatchReader> openGaussianBatches(const std::string& path
     head.resize(static_cast<std::size_t>(std::min<std::uint64_t>(file.size(), 1u << 20)));
     file.read(0, head.data(), head.size());
   }
-  const SplatFormat format = detectSplatFormat(head, path);
-  if (format == SplatFormat::ply || format == SplatFormat::compressedPly)
-    return openPlyGaussianBatches(path);  // which refuses the compressed one, naming it
-  if (format == SplatFormat::splat) return openSplatGaussianBatches(path);
-  const char* kinds[] = {"an unknown format", "a PLY",        "a PlayCanvas compressed PLY",
-                         "a .splat",          "an SPZ file",  "an SOG bundle",
-                         "an SOG meta.json",  "a glTF scene", "a QNV Gaussian stream",
-                         "a LAS point cloud"};
-  throw NotPiecewiseError(path + ": read piecewise are binary INRIA .ply and .splat, not " +
-                          kinds[static_cast<int>(format)]);
+  switch (detectSplatFormat(head, path)) {
+    case SplatFormat::ply:
+      return openPlyGaussianBatches(path);
+    case SplatFormat::compressedPly:
+      return openCompressedPlyGaussianBatches(path);
+    case SplatFormat::splat:
+      return openSplatGaussianBatches(path);
+    case SplatFormat::spz:
+      return openSpzGaussianBatches(path);
+    case SplatFormat::sog:
+    case SplatFormat::sogMeta:
+      return openSogGaussianBatches(path, sideFiles);
+    case SplatFormat::gltf:
+      throw NotPiecewiseError(path + ": " + detail::kPiecewiseFormats + ", not a glTF scene");
+    case SplatFormat::qnv:
+      throw NotPiecewiseError(path + ": " + detail::kPiecewiseFormats +
+                              ", not a QNV Gaussian stream");
+    case SplatFormat::las:
+      throw NotPiecewiseError(path + ": " + detail::kPiecewiseFormats + ", not a LAS point cloud");
+    case SplatFormat::unknown:
+      break;
+  }
+  throw NotPiecewiseError(path + ": " + detail::kPiecewiseFormats + ", not an unknown format");
 }
 
 }  // namespace gs::splats

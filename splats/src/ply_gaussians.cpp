@@ -137,11 +137,8 @@ class PlyGaussianBatches final : public GaussianBatchReader {
     if (!detail::parsePlyHeader(head, header_, error)) fail(path, error);
     const PlyElement* vertex = header_.find("vertex");
     if (!vertex) fail(path, "no vertex element");
-    if (vertex->find("packed_position") >= 0 || header_.format == detail::PlyFormat::ascii)
-      throw NotPiecewiseError(path + ": read piecewise are binary INRIA .ply and .splat, not " +
-                              (header_.format == detail::PlyFormat::ascii
-                                   ? "an ascii PLY"
-                                   : "a PlayCanvas compressed PLY"));
+    if (header_.format == detail::PlyFormat::ascii)
+      throw NotPiecewiseError(path + ": " + detail::kPiecewiseFormats + ", not an ascii PLY");
     if (vertex->count == 0) fail(path, "expected at least one splat, got 0");
     columns_ = findColumns(path, *vertex);
     vertex_ = vertex;
@@ -180,6 +177,19 @@ class PlyGaussianBatches final : public GaussianBatchReader {
 }  // namespace
 
 std::unique_ptr<GaussianBatchReader> openPlyGaussianBatches(const std::string& path) {
+  {
+    // A packed vertex element is PlayCanvas's, as readPlyGaussians reads it.
+    const detail::PieceFile file(path);
+    std::string head(static_cast<std::size_t>(std::min<std::uint64_t>(file.size(), 1u << 20)),
+                     '\0');
+    file.read(0, head.data(), head.size());
+    PlyHeader header;
+    std::string error;
+    const PlyElement* vertex =
+        detail::parsePlyHeader(head, header, error) ? header.find("vertex") : nullptr;
+    if (vertex && vertex->find("packed_position") >= 0)
+      return openCompressedPlyGaussianBatches(path);
+  }
   return std::make_unique<PlyGaussianBatches>(path);
 }
 

@@ -14,6 +14,10 @@
 
 namespace gs::splats::detail {
 
+/// The start of openGaussianBatches's NotPiecewiseError: the formats it reads piecewise.
+inline constexpr const char* kPiecewiseFormats =
+    "read piecewise are binary INRIA .ply, .compressed.ply, .splat, .spz and SOG";
+
 /// Throws FormatError("NAME: WHAT").
 [[noreturn]] void fail(std::string_view name, const std::string& what);
 
@@ -121,4 +125,12 @@ namespace gs::splats {
 /// openGaussianBatches for a .ply (ply_gaussians.cpp) and a .splat (splat_format.cpp).
 std::unique_ptr<GaussianBatchReader> openPlyGaussianBatches(const std::string& path);
 std::unique_ptr<GaussianBatchReader> openSplatGaussianBatches(const std::string& path);
+/// openGaussianBatches for a PlayCanvas .compressed.ply (compressed_ply.cpp) and an .spz
+/// (spz.cpp).
+std::unique_ptr<GaussianBatchReader> openCompressedPlyGaussianBatches(const std::string& path);
+std::unique_ptr<GaussianBatchReader> openSpzGaussianBatches(const std::string& path);
+/// openGaussianBatches for an SOG bundle or meta.json (sog.cpp); `sideFiles` reads a
+/// meta.json's textures.
+std::unique_ptr<GaussianBatchReader> openSogGaussianBatches(const std::string& path,
+                                                            const SideFileReader& sideFiles);
 }  // namespace gs::splats

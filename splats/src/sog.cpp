@@ -84,8 +84,22 @@ float invLog(float v) {
   return v < 0 ? -e : e;
 }
 
-GaussianCloud decodeSog(std::string_view metaText, std::string_view name,
-                        const std::function<std::string(const std::string&)>& load) {
+/// A SOG scene's meta.json values and its textures decoded (4 bytes a texel), from which
+/// any range of splats is decoded.
+struct Sog {
+  std::size_t count = 0;
+  std::vector<float> mins, maxs, scaleBook, colorBook, shBook;
+  Image lo, hi, q, s, c0, centroids, labels;
+  int degree = 0;
+  std::size_t paletteCount = 0, coeffs = 0;
+};
+
+/// Reads meta.json `metaText` and decodes the textures `load` gives by name. FormatError
+/// naming `name` for a bad meta.json, a missing or damaged texture, or one too small or
+/// too large for the count.
+Sog loadSog(std::string_view metaText, std::string_view name,
+            const std::function<std::string(const std::string&)>& load) {
+  Sog sog;
   if (metaText.size() > kMaxMetaBytes) fail(name, "meta.json is larger than 16 MiB");
   const json meta = json::parse(metaText.begin(), metaText.end(), nullptr, false);
   if (meta.is_discarded() || !meta.is_object()) fail(name, "meta.json is not a JSON object");
@@ -100,17 +114,15 @@ GaussianCloud decodeSog(std::string_view metaText, std::string_view name,
   if (static_cast<std::uint64_t>(count64) > kMaxSplats)
     fail(name,
          std::to_string(count64) + " splats exceed the limit of " + std::to_string(kMaxSplats));
-  const std::size_t count = static_cast<std::size_t>(count64);
+  const std::size_t count = sog.count = static_cast<std::size_t>(count64);
 
   const json& means = member(meta, "means", name);
-  const std::vector<float> mins = numbers(means.value("mins", json()), 3, name, "means.mins");
-  const std::vector<float> maxs = numbers(means.value("maxs", json()), 3, name, "means.maxs");
+  sog.mins = numbers(means.value("mins", json()), 3, name, "means.mins");
+  sog.maxs = numbers(means.value("maxs", json()), 3, name, "means.maxs");
   const json& scales = member(meta, "scales", name);
-  const std::vector<float> scaleBook =
-      numbers(scales.value("codebook", json()), 256, name, "scales.codebook");
+  sog.scaleBook = numbers(scales.value("codebook", json()), 256, name, "scales.codebook");
   const json& sh0 = member(meta, "sh0", name);
-  const std::vector<float> colorBook =
-      numbers(sh0.value("codebook", json()), 256, name, "sh0.codebook");
+  sog.colorBook = numbers(sh0.value("codebook", json()), 256, name, "sh0.codebook");
   const json& quats = member(meta, "quats", name);
 
   // Per-splat textures: the writer makes them about sqrt(count) square, padded to 4.
@@ -124,14 +136,14 @@ GaussianCloud decodeSog(std::string_view metaText, std::string_view name,
                      std::to_string(count) + " splats");
     return img;
   };
-  const Image lo = texture(means, 0, "means"), hi = texture(means, 1, "means");
-  const Image q = texture(quats, 0, "quats"), s = texture(scales, 0, "scales"),
-              c0 = texture(sh0, 0, "sh0");
-
-  int degree = 0;
-  std::size_t paletteCount = 0, coeffs = 0;
-  std::vector<float> shBook;
-  Image centroids, labels;
+  sog.lo = texture(means, 0, "means");
+  sog.hi = texture(means, 1, "means");
+  sog.q = texture(quats, 0, "quats");
+  sog.s = texture(scales, 0, "scales");
+  sog.c0 = texture(sh0, 0, "sh0");
+  int& degree = sog.degree;
+  std::size_t& coeffs = sog.coeffs;
+  Image& centroids = sog.centroids;
   if (meta.contains("shN") && !meta["shN"].is_null()) {
     const json& shN = member(meta, "shN", name);
     if (!shN.contains("bands") || !shN["bands"].is_number_integer() ||
@@ -141,28 +153,35 @@ GaussianCloud decodeSog(std::string_view metaText, std::string_view name,
     if (!shN.contains("count") || !shN["count"].is_number_integer() ||
         shN["count"].get<std::int64_t>() < 0 || shN["count"].get<std::int64_t>() > 65536)
       fail(name, "meta.json: 'shN.count' must be 0..65536");
-    paletteCount = static_cast<std::size_t>(shN["count"].get<std::int64_t>());
+    sog.paletteCount = static_cast<std::size_t>(shN["count"].get<std::int64_t>());
     if (degree > 0) {
       coeffs = static_cast<std::size_t>(shCoefficients(degree) - 1);
-      shBook = numbers(shN.value("codebook", json()), 256, name, "shN.codebook");
+      sog.shBook = numbers(shN.value("codebook", json()), 256, name, "shN.codebook");
       const std::string cFile = fileName(shN, 0, name, "shN");
       centroids = decodeWebp(load(cFile), 64 * coeffs * 1024, name, cFile);
       if (static_cast<std::size_t>(centroids.width) != 64 * coeffs)
         fail(name, "expected '" + cFile + "' " + std::to_string(64 * coeffs) +
                        " texels wide, got " + std::to_string(centroids.width));
-      labels = texture(shN, 1, "shN");
+      sog.labels = texture(shN, 1, "shN");
     }
   }
+  return sog;
+}
 
-  GaussianCloud cloud;
-  detail::allocate(cloud, count, degree);
+/// Decodes splats [first, first + n) of `sog` into `cloud` (allocated for n at its degree).
+void decodeRange(const Sog& sog, std::size_t first, std::size_t n, GaussianCloud& cloud) {
+  const std::vector<float>&mins = sog.mins, &maxs = sog.maxs, &scaleBook = sog.scaleBook,
+        &colorBook = sog.colorBook, &shBook = sog.shBook;
+  const Image &lo = sog.lo, &hi = sog.hi, &q = sog.q, &s = sog.s, &c0 = sog.c0,
+              &centroids = sog.centroids, &labels = sog.labels;
+  const std::size_t coeffs = sog.coeffs, paletteCount = sog.paletteCount;
   const float range[3] = {maxs[0] - mins[0] != 0.0f ? maxs[0] - mins[0] : 1.0f,
                           maxs[1] - mins[1] != 0.0f ? maxs[1] - mins[1] : 1.0f,
                           maxs[2] - mins[2] != 0.0f ? maxs[2] - mins[2] : 1.0f};
   constexpr int kQuatIndex[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
   const float invSqrt2 = 0.70710678118654752f;
-  for (std::size_t i = 0; i < count; ++i) {
-    const std::size_t o = i * 4;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t o = (first + i) * 4;
     for (int k = 0; k < 3; ++k) {
       const unsigned v = lo.rgba[o + k] | (static_cast<unsigned>(hi.rgba[o + k]) << 8);
       cloud.positions[i][k] = invLog(mins[k] + range[k] * (static_cast<float>(v) / 65535.0f));
@@ -196,26 +215,70 @@ GaussianCloud decodeSog(std::string_view metaText, std::string_view name,
                           shBook[centroids.rgba[t + 2]]);
     }
   }
-  return cloud;
 }
 
-}  // namespace
-
-GaussianCloud readSogGaussians(std::string_view bytes, std::string_view name,
-                               const SideFileReader& sideFiles) {
+/// `bytes` (a .sog bundle, or a meta.json whose textures `sideFiles` reads) loaded.
+Sog loadSogBytes(std::string_view bytes, std::string_view name, const SideFileReader& sideFiles) {
   if (detail::ZipArchive::isZip(bytes)) {
     const detail::ZipArchive zip(bytes, name);
     const std::string meta = zip.read("meta.json", kMaxMetaBytes);
-    return decodeSog(meta, name,
-                     [&](const std::string& file) { return zip.read(file, kMaxImageBytes); });
+    return loadSog(meta, name,
+                   [&](const std::string& file) { return zip.read(file, kMaxImageBytes); });
   }
-  return decodeSog(bytes, name, [&](const std::string& file) {
+  return loadSog(bytes, name, [&](const std::string& file) {
     std::string data, error;
     if (!sideFiles) fail(name, "cannot read '" + file + "': no side files");
     if (!sideFiles(file, data, error)) fail(name, "cannot read '" + file + "': " + error);
     if (data.size() > kMaxImageBytes) fail(name, "'" + file + "' is larger than 1 GiB");
     return data;
   });
+}
+
+/// An SOG scene read a batch at a time: its textures decoded whole (4 bytes a texel, 6 or
+/// 7 textures: about 28 bytes a splat, a ninth of the cloud's 244 at SH degree 3), the
+/// splats converted a batch at a time.
+class SogBatches final : public GaussianBatchReader {
+ public:
+  explicit SogBatches(Sog sog) : sog_(std::move(sog)) {}
+  std::uint64_t size() const override { return sog_.count; }
+  int shDegree() const override { return sog_.degree; }
+  std::size_t rowBytes() const override { return sog_.labels.rgba.empty() ? 20 : 24; }
+  std::size_t read(GaussianCloud& batch, std::size_t max) override {
+    const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(max, size() - next_));
+    batch = GaussianCloud{};
+    detail::allocate(batch, n, sog_.degree);
+    decodeRange(sog_, next_, n, batch);
+    next_ += n;
+    return n;
+  }
+  void rewind() override { next_ = 0; }
+
+ private:
+  Sog sog_;
+  std::size_t next_ = 0;
+};
+
+}  // namespace
+
+GaussianCloud readSogGaussians(std::string_view bytes, std::string_view name,
+                               const SideFileReader& sideFiles) {
+  const Sog sog = loadSogBytes(bytes, name, sideFiles);
+  GaussianCloud cloud;
+  detail::allocate(cloud, sog.count, sog.degree);
+  decodeRange(sog, 0, sog.count, cloud);
+  return cloud;
+}
+
+std::unique_ptr<GaussianBatchReader> openSogGaussianBatches(const std::string& path,
+                                                            const SideFileReader& sideFiles) {
+  std::string bytes;
+  {
+    const detail::PieceFile file(path);
+    if (file.size() > (std::uint64_t{8} << 30)) fail(path, "an SOG scene larger than 8 GiB");
+    bytes.resize(static_cast<std::size_t>(file.size()));
+    file.read(0, bytes.data(), bytes.size());
+  }
+  return std::make_unique<SogBatches>(loadSogBytes(bytes, path, sideFiles));
 }
 
 }  // namespace gs::splats

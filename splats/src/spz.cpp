@@ -8,11 +8,14 @@
 
 #include <array>
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "base/byte_order.hpp"
 #include "base/gzip.hpp"
+#include "base/inflate_stream.hpp"
 #include "reader_support.hpp"
 
 namespace gs::splats {
@@ -97,21 +100,28 @@ Header parseHeader(std::string_view h, std::string_view name) {
   return r;
 }
 
-GaussianCloud decode(const Header& h, const std::array<std::string_view, 6>& b) {
-  const std::size_t count = h.count;
-  const int degree = std::min(h.degree, kMaxShDegree);
+/// Bytes of one splat in each attribute block (as blockSizes, for one splat).
+std::array<std::size_t, 6> splatBytes(const Header& h) {
+  const auto sizes = blockSizes(1, static_cast<int>(h.version), h.degree);
+  return {static_cast<std::size_t>(sizes[0]), static_cast<std::size_t>(sizes[1]),
+          static_cast<std::size_t>(sizes[2]), static_cast<std::size_t>(sizes[3]),
+          static_cast<std::size_t>(sizes[4]), static_cast<std::size_t>(sizes[5])};
+}
+
+/// Decodes `count` splats into `cloud` (allocated for them at min(degree, 3)) from the
+/// attribute blocks' bytes of those splats, `b[k]` at the first one's.
+void decode(const Header& h, const std::array<const char*, 6>& b, std::size_t count,
+            GaussianCloud& cloud) {
   const std::size_t fileRest = kSpzShPerChannel[h.degree];  // per channel, in the file
-  GaussianCloud cloud;
-  detail::allocate(cloud, count, degree);
   const std::size_t keep = static_cast<std::size_t>(cloud.shRestPerSplat());
   const float positionScale = std::ldexp(1.0f, -h.fractionalBits);
-  auto byte = [](std::string_view s, std::size_t i) {
+  auto byte = [](const char* s, std::size_t i) {
     return static_cast<float>(static_cast<std::uint8_t>(s[i]));
   };
   for (std::size_t i = 0; i < count; ++i) {
     glm::vec3 p;
     for (int k = 0; k < 3; ++k) {
-      const char* q = b[0].data() + i * 9 + k * 3;
+      const char* q = b[0] + i * 9 + k * 3;
       std::uint32_t v = static_cast<std::uint8_t>(q[0]) |
                         (static_cast<std::uint32_t>(static_cast<std::uint8_t>(q[1])) << 8) |
                         (static_cast<std::uint32_t>(static_cast<std::uint8_t>(q[2])) << 16);
@@ -131,7 +141,7 @@ GaussianCloud decode(const Header& h, const std::array<std::string_view, 6>& b) 
           detail::unitQuat(std::sqrt(std::max(0.0f, 1.0f - (x * x + y * y + z * z))), x, y, z);
     } else {
       // Smallest three: 2 bits index of the largest, then 3 x (sign bit, 9-bit magnitude).
-      std::uint32_t packed = base::loadLe<std::uint32_t>(b[4].data() + i * 4);
+      std::uint32_t packed = base::loadLe<std::uint32_t>(b[4] + i * 4);
       const unsigned largest = packed >> 30;
       float xyzw[4] = {0, 0, 0, 0};
       float sum = 0.0f;
@@ -149,12 +159,20 @@ GaussianCloud decode(const Header& h, const std::array<std::string_view, 6>& b) 
     }
     // SH: coefficient-major, RGB inner, (b - 128) / 128.
     glm::vec3* rest = cloud.shRest.data() + i * keep;
-    const char* s = b[5].data() + i * fileRest * 3;
+    const char* s = b[5] + i * fileRest * 3;
     for (std::size_t k = 0; k < keep; ++k)
       for (int c = 0; c < 3; ++c)
         rest[k][c] =
             (static_cast<float>(static_cast<std::uint8_t>(s[k * 3 + c])) - 128.0f) / 128.0f;
   }
+}
+
+/// The whole cloud of `count` splats from the blocks `b` (each holding its block whole).
+GaussianCloud decodeWhole(const Header& h, const std::array<std::string_view, 6>& b) {
+  GaussianCloud cloud;
+  detail::allocate(cloud, h.count, std::min(h.degree, kMaxShDegree));
+  decode(h, {b[0].data(), b[1].data(), b[2].data(), b[3].data(), b[4].data(), b[5].data()}, h.count,
+         cloud);
   return cloud;
 }
 
@@ -184,47 +202,253 @@ GaussianCloud readLegacy(std::string_view bytes, std::string_view name) {
         at, static_cast<std::size_t>(sizes[static_cast<std::size_t>(k)]));
     at += static_cast<std::size_t>(sizes[static_cast<std::size_t>(k)]);
   }
-  return decode(h, blocks);
+  return decodeWhole(h, blocks);
 }
 
-GaussianCloud readV4(std::string_view bytes, std::string_view name) {
-  if (bytes.size() < 32)
-    fail(name, "expected a 32-byte SPZ v4 header, got " + std::to_string(bytes.size()) + " bytes");
-  const Header h = parseHeader(bytes.substr(0, 16), name);
+/// A v4 file's header and where its streams lie.
+struct V4Layout {
+  Header h;
+  unsigned streams = 0;
+  std::array<std::uint64_t, 6> offset{}, compressed{}, uncompressed{};
+};
+
+/// Reads a v4 file's header and table of contents through `bytesAt(offset, n)` (n bytes
+/// at offset, within the file's `fileBytes`), checking that every stream lies within the
+/// file and decompresses to its attribute block's size.
+V4Layout parseV4(const std::function<std::string(std::uint64_t, std::size_t)>& bytesAt,
+                 std::uint64_t fileBytes, std::string_view name) {
+  if (fileBytes < 32)
+    fail(name, "expected a 32-byte SPZ v4 header, got " + std::to_string(fileBytes) + " bytes");
+  const std::string head = bytesAt(0, 32);
+  V4Layout r;
+  r.h = parseHeader(head, name);
+  const Header& h = r.h;
   if (h.version != 4)
     fail(name, "an uncompressed SPZ file must be version 4, got " + std::to_string(h.version));
-  const unsigned streams = static_cast<std::uint8_t>(bytes[15]);
-  const std::uint32_t toc = base::loadLe<std::uint32_t>(bytes.data() + 16);
+  r.streams = static_cast<std::uint8_t>(head[15]);
+  const std::uint32_t toc = base::loadLe<std::uint32_t>(head.data() + 16);
   const unsigned expectedStreams = h.degree == 0 ? 5 : 6;
-  if (streams != expectedStreams)
+  if (r.streams != expectedStreams)
     fail(name, "expected " + std::to_string(expectedStreams) + " SPZ streams, got " +
-                   std::to_string(streams));
-  if (toc < 32 || static_cast<std::uint64_t>(toc) + streams * 16ull > bytes.size())
+                   std::to_string(r.streams));
+  if (toc < 32 || static_cast<std::uint64_t>(toc) + r.streams * 16ull > fileBytes)
     fail(name, "SPZ table of contents at " + std::to_string(toc) + " lies outside the " +
-                   std::to_string(bytes.size()) + " bytes");
+                   std::to_string(fileBytes) + " bytes");
+  const std::string entries = bytesAt(toc, r.streams * 16u);
   const auto sizes = blockSizes(h.count, 4, h.degree);
-  std::uint64_t at = toc + streams * 16ull;
-  std::array<std::string, 6> data;
-  std::array<std::string_view, 6> blocks;
-  for (unsigned k = 0; k < streams; ++k) {
-    const char* entry = bytes.data() + toc + k * 16;
+  std::uint64_t at = toc + r.streams * 16ull;
+  for (unsigned k = 0; k < r.streams; ++k) {
+    const char* entry = entries.data() + k * 16;
     const std::uint64_t compressed = base::loadLe<std::uint64_t>(entry);
     const std::uint64_t uncompressed = base::loadLe<std::uint64_t>(entry + 8);
     if (uncompressed != sizes[k])
       fail(name, "stream " + std::to_string(k) + ": expected " + std::to_string(sizes[k]) +
                      " bytes for " + std::to_string(h.count) + " splats, got " +
                      std::to_string(uncompressed));
-    if (compressed > bytes.size() - at)
+    if (compressed > fileBytes - at)
       fail(name, "stream " + std::to_string(k) + ": expected " + std::to_string(compressed) +
-                     " compressed bytes, got " + std::to_string(bytes.size() - at));
-    data[k] =
-        unzstd(bytes.substr(static_cast<std::size_t>(at), static_cast<std::size_t>(compressed)),
-               uncompressed, name, static_cast<int>(k));
-    blocks[k] = data[k];
+                     " compressed bytes, got " + std::to_string(fileBytes - at));
+    r.offset[k] = at;
+    r.compressed[k] = compressed;
+    r.uncompressed[k] = uncompressed;
     at += compressed;
   }
-  return decode(h, blocks);
+  return r;
 }
+
+GaussianCloud readV4(std::string_view bytes, std::string_view name) {
+  const V4Layout v4 = parseV4(
+      [&](std::uint64_t offset, std::size_t n) {
+        return std::string(bytes.substr(static_cast<std::size_t>(offset), n));
+      },
+      bytes.size(), name);
+  std::array<std::string, 6> data;
+  std::array<std::string_view, 6> blocks;
+  for (unsigned k = 0; k < v4.streams; ++k) {
+    data[k] = unzstd(bytes.substr(static_cast<std::size_t>(v4.offset[k]),
+                                  static_cast<std::size_t>(v4.compressed[k])),
+                     v4.uncompressed[k], name, static_cast<int>(k));
+    blocks[k] = data[k];
+  }
+  return decodeWhole(v4.h, blocks);
+}
+
+/// One attribute block of an SPZ file read forward a piece at a time.
+class BlockStream {
+ public:
+  virtual ~BlockStream() = default;
+  /// Exactly `n` bytes of the block into `dst` (FormatError naming the file when it ends
+  /// or is damaged before).
+  virtual void read(char* dst, std::size_t n) = 0;
+  virtual void rewind() = 0;
+};
+
+/// A v2/v3 block: the gzip data inflated from its start and the blocks before it skipped
+/// (each block has its own inflate, so the blocks are read side by side).
+class InflatedBlock final : public BlockStream {
+ public:
+  InflatedBlock(const detail::PieceFile& file, std::uint64_t skip)
+      : file_(file),
+        inflate_(
+            [&file](std::uint64_t offset, char* dst, std::size_t n) {
+              const std::size_t got =
+                  offset >= file.size()
+                      ? 0
+                      : static_cast<std::size_t>(std::min<std::uint64_t>(n, file.size() - offset));
+              file.read(offset, dst, got);
+              return got;
+            },
+            0),
+        skip_(skip) {}
+  void read(char* dst, std::size_t n) override {
+    try {
+      if (inflate_.position() == 0 && skip_ > 0 && inflate_.skip(skip_) != skip_)
+        fail(file_.path(), "the SPZ data ends before byte " + std::to_string(skip_));
+      const std::size_t got = inflate_.read(dst, n);
+      if (got != n)
+        fail(file_.path(), "the SPZ data ends at byte " + std::to_string(inflate_.position()) +
+                               ", " + std::to_string(n - got) + " bytes short");
+    } catch (const base::GzipError& e) {
+      fail(file_.path(), e.what());
+    }
+  }
+  void rewind() override { inflate_.rewind(); }
+
+ private:
+  const detail::PieceFile& file_;
+  base::InflateStream inflate_;
+  std::uint64_t skip_;
+};
+
+/// A v4 block: its zstd stream decompressed forward, its compressed bytes read 256 KiB at
+/// a time.
+class ZstdBlock final : public BlockStream {
+ public:
+  ZstdBlock(const detail::PieceFile& file, std::uint64_t offset, std::uint64_t compressed,
+            int stream)
+      : file_(file), offset_(offset), compressed_(compressed), stream_(stream), input_(1u << 18) {
+    if (!d_) fail(file.path(), "zstd: out of memory");
+    rewind();
+  }
+  void read(char* dst, std::size_t n) override {
+    ZSTD_outBuffer out{dst, n, 0};
+    while (out.pos < n) {
+      if (in_.pos == in_.size && used_ < compressed_) {
+        const std::size_t got =
+            static_cast<std::size_t>(std::min<std::uint64_t>(input_.size(), compressed_ - used_));
+        file_.read(offset_ + used_, input_.data(), got);
+        used_ += got;
+        in_ = ZSTD_inBuffer{input_.data(), got, 0};
+      }
+      const std::size_t before = out.pos;
+      const std::size_t rc = ZSTD_decompressStream(d_.get(), &out, &in_);
+      if (ZSTD_isError(rc))
+        fail(file_.path(),
+             "stream " + std::to_string(stream_) + ": zstd: " + ZSTD_getErrorName(rc));
+      if (out.pos < n && out.pos == before && in_.pos == in_.size && used_ == compressed_)
+        fail(file_.path(), "stream " + std::to_string(stream_) + " ends " +
+                               std::to_string(n - out.pos) + " bytes short");
+    }
+  }
+  void rewind() override {
+    ZSTD_initDStream(d_.get());
+    used_ = 0;
+    in_ = ZSTD_inBuffer{input_.data(), 0, 0};
+  }
+
+ private:
+  struct Free {
+    void operator()(ZSTD_DStream* d) const { ZSTD_freeDStream(d); }
+  };
+  const detail::PieceFile& file_;
+  std::uint64_t offset_, compressed_, used_ = 0;
+  int stream_;
+  std::vector<char> input_;
+  std::unique_ptr<ZSTD_DStream, Free> d_{ZSTD_createDStream()};
+  ZSTD_inBuffer in_{};
+};
+
+/// An SPZ file read a batch of splats at a time: one BlockStream per attribute block, read
+/// side by side.
+class SpzBatches final : public GaussianBatchReader {
+ public:
+  explicit SpzBatches(const std::string& path) : file_(path) {
+    std::string head(static_cast<std::size_t>(std::min<std::uint64_t>(file_.size(), 64)), '\0');
+    file_.read(0, head.data(), head.size());
+    if (base::isGzip(head)) {
+      InflatedBlock first(file_, 0);
+      std::string h16(16, '\0');
+      first.read(h16.data(), h16.size());
+      h_ = parseHeader(h16, path);
+      if (h_.version == 4) fail(path, "SPZ version 4 must not be gzip-compressed");
+      if (h_.flags & 0x2)
+        fail(path, "SPZ header extensions in a version " + std::to_string(h_.version) +
+                       " file are not supported");
+      const auto sizes = blockSizes(h_.count, static_cast<int>(h_.version), h_.degree);
+      std::uint64_t total = 16;
+      for (std::uint64_t s : sizes) total += s;
+      // Deflate's largest ratio is 1032:1: a header claiming more cannot be true.
+      if (total / 1032 > file_.size())
+        fail(path, std::to_string(file_.size()) + " bytes of gzip data cannot hold the " +
+                       std::to_string(total) + " bytes of " + std::to_string(h_.count) + " splats");
+      std::uint64_t at = 16;
+      for (std::size_t k = 0; k < 6; ++k) {
+        if (sizes[k] > 0) blocks_[k] = std::make_unique<InflatedBlock>(file_, at);
+        at += sizes[k];
+      }
+    } else if (head.size() >= 4 && base::loadLe<std::uint32_t>(head.data()) == kMagic) {
+      const V4Layout v4 = parseV4(
+          [&](std::uint64_t offset, std::size_t n) {
+            std::string bytes(n, '\0');
+            file_.read(offset, bytes.data(), n);
+            return bytes;
+          },
+          file_.size(), path);
+      h_ = v4.h;
+      for (unsigned k = 0; k < v4.streams; ++k)
+        if (v4.uncompressed[k] > 0)
+          blocks_[k] = std::make_unique<ZstdBlock>(file_, v4.offset[k], v4.compressed[k],
+                                                   static_cast<int>(k));
+    } else {
+      fail(path, "not an SPZ file (neither gzip nor NGSP)");
+    }
+    bytes_ = splatBytes(h_);
+  }
+  std::uint64_t size() const override { return h_.count; }
+  int shDegree() const override { return std::min(h_.degree, kMaxShDegree); }
+  std::size_t rowBytes() const override {
+    std::size_t n = 0;
+    for (std::size_t b : bytes_) n += b;
+    return n;
+  }
+  std::size_t read(GaussianCloud& batch, std::size_t max) override {
+    const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(max, size() - next_));
+    std::array<const char*, 6> at{};
+    for (std::size_t k = 0; k < 6; ++k) {
+      data_[k].resize(n * bytes_[k]);
+      if (blocks_[k] && n > 0) blocks_[k]->read(data_[k].data(), data_[k].size());
+      at[k] = data_[k].data();
+    }
+    next_ += n;
+    batch = GaussianCloud{};
+    detail::allocate(batch, n, shDegree());
+    decode(h_, at, n, batch);
+    return n;
+  }
+  void rewind() override {
+    next_ = 0;
+    for (auto& b : blocks_)
+      if (b) b->rewind();
+  }
+
+ private:
+  detail::PieceFile file_;
+  Header h_;
+  std::array<std::size_t, 6> bytes_{};
+  std::array<std::unique_ptr<BlockStream>, 6> blocks_;
+  std::array<std::vector<char>, 6> data_;
+  std::uint64_t next_ = 0;
+};
 
 }  // namespace
 
@@ -233,6 +457,10 @@ GaussianCloud readSpzGaussians(std::string_view bytes, std::string_view name) {
   if (bytes.size() >= 4 && base::loadLe<std::uint32_t>(bytes.data()) == kMagic)
     return readV4(bytes, name);
   fail(name, "not an SPZ file (neither gzip nor NGSP)");
+}
+
+std::unique_ptr<GaussianBatchReader> openSpzGaussianBatches(const std::string& path) {
+  return std::make_unique<SpzBatches>(path);
 }
 
 }  // namespace gs::splats

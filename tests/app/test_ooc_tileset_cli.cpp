@@ -3,7 +3,8 @@
 // at the threshold, --count, --window), spills under a tiny bound, and split runs merge
 // to the single run's bytes; inputs made at test time as a multi-file NRRD and a folder
 // of PNG slices (docs/out-of-core.md, "Tileset encoding"). The same for a Gaussian
-// splatting scene (.ply and .splat read piecewise), and its errors.
+// splatting scene (.ply, .splat, .compressed.ply, .spz and SOG read piecewise), and its
+// errors.
 #include <catch2/catch.hpp>
 
 #include <png.h>
@@ -292,16 +293,34 @@ TEST_CASE("an out-of-core Gaussian tileset is the in-memory tileset, byte for by
   checkSameTree(memory, split);
 }
 
+TEST_CASE("an out-of-core Gaussian tileset of SPZ SOG and compressed PLY is the in-memory one",
+          "[app][encode][tileset][ooc][splat]") {
+  gs::test::TempDir dir("ooc_gaussian_compressed");
+  const fs::path data = gs::test::sourceDir() / "tests/data/splats";
+  for (const char* scene : {"bunny_small.compressed.ply", "bunny_small.spz", "bunny_small_v3.spz",
+                            "bunny_small.sog", "bunny_small_sog/meta.json"}) {
+    INFO(scene);
+    const std::string input = (data / scene).string();
+    const fs::path memory = dir.path / "memory", ooc = dir.path / "ooc";
+    encode(input, memory, {"--brick-vectors", "64"});
+    // A bound far below the scene: leaves and interior nodes spilled.
+    const auto r = encode(input, ooc, {"--brick-vectors", "64", "--memory", "0.01"});
+    CHECK(spilled(r.out).first > 0);
+    checkSameTree(memory, ooc);
+  }
+}
+
 TEST_CASE("an out-of-core Gaussian encode refuses other formats and reports a short file",
           "[app][encode][tileset][ooc][splat]") {
   gs::test::TempDir dir("ooc_gaussian_bad");
   const fs::path data = gs::test::sourceDir() / "tests/data/splats";
-  // SPZ is read whole: a usage error that says which formats are read piecewise.
-  auto r = runGhostspace({"encode", (data / "bunny_small.spz").string(), "--tileset",
-                          (dir.path / "spz").string(), "--memory", "64", "--no-progress"});
+  // glTF is read whole: a usage error that says which formats are read piecewise.
+  auto r = runGhostspace({"encode", (data / "bunny_small.glb").string(), "--tileset",
+                          (dir.path / "glb").string(), "--memory", "64", "--no-progress"});
   CHECK(r.exitCode == 2);
-  CHECK_THAT(r.err, Catch::Contains("read piecewise are binary INRIA .ply and .splat, not an SPZ"));
-  CHECK_FALSE(fs::exists(dir.path / "spz" / "index.qnvt"));
+  CHECK_THAT(r.err, Catch::Contains("read piecewise are binary INRIA .ply, .compressed.ply, "
+                                    ".splat, .spz and SOG, not a glTF scene"));
+  CHECK_FALSE(fs::exists(dir.path / "glb" / "index.qnvt"));
   // A PLY cut short: its header promises 3,000 rows. An error value, nothing published.
   const std::string bytes = gs::test::readBytes(data / "bunny_small.ply");
   const fs::path cut = dir.path / "cut.ply";

@@ -1,7 +1,8 @@
-// base/gzip.hpp and base/text.hpp.
+// base/gzip.hpp, base/inflate_stream.hpp and base/text.hpp.
 #include <catch2/catch.hpp>
 
 #include "base/gzip.hpp"
+#include "base/inflate_stream.hpp"
 #include "base/text.hpp"
 #include "test_support.hpp"
 
@@ -38,6 +39,58 @@ TEST_CASE("gunzip: members, limits and damage as typed errors", "[base][gzip]") 
   const auto [tail, tailWhy] = kindOf(gz + "junk", 1 << 20);
   CHECK(tail == GzipError::Kind::corrupt);
   CHECK(tailWhy == "corrupt gzip data: trailing bytes after the gzip data");
+}
+
+TEST_CASE("InflateStream: pieces, members, skip, rewind and damage", "[base][gzip]") {
+  std::string text;
+  for (int i = 0; i < 300000; ++i) text += static_cast<char>('a' + (i * 7919) % 26);
+  // 5 bytes of something else first: the stream starts at a compressed offset.
+  const std::string file =
+      "HEAD!" + gs::test::gzip(text.substr(0, 123456)) + gs::test::gzip(text.substr(123456));
+  std::size_t fetches = 0;
+  const InflateStream::Source source = [&](std::uint64_t offset, char* dst, std::size_t n) {
+    ++fetches;
+    if (offset >= file.size()) return std::size_t{0};
+    const std::size_t got = std::min<std::size_t>(n, file.size() - offset);
+    std::copy_n(file.data() + offset, got, dst);
+    return got;
+  };
+  InflateStream stream(source, 5);
+  std::string out(1000, '\0');
+  CHECK(stream.read(out.data(), out.size()) == 1000);
+  CHECK(out == text.substr(0, 1000));
+  CHECK(stream.skip(200000) == 200000);  // across the second member's start
+  CHECK(stream.position() == 201000);
+  out.assign(text.size(), '\0');
+  CHECK(stream.read(out.data(), out.size()) == text.size() - 201000);  // fewer: the end
+  CHECK(out.substr(0, text.size() - 201000) == text.substr(201000));
+  CHECK(stream.read(out.data(), 10) == 0);
+  stream.rewind();
+  CHECK(stream.position() == 0);
+  CHECK(stream.read(out.data(), 26) == 26);
+  CHECK(out.substr(0, 26) == text.substr(0, 26));
+  CHECK(fetches >= 2);
+
+  // Cut inside the first member: truncated, at the compressed offset where it ran out.
+  const std::string cut = file.substr(0, 5 + 100);
+  InflateStream short_(
+      [&](std::uint64_t offset, char* dst, std::size_t n) {
+        if (offset >= cut.size()) return std::size_t{0};
+        const std::size_t got = std::min<std::size_t>(n, cut.size() - offset);
+        std::copy_n(cut.data() + offset, got, dst);
+        return got;
+      },
+      5);
+  CHECK_THROWS_WITH(short_.skip(text.size()),
+                    "corrupt gzip data at compressed byte offset 105: truncated");
+  // Not gzip at all: zlib's reason.
+  InflateStream garbage(
+      [](std::uint64_t, char* dst, std::size_t n) {
+        std::fill_n(dst, n, 'x');
+        return n;
+      },
+      0);
+  CHECK_THROWS_AS(garbage.read(out.data(), 10), GzipError);
 }
 
 TEST_CASE("case-insensitive text helpers", "[base][text]") {

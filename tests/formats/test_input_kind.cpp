@@ -46,6 +46,10 @@ TEST_CASE("kindFromContent: magic bytes, also inside gzip", "[formats][kind]") {
   CHECK(kindFromContent(gs::test::gzip("ply\nformat ascii 1.0\n")) == InputKind::ply);
   CHECK(kindFromContent("glTF\x02\0\0\0") == InputKind::gltf);
   CHECK(kindFromContent("NRRD0004\ntype: uint8\n") == InputKind::nrrd);
+  // PlayCanvas SOG's meta.json (as splat-transform writes it); a glTF's JSON is not one.
+  CHECK(kindFromContent("{\"version\":2,\"asset\":{\"generator\":\"splat-transform v3.7.0\"},"
+                        "\"count\":3000,\"means\":{\"mins\":[0,0,0]") == InputKind::gaussianSplats);
+  CHECK(kindFromContent("{\"asset\":{\"version\":\"2.0\"},\"scene\":0}") == InputKind::unknown);
   std::string nifti(352, '\0');
   nifti.replace(344, 4, std::string("n+1\0", 4));
   CHECK(kindFromContent(nifti) == InputKind::nifti);

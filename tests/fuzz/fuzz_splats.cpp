@@ -2,8 +2,9 @@
 // SOG bundles, glTF) by content, and .splat, which has no magic, by the name given here.
 // Side files (SOG's WebP images beside a meta.json, a .gltf's buffers) are never found.
 // The same bytes are then read piecewise (splats::openGaussianBatches, the out-of-core
-// encode's reader) from a file named .ply or .splat by the input's size, in batches of
-// 97 splats, twice (rewound between).
+// encode's reader: binary and compressed PLY, .splat, SPZ v2-v4 and SOG bundles, by
+// content) from a file named .ply or .splat by the input's size, in batches of 97
+// splats, twice (rewound between).
 #include <unistd.h>
 
 #include <filesystem>

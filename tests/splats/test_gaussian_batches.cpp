@@ -1,7 +1,9 @@
 // Reading a Gaussian splatting scene piecewise (splats/readers.hpp: openGaussianBatches,
 // the out-of-core tileset encode's input): every batch size gives the whole reader's
-// splats, bit for bit, in either byte order and for .splat; the frame built over batches
-// is gaussianFrame's; the formats not read piecewise are refused by name.
+// splats, bit for bit, in either byte order, for .splat, .compressed.ply, SPZ (v3 gzip in
+// one or two members, v4 zstd) and SOG (bundle and meta.json); the frame built over
+// batches is gaussianFrame's; the formats not read piecewise are refused by name, and
+// damaged compressed data is an error naming the file.
 #include <catch2/catch.hpp>
 
 #include <cstring>
@@ -9,6 +11,8 @@
 #include <fstream>
 #include <string>
 
+#include "base/byte_order.hpp"
+#include "base/gzip.hpp"
 #include "splats/qnv_gaussians.hpp"
 #include "splats/readers.hpp"
 #include "test_support.hpp"
@@ -69,25 +73,47 @@ std::string bigEndian(const std::string& ply) {
 
 }  // namespace
 
+// Reads the files beside `scene` (SOG's textures), as the encode's side-file reader does.
+SideFileReader besideFiles(const fs::path& scene) {
+  return [scene](const std::string& relative, std::string& bytes, std::string& error) {
+    const fs::path path = scene.parent_path() / relative;
+    if (!fs::is_regular_file(path)) {
+      error = "no " + path.string();
+      return false;
+    }
+    bytes = gs::test::readBytes(path);
+    return true;
+  };
+}
+
 TEST_CASE("openGaussianBatches gives the whole reader's splats for every batch size",
           "[splats][ooc]") {
-  const fs::path ply = splatData("bunny_small.ply"), splat = splatData("bunny_small.splat");
-  const std::string plyBytes = gs::test::readBytes(ply);
-  const GaussianCloud wholePly = readPlyGaussians(plyBytes, ply.string());
-  const GaussianCloud wholeSplat = readSplatGaussians(gs::test::readBytes(splat), splat.string());
   gs::test::TempDir dir("gaussian_batches");
+  const std::string plyBytes = gs::test::readBytes(splatData("bunny_small.ply"));
   const fs::path be = dir.path / "bunny_be.ply";
   std::ofstream(be, std::ios::binary) << bigEndian(plyBytes);
-  for (const auto& [path, whole] :
-       {std::pair{ply, &wholePly}, std::pair{splat, &wholeSplat}, std::pair{be, &wholePly}}) {
+  // v3 as two gzip members (RFC 1952 2.2), the second starting inside the positions.
+  const std::string v3 =
+      gs::base::gunzip(gs::test::readBytes(splatData("bunny_small_v3.spz")), 1u << 24);
+  const fs::path members = dir.path / "members.spz";
+  std::ofstream(members, std::ios::binary)
+      << gs::test::gzip(v3.substr(0, 1000)) << gs::test::gzip(v3.substr(1000));
+  const fs::path sogMeta = splatData("bunny_small_sog/meta.json");
+  for (const fs::path& path :
+       {splatData("bunny_small.ply"), splatData("bunny_small.splat"), be,
+        splatData("bunny_small.compressed.ply"), splatData("bunny_small.spz"),
+        splatData("bunny_small_v3.spz"), members, splatData("bunny_small.sog"), sogMeta}) {
     INFO(path.string());
-    const auto reader = openGaussianBatches(path.string());
-    CHECK(reader->size() == whole->size());
-    CHECK(reader->shDegree() == whole->shDegree);
+    const GaussianCloud whole =
+        readGaussians(gs::test::readBytes(path), path.string(), besideFiles(path));
+    const auto reader = openGaussianBatches(path.string(), besideFiles(path));
+    CHECK(reader->size() == whole.size());
+    CHECK(reader->shDegree() == whole.shDegree);
+    CHECK(reader->rowBytes() > 0);
     for (const std::size_t size :
          {std::size_t{1}, std::size_t{7}, std::size_t{1000}, std::size_t{1u << 20}}) {
       INFO(size);
-      checkSameBits(readInBatches(*reader, size), *whole);
+      checkSameBits(readInBatches(*reader, size), whole);
     }
   }
 }
@@ -119,13 +145,10 @@ TEST_CASE("GaussianFrameBuilder over batches is gaussianFrame of the whole scene
 
 TEST_CASE("openGaussianBatches refuses what it does not read piecewise, naming the file",
           "[splats][ooc]") {
-  for (const char* file :
-       {"bunny_small.spz", "bunny_small.compressed.ply", "bunny_small.sog", "bunny_small.glb"}) {
-    INFO(file);
-    CHECK_THROWS_AS(openGaussianBatches(splatData(file).string()), NotPiecewiseError);
-    CHECK_THROWS_WITH(openGaussianBatches(splatData(file).string()),
-                      Catch::Contains(file) && Catch::Contains("read piecewise are binary"));
-  }
+  CHECK_THROWS_AS(openGaussianBatches(splatData("bunny_small.glb").string()), NotPiecewiseError);
+  CHECK_THROWS_WITH(openGaussianBatches(splatData("bunny_small.glb").string()),
+                    Catch::Contains("bunny_small.glb: read piecewise are binary") &&
+                        Catch::Contains("not a glTF scene"));
   gs::test::TempDir dir("gaussian_batches_bad");
   const fs::path ascii = dir.path / "ascii.ply";
   std::ofstream(ascii) << "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n"
@@ -145,4 +168,47 @@ TEST_CASE("openGaussianBatches refuses what it does not read piecewise, naming t
   const fs::path cut = dir.path / "cut.ply";
   std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() - 5);
   CHECK_THROWS_WITH(openGaussianBatches(cut.string()), Catch::Contains("cut.ply: expected"));
+}
+
+TEST_CASE("openGaussianBatches reports damaged SPZ and compressed PLY data, naming the file",
+          "[splats][ooc]") {
+  gs::test::TempDir dir("gaussian_batches_damaged");
+  const auto readAll = [](const fs::path& path) {
+    const auto reader = openGaussianBatches(path.string());
+    GaussianCloud batch;
+    while (reader->read(batch, 500) > 0) {
+    }
+  };
+  const auto write = [&](const char* name, const std::string& bytes) {
+    const fs::path path = dir.path / name;
+    std::ofstream(path, std::ios::binary) << bytes;
+    return path;
+  };
+  // v3 (gzip) cut short: the header reads, the SH block (the last) runs out.
+  const std::string v3 = gs::test::readBytes(splatData("bunny_small_v3.spz"));
+  CHECK_THROWS_WITH(
+      readAll(write("cut_v3.spz", v3.substr(0, v3.size() * 3 / 4))),
+      Catch::Contains("cut_v3.spz: corrupt gzip data") && Catch::Contains("truncated"));
+  // A gzip header claiming more splats than its bytes can hold at deflate's 1032:1.
+  std::string raw = gs::base::gunzip(v3, 1u << 24);
+  const std::uint32_t many = 1u << 26;
+  std::memcpy(raw.data() + 8, &many, 4);
+  CHECK_THROWS_WITH(openGaussianBatches(write("many.spz", gs::test::gzip(raw)).string()),
+                    Catch::Contains("many.spz") && Catch::Contains("cannot hold"));
+  // v4 (zstd): the file cut inside its last stream, and the first stream's frame magic
+  // damaged.
+  std::string v4 = gs::test::readBytes(splatData("bunny_small.spz"));
+  CHECK_THROWS_WITH(openGaussianBatches(write("cut_v4.spz", v4.substr(0, v4.size() - 10)).string()),
+                    Catch::Contains("cut_v4.spz: stream"));
+  const std::uint32_t toc = gs::base::loadLe<std::uint32_t>(v4.data() + 16);
+  const std::size_t streams = static_cast<std::uint8_t>(v4[15]);
+  v4[toc + streams * 16] ^= 0x55;
+  CHECK_THROWS_WITH(readAll(write("bad_v4.spz", v4)),
+                    Catch::Contains("bad_v4.spz: stream 0: zstd:"));
+  // A compressed PLY without its last records.
+  const std::string packed = gs::test::readBytes(splatData("bunny_small.compressed.ply"));
+  CHECK_THROWS_WITH(
+      openGaussianBatches(
+          write("cut.compressed.ply", packed.substr(0, packed.size() - 100)).string()),
+      Catch::Contains("cut.compressed.ply: expected"));
 }

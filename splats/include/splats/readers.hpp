@@ -73,13 +73,24 @@ struct NotPiecewiseError : FormatError {
   using FormatError::FormatError;
 };
 
-/// Opens the scene at `path` for piecewise reading: a binary INRIA .ply (either byte
-/// order; the vertex element after no element with a list) or a .splat, whose splats are
-/// rows of a fixed size. Throws NotPiecewiseError naming the file for an ascii PLY, a
-/// PlayCanvas compressed PLY and the other formats ("PATH: read piecewise are binary INRIA
-/// .ply and .splat, not ..."), and FormatError for what readPlyGaussians /
-/// readSplatGaussians refuse in the header or size (or a file that cannot be opened).
-std::unique_ptr<GaussianBatchReader> openGaussianBatches(const std::string& path);
+/// Opens the scene at `path` for piecewise reading (docs/out-of-core.md, "Gaussian
+/// splatting scenes"):
+/// - a binary INRIA .ply (either byte order; the vertex element after no element with a
+///   list) and a .splat: a batch's rows read by offset;
+/// - a PlayCanvas .compressed.ply: the batch's chunk, vertex and sh records by offset;
+/// - an .spz: each attribute block decompressed forward side by side (v2-v3: one inflate
+///   per block over the same gzip data, each skipping the blocks before it; v4: one zstd
+///   stream per block);
+/// - SOG (a .sog bundle, or a meta.json whose WebP images `sideFiles` reads): the textures
+///   decoded whole (about 28 bytes a splat), the splats converted a batch at a time.
+/// Each batch holds exactly the splats the whole-file reader gives at those places.
+/// Throws NotPiecewiseError naming the file for an ascii PLY, glTF, a QNV stream, LAS and
+/// what is no splat scene ("PATH: read piecewise are ..., not a glTF scene"), and
+/// FormatError for what the whole-file readers refuse in the header or size (or a file
+/// that cannot be opened); read() throws FormatError for damage found later (a truncated
+/// or corrupt compressed stream, naming the file).
+std::unique_ptr<GaussianBatchReader> openGaussianBatches(const std::string& path,
+                                                         const SideFileReader& sideFiles = {});
 
 /// INRIA 3DGS .ply (binary little-endian or ascii; Kerbl et al.'s output): x y z,
 /// f_dc_0..2, f_rest_0..(3k-1) channel-major (k = 0, 3, 8 or 15), opacity (logit),
