@@ -484,8 +484,13 @@ void TilesetStream::rebuild() {
     };
     if (cloud) {
       if (!b.splats) continue;
-      for (std::size_t k = 0; k < n; ++k)
-        if (regions.empty() || !inMerged(b.splats->positions[k])) cloud->append(*b.splats, k);
+      // Runs of splats outside the merged regions, copied a run at a time.
+      for (std::size_t k = 0; k < n;) {
+        std::size_t end = k;
+        while (end < n && (regions.empty() || !inMerged(b.splats->positions[end]))) ++end;
+        if (end > k) cloud->appendRange(*b.splats, k, end);
+        k = end + 1;  // past the splat in a merged region (or the end)
+      }
       continue;
     }
     if (regions.empty()) {
@@ -514,9 +519,12 @@ void TilesetStream::rebuildMerged() {
   // Merged bricks of vectors hold SH degree 2 (shading); of Gaussians the scene's degree.
   mergedCloud->setShDegree(
       index_->header.kind == qnv::StreamKind::gaussian ? index_->header.shDegree : 2);
+  std::size_t total = 0;
   for (std::size_t m : mergedChoice_)
-    if (const auto& part = merged_[m].cloud)
-      for (std::size_t i = 0; i < part->size(); ++i) mergedCloud->append(*part, i);
+    if (const auto& part = merged_[m].cloud) total += part->size();
+  mergedCloud->reserve(total);
+  for (std::size_t m : mergedChoice_)
+    if (const auto& part = merged_[m].cloud) mergedCloud->appendRange(*part, 0, part->size());
   mergedSet_->gaussians = std::move(mergedCloud);
   // Merged Gaussians far below a pixel would each be widened to the rasterizer's low-pass
   // filter at their full opacity (a far Gaussian tileset became an opaque disc): their own
