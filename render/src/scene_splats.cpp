@@ -37,7 +37,13 @@ std::shared_ptr<const SplatSet> SceneSplats::setOf(const vrml::Node& node,
 
 const SceneSplats::NodeSet& SceneSplats::nodeSet(const vrml::Node& node, const std::string& baseUrl,
                                                  scene::SceneTraversal& traversal) {
-  if (auto it = sets_.find(&node); it != sets_.end()) return it->second;
+  if (auto it = sets_.find(&node); it != sets_.end()) {
+    // A set read in the background that failed (reported once: report() keeps one of each).
+    if (const auto& set = it->second.set; set && !set->loadError.empty())
+      traversal.report(vrml::Severity::error, node.location,
+                       node.typeName() + ": no url could be loaded: " + set->loadError);
+    return it->second;
+  }
   if (isVolumeDataNode(node) && needsVolumeRaycast(node)) {
     NodeSet entry;
     entry.raycast = true;

@@ -13,6 +13,7 @@
 #include "base/url.hpp"
 #include "encodings/parser.hpp"
 #include "formats/input_kind.hpp"
+#include "gaussian_scene_load.hpp"
 #include "session/splat_inputs.hpp"
 #include "session/world.hpp"
 #include "splats/qnv_gaussians.hpp"
@@ -136,7 +137,7 @@ std::shared_ptr<const render::SplatSet> StreamingSession::splatSet(const std::st
                                                                    std::string& error) {
   if (!base::mayReference(referrer, url, error)) return nullptr;  // before any cache
   if (auto it = qnv_.find(url); it != qnv_.end()) return it->second.set;
-  if (auto it = gaussians_.find(url); it != gaussians_.end()) return it->second;
+  if (auto it = gaussians_.find(url); it != gaussians_.end()) return it->second->set();
   if (auto it = tilesets_.find(url); it != tilesets_.end()) return it->second->set();
   if (const std::string index = tilesetIndexOf(url); !index.empty()) {
     auto& tileset = tilesets_[url];
@@ -148,15 +149,11 @@ std::shared_ptr<const render::SplatSet> StreamingSession::splatSet(const std::st
       path.empty() ? formats::InputKind::unknown : formats::classifyFile(path);
   if ((path.empty() && formats::kindFromName(url) == formats::InputKind::gaussianSplats) ||
       (!path.empty() && kind != formats::InputKind::qnv && isGaussianSplatFile(path))) {
-    // A Gaussian splatting scene: read whole (local or HTTP), under the loader's rules.
-    base::Fetched fetched = loader_.fetch(url, referrer, base::FetchMode::whole);
-    if (!fetched.ready()) {
-      error = fetched.error;
-      return nullptr;
-    }
-    auto set = gaussianSet(fetched.bytes, url, sideFileReader(loader_, url), error);
-    if (set) gaussians_[url] = set;
-    return set;
+    // A Gaussian splatting scene: read whole in the background (local or HTTP, under the
+    // loader's rules); its set is empty until then, and says why if it fails.
+    auto& load = gaussians_[url];
+    load = std::make_unique<detail::GaussianSceneLoad>(loader_, url, referrer);
+    return load->set();
   }
   if (formats::isMesh(kind) || formats::isVolume(kind)) {
     return splatLoader()(url, referrer, error);  // encoded whole, here and now
@@ -239,6 +236,7 @@ bool StreamingSession::pump() {
     changed = true;
   }
   for (auto& [url, e] : qnv_) changed |= pumpTree(e);
+  for (auto& [url, g] : gaussians_) changed |= g->pump();
   return changed;
 }
 
@@ -306,6 +304,8 @@ bool StreamingSession::settled() const {
     if (e.tree.valid() || wantsTree(e)) return false;
   for (const auto& [url, t] : tilesets_)
     if (!t->settled()) return false;
+  for (const auto& [url, g] : gaussians_)
+    if (!g->settled()) return false;
   return true;
 }
 
@@ -344,6 +344,7 @@ std::vector<net::StreamProgress> StreamingSession::progress() const {
 
 void StreamingSession::drainMessages(std::vector<std::pair<bool, std::string>>& out) {
   for (auto& [url, t] : tilesets_) t->drainMessages(out);
+  for (auto& [url, g] : gaussians_) g->drainMessages(out);
   // A stream that ends short says so in its decoder's warnings, shown below: its end
   // message repeats the last of them and is not shown twice.
   const auto warned = [this](const std::string& message) {

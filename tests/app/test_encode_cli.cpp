@@ -187,13 +187,13 @@ TEST_CASE("encode rejects bad options and unreadable inputs with a reason", "[ap
       runGhostspace({"encode", splats, "-o", scratch("x.qnv").string(), "--sh-full", "0.5"});
   CHECK(shFullAlone.exitCode == 2);
   CHECK_THAT(shFullAlone.err, Catch::Contains("give --sh-bits"));
-  // An SPZ scene is read whole: no out-of-core encode of it (test_ooc_tileset_cli.cpp has
-  // the .ply and .splat read piecewise).
-  const auto spz = (gs::test::sourceDir() / "tests/data/splats/bunny_small.spz").string();
+  // A glTF scene is read whole: no out-of-core encode of it (test_ooc_tileset_cli.cpp has
+  // the formats read piecewise).
+  const auto glb = (gs::test::sourceDir() / "tests/data/splats/bunny_small.glb").string();
   auto splatMemory = runGhostspace(
-      {"encode", spz, "--tileset", scratch("splat_tileset").string(), "--memory", "64"});
+      {"encode", glb, "--tileset", scratch("splat_tileset").string(), "--memory", "64"});
   CHECK(splatMemory.exitCode == 2);
-  CHECK_THAT(splatMemory.err, Catch::Contains("read piecewise are binary INRIA .ply and .splat"));
+  CHECK_THAT(splatMemory.err, Catch::Contains("read piecewise are binary INRIA .ply"));
 }
 
 TEST_CASE("a Gaussian tileset encoded in shares merges to the unsplit run's files",

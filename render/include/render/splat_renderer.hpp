@@ -11,6 +11,7 @@
 #include <map>
 #include <memory>
 #include <span>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -112,6 +113,11 @@ struct SplatSet {
   /// Gaussians of the nodes the views draw merged, a set of `gaussians` drawn whole, before
   /// (behind) this set's vectors, each depth-tested at its centre.
   std::shared_ptr<const SplatSet> merged;
+  /// Why the set's source could not be read after the set was handed out (a Gaussian
+  /// splatting scene read in the background, session/src/gaussian_scene_load.hpp:
+  /// "garden.spz: unsupported SPZ version 9"); empty otherwise. The renderer reports it
+  /// as the node's error, as it reports a url that could not be loaded at once.
+  std::string loadError;
   /// Vectors of the whole stream: expectedVectors, or the vectors (or Gaussians) present.
   std::uint64_t total() const {
     if (expectedVectors > 0) return expectedVectors;

@@ -23,6 +23,10 @@
 
 namespace gs::session {
 
+namespace detail {
+class GaussianSceneLoad;  // session/src/gaussian_scene_load.hpp
+}
+
 class StreamingSession {
  public:
   explicit StreamingSession(net::LoaderOptions options = {});
@@ -58,7 +62,8 @@ class StreamingSession {
   /// set changed: call SceneRenderer::sceneChanged() on the renderers.
   bool pump();
   /// Whether nothing is arriving, nothing more was asked for, no tree is being built and
-  /// none is due by pump()'s rule (an ended stream's tree covers all its splats).
+  /// none is due by pump()'s rule (an ended stream's tree covers all its splats), and
+  /// every Gaussian splatting scene file has been read (or failed) and has its tree.
   bool settled() const;
   /// How far the loading of `scene` got, for X3D LoadSensors watching an Inline
   /// (runtime::ExecutionModel::setUrlObjectState): a world this session streams is loaded
@@ -127,8 +132,8 @@ class StreamingSession {
   bool pumpTree(QnvEntry& e);
   /// Whether a Gaussian stream, no tree being built for it, needs one (pump()'s rule).
   static bool wantsTree(const QnvEntry& e);
-  /// Gaussian splatting scenes, read whole, by URL.
-  std::map<std::string, std::shared_ptr<const render::SplatSet>> gaussians_;
+  /// Gaussian splatting scenes, each read whole in the background, by URL.
+  std::map<std::string, std::unique_ptr<detail::GaussianSceneLoad>> gaussians_;
   TilesetOptions tilesetOptions_;
   std::map<std::string, std::unique_ptr<TilesetStream>> tilesets_;  // by index URL
   std::vector<std::shared_ptr<net::WorldStream>> worlds_;           // every world streamed
