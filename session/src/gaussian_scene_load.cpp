@@ -1,19 +1,38 @@
-// A Gaussian splatting scene read in the background (gaussian_scene_load.hpp).
+// A Gaussian splatting scene read in the background and drawn while it arrives
+// (gaussian_scene_load.hpp).
 #include "gaussian_scene_load.hpp"
 
 #include <chrono>
+#include <deque>
+#include <limits>
+#include <mutex>
 #include <new>
 #include <thread>
 
 #include "base/fetch.hpp"
 #include "base/file.hpp"
 #include "base/url.hpp"
+#include "net/transfer.hpp"
 #include "session/splat_inputs.hpp"
-#include "splats/readers.hpp"
 
 namespace gs::session::detail {
 
+struct GaussianSceneLoad::Pipe {
+  std::mutex mutex;
+  std::deque<splats::GaussianCloud> batches;           // read, not yet taken
+  std::uint64_t total = 0;                             // the scene's splats, once known
+  std::shared_ptr<const splats::GaussianCloud> whole;  // a scene read whole, sorted
+  std::string error;
+  bool ended = false;
+  std::atomic<bool> cancelled{false};
+};
+
 namespace {
+
+/// Splats a local scene is read by at a time, and the most rows of a remote one decoded
+/// in one pump (about 25 ms of a frame at 5 M rows a second).
+constexpr std::size_t kBatchSplats = 65536;
+constexpr std::size_t kRowsPerPump = 131072;
 
 /// The scene in `bytes` read (splats::readGaussians) and sorted by importance; never throws.
 std::shared_ptr<const splats::GaussianCloud> decodeScene(std::string bytes, const std::string& name,
@@ -33,7 +52,7 @@ std::shared_ptr<const splats::GaussianCloud> decodeScene(std::string bytes, cons
 
 /// `job` run on a detached thread of its own, its result in the future returned: a
 /// session closed while a large scene is still being read does not wait for it (the job
-/// holds only its own copies: the path or the bytes, the URL).
+/// holds only its own copies and shared pointers).
 template <typename Job>
 auto detached(Job job) {
   using Result = decltype(job());
@@ -45,8 +64,54 @@ auto detached(Job job) {
   return future;
 }
 
+template <typename T>
+std::future<T> readyFuture(T value) {
+  std::promise<T> promise;
+  promise.set_value(std::move(value));
+  return promise.get_future();
+}
+
 bool ready(const auto& future) {
   return future.valid() && future.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
+}
+
+/// A local scene read on its reading thread into `pipe`: a batch at a time where the
+/// format allows (splats::openGaussianBatches), else whole and sorted.
+void readLocal(const std::shared_ptr<GaussianSceneLoad::Pipe>& pipe, const std::string& path,
+               const std::string& url) {
+  std::string error;
+  std::shared_ptr<const splats::GaussianCloud> whole;
+  try {
+    base::LocalFetcher fetcher;  // SOG's meta.json names its images beside it
+    std::unique_ptr<splats::GaussianBatchReader> reader;
+    try {
+      reader = splats::openGaussianBatches(path, sideFileReader(fetcher, url));
+    } catch (const splats::NotPiecewiseError&) {
+    }
+    if (reader) {
+      {
+        std::lock_guard lock(pipe->mutex);
+        pipe->total = reader->size();
+      }
+      splats::GaussianCloud batch;
+      while (!pipe->cancelled && reader->read(batch, kBatchSplats) > 0) {
+        std::lock_guard lock(pipe->mutex);
+        pipe->batches.push_back(std::move(batch));
+      }
+    } else {
+      std::string bytes;
+      if (base::readFile(path, bytes, error, std::size_t{16} << 30))
+        whole = decodeScene(std::move(bytes), url, sideFileReader(fetcher, url), error);
+    }
+  } catch (const splats::FormatError& e) {
+    error = e.what();
+  } catch (const std::bad_alloc&) {
+    error = url + ": out of memory";
+  }
+  std::lock_guard lock(pipe->mutex);
+  pipe->whole = std::move(whole);
+  pipe->error = std::move(error);
+  pipe->ended = true;
 }
 
 }  // namespace
@@ -54,72 +119,220 @@ bool ready(const auto& future) {
 GaussianSceneLoad::GaussianSceneLoad(net::Loader& loader, std::string url, std::string referrer)
     : loader_(loader), url_(std::move(url)), referrer_(std::move(referrer)) {
   const std::string path = base::localPathOfUrl(url_);
-  if (path.empty()) return;  // remote: fetched by pump()
-  // Local: read, decode and sort on a thread of their own (side files from its folder or
-  // below, through a fetcher of that thread's own).
-  stage_ = Stage::decoding;
-  decode_ = detached([path, url = url_]() -> Decoded {
-    Decoded d;
-    std::string bytes;
-    if (!base::readFile(path, bytes, d.error, std::size_t{16} << 30)) return d;
-    base::LocalFetcher fetcher;
-    d.cloud = decodeScene(std::move(bytes), url, sideFileReader(fetcher, url), d.error);
-    return d;
-  });
+  if (path.empty()) return;  // remote: its transfer starts at the first pump
+  pipe_ = std::make_shared<Pipe>();
+  std::thread([pipe = pipe_, path, url = url_] { readLocal(pipe, path, url); }).detach();
 }
 
 GaussianSceneLoad::~GaussianSceneLoad() {
   cancelTree_->store(true);
+  if (pipe_) pipe_->cancelled = true;
+  if (transfer_) transfer_->cancel();
 }
 
 void GaussianSceneLoad::fail(const std::string& error) {
   set_->loadError = error;
   ++set_->revision;
   stage_ = Stage::done;
+  if (transfer_) transfer_->cancel();
+  if (pipe_) pipe_->cancelled = true;
+}
+
+void GaussianSceneLoad::grow(const splats::GaussianCloud& batch, std::uint64_t total) {
+  if (batch.size() == 0) return;
+  if (!growing_) {
+    growing_ = std::make_shared<splats::GaussianCloud>();
+    growing_->setShDegree(batch.shDegree);
+    set_->gaussians = growing_;
+  }
+  growing_->appendRange(batch, 0, batch.size());
+  set_->expectedVectors = std::max<std::uint64_t>(total, growing_->size());
+  // The bounds frame the view: again each time the splats doubled, not at every batch.
+  if (growing_->size() >= 2 * boundsAt_) {
+    set_->computeBounds();
+    boundsAt_ = growing_->size();
+  }
+}
+
+void GaussianSceneLoad::arrived(std::shared_ptr<const splats::GaussianCloud> cloud, bool sorted) {
+  stage_ = Stage::sorting;
+  if (sorted) {
+    sort_ = readyFuture(Sorted{std::move(cloud), {}});
+    return;
+  }
+  // The splats drawn meanwhile change no more: the sort reads them beside the drawing.
+  sort_ = detached([cloud = std::move(cloud), url = url_]() {
+    Sorted s;
+    try {
+      s.cloud = std::make_shared<const splats::GaussianCloud>(splats::sortByImportance(*cloud));
+    } catch (const std::bad_alloc&) {
+      s.error = url + ": out of memory";
+    }
+    return s;
+  });
+}
+
+void GaussianSceneLoad::decodeWhole(std::string bytes) {
+  const splats::SplatFormat format = splats::detectSplatFormat(bytes, url_);
+  if (format == splats::SplatFormat::sogMeta || format == splats::SplatFormat::gltf) {
+    // Side files (SOG's images, a .gltf's buffers) come through the loader, which only this
+    // thread may use: decoded here.
+    Sorted s;
+    s.cloud = decodeScene(std::move(bytes), url_, sideFileReader(loader_, url_), s.error);
+    sort_ = readyFuture(std::move(s));
+  } else {
+    sort_ = detached([bytes = std::move(bytes), url = url_]() mutable {
+      Sorted s;
+      s.cloud = decodeScene(std::move(bytes), url, splats::SideFileReader{}, s.error);
+      return s;
+    });
+  }
+  stage_ = Stage::sorting;
+}
+
+bool GaussianSceneLoad::pumpTransfer() {
+  if (!transfer_) {
+    std::string error;
+    net::FetchRequest request = loader_.requestFor(url_, referrer_, error);
+    if (request.url.empty()) {
+      fail(error);
+      return true;
+    }
+    transfer_ = net::startTransfer(std::move(request));
+  }
+  const net::TransferStatus s = transfer_->status();
+  const std::size_t before = buffer_.size();
+  transfer_->take(buffer_);
+  // --snapshot-at BYTES counts these bytes too (Loader::grant); past it the scene stops.
+  const std::uint64_t got = buffer_.size() - before;
+  const std::uint64_t granted = got > 0 ? loader_.grant(got) : 0;
+  bool stopped = !loader_.stopReason().empty();
+  if (granted < got) {
+    buffer_.resize(before + static_cast<std::size_t>(granted));
+    stopped = true;
+  }
+  bool changed = false;
+  try {
+    if (!rows_ && !wholeRead_ && (!buffer_.empty() || s.finished())) {
+      const std::uint64_t size = s.resourceSize > 0 ? static_cast<std::uint64_t>(s.resourceSize)
+                                 : s.finished()     ? bufferStart_ + buffer_.size()
+                                                    : std::numeric_limits<std::uint64_t>::max() / 4;
+      splats::GaussianRows found = splats::openGaussianRows(buffer_, url_, size);
+      rows_ = std::move(found.decoder);
+      wholeRead_ = !rows_ && (!found.needMore || s.finished());
+    }
+    if (rows_) {
+      const std::uint64_t end = bufferStart_ + buffer_.size(), first = rows_->dataOffset();
+      const std::size_t rowBytes = rows_->rowBytes();
+      const std::uint64_t whole =
+          end > first ? std::min<std::uint64_t>((end - first) / rowBytes, rows_->size()) : 0;
+      const auto n =
+          static_cast<std::size_t>(std::min<std::uint64_t>(whole - rowsDecoded_, kRowsPerPump));
+      if (n > 0) {
+        const std::uint64_t from = first + rowsDecoded_ * rowBytes;
+        splats::GaussianCloud batch;
+        rows_->decode(buffer_.data() + (from - bufferStart_), n, batch);
+        grow(batch, rows_->size());
+        rowsDecoded_ += n;
+        const std::uint64_t consumed = first + rowsDecoded_ * rowBytes;
+        buffer_.erase(0, static_cast<std::size_t>(consumed - bufferStart_));
+        bufferStart_ = consumed;
+        changed = true;
+      }
+    }
+  } catch (const splats::FormatError& e) {
+    fail(e.what());
+    return true;
+  } catch (const std::bad_alloc&) {
+    fail(url_ + ": out of memory");
+    return true;
+  }
+  if (stopped) {  // drawn with what arrived, as a stream stopped by --snapshot-at
+    transfer_->cancel();
+    if (growing_) {
+      arrived(growing_, false);
+    } else {
+      fail(url_ + ": " + (loader_.stopReason().empty() ? "stopped" : loader_.stopReason()));
+    }
+    return true;
+  }
+  if (!s.finished() || s.received > bufferStart_ + buffer_.size()) return changed;
+  if (s.state != net::TransferState::done) {
+    fail(s.error.empty() ? url_ + ": cancelled" : s.error);
+    return true;
+  }
+  if (rows_) {
+    if (rowsDecoded_ == rows_->size()) {
+      arrived(growing_, false);
+    } else if ((bufferStart_ + buffer_.size() -
+                std::min(bufferStart_ + buffer_.size(), rows_->dataOffset())) /
+                   rows_->rowBytes() <
+               rows_->size()) {
+      fail(url_ + ": expected " + std::to_string(rows_->size()) + " splats, got " +
+           std::to_string(rowsDecoded_ + buffer_.size() / rows_->rowBytes()));
+    }  // else more rows than one pump decodes are waiting: the next pump goes on
+    return true;
+  }
+  decodeWhole(std::move(buffer_));
+  buffer_.clear();
+  return changed;
 }
 
 bool GaussianSceneLoad::pump() {
   bool changed = false;
-  if (stage_ == Stage::fetching) {
-    std::string bytes, error;
-    if (!loader_.takeInBackground(url_, referrer_, bytes, error)) {
-      if (error.empty()) return false;  // on its way
-      fail(error);
-      return true;
-    }
-    stage_ = Stage::decoding;
-    const splats::SplatFormat format = splats::detectSplatFormat(bytes, url_);
-    if (format == splats::SplatFormat::sogMeta || format == splats::SplatFormat::gltf) {
-      // Side files (SOG's images, a .gltf's buffers) come through the loader, which only
-      // this thread may use: decoded here (a .glb's own buffer needs none, but which it
-      // is the JSON says).
-      Decoded d;
-      d.cloud = decodeScene(std::move(bytes), url_, sideFileReader(loader_, url_), d.error);
-      std::promise<Decoded> done;
-      done.set_value(std::move(d));
-      decode_ = done.get_future();
+  if (stage_ == Stage::arriving) {
+    if (!pipe_) {
+      changed |= pumpTransfer();
     } else {
-      decode_ = detached([bytes = std::move(bytes), url = url_]() mutable {
-        Decoded d;
-        d.cloud = decodeScene(std::move(bytes), url, splats::SideFileReader{}, d.error);
-        return d;
-      });
+      std::deque<splats::GaussianCloud> batches;
+      std::uint64_t total = 0;
+      bool ended = false;
+      {
+        std::lock_guard lock(pipe_->mutex);
+        batches.swap(pipe_->batches);
+        total = pipe_->total;
+        ended = pipe_->ended;
+      }
+      try {
+        for (const splats::GaussianCloud& b : batches) grow(b, total);
+      } catch (const std::bad_alloc&) {
+        fail(url_ + ": out of memory");
+        return true;
+      }
+      changed |= !batches.empty();
+      if (ended) {
+        std::lock_guard lock(pipe_->mutex);
+        if (!pipe_->error.empty()) {
+          fail(pipe_->error);
+          return true;
+        }
+        if (pipe_->whole) {
+          arrived(pipe_->whole, true);
+        } else if (growing_) {
+          arrived(growing_, false);
+        } else {
+          fail(url_ + ": expected at least one splat, got 0");
+          return true;
+        }
+      }
     }
   }
-  if (stage_ == Stage::decoding) {
-    if (!ready(decode_)) return changed;
-    Decoded d = decode_.get();
-    if (!d.cloud) {
-      fail(d.error);
+  if (stage_ == Stage::sorting) {
+    if (!ready(sort_)) return changed;
+    Sorted sorted = sort_.get();
+    if (!sorted.cloud) {
+      fail(sorted.error);
       return true;
     }
-    set_->gaussians = d.cloud;
+    set_->gaussians = sorted.cloud;
+    growing_.reset();
+    set_->expectedVectors = 0;
     set_->computeBounds();
     ++set_->revision;
     changed = true;
     stage_ = Stage::tree;
-    if (d.cloud->size() > 1)
-      tree_ = std::async(std::launch::async, buildTreeOf, d.cloud, cancelTree_, url_);
+    if (sorted.cloud->size() > 1)
+      tree_ = std::async(std::launch::async, buildTreeOf, sorted.cloud, cancelTree_, url_);
     else
       stage_ = Stage::done;
   }

@@ -1,10 +1,16 @@
 // A Gaussian splatting scene file (.ply, .spz, SOG, .splat, glTF, LAS; splats/readers.hpp)
 // opened in a session, read in the background so that the thread that draws never waits
-// for it (docs/splats.md, "Opening a scene"): a local file is read, decoded and sorted by
-// importance on a thread of its own; a remote one is fetched by the loader without
-// blocking (Loader::takeInBackground, up to LoaderOptions::maxResourceBytes) and then
-// decoded the same way. Its level-of-detail tree is then built on another thread, as a
-// progressive stream's is. Private to the session.
+// for it, and drawn while it arrives (docs/splats.md, "Opening a scene"):
+// - a local file is read a batch at a time on a thread of its own
+//   (splats::openGaussianBatches: binary and compressed PLY, .splat, SPZ, SOG), each batch
+//   drawn as it comes; the other formats (glTF, LAS, ascii PLY) are read whole there;
+// - a remote one is fetched by its own transfer under the loader's rules and limits
+//   (Loader::requestFor, up to LoaderOptions::maxResourceBytes); a binary .ply or a
+//   .splat is decoded row by row as its bytes arrive (splats::openGaussianRows) and drawn
+//   as it grows, the other formats once whole;
+// then the whole scene is sorted by importance on a thread of its own, replaces the splats
+// drawn, and gets its level-of-detail tree on another thread, as a progressive stream's.
+// Private to the session.
 #pragma once
 
 #include <atomic>
@@ -18,6 +24,7 @@
 #include "render/splat_renderer.hpp"
 #include "splats/gaussian.hpp"
 #include "splats/lod_tree.hpp"
+#include "splats/readers.hpp"
 
 namespace gs::session::detail {
 
@@ -26,37 +33,64 @@ class GaussianSceneLoad {
   /// Starts loading `url` (resolved: a local path, file:// or http(s):// URL) referenced
   /// by `referrer` (empty for the user's own input). `loader` must outlive this.
   GaussianSceneLoad(net::Loader& loader, std::string url, std::string referrer);
-  /// Stops a tree build at its next check; a decode still running ends on its own thread.
+  /// Stops the transfer, the reading thread (at its next batch) and a tree build (at its
+  /// next check); a whole-file decode or a sort still running ends on its own thread.
   ~GaussianSceneLoad();
   GaussianSceneLoad(const GaussianSceneLoad&) = delete;
   GaussianSceneLoad& operator=(const GaussianSceneLoad&) = delete;
 
-  /// The set the scene's nodes draw: empty until the splats arrive (then `gaussians`,
-  /// bounds and a new revision), then its tree (`lodTree`); on a failure, `loadError`.
+  /// The set the scene's nodes draw: empty until splats arrive; then the splats so far in
+  /// file order (`expectedVectors` the scene's count when known); then the whole scene
+  /// sorted by importance, then its tree (`lodTree`); on a failure, `loadError` (the
+  /// splats that had arrived stay drawn).
   std::shared_ptr<const render::SplatSet> set() const { return set_; }
-  /// Moves the load on (on the thread that draws): takes the fetched bytes, attaches the
-  /// decoded splats, starts and attaches the tree. True when the set changed.
+  /// Moves the load on (on the thread that draws): takes what arrived, attaches it, starts
+  /// and attaches the sort and the tree. True when the set changed.
   bool pump();
-  /// Whether nothing is left to do: the splats and their tree attached, or a failure.
+  /// Whether nothing is left to do: the sorted splats and their tree attached, or a failure.
   bool settled() const { return stage_ == Stage::done; }
   /// Warnings to show once (a tree that could not be built); appended to `out`.
   void drainMessages(std::vector<std::pair<bool, std::string>>& out);
 
+  /// What a reading thread hands over (shared with it: it may outlive the load).
+  struct Pipe;
+
  private:
-  /// A decode's result: the splats sorted by importance, or why not.
-  struct Decoded {
+  /// The whole scene sorted by importance, or why not.
+  struct Sorted {
     std::shared_ptr<const splats::GaussianCloud> cloud;
     std::string error;
   };
   using Tree = std::pair<std::shared_ptr<const splats::LodTree>, std::string>;
-  enum class Stage { fetching, decoding, tree, done };
+  enum class Stage { arriving, sorting, tree, done };
   void fail(const std::string& error);
+  /// Appends `batch` to the splats drawn while arriving (`total`: the scene's count, 0
+  /// when unknown).
+  void grow(const splats::GaussianCloud& batch, std::uint64_t total);
+  /// Takes a remote scene's bytes: decodes its rows, or keeps them for a whole read.
+  bool pumpTransfer();
+  /// The scene complete: sorts `cloud` (already sorted when `sorted`) on a thread of its own.
+  void arrived(std::shared_ptr<const splats::GaussianCloud> cloud, bool sorted);
+  /// `bytes`, a whole remote scene not read by rows, decoded and sorted.
+  void decodeWhole(std::string bytes);
 
   net::Loader& loader_;
   std::string url_, referrer_;
   std::shared_ptr<render::SplatSet> set_ = std::make_shared<render::SplatSet>();
-  Stage stage_ = Stage::fetching;
-  std::future<Decoded> decode_;
+  Stage stage_ = Stage::arriving;
+  /// The splats drawn while the scene arrives, in file order (set_->gaussians meanwhile).
+  std::shared_ptr<splats::GaussianCloud> growing_;
+  std::size_t boundsAt_ = 0;  // growing_'s size when the bounds were last computed
+  // A local file: its reading thread's pipe.
+  std::shared_ptr<Pipe> pipe_;
+  // A remote file: its transfer, the bytes not yet decoded (from byte `bufferStart_`), and
+  // its rows' decoder once its head showed one (`wholeRead_` when it will not).
+  std::unique_ptr<net::Transfer> transfer_;
+  std::string buffer_;
+  std::uint64_t bufferStart_ = 0, rowsDecoded_ = 0;
+  std::unique_ptr<splats::GaussianRowDecoder> rows_;
+  bool wholeRead_ = false;
+  std::future<Sorted> sort_;
   std::future<Tree> tree_;
   std::shared_ptr<std::atomic<bool>> cancelTree_ = std::make_shared<std::atomic<bool>>(false);
   std::vector<std::pair<bool, std::string>> messages_;

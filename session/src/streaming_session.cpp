@@ -14,6 +14,7 @@
 #include "encodings/parser.hpp"
 #include "formats/input_kind.hpp"
 #include "gaussian_scene_load.hpp"
+#include "net/transfer.hpp"
 #include "session/splat_inputs.hpp"
 #include "session/world.hpp"
 #include "splats/qnv_gaussians.hpp"
@@ -47,6 +48,29 @@ bool StreamingSession::remoteIsGaussian(const std::string& url, bool tileset) {
   }
 }
 
+bool StreamingSession::remotePlyIsGaussian(const std::string& url, std::string& error) {
+  net::FetchRequest request = loader_.requestFor(url, "", error);
+  if (request.url.empty()) return false;
+  constexpr std::uint64_t kHead = 65536;  // a 3DGS header is about 1.5 KB
+  request.offset = 0;
+  request.length = kHead;
+  const std::unique_ptr<net::Transfer> transfer = net::startTransfer(std::move(request));
+  std::string head;
+  for (;;) {
+    const net::TransferStatus status = transfer->status();
+    transfer->take(head);
+    if (status.finished() && status.state != net::TransferState::done && head.empty()) {
+      error = status.error;
+      return false;
+    }
+    if (status.finished() || head.size() >= kHead || head.find("end_header") != std::string::npos)
+      break;
+    transfer->wait(0.05);
+  }
+  transfer->cancel();
+  return formats::kindFromContent(head) == formats::InputKind::gaussianSplats;
+}
+
 std::shared_ptr<const vrml::Scene> StreamingSession::inputWorld(const std::string& input,
                                                                 bool& handled, std::string& error) {
   handled = true;
@@ -65,7 +89,16 @@ std::shared_ptr<const vrml::Scene> StreamingSession::inputWorld(const std::strin
   }
   if (base::isHttpUrl(input)) {
     // Nothing has arrived yet: the name decides (a world when it says nothing).
-    const formats::InputKind kind = formats::kindFromName(input);
+    formats::InputKind kind = formats::kindFromName(input);
+    // A .ply may be a mesh or a capture: its header says which.
+    if (kind == formats::InputKind::ply) {
+      if (remotePlyIsGaussian(input, error)) {
+        remoteCaptures_.insert(input);
+        kind = formats::InputKind::gaussianSplats;
+      } else if (!error.empty()) {
+        return nullptr;  // it could not be fetched: why
+      }
+    }
     if (kind == formats::InputKind::qnv || kind == formats::InputKind::gaussianSplats) {
       // A QNV stream, or a splat scene read whole (StreamingSession::splatSet); a LAS
       // point cloud is z up already, a capture is turned (docs/splats.md, "Axes").
@@ -147,7 +180,8 @@ std::shared_ptr<const render::SplatSet> StreamingSession::splatSet(const std::st
   const std::string path = base::localPathOfUrl(url);
   const formats::InputKind kind =
       path.empty() ? formats::InputKind::unknown : formats::classifyFile(path);
-  if ((path.empty() && formats::kindFromName(url) == formats::InputKind::gaussianSplats) ||
+  if ((path.empty() && (formats::kindFromName(url) == formats::InputKind::gaussianSplats ||
+                        remoteCaptures_.count(url) > 0)) ||
       (!path.empty() && kind != formats::InputKind::qnv && isGaussianSplatFile(path))) {
     // A Gaussian splatting scene: read whole in the background (local or HTTP, under the
     // loader's rules); its set is empty until then, and says why if it fails.

@@ -126,71 +126,133 @@ std::vector<double> asciiValues(std::string_view bytes, std::string_view name, s
   return values;
 }
 
-/// A binary INRIA .ply read a batch of rows at a time.
-class PlyGaussianBatches final : public GaussianBatchReader {
+/// The rows of a binary INRIA .ply's vertex element, decoded.
+class PlyRowDecoder final : public GaussianRowDecoder {
  public:
-  explicit PlyGaussianBatches(const std::string& path) : file_(path) {
-    std::string head(static_cast<std::size_t>(std::min<std::uint64_t>(file_.size(), 1u << 20)),
-                     '\0');
-    file_.read(0, head.data(), head.size());
-    std::string error;
-    if (!detail::parsePlyHeader(head, header_, error)) fail(path, error);
+  /// Throws FormatError naming `name` for what readPlyGaussians refuses in the header; the
+  /// vertex element must lie within `fileBytes` (the file's size, or the most it may be).
+  PlyRowDecoder(const PlyHeader& header, const std::string& name, std::uint64_t fileBytes)
+      : name_(name), header_(header) {
     const PlyElement* vertex = header_.find("vertex");
-    if (!vertex) fail(path, "no vertex element");
-    if (header_.format == detail::PlyFormat::ascii)
-      throw NotPiecewiseError(path + ": " + detail::kPiecewiseFormats + ", not an ascii PLY");
-    if (vertex->count == 0) fail(path, "expected at least one splat, got 0");
-    columns_ = findColumns(path, *vertex);
+    if (!vertex) fail(name, "no vertex element");
+    if (vertex->count == 0) fail(name, "expected at least one splat, got 0");
+    if (vertex->count > kMaxSplats)
+      fail(name, std::to_string(vertex->count) + " splats exceed the limit of " +
+                     std::to_string(kMaxSplats));
+    columns_ = findColumns(name, *vertex);
     vertex_ = vertex;
-    offset_ = detail::plyElementOffset(file_.size(), path, header_, *vertex);
+    offset_ = detail::plyElementOffset(fileBytes, name, header_, *vertex);
   }
+  std::uint64_t dataOffset() const override { return offset_; }
+  std::size_t rowBytes() const override { return vertex_->rowBytes; }
   std::uint64_t size() const override { return vertex_->count; }
   int shDegree() const override { return columns_.degree; }
-  std::size_t rowBytes() const override { return vertex_->rowBytes; }
-  std::size_t read(GaussianCloud& batch, std::size_t max) override {
-    const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(max, size() - next_));
-    const std::size_t rowBytes = vertex_->rowBytes;
-    rows_.resize(n * rowBytes);
-    file_.read(offset_ + next_ * rowBytes, rows_.data(), rows_.size());
-    next_ += n;
+  void decode(const char* rows, std::size_t n, GaussianCloud& batch) const override {
     batch = GaussianCloud{};
     detail::allocate(batch, n, columns_.degree);
     const bool bigEndian = header_.format == detail::PlyFormat::binaryBigEndian;
     const auto& props = vertex_->properties;
+    const std::size_t rowBytes = vertex_->rowBytes;
     fill(batch, columns_, n, [&](std::size_t i, int col) {
       const auto& p = props[static_cast<std::size_t>(col)];
-      return detail::plyValue(rows_.data() + i * rowBytes + p.offset, p.type, bigEndian);
+      return detail::plyValue(rows + i * rowBytes + p.offset, p.type, bigEndian);
     });
+  }
+
+ private:
+  std::string name_;
+  PlyHeader header_;
+  const PlyElement* vertex_ = nullptr;
+  Columns columns_;
+  std::uint64_t offset_ = 0;
+};
+
+/// A binary INRIA .ply read a batch of rows at a time.
+class PlyGaussianBatches final : public GaussianBatchReader {
+ public:
+  PlyGaussianBatches(const std::string& path, const PlyHeader& header)
+      : file_(path), rows_(header, path, file_.size()) {}
+  std::uint64_t size() const override { return rows_.size(); }
+  int shDegree() const override { return rows_.shDegree(); }
+  std::size_t rowBytes() const override { return rows_.rowBytes(); }
+  std::size_t read(GaussianCloud& batch, std::size_t max) override {
+    const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(max, size() - next_));
+    bytes_.resize(n * rowBytes());
+    file_.read(rows_.dataOffset() + next_ * rowBytes(), bytes_.data(), bytes_.size());
+    next_ += n;
+    rows_.decode(bytes_.data(), n, batch);
     return n;
   }
   void rewind() override { next_ = 0; }
 
  private:
   detail::PieceFile file_;
-  PlyHeader header_;
-  const PlyElement* vertex_ = nullptr;
-  Columns columns_;
-  std::uint64_t offset_ = 0, next_ = 0;
-  std::vector<char> rows_;
+  PlyRowDecoder rows_;
+  std::uint64_t next_ = 0;
+  std::vector<char> bytes_;
+};
+
+/// A .splat's 32-byte rows, decoded.
+class SplatRowDecoder final : public GaussianRowDecoder {
+ public:
+  explicit SplatRowDecoder(std::uint64_t count) : count_(count) {}
+  std::uint64_t dataOffset() const override { return 0; }
+  std::size_t rowBytes() const override { return 32; }
+  std::uint64_t size() const override { return count_; }
+  int shDegree() const override { return 0; }
+  void decode(const char* rows, std::size_t n, GaussianCloud& batch) const override {
+    batch = n == 0 ? GaussianCloud{} : readSplatGaussians(std::string_view(rows, n * 32), ".splat");
+  }
+
+ private:
+  std::uint64_t count_;
 };
 
 }  // namespace
 
 std::unique_ptr<GaussianBatchReader> openPlyGaussianBatches(const std::string& path) {
-  {
-    // A packed vertex element is PlayCanvas's, as readPlyGaussians reads it.
-    const detail::PieceFile file(path);
-    std::string head(static_cast<std::size_t>(std::min<std::uint64_t>(file.size(), 1u << 20)),
-                     '\0');
-    file.read(0, head.data(), head.size());
-    PlyHeader header;
-    std::string error;
-    const PlyElement* vertex =
-        detail::parsePlyHeader(head, header, error) ? header.find("vertex") : nullptr;
-    if (vertex && vertex->find("packed_position") >= 0)
-      return openCompressedPlyGaussianBatches(path);
+  const detail::PieceFile file(path);
+  std::string head(static_cast<std::size_t>(std::min<std::uint64_t>(file.size(), 1u << 20)), '\0');
+  file.read(0, head.data(), head.size());
+  PlyHeader header;
+  std::string error;
+  if (!detail::parsePlyHeader(head, header, error)) fail(path, error);
+  // A packed vertex element is PlayCanvas's, as readPlyGaussians reads it.
+  if (const PlyElement* vertex = header.find("vertex");
+      vertex && vertex->find("packed_position") >= 0)
+    return openCompressedPlyGaussianBatches(path);
+  if (header.format == detail::PlyFormat::ascii)
+    throw NotPiecewiseError(path + ": " + detail::kPiecewiseFormats + ", not an ascii PLY");
+  return std::make_unique<PlyGaussianBatches>(path, header);
+}
+
+GaussianRows openGaussianRows(std::string_view head, const std::string& name,
+                              std::uint64_t fileBytes) {
+  GaussianRows r;
+  if (!head.starts_with("ply") && detectSplatFormat(head, name) == SplatFormat::splat) {
+    if (fileBytes == 0 || fileBytes % 32 != 0 || fileBytes > 32 * std::uint64_t{kMaxSplats})
+      return r;  // not known, or not whole rows: read whole, where the reader says why
+    r.decoder = std::make_unique<SplatRowDecoder>(fileBytes / 32);
+    return r;
   }
-  return std::make_unique<PlyGaussianBatches>(path);
+  if (!head.starts_with("ply")) return r;
+  if (head.find("end_header") == std::string_view::npos) {
+    r.needMore = head.size() < (1u << 20);  // parsePlyHeader reads up to 1 MiB
+    return r;
+  }
+  PlyHeader header;
+  std::string error;
+  if (!detail::parsePlyHeader(head, header, error)) {
+    // The header line itself may be cut: wait for its end.
+    r.needMore = head.size() < (1u << 20) && head.find("end_header\n") == std::string_view::npos &&
+                 head.find("end_header\r\n") == std::string_view::npos;
+    return r;
+  }
+  const PlyElement* vertex = header.find("vertex");
+  if (header.format == detail::PlyFormat::ascii || !vertex || vertex->find("packed_position") >= 0)
+    return r;
+  r.decoder = std::make_unique<PlyRowDecoder>(header, name, fileBytes);
+  return r;
 }
 
 GaussianCloud readPlyGaussians(std::string_view bytes, std::string_view name) {

@@ -169,7 +169,7 @@ TEST_CASE("a QNV stream over HTTP fetches only the prefix its level of detail dr
   CHECK(differing("sphere_local_all", "sphere_http_all", 0) == 0.0);
 }
 
-TEST_CASE("a Gaussian stream and tileset over HTTP are turned as the local capture is",
+TEST_CASE("a Gaussian stream and tileset and PLY over HTTP are turned as the local capture is",
           "[app][http][qnv][splat]") {
   NginxServer nginx;
   if (!nginx.ok()) return;
@@ -199,6 +199,23 @@ TEST_CASE("a Gaussian stream and tileset over HTTP are turned as the local captu
   CHECK(differing("bunny_tileset_local", "bunny_tileset_http", 0) == 0.0);
   // And the tileset shows what the stream shows.
   CHECK(differing("bunny_qnv_local", "bunny_tileset_local", 16) < 0.002);
+  // A capture's own .ply over HTTP: its header says it is no mesh (one range request), and
+  // it is the local file's picture; --snapshot-at draws the rows that came.
+  nginx.writeFile("bunny.ply", gs::test::readBytes(ply));
+  REQUIRE(shoot("bunny_ply_local", ply.string()).exitCode == 0);
+  const auto remotePly = shoot("bunny_ply_http", nginx.url("/bunny.ply"));
+  INFO(remotePly.err);
+  REQUIRE(remotePly.exitCode == 0);
+  CHECK(differing("bunny_ply_local", "bunny_ply_http", 0) == 0.0);
+  const auto part = shoot("bunny_ply_part", nginx.url("/bunny.ply"), {"--snapshot-at", "60000"});
+  INFO(part.err);
+  CHECK(part.exitCode == 0);
+  CHECK(covered("bunny_ply_part") > 0.0);
+  CHECK(differing("bunny_ply_local", "bunny_ply_part", 16) > 0.01);
+  // A .ply that is not there: the server's answer, not the mesh rule.
+  const auto missingPly = shoot("bunny_ply_missing", nginx.url("/none.ply"));
+  CHECK(missingPly.exitCode == 1);
+  CHECK_THAT(missingPly.err, Catch::Contains("/none.ply: HTTP 404"));
   // A tileset whose index cannot be fetched: the picture of an incomplete input, exit 3
   // (it exited 0 before: only the loader's own streams were counted), the URL named.
   const auto missing = shoot("bunny_tileset_missing", nginx.url("/missing/"));

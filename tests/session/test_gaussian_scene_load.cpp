@@ -105,3 +105,40 @@ TEST_CASE("a splat scene over HTTP is fetched without blocking under the resourc
   CHECK_FALSE(scene.set->gaussians);
   CHECK_THAT(scene.set->loadError, Catch::Contains("/bunny.spz"));
 }
+
+TEST_CASE("a capture PLY over HTTP is drawn while its rows arrive", "[session][splat][http]") {
+  gs::test::NginxServer nginx;
+  if (!nginx.ok()) return;
+  const fs::path ply = splatData("bunny_small.ply");  // 3,000 rows of 62 floats
+  nginx.writeFile("bunny.ply", gs::test::readBytes(ply));
+  gs::net::LoaderOptions slow;
+  slow.maxRate = 150000;  // bytes a second: about 2 s for its 276 KB
+  OpenedScene scene(nginx.url("/bunny.ply"), slow);
+  // Splats in file order while the rest arrives, the scene's count expected.
+  bool sawPart = false;
+  for (int i = 0; i < 10000 && !scene.session.settled(); ++i) {
+    scene.session.pump();
+    const auto& set = *scene.set;
+    if (set.gaussians && set.size() > 0 && set.size() < 3000) {
+      sawPart = true;
+      CHECK(set.expectedVectors == 3000);
+      CHECK_FALSE(set.lodTree);
+    }
+    scene.session.loader().wait(0.01);
+  }
+  CHECK(sawPart);
+  REQUIRE(scene.settle());
+  const gs::splats::GaussianCloud expected = gs::splats::sortByImportance(
+      gs::splats::readGaussians(gs::test::readBytes(ply), ply.string(), {}));
+  REQUIRE(scene.set->gaussians);
+  CHECK(scene.set->gaussians->positions == expected.positions);
+  CHECK(scene.set->gaussians->shRest == expected.shRest);
+  CHECK(scene.set->expectedVectors == 0);
+  CHECK(scene.set->lodTree);
+  // A capture cut short: the rows that came are no scene, the set says why.
+  const std::string bytes = gs::test::readBytes(ply);
+  nginx.writeFile("cut.ply", bytes.substr(0, bytes.size() - 1000));
+  OpenedScene cut(nginx.url("/cut.ply"));
+  REQUIRE(cut.settle());
+  CHECK_THAT(cut.set->loadError, Catch::Contains("/cut.ply") && Catch::Contains("expected"));
+}

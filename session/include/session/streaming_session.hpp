@@ -9,6 +9,7 @@
 #include <future>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -106,6 +107,13 @@ class StreamingSession {
   /// before the world naming it is made, so a capture streamed over HTTP is turned as a
   /// local one (docs/splats.md, "Opening a scene"); no byte is fetched twice.
   bool remoteIsGaussian(const std::string& url, bool tileset);
+  /// Whether the remote .ply `url` is a 3D Gaussian splatting capture, not a mesh: its
+  /// first 64 KiB at most are fetched (one range request, until the header's end_header
+  /// arrives) and classified by content (formats::kindFromContent). False with `error`
+  /// (naming the URL: "http://h/x.ply: HTTP 404 Not Found") when it cannot be fetched.
+  bool remotePlyIsGaussian(const std::string& url, std::string& error);
+  /// Remote .ply URLs found to be captures (remotePlyIsGaussian): splat scenes.
+  std::set<std::string> remoteCaptures_;
   net::Loader loader_;
   struct QnvEntry {
     std::shared_ptr<net::QnvStream> stream;

@@ -67,6 +67,42 @@ class GaussianBatchReader {
   virtual void rewind() = 0;
 };
 
+/// The splats of a scene whose splats are rows of a fixed size (a binary INRIA .ply's
+/// vertex element, a .splat's 32-byte records), decoded from its bytes as they arrive: a
+/// capture fetched over HTTP drawn while it arrives (session/src/gaussian_scene_load.hpp).
+class GaussianRowDecoder {
+ public:
+  virtual ~GaussianRowDecoder() = default;
+  /// Byte offset of the first row in the file.
+  virtual std::uint64_t dataOffset() const = 0;
+  /// Bytes of one row.
+  virtual std::size_t rowBytes() const = 0;
+  /// The scene's splats (1..kMaxSplats).
+  virtual std::uint64_t size() const = 0;
+  /// SH degree (0..3).
+  virtual int shDegree() const = 0;
+  /// Decodes the `n` rows at `rows` (n * rowBytes() bytes) into `batch`, resized to them:
+  /// exactly the splats the whole-file reader gives for those rows.
+  virtual void decode(const char* rows, std::size_t n, GaussianCloud& batch) const = 0;
+};
+
+/// What openGaussianRows found in a scene's first bytes.
+struct GaussianRows {
+  /// The decoder, or null: not (yet) known to be a row format.
+  std::unique_ptr<GaussianRowDecoder> decoder;
+  /// With no decoder: true when more bytes may still show a PLY header (its end_header
+  /// line has not arrived); false when the scene is not read by rows (read it whole).
+  bool needMore = false;
+};
+
+/// The row decoder of the scene `name` whose first bytes are `head` and whose size is
+/// `fileBytes` (the most it may be when not known): a binary INRIA .ply (not a compressed
+/// or ascii one), or a .splat (by name, as detectSplatFormat; its size must be known and
+/// whole records). Throws FormatError naming `name` for a PLY header that readPlyGaussians
+/// refuses (a property missing, too many splats, a vertex element past `fileBytes`).
+GaussianRows openGaussianRows(std::string_view head, const std::string& name,
+                              std::uint64_t fileBytes);
+
 /// openGaussianBatches's error for a scene of a format it does not read piecewise (which
 /// the whole-file readers do read).
 struct NotPiecewiseError : FormatError {
