@@ -110,57 +110,40 @@ bool Loader::fetchWhole(const std::string& url, const std::string& referrer, std
   }
 }
 
-Loader::Fetch& Loader::startFetch(std::map<std::string, Fetch>& fetches, const std::string& url,
-                                  const std::string& referrer, std::uint64_t maxBytes) {
-  auto it = fetches.find(url);
-  if (it == fetches.end()) {
-    Fetch f;
-    FetchRequest r = requestFor(url, referrer, f.error);
-    if (!r.url.empty()) {
-      r.maxBytes = std::min<std::uint64_t>(r.maxBytes, maxBytes);
-      f.transfer = startTransfer(std::move(r));
-    }
-    it = fetches.emplace(url, std::move(f)).first;
-  }
-  return it->second;
-}
-
 bool Loader::fetchInBackground(const std::string& url, const std::string& referrer,
                                std::string& bytes, std::string& error) {
   if (!referrer.empty() && !base::mayReference(referrer, url, error)) return false;
-  Fetch& f = startFetch(fetches_, url, referrer, std::uint64_t{256} << 20);
+  auto it = fetches_.find(url);
+  if (it == fetches_.end()) {
+    Fetch f;
+    FetchRequest r = requestFor(url, referrer, f.error);
+    if (!r.url.empty()) {
+      r.maxBytes = std::min<std::uint64_t>(r.maxBytes, std::uint64_t{256} << 20);
+      f.transfer = startTransfer(std::move(r));
+    }
+    it = fetches_.emplace(url, std::move(f)).first;
+  }
+  Fetch& f = it->second;
   error = f.error;
   if (f.done) bytes = f.bytes;
   return f.done;
 }
 
-bool Loader::takeInBackground(const std::string& url, const std::string& referrer,
-                              std::string& bytes, std::string& error) {
-  if (!referrer.empty() && !base::mayReference(referrer, url, error)) return false;
-  auto& f = startFetch(largeFetches_, url, referrer, options_.maxResourceBytes);
-  error = f.error;
-  const bool done = f.done;
-  if (done) bytes = std::move(f.bytes);
-  if (done || !error.empty()) largeFetches_.erase(url);
-  return done;
-}
-
 bool Loader::pump() {
   bool changed = false;
-  for (auto* fetches : {&fetches_, &largeFetches_})
-    for (auto& [url, f] : *fetches) {
-      if (!f.transfer) continue;
-      f.transfer->take(f.bytes);
-      const TransferStatus s = f.transfer->status();
-      if (!s.finished() || s.received > f.bytes.size()) continue;
-      f.done = s.state == TransferState::done;
-      if (!f.done) {
-        f.error = s.error.empty() ? url + ": cancelled" : s.error;
-        f.bytes.clear();
-      }
-      f.transfer.reset();
-      changed = true;
+  for (auto& [url, f] : fetches_) {
+    if (!f.transfer) continue;
+    f.transfer->take(f.bytes);
+    const TransferStatus s = f.transfer->status();
+    if (!s.finished() || s.received > f.bytes.size()) continue;
+    f.done = s.state == TransferState::done;
+    if (!f.done) {
+      f.error = s.error.empty() ? url + ": cancelled" : s.error;
+      f.bytes.clear();
     }
+    f.transfer.reset();
+    changed = true;
+  }
   for (auto& [url, w] : worlds_) changed |= w->pump(allowance_);
   for (auto& [url, q] : qnvs_) changed |= q->pump(allowance_);
   if (!capReached_ && options_.stopAfterBytes > 0 && allowance_.remaining == 0) {
@@ -177,9 +160,8 @@ void Loader::wait(double seconds) {
 }
 
 bool Loader::settled() const {
-  for (const auto* fetches : {&fetches_, &largeFetches_})
-    for (const auto& [url, f] : *fetches)
-      if (f.transfer) return false;
+  for (const auto& [url, f] : fetches_)
+    if (f.transfer) return false;
   for (const auto& [url, w] : worlds_)
     if (!w->progress().settled()) return false;
   for (const auto& [url, q] : qnvs_)
@@ -206,13 +188,12 @@ std::uint64_t Loader::grant(std::uint64_t wanted) {
 
 void Loader::stopAll(const std::string& why) {
   if (stopReason_.empty()) stopReason_ = why;
-  for (auto* fetches : {&fetches_, &largeFetches_})
-    for (auto& [url, f] : *fetches)
-      if (f.transfer) {
-        f.transfer->cancel();
-        f.transfer.reset();
-        f.error = url + ": " + why;
-      }
+  for (auto& [url, f] : fetches_)
+    if (f.transfer) {
+      f.transfer->cancel();
+      f.transfer.reset();
+      f.error = url + ": " + why;
+    }
   for (auto& [url, w] : worlds_)
     if (!w->progress().settled()) w->stop(why);
   for (auto& [url, q] : qnvs_)

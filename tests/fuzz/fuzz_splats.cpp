@@ -4,7 +4,8 @@
 // The same bytes are then read piecewise (splats::openGaussianBatches, the out-of-core
 // encode's reader: binary and compressed PLY, .splat, SPZ v2-v4 and SOG bundles, by
 // content) from a file named .ply or .splat by the input's size, in batches of 97
-// splats, twice (rewound between).
+// splats, twice (rewound between), and as bytes arriving over HTTP
+// (splats::openGaussianRows, the rows decoded from the bytes).
 #include <unistd.h>
 
 #include <filesystem>
@@ -48,6 +49,24 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     for (int pass = 0; pass < 2; ++pass, reader->rewind())
       while (reader->read(batch, 97) > 0) {
       }
+  });
+  // And as bytes arriving over HTTP (splats::openGaussianRows): the first half, then the
+  // whole, its rows decoded as the session decodes them.
+  const std::string_view bytes = gs::fuzz::view(data, size);
+  const std::string name = size % 2 ? "scene.ply" : "scene.splat";
+  gs::fuzz::expectingErrors(
+      [&] { (void)gs::splats::openGaussianRows(bytes.substr(0, size / 2), name, size); });
+  gs::fuzz::expectingErrors([&] {
+    const gs::splats::GaussianRows rows = gs::splats::openGaussianRows(bytes, name, size);
+    if (!rows.decoder || rows.decoder->dataOffset() > size) return;
+    const gs::splats::GaussianRowDecoder& d = *rows.decoder;
+    const std::uint64_t whole =
+        std::min<std::uint64_t>((size - d.dataOffset()) / d.rowBytes(), d.size());
+    gs::splats::GaussianCloud batch;
+    for (std::uint64_t first = 0; first < whole; first += 97) {
+      const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(97, whole - first));
+      d.decode(bytes.data() + d.dataOffset() + first * d.rowBytes(), n, batch);
+    }
   });
   return 0;
 }

@@ -65,15 +65,6 @@ class Loader final : public base::Fetcher {
   bool fetchInBackground(const std::string& url, const std::string& referrer, std::string& bytes,
                          std::string& error);
 
-  /// Fetches a whole large resource (a Gaussian splatting scene, up to
-  /// LoaderOptions::maxResourceBytes; fetchInBackground's are 256 MiB at most) without
-  /// blocking: the first call starts the transfer, pump() moves its bytes. Returns true
-  /// once it arrived, with the bytes moved into `bytes` (the loader keeps no copy, and a
-  /// later call for the same URL starts another transfer); false with `error` empty while
-  /// it is on its way, or set (naming the URL) when it failed or was refused.
-  bool takeInBackground(const std::string& url, const std::string& referrer, std::string& bytes,
-                        std::string& error);
-
   /// Pumps every stream. Returns true when anything changed (scene grew, vectors or a
   /// header arrived, a stream ended, a background fetch completed).
   bool pump();
@@ -123,11 +114,7 @@ class Loader final : public base::Fetcher {
     std::string error;
     bool done = false;
   };
-  std::map<std::string, Fetch> fetches_;       // fetchInBackground's, kept
-  std::map<std::string, Fetch> largeFetches_;  // takeInBackground's, until taken
-  /// The fetch of `url` in `fetches`, started (under maxBytes) when there is none.
-  Fetch& startFetch(std::map<std::string, Fetch>& fetches, const std::string& url,
-                    const std::string& referrer, std::uint64_t maxBytes);
+  std::map<std::string, Fetch> fetches_;
 };
 
 }  // namespace gs::net
