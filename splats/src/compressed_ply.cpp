@@ -187,9 +187,7 @@ void decode(const Layout& L, const char* chunks, const char* vertices, const cha
 class CompressedPlyBatches final : public GaussianBatchReader {
  public:
   explicit CompressedPlyBatches(const std::string& path) : file_(path) {
-    std::string head(static_cast<std::size_t>(std::min<std::uint64_t>(file_.size(), 1u << 20)),
-                     '\0');
-    file_.read(0, head.data(), head.size());
+    const std::string head = file_.head();
     std::string error;
     if (!detail::parsePlyHeader(head, header_, error)) fail(path, error);
     layout_ = layoutOf(header_, path);

@@ -118,13 +118,7 @@ GaussianCloud readGaussians(std::string_view bytes, std::string_view name,
 
 std::unique_ptr<GaussianBatchReader> openGaussianBatches(const std::string& path,
                                                          const SideFileReader& sideFiles) {
-  std::string head;
-  {
-    const detail::PieceFile file(path);
-    // As much as a PLY header may take (parsePlyHeader reads up to 1 MiB).
-    head.resize(static_cast<std::size_t>(std::min<std::uint64_t>(file.size(), 1u << 20)));
-    file.read(0, head.data(), head.size());
-  }
+  const std::string head = detail::PieceFile(path).head();
   switch (detectSplatFormat(head, path)) {
     case SplatFormat::ply:
       return openPlyGaussianBatches(path);

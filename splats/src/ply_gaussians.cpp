@@ -212,8 +212,7 @@ class SplatRowDecoder final : public GaussianRowDecoder {
 
 std::unique_ptr<GaussianBatchReader> openPlyGaussianBatches(const std::string& path) {
   const detail::PieceFile file(path);
-  std::string head(static_cast<std::size_t>(std::min<std::uint64_t>(file.size(), 1u << 20)), '\0');
-  file.read(0, head.data(), head.size());
+  const std::string head = file.head();
   PlyHeader header;
   std::string error;
   if (!detail::parsePlyHeader(head, header, error)) fail(path, error);

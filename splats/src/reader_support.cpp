@@ -302,4 +302,10 @@ void PieceFile::read(std::uint64_t offset, char* out, std::size_t bytes) const {
   }
 }
 
+std::string PieceFile::head(std::size_t max) const {
+  std::string bytes(static_cast<std::size_t>(std::min<std::uint64_t>(size_, max)), '\0');
+  read(0, bytes.data(), bytes.size());
+  return bytes;
+}
+
 }  // namespace gs::splats::detail

@@ -111,6 +111,9 @@ class PieceFile {
   /// Reads `bytes` bytes at `offset` into `out`; FormatError "PATH: expected N bytes at
   /// byte OFFSET, got M" when the file ends before (or "cannot read: REASON").
   void read(std::uint64_t offset, char* out, std::size_t bytes) const;
+  /// The file's first min(size(), `max`) bytes (a header to parse: a PLY's takes at most
+  /// 1 MiB, parsePlyHeader's limit).
+  std::string head(std::size_t max = std::size_t{1} << 20) const;
   const std::string& path() const { return path_; }
 
  private:

@@ -176,16 +176,23 @@ GaussianCloud decodeWhole(const Header& h, const std::array<std::string_view, 6>
   return cloud;
 }
 
-GaussianCloud readLegacy(std::string_view bytes, std::string_view name) {
-  const std::string head = base::gunzipPrefix(bytes, 16);
+/// The header of a v2/v3 (gzip) file, its first 16 decompressed bytes `head`: v4 and the
+/// header extensions of v2/v3 refused. `total` is set to the decompressed bytes it says.
+Header parseLegacyHeader(std::string_view head, std::string_view name, std::uint64_t& total) {
   const Header h = parseHeader(head, name);
   if (h.version == 4) fail(name, "SPZ version 4 must not be gzip-compressed");
   if (h.flags & 0x2)
     fail(name, "SPZ header extensions in a version " + std::to_string(h.version) +
                    " file are not supported");
+  total = 16;
+  for (std::uint64_t s : blockSizes(h.count, static_cast<int>(h.version), h.degree)) total += s;
+  return h;
+}
+
+GaussianCloud readLegacy(std::string_view bytes, std::string_view name) {
+  std::uint64_t total = 0;
+  const Header h = parseLegacyHeader(base::gunzipPrefix(bytes, 16), name, total);
   const auto sizes = blockSizes(h.count, static_cast<int>(h.version), h.degree);
-  std::uint64_t total = 16;
-  for (std::uint64_t s : sizes) total += s;
   std::string data;
   try {
     data = base::gunzip(bytes, static_cast<std::size_t>(total) + (std::size_t{1} << 20));
@@ -373,20 +380,14 @@ class ZstdBlock final : public BlockStream {
 class SpzBatches final : public GaussianBatchReader {
  public:
   explicit SpzBatches(const std::string& path) : file_(path) {
-    std::string head(static_cast<std::size_t>(std::min<std::uint64_t>(file_.size(), 64)), '\0');
-    file_.read(0, head.data(), head.size());
+    const std::string head = file_.head(64);
     if (base::isGzip(head)) {
       InflatedBlock first(file_, 0);
       std::string h16(16, '\0');
       first.read(h16.data(), h16.size());
-      h_ = parseHeader(h16, path);
-      if (h_.version == 4) fail(path, "SPZ version 4 must not be gzip-compressed");
-      if (h_.flags & 0x2)
-        fail(path, "SPZ header extensions in a version " + std::to_string(h_.version) +
-                       " file are not supported");
+      std::uint64_t total = 0;
+      h_ = parseLegacyHeader(h16, path, total);
       const auto sizes = blockSizes(h_.count, static_cast<int>(h_.version), h_.degree);
-      std::uint64_t total = 16;
-      for (std::uint64_t s : sizes) total += s;
       // Deflate's largest ratio is 1032:1: a header claiming more cannot be true.
       if (total / 1032 > file_.size())
         fail(path, std::to_string(file_.size()) + " bytes of gzip data cannot hold the " +

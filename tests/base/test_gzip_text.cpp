@@ -43,7 +43,7 @@ TEST_CASE("gunzip: members, limits and damage as typed errors", "[base][gzip]") 
 
 TEST_CASE("InflateStream: pieces, members, skip, rewind and damage", "[base][gzip]") {
   std::string text;
-  for (int i = 0; i < 300000; ++i) text += static_cast<char>('a' + (i * 7919) % 26);
+  for (unsigned i = 0; i < 300000; ++i) text += static_cast<char>('a' + (i * 7919u) % 26u);
   // 5 bytes of something else first: the stream starts at a compressed offset.
   const std::string file =
       "HEAD!" + gs::test::gzip(text.substr(0, 123456)) + gs::test::gzip(text.substr(123456));
