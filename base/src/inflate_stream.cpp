@@ -64,8 +64,17 @@ std::size_t InflateStream::read(char* dst, std::size_t n) {
     done += produced;
     position_ += produced;
     if (rc == Z_STREAM_END) {
-      // Another gzip member may follow (RFC 1952 2.2); anything else ends the data.
-      if (s.avail_in == 0) refill();
+      // Another gzip member may follow (RFC 1952 2.2); anything else ends the data. Its
+      // two magic bytes may straddle the input buffer's end: the one left is kept.
+      if (s.avail_in < 2) {
+        const std::size_t have = s.avail_in;
+        if (have == 1) input_[0] = *s.next_in;
+        const std::size_t got = source_(inputOffset_, reinterpret_cast<char*>(input_.data()) + have,
+                                        input_.size() - have);
+        inputOffset_ += got;
+        s.next_in = input_.data();
+        s.avail_in = static_cast<uInt>(have + got);
+      }
       if (s.avail_in >= 2 && s.next_in[0] == 0x1f && s.next_in[1] == 0x8b)
         inflateReset(&s);
       else

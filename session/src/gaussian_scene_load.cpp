@@ -46,6 +46,8 @@ std::shared_ptr<const splats::GaussianCloud> decodeScene(std::string bytes, cons
     error = e.what();
   } catch (const std::bad_alloc&) {
     error = name + ": out of memory";
+  } catch (const std::exception& e) {  // a library's own (zlib that cannot start, ...)
+    error = name + ": " + e.what();
   }
   return nullptr;
 }
@@ -59,7 +61,11 @@ auto detached(Job job) {
   std::promise<Result> promise;
   auto future = promise.get_future();
   std::thread([job = std::move(job), promise = std::move(promise)]() mutable {
-    promise.set_value(job());
+    try {
+      promise.set_value(job());
+    } catch (...) {  // never std::terminate from a thread of a session
+      promise.set_exception(std::current_exception());
+    }
   }).detach();
   return future;
 }
@@ -107,6 +113,8 @@ void readLocal(const std::shared_ptr<GaussianSceneLoad::Pipe>& pipe, const std::
     error = e.what();
   } catch (const std::bad_alloc&) {
     error = url + ": out of memory";
+  } catch (const std::exception& e) {
+    error = url + ": " + e.what();
   }
   std::lock_guard lock(pipe->mutex);
   pipe->whole = std::move(whole);
@@ -167,26 +175,22 @@ void GaussianSceneLoad::arrived(std::shared_ptr<const splats::GaussianCloud> clo
       s.cloud = std::make_shared<const splats::GaussianCloud>(splats::sortByImportance(*cloud));
     } catch (const std::bad_alloc&) {
       s.error = url + ": out of memory";
+    } catch (const std::exception& e) {
+      s.error = url + ": " + e.what();
     }
     return s;
   });
 }
 
 void GaussianSceneLoad::decodeWhole(std::string bytes) {
-  const splats::SplatFormat format = splats::detectSplatFormat(bytes, url_);
-  if (format == splats::SplatFormat::sogMeta || format == splats::SplatFormat::gltf) {
-    // Side files (SOG's images, a .gltf's buffers) come through the loader, which only this
-    // thread may use: decoded here.
+  // Side files (SOG's images, a .gltf's buffers) come through a loader of the decoding
+  // thread's own, under the session's options: the session's loader belongs to this thread.
+  sort_ = detached([bytes = std::move(bytes), url = url_, options = loader_.options()]() mutable {
     Sorted s;
-    s.cloud = decodeScene(std::move(bytes), url_, sideFileReader(loader_, url_), s.error);
-    sort_ = readyFuture(std::move(s));
-  } else {
-    sort_ = detached([bytes = std::move(bytes), url = url_]() mutable {
-      Sorted s;
-      s.cloud = decodeScene(std::move(bytes), url, splats::SideFileReader{}, s.error);
-      return s;
-    });
-  }
+    net::Loader sideLoader(options);
+    s.cloud = decodeScene(std::move(bytes), url, sideFileReader(sideLoader, url), s.error);
+    return s;
+  });
   stage_ = Stage::sorting;
 }
 
@@ -200,9 +204,9 @@ bool GaussianSceneLoad::pumpTransfer() {
     }
     transfer_ = net::startTransfer(std::move(request));
   }
-  const net::TransferStatus s = transfer_->status();
   const std::size_t before = buffer_.size();
   transfer_->take(buffer_);
+  const net::TransferStatus s = transfer_->status();  // after the take: its size is known
   // --snapshot-at BYTES counts these bytes too (Loader::grant); past it the scene stops.
   const std::uint64_t got = buffer_.size() - before;
   const std::uint64_t granted = got > 0 ? loader_.grant(got) : 0;
@@ -234,9 +238,13 @@ bool GaussianSceneLoad::pumpTransfer() {
         rows_->decode(buffer_.data() + (from - bufferStart_), n, batch);
         grow(batch, rows_->size());
         rowsDecoded_ += n;
+        // The decoded rows' bytes go once they are half the buffer (not at every pump:
+        // a fast server may have put much more in it than a pump decodes).
         const std::uint64_t consumed = first + rowsDecoded_ * rowBytes;
-        buffer_.erase(0, static_cast<std::size_t>(consumed - bufferStart_));
-        bufferStart_ = consumed;
+        if (consumed - bufferStart_ >= buffer_.size() / 2) {
+          buffer_.erase(0, static_cast<std::size_t>(consumed - bufferStart_));
+          bufferStart_ = consumed;
+        }
         changed = true;
       }
     }
@@ -262,14 +270,13 @@ bool GaussianSceneLoad::pumpTransfer() {
     return true;
   }
   if (rows_) {
+    const std::uint64_t end = bufferStart_ + buffer_.size();
+    const std::uint64_t rowsThere = (end - std::min(end, rows_->dataOffset())) / rows_->rowBytes();
     if (rowsDecoded_ == rows_->size()) {
       arrived(growing_, false);
-    } else if ((bufferStart_ + buffer_.size() -
-                std::min(bufferStart_ + buffer_.size(), rows_->dataOffset())) /
-                   rows_->rowBytes() <
-               rows_->size()) {
+    } else if (rowsThere < rows_->size()) {
       fail(url_ + ": expected " + std::to_string(rows_->size()) + " splats, got " +
-           std::to_string(rowsDecoded_ + buffer_.size() / rows_->rowBytes()));
+           std::to_string(rowsThere));
     }  // else more rows than one pump decodes are waiting: the next pump goes on
     return true;
   }
@@ -319,7 +326,12 @@ bool GaussianSceneLoad::pump() {
   }
   if (stage_ == Stage::sorting) {
     if (!ready(sort_)) return changed;
-    Sorted sorted = sort_.get();
+    Sorted sorted;
+    try {
+      sorted = sort_.get();
+    } catch (const std::exception& e) {
+      sorted.error = url_ + ": " + e.what();
+    }
     if (!sorted.cloud) {
       fail(sorted.error);
       return true;

@@ -275,6 +275,9 @@ std::unique_ptr<GaussianBatchReader> openSogGaussianBatches(const std::string& p
   {
     const detail::PieceFile file(path);
     if (file.size() > (std::uint64_t{8} << 30)) fail(path, "an SOG scene larger than 8 GiB");
+    // A meta.json (no zip) is held to its own limit before it is read.
+    if (!detail::ZipArchive::isZip(file.head(4)) && file.size() > kMaxMetaBytes)
+      fail(path, "meta.json is larger than 16 MiB");
     bytes.resize(static_cast<std::size_t>(file.size()));
     file.read(0, bytes.data(), bytes.size());
   }

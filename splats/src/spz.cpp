@@ -6,7 +6,9 @@
 // degree 4 (SPZ allows it) keeps degrees 1-3; the header extensions of v4 are skipped.
 #include <zstd.h>
 
+#include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <functional>
 #include <memory>
@@ -287,6 +289,9 @@ class BlockStream {
   /// Exactly `n` bytes of the block into `dst` (FormatError naming the file when it ends
   /// or is damaged before).
   virtual void read(char* dst, std::size_t n) = 0;
+  /// After the block's last byte: checks that its data end as the whole-file reader
+  /// requires (FormatError otherwise).
+  virtual void finish() = 0;
   virtual void rewind() = 0;
 };
 
@@ -319,6 +324,17 @@ class InflatedBlock final : public BlockStream {
       fail(file_.path(), e.what());
     }
   }
+  /// The gzip data to their end, as readSpzGaussians inflates them: the trailers' CRC
+  /// checked, at most 1 MiB more than the blocks.
+  void finish() override {
+    try {
+      const std::uint64_t slack = std::uint64_t{1} << 20;
+      if (inflate_.skip(slack + 1) > slack)
+        fail(file_.path(), "decompressed data exceeds the SPZ blocks by more than 1 MiB");
+    } catch (const base::GzipError& e) {
+      fail(file_.path(), e.what());
+    }
+  }
   void rewind() override { inflate_.rewind(); }
 
  private:
@@ -332,43 +348,71 @@ class InflatedBlock final : public BlockStream {
 class ZstdBlock final : public BlockStream {
  public:
   ZstdBlock(const detail::PieceFile& file, std::uint64_t offset, std::uint64_t compressed,
-            int stream)
+            std::uint64_t uncompressed, int stream)
       : file_(file), offset_(offset), compressed_(compressed), stream_(stream), input_(1u << 18) {
     if (!d_) fail(file.path(), "zstd: out of memory");
+    // Six streams are open at once: a frame may ask for no larger window than its block
+    // could use (at least 8 MiB, what zstd's levels up to 19 take; 128 MiB is zstd's own
+    // limit), so a small hostile file cannot make them take 6 x 128 MiB.
+    const int windowLog = std::clamp(static_cast<int>(std::bit_width(uncompressed)) + 1, 23, 27);
+    ZSTD_DCtx_setParameter(d_.get(), ZSTD_d_windowLogMax, windowLog);
     rewind();
   }
   void read(char* dst, std::size_t n) override {
     ZSTD_outBuffer out{dst, n, 0};
     while (out.pos < n) {
-      if (in_.pos == in_.size && used_ < compressed_) {
-        const std::size_t got =
-            static_cast<std::size_t>(std::min<std::uint64_t>(input_.size(), compressed_ - used_));
-        file_.read(offset_ + used_, input_.data(), got);
-        used_ += got;
-        in_ = ZSTD_inBuffer{input_.data(), got, 0};
-      }
       const std::size_t before = out.pos;
-      const std::size_t rc = ZSTD_decompressStream(d_.get(), &out, &in_);
-      if (ZSTD_isError(rc))
-        fail(file_.path(),
-             "stream " + std::to_string(stream_) + ": zstd: " + ZSTD_getErrorName(rc));
-      if (out.pos < n && out.pos == before && in_.pos == in_.size && used_ == compressed_)
+      step(out);
+      if (out.pos < n && out.pos == before && inputUsed())
         fail(file_.path(), "stream " + std::to_string(stream_) + " ends " +
                                std::to_string(n - out.pos) + " bytes short");
     }
   }
+  /// The frame to its end, as readSpzGaussians decompresses it: complete, its compressed
+  /// bytes used up, not a byte more than the block.
+  void finish() override {
+    char extra = 0;
+    while (!(inputUsed() && hint_ == 0)) {
+      const bool drained = inputUsed();
+      ZSTD_outBuffer out{&extra, 1, 0};
+      step(out);
+      if (out.pos > 0)
+        fail(file_.path(),
+             "stream " + std::to_string(stream_) + " decompresses to more than its block's bytes");
+      if (drained && hint_ != 0)
+        fail(file_.path(), "stream " + std::to_string(stream_) + ": truncated zstd data");
+    }
+  }
   void rewind() override {
     ZSTD_initDStream(d_.get());
+    hint_ = 1;
     used_ = 0;
     in_ = ZSTD_inBuffer{input_.data(), 0, 0};
   }
 
  private:
+  /// One ZSTD_decompressStream call into `out`, its input refilled first when used up;
+  /// its hint (0: a frame ended) kept in hint_. FormatError on a zstd error.
+  void step(ZSTD_outBuffer& out) {
+    if (in_.pos == in_.size && used_ < compressed_) {
+      const std::size_t got =
+          static_cast<std::size_t>(std::min<std::uint64_t>(input_.size(), compressed_ - used_));
+      file_.read(offset_ + used_, input_.data(), got);
+      used_ += got;
+      in_ = ZSTD_inBuffer{input_.data(), got, 0};
+    }
+    const std::size_t rc = ZSTD_decompressStream(d_.get(), &out, &in_);
+    if (ZSTD_isError(rc))
+      fail(file_.path(), "stream " + std::to_string(stream_) + ": zstd: " + ZSTD_getErrorName(rc));
+    hint_ = rc;
+  }
+  bool inputUsed() const { return in_.pos == in_.size && used_ == compressed_; }
   struct Free {
     void operator()(ZSTD_DStream* d) const { ZSTD_freeDStream(d); }
   };
   const detail::PieceFile& file_;
   std::uint64_t offset_, compressed_, used_ = 0;
+  std::size_t hint_ = 1;  // the last ZSTD_decompressStream's return: 0 when a frame ended
   int stream_;
   std::vector<char> input_;
   std::unique_ptr<ZSTD_DStream, Free> d_{ZSTD_createDStream()};
@@ -382,6 +426,7 @@ class SpzBatches final : public GaussianBatchReader {
   explicit SpzBatches(const std::string& path) : file_(path) {
     const std::string head = file_.head(64);
     if (base::isGzip(head)) {
+      gzip_ = true;
       InflatedBlock first(file_, 0);
       std::string h16(16, '\0');
       first.read(h16.data(), h16.size());
@@ -409,7 +454,7 @@ class SpzBatches final : public GaussianBatchReader {
       for (unsigned k = 0; k < v4.streams; ++k)
         if (v4.uncompressed[k] > 0)
           blocks_[k] = std::make_unique<ZstdBlock>(file_, v4.offset[k], v4.compressed[k],
-                                                   static_cast<int>(k));
+                                                   v4.uncompressed[k], static_cast<int>(k));
     } else {
       fail(path, "not an SPZ file (neither gzip nor NGSP)");
     }
@@ -431,6 +476,19 @@ class SpzBatches final : public GaussianBatchReader {
       at[k] = data_[k].data();
     }
     next_ += n;
+    if (n > 0 && next_ == size()) {  // the last batch: the data end as they must
+      if (gzip_) {
+        // Every block's inflate reads the same gzip data: the last block's reaches its end.
+        for (std::size_t k = 6; k-- > 0;)
+          if (blocks_[k]) {
+            blocks_[k]->finish();
+            break;
+          }
+      } else {
+        for (auto& b : blocks_)
+          if (b) b->finish();
+      }
+    }
     batch = GaussianCloud{};
     detail::allocate(batch, n, shDegree());
     decode(h_, at, n, batch);
@@ -447,6 +505,7 @@ class SpzBatches final : public GaussianBatchReader {
   Header h_;
   std::array<std::size_t, 6> bytes_{};
   std::array<std::unique_ptr<BlockStream>, 6> blocks_;
+  bool gzip_ = false;  // v2/v3 (else v4)
   std::array<std::vector<char>, 6> data_;
   std::uint64_t next_ = 0;
 };

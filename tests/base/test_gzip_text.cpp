@@ -71,6 +71,26 @@ TEST_CASE("InflateStream: pieces, members, skip, rewind and damage", "[base][gzi
   CHECK(out.substr(0, 26) == text.substr(0, 26));
   CHECK(fetches >= 2);
 
+  // The source hands out the first member and one byte of the second's magic: the byte is
+  // kept and the second member still read.
+  {
+    const std::string first = gs::test::gzip("abc"), second = gs::test::gzip("defg");
+    const std::string two = first + second;
+    bool firstCall = true;
+    InflateStream split(
+        [&](std::uint64_t offset, char* dst, std::size_t n) {
+          std::size_t got =
+              std::min<std::size_t>(n, two.size() - std::min<std::size_t>(offset, two.size()));
+          if (firstCall) got = std::min(got, first.size() + 1);
+          firstCall = false;
+          std::copy_n(two.data() + offset, got, dst);
+          return got;
+        },
+        0);
+    std::string both(16, '\0');
+    CHECK(split.read(both.data(), both.size()) == 7);
+    CHECK(both.substr(0, 7) == "abcdefg");
+  }
   // Cut inside the first member: truncated, at the compressed offset where it ran out.
   const std::string cut = file.substr(0, 5 + 100);
   InflateStream short_(

@@ -189,6 +189,18 @@ TEST_CASE("openGaussianBatches reports damaged SPZ and compressed PLY data, nami
   CHECK_THROWS_WITH(
       readAll(write("cut_v3.spz", v3.substr(0, v3.size() * 3 / 4))),
       Catch::Contains("cut_v3.spz: corrupt gzip data") && Catch::Contains("truncated"));
+  // The gzip trailer damaged (CRC-32) or missing: the whole reader refuses the file, and
+  // so does the last batch.
+  std::string crc = v3;
+  crc[crc.size() - 8] ^= 0x5a;
+  const std::string trailerless = v3.substr(0, v3.size() - 8);
+  for (const auto& [file, bytes] :
+       {std::pair{"crc.spz", crc}, std::pair{"trailerless.spz", trailerless}}) {
+    INFO(file);
+    CHECK_THROWS_AS(readSpzGaussians(bytes, file), FormatError);
+    CHECK_THROWS_WITH(readAll(write(file, bytes)),
+                      Catch::Contains(file) && Catch::Contains("gzip"));
+  }
   // A gzip header claiming more splats than its bytes can hold at deflate's 1032:1.
   std::string raw = gs::base::gunzip(v3, 1u << 24);
   const std::uint32_t many = 1u << 26;

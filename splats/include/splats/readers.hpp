@@ -60,8 +60,9 @@ class GaussianBatchReader {
   /// Bytes of one splat's row in the file (a read of n splats holds n of them at once).
   virtual std::size_t rowBytes() const = 0;
   /// Reads the next min(max, left) splats into `batch` (resized to them; its shDegree the
-  /// scene's) and returns how many; 0 at the end. Throws FormatError on a short or
-  /// unreadable file.
+  /// scene's) and returns how many; 0 at the end. Throws FormatError on a short, damaged
+  /// or unreadable file (the last batch also checks that compressed data end as the
+  /// whole-file reader requires); after that only rewind() may follow.
   virtual std::size_t read(GaussianCloud& batch, std::size_t max) = 0;
   /// Back to the first splat, for another pass.
   virtual void rewind() = 0;
