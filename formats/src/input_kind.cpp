@@ -141,6 +141,11 @@ InputKind kindFromName(std::string_view name) {
       base::endsWithNoCase(name, "DICOMDIR") &&
       (name.size() == 8 || (slash != std::string_view::npos && name.size() - slash == 9)))
     return InputKind::dicom;
+  // PlayCanvas SOG's meta.json (its WebP images beside it): the name is fixed too.
+  if (const std::size_t slash = name.find_last_of("/\\");
+      base::endsWithNoCase(name, "meta.json") &&
+      (name.size() == 9 || (slash != std::string_view::npos && name.size() - slash == 10)))
+    return InputKind::gaussianSplats;
   for (const Suffix& s : kSuffixes)
     if (name.size() > s.text.size() && base::endsWithNoCase(name, s.text)) return s.kind;
   return InputKind::unknown;

@@ -212,6 +212,16 @@ TEST_CASE("a Gaussian stream and tileset and PLY over HTTP are turned as the loc
   CHECK(part.exitCode == 0);
   CHECK(covered("bunny_ply_part") > 0.0);
   CHECK(differing("bunny_ply_local", "bunny_ply_part", 16) > 0.01);
+  // An SOG meta.json over HTTP: its images fetched beside it (off the drawing thread).
+  const fs::path sog = gs::test::sourceDir() / "tests/data/splats/bunny_small_sog";
+  for (const auto& entry : fs::directory_iterator(sog))
+    nginx.writeFile("sog/" + entry.path().filename().string(), gs::test::readBytes(entry.path()));
+  REQUIRE(shoot("bunny_sog_local", (sog / "meta.json").string()).exitCode == 0);
+  const auto remoteSog = shoot("bunny_sog_http", nginx.url("/sog/meta.json"));
+  INFO(remoteSog.err);
+  REQUIRE(remoteSog.exitCode == 0);
+  CHECK(covered("bunny_sog_local") > 0.05);
+  CHECK(differing("bunny_sog_local", "bunny_sog_http", 0) == 0.0);
   // A .ply that is not there: the server's answer, not the mesh rule.
   const auto missingPly = shoot("bunny_ply_missing", nginx.url("/none.ply"));
   CHECK(missingPly.exitCode == 1);

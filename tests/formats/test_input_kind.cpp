@@ -33,6 +33,14 @@ TEST_CASE("kindFromName: extensions in any case, URLs without query", "[formats]
     CHECK(kindFromName(no) == InputKind::unknown);
 }
 
+TEST_CASE("kindFromName: an SOG scene's meta.json by its fixed name", "[formats][kind]") {
+  CHECK(kindFromName("meta.json") == InputKind::gaussianSplats);
+  CHECK(kindFromName("http://h/scene/meta.json?x=1") == InputKind::gaussianSplats);
+  CHECK(kindFromName("C:\\scene\\META.JSON") == InputKind::gaussianSplats);
+  CHECK(kindFromName("http://h/scene/xmeta.json") == InputKind::unknown);
+  CHECK(kindFromName("http://h/scene/other.json") == InputKind::unknown);
+}
+
 TEST_CASE("kindFromContent: magic bytes, also inside gzip", "[formats][kind]") {
   CHECK(kindFromContent("#VRML V2.0 utf8\nGroup {}\n") == InputKind::world);
   CHECK(kindFromContent(gs::test::gzip("#VRML V2.0 utf8\nGroup {}\n")) == InputKind::world);
