@@ -132,7 +132,7 @@ class PlyRowDecoder final : public GaussianRowDecoder {
   /// Throws FormatError naming `name` for what readPlyGaussians refuses in the header; the
   /// vertex element must lie within `fileBytes` (the file's size, or the most it may be).
   PlyRowDecoder(const PlyHeader& header, const std::string& name, std::uint64_t fileBytes)
-      : name_(name), header_(header) {
+      : header_(header) {
     const PlyElement* vertex = header_.find("vertex");
     if (!vertex) fail(name, "no vertex element");
     if (vertex->count == 0) fail(name, "expected at least one splat, got 0");
@@ -160,7 +160,6 @@ class PlyRowDecoder final : public GaussianRowDecoder {
   }
 
  private:
-  std::string name_;
   PlyHeader header_;
   const PlyElement* vertex_ = nullptr;
   Columns columns_;
