@@ -150,9 +150,14 @@ static void drawStreams(WindowState& state) {
       if (ImGui::IsItemHovered())
         ImGui::SetTooltip("%s%s%s", p.url.c_str(), p.error.empty() ? "" : "\n", p.error.c_str());
       ImGui::TableNextColumn();
-      ImGui::Text("%s %.0f%%", net::toString(p.state), p.fraction() * 100.0);
+      if (p.stage.empty())
+        ImGui::Text("%s %.0f%%", net::toString(p.state), p.fraction() * 100.0);
+      else
+        ImGui::TextUnformatted(p.stage.c_str());
       ImGui::TableNextColumn();
-      if (p.expectedBytes >= 0)
+      if (p.kind == net::StreamKind::splats && p.bytes == 0 && p.expectedBytes < 0)
+        ImGui::TextUnformatted("local file");
+      else if (p.expectedBytes >= 0)
         ImGui::Text("%llu / %lld", static_cast<unsigned long long>(p.bytes),
                     static_cast<long long>(p.expectedBytes));
       else
@@ -162,6 +167,9 @@ static void drawStreams(WindowState& state) {
       ImGui::TableNextColumn();
       if (p.kind == net::StreamKind::qnv)
         ImGui::Text("%llu / %llu", static_cast<unsigned long long>(p.vectors),
+                    static_cast<unsigned long long>(p.expectedVectors));
+      else if (p.kind == net::StreamKind::splats)
+        ImGui::Text("%llu / %llu splats", static_cast<unsigned long long>(p.vectors),
                     static_cast<unsigned long long>(p.expectedVectors));
       else
         ImGui::Text("%llu nodes", static_cast<unsigned long long>(p.rootNodes));

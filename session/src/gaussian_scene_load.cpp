@@ -235,13 +235,14 @@ bool GaussianSceneLoad::pumpTransfer() {
       if (n > 0) {
         const std::uint64_t from = first + rowsDecoded_ * rowBytes;
         splats::GaussianCloud batch;
-        rows_->decode(buffer_.data() + (from - bufferStart_), n, batch);
+        rows_->decode(buffer_.data() + (from - bufferStart_), rowsDecoded_, n, batch);
         grow(batch, rows_->size());
         rowsDecoded_ += n;
         // The decoded rows' bytes go once they are half the buffer (not at every pump:
-        // a fast server may have put much more in it than a pump decodes).
+        // a fast server may have put much more in it than a pump decodes), unless the
+        // whole file is read at its end (a compressed PLY's rows are a preview).
         const std::uint64_t consumed = first + rowsDecoded_ * rowBytes;
-        if (consumed - bufferStart_ >= buffer_.size() / 2) {
+        if (!rows_->wholeFileAtEnd() && consumed - bufferStart_ >= buffer_.size() / 2) {
           buffer_.erase(0, static_cast<std::size_t>(consumed - bufferStart_));
           bufferStart_ = consumed;
         }
@@ -258,6 +259,7 @@ bool GaussianSceneLoad::pumpTransfer() {
   if (stopped) {  // drawn with what arrived, as a stream stopped by --snapshot-at
     transfer_->cancel();
     if (growing_) {
+      stopped_ = true;
       arrived(growing_, false);
     } else {
       fail(url_ + ": " + (loader_.stopReason().empty() ? "stopped" : loader_.stopReason()));
@@ -269,7 +271,7 @@ bool GaussianSceneLoad::pumpTransfer() {
     fail(s.error.empty() ? url_ + ": cancelled" : s.error);
     return true;
   }
-  if (rows_) {
+  if (rows_ && !rows_->wholeFileAtEnd()) {
     const std::uint64_t end = bufferStart_ + buffer_.size();
     const std::uint64_t rowsThere = (end - std::min(end, rows_->dataOffset())) / rows_->rowBytes();
     if (rowsDecoded_ == rows_->size()) {
@@ -359,6 +361,37 @@ bool GaussianSceneLoad::pump() {
     stage_ = Stage::done;
   }
   return changed;
+}
+
+net::StreamProgress GaussianSceneLoad::progress() const {
+  net::StreamProgress p;
+  p.url = url_;
+  p.kind = net::StreamKind::splats;
+  if (transfer_) {
+    const net::TransferStatus t = transfer_->status();
+    p.bytes = t.received;
+    p.expectedBytes = t.resourceSize >= 0 ? t.resourceSize : t.expected;
+    p.bytesPerSecond = t.bytesPerSecond;
+  }
+  if (growing_) {
+    p.vectors = growing_->size();
+    p.expectedVectors = std::max<std::uint64_t>(set_->expectedVectors, p.vectors);
+  } else if (set_->gaussians) {
+    p.vectors = p.expectedVectors = set_->gaussians->size();
+  }
+  if (!set_->loadError.empty()) {
+    p.state = net::StreamState::failed;
+    p.error = set_->loadError;
+  } else if (stage_ == Stage::done) {
+    p.state = stopped_ ? net::StreamState::stopped : net::StreamState::done;
+  } else {
+    p.state = p.vectors > 0 || p.bytes > 0 ? net::StreamState::loading : net::StreamState::waiting;
+    if (stage_ == Stage::sorting) p.stage = "sorting";
+    if (stage_ == Stage::tree) p.stage = "building tree";
+  }
+  if (stopped_ && p.error.empty())
+    p.error = url_ + ": " + (loader_.stopReason().empty() ? "stopped" : loader_.stopReason());
+  return p;
 }
 
 void GaussianSceneLoad::drainMessages(std::vector<std::pair<bool, std::string>>& out) {

@@ -7,7 +7,8 @@
 // - a remote one is fetched by its own transfer under the loader's rules and limits
 //   (Loader::requestFor, up to LoaderOptions::maxResourceBytes); a binary .ply or a
 //   .splat is decoded row by row as its bytes arrive (splats::openGaussianRows) and drawn
-//   as it grows, the other formats once whole;
+//   as it grows, a compressed .ply's vertex records too (without SH, the whole file read
+//   again once it arrived), the other formats once whole;
 // then the whole scene is sorted by importance on a thread of its own, replaces the splats
 // drawn, and gets its level-of-detail tree on another thread, as a progressive stream's.
 // Private to the session.
@@ -51,6 +52,13 @@ class GaussianSceneLoad {
   bool settled() const { return stage_ == Stage::done; }
   /// Warnings to show once (a tree that could not be built); appended to `out`.
   void drainMessages(std::vector<std::pair<bool, std::string>>& out);
+  /// How far it got, for the Streams panel and the progress bars (kind splats): `vectors`
+  /// the splats drawn of `expectedVectors` (once the file's head said how many), `bytes`
+  /// and `expectedBytes` of a remote file's transfer (a local file's are not counted:
+  /// 0 and -1), `stage` "sorting" or "building tree" once every splat is in; `state`
+  /// failed with `error` the node's (SplatSet::loadError), stopped when --snapshot-at cut
+  /// it (drawn with what arrived), done when settled().
+  net::StreamProgress progress() const;
 
   /// What a reading thread hands over (shared with it: it may outlive the load).
   struct Pipe;
@@ -90,6 +98,7 @@ class GaussianSceneLoad {
   std::uint64_t bufferStart_ = 0, rowsDecoded_ = 0;
   std::unique_ptr<splats::GaussianRowDecoder> rows_;
   bool wholeRead_ = false;
+  bool stopped_ = false;  // cut by --snapshot-at, drawn with what had arrived
   std::future<Sorted> sort_;
   std::future<Tree> tree_;
   std::shared_ptr<std::atomic<bool>> cancelTree_ = std::make_shared<std::atomic<bool>>(false);

@@ -373,6 +373,7 @@ std::vector<const TilesetStream*> StreamingSession::tilesets() const {
 std::vector<net::StreamProgress> StreamingSession::progress() const {
   std::vector<net::StreamProgress> out = loader_.progress();
   for (const auto& [url, t] : tilesets_) out.push_back(t->progress());
+  for (const auto& [url, g] : gaussians_) out.push_back(g->progress());
   return out;
 }
 

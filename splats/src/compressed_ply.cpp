@@ -115,8 +115,8 @@ Layout layoutOf(const PlyHeader& header, std::string_view name) {
 /// Decodes splats [first, first + n) into `cloud` (allocated for n at L.degree) from the
 /// records of chunks first / 256 on (`chunks`), and those splats' vertex and sh records
 /// (`vertices`, `shRecords`; the latter null without sh).
-void decode(const Layout& L, const char* chunks, const char* vertices, const char* shRecords,
-            std::size_t first, std::size_t n, GaussianCloud& cloud) {
+void decodeRecords(const Layout& L, const char* chunks, const char* vertices, const char* shRecords,
+                   std::size_t first, std::size_t n, GaussianCloud& cloud) {
   const std::size_t c0 = first >> 8;
   auto chunkValue = [&](std::size_t c, int column) {
     const auto& p = L.chunk->properties[static_cast<std::size_t>(column)];
@@ -217,8 +217,8 @@ class CompressedPlyBatches final : public GaussianBatchReader {
       sh_.resize(n * layout_.sh->rowBytes);
       file_.read(shOffset_ + next_ * layout_.sh->rowBytes, sh_.data(), sh_.size());
     }
-    decode(layout_, chunks_.data(), vertices_.data(), layout_.sh ? sh_.data() : nullptr,
-           static_cast<std::size_t>(next_), n, batch);
+    decodeRecords(layout_, chunks_.data(), vertices_.data(), layout_.sh ? sh_.data() : nullptr,
+                  static_cast<std::size_t>(next_), n, batch);
     next_ += n;
     return n;
   }
@@ -232,7 +232,67 @@ class CompressedPlyBatches final : public GaussianBatchReader {
   std::vector<char> chunks_, vertices_, sh_;
 };
 
+/// A compressed PLY's vertex records decoded as they arrive (openGaussianRows): each
+/// splat's position, rotation, scale, colour and opacity without its SH, which lie in the
+/// sh element after every vertex record. The chunk table is copied from the file's head.
+class CompressedPlyRowDecoder final : public GaussianRowDecoder {
+ public:
+  CompressedPlyRowDecoder(const PlyHeader& header, const Layout& layout, std::string chunks,
+                          std::uint64_t vertexOffset)
+      : header_(header), chunks_(std::move(chunks)), vertexOffset_(vertexOffset) {
+    // The layout's element pointers are re-pointed into this decoder's own header copy.
+    layout_ = layout;
+    layout_.chunk = header_.find("chunk");
+    layout_.vertex = header_.find("vertex");
+    layout_.sh = nullptr;  // rows carry no SH: the preview is of degree 0
+    layout_.degree = 0;
+    layout_.shOffsets.clear();
+  }
+  CompressedPlyRowDecoder(const CompressedPlyRowDecoder&) = delete;  // layout_ points into header_
+  CompressedPlyRowDecoder& operator=(const CompressedPlyRowDecoder&) = delete;
+  std::uint64_t dataOffset() const override { return vertexOffset_; }
+  std::size_t rowBytes() const override { return layout_.vertex->rowBytes; }
+  std::uint64_t size() const override { return layout_.vertex->count; }
+  int shDegree() const override { return 0; }
+  bool wholeFileAtEnd() const override { return true; }
+  void decode(const char* rows, std::uint64_t first, std::size_t n,
+              GaussianCloud& batch) const override {
+    detail::checkRows(first, n, size());
+    batch = GaussianCloud{};
+    detail::allocate(batch, n, 0);
+    if (n == 0) return;
+    decodeRecords(layout_, chunks_.data() + (first >> 8) * layout_.chunk->rowBytes, rows, nullptr,
+                  static_cast<std::size_t>(first), n, batch);
+  }
+
+ private:
+  PlyHeader header_;
+  Layout layout_;
+  std::string chunks_;  // the chunk records of every splat
+  std::uint64_t vertexOffset_ = 0;
+};
+
 }  // namespace
+
+GaussianRows openCompressedPlyRows(const PlyHeader& header, std::string_view head,
+                                   const std::string& name, std::uint64_t fileBytes) {
+  GaussianRows r;
+  const Layout L = layoutOf(header, name);
+  const std::uint64_t chunkOffset = detail::plyElementOffset(fileBytes, name, header, *L.chunk);
+  const std::uint64_t vertexOffset = detail::plyElementOffset(fileBytes, name, header, *L.vertex);
+  if (chunkOffset > vertexOffset) return r;  // the chunk table comes last: read whole
+  const std::uint64_t tableEnd = chunkOffset + (L.vertex->count + 255) / 256 * L.chunk->rowBytes;
+  if (head.size() < tableEnd) {
+    r.needMore = true;  // bounded by the file: plyElementOffset checked the table lies in it
+    return r;
+  }
+  r.decoder = std::make_unique<CompressedPlyRowDecoder>(
+      header, L,
+      std::string(head.substr(static_cast<std::size_t>(chunkOffset),
+                              static_cast<std::size_t>(tableEnd - chunkOffset))),
+      vertexOffset);
+  return r;
+}
 
 std::unique_ptr<GaussianBatchReader> openCompressedPlyGaussianBatches(const std::string& path) {
   return std::make_unique<CompressedPlyBatches>(path);
@@ -249,8 +309,8 @@ GaussianCloud readCompressedPlyGaussians(std::string_view bytes, std::string_vie
   const std::size_t count = static_cast<std::size_t>(L.vertex->count);
   GaussianCloud cloud;
   detail::allocate(cloud, count, L.degree);
-  decode(L, bytes.data() + chunkOffset, bytes.data() + vertexOffset,
-         L.sh ? bytes.data() + shOffset : nullptr, 0, count, cloud);
+  decodeRecords(L, bytes.data() + chunkOffset, bytes.data() + vertexOffset,
+                L.sh ? bytes.data() + shOffset : nullptr, 0, count, cloud);
   return cloud;
 }
 

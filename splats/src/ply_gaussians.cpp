@@ -147,7 +147,9 @@ class PlyRowDecoder final : public GaussianRowDecoder {
   std::size_t rowBytes() const override { return vertex_->rowBytes; }
   std::uint64_t size() const override { return vertex_->count; }
   int shDegree() const override { return columns_.degree; }
-  void decode(const char* rows, std::size_t n, GaussianCloud& batch) const override {
+  void decode(const char* rows, std::uint64_t first, std::size_t n,
+              GaussianCloud& batch) const override {
+    detail::checkRows(first, n, size());
     batch = GaussianCloud{};
     detail::allocate(batch, n, columns_.degree);
     const bool bigEndian = header_.format == detail::PlyFormat::binaryBigEndian;
@@ -179,7 +181,7 @@ class PlyGaussianBatches final : public GaussianBatchReader {
     bytes_.resize(n * rowBytes());
     file_.read(rows_.dataOffset() + next_ * rowBytes(), bytes_.data(), bytes_.size());
     next_ += n;
-    rows_.decode(bytes_.data(), n, batch);
+    rows_.decode(bytes_.data(), next_ - n, n, batch);
     return n;
   }
   void rewind() override { next_ = 0; }
@@ -199,7 +201,9 @@ class SplatRowDecoder final : public GaussianRowDecoder {
   std::size_t rowBytes() const override { return 32; }
   std::uint64_t size() const override { return count_; }
   int shDegree() const override { return 0; }
-  void decode(const char* rows, std::size_t n, GaussianCloud& batch) const override {
+  void decode(const char* rows, std::uint64_t first, std::size_t n,
+              GaussianCloud& batch) const override {
+    detail::checkRows(first, n, count_);
     batch = n == 0 ? GaussianCloud{} : readSplatGaussians(std::string_view(rows, n * 32), ".splat");
   }
 
@@ -247,8 +251,9 @@ GaussianRows openGaussianRows(std::string_view head, const std::string& name,
     return r;
   }
   const PlyElement* vertex = header.find("vertex");
-  if (header.format == detail::PlyFormat::ascii || !vertex || vertex->find("packed_position") >= 0)
-    return r;
+  if (header.format == detail::PlyFormat::ascii || !vertex) return r;
+  if (vertex->find("packed_position") >= 0)
+    return openCompressedPlyRows(header, head, name, fileBytes);
   r.decoder = std::make_unique<PlyRowDecoder>(header, name, fileBytes);
   return r;
 }

@@ -254,6 +254,12 @@ double plyValue(const char* p, PlyType t, bool bigEndian) {
   return 0.0;
 }
 
+void checkRows(std::uint64_t first, std::size_t n, std::uint64_t count) {
+  if (first > count || n > count - first)
+    throw FormatError("rows " + std::to_string(first) + " to " + std::to_string(first + n) +
+                      " lie past the scene's " + std::to_string(count) + " splats");
+}
+
 std::uint64_t plyElementOffset(std::uint64_t fileBytes, std::string_view name,
                                const PlyHeader& header, const PlyElement& element) {
   std::uint64_t offset = header.dataOffset;

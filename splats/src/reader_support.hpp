@@ -97,6 +97,10 @@ std::size_t plyElementOffset(std::string_view bytes, std::string_view name, cons
 std::uint64_t plyElementOffset(std::uint64_t fileBytes, std::string_view name,
                                const PlyHeader& header, const PlyElement& element);
 
+/// For GaussianRowDecoder::decode: FormatError unless rows [first, first + n) lie within
+/// the scene's `count`.
+void checkRows(std::uint64_t first, std::size_t n, std::uint64_t count);
+
 /// A file read by offset, piece by piece (the piecewise readers, GaussianBatchReader).
 /// Closed when destroyed.
 class PieceFile {
@@ -132,6 +136,12 @@ std::unique_ptr<GaussianBatchReader> openSplatGaussianBatches(const std::string&
 /// (spz.cpp).
 std::unique_ptr<GaussianBatchReader> openCompressedPlyGaussianBatches(const std::string& path);
 std::unique_ptr<GaussianBatchReader> openSpzGaussianBatches(const std::string& path);
+/// openGaussianRows for a PlayCanvas .compressed.ply whose header is `header` (parsed from
+/// `head`, the file's first bytes; compressed_ply.cpp): a decoder once `head` holds the
+/// whole chunk table (needMore before), none when its chunk element follows its vertex
+/// element (read whole then). Throws FormatError as readCompressedPlyGaussians for the header.
+GaussianRows openCompressedPlyRows(const detail::PlyHeader& header, std::string_view head,
+                                   const std::string& name, std::uint64_t fileBytes);
 /// openGaussianBatches for an SOG bundle or meta.json (sog.cpp); `sideFiles` reads a
 /// meta.json's textures.
 std::unique_ptr<GaussianBatchReader> openSogGaussianBatches(const std::string& path,

@@ -65,7 +65,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     gs::splats::GaussianCloud batch;
     for (std::uint64_t first = 0; first < whole; first += 97) {
       const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(97, whole - first));
-      d.decode(bytes.data() + d.dataOffset() + first * d.rowBytes(), n, batch);
+      d.decode(bytes.data() + d.dataOffset() + first * d.rowBytes(), first, n, batch);
     }
   });
   return 0;

@@ -34,6 +34,18 @@ struct OpenedScene {
     set = session.rendererOptions({}).splatLoader(input, "", error);
     REQUIRE(set);
   }
+  /// The scene's line of the session's progress (the Streams panel's), by its URL's end.
+  gs::net::StreamProgress line(const std::string& name) const {
+    gs::net::StreamProgress found;
+    int lines = 0;
+    for (const gs::net::StreamProgress& p : session.progress())
+      if (p.kind == gs::net::StreamKind::splats && p.url.ends_with(name)) {
+        found = p;
+        ++lines;
+      }
+    CHECK(lines == 1);
+    return found;
+  }
   /// Pumps until the session settles (at most about 100 s); whether it did.
   bool settle() {
     for (int i = 0; i < 10000; ++i) {
@@ -74,6 +86,14 @@ TEST_CASE("a splat scene file is read in the background then gets its tree", "[s
   CHECK_FALSE(scene.session.settled());
   REQUIRE(scene.settle());
   checkBunny(*scene.set);
+  // The Streams panel's line: every splat in, a local file's bytes not counted.
+  const gs::net::StreamProgress p = scene.line("bunny_small.spz");
+  CHECK(p.state == gs::net::StreamState::done);
+  CHECK(p.vectors == scene.set->size());
+  CHECK(p.expectedVectors == scene.set->size());
+  CHECK(p.fraction() == 1.0);
+  CHECK(p.bytes == 0);
+  CHECK(p.stage.empty());
 }
 
 TEST_CASE("a damaged splat scene file gives a set that says why", "[session][splat]") {
@@ -83,6 +103,9 @@ TEST_CASE("a damaged splat scene file gives a set that says why", "[session][spl
   REQUIRE(scene.settle());
   CHECK_FALSE(scene.set->gaussians);
   CHECK_THAT(scene.set->loadError, Catch::Contains("cut.ply") && Catch::Contains("expected"));
+  const gs::net::StreamProgress p = scene.line("cut.ply");
+  CHECK(p.state == gs::net::StreamState::failed);
+  CHECK(p.error == scene.set->loadError);
 }
 
 TEST_CASE("a splat scene over HTTP is fetched without blocking under the resource limit",
@@ -95,6 +118,10 @@ TEST_CASE("a splat scene over HTTP is fetched without blocking under the resourc
     CHECK_FALSE(scene.set->gaussians);
     REQUIRE(scene.settle());
     checkBunny(*scene.set);
+    const gs::net::StreamProgress p = scene.line("/bunny.spz");
+    CHECK(p.state == gs::net::StreamState::done);
+    CHECK(p.bytes == fs::file_size(splatData("bunny_small.spz")));
+    CHECK(p.expectedBytes == static_cast<std::int64_t>(p.bytes));
   }
   // The loader's limit on one resource applies (LoaderOptions::maxResourceBytes), naming
   // the URL.
@@ -123,6 +150,14 @@ TEST_CASE("a capture PLY over HTTP is drawn while its rows arrive", "[session][s
       sawPart = true;
       CHECK(set.expectedVectors == 3000);
       CHECK_FALSE(set.lodTree);
+      // The Streams panel's line: the splats drawn of the scene's, the bytes that came.
+      const gs::net::StreamProgress p = scene.line("/bunny.ply");
+      CHECK(p.state == gs::net::StreamState::loading);
+      CHECK(p.vectors == set.size());
+      CHECK(p.expectedVectors == 3000);
+      CHECK(p.fraction() < 1.0);
+      CHECK(p.bytes > 0);
+      CHECK(p.expectedBytes == static_cast<std::int64_t>(fs::file_size(ply)));
     }
     scene.session.loader().wait(0.01);
   }
@@ -141,4 +176,52 @@ TEST_CASE("a capture PLY over HTTP is drawn while its rows arrive", "[session][s
   OpenedScene cut(nginx.url("/cut.ply"));
   REQUIRE(cut.settle());
   CHECK_THAT(cut.set->loadError, Catch::Contains("/cut.ply") && Catch::Contains("expected"));
+}
+
+TEST_CASE("a compressed PLY over HTTP is previewed while its vertex records arrive",
+          "[session][splat][http]") {
+  gs::test::NginxServer nginx;
+  if (!nginx.ok()) return;
+  // 3,000 vertex records of 16 bytes, then 3,000 sh records of 9 (SH band 1).
+  const fs::path ply = splatData("bunny_small.compressed.ply");
+  const std::string bytes = gs::test::readBytes(ply);
+  nginx.writeFile("bunny.compressed.ply", bytes);
+  gs::net::LoaderOptions slow;
+  slow.maxRate = 30000;  // bytes a second: about 2.5 s for its 77 KB
+  OpenedScene scene(nginx.url("/bunny.compressed.ply"), slow);
+  const gs::splats::GaussianCloud whole =
+      gs::splats::readGaussians(bytes, ply.string(), gs::splats::SideFileReader{});
+  // Splats in file order before the SH arrive: positions, shapes and colours exact, no SH.
+  bool sawPart = false;
+  for (int i = 0; i < 10000 && !scene.session.settled(); ++i) {
+    scene.session.pump();
+    const auto& set = *scene.set;
+    if (set.gaussians && set.size() > 0 && !set.lodTree && set.expectedVectors == 3000) {
+      sawPart |= set.size() < 3000;
+      const gs::splats::GaussianCloud& part = *set.gaussians;
+      CHECK(part.shDegree == 0);
+      const std::size_t last = part.size() - 1;
+      CHECK(part.positions[last] == whole.positions[last]);
+      CHECK(part.scales[last] == whole.scales[last]);
+      CHECK(part.shDc[last] == whole.shDc[last]);
+      CHECK(part.opacities[last] == whole.opacities[last]);
+    }
+    scene.session.loader().wait(0.01);
+  }
+  CHECK(sawPart);
+  REQUIRE(scene.settle());
+  // Then the whole file: every splat with its SH, sorted as a local file's.
+  const gs::splats::GaussianCloud expected = gs::splats::sortByImportance(whole);
+  REQUIRE(scene.set->gaussians);
+  CHECK(scene.set->gaussians->shDegree == 1);
+  CHECK(scene.set->gaussians->positions == expected.positions);
+  CHECK(scene.set->gaussians->shRest == expected.shRest);
+  CHECK(scene.set->lodTree);
+  // Cut in its sh records: the preview's splats stay drawn, the set says why.
+  nginx.writeFile("cut.compressed.ply", bytes.substr(0, bytes.size() - 1000));
+  OpenedScene cut(nginx.url("/cut.compressed.ply"));
+  REQUIRE(cut.settle());
+  CHECK_THAT(cut.set->loadError, Catch::Contains("/cut.compressed.ply"));
+  REQUIRE(cut.set->gaussians);
+  CHECK(cut.set->size() == 3000);
 }

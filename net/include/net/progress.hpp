@@ -7,7 +7,9 @@
 
 namespace gs::net {
 
-enum class StreamKind { world, qnv };
+/// What a stream brings: a world's text, a QNV stream (or tileset), or a Gaussian
+/// splatting scene file (.ply, .spz, SOG, ...; session/src/gaussian_scene_load.hpp).
+enum class StreamKind { world, qnv, splats };
 
 enum class StreamState {
   waiting,  // no byte yet
@@ -31,9 +33,13 @@ struct StreamProgress {
   std::uint64_t rootNodes = 0;        // worlds: top-level nodes parsed
   double bytesPerSecond = 0.0;
   std::string error;  // the reason a stream failed or stopped, naming its URL
+  /// What a stream still loading does once its bytes are in, for panels: "sorting",
+  /// "building tree" (a splat scene file), else empty.
+  std::string stage;
 
-  /// Fraction done, 0..1: vectors of the wanted prefix for QNV, bytes of the expected
-  /// size for worlds; 0 when unknown.
+  /// Fraction done, 0..1: vectors of the wanted prefix for QNV, splats of the scene's for
+  /// a splat scene file (`vectors` of `expectedVectors`), bytes of the expected size for
+  /// worlds and for a splat scene file whose count is not known yet; 0 when unknown.
   double fraction() const;
   /// Whether nothing more is coming without a new request.
   bool settled() const {

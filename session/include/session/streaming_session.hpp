@@ -80,7 +80,9 @@ class StreamingSession {
   /// Every tileset opened, in URL order (statistics for tests and the progress display).
   std::vector<const TilesetStream*> tilesets() const;
   /// Every stream of the loader (net::Loader::progress), then every tileset
-  /// (TilesetStream::progress): what the Streams panel and the progress bars show.
+  /// (TilesetStream::progress), then every Gaussian splatting scene file (.ply, .spz,
+  /// SOG, ...; StreamKind::splats, local or remote): what the Streams panel and the progress bars
+  /// show.
   std::vector<net::StreamProgress> progress() const;
   net::Loader& loader() { return loader_; }
   const net::Loader& loader() const { return loader_; }

@@ -82,9 +82,17 @@ class GaussianRowDecoder {
   virtual std::uint64_t size() const = 0;
   /// SH degree (0..3).
   virtual int shDegree() const = 0;
-  /// Decodes the `n` rows at `rows` (n * rowBytes() bytes) into `batch`, resized to them:
-  /// exactly the splats the whole-file reader gives for those rows.
-  virtual void decode(const char* rows, std::size_t n, GaussianCloud& batch) const = 0;
+  /// Decodes the `n` rows at `rows` (n * rowBytes() bytes), rows `first` to first + n - 1
+  /// of the scene, into `batch`, resized to them: exactly the splats the whole-file reader
+  /// gives for those rows (without their SH where wholeFileAtEnd()). Throws FormatError
+  /// for rows past size().
+  virtual void decode(const char* rows, std::uint64_t first, std::size_t n,
+                      GaussianCloud& batch) const = 0;
+  /// Whether the rows give each splat without all it holds: a PlayCanvas compressed PLY's
+  /// rows are its vertex records, its SH lie in an element after the last of them. The
+  /// rows are then a preview (SH degree 0) and the scene is the whole file read by
+  /// readGaussians once it arrived: keep its bytes.
+  virtual bool wholeFileAtEnd() const { return false; }
 };
 
 /// What openGaussianRows found in a scene's first bytes.
@@ -97,10 +105,13 @@ struct GaussianRows {
 };
 
 /// The row decoder of the scene `name` whose first bytes are `head` and whose size is
-/// `fileBytes` (the most it may be when not known): a binary INRIA .ply (not a compressed
-/// or ascii one), or a .splat (by name, as detectSplatFormat; its size must be known and
-/// whole records). Throws FormatError naming `name` for a PLY header that readPlyGaussians
-/// refuses (a property missing, too many splats, a vertex element past `fileBytes`).
+/// `fileBytes` (the most it may be when not known): a binary INRIA .ply, a PlayCanvas
+/// compressed PLY once `head` holds its chunk table (its rows a preview without SH:
+/// GaussianRowDecoder::wholeFileAtEnd; none when the chunk element follows the vertex
+/// element), or a .splat (by name, as detectSplatFormat; its size must be known and whole
+/// records); not an ascii PLY. Throws FormatError naming `name` for a PLY header that
+/// readPlyGaussians refuses (a property missing, too many splats, an element past
+/// `fileBytes`).
 GaussianRows openGaussianRows(std::string_view head, const std::string& name,
                               std::uint64_t fileBytes);
 
