@@ -109,7 +109,7 @@ int runSnapshot(const Options& options) {
     const ViewportRect rect = layoutRect(options.layout, i, options.width, options.height);
     v->setRect(rect.x, rect.y, rect.width, rect.height);
     // A stream, mesh or volume has no Viewpoint of its own: frame it whole.
-    const bool fit = options.fit || session::isSplatInput(options.inputs[k]);
+    const bool fit = options.fit || session.opensAsSplats(options.inputs[k]);
     // A glTF asset without a camera is framed whole too, as glTF viewers do (asked when
     // drawn: the encoding is known once the asset has arrived).
     v->setCamera([fit, castle = options.castleCamera, scene = scenes[k]](render::SceneRenderer& r,
@@ -227,7 +227,7 @@ int runSnapshot(const Options& options) {
   // An input that is one splat scene, stream or volume (a world made for it) shows nothing
   // when its node could not be loaded: that is a failure, not a black picture.
   bool onlySplatInputs = true;
-  for (const std::string& input : options.inputs) onlySplatInputs &= session::isSplatInput(input);
+  for (const std::string& input : options.inputs) onlySplatInputs &= session.opensAsSplats(input);
   if (drawError && onlySplatInputs) return 1;
   // Splat inputs that arrived whole but hold nothing to draw (an empty stream, a scene of
   // no splats): never a silent black picture.

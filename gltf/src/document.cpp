@@ -19,30 +19,6 @@ namespace {
 using base::appendLe;
 using base::loadLe;
 
-constexpr int kMaxJsonDepth = 64;
-
-// tinygltf recurses into "extras" and "extensions" without a depth limit: refuse deep JSON.
-void checkJsonDepth(std::string_view json, const std::string& name) {
-  int depth = 0;
-  bool inString = false;
-  for (std::size_t i = 0; i < json.size(); ++i) {
-    const char c = json[i];
-    if (inString) {
-      if (c == '\\')
-        ++i;
-      else if (c == '"')
-        inString = false;
-    } else if (c == '"') {
-      inString = true;
-    } else if (c == '[' || c == '{') {
-      if (++depth > kMaxJsonDepth)
-        fail(name, "JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
-    } else if (c == ']' || c == '}') {
-      --depth;
-    }
-  }
-}
-
 // Checks the GLB container (tinygltf 2.7 bounds the BIN chunk 8 bytes too late) and
 // returns the JSON chunk; `length` is set to the GLB's own length.
 std::string_view checkGlb(std::string_view b, const std::string& name, std::size_t& length) {
@@ -159,6 +135,29 @@ std::string firstLine(const std::string& s) {
 }
 
 }  // namespace
+
+constexpr int kMaxJsonDepth = 64;
+
+void checkJsonDepth(std::string_view json, const std::string& name) {
+  int depth = 0;
+  bool inString = false;
+  for (std::size_t i = 0; i < json.size(); ++i) {
+    const char c = json[i];
+    if (inString) {
+      if (c == '\\')
+        ++i;
+      else if (c == '"')
+        inString = false;
+    } else if (c == '"') {
+      inString = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxJsonDepth)
+        fail(name, "JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+}
 
 void fail(const std::string& name, const std::string& what) {
   throw Error(name + ": " + what);

@@ -18,9 +18,9 @@ constexpr double kPi = 3.14159265358979323846;
 
 // Extensions whose content is read (docs/gltf.md); any other is reported by name.
 const std::set<std::string> kReadExtensions = {
-    "KHR_lights_punctual",     "KHR_materials_unlit",   "KHR_materials_emissive_strength",
-    "KHR_texture_transform",   "KHR_mesh_quantization", "KHR_draco_mesh_compression",
-    "EXT_meshopt_compression",
+    "KHR_lights_punctual",     "KHR_materials_unlit",    "KHR_materials_emissive_strength",
+    "KHR_texture_transform",   "KHR_mesh_quantization",  "KHR_draco_mesh_compression",
+    "EXT_meshopt_compression", "KHR_gaussian_splatting",
 };
 
 Rotation axisAngle(glm::dquat q) {
@@ -99,6 +99,20 @@ void GltfImporter::run() {
   // Lights light the whole scene (glTF's lights are not scoped): at the root, placed by
   // their node's world transform when the asset was read.
   for (NodePtr& l : lights_) built.insert(built.begin(), l);
+  // KHR_gaussian_splatting primitives: one GaussianSplats node naming the asset itself,
+  // whose reader (splats::readGltfGaussians) places every splat primitive of the default
+  // scene by its node's world transform and turns it to a capture's axes; turned back
+  // here (docs/gltf.md, "Gaussian splats").
+  if (gaussianSplats_) {
+    NodePtr splats = make("GaussianSplats");
+    set(*splats, "url", FieldValue::make<FieldType::MFString>(std::vector<std::string>{url_}));
+    NodePtr turn = make("Transform");
+    set(*turn, "rotation",
+        FieldValue::make<FieldType::SFRotation>(
+            Rotation(0.0f, 0.0f, 1.0f, static_cast<float>(kPi))));
+    set(*turn, "children", FieldValue::make<FieldType::MFNode>(std::vector<NodePtr>{splats}));
+    built.push_back(turn);
+  }
   for (NodePtr& n : built) {
     scene_.rootNodes.push_back(n);
     if (options_.onRootNode) options_.onRootNode(n);

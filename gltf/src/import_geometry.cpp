@@ -49,6 +49,10 @@ std::vector<NodePtr> GltfImporter::ownShapes(int node, int index) {
 
 NodePtr GltfImporter::primitiveShape(const tinygltf::Primitive& p,
                                      const std::vector<double>& weights) {
+  if (p.extensions.count("KHR_gaussian_splatting")) {
+    gaussianSplats_ = true;  // drawn as Gaussians by the node run() adds, not as points
+    return nullptr;
+  }
   const int posIndex = gltfAttribute(p, "POSITION");
   if (posIndex < 0) return nullptr;  // nothing to draw (clause 3.7.2.1 allows it)
   std::vector<float> pos = gltf::readFloats(m_, posIndex, 3, url_, "POSITION");

@@ -109,6 +109,8 @@ class GltfImporter {
   std::map<const Node*, NodePtr> skinOfShape_;
   std::size_t nodesMade_ = 0;
   bool firstCamera_ = true;
+  /// A primitive of KHR_gaussian_splatting was met: drawn by one GaussianSplats node.
+  bool gaussianSplats_ = false;
 };
 
 }  // namespace gs::gltf::x3d

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "base/byte_order.hpp"
 #include "base/fetch.hpp"
 #include "base/file.hpp"
 
@@ -18,8 +19,35 @@
 
 namespace gs::session {
 
+namespace {
+
+/// The bytes of the glTF asset at `path` that say what it holds: a GLB's header and JSON
+/// chunk, or a JSON text, at most 64 MiB; empty when it cannot be read.
+std::string gltfHead(const std::string& path) {
+  constexpr std::size_t kMax = std::size_t{64} << 20;
+  std::ifstream in(path, std::ios::binary);
+  std::string head(20, '\0');
+  in.read(head.data(), 20);
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  std::size_t want = kMax;
+  if (head.size() == 20 && head.starts_with("glTF"))
+    want = std::min<std::size_t>(kMax,
+                                 20 + std::size_t{base::loadLe<std::uint32_t>(head.data() + 12)});
+  if (head.size() < want && in) {
+    const std::size_t have = head.size();
+    head.resize(want);
+    in.read(head.data() + have, static_cast<std::streamsize>(want - have));
+    head.resize(have + static_cast<std::size_t>(in.gcount()));
+  }
+  return head;
+}
+
+}  // namespace
+
 bool isSplatInput(const std::string& path) {
-  return formats::isSplatKind(formats::classifyFile(path)) || !tilesetIndexOf(path).empty();
+  const formats::InputKind kind = formats::classifyFile(path);
+  return formats::isSplatKind(kind) || !tilesetIndexOf(path).empty() ||
+         (kind == formats::InputKind::gltf && splats::gltfDrawsOnlyGaussians(gltfHead(path)));
 }
 
 std::string tilesetIndexOf(const std::string& input) {
@@ -129,9 +157,7 @@ bool isGaussianSplatFile(const std::string& path) {
   if (kind == formats::InputKind::gaussianSplats) return true;
   if (kind == formats::InputKind::qnv) return isGaussianQnvFile(path);
   if (kind != formats::InputKind::gltf) return false;
-  std::string bytes, error;
-  if (!base::readFile(path, bytes, error, std::size_t{1} << 30)) return false;
-  return splats::detectSplatFormat(bytes, path) == splats::SplatFormat::gltf;
+  return splats::detectSplatFormat(gltfHead(path), path) == splats::SplatFormat::gltf;
 }
 
 std::pair<std::shared_ptr<const splats::LodTree>, std::string> buildTreeOf(

@@ -9,6 +9,7 @@
 #include <thread>
 #include <utility>
 
+#include "base/byte_order.hpp"
 #include "base/text.hpp"
 #include "base/url.hpp"
 #include "encodings/parser.hpp"
@@ -18,6 +19,7 @@
 #include "session/splat_inputs.hpp"
 #include "session/world.hpp"
 #include "splats/qnv_gaussians.hpp"
+#include "splats/readers.hpp"
 
 namespace gs::session {
 
@@ -48,14 +50,22 @@ bool StreamingSession::remoteIsGaussian(const std::string& url, bool tileset) {
   }
 }
 
-bool StreamingSession::remotePlyIsGaussian(const std::string& url, std::string& error) {
+bool StreamingSession::remoteIsCapture(const std::string& url, formats::InputKind kind,
+                                       std::string& error) {
   net::FetchRequest request = loader_.requestFor(url, "", error);
   if (request.url.empty()) return false;
-  constexpr std::uint64_t kHead = 65536;  // a 3DGS header is about 1.5 KB
+  constexpr std::uint64_t kHead = 65536;  // a 3DGS header is about 1.5 KB, a capture's glTF
+                                          // JSON a few KB
   request.offset = 0;
   request.length = kHead;
   const std::unique_ptr<net::Transfer> transfer = net::startTransfer(std::move(request));
   std::string head;
+  // Whether the head holds what decides: a PLY's header, a GLB's whole JSON chunk.
+  const auto enough = [&] {
+    if (kind == formats::InputKind::ply) return head.find("end_header") != std::string::npos;
+    return head.size() >= 20 && head.starts_with("glTF") &&
+           head.size() - 20 >= base::loadLe<std::uint32_t>(head.data() + 12);
+  };
   for (;;) {
     const net::TransferStatus status = transfer->status();
     transfer->take(head);
@@ -63,12 +73,13 @@ bool StreamingSession::remotePlyIsGaussian(const std::string& url, std::string& 
       error = status.error;
       return false;
     }
-    if (status.finished() || head.size() >= kHead || head.find("end_header") != std::string::npos)
-      break;
+    if (status.finished() || head.size() >= kHead || enough()) break;
     transfer->wait(0.05);
   }
   transfer->cancel();
-  return formats::kindFromContent(head) == formats::InputKind::gaussianSplats;
+  if (kind == formats::InputKind::ply)
+    return formats::kindFromContent(head) == formats::InputKind::gaussianSplats;
+  return splats::gltfDrawsOnlyGaussians(head);
 }
 
 std::shared_ptr<const vrml::Scene> StreamingSession::inputWorld(const std::string& input,
@@ -90,9 +101,9 @@ std::shared_ptr<const vrml::Scene> StreamingSession::inputWorld(const std::strin
   if (base::isHttpUrl(input)) {
     // Nothing has arrived yet: the name decides (a world when it says nothing).
     formats::InputKind kind = formats::kindFromName(input);
-    // A .ply may be a mesh or a capture: its header says which.
-    if (kind == formats::InputKind::ply) {
-      if (remotePlyIsGaussian(input, error)) {
+    // A .ply may be a mesh or a capture, a glTF a world or a capture: its head says which.
+    if (kind == formats::InputKind::ply || kind == formats::InputKind::gltf) {
+      if (remoteIsCapture(input, kind, error)) {
         remoteCaptures_.insert(input);
         kind = formats::InputKind::gaussianSplats;
       } else if (!error.empty()) {
@@ -180,8 +191,11 @@ std::shared_ptr<const render::SplatSet> StreamingSession::splatSet(const std::st
   const std::string path = base::localPathOfUrl(url);
   const formats::InputKind kind =
       path.empty() ? formats::InputKind::unknown : formats::classifyFile(path);
-  if ((path.empty() && (formats::kindFromName(url) == formats::InputKind::gaussianSplats ||
-                        remoteCaptures_.count(url) > 0)) ||
+  // A remote glTF asked for by a splat node is a Gaussian splatting scene (the glTF
+  // importer's GaussianSplats node names its own asset): no glTF is a QNV stream.
+  const formats::InputKind named = formats::kindFromName(url);
+  if ((path.empty() && (named == formats::InputKind::gaussianSplats ||
+                        named == formats::InputKind::gltf || remoteCaptures_.count(url) > 0)) ||
       (!path.empty() && kind != formats::InputKind::qnv && isGaussianSplatFile(path))) {
     // A Gaussian splatting scene: read whole in the background (local or HTTP, under the
     // loader's rules); its set is empty until then, and says why if it fails.

@@ -5,9 +5,12 @@
 #include <memory>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "base/byte_order.hpp"
 #include "base/gzip.hpp"
 #include "gltf/detect.hpp"
+#include "gltf/document.hpp"
 #include "reader_support.hpp"
 #include "splats/qnv_gaussians.hpp"
 #include "zip_reader.hpp"
@@ -55,6 +58,38 @@ bool gltfWithSplats(std::string_view head) {
 }
 
 }  // namespace
+
+bool gltfDrawsOnlyGaussians(std::string_view head) {
+  std::string_view text = head;
+  if (gltf::isGlb(head)) {
+    if (head.size() < 20) return false;
+    const std::size_t length = base::loadLe<std::uint32_t>(head.data() + 12);
+    if (length > head.size() - 20) return false;  // the JSON chunk is cut
+    text = head.substr(20, length);
+  }
+  try {
+    gltf::checkJsonDepth(text, "");
+  } catch (const gltf::Error&) {
+    return false;
+  }
+  const nlohmann::json doc = nlohmann::json::parse(text, nullptr, false);
+  if (doc.is_discarded() || !doc.is_object()) return false;
+  const auto meshes = doc.find("meshes");
+  if (meshes == doc.end() || !meshes->is_array()) return false;
+  bool any = false;
+  for (const nlohmann::json& mesh : *meshes) {
+    const auto primitives = mesh.is_object() ? mesh.find("primitives") : mesh.end();
+    if (!mesh.is_object() || primitives == mesh.end() || !primitives->is_array()) return false;
+    for (const nlohmann::json& p : *primitives) {
+      const auto ext = p.is_object() ? p.find("extensions") : p.end();
+      if (!p.is_object() || ext == p.end() || !ext->is_object() ||
+          !ext->contains("KHR_gaussian_splatting"))
+        return false;
+      any = true;
+    }
+  }
+  return any;
+}
 
 SplatFormat detectSplatFormat(std::string_view head, std::string_view name) {
   if (head.starts_with("LASF")) return SplatFormat::las;

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 
@@ -119,6 +120,38 @@ TEST_CASE("a Gaussian splatting file opens on its own, and a broken one is an er
       {"--snapshot", (dir / "broken.png").string(), "--size", "32x32", bad.string()});
   CHECK(r.exitCode == 1);
   CHECK(r.err.find("broken.spz") != std::string::npos);
+}
+
+TEST_CASE("a glTF capture opens as its .ply does: on its own and in an Inline",
+          "[app][render][splat]") {
+  // KHR_gaussian_splatting drawn as Gaussians, not as points with a warning: a .glb of
+  // splats alone opens as a capture; in a world, the importer's GaussianSplats node draws
+  // it (tests/gltf: a glTF with other primitives too).
+  const fs::path data = gs::test::sourceDir() / "tests/data/splats";
+  const fs::path dir = fs::path(GS_BINARY_DIR) / "render-actual";
+  fs::create_directories(dir);
+  const auto r = gs::test::runGhostspace({"--snapshot", (dir / "gltf_capture.png").string(),
+                                          "--size", "96x96", (data / "bunny_small.glb").string()});
+  REQUIRE(r.exitCode == 0);
+  CHECK(r.err.find("not supported") == std::string::npos);
+  const std::string ply = gs::test::snapshot(
+      "gltf_capture_ply", {"--size", "96x96", (data / "bunny_small.ply").string()});
+  CHECK(gs::test::fractionDiffering((dir / "gltf_capture.png").string(), ply) < 0.005);
+  std::map<std::string, std::string> inlined;
+  for (const char* file : {"bunny_small.glb", "bunny_small.ply"}) {
+    const fs::path world = dir / (std::string("gltf_inline_") + file + ".wrl");
+    std::ofstream(world) << "#VRML V2.0 utf8\nViewpoint { position 0 0 0.4 }\n"
+                         << "Inline { url \"" << (data / file).string() << "\" }\n";
+    inlined[file] =
+        gs::test::snapshot(std::string("gltf_inline_") + file, {"--size", "96x96", world.string()});
+  }
+  CHECK(gs::test::fractionDiffering(inlined["bunny_small.glb"], inlined["bunny_small.ply"]) <
+        0.005);
+  const gs::render::Image image = gs::render::readPng(inlined["bunny_small.glb"]);
+  std::size_t lit = 0;
+  for (std::size_t i = 0; i < image.rgba.size(); i += 4)
+    lit += image.rgba[i] > 16 || image.rgba[i + 1] > 16 || image.rgba[i + 2] > 16;
+  CHECK(lit > 300);  // the bunny is drawn, not a black frame
 }
 
 TEST_CASE("the corpus's scenes as QNV Gaussian streams: fewer bytes than SPZ, the peer's picture",

@@ -222,6 +222,17 @@ TEST_CASE("a Gaussian stream and tileset and PLY over HTTP are turned as the loc
   REQUIRE(remoteSog.exitCode == 0);
   CHECK(covered("bunny_sog_local") > 0.05);
   CHECK(differing("bunny_sog_local", "bunny_sog_http", 0) == 0.0);
+  // A glTF capture (.glb of KHR_gaussian_splatting primitives alone) over HTTP: its JSON
+  // chunk, in the same range request, says it is a capture: the local file's picture.
+  const fs::path glb = gs::test::sourceDir() / "tests/data/splats/bunny_small.glb";
+  nginx.writeFile("bunny.glb", gs::test::readBytes(glb));
+  REQUIRE(shoot("bunny_glb_local", glb.string()).exitCode == 0);
+  const auto remoteGlb = shoot("bunny_glb_http", nginx.url("/bunny.glb"));
+  INFO(remoteGlb.err);
+  REQUIRE(remoteGlb.exitCode == 0);
+  CHECK(covered("bunny_glb_local") > 0.05);
+  CHECK(differing("bunny_glb_local", "bunny_glb_http", 0) == 0.0);
+  CHECK(differing("bunny_glb_local", "bunny_ply_local", 16) < 0.005);
   // A .ply that is not there: the server's answer, not the mesh rule.
   const auto missingPly = shoot("bunny_ply_missing", nginx.url("/none.ply"));
   CHECK(missingPly.exitCode == 1);

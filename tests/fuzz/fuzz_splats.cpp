@@ -5,7 +5,8 @@
 // encode's reader: binary and compressed PLY, .splat, SPZ v2-v4 and SOG bundles, by
 // content) from a file named .ply or .splat by the input's size, in batches of 97
 // splats, twice (rewound between), and as bytes arriving over HTTP
-// (splats::openGaussianRows, the rows decoded from the bytes).
+// (splats::openGaussianRows, the rows decoded from the bytes). splats::gltfDrawsOnlyGaussians
+// (a glTF capture or a world) reads them too.
 #include <unistd.h>
 
 #include <filesystem>
@@ -37,6 +38,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   };
   gs::fuzz::expectingErrors(
       [&] { (void)gs::splats::readGaussians(gs::fuzz::view(data, size), "fuzz.splat", noFiles); });
+  (void)gs::splats::gltfDrawsOnlyGaussians(gs::fuzz::view(data, size));  // never throws
   static const ScratchFolder scratch;
   const std::filesystem::path file = scratch.dir / (size % 2 ? "scene.ply" : "scene.splat");
   {

@@ -215,3 +215,37 @@ TEST_CASE("glTF morph targets: a node's own weights replace its mesh's", "[vrml]
   REQUIRE(p.size() == 3);
   CHECK(p[1] == glm::vec3(2, 0, 0));  // (1 0 0) + 1 x (1 0 0): the node's weight, not 0.5
 }
+
+TEST_CASE("glTF Gaussian splats are drawn by one GaussianSplats node naming the asset",
+          "[vrml][gltf][splat]") {
+  // A triangle and a KHR_gaussian_splatting primitive (its attributes are the splat
+  // reader's to check: splats::readGltfGaussians reads the asset again by the node's url).
+  const std::string asset =
+      R"({"asset":{"version":"2.0"},"scenes":[{"nodes":[0,1]}],"scene":0,
+  "extensionsUsed":["KHR_gaussian_splatting"],
+  "nodes":[{"mesh":0,"name":"Tri"},{"mesh":1,"translation":[2,0,0]}],
+  "meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]},
+            {"primitives":[{"attributes":{"POSITION":0},"mode":0,
+                            "extensions":{"KHR_gaussian_splatting":{}}}]}],
+  "buffers":[{"byteLength":44,"uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAABAAIAAAA="}],
+  "bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":6}],
+  "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]},
+               {"bufferView":1,"componentType":5123,"count":3,"type":"SCALAR"}]})";
+  const Scene s = parseVrml(asset, "http://example.org/mixed.gltf");
+  INFO(describe(s));
+  CHECK(s.diagnostics.items.empty());  // no "extension not supported" warning
+  auto counts = gs::test::countTypes(s);
+  CHECK(counts["Shape"] == 1);  // the triangle; the splats are no PointSet
+  CHECK(counts["PointSet"] == 0);
+  REQUIRE(counts["GaussianSplats"] == 1);
+  // At the root, under a Transform turning the reader's capture axes back to glTF's.
+  REQUIRE(s.rootNodes.size() == 3);
+  const NodePtr& turn = s.rootNodes.back();
+  const Rotation r = turn->get<FieldType::SFRotation>("rotation", Rotation());
+  CHECK(r == Rotation(0.0f, 0.0f, 1.0f, static_cast<float>(3.14159265358979323846)));
+  const auto children = turn->get<FieldType::MFNode>("children", std::vector<NodePtr>{});
+  REQUIRE(children.size() == 1);
+  CHECK(children[0]->typeName() == "GaussianSplats");
+  CHECK(children[0]->get<FieldType::MFString>("url", std::vector<std::string>{}) ==
+        std::vector<std::string>{"http://example.org/mixed.gltf"});
+}

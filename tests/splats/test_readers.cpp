@@ -574,3 +574,23 @@ TEST_CASE("detectSplatFormat names every encoding and no mesh") {
   CHECK_THROWS_AS(readSplatGaussians("", "empty.splat"), FormatError);
   CHECK_THROWS_AS(readSogGaussians("", "empty.sog", kNoFiles), FormatError);
 }
+
+TEST_CASE("gltfDrawsOnlyGaussians tells a capture from a glTF with other primitives") {
+  const std::string glb = data("bunny_small.glb");
+  CHECK(gltfDrawsOnlyGaussians(glb));
+  const std::uint32_t jsonLength = gs::base::loadLe<std::uint32_t>(glb.data() + 12);
+  CHECK(gltfDrawsOnlyGaussians(glb.substr(0, 20 + jsonLength)));  // the JSON chunk is enough
+  CHECK_FALSE(gltfDrawsOnlyGaussians(glb.substr(0, 20 + jsonLength / 2)));  // cut: not known
+  const std::string json = glb.substr(20, jsonLength);
+  CHECK(gltfDrawsOnlyGaussians(json));
+  // A second mesh of triangles beside the splats: a world, not a capture.
+  std::string mixed = json;
+  const std::size_t meshes = mixed.find("\"meshes\":[");
+  REQUIRE(meshes != std::string::npos);
+  mixed.insert(meshes + 10, R"({"primitives":[{"attributes":{"POSITION":0}}]},)");
+  CHECK_FALSE(gltfDrawsOnlyGaussians(mixed));
+  CHECK_FALSE(gltfDrawsOnlyGaussians(R"({"asset":{"version":"2.0"},"meshes":[]})"));
+  CHECK_FALSE(gltfDrawsOnlyGaussians(std::string(100, '[') + std::string(100, ']')));
+  CHECK_FALSE(gltfDrawsOnlyGaussians("glTF"));
+  CHECK_FALSE(gltfDrawsOnlyGaussians(""));
+}

@@ -40,6 +40,11 @@ enum class Images {
   keepEncoded,
 };
 
+/// Throws Error "name: JSON nested deeper than 64 levels" when `json` nests arrays and
+/// objects deeper than that (tinygltf and nlohmann::json recurse without a limit: checked
+/// before either parses untrusted JSON).
+void checkJsonDepth(std::string_view json, const std::string& name);
+
 /// Reads a glTF 2.0 asset: JSON text, or GLB (detected by isGlb). Buffers may be GLB's
 /// BIN chunk, data: URIs, or external URIs resolved only through `loader`. `warnings`,
 /// when given, receives tinygltf's warnings (one line each).

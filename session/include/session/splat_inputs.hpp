@@ -16,8 +16,9 @@
 namespace gs::session {
 
 /// True for local inputs that are not VRML97 worlds and have no Viewpoint of their own:
-/// QNV streams, meshes and volumes, as formats::classifyFile decides (content first,
-/// then name).
+/// QNV streams, meshes, volumes and Gaussian splatting scenes, as formats::classifyFile
+/// decides (content first, then name), and a glTF asset of Gaussian splats alone
+/// (splats::gltfDrawsOnlyGaussians; any other glTF opens as a world of its own).
 bool isSplatInput(const std::string& path);
 
 /// The index URL when `input` names a QNV tileset (docs/tilesets.md), else "": an index

@@ -14,9 +14,11 @@
 #include <utility>
 #include <vector>
 
+#include "formats/input_kind.hpp"
 #include "net/loader.hpp"
 #include "render/scene_renderer.hpp"
 #include "runtime/execution_model.hpp"
+#include "session/splat_inputs.hpp"
 #include "session/tileset_stream.hpp"
 #include "splats/gaussian.hpp"
 #include "splats/lod_tree.hpp"
@@ -75,6 +77,12 @@ class StreamingSession {
   /// A Script replaced world `scene` (Browser.replaceWorld): its stream, if it still
   /// arrives, ends and adds nothing more (net::WorldStream::abandon), saying `why`.
   void abandonWorld(const vrml::Scene& scene, const std::string& why);
+  /// Whether `input`, opened by open(), is shown as splats in a world made for it, with
+  /// no Viewpoint of its own (to be framed whole): a local one by isSplatInput, a remote
+  /// .ply or glTF once its head showed a capture (remoteIsCapture).
+  bool opensAsSplats(const std::string& input) const {
+    return isSplatInput(input) || remoteCaptures_.count(input) > 0;
+  }
   /// Options of the tilesets opened from now on (--tileset-memory).
   void setTilesetOptions(const TilesetOptions& options) { tilesetOptions_ = options; }
   /// Every tileset opened, in URL order (statistics for tests and the progress display).
@@ -109,12 +117,15 @@ class StreamingSession {
   /// before the world naming it is made, so a capture streamed over HTTP is turned as a
   /// local one (docs/splats.md, "Opening a scene"); no byte is fetched twice.
   bool remoteIsGaussian(const std::string& url, bool tileset);
-  /// Whether the remote .ply `url` is a 3D Gaussian splatting capture, not a mesh: its
-  /// first 64 KiB at most are fetched (one range request, until the header's end_header
-  /// arrives) and classified by content (formats::kindFromContent). False with `error`
-  /// (naming the URL: "http://h/x.ply: HTTP 404 Not Found") when it cannot be fetched.
-  bool remotePlyIsGaussian(const std::string& url, std::string& error);
-  /// Remote .ply URLs found to be captures (remotePlyIsGaussian): splat scenes.
+  /// Whether the remote .ply or glTF `url` (`kind` ply or gltf, by its name) is a 3D
+  /// Gaussian splatting capture, not a mesh or a glTF world: its first 64 KiB at most are
+  /// fetched (one range request, until a PLY's end_header or a GLB's whole JSON chunk
+  /// arrives) and classified by content (formats::kindFromContent;
+  /// splats::gltfDrawsOnlyGaussians: a glTF of other primitives too is a world, whose
+  /// importer draws its splats by a GaussianSplats node). False with `error` (naming the
+  /// URL: "http://h/x.ply: HTTP 404 Not Found") when it cannot be fetched.
+  bool remoteIsCapture(const std::string& url, formats::InputKind kind, std::string& error);
+  /// Remote .ply and glTF URLs found to be captures (remoteIsCapture): splat scenes.
   std::set<std::string> remoteCaptures_;
   net::Loader loader_;
   struct QnvEntry {

@@ -40,6 +40,14 @@ enum class SplatFormat { unknown, ply, compressedPly, splat, spz, sog, sogMeta, 
 /// `.splat` by name only (it has no magic). unknown otherwise (a mesh PLY is unknown).
 SplatFormat detectSplatFormat(std::string_view head, std::string_view name);
 
+/// Whether the glTF asset whose first bytes are `head` (a GLB's header and whole JSON
+/// chunk, or the whole JSON text) draws Gaussian splats alone: it has a mesh primitive and
+/// every primitive of every mesh carries KHR_gaussian_splatting. Such an asset opens as a
+/// capture, as a .ply does; one that also has other primitives opens as a glTF world
+/// whose splats one GaussianSplats node draws (docs/gltf.md). False for JSON that is cut,
+/// malformed or nested deeper than 64 levels. Never throws.
+bool gltfDrawsOnlyGaussians(std::string_view head);
+
 /// Reads further files a scene refers to (SOG's meta.json names its WebP images, a .gltf
 /// its buffers): `relative` is the name as the scene writes it. Returns false with `error`
 /// set when it cannot be read (the reader then throws FormatError naming it). Callers
