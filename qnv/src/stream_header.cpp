@@ -46,7 +46,7 @@ std::string serializeHeader(const StreamHeader& h) {
   appendLe<std::uint8_t>(out, static_cast<std::uint8_t>(h.mapping));
   appendLe<std::uint8_t>(out, 1);  // opacity profile kind: 1 = Gaussian
   appendLe<std::uint8_t>(out, h.kind == StreamKind::gaussian ? h.shDegree : 0);
-  appendLe<std::uint8_t>(out, 0);
+  appendLe<std::uint8_t>(out, h.kind == StreamKind::gaussian && h.linearColor ? 1 : 0);
   appendFloatLe(out, h.magnitudeMin);
   appendFloatLe(out, h.magnitudeMax);
   appendFloatLe(out, h.profile.sigma);
@@ -102,6 +102,7 @@ std::optional<StreamHeader> parseHeader(std::string_view bytes, const std::strin
   const auto mapping = loadLe<std::uint8_t>(p + 48);
   const auto profileKind = loadLe<std::uint8_t>(p + 49);
   const auto shDegree = loadLe<std::uint8_t>(p + 50);
+  const auto colorSpace = loadLe<std::uint8_t>(p + 51);
   h.magnitudeMin = loadFloatLe(p + 52);
   h.magnitudeMax = loadFloatLe(p + 56);
   h.profile.sigma = loadFloatLe(p + 60);
@@ -119,6 +120,8 @@ std::optional<StreamHeader> parseHeader(std::string_view bytes, const std::strin
   if (kind == 3 && (shDegree > 3 || encoding == 2))
     return fail(shDegree > 3 ? "impossible SH degree " + std::to_string(shDegree)
                              : std::string("a Gaussian stream cannot use the entropy encoding"));
+  if (kind == 3 && colorSpace > 1)
+    return fail("unknown colour space " + std::to_string(colorSpace));
   const std::uint32_t perElement = kind == 3 ? gaussianWordsPerSplat(shDegree) : 1u;
   if (encoding > 2) return fail("unknown packet encoding " + std::to_string(encoding));
   if (headerBytes != kHeaderBytes && (encoding != 2 || headerBytes < kHeaderBytes + 9 ||
@@ -165,6 +168,7 @@ std::optional<StreamHeader> parseHeader(std::string_view bytes, const std::strin
     return fail("impossible volume parameters");
   h.kind = static_cast<StreamKind>(kind);
   h.shDegree = kind == 3 ? shDegree : 0;
+  h.linearColor = kind == 3 && colorSpace == 1;
   h.encoding = static_cast<PacketEncoding>(encoding);
   return h;
 }

@@ -205,6 +205,7 @@ bool TilesetStream::pumpBricks() {
         if (header.kind == qnv::StreamKind::gaussian) {
           b.splats = std::make_shared<splats::GaussianCloud>();
           b.splats->setShDegree(header.shDegree);
+          b.splats->colorSpace = splats::colorSpaceOf(header);
         }
       }
       if (b.splats)  // set for each feed: it reports to this pump's `changed`
@@ -460,6 +461,7 @@ void TilesetStream::rebuild() {
     setMadeOf_ = std::move(made);
     cloud = std::make_shared<splats::GaussianCloud>();
     cloud->setShDegree(index_->header.shDegree);
+    cloud->colorSpace = splats::colorSpaceOf(index_->header);
   }
   set.vectors.clear();
   // A volume's vectors sit on voxel centres: a merged node's region reaches half a voxel

@@ -168,6 +168,7 @@ GaussianFrameBuilder::GaussianFrameBuilder(int shDegree, std::uint64_t splatCoun
 }
 
 bool GaussianFrameBuilder::addExtent(const GaussianCloud& cloud, std::size_t i) {
+  header_.linearColor = cloud.colorSpace == ColorSpace::linear;
   if (!keptInGaussianStream(cloud, i)) return false;
   ++kept_;
   lo_ = glm::min(lo_, cloud.positions[i]);
@@ -278,6 +279,7 @@ void appendGaussianRecords(const qnv::StreamHeader& h, std::span<const std::uint
   const std::uint32_t words = h.recordsPerElement();
   if (h.kind != qnv::StreamKind::gaussian || words < 2) return;
   if (cloud.empty()) cloud.setShDegree(h.shDegree);
+  cloud.colorSpace = colorSpaceOf(h);
   const int rest = cloud.shRestPerSplat();
   const int have = shCoefficients(h.shDegree) - 1;  // coefficients the words hold
   const std::size_t n = records.size() / words;
@@ -335,6 +337,7 @@ bool placeGaussianRecords(const qnv::StreamHeader& header, std::uint64_t firstRe
   const std::size_t first = static_cast<std::size_t>(firstRecord / header.recordsPerElement());
   const bool over = first < cloud.size();
   if (cloud.empty()) cloud.setShDegree(packet.shDegree);
+  cloud.colorSpace = packet.colorSpace;
   if (cloud.size() < first + packet.size()) {
     const std::size_t before = cloud.size();
     cloud.resize(first + packet.size());

@@ -152,6 +152,22 @@ TEST_CASE("a glTF capture opens as its .ply does: on its own and in an Inline",
   for (std::size_t i = 0; i < image.rgba.size(); i += 4)
     lit += image.rgba[i] > 16 || image.rgba[i + 1] > 16 || image.rgba[i + 2] > 16;
   CHECK(lit > 300);  // the bunny is drawn, not a black frame
+  // Its colour space: linear SH colours (lin_rec709_display) are shown through the sRGB
+  // transfer function, and stay so encoded as a QNV stream (header byte 51).
+  std::string linear = gs::test::readBytes(data / "bunny_small.glb");
+  const std::size_t at = linear.find("\"srgb_rec709_display\"");
+  REQUIRE(at != std::string::npos);
+  linear.replace(at, 21, "\"lin_rec709_display\" ");  // the JSON chunk keeps its length
+  const fs::path linearGlb = dir / "gltf_capture_linear.glb", qnv = dir / "gltf_capture_linear.qnv";
+  std::ofstream(linearGlb, std::ios::binary) << linear;
+  REQUIRE(gs::test::runGhostspace({"encode", linearGlb.string(), "-o", qnv.string()}).exitCode ==
+          0);
+  const std::string shown =
+      gs::test::snapshot("gltf_capture_linear", {"--size", "96x96", linearGlb.string()});
+  const std::string encoded =
+      gs::test::snapshot("gltf_capture_linear_qnv", {"--size", "96x96", qnv.string()});
+  CHECK(gs::test::fractionDiffering(shown, (dir / "gltf_capture.png").string()) > 0.05);
+  CHECK(gs::test::fractionDiffering(shown, encoded) < 0.005);
 }
 
 TEST_CASE("the corpus's scenes as QNV Gaussian streams: fewer bytes than SPZ, the peer's picture",

@@ -326,3 +326,29 @@ TEST_CASE("appendRange appends what append appends, splat by splat", "[splats][g
     CHECK(sameAs(ranged, single));
   }
 }
+
+TEST_CASE("a Gaussian stream keeps its scene's colour space", "[splats][qnv]") {
+  // glTF's lin_rec709_display: the SH colours are linear and shown through the sRGB
+  // transfer function; before header byte 51 said so, such a scene came back sRGB.
+  GaussianCloud cloud = bunnySmall();
+  for (const ColorSpace space : {ColorSpace::srgb, ColorSpace::linear}) {
+    cloud.colorSpace = space;
+    const gs::qnv::EncodedVectors encoded = encodeGaussianStream(cloud);
+    CHECK(encoded.header.linearColor == (space == ColorSpace::linear));
+    std::string bytes = gs::qnv::writeStream(encoded, {24 * 100, gs::qnv::PacketEncoding::compact});
+    CHECK(static_cast<int>(bytes[51]) == (space == ColorSpace::linear ? 1 : 0));
+    const GaussianCloud back = readQnvGaussians(bytes, "bunny.qnv");
+    REQUIRE(back.size() == cloud.size());
+    CHECK(back.colorSpace == space);
+    // Any other value is refused by the header's check (its CRC made good again).
+    std::string header = bytes.substr(0, gs::qnv::kHeaderBytes);
+    header[51] = 2;
+    const std::uint32_t crc =
+        gs::qnv::crc32(std::string_view(header).substr(0, gs::qnv::kHeaderBytes - 4));
+    for (int i = 0; i < 4; ++i)
+      header[gs::qnv::kHeaderBytes - 4 + i] = static_cast<char>(crc >> (8 * i));
+    std::string error;
+    CHECK_FALSE(gs::qnv::parseHeader(header, "bad.qnv", error));
+    CHECK_THAT(error, Catch::Contains("unknown colour space 2"));
+  }
+}

@@ -133,6 +133,12 @@ struct StreamHeader {
   /// Gaussian streams: the SH degree of every splat, 0..3 (header byte 50; 0 for the other
   /// kinds). Their valueMin, valueMax hold the natural-log range of the scales (metres).
   std::uint8_t shDegree = 0;
+  /// Gaussian streams: whether their SH colours evaluate in linear Rec.709 and are shown
+  /// through the sRGB transfer function (glTF KHR_gaussian_splatting's colorSpace
+  /// "lin_rec709_display"; splats::ColorSpace::linear), header byte 51 = 1; false for
+  /// sRGB display colours, as every other format stores them (byte 51 = 0). False for the
+  /// other kinds.
+  bool linearColor = false;
   /// Bytes of the whole header: kHeaderBytes, or kHeaderBytes + 8 + model.size() when the
   /// stream carries a model block (only with PacketEncoding::entropy).
   std::uint32_t headerBytes = static_cast<std::uint32_t>(kHeaderBytes);

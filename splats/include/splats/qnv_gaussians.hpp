@@ -72,7 +72,8 @@ class GaussianFrameBuilder {
   /// it sizes the packets) are the scene's.
   GaussianFrameBuilder(int shDegree, std::uint64_t splatCount);
   /// Pass 1, every splat in scene order: true when it is kept (keptInGaussianStream);
-  /// the kept splats' box and natural-log scale range grow by it.
+  /// the kept splats' box and natural-log scale range grow by it; the header's colour
+  /// space is the cloud's (qnv::StreamHeader::linearColor).
   bool addExtent(const GaussianCloud& cloud, std::size_t i);
   /// Between the passes: the box and the scale range fixed (a unit box when none is kept).
   void finishExtent();
@@ -106,10 +107,16 @@ std::vector<std::uint64_t> encodeGaussianSplats(const GaussianCloud& cloud,
                                                 const qnv::StreamHeader& header,
                                                 const GaussianStreamOptions& options = {});
 
+/// The colour space of a Gaussian stream's splats (qnv::StreamHeader::linearColor).
+inline ColorSpace colorSpaceOf(const qnv::StreamHeader& header) {
+  return header.linearColor ? ColorSpace::linear : ColorSpace::srgb;
+}
+
 /// Appends the splats of `records` (whole splats of header.recordsPerElement() records,
 /// as a Gaussian stream's packet gives them) to `cloud`, whose shDegree becomes the
-/// header's when it is empty. Inverse of encodeGaussianStream up to quantization. Safe
-/// for any words: every field decodes to a finite splat.
+/// header's when it is empty and whose colorSpace becomes the header's. Inverse of
+/// encodeGaussianStream up to quantization. Safe for any words: every field decodes to a finite
+/// splat.
 void appendGaussianRecords(const qnv::StreamHeader& header, std::span<const std::uint64_t> records,
                            GaussianCloud& cloud);
 
