@@ -196,6 +196,10 @@ int runInfo(const Options& options) {
       status = std::max(status, runTilesetInfo(index));
       continue;
     }
+    if (session::isGaussianSplatFile(input)) {
+      status = std::max(status, runGaussianInfo(input));
+      continue;
+    }
     const session::LoadedWorld w = session::loadWorld(input);
     if (!w.readable) {
       for (const auto& d : w.scene->diagnostics.items)

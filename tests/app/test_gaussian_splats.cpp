@@ -170,6 +170,39 @@ TEST_CASE("a glTF capture opens as its .ply does: on its own and in an Inline",
   CHECK(gs::test::fractionDiffering(shown, encoded) < 0.005);
 }
 
+TEST_CASE("info describes a splat scene in every encoding", "[app][splat]") {
+  // Before, `info capture.ply` described the world made for it: "QuantizedNormalVectors 1,
+  // shapes drawn: 0, bounding box: empty".
+  const fs::path data = gs::test::sourceDir() / "tests/data/splats";
+  const std::vector<std::pair<std::string, std::string>> files = {
+      {"bunny_small.ply", "3D Gaussian splatting PLY (INRIA)"},
+      {"bunny_small.compressed.ply", "PlayCanvas compressed PLY"},
+      {"bunny_small.spz", "Niantic SPZ"},
+      {"bunny_small_v3.spz", "Niantic SPZ"},
+      {"bunny_small.sog", "PlayCanvas SOG bundle"},
+      {"bunny_small_sog/meta.json", "PlayCanvas SOG (meta.json and WebP images)"},
+      {"bunny_small.splat", ".splat (32 bytes a splat)"},
+      {"bunny_small.glb", "glTF KHR_gaussian_splatting"}};
+  for (const auto& [file, format] : files) {
+    INFO(file);
+    const auto r = gs::test::runGhostspace({"info", (data / file).string()});
+    CHECK(r.exitCode == 0);
+    CHECK_THAT(r.out, Catch::Contains(file + ": " + format));
+    CHECK_THAT(r.out, Catch::Contains("splats      3000, SH degree " +
+                                      std::string(file == "bunny_small.splat" ? "0" : "1") +
+                                      ", colours sRGB"));
+    CHECK_THAT(r.out, Catch::Contains("bounds      -0.094"));
+  }
+  // A damaged one: the reader's error, exit 1.
+  const fs::path dir = fs::path(GS_BINARY_DIR) / "render-actual";
+  fs::create_directories(dir);
+  const std::string ply = gs::test::readBytes(data / "bunny_small.ply");
+  std::ofstream(dir / "info_cut.ply", std::ios::binary) << ply.substr(0, ply.size() / 2);
+  const auto cut = gs::test::runGhostspace({"info", (dir / "info_cut.ply").string()});
+  CHECK(cut.exitCode == 1);
+  CHECK_THAT(cut.err, Catch::Contains("info_cut.ply"));
+}
+
 TEST_CASE("the corpus's scenes as QNV Gaussian streams: fewer bytes than SPZ, the peer's picture",
           "[heavy][app][render][splat][corpus][qnv]") {
   if (!gs::test::haveCorpus("splat")) return;

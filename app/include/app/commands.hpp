@@ -15,13 +15,22 @@ namespace gs::app {
 /// gltf-validator do). Returns 1 when an INPUT could not be read at all or a world has
 /// errors (parser or renderer diagnostics of severity error; warnings do not count), 0
 /// otherwise; with options.infoExitZero (--exit-zero) errors in a world that was read
-/// give 0. A .qnv INPUT (formats::classifyFile) goes to runQnvInfo.
+/// give 0. A .qnv INPUT (formats::classifyFile) goes to runQnvInfo, a Gaussian splatting
+/// scene to runGaussianInfo.
 int runInfo(const Options& options);
 
 /// `ghostspace info FILE.qnv`: the stream header, vector and packet counts, bytes per
 /// vector, a magnitude histogram, and damaged or missing packets. 0 when the header was
 /// readable (even with packets lost), 1 otherwise.
 int runQnvInfo(const std::string& path);
+
+/// `ghostspace info SCENE`: a 3D Gaussian splatting scene file (.ply, .compressed.ply,
+/// .splat, .spz, SOG, a glTF capture, LAS; session::isGaussianSplatFile): its format,
+/// splats, SH degree, colour space, bounds (the reader's axes: docs/splats.md, "Axes"), the range
+/// of the splats' largest scale (metres), the mean opacity, bytes a splat and the read time; read a
+/// batch at a time where the format allows (splats::openGaussianBatches). 0, or 1 with the reader's
+/// error ("PATH: ...") on stderr when it cannot be read.
+int runGaussianInfo(const std::string& path);
 
 /// `ghostspace encode INPUT -o OUT.wrl --outline`: loads the world INPUT, writes
 /// outline::writeOutlineWorld's text to OUT and prints groups, triangles, outline
