@@ -54,7 +54,7 @@ struct SceneStatistics {
   glm::vec3 low{std::numeric_limits<float>::infinity()};
   glm::vec3 high{-std::numeric_limits<float>::infinity()};
   float smallest = std::numeric_limits<float>::infinity(), largest = 0.0f;  // largest axis
-  double opacity = 0.0;                                                      // sum
+  double opacity = 0.0;                                                     // sum
   std::uint64_t invisible = 0;  // opacity below 1/255: nothing drawn
 
   void add(const splats::GaussianCloud& c) {
