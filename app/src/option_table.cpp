@@ -468,7 +468,7 @@ const std::vector<OptionSpec>& table() {
                "of core in about MB mebibytes (fractions allowed; 0: in memory; "
                "docs/out-of-core.md)",
        .more = "Volumes slab by slab, meshes triangle by triangle (bricked by centroid), "
-               "Gaussian scenes (binary and compressed PLY, .splat, SPZ, SOG; not glTF) a "
+               "Gaussian scenes (binary and compressed PLY, .splat, SPZ, SOG, glTF) a "
                "batch of splats at a time, "
                "spilling to `OUT/parts/I-of-N/` past it; the files are the in-memory "
                "encode's byte for byte (docs/out-of-core.md, \"Tileset encoding\", "

@@ -2,8 +2,8 @@
 // opened in a session, read in the background so that the thread that draws never waits
 // for it, and drawn while it arrives (docs/splats.md, "Opening a scene"):
 // - a local file is read a batch at a time on a thread of its own
-//   (splats::openGaussianBatches: binary and compressed PLY, .splat, SPZ, SOG), each batch
-//   drawn as it comes; the other formats (glTF, LAS, ascii PLY) are read whole there;
+//   (splats::openGaussianBatches: binary and compressed PLY, .splat, SPZ, SOG, glTF), each batch
+//   drawn as it comes; the other formats (LAS, ascii PLY) are read whole there;
 // - a remote one is fetched by its own transfer under the loader's rules and limits
 //   (Loader::requestFor, up to LoaderOptions::maxResourceBytes); a binary .ply or a
 //   .splat is decoded row by row as its bytes arrive (splats::openGaussianRows) and drawn

@@ -167,7 +167,7 @@ std::unique_ptr<GaussianBatchReader> openGaussianBatches(const std::string& path
     case SplatFormat::sogMeta:
       return openSogGaussianBatches(path, sideFiles);
     case SplatFormat::gltf:
-      throw NotPiecewiseError(path + ": " + detail::kPiecewiseFormats + ", not a glTF scene");
+      return openGltfGaussianBatches(path);
     case SplatFormat::qnv:
       throw NotPiecewiseError(path + ": " + detail::kPiecewiseFormats +
                               ", not a QNV Gaussian stream");

@@ -16,7 +16,7 @@ namespace gs::splats::detail {
 
 /// The start of openGaussianBatches's NotPiecewiseError: the formats it reads piecewise.
 inline constexpr const char* kPiecewiseFormats =
-    "read piecewise are binary INRIA .ply, .compressed.ply, .splat, .spz and SOG";
+    "read piecewise are binary INRIA .ply, .compressed.ply, .splat, .spz, SOG and glTF";
 
 /// Throws FormatError("NAME: WHAT").
 [[noreturn]] void fail(std::string_view name, const std::string& what);
@@ -136,6 +136,9 @@ std::unique_ptr<GaussianBatchReader> openSplatGaussianBatches(const std::string&
 /// (spz.cpp).
 std::unique_ptr<GaussianBatchReader> openCompressedPlyGaussianBatches(const std::string& path);
 std::unique_ptr<GaussianBatchReader> openSpzGaussianBatches(const std::string& path);
+/// openGaussianBatches for a glTF KHR_gaussian_splatting scene (gltf_batches.cpp): a GLB,
+/// or a .gltf whose buffer files lie beside it (read by offset, never whole).
+std::unique_ptr<GaussianBatchReader> openGltfGaussianBatches(const std::string& path);
 /// openGaussianRows for a PlayCanvas .compressed.ply whose header is `header` (parsed from
 /// `head`, the file's first bytes; compressed_ply.cpp): a decoder once `head` holds the
 /// whole chunk table (needMore before), none when its chunk element follows its vertex

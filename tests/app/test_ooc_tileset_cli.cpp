@@ -3,7 +3,7 @@
 // at the threshold, --count, --window), spills under a tiny bound, and split runs merge
 // to the single run's bytes; inputs made at test time as a multi-file NRRD and a folder
 // of PNG slices (docs/out-of-core.md, "Tileset encoding"). The same for a Gaussian
-// splatting scene (.ply, .splat, .compressed.ply, .spz and SOG read piecewise), and its
+// splatting scene (.ply, .splat, .compressed.ply, .spz, SOG and glTF read piecewise), and its
 // errors.
 #include <catch2/catch.hpp>
 
@@ -298,7 +298,7 @@ TEST_CASE("an out-of-core Gaussian tileset of SPZ SOG and compressed PLY is the 
   gs::test::TempDir dir("ooc_gaussian_compressed");
   const fs::path data = gs::test::sourceDir() / "tests/data/splats";
   for (const char* scene : {"bunny_small.compressed.ply", "bunny_small.spz", "bunny_small_v3.spz",
-                            "bunny_small.sog", "bunny_small_sog/meta.json"}) {
+                            "bunny_small.sog", "bunny_small_sog/meta.json", "bunny_small.glb"}) {
     INFO(scene);
     const std::string input = (data / scene).string();
     const fs::path memory = dir.path / "memory", ooc = dir.path / "ooc";
@@ -314,13 +314,21 @@ TEST_CASE("an out-of-core Gaussian encode refuses other formats and reports a sh
           "[app][encode][tileset][ooc][splat]") {
   gs::test::TempDir dir("ooc_gaussian_bad");
   const fs::path data = gs::test::sourceDir() / "tests/data/splats";
-  // glTF is read whole: a usage error that says which formats are read piecewise.
-  auto r = runGhostspace({"encode", (data / "bunny_small.glb").string(), "--tileset",
-                          (dir.path / "glb").string(), "--memory", "64", "--no-progress"});
+  // An ascii PLY is read whole: a usage error that says which formats are read piecewise.
+  const fs::path ascii = dir.path / "ascii.ply";
+  std::ofstream(ascii) << "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n"
+                          "property float y\nproperty float z\nproperty float f_dc_0\n"
+                          "property float f_dc_1\nproperty float f_dc_2\nproperty float "
+                          "opacity\nproperty float scale_0\nproperty float scale_1\nproperty "
+                          "float scale_2\nproperty float rot_0\nproperty float rot_1\nproperty "
+                          "float rot_2\nproperty float rot_3\nend_header\n0 0 0 1 1 1 5 -3 -3 -3 "
+                          "1 0 0 0\n";
+  auto r = runGhostspace({"encode", ascii.string(), "--tileset", (dir.path / "ascii").string(),
+                          "--memory", "64", "--no-progress"});
   CHECK(r.exitCode == 2);
   CHECK_THAT(r.err, Catch::Contains("read piecewise are binary INRIA .ply, .compressed.ply, "
-                                    ".splat, .spz and SOG, not a glTF scene"));
-  CHECK_FALSE(fs::exists(dir.path / "glb" / "index.qnvt"));
+                                    ".splat, .spz, SOG and glTF, not an ascii PLY"));
+  CHECK_FALSE(fs::exists(dir.path / "ascii" / "index.qnvt"));
   // A PLY cut short: its header promises 3,000 rows. An error value, nothing published.
   const std::string bytes = gs::test::readBytes(data / "bunny_small.ply");
   const fs::path cut = dir.path / "cut.ply";

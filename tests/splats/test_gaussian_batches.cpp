@@ -8,6 +8,7 @@
 
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <string>
 
@@ -71,6 +72,26 @@ std::string bigEndian(const std::string& ply) {
   return out;
 }
 
+/// The GLB `glb` with its JSON chunk edited by `edit` (the BIN chunk kept).
+std::string editedGlb(const std::string& glb, const std::function<void(std::string&)>& edit) {
+  const std::uint32_t length = gs::base::loadLe<std::uint32_t>(glb.data() + 12);
+  std::string json = glb.substr(20, length);
+  edit(json);
+  while (json.size() % 4 != 0) json += ' ';
+  const std::string rest = glb.substr(20 + length);
+  std::string out = glb.substr(0, 8);
+  gs::base::appendLe<std::uint32_t>(out, static_cast<std::uint32_t>(20 + json.size() + rest.size()));
+  gs::base::appendLe<std::uint32_t>(out, static_cast<std::uint32_t>(json.size()));
+  gs::base::appendLe<std::uint32_t>(out, 0x4E4F534Au);
+  return out + json + rest;
+}
+
+void replaceOnce(std::string& s, const std::string& from, const std::string& to) {
+  const std::size_t at = s.find(from);
+  REQUIRE(at != std::string::npos);
+  s.replace(at, from.size(), to);
+}
+
 }  // namespace
 
 // Reads the files beside `scene` (SOG's textures), as the encode's side-file reader does.
@@ -99,10 +120,27 @@ TEST_CASE("openGaussianBatches gives the whole reader's splats for every batch s
   std::ofstream(members, std::ios::binary)
       << gs::test::gzip(v3.substr(0, 1000)) << gs::test::gzip(v3.substr(1000));
   const fs::path sogMeta = splatData("bunny_small_sog/meta.json");
+  // glTF: the GLB; the mesh instanced by a second node whose scale is not uniform (the
+  // covariance path), beside the first; a .gltf whose buffer is a file beside it.
+  const std::string glb = gs::test::readBytes(splatData("bunny_small.glb"));
+  const fs::path instanced = dir.path / "instanced.glb";
+  std::ofstream(instanced, std::ios::binary) << editedGlb(glb, [](std::string& json) {
+    replaceOnce(json, "\"nodes\":[{\"mesh\":0}]",
+                "\"nodes\":[{\"mesh\":0,\"children\":[1]},{\"mesh\":0,\"translation\":[1,2,3],"
+                "\"rotation\":[0,0.6,0,0.8],\"scale\":[2,1,0.5]}]");
+  });
+  const std::uint32_t jsonLength = gs::base::loadLe<std::uint32_t>(glb.data() + 12);
+  std::string gltfJson = glb.substr(20, jsonLength);
+  replaceOnce(gltfJson, "\"buffers\":[{\"byteLength\":288000}]",
+              "\"buffers\":[{\"byteLength\":288000,\"uri\":\"bunny%20small.bin\"}]");
+  const fs::path gltf = dir.path / "bunny.gltf";
+  std::ofstream(gltf, std::ios::binary) << gltfJson;
+  std::ofstream(dir.path / "bunny small.bin", std::ios::binary) << glb.substr(20 + jsonLength + 8);
   for (const fs::path& path :
        {splatData("bunny_small.ply"), splatData("bunny_small.splat"), be,
         splatData("bunny_small.compressed.ply"), splatData("bunny_small.spz"),
-        splatData("bunny_small_v3.spz"), members, splatData("bunny_small.sog"), sogMeta}) {
+        splatData("bunny_small_v3.spz"), members, splatData("bunny_small.sog"), sogMeta,
+        splatData("bunny_small.glb"), instanced, gltf}) {
     INFO(path.string());
     const GaussianCloud whole =
         readGaussians(gs::test::readBytes(path), path.string(), besideFiles(path));
@@ -145,11 +183,25 @@ TEST_CASE("GaussianFrameBuilder over batches is gaussianFrame of the whole scene
 
 TEST_CASE("openGaussianBatches refuses what it does not read piecewise, naming the file",
           "[splats][ooc]") {
-  CHECK_THROWS_AS(openGaussianBatches(splatData("bunny_small.glb").string()), NotPiecewiseError);
-  CHECK_THROWS_WITH(openGaussianBatches(splatData("bunny_small.glb").string()),
-                    Catch::Contains("bunny_small.glb: read piecewise are binary") &&
-                        Catch::Contains("not a glTF scene"));
   gs::test::TempDir dir("gaussian_batches_bad");
+  // A glTF of sparse accessors is read whole.
+  const fs::path sparse = dir.path / "sparse.glb";
+  std::ofstream(sparse, std::ios::binary)
+      << editedGlb(gs::test::readBytes(splatData("bunny_small.glb")), [](std::string& json) {
+           replaceOnce(json, "\"accessors\":[{", "\"accessors\":[{\"sparse\":{\"count\":1,"
+                       "\"indices\":{\"bufferView\":0,\"componentType\":5125},"
+                       "\"values\":{\"bufferView\":0}},");
+         });
+  CHECK_THROWS_AS(openGaussianBatches(sparse.string()), NotPiecewiseError);
+  CHECK_THROWS_WITH(openGaussianBatches(sparse.string()),
+                    Catch::Contains("sparse.glb: read piecewise are binary") &&
+                        Catch::Contains("not a glTF scene of sparse accessors"));
+  // A GLB cut in its BIN chunk: a FormatError naming it, before any batch.
+  const std::string glb = gs::test::readBytes(splatData("bunny_small.glb"));
+  const fs::path cutGlb = dir.path / "cut.glb";
+  std::ofstream(cutGlb, std::ios::binary) << glb.substr(0, glb.size() - 1000);
+  CHECK_THROWS_WITH(openGaussianBatches(cutGlb.string()),
+                    Catch::Contains("cut.glb: GLB BIN chunk runs past the end of the file"));
   const fs::path ascii = dir.path / "ascii.ply";
   std::ofstream(ascii) << "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n"
                           "property float f_dc_0\nproperty float opacity\nproperty float "

@@ -138,10 +138,13 @@ struct NotPiecewiseError : FormatError {
 ///   per block over the same gzip data, each skipping the blocks before it; v4: one zstd
 ///   stream per block);
 /// - SOG (a .sog bundle, or a meta.json whose WebP images `sideFiles` reads): the textures
-///   decoded whole (about 28 bytes a splat), the splats converted a batch at a time.
+///   decoded whole (about 28 bytes a splat), the splats converted a batch at a time;
+/// - glTF KHR_gaussian_splatting (a .glb, or a .gltf whose buffer files lie beside it):
+///   the JSON parsed alone, each batch's accessor elements read by offset.
 /// Each batch holds exactly the splats the whole-file reader gives at those places.
-/// Throws NotPiecewiseError naming the file for an ascii PLY, glTF, a QNV stream, LAS and
-/// what is no splat scene ("PATH: read piecewise are ..., not a glTF scene"), and
+/// Throws NotPiecewiseError naming the file for an ascii PLY, a glTF of sparse accessors
+/// or compressed buffers, a QNV stream, LAS and what is no splat scene ("PATH: read
+/// piecewise are ..., not a LAS point cloud"), and
 /// FormatError for what the whole-file readers refuse in the header or size (or a file
 /// that cannot be opened); read() throws FormatError for damage found later (a truncated
 /// or corrupt compressed stream, naming the file).
