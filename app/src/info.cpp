@@ -196,7 +196,8 @@ int runInfo(const Options& options) {
       status = std::max(status, runTilesetInfo(index));
       continue;
     }
-    if (session::isGaussianSplatFile(input)) {
+    // A capture (not a glTF world that also holds splats: described as a world).
+    if (session::isGaussianSplatFile(input) && session::isSplatInput(input)) {
       status = std::max(status, runGaussianInfo(input));
       continue;
     }

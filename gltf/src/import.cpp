@@ -105,7 +105,11 @@ void GltfImporter::run() {
   // here (docs/gltf.md, "Gaussian splats").
   if (gaussianSplats_) {
     NodePtr splats = make("GaussianSplats");
-    set(*splats, "url", FieldValue::make<FieldType::MFString>(std::vector<std::string>{url_}));
+    // The asset's own name (its last path segment, with any query), which resolves to
+    // itself against its URL; the whole URL would not for a relative path with folders.
+    const std::size_t slash = url_.find_last_of('/', url_.find_first_of("?#"));
+    const std::string self = slash == std::string::npos ? url_ : url_.substr(slash + 1);
+    set(*splats, "url", FieldValue::make<FieldType::MFString>(std::vector<std::string>{self}));
     NodePtr turn = make("Transform");
     set(*turn, "rotation",
         FieldValue::make<FieldType::SFRotation>(

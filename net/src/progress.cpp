@@ -8,9 +8,16 @@ double StreamProgress::fraction() const {
   if (state == StreamState::done) return 1.0;
   if (kind == StreamKind::qnv && wantedVectors > 0)
     return std::clamp(static_cast<double>(vectors) / static_cast<double>(wantedVectors), 0.0, 1.0);
-  if (kind == StreamKind::splats && expectedVectors > 0)
-    return std::clamp(static_cast<double>(vectors) / static_cast<double>(expectedVectors), 0.0,
-                      1.0);
+  if (kind == StreamKind::splats && expectedVectors > 0) {
+    // The lesser of splats and bytes: a compressed PLY's splats all arrive with a quarter
+    // of its bytes (its SH come after them).
+    double f =
+        std::clamp(static_cast<double>(vectors) / static_cast<double>(expectedVectors), 0.0, 1.0);
+    if (expectedBytes > 0)
+      f = std::min(
+          f, std::clamp(static_cast<double>(bytes) / static_cast<double>(expectedBytes), 0.0, 1.0));
+    return f;
+  }
   if (expectedBytes > 0)
     return std::clamp(static_cast<double>(bytes) / static_cast<double>(expectedBytes), 0.0, 1.0);
   return 0.0;

@@ -24,7 +24,10 @@ namespace {
 /// The bytes of the glTF asset at `path` that say what it holds: a GLB's header and JSON
 /// chunk, or a JSON text, at most 64 MiB; empty when it cannot be read.
 std::string gltfHead(const std::string& path) {
-  constexpr std::size_t kMax = std::size_t{64} << 20;
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  const std::size_t kMax =
+      ec ? 0 : static_cast<std::size_t>(std::min<std::uintmax_t>(size, std::uintmax_t{64} << 20));
   std::ifstream in(path, std::ios::binary);
   std::string head(20, '\0');
   in.read(head.data(), 20);
@@ -42,12 +45,20 @@ std::string gltfHead(const std::string& path) {
   return head;
 }
 
+/// Whether the glTF at `path` draws Gaussian splats alone (parsed only when its JSON names
+/// the extension).
+bool isGaussianOnlyGltf(const std::string& path) {
+  const std::string head = gltfHead(path);
+  return head.find("KHR_gaussian_splatting") != std::string::npos &&
+         splats::gltfDrawsOnlyGaussians(head);
+}
+
 }  // namespace
 
 bool isSplatInput(const std::string& path) {
   const formats::InputKind kind = formats::classifyFile(path);
   return formats::isSplatKind(kind) || !tilesetIndexOf(path).empty() ||
-         (kind == formats::InputKind::gltf && splats::gltfDrawsOnlyGaussians(gltfHead(path)));
+         (kind == formats::InputKind::gltf && isGaussianOnlyGltf(path));
 }
 
 std::string tilesetIndexOf(const std::string& input) {

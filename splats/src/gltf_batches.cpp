@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,9 @@ namespace {
 using detail::fail;
 
 constexpr std::uint64_t kMaxJsonBytes = std::uint64_t{64} << 20;
+/// Splat primitive instances read piecewise: each holds its accessors and placement
+/// (about 2 KB); more are read whole.
+constexpr std::size_t kMaxInstances = 65536;
 // tinygltf 2.7 refuses an empty data: URI: four zero bytes stand for a file buffer.
 constexpr const char* kPlaceholderBuffer = "data:application/octet-stream;base64,AAAAAA==";
 
@@ -40,7 +44,7 @@ struct BufferSource {
 /// One accessor read by offset: element i of component k at byte offset + i * stride +
 /// k * component size of its buffer.
 struct PieceAccessor {
-  int buffer = -1;  // -1: no buffer view (every element 0)
+  int buffer = -1;
   std::uint64_t offset = 0;
   std::size_t stride = 0, elementBytes = 0;
   int componentType = 0, components = 0;
@@ -66,7 +70,14 @@ class GltfGaussianBatches final : public GaussianBatchReader {
     const std::string head = file_->head(20);
     const bool glb = head.size() >= 4 && head.starts_with("glTF");
     if (glb) {
-      if (head.size() < 20) fail(path, "GLB header needs 20 bytes, got " + std::to_string(head.size()));
+      if (head.size() < 20)
+        fail(path, "GLB header needs 20 bytes, got " + std::to_string(head.size()));
+      if (base::loadLe<std::uint32_t>(head.data() + 4) != 2)
+        fail(path, "expected GLB version 2, got " +
+                       std::to_string(base::loadLe<std::uint32_t>(head.data() + 4)));
+      if (base::loadLe<std::uint32_t>(head.data() + 8) != file_->size())
+        fail(path, "GLB length " + std::to_string(base::loadLe<std::uint32_t>(head.data() + 8)) +
+                       " does not match the " + std::to_string(file_->size()) + " bytes present");
       const std::uint64_t jsonBytes = base::loadLe<std::uint32_t>(head.data() + 12);
       if (base::loadLe<std::uint32_t>(head.data() + 16) != 0x4E4F534Au)
         fail(path, "GLB lacks a JSON chunk");
@@ -75,6 +86,7 @@ class GltfGaussianBatches final : public GaussianBatchReader {
       json.resize(static_cast<std::size_t>(jsonBytes));
       file_->read(20, json.data(), json.size());
       const std::uint64_t at = 20 + jsonBytes;
+      if (file_->size() > at && file_->size() < at + 8) fail(path, "GLB chunk header truncated");
       if (file_->size() >= at + 8) {
         char chunk[8];
         file_->read(at, chunk, 8);
@@ -106,7 +118,8 @@ class GltfGaussianBatches final : public GaussianBatchReader {
     batch.colorSpace = colorSpace_;
     batch.kernel = Kernel::ellipse;
     for (const SplatPrimitive& p : primitives_) {
-      const std::uint64_t from = std::max(next_, p.first), to = std::min(next_ + n, p.first + p.count);
+      const std::uint64_t from = std::max(next_, p.first),
+                          to = std::min(next_ + n, p.first + p.count);
       if (from >= to) continue;
       place(p, from - p.first, static_cast<std::size_t>(to - from), batch,
             static_cast<std::size_t>(from - next_));
@@ -123,10 +136,18 @@ class GltfGaussianBatches final : public GaussianBatchReader {
     gltf::checkJsonDepth(json, path_);
     nlohmann::json doc = nlohmann::json::parse(json, nullptr, false);
     if (doc.is_discarded() || !doc.is_object()) fail(path_, "glTF JSON cannot be parsed");
-    for (const char* compressed : {"KHR_draco_mesh_compression", "EXT_meshopt_compression"})
-      if (json.find(compressed) != std::string::npos)
+    for (const char* compressed : {"KHR_draco_mesh_compression", "EXT_meshopt_compression"}) {
+      bool named = json.find(compressed) != std::string::npos;
+      for (const char* list : {"extensionsUsed", "extensionsRequired"})
+        if (const auto it = doc.find(list); it != doc.end() && it->is_array())
+          for (const nlohmann::json& e : *it)
+            named |= e.is_string() && e.get<std::string>() == compressed;
+      if (named)
         throw NotPiecewiseError(path_ + ": " + detail::kPiecewiseFormats +
                                 ", not a glTF scene of compressed buffers (" + compressed + ")");
+    }
+    // Images are never read here; tinygltf would index their buffer views' placeholders.
+    doc.erase("images");
     // Each file buffer's length and uri kept; in the JSON tinygltf parses it holds nothing.
     std::vector<std::pair<std::uint64_t, std::string>> files;  // byteLength, uri ("" = BIN)
     if (auto buffers = doc.find("buffers"); buffers != doc.end() && buffers->is_array()) {
@@ -144,6 +165,7 @@ class GltfGaussianBatches final : public GaussianBatchReader {
     }
     model_ = gltf::load(doc.dump(), path_, nullptr);
     std::uint64_t budget = file_->size();
+    std::set<std::string> counted;
     for (std::size_t i = 0; i < files.size(); ++i) {
       const auto& [byteLength, uri] = files[i];
       BufferSource& s = sources_.emplace_back();
@@ -163,8 +185,10 @@ class GltfGaussianBatches final : public GaussianBatchReader {
           fail(path_, relative + ": not a file beside the scene");
         s.file = std::make_shared<detail::PieceFile>(
             (std::filesystem::path(path_).parent_path() / relative).string());
-        if (s.file->size() < byteLength) fail(path_, relative + " is shorter than its byteLength");
-        budget += s.file->size();
+        if (s.file->size() != byteLength)
+          fail(path_, relative + ": expected " + std::to_string(byteLength) + " bytes, got " +
+                          std::to_string(s.file->size()));
+        if (counted.insert(relative).second) budget += s.file->size();  // each file once
       }
     }
     const std::uint64_t limit = std::min<std::uint64_t>(budget, kMaxSplats);
@@ -172,6 +196,10 @@ class GltfGaussianBatches final : public GaussianBatchReader {
     detail::forEachGltfSplatPrimitive(
         model_, path_,
         [&](const tinygltf::Primitive& prim, const tinygltf::Value& ext, const glm::dmat4& world) {
+          if (primitives_.size() >= kMaxInstances)
+            throw NotPiecewiseError(path_ + ": " + detail::kPiecewiseFormats +
+                                    ", not a glTF scene of more than " +
+                                    std::to_string(kMaxInstances) + " splat primitive instances");
           SplatPrimitive p;
           p.attributes = detail::gltfSplatAttributes(prim, ext, path_);
           if (haveColorSpace && p.attributes.colorSpace != colorSpace_)
@@ -196,7 +224,8 @@ class GltfGaussianBatches final : public GaussianBatchReader {
               fail(path_, "COLOR_0: expected VEC3 or VEC4, got " +
                               std::to_string(p.color.components) + " components");
           }
-          for (int a : p.attributes.rest) p.rest.push_back(accessor(a, 3, "SH coefficient", p.count));
+          for (int a : p.attributes.rest)
+            p.rest.push_back(accessor(a, 3, "SH coefficient", p.count));
           p.placement =
               std::make_shared<const detail::GltfPlacement>(world, p.attributes.degree, path_);
           p.first = total_;
@@ -204,7 +233,8 @@ class GltfGaussianBatches final : public GaussianBatchReader {
           degree_ = std::max(degree_, p.attributes.degree);
           primitives_.push_back(std::move(p));
         });
-    if (total_ == 0) fail(path_, "no KHR_gaussian_splatting primitive with splats in the default scene");
+    if (total_ == 0)
+      fail(path_, "no KHR_gaussian_splatting primitive with splats in the default scene");
   }
 
   /// Accessor `index` checked against its buffer's byteLength: `components` per element
@@ -235,9 +265,8 @@ class GltfGaussianBatches final : public GaussianBatchReader {
                       std::to_string(p.count));
     p.elementBytes = static_cast<std::size_t>(size) * static_cast<std::size_t>(p.components);
     p.stride = p.elementBytes;
-    if (a.bufferView < 0) return p;  // every element 0
-    if (static_cast<std::size_t>(a.bufferView) >= model_.bufferViews.size())
-      fail(path_, where + ": buffer view " + std::to_string(a.bufferView) + " does not exist");
+    if (a.bufferView < 0 || static_cast<std::size_t>(a.bufferView) >= model_.bufferViews.size())
+      fail(path_, where + " has no valid bufferView");  // as the whole reader
     const tinygltf::BufferView& v = model_.bufferViews[static_cast<std::size_t>(a.bufferView)];
     if (v.buffer < 0 || static_cast<std::size_t>(v.buffer) >= sources_.size())
       fail(path_, where + ": buffer " + std::to_string(v.buffer) + " does not exist");
@@ -258,7 +287,7 @@ class GltfGaussianBatches final : public GaussianBatchReader {
   /// Elements [from, from + n) of `a` as floats, `a.components` each.
   void floats(const PieceAccessor& a, std::uint64_t from, std::size_t n, std::vector<float>& out) {
     out.assign(n * static_cast<std::size_t>(a.components), 0.0f);
-    if (a.buffer < 0 || n == 0) return;
+    if (n == 0) return;
     const BufferSource& s = sources_[static_cast<std::size_t>(a.buffer)];
     const std::size_t bytes = (n - 1) * a.stride + a.elementBytes;
     const std::uint64_t at = a.offset + from * a.stride;
@@ -273,7 +302,8 @@ class GltfGaussianBatches final : public GaussianBatchReader {
     const gltf::AccessorView v{data, n, a.stride, a.componentType, a.components, a.normalized};
     for (std::size_t i = 0; i < n; ++i)
       for (int c = 0; c < a.components; ++c)
-        out[i * static_cast<std::size_t>(a.components) + static_cast<std::size_t>(c)] = v.value(i, c);
+        out[i * static_cast<std::size_t>(a.components) + static_cast<std::size_t>(c)] =
+            v.value(i, c);
   }
 
   /// Splats [from, from + n) of primitive `p` into `batch` from splat `at` on.
@@ -287,7 +317,8 @@ class GltfGaussianBatches final : public GaussianBatchReader {
     const auto cc = static_cast<std::size_t>(p.color.components);
     if (p.attributes.dc < 0)  // COLOR_0: the DC coefficient of its red, green and blue
       for (std::size_t i = 0; i < n; ++i)
-        for (std::size_t k = 0; k < 3; ++k) color_[i * cc + k] = detail::dcOfColor(color_[i * cc + k]);
+        for (std::size_t k = 0; k < 3; ++k)
+          color_[i * cc + k] = detail::dcOfColor(color_[i * cc + k]);
     rest_.resize(p.rest.size());
     for (std::size_t k = 0; k < p.rest.size(); ++k) floats(p.rest[k], from, n, rest_[k]);
     std::vector<const float*> restAt(p.rest.size());

@@ -13,13 +13,13 @@ namespace gs::splats {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPiMerged = 3.14159265358979323846;
 constexpr double kFixedOne = 1099511627776.0;  // 2^40: fixed-point unit of every sum
-constexpr char kMagic[8] = {'\x89', 'Q', 'N', 'M', '\r', '\n', '\x1a', '\n'};
+constexpr char kMergedMagic[8] = {'\x89', 'Q', 'N', 'M', '\r', '\n', '\x1a', '\n'};
 constexpr std::size_t kCellBytes = 16 + 16 * MergedCell::kFields;
 // Fields of MergedCell::sums.
 constexpr int kWeight = 0, kMean = 1, kSecond = 4, kColor = 10, kBand2 = 13;
-constexpr double kBand2Scale = kPi / 2.0;
+constexpr double kBand2Scale = kPiMerged / 2.0;
 // A merged splat's thinnest scale is at least this share of its cell (a flat wall's cell
 // would give 0, which the stream's log-scale range cannot hold next to the wide ones).
 constexpr double kThinnestShare = 0.01;
@@ -205,7 +205,7 @@ std::string MergedLevelBuilder::serialize() const {
   keys.reserve(cells_.size());
   for (const auto& [key, cell] : cells_) keys.push_back(key);
   std::sort(keys.begin(), keys.end());
-  std::string out(kMagic, sizeof kMagic);
+  std::string out(kMergedMagic, sizeof kMergedMagic);
   base::appendLe<std::uint8_t>(out, cellsLog2_);
   out.append(3, '\0');
   base::appendLe<std::uint64_t>(out, keys.size());
@@ -229,7 +229,7 @@ bool MergedLevelBuilder::addSerialized(std::string_view bytes, const std::string
     error = name + ": " + why;
     return false;
   };
-  if (bytes.size() < 24 || !std::equal(kMagic, kMagic + 8, bytes.data()))
+  if (bytes.size() < 24 || !std::equal(kMergedMagic, kMergedMagic + 8, bytes.data()))
     return fail("not a tileset's merged-level part (signature)");
   const char* p = bytes.data();
   if (static_cast<std::uint8_t>(p[8]) != cellsLog2_ || p[9] != 0 || p[10] != 0 || p[11] != 0)

@@ -247,5 +247,13 @@ TEST_CASE("glTF Gaussian splats are drawn by one GaussianSplats node naming the 
   REQUIRE(children.size() == 1);
   CHECK(children[0]->typeName() == "GaussianSplats");
   CHECK(children[0]->get<FieldType::MFString>("url", std::vector<std::string>{}) ==
-        std::vector<std::string>{"http://example.org/mixed.gltf"});
+        std::vector<std::string>{"mixed.gltf"});  // resolves to the asset itself
+  // A relative path with folders: its own name still, not the path again.
+  const Scene relative = parseVrml(asset, "models/mixed.gltf?v=2");
+  auto found = gs::test::countTypes(relative);
+  REQUIRE(found["GaussianSplats"] == 1);
+  const auto turned =
+      relative.rootNodes.back()->get<FieldType::MFNode>("children", std::vector<NodePtr>{});
+  CHECK(turned[0]->get<FieldType::MFString>("url", std::vector<std::string>{}) ==
+        std::vector<std::string>{"mixed.gltf?v=2"});
 }

@@ -8,8 +8,8 @@
 
 #include <cstring>
 #include <filesystem>
-#include <functional>
 #include <fstream>
+#include <functional>
 #include <string>
 
 #include "base/byte_order.hpp"
@@ -80,7 +80,8 @@ std::string editedGlb(const std::string& glb, const std::function<void(std::stri
   while (json.size() % 4 != 0) json += ' ';
   const std::string rest = glb.substr(20 + length);
   std::string out = glb.substr(0, 8);
-  gs::base::appendLe<std::uint32_t>(out, static_cast<std::uint32_t>(20 + json.size() + rest.size()));
+  gs::base::appendLe<std::uint32_t>(out,
+                                    static_cast<std::uint32_t>(20 + json.size() + rest.size()));
   gs::base::appendLe<std::uint32_t>(out, static_cast<std::uint32_t>(json.size()));
   gs::base::appendLe<std::uint32_t>(out, 0x4E4F534Au);
   return out + json + rest;
@@ -188,7 +189,8 @@ TEST_CASE("openGaussianBatches refuses what it does not read piecewise, naming t
   const fs::path sparse = dir.path / "sparse.glb";
   std::ofstream(sparse, std::ios::binary)
       << editedGlb(gs::test::readBytes(splatData("bunny_small.glb")), [](std::string& json) {
-           replaceOnce(json, "\"accessors\":[{", "\"accessors\":[{\"sparse\":{\"count\":1,"
+           replaceOnce(json, "\"accessors\":[{",
+                       "\"accessors\":[{\"sparse\":{\"count\":1,"
                        "\"indices\":{\"bufferView\":0,\"componentType\":5125},"
                        "\"values\":{\"bufferView\":0}},");
          });
@@ -200,8 +202,16 @@ TEST_CASE("openGaussianBatches refuses what it does not read piecewise, naming t
   const std::string glb = gs::test::readBytes(splatData("bunny_small.glb"));
   const fs::path cutGlb = dir.path / "cut.glb";
   std::ofstream(cutGlb, std::ios::binary) << glb.substr(0, glb.size() - 1000);
-  CHECK_THROWS_WITH(openGaussianBatches(cutGlb.string()),
-                    Catch::Contains("cut.glb: GLB BIN chunk runs past the end of the file"));
+  CHECK_THROWS_WITH(openGaussianBatches(cutGlb.string()), Catch::Contains("cut.glb: GLB length"));
+  // A .gltf whose buffer file is not its byteLength: refused as tinygltf refuses it.
+  const std::uint32_t jsonLength = gs::base::loadLe<std::uint32_t>(glb.data() + 12);
+  std::string json = glb.substr(20, jsonLength);
+  replaceOnce(json, "\"buffers\":[{\"byteLength\":288000}]",
+              "\"buffers\":[{\"byteLength\":288000,\"uri\":\"short.bin\"}]");
+  std::ofstream(dir.path / "short.gltf", std::ios::binary) << json;
+  std::ofstream(dir.path / "short.bin", std::ios::binary) << glb.substr(20 + jsonLength + 8, 1000);
+  CHECK_THROWS_WITH(openGaussianBatches((dir.path / "short.gltf").string()),
+                    Catch::Contains("short.bin: expected 288000 bytes, got 1000"));
   const fs::path ascii = dir.path / "ascii.ply";
   std::ofstream(ascii) << "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n"
                           "property float f_dc_0\nproperty float opacity\nproperty float "

@@ -38,7 +38,8 @@ struct StreamProgress {
   std::string stage;
 
   /// Fraction done, 0..1: vectors of the wanted prefix for QNV, splats of the scene's for
-  /// a splat scene file (`vectors` of `expectedVectors`), bytes of the expected size for
+  /// a splat scene file (`vectors` of `expectedVectors`; for a remote one the lesser of
+  /// that and its bytes' fraction), bytes of the expected size for
   /// worlds and for a splat scene file whose count is not known yet; 0 when unknown.
   double fraction() const;
   /// Whether nothing more is coming without a new request.
