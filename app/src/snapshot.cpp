@@ -215,8 +215,10 @@ int runSnapshot(const Options& options) {
   runtimes.drainMessages(runtimeMessages);
   for (std::string& m : runtimeMessages) messages.emplace_back(false, std::move(m));
   bool failed = false;
-  for (const net::StreamProgress& p : session.progress())  // tilesets' indexes too
-    failed |= p.state == net::StreamState::failed;
+  // Tilesets' indexes too; a splat scene file that failed is its node's error (reported
+  // with the renderer's diagnostics below), as any node's url that cannot be loaded.
+  for (const net::StreamProgress& p : session.progress())
+    failed |= p.state == net::StreamState::failed && p.kind != net::StreamKind::splats;
   for (const auto& [isError, text] : messages) std::fprintf(stderr, "%s\n", text.c_str());
   bool drawError = false;
   for (const auto& v : views)

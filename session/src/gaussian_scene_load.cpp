@@ -151,6 +151,8 @@ void GaussianSceneLoad::grow(const splats::GaussianCloud& batch, std::uint64_t t
   if (!growing_) {
     growing_ = std::make_shared<splats::GaussianCloud>();
     growing_->setShDegree(batch.shDegree);
+    growing_->colorSpace = batch.colorSpace;  // a glTF capture's may be linear
+    growing_->kernel = batch.kernel;
     set_->gaussians = growing_;
   }
   growing_->appendRange(batch, 0, batch.size());
