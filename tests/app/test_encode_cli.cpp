@@ -187,13 +187,14 @@ TEST_CASE("encode rejects bad options and unreadable inputs with a reason", "[ap
       runGhostspace({"encode", splats, "-o", scratch("x.qnv").string(), "--sh-full", "0.5"});
   CHECK(shFullAlone.exitCode == 2);
   CHECK_THAT(shFullAlone.err, Catch::Contains("give --sh-bits"));
-  // A glTF scene is read whole: no out-of-core encode of it (test_ooc_tileset_cli.cpp has
+  // A LAS cloud is read whole: no out-of-core encode of it (test_ooc_tileset_cli.cpp has
   // the formats read piecewise).
-  const auto glb = (gs::test::sourceDir() / "tests/data/splats/bunny_small.glb").string();
+  const auto las = (gs::test::sourceDir() / "tests/data/las/simple.las").string();
   auto splatMemory = runGhostspace(
-      {"encode", glb, "--tileset", scratch("splat_tileset").string(), "--memory", "64"});
+      {"encode", las, "--tileset", scratch("splat_tileset").string(), "--memory", "64"});
   CHECK(splatMemory.exitCode == 2);
-  CHECK_THAT(splatMemory.err, Catch::Contains("read piecewise are binary INRIA .ply"));
+  CHECK_THAT(splatMemory.err, Catch::Contains("read piecewise are binary INRIA .ply") &&
+                                  Catch::Contains("not a LAS point cloud"));
 }
 
 TEST_CASE("a Gaussian tileset encoded in shares merges to the unsplit run's files",
