@@ -169,8 +169,9 @@ void forEachGltfSplatPrimitive(
         local = glm::translate(
             local, glm::dvec3(node.translation[0], node.translation[1], node.translation[2]));
       if (node.rotation.size() == 4)
-        local = local * glm::mat4_cast(glm::normalize(glm::dquat(
-                            node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2])));
+        local =
+            local * glm::mat4_cast(glm::normalize(glm::dquat(node.rotation[3], node.rotation[0],
+                                                             node.rotation[1], node.rotation[2])));
       if (node.scale.size() == 3)
         local = glm::scale(local, glm::dvec3(node.scale[0], node.scale[1], node.scale[2]));
     }
@@ -271,7 +272,8 @@ struct Reader {
     cloud.kernel = Kernel::ellipse;
     haveColorSpace = true;
 
-    const std::vector<float> pos = gltf::readFloats(model, a.position, 3, name, "POSITION", kMaxSplats);
+    const std::vector<float> pos =
+        gltf::readFloats(model, a.position, 3, name, "POSITION", kMaxSplats);
     const std::size_t count = pos.size() / 3;
     if (count == 0) return;
     if (count > budget)
