@@ -143,6 +143,7 @@ void GaussianSceneLoad::fail(const std::string& error) {
   ++set_->revision;
   stage_ = Stage::done;
   if (transfer_) transfer_->cancel();
+  if (columns_) columns_->cancel();
   if (pipe_) pipe_->cancelled = true;
 }
 
@@ -196,7 +197,51 @@ void GaussianSceneLoad::decodeWhole(std::string bytes) {
   stage_ = Stage::sorting;
 }
 
+bool GaussianSceneLoad::pumpColumns() {
+  bool changed = false;
+  try {
+    const bool allowed = columns_->take([this](std::uint64_t n) { return loader_.grant(n); });
+    if (!allowed || !loader_.stopReason().empty()) {  // --snapshot-at: what came is drawn
+      columns_->cancel();
+      if (growing_) {
+        stopped_ = true;
+        arrived(growing_, false);
+      } else {
+        fail(url_ + ": " + (loader_.stopReason().empty() ? "stopped" : loader_.stopReason()));
+      }
+      return true;
+    }
+    splats::GaussianCloud batch;
+    if (columns_->next(batch, kRowsPerPump) > 0) {
+      grow(batch, columns_->size());
+      changed = true;
+    }
+    if (!columns_->finished()) return changed;
+    if (const std::string failure = columns_->failure(); !failure.empty()) {
+      fail(failure);
+      return true;
+    }
+    if (columns_->decoded() < columns_->size()) {
+      // Every byte came: either more splats than a pump decodes are waiting (the next
+      // pump goes on) or a column ended short, which finish() names.
+      if (changed) return true;
+    }
+    columns_->finish();
+    if (columns_->decoded() < columns_->size())
+      throw splats::FormatError(url_ + ": expected " + std::to_string(columns_->size()) +
+                                " splats, got " + std::to_string(columns_->decoded()));
+    arrived(growing_, false);
+    return true;
+  } catch (const splats::FormatError& e) {
+    fail(e.what());
+  } catch (const std::bad_alloc&) {
+    fail(url_ + ": out of memory");
+  }
+  return true;
+}
+
 bool GaussianSceneLoad::pumpTransfer() {
+  if (columns_) return pumpColumns();
   if (!transfer_) {
     std::string error;
     net::FetchRequest request = loader_.requestFor(url_, referrer_, error);
@@ -225,7 +270,27 @@ bool GaussianSceneLoad::pumpTransfer() {
                                                     : std::numeric_limits<std::uint64_t>::max() / 4;
       splats::GaussianRows found = splats::openGaussianRows(buffer_, url_, size);
       rows_ = std::move(found.decoder);
-      wholeRead_ = !rows_ && (!found.needMore || s.finished());
+      bool needMore = found.needMore;
+      // A scene read by columns (SPZ v4) while most of it is still to come: its columns
+      // are fetched side by side from here (its size must be known).
+      if (!rows_ && !s.finished() && s.resourceSize > 0 && !stopped) {
+        splats::GaussianColumns columns =
+            splats::openGaussianColumns(buffer_, url_, static_cast<std::uint64_t>(s.resourceSize));
+        std::string error;
+        const net::FetchRequest request = loader_.requestFor(url_, referrer_, error);
+        // The resource limit is the file's: a file past it is left to the transfer that
+        // reads it whole, which fails naming the limit.
+        if (columns.decoder && !request.url.empty() &&
+            request.maxBytes >= static_cast<std::uint64_t>(s.resourceSize)) {
+          transfer_->cancel();
+          columns_ = std::make_unique<GaussianColumnsFetch>(std::move(columns.decoder), request,
+                                                            buffer_, url_);
+          std::string().swap(buffer_);
+          return pumpColumns() || changed;
+        }
+        needMore |= columns.needMore;
+      }
+      wholeRead_ = !rows_ && (!needMore || s.finished());
     }
     if (rows_) {
       const std::uint64_t end = bufferStart_ + buffer_.size(), first = rows_->dataOffset();
@@ -370,7 +435,7 @@ net::StreamProgress GaussianSceneLoad::progress() const {
   p.url = url_;
   p.kind = net::StreamKind::splats;
   if (transfer_) {
-    const net::TransferStatus t = transfer_->status();
+    const net::TransferStatus t = columns_ ? columns_->status() : transfer_->status();
     p.bytes = t.received;
     p.expectedBytes = t.resourceSize >= 0 ? t.resourceSize : t.expected;
     p.bytesPerSecond = t.bytesPerSecond;

@@ -8,7 +8,9 @@
 //   (Loader::requestFor, up to LoaderOptions::maxResourceBytes); a binary .ply or a
 //   .splat is decoded row by row as its bytes arrive (splats::openGaussianRows) and drawn
 //   as it grows, a compressed .ply's vertex records too (without SH, the whole file read
-//   again once it arrived), the other formats once whole;
+//   again once it arrived), an SPZ v4 file's zstd streams and a GLB capture's accessors side by
+//   side by range requests, each splat decoded once all its records came
+//   (gaussian_columns_fetch.hpp), the other formats once whole;
 // then the whole scene is sorted by importance on a thread of its own, replaces the splats
 // drawn, and gets its level-of-detail tree on another thread, as a progressive stream's.
 // Private to the session.
@@ -21,6 +23,7 @@
 #include <utility>
 #include <vector>
 
+#include "gaussian_columns_fetch.hpp"
 #include "net/loader.hpp"
 #include "render/splat_renderer.hpp"
 #include "splats/gaussian.hpp"
@@ -77,6 +80,8 @@ class GaussianSceneLoad {
   void grow(const splats::GaussianCloud& batch, std::uint64_t total);
   /// Takes a remote scene's bytes: decodes its rows, or keeps them for a whole read.
   bool pumpTransfer();
+  /// Takes a remote scene's columns (columns_) and decodes the splats that came.
+  bool pumpColumns();
   /// The scene complete: sorts `cloud` (already sorted when `sorted`) on a thread of its own.
   void arrived(std::shared_ptr<const splats::GaussianCloud> cloud, bool sorted);
   /// `bytes`, a whole remote scene not read by rows, decoded and sorted.
@@ -97,6 +102,8 @@ class GaussianSceneLoad {
   std::string buffer_;
   std::uint64_t bufferStart_ = 0, rowsDecoded_ = 0;
   std::unique_ptr<splats::GaussianRowDecoder> rows_;
+  // Or its columns' transfers, once its head showed a scene read by columns.
+  std::unique_ptr<GaussianColumnsFetch> columns_;
   bool wholeRead_ = false;
   bool stopped_ = false;  // cut by --snapshot-at, drawn with what had arrived
   std::future<Sorted> sort_;

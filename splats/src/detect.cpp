@@ -151,6 +151,19 @@ GaussianCloud readGaussians(std::string_view bytes, std::string_view name,
   detail::fail(name, "not a Gaussian splatting scene");
 }
 
+GaussianColumns openGaussianColumns(std::string_view head, const std::string& name,
+                                    std::uint64_t fileBytes) {
+  if (fileBytes == 0) return {};
+  if (head.size() < 4) {
+    GaussianColumns found;
+    found.needMore =
+        std::string_view("NGSP").starts_with(head) || std::string_view("glTF").starts_with(head);
+    return found;
+  }
+  if (head.starts_with("glTF")) return openGltfColumns(head, name, fileBytes);
+  return openSpzColumns(head, name, fileBytes);
+}
+
 std::unique_ptr<GaussianBatchReader> openGaussianBatches(const std::string& path,
                                                          const SideFileReader& sideFiles) {
   const std::string head = detail::PieceFile(path).head();

@@ -6,6 +6,7 @@
 // the same attributes, world transforms and placement.
 #include <algorithm>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <set>
 #include <string>
@@ -61,50 +62,29 @@ struct SplatPrimitive {
   std::uint64_t first = 0, count = 0;
 };
 
-class GltfGaussianBatches final : public GaussianBatchReader {
+/// Thrown while a remote GLB's head is read when the bytes needed have not arrived.
+struct NeedMoreBytes {};
+
+/// A glTF scene read a batch at a time from a file (GaussianBatchReader), or, from a remote
+/// GLB's head, by columns (GaussianColumnDecoder: one column per accessor of its one splat
+/// primitive, the elements of each read as they arrive).
+class GltfGaussianBatches final : public GaussianBatchReader, public GaussianColumnDecoder {
  public:
   explicit GltfGaussianBatches(const std::string& path)
-      : path_(path), file_(std::make_shared<detail::PieceFile>(path)) {
-    std::string json;
-    std::uint64_t binOffset = 0, binBytes = 0;
-    const std::string head = file_->head(20);
-    const bool glb = head.size() >= 4 && head.starts_with("glTF");
-    if (glb) {
-      if (head.size() < 20)
-        fail(path, "GLB header needs 20 bytes, got " + std::to_string(head.size()));
-      if (base::loadLe<std::uint32_t>(head.data() + 4) != 2)
-        fail(path, "expected GLB version 2, got " +
-                       std::to_string(base::loadLe<std::uint32_t>(head.data() + 4)));
-      if (base::loadLe<std::uint32_t>(head.data() + 8) != file_->size())
-        fail(path, "GLB length " + std::to_string(base::loadLe<std::uint32_t>(head.data() + 8)) +
-                       " does not match the " + std::to_string(file_->size()) + " bytes present");
-      const std::uint64_t jsonBytes = base::loadLe<std::uint32_t>(head.data() + 12);
-      if (base::loadLe<std::uint32_t>(head.data() + 16) != 0x4E4F534Au)
-        fail(path, "GLB lacks a JSON chunk");
-      if (jsonBytes > kMaxJsonBytes || 20 + jsonBytes > file_->size())
-        fail(path, "GLB JSON chunk of " + std::to_string(jsonBytes) + " bytes does not fit");
-      json.resize(static_cast<std::size_t>(jsonBytes));
-      file_->read(20, json.data(), json.size());
-      const std::uint64_t at = 20 + jsonBytes;
-      if (file_->size() > at && file_->size() < at + 8) fail(path, "GLB chunk header truncated");
-      if (file_->size() >= at + 8) {
-        char chunk[8];
-        file_->read(at, chunk, 8);
-        binBytes = base::loadLe<std::uint32_t>(chunk);
-        binOffset = at + 8;
-        if (base::loadLe<std::uint32_t>(chunk + 4) != 0x004E4942u ||
-            binBytes > file_->size() - binOffset)
-          fail(path, "GLB BIN chunk runs past the end of the file");
-      }
-    } else {
-      if (file_->size() > kMaxJsonBytes) fail(path, "glTF JSON larger than 64 MiB");
-      json = file_->head(static_cast<std::size_t>(kMaxJsonBytes));
-    }
-    try {
-      open(json, glb, binOffset, binBytes);
-    } catch (const gltf::Error& e) {
-      throw FormatError(e.what());
-    }
+      : path_(path), file_(std::make_shared<detail::PieceFile>(path)), fileBytes_(file_->size()) {
+    openBytes([this](std::uint64_t at, char* dst, std::size_t n) { file_->read(at, dst, n); });
+  }
+  /// A remote GLB of `fileBytes` bytes from its first bytes `head`: NeedMoreBytes until they
+  /// hold its header and JSON chunk; NotPiecewiseError for what is not read by columns.
+  GltfGaussianBatches(const std::string& name, std::string_view head, std::uint64_t fileBytes)
+      : path_(name), fileBytes_(fileBytes), remote_(true) {
+    if (!head.starts_with("glTF"))
+      throw NotPiecewiseError(name + ": only a GLB is read by columns");
+    openBytes([head](std::uint64_t at, char* dst, std::size_t n) {
+      if (at > head.size() || n > head.size() - at) throw NeedMoreBytes{};
+      std::copy_n(head.data() + at, n, dst);
+    });
+    planColumns();
   }
   std::uint64_t size() const override { return total_; }
   int shDegree() const override { return degree_; }
@@ -122,12 +102,100 @@ class GltfGaussianBatches final : public GaussianBatchReader {
                           to = std::min(next_ + n, p.first + p.count);
       if (from >= to) continue;
       place(p, from - p.first, static_cast<std::size_t>(to - from), batch,
-            static_cast<std::size_t>(from - next_));
+            static_cast<std::size_t>(from - next_), nullptr);
     }
     next_ += n;
     return n;
   }
   void rewind() override { next_ = 0; }
+  const std::vector<Column>& columns() const override { return columns_; }
+  void decode(const std::vector<const char*>& records, std::uint64_t first, std::size_t n,
+              GaussianCloud& batch) const override {
+    detail::checkRows(first, n, total_);
+    if (records.size() != columns_.size())
+      fail(path_, "expected " + std::to_string(columns_.size()) + " columns, got " +
+                      std::to_string(records.size()));
+    batch = GaussianCloud{};
+    detail::allocate(batch, n, degree_);
+    batch.colorSpace = colorSpace_;
+    batch.kernel = Kernel::ellipse;
+    place(primitives_.front(), first, n, batch, 0, &records);
+  }
+
+ private:
+  using ReadAt = std::function<void(std::uint64_t, char*, std::size_t)>;
+  /// The GLB's or .gltf's JSON read through `readAt` (bytes at an offset of the file),
+  /// then open().
+  void openBytes(const ReadAt& readAt) {
+    const std::string& path = path_;
+    std::string json;
+    std::uint64_t binOffset = 0, binBytes = 0;
+    std::string head(static_cast<std::size_t>(std::min<std::uint64_t>(20, fileBytes_)), '\0');
+    readAt(0, head.data(), head.size());
+    const bool glb = head.size() >= 4 && head.starts_with("glTF");
+    if (glb) {
+      if (head.size() < 20)
+        fail(path, "GLB header needs 20 bytes, got " + std::to_string(head.size()));
+      if (base::loadLe<std::uint32_t>(head.data() + 4) != 2)
+        fail(path, "expected GLB version 2, got " +
+                       std::to_string(base::loadLe<std::uint32_t>(head.data() + 4)));
+      if (base::loadLe<std::uint32_t>(head.data() + 8) != fileBytes_)
+        fail(path, "GLB length " + std::to_string(base::loadLe<std::uint32_t>(head.data() + 8)) +
+                       " does not match the " + std::to_string(fileBytes_) + " bytes present");
+      const std::uint64_t jsonBytes = base::loadLe<std::uint32_t>(head.data() + 12);
+      if (base::loadLe<std::uint32_t>(head.data() + 16) != 0x4E4F534Au)
+        fail(path, "GLB lacks a JSON chunk");
+      if (jsonBytes > kMaxJsonBytes || 20 + jsonBytes > fileBytes_)
+        fail(path, "GLB JSON chunk of " + std::to_string(jsonBytes) + " bytes does not fit");
+      // A remote head: a JSON chunk past 1 MiB is read with the whole file instead.
+      if (remote_ && jsonBytes > (std::uint64_t{1} << 20))
+        throw NotPiecewiseError(path + ": a GLB JSON chunk past 1 MiB is not read by columns");
+      json.resize(static_cast<std::size_t>(jsonBytes));
+      readAt(20, json.data(), json.size());
+      const std::uint64_t at = 20 + jsonBytes;
+      if (fileBytes_ > at && fileBytes_ < at + 8) fail(path, "GLB chunk header truncated");
+      if (fileBytes_ >= at + 8) {
+        char chunk[8];
+        readAt(at, chunk, 8);
+        binBytes = base::loadLe<std::uint32_t>(chunk);
+        binOffset = at + 8;
+        if (base::loadLe<std::uint32_t>(chunk + 4) != 0x004E4942u ||
+            binBytes > fileBytes_ - binOffset)
+          fail(path, "GLB BIN chunk runs past the end of the file");
+      }
+    } else {
+      if (fileBytes_ > kMaxJsonBytes) fail(path, "glTF JSON larger than 64 MiB");
+      json = file_->head(static_cast<std::size_t>(kMaxJsonBytes));
+    }
+    try {
+      open(json, glb, binOffset, binBytes);
+    } catch (const gltf::Error& e) {
+      throw FormatError(e.what());
+    }
+  }
+  /// The columns of a remote GLB (remote_): one splat primitive instance whose accessors
+  /// lie tightly packed in the BIN chunk, each read by its own range (COLOR_0 only where
+  /// it is the colour); else NotPiecewiseError.
+  void planColumns() {
+    const auto refuse = [&](const std::string& why) {
+      throw NotPiecewiseError(path_ + ": not read by columns: " + why);
+    };
+    if (primitives_.size() != 1) refuse(std::to_string(primitives_.size()) + " splat primitives");
+    const SplatPrimitive& p = primitives_.front();
+    for (const PieceAccessor* a : accessorsOf(p)) {
+      const BufferSource& s = sources_[static_cast<std::size_t>(a->buffer)];
+      if (s.memory) refuse("an accessor in a data: buffer");
+      if (a->stride != a->elementBytes) refuse("an interleaved accessor");
+      columns_.push_back(
+          Column{s.offset + a->offset, a->count * a->elementBytes, a->elementBytes, false});
+    }
+  }
+  /// The accessors of `p` in the order of its columns.
+  static std::vector<const PieceAccessor*> accessorsOf(const SplatPrimitive& p) {
+    std::vector<const PieceAccessor*> all{&p.position, &p.rotation, &p.scale, &p.opacity, &p.color};
+    for (const PieceAccessor& r : p.rest) all.push_back(&r);
+    return all;
+  }
 
  private:
   /// The JSON parsed with its file buffers emptied, the buffers' sources found, and the
@@ -164,7 +232,7 @@ class GltfGaussianBatches final : public GaussianBatchReader {
       }
     }
     model_ = gltf::load(doc.dump(), path_, nullptr);
-    std::uint64_t budget = file_->size();
+    std::uint64_t budget = fileBytes_;
     std::set<std::string> counted;
     for (std::size_t i = 0; i < files.size(); ++i) {
       const auto& [byteLength, uri] = files[i];
@@ -179,6 +247,8 @@ class GltfGaussianBatches final : public GaussianBatchReader {
         s.file = file_;
         s.offset = binOffset;
       } else {
+        // A remote GLB never reads local files: one with buffer files is read whole.
+        if (remote_) throw NotPiecewiseError(path_ + ": not read by columns: a buffer file");
         const std::string relative = base::percentDecode(uri);
         if (relative.empty() || relative.find("..") != std::string::npos ||
             relative.find(':') != std::string::npos || relative.front() == '/')
@@ -284,15 +354,19 @@ class GltfGaussianBatches final : public GaussianBatchReader {
     return p;
   }
 
-  /// Elements [from, from + n) of `a` as floats, `a.components` each.
-  void floats(const PieceAccessor& a, std::uint64_t from, std::size_t n, std::vector<float>& out) {
+  /// Elements [from, from + n) of `a` as floats, `a.components` each: from `record` (its
+  /// element `from`, tightly packed) when given, else from its buffer.
+  void floats(const PieceAccessor& a, std::uint64_t from, std::size_t n, std::vector<float>& out,
+              const char* record = nullptr) const {
     out.assign(n * static_cast<std::size_t>(a.components), 0.0f);
     if (n == 0) return;
     const BufferSource& s = sources_[static_cast<std::size_t>(a.buffer)];
     const std::size_t bytes = (n - 1) * a.stride + a.elementBytes;
     const std::uint64_t at = a.offset + from * a.stride;
     const unsigned char* data = nullptr;
-    if (s.memory) {
+    if (record) {
+      data = reinterpret_cast<const unsigned char*>(record);
+    } else if (s.memory) {
       data = s.memory->data() + at;
     } else {
       bytes_.resize(bytes);
@@ -306,21 +380,24 @@ class GltfGaussianBatches final : public GaussianBatchReader {
             v.value(i, c);
   }
 
-  /// Splats [from, from + n) of primitive `p` into `batch` from splat `at` on.
+  /// Splats [from, from + n) of primitive `p` into `batch` from splat `at` on, from its
+  /// accessors' buffers, or from `records` (its columns' records of them) when given.
   void place(const SplatPrimitive& p, std::uint64_t from, std::size_t n, GaussianCloud& batch,
-             std::size_t at) {
-    floats(p.position, from, n, pos_);
-    floats(p.rotation, from, n, rot_);
-    floats(p.scale, from, n, scale_);
-    floats(p.opacity, from, n, opacity_);
-    floats(p.color, from, n, color_);
+             std::size_t at, const std::vector<const char*>* records) const {
+    const auto record = [&](std::size_t k) { return records ? (*records)[k] : nullptr; };
+    floats(p.position, from, n, pos_, record(0));
+    floats(p.rotation, from, n, rot_, record(1));
+    floats(p.scale, from, n, scale_, record(2));
+    floats(p.opacity, from, n, opacity_, record(3));
+    floats(p.color, from, n, color_, record(4));
     const auto cc = static_cast<std::size_t>(p.color.components);
     if (p.attributes.dc < 0)  // COLOR_0: the DC coefficient of its red, green and blue
       for (std::size_t i = 0; i < n; ++i)
         for (std::size_t k = 0; k < 3; ++k)
           color_[i * cc + k] = detail::dcOfColor(color_[i * cc + k]);
     rest_.resize(p.rest.size());
-    for (std::size_t k = 0; k < p.rest.size(); ++k) floats(p.rest[k], from, n, rest_[k]);
+    for (std::size_t k = 0; k < p.rest.size(); ++k)
+      floats(p.rest[k], from, n, rest_[k], record(5 + k));
     std::vector<const float*> restAt(p.rest.size());
     for (std::size_t i = 0; i < n; ++i) {
       for (std::size_t k = 0; k < p.rest.size(); ++k) restAt[k] = rest_[k].data() + i * 3;
@@ -330,22 +407,40 @@ class GltfGaussianBatches final : public GaussianBatchReader {
   }
 
   std::string path_;
-  std::shared_ptr<detail::PieceFile> file_;
+  std::shared_ptr<detail::PieceFile> file_;  // null for a remote GLB's head
+  std::uint64_t fileBytes_ = 0;
+  bool remote_ = false;
+  std::vector<Column> columns_;  // a remote GLB's (planColumns)
   tinygltf::Model model_;
   std::vector<BufferSource> sources_;
   std::vector<SplatPrimitive> primitives_;
   std::uint64_t total_ = 0, next_ = 0;
   int degree_ = 0;
   ColorSpace colorSpace_ = ColorSpace::srgb;
-  std::vector<char> bytes_;
-  std::vector<float> pos_, rot_, scale_, opacity_, color_;
-  std::vector<std::vector<float>> rest_;
+  // Scratch of one batch (mutable: decode() is const, called on one thread at a time).
+  mutable std::vector<char> bytes_;
+  mutable std::vector<float> pos_, rot_, scale_, opacity_, color_;
+  mutable std::vector<std::vector<float>> rest_;
 };
 
 }  // namespace
 
 std::unique_ptr<GaussianBatchReader> openGltfGaussianBatches(const std::string& path) {
   return std::make_unique<GltfGaussianBatches>(path);
+}
+
+GaussianColumns openGltfColumns(std::string_view head, const std::string& name,
+                                std::uint64_t fileBytes) {
+  GaussianColumns found;
+  try {
+    found.decoder = std::make_unique<GltfGaussianBatches>(name, head, fileBytes);
+  } catch (const NeedMoreBytes&) {
+    found.needMore = true;
+  } catch (const NotPiecewiseError&) {
+  } catch (const gltf::Error& e) {
+    throw FormatError(e.what());
+  }
+  return found;
 }
 
 }  // namespace gs::splats

@@ -510,7 +510,61 @@ class SpzBatches final : public GaussianBatchReader {
   std::uint64_t next_ = 0;
 };
 
+/// An SPZ v4 file read by columns: one per zstd stream.
+class SpzColumns final : public GaussianColumnDecoder {
+ public:
+  explicit SpzColumns(const V4Layout& v4) : h_(v4.h) {
+    const auto bytes = splatBytes(h_);
+    for (unsigned k = 0; k < v4.streams; ++k)
+      columns_.push_back(Column{v4.offset[k], v4.compressed[k], bytes[k], true});
+  }
+  const std::vector<Column>& columns() const override { return columns_; }
+  std::uint64_t size() const override { return h_.count; }
+  int shDegree() const override { return std::min(h_.degree, kMaxShDegree); }
+  void decode(const std::vector<const char*>& records, std::uint64_t first, std::size_t n,
+              GaussianCloud& batch) const override {
+    detail::checkRows(first, n, h_.count);
+    static const char kNone = 0;  // the SH column of degree 0: none, never read
+    std::array<const char*, 6> at{};
+    at.fill(&kNone);
+    for (std::size_t k = 0; k < columns_.size() && k < records.size(); ++k) at[k] = records[k];
+    batch = GaussianCloud{};
+    detail::allocate(batch, n, shDegree());
+    splats::decode(h_, at, n, batch);
+  }
+
+ private:
+  Header h_;
+  std::vector<Column> columns_;
+};
+
 }  // namespace
+
+GaussianColumns openSpzColumns(std::string_view head, const std::string& name,
+                               std::uint64_t fileBytes) {
+  GaussianColumns found;
+  if (head.size() < 4 || base::loadLe<std::uint32_t>(head.data()) != kMagic) return found;
+  // The header and the table of contents first (a table said to lie further in than
+  // 1 MiB: read whole instead of waiting for it).
+  const std::uint64_t need = head.size() < 32 ? 32
+                                              : base::loadLe<std::uint32_t>(head.data() + 16) +
+                                                    static_cast<std::uint8_t>(head[15]) * 16ull;
+  if (need > (std::uint64_t{1} << 20)) return found;
+  if (head.size() < need && need <= fileBytes) {
+    found.needMore = true;
+    return found;
+  }
+  const V4Layout v4 = parseV4(
+      [&](std::uint64_t offset, std::size_t n) {
+        if (offset > head.size() || n > head.size() - offset)
+          fail(name, "expected an SPZ table of contents at byte " + std::to_string(offset) +
+                         ", got " + std::to_string(head.size()) + " bytes");
+        return std::string(head.substr(static_cast<std::size_t>(offset), n));
+      },
+      fileBytes, name);
+  found.decoder = std::make_unique<SpzColumns>(v4);
+  return found;
+}
 
 GaussianCloud readSpzGaussians(std::string_view bytes, std::string_view name) {
   if (base::isGzip(bytes)) return readLegacy(bytes, name);

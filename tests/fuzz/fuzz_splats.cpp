@@ -5,12 +5,15 @@
 // encode's reader: binary and compressed PLY, .splat, SPZ v2-v4 and SOG bundles, by
 // content) from a file named .ply or .splat by the input's size, in batches of 97
 // splats, twice (rewound between), and as bytes arriving over HTTP
-// (splats::openGaussianRows, the rows decoded from the bytes). splats::gltfDrawsOnlyGaussians
+// (splats::openGaussianRows, the rows decoded from the bytes; splats::openGaussianColumns,
+// the columns fed a piece at a time). splats::gltfDrawsOnlyGaussians
 // (a glTF capture or a world) reads them too.
 #include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
+#include <memory>
+#include <vector>
 
 #include "fuzz_support.hpp"
 #include "splats/readers.hpp"
@@ -69,6 +72,48 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(97, whole - first));
       d.decode(bytes.data() + d.dataOffset() + first * d.rowBytes(), first, n, batch);
     }
+  });
+  // And read by columns as over HTTP (splats::openGaussianColumns: SPZ v4), each column fed
+  // in pieces of 997 bytes, the splats decoded 97 at a time as their records come.
+  gs::fuzz::expectingErrors([&] {
+    const gs::splats::GaussianColumns found = gs::splats::openGaussianColumns(bytes, name, size);
+    if (!found.decoder) return;
+    const gs::splats::GaussianColumnDecoder& d = *found.decoder;
+    std::vector<std::unique_ptr<gs::splats::ColumnRecords>> columns;
+    for (const auto& c : d.columns()) {
+      columns.push_back(std::make_unique<gs::splats::ColumnRecords>(
+          c, d.size(), name, static_cast<int>(columns.size())));
+      if (c.offset > size || c.bytes > size - c.offset) return;
+    }
+    gs::splats::GaussianCloud batch;
+    std::uint64_t decoded = 0;
+    for (std::uint64_t at = 0;; at += 997) {
+      bool more = false;
+      for (std::size_t k = 0; k < columns.size(); ++k) {
+        const auto& c = d.columns()[k];
+        if (at >= c.bytes) continue;
+        const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(997, c.bytes - at));
+        columns[k]->feed(bytes.substr(static_cast<std::size_t>(c.offset + at), n));
+        more = true;
+      }
+      // 97 splats a step while bytes come, then the rest 65,536 at a time.
+      const std::uint64_t step = more ? 97 : 65536;
+      std::uint64_t ready = std::min(decoded + step, d.size());
+      for (const auto& c : columns) {
+        c->decodeUpTo(ready);
+        ready = std::min(ready, c->first() + c->available());
+      }
+      if (ready > decoded) {
+        std::vector<const char*> records;
+        for (const auto& c : columns) records.push_back(c->data());
+        d.decode(records, decoded, static_cast<std::size_t>(ready - decoded), batch);
+        for (const auto& c : columns) c->drop(ready - decoded);
+        decoded = ready;
+      } else if (!more) {
+        break;
+      }
+    }
+    for (const auto& c : columns) c->finish();
   });
   return 0;
 }

@@ -3,14 +3,18 @@
 // splats, bit for bit, in either byte order, for .splat, .compressed.ply, SPZ (v3 gzip in
 // one or two members, v4 zstd) and SOG (bundle and meta.json); the frame built over
 // batches is gaussianFrame's; the formats not read piecewise are refused by name, and
-// damaged compressed data is an error naming the file.
+// damaged compressed data is an error naming the file. An SPZ v4 file read by columns, as
+// a remote one is (openGaussianColumns), gives the whole reader's splats for every piece
+// size and names the stream that is damaged.
 #include <catch2/catch.hpp>
 
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "base/byte_order.hpp"
 #include "base/gzip.hpp"
@@ -285,4 +289,137 @@ TEST_CASE("openGaussianBatches reports damaged SPZ and compressed PLY data, nami
       openGaussianBatches(
           write("cut.compressed.ply", packed.substr(0, packed.size() - 100)).string()),
       Catch::Contains("cut.compressed.ply: expected"));
+}
+
+namespace {
+
+// The splats of `bytes` read by columns as a remote scene is (openGaussianColumns): each
+// column fed `piece` bytes at a time, the splats decoded at most `step` at a time as their
+// records come, then each column finished.
+GaussianCloud readByColumns(const std::string& bytes, const std::string& name, std::size_t piece,
+                            std::size_t step) {
+  const GaussianColumns found = openGaussianColumns(bytes, name, bytes.size());
+  REQUIRE(found.decoder);
+  const GaussianColumnDecoder& d = *found.decoder;
+  std::vector<std::unique_ptr<ColumnRecords>> columns;
+  for (const auto& c : d.columns())
+    columns.push_back(
+        std::make_unique<ColumnRecords>(c, d.size(), name, static_cast<int>(columns.size())));
+  GaussianCloud all, batch;
+  all.shDegree = d.shDegree();
+  for (std::uint64_t at = 0; all.size() < d.size(); at += piece) {
+    for (std::size_t k = 0; k < columns.size(); ++k) {
+      const auto& c = d.columns()[k];
+      if (at < c.bytes)
+        columns[k]->feed(std::string_view(bytes).substr(
+            c.offset + at, std::min<std::uint64_t>(piece, c.bytes - at)));
+    }
+    std::uint64_t ready = std::min<std::uint64_t>(all.size() + step, d.size());
+    for (const auto& c : columns) {
+      c->decodeUpTo(ready);
+      CHECK(c->first() == all.size());
+      ready = std::min(ready, c->first() + c->available());
+    }
+    if (ready == all.size()) continue;
+    std::vector<const char*> records;
+    for (const auto& c : columns) records.push_back(c->data());
+    d.decode(records, all.size(), ready - all.size(), batch);
+    REQUIRE(batch.size() == ready - all.size());
+    for (const auto& c : columns) c->drop(batch.size());
+    all.appendRange(batch, 0, batch.size());
+  }
+  for (const auto& c : columns) c->finish();
+  return all;
+}
+
+}  // namespace
+
+TEST_CASE("an SPZ v4 file read by columns gives the whole reader's splats", "[splats]") {
+  const fs::path spz = splatData("bunny_small.spz");
+  const std::string bytes = gs::test::readBytes(spz);
+  const GaussianCloud whole = readSpzGaussians(bytes, spz.string());
+  const GaussianColumns found = openGaussianColumns(bytes, "a.spz", bytes.size());
+  REQUIRE(found.decoder);
+  CHECK(found.decoder->columns().size() == 6);  // SH band 1: six zstd streams
+  CHECK(found.decoder->size() == 3000);
+  CHECK(found.decoder->shDegree() == 1);
+  for (const auto& [piece, step] : {std::pair<std::size_t, std::size_t>{1, 7},
+                                    {333, 97},
+                                    {4096, 1000},
+                                    {bytes.size(), 100000}}) {
+    INFO("pieces of " << piece << ", splats " << step << " at a time");
+    checkSameBits(readByColumns(bytes, "a.spz", piece, step), whole);
+  }
+  // Its head: more is needed until the table of contents came; other scenes are not read
+  // by columns; nor is an SPZ whose size is not known.
+  CHECK(openGaussianColumns(bytes.substr(0, 2), "a.spz", bytes.size()).needMore);
+  CHECK(openGaussianColumns(bytes.substr(0, 40), "a.spz", bytes.size()).needMore);
+  CHECK_FALSE(openGaussianColumns(bytes.substr(0, 40), "a.spz", bytes.size()).decoder);
+  CHECK_FALSE(openGaussianColumns(bytes, "a.spz", 0).decoder);
+  for (const char* other : {"bunny_small_v3.spz", "bunny_small.ply", "bunny_small.sog"}) {
+    INFO(other);
+    const std::string head = gs::test::readBytes(splatData(other));
+    const GaussianColumns none = openGaussianColumns(head, other, head.size());
+    CHECK_FALSE(none.decoder);
+    CHECK_FALSE(none.needMore);
+  }
+}
+
+TEST_CASE("an SPZ v4 file read by columns reports damage naming the file and stream", "[splats]") {
+  const std::string bytes = gs::test::readBytes(splatData("bunny_small.spz"));
+  const std::uint32_t toc = gs::base::loadLe<std::uint32_t>(bytes.data() + 16);
+  const std::size_t streams = static_cast<std::uint8_t>(bytes[15]);
+  // A stream said to reach past the file's end.
+  CHECK_THROWS_WITH(openGaussianColumns(bytes, "short.spz", bytes.size() - 10),
+                    Catch::Contains("short.spz: stream 5"));
+  // The first stream's frame magic damaged.
+  std::string bad = bytes;
+  bad[toc + streams * 16] ^= 0x55;
+  CHECK_THROWS_WITH(readByColumns(bad, "bad.spz", 4096, 1000),
+                    Catch::Contains("bad.spz: stream 0: zstd:"));
+  // The last stream without its last bytes: the splats before it decode, then finish()
+  // says the stream is short.
+  const GaussianColumns found = openGaussianColumns(bytes, "cut.spz", bytes.size());
+  const auto& last = found.decoder->columns().back();
+  ColumnRecords records(last, found.decoder->size(), "cut.spz", 5);
+  records.feed(std::string_view(bytes).substr(last.offset, last.bytes - 4));
+  records.decodeUpTo(found.decoder->size());
+  CHECK(records.available() < found.decoder->size());
+  CHECK_THROWS_WITH(records.finish(), Catch::Contains("cut.spz: stream 5: expected"));
+  // More bytes than the column holds.
+  ColumnRecords first(found.decoder->columns().front(), found.decoder->size(), "over.spz", 0);
+  CHECK_THROWS_WITH(first.feed(std::string(found.decoder->columns().front().bytes + 1, 'x')),
+                    Catch::Contains("over.spz: column 0: more than"));
+}
+
+TEST_CASE("a GLB capture read by columns gives the whole reader's splats", "[splats]") {
+  const fs::path glb = splatData("bunny_small.glb");
+  const std::string bytes = gs::test::readBytes(glb);
+  const GaussianCloud whole = readGltfGaussians(bytes, glb.string(), {});
+  const GaussianColumns found = openGaussianColumns(bytes, "a.glb", bytes.size());
+  REQUIRE(found.decoder);
+  // POSITION, ROTATION, SCALE, OPACITY, the DC and band 1's three: its COLOR_0, which the
+  // DC stands in for, is not fetched.
+  const auto& columns = found.decoder->columns();
+  REQUIRE(columns.size() == 8);
+  CHECK(columns[0].recordBytes == 12);
+  CHECK(columns[3].recordBytes == 4);
+  std::uint64_t fetched = 0;
+  for (const auto& c : columns) fetched += c.bytes;
+  CHECK(fetched == 3000 * (12 + 16 + 12 + 4 + 12 + 3 * 12));
+  for (const auto& [piece, step] :
+       {std::pair<std::size_t, std::size_t>{5, 3}, {4096, 1000}, {bytes.size(), 100000}}) {
+    INFO("pieces of " << piece << ", splats " << step << " at a time");
+    const GaussianCloud read = readByColumns(bytes, "a.glb", piece, step);
+    checkSameBits(read, whole);
+    CHECK(read.kernel == whole.kernel);
+  }
+  // More is needed until the JSON chunk and the BIN chunk's header came.
+  const std::uint32_t json = gs::base::loadLe<std::uint32_t>(bytes.data() + 12);
+  CHECK(openGaussianColumns(bytes.substr(0, 3), "a.glb", bytes.size()).needMore);
+  CHECK(openGaussianColumns(bytes.substr(0, 20 + json), "a.glb", bytes.size()).needMore);
+  CHECK(openGaussianColumns(bytes.substr(0, 28 + json), "a.glb", bytes.size()).decoder);
+  // A GLB that says another length is refused as the batch reader refuses it.
+  CHECK_THROWS_WITH(openGaussianColumns(bytes, "long.glb", bytes.size() + 4),
+                    Catch::Contains("long.glb: GLB length"));
 }

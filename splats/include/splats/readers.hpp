@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "splats/gaussian.hpp"
 
@@ -122,6 +123,103 @@ struct GaussianRows {
 /// `fileBytes`).
 GaussianRows openGaussianRows(std::string_view head, const std::string& name,
                               std::uint64_t fileBytes);
+
+/// A scene whose attributes lie in columns of its file, each a run of bytes that decodes,
+/// in order, to one fixed-size record per splat (an SPZ v4 file's zstd streams, a GLB's
+/// accessors). Fetched
+/// column by column side by side (one HTTP range request each), its splats are decoded as
+/// soon as every column's records for them arrived, with all they hold: a remote SPZ drawn
+/// while it arrives (session/src/gaussian_columns_fetch.hpp; docs/splats.md, "Opening a
+/// scene").
+class GaussianColumnDecoder {
+ public:
+  /// Where one column lies and what it decodes to.
+  struct Column {
+    std::uint64_t offset = 0;     // its first byte in the file
+    std::uint64_t bytes = 0;      // its bytes in the file (>= 1)
+    std::size_t recordBytes = 0;  // one splat's record once decoded (>= 1)
+    bool zstd = false;            // one zstd frame of the records; else the records themselves
+  };
+  virtual ~GaussianColumnDecoder() = default;
+  /// The columns, each within the file; at most 16.
+  virtual const std::vector<Column>& columns() const = 0;
+  /// The scene's splats (1..kMaxSplats).
+  virtual std::uint64_t size() const = 0;
+  /// SH degree (0..3).
+  virtual int shDegree() const = 0;
+  /// Decodes splats `first` to first + n - 1 into `batch` (resized to them) from
+  /// `records[k]`, column k's n records of them: exactly the whole-file reader's splats.
+  /// Throws FormatError for splats past size().
+  virtual void decode(const std::vector<const char*>& records, std::uint64_t first, std::size_t n,
+                      GaussianCloud& batch) const = 0;
+};
+
+/// What openGaussianColumns found in a scene's first bytes.
+struct GaussianColumns {
+  /// The decoder, or null: not (yet) known to be a column format.
+  std::unique_ptr<GaussianColumnDecoder> decoder;
+  /// With no decoder: true when more bytes may still show one (the head of an SPZ v4 file
+  /// or its table of contents, a GLB's JSON chunk, has not arrived); false when the scene
+  /// is not read by columns.
+  bool needMore = false;
+};
+
+/// The column decoder of the scene `name` whose first bytes are `head` and whose size is
+/// `fileBytes` (0 when not known: then none): an SPZ v4 file (its header and table of
+/// contents in `head`), or a GLB of one KHR_gaussian_splatting primitive instance whose
+/// accessors lie tightly packed in its BIN chunk (its header and JSON chunk in `head`; one
+/// column per attribute read, COLOR_0 only where it is the colour; a glTF with buffer
+/// files, data: buffers, interleaved accessors or more primitives is read whole). Throws
+/// FormatError naming `name` for what the whole-file readers refuse in the header, table
+/// of contents or JSON (a stream outside the file, a stream of the wrong size for its
+/// splats, an accessor past its buffer).
+GaussianColumns openGaussianColumns(std::string_view head, const std::string& name,
+                                    std::uint64_t fileBytes);
+
+/// One column's bytes turned, as they arrive in order, into its records (a zstd column
+/// decompressed forward): what GaussianColumnDecoder::decode reads. Memory: the compressed
+/// bytes not yet decompressed, and the records decompressed ahead of the last
+/// decodeUpTo's target.
+class ColumnRecords {
+ public:
+  /// Column `index` of `column` for `splats` splats of the scene `name` (named by errors).
+  ColumnRecords(const GaussianColumnDecoder::Column& column, std::uint64_t splats, std::string name,
+                int index);
+  ~ColumnRecords();
+  ColumnRecords(const ColumnRecords&) = delete;
+  ColumnRecords& operator=(const ColumnRecords&) = delete;
+  /// Takes the column's next bytes (FormatError past its size in the file).
+  void feed(std::string_view bytes);
+  /// Decodes the bytes fed so far until records up to (not including) `record`, counted
+  /// from the column's first, are available, or the bytes fed run out. FormatError for
+  /// damaged data or more records than the scene's splats.
+  void decodeUpTo(std::uint64_t record);
+  /// The first record held (records before it were dropped) and how many follow it.
+  std::uint64_t first() const { return first_; }
+  std::uint64_t available() const { return records_.size() / recordBytes_; }
+  /// Record first(), followed by available() - 1 more.
+  const char* data() const { return records_.data(); }
+  /// Forgets the first `n` records held (n <= available()).
+  void drop(std::uint64_t n);
+  /// Whether all its bytes were fed.
+  bool fed() const { return fed_ == column_.bytes; }
+  /// Once fed() and decoded to the end: FormatError naming the scene and column unless its
+  /// bytes decoded to exactly one record per splat (a zstd frame complete, nothing after).
+  void finish();
+
+ private:
+  struct Zstd;
+  GaussianColumnDecoder::Column column_;
+  std::uint64_t splats_;
+  std::string name_;
+  int index_;
+  std::size_t recordBytes_;
+  std::uint64_t fed_ = 0, first_ = 0, produced_ = 0;  // produced_: bytes of records made
+  std::string pending_;                               // bytes fed, not yet decompressed
+  std::string records_;  // whole records from first_, and a record's bytes begun after them
+  std::unique_ptr<Zstd> zstd_;
+  std::size_t hint_ = 1;  // ZSTD_decompressStream's last return: 0 when the frame ended
+};
 
 /// openGaussianBatches's error for a scene of a format it does not read piecewise (which
 /// the whole-file readers do read).

@@ -1,0 +1,139 @@
+// A remote scene read by columns, side by side (gaussian_columns_fetch.hpp).
+#include "gaussian_columns_fetch.hpp"
+
+#include <algorithm>
+#include <limits>
+
+namespace gs::session::detail {
+
+struct GaussianColumnsFetch::Column {
+  std::unique_ptr<net::Transfer> transfer;  // null when the head held the whole column
+  splats::ColumnRecords records;
+  std::string bytes;        // taken from the transfer, not yet fed
+  std::uint64_t taken = 0;  // bytes taken from the transfer
+  Column(const splats::GaussianColumnDecoder::Column& c, std::uint64_t splats,
+         const std::string& name, int index)
+      : records(c, splats, name, index) {}
+};
+
+GaussianColumnsFetch::GaussianColumnsFetch(std::unique_ptr<splats::GaussianColumnDecoder> decoder,
+                                           const net::FetchRequest& request, std::string_view head,
+                                           std::string name)
+    : decoder_(std::move(decoder)), name_(std::move(name)), headBytes_(head.size()) {
+  const auto& columns = decoder_->columns();
+  // A column's bytes already in the head: they are fed, a range request fetches the rest.
+  const auto inHead = [&](const splats::GaussianColumnDecoder::Column& c) {
+    return c.offset >= head.size() ? 0 : std::min<std::uint64_t>(c.bytes, head.size() - c.offset);
+  };
+  // An emulated link's rate is shared in proportion to the bytes each fetches, so that
+  // every column ends when the whole file would have (and its splats come evenly).
+  std::uint64_t toFetch = 0;
+  for (const auto& c : columns) toFetch += c.bytes - inHead(c);
+  for (std::size_t k = 0; k < columns.size(); ++k) {
+    const auto& c = columns[k];
+    fileBytes_ = std::max(fileBytes_, c.offset + c.bytes);
+    auto column = std::make_unique<Column>(c, decoder_->size(), name_, static_cast<int>(k));
+    const std::uint64_t have = inHead(c);
+    if (have > 0)
+      column->records.feed(
+          head.substr(static_cast<std::size_t>(c.offset), static_cast<std::size_t>(have)));
+    if (have < c.bytes) {
+      net::FetchRequest r = request;
+      r.offset = c.offset + have;
+      r.length = c.bytes - have;
+      // (At least 4 KB/s: curl's pauses that hold a low rate must stay far below the
+      // stall timeout; a column that small adds little to the link's rate.)
+      if (r.maxRate > 0)
+        r.maxRate =
+            std::max(std::min(r.maxRate, 4096.0),
+                     r.maxRate * static_cast<double>(r.length) / static_cast<double>(toFetch));
+      column->transfer = net::startTransfer(std::move(r));
+    }
+    columns_.push_back(std::move(column));
+  }
+}
+
+GaussianColumnsFetch::~GaussianColumnsFetch() {
+  cancel();
+}
+
+void GaussianColumnsFetch::cancel() {
+  for (auto& c : columns_)
+    if (c->transfer) c->transfer->cancel();
+}
+
+bool GaussianColumnsFetch::take(const std::function<std::uint64_t(std::uint64_t)>& grant) {
+  bool allowed = true;
+  for (auto& c : columns_) {
+    if (!c->transfer) continue;
+    c->bytes.clear();
+    const std::uint64_t got = c->transfer->take(c->bytes);
+    c->taken += got;
+    const std::uint64_t granted = got > 0 ? grant(got) : 0;
+    if (granted < got) {
+      c->bytes.resize(static_cast<std::size_t>(granted));
+      allowed = false;
+    }
+    c->records.feed(c->bytes);
+  }
+  return allowed;
+}
+
+std::size_t GaussianColumnsFetch::next(splats::GaussianCloud& batch, std::size_t max) {
+  const std::uint64_t target = decoded_ + std::min<std::uint64_t>(max, decoder_->size() - decoded_);
+  std::uint64_t ready = target;
+  for (auto& c : columns_) {
+    c->records.decodeUpTo(target);
+    ready = std::min(ready, c->records.first() + c->records.available());
+  }
+  if (ready <= decoded_) return 0;
+  const auto n = static_cast<std::size_t>(ready - decoded_);
+  std::vector<const char*> at;
+  for (auto& c : columns_) at.push_back(c->records.data());
+  decoder_->decode(at, decoded_, n, batch);
+  for (auto& c : columns_) c->records.drop(n);
+  decoded_ = ready;
+  return n;
+}
+
+bool GaussianColumnsFetch::finished() const {
+  // Ended, and every byte it delivered taken (a transfer may end between take() and here).
+  return std::all_of(columns_.begin(), columns_.end(), [](const auto& c) {
+    if (!c->transfer) return true;
+    const net::TransferStatus s = c->transfer->status();
+    return s.finished() && s.received <= c->taken;
+  });
+}
+
+std::string GaussianColumnsFetch::failure() const {
+  for (const auto& c : columns_) {
+    if (!c->transfer) continue;
+    const net::TransferStatus s = c->transfer->status();
+    if (s.finished() && s.state != net::TransferState::done)
+      return s.error.empty() ? name_ + ": cancelled" : s.error;
+  }
+  return {};
+}
+
+void GaussianColumnsFetch::finish() {
+  for (auto& c : columns_) c->records.finish();
+}
+
+net::TransferStatus GaussianColumnsFetch::status() const {
+  net::TransferStatus t;
+  t.received = headBytes_;
+  t.resourceSize = static_cast<std::int64_t>(fileBytes_);
+  t.expected = t.resourceSize;
+  bool running = false;
+  for (const auto& c : columns_) {
+    if (!c->transfer) continue;
+    const net::TransferStatus s = c->transfer->status();
+    t.received += s.received;
+    t.bytesPerSecond += s.state == net::TransferState::running ? s.bytesPerSecond : 0.0;
+    running |= !s.finished();
+  }
+  t.state = running ? net::TransferState::running : net::TransferState::done;
+  return t;
+}
+
+}  // namespace gs::session::detail
