@@ -6,8 +6,21 @@
 
 namespace gs::session::detail {
 
+namespace {
+
+/// Records a column may hold and still be fetched first: four zstd blocks (128 KiB of
+/// records each). zstd gives a block's records only once all its bytes came, so a column
+/// of few blocks (an SPZ's alphas of up to 131,072 splats are one) fetched beside the
+/// others at their pace would hold every splat back until the end.
+constexpr std::uint64_t kEarlyRecordBytes = std::uint64_t{4} << 17;
+
+}  // namespace
+
 struct GaussianColumnsFetch::Column {
-  std::unique_ptr<net::Transfer> transfer;  // null when the head held the whole column
+  std::unique_ptr<net::Transfer> transfer;  // null until started, or when the head held it
+  net::FetchRequest request;                // its range, while it waits for its wave
+  bool waiting = false;
+  int wave = 0;  // 0: fetched first (a few zstd blocks), 1: once wave 0 came
   splats::ColumnRecords records;
   std::string bytes;        // taken from the transfer, not yet fed
   std::uint64_t taken = 0;  // bytes taken from the transfer
@@ -21,36 +34,59 @@ GaussianColumnsFetch::GaussianColumnsFetch(std::unique_ptr<splats::GaussianColum
                                            std::string name)
     : decoder_(std::move(decoder)), name_(std::move(name)), headBytes_(head.size()) {
   const auto& columns = decoder_->columns();
-  // A column's bytes already in the head: they are fed, a range request fetches the rest.
-  const auto inHead = [&](const splats::GaussianColumnDecoder::Column& c) {
-    return c.offset >= head.size() ? 0 : std::min<std::uint64_t>(c.bytes, head.size() - c.offset);
-  };
-  // An emulated link's rate is shared in proportion to the bytes each fetches, so that
-  // every column ends when the whole file would have (and its splats come evenly).
-  std::uint64_t toFetch = 0;
-  for (const auto& c : columns) toFetch += c.bytes - inHead(c);
+  bool early = false, late = false;
   for (std::size_t k = 0; k < columns.size(); ++k) {
     const auto& c = columns[k];
     fileBytes_ = std::max(fileBytes_, c.offset + c.bytes);
     auto column = std::make_unique<Column>(c, decoder_->size(), name_, static_cast<int>(k));
-    const std::uint64_t have = inHead(c);
+    // A column's bytes already in the head are fed; a range request fetches the rest.
+    const std::uint64_t have =
+        c.offset >= head.size() ? 0 : std::min<std::uint64_t>(c.bytes, head.size() - c.offset);
     if (have > 0)
       column->records.feed(
           head.substr(static_cast<std::size_t>(c.offset), static_cast<std::size_t>(have)));
     if (have < c.bytes) {
-      net::FetchRequest r = request;
-      r.offset = c.offset + have;
-      r.length = c.bytes - have;
-      // (At least 4 KB/s: curl's pauses that hold a low rate must stay far below the
-      // stall timeout; a column that small adds little to the link's rate.)
-      if (r.maxRate > 0)
-        r.maxRate =
-            std::max(std::min(r.maxRate, 4096.0),
-                     r.maxRate * static_cast<double>(r.length) / static_cast<double>(toFetch));
-      column->transfer = net::startTransfer(std::move(r));
+      column->request = request;
+      column->request.offset = c.offset + have;
+      column->request.length = c.bytes - have;
+      column->waiting = true;
+      column->wave = c.zstd && decoder_->size() * c.recordBytes <= kEarlyRecordBytes ? 0 : 1;
+      (column->wave == 0 ? early : late) = true;
     }
     columns_.push_back(std::move(column));
   }
+  // Both waves at once when one is empty.
+  if (!early || !late)
+    for (auto& c : columns_) c->wave = 0;
+  start(0);
+}
+
+void GaussianColumnsFetch::start(int wave) {
+  // An emulated link's rate is shared in proportion to the bytes each column of the wave
+  // fetches, so that they all end together (and their splats come evenly).
+  std::uint64_t toFetch = 0;
+  for (const auto& c : columns_)
+    if (c->waiting && c->wave == wave) toFetch += c->request.length;
+  for (auto& c : columns_) {
+    if (!c->waiting || c->wave != wave) continue;
+    net::FetchRequest r = c->request;
+    // (At least 4 KB/s: curl's pauses that hold a low rate must stay far below the stall
+    // timeout; a column that small adds little to the link's rate.)
+    if (r.maxRate > 0)
+      r.maxRate = std::max(std::min(r.maxRate, 4096.0), r.maxRate * static_cast<double>(r.length) /
+                                                            static_cast<double>(toFetch));
+    c->transfer = net::startTransfer(std::move(r));
+    c->waiting = false;
+  }
+  wave_ = wave;
+}
+
+bool GaussianColumnsFetch::ended(const Column& c) {
+  if (c.waiting) return false;
+  if (!c.transfer) return true;
+  // Ended, and every byte it delivered taken (a transfer may end between take() and here).
+  const net::TransferStatus s = c.transfer->status();
+  return s.finished() && s.received <= c.taken;
 }
 
 GaussianColumnsFetch::~GaussianColumnsFetch() {
@@ -76,6 +112,12 @@ bool GaussianColumnsFetch::take(const std::function<std::uint64_t(std::uint64_t)
     }
     c->records.feed(c->bytes);
   }
+  // The second wave once the first came whole (and did not fail: failure() says so).
+  if (allowed && wave_ == 0 &&
+      std::all_of(columns_.begin(), columns_.end(),
+                  [](const auto& c) { return c->wave != 0 || ended(*c); }) &&
+      failure().empty())
+    start(1);
   return allowed;
 }
 
@@ -97,12 +139,8 @@ std::size_t GaussianColumnsFetch::next(splats::GaussianCloud& batch, std::size_t
 }
 
 bool GaussianColumnsFetch::finished() const {
-  // Ended, and every byte it delivered taken (a transfer may end between take() and here).
-  return std::all_of(columns_.begin(), columns_.end(), [](const auto& c) {
-    if (!c->transfer) return true;
-    const net::TransferStatus s = c->transfer->status();
-    return s.finished() && s.received <= c->taken;
-  });
+  if (!failure().empty()) return true;
+  return std::all_of(columns_.begin(), columns_.end(), [](const auto& c) { return ended(*c); });
 }
 
 std::string GaussianColumnsFetch::failure() const {

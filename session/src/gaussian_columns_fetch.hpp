@@ -1,7 +1,9 @@
 // A remote Gaussian splatting scene read by columns (splats::GaussianColumnDecoder: an SPZ
-// v4 file's zstd streams, a GLB capture's accessors): one HTTP range request per column, side by
-// side, each column decoded as its bytes arrive, and the splats whose every record came handed over
-// in file order, with all they hold (docs/splats.md, "Opening a scene"). A server that ignores
+// v4 file's zstd streams, a GLB capture's accessors): one HTTP range request per column,
+// side by side, each column decoded as its bytes arrive, and the splats whose every record
+// came handed over in file order, with all they hold (docs/splats.md, "Opening a scene").
+// Columns of at most four zstd blocks of records come first (zstd gives a block's records
+// only once all its bytes came), then the others side by side. A server that ignores
 // ranges still works (each transfer drops the bytes before its column), at the cost of
 // reading the file up to each column. Private to the session (gaussian_scene_load.hpp).
 #pragma once
@@ -58,10 +60,16 @@ class GaussianColumnsFetch {
 
  private:
   struct Column;
+  /// Starts the transfers of wave `wave` (0: the columns of a few zstd blocks, fetched
+  /// first; 1: the others).
+  void start(int wave);
+  /// Whether `c`'s transfer ended and every byte it delivered was taken.
+  static bool ended(const Column& c);
   std::unique_ptr<splats::GaussianColumnDecoder> decoder_;
   std::string name_;
   std::vector<std::unique_ptr<Column>> columns_;
   std::uint64_t headBytes_ = 0, fileBytes_ = 0, decoded_ = 0;
+  int wave_ = 0;
 };
 
 }  // namespace gs::session::detail

@@ -203,6 +203,8 @@ bool GaussianSceneLoad::pumpColumns() {
     const bool allowed = columns_->take([this](std::uint64_t n) { return loader_.grant(n); });
     if (!allowed || !loader_.stopReason().empty()) {  // --snapshot-at: what came is drawn
       columns_->cancel();
+      splats::GaussianCloud batch;
+      while (columns_->next(batch, kRowsPerPump) > 0) grow(batch, columns_->size());
       if (growing_) {
         stopped_ = true;
         arrived(growing_, false);
