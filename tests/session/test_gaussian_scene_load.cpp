@@ -311,3 +311,28 @@ TEST_CASE("a GLB capture over HTTP is drawn while its accessors arrive side by s
   // unless the head already held it).
   CHECK(scene.line("/bunny.glb").bytes <= bytes.size());
 }
+
+TEST_CASE("a remote SPZ's splats come long before its end", "[session][splat][http]") {
+  // CThead (122,000 splats, 2.8 MB): its alphas are one zstd block of 122,000 bytes, so
+  // they come first; then each of the other streams gives its splats a block at a time.
+  if (!gs::test::haveCorpus("splat")) return;
+  gs::test::NginxServer nginx;
+  if (!nginx.ok()) return;
+  const std::string bytes = gs::test::readBytes(gs::test::corpusDir() / "splat/cthead.spz");
+  nginx.writeFile("cthead.spz", bytes);
+  gs::net::LoaderOptions slow;
+  slow.maxRate = 2000000;  // bytes a second: about 1.4 s for its 2.8 MB
+  OpenedScene scene(nginx.url("/cthead.spz"), slow);
+  std::uint64_t firstAt = 0;  // bytes that had come when the first splats were drawn
+  for (int i = 0; i < 10000 && !scene.session.settled() && firstAt == 0; ++i) {
+    scene.session.pump();
+    if (scene.set->size() > 0) firstAt = scene.line("/cthead.spz").bytes;
+    scene.session.loader().wait(0.01);
+  }
+  INFO("first splats at " << firstAt << " of " << bytes.size() << " bytes");
+  CHECK(firstAt > 0);
+  CHECK(firstAt < bytes.size() / 2);
+  REQUIRE(scene.settle());
+  CHECK(scene.set->size() == 122000);
+  CHECK(scene.set->loadError.empty());
+}
