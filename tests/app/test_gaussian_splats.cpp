@@ -5,6 +5,7 @@
 // the peer's foreground less a 1-pixel band around its silhouette.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -14,7 +15,10 @@
 #include <string>
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
 
+#include "base/byte_order.hpp"
+#include "base/data_url.hpp"
 #include "baseline.hpp"
 #include "process.hpp"
 #include "qnv/tileset.hpp"
@@ -415,4 +419,67 @@ TEST_CASE("an Inline opens splat scenes, QNV streams, meshes and volumes beside 
         name + "_none", {"--size", "128x96", world(name + "_none", "Group {}", scale)});
     CHECK(gs::test::fractionDiffering(with, without) > 0.01);
   }
+}
+
+TEST_CASE("a glTF of a mesh and Gaussian splats shows both", "[app][render][splat]") {
+  // bunny_small.glb with a red triangle beside the bunny (glTF's axes: the bunny within
+  // x -0.06..0.09, y -0.19..-0.03), its positions in a data: buffer of their own: the
+  // importer draws the triangle as a Shape and the splats by a GaussianSplats node.
+  const fs::path data = gs::test::sourceDir() / "tests/data/splats";
+  const std::string glb = gs::test::readBytes(data / "bunny_small.glb");
+  const std::uint32_t jsonBytes = gs::base::loadLe<std::uint32_t>(glb.data() + 12);
+  nlohmann::json doc = nlohmann::json::parse(glb.substr(20, jsonBytes));
+  const std::string bin = glb.substr(20 + jsonBytes);  // the BIN chunk, its header too
+  const float triangle[9] = {0.12f, -0.19f, 0.0f, 0.30f, -0.19f, 0.0f, 0.12f, -0.03f, 0.0f};
+  const std::string positions(reinterpret_cast<const char*>(triangle), sizeof triangle);
+  doc["buffers"].push_back({{"byteLength", positions.size()},
+                            {"uri", gs::base::makeDataUrl("application/octet-stream", positions)}});
+  doc["bufferViews"].push_back(
+      {{"buffer", doc["buffers"].size() - 1}, {"byteOffset", 0}, {"byteLength", 36}});
+  doc["accessors"].push_back({{"bufferView", doc["bufferViews"].size() - 1},
+                              {"componentType", 5126},
+                              {"count", 3},
+                              {"type", "VEC3"},
+                              {"min", {0.12, -0.19, 0.0}},
+                              {"max", {0.30, -0.03, 0.0}}});
+  doc["materials"] =
+      nlohmann::json::array({{{"pbrMetallicRoughness", {{"baseColorFactor", {1.0, 0.0, 0.0, 1.0}}}},
+                              {"emissiveFactor", {1.0, 0.0, 0.0}},
+                              {"doubleSided", true}}});
+  doc["meshes"].push_back(
+      {{"primitives",
+        {{{"attributes", {{"POSITION", doc["accessors"].size() - 1}}}, {"material", 0}}}}});
+  doc["nodes"].push_back({{"mesh", doc["meshes"].size() - 1}});
+  doc["scenes"][0]["nodes"].push_back(doc["nodes"].size() - 1);
+  std::string json = doc.dump();
+  json.resize((json.size() + 3) / 4 * 4, ' ');
+  std::string mixed = "glTF";
+  const auto le32 = [&](std::uint32_t v) {
+    for (int k = 0; k < 4; ++k) mixed.push_back(static_cast<char>((v >> (8 * k)) & 0xff));
+  };
+  le32(2);
+  le32(static_cast<std::uint32_t>(12 + 8 + json.size() + bin.size()));
+  le32(static_cast<std::uint32_t>(json.size()));
+  le32(0x4E4F534Au);
+  mixed += json + bin;
+  const fs::path dir = fs::path(GS_BINARY_DIR) / "render-actual";
+  fs::create_directories(dir);
+  const fs::path file = dir / "gltf_mixed.glb", png = dir / "gltf_mixed.png";
+  std::ofstream(file, std::ios::binary) << mixed;
+  const auto r =
+      gs::test::runGhostspace({"--snapshot", png.string(), "--size", "128x128", file.string()});
+  REQUIRE(r.exitCode == 0);
+  CHECK(r.err.find("not supported") == std::string::npos);
+  const gs::render::Image image = gs::render::readPng(png.string());
+  std::size_t red = 0, bunny = 0;
+  for (std::size_t i = 0; i < image.rgba.size(); i += 4) {
+    const int R = image.rgba[i], G = image.rgba[i + 1], B = image.rgba[i + 2];
+    const bool isRed = R > 150 && G < 40 && B < 40;
+    red += isRed;
+    // The bunny's colours (its SH are its normals: purples, blues, greens), neither the
+    // grey background nor the red triangle.
+    bunny += !isRed && std::max({R, G, B}) - std::min({R, G, B}) > 30;
+  }
+  CHECK(red > 700);    // the triangle (1,437 pixels)
+  CHECK(bunny > 800);  // and the splats (1,732)
 }
