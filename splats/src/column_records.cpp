@@ -14,9 +14,9 @@ namespace gs::splats {
 
 struct ColumnRecords::Zstd {
   struct Free {
-    void operator()(ZSTD_DStream* d) const { ZSTD_freeDStream(d); }
+    void operator()(ZSTD_DStream* s) const { ZSTD_freeDStream(s); }
   };
-  std::unique_ptr<ZSTD_DStream, Free> d{ZSTD_createDStream()};
+  std::unique_ptr<ZSTD_DStream, Free> stream{ZSTD_createDStream()};
 };
 
 ColumnRecords::ColumnRecords(const GaussianColumnDecoder::Column& column, std::uint64_t splats,
@@ -28,14 +28,14 @@ ColumnRecords::ColumnRecords(const GaussianColumnDecoder::Column& column, std::u
       recordBytes_(std::max<std::size_t>(column.recordBytes, 1)) {
   if (!column.zstd) return;
   zstd_ = std::make_unique<Zstd>();
-  if (!zstd_->d) detail::fail(name_, "zstd: out of memory");
-  ZSTD_initDStream(zstd_->d.get());
+  if (!zstd_->stream) detail::fail(name_, "zstd: out of memory");
+  ZSTD_initDStream(zstd_->stream.get());
   // As the whole-file reader's streams: no larger window than the column could use (at
   // least 8 MiB, at most 128 MiB, zstd's own limit), so that a small hostile file cannot
   // make each column take 128 MiB.
   const std::uint64_t whole = splats * recordBytes_;
   const int windowLog = std::clamp(static_cast<int>(std::bit_width(whole)) + 1, 23, 27);
-  ZSTD_DCtx_setParameter(zstd_->d.get(), ZSTD_d_windowLogMax, windowLog);
+  ZSTD_DCtx_setParameter(zstd_->stream.get(), ZSTD_d_windowLogMax, windowLog);
 }
 
 ColumnRecords::~ColumnRecords() = default;
@@ -69,7 +69,7 @@ void ColumnRecords::decodeUpTo(std::uint64_t record) {
     records_.resize(old + grow);
     ZSTD_outBuffer out{records_.data() + old, grow, 0};
     ZSTD_inBuffer in{pending_.data(), pending_.size(), used};
-    const std::size_t rc = ZSTD_decompressStream(zstd_->d.get(), &out, &in);
+    const std::size_t rc = ZSTD_decompressStream(zstd_->stream.get(), &out, &in);
     records_.resize(old + out.pos);
     used = in.pos;
     if (ZSTD_isError(rc))
@@ -105,7 +105,7 @@ void ColumnRecords::finish() {
       char extra = 0;
       ZSTD_outBuffer out{&extra, 1, 0};
       ZSTD_inBuffer in{pending_.data(), pending_.size(), used};
-      hint_ = ZSTD_decompressStream(zstd_->d.get(), &out, &in);
+      hint_ = ZSTD_decompressStream(zstd_->stream.get(), &out, &in);
       if (ZSTD_isError(hint_)) detail::fail(name_, which + ": zstd: " + ZSTD_getErrorName(hint_));
       const bool stuck = in.pos == used && out.pos == 0;
       used = in.pos;
