@@ -31,13 +31,15 @@ struct GaussianColumnsFetch::Column {
 
 GaussianColumnsFetch::GaussianColumnsFetch(std::unique_ptr<splats::GaussianColumnDecoder> decoder,
                                            const net::FetchRequest& request, std::string_view head,
-                                           std::string name)
-    : decoder_(std::move(decoder)), name_(std::move(name)), headBytes_(head.size()) {
+                                           std::uint64_t fileBytes, std::string name)
+    : decoder_(std::move(decoder)),
+      name_(std::move(name)),
+      headBytes_(head.size()),
+      fileBytes_(fileBytes) {
   const auto& columns = decoder_->columns();
   bool early = false, late = false;
   for (std::size_t k = 0; k < columns.size(); ++k) {
     const auto& c = columns[k];
-    fileBytes_ = std::max(fileBytes_, c.offset + c.bytes);
     auto column = std::make_unique<Column>(c, decoder_->size(), name_, static_cast<int>(k));
     // A column's bytes already in the head are fed; a range request fetches the rest.
     const std::uint64_t have =
@@ -91,6 +93,12 @@ bool GaussianColumnsFetch::ended(const Column& c) {
 
 GaussianColumnsFetch::~GaussianColumnsFetch() {
   cancel();
+}
+
+bool GaussianColumnsFetch::rangesIgnored() const {
+  return std::any_of(columns_.begin(), columns_.end(), [](const auto& c) {
+    return c->transfer && c->transfer->status().rangeIgnored;
+  });
 }
 
 void GaussianColumnsFetch::cancel() {

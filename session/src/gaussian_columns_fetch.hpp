@@ -27,9 +27,10 @@ class GaussianColumnsFetch {
   /// own bytes and gets a share of its maxRate in proportion to them (an emulated link
   /// stays as slow, and every column ends when the whole file would have).
   /// `head` holds the file's first bytes, already fetched: the columns' bytes within it
-  /// are not fetched again.
+  /// are not fetched again. `fileBytes`: the file's size (for the Streams panel).
   GaussianColumnsFetch(std::unique_ptr<splats::GaussianColumnDecoder> decoder,
-                       const net::FetchRequest& request, std::string_view head, std::string name);
+                       const net::FetchRequest& request, std::string_view head,
+                       std::uint64_t fileBytes, std::string name);
   /// Cancels the transfers still running.
   ~GaussianColumnsFetch();
   GaussianColumnsFetch(const GaussianColumnsFetch&) = delete;
@@ -57,6 +58,9 @@ class GaussianColumnsFetch {
   net::TransferStatus status() const;
   /// Stops every transfer.
   void cancel();
+  /// Whether a server answered a column's range request with the whole file: then each
+  /// column would read the file up to itself (its caller reads the file whole instead).
+  bool rangesIgnored() const;
 
  private:
   struct Column;

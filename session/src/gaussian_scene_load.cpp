@@ -199,6 +199,22 @@ void GaussianSceneLoad::decodeWhole(std::string bytes) {
 
 bool GaussianSceneLoad::pumpColumns() {
   bool changed = false;
+  if (columns_->rangesIgnored()) {
+    // A server that ignores ranges: one transfer reads the file whole instead of each
+    // column reading it up to itself.
+    columns_.reset();
+    std::string error;
+    net::FetchRequest request = loader_.requestFor(url_, referrer_, error);
+    if (request.url.empty()) {
+      fail(error);
+      return true;
+    }
+    transfer_ = net::startTransfer(std::move(request));
+    buffer_.clear();
+    bufferStart_ = 0;
+    wholeRead_ = true;
+    return false;
+  }
   try {
     const bool allowed = columns_->take([this](std::uint64_t n) { return loader_.grant(n); });
     if (!allowed || !loader_.stopReason().empty()) {  // --snapshot-at: what came is drawn
@@ -238,6 +254,8 @@ bool GaussianSceneLoad::pumpColumns() {
     fail(e.what());
   } catch (const std::bad_alloc&) {
     fail(url_ + ": out of memory");
+  } catch (const std::exception& e) {  // a thread that cannot start
+    fail(url_ + ": " + e.what());
   }
   return true;
 }
@@ -285,8 +303,9 @@ bool GaussianSceneLoad::pumpTransfer() {
         if (columns.decoder && !request.url.empty() &&
             request.maxBytes >= static_cast<std::uint64_t>(s.resourceSize)) {
           transfer_->cancel();
-          columns_ = std::make_unique<GaussianColumnsFetch>(std::move(columns.decoder), request,
-                                                            buffer_, url_);
+          columns_ = std::make_unique<GaussianColumnsFetch>(
+              std::move(columns.decoder), request, buffer_,
+              static_cast<std::uint64_t>(s.resourceSize), url_);
           std::string().swap(buffer_);
           return pumpColumns() || changed;
         }
@@ -323,6 +342,9 @@ bool GaussianSceneLoad::pumpTransfer() {
     return true;
   } catch (const std::bad_alloc&) {
     fail(url_ + ": out of memory");
+    return true;
+  } catch (const std::exception& e) {  // a column's transfer thread that cannot start
+    fail(url_ + ": " + e.what());
     return true;
   }
   if (stopped) {  // drawn with what arrived, as a stream stopped by --snapshot-at

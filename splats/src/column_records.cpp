@@ -30,9 +30,9 @@ ColumnRecords::ColumnRecords(const GaussianColumnDecoder::Column& column, std::u
   zstd_ = std::make_unique<Zstd>();
   if (!zstd_->stream) detail::fail(name_, "zstd: out of memory");
   ZSTD_initDStream(zstd_->stream.get());
-  // As the whole-file reader's streams: no larger window than the column could use (at
-  // least 8 MiB, at most 128 MiB, zstd's own limit), so that a small hostile file cannot
-  // make each column take 128 MiB.
+  // As the piecewise reader's streams (spz.cpp, ZstdBlock): no larger window than the
+  // column could use (at least 8 MiB, at most 128 MiB, zstd's own limit), so that a small
+  // hostile file cannot make each column take 128 MiB.
   const std::uint64_t whole = splats * recordBytes_;
   const int windowLog = std::clamp(static_cast<int>(std::bit_width(whole)) + 1, 23, 27);
   ZSTD_DCtx_setParameter(zstd_->stream.get(), ZSTD_d_windowLogMax, windowLog);
@@ -61,7 +61,8 @@ void ColumnRecords::decodeUpTo(std::uint64_t record) {
     return;
   }
   std::size_t used = 0;
-  while (produced_ < want && used < pending_.size()) {
+  bool filled = false;  // the last call filled its output: zstd may hold more for it
+  while (produced_ < want && (used < pending_.size() || filled)) {
     constexpr std::size_t kChunk = std::size_t{1} << 18;
     const std::size_t grow =
         static_cast<std::size_t>(std::min<std::uint64_t>(kChunk, whole - produced_ + 1));
@@ -76,6 +77,7 @@ void ColumnRecords::decodeUpTo(std::uint64_t record) {
       detail::fail(name_, "stream " + std::to_string(index_) + ": zstd: " + ZSTD_getErrorName(rc));
     hint_ = rc;
     produced_ += out.pos;
+    filled = out.pos == grow;
     if (produced_ > whole)
       detail::fail(name_, "stream " + std::to_string(index_) + " decompresses to more than " +
                               std::to_string(whole) + " bytes");
@@ -92,11 +94,21 @@ void ColumnRecords::drop(std::uint64_t n) {
 
 void ColumnRecords::finish() {
   const std::uint64_t whole = splats_ * recordBytes_;
-  decodeUpTo(splats_);
+  // The rest decoded 65,536 records at a time and dropped: nothing needs them now (a
+  // column that ended short must not make the others hold all theirs).
+  while (true) {
+    const std::uint64_t before = produced_;
+    decodeUpTo(first_ + available() + 65536);
+    drop(available());
+    if (produced_ == before || produced_ == whole) break;
+  }
   const std::string which = (zstd_ ? "stream " : "column ") + std::to_string(index_);
   if (!fed())
-    detail::fail(name_, which + ": expected " + std::to_string(column_.bytes) + " bytes, got " +
-                            std::to_string(fed_));
+    detail::fail(name_, which + ": expected " + std::to_string(column_.bytes) +
+                            " bytes in the file, got " + std::to_string(fed_));
+  // Its bytes all used and the frame still open: cut short, as the whole-file reader says.
+  if (zstd_ && produced_ < whole && hint_ != 0 && pending_.empty())
+    detail::fail(name_, which + ": truncated zstd data");
   if (zstd_ && produced_ == whole) {
     // The rest of its bytes, as the whole-file reader decompresses them: not a byte more
     // than its records, the last frame complete.

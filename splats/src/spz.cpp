@@ -524,6 +524,9 @@ class SpzColumns final : public GaussianColumnDecoder {
   void decode(const std::vector<const char*>& records, std::uint64_t first, std::size_t n,
               GaussianCloud& batch) const override {
     detail::checkRows(first, n, h_.count);
+    if (records.size() != columns_.size())
+      throw FormatError("SPZ columns: expected " + std::to_string(columns_.size()) +
+                        " of them, got " + std::to_string(records.size()));
     static const char kNone = 0;  // the SH column of degree 0: none, never read
     std::array<const char*, 6> at{};
     at.fill(&kNone);

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <string>
 
+#include "http/fault_server.hpp"
 #include "http/nginx_server.hpp"
 #include "render/splat_renderer.hpp"
 #include "session/streaming_session.hpp"
@@ -335,4 +336,26 @@ TEST_CASE("a remote SPZ's splats come long before its end", "[session][splat][ht
   REQUIRE(scene.settle());
   CHECK(scene.set->size() == 122000);
   CHECK(scene.set->loadError.empty());
+}
+
+TEST_CASE("a remote SPZ from a server that ignores ranges is read once whole",
+          "[session][splat][http]") {
+  // Its first column's range request is answered with the whole file: the columns stop
+  // and one transfer reads the file (not six transfers each up to their column).
+  const std::string bytes = gs::test::readBytes(splatData("bunny_small.spz"));
+  gs::test::FaultServer::Config config;
+  config.body = bytes;
+  config.plan = {gs::test::FaultServer::Behaviour::ignoreRanges};
+  config.bytesPerSecond = 20000;  // about 2 s for its 41 KB
+  gs::test::FaultServer server(config);
+  REQUIRE(server.ok());
+  OpenedScene scene(server.url("/bunny.spz"));
+  REQUIRE(scene.settle());
+  checkBunny(*scene.set);
+  // The first whole answer, the columns' (stopped at once), and the whole read.
+  CHECK(server.requests().size() <= 8);
+  CHECK(scene.line("/bunny.spz").bytes == bytes.size());
+  // Every byte received counts, those dropped before a range too: about the file once
+  // (each column reading up to itself would be about three times it).
+  CHECK(scene.session.loader().budget().totalBytes() < bytes.size() * 3 / 2);
 }

@@ -136,12 +136,12 @@ class GaussianColumnDecoder {
   /// Where one column lies and what it decodes to.
   struct Column {
     std::uint64_t offset = 0;     // its first byte in the file
-    std::uint64_t bytes = 0;      // its bytes in the file (>= 1)
+    std::uint64_t bytes = 0;      // its bytes in the file (0 only in a damaged file)
     std::size_t recordBytes = 0;  // one splat's record once decoded (>= 1)
     bool zstd = false;            // one zstd frame of the records; else the records themselves
   };
   virtual ~GaussianColumnDecoder() = default;
-  /// The columns, each within the file; at most 16.
+  /// The columns, each within the file: 5 or 6 for an SPZ, up to 20 for a GLB.
   virtual const std::vector<Column>& columns() const = 0;
   /// The scene's splats (1..kMaxSplats).
   virtual std::uint64_t size() const = 0;
