@@ -202,14 +202,9 @@ bool GaussianSceneLoad::pumpColumns() {
   if (columns_->rangesIgnored()) {
     // A server that ignores ranges: one transfer reads the file whole instead of each
     // column reading it up to itself.
+    // (The next pump starts it.)
     columns_.reset();
-    std::string error;
-    net::FetchRequest request = loader_.requestFor(url_, referrer_, error);
-    if (request.url.empty()) {
-      fail(error);
-      return true;
-    }
-    transfer_ = net::startTransfer(std::move(request));
+    transfer_.reset();
     buffer_.clear();
     bufferStart_ = 0;
     wholeRead_ = true;
