@@ -197,6 +197,15 @@ void GaussianSceneLoad::decodeWhole(std::string bytes) {
   stage_ = Stage::sorting;
 }
 
+void GaussianSceneLoad::stopWithWhatArrived() {
+  if (growing_) {
+    stopped_ = true;
+    arrived(growing_, false);
+  } else {
+    fail(url_ + ": " + (loader_.stopReason().empty() ? "stopped" : loader_.stopReason()));
+  }
+}
+
 bool GaussianSceneLoad::pumpColumns() {
   bool changed = false;
   if (columns_->rangesIgnored()) {
@@ -216,12 +225,7 @@ bool GaussianSceneLoad::pumpColumns() {
       columns_->cancel();
       splats::GaussianCloud batch;
       while (columns_->next(batch, kRowsPerPump) > 0) grow(batch, columns_->size());
-      if (growing_) {
-        stopped_ = true;
-        arrived(growing_, false);
-      } else {
-        fail(url_ + ": " + (loader_.stopReason().empty() ? "stopped" : loader_.stopReason()));
-      }
+      stopWithWhatArrived();
       return true;
     }
     splats::GaussianCloud batch;
@@ -234,11 +238,9 @@ bool GaussianSceneLoad::pumpColumns() {
       fail(failure);
       return true;
     }
-    if (columns_->decoded() < columns_->size()) {
-      // Every byte came: either more splats than a pump decodes are waiting (the next
-      // pump goes on) or a column ended short, which finish() names.
-      if (changed) return true;
-    }
+    // Every byte came: more splats than a pump decodes may still wait (the next pump
+    // goes on), or a column ended short, which finish() names.
+    if (changed && columns_->decoded() < columns_->size()) return true;
     columns_->finish();
     if (columns_->decoded() < columns_->size())
       throw splats::FormatError(url_ + ": expected " + std::to_string(columns_->size()) +
@@ -344,12 +346,7 @@ bool GaussianSceneLoad::pumpTransfer() {
   }
   if (stopped) {  // drawn with what arrived, as a stream stopped by --snapshot-at
     transfer_->cancel();
-    if (growing_) {
-      stopped_ = true;
-      arrived(growing_, false);
-    } else {
-      fail(url_ + ": " + (loader_.stopReason().empty() ? "stopped" : loader_.stopReason()));
-    }
+    stopWithWhatArrived();
     return true;
   }
   if (!s.finished() || s.received > bufferStart_ + buffer_.size()) return changed;

@@ -82,6 +82,9 @@ class GaussianSceneLoad {
   bool pumpTransfer();
   /// Takes a remote scene's columns (columns_) and decodes the splats that came.
   bool pumpColumns();
+  /// Cut by --snapshot-at: the splats that arrived are the scene (sorted, given a tree),
+  /// or, when none did, the load fails saying why.
+  void stopWithWhatArrived();
   /// The scene complete: sorts `cloud` (already sorted when `sorted`) on a thread of its own.
   void arrived(std::shared_ptr<const splats::GaussianCloud> cloud, bool sorted);
   /// `bytes`, a whole remote scene not read by rows, decoded and sorted.
