@@ -33,6 +33,9 @@ namespace {
 /// in one pump (about 25 ms of a frame at 5 M rows a second).
 constexpr std::size_t kBatchSplats = 65536;
 constexpr std::size_t kRowsPerPump = 131072;
+/// Compressed bytes of a scene read as one stream (SPZ v2/v3) inflated in one pump (a few
+/// ms at zlib's 300 MB/s and more of output).
+constexpr std::size_t kStreamBytesPerPump = std::size_t{1} << 20;
 
 /// The scene in `bytes` read (splats::readGaussians) and sorted by importance; never throws.
 std::shared_ptr<const splats::GaussianCloud> decodeScene(std::string bytes, const std::string& name,
@@ -257,6 +260,27 @@ bool GaussianSceneLoad::pumpColumns() {
   return true;
 }
 
+bool GaussianSceneLoad::pumpStream(bool stopped) {
+  // At most kStreamBytesPerPump compressed bytes a pump (a frame's share of inflating),
+  // all that came when --snapshot-at stops the scene.
+  bool changed = false;
+  do {
+    const std::size_t n = stopped ? buffer_.size() : std::min(buffer_.size(), kStreamBytesPerPump);
+    if (n > 0) {
+      stream_->feed(std::string_view(buffer_).substr(0, n));
+      buffer_.erase(0, n);
+      bufferStart_ += n;
+    }
+    splats::GaussianCloud batch;
+    while (stream_->next(batch, kRowsPerPump) > 0) {
+      grow(batch, stream_->size());
+      changed = true;
+      if (!stopped) break;
+    }
+  } while (stopped && !buffer_.empty());
+  return changed;
+}
+
 bool GaussianSceneLoad::pumpTransfer() {
   if (columns_) return pumpColumns();
   if (!transfer_) {
@@ -281,7 +305,7 @@ bool GaussianSceneLoad::pumpTransfer() {
   }
   bool changed = false;
   try {
-    if (!rows_ && !wholeRead_ && (!buffer_.empty() || s.finished())) {
+    if (!rows_ && !stream_ && !wholeRead_ && (!buffer_.empty() || s.finished())) {
       const std::uint64_t size = s.resourceSize > 0 ? static_cast<std::uint64_t>(s.resourceSize)
                                  : s.finished()     ? bufferStart_ + buffer_.size()
                                                     : std::numeric_limits<std::uint64_t>::max() / 4;
@@ -308,8 +332,16 @@ bool GaussianSceneLoad::pumpTransfer() {
         }
         needMore |= columns.needMore;
       }
-      wholeRead_ = !rows_ && (!needMore || s.finished());
+      // A scene in one compressed stream (SPZ v2/v3): decoded as its bytes come.
+      if (!rows_) {
+        splats::GaussianStream stream = splats::openGaussianStream(
+            buffer_, url_, s.resourceSize > 0 ? static_cast<std::uint64_t>(s.resourceSize) : 0);
+        stream_ = std::move(stream.decoder);
+        needMore |= stream.needMore;
+      }
+      wholeRead_ = !rows_ && !stream_ && (!needMore || s.finished());
     }
+    if (stream_) changed |= pumpStream(stopped);
     if (rows_) {
       const std::uint64_t end = bufferStart_ + buffer_.size(), first = rows_->dataOffset();
       const std::size_t rowBytes = rows_->rowBytes();
@@ -352,6 +384,22 @@ bool GaussianSceneLoad::pumpTransfer() {
   if (!s.finished() || s.received > bufferStart_ + buffer_.size()) return changed;
   if (s.state != net::TransferState::done) {
     fail(s.error.empty() ? url_ + ": cancelled" : s.error);
+    return true;
+  }
+  if (stream_) {
+    if (changed || !buffer_.empty()) return true;  // the next pump goes on
+    try {
+      stream_->finish();
+    } catch (const splats::FormatError& e) {
+      fail(e.what());
+      return true;
+    }
+    if (stream_->decoded() < stream_->size()) {
+      fail(url_ + ": expected " + std::to_string(stream_->size()) + " splats, got " +
+           std::to_string(stream_->decoded()));
+      return true;
+    }
+    arrived(growing_, false);
     return true;
   }
   if (rows_ && !rows_->wholeFileAtEnd()) {

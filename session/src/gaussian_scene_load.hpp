@@ -10,7 +10,9 @@
 //   as it grows, a compressed .ply's vertex records too (without SH, the whole file read
 //   again once it arrived), an SPZ v4 file's zstd streams and a GLB capture's accessors side by
 //   side by range requests, each splat decoded once all its records came
-//   (gaussian_columns_fetch.hpp), the other formats once whole;
+//   (gaussian_columns_fetch.hpp), an SPZ v2/v3 file's gzip data inflated as they come,
+//   each splat decoded once its last attribute came (splats::openGaussianStream), the
+//   other formats once whole;
 // then the whole scene is sorted by importance on a thread of its own, replaces the splats
 // drawn, and gets its level-of-detail tree on another thread, as a progressive stream's.
 // Private to the session.
@@ -82,6 +84,9 @@ class GaussianSceneLoad {
   bool pumpTransfer();
   /// Takes a remote scene's columns (columns_) and decodes the splats that came.
   bool pumpColumns();
+  /// Feeds a remote scene read as one stream (stream_) the bytes that came (a pump's
+  /// share, or all of them when `stopped` by --snapshot-at) and draws the splats decoded.
+  bool pumpStream(bool stopped);
   /// Cut by --snapshot-at: the splats that arrived are the scene (sorted, given a tree),
   /// or, when none did, the load fails saying why.
   void stopWithWhatArrived();
@@ -105,6 +110,8 @@ class GaussianSceneLoad {
   std::string buffer_;
   std::uint64_t bufferStart_ = 0, rowsDecoded_ = 0;
   std::unique_ptr<splats::GaussianRowDecoder> rows_;
+  // Or its stream's decoder (SPZ v2/v3), fed the bytes as they come.
+  std::unique_ptr<splats::GaussianStreamDecoder> stream_;
   // Or its columns' transfers, once its head showed a scene read by columns.
   std::unique_ptr<GaussianColumnsFetch> columns_;
   bool wholeRead_ = false;

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "base/byte_order.hpp"
+#include "base/gunzip_feed.hpp"
 #include "base/gzip.hpp"
 #include "base/inflate_stream.hpp"
 #include "reader_support.hpp"
@@ -541,6 +542,100 @@ class SpzColumns final : public GaussianColumnDecoder {
   std::vector<Column> columns_;
 };
 
+/// An SPZ v2/v3 file decoded as its gzip data arrive (GaussianStreamDecoder).
+class SpzStream final : public GaussianStreamDecoder {
+ public:
+  SpzStream(const Header& h, std::string name) : h_(h), name_(std::move(name)) {
+    const auto sizes = blockSizes(h_.count, static_cast<int>(h_.version), h_.degree);
+    record_ = splatBytes(h_);
+    std::uint64_t at = 0;
+    for (std::size_t k = 0; k < 6; ++k) {
+      start_[k] = at;
+      at += sizes[k];
+      if (sizes[k] > 0) last_ = k;
+    }
+    total_ = 16 + at;
+  }
+  std::uint64_t size() const override { return h_.count; }
+  int shDegree() const override { return std::min(h_.degree, kMaxShDegree); }
+  std::uint64_t decoded() const override { return decoded_; }
+  void feed(std::string_view bytes) override {
+    try {
+      gunzip_.feed(bytes, [this](std::string_view out) { take(out); });
+    } catch (const base::GzipError& e) {
+      fail(name_, e.what());
+    }
+  }
+  std::size_t next(GaussianCloud& batch, std::size_t max) override {
+    const std::size_t lastBytes = record_[last_];
+    const auto n = static_cast<std::size_t>(
+        std::min<std::uint64_t>(max, (tail_.size() - tailAt_) / lastBytes));
+    batch = GaussianCloud{};
+    detail::allocate(batch, n, shDegree());
+    if (n == 0) return 0;
+    static const char kNone = 0;  // the SH block of degree 0: none, never read
+    std::array<const char*, 6> at{};
+    at.fill(&kNone);
+    for (std::size_t k = 0; k < last_; ++k)
+      at[k] = held_.data() + start_[k] + decoded_ * record_[k];
+    at[last_] = tail_.data() + tailAt_;
+    decode(h_, at, n, batch);
+    decoded_ += n;
+    tailAt_ += n * lastBytes;
+    if (tailAt_ * 2 >= tail_.size()) {  // the given records go once they are half of it
+      tail_.erase(0, tailAt_);
+      tailAt_ = 0;
+    }
+    if (decoded_ == h_.count) std::string().swap(held_);
+    return n;
+  }
+  void finish() override {
+    try {
+      gunzip_.finish();
+    } catch (const base::GzipError& e) {
+      fail(name_, e.what());
+    }
+    if (produced_ < total_)
+      fail(name_, "expected " + std::to_string(total_) + " bytes of SPZ data for " +
+                      std::to_string(h_.count) + " splats, got " + std::to_string(produced_));
+  }
+
+ private:
+  /// Decompressed bytes, in order: the header skipped, the blocks before the last held,
+  /// the last one's records queued, at most 1 MiB after the blocks (as readLegacy).
+  void take(std::string_view out) {
+    const std::uint64_t lastStart = 16 + start_[last_];
+    while (!out.empty()) {
+      std::uint64_t n = out.size();
+      if (produced_ < 16) {
+        n = std::min<std::uint64_t>(n, 16 - produced_);
+      } else if (produced_ < lastStart) {
+        n = std::min<std::uint64_t>(n, lastStart - produced_);
+        held_.append(out.substr(0, static_cast<std::size_t>(n)));
+      } else if (produced_ < total_) {
+        n = std::min<std::uint64_t>(n, total_ - produced_);
+        tail_.append(out.substr(0, static_cast<std::size_t>(n)));
+      } else if (produced_ + n - total_ > (std::uint64_t{1} << 20)) {
+        fail(name_, "decompressed data exceeds the SPZ blocks by more than 1 MiB");
+      }
+      produced_ += n;
+      out.remove_prefix(static_cast<std::size_t>(n));
+    }
+  }
+
+  Header h_;
+  std::string name_;
+  std::array<std::size_t, 6> record_{};
+  std::array<std::uint64_t, 6> start_{};  // each block's first byte after the header
+  std::size_t last_ = 0;                  // the last block that is not empty
+  std::uint64_t total_ = 0;               // the header and the blocks, decompressed
+  base::GunzipFeed gunzip_;
+  std::uint64_t produced_ = 0, decoded_ = 0;
+  std::string held_;  // the blocks before the last, whole as they came
+  std::string tail_;  // the last block's records from decoded_ on (from tailAt_)
+  std::size_t tailAt_ = 0;
+};
+
 }  // namespace
 
 GaussianColumns openSpzColumns(std::string_view head, const std::string& name,
@@ -566,6 +661,31 @@ GaussianColumns openSpzColumns(std::string_view head, const std::string& name,
       },
       fileBytes, name);
   found.decoder = std::make_unique<SpzColumns>(v4);
+  return found;
+}
+
+GaussianStream openGaussianStream(std::string_view head, const std::string& name,
+                                  std::uint64_t fileBytes) {
+  GaussianStream found;
+  if (!base::isGzip(head)) return found;
+  const std::string h16 = base::gunzipPrefix(head, 16);
+  if (h16.size() < 4 || base::loadLe<std::uint32_t>(h16.data()) != kMagic) {
+    // Not yet known: a gzip header with a long name or comment field, or the first
+    // deflate block's bytes still to come (a damaged start stays undecided: read whole).
+    found.needMore = h16.size() < 4 && head.size() < 4096;
+    return found;
+  }
+  if (h16.size() < 16) {
+    found.needMore = head.size() < 4096;
+    return found;
+  }
+  std::uint64_t total = 0;
+  const Header h = parseLegacyHeader(h16, name, total);
+  // Deflate's largest ratio is 1032:1: a header claiming more cannot be true.
+  if (fileBytes > 0 && total / 1032 > fileBytes)
+    fail(name, std::to_string(fileBytes) + " bytes of gzip data cannot hold the " +
+                   std::to_string(total) + " bytes of " + std::to_string(h.count) + " splats");
+  found.decoder = std::make_unique<SpzStream>(h, name);
   return found;
 }
 

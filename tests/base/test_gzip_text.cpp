@@ -1,6 +1,7 @@
-// base/gzip.hpp, base/inflate_stream.hpp and base/text.hpp.
+// base/gzip.hpp, base/gunzip_feed.hpp, base/inflate_stream.hpp and base/text.hpp.
 #include <catch2/catch.hpp>
 
+#include "base/gunzip_feed.hpp"
 #include "base/gzip.hpp"
 #include "base/inflate_stream.hpp"
 #include "base/text.hpp"
@@ -111,6 +112,51 @@ TEST_CASE("InflateStream: pieces, members, skip, rewind and damage", "[base][gzi
       },
       0);
   CHECK_THROWS_AS(garbage.read(out.data(), 10), GzipError);
+}
+
+TEST_CASE("GunzipFeed: every split of members and padding and the damage gunzip names",
+          "[base][gzip]") {
+  std::string text;
+  for (unsigned i = 0; i < 200000; ++i) text += static_cast<char>('a' + (i * 7919u) % 26u);
+  const std::string two =
+      gs::test::gzip(text.substr(0, 70000)) + gs::test::gzip(text.substr(70000)) + "\0\0\0";
+  // Pushed in pieces of every size from 1 byte to all at once: the same bytes out.
+  for (const std::size_t piece : {std::size_t{1}, std::size_t{2}, std::size_t{3}, std::size_t{977},
+                                  std::size_t{65536}, two.size()}) {
+    INFO("pieces of " << piece);
+    GunzipFeed feed;
+    std::string out;
+    for (std::size_t at = 0; at < two.size(); at += piece)
+      feed.feed(std::string_view(two).substr(at, piece),
+                [&](std::string_view bytes) { out.append(bytes); });
+    CHECK_NOTHROW(feed.finish());
+    CHECK(feed.produced() == text.size());
+    CHECK(out == text);
+  }
+  const auto whyOf = [](std::string_view bytes) {
+    try {
+      GunzipFeed feed;
+      feed.feed(bytes, [](std::string_view) {});
+      feed.finish();
+    } catch (const GzipError& e) {
+      CHECK(e.kind == GzipError::Kind::corrupt);
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string one = gs::test::gzip(text);
+  CHECK(whyOf(one) == "no error");
+  CHECK(whyOf("") == "corrupt gzip data: truncated");
+  CHECK(whyOf(one.substr(0, one.size() - 9)) == "corrupt gzip data: truncated");
+  CHECK(whyOf(one + "\x1f") == "corrupt gzip data: truncated");  // a member's magic begun
+  CHECK(whyOf(one + "junk") == "corrupt gzip data: trailing bytes after the gzip data");
+  CHECK(whyOf(one + std::string(4, '\0') + "x") ==
+        "corrupt gzip data: trailing bytes after the gzip data");
+  CHECK(whyOf(one + "\x1fx") == "corrupt gzip data: trailing bytes after the gzip data");
+  std::string damaged = one;
+  damaged[12] ^= 0x5a;  // inside the deflate data
+  CHECK(whyOf(damaged).rfind("corrupt gzip data: ", 0) == 0);
+  CHECK(whyOf(damaged) != "no error");
 }
 
 TEST_CASE("case-insensitive text helpers", "[base][text]") {

@@ -5,7 +5,8 @@
 // batches is gaussianFrame's; the formats not read piecewise are refused by name, and
 // damaged compressed data is an error naming the file. An SPZ v4 file read by columns, as
 // a remote one is (openGaussianColumns), gives the whole reader's splats for every piece
-// size and names the stream that is damaged.
+// size and names the stream that is damaged; an SPZ v2/v3 file read as a stream
+// (openGaussianStream) does too, with SH and without, in one gzip member or two.
 #include <catch2/catch.hpp>
 
 #include <cstring>
@@ -423,4 +424,132 @@ TEST_CASE("a GLB capture read by columns gives the whole reader's splats", "[spl
   // A GLB that says another length is refused as the batch reader refuses it.
   CHECK_THROWS_WITH(openGaussianColumns(bytes, "long.glb", bytes.size() + 4),
                     Catch::Contains("long.glb: GLB length"));
+}
+
+namespace {
+
+// The splats of the SPZ v2/v3 `bytes` read as a remote one is (openGaussianStream): fed
+// `piece` bytes at a time, the splats taken at most `step` at a time as they come; each
+// batch is checked to follow the last.
+GaussianCloud readByStream(const std::string& bytes, const std::string& name, std::size_t piece,
+                           std::size_t step) {
+  const GaussianStream found = openGaussianStream(bytes, name, bytes.size());
+  REQUIRE(found.decoder);
+  GaussianStreamDecoder& d = *found.decoder;
+  GaussianCloud all, batch;
+  all.shDegree = d.shDegree();
+  for (std::size_t at = 0; at < bytes.size(); at += piece) {
+    d.feed(std::string_view(bytes).substr(at, piece));
+    while (const std::size_t n = d.next(batch, step)) {
+      REQUIRE(n <= step);
+      REQUIRE(batch.size() == n);
+      all.appendRange(batch, 0, n);
+      CHECK(d.decoded() == all.size());
+    }
+  }
+  d.finish();
+  return all;
+}
+
+// `v3` (an SPZ v3 file's decompressed bytes) as SH degree 0: its header says so and its
+// SH block is gone (the rotations are then the last block); as version 2 too, with
+// 3-byte rotations (the first three bytes of each 4-byte one).
+std::string withoutSh(const std::string& v3, bool version2) {
+  const std::uint32_t count = gs::base::loadLe<std::uint32_t>(v3.data() + 8);
+  std::string out = v3.substr(0, 16 + count * (9 + 1 + 3 + 3));
+  out[12] = 0;
+  if (!version2) return out + v3.substr(out.size(), count * 4);
+  out[4] = 2;
+  for (std::uint32_t i = 0; i < count; ++i) out += v3.substr(16 + count * 16 + i * 4, 3);
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("an SPZ v2 or v3 file read as a stream gives the whole reader's splats", "[splats]") {
+  const std::string file = gs::test::readBytes(splatData("bunny_small_v3.spz"));
+  const std::string v3 = gs::base::gunzip(file, 1u << 24);
+  const std::pair<const char*, std::string> cases[] = {
+      {"v3 with SH", file},
+      {"v3 in two gzip members and padding",
+       gs::test::gzip(v3.substr(0, 1000)) + gs::test::gzip(v3.substr(1000)) + std::string(3, '\0')},
+      {"v3 without SH", gs::test::gzip(withoutSh(v3, false))},
+      {"v2 without SH", gs::test::gzip(withoutSh(v3, true))}};
+  for (const auto& [what, bytes] : cases) {
+    INFO(what);
+    const GaussianCloud whole = readSpzGaussians(bytes, "a.spz");
+    CHECK(whole.size() == 3000);
+    for (const auto& [piece, step] : {std::pair<std::size_t, std::size_t>{1, 7},
+                                      {333, 97},
+                                      {4096, 1000},
+                                      {bytes.size(), 100000}}) {
+      INFO("pieces of " << piece << ", splats " << step << " at a time");
+      checkSameBits(readByStream(bytes, "a.spz", piece, step), whole);
+    }
+  }
+  // With SH that vary, as a capture's (the bunny's are all zero, a few bytes of gzip),
+  // the first splats come before the last block ends: three quarters of the file give
+  // some and not all.
+  {
+    std::string varied = v3;
+    std::uint32_t seed = 12345;
+    for (std::size_t i = 16 + 3000 * 20; i < varied.size(); ++i) {
+      seed = seed * 1664525u + 1013904223u;
+      varied[i] = static_cast<char>(seed >> 24);
+    }
+    const std::string gz = gs::test::gzip(varied);
+    const GaussianStream found = openGaussianStream(gz, "a.spz", gz.size());
+    REQUIRE(found.decoder);
+    CHECK(found.decoder->size() == 3000);
+    CHECK(found.decoder->shDegree() == 1);
+    found.decoder->feed(std::string_view(gz).substr(0, gz.size() * 3 / 4));
+    GaussianCloud batch;
+    const std::size_t early = found.decoder->next(batch, 100000);
+    CHECK(early > 0);
+    CHECK(early < 3000);
+  }
+  // The head: more is needed until 16 bytes decompress; other scenes are not streams.
+  CHECK(openGaussianStream(file.substr(0, 12), "a.spz", file.size()).needMore);
+  CHECK_FALSE(openGaussianStream(file.substr(0, 12), "a.spz", file.size()).decoder);
+  for (const char* other : {"bunny_small.spz", "bunny_small.ply", "bunny_small.sog"}) {
+    INFO(other);
+    const std::string head = gs::test::readBytes(splatData(other));
+    const GaussianStream none = openGaussianStream(head, other, head.size());
+    CHECK_FALSE(none.decoder);
+    CHECK_FALSE(none.needMore);
+  }
+  const GaussianStream gzippedPly =
+      openGaussianStream(gs::test::gzip("ply\nformat binary_little_endian 1.0\n"), "a.ply.gz", 0);
+  CHECK_FALSE(gzippedPly.decoder);
+  CHECK_FALSE(gzippedPly.needMore);
+}
+
+TEST_CASE("an SPZ v2 or v3 file read as a stream reports damage naming the file", "[splats]") {
+  const std::string file = gs::test::readBytes(splatData("bunny_small_v3.spz"));
+  const auto whyOf = [](const std::string& bytes) {
+    try {
+      (void)readByStream(bytes, "bad.spz", 4096, 1000);
+    } catch (const FormatError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  // Cut short: the gzip data end inside their member.
+  CHECK(whyOf(file.substr(0, file.size() - 100)) == "bad.spz: corrupt gzip data: truncated");
+  // Bytes after the data.
+  CHECK(whyOf(file + "junk") == "bad.spz: corrupt gzip data: trailing bytes after the gzip data");
+  // Whole gzip data that hold fewer bytes than the header's splats need.
+  const std::string v3 = gs::base::gunzip(file, 1u << 24);
+  CHECK_THAT(whyOf(gs::test::gzip(v3.substr(0, v3.size() - 10))),
+             Catch::Contains("bad.spz: expected") && Catch::Contains("for 3000 splats"));
+  // More than 1 MiB after the blocks.
+  CHECK_THAT(whyOf(gs::test::gzip(v3 + std::string((1u << 20) + 1, 'x'))),
+             Catch::Contains("bad.spz: decompressed data exceeds the SPZ blocks by more than 1 MiB"));
+  // A header the whole reader refuses; a count no gzip data of this size can hold.
+  std::string v9 = v3;
+  v9[4] = 9;
+  CHECK_THROWS_WITH(openGaussianStream(gs::test::gzip(v9), "v9.spz", 0),
+                    Catch::Contains("v9.spz: unsupported SPZ version 9"));
+  CHECK_THROWS_WITH(openGaussianStream(file, "big.spz", 50),
+                    Catch::Contains("big.spz: 50 bytes of gzip data cannot hold"));
 }

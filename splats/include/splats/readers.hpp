@@ -176,6 +176,52 @@ struct GaussianColumns {
 GaussianColumns openGaussianColumns(std::string_view head, const std::string& name,
                                     std::uint64_t fileBytes);
 
+/// A scene whose splats come out of one compressed stream read forward, decoded as its
+/// bytes arrive: an SPZ v2/v3 file, gzip data of a header and the attribute blocks one
+/// after another (positions, alphas, colours, scales, rotations, SH). A splat is given,
+/// with all it holds, once its record of the last block has come: the blocks before it are
+/// held decompressed (about 20 bytes a splat), the last one's records go as they are
+/// decoded. A remote SPZ v2/v3 drawn while it arrives (docs/splats.md, "Opening a scene").
+class GaussianStreamDecoder {
+ public:
+  virtual ~GaussianStreamDecoder() = default;
+  /// The scene's splats (1..kMaxSplats).
+  virtual std::uint64_t size() const = 0;
+  /// SH degree (0..3).
+  virtual int shDegree() const = 0;
+  /// Takes the file's next bytes, from its first on (any split). Throws FormatError naming
+  /// the scene for damaged data or data past the blocks by more than the whole reader
+  /// allows (1 MiB).
+  virtual void feed(std::string_view bytes) = 0;
+  /// Decodes into `batch` (resized to them) up to `max` of the splats that came and that
+  /// next() did not give yet, in file order: exactly the whole-file reader's splats.
+  /// Returns how many (0 when none is waiting).
+  virtual std::size_t next(GaussianCloud& batch, std::size_t max) = 0;
+  /// Splats given by next() so far.
+  virtual std::uint64_t decoded() const = 0;
+  /// After the file's last byte: FormatError naming the scene unless its data ended as
+  /// readGaussians requires (every block complete, the last gzip member ended).
+  virtual void finish() = 0;
+};
+
+/// What openGaussianStream found in a scene's first bytes.
+struct GaussianStream {
+  /// The decoder (nothing fed yet: feed it the file from its first byte), or null.
+  std::unique_ptr<GaussianStreamDecoder> decoder;
+  /// With no decoder: true when more bytes may still show one (fewer than the 16
+  /// decompressed bytes of an SPZ header have come); false when the scene is not read as
+  /// a stream.
+  bool needMore = false;
+};
+
+/// The stream decoder of the scene `name` whose first bytes are `head` and whose size is
+/// `fileBytes` (0 when not known): an SPZ v2/v3 file (gzip whose first decompressed bytes
+/// are the NGSP magic). Throws FormatError naming `name` for what readSpzGaussians refuses
+/// in the header (a version, an SH degree, header extensions, more splats than kMaxSplats
+/// or than `fileBytes` of gzip data can hold).
+GaussianStream openGaussianStream(std::string_view head, const std::string& name,
+                                  std::uint64_t fileBytes);
+
 /// One column's bytes turned, as they arrive in order, into its records (a zstd column
 /// decompressed forward): what GaussianColumnDecoder::decode reads. Memory: the compressed
 /// bytes not yet decompressed, and the records decompressed ahead of the last
