@@ -11,7 +11,7 @@ namespace gs::base {
 
 namespace {
 
-[[noreturn]] void corrupt(const std::string& why) {
+[[noreturn]] void feedCorrupt(const std::string& why) {
   throw GzipError(GzipError::Kind::corrupt, "corrupt gzip data: " + why);
 }
 
@@ -27,7 +27,7 @@ struct GunzipFeed::Z {
 };
 
 GunzipFeed::GunzipFeed() : z_(std::make_unique<Z>()) {
-  if (inflateInit2(&z_->s, 16 + MAX_WBITS) != Z_OK) corrupt("zlib could not start");
+  if (inflateInit2(&z_->s, 16 + MAX_WBITS) != Z_OK) feedCorrupt("zlib could not start");
   z_->initialized = true;
 }
 
@@ -46,20 +46,20 @@ void GunzipFeed::feed(std::string_view bytes, const Sink& sink) {
       --left;
       if (between_ == 1 && c == 0) between_ = 3;
       if (between_ == 3) {
-        if (c != 0) corrupt("trailing bytes after the gzip data");
+        if (c != 0) feedCorrupt("trailing bytes after the gzip data");
       } else if (between_ == 1) {
-        if (c != 0x1f) corrupt("trailing bytes after the gzip data");
+        if (c != 0x1f) feedCorrupt("trailing bytes after the gzip data");
         between_ = 2;
       } else {  // the second byte of a member's magic
-        if (c != 0x8b) corrupt("trailing bytes after the gzip data");
-        if (inflateReset(&zs) != Z_OK) corrupt("zlib could not restart");
+        if (c != 0x8b) feedCorrupt("trailing bytes after the gzip data");
+        if (inflateReset(&zs) != Z_OK) feedCorrupt("zlib could not restart");
         static const unsigned char kMagic[2] = {0x1f, 0x8b};
         zs.next_in = const_cast<unsigned char*>(kMagic);
         zs.avail_in = 2;
         zs.next_out = z_->out;
         zs.avail_out = sizeof z_->out;
         if (inflate(&zs, Z_NO_FLUSH) != Z_OK || zs.avail_in != 0)
-          corrupt("zlib could not restart");
+          feedCorrupt("zlib could not restart");
         between_ = 0;
       }
       continue;
@@ -73,7 +73,7 @@ void GunzipFeed::feed(std::string_view bytes, const Sink& sink) {
       const int rc = inflate(&zs, Z_NO_FLUSH);
       const std::size_t made = sizeof z_->out - zs.avail_out;
       if (rc != Z_OK && rc != Z_STREAM_END && rc != Z_BUF_ERROR)
-        corrupt(zs.msg != nullptr ? zs.msg : "inflate failed");
+        feedCorrupt(zs.msg != nullptr ? zs.msg : "inflate failed");
       if (made > 0) {
         produced_ += made;
         sink(std::string_view(reinterpret_cast<const char*>(z_->out), made));
@@ -87,14 +87,14 @@ void GunzipFeed::feed(std::string_view bytes, const Sink& sink) {
       if ((zs.avail_in == 0 && zs.avail_out != 0) || (rc == Z_BUF_ERROR && made == 0)) break;
     }
     const std::size_t used = take - zs.avail_in;
-    if (used == 0 && between_ == 0) corrupt("inflate made no progress");
+    if (used == 0 && between_ == 0) feedCorrupt("inflate made no progress");
     in += used;
     left -= used;
   }
 }
 
 void GunzipFeed::finish() const {
-  if (between_ == 0 || between_ == 2) corrupt("truncated");
+  if (between_ == 0 || between_ == 2) feedCorrupt("truncated");
 }
 
 }  // namespace gs::base

@@ -6,7 +6,8 @@
 // content) from a file named .ply or .splat by the input's size, in batches of 97
 // splats, twice (rewound between), and as bytes arriving over HTTP
 // (splats::openGaussianRows, the rows decoded from the bytes; splats::openGaussianColumns,
-// the columns fed a piece at a time). splats::gltfDrawsOnlyGaussians
+// the columns fed a piece at a time; splats::openGaussianStream, an SPZ v2/v3 fed a piece
+// at a time). splats::gltfDrawsOnlyGaussians
 // (a glTF capture or a world) reads them too.
 #include <unistd.h>
 
@@ -116,6 +117,19 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       }
     }
     for (const auto& c : columns) c->finish();
+  });
+  // And as one stream over HTTP (splats::openGaussianStream: SPZ v2/v3), fed 997 bytes at
+  // a time, the splats taken 97 at a time as they come.
+  gs::fuzz::expectingErrors([&] {
+    const gs::splats::GaussianStream found = gs::splats::openGaussianStream(bytes, name, size);
+    if (!found.decoder) return;
+    gs::splats::GaussianCloud batch;
+    for (std::size_t at = 0; at < size; at += 997) {
+      found.decoder->feed(bytes.substr(at, 997));
+      while (found.decoder->next(batch, 97) > 0) {
+      }
+    }
+    found.decoder->finish();
   });
   return 0;
 }
