@@ -543,8 +543,9 @@ TEST_CASE("an SPZ v2 or v3 file read as a stream reports damage naming the file"
   CHECK_THAT(whyOf(gs::test::gzip(v3.substr(0, v3.size() - 10))),
              Catch::Contains("bad.spz: expected") && Catch::Contains("for 3000 splats"));
   // More than 1 MiB after the blocks.
-  CHECK_THAT(whyOf(gs::test::gzip(v3 + std::string((1u << 20) + 1, 'x'))),
-             Catch::Contains("bad.spz: decompressed data exceeds the SPZ blocks by more than 1 MiB"));
+  CHECK_THAT(
+      whyOf(gs::test::gzip(v3 + std::string((1u << 20) + 1, 'x'))),
+      Catch::Contains("bad.spz: decompressed data exceeds the SPZ blocks by more than 1 MiB"));
   // A header the whole reader refuses; a count no gzip data of this size can hold.
   std::string v9 = v3;
   v9[4] = 9;
