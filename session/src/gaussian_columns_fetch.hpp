@@ -4,8 +4,8 @@
 // came handed over in file order, with all they hold (docs/splats.md, "Opening a scene").
 // Columns of at most four zstd blocks of records come first (zstd gives a block's records
 // only once all its bytes came), then the others side by side. A server that ignores
-// ranges still works (each transfer drops the bytes before its column), at the cost of
-// reading the file up to each column. Private to the session (gaussian_scene_load.hpp).
+// ranges is seen at its first answer (rangesIgnored): its caller then reads the file once
+// whole. Private to the session (gaussian_scene_load.hpp).
 #pragma once
 
 #include <cstdint>
