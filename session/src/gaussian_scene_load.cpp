@@ -33,9 +33,12 @@ namespace {
 /// in one pump (about 25 ms of a frame at 5 M rows a second).
 constexpr std::size_t kBatchSplats = 65536;
 constexpr std::size_t kRowsPerPump = 131072;
-/// Compressed bytes of a scene read as one stream (SPZ v2/v3) inflated in one pump (a few
-/// ms at zlib's 300 MB/s and more of output).
+/// Compressed bytes of a scene read as one stream (SPZ v2/v3) inflated in one pump, fed
+/// kStreamSlice at a time until about kStreamOutputPerPump came out (a few ms of zlib's
+/// time: 300 MB/s of output and more).
 constexpr std::size_t kStreamBytesPerPump = std::size_t{1} << 20;
+constexpr std::size_t kStreamSlice = std::size_t{16} << 10;
+constexpr std::uint64_t kStreamOutputPerPump = std::uint64_t{32} << 20;
 
 /// The scene in `bytes` read (splats::readGaussians) and sorted by importance; never throws.
 std::shared_ptr<const splats::GaussianCloud> decodeScene(std::string bytes, const std::string& name,
@@ -261,23 +264,33 @@ bool GaussianSceneLoad::pumpColumns() {
 }
 
 bool GaussianSceneLoad::pumpStream(bool stopped) {
-  // At most kStreamBytesPerPump compressed bytes a pump (a frame's share of inflating),
-  // all that came when --snapshot-at stops the scene.
+  // A pump inflates at most kStreamBytesPerPump compressed bytes and about
+  // kStreamOutputPerPump of their output (a block of zeros inflates up to 1032 times):
+  // a frame's share; all that came when --snapshot-at stops the scene.
+  const std::uint64_t outputBefore = stream_->inflated();
+  std::size_t fed = 0;
+  while (streamFed_ < buffer_.size() &&
+         (stopped || (fed < kStreamBytesPerPump &&
+                      stream_->inflated() - outputBefore < kStreamOutputPerPump))) {
+    const std::size_t n = std::min(buffer_.size() - streamFed_, kStreamSlice);
+    stream_->feed(std::string_view(buffer_).substr(streamFed_, n));
+    streamFed_ += n;
+    fed += n;
+  }
+  // The bytes fed go once they are half the buffer (not at every pump: a fast server may
+  // have put much more in it than a pump inflates).
+  if (streamFed_ > 0 && streamFed_ >= buffer_.size() / 2) {
+    buffer_.erase(0, streamFed_);
+    bufferStart_ += streamFed_;
+    streamFed_ = 0;
+  }
   bool changed = false;
-  do {
-    const std::size_t n = stopped ? buffer_.size() : std::min(buffer_.size(), kStreamBytesPerPump);
-    if (n > 0) {
-      stream_->feed(std::string_view(buffer_).substr(0, n));
-      buffer_.erase(0, n);
-      bufferStart_ += n;
-    }
-    splats::GaussianCloud batch;
-    while (stream_->next(batch, kRowsPerPump) > 0) {
-      grow(batch, stream_->size());
-      changed = true;
-      if (!stopped) break;
-    }
-  } while (stopped && !buffer_.empty());
+  splats::GaussianCloud batch;
+  while (stream_->next(batch, kRowsPerPump) > 0) {
+    grow(batch, stream_->size());
+    changed = true;
+    if (!stopped) break;
+  }
   return changed;
 }
 
@@ -387,7 +400,7 @@ bool GaussianSceneLoad::pumpTransfer() {
     return true;
   }
   if (stream_) {
-    if (changed || !buffer_.empty()) return true;  // the next pump goes on
+    if (changed || streamFed_ < buffer_.size()) return true;  // the next pump goes on
     try {
       stream_->finish();
     } catch (const splats::FormatError& e) {

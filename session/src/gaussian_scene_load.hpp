@@ -85,7 +85,8 @@ class GaussianSceneLoad {
   /// Takes a remote scene's columns (columns_) and decodes the splats that came.
   bool pumpColumns();
   /// Feeds a remote scene read as one stream (stream_) the bytes that came (a pump's
-  /// share, or all of them when `stopped` by --snapshot-at) and draws the splats decoded.
+  /// share, or all of them when `stopped` by --snapshot-at) and draws the splats decoded;
+  /// true when it drew some.
   bool pumpStream(bool stopped);
   /// Cut by --snapshot-at: the splats that arrived are the scene (sorted, given a tree),
   /// or, when none did, the load fails saying why.
@@ -110,8 +111,10 @@ class GaussianSceneLoad {
   std::string buffer_;
   std::uint64_t bufferStart_ = 0, rowsDecoded_ = 0;
   std::unique_ptr<splats::GaussianRowDecoder> rows_;
-  // Or its stream's decoder (SPZ v2/v3), fed the bytes as they come.
+  // Or its stream's decoder (SPZ v2/v3), fed the bytes as they come: buffer_'s first
+  // `streamFed_` bytes were fed.
   std::unique_ptr<splats::GaussianStreamDecoder> stream_;
+  std::size_t streamFed_ = 0;
   // Or its columns' transfers, once its head showed a scene read by columns.
   std::unique_ptr<GaussianColumnsFetch> columns_;
   bool wholeRead_ = false;

@@ -559,6 +559,7 @@ class SpzStream final : public GaussianStreamDecoder {
   std::uint64_t size() const override { return h_.count; }
   int shDegree() const override { return std::min(h_.degree, kMaxShDegree); }
   std::uint64_t decoded() const override { return decoded_; }
+  std::uint64_t inflated() const override { return produced_; }
   void feed(std::string_view bytes) override {
     try {
       gunzip_.feed(bytes, [this](std::string_view out) { take(out); });
@@ -667,7 +668,11 @@ GaussianColumns openSpzColumns(std::string_view head, const std::string& name,
 GaussianStream openGaussianStream(std::string_view head, const std::string& name,
                                   std::uint64_t fileBytes) {
   GaussianStream found;
-  if (!base::isGzip(head)) return found;
+  if (!base::isGzip(head)) {
+    // One byte may be the gzip magic's first.
+    found.needMore = head.size() == 1 && static_cast<std::uint8_t>(head[0]) == 0x1f;
+    return found;
+  }
   const std::string h16 = base::gunzipPrefix(head, 16);
   if (h16.size() < 4 || base::loadLe<std::uint32_t>(h16.data()) != kMagic) {
     // Not yet known: a gzip header with a long name or comment field, or the first
@@ -685,7 +690,11 @@ GaussianStream openGaussianStream(std::string_view head, const std::string& name
   if (fileBytes > 0 && total / 1032 > fileBytes)
     fail(name, std::to_string(fileBytes) + " bytes of gzip data cannot hold the " +
                    std::to_string(total) + " bytes of " + std::to_string(h.count) + " splats");
-  found.decoder = std::make_unique<SpzStream>(h, name);
+  try {
+    found.decoder = std::make_unique<SpzStream>(h, name);
+  } catch (const base::GzipError& e) {  // zlib that cannot start
+    fail(name, e.what());
+  }
   return found;
 }
 

@@ -507,8 +507,11 @@ TEST_CASE("an SPZ v2 or v3 file read as a stream gives the whole reader's splats
     const std::size_t early = found.decoder->next(batch, 100000);
     CHECK(early > 0);
     CHECK(early < 3000);
+    CHECK(found.decoder->inflated() > 16 + 3000 * 20);  // past the blocks before the SH
+    CHECK(found.decoder->inflated() < varied.size());
   }
   // The head: more is needed until 16 bytes decompress; other scenes are not streams.
+  CHECK(openGaussianStream(file.substr(0, 1), "a.spz", file.size()).needMore);
   CHECK(openGaussianStream(file.substr(0, 12), "a.spz", file.size()).needMore);
   CHECK_FALSE(openGaussianStream(file.substr(0, 12), "a.spz", file.size()).decoder);
   for (const char* other : {"bunny_small.spz", "bunny_small.ply", "bunny_small.sog"}) {

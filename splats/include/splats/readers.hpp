@@ -199,6 +199,9 @@ class GaussianStreamDecoder {
   virtual std::size_t next(GaussianCloud& batch, std::size_t max) = 0;
   /// Splats given by next() so far.
   virtual std::uint64_t decoded() const = 0;
+  /// Bytes the data fed so far decompressed to (a caller may pace its feeding by them: a
+  /// block of zeros inflates up to 1032 times).
+  virtual std::uint64_t inflated() const = 0;
   /// After the file's last byte: FormatError naming the scene unless its data ended as
   /// readGaussians requires (every block complete, the last gzip member ended).
   virtual void finish() = 0;
