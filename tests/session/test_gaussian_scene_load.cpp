@@ -78,6 +78,37 @@ void checkBunny(const gs::render::SplatSet& set) {
   CHECK(set.loadError.empty());
 }
 
+/// Pumps `scene` (of the file `name` whose splats are `whole`, with SH) until it settles,
+/// checking each set drawn before every splat came: in file order, with all they hold (the
+/// last one's position, rotation, scale and an SH coefficient the whole reader's), the
+/// scene's count expected, its line of the Streams panel loading with fewer bytes than
+/// the file's. Whether such a set was seen.
+bool sawPartialSets(OpenedScene& scene, const gs::splats::GaussianCloud& whole,
+                    const std::string& name, std::uint64_t fileBytes) {
+  bool sawPart = false;
+  for (int i = 0; i < 10000 && !scene.session.settled(); ++i) {
+    scene.session.pump();
+    const auto& set = *scene.set;
+    if (set.gaussians && set.size() > 0 && set.size() < whole.size()) {
+      sawPart = true;
+      CHECK(set.expectedVectors == whole.size());
+      const gs::splats::GaussianCloud& part = *set.gaussians;
+      CHECK(part.shDegree == whole.shDegree);
+      const std::size_t last = part.size() - 1;
+      CHECK(part.positions[last] == whole.positions[last]);
+      CHECK(part.rotations[last] == whole.rotations[last]);
+      CHECK(part.scales[last] == whole.scales[last]);
+      const std::size_t rest = static_cast<std::size_t>(whole.shRestPerSplat());
+      CHECK(part.shRest[rest * last + rest - 1] == whole.shRest[rest * last + rest - 1]);
+      const gs::net::StreamProgress p = scene.line(name);
+      CHECK(p.state == gs::net::StreamState::loading);
+      CHECK(p.bytes < fileBytes);
+    }
+    scene.session.loader().wait(0.01);
+  }
+  return sawPart;
+}
+
 }  // namespace
 
 TEST_CASE("a splat scene file is read in the background then gets its tree", "[session][splat]") {
@@ -241,28 +272,10 @@ TEST_CASE("an SPZ v4 over HTTP is drawn while its columns arrive side by side",
   OpenedScene scene(nginx.url("/bunny.spz"), slow);
   const gs::splats::GaussianCloud whole = gs::splats::readGaussians(bytes, spz.string(), {});
   // Splats in file order with all they hold, SH too, while the rest arrives.
-  bool sawPart = false;
-  for (int i = 0; i < 10000 && !scene.session.settled(); ++i) {
-    scene.session.pump();
-    const auto& set = *scene.set;
-    if (set.gaussians && set.size() > 0 && set.size() < 3000) {
-      sawPart = true;
-      CHECK(set.expectedVectors == 3000);
-      const gs::splats::GaussianCloud& part = *set.gaussians;
-      CHECK(part.shDegree == 1);
-      const std::size_t last = part.size() - 1;
-      CHECK(part.positions[last] == whole.positions[last]);
-      CHECK(part.rotations[last] == whole.rotations[last]);
-      CHECK(part.shRest[3 * last + 2] == whole.shRest[3 * last + 2]);
-      const gs::net::StreamProgress p = scene.line("/bunny.spz");
-      CHECK(p.state == gs::net::StreamState::loading);
-      CHECK(p.bytes < bytes.size());
-      CHECK(p.expectedBytes == static_cast<std::int64_t>(bytes.size()));
-    }
-    scene.session.loader().wait(0.01);
-  }
-  CHECK(sawPart);
+  CHECK(whole.shDegree == 1);
+  CHECK(sawPartialSets(scene, whole, "/bunny.spz", bytes.size()));
   REQUIRE(scene.settle());
+  CHECK(scene.line("/bunny.spz").expectedBytes == static_cast<std::int64_t>(bytes.size()));
   checkBunny(*scene.set);
   // Every byte fetched once: the head, then each column's rest.
   CHECK(scene.line("/bunny.spz").bytes == bytes.size());
@@ -294,24 +307,8 @@ TEST_CASE("an SPZ v3 over HTTP is drawn while its gzip data arrive", "[session][
   slow.maxRate = 25000;  // bytes a second: about 2.5 s for its 64 KB
   OpenedScene scene(nginx.url("/bunny_v3.spz"), slow);
   const gs::splats::GaussianCloud whole = gs::splats::readGaussians(bytes, "bunny_v3.spz", {});
-  bool sawPart = false;
-  for (int i = 0; i < 10000 && !scene.session.settled(); ++i) {
-    scene.session.pump();
-    const auto& set = *scene.set;
-    if (set.gaussians && set.size() > 0 && set.size() < 3000) {
-      sawPart = true;
-      CHECK(set.expectedVectors == 3000);
-      const gs::splats::GaussianCloud& part = *set.gaussians;
-      CHECK(part.shDegree == 1);
-      const std::size_t last = part.size() - 1;
-      CHECK(part.positions[last] == whole.positions[last]);
-      CHECK(part.rotations[last] == whole.rotations[last]);
-      CHECK(part.shRest[3 * last + 2] == whole.shRest[3 * last + 2]);
-      CHECK(scene.line("/bunny_v3.spz").bytes < bytes.size());
-    }
-    scene.session.loader().wait(0.01);
-  }
-  CHECK(sawPart);
+  CHECK(whole.shDegree == 1);
+  CHECK(sawPartialSets(scene, whole, "/bunny_v3.spz", bytes.size()));
   REQUIRE(scene.settle());
   const gs::splats::GaussianCloud expected = gs::splats::sortByImportance(whole);
   REQUIRE(scene.set->gaussians);
@@ -340,22 +337,8 @@ TEST_CASE("a GLB capture over HTTP is drawn while its accessors arrive side by s
   slow.maxRate = 100000;  // bytes a second: about 2.5 s for what it fetches
   OpenedScene scene(nginx.url("/bunny.glb"), slow);
   const gs::splats::GaussianCloud whole = gs::splats::readGaussians(bytes, glb.string(), {});
-  bool sawPart = false;
-  for (int i = 0; i < 10000 && !scene.session.settled(); ++i) {
-    scene.session.pump();
-    const auto& set = *scene.set;
-    if (set.gaussians && set.size() > 0 && set.size() < 3000) {
-      sawPart = true;
-      const gs::splats::GaussianCloud& part = *set.gaussians;
-      CHECK(part.shDegree == 1);
-      const std::size_t last = part.size() - 1;
-      CHECK(part.positions[last] == whole.positions[last]);
-      CHECK(part.scales[last] == whole.scales[last]);
-      CHECK(part.shRest[3 * last] == whole.shRest[3 * last]);
-    }
-    scene.session.loader().wait(0.01);
-  }
-  CHECK(sawPart);
+  CHECK(whole.shDegree == 1);
+  CHECK(sawPartialSets(scene, whole, "/bunny.glb", bytes.size()));
   REQUIRE(scene.settle());
   const gs::splats::GaussianCloud expected = gs::splats::sortByImportance(whole);
   REQUIRE(scene.set->gaussians);
