@@ -179,6 +179,25 @@ std::string percentDecode(std::string_view s) {
   return out;
 }
 
+std::string percentEncodePath(std::string_view path) {
+  static constexpr std::string_view kKept = "-._~/!$&'()*+,;=:@";
+  static constexpr char kHex[] = "0123456789ABCDEF";
+  std::string out;
+  out.reserve(path.size());
+  for (const char c : path) {
+    const auto b = static_cast<unsigned char>(c);
+    if ((b >= 'a' && b <= 'z') || (b >= 'A' && b <= 'Z') || (b >= '0' && b <= '9') ||
+        kKept.find(c) != std::string_view::npos) {
+      out += c;
+    } else {
+      out += '%';
+      out += kHex[b >> 4];
+      out += kHex[b & 15];
+    }
+  }
+  return out;
+}
+
 std::string localPathOfUrl(std::string_view url) {
   const std::size_t scheme = schemeLength(url);
   if (scheme == 0) return std::string(url);

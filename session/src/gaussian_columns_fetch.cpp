@@ -24,6 +24,8 @@ struct GaussianColumnsFetch::Column {
   splats::ColumnRecords records;
   std::string bytes;        // taken from the transfer, not yet fed
   std::uint64_t taken = 0;  // bytes taken from the transfer
+  std::string file;         // a buffer file's URL (empty: the scene's own file)
+  std::uint64_t fileBytes = 0;  // its size as the scene states it
   Column(const splats::GaussianColumnDecoder::Column& c, std::uint64_t splats,
          const std::string& name, int index)
       : records(c, splats, name, index) {}
@@ -31,7 +33,8 @@ struct GaussianColumnsFetch::Column {
 
 GaussianColumnsFetch::GaussianColumnsFetch(std::unique_ptr<splats::GaussianColumnDecoder> decoder,
                                            const net::FetchRequest& request, std::string_view head,
-                                           std::uint64_t fileBytes, std::string name)
+                                           std::uint64_t fileBytes, std::string name,
+                                           const std::map<std::string, net::FetchRequest>& sideRequests)
     : decoder_(std::move(decoder)),
       name_(std::move(name)),
       headBytes_(head.size()),
@@ -42,13 +45,19 @@ GaussianColumnsFetch::GaussianColumnsFetch(std::unique_ptr<splats::GaussianColum
     const auto& c = columns[k];
     auto column = std::make_unique<Column>(c, decoder_->size(), name_, static_cast<int>(k));
     // A column's bytes already in the head are fed; a range request fetches the rest.
-    const std::uint64_t have =
-        c.offset >= head.size() ? 0 : std::min<std::uint64_t>(c.bytes, head.size() - c.offset);
+    const std::uint64_t have = !c.file.empty() || c.offset >= head.size()
+                                   ? 0
+                                   : std::min<std::uint64_t>(c.bytes, head.size() - c.offset);
     if (have > 0)
       column->records.feed(
           head.substr(static_cast<std::size_t>(c.offset), static_cast<std::size_t>(have)));
     if (have < c.bytes) {
-      column->request = request;
+      column->request = c.file.empty() ? request : sideRequests.at(c.file);
+      if (!c.file.empty()) {
+        column->file = column->request.url;
+        column->fileBytes = c.fileBytes;
+        sideBytes_ += c.bytes;
+      }
       column->request.offset = c.offset + have;
       column->request.length = c.bytes - have;
       column->waiting = true;
@@ -157,6 +166,11 @@ std::string GaussianColumnsFetch::failure() const {
     const net::TransferStatus s = c->transfer->status();
     if (s.finished() && s.state != net::TransferState::done)
       return s.error.empty() ? name_ + ": cancelled" : s.error;
+    // A buffer file of another size than its byteLength: refused as the whole reader does.
+    if (!c->file.empty() && s.resourceSize >= 0 &&
+        static_cast<std::uint64_t>(s.resourceSize) != c->fileBytes)
+      return name_ + ": " + c->file + ": expected " + std::to_string(c->fileBytes) +
+             " bytes, got " + std::to_string(s.resourceSize);
   }
   return {};
 }
@@ -168,7 +182,7 @@ void GaussianColumnsFetch::finish() {
 net::TransferStatus GaussianColumnsFetch::status() const {
   net::TransferStatus t;
   t.received = headBytes_;
-  t.resourceSize = static_cast<std::int64_t>(fileBytes_);
+  t.resourceSize = static_cast<std::int64_t>(fileBytes_ + sideBytes_);
   t.expected = t.resourceSize;
   bool running = false;
   for (const auto& c : columns_) {

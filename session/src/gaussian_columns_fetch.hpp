@@ -1,5 +1,6 @@
 // A remote Gaussian splatting scene read by columns (splats::GaussianColumnDecoder: an SPZ
-// v4 file's zstd streams, a GLB capture's accessors): one HTTP range request per column,
+// v4 file's zstd streams, a GLB or .gltf capture's accessors, in its own file or in buffer
+// files beside it): one HTTP range request per column,
 // side by side, each column decoded as its bytes arrive, and the splats whose every record
 // came handed over in file order, with all they hold (docs/splats.md, "Opening a scene").
 // Columns of at most four zstd blocks of records come first (zstd gives a block's records
@@ -10,6 +11,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -28,9 +30,12 @@ class GaussianColumnsFetch {
   /// stays as slow, and every column ends when the whole file would have).
   /// `head` holds the file's first bytes, already fetched: the columns' bytes within it
   /// are not fetched again. `fileBytes`: the file's size (for the Streams panel).
+  /// `sideRequests`: the request for each buffer file a column lies in (Column::file, as
+  /// Loader::requestFor makes it for the file's URL); std::out_of_range for one missing.
   GaussianColumnsFetch(std::unique_ptr<splats::GaussianColumnDecoder> decoder,
                        const net::FetchRequest& request, std::string_view head,
-                       std::uint64_t fileBytes, std::string name);
+                       std::uint64_t fileBytes, std::string name,
+                       const std::map<std::string, net::FetchRequest>& sideRequests = {});
   /// Cancels the transfers still running.
   ~GaussianColumnsFetch();
   GaussianColumnsFetch(const GaussianColumnsFetch&) = delete;
@@ -44,7 +49,7 @@ class GaussianColumnsFetch {
   /// (resized to them) and returns how many (0: none yet). FormatError for damaged data.
   std::size_t next(splats::GaussianCloud& batch, std::size_t max);
   /// Whether every transfer ended; `failure()` is the first one's error that did not end
-  /// done (empty when none).
+  /// done, or a buffer file whose size is not the one its scene states (empty when none).
   bool finished() const;
   std::string failure() const;
   /// Once finished() and every splat handed over: FormatError unless each column ends as
@@ -73,6 +78,7 @@ class GaussianColumnsFetch {
   std::string name_;
   std::vector<std::unique_ptr<Column>> columns_;
   std::uint64_t headBytes_ = 0, fileBytes_ = 0, decoded_ = 0;
+  std::uint64_t sideBytes_ = 0;  // the bytes of the columns in buffer files
   int wave_ = 0;
 };
 

@@ -2,9 +2,11 @@
 // (gaussian_scene_load.hpp).
 #include "gaussian_scene_load.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <deque>
 #include <limits>
+#include <map>
 #include <mutex>
 #include <new>
 #include <thread>
@@ -294,6 +296,31 @@ bool GaussianSceneLoad::pumpStream(bool stopped) {
   return changed;
 }
 
+bool GaussianSceneLoad::inBufferFiles(const splats::GaussianColumnDecoder& decoder) {
+  const auto& columns = decoder.columns();
+  return std::any_of(columns.begin(), columns.end(), [](const auto& c) { return !c.file.empty(); });
+}
+
+std::unique_ptr<GaussianColumnsFetch> GaussianSceneLoad::fetchColumns(
+    std::unique_ptr<splats::GaussianColumnDecoder> decoder, std::uint64_t fileBytes) {
+  // The resource limit is each file's: a file past it is left to the transfer that reads
+  // the scene whole, which fails naming the limit, as does a buffer file the rules of
+  // what content may reference refuse.
+  std::string error;
+  const net::FetchRequest request = loader_.requestFor(url_, referrer_, error);
+  if (request.url.empty() || request.maxBytes < fileBytes) return nullptr;
+  std::map<std::string, net::FetchRequest> sideRequests;
+  for (const auto& c : decoder->columns()) {
+    if (c.file.empty() || sideRequests.count(c.file)) continue;
+    const std::string url = sideFileUrl(url_, c.file, error);
+    net::FetchRequest side = url.empty() ? net::FetchRequest{} : loader_.requestFor(url, url_, error);
+    if (side.url.empty() || side.maxBytes < c.fileBytes) return nullptr;
+    sideRequests.emplace(c.file, std::move(side));
+  }
+  return std::make_unique<GaussianColumnsFetch>(std::move(decoder), request, buffer_, fileBytes,
+                                                url_, sideRequests);
+}
+
 bool GaussianSceneLoad::pumpTransfer() {
   if (columns_) return pumpColumns();
   if (!transfer_) {
@@ -325,23 +352,24 @@ bool GaussianSceneLoad::pumpTransfer() {
       splats::GaussianRows found = splats::openGaussianRows(buffer_, url_, size);
       rows_ = std::move(found.decoder);
       bool needMore = found.needMore;
-      // A scene read by columns (SPZ v4) while most of it is still to come: its columns
-      // are fetched side by side from here (its size must be known).
-      if (!rows_ && !s.finished() && s.resourceSize > 0 && !stopped) {
-        splats::GaussianColumns columns =
-            splats::openGaussianColumns(buffer_, url_, static_cast<std::uint64_t>(s.resourceSize));
-        std::string error;
-        const net::FetchRequest request = loader_.requestFor(url_, referrer_, error);
-        // The resource limit is the file's: a file past it is left to the transfer that
-        // reads it whole, which fails naming the limit.
-        if (columns.decoder && !request.url.empty() &&
-            request.maxBytes >= static_cast<std::uint64_t>(s.resourceSize)) {
-          transfer_->cancel();
-          columns_ = std::make_unique<GaussianColumnsFetch>(
-              std::move(columns.decoder), request, buffer_,
-              static_cast<std::uint64_t>(s.resourceSize), url_);
-          std::string().swap(buffer_);
-          return pumpColumns() || changed;
+      // A scene read by columns (SPZ v4, GLB) while most of it is still to come, or whose
+      // columns lie in buffer files (.gltf): its columns are fetched side by side from
+      // here (its size must be known).
+      const std::uint64_t known = s.resourceSize > 0  ? static_cast<std::uint64_t>(s.resourceSize)
+                                  : s.state == net::TransferState::done ? buffer_.size()
+                                                                        : 0;
+      // (A scene that came whole is read whole, but for a .gltf's columns.)
+      const bool glb = buffer_.starts_with("glTF"), spz = buffer_.starts_with("NGSP");
+      if (!rows_ && known > 0 && !stopped && bufferStart_ == 0 &&
+          (!s.finished() || (!glb && !spz))) {
+        splats::GaussianColumns columns = splats::openGaussianColumns(buffer_, url_, known);
+        if (columns.decoder && (!s.finished() || inBufferFiles(*columns.decoder))) {
+          if (auto fetch = fetchColumns(std::move(columns.decoder), known)) {
+            transfer_->cancel();
+            columns_ = std::move(fetch);
+            std::string().swap(buffer_);
+            return pumpColumns() || changed;
+          }
         }
         needMore |= columns.needMore;
       }

@@ -8,8 +8,9 @@
 //   (Loader::requestFor, up to LoaderOptions::maxResourceBytes); a binary .ply or a
 //   .splat is decoded row by row as its bytes arrive (splats::openGaussianRows) and drawn
 //   as it grows, a compressed .ply's vertex records too (without SH, the whole file read
-//   again once it arrived), an SPZ v4 file's zstd streams and a GLB capture's accessors side by
-//   side by range requests, each splat decoded once all its records came
+//   again once it arrived), an SPZ v4 file's zstd streams and a GLB or .gltf capture's
+//   accessors (in its BIN chunk or its buffer files) side by side by range requests, each
+//   splat decoded once all its records came
 //   (gaussian_columns_fetch.hpp), an SPZ v2/v3 file's gzip data inflated as they come,
 //   each splat decoded once its last attribute came (splats::openGaussianStream), the
 //   other formats once whole;
@@ -82,6 +83,13 @@ class GaussianSceneLoad {
   void grow(const splats::GaussianCloud& batch, std::uint64_t total);
   /// Takes a remote scene's bytes: decodes its rows, or keeps them for a whole read.
   bool pumpTransfer();
+  /// Whether some of `decoder`'s columns lie in buffer files beside the scene (a .gltf's).
+  static bool inBufferFiles(const splats::GaussianColumnDecoder& decoder);
+  /// The fetch of `decoder`'s columns of the remote scene of `fileBytes` bytes whose head is
+  /// buffer_, or null when the loader's rules refuse a file (the URL, a size past its
+  /// limit): the scene is then read whole, which says why.
+  std::unique_ptr<GaussianColumnsFetch> fetchColumns(
+      std::unique_ptr<splats::GaussianColumnDecoder> decoder, std::uint64_t fileBytes);
   /// Takes a remote scene's columns (columns_) and decodes the splats that came.
   bool pumpColumns();
   /// Feeds a remote scene read as one stream (stream_) the bytes that came (a pump's

@@ -213,15 +213,23 @@ std::shared_ptr<const render::SplatSet> loadGaussianFile(const std::string& path
   return gaussianSet(bytes, path, sideFileReader(fetcher, path), error);
 }
 
+std::string sideFileUrl(const std::string& sceneUrl, const std::string& relative,
+                        std::string& why) {
+  if (relative.empty() || relative.find("..") != std::string::npos ||
+      relative.find(':') != std::string::npos || relative.front() == '/') {
+    why = relative + ": not a file beside the scene";
+    return {};
+  }
+  // A URL names the file by its path percent-encoded (a space as %20); a local path as is.
+  return base::resolveUrl(sceneUrl, base::hasScheme(sceneUrl) ? base::percentEncodePath(relative)
+                                                              : relative);
+}
+
 splats::SideFileReader sideFileReader(base::Fetcher& fetcher, const std::string& sceneUrl) {
   return [&fetcher, sceneUrl](const std::string& relative, std::string& out, std::string& why) {
-    if (relative.empty() || relative.find("..") != std::string::npos ||
-        relative.find(':') != std::string::npos || relative.front() == '/') {
-      why = relative + ": not a file beside the scene";
-      return false;
-    }
-    base::Fetched f =
-        fetcher.fetch(base::resolveUrl(sceneUrl, relative), sceneUrl, base::FetchMode::whole);
+    const std::string url = sideFileUrl(sceneUrl, relative, why);
+    if (url.empty()) return false;
+    base::Fetched f = fetcher.fetch(url, sceneUrl, base::FetchMode::whole);
     if (!f.ready()) {
       why = f.error;
       return false;

@@ -153,14 +153,21 @@ GaussianCloud readGaussians(std::string_view bytes, std::string_view name,
 
 GaussianColumns openGaussianColumns(std::string_view head, const std::string& name,
                                     std::uint64_t fileBytes) {
-  if (fileBytes == 0) return {};
+  GaussianColumns found;
+  if (fileBytes == 0) return found;
+  if (head.starts_with("glTF") || gltf::looksLikeGltfJson(head))
+    return openGltfColumns(head, name, fileBytes);
+  // A JSON object not yet whole may still show a .gltf's "asset" (one of at most 1 MiB).
+  if (const auto at = head.find_first_not_of(" \t\r\n\xEF\xBB\xBF");
+      at != std::string_view::npos && head[at] == '{') {
+    found.needMore = head.size() < fileBytes && fileBytes <= (std::uint64_t{1} << 20);
+    return found;
+  }
   if (head.size() < 4) {
-    GaussianColumns found;
     found.needMore =
         std::string_view("NGSP").starts_with(head) || std::string_view("glTF").starts_with(head);
     return found;
   }
-  if (head.starts_with("glTF")) return openGltfColumns(head, name, fileBytes);
   return openSpzColumns(head, name, fileBytes);
 }
 

@@ -27,6 +27,9 @@ namespace {
 using detail::fail;
 
 constexpr std::uint64_t kMaxJsonBytes = std::uint64_t{64} << 20;
+/// The most JSON a remote scene read by columns waits for (a GLB's JSON chunk, a .gltf):
+/// more is read with the whole file.
+constexpr std::uint64_t kMaxRemoteJsonBytes = std::uint64_t{1} << 20;
 /// Splat primitive instances read piecewise: each holds its accessors and placement
 /// (about 2 KB); more are read whole.
 constexpr std::size_t kMaxInstances = 65536;
@@ -34,12 +37,14 @@ constexpr std::size_t kMaxInstances = 65536;
 constexpr const char* kPlaceholderBuffer = "data:application/octet-stream;base64,AAAAAA==";
 
 /// Where one buffer's bytes are: a file (the GLB itself, or a buffer file beside a
-/// .gltf) from `offset`, or memory (a data: URI, decoded by tinygltf).
+/// .gltf) from `offset`, or memory (a data: URI, decoded by tinygltf), or, for a remote
+/// .gltf, a buffer file fetched by its columns (`uri`, relative and percent-decoded).
 struct BufferSource {
   std::uint64_t byteLength = 0;
   std::shared_ptr<detail::PieceFile> file;
   std::uint64_t offset = 0;
   const std::vector<unsigned char>* memory = nullptr;
+  std::string uri;
 };
 
 /// One accessor read by offset: element i of component k at byte offset + i * stride +
@@ -74,12 +79,17 @@ class GltfGaussianBatches final : public GaussianBatchReader, public GaussianCol
       : path_(path), file_(std::make_shared<detail::PieceFile>(path)), fileBytes_(file_->size()) {
     openBytes([this](std::uint64_t at, char* dst, std::size_t n) { file_->read(at, dst, n); });
   }
-  /// A remote GLB of `fileBytes` bytes from its first bytes `head`: NeedMoreBytes until they
-  /// hold its header and JSON chunk; NotPiecewiseError for what is not read by columns.
+  /// A remote GLB or .gltf of `fileBytes` bytes from its first bytes `head`: NeedMoreBytes
+  /// until they hold its header and JSON chunk (a .gltf: the whole file, at most 1 MiB);
+  /// NotPiecewiseError for what is not read by columns.
   GltfGaussianBatches(const std::string& name, std::string_view head, std::uint64_t fileBytes)
       : path_(name), fileBytes_(fileBytes), remote_(true) {
-    if (!head.starts_with("glTF"))
-      throw NotPiecewiseError(name + ": only a GLB is read by columns");
+    if (!head.starts_with("glTF")) {
+      if (fileBytes > kMaxRemoteJsonBytes)
+        throw NotPiecewiseError(name + ": a .gltf past 1 MiB is not read by columns");
+      if (head.size() < fileBytes) throw NeedMoreBytes{};
+      head = head.substr(0, static_cast<std::size_t>(fileBytes));
+    }
     openBytes([head](std::uint64_t at, char* dst, std::size_t n) {
       if (at > head.size() || n > head.size() - at) throw NeedMoreBytes{};
       std::copy_n(head.data() + at, n, dst);
@@ -148,7 +158,7 @@ class GltfGaussianBatches final : public GaussianBatchReader, public GaussianCol
       if (jsonBytes > kMaxJsonBytes || 20 + jsonBytes > fileBytes_)
         fail(path, "GLB JSON chunk of " + std::to_string(jsonBytes) + " bytes does not fit");
       // A remote head: a JSON chunk past 1 MiB is read with the whole file instead.
-      if (remote_ && jsonBytes > (std::uint64_t{1} << 20))
+      if (remote_ && jsonBytes > kMaxRemoteJsonBytes)
         throw NotPiecewiseError(path + ": a GLB JSON chunk past 1 MiB is not read by columns");
       json.resize(static_cast<std::size_t>(jsonBytes));
       readAt(20, json.data(), json.size());
@@ -163,6 +173,9 @@ class GltfGaussianBatches final : public GaussianBatchReader, public GaussianCol
             binBytes > fileBytes_ - binOffset)
           fail(path, "GLB BIN chunk runs past the end of the file");
       }
+    } else if (remote_) {
+      json.resize(static_cast<std::size_t>(fileBytes_));
+      readAt(0, json.data(), json.size());
     } else {
       if (fileBytes_ > kMaxJsonBytes) fail(path, "glTF JSON larger than 64 MiB");
       json = file_->head(static_cast<std::size_t>(kMaxJsonBytes));
@@ -173,9 +186,9 @@ class GltfGaussianBatches final : public GaussianBatchReader, public GaussianCol
       throw FormatError(e.what());
     }
   }
-  /// The columns of a remote GLB (remote_): one splat primitive instance whose accessors
-  /// lie tightly packed in the BIN chunk, each read by its own range (COLOR_0 only where
-  /// it is the colour); else NotPiecewiseError.
+  /// The columns of a remote GLB or .gltf (remote_): one splat primitive instance whose
+  /// accessors lie tightly packed in the BIN chunk or buffer files, each read by its own
+  /// range (COLOR_0 only where it is the colour); else NotPiecewiseError.
   void planColumns() {
     const auto refuse = [&](const std::string& why) {
       throw NotPiecewiseError(path_ + ": not read by columns: " + why);
@@ -186,8 +199,8 @@ class GltfGaussianBatches final : public GaussianBatchReader, public GaussianCol
       const BufferSource& s = sources_[static_cast<std::size_t>(a->buffer)];
       if (s.memory) refuse("an accessor in a data: buffer");
       if (a->stride != a->elementBytes) refuse("an interleaved accessor");
-      columns_.push_back(
-          Column{s.offset + a->offset, a->count * a->elementBytes, a->elementBytes, false});
+      columns_.push_back(Column{s.offset + a->offset, a->count * a->elementBytes, a->elementBytes,
+                                false, s.uri, s.uri.empty() ? 0 : s.byteLength});
     }
   }
   /// The accessors of `p` in the order of its columns.
@@ -247,12 +260,15 @@ class GltfGaussianBatches final : public GaussianBatchReader, public GaussianCol
         s.file = file_;
         s.offset = binOffset;
       } else {
-        // A remote GLB never reads local files: one with buffer files is read whole.
-        if (remote_) throw NotPiecewiseError(path_ + ": not read by columns: a buffer file");
         const std::string relative = base::percentDecode(uri);
         if (relative.empty() || relative.find("..") != std::string::npos ||
             relative.find(':') != std::string::npos || relative.front() == '/')
           fail(path_, relative + ": not a file beside the scene");
+        if (remote_) {  // fetched by its columns' range requests, beside the scene's URL
+          s.uri = relative;
+          if (counted.insert(relative).second) budget += byteLength;
+          continue;
+        }
         s.file = std::make_shared<detail::PieceFile>(
             (std::filesystem::path(path_).parent_path() / relative).string());
         if (s.file->size() != byteLength)

@@ -102,3 +102,16 @@ TEST_CASE("localPathOfUrl, schemes and mayReference", "[base][url]") {
   CHECK_THAT(error, Catch::Contains("'/etc/passwd'"));
   CHECK_FALSE(mayReference("http://h/a.wrl", "ftp://h/b.wrl", error));
 }
+
+TEST_CASE("percentEncodePath writes a file's name as a URL's path", "[base][url]") {
+  using gs::base::percentDecode;
+  using gs::base::percentEncodePath;
+  CHECK(percentEncodePath("buffers/bunny small.bin") == "buffers/bunny%20small.bin");
+  CHECK(percentEncodePath("a%b?c#d\"e") == "a%25b%3Fc%23d%22e");
+  CHECK(percentEncodePath("caf\xC3\xA9-1_2.~(x)") == "caf%C3%A9-1_2.~(x)");
+  for (const std::string name : {"x y/z%20w.bin", "\x01\xFF", "plain.bin", ""})
+    CHECK(percentDecode(percentEncodePath(name)) == name);
+  // Resolved against a scene's URL, as a side file is.
+  CHECK(gs::base::resolveUrl("http://h/s/scene.gltf", percentEncodePath("b/my file.bin")) ==
+        "http://h/s/b/my%20file.bin");
+}

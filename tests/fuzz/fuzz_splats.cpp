@@ -74,8 +74,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       d.decode(bytes.data() + d.dataOffset() + first * d.rowBytes(), first, n, batch);
     }
   });
-  // And read by columns as over HTTP (splats::openGaussianColumns: SPZ v4), each column fed
-  // in pieces of 997 bytes, the splats decoded 97 at a time as their records come.
+  // And read by columns as over HTTP (splats::openGaussianColumns: SPZ v4, GLB, .gltf), each
+  // column fed in pieces of 997 bytes (a .gltf's buffer file's from the input itself), the
+  // splats decoded 97 at a time as their records come.
   gs::fuzz::expectingErrors(
       [&] { (void)gs::splats::openGaussianColumns(bytes.substr(0, size / 2), name, size); });
   gs::fuzz::expectingErrors([&] {

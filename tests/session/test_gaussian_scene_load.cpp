@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <string>
 
+#include "base/byte_order.hpp"
 #include "base/gzip.hpp"
 #include "http/fault_server.hpp"
 #include "http/nginx_server.hpp"
@@ -348,6 +349,63 @@ TEST_CASE("a GLB capture over HTTP is drawn while its accessors arrive side by s
   // No byte fetched twice (its COLOR_0, which the DC stands in for, is not fetched at all
   // unless the head already held it).
   CHECK(scene.line("/bunny.glb").bytes <= bytes.size());
+}
+
+TEST_CASE("a .gltf capture over HTTP is drawn while its buffer file arrives",
+          "[session][splat][http]") {
+  gs::test::NginxServer nginx;
+  if (!nginx.ok()) return;
+  // bunny_small.glb as a .gltf whose buffer is a file beside it, in a folder of its own.
+  const std::string glb = gs::test::readBytes(splatData("bunny_small.glb"));
+  const std::uint32_t jsonLength = gs::base::loadLe<std::uint32_t>(glb.data() + 12);
+  const std::string bin = glb.substr(20 + jsonLength + 8);
+  const auto gltfNaming = [&](const std::string& uri, std::uint64_t byteLength) {
+    std::string json = glb.substr(20, jsonLength);
+    const std::string from = "\"buffers\":[{\"byteLength\":288000}]";
+    REQUIRE(json.find(from) != std::string::npos);
+    json.replace(json.find(from), from.size(),
+                 "\"buffers\":[{\"byteLength\":" + std::to_string(byteLength) + ",\"uri\":\"" +
+                     uri + "\"}]");
+    return json;
+  };
+  const std::string json = gltfNaming("buffers/bunny%20small.bin", bin.size());
+  nginx.writeFile("capture/bunny.gltf", json);
+  nginx.writeFile("capture/buffers/bunny small.bin", bin);
+  gs::net::LoaderOptions slow;
+  slow.maxRate = 100000;  // bytes a second: about 2.5 s for what it fetches
+  OpenedScene scene(nginx.url("/capture/bunny.gltf"), slow);
+  const gs::splats::GaussianCloud whole = gs::splats::readGaussians(
+      gs::test::readBytes(splatData("bunny_small.glb")), "bunny_small.glb", {});
+  CHECK(sawPartialSets(scene, whole, "/bunny.gltf", json.size() + bin.size()));
+  REQUIRE(scene.settle());
+  const gs::splats::GaussianCloud expected = gs::splats::sortByImportance(whole);
+  REQUIRE(scene.set->gaussians);
+  CHECK(scene.set->loadError.empty());
+  CHECK(scene.set->gaussians->positions == expected.positions);
+  CHECK(scene.set->gaussians->shRest == expected.shRest);
+  CHECK(scene.set->lodTree);
+  // The buffer file's columns by range requests, none of it read whole.
+  // (nginx logs the URI decoded.)
+  int ranges = 0;
+  for (const std::string& line : nginx.accessLog(2)) {
+    CHECK_FALSE(line.starts_with("GET /capture/buffers/bunny small.bin 200"));
+    ranges += line.starts_with("GET /capture/buffers/bunny small.bin 206");
+  }
+  CHECK(ranges == 8);  // one a column
+  CHECK(scene.line("/bunny.gltf").bytes <= json.size() + bin.size());
+  // A buffer file shorter than its byteLength: the set says so, naming both.
+  nginx.writeFile("capture/long.gltf", gltfNaming("buffers/bunny%20small.bin", bin.size() + 4));
+  OpenedScene longer(nginx.url("/capture/long.gltf"));
+  REQUIRE(longer.settle());
+  CHECK_THAT(longer.set->loadError, Catch::Contains("/capture/long.gltf") &&
+                                        Catch::Contains("bunny%20small.bin") &&
+                                        Catch::Contains("expected 288004 bytes, got 288000"));
+  // One outside the scene's folder is refused as the whole reader refuses it.
+  nginx.writeFile("outside.bin", bin);
+  nginx.writeFile("capture/outside.gltf", gltfNaming("../outside.bin", bin.size()));
+  OpenedScene outside(nginx.url("/capture/outside.gltf"));
+  REQUIRE(outside.settle());
+  CHECK_THAT(outside.set->loadError, Catch::Contains("not a file beside the scene"));
 }
 
 TEST_CASE("a remote SPZ's splats come long before its end", "[session][splat][http]") {

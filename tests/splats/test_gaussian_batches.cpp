@@ -13,11 +13,13 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "base/byte_order.hpp"
+#include "base/data_url.hpp"
 #include "base/gzip.hpp"
 #include "splats/qnv_gaussians.hpp"
 #include "splats/readers.hpp"
@@ -295,10 +297,11 @@ TEST_CASE("openGaussianBatches reports damaged SPZ and compressed PLY data, nami
 namespace {
 
 // The splats of `bytes` read by columns as a remote scene is (openGaussianColumns): each
-// column fed `piece` bytes at a time, the splats decoded at most `step` at a time as their
-// records come, then each column finished.
+// column fed `piece` bytes at a time (from `bytes`, or from the buffer file of `files` it
+// names), the splats decoded at most `step` at a time as their records come, then each
+// column finished.
 GaussianCloud readByColumns(const std::string& bytes, const std::string& name, std::size_t piece,
-                            std::size_t step) {
+                            std::size_t step, const std::map<std::string, std::string>& files = {}) {
   const GaussianColumns found = openGaussianColumns(bytes, name, bytes.size());
   REQUIRE(found.decoder);
   const GaussianColumnDecoder& d = *found.decoder;
@@ -311,8 +314,9 @@ GaussianCloud readByColumns(const std::string& bytes, const std::string& name, s
   for (std::uint64_t at = 0; all.size() < d.size(); at += piece) {
     for (std::size_t k = 0; k < columns.size(); ++k) {
       const auto& c = d.columns()[k];
+      const std::string& source = c.file.empty() ? bytes : files.at(c.file);
       if (at < c.bytes)
-        columns[k]->feed(std::string_view(bytes).substr(
+        columns[k]->feed(std::string_view(source).substr(
             c.offset + at, std::min<std::uint64_t>(piece, c.bytes - at)));
     }
     std::uint64_t ready = std::min<std::uint64_t>(all.size() + step, d.size());
@@ -424,6 +428,56 @@ TEST_CASE("a GLB capture read by columns gives the whole reader's splats", "[spl
   // A GLB that says another length is refused as the batch reader refuses it.
   CHECK_THROWS_WITH(openGaussianColumns(bytes, "long.glb", bytes.size() + 4),
                     Catch::Contains("long.glb: GLB length"));
+}
+
+TEST_CASE("a .gltf capture read by columns from its buffer file gives the whole reader's splats",
+          "[splats]") {
+  const std::string glb = gs::test::readBytes(splatData("bunny_small.glb"));
+  const std::uint32_t jsonLength = gs::base::loadLe<std::uint32_t>(glb.data() + 12);
+  const std::string bin = glb.substr(20 + jsonLength + 8);
+  const auto gltfNaming = [&](const std::string& uri) {
+    std::string json = glb.substr(20, jsonLength);
+    replaceOnce(json, "\"buffers\":[{\"byteLength\":288000}]",
+                "\"buffers\":[{\"byteLength\":288000,\"uri\":\"" + uri + "\"}]");
+    return json;
+  };
+  const std::string json = gltfNaming("bunny%20small.bin");
+  const GaussianCloud whole = readGltfGaussians(json, "a.gltf", [&](const std::string& uri,
+                                                                     std::string& out,
+                                                                     std::string&) {
+    CHECK(uri == "bunny small.bin");
+    out = bin;
+    return true;
+  });
+  const GaussianColumns found = openGaussianColumns(json, "a.gltf", json.size());
+  REQUIRE(found.decoder);
+  // Every column in the buffer file, named as the scene names it, percent-decoded.
+  for (const auto& c : found.decoder->columns()) {
+    CHECK(c.file == "bunny small.bin");
+    CHECK(c.fileBytes == bin.size());
+    CHECK(c.offset + c.bytes <= bin.size());
+  }
+  for (const auto& [piece, step] :
+       {std::pair<std::size_t, std::size_t>{5, 3}, {4096, 1000}, {bin.size(), 100000}}) {
+    INFO("pieces of " << piece << ", splats " << step << " at a time");
+    checkSameBits(readByColumns(json, "a.gltf", piece, step, {{"bunny small.bin", bin}}), whole);
+  }
+  // The whole JSON is needed (a .gltf of at most 1 MiB), even before its "asset" came.
+  CHECK(openGaussianColumns(json.substr(0, json.size() - 1), "a.gltf", json.size()).needMore);
+  CHECK(openGaussianColumns(json.substr(0, 1), "a.gltf", json.size()).needMore);
+  CHECK_FALSE(openGaussianColumns(json.substr(0, 100), "a.gltf", 2u << 20).needMore);
+  // A buffer file outside the scene's folder, or named by a URL, is refused; a data:
+  // buffer is read whole.
+  for (const char* outside : {"../x.bin", "http://elsewhere/x.bin", "%2Fetc%2Fx.bin"}) {
+    INFO(outside);
+    const std::string bad = gltfNaming(outside);
+    CHECK_THROWS_WITH(openGaussianColumns(bad, "a.gltf", bad.size()),
+                      Catch::Contains("not a file beside the scene"));
+  }
+  const std::string inMemory = gltfNaming(gs::base::makeDataUrl("application/octet-stream", bin));
+  const GaussianColumns none = openGaussianColumns(inMemory, "a.gltf", inMemory.size());
+  CHECK_FALSE(none.decoder);
+  CHECK_FALSE(none.needMore);
 }
 
 namespace {

@@ -45,6 +45,11 @@ std::string localPathOfUrl(std::string_view url);
 /// `s` with each %XX escape (two hex digits) decoded; other '%' kept.
 std::string percentDecode(std::string_view s);
 
+/// `path` (a relative path as a file is named, already decoded) written as a URL's path
+/// (RFC 3986 section 2.1): every byte but the unreserved ones, '/' and the sub-delimiters
+/// as %XX (a space as %20, '%' as %25, '?' and '#' too). percentDecode gives `path` back.
+std::string percentEncodePath(std::string_view path);
+
 /// Whether content read from `baseUrl` may reference `resolvedUrl`: always for local
 /// content; for content from http(s) only http(s) and data: URLs (docs/progressive-loading.md,
 /// "Safety"). Content of a data: URL is treated as content from the network (it carries no

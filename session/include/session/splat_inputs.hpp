@@ -56,6 +56,12 @@ std::string gaussianWorldText(const std::string& path, bool turned = true);
 /// refused.
 splats::SideFileReader sideFileReader(base::Fetcher& fetcher, const std::string& sceneUrl);
 
+/// The URL of the side file `relative` (percent-decoded, as a scene names it) of the scene
+/// at `sceneUrl`, resolved against it (percent-encoded where `sceneUrl` is a URL, as is
+/// where it is a local path); empty with `why` set for a name with "..", a scheme or a
+/// leading '/' (sideFileReader's rule).
+std::string sideFileUrl(const std::string& sceneUrl, const std::string& relative, std::string& why);
+
 /// A Gaussian splatting scene held in `bytes` (named `name`: a path or URL), read by
 /// splats::readGaussians and sorted by importance. Null with `error` naming the input and
 /// the reason when it cannot be read.

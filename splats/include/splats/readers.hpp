@@ -139,6 +139,11 @@ class GaussianColumnDecoder {
     std::uint64_t bytes = 0;      // its bytes in the file (0 only in a damaged file)
     std::size_t recordBytes = 0;  // one splat's record once decoded (>= 1)
     bool zstd = false;            // one zstd frame of the records; else the records themselves
+    /// Empty: the column lies in the scene's own file. Else in a buffer file beside it (a
+    /// .gltf's): its URI relative to the scene's, percent-decoded, never with "..", a
+    /// scheme or a leading '/'; `fileBytes` its size as the scene states it (byteLength).
+    std::string file;
+    std::uint64_t fileBytes = 0;
   };
   virtual ~GaussianColumnDecoder() = default;
   /// The columns, each within the file: 5 or 6 for an SPZ, up to 20 for a GLB.
@@ -166,13 +171,14 @@ struct GaussianColumns {
 
 /// The column decoder of the scene `name` whose first bytes are `head` and whose size is
 /// `fileBytes` (0 when not known: then none): an SPZ v4 file (its header and table of
-/// contents in `head`), or a GLB of one KHR_gaussian_splatting primitive instance whose
-/// accessors lie tightly packed in its BIN chunk (its header and JSON chunk in `head`; one
-/// column per attribute read, COLOR_0 only where it is the colour; a glTF with buffer
-/// files, data: buffers, interleaved accessors or more primitives is read whole). Throws
-/// FormatError naming `name` for what the whole-file readers refuse in the header, table
-/// of contents or JSON (a stream outside the file, a stream of the wrong size for its
-/// splats, an accessor past its buffer).
+/// contents in `head`), or a GLB or .gltf of one KHR_gaussian_splatting primitive instance
+/// whose accessors lie tightly packed in its BIN chunk or its buffer files (Column::file;
+/// its header and JSON chunk in `head`, a .gltf's whole JSON of at most 1 MiB; one column
+/// per attribute read, COLOR_0 only where it is the colour; data: buffers, interleaved
+/// accessors or more primitives are read whole). Throws FormatError naming `name` for what
+/// the whole-file readers refuse in the header, table of contents or JSON (a stream outside
+/// the file, a stream of the wrong size for its splats, an accessor past its buffer, a
+/// buffer file named with "..", a scheme or a leading '/').
 GaussianColumns openGaussianColumns(std::string_view head, const std::string& name,
                                     std::uint64_t fileBytes);
 
