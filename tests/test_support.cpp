@@ -70,6 +70,13 @@ std::string readBytes(const std::filesystem::path& path) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
+void fillPseudoRandom(std::string& bytes, std::size_t from, std::uint32_t seed) {
+  for (std::size_t i = from; i < bytes.size(); ++i) {
+    seed = seed * 1664525u + 1013904223u;
+    bytes[i] = static_cast<char>(seed >> 24);
+  }
+}
+
 std::string gzip(const std::string& text) {
   z_stream zs{};
   REQUIRE(deflateInit2(&zs, 6, Z_DEFLATED, 16 + MAX_WBITS, 8, Z_DEFAULT_STRATEGY) == Z_OK);

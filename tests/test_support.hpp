@@ -2,6 +2,7 @@
 // folders, gzip data.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -41,6 +42,12 @@ std::string readBytes(const std::filesystem::path& path);
 
 /// `text` compressed as one gzip member (RFC 1952, zlib level 6).
 std::string gzip(const std::string& text);
+
+/// `bytes` from byte `from` on replaced by the bytes of a linear congruential generator
+/// seeded with `seed` (Numerical Recipes' constants): data that vary as a capture's SH do,
+/// the same on every machine. Used on bunny_small_v3.spz's decompressed bytes, whose SH
+/// (from 16 + 3000 x 20 on) are all zero.
+void fillPseudoRandom(std::string& bytes, std::size_t from, std::uint32_t seed);
 
 /// A fresh folder under the system's temporary folder ("gs-TAG-XXXXXX", made by mkdtemp),
 /// removed with everything in it on destruction.

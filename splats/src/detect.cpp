@@ -155,7 +155,7 @@ GaussianColumns openGaussianColumns(std::string_view head, const std::string& na
                                     std::uint64_t fileBytes) {
   GaussianColumns found;
   if (fileBytes == 0) return found;
-  if (head.starts_with("glTF") || gltf::looksLikeGltfJson(head))
+  if (head.starts_with("glTF") || (gltf::looksLikeGltfJson(head) && gltfWithSplats(head)))
     return openGltfColumns(head, name, fileBytes);
   // A JSON object not yet whole may still show a .gltf's "asset" (one of at most 1 MiB).
   if (const auto at = head.find_first_not_of(" \t\r\n\xEF\xBB\xBF");

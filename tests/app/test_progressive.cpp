@@ -239,11 +239,7 @@ TEST_CASE("a Gaussian stream and tileset and PLY over HTTP are turned as the loc
   // bunny's SH made to vary, as a capture's: its own are all zero, a few bytes of gzip).
   std::string v3 = gs::base::gunzip(
       gs::test::readBytes(gs::test::sourceDir() / "tests/data/splats/bunny_small_v3.spz"), 1 << 24);
-  std::uint32_t seed = 7;
-  for (std::size_t i = 16 + 3000 * 20; i < v3.size(); ++i) {
-    seed = seed * 1664525u + 1013904223u;
-    v3[i] = static_cast<char>(seed >> 24);
-  }
+  gs::test::fillPseudoRandom(v3, 16 + 3000 * 20, 7);
   const std::string spz = gs::test::gzip(v3);
   const fs::path spzFile = outDir() / "bunny_v3.spz";
   std::ofstream(spzFile, std::ios::binary) << spz;

@@ -297,11 +297,7 @@ TEST_CASE("an SPZ v3 over HTTP is drawn while its gzip data arrive", "[session][
   // bytes at the end of its gzip data): positions, alphas, colours, scales and rotations
   // come first (20 bytes a splat), then the SH (9), which give the splats one by one.
   std::string v3 = gs::base::gunzip(gs::test::readBytes(splatData("bunny_small_v3.spz")), 1 << 24);
-  std::uint32_t seed = 99;
-  for (std::size_t i = 16 + 3000 * 20; i < v3.size(); ++i) {
-    seed = seed * 1664525u + 1013904223u;
-    v3[i] = static_cast<char>(seed >> 24);
-  }
+  gs::test::fillPseudoRandom(v3, 16 + 3000 * 20, 99);
   const std::string bytes = gs::test::gzip(v3);
   nginx.writeFile("bunny_v3.spz", bytes);
   gs::net::LoaderOptions slow;

@@ -478,6 +478,13 @@ TEST_CASE("a .gltf capture read by columns from its buffer file gives the whole 
   const GaussianColumns none = openGaussianColumns(inMemory, "a.gltf", inMemory.size());
   CHECK_FALSE(none.decoder);
   CHECK_FALSE(none.needMore);
+  // An SOG's meta.json (JSON with an "asset" too) is not a .gltf: read whole once it came.
+  const std::string meta = gs::test::readBytes(splatData("bunny_small_sog/meta.json"));
+  REQUIRE(meta.find("\"asset\"") != std::string::npos);
+  CHECK(openGaussianColumns(meta.substr(0, 10), "meta.json", meta.size()).needMore);
+  const GaussianColumns sog = openGaussianColumns(meta, "meta.json", meta.size());
+  CHECK_FALSE(sog.decoder);
+  CHECK_FALSE(sog.needMore);
 }
 
 namespace {
@@ -546,11 +553,7 @@ TEST_CASE("an SPZ v2 or v3 file read as a stream gives the whole reader's splats
   // some and not all.
   {
     std::string varied = v3;
-    std::uint32_t seed = 12345;
-    for (std::size_t i = 16 + 3000 * 20; i < varied.size(); ++i) {
-      seed = seed * 1664525u + 1013904223u;
-      varied[i] = static_cast<char>(seed >> 24);
-    }
+    gs::test::fillPseudoRandom(varied, 16 + 3000 * 20, 12345);
     const std::string gz = gs::test::gzip(varied);
     const GaussianStream found = openGaussianStream(gz, "a.spz", gz.size());
     REQUIRE(found.decoder);
