@@ -22,19 +22,19 @@ struct GaussianColumnsFetch::Column {
   bool waiting = false;
   int wave = 0;  // 0: fetched first (a few zstd blocks), 1: once wave 0 came
   splats::ColumnRecords records;
-  std::string bytes;        // taken from the transfer, not yet fed
-  std::uint64_t taken = 0;  // bytes taken from the transfer
-  std::string file;         // a buffer file's URL (empty: the scene's own file)
+  std::string bytes;            // taken from the transfer, not yet fed
+  std::uint64_t taken = 0;      // bytes taken from the transfer
+  std::string file;             // a buffer file's URL (empty: the scene's own file)
   std::uint64_t fileBytes = 0;  // its size as the scene states it
   Column(const splats::GaussianColumnDecoder::Column& c, std::uint64_t splats,
          const std::string& name, int index)
       : records(c, splats, name, index) {}
 };
 
-GaussianColumnsFetch::GaussianColumnsFetch(std::unique_ptr<splats::GaussianColumnDecoder> decoder,
-                                           const net::FetchRequest& request, std::string_view head,
-                                           std::uint64_t fileBytes, std::string name,
-                                           const std::map<std::string, net::FetchRequest>& sideRequests)
+GaussianColumnsFetch::GaussianColumnsFetch(
+    std::unique_ptr<splats::GaussianColumnDecoder> decoder, const net::FetchRequest& request,
+    std::string_view head, std::uint64_t fileBytes, std::string name,
+    const std::map<std::string, net::FetchRequest>& sideRequests)
     : decoder_(std::move(decoder)),
       name_(std::move(name)),
       headBytes_(head.size()),

@@ -313,7 +313,8 @@ std::unique_ptr<GaussianColumnsFetch> GaussianSceneLoad::fetchColumns(
   for (const auto& c : decoder->columns()) {
     if (c.file.empty() || sideRequests.count(c.file)) continue;
     const std::string url = sideFileUrl(url_, c.file, error);
-    net::FetchRequest side = url.empty() ? net::FetchRequest{} : loader_.requestFor(url, url_, error);
+    net::FetchRequest side =
+        url.empty() ? net::FetchRequest{} : loader_.requestFor(url, url_, error);
     if (side.url.empty() || side.maxBytes < c.fileBytes) return nullptr;
     sideRequests.emplace(c.file, std::move(side));
   }
@@ -355,7 +356,7 @@ bool GaussianSceneLoad::pumpTransfer() {
       // A scene read by columns (SPZ v4, GLB) while most of it is still to come, or whose
       // columns lie in buffer files (.gltf): its columns are fetched side by side from
       // here (its size must be known).
-      const std::uint64_t known = s.resourceSize > 0  ? static_cast<std::uint64_t>(s.resourceSize)
+      const std::uint64_t known = s.resourceSize > 0 ? static_cast<std::uint64_t>(s.resourceSize)
                                   : s.state == net::TransferState::done ? buffer_.size()
                                                                         : 0;
       // (A scene that came whole is read whole, but for a .gltf's columns.)

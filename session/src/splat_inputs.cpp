@@ -221,8 +221,8 @@ std::string sideFileUrl(const std::string& sceneUrl, const std::string& relative
     return {};
   }
   // A URL names the file by its path percent-encoded (a space as %20); a local path as is.
-  return base::resolveUrl(sceneUrl, base::hasScheme(sceneUrl) ? base::percentEncodePath(relative)
-                                                              : relative);
+  return base::resolveUrl(sceneUrl,
+                          base::hasScheme(sceneUrl) ? base::percentEncodePath(relative) : relative);
 }
 
 splats::SideFileReader sideFileReader(base::Fetcher& fetcher, const std::string& sceneUrl) {

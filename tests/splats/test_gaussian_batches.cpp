@@ -301,7 +301,8 @@ namespace {
 // names), the splats decoded at most `step` at a time as their records come, then each
 // column finished.
 GaussianCloud readByColumns(const std::string& bytes, const std::string& name, std::size_t piece,
-                            std::size_t step, const std::map<std::string, std::string>& files = {}) {
+                            std::size_t step,
+                            const std::map<std::string, std::string>& files = {}) {
   const GaussianColumns found = openGaussianColumns(bytes, name, bytes.size());
   REQUIRE(found.decoder);
   const GaussianColumnDecoder& d = *found.decoder;
@@ -442,13 +443,12 @@ TEST_CASE("a .gltf capture read by columns from its buffer file gives the whole 
     return json;
   };
   const std::string json = gltfNaming("bunny%20small.bin");
-  const GaussianCloud whole = readGltfGaussians(json, "a.gltf", [&](const std::string& uri,
-                                                                     std::string& out,
-                                                                     std::string&) {
-    CHECK(uri == "bunny small.bin");
-    out = bin;
-    return true;
-  });
+  const GaussianCloud whole = readGltfGaussians(
+      json, "a.gltf", [&](const std::string& uri, std::string& out, std::string&) {
+        CHECK(uri == "bunny small.bin");
+        out = bin;
+        return true;
+      });
   const GaussianColumns found = openGaussianColumns(json, "a.gltf", json.size());
   REQUIRE(found.decoder);
   // Every column in the buffer file, named as the scene names it, percent-decoded.
