@@ -51,7 +51,8 @@ GaussianColumnsFetch::GaussianColumnsFetch(
     if (have > 0)
       column->records.feed(
           head.substr(static_cast<std::size_t>(c.offset), static_cast<std::size_t>(have)));
-    if (have < c.bytes) {
+    const bool unknownSize = c.bytes == 0 && c.webp && !c.file.empty();  // fetched whole
+    if (have < c.bytes || unknownSize) {
       column->request = c.file.empty() ? request : sideRequests.at(c.file);
       if (!c.file.empty()) {
         column->file = column->request.url;
@@ -61,7 +62,9 @@ GaussianColumnsFetch::GaussianColumnsFetch(
       column->request.offset = c.offset + have;
       column->request.length = c.bytes - have;
       column->waiting = true;
-      column->wave = c.zstd && decoder_->size() * c.recordBytes <= kEarlyRecordBytes ? 0 : 1;
+      // (And a column needed whole before any splat: an SOG's SH centroids.)
+      column->wave =
+          c.whole || (c.zstd && decoder_->size() * c.recordBytes <= kEarlyRecordBytes) ? 0 : 1;
       (column->wave == 0 ? early : late) = true;
     }
     columns_.push_back(std::move(column));
@@ -75,17 +78,24 @@ GaussianColumnsFetch::GaussianColumnsFetch(
 void GaussianColumnsFetch::start(int wave) {
   // An emulated link's rate is shared in proportion to the bytes each column of the wave
   // fetches, so that they all end together (and their splats come evenly).
+  // Columns whose size is not known (an SOG's images) share it evenly.
   std::uint64_t toFetch = 0;
+  std::size_t count = 0;
+  bool unknown = false;
   for (const auto& c : columns_)
-    if (c->waiting && c->wave == wave) toFetch += c->request.length;
+    if (c->waiting && c->wave == wave) {
+      toFetch += c->request.length;
+      unknown |= c->request.length == 0;
+      ++count;
+    }
   for (auto& c : columns_) {
     if (!c->waiting || c->wave != wave) continue;
     net::FetchRequest r = c->request;
+    const double share = unknown ? 1.0 / static_cast<double>(count)
+                                 : static_cast<double>(r.length) / static_cast<double>(toFetch);
     // (At least 4 KB/s: curl's pauses that hold a low rate must stay far below the stall
     // timeout; a column that small adds little to the link's rate.)
-    if (r.maxRate > 0)
-      r.maxRate = std::max(std::min(r.maxRate, 4096.0), r.maxRate * static_cast<double>(r.length) /
-                                                            static_cast<double>(toFetch));
+    if (r.maxRate > 0) r.maxRate = std::max(std::min(r.maxRate, 4096.0), r.maxRate * share);
     c->transfer = net::startTransfer(std::move(r));
     c->waiting = false;
   }
@@ -139,19 +149,10 @@ bool GaussianColumnsFetch::take(const std::function<std::uint64_t(std::uint64_t)
 }
 
 std::size_t GaussianColumnsFetch::next(splats::GaussianCloud& batch, std::size_t max) {
-  const std::uint64_t target = decoded_ + std::min<std::uint64_t>(max, decoder_->size() - decoded_);
-  std::uint64_t ready = target;
-  for (auto& c : columns_) {
-    c->records.decodeUpTo(target);
-    ready = std::min(ready, c->records.first() + c->records.available());
-  }
-  if (ready <= decoded_) return 0;
-  const auto n = static_cast<std::size_t>(ready - decoded_);
-  std::vector<const char*> at;
-  for (auto& c : columns_) at.push_back(c->records.data());
-  decoder_->decode(at, decoded_, n, batch);
-  for (auto& c : columns_) c->records.drop(n);
-  decoded_ = ready;
+  std::vector<splats::ColumnRecords*> records;
+  for (auto& c : columns_) records.push_back(&c->records);
+  const std::size_t n = splats::decodeColumns(*decoder_, records, decoded_, max, batch);
+  decoded_ += n;
   return n;
 }
 
@@ -167,7 +168,7 @@ std::string GaussianColumnsFetch::failure() const {
     if (s.finished() && s.state != net::TransferState::done)
       return s.error.empty() ? name_ + ": cancelled" : s.error;
     // A buffer file of another size than its byteLength: refused as the whole reader does.
-    if (!c->file.empty() && s.resourceSize >= 0 &&
+    if (!c->file.empty() && c->fileBytes > 0 && s.resourceSize >= 0 &&
         static_cast<std::uint64_t>(s.resourceSize) != c->fileBytes)
       return name_ + ": " + c->file + ": expected " + std::to_string(c->fileBytes) +
              " bytes, got " + std::to_string(s.resourceSize);
@@ -183,15 +184,18 @@ net::TransferStatus GaussianColumnsFetch::status() const {
   net::TransferStatus t;
   t.received = headBytes_;
   t.resourceSize = static_cast<std::int64_t>(fileBytes_ + sideBytes_);
-  t.expected = t.resourceSize;
   bool running = false;
   for (const auto& c : columns_) {
     if (!c->transfer) continue;
     const net::TransferStatus s = c->transfer->status();
     t.received += s.received;
+    // A side file of unknown size counts once its size is known (or by what came).
+    if (c->request.length == 0 && !c->file.empty())
+      t.resourceSize += std::max<std::int64_t>(s.resourceSize, static_cast<std::int64_t>(s.received));
     t.bytesPerSecond += s.state == net::TransferState::running ? s.bytesPerSecond : 0.0;
     running |= !s.finished();
   }
+  t.expected = t.resourceSize;
   t.state = running ? net::TransferState::running : net::TransferState::done;
   return t;
 }

@@ -157,7 +157,9 @@ GaussianColumns openGaussianColumns(std::string_view head, const std::string& na
   if (fileBytes == 0) return found;
   if (head.starts_with("glTF") || (gltf::looksLikeGltfJson(head) && gltfWithSplats(head)))
     return openGltfColumns(head, name, fileBytes);
-  // A JSON object not yet whole may still show a .gltf's "asset" (one of at most 1 MiB).
+  if (looksLikeSogMeta(head)) return openSogColumns(head, name, fileBytes);
+  // A JSON object not yet whole may still show a .gltf's "asset" or an SOG's "means" and
+  // "quats" (one of at most 1 MiB).
   if (const auto at = head.find_first_not_of(" \t\r\n\xEF\xBB\xBF");
       at != std::string_view::npos && head[at] == '{') {
     found.needMore = head.size() < fileBytes && fileBytes <= (std::uint64_t{1} << 20);

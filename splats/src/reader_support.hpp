@@ -139,13 +139,17 @@ std::unique_ptr<GaussianBatchReader> openSpzGaussianBatches(const std::string& p
 /// openGaussianBatches for a glTF KHR_gaussian_splatting scene (gltf_batches.cpp): a GLB,
 /// or a .gltf whose buffer files lie beside it (read by offset, never whole).
 std::unique_ptr<GaussianBatchReader> openGltfGaussianBatches(const std::string& path);
-/// openGaussianColumns for an SPZ v4 file (spz.cpp) and a GLB (gltf_batches.cpp: one splat
-/// primitive instance whose accessors lie tightly packed in its BIN chunk; none for any
-/// other glTF), `head` starting with their magic and `fileBytes` known.
+/// openGaussianColumns for an SPZ v4 file (spz.cpp) and a GLB or .gltf (gltf_batches.cpp:
+/// one splat primitive instance whose accessors lie tightly packed in its BIN chunk or
+/// buffer files; none for any other glTF), `fileBytes` known.
 GaussianColumns openSpzColumns(std::string_view head, const std::string& name,
                                std::uint64_t fileBytes);
 GaussianColumns openGltfColumns(std::string_view head, const std::string& name,
                                 std::uint64_t fileBytes);
+/// openGaussianColumns of an SOG's meta.json (sog.cpp): `head` the whole meta.json (at most
+/// 1 MiB: else none), its textures the columns (Column::webp, in side files).
+GaussianColumns openSogColumns(std::string_view head, const std::string& name,
+                               std::uint64_t fileBytes);
 /// openGaussianRows for a PlayCanvas .compressed.ply whose header is `header` (parsed from
 /// `head`, the file's first bytes; compressed_ply.cpp): a decoder once `head` holds the
 /// whole chunk table (needMore before), none when its chunk element follows its vertex

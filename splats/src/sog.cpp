@@ -92,13 +92,21 @@ struct Sog {
   Image lo, hi, q, s, c0, centroids, labels;
   int degree = 0;
   std::size_t paletteCount = 0, coeffs = 0;
+  /// The textures' files: means_l, means_u, quats, scales, sh0, then, with SH bands, the
+  /// centroids and the labels.
+  std::vector<std::string> files;
+  std::size_t maxPixels = 0;  // of a per-splat texture
 };
 
-/// Reads meta.json `metaText` and decodes the textures `load` gives by name. FormatError
-/// naming `name` for a bad meta.json, a missing or damaged texture, or one too small or
-/// too large for the count.
-Sog loadSog(std::string_view metaText, std::string_view name,
-            const std::function<std::string(const std::string&)>& load) {
+/// Each splat's texel of each per-splat texture, from the first splat decoded on (4 bytes a
+/// splat; labels null without SH bands).
+struct SogTexels {
+  const std::uint8_t *lo, *hi, *q, *s, *c0, *labels;
+};
+
+/// Reads meta.json `metaText` (its textures not loaded). FormatError naming `name` for a
+/// bad meta.json.
+Sog loadSogMeta(std::string_view metaText, std::string_view name) {
   Sog sog;
   if (metaText.size() > kMaxMetaBytes) fail(name, "meta.json is larger than 16 MiB");
   const json meta = json::parse(metaText.begin(), metaText.end(), nullptr, false);
@@ -126,24 +134,13 @@ Sog loadSog(std::string_view metaText, std::string_view name,
   const json& quats = member(meta, "quats", name);
 
   // Per-splat textures: the writer makes them about sqrt(count) square, padded to 4.
-  const std::size_t maxPixels =
+  sog.maxPixels =
       2 * count + 4096 + 64 * static_cast<std::size_t>(std::sqrt(static_cast<double>(count)));
-  auto texture = [&](const json& group, std::size_t k, const char* what) {
-    const std::string file = fileName(group, k, name, what);
-    Image img = decodeWebp(load(file), maxPixels, name, file);
-    if (img.pixels() < count)
-      fail(name, "'" + file + "' holds " + std::to_string(img.pixels()) + " texels for " +
-                     std::to_string(count) + " splats");
-    return img;
-  };
-  sog.lo = texture(means, 0, "means");
-  sog.hi = texture(means, 1, "means");
-  sog.q = texture(quats, 0, "quats");
-  sog.s = texture(scales, 0, "scales");
-  sog.c0 = texture(sh0, 0, "sh0");
+  sog.files = {fileName(means, 0, name, "means"), fileName(means, 1, name, "means"),
+               fileName(quats, 0, name, "quats"), fileName(scales, 0, name, "scales"),
+               fileName(sh0, 0, name, "sh0")};
   int& degree = sog.degree;
   std::size_t& coeffs = sog.coeffs;
-  Image& centroids = sog.centroids;
   if (meta.contains("shN") && !meta["shN"].is_null()) {
     const json& shN = member(meta, "shN", name);
     if (!shN.contains("bands") || !shN["bands"].is_number_integer() ||
@@ -157,23 +154,48 @@ Sog loadSog(std::string_view metaText, std::string_view name,
     if (degree > 0) {
       coeffs = static_cast<std::size_t>(shCoefficients(degree) - 1);
       sog.shBook = numbers(shN.value("codebook", json()), 256, name, "shN.codebook");
-      const std::string cFile = fileName(shN, 0, name, "shN");
-      centroids = decodeWebp(load(cFile), 64 * coeffs * 1024, name, cFile);
-      if (static_cast<std::size_t>(centroids.width) != 64 * coeffs)
-        fail(name, "expected '" + cFile + "' " + std::to_string(64 * coeffs) +
-                       " texels wide, got " + std::to_string(centroids.width));
-      sog.labels = texture(shN, 1, "shN");
+      sog.files.push_back(fileName(shN, 0, name, "shN"));
+      sog.files.push_back(fileName(shN, 1, name, "shN"));
     }
   }
   return sog;
 }
 
-/// Decodes splats [first, first + n) of `sog` into `cloud` (allocated for n at its degree).
-void decodeRange(const Sog& sog, std::size_t first, std::size_t n, GaussianCloud& cloud) {
+/// Reads meta.json `metaText` and decodes the textures `load` gives by name. FormatError
+/// naming `name` for a bad meta.json, a missing or damaged texture, or one too small or
+/// too large for the count.
+Sog loadSog(std::string_view metaText, std::string_view name,
+            const std::function<std::string(const std::string&)>& load) {
+  Sog sog = loadSogMeta(metaText, name);
+  auto texture = [&](const std::string& file) {
+    Image img = decodeWebp(load(file), sog.maxPixels, name, file);
+    if (img.pixels() < sog.count)
+      fail(name, "'" + file + "' holds " + std::to_string(img.pixels()) + " texels for " +
+                     std::to_string(sog.count) + " splats");
+    return img;
+  };
+  sog.lo = texture(sog.files[0]);
+  sog.hi = texture(sog.files[1]);
+  sog.q = texture(sog.files[2]);
+  sog.s = texture(sog.files[3]);
+  sog.c0 = texture(sog.files[4]);
+  if (sog.coeffs > 0) {
+    const std::string& cFile = sog.files[5];
+    sog.centroids = decodeWebp(load(cFile), 64 * sog.coeffs * 1024, name, cFile);
+    if (static_cast<std::size_t>(sog.centroids.width) != 64 * sog.coeffs)
+      fail(name, "expected '" + cFile + "' " + std::to_string(64 * sog.coeffs) +
+                     " texels wide, got " + std::to_string(sog.centroids.width));
+    sog.labels = texture(sog.files[6]);
+  }
+  return sog;
+}
+
+/// Decodes n splats of `sog` from their texels `t` into `cloud` (allocated for n at its
+/// degree), with the SH centroids of sog.centroids.
+void decodeSplats(const Sog& sog, const SogTexels& t, std::size_t n, GaussianCloud& cloud) {
   const std::vector<float>&mins = sog.mins, &maxs = sog.maxs, &scaleBook = sog.scaleBook,
         &colorBook = sog.colorBook, &shBook = sog.shBook;
-  const Image &lo = sog.lo, &hi = sog.hi, &q = sog.q, &s = sog.s, &c0 = sog.c0,
-              &centroids = sog.centroids, &labels = sog.labels;
+  const Image& centroids = sog.centroids;
   const std::size_t coeffs = sog.coeffs, paletteCount = sog.paletteCount;
   const float range[3] = {maxs[0] - mins[0] != 0.0f ? maxs[0] - mins[0] : 1.0f,
                           maxs[1] - mins[1] != 0.0f ? maxs[1] - mins[1] : 1.0f,
@@ -181,17 +203,17 @@ void decodeRange(const Sog& sog, std::size_t first, std::size_t n, GaussianCloud
   constexpr int kQuatIndex[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
   const float invSqrt2 = 0.70710678118654752f;
   for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t o = (first + i) * 4;
+    const std::size_t o = i * 4;
     for (int k = 0; k < 3; ++k) {
-      const unsigned v = lo.rgba[o + k] | (static_cast<unsigned>(hi.rgba[o + k]) << 8);
+      const unsigned v = t.lo[o + k] | (static_cast<unsigned>(t.hi[o + k]) << 8);
       cloud.positions[i][k] = invLog(mins[k] + range[k] * (static_cast<float>(v) / 65535.0f));
     }
-    const unsigned tag = q.rgba[o + 3];
+    const unsigned tag = t.q[o + 3];
     if (tag >= 252) {
       float wxyz[4] = {0, 0, 0, 0};
       float sum = 0.0f;
       for (int k = 0; k < 3; ++k) {
-        const float v = (static_cast<float>(q.rgba[o + k]) / 255.0f * 2.0f - 1.0f) * invSqrt2;
+        const float v = (static_cast<float>(t.q[o + k]) / 255.0f * 2.0f - 1.0f) * invSqrt2;
         wxyz[kQuatIndex[tag - 252][k]] = v;
         sum += v * v;
       }
@@ -199,22 +221,31 @@ void decodeRange(const Sog& sog, std::size_t first, std::size_t n, GaussianCloud
       cloud.rotations[i] = detail::unitQuat(wxyz[0], wxyz[1], wxyz[2], wxyz[3]);
     }  // else the identity allocate() left
     cloud.scales[i] = glm::exp(
-        glm::vec3(scaleBook[s.rgba[o]], scaleBook[s.rgba[o + 1]], scaleBook[s.rgba[o + 2]]));
+        glm::vec3(scaleBook[t.s[o]], scaleBook[t.s[o + 1]], scaleBook[t.s[o + 2]]));
     cloud.shDc[i] =
-        glm::vec3(colorBook[c0.rgba[o]], colorBook[c0.rgba[o + 1]], colorBook[c0.rgba[o + 2]]);
-    cloud.opacities[i] = static_cast<float>(c0.rgba[o + 3]) / 255.0f;
+        glm::vec3(colorBook[t.c0[o]], colorBook[t.c0[o + 1]], colorBook[t.c0[o + 2]]);
+    cloud.opacities[i] = static_cast<float>(t.c0[o + 3]) / 255.0f;
     if (coeffs == 0) continue;
-    const std::size_t label = labels.rgba[o] | (static_cast<std::size_t>(labels.rgba[o + 1]) << 8);
+    const std::size_t label = t.labels[o] | (static_cast<std::size_t>(t.labels[o + 1]) << 8);
     glm::vec3* rest = cloud.shRest.data() + i * coeffs;
     if (label >= paletteCount) continue;  // zeros, as splat-transform
     const std::size_t cy = label / 64, cxBase = (label % 64) * coeffs;
     for (std::size_t j = 0; j < coeffs; ++j) {
       if (cy >= static_cast<std::size_t>(centroids.height)) break;
-      const std::size_t t = (cy * static_cast<std::size_t>(centroids.width) + cxBase + j) * 4;
-      rest[j] = glm::vec3(shBook[centroids.rgba[t]], shBook[centroids.rgba[t + 1]],
-                          shBook[centroids.rgba[t + 2]]);
+      const std::size_t at = (cy * static_cast<std::size_t>(centroids.width) + cxBase + j) * 4;
+      rest[j] = glm::vec3(shBook[centroids.rgba[at]], shBook[centroids.rgba[at + 1]],
+                          shBook[centroids.rgba[at + 2]]);
     }
   }
+}
+
+/// Decodes splats [first, first + n) of `sog` (its textures loaded) into `cloud`.
+void decodeRange(const Sog& sog, std::size_t first, std::size_t n, GaussianCloud& cloud) {
+  const std::size_t o = first * 4;
+  const SogTexels t{sog.lo.rgba.data() + o, sog.hi.rgba.data() + o, sog.q.rgba.data() + o,
+                    sog.s.rgba.data() + o,  sog.c0.rgba.data() + o,
+                    sog.labels.rgba.empty() ? nullptr : sog.labels.rgba.data() + o};
+  decodeSplats(sog, t, n, cloud);
 }
 
 /// `bytes` (a .sog bundle, or a meta.json whose textures `sideFiles` reads) loaded.
@@ -258,7 +289,79 @@ class SogBatches final : public GaussianBatchReader {
   std::size_t next_ = 0;
 };
 
+/// An SOG meta.json read by columns (GaussianColumnDecoder): each texture a WebP side file
+/// decoded a band of rows at a time as it arrives, the SH centroids whole before any splat.
+class SogColumns final : public GaussianColumnDecoder {
+ public:
+  SogColumns(Sog sog, const std::string& name) : sog_(std::move(sog)), name_(name) {
+    for (std::size_t k = 0; k < sog_.files.size(); ++k) {
+      const std::string& file = sog_.files[k];
+      // As the whole reader's side files (session::sideFileUrl) refuse them.
+      if (file.empty() || file.find("..") != std::string::npos ||
+          file.find(':') != std::string::npos || file.front() == '/')
+        fail(name_, "cannot read '" + file + "': " + file + ": not a file beside the scene");
+      Column c;
+      c.recordBytes = 4;
+      c.file = file;
+      c.webp = true;
+      c.maxTexels = sog_.maxPixels;
+      if (k == 5) {  // the centroids
+        c.whole = true;
+        c.maxTexels = 64 * sog_.coeffs * 1024;
+        c.width = static_cast<std::uint32_t>(64 * sog_.coeffs);
+      }
+      columns_.push_back(std::move(c));
+    }
+  }
+  const std::vector<Column>& columns() const override { return columns_; }
+  std::uint64_t size() const override { return sog_.count; }
+  int shDegree() const override { return sog_.degree; }
+  void decode(const std::vector<const char*>& records, std::uint64_t first, std::size_t n,
+              GaussianCloud& batch) const override {
+    detail::checkRows(first, n, sog_.count);
+    if (records.size() != columns_.size())
+      fail(name_, "expected " + std::to_string(columns_.size()) + " columns, got " +
+                      std::to_string(records.size()));
+    if (sog_.coeffs > 0 && !haveCentroids_) fail(name_, "the SH centroids have not come");
+    const auto texel = [&](std::size_t k) {
+      return reinterpret_cast<const std::uint8_t*>(records[k]);
+    };
+    batch = GaussianCloud{};
+    detail::allocate(batch, n, sog_.degree);
+    decodeSplats(sog_,
+                 SogTexels{texel(0), texel(1), texel(2), texel(3), texel(4),
+                           sog_.coeffs > 0 ? texel(6) : nullptr},
+                 n, batch);
+  }
+  void takeWhole(std::size_t k, std::string_view texels, int width, int height) override {
+    if (k != 5) return;
+    sog_.centroids.width = width;
+    sog_.centroids.height = height;
+    sog_.centroids.rgba.assign(texels.begin(), texels.end());
+    haveCentroids_ = true;
+  }
+
+ private:
+  Sog sog_;
+  std::string name_;
+  std::vector<Column> columns_;
+  bool haveCentroids_ = false;
+};
+
 }  // namespace
+
+GaussianColumns openSogColumns(std::string_view head, const std::string& name,
+                               std::uint64_t fileBytes) {
+  GaussianColumns found;
+  if (fileBytes > (std::uint64_t{1} << 20)) return found;  // read whole
+  if (head.size() < fileBytes) {
+    found.needMore = true;
+    return found;
+  }
+  found.decoder = std::make_unique<SogColumns>(
+      loadSogMeta(head.substr(0, static_cast<std::size_t>(fileBytes)), name), name);
+  return found;
+}
 
 GaussianCloud readSogGaussians(std::string_view bytes, std::string_view name,
                                const SideFileReader& sideFiles) {

@@ -74,19 +74,21 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       d.decode(bytes.data() + d.dataOffset() + first * d.rowBytes(), first, n, batch);
     }
   });
-  // And read by columns as over HTTP (splats::openGaussianColumns: SPZ v4, GLB, .gltf), each
-  // column fed in pieces of 997 bytes (a .gltf's buffer file's from the input itself), the
-  // splats decoded 97 at a time as their records come.
+  // And read by columns as over HTTP (splats::openGaussianColumns: SPZ v4, GLB, .gltf, SOG),
+  // each column fed in pieces of 997 bytes (a .gltf's buffer file's and an SOG's images
+  // from the input itself), the splats decoded 97 at a time as their records come.
   gs::fuzz::expectingErrors(
       [&] { (void)gs::splats::openGaussianColumns(bytes.substr(0, size / 2), name, size); });
   gs::fuzz::expectingErrors([&] {
-    const gs::splats::GaussianColumns found = gs::splats::openGaussianColumns(bytes, name, size);
+    gs::splats::GaussianColumns found = gs::splats::openGaussianColumns(bytes, name, size);
     if (!found.decoder) return;
-    const gs::splats::GaussianColumnDecoder& d = *found.decoder;
+    gs::splats::GaussianColumnDecoder& d = *found.decoder;
     std::vector<std::unique_ptr<gs::splats::ColumnRecords>> columns;
+    std::vector<gs::splats::ColumnRecords*> records;
     for (const auto& c : d.columns()) {
       columns.push_back(std::make_unique<gs::splats::ColumnRecords>(
           c, d.size(), name, static_cast<int>(columns.size())));
+      records.push_back(columns.back().get());
       if (c.offset > size || c.bytes > size - c.offset) return;
     }
     gs::splats::GaussianCloud batch;
@@ -95,27 +97,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       bool more = false;
       for (std::size_t k = 0; k < columns.size(); ++k) {
         const auto& c = d.columns()[k];
-        if (at >= c.bytes) continue;
-        const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(997, c.bytes - at));
+        // (A side file of unknown size, an SOG's image: the input after the column's offset.)
+        const std::uint64_t bytesOf = c.bytes == 0 && c.webp ? size - c.offset : c.bytes;
+        if (at >= bytesOf) continue;
+        const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(997, bytesOf - at));
         columns[k]->feed(bytes.substr(static_cast<std::size_t>(c.offset + at), n));
         more = true;
       }
       // 97 splats a step while bytes come, then the rest 65,536 at a time.
-      const std::uint64_t step = more ? 97 : 65536;
-      std::uint64_t ready = std::min(decoded + step, d.size());
-      for (const auto& c : columns) {
-        c->decodeUpTo(ready);
-        ready = std::min(ready, c->first() + c->available());
-      }
-      if (ready > decoded) {
-        std::vector<const char*> records;
-        for (const auto& c : columns) records.push_back(c->data());
-        d.decode(records, decoded, static_cast<std::size_t>(ready - decoded), batch);
-        for (const auto& c : columns) c->drop(ready - decoded);
-        decoded = ready;
-      } else if (!more) {
-        break;
-      }
+      const std::size_t n =
+          gs::splats::decodeColumns(d, records, decoded, more ? 97 : 65536, batch);
+      decoded += n;
+      if (n == 0 && !more) break;
     }
     for (const auto& c : columns) c->finish();
   });

@@ -404,6 +404,52 @@ TEST_CASE("a .gltf capture over HTTP is drawn while its buffer file arrives",
   CHECK_THAT(outside.set->loadError, Catch::Contains("not a file beside the scene"));
 }
 
+TEST_CASE("an SOG meta.json over HTTP is drawn while its WebP images arrive",
+          "[session][splat][http]") {
+  gs::test::NginxServer nginx;
+  if (!nginx.ok()) return;
+  std::uint64_t total = 0;
+  for (const fs::path& f : fs::directory_iterator(splatData("bunny_small_sog"))) {
+    nginx.writeFile("sog/" + f.filename().string(), gs::test::readBytes(f));
+    total += fs::file_size(f);
+  }
+  const fs::path meta = splatData("bunny_small_sog/meta.json");
+  gs::net::LoaderOptions slow;
+  slow.maxRate = 20000;  // bytes a second: about 2.5 s for its 53 KB
+  OpenedScene scene(nginx.url("/sog/meta.json"), slow);
+  const gs::splats::GaussianCloud whole = gs::splats::readGaussians(
+      gs::test::readBytes(meta), meta.string(), [](const std::string& file, std::string& out,
+                                                   std::string&) {
+        out = gs::test::readBytes(splatData("bunny_small_sog") / file);
+        return !out.empty();
+      });
+  CHECK(sawPartialSets(scene, whole, "/meta.json", total));
+  REQUIRE(scene.settle());
+  const gs::splats::GaussianCloud expected = gs::splats::sortByImportance(whole);
+  REQUIRE(scene.set->gaussians);
+  CHECK(scene.set->loadError.empty());
+  CHECK(scene.set->gaussians->positions == expected.positions);
+  CHECK(scene.set->gaussians->shRest == expected.shRest);
+  CHECK(scene.set->lodTree);
+  // Each image fetched once, whole (no range).
+  int images = 0;
+  for (const std::string& line : nginx.accessLog(2))
+    if (line.find(".webp 200") != std::string::npos) ++images;
+  CHECK(images == 7);
+  CHECK(scene.line("/meta.json").bytes == total);
+  // An image cut short: the set says so, naming the scene and the image.
+  nginx.writeFile("cut/meta.json", gs::test::readBytes(meta));
+  for (const fs::path& f : fs::directory_iterator(splatData("bunny_small_sog"))) {
+    const std::string bytes = gs::test::readBytes(f);
+    if (f.extension() == ".webp")
+      nginx.writeFile("cut/" + f.filename().string(),
+                      f.filename() == "quats.webp" ? bytes.substr(0, bytes.size() / 2) : bytes);
+  }
+  OpenedScene cut(nginx.url("/cut/meta.json"));
+  REQUIRE(cut.settle());
+  CHECK_THAT(cut.set->loadError, Catch::Contains("/cut/meta.json: 'quats.webp': damaged WebP data"));
+}
+
 TEST_CASE("a remote SPZ's splats come long before its end", "[session][splat][http]") {
   // CThead (122,000 splats, 2.8 MB): its alphas are one zstd block of 122,000 bytes, so
   // they come first; then each of the other streams gives its splats a block at a time.

@@ -301,38 +301,44 @@ namespace {
 // names), the splats decoded at most `step` at a time as their records come, then each
 // column finished.
 GaussianCloud readByColumns(const std::string& bytes, const std::string& name, std::size_t piece,
-                            std::size_t step,
-                            const std::map<std::string, std::string>& files = {}) {
-  const GaussianColumns found = openGaussianColumns(bytes, name, bytes.size());
+                            std::size_t step, const std::map<std::string, std::string>& files = {}) {
+  GaussianColumns found = openGaussianColumns(bytes, name, bytes.size());
   REQUIRE(found.decoder);
-  const GaussianColumnDecoder& d = *found.decoder;
+  GaussianColumnDecoder& d = *found.decoder;
   std::vector<std::unique_ptr<ColumnRecords>> columns;
-  for (const auto& c : d.columns())
+  std::vector<ColumnRecords*> records;
+  for (const auto& c : d.columns()) {
     columns.push_back(
         std::make_unique<ColumnRecords>(c, d.size(), name, static_cast<int>(columns.size())));
+    records.push_back(columns.back().get());
+  }
   GaussianCloud all, batch;
   all.shDegree = d.shDegree();
   for (std::uint64_t at = 0; all.size() < d.size(); at += piece) {
+    bool more = false;
     for (std::size_t k = 0; k < columns.size(); ++k) {
       const auto& c = d.columns()[k];
       const std::string& source = c.file.empty() ? bytes : files.at(c.file);
-      if (at < c.bytes)
+      // (A column of unknown size, an SOG's image: its whole file.)
+      const std::uint64_t size = c.bytes == 0 ? source.size() : c.bytes;
+      if (at < size) {
         columns[k]->feed(std::string_view(source).substr(
-            c.offset + at, std::min<std::uint64_t>(piece, c.bytes - at)));
+            c.offset + at, std::min<std::uint64_t>(piece, size - at)));
+        more = true;
+      }
     }
-    std::uint64_t ready = std::min<std::uint64_t>(all.size() + step, d.size());
+    const std::size_t n = decodeColumns(d, records, all.size(), step, batch);
+    REQUIRE(n <= step);
     for (const auto& c : columns) {
-      c->decodeUpTo(ready);
-      CHECK(c->first() == all.size());
-      ready = std::min(ready, c->first() + c->available());
+      if (!d.columns()[static_cast<std::size_t>(&c - columns.data())].whole)
+        CHECK(c->first() == all.size() + n);
     }
-    if (ready == all.size()) continue;
-    std::vector<const char*> records;
-    for (const auto& c : columns) records.push_back(c->data());
-    d.decode(records, all.size(), ready - all.size(), batch);
-    REQUIRE(batch.size() == ready - all.size());
-    for (const auto& c : columns) c->drop(batch.size());
-    all.appendRange(batch, 0, batch.size());
+    if (n == 0) {
+      if (!more) break;  // every byte fed and no splat: finish() says why
+      continue;
+    }
+    REQUIRE(batch.size() == n);
+    all.appendRange(batch, 0, n);
   }
   for (const auto& c : columns) c->finish();
   return all;
@@ -478,13 +484,73 @@ TEST_CASE("a .gltf capture read by columns from its buffer file gives the whole 
   const GaussianColumns none = openGaussianColumns(inMemory, "a.gltf", inMemory.size());
   CHECK_FALSE(none.decoder);
   CHECK_FALSE(none.needMore);
-  // An SOG's meta.json (JSON with an "asset" too) is not a .gltf: read whole once it came.
-  const std::string meta = gs::test::readBytes(splatData("bunny_small_sog/meta.json"));
-  REQUIRE(meta.find("\"asset\"") != std::string::npos);
+}
+
+TEST_CASE("an SOG meta.json read by columns from its WebP images gives the whole reader's splats",
+          "[splats]") {
+  const fs::path metaPath = splatData("bunny_small_sog/meta.json");
+  const std::string meta = gs::test::readBytes(metaPath);
+  std::map<std::string, std::string> files;
+  for (const char* f : {"means_l.webp", "means_u.webp", "quats.webp", "scales.webp", "sh0.webp",
+                        "shN_centroids.webp", "shN_labels.webp"})
+    files[f] = gs::test::readBytes(splatData("bunny_small_sog") / f);
+  const GaussianCloud whole = readGaussians(meta, metaPath.string(), besideFiles(metaPath));
+  // Its "asset" does not make it a .gltf; its "means" and "quats" make it an SOG.
   CHECK(openGaussianColumns(meta.substr(0, 10), "meta.json", meta.size()).needMore);
-  const GaussianColumns sog = openGaussianColumns(meta, "meta.json", meta.size());
-  CHECK_FALSE(sog.decoder);
-  CHECK_FALSE(sog.needMore);
+  GaussianColumns found = openGaussianColumns(meta, "meta.json", meta.size());
+  REQUIRE(found.decoder);
+  const auto& columns = found.decoder->columns();
+  REQUIRE(columns.size() == 7);
+  for (const auto& c : columns) {
+    INFO(c.file);
+    CHECK(files.count(c.file) == 1);
+    CHECK(c.webp);
+    CHECK(c.bytes == 0);  // fetched whole: meta.json does not say their sizes
+    CHECK(c.whole == (c.file == "shN_centroids.webp"));
+  }
+  for (const auto& [piece, step] :
+       {std::pair<std::size_t, std::size_t>{7, 3}, {1000, 1000}, {1u << 20, 100000}}) {
+    INFO("pieces of " << piece << ", splats " << step << " at a time");
+    checkSameBits(readByColumns(meta, "meta.json", piece, step, files), whole);
+  }
+  // Its splats come a band of rows at a time: 60% of each image gives some, not all.
+  {
+    GaussianColumns part = openGaussianColumns(meta, "meta.json", meta.size());
+    std::vector<std::unique_ptr<ColumnRecords>> held;
+    std::vector<ColumnRecords*> records;
+    for (const auto& c : part.decoder->columns()) {
+      held.push_back(std::make_unique<ColumnRecords>(c, 3000, "meta.json",
+                                                     static_cast<int>(held.size())));
+      const std::string& bytes = files.at(c.file);
+      // (The labels, all zero, are 44 bytes: whole, as the centroids.)
+      held.back()->feed(c.whole || bytes.size() < 1000 ? bytes
+                                                       : bytes.substr(0, bytes.size() * 6 / 10));
+      records.push_back(held.back().get());
+    }
+    GaussianCloud batch;
+    const std::size_t early = decodeColumns(*part.decoder, records, 0, 100000, batch);
+    CHECK(early > 0);
+    CHECK(early < 3000);
+    CHECK(early % 56 == 0);  // whole rows of its 56-texel images
+  }
+  // Damage as the whole reader names it.
+  const auto damaged = [&](const std::string& file, const std::string& bytes) {
+    std::map<std::string, std::string> bad = files;
+    bad[file] = bytes;
+    readByColumns(meta, "meta.json", 1000, 1000, bad);
+  };
+  CHECK_THROWS_WITH(damaged("quats.webp", "not a picture, not at all: sixty-four bytes or more "
+                                          "of something else entirely"),
+                    Catch::Contains("meta.json: 'quats.webp' is not a WebP image"));
+  CHECK_THROWS_WITH(damaged("sh0.webp", files["sh0.webp"].substr(0, 5000)),
+                    Catch::Contains("meta.json: 'sh0.webp': damaged WebP data"));
+  // A file outside the scene's folder is refused before anything is fetched.
+  std::string outside = meta;
+  const std::string from = "\"quats.webp\"";
+  outside.replace(outside.find(from), from.size(), "\"../quats.webp\"");
+  CHECK_THROWS_WITH(openGaussianColumns(outside, "meta.json", outside.size()),
+                    Catch::Contains("cannot read '../quats.webp'") &&
+                        Catch::Contains("not a file beside the scene"));
 }
 
 namespace {

@@ -135,15 +135,27 @@ class GaussianColumnDecoder {
  public:
   /// Where one column lies and what it decodes to.
   struct Column {
-    std::uint64_t offset = 0;     // its first byte in the file
-    std::uint64_t bytes = 0;      // its bytes in the file (0 only in a damaged file)
+    std::uint64_t offset = 0;  // its first byte in the file
+    /// Its bytes in the file (0 only in a damaged file, or for a WebP side file whose size
+    /// the scene does not state: fetched whole, its RIFF header then says).
+    std::uint64_t bytes = 0;
     std::size_t recordBytes = 0;  // one splat's record once decoded (>= 1)
     bool zstd = false;            // one zstd frame of the records; else the records themselves
-    /// Empty: the column lies in the scene's own file. Else in a buffer file beside it (a
-    /// .gltf's): its URI relative to the scene's, percent-decoded, never with "..", a
-    /// scheme or a leading '/'; `fileBytes` its size as the scene states it (byteLength).
+    /// Empty: the column lies in the scene's own file. Else in a file beside it (a .gltf's
+    /// buffer, an SOG's image): its name relative to the scene's, percent-decoded, never
+    /// with "..", a scheme or a leading '/'; `fileBytes` its size as the scene states it
+    /// (a buffer's byteLength; 0: not stated).
     std::string file;
     std::uint64_t fileBytes = 0;
+    /// A WebP image (an SOG's) whose texels, RGBA row-major, are the records (recordBytes
+    /// 4), decoded a band of rows at a time as its bytes arrive (libwebp's incremental
+    /// decoder); texels past the scene's splats are padding. At most `maxTexels` texels.
+    bool webp = false;
+    std::uint64_t maxTexels = 0;
+    /// Needed whole before any splat (an SOG's SH centroids, `width` texels wide): decoded
+    /// whole, then given to takeWhole; its records are not the splats'.
+    bool whole = false;
+    std::uint32_t width = 0;
   };
   virtual ~GaussianColumnDecoder() = default;
   /// The columns, each within the file: 5 or 6 for an SPZ, up to 20 for a GLB.
@@ -153,10 +165,16 @@ class GaussianColumnDecoder {
   /// SH degree (0..3).
   virtual int shDegree() const = 0;
   /// Decodes splats `first` to first + n - 1 into `batch` (resized to them) from
-  /// `records[k]`, column k's n records of them: exactly the whole-file reader's splats.
-  /// Throws FormatError for splats past size().
+  /// `records[k]`, column k's n records of them (null for a whole column): exactly the
+  /// whole-file reader's splats. Throws FormatError for splats past size(), or before a
+  /// whole column was taken.
   virtual void decode(const std::vector<const char*>& records, std::uint64_t first, std::size_t n,
                       GaussianCloud& batch) const = 0;
+  /// Takes whole column `k` (Column::whole) once decoded: `texels` its image's RGBA texels,
+  /// `width` x `height`. Called once, before decode() needs it.
+  virtual void takeWhole(std::size_t k, std::string_view texels, int width, int height) {
+    (void)k, (void)texels, (void)width, (void)height;
+  }
 };
 
 /// What openGaussianColumns found in a scene's first bytes.
@@ -232,9 +250,10 @@ GaussianStream openGaussianStream(std::string_view head, const std::string& name
                                   std::uint64_t fileBytes);
 
 /// One column's bytes turned, as they arrive in order, into its records (a zstd column
-/// decompressed forward): what GaussianColumnDecoder::decode reads. Memory: the compressed
-/// bytes not yet decompressed, and the records decompressed ahead of the last
-/// decodeUpTo's target.
+/// decompressed forward, a WebP image decoded a band of rows at a time): what
+/// GaussianColumnDecoder::decode reads. Memory: the compressed bytes not yet decompressed,
+/// and the records decompressed ahead of the last decodeUpTo's target (a WebP image: its
+/// whole RGBA picture too, inside libwebp's decoder).
 class ColumnRecords {
  public:
   /// Column `index` of `column` for `splats` splats of the scene `name` (named by errors).
@@ -243,12 +262,23 @@ class ColumnRecords {
   ~ColumnRecords();
   ColumnRecords(const ColumnRecords&) = delete;
   ColumnRecords& operator=(const ColumnRecords&) = delete;
-  /// Takes the column's next bytes (FormatError past its size in the file).
+  /// Takes the column's next bytes (FormatError past its size in the file, or, of unknown
+  /// size, past 1 GiB).
   void feed(std::string_view bytes);
   /// Decodes the bytes fed so far until records up to (not including) `record`, counted
-  /// from the column's first, are available, or the bytes fed run out. FormatError for
-  /// damaged data or more records than the scene's splats.
+  /// from the column's first, are available, or the bytes fed run out (a WebP image: every
+  /// row the bytes give; a whole column: all of them). FormatError for damaged data, more
+  /// records than the scene's splats, or an image larger than maxTexels or of another
+  /// width than a whole column's.
   void decodeUpTo(std::uint64_t record);
+  /// A whole column's image, once decoded whole (complete()): its texels and size.
+  bool complete() const { return complete_; }
+  std::string_view texels() const { return records_; }
+  int imageWidth() const { return width_; }
+  int imageHeight() const { return height_; }
+  /// True the first time it is called once complete() (decodeColumns hands a whole column
+  /// to its decoder once).
+  bool handOver() { return complete_ && !handedOver_ && (handedOver_ = true); }
   /// The first record held (records before it were dropped) and how many follow it.
   std::uint64_t first() const { return first_; }
   std::uint64_t available() const { return records_.size() / recordBytes_; }
@@ -256,14 +286,18 @@ class ColumnRecords {
   const char* data() const { return records_.data(); }
   /// Forgets the first `n` records held (n <= available()).
   void drop(std::uint64_t n);
-  /// Whether all its bytes were fed.
-  bool fed() const { return fed_ == column_.bytes; }
+  /// Whether all its bytes were fed (of unknown size: whether its image was decoded whole).
+  bool fed() const { return column_.bytes == 0 && column_.webp ? complete_ : fed_ == column_.bytes; }
   /// Once fed() and decoded to the end: FormatError naming the scene and column unless its
-  /// bytes decoded to exactly one record per splat (a zstd frame complete, nothing after).
+  /// bytes decoded to exactly one record per splat (a zstd frame complete, nothing after;
+  /// a WebP image complete with a texel for each splat at least).
   void finish();
 
  private:
   struct Zstd;
+  struct Webp;
+  /// decodeUpTo for a WebP image; `last`: no more bytes will come (finish).
+  void decodeWebp(bool last);
   GaussianColumnDecoder::Column column_;
   std::uint64_t splats_;
   std::string name_;
@@ -274,7 +308,20 @@ class ColumnRecords {
   std::string records_;  // whole records from first_, and a record's bytes begun after them
   std::unique_ptr<Zstd> zstd_;
   std::size_t hint_ = 1;  // ZSTD_decompressStream's last return: 0 when the frame ended
+  std::unique_ptr<Webp> webp_;
+  int width_ = 0, height_ = 0;  // a WebP image's, once its header came
+  bool complete_ = false;       // a WebP image decoded whole
+  bool handedOver_ = false;
 };
+
+/// One step of reading a scene by columns: decodes each column's records up to splat
+/// `decoded + max` (at most the decoder's size()), gives the decoder each whole column once
+/// complete (takeWhole), then decodes into `batch` (resized to them) the splats from
+/// `decoded` on whose every record came, drops their records and returns how many (0: none
+/// yet). `columns[k]` reads the decoder's column k. FormatError for damaged data.
+std::size_t decodeColumns(GaussianColumnDecoder& decoder,
+                          const std::vector<ColumnRecords*>& columns, std::uint64_t decoded,
+                          std::size_t max, GaussianCloud& batch);
 
 /// openGaussianBatches's error for a scene of a format it does not read piecewise (which
 /// the whole-file readers do read).
