@@ -184,10 +184,12 @@ std::string percentEncodePath(std::string_view path) {
   static constexpr char kHex[] = "0123456789ABCDEF";
   std::string out;
   out.reserve(path.size());
+  bool firstSegment = true;  // a ':' there would read as a scheme (RFC 3986 section 4.2)
   for (const char c : path) {
     const auto b = static_cast<unsigned char>(c);
+    firstSegment &= c != '/';
     if ((b >= 'a' && b <= 'z') || (b >= 'A' && b <= 'Z') || (b >= '0' && b <= '9') ||
-        kKept.find(c) != std::string_view::npos) {
+        (kKept.find(c) != std::string_view::npos && !(c == ':' && firstSegment))) {
       out += c;
     } else {
       out += '%';

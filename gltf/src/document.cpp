@@ -13,6 +13,8 @@
 #include <map>
 #include <set>
 
+#include <nlohmann/json.hpp>
+
 namespace gs::gltf {
 namespace {
 
@@ -39,6 +41,45 @@ std::string_view checkGlb(std::string_view b, const std::string& name, std::size
       fail(name, "GLB BIN chunk runs past the end of the file");
   }
   return b.substr(20, jsonBytes);
+}
+
+/// tinygltf 2.7 decodes a uri as an HTML form's value (dlib::urldecode: '+' a space, a '%'
+/// without two hex digits after it a NUL), not as RFC 3986 does (glTF 2.0 section 3.6.2.1:
+/// URIs per RFC 3986; base::percentDecode). The glTF JSON `json` with each buffer's and
+/// image's uri (not data:) given '+' as "%2B" and such a '%' as "%25", so that tinygltf
+/// decodes them as RFC 3986 does, or "" when none needed it.
+std::string escapeUrisForTinygltf(std::string_view json) {
+  if (json.find('+') == std::string_view::npos && json.find('%') == std::string_view::npos)
+    return {};
+  nlohmann::json doc = nlohmann::json::parse(json, nullptr, /*allow_exceptions=*/false);
+  if (!doc.is_object()) return {};
+  const auto hex = [](char c) {
+    return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f') || (c >= 'A' && c <= 'F');
+  };
+  bool changed = false;
+  for (const char* list : {"buffers", "images"}) {
+    const auto items = doc.find(list);
+    if (items == doc.end() || !items->is_array()) continue;
+    for (nlohmann::json& item : *items) {
+      if (!item.is_object() || !item.contains("uri") || !item["uri"].is_string()) continue;
+      const std::string uri = item["uri"].get<std::string>();
+      if (uri.starts_with("data:")) continue;
+      std::string escaped;
+      for (std::size_t i = 0; i < uri.size(); ++i) {
+        if (uri[i] == '+')
+          escaped += "%2B";
+        else if (uri[i] == '%' && !(i + 2 < uri.size() && hex(uri[i + 1]) && hex(uri[i + 2])))
+          escaped += "%25";
+        else
+          escaped += uri[i];
+      }
+      if (escaped != uri) {
+        item["uri"] = escaped;
+        changed = true;
+      }
+    }
+  }
+  return changed ? doc.dump() : std::string();
 }
 
 // ---- tinygltf callbacks: external files only through the BufferLoader ----
@@ -211,6 +252,9 @@ tinygltf::Model load(std::string_view bytes, const std::string& name, const Buff
   // EXT_meshopt_compression's fallback buffers get a uri load() serves as zeros.
   if (std::string more = detail::placeMeshoptFallbacks(patched.empty() ? json : patched);
       !more.empty())
+    patched = std::move(more);
+  // Buffer and image uris decoded as RFC 3986 says, not as tinygltf would.
+  if (std::string more = escapeUrisForTinygltf(patched.empty() ? json : patched); !more.empty())
     patched = std::move(more);
   if (!patched.empty()) {
     while (patched.size() % 4 != 0) patched += ' ';

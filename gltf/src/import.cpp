@@ -289,8 +289,11 @@ void importGltf(std::string_view bytes, const std::string& url, const ImportOpti
                 vrml::Scene& scene) {
   scene.x3d.encoding = "glTF";
   const gltf::BufferLoader loader = [&](const std::string& uri) -> std::optional<std::string> {
+    // tinygltf gives the uri decoded: a URL names it encoded again (a space as %20).
+    const std::string reference =
+        base::hasScheme(url) && !base::hasScheme(uri) ? base::percentEncodePath(uri) : uri;
     base::Fetched got = base::fetcherOr(options.fetcher)
-                            .fetch(base::resolveUrl(url, uri), url, base::FetchMode::whole);
+                            .fetch(base::resolveUrl(url, reference), url, base::FetchMode::whole);
     if (got.state == base::FetchState::refused) throw gltf::Error(url + ": " + got.error);
     if (!got.ready()) return std::nullopt;
     return std::move(got.bytes);

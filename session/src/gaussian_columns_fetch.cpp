@@ -191,7 +191,8 @@ net::TransferStatus GaussianColumnsFetch::status() const {
     t.received += s.received;
     // A side file of unknown size counts once its size is known (or by what came).
     if (c->request.length == 0 && !c->file.empty())
-      t.resourceSize += std::max<std::int64_t>(s.resourceSize, static_cast<std::int64_t>(s.received));
+      t.resourceSize +=
+          std::max<std::int64_t>(s.resourceSize, static_cast<std::int64_t>(s.received));
     t.bytesPerSecond += s.state == net::TransferState::running ? s.bytesPerSecond : 0.0;
     running |= !s.finished();
   }

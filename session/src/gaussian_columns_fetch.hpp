@@ -1,6 +1,7 @@
 // A remote Gaussian splatting scene read by columns (splats::GaussianColumnDecoder: an SPZ
 // v4 file's zstd streams, a GLB or .gltf capture's accessors, in its own file or in buffer
-// files beside it): one HTTP range request per column,
+// files beside it, an SOG meta.json's WebP images): one HTTP request per column (a range,
+// or an SOG's image whole),
 // side by side, each column decoded as its bytes arrive, and the splats whose every record
 // came handed over in file order, with all they hold (docs/splats.md, "Opening a scene").
 // Columns of at most four zstd blocks of records come first (zstd gives a block's records

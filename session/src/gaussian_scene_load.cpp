@@ -374,6 +374,12 @@ bool GaussianSceneLoad::pumpTransfer() {
         }
         needMore |= columns.needMore;
       }
+      // A JSON scene (.gltf, an SOG's meta.json) of a size not told (gzip or chunked) waits
+      // until it came whole, up to 1 MiB, for the columns of its side files.
+      if (!rows_ && known == 0 && !stopped && bufferStart_ == 0 && buffer_.size() <= (1u << 20)) {
+        const auto at = buffer_.find_first_not_of(" \t\r\n\xEF\xBB\xBF");
+        needMore |= at != std::string::npos && buffer_[at] == '{';
+      }
       // A scene in one compressed stream (SPZ v2/v3): decoded as its bytes come.
       if (!rows_) {
         splats::GaussianStream stream = splats::openGaussianStream(

@@ -9,7 +9,8 @@
 //   .splat is decoded row by row as its bytes arrive (splats::openGaussianRows) and drawn
 //   as it grows, a compressed .ply's vertex records too (without SH, the whole file read
 //   again once it arrived), an SPZ v4 file's zstd streams and a GLB or .gltf capture's
-//   accessors (in its BIN chunk or its buffer files) side by side by range requests, each
+//   accessors (in its BIN chunk or its buffer files) side by side by range requests, an
+//   SOG meta.json's WebP images side by side, each decoded a band of rows at a time, each
 //   splat decoded once all its records came
 //   (gaussian_columns_fetch.hpp), an SPZ v2/v3 file's gzip data inflated as they come,
 //   each splat decoded once its last attribute came (splats::openGaussianStream), the

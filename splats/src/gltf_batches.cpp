@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <set>
 #include <string>
@@ -200,8 +201,15 @@ class GltfGaussianBatches final : public GaussianBatchReader, public GaussianCol
       if (s.memory) refuse("an accessor in a data: buffer");
       if (a->stride != a->elementBytes) refuse("an interleaved accessor");
       columns_.push_back(Column{s.offset + a->offset, a->count * a->elementBytes, a->elementBytes,
-                                false, s.uri, s.uri.empty() ? 0 : s.byteLength});
+                                false, s.uri, s.uri.empty() ? 0 : s.byteLength, false, 0, false,
+                                0});
     }
+    // The whole reader loads (and checks the size of) every buffer file: one that no
+    // column reads is left to it.
+    for (const BufferSource& s : sources_)
+      if (!s.uri.empty() && std::none_of(columns_.begin(), columns_.end(),
+                                         [&](const Column& c) { return c.file == s.uri; }))
+        refuse("a buffer file no splat attribute reads (" + s.uri + ")");
   }
   /// The accessors of `p` in the order of its columns.
   static std::vector<const PieceAccessor*> accessorsOf(const SplatPrimitive& p) {
@@ -266,7 +274,8 @@ class GltfGaussianBatches final : public GaussianBatchReader, public GaussianCol
           fail(path_, relative + ": not a file beside the scene");
         if (remote_) {  // fetched by its columns' range requests, beside the scene's URL
           s.uri = relative;
-          if (counted.insert(relative).second) budget += byteLength;
+          if (counted.insert(relative).second)  // (saturating: a hostile byteLength)
+            budget += std::min(byteLength, std::numeric_limits<std::uint64_t>::max() - budget);
           continue;
         }
         s.file = std::make_shared<detail::PieceFile>(

@@ -220,10 +220,9 @@ void decodeSplats(const Sog& sog, const SogTexels& t, std::size_t n, GaussianClo
       wxyz[tag - 252] = std::sqrt(std::max(0.0f, 1.0f - sum));
       cloud.rotations[i] = detail::unitQuat(wxyz[0], wxyz[1], wxyz[2], wxyz[3]);
     }  // else the identity allocate() left
-    cloud.scales[i] = glm::exp(
-        glm::vec3(scaleBook[t.s[o]], scaleBook[t.s[o + 1]], scaleBook[t.s[o + 2]]));
-    cloud.shDc[i] =
-        glm::vec3(colorBook[t.c0[o]], colorBook[t.c0[o + 1]], colorBook[t.c0[o + 2]]);
+    cloud.scales[i] =
+        glm::exp(glm::vec3(scaleBook[t.s[o]], scaleBook[t.s[o + 1]], scaleBook[t.s[o + 2]]));
+    cloud.shDc[i] = glm::vec3(colorBook[t.c0[o]], colorBook[t.c0[o + 1]], colorBook[t.c0[o + 2]]);
     cloud.opacities[i] = static_cast<float>(t.c0[o + 3]) / 255.0f;
     if (coeffs == 0) continue;
     const std::size_t label = t.labels[o] | (static_cast<std::size_t>(t.labels[o + 1]) << 8);
@@ -242,9 +241,10 @@ void decodeSplats(const Sog& sog, const SogTexels& t, std::size_t n, GaussianClo
 /// Decodes splats [first, first + n) of `sog` (its textures loaded) into `cloud`.
 void decodeRange(const Sog& sog, std::size_t first, std::size_t n, GaussianCloud& cloud) {
   const std::size_t o = first * 4;
-  const SogTexels t{sog.lo.rgba.data() + o, sog.hi.rgba.data() + o, sog.q.rgba.data() + o,
-                    sog.s.rgba.data() + o,  sog.c0.rgba.data() + o,
-                    sog.labels.rgba.empty() ? nullptr : sog.labels.rgba.data() + o};
+  const SogTexels t{
+      sog.lo.rgba.data() + o, sog.hi.rgba.data() + o,
+      sog.q.rgba.data() + o,  sog.s.rgba.data() + o,
+      sog.c0.rgba.data() + o, sog.labels.rgba.empty() ? nullptr : sog.labels.rgba.data() + o};
   decodeSplats(sog, t, n, cloud);
 }
 

@@ -517,7 +517,8 @@ class SpzColumns final : public GaussianColumnDecoder {
   explicit SpzColumns(const V4Layout& v4) : h_(v4.h) {
     const auto bytes = splatBytes(h_);
     for (unsigned k = 0; k < v4.streams; ++k)
-      columns_.push_back(Column{v4.offset[k], v4.compressed[k], bytes[k], true, {}, 0});
+      columns_.push_back(
+          Column{v4.offset[k], v4.compressed[k], bytes[k], true, {}, 0, false, 0, false, 0});
   }
   const std::vector<Column>& columns() const override { return columns_; }
   std::uint64_t size() const override { return h_.count; }

@@ -111,6 +111,9 @@ TEST_CASE("percentEncodePath writes a file's name as a URL's path", "[base][url]
   CHECK(percentEncodePath("caf\xC3\xA9-1_2.~(x)") == "caf%C3%A9-1_2.~(x)");
   for (const std::string name : {"x y/z%20w.bin", "\x01\xFF", "plain.bin", ""})
     CHECK(percentDecode(percentEncodePath(name)) == name);
+  // A ':' in the first segment would be a scheme; after a '/' it is a path's.
+  CHECK(percentEncodePath("evil:x/a:b") == "evil%3Ax/a:b");
+  CHECK_FALSE(gs::base::hasScheme(percentEncodePath("evil:x")));
   // Resolved against a scene's URL, as a side file is.
   CHECK(gs::base::resolveUrl("http://h/s/scene.gltf", percentEncodePath("b/my file.bin")) ==
         "http://h/s/b/my%20file.bin");

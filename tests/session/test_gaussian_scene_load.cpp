@@ -417,12 +417,12 @@ TEST_CASE("an SOG meta.json over HTTP is drawn while its WebP images arrive",
   gs::net::LoaderOptions slow;
   slow.maxRate = 20000;  // bytes a second: about 2.5 s for its 53 KB
   OpenedScene scene(nginx.url("/sog/meta.json"), slow);
-  const gs::splats::GaussianCloud whole = gs::splats::readGaussians(
-      gs::test::readBytes(meta), meta.string(), [](const std::string& file, std::string& out,
-                                                   std::string&) {
-        out = gs::test::readBytes(splatData("bunny_small_sog") / file);
-        return !out.empty();
-      });
+  const gs::splats::GaussianCloud whole =
+      gs::splats::readGaussians(gs::test::readBytes(meta), meta.string(),
+                                [](const std::string& file, std::string& out, std::string&) {
+                                  out = gs::test::readBytes(splatData("bunny_small_sog") / file);
+                                  return !out.empty();
+                                });
   CHECK(sawPartialSets(scene, whole, "/meta.json", total));
   REQUIRE(scene.settle());
   const gs::splats::GaussianCloud expected = gs::splats::sortByImportance(whole);
@@ -447,7 +447,8 @@ TEST_CASE("an SOG meta.json over HTTP is drawn while its WebP images arrive",
   }
   OpenedScene cut(nginx.url("/cut/meta.json"));
   REQUIRE(cut.settle());
-  CHECK_THAT(cut.set->loadError, Catch::Contains("/cut/meta.json: 'quats.webp': damaged WebP data"));
+  CHECK_THAT(cut.set->loadError,
+             Catch::Contains("/cut/meta.json: 'quats.webp': damaged WebP data"));
 }
 
 TEST_CASE("a remote SPZ's splats come long before its end", "[session][splat][http]") {

@@ -301,7 +301,8 @@ namespace {
 // names), the splats decoded at most `step` at a time as their records come, then each
 // column finished.
 GaussianCloud readByColumns(const std::string& bytes, const std::string& name, std::size_t piece,
-                            std::size_t step, const std::map<std::string, std::string>& files = {}) {
+                            std::size_t step,
+                            const std::map<std::string, std::string>& files = {}) {
   GaussianColumns found = openGaussianColumns(bytes, name, bytes.size());
   REQUIRE(found.decoder);
   GaussianColumnDecoder& d = *found.decoder;
@@ -468,6 +469,21 @@ TEST_CASE("a .gltf capture read by columns from its buffer file gives the whole 
     INFO("pieces of " << piece << ", splats " << step << " at a time");
     checkSameBits(readByColumns(json, "a.gltf", piece, step, {{"bunny small.bin", bin}}), whole);
   }
+  // A uri read as RFC 3986 reads it, by the whole reader too (tinygltf would read '+' as a
+  // space and "%zz" as a NUL): "a+b%zz.bin" names the file "a+b%zz.bin".
+  {
+    const std::string odd = gltfNaming("a+b%zz.bin");
+    std::string asked;
+    readGltfGaussians(odd, "odd.gltf", [&](const std::string& uri, std::string& out, std::string&) {
+      asked = uri;
+      out = bin;
+      return true;
+    });
+    CHECK(asked == "a+b%zz.bin");
+    const GaussianColumns columns = openGaussianColumns(odd, "odd.gltf", odd.size());
+    REQUIRE(columns.decoder);
+    CHECK(columns.decoder->columns().front().file == "a+b%zz.bin");
+  }
   // The whole JSON is needed (a .gltf of at most 1 MiB), even before its "asset" came.
   CHECK(openGaussianColumns(json.substr(0, json.size() - 1), "a.gltf", json.size()).needMore);
   CHECK(openGaussianColumns(json.substr(0, 1), "a.gltf", json.size()).needMore);
@@ -519,8 +535,8 @@ TEST_CASE("an SOG meta.json read by columns from its WebP images gives the whole
     std::vector<std::unique_ptr<ColumnRecords>> held;
     std::vector<ColumnRecords*> records;
     for (const auto& c : part.decoder->columns()) {
-      held.push_back(std::make_unique<ColumnRecords>(c, 3000, "meta.json",
-                                                     static_cast<int>(held.size())));
+      held.push_back(
+          std::make_unique<ColumnRecords>(c, 3000, "meta.json", static_cast<int>(held.size())));
       const std::string& bytes = files.at(c.file);
       // (The labels, all zero, are 44 bytes: whole, as the centroids.)
       held.back()->feed(c.whole || bytes.size() < 1000 ? bytes
@@ -539,8 +555,9 @@ TEST_CASE("an SOG meta.json read by columns from its WebP images gives the whole
     bad[file] = bytes;
     readByColumns(meta, "meta.json", 1000, 1000, bad);
   };
-  CHECK_THROWS_WITH(damaged("quats.webp", "not a picture, not at all: sixty-four bytes or more "
-                                          "of something else entirely"),
+  CHECK_THROWS_WITH(damaged("quats.webp",
+                            "not a picture, not at all: sixty-four bytes or more "
+                            "of something else entirely"),
                     Catch::Contains("meta.json: 'quats.webp' is not a WebP image"));
   CHECK_THROWS_WITH(damaged("sh0.webp", files["sh0.webp"].substr(0, 5000)),
                     Catch::Contains("meta.json: 'sh0.webp': damaged WebP data"));

@@ -46,8 +46,10 @@ std::string localPathOfUrl(std::string_view url);
 std::string percentDecode(std::string_view s);
 
 /// `path` (a relative path as a file is named, already decoded) written as a URL's path
-/// (RFC 3986 section 2.1): every byte but the unreserved ones, '/' and the sub-delimiters
-/// as %XX (a space as %20, '%' as %25, '?' and '#' too). percentDecode gives `path` back.
+/// (RFC 3986 section 2.1): every byte but the unreserved ones, '/', ':' and '@' and the
+/// sub-delimiters as %XX (a space as %20, '%' as %25, '?' and '#' too; a ':' before the
+/// first '/' too, which would read as a scheme). percentDecode gives `path` back. A path
+/// that starts with '/' stays one (resolveUrl reads it from the root; "//" as a host).
 std::string percentEncodePath(std::string_view path);
 
 /// Whether content read from `baseUrl` may reference `resolvedUrl`: always for local

@@ -53,10 +53,11 @@ std::string gaussianWorldText(const std::string& path, bool turned = true);
 /// Side files of the scene at `sceneUrl` (SOG images, glTF buffers) through `fetcher`
 /// (which must outlive the reader), named by the scene, so the rules of what content may
 /// reference apply (base::mayReference); names with "..", a scheme or a leading '/' are
-/// refused.
+/// refused; a name is percent-encoded in a URL (sideFileUrl).
 splats::SideFileReader sideFileReader(base::Fetcher& fetcher, const std::string& sceneUrl);
 
-/// The URL of the side file `relative` (percent-decoded, as a scene names it) of the scene
+/// The URL of the side file `relative` (a file's own name: a glTF's uri percent-decoded,
+/// an SOG's as meta.json writes it) of the scene
 /// at `sceneUrl`, resolved against it (percent-encoded where `sceneUrl` is a URL, as is
 /// where it is a local path); empty with `why` set for a name with "..", a scheme or a
 /// leading '/' (sideFileReader's rule).

@@ -124,9 +124,9 @@ struct GaussianRows {
 GaussianRows openGaussianRows(std::string_view head, const std::string& name,
                               std::uint64_t fileBytes);
 
-/// A scene whose attributes lie in columns of its file, each a run of bytes that decodes,
-/// in order, to one fixed-size record per splat (an SPZ v4 file's zstd streams, a GLB's
-/// accessors). Fetched
+/// A scene whose attributes lie in columns of its file or of files beside it, each a run of
+/// bytes that decodes, in order, to one fixed-size record per splat (an SPZ v4 file's zstd
+/// streams, a GLB's or .gltf's accessors, an SOG's WebP images). Fetched
 /// column by column side by side (one HTTP range request each), its splats are decoded as
 /// soon as every column's records for them arrived, with all they hold: a remote SPZ drawn
 /// while it arrives (session/src/gaussian_columns_fetch.hpp; docs/splats.md, "Opening a
@@ -141,10 +141,11 @@ class GaussianColumnDecoder {
     std::uint64_t bytes = 0;
     std::size_t recordBytes = 0;  // one splat's record once decoded (>= 1)
     bool zstd = false;            // one zstd frame of the records; else the records themselves
-    /// Empty: the column lies in the scene's own file. Else in a file beside it (a .gltf's
-    /// buffer, an SOG's image): its name relative to the scene's, percent-decoded, never
-    /// with "..", a scheme or a leading '/'; `fileBytes` its size as the scene states it
-    /// (a buffer's byteLength; 0: not stated).
+    /// Empty: the column lies in the scene's own file. Else in a file beside it (a glTF's
+    /// buffer file, an SOG's image): its name relative to the scene's (a glTF's uri
+    /// percent-decoded, an SOG's as meta.json writes it), never with "..", a scheme or a
+    /// leading '/'; `fileBytes` its size as the scene states it (a buffer's byteLength; 0:
+    /// not stated).
     std::string file;
     std::uint64_t fileBytes = 0;
     /// A WebP image (an SOG's) whose texels, RGBA row-major, are the records (recordBytes
@@ -158,7 +159,8 @@ class GaussianColumnDecoder {
     std::uint32_t width = 0;
   };
   virtual ~GaussianColumnDecoder() = default;
-  /// The columns, each within the file: 5 or 6 for an SPZ, up to 20 for a GLB.
+  /// The columns, each within its file: 5 or 6 for an SPZ, up to 20 for a glTF, 5 or 7
+  /// for an SOG.
   virtual const std::vector<Column>& columns() const = 0;
   /// The scene's splats (1..kMaxSplats).
   virtual std::uint64_t size() const = 0;
@@ -182,8 +184,9 @@ struct GaussianColumns {
   /// The decoder, or null: not (yet) known to be a column format.
   std::unique_ptr<GaussianColumnDecoder> decoder;
   /// With no decoder: true when more bytes may still show one (the head of an SPZ v4 file
-  /// or its table of contents, a GLB's JSON chunk, has not arrived); false when the scene
-  /// is not read by columns.
+  /// or its table of contents, a GLB's JSON chunk, or the rest of a JSON object of at most
+  /// 1 MiB, which may be a .gltf or an SOG's meta.json, has not arrived); false when the
+  /// scene is not read by columns.
   bool needMore = false;
 };
 
@@ -196,7 +199,9 @@ struct GaussianColumns {
 /// accessors or more primitives are read whole). Throws FormatError naming `name` for what
 /// the whole-file readers refuse in the header, table of contents or JSON (a stream outside
 /// the file, a stream of the wrong size for its splats, an accessor past its buffer, a
-/// buffer file named with "..", a scheme or a leading '/').
+/// buffer file named with "..", a scheme or a leading '/'). An SOG's meta.json (whole, at
+/// most 1 MiB) gives its WebP images as columns (Column::webp; its SH centroids whole
+/// first, Column::whole), as readSogGaussians reads them.
 GaussianColumns openGaussianColumns(std::string_view head, const std::string& name,
                                     std::uint64_t fileBytes);
 
@@ -287,7 +292,9 @@ class ColumnRecords {
   /// Forgets the first `n` records held (n <= available()).
   void drop(std::uint64_t n);
   /// Whether all its bytes were fed (of unknown size: whether its image was decoded whole).
-  bool fed() const { return column_.bytes == 0 && column_.webp ? complete_ : fed_ == column_.bytes; }
+  bool fed() const {
+    return column_.bytes == 0 && column_.webp ? complete_ : fed_ == column_.bytes;
+  }
   /// Once fed() and decoded to the end: FormatError naming the scene and column unless its
   /// bytes decoded to exactly one record per splat (a zstd frame complete, nothing after;
   /// a WebP image complete with a texel for each splat at least).
