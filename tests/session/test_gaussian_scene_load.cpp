@@ -110,6 +110,18 @@ bool sawPartialSets(OpenedScene& scene, const gs::splats::GaussianCloud& whole,
   return sawPart;
 }
 
+/// Settles `scene` and checks that its set is `whole` sorted by importance, with its tree
+/// and no error.
+void checkSettledAs(OpenedScene& scene, const gs::splats::GaussianCloud& whole) {
+  REQUIRE(scene.settle());
+  const gs::splats::GaussianCloud expected = gs::splats::sortByImportance(whole);
+  REQUIRE(scene.set->gaussians);
+  CHECK(scene.set->loadError.empty());
+  CHECK(scene.set->gaussians->positions == expected.positions);
+  CHECK(scene.set->gaussians->shRest == expected.shRest);
+  CHECK(scene.set->lodTree);
+}
+
 }  // namespace
 
 TEST_CASE("a splat scene file is read in the background then gets its tree", "[session][splat]") {
@@ -306,13 +318,7 @@ TEST_CASE("an SPZ v3 over HTTP is drawn while its gzip data arrive", "[session][
   const gs::splats::GaussianCloud whole = gs::splats::readGaussians(bytes, "bunny_v3.spz", {});
   CHECK(whole.shDegree == 1);
   CHECK(sawPartialSets(scene, whole, "/bunny_v3.spz", bytes.size()));
-  REQUIRE(scene.settle());
-  const gs::splats::GaussianCloud expected = gs::splats::sortByImportance(whole);
-  REQUIRE(scene.set->gaussians);
-  CHECK(scene.set->loadError.empty());
-  CHECK(scene.set->gaussians->positions == expected.positions);
-  CHECK(scene.set->gaussians->shRest == expected.shRest);
-  CHECK(scene.set->lodTree);
+  checkSettledAs(scene, whole);
   // Cut in its SH: the splats that came stay drawn, the set says why, naming the URL.
   nginx.writeFile("cut_v3.spz", bytes.substr(0, bytes.size() - 5000));
   OpenedScene cut(nginx.url("/cut_v3.spz"));
@@ -336,12 +342,7 @@ TEST_CASE("a GLB capture over HTTP is drawn while its accessors arrive side by s
   const gs::splats::GaussianCloud whole = gs::splats::readGaussians(bytes, glb.string(), {});
   CHECK(whole.shDegree == 1);
   CHECK(sawPartialSets(scene, whole, "/bunny.glb", bytes.size()));
-  REQUIRE(scene.settle());
-  const gs::splats::GaussianCloud expected = gs::splats::sortByImportance(whole);
-  REQUIRE(scene.set->gaussians);
-  CHECK(scene.set->gaussians->positions == expected.positions);
-  CHECK(scene.set->gaussians->shRest == expected.shRest);
-  CHECK(scene.set->lodTree);
+  checkSettledAs(scene, whole);
   // No byte fetched twice (its COLOR_0, which the DC stands in for, is not fetched at all
   // unless the head already held it).
   CHECK(scene.line("/bunny.glb").bytes <= bytes.size());
@@ -373,13 +374,7 @@ TEST_CASE("a .gltf capture over HTTP is drawn while its buffer file arrives",
   const gs::splats::GaussianCloud whole = gs::splats::readGaussians(
       gs::test::readBytes(splatData("bunny_small.glb")), "bunny_small.glb", {});
   CHECK(sawPartialSets(scene, whole, "/bunny.gltf", json.size() + bin.size()));
-  REQUIRE(scene.settle());
-  const gs::splats::GaussianCloud expected = gs::splats::sortByImportance(whole);
-  REQUIRE(scene.set->gaussians);
-  CHECK(scene.set->loadError.empty());
-  CHECK(scene.set->gaussians->positions == expected.positions);
-  CHECK(scene.set->gaussians->shRest == expected.shRest);
-  CHECK(scene.set->lodTree);
+  checkSettledAs(scene, whole);
   // The buffer file's columns by range requests, none of it read whole.
   // (nginx logs the URI decoded.)
   int ranges = 0;
@@ -424,13 +419,7 @@ TEST_CASE("an SOG meta.json over HTTP is drawn while its WebP images arrive",
                                   return !out.empty();
                                 });
   CHECK(sawPartialSets(scene, whole, "/meta.json", total));
-  REQUIRE(scene.settle());
-  const gs::splats::GaussianCloud expected = gs::splats::sortByImportance(whole);
-  REQUIRE(scene.set->gaussians);
-  CHECK(scene.set->loadError.empty());
-  CHECK(scene.set->gaussians->positions == expected.positions);
-  CHECK(scene.set->gaussians->shRest == expected.shRest);
-  CHECK(scene.set->lodTree);
+  checkSettledAs(scene, whole);
   // Each image fetched once, whole (no range).
   int images = 0;
   for (const std::string& line : nginx.accessLog(2))
