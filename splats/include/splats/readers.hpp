@@ -127,7 +127,8 @@ GaussianRows openGaussianRows(std::string_view head, const std::string& name,
 /// A scene whose attributes lie in columns of its file or of files beside it, each a run of
 /// bytes that decodes, in order, to one fixed-size record per splat (an SPZ v4 file's zstd
 /// streams, a GLB's or .gltf's accessors, an SOG's WebP images). Fetched
-/// column by column side by side (one HTTP range request each), its splats are decoded as
+/// column by column side by side (one HTTP request each: a range, or an SOG's image
+/// whole), its splats are decoded as
 /// soon as every column's records for them arrived, with all they hold: a remote SPZ drawn
 /// while it arrives (session/src/gaussian_columns_fetch.hpp; docs/splats.md, "Opening a
 /// scene").
