@@ -24,7 +24,7 @@ struct GaussianColumnsFetch::Column {
   splats::ColumnRecords records;
   std::string bytes;            // taken from the transfer, not yet fed
   std::uint64_t taken = 0;      // bytes taken from the transfer
-  std::string file;             // a buffer file's URL (empty: the scene's own file)
+  std::string url;              // a side file's URL (empty: the scene's own file)
   std::uint64_t fileBytes = 0;  // its size as the scene states it
   Column(const splats::GaussianColumnDecoder::Column& c, std::uint64_t splats,
          const std::string& name, int index)
@@ -55,7 +55,7 @@ GaussianColumnsFetch::GaussianColumnsFetch(
     if (have < c.bytes || unknownSize) {
       column->request = c.file.empty() ? request : sideRequests.at(c.file);
       if (!c.file.empty()) {
-        column->file = column->request.url;
+        column->url = column->request.url;
         column->fileBytes = c.fileBytes;
         sideBytes_ += c.bytes;
       }
@@ -168,10 +168,10 @@ std::string GaussianColumnsFetch::failure() const {
     if (s.finished() && s.state != net::TransferState::done)
       return s.error.empty() ? name_ + ": cancelled" : s.error;
     // A buffer file of another size than its byteLength: refused as the whole reader does.
-    if (!c->file.empty() && c->fileBytes > 0 && s.resourceSize >= 0 &&
+    if (!c->url.empty() && c->fileBytes > 0 && s.resourceSize >= 0 &&
         static_cast<std::uint64_t>(s.resourceSize) != c->fileBytes)
-      return name_ + ": " + c->file + ": expected " + std::to_string(c->fileBytes) +
-             " bytes, got " + std::to_string(s.resourceSize);
+      return name_ + ": " + c->url + ": expected " + std::to_string(c->fileBytes) + " bytes, got " +
+             std::to_string(s.resourceSize);
   }
   return {};
 }
@@ -190,7 +190,7 @@ net::TransferStatus GaussianColumnsFetch::status() const {
     const net::TransferStatus s = c->transfer->status();
     t.received += s.received;
     // A side file of unknown size counts once its size is known (or by what came).
-    if (c->request.length == 0 && !c->file.empty())
+    if (c->request.length == 0 && !c->url.empty())
       t.resourceSize +=
           std::max<std::int64_t>(s.resourceSize, static_cast<std::int64_t>(s.received));
     t.bytesPerSecond += s.state == net::TransferState::running ? s.bytesPerSecond : 0.0;

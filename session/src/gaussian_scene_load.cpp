@@ -376,7 +376,8 @@ bool GaussianSceneLoad::pumpTransfer() {
       }
       // A JSON scene (.gltf, an SOG's meta.json) of a size not told (gzip or chunked) waits
       // until it came whole, up to 1 MiB, for the columns of its side files.
-      if (!rows_ && known == 0 && !stopped && bufferStart_ == 0 && buffer_.size() <= (1u << 20)) {
+      if (!rows_ && known == 0 && !stopped && bufferStart_ == 0 &&
+          buffer_.size() <= splats::kMaxColumnsJsonBytes) {
         const auto at = buffer_.find_first_not_of(" \t\r\n\xEF\xBB\xBF");
         needMore |= at != std::string::npos && buffer_[at] == '{';
       }

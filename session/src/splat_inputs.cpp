@@ -215,8 +215,7 @@ std::shared_ptr<const render::SplatSet> loadGaussianFile(const std::string& path
 
 std::string sideFileUrl(const std::string& sceneUrl, const std::string& relative,
                         std::string& why) {
-  if (relative.empty() || relative.find("..") != std::string::npos ||
-      relative.find(':') != std::string::npos || relative.front() == '/') {
+  if (!splats::isFileBesideScene(relative)) {
     why = relative + ": not a file beside the scene";
     return {};
   }

@@ -61,20 +61,23 @@ ColumnRecords::ColumnRecords(const GaussianColumnDecoder::Column& column, std::u
 
 ColumnRecords::~ColumnRecords() = default;
 
+std::string ColumnRecords::webpName() const {
+  return "'" + (column_.file.empty() ? "column " + std::to_string(index_) : column_.file) + "'";
+}
+
 void ColumnRecords::feed(std::string_view bytes) {
-  const std::uint64_t most = column_.bytes == 0 && webp_ ? kMaxWebpBytes : column_.bytes;
-  if (webp_ && column_.bytes == 0 && bytes.size() > most - fed_)
-    detail::fail(name_, "'" + column_.file + "' is larger than 1 GiB");
-  if (bytes.size() > most - fed_)
+  if (webp_ && column_.bytes == 0) {  // a side file of unknown size
+    if (bytes.size() > kMaxWebpBytes - fed_)
+      detail::fail(name_, webpName() + " is larger than 1 GiB");
+  } else if (bytes.size() > column_.bytes - fed_) {
     detail::fail(name_, "column " + std::to_string(index_) + ": more than its " +
                             std::to_string(column_.bytes) + " bytes arrived");
+  }
   fed_ += bytes.size();
   pending_.append(bytes);
 }
 
 void ColumnRecords::decodeWebp(bool last) {
-  const std::string file =
-      "'" + (column_.file.empty() ? "column " + std::to_string(index_) : column_.file) + "'";
   if (complete_ || (pending_.empty() && !last)) return;
   if (!webp_->decoder) {
     // The header first (WebPGetInfo, as the whole reader): its size bounded before the
@@ -83,19 +86,19 @@ void ColumnRecords::decodeWebp(bool last) {
     if (!WebPGetInfo(data, pending_.size(), &width_, &height_) || width_ <= 0 || height_ <= 0) {
       // Not enough of a header yet (a VP8X's extended header is 30 bytes), or none.
       if (pending_.size() < 64 && !last) return;
-      detail::fail(name_, file + " is not a WebP image");
+      detail::fail(name_, webpName() + " is not a WebP image");
     }
     const std::uint64_t texels =
         static_cast<std::uint64_t>(width_) * static_cast<std::uint64_t>(height_);
     if (column_.maxTexels > 0 && texels > column_.maxTexels)
-      detail::fail(name_, file + " is " + std::to_string(width_) + "x" + std::to_string(height_) +
-                              ", more than the " + std::to_string(column_.maxTexels) +
-                              " pixels the scene needs");
+      detail::fail(name_, webpName() + " is " + std::to_string(width_) + "x" +
+                              std::to_string(height_) + ", more than the " +
+                              std::to_string(column_.maxTexels) + " pixels the scene needs");
     if (column_.whole && column_.width != 0 && static_cast<std::uint32_t>(width_) != column_.width)
-      detail::fail(name_, "expected " + file + " " + std::to_string(column_.width) +
+      detail::fail(name_, "expected " + webpName() + " " + std::to_string(column_.width) +
                               " texels wide, got " + std::to_string(width_));
     webp_->decoder.reset(WebPINewRGB(MODE_RGBA, nullptr, 0, 0));
-    if (!webp_->decoder) detail::fail(name_, file + ": out of memory");
+    if (!webp_->decoder) detail::fail(name_, webpName() + ": out of memory");
   }
   if (pending_.empty()) return;
   const VP8StatusCode status =
@@ -103,11 +106,11 @@ void ColumnRecords::decodeWebp(bool last) {
                   pending_.size());
   pending_.clear();
   if (status != VP8_STATUS_OK && status != VP8_STATUS_SUSPENDED)
-    detail::fail(name_, file + ": damaged WebP data");
+    detail::fail(name_, webpName() + ": damaged WebP data");
   int rows = 0, width = 0, height = 0, stride = 0;
   const std::uint8_t* rgba = WebPIDecGetRGB(webp_->decoder.get(), &rows, &width, &height, &stride);
   if (!rgba || rows <= 0) return;
-  if (width != width_ || height != height_) detail::fail(name_, file + ": damaged WebP data");
+  if (width != width_ || height != height_) detail::fail(name_, webpName() + ": damaged WebP data");
   // The rows decoded since, their texels up to the splats' (all of a whole column's).
   const auto w = static_cast<std::uint64_t>(width_);
   const std::uint64_t limit = column_.whole ? w * static_cast<std::uint64_t>(height_) : splats_;
@@ -175,8 +178,7 @@ void ColumnRecords::drop(std::uint64_t n) {
 
 void ColumnRecords::finish() {
   if (webp_) {
-    const std::string file =
-        "'" + (column_.file.empty() ? "column " + std::to_string(index_) : column_.file) + "'";
+    const std::string file = webpName();
     if (column_.bytes != 0 && fed_ != column_.bytes)
       detail::fail(name_, file + ": expected " + std::to_string(column_.bytes) +
                               " bytes in the file, got " + std::to_string(fed_));

@@ -162,7 +162,7 @@ GaussianColumns openGaussianColumns(std::string_view head, const std::string& na
   // "quats" (one of at most 1 MiB).
   if (const auto at = head.find_first_not_of(" \t\r\n\xEF\xBB\xBF");
       at != std::string_view::npos && head[at] == '{') {
-    found.needMore = head.size() < fileBytes && fileBytes <= (std::uint64_t{1} << 20);
+    found.needMore = head.size() < fileBytes && fileBytes <= kMaxColumnsJsonBytes;
     return found;
   }
   if (head.size() < 4) {

@@ -28,9 +28,6 @@ namespace {
 using detail::fail;
 
 constexpr std::uint64_t kMaxJsonBytes = std::uint64_t{64} << 20;
-/// The most JSON a remote scene read by columns waits for (a GLB's JSON chunk, a .gltf):
-/// more is read with the whole file.
-constexpr std::uint64_t kMaxRemoteJsonBytes = std::uint64_t{1} << 20;
 /// Splat primitive instances read piecewise: each holds its accessors and placement
 /// (about 2 KB); more are read whole.
 constexpr std::size_t kMaxInstances = 65536;
@@ -86,7 +83,7 @@ class GltfGaussianBatches final : public GaussianBatchReader, public GaussianCol
   GltfGaussianBatches(const std::string& name, std::string_view head, std::uint64_t fileBytes)
       : path_(name), fileBytes_(fileBytes), remote_(true) {
     if (!head.starts_with("glTF")) {
-      if (fileBytes > kMaxRemoteJsonBytes)
+      if (fileBytes > kMaxColumnsJsonBytes)
         throw NotPiecewiseError(name + ": a .gltf past 1 MiB is not read by columns");
       if (head.size() < fileBytes) throw NeedMoreBytes{};
       head = head.substr(0, static_cast<std::size_t>(fileBytes));
@@ -159,7 +156,7 @@ class GltfGaussianBatches final : public GaussianBatchReader, public GaussianCol
       if (jsonBytes > kMaxJsonBytes || 20 + jsonBytes > fileBytes_)
         fail(path, "GLB JSON chunk of " + std::to_string(jsonBytes) + " bytes does not fit");
       // A remote head: a JSON chunk past 1 MiB is read with the whole file instead.
-      if (remote_ && jsonBytes > kMaxRemoteJsonBytes)
+      if (remote_ && jsonBytes > kMaxColumnsJsonBytes)
         throw NotPiecewiseError(path + ": a GLB JSON chunk past 1 MiB is not read by columns");
       json.resize(static_cast<std::size_t>(jsonBytes));
       readAt(20, json.data(), json.size());
@@ -269,9 +266,7 @@ class GltfGaussianBatches final : public GaussianBatchReader, public GaussianCol
         s.offset = binOffset;
       } else {
         const std::string relative = base::percentDecode(uri);
-        if (relative.empty() || relative.find("..") != std::string::npos ||
-            relative.find(':') != std::string::npos || relative.front() == '/')
-          fail(path_, relative + ": not a file beside the scene");
+        if (!isFileBesideScene(relative)) fail(path_, relative + ": not a file beside the scene");
         if (remote_) {  // fetched by its columns' range requests, beside the scene's URL
           s.uri = relative;
           if (counted.insert(relative).second)  // (saturating: a hostile byteLength)

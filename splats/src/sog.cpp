@@ -297,8 +297,7 @@ class SogColumns final : public GaussianColumnDecoder {
     for (std::size_t k = 0; k < sog_.files.size(); ++k) {
       const std::string& file = sog_.files[k];
       // As the whole reader's side files (session::sideFileUrl) refuse them.
-      if (file.empty() || file.find("..") != std::string::npos ||
-          file.find(':') != std::string::npos || file.front() == '/')
+      if (!isFileBesideScene(file))
         fail(name_, "cannot read '" + file + "': " + file + ": not a file beside the scene");
       Column c;
       c.recordBytes = 4;
@@ -353,7 +352,7 @@ class SogColumns final : public GaussianColumnDecoder {
 GaussianColumns openSogColumns(std::string_view head, const std::string& name,
                                std::uint64_t fileBytes) {
   GaussianColumns found;
-  if (fileBytes > (std::uint64_t{1} << 20)) return found;  // read whole
+  if (fileBytes > kMaxColumnsJsonBytes) return found;  // read whole
   if (head.size() < fileBytes) {
     found.needMore = true;
     return found;

@@ -180,6 +180,18 @@ class GaussianColumnDecoder {
   }
 };
 
+/// The most JSON a scene read by columns waits for (a GLB's JSON chunk, a .gltf, an SOG's
+/// meta.json): a larger one is read with the whole file.
+inline constexpr std::uint64_t kMaxColumnsJsonBytes = std::uint64_t{1} << 20;
+
+/// Whether `name` (a side file as a scene names it: a glTF buffer, an SOG image) names a
+/// file beside the scene or below it: not empty, without "..", a scheme (':') or a
+/// leading '/'. Remote content names nothing else (docs/progressive-loading.md).
+inline bool isFileBesideScene(std::string_view name) {
+  return !name.empty() && name.find("..") == std::string_view::npos &&
+         name.find(':') == std::string_view::npos && name.front() != '/';
+}
+
 /// What openGaussianColumns found in a scene's first bytes.
 struct GaussianColumns {
   /// The decoder, or null: not (yet) known to be a column format.
@@ -306,6 +318,8 @@ class ColumnRecords {
   struct Webp;
   /// decodeUpTo for a WebP image; `last`: no more bytes will come (finish).
   void decodeWebp(bool last);
+  /// A WebP column's name in errors: its file quoted, or "'column K'".
+  std::string webpName() const;
   GaussianColumnDecoder::Column column_;
   std::uint64_t splats_;
   std::string name_;
